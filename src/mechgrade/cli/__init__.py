@@ -1,0 +1,15 @@
+"""The ``mechgrade`` command line: thin click commands over the library.
+
+Only this package prints or exits. Every :class:`~mechgrade.errors.MechgradeError` becomes one
+message on stderr and exit code 2; nothing imports this package.
+"""
+
+from __future__ import annotations
+
+import click
+
+from .common import main
+from . import solve as _solve  # noqa: F401  (registers its command)
+from . import check as _check  # noqa: F401
+
+__all__ = ["main"]

@@ -1,0 +1,113 @@
+"""The one error hierarchy of mechgrade.
+
+Every error a user can cause is a :class:`MechgradeError`. Its message says where (file, line,
+column, field), what was expected and what was found; the CLI prints ``str(error)`` and exits
+with :attr:`MechgradeError.exit_code`. Nothing else in the package prints or exits.
+
+>>> err = SpecError("expected a unit such as 'm/s', found 'furlongs/s'",
+...                 where=Location("p.yaml", 12, 5, "givens.v"))
+>>> str(err)
+"p.yaml:12:5: givens.v: expected a unit such as 'm/s', found 'furlongs/s'"
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+
+@dataclass(frozen=True)
+class Location:
+    """Where a value came from: file, 1-based line and column, and the field path inside it."""
+
+    file: str | None = None
+    line: int | None = None
+    column: int | None = None
+    field: str | None = None
+
+    def __str__(self) -> str:
+        parts = []
+        if self.file:
+            place = self.file
+            if self.line is not None:
+                place += f":{self.line}"
+                if self.column is not None:
+                    place += f":{self.column}"
+            parts.append(place)
+        if self.field:
+            parts.append(self.field)
+        return ": ".join(parts)
+
+
+class MechgradeError(Exception):
+    """Base of every error caused by bad input; carries a :class:`Location`."""
+
+    exit_code = 2
+
+    def __init__(self, message: str, *, where: Location | None = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.where = where or Location()
+
+    def located(self, where: Location) -> "MechgradeError":
+        """The same error placed at ``where``, keeping any field path it already had below it."""
+        field = where.field
+        if self.where.field and field:
+            field = f"{field}{'' if self.where.field.startswith('[') else '.'}{self.where.field}"
+        elif self.where.field:
+            field = self.where.field
+        merged = replace(where, field=field)
+        err = type(self)(self.message, where=merged)
+        err.__cause__ = self.__cause__
+        return err
+
+    def __str__(self) -> str:
+        place = str(self.where)
+        return f"{place}: {self.message}" if place else self.message
+
+
+class SpecError(MechgradeError):
+    """A problem file is malformed: YAML, schema, names, types or dimensions."""
+
+
+class ExpressionError(MechgradeError):
+    """Text could not be read as an expression of the allowed language.
+
+    ``offset`` is the 0-based character position in the text where reading failed, if known.
+    """
+
+    def __init__(self, message: str, *, where: Location | None = None, offset: int | None = None):
+        super().__init__(message, where=where)
+        self.offset = offset
+
+    def located(self, where: Location) -> "ExpressionError":
+        err = super().located(where)
+        err.offset = self.offset
+        return err
+
+
+class UnitError(MechgradeError):
+    """A unit string is unknown, or a quantity has the wrong dimension."""
+
+
+class SolveError(MechgradeError):
+    """The model cannot produce an objective: givens missing, conflicting, or a singular instant."""
+
+
+class UnderdeterminedError(SolveError):
+    """The givens leave an objective undetermined; the message names what is missing."""
+
+
+class InconsistentError(SolveError):
+    """The givens over-determine the model and disagree; the message names the conflict."""
+
+
+class AssignmentError(MechgradeError):
+    """An assignment file or its roster is malformed."""
+
+
+class SubmissionError(MechgradeError):
+    """A submission file could not be read (it is reported, never fatal to a grading run)."""
+
+
+class ExportError(MechgradeError):
+    """Results could not be exported in the requested format."""

@@ -1,0 +1,1 @@
+"""The expression language shared by problem specs and student answers (never ``eval``)."""

@@ -1,0 +1,482 @@
+"""Read expression text into a small syntax tree, without ever calling ``eval``.
+
+The same reader serves problem specs and student answers. Text is normalised (Unicode NFC,
+Greek letters to names, superscripts, ``^`` for powers, dot accents and primes for time
+derivatives, implicit multiplication), parsed with :func:`ast.parse` in ``eval`` mode, and every
+node is checked against an allow-list: numbers, names, ``Frame.x`` unit vectors, ``+ - * / **``,
+unary minus and calls to a fixed table of functions. Size, depth, literal and exponent bounds are
+enforced here, before sympy does any arithmetic.
+
+>>> parse("2 L θ̇^2")
+Bin(op='*', left=Bin(op='*', left=Num(text='2'), right=Name(id='L')), right=Bin(op='**', left=Prime(id='theta', order=1), right=Num(text='2')))
+>>> parse("__import__(1)")
+Traceback (most recent call last):
+...
+mechgrade.errors.ExpressionError: expected names, numbers, operators and functions, found '__import__' (names may not start with '_')
+"""
+
+from __future__ import annotations
+
+import ast
+import io
+import math
+import re
+import tokenize
+import unicodedata
+from dataclasses import dataclass
+from typing import Iterable, Union
+
+from ..errors import ExpressionError
+
+MAX_LENGTH = 2000
+MAX_NODES = 400
+MAX_DEPTH = 40
+MAX_LITERAL_DIGITS = 30
+MAX_POWER = 64
+MAX_MAGNITUDE = 1e150
+
+# Fixed table of scalar math functions: name -> (canonical name, arity).
+MATH_FUNCTIONS: dict[str, tuple[str, int]] = {
+    "sin": ("sin", 1), "cos": ("cos", 1), "tan": ("tan", 1),
+    "cot": ("cot", 1), "sec": ("sec", 1), "csc": ("csc", 1),
+    "asin": ("asin", 1), "acos": ("acos", 1), "atan": ("atan", 1),
+    "arcsin": ("asin", 1), "arccos": ("acos", 1), "arctan": ("atan", 1),
+    "atan2": ("atan2", 2), "arctan2": ("atan2", 2),
+    "sinh": ("sinh", 1), "cosh": ("cosh", 1), "tanh": ("tanh", 1),
+    "sqrt": ("sqrt", 1), "exp": ("exp", 1), "log": ("log", 1), "ln": ("log", 1),
+    "abs": ("abs", 1), "Abs": ("abs", 1), "sign": ("sign", 1),
+}
+CONSTANTS = {"pi"}
+
+GREEK = {
+    "α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "ε": "epsilon", "ϵ": "epsilon",
+    "ζ": "zeta", "η": "eta", "θ": "theta", "ϑ": "theta", "ι": "iota", "κ": "kappa",
+    "λ": "lambda_", "μ": "mu", "ν": "nu", "ξ": "xi", "π": "pi", "ρ": "rho", "σ": "sigma",
+    "τ": "tau", "υ": "upsilon", "φ": "phi", "ϕ": "phi", "χ": "chi", "ψ": "psi", "ω": "omega",
+    "Γ": "Gamma", "Δ": "Delta", "Θ": "Theta", "Λ": "Lambda", "Ξ": "Xi", "Π": "Pi",
+    "Σ": "Sigma", "Φ": "Phi", "Ψ": "Psi", "Ω": "Omega",
+}
+_SYMBOL_CHARS = {
+    "−": "-", "–": "-", "×": "*", "·": "*", "⋅": "*", "∙": "*", "÷": "/", "√": "sqrt",
+    "²": "^2", "³": "^3", "⁴": "^4", "¹": "^1", "⁰": "^0", "⁻¹": "^-1", "⁻²": "^-2",
+    "′": "'", "″": "''", "’": "'",
+}
+_COMBINING_DOT = "\u0307"
+_COMBINING_DIAERESIS = "\u0308"
+_PRIME = re.compile(r"([A-Za-z][A-Za-z0-9_]*)('{1,2})")
+
+
+# ---------------------------------------------------------------------------- syntax tree
+
+
+@dataclass(frozen=True)
+class Num:
+    """A number literal, kept as written so it can be made exact or float later."""
+
+    text: str
+
+    @property
+    def value(self) -> float:
+        return float(self.text)
+
+
+@dataclass(frozen=True)
+class Name:
+    id: str
+
+
+@dataclass(frozen=True)
+class Prime:
+    """The ``order``-th time derivative of the quantity ``id`` (``theta'``, ``θ̈``)."""
+
+    id: str
+    order: int
+
+
+@dataclass(frozen=True)
+class Attr:
+    """``base.attr``: a unit vector of a frame, such as ``N.x``."""
+
+    base: str
+    attr: str
+
+
+@dataclass(frozen=True)
+class Unary:
+    op: str
+    operand: "Node"
+
+
+@dataclass(frozen=True)
+class Bin:
+    op: str
+    left: "Node"
+    right: "Node"
+
+
+@dataclass(frozen=True)
+class Call:
+    func: str
+    args: tuple["Node", ...]
+
+
+Node = Union[Num, Name, Prime, Attr, Unary, Bin, Call]
+
+
+def walk(node: Node) -> Iterable[Node]:
+    """Every node of the tree, parents first.
+
+    >>> [type(n).__name__ for n in walk(parse("-a*b"))]
+    ['Bin', 'Unary', 'Name', 'Name']
+    """
+    yield node
+    if isinstance(node, Unary):
+        yield from walk(node.operand)
+    elif isinstance(node, Bin):
+        yield from walk(node.left)
+        yield from walk(node.right)
+    elif isinstance(node, Call):
+        for arg in node.args:
+            yield from walk(arg)
+
+
+def names(node: Node) -> set[str]:
+    """The plain names used in an expression (not function names, not frames of unit vectors)."""
+    return {n.id for n in walk(node) if isinstance(n, Name)}
+
+
+def to_text(node: Node) -> str:
+    """Canonical text for a tree (fully parenthesised where needed; parses back to the same tree).
+
+    >>> to_text(parse("2 L θ̇^2"))
+    "2*L*theta'**2"
+    """
+    return _text(node, 0)
+
+
+_PRECEDENCE = {"+": 1, "-": 1, "*": 2, "/": 2, "u": 3, "**": 4}
+
+
+def _text(node: Node, parent: int) -> str:
+    if isinstance(node, Num):
+        return node.text
+    if isinstance(node, Name):
+        return node.id
+    if isinstance(node, Prime):
+        return node.id + "'" * node.order
+    if isinstance(node, Attr):
+        return f"{node.base}.{node.attr}"
+    if isinstance(node, Call):
+        return f"{node.func}({', '.join(_text(a, 0) for a in node.args)})"
+    if isinstance(node, Unary):
+        out = node.op + _text(node.operand, _PRECEDENCE["u"])
+        return f"({out})" if parent > _PRECEDENCE["u"] else out
+    prec = _PRECEDENCE[node.op]
+    if node.op == "**":
+        out = f"{_text(node.left, prec + 1)}**{_text(node.right, prec)}"
+    else:
+        out = f"{_text(node.left, prec)}{node.op}{_text(node.right, prec + 1)}"
+    return f"({out})" if parent > prec else out
+
+
+# ---------------------------------------------------------------------------- normalising
+
+
+def normalize(text: str, functions: Iterable[str] = ()) -> str:
+    """Rewrite friendly notation into the Python-like syntax the reader parses.
+
+    ``functions`` are extra function names (besides the math table) after which ``(`` opens
+    a call rather than an implicit product.
+
+    >>> normalize("½ω²r")
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.ExpressionError: expected names, numbers, operators and functions, found '½'
+    >>> normalize("2 L θ̇^2 + ẍ")
+    '2 * L * __d1__theta ** 2 + __d2__x'
+    """
+    if not isinstance(text, str):
+        raise ExpressionError(f"expected text, found {type(text).__name__}")
+    if len(text) > MAX_LENGTH:
+        raise ExpressionError(f"expected at most {MAX_LENGTH} characters, found {len(text)}")
+    text = unicodedata.normalize("NFC", text)
+    out: list[str] = []
+    for ch in text:
+        decomposed = unicodedata.normalize("NFD", ch)
+        accent = ""
+        if len(decomposed) > 1 and decomposed[-1] in (_COMBINING_DOT, _COMBINING_DIAERESIS):
+            accent = "'" if decomposed[-1] == _COMBINING_DOT else "''"
+            ch = decomposed[:-1]
+        if ch == _COMBINING_DOT:
+            out.append("'")
+            continue
+        if ch == _COMBINING_DIAERESIS:
+            out.append("''")
+            continue
+        if ch in GREEK:
+            ch = GREEK[ch]
+        elif ch in _SYMBOL_CHARS:
+            ch = _SYMBOL_CHARS[ch]
+        elif ord(ch) > 127 and not ch.isspace():
+            raise ExpressionError(
+                f"expected names, numbers, operators and functions, found {ch!r}")
+        out.append(ch + accent)
+    text = "".join(out).replace("^", "**")
+    text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
+    if "'" in text:
+        raise ExpressionError("expected a prime (') only right after a name, as in theta'")
+    return _implicit_products(text, set(MATH_FUNCTIONS) | set(functions))
+
+
+_OPERAND_END = {tokenize.NUMBER, tokenize.NAME}
+_OPERAND_START = {tokenize.NUMBER, tokenize.NAME}
+
+
+def _implicit_products(text: str, functions: set[str]) -> str:
+    try:
+        tokens = [t for t in tokenize.generate_tokens(io.StringIO(text).readline)
+                  if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER,
+                                    tokenize.INDENT, tokenize.DEDENT)]
+    except (tokenize.TokenError, IndentationError, SyntaxError) as exc:
+        raise ExpressionError(f"expected a complete expression, found {text!r} "
+                              f"({_reason(exc)})") from None
+    pieces: list[str] = []
+    prev = None
+    for tok in tokens:
+        if tok.type == tokenize.ERRORTOKEN and not tok.string.isspace():
+            raise ExpressionError(f"expected names, numbers, operators and functions, "
+                                  f"found {tok.string!r}")
+        if prev is not None and _juxtaposed(prev, tok, functions):
+            pieces.append("*")
+        pieces.append(tok.string)
+        if not (tok.type == tokenize.ERRORTOKEN and tok.string.isspace()):
+            prev = tok
+    return " ".join(pieces)
+
+
+def _juxtaposed(prev: tokenize.TokenInfo, tok: tokenize.TokenInfo, functions: set[str]) -> bool:
+    prev_ends = prev.type in _OPERAND_END or prev.string == ")"
+    if prev.type == tokenize.NAME and prev.string in _KEYWORDS:
+        return False
+    if tok.type == tokenize.NAME and tok.string in _KEYWORDS:
+        return False
+    starts = tok.type in _OPERAND_START or tok.string == "("
+    if not (prev_ends and starts):
+        return False
+    if tok.string == "(" and prev.type == tokenize.NAME and prev.string in functions:
+        return False
+    return True
+
+
+_KEYWORDS = {"and", "or", "not", "in", "is", "if", "else", "lambda", "for"}
+
+
+def _reason(exc: BaseException) -> str:
+    msg = exc.args[0] if exc.args else str(exc)
+    return str(msg).split("(")[0].strip()
+
+
+# ---------------------------------------------------------------------------- parsing
+
+
+def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) -> Node:
+    """Read ``text`` into a syntax tree, or raise :class:`ExpressionError` saying why not.
+
+    ``functions``: extra allowed function names (for example the kinematics functions of the
+    spec language); ``attributes``: whether ``Frame.x`` unit vectors are allowed.
+
+    >>> parse("sqrt(xd**2 + yd**2)")
+    Call(func='sqrt', args=(Bin(op='+', left=Bin(op='**', left=Name(id='xd'), right=Num(text='2')), right=Bin(op='**', left=Name(id='yd'), right=Num(text='2'))),))
+    """
+    functions = tuple(functions)
+    source = normalize(text, functions)
+    if not source.strip():
+        raise ExpressionError("expected an expression, found nothing")
+    try:
+        tree = ast.parse(source.strip(), mode="eval")
+    except SyntaxError as exc:
+        raise ExpressionError(f"expected a complete expression, found {text.strip()!r} "
+                              f"({_reason(exc)})", offset=exc.offset) from None
+    except (MemoryError, RecursionError, ValueError):
+        raise ExpressionError("expected a simpler expression (too deeply nested)") from None
+    builder = _Builder(set(MATH_FUNCTIONS) | set(functions), attributes)
+    node = builder.build(tree.body, 0)
+    return node
+
+
+class _Builder:
+    _BINOPS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**"}
+
+    def __init__(self, functions: set[str], attributes: bool):
+        self.functions = functions
+        self.attributes = attributes
+        self.count = 0
+
+    def build(self, node: ast.AST, depth: int) -> Node:
+        self.count += 1
+        if self.count > MAX_NODES:
+            raise ExpressionError(f"expected an expression of at most {MAX_NODES} parts")
+        if depth > MAX_DEPTH:
+            raise ExpressionError(f"expected an expression nested at most {MAX_DEPTH} deep")
+        if isinstance(node, ast.Constant):
+            return self._number(node.value)
+        if isinstance(node, ast.Name):
+            return self._name(node.id)
+        if isinstance(node, ast.Attribute):
+            if not self.attributes or not isinstance(node.value, ast.Name):
+                raise ExpressionError("expected a unit vector such as N.x, found an attribute")
+            base = self._name(node.value.id)
+            if not isinstance(base, Name) or node.attr not in ("x", "y", "z"):
+                raise ExpressionError(f"expected a unit vector such as N.x, "
+                                      f"found '{node.value.id}.{node.attr}'")
+            return Attr(base.id, node.attr)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+            operand = self.build(node.operand, depth + 1)
+            if isinstance(node.op, ast.UAdd):
+                return operand
+            return Unary("-", operand)
+        if isinstance(node, ast.BinOp) and type(node.op) in self._BINOPS:
+            op = self._BINOPS[type(node.op)]
+            left = self.build(node.left, depth + 1)
+            right = self.build(node.right, depth + 1)
+            out = Bin(op, left, right)
+            if op == "**":
+                _check_power(out)
+            _check_magnitude(out)
+            return out
+        if isinstance(node, ast.Call):
+            if not isinstance(node.func, ast.Name):
+                raise ExpressionError("expected a call of a named function such as sin(x)")
+            func = node.func.id
+            if func not in self.functions:
+                raise ExpressionError(f"expected a known function ({_listing(self.functions)}), "
+                                      f"found '{func}(...)'")
+            if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
+                raise ExpressionError(f"expected plain arguments in '{func}(...)'")
+            args = tuple(self.build(a, depth + 1) for a in node.args)
+            if func in MATH_FUNCTIONS:
+                canonical, arity = MATH_FUNCTIONS[func]
+                if len(args) != arity:
+                    raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
+                                          f"for {func}(...), found {len(args)}")
+                func = canonical
+            return Call(func, args)
+        raise ExpressionError(f"expected names, numbers, operators and functions, "
+                              f"found {_describe(node)}")
+
+    def _number(self, value) -> Num:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ExpressionError(f"expected a number, found {_describe_constant(value)}")
+        text = repr(value) if isinstance(value, float) else str(value)
+        if len(text.replace("-", "").replace(".", "").split("e")[0]) > MAX_LITERAL_DIGITS:
+            raise ExpressionError(f"expected a number of at most {MAX_LITERAL_DIGITS} digits")
+        if isinstance(value, float) and (math.isinf(value) or abs(value) > MAX_MAGNITUDE):
+            raise ExpressionError("expected a number of sensible size, found an enormous one")
+        if isinstance(value, int) and abs(value) > MAX_MAGNITUDE:
+            raise ExpressionError("expected a number of sensible size, found an enormous one")
+        return Num(text)
+
+    def _name(self, name: str) -> Node:
+        match = re.fullmatch(r"__d([12])__([A-Za-z][A-Za-z0-9_]*)", name)
+        if match:
+            return Prime(match.group(2), int(match.group(1)))
+        if name.startswith("_"):
+            raise ExpressionError(f"expected names, numbers, operators and functions, "
+                                  f"found '{name}' (names may not start with '_')")
+        if name in self.functions:
+            raise ExpressionError(f"expected '{name}(...)' with its argument in parentheses")
+        return Name(name)
+
+
+def _listing(functions: set[str]) -> str:
+    shown = sorted(functions)
+    return ", ".join(shown[:12]) + (", ..." if len(shown) > 12 else "")
+
+
+def _describe(node: ast.AST) -> str:
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+        return f"'{node.func.id}(...)'"
+    try:
+        text = ast.unparse(node)
+    except Exception:  # pragma: no cover - unparse handles every parsed node
+        text = type(node).__name__
+    return repr(text[:40])
+
+
+def _describe_constant(value) -> str:
+    if isinstance(value, str):
+        return "a string"
+    if isinstance(value, complex):
+        return "a complex number"
+    return repr(value)[:20]
+
+
+def constant_value(node: Node) -> float | None:
+    """The value of a tree made only of numbers, operators, ``pi`` and math functions.
+
+    Returns ``None`` when the tree uses a name; raises :class:`ExpressionError` on overflow.
+
+    >>> constant_value(parse("2**10 / 4"))
+    256.0
+    >>> constant_value(parse("x + 1")) is None
+    True
+    """
+    try:
+        return _const(node)
+    except _NotConstant:
+        return None
+    except (OverflowError, ZeroDivisionError, ValueError):
+        raise ExpressionError("expected numbers of sensible size (a constant part "
+                              "overflows or divides by zero)") from None
+
+
+class _NotConstant(Exception):
+    pass
+
+
+_CONST_FUNCS = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
+                "exp": math.exp, "log": math.log, "abs": abs, "asin": math.asin,
+                "acos": math.acos, "atan": math.atan, "sinh": math.sinh, "cosh": math.cosh,
+                "tanh": math.tanh}
+
+
+def _const(node: Node) -> float:
+    if isinstance(node, Num):
+        return node.value
+    if isinstance(node, Name) and node.id == "pi":
+        return math.pi
+    if isinstance(node, Unary):
+        return -_const(node.operand)
+    if isinstance(node, Bin):
+        a, b = _const(node.left), _const(node.right)
+        if node.op == "+":
+            return a + b
+        if node.op == "-":
+            return a - b
+        if node.op == "*":
+            return a * b
+        if node.op == "/":
+            return a / b
+        if abs(b) > MAX_POWER:
+            raise OverflowError
+        value = a ** b
+        if isinstance(value, complex):
+            raise ValueError
+        return value
+    if isinstance(node, Call) and node.func in _CONST_FUNCS and len(node.args) == 1:
+        return _CONST_FUNCS[node.func](_const(node.args[0]))
+    raise _NotConstant
+
+
+def _check_power(node: Bin) -> None:
+    exponent = constant_value(node.right)
+    if exponent is not None and abs(exponent) > MAX_POWER:
+        raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
+                              f"{to_text(node.right)!r}")
+
+
+def _check_magnitude(node: Bin) -> None:
+    value = constant_value(node)
+    if value is not None and abs(value) > MAX_MAGNITUDE:
+        raise ExpressionError("expected numbers of sensible size, found a constant that is "
+                              "enormous")

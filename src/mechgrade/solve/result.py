@@ -1,0 +1,69 @@
+"""What the reference solver hands to the grader and the reports: plain numbers and strings.
+
+Nothing here holds a sympy object, so grading, reports and exports can use a
+:class:`Solution` without importing sympy.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Union
+
+Value = Union[float, tuple[float, float, float], None]
+
+
+@dataclass(frozen=True)
+class MistakeValue:
+    """The value an author-declared mistaken model gives, in the objective's unit."""
+
+    message: str
+    credit: float
+    value: Value
+    expr: str | None = None
+
+
+@dataclass(frozen=True)
+class ObjectiveResult:
+    """One objective's reference answer.
+
+    ``value`` is a float (scalar), an ``(x, y, z)`` tuple of components in ``frame``
+    (vector), or ``None`` for a symbolic objective, whose answer is ``expr`` (sympy syntax,
+    readable by :func:`mechgrade.expressions.syntax.parse`) in the names ``symbols``.
+    ``symbol_units`` gives each symbol's SI unit, for dimension checks of student answers.
+    """
+
+    id: str
+    kind: str
+    unit: str
+    value: Value = None
+    frame: str | None = None
+    expr: str | None = None
+    symbols: tuple[str, ...] = ()
+    symbol_units: tuple[str, ...] = ()
+    mistakes: tuple[MistakeValue, ...] = ()
+
+
+@dataclass(frozen=True)
+class StateValue:
+    """A coordinate, rate, parameter or time at the instant (SI value and its SI unit)."""
+
+    name: str
+    value: float
+    unit: str
+    given: bool
+
+
+@dataclass(frozen=True)
+class Solution:
+    """All objectives of a problem, solved at the instant its givens describe."""
+
+    problem: str
+    results: tuple[ObjectiveResult, ...]
+    state: tuple[StateValue, ...] = ()
+    dof: int | None = None
+
+    def result(self, objective_id: str) -> ObjectiveResult:
+        for result in self.results:
+            if result.id == objective_id:
+                return result
+        raise KeyError(objective_id)

@@ -1,0 +1,206 @@
+"""The problem model as frozen dataclasses, in the textbook's systematic order.
+
+A :class:`Problem` is what :func:`mechgrade.spec.load_problem` returns: inertial frame and point,
+body frames, points with location descriptions, generalized coordinates, parameters,
+constraints, givens at the instant, objectives with tolerances and author tests. Every
+expression keeps its text, its parsed tree and the :class:`~mechgrade.errors.Location` it came
+from, so any later error can point back into the file.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..errors import Location
+from ..expressions.syntax import Node
+
+TIME = "t"
+"""The reserved name of time in every expression."""
+
+
+@dataclass(frozen=True)
+class Expr:
+    """An expression as written in the spec: its text, syntax tree and location."""
+
+    text: str
+    node: Node
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Rotation:
+    """A simple rotation of a frame from its parent: ``angle`` about the parent's ``axis``."""
+
+    axis: str  # "x", "y" or "z"
+    angle: Expr
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A reference frame. ``rotations`` is one simple rotation or a body-fixed sequence.
+
+    ``origin`` is a point fixed in the frame, needed for velocities relative to the frame,
+    coincident points and instantaneous centres.
+    """
+
+    name: str
+    parent: str | None
+    rotations: tuple[Rotation, ...]
+    origin: str | None
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Point:
+    """A point located from another point by a vector (its location description)."""
+
+    name: str
+    origin: str | None  # None only for the inertial point
+    position: Expr | None
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """A generalized coordinate (a function of time), with the unit that sets its dimension."""
+
+    name: str
+    unit: str
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A constant of the problem (length, radius, fixed angle, tooth count)."""
+
+    name: str
+    unit: str
+    positive: bool = True
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """``lhs = rhs`` holding for all time, at the position or the velocity level.
+
+    Position constraints (holonomic: loop closures, paths, gear and arc-length relations) are
+    differentiated for the velocity and acceleration levels; velocity constraints (rolling
+    without slip, non-holonomic) are differentiated once. Vector equations stand for their
+    components in the inertial frame.
+    """
+
+    name: str
+    level: str  # "position" or "velocity"
+    lhs: Expr
+    rhs: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Given:
+    """A value known at the instant: of a parameter, a coordinate or its rates, or of any
+    scalar expression (``dot(vel(B, N), B.x)``). ``value`` is in ``unit``; ``si`` in SI."""
+
+    key: Expr
+    value: float
+    unit: str
+    si: float
+    text: str
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """Accepted difference: ``|a - b| <= max(rel * |b|, abs)``; ``abs`` in the objective's unit.
+
+    For vectors ``|b|`` is the reference vector's magnitude, applied to each component.
+    """
+
+    rel: float = 0.01
+    abs: float = 0.0
+
+
+@dataclass(frozen=True)
+class SymbolDecl:
+    """A name a symbolic answer is written in, and the spec quantity it stands for."""
+
+    name: str
+    means: Expr
+
+
+@dataclass(frozen=True)
+class Expect:
+    """The author's test of an objective: the value the solver must reproduce.
+
+    Exactly one of ``value`` (scalar), ``components`` (vector, in the objective's frame) and
+    ``expr`` (symbolic) is set. ``book`` is the printed answer when it differs, explained in
+    ``note``.
+    """
+
+    value: float | None = None
+    components: tuple[float, ...] | None = None
+    expr: str | None = None
+    unit: str | None = None
+    book: str | None = None
+    note: str | None = None
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Mistake:
+    """An author-declared typical mistake: the mistaken model's expression, a message for the
+    student and the credit (0..1) it earns."""
+
+    find: Expr
+    message: str
+    credit: float = 0.0
+
+
+@dataclass(frozen=True)
+class Objective:
+    """What to find: an expression of the objective language, reported in ``unit``.
+
+    ``kind`` is ``scalar``, ``vector`` (components in ``frame``) or ``symbolic`` (an
+    expression in ``symbols``).
+    """
+
+    id: str
+    prompt: str
+    find: Expr
+    kind: str
+    unit: str
+    frame: str | None = None
+    symbols: tuple[SymbolDecl, ...] = ()
+    tolerance: Tolerance = Tolerance()
+    expect: Expect | None = None
+    mistakes: tuple[Mistake, ...] = ()
+    depends_on: tuple[str, ...] = ()
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A whole problem file."""
+
+    id: str
+    title: str
+    statement: str
+    source: str
+    inertial_frame: str
+    inertial_point: str
+    frames: tuple[Frame, ...]
+    points: tuple[Point, ...]
+    coordinates: tuple[Coordinate, ...]
+    parameters: tuple[Parameter, ...]
+    constraints: tuple[Constraint, ...]
+    givens: tuple[Given, ...]
+    guesses: tuple[Given, ...]
+    objectives: tuple[Objective, ...]
+    consistency: float = 5e-3
+    path: str | None = field(default=None, compare=False)
+
+    def objective(self, objective_id: str) -> Objective:
+        for objective in self.objectives:
+            if objective.id == objective_id:
+                return objective
+        raise KeyError(objective_id)

@@ -1,0 +1,266 @@
+"""Units: one cached pint registry, safe unit-text reading, SI conversion and dimensions.
+
+Unit text is tokenised and checked against an allow-list before pint sees it (pint itself has
+no ``eval`` but hangs on ``m/s**9**9**9``), then normalised to pint's syntax. Every conversion
+factor is cached per unit string. Inside mechgrade all numbers are SI (radians for angles).
+
+>>> to_si(30, "deg")
+0.5235987755982988
+>>> from_si(9.80665, "ft/s^2")
+32.17404855643044
+>>> normalize_unit("ft/s2")
+'ft / s ** 2'
+>>> parse_quantity("98.5 ft/s²")
+Quantity(value=98.5, unit='ft / s ** 2')
+"""
+
+from __future__ import annotations
+
+import re
+import unicodedata
+from dataclasses import dataclass
+from functools import lru_cache
+
+from .errors import UnitError
+
+MAX_UNIT_LENGTH = 64
+MAX_EXPONENT = 12
+
+_SUPERSCRIPTS = str.maketrans({"⁰": "0", "¹": "1", "²": "2", "³": "3", "⁴": "4", "⁵": "5",
+                               "⁶": "6", "⁷": "7", "⁸": "8", "⁹": "9", "⁻": "-"})
+_NUMBER = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)")
+_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_µΩ°]+)(?P<power>-?\d+)?|(?P<num>\d+(?:\.\d+)?)"
+                    r"|(?P<op>\*\*|[*/^()·⋅.\-]))")
+_DIMENSIONLESS_WORDS = {"", "1", "dimensionless", "-", "none", "unitless"}
+
+
+@lru_cache(maxsize=1)
+def registry():
+    """The process-wide pint ``UnitRegistry`` (created once; pint is slow to load)."""
+    import pint
+
+    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    ureg.formatter.default_format = "~"
+    return ureg
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A number with the unit it was written in (unit text already normalised)."""
+
+    value: float
+    unit: str
+
+    def to_si(self) -> float:
+        return to_si(self.value, self.unit)
+
+
+@lru_cache(maxsize=4096)
+def normalize_unit(text: str) -> str:
+    """Check unit text against the allow-list and return it in pint's syntax.
+
+    Accepts ``^`` or ``**`` powers, superscripts (``s²``), a power glued to a name (``s2``),
+    ``·`` or spaces for products, ``°`` for degrees. Raises :class:`UnitError` otherwise.
+
+    >>> normalize_unit("m*s^-2")
+    'm * s ** -2'
+    >>> normalize_unit("kg m²/s²")
+    'kg * m ** 2 / s ** 2'
+    """
+    raw = text
+    text = unicodedata.normalize("NFC", str(text)).strip()
+    if len(text) > MAX_UNIT_LENGTH:
+        raise UnitError(f"expected a unit of at most {MAX_UNIT_LENGTH} characters, "
+                        f"found {len(text)} characters")
+    if text.lower() in _DIMENSIONLESS_WORDS:
+        return ""
+    text = text.translate(_SUPERSCRIPTS).replace("°", " deg ")
+    out: list[str] = []
+    pos = 0
+    expect_operand = True
+    while pos < len(text):
+        if text[pos:].strip() == "":
+            break
+        m = _TOKEN.match(text, pos)
+        if not m:
+            raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
+                            f"(cannot read {text[pos:].strip()[:10]!r})")
+        pos = m.end()
+        if m.group("name"):
+            name = m.group("name").replace("µ", "u")
+            if not expect_operand:
+                out.append("*")
+            _check_unit_name(name, raw)
+            out.append(name)
+            if m.group("power"):
+                out += ["**", _exponent(m.group("power"), raw)]
+            expect_operand = False
+        elif m.group("num"):
+            if out and out[-1] == "**":
+                out.append(_exponent(m.group("num"), raw))
+                expect_operand = False
+            elif m.group("num") == "1" and expect_operand:
+                out.append("1")
+                expect_operand = False
+            else:
+                raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
+                                f"(a number {m.group('num')!r} inside a unit)")
+        else:
+            op = m.group("op")
+            if op in ("^", "**"):
+                if expect_operand or (len(out) >= 2 and out[-2] == "**"):
+                    raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
+                                    "(misplaced power)")
+                exp = _NUMBER.match(text, pos)
+                if not exp:
+                    raise UnitError(f"expected a whole-number power after '^' in {raw!r}")
+                out += ["**", _exponent(exp.group(1), raw)]
+                pos = exp.end()
+            elif op in ("*", "·", "⋅", "."):
+                if expect_operand:
+                    raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r}")
+                out.append("*")
+                expect_operand = True
+            elif op == "/":
+                if expect_operand:
+                    out.append("1")
+                out.append("/")
+                expect_operand = True
+            elif op == "(":
+                if not expect_operand:
+                    out.append("*")
+                out.append("(")
+                expect_operand = True
+            elif op == ")":
+                out.append(")")
+                expect_operand = False
+            else:
+                raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r}")
+    if expect_operand or out.count("(") != out.count(")"):
+        raise UnitError(f"expected a complete unit such as 'm/s^2', found {raw!r}")
+    canonical = " ".join(out).replace("( ", "(").replace(" )", ")")
+    _pint_unit(canonical, raw)  # proves pint reads it
+    return canonical
+
+
+def _exponent(text: str, raw: str) -> str:
+    try:
+        value = int(text)
+    except ValueError:
+        raise UnitError(f"expected a whole-number power in {raw!r}, found {text!r}") from None
+    if abs(value) > MAX_EXPONENT:
+        raise UnitError(f"expected a power of at most {MAX_EXPONENT} in {raw!r}, found {value}")
+    return str(value)
+
+
+def _check_unit_name(name: str, raw: str) -> None:
+    ureg = registry()
+    try:
+        ureg.parse_units(name)
+    except Exception:
+        raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
+                        f"({name!r} is not a unit)") from None
+
+
+@lru_cache(maxsize=4096)
+def _pint_unit(canonical: str, raw: str | None = None):
+    ureg = registry()
+    if canonical == "":
+        return ureg.dimensionless
+    try:
+        return ureg.parse_units(canonical)
+    except Exception:
+        raise UnitError(f"expected a unit such as 'm/s^2', found {raw or canonical!r}") from None
+
+
+@lru_cache(maxsize=4096)
+def si_factor(unit: str) -> float:
+    """Factor that turns a value in ``unit`` into SI base units (radians for angles).
+
+    >>> round(si_factor("cm/s"), 12)
+    0.01
+    """
+    canonical = normalize_unit(unit)
+    ureg = registry()
+    return float(ureg.Quantity(1.0, _pint_unit(canonical)).to_base_units().magnitude)
+
+
+def to_si(value: float, unit: str) -> float:
+    """``value`` given in ``unit``, in SI base units."""
+    return float(value) * si_factor(unit)
+
+
+def from_si(value: float, unit: str) -> float:
+    """An SI value expressed in ``unit``."""
+    return float(value) / si_factor(unit)
+
+
+@lru_cache(maxsize=4096)
+def dimension(unit: str):
+    """The dimensionality of ``unit`` as a pint ``UnitsContainer`` (hashable, supports * / **).
+
+    >>> str(dimension("ft/s^2"))
+    '[length] / [time] ** 2'
+    >>> dimension("deg") == dimension("1")
+    True
+    """
+    return _pint_unit(normalize_unit(unit)).dimensionality
+
+
+def dimensionless():
+    """The dimensionality of a pure number."""
+    return dimension("")
+
+
+def time_dimension():
+    return dimension("s")
+
+
+def describe_dimension(dim) -> str:
+    """Words for a dimensionality, for messages ("a velocity [length] / [time]").
+
+    >>> describe_dimension(dimension("m/s"))
+    'a velocity ([length] / [time])'
+    """
+    text = str(dim) if str(dim) else "dimensionless"
+    name = _DIMENSION_NAMES.get(text)
+    if text == "dimensionless":
+        return "a pure number (or an angle)"
+    return f"{name} ({text})" if name else text
+
+
+_DIMENSION_NAMES = {
+    "[length]": "a length",
+    "[time]": "a time",
+    "[mass]": "a mass",
+    "[length] / [time]": "a velocity",
+    "[length] / [time] ** 2": "an acceleration",
+    "1 / [time]": "an angular velocity or rate",
+    "1 / [time] ** 2": "an angular acceleration",
+    "[length] * [mass] / [time] ** 2": "a force",
+    "[length] ** 2 * [mass] / [time] ** 2": "an energy or moment",
+    "[length] * [mass] / [time]": "a momentum",
+}
+
+
+def same_dimension(unit_a: str, unit_b: str) -> bool:
+    return dimension(unit_a) == dimension(unit_b)
+
+
+def parse_quantity(text: str) -> Quantity:
+    """Read ``"<number> <unit>"`` (unit optional) into a :class:`Quantity`.
+
+    >>> parse_quantity("-1.4 rad/s")
+    Quantity(value=-1.4, unit='rad / s')
+    >>> parse_quantity("7")
+    Quantity(value=7.0, unit='')
+    """
+    text = unicodedata.normalize("NFC", str(text)).strip()
+    m = _NUMBER.match(text)
+    if not m:
+        raise UnitError(f"expected a number followed by a unit such as '9.81 m/s^2', "
+                        f"found {text!r}")
+    value = float(m.group(1))
+    if value != value or value in (float("inf"), float("-inf")):
+        raise UnitError(f"expected a finite number, found {text!r}")
+    return Quantity(value, normalize_unit(text[m.end():]))
