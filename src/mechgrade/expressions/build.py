@@ -3,7 +3,7 @@
 >>> import sympy
 >>> from mechgrade.expressions.syntax import parse
 >>> xd, yd = sympy.symbols("xd yd", real=True)
->>> to_sympy(parse("sqrt(xd^2 + yd^2)"), {"xd": xd, "yd": yd}.__getitem__)
+>>> to_sympy(parse("sqrt(xd^2 + yd^2)"), lambda n: {"xd": xd, "yd": yd}[n.id])
 sqrt(xd**2 + yd**2)
 """
 
