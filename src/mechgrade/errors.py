@@ -111,3 +111,7 @@ class SubmissionError(MechgradeError):
 
 class ExportError(MechgradeError):
     """Results could not be exported in the requested format."""
+
+
+class AnswerError(MechgradeError):
+    """A student's answer text could not be read; the message says why (verdict "unreadable")."""

@@ -1,0 +1,104 @@
+"""The outcome of grading, as frozen dataclasses, and its stable JSON contract (``results.json``).
+
+``results.json`` is a public contract (documented in ``docs/grading.md``)::
+
+    {"assignment": {"id": ..., "title": ...},
+     "objectives": [{"problem", "objective", "prompt", "max_points"}],
+     "students": [{"id", "name", "status", "score", "max_score",
+                   "answers": [{"problem", "objective", "answer", "verdict", "points",
+                                "max_points", "diagnosis", "feedback"}]}]}
+
+Verdicts come from :data:`VERDICTS`; student statuses from :data:`STATUSES`. Reports and
+exports read these dataclasses (never sympy).
+
+>>> r = GradeReport(AssignmentInfo("hw1", "Homework 1"), (), ())
+>>> GradeReport.from_json(r.to_json()) == r
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+
+VERDICTS = ("correct", "partial", "incorrect", "unreadable", "missing", "not_evaluated")
+STATUSES = ("graded", "missing", "unreadable")
+
+
+@dataclass(frozen=True)
+class AssignmentInfo:
+    id: str
+    title: str
+
+
+@dataclass(frozen=True)
+class ObjectiveInfo:
+    """One gradable objective of the assignment."""
+
+    problem: str
+    objective: str
+    prompt: str
+    max_points: float
+
+
+@dataclass(frozen=True)
+class AnswerResult:
+    """How one student's answer to one objective was judged.
+
+    ``answer`` is the text as the student typed it (``None`` if missing); ``read_back`` is how
+    mechgrade read it; ``expected`` is the reference answer text, present only when the
+    assignment reveals answers.
+    """
+
+    problem: str
+    objective: str
+    answer: str | None
+    verdict: str
+    points: float
+    max_points: float
+    diagnosis: str | None = None
+    feedback: str = ""
+    read_back: str | None = None
+    expected: str | None = None
+
+
+@dataclass(frozen=True)
+class StudentResult:
+    """One student's grade. ``identity`` keeps roster columns (name, SIS ids, email...)."""
+
+    id: str
+    name: str
+    status: str
+    score: float
+    max_score: float
+    answers: tuple[AnswerResult, ...] = ()
+    messages: tuple[str, ...] = ()
+    identity: tuple[tuple[str, str], ...] = ()
+
+
+@dataclass(frozen=True)
+class GradeReport:
+    assignment: AssignmentInfo
+    objectives: tuple[ObjectiveInfo, ...]
+    students: tuple[StudentResult, ...] = field(default=())
+
+    def to_json(self) -> dict:
+        """The ``results.json`` document (plain dicts and lists, stable key order)."""
+        data = asdict(self)
+        for student in data["students"]:
+            student["identity"] = {k: v for k, v in student["identity"]}
+        return data
+
+    @classmethod
+    def from_json(cls, data: dict) -> "GradeReport":
+        """Rebuild a report from a ``results.json`` document."""
+        students = []
+        for s in data.get("students", []):
+            answers = tuple(AnswerResult(**a) for a in s.get("answers", []))
+            identity = tuple((str(k), str(v)) for k, v in (s.get("identity") or {}).items())
+            students.append(StudentResult(
+                id=s["id"], name=s.get("name", ""), status=s["status"], score=s["score"],
+                max_score=s["max_score"], answers=answers,
+                messages=tuple(s.get("messages", ())), identity=identity))
+        return cls(AssignmentInfo(**data["assignment"]),
+                   tuple(ObjectiveInfo(**o) for o in data.get("objectives", [])),
+                   tuple(students))
