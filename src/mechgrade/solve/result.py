@@ -30,6 +30,7 @@ class ObjectiveResult:
     (vector), or ``None`` for a symbolic objective, whose answer is ``expr`` (sympy syntax,
     readable by :func:`mechgrade.expressions.syntax.parse`) in the names ``symbols``.
     ``symbol_units`` gives each symbol's SI unit, for dimension checks of student answers.
+    ``rel`` and ``abs`` are the objective's tolerance (``abs`` in ``unit``).
     """
 
     id: str
@@ -41,6 +42,9 @@ class ObjectiveResult:
     symbols: tuple[str, ...] = ()
     symbol_units: tuple[str, ...] = ()
     mistakes: tuple[MistakeValue, ...] = ()
+    rel: float = 0.01
+    abs: float = 0.0
+    prompt: str = ""
 
 
 @dataclass(frozen=True)
