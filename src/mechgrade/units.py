@@ -243,6 +243,19 @@ _DIMENSION_NAMES = {
 }
 
 
+@lru_cache(maxsize=1024)
+def si_unit(unit: str) -> str:
+    """The SI unit (radians for angles) of values mechgrade keeps for ``unit``.
+
+    >>> si_unit("ft/s^2"), si_unit("deg"), si_unit("rpm")
+    ('m / s ** 2', 'rad', 'rad / s')
+    """
+    ureg = registry()
+    units = ureg.Quantity(1.0, _pint_unit(normalize_unit(unit))).to_base_units().units
+    text = format(units, "~")
+    return normalize_unit(text) if text else ""
+
+
 def same_dimension(unit_a: str, unit_b: str) -> bool:
     return dimension(unit_a) == dimension(unit_b)
 

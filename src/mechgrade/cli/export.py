@@ -1,0 +1,72 @@
+"""``mechgrade export`` and ``mechgrade report``: results.json to LMS files and a class report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from ..errors import ExportError
+from ..export import EXPORTERS, ExportOptions, match_roster, read_results
+from ..report.class_report import write_class_report
+from ..roster import read_roster
+from .common import main, reports_errors
+
+DEFAULT_OUT = {
+    "canvas": "canvas_import.csv",
+    "moodle": "moodle_import.csv",
+    "gradescope": "results.json",
+    "grades-csv": "grades.csv",
+    "long-csv": "results.csv",
+    "json": "results.export.json",
+}
+
+
+@main.command("export")
+@click.argument("results_json", type=click.Path(dir_okay=True, path_type=Path))
+@click.option("--format", "fmt", required=True, type=click.Choice(list(EXPORTERS)),
+              help="Output format.")
+@click.option("--roster", type=click.Path(path_type=Path), default=None,
+              help="Class roster: Canvas gradebook export, Moodle grades export or id,name CSV.")
+@click.option("--out", type=click.Path(path_type=Path), default=None,
+              help="Output file (default depends on the format).")
+@click.option("--missing", type=click.Choice(["zero", "blank"]), default="zero",
+              show_default=True, help="Grade written for a student without a submission.")
+@click.option("--excel-bom", is_flag=True, help="Start CSV files with a UTF-8 BOM for Excel.")
+@reports_errors
+def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path | None,
+                   missing: str, excel_bom: bool) -> None:
+    """Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a spreadsheet."""
+    report = read_results(results_json)
+    class_roster = read_roster(roster) if roster is not None else None
+    out = out if out is not None else Path(DEFAULT_OUT[fmt])
+    if out.exists() and out.resolve() == results_json.resolve():
+        raise ExportError(f"{out}: expected an output path other than the results file itself")
+    options = ExportOptions(missing=missing, excel_bom=excel_bom)
+    EXPORTERS[fmt](report, out, roster=class_roster, options=options)
+    if class_roster is not None:
+        for line, reason in class_roster.skipped:
+            click.echo(f"warning: {roster}:{line}: skipped {reason}", err=True)
+        if fmt != "gradescope":
+            matched = match_roster(report, class_roster)
+            for result in matched.not_in_roster:
+                click.echo(f"warning: {result.id} ({result.name}) is not in the roster; "
+                           "written after the roster students", err=True)
+            for student in matched.no_submission:
+                written = "0" if missing == "zero" else "a blank grade"
+                click.echo(f"warning: {student.id} ({student.name}) has no submission; "
+                           f"written with {written}", err=True)
+    click.echo(f"wrote {fmt} export of {len(report.students)} graded "
+               f"{'student' if len(report.students) == 1 else 'students'} to {out}")
+
+
+@main.command("report")
+@click.argument("results_json", type=click.Path(dir_okay=True, path_type=Path))
+@click.option("--out", type=click.Path(path_type=Path), default=Path("class_report.html"),
+              show_default=True, help="HTML file to write.")
+@reports_errors
+def report_command(results_json: Path, out: Path) -> None:
+    """Write the class report of RESULTS_JSON as one self-contained HTML file."""
+    report = read_results(results_json)
+    write_class_report(report, out)
+    click.echo(f"wrote class report of {len(report.students)} students to {out}")

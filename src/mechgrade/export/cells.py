@@ -1,0 +1,106 @@
+"""Safe CSV cells and atomic file writing, shared by every exporter.
+
+Spreadsheet formula injection: a cell whose text begins with ``=``, ``+``, ``-``, ``@``, a tab
+or a carriage return (or the full-width ``＝ ＋ － ＠``) is run as a formula by Excel, LibreOffice
+and Google Sheets. Such text is prefixed with ``'`` so it shows as text. A cell that is exactly a
+plain decimal number (``-3``, ``-0.5``, ``1e-3``) is left alone, so negative points stay numeric:
+a number cannot call a function or open a link.
+
+>>> safe_cell("=HYPERLINK(\\"http://x\\")")
+'\\'=HYPERLINK("http://x")'
+>>> safe_cell("-x*omega^2"), safe_cell("-2.5"), safe_cell("Émilie")
+("'-x*omega^2", '-2.5', 'Émilie')
+>>> format_points(2.0), format_points(1.25), format_points(-0.0), format_points(1/3)
+('2', '1.25', '0', '0.3333')
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+import re
+import tempfile
+from pathlib import Path
+from typing import Iterable, Sequence
+
+from ..errors import ExportError
+
+_FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r", "\uff1d", "\uff0b", "\uff0d", "\uff20")
+_PLAIN_NUMBER = re.compile(r"-?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def safe_cell(value: object) -> str:
+    """The text of one CSV cell, neutralised against formula injection (see module doc)."""
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return format_points(value)
+    text = str(value)
+    if text.startswith(_FORMULA_STARTS) and not _PLAIN_NUMBER.fullmatch(text):
+        return "'" + text
+    return text
+
+
+def format_points(value: float) -> str:
+    """Points as short decimal text: integers without ``.0``, at most 4 decimals, no ``-0``."""
+    text = f"{float(value):.4f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def csv_text(rows: Iterable[Sequence[object]]) -> str:
+    """Rows as CSV text (RFC 4180 quoting, CRLF line ends), every cell through :func:`safe_cell`."""
+    buffer = io.StringIO(newline="")
+    writer = csv.writer(buffer, lineterminator="\r\n")
+    for row in rows:
+        writer.writerow([safe_cell(cell) for cell in row])
+    return buffer.getvalue()
+
+
+def write_csv(path: str | os.PathLike, rows: Iterable[Sequence[object]], *,
+              excel_bom: bool = False) -> None:
+    """Write rows as a UTF-8 CSV file atomically; ``excel_bom`` prefixes a BOM for Excel."""
+    write_text(path, csv_text(rows), encoding="utf-8-sig" if excel_bom else "utf-8")
+
+
+def write_json(path: str | os.PathLike, data: object) -> None:
+    """Write a JSON document atomically (UTF-8, not ASCII-escaped, indented, trailing newline)."""
+    write_text(path, json.dumps(data, ensure_ascii=False, indent=2) + "\n")
+
+
+def write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -> None:
+    """Write text through a temporary file in the same folder and ``os.replace``.
+
+    A reader never sees a half-written file, and a failed write leaves the old file intact.
+    """
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise ExportError(f"expected an existing folder to write {target.name!r} into, "
+                          f"found no folder {str(folder)!r}")
+    if target.is_dir():
+        raise ExportError(f"{target}: expected a file path to write, found a folder")
+    try:
+        fd, temp_name = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "w", encoding=encoding, newline="") as handle:
+                handle.write(text)
+                handle.flush()
+                os.fsync(handle.fileno())
+            os.chmod(temp_name, new_file_mode())
+            os.replace(temp_name, target)
+        except BaseException:
+            Path(temp_name).unlink(missing_ok=True)
+            raise
+    except OSError as err:
+        raise ExportError(f"{target}: could not write the file: {err.strerror or err}") from None
+
+
+def new_file_mode() -> int:
+    """The mode ``open()`` would give a new file (mkstemp's temporary files are 0600)."""
+    umask = os.umask(0o022)
+    os.umask(umask)
+    return 0o666 & ~umask

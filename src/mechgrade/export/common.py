@@ -1,0 +1,51 @@
+"""What several exporters share: a student's score cell and per-objective answers."""
+
+from __future__ import annotations
+
+from ..grade.results import AnswerResult, GradeReport, ObjectiveInfo, StudentResult
+from .options import ExportOptions
+
+
+def has_submission(result: StudentResult | None) -> bool:
+    return result is not None and result.status != "missing"
+
+
+def score_cell(result: StudentResult | None, options: ExportOptions) -> float | str:
+    """The total to write: the score, or 0 / blank (``options.missing``) with no submission."""
+    if not has_submission(result):
+        return 0.0 if options.missing == "zero" else ""
+    return result.score
+
+
+def max_score(report: GradeReport) -> float:
+    """The points possible: the sum of the objectives, or a student's ``max_score``."""
+    total = sum(o.max_points for o in report.objectives)
+    if total or not report.students:
+        return total
+    return max(s.max_score for s in report.students)
+
+
+def answers_by_objective(report: GradeReport, result: StudentResult | None
+                         ) -> list[tuple[ObjectiveInfo, AnswerResult]]:
+    """One answer per objective of the assignment, in objective order.
+
+    An objective the result has no answer for counts as a missing answer worth 0, so no
+    objective disappears from an export; answers to objectives the report does not list
+    (should not happen) follow at the end.
+    """
+    answers = {} if result is None else {(a.problem, a.objective): a for a in result.answers}
+    out = []
+    for objective in report.objectives:
+        key = (objective.problem, objective.objective)
+        answer = answers.pop(key, None) or AnswerResult(
+            objective.problem, objective.objective, None, "missing", 0.0, objective.max_points)
+        out.append((objective, answer))
+    for answer in answers.values():
+        out.append((ObjectiveInfo(answer.problem, answer.objective, "", answer.max_points),
+                    answer))
+    return out
+
+
+def objective_label(objective: ObjectiveInfo) -> str:
+    """The column name of an objective: ``problem/objective``."""
+    return f"{objective.problem}/{objective.objective}"

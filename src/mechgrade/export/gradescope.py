@@ -1,0 +1,104 @@
+"""Gradescope autograder ``results.json``.
+
+Gradescope runs ``/autograder/run_autograder`` once per submission and uploads
+``/autograder/results/results.json``. Per Gradescope's autograder specification the document
+has a top-level ``score`` (it overrides the sum of the tests), ``output``, ``visibility`` and
+``tests``: a list of objects with ``score``, ``max_score``, ``status`` (``"passed"`` or
+``"failed"``), ``name``, ``number``, ``output`` and ``visibility``. mechgrade writes one test per
+objective and sets every ``*_format`` to ``"text"`` so student text is never rendered as HTML.
+
+With one student in the report the file is written at ``out_path``; with several, ``out_path``
+is a folder that receives ``<student id>.json`` per student (for inspection; Gradescope itself
+always grades one submission at a time).
+
+>>> from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport,
+...                                      ObjectiveInfo, StudentResult)
+>>> obj = ObjectiveInfo("p1", "v_B", "Speed of B", 2.0)
+>>> ans = AnswerResult("p1", "v_B", "3*omega", "correct", 2.0, 2.0)
+>>> s = StudentResult("s1", "Ada", "graded", 2.0, 2.0, (ans,))
+>>> doc = gradescope_results(GradeReport(AssignmentInfo("hw1", "HW 1"), (obj,), (s,)), s)
+>>> doc["score"], doc["tests"][0]["status"], doc["tests"][0]["name"]
+(2.0, 'passed', 'p1/v_B: Speed of B')
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+from ..errors import ExportError
+from ..grade.results import GradeReport, StudentResult
+from ..roster import Roster
+from .cells import format_points, write_json
+from .common import answers_by_objective, has_submission, max_score, objective_label
+from .options import ExportOptions
+
+
+def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
+                      roster: Roster | None = None,
+                      options: ExportOptions = ExportOptions()) -> None:
+    """Write Gradescope ``results.json`` (see module doc). The roster is not used."""
+    if not report.students:
+        raise ExportError("expected at least one student in the results for a Gradescope "
+                          "results.json, found none")
+    if len(report.students) == 1:
+        write_json(out_path, gradescope_results(report, report.students[0], options))
+        return
+    folder = Path(out_path)
+    try:
+        folder.mkdir(exist_ok=True)
+    except OSError as err:
+        raise ExportError(f"{folder}: expected a folder for one results.json per student, "
+                          f"could not make it: {err.strerror}") from None
+    taken: set[str] = set()
+    for student in report.students:
+        stem = re.sub(r"[^A-Za-z0-9._-]", "_", student.id).strip(".") or "student"
+        name, n = stem, 1
+        while name.casefold() in taken:
+            n += 1
+            name = f"{stem}_{n}"
+        taken.add(name.casefold())
+        write_json(folder / f"{name}.json", gradescope_results(report, student, options))
+
+
+def gradescope_results(report: GradeReport, student: StudentResult,
+                       options: ExportOptions = ExportOptions()) -> dict:
+    """The Gradescope ``results.json`` document of one student."""
+    tests = []
+    for number, (objective, answer) in enumerate(answers_by_objective(report, student), 1):
+        lines = [f"Your answer: {answer.answer}" if answer.answer is not None
+                 else "Your answer: (none found)"]
+        if answer.read_back and answer.read_back != answer.answer:
+            lines.append(f"Read as: {answer.read_back}")
+        lines.append(f"Verdict: {answer.verdict.replace('_', ' ')}")
+        lines.extend(text for text in (answer.diagnosis, answer.feedback) if text)
+        if answer.expected is not None:
+            lines.append(f"Expected: {answer.expected}")
+        name = objective_label(objective)
+        tests.append({
+            "name": f"{name}: {objective.prompt}" if objective.prompt else name,
+            "number": str(number),
+            "score": float(answer.points),
+            "max_score": float(answer.max_points),
+            "status": "passed" if answer.verdict == "correct" else "failed",
+            "output": "\n".join(lines),
+            "visibility": options.gradescope_visibility,
+        })
+    total = max_score(report) or student.max_score
+    summary = [f"{report.assignment.title}: {format_points(student.score)} / "
+               f"{format_points(total)} points"]
+    if not has_submission(student):
+        summary.append("No submission was found.")
+    elif student.status == "unreadable":
+        summary.append("The submission could not be read.")
+    summary.extend(student.messages)
+    return {
+        "score": float(student.score),
+        "output": "\n".join(summary),
+        "output_format": "text",
+        "test_output_format": "text",
+        "test_name_format": "text",
+        "visibility": options.gradescope_visibility,
+        "tests": tests,
+    }

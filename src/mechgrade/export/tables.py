@@ -1,0 +1,64 @@
+"""mechgrade's own tables: ``grades.csv`` (one row per student) and ``results.csv`` (one row per
+student and objective).
+
+``grades.csv`` columns: ``id,name,status,<problem/objective>...,total,max``. ``results.csv``
+columns: ``student,name,problem,objective,answer,verdict,points,max_points,diagnosis``. Roster
+students without a submission get a row (status ``missing``); results not in the roster follow.
+"""
+
+from __future__ import annotations
+
+import os
+
+from ..grade.results import GradeReport, StudentResult
+from ..roster import Roster, RosterStudent
+from .cells import write_csv
+from .common import (answers_by_objective, has_submission, max_score, objective_label,
+                     score_cell)
+from .matching import match_roster
+from .options import ExportOptions
+
+GRADES_FIXED = ("id", "name", "status")
+LONG_HEADER = ("student", "name", "problem", "objective", "answer", "verdict", "points",
+               "max_points", "diagnosis")
+
+
+def export_grades_csv(report: GradeReport, out_path: str | os.PathLike, *,
+                      roster: Roster | None = None,
+                      options: ExportOptions = ExportOptions()) -> None:
+    """Write ``grades.csv``: per-objective points and the total of every student."""
+    rows: list[list[object]] = [[*GRADES_FIXED, *(objective_label(o) for o in report.objectives),
+                                 "total", "max"]]
+    total = max_score(report)
+    for pair in match_roster(report, roster).pairs:
+        ident, name = _who(pair.roster, pair.result)
+        status = pair.result.status if pair.result is not None else "missing"
+        if has_submission(pair.result):
+            points = [a.points for _, a in answers_by_objective(report, pair.result)]
+            points = points[:len(report.objectives)]
+        else:
+            points = [score_cell(None, options)] * len(report.objectives)
+        rows.append([ident, name, status, *points, score_cell(pair.result, options), total])
+    write_csv(out_path, rows, excel_bom=options.excel_bom)
+
+
+def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
+                    roster: Roster | None = None,
+                    options: ExportOptions = ExportOptions()) -> None:
+    """Write ``results.csv``: one row per student and objective, with answer and diagnosis."""
+    rows: list[list[object]] = [list(LONG_HEADER)]
+    for pair in match_roster(report, roster).pairs:
+        ident, name = _who(pair.roster, pair.result)
+        for objective, answer in answers_by_objective(report, pair.result):
+            points = answer.points if has_submission(pair.result) else score_cell(None, options)
+            rows.append([ident, name, objective.problem, objective.objective,
+                         answer.answer or "", answer.verdict, points, answer.max_points,
+                         answer.diagnosis or ""])
+    write_csv(out_path, rows, excel_bom=options.excel_bom)
+
+
+def _who(student: RosterStudent | None, result: StudentResult | None) -> tuple[str, str]:
+    if student is not None:
+        return student.id, student.name
+    assert result is not None
+    return result.id, result.name

@@ -1,0 +1,532 @@
+"""Read one student's answer text into a frozen value, or say exactly why it cannot be read.
+
+Three shapes, chosen from the text and the objective's kind:
+
+* :class:`NumberAnswer` -- ``98.5 ft/s^2``, ``4.9e1 m/s``, ``30°``, ``0.5 rad/s cw``;
+* :class:`VectorAnswer` -- ``-66 i - 40 j ft/s^2``, ``(-66, -40) ft/s^2``,
+  ``<-66, -40, 0> ft/s^2``, ``3 A.x + 2 A.y m/s``, ``-7.67 Y_A``;
+* :class:`ExpressionAnswer` -- ``L sqrt(θ̇^4 + θ̈^2)`` in the objective's symbols.
+
+Nothing here calls ``eval``, ``sympify`` or ``parse_expr``: numbers are read with a regular
+expression, units through :func:`mechgrade.units.normalize_unit` (an allow-list) and expressions
+through :func:`mechgrade.expressions.syntax.parse` (an ``ast`` allow-list with size, depth and
+exponent bounds). Every refusal is an :class:`~mechgrade.errors.AnswerError` whose message says
+what was expected and what was found.
+
+>>> from mechgrade.solve.result import ObjectiveResult
+>>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
+>>> read_answer("98.5 ft/s²", acc)
+NumberAnswer(value=98.5, unit='ft / s ** 2', sig_figs=3, sig_figs_max=3, text='98.5')
+>>> read_answer("(-66, -40) ft/s^2", ObjectiveResult("v", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N")).components
+(-66.0, -40.0, 0.0)
+"""
+
+from __future__ import annotations
+
+import re
+import unicodedata
+from dataclasses import dataclass
+from typing import Union
+
+from ..errors import AnswerError, ExpressionError, UnitError
+from ..expressions import syntax
+from ..expressions.syntax import Bin, Call, Name, Node, Num, Prime, Unary
+from ..solve.result import ObjectiveResult
+from ..units import normalize_unit
+
+MAX_ANSWER_LENGTH = 2000
+"""Longest answer text read at all (the expression reader has the same bound)."""
+
+MAX_COMPONENTS = 3
+
+
+# ---------------------------------------------------------------------------- values
+
+
+@dataclass(frozen=True)
+class NumberAnswer:
+    """A number, the unit it was written in (``None``: no unit written; ``""``: a pure number
+    written as such) and its written significant figures.
+
+    ``sig_figs`` .. ``sig_figs_max`` is the range the written form allows: ``100`` has 1 to 3,
+    ``1.00e2`` exactly 3 (the STACK convention). ``text`` is the number as written; a constant
+    expression such as ``pi/6`` has ``sig_figs=None`` (exact).
+    """
+
+    value: float
+    unit: str | None
+    sig_figs: int | None
+    sig_figs_max: int | None
+    text: str
+
+    kind = "scalar"
+
+    def read_back(self) -> str:
+        return _with_unit(self.text, self.unit)
+
+
+@dataclass(frozen=True)
+class VectorAnswer:
+    """Components ``(x, y, z)`` along the unit vectors of ``frame`` (``None``: plain
+    ``i, j, k`` or a bracketed tuple, meaning the objective's own frame).
+
+    ``sig_figs`` holds the written range of each component, as for :class:`NumberAnswer`;
+    ``texts`` the components as written (``"0"`` for an omitted one).
+    """
+
+    components: tuple[float, float, float]
+    unit: str | None
+    frame: str | None
+    sig_figs: tuple[tuple[int | None, int | None], ...]
+    texts: tuple[str, str, str]
+
+    kind = "vector"
+
+    def read_back(self) -> str:
+        frame = f" in {self.frame}" if self.frame else ""
+        return _with_unit(f"({', '.join(self.texts)})", self.unit) + frame
+
+
+@dataclass(frozen=True)
+class ExpressionAnswer:
+    """An expression tree whose names are exactly the objective's symbols (aliases resolved)."""
+
+    node: Node
+    text: str
+
+    kind = "symbolic"
+
+    def read_back(self) -> str:
+        return self.text
+
+
+StudentAnswer = Union[NumberAnswer, VectorAnswer, ExpressionAnswer]
+
+
+def _with_unit(text: str, unit: str | None) -> str:
+    if not unit:
+        return text
+    return f"{text} {_pretty_unit(unit)}"
+
+
+def _pretty_unit(unit: str) -> str:
+    """Canonical unit text written compactly (``ft / s ** 2`` -> ``ft/s^2``)."""
+    return unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
+
+
+# ---------------------------------------------------------------------------- cleaning
+
+_DASHES = str.maketrans({"−": "-", "–": "-", "—": "-", "‐": "-", "﹣": "-", "－": "-",
+                         "×": "x", "⋅": "*", "·": "*", "∙": "*", "\u00a0": " ",
+                         "î": "i", "ĵ": "j", "⟨": "<", "⟩": ">"})
+_SUPERSCRIPT_RUN = re.compile(r"([⁺⁻]?)([⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
+_SUPER_DIGITS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
+_ASSIGNMENT = re.compile(r"^\s*[A-Za-z_\u0370-\u03ff][\w\u0300-\u036f\u0370-\u03ff']*\s*=(?!=)\s*")
+_SENSE = re.compile(r"\s*\(?\s*(?P<sense>ccw|cw|counter[- ]?clockwise|anti[- ]?clockwise|clockwise)"
+                    r"\s*\)?\s*$", re.IGNORECASE)
+
+
+def clean(text: str) -> str:
+    """Check that ``text`` is sensible, bounded text and normalise dashes and superscripts.
+
+    >>> clean("  −66 î − 40 ĵ ft/s² ")
+    '-66 i - 40 j ft/s^2'
+    >>> clean("9\\x00")
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.AnswerError: expected text, found a control character (binary data?)
+    """
+    if not isinstance(text, str):
+        raise AnswerError(f"expected text, found {type(text).__name__}")
+    if len(text) > MAX_ANSWER_LENGTH:
+        raise AnswerError(f"expected an answer of at most {MAX_ANSWER_LENGTH} characters, "
+                          f"found {len(text)} characters")
+    if "\ufffd" in text or any(0xD800 <= ord(c) <= 0xDFFF for c in text):
+        raise AnswerError("expected readable text, found bytes that are not valid UTF-8")
+    if any(unicodedata.category(c) == "Cc" and c not in "\t\n\r" for c in text):
+        raise AnswerError("expected text, found a control character (binary data?)")
+    text = unicodedata.normalize("NFC", text).translate(_DASHES)
+    text = text.replace("k\u0302", "k").replace("i\u0302", "i").replace("j\u0302", "j")
+    text = _SUPERSCRIPT_RUN.sub(
+        lambda m: "^" + ("-" if m.group(1) == "⁻" else "") + m.group(2).translate(_SUPER_DIGITS),
+        text)
+    return " ".join(text.split())
+
+
+# ---------------------------------------------------------------------------- numbers
+
+_NUMBER_TEXT = (r"[+-]?\s*(?:\d+(?:\.\d*)?|\.\d+)"
+                r"(?:[eE][+-]?\d+|\s*[x*]\s*10\s*(?:\^|\*\*)\s*\(?\s*[+-]?\d+\s*\)?)?")
+_NUMBER = re.compile(r"\s*(" + _NUMBER_TEXT + r")")
+_MANTISSA = re.compile(r"[+-]?\s*(?P<m>\d+(?:\.\d*)?|\.\d+)"
+                       r"(?:[eE](?P<e1>[+-]?\d+)|\s*[x*]\s*10\s*(?:\^|\*\*)\s*\(?\s*(?P<e2>[+-]?\d+)"
+                       r"\s*\)?)?$")
+MAX_DECIMAL_EXPONENT = 300
+
+
+def number_value(text: str) -> float:
+    """The value of a number as written (``4.9e1``, ``4.9 x 10^1``, ``-.5``).
+
+    >>> number_value("4.9 x 10^1"), number_value("-2.5e-3")
+    (49.0, -0.0025)
+    """
+    compact = text.replace(" ", "")
+    m = _MANTISSA.match(compact)
+    if not m:
+        raise AnswerError(f"expected a number such as 98.5 or 4.9e1, found {text!r}")
+    exponent = int(m.group("e1") or m.group("e2") or 0)
+    if abs(exponent) > MAX_DECIMAL_EXPONENT:
+        raise AnswerError(f"expected a number of sensible size, found {text!r}")
+    sign = -1.0 if compact.startswith("-") else 1.0
+    return sign * float(f"{m.group('m')}e{exponent}")
+
+
+def significant_figures(text: str) -> tuple[int, int]:
+    """The range of significant figures a written number has (STACK's liberal reading).
+
+    Leading zeros never count; trailing zeros of a whole number without a decimal point may or
+    may not (``100``: 1 to 3); with a decimal point or in scientific notation they count.
+
+    >>> [significant_figures(t) for t in ("100", "1.00e2", "0.0010", "10.0", "0", "0.00", "98.5")]
+    [(1, 3), (3, 3), (2, 2), (3, 3), (1, 1), (1, 3), (3, 3)]
+    """
+    m = _MANTISSA.match(text.replace(" ", ""))
+    if not m:
+        raise AnswerError(f"expected a number such as 98.5 or 4.9e1, found {text!r}")
+    mantissa = m.group("m")
+    digits = mantissa.replace(".", "")
+    significant = digits.lstrip("0")
+    if not significant:  # the number zero
+        return 1, max(1, len(digits))
+    if "." in mantissa:
+        return len(significant), len(significant)
+    trailing = len(significant) - len(significant.rstrip("0"))
+    return len(significant) - trailing, len(significant)
+
+
+# ---------------------------------------------------------------------------- reading
+
+
+def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
+    """Read ``text`` as an answer to ``result``; raise :class:`AnswerError` saying why not.
+
+    The objective's kind decides what is expected: a symbolic objective reads an expression in
+    its symbols; scalar and vector objectives read numbers with units, bracketed tuples or sums
+    over unit vectors (whichever the text is; a vector for a scalar objective is judged later).
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> sym = ObjectiveResult("a", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + thetadd**2)",
+    ...                       symbols=("L", "thetad", "thetadd"),
+    ...                       symbol_units=("m", "rad/s", "rad/s^2"))
+    >>> read_answer("L sqrt(θ̇^4 + theta''^2)", sym).text
+    'L*sqrt(thetad**4 + thetadd**2)'
+    >>> read_answer("2 x", sym)
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.AnswerError: expected an expression in L, thetad, thetadd, found the unknown name 'x'
+    """
+    text = clean(text)
+    if not text:
+        raise AnswerError("expected an answer, found nothing")
+    if result.kind == "symbolic":
+        return read_expression(text, result.symbols)
+    text = _ASSIGNMENT.sub("", text, count=1)
+    sense = _SENSE.search(text)
+    if sense:
+        text = text[:sense.start()].strip()
+        if not text:
+            raise AnswerError("expected a value before the sense of rotation, found only "
+                              f"{sense.group('sense')!r}")
+        return _rotation(text, sense.group("sense").lower(), result)
+    if _looks_bracketed(text):
+        return _bracketed_vector(text)
+    vector = _unit_vector_sum(text)
+    if vector is not None:
+        return vector
+    return _scalar(text)
+
+
+def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:
+    """``0.5 rad/s cw``: counter-clockwise is +k (right-handed, k out of the page)."""
+    number = _scalar(text)
+    if number.value < 0:
+        raise AnswerError(f"expected a positive size with '{sense}', found {number.text!r} "
+                          "(give either a sign or a sense of rotation)")
+    clockwise = sense.startswith("cl") or sense == "cw"
+    value = -number.value if clockwise else number.value
+    shown = ("-" if clockwise else "") + number.text
+    if result.kind == "vector":
+        return VectorAnswer((0.0, 0.0, value), number.unit, None,
+                            ((None, None), (None, None), (number.sig_figs, number.sig_figs_max)),
+                            ("0", "0", shown))
+    return NumberAnswer(value, number.unit, number.sig_figs, number.sig_figs_max, shown)
+
+
+def _scalar(text: str) -> NumberAnswer:
+    m = _NUMBER.match(text)
+    if m:
+        number_text = " ".join(m.group(1).split()).replace("- ", "-").replace("+ ", "")
+        rest = text[m.end():].strip()
+        if rest.startswith(","):
+            raise AnswerError(f"expected a number without thousands separators (1000, not "
+                              f"1,000) or a vector in brackets such as '(-66, -40)', "
+                              f"found {text!r}")
+        if _OPERATOR_OR_CONSTANT.match(rest):
+            constant = _constant_with_unit(text)
+            if constant is not None:
+                return constant
+        try:
+            unit = _unit(rest)
+        except AnswerError as unit_error:
+            constant = _constant_with_unit(text)
+            if constant is not None:
+                return constant
+            raise unit_error
+        lo, hi = significant_figures(number_text)
+        return NumberAnswer(number_value(number_text), unit, lo, hi, number_text)
+    constant = _constant_with_unit(text)
+    if constant is not None:
+        return constant
+    raise AnswerError(f"expected a number with a unit such as '98.5 ft/s^2', found {text!r}")
+
+
+_OPERATOR_OR_CONSTANT = re.compile(r"[*/^(]|\*\*|pi\b|(?:sqrt|sin|cos|tan|exp|log)\s*\(")
+
+
+def _unit(text: str) -> str | None:
+    text = text.strip()
+    if not text:
+        return None
+    if text.startswith("*"):
+        text = text[1:].strip()
+    if text.startswith("[") and text.endswith("]"):
+        text = text[1:-1]
+    try:
+        return normalize_unit(text)
+    except UnitError as exc:
+        raise AnswerError(f"expected a unit such as 'm/s^2' after the number, found {text!r} "
+                          f"({_inner(exc.message)})") from None
+
+
+def _inner(message: str) -> str:
+    m = re.search(r"\(([^()]*)\)\s*$", message)
+    return m.group(1) if m else message
+
+
+def _constant_with_unit(text: str) -> NumberAnswer | None:
+    """``2*pi rad/s`` or ``sqrt(2)/2``: a constant expression, then an optional unit."""
+    words = text.split(" ")
+    for cut in range(len(words), 0, -1):
+        expression, rest = " ".join(words[:cut]), " ".join(words[cut:])
+        try:
+            node = syntax.parse(expression, attributes=False)
+            value = syntax.constant_value(node)
+        except ExpressionError:
+            continue
+        if value is None:
+            continue
+        try:
+            unit = _unit(rest)
+        except AnswerError:
+            continue
+        if value != value or value in (float("inf"), float("-inf")):
+            raise AnswerError(f"expected a finite number, found {expression!r}")
+        return NumberAnswer(float(value), unit, None, None, syntax.to_text(node))
+    return None
+
+
+# ---------------------------------------------------------------------------- vectors
+
+_OPEN = {"(": ")", "<": ">", "[": "]"}
+
+
+def _looks_bracketed(text: str) -> bool:
+    return text[:1] in _OPEN and "," in text
+
+
+def _bracketed_vector(text: str) -> VectorAnswer:
+    close = text.find(_OPEN[text[0]])
+    if close < 0:
+        raise AnswerError(f"expected a closing {_OPEN[text[0]]!r} after the components, "
+                          f"found {text!r}")
+    inner, rest = text[1:close], text[close + 1:]
+    parts = [p.strip() for p in inner.split(",")]
+    if not 2 <= len(parts) <= MAX_COMPONENTS or not all(parts):
+        raise AnswerError(f"expected 2 or 3 components such as '(-66, -40) ft/s^2', "
+                          f"found {len(parts)} in {text!r}")
+    values, texts, figures = [], [], []
+    for part in parts:
+        number = _component(part)
+        values.append(number.value)
+        texts.append(number.text)
+        figures.append((number.sig_figs, number.sig_figs_max))
+    while len(values) < 3:
+        values.append(0.0)
+        texts.append("0")
+        figures.append((None, None))
+    return VectorAnswer(tuple(values), _unit(rest), None, tuple(figures), tuple(texts))
+
+
+def _component(text: str) -> NumberAnswer:
+    number = _scalar(text)
+    if number.unit is not None:
+        raise AnswerError(f"expected plain numbers as components with one unit after the "
+                          f"brackets, found {text!r}")
+    return number
+
+
+_BASIS = (r"(?P<basis>[ijk]|(?P<frame>[A-Za-z]\w*)\.(?P<axis>[xyzijk])"
+          r"|(?P<axis2>[XYZxyz])_(?P<frame2>[A-Za-z]\w*)|(?P<axis3>[ijk])_(?P<frame3>[A-Za-z]\w*))")
+_TERM = re.compile(r"\s*(?P<sign>[+-])?\s*(?P<coef>(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)?"
+                   r"\s*\*?\s*" + _BASIS + r"(?![\w.])")
+_AXIS = {"x": 0, "y": 1, "z": 2, "i": 0, "j": 1, "k": 2}
+
+
+def _unit_vector_sum(text: str) -> VectorAnswer | None:
+    """``-66 i - 40 j ft/s^2``, ``(3 A.x + 2 A.y) m/s``, ``-7.67 Y_A``; ``None`` if not one."""
+    body, rest = text, ""
+    if text.startswith("("):
+        depth = 0
+        for pos, ch in enumerate(text):
+            depth += (ch == "(") - (ch == ")")
+            if depth == 0:
+                body, rest = text[1:pos], text[pos + 1:]
+                break
+    pos, count = 0, 0
+    values = [0.0, 0.0, 0.0]
+    texts: list[list[str]] = [[], [], []]
+    figures: list[tuple[int | None, int | None]] = [(None, None)] * 3
+    frames: set[str | None] = set()
+    while True:
+        m = _TERM.match(body, pos)
+        if not m or (count and not m.group("sign")):
+            break
+        sign = -1.0 if m.group("sign") == "-" else 1.0
+        coef = m.group("coef") or "1"
+        axis_name = m.group("axis") or m.group("axis2") or m.group("axis3") or m.group("basis")
+        frame = m.group("frame") or m.group("frame2") or m.group("frame3")
+        axis = _AXIS[axis_name.lower()]
+        frames.add(frame)
+        values[axis] += sign * number_value(coef)
+        texts[axis].append(("-" if sign < 0 else "") + coef)
+        lo, hi = significant_figures(coef) if m.group("coef") else (None, None)
+        figures[axis] = (lo, hi)
+        count += 1
+        pos = m.end()
+    if count == 0:
+        return None
+    tail = body[pos:].strip()
+    if rest.strip():
+        if tail:
+            raise AnswerError(f"expected components such as '-66 i - 40 j' inside the "
+                              f"parentheses, found {tail!r}")
+        tail = rest.strip()
+    if len(frames) > 1:
+        shown = ", ".join(sorted(f or "i/j/k" for f in frames))
+        raise AnswerError(f"expected components along one frame's unit vectors, found several "
+                          f"({shown})")
+    try:
+        unit = _unit(tail)
+    except AnswerError:
+        if count == 1 and not any(c.isdigit() for c in body[:pos]):
+            return None  # a lone letter such as "k" followed by something else: not a vector
+        raise
+    shown = tuple(_join(t) for t in texts)
+    return VectorAnswer(tuple(values), unit, frames.pop(), tuple(figures), shown)
+
+
+def _join(parts: list[str]) -> str:
+    if not parts:
+        return "0"
+    if len(parts) == 1:
+        return parts[0]
+    return "+".join(parts).replace("+-", "-")
+
+
+# ---------------------------------------------------------------------------- expressions
+
+_DERIVATIVE_SUFFIXES = ((2, ("ddot", "_ddot", "dd", "_dd")), (1, ("dot", "_dot", "d", "_d")))
+
+
+def symbol_aliases(symbols: tuple[str, ...]) -> dict[object, str]:
+    """Other spellings of the declared symbols, keyed by name or by ``(base, order)``.
+
+    A symbol ``thetad`` is the first derivative of ``theta``: students may write ``θ̇``,
+    ``theta'``, ``thetadot`` or ``theta_dot``; ``thetadd`` likewise with two dots or primes.
+
+    >>> sorted(k for k in symbol_aliases(("thetad",)) if isinstance(k, str))
+    ['theta_d', 'theta_dot', 'thetad', 'thetadot']
+    """
+    aliases: dict[object, str] = {}
+    for symbol in symbols:
+        for order, suffixes in _DERIVATIVE_SUFFIXES:
+            suffix = next((s for s in suffixes if symbol.endswith(s) and len(symbol) > len(s)), None)
+            if suffix is None:
+                continue
+            base = symbol[: -len(suffix)]
+            aliases.setdefault((base, order), symbol)
+            for spelled in suffixes:
+                aliases.setdefault(base + spelled, symbol)
+            break
+    for symbol in symbols:
+        aliases[symbol] = symbol
+    return aliases
+
+
+def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
+    """Read an expression and rename its names to the declared ``symbols``.
+
+    >>> read_expression("2L omega^2", ("L", "omega")).text
+    '2*L*omega**2'
+    """
+    try:
+        node = syntax.parse(text, attributes=False)
+    except ExpressionError as exc:
+        raise AnswerError(exc.message) from None
+    aliases = symbol_aliases(tuple(symbols))
+    unknown: list[str] = []
+    mapped = _rename(node, aliases, unknown)
+    if unknown:
+        expected = ", ".join(symbols) if symbols else "numbers only"
+        raise AnswerError(f"expected an expression in {expected}, found the unknown name "
+                          f"{unknown[0]!r}")
+    return ExpressionAnswer(mapped, _spaced(mapped))
+
+
+def _spaced(node: Node) -> str:
+    """Canonical text with spaces around binary ``+`` and ``-``, for reading back."""
+    text = syntax.to_text(node)
+    return _BINARY_SIGN.sub(lambda m: m.group(0) if _EXPONENT_END.search(text, 0, m.start())
+                            else f" {m.group(1)} ", text)
+
+
+_BINARY_SIGN = re.compile(r"(?<=[\w)])([+-])")
+_EXPONENT_END = re.compile(r"(?<![A-Za-z_\d.])\d+(?:\.\d*)?e$")
+
+
+def _rename(node: Node, aliases: dict[object, str], unknown: list[str]) -> Node:
+    if isinstance(node, Name):
+        if node.id == "pi":
+            return node
+        target = aliases.get(node.id)
+        if target is None:
+            unknown.append(node.id)
+            return node
+        return Name(target)
+    if isinstance(node, Prime):
+        target = aliases.get((node.id, node.order))
+        if target is None:
+            unknown.append(node.id + "'" * node.order)
+            return node
+        return Name(target)
+    if isinstance(node, Unary):
+        return Unary(node.op, _rename(node.operand, aliases, unknown))
+    if isinstance(node, Bin):
+        return Bin(node.op, _rename(node.left, aliases, unknown),
+                   _rename(node.right, aliases, unknown))
+    if isinstance(node, Call):
+        return Call(node.func, tuple(_rename(a, aliases, unknown) for a in node.args))
+    if isinstance(node, Num):
+        return node
+    unknown.append(syntax.to_text(node))  # pragma: no cover - attributes are refused above
+    return node

@@ -1,0 +1,279 @@
+"""Read an assignment file: which problems, how many points, and the grading policy.
+
+An assignment is a YAML file validated by the JSON Schema shipped beside this module
+(``assignment.schema.json``); every problem it lists is a path relative to the assignment file.
+Errors say ``file:line:col: field.path: message``; when a file has several, each is one line.
+
+>>> import tempfile, pathlib
+>>> folder = pathlib.Path(tempfile.mkdtemp())
+>>> _ = (folder / "p.yaml").write_text("id: p\\n")
+>>> _ = (folder / "hw.yaml").write_text(
+...     "id: hw1\\ntitle: Homework 1\\nproblems: [p.yaml]\\npoints: {default: 2, p.speed: 5}\\n")
+>>> hw = load_assignment(folder / "hw.yaml")
+>>> hw.id, hw.points_for("p", "speed"), hw.points_for("p", "other"), hw.policy.ecf.enabled
+('hw1', 5.0, 2.0, True)
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+
+from ..errors import AssignmentError, Location
+from ..yamlio import Document, read_yaml
+
+SCHEMA_FILE = Path(__file__).with_name("assignment.schema.json")
+
+
+@dataclass(frozen=True)
+class ProblemRef:
+    """One problem of the assignment: its file and, optionally, the objectives graded."""
+
+    path: Path
+    objectives: tuple[str, ...] | None = None  # None: every objective of the problem
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class SigFigRule:
+    """Answers should show at least ``min`` significant figures; otherwise ``credit`` is kept."""
+
+    min: int
+    credit: float = 1.0
+
+
+@dataclass(frozen=True)
+class MissingUnitRule:
+    """What a number typed without a unit earns.
+
+    ``assume``: read in the objective's unit, full credit; ``penalize``: read in the
+    objective's unit, ``credit`` kept; ``reject``: marked incorrect.
+    """
+
+    action: str = "penalize"
+    credit: float = 0.5
+
+
+@dataclass(frozen=True)
+class PartialCredit:
+    """Whether partial credit (typical mistakes, partly right vectors) is given, capped at ``max``."""
+
+    enabled: bool = True
+    max: float = 1.0
+
+
+@dataclass(frozen=True)
+class ErrorCarriedForward:
+    """Credit for an answer that is right when computed from the student's own wrong
+    upstream answer (``depends_on`` in the problem spec)."""
+
+    enabled: bool = True
+    credit: float = 1.0
+
+
+@dataclass(frozen=True)
+class GradingPolicy:
+    """How answers are judged. ``rel``/``abs`` replace every objective's own tolerance when set."""
+
+    reveal_answers: bool = False
+    rel: float | None = None
+    abs: float | None = None
+    sig_figs: SigFigRule | None = None
+    missing_unit: MissingUnitRule = MissingUnitRule()
+    partial_credit: PartialCredit = PartialCredit()
+    ecf: ErrorCarriedForward = ErrorCarriedForward()
+
+
+@dataclass(frozen=True)
+class Assignment:
+    """A validated assignment file. ``points`` maps ``"problem_id.objective_id"`` to points."""
+
+    id: str
+    title: str
+    path: Path
+    problems: tuple[ProblemRef, ...]
+    default_points: float = 1.0
+    points: tuple[tuple[str, float], ...] = ()
+    policy: GradingPolicy = GradingPolicy()
+    points_where: tuple[tuple[str, Location], ...] = field(default=(), compare=False, repr=False)
+
+    def points_for(self, problem_id: str, objective_id: str) -> float:
+        """The maximum points of one objective (its own entry, else ``points.default``)."""
+        key = f"{problem_id}.{objective_id}"
+        for name, value in self.points:
+            if name == key:
+                return value
+        return self.default_points
+
+    def where_points(self, key: str) -> Location:
+        """Where ``points.<key>`` was written (for messages about unknown objectives)."""
+        for name, where in self.points_where:
+            if name == key:
+                return where
+        return Location(str(self.path), field=f"points.{key}")
+
+
+@lru_cache(maxsize=1)
+def schema() -> dict:
+    """The JSON Schema of assignment files (shipped with the package)."""
+    return json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+
+
+def load_assignment(path: str | Path) -> Assignment:
+    """Read and validate an assignment file; raises :class:`AssignmentError`."""
+    path = Path(path)
+    doc = read_yaml(path, error=AssignmentError)
+    problems_ = _validate(doc)
+    data = doc.data
+    points = data.get("points") or {}
+    policy = data.get("policy") or {}
+    tolerance = policy.get("tolerance") or {}
+    sig = policy.get("sig_figs")
+    missing = policy.get("missing_unit") or {}
+    partial = policy.get("partial_credit") or {}
+    ecf = policy.get("ecf") or {}
+    keys = sorted(k for k in points if k != "default")
+    return Assignment(
+        id=data["id"],
+        title=data["title"],
+        path=path,
+        problems=problems_,
+        default_points=float(points.get("default", 1.0)),
+        points=tuple((k, float(points[k])) for k in keys),
+        policy=GradingPolicy(
+            reveal_answers=bool(policy.get("reveal_answers", False)),
+            rel=_float_or_none(tolerance.get("rel")),
+            abs=_float_or_none(tolerance.get("abs")),
+            sig_figs=(SigFigRule(int(sig["min"]), float(sig.get("credit", 1.0)))
+                      if sig is not None else None),
+            missing_unit=MissingUnitRule(missing.get("action", "penalize"),
+                                         float(missing.get("credit", 0.5))),
+            partial_credit=PartialCredit(bool(partial.get("enabled", True)),
+                                         float(partial.get("max", 1.0))),
+            ecf=ErrorCarriedForward(bool(ecf.get("enabled", True)),
+                                    float(ecf.get("credit", 1.0))),
+        ),
+        points_where=tuple((k, doc.where(("points", k))) for k in keys),
+    )
+
+
+def _float_or_none(value) -> float | None:
+    return None if value is None else float(value)
+
+
+def _validate(doc: Document) -> tuple[ProblemRef, ...]:
+    """Schema check, then the checks a schema cannot make (files exist, no repeats)."""
+    import jsonschema
+
+    problems_: list[AssignmentError] = []
+    if not isinstance(doc.data, dict):
+        raise AssignmentError(f"expected a mapping of fields (id, title, problems...), found "
+                              f"{_describe(doc.data)}", where=doc.where(()))
+    validator = jsonschema.Draft202012Validator(schema())
+    for err in validator.iter_errors(doc.data):
+        path, message = _explain(err)
+        problems_.append(AssignmentError(message, where=doc.where(path)))
+    refs: list[ProblemRef] = []
+    if not problems_:
+        base = doc.file and Path(doc.file).parent
+        seen: dict[Path, int] = {}
+        for i, item in enumerate(doc.data["problems"]):
+            text = item if isinstance(item, str) else item["path"]
+            where = doc.where(("problems", i) if isinstance(item, str) else ("problems", i, "path"))
+            target = (Path(base) / text)
+            if not target.is_file():
+                problems_.append(AssignmentError(
+                    f"expected a problem file (relative to the assignment file), found no file "
+                    f"at '{target}'", where=where))
+                continue
+            resolved = target.resolve()
+            if resolved in seen:
+                problems_.append(AssignmentError(
+                    f"expected each problem once, found '{text}' again (also problems[{seen[resolved]}])",
+                    where=where))
+                continue
+            seen[resolved] = i
+            objectives = None
+            if isinstance(item, dict) and "objectives" in item:
+                objectives = tuple(item["objectives"])
+                dup = sorted({o for o in objectives if objectives.count(o) > 1})
+                if dup:
+                    problems_.append(AssignmentError(
+                        f"expected each objective once, found '{dup[0]}' more than once",
+                        where=doc.where(("problems", i, "objectives"))))
+            refs.append(ProblemRef(target, objectives, where))
+    if problems_:
+        problems_.sort(key=lambda e: (e.where.line or 0, e.where.column or 0, str(e)))
+        first = problems_[0]
+        rest = "".join(f"\n{e}" for e in problems_[1:])
+        raise AssignmentError(first.message + rest, where=first.where)
+    return tuple(refs)
+
+
+_TYPE_WORDS = {"string": "text", "object": "a mapping", "array": "a list", "number": "a number",
+               "integer": "a whole number", "boolean": "true or false"}
+
+
+def _describe(value) -> str:
+    if value is None:
+        return "nothing"
+    if isinstance(value, bool):
+        return f"{str(value).lower()}"
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return "a list" if value else "an empty list"
+    if isinstance(value, str):
+        shown = value if len(value) <= 40 else value[:37] + "..."
+        return f"'{shown}'" if value else "empty text"
+    return repr(value)
+
+
+def _explain(err) -> tuple[tuple, str]:
+    """A jsonschema error as (field path, 'expected ..., found ...')."""
+    path = tuple(err.absolute_path)
+    kind, value, found = err.validator, err.validator_value, err.instance
+    if kind == "required":
+        missing = [name for name in value if name not in found]
+        return path, f"expected a field '{missing[0]}', found none"
+    if kind == "additionalProperties":
+        allowed = sorted(err.schema.get("properties", {}))
+        extra = sorted(k for k in found if k not in allowed)
+        for key in extra:
+            pattern_ok = any(re.search(p, key)
+                             for p in err.schema.get("patternProperties", {}))
+            if not pattern_ok:
+                if err.schema.get("patternProperties"):
+                    hint = "'default' or 'problem_id.objective_id'"
+                else:
+                    hint = ", ".join(allowed)
+                return path + (key,), f"expected one of the fields {hint}, found '{key}'"
+        return path, err.message  # pragma: no cover - jsonschema reports only unknown keys
+    if kind == "type":
+        wanted = value if isinstance(value, list) else [value]
+        words = " or ".join(_TYPE_WORDS.get(w, w) for w in wanted)
+        return path, f"expected {words}, found {_describe(found)}"
+    if kind in ("minimum", "maximum"):
+        sign = ">=" if kind == "minimum" else "<="
+        return path, f"expected a number {sign} {value:g}, found {_describe(found)}"
+    if kind == "minItems":
+        return path, f"expected at least {value} item(s), found an empty list"
+    if kind == "minProperties":
+        return path, f"expected at least {value} field(s), found none"
+    if kind == "minLength":
+        return path, "expected text, found empty text"
+    if kind == "maxLength":
+        return path, f"expected at most {value} characters, found {len(found)}"
+    if kind == "pattern":
+        if path == ("id",):
+            what = "an id of letters, digits, '_', '-' and '.' (at most 64)"
+        else:
+            what = "an objective id (letters, digits and '_')"
+        return path, f"expected {what}, found {_describe(found)}"
+    if kind == "enum":
+        choices = ", ".join(f"'{v}'" for v in value)
+        return path, f"expected one of {choices}, found {_describe(found)}"
+    return path, f"expected {err.schema!r}, found {_describe(found)}"  # pragma: no cover

@@ -1,0 +1,150 @@
+"""Name the likely mistake behind a wrong answer, from the reference alone or the author's list.
+
+Diagnoses work on plain arrays, so one routine serves numbers (one value), vectors (three
+components) and expressions (values at the sample points): the student's values are compared
+with transformed reference values using the same closeness test that judged the answer.
+
+Author-declared mistakes (``result.mistakes``) are tried first and carry their own message and
+credit; then sign, factor and unit-slip diagnoses; then, for vectors, swapped components and
+right-magnitude/wrong-direction.
+
+>>> import numpy as np
+>>> close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))
+>>> diagnose(np.array([-98.5]), np.array([98.51]), close).label
+'sign error'
+>>> diagnose(np.array([5644.0]), np.array([98.51]), close).label
+'degrees used as radians'
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from typing import Callable, Sequence
+
+import numpy as np
+
+from ..solve.result import MistakeValue
+
+Close = Callable[[np.ndarray, np.ndarray], bool]
+
+G_SI = 9.80665
+G_FT = G_SI / 0.3048
+
+
+@dataclass(frozen=True)
+class Diagnosis:
+    """A named mistake: ``code`` for partial-credit settings, ``label`` for results, ``message``
+    for the student; ``credit`` is set only for author-declared mistakes."""
+
+    code: str
+    label: str
+    message: str
+    credit: float | None = None
+
+
+# (code, label, message, factors): the student's value is factor * reference.
+_FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
+    ("sign", "sign error", "Your answer has the wrong sign.", (-1.0,)),
+    ("factor_2", "factor of 2", "Your answer is off by a factor of 2.", (2.0, 0.5)),
+    ("deg_as_rad", "degrees used as radians",
+     "Your answer is 180/π times too large: were degrees used where radians were needed?",
+     (180 / math.pi,)),
+    ("rad_as_deg", "radians used as degrees",
+     "Your answer is π/180 times too small: were radians used where degrees were needed?",
+     (math.pi / 180,)),
+    ("pi", "factor of π", "Your answer is off by a factor of π.", (math.pi, 1 / math.pi)),
+    ("rev_rad", "unit slip (revolutions vs radians)",
+     "Your answer is off by a factor of 2π: revolutions (or Hz) mixed with radians?",
+     (2 * math.pi, 1 / (2 * math.pi))),
+    ("rpm_rad", "unit slip (rpm vs rad/s)",
+     "Your answer is off by 60/(2π) ≈ 9.55: rpm mixed with rad/s?",
+     (60 / (2 * math.pi), 2 * math.pi / 60)),
+    ("g", "factor of g",
+     "Your answer is off by a factor of g: weight used for mass, or g applied twice?",
+     (G_SI, 1 / G_SI, G_FT, 1 / G_FT)),
+    ("cm_m", "unit slip (cm vs m)", "Your answer is off by a factor of 100: cm mixed with m?",
+     (100.0, 0.01)),
+    ("mm_m", "unit slip (mm vs m)", "Your answer is off by a factor of 1000: mm mixed with m?",
+     (1000.0, 0.001)),
+    ("ft_m", "unit slip (ft vs m)",
+     "Your answer is off by a factor of 3.28: feet mixed with metres?", (1 / 0.3048, 0.3048)),
+    ("in_ft", "unit slip (in vs ft)",
+     "Your answer is off by a factor of 12: inches mixed with feet?", (12.0, 1 / 12)),
+)
+
+FACTOR_CODES = tuple(code for code, *_ in _FACTORS)
+VECTOR_CODES = ("swapped", "direction", "magnitude")
+CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + ("dimension", "frame", "missing_unit",
+                                                     "sig_figs", "shape")
+"""Every diagnosis code (keys for :attr:`mechgrade.grade.compare.Policy.partial_credit`)."""
+
+_AXES = "xyz"
+
+
+def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: str = "scalar",
+             mistakes: Sequence[tuple[MistakeValue, np.ndarray | None]] = ()) -> Diagnosis | None:
+    """The first diagnosis that explains ``student`` (already known not to match ``reference``).
+
+    ``close(s, t)`` is the judging test; ``mistakes`` pairs each author-declared mistake with its
+    values in the same form as ``reference`` (``None`` when it cannot be evaluated).
+
+    >>> import numpy as np
+    >>> close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.linalg.norm(t)))
+    >>> diagnose(np.array([-40.0, -66, 0]), np.array([-66.0, -40, 0]), close, kind="vector").label
+    'swapped components'
+    >>> diagnose(np.array([66.0, -40, 0]), np.array([-66.0, -40, 0]), close, kind="vector").label
+    'wrong direction'
+    """
+    student = np.asarray(student, dtype=float)
+    reference = np.asarray(reference, dtype=float)
+    if student.shape != reference.shape or not np.all(np.isfinite(student)):
+        return None
+    for mistake, values in mistakes:
+        if values is None:
+            continue
+        values = np.asarray(values, dtype=float)
+        if values.shape == reference.shape and np.all(np.isfinite(values)) \
+                and close(student, values):
+            return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
+    if not np.any(reference != 0):
+        return None
+    for code, label, message, factors in _FACTORS:
+        for factor in factors:
+            if close(student, factor * reference):
+                return Diagnosis(code, label, message)
+    if kind == "vector":
+        return _vector(student, reference, close)
+    return None
+
+
+def _vector(student: np.ndarray, reference: np.ndarray, close: Close) -> Diagnosis | None:
+    for perm in itertools.permutations(range(3)):
+        if perm == (0, 1, 2):
+            continue
+        permuted = reference[list(perm)]
+        if not np.array_equal(permuted, reference) and close(student, permuted):
+            moved = [_AXES[i] for i in range(3) if perm[i] != i]
+            return Diagnosis("swapped", "swapped components",
+                             f"Your {' and '.join(moved)} components are swapped.")
+    s_mag, t_mag = float(np.linalg.norm(student)), float(np.linalg.norm(reference))
+    if close(np.array([s_mag]), np.array([t_mag])):
+        return Diagnosis("direction", "wrong direction",
+                         "The magnitude is right but the direction is wrong.")
+    if s_mag > 0 and t_mag > 0:
+        cosine = float(np.dot(student, reference)) / (s_mag * t_mag)
+        if cosine > 1 - 1e-4:
+            return Diagnosis("magnitude", "wrong magnitude",
+                             "The direction is right but the magnitude is wrong.")
+    return None
+
+
+def wrong_components(student: np.ndarray, reference: np.ndarray,
+                     close_component: Callable[[int], bool]) -> list[str]:
+    """Names of the components that fail ``close_component(index)``.
+
+    >>> wrong_components(None, None, lambda i: i != 1)
+    ['y']
+    """
+    return [_AXES[i] for i in range(3) if not close_component(i)]

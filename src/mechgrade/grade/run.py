@@ -1,0 +1,508 @@
+"""The grading run: every student's answers against the reference solutions, into a report.
+
+Each problem of the assignment is loaded and solved once; every answer is judged in the bounded
+sandbox (one worker for the whole run), identical answers only once. Points are the judged
+credit times the objective's points. Every roster student and every submission appears in the
+report with a status, in a fixed order (roster order, then students not on the roster by id),
+so a re-run gives byte-identical outputs.
+
+Error carried forward (ECF): an objective may declare ``depends_on: [upstream]`` in its spec.
+When a student's upstream answer is wrong and the downstream one is not right, the downstream
+answer is judged again against the reference recomputed from the student's own upstream value
+(``solve(problem, givens={key: si_value})``). This needs the upstream objective to be a plain
+given quantity (a coordinate, its rate or a parameter); otherwise the feedback says ECF could
+not be applied.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections import Counter
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterable
+
+from ..errors import AssignmentError, MechgradeError
+from ..expressions.syntax import Name, Prime
+from ..solve.result import ObjectiveResult, Solution
+from ..spec.model import Objective, Problem
+from .assignment import Assignment, GradingPolicy
+from .results import AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo, StudentResult
+from .submissions import Submission, SubmissionSet, read_submissions
+
+POINTS_DIGITS = 4
+"""Points are rounded to this many decimals, so that sums are the same on every machine."""
+
+Progress = Callable[[int, int], None]
+Resolver = Callable[[Problem, dict], Solution]
+
+
+@dataclass(frozen=True)
+class PlannedObjective:
+    """One graded objective: its problem, spec objective, reference result and points."""
+
+    problem: Problem
+    objective: Objective
+    result: ObjectiveResult
+    max_points: float
+
+    @property
+    def key(self) -> str:
+        return f"{self.problem.id}.{self.objective.id}"
+
+
+@dataclass(frozen=True)
+class Plan:
+    """An assignment with its problems loaded and solved once, ready to grade any student."""
+
+    assignment: Assignment
+    problems: tuple[Problem, ...]
+    solutions: tuple[Solution, ...]
+    objectives: tuple[PlannedObjective, ...]
+
+    @property
+    def keys(self) -> frozenset[str]:
+        return frozenset(o.key for o in self.objectives)
+
+    @property
+    def max_score(self) -> float:
+        return _round(sum(o.max_points for o in self.objectives))
+
+
+def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | None = None,
+                    solutions: Iterable[Solution] | None = None) -> Plan:
+    """Load (unless given) and solve (unless given) every problem; check the assignment's
+    objective lists and point keys against the problems. Raises :class:`MechgradeError`."""
+    if problems is None:
+        from ..spec import load_problem
+
+        problems = [load_problem(ref.path) for ref in assignment.problems]
+    problems = tuple(problems)
+    if solutions is None:
+        from ..solve import solve
+
+        solutions = [solve(problem) for problem in problems]
+    solutions = tuple(solutions)
+    seen: dict[str, Problem] = {}
+    planned: list[PlannedObjective] = []
+    for ref, problem, solution in zip(assignment.problems, problems, solutions):
+        if problem.id in seen:
+            raise AssignmentError(f"expected problems with different ids, found '{problem.id}' "
+                                  f"twice", where=ref.where)
+        seen[problem.id] = problem
+        known = [o.id for o in problem.objectives]
+        wanted = ref.objectives if ref.objectives is not None else tuple(known)
+        for objective_id in wanted:
+            if objective_id not in known:
+                raise AssignmentError(
+                    f"expected an objective of problem '{problem.id}' ({', '.join(known)}), "
+                    f"found '{objective_id}'", where=ref.where)
+            objective = problem.objective(objective_id)
+            result = _with_policy_tolerance(solution.result(objective_id), assignment.policy)
+            planned.append(PlannedObjective(problem, objective, result,
+                                            assignment.points_for(problem.id, objective_id)))
+    keys = {o.key for o in planned}
+    for key, _ in assignment.points:
+        if key not in keys:
+            raise AssignmentError(f"expected a graded objective 'problem_id.objective_id' "
+                                  f"({_listing(sorted(keys))}), found '{key}'",
+                                  where=assignment.where_points(key))
+    return Plan(assignment, problems, solutions, tuple(planned))
+
+
+def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
+                      progress: Progress | None = None) -> GradeReport:
+    """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
+
+    ``progress(done, total)`` is called as students are finished.
+    """
+    plan = plan_assignment(assignment)
+    submissions = read_submissions(submissions_dir, keys=plan.keys)
+    return grade_plan(plan, submissions, roster, progress=progress)
+
+
+def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
+               progress: Progress | None = None, resolve: Resolver | None = None
+               ) -> GradeReport:
+    """Grade read submissions against a :class:`Plan` (see :func:`grade_submissions`).
+
+    ``resolve(problem, givens)`` recomputes a solution with overridden givens (for ECF); the
+    default is :func:`mechgrade.solve.solve`.
+    """
+    people = _people(submissions, roster)
+    total = len(people)
+    if progress:
+        progress(0, total)
+    judge = _Judge(plan, resolve)
+    judge.prefetch(submission for _, submission in people if submission is not None)
+    students: list[StudentResult] = []
+    for done, (person, submission) in enumerate(people, start=1):
+        students.append(_grade_student(plan, judge, person, submission))
+        if progress:
+            progress(done, total)
+    judge.close()
+    assignment = plan.assignment
+    objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
+                                     o.max_points) for o in plan.objectives)
+    return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
+                       tuple(students))
+
+
+# ---------------------------------------------------------------------------- students
+
+
+@dataclass(frozen=True)
+class _Person:
+    id: str
+    name: str
+    identity: tuple[tuple[str, str], ...] = ()
+    on_roster: bool = True
+
+
+def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submission | None]]:
+    """Roster students in roster order (with their submission, if any), then the submissions
+    no roster student claimed, by id."""
+    by_id = {s.student: s for s in submissions.students}
+    if roster is None:
+        return [(_Person(s.student, "", (), False), s) for s in submissions.students]
+    claimed: set[str] = set()
+    out: list[tuple[_Person, Submission | None]] = []
+    kinds: Counter = Counter()
+    matches = []
+    for student in roster.students:
+        found, kind = _match(student, by_id, claimed)
+        if found is not None:
+            claimed.add(found.student)
+            kinds[kind] += 1
+        matches.append((student, found))
+    # A student without a submission is named like the submissions that were matched.
+    usual = kinds.most_common(1)[0][0] if kinds else "id"
+    for student, found in matches:
+        identity = tuple(student.columns)
+        if found is not None:
+            out.append((_Person(found.student, student.name, identity), found))
+        else:
+            sid = _roster_value(student, usual) or student.id
+            out.append((_Person(sid, student.name, identity), None))
+    for submission in submissions.students:
+        if submission.student not in claimed:
+            out.append((_Person(submission.student, "", (), False), submission))
+    return out
+
+
+_MATCH_KINDS = ("id", "sis_user_id", "sis_login_id", "email", "email_user")
+
+
+def _roster_value(student, kind: str) -> str:
+    if kind == "email_user":
+        return student.email.split("@", 1)[0] if "@" in student.email else ""
+    return getattr(student, kind, "") or ""
+
+
+def _match(student, by_id: dict, claimed: set):
+    folded = {}
+    for sid in by_id:
+        folded.setdefault(sid.casefold(), []).append(sid)
+    for kind in _MATCH_KINDS:
+        value = _roster_value(student, kind).strip()
+        if not value:
+            continue
+        if value in by_id and value not in claimed:
+            return by_id[value], kind
+        candidates = [s for s in folded.get(value.casefold(), []) if s not in claimed]
+        if len(candidates) == 1:
+            return by_id[candidates[0]], kind
+    return None, None
+
+
+def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
+                   submission: Submission | None) -> StudentResult:
+    messages: list[str] = []
+    if not person.on_roster:
+        messages.append("not on the roster")
+    if submission is not None:
+        messages.extend(submission.messages)
+    status = {None: "missing", "missing": "missing", "read": "graded",
+              "unreadable": "unreadable"}[submission.status if submission else None]
+    if submission is None:
+        messages.append("no submission found")
+    answers: list[AnswerResult] = []
+    verdicts: dict[str, AnswerResult] = {}
+    for item in plan.objectives:
+        text = submission.answer(item.key) if submission is not None else None
+        if status == "unreadable":
+            answer = AnswerResult(item.problem.id, item.objective.id, None, "unreadable", 0.0,
+                                  item.max_points, None,
+                                  "Your answer file could not be read (see the messages).",
+                                  None, judge.expected(item))
+        elif text is None or not text.strip():
+            answer = AnswerResult(item.problem.id, item.objective.id, text, "missing", 0.0,
+                                  item.max_points, None, "No answer was given.", None,
+                                  judge.expected(item))
+        else:
+            answer = judge.judge(item, text, submission, verdicts)
+        verdicts[item.key] = answer
+        answers.append(answer)
+    score = _round(sum(a.points for a in answers))
+    return StudentResult(person.id, person.name, status, score, plan.max_score, tuple(answers),
+                         tuple(messages), person.identity)
+
+
+# ---------------------------------------------------------------------------- judging
+
+
+class _Judge:
+    """Judges answers through the sandbox, once per distinct (objective, text)."""
+
+    def __init__(self, plan: Plan, resolve: Resolver | None):
+        self.plan = plan
+        self.policy = plan.assignment.policy
+        self._resolve = resolve
+        self._cache: dict[tuple, object] = {}
+        self._ecf_solutions: dict[tuple, Solution | MechgradeError] = {}
+        self._session = None
+
+    def close(self) -> None:
+        if self._session is not None:
+            self._session.close()
+            self._session = None
+
+    def _assess_many(self, jobs: list[tuple[str, ObjectiveResult]]) -> None:
+        todo = [(text, result) for text, result in dict.fromkeys(jobs)
+                if (result, text) not in self._cache]
+        if not todo:
+            return
+        from . import sandbox
+        from .compare import Policy
+
+        policies = [_compare_policy(self.policy, result) for _, result in todo]
+        triples = [(text, result, policy) for (text, result), policy in zip(todo, policies)]
+        assessments = sandbox.assess_batch(triples)
+        for (text, result), assessment in zip(todo, assessments):
+            self._cache[(result, text)] = assessment
+
+    def assess(self, text: str, result: ObjectiveResult):
+        key = (result, text)
+        if key not in self._cache:
+            self._assess_many([(text, result)])
+        return self._cache[key]
+
+    def prefetch(self, submissions: Iterable[Submission]) -> None:
+        """Judge every distinct answer of the class in one batch (one sandbox worker)."""
+        jobs = []
+        for submission in submissions:
+            for item in self.plan.objectives:
+                text = submission.answer(item.key)
+                if text is not None and text.strip():
+                    jobs.append((text, item.result))
+        self._assess_many(jobs)
+
+    def expected(self, item: PlannedObjective) -> str | None:
+        return expected_text(item.result) if self.policy.reveal_answers else None
+
+    def judge(self, item: PlannedObjective, text: str, submission: Submission,
+              earlier: dict[str, AnswerResult]) -> AnswerResult:
+        assessment = self.assess(text, item.result)
+        verdict, credit = assessment.verdict, float(assessment.credit)
+        feedback = [assessment.feedback] if assessment.feedback else []
+        verdict, credit = self._partial_policy(verdict, credit, feedback)
+        if verdict != "correct" and item.objective.depends_on and self.policy.ecf.enabled:
+            verdict, credit = self._carry_forward(item, text, submission, earlier, verdict,
+                                                  credit, feedback)
+        return AnswerResult(item.problem.id, item.objective.id, text, verdict,
+                            _round(credit * item.max_points), item.max_points,
+                            assessment.diagnosis, " ".join(f for f in feedback if f),
+                            assessment.read_back, self.expected(item))
+
+    def _partial_policy(self, verdict: str, credit: float, feedback: list[str]
+                        ) -> tuple[str, float]:
+        rule = self.policy.partial_credit
+        if verdict == "partial" or (verdict != "correct" and 0 < credit < 1):
+            if not rule.enabled:
+                feedback.append("This assignment gives no partial credit.")
+                return "incorrect", 0.0
+            if credit > rule.max:
+                feedback.append(f"Partial credit is capped at {rule.max:.0%}.")
+                return verdict, rule.max
+        return verdict, min(max(credit, 0.0), 1.0)
+
+    def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
+        """Judge ``text`` again against the reference recomputed from the student's own
+        (wrong) upstream answers; keep the better credit."""
+        problem = item.problem
+        overrides: dict[str, float] = {}
+        for upstream_id in item.objective.depends_on:
+            key = f"{problem.id}.{upstream_id}"
+            upstream = earlier.get(key)
+            if upstream is None:
+                upstream_text = submission.answer(key)
+                if upstream_text is None:
+                    continue  # not graded in this assignment and not answered
+                try:
+                    up_result = self._reference(problem, upstream_id)
+                except KeyError:
+                    continue
+                assessment = self.assess(upstream_text, up_result)
+                upstream_verdict = assessment.verdict
+            else:
+                upstream_text, upstream_verdict = upstream.answer, upstream.verdict
+            if upstream_verdict == "correct" or upstream_text is None:
+                continue
+            if upstream_verdict in ("unreadable", "missing", "not_evaluated"):
+                continue
+            objective = _objective(problem, upstream_id)
+            if objective is None:
+                continue
+            given_key = given_key_of(objective)
+            if given_key is None:
+                feedback.append(f"Error carried forward could not be applied: '{upstream_id}' "
+                                f"is not a plain given quantity the solver can take from your "
+                                f"answer.")
+                return verdict, credit
+            value = _si_value(upstream_text, self._reference(problem, upstream_id))
+            if value is None:
+                feedback.append(f"Error carried forward could not be applied: your answer to "
+                                f"'{upstream_id}' could not be read as a number.")
+                return verdict, credit
+            overrides[given_key] = value
+        if not overrides:
+            return verdict, credit
+        solution = self._solve_with(problem, overrides)
+        if isinstance(solution, MechgradeError):
+            feedback.append(f"Error carried forward could not be applied: with your "
+                            f"{_listing(sorted(overrides))} the problem cannot be solved "
+                            f"({solution.message}).")
+            return verdict, credit
+        try:
+            recomputed = _with_policy_tolerance(solution.result(item.objective.id), self.policy)
+        except KeyError:
+            return verdict, credit
+        again = self.assess(text, recomputed)
+        ecf_credit = float(again.credit) * self.policy.ecf.credit
+        upstream_names = _listing(sorted(objective_id for objective_id in
+                                         item.objective.depends_on))
+        if again.verdict in ("correct", "partial") and ecf_credit > credit:
+            feedback.append(f"Error carried forward: this answer follows correctly from your "
+                            f"answer to {upstream_names} and earns {ecf_credit:.0%} of the "
+                            f"points.")
+            return ("correct" if ecf_credit >= 1.0 else "partial"), ecf_credit
+        feedback.append(f"Also checked with your own answer to {upstream_names} (error "
+                        f"carried forward): it does not follow from it either.")
+        return verdict, credit
+
+    def _reference(self, problem: Problem, objective_id: str) -> ObjectiveResult:
+        index = self.plan.problems.index(problem)
+        return _with_policy_tolerance(self.plan.solutions[index].result(objective_id),
+                                      self.policy)
+
+    def _solve_with(self, problem: Problem, overrides: dict[str, float]):
+        key = (problem.id, tuple(sorted(overrides.items())))
+        if key not in self._ecf_solutions:
+            try:
+                if self._resolve is not None:
+                    solution = self._resolve(problem, dict(overrides))
+                else:
+                    from ..solve import solve
+
+                    solution = solve(problem, givens=dict(overrides))
+            except MechgradeError as err:
+                solution = err
+            self._ecf_solutions[key] = solution
+        return self._ecf_solutions[key]
+
+
+def given_key_of(objective: Objective) -> str | None:
+    """The given key (``"theta'"``) an objective's value can be fed back to the solver as,
+    or ``None`` when the objective is not a plain quantity (a coordinate, its rate, a
+    parameter).
+
+    >>> from mechgrade.spec.model import Expr
+    >>> from mechgrade.expressions.syntax import parse
+    >>> ob = lambda find, kind="scalar": Objective("o", "", Expr(find, parse(find)), kind, "m/s")
+    >>> given_key_of(ob("x'")), given_key_of(ob("mag(vel(A, N))")), given_key_of(ob("x", "vector"))
+    ("x'", None, None)
+    """
+    if objective.kind != "scalar":
+        return None
+    node = objective.find.node
+    if isinstance(node, Name):
+        return node.id
+    if isinstance(node, Prime):
+        return node.id + "'" * node.order
+    return None
+
+
+def _objective(problem: Problem, objective_id: str) -> Objective | None:
+    try:
+        return problem.objective(objective_id)
+    except KeyError:
+        return None
+
+
+def _si_value(text: str, result: ObjectiveResult) -> float | None:
+    """The student's scalar answer in SI, read as the objective's unit when none is written."""
+    from ..units import to_si
+    from .answers import NumberAnswer, read_answer
+
+    try:
+        answer = read_answer(text, result)
+        if not isinstance(answer, NumberAnswer):
+            return None
+        unit = answer.unit if answer.unit is not None else result.unit
+        value = to_si(answer.value, unit)
+    except MechgradeError:
+        return None
+    return value if math.isfinite(value) else None
+
+
+def _with_policy_tolerance(result: ObjectiveResult, policy: GradingPolicy) -> ObjectiveResult:
+    if policy.rel is None and policy.abs is None:
+        return result
+    return dataclasses.replace(result,
+                               rel=result.rel if policy.rel is None else policy.rel,
+                               abs=result.abs if policy.abs is None else policy.abs)
+
+
+def _compare_policy(policy: GradingPolicy, result: ObjectiveResult):
+    from .compare import Policy
+
+    return Policy()
+
+
+def expected_text(result: ObjectiveResult) -> str:
+    """The reference answer as text, in the objective's unit.
+
+    >>> expected_text(ObjectiveResult("a", "scalar", "ft / s ** 2", 98.5096))
+    '98.51 ft/s^2'
+    >>> expected_text(ObjectiveResult("a", "vector", "m/s", (0.0, -7.6712, 0.0), frame="A"))
+    '(0, -7.671, 0) m/s in A'
+    """
+    unit = result.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
+    suffix = f" {unit}" if unit else ""
+    if result.kind == "symbolic" or result.value is None:
+        return f"{result.expr}{suffix}" if result.expr else "(no reference)"
+    if isinstance(result.value, tuple):
+        parts = ", ".join(_number(v) for v in result.value)
+        frame = f" in {result.frame}" if result.frame else ""
+        return f"({parts}){suffix}{frame}"
+    return f"{_number(result.value)}{suffix}"
+
+
+def _number(value: float) -> str:
+    if abs(value) < 1e-12:
+        return "0"
+    text = f"{value:.4g}"
+    return text
+
+
+def _round(value: float) -> float:
+    rounded = round(float(value), POINTS_DIGITS)
+    return 0.0 if rounded == 0 else rounded
+
+
+def _listing(items) -> str:
+    items = list(items)
+    if len(items) > 8:
+        return ", ".join(items[:8]) + ", ..."
+    return ", ".join(items)

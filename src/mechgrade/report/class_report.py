@@ -1,0 +1,331 @@
+"""The class report: statistics of one grading run as a single self-contained HTML file.
+
+:func:`class_statistics` computes everything into a frozen :class:`ClassReport` (charts as
+inline SVG from matplotlib); :func:`render_class_report` hands it to
+``templates/class_report.html.j2``, which only presents. Definitions (``docs/exports.md``):
+
+* statistics use the students whose submission was graded (status ``graded``); missing and
+  unreadable submissions are counted and listed, not averaged in as zeros;
+* **success rate** of an objective: share of graded students whose answer is ``correct``;
+* **difficulty** of a problem: mean over graded students of points earned / points possible
+  (classical item facility: 1 = everybody full marks, 0 = nobody scored);
+* **discrimination** of a problem: corrected item-total correlation, the Pearson correlation
+  across graded students between the fraction earned on the problem and the total score on the
+  *other* problems (for a right/wrong item this is the point-biserial). ``None`` with fewer than
+  3 graded students or when either side does not vary.
+
+>>> from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport,
+...                                      ObjectiveInfo, StudentResult)
+>>> obj = ObjectiveInfo("p1", "v", "speed", 2.0)
+>>> s = [StudentResult(f"s{i}", f"S{i}", "graded", p, 2.0,
+...                    (AnswerResult("p1", "v", "x", "correct" if p else "incorrect", p, 2.0),))
+...      for i, p in enumerate([2.0, 0.0])]
+>>> stats = class_statistics(GradeReport(AssignmentInfo("hw", "HW"), (obj,), tuple(s)),
+...                          charts=False)
+>>> stats.objectives[0].success_rate, stats.problems[0].difficulty
+(0.5, 0.5)
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+import re
+import statistics
+import tempfile
+from collections import Counter
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import ExportError
+from ..grade.results import GradeReport, StudentResult
+
+TOP = 5
+_CORRECT, _PARTIAL = "correct", "partial"
+
+
+@dataclass(frozen=True)
+class Count:
+    """A label seen ``count`` times; ``share`` is count / graded students."""
+
+    label: str
+    count: int
+    share: float
+
+
+@dataclass(frozen=True)
+class ObjectiveStats:
+    problem: str
+    objective: str
+    prompt: str
+    max_points: float
+    graded: int
+    success_rate: float | None
+    mean_fraction: float | None
+    verdicts: tuple[Count, ...]
+    wrong_answers: tuple[Count, ...]
+    diagnoses: tuple[Count, ...]
+
+
+@dataclass(frozen=True)
+class ProblemStats:
+    problem: str
+    max_points: float
+    objectives: int
+    difficulty: float | None
+    discrimination: float | None
+
+
+@dataclass(frozen=True)
+class StudentIssue:
+    """A student with a missing or unreadable submission or answers."""
+
+    id: str
+    name: str
+    status: str
+    objectives: str
+    detail: str
+
+
+@dataclass(frozen=True)
+class ClassReport:
+    assignment_id: str
+    title: str
+    max_score: float
+    students: int
+    graded: int
+    missing: int
+    unreadable: int
+    mean: float | None
+    median: float | None
+    stdev: float | None
+    lowest: float | None
+    highest: float | None
+    histogram_svg: str
+    success_svg: str
+    objectives: tuple[ObjectiveStats, ...]
+    problems: tuple[ProblemStats, ...]
+    issues: tuple[StudentIssue, ...]
+
+
+def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport:
+    """All statistics of the class report (see module doc); ``charts=False`` skips the SVGs."""
+    graded = [s for s in report.students if s.status == "graded"]
+    scores = [s.score for s in graded]
+    max_score = sum(o.max_points for o in report.objectives) or \
+        max((s.max_score for s in report.students), default=0.0)
+    objectives = tuple(_objective_stats(report, o, graded) for o in report.objectives)
+    problems = _problem_stats(report, graded)
+    histogram = _histogram_svg(scores, max_score) if charts else ""
+    success = _success_svg(objectives) if charts else ""
+    return ClassReport(
+        assignment_id=report.assignment.id, title=report.assignment.title, max_score=max_score,
+        students=len(report.students), graded=len(graded),
+        missing=sum(s.status == "missing" for s in report.students),
+        unreadable=sum(s.status == "unreadable" for s in report.students),
+        mean=statistics.fmean(scores) if scores else None,
+        median=statistics.median(scores) if scores else None,
+        stdev=statistics.pstdev(scores) if len(scores) > 1 else None,
+        lowest=min(scores, default=None), highest=max(scores, default=None),
+        histogram_svg=histogram, success_svg=success, objectives=objectives,
+        problems=problems, issues=_issues(report))
+
+
+def render_class_report(stats: ClassReport) -> str:
+    """The HTML text of the class report (``templates/class_report.html.j2``)."""
+    import jinja2
+    from markupsafe import Markup
+
+    from ..resources import shipped_dir
+
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(shipped_dir("templates")),
+                             autoescape=True, undefined=jinja2.StrictUndefined,
+                             trim_blocks=True, lstrip_blocks=True)
+    template = env.get_template("class_report.html.j2")
+    # The SVGs come from matplotlib, which escapes every text it draws; mark them as markup.
+    return template.render(report=stats, histogram=Markup(stats.histogram_svg),
+                           success=Markup(stats.success_svg))
+
+
+def write_class_report(report: GradeReport, out_path: str | os.PathLike) -> None:
+    """Compute the statistics of ``report`` and write the HTML file atomically."""
+    html = render_class_report(class_statistics(report))
+    target = Path(out_path)
+    folder = target.parent
+    if not folder.is_dir():
+        raise ExportError(f"expected an existing folder to write {target.name!r} into, "
+                          f"found no folder {str(folder)!r}")
+    try:
+        fd, temp = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
+                handle.write(html)
+            umask = os.umask(0o022)
+            os.umask(umask)
+            os.chmod(temp, 0o666 & ~umask)  # mkstemp's 0600 is not what a report should have
+            os.replace(temp, target)
+        except BaseException:
+            Path(temp).unlink(missing_ok=True)
+            raise
+    except OSError as err:
+        raise ExportError(f"{target}: could not write the report: {err.strerror or err}") \
+            from None
+
+
+def _answer(student: StudentResult, problem: str, objective: str):
+    return next((a for a in student.answers
+                 if a.problem == problem and a.objective == objective), None)
+
+
+def _counts(labels: list[str], n: int) -> tuple[Count, ...]:
+    ranked = sorted(Counter(labels).items(), key=lambda item: (-item[1], item[0]))
+    return tuple(Count(label, count, count / n) for label, count in ranked[:TOP])
+
+
+def _objective_stats(report, objective, graded) -> ObjectiveStats:
+    answers = [_answer(s, objective.problem, objective.objective) for s in graded]
+    verdicts = [a.verdict if a is not None else "missing" for a in answers]
+    n = len(graded)
+    wrong = [" ".join(a.answer.split()) for a in answers
+             if a is not None and a.answer and a.verdict not in (_CORRECT, "unreadable")]
+    diagnoses = [a.diagnosis.strip() for a in answers
+                 if a is not None and a.diagnosis and a.verdict != _CORRECT]
+    fractions = [(a.points / objective.max_points) if a is not None and objective.max_points
+                 else 0.0 for a in answers]
+    return ObjectiveStats(
+        objective.problem, objective.objective, objective.prompt, objective.max_points, n,
+        success_rate=verdicts.count(_CORRECT) / n if n else None,
+        mean_fraction=statistics.fmean(fractions) if n else None,
+        verdicts=tuple(Count(v, verdicts.count(v), verdicts.count(v) / n)
+                       for v in dict.fromkeys(verdicts)) if n else (),
+        wrong_answers=_counts(wrong, n) if n else (),
+        diagnoses=_counts(diagnoses, n) if n else ())
+
+
+def _problem_stats(report, graded) -> tuple[ProblemStats, ...]:
+    out = []
+    problems = list(dict.fromkeys(o.problem for o in report.objectives))
+    for problem in problems:
+        mine = [o for o in report.objectives if o.problem == problem]
+        possible = sum(o.max_points for o in mine)
+        earned = []
+        for s in graded:
+            answers = [_answer(s, o.problem, o.objective) for o in mine]
+            earned.append(sum(a.points for a in answers if a is not None))
+        fractions = [e / possible if possible else 0.0 for e in earned]
+        rest = [s.score - e for s, e in zip(graded, earned)]
+        out.append(ProblemStats(problem, possible, len(mine),
+                                difficulty=statistics.fmean(fractions) if graded else None,
+                                discrimination=_correlation(fractions, rest)))
+    return tuple(out)
+
+
+def _correlation(xs: list[float], ys: list[float]) -> float | None:
+    """Pearson correlation, or ``None`` for fewer than 3 pairs or a constant side."""
+    if len(xs) < 3:
+        return None
+    mx, my = statistics.fmean(xs), statistics.fmean(ys)
+    sxx = sum((x - mx) ** 2 for x in xs)
+    syy = sum((y - my) ** 2 for y in ys)
+    if sxx <= 1e-12 or syy <= 1e-12:
+        return None
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / math.sqrt(sxx * syy)
+
+
+def _issues(report: GradeReport) -> tuple[StudentIssue, ...]:
+    issues = []
+    for s in report.students:
+        if s.status != "graded":
+            detail = "; ".join(s.messages) or ("no submission found" if s.status == "missing"
+                                               else "the submission could not be read")
+            issues.append(StudentIssue(s.id, s.name, s.status, "all", detail))
+            continue
+        bad = [a for a in s.answers if a.verdict in ("unreadable", "missing")]
+        answered = {(a.problem, a.objective) for a in s.answers}
+        absent = [o for o in report.objectives if (o.problem, o.objective) not in answered]
+        if bad or absent:
+            names = [f"{a.problem}/{a.objective} ({a.verdict})" for a in bad] + \
+                    [f"{o.problem}/{o.objective} (missing)" for o in absent]
+            details = [a.feedback for a in bad if a.feedback] + list(s.messages)
+            issues.append(StudentIssue(s.id, s.name, "graded", ", ".join(names),
+                                       "; ".join(details)))
+    return tuple(issues)
+
+
+# --- charts -----------------------------------------------------------------------------------
+
+_COLOURS = {"correct": "#2e7d32", "partial": "#f9a825", "incorrect": "#c62828",
+            "other": "#9e9e9e"}
+
+
+def _pyplot():
+    try:
+        import matplotlib
+    except ImportError:
+        raise ExportError("the class report draws its charts with matplotlib, which is not "
+                          "installed; install it with 'pip install matplotlib'") from None
+    matplotlib.use("Agg", force=True)
+    import matplotlib.pyplot as plt
+    return matplotlib, plt
+
+
+def _svg(fig, salt: str) -> str:
+    matplotlib, plt = _pyplot()
+    buffer = io.StringIO()
+    with matplotlib.rc_context({"svg.hashsalt": salt}):
+        fig.savefig(buffer, format="svg", bbox_inches="tight", metadata={"Date": None})
+    plt.close(fig)
+    text = buffer.getvalue()
+    # Inline SVG in HTML needs neither the XML declaration nor the DOCTYPE.
+    return re.sub(r"^.*?(?=<svg)", "", text, flags=re.S).strip()
+
+
+def _style():
+    matplotlib, _ = _pyplot()
+    return matplotlib.rc_context({"svg.fonttype": "none", "text.parse_math": False,
+                                  "font.family": "sans-serif", "font.size": 10,
+                                  "axes.spines.top": False, "axes.spines.right": False})
+
+
+def _histogram_svg(scores: list[float], max_score: float) -> str:
+    _, plt = _pyplot()
+    with _style():
+        fig, ax = plt.subplots(figsize=(7, 2.8))
+        top = max(max_score, max(scores, default=0.0), 1.0)
+        if top <= 20 and float(top).is_integer():
+            edges = [i - 0.5 for i in range(int(top) + 2)]
+        else:
+            edges = [top * i / 10 for i in range(11)]
+        ax.hist(scores, bins=edges, color="#1565c0", edgecolor="white")
+        ax.set_xlabel(f"score (out of {top:g})")
+        ax.set_ylabel("students")
+        ax.yaxis.get_major_locator().set_params(integer=True)
+        ax.set_xlim(edges[0], edges[-1])
+        if not scores:
+            ax.text(0.5, 0.5, "no graded submissions", transform=ax.transAxes, ha="center")
+        return _svg(fig, "histogram")
+
+
+def _success_svg(objectives: tuple[ObjectiveStats, ...]) -> str:
+    _, plt = _pyplot()
+    with _style():
+        labels = [f"{o.problem}/{o.objective}" for o in objectives]
+        fig, ax = plt.subplots(figsize=(7, 0.45 * max(len(labels), 1) + 1.0))
+        left = [0.0] * len(objectives)
+        for key in ("correct", "partial", "incorrect", "other"):
+            shares = []
+            for o in objectives:
+                wanted = {c.label: c.share for c in o.verdicts}
+                share = sum(v for k, v in wanted.items()
+                            if (k == key) or (key == "other" and k not in _COLOURS))
+                shares.append(100 * share)
+            ax.barh(labels, shares, left=left, color=_COLOURS[key],
+                    label=key if key != "other" else "unreadable or missing",
+                    edgecolor="white")
+            left = [a + b for a, b in zip(left, shares)]
+        ax.set_xlim(0, 100)
+        ax.set_xlabel("% of graded students")
+        ax.invert_yaxis()
+        ax.legend(ncol=4, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
+        return _svg(fig, "success")

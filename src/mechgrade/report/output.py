@@ -1,0 +1,231 @@
+"""Write a grading run's outputs: feedback for every student, ``results.json`` and the CSVs.
+
+``out_dir`` receives ``results.json`` (the contract of :mod:`mechgrade.grade.results`),
+``grades.csv`` and ``results.csv`` (written by the exporters registry) and
+``feedback/<student>.html`` and ``feedback/<student>.md`` rendered by the Jinja templates
+``feedback.html.j2`` and ``feedback.md.j2`` (``templates_dir`` overrides the shipped ones).
+Templates only present: every value they show is prepared here. Every file is written to a
+temporary file and moved into place, so a crash never leaves half a file.
+
+>>> import tempfile, pathlib
+>>> from mechgrade.grade.results import *
+>>> report = GradeReport(AssignmentInfo("hw1", "Homework 1"),
+...     (ObjectiveInfo("p", "v", "Speed of A.", 2.0),),
+...     (StudentResult("ana", "Ana", "graded", 2.0, 2.0,
+...         (AnswerResult("p", "v", "7 m/s", "correct", 2.0, 2.0, read_back="7 m/s"),)),))
+>>> out = pathlib.Path(tempfile.mkdtemp())
+>>> [p.relative_to(out).as_posix() for p in write_outputs(report, out)]
+['results.json', 'grades.csv', 'results.csv', 'feedback/ana.html', 'feedback/ana.md']
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import tempfile
+import unicodedata
+from pathlib import Path
+
+from ..errors import Location, MechgradeError
+from ..export import EXPORTERS
+from ..resources import shipped_dir
+from ..grade.results import GradeReport, StudentResult
+
+TEMPLATE_NAMES = ("feedback.html.j2", "feedback.md.j2")
+
+VERDICT_LABELS = {
+    "correct": "Correct",
+    "partial": "Partly correct",
+    "incorrect": "Incorrect",
+    "unreadable": "Could not be read",
+    "missing": "No answer",
+    "not_evaluated": "Not evaluated",
+}
+STATUS_LABELS = {
+    "graded": "Graded",
+    "missing": "No submission",
+    "unreadable": "Submission could not be read",
+}
+
+
+def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str | Path | None = None,
+                  *, roster=None) -> list[Path]:
+    """Write every output of ``report`` into ``out_dir``; returns the paths written, in order.
+
+    Raises :class:`~mechgrade.errors.MechgradeError` (for instance when a template is
+    missing or broken, or the folder cannot be written).
+    """
+    out = Path(out_dir)
+    env = template_environment(templates_dir)
+    templates = [_template(env, name) for name in TEMPLATE_NAMES]
+    try:
+        (out / "feedback").mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise MechgradeError(f"cannot create the output folder ({exc.strerror or exc})",
+                             where=_where(out)) from None
+    written: list[Path] = []
+    results = out / "results.json"
+    write_text_atomic(results, json.dumps(report.to_json(), indent=2, ensure_ascii=False,
+                                          allow_nan=False) + "\n")
+    written.append(results)
+    for name, fmt in (("grades.csv", "grades-csv"), ("results.csv", "long-csv")):
+        EXPORTERS[fmt](report, out / name, roster=roster)
+        written.append(out / name)
+    for student, filename in zip(report.students, feedback_names(report)):
+        context = feedback_context(report, student)
+        for template, suffix in zip(templates, (".html", ".md")):
+            path = out / "feedback" / (filename + suffix)
+            write_text_atomic(path, _render(template, context, templates_dir))
+            written.append(path)
+    return written
+
+
+def template_environment(templates_dir: str | Path | None = None):
+    """The Jinja environment of the feedback templates (shipped, or ``templates_dir``)."""
+    import jinja2
+
+    folder = Path(templates_dir) if templates_dir is not None else shipped_dir("templates")
+    if not folder.is_dir():
+        raise MechgradeError("expected a folder of templates, found none",
+                             where=_where(folder))
+    return jinja2.Environment(loader=jinja2.FileSystemLoader(str(folder)), autoescape=True,
+                              undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
+                              trim_blocks=True, lstrip_blocks=True)
+
+
+def _template(env, name: str):
+    import jinja2
+
+    try:
+        return env.get_template(name)
+    except jinja2.TemplateNotFound:
+        raise MechgradeError(f"expected a template '{name}', found none",
+                             where=_where(Path(env.loader.searchpath[0]))) from None
+    except jinja2.TemplateSyntaxError as exc:
+        raise MechgradeError(f"expected a valid Jinja template, found an error ({exc.message})",
+                             where=_where(Path(env.loader.searchpath[0]) / name, exc.lineno)
+                             ) from None
+
+
+def _render(template, context: dict, templates_dir) -> str:
+    import jinja2
+
+    try:
+        return template.render(**context)
+    except jinja2.UndefinedError as exc:
+        raise MechgradeError(f"the template uses a value mechgrade does not provide "
+                             f"({exc.message})", where=_where(Path(template.filename or
+                                                                   template.name))) from None
+
+
+def _where(path: Path, line: int | None = None):
+    return Location(str(path), line)
+
+
+def write_text_atomic(path: str | Path, text: str) -> None:
+    """Write ``text`` (UTF-8, ``\\n`` newlines) to ``path`` through a temporary file."""
+    path = Path(path)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
+                handle.write(text)
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+    except OSError as exc:
+        raise MechgradeError(f"cannot write the file ({exc.strerror or exc})",
+                             where=_where(path)) from None
+
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
+
+
+def feedback_names(report: GradeReport) -> list[str]:
+    """A safe, unique file name (without suffix) for every student, in report order.
+
+    >>> from mechgrade.grade.results import AssignmentInfo, StudentResult
+    >>> r = GradeReport(AssignmentInfo("a", "A"), (), tuple(
+    ...     StudentResult(i, "", "missing", 0, 0) for i in ("ana", "../x", "Ana", "é b")))
+    >>> feedback_names(r)
+    ['ana', 'x', 'Ana-2', 'e_b']
+    """
+    names: list[str] = []
+    used: set[str] = set()
+    for student in report.students:
+        ascii_id = unicodedata.normalize("NFKD", student.id).encode("ascii", "ignore").decode()
+        base = _UNSAFE.sub("_", ascii_id).strip("._") or "student"
+        base = base[:80]
+        name, n = base, 1
+        while name.casefold() in used:
+            n += 1
+            name = f"{base}-{n}"
+        used.add(name.casefold())
+        names.append(name)
+    return names
+
+
+def feedback_context(report: GradeReport, student: StudentResult) -> dict:
+    """Everything a feedback template shows for one student, as ready-made text."""
+    prompts = {(o.problem, o.objective): o.prompt for o in report.objectives}
+    rows = []
+    for answer in student.answers:
+        rows.append({
+            "problem": answer.problem,
+            "objective": answer.objective,
+            "prompt": prompts.get((answer.problem, answer.objective), ""),
+            "answer": answer.answer if answer.answer is not None else "",
+            "read_back": pretty_math(answer.read_back) if answer.read_back else "",
+            "verdict": answer.verdict,
+            "verdict_label": VERDICT_LABELS.get(answer.verdict, answer.verdict),
+            "points": format_points(answer.points),
+            "max_points": format_points(answer.max_points),
+            "diagnosis": answer.diagnosis or "",
+            "feedback": answer.feedback or "",
+            "expected": pretty_math(answer.expected) if answer.expected else "",
+        })
+    percent = (f"{100 * student.score / student.max_score:.0f}%" if student.max_score
+               else "")
+    return {
+        "assignment": {"id": report.assignment.id, "title": report.assignment.title},
+        "student": {
+            "id": student.id,
+            "name": student.name,
+            "display_name": student.name or student.id,
+            "status": student.status,
+            "status_label": STATUS_LABELS.get(student.status, student.status),
+            "score": format_points(student.score),
+            "max_score": format_points(student.max_score),
+            "percent": percent,
+        },
+        "messages": list(student.messages),
+        "rows": rows,
+        "reveal": any(row["expected"] for row in rows),
+    }
+
+
+def format_points(value: float) -> str:
+    """Points without needless decimals.
+
+    >>> format_points(2.0), format_points(1.5), format_points(0.3333)
+    ('2', '1.5', '0.33')
+    """
+    text = f"{value:.2f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+_SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+_POWER = re.compile(r"(\*\*|\^)\s*\(?(-?\d+)\)?")
+
+
+def pretty_math(text: str) -> str:
+    """Answer and unit text made easier to read: powers raised, products as middle dots.
+
+    >>> pretty_math("L*sqrt(thetadd**2 + thetad**4) ft/s^2")
+    'L·sqrt(thetadd² + thetad⁴) ft/s²'
+    """
+    text = _POWER.sub(lambda m: m.group(2).translate(_SUPERSCRIPTS), text)
+    return text.replace("*", "·")

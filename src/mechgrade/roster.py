@@ -1,0 +1,261 @@
+"""Read a class roster: a Canvas gradebook export, a Moodle grades export, or a plain CSV.
+
+The format is recognised from the header row:
+
+* **Canvas** gradebook export: ``Student,ID,SIS User ID,SIS Login ID,[...,]Section,<assignments>``.
+  Its ``Points Possible`` row and other metadata rows (``Muted``, ``Manual Posting``: no ``ID``)
+  are not students; the Canvas *Test Student* is skipped and listed in :attr:`Roster.skipped`.
+* **Moodle** grades export: ``First name,Last name,ID number,Institution,Department,
+  Email address,<grade items>`` (comma, semicolon or tab separated).
+* **Plain** CSV: ``id,name[,email][,section][,...]``.
+
+Each :class:`RosterStudent` keeps every identity column of its row, in order, in ``columns``
+so an export can write the same identity back.
+
+>>> import tempfile, pathlib
+>>> p = pathlib.Path(tempfile.mkdtemp()) / "class.csv"
+>>> _ = p.write_text("id,name,email\\ns1,Ada Lovelace,ada@uni.edu\\n", encoding="utf-8")
+>>> r = read_roster(p)
+>>> r.format, r.students[0].id, r.students[0].email
+('plain', 's1', 'ada@uni.edu')
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .errors import AssignmentError, Location
+
+FORMATS = ("canvas", "moodle", "plain")
+
+_CANVAS_META_ROWS = {"points possible", "muted", "manual posting", ""}
+_CANVAS_TEST_NAMES = {"student, test", "test student"}
+_CANVAS_IDENTITY = {"student", "id", "sis user id", "sis login id", "integration id",
+                    "root account", "section"}
+_MOODLE_IDENTITY = {"first name", "last name", "id number", "institution", "department",
+                    "email address", "username", "phone", "mobile phone", "address",
+                    "city/town", "country"}
+
+
+@dataclass(frozen=True)
+class RosterStudent:
+    """One student of the roster; ``columns`` keeps the identity cells as ``(header, value)``."""
+
+    id: str
+    name: str
+    email: str = ""
+    sis_user_id: str = ""
+    sis_login_id: str = ""
+    section: str = ""
+    columns: tuple[tuple[str, str], ...] = ()
+
+
+@dataclass(frozen=True)
+class Roster:
+    """The students of a roster file in file order.
+
+    ``header`` is the file's whole header row (identity and grade columns); ``skipped`` lists
+    ``(line, reason)`` for rows that were deliberately not read as students.
+    """
+
+    students: tuple[RosterStudent, ...]
+    format: str
+    header: tuple[str, ...]
+    skipped: tuple[tuple[int, str], ...] = ()
+
+    @property
+    def identity_header(self) -> tuple[str, ...]:
+        """The names of the identity columns, as kept in each student's ``columns``."""
+        return _identity_columns(self.format, self.header)
+
+
+def read_roster(path: str | os.PathLike) -> Roster:
+    """Read a roster CSV file; a malformed file raises :class:`AssignmentError` at file:line."""
+    name = str(path)
+    text = _read_text(Path(path), name)
+    lines = text.splitlines()
+    first = next((i for i, line in enumerate(lines) if line.strip()), None)
+    if first is None:
+        raise AssignmentError("expected a roster header row, found an empty file",
+                              where=Location(name, 1))
+    delimiter = _delimiter(lines[first])
+    rows = _records(text, delimiter, name)
+    if not rows:
+        raise AssignmentError("expected a roster header row, found an empty file",
+                              where=Location(name, 1))
+    header_line, header = rows[0]
+    header = tuple(cell.strip() for cell in header)
+    kind = _kind(header)
+    if kind is None:
+        raise AssignmentError(
+            "expected a roster header: a Canvas gradebook export (Student,ID,SIS User ID,"
+            "SIS Login ID,Section,...), a Moodle grades export (First name,Last name,ID number,"
+            "...,Email address) or a plain CSV (id,name[,email]); found "
+            f"{','.join(header)!r}", where=Location(name, header_line))
+    _check_duplicate_headers(header, name, header_line)
+    reader = {"canvas": _canvas_student, "moodle": _moodle_student, "plain": _plain_student}[kind]
+    identity = _identity_columns(kind, header)
+    students: list[RosterStudent] = []
+    skipped: list[tuple[int, str]] = []
+    seen: dict[str, int] = {}
+    for line, cells in rows[1:]:
+        if not any(cell.strip() for cell in cells):
+            continue
+        if len(cells) > len(header):
+            raise AssignmentError(
+                f"expected at most {len(header)} cells as in the header, found {len(cells)}",
+                where=Location(name, line))
+        record = {h: (cells[i].strip() if i < len(cells) else "") for i, h in enumerate(header)}
+        student = reader(record, name, line, skipped)
+        if student is None:
+            continue
+        if student.id in seen:
+            raise AssignmentError(
+                f"expected each student once, found id {student.id!r} again "
+                f"(first on line {seen[student.id]})", where=Location(name, line))
+        seen[student.id] = line
+        columns = tuple((h, record[h]) for h in identity)
+        students.append(RosterStudent(student.id, student.name, student.email,
+                                      student.sis_user_id, student.sis_login_id,
+                                      student.section, columns))
+    return Roster(tuple(students), kind, header, tuple(skipped))
+
+
+def _read_text(path: Path, name: str) -> str:
+    try:
+        data = path.read_bytes()
+    except FileNotFoundError:
+        raise AssignmentError("expected a roster CSV file, found no such file",
+                              where=Location(name)) from None
+    except IsADirectoryError:
+        raise AssignmentError("expected a roster CSV file, found a folder",
+                              where=Location(name)) from None
+    except OSError as err:
+        raise AssignmentError(f"could not read the roster: {err.strerror}",
+                              where=Location(name)) from None
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        line = data[:err.start].count(b"\n") + 1
+        raise AssignmentError(
+            f"expected UTF-8 text (save the roster as 'CSV UTF-8'), found byte "
+            f"0x{data[err.start]:02x}", where=Location(name, line)) from None
+
+
+def _delimiter(header_line: str) -> str:
+    # Moodle lets the teacher pick the separator; the header tells which one was used.
+    counts = {d: len(next(csv.reader([header_line], delimiter=d))) for d in (",", ";", "\t")}
+    return max(counts, key=lambda d: (counts[d], d == ","))
+
+
+def _records(text: str, delimiter: str, name: str) -> list[tuple[int, list[str]]]:
+    reader = csv.reader(io.StringIO(text, newline=""), delimiter=delimiter, strict=True)
+    rows: list[tuple[int, list[str]]] = []
+    start = 1
+    try:
+        for cells in reader:
+            rows.append((start, cells))
+            start = reader.line_num + 1
+    except csv.Error as err:
+        raise AssignmentError(f"expected CSV cells, found bad quoting ({err})",
+                              where=Location(name, start)) from None
+    return rows
+
+
+def _kind(header: tuple[str, ...]) -> str | None:
+    low = {h.lower() for h in header}
+    if {"student", "id"} <= low and low & {"sis user id", "sis login id", "section"}:
+        return "canvas"
+    if {"first name", "last name"} <= low or "email address" in low:
+        return "moodle"
+    if {"id", "name"} <= low:
+        return "plain"
+    return None
+
+
+def _check_duplicate_headers(header: tuple[str, ...], name: str, line: int) -> None:
+    seen: set[str] = set()
+    for i, h in enumerate(header, start=1):
+        if h and h.lower() in seen:
+            raise AssignmentError(f"expected distinct column names, found {h!r} twice",
+                                  where=Location(name, line, i))
+        seen.add(h.lower())
+
+
+def _identity_columns(kind: str, header: tuple[str, ...]) -> tuple[str, ...]:
+    if kind == "canvas":
+        return tuple(h for h in header if h.lower() in _CANVAS_IDENTITY)
+    if kind == "moodle":
+        return tuple(h for h in header if h.lower() in _MOODLE_IDENTITY)
+    return tuple(h for h in header if h)
+
+
+def _get(record: dict[str, str], *names: str) -> str:
+    for key, value in record.items():
+        if key.lower() in names:
+            return value
+    return ""
+
+
+def _column(record: dict[str, str], wanted: str) -> str:
+    return next(k for k in record if k.lower() == wanted)
+
+
+def _canvas_student(record, name, line, skipped):
+    student = _get(record, "student")
+    canvas_id = _get(record, "id")
+    if not canvas_id:
+        if student.lower() in _CANVAS_META_ROWS:
+            return None  # Points Possible / Muted / Manual Posting rows describe assignments
+        raise AssignmentError(f"column {_column(record, 'id')!r}: expected a Canvas user ID "
+                              f"for {student!r}, found an empty cell",
+                              where=Location(name, line))
+    if student.lower() in _CANVAS_TEST_NAMES:
+        skipped.append((line, f"Canvas test student {student!r}"))
+        return None
+    return RosterStudent(canvas_id, _display_name(student),
+                         sis_user_id=_get(record, "sis user id"),
+                         sis_login_id=_get(record, "sis login id"),
+                         section=_get(record, "section"),
+                         email=_email_like(_get(record, "sis login id")))
+
+
+def _moodle_student(record, name, line, skipped):
+    first, last = _get(record, "first name"), _get(record, "last name")
+    email, number = _get(record, "email address"), _get(record, "id number")
+    if not (email or number):
+        raise AssignmentError("expected an 'Email address' or 'ID number' to identify the "
+                              f"student {f'{first} {last}'.strip()!r}, found both empty",
+                              where=Location(name, line))
+    return RosterStudent(number or email, f"{first} {last}".strip(), email=email,
+                         sis_user_id=number, sis_login_id=_get(record, "username"),
+                         section=_get(record, "department"))
+
+
+def _plain_student(record, name, line, skipped):
+    student_id = _get(record, "id")
+    if not student_id:
+        raise AssignmentError(f"column {_column(record, 'id')!r}: expected a student id, "
+                              "found an empty cell", where=Location(name, line))
+    return RosterStudent(student_id, _get(record, "name"), email=_get(record, "email"),
+                         sis_user_id=_get(record, "sis_user_id", "sis user id"),
+                         sis_login_id=_get(record, "sis_login_id", "sis login id", "login"),
+                         section=_get(record, "section"))
+
+
+def _display_name(canvas_name: str) -> str:
+    """Canvas writes "Last, First"; reports read better as "First Last"."""
+    if canvas_name.count(",") == 1 and not re.search(r'[()"=@]', canvas_name):
+        last, first = (part.strip() for part in canvas_name.split(","))
+        if first and last:
+            return f"{first} {last}"
+    return canvas_name
+
+
+def _email_like(login: str) -> str:
+    return login if re.fullmatch(r"[^@\s]+@[^@\s]+\.[^@\s]+", login) else ""

@@ -1,0 +1,471 @@
+"""Check a built problem: every name defined, every expression well-kinded and dimensionally
+consistent, frames and points forming trees, objectives answerable in their units.
+
+Errors are :class:`SpecError` located at the offending field. Nothing here solves anything.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..errors import ExpressionError, SpecError
+from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Num, Prime,
+                                  Unary, constant_value, parse, to_text)
+from ..units import describe_dimension, dimension, dimensionless, time_dimension
+from .language import FUNCTIONS
+from .model import TIME, Expr, Objective, Problem
+
+RESERVED = {TIME, "pi"} | set(MATH_FUNCTIONS) | set(FUNCTIONS)
+
+
+@dataclass(frozen=True)
+class Type:
+    """Kind (scalar, vector, point, frame or zero) and dimension of an expression."""
+
+    kind: str
+    dim: object = None
+
+
+def rate_symbol_names(problem: Problem) -> dict[str, tuple[str, int]]:
+    """Plain names of coordinates and their rates: ``theta`` -> (theta, 0), ``thetad`` ->
+    (theta, 1), ``thetadd`` -> (theta, 2). These are the names symbolic answers use.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> sorted(rate_symbol_names(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")))
+    ['theta', 'thetad', 'thetadd']
+    """
+    out = {}
+    for c in problem.coordinates:
+        out[c.name] = (c.name, 0)
+        out[c.name + "d"] = (c.name, 1)
+        out[c.name + "dd"] = (c.name, 2)
+    return out
+
+
+class _Checker:
+    def __init__(self, problem: Problem):
+        self.p = problem
+        self.frames = {f.name: f for f in problem.frames}
+        self.points = {p.name: p for p in problem.points}
+        self.coords = {c.name: c for c in problem.coordinates}
+        self.params = {p.name: p for p in problem.parameters}
+
+    # ------------------------------------------------------------------ names
+
+    def check_names(self) -> None:
+        p = self.p
+        for group, items in (("frame", p.frames), ("point", p.points),
+                             ("coordinate", p.coordinates), ("parameter", p.parameters)):
+            for item in items:
+                if item.name in RESERVED:
+                    raise SpecError(f"'{item.name}' is reserved (time, pi or a function name); "
+                                    f"expected another {group} name", where=item.where)
+        for c in p.coordinates:
+            if c.name in self.params:
+                raise SpecError(f"'{c.name}' is both a coordinate and a parameter; expected "
+                                "distinct names", where=c.where)
+        scalars = set(self.coords) | set(self.params)
+        for item in list(p.frames) + list(p.points):
+            if item.name in scalars:
+                raise SpecError(f"'{item.name}' names a frame or point and also a coordinate "
+                                "or parameter; expected distinct names", where=item.where)
+        rates = rate_symbol_names(p)
+        for par in p.parameters:
+            if par.name in rates and rates[par.name][1] > 0:
+                raise SpecError(f"parameter '{par.name}' clashes with the rate name of "
+                                f"coordinate '{rates[par.name][0]}'; expected another name",
+                                where=par.where)
+        for c in p.coordinates:
+            if c.name in rates and rates[c.name][1] > 0:
+                raise SpecError(f"coordinate '{c.name}' clashes with the rate name of "
+                                f"coordinate '{rates[c.name][0]}'; expected another name",
+                                where=c.where)
+
+    # ------------------------------------------------------------------ trees
+
+    def check_frames(self) -> None:
+        inertial = self.p.inertial_frame
+        if self.p.inertial_point not in self.points:
+            raise SpecError("the inertial point must not also be listed under points",
+                            where=self.p.frames[0].where)
+        for frame in self.p.frames:
+            if frame.name == inertial:
+                continue
+            if frame.parent not in self.frames:
+                raise SpecError(f"unknown parent frame '{frame.parent}' (expected one of: "
+                                f"{', '.join(self.frames)})", where=frame.where)
+            if frame.origin is not None and frame.origin not in self.points:
+                raise SpecError(f"unknown origin point '{frame.origin}' (expected one of: "
+                                f"{', '.join(self.points)})", where=frame.where)
+            for rotation in frame.rotations:
+                self.expect_type(rotation.angle, Type("scalar", dimensionless()), "an angle")
+            seen = {frame.name}
+            parent = frame.parent
+            while parent != inertial:
+                if parent in seen:
+                    raise SpecError(f"frame '{frame.name}' is oriented through a cycle of "
+                                    f"parents ({' -> '.join(seen)}); expected a tree rooted at "
+                                    f"'{inertial}'", where=frame.where)
+                seen.add(parent)
+                parent = self.frames[parent].parent
+
+    def check_points(self) -> None:
+        for point in self.p.points:
+            if point.origin is None:
+                continue
+            if point.origin not in self.points:
+                raise SpecError(f"unknown point '{point.origin}' in 'from' (expected one of: "
+                                f"{', '.join(self.points)})", where=point.where)
+            self.expect_type(point.position, Type("vector", dimension("m")),
+                             "a position vector (a length times unit vectors, e.g. L*A.x)")
+            seen = {point.name}
+            origin = point.origin
+            while origin != self.p.inertial_point:
+                if origin in seen:
+                    raise SpecError(f"point '{point.name}' is located through a cycle "
+                                    f"({' -> '.join(seen)}); expected a chain ending at "
+                                    f"'{self.p.inertial_point}'", where=point.where)
+                seen.add(origin)
+                origin = self.points[origin].origin
+
+    # ------------------------------------------------------------------ sections
+
+    def check_constraints(self) -> None:
+        names = set()
+        for c in self.p.constraints:
+            if c.name in names:
+                raise SpecError(f"constraint name '{c.name}' used twice; expected unique "
+                                "names", where=c.where)
+            names.add(c.name)
+            left, right = self.type_of(c.lhs), self.type_of(c.rhs)
+            self._same(left, right, c.lhs, "both sides of the equation")
+
+    def check_givens(self) -> None:
+        seen = {}
+        for given in self.p.givens:
+            node = given.key.node
+            t = self.type_of(given.key)
+            if t.kind != "scalar":
+                raise SpecError(f"expected a scalar quantity as a given's name, found a "
+                                f"{t.kind} ('{given.key.text}')", where=given.where)
+            if isinstance(node, Name) and node.id not in self.coords and \
+                    node.id not in self.params and node.id != TIME:
+                raise SpecError(f"unknown quantity '{node.id}' (expected a coordinate, "
+                                "parameter, t, a rate such as x' or an expression)",
+                                where=given.where)
+            if isinstance(node, Prime) and node.order > 2:
+                raise SpecError("expected at most a second derivative", where=given.where)
+            canonical = to_text(node)
+            if canonical in seen:
+                raise SpecError(f"'{canonical}' is given twice", where=given.where)
+            seen[canonical] = given
+            self._dims_match(t.dim, dimension(given.unit), given.where,
+                             f"the value of '{given.key.text}'")
+        for guess in self.p.guesses:
+            node = guess.key.node
+            if not (isinstance(node, Name) and (node.id in self.coords or node.id in self.params)):
+                raise SpecError(f"expected a coordinate or parameter to guess, found "
+                                f"'{guess.key.text}'", where=guess.where)
+            self._dims_match(self.type_of(guess.key).dim, dimension(guess.unit), guess.where,
+                             f"the guess for '{guess.key.text}'")
+
+    def check_objectives(self) -> None:
+        ids = set()
+        for obj in self.p.objectives:
+            if obj.id in ids:
+                raise SpecError(f"objective id '{obj.id}' used twice; expected unique ids",
+                                where=obj.where)
+            ids.add(obj.id)
+        for obj in self.p.objectives:
+            self.check_objective(obj, ids)
+
+    def check_objective(self, obj: Objective, ids: set[str]) -> None:
+        t = self.type_of(obj.find)
+        want = "vector" if obj.kind == "vector" else "scalar"
+        if t.kind != want:
+            raise SpecError(f"expected a {want} expression for a {obj.kind} objective, found "
+                            f"a {t.kind} ('{obj.find.text}')", where=obj.find.where)
+        self._dims_match(t.dim, dimension(obj.unit), obj.find.where,
+                         f"objective '{obj.id}' (unit '{obj.unit}')")
+        if obj.kind == "vector":
+            if obj.frame is None:
+                raise SpecError("a vector objective needs 'frame': the frame whose unit vectors "
+                                "its components are in", where=obj.where)
+        if obj.frame is not None and obj.frame not in self.frames:
+            raise SpecError(f"unknown frame '{obj.frame}' (expected one of: "
+                            f"{', '.join(self.frames)})", where=obj.where)
+        if obj.kind == "symbolic" and not obj.symbols:
+            raise SpecError("a symbolic objective needs 'symbols': the names its answer is "
+                            "written in", where=obj.where)
+        if obj.kind != "symbolic" and obj.symbols:
+            raise SpecError("'symbols' belongs to symbolic objectives only", where=obj.where)
+        for decl in obj.symbols:
+            self.symbol_meaning(decl)
+        for mistake in obj.mistakes:
+            mt = self.type_of(mistake.find)
+            self._same(t, mt, mistake.find, f"the mistaken model of '{obj.id}'")
+        for dep in obj.depends_on:
+            if dep not in ids or dep == obj.id:
+                raise SpecError(f"depends_on names unknown objective '{dep}' (expected one "
+                                f"of: {', '.join(sorted(ids - {obj.id}))})", where=obj.where)
+        if obj.expect is not None:
+            self.check_expect(obj)
+
+    def symbol_meaning(self, decl) -> Node:
+        """The spec quantity (a Name or Prime node) a declared symbol stands for."""
+        node = decl.means.node
+        if isinstance(node, Name) and node.id == decl.name:
+            rates = rate_symbol_names(self.p)
+            if decl.name in self.params or decl.name in self.coords:
+                return node
+            if decl.name in rates:
+                base, order = rates[decl.name]
+                return Prime(base, order)
+            raise SpecError(f"symbol '{decl.name}' is not a parameter, coordinate or rate "
+                            f"name (such as thetad); write it as {{{decl.name}: \"q'\"}} to say "
+                            "what it stands for", where=decl.means.where)
+        if isinstance(node, Name) and (node.id in self.params or node.id in self.coords):
+            return node
+        if isinstance(node, Prime) and node.id in self.coords and node.order <= 2:
+            return node
+        raise SpecError(f"expected symbol '{decl.name}' to stand for a parameter, coordinate "
+                        f"or rate, found '{decl.means.text}'", where=decl.means.where)
+
+    def check_expect(self, obj: Objective) -> None:
+        e = obj.expect
+        shape = {"scalar": "value", "vector": "components", "symbolic": "expr"}[obj.kind]
+        given = "value" if e.value is not None else "components" if e.components else "expr"
+        if given != shape:
+            raise SpecError(f"expected 'expect.{shape}' for a {obj.kind} objective, found "
+                            f"'expect.{given}'", where=e.where)
+        if e.unit is not None:
+            self._dims_match(dimension(obj.unit), dimension(e.unit), e.where,
+                             f"expect.unit of '{obj.id}'")
+        if e.expr is not None:
+            try:
+                node = parse(e.expr)
+            except ExpressionError as err:
+                raise err.located(e.where) from None
+            allowed = {d.name for d in obj.symbols} | {"pi"}
+            unknown = sorted({n.id for n in _walk_names(node)} - allowed)
+            if unknown:
+                raise SpecError(f"expect.expr uses '{unknown[0]}', which is not among the "
+                                f"objective's symbols ({', '.join(sorted(allowed - {'pi'}))})",
+                                where=e.where)
+
+    # ------------------------------------------------------------------ typing
+
+    def expect_type(self, expr: Expr, want: Type, what: str) -> None:
+        t = self.type_of(expr)
+        if t.kind != want.kind and not (t.kind == "zero" and want.kind == "vector"):
+            raise SpecError(f"expected {what}, found a {t.kind} ('{expr.text}')",
+                            where=expr.where)
+        if t.kind != "zero":
+            self._dims_match(t.dim, want.dim, expr.where, f"'{expr.text}'")
+
+    def type_of(self, expr: Expr) -> Type:
+        try:
+            return self._type(expr.node, inside_pos=False)
+        except SpecError as err:
+            raise SpecError(err.message, where=expr.where) from None
+
+    def _type(self, node: Node, inside_pos: bool) -> Type:
+        if isinstance(node, Num):
+            return Type("zero" if node.value == 0 else "scalar", dimensionless())
+        if isinstance(node, Name):
+            if node.id == "pi":
+                return Type("scalar", dimensionless())
+            if node.id == TIME:
+                return Type("scalar", time_dimension())
+            if node.id in self.coords:
+                return Type("scalar", dimension(self.coords[node.id].unit))
+            if node.id in self.params:
+                return Type("scalar", dimension(self.params[node.id].unit))
+            if node.id in self.points or node.id in self.frames:
+                what = "point" if node.id in self.points else "frame"
+                raise SpecError(f"'{node.id}' is a {what}; expected a scalar or vector here "
+                                f"(use it inside a function such as vel(P, N))")
+            raise SpecError(f"unknown name '{node.id}' (expected a coordinate, parameter, t or "
+                            f"pi; known: {', '.join(sorted(set(self.coords) | set(self.params)))})")
+        if isinstance(node, Prime):
+            if node.id not in self.coords:
+                raise SpecError(f"expected a coordinate before the prime, found '{node.id}' "
+                                f"(coordinates: {', '.join(self.coords) or 'none'})")
+            if node.order > 2:
+                raise SpecError("expected at most a second time derivative (q'')")
+            return Type("scalar", dimension(self.coords[node.id].unit)
+                        * time_dimension() ** -node.order)
+        if isinstance(node, Attr):
+            if node.base not in self.frames:
+                raise SpecError(f"unknown frame '{node.base}' in '{node.base}.{node.attr}' "
+                                f"(frames: {', '.join(self.frames)})")
+            return Type("vector", dimensionless())
+        if isinstance(node, Unary):
+            t = self._type(node.operand, inside_pos)
+            if t.kind not in ("scalar", "vector", "zero"):
+                raise SpecError(f"cannot negate a {t.kind}")
+            return t
+        if isinstance(node, Bin):
+            return self._binary(node, inside_pos)
+        if isinstance(node, Call):
+            return self._call(node, inside_pos)
+        raise SpecError(f"unexpected expression {node!r}")  # pragma: no cover
+
+    def _binary(self, node: Bin, inside_pos: bool) -> Type:
+        a = self._type(node.left, inside_pos)
+        b = self._type(node.right, inside_pos)
+        for t in (a, b):
+            if t.kind in ("point", "frame"):
+                raise SpecError(f"a {t.kind} cannot take part in arithmetic; expected scalars "
+                                "or vectors")
+        if node.op in "+-":
+            if a.kind == "zero":
+                return b
+            if b.kind == "zero":
+                return a
+            if a.kind != b.kind:
+                raise SpecError(f"cannot add a {a.kind} and a {b.kind} in '{to_text(node)}'")
+            if a.dim != b.dim:
+                raise SpecError(f"cannot add {describe_dimension(a.dim)} and "
+                                f"{describe_dimension(b.dim)} in '{to_text(node)}'")
+            return a
+        if node.op == "*":
+            if a.kind == "vector" and b.kind == "vector":
+                raise SpecError(f"cannot multiply two vectors in '{to_text(node)}'; expected "
+                                "dot(u, v) or cross(u, v)")
+            kind = "vector" if "vector" in (a.kind, b.kind) else "scalar"
+            if "zero" in (a.kind, b.kind):
+                return Type("zero", a.dim * b.dim)
+            return Type(kind, a.dim * b.dim)
+        if node.op == "/":
+            if b.kind != "scalar":
+                raise SpecError(f"expected a nonzero scalar divisor in '{to_text(node)}'")
+            return Type(a.kind, a.dim / b.dim)
+        # power
+        if a.kind == "vector" or b.kind == "vector":
+            raise SpecError(f"cannot raise a vector to a power in '{to_text(node)}'")
+        if b.dim != dimensionless():
+            raise SpecError(f"expected a pure-number exponent in '{to_text(node)}'")
+        if a.dim == dimensionless():
+            return Type(a.kind if a.kind != "zero" else "scalar", a.dim)
+        exponent = constant_value(node.right)
+        if exponent is None:
+            raise SpecError(f"a quantity with units needs a constant exponent in "
+                            f"'{to_text(node)}'")
+        return Type("scalar", a.dim ** exponent)
+
+    def _call(self, node: Call, inside_pos: bool) -> Type:
+        if node.func in FUNCTIONS:
+            sig = FUNCTIONS[node.func]
+            if len(node.args) != len(sig.args):
+                raise SpecError(f"expected {len(sig.args)} arguments for {node.func}(...) "
+                                f"({sig.doc}), found {len(node.args)}")
+            if node.func == "ic" and not inside_pos:
+                raise SpecError("ic(A, F) is a point: use it as pos(ic(A, F), P)")
+            dims = []
+            for arg, kind in zip(node.args, sig.args):
+                dims.append(self._argument(node.func, arg, kind))
+            self._needs_origin(node)
+            return Type(sig.result, sig.dim(tuple(dims)))
+        # math function of scalars
+        args = [self._type(a, inside_pos) for a in node.args]
+        for t in args:
+            if t.kind == "vector":
+                raise SpecError(f"{node.func}(...) takes a scalar, found a vector "
+                                "(use mag(v) or dot(u, v))")
+        if node.func == "sqrt":
+            return Type("scalar", args[0].dim ** 0.5)
+        if node.func == "abs":
+            return Type("scalar", args[0].dim)
+        if node.func == "atan2":
+            if args[0].dim != args[1].dim:
+                raise SpecError("atan2(y, x) needs y and x in the same dimension")
+            return Type("scalar", dimensionless())
+        for t in args:
+            if t.dim != dimensionless():
+                raise SpecError(f"{node.func}(...) needs a pure number or angle, found "
+                                f"{describe_dimension(t.dim)}")
+        return Type("scalar", dimensionless())
+
+    def _argument(self, func: str, arg: Node, kind: str):
+        if kind == "frame":
+            if not (isinstance(arg, Name) and arg.id in self.frames):
+                raise SpecError(f"expected a frame as argument of {func}(...), found "
+                                f"'{to_text(arg)}' (frames: {', '.join(self.frames)})")
+            return dimensionless()
+        if kind == "point":
+            if isinstance(arg, Name):
+                if arg.id not in self.points:
+                    raise SpecError(f"expected a point as argument of {func}(...), found "
+                                    f"'{arg.id}' (points: {', '.join(self.points)})")
+                return dimension("m")
+            if isinstance(arg, Call) and arg.func in FUNCTIONS and \
+                    FUNCTIONS[arg.func].result == "point":
+                return self._type(arg, inside_pos=(func == "pos")).dim
+            raise SpecError(f"expected a point as argument of {func}(...), found "
+                            f"'{to_text(arg)}'")
+        t = self._type(arg, inside_pos=False)
+        if t.kind == "zero" and kind == "vector":
+            return t.dim
+        if t.kind != kind:
+            raise SpecError(f"expected a {kind} as argument of {func}(...), found a {t.kind} "
+                            f"('{to_text(arg)}')")
+        return t.dim
+
+    def _needs_origin(self, node: Call) -> None:
+        frame_arg = None
+        if node.func in ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent", "normal"):
+            frame_arg = node.args[1]
+        elif node.func in ("coincident", "ic"):
+            frame_arg = node.args[1] if node.func == "coincident" else node.args[0]
+        if frame_arg is None:
+            return
+        frame = self.frames[frame_arg.id]
+        if frame.name != self.p.inertial_frame and frame.origin is None:
+            raise SpecError(f"{node.func}(...) needs a point fixed in frame '{frame.name}': "
+                            f"give the frame an 'origin'")
+
+    # ------------------------------------------------------------------ helpers
+
+    def _same(self, a: Type, b: Type, expr: Expr, what: str) -> None:
+        kinds = {a.kind, b.kind} - {"zero"}
+        if len(kinds) > 1:
+            raise SpecError(f"expected {what} to be of the same kind, found a {a.kind} and a "
+                            f"{b.kind}", where=expr.where)
+        if "zero" not in (a.kind, b.kind):
+            self._dims_match(a.dim, b.dim, expr.where, what)
+
+    @staticmethod
+    def _dims_match(found, expected, where, what: str) -> None:
+        if found != expected:
+            raise SpecError(f"dimension mismatch in {what}: expected "
+                            f"{describe_dimension(expected)}, found {describe_dimension(found)}",
+                            where=where)
+
+
+def _walk_names(node: Node):
+    from ..expressions.syntax import walk
+    return [n for n in walk(node) if isinstance(n, Name)]
+
+
+def validate_problem(problem: Problem) -> None:
+    """Raise :class:`SpecError` for the first semantic error in ``problem``."""
+    checker = _Checker(problem)
+    checker.check_names()
+    checker.check_frames()
+    checker.check_points()
+    checker.check_constraints()
+    checker.check_givens()
+    checker.check_objectives()
+
+
+def symbol_meanings(problem: Problem, objective: Objective) -> dict[str, Node]:
+    """Each declared symbol of a symbolic objective -> the Name/Prime node it stands for."""
+    checker = _Checker(problem)
+    return {d.name: checker.symbol_meaning(d) for d in objective.symbols}
+
+
+def expression_type(problem: Problem, expr: Expr) -> Type:
+    """The kind and dimension of a spec expression (used by the solver for SI units)."""
+    return _Checker(problem).type_of(expr)
