@@ -39,10 +39,12 @@ class ProblemRef:
 
 @dataclass(frozen=True)
 class SigFigRule:
-    """Answers should show at least ``min`` significant figures; otherwise ``credit`` is kept."""
+    """Answers should be written with ``min`` significant figures; otherwise ``credit`` is
+    kept. ``strict`` reads ``100`` as one figure (otherwise as one to three)."""
 
     min: int
-    credit: float = 1.0
+    credit: float = 0.75
+    strict: bool = False
 
 
 @dataclass(frozen=True)
@@ -53,16 +55,19 @@ class MissingUnitRule:
     objective's unit, ``credit`` kept; ``reject``: marked incorrect.
     """
 
-    action: str = "penalize"
-    credit: float = 0.5
+    action: str = "reject"
+    credit: float = 0.75
 
 
 @dataclass(frozen=True)
 class PartialCredit:
-    """Whether partial credit (typical mistakes, partly right vectors) is given, capped at ``max``."""
+    """Whether partial credit is given at all, capped at ``max``. Author-declared mistakes
+    carry their own credit; ``diagnoses`` gives credit to automatic diagnoses by code
+    (:data:`mechgrade.grade.diagnose.CODES`, e.g. ``(("sign", 0.5),)``)."""
 
     enabled: bool = True
     max: float = 1.0
+    diagnoses: tuple[tuple[str, float], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -76,11 +81,13 @@ class ErrorCarriedForward:
 
 @dataclass(frozen=True)
 class GradingPolicy:
-    """How answers are judged. ``rel``/``abs`` replace every objective's own tolerance when set."""
+    """How answers are judged. ``rel``/``abs`` replace every objective's own tolerance when
+    set; ``accuracy_sig_figs`` judges values to that many significant figures instead."""
 
     reveal_answers: bool = False
     rel: float | None = None
     abs: float | None = None
+    accuracy_sig_figs: int | None = None
     sig_figs: SigFigRule | None = None
     missing_unit: MissingUnitRule = MissingUnitRule()
     partial_credit: PartialCredit = PartialCredit()
@@ -147,12 +154,17 @@ def load_assignment(path: str | Path) -> Assignment:
             reveal_answers=bool(policy.get("reveal_answers", False)),
             rel=_float_or_none(tolerance.get("rel")),
             abs=_float_or_none(tolerance.get("abs")),
-            sig_figs=(SigFigRule(int(sig["min"]), float(sig.get("credit", 1.0)))
+            accuracy_sig_figs=(int(tolerance["sig_figs"]) if "sig_figs" in tolerance
+                               else None),
+            sig_figs=(SigFigRule(int(sig["min"]), float(sig.get("credit", 0.75)),
+                                 bool(sig.get("strict", False)))
                       if sig is not None else None),
-            missing_unit=MissingUnitRule(missing.get("action", "penalize"),
-                                         float(missing.get("credit", 0.5))),
-            partial_credit=PartialCredit(bool(partial.get("enabled", True)),
-                                         float(partial.get("max", 1.0))),
+            missing_unit=MissingUnitRule(missing.get("action", "reject"),
+                                         float(missing.get("credit", 0.75))),
+            partial_credit=PartialCredit(
+                bool(partial.get("enabled", True)), float(partial.get("max", 1.0)),
+                tuple(sorted((str(k), float(v))
+                             for k, v in (partial.get("diagnoses") or {}).items()))),
             ecf=ErrorCarriedForward(bool(ecf.get("enabled", True)),
                                     float(ecf.get("credit", 1.0))),
         ),
@@ -205,6 +217,14 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
                         f"expected each objective once, found '{dup[0]}' more than once",
                         where=doc.where(("problems", i, "objectives"))))
             refs.append(ProblemRef(target, objectives, where))
+        from .diagnose import CODES
+
+        diagnoses = ((doc.data.get("policy") or {}).get("partial_credit") or {}).get("diagnoses")
+        for code in diagnoses or {}:
+            if code not in CODES:
+                problems_.append(AssignmentError(
+                    f"expected a diagnosis code ({', '.join(CODES)}), found '{code}'",
+                    where=doc.where(("policy", "partial_credit", "diagnoses", code))))
     if problems_:
         problems_.sort(key=lambda e: (e.where.line or 0, e.where.column or 0, str(e)))
         first = problems_[0]

@@ -419,7 +419,7 @@ def given_key_of(objective: Objective) -> str | None:
 
     >>> from mechgrade.spec.model import Expr
     >>> from mechgrade.expressions.syntax import parse
-    >>> ob = lambda find, kind="scalar": Objective("o", "", Expr(find, parse(find)), kind, "m/s")
+    >>> ob = lambda find, kind="scalar": Objective("o", "", Expr(find, parse(find, functions=["mag", "vel"])), kind, "m/s")
     >>> given_key_of(ob("x'")), given_key_of(ob("mag(vel(A, N))")), given_key_of(ob("x", "vector"))
     ("x'", None, None)
     """

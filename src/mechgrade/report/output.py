@@ -73,8 +73,8 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
         EXPORTERS[fmt](report, out / name, roster=roster)
         written.append(out / name)
     for student, filename in zip(report.students, feedback_names(report)):
-        context = feedback_context(report, student)
         for template, suffix in zip(templates, (".html", ".md")):
+            context = feedback_context(report, student, markdown=suffix == ".md")
             path = out / "feedback" / (filename + suffix)
             write_text_atomic(path, _render(template, context, templates_dir))
             written.append(path)
@@ -168,8 +168,18 @@ def feedback_names(report: GradeReport) -> list[str]:
     return names
 
 
-def feedback_context(report: GradeReport, student: StudentResult) -> dict:
-    """Everything a feedback template shows for one student, as ready-made text."""
+def feedback_context(report: GradeReport, student: StudentResult, *,
+                     markdown: bool = False) -> dict:
+    """Everything a feedback template shows for one student, as ready-made text.
+
+    With ``markdown`` every text is escaped for Markdown (the HTML template relies on Jinja's
+    autoescaping instead), so a student's answer can never turn into markup.
+    """
+    context = _context(report, student)
+    return _escape_all(context) if markdown else context
+
+
+def _context(report: GradeReport, student: StudentResult) -> dict:
     prompts = {(o.problem, o.objective): o.prompt for o in report.objectives}
     rows = []
     for answer in student.answers:
@@ -207,6 +217,28 @@ def feedback_context(report: GradeReport, student: StudentResult) -> dict:
     }
 
 
+_MD_SPECIAL = re.compile(r"([\\`*_\[\]<>|~&#])")
+
+
+def markdown_escape(text: str) -> str:
+    """Text shown literally by any Markdown renderer (no markup, no raw HTML).
+
+    >>> print(markdown_escape("<b>x</b> *y* `z`"))
+    \\<b\\>x\\</b\\> \\*y\\* \\`z\\`
+    """
+    return _MD_SPECIAL.sub(r"\\\1", " ".join(text.split()))
+
+
+def _escape_all(value):
+    if isinstance(value, str):
+        return markdown_escape(value)
+    if isinstance(value, dict):
+        return {k: _escape_all(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_escape_all(v) for v in value]
+    return value
+
+
 def format_points(value: float) -> str:
     """Points without needless decimals.
 
@@ -218,7 +250,7 @@ def format_points(value: float) -> str:
 
 
 _SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
-_POWER = re.compile(r"(\*\*|\^)\s*\(?(-?\d+)\)?")
+_POWER = re.compile(r"(?:\*\*|\^)\s*(?:\((-?\d+)\)|(-?\d+))")
 
 
 def pretty_math(text: str) -> str:
@@ -227,5 +259,5 @@ def pretty_math(text: str) -> str:
     >>> pretty_math("L*sqrt(thetadd**2 + thetad**4) ft/s^2")
     'L·sqrt(thetadd² + thetad⁴) ft/s²'
     """
-    text = _POWER.sub(lambda m: m.group(2).translate(_SUPERSCRIPTS), text)
+    text = _POWER.sub(lambda m: (m.group(1) or m.group(2)).translate(_SUPERSCRIPTS), text)
     return text.replace("*", "·")

@@ -174,6 +174,7 @@ class _Instant:
                 for level in range(3):
                     if key in p.condition_keys[level]:
                         self.conditions[level][key] = si
+        self.free: set[int] = set()
         guesses = {to_text(g.key.node): g.si for g in problem.guesses}
         self.guess = np.array([guesses.get(str(s), 0.3) for s in p.symbols[:p.n_config]])
 
@@ -270,6 +271,8 @@ class _Instant:
                 sol = sol + null @ null_override
             for j, value in zip(unknown, sol):
                 x[cols[j]] = value
+            self.free |= {cols[unknown[i]] for i in range(len(unknown))
+                          if null.shape[1] and np.abs(null[i]).max() > 1e-9}
         self.values = x
         if len(b):
             r = A @ x[cols] + b
@@ -329,7 +332,7 @@ def _nullspace(A: np.ndarray) -> np.ndarray:
 def _solve_numeric(problem: Problem, p: _Plan, givens: dict) -> tuple[_Instant, dict]:
     inst = _Instant(problem, p, givens)
     free_pos = inst.position()
-    inst.free = set(free_pos)
+    inst.free |= set(free_pos)
     null_v = inst.rates(1)
     null_a = inst.rates(2)
     base = inst.objective_values()
@@ -527,7 +530,7 @@ def _state(problem: Problem, p: _Plan, inst: _Instant | None) -> tuple[StateValu
     n = inst.n
     for i, sym in enumerate(p.symbols):
         value = inst.values[i]
-        if not np.isfinite(value) or i in getattr(inst, "free", ()):
+        if not np.isfinite(value) or i in inst.free:
             continue
         name = str(sym)
         if i < p.n_config:

@@ -173,10 +173,12 @@ class _Builder:
         return exprs[0], exprs[1]
 
     def unit(self, text, *path) -> str:
+        """The unit as the author wrote it, once it is known to be valid."""
         try:
-            return normalize_unit(str(text))
+            normalize_unit(str(text))
         except UnitError as err:
             raise SpecError(err.message, where=self.where(*path)) from None
+        return str(text).strip()
 
     def build(self) -> Problem:
         d = self.data

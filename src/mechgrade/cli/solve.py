@@ -1,0 +1,58 @@
+"""``mechgrade solve``: print a problem's reference answers (text or JSON), or its derivation."""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+from ..mechanics import derivation
+from ..solve import solve as solve_problem
+from ..spec import load_problem
+from .common import main, reports_errors
+
+
+def solution_json(problem, solution) -> dict:
+    """The public ``--format json`` document (see docs/cli.md)."""
+    objectives = {}
+    for r in solution.results:
+        value = r.value if r.kind != "vector" else list(r.value)
+        objectives[r.id] = {"value": value, "unit": r.unit, "frame": r.frame, "expr": r.expr}
+    return {"problem": problem.id, "objectives": objectives}
+
+
+def _value_text(result) -> str:
+    if result.kind == "symbolic":
+        return f"{result.expr}   [{result.unit or '1'}; in {', '.join(result.symbols)}]"
+    if result.kind == "vector":
+        inner = ", ".join(f"{v:.6g}" for v in result.value)
+        return f"({inner}) {result.unit} in {result.frame}"
+    return f"{result.value:.6g} {result.unit}".rstrip()
+
+
+@main.command("solve")
+@click.argument("problem_file", type=click.Path(dir_okay=False))
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
+              show_default=True, help="Output format.")
+@click.option("--steps", is_flag=True, help="Print the derivation in the write-up order.")
+@reports_errors
+def solve_command(problem_file: str, fmt: str, steps: bool) -> None:
+    """Solve PROBLEM_FILE and print each objective's reference answer."""
+    problem = load_problem(problem_file)
+    solution = solve_problem(problem)
+    if fmt == "json":
+        click.echo(json.dumps(solution_json(problem, solution), indent=2))
+        return
+    click.echo(f"{problem.id}: {problem.title}")
+    if steps:
+        for section, lines in derivation(problem):
+            click.echo(f"\n{section}")
+            for line in lines or ("(none)",):
+                click.echo(f"  {line}")
+        click.echo("\nSolution at the instant (SI)")
+        for s in solution.state:
+            click.echo(f"  {s.name} = {s.value:.6g} {s.unit}{'' if s.given else '   (solved)'}")
+        click.echo("\nObjectives")
+    width = max(len(r.id) for r in solution.results)
+    for r in solution.results:
+        click.echo(f"  {r.id.ljust(width)}  {_value_text(r)}")

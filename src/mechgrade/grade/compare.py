@@ -1,0 +1,708 @@
+"""Judge one student answer against the reference: verdict, credit, diagnosis and feedback.
+
+The rules follow the answer tests of mature systems (see ``docs/answers.md`` for the exact
+statement and sources): STACK's NumRelative/NumAbsolute (``|s - t| <= rtol*|t|``), PrairieLearn's
+``relabs`` and ``sigfig`` comparisons, STACK's NumSigFigs for written significant figures, and
+WeBWorK's formula comparison at random test points (with STACK's ATAlgEquiv, sympy, only as a
+bounded fallback).
+
+>>> from mechgrade.solve.result import ObjectiveResult
+>>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
+>>> assess("98.5 ft/s^2", acc, Policy()).verdict
+'correct'
+>>> assess("30 m/s", acc, Policy()).feedback
+'You gave a velocity ([length] / [time]); an acceleration ([length] / [time] ** 2) was asked.'
+"""
+
+from __future__ import annotations
+
+import math
+import zlib
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeError
+from ..expressions import syntax
+from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary
+from ..solve.result import MistakeValue, ObjectiveResult
+from ..units import describe_dimension, dimension, from_si, to_si
+from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
+                      symbol_aliases)
+from .diagnose import CODES, Diagnosis, diagnose
+
+MISSING_UNIT_CHOICES = ("reject", "assume")
+
+
+@dataclass(frozen=True)
+class Policy:
+    """How answers are judged (the instructor's choices; defaults are the objective's own).
+
+    * ``rel``/``abs``: override the objective's tolerance (``abs`` in the objective's unit).
+    * ``sig_figs``: judge accuracy to ``n`` significant figures instead of ``rel``/``abs``.
+    * ``written_sig_figs``: require ``n`` written significant figures (liberal by default, as
+      STACK's NumSigFigs; ``written_sig_figs_strict`` reads ``100`` as exactly one figure);
+      a correct value written otherwise loses ``written_sig_figs_deduction``.
+    * ``missing_unit``: ``"reject"`` a bare number, or ``"assume"`` the objective's unit and
+      deduct ``missing_unit_deduction``.
+    * ``partial_credit``: credit for automatic diagnoses, by code (``(("sign", 0.5),)``);
+      author-declared mistakes carry their own credit.
+    * ``symbolic_rel``/``symbolic_points``/``seed``: expression equivalence by evaluation.
+
+    >>> Policy(missing_unit="guess")
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.AssignmentError: policy.missing_unit: expected one of reject, assume, found 'guess'
+    """
+
+    rel: float | None = None
+    abs: float | None = None
+    sig_figs: int | None = None
+    written_sig_figs: int | None = None
+    written_sig_figs_strict: bool = False
+    written_sig_figs_deduction: float = 0.25
+    missing_unit: str = "reject"
+    missing_unit_deduction: float = 0.25
+    partial_credit: tuple[tuple[str, float], ...] = ()
+    symbolic_rel: float = 1e-6
+    symbolic_points: int = 10
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        def fail(name: str, expected: str, found) -> None:
+            raise AssignmentError(f"policy.{name}: expected {expected}, found {found!r}")
+
+        for name in ("rel", "abs"):
+            value = getattr(self, name)
+            if value is not None and not (isinstance(value, (int, float)) and 0 <= value < 1e300):
+                fail(name, "a non-negative number", value)
+        for name in ("sig_figs", "written_sig_figs"):
+            value = getattr(self, name)
+            if value is not None and not (isinstance(value, int) and 1 <= value <= 15):
+                fail(name, "a whole number from 1 to 15", value)
+        for name in ("written_sig_figs_deduction", "missing_unit_deduction"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and 0 <= value <= 1):
+                fail(name, "a number from 0 to 1", value)
+        if self.missing_unit not in MISSING_UNIT_CHOICES:
+            fail("missing_unit", "one of " + ", ".join(MISSING_UNIT_CHOICES), self.missing_unit)
+        for pair in self.partial_credit:
+            if not (isinstance(pair, tuple) and len(pair) == 2 and pair[0] in CODES
+                    and isinstance(pair[1], (int, float)) and 0 <= pair[1] <= 1):
+                fail("partial_credit", "(code, credit) pairs with a known code and credit "
+                     "from 0 to 1", pair)
+        if not (isinstance(self.symbolic_rel, (int, float)) and 0 < self.symbolic_rel < 1):
+            fail("symbolic_rel", "a number between 0 and 1", self.symbolic_rel)
+        if not (isinstance(self.symbolic_points, int) and 3 <= self.symbolic_points <= 200):
+            fail("symbolic_points", "a whole number from 3 to 200", self.symbolic_points)
+
+    def credit_for(self, code: str) -> float:
+        """Partial credit for an automatic diagnosis (0 unless configured)."""
+        return float(dict(self.partial_credit).get(code, 0.0))
+
+
+@dataclass(frozen=True)
+class Assessment:
+    """How one answer was judged. ``read_back`` is how mechgrade read the text (``None`` when
+    it could not); ``feedback`` never reveals the reference value."""
+
+    verdict: str
+    credit: float
+    diagnosis: str | None
+    feedback: str
+    read_back: str | None = None
+
+
+def missing() -> Assessment:
+    return Assessment("missing", 0.0, None, "No answer was given.", None)
+
+
+def unreadable(reason: str) -> Assessment:
+    return Assessment("unreadable", 0.0, None, f"Could not read the answer: {reason}.", None)
+
+
+def not_evaluated(reason: str, read_back: str | None = None) -> Assessment:
+    return Assessment("not_evaluated", 0.0, None,
+                      f"This answer could not be evaluated ({reason}); it is not marked wrong.",
+                      read_back)
+
+
+# ---------------------------------------------------------------------------- entry point
+
+
+def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy()) -> Assessment:
+    """Read and judge ``text`` as an answer to ``result`` under ``policy``.
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
+    >>> assess("-98.5 ft/s^2", acc).diagnosis
+    'sign error'
+    >>> assess(None, acc).verdict, assess("__import__('os')", acc).verdict
+    ('missing', 'unreadable')
+    """
+    if text is None or (isinstance(text, str) and not text.strip()):
+        return missing()
+    try:
+        answer = read_answer(text, result)
+    except AnswerError as exc:
+        return unreadable(exc.message)
+    try:
+        if result.kind == "symbolic":
+            return _judge_expression(answer, result, policy)
+        if result.value is None:
+            return not_evaluated("the reference answer is not available", answer.read_back())
+        if result.kind == "vector":
+            return _judge_vector(answer, result, policy)
+        return _judge_number(answer, result, policy)
+    except MechgradeError as exc:
+        return not_evaluated(exc.message, answer.read_back())
+
+
+# ---------------------------------------------------------------------------- numbers
+
+
+def within(student: float, reference: float, rel: float, abs_: float) -> bool:
+    """The relative/absolute test: ``|s - t| <= max(rel*|t|, abs)`` (inclusive).
+
+    >>> within(99.0, 100.0, 0.01, 0.0), within(98.99, 100.0, 0.01, 0.0)
+    (True, False)
+    """
+    return abs(student - reference) <= max(rel * abs(reference), abs_)
+
+
+def last_place(reference: float, figures: int) -> float:
+    """The value of the ``figures``-th significant place of ``reference``.
+
+    >>> last_place(98.51, 3), last_place(0.0, 2)
+    (0.1, 0.1)
+    """
+    if reference == 0 or not math.isfinite(reference):
+        return 10.0 ** (1 - figures)
+    exponent = math.floor(math.log10(abs(reference))) - figures + 1
+    return float(f"1e{exponent}")
+
+
+def within_sig_figs(student: float, reference: float, figures: int) -> bool:
+    """Accurate to ``figures`` significant figures: within half a unit of the last place.
+
+    A relative slack of 1e-9 absorbs binary rounding, so ``98.55`` is accepted for
+    ``98.5`` exactly at the boundary.
+
+    >>> within_sig_figs(98.5, 98.51, 3), within_sig_figs(98.4, 98.51, 3)
+    (True, False)
+    """
+    half = 0.5 * last_place(reference, figures)
+    return abs(student - reference) <= half * (1 + 1e-9) + 1e-12 * abs(reference)
+
+
+def _tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
+    rel = result.rel if policy.rel is None else policy.rel
+    abs_ = result.abs if policy.abs is None else policy.abs
+    return float(rel), float(abs_)
+
+
+def _describe_tolerance(result: ObjectiveResult, policy: Policy) -> str:
+    if policy.sig_figs:
+        return f"accurate to {policy.sig_figs} significant figures"
+    rel, abs_ = _tolerance(result, policy)
+    parts = []
+    if rel:
+        parts.append(f"{rel * 100:g}%")
+    if abs_:
+        parts.append(f"{abs_:g} {result.unit}".strip())
+    return "within " + (" or ".join(parts) if parts else "rounding error") + " of the expected value"
+
+
+def _needs_unit(unit: str) -> bool:
+    return str(dimension(unit)) != "dimensionless" or unit.strip() not in ("", "1")
+
+
+@dataclass
+class _Units:
+    """The unit an answer is judged in and what the missing-unit rule costs."""
+
+    unit: str
+    factor: float = 1.0
+    note: str = ""
+    label: str | None = None
+
+
+def _resolve_unit(answer_unit: str | None, result: ObjectiveResult, policy: Policy,
+                  read_back: str) -> _Units | Assessment:
+    if answer_unit is None:
+        if not _needs_unit(result.unit):
+            return _Units(result.unit)
+        if policy.missing_unit == "reject":
+            return Assessment("incorrect", 0.0, "missing unit",
+                              f"A unit is required (for example {_example_unit(result.unit)}).",
+                              read_back)
+        return _Units(result.unit, 1.0 - policy.missing_unit_deduction,
+                      f" No unit was given; {_example_unit(result.unit)} was assumed.",
+                      "missing unit")
+    given, wanted = dimension(answer_unit), dimension(result.unit)
+    if given != wanted:
+        return Assessment("incorrect", policy.credit_for("dimension"), "wrong dimension",
+                          f"You gave {describe_dimension(given)}; "
+                          f"{describe_dimension(wanted)} was asked.", read_back)
+    return _Units(answer_unit)
+
+
+def _example_unit(unit: str) -> str:
+    from .answers import _pretty_unit
+    return _pretty_unit(unit) or "a unit"
+
+
+def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
+                    policy: Policy, read_back: str, what: str) -> Assessment:
+    credit, labels, notes = units.factor, [], units.note
+    if units.label:
+        labels.append(units.label)
+    if policy.written_sig_figs:
+        bad = [f for f in figures if f[0] is not None and not _figures_ok(f, policy)]
+        if bad:
+            credit *= 1.0 - policy.written_sig_figs_deduction
+            labels.append("significant figures")
+            written = bad[0][0] if policy.written_sig_figs_strict or bad[0][0] == bad[0][1] \
+                else f"{bad[0][0]} to {bad[0][1]}"
+            plural = "" if written == 1 else "s"
+            notes += (f" The value is right but written to {written} significant figure{plural}; "
+                      f"{policy.written_sig_figs} were asked.")
+    credit = max(0.0, min(1.0, credit))
+    if credit >= 1.0:
+        return Assessment("correct", 1.0, None, f"Correct{what}.{notes}", read_back)
+    verdict = "partial" if credit > 0 else "incorrect"
+    return Assessment(verdict, credit, "; ".join(labels),
+                      f"The value is right{what}.{notes}".replace(". The value is right but",
+                                                                  ", but"), read_back)
+
+
+def _figures_ok(figures: tuple[int | None, int | None], policy: Policy) -> bool:
+    lo, hi = figures
+    n = policy.written_sig_figs
+    if policy.written_sig_figs_strict:
+        return lo == n
+    return lo <= n <= hi
+
+
+def _judge_number(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
+    reference = float(result.value)
+    read_back = answer.read_back()
+    if isinstance(answer, VectorAnswer):
+        return _vector_for_scalar(answer, result, policy, read_back)
+    units = _resolve_unit(answer.unit, result, policy, read_back)
+    if isinstance(units, Assessment):
+        return units
+    student = from_si(to_si(answer.value, units.unit), result.unit)
+    rel, abs_ = _tolerance(result, policy)
+    if policy.sig_figs:
+        reference_there = from_si(to_si(reference, result.unit), units.unit)
+        ok = within_sig_figs(answer.value, reference_there, policy.sig_figs)
+    else:
+        ok = within(student, reference, rel, abs_)
+    if ok:
+        return _finish_correct(units, [(answer.sig_figs, answer.sig_figs_max)], policy,
+                               read_back, "")
+    close = _array_close(max(rel, 1e-3), abs_)
+    found = diagnose(np.array([student]), np.array([reference]), close,
+                     mistakes=_numeric_mistakes(result, scalar=True))
+    return _wrong(found, policy, units,
+                  f"Not {_describe_tolerance(result, policy)}.", read_back)
+
+
+def _array_close(rel: float, abs_: float):
+    def close(s: np.ndarray, t: np.ndarray) -> bool:
+        scale = float(np.linalg.norm(t)) if t.size <= 3 else 0.0
+        if t.size <= 3:
+            return bool(np.all(np.abs(s - t) <= max(rel * scale, abs_)))
+        return bool(np.all(np.abs(s - t) <= np.maximum(rel * np.abs(t), abs_)))
+    return close
+
+
+def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,
+           read_back: str) -> Assessment:
+    if found is None:
+        return Assessment("incorrect", 0.0, None, summary + units.note, read_back)
+    credit = found.credit if found.credit is not None else policy.credit_for(found.code)
+    credit = max(0.0, min(1.0, credit * units.factor))
+    verdict = "partial" if credit > 0 else "incorrect"
+    message = found.message if found.message.endswith((".", "?", "!")) else found.message + "."
+    return Assessment(verdict, credit, found.label, f"{summary} {message}{units.note}",
+                      read_back)
+
+
+def _numeric_mistakes(result: ObjectiveResult, scalar: bool):
+    out = []
+    for mistake in result.mistakes:
+        value = mistake.value
+        if value is None:
+            out.append((mistake, None))
+        elif scalar and isinstance(value, (int, float)):
+            out.append((mistake, np.array([float(value)])))
+        elif not scalar and isinstance(value, (tuple, list)) and len(value) == 3:
+            out.append((mistake, np.array([float(v) for v in value])))
+        else:
+            out.append((mistake, None))
+    return out
+
+
+def _vector_for_scalar(answer: VectorAnswer, result: ObjectiveResult, policy: Policy,
+                       read_back: str) -> Assessment:
+    """A vector for a scalar objective: a lone k component is the planar signed scalar."""
+    x, y, z = answer.components
+    if x == 0 and y == 0 and answer.frame is None:
+        planar = NumberAnswer(z, answer.unit, *answer.sig_figs[2], answer.texts[2])
+        judged = _judge_number(planar, result, policy)
+        return Assessment(judged.verdict, judged.credit, judged.diagnosis, judged.feedback,
+                          read_back)
+    units = _resolve_unit(answer.unit, result, policy, read_back)
+    magnitude = math.sqrt(x * x + y * y + z * z)
+    if not isinstance(units, Assessment):
+        rel, abs_ = _tolerance(result, policy)
+        size = from_si(to_si(magnitude, units.unit), result.unit)
+        if within(size, abs(float(result.value)), rel, abs_):
+            return Assessment("incorrect", policy.credit_for("shape"), "vector for a scalar",
+                              "A single value was asked, not a vector (its magnitude is "
+                              "right).", read_back)
+    return Assessment("incorrect", policy.credit_for("shape"), "vector for a scalar",
+                      "A single value was asked, not a vector.", read_back)
+
+
+# ---------------------------------------------------------------------------- vectors
+
+
+def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
+    reference = np.array([float(v) for v in result.value])
+    read_back = answer.read_back()
+    if isinstance(answer, NumberAnswer):
+        if reference[0] == 0 and reference[1] == 0:  # planar: a signed scalar is its k part
+            answer = VectorAnswer((0.0, 0.0, answer.value), answer.unit, None,
+                                  ((None, None), (None, None),
+                                   (answer.sig_figs, answer.sig_figs_max)),
+                                  ("0", "0", answer.text))
+        else:
+            return _scalar_for_vector(answer, reference, result, policy, read_back)
+    units = _resolve_unit(answer.unit, result, policy, read_back)
+    if isinstance(units, Assessment):
+        return units
+    factor = to_si(1.0, units.unit) / to_si(1.0, result.unit)
+    student = np.array(answer.components) * factor
+    rel, abs_ = _tolerance(result, policy)
+    if answer.frame is not None and result.frame is not None and answer.frame != result.frame:
+        same_size = within(float(np.linalg.norm(student)), float(np.linalg.norm(reference)),
+                           rel, abs_)
+        return Assessment("incorrect", policy.credit_for("frame"), "wrong frame",
+                          f"Your components are along {answer.frame}'s unit vectors; give them "
+                          f"along {result.frame}'s" + (" (the magnitude is right)." if same_size
+                                                       else "."), read_back)
+    if policy.sig_figs:
+        magnitude_there = float(np.linalg.norm(reference)) / factor
+        tiny = last_place(magnitude_there, policy.sig_figs)
+
+        def ok(i: int) -> bool:
+            there = reference[i] / factor
+            basis = there if abs(there) >= tiny else magnitude_there
+            half = 0.5 * last_place(basis, policy.sig_figs)
+            return abs(answer.components[i] - there) <= half * (1 + 1e-9) + 1e-12 * abs(basis)
+    else:
+        tol = max(rel * float(np.linalg.norm(reference)), abs_)
+
+        def ok(i: int) -> bool:
+            return abs(student[i] - reference[i]) <= tol
+    wrong = [axis for i, axis in enumerate("xyz") if not ok(i)]
+    if not wrong:
+        figures = [f for f, v in zip(answer.sig_figs, answer.components) if v != 0]
+        return _finish_correct(units, figures, policy, read_back, "")
+    close = _array_close(max(rel, 1e-3), abs_)
+    found = diagnose(student, reference, close, kind="vector",
+                     mistakes=_numeric_mistakes(result, scalar=False))
+    right = [axis for axis in "xyz" if axis not in wrong]
+    summary = (f"The {_listing(wrong)} component{'s are' if len(wrong) > 1 else ' is'} not "
+               f"{_describe_tolerance(result, policy)}"
+               + (f" ({_listing(right)} {'are' if len(right) > 1 else 'is'} right)."
+                  if right else "."))
+    return _wrong(found, policy, units, summary, read_back)
+
+
+def _listing(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
+def _scalar_for_vector(answer: NumberAnswer, reference: np.ndarray, result: ObjectiveResult,
+                       policy: Policy, read_back: str) -> Assessment:
+    units = _resolve_unit(answer.unit, result, policy, read_back)
+    hint = ""
+    if not isinstance(units, Assessment):
+        rel, abs_ = _tolerance(result, policy)
+        size = from_si(to_si(answer.value, units.unit), result.unit)
+        if within(abs(size), float(np.linalg.norm(reference)), rel, abs_):
+            hint = " (your value is the right magnitude)"
+    frame = result.frame or "the frame"
+    return Assessment("incorrect", policy.credit_for("shape"), "scalar for a vector",
+                      f"A vector was asked: give its components along {frame}'s unit vectors, "
+                      f"such as '(x, y, z) unit'{hint}.", read_back)
+
+
+# ---------------------------------------------------------------------------- expressions
+
+
+_NUMPY_FUNCTIONS = {
+    "sin": np.sin, "cos": np.cos, "tan": np.tan, "cot": lambda a: 1 / np.tan(a),
+    "sec": lambda a: 1 / np.cos(a), "csc": lambda a: 1 / np.sin(a), "asin": np.arcsin,
+    "acos": np.arccos, "atan": np.arctan, "atan2": np.arctan2, "sinh": np.sinh,
+    "cosh": np.cosh, "tanh": np.tanh, "sqrt": np.sqrt, "exp": np.exp, "log": np.log,
+    "abs": np.abs, "sign": np.sign,
+}
+
+
+def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
+    """Values of a checked tree at sample points (NaN where undefined); never calls sympy.
+
+    The tree is bounded by the reader (size, depth, constant exponents), and numpy arithmetic
+    overflows to ``inf`` rather than hanging, so this is safe on any readable answer.
+
+    >>> import numpy as np
+    >>> evaluate(syntax.parse("2 L^2"), {"L": np.array([1.0, 3.0])})
+    array([ 2., 18.])
+    """
+    with np.errstate(all="ignore"):
+        return np.asarray(_eval(node, env), dtype=float)
+
+
+def _eval(node: Node, env: dict[str, np.ndarray]):
+    if isinstance(node, Num):
+        return float(node.text)
+    if isinstance(node, Name):
+        if node.id == "pi":
+            return math.pi
+        return env[node.id]
+    if isinstance(node, Unary):
+        return -_eval(node.operand, env)
+    if isinstance(node, Bin):
+        a, b = _eval(node.left, env), _eval(node.right, env)
+        if node.op == "+":
+            return np.add(a, b)
+        if node.op == "-":
+            return np.subtract(a, b)
+        if node.op == "*":
+            return np.multiply(a, b)
+        if node.op == "/":
+            return np.divide(np.asarray(a, dtype=float), b)
+        return np.power(np.asarray(a, dtype=float), b)
+    if isinstance(node, Call):
+        args = [_eval(a, env) for a in node.args]
+        return _NUMPY_FUNCTIONS[node.func](*[np.asarray(a, dtype=float) for a in args])
+    raise ExpressionError(f"expected an expression in the problem's symbols, found "
+                          f"{syntax.to_text(node)!r}")
+
+
+@lru_cache(maxsize=256)
+def _reference_tree(expr: str, symbols: tuple[str, ...]) -> Node:
+    node = syntax.parse(expr, attributes=False)
+    unknown = syntax.names(node) - set(symbols) - {"pi", "E"}
+    if unknown:
+        raise ExpressionError(f"the reference uses names that are not its symbols: "
+                              f"{', '.join(sorted(unknown))}")
+    return node
+
+
+def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
+    """How to sample each symbol: ``angle``, ``signed`` (rates) or ``positive``."""
+    aliases = symbol_aliases(result.symbols)
+    derivatives = {target for key, target in aliases.items() if isinstance(key, tuple)}
+    kinds = {}
+    units = dict(zip(result.symbols, result.symbol_units))
+    for symbol in result.symbols:
+        unit = units.get(symbol, "")
+        dim = str(dimension(unit)) if unit else "dimensionless"
+        if dim == "dimensionless" and any(w in unit for w in ("rad", "deg")):
+            kinds[symbol] = "angle"
+        elif symbol in derivatives or dim in ("1 / [time]", "1 / [time] ** 2"):
+            kinds[symbol] = "signed"
+        else:
+            kinds[symbol] = "positive"
+    return kinds
+
+
+def sample_points(result: ObjectiveResult, count: int, seed: int = 0) -> dict[str, np.ndarray]:
+    """Seeded random values for each symbol over a sensible domain.
+
+    Lengths, masses, times and other quantities are positive (0.5 to 2.5); angles lie in
+    0.1 to 1.45 rad; rates (symbols in 1/s or 1/s², or derivatives such as ``thetad``) are
+    signed, 0.5 to 2.5 in size. The seed depends on the objective, so runs are reproducible.
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> r = ObjectiveResult("w", "symbolic", "rad/s", expr="thetad", symbols=("L", "thetad"),
+    ...                     symbol_units=("m", "rad/s"))
+    >>> points = sample_points(r, 5)
+    >>> bool((points["L"] > 0).all()), sorted(points)
+    (True, ['E', 'L', 'thetad'])
+    """
+    digest = zlib.crc32(f"{result.id}|{result.expr}|{seed}".encode("utf-8", "replace"))
+    rng = np.random.default_rng(digest)
+    env = {"E": np.full(count, math.e)}
+    for symbol, kind in _symbol_kinds(result).items():
+        if kind == "angle":
+            env[symbol] = rng.uniform(0.1, 1.45, count)
+        elif kind == "signed":
+            env[symbol] = rng.uniform(0.5, 2.5, count) * rng.choice([-1.0, 1.0], count)
+        else:
+            env[symbol] = rng.uniform(0.5, 2.5, count)
+    return env
+
+
+MIN_VALID_POINTS = 3
+
+
+def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
+                      policy: Policy) -> Assessment:
+    assert isinstance(answer, ExpressionAnswer)
+    read_back = answer.read_back()
+    if not result.expr:
+        return not_evaluated("the reference expression is not available", read_back)
+    reference_node = _reference_tree(result.expr, tuple(result.symbols))
+    wanted = policy.symbolic_points
+    env = sample_points(result, 4 * wanted, policy.seed)
+    reference = evaluate(reference_node, env)
+    valid = np.isfinite(reference)
+    if int(valid.sum()) < MIN_VALID_POINTS:
+        confirmed = _sympy_equivalent(answer.node, reference_node, result)
+        if confirmed is True:
+            return Assessment("correct", 1.0, None, "Correct.", read_back)
+        return not_evaluated("the reference is undefined at the sample points", read_back)
+    keep = np.flatnonzero(valid)[:wanted]
+    env = {name: values[keep] for name, values in env.items()}
+    reference = reference[keep]
+    student = evaluate(answer.node, env)
+    close = _expression_close(policy.symbolic_rel, reference)
+    if close(student, reference):
+        return Assessment("correct", 1.0, None, "Correct.", read_back)
+    mistakes = []
+    for mistake in result.mistakes:
+        mistakes.append((mistake, _mistake_values(mistake, result, env)))
+    found = diagnose(student, reference, close, kind="symbolic", mistakes=mistakes)
+    if found is None:
+        found = _dimension_diagnosis(answer.node, result)
+    return _wrong(found, policy, _Units(result.unit),
+                  "Not equivalent to the expected expression.", read_back)
+
+
+def _expression_close(rel: float, reference: np.ndarray):
+    scale = float(np.mean(np.abs(reference))) if reference.size else 0.0
+    floor = max(rel * scale * 1e-3, 1e-12)
+
+    def close(s: np.ndarray, t: np.ndarray) -> bool:
+        if s.shape != t.shape or not np.all(np.isfinite(s)):
+            return False
+        return bool(np.all(np.abs(s - t) <= np.maximum(rel * np.abs(t), floor)))
+    return close
+
+
+def _mistake_values(mistake: MistakeValue, result: ObjectiveResult, env) -> np.ndarray | None:
+    if not mistake.expr:
+        return None
+    try:
+        return evaluate(_reference_tree(mistake.expr, tuple(result.symbols)), env)
+    except (ExpressionError, KeyError):
+        return None
+
+
+SYMPY_MAX_NODES = 60
+
+
+def _sympy_equivalent(student: Node, reference: Node, result: ObjectiveResult) -> bool | None:
+    """ATAlgEquiv-style confirmation, only for small trees (``None``: not attempted/unknown)."""
+    if sum(1 for _ in syntax.walk(student)) > SYMPY_MAX_NODES or \
+            sum(1 for _ in syntax.walk(reference)) > SYMPY_MAX_NODES:
+        return None
+    import sympy
+
+    from ..expressions.build import to_sympy
+    kinds = _symbol_kinds(result)
+    table = {s: sympy.Symbol(s, positive=kinds[s] != "signed", real=True)
+             for s in result.symbols}
+    table["E"] = sympy.E
+
+    def resolve(node):
+        return table[node.id]
+    try:
+        difference = to_sympy(student, resolve) - to_sympy(reference, resolve)
+        return bool(sympy.simplify(difference) == 0) or None
+    except (ExpressionError, KeyError, TypeError, ValueError, ZeroDivisionError):
+        return None
+
+
+# ---------------------------------------------------------------------------- dimensions
+
+
+class DimensionMismatch(Exception):
+    """An expression combines quantities of different dimensions (the message says where)."""
+
+
+def expression_dimension(node: Node, units: dict[str, str]):
+    """The dimension of an expression whose names have the given units.
+
+    >>> str(expression_dimension(syntax.parse("L*thetad^2"), {"L": "m", "thetad": "rad/s"}))
+    '[length] / [time] ** 2'
+    >>> expression_dimension(syntax.parse("L + thetad"), {"L": "m", "thetad": "rad/s"})
+    Traceback (most recent call last):
+    ...
+    mechgrade.grade.compare.DimensionMismatch: adds a length ([length]) to an angular velocity or rate (1 / [time])
+    """
+    none = dimension("")
+    if isinstance(node, Num):
+        return none
+    if isinstance(node, Name):
+        if node.id in ("pi", "E"):
+            return none
+        return dimension(units.get(node.id, ""))
+    if isinstance(node, Unary):
+        return expression_dimension(node.operand, units)
+    if isinstance(node, Bin):
+        left = expression_dimension(node.left, units)
+        if node.op == "**":
+            exponent = syntax.constant_value(node.right)
+            if exponent is None:
+                right = expression_dimension(node.right, units)
+                if left != none or right != none:
+                    raise DimensionMismatch("raises a quantity with units to a variable power")
+                return none
+            return left ** exponent if left != none else none
+        right = expression_dimension(node.right, units)
+        if node.op in "+-":
+            if left != right:
+                verb = "adds" if node.op == "+" else "subtracts"
+                raise DimensionMismatch(f"{verb} {describe_dimension(left)} "
+                                        f"{'to' if node.op == '+' else 'and'} "
+                                        f"{describe_dimension(right)}")
+            return left
+        return left * right if node.op == "*" else left / right
+    if isinstance(node, Call):
+        dims = [expression_dimension(a, units) for a in node.args]
+        if node.func == "sqrt":
+            return dims[0] ** 0.5
+        if node.func in ("abs", "sign"):
+            return dims[0] if node.func == "abs" else none
+        if node.func == "atan2":
+            if dims[0] != dims[1]:
+                raise DimensionMismatch("compares quantities of different dimensions in atan2")
+            return none
+        if any(d != none for d in dims):
+            raise DimensionMismatch(f"takes {node.func} of "
+                                    f"{describe_dimension(dims[0])}, which needs a pure number")
+        return none
+    return none
+
+
+def _dimension_diagnosis(node: Node, result: ObjectiveResult) -> Diagnosis | None:
+    units = dict(zip(result.symbols, result.symbol_units))
+    try:
+        given = expression_dimension(node, units)
+    except DimensionMismatch as exc:
+        return Diagnosis("dimension", "inconsistent dimensions", f"Your expression {exc}.")
+    wanted = dimension(result.unit)
+    if given != wanted:
+        return Diagnosis("dimension", "wrong dimension",
+                         f"Your expression is {describe_dimension(given)}; "
+                         f"{describe_dimension(wanted)} was asked.")
+    return None
