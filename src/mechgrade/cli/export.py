@@ -56,8 +56,8 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
                 written = "0" if missing == "zero" else "a blank grade"
                 click.echo(f"warning: {student.id} ({student.name}) has no submission; "
                            f"written with {written}", err=True)
-    click.echo(f"wrote {fmt} export of {len(report.students)} graded "
-               f"{'student' if len(report.students) == 1 else 'students'} to {out}")
+    click.echo(f"wrote {fmt} export of {len(report.students)} "
+               f"{'result' if len(report.students) == 1 else 'results'} to {out}")
 
 
 @main.command("report")

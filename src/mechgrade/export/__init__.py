@@ -5,8 +5,8 @@
 with the stdlib ``csv``/``json`` writers through a temporary file and ``os.replace``; every CSV
 cell is neutralised against formula injection (:func:`mechgrade.export.cells.safe_cell`).
 
->>> sorted(EXPORTERS)
-['canvas', 'gradescope', 'grades-csv', 'json', 'long-csv', 'moodle']
+>>> list(EXPORTERS)
+['canvas', 'moodle', 'gradescope', 'grades-csv', 'long-csv', 'json']
 """
 
 from __future__ import annotations
@@ -83,7 +83,7 @@ def read_results(path: str | os.PathLike) -> GradeReport:
         data = json.loads(text)
     except json.JSONDecodeError as err:
         raise ExportError(f"expected JSON (a results.json written by mechgrade), found "
-                          f"{err.msg.lower()}", where=Location(name, err.lineno, err.colno)) \
+                          f"invalid JSON: {err.msg}", where=Location(name, err.lineno, err.colno)) \
             from None
     _check_results(data, name)
     return GradeReport.from_json(data)

@@ -161,7 +161,7 @@ _NUMBER = re.compile(r"\s*(" + _NUMBER_TEXT + r")")
 _MANTISSA = re.compile(r"[+-]?\s*(?P<m>\d+(?:\.\d*)?|\.\d+)"
                        r"(?:[eE](?P<e1>[+-]?\d+)|\s*[x*]\s*10\s*(?:\^|\*\*)\s*\(?\s*(?P<e2>[+-]?\d+)"
                        r"\s*\)?)?$")
-MAX_DECIMAL_EXPONENT = 300
+MAX_MAGNITUDE = 1e300
 
 
 def number_value(text: str) -> float:
@@ -174,11 +174,14 @@ def number_value(text: str) -> float:
     m = _MANTISSA.match(compact)
     if not m:
         raise AnswerError(f"expected a number such as 98.5 or 4.9e1, found {text!r}")
-    exponent = int(m.group("e1") or m.group("e2") or 0)
-    if abs(exponent) > MAX_DECIMAL_EXPONENT:
+    exponent_text = m.group("e1") or m.group("e2") or "0"
+    if len(exponent_text.lstrip("+-")) > 4:
         raise AnswerError(f"expected a number of sensible size, found {text!r}")
     sign = -1.0 if compact.startswith("-") else 1.0
-    return sign * float(f"{m.group('m')}e{exponent}")
+    value = sign * float(f"{m.group('m')}e{int(exponent_text)}")
+    if abs(value) > MAX_MAGNITUDE:
+        raise AnswerError(f"expected a number of sensible size, found {text!r}")
+    return value
 
 
 def significant_figures(text: str) -> tuple[int, int]:

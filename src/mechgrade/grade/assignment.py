@@ -61,12 +61,14 @@ class MissingUnitRule:
 
 @dataclass(frozen=True)
 class PartialCredit:
-    """Whether partial credit is given at all, capped at ``max``. Author-declared mistakes
-    carry their own credit; ``diagnoses`` gives credit to automatic diagnoses by code
-    (:data:`mechgrade.grade.diagnose.CODES`, e.g. ``(("sign", 0.5),)``)."""
+    """Credit for wrong answers with a recognised mistake.
+
+    ``diagnoses`` gives credit to automatic diagnoses by code
+    (:data:`mechgrade.grade.diagnose.CODES`, e.g. ``(("sign", 0.5),)``); ``enabled: false``
+    switches that off. Author-declared mistakes in a problem spec carry their own credit.
+    """
 
     enabled: bool = True
-    max: float = 1.0
     diagnoses: tuple[tuple[str, float], ...] = ()
 
 
@@ -162,7 +164,7 @@ def load_assignment(path: str | Path) -> Assignment:
             missing_unit=MissingUnitRule(missing.get("action", "reject"),
                                          float(missing.get("credit", 0.75))),
             partial_credit=PartialCredit(
-                bool(partial.get("enabled", True)), float(partial.get("max", 1.0)),
+                bool(partial.get("enabled", True)),
                 tuple(sorted((str(k), float(v))
                              for k, v in (partial.get("diagnoses") or {}).items()))),
             ecf=ErrorCarriedForward(bool(ecf.get("enabled", True)),

@@ -16,14 +16,13 @@ not be applied.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterable
 
-from ..errors import AssignmentError, MechgradeError
+from ..errors import AssignmentError, InconsistentError, MechgradeError
 from ..expressions.syntax import Name, Prime
 from ..solve.result import ObjectiveResult, Solution
 from ..spec.model import Objective, Problem
@@ -99,7 +98,7 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
                     f"expected an objective of problem '{problem.id}' ({', '.join(known)}), "
                     f"found '{objective_id}'", where=ref.where)
             objective = problem.objective(objective_id)
-            result = _with_policy_tolerance(solution.result(objective_id), assignment.policy)
+            result = solution.result(objective_id)
             planned.append(PlannedObjective(problem, objective, result,
                                             assignment.points_for(problem.id, objective_id)))
     keys = {o.key for o in planned}
@@ -135,13 +134,14 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     if progress:
         progress(0, total)
     judge = _Judge(plan, resolve)
-    judge.prefetch(submission for _, submission in people if submission is not None)
     students: list[StudentResult] = []
-    for done, (person, submission) in enumerate(people, start=1):
-        students.append(_grade_student(plan, judge, person, submission))
-        if progress:
-            progress(done, total)
-    judge.close()
+    try:
+        for done, (person, submission) in enumerate(people, start=1):
+            students.append(_grade_student(plan, judge, person, submission))
+            if progress:
+                progress(done, total)
+    finally:
+        judge.close()
     assignment = plan.assignment
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points) for o in plan.objectives)
@@ -253,50 +253,32 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
 
 
 class _Judge:
-    """Judges answers through the sandbox, once per distinct (objective, text)."""
+    """Judges answers in one sandbox worker, once per distinct (objective, text)."""
 
     def __init__(self, plan: Plan, resolve: Resolver | None):
         self.plan = plan
         self.policy = plan.assignment.policy
         self._resolve = resolve
         self._cache: dict[tuple, object] = {}
-        self._ecf_solutions: dict[tuple, Solution | MechgradeError] = {}
-        self._session = None
+        self._ecf_solutions: dict[tuple, tuple] = {}
+        self._policy = compare_policy(self.policy)
+        self._box = None
 
     def close(self) -> None:
-        if self._session is not None:
-            self._session.close()
-            self._session = None
-
-    def _assess_many(self, jobs: list[tuple[str, ObjectiveResult]]) -> None:
-        todo = [(text, result) for text, result in dict.fromkeys(jobs)
-                if (result, text) not in self._cache]
-        if not todo:
-            return
-        from . import sandbox
-        from .compare import Policy
-
-        policies = [_compare_policy(self.policy, result) for _, result in todo]
-        triples = [(text, result, policy) for (text, result), policy in zip(todo, policies)]
-        assessments = sandbox.assess_batch(triples)
-        for (text, result), assessment in zip(todo, assessments):
-            self._cache[(result, text)] = assessment
+        if self._box is not None:
+            self._box.close()
+            self._box = None
 
     def assess(self, text: str, result: ObjectiveResult):
+        """Judge one answer in the run's sandbox worker (started once, reused for all)."""
         key = (result, text)
         if key not in self._cache:
-            self._assess_many([(text, result)])
-        return self._cache[key]
+            if self._box is None:
+                from .sandbox import Sandbox
 
-    def prefetch(self, submissions: Iterable[Submission]) -> None:
-        """Judge every distinct answer of the class in one batch (one sandbox worker)."""
-        jobs = []
-        for submission in submissions:
-            for item in self.plan.objectives:
-                text = submission.answer(item.key)
-                if text is not None and text.strip():
-                    jobs.append((text, item.result))
-        self._assess_many(jobs)
+                self._box = Sandbox()
+            self._cache[key] = self._box.assess(text, result, self._policy)
+        return self._cache[key]
 
     def expected(self, item: PlannedObjective) -> str | None:
         return expected_text(item.result) if self.policy.reveal_answers else None
@@ -306,7 +288,7 @@ class _Judge:
         assessment = self.assess(text, item.result)
         verdict, credit = assessment.verdict, float(assessment.credit)
         feedback = [assessment.feedback] if assessment.feedback else []
-        verdict, credit = self._partial_policy(verdict, credit, feedback)
+        credit = min(max(credit, 0.0), 1.0)
         if verdict != "correct" and item.objective.depends_on and self.policy.ecf.enabled:
             verdict, credit = self._carry_forward(item, text, submission, earlier, verdict,
                                                   credit, feedback)
@@ -314,18 +296,6 @@ class _Judge:
                             _round(credit * item.max_points), item.max_points,
                             assessment.diagnosis, " ".join(f for f in feedback if f),
                             assessment.read_back, self.expected(item))
-
-    def _partial_policy(self, verdict: str, credit: float, feedback: list[str]
-                        ) -> tuple[str, float]:
-        rule = self.policy.partial_credit
-        if verdict == "partial" or (verdict != "correct" and 0 < credit < 1):
-            if not rule.enabled:
-                feedback.append("This assignment gives no partial credit.")
-                return "incorrect", 0.0
-            if credit > rule.max:
-                feedback.append(f"Partial credit is capped at {rule.max:.0%}.")
-                return verdict, rule.max
-        return verdict, min(max(credit, 0.0), 1.0)
 
     def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
         """Judge ``text`` again against the reference recomputed from the student's own
@@ -368,14 +338,14 @@ class _Judge:
             overrides[given_key] = value
         if not overrides:
             return verdict, credit
-        solution = self._solve_with(problem, overrides)
+        solution, replaced = self._solve_with(problem, overrides)
         if isinstance(solution, MechgradeError):
             feedback.append(f"Error carried forward could not be applied: with your "
                             f"{_listing(sorted(overrides))} the problem cannot be solved "
                             f"({solution.message}).")
             return verdict, credit
         try:
-            recomputed = _with_policy_tolerance(solution.result(item.objective.id), self.policy)
+            recomputed = solution.result(item.objective.id)
         except KeyError:
             return verdict, credit
         again = self.assess(text, recomputed)
@@ -383,9 +353,11 @@ class _Judge:
         upstream_names = _listing(sorted(objective_id for objective_id in
                                          item.objective.depends_on))
         if again.verdict in ("correct", "partial") and ecf_credit > credit:
+            instead = (f" (used in place of the given {_listing(replaced)})" if replaced
+                       else "")
             feedback.append(f"Error carried forward: this answer follows correctly from your "
-                            f"answer to {upstream_names} and earns {ecf_credit:.0%} of the "
-                            f"points.")
+                            f"answer to {upstream_names}{instead} and earns {ecf_credit:.0%} "
+                            f"of the points.")
             return ("correct" if ecf_credit >= 1.0 else "partial"), ecf_credit
         feedback.append(f"Also checked with your own answer to {upstream_names} (error "
                         f"carried forward): it does not follow from it either.")
@@ -393,23 +365,47 @@ class _Judge:
 
     def _reference(self, problem: Problem, objective_id: str) -> ObjectiveResult:
         index = self.plan.problems.index(problem)
-        return _with_policy_tolerance(self.plan.solutions[index].result(objective_id),
-                                      self.policy)
+        return self.plan.solutions[index].result(objective_id)
 
     def _solve_with(self, problem: Problem, overrides: dict[str, float]):
-        key = (problem.id, tuple(sorted(overrides.items())))
-        if key not in self._ecf_solutions:
-            try:
-                if self._resolve is not None:
-                    solution = self._resolve(problem, dict(overrides))
-                else:
-                    from ..solve import solve
+        """Solve with the student's values; ``(solution or error, givens replaced)``.
 
-                    solution = solve(problem, givens=dict(overrides))
-            except MechgradeError as err:
-                solution = err
-            self._ecf_solutions[key] = solution
-        return self._ecf_solutions[key]
+        A value the spec derives from other givens over-determines the problem when simply
+        added (x' given while y' fixes it). Then each given of the same derivative order is
+        dropped in turn, in spec order, and the first consistent solution is used.
+        """
+        key = (problem.id, tuple(sorted(overrides.items())))
+        if key in self._ecf_solutions:
+            return self._ecf_solutions[key]
+        outcome = self._attempt(problem, dict(overrides)), ()
+        if isinstance(outcome[0], InconsistentError):
+            orders = {_order(k) for k in overrides}
+            for given in problem.givens:
+                name = given.key.text
+                if name in overrides or _order(name) not in orders:
+                    continue
+                attempt = self._attempt(problem, {**overrides, name: None})
+                if not isinstance(attempt, MechgradeError):
+                    outcome = attempt, (name,)
+                    break
+        self._ecf_solutions[key] = outcome
+        return outcome
+
+    def _attempt(self, problem: Problem, givens: dict):
+        try:
+            if self._resolve is not None:
+                return self._resolve(problem, givens)
+            from ..solve import solve
+
+            return solve(problem, givens=givens)
+        except MechgradeError as err:
+            return err
+
+
+def _order(key: str) -> int:
+    """How many time derivatives a given key names (``x''`` -> 2; an expression -> -1)."""
+    stripped = key.rstrip("'")
+    return len(key) - len(stripped) if stripped.isidentifier() else -1
 
 
 def given_key_of(objective: Objective) -> str | None:
@@ -456,18 +452,27 @@ def _si_value(text: str, result: ObjectiveResult) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _with_policy_tolerance(result: ObjectiveResult, policy: GradingPolicy) -> ObjectiveResult:
-    if policy.rel is None and policy.abs is None:
-        return result
-    return dataclasses.replace(result,
-                               rel=result.rel if policy.rel is None else policy.rel,
-                               abs=result.abs if policy.abs is None else policy.abs)
+def compare_policy(policy: GradingPolicy):
+    """The assignment's policy as the answer judge's :class:`~mechgrade.grade.compare.Policy`.
 
-
-def _compare_policy(policy: GradingPolicy, result: ObjectiveResult):
+    >>> from mechgrade.grade.assignment import MissingUnitRule, SigFigRule
+    >>> p = compare_policy(GradingPolicy(sig_figs=SigFigRule(3, 0.8),
+    ...                                  missing_unit=MissingUnitRule("penalize", 0.5)))
+    >>> p.written_sig_figs, round(p.written_sig_figs_deduction, 2), p.missing_unit, p.missing_unit_deduction
+    (3, 0.2, 'assume', 0.5)
+    """
     from .compare import Policy
 
-    return Policy()
+    sig = policy.sig_figs
+    missing = policy.missing_unit
+    return Policy(
+        rel=policy.rel, abs=policy.abs, sig_figs=policy.accuracy_sig_figs,
+        written_sig_figs=sig.min if sig else None,
+        written_sig_figs_strict=sig.strict if sig else False,
+        written_sig_figs_deduction=1.0 - sig.credit if sig else 0.25,
+        missing_unit="reject" if missing.action == "reject" else "assume",
+        missing_unit_deduction=1.0 - missing.credit if missing.action == "penalize" else 0.0,
+        partial_credit=policy.partial_credit.diagnoses if policy.partial_credit.enabled else ())
 
 
 def expected_text(result: ObjectiveResult) -> str:

@@ -67,7 +67,11 @@ def _check_schema(doc: Document) -> None:
         return (where.line or 0, where.column or 0, -len(err.absolute_path))
 
     err = min(errors, key=order)
-    raise SpecError(_schema_message(err), where=doc.where(tuple(err.absolute_path)))
+    path = tuple(err.absolute_path)
+    if err.validator == "additionalProperties" and isinstance(err.instance, dict):
+        extra = sorted(set(err.instance) - set(err.schema.get("properties", {})))
+        path += (extra[0],) if extra else ()
+    raise SpecError(_schema_message(err), where=doc.where(path))
 
 
 def _schema_message(err: jsonschema.ValidationError) -> str:
@@ -158,7 +162,7 @@ class _Builder:
         try:
             node = parse(text, functions=FUNCTIONS)
         except ExpressionError as err:
-            raise err.located(where) from None
+            raise SpecError(err.message, where=where) from None
         return Expr(text, node, where)
 
     def equation(self, text: str, *path) -> tuple[Expr, Expr]:
@@ -169,7 +173,7 @@ class _Builder:
             try:
                 exprs.append(Expr(side.strip(), parse(side, functions=FUNCTIONS), where))
             except ExpressionError as err:
-                raise err.located(where) from None
+                raise SpecError(err.message, where=where) from None
         return exprs[0], exprs[1]
 
     def unit(self, text, *path) -> str:
@@ -267,7 +271,7 @@ class _Builder:
         try:
             number = constant_value(parse(str(value)))
         except ExpressionError as err:
-            raise err.located(where) from None
+            raise SpecError(err.message, where=where) from None
         if number is None:
             raise SpecError(f"expected a number or a constant expression such as pi/2, "
                             f"found {value!r}", where=where)

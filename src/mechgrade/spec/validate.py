@@ -86,9 +86,13 @@ class _Checker:
 
     def check_frames(self) -> None:
         inertial = self.p.inertial_frame
-        if self.p.inertial_point not in self.points:
-            raise SpecError("the inertial point must not also be listed under points",
-                            where=self.p.frames[0].where)
+        for items, name, what in ((self.p.points, self.p.inertial_point, "point"),
+                                  (self.p.frames, inertial, "frame")):
+            for item in items[1:]:
+                if item.name == name:
+                    raise SpecError(f"'{name}' is the inertial {what}; expected it under "
+                                    f"'inertial' only, not also under {what}s",
+                                    where=item.where)
         for frame in self.p.frames:
             if frame.name == inertial:
                 continue
@@ -160,14 +164,14 @@ class _Checker:
             if canonical in seen:
                 raise SpecError(f"'{canonical}' is given twice", where=given.where)
             seen[canonical] = given
-            self._dims_match(t.dim, dimension(given.unit), given.where,
+            self._dims_match(dimension(given.unit), t.dim, given.where,
                              f"the value of '{given.key.text}'")
         for guess in self.p.guesses:
             node = guess.key.node
             if not (isinstance(node, Name) and (node.id in self.coords or node.id in self.params)):
                 raise SpecError(f"expected a coordinate or parameter to guess, found "
                                 f"'{guess.key.text}'", where=guess.where)
-            self._dims_match(self.type_of(guess.key).dim, dimension(guess.unit), guess.where,
+            self._dims_match(dimension(guess.unit), self.type_of(guess.key).dim, guess.where,
                              f"the guess for '{guess.key.text}'")
 
     def check_objectives(self) -> None:

@@ -1,0 +1,72 @@
+"""``mechgrade grade``: grade a folder of submissions and write feedback, results and grades."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from ..grade.assignment import load_assignment
+from ..grade.run import grade_submissions
+from ..report.output import write_outputs
+from ..roster import read_roster
+from .common import main, reports_errors
+
+
+@main.command("grade")
+@click.argument("assignment", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.argument("submissions_dir", type=click.Path(exists=True, file_okay=False, path_type=Path))
+@click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False, path_type=Path),
+              help="Folder for results.json, grades.csv, results.csv and feedback/.")
+@click.option("--roster", type=click.Path(exists=True, dir_okay=False, path_type=Path),
+              help="Class roster: Canvas or Moodle gradebook export, or a plain CSV.")
+@click.option("--templates", "templates_dir",
+              type=click.Path(exists=True, file_okay=False, path_type=Path),
+              help="Folder with feedback.html.j2 and feedback.md.j2 to use instead of the "
+                   "shipped templates.")
+@reports_errors
+def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path | None,
+          templates_dir: Path | None) -> None:
+    """Grade every submission in SUBMISSIONS_DIR against ASSIGNMENT.
+
+    A bad assignment stops with one message (exit code 2); a bad submission never stops the
+    run: it is reported in that student's feedback and in the summary.
+    """
+    spec = load_assignment(assignment)
+    class_roster = read_roster(roster) if roster is not None else None
+    bar = None
+
+    def progress(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            bar = click.progressbar(length=total, label="Grading", file=click.get_text_stream(
+                "stderr"), show_pos=True)
+            bar.__enter__()
+        bar.update(done - bar.pos)
+
+    try:
+        report = grade_submissions(spec, submissions_dir, class_roster, progress=progress)
+    finally:
+        if bar is not None:
+            bar.__exit__(None, None, None)
+    write_outputs(report, out_dir, templates_dir, roster=class_roster)
+    click.echo(summary_line(report, out_dir))
+
+
+def summary_line(report, out_dir: Path) -> str:
+    """``Graded 6 students (2 unreadable answers, 1 missing submission); wrote out/.``"""
+    graded = sum(1 for s in report.students if s.status == "graded")
+    unreadable_students = sum(1 for s in report.students if s.status == "unreadable")
+    missing = sum(1 for s in report.students if s.status == "missing")
+    unreadable = sum(1 for s in report.students if s.status == "graded"
+                     for a in s.answers if a.verdict == "unreadable")
+    parts = [_count(unreadable, "unreadable answer")]
+    if unreadable_students:
+        parts.append(_count(unreadable_students, "unreadable submission"))
+    parts.append(_count(missing, "missing submission"))
+    return (f"Graded {_count(graded, 'student')} ({', '.join(parts)}); "
+            f"wrote {out_dir.as_posix().rstrip('/')}/")
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"

@@ -1,0 +1,354 @@
+"""Judging answers: tolerance boundaries, sig figs, units, vectors and expressions."""
+
+import math
+
+import pytest
+from hypothesis import assume, given, strategies as st
+
+from mechgrade.errors import AssignmentError
+from mechgrade.grade.compare import (Assessment, Policy, assess, expression_dimension,
+                                     last_place, sample_points, within, within_sig_figs)
+from mechgrade.expressions.syntax import parse
+from mechgrade.grade.results import VERDICTS
+from mechgrade.solve.result import MistakeValue, ObjectiveResult
+from mechgrade.units import from_si, to_si
+
+ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
+VEC = ObjectiveResult("a_P", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N")
+OMEGA = ObjectiveResult("w", "vector", "rad/s", (0.0, 0.0, -0.5), frame="N")
+SYM = ObjectiveResult("a_sym", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + thetadd**2)",
+                      symbols=("L", "thetad", "thetadd"),
+                      symbol_units=("m", "rad/s", "rad/s^2"))
+ANGLE = ObjectiveResult("theta", "scalar", "rad", 0.5236)
+
+
+def verdict(text, result=ACC, policy=Policy()):
+    return assess(text, result, policy).verdict
+
+
+# ---------------------------------------------------------------- relative and absolute
+
+
+def test_relative_tolerance_boundary_is_inclusive():
+    result = ObjectiveResult("x", "scalar", "m", 100.0, rel=0.01)
+    assert verdict("101 m", result) == "correct"
+    assert verdict("99 m", result) == "correct"
+    assert verdict("101.01 m", result) == "incorrect"
+    assert verdict("98.99 m", result) == "incorrect"
+
+
+def test_absolute_tolerance_applies_in_the_objectives_unit():
+    result = ObjectiveResult("x", "scalar", "m", 0.0, rel=0.01, abs=0.05)
+    assert verdict("0.05 m", result) == "correct"
+    assert verdict("5 cm", result) == "correct"
+    assert verdict("0.0501 m", result) == "incorrect"
+
+
+def test_policy_overrides_the_objectives_tolerance():
+    assert verdict("97 ft/s^2", ACC, Policy(rel=0.02)) == "correct"
+    assert verdict("97 ft/s^2", ACC) == "incorrect"
+    assert verdict("97 ft/s^2", ACC, Policy(rel=0.0, abs=2.0)) == "correct"
+
+
+@given(st.floats(min_value=-1.0, max_value=1.0))
+def test_any_value_within_tolerance_is_correct(fraction):
+    value = 98.51 * (1 + 0.0099 * fraction)
+    assert verdict(f"{value!r} ft/s^2") == "correct"
+
+
+@given(st.floats(min_value=0.0101, max_value=50.0), st.sampled_from([-1, 1]))
+def test_any_value_outside_tolerance_is_not_correct(fraction, sign):
+    value = 98.51 * (1 + sign * fraction)
+    assert verdict(f"{value!r} ft/s^2") in ("incorrect", "partial")
+
+
+@given(st.floats(min_value=-0.0099, max_value=0.0099),
+       st.sampled_from(["m/s^2", "ft/s^2", "in/s^2", "cm/s^2", "km/h^2", "mm/s^2"]))
+def test_unit_conversions_round_trip(fraction, unit):
+    value = from_si(to_si(98.51 * (1 + fraction), "ft/s^2"), unit)
+    assert verdict(f"{value!r} {unit}") == "correct"
+
+
+# ---------------------------------------------------------------- sig figs
+
+
+def test_sig_fig_accuracy_is_half_a_unit_in_the_last_place():
+    policy = Policy(sig_figs=3)
+    assert verdict("98.5 ft/s^2", ACC, policy) == "correct"
+    assert verdict("98.46 ft/s^2", ACC, policy) == "correct"
+    assert verdict("98.56 ft/s^2", ACC, policy) == "correct"
+    assert verdict("98.45 ft/s^2", ACC, policy) == "incorrect"
+    assert verdict("98.57 ft/s^2", ACC, policy) == "incorrect"
+    assert verdict("98.4 ft/s^2", ACC, policy) == "incorrect"
+
+
+def test_sig_fig_accuracy_is_judged_in_the_students_unit():
+    # 98.51 ft/s^2 = 30.026 m/s^2: "30.0 m/s^2" is right to 3 figures, though 30.0 m/s^2 is
+    # 98.43 ft/s^2, which is not within 0.05 ft/s^2 of 98.51.
+    assert verdict("30.0 m/s^2", ACC, Policy(sig_figs=3)) == "correct"
+    assert verdict("30.1 m/s^2", ACC, Policy(sig_figs=3)) == "incorrect"
+
+
+def test_last_place_and_sig_fig_helpers():
+    assert last_place(98.51, 3) == 0.1
+    assert last_place(0.004567, 2) == 0.0001
+    assert last_place(0.0, 3) == 0.01
+    assert within_sig_figs(0.0046, 0.004567, 2)
+    assert not within_sig_figs(0.0047, 0.004567, 2)
+
+
+def test_written_sig_figs_liberal_rule_accepts_ambiguous_trailing_zeros():
+    hundred = ObjectiveResult("x", "scalar", "m", 100.0)
+    policy = Policy(written_sig_figs=3)
+    assert verdict("100 m", hundred, policy) == "correct"
+    assert verdict("1.00e2 m", hundred, policy) == "correct"
+    partial = assess("1.0e2 m", hundred, policy)
+    assert partial.verdict == "partial" and partial.credit == 0.75
+    assert partial.diagnosis == "significant figures"
+    assert "written to 2 significant figures; 3 were asked" in partial.feedback
+
+
+def test_written_sig_figs_strict_rule_reads_100_as_one_figure():
+    hundred = ObjectiveResult("x", "scalar", "m", 100.0)
+    policy = Policy(written_sig_figs=3, written_sig_figs_strict=True)
+    assert verdict("100 m", hundred, policy) == "partial"
+    assert verdict("100. m", hundred, policy) == "correct"
+    assert verdict("1.00e2 m", hundred, policy) == "correct"
+
+
+def test_written_sig_figs_deduction_is_configurable():
+    policy = Policy(written_sig_figs=2, written_sig_figs_deduction=1.0)
+    judged = assess("98.51 ft/s^2", ACC, policy)
+    assert (judged.verdict, judged.credit) == ("incorrect", 0.0)
+
+
+def test_exact_constants_are_exempt_from_written_sig_figs():
+    assert verdict("pi/6 rad", ANGLE, Policy(written_sig_figs=3)) == "correct"
+
+
+# ---------------------------------------------------------------- units
+
+
+def test_wrong_dimension_is_named():
+    judged = assess("30 m/s", ACC)
+    assert judged.verdict == "incorrect" and judged.diagnosis == "wrong dimension"
+    assert judged.feedback == ("You gave a velocity ([length] / [time]); an acceleration "
+                               "([length] / [time] ** 2) was asked.")
+
+
+def test_missing_unit_rejected_by_default():
+    judged = assess("98.5", ACC)
+    assert (judged.verdict, judged.credit, judged.diagnosis) == ("incorrect", 0.0,
+                                                                  "missing unit")
+    assert "ft/s^2" in judged.feedback
+
+
+def test_missing_unit_assumed_with_deduction():
+    judged = assess("98.5", ACC, Policy(missing_unit="assume", missing_unit_deduction=0.1))
+    assert (judged.verdict, judged.credit) == ("partial", 0.9)
+    assert "ft/s^2 was assumed" in judged.feedback
+
+
+def test_pure_number_objective_needs_no_unit():
+    ratio = ObjectiveResult("mu", "scalar", "", 0.25)
+    assert verdict("0.25", ratio) == "correct"
+
+
+def test_angles_convert_between_degrees_and_radians():
+    assert verdict("30 deg", ANGLE) == "correct"
+    assert verdict("30°", ANGLE) == "correct"
+    assert verdict("0.5236 rad", ANGLE) == "correct"
+    assert verdict("pi/6 rad", ANGLE) == "correct"
+
+
+def test_rpm_converts_to_rad_per_second():
+    spin = ObjectiveResult("w", "scalar", "rad/s", 12 * 2 * math.pi / 60)
+    assert verdict("12 rpm", spin) == "correct"
+    assert verdict("1.257 rad/s", spin) == "correct"
+
+
+def test_feedback_never_reveals_the_reference_value():
+    for text in ("50 ft/s^2", "-98.5 ft/s^2", "30 m/s", "98.5"):
+        assert "98.51" not in assess(text, ACC).feedback
+
+
+# ---------------------------------------------------------------- vectors
+
+
+@pytest.mark.parametrize("text", ["-66 i - 40 j ft/s^2", "(-66, -40) ft/s^2",
+                                  "<-66, -40, 0> ft/s^2", "-66 N.x - 40 N.y ft/s^2",
+                                  "-66 X_N - 40 Y_N ft/s^2", "(-20.12, -12.19) m/s^2",
+                                  "(-66.5, -39.5) ft/s^2"])
+def test_vector_forms_are_correct(text):
+    assert verdict(text, VEC) == "correct"
+
+
+def test_vector_tolerance_is_relative_to_the_magnitude():
+    # |a| = 77.17 ft/s^2, so each component may be off by 0.77 ft/s^2 at 1%.
+    assert verdict("(-66, -40.7) ft/s^2", VEC) == "correct"
+    assert verdict("(-66, -41) ft/s^2", VEC) == "incorrect"
+
+
+def test_vector_feedback_names_the_wrong_component():
+    judged = assess("(-66, -45) ft/s^2", VEC)
+    assert judged.verdict == "incorrect"
+    assert judged.feedback.startswith("The y component is not within 1% of the expected value"
+                                      " (x and z are right).")
+
+
+def test_vector_in_another_frame_is_not_compared():
+    judged = assess("-66 A.x - 40 A.y ft/s^2", VEC)
+    assert judged.diagnosis == "wrong frame" and "magnitude is right" in judged.feedback
+
+
+def test_scalar_for_a_vector_objective_says_a_vector_was_asked():
+    judged = assess("77.17 ft/s^2", VEC)
+    assert judged.diagnosis == "scalar for a vector"
+    assert "right magnitude" in judged.feedback
+
+
+def test_vector_for_a_scalar_objective_says_a_scalar_was_asked():
+    judged = assess("(-66, -40) ft/s^2", ObjectiveResult("m", "scalar", "ft/s^2", 77.17))
+    assert judged.diagnosis == "vector for a scalar" and "magnitude is right" in judged.feedback
+
+
+@pytest.mark.parametrize("text", ["0.5 rad/s cw", "-0.5 k rad/s", "-0.5 rad/s",
+                                  "4.775 rpm cw", "(0, 0, -0.5) rad/s"])
+def test_planar_angular_velocity_forms(text):
+    assert verdict(text, OMEGA) == "correct"
+
+
+def test_planar_angular_velocity_wrong_sense_is_a_sign_error():
+    assert assess("0.5 rad/s ccw", OMEGA).diagnosis == "sign error"
+
+
+def test_signed_scalar_objective_accepts_a_k_vector():
+    assert verdict("-0.5 k rad/s", ObjectiveResult("wz", "scalar", "rad/s", -0.5)) == "correct"
+
+
+def test_vector_sig_figs_judge_each_component():
+    policy = Policy(sig_figs=2)
+    assert verdict("(-66, -40) ft/s^2", VEC, policy) == "correct"
+    assert verdict("(-66, -41) ft/s^2", VEC, policy) == "incorrect"
+
+
+# ---------------------------------------------------------------- expressions
+
+
+@pytest.mark.parametrize("text", [
+    "L sqrt(θ̇^4 + θ̈^2)", "L*sqrt(thetad**4 + thetadd**2)", "sqrt(L^2 thetad^4 + L^2 thetadd^2)",
+    "L*(thetadot^4+thetaddot^2)^(1/2)", "L*sqrt(theta'^4 + theta''^2)",
+    "L*sqrt((thetad^2)^2 + thetadd^2)", "L*sqrt(thetad^4 + thetadd^2)*(sin(thetad)^2+cos(thetad)^2)",
+])
+def test_equivalent_expressions_are_correct(text):
+    assert verdict(text, SYM) == "correct"
+
+
+@pytest.mark.parametrize("text", ["L*thetad^2", "L*(thetad^2 + thetadd)", "L*thetadd",
+                                  "L*sqrt(thetad^4 + thetadd^2) + 1e-3*L"])
+def test_inequivalent_expressions_are_incorrect(text):
+    assert verdict(text, SYM) == "incorrect"
+
+
+def test_expression_with_wrong_dimension_is_diagnosed():
+    judged = assess("thetad*sqrt(thetad^4+thetadd^2)", SYM)
+    assert judged.diagnosis == "wrong dimension"
+    assert "an acceleration ([length] / [time] ** 2) was asked" in judged.feedback
+
+
+def test_expression_with_inconsistent_dimensions_is_diagnosed():
+    judged = assess("L + thetad", SYM)
+    assert judged.diagnosis == "inconsistent dimensions"
+    assert "adds a length ([length]) to an angular velocity" in judged.feedback
+
+
+def test_expression_dimension_rules():
+    units = {"L": "m", "thetad": "rad/s", "theta": "rad"}
+    assert str(expression_dimension(parse("sqrt(L^2*thetad^4)"), units)) == \
+        "[length] / [time] ** 2"
+    assert str(expression_dimension(parse("L*sin(theta)"), units)) == "[length]"
+    with pytest.raises(Exception, match="takes sin of a length"):
+        expression_dimension(parse("sin(L)"), units)
+
+
+def test_expression_unknown_names_are_unreadable_with_the_symbols_listed():
+    judged = assess("x + L", SYM)
+    assert judged.verdict == "unreadable"
+    assert "expected an expression in L, thetad, thetadd" in judged.feedback
+
+
+def test_angle_symbols_are_sampled_in_range_and_lengths_positive():
+    pend = ObjectiveResult("x", "symbolic", "m", expr="L*sin(theta)", symbols=("L", "theta"),
+                           symbol_units=("m", "rad"))
+    points = sample_points(pend, 50)
+    assert (points["L"] > 0).all()
+    assert ((points["theta"] > 0) & (points["theta"] < math.pi / 2)).all()
+    assert verdict("L sin(θ)", pend) == "correct"
+    assert verdict("L cos(θ)", pend) == "incorrect"
+
+
+def test_expression_equivalence_is_reproducible():
+    assert sample_points(SYM, 5)["L"].tolist() == sample_points(SYM, 5)["L"].tolist()
+
+
+def test_reference_undefined_everywhere_is_not_evaluated():
+    odd = ObjectiveResult("x", "symbolic", "m", expr="sqrt(-L)", symbols=("L",),
+                          symbol_units=("m",))
+    assert verdict("L", odd) == "not_evaluated"
+
+
+def test_declared_symbolic_mistake_gives_its_message_and_credit():
+    result = ObjectiveResult(
+        "a", "symbolic", "m/s^2", expr=SYM.expr, symbols=SYM.symbols,
+        symbol_units=SYM.symbol_units,
+        mistakes=(MistakeValue("Only the normal component.", 0.3, None, "L*thetad**2"),))
+    judged = assess("L θ̇²", result)
+    assert (judged.verdict, judged.credit, judged.diagnosis) == (
+        "partial", 0.3, "Only the normal component.")
+
+
+# ---------------------------------------------------------------- verdicts and policy
+
+
+def test_missing_and_blank_answers():
+    assert assess(None, ACC) == Assessment("missing", 0.0, None, "No answer was given.", None)
+    assert verdict("   ", ACC) == "missing"
+
+
+def test_reference_without_value_is_not_evaluated():
+    assert verdict("1 m", ObjectiveResult("x", "scalar", "m", None)) == "not_evaluated"
+
+
+@pytest.mark.parametrize("text", [
+    "__import__('os').system('x')", "().__class__.__base__.__subclasses__()", "9**9**9**9",
+    "sqrt(" * 60 + "L" + ")" * 60, "9" * 1_000_000, "98\x00", "\udcff\udcfe",
+    "exp(exp(exp(exp(L))))", "L**L**L**L", "1/(L-L)"])
+def test_hostile_answers_never_raise(text):
+    for result in (ACC, VEC, SYM):
+        judged = assess(text, result)
+        assert judged.verdict in VERDICTS
+        assert 0.0 <= judged.credit <= 1.0
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"rel": -1}, "rel"), ({"abs": "x"}, "abs"), ({"sig_figs": 0}, "sig_figs"),
+    ({"written_sig_figs": 2.5}, "written_sig_figs"), ({"missing_unit": "guess"}, "missing_unit"),
+    ({"missing_unit_deduction": 2}, "missing_unit_deduction"),
+    ({"written_sig_figs_deduction": -0.1}, "written_sig_figs_deduction"),
+    ({"partial_credit": (("nonsense", 0.5),)}, "partial_credit"),
+    ({"partial_credit": (("sign", 1.5),)}, "partial_credit"),
+    ({"symbolic_rel": 0}, "symbolic_rel"), ({"symbolic_points": 1}, "symbolic_points"),
+])
+def test_policy_refuses_bad_settings(kwargs, field):
+    with pytest.raises(AssignmentError, match=f"policy.{field}: expected"):
+        Policy(**kwargs)
+
+
+def test_partial_credit_for_an_automatic_diagnosis():
+    judged = assess("-98.5 ft/s^2", ACC, Policy(partial_credit=(("sign", 0.5),)))
+    assert (judged.verdict, judged.credit, judged.diagnosis) == ("partial", 0.5, "sign error")
+
+
+def test_within_helper():
+    assert within(101, 100, 0.01, 0) and not within(101.5, 100, 0.01, 0)
+    assert within(0.001, 0, 0.01, 0.001)

@@ -1,0 +1,111 @@
+"""The class report: statistics, HTML presentation, and a look in headless Chromium."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from mechgrade.export import read_results
+from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo,
+                                     StudentResult)
+from mechgrade.report.class_report import (class_statistics, render_class_report,
+                                           write_class_report)
+
+DATA = Path(__file__).parent.parent / "data" / "export"
+
+
+@pytest.fixture
+def report():
+    return read_results(DATA / "results.json")
+
+
+def test_counts_and_score_summary_use_graded_students(report):
+    stats = class_statistics(report, charts=False)
+    assert (stats.students, stats.graded, stats.missing, stats.unreadable) == (7, 5, 1, 1)
+    assert stats.mean == pytest.approx((10 + 5.5 + 3 + 3 + 7) / 5)
+    assert (stats.lowest, stats.highest, stats.median, stats.max_score) == (3, 10, 5.5, 10)
+
+
+def test_objective_success_wrong_answers_and_diagnoses(report):
+    stats = class_statistics(report, charts=False)
+    a_b = stats.objectives[1]
+    assert (a_b.problem, a_b.objective, a_b.graded) == ("p1", "a_B", 5)
+    assert a_b.success_rate == pytest.approx(1 / 5)
+    assert a_b.mean_fraction == pytest.approx((1 + 0.25 + 0 + 0 + 0.25) / 5)
+    assert [(d.label, d.count, d.share) for d in a_b.diagnoses] == \
+        [("dropped the Coriolis term", 3, 0.6)]
+    assert [(w.label, w.count) for w in a_b.wrong_answers] == [("-omega**2*r", 3)]
+    assert {c.label: c.count for c in a_b.verdicts} == \
+        {"correct": 1, "partial": 2, "incorrect": 1, "missing": 1}
+
+
+def test_difficulty_and_discrimination_follow_their_definitions(report):
+    stats = class_statistics(report, charts=False)
+    p1, p2 = stats.problems
+    assert p1.difficulty == pytest.approx((7 / 7 + 4 / 7 + 0 + 0 + 4 / 7) / 5)
+    assert p2.difficulty == pytest.approx((1 + 0.5 + 1 + 1 + 1) / 5)
+    # Corrected item-total correlation of p1: its credit against the points on p2.
+    xs = [1, 4 / 7, 0, 0, 4 / 7]
+    ys = [3, 1.5, 3, 3, 3]
+    mx, my = sum(xs) / 5, sum(ys) / 5
+    r = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / (
+        sum((x - mx) ** 2 for x in xs) * sum((y - my) ** 2 for y in ys)) ** 0.5
+    assert p1.discrimination == pytest.approx(r)
+
+
+def test_discrimination_is_none_with_too_few_students():
+    obj = ObjectiveInfo("p1", "v", "speed", 1.0)
+    one = StudentResult("s", "S", "graded", 1.0, 1.0, (AnswerResult("p1", "v", "x", "correct",
+                                                                    1.0, 1.0),))
+    stats = class_statistics(GradeReport(AssignmentInfo("a", "A"), (obj,), (one,)),
+                             charts=False)
+    assert stats.problems[0].discrimination is None and stats.stdev is None
+
+
+def test_students_with_missing_or_unreadable_answers_are_listed(report):
+    issues = {i.id: i for i in class_statistics(report, charts=False).issues}
+    assert set(issues) == {"s1004", "s1005", "s1006"}
+    assert issues["s1004"].status == "missing" and issues["s1004"].detail == \
+        "no submission file found"
+    assert issues["s1006"].objectives == "p1/v_B (unreadable), p1/a_B (missing)"
+
+
+def test_an_empty_class_still_renders(report):
+    empty = replace(report, students=())
+    html = render_class_report(class_statistics(empty))
+    assert "0</b><span>graded submissions" in html and "<svg" in html
+
+
+def test_html_escapes_student_text_and_embeds_svg_charts(report, tmp_path):
+    evil = replace(report.students[3], id="s666", name="<script>alert(1)</script>")
+    out = tmp_path / "r.html"
+    write_class_report(replace(report, students=report.students + (evil,)), out)
+    html = out.read_text(encoding="utf-8")
+    assert "<script" not in html and "&lt;script&gt;" in html
+    assert html.count("<svg") == 2 and "<?xml" not in html
+    assert "60 %</b> dropped the Coriolis term" in html
+    assert not re.search(r"(src|href)=\"(https?:)?//", html)  # opens offline
+
+
+@pytest.mark.skipif(shutil.which("chromium") is None, reason="chromium is not installed")
+def test_report_opens_in_headless_chromium_without_console_errors(report, tmp_path):
+    out = tmp_path / "class_report.html"
+    write_class_report(report, out)
+    common = ["chromium", "--headless", "--no-sandbox", "--disable-gpu",
+              "--enable-logging=stderr", "--v=0", f"--user-data-dir={tmp_path / 'profile'}"]
+    dom = subprocess.run([*common, "--dump-dom", out.as_uri()], capture_output=True,
+                         text=True, timeout=120)
+    assert dom.returncode == 0, dom.stderr
+    assert "CONSOLE" not in dom.stderr and "Uncaught" not in dom.stderr
+    for marker in ('id="histogram"', 'id="success-chart"', 'id="objective-table"',
+                   'id="problem-table"', 'id="issue-table"', "<svg", "<rect"):
+        assert marker in dom.stdout
+    shot = tmp_path / "class_report.png"
+    subprocess.run([*common, f"--screenshot={shot}", "--window-size=1200,2000", out.as_uri()],
+                   capture_output=True, timeout=120, check=True)
+    assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -1,0 +1,139 @@
+"""Every way a problem file can be wrong gives one located message (file:line:col: field: ...)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mechgrade.errors import SpecError
+from mechgrade.spec import load_problem, load_problem_text
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+
+BASE = (DATA / "spec" / "base.yaml").read_text()
+
+
+def error_of(text: str) -> str:
+    with pytest.raises(SpecError) as info:
+        load_problem_text(text, "p.yaml")
+    return str(info.value)
+
+
+def mutated(old: str, new: str) -> str:
+    assert old in BASE, old
+    return BASE.replace(old, new, 1)
+
+
+def test_base_problem_loads():
+    problem = load_problem_text(BASE, "p.yaml")
+    assert problem.id == "base"
+    assert [g.key.text for g in problem.givens] == ["theta", "L", "theta'", "theta''"]
+
+
+CASES = [
+    # YAML
+    ("empty file", "", "p.yaml: expected a mapping of problem fields (id, title, ...), found an empty file"),
+    ("yaml syntax", BASE + "  bad: [1,\n", "p.yaml:25:3: expected valid YAML, found a syntax error"),
+    ("alias", BASE.replace("L: m", "L: &u m\n  M: *u"), "p.yaml:13:6: expected plain YAML, found an alias (*name); anchors and aliases are not allowed"),
+    ("duplicate key", BASE.replace("L: m", "L: m\n  L: ft"), "p.yaml:13:3: parameters.L: expected each key once, found 'L' again"),
+    # schema
+    ("unknown key", BASE + "colour: red\n", "p.yaml:25:9: colour: unknown key 'colour' (expected one of: consistency, constraints, coordinates, frames, givens, guesses, id, inertial, objectives, parameters, points, source, statement, title)"),
+    ("missing key", BASE.replace("title: Base problem for validation tests\n", ""), "p.yaml:1:1: missing required key 'title'"),
+    ("wrong type", mutated("title: Base problem for validation tests", "title: [a]"), "p.yaml:2:8: title: expected a string, found a list of 1"),
+    ("bad kind", mutated("kind: scalar", "kind: number"), "p.yaml:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; found 'number'"),
+    ("bad name", mutated("  P: {from: O", "  2P: {from: O"), "p.yaml:8:3: points: expected a name made of letters, digits and '_' starting with a letter, found '2P'"),
+    ("no objectives", BASE.split("objectives:")[0] + "objectives: []\n", "p.yaml:18:13: objectives: expected min 1 item(s), found a list of 0"),
+    ("rotation and rotations", mutated("rotation: {axis: z, angle: theta}", "rotation: {axis: z, angle: theta}, rotations: [{axis: x, angle: 0}]"), "p.yaml:6:6: frames.A: expected only one of rotation, rotations, found rotation, rotations"),
+    ("bad axis", mutated("axis: z", "axis: w"), "p.yaml:6:35: frames.A.rotation.axis: expected one of: x, y, z; found 'w'"),
+    ("equation without =", BASE.replace("givens:", "constraints:\n  - {name: c, position: theta}\ngivens:"), "p.yaml:14:25: constraints[0].position: expected an equation 'left = right', found 'theta'"),
+    ("book without note", mutated("expect: {value: 6}", "expect: {value: 6, book: 7}"), "p.yaml:24:13: objectives[0].expect: a 'book' answer needs a 'note' explaining the discrepancy"),
+    ("tolerance too big", mutated("    expect: {value: 6}", "    tolerance: {rel: 2}\n    expect: {value: 6}"), "p.yaml:24:22: objectives[0].tolerance.rel: expected a number within bounds (maximum 1), found 2"),
+    # expressions and units
+    ("unreadable expression", mutated("position: L*A.x", "position: L*A.x +"), "p.yaml:8:26: points.P.position: expected a complete expression, found 'L*A.x +' (invalid syntax)"),
+    ("eval payload", mutated("position: L*A.x", "position: __import__(1)"), "points.P.position: expected names, numbers, operators and functions, found '__import__'"),
+    ("bad unit", mutated("L: m", "L: furlongz"), "p.yaml:12:6: parameters.L: expected a unit such as 'm/s^2', found 'furlongz' ('furlongz' is not a unit)"),
+    ("bad quantity", mutated("L: 2 m", "L: two m"), "p.yaml:15:6: givens.L: expected a number followed by a unit such as '9.81 m/s^2', found 'two m'"),
+    ("given value not constant", mutated("L: 2 m", "L: {value: x/2, unit: m}"), "p.yaml:15:6: givens.L: expected a number or a constant expression such as pi/2, found 'x/2'"),
+    # names
+    ("reserved name", mutated("L: m", "t: m"), "p.yaml:12:6: parameters.t: 't' is reserved (time, pi or a function name); expected another parameter name"),
+    ("coordinate and parameter", mutated("L: m", "L: m\n  theta: rad"), "p.yaml:10:10: coordinates.theta: 'theta' is both a coordinate and a parameter; expected distinct names"),
+    ("frame named like a coordinate", mutated("  A: {parent: N", "  theta: {parent: N"), "p.yaml:6:10: frames.theta: 'theta' names a frame or point and also a coordinate or parameter"),
+    ("rate name clash", mutated("L: m", "L: m\n  thetad: rad/s"), "p.yaml:13:11: parameters.thetad: parameter 'thetad' clashes with the rate name of coordinate 'theta'"),
+    ("inertial point listed", mutated("  P: {from: O, position: L*A.x}", "  P: {from: O, position: L*A.x}\n  O: {from: P, position: L*A.x}"), "p.yaml:9:6: points.O: 'O' is the inertial point; expected it under 'inertial' only, not also under points"),
+    ("unknown parent", mutated("parent: N", "parent: Q"), "p.yaml:6:6: frames.A: unknown parent frame 'Q' (expected one of: N, A)"),
+    ("unknown origin", mutated("origin: O", "origin: Z"), "p.yaml:6:6: frames.A: unknown origin point 'Z' (expected one of: O, P)"),
+    ("frame cycle", mutated("  A: {parent: N, rotation: {axis: z, angle: theta}, origin: O}", "  A: {parent: B, rotation: {axis: z, angle: theta}, origin: O}\n  B: {parent: A, rotation: {axis: z, angle: 0}}"), "frames.A: frame 'A' is oriented through a cycle of parents"),
+    ("angle with units", mutated("angle: theta}", "angle: L}"), "p.yaml:6:45: frames.A.rotation.angle: dimension mismatch in 'L': expected a pure number (or an angle), found a length ([length])"),
+    ("unknown from point", mutated("{from: O, position", "{from: Q, position"), "p.yaml:8:6: points.P: unknown point 'Q' in 'from' (expected one of: O, P)"),
+    ("position not a vector", mutated("position: L*A.x", "position: L"), "p.yaml:8:26: points.P.position: expected a position vector (a length times unit vectors, e.g. L*A.x), found a scalar ('L')"),
+    ("position not a length", mutated("position: L*A.x", "position: theta*A.x"), "points.P.position: dimension mismatch in 'theta*A.x': expected a length ([length]), found a pure number (or an angle)"),
+    ("point cycle", mutated("  P: {from: O, position: L*A.x}", "  P: {from: Q, position: L*A.x}\n  Q: {from: P, position: L*A.x}"), "points.P: point 'P' is located through a cycle"),
+    # constraints
+    ("duplicate constraint", BASE.replace("givens:", "constraints:\n  - {name: c, position: theta = 0}\n  - {name: c, position: L = 1}\ngivens:"), "constraints[1]: constraint name 'c' used twice"),
+    ("equation kinds", BASE.replace("givens:", "constraints:\n  - {name: c, position: L*A.x = L}\ngivens:"), "constraints[0].position: expected both sides of the equation to be of the same kind, found a vector and a scalar"),
+    ("equation dimensions", BASE.replace("givens:", "constraints:\n  - {name: c, position: L = theta}\ngivens:"), "constraints[0].position: dimension mismatch in both sides of the equation: expected a pure number (or an angle), found a length ([length])"),
+    # givens
+    ("given vector", mutated("  L: 2 m", "  L: 2 m\n  A.x: 1"), "givens.A.x: expected a scalar quantity as a given's name, found a vector ('A.x')"),
+    ("given unknown", mutated("  L: 2 m", "  L: 2 m\n  M: 1 kg"), "givens.M: unknown name 'M' (expected a coordinate, parameter, t or pi; known: L, theta)"),
+    ("given third derivative", mutated("  L: 2 m", "  L: 2 m\n  theta''': 1 rad/s^3"), "p.yaml:16:13: givens.theta''': expected a prime (') only right after a name, as in theta'"),
+    ("given twice", mutated("  L: 2 m", "  L: 2 m\n  L : 3 m"), "expected each key once"),
+    ("given canonical twice", mutated("  L: 2 m", "  L: 2 m\n  (L): 3 m"), "givens.(L): 'L' is given twice"),
+    ("given dimension", mutated("  L: 2 m", "  L: 2 s"), "p.yaml:15:6: givens.L: dimension mismatch in the value of 'L': expected a length ([length]), found a time ([time])"),
+    ("guess not coordinate", mutated("givens:", "guesses:\n  theta': 1 rad/s\ngivens:"), "guesses.theta': expected a coordinate or parameter to guess, found 'theta''"),
+    ("guess dimension", mutated("givens:", "guesses:\n  theta: 1 m\ngivens:"), "guesses.theta: dimension mismatch in the guess for 'theta'"),
+    # objectives
+    ("duplicate objective", BASE + "  - {id: speed, prompt: p, find: 'speed(P, N)', kind: scalar, unit: m/s}\n", "objectives[1]: objective id 'speed' used twice"),
+    ("kind mismatch", mutated("find: speed(P, N)", "find: vel(P, N)"), "p.yaml:21:11: objectives[0].find: expected a scalar expression for a scalar objective, found a vector ('vel(P, N)')"),
+    ("unit mismatch", mutated("unit: m/s", "unit: m/s^2"), "p.yaml:21:11: objectives[0].find: dimension mismatch in objective 'speed' (unit 'm/s^2'): expected an acceleration ([length] / [time] ** 2), found a velocity ([length] / [time])"),
+    ("vector without frame", mutated("find: speed(P, N)\n    kind: scalar", "find: vel(P, N)\n    kind: vector"), "objectives[0]: a vector objective needs 'frame'"),
+    ("unknown objective frame", mutated("kind: scalar", "kind: scalar\n    frame: Q"), "objectives[0]: unknown frame 'Q' (expected one of: N, A)"),
+    ("symbolic without symbols", mutated("kind: scalar", "kind: symbolic"), "objectives[0]: a symbolic objective needs 'symbols'"),
+    ("symbols on scalar", mutated("kind: scalar", "kind: scalar\n    symbols: [L]"), "objectives[0]: 'symbols' belongs to symbolic objectives only"),
+    ("unknown symbol", mutated("kind: scalar", "kind: symbolic\n    symbols: [omega]").replace("expect: {value: 6}", "expect: {expr: omega}"), "objectives[0].symbols[0]: symbol 'omega' is not a parameter, coordinate or rate name (such as thetad)"),
+    ("bad symbol alias", mutated("kind: scalar", "kind: symbolic\n    symbols: [{omega: 'L*2'}]").replace("expect: {value: 6}", "expect: {expr: omega}"), "objectives[0].symbols[0]: expected symbol 'omega' to stand for a parameter, coordinate or rate, found 'L*2'"),
+    ("expect shape", mutated("expect: {value: 6}", "expect: {components: [6, 0]}"), "objectives[0].expect: expected 'expect.value' for a scalar objective, found 'expect.components'"),
+    ("expect unit", mutated("expect: {value: 6}", "expect: {value: 6, unit: s}"), "objectives[0].expect: dimension mismatch in expect.unit of 'speed'"),
+    ("expect expr symbol", mutated("kind: scalar", "kind: symbolic\n    symbols: [L, thetad]").replace("expect: {value: 6}", "expect: {expr: L*thetad*g}"), "objectives[0].expect: expect.expr uses 'g', which is not among the objective's symbols (L, thetad)"),
+    ("mistake kind", mutated("expect: {value: 6}", "mistakes: [{find: 'vel(P, N)', message: m}]\n    expect: {value: 6}"), "objectives[0].mistakes[0].find: expected the mistaken model of 'speed' to be of the same kind, found a scalar and a vector"),
+    ("depends_on unknown", mutated("expect: {value: 6}", "depends_on: [nope]\n    expect: {value: 6}"), "objectives[0]: depends_on names unknown objective 'nope'"),
+    # typing inside expressions
+    ("point as scalar", mutated("find: speed(P, N)", "find: P"), "objectives[0].find: 'P' is a point; expected a scalar or vector here"),
+    ("prime of parameter", mutated("find: speed(P, N)", "find: L'"), "objectives[0].find: expected a coordinate before the prime, found 'L'"),
+    ("unknown unit-vector frame", mutated("position: L*A.x", "position: L*Q.x"), "points.P.position: unknown frame 'Q' in 'Q.x' (frames: N, A)"),
+    ("scalar plus vector", mutated("position: L*A.x", "position: L*A.x + L"), "points.P.position: cannot add a vector and a scalar in 'L*A.x+L'"),
+    ("length plus angle", mutated("find: speed(P, N)", "find: L + theta"), "objectives[0].find: cannot add a length ([length]) and a pure number (or an angle) in 'L+theta'"),
+    ("vector times vector", mutated("position: L*A.x", "position: L*A.x*A.y"), "cannot multiply two vectors in 'L*A.x*A.y'; expected dot(u, v) or cross(u, v)"),
+    ("divide by vector", mutated("position: L*A.x", "position: L/A.x"), "expected a nonzero scalar divisor in 'L/A.x'"),
+    ("vector power", mutated("position: L*A.x", "position: A.x**2"), "cannot raise a vector to a power in 'A.x**2'"),
+    ("exponent with units", mutated("find: speed(P, N)", "find: theta**L"), "expected a pure-number exponent in 'theta**L'"),
+    ("variable exponent of dimensional", mutated("find: speed(P, N)", "find: L**theta"), "a quantity with units needs a constant exponent in 'L**theta'"),
+    ("wrong arity", mutated("find: speed(P, N)", "find: speed(P)"), "expected 2 arguments for speed(...) (speed(P, F): speed (s-dot) of P in F), found 1"),
+    ("ic outside pos", mutated("find: speed(P, N)", "find: speed(ic(A, N), N)"), "ic(A, F) is a point: use it as pos(ic(A, F), P)"),
+    ("frame argument", mutated("find: speed(P, N)", "find: speed(P, P)"), "expected a frame as argument of speed(...), found 'P' (frames: N, A)"),
+    ("point argument", mutated("find: speed(P, N)", "find: speed(N.x, N)"), "expected a point as argument of speed(...), found 'N.x'"),
+    ("vector argument", mutated("find: speed(P, N)", "find: mag(L)"), "expected a vector as argument of mag(...), found a scalar ('L')"),
+    ("needs origin", mutated(", origin: O}", "}"), "speed(...) needs a point fixed in frame") if False else ("needs origin", mutated(", origin: O}", "}").replace("find: speed(P, N)", "find: speed(P, A)"), "objectives[0].find: speed(...) needs a point fixed in frame 'A': give the frame an 'origin'"),
+    ("math of vector", mutated("find: speed(P, N)", "find: sin(vel(P, N))"), "sin(...) takes a scalar, found a vector (use mag(v) or dot(u, v))"),
+    ("atan2 dimensions", mutated("find: speed(P, N)", "find: atan2(L, theta)"), "atan2(y, x) needs y and x in the same dimension"),
+    ("sin of length", mutated("find: speed(P, N)", "find: sin(L)"), "sin(...) needs a pure number or angle, found a length ([length])"),
+]
+
+
+@pytest.mark.parametrize("text, message", [c[1:] for c in CASES], ids=[c[0] for c in CASES])
+def test_bad_problem_gives_located_message(text, message):
+    err = error_of(text)
+    assert message in err
+    assert err.startswith("p.yaml")
+
+
+def test_missing_file_is_reported(tmp_path):
+    with pytest.raises(SpecError, match="cannot read the file"):
+        load_problem(tmp_path / "absent.yaml")
+
+
+def test_binary_file_is_reported(tmp_path):
+    path = tmp_path / "x.yaml"
+    path.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
+    with pytest.raises(SpecError, match="expected UTF-8 text"):
+        load_problem(path)
