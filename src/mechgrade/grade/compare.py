@@ -580,7 +580,10 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     mistakes = []
     for mistake in result.mistakes:
         mistakes.append((mistake, _mistake_values(mistake, result, env)))
-    found = diagnose(student, reference, close, kind="symbolic", mistakes=mistakes)
+    # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
+    # such as 9.81 for g (1%), unlike the equivalence test itself.
+    loose = _expression_close(max(policy.symbolic_rel, 0.01), reference)
+    found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
     return _wrong(found, policy, _Units(result.unit),

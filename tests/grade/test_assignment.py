@@ -1,0 +1,194 @@
+"""Assignment files: the valid form, and a failing input for every validation branch."""
+
+from __future__ import annotations
+
+import textwrap
+
+import pytest
+
+from mechgrade.errors import AssignmentError
+from mechgrade.grade.assignment import (Assignment, ErrorCarriedForward, MissingUnitRule,
+                                        SigFigRule, load_assignment)
+
+MINIMAL = """\
+id: hw1
+title: Homework 1
+problems: [p.yaml]
+"""
+
+
+@pytest.fixture
+def folder(tmp_path):
+    (tmp_path / "p.yaml").write_text("id: p\n", encoding="utf-8")
+    (tmp_path / "q.yaml").write_text("id: q\n", encoding="utf-8")
+    return tmp_path
+
+
+def write(folder, text: str):
+    path = folder / "hw.yaml"
+    path.write_text(textwrap.dedent(text), encoding="utf-8")
+    return path
+
+
+def error_of(folder, text: str) -> str:
+    with pytest.raises(AssignmentError) as info:
+        load_assignment(write(folder, text))
+    return str(info.value)
+
+
+def test_minimal_assignment_has_defaults(folder):
+    hw = load_assignment(write(folder, MINIMAL))
+    assert isinstance(hw, Assignment)
+    assert (hw.id, hw.title, hw.default_points, hw.points) == ("hw1", "Homework 1", 1.0, ())
+    assert hw.problems[0].path == folder / "p.yaml"
+    assert hw.problems[0].objectives is None
+    assert hw.policy.reveal_answers is False
+    assert hw.policy.rel is None and hw.policy.abs is None
+    assert hw.policy.missing_unit == MissingUnitRule("reject", 0.75)
+    assert hw.policy.ecf == ErrorCarriedForward(True, 1.0)
+
+
+def test_full_assignment_reads_every_field(folder):
+    hw = load_assignment(write(folder, """\
+        id: hw-2.b
+        title: Homework 2
+        problems:
+          - p.yaml
+          - {path: q.yaml, objectives: [speed, acc]}
+        points: {default: 2, q.speed: 5, p.a: 0.5}
+        policy:
+          reveal_answers: yes
+          tolerance: {rel: 0.02, abs: 0.1, sig_figs: 3}
+          sig_figs: {min: 3, credit: 0.8, strict: true}
+          missing_unit: {action: penalize, credit: 0.5}
+          partial_credit: {enabled: true, diagnoses: {sign: 0.5, swapped: 0.25}}
+          ecf: {enabled: false, credit: 0.5}
+        """))
+    assert hw.problems[1].objectives == ("speed", "acc")
+    assert hw.points == (("p.a", 0.5), ("q.speed", 5.0))
+    assert hw.points_for("q", "speed") == 5.0 and hw.points_for("q", "acc") == 2.0
+    policy = hw.policy
+    assert policy.reveal_answers is True
+    assert (policy.rel, policy.abs, policy.accuracy_sig_figs) == (0.02, 0.1, 3)
+    assert policy.sig_figs == SigFigRule(3, 0.8, True)
+    assert policy.missing_unit == MissingUnitRule("penalize", 0.5)
+    assert policy.partial_credit.diagnoses == (("sign", 0.5), ("swapped", 0.25))
+    assert policy.ecf == ErrorCarriedForward(False, 0.5)
+    assert str(hw.where_points("q.speed")).endswith("hw.yaml:6:31: points.q.speed")
+
+
+def test_assignment_is_frozen(folder):
+    hw = load_assignment(write(folder, MINIMAL))
+    with pytest.raises(AttributeError):
+        hw.id = "other"  # type: ignore[misc]
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("- a\n- b\n", "hw.yaml:1:1: expected a mapping of fields (id, title, problems...), "
+                   "found a list"),
+    ("title: T\nproblems: [p.yaml]\n", "hw.yaml:1:1: expected a field 'id', found none"),
+    ("id: hw1\nproblems: [p.yaml]\n", "hw.yaml:1:1: expected a field 'title', found none"),
+    ("id: hw1\ntitle: T\n", "hw.yaml:1:1: expected a field 'problems', found none"),
+    (MINIMAL + "due: tomorrow\n",
+     "hw.yaml:4:6: due: expected one of the fields id, points, policy, problems, title, "
+     "found 'due'"),
+    (MINIMAL + "policy: {reveal: true}\n",
+     "hw.yaml:4:18: policy.reveal: expected one of the fields ecf, missing_unit, "
+     "partial_credit, reveal_answers, sig_figs, tolerance, found 'reveal'"),
+    (MINIMAL + "points: {p: 3}\n",
+     "hw.yaml:4:13: points.p: expected one of the fields 'default' or "
+     "'problem_id.objective_id', found 'p'"),
+    ("id: 12\ntitle: T\nproblems: [p.yaml]\n", "hw.yaml:1:5: id: expected text, found 12"),
+    ("id: hw1\ntitle: T\nproblems: p.yaml\n",
+     "hw.yaml:3:11: problems: expected a list, found 'p.yaml'"),
+    ("id: hw1\ntitle: T\nproblems: [3]\n",
+     "hw.yaml:3:12: problems[0]: expected text or a mapping, found 3"),
+    (MINIMAL + "points: {default: -1}\n",
+     "hw.yaml:4:19: points.default: expected a number >= 0, found -1"),
+    (MINIMAL + "points: {p.a: 5000}\n",
+     "hw.yaml:4:15: points.p.a: expected a number <= 1000, found 5000"),
+    (MINIMAL + "policy: {tolerance: {rel: 2}}\n",
+     "hw.yaml:4:27: policy.tolerance.rel: expected a number <= 1, found 2"),
+    (MINIMAL + "policy: {reveal_answers: maybe}\n",
+     "hw.yaml:4:26: policy.reveal_answers: expected true or false, found 'maybe'"),
+    (MINIMAL + "policy: {sig_figs: {min: 2.5}}\n",
+     "hw.yaml:4:26: policy.sig_figs.min: expected a whole number, found 2.5"),
+    ("id: hw1\ntitle: T\nproblems: []\n",
+     "hw.yaml:3:11: problems: expected at least 1 item(s), found an empty list"),
+    ("id: hw1\ntitle: T\nproblems: [{path: p.yaml, objectives: []}]\n",
+     "hw.yaml:3:39: problems[0].objectives: expected at least 1 item(s), found an empty list"),
+    (MINIMAL + "policy: {tolerance: {}}\n",
+     "hw.yaml:4:21: policy.tolerance: expected at least 1 field(s), found none"),
+    ("id: hw1\ntitle: ''\nproblems: [p.yaml]\n", "hw.yaml:2:8: title: expected text, found "
+                                                     "empty text"),
+    ("id: hw1\ntitle: " + "x" * 201 + "\nproblems: [p.yaml]\n",
+     "hw.yaml:2:8: title: expected at most 200 characters, found 201"),
+    ("id: hw 1\ntitle: T\nproblems: [p.yaml]\n",
+     "hw.yaml:1:5: id: expected an id of letters, digits, '_', '-' and '.' (at most 64), "
+     "found 'hw 1'"),
+    ("id: hw1\ntitle: T\nproblems: [{path: p.yaml, objectives: [a-b]}]\n",
+     "hw.yaml:3:40: problems[0].objectives[0]: expected an objective id (letters, digits and "
+     "'_'), found 'a-b'"),
+    (MINIMAL + "policy: {missing_unit: {action: guess}}\n",
+     "hw.yaml:4:33: policy.missing_unit.action: expected one of 'assume', 'penalize', "
+     "'reject', found 'guess'"),
+    (MINIMAL + "policy: {missing_unit: {credit: 0.5}}\n",
+     "hw.yaml:4:24: policy.missing_unit: expected a field 'action', found none"),
+    ("id: hw1\ntitle: T\nproblems: [nothere.yaml]\n",
+     "hw.yaml:3:12: problems[0]: expected a problem file (relative to the assignment file), "
+     "found no file at"),
+    ("id: hw1\ntitle: T\nproblems: [p.yaml, ./p.yaml]\n",
+     "hw.yaml:3:20: problems[1]: expected each problem once, found './p.yaml' again "
+     "(also problems[0])"),
+    ("id: hw1\ntitle: T\nproblems: [{path: p.yaml, objectives: [a, b, a]}]\n",
+     "hw.yaml:3:39: problems[0].objectives: expected each objective once, found 'a' more than "
+     "once"),
+    (MINIMAL + "policy: {partial_credit: {diagnoses: {sloppy: 0.5}}}\n",
+     "hw.yaml:4:47: policy.partial_credit.diagnoses.sloppy: expected a diagnosis code (mistake, "
+     "sign,"),
+    ("id: [unclosed\n", "hw.yaml:2:1: expected valid YAML, found a syntax error"),
+    ("id: &a hw1\ntitle: *a\nproblems: [p.yaml]\n",
+     "hw.yaml:2:8: expected plain YAML, found an alias"),
+    ("id: hw1\nid: hw2\ntitle: T\nproblems: [p.yaml]\n",
+     "hw.yaml:2:1: id: expected each key once, found 'id' again"),
+])
+def test_invalid_assignment_says_where_and_what(folder, text, expected):
+    message = error_of(folder, text)
+    assert message.startswith(str(folder / "hw.yaml") + expected[len("hw.yaml"):])
+
+
+def test_every_error_of_a_file_is_one_line_each_in_file_order(folder):
+    message = error_of(folder, """\
+        id: hw 1
+        title: T
+        problems: [p.yaml]
+        points: {default: -2}
+        """)
+    lines = message.splitlines()
+    assert len(lines) == 2
+    assert lines[0].endswith("hw.yaml:1:5: id: expected an id of letters, digits, '_', '-' and "
+                             "'.' (at most 64), found 'hw 1'")
+    assert lines[1].endswith("hw.yaml:4:19: points.default: expected a number >= 0, found -2")
+
+
+def test_missing_assignment_file_is_an_assignment_error(tmp_path):
+    with pytest.raises(AssignmentError, match="cannot read the file"):
+        load_assignment(tmp_path / "absent.yaml")
+
+
+def test_problem_paths_are_relative_to_the_assignment_file(tmp_path):
+    (tmp_path / "problems").mkdir()
+    (tmp_path / "problems" / "p.yaml").write_text("id: p\n", encoding="utf-8")
+    (tmp_path / "hw").mkdir()
+    path = tmp_path / "hw" / "a.yaml"
+    path.write_text("id: a\ntitle: A\nproblems: [../problems/p.yaml]\n", encoding="utf-8")
+    hw = load_assignment(path)
+    assert hw.problems[0].path.resolve() == (tmp_path / "problems" / "p.yaml").resolve()
+
+
+def test_example_assignment_loads():
+    from mechgrade.resources import shipped_dir
+
+    hw = load_assignment(shipped_dir("examples") / "hw1" / "assignment.yaml")
+    assert hw.id == "hw1"
+    assert hw.policy.reveal_answers is True

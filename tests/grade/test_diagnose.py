@@ -1,0 +1,135 @@
+"""Automatic and author-declared diagnoses of wrong answers."""
+
+import math
+
+import numpy as np
+import pytest
+
+from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.diagnose import CODES, diagnose
+from mechgrade.solve.result import MistakeValue, ObjectiveResult
+
+ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
+VEC = ObjectiveResult("a_P", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N")
+SYM = ObjectiveResult("a_sym", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + thetadd**2)",
+                      symbols=("L", "thetad", "thetadd"),
+                      symbol_units=("m", "rad/s", "rad/s^2"))
+
+
+def label(text, result=ACC):
+    return assess(text, result, Policy()).diagnosis
+
+
+@pytest.mark.parametrize("value, expected", [
+    (-98.51, "sign error"),
+    (197.0, "factor of 2"),
+    (49.25, "factor of 2"),
+    (98.51 * math.pi, "factor of π"),
+    (98.51 / math.pi, "factor of π"),
+    (98.51 * 9.80665, "factor of g"),
+    (98.51 / 32.174, "factor of g"),
+    (98.51 * 180 / math.pi, "degrees used as radians"),
+    (98.51 * math.pi / 180, "radians used as degrees"),
+    (9851.0, "unit slip (cm vs m)"),
+    (0.9851, "unit slip (cm vs m)"),
+    (98510.0, "unit slip (mm vs m)"),
+    (98.51 * 0.3048, "unit slip (ft vs m)"),
+    (98.51 * 12, "unit slip (in vs ft)"),
+    (98.51 * 60 / (2 * math.pi), "unit slip (rpm vs rad/s)"),
+    (98.51 * 2 * math.pi, "unit slip (revolutions vs radians)"),
+    (50.0, None),
+])
+def test_scalar_diagnoses(value, expected):
+    assert label(f"{value!r} ft/s^2") == expected
+
+
+def test_rpm_slip_when_rpm_number_given_as_rad_per_second():
+    spin = ObjectiveResult("w", "scalar", "rad/s", 1.2566)
+    assert label("12 rad/s", spin) == "unit slip (rpm vs rad/s)"
+
+
+def test_degrees_typed_without_unit_for_radians():
+    angle = ObjectiveResult("theta", "scalar", "rad", 0.5236)
+    judged = assess("30", angle, Policy(missing_unit="assume"))
+    assert judged.diagnosis == "degrees used as radians"
+
+
+def test_unit_slip_when_the_wrong_unit_is_written():
+    length = ObjectiveResult("d", "scalar", "m", 2.24)
+    assert label("224 m", length) == "unit slip (cm vs m)"
+    assert label("2.24 ft", length) == "unit slip (ft vs m)"
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("66 i + 40 j ft/s^2", "sign error"),
+    ("-40 i - 66 j ft/s^2", "swapped components"),
+    ("-66 i + 40 j ft/s^2", "wrong direction"),
+    ("40 i - 66 j ft/s^2", "wrong direction"),
+    ("-132 i - 80 j ft/s^2", "factor of 2"),
+    ("-33 i - 20 j ft/s^2", "factor of 2"),
+    ("-70 i - 42.4 j ft/s^2", "wrong magnitude"),
+    ("-20.12 i - 12.19 j ft/s^2", "unit slip (ft vs m)"),
+    ("-66 i - 50 j ft/s^2", None),
+])
+def test_vector_diagnoses(text, expected):
+    assert label(text, VEC) == expected
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("-L*sqrt(thetad^4 + thetadd^2)", "sign error"),
+    ("2 L sqrt(thetad^4 + thetadd^2)", "factor of 2"),
+    ("pi L sqrt(thetad^4 + thetadd^2)", "factor of π"),
+    ("9.81 L sqrt(thetad^4 + thetadd^2)", "factor of g"),
+    ("L*thetad^2", None),
+])
+def test_expression_diagnoses(text, expected):
+    assert label(text, SYM) == expected
+
+
+def test_author_mistakes_come_first_with_their_credit():
+    result = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51, mistakes=(
+        MistakeValue("You left out the tangential acceleration.", 0.4, 66.0),
+        MistakeValue("Sign convention reversed.", 0.8, -98.51)))
+    judged = assess("66.1 ft/s^2", result)
+    assert (judged.verdict, judged.credit) == ("partial", 0.4)
+    assert judged.diagnosis == "You left out the tangential acceleration."
+    assert judged.feedback.endswith("You left out the tangential acceleration.")
+    # the declared mistake wins over the automatic sign diagnosis
+    assert assess("-98.5 ft/s^2", result).credit == 0.8
+
+
+def test_author_vector_mistake():
+    result = ObjectiveResult("a", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N",
+                             mistakes=(MistakeValue("Coriolis term missing.", 0.5,
+                                                    (-66.0, 0.0, 0.0)),))
+    judged = assess("-66 i ft/s^2", result)
+    assert (judged.diagnosis, judged.credit) == ("Coriolis term missing.", 0.5)
+
+
+def test_author_mistake_with_zero_credit_is_incorrect():
+    result = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51,
+                             mistakes=(MistakeValue("Used the wrong radius.", 0.0, 50.0),))
+    judged = assess("50 ft/s^2", result)
+    assert (judged.verdict, judged.diagnosis) == ("incorrect", "Used the wrong radius.")
+
+
+def test_unevaluable_mistakes_are_skipped():
+    result = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51,
+                             mistakes=(MistakeValue("Broken.", 0.5, None),
+                                       MistakeValue("Vector?", 0.5, (1.0, 2.0, 3.0))))
+    assert assess("-98.5 ft/s^2", result).diagnosis == "sign error"
+
+
+def test_zero_reference_has_no_factor_diagnoses():
+    close = lambda s, t: bool(np.all(np.abs(s - t) <= 1e-9))
+    assert diagnose(np.array([1.0]), np.array([0.0]), close) is None
+
+
+def test_non_finite_student_values_are_not_diagnosed():
+    close = lambda s, t: True
+    assert diagnose(np.array([np.nan]), np.array([1.0]), close) is None
+
+
+def test_every_code_can_be_given_partial_credit():
+    for code in CODES:
+        assert Policy(partial_credit=((code, 0.5),)).credit_for(code) == 0.5

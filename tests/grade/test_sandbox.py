@@ -1,0 +1,81 @@
+"""Judging in a bounded worker: overruns become not_evaluated and the run goes on."""
+
+import pytest
+
+from mechgrade.grade.compare import Assessment, Policy, assess
+from mechgrade.grade.sandbox import Sandbox, assess_batch, assess_bounded
+from mechgrade.solve.result import ObjectiveResult
+
+ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
+SYM = ObjectiveResult("a_sym", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + thetadd**2)",
+                      symbols=("L", "thetad", "thetadd"),
+                      symbol_units=("m", "rad/s", "rad/s^2"))
+
+
+def hostile_judge(text, result, policy):
+    """Does what an unguarded sympy grader would do on some inputs."""
+    if text == "hang":
+        import sympy
+        x = sympy.Symbol("x")
+        sympy.simplify(sympy.expand((x + 1) ** 3000))
+    if text == "spin":
+        while True:
+            pass
+    if text == "memory":
+        hog = bytearray(4 * 1024 ** 3)
+        return Assessment("correct", 1.0, None, str(len(hog)), None)
+    if text == "crash":
+        raise RuntimeError("bug")
+    if text == "exit":
+        import os
+        os._exit(3)
+    return assess(text, result, policy)
+
+
+def test_bounded_assessment_matches_direct_assessment():
+    for text in ("98.5 ft/s^2", "-98.5 ft/s^2", "30 m/s", None, "__import__('os')"):
+        assert assess_bounded(text, ACC, Policy(), seconds=20) == assess(text, ACC, Policy())
+
+
+def test_batch_reuses_one_worker_and_matches_direct_assessment():
+    items = [(t, SYM, Policy()) for t in ("L sqrt(θ̇^4+θ̈^2)", "L θ̇^2", "x", "9**9**9")]
+    assert assess_batch(items, seconds=20) == [assess(*item) for item in items]
+
+
+@pytest.mark.parametrize("text", ["hang", "spin"])
+def test_overrun_is_not_evaluated_and_the_run_goes_on(text):
+    with Sandbox(seconds=0.5, judge=hostile_judge) as box:
+        first, killed, after = box.assess_many([("98.5 ft/s^2", ACC, Policy()),
+                                                 (text, ACC, Policy()),
+                                                 ("98.5 ft/s^2", ACC, Policy())])
+        assert first.verdict == "correct" and after.verdict == "correct"
+        assert killed.verdict == "not_evaluated" and killed.credit == 0.0
+        assert "could not be evaluated" in killed.feedback and "not marked wrong" in killed.feedback
+        assert box.restarts == 1
+
+
+def test_memory_overrun_is_not_evaluated():
+    with Sandbox(seconds=20, memory_mb=128, judge=hostile_judge) as box:
+        judged = box.assess("memory", ACC)
+        assert judged.verdict == "not_evaluated" and "128 MiB" in judged.feedback
+        assert box.assess("98.5 ft/s^2", ACC).verdict == "correct"
+
+
+@pytest.mark.parametrize("text", ["crash", "exit"])
+def test_crashing_judge_is_not_evaluated(text):
+    with Sandbox(seconds=20, judge=hostile_judge) as box:
+        assert box.assess(text, ACC).verdict == "not_evaluated"
+        assert box.assess("98.5 ft/s^2", ACC).verdict == "correct"
+
+
+def test_worker_is_reused_without_restarts():
+    with Sandbox(seconds=20) as box:
+        box.assess_many([("98.5 ft/s^2", ACC, Policy())] * 20)
+        assert box.restarts == 0
+
+
+def test_sandbox_refuses_bad_limits():
+    with pytest.raises(ValueError, match="positive time limit"):
+        Sandbox(seconds=0)
+    with pytest.raises(ValueError, match="positive memory limit"):
+        Sandbox(memory_mb=-1)

@@ -1,0 +1,213 @@
+"""The solver derives answers from the model, and names what is missing or conflicting."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from mechgrade.errors import InconsistentError, SolveError, UnderdeterminedError
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem_text
+
+BASE = (Path(__file__).resolve().parents[1] / "data" / "spec" / "base.yaml").read_text()
+
+SLIDER = """
+id: slider
+title: Slider-crank
+statement: A crank OA (length r) drives a rod AB (length L) whose end B slides on the x axis.
+inertial: {frame: N, point: O}
+frames:
+  C: {parent: N, rotation: {axis: z, angle: theta}, origin: O}
+  R: {parent: N, rotation: {axis: z, angle: -phi}, origin: A}
+points:
+  A: {from: O, position: r*C.x}
+  B: {from: A, position: L*R.x}
+coordinates: {theta: rad, phi: rad, x: m}
+parameters: {r: m, L: m}
+constraints:
+  - {name: loop, position: "pos(B, O) = x*N.x"}
+givens:
+  r: 0.1 m
+  L: 0.3 m
+  theta: 90 deg
+  theta': 10 rad/s
+  theta'': 0 rad/s^2
+guesses:
+  phi: 20 deg
+  x: 0.3 m
+objectives:
+  - {id: x, prompt: Slider position., find: x, kind: scalar, unit: m}
+  - {id: v_B, prompt: Slider speed., find: "dot(vel(B, N), N.x)", kind: scalar, unit: m/s}
+  - {id: phi_deg, prompt: Rod angle., find: phi, kind: scalar, unit: deg}
+  - {id: a_B, prompt: Slider acceleration., find: "dot(acc(B, N), N.x)", kind: scalar, unit: m/s^2}
+"""
+
+
+def load(text):
+    return load_problem_text(text, "p.yaml")
+
+
+def test_position_constraints_are_solved_near_the_guesses():
+    solution = solve(load(SLIDER))
+    phi = math.asin(0.1 / 0.3)
+    assert solution.result("x").value == pytest.approx(0.3 * math.cos(phi))
+    assert solution.result("phi_deg").value == pytest.approx(math.degrees(phi))
+    # At theta = 90 deg the rod does not turn (phi' = 0), so B moves with the crank pin: -r theta'
+    v_expected = -0.1 * 10
+    assert solution.result("v_B").value == pytest.approx(v_expected)
+    # With theta'' = 0 at theta = 90 deg: phi'' = -r theta'^2 / (L cos phi), x'' = r theta'^2 tan phi
+    a_expected = 0.1 * 10 ** 2 * math.tan(phi)
+    assert solution.result("a_B").value == pytest.approx(a_expected, rel=1e-6)
+
+
+def test_a_rate_nothing_fixes_is_named():
+    problem = load(BASE.replace("  theta': 3 rad/s\n", ""))
+    with pytest.raises(UnderdeterminedError) as info:
+        solve(problem)
+    assert str(info.value) == ("objective 'speed' is not determined by the givens: give a "
+                               "value for thetad (velocity level)")
+
+
+def test_a_coordinate_the_objective_ignores_may_stay_free():
+    solution = solve(load(BASE.replace("  theta: 30 deg\n", "")))
+    assert solution.result("speed").value == pytest.approx(6.0)
+    assert "theta" not in [s.name for s in solution.state]
+
+
+def test_a_missing_coordinate_the_objective_needs_is_named():
+    text = BASE.replace("  theta: 30 deg\n", "").replace(
+        "find: speed(P, N)", "find: dot(vel(P, N), N.x)").replace("{value: 6}", "{value: -3}")
+    with pytest.raises(UnderdeterminedError, match=r"give a value for theta \(position level\)"):
+        solve(load(text))
+
+
+def test_conflicting_position_givens_are_named():
+    text = SLIDER.replace("guesses:\n  phi: 20 deg\n  x: 0.3 m", "  x: 0.2 m\n  phi: 10 deg")
+    with pytest.raises(InconsistentError) as info:
+        solve(load(text))
+    message = str(info.value)
+    assert message.startswith("the givens conflict at the position level: 'loop (N.x component)'")
+    assert "x = 0.2 m" in message and "phi = 10 deg" in message
+
+
+def test_conflicting_rate_givens_are_named():
+    text = SLIDER.replace("  theta'': 0 rad/s^2", "  theta'': 0 rad/s^2\n  x': 5 m/s")
+    with pytest.raises(InconsistentError, match="at the velocity level: 'loop"):
+        solve(load(text))
+
+
+def test_a_given_can_be_any_expression_linear_in_the_rates():
+    text = BASE.replace("  theta': 3 rad/s\n", "  \"dot(vel(P, N), A.y)\": 8 m/s\n")
+    solution = solve(load(text))
+    assert solution.result("speed").value == pytest.approx(8.0)
+    assert {s.name: s.value for s in solution.state}["thetad"] == pytest.approx(4.0)
+
+
+def test_givens_can_be_overridden_per_call():
+    problem = load(BASE)
+    assert solve(problem, givens={"theta'": 5.0}).result("speed").value == pytest.approx(10.0)
+    with pytest.raises(UnderdeterminedError):
+        solve(problem, givens={"theta'": None})
+
+
+def test_prescribed_motion_in_time():
+    text = """
+id: cycloid
+title: Cycloid
+statement: A rim point of a disk of radius R rolling at speed v.
+inertial: {frame: N, point: O}
+points:
+  P: {from: O, position: x*N.x + y*N.y}
+coordinates: {x: m, y: m}
+parameters: {R: m, v: m/s}
+constraints:
+  - {name: path_x, position: "x = R*(v*t/R - sin(v*t/R))"}
+  - {name: path_y, position: "y = R*(1 - cos(v*t/R))"}
+givens:
+  R: 1 m
+  v: 1 m/s
+  t: {value: pi/2, unit: s}
+objectives:
+  - {id: v, prompt: Velocity., find: "vel(P, N)", kind: vector, frame: N, unit: m/s}
+  - {id: rho, prompt: Radius of curvature., find: "rho(P, N)", kind: scalar, unit: m}
+"""
+    solution = solve(load(text))
+    assert solution.result("v").value == pytest.approx((1.0, 1.0, 0.0))
+    assert solution.result("rho").value == pytest.approx(4 * math.sin(math.pi / 4))
+
+
+def test_an_undefined_objective_is_reported():
+    text = BASE.replace("theta': 3 rad/s", "theta': 0 rad/s").replace(
+        "find: speed(P, N)\n    kind: scalar\n    unit: m/s",
+        "find: tangent(P, N)\n    kind: vector\n    frame: N\n    unit: '1'").replace(
+        "{value: 6}", "{components: [0, 1]}")
+    with pytest.raises(SolveError, match="objective 'speed' is undefined at this instant"):
+        solve(load(text))
+
+
+def test_symbolic_answer_in_declared_symbols():
+    text = BASE + """  - id: speed_symbolic
+    prompt: Speed in terms of L and thetad.
+    find: speed(P, N)
+    kind: symbolic
+    unit: m/s
+    symbols: [L, thetad]
+"""
+    assert solve(load(text)).result("speed_symbolic").expr == "L*Abs(thetad)"
+
+
+def test_symbolic_answer_may_not_hide_a_given_with_units():
+    text = BASE + """  - id: speed_symbolic
+    prompt: Speed in terms of thetad only.
+    find: speed(P, N)
+    kind: symbolic
+    unit: m/s
+    symbols: [thetad]
+"""
+    with pytest.raises(SolveError, match="depends on L, which is not among its symbols"):
+        solve(load(text))
+
+
+def test_symbolic_answer_substitutes_given_angles():
+    text = BASE + """  - id: vx
+    prompt: x-velocity in terms of L and thetad.
+    find: dot(vel(P, N), N.x)
+    kind: symbolic
+    unit: m/s
+    symbols: [L, thetad]
+"""
+    assert solve(load(text)).result("vx").expr == "-L*thetad/2"
+
+
+def test_symbolic_position_constraint_is_solved():
+    text = """
+id: mound
+title: Ball rolling over a mound
+statement: Arc-length relation.
+inertial: {frame: N, point: O}
+coordinates: {alpha: rad, phi: rad}
+parameters: {R: m, r: m}
+constraints:
+  - {name: arc, position: "(R + r)*alpha = r*phi"}
+givens:
+  R: 1 m
+  r: 0.1 m
+  phi: 30 deg
+objectives:
+  - {id: alpha, prompt: Angle., find: alpha, kind: symbolic, unit: rad, symbols: [r, R, phi]}
+  - {id: alpha_deg, prompt: Angle., find: alpha, kind: scalar, unit: deg}
+"""
+    solution = solve(load(text))
+    assert solution.result("alpha").expr == "phi*r/(R + r)"
+    assert solution.result("alpha_deg").value == pytest.approx(30 / 11)
+
+
+def test_mistaken_models_are_evaluated():
+    text = BASE.replace("    expect: {value: 6}",
+                        "    mistakes:\n      - find: 2*L*theta'\n        message: doubled\n"
+                        "        credit: 0.2\n    expect: {value: 6}")
+    result = solve(load(text)).result("speed")
+    assert result.mistakes[0].value == pytest.approx(12.0)
+    assert (result.mistakes[0].message, result.mistakes[0].credit) == ("doubled", 0.2)
