@@ -337,7 +337,9 @@ class _Builder:
             return Unary("-", operand)
         if isinstance(node, ast.BinOp) and type(node.op) in self._BINOPS:
             op = self._BINOPS[type(node.op)]
-            left = self.build(node.left, depth + 1)
+            # A flat chain a + b + c ... nests to the left; count it as one level, not many.
+            chained = isinstance(node.left, ast.BinOp) and op != "**"
+            left = self.build(node.left, depth + (0 if chained else 1))
             right = self.build(node.right, depth + 1)
             out = Bin(op, left, right)
             if op == "**":

@@ -41,6 +41,14 @@ IGNORED_NAMES = {"__MACOSX", "Thumbs.db", "desktop.ini"}
 SUBMISSION_STATUSES = ("read", "missing", "unreadable")
 
 
+class _Unread(SubmissionError):
+    """A file that gave no answers, with the notes gathered while reading it."""
+
+    def __init__(self, message: str, *, where=None, notes: list[str] | tuple = ()) -> None:
+        super().__init__(message, where=where)
+        self.notes = tuple(notes)
+
+
 @dataclass(frozen=True)
 class Submission:
     """What one student handed in.
@@ -187,7 +195,8 @@ def _read_student(student: str, sources: list[_Source], keys) -> Submission:
             continue
         try:
             pairs, notes = read_answer_file(source.path, label=source.label)
-        except SubmissionError as err:
+        except _Unread as err:
+            messages.extend(err.notes)
             messages.append(str(err))
             continue
         readable += 1
@@ -254,7 +263,7 @@ def read_answer_file(path: str | Path, *, label: str | None = None
     notes: list[str] = [note] if note else []
     suffix = path.suffix.lower()
     if not text.strip():
-        raise SubmissionError(f"'{label}' is empty: no answers handed in")
+        raise _Unread(f"'{label}' is empty: no answers handed in")
     if suffix in (".yaml", ".yml"):
         pairs = _from_yaml(text, label, notes)
     elif suffix == ".json":
@@ -273,8 +282,8 @@ def read_answer_file(path: str | Path, *, label: str | None = None
             value = value[:MAX_ANSWER_CHARS]
         kept[key] = value
     if not kept:
-        raise SubmissionError(f"'{label}' holds no answers (expected lines such as "
-                              f"'problem_id.objective_id = 7.5 m/s')")
+        raise _Unread(f"'{label}' holds no answers (expected lines such as "
+                              f"'problem_id.objective_id = 7.5 m/s')", notes=notes)
     return sorted(kept.items()), notes
 
 
@@ -282,24 +291,24 @@ def _read_text(path: Path, label: str) -> tuple[str, str | None]:
     try:
         info = os.stat(path)
         if not stat.S_ISREG(info.st_mode):
-            raise SubmissionError(f"'{label}' is not a regular file; it was not read")
+            raise _Unread(f"'{label}' is not a regular file; it was not read")
         if info.st_size > MAX_FILE_BYTES:
-            raise SubmissionError(f"'{label}' is {info.st_size} bytes; answer files may be at "
+            raise _Unread(f"'{label}' is {info.st_size} bytes; answer files may be at "
                                   f"most {MAX_FILE_BYTES} bytes")
         with open(path, "rb") as handle:
             raw = handle.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
-        raise SubmissionError(f"'{label}' cannot be read ({exc.strerror or exc})") from None
+        raise _Unread(f"'{label}' cannot be read ({exc.strerror or exc})") from None
     if len(raw) > MAX_FILE_BYTES:
-        raise SubmissionError(f"'{label}' is larger than {MAX_FILE_BYTES} bytes; answer files "
+        raise _Unread(f"'{label}' is larger than {MAX_FILE_BYTES} bytes; answer files "
                               f"may be at most {MAX_FILE_BYTES} bytes")
     if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
         try:
             return raw.decode("utf-16"), None
         except UnicodeDecodeError:
-            raise SubmissionError(f"'{label}' is not readable text (bad UTF-16)") from None
+            raise _Unread(f"'{label}' is not readable text (bad UTF-16)") from None
     if b"\0" in raw:
-        raise SubmissionError(f"'{label}' is a binary file, not text; expected answers typed "
+        raise _Unread(f"'{label}' is a binary file, not text; expected answers typed "
                               f"as text")
     try:
         return raw.decode("utf-8-sig"), None
@@ -311,7 +320,7 @@ def _read_text(path: Path, label: str) -> tuple[str, str | None]:
     try:
         text = raw.decode("cp1252")
     except UnicodeDecodeError:
-        raise SubmissionError(f"'{label}' is not UTF-8 text (byte 0x{bad:02x} on line {line}); "
+        raise _Unread(f"'{label}' is not UTF-8 text (byte 0x{bad:02x} on line {line}); "
                               f"save it as UTF-8") from None
     return text, (f"'{label}' is not UTF-8 (byte 0x{bad:02x} on line {line}); it was read as "
                   f"Windows-1252 text: check the answers as read back")
@@ -362,7 +371,7 @@ def _from_json(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]
     except (ValueError, RecursionError) as exc:
         where = f":{exc.lineno}:{exc.colno}" if isinstance(exc, json.JSONDecodeError) else ""
         reason = exc.msg if isinstance(exc, json.JSONDecodeError) else "nested too deeply"
-        raise SubmissionError(f"{label}{where}: expected valid JSON, found a syntax error "
+        raise _Unread(f"{label}{where}: expected valid JSON, found a syntax error "
                               f"({reason})") from None
     for key in sorted(set(repeated)):
         notes.append(f"'{label}': '{key}' is given more than once; the last one was graded")
@@ -373,7 +382,7 @@ def _from_yaml(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]
     try:
         doc = read_yaml_text(text, label, error=SubmissionError)
     except MechgradeError as err:
-        raise SubmissionError(str(err)) from None
+        raise _Unread(str(err)) from None
     lines = text.splitlines()
 
     def as_typed(value, path):
@@ -395,7 +404,7 @@ def _from_yaml(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]
 
 def _flatten(data, label: str, notes: list[str], as_typed) -> list[tuple[str, str]]:
     if not isinstance(data, dict):
-        raise SubmissionError(f"'{label}': expected answers keyed by 'problem_id.objective_id', "
+        raise _Unread(f"'{label}': expected answers keyed by 'problem_id.objective_id', "
                               f"found {_kind(data)}")
     out: list[tuple[str, str]] = []
     for key, value in data.items():

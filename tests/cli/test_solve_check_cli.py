@@ -1,0 +1,110 @@
+"""`mechgrade solve` and `mechgrade check` as a user runs them: exact text and exit codes."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from mechgrade.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+PENDULUM = str(ROOT / "problems" / "bowling_3_15_4_pendulum.yaml")
+BASE = (ROOT / "tests" / "data" / "spec" / "base.yaml").read_text()
+
+
+def run(*args):
+    return CliRunner().invoke(main, list(args))
+
+
+def test_solve_prints_each_objective_with_its_unit():
+    result = run("solve", PENDULUM)
+    assert result.exit_code == 0
+    assert result.output.splitlines() == [
+        "bowling_3_15_4_pendulum: Acceleration of a pendulum tip",
+        "  acc_mag           98.5089 ft/s^2",
+        "  acc_N             (-89.8705, -40.3397, 0) ft/s^2 in N",
+        "  acc_A             (-98, 10, 0) ft/s^2 in A",
+        "  acc_mag_symbolic  L*sqrt(thetad**4 + thetadd**2)   [ft/s^2; in L, thetad, thetadd]",
+    ]
+
+
+def test_solve_json_is_the_documented_contract():
+    result = run("solve", PENDULUM, "--format", "json")
+    assert result.exit_code == 0
+    data = json.loads(result.output)
+    assert data["problem"] == "bowling_3_15_4_pendulum"
+    assert data["objectives"]["acc_N"]["frame"] == "N"
+    assert data["objectives"]["acc_N"]["unit"] == "ft/s^2"
+    assert len(data["objectives"]["acc_N"]["value"]) == 3
+    assert data["objectives"]["acc_mag"]["expr"] is None
+    assert data["objectives"]["acc_mag_symbolic"] == {
+        "value": None, "unit": "ft/s^2", "frame": None,
+        "expr": "L*sqrt(thetad**4 + thetadd**2)"}
+    for entry in data["objectives"].values():
+        assert set(entry) == {"value", "unit", "frame", "expr"}
+
+
+def test_solve_steps_follow_the_write_up_order():
+    result = run("solve", PENDULUM, "--steps")
+    assert result.exit_code == 0
+    sections = [line for line in result.output.splitlines() if line and not line[0].isspace()]
+    assert sections[1:] == ["Frames", "Points", "Coordinates", "Parameters", "Constraints",
+                            "Degrees of freedom", "Velocities", "Accelerations",
+                            "Solution at the instant (SI)", "Objectives"]
+    assert "  N_V_A = L*thetad*A.y" in result.output
+
+
+def test_check_passes_a_good_file():
+    result = run("check", PENDULUM)
+    assert result.exit_code == 0
+    assert result.output.splitlines()[-1] == "1 file(s), 0 failing"
+
+
+def test_bad_problem_file_gives_one_message_and_exit_2(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(BASE.replace("position: L*A.x", "position: L*Q.x"))
+    result = run("solve", str(bad))
+    assert result.exit_code == 2
+    assert result.output == (f"{bad}:8:26: points.P.position: unknown frame 'Q' in 'Q.x' "
+                             "(frames: N, A)\n")
+
+
+def test_missing_problem_file_exit_2(tmp_path):
+    result = run("solve", str(tmp_path / "nope.yaml"))
+    assert result.exit_code == 2
+    assert "nope.yaml: cannot read the file" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_check_reports_a_failing_expect_and_exits_1(tmp_path):
+    bad = tmp_path / "wrong.yaml"
+    bad.write_text(BASE.replace("{value: 6}", "{value: 7}"))
+    result = run("check", str(bad))
+    assert result.exit_code == 1
+    assert result.output.splitlines() == [
+        f"FAIL {bad} (1 tests, DOF 1)",
+        "  FAIL speed: 6 != expected 7 m/s",
+        "1 file(s), 1 failing",
+    ]
+
+
+def test_check_reports_a_broken_file_among_good_ones(tmp_path):
+    (tmp_path / "good.yaml").write_text(BASE)
+    (tmp_path / "broken.yaml").write_text(BASE.replace("  theta': 3 rad/s\n", ""))
+    result = run("check", str(tmp_path))
+    assert result.exit_code == 1
+    assert result.output.splitlines() == [
+        f"FAIL {tmp_path / 'broken.yaml'}",
+        f"  {tmp_path / 'broken.yaml'}: objective 'speed' is not determined by the givens: "
+        "give a value for thetad (velocity level)",
+        f"ok   {tmp_path / 'good.yaml'} (1 tests, DOF 1)",
+        "2 file(s), 1 failing",
+    ]
+
+
+def test_check_of_an_empty_folder_exit_2(tmp_path):
+    result = run("check", str(tmp_path))
+    assert result.exit_code == 2
+    assert result.output == f"expected problem files (*.yaml), found none in {tmp_path}\n"

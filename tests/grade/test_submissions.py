@@ -1,0 +1,321 @@
+"""Reading submission folders: every layout, and hostile or odd input that must not stop a run."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from mechgrade.errors import SubmissionError
+from mechgrade.grade import submissions as subs
+from mechgrade.grade.submissions import read_answer_file, read_submissions
+
+KEYS = frozenset({"p.speed", "p.angle", "q.acc"})
+
+
+def student(root, name, keys=None):
+    found = {s.student: s for s in read_submissions(root, keys=keys).students}
+    return found[name]
+
+
+def test_folder_with_answers_txt_reads_key_value_lines(tmp_path):
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "answers.txt").write_bytes(
+        b"# my answers\r\n\r\np.speed = 7.10 m/s   # rounded\r\n  p.angle=30 deg\r\n")
+    ana = student(tmp_path, "ana")
+    assert ana.status == "read"
+    assert ana.answers == (("p.angle", "30 deg"), ("p.speed", "7.10 m/s"))
+    assert ana.messages == ()
+    assert ana.files == ("ana/answers.txt",)
+
+
+def test_yaml_answers_keep_numbers_as_typed_and_may_nest(tmp_path):
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "answers.yaml").write_text(
+        "p:\n  speed: 7.10\n  angle: 30 deg\nq.acc: [-66.0, -40]  # a vector\n", encoding="utf-8")
+    ana = student(tmp_path, "ana")
+    assert ana.answers == (("p.angle", "30 deg"), ("p.speed", "7.10"), ("q.acc", "(-66.0, -40)"))
+
+
+def test_json_answers_keep_numbers_as_typed(tmp_path):
+    (tmp_path / "ana.json").write_text('{"p.speed": 7.10, "q": {"acc": "(-66, -40) ft/s^2"}}',
+                                       encoding="utf-8")
+    ana = student(tmp_path, "ana")
+    assert ana.answers == (("p.speed", "7.10"), ("q.acc", "(-66, -40) ft/s^2"))
+
+
+def test_one_file_per_student_in_the_folder(tmp_path):
+    (tmp_path / "bo.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    (tmp_path / "cy.yaml").write_text("p.speed: 2 m/s\n", encoding="utf-8")
+    (tmp_path / "di.yml").write_text("p.speed: 3 m/s\n", encoding="utf-8")
+    found = read_submissions(tmp_path)
+    assert [(s.student, s.answer("p.speed")) for s in found.students] == [
+        ("bo", "1 m/s"), ("cy", "2 m/s"), ("di", "3 m/s")]
+
+
+def test_students_are_sorted_by_id_whatever_the_listing_order(tmp_path):
+    for name in ("zed", "amy", "Kim"):
+        (tmp_path / f"{name}.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    assert [s.student for s in read_submissions(tmp_path).students] == ["Kim", "amy", "zed"]
+
+
+def test_binary_file_makes_the_student_unreadable(tmp_path):
+    (tmp_path / "ivy").mkdir()
+    (tmp_path / "ivy" / "answers.txt").write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR")
+    ivy = student(tmp_path, "ivy")
+    assert ivy.status == "unreadable"
+    assert ivy.answers == ()
+    assert ivy.messages == ("'ivy/answers.txt' is a binary file, not text; expected answers "
+                            "typed as text",)
+
+
+def test_windows_1252_text_is_read_with_a_warning(tmp_path):
+    (tmp_path / "gi.txt").write_bytes(b"p.speed = 98.5 ft/s\xb2\np.angle = \x9630 deg\n")
+    gi = student(tmp_path, "gi")
+    assert gi.status == "read"
+    assert gi.answers == (("p.angle", "–30 deg"), ("p.speed", "98.5 ft/s²"))
+    assert gi.messages == ("'gi.txt' is not UTF-8 (byte 0xb2 on line 1); it was read as "
+                           "Windows-1252 text: check the answers as read back",)
+
+
+def test_text_that_is_neither_utf8_nor_windows_1252_is_unreadable(tmp_path):
+    (tmp_path / "gi.txt").write_bytes(b"p.speed = 1 m/s\np.angle = \x81\n")
+    gi = student(tmp_path, "gi")
+    assert gi.status == "unreadable"
+    assert gi.messages == ("'gi.txt' is not UTF-8 text (byte 0x81 on line 2); save it as UTF-8",)
+
+
+def test_utf16_with_byte_order_mark_is_read(tmp_path):
+    (tmp_path / "ux.txt").write_bytes("p.speed = 7 m/s\n".encode("utf-16"))
+    assert student(tmp_path, "ux").answers == (("p.speed", "7 m/s"),)
+
+
+def test_utf8_byte_order_mark_is_dropped(tmp_path):
+    (tmp_path / "bom.txt").write_bytes("\ufeffp.speed = 7 m/s\n".encode("utf-8"))
+    assert student(tmp_path, "bom").answers == (("p.speed", "7 m/s"),)
+
+
+def test_empty_folder_is_a_missing_submission(tmp_path):
+    (tmp_path / "frank").mkdir()
+    (tmp_path / "frank" / ".keep").write_text("", encoding="utf-8")
+    frank = student(tmp_path, "frank")
+    assert frank.status == "missing"
+    assert frank.messages == ("the folder 'frank' is empty: no answers handed in",)
+
+
+def test_empty_file_is_unreadable(tmp_path):
+    (tmp_path / "em.txt").write_text("  \n", encoding="utf-8")
+    em = student(tmp_path, "em")
+    assert em.status == "unreadable"
+    assert em.messages == ("'em.txt' is empty: no answers handed in",)
+
+
+def test_file_with_only_comments_holds_no_answers(tmp_path):
+    (tmp_path / "co.txt").write_text("# nothing yet\n", encoding="utf-8")
+    assert student(tmp_path, "co").messages == (
+        "'co.txt' holds no answers (expected lines such as 'problem_id.objective_id = 7.5 m/s')",)
+
+
+def test_huge_file_is_refused_without_reading_it(tmp_path, monkeypatch):
+    monkeypatch.setattr(subs, "MAX_FILE_BYTES", 100)
+    (tmp_path / "big.txt").write_text("p.speed = " + "9" * 200 + "\n", encoding="utf-8")
+    big = student(tmp_path, "big")
+    assert big.status == "unreadable"
+    assert big.messages == ("'big.txt' is 211 bytes; answer files may be at most 100 bytes",)
+
+
+def test_link_to_a_folder_outside_is_not_followed(tmp_path):
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "answers.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    root = tmp_path / "subs"
+    root.mkdir()
+    os.symlink(outside, root / "mal")
+    mal = student(root, "mal")
+    assert mal.status == "unreadable"
+    assert mal.answers == ()
+    assert mal.messages == ("'mal' is a link to outside the submissions folder; it was not "
+                            "followed",)
+
+
+def test_link_to_a_file_outside_is_not_followed(tmp_path):
+    secret = tmp_path / "secret.txt"
+    secret.write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    root = tmp_path / "subs"
+    (root / "mal").mkdir(parents=True)
+    os.symlink(secret, root / "mal" / "answers.txt")
+    os.symlink(secret, root / "eve.txt")
+    assert student(root, "mal").messages == ("'mal/answers.txt' is a link to outside the "
+                                             "submissions folder; it was not followed",)
+    assert student(root, "eve").status == "unreadable"
+
+
+def test_link_inside_the_folder_is_followed(tmp_path):
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "answers.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    os.symlink(tmp_path / "ana" / "answers.txt", tmp_path / "bob.txt")
+    assert student(tmp_path, "bob").answers == (("p.speed", "1 m/s"),)
+
+
+def test_a_fifo_is_not_opened(tmp_path):
+    (tmp_path / "pi").mkdir()
+    os.mkfifo(tmp_path / "pi" / "answers.txt")
+    pi = student(tmp_path, "pi")
+    assert pi.status == "unreadable"
+    assert pi.messages == ("'pi/answers.txt' is not a regular file; it was not read",)
+
+
+def test_repeated_key_in_text_keeps_the_later_answer_and_says_so(tmp_path):
+    (tmp_path / "re.txt").write_text("p.speed = 1 m/s\np.speed = 2 m/s\n", encoding="utf-8")
+    re_ = student(tmp_path, "re")
+    assert re_.answers == (("p.speed", "2 m/s"),)
+    assert re_.messages == ("re.txt:2: 'p.speed' is answered again (first on line 1); the later "
+                            "answer was graded",)
+
+
+def test_repeated_key_in_json_keeps_the_later_answer_and_says_so(tmp_path):
+    (tmp_path / "re.json").write_text('{"p.speed": "1 m/s", "p.speed": "2 m/s"}',
+                                      encoding="utf-8")
+    re_ = student(tmp_path, "re")
+    assert re_.answers == (("p.speed", "2 m/s"),)
+    assert re_.messages == ("'re.json': 'p.speed' is given more than once; the last one was "
+                            "graded",)
+
+
+def test_repeated_key_in_yaml_makes_that_file_unreadable(tmp_path):
+    (tmp_path / "re.yaml").write_text("p.speed: 1 m/s\np.speed: 2 m/s\n", encoding="utf-8")
+    re_ = student(tmp_path, "re")
+    assert re_.status == "unreadable"
+    assert re_.messages == ("re.yaml:2:1: p.speed: expected each key once, found 'p.speed' "
+                            "again",)
+
+
+def test_invalid_json_and_yaml_say_where(tmp_path):
+    (tmp_path / "js.json").write_text('{"p.speed": "1 m/s",,}', encoding="utf-8")
+    (tmp_path / "ya.yaml").write_text("p.speed: [1\n", encoding="utf-8")
+    (tmp_path / "li.yaml").write_text("- 1\n- 2\n", encoding="utf-8")
+    assert student(tmp_path, "js").messages == (
+        "js.json:1:21: expected valid JSON, found a syntax error (Expecting property name "
+        "enclosed in double quotes)",)
+    assert student(tmp_path, "ya").messages[0].startswith(
+        "ya.yaml:2:1: expected valid YAML, found a syntax error")
+    assert student(tmp_path, "li").messages == (
+        "'li.yaml': expected answers keyed by 'problem_id.objective_id', found a list",)
+
+
+def test_deeply_nested_json_is_refused(tmp_path):
+    (tmp_path / "dn.json").write_text("[" * 100000 + "]" * 100000, encoding="utf-8")
+    assert student(tmp_path, "dn").status == "unreadable"
+
+
+def test_answer_that_is_a_mapping_is_reported(tmp_path):
+    (tmp_path / "mp.yaml").write_text("p:\n  speed:\n    value: 7\n", encoding="utf-8")
+    mp = student(tmp_path, "mp")
+    assert mp.messages[0] == ("'mp.yaml': the answer to 'p.speed' is a mapping, expected text; "
+                              "it was not read")
+
+
+def test_unknown_keys_are_reported_never_dropped_silently(tmp_path):
+    (tmp_path / "un.txt").write_text("p.speed = 1 m/s\np.sped = 2 m/s\nP.Angle = 3 deg\n",
+                                     encoding="utf-8")
+    un = student(tmp_path, "un", keys=KEYS)
+    assert un.answers == (("p.angle", "3 deg"), ("p.speed", "1 m/s"))
+    assert un.messages == (
+        "read the key 'P.Angle' as 'p.angle'",
+        "'p.sped' (un.txt) is not a question of this assignment; it was not graded")
+
+
+def test_line_without_equals_sign_is_reported(tmp_path):
+    (tmp_path / "ln.txt").write_text("p.speed = 1 m/s\nthe answer is 42\n= 5\n",
+                                     encoding="utf-8")
+    ln = student(tmp_path, "ln")
+    assert ln.answers == (("p.speed", "1 m/s"),)
+    assert ln.messages == (
+        "ln.txt:2: expected 'problem_id.objective_id = answer', found 'the answer is 42'; the "
+        "line was not read",
+        "ln.txt:3: expected a key before '=', found none; the line was not read")
+
+
+def test_two_files_for_one_student_are_combined_first_file_wins_conflicts(tmp_path):
+    (tmp_path / "hal").mkdir()
+    (tmp_path / "hal" / "answers.txt").write_text("p.speed = 1 m/s\np.angle = 3 deg\n",
+                                                  encoding="utf-8")
+    (tmp_path / "hal" / "answers.json").write_text('{"p.speed": "2 m/s"}', encoding="utf-8")
+    (tmp_path / "hal.yaml").write_text("q.acc: 4 m/s^2\n", encoding="utf-8")
+    hal = student(tmp_path, "hal")
+    assert hal.answers == (("p.angle", "3 deg"), ("p.speed", "2 m/s"), ("q.acc", "4 m/s^2"))
+    assert hal.files == ("hal/answers.json", "hal/answers.txt", "hal.yaml")
+    assert hal.messages == (
+        "'p.speed' is answered in both 'hal/answers.json' and 'hal/answers.txt'; the answer in "
+        "'hal/answers.json' was graded",
+        "answers were read from 3 files (hal/answers.json, hal/answers.txt, hal.yaml) and "
+        "combined")
+
+
+def test_one_readable_file_is_enough_to_be_read(tmp_path):
+    (tmp_path / "mix").mkdir()
+    (tmp_path / "mix" / "answers.txt").write_bytes(b"\x00\x01")
+    (tmp_path / "mix" / "answers.json").write_text('{"p.speed": "2 m/s"}', encoding="utf-8")
+    mix = student(tmp_path, "mix")
+    assert mix.status == "read"
+    assert mix.messages == ("'mix/answers.txt' is a binary file, not text; expected answers "
+                            "typed as text",)
+
+
+def test_other_files_in_a_student_folder_are_reported(tmp_path):
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "answers.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    (tmp_path / "ana" / "work.pdf").write_bytes(b"%PDF")
+    (tmp_path / "ana" / "sub").mkdir()
+    assert student(tmp_path, "ana").messages == (
+        "ignored 'ana/sub', 'ana/work.pdf': answers go in answers.yaml, answers.json or "
+        "answers.txt",)
+
+
+def test_folder_with_only_other_files_is_missing_with_a_message(tmp_path):
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "hw.docx").write_bytes(b"PK")
+    ana = student(tmp_path, "ana")
+    assert ana.status == "missing"
+    assert ana.messages == ("ignored 'ana/hw.docx': answers go in answers.yaml, answers.json "
+                            "or answers.txt",)
+
+
+def test_stray_files_and_hidden_entries_of_the_folder(tmp_path):
+    (tmp_path / "README.md").write_text("hi", encoding="utf-8")
+    (tmp_path / ".DS_Store").write_bytes(b"\x00")
+    (tmp_path / "__MACOSX").mkdir()
+    found = read_submissions(tmp_path)
+    assert found.students == ()
+    assert found.messages == ("ignored 'README.md': expected a folder per student or a file "
+                              "<student_id>.yaml, .json or .txt",)
+
+
+def test_too_many_answers_and_too_long_answers_are_cut_with_a_message(tmp_path, monkeypatch):
+    monkeypatch.setattr(subs, "MAX_ANSWERS", 2)
+    monkeypatch.setattr(subs, "MAX_ANSWER_CHARS", 5)
+    (tmp_path / "lo.txt").write_text("a.a = 1\na.b = 1234567\na.c = 3\n", encoding="utf-8")
+    lo = student(tmp_path, "lo")
+    assert lo.answers == (("a.a", "1"), ("a.b", "12345"))
+    assert lo.messages == ("'lo.txt' holds 3 answers; only the first 2 were read",
+                           "'lo.txt': the answer to 'a.b' is 7 characters long; only the "
+                           "first 5 were read")
+
+
+def test_control_characters_in_keys_are_made_visible(tmp_path):
+    (tmp_path / "cc.txt").write_text("p.spe\x1bed = 1\n", encoding="utf-8")
+    assert student(tmp_path, "cc").answers == (("p.spe\ufffded", "1"),)
+
+
+def test_missing_submissions_folder_is_an_error(tmp_path):
+    with pytest.raises(SubmissionError) as info:
+        read_submissions(tmp_path / "nope")
+    assert str(info.value) == f"expected a folder of submissions, found nothing at " \
+                              f"'{tmp_path / 'nope'}'"
+
+
+def test_read_answer_file_refuses_a_file_with_nothing_readable(tmp_path):
+    path = tmp_path / "x.txt"
+    path.write_text("no equals here\n", encoding="utf-8")
+    with pytest.raises(SubmissionError, match="holds no answers"):
+        read_answer_file(path)
