@@ -6,8 +6,8 @@ factor is cached per unit string. Inside mechgrade all numbers are SI (radians f
 
 >>> to_si(30, "deg")
 0.5235987755982988
->>> from_si(9.80665, "ft/s^2")
-32.17404855643044
+>>> round(from_si(9.80665, "ft/s^2"), 6)
+32.174049
 >>> normalize_unit("ft/s2")
 'ft / s ** 2'
 >>> parse_quantity("98.5 ft/s²")

@@ -135,6 +135,9 @@ def _construct(node, path, marks, file, error):
             if not isinstance(key_node, yaml.ScalarNode):
                 raise error("expected a plain key, found a list or mapping used as a key",
                             where=_mark(file, key_node.start_mark))
+            if key_node.tag == "tag:yaml.org,2002:merge":
+                raise error("expected plain YAML, found a merge key (<<)",
+                            where=_mark(file, key_node.start_mark))
             key = _scalar(key_node)
             if key == "<<":
                 raise error("expected plain YAML, found a merge key (<<)",

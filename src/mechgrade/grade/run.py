@@ -165,7 +165,7 @@ def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submissio
     no roster student claimed, by id."""
     by_id = {s.student: s for s in submissions.students}
     if roster is None:
-        return [(_Person(s.student, "", (), False), s) for s in submissions.students]
+        return [(_Person(s.student, ""), s) for s in submissions.students]
     claimed: set[str] = set()
     out: list[tuple[_Person, Submission | None]] = []
     kinds: Counter = Counter()

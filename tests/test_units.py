@@ -1,0 +1,67 @@
+"""Unit text is allow-listed, normalised and converted through one pint registry."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from mechgrade.errors import UnitError
+from mechgrade.units import (Quantity, describe_dimension, dimension, from_si, normalize_unit,
+                             parse_quantity, registry, si_unit, to_si)
+
+
+@pytest.mark.parametrize("text, canonical", [
+    ("m/s", "m / s"), ("ft/s^2", "ft / s ** 2"), ("ft/s²", "ft / s ** 2"), ("ft/s2", "ft / s ** 2"),
+    ("m*s^-2", "m * s ** -2"), ("kg m²/s²", "kg * m ** 2 / s ** 2"), ("1/s", "1 / s"),
+    ("°", "deg"), ("rpm", "rpm"), ("", ""), ("1", ""), ("dimensionless", ""),
+    ("N·m", "N * m"), ("(m/s)/s", "(m / s) / s"),
+])
+def test_unit_text_is_normalised(text, canonical):
+    assert normalize_unit(text) == canonical
+
+
+@pytest.mark.parametrize("text, message", [
+    ("furlongz", "('furlongz' is not a unit)"),
+    ("m/s**9**9", "(misplaced power)"),
+    ("m/s^99", "expected a power of at most 12"),
+    ("m/s^x", "expected a whole-number power after '^'"),
+    ("m 2", "(a number '2' inside a unit)"),
+    ("m/", "expected a complete unit"),
+    ("m" * 70, "expected a unit of at most 64 characters"),
+    ("__import__", "('__import__' is not a unit)"),
+    ("m;s", "cannot read ';s'"),
+])
+def test_bad_unit_text_is_refused(text, message):
+    with pytest.raises(UnitError) as info:
+        normalize_unit(text)
+    assert message in str(info.value)
+
+
+def test_conversions_and_dimensions():
+    assert to_si(30, "deg") == pytest.approx(0.5235987755982988)
+    assert to_si(12, "rpm") == pytest.approx(1.2566370614)
+    assert from_si(1.0, "cm") == pytest.approx(100.0)
+    assert dimension("ft/s^2") == dimension("m/s^2")
+    assert describe_dimension(dimension("m/s^2")) == "an acceleration ([length] / [time] ** 2)"
+    assert si_unit("in/s") == "m / s"
+    assert registry() is registry()
+
+
+@pytest.mark.parametrize("text, quantity", [
+    ("98.5 ft/s²", Quantity(98.5, "ft / s ** 2")), ("4.9e1 m/s", Quantity(49.0, "m / s")),
+    ("-1.4 rad/s", Quantity(-1.4, "rad / s")), (".5 m", Quantity(0.5, "m")), ("7", Quantity(7.0, "")),
+])
+def test_quantities(text, quantity):
+    assert parse_quantity(text) == quantity
+
+
+@pytest.mark.parametrize("text", ["m/s", "nan m", "inf m", "", "1e999 m"])
+def test_bad_quantities(text):
+    with pytest.raises(UnitError):
+        parse_quantity(text)
+
+
+@given(st.floats(-1e6, 1e6, allow_nan=False), st.sampled_from(["ft", "in", "cm", "deg", "rpm", "mm/s^2"]))
+def test_si_round_trip(value, unit):
+    assert from_si(to_si(value, unit), unit) == pytest.approx(value, rel=1e-12, abs=1e-9)
