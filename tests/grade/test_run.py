@@ -351,13 +351,16 @@ def test_example_class_end_to_end():
     assert list(statuses) == ["ada_lovelace", "bob_roe", "carla_diaz", "dan_wu", "eve_mallory",
                               "frank_empty", "gina_cp1252", "hal_two_files", "ivy_binary",
                               "jules_noshow"]
-    assert statuses["ada_lovelace"] == ("graded", 16.0)
+    assert statuses["ada_lovelace"] == ("graded", 19.0)
     assert statuses["frank_empty"] == ("missing", 0.0)
     assert statuses["ivy_binary"] == ("unreadable", 0.0)
     assert statuses["jules_noshow"] == ("missing", 0.0)
     assert statuses["eve_mallory"] == ("graded", 0.0)
     bob = answers_of(report, "bob_roe")
     assert (bob["xdot"].diagnosis, bob["acc_N"].diagnosis) == ("sign error", "swapped components")
+    dan = answers_of(report, "dan_wu")
+    assert (dan["a_P_N"].verdict, dan["a_P_N"].points, dan["a_P_N"].diagnosis) == (
+        "partial", 0.9, "The Coriolis term 2 omega x v_rel is missing.")
     carla = answers_of(report, "carla_diaz")
     assert carla["rod_omega_z"].diagnosis == "degrees used as radians"
     assert carla["P_ZA_frameA"].diagnosis == "unit slip (cm vs m)"
