@@ -173,7 +173,7 @@ def test_points_for_an_objective_not_graded_says_where(class_dir):
     with pytest.raises(AssignmentError) as info:
         pendulum_plan(class_dir)
     assert str(info.value) == (
-        f"{class_dir / 'hw.yaml'}:6:49: points.bowling_3_15_4_pendulum.acc_A: expected a graded "
+        f"{class_dir / 'hw.yaml'}:6:53: points.bowling_3_15_4_pendulum.acc_A: expected a graded "
         f"objective 'problem_id.objective_id' (bowling_3_15_4_pendulum.acc_N, "
         f"bowling_3_15_4_pendulum.acc_mag), found 'bowling_3_15_4_pendulum.acc_A'")
 

@@ -45,7 +45,7 @@ def solve_command(problem_file: str, fmt: str, steps: bool) -> None:
         return
     click.echo(f"{problem.id}: {problem.title}")
     if steps:
-        for section, lines in derivation(problem):
+        for section, lines in derivation(problem, solution.dof):
             click.echo(f"\n{section}")
             for line in lines or ("(none)",):
                 click.echo(f"  {line}")

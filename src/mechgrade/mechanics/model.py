@@ -346,7 +346,7 @@ def _identically_zero(expr: sp.Expr) -> bool:
     rng = random.Random(7)
     for _ in range(3):
         point = {s: rng.uniform(0.3, 1.7) for s in symbols}
-        value = complex(expr.xreplace(point).evalf())
+        value = complex(sp.sympify(expr.xreplace(point)).evalf())
         if abs(value) > 1e-9:
             return False
     return True
@@ -420,9 +420,10 @@ def _objective_value(model: _Model, expr: Expr, frame: str | None):
     return model.plain(value)
 
 
-def derivation(problem: Problem) -> tuple[tuple[str, tuple[str, ...]], ...]:
+def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tuple[str, ...]], ...]:
     """The model in the write-up order, as text: frames, points, coordinates, constraints,
-    velocities and accelerations of every point in the inertial frame."""
+    degrees of freedom (``dof``, as the solver found it), velocities and accelerations of every
+    point in the inertial frame."""
     model = _Model(problem)
     k = derive(problem)
     N = problem.inertial_frame
@@ -442,8 +443,12 @@ def derivation(problem: Problem) -> tuple[tuple[str, tuple[str, ...]], ...]:
                    for c in problem.constraints]
     constraints += [f"  {e.label}: {sp.sstr(e.expr)} = 0" for e in k.position]
     constraints += [f"  {e.label}, rate form: {sp.sstr(e.expr)} = 0" for e in k.velocity]
-    dof = [f"{len(k.coordinates)} coordinates - {k.constraint_count} scalar constraints = "
-           f"{len(k.coordinates) - k.constraint_count}"]
+    independent = len(k.coordinates) - dof if dof is not None else k.constraint_count
+    dof_lines = [f"{len(k.coordinates)} coordinates - {independent} independent scalar "
+                 f"constraints = {len(k.coordinates) - independent}"]
+    if independent != k.constraint_count:
+        dof_lines.append(f"({k.constraint_count} scalar constraint equations, "
+                         f"{k.constraint_count - independent} of them redundant)")
     velocities, accelerations = [], []
     for p in problem.points:
         if p.origin is None:
@@ -454,7 +459,7 @@ def derivation(problem: Problem) -> tuple[tuple[str, tuple[str, ...]], ...]:
         accelerations.append(f"{N}_A_{p.name} = {_vector_text(model.plain(a))}")
     return (("Frames", tuple(frames)), ("Points", tuple(points)),
             ("Coordinates", tuple(coordinates)), ("Parameters", tuple(parameters)),
-            ("Constraints", tuple(constraints)), ("Degrees of freedom", tuple(dof)),
+            ("Constraints", tuple(constraints)), ("Degrees of freedom", tuple(dof_lines)),
             ("Velocities", tuple(velocities)), ("Accelerations", tuple(accelerations)))
 
 

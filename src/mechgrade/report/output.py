@@ -217,14 +217,15 @@ def _context(report: GradeReport, student: StudentResult) -> dict:
     }
 
 
-_MD_SPECIAL = re.compile(r"([\\`*_\[\]<>|~&#])")
+# "_" inside a word (dan_wu) is never emphasis in CommonMark, so it is left readable.
+_MD_SPECIAL = re.compile(r"([\\`*\[\]<>|~&#]|(?<![A-Za-z0-9])_|_(?![A-Za-z0-9]))")
 
 
 def markdown_escape(text: str) -> str:
     """Text shown literally by any Markdown renderer (no markup, no raw HTML).
 
-    >>> print(markdown_escape("<b>x</b> *y* `z`"))
-    \\<b\\>x\\</b\\> \\*y\\* \\`z\\`
+    >>> print(markdown_escape("<b>x</b> *y* `z` _w_ dan_wu"))
+    \\<b\\>x\\</b\\> \\*y\\* \\`z\\` \\_w\\_ dan_wu
     """
     return _MD_SPECIAL.sub(r"\\\1", " ".join(text.split()))
 

@@ -255,6 +255,9 @@ class _Instant:
         if not (np.isfinite(A).all() and np.isfinite(b).all()):
             raise SolveError(f"the {_LEVEL[level]} equations are undefined at this instant "
                              "(a division by zero in the model)")
+        rows = len(labels) - len(cond)
+        if level == 1:
+            self.constraint_rank = int(np.linalg.matrix_rank(A[:rows])) if rows else 0
         known = [j for j in range(n) if self.known[cols[j]]]
         unknown = [j for j in range(n) if not self.known[cols[j]]]
         rhs = -(b + A[:, known] @ x[[cols[j] for j in known]]) if len(b) else b
@@ -404,22 +407,26 @@ def _symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dic
         if isinstance(node, (Name, Prime)):
             given_symbols[k.quantity(node)] = (key, si, given)
     known = set(declared.values()) | set(given_symbols)
-    expr = k.objective(objective.id)
+    # A zero is a zero in every unit: such givens may always stand in.
+    zeros = {sym: sp.Integer(0) for sym, (_, si, _) in given_symbols.items()
+             if si == 0 and sym not in declared.values()}
+    expr = _simplify(k.objective(objective.id).xreplace(zeros))
     for level, rates, equations in ((2, k.qdd, k.acceleration), (1, k.qd, k.velocity),
                                     (0, k.q, k.position)):
         unknown = [s for s in rates if s not in known]
-        if not (set(unknown) & expr.free_symbols):
+        needed = [str(u) for u in unknown if u in expr.free_symbols]
+        if not needed:
             continue
-        eqs = [e.expr for e in equations]
+        eqs = [e.expr.xreplace(zeros) for e in equations]
         solution = sp.solve(eqs, unknown, dict=True) if eqs else []
         if len(solution) != 1:
+            reason = ("several solutions" if solution else
+                      "no constraint fixes it" if not eqs else "no solution")
             raise UnderdeterminedError(
                 f"objective '{objective.id}' cannot be solved symbolically for "
-                f"{', '.join(str(u) for u in unknown if u in expr.free_symbols)} "
-                f"({'several solutions' if solution else 'no solution'}); declare more "
-                "symbols or make it numeric", where=objective.where)
-        expr = expr.xreplace(solution[0])
-    expr = _simplify(expr)
+                f"{', '.join(needed)} ({reason}); declare it among the symbols or give it",
+                where=objective.where)
+        expr = _simplify(expr.xreplace(solution[0]))
     # Pure-number givens (angles, tooth counts) may stand in; givens with units may not.
     extra = {}
     for sym in expr.free_symbols - set(declared.values()):
@@ -500,7 +507,17 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None)
             mistakes=mistakes, rel=obj.tolerance.rel, abs=obj.tolerance.abs,
             prompt=obj.prompt))
     return Solution(problem=problem.id, results=tuple(results),
-                    state=_state(problem, p, inst), dof=len(k.coordinates) - k.constraint_count)
+                    state=_state(problem, p, inst), dof=degrees_of_freedom(k, inst))
+
+
+def degrees_of_freedom(k: Kinematics, inst: "_Instant | None" = None) -> int:
+    """Coordinates minus independent constraint equations (rank of the velocity-level
+    constraints in the rates, at the instant when it is solved)."""
+    if inst is not None:
+        return len(k.coordinates) - inst.constraint_rank
+    if not k.velocity:
+        return len(k.coordinates)
+    return len(k.coordinates) - sp.Matrix([e.expr for e in k.velocity]).jacobian(k.qd).rank()
 
 
 def _report(si_values: np.ndarray, obj: Objective):

@@ -262,7 +262,7 @@ class _Checker:
 
     def expect_type(self, expr: Expr, want: Type, what: str) -> None:
         t = self.type_of(expr)
-        if t.kind != want.kind and not (t.kind == "zero" and want.kind == "vector"):
+        if t.kind != want.kind and t.kind != "zero":
             raise SpecError(f"expected {what}, found a {t.kind} ('{expr.text}')",
                             where=expr.where)
         if t.kind != "zero":

@@ -1,0 +1,64 @@
+"""Print, for every problem in problems/: cold derivation time and one numeric evaluation.
+
+Cold derivation = load the spec + build the sympy.physics model + lambdify (caches cleared);
+numeric evaluation = solve the instant (position, velocity, acceleration levels) and evaluate
+every numeric objective with the plan already built; symbolic = the sympy solve of the
+symbolic objectives. Run: PYTHONPATH=src python bench/solve_timing.py [problems/...]
+"""
+
+from __future__ import annotations
+
+import statistics
+import sys
+import time
+from pathlib import Path
+
+from mechgrade.errors import MechgradeError
+from mechgrade.mechanics.model import derive
+from mechgrade.solve import instant
+from mechgrade.solve.instant import _givens, _solve_numeric, plan
+from mechgrade.spec import load_problem
+
+
+def main(paths: list[str]) -> None:
+    files = sorted(Path(p) for p in paths) if paths else sorted(Path("problems").glob("*.yaml"))
+    print(f"{'problem':42s} {'cold derive':>12s} {'numeric eval':>13s} {'symbolic':>10s}")
+    colds, evals = [], []
+    for path in files:
+        try:
+            cold, ev, symbolic, problem_id = measure(path)
+        except MechgradeError as err:
+            print(f"{path.stem:42s} error: {err}")
+            continue
+        colds.append(cold)
+        if ev == ev:  # NaN when the problem has no numeric objective
+            evals.append(ev)
+        print(f"{problem_id:42s} {cold * 1e3:10.0f} ms {ev * 1e3:11.2f} ms {symbolic * 1e3:8.0f} ms")
+    print(f"{'median':42s} {statistics.median(colds) * 1e3:10.0f} ms "
+          f"{statistics.median(evals) * 1e3:11.2f} ms")
+
+
+def measure(path: Path):
+    derive.cache_clear()
+    plan.cache_clear()
+    start = time.perf_counter()
+    problem = load_problem(path)
+    p = plan(problem)
+    cold = time.perf_counter() - start
+    givens = _givens(problem, None)
+    runs = []
+    if any(o.kind != "symbolic" for o in problem.objectives):
+        for _ in range(20):
+            start = time.perf_counter()
+            _solve_numeric(problem, p, givens)
+            runs.append(time.perf_counter() - start)
+    start = time.perf_counter()
+    for obj in problem.objectives:
+        if obj.kind == "symbolic":
+            instant._symbolic(problem, p.k, obj, givens)
+    symbolic = time.perf_counter() - start
+    return cold, statistics.median(runs) if runs else float("nan"), symbolic, problem.id
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
