@@ -37,11 +37,11 @@ def test_dates_stay_text():
 def test_size_cap_and_encoding(tmp_path):
     big = tmp_path / "big.yaml"
     big.write_text("a: " + "x" * (MAX_BYTES + 1))
-    with pytest.raises(SpecError, match="expected a file of at most"):
+    with pytest.raises(SpecError, match="expected a YAML file of at most"):
         read_yaml(big)
     latin = tmp_path / "latin.yaml"
     latin.write_bytes("a: caf\xe9\n".encode("latin-1"))
-    with pytest.raises(SpecError, match="expected UTF-8 text, found a byte 0xe9"):
+    with pytest.raises(SpecError, match="expected UTF-8 text, found byte 0xe9, which is not UTF-8"):
         read_yaml(latin)
     bom = tmp_path / "bom.yaml"
     bom.write_bytes("\ufeffa: 1\n".encode("utf-8"))

@@ -29,6 +29,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from .files import read_text
 from .errors import AssignmentError, Location
 
 FORMATS = ("canvas", "moodle", "plain")
@@ -127,24 +128,8 @@ def read_roster(path: str | os.PathLike) -> Roster:
 
 
 def _read_text(path: Path, name: str) -> str:
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise AssignmentError("expected a roster CSV file, found no such file",
-                              where=Location(name)) from None
-    except IsADirectoryError:
-        raise AssignmentError("expected a roster CSV file, found a folder",
-                              where=Location(name)) from None
-    except OSError as err:
-        raise AssignmentError(f"could not read the roster: {err.strerror}",
-                              where=Location(name)) from None
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as err:
-        line = data[:err.start].count(b"\n") + 1
-        raise AssignmentError(
-            f"expected UTF-8 text (save the roster as 'CSV UTF-8'), found byte "
-            f"0x{data[err.start]:02x}", where=Location(name, line)) from None
+    return read_text(path, what="a roster CSV file", error=AssignmentError,
+                     hint=" (save the roster as 'CSV UTF-8')")
 
 
 def _delimiter(header_line: str) -> str:

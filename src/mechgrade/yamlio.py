@@ -21,8 +21,8 @@ from typing import Any
 import yaml
 
 from .errors import Location, MechgradeError, SpecError
+from .files import MAX_BYTES, read_text
 
-MAX_BYTES = 1_000_000
 
 Path_ = tuple  # a field path: tuple of str keys and int indices
 
@@ -73,24 +73,11 @@ class _YamlProblem(Exception):
         self.mark = mark
 
 
-def read_yaml(path: str | Path, error: type[MechgradeError] = SpecError) -> Document:
+def read_yaml(path: str | Path, error: type[MechgradeError] = SpecError,
+              what: str = "a YAML file") -> Document:
     """Read a YAML file safely; errors are ``error`` with file:line:col."""
-    path = Path(path)
-    name = str(path)
-    try:
-        size = path.stat().st_size
-        if size > MAX_BYTES:
-            raise error(f"expected a file of at most {MAX_BYTES} bytes, found {size} bytes",
-                        where=Location(name))
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise error(f"cannot read the file ({exc.strerror or exc})", where=Location(name)) from None
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise error(f"expected UTF-8 text, found a byte 0x{raw[exc.start]:02x} that is not "
-                    f"(at byte {exc.start})", where=Location(name)) from None
-    return read_yaml_text(text, name, error)
+    text = read_text(path, what=what, error=error, max_bytes=MAX_BYTES)
+    return read_yaml_text(text, str(path), error)
 
 
 def read_yaml_text(text: str, file: str = "<text>",

@@ -74,7 +74,7 @@ def test_bad_problem_file_gives_one_message_and_exit_2(tmp_path):
 def test_missing_problem_file_exit_2(tmp_path):
     result = run("solve", str(tmp_path / "nope.yaml"))
     assert result.exit_code == 2
-    assert "nope.yaml: cannot read the file" in result.output
+    assert result.output.endswith("nope.yaml: expected a problem file (YAML), found no such file\n")
     assert "Traceback" not in result.output
 
 

@@ -32,4 +32,7 @@ def test_calls_outside_the_math_table_need_a_handler():
     node = parse("vel(x, L)", functions=["vel"])
     with pytest.raises(ExpressionError, match="expected a math function, found 'vel"):
         to_sympy(node, lambda n: TABLE[n.id])
-    assert to_sympy(node, lambda n: TABLE[n.id], lambda f, args: sum(args)) == x + L
+    def add(func, args):
+        return sum(to_sympy(a, lambda n: TABLE[n.id]) for a in args)
+
+    assert to_sympy(node, lambda n: TABLE[n.id], add) == x + L

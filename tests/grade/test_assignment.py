@@ -172,7 +172,7 @@ def test_every_error_of_a_file_is_one_line_each_in_file_order(folder):
 
 
 def test_missing_assignment_file_is_an_assignment_error(tmp_path):
-    with pytest.raises(AssignmentError, match="cannot read the file"):
+    with pytest.raises(AssignmentError, match="expected an assignment file \\(YAML\\), found no such file"):
         load_assignment(tmp_path / "absent.yaml")
 
 

@@ -231,6 +231,10 @@ def ecf_class(tmp_path, spec_text, answers: dict[str, str], credit="1.0"):
 
 
 def with_dependency(text: str, objective: str, upstream: str) -> str:
+    """The problem text with ``objective`` depending on ``upstream`` (added if not declared)."""
+    block = text.split(f"  - id: {objective}\n", 1)[1].split("  - id:", 1)[0]
+    if f"depends_on: [{upstream}]" in block:
+        return text
     return text.replace(f"  - id: {objective}\n",
                         f"  - id: {objective}\n    depends_on: [{upstream}]\n")
 

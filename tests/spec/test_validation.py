@@ -128,12 +128,12 @@ def test_bad_problem_gives_located_message(text, message):
 
 
 def test_missing_file_is_reported(tmp_path):
-    with pytest.raises(SpecError, match="cannot read the file"):
+    with pytest.raises(SpecError, match=r"expected a problem file \(YAML\), found no such file"):
         load_problem(tmp_path / "absent.yaml")
 
 
 def test_binary_file_is_reported(tmp_path):
     path = tmp_path / "x.yaml"
     path.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
-    with pytest.raises(SpecError, match="expected UTF-8 text"):
+    with pytest.raises(SpecError, match="expected UTF-8 text, found byte 0x89"):
         load_problem(path)

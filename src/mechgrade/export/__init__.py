@@ -16,6 +16,7 @@ import os
 from pathlib import Path
 from typing import Callable
 
+from ..files import read_text
 from ..errors import ExportError, Location
 from ..grade.results import STATUSES, VERDICTS, GradeReport
 from ..roster import Roster
@@ -65,20 +66,8 @@ def read_results(path: str | os.PathLike) -> GradeReport:
     mechgrade.errors.ExportError: ...results.json: students[0]: expected field 'id', found it missing
     """
     name = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise ExportError("expected a results.json file, found no such file",
-                          where=Location(name)) from None
-    except IsADirectoryError:
-        raise ExportError("expected a results.json file, found a folder",
-                          where=Location(name)) from None
-    except UnicodeDecodeError:
-        raise ExportError("expected UTF-8 JSON text, found undecodable bytes",
-                          where=Location(name)) from None
-    except OSError as err:
-        raise ExportError(f"could not read the file: {err.strerror}",
-                          where=Location(name)) from None
+    text = read_text(path, what="a results.json file", error=ExportError,
+                     max_bytes=200_000_000)
     try:
         data = json.loads(text)
     except json.JSONDecodeError as err:

@@ -44,8 +44,9 @@ def to_sympy(node: Node, resolve: Callable[[Node], object],
 
     ``resolve`` maps :class:`Name`, :class:`Prime` and :class:`Attr` nodes to values (it
     should raise :class:`KeyError` for unknown names); ``call`` handles functions outside the
-    math table (it receives already built arguments). Arithmetic uses Python operators, so
-    sympy.physics vectors pass through unchanged.
+    math table: it receives the function name and the argument *trees* (arguments may be
+    points or frames, which only the caller knows how to read). Arithmetic uses Python
+    operators, so sympy.physics vectors pass through unchanged.
     """
     if isinstance(node, Num):
         return number(node)
@@ -72,10 +73,9 @@ def to_sympy(node: Node, resolve: Callable[[Node], object],
             return left / right
         return left ** right
     if isinstance(node, Call):
-        args = tuple(to_sympy(a, resolve, call) for a in node.args)
         if node.func in SYMPY_FUNCTIONS:
-            return SYMPY_FUNCTIONS[node.func](*args)
+            return SYMPY_FUNCTIONS[node.func](*(to_sympy(a, resolve, call) for a in node.args))
         if call is None:
             raise ExpressionError(f"expected a math function, found '{node.func}(...)'")
-        return call(node.func, args)
+        return call(node.func, node.args)
     raise ExpressionError(f"expected an expression, found {node!r}")  # pragma: no cover

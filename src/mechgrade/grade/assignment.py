@@ -134,7 +134,7 @@ def schema() -> dict:
 def load_assignment(path: str | Path) -> Assignment:
     """Read and validate an assignment file; raises :class:`AssignmentError`."""
     path = Path(path)
-    doc = read_yaml(path, error=AssignmentError)
+    doc = read_yaml(path, error=AssignmentError, what="an assignment file (YAML)")
     problems_ = _validate(doc)
     data = doc.data
     points = data.get("points") or {}

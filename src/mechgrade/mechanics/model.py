@@ -25,8 +25,8 @@ import sympy as sp
 from sympy.physics.vector import ReferenceFrame, Vector, dynamicsymbols
 
 from ..errors import SolveError, SpecError
-from ..expressions.build import SYMPY_FUNCTIONS, number
-from ..expressions.syntax import Attr, Bin, Call, Name, Node, Num, Prime, Unary, to_text
+from ..expressions.build import to_sympy
+from ..expressions.syntax import Name, Node, Prime, to_text
 from ..spec.model import TIME, Expr, Problem
 
 TIME_SYMBOL = dynamicsymbols._t
@@ -175,11 +175,11 @@ class _Model:
         return value
 
     def value(self, node: Node):
-        if isinstance(node, Num):
-            return number(node)
+        """The sympy value (scalar or Vector) of a spec expression."""
+        return to_sympy(node, self._resolve, self._call)
+
+    def _resolve(self, node: Node):
         if isinstance(node, Name):
-            if node.id == "pi":
-                return sp.pi
             if node.id == TIME:
                 return TIME_SYMBOL
             if node.id in self.dyn:
@@ -187,26 +187,10 @@ class _Model:
             return self.params[node.id]
         if isinstance(node, Prime):
             return self.dyn[node.id].diff(TIME_SYMBOL, node.order)
-        if isinstance(node, Attr):
-            return getattr(self.frames[node.base], node.attr)
-        if isinstance(node, Unary):
-            return -self.value(node.operand)
-        if isinstance(node, Bin):
-            a, b = self.value(node.left), self.value(node.right)
-            if node.op == "+":
-                return a + b
-            if node.op == "-":
-                return a - b
-            if node.op == "*":
-                return a * b
-            if node.op == "/":
-                return a / b
-            return a ** b
-        if isinstance(node, Call):
-            if node.func in SYMPY_FUNCTIONS:
-                return SYMPY_FUNCTIONS[node.func](*(self.value(a) for a in node.args))
-            return getattr(self, "_fn_" + node.func)(*node.args)
-        raise SpecError(f"unexpected expression {node!r}")  # pragma: no cover
+        return getattr(self.frames[node.base], node.attr)
+
+    def _call(self, func: str, args: tuple):
+        return getattr(self, "_fn_" + func)(*args)
 
     def frame(self, node: Node) -> ReferenceFrame:
         return self.frames[node.id]

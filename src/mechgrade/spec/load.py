@@ -34,7 +34,7 @@ def problem_schema() -> dict:
 
 def load_problem(path: str | Path) -> Problem:
     """Read, check and return the problem in ``path``; raise :class:`SpecError` if it is bad."""
-    return problem_from_document(read_yaml(path, SpecError))
+    return problem_from_document(read_yaml(path, SpecError, "a problem file (YAML)"))
 
 
 def load_problem_text(text: str, name: str = "<problem>") -> Problem:
