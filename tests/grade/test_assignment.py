@@ -59,7 +59,7 @@ def test_full_assignment_reads_every_field(folder):
         policy:
           reveal_answers: yes
           tolerance: {rel: 0.02, abs: 0.1, sig_figs: 3}
-          sig_figs: {min: 3, credit: 0.8, strict: true}
+          sig_figs: {figures: 3, credit: 0.8, strict: true}
           missing_unit: {action: penalize, credit: 0.5}
           partial_credit: {enabled: true, diagnoses: {sign: 0.5, swapped: 0.25}}
           ecf: {enabled: false, credit: 0.5}
@@ -111,8 +111,8 @@ def test_assignment_is_frozen(folder):
      "hw.yaml:4:27: policy.tolerance.rel: expected a number <= 1, found 2"),
     (MINIMAL + "policy: {reveal_answers: maybe}\n",
      "hw.yaml:4:26: policy.reveal_answers: expected true or false, found 'maybe'"),
-    (MINIMAL + "policy: {sig_figs: {min: 2.5}}\n",
-     "hw.yaml:4:26: policy.sig_figs.min: expected a whole number, found 2.5"),
+    (MINIMAL + "policy: {sig_figs: {figures: 2.5}}\n",
+     "hw.yaml:4:30: policy.sig_figs.figures: expected a whole number, found 2.5"),
     ("id: hw1\ntitle: T\nproblems: []\n",
      "hw.yaml:3:11: problems: expected at least 1 item(s), found an empty list"),
     ("id: hw1\ntitle: T\nproblems: [{path: p.yaml, objectives: []}]\n",

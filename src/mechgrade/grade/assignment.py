@@ -39,10 +39,11 @@ class ProblemRef:
 
 @dataclass(frozen=True)
 class SigFigRule:
-    """Answers should be written with ``min`` significant figures; otherwise ``credit`` is
-    kept. ``strict`` reads ``100`` as one figure (otherwise as one to three)."""
+    """Answers should be written with ``figures`` significant figures (as STACK's NumSigFigs:
+    more or fewer both miss); otherwise ``credit`` is kept. ``strict`` reads ``100`` as one
+    figure (otherwise as one to three)."""
 
-    min: int
+    figures: int
     credit: float = 0.75
     strict: bool = False
 
@@ -158,7 +159,7 @@ def load_assignment(path: str | Path) -> Assignment:
             abs=_float_or_none(tolerance.get("abs")),
             accuracy_sig_figs=(int(tolerance["sig_figs"]) if "sig_figs" in tolerance
                                else None),
-            sig_figs=(SigFigRule(int(sig["min"]), float(sig.get("credit", 0.75)),
+            sig_figs=(SigFigRule(int(sig["figures"]), float(sig.get("credit", 0.75)),
                                  bool(sig.get("strict", False)))
                       if sig is not None else None),
             missing_unit=MissingUnitRule(missing.get("action", "reject"),
