@@ -211,3 +211,22 @@ def test_mistaken_models_are_evaluated():
     result = solve(load(text)).result("speed")
     assert result.mistakes[0].value == pytest.approx(12.0)
     assert (result.mistakes[0].message, result.mistakes[0].credit) == ("doubled", 0.2)
+
+
+def test_an_objective_can_be_asked_at_its_own_instant():
+    text = BASE + """  - id: speed_later
+    prompt: Speed when the pendulum turns at 5 rad/s.
+    givens: {"theta'": 5 rad/s}
+    find: speed(P, N)
+    kind: scalar
+    unit: m/s
+"""
+    solution = solve(load(text))
+    assert solution.result("speed").value == pytest.approx(6.0)
+    assert solution.result("speed_later").value == pytest.approx(10.0)
+    assert {s.name: s.value for s in solution.state}["thetad"] == pytest.approx(3.0)
+
+
+def test_an_expression_given_unknown_to_the_spec_cannot_be_added_later():
+    with pytest.raises(SolveError, match="cannot give 'dot\\(vel\\(P, N\\), N.x\\)'"):
+        solve(load(BASE), givens={"dot(vel(P, N), N.x)": 1.0})

@@ -362,13 +362,14 @@ def derive(problem: Problem) -> Kinematics:
     def plain_equations(items):
         return tuple(Equation(label, model.plain(expr)) for label, expr in items)
 
-    conditions = []
-    for given in problem.givens:
+    conditions = {}
+    for given in problem.givens + tuple(g for o in problem.objectives for g in o.givens):
         node = given.key.node
-        if isinstance(node, (Name, Prime)):
+        key = to_text(node)
+        if isinstance(node, (Name, Prime)) or key in conditions:
             continue
         expr = model.plain(model.value(node))
-        conditions.append(Condition(to_text(node), expr, _level(expr, model)))
+        conditions[key] = Condition(key, expr, _level(expr, model))
 
     objectives = []
     mistakes = []
@@ -381,7 +382,7 @@ def derive(problem: Problem) -> Kinematics:
         q=model.q, qd=model.qd, qdd=model.qdd, time=t,
         parameters=tuple(model.params.items()),
         position=plain_equations(position_dyn), velocity=plain_equations(velocity_all),
-        acceleration=plain_equations(acceleration_all), conditions=tuple(conditions),
+        acceleration=plain_equations(acceleration_all), conditions=tuple(conditions.values()),
         objectives=tuple(objectives), mistakes=tuple(mistakes), constraint_count=count)
 
 

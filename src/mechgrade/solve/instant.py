@@ -171,49 +171,52 @@ class _Instant:
                 self.known[i] = True
                 self.given_text[i] = text
             else:
-                for level in range(3):
-                    if key in p.condition_keys[level]:
-                        self.conditions[level][key] = si
+                levels = [lvl for lvl in range(3) if key in p.condition_keys[lvl]]
+                if not levels:
+                    raise SolveError(f"cannot give '{key}': it is not a given of this problem "
+                                     "(expression givens must appear in the spec)")
+                self.conditions[levels[0]][key] = si
+                self.given_text[("condition", key)] = text
         self.free: set[int] = set()
         guesses = {to_text(g.key.node): g.si for g in problem.guesses}
         self.guess = np.array([guesses.get(str(s), 0.3) for s in p.symbols[:p.n_config]])
 
     # ------------------------------------------------------------- levels
 
-    def _condition_vector(self, level: int) -> np.ndarray:
+    def _condition_rows(self, level: int, labels) -> tuple[np.ndarray, np.ndarray]:
+        """Which equation rows are active (constraints, and conditions given in this solve),
+        and the value each condition row must equal (0 for constraints)."""
         keys = self.p.condition_keys[level]
-        return np.array([self.conditions[level].get(key, np.nan) for key in keys])
+        n_constraints = len(labels) - len(keys)
+        values = np.array([self.conditions[level].get(key, np.nan) for key in keys])
+        active = np.concatenate([np.ones(n_constraints, dtype=bool), ~np.isnan(values)])
+        target = np.concatenate([np.zeros(n_constraints), np.nan_to_num(values)])
+        return active, target
 
     def position(self, free_override: dict[int, float] | None = None) -> list[int]:
         """Solve the configuration; returns indices of configuration unknowns left free."""
         nc = self.p.n_config
+        labels = self.p.position_labels
+        active, target = self._condition_rows(0, labels)
         unknown = [i for i in range(nc) if not self.known[i]]
-        cond = self._condition_vector(0)
-        n_constraints = len(self.p.position_labels) - len(cond)
-        if np.isnan(cond).any():
-            raise SolveError("a position-level given has no value")  # pragma: no cover
         x = self.values.copy()
         x[unknown] = self.guess[unknown]
-        free: list[int] = []
+        solve_for = unknown
 
         def residual(vals):
             full = x.copy()
             full[solve_for] = vals
-            r = np.asarray(self.p.position(*full), dtype=float).ravel()
-            r[n_constraints:] -= cond
-            return r
+            return (np.asarray(self.p.position(*full), dtype=float).ravel() - target)[active]
 
         def jac(vals):
             full = x.copy()
             full[solve_for] = vals
-            J = np.asarray(self.p.position_jac(*full), dtype=float).reshape(len(r0), nc)
-            return J[:, solve_for]
+            J = np.asarray(self.p.position_jac(*full), dtype=float).reshape(len(labels), nc)
+            return J[active][:, solve_for]
 
-        solve_for = unknown
-        r0 = residual(x[unknown]) if unknown or len(self.p.position_labels) else np.zeros(0)
-        if unknown and len(r0):
-            J0 = jac(x[unknown])
-            determined, free = _split_free(J0, unknown)
+        free: list[int] = list(unknown)
+        if unknown and active.any():
+            determined, free = _split_free(jac(x[unknown]), unknown)
             for i in free:
                 x[i] = (free_override or {}).get(i, x[i])
             solve_for = determined
@@ -223,17 +226,14 @@ class _Instant:
                                                  xtol=1e-14, ftol=1e-14, gtol=1e-14,
                                                  max_nfev=500)
                 x[determined] = fit.x
-        elif unknown:
-            free = list(unknown)
+        else:
             for i in free:
                 x[i] = (free_override or {}).get(i, x[i])
         self.values = x
-        if len(self.p.position_labels):
-            r = np.asarray(self.p.position(*x), dtype=float).ravel()
-            r[n_constraints:] -= cond
+        if active.any():
+            r = (np.asarray(self.p.position(*x), dtype=float).ravel() - target)
             scale = np.abs(np.asarray(self.p.position_scale(*x), dtype=float).ravel())
-            self._check_residual(r, scale, self.p.position_labels, "position",
-                                 [i for i in range(nc) if self.known[i]])
+            self._check_residual(r[active], scale[active], np.array(labels)[active], "position")
         return free
 
     def rates(self, level: int, null_override: np.ndarray | None = None) -> np.ndarray:
@@ -245,22 +245,23 @@ class _Instant:
         b_f = self.p.velocity_b if level == 1 else self.p.acceleration_b
         labels = self.p.velocity_labels if level == 1 else self.p.acceleration_labels
         scale_f = self.p.velocity_scale if level == 1 else self.p.acceleration_scale
+        active, target = self._condition_rows(level, labels)
         x = self.values.copy()
         x[cols] = np.where(self.known[cols], x[cols], 0.0)
         with np.errstate(all="ignore"):
             A = np.asarray(A_f(*x), dtype=float).reshape(len(labels), n)
-            b = np.asarray(b_f(*x), dtype=float).ravel()
-        cond = self._condition_vector(level)
-        b[len(b) - len(cond):] -= cond
+            b = np.asarray(b_f(*x), dtype=float).ravel() - target
+        if level == 1:
+            constraints = len(labels) - len(self.p.condition_keys[1])
+            self.constraint_rank = int(np.linalg.matrix_rank(A[:constraints])) if constraints \
+                else 0
+        A, b = A[active], b[active]
         if not (np.isfinite(A).all() and np.isfinite(b).all()):
             raise SolveError(f"the {_LEVEL[level]} equations are undefined at this instant "
                              "(a division by zero in the model)")
-        rows = len(labels) - len(cond)
-        if level == 1:
-            self.constraint_rank = int(np.linalg.matrix_rank(A[:rows])) if rows else 0
         known = [j for j in range(n) if self.known[cols[j]]]
         unknown = [j for j in range(n) if not self.known[cols[j]]]
-        rhs = -(b + A[:, known] @ x[[cols[j] for j in known]]) if len(b) else b
+        rhs = -(b + A[:, known] @ x[[cols[j] for j in known]])
         null = np.zeros((len(unknown), 0))
         if unknown:
             A_u = A[:, unknown]
@@ -279,33 +280,39 @@ class _Instant:
         self.values = x
         if len(b):
             r = A @ x[cols] + b
-            r[len(b) - len(cond):] += 0.0
             with np.errstate(all="ignore"):
-                scale = np.abs(np.asarray(scale_f(*x), dtype=float).ravel())
-            self._check_residual(r, scale, labels, _LEVEL[level],
-                                 [cols[j] for j in known] + [i for i in range(self.p.n_config)])
-        self.rate_unknowns = [cols[j] for j in unknown]
+                scale = np.abs(np.asarray(scale_f(*x), dtype=float).ravel())[active]
+            self._check_residual(r, scale, np.array(labels)[active], _LEVEL[level])
         return null
 
-    def _check_residual(self, r, scale, labels, level: str, known_idx) -> None:
+    def _check_residual(self, r, scale, labels, level: str) -> None:
         bad = [i for i in range(len(r))
                if not abs(r[i]) <= self.problem.consistency * scale[i] + 1e-10]
         if not bad:
             return
         i = bad[0]
-        givens = [self.given_text[j] for j in sorted(self.given_text)]
+        givens = list(self.given_text.values())
         raise InconsistentError(
             f"the givens conflict at the {level} level: '{labels[i]}' is not satisfied "
             f"(residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens involved: "
             f"{'; '.join(givens) or 'none'}")
 
-    def objective_values(self) -> dict[str, object]:
+    def objective_values(self, only: set[str]) -> dict[str, np.ndarray]:
+        """SI values of the numeric objectives in ``only`` (and of their mistaken models,
+        under ``(id, index)``)."""
         out = {}
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore")
             for oid, f in self.p.objectives:
-                out[oid] = np.asarray(f(*self.values), dtype=float).ravel()
+                if oid in only:
+                    out[oid] = np.asarray(f(*self.values), dtype=float).ravel()
         return out
+
+    def mistake_values(self, only: set[str]) -> dict[str, list[np.ndarray]]:
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return {oid: [np.asarray(f(*self.values), dtype=float).ravel() for f in funcs]
+                    for oid, funcs in self.p.mistakes if oid in only}
 
 
 _LEVEL = {1: "velocity", 2: "acceleration"}
@@ -332,13 +339,16 @@ def _nullspace(A: np.ndarray) -> np.ndarray:
     return vt[rank:].T
 
 
-def _solve_numeric(problem: Problem, p: _Plan, givens: dict) -> tuple[_Instant, dict]:
+def _solve_numeric(problem: Problem, p: _Plan, givens: dict,
+                   only: set[str]) -> tuple[_Instant, dict]:
+    """Solve the instant and evaluate the numeric objectives in ``only``; raise if any of them
+    depends on something the givens leave free."""
     inst = _Instant(problem, p, givens)
     free_pos = inst.position()
     inst.free |= set(free_pos)
     null_v = inst.rates(1)
     null_a = inst.rates(2)
-    base = inst.objective_values()
+    base = inst.objective_values(only)
     base_values = inst.values.copy()
     # Probe each freedom the givens leave: an objective that changes depends on it.
     depends: dict[str, list[str]] = {}
@@ -368,7 +378,7 @@ def _solve_numeric(problem: Problem, p: _Plan, givens: dict) -> tuple[_Instant, 
             trial.rates(2, z)
             missing = _rate_names(p, [i for i in range(p.n_config + inst.n, len(p.symbols))
                                       if not inst.known[i]], null_a[:, which])
-        changed = trial.objective_values()
+        changed = trial.objective_values(only)
         for oid, value in base.items():
             if not _close(value, changed[oid]):
                 depends.setdefault(oid, []).append(f"{missing} ({level} level)")
@@ -473,41 +483,59 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None)
 
     ``givens`` overrides given values for this call only: keys are given names as written in
     the spec (``"theta'"``, ``"dot(vel(B, N), B.x)"``), values are SI numbers, ``None`` removes
-    a given.
+    a given. Objectives with givens of their own are solved at their own instant.
     """
     p = plan(problem)
     k = p.k
-    given_map = _givens(problem, givens)
-    numeric = [o for o in problem.objectives if _numeric(o)]
-    inst, values = (None, {})
-    if numeric:
-        inst, values = _solve_numeric(problem, p, given_map)
-    mistake_values = {}
-    if inst is not None:
-        with np.errstate(all="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            for oid, funcs in p.mistakes:
-                mistake_values[oid] = [np.asarray(f(*inst.values), dtype=float).ravel()
-                                       for f in funcs]
-    results = []
+    results: dict[str, ObjectiveResult] = {}
+    base_inst = None
+    for overrides, objectives in _instants(problem):
+        given_map = _givens(problem, givens)
+        given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
+        numeric = {o.id for o in objectives if _numeric(o)}
+        inst, values, mistakes = None, {}, {}
+        if numeric:
+            inst, values = _solve_numeric(problem, p, given_map, numeric)
+            mistakes = inst.mistake_values(numeric)
+            if not overrides or base_inst is None:
+                base_inst = inst
+        for obj in objectives:
+            if obj.kind == "symbolic":
+                results[obj.id] = _symbolic_result(problem, k, obj, given_map)
+            else:
+                results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
+    return Solution(problem=problem.id,
+                    results=tuple(results[o.id] for o in problem.objectives),
+                    state=_state(problem, p, base_inst), dof=degrees_of_freedom(k, base_inst))
+
+
+def _instants(problem: Problem):
+    """Objectives grouped by the instant they are asked at: the problem's givens, or those
+    plus an objective's own givens."""
+    groups: dict[tuple, tuple[dict, list[Objective]]] = {}
     for obj in problem.objectives:
-        if obj.kind == "symbolic":
-            expr, meanings = _symbolic(problem, k, obj, given_map)
-            units = tuple(_quantity_unit(problem, node) for node in meanings.values())
-            results.append(ObjectiveResult(
-                id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(expr),
-                symbols=tuple(meanings), symbol_units=units, rel=obj.tolerance.rel,
-                abs=obj.tolerance.abs, prompt=obj.prompt))
-            continue
-        value = _report(values[obj.id], obj)
-        mistakes = tuple(MistakeValue(m.message, m.credit, _report(v, obj))
-                         for m, v in zip(obj.mistakes, mistake_values.get(obj.id, ())))
-        results.append(ObjectiveResult(
-            id=obj.id, kind=obj.kind, unit=obj.unit, value=value, frame=obj.frame,
-            mistakes=mistakes, rel=obj.tolerance.rel, abs=obj.tolerance.abs,
-            prompt=obj.prompt))
-    return Solution(problem=problem.id, results=tuple(results),
-                    state=_state(problem, p, inst), dof=degrees_of_freedom(k, inst))
+        overrides = {to_text(g.key.node): g for g in obj.givens}
+        key = tuple(sorted((name, g.si) for name, g in overrides.items()))
+        groups.setdefault(key, (overrides, []))[1].append(obj)
+    return sorted(groups.values(), key=lambda group: bool(group[0]))
+
+
+def _symbolic_result(problem: Problem, k: Kinematics, obj: Objective,
+                     given_map: dict) -> ObjectiveResult:
+    expr, meanings = _symbolic(problem, k, obj, given_map)
+    units = tuple(_quantity_unit(problem, node) for node in meanings.values())
+    return ObjectiveResult(
+        id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(expr), symbols=tuple(meanings),
+        symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
+
+
+def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:
+    return ObjectiveResult(
+        id=obj.id, kind=obj.kind, unit=obj.unit, value=_report(si_values, obj),
+        frame=obj.frame,
+        mistakes=tuple(MistakeValue(m.message, m.credit, _report(v, obj))
+                       for m, v in zip(obj.mistakes, mistakes)),
+        rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
 
 
 def degrees_of_freedom(k: Kinematics, inst: "_Instant | None" = None) -> int:

@@ -247,12 +247,12 @@ class _Builder:
         lhs, rhs = self.equation(spec[level], "constraints", i, level)
         return Constraint(name, level, lhs, rhs, where)
 
-    def given(self, key: str, value, section: str) -> Given:
-        key_expr = self.expr(key, section, key)
-        where = self.where(section, key)
+    def given(self, key: str, value, *section) -> Given:
+        key_expr = self.expr(key, *section, key)
+        where = self.where(*section, key)
         if isinstance(value, dict):
             number = self._number(value["value"], where)
-            unit = self.unit(value.get("unit", ""), section, key, "unit")
+            unit = self.unit(value.get("unit", ""), *section, key, "unit")
             text = f"{value['value']} {value.get('unit', '')}".strip()
         elif isinstance(value, (int, float)) and not isinstance(value, bool):
             number, unit, text = float(value), "", str(value)
@@ -310,4 +310,6 @@ class _Builder:
             symbols=tuple(symbols),
             tolerance=Tolerance(float(tol.get("rel", 0.01)), float(tol.get("abs", 0.0))),
             expect=expect, mistakes=mistakes, depends_on=tuple(spec.get("depends_on") or ()),
+            givens=tuple(self.given(k, v, *path, "givens")
+                         for k, v in (spec.get("givens") or {}).items()),
             where=self.where(*path))

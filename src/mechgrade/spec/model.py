@@ -161,7 +161,8 @@ class Objective:
     """What to find: an expression of the objective language, reported in ``unit``.
 
     ``kind`` is ``scalar``, ``vector`` (components in ``frame``) or ``symbolic`` (an
-    expression in ``symbols``).
+    expression in ``symbols``). ``givens`` add to or replace the problem's givens for this
+    objective only (another instant, "if the rate were ...").
     """
 
     id: str
@@ -175,6 +176,7 @@ class Objective:
     expect: Expect | None = None
     mistakes: tuple[Mistake, ...] = ()
     depends_on: tuple[str, ...] = ()
+    givens: tuple[Given, ...] = ()
     where: Location = field(default_factory=Location, compare=False)
 
 

@@ -146,26 +146,7 @@ class _Checker:
             self._same(left, right, c.lhs, "both sides of the equation")
 
     def check_givens(self) -> None:
-        seen = {}
-        for given in self.p.givens:
-            node = given.key.node
-            t = self.type_of(given.key)
-            if t.kind != "scalar":
-                raise SpecError(f"expected a scalar quantity as a given's name, found a "
-                                f"{t.kind} ('{given.key.text}')", where=given.where)
-            if isinstance(node, Name) and node.id not in self.coords and \
-                    node.id not in self.params and node.id != TIME:
-                raise SpecError(f"unknown quantity '{node.id}' (expected a coordinate, "
-                                "parameter, t, a rate such as x' or an expression)",
-                                where=given.where)
-            if isinstance(node, Prime) and node.order > 2:
-                raise SpecError("expected at most a second derivative", where=given.where)
-            canonical = to_text(node)
-            if canonical in seen:
-                raise SpecError(f"'{canonical}' is given twice", where=given.where)
-            seen[canonical] = given
-            self._dims_match(dimension(given.unit), t.dim, given.where,
-                             f"the value of '{given.key.text}'")
+        self.check_given_list(self.p.givens)
         for guess in self.p.guesses:
             node = guess.key.node
             if not (isinstance(node, Name) and (node.id in self.coords or node.id in self.params)):
@@ -173,6 +154,21 @@ class _Checker:
                                 f"'{guess.key.text}'", where=guess.where)
             self._dims_match(dimension(guess.unit), self.type_of(guess.key).dim, guess.where,
                              f"the guess for '{guess.key.text}'")
+
+    def check_given_list(self, givens) -> None:
+        seen = {}
+        for given in givens:
+            node = given.key.node
+            t = self.type_of(given.key)
+            if t.kind != "scalar":
+                raise SpecError(f"expected a scalar quantity as a given's name, found a "
+                                f"{t.kind} ('{given.key.text}')", where=given.where)
+            canonical = to_text(node)
+            if canonical in seen:
+                raise SpecError(f"'{canonical}' is given twice", where=given.where)
+            seen[canonical] = given
+            self._dims_match(dimension(given.unit), t.dim, given.where,
+                             f"the value of '{given.key.text}'")
 
     def check_objectives(self) -> None:
         ids = set()
@@ -213,6 +209,7 @@ class _Checker:
             if dep not in ids or dep == obj.id:
                 raise SpecError(f"depends_on names unknown objective '{dep}' (expected one "
                                 f"of: {', '.join(sorted(ids - {obj.id}))})", where=obj.where)
+        self.check_given_list(obj.givens)
         if obj.expect is not None:
             self.check_expect(obj)
 
