@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import click
@@ -39,8 +40,8 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     def progress(done: int, total: int) -> None:
         nonlocal bar
         if bar is None:
-            bar = click.progressbar(length=total, label="Grading", file=click.get_text_stream(
-                "stderr"), show_pos=True)
+            bar = click.progressbar(length=total, label="Grading", file=sys.stderr,
+                                    show_pos=True)
             bar.__enter__()
         bar.update(done - bar.pos)
 

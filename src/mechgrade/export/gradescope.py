@@ -62,6 +62,18 @@ def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
         write_json(folder / f"{name}.json", gradescope_results(report, student, options))
 
 
+def gradescope_failure(message: str, options: ExportOptions = ExportOptions()) -> dict:
+    """A ``results.json`` for a run that could not grade at all (a broken assignment): score 0
+    and the reason, so Gradescope shows it instead of a generic autograder failure.
+
+    >>> gradescope_failure("assignment.yaml:3:1: problems: expected a list")["score"]
+    0.0
+    """
+    return {"score": 0.0, "output": f"The autograder could not grade this submission: "
+                                    f"{message}", "output_format": "text",
+            "visibility": options.gradescope_visibility, "tests": []}
+
+
 def gradescope_results(report: GradeReport, student: StudentResult,
                        options: ExportOptions = ExportOptions()) -> dict:
     """The Gradescope ``results.json`` document of one student."""

@@ -128,6 +128,21 @@ def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | No
     return SubmissionSet(folder, students, tuple(notes))
 
 
+def read_student_folder(folder: str | Path, student: str, *,
+                        keys: frozenset[str] | set[str] | None = None) -> Submission:
+    """Read one student's folder (``answers.yaml``, ``.json`` or ``.txt`` inside it), such as a
+    Gradescope submission in ``/autograder/submission``. Never raises: a folder that is not
+    there is a ``missing`` submission."""
+    folder = Path(folder)
+    label = folder.name or str(folder)
+    try:
+        root = folder.resolve(strict=True)
+    except OSError:
+        return Submission(student, "missing", messages=(f"no submission folder at '{folder}'",))
+    sources = _folder_sources(root, root, label) or [_Source(label, None, None, empty=True)]
+    return _read_student(student, sources, keys)
+
+
 @dataclass
 class _Source:
     label: str  # path relative to the submissions folder, for messages

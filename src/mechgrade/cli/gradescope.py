@@ -1,0 +1,63 @@
+"""``mechgrade gradescope``: run as a Gradescope autograder for one submission."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import replace
+from pathlib import Path
+
+import click
+
+from ..errors import MechgradeError
+from ..export.cells import write_json
+from ..export.gradescope import gradescope_failure, gradescope_results
+from ..grade.assignment import load_assignment
+from ..grade.run import grade_plan, plan_assignment
+from ..grade.submissions import SubmissionSet, read_student_folder
+from .common import UserFailure, main
+
+
+def student_of(metadata_path: Path) -> tuple[str, str]:
+    """(id, name) of the submitter from Gradescope's ``submission_metadata.json``, if readable."""
+    try:
+        data = json.loads(metadata_path.read_text(encoding="utf-8"))
+        user = (data.get("users") or [{}])[0]
+    except (OSError, ValueError, AttributeError, TypeError):
+        return "submission", ""
+    ident = user.get("sid") or user.get("email") or user.get("id") or "submission"
+    return str(ident), str(user.get("name") or "")
+
+
+@main.command("gradescope")
+@click.argument("assignment", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--submission", "submission_dir", default="/autograder/submission",
+              show_default=True, type=click.Path(file_okay=False, path_type=Path),
+              help="The student's uploaded files (answers.yaml, .json or .txt).")
+@click.option("--results", "results_path", default="/autograder/results/results.json",
+              show_default=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="Where Gradescope expects results.json.")
+@click.option("--metadata", "metadata_path", default="/autograder/submission_metadata.json",
+              show_default=True, type=click.Path(dir_okay=False, path_type=Path),
+              help="Gradescope's submission metadata (names the student; optional).")
+def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
+               metadata_path: Path) -> None:
+    """Grade one Gradescope submission against ASSIGNMENT and write results.json.
+
+    A broken assignment still writes a results.json that says why (score 0), and exits 2.
+    """
+    student, name = student_of(metadata_path)
+    try:
+        plan = plan_assignment(load_assignment(assignment))
+        submission = read_student_folder(submission_dir, student, keys=plan.keys)
+        report = grade_plan(plan, SubmissionSet(submission_dir, (submission,)))
+        result = report.students[0]
+        if name and not result.name:
+            result = replace(result, name=name)
+        write_json(results_path, gradescope_results(report, result))
+    except MechgradeError as err:
+        try:
+            write_json(results_path, gradescope_failure(str(err)))
+        except MechgradeError:
+            pass
+        raise UserFailure(str(err)) from None
+    click.echo(f"{student}: {result.score:g} / {result.max_score:g} points; wrote {results_path}")
