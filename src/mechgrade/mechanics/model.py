@@ -130,13 +130,15 @@ class _Model:
         frame = ReferenceFrame(name)
         if spec.parent is not None:
             parent = self._frame(spec.parent)
-            angles = [self.scalar(r.angle) for r in spec.rotations]
-            if len(spec.rotations) == 1:
-                axis = getattr(parent, spec.rotations[0].axis)
-                frame.orient_axis(parent, axis, angles[0])
-            else:
-                order = "".join(r.axis for r in spec.rotations).upper()
-                frame.orient_body_fixed(parent, tuple(angles), order)
+            # A body-fixed sequence is a chain of simple rotations, each about an axis of the
+            # frame the previous one produced.
+            current = parent
+            for i, rotation in enumerate(spec.rotations):
+                last = i == len(spec.rotations) - 1
+                target = frame if last else ReferenceFrame(f"{name}_{i + 1}")
+                target.orient_axis(current, getattr(current, rotation.axis),
+                                   self.scalar(rotation.angle))
+                current = target
         self.frames[name] = frame
         return frame
 
