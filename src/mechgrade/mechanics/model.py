@@ -157,8 +157,8 @@ class _Model:
     def plain(self, expr):
         """Rewrite dynamicsymbols and their derivatives as plain symbols (derivatives first)."""
         if isinstance(expr, Vector):
-            return expr.applyfunc(lambda e: sp.sympify(e).xreplace(self._plain))
-        return sp.sympify(expr).xreplace(self._plain)
+            return expr.applyfunc(lambda e: _as_expr(e).xreplace(self._plain))
+        return _as_expr(expr).xreplace(self._plain)
 
     # ---------------------------------------------------------------- interpreter
 
@@ -166,7 +166,7 @@ class _Model:
         value = self.value(expr.node)
         if isinstance(value, Vector):
             raise SpecError("expected a scalar, found a vector", where=expr.where)
-        return sp.sympify(value)
+        return _as_expr(value)
 
     def vector(self, expr: Expr) -> Vector:
         value = self.value(expr.node)
@@ -320,19 +320,30 @@ class _Model:
         """Scalar equations of a (scalar or vector) difference, vectors in the inertial frame."""
         if isinstance(value, Vector):
             return list(value.to_matrix(self.inertial))
-        return [sp.sympify(value)]
+        return [_as_expr(value)]
+
+
+def _as_expr(value) -> sp.Expr:
+    """A sympy expression for a sympy object or a plain Python number (never text)."""
+    if isinstance(value, bool) or isinstance(value, str):
+        raise TypeError(f"expected a number or sympy expression, found {value!r}")
+    if isinstance(value, int):
+        return sp.Integer(value)
+    if isinstance(value, float):
+        return sp.Float(value)
+    return value
 
 
 def _identically_zero(expr: sp.Expr) -> bool:
     """Whether ``expr`` is zero for all values (checked at random points, then exactly)."""
-    expr = sp.sympify(expr)
+    expr = _as_expr(expr)
     if expr == 0:
         return True
     symbols = sorted(expr.free_symbols, key=str)
     rng = random.Random(7)
     for _ in range(3):
         point = {s: rng.uniform(0.3, 1.7) for s in symbols}
-        value = complex(sp.sympify(expr.xreplace(point)).evalf())
+        value = complex(_as_expr(expr.xreplace(point)).evalf())
         if abs(value) > 1e-9:
             return False
     return True
