@@ -1,7 +1,7 @@
 """Print, for every problem in problems/: cold derivation time and one numeric evaluation.
 
 Cold derivation = load the spec + build the sympy.physics model + lambdify (caches cleared);
-numeric evaluation = solve the instant (position, velocity, acceleration levels) and evaluate
+numeric evaluation = solve the instant(s) (position, velocity, acceleration levels) and evaluate
 every numeric objective with the plan already built; symbolic = the sympy solve of the
 symbolic objectives. Run: PYTHONPATH=src python bench/solve_timing.py [problems/...]
 """
@@ -16,7 +16,7 @@ from pathlib import Path
 from mechgrade.errors import MechgradeError
 from mechgrade.mechanics.model import derive
 from mechgrade.solve import instant
-from mechgrade.solve.instant import _givens, _solve_numeric, plan
+from mechgrade.solve.instant import _givens, _instants, _solve_numeric, plan
 from mechgrade.spec import load_problem
 
 
@@ -45,14 +45,21 @@ def measure(path: Path):
     problem = load_problem(path)
     p = plan(problem)
     cold = time.perf_counter() - start
-    givens = _givens(problem, None)
+    groups = []
+    for overrides, objectives in _instants(problem):
+        givens = _givens(problem, None)
+        givens.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
+        numeric = {o.id for o in objectives if o.kind != "symbolic"}
+        if numeric:
+            groups.append((givens, numeric))
     runs = []
-    numeric = {o.id for o in problem.objectives if o.kind != "symbolic" and not o.givens}
-    if numeric:
+    if groups:
         for _ in range(20):
             start = time.perf_counter()
-            _solve_numeric(problem, p, givens, numeric)
+            for givens, numeric in groups:
+                _solve_numeric(problem, p, givens, numeric)
             runs.append(time.perf_counter() - start)
+    givens = _givens(problem, None)
     start = time.perf_counter()
     for obj in problem.objectives:
         if obj.kind == "symbolic":
