@@ -49,6 +49,22 @@ def test_export_blank_and_bom_flags_reach_the_file(run, tmp_path):
     assert b"s1004,Missing Mo,missing,,,,,10\r\n" in data
 
 
+def test_format_specific_flags_reach_the_file(run, tmp_path):
+    canvas = tmp_path / "canvas.csv"
+    assert run("export", RESULTS, "--format", "canvas", "--no-points-possible",
+               "--out", str(canvas)).exit_code == 0
+    assert "Points Possible" not in canvas.read_text(encoding="utf-8")
+    moodle = tmp_path / "moodle.csv"
+    assert run("export", RESULTS, "--format", "moodle", "--moodle-key", "idnumber",
+               "--out", str(moodle)).exit_code == 0
+    assert moodle.read_text(encoding="utf-8").lower().startswith("id number")
+    gs = tmp_path / "gs"
+    assert run("export", RESULTS, "--format", "gradescope", "--visibility", "hidden",
+               "--out", str(gs)).exit_code == 0
+    documents = [json.loads(p.read_text()) for p in gs.iterdir()]
+    assert {t["visibility"] for d in documents for t in d["tests"]} == {"hidden"}
+
+
 def test_export_default_output_name(run, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     result = run("export", RESULTS, "--format", "long-csv")

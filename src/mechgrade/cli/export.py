@@ -8,6 +8,7 @@ import click
 
 from ..errors import ExportError
 from ..export import EXPORTERS, ExportOptions, match_roster, read_results
+from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
 from ..report.class_report import write_class_report
 from ..roster import read_roster
 from .common import main, reports_errors
@@ -33,16 +34,25 @@ DEFAULT_OUT = {
 @click.option("--missing", type=click.Choice(["zero", "blank"]), default="zero",
               show_default=True, help="Grade written for a student without a submission.")
 @click.option("--excel-bom", is_flag=True, help="Start CSV files with a UTF-8 BOM for Excel.")
+@click.option("--no-points-possible", is_flag=True,
+              help="Canvas: leave out the 'Points Possible' row.")
+@click.option("--moodle-key", type=click.Choice(list(MOODLE_KEYS)), default="email",
+              show_default=True, help="Moodle: the column Moodle maps users by.")
+@click.option("--visibility", type=click.Choice(list(GRADESCOPE_VISIBILITIES)),
+              default="visible", show_default=True, help="Gradescope: visibility of the tests.")
 @reports_errors
 def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path | None,
-                   missing: str, excel_bom: bool) -> None:
+                   missing: str, excel_bom: bool, no_points_possible: bool, moodle_key: str,
+                   visibility: str) -> None:
     """Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a spreadsheet."""
     report = read_results(results_json)
     class_roster = read_roster(roster) if roster is not None else None
     out = out if out is not None else Path(DEFAULT_OUT[fmt])
     if out.exists() and out.resolve() == results_json.resolve():
         raise ExportError(f"{out}: expected an output path other than the results file itself")
-    options = ExportOptions(missing=missing, excel_bom=excel_bom)
+    options = ExportOptions(missing=missing, excel_bom=excel_bom,
+                            points_possible=not no_points_possible,
+                            gradescope_visibility=visibility, moodle_key=moodle_key)
     EXPORTERS[fmt](report, out, roster=class_roster, options=options)
     if class_roster is not None:
         for line, reason in class_roster.skipped:
