@@ -161,3 +161,13 @@ def test_unwritable_output_folder_is_an_error(tmp_path):
     (tmp_path / "file").write_text("", encoding="utf-8")
     with pytest.raises(MechgradeError, match="cannot create the output folder"):
         write_outputs(REPORT, tmp_path / "file" / "out")
+
+
+def test_feedback_page_renders_in_headless_chromium(tmp_path, chromium):
+    write_outputs(REPORT, tmp_path)
+    dom, log = chromium(tmp_path / "feedback" / "ana.html")
+    assert "CONSOLE" not in log and "Uncaught" not in log
+    assert "Ana Ash" in dom and "98.5 ft/s^2" in dom and "sign error" in dom
+    # Hostile student text stays text: no script element came from it.
+    hostile_dom, _ = chromium(next((tmp_path / "feedback").glob("*eve*.html")))
+    assert "<script>alert" not in hostile_dom and "&lt;script&gt;" in hostile_dom
