@@ -104,15 +104,11 @@ class _Checker:
                                 f"{', '.join(self.points)})", where=frame.where)
             for rotation in frame.rotations:
                 self.expect_type(rotation.angle, Type("scalar", dimensionless()), "an angle")
-            seen = {frame.name}
-            parent = frame.parent
-            while parent != inertial:
-                if parent in seen:
-                    raise SpecError(f"frame '{frame.name}' is oriented through a cycle of "
-                                    f"parents ({' -> '.join(seen)}); expected a tree rooted at "
-                                    f"'{inertial}'", where=frame.where)
-                seen.add(parent)
-                parent = self.frames[parent].parent
+            cycle = _cycle(frame.name, lambda f: self.frames[f].parent, inertial)
+            if cycle:
+                raise SpecError(f"frame '{frame.name}' is oriented through a cycle of parents "
+                                f"({cycle}); expected a tree rooted at '{inertial}'",
+                                where=frame.where)
 
     def check_points(self) -> None:
         for point in self.p.points:
@@ -123,15 +119,11 @@ class _Checker:
                                 f"{', '.join(self.points)})", where=point.where)
             self.expect_type(point.position, Type("vector", dimension("m")),
                              "a position vector (a length times unit vectors, e.g. L*A.x)")
-            seen = {point.name}
-            origin = point.origin
-            while origin != self.p.inertial_point:
-                if origin in seen:
-                    raise SpecError(f"point '{point.name}' is located through a cycle "
-                                    f"({' -> '.join(seen)}); expected a chain ending at "
-                                    f"'{self.p.inertial_point}'", where=point.where)
-                seen.add(origin)
-                origin = self.points[origin].origin
+            cycle = _cycle(point.name, lambda q: self.points[q].origin, self.p.inertial_point)
+            if cycle:
+                raise SpecError(f"point '{point.name}' is located through a cycle ({cycle}); "
+                                f"expected a chain ending at '{self.p.inertial_point}'",
+                                where=point.where)
 
     # ------------------------------------------------------------------ sections
 
@@ -443,6 +435,18 @@ class _Checker:
             raise SpecError(f"dimension mismatch in {what}: expected "
                             f"{describe_dimension(expected)}, found {describe_dimension(found)}",
                             where=where)
+
+
+def _cycle(start: str, step, root: str) -> str | None:
+    """``"A -> B -> A"`` if following ``step`` from ``start`` loops before reaching ``root``."""
+    chain = [start]
+    current = step(start)
+    while current != root:
+        if current in chain:
+            return " -> ".join(chain + [current])
+        chain.append(current)
+        current = step(current)
+    return None
 
 
 def _walk_names(node: Node):
