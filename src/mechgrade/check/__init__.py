@@ -32,6 +32,7 @@ class ExpectOutcome:
     passed: bool
     message: str
     note: str | None = None
+    book: str | None = None
 
 
 @dataclass(frozen=True)
@@ -96,13 +97,13 @@ def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutco
     if objective.kind == "symbolic":
         same = equivalent(result.expr, e.expr, result.symbols)
         message = (f"{result.expr} {'==' if same else '!='} expected {e.expr}")
-        return ExpectOutcome(objective.id, same, message, e.note)
+        return ExpectOutcome(objective.id, same, message, e.note, e.book)
     unit = objective.unit
     if objective.kind == "scalar":
         expected = _convert(e.value, e.unit, unit)
         ok = abs(result.value - expected) <= max(tol.rel * abs(expected), tol.abs)
         message = f"{result.value:.6g} {'~' if ok else '!='} expected {expected:.6g} {unit}"
-        return ExpectOutcome(objective.id, ok, message, e.note)
+        return ExpectOutcome(objective.id, ok, message, e.note, e.book)
     expected = [_convert(c, e.unit, unit) for c in e.components]
     expected += [0.0] * (3 - len(expected))
     size = sum(c * c for c in expected) ** 0.5
@@ -111,7 +112,7 @@ def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutco
     shown = ", ".join(f"{v:.6g}" for v in result.value)
     want = ", ".join(f"{v:.6g}" for v in expected)
     message = f"({shown}) {'~' if ok else '!='} expected ({want}) {unit} in {objective.frame}"
-    return ExpectOutcome(objective.id, ok, message, e.note)
+    return ExpectOutcome(objective.id, ok, message, e.note, e.book)
 
 
 def _convert(value: float, unit: str | None, target: str) -> float:

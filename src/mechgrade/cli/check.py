@@ -36,6 +36,8 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
             if not outcome.passed or verbose:
                 mark = "FAIL" if not outcome.passed else "pass"
                 click.echo(f"  {mark} {outcome.objective}: {outcome.message}")
+            if verbose and outcome.book:
+                click.echo(f"       book prints: {outcome.book}")
             if verbose and outcome.note:
                 click.echo(f"       note: {outcome.note}")
         if verbose and report.untested:
