@@ -239,7 +239,7 @@ class _Checker:
             try:
                 node = parse(e.expr)
             except ExpressionError as err:
-                raise err.located(e.where) from None
+                raise SpecError(f"expect.expr: {err.message}", where=e.where) from None
             allowed = {d.name for d in obj.symbols} | {"pi"}
             unknown = sorted({n.id for n in _walk_names(node)} - allowed)
             if unknown:
