@@ -26,8 +26,10 @@ import csv
 import io
 import os
 import re
+import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Collection, Mapping, Sequence
 
 from .files import read_text
 from .errors import AssignmentError, Location
@@ -73,6 +75,71 @@ class Roster:
     def identity_header(self) -> tuple[str, ...]:
         """The names of the identity columns, as kept in each student's ``columns``."""
         return _identity_columns(self.format, self.header)
+
+
+MATCH_KINDS = ("id", "sis_user_id", "sis_login_id", "email", "email_user", "name")
+"""The identifiers a roster student is matched by, in the order they are tried."""
+
+
+def normalise_name(name: str) -> str:
+    """A name as a comparison key: "Last, First" turned around, case and spacing folded.
+
+    >>> normalise_name("O'Brien,  Seán") == normalise_name("seán o'brien")
+    True
+    """
+    if name.count(",") == 1:
+        last, first = name.split(",")
+        name = f"{first} {last}"
+    name = unicodedata.normalize("NFC", name)
+    return re.sub(r"\s+", " ", name).strip().casefold()
+
+
+def fold(identifier: str) -> str:
+    """An identifier as a comparison key (NFC, trimmed, case-folded)."""
+    return unicodedata.normalize("NFC", identifier).strip().casefold()
+
+
+def student_keys(student: RosterStudent) -> dict[str, str]:
+    """A roster student's identifiers by kind (see :data:`MATCH_KINDS`), folded."""
+    email = fold(student.email)
+    return {"id": fold(student.id), "sis_user_id": fold(student.sis_user_id),
+            "sis_login_id": fold(student.sis_login_id), "email": email,
+            "email_user": email.split("@", 1)[0] if "@" in email else "",
+            "name": normalise_name(student.name)}
+
+
+def pair_students(roster: Roster, candidates: Sequence[Mapping[str, Collection[str]]]
+                  ) -> tuple[tuple[int | None, str | None], ...]:
+    """Match each roster student, in roster order, with at most one candidate.
+
+    A candidate offers folded identifiers per kind of :data:`MATCH_KINDS`. A student takes the
+    first kind whose identifier exactly one unclaimed candidate offers; an identifier two
+    candidates share identifies nobody. Returns ``(candidate index or None, kind or None)`` per
+    roster student.
+
+    >>> roster = Roster((RosterStudent("101", "Ada Lovelace", sis_login_id="ada"),
+    ...                  RosterStudent("102", "Bob Roe")), "plain", ("id", "name"))
+    >>> pair_students(roster, [{"sis_login_id": {"ada"}}, {"id": {"999"}}])
+    ((0, 'sis_login_id'), (None, None))
+    """
+    claimed: set[int] = set()
+    out: list[tuple[int | None, str | None]] = []
+    for student in roster.students:
+        keys = student_keys(student)
+        found: tuple[int | None, str | None] = (None, None)
+        for kind in MATCH_KINDS:
+            key = keys[kind]
+            if not key:
+                continue
+            offering = [i for i, c in enumerate(candidates) if key in c.get(kind, ())]
+            free = [i for i in offering if i not in claimed]
+            if len(offering) == 1 and free:
+                found = (free[0], kind)
+                break
+        if found[0] is not None:
+            claimed.add(found[0])
+        out.append(found)
+    return tuple(out)
 
 
 def read_roster(path: str | os.PathLike) -> Roster:

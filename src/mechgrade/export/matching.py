@@ -21,12 +21,10 @@ name; a name shared by two students never matches). Each result is used at most 
 
 from __future__ import annotations
 
-import re
-import unicodedata
 from dataclasses import dataclass
 
 from ..grade.results import GradeReport, StudentResult
-from ..roster import Roster, RosterStudent
+from ..roster import Roster, RosterStudent, fold, normalise_name, pair_students
 
 # Which identity keys (lower-cased) of a StudentResult carry which kind of identifier.
 _IDENTITY_KINDS = {
@@ -36,7 +34,6 @@ _IDENTITY_KINDS = {
     "sis_login_id": {"sis login id", "sis_login_id", "login", "username"},
     "email": {"email", "email address", "e-mail"},
 }
-_ORDER = ("id", "sis_user_id", "sis_login_id", "email", "name")
 
 
 @dataclass(frozen=True)
@@ -68,24 +65,10 @@ def match_roster(report: GradeReport, roster: Roster | None) -> RosterMatch:
     if roster is None:
         return RosterMatch(tuple(Pair(None, s) for s in report.students))
     results = list(report.students)
-    used: set[int] = set()
-    keyed = {kind: _index(results, kind) for kind in _ORDER}
-    pairs: list[Pair] = []
-    for student in roster.students:
-        found = None
-        for kind in _ORDER:
-            value = _roster_key(student, kind)
-            candidates = [i for i in keyed[kind].get(value, ()) if i not in used] if value else []
-            if kind == "name" and len(keyed[kind].get(value, ())) != 1:
-                candidates = []  # an ambiguous name identifies nobody
-            if len(candidates) == 1:
-                found = (candidates[0], kind)
-                break
-        if found is None:
-            pairs.append(Pair(student, None))
-        else:
-            used.add(found[0])
-            pairs.append(Pair(student, results[found[0]], found[1]))
+    matches = pair_students(roster, [_keys(result) for result in results])
+    pairs = [Pair(student, results[i] if i is not None else None, kind)
+             for student, (i, kind) in zip(roster.students, matches)]
+    used = {i for i, _ in matches if i is not None}
     pairs.extend(Pair(None, s) for i, s in enumerate(results) if i not in used)
     return RosterMatch(tuple(pairs))
 
@@ -97,40 +80,12 @@ def identity_value(result: StudentResult, kind: str) -> str:
     return next((v for k, v in result.identity if k.strip().lower() in names and v), "")
 
 
-def normalise_name(name: str) -> str:
-    """A name as a comparison key: "Last, First" turned around, case and spacing folded.
-
-    >>> normalise_name("O'Brien,  Seán") == normalise_name("seán o'brien")
-    True
-    """
-    if name.count(",") == 1:
-        last, first = name.split(",")
-        name = f"{first} {last}"
-    name = unicodedata.normalize("NFC", name)
-    return re.sub(r"\s+", " ", name).strip().casefold()
-
-
-def _roster_key(student: RosterStudent, kind: str) -> str:
-    if kind == "id":
-        return student.id
-    if kind == "email":
-        return student.email.casefold()
-    if kind == "name":
-        return normalise_name(student.name)
-    return getattr(student, kind)
-
-
-def _index(results: list[StudentResult], kind: str) -> dict[str, list[int]]:
-    index: dict[str, list[int]] = {}
-    for i, result in enumerate(results):
-        if kind == "name":
-            keys = {normalise_name(result.name)} if result.name.strip() else set()
-        elif kind == "id":
-            keys = {result.id, identity_value(result, "canvas_id")}
-        elif kind == "email":
-            keys = {result.id.casefold(), identity_value(result, "email").casefold()}
-        else:
-            keys = {result.id, identity_value(result, kind)}
-        for key in keys - {""}:
-            index.setdefault(key, []).append(i)
-    return index
+def _keys(result: StudentResult) -> dict[str, set[str]]:
+    """The identifiers a result offers: its id (a submission folder may be named by any of
+    them) and the roster columns it carries, folded."""
+    own = fold(result.id)
+    keys = {kind: {own, fold(identity_value(result, source))} - {""}
+            for kind, source in (("id", "canvas_id"), ("sis_user_id", "sis_user_id"),
+                                 ("sis_login_id", "sis_login_id"), ("email", "email"))}
+    keys["name"] = {normalise_name(result.name)} - {""}
+    return keys

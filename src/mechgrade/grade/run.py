@@ -24,6 +24,7 @@ from typing import Callable, Iterable
 
 from ..errors import AssignmentError, InconsistentError, MechgradeError
 from ..expressions.syntax import Name, Prime
+from ..roster import MATCH_KINDS, fold, pair_students
 from ..solve.result import ObjectiveResult, Solution
 from ..spec.model import Objective, Problem
 from .assignment import Assignment, GradingPolicy
@@ -163,57 +164,35 @@ class _Person:
 def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submission | None]]:
     """Roster students in roster order (with their submission, if any), then the submissions
     no roster student claimed, by id."""
-    by_id = {s.student: s for s in submissions.students}
     if roster is None:
         return [(_Person(s.student, ""), s) for s in submissions.students]
-    claimed: set[str] = set()
-    out: list[tuple[_Person, Submission | None]] = []
-    kinds: Counter = Counter()
-    matches = []
-    for student in roster.students:
-        found, kind = _match(student, by_id, claimed)
-        if found is not None:
-            claimed.add(found.student)
-            kinds[kind] += 1
-        matches.append((student, found))
+    # A submission folder may be named by any of a student's identifiers.
+    candidates = [{kind: {fold(s.student)} for kind in MATCH_KINDS if kind != "name"}
+                  for s in submissions.students]
+    matches = pair_students(roster, candidates)
+    kinds = Counter(kind for _, kind in matches if kind is not None)
     # A student without a submission is named like the submissions that were matched.
     usual = kinds.most_common(1)[0][0] if kinds else "id"
-    for student, found in matches:
+    out: list[tuple[_Person, Submission | None]] = []
+    for student, (index, _) in zip(roster.students, matches):
         identity = tuple(student.columns)
-        if found is not None:
+        if index is not None:
+            found = submissions.students[index]
             out.append((_Person(found.student, student.name, identity), found))
         else:
             sid = _roster_value(student, usual) or student.id
             out.append((_Person(sid, student.name, identity), None))
-    for submission in submissions.students:
-        if submission.student not in claimed:
+    claimed = {index for index, _ in matches if index is not None}
+    for i, submission in enumerate(submissions.students):
+        if i not in claimed:
             out.append((_Person(submission.student, "", (), False), submission))
     return out
-
-
-_MATCH_KINDS = ("id", "sis_user_id", "sis_login_id", "email", "email_user")
 
 
 def _roster_value(student, kind: str) -> str:
     if kind == "email_user":
         return student.email.split("@", 1)[0] if "@" in student.email else ""
     return getattr(student, kind, "") or ""
-
-
-def _match(student, by_id: dict, claimed: set):
-    folded = {}
-    for sid in by_id:
-        folded.setdefault(sid.casefold(), []).append(sid)
-    for kind in _MATCH_KINDS:
-        value = _roster_value(student, kind).strip()
-        if not value:
-            continue
-        if value in by_id and value not in claimed:
-            return by_id[value], kind
-        candidates = [s for s in folded.get(value.casefold(), []) if s not in claimed]
-        if len(candidates) == 1:
-            return by_id[candidates[0]], kind
-    return None, None
 
 
 def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
