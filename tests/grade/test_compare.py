@@ -3,7 +3,7 @@
 import math
 
 import pytest
-from hypothesis import assume, given, strategies as st
+from hypothesis import given, strategies as st
 
 from mechgrade.errors import AssignmentError
 from mechgrade.grade.compare import (Assessment, Policy, assess, expression_dimension,

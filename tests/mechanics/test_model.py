@@ -93,3 +93,12 @@ def test_derivation_lists_the_write_up_sections():
     assert sections["Points"] == ("P_OP = r*B.y",)
     assert sections["Degrees of freedom"] == ("2 coordinates - 0 independent scalar "
                                               "constraints = 2",)
+
+
+def test_every_function_of_the_objective_language_is_implemented():
+    from mechgrade.mechanics.model import _Model
+    from mechgrade.spec.language import FUNCTIONS
+
+    implemented = {name[len("_fn_"):] for name in dir(_Model) if name.startswith("_fn_")}
+    points = {"coincident", "ic"}  # point-valued: read by vel/acc/pos, not called directly
+    assert implemented == set(FUNCTIONS) - points

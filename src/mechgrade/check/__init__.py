@@ -20,7 +20,7 @@ from ..expressions.syntax import parse
 from ..solve import solve
 from ..solve.result import ObjectiveResult
 from ..spec import load_problem
-from ..spec.model import Expect, Objective, Problem
+from ..spec.model import Expect, Objective
 from ..units import from_si, to_si
 
 

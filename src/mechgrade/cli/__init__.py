@@ -6,7 +6,6 @@ message on stderr and exit code 2; nothing imports this package.
 
 from __future__ import annotations
 
-import click
 
 from .common import main
 from . import solve as _solve  # noqa: F401  (registers its command)

@@ -14,7 +14,7 @@ from typing import Callable
 import sympy
 
 from ..errors import ExpressionError
-from .syntax import MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Num, Prime, Unary
+from .syntax import MATH_FUNCTIONS, Name, Node, Num, fold, to_text
 
 SYMPY_FUNCTIONS: dict[str, Callable] = {
     "sin": sympy.sin, "cos": sympy.cos, "tan": sympy.tan, "cot": sympy.cot,
@@ -48,34 +48,19 @@ def to_sympy(node: Node, resolve: Callable[[Node], object],
     points or frames, which only the caller knows how to read). Arithmetic uses Python
     operators, so sympy.physics vectors pass through unchanged.
     """
-    if isinstance(node, Num):
-        return number(node)
-    if isinstance(node, Name) and node.id == "pi":
-        return sympy.pi
-    if isinstance(node, (Name, Prime, Attr)):
+    def leaf(n: Node):
+        if isinstance(n, Name) and n.id == "pi":
+            return sympy.pi
         try:
-            return resolve(node)
+            return resolve(n)
         except KeyError:
-            from .syntax import to_text
-            raise ExpressionError(f"expected a known name, found '{to_text(node)}'") from None
-    if isinstance(node, Unary):
-        return -to_sympy(node.operand, resolve, call)
-    if isinstance(node, Bin):
-        left = to_sympy(node.left, resolve, call)
-        right = to_sympy(node.right, resolve, call)
-        if node.op == "+":
-            return left + right
-        if node.op == "-":
-            return left - right
-        if node.op == "*":
-            return left * right
-        if node.op == "/":
-            return left / right
-        return left ** right
-    if isinstance(node, Call):
-        if node.func in SYMPY_FUNCTIONS:
-            return SYMPY_FUNCTIONS[node.func](*(to_sympy(a, resolve, call) for a in node.args))
+            raise ExpressionError(f"expected a known name, found '{to_text(n)}'") from None
+
+    def function(func: str, args: tuple):
+        if func in SYMPY_FUNCTIONS:
+            return SYMPY_FUNCTIONS[func](*(to_sympy(a, resolve, call) for a in args))
         if call is None:
-            raise ExpressionError(f"expected a math function, found '{node.func}(...)'")
-        return call(node.func, node.args)
-    raise ExpressionError(f"expected an expression, found {node!r}")  # pragma: no cover
+            raise ExpressionError(f"expected a math function, found '{func}(...)'")
+        return call(func, args)
+
+    return fold(node, number=number, resolve=leaf, call=function)

@@ -20,6 +20,7 @@ from __future__ import annotations
 import ast
 import io
 import math
+import operator
 import re
 import tokenize
 import unicodedata
@@ -46,7 +47,6 @@ MATH_FUNCTIONS: dict[str, tuple[str, int]] = {
     "sqrt": ("sqrt", 1), "exp": ("exp", 1), "log": ("log", 1), "ln": ("log", 1),
     "abs": ("abs", 1), "Abs": ("abs", 1), "sign": ("sign", 1),
 }
-CONSTANTS = {"pi"}
 
 GREEK = {
     "α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "ε": "epsilon", "ϵ": "epsilon",
@@ -442,32 +442,64 @@ _CONST_FUNCS = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.
                 "tanh": math.tanh}
 
 
-def _const(node: Node) -> float:
-    if isinstance(node, Num):
-        return node.value
+def _const_power(a: float, b: float) -> float:
+    if abs(b) > MAX_POWER:
+        raise OverflowError
+    value = a ** b
+    if isinstance(value, complex):
+        raise ValueError
+    return value
+
+
+def _const_name(node: Node) -> float:
     if isinstance(node, Name) and node.id == "pi":
         return math.pi
-    if isinstance(node, Unary):
-        return -_const(node.operand)
-    if isinstance(node, Bin):
-        a, b = _const(node.left), _const(node.right)
-        if node.op == "+":
-            return a + b
-        if node.op == "-":
-            return a - b
-        if node.op == "*":
-            return a * b
-        if node.op == "/":
-            return a / b
-        if abs(b) > MAX_POWER:
-            raise OverflowError
-        value = a ** b
-        if isinstance(value, complex):
-            raise ValueError
-        return value
-    if isinstance(node, Call) and node.func in _CONST_FUNCS and len(node.args) == 1:
-        return _CONST_FUNCS[node.func](_const(node.args[0]))
     raise _NotConstant
+
+
+def _const_call(func: str, args: tuple) -> float:
+    if func not in _CONST_FUNCS or len(args) != 1:
+        raise _NotConstant
+    return _CONST_FUNCS[func](_const(args[0]))
+
+
+def _const(node: Node) -> float:
+    return fold(node, number=lambda n: n.value, resolve=_const_name, call=_const_call,
+                power=_const_power)
+
+
+PYTHON_OPERATORS = {"+": operator.add, "-": operator.sub, "*": operator.mul,
+                    "/": operator.truediv, "**": operator.pow}
+
+
+def fold(node: Node, *, number, resolve, call, power=operator.pow, divide=operator.truediv):
+    """Evaluate a tree with Python's arithmetic, the leaves and calls given by the caller.
+
+    ``number(Num)`` and ``resolve(Name | Prime | Attr)`` give leaf values; ``call(func, args)``
+    receives the function name and the argument *trees* (so the caller chooses how to read
+    them); ``power`` and ``divide`` may be replaced (numpy semantics, bounds). One walk serves
+    sympy construction, constant folding and numeric sampling.
+
+    >>> fold(parse("2*x + 1"), number=lambda n: n.value, resolve=lambda n: 3.0, call=None)
+    7.0
+    """
+    def walk_(n: Node):
+        if isinstance(n, Num):
+            return number(n)
+        if isinstance(n, (Name, Prime, Attr)):
+            return resolve(n)
+        if isinstance(n, Unary):
+            return -walk_(n.operand)
+        if isinstance(n, Bin):
+            a, b = walk_(n.left), walk_(n.right)
+            if n.op == "**":
+                return power(a, b)
+            if n.op == "/":
+                return divide(a, b)
+            return PYTHON_OPERATORS[n.op](a, b)
+        return call(n.func, n.args)
+
+    return walk_(node)
 
 
 def _check_power(node: Bin) -> None:

@@ -470,30 +470,21 @@ def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
 
 
 def _eval(node: Node, env: dict[str, np.ndarray]):
-    if isinstance(node, Num):
-        return float(node.text)
-    if isinstance(node, Name):
-        if node.id == "pi":
+    def leaf(n: Node):
+        if isinstance(n, Name) and n.id == "pi":
             return math.pi
-        return env[node.id]
-    if isinstance(node, Unary):
-        return -_eval(node.operand, env)
-    if isinstance(node, Bin):
-        a, b = _eval(node.left, env), _eval(node.right, env)
-        if node.op == "+":
-            return np.add(a, b)
-        if node.op == "-":
-            return np.subtract(a, b)
-        if node.op == "*":
-            return np.multiply(a, b)
-        if node.op == "/":
-            return np.divide(np.asarray(a, dtype=float), b)
-        return np.power(np.asarray(a, dtype=float), b)
-    if isinstance(node, Call):
-        args = [_eval(a, env) for a in node.args]
-        return _NUMPY_FUNCTIONS[node.func](*[np.asarray(a, dtype=float) for a in args])
-    raise ExpressionError(f"expected an expression in the problem's symbols, found "
-                          f"{syntax.to_text(node)!r}")
+        if isinstance(n, Name) and n.id in env:
+            return env[n.id]
+        raise ExpressionError(f"expected an expression in the problem's symbols, found "
+                              f"{syntax.to_text(n)!r}")
+
+    def function(func: str, args: tuple):
+        return _NUMPY_FUNCTIONS[func](*(np.asarray(_eval(a, env), dtype=float) for a in args))
+
+    # numpy division and powers: inf or nan where Python would raise or go complex
+    return syntax.fold(node, number=lambda n: float(n.text), resolve=leaf, call=function,
+                       power=lambda a, b: np.power(np.asarray(a, dtype=float), b),
+                       divide=lambda a, b: np.divide(np.asarray(a, dtype=float), b))
 
 
 @lru_cache(maxsize=256)

@@ -138,13 +138,3 @@ def _vector(student: np.ndarray, reference: np.ndarray, close: Close) -> Diagnos
             return Diagnosis("magnitude", "wrong magnitude",
                              "The direction is right but the magnitude is wrong.")
     return None
-
-
-def wrong_components(student: np.ndarray, reference: np.ndarray,
-                     close_component: Callable[[int], bool]) -> list[str]:
-    """Names of the components that fail ``close_component(index)``.
-
-    >>> wrong_components(None, None, lambda i: i != 1)
-    ['y']
-    """
-    return [_AXES[i] for i in range(3) if not close_component(i)]

@@ -38,8 +38,6 @@ ANSWER_FILES = ("answers.yaml", "answers.yml", "answers.json", "answers.txt")
 SUFFIXES = (".yaml", ".yml", ".json", ".txt")
 IGNORED_NAMES = {"__MACOSX", "Thumbs.db", "desktop.ini"}
 
-SUBMISSION_STATUSES = ("read", "missing", "unreadable")
-
 
 class _Unread(SubmissionError):
     """A file that gave no answers, with the notes gathered while reading it."""

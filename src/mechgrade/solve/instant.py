@@ -28,8 +28,8 @@ from scipy import linalg, optimize
 from ..errors import InconsistentError, SolveError, UnderdeterminedError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics import Kinematics, derive
-from ..spec.model import Given, Objective, Problem
-from ..spec.validate import expression_type, symbol_meanings
+from ..spec.model import Objective, Problem
+from ..spec.validate import symbol_meanings
 from ..units import from_si, si_unit
 from .result import MistakeValue, ObjectiveResult, Solution, StateValue
 

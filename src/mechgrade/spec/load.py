@@ -14,10 +14,10 @@ from pathlib import Path
 
 import jsonschema
 
-from ..errors import ExpressionError, Location, MechgradeError, SpecError, UnitError
-from ..expressions.syntax import Name, Node, Prime, parse
+from ..errors import ExpressionError, Location, SpecError, UnitError
+from ..expressions.syntax import Name, parse
 from ..units import normalize_unit, parse_quantity, to_si
-from ..yamlio import Document, field_path, read_yaml, read_yaml_text
+from ..yamlio import Document, read_yaml, read_yaml_text
 from .language import FUNCTIONS
 from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake, Objective,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)

@@ -469,8 +469,3 @@ def symbol_meanings(problem: Problem, objective: Objective) -> dict[str, Node]:
     """Each declared symbol of a symbolic objective -> the Name/Prime node it stands for."""
     checker = _Checker(problem)
     return {d.name: checker.symbol_meaning(d) for d in objective.symbols}
-
-
-def expression_type(problem: Problem, expr: Expr) -> Type:
-    """The kind and dimension of a spec expression (used by the solver for SI units)."""
-    return _Checker(problem).type_of(expr)
