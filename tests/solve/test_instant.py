@@ -230,3 +230,27 @@ def test_an_objective_can_be_asked_at_its_own_instant():
 def test_an_expression_given_unknown_to_the_spec_cannot_be_added_later():
     with pytest.raises(SolveError, match="cannot give 'dot\\(vel\\(P, N\\), N.x\\)'"):
         solve(load(BASE), givens={"dot(vel(P, N), N.x)": 1.0})
+
+
+def test_an_instantaneous_centre_needs_planar_motion():
+    text = """
+id: screw
+title: A body that spins and slides along its spin axis
+statement: Frame A spins about N.z while its origin C rises along N.z.
+inertial: {frame: N, point: O}
+frames:
+  A: {parent: N, rotation: {axis: z, angle: theta}, origin: C}
+points:
+  C: {from: O, position: z*N.z}
+  P: {from: C, position: r*A.x}
+coordinates: {theta: rad, z: m}
+parameters: {r: m}
+givens: {r: 1 m, theta: 0 deg, z: 0 m, "theta'": 2 rad/s, "z'": VZ}
+objectives:
+  - {id: ic, prompt: Centre., find: "pos(ic(A, N), C)", kind: vector, frame: N, unit: m}
+"""
+    planar = solve(load(text.replace("VZ", "0 m/s")))
+    assert planar.result("ic").value == pytest.approx((0.0, 0.0, 0.0))
+    with pytest.raises(SolveError, match="objective 'ic' does not exist at this instant: body A "
+                                         "has no point of zero velocity in N"):
+        solve(load(text.replace("VZ", "1 m/s")))

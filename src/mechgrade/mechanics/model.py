@@ -58,6 +58,8 @@ class Kinematics:
     (velocity and acceleration levels include the time derivatives of the levels above);
     ``objectives`` maps an objective id to a scalar expression or a 3x1 matrix of components
     in the objective's frame; ``mistakes`` likewise for author-declared mistaken models.
+    ``requirements`` are ``(objective id, reason, expr)``: ``expr`` must vanish at the instant
+    for the objective to exist (a point of zero velocity needs planar motion).
     """
 
     problem: str
@@ -73,6 +75,7 @@ class Kinematics:
     conditions: tuple[Condition, ...]
     objectives: tuple[tuple[str, object], ...]
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
+    requirements: tuple[tuple[str, str, object], ...]
     constraint_count: int
 
     def objective(self, objective_id: str):
@@ -118,6 +121,7 @@ class _Model:
         self.inertial = self.frames[problem.inertial_frame]
         self.spec_points = {p.name: p for p in problem.points}
         self.positions: dict[str, Vector] = {}
+        self.requirements: list[tuple[str, object]] = []
         for point in problem.points:
             self.position(point.name)
 
@@ -218,6 +222,12 @@ class _Model:
         origin = self.origin(body)
         omega = self.frames[body].ang_vel_in(self.frames[frame])
         v = self.point_velocity(Name(origin), frame)
+        # Only motion with v perpendicular to omega (planar) has a point of zero velocity;
+        # otherwise this is the point of the screw axis nearest the origin, which still moves.
+        self.requirements.append((f"body {body} has no point of zero velocity in {frame} at "
+                                  "this instant (its velocity has a part along its angular "
+                                  "velocity: the motion is not planar)",
+                                  (omega & v) / (omega.magnitude() * v.magnitude() + 1)))
         return self.positions[origin] + (omega ^ v) / (omega & omega)
 
     def point_velocity(self, node: Node, frame: str) -> Vector:
@@ -386,8 +396,12 @@ def derive(problem: Problem) -> Kinematics:
 
     objectives = []
     mistakes = []
+    requirements = []
     for obj in problem.objectives:
+        model.requirements.clear()
         objectives.append((obj.id, _objective_value(model, obj.find, obj.frame)))
+        requirements += [(obj.id, reason, model.plain(expr))
+                         for reason, expr in model.requirements]
         mistakes.append((obj.id, tuple(_objective_value(model, m.find, obj.frame)
                                        for m in obj.mistakes)))
     return Kinematics(
@@ -396,7 +410,8 @@ def derive(problem: Problem) -> Kinematics:
         parameters=tuple(model.params.items()),
         position=plain_equations(position_dyn), velocity=plain_equations(velocity_all),
         acceleration=plain_equations(acceleration_all), conditions=tuple(conditions.values()),
-        objectives=tuple(objectives), mistakes=tuple(mistakes), constraint_count=count)
+        objectives=tuple(objectives), mistakes=tuple(mistakes),
+        requirements=tuple(requirements), constraint_count=count)
 
 
 def _level(expr: sp.Expr, model: _Model) -> int:

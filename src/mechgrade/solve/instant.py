@@ -59,6 +59,7 @@ class _Plan:
     condition_keys: tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...]]
     objectives: tuple[tuple[str, object], ...]
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
+    requirements: tuple[tuple[str, str, object], ...]
 
 
 def _lambdify(symbols, expr):
@@ -117,6 +118,8 @@ def plan(problem: Problem) -> _Plan:
                          if _numeric(problem.objective(oid))),
         mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs))
                        for oid, exprs in k.mistakes if _numeric(problem.objective(oid))),
+        requirements=tuple((oid, reason, _lambdify(symbols, expr))
+                           for oid, reason, expr in k.requirements),
     )
 
 
@@ -308,6 +311,15 @@ class _Instant:
                     out[oid] = np.asarray(f(*self.values), dtype=float).ravel()
         return out
 
+    def check_requirements(self, only: set[str]) -> None:
+        """Raise if an objective in ``only`` does not exist at this instant."""
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            for oid, reason, f in self.p.requirements:
+                if oid in only and abs(float(f(*self.values))) > 1e-9:
+                    raise SolveError(f"objective '{oid}' does not exist at this instant: "
+                                     f"{reason}", where=self.problem.objective(oid).where)
+
     def mistake_values(self, only: set[str]) -> dict[str, list[np.ndarray]]:
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -496,12 +508,14 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None)
         inst, values, mistakes = None, {}, {}
         if numeric:
             inst, values = _solve_numeric(problem, p, given_map, numeric)
+            inst.check_requirements(numeric)
             mistakes = inst.mistake_values(numeric)
             if not overrides or base_inst is None:
                 base_inst = inst
         for obj in objectives:
             if obj.kind == "symbolic":
-                results[obj.id] = _symbolic_result(problem, k, obj, given_map)
+                frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
+                results[obj.id] = _symbolic_result(problem, obj.id, frozen)
             else:
                 results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
     return Solution(problem=problem.id,
@@ -520,9 +534,12 @@ def _instants(problem: Problem):
     return sorted(groups.values(), key=lambda group: bool(group[0]))
 
 
-def _symbolic_result(problem: Problem, k: Kinematics, obj: Objective,
-                     given_map: dict) -> ObjectiveResult:
-    expr, meanings = _symbolic(problem, k, obj, given_map)
+@lru_cache(maxsize=512)
+def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
+    """A symbolic objective's answer; cached, since re-solving with other givens (error carried
+    forward, variants) rarely changes the pure-number givens it depends on."""
+    obj = problem.objective(objective_id)
+    expr, meanings = _symbolic(problem, plan(problem).k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
     return ObjectiveResult(
         id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(expr), symbols=tuple(meanings),
