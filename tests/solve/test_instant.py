@@ -254,3 +254,19 @@ objectives:
     with pytest.raises(SolveError, match="objective 'ic' does not exist at this instant: body A "
                                          "has no point of zero velocity in N"):
         solve(load(text.replace("VZ", "1 m/s")))
+
+
+def test_only_the_objectives_asked_for_are_solved():
+    text = BASE.replace("  theta'': 1 rad/s^2\n", "") + """  - id: accel
+    prompt: Acceleration magnitude (needs theta'').
+    find: mag(acc(P, N))
+    kind: scalar
+    unit: m/s^2
+"""
+    problem = load(text)
+    with pytest.raises(UnderdeterminedError, match="'accel'"):
+        solve(problem)
+    solution = solve(problem, objectives=["speed"])
+    assert [r.id for r in solution.results] == ["speed"]
+    with pytest.raises(SolveError, match="no objective 'nope'"):
+        solve(problem, objectives=["nope"])

@@ -317,7 +317,7 @@ class _Judge:
             overrides[given_key] = value
         if not overrides:
             return verdict, credit
-        solution, replaced = self._solve_with(problem, overrides)
+        solution, replaced = self._solve_with(problem, overrides, item.objective.id)
         if isinstance(solution, MechgradeError):
             feedback.append(f"Error carried forward could not be applied: with your "
                             f"{_listing(sorted(overrides))} the problem cannot be solved "
@@ -346,37 +346,38 @@ class _Judge:
         index = self.plan.problems.index(problem)
         return self.plan.solutions[index].result(objective_id)
 
-    def _solve_with(self, problem: Problem, overrides: dict[str, float]):
+    def _solve_with(self, problem: Problem, overrides: dict[str, float], objective_id: str):
         """Solve with the student's values; ``(solution or error, givens replaced)``.
 
         A value the spec derives from other givens over-determines the problem when simply
         added (x' given while y' fixes it). Then each given of the same derivative order is
         dropped in turn, in spec order, and the first consistent solution is used.
         """
-        key = (problem.id, tuple(sorted(overrides.items())))
+        key = (problem.id, objective_id, tuple(sorted(overrides.items())))
         if key in self._ecf_solutions:
             return self._ecf_solutions[key]
-        outcome = self._attempt(problem, dict(overrides)), ()
+        outcome = self._attempt(problem, dict(overrides), objective_id), ()
         if isinstance(outcome[0], InconsistentError):
             orders = {_order(k) for k in overrides}
             for given in problem.givens:
                 name = given.key.text
                 if name in overrides or _order(name) not in orders:
                     continue
-                attempt = self._attempt(problem, {**overrides, name: None})
+                attempt = self._attempt(problem, {**overrides, name: None}, objective_id)
                 if not isinstance(attempt, MechgradeError):
                     outcome = attempt, (name,)
                     break
         self._ecf_solutions[key] = outcome
         return outcome
 
-    def _attempt(self, problem: Problem, givens: dict):
+    def _attempt(self, problem: Problem, givens: dict, objective_id: str):
         try:
             if self._resolve is not None:
                 return self._resolve(problem, givens)
             from ..solve import solve
 
-            return solve(problem, givens=givens)
+            # Only the objective being re-checked: another one may not exist with these values.
+            return solve(problem, givens=givens, objectives=(objective_id,))
         except MechgradeError as err:
             return err
 

@@ -19,7 +19,7 @@ import math
 import warnings
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Mapping
+from typing import Collection, Mapping
 
 import numpy as np
 import sympy as sp
@@ -490,8 +490,9 @@ def _exact(entry) -> sp.Expr:
 # ---------------------------------------------------------------------------- entry point
 
 
-def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None) -> Solution:
-    """Solve every objective of ``problem``.
+def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
+          objectives: Collection[str] | None = None) -> Solution:
+    """Solve every objective of ``problem`` (or only those named in ``objectives``).
 
     ``givens`` overrides given values for this call only: keys are given names as written in
     the spec (``"theta'"``, ``"dot(vel(B, N), B.x)"``), values are SI numbers, ``None`` removes
@@ -501,7 +502,14 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None)
     k = p.k
     results: dict[str, ObjectiveResult] = {}
     base_inst = None
-    for overrides, objectives in _instants(problem):
+    wanted = set(objectives) if objectives is not None else {o.id for o in problem.objectives}
+    unknown = wanted - {o.id for o in problem.objectives}
+    if unknown:
+        raise SolveError(f"no objective '{sorted(unknown)[0]}' in problem '{problem.id}'")
+    for overrides, group in _instants(problem):
+        objectives = [o for o in group if o.id in wanted]
+        if not objectives:
+            continue
         given_map = _givens(problem, givens)
         given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
         numeric = {o.id for o in objectives if _numeric(o)}
@@ -519,7 +527,7 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None)
             else:
                 results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
     return Solution(problem=problem.id,
-                    results=tuple(results[o.id] for o in problem.objectives),
+                    results=tuple(results[o.id] for o in problem.objectives if o.id in wanted),
                     state=_state(problem, p, base_inst), dof=degrees_of_freedom(k, base_inst))
 
 
