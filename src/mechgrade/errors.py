@@ -65,6 +65,24 @@ class MechgradeError(Exception):
         return f"{place}: {self.message}" if place else self.message
 
 
+@dataclass(frozen=True)
+class AuthorWarning:
+    """Something legal in a problem file that is probably not what the author meant.
+
+    Warnings never stop a run; ``check`` and ``solve`` print them after the answers.
+
+    >>> str(AuthorWarning("T moves with the disk centre", Location("p.yaml", 30, 7, "givens")))
+    'p.yaml:30:7: givens: warning: T moves with the disk centre'
+    """
+
+    message: str
+    where: Location = Location()
+
+    def __str__(self) -> str:
+        place = str(self.where)
+        return f"{place}: warning: {self.message}" if place else f"warning: {self.message}"
+
+
 class SpecError(MechgradeError):
     """A problem file is malformed: YAML, schema, names, types or dimensions."""
 
