@@ -26,11 +26,11 @@ def test_unit_text_is_normalised(text, canonical):
     ("m/s**9**9", "(misplaced power)"),
     ("m/s^99", "expected a power of at most 12"),
     ("m/s^x", "expected a whole-number power after '^'"),
-    ("m 2", "(a number '2' inside a unit)"),
+    ("m 2", "found 'm «2»' (a number inside a unit)"),
     ("m/", "expected a complete unit"),
     ("m" * 70, "expected a unit of at most 64 characters"),
     ("__import__", "('__import__' is not a unit)"),
-    ("m;s", "cannot read ';s'"),
+    ("m;s", "found 'm«;»s' (cannot read it)"),
 ])
 def test_bad_unit_text_is_refused(text, message):
     with pytest.raises(UnitError) as info:

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .errors import UnitError
+from .expressions.excerpt import excerpt
 
 MAX_UNIT_LENGTH = 64
 MAX_EXPONENT = 12
@@ -29,9 +30,21 @@ MAX_EXPONENT = 12
 _SUPERSCRIPTS = str.maketrans({"⁰": "0", "¹": "1", "²": "2", "³": "3", "⁴": "4", "⁵": "5",
                                "⁶": "6", "⁷": "7", "⁸": "8", "⁹": "9", "⁻": "-"})
 _NUMBER = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)")
-_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-z_µΩ°]+)(?P<power>-?\d+)?|(?P<num>\d+(?:\.\d+)?)"
+_TOKEN = re.compile(r"\s*(?:(?P<name>g_?0(?![\w])|[A-Za-z_µΩ°]+)(?P<power>-?\d+)?"
+                    r"|(?P<num>\d+(?:\.\d+)?)"
                     r"|(?P<op>\*\*|[*/^()·⋅.\-]))")
 _DIMENSIONLESS_WORDS = {"", "1", "dimensionless", "-", "none", "unitless"}
+# pint names that are constants or misreadings, not units a student means.
+_NOT_UNITS = {
+    "e": "the elementary charge; for a power of ten write 9.85e1, without spaces",
+    "E": "for a power of ten write 9.85e1, without spaces",
+    "k": "Boltzmann's constant; write kg, km or kN",
+    "c": "the speed of light",
+    "R": "the gas constant",
+    "pi": "a number; write it before the unit, as in 2*pi rad",
+    "Nm": "write N*m for newton metres",
+}
+_DEGREE_SIGNS = (("°C", " degC "), ("°F", " degF "), ("°K", " K "), ("°R", " degR "))
 
 
 @lru_cache(maxsize=1)
@@ -71,10 +84,13 @@ def normalize_unit(text: str) -> str:
     text = unicodedata.normalize("NFC", str(text)).strip()
     if len(text) > MAX_UNIT_LENGTH:
         raise UnitError(f"expected a unit of at most {MAX_UNIT_LENGTH} characters, "
-                        f"found {len(text)} characters")
+                        f"found {len(text)} characters: {excerpt(text)}")
     if text.lower() in _DIMENSIONLESS_WORDS:
         return ""
-    text = text.translate(_SUPERSCRIPTS).replace("°", " deg ")
+    text = text.translate(_SUPERSCRIPTS)
+    for sign, name in _DEGREE_SIGNS:
+        text = text.replace(sign, name)
+    text = text.replace("°", " deg ")
     out: list[str] = []
     pos = 0
     expect_operand = True
@@ -83,16 +99,21 @@ def normalize_unit(text: str) -> str:
             break
         m = _TOKEN.match(text, pos)
         if not m:
-            raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
-                            f"(cannot read {text[pos:].strip()[:10]!r})")
+            start = len(text) - len(text[pos:].lstrip())
+            raise UnitError(f"expected a unit such as 'm/s^2', found "
+                            f"{excerpt(text, start)} (cannot read it)")
         pos = m.end()
         if m.group("name"):
-            name = m.group("name").replace("µ", "u")
+            name = m.group("name").replace("µ", "u").replace("g0", "g_0")
             if not expect_operand:
                 out.append("*")
             _check_unit_name(name, raw)
             out.append(name)
             if m.group("power"):
+                if m.group("power").startswith("-") and len(out) >= 2 and out[-2] == "/":
+                    raise UnitError(f"expected a unit such as 'm/s^2', found "
+                                    f"{excerpt(text, m.start('name'), m.end())} (a negative "
+                                    f"power after '/' is ambiguous: write s^2 or *s^-2)")
                 out += ["**", _exponent(m.group("power"), raw)]
             expect_operand = False
         elif m.group("num"):
@@ -103,22 +124,30 @@ def normalize_unit(text: str) -> str:
                 out.append("1")
                 expect_operand = False
             else:
-                raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
-                                f"(a number {m.group('num')!r} inside a unit)")
+                raise UnitError(f"expected a unit such as 'm/s^2', found "
+                                f"{excerpt(text, m.start('num'), m.end())} (a number inside "
+                                f"a unit)")
         else:
             op = m.group("op")
             if op in ("^", "**"):
                 if expect_operand or (len(out) >= 2 and out[-2] == "**"):
-                    raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
-                                    "(misplaced power)")
+                    raise UnitError(f"expected a unit such as 'm/s^2', found "
+                                    f"{excerpt(text, m.start('op'), m.end())} (misplaced power)")
                 exp = _NUMBER.match(text, pos)
                 if not exp:
-                    raise UnitError(f"expected a whole-number power after '^' in {raw!r}")
+                    raise UnitError(f"expected a whole-number power after '^', found "
+                                    f"{excerpt(text, m.start('op'), m.end())}")
                 out += ["**", _exponent(exp.group(1), raw)]
                 pos = exp.end()
+            elif op in ("*", "·", "⋅", ".", "/") and expect_operand and out:
+                raise UnitError(f"expected a unit such as 'm/s^2', found "
+                                f"{excerpt(text, m.start('op'), m.end())} (an operator "
+                                f"with nothing before it)")
             elif op in ("*", "·", "⋅", "."):
                 if expect_operand:
-                    raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r}")
+                    raise UnitError(f"expected a unit such as 'm/s^2', found "
+                                    f"{excerpt(text, m.start('op'), m.end())} (an operator "
+                                    f"with nothing before it)")
                 out.append("*")
                 expect_operand = True
             elif op == "/":
@@ -135,9 +164,10 @@ def normalize_unit(text: str) -> str:
                 out.append(")")
                 expect_operand = False
             else:
-                raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r}")
+                raise UnitError(f"expected a unit such as 'm/s^2', found "
+                                f"{excerpt(text, m.start('op'), m.end())}")
     if expect_operand or out.count("(") != out.count(")"):
-        raise UnitError(f"expected a complete unit such as 'm/s^2', found {raw!r}")
+        raise UnitError(f"expected a complete unit such as 'm/s^2', found {excerpt(raw)}")
     canonical = " ".join(out).replace("( ", "(").replace(" )", ")")
     _pint_unit(canonical, raw)  # proves pint reads it
     return canonical
@@ -147,19 +177,37 @@ def _exponent(text: str, raw: str) -> str:
     try:
         value = int(text)
     except ValueError:
-        raise UnitError(f"expected a whole-number power in {raw!r}, found {text!r}") from None
+        raise UnitError(f"expected a whole-number power in {excerpt(raw)}, "
+                        f"found {excerpt(text)}") from None
     if abs(value) > MAX_EXPONENT:
-        raise UnitError(f"expected a power of at most {MAX_EXPONENT} in {raw!r}, found {value}")
+        raise UnitError(f"expected a power of at most {MAX_EXPONENT} in {excerpt(raw)}, "
+                        f"found {excerpt(text)}")
     return str(value)
 
 
+@lru_cache(maxsize=1024)
 def _check_unit_name(name: str, raw: str) -> None:
+    """Refuse names pint reads but a student does not mean: constants (``e``), plurals of
+    abbreviations (``fts``: ft or ft*s?) and offset temperature scales (``degC``)."""
+    if name in _NOT_UNITS:
+        raise UnitError(f"expected a unit such as 'm/s^2', found {excerpt(name)} in "
+                        f"{excerpt(raw)} (not a unit here: {_NOT_UNITS[name]})")
     ureg = registry()
     try:
-        ureg.parse_units(name)
+        unit = ureg.parse_units(name)
+        stem = ureg.parse_units(name[:-1]) if name.endswith("s") and len(name) <= 4 else None
     except Exception:
-        raise UnitError(f"expected a unit such as 'm/s^2', found {raw!r} "
-                        f"({name!r} is not a unit)") from None
+        stem = None
+        if not name.endswith("s") or len(name) > 4:
+            raise UnitError(f"expected a unit such as 'm/s^2', found {excerpt(raw)} "
+                            f"({excerpt(name)} is not a unit)") from None
+        unit = None
+    if unit is None or (stem is not None and stem == unit):
+        raise UnitError(f"expected a unit such as 'm/s^2', found {excerpt(name)} in "
+                        f"{excerpt(raw)} (ambiguous: write {name[:-1]} or {name[:-1]}*s)")
+    if not ureg.Quantity(1.0, unit)._is_multiplicative:
+        raise UnitError(f"expected an absolute temperature (K or degR), found {excerpt(name)} "
+                        f"(an offset scale: convert to K first)")
 
 
 @lru_cache(maxsize=4096)
@@ -170,7 +218,8 @@ def _pint_unit(canonical: str, raw: str | None = None):
     try:
         return ureg.parse_units(canonical)
     except Exception:
-        raise UnitError(f"expected a unit such as 'm/s^2', found {raw or canonical!r}") from None
+        raise UnitError(f"expected a unit such as 'm/s^2', found "
+                        f"{excerpt(raw or canonical)}") from None
 
 
 @lru_cache(maxsize=4096)
@@ -272,8 +321,8 @@ def parse_quantity(text: str) -> Quantity:
     m = _NUMBER.match(text)
     if not m:
         raise UnitError(f"expected a number followed by a unit such as '9.81 m/s^2', "
-                        f"found {text!r}")
+                        f"found {excerpt(text)}")
     value = float(m.group(1))
     if value != value or value in (float("inf"), float("-inf")):
-        raise UnitError(f"expected a finite number, found {text!r}")
+        raise UnitError(f"expected a finite number, found {excerpt(text)}")
     return Quantity(value, normalize_unit(text[m.end():]))

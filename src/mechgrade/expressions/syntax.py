@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from typing import Iterable, Union
 
 from ..errors import ExpressionError
+from .excerpt import excerpt
 
 MAX_LENGTH = 2000
 MAX_NODES = 400
@@ -199,6 +200,9 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
         raise ExpressionError(f"expected text, found {type(text).__name__}")
     if len(text) > MAX_LENGTH:
         raise ExpressionError(f"expected at most {MAX_LENGTH} characters, found {len(text)}")
+    if "#" in text:  # Python's tokenizer would drop the rest as a comment
+        raise ExpressionError(f"expected an expression without '#', found "
+                              f"{excerpt(text, text.index('#'))}")
     text = unicodedata.normalize("NFC", text)
     out: list[str] = []
     for ch in text:
@@ -238,16 +242,25 @@ def _implicit_products(text: str, functions: set[str]) -> str:
                   if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER,
                                     tokenize.INDENT, tokenize.DEDENT)]
     except (tokenize.TokenError, IndentationError, SyntaxError) as exc:
-        raise ExpressionError(f"expected a complete expression, found {text!r} "
+        raise ExpressionError(f"expected a complete expression, found {excerpt(text)} "
                               f"({_reason(exc)})") from None
     pieces: list[str] = []
     prev = None
     for tok in tokens:
         if tok.type == tokenize.ERRORTOKEN and not tok.string.isspace():
             raise ExpressionError(f"expected names, numbers, operators and functions, "
-                                  f"found {tok.string!r}")
+                                  f"found {excerpt(tok.string)}")
+        if prev is not None and prev.type == tok.type == tokenize.NUMBER:
+            # "98.5.0", "1 000", "9.85e1.5": never read number fragments as a product
+            raise ExpressionError(f"expected an operator between two numbers, found "
+                                  f"{excerpt(text, tok.start[1])}")
         if prev is not None and _juxtaposed(prev, tok, functions):
             pieces.append("*")
+        if tok.type == tokenize.NUMBER and tok.string[-1] in "jJ":
+            # Python's imaginary literal: "3j" is 3 times the name j
+            pieces += [tok.string[:-1], "*", tok.string[-1]]
+            prev = tok
+            continue
         pieces.append(tok.string)
         if not (tok.type == tokenize.ERRORTOKEN and tok.string.isspace()):
             prev = tok
@@ -295,7 +308,7 @@ def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) 
     try:
         tree = ast.parse(source.strip(), mode="eval")
     except SyntaxError as exc:
-        raise ExpressionError(f"expected a complete expression, found {text.strip()!r} "
+        raise ExpressionError(f"expected a complete expression, found {excerpt(text.strip())} "
                               f"({_reason(exc)})", offset=exc.offset) from None
     except (MemoryError, RecursionError, ValueError):
         raise ExpressionError("expected a simpler expression (too deeply nested)") from None
@@ -362,7 +375,9 @@ class _Builder:
                     raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
                                           f"for {func}(...), found {len(args)}")
                 func = canonical
-            return Call(func, args)
+            out = Call(func, args)
+            _check_magnitude(out)
+            return out
         raise ExpressionError(f"expected names, numbers, operators and functions, "
                               f"found {_describe(node)}")
 
@@ -372,10 +387,9 @@ class _Builder:
         text = repr(value) if isinstance(value, float) else str(value)
         if len(text.replace("-", "").replace(".", "").split("e")[0]) > MAX_LITERAL_DIGITS:
             raise ExpressionError(f"expected a number of at most {MAX_LITERAL_DIGITS} digits")
-        if isinstance(value, float) and (math.isinf(value) or abs(value) > MAX_MAGNITUDE):
-            raise ExpressionError("expected a number of sensible size, found an enormous one")
-        if isinstance(value, int) and abs(value) > MAX_MAGNITUDE:
-            raise ExpressionError("expected a number of sensible size, found an enormous one")
+        if not abs(value) <= MAX_MAGNITUDE:
+            raise ExpressionError(f"expected numbers of at most {MAX_MAGNITUDE:g}, found "
+                                  f"{excerpt(text)} {CONSTANT_PROBLEMS[0]}")
         return Num(text)
 
     def _name(self, name: str) -> Node:
@@ -416,20 +430,39 @@ def _describe_constant(value) -> str:
 def constant_value(node: Node) -> float | None:
     """The value of a tree made only of numbers, operators, ``pi`` and math functions.
 
-    Returns ``None`` when the tree uses a name; raises :class:`ExpressionError` on overflow.
+    Returns ``None`` when the tree uses a name; raises :class:`ExpressionError` ending with
+    one of :data:`CONSTANT_PROBLEMS` when a constant is too large, divides by zero or is not a
+    real number.
 
     >>> constant_value(parse("2**10 / 4"))
     256.0
     >>> constant_value(parse("x + 1")) is None
     True
+    >>> constant_value(Call("exp", (Call("exp", (Num("1000"),)),)))
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.ExpressionError: expected numbers of at most 1e+150, found 'exp(exp(1000))' (too large)
     """
     try:
-        return _const(node)
+        value = _const(node)
     except _NotConstant:
         return None
-    except (OverflowError, ZeroDivisionError, ValueError):
-        raise ExpressionError("expected numbers of sensible size (a constant part "
-                              "overflows or divides by zero)") from None
+    except OverflowError:
+        value = math.inf
+    except ZeroDivisionError:
+        raise ExpressionError(f"expected a defined constant, found {excerpt(to_text(node))} "
+                              f"{CONSTANT_PROBLEMS[1]}") from None
+    except ValueError:
+        raise ExpressionError(f"expected a real constant, found {excerpt(to_text(node))} "
+                              f"{CONSTANT_PROBLEMS[2]}") from None
+    if not abs(value) <= MAX_MAGNITUDE:
+        raise ExpressionError(f"expected numbers of at most {MAX_MAGNITUDE:g}, found "
+                              f"{excerpt(to_text(node))} {CONSTANT_PROBLEMS[0]}")
+    return value
+
+
+CONSTANT_PROBLEMS = ("(too large)", "(divides by zero)", "(not a real number)")
+"""How a constant part can fail; readers refuse such text instead of trying other readings."""
 
 
 class _NotConstant(Exception):
@@ -506,11 +539,8 @@ def _check_power(node: Bin) -> None:
     exponent = constant_value(node.right)
     if exponent is not None and abs(exponent) > MAX_POWER:
         raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
-                              f"{to_text(node.right)!r}")
+                              f"{excerpt(to_text(node.right))}")
 
 
-def _check_magnitude(node: Bin) -> None:
-    value = constant_value(node)
-    if value is not None and abs(value) > MAX_MAGNITUDE:
-        raise ExpressionError("expected numbers of sensible size, found a constant that is "
-                              "enormous")
+def _check_magnitude(node: Bin | Call) -> None:
+    constant_value(node)  # raises when a constant part is too large, undefined or not real

@@ -31,8 +31,9 @@ from typing import Union
 from ..errors import AnswerError, ExpressionError, UnitError
 from ..expressions import syntax
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Prime, Unary
+from ..expressions.excerpt import excerpt
 from ..solve.result import ObjectiveResult
-from ..units import normalize_unit
+from ..units import dimension, normalize_unit
 
 MAX_ANSWER_LENGTH = 2000
 """Longest answer text read at all (the expression reader has the same bound)."""
@@ -127,24 +128,43 @@ _SENSE = re.compile(r"\s*\(?\s*(?P<sense>ccw|cw|counter[- ]?clockwise|anti[- ]?c
 
 
 def clean(text: str) -> str:
-    """Check that ``text`` is sensible, bounded text and normalise dashes and superscripts.
+    """Check that ``text`` is one bounded line of readable text; normalise dashes, superscripts
+    and spaces (thin and no-break spaces are spaces).
 
     >>> clean("  −66 î − 40 ĵ ft/s² ")
     '-66 i - 40 j ft/s^2'
     >>> clean("9\\x00")
     Traceback (most recent call last):
     ...
-    mechgrade.errors.AnswerError: expected text, found a control character (binary data?)
+    mechgrade.errors.AnswerError: expected text, found a control character at '9«\\x00»' (binary data?)
+    >>> clean("98.5\\r\\n30 m/s^2")
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.AnswerError: expected one answer on one line, found a line break at '98.5«\\r»\\n30 m/s^2'
     """
     if not isinstance(text, str):
         raise AnswerError(f"expected text, found {type(text).__name__}")
     if len(text) > MAX_ANSWER_LENGTH:
         raise AnswerError(f"expected an answer of at most {MAX_ANSWER_LENGTH} characters, "
-                          f"found {len(text)} characters")
-    if "\ufffd" in text or any(0xD800 <= ord(c) <= 0xDFFF for c in text):
-        raise AnswerError("expected readable text, found bytes that are not valid UTF-8")
-    if any(unicodedata.category(c) == "Cc" and c not in "\t\n\r" for c in text):
-        raise AnswerError("expected text, found a control character (binary data?)")
+                          f"found {len(text)} characters: {excerpt(text)}")
+    bad = next((i for i, c in enumerate(text) if c == "\ufffd" or 0xD800 <= ord(c) <= 0xDFFF),
+               None)
+    if bad is not None:
+        raise AnswerError(f"expected readable text, found bytes that are not valid UTF-8 at "
+                          f"{excerpt(text, bad)}")
+    text = text.strip()
+    bad = next((i for i, c in enumerate(text)
+                if unicodedata.category(c) == "Cc" and c not in _LINE_BREAKS and c != "\t"), None)
+    if bad is not None:
+        raise AnswerError(f"expected text, found a control character at {excerpt(text, bad)} "
+                          f"(binary data?)")
+    bad = next((i for i, c in enumerate(text) if c in _LINE_BREAKS), None)
+    if bad is not None:
+        raise AnswerError(f"expected one answer on one line, found a line break at "
+                          f"{excerpt(text, bad)}")
+    if "#" in text:
+        raise AnswerError(f"expected an answer without '#' (nothing after it would be read), "
+                          f"found {excerpt(text, text.index('#'))}")
     text = unicodedata.normalize("NFC", text).translate(_DASHES)
     text = text.replace("k\u0302", "k").replace("i\u0302", "i").replace("j\u0302", "j")
     text = _SUPERSCRIPT_RUN.sub(
@@ -153,9 +173,15 @@ def clean(text: str) -> str:
     return " ".join(text.split())
 
 
+_LINE_BREAKS = "\n\r\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029"
+
+
 # ---------------------------------------------------------------------------- numbers
 
-_NUMBER_TEXT = (r"[+-]?\s*(?:\d+(?:\.\d*)?|\.\d+)"
+# An integer part is digits, or SI-style groups of exactly three digits after one to three
+# (``12 345``, ``3 002.28``): grouped digits are one number, never a product.
+_INTEGER = r"(?:\d{1,3}(?: \d{3})+(?![\d])|\d+)"
+_NUMBER_TEXT = (r"[+-]?\s*(?:" + _INTEGER + r"(?:\.\d*)?|\.\d+)"
                 r"(?:[eE][+-]?\d+|\s*[x*]\s*10\s*(?:\^|\*\*)\s*\(?\s*[+-]?\d+\s*\)?)?")
 _NUMBER = re.compile(r"\s*(" + _NUMBER_TEXT + r")")
 _MANTISSA = re.compile(r"[+-]?\s*(?P<m>\d+(?:\.\d*)?|\.\d+)"
@@ -165,22 +191,24 @@ MAX_MAGNITUDE = 1e300
 
 
 def number_value(text: str) -> float:
-    """The value of a number as written (``4.9e1``, ``4.9 x 10^1``, ``-.5``).
+    """The value of a number as written (``4.9e1``, ``4.9 x 10^1``, ``-.5``, ``12 345``).
 
-    >>> number_value("4.9 x 10^1"), number_value("-2.5e-3")
-    (49.0, -0.0025)
+    >>> number_value("4.9 x 10^1"), number_value("-2.5e-3"), number_value("1 000")
+    (49.0, -0.0025, 1000.0)
     """
     compact = text.replace(" ", "")
     m = _MANTISSA.match(compact)
     if not m:
-        raise AnswerError(f"expected a number such as 98.5 or 4.9e1, found {text!r}")
+        raise AnswerError(f"expected a number such as 98.5 or 4.9e1, found {excerpt(text)}")
     exponent_text = m.group("e1") or m.group("e2") or "0"
     if len(exponent_text.lstrip("+-")) > 4:
-        raise AnswerError(f"expected a number of sensible size, found {text!r}")
+        raise AnswerError(f"expected a number of at most {MAX_MAGNITUDE:g}, found "
+                          f"{excerpt(text)} (too large)")
     sign = -1.0 if compact.startswith("-") else 1.0
     value = sign * float(f"{m.group('m')}e{int(exponent_text)}")
     if abs(value) > MAX_MAGNITUDE:
-        raise AnswerError(f"expected a number of sensible size, found {text!r}")
+        raise AnswerError(f"expected a number of at most {MAX_MAGNITUDE:g}, found "
+                          f"{excerpt(text)} (too large)")
     return value
 
 
@@ -190,17 +218,21 @@ def significant_figures(text: str) -> tuple[int, int]:
     Leading zeros never count; trailing zeros of a whole number without a decimal point may or
     may not (``100``: 1 to 3); with a decimal point or in scientific notation they count.
 
+    Zero has as many figures as it has decimal places (at least one): ``0`` and ``0.0`` one,
+    ``0.00`` two (STACK's StrictSigFigs table; PrairieLearn counts the same way).
+
     >>> [significant_figures(t) for t in ("100", "1.00e2", "0.0010", "10.0", "0", "0.00", "98.5")]
-    [(1, 3), (3, 3), (2, 2), (3, 3), (1, 1), (1, 3), (3, 3)]
+    [(1, 3), (3, 3), (2, 2), (3, 3), (1, 1), (2, 2), (3, 3)]
     """
     m = _MANTISSA.match(text.replace(" ", ""))
     if not m:
-        raise AnswerError(f"expected a number such as 98.5 or 4.9e1, found {text!r}")
+        raise AnswerError(f"expected a number such as 98.5 or 4.9e1, found {excerpt(text)}")
     mantissa = m.group("m")
     digits = mantissa.replace(".", "")
     significant = digits.lstrip("0")
     if not significant:  # the number zero
-        return 1, max(1, len(digits))
+        places = len(mantissa.partition(".")[2])
+        return max(1, places), max(1, places)
     if "." in mantissa:
         return len(significant), len(significant)
     trailing = len(significant) - len(significant.rstrip("0"))
@@ -234,12 +266,16 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
     if result.kind == "symbolic":
         return read_expression(text, result.symbols)
     text = _ASSIGNMENT.sub("", text, count=1)
+    signs = _DOUBLE_SIGN.search(text)
+    if signs:
+        raise AnswerError(f"expected one sign, found two at {excerpt(text, signs.start(), signs.end())}"
+                          f" (a leading '- ' from a list?)")
     sense = _SENSE.search(text)
     if sense:
         text = text[:sense.start()].strip()
         if not text:
             raise AnswerError("expected a value before the sense of rotation, found only "
-                              f"{sense.group('sense')!r}")
+                              f"{excerpt(sense.group('sense'))}")
         return _rotation(text, sense.group("sense").lower(), result)
     if _looks_bracketed(text):
         return _bracketed_vector(text)
@@ -249,12 +285,23 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
     return _scalar(text)
 
 
+_DOUBLE_SIGN = re.compile(r"[+-]\s*[+-]")
+
+
+def _angular(unit: str) -> bool:
+    """Whether an objective in ``unit`` is an angle, angular velocity or angular acceleration."""
+    return str(dimension(unit)) in ("dimensionless", "1 / [time]", "1 / [time] ** 2")
+
+
 def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:
     """``0.5 rad/s cw``: counter-clockwise is +k (right-handed, k out of the page)."""
+    if not _angular(result.unit):
+        raise AnswerError(f"expected a signed value: a sense of rotation ({sense}) only goes "
+                          f"with an angle or angular velocity or acceleration")
     number = _scalar(text)
     if number.value < 0:
-        raise AnswerError(f"expected a positive size with '{sense}', found {number.text!r} "
-                          "(give either a sign or a sense of rotation)")
+        raise AnswerError(f"expected a positive size with '{sense}', found "
+                          f"{excerpt(number.text)} (give either a sign or a sense of rotation)")
     clockwise = sense.startswith("cl") or sense == "cw"
     value = -number.value if clockwise else number.value
     shown = ("-" if clockwise else "") + number.text
@@ -267,30 +314,43 @@ def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:
 
 def _scalar(text: str) -> NumberAnswer:
     m = _NUMBER.match(text)
-    if m:
-        number_text = " ".join(m.group(1).split()).replace("- ", "-").replace("+ ", "")
-        rest = text[m.end():].strip()
-        if rest.startswith(","):
-            raise AnswerError(f"expected a number without thousands separators (1000, not "
-                              f"1,000) or a vector in brackets such as '(-66, -40)', "
-                              f"found {text!r}")
-        if _OPERATOR_OR_CONSTANT.match(rest):
-            constant = _constant_with_unit(text)
-            if constant is not None:
-                return constant
-        try:
-            unit = _unit(rest)
-        except AnswerError as unit_error:
-            constant = _constant_with_unit(text)
-            if constant is not None:
-                return constant
-            raise unit_error
-        lo, hi = significant_figures(number_text)
-        return NumberAnswer(number_value(number_text), unit, lo, hi, number_text)
-    constant = _constant_with_unit(text)
-    if constant is not None:
-        return constant
-    raise AnswerError(f"expected a number with a unit such as '98.5 ft/s^2', found {text!r}")
+    if not m:
+        constant = _constant_with_unit(text)
+        if constant is not None:
+            return constant
+        raise AnswerError(f"expected a number with a unit such as '98.5 ft/s^2', found "
+                          f"{excerpt(text)}")
+    number_text = " ".join(m.group(1).split()).replace("- ", "-").replace("+ ", "")
+    rest = text[m.end():].strip()
+    after = len(text) - len(text[m.end():].lstrip())
+    if rest[:1] == ".":
+        raise AnswerError(f"expected one number, found a second decimal point at "
+                          f"{excerpt(text, after)}")
+    if rest[:1].isdigit():
+        raise AnswerError(f"expected one number, found more digits at {excerpt(text, after)} "
+                          f"(write 1000, or group digits in threes: 1 000)")
+    if rest.startswith(","):
+        raise AnswerError(f"expected a number without thousands separators (1000, not 1,000) "
+                          f"or a vector in brackets such as '(-66, -40)', found "
+                          f"{excerpt(text, after)}")
+    lo, hi = significant_figures(number_text)
+    if rest.startswith("*") and not rest.startswith("**"):
+        try:  # 98.5*ft/s^2: an explicit product with the unit keeps the written figures
+            return NumberAnswer(number_value(number_text), _unit(rest[1:]), lo, hi, number_text)
+        except AnswerError:
+            pass
+    if _OPERATOR_OR_CONSTANT.match(rest):
+        constant = _constant_with_unit(text)
+        if constant is not None:
+            return constant
+    try:
+        unit = _unit(rest)
+    except AnswerError as unit_error:
+        constant = _constant_with_unit(text)
+        if constant is not None:
+            return constant
+        raise unit_error
+    return NumberAnswer(number_value(number_text), unit, lo, hi, number_text)
 
 
 _OPERATOR_OR_CONSTANT = re.compile(r"[*/^(]|\*\*|pi\b|(?:sqrt|sin|cos|tan|exp|log)\s*\(")
@@ -300,31 +360,27 @@ def _unit(text: str) -> str | None:
     text = text.strip()
     if not text:
         return None
-    if text.startswith("*"):
-        text = text[1:].strip()
     if text.startswith("[") and text.endswith("]"):
         text = text[1:-1]
     try:
         return normalize_unit(text)
     except UnitError as exc:
-        raise AnswerError(f"expected a unit such as 'm/s^2' after the number, found {text!r} "
-                          f"({_inner(exc.message)})") from None
-
-
-def _inner(message: str) -> str:
-    m = re.search(r"\(([^()]*)\)\s*$", message)
-    return m.group(1) if m else message
+        raise AnswerError(exc.message) from None
 
 
 def _constant_with_unit(text: str) -> NumberAnswer | None:
-    """``2*pi rad/s`` or ``sqrt(2)/2``: a constant expression, then an optional unit."""
+    """``2*pi rad/s`` or ``sqrt(2)/2``: a constant expression, then an optional unit.
+
+    A constant that overflows or is not a real number is refused, never skipped."""
     words = text.split(" ")
     for cut in range(len(words), 0, -1):
         expression, rest = " ".join(words[:cut]), " ".join(words[cut:])
         try:
             node = syntax.parse(expression, attributes=False)
             value = syntax.constant_value(node)
-        except ExpressionError:
+        except ExpressionError as exc:
+            if exc.message.endswith(syntax.CONSTANT_PROBLEMS):
+                raise AnswerError(exc.message) from None
             continue
         if value is None:
             continue
@@ -332,8 +388,6 @@ def _constant_with_unit(text: str) -> NumberAnswer | None:
             unit = _unit(rest)
         except AnswerError:
             continue
-        if value != value or value in (float("inf"), float("-inf")):
-            raise AnswerError(f"expected a finite number, found {expression!r}")
         return NumberAnswer(float(value), unit, None, None, syntax.to_text(node))
     return None
 
@@ -347,16 +401,31 @@ def _looks_bracketed(text: str) -> bool:
     return text[:1] in _OPEN and "," in text
 
 
+def _split_components(text: str) -> tuple[list[str], str]:
+    """The comma-separated parts inside the opening bracket (commas inside calls such as
+    ``atan2(1, 2)`` belong to the call) and the text after the closing bracket."""
+    close, parts, depth, start = _OPEN[text[0]], [], 0, 1
+    for pos in range(1, len(text)):
+        ch = text[pos]
+        if depth == 0 and ch == close:
+            parts.append(text[start:pos].strip())
+            return parts, text[pos + 1:]
+        if ch in "([":
+            depth += 1
+        elif ch in ")]" and depth:
+            depth -= 1
+        elif ch == "," and depth == 0:
+            parts.append(text[start:pos].strip())
+            start = pos + 1
+    raise AnswerError(f"expected a closing {close!r} after the components, found "
+                      f"{excerpt(text)}")
+
+
 def _bracketed_vector(text: str) -> VectorAnswer:
-    close = text.find(_OPEN[text[0]])
-    if close < 0:
-        raise AnswerError(f"expected a closing {_OPEN[text[0]]!r} after the components, "
-                          f"found {text!r}")
-    inner, rest = text[1:close], text[close + 1:]
-    parts = [p.strip() for p in inner.split(",")]
+    parts, rest = _split_components(text)
     if not 2 <= len(parts) <= MAX_COMPONENTS or not all(parts):
         raise AnswerError(f"expected 2 or 3 components such as '(-66, -40) ft/s^2', "
-                          f"found {len(parts)} in {text!r}")
+                          f"found {len(parts)} in {excerpt(text)}")
     values, texts, figures = [], [], []
     for part in parts:
         number = _component(part)
@@ -374,7 +443,7 @@ def _component(text: str) -> NumberAnswer:
     number = _scalar(text)
     if number.unit is not None:
         raise AnswerError(f"expected plain numbers as components with one unit after the "
-                          f"brackets, found {text!r}")
+                          f"brackets, found {excerpt(text)}")
     return number
 
 
@@ -422,7 +491,7 @@ def _unit_vector_sum(text: str) -> VectorAnswer | None:
     if rest.strip():
         if tail:
             raise AnswerError(f"expected components such as '-66 i - 40 j' inside the "
-                              f"parentheses, found {tail!r}")
+                              f"parentheses, found {excerpt(tail)}")
         tail = rest.strip()
     if len(frames) > 1:
         shown = ", ".join(sorted(f or "i/j/k" for f in frames))
@@ -482,6 +551,12 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     >>> read_expression("2L omega^2", ("L", "omega")).text
     '2*L*omega**2'
     """
+    exponent = _E_NOTATION.search(text)
+    if exponent and exponent.group("e") in symbols:
+        raise AnswerError(f"expected an expression in {_names(symbols)}, found "
+                          f"{excerpt(text, exponent.start(), exponent.end())} (a power of ten "
+                          f"or the symbol {exponent.group('e')}? write 2*{exponent.group('e')} "
+                          f"or 2*10^3)")
     try:
         node = syntax.parse(text, attributes=False)
     except ExpressionError as exc:
@@ -490,10 +565,17 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     unknown: list[str] = []
     mapped = _rename(node, aliases, unknown)
     if unknown:
-        expected = ", ".join(symbols) if symbols else "numbers only"
-        raise AnswerError(f"expected an expression in {expected}, found the unknown name "
-                          f"{unknown[0]!r}")
+        raise AnswerError(f"expected an expression in {_names(symbols) or 'numbers only'}, "
+                          f"found the unknown name {excerpt(unknown[0])}")
     return ExpressionAnswer(mapped, _spaced(mapped))
+
+
+def _names(symbols: tuple[str, ...], most: int = 8) -> str:
+    shown = ", ".join(s[:20] for s in symbols[:most])
+    return shown + (", …" if len(symbols) > most else "")
+
+
+_E_NOTATION = re.compile(r"(?<![\w.])\d+(?:\.\d*)?(?P<e>[eE])[+-]?\d")
 
 
 def _spaced(node: Node) -> str:

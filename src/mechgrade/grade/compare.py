@@ -24,6 +24,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeError
+from ..expressions.excerpt import excerpt
 from ..expressions import syntax
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary
 from ..solve.result import MistakeValue, ObjectiveResult
@@ -162,13 +163,24 @@ def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy())
 # ---------------------------------------------------------------------------- numbers
 
 
-def within(student: float, reference: float, rel: float, abs_: float) -> bool:
-    """The relative/absolute test: ``|s - t| <= max(rel*|t|, abs)`` (inclusive).
+FLOAT_SLACK = 1e-9
+"""Relative slack on every tolerance, so a boundary value (``1.05`` for ``1`` at 5 %) is not
+lost to binary rounding."""
 
-    >>> within(99.0, 100.0, 0.01, 0.0), within(98.99, 100.0, 0.01, 0.0)
-    (True, False)
+
+def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
+    """The one tolerance test: ``|s - t| <= max(rel*scale, abs)``, boundary included (with a
+    :data:`FLOAT_SLACK` for binary rounding). ``scale`` defaults to ``|t|``; arrays are compared
+    elementwise (all must pass) and anything not finite fails.
+
+    >>> within(99.0, 100.0, 0.01, 0.0), within(98.99, 100.0, 0.01, 0.0), within(1.05, 1, 0.05, 0)
+    (True, False, True)
     """
-    return abs(student - reference) <= max(rel * abs(reference), abs_)
+    s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
+    size = np.abs(t) if scale is None else abs(float(scale))
+    limit = np.maximum(rel * size, abs_)
+    with np.errstate(all="ignore"):
+        return bool(np.all(np.abs(s - t) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size))
 
 
 def last_place(reference: float, figures: int) -> float:
@@ -183,17 +195,15 @@ def last_place(reference: float, figures: int) -> float:
     return float(f"1e{exponent}")
 
 
-def within_sig_figs(student: float, reference: float, figures: int) -> bool:
-    """Accurate to ``figures`` significant figures: within half a unit of the last place.
+def within_sig_figs(student: float, reference: float, figures: int, basis=None) -> bool:
+    """Accurate to ``figures`` significant figures of ``basis`` (default: the reference): within
+    half a unit of that last place (the :func:`within` test with that absolute tolerance).
 
-    A relative slack of 1e-9 absorbs binary rounding, so ``98.55`` is accepted for
-    ``98.5`` exactly at the boundary.
-
-    >>> within_sig_figs(98.5, 98.51, 3), within_sig_figs(98.4, 98.51, 3)
-    (True, False)
+    >>> within_sig_figs(98.5, 98.51, 3), within_sig_figs(98.4, 98.51, 3), within_sig_figs(98.55, 98.5, 3)
+    (True, False, True)
     """
-    half = 0.5 * last_place(reference, figures)
-    return abs(student - reference) <= half * (1 + 1e-9) + 1e-12 * abs(reference)
+    basis = reference if basis is None else basis
+    return within(student, reference, 0.0, 0.5 * last_place(basis, figures), scale=basis)
 
 
 def _tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
@@ -303,19 +313,20 @@ def _judge_number(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
     if ok:
         return _finish_correct(units, [(answer.sig_figs, answer.sig_figs_max)], policy,
                                read_back, "")
-    close = _array_close(max(rel, 1e-3), abs_)
+    close = _close(max(rel, 1e-3), abs_)
     found = diagnose(np.array([student]), np.array([reference]), close,
                      mistakes=_numeric_mistakes(result, scalar=True))
     return _wrong(found, policy, units,
                   f"Not {_describe_tolerance(result, policy)}.", read_back)
 
 
-def _array_close(rel: float, abs_: float):
+def _close(rel: float, abs_: float):
+    """:func:`within` as a closeness test for diagnoses: a number or vector (up to three
+    components, scaled by its magnitude) or values at sample points (each by its own size)."""
     def close(s: np.ndarray, t: np.ndarray) -> bool:
-        scale = float(np.linalg.norm(t)) if t.size <= 3 else 0.0
-        if t.size <= 3:
-            return bool(np.all(np.abs(s - t) <= max(rel * scale, abs_)))
-        return bool(np.all(np.abs(s - t) <= np.maximum(rel * np.abs(t), abs_)))
+        if s.shape != t.shape:
+            return False
+        return within(s, t, rel, abs_, scale=float(np.linalg.norm(t)) if t.size <= 3 else None)
     return close
 
 
@@ -402,18 +413,17 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
         def ok(i: int) -> bool:
             there = reference[i] / factor
             basis = there if abs(there) >= tiny else magnitude_there
-            half = 0.5 * last_place(basis, policy.sig_figs)
-            return abs(answer.components[i] - there) <= half * (1 + 1e-9) + 1e-12 * abs(basis)
+            return within_sig_figs(answer.components[i], there, policy.sig_figs, basis)
     else:
-        tol = max(rel * float(np.linalg.norm(reference)), abs_)
+        magnitude = float(np.linalg.norm(reference))
 
         def ok(i: int) -> bool:
-            return abs(student[i] - reference[i]) <= tol
+            return within(student[i], reference[i], rel, abs_, scale=magnitude)
     wrong = [axis for i, axis in enumerate("xyz") if not ok(i)]
     if not wrong:
         figures = [f for f, v in zip(answer.sig_figs, answer.components) if v != 0]
         return _finish_correct(units, figures, policy, read_back, "")
-    close = _array_close(max(rel, 1e-3), abs_)
+    close = _close(max(rel, 1e-3), abs_)
     found = diagnose(student, reference, close, kind="vector",
                      mistakes=_numeric_mistakes(result, scalar=False))
     right = [axis for axis in "xyz" if axis not in wrong]
@@ -461,12 +471,18 @@ def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
     The tree is bounded by the reader (size, depth, constant exponents), and numpy arithmetic
     overflows to ``inf`` rather than hanging, so this is safe on any readable answer.
 
+    A constant expression gives the same value at every point (one value per sample point,
+    always).
+
     >>> import numpy as np
     >>> evaluate(syntax.parse("2 L^2"), {"L": np.array([1.0, 3.0])})
     array([ 2., 18.])
+    >>> evaluate(syntax.parse("1"), {"L": np.array([1.0, 3.0])})
+    array([1., 1.])
     """
+    count = len(next(iter(env.values()))) if env else 1
     with np.errstate(all="ignore"):
-        return np.asarray(_eval(node, env), dtype=float)
+        return np.broadcast_to(np.asarray(_eval(node, env), dtype=float), (count,)).copy()
 
 
 def _eval(node: Node, env: dict[str, np.ndarray]):
@@ -476,7 +492,7 @@ def _eval(node: Node, env: dict[str, np.ndarray]):
         if isinstance(n, Name) and n.id in env:
             return env[n.id]
         raise ExpressionError(f"expected an expression in the problem's symbols, found "
-                              f"{syntax.to_text(n)!r}")
+                              f"{excerpt(syntax.to_text(n))}")
 
     def function(func: str, args: tuple):
         return _NUMPY_FUNCTIONS[func](*(np.asarray(_eval(a, env), dtype=float) for a in args))
@@ -497,10 +513,38 @@ def _reference_tree(expr: str, symbols: tuple[str, ...]) -> Node:
     return node
 
 
+def _signed_by_reference(node: Node) -> set[str]:
+    """Symbols the reference treats as possibly negative: inside ``abs``/``sign``, or raised
+    to an even power under a root (``sqrt(x**2)``). The solver's sympy drops such forms for
+    symbols declared positive, so they mark a signed symbol (a coordinate such as ``x``)."""
+    signed: set[str] = set()
+    for part in syntax.walk(node):
+        if isinstance(part, Call) and part.func in ("abs", "sign"):
+            signed |= syntax.names(part)
+        root = None
+        if isinstance(part, Call) and part.func == "sqrt":
+            root = part.args[0]
+        elif isinstance(part, Bin) and part.op == "**":
+            exponent = syntax.constant_value(part.right)
+            if exponent is not None and exponent != int(exponent):
+                root = part.left
+        if root is None:
+            continue
+        for inner in syntax.walk(root):
+            if isinstance(inner, Bin) and inner.op == "**" and isinstance(inner.left, Name):
+                exponent = syntax.constant_value(inner.right)
+                if exponent is not None and exponent % 2 == 0:
+                    signed.add(inner.left.id)
+    return signed
+
+
 def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
-    """How to sample each symbol: ``angle``, ``signed`` (rates) or ``positive``."""
+    """How to sample each symbol: ``angle``, ``signed`` (rates, and symbols the reference
+    treats as signed) or ``positive``."""
     aliases = symbol_aliases(result.symbols)
     derivatives = {target for key, target in aliases.items() if isinstance(key, tuple)}
+    signed = _signed_by_reference(_reference_tree(result.expr, tuple(result.symbols))) \
+        if result.expr else set()
     kinds = {}
     units = dict(zip(result.symbols, result.symbol_units))
     for symbol in result.symbols:
@@ -508,7 +552,8 @@ def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
         dim = str(dimension(unit)) if unit else "dimensionless"
         if dim == "dimensionless" and any(w in unit for w in ("rad", "deg")):
             kinds[symbol] = "angle"
-        elif symbol in derivatives or dim in ("1 / [time]", "1 / [time] ** 2"):
+        elif symbol in derivatives or symbol in signed or dim in ("1 / [time]",
+                                                                 "1 / [time] ** 2"):
             kinds[symbol] = "signed"
         else:
             kinds[symbol] = "positive"
@@ -516,11 +561,13 @@ def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
 
 
 def sample_points(result: ObjectiveResult, count: int, seed: int = 0) -> dict[str, np.ndarray]:
-    """Seeded random values for each symbol over a sensible domain.
+    """Seeded random values for each symbol over its domain.
 
-    Lengths, masses, times and other quantities are positive (0.5 to 2.5); angles lie in
-    0.1 to 1.45 rad; rates (symbols in 1/s or 1/s², or derivatives such as ``thetad``) are
-    signed, 0.5 to 2.5 in size. The seed depends on the objective, so runs are reproducible.
+    Angles (symbols in rad or deg) lie in 0.1 to 1.45 rad. Rates (symbols in 1/s or 1/s², or
+    derivatives such as ``thetad``) and symbols the reference treats as signed (inside ``abs``
+    or ``sign``, or squared under a root: ``sqrt(x**2)``) are signed, 0.5 to 2.5 in size;
+    other quantities (lengths, masses, times) are positive, 0.5 to 2.5. The seed depends on the
+    objective, so runs are reproducible.
 
     >>> from mechgrade.solve.result import ObjectiveResult
     >>> r = ObjectiveResult("w", "symbolic", "rad/s", expr="thetad", symbols=("L", "thetad"),
@@ -565,7 +612,7 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     env = {name: values[keep] for name, values in env.items()}
     reference = reference[keep]
     student = evaluate(answer.node, env)
-    close = _expression_close(policy.symbolic_rel, reference)
+    close = agree_at_points(policy.symbolic_rel, reference)
     if close(student, reference):
         return Assessment("correct", 1.0, None, "Correct.", read_back)
     mistakes = []
@@ -573,7 +620,7 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
         mistakes.append((mistake, _mistake_values(mistake, result, env)))
     # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
     # such as 9.81 for g (1%), unlike the equivalence test itself.
-    loose = _expression_close(max(policy.symbolic_rel, 0.01), reference)
+    loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
     found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
@@ -581,14 +628,20 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
                   "Not equivalent to the expected expression.", read_back)
 
 
-def _expression_close(rel: float, reference: np.ndarray):
+def agree_at_points(rel: float, reference: np.ndarray):
+    """The one "equal at the sample points" test: every value within ``rel`` of the
+    reference's (:func:`within`, with a small floor near zero); a value undefined where the
+    reference is defined disagrees.
+
+    >>> import numpy as np
+    >>> agree_at_points(1e-6, np.array([1.0, 2.0]))(np.array([1.0, 2.0 + 1e-7]), np.array([1.0, 2.0]))
+    True
+    """
     scale = float(np.mean(np.abs(reference))) if reference.size else 0.0
     floor = max(rel * scale * 1e-3, 1e-12)
 
     def close(s: np.ndarray, t: np.ndarray) -> bool:
-        if s.shape != t.shape or not np.all(np.isfinite(s)):
-            return False
-        return bool(np.all(np.abs(s - t) <= np.maximum(rel * np.abs(t), floor)))
+        return s.shape == t.shape and within(s, t, rel, floor)
     return close
 
 
