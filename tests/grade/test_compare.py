@@ -122,8 +122,12 @@ def test_written_sig_figs_deduction_is_configurable():
     assert (judged.verdict, judged.credit) == ("incorrect", 0.0)
 
 
-def test_exact_constants_are_exempt_from_written_sig_figs():
-    assert verdict("pi/6 rad", ANGLE, Policy(written_sig_figs=3)) == "correct"
+def test_exact_constants_do_not_escape_a_written_sig_figs_rule():
+    judged = assess("pi/6 rad", ANGLE, Policy(written_sig_figs=3))
+    assert (judged.verdict, judged.credit) == ("partial", 0.75)
+    assert judged.feedback == ("The value is right, but written as an exact expression; "
+                               "3 were asked.")
+    assert verdict("pi/6 rad", ANGLE) == "correct"
 
 
 # ---------------------------------------------------------------- units

@@ -269,14 +269,16 @@ def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
     if units.label:
         labels.append(units.label)
     if policy.written_sig_figs:
-        bad = [f for f in figures if f[0] is not None and not _figures_ok(f, policy)]
+        bad = [f for f in figures if not _figures_ok(f, policy)]
         if bad:
             credit *= 1.0 - policy.written_sig_figs_deduction
             labels.append("significant figures")
             written = bad[0][0] if policy.written_sig_figs_strict or bad[0][0] == bad[0][1] \
                 else f"{bad[0][0]} to {bad[0][1]}"
             plural = "" if written == 1 else "s"
-            notes += (f" The value is right but written to {written} significant figure{plural}; "
+            shown = ("as an exact expression" if written is None
+                     else f"to {written} significant figure{plural}")
+            notes += (f" The value is right but written {shown}; "
                       f"{policy.written_sig_figs} were asked.")
     credit = max(0.0, min(1.0, credit))
     if credit >= 1.0:
@@ -288,7 +290,10 @@ def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
 
 
 def _figures_ok(figures: tuple[int | None, int | None], policy: Policy) -> bool:
+    """Whether written figures meet the rule; an exact expression (``pi/6``) has none."""
     lo, hi = figures
+    if lo is None:
+        return False
     n = policy.written_sig_figs
     if policy.written_sig_figs_strict:
         return lo == n
