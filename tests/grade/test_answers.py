@@ -134,7 +134,7 @@ def test_aliases_map_derivative_spellings_to_declared_symbols():
     ("", "found nothing"),
     ("   ", "found nothing"),
     ("98.5 flurbs/s^2", "'flurbs' is not a unit"),
-    ("98.5 m/s**9**9**9", "unit"),
+    ("98.5 m/s**9**9**9", "powers of at most 64"),
     ("1,000 m", "thousands separators"),
     ("(-66, -40", "closing"),
     ("(1, 2, 3, 4) m", "2 or 3 components"),
@@ -222,3 +222,158 @@ def test_arbitrary_text_either_reads_or_says_why(text):
             read_answer(text, objective)
         except AnswerError as exc:
             assert exc.message
+
+
+# ---------------------------------------------------------------- issue 7: no misreadings
+
+DIST = ObjectiveResult("d", "scalar", "m", 1000.0)
+
+
+@pytest.mark.parametrize("text, reason", [
+    # number fragments are never multiplied together
+    ("98.5.0", "expected one number, found a second decimal point at '98.5«.»0'"),
+    ("98..5", "expected one number, found a second decimal point at '98.«.»5'"),
+    ("1.2.3", "expected one number, found a second decimal point at '1.2«.»3'"),
+    ("9.85e1.5", "expected one number, found a second decimal point at '9.85e1«.»5'"),
+    # digit groups other than SI-style threes
+    ("1 00 m", "expected one number, found more digits at '1 «0»0 m' (write 1000, or group "
+               "digits in threes: 1 000)"),
+    ("12 34", "expected one number, found more digits"),
+    # e is not a unit (the elementary charge)
+    ("9.85 e1", "found 'e' in 'e1' (not a unit here: the elementary charge; for a power of "
+                "ten write 9.85e1, without spaces)"),
+    ("1e", "found 'e' in 'e' (not a unit here: the elementary charge"),
+    ("98.5 e", "not a unit here: the elementary charge"),
+    # malformed or ambiguous units
+    ("98.5 ft//s^2", "expected a unit such as 'm/s^2', found 'ft/«/»s^2' (an operator with "
+                     "nothing before it)"),
+    ("98.5 fts^-2", "found 'fts' in 'fts^-2' (ambiguous: write ft or ft*s)"),
+    ("98.5 ft/s-2", "found 'ft/«s-2»' (a negative power after '/' is ambiguous: write s^2 or "
+                    "*s^-2)"),
+    ("98.5 ft*/s^2", "(an operator with nothing before it)"),
+    ("98.5 c", "not a unit here: the speed of light"),
+    ("98.5 ft pi", "not a unit here: a number; write it before the unit, as in 2*pi rad"),
+    # a sense of rotation for a quantity that is not angular
+    ("98.5 ft/s^2 cw", "expected a signed value: a sense of rotation (cw) only goes with an "
+                       "angle or angular velocity or acceleration"),
+    # '#' anywhere
+    ("98.5 ft/s^2 # approx", "expected an answer without '#' (nothing after it would be "
+                             "read), found '98.5 ft/s^2 «#» approx'"),
+    ("#98.5 ft/s^2", "without '#'"),
+    # two answers in one value
+    ("98.5\r\n30 m/s^2", "expected one answer on one line, found a line break at "
+                         "'98.5«\\r»\\n30 m/s^2'"),
+    ("98.5\u2029 30 m/s^2", "found a line break at '98.5«\\u2029» 30 m/s^2'"),
+    ("98.5\u2028 30 m/s^2", "found a line break"),
+    ("98.5\n30 m/s^2", "found a line break"),
+    ("98.5\x0b30 m/s^2", "found a line break"),
+    ("98.5\x8530 m/s^2", "found a line break"),
+    # a list item's "- " before a signed number
+    ("- -98.5 ft/s^2", "expected one sign, found two at '«- -»98.5 ft/s^2' (a leading '- ' "
+                       "from a list?)"),
+    ("+-98.5 ft/s^2", "expected one sign, found two"),
+    # constants that overflow are too large, never a verdict
+    ("exp(exp(exp(100)))", "expected numbers of at most 1e+150, found 'exp(exp(100))' "
+                           "(too large)"),
+    ("exp(1000) ft/s^2", "(too large)"),
+    ("2^2^7 ft", "expected powers of at most 64, found '2**7'"),
+    ("sqrt(-2) ft/s^2", "expected a real constant, found 'sqrt(-2)' (not a real number)"),
+    ("1/0 ft/s^2", "(divides by zero)"),
+    # offset temperature scales
+    ("20 degC", "expected an absolute temperature (K or degR), found 'degC' (an offset "
+                "scale: convert to K first)"),
+    ("20 °C", "found 'degC' (an offset scale"),
+    ("68 °F", "found 'degF' (an offset scale"),
+])
+def test_misreadings_are_refused_with_a_reason_that_shows_the_fix(text, reason):
+    with pytest.raises(AnswerError) as info:
+        read_answer(text, ACC)
+    assert reason in info.value.message
+    assert len(info.value.message) <= 200
+
+
+@pytest.mark.parametrize("text, objective", [
+    ("- -66 i - 40 j ft/s^2", VEC),
+    ("- -66 i - 40 j", VEC),
+    ("(-66, -40#) ft/s^2", VEC),
+    ("(-66, -40)\n(1, 2) ft/s^2", VEC),
+    ("L#", SYM),
+    ("2 3 L", SYM),
+    ("98.5.0 L", SYM),
+])
+def test_vectors_and_expressions_refuse_the_same_misreadings(text, objective):
+    with pytest.raises(AnswerError):
+        read_answer(text, objective)
+
+
+@pytest.mark.parametrize("text, value, unit, figures", [
+    ("3 002.28 cm/s^2", 3002.28, "cm / s ** 2", (6, 6)),
+    ("12 345", 12345.0, None, (5, 5)),
+    ("1 000 m", 1000.0, "m", (1, 4)),
+    ("1\u2009000 m", 1000.0, "m", (1, 4)),
+    ("1\u202f000.5 m", 1000.5, "m", (5, 5)),
+    ("-12 345 678 m", -12345678.0, "m", (8, 8)),
+])
+def test_si_digit_groups_of_three_are_one_number(text, value, unit, figures):
+    answer = read_answer(text, DIST)
+    assert (answer.value, answer.unit, (answer.sig_figs, answer.sig_figs_max)) == \
+        (value, unit, figures)
+
+
+@pytest.mark.parametrize("text, unit", [
+    ("98.5 *ft/s^2", "ft / s ** 2"),
+    ("98.5*ft/s^2", "ft / s ** 2"),
+    ("3.05 g0", "g_0"),
+    ("3.05 g_0", "g_0"),
+    ("3.05 g_n", "g_n"),
+    ("300 K", "K"),
+    ("540 degR", "degR"),
+    ("98.5 ft/s^2 ", "ft / s ** 2"),
+    ("98.5 ft/s^2\r\n", "ft / s ** 2"),
+])
+def test_unambiguous_forms_are_read(text, unit):
+    answer = read_answer(text, ACC)
+    assert answer.unit == unit and answer.sig_figs is not None
+
+
+def test_standard_gravity_converts_as_a_unit():
+    judged = read_answer("3.0617 g0", ACC)
+    assert judged.unit == "g_0"
+
+
+def test_bracketed_components_may_be_constant_expressions():
+    answer = read_answer("(sqrt(2)/2, sqrt(2)/2) ft/s^2", VEC)
+    assert answer.components == pytest.approx((0.70710678, 0.70710678, 0.0))
+    assert read_answer("(pi/4, 2) rad/s", VEC).components[0] == pytest.approx(0.7853981)
+
+
+def test_a_sense_of_rotation_still_reads_for_angular_objectives():
+    scalar = ObjectiveResult("w", "scalar", "rad/s", -0.5)
+    assert read_answer("0.5 rad/s cw", scalar).value == -0.5
+    angle = ObjectiveResult("q", "scalar", "deg", -30.0)
+    assert read_answer("30 deg cw", angle).value == -30.0
+
+
+def test_imaginary_literal_is_a_product_with_a_declared_j():
+    assert read_expression("3j + 2J", ("j", "J")).text == "3*j + 2*J"
+
+
+def test_e_notation_is_refused_when_e_is_a_declared_symbol():
+    with pytest.raises(AnswerError) as info:
+        read_expression("2E+3", ("E",))
+    assert info.value.message == ("expected an expression in E, found '«2E+3»' (a power of ten "
+                                  "or the symbol E? write 2*E or 2*10^3)")
+    assert read_expression("2E+3", ("L",)).text == "2000.0"
+
+
+def test_a_non_real_constant_is_refused_in_an_expression():
+    with pytest.raises(AnswerError, match=r"found 'sqrt\(-2\)' \(not a real number\)"):
+        read_expression("sqrt(-2) L", ("L",))
+
+
+def test_a_huge_answer_gets_a_short_reason():
+    for text in ("9" * 1_000_000, "98.5 " + "x" * 1990, "(" + "1, " * 600 + "2) m",
+                 "98.5 ft/" + "s" * 1900):
+        with pytest.raises(AnswerError) as info:
+            read_answer(text, VEC)
+        assert len(info.value.message) <= 200, info.value.message

@@ -539,7 +539,7 @@ def _check_power(node: Bin) -> None:
     exponent = constant_value(node.right)
     if exponent is not None and abs(exponent) > MAX_POWER:
         raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
-                              f"{excerpt(to_text(node.right))}")
+                              f"{excerpt(to_text(node.right))} {CONSTANT_PROBLEMS[0]}")
 
 
 def _check_magnitude(node: Bin | Call) -> None:
