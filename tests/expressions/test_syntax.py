@@ -114,3 +114,24 @@ def test_canonical_text_reads_back_to_the_same_tree(text):
         assert "divides by zero" in str(err) or "sensible size" in str(err)
         return
     assert parse(to_text(tree)) == tree
+
+
+@pytest.mark.parametrize("text, message", [
+    ("98.5.0", "expected an operator between two numbers, found '98.5«.0»'"),
+    ("1 000", "expected an operator between two numbers, found '1 «000»'"),
+    ("9.85e1.5", "expected an operator between two numbers"),
+    ("x # comment", "expected an expression without '#', found 'x «#» comment'"),
+    ("exp(exp(exp(100)))", "found 'exp(exp(100))' (too large)"),
+    ("sqrt(-2)", "expected a real constant, found 'sqrt(-2)' (not a real number)"),
+    ("log(0)", "(not a real number)"),
+    ("1/0", "expected a defined constant, found '1/0' (divides by zero)"),
+    ("ṥ", "expected names, numbers, operators and functions"),
+])
+def test_number_fragments_comments_and_bad_constants_are_refused(text, message):
+    with pytest.raises(ExpressionError) as info:
+        parse(text)
+    assert message in info.value.message
+
+
+def test_an_imaginary_literal_is_a_product_with_j():
+    assert to_text(parse("3j + 2.5J")) == "3*j+2.5*J"

@@ -3,9 +3,10 @@
 import math
 
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import given, settings, strategies as st
 
-from mechgrade.errors import AssignmentError
+from mechgrade.errors import AnswerError, AssignmentError
+from mechgrade.grade.answers import read_answer
 from mechgrade.grade.compare import (Assessment, Policy, assess, expression_dimension,
                                      last_place, sample_points, within, within_sig_figs)
 from mechgrade.expressions.syntax import parse
@@ -356,3 +357,106 @@ def test_partial_credit_for_an_automatic_diagnosis():
 def test_within_helper():
     assert within(101, 100, 0.01, 0) and not within(101.5, 100, 0.01, 0)
     assert within(0.001, 0, 0.01, 0.001)
+
+
+# ---------------------------------------------------------------- issue 7: answer-test tables
+
+
+def test_a_constant_reference_is_compared_not_called_undefined():
+    constant = ObjectiveResult("c", "symbolic", "1", expr="1", symbols=("R", "r"),
+                               symbol_units=("m", "m"))
+    assert verdict("1/(R-r)", constant) == "incorrect"
+    assert verdict("R/R", constant) == "correct"
+
+
+@pytest.mark.parametrize("text, rel, expected", [
+    ("1.05 m", 0.05, "correct"), ("0.95 m", 0.05, "correct"), ("1.0500001 m", 0.05, "incorrect"),
+    ("1.1 m", 0.1, "correct"), ("0.9 m", 0.1, "correct"), ("1.3 m", 0.3, "correct"),
+    ("105 cm", 0.05, "correct"),
+])
+def test_tolerance_boundaries_survive_binary_rounding(text, rel, expected):
+    assert verdict(text, ObjectiveResult("x", "scalar", "m", 1.0, rel=rel)) == expected
+
+
+def test_within_slack_is_tiny():
+    assert within(1.05, 1.0, 0.05, 0.0) and not within(1.05 + 1e-8, 1.0, 0.05, 0.0)
+    assert within(0.1 + 0.2, 0.3, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("text, figures, expected", [
+    ("0", 1, "correct"), ("0.0", 1, "correct"), ("0.00", 2, "correct"), ("0.00", 1, "partial"),
+    ("0.0", 2, "partial"), ("0.000", 3, "correct"),
+])
+def test_written_figures_of_zero_follow_stack_and_prairielearn(text, figures, expected):
+    zero = ObjectiveResult("z", "scalar", "", 0.0, abs=0.01)
+    assert verdict(text, zero, Policy(written_sig_figs=figures,
+                                      written_sig_figs_strict=True)) == expected
+
+
+def test_tuples_of_constant_expressions_are_graded():
+    unit = ObjectiveResult("u", "vector", "", (0.70710678, 0.70710678, 0.0), frame="N")
+    assert verdict("(sqrt(2)/2, sqrt(2)/2)", unit) == "correct"
+    assert verdict("<sqrt(2)/2, sqrt(2)/2>", unit) == "correct"
+
+
+def test_a_declared_j_makes_3j_a_product():
+    j = ObjectiveResult("j", "symbolic", "m", expr="3*j", symbols=("j",), symbol_units=("m",))
+    assert verdict("3j", j) == "correct"
+
+
+def test_e_notation_with_a_declared_e_is_unreadable_not_a_number():
+    e = ObjectiveResult("e", "symbolic", "m", expr="2*E + 3", symbols=("E",),
+                        symbol_units=("m",))
+    assert verdict("2E+3", e) == "unreadable"
+    assert verdict("2 E + 3", e) == "correct"
+
+
+def test_non_real_and_overflowing_constants_are_unreadable():
+    length = ObjectiveResult("s", "symbolic", "m", expr="L", symbols=("L",), symbol_units=("m",))
+    assert assess("sqrt(-2) L", length).feedback == ("Could not read the answer: expected a real "
+                                                     "constant, found 'sqrt(-2)' (not a real "
+                                                     "number).")
+    judged = assess("exp(exp(exp(100)))", ACC)
+    assert judged.verdict == "unreadable" and "(too large)" in judged.feedback
+
+
+@pytest.mark.parametrize("reference", ["sqrt(x**2)", "Abs(x)", "x**2/Abs(x)", "(x**2)**(1/2)"])
+def test_a_symbol_the_reference_treats_as_signed_is_sampled_negative_too(reference):
+    signed = ObjectiveResult("d", "symbolic", "m", expr=reference, symbols=("x",),
+                             symbol_units=("m",))
+    assert verdict("x", signed) == "incorrect"
+    assert verdict("abs(x)", signed) == "correct"
+    assert sample_points(signed, 40)["x"].min() < 0
+
+
+def test_positive_lengths_stay_positive():
+    length = ObjectiveResult("d", "symbolic", "m", expr="L", symbols=("L",), symbol_units=("m",))
+    assert verdict("sqrt(L^2)", length) == "correct"
+    assert sample_points(length, 40)["L"].min() > 0
+
+
+# ---------------------------------------------------------------- arbitrary text
+
+
+_FUZZ_OBJECTIVES = (ACC, VEC, OMEGA, SYM, ANGLE,
+                    ObjectiveResult("x", "symbolic", "m", expr="Abs(x) + E",
+                                    symbols=("x", "E", "j"), symbol_units=("m", "m", "m")))
+_FUZZ_PIECES = st.sampled_from(["98.5", "1 000", ".", "e", "E", "e1", "j", "-", "- -", "+", "*",
+                                "/", "//", "^", "**", "(", ")", ",", "<", ">", "#", " ", "\n",
+                                "\u2029", "\x00", "ft/s^2", "m", "s-2", "g0", "°C", "cw", "pi",
+                                "sqrt(", "exp(", "i", "k", "N.x", "L", "thetad", "x", "θ̇", "'",
+                                "9" * 40, "1e999", "2E+3", "3j", "abs(", "½", "\ufffd"])
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.one_of(st.text(max_size=80), st.lists(_FUZZ_PIECES, max_size=12).map("".join)),
+       st.sampled_from(_FUZZ_OBJECTIVES))
+def test_arbitrary_text_gets_a_verdict_or_a_short_reason(text, objective):
+    try:
+        read_answer(text, objective)
+    except AnswerError as exc:
+        assert 0 < len(exc.message) <= 200, exc.message
+    judged = assess(text, objective)
+    assert judged.verdict in VERDICTS
+    assert len(judged.feedback) <= 200, judged.feedback
+    assert judged.diagnosis is None or len(judged.diagnosis) <= 200

@@ -34,12 +34,13 @@ def excerpt(text: str, start: int | None = None, end: int | None = None,
     text = str(text)
     if start is None:
         shown = _visible(text[: 2 * width])
-        return f"'{shown}{'…' if len(text) > 2 * width else ''}'"
+        cut = len(text) > 2 * width or len(shown) > 2 * width
+        return f"'{shown[: 2 * width]}{'…' if cut else ''}'"
     start = max(0, min(start, len(text)))
     end = start + 1 if end is None else max(start, min(end, len(text)))
-    lo, hi = max(0, start - width), min(len(text), end + width)
-    marked = text[start:end]
-    if len(marked) > width:
-        marked = marked[:width] + "…"
-    return ("'" + ("…" if lo > 0 else "") + _visible(text[lo:start]) + "«" + _visible(marked)
-            + "»" + _visible(text[end:hi]) + ("…" if hi < len(text) else "") + "'")
+    left = _visible(text[max(0, start - width):start])
+    marked = _visible(text[start:end][: width + 1])
+    right = _visible(text[end:end + width + 1])
+    return ("'" + ("…" if start > width or len(left) > width else "") + left[-width:]
+            + "«" + marked[:width] + ("…" if len(marked) > width else "") + "»"
+            + right[:width] + ("…" if len(right) > width else "") + "'")

@@ -217,6 +217,9 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
         if ch == _COMBINING_DIAERESIS:
             out.append("''")
             continue
+        if len(ch) != 1:  # several accents on one letter (ṥ): not a derivative we read
+            raise ExpressionError(f"expected names, numbers, operators and functions, "
+                                  f"found {excerpt(decomposed)}")
         if ch in GREEK:
             ch = GREEK[ch]
         elif ch in _SYMBOL_CHARS:
@@ -253,7 +256,7 @@ def _implicit_products(text: str, functions: set[str]) -> str:
         if prev is not None and prev.type == tok.type == tokenize.NUMBER:
             # "98.5.0", "1 000", "9.85e1.5": never read number fragments as a product
             raise ExpressionError(f"expected an operator between two numbers, found "
-                                  f"{excerpt(text, tok.start[1])}")
+                                  f"{excerpt(text, tok.start[1], tok.end[1])}")
         if prev is not None and _juxtaposed(prev, tok, functions):
             pieces.append("*")
         if tok.type == tokenize.NUMBER and tok.string[-1] in "jJ":

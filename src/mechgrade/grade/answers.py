@@ -33,7 +33,7 @@ from ..expressions import syntax
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Prime, Unary
 from ..expressions.excerpt import excerpt
 from ..solve.result import ObjectiveResult
-from ..units import dimension, normalize_unit
+from ..units import MAX_UNIT_LENGTH, dimension, normalize_unit
 
 MAX_ANSWER_LENGTH = 2000
 """Longest answer text read at all (the expression reader has the same bound)."""
@@ -375,6 +375,8 @@ def _constant_with_unit(text: str) -> NumberAnswer | None:
     words = text.split(" ")
     for cut in range(len(words), 0, -1):
         expression, rest = " ".join(words[:cut]), " ".join(words[cut:])
+        if len(rest) > MAX_UNIT_LENGTH + 2:  # longer than any unit (+ brackets): stop
+            break
         try:
             node = syntax.parse(expression, attributes=False)
             value = syntax.constant_value(node)
