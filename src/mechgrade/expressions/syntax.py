@@ -36,6 +36,7 @@ MAX_DEPTH = 40
 MAX_LITERAL_DIGITS = 30
 MAX_POWER = 64
 MAX_MAGNITUDE = 1e150
+TOO_MANY_PARTS = f"expected an expression of at most {MAX_NODES} parts"
 
 # Fixed table of scalar math functions: name -> (canonical name, arity).
 MATH_FUNCTIONS: dict[str, tuple[str, int]] = {
@@ -331,7 +332,7 @@ class _Builder:
     def build(self, node: ast.AST, depth: int) -> Node:
         self.count += 1
         if self.count > MAX_NODES:
-            raise ExpressionError(f"expected an expression of at most {MAX_NODES} parts")
+            raise ExpressionError(TOO_MANY_PARTS)
         if depth > MAX_DEPTH:
             raise ExpressionError(f"expected an expression nested at most {MAX_DEPTH} deep")
         if isinstance(node, ast.Constant):

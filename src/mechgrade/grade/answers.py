@@ -39,6 +39,8 @@ MAX_ANSWER_LENGTH = 2000
 """Longest answer text read at all (the expression reader has the same bound)."""
 
 MAX_COMPONENTS = 3
+MAX_UNIT_WORDS = 8
+"""Most space-separated words a unit after a constant expression may have (``kg m^2 / s``)."""
 
 
 # ---------------------------------------------------------------------------- values
@@ -373,9 +375,9 @@ def _constant_with_unit(text: str) -> NumberAnswer | None:
 
     A constant that overflows or is not a real number is refused, never skipped."""
     words = text.split(" ")
-    for cut in range(len(words), 0, -1):
+    for cut in range(len(words), max(0, len(words) - MAX_UNIT_WORDS) - 1, -1):
         expression, rest = " ".join(words[:cut]), " ".join(words[cut:])
-        if len(rest) > MAX_UNIT_LENGTH + 2:  # longer than any unit (+ brackets): stop
+        if len(rest) > MAX_UNIT_LENGTH + 2 or not cut:  # longer than any unit (+ brackets)
             break
         try:
             node = syntax.parse(expression, attributes=False)
@@ -383,6 +385,8 @@ def _constant_with_unit(text: str) -> NumberAnswer | None:
         except ExpressionError as exc:
             if exc.message.endswith(syntax.CONSTANT_PROBLEMS):
                 raise AnswerError(exc.message) from None
+            if exc.message == syntax.TOO_MANY_PARTS:
+                break  # a few words less will not make a constant expression of it
             continue
         if value is None:
             continue

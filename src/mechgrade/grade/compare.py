@@ -331,7 +331,9 @@ def _close(rel: float, abs_: float):
     def close(s: np.ndarray, t: np.ndarray) -> bool:
         if s.shape != t.shape:
             return False
-        return within(s, t, rel, abs_, scale=float(np.linalg.norm(t)) if t.size <= 3 else None)
+        with np.errstate(all="ignore"):
+            scale = float(np.linalg.norm(t)) if t.size <= 3 else None
+        return within(s, t, rel, abs_, scale=scale)
     return close
 
 
