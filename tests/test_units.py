@@ -65,3 +65,30 @@ def test_bad_quantities(text):
 @given(st.floats(-1e6, 1e6, allow_nan=False), st.sampled_from(["ft", "in", "cm", "deg", "rpm", "mm/s^2"]))
 def test_si_round_trip(value, unit):
     assert from_si(to_si(value, unit), unit) == pytest.approx(value, rel=1e-12, abs=1e-9)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("e", "found 'e' in 'e' (not a unit here: the elementary charge"),
+    ("k", "not a unit here: Boltzmann's constant"),
+    ("Nm", "write N*m for newton metres"),
+    ("fts^-2", "found 'fts' in 'fts^-2' (ambiguous: write ft or ft*s)"),
+    ("lbs", "ambiguous: write lb or lb*s"),
+    ("ft//s^2", "found 'ft/«/»s^2' (an operator with nothing before it)"),
+    ("m*/s", "(an operator with nothing before it)"),
+    ("ft/s-2", "a negative power after '/' is ambiguous"),
+    ("degC", "expected an absolute temperature (K or degR), found 'degC'"),
+    ("°F", "found 'degF' (an offset scale: convert to K first)"),
+    ("celsius", "an offset scale"),
+])
+def test_units_a_student_does_not_mean_are_refused(text, message):
+    with pytest.raises(UnitError) as info:
+        normalize_unit(text)
+    assert message in info.value.message
+
+
+@pytest.mark.parametrize("text, canonical", [("g0", "g_0"), ("g_0", "g_0"), ("m s-2", "m * s ** -2"),
+                                             ("K", "K"), ("degR", "degR"), ("ms", "ms"),
+                                             ("meters", "meters"), ("km/h", "km / h")])
+def test_standard_gravity_absolute_temperatures_and_full_plurals_are_units(text, canonical):
+    assert normalize_unit(text) == canonical
+    assert to_si(1.0, "g0") == pytest.approx(9.80665)

@@ -36,8 +36,8 @@ _TOKEN = re.compile(r"\s*(?:(?P<name>g_?0(?![\w])|[A-Za-z_µΩ°]+)(?P<power>-?\
 _DIMENSIONLESS_WORDS = {"", "1", "dimensionless", "-", "none", "unitless"}
 # pint names that are constants or misreadings, not units a student means.
 _NOT_UNITS = {
-    "e": "the elementary charge; for a power of ten write 9.85e1, without spaces",
-    "E": "for a power of ten write 9.85e1, without spaces",
+    "e": "the elementary charge; for a power of ten write 9.85e1",
+    "E": "for a power of ten write 9.85e1",
     "k": "Boltzmann's constant; write kg, km or kN",
     "c": "the speed of light",
     "R": "the gas constant",
@@ -79,6 +79,17 @@ def normalize_unit(text: str) -> str:
     'm * s ** -2'
     >>> normalize_unit("kg m²/s²")
     'kg * m ** 2 / s ** 2'
+
+    Standard gravity is ``g0`` (``g_0``); names pint reads but a student does not mean are
+    refused: constants (``e``, ``k``, ``c``, ``R``, ``pi``), plurals of abbreviations (``fts``),
+    offset temperature scales (``degC``, ``°C``), and ambiguous or broken operators.
+
+    >>> normalize_unit("g0")
+    'g_0'
+    >>> normalize_unit("°C")
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.UnitError: expected an absolute temperature (K or degR), found 'degC' (an offset scale: convert to K first)
     """
     raw = text
     text = unicodedata.normalize("NFC", str(text)).strip()

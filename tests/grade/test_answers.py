@@ -241,7 +241,7 @@ DIST = ObjectiveResult("d", "scalar", "m", 1000.0)
     ("12 34", "expected one number, found more digits"),
     # e is not a unit (the elementary charge)
     ("9.85 e1", "found 'e' in 'e1' (not a unit here: the elementary charge; for a power of "
-                "ten write 9.85e1, without spaces)"),
+                "ten write 9.85e1)"),
     ("1e", "found 'e' in 'e' (not a unit here: the elementary charge"),
     ("98.5 e", "not a unit here: the elementary charge"),
     # malformed or ambiguous units
@@ -361,8 +361,8 @@ def test_imaginary_literal_is_a_product_with_a_declared_j():
 def test_e_notation_is_refused_when_e_is_a_declared_symbol():
     with pytest.raises(AnswerError) as info:
         read_expression("2E+3", ("E",))
-    assert info.value.message == ("expected an expression in E, found '«2E+3»' (a power of ten "
-                                  "or the symbol E? write 2*E or 2*10^3)")
+    assert info.value.message == ("expected 2*E or 2*10^3, found '«2E+3»' (E is a declared "
+                                  "symbol: a power of ten or a product?)")
     assert read_expression("2E+3", ("L",)).text == "2000.0"
 
 
@@ -377,3 +377,11 @@ def test_a_huge_answer_gets_a_short_reason():
         with pytest.raises(AnswerError) as info:
             read_answer(text, VEC)
         assert len(info.value.message) <= 200, info.value.message
+
+
+def test_many_long_symbol_names_still_give_a_short_reason():
+    symbols = tuple(f"symbol_with_a_long_name_{i}" for i in range(30))
+    for text in ("unknown_name", "2e+3 unknown"):
+        with pytest.raises(AnswerError) as info:
+            read_expression(text, symbols + ("e",))
+        assert len(info.value.message) <= 200

@@ -559,10 +559,10 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     """
     exponent = _E_NOTATION.search(text)
     if exponent and exponent.group("e") in symbols:
-        raise AnswerError(f"expected an expression in {_names(symbols)}, found "
-                          f"{excerpt(text, exponent.start(), exponent.end())} (a power of ten "
-                          f"or the symbol {exponent.group('e')}? write 2*{exponent.group('e')} "
-                          f"or 2*10^3)")
+        letter = exponent.group("e")
+        raise AnswerError(f"expected 2*{letter} or 2*10^3, found "
+                          f"{excerpt(text, exponent.start(), exponent.end())} ({letter} is a "
+                          f"declared symbol: a power of ten or a product?)")
     try:
         node = syntax.parse(text, attributes=False)
     except ExpressionError as exc:
@@ -576,9 +576,10 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     return ExpressionAnswer(mapped, _spaced(mapped))
 
 
-def _names(symbols: tuple[str, ...], most: int = 8) -> str:
-    shown = ", ".join(s[:20] for s in symbols[:most])
-    return shown + (", …" if len(symbols) > most else "")
+def _names(symbols: tuple[str, ...], most: int = 60) -> str:
+    """The declared symbols for a message, cut after about ``most`` characters."""
+    shown = ", ".join(symbols)
+    return shown if len(shown) <= most else shown[:most] + "…"
 
 
 _E_NOTATION = re.compile(r"(?<![\w.])\d+(?:\.\d*)?(?P<e>[eE])[+-]?\d")
