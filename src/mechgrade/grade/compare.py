@@ -149,15 +149,21 @@ def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy())
     except AnswerError as exc:
         return unreadable(exc.message)
     try:
-        if result.kind == "symbolic":
-            return _judge_expression(answer, result, policy)
-        if result.value is None:
-            return not_evaluated("the reference answer is not available", answer.read_back())
-        if result.kind == "vector":
-            return _judge_vector(answer, result, policy)
-        return _judge_number(answer, result, policy)
+        # huge but readable values overflow to inf, which no tolerance accepts: no warnings
+        with np.errstate(all="ignore"):
+            return _judge(answer, result, policy)
     except MechgradeError as exc:
         return not_evaluated(exc.message, answer.read_back())
+
+
+def _judge(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
+    if result.kind == "symbolic":
+        return _judge_expression(answer, result, policy)
+    if result.value is None:
+        return not_evaluated("the reference answer is not available", answer.read_back())
+    if result.kind == "vector":
+        return _judge_vector(answer, result, policy)
+    return _judge_number(answer, result, policy)
 
 
 # ---------------------------------------------------------------------------- numbers
