@@ -131,5 +131,9 @@ class ExportError(MechgradeError):
     """Results could not be exported in the requested format."""
 
 
+class OutputError(MechgradeError):
+    """An output file or folder could not be written."""
+
+
 class AnswerError(MechgradeError):
     """A student's answer text could not be read; the message says why (verdict "unreadable")."""

@@ -9,8 +9,7 @@ import pytest
 from mechgrade.errors import MechgradeError
 from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo,
                                      StudentResult)
-from mechgrade.report.output import (feedback_context, feedback_names, write_outputs,
-                                     write_text_atomic)
+from mechgrade.report.output import (feedback_context, feedback_names, write_outputs)
 from mechgrade.resources import shipped_dir
 
 HOSTILE = '<script>alert("x")</script> *bold* `code` [link](http://e.vil)'
@@ -150,11 +149,6 @@ def test_context_prepares_text_and_templates_compute_nothing():
                                   "max_score": "5", "percent": "70%"}
     assert context["rows"][1]["prompt"] == "Speed in terms of L."
     assert context["reveal"] is True
-
-
-def test_atomic_write_into_a_missing_folder_is_an_error(tmp_path):
-    with pytest.raises(MechgradeError, match="cannot write the file"):
-        write_text_atomic(tmp_path / "none" / "x.txt", "text")
 
 
 def test_unwritable_output_folder_is_an_error(tmp_path):

@@ -20,14 +20,12 @@ temporary file and moved into place, so a crash never leaves half a file.
 
 from __future__ import annotations
 
-import json
-import os
 import re
-import tempfile
 import unicodedata
 from pathlib import Path
 
 from ..errors import Location, MechgradeError
+from ..files import write_json, write_text
 from ..export import EXPORTERS
 from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
@@ -66,8 +64,7 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
                              where=_where(out)) from None
     written: list[Path] = []
     results = out / "results.json"
-    write_text_atomic(results, json.dumps(report.to_json(), indent=2, ensure_ascii=False,
-                                          allow_nan=False) + "\n")
+    write_json(results, report.to_json())
     written.append(results)
     for name, fmt in (("grades.csv", "grades-csv"), ("results.csv", "long-csv")):
         EXPORTERS[fmt](report, out / name, roster=roster)
@@ -76,7 +73,7 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
         for template, suffix in zip(templates, (".html", ".md")):
             context = feedback_context(report, student, markdown=suffix == ".md")
             path = out / "feedback" / (filename + suffix)
-            write_text_atomic(path, _render(template, context, templates_dir))
+            write_text(path, _render(template, context, templates_dir))
             written.append(path)
     return written
 
@@ -121,24 +118,6 @@ def _render(template, context: dict, templates_dir) -> str:
 
 def _where(path: Path, line: int | None = None):
     return Location(str(path), line)
-
-
-def write_text_atomic(path: str | Path, text: str) -> None:
-    """Write ``text`` (UTF-8, ``\\n`` newlines) to ``path`` through a temporary file."""
-    path = Path(path)
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-                handle.write(text)
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
-    except OSError as exc:
-        raise MechgradeError(f"cannot write the file ({exc.strerror or exc})",
-                             where=_where(path)) from None
 
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
