@@ -34,7 +34,7 @@ REPORT = GradeReport(
 
 
 def test_outputs_are_written_where_documented(tmp_path):
-    written = write_outputs(REPORT, tmp_path)
+    written = write_outputs(REPORT, tmp_path).paths
     assert [p.relative_to(tmp_path).as_posix() for p in written] == [
         "results.json", "grades.csv", "results.csv", "feedback/ana.html", "feedback/ana.md",
         "feedback/eve.html", "feedback/eve.md", "feedback/joe.html", "feedback/joe.md"]
@@ -45,7 +45,8 @@ def test_results_json_is_the_contract(tmp_path):
     write_outputs(REPORT, tmp_path)
     data = json.loads((tmp_path / "results.json").read_text(encoding="utf-8"))
     assert GradeReport.from_json(data) == REPORT
-    assert list(data) == ["assignment", "objectives", "students"]
+    assert list(data) == ["assignment", "objectives", "students", "skipped", "notes",
+                          "internal_errors"]
     assert data["students"][0]["identity"] == {"email": "ana@uni.edu"}
 
 
