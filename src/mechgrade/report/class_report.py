@@ -37,7 +37,7 @@ from collections import Counter
 from dataclasses import dataclass
 
 from ..files import write_text
-from ..grade.results import GradeReport, StudentResult
+from ..grade.results import GradeReport, SkippedEntry, StudentResult
 
 TOP = 5
 _CORRECT, _PARTIAL = "correct", "partial"
@@ -105,6 +105,10 @@ class ClassReport:
     objectives: tuple[ObjectiveStats, ...]
     problems: tuple[ProblemStats, ...]
     issues: tuple[StudentIssue, ...]
+    not_evaluated: int = 0
+    skipped: tuple[SkippedEntry, ...] = ()
+    notes: tuple[str, ...] = ()
+    internal_errors: tuple[str, ...] = ()
 
 
 def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport:
@@ -127,7 +131,9 @@ def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport
         stdev=statistics.pstdev(scores) if len(scores) > 1 else None,
         lowest=min(scores, default=None), highest=max(scores, default=None),
         histogram_svg=histogram, success_svg=success, objectives=objectives,
-        problems=problems, issues=_issues(report))
+        problems=problems, issues=_issues(report),
+        not_evaluated=sum(s.status == "not_evaluated" for s in report.students),
+        skipped=report.skipped, notes=report.notes, internal_errors=report.internal_errors)
 
 
 def render_class_report(stats: ClassReport) -> str:
