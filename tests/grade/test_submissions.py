@@ -160,10 +160,10 @@ def test_link_into_another_students_folder_is_flagged_not_read(tmp_path):
     found = read_submissions(tmp_path)
     bob, cy = (s for s in found.students if s.student in ("bob", "cy"))
     shared = ("is a link to 'ana/answers.txt', inside another student's submission: it was "
-              "not read (two students handing in one file)")
+              "not read (two students handing in the same work)")
     assert (bob.status, bob.answers, bob.messages) == ("unreadable", (), (f"'bob.txt' {shared}",))
     assert cy.messages == (f"'cy/answers.txt' {shared}",)
-    assert found.notes == (f"'bob.txt' {shared}",)
+    assert found.notes == (f"'bob.txt' {shared}", f"'cy/answers.txt' {shared}")
     assert SkippedEntry("cy/answers.txt", shared) in found.skipped
 
 
@@ -382,15 +382,28 @@ def test_lone_surrogates_in_json_answers_are_escaped_visibly(tmp_path):
     assert ana.answers == (("p.speed", "7\\ud800 m/s"),)
 
 
-def test_too_many_answers_and_too_long_answers_are_cut_with_a_message(tmp_path, monkeypatch):
-    monkeypatch.setattr(subs, "MAX_ANSWERS", 2)
-    monkeypatch.setattr(subs, "MAX_ANSWER_CHARS", 5)
-    (tmp_path / "lo.txt").write_text("a.a = 1\na.b = 1234567\na.c = 3\n", encoding="utf-8")
-    lo = student(tmp_path, "lo")
-    assert lo.answers == (("a.a", "1"), ("a.b", "12345"))
-    assert lo.messages == ("'lo.txt' holds 3 answers; only the first 2 were read",
-                           "'lo.txt': the answer to 'a.b' is 7 characters long; only the "
-                           "first 5 were read")
+def test_long_answers_are_kept_whole_and_many_unknown_keys_summarised(tmp_path):
+    long = "1" * 100_000
+    (tmp_path / "lo.txt").write_text("".join(f"k{i:02d} = {i}\n" for i in range(12))
+                                     + f"p.speed = {long}\n", encoding="utf-8")
+    lo = student(tmp_path, "lo", keys=KEYS)
+    assert lo.answers == (("p.speed", long),)
+    assert lo.messages[-2:] == ("'k09' (lo.txt) is not a question of this assignment; it was "
+                                "not graded", "2 more keys are not questions of this "
+                                "assignment; they were not graded")
+
+
+def test_utf32_with_byte_order_mark_is_read(tmp_path):
+    (tmp_path / "u.txt").write_bytes("p.speed = 1 m/s\n".encode("utf-32"))
+    assert student(tmp_path, "u").answers == (("p.speed", "1 m/s"),)
+
+
+def test_a_key_answered_flat_and_nested_says_which_was_graded(tmp_path):
+    (tmp_path / "n.json").write_text('{"p.speed": "1", "p": {"speed": "2"}}', encoding="utf-8")
+    n = student(tmp_path, "n")
+    assert n.answers == (("p.speed", "2"),)
+    assert n.messages == ("'n.json': 'p.speed' is answered twice (flat and nested); the later "
+                          "answer was graded",)
 
 
 def test_control_characters_in_keys_are_made_visible(tmp_path):

@@ -12,7 +12,7 @@ from ..grade.assignment import load_assignment
 from ..grade.run import grade_submissions
 from ..report.output import write_outputs
 from ..roster import read_roster
-from .common import main, reports_errors
+from .common import INTERNAL_ERROR_EXIT, main, reports_errors
 
 
 @main.command("grade")
@@ -56,10 +56,6 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     if report.internal_errors:
         sys.exit(INTERNAL_ERROR_EXIT)
 
-
-INTERNAL_ERROR_EXIT = 3
-"""The run finished and wrote every output, but mechgrade itself failed on some students or
-answers (they are ``not_evaluated``; the summary lists where)."""
 
 MAX_LISTED = 50
 

@@ -28,8 +28,19 @@ _FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r", "\uff1d", "\uff0b", "\uff0d",
 _PLAIN_NUMBER = re.compile(r"-?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?")
 
 
+MAX_CELL_CHARS = 32_000
+"""Excel holds at most 32,767 characters in a cell (and splits longer ones over rows); Python's
+csv reader refuses fields over 131,072. Longer text is cut, saying so."""
+
+
 def safe_cell(value: object) -> str:
-    """The text of one CSV cell, neutralised against formula injection (see module doc)."""
+    """The text of one CSV cell, neutralised against formula injection (see module doc), and at
+    most :data:`MAX_CELL_CHARS` long.
+
+    >>> cell = safe_cell("1" * 40_000)
+    >>> len(cell) <= MAX_CELL_CHARS, cell[-44:]
+    (True, '[cut: 40000 characters; all in results.json]')
+    """
     if value is None:
         return ""
     if isinstance(value, bool):
@@ -37,6 +48,8 @@ def safe_cell(value: object) -> str:
     if isinstance(value, (int, float)):
         return format_points(value)
     text = str(value)
+    if len(text) > MAX_CELL_CHARS:
+        text = f"{text[:MAX_CELL_CHARS - 60]}... [cut: {len(text)} characters; all in results.json]"
     if text.startswith(_FORMULA_STARTS) and not _PLAIN_NUMBER.fullmatch(text):
         return "'" + text
     return text

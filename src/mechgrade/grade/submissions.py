@@ -34,12 +34,12 @@ from ..yamlio import read_yaml_text
 from .results import SkippedEntry
 
 MAX_FILE_BYTES = 256 * 1024
-MAX_ANSWERS = 500
-MAX_ANSWER_CHARS = 4000
+MAX_LISTED_KEYS = 10
 ANSWER_FILES = ("answers.yaml", "answers.yml", "answers.json", "answers.txt")
 SUFFIXES = (".yaml", ".yml", ".json", ".txt")
 SYSTEM_NAMES = {"__MACOSX": "made by macOS when zipping", "Thumbs.db": "made by Windows Explorer",
                 "desktop.ini": "made by Windows Explorer"}
+SHARED_WORK = "it was not read (two students handing in the same work)"
 NOT_A_SUBMISSION = ("not a submission: expected a folder per student or a file "
                     "<student_id>.yaml, .yml, .json or .txt")
 NOT_AN_ANSWER_FILE = "not an answers file: answers go in answers.yaml, answers.json or answers.txt"
@@ -124,6 +124,8 @@ def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | No
                      for student, sources in sorted(found.items()))
     for source in (s for sources in found.values() for s in sources):
         skipped.extend(source.skipped)
+        if source.problem and source.problem.endswith(SHARED_WORK):
+            notes.append(f"'{source.label}' {source.problem}")
     notes.extend(_look_alike_notes([s.student for s in students]))
     return SubmissionSet(folder, students, tuple(sorted(skipped, key=lambda e: e.path)),
                          tuple(notes))
@@ -182,8 +184,6 @@ def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list, note
     link = _link_problem(path, root, own=name)
     if link is not None:
         sources.append(_Source(shown, None, link, skipped=(SkippedEntry(shown, link),)))
-        if "another student" in link:
-            notes.append(f"'{shown}' {link}")
         return
     if kind == "folder":
         inner = _folder_sources(path, root, shown, own=name)
@@ -233,7 +233,7 @@ def _link_problem(path: Path, root: Path, *, own: str) -> str | None:
     top = inside.parts[0] if inside.parts else ""
     if top and top != own and _owner(top) != _owner(own):
         return (f"is a link to '{clean_text(inside.as_posix())}', inside another student's "
-                f"submission: it was not read (two students handing in one file)")
+                f"submission: {SHARED_WORK}")
     return None
 
 
@@ -395,10 +395,18 @@ def _match_keys(answers: dict, keys, messages: list[str]) -> dict:
             out[match[0]] = answers[key]
         else:
             unknown.append(key)
-    for key in unknown:
-        messages.append(f"'{key}' ({answers[key][1]}) is not a question of this assignment; "
-                        f"it was not graded")
+    for key in unknown[:MAX_LISTED_KEYS]:
+        messages.append(f"'{_short(key)}' ({answers[key][1]}) is not a question of this "
+                        f"assignment; it was not graded")
+    if len(unknown) > MAX_LISTED_KEYS:
+        messages.append(f"{len(unknown) - MAX_LISTED_KEYS} more keys are not questions of this "
+                        f"assignment; they were not graded")
     return out
+
+
+def _short(text: str, limit: int = 60) -> str:
+    """A key or line as shown in a message: at most ``limit`` characters."""
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def read_answer_file(path: str | Path, *, label: str | None = None
@@ -426,16 +434,13 @@ def read_answer_file(path: str | Path, *, label: str | None = None
         pairs = _from_json(text, label, notes)
     else:
         pairs = _from_txt(text, label, notes)
-    if len(pairs) > MAX_ANSWERS:
-        notes.append(f"'{label}' holds {len(pairs)} answers; only the first {MAX_ANSWERS} "
-                     f"were read")
-        pairs = pairs[:MAX_ANSWERS]
+    # Nothing is cut here: the file size bounds the answers, and an answer too long to read is
+    # refused by the answer reader with its true length.
     kept: dict[str, str] = {}
     for key, value in pairs:
-        if len(value) > MAX_ANSWER_CHARS:
-            notes.append(f"'{label}': the answer to '{key}' is {len(value)} characters long; "
-                         f"only the first {MAX_ANSWER_CHARS} were read")
-            value = value[:MAX_ANSWER_CHARS]
+        if key in kept and kept[key] != value:
+            notes.append(f"'{label}': '{_short(key)}' is answered twice (flat and nested); "
+                         f"the later answer was graded")
         kept[key] = value
     if not kept:
         raise _Unread(f"'{label}' holds no answers (expected lines such as "
@@ -461,11 +466,13 @@ def _read_text(path: Path, label: str) -> tuple[str, str | None]:
     if len(raw) > MAX_FILE_BYTES:
         raise _Unread(f"'{label}' is larger than {MAX_FILE_BYTES} bytes; answer files "
                               f"may be at most {MAX_FILE_BYTES} bytes")
-    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
-        try:
-            return raw.decode("utf-16"), None
-        except UnicodeDecodeError:
-            raise _Unread(f"'{label}' is not readable text (bad UTF-16)") from None
+    for boms, codec in (((b"\xff\xfe\x00\x00", b"\x00\x00\xfe\xff"), "utf-32"),
+                        ((b"\xff\xfe", b"\xfe\xff"), "utf-16")):
+        if raw.startswith(boms):
+            try:
+                return raw.decode(codec), None
+            except UnicodeDecodeError:
+                raise _Unread(f"'{label}' is not readable text (bad {codec.upper()})") from None
     if b"\0" in raw:
         raise _Unread(f"'{label}' is a binary file, not text; expected answers typed "
                               f"as text")
@@ -493,9 +500,8 @@ def _from_txt(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]:
         if not content:
             continue
         if "=" not in content:
-            shown = content if len(content) <= 40 else content[:37] + "..."
             notes.append(f"{label}:{number}: expected 'problem_id.objective_id = answer', "
-                         f"found '{_printable(shown)}'; the line was not read")
+                         f"found '{_printable(_short(content, 40))}'; the line was not read")
             continue
         key, value = (part.strip() for part in content.split("=", 1))
         if not key:
