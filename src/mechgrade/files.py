@@ -19,6 +19,7 @@ import json
 import os
 import re
 import tempfile
+import unicodedata
 from pathlib import Path
 
 from .errors import Location, MechgradeError, OutputError
@@ -143,6 +144,37 @@ def write_json(path: str | os.PathLike, data: object) -> None:
         raise OutputError(f"expected finite numbers to write as JSON, found {err}",
                           where=Location(str(path))) from None
     write_text(path, text + "\n")
+
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
+_WINDOWS_DEVICES = {"CON", "PRN", "AUX", "NUL", *(f"COM{i}" for i in range(10)),
+                    *(f"LPT{i}" for i in range(10))}
+
+
+def safe_file_names(ids: list[str]) -> list[str]:
+    """A safe, distinct file name (without suffix) for every id, in order.
+
+    ASCII letters, digits and ``._-`` only, at most 80 characters, never starting with ``-``
+    (read as an option by shell tools) or ``.``, no Windows device names; ids that would
+    collide (also in letter case, for case-insensitive file systems) get ``-2``, ``-3``...
+
+    >>> safe_file_names(["ana", "../x", "Ana", "é b", "-rf", "nul", "bad\\\\xe9", "x" * 300])[:7]
+    ['ana', 'x', 'Ana-2', 'e_b', 'rf', 'student_nul', 'bad_xe9']
+    """
+    names: list[str] = []
+    used: set[str] = set()
+    for ident in ids:
+        ascii_id = unicodedata.normalize("NFKD", ident).encode("ascii", "ignore").decode()
+        base = _UNSAFE.sub("_", ascii_id).lstrip("-._").rstrip("._")[:80] or "student"
+        if base.split(".")[0].upper() in _WINDOWS_DEVICES:
+            base = f"student_{base}"
+        name, n = base, 1
+        while name.casefold() in used:
+            n += 1
+            name = f"{base}-{n}"
+        used.add(name.casefold())
+        names.append(name)
+    return names
 
 
 def _new_file_mode() -> int:

@@ -21,13 +21,12 @@ temporary file and moved into place, so a crash never leaves half a file.
 from __future__ import annotations
 
 import re
-import unicodedata
 from dataclasses import dataclass, replace
 from html import escape as html_escape
 from pathlib import Path
 
 from ..errors import Location, MechgradeError, brief_exception
-from ..files import write_json, write_text
+from ..files import safe_file_names, write_json, write_text
 from ..export import EXPORTERS
 from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
@@ -152,36 +151,10 @@ def _where(path: Path, line: int | None = None):
     return Location(str(path), line)
 
 
-_UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
-_WINDOWS_DEVICES = {"CON", "PRN", "AUX", "NUL", *(f"COM{i}" for i in range(10)),
-                    *(f"LPT{i}" for i in range(10))}
-
-
 def feedback_names(report: GradeReport) -> list[str]:
-    """A safe, unique file name (without suffix) for every student, in report order.
-
-    >>> from mechgrade.grade.results import AssignmentInfo, StudentResult
-    >>> r = GradeReport(AssignmentInfo("a", "A"), (), tuple(
-    ...     StudentResult(i, "", "missing", 0, 0)
-    ...     for i in ("ana", "../x", "Ana", "é b", "-rf", "nul", "bad\\\\xe9")))
-    >>> feedback_names(r)
-    ['ana', 'x', 'Ana-2', 'e_b', 'rf', 'student_nul', 'bad_xe9']
-    """
-    names: list[str] = []
-    used: set[str] = set()
-    for student in report.students:
-        ascii_id = unicodedata.normalize("NFKD", student.id).encode("ascii", "ignore").decode()
-        # No leading '-' (read as an option by shell tools) or '.', no Windows device names.
-        base = _UNSAFE.sub("_", ascii_id).lstrip("-._").rstrip("._")[:80] or "student"
-        if base.split(".")[0].upper() in _WINDOWS_DEVICES:
-            base = f"student_{base}"
-        name, n = base, 1
-        while name.casefold() in used:
-            n += 1
-            name = f"{base}-{n}"
-        used.add(name.casefold())
-        names.append(name)
-    return names
+    """A safe, distinct file name (without suffix) for every student, in report order
+    (:func:`mechgrade.files.safe_file_names` of the ids)."""
+    return safe_file_names([student.id for student in report.students])
 
 
 def feedback_context(report: GradeReport, student: StudentResult, *,
