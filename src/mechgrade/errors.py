@@ -131,5 +131,23 @@ class ExportError(MechgradeError):
     """Results could not be exported in the requested format."""
 
 
+class OutputError(MechgradeError):
+    """An output file or folder could not be written."""
+
+
 class AnswerError(MechgradeError):
     """A student's answer text could not be read; the message says why (verdict "unreadable")."""
+
+
+def brief_exception(exc: BaseException) -> str:
+    """An exception as one short line: its type and the start of its message.
+
+    >>> brief_exception(ZeroDivisionError("x" * 300))[:30], len(brief_exception(KeyError()))
+    ('ZeroDivisionError: xxxxxxxxxxx', 8)
+    """
+    try:
+        text = " ".join(str(exc).encode("utf-8", "backslashreplace").decode().split())
+    except Exception:  # noqa: BLE001 - an exception whose message itself fails
+        text = ""
+    text = text if len(text) <= 120 else text[:117] + "..."
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__

@@ -1,17 +1,28 @@
-"""Reading a user's text file with one clear message for every way it can fail.
+"""Reading a user's text file, and writing every output file, each through one function.
+
+Reading: one clear message for every way a file can fail.
 
 >>> from mechgrade.errors import SpecError
 >>> read_text("no/such/file.yaml", what="a problem file", error=SpecError)
 Traceback (most recent call last):
 ...
 mechgrade.errors.SpecError: no/such/file.yaml: expected a problem file, found no such file
+
+Writing: every string that reaches an output file passes :func:`clean_text` first, so no writer
+can fail on what a student typed or on a folder name that is not UTF-8; files are written
+through a temporary file and ``os.replace`` with the mode ``open()`` would give them.
 """
 
 from __future__ import annotations
 
+import json
+import os
+import re
+import tempfile
+import unicodedata
 from pathlib import Path
 
-from .errors import Location, MechgradeError
+from .errors import Location, MechgradeError, OutputError
 
 MAX_BYTES = 1_000_000
 
@@ -44,3 +55,130 @@ def read_text(path: str | Path, *, what: str, error: type[MechgradeError],
         line = data[:exc.start].count(b"\n") + 1
         raise error(f"expected UTF-8 text{hint}, found byte 0x{data[exc.start]:02x}, which is "
                     "not UTF-8", where=Location(name, line)) from None
+
+
+_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def _escape_surrogate(match: re.Match) -> str:
+    code = ord(match.group())
+    # Python decodes a byte that is not UTF-8 (a file name, surrogateescape) as U+DC80..U+DCFF.
+    return f"\\x{code - 0xDC00:02x}" if 0xDC80 <= code <= 0xDCFF else f"\\u{code:04x}"
+
+
+def clean_text(text: str) -> str:
+    """``text`` made encodable: every lone surrogate escaped visibly, the rest unchanged.
+
+    A byte that is not UTF-8 (kept by Python as U+DC80..U+DCFF) becomes ``\\xNN``, the escaped
+    form of such names in every output; any other lone surrogate becomes ``\\uNNNN``.
+
+    >>> clean_text("bad\\udce9name"), clean_text("x\\ud800y"), clean_text("Zoë")
+    ('bad\\\\xe9name', 'x\\\\ud800y', 'Zoë')
+    """
+    return _SURROGATE.sub(_escape_surrogate, text) if _SURROGATE.search(text) else text
+
+
+def clean_data(value):
+    """:func:`clean_text` applied to every string (keys too) of a JSON-like value.
+
+    >>> clean_data({"id": "b\\udce9", "n": [1, "\\ud800"]})
+    {'id': 'b\\\\xe9', 'n': [1, '\\\\ud800']}
+    """
+    if isinstance(value, str):
+        return clean_text(value)
+    if isinstance(value, dict):
+        return {clean_data(k): clean_data(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [clean_data(v) for v in value]
+    return value
+
+
+def write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -> None:
+    """Write ``text`` (cleaned, newlines as given) to ``path`` atomically.
+
+    A reader never sees a half-written file and a failed write leaves the old file intact.
+    Raises :class:`~mechgrade.errors.OutputError`.
+
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "f.txt"
+    >>> write_text(p, "bad\\udce9name\\n"); p.read_text()
+    'bad\\\\xe9name\\n'
+    """
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise OutputError(f"expected an existing folder to write {target.name!r} into, found "
+                          f"none", where=Location(str(folder)))
+    if target.is_dir():
+        raise OutputError("expected a file path to write, found a folder",
+                          where=Location(str(target)))
+    data = clean_text(text).encode(encoding)
+    try:
+        fd, temp_name = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".tmp")
+        try:
+            with os.fdopen(fd, "wb") as handle:
+                handle.write(data)
+                handle.flush()
+                os.fsync(handle.fileno())
+            os.chmod(temp_name, _new_file_mode())
+            os.replace(temp_name, target)
+        except BaseException:
+            Path(temp_name).unlink(missing_ok=True)
+            raise
+    except OSError as err:
+        raise OutputError(f"cannot write the file ({err.strerror or err})",
+                          where=Location(str(target))) from None
+
+
+def write_json(path: str | os.PathLike, data: object) -> None:
+    """Write a JSON document atomically: UTF-8, not ASCII-escaped, indented, final newline.
+
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "r.json"
+    >>> write_json(p, {"id": "b\\udce9"}); json.loads(p.read_text())
+    {'id': 'b\\\\xe9'}
+    """
+    try:
+        text = json.dumps(clean_data(data), ensure_ascii=False, indent=2, allow_nan=False)
+    except ValueError as err:  # NaN or infinity: not JSON, and a sign of a bug upstream
+        raise OutputError(f"expected finite numbers to write as JSON, found {err}",
+                          where=Location(str(path))) from None
+    write_text(path, text + "\n")
+
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
+_WINDOWS_DEVICES = {"CON", "PRN", "AUX", "NUL", *(f"COM{i}" for i in range(10)),
+                    *(f"LPT{i}" for i in range(10))}
+
+
+def safe_file_names(ids: list[str]) -> list[str]:
+    """A safe, distinct file name (without suffix) for every id, in order.
+
+    ASCII letters, digits and ``._-`` only, at most 80 characters, never starting with ``-``
+    (read as an option by shell tools) or ``.``, no Windows device names; ids that would
+    collide (also in letter case, for case-insensitive file systems) get ``-2``, ``-3``...
+
+    >>> safe_file_names(["ana", "../x", "Ana", "é b", "-rf", "nul", "bad\\\\xe9", "x" * 300])[:7]
+    ['ana', 'x', 'Ana-2', 'e_b', 'rf', 'student_nul', 'bad_xe9']
+    """
+    names: list[str] = []
+    used: set[str] = set()
+    for ident in ids:
+        ascii_id = unicodedata.normalize("NFKD", ident).encode("ascii", "ignore").decode()
+        base = _UNSAFE.sub("_", ascii_id).lstrip("-._").rstrip("._")[:80] or "student"
+        if base.split(".")[0].upper() in _WINDOWS_DEVICES:
+            base = f"student_{base}"
+        name, n = base, 1
+        while name.casefold() in used:
+            n += 1
+            name = f"{base}-{n}"
+        used.add(name.casefold())
+        names.append(name)
+    return names
+
+
+def _new_file_mode() -> int:
+    """The mode ``open()`` would give a new file (mkstemp's temporary files are 0600)."""
+    umask = os.umask(0o022)
+    os.umask(umask)
+    return 0o666 & ~umask

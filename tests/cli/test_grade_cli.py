@@ -104,7 +104,10 @@ def test_readme_command_on_the_example_class(tmp_path):
                  EXAMPLE / "roster.csv", "--out", out)
     assert result.exit_code == 0, result.output
     assert result.stdout == (f"Graded 7 students (6 unreadable answers, 1 unreadable "
-                             f"submission, 2 missing submissions); wrote {out.as_posix()}/\n")
+                             f"submission, 2 missing submissions, 1 skipped entry); wrote "
+                             f"{out.as_posix()}/\n"
+                             f"Skipped (not read as anyone's answers):\n"
+                             f"  frank_empty/.keep: hidden (its name starts with '.')\n")
     first = {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob("*")) if p.is_file()}
     again = run(EXAMPLE / "assignment.yaml", EXAMPLE / "submissions", "--roster",
                 EXAMPLE / "roster.csv", "--out", out)

@@ -8,8 +8,7 @@ import io
 import pytest
 from hypothesis import given, strategies as st
 
-from mechgrade.errors import ExportError
-from mechgrade.export.cells import csv_text, format_points, safe_cell, write_csv, write_text
+from mechgrade.export.cells import csv_text, format_points, safe_cell, write_csv
 
 
 @pytest.mark.parametrize("text", ["=1+1", "+1+2", "-x*omega", "@SUM(A1)", "\tx", "\rx",
@@ -41,22 +40,3 @@ def test_excel_bom_option_writes_a_bom(tmp_path):
     write_csv(tmp_path / "b.csv", [["Zoë"]])
     assert (tmp_path / "a.csv").read_bytes() == b"\xef\xbb\xbfZo\xc3\xab\r\n"
     assert (tmp_path / "b.csv").read_bytes() == b"Zo\xc3\xab\r\n"
-
-
-def test_atomic_write_leaves_no_temporary_file_and_replaces(tmp_path):
-    target = tmp_path / "out.csv"
-    target.write_text("old")
-    write_text(target, "new")
-    assert target.read_text() == "new"
-    assert [p.name for p in tmp_path.iterdir()] == ["out.csv"]
-
-
-def test_writing_into_a_missing_folder_is_an_export_error(tmp_path):
-    with pytest.raises(ExportError, match="expected an existing folder to write 'x.csv' into, "
-                                          "found no folder"):
-        write_text(tmp_path / "nope" / "x.csv", "a")
-
-
-def test_writing_onto_a_folder_is_an_export_error(tmp_path):
-    with pytest.raises(ExportError, match="expected a file path to write, found a folder"):
-        write_text(tmp_path, "a")

@@ -8,6 +8,7 @@ import pytest
 
 from mechgrade.errors import SubmissionError
 from mechgrade.grade import submissions as subs
+from mechgrade.grade.results import SkippedEntry
 from mechgrade.grade.submissions import read_answer_file, read_submissions
 
 KEYS = frozenset({"p.speed", "p.angle", "q.acc"})
@@ -150,11 +151,39 @@ def test_link_to_a_file_outside_is_not_followed(tmp_path):
     assert student(root, "eve").status == "unreadable"
 
 
-def test_link_inside_the_folder_is_followed(tmp_path):
+def test_link_into_another_students_folder_is_flagged_not_read(tmp_path):
     (tmp_path / "ana").mkdir()
     (tmp_path / "ana" / "answers.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
     os.symlink(tmp_path / "ana" / "answers.txt", tmp_path / "bob.txt")
-    assert student(tmp_path, "bob").answers == (("p.speed", "1 m/s"),)
+    (tmp_path / "cy").mkdir()
+    os.symlink(tmp_path / "ana" / "answers.txt", tmp_path / "cy" / "answers.txt")
+    found = read_submissions(tmp_path)
+    bob, cy = (s for s in found.students if s.student in ("bob", "cy"))
+    shared = ("is a link to 'ana/answers.txt', inside another student's submission: it was "
+              "not read (two students handing in the same work)")
+    assert (bob.status, bob.answers, bob.messages) == ("unreadable", (), (f"'bob.txt' {shared}",))
+    assert cy.messages == (f"'cy/answers.txt' {shared}",)
+    assert found.notes == (f"'bob.txt' {shared}", f"'cy/answers.txt' {shared}")
+    assert SkippedEntry("cy/answers.txt", shared) in found.skipped
+
+
+def test_link_to_a_students_own_file_is_followed(tmp_path):
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "answers.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    os.symlink(tmp_path / "ana" / "answers.txt", tmp_path / "ana.txt")
+    (ana,) = read_submissions(tmp_path).students
+    assert ana.answers == (("p.speed", "1 m/s"),)
+
+
+def test_dangling_links_are_skipped_with_their_target(tmp_path):
+    os.symlink(tmp_path / "gone", tmp_path / "ana")
+    (tmp_path / "bo").mkdir()
+    os.symlink(tmp_path / "gone.txt", tmp_path / "bo" / "answers.txt")
+    found = read_submissions(tmp_path)
+    assert SkippedEntry("ana", f"a link to nothing ('{tmp_path}/gone')") in found.skipped
+    (bo,) = found.students
+    assert bo.status == "unreadable"
+    assert bo.messages == (f"'bo/answers.txt' is a link to nothing ('{tmp_path}/gone.txt')",)
 
 
 def test_a_fifo_is_not_opened(tmp_path):
@@ -281,25 +310,100 @@ def test_folder_with_only_other_files_is_missing_with_a_message(tmp_path):
                             "or answers.txt",)
 
 
-def test_stray_files_and_hidden_entries_of_the_folder(tmp_path):
+def test_every_entry_not_read_is_listed_as_skipped_with_its_reason(tmp_path):
     (tmp_path / "README.md").write_text("hi", encoding="utf-8")
     (tmp_path / ".DS_Store").write_bytes(b"\x00")
     (tmp_path / "__MACOSX").mkdir()
+    (tmp_path / ".hidden").mkdir()
+    os.mkfifo(tmp_path / "pipe")
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "answers.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    (tmp_path / "ana" / ".DS_Store").write_bytes(b"\x00")
+    (tmp_path / "ana" / "work.pdf").write_bytes(b"%PDF")
     found = read_submissions(tmp_path)
-    assert found.students == ()
-    assert found.messages == ("ignored 'README.md': expected a folder per student or a file "
-                              "<student_id>.yaml, .json or .txt",)
+    assert [s.student for s in found.students] == ["ana"]
+    assert found.skipped == (
+        SkippedEntry(".DS_Store", "hidden (its name starts with '.')"),
+        SkippedEntry(".hidden", "hidden (its name starts with '.')"),
+        SkippedEntry("README.md", subs.NOT_A_SUBMISSION),
+        SkippedEntry("__MACOSX", "made by macOS when zipping, not a submission"),
+        SkippedEntry("ana/.DS_Store", "hidden (its name starts with '.')"),
+        SkippedEntry("ana/work.pdf", subs.NOT_AN_ANSWER_FILE),
+        SkippedEntry("pipe", "not a file or folder (a FIFO)"),
+    )
 
 
-def test_too_many_answers_and_too_long_answers_are_cut_with_a_message(tmp_path, monkeypatch):
-    monkeypatch.setattr(subs, "MAX_ANSWERS", 2)
-    monkeypatch.setattr(subs, "MAX_ANSWER_CHARS", 5)
-    (tmp_path / "lo.txt").write_text("a.a = 1\na.b = 1234567\na.c = 3\n", encoding="utf-8")
-    lo = student(tmp_path, "lo")
-    assert lo.answers == (("a.a", "1"), ("a.b", "12345"))
-    assert lo.messages == ("'lo.txt' holds 3 answers; only the first 2 were read",
-                           "'lo.txt': the answer to 'a.b' is 7 characters long; only the "
-                           "first 5 were read")
+def test_names_are_kept_byte_for_byte(tmp_path):
+    for name in ("Zo\u00eb", "Zoe\u0308", " ana", "ana"):
+        (tmp_path / f"{name}.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    os.mkdir(os.path.join(os.fsencode(tmp_path), b"bad\xe9name"))
+    found = read_submissions(tmp_path)
+    assert sorted(s.student for s in found.students) == sorted(
+        [" ana", "ana", "Zo\u00eb", "Zoe\u0308", "bad\\xe9name"])
+    assert found.notes == (
+        "2 folders whose names differ only in letter case, spaces or Unicode form: ' ana' "
+        "( ana), 'ana' (ana); graded as 2 different students",
+        "2 folders whose names differ only in Unicode form: 'Zoe\u0308' (Zoe\\u0308), "
+        "'Zo\u00eb' (Zo\\xeb); graded as 2 different students")
+
+
+def test_answers_file_in_another_letter_case_is_read_and_named(tmp_path):
+    (tmp_path / "ana").mkdir()
+    (tmp_path / "ana" / "Answers.YAML").write_text("p.speed: 1 m/s\n", encoding="utf-8")
+    (tmp_path / "ana" / "answers.yaml").write_text("p.angle: 2 deg\n", encoding="utf-8")
+    (ana,) = read_submissions(tmp_path).students
+    assert ana.answers == (("p.angle", "2 deg"), ("p.speed", "1 m/s"))
+    assert "read 'ana/Answers.YAML' as the answers file" in ana.messages
+
+
+def test_a_fault_while_reading_one_student_makes_only_that_student_unreadable(tmp_path,
+                                                                              monkeypatch):
+    for name in ("ana", "bo"):
+        (tmp_path / f"{name}.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    real = subs.read_answer_file
+
+    def broken(path, *, label=None):
+        if label == "bo.txt":
+            raise ZeroDivisionError("division by zero")
+        return real(path, label=label)
+
+    monkeypatch.setattr(subs, "read_answer_file", broken)
+    ana, bo = read_submissions(tmp_path).students
+    assert ana.status == "read"
+    assert (bo.status, bo.internal_error) == ("unreadable",
+                                              "reading 'bo': ZeroDivisionError: division by zero")
+    assert bo.messages == ("internal error while reading this submission: ZeroDivisionError: "
+                           "division by zero; please tell your instructor",)
+
+
+def test_lone_surrogates_in_json_answers_are_escaped_visibly(tmp_path):
+    (tmp_path / "ana.json").write_text('{"p.speed": "7\\ud800 m/s"}', encoding="utf-8")
+    (ana,) = read_submissions(tmp_path).students
+    assert ana.answers == (("p.speed", "7\\ud800 m/s"),)
+
+
+def test_long_answers_are_kept_whole_and_many_unknown_keys_summarised(tmp_path):
+    long = "1" * 100_000
+    (tmp_path / "lo.txt").write_text("".join(f"k{i:02d} = {i}\n" for i in range(12))
+                                     + f"p.speed = {long}\n", encoding="utf-8")
+    lo = student(tmp_path, "lo", keys=KEYS)
+    assert lo.answers == (("p.speed", long),)
+    assert lo.messages[-2:] == ("'k09' (lo.txt) is not a question of this assignment; it was "
+                                "not graded", "2 more keys are not questions of this "
+                                "assignment; they were not graded")
+
+
+def test_utf32_with_byte_order_mark_is_read(tmp_path):
+    (tmp_path / "u.txt").write_bytes("p.speed = 1 m/s\n".encode("utf-32"))
+    assert student(tmp_path, "u").answers == (("p.speed", "1 m/s"),)
+
+
+def test_a_key_answered_flat_and_nested_says_which_was_graded(tmp_path):
+    (tmp_path / "n.json").write_text('{"p.speed": "1", "p": {"speed": "2"}}', encoding="utf-8")
+    n = student(tmp_path, "n")
+    assert n.answers == (("p.speed", "2"),)
+    assert n.messages == ("'n.json': 'p.speed' is answered twice (flat and nested); the later "
+                          "answer was graded",)
 
 
 def test_control_characters_in_keys_are_made_visible(tmp_path):

@@ -9,8 +9,7 @@ import pytest
 from mechgrade.errors import MechgradeError
 from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo,
                                      StudentResult)
-from mechgrade.report.output import (feedback_context, feedback_names, write_outputs,
-                                     write_text_atomic)
+from mechgrade.report.output import (feedback_context, feedback_names, write_outputs)
 from mechgrade.resources import shipped_dir
 
 HOSTILE = '<script>alert("x")</script> *bold* `code` [link](http://e.vil)'
@@ -35,7 +34,7 @@ REPORT = GradeReport(
 
 
 def test_outputs_are_written_where_documented(tmp_path):
-    written = write_outputs(REPORT, tmp_path)
+    written = write_outputs(REPORT, tmp_path).paths
     assert [p.relative_to(tmp_path).as_posix() for p in written] == [
         "results.json", "grades.csv", "results.csv", "feedback/ana.html", "feedback/ana.md",
         "feedback/eve.html", "feedback/eve.md", "feedback/joe.html", "feedback/joe.md"]
@@ -46,7 +45,8 @@ def test_results_json_is_the_contract(tmp_path):
     write_outputs(REPORT, tmp_path)
     data = json.loads((tmp_path / "results.json").read_text(encoding="utf-8"))
     assert GradeReport.from_json(data) == REPORT
-    assert list(data) == ["assignment", "objectives", "students"]
+    assert list(data) == ["assignment", "objectives", "students", "skipped", "notes",
+                          "internal_errors"]
     assert data["students"][0]["identity"] == {"email": "ana@uni.edu"}
 
 
@@ -150,11 +150,6 @@ def test_context_prepares_text_and_templates_compute_nothing():
                                   "max_score": "5", "percent": "70%"}
     assert context["rows"][1]["prompt"] == "Speed in terms of L."
     assert context["reveal"] is True
-
-
-def test_atomic_write_into_a_missing_folder_is_an_error(tmp_path):
-    with pytest.raises(MechgradeError, match="cannot write the file"):
-        write_text_atomic(tmp_path / "none" / "x.txt", "text")
 
 
 def test_unwritable_output_folder_is_an_error(tmp_path):

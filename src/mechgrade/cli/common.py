@@ -10,6 +10,11 @@ from .. import __version__
 from ..errors import MechgradeError
 
 
+INTERNAL_ERROR_EXIT = 3
+"""The run finished and wrote its outputs, but mechgrade itself failed on some students or
+answers (they are ``not_evaluated``; the summary lists where). Bad input exits with 2."""
+
+
 class UserFailure(click.ClickException):
     """A bad-input failure: the library's message alone, exit code 2."""
 

@@ -7,11 +7,12 @@ from pathlib import Path
 
 import click
 
+from ..files import clean_text
 from ..grade.assignment import load_assignment
 from ..grade.run import grade_submissions
 from ..report.output import write_outputs
 from ..roster import read_roster
-from .common import main, reports_errors
+from .common import INTERNAL_ERROR_EXIT, main, reports_errors
 
 
 @main.command("grade")
@@ -50,8 +51,31 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
-    write_outputs(report, out_dir, templates_dir, roster=class_roster)
-    click.echo(summary_line(report, out_dir))
+    report = write_outputs(report, out_dir, templates_dir, roster=class_roster).report
+    click.echo(summary(report, out_dir))
+    if report.internal_errors:
+        sys.exit(INTERNAL_ERROR_EXIT)
+
+
+MAX_LISTED = 50
+
+
+def summary(report, out_dir: Path) -> str:
+    """The run summary: the count line, then every skipped entry, note and internal error."""
+    lines = [summary_line(report, out_dir)]
+    for title, items in (
+            ("Skipped (not read as anyone's answers)",
+             [f"{e.path}: {e.reason}" for e in report.skipped]),
+            ("Notes", list(report.notes)),
+            ("Internal errors (not evaluated; please report them)",
+             list(report.internal_errors))):
+        if not items:
+            continue
+        lines.append(f"{title}:")
+        lines.extend(f"  {item}" for item in items[:MAX_LISTED])
+        if len(items) > MAX_LISTED:
+            lines.append(f"  ... and {len(items) - MAX_LISTED} more (all in results.json)")
+    return "\n".join(clean_text(line) for line in lines)
 
 
 def summary_line(report, out_dir: Path) -> str:
@@ -59,15 +83,20 @@ def summary_line(report, out_dir: Path) -> str:
     graded = sum(1 for s in report.students if s.status == "graded")
     unreadable_students = sum(1 for s in report.students if s.status == "unreadable")
     missing = sum(1 for s in report.students if s.status == "missing")
+    not_evaluated = sum(1 for s in report.students if s.status == "not_evaluated")
     unreadable = sum(1 for s in report.students if s.status == "graded"
                      for a in s.answers if a.verdict == "unreadable")
     parts = [_count(unreadable, "unreadable answer")]
     if unreadable_students:
         parts.append(_count(unreadable_students, "unreadable submission"))
     parts.append(_count(missing, "missing submission"))
+    if not_evaluated:
+        parts.append(f"{_count(not_evaluated, 'student')} not evaluated")
+    if report.skipped:
+        parts.append(_count(len(report.skipped), "skipped entry", "skipped entries"))
     return (f"Graded {_count(graded, 'student')} ({', '.join(parts)}); "
             f"wrote {out_dir.as_posix().rstrip('/')}/")
 
 
-def _count(n: int, noun: str) -> str:
-    return f"{n} {noun}{'' if n == 1 else 's'}"
+def _count(n: int, noun: str, plural: str | None = None) -> str:
+    return f"{n} {noun if n == 1 else plural or noun + 's'}"

@@ -3,18 +3,19 @@
 from __future__ import annotations
 
 import json
+import sys
 from dataclasses import replace
 from pathlib import Path
 
 import click
 
-from ..errors import MechgradeError
-from ..export.cells import write_json
+from ..errors import MechgradeError, brief_exception
+from ..files import clean_text, write_json
 from ..export.gradescope import gradescope_failure, gradescope_results
 from ..grade.assignment import load_assignment
 from ..grade.run import grade_plan, plan_assignment
 from ..grade.submissions import SubmissionSet, read_student_folder
-from .common import UserFailure, main
+from .common import INTERNAL_ERROR_EXIT, UserFailure, main
 
 
 def student_of(metadata_path: Path) -> tuple[str, str]:
@@ -55,9 +56,20 @@ def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
             result = replace(result, name=name)
         write_json(results_path, gradescope_results(report, result))
     except MechgradeError as err:
-        try:
-            write_json(results_path, gradescope_failure(str(err)))
-        except MechgradeError:
-            pass
+        _write_failure(results_path, str(err))
         raise UserFailure(str(err)) from None
-    click.echo(f"{student}: {result.score:g} / {result.max_score:g} points; wrote {results_path}")
+    except Exception as exc:  # noqa: BLE001 - Gradescope must always get a results.json
+        message = (f"internal error while grading this submission: {brief_exception(exc)}; "
+                   f"please tell your instructor")
+        _write_failure(results_path, message)
+        click.echo(message, err=True)
+        sys.exit(INTERNAL_ERROR_EXIT)
+    click.echo(clean_text(f"{student}: {result.score:g} / {result.max_score:g} points; wrote "
+                          f"{results_path}"))
+
+
+def _write_failure(results_path: Path, message: str) -> None:
+    try:
+        write_json(results_path, gradescope_failure(message))
+    except MechgradeError:
+        pass  # the message still reaches the autograder log through stderr

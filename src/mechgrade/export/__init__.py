@@ -113,8 +113,12 @@ def _check_results(data: object, name: str) -> None:
             raise fail(where or "(top level)", f"only the fields {', '.join(fields)}",
                        f"{unknown[0]!r}")
 
-    check(data, "", {"assignment": "an object", "objectives": "a list", "students": "a list"},
+    check(data, "", {"assignment": "an object", "objectives": "a list", "students": "a list",
+                     "skipped": "a list", "notes": "a list of strings",
+                     "internal_errors": "a list of strings"},
           {"assignment", "students"})
+    for i, entry in enumerate(data.get("skipped", [])):
+        check(entry, f"skipped[{i}]", {"path": _STR, "reason": _STR}, {"path", "reason"})
     check(data["assignment"], "assignment", {"id": _STR, "title": _STR}, {"id", "title"})
     for i, objective in enumerate(data.get("objectives", [])):
         fields = {"problem": _STR, "objective": _STR, "prompt": _STR, "max_points": _NUM}

@@ -18,21 +18,29 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import os
 import re
-import tempfile
-from pathlib import Path
 from typing import Iterable, Sequence
 
-from ..errors import ExportError
+from .. import files
 
 _FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r", "\uff1d", "\uff0b", "\uff0d", "\uff20")
 _PLAIN_NUMBER = re.compile(r"-?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?")
 
 
+MAX_CELL_CHARS = 32_000
+"""Excel holds at most 32,767 characters in a cell (and splits longer ones over rows); Python's
+csv reader refuses fields over 131,072. Longer text is cut, saying so."""
+
+
 def safe_cell(value: object) -> str:
-    """The text of one CSV cell, neutralised against formula injection (see module doc)."""
+    """The text of one CSV cell, neutralised against formula injection (see module doc), and at
+    most :data:`MAX_CELL_CHARS` long.
+
+    >>> cell = safe_cell("1" * 40_000)
+    >>> len(cell) <= MAX_CELL_CHARS, cell[-44:]
+    (True, '[cut: 40000 characters; all in results.json]')
+    """
     if value is None:
         return ""
     if isinstance(value, bool):
@@ -40,6 +48,8 @@ def safe_cell(value: object) -> str:
     if isinstance(value, (int, float)):
         return format_points(value)
     text = str(value)
+    if len(text) > MAX_CELL_CHARS:
+        text = f"{text[:MAX_CELL_CHARS - 60]}... [cut: {len(text)} characters; all in results.json]"
     if text.startswith(_FORMULA_STARTS) and not _PLAIN_NUMBER.fullmatch(text):
         return "'" + text
     return text
@@ -63,44 +73,9 @@ def csv_text(rows: Iterable[Sequence[object]]) -> str:
 def write_csv(path: str | os.PathLike, rows: Iterable[Sequence[object]], *,
               excel_bom: bool = False) -> None:
     """Write rows as a UTF-8 CSV file atomically; ``excel_bom`` prefixes a BOM for Excel."""
-    write_text(path, csv_text(rows), encoding="utf-8-sig" if excel_bom else "utf-8")
+    files.write_text(path, csv_text(rows), encoding="utf-8-sig" if excel_bom else "utf-8")
 
 
 def write_json(path: str | os.PathLike, data: object) -> None:
-    """Write a JSON document atomically (UTF-8, not ASCII-escaped, indented, trailing newline)."""
-    write_text(path, json.dumps(data, ensure_ascii=False, indent=2) + "\n")
-
-
-def write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -> None:
-    """Write text through a temporary file in the same folder and ``os.replace``.
-
-    A reader never sees a half-written file, and a failed write leaves the old file intact.
-    """
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    if not folder.is_dir():
-        raise ExportError(f"expected an existing folder to write {target.name!r} into, "
-                          f"found no folder {str(folder)!r}")
-    if target.is_dir():
-        raise ExportError(f"{target}: expected a file path to write, found a folder")
-    try:
-        fd, temp_name = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w", encoding=encoding, newline="") as handle:
-                handle.write(text)
-                handle.flush()
-                os.fsync(handle.fileno())
-            os.chmod(temp_name, new_file_mode())
-            os.replace(temp_name, target)
-        except BaseException:
-            Path(temp_name).unlink(missing_ok=True)
-            raise
-    except OSError as err:
-        raise ExportError(f"{target}: could not write the file: {err.strerror or err}") from None
-
-
-def new_file_mode() -> int:
-    """The mode ``open()`` would give a new file (mkstemp's temporary files are 0600)."""
-    umask = os.umask(0o022)
-    os.umask(umask)
-    return 0o666 & ~umask
+    """Write a JSON document atomically (see :func:`mechgrade.files.write_json`)."""
+    files.write_json(path, data)

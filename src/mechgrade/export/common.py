@@ -11,9 +11,15 @@ def has_submission(result: StudentResult | None) -> bool:
 
 
 def score_cell(result: StudentResult | None, options: ExportOptions) -> float | str:
-    """The total to write: the score, or 0 / blank (``options.missing``) with no submission."""
+    """The total to write: the score, or 0 / blank (``options.missing``) with no submission.
+
+    A student whose grading failed through a fault of mechgrade's (``not_evaluated``) gets a
+    blank cell, which every LMS reads as "no score": a bug never becomes a grade.
+    """
     if not has_submission(result):
         return 0.0 if options.missing == "zero" else ""
+    if result.status == "not_evaluated":
+        return ""
     return result.score
 
 

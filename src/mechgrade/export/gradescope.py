@@ -24,12 +24,12 @@ always grades one submission at a time).
 from __future__ import annotations
 
 import os
-import re
 from pathlib import Path
 
 from ..errors import ExportError
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster
+from ..files import safe_file_names
 from .cells import format_points, write_json
 from .common import answers_by_objective, has_submission, max_score, objective_label
 from .options import ExportOptions
@@ -51,14 +51,8 @@ def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
     except OSError as err:
         raise ExportError(f"{folder}: expected a folder for one results.json per student, "
                           f"could not make it: {err.strerror}") from None
-    taken: set[str] = set()
-    for student in report.students:
-        stem = re.sub(r"[^A-Za-z0-9._-]", "_", student.id).strip(".") or "student"
-        name, n = stem, 1
-        while name.casefold() in taken:
-            n += 1
-            name = f"{stem}_{n}"
-        taken.add(name.casefold())
+    names = safe_file_names([student.id for student in report.students])
+    for student, name in zip(report.students, names):
         write_json(folder / f"{name}.json", gradescope_results(report, student, options))
 
 

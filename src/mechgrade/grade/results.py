@@ -6,7 +6,8 @@
      "objectives": [{"problem", "objective", "prompt", "max_points"}],
      "students": [{"id", "name", "status", "score", "max_score",
                    "answers": [{"problem", "objective", "answer", "verdict", "points",
-                                "max_points", "diagnosis", "feedback"}]}]}
+                                "max_points", "diagnosis", "feedback"}]}],
+     "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...]}
 
 Verdicts come from :data:`VERDICTS`; student statuses from :data:`STATUSES`. Reports and
 exports read these dataclasses (never sympy).
@@ -21,7 +22,9 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 
 VERDICTS = ("correct", "partial", "incorrect", "unreadable", "missing", "not_evaluated")
-STATUSES = ("graded", "missing", "unreadable")
+STATUSES = ("graded", "missing", "unreadable", "not_evaluated")
+"""``not_evaluated``: grading this student failed through a fault of mechgrade's (see
+``GradeReport.internal_errors``); no grade is exported for them."""
 
 
 @dataclass(frozen=True)
@@ -76,10 +79,30 @@ class StudentResult:
 
 
 @dataclass(frozen=True)
+class SkippedEntry:
+    """An entry of the submissions folder (or of a student's folder) that was not read as
+    anyone's answers, and why. ``path`` is relative to the submissions folder."""
+
+    path: str
+    reason: str
+
+
+@dataclass(frozen=True)
 class GradeReport:
+    """A whole grading run.
+
+    ``skipped`` lists every entry of the submissions folder not read as answers; ``notes``
+    are remarks about the folder as a whole (look-alike names, shared files);
+    ``internal_errors`` says, one line each, where mechgrade itself failed (those students
+    or answers are ``not_evaluated``).
+    """
+
     assignment: AssignmentInfo
     objectives: tuple[ObjectiveInfo, ...]
     students: tuple[StudentResult, ...] = field(default=())
+    skipped: tuple[SkippedEntry, ...] = ()
+    notes: tuple[str, ...] = ()
+    internal_errors: tuple[str, ...] = ()
 
     def to_json(self) -> dict:
         """The ``results.json`` document (plain dicts and lists, stable key order)."""
@@ -101,4 +124,6 @@ class GradeReport:
                 messages=tuple(s.get("messages", ())), identity=identity))
         return cls(AssignmentInfo(**data["assignment"]),
                    tuple(ObjectiveInfo(**o) for o in data.get("objectives", [])),
-                   tuple(students))
+                   tuple(students),
+                   tuple(SkippedEntry(**e) for e in data.get("skipped", [])),
+                   tuple(data.get("notes", ())), tuple(data.get("internal_errors", ())))

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterable
 
-from ..errors import AssignmentError, InconsistentError, MechgradeError
+from ..errors import AssignmentError, InconsistentError, MechgradeError, brief_exception
 from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
 from ..solve.result import ObjectiveResult, Solution
@@ -136,9 +136,10 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
         progress(0, total)
     judge = _Judge(plan, resolve)
     students: list[StudentResult] = []
+    faults: list[str] = [s.internal_error for s in submissions.students if s.internal_error]
     try:
         for done, (person, submission) in enumerate(people, start=1):
-            students.append(_grade_student(plan, judge, person, submission))
+            students.append(_grade_student_safely(plan, judge, person, submission, faults))
             if progress:
                 progress(done, total)
     finally:
@@ -147,7 +148,7 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
-                       tuple(students))
+                       tuple(students), submissions.skipped, submissions.notes, tuple(faults))
 
 
 # ---------------------------------------------------------------------------- students
@@ -195,8 +196,24 @@ def _roster_value(student, kind: str) -> str:
     return getattr(student, kind, "") or ""
 
 
+def _grade_student_safely(plan: Plan, judge: "_Judge", person: _Person,
+                          submission: Submission | None, faults: list[str]) -> StudentResult:
+    """Grading one student as one unit of work: a fault of mechgrade's inside it makes that
+    student ``not_evaluated`` (recorded in ``faults``) and the run goes on."""
+    try:
+        return _grade_student(plan, judge, person, submission, faults)
+    except Exception as exc:  # noqa: BLE001 - the per-student boundary
+        detail = brief_exception(exc)
+        faults.append(f"grading '{person.id}': {detail}")
+        reason = f"internal error: {detail}; please tell your instructor"
+        answers = tuple(AnswerResult(o.problem.id, o.objective.id, None, "not_evaluated", 0.0,
+                                     o.max_points, None, reason) for o in plan.objectives)
+        return StudentResult(person.id, person.name, "not_evaluated", 0.0, plan.max_score,
+                             answers, (reason,), person.identity)
+
+
 def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
-                   submission: Submission | None) -> StudentResult:
+                   submission: Submission | None, faults: list[str]) -> StudentResult:
     messages: list[str] = []
     if not person.on_roster:
         messages.append("not on the roster")
@@ -220,12 +237,26 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
                                   item.max_points, None, "No answer was given.", None,
                                   judge.expected(item))
         else:
-            answer = judge.judge(item, text, submission, verdicts)
+            answer = _judge_safely(judge, item, text, submission, verdicts, person, faults)
         verdicts[item.key] = answer
         answers.append(answer)
     score = _round(sum(a.points for a in answers))
     return StudentResult(person.id, person.name, status, score, plan.max_score, tuple(answers),
                          tuple(messages), person.identity)
+
+
+def _judge_safely(judge: "_Judge", item: PlannedObjective, text: str, submission: Submission,
+                  verdicts: dict, person: _Person, faults: list[str]) -> AnswerResult:
+    """One answer judged; a fault of mechgrade's makes it ``not_evaluated``, nothing more."""
+    try:
+        return judge.judge(item, text, submission, verdicts)
+    except Exception as exc:  # noqa: BLE001 - one answer must not take its student down
+        detail = brief_exception(exc)
+        faults.append(f"judging '{person.id}' {item.key}: {detail}")
+        return AnswerResult(item.problem.id, item.objective.id, text, "not_evaluated", 0.0,
+                            item.max_points, None,
+                            f"internal error: {detail}; please tell your instructor", None,
+                            judge.expected(item))
 
 
 # ---------------------------------------------------------------------------- judging

@@ -28,15 +28,21 @@ import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import MechgradeError, SubmissionError
+from ..errors import MechgradeError, SubmissionError, brief_exception
+from ..files import clean_text
 from ..yamlio import read_yaml_text
+from .results import SkippedEntry
 
 MAX_FILE_BYTES = 256 * 1024
-MAX_ANSWERS = 500
-MAX_ANSWER_CHARS = 4000
+MAX_LISTED_KEYS = 10
 ANSWER_FILES = ("answers.yaml", "answers.yml", "answers.json", "answers.txt")
 SUFFIXES = (".yaml", ".yml", ".json", ".txt")
-IGNORED_NAMES = {"__MACOSX", "Thumbs.db", "desktop.ini"}
+SYSTEM_NAMES = {"__MACOSX": "made by macOS when zipping", "Thumbs.db": "made by Windows Explorer",
+                "desktop.ini": "made by Windows Explorer"}
+SHARED_WORK = "it was not read (two students handing in the same work)"
+NOT_A_SUBMISSION = ("not a submission: expected a folder per student or a file "
+                    "<student_id>.yaml, .yml, .json or .txt")
+NOT_AN_ANSWER_FILE = "not an answers file: answers go in answers.yaml, answers.json or answers.txt"
 
 
 class _Unread(SubmissionError):
@@ -51,9 +57,12 @@ class _Unread(SubmissionError):
 class Submission:
     """What one student handed in.
 
-    ``status`` is ``read`` (at least one answer file was read), ``missing`` (nothing handed in)
-    or ``unreadable`` (files were there but none could be read). ``answers`` are
-    ``(key, text)`` pairs sorted by key; ``files`` the files read, relative to the folder.
+    ``student`` is the folder or file name exactly as it is (no Unicode normalisation, spaces
+    kept; bytes that are not UTF-8 in the escaped form ``\\xNN``). ``status`` is ``read`` (at
+    least one answer file was read), ``missing`` (nothing handed in) or ``unreadable`` (files
+    were there but none could be read). ``answers`` are ``(key, text)`` pairs sorted by key;
+    ``files`` the files read, relative to the folder; ``internal_error`` says what went wrong
+    when reading failed through a fault of mechgrade's, not of the student's.
     """
 
     student: str
@@ -61,6 +70,7 @@ class Submission:
     answers: tuple[tuple[str, str], ...] = ()
     messages: tuple[str, ...] = ()
     files: tuple[str, ...] = ()
+    internal_error: str | None = None
 
     def answer(self, key: str) -> str | None:
         for name, text in self.answers:
@@ -71,16 +81,22 @@ class Submission:
 
 @dataclass(frozen=True)
 class SubmissionSet:
-    """Every student found in a submissions folder (sorted by id), and notes about the folder."""
+    """Every student found in a submissions folder (sorted by id), every entry of it that was
+    not read (with the reason), and notes about the folder as a whole."""
 
     folder: Path
     students: tuple[Submission, ...]
-    messages: tuple[str, ...] = ()
+    skipped: tuple[SkippedEntry, ...] = ()
+    notes: tuple[str, ...] = ()
 
 
 def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | None = None
                      ) -> SubmissionSet:
     """Read every submission in ``folder``.
+
+    Every entry of the folder ends up either in a student's submission or in ``skipped`` with
+    its reason. Reading one student is one unit of work: whatever goes wrong inside it makes
+    that student ``unreadable`` and the reading goes on.
 
     When ``keys`` (the assignment's ``problem_id.objective_id`` keys) is given, answers under
     other keys are reported in the student's messages, and a key that matches one of ``keys``
@@ -96,34 +112,23 @@ def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | No
                               f"{'nothing' if isinstance(exc, FileNotFoundError) else 'an unreadable path'}"
                               f" at '{folder}'") from None
     found: dict[str, list[_Source]] = {}
+    skipped: list[SkippedEntry] = []
     notes: list[str] = []
     for entry in entries:
-        name = entry.name
-        if name.startswith(".") or name in IGNORED_NAMES:
-            continue
-        path = root / name
-        inside = _inside(path, root)
-        if path.is_dir():
-            student = _student_id(name)
-            sources = found.setdefault(student, [])
-            if not inside:
-                sources.append(_Source(name, None, "is a link to outside the submissions "
-                                                   "folder; it was not followed"))
-                continue
-            sources.extend(_folder_sources(path, root, name))
-            if not sources:
-                sources.append(_Source(name, None, None, empty=True))
-        elif Path(name).suffix.lower() in SUFFIXES:
-            student = _student_id(Path(name).stem)
-            reason = None if inside else ("is a link to outside the submissions folder; it was "
-                                          "not followed")
-            found.setdefault(student, []).append(_Source(name, path if inside else None, reason))
-        else:
-            notes.append(f"ignored '{name}': expected a folder per student or a file "
-                         f"<student_id>.yaml, .json or .txt")
-    students = tuple(_read_student(student, sources, keys)
+        try:
+            _sort_entry(entry, root, found, skipped, notes)
+        except Exception as exc:  # noqa: BLE001 - one odd entry must not stop the run
+            skipped.append(SkippedEntry(clean_text(entry.name),
+                                        f"internal error while listing it: {brief_exception(exc)}"))
+    students = tuple(_read_student_safely(student, sources, keys)
                      for student, sources in sorted(found.items()))
-    return SubmissionSet(folder, students, tuple(notes))
+    for source in (s for sources in found.values() for s in sources):
+        skipped.extend(source.skipped)
+        if source.problem and source.problem.endswith(SHARED_WORK):
+            notes.append(f"'{source.label}' {source.problem}")
+    notes.extend(_look_alike_notes([s.student for s in students]))
+    return SubmissionSet(folder, students, tuple(sorted(skipped, key=lambda e: e.path)),
+                         tuple(notes))
 
 
 def read_student_folder(folder: str | Path, student: str, *,
@@ -132,60 +137,194 @@ def read_student_folder(folder: str | Path, student: str, *,
     Gradescope submission in ``/autograder/submission``. Never raises: a folder that is not
     there is a ``missing`` submission."""
     folder = Path(folder)
-    label = folder.name or str(folder)
+    label = clean_text(folder.name or str(folder))
     try:
         root = folder.resolve(strict=True)
     except OSError:
-        return Submission(student, "missing", messages=(f"no submission folder at '{folder}'",))
-    sources = _folder_sources(root, root, label) or [_Source(label, None, None, empty=True)]
-    return _read_student(student, sources, keys)
+        return Submission(student, "missing", messages=(f"no submission folder at "
+                                                        f"'{clean_text(str(folder))}'",))
+    sources = _folder_sources(root, root, label)
+    if not any(s.path or s.problem or s.ignored for s in sources):
+        sources.append(_Source(label, None, None, empty=True))
+    return _read_student_safely(student, sources, keys)
 
 
 @dataclass
 class _Source:
-    label: str  # path relative to the submissions folder, for messages
+    label: str  # path relative to the submissions folder, for messages (cleaned)
     path: Path | None
     problem: str | None  # why the file is not read, if it is not
     empty: bool = False
     ignored: tuple[str, ...] = ()  # other files in a student's folder
+    skipped: tuple[SkippedEntry, ...] = ()  # what is not read, for the run's skipped list
+    renamed: bool = False  # an answers file whose name is not written the usual way
 
 
-def _student_id(name: str) -> str:
-    return unicodedata.normalize("NFC", name).strip()
+def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list, notes: list) -> None:
+    """Put one entry of the submissions folder into a student's sources or the skipped list."""
+    name, shown = entry.name, clean_text(entry.name)
+    if name.startswith("."):
+        skipped.append(SkippedEntry(shown, "hidden (its name starts with '.')"))
+        return
+    if name in SYSTEM_NAMES:
+        skipped.append(SkippedEntry(shown, f"{SYSTEM_NAMES[name]}, not a submission"))
+        return
+    path = root / name
+    kind = _kind_of(path)
+    if kind == "dangling":
+        skipped.append(SkippedEntry(shown, f"a link to nothing ('{_link_target(path)}')"))
+        return
+    is_answer_file = kind == "file" and Path(name).suffix.lower() in SUFFIXES
+    if kind not in ("folder", "file") or (kind == "file" and not is_answer_file):
+        reason = NOT_A_SUBMISSION if kind == "file" else f"not a file or folder ({kind})"
+        skipped.append(SkippedEntry(shown, reason))
+        return
+    student = clean_text(name if kind == "folder" else Path(name).stem)
+    sources = found.setdefault(student, [])
+    link = _link_problem(path, root, own=name)
+    if link is not None:
+        sources.append(_Source(shown, None, link, skipped=(SkippedEntry(shown, link),)))
+        return
+    if kind == "folder":
+        inner = _folder_sources(path, root, shown, own=name)
+        if not any(s.path or s.problem or s.ignored for s in inner):
+            inner.append(_Source(shown, None, None, empty=True))
+        sources.extend(inner)
+    else:
+        sources.append(_Source(shown, path, None))
 
 
-def _inside(path: Path, root: Path) -> bool:
+def _kind_of(path: Path) -> str:
+    """``folder``, ``file``, ``dangling`` (a link to nothing) or what else the entry is."""
     try:
-        path.resolve().relative_to(root)
-        return True
+        info = os.stat(path)
+    except FileNotFoundError:
+        return "dangling" if os.path.islink(path) else "missing"
+    except OSError as exc:
+        return f"unreadable: {exc.strerror or exc}"
+    if stat.S_ISDIR(info.st_mode):
+        return "folder"
+    if stat.S_ISREG(info.st_mode):
+        return "file"
+    for test, noun in ((stat.S_ISFIFO, "a FIFO"), (stat.S_ISSOCK, "a socket"),
+                       (stat.S_ISCHR, "a device"), (stat.S_ISBLK, "a device")):
+        if test(info.st_mode):
+            return noun
+    return "an unknown kind of entry"
+
+
+def _link_target(path: Path) -> str:
+    try:
+        return clean_text(os.readlink(path))
+    except OSError:
+        return "?"
+
+
+def _link_problem(path: Path, root: Path, *, own: str) -> str | None:
+    """Why a link must not be followed: it leads outside the submissions folder, or into
+    another student's entry (two students handing in one file); ``None`` when it is fine."""
+    if not os.path.islink(path) and not _has_link_above(path, root):
+        return None
+    try:
+        target = path.resolve(strict=True)
+        inside = target.relative_to(root)
     except (OSError, ValueError, RuntimeError):
-        return False
+        return "is a link to outside the submissions folder; it was not followed"
+    top = inside.parts[0] if inside.parts else ""
+    if top and top != own and _owner(top) != _owner(own):
+        return (f"is a link to '{clean_text(inside.as_posix())}', inside another student's "
+                f"submission: {SHARED_WORK}")
+    return None
 
 
-def _folder_sources(folder: Path, root: Path, label: str) -> list[_Source]:
-    sources: list[_Source] = []
-    ignored: list[str] = []
+def _has_link_above(path: Path, root: Path) -> bool:
+    parent = path.parent
+    while parent != root and root in parent.parents:
+        if os.path.islink(parent):
+            return True
+        parent = parent.parent
+    return False
+
+
+def _owner(name: str) -> str:
+    """The student a top-level entry belongs to (``ana.yaml`` and ``ana/`` are both Ana's)."""
+    suffix = Path(name).suffix
+    return name[:-len(suffix)] if suffix.lower() in SUFFIXES else name
+
+
+def _folder_sources(folder: Path, root: Path, label: str, *, own: str | None = None
+                    ) -> list[_Source]:
+    """The answer files of a student's folder, and what else it holds (reported, not read)."""
+    own = own if own is not None else folder.name
     try:
         entries = sorted(os.scandir(folder), key=lambda e: e.name)
     except OSError as exc:
-        return [_Source(label, None, f"cannot be listed ({exc.strerror or exc})")]
-    names = {e.name.lower(): e.name for e in entries}
-    for wanted in ANSWER_FILES:
-        if wanted in names:
-            name = names[wanted]
-            path = folder / name
-            if _inside(path, root):
-                sources.append(_Source(f"{label}/{name}", path, None))
-            else:
-                sources.append(_Source(f"{label}/{name}", None, "is a link to outside the "
-                                       "submissions folder; it was not followed"))
+        reason = f"cannot be listed ({exc.strerror or exc})"
+        return [_Source(label, None, reason, skipped=(SkippedEntry(label, reason),))]
+    sources: list[_Source] = []
+    ignored: list[str] = []
+    skipped: list[SkippedEntry] = []
+    # Answers files first in the documented order; names in another letter case are read too.
+    rank = {name: i for i, name in enumerate(ANSWER_FILES)}
+    answer_entries = sorted((e for e in entries if e.name.lower() in rank),
+                            key=lambda e: (rank[e.name.lower()], e.name))
+    for entry in answer_entries:
+        shown = f"{label}/{clean_text(entry.name)}"
+        path = folder / entry.name
+        problem = (f"is a link to nothing ('{_link_target(path)}')"
+                   if _kind_of(path) == "dangling" else _link_problem(path, root, own=own))
+        sources.append(_Source(shown, None if problem else path, problem,
+                               renamed=entry.name not in ANSWER_FILES,
+                               skipped=(SkippedEntry(shown, problem),) if problem else ()))
     for entry in entries:
-        if entry.name.lower() not in ANSWER_FILES and not entry.name.startswith(".") \
-                and entry.name not in IGNORED_NAMES:
-            ignored.append(entry.name)
-    if ignored:
-        sources.append(_Source(label, None, None, ignored=tuple(ignored)))
+        if entry.name.lower() in rank:
+            continue
+        shown = f"{label}/{clean_text(entry.name)}"
+        if entry.name.startswith(".") or entry.name in SYSTEM_NAMES:
+            reason = ("hidden (its name starts with '.')" if entry.name.startswith(".")
+                      else f"{SYSTEM_NAMES[entry.name]}, not a submission")
+            skipped.append(SkippedEntry(shown, reason))
+            continue
+        ignored.append(clean_text(entry.name))
+        skipped.append(SkippedEntry(shown, NOT_AN_ANSWER_FILE))
+    if ignored or skipped:
+        sources.append(_Source(label, None, None, ignored=tuple(ignored), skipped=tuple(skipped)))
     return sources
+
+
+def _read_student_safely(student: str, sources: list[_Source], keys) -> Submission:
+    """:func:`_read_student` as one unit of work: a fault of mechgrade's while reading makes
+    the student unreadable, with the reason, and never escapes."""
+    try:
+        return _read_student(student, sources, keys)
+    except Exception as exc:  # noqa: BLE001 - the per-student boundary
+        detail = brief_exception(exc)
+        return Submission(student, "unreadable",
+                          messages=(f"internal error while reading this submission: {detail}; "
+                                    f"please tell your instructor",),
+                          internal_error=f"reading '{student}': {detail}")
+
+
+def _look_alike_notes(students: list[str]) -> list[str]:
+    """Notes on students whose names differ only in Unicode form, letter case or spaces: they
+    stay distinct students, but an instructor should know."""
+    groups: dict[str, list[str]] = {}
+    for name in students:
+        key = " ".join(unicodedata.normalize("NFKC", name).casefold().split())
+        groups.setdefault(key, []).append(name)
+    notes = []
+    for names in (g for g in groups.values() if len(g) > 1):
+        if len({unicodedata.normalize("NFC", n) for n in names}) == 1:
+            how = "Unicode form"
+        elif len({unicodedata.normalize("NFC", n).casefold() for n in names}) == 1:
+            how = "letter case"
+        else:
+            how = "letter case, spaces or Unicode form"
+        shown = ", ".join(f"'{n}' ({n.encode('ascii', 'backslashreplace').decode()})"
+                          for n in names)
+        notes.append(f"{len(names)} folders whose names differ only in {how}: {shown}; "
+                     f"graded as {len(names)} different students")
+    return notes
 
 
 def _read_student(student: str, sources: list[_Source], keys) -> Submission:
@@ -202,6 +341,8 @@ def _read_student(student: str, sources: list[_Source], keys) -> Submission:
         if source.empty:
             messages.append(f"the folder '{source.label}' is empty: no answers handed in")
             continue
+        if source.path is None and source.problem is None:
+            continue
         tried += 1
         if source.path is None:
             messages.append(f"'{source.label}' {source.problem}")
@@ -214,6 +355,8 @@ def _read_student(student: str, sources: list[_Source], keys) -> Submission:
             continue
         readable += 1
         files.append(source.label)
+        if source.renamed:
+            messages.append(f"read '{source.label}' as the answers file")
         messages.extend(notes)
         for key, text in pairs:
             if key in answers and answers[key][0] != text:
@@ -252,10 +395,18 @@ def _match_keys(answers: dict, keys, messages: list[str]) -> dict:
             out[match[0]] = answers[key]
         else:
             unknown.append(key)
-    for key in unknown:
-        messages.append(f"'{key}' ({answers[key][1]}) is not a question of this assignment; "
-                        f"it was not graded")
+    for key in unknown[:MAX_LISTED_KEYS]:
+        messages.append(f"'{_short(key)}' ({answers[key][1]}) is not a question of this "
+                        f"assignment; it was not graded")
+    if len(unknown) > MAX_LISTED_KEYS:
+        messages.append(f"{len(unknown) - MAX_LISTED_KEYS} more keys are not questions of this "
+                        f"assignment; they were not graded")
     return out
+
+
+def _short(text: str, limit: int = 60) -> str:
+    """A key or line as shown in a message: at most ``limit`` characters."""
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def read_answer_file(path: str | Path, *, label: str | None = None
@@ -283,16 +434,13 @@ def read_answer_file(path: str | Path, *, label: str | None = None
         pairs = _from_json(text, label, notes)
     else:
         pairs = _from_txt(text, label, notes)
-    if len(pairs) > MAX_ANSWERS:
-        notes.append(f"'{label}' holds {len(pairs)} answers; only the first {MAX_ANSWERS} "
-                     f"were read")
-        pairs = pairs[:MAX_ANSWERS]
+    # Nothing is cut here: the file size bounds the answers, and an answer too long to read is
+    # refused by the answer reader with its true length.
     kept: dict[str, str] = {}
     for key, value in pairs:
-        if len(value) > MAX_ANSWER_CHARS:
-            notes.append(f"'{label}': the answer to '{key}' is {len(value)} characters long; "
-                         f"only the first {MAX_ANSWER_CHARS} were read")
-            value = value[:MAX_ANSWER_CHARS]
+        if key in kept and kept[key] != value:
+            notes.append(f"'{label}': '{_short(key)}' is answered twice (flat and nested); "
+                         f"the later answer was graded")
         kept[key] = value
     if not kept:
         raise _Unread(f"'{label}' holds no answers (expected lines such as "
@@ -302,24 +450,29 @@ def read_answer_file(path: str | Path, *, label: str | None = None
 
 def _read_text(path: Path, label: str) -> tuple[str, str | None]:
     try:
-        info = os.stat(path)
-        if not stat.S_ISREG(info.st_mode):
-            raise _Unread(f"'{label}' is not a regular file; it was not read")
-        if info.st_size > MAX_FILE_BYTES:
-            raise _Unread(f"'{label}' is {info.st_size} bytes; answer files may be at "
-                                  f"most {MAX_FILE_BYTES} bytes")
-        with open(path, "rb") as handle:
+        # Opened without blocking and checked on the open descriptor, so a FIFO or a device
+        # put in place of a file after it was listed is never read from.
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as handle:
+            info = os.fstat(handle.fileno())
+            if not stat.S_ISREG(info.st_mode):
+                raise _Unread(f"'{label}' is not a regular file; it was not read")
+            if info.st_size > MAX_FILE_BYTES:
+                raise _Unread(f"'{label}' is {info.st_size} bytes; answer files may be at "
+                              f"most {MAX_FILE_BYTES} bytes")
             raw = handle.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
         raise _Unread(f"'{label}' cannot be read ({exc.strerror or exc})") from None
     if len(raw) > MAX_FILE_BYTES:
         raise _Unread(f"'{label}' is larger than {MAX_FILE_BYTES} bytes; answer files "
                               f"may be at most {MAX_FILE_BYTES} bytes")
-    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
-        try:
-            return raw.decode("utf-16"), None
-        except UnicodeDecodeError:
-            raise _Unread(f"'{label}' is not readable text (bad UTF-16)") from None
+    for boms, codec in (((b"\xff\xfe\x00\x00", b"\x00\x00\xfe\xff"), "utf-32"),
+                        ((b"\xff\xfe", b"\xfe\xff"), "utf-16")):
+        if raw.startswith(boms):
+            try:
+                return raw.decode(codec), None
+            except UnicodeDecodeError:
+                raise _Unread(f"'{label}' is not readable text (bad {codec.upper()})") from None
     if b"\0" in raw:
         raise _Unread(f"'{label}' is a binary file, not text; expected answers typed "
                               f"as text")
@@ -347,9 +500,8 @@ def _from_txt(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]:
         if not content:
             continue
         if "=" not in content:
-            shown = content if len(content) <= 40 else content[:37] + "..."
             notes.append(f"{label}:{number}: expected 'problem_id.objective_id = answer', "
-                         f"found '{_printable(shown)}'; the line was not read")
+                         f"found '{_printable(_short(content, 40))}'; the line was not read")
             continue
         key, value = (part.strip() for part in content.split("=", 1))
         if not key:
@@ -441,10 +593,10 @@ def _value_text(value, key: str, label: str, notes: list[str], as_typed, path) -
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (str, int, float)):
-        return str(value).strip()
+        return clean_text(str(value).strip())
     if isinstance(value, list) and all(not isinstance(v, (list, dict)) for v in value):
         items = [str(as_typed(v, path + (i,))) for i, v in enumerate(value)]
-        return "(" + ", ".join(items) + ")"
+        return clean_text("(" + ", ".join(items) + ")")
     notes.append(f"'{label}': the answer to '{key}' is {_kind(value)}, expected text; "
                  f"it was not read")
     return None

@@ -33,13 +33,11 @@ import math
 import os
 import re
 import statistics
-import tempfile
 from collections import Counter
 from dataclasses import dataclass
-from pathlib import Path
 
-from ..errors import ExportError
-from ..grade.results import GradeReport, StudentResult
+from ..files import write_text
+from ..grade.results import GradeReport, SkippedEntry, StudentResult
 
 TOP = 5
 _CORRECT, _PARTIAL = "correct", "partial"
@@ -107,6 +105,10 @@ class ClassReport:
     objectives: tuple[ObjectiveStats, ...]
     problems: tuple[ProblemStats, ...]
     issues: tuple[StudentIssue, ...]
+    not_evaluated: int = 0
+    skipped: tuple[SkippedEntry, ...] = ()
+    notes: tuple[str, ...] = ()
+    internal_errors: tuple[str, ...] = ()
 
 
 def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport:
@@ -129,7 +131,9 @@ def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport
         stdev=statistics.pstdev(scores) if len(scores) > 1 else None,
         lowest=min(scores, default=None), highest=max(scores, default=None),
         histogram_svg=histogram, success_svg=success, objectives=objectives,
-        problems=problems, issues=_issues(report))
+        problems=problems, issues=_issues(report),
+        not_evaluated=sum(s.status == "not_evaluated" for s in report.students),
+        skipped=report.skipped, notes=report.notes, internal_errors=report.internal_errors)
 
 
 def render_class_report(stats: ClassReport) -> str:
@@ -150,27 +154,7 @@ def render_class_report(stats: ClassReport) -> str:
 
 def write_class_report(report: GradeReport, out_path: str | os.PathLike) -> None:
     """Compute the statistics of ``report`` and write the HTML file atomically."""
-    html = render_class_report(class_statistics(report))
-    target = Path(out_path)
-    folder = target.parent
-    if not folder.is_dir():
-        raise ExportError(f"expected an existing folder to write {target.name!r} into, "
-                          f"found no folder {str(folder)!r}")
-    try:
-        fd, temp = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-                handle.write(html)
-            umask = os.umask(0o022)
-            os.umask(umask)
-            os.chmod(temp, 0o666 & ~umask)  # mkstemp's 0600 is not what a report should have
-            os.replace(temp, target)
-        except BaseException:
-            Path(temp).unlink(missing_ok=True)
-            raise
-    except OSError as err:
-        raise ExportError(f"{target}: could not write the report: {err.strerror or err}") \
-            from None
+    write_text(out_path, render_class_report(class_statistics(report)))
 
 
 def _answer(student: StudentResult, problem: str, objective: str):

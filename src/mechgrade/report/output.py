@@ -14,20 +14,19 @@ temporary file and moved into place, so a crash never leaves half a file.
 ...     (StudentResult("ana", "Ana", "graded", 2.0, 2.0,
 ...         (AnswerResult("p", "v", "7 m/s", "correct", 2.0, 2.0, read_back="7 m/s"),)),))
 >>> out = pathlib.Path(tempfile.mkdtemp())
->>> [p.relative_to(out).as_posix() for p in write_outputs(report, out)]
+>>> [p.relative_to(out).as_posix() for p in write_outputs(report, out).paths]
 ['results.json', 'grades.csv', 'results.csv', 'feedback/ana.html', 'feedback/ana.md']
 """
 
 from __future__ import annotations
 
-import json
-import os
 import re
-import tempfile
-import unicodedata
+from dataclasses import dataclass, replace
+from html import escape as html_escape
 from pathlib import Path
 
-from ..errors import Location, MechgradeError
+from ..errors import Location, MechgradeError, brief_exception
+from ..files import safe_file_names, write_json, write_text
 from ..export import EXPORTERS
 from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
@@ -49,12 +48,23 @@ STATUS_LABELS = {
 }
 
 
-def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str | Path | None = None,
-                  *, roster=None) -> list[Path]:
-    """Write every output of ``report`` into ``out_dir``; returns the paths written, in order.
+@dataclass(frozen=True)
+class Written:
+    """What :func:`write_outputs` wrote: the paths in order, and the report as written (a fault
+    met while rendering one student's feedback is added to its ``internal_errors``)."""
 
-    Raises :class:`~mechgrade.errors.MechgradeError` (for instance when a template is
-    missing or broken, or the folder cannot be written).
+    paths: tuple[Path, ...]
+    report: GradeReport
+
+
+def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str | Path | None = None,
+                  *, roster=None) -> Written:
+    """Write every output of ``report`` into ``out_dir``.
+
+    Rendering one student's feedback is one unit of work: a fault of mechgrade's there gives
+    that student a short page saying so, and the other outputs are written as usual. Raises
+    :class:`~mechgrade.errors.MechgradeError` when a template is missing or broken, or the
+    folder cannot be written.
     """
     out = Path(out_dir)
     env = template_environment(templates_dir)
@@ -64,21 +74,39 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     except OSError as exc:
         raise MechgradeError(f"cannot create the output folder ({exc.strerror or exc})",
                              where=_where(out)) from None
-    written: list[Path] = []
-    results = out / "results.json"
-    write_text_atomic(results, json.dumps(report.to_json(), indent=2, ensure_ascii=False,
-                                          allow_nan=False) + "\n")
-    written.append(results)
+    pages: list[tuple[Path, str]] = []
+    faults: list[str] = []
+    for student, filename in zip(report.students, feedback_names(report)):
+        for template, suffix in zip(templates, (".html", ".md")):
+            page = _feedback_page(report, student, template, suffix, templates_dir, faults)
+            pages.append((out / "feedback" / (filename + suffix), page))
+    if faults:
+        report = replace(report, internal_errors=report.internal_errors + tuple(faults))
+    written: list[Path] = [out / "results.json"]
+    write_json(written[0], report.to_json())
     for name, fmt in (("grades.csv", "grades-csv"), ("results.csv", "long-csv")):
         EXPORTERS[fmt](report, out / name, roster=roster)
         written.append(out / name)
-    for student, filename in zip(report.students, feedback_names(report)):
-        for template, suffix in zip(templates, (".html", ".md")):
-            context = feedback_context(report, student, markdown=suffix == ".md")
-            path = out / "feedback" / (filename + suffix)
-            write_text_atomic(path, _render(template, context, templates_dir))
-            written.append(path)
-    return written
+    for path, page in pages:
+        write_text(path, page)
+        written.append(path)
+    return Written(tuple(written), report)
+
+
+def _feedback_page(report: GradeReport, student: StudentResult, template, suffix: str,
+                   templates_dir, faults: list[str]) -> str:
+    try:
+        context = feedback_context(report, student, markdown=suffix == ".md")
+        return _render(template, context, templates_dir)
+    except MechgradeError:
+        raise  # a broken template is the instructor's to fix, for every student alike
+    except Exception as exc:  # noqa: BLE001 - one student's page must not stop the others
+        faults.append(f"feedback of '{student.id}' ({suffix[1:]}): {brief_exception(exc)}")
+        text = (f"Your feedback page for {report.assignment.title} could not be produced "
+                f"(internal error); your score is {format_points(student.score)} / "
+                f"{format_points(student.max_score)}. Please tell your instructor.")
+        return (f"<!DOCTYPE html><meta charset=\"utf-8\"><p>{html_escape(text)}</p>\n"
+                if suffix == ".html" else markdown_escape(text) + "\n")
 
 
 def template_environment(templates_dir: str | Path | None = None):
@@ -123,49 +151,10 @@ def _where(path: Path, line: int | None = None):
     return Location(str(path), line)
 
 
-def write_text_atomic(path: str | Path, text: str) -> None:
-    """Write ``text`` (UTF-8, ``\\n`` newlines) to ``path`` through a temporary file."""
-    path = Path(path)
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-                handle.write(text)
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
-    except OSError as exc:
-        raise MechgradeError(f"cannot write the file ({exc.strerror or exc})",
-                             where=_where(path)) from None
-
-
-_UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
-
-
 def feedback_names(report: GradeReport) -> list[str]:
-    """A safe, unique file name (without suffix) for every student, in report order.
-
-    >>> from mechgrade.grade.results import AssignmentInfo, StudentResult
-    >>> r = GradeReport(AssignmentInfo("a", "A"), (), tuple(
-    ...     StudentResult(i, "", "missing", 0, 0) for i in ("ana", "../x", "Ana", "é b")))
-    >>> feedback_names(r)
-    ['ana', 'x', 'Ana-2', 'e_b']
-    """
-    names: list[str] = []
-    used: set[str] = set()
-    for student in report.students:
-        ascii_id = unicodedata.normalize("NFKD", student.id).encode("ascii", "ignore").decode()
-        base = _UNSAFE.sub("_", ascii_id).strip("._") or "student"
-        base = base[:80]
-        name, n = base, 1
-        while name.casefold() in used:
-            n += 1
-            name = f"{base}-{n}"
-        used.add(name.casefold())
-        names.append(name)
-    return names
+    """A safe, distinct file name (without suffix) for every student, in report order
+    (:func:`mechgrade.files.safe_file_names` of the ids)."""
+    return safe_file_names([student.id for student in report.students])
 
 
 def feedback_context(report: GradeReport, student: StudentResult, *,
