@@ -34,7 +34,7 @@ def test_base_problem_loads():
 CASES = [
     # YAML
     ("empty file", "", "p.yaml: expected a mapping of problem fields (id, title, ...), found an empty file"),
-    ("yaml syntax", BASE + "  bad: [1,\n", "p.yaml:25:3: expected valid YAML, found a syntax error"),
+    ("yaml syntax", BASE + "  bad: [1,\n", "p.yaml:25:3: indentation: this line is indented 2 spaces, the key above 4"),
     ("alias", BASE.replace("L: m", "L: &u m\n  M: *u"), "p.yaml:13:6: expected plain YAML, found an alias (*name); anchors and aliases are not allowed"),
     ("duplicate key", BASE.replace("L: m", "L: m\n  L: ft"), "p.yaml:13:3: parameters.L: expected each key once, found 'L' again"),
     # schema
