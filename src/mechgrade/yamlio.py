@@ -69,6 +69,7 @@ class Document:
     file: str
     marks: dict = field(default_factory=dict, compare=False, repr=False)
     texts: dict = field(default_factory=dict, compare=False, repr=False)
+    keys: dict = field(default_factory=dict, compare=False, repr=False)
 
     def where(self, path: tuple) -> Location:
         """The location of the value at ``path`` (or of its nearest located parent)."""
@@ -76,6 +77,17 @@ class Document:
         while probe not in self.marks and probe:
             probe = probe[:-1]
         line, column = self.marks.get(probe, (None, None))
+        return Location(self.file, line, column, field_path(path) or None)
+
+    def where_key(self, path: tuple) -> Location:
+        """The location of the key that ends ``path`` (a name being defined), else its value.
+
+        >>> str(read_yaml_text("a:\\n  b: 1", "x.yaml").where_key(("a", "b")))
+        'x.yaml:2:3: a.b'
+        """
+        if tuple(path) not in self.keys:
+            return self.where(path)
+        line, column = self.keys[tuple(path)]
         return Location(self.file, line, column, field_path(path) or None)
 
     def text(self, path: tuple) -> str | None:
@@ -141,9 +153,10 @@ def read_yaml_text(text: str, file: str = "<text>",
     loader = _Loader(text)
     marks: dict = {}
     texts: dict = {}
+    keys: dict = {}
     try:
         node = loader.get_single_node()
-        data = _construct(node, (), marks, texts, file, error) if node is not None else None
+        data = _construct(node, (), (marks, texts, keys), file, error) if node is not None else None
     except error:
         raise
     except _YamlProblem as exc:
@@ -159,7 +172,7 @@ def read_yaml_text(text: str, file: str = "<text>",
                     f"({type(exc).__name__}: {str(exc)[:80]})", where=Location(file)) from None
     finally:
         loader.dispose()
-    return Document(data, file, marks, texts)
+    return Document(data, file, marks, texts, keys)
 
 
 _GLUED_COLON = re.compile(r"^(\s*(?:-\s+)?)([A-Za-z_][\w']*):(?=[^\s:/])(\S.*)$")
@@ -214,7 +227,8 @@ def _mark(file: str, mark) -> Location:
     return Location(file, mark.line + 1, mark.column + 1)
 
 
-def _construct(node, path, marks, texts, file, error):
+def _construct(node, path, tables, file, error):
+    marks, texts, keys = tables
     marks[path] = (node.start_mark.line + 1, node.start_mark.column + 1)
     if isinstance(node, yaml.MappingNode):
         out = {}
@@ -235,10 +249,11 @@ def _construct(node, path, marks, texts, file, error):
                             where=Location(file, key_node.start_mark.line + 1,
                                            key_node.start_mark.column + 1,
                                            field_path(path + (key,))))
-            out[key] = _construct(value_node, path + (key,), marks, texts, file, error)
+            keys[path + (key,)] = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
+            out[key] = _construct(value_node, path + (key,), tables, file, error)
         return out
     if isinstance(node, yaml.SequenceNode):
-        return [_construct(item, path + (i,), marks, texts, file, error)
+        return [_construct(item, path + (i,), tables, file, error)
                 for i, item in enumerate(node.value)]
     texts[path] = node.value
     return _scalar(node, file, error)
