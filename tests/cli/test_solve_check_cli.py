@@ -79,13 +79,13 @@ def test_missing_problem_file_exit_2(tmp_path):
 
 
 def test_check_reports_a_failing_expect_and_exits_1(tmp_path):
-    bad = tmp_path / "wrong.yaml"
+    bad = tmp_path / "base.yaml"
     bad.write_text(BASE.replace("{value: 6}", "{value: 7}"))
     result = run("check", str(bad))
     assert result.exit_code == 1
     assert result.output.splitlines() == [
         f"FAIL {bad} (1 tests, DOF 1)",
-        "  FAIL speed: 6 != expected 7 m/s",
+        "  FAIL speed: 6 != expected 7 m/s (±0.5, from the digits written)",
         "1 file(s), 1 failing",
     ]
 
@@ -100,6 +100,8 @@ def test_check_reports_a_broken_file_among_good_ones(tmp_path):
         f"  {tmp_path / 'broken.yaml'}: objective 'speed' is not determined by the givens: "
         "give a value for thetad (velocity level)",
         f"ok   {tmp_path / 'good.yaml'} (1 tests, DOF 1)",
+        f"  {tmp_path / 'good.yaml'}:1:5: id: warning: id 'base' differs from the file name "
+        "'good'; expected them equal (rename the file or write id: good)",
         "2 file(s), 1 failing",
     ]
 

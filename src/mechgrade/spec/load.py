@@ -81,12 +81,15 @@ def _schema_errors(doc: Document) -> tuple[list[SpecError], set[tuple]]:
     """Every schema error of ``doc``, and the paths of the values they make unusable."""
     validator = jsonschema.Draft202012Validator(problem_schema())
     errors, broken = [], set()
+    meant, missing = set(), {}
     for err in validator.iter_errors(doc.data):
         path = tuple(err.absolute_path)
         if err.validator == "additionalProperties" and isinstance(err.instance, dict):
             allowed = sorted(err.schema.get("properties", {}))
             for extra in sorted(set(err.instance) - set(allowed)):
                 hint = did_you_mean(extra, allowed)
+                if hint:
+                    meant.add((path, hint.split("'")[1]))
                 listing = ", ".join(allowed) if allowed else "none"
                 message = (f"unknown key '{extra}'{hint}" if hint else
                            f"unknown key '{extra}' (expected one of: {listing})")
@@ -94,11 +97,12 @@ def _schema_errors(doc: Document) -> tuple[list[SpecError], set[tuple]]:
                 broken.add(path + (extra,))
             continue
         if err.validator == "required" and isinstance(err.instance, dict):
-            for missing in err.validator_value:
-                if missing not in err.instance:
-                    errors.append(SpecError(f"missing required key '{missing}'",
+            for key in err.validator_value:
+                if key not in err.instance:
+                    errors.append(SpecError(f"missing required key '{key}'",
                                             where=doc.where(path)))
-                    broken.add(path + (missing,) if not path else path)
+                    missing[(path, key)] = errors[-1]
+                    broken.add(path + (key,) if not path else path)
             continue
         if err.validator == "propertyNames":
             path += (err.instance,)
@@ -106,7 +110,15 @@ def _schema_errors(doc: Document) -> tuple[list[SpecError], set[tuple]]:
         else:
             errors.append(SpecError(_schema_message(err), where=doc.where(path)))
         broken.add(path)
+    # A misspelt required key is one mistake: keep "unknown key 'titel'; did you mean 'title'?"
+    # and drop "missing required key 'title'".
+    errors = [e for e in errors if id(e) not in {id(m) for m in missing_meant(meant, missing)}]
     return errors, broken
+
+
+def missing_meant(meant: set, missing: dict) -> list[SpecError]:
+    """The "missing required key" errors explained by a misspelt key in the same mapping."""
+    return [err for where, err in missing.items() if where in meant]
 
 
 def _schema_message(err: jsonschema.ValidationError) -> str:
@@ -222,7 +234,7 @@ class _Builder:
         try:
             node = parse(text, functions=FUNCTIONS)
         except ExpressionError as err:
-            raise SpecError(_with_hint(err.message), where=where) from None
+            raise SpecError(_with_hint(err.message, text), where=where) from None
         return Expr(text, node, where)
 
     def equation(self, text: str, *path) -> tuple[Expr, Expr]:
@@ -233,7 +245,7 @@ class _Builder:
             try:
                 exprs.append(Expr(side.strip(), parse(side, functions=FUNCTIONS), where))
             except ExpressionError as err:
-                raise SpecError(_with_hint(err.message), where=where) from None
+                raise SpecError(_with_hint(err.message, side), where=where) from None
         return exprs[0], exprs[1]
 
     def unit(self, text, *path) -> str:
@@ -477,18 +489,22 @@ def _literal(node) -> float | None:
     return None
 
 
-_UNKNOWN_FUNCTION = re.compile(r"found '(\w+)\(\.\.\.\)'$")
+_CALL = re.compile(r"\b([A-Za-z]\w*)\s*\(")
 _UNKNOWN_UNIT = re.compile(r"\('(\w+)' is not a unit\)$")
 COMMON_UNITS = ("m", "cm", "mm", "km", "ft", "inch", "in", "mi", "s", "ms", "min", "h", "hr",
                 "rad", "deg", "degree", "radian", "revolution", "turn", "rpm", "kg", "g", "lb",
                 "N", "lbf", "J", "W", "Hz", "mph", "kph", "knot", "yd")
 
 
-def _with_hint(message: str) -> str:
-    """An expression error with "did you mean" for a misspelt function name."""
-    match = _UNKNOWN_FUNCTION.search(message)
-    if match:
-        return message + did_you_mean(match.group(1), set(FUNCTIONS) | set(MATH_FUNCTIONS))
+def _with_hint(message: str, text: str) -> str:
+    """An expression error; when a call names an unknown function, say so, with the closest
+    known name (the reader alone would see a product of a name and a parenthesis)."""
+    known = set(FUNCTIONS) | set(MATH_FUNCTIONS)
+    for name in _CALL.findall(text):
+        if name not in known:
+            hint = did_you_mean(name, known)
+            if hint:
+                return f"unknown function '{name}(...)'{hint}"
     return message
 
 
