@@ -182,6 +182,22 @@ def _indent(line: str) -> int:
     return len(line) - len(line.lstrip(" "))
 
 
+def _spaces(count: int) -> str:
+    return f"{count} space" + ("" if count == 1 else "s")
+
+
+_OPENING_QUOTE = re.compile(r"""^\s*(?:-\s+)?[^'"#:]+:\s+(['"])""")
+
+
+def _quote_left_open(lines: list[str], line: int) -> tuple[int, int] | None:
+    """Where a value's quote opened on an earlier line and ran on, unclosed, to ``line``."""
+    for number in range(line - 1, -1, -1):
+        match = _OPENING_QUOTE.match(lines[number])
+        if match and lines[number].count(match.group(1), match.end(1)) == 0:
+            return number, match.start(1)
+    return None
+
+
 def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
     """Plain words (and the mark to point at) for a PyYAML syntax error."""
     problem, context = exc.problem or "", exc.context or ""
@@ -203,6 +219,13 @@ def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
         found = "the end of the file" if found == "'<stream end>'" else found
         return (f"unclosed '{bracket}': expected ',' or '{close}' after an item, found "
                 f"{found} on line {mark.line + 1}", opened or mark)
+    if "mapping values are not allowed" in problem:
+        opened_at = _quote_left_open(lines, mark.line)
+        if opened_at is not None:
+            number, column = opened_at
+            at = yaml.Mark("", 0, number, column, None, None)
+            return (f"unclosed quote: the {lines[number][column]} opened here is closed only "
+                    f"on line {mark.line + 1}", at)
     stray = re.search(r"but found '([\]}])'", problem)
     if stray:
         return f"found '{stray.group(1)}' with no bracket open to close", mark
@@ -213,7 +236,7 @@ def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
                       if lines[i].strip() and not lines[i].lstrip().startswith("#")), None)
         if above is not None and _indent(above) != here:
             at = yaml.Mark("", 0, mark.line, here, None, None)
-            return (f"indentation: this line is indented {here} spaces, the key above "
+            return (f"indentation: this line is indented {_spaces(here)}, the key above "
                     f"{_indent(above)}", at)
         if "mapping values" in problem:
             return ("expected one 'key: value' per line, found a second ': ' in a value; "

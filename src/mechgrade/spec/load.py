@@ -491,7 +491,8 @@ def _literal(node) -> float | None:
 
 _CALL = re.compile(r"\b([A-Za-z]\w*)\s*\(")
 _UNKNOWN_UNIT = re.compile(r"\('(\w+)' is not a unit\)$")
-COMMON_UNITS = ("m", "cm", "mm", "km", "ft", "inch", "in", "mi", "s", "ms", "min", "h", "hr",
+COMMON_UNITS = ("m", "meter", "metre", "cm", "mm", "km", "ft", "foot", "inch", "in", "mi", "s",
+                "second", "ms", "min", "h", "hr",
                 "rad", "deg", "degree", "radian", "revolution", "turn", "rpm", "kg", "g", "lb",
                 "N", "lbf", "J", "W", "Hz", "mph", "kph", "knot", "yd")
 

@@ -573,7 +573,7 @@ class _Checker:
         """"did you mean" for an unknown name; a rate written ``thetad`` gets ``theta'``."""
         for suffix, primes in (("dd", "''"), ("d", "'")):
             if name.endswith(suffix) and name[:-len(suffix)] in self.coords:
-                return f"; did you mean \"{name[:-len(suffix)]}{primes}\"? (rates are written q', q'')"
+                return f"; did you mean \"{name[:-len(suffix)]}{primes}\"?"
         return did_you_mean(name, known)
 
     def _same(self, a: Type, b: Type, expr: Expr, what: str) -> None:
