@@ -112,11 +112,11 @@ def _schema_errors(doc: Document) -> tuple[list[SpecError], set[tuple]]:
         broken.add(path)
     # A misspelt required key is one mistake: keep "unknown key 'titel'; did you mean 'title'?"
     # and drop "missing required key 'title'".
-    errors = [e for e in errors if id(e) not in {id(m) for m in missing_meant(meant, missing)}]
+    errors = [e for e in errors if id(e) not in {id(m) for m in _missing_meant(meant, missing)}]
     return errors, broken
 
 
-def missing_meant(meant: set, missing: dict) -> list[SpecError]:
+def _missing_meant(meant: set, missing: dict) -> list[SpecError]:
     """The "missing required key" errors explained by a misspelt key in the same mapping."""
     return [err for where, err in missing.items() if where in meant]
 
