@@ -6,7 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from mechgrade.errors import SpecError
+import math
+
+from mechgrade.errors import SpecError, SpecErrors
 from mechgrade.spec import load_problem, load_problem_text
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -137,3 +139,124 @@ def test_binary_file_is_reported(tmp_path):
     path.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
     with pytest.raises(SpecError, match="expected UTF-8 text, found byte 0x89"):
         load_problem(path)
+
+
+# ---------------------------------------------------------------- every error at once
+
+
+def errors_of(text: str, name: str = "base.yaml") -> list[str]:
+    with pytest.raises(SpecError) as info:
+        load_problem_text(text, name)
+    return str(info.value).splitlines()
+
+
+def test_independent_errors_come_together_in_file_order():
+    text = (BASE.replace("kind: scalar", "kind: scalr").replace("L: 2 m", "L: 2 s")
+            .replace("parent: N", "parent: NN"))
+    with pytest.raises(SpecErrors) as info:
+        load_problem_text(text, "base.yaml")
+    assert [e.where.line for e in info.value.errors] == [6, 15, 22]
+    assert str(info.value).splitlines() == [
+        "base.yaml:6:15: frames.A.parent: unknown parent frame 'NN'; did you mean 'N'? "
+        "(expected one of: N, A)",
+        "base.yaml:15:6: givens.L: dimension mismatch in the value of 'L': expected a length "
+        "([length]), found a time ([time])",
+        "base.yaml:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; "
+        "found 'scalr'",
+    ]
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("angle: theta}", "angle: theta +}",
+     "base.yaml:6:45: frames.A.rotation.angle: expected a complete expression, found 'theta +' "
+     "(invalid syntax)"),
+    ("L: m", "L: furlongz",
+     "base.yaml:12:6: parameters.L: expected a unit such as 'm/s^2', found 'furlongz' "
+     "('furlongz' is not a unit)"),
+    ("theta: rad", "theta: radz",
+     "base.yaml:10:10: coordinates.theta: expected a unit such as 'm/s^2', found 'radz' "
+     "('radz' is not a unit); did you mean 'rad'?"),
+    ("  P: {from: O, position: L*A.x}", "  - P", "base.yaml:8:3: points: expected a mapping, "
+     "found a list of 1"),
+    ("  A: {parent: N,", "  A: {parnt: N,", "base.yaml:6:7: frames.A.parnt: unknown key 'parnt'; "
+     "did you mean 'parent'?"),
+    ("title:", "titel:", "base.yaml:2:1: titel: unknown key 'titel'; did you mean 'title'?"),
+    ("find: speed(P, N)", "find: speed(P,, N)", "base.yaml:21:11: objectives[0].find: expected "
+     "a complete expression, found 'speed(P,, N)' (invalid syntax)"),
+])
+def test_a_failed_definition_is_reported_once_without_cascade(old, new, message):
+    assert errors_of(mutated(old, new)) == [message]
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("find: speed(P, N)", "find: speeed(P, N)",
+     "objectives[0].find: unknown function 'speeed(...)'; did you mean 'speed'?"),
+    ("find: speed(P, N)", "find: speed(Pt, N)",
+     "objectives[0].find: expected a point as argument of speed(...), found 'Pt'; did you mean "
+     "'P'? (points: O, P)"),
+    ("find: speed(P, N)", "find: speed(P, NN)",
+     "objectives[0].find: expected a frame as argument of speed(...), found 'NN'; did you mean "
+     "'N'? (frames: N, A)"),
+    ("position: L*A.x", "position: L*AA.x",
+     "points.P.position: unknown frame 'AA' in 'AA.x'; did you mean 'A'? (frames: N, A)"),
+    ("find: speed(P, N)", "find: thetaa'",
+     "objectives[0].find: expected a coordinate before the prime, found 'thetaa'; did you mean "
+     "'theta'? (coordinates: theta)"),
+    ("  L: 2 m", "  Lx: 2 m", "givens.Lx: unknown name 'Lx'; did you mean 'L'?"),
+    ("theta'': 1 rad/s^2", "thetadd: 1 rad/s^2",
+     "givens.thetadd: unknown name 'thetadd'; did you mean \"theta''\"?"),
+    ("{from: O, position", "{from: OO, position",
+     "base.yaml:8:13: points.P.from: unknown point 'OO' in 'from'; did you mean 'O'?"),
+])
+def test_close_names_are_suggested(old, new, message):
+    assert message in "\n".join(errors_of(mutated(old, new)))
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("theta: 30 deg", "theta: 30", "base.yaml:14:10: givens.theta: expected an angle with its "
+     "unit, found the bare number 30; write `30 deg` or `0.524 rad`"),
+    ("theta: 30 deg", "theta: {value: 40}", "base.yaml:14:10: givens.theta: expected an angle "
+     "with its unit, found the bare number 40; write `40 deg` or `0.698 rad`"),
+    ("givens:", "guesses:\n  theta: 1\ngivens:", "base.yaml:14:10: guesses.theta: expected an "
+     "angle with its unit, found the bare number 1; write `1 deg` or `0.0175 rad`"),
+    ("angle: theta}", "angle: -25}", "base.yaml:6:45: frames.A.rotation.angle: expected an angle "
+     "with its unit, found the bare number -25; write `-25 deg` or `-0.436 rad`"),
+    ("angle: theta}", "angle: 25 m}", "base.yaml:6:45: frames.A.rotation.angle: expected an "
+     "angle such as '25 deg', found '25 m'"),
+    ("theta': 3 rad/s", "theta': 3", "base.yaml:16:11: givens.theta': expected a value with its "
+     "unit (an angular velocity or rate (1 / [time])), found the bare number 3; write `3 rad/s`"),
+    ("L: 2 m", "L: 2", "base.yaml:15:6: givens.L: expected a value with its unit (a length "
+     "([length])), found the bare number 2; write `2 m`"),
+])
+def test_bare_numbers_need_a_unit(old, new, message):
+    assert errors_of(mutated(old, new)) == [message]
+
+
+@pytest.mark.parametrize("old, new", [
+    ("theta: 30 deg", "theta: 0"),
+    ("theta: 30 deg", "theta: {value: pi/6}"),
+    ("theta: 30 deg", "theta: 0.5236 rad"),
+    ("  L: 2 m", "  L: 2 m\n  n: 3"),  # a pure number (n is declared in '1')
+])
+def test_unambiguous_numbers_load(old, new):
+    load_problem_text(mutated(old, new).replace("  L: m\n", "  L: m\n  n: 1\n"), "base.yaml")
+
+
+def test_a_rotation_angle_may_carry_its_unit():
+    problem = load_problem_text(mutated("angle: theta}", "angle: 90 deg}"), "base.yaml")
+    angle = problem.frames[1].rotations[0].angle
+    assert angle.text == "90 deg" and angle.node.value == pytest.approx(math.pi / 2)
+
+
+def test_id_differing_from_file_name_is_a_warning():
+    assert load_problem_text(BASE, "base.yaml").warnings == ()
+    assert load_problem_text(BASE, "<problem>").warnings == ()
+    (warning,) = load_problem_text(BASE, "dir/copy.yml").warnings
+    assert str(warning) == ("dir/copy.yml:1:5: id: warning: id 'base' differs from the file name "
+                            "'copy'; expected them equal (rename the file or write id: copy)")
+
+
+def test_names_defined_twice_point_at_the_key():
+    assert errors_of(mutated("L: m", "L: m\n  theta: rad")) == [
+        "base.yaml:10:3: coordinates.theta: 'theta' is both a coordinate and a parameter; "
+        "expected distinct names"]
