@@ -109,3 +109,10 @@ def test_any_reader_failure_becomes_the_callers_error(monkeypatch):
 def test_scalars_keep_their_written_text():
     doc = read_yaml_text("v: 98.510\nc: [1.50, -0]\n")
     assert doc.text(("v",)) == "98.510" and doc.text(("c", 0)) == "1.50"
+
+
+def test_limits_use_the_callers_error_class():
+    from mechgrade.errors import SubmissionError
+    for text in ("a: " + "[" * 3000 + "]" * 3000, "a: \x1b", "a: " + "1" * 5000, "a:\n\tb: 1"):
+        with pytest.raises(SubmissionError):
+            read_yaml_text(text, "answers.yaml", SubmissionError)

@@ -91,8 +91,9 @@ def test_check_reports_a_failing_expect_and_exits_1(tmp_path):
 
 
 def test_check_reports_a_broken_file_among_good_ones(tmp_path):
-    (tmp_path / "good.yaml").write_text(BASE)
-    (tmp_path / "broken.yaml").write_text(BASE.replace("  theta': 3 rad/s\n", ""))
+    (tmp_path / "good.yaml").write_text(BASE.replace("id: base", "id: good"))
+    (tmp_path / "broken.yaml").write_text(BASE.replace("  theta': 3 rad/s\n", "")
+                                          .replace("id: base", "id: broken"))
     result = run("check", str(tmp_path))
     assert result.exit_code == 1
     assert result.output.splitlines() == [
@@ -100,8 +101,6 @@ def test_check_reports_a_broken_file_among_good_ones(tmp_path):
         f"  {tmp_path / 'broken.yaml'}: objective 'speed' is not determined by the givens: "
         "give a value for thetad (velocity level)",
         f"ok   {tmp_path / 'good.yaml'} (1 tests, DOF 1)",
-        f"  {tmp_path / 'good.yaml'}:1:5: id: warning: id 'base' differs from the file name "
-        "'good'; expected them equal (rename the file or write id: good)",
         "2 file(s), 1 failing",
     ]
 
@@ -110,3 +109,28 @@ def test_check_of_an_empty_folder_exit_2(tmp_path):
     result = run("check", str(tmp_path))
     assert result.exit_code == 2
     assert result.output == f"expected problem files (*.yaml), found none in {tmp_path}\n"
+
+
+def test_check_lists_every_error_of_a_file_and_its_warnings(tmp_path):
+    bad = tmp_path / "three.yaml"
+    bad.write_text(BASE.replace("parent: N", "parent: NN").replace("L: 2 m", "L: 2 s")
+                   .replace("kind: scalar", "kind: scalr"))
+    unsolvable = tmp_path / "unsolvable.yaml"
+    unsolvable.write_text(BASE.replace("  theta': 3 rad/s\n", ""))
+    result = run("check", str(tmp_path))
+    assert result.exit_code == 1
+    assert result.output.splitlines() == [
+        f"FAIL {bad}",
+        f"  {bad}:6:15: frames.A.parent: unknown parent frame 'NN'; did you mean 'N'? (expected "
+        "one of: N, A)",
+        f"  {bad}:15:6: givens.L: dimension mismatch in the value of 'L': expected a length "
+        "([length]), found a time ([time])",
+        f"  {bad}:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; found "
+        "'scalr'",
+        f"FAIL {unsolvable}",
+        f"  {unsolvable}: objective 'speed' is not determined by the givens: give a value for "
+        "thetad (velocity level)",
+        f"  {unsolvable}:1:5: id: warning: id 'base' differs from the file name 'unsolvable'; "
+        "expected them equal (rename the file or write id: unsolvable)",
+        "2 file(s), 2 failing",
+    ]

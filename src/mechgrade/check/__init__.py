@@ -75,9 +75,14 @@ def check_problem(path) -> CheckReport:
     and its declared mistakes with its answer."""
     try:
         problem = load_problem(path)
-        solution = solve(problem)
     except MechgradeError as err:
         return CheckReport(str(path), error=str(err) if err.where.file else f"{path}: {err}")
+    try:
+        solution = solve(problem)
+    except MechgradeError as err:
+        return CheckReport(str(path), problem.id,
+                           error=str(err) if err.where.file else f"{path}: {err}",
+                           warnings=tuple(str(w) for w in problem.warnings))
     outcomes = []
     untested = []
     for objective in problem.objectives:

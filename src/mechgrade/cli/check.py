@@ -27,7 +27,7 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
         if report.error:
             failures += 1
             click.echo(f"FAIL {report.path}")
-            for line in report.error.splitlines():
+            for line in report.error.splitlines() + list(report.warnings):
                 click.echo(f"  {line}")
             continue
         bad = [o for o in report.outcomes if not o.passed]
