@@ -633,13 +633,6 @@ def problem_errors(problem: Problem, broken: frozenset[str] = frozenset()) -> li
     return checker.errors
 
 
-def validate_problem(problem: Problem) -> None:
-    """Raise the first semantic error in ``problem``, if any (see :func:`problem_errors`)."""
-    errors = problem_errors(problem)
-    if errors:
-        raise errors[0]
-
-
 def symbol_meanings(problem: Problem, objective: Objective) -> dict[str, Node]:
     """Each declared symbol of a symbolic objective -> the Name/Prime node it stands for."""
     checker = _Checker(problem)
