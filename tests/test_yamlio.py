@@ -85,6 +85,10 @@ def test_a_quoted_long_number_is_text():
     ("a:1\nb: 2\n", "f.yaml:1:2: expected a space after ':' in 'a:1' (write 'a: 1')"),
     ("a: 1\nb:2\nc: 3\n", "f.yaml:2:2: expected a space after ':' in 'b:2' (write 'b: 2')"),
     ("a: b: c\n", "f.yaml:1:5: expected one 'key: value' per line, found a second ': ' in a value; put the value in quotes"),
+    ("a:\n  b: x\nc: d: e\n", "f.yaml:3:5: expected one 'key: value' per line, found a second ': ' in a value; put the value in quotes"),
+    ("a:\n  - x: 1\n    y: 2\n   z: 3\n", "f.yaml:4:4: indentation: this line is indented 3 spaces, the key above 4"),
+    ("a:\n  b:\n   c: 1\n  d: 2\n e: 3\n", "f.yaml:5:2: indentation: this line is indented 1 space, the key above 2"),
+    ("title: 'Pendulum\nid: p\nx: 'y'\n", "f.yaml:1:8: unclosed quote: the ' opened here is closed only on line 3"),
 ])
 def test_syntax_errors_in_plain_words(text, message):
     with pytest.raises(SpecError) as info:

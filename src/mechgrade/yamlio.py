@@ -182,6 +182,9 @@ def _indent(line: str) -> int:
     return len(line) - len(line.lstrip(" "))
 
 
+_SCALAR_PAIR = re.compile(r"^\s*(?:-\s+)?[^\s:#][^:#]*:\s+[^\s|>#]")
+
+
 def _spaces(count: int) -> str:
     return f"{count} space" + ("" if count == 1 else "s")
 
@@ -190,11 +193,21 @@ _OPENING_QUOTE = re.compile(r"""^\s*(?:-\s+)?[^'"#:]+:\s+(['"])""")
 
 
 def _quote_left_open(lines: list[str], line: int) -> tuple[int, int] | None:
-    """Where a value's quote opened on an earlier line and ran on, unclosed, to ``line``."""
+    """Where a value's quote opened on an earlier line and ran on to ``line``, where the next
+    quote of its kind closed it (so the rest of that line no longer parses)."""
     for number in range(line - 1, -1, -1):
         match = _OPENING_QUOTE.match(lines[number])
-        if match and lines[number].count(match.group(1), match.end(1)) == 0:
-            return number, match.start(1)
+        if not match:
+            continue
+        quote = match.group(1)
+        rest = [lines[number][match.end(1):]] + lines[number + 1:line + 1]
+        closes = next((offset for offset, text in enumerate(rest)
+                       if quote in (text.replace("''", "") if quote == "'"
+                                    else re.sub(r'\\.', "", text))), None)
+        if closes == 0:
+            continue  # a complete quoted value: look further up
+        return (number, match.start(1)) if closes is not None and number + closes == line \
+            else None
     return None
 
 
@@ -219,7 +232,7 @@ def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
         found = "the end of the file" if found == "'<stream end>'" else found
         return (f"unclosed '{bracket}': expected ',' or '{close}' after an item, found "
                 f"{found} on line {mark.line + 1}", opened or mark)
-    if "mapping values are not allowed" in problem:
+    if "mapping values are not allowed" in problem or "block end" in problem:
         opened_at = _quote_left_open(lines, mark.line)
         if opened_at is not None:
             number, column = opened_at
@@ -234,7 +247,12 @@ def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
         here = _indent(lines[mark.line])
         above = next((lines[i] for i in range(mark.line - 1, -1, -1)
                       if lines[i].strip() and not lines[i].lstrip().startswith("#")), None)
-        if above is not None and _indent(above) != here:
+        # A line indented past a finished "key: value" (read as the value's continuation), or
+        # dedented to a level no key above has.
+        misplaced = above is not None and (
+            here > _indent(above) and _SCALAR_PAIR.match(above) if "mapping values" in problem
+            else here != _indent(above))
+        if misplaced:
             at = yaml.Mark("", 0, mark.line, here, None, None)
             return (f"indentation: this line is indented {_spaces(here)}, the key above "
                     f"{_indent(above)}", at)
