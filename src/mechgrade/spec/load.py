@@ -56,11 +56,11 @@ def problem_from_document(doc: Document) -> Problem:
     errors += builder.errors
     if problem is not None:
         errors += problem_errors(problem, frozenset(builder.broken_names))
-    raise_all(errors)
+    _raise_all(errors)
     return problem
 
 
-def raise_all(errors: list[SpecError]) -> None:
+def _raise_all(errors: list[SpecError]) -> None:
     """Raise nothing, the one error, or :class:`SpecErrors` holding all of them (each message
     once)."""
     seen, kept = set(), []
@@ -219,6 +219,18 @@ class _Builder:
             self.errors.append(err)
             return None
 
+    def named(self, section: str, build) -> list:
+        """``build(name, spec)`` for each entry of a section of named items; the names of
+        entries that fail (or have schema errors) are remembered as broken."""
+        out = []
+        for name, spec in self.section(section, {}).items():
+            item = self.attempt(build, name, spec) if self.usable(section, name) else None
+            if item is None:
+                self.broken_names.add(name)
+            else:
+                out.append(item)
+        return out
+
     def section(self, name: str, empty):
         """The section's value, or ``empty`` (and every name in it unknown) if it is broken."""
         if (name,) in self.broken:
@@ -282,36 +294,11 @@ class _Builder:
         inertial = d["inertial"]
         frames = [Frame(inertial["frame"], None, (), inertial["point"],
                         self.doc.where_key(("inertial", "frame")))]
-        for name, spec in self.section("frames", {}).items():
-            frame = self.attempt(self.frame, name, spec) if self.usable("frames", name) else None
-            if frame is None:
-                self.broken_names.add(name)
-            else:
-                frames.append(frame)
+        frames += self.named("frames", self.frame)
         points = [Point(inertial["point"], None, None, self.doc.where_key(("inertial", "point")))]
-        for name, spec in self.section("points", {}).items():
-            point = self.attempt(self.point, name, spec) if self.usable("points", name) else None
-            if point is None:
-                self.broken_names.add(name)
-            else:
-                points.append(point)
-        coordinates = []
-        for name, unit in self.section("coordinates", {}).items():
-            ok = self.usable("coordinates", name) and \
-                self.attempt(self.unit, unit, "coordinates", name) is not None
-            if ok:
-                coordinates.append(Coordinate(name, str(unit).strip(),
-                                              self.doc.where_key(("coordinates", name))))
-            else:
-                self.broken_names.add(name)
-        parameters = []
-        for name, spec in self.section("parameters", {}).items():
-            parameter = (self.attempt(self.parameter, name, spec)
-                         if self.usable("parameters", name) else None)
-            if parameter is None:
-                self.broken_names.add(name)
-            else:
-                parameters.append(parameter)
+        points += self.named("points", self.point)
+        coordinates = self.named("coordinates", self.coordinate)
+        parameters = self.named("parameters", self.parameter)
         constraints = [self.attempt(self.constraint, c, i)
                        for i, c in enumerate(self.section("constraints", []))
                        if self.usable("constraints", i)]
@@ -364,6 +351,10 @@ class _Builder:
         return Point(name, spec["from"], self.expr(spec["position"], "points", name, "position"),
                      self.doc.where_key(("points", name)),
                      origin_where=self.where("points", name, "from"))
+
+    def coordinate(self, name: str, unit) -> Coordinate:
+        return Coordinate(name, self.unit(unit, "coordinates", name),
+                          self.doc.where_key(("coordinates", name)))
 
     def parameter(self, name: str, spec) -> Parameter:
         where = self.doc.where_key(("parameters", name))
@@ -449,7 +440,7 @@ class _Builder:
         unit = part(self.unit, spec["unit"], *path, "unit")
         givens = tuple(part(self.given, k, v, *path, "givens")
                        for k, v in (spec.get("givens") or {}).items())
-        if failed or "expect" in spec and expect is None:
+        if failed:
             return None
         return Objective(
             id=spec["id"], prompt=spec["prompt"].strip(), find=find, kind=spec["kind"],
