@@ -162,7 +162,7 @@ def test_independent_errors_come_together_in_file_order():
         "base.yaml:15:6: givens.L: dimension mismatch in the value of 'L': expected a length "
         "([length]), found a time ([time])",
         "base.yaml:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; "
-        "found 'scalr'",
+        "found 'scalr'; did you mean 'scalar'?",
     ]
 
 

@@ -139,7 +139,8 @@ def _schema_message(err: jsonschema.ValidationError) -> str:
         return f"expected {_article(expected)}, found {_describe(inst)}"
     if kind == "enum":
         options = ", ".join(str(v) for v in err.validator_value)
-        return f"expected one of: {options}; found {inst!r}"
+        hint = did_you_mean(inst, map(str, err.validator_value)) if isinstance(inst, str) else ""
+        return f"expected one of: {options}; found {inst!r}{hint}"
     if kind == "pattern":
         if err.validator_value.startswith("^[^=]"):
             return f"expected an equation 'left = right', found {inst!r}"
