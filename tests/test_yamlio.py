@@ -18,7 +18,7 @@ def test_positions_are_kept():
 @pytest.mark.parametrize("text, message", [
     ("a: &x 1\nb: *x\n", "f.yaml:2:4: expected plain YAML, found an alias"),
     ("a: 1\na: 2\n", "f.yaml:2:1: a: expected each key once, found 'a' again"),
-    ("a: [1, 2\n", "f.yaml:2:1: expected valid YAML, found a syntax error"),
+    ("a: [1, 2\n", "f.yaml:1:4: unclosed '[': expected ',' or ']' after an item, found the end of the file on line 2"),
     ("<<: {a: 1}\n", "f.yaml:1:1: expected plain YAML, found a merge key (<<)"),
     ("? [a]\n: 1\n", "expected a plain key, found a list or mapping used as a key"),
     ("a: \x00\n", "expected text, found a NUL byte"),
@@ -46,3 +46,77 @@ def test_size_cap_and_encoding(tmp_path):
     bom = tmp_path / "bom.yaml"
     bom.write_bytes("\ufeffa: 1\n".encode("utf-8"))
     assert read_yaml(bom).data == {"a": 1}
+
+
+@pytest.mark.parametrize("text, message", [
+    ("a: " + "[" * 5000 + "]" * 5000 + "\n",
+     "f.yaml:1:67: expected lists and mappings nested at most 64 deep, found deeper nesting"),
+    ("a: " + "{b: " * 3000 + "1" + "}" * 3000 + "\n",
+     "f.yaml:1:253: expected lists and mappings nested at most 64 deep, found deeper nesting"),
+    ("a: x\x07y\n", "f.yaml:1:5: expected printable text, found BEL (U+0007); delete it"),
+    ("a: 1\nb: '\x1b[31m'\n", "f.yaml:2:5: expected printable text, found ESC (U+001B); delete it"),
+    ("a: x\x7f\n", "f.yaml:1:5: expected printable text, found DEL (U+007F); delete it"),
+    ("a: x\x85y\n", "f.yaml:1:5: expected printable text, found NEL (U+0085); delete it"),
+    ("a: \x9b\n", "f.yaml:1:4: expected printable text, found a control character (U+009B); delete it"),
+    ("a: " + "9" * 5000 + "\n",
+     "f.yaml:1:4: expected a number of at most 100 digits, found one of 5000 (quote it if it is text)"),
+    ("a: [1, 0x" + "f" * 5000 + "]\n",
+     "f.yaml:1:8: expected a number of at most 100 digits, found one of 5002 (quote it if it is text)"),
+])
+def test_parser_limits_are_located_errors(text, message):
+    with pytest.raises(SpecError) as info:
+        read_yaml_text(text, "f.yaml")
+    assert str(info.value) == message
+
+
+def test_a_quoted_long_number_is_text():
+    assert read_yaml_text("a: '" + "9" * 5000 + "'").data == {"a": "9" * 5000}
+
+
+@pytest.mark.parametrize("text, message", [
+    ("a:\n\tb: 1\n", "f.yaml:2:1: tabs are not allowed, use spaces"),
+    ("a:\n    b: 1\n   c: 2\n", "f.yaml:3:4: indentation: this line is indented 3 spaces, the key above 4"),
+    ("a:\n  b: 1\n   c: 2\n", "f.yaml:3:4: indentation: this line is indented 3 spaces, the key above 2"),
+    ("a: 'abc\nb: 1\n", "f.yaml:1:4: unclosed quote: the ' opened here is never closed"),
+    ('a: "abc\nb: 1\n', 'f.yaml:1:4: unclosed quote: the " opened here is never closed'),
+    ("a: [1, 2\nb: 1\n", "f.yaml:1:4: unclosed '[': expected ',' or ']' after an item, found ':' on line 2"),
+    ("a: {x: 1\nb: 1\n", "f.yaml:1:4: unclosed '{': expected ',' or '}' after an item, found ':' on line 2"),
+    ("a: [1, 2]]\n", "f.yaml:1:10: found ']' with no bracket open to close"),
+    ("a:1\nb: 2\n", "f.yaml:1:2: expected a space after ':' in 'a:1' (write 'a: 1')"),
+    ("a: 1\nb:2\nc: 3\n", "f.yaml:2:2: expected a space after ':' in 'b:2' (write 'b: 2')"),
+    ("a: b: c\n", "f.yaml:1:5: expected one 'key: value' per line, found a second ': ' in a value; put the value in quotes"),
+    ("a:\n  b: x\nc: d: e\n", "f.yaml:3:5: expected one 'key: value' per line, found a second ': ' in a value; put the value in quotes"),
+    ("a:\n  - x: 1\n    y: 2\n   z: 3\n", "f.yaml:4:4: indentation: this line is indented 3 spaces, the key above 4"),
+    ("a:\n  b:\n   c: 1\n  d: 2\n e: 3\n", "f.yaml:5:2: indentation: this line is indented 1 space, the key above 2"),
+    ("title: 'Pendulum\nid: p\nx: 'y'\n", "f.yaml:1:8: unclosed quote: the ' opened here is closed only on line 3"),
+])
+def test_syntax_errors_in_plain_words(text, message):
+    with pytest.raises(SpecError) as info:
+        read_yaml_text(text, "f.yaml")
+    assert str(info.value) == message
+
+
+def test_any_reader_failure_becomes_the_callers_error(monkeypatch):
+    from mechgrade.errors import SubmissionError
+    from mechgrade import yamlio
+
+    def broken(self):
+        raise MemoryError("out of memory")
+
+    monkeypatch.setattr(yamlio._Loader, "get_single_node", broken)
+    with pytest.raises(SubmissionError) as info:
+        read_yaml_text("a: 1\n", "s.yaml", SubmissionError)
+    assert str(info.value) == ("s.yaml: expected valid YAML, found something the reader cannot "
+                               "handle (MemoryError: out of memory)")
+
+
+def test_scalars_keep_their_written_text():
+    doc = read_yaml_text("v: 98.510\nc: [1.50, -0]\n")
+    assert doc.text(("v",)) == "98.510" and doc.text(("c", 0)) == "1.50"
+
+
+def test_limits_use_the_callers_error_class():
+    from mechgrade.errors import SubmissionError
+    for text in ("a: " + "[" * 3000 + "]" * 3000, "a: \x1b", "a: " + "1" * 5000, "a:\n\tb: 1"):
+        with pytest.raises(SubmissionError):
+            read_yaml_text(text, "answers.yaml", SubmissionError)

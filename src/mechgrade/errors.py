@@ -87,6 +87,32 @@ class SpecError(MechgradeError):
     """A problem file is malformed: YAML, schema, names, types or dimensions."""
 
 
+class SpecErrors(SpecError):
+    """Every independent error found in one problem file, in file order; one line each.
+
+    >>> errs = SpecErrors([SpecError("b", where=Location("p.yaml", 9, 1)),
+    ...                    SpecError("a", where=Location("p.yaml", 2, 5))])
+    >>> print(errs)
+    p.yaml:2:5: a
+    p.yaml:9:1: b
+    >>> len(errs.errors)
+    2
+    """
+
+    def __init__(self, errors) -> None:
+        errors = tuple(sorted(errors, key=lambda e: (e.where.line or 0, e.where.column or 0)))
+        if not errors:
+            raise ValueError("SpecErrors needs at least one error")
+        super().__init__("\n".join(str(e) for e in errors), where=Location(errors[0].where.file))
+        self.errors = errors
+
+    def located(self, where: Location) -> "SpecErrors":
+        return self
+
+    def __str__(self) -> str:
+        return "\n".join(str(e) for e in self.errors)
+
+
 class ExpressionError(MechgradeError):
     """Text could not be read as an expression of the allowed language.
 

@@ -5,11 +5,20 @@ int, float, bool, None); anchors and aliases are refused (no "billion laughs"), 
 are an error rather than silently overwritten, and files above a size cap are refused. Every
 value's position is kept in a :class:`Document` so messages can say ``file:line:col``.
 
+Whatever goes wrong while reading becomes the caller's error class with a location: control
+characters, nesting deeper than :data:`MAX_DEPTH`, integers longer than :data:`MAX_INT_DIGITS`,
+and syntax errors, the common ones (tabs, indentation, unclosed quotes and brackets, a missing
+space after ``:``) in plain words.
+
 >>> doc = read_yaml_text("a:\\n  b: [1, 2]\\n", "x.yaml")
 >>> doc.data
 {'a': {'b': [1, 2]}}
 >>> str(doc.where(("a", "b", 1)))
 'x.yaml:2:10: a.b[1]'
+>>> read_yaml_text("a:\\n  b: 1\\n   c: 2\\n", "x.yaml")
+Traceback (most recent call last):
+...
+mechgrade.errors.SpecError: x.yaml:3:4: indentation: this line is indented 3 spaces, the key above 2
 """
 
 from __future__ import annotations
@@ -18,6 +27,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import re
+
 import yaml
 
 from .errors import Location, MechgradeError, SpecError
@@ -25,6 +36,18 @@ from .files import MAX_BYTES, read_text
 
 
 Path_ = tuple  # a field path: tuple of str keys and int indices
+
+MAX_DEPTH = 64
+"""Deepest nesting of lists and mappings accepted (PyYAML composes recursively)."""
+
+MAX_INT_DIGITS = 100
+"""Longest integer accepted; Python refuses to convert more than 4300 digits anyway."""
+
+# C0 controls except tab, newline and carriage return; DEL; C1 controls (U+0085, NEL, is a
+# YAML line break that silently splits a line, so it is refused too).
+_CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")
+_CONTROL_NAMES = {0x00: "NUL", 0x07: "BEL", 0x08: "BS", 0x0B: "VT", 0x0C: "FF", 0x1B: "ESC",
+                  0x7F: "DEL", 0x85: "NEL"}
 
 
 def field_path(path: tuple) -> str:
@@ -45,6 +68,8 @@ class Document:
     data: Any
     file: str
     marks: dict = field(default_factory=dict, compare=False, repr=False)
+    texts: dict = field(default_factory=dict, compare=False, repr=False)
+    keys: dict = field(default_factory=dict, compare=False, repr=False)
 
     def where(self, path: tuple) -> Location:
         """The location of the value at ``path`` (or of its nearest located parent)."""
@@ -54,16 +79,44 @@ class Document:
         line, column = self.marks.get(probe, (None, None))
         return Location(self.file, line, column, field_path(path) or None)
 
+    def where_key(self, path: tuple) -> Location:
+        """The location of the key that ends ``path`` (a name being defined), else its value.
+
+        >>> str(read_yaml_text("a:\\n  b: 1", "x.yaml").where_key(("a", "b")))
+        'x.yaml:2:3: a.b'
+        """
+        if tuple(path) not in self.keys:
+            return self.where(path)
+        line, column = self.keys[tuple(path)]
+        return Location(self.file, line, column, field_path(path) or None)
+
+    def text(self, path: tuple) -> str | None:
+        """The scalar at ``path`` exactly as written (``98.510`` keeps its last zero).
+
+        >>> read_yaml_text("v: 98.510").text(("v",))
+        '98.510'
+        """
+        return self.texts.get(tuple(path))
+
 
 class _Loader(yaml.SafeLoader):
     """Safe loader that refuses aliases (and so anchors are pointless)."""
+
+    depth = 0
 
     def compose_node(self, parent, index):
         if self.check_event(yaml.AliasEvent):
             event = self.peek_event()
             raise _YamlProblem("expected plain YAML, found an alias (*name); anchors and "
                                "aliases are not allowed", event.start_mark)
-        return super().compose_node(parent, index)
+        self.depth += 1
+        try:
+            if self.depth > MAX_DEPTH:
+                raise _YamlProblem(f"expected lists and mappings nested at most {MAX_DEPTH} "
+                                   f"deep, found deeper nesting", self.peek_event().start_mark)
+            return super().compose_node(parent, index)
+        finally:
+            self.depth -= 1
 
 
 class _YamlProblem(Exception):
@@ -89,23 +142,124 @@ def read_yaml_text(text: str, file: str = "<text>",
     if "\x00" in text:
         raise error("expected text, found a NUL byte (is this a binary file?)",
                     where=Location(file))
+    control = _CONTROL.search(text)
+    if control:
+        code = ord(control.group())
+        name = _CONTROL_NAMES.get(code, "a control character")
+        line = text.count("\n", 0, control.start()) + 1
+        column = control.start() - (text.rfind("\n", 0, control.start()) + 1) + 1
+        raise error(f"expected printable text, found {name} (U+{code:04X}); delete it",
+                    where=Location(file, line, column))
     loader = _Loader(text)
+    marks: dict = {}
+    texts: dict = {}
+    keys: dict = {}
     try:
         node = loader.get_single_node()
-        marks: dict = {}
-        data = _construct(node, (), marks, file, error) if node is not None else None
+        data = _construct(node, (), (marks, texts, keys), file, error) if node is not None else None
+    except error:
+        raise
     except _YamlProblem as exc:
         raise error(exc.message, where=_mark(file, exc.mark)) from None
     except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        problem = exc.problem or exc.context or "invalid YAML"
-        raise error(f"expected valid YAML, found a syntax error ({problem})",
-                    where=_mark(file, mark)) from None
-    except yaml.YAMLError as exc:
-        raise error(f"expected valid YAML ({exc})", where=Location(file)) from None
+        message, mark = _syntax_message(text.splitlines(), exc)
+        raise error(message, where=_mark(file, mark)) from None
+    except RecursionError:
+        raise error(f"expected lists and mappings nested at most {MAX_DEPTH} deep, found "
+                    "deeper nesting", where=Location(file)) from None
+    except Exception as exc:  # noqa: BLE001 - the boundary: nothing else may escape a read
+        raise error(f"expected valid YAML, found something the reader cannot handle "
+                    f"({type(exc).__name__}: {str(exc)[:80]})", where=Location(file)) from None
     finally:
         loader.dispose()
-    return Document(data, file, marks)
+    return Document(data, file, marks, texts, keys)
+
+
+_GLUED_COLON = re.compile(r"^(\s*(?:-\s+)?)([A-Za-z_][\w']*):(?=[^\s:/])(\S.*)$")
+
+
+def _indent(line: str) -> int:
+    return len(line) - len(line.lstrip(" "))
+
+
+_SCALAR_PAIR = re.compile(r"^\s*(?:-\s+)?[^\s:#][^:#]*:\s+[^\s|>#]")
+
+
+def _spaces(count: int) -> str:
+    return f"{count} space" + ("" if count == 1 else "s")
+
+
+_OPENING_QUOTE = re.compile(r"""^\s*(?:-\s+)?[^'"#:]+:\s+(['"])""")
+
+
+def _quote_left_open(lines: list[str], line: int) -> tuple[int, int] | None:
+    """Where a value's quote opened on an earlier line and ran on to ``line``, where the next
+    quote of its kind closed it (so the rest of that line no longer parses)."""
+    for number in range(line - 1, -1, -1):
+        match = _OPENING_QUOTE.match(lines[number])
+        if not match:
+            continue
+        quote = match.group(1)
+        rest = [lines[number][match.end(1):]] + lines[number + 1:line + 1]
+        closes = next((offset for offset, text in enumerate(rest)
+                       if quote in (text.replace("''", "") if quote == "'"
+                                    else re.sub(r'\\.', "", text))), None)
+        if closes == 0:
+            continue  # a complete quoted value: look further up
+        return (number, match.start(1)) if closes is not None and number + closes == line \
+            else None
+    return None
+
+
+def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
+    """Plain words (and the mark to point at) for a PyYAML syntax error."""
+    problem, context = exc.problem or "", exc.context or ""
+    mark, opened = exc.problem_mark or exc.context_mark, exc.context_mark
+    if "'\\t'" in problem or "'\t'" in problem:
+        return "tabs are not allowed, use spaces", mark
+    for number in range(min(mark.line, len(lines) - 1), max(mark.line - 3, -1), -1):
+        glued = _GLUED_COLON.match(lines[number])
+        if glued:
+            lead, key, rest = glued.groups()
+            at = yaml.Mark("", 0, number, len(lead) + len(key), None, None)
+            return (f"expected a space after ':' in '{key}:{rest}' (write '{key}: {rest}')", at)
+    if "quoted scalar" in context and opened is not None:
+        quote = lines[opened.line][opened.column]
+        return f"unclosed quote: the {quote} opened here is never closed", opened
+    if "flow sequence" in context or "flow mapping" in context:
+        bracket, close = ("[", "]") if "sequence" in context else ("{", "}")
+        found = problem.split("but got ")[-1] if "but got" in problem else "'<stream end>'"
+        found = "the end of the file" if found == "'<stream end>'" else found
+        return (f"unclosed '{bracket}': expected ',' or '{close}' after an item, found "
+                f"{found} on line {mark.line + 1}", opened or mark)
+    if "mapping values are not allowed" in problem or "block end" in problem:
+        opened_at = _quote_left_open(lines, mark.line)
+        if opened_at is not None:
+            number, column = opened_at
+            at = yaml.Mark("", 0, number, column, None, None)
+            return (f"unclosed quote: the {lines[number][column]} opened here is closed only "
+                    f"on line {mark.line + 1}", at)
+    stray = re.search(r"but found '([\]}])'", problem)
+    if stray:
+        return f"found '{stray.group(1)}' with no bracket open to close", mark
+    if ("block end" in problem or "mapping values are not allowed" in problem) \
+            and mark.line < len(lines):
+        here = _indent(lines[mark.line])
+        above = next((lines[i] for i in range(mark.line - 1, -1, -1)
+                      if lines[i].strip() and not lines[i].lstrip().startswith("#")), None)
+        # A line indented past a finished "key: value" (read as the value's continuation), or
+        # dedented to a level no key above has.
+        misplaced = above is not None and (
+            here > _indent(above) and _SCALAR_PAIR.match(above) if "mapping values" in problem
+            else here != _indent(above))
+        if misplaced:
+            at = yaml.Mark("", 0, mark.line, here, None, None)
+            return (f"indentation: this line is indented {_spaces(here)}, the key above "
+                    f"{_indent(above)}", at)
+        if "mapping values" in problem:
+            return ("expected one 'key: value' per line, found a second ': ' in a value; "
+                    "put the value in quotes", mark)
+    return f"expected valid YAML, found a syntax error ({problem or context})", mark
 
 
 def _mark(file: str, mark) -> Location:
@@ -114,7 +268,8 @@ def _mark(file: str, mark) -> Location:
     return Location(file, mark.line + 1, mark.column + 1)
 
 
-def _construct(node, path, marks, file, error):
+def _construct(node, path, tables, file, error):
+    marks, texts, keys = tables
     marks[path] = (node.start_mark.line + 1, node.start_mark.column + 1)
     if isinstance(node, yaml.MappingNode):
         out = {}
@@ -125,7 +280,7 @@ def _construct(node, path, marks, file, error):
             if key_node.tag == "tag:yaml.org,2002:merge":
                 raise error("expected plain YAML, found a merge key (<<)",
                             where=_mark(file, key_node.start_mark))
-            key = _scalar(key_node)
+            key = _scalar(key_node, file, error)
             if key == "<<":
                 raise error("expected plain YAML, found a merge key (<<)",
                             where=_mark(file, key_node.start_mark))
@@ -135,18 +290,25 @@ def _construct(node, path, marks, file, error):
                             where=Location(file, key_node.start_mark.line + 1,
                                            key_node.start_mark.column + 1,
                                            field_path(path + (key,))))
-            out[key] = _construct(value_node, path + (key,), marks, file, error)
+            keys[path + (key,)] = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
+            out[key] = _construct(value_node, path + (key,), tables, file, error)
         return out
     if isinstance(node, yaml.SequenceNode):
-        return [_construct(item, path + (i,), marks, file, error)
+        return [_construct(item, path + (i,), tables, file, error)
                 for i, item in enumerate(node.value)]
-    return _scalar(node)
+    texts[path] = node.value
+    return _scalar(node, file, error)
 
 
 _SCALAR_LOADER = yaml.SafeLoader("")
 
 
-def _scalar(node):
+def _scalar(node, file, error):
+    if node.tag == "tag:yaml.org,2002:int":
+        digits = sum(ch.isalnum() for ch in node.value)
+        if digits > MAX_INT_DIGITS:
+            raise error(f"expected a number of at most {MAX_INT_DIGITS} digits, found one of "
+                        f"{digits} (quote it if it is text)", where=_mark(file, node.start_mark))
     value = _SCALAR_LOADER.construct_object(node)
     # Dates and binary blobs are not part of any mechgrade format: keep what was typed.
     if not isinstance(value, (str, int, float, bool, type(None))):

@@ -79,20 +79,21 @@ def test_missing_problem_file_exit_2(tmp_path):
 
 
 def test_check_reports_a_failing_expect_and_exits_1(tmp_path):
-    bad = tmp_path / "wrong.yaml"
+    bad = tmp_path / "base.yaml"
     bad.write_text(BASE.replace("{value: 6}", "{value: 7}"))
     result = run("check", str(bad))
     assert result.exit_code == 1
     assert result.output.splitlines() == [
         f"FAIL {bad} (1 tests, DOF 1)",
-        "  FAIL speed: 6 != expected 7 m/s",
+        "  FAIL speed: 6 != expected 7 m/s (±0.5, from the digits written)",
         "1 file(s), 1 failing",
     ]
 
 
 def test_check_reports_a_broken_file_among_good_ones(tmp_path):
-    (tmp_path / "good.yaml").write_text(BASE)
-    (tmp_path / "broken.yaml").write_text(BASE.replace("  theta': 3 rad/s\n", ""))
+    (tmp_path / "good.yaml").write_text(BASE.replace("id: base", "id: good"))
+    (tmp_path / "broken.yaml").write_text(BASE.replace("  theta': 3 rad/s\n", "")
+                                          .replace("id: base", "id: broken"))
     result = run("check", str(tmp_path))
     assert result.exit_code == 1
     assert result.output.splitlines() == [
@@ -108,3 +109,28 @@ def test_check_of_an_empty_folder_exit_2(tmp_path):
     result = run("check", str(tmp_path))
     assert result.exit_code == 2
     assert result.output == f"expected problem files (*.yaml), found none in {tmp_path}\n"
+
+
+def test_check_lists_every_error_of_a_file_and_its_warnings(tmp_path):
+    bad = tmp_path / "three.yaml"
+    bad.write_text(BASE.replace("parent: N", "parent: NN").replace("L: 2 m", "L: 2 s")
+                   .replace("kind: scalar", "kind: scalr"))
+    unsolvable = tmp_path / "unsolvable.yaml"
+    unsolvable.write_text(BASE.replace("  theta': 3 rad/s\n", ""))
+    result = run("check", str(tmp_path))
+    assert result.exit_code == 1
+    assert result.output.splitlines() == [
+        f"FAIL {bad}",
+        f"  {bad}:6:15: frames.A.parent: unknown parent frame 'NN'; did you mean 'N'? (expected "
+        "one of: N, A)",
+        f"  {bad}:15:6: givens.L: dimension mismatch in the value of 'L': expected a length "
+        "([length]), found a time ([time])",
+        f"  {bad}:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; found "
+        "'scalr'; did you mean 'scalar'?",
+        f"FAIL {unsolvable}",
+        f"  {unsolvable}: objective 'speed' is not determined by the givens: give a value for "
+        "thetad (velocity level)",
+        f"  {unsolvable}:1:5: id: warning: id 'base' differs from the file name 'unsolvable'; "
+        "expected them equal (rename the file or write id: unsolvable)",
+        "2 file(s), 2 failing",
+    ]

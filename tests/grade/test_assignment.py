@@ -146,7 +146,7 @@ def test_assignment_is_frozen(folder):
     (MINIMAL + "policy: {partial_credit: {diagnoses: {sloppy: 0.5}}}\n",
      "hw.yaml:4:47: policy.partial_credit.diagnoses.sloppy: expected a diagnosis code (mistake, "
      "sign,"),
-    ("id: [unclosed\n", "hw.yaml:2:1: expected valid YAML, found a syntax error"),
+    ("id: [unclosed\n", "hw.yaml:1:5: unclosed '[': expected ',' or ']' after an item, found the end of the file on line 2"),
     ("id: &a hw1\ntitle: *a\nproblems: [p.yaml]\n",
      "hw.yaml:2:8: expected plain YAML, found an alias"),
     ("id: hw1\nid: hw2\ntitle: T\nproblems: [p.yaml]\n",

@@ -227,7 +227,7 @@ def test_invalid_json_and_yaml_say_where(tmp_path):
         "js.json:1:21: expected valid JSON, found a syntax error (Expecting property name "
         "enclosed in double quotes)",)
     assert student(tmp_path, "ya").messages[0].startswith(
-        "ya.yaml:2:1: expected valid YAML, found a syntax error")
+        "ya.yaml:1:10: unclosed '[': expected ',' or ']' after an item, found the end of the file")
     assert student(tmp_path, "li").messages == (
         "'li.yaml': expected answers keyed by 'problem_id.objective_id', found a list",)
 

@@ -6,7 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from mechgrade.errors import SpecError
+import math
+
+from mechgrade.errors import SpecError, SpecErrors
 from mechgrade.spec import load_problem, load_problem_text
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -34,11 +36,11 @@ def test_base_problem_loads():
 CASES = [
     # YAML
     ("empty file", "", "p.yaml: expected a mapping of problem fields (id, title, ...), found an empty file"),
-    ("yaml syntax", BASE + "  bad: [1,\n", "p.yaml:25:3: expected valid YAML, found a syntax error"),
+    ("yaml syntax", BASE + "  bad: [1,\n", "p.yaml:25:3: indentation: this line is indented 2 spaces, the key above 4"),
     ("alias", BASE.replace("L: m", "L: &u m\n  M: *u"), "p.yaml:13:6: expected plain YAML, found an alias (*name); anchors and aliases are not allowed"),
     ("duplicate key", BASE.replace("L: m", "L: m\n  L: ft"), "p.yaml:13:3: parameters.L: expected each key once, found 'L' again"),
     # schema
-    ("unknown key", BASE + "colour: red\n", "p.yaml:25:9: colour: unknown key 'colour' (expected one of: consistency, constraints, coordinates, frames, givens, guesses, id, inertial, objectives, parameters, points, source, statement, title)"),
+    ("unknown key", BASE + "colour: red\n", "p.yaml:25:1: colour: unknown key 'colour' (expected one of: consistency, constraints, coordinates, frames, givens, guesses, id, inertial, objectives, parameters, points, source, statement, title)"),
     ("missing key", BASE.replace("title: Base problem for validation tests\n", ""), "p.yaml:1:1: missing required key 'title'"),
     ("wrong type", mutated("title: Base problem for validation tests", "title: [a]"), "p.yaml:2:8: title: expected a string, found a list of 1"),
     ("bad kind", mutated("kind: scalar", "kind: number"), "p.yaml:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; found 'number'"),
@@ -56,16 +58,16 @@ CASES = [
     ("bad quantity", mutated("L: 2 m", "L: two m"), "p.yaml:15:6: givens.L: expected a number followed by a unit such as '9.81 m/s^2', found 'two m'"),
     ("given value not constant", mutated("L: 2 m", "L: {value: x/2, unit: m}"), "p.yaml:15:6: givens.L: expected a number or a constant expression such as pi/2, found 'x/2'"),
     # names
-    ("reserved name", mutated("L: m", "t: m"), "p.yaml:12:6: parameters.t: 't' is reserved (time, pi or a function name); expected another parameter name"),
-    ("coordinate and parameter", mutated("L: m", "L: m\n  theta: rad"), "p.yaml:10:10: coordinates.theta: 'theta' is both a coordinate and a parameter; expected distinct names"),
-    ("frame named like a coordinate", mutated("  A: {parent: N", "  theta: {parent: N"), "p.yaml:6:10: frames.theta: 'theta' names a frame or point and also a coordinate or parameter"),
-    ("rate name clash", mutated("L: m", "L: m\n  thetad: rad/s"), "p.yaml:13:11: parameters.thetad: parameter 'thetad' clashes with the rate name of coordinate 'theta'"),
-    ("inertial point listed", mutated("  P: {from: O, position: L*A.x}", "  P: {from: O, position: L*A.x}\n  O: {from: P, position: L*A.x}"), "p.yaml:9:6: points.O: 'O' is the inertial point; expected it under 'inertial' only, not also under points"),
-    ("unknown parent", mutated("parent: N", "parent: Q"), "p.yaml:6:6: frames.A: unknown parent frame 'Q' (expected one of: N, A)"),
-    ("unknown origin", mutated("origin: O", "origin: Z"), "p.yaml:6:6: frames.A: unknown origin point 'Z' (expected one of: O, P)"),
+    ("reserved name", mutated("L: m", "t: m"), "p.yaml:12:3: parameters.t: 't' is reserved (time, pi or a function name); expected another parameter name"),
+    ("coordinate and parameter", mutated("L: m", "L: m\n  theta: rad"), "p.yaml:10:3: coordinates.theta: 'theta' is both a coordinate and a parameter; expected distinct names"),
+    ("frame named like a coordinate", mutated("  A: {parent: N", "  theta: {parent: N"), "p.yaml:6:3: frames.theta: 'theta' names a frame or point and also a coordinate or parameter"),
+    ("rate name clash", mutated("L: m", "L: m\n  thetad: rad/s"), "p.yaml:13:3: parameters.thetad: parameter 'thetad' clashes with the rate name of coordinate 'theta'"),
+    ("inertial point listed", mutated("  P: {from: O, position: L*A.x}", "  P: {from: O, position: L*A.x}\n  O: {from: P, position: L*A.x}"), "p.yaml:9:3: points.O: 'O' is the inertial point; expected it under 'inertial' only, not also under points"),
+    ("unknown parent", mutated("parent: N", "parent: Q"), "p.yaml:6:15: frames.A.parent: unknown parent frame 'Q' (expected one of: N, A)"),
+    ("unknown origin", mutated("origin: O", "origin: Z"), "p.yaml:6:61: frames.A.origin: unknown origin point 'Z' (expected one of: O, P)"),
     ("frame cycle", mutated("  A: {parent: N, rotation: {axis: z, angle: theta}, origin: O}", "  A: {parent: B, rotation: {axis: z, angle: theta}, origin: O}\n  B: {parent: A, rotation: {axis: z, angle: 0}}"), "frames.A: frame 'A' is oriented through a cycle of parents (A -> B -> A); expected a tree rooted at 'N'"),
     ("angle with units", mutated("angle: theta}", "angle: L}"), "p.yaml:6:45: frames.A.rotation.angle: dimension mismatch in 'L': expected a pure number (or an angle), found a length ([length])"),
-    ("unknown from point", mutated("{from: O, position", "{from: Q, position"), "p.yaml:8:6: points.P: unknown point 'Q' in 'from' (expected one of: O, P)"),
+    ("unknown from point", mutated("{from: O, position", "{from: Q, position"), "p.yaml:8:13: points.P.from: unknown point 'Q' in 'from' (expected one of: O, P)"),
     ("position not a vector", mutated("position: L*A.x", "position: L"), "p.yaml:8:26: points.P.position: expected a position vector (a length times unit vectors, e.g. L*A.x), found a scalar ('L')"),
     ("position not a length", mutated("position: L*A.x", "position: theta*A.x"), "points.P.position: dimension mismatch in 'theta*A.x': expected a length ([length]), found a pure number (or an angle)"),
     ("point cycle", mutated("  P: {from: O, position: L*A.x}", "  P: {from: Q, position: L*A.x}\n  Q: {from: P, position: L*A.x}"), "points.P: point 'P' is located through a cycle (P -> Q -> P); expected a chain ending at 'O'"),
@@ -87,7 +89,7 @@ CASES = [
     ("kind mismatch", mutated("find: speed(P, N)", "find: vel(P, N)"), "p.yaml:21:11: objectives[0].find: expected a scalar expression for a scalar objective, found a vector ('vel(P, N)')"),
     ("unit mismatch", mutated("unit: m/s", "unit: m/s^2"), "p.yaml:21:11: objectives[0].find: dimension mismatch in objective 'speed' (unit 'm/s^2'): expected an acceleration ([length] / [time] ** 2), found a velocity ([length] / [time])"),
     ("vector without frame", mutated("find: speed(P, N)\n    kind: scalar", "find: vel(P, N)\n    kind: vector"), "objectives[0]: a vector objective needs 'frame'"),
-    ("unknown objective frame", mutated("kind: scalar", "kind: scalar\n    frame: Q"), "objectives[0]: unknown frame 'Q' (expected one of: N, A)"),
+    ("unknown objective frame", mutated("kind: scalar", "kind: scalar\n    frame: Q"), "p.yaml:23:12: objectives[0].frame: unknown frame 'Q' (expected one of: N, A)"),
     ("symbolic without symbols", mutated("kind: scalar", "kind: symbolic"), "objectives[0]: a symbolic objective needs 'symbols'"),
     ("symbols on scalar", mutated("kind: scalar", "kind: scalar\n    symbols: [L]"), "objectives[0]: 'symbols' belongs to symbolic objectives only"),
     ("unknown symbol", mutated("kind: scalar", "kind: symbolic\n    symbols: [omega]").replace("expect: {value: 6}", "expect: {expr: omega}"), "objectives[0].symbols[0]: symbol 'omega' is not a parameter, coordinate or rate name (such as thetad)"),
@@ -96,7 +98,7 @@ CASES = [
     ("expect unit", mutated("expect: {value: 6}", "expect: {value: 6, unit: s}"), "objectives[0].expect: dimension mismatch in expect.unit of 'speed'"),
     ("expect expr symbol", mutated("kind: scalar", "kind: symbolic\n    symbols: [L, thetad]").replace("expect: {value: 6}", "expect: {expr: L*thetad*g}"), "objectives[0].expect: expect.expr uses 'g', which is not among the objective's symbols (L, thetad)"),
     ("mistake kind", mutated("expect: {value: 6}", "mistakes: [{find: 'vel(P, N)', message: m}]\n    expect: {value: 6}"), "objectives[0].mistakes[0].find: expected the mistaken model of 'speed' to be of the same kind, found a scalar and a vector"),
-    ("depends_on unknown", mutated("expect: {value: 6}", "depends_on: [nope]\n    expect: {value: 6}"), "objectives[0]: depends_on names unknown objective 'nope'"),
+    ("depends_on unknown", mutated("expect: {value: 6}", "depends_on: [nope]\n    expect: {value: 6}"), "p.yaml:24:18: objectives[0].depends_on[0]: depends_on names unknown objective 'nope' (expected one of: none)"),
     # typing inside expressions
     ("point as scalar", mutated("find: speed(P, N)", "find: P"), "objectives[0].find: 'P' is a point; expected a scalar or vector here"),
     ("prime of parameter", mutated("find: speed(P, N)", "find: L'"), "objectives[0].find: expected a coordinate before the prime, found 'L'"),
@@ -137,3 +139,124 @@ def test_binary_file_is_reported(tmp_path):
     path.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00")
     with pytest.raises(SpecError, match="expected UTF-8 text, found byte 0x89"):
         load_problem(path)
+
+
+# ---------------------------------------------------------------- every error at once
+
+
+def errors_of(text: str, name: str = "base.yaml") -> list[str]:
+    with pytest.raises(SpecError) as info:
+        load_problem_text(text, name)
+    return str(info.value).splitlines()
+
+
+def test_independent_errors_come_together_in_file_order():
+    text = (BASE.replace("kind: scalar", "kind: scalr").replace("L: 2 m", "L: 2 s")
+            .replace("parent: N", "parent: NN"))
+    with pytest.raises(SpecErrors) as info:
+        load_problem_text(text, "base.yaml")
+    assert [e.where.line for e in info.value.errors] == [6, 15, 22]
+    assert str(info.value).splitlines() == [
+        "base.yaml:6:15: frames.A.parent: unknown parent frame 'NN'; did you mean 'N'? "
+        "(expected one of: N, A)",
+        "base.yaml:15:6: givens.L: dimension mismatch in the value of 'L': expected a length "
+        "([length]), found a time ([time])",
+        "base.yaml:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; "
+        "found 'scalr'; did you mean 'scalar'?",
+    ]
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("angle: theta}", "angle: theta +}",
+     "base.yaml:6:45: frames.A.rotation.angle: expected a complete expression, found 'theta +' "
+     "(invalid syntax)"),
+    ("L: m", "L: furlongz",
+     "base.yaml:12:6: parameters.L: expected a unit such as 'm/s^2', found 'furlongz' "
+     "('furlongz' is not a unit)"),
+    ("theta: rad", "theta: radz",
+     "base.yaml:10:10: coordinates.theta: expected a unit such as 'm/s^2', found 'radz' "
+     "('radz' is not a unit); did you mean 'rad'?"),
+    ("  P: {from: O, position: L*A.x}", "  - P", "base.yaml:8:3: points: expected a mapping, "
+     "found a list of 1"),
+    ("  A: {parent: N,", "  A: {parnt: N,", "base.yaml:6:7: frames.A.parnt: unknown key 'parnt'; "
+     "did you mean 'parent'?"),
+    ("title:", "titel:", "base.yaml:2:1: titel: unknown key 'titel'; did you mean 'title'?"),
+    ("find: speed(P, N)", "find: speed(P,, N)", "base.yaml:21:11: objectives[0].find: expected "
+     "a complete expression, found 'speed(P,, N)' (invalid syntax)"),
+])
+def test_a_failed_definition_is_reported_once_without_cascade(old, new, message):
+    assert errors_of(mutated(old, new)) == [message]
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("find: speed(P, N)", "find: speeed(P, N)",
+     "objectives[0].find: unknown function 'speeed(...)'; did you mean 'speed'?"),
+    ("find: speed(P, N)", "find: speed(Pt, N)",
+     "objectives[0].find: expected a point as argument of speed(...), found 'Pt'; did you mean "
+     "'P'? (points: O, P)"),
+    ("find: speed(P, N)", "find: speed(P, NN)",
+     "objectives[0].find: expected a frame as argument of speed(...), found 'NN'; did you mean "
+     "'N'? (frames: N, A)"),
+    ("position: L*A.x", "position: L*AA.x",
+     "points.P.position: unknown frame 'AA' in 'AA.x'; did you mean 'A'? (frames: N, A)"),
+    ("find: speed(P, N)", "find: thetaa'",
+     "objectives[0].find: expected a coordinate before the prime, found 'thetaa'; did you mean "
+     "'theta'? (coordinates: theta)"),
+    ("  L: 2 m", "  Lx: 2 m", "givens.Lx: unknown name 'Lx'; did you mean 'L'?"),
+    ("theta'': 1 rad/s^2", "thetadd: 1 rad/s^2",
+     "givens.thetadd: unknown name 'thetadd'; did you mean \"theta''\"?"),
+    ("{from: O, position", "{from: OO, position",
+     "base.yaml:8:13: points.P.from: unknown point 'OO' in 'from'; did you mean 'O'?"),
+])
+def test_close_names_are_suggested(old, new, message):
+    assert message in "\n".join(errors_of(mutated(old, new)))
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("theta: 30 deg", "theta: 30", "base.yaml:14:10: givens.theta: expected an angle with its "
+     "unit, found the bare number 30; write `30 deg` or `0.524 rad`"),
+    ("theta: 30 deg", "theta: {value: 40}", "base.yaml:14:10: givens.theta: expected an angle "
+     "with its unit, found the bare number 40; write `40 deg` or `0.698 rad`"),
+    ("givens:", "guesses:\n  theta: 1\ngivens:", "base.yaml:14:10: guesses.theta: expected an "
+     "angle with its unit, found the bare number 1; write `1 deg` or `0.0175 rad`"),
+    ("angle: theta}", "angle: -25}", "base.yaml:6:45: frames.A.rotation.angle: expected an angle "
+     "with its unit, found the bare number -25; write `-25 deg` or `-0.436 rad`"),
+    ("angle: theta}", "angle: 25 m}", "base.yaml:6:45: frames.A.rotation.angle: expected an "
+     "angle such as '25 deg', found '25 m'"),
+    ("theta': 3 rad/s", "theta': 3", "base.yaml:16:11: givens.theta': expected a value with its "
+     "unit (an angular velocity or rate (1 / [time])), found the bare number 3; write `3 rad/s`"),
+    ("L: 2 m", "L: 2", "base.yaml:15:6: givens.L: expected a value with its unit (a length "
+     "([length])), found the bare number 2; write `2 m`"),
+])
+def test_bare_numbers_need_a_unit(old, new, message):
+    assert errors_of(mutated(old, new)) == [message]
+
+
+@pytest.mark.parametrize("old, new", [
+    ("theta: 30 deg", "theta: 0"),
+    ("theta: 30 deg", "theta: {value: pi/6}"),
+    ("theta: 30 deg", "theta: 0.5236 rad"),
+    ("  L: 2 m", "  L: 2 m\n  n: 3"),  # a pure number (n is declared in '1')
+])
+def test_unambiguous_numbers_load(old, new):
+    load_problem_text(mutated(old, new).replace("  L: m\n", "  L: m\n  n: 1\n"), "base.yaml")
+
+
+def test_a_rotation_angle_may_carry_its_unit():
+    problem = load_problem_text(mutated("angle: theta}", "angle: 90 deg}"), "base.yaml")
+    angle = problem.frames[1].rotations[0].angle
+    assert angle.text == "90 deg" and angle.node.value == pytest.approx(math.pi / 2)
+
+
+def test_id_differing_from_file_name_is_a_warning():
+    assert load_problem_text(BASE, "base.yaml").warnings == ()
+    assert load_problem_text(BASE, "<problem>").warnings == ()
+    (warning,) = load_problem_text(BASE, "dir/copy.yml").warnings
+    assert str(warning) == ("dir/copy.yml:1:5: id: warning: id 'base' differs from the file name "
+                            "'copy'; expected them equal (rename the file or write id: copy)")
+
+
+def test_names_defined_twice_point_at_the_key():
+    assert errors_of(mutated("L: m", "L: m\n  theta: rad")) == [
+        "base.yaml:10:3: coordinates.theta: 'theta' is both a coordinate and a parameter; "
+        "expected distinct names"]

@@ -1,5 +1,10 @@
 """Check problem files: load and validate them, solve them, and run every ``expect:`` test.
 
+An ``expect:`` value is compared to the digits the author wrote (:func:`written_tolerance`),
+not to the student tolerance. Declared ``mistakes:`` are compared with the answer: one equal
+to it is an error (it can never be told apart), one within the objective's tolerance a
+warning (a student making it gets full credit).
+
 >>> from mechgrade.resources import shipped_dir
 >>> report = check_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
 >>> report.passed, [o.objective for o in report.outcomes][:2]
@@ -14,13 +19,13 @@ from pathlib import Path
 
 import sympy as sp
 
-from ..errors import ExpressionError, MechgradeError, SpecError
+from ..errors import AuthorWarning, ExpressionError, MechgradeError, SpecError
 from ..expressions.build import to_sympy
 from ..expressions.syntax import parse
 from ..solve import solve
 from ..solve.result import ObjectiveResult
 from ..spec import load_problem
-from ..spec.model import Expect, Objective
+from ..spec.model import Expect, Objective, Problem
 from ..units import from_si, to_si
 
 
@@ -37,7 +42,8 @@ class ExpectOutcome:
 
 @dataclass(frozen=True)
 class CheckReport:
-    """Everything ``check`` found in one file: a blocking error, or the expect outcomes."""
+    """Everything ``check`` found in one file: a blocking error (one line per error), or the
+    expect outcomes, errors in declared mistakes, and warnings."""
 
     path: str
     problem: str | None = None
@@ -45,10 +51,12 @@ class CheckReport:
     outcomes: tuple[ExpectOutcome, ...] = ()
     dof: int | None = None
     untested: tuple[str, ...] = ()
+    faults: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
 
     @property
     def passed(self) -> bool:
-        return self.error is None and all(o.passed for o in self.outcomes)
+        return self.error is None and not self.faults and all(o.passed for o in self.outcomes)
 
 
 def problem_files(paths) -> list[Path]:
@@ -63,12 +71,18 @@ def problem_files(paths) -> list[Path]:
 
 
 def check_problem(path) -> CheckReport:
-    """Load, validate and solve one file, then compare every objective with its ``expect:``."""
+    """Load, validate and solve one file, then compare every objective with its ``expect:``
+    and its declared mistakes with its answer."""
     try:
         problem = load_problem(path)
-        solution = solve(problem)
     except MechgradeError as err:
         return CheckReport(str(path), error=str(err) if err.where.file else f"{path}: {err}")
+    try:
+        solution = solve(problem)
+    except MechgradeError as err:
+        return CheckReport(str(path), problem.id,
+                           error=str(err) if err.where.file else f"{path}: {err}",
+                           warnings=tuple(str(w) for w in problem.warnings))
     outcomes = []
     untested = []
     for objective in problem.objectives:
@@ -80,8 +94,47 @@ def check_problem(path) -> CheckReport:
         except MechgradeError as err:
             where = err.where if err.where.file else objective.expect.where
             return CheckReport(str(path), problem.id, error=str(err.located(where)))
+    faults, warnings = mistake_findings(problem, solution)
     return CheckReport(str(path), problem.id, None, tuple(outcomes), solution.dof,
-                       tuple(untested))
+                       tuple(untested), tuple(faults),
+                       tuple(str(w) for w in problem.warnings + tuple(warnings)))
+
+
+def mistake_findings(problem: Problem, solution) -> tuple[list[str], list[AuthorWarning]]:
+    """Declared mistakes equal to the answer (errors) or within its tolerance (warnings)."""
+    faults, warnings = [], []
+    for objective in problem.objectives:
+        result = solution.result(objective.id)
+        if result.value is None:
+            continue
+        for declared, mistake in zip(objective.mistakes, result.mistakes):
+            if mistake.value is None:
+                continue
+            answer = _as_vector(result.value)
+            wrong = _as_vector(mistake.value)
+            size = sum(a * a for a in answer) ** 0.5
+            gap = max(abs(a - b) for a, b in zip(answer, wrong))
+            where = declared.where
+            if gap <= 1e-9 * max(size, 1.0):
+                faults.append(f"{where}: mistake '{declared.find.text}' gives the correct answer "
+                              f"({_show(result.value)} {objective.unit}); expected a different "
+                              "value, or remove it")
+            elif gap <= max(objective.tolerance.rel * size, objective.tolerance.abs):
+                warnings.append(AuthorWarning(
+                    f"mistake '{declared.find.text}' gives {_show(mistake.value)} "
+                    f"{objective.unit}, within the tolerance of the answer "
+                    f"{_show(result.value)}: a student making it gets full credit", where))
+    return faults, warnings
+
+
+def _as_vector(value) -> tuple[float, ...]:
+    return tuple(value) if isinstance(value, (tuple, list)) else (float(value),)
+
+
+def _show(value) -> str:
+    if isinstance(value, (tuple, list)):
+        return "(" + ", ".join(f"{v:.6g}" for v in value) + ")"
+    return f"{value:.6g}"
 
 
 def check_paths(paths) -> tuple[CheckReport, ...]:
@@ -91,28 +144,60 @@ def check_paths(paths) -> tuple[CheckReport, ...]:
 
 
 def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutcome:
-    """Compare the solver's ``result`` with the objective's ``expect:`` (its tolerance)."""
+    """Compare the solver's ``result`` with the objective's ``expect:``, to the digits written."""
     e: Expect = objective.expect
-    tol = objective.tolerance
     if objective.kind == "symbolic":
         same = equivalent(result.expr, e.expr, result.symbols)
         message = (f"{result.expr} {'==' if same else '!='} expected {e.expr}")
         return ExpectOutcome(objective.id, same, message, e.note, e.book)
     unit = objective.unit
     if objective.kind == "scalar":
+        written = e.written if isinstance(e.written, str) else repr(e.value)
         expected = _convert(e.value, e.unit, unit)
-        ok = abs(result.value - expected) <= max(tol.rel * abs(expected), tol.abs)
-        message = f"{result.value:.6g} {'~' if ok else '!='} expected {expected:.6g} {unit}"
+        limit = (_convert(written_tolerance(written), e.unit, unit) if float(written) != 0
+                 else 1e-9)
+        ok = _within(result.value, expected, limit)
+        message = f"{result.value:.6g} {'~' if ok else '!='} expected {written} {unit}"
+        if not ok:
+            message += f" (±{limit:.3g}, from the digits written)"
         return ExpectOutcome(objective.id, ok, message, e.note, e.book)
+    texts = e.written if isinstance(e.written, tuple) else tuple(map(repr, e.components))
     expected = [_convert(c, e.unit, unit) for c in e.components]
     expected += [0.0] * (3 - len(expected))
     size = sum(c * c for c in expected) ** 0.5
-    limit = max(tol.rel * size, tol.abs)
-    ok = all(abs(a - b) <= limit for a, b in zip(result.value, expected))
+    # A written zero stands for an exact zero: zero to 1e-4 of the vector's size (1e-9 when the
+    # whole vector is zero), whatever digits it was written with.
+    zero = max(1e-4 * size, 1e-9)
+    limits = [_convert(written_tolerance(t), e.unit, unit) if float(t) != 0 else zero
+              for t in texts]
+    limits += [zero] * (3 - len(limits))
+    ok = all(_within(a, b, lim) for a, b, lim in zip(result.value, expected, limits))
     shown = ", ".join(f"{v:.6g}" for v in result.value)
-    want = ", ".join(f"{v:.6g}" for v in expected)
+    want = ", ".join(texts + ("0",) * (3 - len(texts)))
     message = f"({shown}) {'~' if ok else '!='} expected ({want}) {unit} in {objective.frame}"
     return ExpectOutcome(objective.id, ok, message, e.note, e.book)
+
+
+def written_tolerance(text: str) -> float:
+    """How far a value may be from the number written as ``text``: half a unit in its last
+    digit, or 1e-4 of it when more than four significant digits are written.
+
+    >>> written_tolerance("98.51"), written_tolerance("6"), written_tolerance("1.5e3")
+    (0.005, 0.5, 50.0)
+    >>> round(written_tolerance("-89.8705"), 6)
+    0.008987
+    """
+    mantissa, _, exponent = text.strip().lstrip("+-").lower().partition("e")
+    whole, _, decimals = mantissa.partition(".")
+    significant = (whole + decimals).lstrip("0")
+    if len(significant) > 4:
+        return 1e-4 * abs(float(text))
+    return 0.5 * 10.0 ** (int(exponent or 0) - len(decimals))
+
+
+def _within(value: float, expected: float, limit: float) -> bool:
+    # A value that prints as the written digits must pass: allow for binary rounding.
+    return abs(value - expected) <= limit * (1 + 1e-9) + 1e-12 * abs(expected)
 
 
 def _convert(value: float, unit: str | None, target: str) -> float:

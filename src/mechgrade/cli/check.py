@@ -16,7 +16,8 @@ from .common import main, reports_errors
 def check_command(paths: tuple[str, ...], verbose: bool) -> None:
     """Validate problem files (or folders of them) and run every expect: test.
 
-    Exits 0 only if every file loads, solves and passes its tests.
+    Every error of a file is listed, one per line, in file order; warnings follow the tests.
+    Exits 0 only if every file loads, solves and passes its tests (warnings do not fail).
     """
     if not problem_files(paths):
         raise SpecError(f"expected problem files (*.yaml), found none in {', '.join(paths)}")
@@ -26,11 +27,13 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
         if report.error:
             failures += 1
             click.echo(f"FAIL {report.path}")
-            click.echo(f"  {report.error}")
+            for line in report.error.splitlines() + list(report.warnings):
+                click.echo(f"  {line}")
             continue
         bad = [o for o in report.outcomes if not o.passed]
-        failures += bool(bad)
-        status = "FAIL" if bad else "ok  "
+        failed = bool(bad or report.faults)
+        failures += failed
+        status = "FAIL" if failed else "ok  "
         click.echo(f"{status} {report.path} ({len(report.outcomes)} tests, DOF {report.dof})")
         for outcome in report.outcomes:
             if not outcome.passed or verbose:
@@ -40,6 +43,8 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
                 click.echo(f"       book prints: {outcome.book}")
             if verbose and outcome.note:
                 click.echo(f"       note: {outcome.note}")
+        for line in report.faults + report.warnings:
+            click.echo(f"  {line}")
         if verbose and report.untested:
             click.echo(f"  untested: {', '.join(report.untested)}")
     click.echo(f"{len(reports)} file(s), {failures} failing")

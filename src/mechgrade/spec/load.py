@@ -9,19 +9,20 @@
 from __future__ import annotations
 
 import json
+import re
 from functools import lru_cache
 from pathlib import Path
 
 import jsonschema
 
-from ..errors import ExpressionError, Location, SpecError, UnitError
-from ..expressions.syntax import Name, parse
+from ..errors import AuthorWarning, ExpressionError, Location, SpecError, SpecErrors, UnitError
+from ..expressions.syntax import MATH_FUNCTIONS, Name, Num, Unary, constant_value, parse
 from ..units import normalize_unit, parse_quantity, to_si
 from ..yamlio import Document, read_yaml, read_yaml_text
 from .language import FUNCTIONS
 from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake, Objective,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
-from .validate import validate_problem
+from .validate import bare_angle_message, did_you_mean, is_angle_unit, problem_errors
 
 SCHEMA_PATH = Path(__file__).with_name("problem.schema.json")
 
@@ -43,35 +44,81 @@ def load_problem_text(text: str, name: str = "<problem>") -> Problem:
 
 
 def problem_from_document(doc: Document) -> Problem:
-    _check_schema(doc)
-    problem = _Builder(doc).build()
-    validate_problem(problem)
+    """Check ``doc`` against the schema, build the model and validate it, collecting every
+    independent error; raise them all at once (:class:`SpecErrors` when there are several)."""
+    if not isinstance(doc.data, dict):
+        found = "an empty file" if doc.data is None else f"a {type(doc.data).__name__}"
+        raise SpecError(f"expected a mapping of problem fields (id, title, ...), found {found}",
+                        where=doc.where(()))
+    errors, broken = _schema_errors(doc)
+    builder = _Builder(doc, broken)
+    problem = builder.build()
+    errors += builder.errors
+    if problem is not None:
+        errors += problem_errors(problem, frozenset(builder.broken_names))
+    _raise_all(errors)
     return problem
+
+
+def _raise_all(errors: list[SpecError]) -> None:
+    """Raise nothing, the one error, or :class:`SpecErrors` holding all of them (each message
+    once)."""
+    seen, kept = set(), []
+    for err in errors:
+        if str(err) not in seen:
+            seen.add(str(err))
+            kept.append(err)
+    if len(kept) == 1:
+        raise kept[0]
+    if kept:
+        raise SpecErrors(kept)
 
 
 # ---------------------------------------------------------------------------- schema
 
 
-def _check_schema(doc: Document) -> None:
-    if not isinstance(doc.data, dict):
-        found = "an empty file" if doc.data is None else f"a {type(doc.data).__name__}"
-        raise SpecError(f"expected a mapping of problem fields (id, title, ...), found {found}",
-                        where=doc.where(()))
+def _schema_errors(doc: Document) -> tuple[list[SpecError], set[tuple]]:
+    """Every schema error of ``doc``, and the paths of the values they make unusable."""
     validator = jsonschema.Draft202012Validator(problem_schema())
-    errors = list(validator.iter_errors(doc.data))
-    if not errors:
-        return
+    errors, broken = [], set()
+    meant, missing = set(), {}
+    for err in validator.iter_errors(doc.data):
+        path = tuple(err.absolute_path)
+        if err.validator == "additionalProperties" and isinstance(err.instance, dict):
+            allowed = sorted(err.schema.get("properties", {}))
+            for extra in sorted(set(err.instance) - set(allowed)):
+                hint = did_you_mean(extra, allowed)
+                if hint:
+                    meant.add((path, hint.split("'")[1]))
+                listing = ", ".join(allowed) if allowed else "none"
+                message = (f"unknown key '{extra}'{hint}" if hint else
+                           f"unknown key '{extra}' (expected one of: {listing})")
+                errors.append(SpecError(message, where=doc.where_key(path + (extra,))))
+                broken.add(path + (extra,))
+            continue
+        if err.validator == "required" and isinstance(err.instance, dict):
+            for key in err.validator_value:
+                if key not in err.instance:
+                    errors.append(SpecError(f"missing required key '{key}'",
+                                            where=doc.where(path)))
+                    missing[(path, key)] = errors[-1]
+                    broken.add(path + (key,) if not path else path)
+            continue
+        if err.validator == "propertyNames":
+            path += (err.instance,)
+            errors.append(SpecError(_schema_message(err), where=doc.where_key(path)))
+        else:
+            errors.append(SpecError(_schema_message(err), where=doc.where(path)))
+        broken.add(path)
+    # A misspelt required key is one mistake: keep "unknown key 'titel'; did you mean 'title'?"
+    # and drop "missing required key 'title'".
+    errors = [e for e in errors if id(e) not in {id(m) for m in _missing_meant(meant, missing)}]
+    return errors, broken
 
-    def order(err):
-        where = doc.where(tuple(err.absolute_path))
-        return (where.line or 0, where.column or 0, -len(err.absolute_path))
 
-    err = min(errors, key=order)
-    path = tuple(err.absolute_path)
-    if err.validator == "additionalProperties" and isinstance(err.instance, dict):
-        extra = sorted(set(err.instance) - set(err.schema.get("properties", {})))
-        path += (extra[0],) if extra else ()
-    raise SpecError(_schema_message(err), where=doc.where(path))
+def _missing_meant(meant: set, missing: dict) -> list[SpecError]:
+    """The "missing required key" errors explained by a misspelt key in the same mapping."""
+    return [err for where, err in missing.items() if where in meant]
 
 
 def _schema_message(err: jsonschema.ValidationError) -> str:
@@ -92,7 +139,8 @@ def _schema_message(err: jsonschema.ValidationError) -> str:
         return f"expected {_article(expected)}, found {_describe(inst)}"
     if kind == "enum":
         options = ", ".join(str(v) for v in err.validator_value)
-        return f"expected one of: {options}; found {inst!r}"
+        hint = did_you_mean(inst, map(str, err.validator_value)) if isinstance(inst, str) else ""
+        return f"expected one of: {options}; found {inst!r}{hint}"
     if kind == "pattern":
         if err.validator_value.startswith("^[^=]"):
             return f"expected an equation 'left = right', found {inst!r}"
@@ -147,12 +195,49 @@ def _describe(value) -> str:
 
 
 class _Builder:
-    def __init__(self, doc: Document):
+    """Builds the model item by item; an item whose building fails is left out and its name
+    remembered, so later checks do not report the same mistake again as an undefined name."""
+
+    def __init__(self, doc: Document, broken: set[tuple]):
         self.doc = doc
         self.data = doc.data
+        self.broken = broken
+        self.errors: list[SpecError] = []
+        self.broken_names: set[str] = set()
 
     def where(self, *path) -> Location:
         return self.doc.where(tuple(path))
+
+    def usable(self, *path) -> bool:
+        """Whether no schema error lies at or under ``path``."""
+        return not any(b[:len(path)] == path for b in self.broken)
+
+    def attempt(self, build, *args):
+        """``build(*args)``, or None after recording its error."""
+        try:
+            return build(*args)
+        except SpecError as err:
+            self.errors.append(err)
+            return None
+
+    def named(self, section: str, build) -> list:
+        """``build(name, spec)`` for each entry of a section of named items; the names of
+        entries that fail (or have schema errors) are remembered as broken."""
+        out = []
+        for name, spec in self.section(section, {}).items():
+            item = self.attempt(build, name, spec) if self.usable(section, name) else None
+            if item is None:
+                self.broken_names.add(name)
+            else:
+                out.append(item)
+        return out
+
+    def section(self, name: str, empty):
+        """The section's value, or ``empty`` (and every name in it unknown) if it is broken."""
+        if (name,) in self.broken:
+            self.broken_names.add(f"{name}:*")
+            return empty
+        return self.data.get(name) or empty
 
     def expr(self, text, *path) -> Expr:
         where = self.where(*path)
@@ -162,7 +247,7 @@ class _Builder:
         try:
             node = parse(text, functions=FUNCTIONS)
         except ExpressionError as err:
-            raise SpecError(err.message, where=where) from None
+            raise SpecError(_with_hint(err.message, text), where=where) from None
         return Expr(text, node, where)
 
     def equation(self, text: str, *path) -> tuple[Expr, Expr]:
@@ -173,7 +258,7 @@ class _Builder:
             try:
                 exprs.append(Expr(side.strip(), parse(side, functions=FUNCTIONS), where))
             except ExpressionError as err:
-                raise SpecError(err.message, where=where) from None
+                raise SpecError(_with_hint(err.message, side), where=where) from None
         return exprs[0], exprs[1]
 
     def unit(self, text, *path) -> str:
@@ -181,54 +266,106 @@ class _Builder:
         try:
             normalize_unit(str(text))
         except UnitError as err:
-            raise SpecError(err.message, where=self.where(*path)) from None
+            raise SpecError(_unit_hint(err.message), where=self.where(*path)) from None
         return str(text).strip()
 
-    def build(self) -> Problem:
+    def angle(self, value, *path) -> Expr:
+        """A rotation angle: an expression, or a number with an angle unit (``25 deg``)."""
+        where = self.where(*path)
+        if isinstance(value, str):
+            try:
+                q = parse_quantity(value)
+            except UnitError:
+                q = None
+            if q is not None and q.unit:
+                if not is_angle_unit(q.unit):
+                    raise SpecError(f"expected an angle such as '25 deg', found {value!r}",
+                                    where=where)
+                return Expr(value, Num(repr(to_si(q.value, q.unit))), where)
+        expr = self.expr(value, *path)
+        number = _literal(expr.node)
+        if number is not None and number != 0:
+            raise SpecError(bare_angle_message(expr.text), where=where)
+        return expr
+
+    def build(self) -> Problem | None:
         d = self.data
+        if not self.usable("inertial"):
+            return None
         inertial = d["inertial"]
         frames = [Frame(inertial["frame"], None, (), inertial["point"],
-                        self.where("inertial", "frame"))]
-        for name, spec in (d.get("frames") or {}).items():
-            if "rotation" in spec:
-                rotations = (self.rotation(spec["rotation"], "frames", name, "rotation"),)
+                        self.doc.where_key(("inertial", "frame")))]
+        frames += self.named("frames", self.frame)
+        points = [Point(inertial["point"], None, None, self.doc.where_key(("inertial", "point")))]
+        points += self.named("points", self.point)
+        coordinates = self.named("coordinates", self.coordinate)
+        parameters = self.named("parameters", self.parameter)
+        constraints = [self.attempt(self.constraint, c, i)
+                       for i, c in enumerate(self.section("constraints", []))
+                       if self.usable("constraints", i)]
+        givens = [self.attempt(self.given, k, v, "givens")
+                  for k, v in self.section("givens", {}).items() if self.usable("givens", k)]
+        guesses = [self.attempt(self.given, k, v, "guesses")
+                   for k, v in self.section("guesses", {}).items() if self.usable("guesses", k)]
+        objectives = []
+        for i, spec in enumerate(self.section("objectives", [])):
+            objective = self.objective(spec, i) if self.usable("objectives", i) else None
+            if objective is None:
+                if isinstance(spec, dict) and isinstance(spec.get("id"), str):
+                    self.broken_names.add(spec["id"])
             else:
-                rotations = tuple(self.rotation(r, "frames", name, "rotations", i)
-                                  for i, r in enumerate(spec["rotations"]))
-            frames.append(Frame(name, spec["parent"], rotations, spec.get("origin"),
-                                self.where("frames", name)))
-        points = [Point(inertial["point"], None, None, self.where("inertial", "point"))]
-        for name, spec in (d.get("points") or {}).items():
-            points.append(Point(name, spec["from"],
-                                self.expr(spec["position"], "points", name, "position"),
-                                self.where("points", name)))
-        coordinates = tuple(Coordinate(name, self.unit(unit, "coordinates", name),
-                                       self.where("coordinates", name))
-                            for name, unit in (d.get("coordinates") or {}).items())
-        parameters = []
-        for name, spec in (d.get("parameters") or {}).items():
-            if isinstance(spec, dict):
-                parameters.append(Parameter(name, self.unit(spec["unit"], "parameters", name,
-                                                            "unit"),
-                                            spec.get("positive", True),
-                                            self.where("parameters", name)))
-            else:
-                parameters.append(Parameter(name, self.unit(spec, "parameters", name), True,
-                                            self.where("parameters", name)))
-        constraints = tuple(self.constraint(c, i) for i, c in enumerate(d.get("constraints") or []))
-        givens = tuple(self.given(k, v, "givens") for k, v in (d.get("givens") or {}).items())
-        guesses = tuple(self.given(k, v, "guesses") for k, v in (d.get("guesses") or {}).items())
-        objectives = tuple(self.objective(o, i) for i, o in enumerate(d["objectives"]))
+                objectives.append(objective)
+        problem_id = d.get("id") if self.usable("id") else ""
         return Problem(
-            id=d["id"], title=d["title"], statement=d["statement"].strip(),
+            id=problem_id, title=d.get("title", "") if self.usable("title") else "",
+            statement=str(d.get("statement", "")).strip(),
             source=d.get("source", ""), inertial_frame=inertial["frame"],
             inertial_point=inertial["point"], frames=tuple(frames), points=tuple(points),
-            coordinates=coordinates, parameters=tuple(parameters), constraints=constraints,
-            givens=givens, guesses=guesses, objectives=objectives,
-            consistency=float(d.get("consistency", 5e-3)), path=self.doc.file)
+            coordinates=tuple(coordinates), parameters=tuple(parameters),
+            constraints=tuple(c for c in constraints if c is not None),
+            givens=tuple(g for g in givens if g is not None),
+            guesses=tuple(g for g in guesses if g is not None), objectives=tuple(objectives),
+            consistency=float(d.get("consistency", 5e-3)) if self.usable("consistency") else 5e-3,
+            path=self.doc.file, warnings=self.warnings(problem_id))
+
+    def warnings(self, problem_id) -> tuple[AuthorWarning, ...]:
+        stem = Path(self.doc.file).stem
+        if not problem_id or Path(self.doc.file).suffix not in (".yaml", ".yml") \
+                or stem == problem_id:
+            return ()
+        return (AuthorWarning(f"id '{problem_id}' differs from the file name '{stem}'; "
+                              f"expected them equal (rename the file or write id: {stem})",
+                              self.where("id")),)
+
+    def frame(self, name: str, spec: dict) -> Frame:
+        if "rotation" in spec:
+            rotations = (self.rotation(spec["rotation"], "frames", name, "rotation"),)
+        else:
+            rotations = tuple(self.rotation(r, "frames", name, "rotations", i)
+                              for i, r in enumerate(spec["rotations"]))
+        return Frame(name, spec["parent"], rotations, spec.get("origin"),
+                     self.doc.where_key(("frames", name)),
+                     parent_where=self.where("frames", name, "parent"),
+                     origin_where=self.where("frames", name, "origin"))
+
+    def point(self, name: str, spec: dict) -> Point:
+        return Point(name, spec["from"], self.expr(spec["position"], "points", name, "position"),
+                     self.doc.where_key(("points", name)),
+                     origin_where=self.where("points", name, "from"))
+
+    def coordinate(self, name: str, unit) -> Coordinate:
+        return Coordinate(name, self.unit(unit, "coordinates", name),
+                          self.doc.where_key(("coordinates", name)))
+
+    def parameter(self, name: str, spec) -> Parameter:
+        where = self.doc.where_key(("parameters", name))
+        if isinstance(spec, dict):
+            return Parameter(name, self.unit(spec["unit"], "parameters", name, "unit"),
+                             spec.get("positive", True), where)
+        return Parameter(name, self.unit(spec, "parameters", name), True, where)
 
     def rotation(self, spec: dict, *path) -> Rotation:
-        return Rotation(spec["axis"], self.expr(spec["angle"], *path, "angle"))
+        return Rotation(spec["axis"], self.angle(spec["angle"], *path, "angle"))
 
     def constraint(self, spec: dict, i: int) -> Constraint:
         name = spec["name"]
@@ -260,12 +397,11 @@ class _Builder:
             try:
                 q = parse_quantity(str(value))
             except UnitError as err:
-                raise SpecError(err.message, where=where) from None
+                raise SpecError(_unit_hint(err.message), where=where) from None
             number, unit, text = q.value, q.unit, str(value)
         return Given(key_expr, number, unit, to_si(number, unit), text, where)
 
     def _number(self, value, where: Location) -> float:
-        from ..expressions.syntax import constant_value
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             return float(value)
         try:
@@ -277,39 +413,94 @@ class _Builder:
                             f"found {value!r}", where=where)
         return number
 
-    def objective(self, spec: dict, i: int) -> Objective:
+    def objective(self, spec: dict, i: int) -> Objective | None:
         path = ("objectives", i)
+        failed = False
+
+        def part(build, *args):
+            nonlocal failed
+            out = self.attempt(build, *args)
+            failed = failed or out is None
+            return out
+
         symbols = []
         for j, entry in enumerate(spec.get("symbols") or []):
             if isinstance(entry, dict):
                 (name, means), = entry.items()
-                symbols.append(SymbolDecl(name, self.expr(means, *path, "symbols", j)))
+                symbols.append(SymbolDecl(name, part(self.expr, means, *path, "symbols", j)))
             else:
                 symbols.append(SymbolDecl(entry, Expr(entry, Name(entry),
                                                       self.where(*path, "symbols", j))))
         tol = spec.get("tolerance") or {}
-        expect = None
-        if "expect" in spec:
-            e = spec["expect"]
-            ewhere = self.where(*path, "expect")
-            expect = Expect(
-                value=e.get("value"),
-                components=tuple(float(c) for c in e["components"]) if "components" in e else None,
-                expr=str(e["expr"]) if "expr" in e else None,
-                unit=self.unit(e["unit"], *path, "expect", "unit") if "unit" in e else None,
-                book=str(e["book"]) if "book" in e else None,
-                note=e.get("note"), where=ewhere)
+        expect = part(self.expect, spec["expect"], *path) if "expect" in spec else None
         mistakes = tuple(
-            Mistake(self.expr(m["find"], *path, "mistakes", j, "find"), m["message"],
-                    float(m.get("credit", 0.0)))
+            Mistake(part(self.expr, m["find"], *path, "mistakes", j, "find"), m["message"],
+                    float(m.get("credit", 0.0)), self.where(*path, "mistakes", j))
             for j, m in enumerate(spec.get("mistakes") or []))
+        find = part(self.expr, spec["find"], *path, "find")
+        unit = part(self.unit, spec["unit"], *path, "unit")
+        givens = tuple(part(self.given, k, v, *path, "givens")
+                       for k, v in (spec.get("givens") or {}).items())
+        if failed:
+            return None
         return Objective(
-            id=spec["id"], prompt=spec["prompt"].strip(),
-            find=self.expr(spec["find"], *path, "find"), kind=spec["kind"],
-            unit=self.unit(spec["unit"], *path, "unit"), frame=spec.get("frame"),
-            symbols=tuple(symbols),
+            id=spec["id"], prompt=spec["prompt"].strip(), find=find, kind=spec["kind"],
+            unit=unit, frame=spec.get("frame"), symbols=tuple(symbols),
             tolerance=Tolerance(float(tol.get("rel", 0.01)), float(tol.get("abs", 0.0))),
             expect=expect, mistakes=mistakes, depends_on=tuple(spec.get("depends_on") or ()),
-            givens=tuple(self.given(k, v, *path, "givens")
-                         for k, v in (spec.get("givens") or {}).items()),
-            where=self.where(*path))
+            givens=givens, where=self.where(*path),
+            frame_where=self.where(*path, "frame"),
+            depends_where=tuple(self.where(*path, "depends_on", j)
+                                for j in range(len(spec.get("depends_on") or ()))))
+
+    def expect(self, e: dict, *path) -> Expect:
+        path = path + ("expect",)
+        components = None
+        if "components" in e:
+            components = tuple(float(c) for c in e["components"])
+        return Expect(
+            value=e.get("value"), components=components,
+            expr=str(e["expr"]) if "expr" in e else None,
+            unit=self.unit(e["unit"], *path, "unit") if "unit" in e else None,
+            book=str(e["book"]) if "book" in e else None,
+            note=e.get("note"), where=self.where(*path),
+            written=(self._written(e["value"], *path, "value") if "value" in e else
+                     tuple(self._written(c, *path, "components", j)
+                           for j, c in enumerate(e["components"])) if components else None))
+
+    def _written(self, value, *path) -> str:
+        return self.doc.text(path) or repr(value)
+
+
+def _literal(node) -> float | None:
+    """The value of a bare number literal (``25`` or ``-25``), else None."""
+    if isinstance(node, Unary) and isinstance(node.operand, Num):
+        return -node.operand.value
+    if isinstance(node, Num):
+        return node.value
+    return None
+
+
+_CALL = re.compile(r"\b([A-Za-z]\w*)\s*\(")
+_UNKNOWN_UNIT = re.compile(r"\('(\w+)' is not a unit\)$")
+COMMON_UNITS = ("m", "meter", "metre", "cm", "mm", "km", "ft", "foot", "inch", "in", "mi", "s",
+                "second", "ms", "min", "h", "hr",
+                "rad", "deg", "degree", "radian", "revolution", "turn", "rpm", "kg", "g", "lb",
+                "N", "lbf", "J", "W", "Hz", "mph", "kph", "knot", "yd")
+
+
+def _with_hint(message: str, text: str) -> str:
+    """An expression error; when a call names an unknown function, say so, with the closest
+    known name (the reader alone would see a product of a name and a parenthesis)."""
+    known = set(FUNCTIONS) | set(MATH_FUNCTIONS)
+    for name in _CALL.findall(text):
+        if name not in known:
+            hint = did_you_mean(name, known)
+            if hint:
+                return f"unknown function '{name}(...)'{hint}"
+    return message
+
+
+def _unit_hint(message: str) -> str:
+    match = _UNKNOWN_UNIT.search(message)
+    return message + did_you_mean(match.group(1), COMMON_UNITS) if match else message

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..errors import Location
+from ..errors import AuthorWarning, Location
 from ..expressions.syntax import Node
 
 TIME = "t"
@@ -48,6 +48,8 @@ class Frame:
     rotations: tuple[Rotation, ...]
     origin: str | None
     where: Location = field(default_factory=Location, compare=False)
+    parent_where: Location = field(default_factory=Location, compare=False)
+    origin_where: Location = field(default_factory=Location, compare=False)
 
 
 @dataclass(frozen=True)
@@ -58,6 +60,7 @@ class Point:
     origin: str | None  # None only for the inertial point
     position: Expr | None
     where: Location = field(default_factory=Location, compare=False)
+    origin_where: Location = field(default_factory=Location, compare=False)
 
 
 @dataclass(frozen=True)
@@ -134,7 +137,8 @@ class Expect:
 
     Exactly one of ``value`` (scalar), ``components`` (vector, in the objective's frame) and
     ``expr`` (symbolic) is set. ``book`` is the printed answer when it differs, explained in
-    ``note``.
+    ``note``. ``written`` keeps the value (or each component) as the author typed it: its
+    digits set how closely the solver must reproduce it.
     """
 
     value: float | None = None
@@ -144,6 +148,7 @@ class Expect:
     book: str | None = None
     note: str | None = None
     where: Location = field(default_factory=Location, compare=False)
+    written: str | tuple[str, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -154,6 +159,7 @@ class Mistake:
     find: Expr
     message: str
     credit: float = 0.0
+    where: Location = field(default_factory=Location, compare=False)
 
 
 @dataclass(frozen=True)
@@ -178,11 +184,13 @@ class Objective:
     depends_on: tuple[str, ...] = ()
     givens: tuple[Given, ...] = ()
     where: Location = field(default_factory=Location, compare=False)
+    frame_where: Location = field(default_factory=Location, compare=False)
+    depends_where: tuple[Location, ...] = field(default=(), compare=False)
 
 
 @dataclass(frozen=True)
 class Problem:
-    """A whole problem file."""
+    """A whole problem file; ``warnings`` are legal oddities found while loading it."""
 
     id: str
     title: str
@@ -200,6 +208,7 @@ class Problem:
     objectives: tuple[Objective, ...]
     consistency: float = 5e-3
     path: str | None = field(default=None, compare=False)
+    warnings: tuple[AuthorWarning, ...] = field(default=(), compare=False)
 
     def objective(self, objective_id: str) -> Objective:
         for objective in self.objectives:

@@ -1,21 +1,71 @@
 """Check a built problem: every name defined, every expression well-kinded and dimensionally
 consistent, frames and points forming trees, objectives answerable in their units.
 
-Errors are :class:`SpecError` located at the offending field. Nothing here solves anything.
+Every independent error is collected (:func:`problem_errors`), each a :class:`SpecError`
+located at the offending value or name; an error about a name whose definition already failed
+to load is left out, so one mistake gives one message. Nothing here solves anything.
 """
 
 from __future__ import annotations
 
+import difflib
+import math
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 from ..errors import ExpressionError, SpecError
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Num, Prime,
                                   Unary, constant_value, parse, to_text)
-from ..units import describe_dimension, dimension, dimensionless, time_dimension
+from ..units import (describe_dimension, dimension, dimensionless, normalize_unit, registry,
+                     time_dimension)
 from .language import FUNCTIONS
 from .model import TIME, Expr, Objective, Problem
 
 RESERVED = {TIME, "pi"} | set(MATH_FUNCTIONS) | set(FUNCTIONS)
+
+
+class _Quiet(SpecError):
+    """An error caused by an earlier one (an undefined name whose definition failed)."""
+
+
+def did_you_mean(name: str, known) -> str:
+    """``"; did you mean 'x'?"`` when ``known`` holds a name close to ``name``, else ``""``.
+
+    >>> did_you_mean("vell", ["vel", "acc"])
+    "; did you mean 'vel'?"
+    >>> did_you_mean("zzz", ["vel"])
+    ''
+    """
+    close = difflib.get_close_matches(str(name), sorted(set(known)), n=1, cutoff=0.6)
+    if not close:
+        return ""
+    quote = '"' if "'" in close[0] else "'"
+    return f"; did you mean {quote}{close[0]}{quote}?"
+
+
+def is_angle_unit(unit: str) -> bool:
+    """Whether ``unit`` measures an angle (rad, deg, turn ...), not a pure number.
+
+    >>> is_angle_unit("deg"), is_angle_unit("rad"), is_angle_unit(""), is_angle_unit("rad/s")
+    (True, True, False, False)
+    """
+    ureg = registry()
+    canonical = normalize_unit(unit)
+    if not canonical:
+        return False
+    root = ureg.Quantity(1.0, ureg.parse_units(canonical)).to_root_units().units
+    return dict(root._units) == {"radian": 1}
+
+
+def bare_angle_message(text: str) -> str:
+    """The message for an angle written without its unit; it shows both fixes.
+
+    >>> bare_angle_message("40")
+    'expected an angle with its unit, found the bare number 40; write `40 deg` or `0.698 rad`'
+    """
+    radians = math.radians(float(text))
+    return (f"expected an angle with its unit, found the bare number {text}; write "
+            f"`{text} deg` or `{radians:.3g} rad`")
 
 
 @dataclass(frozen=True)
@@ -44,12 +94,29 @@ def rate_symbol_names(problem: Problem) -> dict[str, tuple[str, int]]:
 
 
 class _Checker:
-    def __init__(self, problem: Problem):
+    def __init__(self, problem: Problem, broken: frozenset[str] = frozenset()):
         self.p = problem
         self.frames = {f.name: f for f in problem.frames}
         self.points = {p.name: p for p in problem.points}
         self.coords = {c.name: c for c in problem.coordinates}
         self.params = {p.name: p for p in problem.parameters}
+        self.broken = broken
+        self.errors: list[SpecError] = []
+
+    @contextmanager
+    def each(self):
+        """Record a SpecError raised inside and go on with the next item."""
+        try:
+            yield
+        except _Quiet:
+            pass
+        except SpecError as err:
+            self.errors.append(err)
+
+    def quiet_if_broken(self, name: str, *sections: str) -> None:
+        """Stay silent about ``name`` if its definition (or its whole section) failed."""
+        if name in self.broken or any(f"{s}:*" in self.broken for s in sections):
+            raise _Quiet(name)
 
     # ------------------------------------------------------------------ names
 
@@ -59,28 +126,27 @@ class _Checker:
                              ("coordinate", p.coordinates), ("parameter", p.parameters)):
             for item in items:
                 if item.name in RESERVED:
-                    raise SpecError(f"'{item.name}' is reserved (time, pi or a function name); "
-                                    f"expected another {group} name", where=item.where)
+                    self.errors.append(SpecError(
+                        f"'{item.name}' is reserved (time, pi or a function name); expected "
+                        f"another {group} name", where=item.where))
         for c in p.coordinates:
             if c.name in self.params:
-                raise SpecError(f"'{c.name}' is both a coordinate and a parameter; expected "
-                                "distinct names", where=c.where)
+                self.errors.append(SpecError(
+                    f"'{c.name}' is both a coordinate and a parameter; expected distinct names",
+                    where=c.where))
         scalars = set(self.coords) | set(self.params)
         for item in list(p.frames) + list(p.points):
             if item.name in scalars:
-                raise SpecError(f"'{item.name}' names a frame or point and also a coordinate "
-                                "or parameter; expected distinct names", where=item.where)
+                self.errors.append(SpecError(
+                    f"'{item.name}' names a frame or point and also a coordinate or parameter; "
+                    "expected distinct names", where=item.where))
         rates = rate_symbol_names(p)
-        for par in p.parameters:
-            if par.name in rates and rates[par.name][1] > 0:
-                raise SpecError(f"parameter '{par.name}' clashes with the rate name of "
-                                f"coordinate '{rates[par.name][0]}'; expected another name",
-                                where=par.where)
-        for c in p.coordinates:
-            if c.name in rates and rates[c.name][1] > 0:
-                raise SpecError(f"coordinate '{c.name}' clashes with the rate name of "
-                                f"coordinate '{rates[c.name][0]}'; expected another name",
-                                where=c.where)
+        for group, items in (("parameter", p.parameters), ("coordinate", p.coordinates)):
+            for item in items:
+                if item.name in rates and rates[item.name][1] > 0:
+                    self.errors.append(SpecError(
+                        f"{group} '{item.name}' clashes with the rate name of coordinate "
+                        f"'{rates[item.name][0]}'; expected another name", where=item.where))
 
     # ------------------------------------------------------------------ trees
 
@@ -90,40 +156,57 @@ class _Checker:
                                   (self.p.frames, inertial, "frame")):
             for item in items[1:]:
                 if item.name == name:
-                    raise SpecError(f"'{name}' is the inertial {what}; expected it under "
-                                    f"'inertial' only, not also under {what}s",
-                                    where=item.where)
+                    self.errors.append(SpecError(
+                        f"'{name}' is the inertial {what}; expected it under 'inertial' only, "
+                        f"not also under {what}s", where=item.where))
+        parented = True
         for frame in self.p.frames:
             if frame.name == inertial:
                 continue
-            if frame.parent not in self.frames:
-                raise SpecError(f"unknown parent frame '{frame.parent}' (expected one of: "
-                                f"{', '.join(self.frames)})", where=frame.where)
-            if frame.origin is not None and frame.origin not in self.points:
-                raise SpecError(f"unknown origin point '{frame.origin}' (expected one of: "
-                                f"{', '.join(self.points)})", where=frame.where)
+            with self.each():
+                if frame.parent not in self.frames:
+                    parented = False
+                    self.quiet_if_broken(frame.parent, "frames")
+                    raise SpecError(f"unknown parent frame '{frame.parent}'"
+                                    f"{did_you_mean(frame.parent, self.frames)} (expected one "
+                                    f"of: {', '.join(self.frames)})", where=frame.parent_where)
+            with self.each():
+                if frame.origin is not None and frame.origin not in self.points:
+                    self.quiet_if_broken(frame.origin, "points")
+                    raise SpecError(f"unknown origin point '{frame.origin}'"
+                                    f"{did_you_mean(frame.origin, self.points)} (expected one "
+                                    f"of: {', '.join(self.points)})", where=frame.origin_where)
             for rotation in frame.rotations:
-                self.expect_type(rotation.angle, Type("scalar", dimensionless()), "an angle")
+                with self.each():
+                    self.expect_type(rotation.angle, Type("scalar", dimensionless()), "an angle")
+        for frame in self.p.frames[1:] if parented else ():
             cycle = _cycle(frame.name, lambda f: self.frames[f].parent, inertial)
             if cycle:
-                raise SpecError(f"frame '{frame.name}' is oriented through a cycle of parents "
-                                f"({cycle}); expected a tree rooted at '{inertial}'",
-                                where=frame.where)
+                self.errors.append(SpecError(
+                    f"frame '{frame.name}' is oriented through a cycle of parents ({cycle}); "
+                    f"expected a tree rooted at '{inertial}'", where=frame.where))
 
     def check_points(self) -> None:
+        chained = True
         for point in self.p.points:
             if point.origin is None:
                 continue
-            if point.origin not in self.points:
-                raise SpecError(f"unknown point '{point.origin}' in 'from' (expected one of: "
-                                f"{', '.join(self.points)})", where=point.where)
-            self.expect_type(point.position, Type("vector", dimension("m")),
-                             "a position vector (a length times unit vectors, e.g. L*A.x)")
+            with self.each():
+                if point.origin not in self.points:
+                    chained = False
+                    self.quiet_if_broken(point.origin, "points")
+                    raise SpecError(f"unknown point '{point.origin}' in 'from'"
+                                    f"{did_you_mean(point.origin, self.points)} (expected one "
+                                    f"of: {', '.join(self.points)})", where=point.origin_where)
+            with self.each():
+                self.expect_type(point.position, Type("vector", dimension("m")),
+                                 "a position vector (a length times unit vectors, e.g. L*A.x)")
+        for point in self.p.points[1:] if chained else ():
             cycle = _cycle(point.name, lambda q: self.points[q].origin, self.p.inertial_point)
             if cycle:
-                raise SpecError(f"point '{point.name}' is located through a cycle ({cycle}); "
-                                f"expected a chain ending at '{self.p.inertial_point}'",
-                                where=point.where)
+                self.errors.append(SpecError(
+                    f"point '{point.name}' is located through a cycle ({cycle}); expected a "
+                    f"chain ending at '{self.p.inertial_point}'", where=point.where))
 
     # ------------------------------------------------------------------ sections
 
@@ -131,79 +214,129 @@ class _Checker:
         names = set()
         for c in self.p.constraints:
             if c.name in names:
-                raise SpecError(f"constraint name '{c.name}' used twice; expected unique "
-                                "names", where=c.where)
+                self.errors.append(SpecError(f"constraint name '{c.name}' used twice; expected "
+                                             "unique names", where=c.where))
             names.add(c.name)
-            left, right = self.type_of(c.lhs), self.type_of(c.rhs)
-            self._same(left, right, c.lhs, "both sides of the equation")
+            with self.each():
+                left, right = self.type_of(c.lhs), self.type_of(c.rhs)
+                self._same(left, right, c.lhs, "both sides of the equation")
 
     def check_givens(self) -> None:
         self.check_given_list(self.p.givens)
         for guess in self.p.guesses:
-            node = guess.key.node
-            if not (isinstance(node, Name) and (node.id in self.coords or node.id in self.params)):
-                raise SpecError(f"expected a coordinate or parameter to guess, found "
-                                f"'{guess.key.text}'", where=guess.where)
-            self._dims_match(dimension(guess.unit), self.type_of(guess.key).dim, guess.where,
-                             f"the guess for '{guess.key.text}'")
+            with self.each():
+                node = guess.key.node
+                if not (isinstance(node, Name) and
+                        (node.id in self.coords or node.id in self.params)):
+                    if isinstance(node, Name):
+                        self.quiet_if_broken(node.id, "coordinates", "parameters")
+                    raise SpecError(f"expected a coordinate or parameter to guess, found "
+                                    f"'{guess.key.text}'", where=guess.where)
+                self._bare_angle(guess)
+                self._dims_match(dimension(guess.unit), self.type_of(guess.key).dim,
+                                 guess.where, f"the guess for '{guess.key.text}'")
 
     def check_given_list(self, givens) -> None:
         seen = {}
         for given in givens:
-            node = given.key.node
-            t = self.type_of(given.key)
-            if t.kind != "scalar":
-                raise SpecError(f"expected a scalar quantity as a given's name, found a "
-                                f"{t.kind} ('{given.key.text}')", where=given.where)
-            canonical = to_text(node)
-            if canonical in seen:
-                raise SpecError(f"'{canonical}' is given twice", where=given.where)
-            seen[canonical] = given
-            self._dims_match(dimension(given.unit), t.dim, given.where,
-                             f"the value of '{given.key.text}'")
+            with self.each():
+                self.check_given(given, seen)
+
+    def check_given(self, given, seen: dict) -> None:
+        node = given.key.node
+        t = self.type_of(given.key)
+        if t.kind != "scalar":
+            raise SpecError(f"expected a scalar quantity as a given's name, found a "
+                            f"{t.kind} ('{given.key.text}')", where=given.where)
+        canonical = to_text(node)
+        if canonical in seen:
+            raise SpecError(f"'{canonical}' is given twice", where=given.where)
+        seen[canonical] = given
+        self._bare_angle(given)
+        if _bare(given) and t.dim != dimensionless():
+            unit = self._natural_unit(node)
+            raise SpecError(f"expected a value with its unit ({describe_dimension(t.dim)}), "
+                            f"found the bare number {given.text}"
+                            + (f"; write `{given.text} {unit}`" if unit else ""),
+                            where=given.where)
+        self._dims_match(dimension(given.unit), t.dim, given.where,
+                         f"the value of '{given.key.text}'")
+
+    def _bare_angle(self, given) -> None:
+        """A bare number for an angle is refused: degrees or radians cannot be told apart."""
+        node = given.key.node
+        declared = (self.coords.get(node.id) or self.params.get(node.id)
+                    if isinstance(node, Name) else None)
+        if declared is not None and _bare(given) and given.value != 0 \
+                and is_angle_unit(declared.unit):
+            raise SpecError(bare_angle_message(given.text), where=given.where)
+
+    def _natural_unit(self, node: Node) -> str | None:
+        """The unit a bare given for ``node`` most likely meant (for the message)."""
+        if isinstance(node, Name):
+            declared = self.coords.get(node.id) or self.params.get(node.id)
+            return declared.unit if declared else None
+        if isinstance(node, Prime) and node.id in self.coords:
+            return f"{self.coords[node.id].unit}/s" + ("^2" if node.order == 2 else "")
+        return None
 
     def check_objectives(self) -> None:
         ids = set()
         for obj in self.p.objectives:
             if obj.id in ids:
-                raise SpecError(f"objective id '{obj.id}' used twice; expected unique ids",
-                                where=obj.where)
+                self.errors.append(SpecError(f"objective id '{obj.id}' used twice; expected "
+                                             "unique ids", where=obj.where))
             ids.add(obj.id)
         for obj in self.p.objectives:
             self.check_objective(obj, ids)
 
     def check_objective(self, obj: Objective, ids: set[str]) -> None:
-        t = self.type_of(obj.find)
-        want = "vector" if obj.kind == "vector" else "scalar"
-        if t.kind != want:
-            raise SpecError(f"expected a {want} expression for a {obj.kind} objective, found "
-                            f"a {t.kind} ('{obj.find.text}')", where=obj.find.where)
-        self._dims_match(t.dim, dimension(obj.unit), obj.find.where,
-                         f"objective '{obj.id}' (unit '{obj.unit}')")
-        if obj.kind == "vector":
-            if obj.frame is None:
+        t = None
+        with self.each():
+            found = self.type_of(obj.find)
+            want = "vector" if obj.kind == "vector" else "scalar"
+            if found.kind != want:
+                raise SpecError(f"expected a {want} expression for a {obj.kind} objective, "
+                                f"found a {found.kind} ('{obj.find.text}')",
+                                where=obj.find.where)
+            t = found
+            self._dims_match(t.dim, dimension(obj.unit), obj.find.where,
+                             f"objective '{obj.id}' (unit '{obj.unit}')")
+        with self.each():
+            if obj.kind == "vector" and obj.frame is None:
                 raise SpecError("a vector objective needs 'frame': the frame whose unit vectors "
                                 "its components are in", where=obj.where)
-        if obj.frame is not None and obj.frame not in self.frames:
-            raise SpecError(f"unknown frame '{obj.frame}' (expected one of: "
-                            f"{', '.join(self.frames)})", where=obj.where)
-        if obj.kind == "symbolic" and not obj.symbols:
-            raise SpecError("a symbolic objective needs 'symbols': the names its answer is "
-                            "written in", where=obj.where)
-        if obj.kind != "symbolic" and obj.symbols:
-            raise SpecError("'symbols' belongs to symbolic objectives only", where=obj.where)
+            if obj.frame is not None and obj.frame not in self.frames:
+                self.quiet_if_broken(obj.frame, "frames")
+                raise SpecError(f"unknown frame '{obj.frame}'{did_you_mean(obj.frame, self.frames)}"
+                                f" (expected one of: {', '.join(self.frames)})",
+                                where=obj.frame_where)
+        with self.each():
+            if obj.kind == "symbolic" and not obj.symbols:
+                raise SpecError("a symbolic objective needs 'symbols': the names its answer is "
+                                "written in", where=obj.where)
+            if obj.kind != "symbolic" and obj.symbols:
+                raise SpecError("'symbols' belongs to symbolic objectives only", where=obj.where)
         for decl in obj.symbols:
-            self.symbol_meaning(decl)
-        for mistake in obj.mistakes:
-            mt = self.type_of(mistake.find)
-            self._same(t, mt, mistake.find, f"the mistaken model of '{obj.id}'")
-        for dep in obj.depends_on:
-            if dep not in ids or dep == obj.id:
-                raise SpecError(f"depends_on names unknown objective '{dep}' (expected one "
-                                f"of: {', '.join(sorted(ids - {obj.id}))})", where=obj.where)
+            with self.each():
+                self.symbol_meaning(decl)
+        for mistake in obj.mistakes if t is not None else ():
+            with self.each():
+                mt = self.type_of(mistake.find)
+                self._same(t, mt, mistake.find, f"the mistaken model of '{obj.id}'")
+        for j, dep in enumerate(obj.depends_on):
+            with self.each():
+                if dep not in ids or dep == obj.id:
+                    self.quiet_if_broken(dep)
+                    where = obj.depends_where[j] if j < len(obj.depends_where) else obj.where
+                    others = sorted(ids - {obj.id})
+                    raise SpecError(f"depends_on names unknown objective '{dep}'"
+                                    f"{did_you_mean(dep, others)} (expected one of: "
+                                    f"{', '.join(others) or 'none'})", where=where)
         self.check_given_list(obj.givens)
         if obj.expect is not None:
-            self.check_expect(obj)
+            with self.each():
+                self.check_expect(obj)
 
     def symbol_meaning(self, decl) -> Node:
         """The spec quantity (a Name or Prime node) a declared symbol stands for."""
@@ -261,7 +394,7 @@ class _Checker:
         try:
             return self._type(expr.node, inside_pos=False)
         except SpecError as err:
-            raise SpecError(err.message, where=expr.where) from None
+            raise type(err)(err.message, where=expr.where) from None
 
     def _type(self, node: Node, inside_pos: bool) -> Type:
         if isinstance(node, Num):
@@ -279,11 +412,16 @@ class _Checker:
                 what = "point" if node.id in self.points else "frame"
                 raise SpecError(f"'{node.id}' is a {what}; expected a scalar or vector here "
                                 f"(use it inside a function such as vel(P, N))")
-            raise SpecError(f"unknown name '{node.id}' (expected a coordinate, parameter, t or "
-                            f"pi; known: {', '.join(sorted(set(self.coords) | set(self.params)))})")
+            self.quiet_if_broken(node.id, "coordinates", "parameters")
+            known = sorted(set(self.coords) | set(self.params))
+            raise SpecError(f"unknown name '{node.id}'{self._name_hint(node.id, known)} "
+                            f"(expected a coordinate, parameter, t or pi; known: "
+                            f"{', '.join(known)})")
         if isinstance(node, Prime):
             if node.id not in self.coords:
-                raise SpecError(f"expected a coordinate before the prime, found '{node.id}' "
+                self.quiet_if_broken(node.id, "coordinates")
+                raise SpecError(f"expected a coordinate before the prime, found '{node.id}'"
+                                f"{did_you_mean(node.id, self.coords)} "
                                 f"(coordinates: {', '.join(self.coords) or 'none'})")
             if node.order > 2:
                 raise SpecError("expected at most a second time derivative (q'')")
@@ -291,7 +429,9 @@ class _Checker:
                         * time_dimension() ** -node.order)
         if isinstance(node, Attr):
             if node.base not in self.frames:
-                raise SpecError(f"unknown frame '{node.base}' in '{node.base}.{node.attr}' "
+                self.quiet_if_broken(node.base, "frames")
+                raise SpecError(f"unknown frame '{node.base}' in '{node.base}.{node.attr}'"
+                                f"{did_you_mean(node.base, self.frames)} "
                                 f"(frames: {', '.join(self.frames)})")
             return Type("vector", dimensionless())
         if isinstance(node, Unary):
@@ -384,14 +524,20 @@ class _Checker:
     def _argument(self, func: str, arg: Node, kind: str):
         if kind == "frame":
             if not (isinstance(arg, Name) and arg.id in self.frames):
+                hint = ""
+                if isinstance(arg, Name):
+                    self.quiet_if_broken(arg.id, "frames")
+                    hint = did_you_mean(arg.id, self.frames)
                 raise SpecError(f"expected a frame as argument of {func}(...), found "
-                                f"'{to_text(arg)}' (frames: {', '.join(self.frames)})")
+                                f"'{to_text(arg)}'{hint} (frames: {', '.join(self.frames)})")
             return dimensionless()
         if kind == "point":
             if isinstance(arg, Name):
                 if arg.id not in self.points:
+                    self.quiet_if_broken(arg.id, "points")
                     raise SpecError(f"expected a point as argument of {func}(...), found "
-                                    f"'{arg.id}' (points: {', '.join(self.points)})")
+                                    f"'{arg.id}'{did_you_mean(arg.id, self.points)} "
+                                    f"(points: {', '.join(self.points)})")
                 return dimension("m")
             if isinstance(arg, Call) and arg.func in FUNCTIONS and \
                     FUNCTIONS[arg.func].result == "point":
@@ -414,12 +560,21 @@ class _Checker:
             frame_arg = node.args[1] if node.func == "coincident" else node.args[0]
         if frame_arg is None:
             return
-        frame = self.frames[frame_arg.id]
+        frame = self.frames.get(getattr(frame_arg, "id", None))
+        if frame is None:
+            return
         if frame.name != self.p.inertial_frame and frame.origin is None:
             raise SpecError(f"{node.func}(...) needs a point fixed in frame '{frame.name}': "
                             f"give the frame an 'origin'")
 
     # ------------------------------------------------------------------ helpers
+
+    def _name_hint(self, name: str, known) -> str:
+        """"did you mean" for an unknown name; a rate written ``thetad`` gets ``theta'``."""
+        for suffix, primes in (("dd", "''"), ("d", "'")):
+            if name.endswith(suffix) and name[:-len(suffix)] in self.coords:
+                return f"; did you mean \"{name[:-len(suffix)]}{primes}\"?"
+        return did_you_mean(name, known)
 
     def _same(self, a: Type, b: Type, expr: Expr, what: str) -> None:
         kinds = {a.kind, b.kind} - {"zero"}
@@ -449,20 +604,33 @@ def _cycle(start: str, step, root: str) -> str | None:
     return None
 
 
+def _bare(given) -> bool:
+    """Whether a given was written as a number without a unit."""
+    if given.unit:
+        return False
+    try:
+        float(given.text)
+    except ValueError:
+        return False
+    return True
+
+
 def _walk_names(node: Node):
     from ..expressions.syntax import walk
     return [n for n in walk(node) if isinstance(n, Name)]
 
 
-def validate_problem(problem: Problem) -> None:
-    """Raise :class:`SpecError` for the first semantic error in ``problem``."""
-    checker = _Checker(problem)
+def problem_errors(problem: Problem, broken: frozenset[str] = frozenset()) -> list[SpecError]:
+    """Every semantic error in ``problem``; names in ``broken`` failed to load and are not
+    reported again (``"frames:*"`` stands for a whole section)."""
+    checker = _Checker(problem, broken)
     checker.check_names()
     checker.check_frames()
     checker.check_points()
     checker.check_constraints()
     checker.check_givens()
     checker.check_objectives()
+    return checker.errors
 
 
 def symbol_meanings(problem: Problem, objective: Objective) -> dict[str, Node]:
