@@ -1,0 +1,145 @@
+"""A class folder built to break the grader (tests/data/hostile/make_corpus.py), graded through
+the CLI: the run finishes, every entry is accounted for, every output is valid and stable, and
+nothing is written outside ``--out``."""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import importlib.util
+import io
+import json
+import os
+import textwrap
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from mechgrade.cli import main
+from mechgrade.files import clean_text
+from mechgrade.resources import shipped_dir
+
+CORPUS = Path(__file__).parents[1] / "data" / "hostile" / "make_corpus.py"
+
+
+def _corpus_module():
+    spec = importlib.util.spec_from_file_location("make_corpus", CORPUS)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def hostile(tmp_path_factory):
+    corpus = _corpus_module()
+    top = tmp_path_factory.mktemp("hostile")
+    corpus.build(top / "class")
+    problem = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
+    (top / "p.yaml").write_bytes(problem.read_bytes())
+    (top / "hw.yaml").write_text(textwrap.dedent("""\
+        id: hw
+        title: Hostile class
+        problems: [p.yaml]
+        """), encoding="utf-8")
+    before = _snapshot(top)
+    first = CliRunner().invoke(main, ["grade", str(top / "hw.yaml"), str(top / "class"),
+                                      "--out", str(top / "out")])
+    outputs = _outputs(top / "out")
+    again = CliRunner().invoke(main, ["grade", str(top / "hw.yaml"), str(top / "class"),
+                                      "--out", str(top / "out")])
+    yield {"top": top, "first": first, "again": again, "outputs": outputs,
+           "before": before, "after": _snapshot(top), "corpus": corpus}
+    corpus.unlock(top / "class")
+
+
+def _snapshot(top: Path) -> dict[str, tuple[int, int]]:
+    """Every path below ``top`` but ``out/``, with its size and modification time."""
+    found = {}
+    for folder, dirs, files in os.walk(top, followlinks=False):
+        for name in dirs + files:
+            path = os.path.join(folder, name)
+            rel = os.path.relpath(path, top)
+            if rel == "out" or rel.startswith("out" + os.sep):
+                continue
+            info = os.lstat(path)
+            found[rel] = (info.st_size, info.st_mtime_ns)
+    return found
+
+
+def _outputs(out: Path) -> dict[str, str]:
+    return {p.relative_to(out).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(out.rglob("*")) if p.is_file()}
+
+
+def test_the_run_finishes_without_a_traceback(hostile):
+    result = hostile["first"]
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert "Traceback" not in result.output
+    assert result.exit_code == 0, result.stdout
+    assert result.stdout.startswith("Graded ")
+
+
+def test_every_entry_of_the_folder_is_a_student_or_skipped(hostile):
+    data = json.loads((hostile["top"] / "out" / "results.json").read_bytes().decode("utf-8"))
+    ids = {s["id"] for s in data["students"]}
+    skipped = {e["path"] for e in data["skipped"]}
+    for name in os.listdir(os.fsencode(hostile["top"] / "class")):
+        shown = clean_text(os.fsdecode(name))
+        stem = shown.rsplit(".", 1)[0] if "." in shown[1:] else shown
+        assert shown in skipped or shown in ids or stem in ids, shown
+    assert hostile["corpus"].EXPECTED_SKIPPED <= skipped
+    assert {"bad\\xe9name", "Zo\u00eb", "Zoe\u0308", " spaced ", "new\nline"} <= ids
+    assert any("differ only in Unicode form" in note for note in data["notes"])
+    assert any("copycat/answers.yaml" in note for note in data["notes"])
+    assert data["internal_errors"] == []
+
+
+def test_every_output_is_valid_utf8_json_and_csv(hostile):
+    out = hostile["top"] / "out"
+    data = json.loads((out / "results.json").read_bytes().decode("utf-8"))
+    for name in ("grades.csv", "results.csv"):
+        rows = list(csv.reader(io.StringIO((out / name).read_bytes().decode("utf-8"),
+                                           newline="")))
+        assert len({len(row) for row in rows}) == 1, name
+    grades = list(csv.reader(io.StringIO((out / "grades.csv").read_text("utf-8"), newline="")))
+    assert len(grades) == len(data["students"]) + 1
+    pages = sorted((out / "feedback").iterdir())
+    assert len(pages) == 2 * len(data["students"])
+    for page in pages:
+        page.read_bytes().decode("utf-8")
+        assert not page.name.startswith(("-", "."))
+
+
+def test_a_rerun_writes_byte_identical_outputs(hostile):
+    assert hostile["again"].exit_code == hostile["first"].exit_code
+    assert _outputs(hostile["top"] / "out") == hostile["outputs"]
+
+
+def test_nothing_is_written_outside_out(hostile):
+    assert hostile["after"] == hostile["before"]
+    assert not Path("PWNED").exists()
+
+
+def test_the_class_report_lists_what_was_skipped(hostile):
+    out = hostile["top"] / "out"
+    result = CliRunner().invoke(main, ["report", str(out / "results.json"), "--out",
+                                       str(out / "class.html")])
+    assert result.exit_code == 0, result.output
+    html = (out / "class.html").read_text(encoding="utf-8")
+    assert "__MACOSX" in html and "made by macOS when zipping" in html
+    assert "differ only in Unicode form" in html
+
+
+@pytest.mark.parametrize("fmt", ["canvas", "moodle", "gradescope", "grades-csv", "long-csv",
+                                 "json"])
+def test_every_export_of_the_hostile_class_is_written(hostile, fmt):
+    out = hostile["top"] / "out"
+    roster = shipped_dir("examples") / "hw1" / "roster.csv"
+    target = hostile["top"] / f"export_{fmt}"
+    result = CliRunner().invoke(main, ["export", str(out / "results.json"), "--format", fmt,
+                                       "--roster", str(roster), "--out", str(target)])
+    assert result.exit_code == 0, result.output
+    for path in [target] if target.is_file() else sorted(target.iterdir()):
+        path.read_bytes().decode("utf-8-sig")
+        assert not path.name.startswith(("-", "."))
