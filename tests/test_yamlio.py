@@ -22,7 +22,8 @@ def test_positions_are_kept():
     ("<<: {a: 1}\n", "f.yaml:1:1: expected plain YAML, found a merge key (<<)"),
     ("? [a]\n: 1\n", "expected a plain key, found a list or mapping used as a key"),
     ("a: \x00\n", "expected text, found a NUL byte"),
-    ("!!python/object:os.system x\n", "expected valid YAML, found a syntax error"),
+    ("!!python/object:os.system x\n", "expected plain YAML, found the tag "
+                                       "'!!python/object:os.system'; tags are not allowed"),
 ])
 def test_unsafe_or_broken_yaml_is_refused(text, message):
     with pytest.raises(SpecError) as info:
@@ -120,3 +121,15 @@ def test_limits_use_the_callers_error_class():
     for text in ("a: " + "[" * 3000 + "]" * 3000, "a: \x1b", "a: " + "1" * 5000, "a:\n\tb: 1"):
         with pytest.raises(SubmissionError):
             read_yaml_text(text, "answers.yaml", SubmissionError)
+
+
+@pytest.mark.parametrize("text, column", [
+    ("v: !!python/object/apply:os.system ['touch x']\n", 4),
+    ("v: !!str 98.5\n", 4),
+    ("v: !custom [1]\n", 4),
+])
+def test_explicit_tags_are_refused(text, column):
+    with pytest.raises(SpecError) as info:
+        read_yaml_text(text, "t.yaml")
+    assert str(info.value).startswith(f"t.yaml:1:{column}: expected plain YAML, found the tag ")
+    assert str(info.value).endswith("; tags are not allowed")

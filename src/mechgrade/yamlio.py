@@ -100,7 +100,7 @@ class Document:
 
 
 class _Loader(yaml.SafeLoader):
-    """Safe loader that refuses aliases (and so anchors are pointless)."""
+    """Safe loader that refuses aliases (and so anchors are pointless) and explicit tags."""
 
     depth = 0
 
@@ -109,6 +109,12 @@ class _Loader(yaml.SafeLoader):
             event = self.peek_event()
             raise _YamlProblem("expected plain YAML, found an alias (*name); anchors and "
                                "aliases are not allowed", event.start_mark)
+        tag = getattr(self.peek_event(), "tag", None)
+        if tag not in (None, "!"):
+            # The safe loader would drop a '!!python/...' tag and keep its value: a misread.
+            shown = tag.replace("tag:yaml.org,2002:", "!!", 1)[:40]
+            raise _YamlProblem(f"expected plain YAML, found the tag '{shown}'; tags are "
+                               f"not allowed", self.peek_event().start_mark)
         self.depth += 1
         try:
             if self.depth > MAX_DEPTH:
