@@ -19,15 +19,15 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
 from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeError
-from ..expressions.excerpt import excerpt
 from ..expressions import syntax
+from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary
 from ..solve.result import MistakeValue, ObjectiveResult
+from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
@@ -167,26 +167,6 @@ def _judge(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> As
 
 
 # ---------------------------------------------------------------------------- numbers
-
-
-FLOAT_SLACK = 1e-9
-"""Relative slack on every tolerance, so a boundary value (``1.05`` for ``1`` at 5 %) is not
-lost to binary rounding."""
-
-
-def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
-    """The one tolerance test: ``|s - t| <= max(rel*scale, abs)``, boundary included (with a
-    :data:`FLOAT_SLACK` for binary rounding). ``scale`` defaults to ``|t|``; arrays are compared
-    elementwise (all must pass) and anything not finite fails.
-
-    >>> within(99.0, 100.0, 0.01, 0.0), within(98.99, 100.0, 0.01, 0.0), within(1.05, 1, 0.05, 0)
-    (True, False, True)
-    """
-    s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
-    size = np.abs(t) if scale is None else abs(float(scale))
-    limit = np.maximum(rel * size, abs_)
-    with np.errstate(all="ignore"):
-        return bool(np.all(np.abs(s - t) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size))
 
 
 def last_place(reference: float, figures: int) -> float:
@@ -469,63 +449,6 @@ def _scalar_for_vector(answer: NumberAnswer, reference: np.ndarray, result: Obje
 # ---------------------------------------------------------------------------- expressions
 
 
-_NUMPY_FUNCTIONS = {
-    "sin": np.sin, "cos": np.cos, "tan": np.tan, "cot": lambda a: 1 / np.tan(a),
-    "sec": lambda a: 1 / np.cos(a), "csc": lambda a: 1 / np.sin(a), "asin": np.arcsin,
-    "acos": np.arccos, "atan": np.arctan, "atan2": np.arctan2, "sinh": np.sinh,
-    "cosh": np.cosh, "tanh": np.tanh, "sqrt": np.sqrt, "exp": np.exp, "log": np.log,
-    "abs": np.abs, "sign": np.sign,
-}
-
-
-def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
-    """Values of a checked tree at sample points (NaN where undefined); never calls sympy.
-
-    The tree is bounded by the reader (size, depth, constant exponents), and numpy arithmetic
-    overflows to ``inf`` rather than hanging, so this is safe on any readable answer.
-
-    A constant expression gives the same value at every point (one value per sample point,
-    always).
-
-    >>> import numpy as np
-    >>> evaluate(syntax.parse("2 L^2"), {"L": np.array([1.0, 3.0])})
-    array([ 2., 18.])
-    >>> evaluate(syntax.parse("1"), {"L": np.array([1.0, 3.0])})
-    array([1., 1.])
-    """
-    count = len(next(iter(env.values()))) if env else 1
-    with np.errstate(all="ignore"):
-        return np.broadcast_to(np.asarray(_eval(node, env), dtype=float), (count,)).copy()
-
-
-def _eval(node: Node, env: dict[str, np.ndarray]):
-    def leaf(n: Node):
-        if isinstance(n, Name) and n.id == "pi":
-            return math.pi
-        if isinstance(n, Name) and n.id in env:
-            return env[n.id]
-        raise ExpressionError(f"expected an expression in the problem's symbols, found "
-                              f"{excerpt(syntax.to_text(n))}")
-
-    def function(func: str, args: tuple):
-        return _NUMPY_FUNCTIONS[func](*(np.asarray(_eval(a, env), dtype=float) for a in args))
-
-    # numpy division and powers: inf or nan where Python would raise or go complex
-    return syntax.fold(node, number=lambda n: float(n.text), resolve=leaf, call=function,
-                       power=lambda a, b: np.power(np.asarray(a, dtype=float), b),
-                       divide=lambda a, b: np.divide(np.asarray(a, dtype=float), b))
-
-
-@lru_cache(maxsize=256)
-def _reference_tree(expr: str, symbols: tuple[str, ...]) -> Node:
-    node = syntax.parse(expr, attributes=False)
-    unknown = syntax.names(node) - set(symbols) - {"pi", "E"}
-    if unknown:
-        raise ExpressionError(f"the reference uses names that are not its symbols: "
-                              f"{', '.join(sorted(unknown))}")
-    return node
-
-
 def _signed_by_reference(node: Node) -> set[str]:
     """Symbols the reference treats as possibly negative: inside ``abs``/``sign``, or raised
     to an even power under a root (``sqrt(x**2)``). The solver's sympy drops such forms for
@@ -639,23 +562,6 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
         found = _dimension_diagnosis(answer.node, result)
     return _wrong(found, policy, _Units(result.unit),
                   "Not equivalent to the expected expression.", read_back)
-
-
-def agree_at_points(rel: float, reference: np.ndarray):
-    """The one "equal at the sample points" test: every value within ``rel`` of the
-    reference's (:func:`within`, with a small floor near zero); a value undefined where the
-    reference is defined disagrees.
-
-    >>> import numpy as np
-    >>> agree_at_points(1e-6, np.array([1.0, 2.0]))(np.array([1.0, 2.0 + 1e-7]), np.array([1.0, 2.0]))
-    True
-    """
-    scale = float(np.mean(np.abs(reference))) if reference.size else 0.0
-    floor = max(rel * scale * 1e-3, 1e-12)
-
-    def close(s: np.ndarray, t: np.ndarray) -> bool:
-        return s.shape == t.shape and within(s, t, rel, floor)
-    return close
 
 
 def _mistake_values(mistake: MistakeValue, result: ObjectiveResult, env) -> np.ndarray | None:

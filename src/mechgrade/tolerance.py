@@ -1,0 +1,45 @@
+"""The one tolerance rule of mechgrade, used to grade students and to check authors' tests.
+
+A value is right when it is within ``max(rel * scale, abs)`` of the reference, boundary
+included; sampled expressions are equal when every sample agrees that way.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+FLOAT_SLACK = 1e-9
+"""Relative slack on every tolerance, so a boundary value (``1.05`` for ``1`` at 5 %) is not
+lost to binary rounding."""
+
+
+def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
+    """The one tolerance test: ``|s - t| <= max(rel*scale, abs)``, boundary included (with a
+    :data:`FLOAT_SLACK` for binary rounding). ``scale`` defaults to ``|t|``; arrays are compared
+    elementwise (all must pass) and anything not finite fails.
+
+    >>> within(99.0, 100.0, 0.01, 0.0), within(98.99, 100.0, 0.01, 0.0), within(1.05, 1, 0.05, 0)
+    (True, False, True)
+    """
+    s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
+    size = np.abs(t) if scale is None else abs(float(scale))
+    limit = np.maximum(rel * size, abs_)
+    with np.errstate(all="ignore"):
+        return bool(np.all(np.abs(s - t) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size))
+
+
+def agree_at_points(rel: float, reference: np.ndarray):
+    """The one "equal at the sample points" test: every value within ``rel`` of the
+    reference's (:func:`within`, with a small floor near zero); a value undefined where the
+    reference is defined disagrees.
+
+    >>> import numpy as np
+    >>> agree_at_points(1e-6, np.array([1.0, 2.0]))(np.array([1.0, 2.0 + 1e-7]), np.array([1.0, 2.0]))
+    True
+    """
+    scale = float(np.mean(np.abs(reference))) if reference.size else 0.0
+    floor = max(rel * scale * 1e-3, 1e-12)
+
+    def close(s: np.ndarray, t: np.ndarray) -> bool:
+        return s.shape == t.shape and within(s, t, rel, floor)
+    return close
