@@ -1,7 +1,8 @@
 """Exports of grading results for learning-management systems and spreadsheets.
 
-:data:`EXPORTERS` is the explicit registry: format name -> pure function
-``(report, out_path, *, roster=None, options=ExportOptions()) -> None``. Every file is written
+:data:`EXPORTERS` is the explicit registry: format name -> function
+``(report, out_path, *, roster=None, options=ExportOptions()) -> warnings`` (a tuple of
+messages for the user: rows held back from an LMS import, unchecked keys...). Every file is written
 with the stdlib ``csv``/``json`` writers through a temporary file and ``os.replace``; every CSV
 cell is neutralised against formula injection (:func:`mechgrade.export.cells.safe_cell`).
 
@@ -27,7 +28,7 @@ from .moodle import export_moodle
 from .options import ExportOptions
 from .tables import export_grades_csv, export_long_csv
 
-Exporter = Callable[..., None]
+Exporter = Callable[..., tuple[str, ...]]
 
 EXPORTERS: dict[str, Exporter] = {
     "canvas": export_canvas,
@@ -43,14 +44,15 @@ __all__ = ["EXPORTERS", "ExportOptions", "RosterMatch", "export", "match_roster"
 
 
 def export(report: GradeReport, fmt: str, out_path: str | os.PathLike, *,
-           roster: Roster | None = None, options: ExportOptions = ExportOptions()) -> None:
-    """Write ``report`` in format ``fmt`` (a key of :data:`EXPORTERS`)."""
+           roster: Roster | None = None,
+           options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
+    """Write ``report`` in format ``fmt`` (a key of :data:`EXPORTERS`); return its warnings."""
     try:
         exporter = EXPORTERS[fmt]
     except KeyError:
         raise ExportError(f"expected a format among {', '.join(EXPORTERS)}, found {fmt!r}",
                           where=Location(field="format")) from None
-    exporter(report, out_path, roster=roster, options=options)
+    return exporter(report, out_path, roster=roster, options=options)
 
 
 def read_results(path: str | os.PathLike) -> GradeReport:

@@ -37,14 +37,14 @@ from .options import ExportOptions
 
 def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
                       roster: Roster | None = None,
-                      options: ExportOptions = ExportOptions()) -> None:
+                      options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write Gradescope ``results.json`` (see module doc). The roster is not used."""
     if not report.students:
         raise ExportError("expected at least one student in the results for a Gradescope "
                           "results.json, found none")
     if len(report.students) == 1:
         write_json(out_path, gradescope_results(report, report.students[0], options))
-        return
+        return ()
     folder = Path(out_path)
     try:
         folder.mkdir(exist_ok=True)
@@ -54,6 +54,7 @@ def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
     names = safe_file_names([student.id for student in report.students])
     for student, name in zip(report.students, names):
         write_json(folder / f"{name}.json", gradescope_results(report, student, options))
+    return ()
 
 
 def gradescope_failure(message: str, options: ExportOptions = ExportOptions()) -> dict:
