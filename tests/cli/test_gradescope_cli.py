@@ -162,7 +162,8 @@ SHIMS = {
     "python3": textwrap.dedent("""\
         if [ "$1" = "-m" ] && [ "$2" = "venv" ]; then
             mkdir -p "$3/bin"
-            printf '#!/usr/bin/env bash\\necho "pip $*" >> "$SHIM_LOG"\\n[ -f "$2/pyproject.toml" ]\\n' > "$3/bin/pip"
+            pip='echo "pip $*" >> "$SHIM_LOG"; [ -f "$2/pyproject.toml" ]'
+            printf '#!/usr/bin/env bash\\n%s\\n' "$pip" > "$3/bin/pip"
             chmod +x "$3/bin/pip"
             ln -s "$MECHGRADE" "$3/bin/mechgrade"
             exit 0

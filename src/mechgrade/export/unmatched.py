@@ -8,8 +8,10 @@ whole import. So such rows never go into the import file.
 >>> import tempfile, pathlib
 >>> out = pathlib.Path(tempfile.mkdtemp()) / "canvas.csv"
 >>> held = [HeldBack("zz", "Ghost", "graded", 7.0, "not in the roster")]
->>> print(write_unmatched(out, held, "Canvas", "enter it by hand")[0].replace(str(out.parent), "out"))
-1 row kept out of out/canvas.csv because Canvas could not import it: see out/unmatched.csv for who and why; enter it by hand
+>>> (warning,) = write_unmatched(out, held, "Canvas", "enter it by hand")
+>>> print(warning.replace(str(out.parent), "out"))  # doctest: +NORMALIZE_WHITESPACE
+1 row kept out of out/canvas.csv because Canvas could not import it: see out/unmatched.csv
+for who and why; enter it by hand
 >>> (out.parent / "unmatched.csv").read_text().splitlines()
 ['id,name,status,score,reason', 'zz,Ghost,graded,7,not in the roster']
 """
