@@ -31,6 +31,10 @@ from mechgrade.schema_errors import describe, field_text, schema_problems
      "(top level): expected only the fields none, found 'y'"),
     ({"oneOf": [{"type": "string"}, {"type": "array", "items": {"type": "string"}}]}, [1],
      "[0]: expected a string, found 1"),
+    ({"dependentRequired": {"book": ["note"]}}, {"book": 1},
+     "(top level): expected a field 'note' with 'book', found none"),
+    ({"propertyNames": {"pattern": "^[a-z]+$", "x-expected": "a lower-case name"}}, {"A": 1},
+     "(top level): expected a lower-case name, found 'A'"),
     ({"multipleOf": 2}, 3,
      "(top level): expected a value valid for the schema keyword 'multipleOf' (2), found 3"),
 ])

@@ -74,6 +74,10 @@ def explain(err: jsonschema.ValidationError) -> SchemaProblem:
     if kind == "required":
         missing = next(name for name in wanted if name not in found)
         return SchemaProblem(path, f"expected a field '{missing}', found none")
+    if kind == "dependentRequired":
+        key, missing = next((k, m) for k, needed in wanted.items() if k in found
+                            for m in needed if m not in found)
+        return SchemaProblem(path, f"expected a field '{missing}' with '{key}', found none")
     if kind == "additionalProperties":
         allowed = list(schema.get("properties", {}))
         patterns = schema.get("patternProperties", {})
