@@ -189,3 +189,20 @@ def test_report_of_a_missing_file_is_one_message_and_exit_2(run, tmp_path):
     assert result.exit_code == 2
     assert result.stderr == f"{tmp_path / 'nope.json'}: expected a results.json file, found no " \
                             "such file\n"
+
+
+def test_moodle_export_holds_back_rows_and_says_so(run, tmp_path):
+    out = tmp_path / "moodle.csv"
+    result = run("export", RESULTS, "--format", "moodle", "--roster",
+                 str(DATA / "moodle_grades.csv"), "--missing", "blank", "--out", str(out))
+    assert result.exit_code == 0
+    assert result.stderr == (
+        f"warning: 6 rows kept out of {out} because Moodle could not import them: see "
+        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
+        "or export again with --roster set to the grades exported from Moodle\n")
+    held = read_csv(tmp_path / "unmatched.csv")
+    assert held[1] == ["s1004", "Missing Mo", "missing", "",
+                       "no grade (no submission and --missing blank); Moodle clears the grade "
+                       "of a row imported with feedback only"]
+    assert [row[0] for row in read_csv(out)[1:]] == [
+        "ada@uni.example", "emilie@uni.example", "mallory@uni.example"]

@@ -21,7 +21,7 @@ import re
 
 from ..errors import ExportError, Location
 from ..grade.results import GradeReport, StudentResult
-from ..roster import Roster, RosterStudent, header_format
+from ..roster import Roster, header_format
 from .cells import write_csv
 from .common import max_score, no_submission_warnings, score_cell
 from .matching import Pair, identity_value, match_roster
