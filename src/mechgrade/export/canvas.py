@@ -26,7 +26,7 @@ from .cells import write_csv
 from .common import max_score, no_submission_warnings, score_cell
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
-from .unmatched import HeldBack, write_unmatched
+from .unmatched import HeldBack, held_back, write_unmatched
 
 CANVAS_IDENTITY = ("Student", "ID", "SIS User ID", "SIS Login ID", "Section")
 _COLUMN = re.compile(r"(?P<title>.*\S)\s*\((?P<id>\d+)\)")
@@ -50,7 +50,7 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
         cells = _identity_cells(identity, pair, roster)
         score = score_cell(pair.result, options)
         if isinstance(cells, str):
-            held.append(_held_back(pair, score, cells))
+            held.append(held_back(pair, score, cells))
         else:
             rows.append([*cells, score])
     write_csv(out_path, rows, excel_bom=options.excel_bom)
@@ -102,9 +102,7 @@ def canvas_column(report: GradeReport, roster: Roster | None, wanted: str | None
                           where=Location(field="canvas_assignment"))
     if not candidates:
         return title
-    hits = [c for c in candidates
-            if _COLUMN.fullmatch(c.strip())["title"].casefold() == title.casefold()
-            or _COLUMN.fullmatch(c.strip())["id"] == ident]
+    hits = [c for c in candidates if _names(c, title) or _names(c, ident)]
     if len(hits) == 1:
         return hits[0]
     if not hits and len(candidates) == 1:
@@ -158,8 +156,3 @@ def _canvas_identity(result: StudentResult | None) -> dict[str, str]:
         return {}
     return {k.strip().lower(): v for k, v in result.identity}
 
-
-def _held_back(pair: Pair, score: float | str, reason: str) -> HeldBack:
-    if pair.result is not None:
-        return HeldBack(pair.result.id, pair.result.name, pair.result.status, score, reason)
-    return HeldBack(pair.roster.id, pair.roster.name, "missing", score, reason)

@@ -35,7 +35,7 @@ from .common import (answers_by_objective, has_submission, no_submission_warning
                      objective_label, score_cell)
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
-from .unmatched import HeldBack, write_unmatched
+from .unmatched import HeldBack, held_back, write_unmatched
 
 _REMEDY = ("enter those grades in Moodle by hand, or export again with --roster set to the "
            "grades exported from Moodle")
@@ -61,9 +61,7 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
         score = score_cell(pair.result, options)
         reason = _hold_back_reason(pair, roster, ids[0], score, options)
         if reason:
-            who = pair.result or pair.roster
-            status = pair.result.status if pair.result is not None else "missing"
-            held.append(HeldBack(who.id, who.name, status, score, reason))
+            held.append(held_back(pair, score, reason))
             continue
         rows.append([*ids, first, last, score,
                      html.escape(feedback_text(report, pair.result), quote=False)])

@@ -24,6 +24,7 @@ from pathlib import Path
 
 from ..errors import ExportError, Location
 from .cells import write_csv
+from .matching import Pair
 
 UNMATCHED_NAME = "unmatched.csv"
 UNMATCHED_HEADER = ("id", "name", "status", "score", "reason")
@@ -38,6 +39,13 @@ class HeldBack:
     status: str
     score: float | str
     reason: str
+
+
+def held_back(pair: Pair, score: float | str, reason: str) -> HeldBack:
+    """The row of ``pair`` (its result, else its roster student) held back for ``reason``."""
+    if pair.result is not None:
+        return HeldBack(pair.result.id, pair.result.name, pair.result.status, score, reason)
+    return HeldBack(pair.roster.id, pair.roster.name, "missing", score, reason)
 
 
 def unmatched_path(out_path: str | os.PathLike) -> Path:
