@@ -158,7 +158,7 @@ def read_roster(path: str | os.PathLike) -> Roster:
                               where=Location(name, 1))
     header_line, header = rows[0]
     header = tuple(cell.strip() for cell in header)
-    kind = _kind(header)
+    kind = header_format(header)
     if kind is None:
         raise AssignmentError(
             "expected a roster header: a Canvas gradebook export (Student,ID,SIS User ID,"
@@ -219,7 +219,12 @@ def _records(text: str, delimiter: str, name: str) -> list[tuple[int, list[str]]
     return rows
 
 
-def _kind(header: tuple[str, ...]) -> str | None:
+def header_format(header: tuple[str, ...]) -> str | None:
+    """The roster format a header row belongs to (see module doc), or ``None``.
+
+    >>> header_format(("Student", "ID", "SIS User ID", "Section")), header_format(("x",))
+    ('canvas', None)
+    """
     low = {h.lower() for h in header}
     if {"student", "id"} <= low and low & {"sis user id", "sis login id", "section"}:
         return "canvas"

@@ -3,7 +3,13 @@
 from __future__ import annotations
 
 import json
+import os
+import re
 import shutil
+import subprocess
+import sys
+import textwrap
+import zipfile
 from pathlib import Path
 
 from click.testing import CliRunner
@@ -57,3 +63,152 @@ def test_a_broken_assignment_still_writes_results_and_exits_2(tmp_path):
     assert "hw.yaml" in outcome.output and "Traceback" not in outcome.output
     assert data["score"] == 0.0 and data["tests"] == []
     assert data["output"].startswith("The autograder could not grade this submission: ")
+
+
+def run_with(tmp_path, *extra):
+    results = tmp_path / "results.json"
+    args = ["gradescope", str(ASSIGNMENT), "--submission", str(tmp_path / "sub"),
+            "--results", str(results), "--metadata", str(tmp_path / "meta.json"), *extra]
+    outcome = CliRunner().invoke(main, args)
+    return outcome, json.loads(results.read_text())
+
+
+def test_visibility_option_reaches_the_results_and_every_test(tmp_path):
+    shutil.copytree(ADA, tmp_path / "sub")
+    outcome, data = run_with(tmp_path, "--visibility", "after_due_date")
+    assert outcome.exit_code == 0
+    assert data["visibility"] == "after_due_date"
+    assert {t["visibility"] for t in data["tests"]} == {"after_due_date"}
+
+
+def test_a_broken_assignment_keeps_the_chosen_visibility(tmp_path):
+    broken = tmp_path / "hw.yaml"
+    broken.write_text("id: hw\ntitle: HW\nproblems: 3\n")
+    args = ["gradescope", str(broken), "--submission", str(tmp_path / "sub"), "--results",
+            str(tmp_path / "r.json"), "--metadata", str(tmp_path / "m.json"),
+            "--visibility", "hidden"]
+    assert CliRunner().invoke(main, args).exit_code == 2
+    assert json.loads((tmp_path / "r.json").read_text())["visibility"] == "hidden"
+
+
+def test_an_unknown_visibility_is_refused(tmp_path):
+    outcome = CliRunner().invoke(main, ["gradescope", str(ASSIGNMENT), "--visibility", "public"])
+    assert outcome.exit_code == 2 and "'public' is not one of" in outcome.output
+
+
+def expected_lines(data) -> dict[str, list[str]]:
+    return {t["name"].split(":")[0]: [line for line in t["output"].splitlines()
+                                      if line.startswith("Expected: ")] for t in data["tests"]}
+
+
+def test_an_empty_upload_is_never_shown_the_expected_answers(tmp_path):
+    (tmp_path / "sub").mkdir()
+    _, data = run_with(tmp_path)
+    assert all(lines == [] for lines in expected_lines(data).values())
+    assert "Expected" not in json.dumps(data)
+
+
+def test_expected_answers_are_shown_only_for_the_objectives_answered(tmp_path):
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "answers.txt").write_text(
+        "bowling_3_15_4_pendulum.acc_mag = 1 ft/s^2\n"
+        "bowling_3_15_8_connected_blocks.xdot =   \n")
+    _, data = run_with(tmp_path)
+    shown = {name for name, lines in expected_lines(data).items() if lines}
+    assert shown == {"bowling_3_15_4_pendulum/acc_mag"}
+
+
+def zip_of(path, members: dict[str, bytes]) -> None:
+    import zipfile
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
+        for name, data in members.items():
+            archive.writestr(name, data)
+
+
+def test_a_zipped_folder_is_found_and_the_file_read_is_reported(tmp_path):
+    (tmp_path / "sub").mkdir()
+    zip_of(tmp_path / "sub" / "hw1.zip",
+           {"hw1/answers.yaml": (ADA / "answers.yaml").read_bytes(),
+            "__MACOSX/hw1/._answers.yaml": b"\0\0junk"})
+    outcome, data = run_with(tmp_path)
+    assert outcome.exit_code == 0
+    assert outcome.output == (f"submission: 19 / 19 points (read hw1.zip/hw1/answers.yaml); "
+                              f"wrote {tmp_path / 'results.json'}\n")
+    assert data["score"] == 19.0
+    assert "read 'hw1.zip/hw1/answers.yaml' as the answers file" in data["output"].splitlines()
+
+
+def test_a_renamed_single_file_is_read_and_named(tmp_path):
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "my_answers.txt").write_bytes(
+        (ROOT / "examples/hw1/submissions/bob_roe/answers.txt").read_bytes())
+    outcome, data = run_with(tmp_path)
+    assert outcome.output.startswith("submission: 14 / 19 points (read my_answers.txt); ")
+    assert "read 'my_answers.txt' as the answers file" in data["output"]
+
+
+def documented_script(name: str) -> str:
+    """The script ``name`` exactly as docs/exports.md shows it (a ```sh block naming it)."""
+    text = (ROOT / "docs" / "exports.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```sh\n(.*?)```", text, re.S)
+    (script,) = [b for b in blocks if b.splitlines()[1].startswith(f"# {name}:")]
+    return script
+
+
+SHIMS = {
+    # Gradescope's image has apt-get, python3 and a network; the test stands in for them and
+    # runs the real mechgrade of this checkout in the venv setup.sh makes.
+    "apt-get": 'echo "apt-get $*" >> "$SHIM_LOG"\n',
+    "python3": textwrap.dedent("""\
+        if [ "$1" = "-m" ] && [ "$2" = "venv" ]; then
+            mkdir -p "$3/bin"
+            pip='echo "pip $*" >> "$SHIM_LOG"; [ -f "$2/pyproject.toml" ]'
+            printf '#!/usr/bin/env bash\\n%s\\n' "$pip" > "$3/bin/pip"
+            chmod +x "$3/bin/pip"
+            ln -s "$MECHGRADE" "$3/bin/mechgrade"
+            exit 0
+        fi
+        exit 1
+        """),
+}
+
+
+def test_documented_setup_and_run_autograder_grade_a_zipped_upload(tmp_path):
+    root = tmp_path / "autograder"
+    source = root / "source"
+    source.mkdir(parents=True)
+    for name in ("setup.sh", "run_autograder"):
+        (source / name).write_text(documented_script(name))
+        (source / name).chmod(0o755)
+    copy = source / "mechgrade"
+    copy.mkdir()
+    shutil.copy(ROOT / "pyproject.toml", copy)
+    for folder in ("examples", "problems"):
+        shutil.copytree(ROOT / folder, copy / folder)
+    shims = tmp_path / "shims"
+    shims.mkdir()
+    for name, body in SHIMS.items():
+        (shims / name).write_text("#!/usr/bin/env bash\n" + body)
+        (shims / name).chmod(0o755)
+    env = {**os.environ, "AUTOGRADER_ROOT": str(root), "SHIM_LOG": str(tmp_path / "log"),
+           "PATH": f"{shims}{os.pathsep}{os.environ['PATH']}",
+           "MECHGRADE": str(Path(sys.executable).with_name("mechgrade"))}
+    setup = subprocess.run(["bash", str(source / "setup.sh")], env=env, cwd=source,
+                           capture_output=True, text=True, timeout=60)
+    assert setup.returncode == 0, setup.stderr
+    assert (tmp_path / "log").read_text().splitlines() == [
+        "apt-get update", "apt-get install -y python3-pip python3-venv",
+        f"pip install {copy}"]
+    (root / "submission").mkdir()
+    with zipfile.ZipFile(root / "submission" / "hw1.zip", "w") as archive:
+        archive.writestr("hw1/answers.yaml", (ADA / "answers.yaml").read_bytes())
+    (root / "submission_metadata.json").write_text(json.dumps(
+        {"users": [{"name": "Ada Lovelace", "sid": "10001", "email": "ada@uni.example"}]}))
+    run = subprocess.run(["bash", str(source / "run_autograder")], env=env, cwd=source,
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout == (f"10001: 19 / 19 points (read hw1.zip/hw1/answers.yaml); wrote "
+                          f"{root / 'results' / 'results.json'}\n")
+    data = json.loads((root / "results" / "results.json").read_text())
+    assert data["score"] == 19.0 and data["visibility"] == "after_due_date"
+    assert len(data["tests"]) == 8

@@ -11,8 +11,14 @@ from click.testing import CliRunner
 
 from mechgrade.cli import main
 
+ROOT = Path(__file__).resolve().parents[2]
 DATA = Path(__file__).parent.parent / "data" / "export"
 RESULTS = str(DATA / "results.json")
+
+
+def read_csv(path: Path, encoding: str = "utf-8") -> list[list[str]]:
+    with open(path, encoding=encoding, newline="") as handle:
+        return list(csv.reader(handle))
 
 
 @pytest.fixture
@@ -31,12 +37,49 @@ def test_export_canvas_with_roster_writes_file_and_warns(run, tmp_path):
     assert result.stderr == (
         f"warning: {DATA / 'canvas_gradebook.csv'}:11: skipped Canvas test student "
         "'Student, Test'\n"
-        "warning: x-ghost (Ghost Student) is not in the roster; written after the roster "
-        "students\n"
-        "warning: 70007 (Only Roster) has no submission; written with 0\n")
-    with open(out, encoding="utf-8", newline="") as handle:
-        rows = list(csv.reader(handle))
-    assert len(rows) == 2 + 7 + 1
+        "warning: 70007 (Only Roster) has no submission; written with 0\n"
+        f"warning: 1 row kept out of {out} because Canvas could not import it: see "
+        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
+        "or export again with --roster set to the gradebook exported from Canvas\n")
+    assert len(read_csv(out)) == 2 + 7
+    assert read_csv(tmp_path / "unmatched.csv")[1][0] == "x-ghost"
+
+
+def test_readme_example_round_trips_into_the_rosters_column(run, tmp_path):
+    hw1 = ROOT / "examples" / "hw1"
+    graded = run("grade", str(hw1 / "assignment.yaml"), str(hw1 / "submissions"),
+                 "--roster", str(hw1 / "roster.csv"), "--out", str(tmp_path / "out"))
+    assert graded.exit_code == 0
+    out = tmp_path / "out" / "canvas.csv"
+    result = run("export", str(tmp_path / "out" / "results.json"), "--format", "canvas",
+                 "--roster", str(hw1 / "roster.csv"), "--out", str(out))
+    assert result.exit_code == 0
+    assert result.stderr == (f"warning: {hw1 / 'roster.csv'}:13: skipped Canvas test student "
+                             "'Student, Test'\n")
+    roster = read_csv(hw1 / "roster.csv", encoding="utf-8-sig")
+    rows = read_csv(out)
+    assert rows[0] == roster[0] and rows[0][-1] == "Homework 1 (40211)"
+    assert [row[1] for row in rows[2:]] == [row[1] for row in roster[2:-1]]
+
+
+def test_canvas_assignment_option_names_the_column(run, tmp_path):
+    out = tmp_path / "canvas.csv"
+    result = run("export", RESULTS, "--format", "canvas", "--roster",
+                 str(DATA / "canvas_gradebook.csv"), "--canvas-assignment", "48100",
+                 "--out", str(out))
+    assert result.exit_code == 0
+    assert read_csv(out)[0][-1] == "Homework 2 (48100)"
+
+
+def test_an_unknown_canvas_assignment_is_one_message_and_exit_2(run, tmp_path):
+    result = run("export", RESULTS, "--format", "canvas", "--roster",
+                 str(DATA / "canvas_gradebook.csv"), "--canvas-assignment", "Homework 9",
+                 "--out", str(tmp_path / "c.csv"))
+    assert result.exit_code == 2
+    assert result.stderr == ("canvas_assignment: expected one of the roster's assignment "
+                             "columns ('Homework 2 (48100)', 'Homework 3 (48213)') or its "
+                             "Canvas id, found 'Homework 9'\n")
+    assert not (tmp_path / "c.csv").exists()
 
 
 def test_export_blank_and_bom_flags_reach_the_file(run, tmp_path):
@@ -146,3 +189,20 @@ def test_report_of_a_missing_file_is_one_message_and_exit_2(run, tmp_path):
     assert result.exit_code == 2
     assert result.stderr == f"{tmp_path / 'nope.json'}: expected a results.json file, found no " \
                             "such file\n"
+
+
+def test_moodle_export_holds_back_rows_and_says_so(run, tmp_path):
+    out = tmp_path / "moodle.csv"
+    result = run("export", RESULTS, "--format", "moodle", "--roster",
+                 str(DATA / "moodle_grades.csv"), "--missing", "blank", "--out", str(out))
+    assert result.exit_code == 0
+    assert result.stderr == (
+        f"warning: 6 rows kept out of {out} because Moodle could not import them: see "
+        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
+        "or export again with --roster set to the grades exported from Moodle\n")
+    held = read_csv(tmp_path / "unmatched.csv")
+    assert held[1] == ["s1004", "Missing Mo", "missing", "",
+                       "no grade (no submission and --missing blank); Moodle clears the grade "
+                       "of a row imported with feedback only"]
+    assert [row[0] for row in read_csv(out)[1:]] == [
+        "ada@uni.example", "emilie@uni.example", "mallory@uni.example"]

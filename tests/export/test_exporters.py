@@ -11,7 +11,10 @@ import pytest
 
 from mechgrade.errors import ExportError
 from mechgrade.export import EXPORTERS, ExportOptions, export, match_roster
+from mechgrade.export.canvas import canvas_column
+from mechgrade.export.moodle import moodle_names
 from mechgrade.grade.results import GradeReport
+from mechgrade.roster import Roster, RosterStudent
 
 FORMULA_STARTS = ("=", "+", "@", "\t", "\r")
 
@@ -30,41 +33,156 @@ def assert_no_formula(rows: list[list[str]]) -> None:
 
 # --- Canvas ------------------------------------------------------------------------------------
 
-def test_canvas_without_roster_has_the_canvas_header_and_points_possible(report, tmp_path):
+ROOT = Path(__file__).resolve().parents[2]
+UNMATCHED_HEADER = ["id", "name", "status", "score", "reason"]
+NO_CANVAS_ID = "no Canvas user ID or SIS id to match it by (not from a Canvas gradebook export)"
+
+
+def canvas_report(report: GradeReport) -> GradeReport:
+    """The test results as if graded with a Canvas gradebook export as roster (x-ghost: not)."""
+    ids = {"s1001": "70001", "s1002": "70002", "s1003": "70003", "s1004": "70004"}
+    students = tuple(
+        replace(s, identity=(("Student", s.name), ("ID", ids[s.id]), ("SIS User ID", s.id),
+                             ("SIS Login ID", ""), ("Section", "ME 301-01")))
+        if s.id in ids else s for s in report.students)
+    return replace(report, students=students)
+
+
+def test_canvas_without_roster_holds_back_rows_without_a_canvas_id(report, tmp_path):
     out = tmp_path / "canvas.csv"
-    EXPORTERS["canvas"](report, out)
+    warnings = EXPORTERS["canvas"](canvas_report(report), out)
     rows = read_csv(out)
-    assert rows[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section",
-                       "Homework 3 (hw3)"]
+    assert rows[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Homework 3"]
     assert rows[1] == ["    Points Possible", "", "", "", "", "10"]
-    assert len(rows) == 2 + len(report.students)
+    assert [row[1] for row in rows[2:]] == ["70001", "70002", "70003", "70004"]
+    assert rows[3] == ["Émilie du Châtelet", "70002", "s1002", "", "ME 301-01", "5.5"]
+    assert rows[4][0].startswith("'=HYPERLINK(")
     assert all(len(row) == 6 for row in rows)
-    by_id = {row[1]: row for row in rows[2:]}
-    assert by_id["s1002"][0] == "Émilie du Châtelet" and by_id["s1002"][5] == "5.5"
-    assert by_id["s1003"][0].startswith("'=HYPERLINK(")
-    assert by_id["s1004"][5] == "0"
     assert_no_formula(rows)
+    # A folder name in Canvas's numeric ID column could match another user: never written.
+    assert read_csv(tmp_path / "unmatched.csv") == [
+        UNMATCHED_HEADER,
+        ["s1005", "Unreadable Uma", "unreadable", "0", NO_CANVAS_ID],
+        ["s1006", "Seán O'Brien", "graded", "3", NO_CANVAS_ID],
+        ["x-ghost", "Ghost Student", "graded", "7", NO_CANVAS_ID]]
+    assert warnings == (
+        "the Canvas assignment column 'Homework 3' has no Canvas assignment id: Canvas fills "
+        "the assignment of exactly that title or creates a new one; name it with "
+        "--canvas-assignment (its id, as in 'Title (12345)')",
+        f"3 rows kept out of {out} because Canvas could not import them: see "
+        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
+        "or export again with --roster set to the gradebook exported from Canvas")
+
+
+def test_canvas_without_any_canvas_identity_writes_no_student_row(report, tmp_path):
+    out = tmp_path / "canvas.csv"
+    EXPORTERS["canvas"](report, out, options=ExportOptions(canvas_assignment="48213"))
+    rows = read_csv(out)
+    assert rows == [["Student", "ID", "SIS User ID", "SIS Login ID", "Section",
+                     "Homework 3 (48213)"], ["    Points Possible", "", "", "", "", "10"]]
+    assert len(read_csv(tmp_path / "unmatched.csv")) == 1 + len(report.students)
+
+
+def test_canvas_with_a_plain_roster_matches_by_sis_id_with_the_id_left_blank(report, tmp_path):
+    roster = Roster((RosterStudent("r1", "Ada Lovelace", sis_user_id="s1001"),
+                     RosterStudent("r2", "Bob Roe")), "plain", ("id", "name", "sis_user_id"))
+    EXPORTERS["canvas"](report, tmp_path / "canvas.csv", roster=roster)
+    rows = read_csv(tmp_path / "canvas.csv")
+    assert rows[2:] == [["Ada Lovelace", "", "s1001", "", "", "10"]]
+    held = read_csv(tmp_path / "unmatched.csv")
+    assert held[1] == ["r2", "Bob Roe", "missing", "0", NO_CANVAS_ID]
+    assert [row[4] for row in held[2:]] == ["not in the roster"] * 6
 
 
 def test_canvas_with_canvas_roster_writes_every_roster_student_back(report, canvas_roster,
                                                                      tmp_path):
     out = tmp_path / "canvas.csv"
-    EXPORTERS["canvas"](report, out, roster=canvas_roster)
+    warnings = EXPORTERS["canvas"](report, out, roster=canvas_roster)
     rows = read_csv(out)
     # The roster's own column for the assignment is reused, so Canvas updates it in place.
     assert rows[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section",
                        "Homework 3 (48213)"]
     body = rows[2:]
     ids = [row[1] for row in body]
-    assert ids[:7] == [s.id for s in canvas_roster.students]
-    assert [row[:5] for row in body[:7]] == \
+    assert ids == [s.id for s in canvas_roster.students]
+    assert [row[:5] for row in body] == \
         [[("'" + v if v.startswith("=") else v) for _, v in s.columns]
          for s in canvas_roster.students]
     grade = {row[1]: row[5] for row in body}
     assert grade["70001"] == "10" and grade["70006"] == "3"  # Seán matched by name
     assert grade["70007"] == "0"  # in the roster, no submission
-    assert body[-1][0] == "Ghost Student" and body[-1][1] == "x-ghost" and body[-1][5] == "7"
     assert "70099" not in ids  # the Canvas test student
+    assert read_csv(tmp_path / "unmatched.csv") == [
+        UNMATCHED_HEADER,
+        ["x-ghost", "Ghost Student", "graded", "7", "not in the roster"]]
+    assert warnings == (
+        "70007 (Only Roster) has no submission; written with 0",
+        f"1 row kept out of {out} because Canvas could not import it: see "
+        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
+        "or export again with --roster set to the gradebook exported from Canvas")
+
+
+def test_the_bundled_example_round_trips_into_the_rosters_own_column(tmp_path):
+    """mechgrade grade + export of examples/hw1 fill 'Homework 1 (40211)', every student."""
+    from mechgrade.grade.assignment import load_assignment
+    from mechgrade.grade.run import grade_submissions
+    from mechgrade.roster import read_roster
+
+    hw1 = ROOT / "examples" / "hw1"
+    roster = read_roster(hw1 / "roster.csv")
+    graded = grade_submissions(load_assignment(hw1 / "assignment.yaml"), hw1 / "submissions",
+                               roster)
+    out = tmp_path / "canvas.csv"
+    assert EXPORTERS["canvas"](graded, out, roster=roster) == ()
+    rows = read_csv(out)
+    with open(hw1 / "roster.csv", encoding="utf-8-sig", newline="") as handle:
+        exported = list(csv.reader(handle))
+    assert rows[0] == exported[0]
+    assert [row[:5] for row in rows[2:]] == [row[:5] for row in exported[2:-1]]
+    assert [row[5] for row in rows[2:]][:2] == ["19", "14"]
+    assert not (tmp_path / "unmatched.csv").exists()
+
+
+def roster_with(columns: list[str]) -> Roster:
+    return Roster((), "canvas", ("Student", "ID", "SIS User ID", "SIS Login ID", "Section",
+                                 *columns, "Current Score"))
+
+
+@pytest.mark.parametrize("wanted, column", [
+    (None, "Homework 3 (48213)"), ("48100", "Homework 2 (48100)"),
+    ("Homework 2 (48100)", "Homework 2 (48100)"), ("homework 2", "Homework 2 (48100)")])
+def test_canvas_assignment_is_named_or_picked_from_the_roster(report, wanted, column):
+    roster = roster_with(["Homework 2 (48100)", "Homework 3 (48213)"])
+    assert canvas_column(report, roster, wanted) == column
+
+
+def test_canvas_assignment_is_the_only_assignment_column_whatever_its_title(report):
+    assert canvas_column(report, roster_with(["HW three (777)"])) == "HW three (777)"
+
+
+def test_canvas_assignment_without_a_roster_takes_the_given_name_or_id(report):
+    assert canvas_column(report, None, "40211") == "Homework 3 (40211)"
+    assert canvas_column(report, None, "Homework 3 (40211)") == "Homework 3 (40211)"
+    assert canvas_column(report, None) == "Homework 3"
+
+
+def test_an_ambiguous_canvas_assignment_is_an_error_listing_the_candidates(report):
+    roster = roster_with(["Homework 1 (1)", "Homework 2 (2)"])
+    with pytest.raises(ExportError) as caught:
+        canvas_column(report, roster)
+    assert str(caught.value) == (
+        "canvas_assignment: expected one Canvas assignment column for 'Homework 3' in the "
+        "roster, found 2: 'Homework 1 (1)', 'Homework 2 (2)'; choose one with "
+        "--canvas-assignment (its title or id)")
+
+
+def test_a_canvas_assignment_not_in_the_roster_is_an_error(report):
+    roster = roster_with(["Homework 1 (1)", "Homework 2 (2)"])
+    with pytest.raises(ExportError) as caught:
+        canvas_column(report, roster, "99")
+    assert str(caught.value) == (
+        "canvas_assignment: expected one of the roster's assignment columns "
+        "('Homework 1 (1)', 'Homework 2 (2)') or its Canvas id, found '99'")
 
 
 def test_canvas_missing_blank_leaves_the_grade_empty(report, canvas_roster, tmp_path):
@@ -75,6 +193,12 @@ def test_canvas_missing_blank_leaves_the_grade_empty(report, canvas_roster, tmp_
     grade = {row[1]: row[5] for row in rows[1:]}
     assert grade["70007"] == "" and grade["70004"] == "" and grade["70005"] == "0"
     assert rows[1][0] != "    Points Possible"
+
+
+def test_an_import_file_named_unmatched_csv_is_refused(report, canvas_roster, tmp_path):
+    with pytest.raises(ExportError, match="expected an import file name other than "
+                                          "'unmatched.csv'"):
+        EXPORTERS["canvas"](report, tmp_path / "unmatched.csv", roster=canvas_roster)
 
 
 def test_roster_matching_reports_who_is_not_in_the_roster(report, canvas_roster):
@@ -96,30 +220,99 @@ def test_an_ambiguous_name_matches_nobody(report, canvas_roster):
 
 def test_moodle_has_key_columns_grade_and_feedback(report, moodle_roster, tmp_path):
     out = tmp_path / "moodle.csv"
-    EXPORTERS["moodle"](report, out, roster=moodle_roster)
+    warnings = EXPORTERS["moodle"](report, out, roster=moodle_roster)
     rows = read_csv(out)
     assert rows[0] == ["Email address", "ID number", "First name", "Last name",
                        "Assignment: Homework 3 (Real)", "Assignment: Homework 3 (Feedback)"]
     by_email = {row[0]: row for row in rows[1:]}
-    assert set(s.email for s in moodle_roster.students) <= set(by_email)
+    assert set(by_email) == {s.email for s in moodle_roster.students}
     emilie = by_email["emilie@uni.example"]
     assert emilie[1:5] == ["s1002", "Émilie", "du Châtelet", "5.5"]
     assert "p1/a_B: partial 1/4 (dropped the Coriolis term)" in emilie[5].splitlines()
     assert by_email["only@uni.example"][4] == "0"
     assert by_email["only@uni.example"][5] == "No submission received."
-    # Uma has no ID number in Moodle and the results carry no email: both sides are kept.
     assert by_email["uma@uni.example"][4] == "0"
-    assert any(row[3] == "Uma" or row[2] == "Unreadable" for row in rows[1:] if row[0] == "")
     assert_no_formula(rows)
+    # Rows Moodle cannot match would abort the whole import: they are held back.
+    assert read_csv(tmp_path / "unmatched.csv") == [
+        UNMATCHED_HEADER,
+        ["s1005", "Unreadable Uma", "unreadable", "0", "not in the roster"],
+        ["s1006", "Seán O'Brien", "graded", "3", "not in the roster"],
+        ["x-ghost", "Ghost Student", "graded", "7", "not in the roster"]]
+    assert warnings == (
+        "uma@uni.example (Uma Unreadable) has no submission; written with 0",
+        "s1007 (Roster Only) has no submission; written with 0",
+        f"3 rows kept out of {out} because Moodle could not import them: see "
+        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
+        "or export again with --roster set to the grades exported from Moodle")
 
 
-def test_moodle_can_be_keyed_by_id_number(report, tmp_path):
+def test_moodle_never_writes_a_row_with_a_blank_user_key(report, moodle_roster, tmp_path):
     out = tmp_path / "moodle.csv"
-    EXPORTERS["moodle"](report, out, options=ExportOptions(moodle_key="idnumber"))
+    EXPORTERS["moodle"](report, out, roster=moodle_roster,
+                        options=ExportOptions(moodle_key="idnumber"))
+    assert all(row[0] for row in read_csv(out))
+    held = read_csv(tmp_path / "unmatched.csv")
+    assert held[1] == ["uma@uni.example", "Uma Unreadable", "missing", "0",
+                       "no ID number to match the Moodle user by (one unknown user aborts the "
+                       "whole Moodle import)"]
+
+
+def test_moodle_without_a_roster_warns_that_the_keys_are_unchecked(report, tmp_path):
+    out = tmp_path / "moodle.csv"
+    warnings = EXPORTERS["moodle"](report, out, options=ExportOptions(moodle_key="idnumber"))
     rows = read_csv(out)
     assert rows[0][:2] == ["ID number", "Email address"]
     assert rows[0][4:] == ["Homework 3 (Real)", "Homework 3 (Feedback)"]
-    assert len(rows) == 1 + len(report.students)
+    assert [row[0] for row in rows[1:]] == []  # the results carry no ID number
+    assert len(read_csv(tmp_path / "unmatched.csv")) == 1 + len(report.students)
+    EXPORTERS["moodle"](report, out)
+    warnings = EXPORTERS["moodle"](report, out)
+    assert warnings[0] == (
+        f"{out} was written without the grades exported from Moodle as --roster, so its "
+        "Email address values are unchecked: Moodle aborts the whole import if one of them is "
+        "not a Moodle user")
+    assert [row[0] for row in read_csv(out)[1:]] == [
+        "ada@uni.example", "emilie@uni.example", "mallory@uni.example"]
+
+
+def test_moodle_feedback_is_html_escaped_so_student_text_survives(report, moodle_roster,
+                                                                   tmp_path):
+    ada = report.students[0]
+    hostile = replace(ada, messages=("<script>alert(1)</script> & <b>x</b>",))
+    EXPORTERS["moodle"](replace(report, students=(hostile,)), tmp_path / "m.csv",
+                        roster=moodle_roster)
+    feedback = read_csv(tmp_path / "m.csv")[1][5]
+    assert feedback.splitlines()[0] == \
+        "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &lt;b&gt;x&lt;/b&gt;"
+    assert "<" not in feedback
+
+
+@pytest.mark.parametrize("status, missing, why", [
+    ("not_evaluated", "zero",
+     "not evaluated: mechgrade failed on this student (see the internal errors)"),
+    ("missing", "blank", "no submission and --missing blank")])
+def test_moodle_never_writes_feedback_without_a_grade(report, moodle_roster, tmp_path, status,
+                                                      missing, why):
+    ada = replace(report.students[0], status=status)
+    EXPORTERS["moodle"](replace(report, students=(ada,)), tmp_path / "m.csv",
+                        roster=moodle_roster, options=ExportOptions(missing=missing))
+    assert "ada@uni.example" not in {row[0] for row in read_csv(tmp_path / "m.csv")}
+    assert ["s1001", "Ada Lovelace", status, "", f"no grade ({why}); Moodle clears the grade "
+            "of a row imported with feedback only"] in read_csv(tmp_path / "unmatched.csv")
+
+
+def test_moodle_names_from_a_canvas_roster_split_at_the_comma(report, canvas_roster, tmp_path):
+    EXPORTERS["moodle"](report, tmp_path / "m.csv", roster=canvas_roster)
+    names = {row[1]: row[2:4] for row in read_csv(tmp_path / "m.csv")[1:]}
+    assert names["s1002"] == ["Émilie", "du Châtelet"]
+    assert names["s1007"] == ["Only", "Roster"]
+
+
+def test_moodle_does_not_guess_where_a_name_without_a_comma_splits():
+    assert moodle_names(RosterStudent("1", "Mary Ann Smith"), None) == ("Mary Ann Smith", "")
+    assert moodle_names(RosterStudent("1", "x", columns=(("Student", "Smith (TA), John"),)),
+                        None) == ("John", "Smith (TA)")
 
 
 # --- Gradescope --------------------------------------------------------------------------------
@@ -235,6 +428,7 @@ def test_json_export_round_trips_and_adds_missing_roster_students(report, canvas
 @pytest.mark.parametrize("fmt", ["canvas", "moodle", "grades-csv", "long-csv"])
 def test_every_csv_export_round_trips_unicode_and_honours_the_bom_option(report, tmp_path, fmt):
     plain, bom = tmp_path / "plain.csv", tmp_path / "bom.csv"
+    report = canvas_report(report) if fmt == "canvas" else report
     export(report, fmt, plain)
     export(report, fmt, bom, options=ExportOptions(excel_bom=True))
     assert not plain.read_bytes().startswith(b"\xef\xbb\xbf")

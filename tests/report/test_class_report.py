@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import subprocess
 from dataclasses import replace
 from pathlib import Path
 
@@ -98,3 +99,53 @@ def test_report_opens_in_headless_chromium_without_console_errors(report, tmp_pa
     for marker in ('id="histogram"', 'id="success-chart"', 'id="objective-table"',
                    'id="problem-table"', 'id="issue-table"', "<svg", "<rect"):
         assert marker in dom
+
+
+def large_class(n: int = 300) -> GradeReport:
+    """``n`` students, every fifth one without a submission, the rest with one answer missing."""
+    objectives = (ObjectiveInfo("p1", "v", "speed", 2.0), ObjectiveInfo("p1", "a", "accel", 2.0))
+    students = []
+    for i in range(n):
+        if i % 5 == 0:
+            students.append(StudentResult(f"s{i:04d}", f"Student {i}", "missing", 0.0, 4.0,
+                                          messages=("no submission file found",)))
+            continue
+        answers = (AnswerResult("p1", "v", "3 m/s", "correct", 2.0, 2.0),
+                   AnswerResult("p1", "a", None, "missing", 0.0, 2.0))
+        students.append(StudentResult(f"s{i:04d}", f"Student {i}", "graded", 2.0, 4.0, answers))
+    return GradeReport(AssignmentInfo("hw", "HW"), objectives, tuple(students))
+
+
+def test_a_long_issue_list_is_folded_and_its_count_is_a_summary_card():
+    html = render_class_report(class_statistics(large_class(), charts=False))
+    assert '<details id="issues-details">' in html
+    assert "<summary>300 students with a missing or unreadable submission or answer</summary>" \
+        in html
+    assert re.search(r'id="issues-card"><b>300</b>', html)
+
+
+def test_a_short_issue_list_stays_open(report):
+    html = render_class_report(class_statistics(report, charts=False))
+    assert '<details id="issues-details" open>' in html
+    assert re.search(r'id="issues-card"><b>3</b>', html)
+
+
+def test_a_300_student_report_stays_short_in_chromium(tmp_path, chromium):
+    """The page of a 300-student class, drawn by Chromium, ends within 5000 pixels (the
+    unfolded issue table alone took some 14000)."""
+    from PIL import Image
+
+    out = tmp_path / "class_report.html"
+    write_class_report(large_class(), out)
+    dom, _ = chromium(out)
+    assert '<details id="issues-details">' in dom
+    tall = tmp_path / "tall.png"
+    subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu",
+                    f"--user-data-dir={tmp_path / 'tall-profile'}", f"--screenshot={tall}",
+                    "--window-size=1200,12000", out.as_uri()],
+                   capture_output=True, timeout=120, check=True)
+    page = Image.open(tall).convert("L")
+    width, height = page.size
+    inked = [y for y in range(0, height, 20)
+             if any(page.getpixel((x, y)) < 240 for x in range(0, width, 10))]
+    assert 1500 < max(inked) < 5000

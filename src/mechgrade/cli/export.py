@@ -7,7 +7,8 @@ from pathlib import Path
 import click
 
 from ..errors import ExportError
-from ..export import EXPORTERS, ExportOptions, match_roster, read_results
+from ..files import clean_text
+from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
 from ..report.class_report import write_class_report
 from ..roster import read_roster
@@ -40,10 +41,13 @@ DEFAULT_OUT = {
               show_default=True, help="Moodle: the column Moodle maps users by.")
 @click.option("--visibility", type=click.Choice(list(GRADESCOPE_VISIBILITIES)),
               default="visible", show_default=True, help="Gradescope: visibility of the tests.")
+@click.option("--canvas-assignment", default=None, metavar="TITLE_OR_ID",
+              help="Canvas: the assignment column to fill, as 'Title (12345)', its title or "
+                   "its Canvas id (default: picked from a Canvas gradebook roster).")
 @reports_errors
 def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path | None,
                    missing: str, excel_bom: bool, no_points_possible: bool, moodle_key: str,
-                   visibility: str) -> None:
+                   visibility: str, canvas_assignment: str | None) -> None:
     """Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a spreadsheet."""
     report = read_results(results_json)
     class_roster = read_roster(roster) if roster is not None else None
@@ -52,20 +56,14 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
         raise ExportError(f"{out}: expected an output path other than the results file itself")
     options = ExportOptions(missing=missing, excel_bom=excel_bom,
                             points_possible=not no_points_possible,
-                            gradescope_visibility=visibility, moodle_key=moodle_key)
-    EXPORTERS[fmt](report, out, roster=class_roster, options=options)
+                            gradescope_visibility=visibility, moodle_key=moodle_key,
+                            canvas_assignment=canvas_assignment)
+    warnings = EXPORTERS[fmt](report, out, roster=class_roster, options=options)
     if class_roster is not None:
         for line, reason in class_roster.skipped:
-            click.echo(f"warning: {roster}:{line}: skipped {reason}", err=True)
-        if fmt != "gradescope":
-            matched = match_roster(report, class_roster)
-            for result in matched.not_in_roster:
-                click.echo(f"warning: {result.id} ({result.name}) is not in the roster; "
-                           "written after the roster students", err=True)
-            for student in matched.no_submission:
-                written = "0" if missing == "zero" else "a blank grade"
-                click.echo(f"warning: {student.id} ({student.name}) has no submission; "
-                           f"written with {written}", err=True)
+            click.echo(clean_text(f"warning: {roster}:{line}: skipped {reason}"), err=True)
+    for warning in warnings:
+        click.echo(clean_text(f"warning: {warning}"), err=True)
     click.echo(f"wrote {fmt} export of {len(report.students)} "
                f"{'result' if len(report.students) == 1 else 'results'} to {out}")
 

@@ -12,9 +12,11 @@ import click
 from ..errors import MechgradeError, brief_exception
 from ..files import clean_text, write_json
 from ..export.gradescope import gradescope_failure, gradescope_results
+from ..export.options import GRADESCOPE_VISIBILITIES, ExportOptions
+from ..export.upload import read_upload
 from ..grade.assignment import load_assignment
 from ..grade.run import grade_plan, plan_assignment
-from ..grade.submissions import SubmissionSet, read_student_folder
+from ..grade.submissions import SubmissionSet
 from .common import INTERNAL_ERROR_EXIT, UserFailure, main
 
 
@@ -33,43 +35,50 @@ def student_of(metadata_path: Path) -> tuple[str, str]:
 @click.argument("assignment", type=click.Path(dir_okay=False, path_type=Path))
 @click.option("--submission", "submission_dir", default="/autograder/submission",
               show_default=True, type=click.Path(file_okay=False, path_type=Path),
-              help="The student's uploaded files (answers.yaml, .json or .txt).")
+              help="The student's upload: answers.yaml (.json, .txt), a renamed answers file "
+                   "or a zipped folder holding one.")
 @click.option("--results", "results_path", default="/autograder/results/results.json",
               show_default=True, type=click.Path(dir_okay=False, path_type=Path),
               help="Where Gradescope expects results.json.")
 @click.option("--metadata", "metadata_path", default="/autograder/submission_metadata.json",
               show_default=True, type=click.Path(dir_okay=False, path_type=Path),
               help="Gradescope's submission metadata (names the student; optional).")
+@click.option("--visibility", type=click.Choice(list(GRADESCOPE_VISIBILITIES)),
+              default="visible", show_default=True,
+              help="Visibility of the results and tests; 'after_due_date' keeps revealed "
+                   "answers from students until the due date.")
 def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
-               metadata_path: Path) -> None:
+               metadata_path: Path, visibility: str) -> None:
     """Grade one Gradescope submission against ASSIGNMENT and write results.json.
 
     A broken assignment still writes a results.json that says why (score 0), and exits 2.
     """
     student, name = student_of(metadata_path)
+    options = ExportOptions(gradescope_visibility=visibility)
     try:
         plan = plan_assignment(load_assignment(assignment))
-        submission = read_student_folder(submission_dir, student, keys=plan.keys)
-        report = grade_plan(plan, SubmissionSet(submission_dir, (submission,)))
+        upload = read_upload(submission_dir, student, keys=plan.keys)
+        report = grade_plan(plan, SubmissionSet(submission_dir, (upload.submission,)))
         result = report.students[0]
         if name and not result.name:
             result = replace(result, name=name)
-        write_json(results_path, gradescope_results(report, result))
+        write_json(results_path, gradescope_results(report, result, options))
     except MechgradeError as err:
-        _write_failure(results_path, str(err))
+        _write_failure(results_path, str(err), options)
         raise UserFailure(str(err)) from None
     except Exception as exc:  # noqa: BLE001 - Gradescope must always get a results.json
         message = (f"internal error while grading this submission: {brief_exception(exc)}; "
                    f"please tell your instructor")
-        _write_failure(results_path, message)
+        _write_failure(results_path, message, options)
         click.echo(message, err=True)
         sys.exit(INTERNAL_ERROR_EXIT)
-    click.echo(clean_text(f"{student}: {result.score:g} / {result.max_score:g} points; wrote "
-                          f"{results_path}"))
+    read = f" (read {upload.read_from})" if upload.read_from else ""
+    click.echo(clean_text(f"{student}: {result.score:g} / {result.max_score:g} points{read}; "
+                          f"wrote {results_path}"))
 
 
-def _write_failure(results_path: Path, message: str) -> None:
+def _write_failure(results_path: Path, message: str, options: ExportOptions) -> None:
     try:
-        write_json(results_path, gradescope_failure(message))
+        write_json(results_path, gradescope_failure(message, options))
     except MechgradeError:
         pass  # the message still reaches the autograder log through stderr

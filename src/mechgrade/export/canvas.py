@@ -3,12 +3,15 @@
 Canvas imports a CSV shaped like its own gradebook export: the identity columns
 ``Student,ID,SIS User ID,SIS Login ID,Section`` then one column per assignment, titled
 ``Assignment Title (canvas assignment id)``, and an optional second row ``Points Possible``.
-Canvas finds the student by ``ID`` (then SIS ids) and the assignment by the id in brackets; a
-column without a known id creates a new assignment.
+Canvas finds the assignment by the id in brackets (without one, by exact title; a title it does
+not know creates a new assignment), and the student by ``ID`` read as an integer, then the SIS
+ids, then the name.
 
-When the roster is a Canvas gradebook export, the file is written back with that export's own
-identity columns, one row per roster student, and reuses the roster's column for this
-assignment when its title matches (so Canvas updates it instead of creating a new one).
+So the file holds only rows Canvas can match: a row's ``ID`` must come from Canvas (a Canvas
+gradebook export given as roster, now or when grading); without one, a row with a SIS id is
+written with ``ID`` blank; every other row (a student not in the roster, a folder name where
+Canvas expects its user id: ``"000421"`` is read as user 421) goes to ``unmatched.csv``
+(:mod:`mechgrade.export.unmatched`).
 """
 
 from __future__ import annotations
@@ -16,61 +19,140 @@ from __future__ import annotations
 import os
 import re
 
+from ..errors import ExportError, Location
 from ..grade.results import GradeReport, StudentResult
-from ..roster import Roster, RosterStudent
+from ..roster import Roster, header_format
 from .cells import write_csv
-from .common import max_score, score_cell
-from .matching import identity_value, match_roster
+from .common import max_score, no_submission_warnings, score_cell
+from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
+from .unmatched import HeldBack, held_back, write_unmatched
 
 CANVAS_IDENTITY = ("Student", "ID", "SIS User ID", "SIS Login ID", "Section")
 _COLUMN = re.compile(r"(?P<title>.*\S)\s*\((?P<id>\d+)\)")
+_REMEDY = ("enter those grades in Canvas by hand, or export again with --roster set to the "
+           "gradebook exported from Canvas")
 
 
 def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
-                  roster: Roster | None = None, options: ExportOptions = ExportOptions()) -> None:
-    """Write a Canvas gradebook import CSV (see module doc) for every roster student and result."""
-    identity = roster.identity_header if roster is not None and roster.format == "canvas" \
-        else CANVAS_IDENTITY
-    rows: list[list[object]] = [[*identity, canvas_column(report, roster)]]
+                  roster: Roster | None = None,
+                  options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
+    """Write a Canvas gradebook import CSV (see module doc); return the warnings to show."""
+    canvas_roster = roster is not None and roster.format == "canvas"
+    identity = roster.identity_header if canvas_roster else CANVAS_IDENTITY
+    column = canvas_column(report, roster, options.canvas_assignment)
+    rows: list[list[object]] = [[*identity, column]]
     if options.points_possible:
         rows.append(["    Points Possible", *([""] * (len(identity) - 1)), max_score(report)])
-    for pair in match_roster(report, roster).pairs:
-        cells = _identity_cells(identity, pair.roster, pair.result)
-        rows.append([*cells, score_cell(pair.result, options)])
+    held: list[HeldBack] = []
+    match = match_roster(report, roster)
+    for pair in match.pairs:
+        cells = _identity_cells(identity, pair, roster)
+        score = score_cell(pair.result, options)
+        if isinstance(cells, str):
+            held.append(held_back(pair, score, cells))
+        else:
+            rows.append([*cells, score])
     write_csv(out_path, rows, excel_bom=options.excel_bom)
+    warnings = list(no_submission_warnings(match, options))
+    if not _COLUMN.fullmatch(column):
+        warnings.append(f"the Canvas assignment column {column!r} has no Canvas assignment id: "
+                        "Canvas fills the assignment of exactly that title or creates a new "
+                        "one; name it with --canvas-assignment (its id, as in 'Title (12345)')")
+    return (*warnings, *write_unmatched(out_path, held, "Canvas", _REMEDY))
 
 
-def canvas_column(report: GradeReport, roster: Roster | None) -> str:
-    """The assignment column: the roster's own column for it if any, else ``Title (id)``.
+def assignment_columns(roster: Roster) -> tuple[str, ...]:
+    """The assignment columns of a Canvas gradebook export: those titled ``Title (id)``.
+
+    Totals (``Current Score``...) carry no id and are no assignments.
+    """
+    identity = set(roster.identity_header)
+    return tuple(c for c in roster.header if c not in identity and _COLUMN.fullmatch(c.strip()))
+
+
+def canvas_column(report: GradeReport, roster: Roster | None, wanted: str | None = None) -> str:
+    """The title of the assignment column to fill.
+
+    ``wanted`` (``--canvas-assignment``) names it by column title, title or numeric Canvas id;
+    with a Canvas gradebook export as roster it must be one of the export's assignment columns
+    (:func:`assignment_columns`). Without ``wanted``, the roster's column is the one whose title
+    (case aside) or id equals the assignment's, else the only assignment column of the roster;
+    anything else is ambiguous and an error listing the candidates. Without a Canvas roster the
+    column is ``wanted`` (an id gets the assignment title in front) or the assignment title.
 
     >>> from mechgrade.grade.results import AssignmentInfo
-    >>> canvas_column(GradeReport(AssignmentInfo("hw1", "Homework 1"), ()), None)
-    'Homework 1 (hw1)'
+    >>> report = GradeReport(AssignmentInfo("hw1", "Homework 1"), ())
+    >>> canvas_column(report, None), canvas_column(report, None, "40211")
+    ('Homework 1', 'Homework 1 (40211)')
     """
     title, ident = report.assignment.title.strip(), report.assignment.id.strip()
-    if roster is not None and roster.format == "canvas":
-        for column in roster.header:
-            found = _COLUMN.fullmatch(column.strip())
-            if found and (found["title"].casefold() == title.casefold() or found["id"] == ident):
-                return column
-    return f"{title} ({ident})"
+    candidates = assignment_columns(roster) if roster is not None and \
+        roster.format == "canvas" else ()
+    if wanted is not None and wanted.strip():
+        wanted = wanted.strip()
+        if not candidates:
+            return f"{title} ({wanted})" if wanted.isdigit() else wanted
+        hits = [c for c in candidates if _names(c, wanted)]
+        if len(hits) == 1:
+            return hits[0]
+        raise ExportError(f"expected one of the roster's assignment columns "
+                          f"({_listing(candidates)}) or its Canvas id, found {wanted!r}"
+                          + (f", which names {len(hits)} of them" if hits else ""),
+                          where=Location(field="canvas_assignment"))
+    if not candidates:
+        return title
+    hits = [c for c in candidates if _names(c, title) or _names(c, ident)]
+    if len(hits) == 1:
+        return hits[0]
+    if not hits and len(candidates) == 1:
+        return candidates[0]
+    found = hits or candidates
+    raise ExportError(f"expected one Canvas assignment column for {title!r} in the roster, "
+                      f"found {len(found)}: {_listing(found)}; choose one with "
+                      "--canvas-assignment (its title or id)",
+                      where=Location(field="canvas_assignment"))
 
 
-def _identity_cells(identity: tuple[str, ...], student: RosterStudent | None,
-                    result: StudentResult | None) -> list[str]:
-    if student is not None and student.columns and \
-            tuple(name for name, _ in student.columns) == identity:
-        return [value for _, value in student.columns]
-    if student is not None:
+def _names(column: str, wanted: str) -> bool:
+    found = _COLUMN.fullmatch(column.strip())
+    return column.strip() == wanted or found["id"] == wanted or \
+        found["title"].casefold() == wanted.casefold()
+
+
+def _listing(columns) -> str:
+    return ", ".join(repr(c) for c in columns)
+
+
+def _identity_cells(identity: tuple[str, ...], pair: Pair, roster: Roster | None
+                    ) -> list[str] | str:
+    """The identity cells of a row, or why Canvas could not match it."""
+    student, result = pair.roster, pair.result
+    if student is None and roster is not None:
+        return "not in the roster"
+    if student is not None and roster.format == "canvas":
+        if tuple(name for name, _ in student.columns) == identity:
+            return [value for _, value in student.columns]
         known = {"student": student.name, "id": student.id, "sis user id": student.sis_user_id,
                  "sis login id": student.sis_login_id, "section": student.section}
         return [known.get(name.lower(), "") for name in identity]
-    assert result is not None
-    own = {k.strip().lower(): v for k, v in result.identity}
-    known = {"student": result.name,
-             "id": identity_value(result, "canvas_id") or result.id,
-             "sis user id": identity_value(result, "sis_user_id"),
-             "sis login id": identity_value(result, "sis_login_id"),
-             "section": own.get("section", "")}
-    return [known.get(name.lower(), own.get(name.lower(), "")) for name in identity]
+    canvas = _canvas_identity(result)
+    sis_user = canvas.get("sis user id") or (student.sis_user_id if student else "") \
+        or (identity_value(result, "sis_user_id") if result else "")
+    sis_login = canvas.get("sis login id") or (student.sis_login_id if student else "") \
+        or (identity_value(result, "sis_login_id") if result else "")
+    if not (canvas.get("id") or sis_user or sis_login):
+        return "no Canvas user ID or SIS id to match it by (not from a Canvas gradebook export)"
+    known = {"student": canvas.get("student") or (student.name if student else result.name),
+             "id": canvas.get("id", ""), "sis user id": sis_user, "sis login id": sis_login,
+             "section": canvas.get("section") or (student.section if student else "")}
+    return [known.get(name.lower(), "") for name in identity]
+
+
+def _canvas_identity(result: StudentResult | None) -> dict[str, str]:
+    """A result's identity columns (lower-cased names) if they came from a Canvas gradebook
+    export when grading; its ``ID`` is then a Canvas user id."""
+    if result is None or header_format(tuple(k for k, _ in result.identity)) != "canvas":
+        return {}
+    return {k.strip().lower(): v for k, v in result.identity}
+

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ..grade.results import AnswerResult, GradeReport, ObjectiveInfo, StudentResult
+from .matching import RosterMatch
 from .options import ExportOptions
 
 
@@ -55,3 +56,16 @@ def answers_by_objective(report: GradeReport, result: StudentResult | None
 def objective_label(objective: ObjectiveInfo) -> str:
     """The column name of an objective: ``problem/objective``."""
     return f"{objective.problem}/{objective.objective}"
+
+
+def not_in_roster_warnings(match: RosterMatch) -> tuple[str, ...]:
+    """One warning per result no roster student claimed, written after the roster students."""
+    return tuple(f"{r.id} ({r.name}) is not in the roster; written after the roster students"
+                 for r in match.not_in_roster)
+
+
+def no_submission_warnings(match: RosterMatch, options: ExportOptions) -> tuple[str, ...]:
+    """One warning per roster student without a submission, saying what grade they get."""
+    written = "0" if options.missing == "zero" else "a blank grade"
+    return tuple(f"{s.id} ({s.name}) has no submission; written with {written}"
+                 for s in match.no_submission)

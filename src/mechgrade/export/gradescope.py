@@ -7,6 +7,11 @@ has a top-level ``score`` (it overrides the sum of the tests), ``output``, ``vis
 ``"failed"``), ``name``, ``number``, ``output`` and ``visibility``. mechgrade writes one test per
 objective and sets every ``*_format`` to ``"text"`` so student text is never rendered as HTML.
 
+Students can resubmit without limit, so whatever a test shows can be harvested with empty
+uploads: an expected answer (an assignment with ``reveal_answers``) is shown only in the test of
+an objective the student answered, never to an upload that answered nothing. Pair it with the
+visibility ``after_due_date`` to show it only once the due date has passed.
+
 With one student in the report the file is written at ``out_path``; with several, ``out_path``
 is a folder that receives ``<student id>.json`` per student (for inspection; Gradescope itself
 always grades one submission at a time).
@@ -37,14 +42,14 @@ from .options import ExportOptions
 
 def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
                       roster: Roster | None = None,
-                      options: ExportOptions = ExportOptions()) -> None:
+                      options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write Gradescope ``results.json`` (see module doc). The roster is not used."""
     if not report.students:
         raise ExportError("expected at least one student in the results for a Gradescope "
                           "results.json, found none")
     if len(report.students) == 1:
         write_json(out_path, gradescope_results(report, report.students[0], options))
-        return
+        return ()
     folder = Path(out_path)
     try:
         folder.mkdir(exist_ok=True)
@@ -54,6 +59,7 @@ def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
     names = safe_file_names([student.id for student in report.students])
     for student, name in zip(report.students, names):
         write_json(folder / f"{name}.json", gradescope_results(report, student, options))
+    return ()
 
 
 def gradescope_failure(message: str, options: ExportOptions = ExportOptions()) -> dict:
@@ -79,7 +85,7 @@ def gradescope_results(report: GradeReport, student: StudentResult,
             lines.append(f"Read as: {answer.read_back}")
         lines.append(f"Verdict: {answer.verdict.replace('_', ' ')}")
         lines.extend(text for text in (answer.diagnosis, answer.feedback) if text)
-        if answer.expected is not None:
+        if answer.expected is not None and (answer.answer or "").strip():
             lines.append(f"Expected: {answer.expected}")
         name = objective_label(objective)
         tests.append({

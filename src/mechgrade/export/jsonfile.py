@@ -9,17 +9,21 @@ from dataclasses import replace
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster
 from .cells import write_json
-from .common import max_score
+from .common import max_score, no_submission_warnings, not_in_roster_warnings
 from .matching import match_roster
 from .options import ExportOptions
 
 
 def export_json(report: GradeReport, out_path: str | os.PathLike, *,
-                roster: Roster | None = None, options: ExportOptions = ExportOptions()) -> None:
+                roster: Roster | None = None,
+                options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write the ``results.json`` document (``GradeReport.to_json``)."""
+    warnings: tuple[str, ...] = ()
     if roster is not None:
         students = []
-        for pair in match_roster(report, roster).pairs:
+        match = match_roster(report, roster)
+        warnings = (*not_in_roster_warnings(match), *no_submission_warnings(match, options))
+        for pair in match.pairs:
             if pair.result is not None:
                 students.append(pair.result)
             else:
@@ -29,3 +33,4 @@ def export_json(report: GradeReport, out_path: str | os.PathLike, *,
                     identity=pair.roster.columns))
         report = replace(report, students=tuple(students))
     write_json(out_path, report.to_json())
+    return warnings

@@ -28,6 +28,9 @@ class ExportOptions:
     so Excel reads accents right. ``points_possible``: write Canvas's ``Points Possible`` row.
     ``gradescope_visibility``: visibility of the Gradescope tests. ``moodle_key``: the column
     Moodle should map users by, written first (``"email"`` or ``"idnumber"``).
+    ``canvas_assignment``: the Canvas assignment to fill, as its column title
+    (``"Homework 1 (40211)"``), its title, or its numeric Canvas id (``"40211"``); ``None``
+    picks it from the roster (:func:`mechgrade.export.canvas.canvas_column`).
     """
 
     missing: str = "zero"
@@ -35,6 +38,7 @@ class ExportOptions:
     points_possible: bool = True
     gradescope_visibility: str = "visible"
     moodle_key: str = "email"
+    canvas_assignment: str | None = None
 
     def __post_init__(self) -> None:
         for field, allowed in (("missing", MISSING_POLICIES),

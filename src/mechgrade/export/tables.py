@@ -13,8 +13,8 @@ import os
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster, RosterStudent
 from .cells import write_csv
-from .common import (answers_by_objective, has_submission, max_score, objective_label,
-                     score_cell)
+from .common import (answers_by_objective, has_submission, max_score, no_submission_warnings,
+                     not_in_roster_warnings, objective_label, score_cell)
 from .matching import match_roster
 from .options import ExportOptions
 
@@ -25,12 +25,13 @@ LONG_HEADER = ("student", "name", "problem", "objective", "answer", "verdict", "
 
 def export_grades_csv(report: GradeReport, out_path: str | os.PathLike, *,
                       roster: Roster | None = None,
-                      options: ExportOptions = ExportOptions()) -> None:
+                      options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write ``grades.csv``: per-objective points and the total of every student."""
     rows: list[list[object]] = [[*GRADES_FIXED, *(objective_label(o) for o in report.objectives),
                                  "total", "max"]]
     total = max_score(report)
-    for pair in match_roster(report, roster).pairs:
+    match = match_roster(report, roster)
+    for pair in match.pairs:
         ident, name = _who(pair.roster, pair.result)
         status = pair.result.status if pair.result is not None else "missing"
         if has_submission(pair.result):
@@ -40,14 +41,16 @@ def export_grades_csv(report: GradeReport, out_path: str | os.PathLike, *,
             points = [score_cell(None, options)] * len(report.objectives)
         rows.append([ident, name, status, *points, score_cell(pair.result, options), total])
     write_csv(out_path, rows, excel_bom=options.excel_bom)
+    return _roster_warnings(match, roster, options)
 
 
 def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
                     roster: Roster | None = None,
-                    options: ExportOptions = ExportOptions()) -> None:
+                    options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write ``results.csv``: one row per student and objective, with answer and diagnosis."""
     rows: list[list[object]] = [list(LONG_HEADER)]
-    for pair in match_roster(report, roster).pairs:
+    match = match_roster(report, roster)
+    for pair in match.pairs:
         ident, name = _who(pair.roster, pair.result)
         for objective, answer in answers_by_objective(report, pair.result):
             points = answer.points if has_submission(pair.result) else score_cell(None, options)
@@ -55,6 +58,7 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
                          answer.answer or "", answer.verdict, points, answer.max_points,
                          answer.diagnosis or ""])
     write_csv(out_path, rows, excel_bom=options.excel_bom)
+    return _roster_warnings(match, roster, options)
 
 
 def _who(student: RosterStudent | None, result: StudentResult | None) -> tuple[str, str]:
@@ -62,3 +66,9 @@ def _who(student: RosterStudent | None, result: StudentResult | None) -> tuple[s
         return student.id, student.name
     assert result is not None
     return result.id, result.name
+
+
+def _roster_warnings(match, roster: Roster | None, options: ExportOptions) -> tuple[str, ...]:
+    if roster is None:
+        return ()
+    return (*not_in_roster_warnings(match), *no_submission_warnings(match, options))

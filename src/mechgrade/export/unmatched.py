@@ -1,0 +1,76 @@
+"""Rows an LMS cannot match to one of its users: kept out of the import file, written to
+``unmatched.csv`` next to it, and announced by one warning.
+
+An LMS import that meets a row it cannot match does harm: Canvas opens an "unknown student"
+dialog (or, reading ``ID`` as an integer, gives the grade to another user), Moodle aborts the
+whole import. So such rows never go into the import file.
+
+>>> import tempfile, pathlib
+>>> out = pathlib.Path(tempfile.mkdtemp()) / "canvas.csv"
+>>> held = [HeldBack("zz", "Ghost", "graded", 7.0, "not in the roster")]
+>>> (warning,) = write_unmatched(out, held, "Canvas", "enter it by hand")
+>>> print(warning.replace(str(out.parent), "out"))  # doctest: +NORMALIZE_WHITESPACE
+1 row kept out of out/canvas.csv because Canvas could not import it: see out/unmatched.csv
+for who and why; enter it by hand
+>>> (out.parent / "unmatched.csv").read_text().splitlines()
+['id,name,status,score,reason', 'zz,Ghost,graded,7,not in the roster']
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import ExportError, Location
+from .cells import write_csv
+from .matching import Pair
+
+UNMATCHED_NAME = "unmatched.csv"
+UNMATCHED_HEADER = ("id", "name", "status", "score", "reason")
+
+
+@dataclass(frozen=True)
+class HeldBack:
+    """One row kept out of an import file: who, their grade cell, and why."""
+
+    id: str
+    name: str
+    status: str
+    score: float | str
+    reason: str
+
+
+def held_back(pair: Pair, score: float | str, reason: str) -> HeldBack:
+    """The row of ``pair`` (its result, else its roster student) held back for ``reason``."""
+    if pair.result is not None:
+        return HeldBack(pair.result.id, pair.result.name, pair.result.status, score, reason)
+    return HeldBack(pair.roster.id, pair.roster.name, "missing", score, reason)
+
+
+def unmatched_path(out_path: str | os.PathLike) -> Path:
+    """Where the held-back rows of the import file ``out_path`` go: ``unmatched.csv`` beside it.
+
+    >>> unmatched_path("out/canvas.csv").as_posix()
+    'out/unmatched.csv'
+    """
+    path = Path(out_path).with_name(UNMATCHED_NAME)
+    if Path(out_path).name == UNMATCHED_NAME:
+        raise ExportError(f"expected an import file name other than {UNMATCHED_NAME!r}, which "
+                          "receives the rows the LMS cannot match", where=Location(str(out_path)))
+    return path
+
+
+def write_unmatched(out_path: str | os.PathLike, rows: list[HeldBack], lms: str,
+                    remedy: str) -> tuple[str, ...]:
+    """Write ``rows`` to :func:`unmatched_path` and return the warning about them (none when
+    every row matched; no file is written then)."""
+    path = unmatched_path(out_path)
+    if not rows:
+        return ()
+    write_csv(path, [UNMATCHED_HEADER,
+                     *([r.id, r.name, r.status, r.score, r.reason] for r in rows)])
+    count = "1 row" if len(rows) == 1 else f"{len(rows)} rows"
+    them = "it" if len(rows) == 1 else "them"
+    return (f"{count} kept out of {out_path} because {lms} could not import {them}: see "
+            f"{path} for who and why; {remedy}",)
