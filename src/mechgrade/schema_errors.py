@@ -4,16 +4,17 @@ Every file mechgrade checks against a JSON Schema (problem files, assignments, `
 reports a violation the same way: where (the path to the field, ``students[3].status``), what
 was expected and what was found. A schema can word what it expects in its own terms with the
 annotation ``"x-expected"`` on the failing sub-schema (``"x-expected": "an equation 'left =
-right'"``), which replaces the generic wording of any keyword.
+right'"``), which replaces the generic wording of any keyword, and a mapping that takes keys by
+pattern can word them with ``"x-fields"``.
 
 >>> schema = {"type": "object", "required": ["id"], "additionalProperties": False,
 ...           "properties": {"id": {"type": "string"},
 ...                          "status": {"enum": ["graded", "missing"]}}}
 >>> for problem in schema_problems(schema, {"id": 3, "status": "great", "x": 1}):
 ...     print(problem)
-(top level): expected only the fields id, status, found 'x'
-id: expected a string, found 3
+id: expected text, found 3
 status: expected one of graded, missing, found 'great'
+x: expected only the fields id, status, found 'x'
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ import jsonschema
 
 Path = tuple[str | int, ...]
 
-_TYPES = {"object": "a mapping", "array": "a list", "string": "a string", "number": "a number",
+_TYPES = {"object": "a mapping", "array": "a list", "string": "text", "number": "a number",
           "integer": "a whole number", "boolean": "true or false", "null": "null"}
 
 
@@ -79,12 +80,14 @@ def explain(err: jsonschema.ValidationError) -> SchemaProblem:
                             for m in needed if m not in found)
         return SchemaProblem(path, f"expected a field '{missing}' with '{key}', found none")
     if kind == "additionalProperties":
+        # Located at the unknown key itself; "x-fields" words what else a mapping takes.
         allowed = list(schema.get("properties", {}))
         patterns = schema.get("patternProperties", {})
         extra = next(key for key in found if key not in allowed
                      and not any(re.search(p, key) for p in patterns))
-        listing = ", ".join(allowed) if allowed else "none"
-        return SchemaProblem(path, f"expected only the fields {listing}, found '{extra}'")
+        listing = schema.get("x-fields") or (", ".join(allowed) if allowed else "none")
+        return SchemaProblem(path + (extra,),
+                             f"expected only the fields {listing}, found '{extra}'")
     if kind == "type":
         types = wanted if isinstance(wanted, list) else [wanted]
         return SchemaProblem(path, f"expected {' or '.join(_TYPES.get(t, t) for t in types)}, "
@@ -105,7 +108,8 @@ def explain(err: jsonschema.ValidationError) -> SchemaProblem:
     if kind in ("minLength", "maxLength"):
         bound = "at least" if kind == "minLength" else "at most"
         return SchemaProblem(path, f"expected {bound} {wanted} character(s), found "
-                                   f"{describe(found)}")
+                                   f"{len(found) if found else 'empty text'}"
+                                   f"{' characters' if found else ''}")
     if kind in ("minProperties", "maxProperties"):
         bound = "at least" if kind == "minProperties" else "at most"
         return SchemaProblem(path, f"expected {bound} {wanted} field(s), found "
@@ -123,15 +127,15 @@ def explain(err: jsonschema.ValidationError) -> SchemaProblem:
 def describe(value: object) -> str:
     """A found value, briefly: ``'text'``, ``3``, ``true``, ``null``, ``a list of 2``.
 
-    >>> describe("x" * 50), describe([]), describe({"a": 1}), describe(None)
-    ("'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx...'", 'an empty list', 'a mapping', 'null')
+    >>> describe("x" * 50), describe([]), describe({"a": 1}), describe({}), describe(None)
+    ("'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx...'", 'an empty list', 'a mapping', 'an empty mapping', 'null')
     """
     if value is None:
         return "null"
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, dict):
-        return "a mapping"
+        return "a mapping" if value else "an empty mapping"
     if isinstance(value, list):
         return f"a list of {len(value)}" if value else "an empty list"
     if isinstance(value, str):

@@ -52,20 +52,20 @@ DELETE = object()
     (("students", 1, "score"), True, "students[1].score: expected a number, found true"),
     (("students", 0, "id"), DELETE, "students[0]: expected a field 'id', found none"),
     (("students", 0, "answers", 1, "answer"), 3,
-     "students[0].answers[1].answer: expected a string or null, found 3"),
-    (("students", 0, "messages"), ["ok", 4], "students[0].messages[1]: expected a string, found 4"),
+     "students[0].answers[1].answer: expected text or null, found 3"),
+    (("students", 0, "messages"), ["ok", 4], "students[0].messages[1]: expected text, found 4"),
     (("students", 0, "identity"), {"email": 5},
-     "students[0].identity.email: expected a string, found 5"),
+     "students[0].identity.email: expected text, found 5"),
     (("students", 0, "grade"), 3,
-     "students[0]: expected only the fields id, name, status, score, max_score, answers, "
+     "students[0].grade: expected only the fields id, name, status, score, max_score, answers, "
      "messages, identity, found 'grade'"),
     (("assignment",), DELETE, "expected a field 'assignment', found none"),
-    (("assignment", "title"), None, "assignment.title: expected a string, found null"),
+    (("assignment", "title"), None, "assignment.title: expected text, found null"),
     (("objectives", 0, "max_points"), DELETE,
      "objectives[0]: expected a field 'max_points', found none"),
     (("skipped",), [{"path": "x"}], "skipped[0]: expected a field 'reason', found none"),
     (("notes",), "a note", "notes: expected a list, found 'a note'"),
-    (("extra",), 1, "expected only the fields assignment, objectives, students, skipped, notes, "
+    (("extra",), 1, "extra: expected only the fields assignment, objectives, students, skipped, notes, "
                     "internal_errors, found 'extra'"),
 ])
 def test_each_violation_is_one_located_message(tmp_path, path, value, message):

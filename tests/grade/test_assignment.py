@@ -90,15 +90,15 @@ def test_assignment_is_frozen(folder):
     ("id: hw1\nproblems: [p.yaml]\n", "hw.yaml:1:1: expected a field 'title', found none"),
     ("id: hw1\ntitle: T\n", "hw.yaml:1:1: expected a field 'problems', found none"),
     (MINIMAL + "due: tomorrow\n",
-     "hw.yaml:4:6: due: expected one of the fields id, points, policy, problems, title, "
+     "hw.yaml:4:6: due: expected only the fields id, title, problems, points, policy, "
      "found 'due'"),
     (MINIMAL + "policy: {reveal: true}\n",
-     "hw.yaml:4:18: policy.reveal: expected one of the fields ecf, missing_unit, "
-     "partial_credit, reveal_answers, sig_figs, tolerance, found 'reveal'"),
+     "hw.yaml:4:18: policy.reveal: expected only the fields reveal_answers, tolerance, "
+     "sig_figs, missing_unit, partial_credit, ecf, found 'reveal'"),
     (MINIMAL + "points: {p: 3}\n",
-     "hw.yaml:4:13: points.p: expected one of the fields 'default' or "
+     "hw.yaml:4:13: points.p: expected only the fields 'default' or "
      "'problem_id.objective_id', found 'p'"),
-    ("id: 12\ntitle: T\nproblems: [p.yaml]\n", "hw.yaml:1:5: id: expected text, found 12"),
+    ("id: 12\ntitle: T\nproblems: [p.yaml]\n", "hw.yaml:1:5: id: expected an id of letters, digits, '_', '-' and '.' (at most 64), found 12"),
     ("id: hw1\ntitle: T\nproblems: p.yaml\n",
      "hw.yaml:3:11: problems: expected a list, found 'p.yaml'"),
     ("id: hw1\ntitle: T\nproblems: [3]\n",
@@ -118,11 +118,11 @@ def test_assignment_is_frozen(folder):
     ("id: hw1\ntitle: T\nproblems: [{path: p.yaml, objectives: []}]\n",
      "hw.yaml:3:39: problems[0].objectives: expected at least 1 item(s), found an empty list"),
     (MINIMAL + "policy: {tolerance: {}}\n",
-     "hw.yaml:4:21: policy.tolerance: expected at least 1 field(s), found none"),
-    ("id: hw1\ntitle: ''\nproblems: [p.yaml]\n", "hw.yaml:2:8: title: expected text, found "
-                                                     "empty text"),
+     "hw.yaml:4:21: policy.tolerance: expected at least 1 field(s), found an empty mapping"),
+    ("id: hw1\ntitle: ''\nproblems: [p.yaml]\n", "hw.yaml:2:8: title: expected at least 1 character(s), "
+                                                     "found empty text"),
     ("id: hw1\ntitle: " + "x" * 201 + "\nproblems: [p.yaml]\n",
-     "hw.yaml:2:8: title: expected at most 200 characters, found 201"),
+     "hw.yaml:2:8: title: expected at most 200 character(s), found 201 characters"),
     ("id: hw 1\ntitle: T\nproblems: [p.yaml]\n",
      "hw.yaml:1:5: id: expected an id of letters, digits, '_', '-' and '.' (at most 64), "
      "found 'hw 1'"),
@@ -130,8 +130,8 @@ def test_assignment_is_frozen(folder):
      "hw.yaml:3:40: problems[0].objectives[0]: expected an objective id (letters, digits and "
      "'_'), found 'a-b'"),
     (MINIMAL + "policy: {missing_unit: {action: guess}}\n",
-     "hw.yaml:4:33: policy.missing_unit.action: expected one of 'assume', 'penalize', "
-     "'reject', found 'guess'"),
+     "hw.yaml:4:33: policy.missing_unit.action: expected one of assume, penalize, "
+     "reject, found 'guess'"),
     (MINIMAL + "policy: {missing_unit: {credit: 0.5}}\n",
      "hw.yaml:4:24: policy.missing_unit: expected a field 'action', found none"),
     ("id: hw1\ntitle: T\nproblems: [nothere.yaml]\n",

@@ -17,7 +17,6 @@ Errors say ``file:line:col: field.path: message``; when a file has several, each
 from __future__ import annotations
 
 import json
-import re
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -181,16 +180,14 @@ def _float_or_none(value) -> float | None:
 
 def _validate(doc: Document) -> tuple[ProblemRef, ...]:
     """Schema check, then the checks a schema cannot make (files exist, no repeats)."""
-    import jsonschema
+    from ..schema_errors import describe, schema_problems
 
     problems_: list[AssignmentError] = []
     if not isinstance(doc.data, dict):
         raise AssignmentError(f"expected a mapping of fields (id, title, problems...), found "
-                              f"{_describe(doc.data)}", where=doc.where(()))
-    validator = jsonschema.Draft202012Validator(schema())
-    for err in validator.iter_errors(doc.data):
-        path, message = _explain(err)
-        problems_.append(AssignmentError(message, where=doc.where(path)))
+                              f"{describe(doc.data)}", where=doc.where(()))
+    for problem in schema_problems(schema(), doc.data):
+        problems_.append(AssignmentError(problem.message, where=doc.where(problem.path)))
     refs: list[ProblemRef] = []
     if not problems_:
         base = doc.file and Path(doc.file).parent
@@ -236,67 +233,3 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
     return tuple(refs)
 
 
-_TYPE_WORDS = {"string": "text", "object": "a mapping", "array": "a list", "number": "a number",
-               "integer": "a whole number", "boolean": "true or false"}
-
-
-def _describe(value) -> str:
-    if value is None:
-        return "nothing"
-    if isinstance(value, bool):
-        return f"{str(value).lower()}"
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return "a list" if value else "an empty list"
-    if isinstance(value, str):
-        shown = value if len(value) <= 40 else value[:37] + "..."
-        return f"'{shown}'" if value else "empty text"
-    return repr(value)
-
-
-def _explain(err) -> tuple[tuple, str]:
-    """A jsonschema error as (field path, 'expected ..., found ...')."""
-    path = tuple(err.absolute_path)
-    kind, value, found = err.validator, err.validator_value, err.instance
-    if kind == "required":
-        missing = [name for name in value if name not in found]
-        return path, f"expected a field '{missing[0]}', found none"
-    if kind == "additionalProperties":
-        allowed = sorted(err.schema.get("properties", {}))
-        extra = sorted(k for k in found if k not in allowed)
-        for key in extra:
-            pattern_ok = any(re.search(p, key)
-                             for p in err.schema.get("patternProperties", {}))
-            if not pattern_ok:
-                if err.schema.get("patternProperties"):
-                    hint = "'default' or 'problem_id.objective_id'"
-                else:
-                    hint = ", ".join(allowed)
-                return path + (key,), f"expected one of the fields {hint}, found '{key}'"
-        return path, err.message  # pragma: no cover - jsonschema reports only unknown keys
-    if kind == "type":
-        wanted = value if isinstance(value, list) else [value]
-        words = " or ".join(_TYPE_WORDS.get(w, w) for w in wanted)
-        return path, f"expected {words}, found {_describe(found)}"
-    if kind in ("minimum", "maximum"):
-        sign = ">=" if kind == "minimum" else "<="
-        return path, f"expected a number {sign} {value:g}, found {_describe(found)}"
-    if kind == "minItems":
-        return path, f"expected at least {value} item(s), found an empty list"
-    if kind == "minProperties":
-        return path, f"expected at least {value} field(s), found none"
-    if kind == "minLength":
-        return path, "expected text, found empty text"
-    if kind == "maxLength":
-        return path, f"expected at most {value} characters, found {len(found)}"
-    if kind == "pattern":
-        if path == ("id",):
-            what = "an id of letters, digits, '_', '-' and '.' (at most 64)"
-        else:
-            what = "an objective id (letters, digits and '_')"
-        return path, f"expected {what}, found {_describe(found)}"
-    if kind == "enum":
-        choices = ", ".join(f"'{v}'" for v in value)
-        return path, f"expected one of {choices}, found {_describe(found)}"
-    return path, f"expected {err.schema!r}, found {_describe(found)}"  # pragma: no cover
