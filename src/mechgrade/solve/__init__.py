@@ -1,6 +1,7 @@
 """The reference solver: every objective of a problem, derived from its model."""
 
-from .instant import plan, solve
+from .instant import solve
+from .plan import plan
 from .result import MistakeValue, ObjectiveResult, Solution, StateValue
 
 __all__ = ["solve", "plan", "Solution", "ObjectiveResult", "MistakeValue", "StateValue"]

@@ -1,0 +1,110 @@
+"""The lambdified pieces of a problem's kinematics, made once per problem (the cold, symbolic
+part of solving): each level's equations, their Jacobian in the level's unknowns and the size
+their residuals are judged by; the objectives, mistaken models and requirements.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> p = plan(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
+>>> [(level.name, level.linear) for level in p.levels]
+[('position', False), ('velocity', True), ('acceleration', True)]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Callable
+
+import sympy as sp
+
+from ..errors import Location
+from ..mechanics import Kinematics, derive
+from ..spec.model import Problem
+from .index import SymbolIndex
+
+LEVEL_NAMES = ("position", "velocity", "acceleration")
+
+
+@dataclass(frozen=True)
+class Level:
+    """The equations of one level, ``residual(state) = 0``: constraint rows first, then one row
+    per expression given of this level (``conditions``, in order).
+
+    ``jacobian`` is in the level's unknowns (``SymbolIndex.unknowns(order)``); ``linear`` says
+    the equations are linear in them (velocity and acceleration constraints always are).
+    """
+
+    order: int
+    name: str
+    residual: Callable
+    jacobian: Callable
+    scale: Callable
+    labels: tuple[str, ...]
+    wheres: tuple[Location, ...]
+    conditions: tuple[str, ...]
+    linear: bool
+
+    @property
+    def constraint_rows(self) -> int:
+        return len(self.labels) - len(self.conditions)
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A problem's kinematics, ready for numbers: its state layout, its three levels and the
+    objective, mistake and requirement functions (each called with the whole state)."""
+
+    k: Kinematics
+    index: SymbolIndex
+    levels: tuple[Level, Level, Level]
+    objectives: tuple[tuple[str, Callable], ...]
+    mistakes: tuple[tuple[str, tuple[Callable, ...]], ...]
+    requirements: tuple[tuple[str, str, Callable], ...]
+
+
+def _lambdify(symbols, expr):
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True)
+
+
+def _scale(exprs):
+    """Sum of the absolute values of each equation's terms: the size a residual is judged by."""
+    return sp.Matrix([sum((sp.Abs(term) for term in sp.Add.make_args(e)), sp.Integer(0))
+                      for e in exprs])
+
+
+def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
+    symbols = index.symbols
+    unknowns = [symbols[i] for i in index.unknowns(order)]
+    exprs = [e.expr for e in equations] + [c.expr for c in conditions]
+    m = sp.Matrix(exprs) if exprs else sp.zeros(0, 1)
+    jac = m.jacobian(unknowns) if exprs else sp.zeros(0, len(unknowns))
+    linear = order > 0 and not (jac.free_symbols & set(unknowns))
+    return Level(
+        order=order, name=LEVEL_NAMES[order], residual=_lambdify(symbols, m),
+        jacobian=_lambdify(symbols, jac),
+        scale=_lambdify(symbols, _scale(exprs) if exprs else sp.zeros(0, 1)),
+        labels=tuple(e.label for e in equations) + tuple(f"given {c.key}" for c in conditions),
+        wheres=tuple(Location() for _ in equations) + tuple(Location() for _ in conditions),
+        conditions=tuple(c.key for c in conditions), linear=linear)
+
+
+@lru_cache(maxsize=64)
+def plan(problem: Problem) -> Plan:
+    """Derive and lambdify ``problem`` once."""
+    k = derive(problem)
+    index = SymbolIndex.of(k)
+    symbols = index.symbols
+    by_level = {0: [], 1: [], 2: []}
+    for c in k.conditions:
+        by_level[c.level].append(c)
+    levels = tuple(_level(index, order, equations, by_level[order])
+                   for order, equations in enumerate((k.position, k.velocity, k.acceleration)))
+    numeric = {o.id for o in problem.objectives if o.kind != "symbolic"}
+    return Plan(
+        k=k, index=index, levels=levels,
+        objectives=tuple((oid, _lambdify(symbols, expr)) for oid, expr in k.objectives
+                         if oid in numeric),
+        mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs))
+                       for oid, exprs in k.mistakes if oid in numeric),
+        requirements=tuple((oid, reason, _lambdify(symbols, expr))
+                           for oid, reason, expr in k.requirements))
