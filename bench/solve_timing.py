@@ -17,7 +17,7 @@ from mechgrade.errors import MechgradeError
 from mechgrade.mechanics import derive
 from mechgrade.solve import plan
 from mechgrade.solve.instant import _givens, _instants, solve_instant
-from mechgrade.solve.symbolic import symbolic
+from mechgrade.solve.symbolic import symbolic as solve_symbolic
 from mechgrade.spec import load_problem
 
 
@@ -64,7 +64,7 @@ def measure(path: Path):
     start = time.perf_counter()
     for obj in problem.objectives:
         if obj.kind == "symbolic":
-            symbolic(problem, p.k, obj, givens)
+            solve_symbolic(problem, p.k, obj, givens)
     symbolic = time.perf_counter() - start
     return cold, statistics.median(runs) if runs else float("nan"), symbolic, problem.id
 
