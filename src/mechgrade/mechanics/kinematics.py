@@ -17,18 +17,18 @@ symbols — ``theta``, ``thetad``, ``thetadd`` — second derivatives first, so 
 
 from __future__ import annotations
 
-import random
 from dataclasses import dataclass
 from functools import lru_cache
 
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..errors import SolveError
+from ..errors import AuthorWarning, Location, SolveError
 from ..expressions.syntax import Name, Node, Prime, to_text
 from ..spec.model import TIME, Expr, Problem
 from .build import Model, build
-from .symbols import TIME_SYMBOL, as_expr
+from .material import material_warnings
+from .symbols import TIME_SYMBOL, identically_zero
 
 
 @dataclass(frozen=True)
@@ -37,6 +37,7 @@ class Equation:
 
     label: str
     expr: sp.Expr
+    where: Location = Location()
 
 
 @dataclass(frozen=True)
@@ -47,6 +48,7 @@ class Condition:
     key: str
     expr: sp.Expr
     level: int
+    where: Location = Location()
 
 
 @dataclass(frozen=True)
@@ -76,6 +78,8 @@ class Kinematics:
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
     requirements: tuple[tuple[str, str, object], ...]
     constraint_count: int
+    points: tuple[tuple[str, object], ...] = ()
+    warnings: tuple[AuthorWarning, ...] = ()
 
     def objective(self, objective_id: str):
         return dict(self.objectives)[objective_id]
@@ -94,29 +98,14 @@ class Kinematics:
         raise KeyError(node)
 
 
-def _identically_zero(expr: sp.Expr) -> bool:
-    """Whether ``expr`` is zero for all values (checked at random points, then exactly)."""
-    expr = as_expr(expr)
-    if expr == 0:
-        return True
-    symbols = sorted(expr.free_symbols, key=str)
-    rng = random.Random(7)
-    for _ in range(3):
-        point = {s: rng.uniform(0.3, 1.7) for s in symbols}
-        value = complex(as_expr(expr.xreplace(point)).evalf())
-        if abs(value) > 1e-9:
-            return False
-    return True
-
-
 @lru_cache(maxsize=64)
 def derive(problem: Problem) -> Kinematics:
     """Build the kinematics of ``problem``: constraint equations at the position, velocity and
     acceleration levels, given-conditions, and every objective as a plain sympy expression."""
     model = build(problem)
     t = TIME_SYMBOL
-    position_dyn: list[tuple[str, sp.Expr]] = []
-    velocity_dyn: list[tuple[str, sp.Expr]] = []
+    position_dyn: list[tuple[str, sp.Expr, Location]] = []
+    velocity_dyn: list[tuple[str, sp.Expr, Location]] = []
     count = 0
     axes = [f"{problem.inertial_frame}.{a}" for a in "xyz"]
     for c in problem.constraints:
@@ -125,15 +114,17 @@ def derive(problem: Problem) -> Kinematics:
         labels = [f"{c.name} ({axes[i]} component)" for i in range(3)] if len(parts) == 3 \
             else [c.name]
         for label, part in zip(labels, parts):
-            if _identically_zero(model.plain(part)):
+            if identically_zero(model.plain(part)):
                 continue
             count += 1
-            (position_dyn if c.level == "position" else velocity_dyn).append((label, part))
-    velocity_all = [(label, sp.diff(expr, t)) for label, expr in position_dyn] + velocity_dyn
-    acceleration_all = [(label, sp.diff(expr, t)) for label, expr in velocity_all]
+            (position_dyn if c.level == "position" else velocity_dyn).append(
+                (label, part, c.where))
+    velocity_all = [(label, sp.diff(expr, t), where) for label, expr, where in position_dyn] \
+        + velocity_dyn
+    acceleration_all = [(label, sp.diff(expr, t), where) for label, expr, where in velocity_all]
 
     def plain_equations(items):
-        return tuple(Equation(label, model.plain(expr)) for label, expr in items)
+        return tuple(Equation(label, model.plain(expr), where) for label, expr, where in items)
 
     conditions = {}
     for given in problem.givens + tuple(g for o in problem.objectives for g in o.givens):
@@ -142,7 +133,7 @@ def derive(problem: Problem) -> Kinematics:
         if isinstance(node, (Name, Prime)) or key in conditions:
             continue
         expr = model.plain(model.language.value(node))
-        conditions[key] = Condition(key, expr, _level(expr, model))
+        conditions[key] = Condition(key, expr, _level(expr, model), given.where)
 
     objectives = []
     mistakes = []
@@ -161,7 +152,10 @@ def derive(problem: Problem) -> Kinematics:
         position=plain_equations(position_dyn), velocity=plain_equations(velocity_all),
         acceleration=plain_equations(acceleration_all), conditions=tuple(conditions.values()),
         objectives=tuple(objectives), mistakes=tuple(mistakes),
-        requirements=tuple(requirements), constraint_count=count)
+        requirements=tuple(requirements), constraint_count=count,
+        points=tuple((name, model.plain(r.to_matrix(model.inertial)))
+                     for name, r in model.positions.items()),
+        warnings=material_warnings(problem, model))
 
 
 def _level(expr: sp.Expr, model: Model) -> int:

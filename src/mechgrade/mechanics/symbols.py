@@ -10,6 +10,8 @@
 
 from __future__ import annotations
 
+import random
+
 import sympy as sp
 from sympy.physics.vector import Vector, dynamicsymbols
 
@@ -55,3 +57,18 @@ def as_expr(value) -> sp.Expr:
     return value
 
 
+
+
+def identically_zero(expr: sp.Expr) -> bool:
+    """Whether ``expr`` is zero for all values (checked at random points, then exactly)."""
+    expr = as_expr(expr)
+    if expr == 0:
+        return True
+    symbols = sorted(expr.free_symbols, key=str)
+    rng = random.Random(7)
+    for _ in range(3):
+        point = {s: rng.uniform(0.3, 1.7) for s in symbols}
+        value = complex(as_expr(expr.xreplace(point)).evalf())
+        if abs(value) > 1e-9:
+            return False
+    return True

@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import json
+import math
 from functools import lru_cache
 from pathlib import Path
 
@@ -21,7 +22,9 @@ from ..yamlio import Document, read_yaml, read_yaml_text
 from .language import FUNCTIONS
 from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake, Objective,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
-from .validate import validate_problem
+from .solving import (check_solving, expand, given_expression, read_branches, read_definitions,
+                      read_unknowns, resolve_given_values)
+from .validate import RESERVED, validate_problem
 
 SCHEMA_PATH = Path(__file__).with_name("problem.schema.json")
 
@@ -150,6 +153,9 @@ class _Builder:
     def __init__(self, doc: Document):
         self.doc = doc
         self.data = doc.data
+        self.definitions: dict = {}
+        for d in read_definitions(self.data, self.expr, self.where):
+            self.definitions[d.name] = d.expr.node
 
     def where(self, *path) -> Location:
         return self.doc.where(tuple(path))
@@ -163,7 +169,7 @@ class _Builder:
             node = parse(text, functions=FUNCTIONS)
         except ExpressionError as err:
             raise SpecError(err.message, where=where) from None
-        return Expr(text, node, where)
+        return Expr(text, expand(node, self.definitions), where)
 
     def equation(self, text: str, *path) -> tuple[Expr, Expr]:
         left, right = text.split("=")
@@ -171,7 +177,8 @@ class _Builder:
         exprs = []
         for side in (left, right):
             try:
-                exprs.append(Expr(side.strip(), parse(side, functions=FUNCTIONS), where))
+                node = expand(parse(side, functions=FUNCTIONS), self.definitions)
+                exprs.append(Expr(side.strip(), node, where))
             except ExpressionError as err:
                 raise SpecError(err.message, where=where) from None
         return exprs[0], exprs[1]
@@ -218,14 +225,21 @@ class _Builder:
         constraints = tuple(self.constraint(c, i) for i, c in enumerate(d.get("constraints") or []))
         givens = tuple(self.given(k, v, "givens") for k, v in (d.get("givens") or {}).items())
         guesses = tuple(self.given(k, v, "guesses") for k, v in (d.get("guesses") or {}).items())
+        givens = resolve_given_values(givens, coordinates, tuple(parameters))
         objectives = tuple(self.objective(o, i) for i, o in enumerate(d["objectives"]))
+        unknowns = read_unknowns(d, self.expr)
+        branches = read_branches(d, self.expr, self.where)
+        definitions = read_definitions(d, self.expr, self.where)
+        check_solving(coordinates, parameters, givens, unknowns, branches, definitions,
+                      RESERVED | {f.name for f in frames} | {p.name for p in points})
         return Problem(
             id=d["id"], title=d["title"], statement=d["statement"].strip(),
             source=d.get("source", ""), inertial_frame=inertial["frame"],
             inertial_point=inertial["point"], frames=tuple(frames), points=tuple(points),
             coordinates=coordinates, parameters=tuple(parameters), constraints=constraints,
             givens=givens, guesses=guesses, objectives=objectives,
-            consistency=float(d.get("consistency", 5e-3)), path=self.doc.file)
+            consistency=float(d.get("consistency", 5e-3)), path=self.doc.file,
+            unknowns=unknowns, branches=branches, definitions=definitions)
 
     def rotation(self, spec: dict, *path) -> Rotation:
         return Rotation(spec["axis"], self.expr(spec["angle"], *path, "angle"))
@@ -260,6 +274,11 @@ class _Builder:
             try:
                 q = parse_quantity(str(value))
             except UnitError as err:
+                value_expr = given_expression(str(value), self.data.get("givens") or {},
+                                              self.expr, section, key)
+                if value_expr is not None:
+                    return Given(key_expr, math.nan, "", math.nan, str(value), where,
+                                 value_expr=value_expr)
                 raise SpecError(err.message, where=where) from None
             number, unit, text = q.value, q.unit, str(value)
         return Given(key_expr, number, unit, to_si(number, unit), text, where)
