@@ -16,7 +16,8 @@ from pathlib import Path
 from mechgrade.errors import MechgradeError
 from mechgrade.mechanics import derive
 from mechgrade.solve import plan
-from mechgrade.solve.instant import _givens, _instants, solve_instant
+from mechgrade.solve.instant import _givens, _instants
+from mechgrade.solve.numeric import solve_numeric
 from mechgrade.solve.symbolic import symbolic as solve_symbolic
 from mechgrade.spec import load_problem
 
@@ -58,7 +59,7 @@ def measure(path: Path):
         for _ in range(20):
             start = time.perf_counter()
             for givens, numeric in groups:
-                solve_instant(problem, p, givens, numeric)
+                solve_numeric(problem, p, givens, numeric)
             runs.append(time.perf_counter() - start)
     givens = _givens(problem, None)
     start = time.perf_counter()

@@ -27,6 +27,11 @@ def test_solve_prints_each_objective_with_its_unit():
         "  acc_N             (-89.8705, -40.3397, 0) ft/s^2 in N",
         "  acc_A             (-98, 10, 0) ft/s^2 in A",
         "  acc_mag_symbolic  L*sqrt(thetad**4 + thetadd**2)   [ft/s^2; in L, thetad, thetadd]",
+        "State at the instant",
+        "  theta = 30 deg",
+        "  L = 2 ft",
+        "  theta' = 7 rad / s",
+        "  theta'' = 5 rad / s ** 2",
     ]
 
 
@@ -39,6 +44,8 @@ def test_solve_json_is_the_documented_contract():
     assert data["objectives"]["acc_N"]["unit"] == "ft/s^2"
     assert len(data["objectives"]["acc_N"]["value"]) == 3
     assert data["objectives"]["acc_mag"]["expr"] is None
+    assert data["failures"] == {} and data["warnings"] == []
+    assert {"name": "theta", "value": 30.0, "unit": "deg", "given": True} in data["state"]
     assert data["objectives"]["acc_mag_symbolic"] == {
         "value": None, "unit": "ft/s^2", "frame": None,
         "expr": "L*sqrt(thetad**4 + thetadd**2)"}
@@ -52,7 +59,7 @@ def test_solve_steps_follow_the_write_up_order():
     sections = [line for line in result.output.splitlines() if line and not line[0].isspace()]
     assert sections[1:] == ["Frames", "Points", "Coordinates", "Parameters", "Constraints",
                             "Degrees of freedom", "Velocities", "Accelerations",
-                            "Solution at the instant (SI)", "Objectives"]
+                            "Objectives", "State at the instant"]
     assert "  N_V_A = L*thetad*A.y" in result.output
 
 
@@ -97,8 +104,9 @@ def test_check_reports_a_broken_file_among_good_ones(tmp_path):
     assert result.exit_code == 1
     assert result.output.splitlines() == [
         f"FAIL {tmp_path / 'broken.yaml'}",
-        f"  {tmp_path / 'broken.yaml'}: objective 'speed' is not determined by the givens: "
-        "give a value for thetad (velocity level)",
+        f"  {tmp_path / 'broken.yaml'}:18:5: objectives[0]: objective 'speed' is not determined "
+        "by the givens: "
+        "give a value for theta' (velocity level)",
         f"ok   {tmp_path / 'good.yaml'} (1 tests, DOF 1)",
         "2 file(s), 1 failing",
     ]

@@ -2,6 +2,7 @@
 
 from .instant import solve
 from .plan import plan
-from .result import MistakeValue, ObjectiveResult, Solution, StateValue
+from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 
-__all__ = ["solve", "plan", "Solution", "ObjectiveResult", "MistakeValue", "StateValue"]
+__all__ = ["solve", "plan", "Solution", "ObjectiveResult", "MistakeValue", "StateValue",
+           "ObjectiveFailure"]

@@ -21,18 +21,15 @@ from typing import Collection, Mapping
 import numpy as np
 import sympy as sp
 
-from ..errors import SolveError, UnderdeterminedError
+from ..errors import AuthorWarning, MechgradeError, SolveError
 from ..expressions.syntax import Prime, to_text
 from ..spec.model import Objective, Problem
 from ..units import from_si, si_unit
-from .levels import (Givens, State, constraint_rank, evaluate, place_givens, solve_position,
-                     solve_rates)
+from .levels import State, author_units, constraint_rank, evaluate
+from .numeric import solve_numeric
 from .plan import Plan, plan
-from .result import MistakeValue, ObjectiveResult, Solution, StateValue
+from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 from .symbolic import symbolic
-
-PROBE_TOL = 1e-7
-
 
 def _numeric(objective: Objective) -> bool:
     return objective.kind != "symbolic"
@@ -59,85 +56,20 @@ def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
 # ---------------------------------------------------------------------------- numeric solve
 
 
-def _solve_levels(problem: Problem, p: Plan, g: Givens, *,
-                  free_values: Mapping[int, float] | None = None,
-                  shifts: tuple[np.ndarray | None, np.ndarray | None] = (None, None)):
-    """Position, velocity and acceleration levels in turn; the state and the nullspaces of the
-    two rate levels."""
-    state = solve_position(problem, p, g, free_values)
-    state, null_v = solve_rates(problem, p, 1, state, g, shifts[0])
-    state, null_a = solve_rates(problem, p, 2, state, g, shifts[1])
-    return state, null_v, null_a
-
-
-def solve_instant(problem: Problem, p: Plan, givens: Mapping,
-                  only: set[str]) -> tuple[State, dict]:
-    """Solve the instant and evaluate the numeric objectives in ``only``; raise if any of them
-    depends on something the givens leave free."""
-    g = place_givens(problem, p, givens)
-    state, null_v, null_a = _solve_levels(problem, p, g)
-    free_pos = sorted(i for i in state.free if i in p.index.config)
-    base = evaluate(p.objectives, state, only)
-    # Probe each freedom the givens leave: an objective that changes depends on it.
-    depends: dict[str, list[str]] = {}
-    keep = {i: state.values[i] for i in free_pos}
-    probes = [("position", i) for i in free_pos]
-    probes += [("velocity", j) for j in range(null_v.shape[1])]
-    probes += [("acceleration", j) for j in range(null_a.shape[1])]
-    for level, which in probes:
-        if level == "position":
-            trial, *_ = _solve_levels(problem, p, g,
-                                      free_values={which: state.values[which] + 0.37})
-            missing = p.index.spelling(which)
-        else:
-            order = 1 if level == "velocity" else 2
-            null = null_v if order == 1 else null_a
-            z = np.zeros(null.shape[1])
-            z[which] = 0.73
-            shifts = (z, None) if order == 1 else (np.zeros(null_v.shape[1]), z)
-            trial, *_ = _solve_levels(problem, p, g, free_values=keep, shifts=shifts)
-            unknown = [i for i in p.index.rates(order) if not g.known[i]]
-            missing = _rate_names(p, unknown, null[:, which])
-        changed = evaluate(p.objectives, trial, only)
-        for oid, value in base.items():
-            if not _close(value, changed[oid]):
-                depends.setdefault(oid, []).append(f"{missing} ({level} level)")
-    if depends:
-        oid, missing = next(iter(depends.items()))
-        others = [o for o in depends if o != oid]
-        more = f" (also undetermined: {', '.join(others)})" if others else ""
-        raise UnderdeterminedError(
-            f"objective '{oid}' is not determined by the givens: give a value for "
-            f"{' or '.join(missing)}{more}")
-    return state, base
-
-
-def _check_requirements(problem: Problem, p: Plan, state: State, only: set[str]) -> None:
-    """Raise if an objective in ``only`` does not exist at this instant."""
+def _check_requirements(problem: Problem, p: Plan, state: State, only: set[str]) -> dict:
+    """Errors for the objectives in ``only`` that do not exist at this instant."""
     values = evaluate(((oid, f) for oid, _, f in p.requirements), state, only)
+    out = {}
     for oid, reason, _ in p.requirements:
-        if oid in only and abs(float(values[oid][0])) > 1e-9:
-            raise SolveError(f"objective '{oid}' does not exist at this instant: {reason}",
-                             where=problem.objective(oid).where)
+        if oid in only and oid not in out and abs(float(values[oid][0])) > 1e-9:
+            out[oid] = SolveError(f"objective '{oid}' does not exist at this instant: {reason}",
+                                  where=problem.objective(oid).where)
+    return out
 
 
 def _mistake_values(p: Plan, state: State, only: set[str]) -> dict[str, list[np.ndarray]]:
     return {oid: [evaluate((("m", f),), state, {"m"})["m"] for f in funcs]
             for oid, funcs in p.mistakes if oid in only}
-
-
-def _rate_names(p: Plan, unknown: list[int], direction: np.ndarray) -> str:
-    names = [p.index.symbols[i].name for i, w in zip(unknown, direction) if abs(w) > 1e-6]
-    return " or ".join(names) if names else "a rate"
-
-
-def _close(a: np.ndarray, b: np.ndarray) -> bool:
-    if a.shape != b.shape:
-        return False
-    if not (np.isfinite(a).all() and np.isfinite(b).all()):
-        return np.array_equal(np.isfinite(a), np.isfinite(b))
-    scale = max(np.abs(a).max(initial=0.0), 1e-12)
-    return bool(np.abs(a - b).max(initial=0.0) <= PROBE_TOL * scale + 1e-12)
 
 
 # ---------------------------------------------------------------------------- entry point
@@ -150,11 +82,15 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
     ``givens`` overrides given values for this call only: keys are given names as written in
     the spec (``"theta'"``, ``"dot(vel(B, N), B.x)"``), values are SI numbers, ``None`` removes
     a given. Objectives with givens of their own are solved at their own instant.
+
+    An objective that cannot be solved is a failure beside the others' answers
+    (:attr:`Solution.failures`); when none of them can be, the first error is raised.
     """
     p = plan(problem)
-    k = p.k
     results: dict[str, ObjectiveResult] = {}
-    base_state = None
+    failures: dict[str, MechgradeError] = {}
+    warned: list[AuthorWarning] = list(p.k.warnings)
+    base = None
     wanted = set(objectives) if objectives is not None else {o.id for o in problem.objectives}
     unknown = wanted - {o.id for o in problem.objectives}
     if unknown:
@@ -168,21 +104,40 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
         numeric = {o.id for o in objectives if _numeric(o)}
         values, mistakes = {}, {}
         if numeric:
-            state, values = solve_instant(problem, p, given_map, numeric)
-            _check_requirements(problem, p, state, numeric)
-            mistakes = _mistake_values(p, state, numeric)
-            if not overrides or base_state is None:
-                base_state = state
-        for obj in objectives:
-            if obj.kind == "symbolic":
-                frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
-                results[obj.id] = _symbolic_result(problem, obj.id, frozen)
+            try:
+                instant = solve_numeric(problem, p, given_map, numeric)
+            except MechgradeError as err:
+                failures.update({oid: err for oid in numeric})
             else:
-                results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
+                failures.update(instant.errors)
+                failures.update(_check_requirements(problem, p, instant.state, numeric))
+                values = instant.values
+                mistakes = _mistake_values(p, instant.state, numeric)
+                warned += [w for w in instant.warnings if w not in warned]
+                if not overrides or base is None:
+                    base = (instant.state, given_map)
+        for obj in objectives:
+            if obj.id in failures:
+                continue
+            try:
+                if obj.kind == "symbolic":
+                    frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
+                    results[obj.id] = _symbolic_result(problem, obj.id, frozen)
+                else:
+                    results[obj.id] = _numeric_result(obj, values[obj.id],
+                                                      mistakes.get(obj.id, ()))
+            except MechgradeError as err:
+                failures[obj.id] = err
+    order = [o.id for o in problem.objectives if o.id in wanted]
+    if not results:
+        raise failures[order[0]]
     return Solution(problem=problem.id,
-                    results=tuple(results[o.id] for o in problem.objectives if o.id in wanted),
-                    state=_state(problem, p, base_state),
-                    dof=degrees_of_freedom(p, base_state))
+                    results=tuple(results[oid] for oid in order if oid in results),
+                    state=_state(problem, p, base),
+                    dof=degrees_of_freedom(p, base[0] if base else None),
+                    failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
+                                   if oid in failures),
+                    warnings=tuple(warned))
 
 
 def _instants(problem: Problem):
@@ -246,21 +201,23 @@ def _quantity_unit(problem: Problem, node) -> str:
     return si_unit(units[node.id])
 
 
-def _state(problem: Problem, p: Plan, state: State | None) -> tuple[StateValue, ...]:
-    if state is None:
+def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:
+    """The solved coordinates, rates, parameters and time, in the author's units."""
+    if base is None:
         return ()
-    index = p.index
-    units = {c.name: c.unit for c in problem.coordinates}
-    units.update({q.name: q.unit for q in problem.parameters})
+    state, givens = base
+    units = author_units(problem, p)
     out = []
-    for i, sym in enumerate(index.symbols):
+    for i in range(p.index.size):
         value = state.values[i]
         if not np.isfinite(value) or i in state.free:
             continue
-        order = index.level_of(i)
-        if order == 0:
-            unit = si_unit(units.get(sym.name, "s"))
-        else:
-            unit = si_unit(f"({units[index.coordinate_of(i)] or '1'}) / s^{order}")
-        out.append(StateValue(sym.name, float(value), unit, bool(state.given[i])))
+        unit = units[i]
+        shown = from_si(value, unit) + 0.0 if unit else float(value)
+        entry = givens.get(p.index.spelling(i))
+        if state.given[i] and entry is not None and entry[2] is not None \
+                and entry[1] == value:
+            shown, unit = entry[2].value, entry[2].unit
+        out.append(StateValue(p.index.spelling(i), shown, unit, bool(state.given[i]),
+                              float(value)))
     return tuple(out)

@@ -1,47 +1,61 @@
 """Solving the instant level by level, as pure functions of a :class:`~.plan.Plan`, the givens
 placed in its state layout (:class:`Givens`) and the state solved so far (:class:`State`).
 
-The position level is solved numerically for the configuration quantities the givens leave
-open, near the spec's guesses; the velocity and acceleration levels — linear in their rates —
-by least squares. Ranks say which unknowns the equations leave free, and residuals are checked.
+A level whose equations are linear in its unknowns (the velocity and acceleration constraints,
+givens that are components) is solved by least squares, with its nullspace (the combinations of
+rates the givens leave free). Any other level — the position level, a speed or magnitude given —
+is solved numerically from a few deterministic starts; every distinct root found is returned
+(the caller chooses among them knowingly). Ranks say which unknowns the equations leave free.
 """
 
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
 from scipy import linalg, optimize
 
-from ..errors import InconsistentError, SolveError
+from ..errors import InconsistentError, Location, SolveError
 from ..expressions.syntax import Name, Prime, to_text
-from ..spec.model import Problem
+from ..spec.model import Problem, Root
 from .plan import Level, Plan
 
 RANK_TOL = 1e-9
 DEFAULT_GUESS = 0.3
+STARTS = 10
+_SPREAD = (0.5, 1.0, 2.0, 4.0, 10.0, 30.0, 1.0, 3.0, 0.25)
 
 
 @dataclass(frozen=True)
 class Givens:
-    """The givens of one solve in the state layout: ``values`` (NaN where not given) and
-    ``known``; expression givens by level (``conditions[level][key]``, SI); ``texts``, each
-    given as the author wrote it, for messages; ``guess``, start values for the configuration."""
+    """The givens of one solve in the state layout.
+
+    ``values`` (NaN where not given) and ``known``; ``solvable`` marks what the solver may solve
+    for (coordinates, rates, and the parameters or ``t`` listed under ``unknown:``);
+    ``conditions[level][key]`` the expression givens (SI); ``texts``/``wheres`` each given as
+    written and where, for messages; ``guess`` start values (``guessed`` where the spec gave
+    them); ``branches`` the root each position wants; ``units`` the author's unit of each
+    position (for listing configurations).
+    """
 
     values: np.ndarray
     known: np.ndarray
+    solvable: np.ndarray
     conditions: tuple[Mapping[str, float], Mapping[str, float], Mapping[str, float]]
-    texts: tuple[str, ...]
+    texts: Mapping[str, str]
+    wheres: Mapping[str, Location]
     guess: np.ndarray
+    guessed: np.ndarray
+    branches: Mapping[int, Root]
+    scales: np.ndarray
 
 
 @dataclass(frozen=True)
 class State:
-    """The quantities at the instant (``values``, in the state layout, SI); ``free`` are the
-    positions nothing determined (their values are arbitrary picks); ``given`` marks the
-    positions whose values were given."""
+    """The quantities at the instant (``values``, in the state layout, SI); ``given`` marks
+    the given positions, ``free`` those nothing determined (their values are arbitrary picks)."""
 
     values: np.ndarray
     given: np.ndarray
@@ -54,9 +68,10 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
     values = np.full(index.size, np.nan)
     known = np.zeros(index.size, dtype=bool)
     conditions = ({}, {}, {})
-    texts = []
+    texts, wheres = {}, {}
     for key, (node, si, given) in givens.items():
-        texts.append(f"{key} = {given.text}" if given is not None else f"{key} = {si:g} (SI)")
+        texts[key] = f"{key} = {given.text}" if given is not None else f"{key} = {si:g} (SI)"
+        wheres[key] = given.where if given is not None else Location()
         if isinstance(node, (Name, Prime)):
             try:
                 i = index.symbols.index(p.k.quantity(node))
@@ -71,12 +86,46 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
                 raise SolveError(f"cannot give '{key}': it is not a given of this problem "
                                  "(expression givens must appear in the spec)")
             conditions[levels[0]][key] = si
+    unknown = {u.text.strip() for u in problem.unknowns}
+    solvable = np.array([not (index.is_parameter(i) or i == index.time)
+                         or index.names[i] in unknown for i in range(index.size)])
     guesses = {to_text(g.key.node): g.si for g in problem.guesses}
-    guess = np.array([guesses.get(index.names[i], DEFAULT_GUESS) for i in index.config])
-    return Givens(values, known, conditions, tuple(texts), guess)
+    guessed = np.array([index.names[i] in guesses for i in range(index.size)])
+    guess = np.array([guesses.get(index.names[i], DEFAULT_GUESS) for i in range(index.size)])
+    branches = {index.position(to_text(b.key.node)): b.root for b in problem.branches}
+    return Givens(values, known, solvable, conditions, texts, wheres, guess, guessed, branches,
+                  _scales(problem, p, values, known))
 
 
-def _rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
+def _scales(problem: Problem, p: Plan, values, known) -> np.ndarray:
+    """A typical size for each position, from the givens of the same unit (angles: pi)."""
+    index = p.index
+    units = {c.name: c.unit for c in problem.coordinates}
+    units.update({q.name: q.unit for q in problem.parameters})
+    by_unit: dict[str, list[float]] = {}
+    for i in range(index.size):
+        if known[i] and values[i]:
+            by_unit.setdefault(_unit_of(index, units, i), []).append(abs(values[i]))
+    out = np.ones(index.size)
+    for i in range(index.size):
+        unit = _unit_of(index, units, i)
+        if unit in ("rad", "deg", "degree", "radian"):
+            out[i] = np.pi
+        elif by_unit.get(unit):
+            out[i] = float(np.median(by_unit[unit]))
+    return out
+
+
+def _unit_of(index, units, i) -> str:
+    if i == index.time:
+        return "s"
+    name = index.coordinate_of(i) or index.names[i]
+    unit = units.get(name, "")
+    order = index.level_of(i) if index.coordinate_of(i) else 0
+    return unit if order == 0 else f"{unit}/s^{order}"
+
+
+def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     """Which rows are active (constraints, and the conditions given in this solve), and the
     value each row must equal (0 for constraints)."""
     values = np.array([g.conditions[level.order].get(key, np.nan) for key in level.conditions])
@@ -86,68 +135,264 @@ def _rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     return active, target
 
 
-def solve_position(problem: Problem, p: Plan, g: Givens,
-                   free_values: Mapping[int, float] | None = None) -> State:
-    """The configuration: unknowns the position equations determine are solved near the
-    guesses; the others keep their guess (or the value in ``free_values``) and are free."""
-    level = p.levels[0]
-    config = list(p.index.config)
-    active, target = _rows(level, g)
-    unknown = [i for i in config if not g.known[i]]
-    x = g.values.copy()
-    x[unknown] = g.guess[unknown]
-    solve_for = unknown
+def missing_values(p: Plan, g: Givens, only: set[str]) -> list[int]:
+    """Parameters and ``t`` that have no value and may not be solved for, yet are needed by an
+    equation or by an objective in ``only``."""
+    missing = {i for i in range(p.index.size) if not g.known[i] and not g.solvable[i]}
+    if not missing:
+        return []
+    needed: set[int] = set()
+    for level in p.levels:
+        active, _ = rows(level, g)
+        for uses, on in zip(level.uses, active):
+            if on:
+                needed |= uses
+    for oid, uses in p.objective_uses:
+        if oid in only:
+            needed |= uses
+    return sorted(missing & needed)
 
-    def residual(vals):
-        full = x.copy()
-        full[solve_for] = vals
-        return (np.asarray(level.residual(*full), dtype=float).ravel() - target)[active]
 
-    def jac(vals):
-        full = x.copy()
-        full[solve_for] = vals
-        J = np.asarray(level.jacobian(*full), dtype=float).reshape(len(level.labels), len(config))
-        return J[active][:, solve_for]
+# ---------------------------------------------------------------------------- non-linear
 
-    free: list[int] = list(unknown)
-    if unknown and active.any():
-        determined, free = _split_free(jac(x[unknown]), unknown)
-        for i in free:
+
+@dataclass(frozen=True)
+class Roots:
+    """The distinct solutions of a non-linear level (states), the first from the first start;
+    ``free`` the unknowns the equations left free; ``picked`` whether the spec chose the root
+    (guesses or a branch)."""
+
+    states: tuple[State, ...]
+    free: tuple[int, ...]
+    picked: bool
+
+
+def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+                    free_values: Mapping[int, float] | None = None,
+                    start: np.ndarray | None = None) -> Roots:
+    """Solve level ``order`` numerically for its unknowns.
+
+    Unknowns the equations determine are solved by least squares from the spec's guesses (only
+    those, when the spec guessed any of them), else from a few deterministic starts spread
+    around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
+    whole state) replaces the starts: re-solving near a root already chosen.
+    """
+    level = p.levels[order]
+    columns = list(p.index.unknowns(order))
+    active, target = rows(level, g)
+    x = state.values.copy()
+    unknown = [i for i in columns if not g.known[i] and g.solvable[i]]
+    origin = g.guess if start is None else start
+    x[unknown] = origin[unknown]
+    for i in columns:
+        if not g.known[i] and not g.solvable[i]:
+            x[i] = np.nan
+    if not unknown or not active.any():
+        for i in unknown:
             x[i] = (free_values or {}).get(i, x[i])
-        solve_for = determined
-        if determined:
-            with np.errstate(all="ignore"):
-                fit = optimize.least_squares(residual, x[determined], jac=jac, xtol=1e-14,
-                                             ftol=1e-14, gtol=1e-14, max_nfev=500)
-            x[determined] = fit.x
-    else:
-        for i in free:
-            x[i] = (free_values or {}).get(i, x[i])
-    if active.any():
+        result = replace(state, values=x, given=g.known, free=state.free | frozenset(unknown))
+        if active.any():
+            _check_nonlinear(problem, level, g, x, active, target, 0, [])
+        return Roots((result,), tuple(unknown), True)
+
+    def evaluate(full, f, shape):
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return np.asarray(f(*full), dtype=float).reshape(shape)
+
+    position = {c: j for j, c in enumerate(columns)}
+    J0 = evaluate(x, level.jacobian, (len(level.labels), len(columns)))[active]
+    determined, free = _split_free(J0[:, [position[i] for i in unknown]], unknown)
+    for i in free:
+        x[i] = (free_values or {}).get(i, x[i])
+    solve_for = [position[i] for i in determined]
+
+    def residual(vals, base):
+        full = base.copy()
+        full[determined] = vals
+        return evaluate(full, level.residual, (-1,))[active] - target[active]
+
+    def jac(vals, base):
+        full = base.copy()
+        full[determined] = vals
+        return evaluate(full, level.jacobian, (len(level.labels), len(columns)))[active][
+            :, solve_for]
+
+    picked_by_guess = start is not None or bool(g.guessed[determined].any())
+    picked = picked_by_guess or any(i in g.branches for i in determined)
+    starts = [x[determined]]
+    if not picked_by_guess and not level.linear:
+        rng = np.random.default_rng(11 + order)
+        scale = g.scales[determined]
+        for spread in _SPREAD[:STARTS - 1]:
+            starts.append(x[determined] + spread * scale * rng.standard_normal(len(determined)))
+    found: list[np.ndarray] = []
+    best = None
+    for s in starts:
+        if not determined:
+            break
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                fit = optimize.least_squares(residual, s, jac=jac, args=(x,), xtol=1e-14,
+                                             ftol=1e-14, gtol=1e-14, max_nfev=200)
+            except ValueError:  # a start where the equations are undefined
+                continue
+        full = x.copy()
+        full[determined] = fit.x
+        if best is None or fit.cost < best[0]:
+            best = (fit.cost, full)
+        if _satisfied(problem, level, full, active, target) and \
+                not any(_same(p, g, full, other, determined) for other in found):
+            found.append(full)
+    if not found:
+        full = best[1] if best is not None else x
+        _check_nonlinear(problem, level, g, full, active, target, len(determined), starts)
+        found.append(full)  # pragma: no cover - _check_nonlinear raises
+    roots = [r for r in found if _on_branch(g, r, determined)]
+    if not roots:
+        wanted = "; ".join(f"{p.index.spelling(i)}: {g.branches[i].value}"
+                           for i in determined if i in g.branches)
+        listing = configurations(problem, p, g, found, determined)
+        raise SolveError(f"no solution of the {level.name} equations is on the branch asked "
+                         f"for ({wanted}); solutions found: {listing}",
+                         where=_branch_where(problem))
+    roots = _choose_branch(g, roots, determined)
+    states = tuple(replace(state, values=r, given=g.known, free=state.free | frozenset(free))
+                   for r in roots)
+    return Roots(states, tuple(free), picked)
+
+
+def _satisfied(problem, level, x, active, target) -> bool:
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
+        scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
+    return bool(np.all(np.abs(r) <= problem.consistency * scale + 1e-10))
+
+
+def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
+    """Whether two roots are the same configuration (angles compared modulo a turn)."""
+    for i in positions:
+        d = a[i] - b[i]
+        if g.scales[i] == np.pi:
+            d = (d + np.pi) % (2 * np.pi) - np.pi
+        if abs(d) > 1e-6 * (1 + abs(a[i])):
+            return False
+    return True
+
+
+def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
+    for i in positions:
+        root = g.branches.get(i)
+        if root in (Root.POSITIVE, Root.FIRST_POSITIVE) and not x[i] > 1e-9 * g.scales[i]:
+            return False
+        if root is Root.NEGATIVE and not x[i] < -1e-9 * g.scales[i]:
+            return False
+    return True
+
+
+def _choose_branch(g: Givens, roots: list, positions) -> list:
+    """``first positive`` keeps the smallest root of that quantity."""
+    for i in positions:
+        if g.branches.get(i) is Root.FIRST_POSITIVE:
+            smallest = min(r[i] for r in roots)
+            roots = [r for r in roots if abs(r[i] - smallest) <= 1e-6 * (1 + abs(smallest))]
+    return roots
+
+
+def _branch_where(problem: Problem) -> Location:
+    return problem.branches[0].where if problem.branches else Location()
+
+
+def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> str:
+    """Roots listed by their solved quantities in the author's units."""
+    from ..units import from_si
+
+    units = author_units(problem, p, g)
+    out = []
+    for x in states:
+        parts = []
+        for i in positions:
+            unit = units[i]
+            value = from_si(x[i], unit) if unit else x[i]
+            parts.append(f"{p.index.spelling(i)} = {value:.6g}{' ' + unit if unit else ''}")
+        out.append("(" + ", ".join(parts) + ")")
+    return "; ".join(out)
+
+
+def author_units(problem: Problem, p: Plan, g: Givens | None = None) -> list[str]:
+    """The unit each position is reported in: that of its given or guess, else its own."""
+    index = p.index
+    declared = {c.name: c.unit for c in problem.coordinates}
+    declared.update({q.name: q.unit for q in problem.parameters})
+    written = {to_text(x.key.node): x.unit for x in problem.guesses}
+    written.update({to_text(x.key.node): x.unit for x in problem.givens})
+    out = []
+    for i in range(index.size):
+        name = index.spelling(i)
+        if name in written and written[name]:
+            out.append(written[name])
+        elif i == index.time:
+            out.append("s")
+        elif index.coordinate_of(i) and index.level_of(i):
+            base = declared[index.coordinate_of(i)] or "1"
+            out.append(f"{base}/s" if index.level_of(i) == 1 else f"{base}/s^2")
+        else:
+            out.append(declared.get(name, ""))
+    return out
+
+
+def _check_nonlinear(problem, level, g, x, active, target, rank, starts) -> None:
+    """Raise for a level left unsolved: a conflict when the givens over-determine it, else
+    a solve that found no root (no real solution, or starts too far from it)."""
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel() - target
         scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())
-        _check_residual(problem, level, g, r[active], scale[active], active)
-    return State(x, g.known, frozenset(free))
+    bad = [i for i in np.flatnonzero(active)
+           if not abs(r[i]) <= problem.consistency * scale[i] + 1e-10]
+    if not bad:
+        return
+    i = bad[0]
+    if int(active.sum()) > rank:
+        raise InconsistentError(
+            f"the givens conflict at the {level.name} level: '{level.labels[i]}' is not "
+            f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
+            f"involved: {'; '.join(g.texts.values()) or 'none'}", where=level.wheres[i])
+    guesses = "give guesses: near the configuration meant" if level.order == 0 else \
+        "give a branch: for the rate's sign or check the givens"
+    raise SolveError(
+        f"the {level.name} equations were not solved: '{level.labels[i]}' keeps a residual of "
+        f"{r[i]:.4g} (terms of size {scale[i]:.4g}) from {max(len(starts), 1)} start(s): "
+        f"either they have no real solution with these values, or the solve did not "
+        f"converge; {guesses}", where=level.wheres[i])
 
 
-def solve_rates(problem: Problem, p: Plan, order: int, state: State, g: Givens,
-                shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
-    """The velocity (``order`` 1) or acceleration (2) level, linear in its rates: the
-    least-squares solution (moved by ``null @ shift`` when given), and the nullspace basis of
-    the unknown rates (the directions the givens leave free)."""
+# ---------------------------------------------------------------------------- linear
+
+
+def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+                 shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
+    """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
+    ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
     level = p.levels[order]
     cols = list(p.index.rates(order))
     n = len(cols)
-    active, target = _rows(level, g)
+    active, target = rows(level, g)
     x = state.values.copy()
     x[cols] = np.where(g.known[cols], g.values[cols], 0.0)
     with np.errstate(all="ignore"):
         A = np.asarray(level.jacobian(*x), dtype=float).reshape(len(level.labels), n)
         b = np.asarray(level.residual(*x), dtype=float).ravel() - target
     A, b = A[active], b[active]
+    wheres = [w for w, on in zip(level.wheres, active) if on]
     if not (np.isfinite(A).all() and np.isfinite(b).all()):
-        raise SolveError(f"the {level.name} equations are undefined at this instant "
-                         "(a division by zero in the model)")
+        bad = next(j for j in range(len(b)) if not (np.isfinite(A[j]).all()
+                                                     and np.isfinite(b[j])))
+        raise SolveError(f"the {level.name} equations are undefined at this instant (a "
+                         f"division by zero in '{np.array(level.labels)[active][bad]}')",
+                         where=wheres[bad])
     unknown = [j for j in range(n) if not g.known[cols[j]]]
     rhs = -b  # the unknown rates are 0 in x, so b is the residual of the known part
     null = np.zeros((len(unknown), 0))
@@ -170,7 +415,15 @@ def solve_rates(problem: Problem, p: Plan, order: int, state: State, g: Givens,
         with np.errstate(all="ignore"):
             r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
             scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-        _check_residual(problem, level, g, r, scale, active)
+        labels = np.array(level.labels)[active]
+        bad = [i for i in range(len(r)) if not abs(r[i]) <= problem.consistency * scale[i]
+               + 1e-10]
+        if bad:
+            i = bad[0]
+            raise InconsistentError(
+                f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
+                f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
+                f"involved: {'; '.join(g.texts.values()) or 'none'}", where=wheres[i])
     return State(x, g.known, frozenset(free)), null
 
 
@@ -182,25 +435,16 @@ def constraint_rank(p: Plan, state: State) -> int:
     with np.errstate(all="ignore"):
         A = np.asarray(level.jacobian(*state.values), dtype=float).reshape(len(level.labels),
                                                                            p.index.n)
-    return int(np.linalg.matrix_rank(A[:level.constraint_rows]))
-
-
-def _check_residual(problem: Problem, level: Level, g: Givens, r, scale, active) -> None:
-    labels = np.array(level.labels)[active]
-    bad = [i for i in range(len(r)) if not abs(r[i]) <= problem.consistency * scale[i] + 1e-10]
-    if not bad:
-        return
-    i = bad[0]
-    raise InconsistentError(
-        f"the givens conflict at the {level.name} level: '{labels[i]}' is not satisfied "
-        f"(residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens involved: "
-        f"{'; '.join(g.texts) or 'none'}")
+    A = A[:level.constraint_rows]
+    return int(np.linalg.matrix_rank(A)) if np.isfinite(A).all() else 0
 
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:
-    """Which unknowns the position equations determine (pivoted QR), and which stay free."""
+    """Which unknowns the equations determine (pivoted QR), and which stay free."""
     if J.size == 0:
         return [], list(unknown)
+    if not np.isfinite(J).all():
+        return list(unknown), []
     with np.errstate(all="ignore"):
         _, R, piv = linalg.qr(J, pivoting=True, mode="economic")
     diag = np.abs(np.diag(R)) if R.size else np.zeros(0)

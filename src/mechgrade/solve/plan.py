@@ -6,7 +6,7 @@ their residuals are judged by; the objectives, mistaken models and requirements.
 >>> from mechgrade.resources import shipped_dir
 >>> p = plan(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
 >>> [(level.name, level.linear) for level in p.levels]
-[('position', False), ('velocity', True), ('acceleration', True)]
+[('position', True), ('velocity', True), ('acceleration', True)]
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Callable
 
+import numpy as np
 import sympy as sp
 
 from ..errors import Location
@@ -43,6 +44,7 @@ class Level:
     wheres: tuple[Location, ...]
     conditions: tuple[str, ...]
     linear: bool
+    uses: tuple[frozenset[int], ...]
 
     @property
     def constraint_rows(self) -> int:
@@ -60,6 +62,10 @@ class Plan:
     objectives: tuple[tuple[str, Callable], ...]
     mistakes: tuple[tuple[str, tuple[Callable, ...]], ...]
     requirements: tuple[tuple[str, str, Callable], ...]
+    objective_uses: tuple[tuple[str, frozenset[int]], ...]
+    points: tuple[str, ...]
+    point_positions: Callable
+    constraint_rank: int
 
 
 def _lambdify(symbols, expr):
@@ -78,14 +84,17 @@ def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
     exprs = [e.expr for e in equations] + [c.expr for c in conditions]
     m = sp.Matrix(exprs) if exprs else sp.zeros(0, 1)
     jac = m.jacobian(unknowns) if exprs else sp.zeros(0, len(unknowns))
-    linear = order > 0 and not (jac.free_symbols & set(unknowns))
+    linear = not (jac.free_symbols & set(unknowns))
+    positions = {s: i for i, s in enumerate(symbols)}
     return Level(
         order=order, name=LEVEL_NAMES[order], residual=_lambdify(symbols, m),
         jacobian=_lambdify(symbols, jac),
         scale=_lambdify(symbols, _scale(exprs) if exprs else sp.zeros(0, 1)),
         labels=tuple(e.label for e in equations) + tuple(f"given {c.key}" for c in conditions),
-        wheres=tuple(Location() for _ in equations) + tuple(Location() for _ in conditions),
-        conditions=tuple(c.key for c in conditions), linear=linear)
+        wheres=tuple(e.where for e in equations) + tuple(c.where for c in conditions),
+        conditions=tuple(c.key for c in conditions), linear=linear,
+        uses=tuple(frozenset(positions[s] for s in e.free_symbols if s in positions)
+                   for e in exprs))
 
 
 @lru_cache(maxsize=64)
@@ -100,6 +109,8 @@ def plan(problem: Problem) -> Plan:
     levels = tuple(_level(index, order, equations, by_level[order])
                    for order, equations in enumerate((k.position, k.velocity, k.acceleration)))
     numeric = {o.id for o in problem.objectives if o.kind != "symbolic"}
+    positions = {s: i for i, s in enumerate(symbols)}
+    points = sp.Matrix.hstack(*(r for _, r in k.points)) if k.points else sp.zeros(3, 0)
     return Plan(
         k=k, index=index, levels=levels,
         objectives=tuple((oid, _lambdify(symbols, expr)) for oid, expr in k.objectives
@@ -107,4 +118,22 @@ def plan(problem: Problem) -> Plan:
         mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs))
                        for oid, exprs in k.mistakes if oid in numeric),
         requirements=tuple((oid, reason, _lambdify(symbols, expr))
-                           for oid, reason, expr in k.requirements))
+                           for oid, reason, expr in k.requirements),
+        objective_uses=tuple((oid, frozenset(positions[s] for s in sp.sympify(expr).free_symbols
+                                             if s in positions))
+                             for oid, expr in k.objectives),
+        points=tuple(name for name, _ in k.points), point_positions=_lambdify(symbols, points),
+        constraint_rank=_generic_rank(index, k))
+
+
+def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
+    """Rank of the position constraints' Jacobian in the coordinates at a generic
+    configuration: a configuration where it is lower is singular."""
+    if not k.position:
+        return 0
+    jac = sp.Matrix([e.expr for e in k.position]).jacobian(list(k.q))
+    rng = np.random.default_rng(3)
+    point = {s: float(rng.uniform(0.4, 1.6)) for s in index.symbols}
+    with np.errstate(all="ignore"):
+        value = np.array(jac.xreplace(point).evalf(), dtype=complex)
+    return int(np.linalg.matrix_rank(value)) if np.isfinite(value).all() else len(k.q)
