@@ -9,7 +9,7 @@ velocity of that geometric point, not of the disk's material point at ``T``.
 from __future__ import annotations
 
 from ..errors import AuthorWarning, Location, SpecError
-from ..expressions.syntax import Call, Name, Node, to_text, walk
+from ..expressions.syntax import Attr, Call, Name, Node, to_text, walk
 from ..spec.model import Problem
 from .build import Model
 from .symbols import identically_zero
@@ -40,7 +40,10 @@ def material_warnings(problem: Problem, model: Model) -> tuple[AuthorWarning, ..
         if f.parent is None or f.origin is None:
             continue
         for p in problem.points:
-            if p.origin == f.origin:
+            # located from the body's origin without the body's own axes: it does not turn
+            # with the body (a collar located along the rod by R*Rod.x is meant to slide)
+            if p.origin == f.origin and not any(isinstance(n, Attr) and n.base == f.name
+                                                for n in walk(p.position.node)):
                 bodies.setdefault(p.name, set()).add(f.name)
     uses: list[tuple[str, Node, Location]] = []
     for g in problem.givens:
@@ -69,5 +72,5 @@ def material_warnings(problem: Problem, model: Model) -> tuple[AuthorWarning, ..
             out.append(AuthorWarning(
                 f"'{to_text(call)}' in '{text}' is the motion of the geometric point {point}, "
                 f"which is fixed in no body; {body}'s material point coincides with it: if you "
-                f"mean that point, write '{wanted}' (coincident({point}, {body}))", where))
+                f"mean that point, write '{wanted}'", where))
     return tuple(out)

@@ -201,8 +201,13 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
             return np.asarray(f(*full), dtype=float).reshape(shape)
 
     position = {c: j for j, c in enumerate(columns)}
-    J0 = evaluate(x, level.jacobian, (len(level.labels), len(columns)))[active]
-    determined, free = _split_free(J0[:, [position[i] for i in unknown]], unknown)
+    # Equal default guesses can make a Jacobian singular (two angles both 0.3): which unknowns
+    # the equations determine is read where it is not.
+    nearby = x.copy()
+    nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
+    determined, free = max((_split_free(evaluate(at, level.jacobian, (
+        len(level.labels), len(columns)))[active][:, [position[i] for i in unknown]], unknown)
+        for at in (x, nearby)), key=lambda split: len(split[0]))
     for i in free:
         x[i] = (free_values or {}).get(i, x[i])
     solve_for = [position[i] for i in determined]
@@ -222,20 +227,20 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     picked = picked_by_guess or any(i in g.branches for i in determined)
     starts = [x[determined]]
     if not picked_by_guess and not level.linear:
-        rng = np.random.default_rng(11 + order)
-        scale = g.scales[determined]
-        for spread in _SPREAD[:STARTS - 1]:
-            starts.append(x[determined] + spread * scale * rng.standard_normal(len(determined)))
+        starts += _starts(x[determined], g.scales[determined], order)
     found: list[np.ndarray] = []
     best = None
-    for s in starts:
+    for k, s in enumerate(starts):
         if not determined:
             break
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
+                # Levenberg-Marquardt from the other starts: it keeps to the root a start is
+                # in the basin of, where a trust region drifts to the nearest one.
                 fit = optimize.least_squares(residual, s, jac=jac, args=(x,), xtol=1e-14,
-                                             ftol=1e-14, gtol=1e-14, max_nfev=200)
+                                             ftol=1e-14, gtol=1e-14, max_nfev=200,
+                                             method="trf" if k == 0 else "lm")
             except ValueError:  # a start where the equations are undefined
                 continue
         full = x.copy()
@@ -261,6 +266,21 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     states = tuple(replace(state, values=r, given=g.known, free=state.free | frozenset(free))
                    for r in roots)
     return Roots(states, tuple(free), picked)
+
+
+def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray]:
+    """Deterministic starts around ``guess``: each unknown moved alone by 1 and 3 typical
+    sizes either way (angles: a quarter and a half turn), then a few moved together."""
+    out = []
+    for j in range(min(len(guess), 4)):
+        for step in (1.0, -1.0, 3.0, -3.0):
+            s = guess.copy()
+            s[j] += step * (scale[j] / 2 if scale[j] == np.pi else scale[j])
+            out.append(s)
+    rng = np.random.default_rng(11 + order)
+    for spread in _SPREAD[:STARTS - len(out) // 4]:
+        out.append(guess + spread * scale * rng.standard_normal(len(guess)))
+    return out
 
 
 def _satisfied(problem, level, x, active, target) -> bool:
@@ -316,6 +336,7 @@ def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> s
         for i in positions:
             unit = units[i]
             value = from_si(x[i], unit) if unit else x[i]
+            value = 0.0 if abs(x[i]) < 1e-12 * g.scales[i] else value + 0.0
             parts.append(f"{p.index.spelling(i)} = {value:.6g}{' ' + unit if unit else ''}")
         out.append("(" + ", ".join(parts) + ")")
     return "; ".join(out)

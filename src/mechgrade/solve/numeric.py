@@ -93,7 +93,8 @@ def solve_numeric(problem: Problem, p: Plan, givens: Mapping, only: set[str]) ->
         raise _ambiguous(problem, p, g, distinct)
     _check_givens_hold(problem, p, g, givens, base.state)
     errors = _undetermined(problem, p, g, base, values, only)
-    return Instant(base.state, values, errors, _degenerate(problem, p, base.state))
+    solved = [i for i in p.index.config if not g.known[i] and i not in base.free]
+    return Instant(base.state, values, errors, _degenerate(problem, p, base.state, solved))
 
 
 def _same_answers(p: Plan, a: Branch, b: Branch, only) -> bool:
@@ -103,22 +104,38 @@ def _same_answers(p: Plan, a: Branch, b: Branch, only) -> bool:
 
 def _ambiguous(problem: Problem, p: Plan, g: Givens, branches: list[Branch]) -> SolveError:
     states = [b.state.values for b in branches]
-    differ = [i for i in range(p.index.size) if not g.known[i]
-              and any(abs(s[i] - states[0][i]) > 1e-6 * (1 + abs(states[0][i]))
-                      for s in states[1:] if np.isfinite(s[i]) and np.isfinite(states[0][i]))]
+    free = set().union(*(b.state.free for b in branches))
+
+    def differs(i):
+        first = states[0][i]
+        return not g.known[i] and i not in free and any(
+            abs(s[i] - first) > 1e-6 * (1 + abs(first)) for s in states[1:]
+            if np.isfinite(s[i]) and np.isfinite(first))
+
+    differ = [i for i in range(p.index.size) if differs(i)]
+    order = min((p.index.level_of(i) for i in differ), default=0)
+    differ = [i for i in differ if p.index.level_of(i) == order]
     listing = configurations(problem, p, g, states, differ)
-    first = p.index.spelling(differ[0]) if differ else "x"
-    level = p.levels[p.index.level_of(differ[0])] if differ else p.levels[0]
-    where = level.wheres[0] if level.wheres else Location()
+    preferred = [i for i in differ if i == p.index.time or p.index.is_parameter(i)] + differ
+    example = f"{p.index.spelling(preferred[0])}: positive" if preferred else "x: positive"
+    level = p.levels[order]
+    active, _ = rows(level, g)
+    # a non-linear given (a speed) is the likelier cause than the constraints
+    lines = [i for i in range(level.constraint_rows, len(level.labels)) if active[i]] + \
+        list(range(level.constraint_rows))
+    where = level.wheres[lines[0]] if lines else Location()
     return SolveError(
         f"the {level.name} equations have {len(branches)} solutions that give different "
         f"answers: {listing}; pick one with guesses: (near the one meant) or a branch: "
-        f"(e.g. branch: {{{first}: positive}})", where=where)
+        f"(e.g. branch: {{{example}}})", where=where)
 
 
 def _missing_error(problem: Problem, p: Plan, i: int) -> SolveError:
     name = p.index.spelling(i)
-    where = next((q.where for q in problem.parameters if q.name == name), Location())
+    where = next((q.where for q in problem.parameters if q.name == name), None)
+    if where is None:  # t: point at the first equation that needs it
+        where = next((level.wheres[r] for level in p.levels
+                      for r, uses in enumerate(level.uses) if i in uses), Location())
     what = "time t" if i == p.index.time else f"parameter '{name}'"
     return SolveError(f"the {what} has no value: give it under givens:, or list it under "
                       f"unknown: to solve for it (with a branch: for the root wanted)",
@@ -190,15 +207,17 @@ def _undetermined(problem: Problem, p: Plan, g: Givens, base: Branch, values: Ma
         for oid, missing in depends.items()}
 
 
-def _degenerate(problem: Problem, p: Plan, state: State) -> tuple[AuthorWarning, ...]:
-    """Warnings for a degenerate configuration: distinct points that coincide, a singular
-    constraint Jacobian."""
+def _degenerate(problem: Problem, p: Plan, state: State,
+                solved: list[int]) -> tuple[AuthorWarning, ...]:
+    """Warnings for a degenerate configuration the position solve landed on: points that
+    coincide there but not nearby, a singular constraint Jacobian."""
+    if not solved:
+        return ()
     out = []
     with np.errstate(all="ignore"):
         here = np.asarray(p.point_positions(*state.values), dtype=float).reshape(3, -1)
         other = state.values.copy()
-        config = list(p.index.config)
-        other[config] = other[config] * 1.13 + 0.07
+        other[solved] = other[solved] * 1.13 + 0.07
         there = np.asarray(p.point_positions(*other), dtype=float).reshape(3, -1)
     size = max(np.abs(here[np.isfinite(here)]).max(initial=0.0), 1e-12)
     wheres = {q.name: q.where for q in problem.points}
