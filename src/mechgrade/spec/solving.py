@@ -112,7 +112,9 @@ def given_unit(key: Node, coordinates: tuple[Coordinate, ...],
     if isinstance(key, Name):
         return "s" if key.id == TIME else units.get(key.id)
     if isinstance(key, Prime) and key.id in units:
-        return f"({units[key.id] or '1'}) / s^{key.order}"
+        base = units[key.id] or "1"
+        base = f"({base})" if any(c in base for c in "/* ") else base
+        return f"{base}/s" if key.order == 1 else f"{base}/s^{key.order}"
     return None
 
 
