@@ -98,10 +98,23 @@ class Kinematics:
         raise KeyError(node)
 
 
-@lru_cache(maxsize=64)
+def locations(problem: Problem) -> tuple:
+    """Where the problem's parts are written. Problems compare equal whatever their
+    locations, so caches that keep locations (in equations and warnings) key on these too."""
+    parts = (*problem.points, *problem.constraints, *problem.givens, *problem.objectives,
+             *(g for o in problem.objectives for g in o.givens),
+             *(o.find for o in problem.objectives))
+    return (problem.path, *(str(x.where) for x in parts))
+
+
 def derive(problem: Problem) -> Kinematics:
     """Build the kinematics of ``problem``: constraint equations at the position, velocity and
     acceleration levels, given-conditions, and every objective as a plain sympy expression."""
+    return _derive(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _derive(problem: Problem, _locations: tuple) -> Kinematics:
     model = build(problem)
     t = TIME_SYMBOL
     position_dyn: list[tuple[str, sp.Expr, Location]] = []
@@ -177,3 +190,6 @@ def _objective_value(model: Model, expr: Expr, frame: str | None):
     return model.plain(value)
 
 
+
+
+derive.cache_clear = _derive.cache_clear

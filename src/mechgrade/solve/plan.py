@@ -20,6 +20,7 @@ import sympy as sp
 
 from ..errors import Location
 from ..mechanics import Kinematics, derive
+from ..mechanics.kinematics import locations
 from ..spec.model import Problem
 from .index import SymbolIndex
 
@@ -97,9 +98,13 @@ def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
                    for e in exprs))
 
 
-@lru_cache(maxsize=64)
 def plan(problem: Problem) -> Plan:
-    """Derive and lambdify ``problem`` once."""
+    """Derive and lambdify ``problem`` once (per place it was written: plans keep locations)."""
+    return _plan(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _plan(problem: Problem, _locations: tuple) -> Plan:
     k = derive(problem)
     index = SymbolIndex.of(k)
     symbols = index.symbols
@@ -137,3 +142,6 @@ def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     with np.errstate(all="ignore"):
         value = np.array(jac.xreplace(point).evalf(), dtype=complex)
     return int(np.linalg.matrix_rank(value)) if np.isfinite(value).all() else len(k.q)
+
+
+plan.cache_clear = _plan.cache_clear
