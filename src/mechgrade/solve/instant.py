@@ -15,6 +15,7 @@ reported as a conflict. Symbolic objectives are solved with sympy in the declare
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import lru_cache
 from typing import Collection, Mapping
 
@@ -22,7 +23,8 @@ import numpy as np
 import sympy as sp
 
 from ..errors import AuthorWarning, MechgradeError, SolveError
-from ..expressions.syntax import Prime, to_text
+from ..expressions.syntax import Prime, parse, to_text
+from ..spec.language import FUNCTIONS
 from ..spec.model import Objective, Problem
 from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
@@ -42,14 +44,18 @@ def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
     """Given values keyed by canonical key text -> (key node, SI value, Given or None)."""
     out = {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
     for key, value in (overrides or {}).items():
-        from ..expressions.syntax import parse
-        from ..spec.language import FUNCTIONS
         node = parse(key, functions=FUNCTIONS)
         canonical = to_text(node)
         if value is None:
             out.pop(canonical, None)
-        else:
-            out[canonical] = (node, float(value), out.get(canonical, (None, None, None))[2])
+            continue
+        given = out.get(canonical, (None, None, None))[2]
+        if given is not None and given.si != float(value):
+            # the value replaced, in the spec's unit, so messages show what was solved with
+            number = from_si(float(value), given.unit) + 0.0
+            given = replace(given, value=number, si=float(value),
+                            text=f"{number:.6g} {given.unit}".strip())
+        out[canonical] = (node, float(value), given)
     return out
 
 

@@ -134,12 +134,8 @@ def resolve_given_values(givens: tuple[Given, ...], coordinates, parameters) -> 
             node = g.value_expr.node
             needed = {to_text(n) for n in walk(node) if isinstance(n, (Name, Prime))
                       and not (isinstance(n, Name) and n.id == "pi")}
-            missing = needed - set(done)
-            if missing & set(pending):
+            if needed - set(done):  # another expression given first
                 continue
-            if missing:
-                raise SpecError(f"expected givens or parameters with values in '{g.text}', "
-                                f"found '{sorted(missing)[0]}' without a value", where=g.where)
             unit = given_unit(g.key.node, coordinates, parameters)
             if unit is None:
                 raise SpecError("expected a number with a unit for a given that is an "
