@@ -24,8 +24,7 @@ from .plan import Level, Plan
 
 RANK_TOL = 1e-9
 DEFAULT_GUESS = 0.3
-STARTS = 10
-_SPREAD = (0.5, 1.0, 2.0, 4.0, 10.0, 30.0, 1.0, 3.0, 0.25)
+JOINT_SPREADS = (0.5, 2.0, 8.0)
 
 
 @dataclass(frozen=True)
@@ -191,8 +190,9 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
         for i in unknown:
             x[i] = (free_values or {}).get(i, x[i])
         result = replace(state, values=x, given=g.known, free=state.free | frozenset(unknown))
-        if active.any():
-            _check_nonlinear(problem, level, g, x, active, target, 0, [])
+        error = _unsolved(problem, level, g, x, active, target, 0, 1) if active.any() else None
+        if error is not None:
+            raise error
         return Roots((result,), tuple(unknown), True)
 
     def evaluate(full, f, shape):
@@ -252,8 +252,7 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
             found.append(full)
     if not found:
         full = best[1] if best is not None else x
-        _check_nonlinear(problem, level, g, full, active, target, len(determined), starts)
-        found.append(full)  # pragma: no cover - _check_nonlinear raises
+        raise _unsolved(problem, level, g, full, active, target, len(determined), len(starts))
     roots = [r for r in found if _on_branch(g, r, determined)]
     if not roots:
         wanted = "; ".join(f"{p.index.spelling(i)}: {g.branches[i].value}"
@@ -269,8 +268,9 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
 
 
 def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray]:
-    """Deterministic starts around ``guess``: each unknown moved alone by 1 and 3 typical
-    sizes either way (angles: a quarter and a half turn), then a few moved together."""
+    """Deterministic starts around ``guess``: each of the first four unknowns moved alone by
+    1 and 3 typical sizes either way (angles: a quarter and three quarters of a turn), then all
+    of them moved together at random (a fixed seed) by a few spreads."""
     out = []
     for j in range(min(len(guess), 4)):
         for step in (1.0, -1.0, 3.0, -3.0):
@@ -278,7 +278,7 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
             s[j] += step * (scale[j] / 2 if scale[j] == np.pi else scale[j])
             out.append(s)
     rng = np.random.default_rng(11 + order)
-    for spread in _SPREAD[:STARTS - len(out) // 4]:
+    for spread in JOINT_SPREADS:
         out.append(guess + spread * scale * rng.standard_normal(len(guess)))
     return out
 
@@ -364,9 +364,10 @@ def author_units(problem: Problem, p: Plan, g: Givens | None = None) -> list[str
     return out
 
 
-def _check_nonlinear(problem, level, g, x, active, target, rank, starts) -> None:
-    """Raise for a level left unsolved: a conflict when the givens over-determine it, else
-    a solve that found no root (no real solution, or starts too far from it)."""
+def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError | None:
+    """The error of a level not satisfied at ``x`` (``None`` if it is): a conflict when the
+    givens over-determine it (more equations than the ``rank`` of their Jacobian), else a
+    solve that found no root (no real solution, or starts too far from it)."""
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel() - target
@@ -374,18 +375,18 @@ def _check_nonlinear(problem, level, g, x, active, target, rank, starts) -> None
     bad = [i for i in np.flatnonzero(active)
            if not abs(r[i]) <= problem.consistency * scale[i] + 1e-10]
     if not bad:
-        return
+        return None
     i = bad[0]
     if int(active.sum()) > rank:
-        raise InconsistentError(
+        return InconsistentError(
             f"the givens conflict at the {level.name} level: '{level.labels[i]}' is not "
             f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
             f"involved: {'; '.join(g.texts.values()) or 'none'}", where=level.wheres[i])
     guesses = "give guesses: near the configuration meant" if level.order == 0 else \
         "give a branch: for the rate's sign or check the givens"
-    raise SolveError(
+    return SolveError(
         f"the {level.name} equations were not solved: '{level.labels[i]}' keeps a residual of "
-        f"{r[i]:.4g} (terms of size {scale[i]:.4g}) from {max(len(starts), 1)} start(s): "
+        f"{r[i]:.4g} (terms of size {scale[i]:.4g}) from {starts} start(s): "
         f"either they have no real solution with these values, or the solve did not "
         f"converge; {guesses}", where=level.wheres[i])
 
