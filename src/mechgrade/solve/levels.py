@@ -205,9 +205,12 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     # the equations determine is read where it is not.
     nearby = x.copy()
     nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
-    determined, free = max((_split_free(evaluate(at, level.jacobian, (
-        len(level.labels), len(columns)))[active][:, [position[i] for i in unknown]], unknown)
-        for at in (x, nearby)), key=lambda split: len(split[0]))
+    jacobians = [evaluate(at, level.jacobian, (len(level.labels), len(columns)))[active][
+        :, [position[i] for i in unknown]] for at in (x, nearby)]
+    determined, free = max((_split_free(J, unknown) for J in jacobians),
+                           key=lambda split: len(split[0]))
+    # equations linear in the unknowns at hand (the rest given) have one root: one start
+    linear = not (level.jacobian_uses & set(determined))
     for i in free:
         x[i] = (free_values or {}).get(i, x[i])
     solve_for = [position[i] for i in determined]
@@ -226,7 +229,7 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     picked_by_guess = start is not None or bool(g.guessed[determined].any())
     picked = picked_by_guess or any(i in g.branches for i in determined)
     starts = [x[determined]]
-    if not picked_by_guess and not level.linear:
+    if not picked_by_guess and not linear:
         starts += _starts(x[determined], g.scales[determined], order)
     found: list[np.ndarray] = []
     best = None

@@ -33,7 +33,9 @@ class Level:
     per expression given of this level (``conditions``, in order).
 
     ``jacobian`` is in the level's unknowns (``SymbolIndex.unknowns(order)``); ``linear`` says
-    the equations are linear in them (velocity and acceleration constraints always are).
+    the equations are linear in them (velocity and acceleration constraints always are);
+    ``jacobian_uses`` are the state positions the Jacobian depends on. ``uses`` are the
+    positions each row depends on.
     """
 
     order: int
@@ -46,6 +48,7 @@ class Level:
     conditions: tuple[str, ...]
     linear: bool
     uses: tuple[frozenset[int], ...]
+    jacobian_uses: frozenset[int]
 
     @property
     def constraint_rows(self) -> int:
@@ -95,7 +98,8 @@ def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
         wheres=tuple(e.where for e in equations) + tuple(c.where for c in conditions),
         conditions=tuple(c.key for c in conditions), linear=linear,
         uses=tuple(frozenset(positions[s] for s in e.free_symbols if s in positions)
-                   for e in exprs))
+                   for e in exprs),
+        jacobian_uses=frozenset(positions[s] for s in jac.free_symbols if s in positions))
 
 
 def plan(problem: Problem) -> Plan:
