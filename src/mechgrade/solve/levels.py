@@ -25,6 +25,7 @@ from .plan import Level, Plan
 RANK_TOL = 1e-9
 DEFAULT_GUESS = 0.3
 JOINT_SPREADS = (0.5, 2.0, 8.0)
+SAME_ROOT = 1e-4
 
 
 @dataclass(frozen=True)
@@ -295,12 +296,13 @@ def _satisfied(problem, level, x, active, target) -> bool:
 
 
 def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
-    """Whether two roots are the same configuration (angles compared modulo a turn)."""
+    """Whether two roots are the same configuration (angles compared modulo a turn), within
+    a small part of the quantity's typical size: a double root is only found that well."""
     for i in positions:
         d = a[i] - b[i]
         if g.scales[i] == np.pi:
             d = (d + np.pi) % (2 * np.pi) - np.pi
-        if abs(d) > 1e-6 * (1 + abs(a[i])):
+        if abs(d) > SAME_ROOT * max(g.scales[i], abs(a[i]), abs(b[i])):
             return False
     return True
 

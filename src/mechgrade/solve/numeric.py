@@ -17,11 +17,12 @@ import numpy as np
 from ..errors import AuthorWarning, Location, MechgradeError, SolveError, UnderdeterminedError
 from ..spec.model import Problem
 from ..units import from_si
-from .levels import (Givens, State, configurations, evaluate, missing_values, place_givens,
-                     rows, solve_linear, solve_nonlinear)
+from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
+                     place_givens, rows, solve_linear, solve_nonlinear)
 from .plan import Plan
 
 PROBE_TOL = 1e-7
+SINGULAR = 1e-3
 
 
 @dataclass(frozen=True)
@@ -223,18 +224,27 @@ def _degenerate(problem: Problem, p: Plan, state: State,
     wheres = {q.name: q.where for q in problem.points}
     for a in range(len(p.points)):
         for b in range(a):
-            close = np.abs(here[:, a] - here[:, b]).max() <= 1e-9 * size
-            always = np.abs(there[:, a] - there[:, b]).max() <= 1e-9 * size
+            close = np.abs(here[:, a] - here[:, b]).max() <= SAME_ROOT * size
+            always = np.abs(there[:, a] - there[:, b]).max() <= SAME_ROOT * size
             if close and not always:
                 out.append(AuthorWarning(
                     f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
                     "coincide in the solution", wheres.get(p.points[a], Location())))
     level = p.levels[0]
-    if level.constraint_rows and p.constraint_rank:
-        with np.errstate(all="ignore"):
-            J = np.asarray(level.jacobian(*state.values), dtype=float).reshape(
-                len(level.labels), -1)[:level.constraint_rows, :p.index.n]
-        if np.isfinite(J).all() and np.linalg.matrix_rank(J) < p.constraint_rank:
+    rank = p.constraint_rank
+    if level.constraint_rows and rank:
+        def weakest(values):
+            """The rank-th singular value of the constraints' Jacobian in the coordinates."""
+            with np.errstate(all="ignore"):
+                J = np.asarray(level.jacobian(*values), dtype=float).reshape(
+                    len(level.labels), -1)[:level.constraint_rows, :p.index.n]
+            if not np.isfinite(J).all():
+                return np.nan
+            sv = np.linalg.svd(J, compute_uv=False)
+            return sv[rank - 1] if len(sv) >= rank else 0.0
+
+        # singular: far weaker here than in the configurations around it
+        if weakest(state.values) < SINGULAR * weakest(other):
             out.append(AuthorWarning(
                 "degenerate configuration: the position constraints are singular in the "
                 "solution (their Jacobian loses rank: a dead point or a folded linkage)",
