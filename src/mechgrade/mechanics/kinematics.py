@@ -60,7 +60,9 @@ class Kinematics:
     ``objectives`` maps an objective id to a scalar expression or a 3x1 matrix of components
     in the objective's frame; ``mistakes`` likewise for author-declared mistaken models.
     ``requirements`` are ``(objective id, reason, expr)``: ``expr`` must vanish at the instant
-    for the objective to exist (a point of zero velocity needs planar motion).
+    for the objective to exist (a point of zero velocity needs planar motion). ``points`` are
+    the position of every point from the inertial point (inertial components); ``warnings``
+    the material-point warnings of :mod:`.material`.
     """
 
     problem: str

@@ -1,10 +1,9 @@
 """Solve a problem at the instant its givens describe, and evaluate every objective.
 
-Numeric objectives: the position constraints are solved numerically for the coordinates the
-givens leave open (near the spec's guesses), then the velocity and acceleration levels — linear
-in the rates — by least squares, with ranks and residuals checked: a rate nothing determines is
-reported by name if an objective depends on it, and givens that contradict the constraints are
-reported as a conflict. Symbolic objectives are solved with sympy in the declared symbols.
+Objectives are grouped by instant (the problem's givens, or those with an objective's own);
+numeric ones are solved level by level (:mod:`.numeric`, :mod:`.levels`), symbolic ones with
+sympy in the declared symbols (:mod:`.symbolic`). An objective that cannot be answered is a
+failure beside the others' answers; the solved state is reported in the author's units.
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir

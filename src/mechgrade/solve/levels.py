@@ -20,6 +20,7 @@ from scipy import linalg, optimize
 from ..errors import InconsistentError, Location, SolveError
 from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
+from ..units import from_si
 from .plan import Level, Plan
 
 RANK_TOL = 1e-9
@@ -332,8 +333,6 @@ def _branch_where(problem: Problem) -> Location:
 
 def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> str:
     """Roots listed by their solved quantities in the author's units."""
-    from ..units import from_si
-
     units = author_units(problem, p, g)
     out = []
     for x in states:
