@@ -116,3 +116,13 @@ def test_check_of_an_empty_folder_exit_2(tmp_path):
     result = run("check", str(tmp_path))
     assert result.exit_code == 2
     assert result.output == f"expected problem files (*.yaml), found none in {tmp_path}\n"
+
+
+def test_solve_json_lists_failures_beside_the_answers_and_exits_2():
+    path = ROOT / "tests" / "data" / "authoring_mistakes" / "solve_one_objective_fails.yaml"
+    result = CliRunner().invoke(main, ["solve", str(path), "--format", "json"])
+    assert result.exit_code == 2
+    data = json.loads(result.output)
+    assert data["objectives"]["speed"]["value"] == 6.0
+    assert list(data["failures"]) == ["accel"]
+    assert data["failures"]["accel"].endswith("give a value for theta'' (acceleration level)")
