@@ -48,9 +48,10 @@ def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tup
         a = model.language.point_acceleration(Name(p.name), N)
         velocities.append(f"{N}_V_{p.name} = {_vector_text(model.plain(v))}")
         accelerations.append(f"{N}_A_{p.name} = {_vector_text(model.plain(a))}")
-    definitions = (("Definitions", tuple(f"{d.name} = {d.expr.text}"
-                                          for d in problem.definitions)),) \
-        if problem.definitions else ()
+    defined = tuple(f"{d.name} = {d.expr.text} = "
+                    f"{_vector_text(model.plain(model.language.value(d.expr.node)))}"
+                    for d in problem.definitions)
+    definitions = (("Definitions", defined),) if defined else ()
     return (("Frames", tuple(frames)), ("Points", tuple(points)), *definitions,
             ("Coordinates", tuple(coordinates)), ("Parameters", tuple(parameters)),
             ("Constraints", tuple(constraints)), ("Degrees of freedom", tuple(dof_lines)),

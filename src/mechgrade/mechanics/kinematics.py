@@ -1,5 +1,6 @@
-"""The kinematics of a problem: from the model built a problem's frames, points, constraints and objectives with
-``sympy.physics.mechanics``, and hand them on as plain sympy expressions.
+"""The kinematics of a problem: from its ``sympy.physics.mechanics`` model (:mod:`.build`),
+the constraint equations at every level, the givens and the objectives, handed on as plain
+sympy expressions.
 
 Coordinates are ``dynamicsymbols``; frames are oriented with ``orient_axis`` /
 ``orient_body_fixed``; every point's position is written from the inertial point, and

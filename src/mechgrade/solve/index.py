@@ -3,7 +3,8 @@
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
 >>> from mechgrade.mechanics import derive
->>> index = SymbolIndex.of(derive(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")))
+>>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+>>> index = SymbolIndex.of(derive(problem))
 >>> index.spelling(index.rates(1)[0]), index.level_of(index.rates(2)[0])
 ("theta'", 2)
 """

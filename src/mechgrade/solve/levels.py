@@ -3,9 +3,10 @@ placed in its state layout (:class:`Givens`) and the state solved so far (:class
 
 A level whose equations are linear in its unknowns (the velocity and acceleration constraints,
 givens that are components) is solved by least squares, with its nullspace (the combinations of
-rates the givens leave free). Any other level — the position level, a speed or magnitude given —
-is solved numerically from a few deterministic starts; every distinct root found is returned
-(the caller chooses among them knowingly). Ranks say which unknowns the equations leave free.
+rates the givens leave free). Any other level — the position level, a speed or magnitude
+given — is solved numerically from a few deterministic starts; every distinct root found is
+returned (the caller chooses among them knowingly). Ranks say which unknowns the equations
+leave free.
 """
 
 from __future__ import annotations
