@@ -14,9 +14,11 @@ import time
 from pathlib import Path
 
 from mechgrade.errors import MechgradeError
-from mechgrade.mechanics.model import derive
-from mechgrade.solve import instant
-from mechgrade.solve.instant import _givens, _instants, _solve_numeric, plan
+from mechgrade.mechanics import derive
+from mechgrade.solve import plan
+from mechgrade.solve.instant import _givens, _instants
+from mechgrade.solve.numeric import solve_numeric
+from mechgrade.solve.symbolic import symbolic as solve_symbolic
 from mechgrade.spec import load_problem
 
 
@@ -57,13 +59,13 @@ def measure(path: Path):
         for _ in range(20):
             start = time.perf_counter()
             for givens, numeric in groups:
-                _solve_numeric(problem, p, givens, numeric)
+                solve_numeric(problem, p, givens, numeric)
             runs.append(time.perf_counter() - start)
     givens = _givens(problem, None)
     start = time.perf_counter()
     for obj in problem.objectives:
         if obj.kind == "symbolic":
-            instant._symbolic(problem, p.k, obj, givens)
+            solve_symbolic(problem, p.k, obj, givens)
     symbolic = time.perf_counter() - start
     return cold, statistics.median(runs) if runs else float("nan"), symbolic, problem.id
 

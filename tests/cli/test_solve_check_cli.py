@@ -27,6 +27,11 @@ def test_solve_prints_each_objective_with_its_unit():
         "  acc_N             (-89.8705, -40.3397, 0) ft/s^2 in N",
         "  acc_A             (-98, 10, 0) ft/s^2 in A",
         "  acc_mag_symbolic  L*sqrt(thetad**4 + thetadd**2)   [ft/s^2; in L, thetad, thetadd]",
+        "State at the instant",
+        "  theta = 30 deg",
+        "  L = 2 ft",
+        "  theta' = 7 rad / s",
+        "  theta'' = 5 rad / s ** 2",
     ]
 
 
@@ -39,6 +44,8 @@ def test_solve_json_is_the_documented_contract():
     assert data["objectives"]["acc_N"]["unit"] == "ft/s^2"
     assert len(data["objectives"]["acc_N"]["value"]) == 3
     assert data["objectives"]["acc_mag"]["expr"] is None
+    assert data["failures"] == {} and data["warnings"] == []
+    assert {"name": "theta", "value": 30.0, "unit": "deg", "given": True} in data["state"]
     assert data["objectives"]["acc_mag_symbolic"] == {
         "value": None, "unit": "ft/s^2", "frame": None,
         "expr": "L*sqrt(thetad**4 + thetadd**2)"}
@@ -52,7 +59,7 @@ def test_solve_steps_follow_the_write_up_order():
     sections = [line for line in result.output.splitlines() if line and not line[0].isspace()]
     assert sections[1:] == ["Frames", "Points", "Coordinates", "Parameters", "Constraints",
                             "Degrees of freedom", "Velocities", "Accelerations",
-                            "Solution at the instant (SI)", "Objectives"]
+                            "Objectives", "State at the instant"]
     assert "  N_V_A = L*thetad*A.y" in result.output
 
 
@@ -98,8 +105,9 @@ def test_check_reports_a_broken_file_among_good_ones(tmp_path):
     assert result.exit_code == 1
     assert result.output.splitlines() == [
         f"FAIL {tmp_path / 'broken.yaml'}",
-        f"  {tmp_path / 'broken.yaml'}: objective 'speed' is not determined by the givens: "
-        "give a value for thetad (velocity level)",
+        f"  {tmp_path / 'broken.yaml'}:18:5: objectives[0]: objective 'speed' is not determined "
+        "by the givens: "
+        "give a value for theta' (velocity level)",
         f"ok   {tmp_path / 'good.yaml'} (1 tests, DOF 1)",
         "2 file(s), 1 failing",
     ]
@@ -128,9 +136,19 @@ def test_check_lists_every_error_of_a_file_and_its_warnings(tmp_path):
         f"  {bad}:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; found "
         "'scalr'; did you mean 'scalar'?",
         f"FAIL {unsolvable}",
-        f"  {unsolvable}: objective 'speed' is not determined by the givens: give a value for "
-        "thetad (velocity level)",
+        f"  {unsolvable}:18:5: objectives[0]: objective 'speed' is not determined by the "
+        "givens: give a value for theta' (velocity level)",
         f"  {unsolvable}:1:5: id: warning: id 'base' differs from the file name 'unsolvable'; "
         "expected them equal (rename the file or write id: unsolvable)",
         "2 file(s), 2 failing",
     ]
+
+
+def test_solve_json_lists_failures_beside_the_answers_and_exits_2():
+    path = ROOT / "tests" / "data" / "authoring_mistakes" / "solve_one_objective_fails.yaml"
+    result = CliRunner().invoke(main, ["solve", str(path), "--format", "json"])
+    assert result.exit_code == 2
+    data = json.loads(result.output)
+    assert data["objectives"]["speed"]["value"] == 6.0
+    assert list(data["failures"]) == ["accel"]
+    assert data["failures"]["accel"].endswith("give a value for theta'' (acceleration level)")

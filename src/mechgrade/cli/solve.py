@@ -18,7 +18,11 @@ def solution_json(problem, solution) -> dict:
     for r in solution.results:
         value = r.value if r.kind != "vector" else list(r.value)
         objectives[r.id] = {"value": value, "unit": r.unit, "frame": r.frame, "expr": r.expr}
-    return {"problem": problem.id, "objectives": objectives}
+    return {"problem": problem.id, "objectives": objectives,
+            "failures": {f.id: str(f.error) for f in solution.failures},
+            "state": [{"name": v.name, "value": v.value, "unit": v.unit, "given": v.given}
+                      for v in solution.state],
+            "warnings": [str(w) for w in solution.warnings]}
 
 
 def _value_text(result) -> str:
@@ -40,19 +44,33 @@ def solve_command(problem_file: str, fmt: str, steps: bool) -> None:
     """Solve PROBLEM_FILE and print each objective's reference answer."""
     problem = load_problem(problem_file)
     solution = solve_problem(problem)
+    failed = {f.id: f.error for f in solution.failures}
     if fmt == "json":
         click.echo(json.dumps(solution_json(problem, solution), indent=2))
-        return
+    else:
+        _print_text(problem, solution, failed, steps)
+    if failed:
+        click.get_current_context().exit(next(iter(failed.values())).exit_code)
+
+
+def _print_text(problem, solution, failed, steps: bool) -> None:
     click.echo(f"{problem.id}: {problem.title}")
     if steps:
         for section, lines in derivation(problem, solution.dof):
             click.echo(f"\n{section}")
             for line in lines or ("(none)",):
                 click.echo(f"  {line}")
-        click.echo("\nSolution at the instant (SI)")
-        for s in solution.state:
-            click.echo(f"  {s.name} = {s.value:.6g} {s.unit}{'' if s.given else '   (solved)'}")
         click.echo("\nObjectives")
-    width = max(len(r.id) for r in solution.results)
-    for r in solution.results:
-        click.echo(f"  {r.id.ljust(width)}  {_value_text(r)}")
+    results = {r.id: r for r in solution.results}
+    ids = [o.id for o in problem.objectives if o.id in results or o.id in failed]
+    width = max(len(i) for i in ids)
+    for oid in ids:
+        text = _value_text(results[oid]) if oid in results else f"error: {failed[oid]}"
+        click.echo(f"  {oid.ljust(width)}  {text}")
+    if solution.state:
+        click.echo("State at the instant")
+        for s in solution.state:
+            unit = f" {s.unit}" if s.unit else ""
+            click.echo(f"  {s.name} = {s.value:.6g}{unit}{'' if s.given else '   (solved)'}")
+    for warning in solution.warnings:
+        click.echo(str(warning))

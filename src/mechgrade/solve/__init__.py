@@ -1,6 +1,8 @@
 """The reference solver: every objective of a problem, derived from its model."""
 
-from .instant import plan, solve
-from .result import MistakeValue, ObjectiveResult, Solution, StateValue
+from .instant import solve
+from .plan import plan
+from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 
-__all__ = ["solve", "plan", "Solution", "ObjectiveResult", "MistakeValue", "StateValue"]
+__all__ = ["solve", "plan", "Solution", "ObjectiveResult", "MistakeValue", "StateValue",
+           "ObjectiveFailure"]

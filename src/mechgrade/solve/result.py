@@ -9,6 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Union
 
+from ..errors import AuthorWarning, MechgradeError
+
 Value = Union[float, tuple[float, float, float], None]
 
 
@@ -49,12 +51,23 @@ class ObjectiveResult:
 
 @dataclass(frozen=True)
 class StateValue:
-    """A coordinate, rate, parameter or time at the instant (SI value and its SI unit)."""
+    """A coordinate, rate, parameter or time at the instant, named as a spec spells it
+    (``theta'``): ``value`` in ``unit`` (the author's: that of its given or guess, else the
+    declared one), ``si`` in SI; ``given`` says it was given rather than solved."""
 
     name: str
     value: float
     unit: str
     given: bool
+    si: float
+
+
+@dataclass(frozen=True)
+class ObjectiveFailure:
+    """An objective the solver could not answer, and why."""
+
+    id: str
+    error: MechgradeError
 
 
 @dataclass(frozen=True)
@@ -65,9 +78,15 @@ class Solution:
     results: tuple[ObjectiveResult, ...]
     state: tuple[StateValue, ...] = ()
     dof: int | None = None
+    failures: tuple[ObjectiveFailure, ...] = ()
+    warnings: tuple[AuthorWarning, ...] = ()
 
     def result(self, objective_id: str) -> ObjectiveResult:
+        """The objective's result; raises its error if it failed."""
         for result in self.results:
             if result.id == objective_id:
                 return result
+        for failure in self.failures:
+            if failure.id == objective_id:
+                raise failure.error
         raise KeyError(objective_id)

@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import json
+import math
 import re
 from functools import lru_cache
 from pathlib import Path
@@ -22,7 +23,9 @@ from ..yamlio import Document, read_yaml, read_yaml_text
 from .language import FUNCTIONS
 from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake, Objective,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
-from .validate import bare_angle_message, did_you_mean, is_angle_unit, problem_errors
+from .solving import (check_solving, expand, given_expression, read_branches, read_definitions,
+                      read_unknowns, resolve_given_values)
+from .validate import RESERVED, bare_angle_message, did_you_mean, is_angle_unit, problem_errors
 
 SCHEMA_PATH = Path(__file__).with_name("problem.schema.json")
 
@@ -204,6 +207,17 @@ class _Builder:
         self.broken = broken
         self.errors: list[SpecError] = []
         self.broken_names: set[str] = set()
+        self.definitions: dict = {}
+        self.definition_items = (self.attempt(read_definitions, self.data, self.expr, self.where)
+                                 if self.usable("define") else None) or ()
+        # A definition that reuses a name is reported by check_solving; expanding it would only
+        # add errors about the name it shadows.
+        taken = RESERVED | {name for section in ("frames", "points", "coordinates", "parameters")
+                            if isinstance(self.data.get(section), dict)
+                            for name in self.data[section]}
+        for d in self.definition_items:
+            if d.name not in taken:
+                self.definitions[d.name] = d.expr.node
 
     def where(self, *path) -> Location:
         return self.doc.where(tuple(path))
@@ -248,7 +262,7 @@ class _Builder:
             node = parse(text, functions=FUNCTIONS)
         except ExpressionError as err:
             raise SpecError(_with_hint(err.message, text), where=where) from None
-        return Expr(text, node, where)
+        return Expr(text, expand(node, self.definitions), where)
 
     def equation(self, text: str, *path) -> tuple[Expr, Expr]:
         left, right = text.split("=")
@@ -256,7 +270,8 @@ class _Builder:
         exprs = []
         for side in (left, right):
             try:
-                exprs.append(Expr(side.strip(), parse(side, functions=FUNCTIONS), where))
+                node = expand(parse(side, functions=FUNCTIONS), self.definitions)
+                exprs.append(Expr(side.strip(), node, where))
             except ExpressionError as err:
                 raise SpecError(_with_hint(err.message, side), where=where) from None
         return exprs[0], exprs[1]
@@ -315,6 +330,17 @@ class _Builder:
                     self.broken_names.add(spec["id"])
             else:
                 objectives.append(objective)
+        givens = [g for g in givens if g is not None]
+        resolved = self.attempt(resolve_given_values, tuple(givens), tuple(coordinates),
+                                tuple(parameters))
+        givens = list(resolved) if resolved is not None else givens
+        unknowns = (self.attempt(read_unknowns, d, self.expr) if self.usable("unknown")
+                    else None) or ()
+        branches = (self.attempt(read_branches, d, self.expr, self.where)
+                    if self.usable("branch") else None) or ()
+        self.attempt(check_solving, tuple(coordinates), tuple(parameters), tuple(givens),
+                     unknowns, branches, self.definition_items,
+                     RESERVED | {f.name for f in frames} | {p.name for p in points})
         problem_id = d.get("id") if self.usable("id") else ""
         return Problem(
             id=problem_id, title=d.get("title", "") if self.usable("title") else "",
@@ -326,7 +352,8 @@ class _Builder:
             givens=tuple(g for g in givens if g is not None),
             guesses=tuple(g for g in guesses if g is not None), objectives=tuple(objectives),
             consistency=float(d.get("consistency", 5e-3)) if self.usable("consistency") else 5e-3,
-            path=self.doc.file, warnings=self.warnings(problem_id))
+            path=self.doc.file, unknowns=unknowns, branches=branches,
+            definitions=self.definition_items, warnings=self.warnings(problem_id))
 
     def warnings(self, problem_id) -> tuple[AuthorWarning, ...]:
         stem = Path(self.doc.file).stem
@@ -397,6 +424,11 @@ class _Builder:
             try:
                 q = parse_quantity(str(value))
             except UnitError as err:
+                value_expr = given_expression(str(value), self.data.get("givens") or {},
+                                              self.expr, section, key)
+                if value_expr is not None:
+                    return Given(key_expr, math.nan, "", math.nan, str(value), where,
+                                 value_expr=value_expr)
                 raise SpecError(_unit_hint(err.message), where=where) from None
             number, unit, text = q.value, q.unit, str(value)
         return Given(key_expr, number, unit, to_si(number, unit), text, where)

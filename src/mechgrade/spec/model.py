@@ -10,6 +10,7 @@ from, so any later error can point back into the file.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import Enum
 
 from ..errors import AuthorWarning, Location
 from ..expressions.syntax import Node
@@ -102,13 +103,43 @@ class Constraint:
 @dataclass(frozen=True)
 class Given:
     """A value known at the instant: of a parameter, a coordinate or its rates, or of any
-    scalar expression (``dot(vel(B, N), B.x)``). ``value`` is in ``unit``; ``si`` in SI."""
+    scalar expression (``dot(vel(B, N), B.x)``). ``value`` is in ``unit``; ``si`` in SI.
+    ``value_expr`` is set when the value was written as an expression of other givens
+    (``x: L/2``); loading evaluates it."""
 
     key: Expr
     value: float
     unit: str
     si: float
     text: str
+    where: Location = field(default_factory=Location, compare=False)
+    value_expr: Expr | None = None
+
+
+class Root(Enum):
+    """Which root of the position (or a non-linear rate) level a ``branch:`` entry asks for."""
+
+    POSITIVE = "positive"
+    NEGATIVE = "negative"
+    FIRST_POSITIVE = "first positive"
+
+
+@dataclass(frozen=True)
+class Branch:
+    """``branch: {t: first positive}``: the root wanted for one solved quantity."""
+
+    key: Expr
+    root: Root
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Definition:
+    """``define: {r_AB: pos(B, A)}``: a name for an intermediate quantity; expressions that use
+    the name are read with the definition in its place."""
+
+    name: str
+    expr: Expr
     where: Location = field(default_factory=Location, compare=False)
 
 
@@ -208,6 +239,9 @@ class Problem:
     objectives: tuple[Objective, ...]
     consistency: float = 5e-3
     path: str | None = field(default=None, compare=False)
+    unknowns: tuple[Expr, ...] = ()
+    branches: tuple[Branch, ...] = ()
+    definitions: tuple[Definition, ...] = ()
     warnings: tuple[AuthorWarning, ...] = field(default=(), compare=False)
 
     def objective(self, objective_id: str) -> Objective:

@@ -252,6 +252,8 @@ class _Checker:
         if canonical in seen:
             raise SpecError(f"'{canonical}' is given twice", where=given.where)
         seen[canonical] = given
+        if given.value_expr is not None and math.isnan(given.si):
+            return  # an expression of other givens that could not be worked out: said already
         self._bare_angle(given)
         if _bare(given) and t.dim != dimensionless():
             unit = self._natural_unit(node)

@@ -1,0 +1,497 @@
+"""Solving the instant level by level, as pure functions of a :class:`~.plan.Plan`, the givens
+placed in its state layout (:class:`Givens`) and the state solved so far (:class:`State`).
+
+A level whose equations are linear in its unknowns (the velocity and acceleration constraints,
+givens that are components) is solved by least squares, with its nullspace (the combinations of
+rates the givens leave free). Any other level — the position level, a speed or magnitude
+given — is solved numerically from a few deterministic starts; every distinct root found is
+returned (the caller chooses among them knowingly). Ranks say which unknowns the equations
+leave free.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, replace
+from typing import Mapping
+
+import numpy as np
+from scipy import linalg, optimize
+
+from ..errors import InconsistentError, Location, SolveError
+from ..expressions.syntax import Name, Prime, to_text
+from ..spec.model import Problem, Root
+from ..units import from_si
+from .plan import Level, Plan
+
+RANK_TOL = 1e-9
+DEFAULT_GUESS = 0.3
+JOINT_SPREADS = (0.5, 2.0, 8.0)
+SAME_ROOT = 1e-4
+
+
+@dataclass(frozen=True)
+class Givens:
+    """The givens of one solve in the state layout.
+
+    ``values`` (NaN where not given) and ``known``; ``solvable`` marks what the solver may solve
+    for (coordinates, rates, and the parameters or ``t`` listed under ``unknown:``);
+    ``conditions[level][key]`` the expression givens (SI); ``texts``/``wheres`` each given as
+    written and where, for messages; ``guess`` start values (``guessed`` where the spec gave
+    them); ``branches`` the root each position wants; ``units`` the author's unit of each
+    position (for listing configurations).
+    """
+
+    values: np.ndarray
+    known: np.ndarray
+    solvable: np.ndarray
+    conditions: tuple[Mapping[str, float], Mapping[str, float], Mapping[str, float]]
+    texts: Mapping[str, str]
+    wheres: Mapping[str, Location]
+    guess: np.ndarray
+    guessed: np.ndarray
+    branches: Mapping[int, Root]
+    scales: np.ndarray
+
+
+@dataclass(frozen=True)
+class State:
+    """The quantities at the instant (``values``, in the state layout, SI); ``given`` marks
+    the given positions, ``free`` those nothing determined (their values are arbitrary picks)."""
+
+    values: np.ndarray
+    given: np.ndarray
+    free: frozenset[int] = frozenset()
+
+
+def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
+    """``givens`` (canonical key -> (key node, SI value, Given or None)) in ``p``'s layout."""
+    index = p.index
+    values = np.full(index.size, np.nan)
+    known = np.zeros(index.size, dtype=bool)
+    conditions = ({}, {}, {})
+    texts, wheres = {}, {}
+    for key, (node, si, given) in givens.items():
+        texts[key] = f"{key} = {given.text}" if given is not None else f"{key} = {si:g} (SI)"
+        wheres[key] = given.where if given is not None else Location()
+        if isinstance(node, (Name, Prime)):
+            try:
+                i = index.symbols.index(p.k.quantity(node))
+            except (KeyError, ValueError):
+                raise SolveError(f"cannot give '{key}': not a coordinate, rate, parameter "
+                                 "or t of this problem") from None
+            values[i] = si
+            known[i] = True
+        else:
+            levels = [level.order for level in p.levels if key in level.conditions]
+            if not levels:
+                raise SolveError(f"cannot give '{key}': it is not a given of this problem "
+                                 "(expression givens must appear in the spec)")
+            conditions[levels[0]][key] = si
+    unknown = {u.text.strip() for u in problem.unknowns}
+    solvable = np.array([not (index.is_parameter(i) or i == index.time)
+                         or index.names[i] in unknown for i in range(index.size)])
+    guesses = {to_text(g.key.node): g.si for g in problem.guesses}
+    guessed = np.array([index.names[i] in guesses for i in range(index.size)])
+    guess = np.array([guesses.get(index.names[i], DEFAULT_GUESS) for i in range(index.size)])
+    branches = {index.position(to_text(b.key.node)): b.root for b in problem.branches}
+    return Givens(values, known, solvable, conditions, texts, wheres, guess, guessed, branches,
+                  _scales(problem, p, values, known))
+
+
+def _scales(problem: Problem, p: Plan, values, known) -> np.ndarray:
+    """A typical size for each position, from the givens of the same unit (angles: pi)."""
+    index = p.index
+    units = {c.name: c.unit for c in problem.coordinates}
+    units.update({q.name: q.unit for q in problem.parameters})
+    by_unit: dict[str, list[float]] = {}
+    for i in range(index.size):
+        if known[i] and values[i]:
+            by_unit.setdefault(_unit_of(index, units, i), []).append(abs(values[i]))
+    out = np.ones(index.size)
+    for i in range(index.size):
+        unit = _unit_of(index, units, i)
+        if unit in ("rad", "deg", "degree", "radian"):
+            out[i] = np.pi
+        elif by_unit.get(unit):
+            out[i] = float(np.median(by_unit[unit]))
+    return out
+
+
+def _unit_of(index, units, i) -> str:
+    if i == index.time:
+        return "s"
+    name = index.coordinate_of(i) or index.names[i]
+    unit = units.get(name, "")
+    order = index.level_of(i) if index.coordinate_of(i) else 0
+    return unit if order == 0 else f"{unit}/s^{order}"
+
+
+def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
+    """Which rows are active (constraints, and the conditions given in this solve), and the
+    value each row must equal (0 for constraints)."""
+    values = np.array([g.conditions[level.order].get(key, np.nan) for key in level.conditions])
+    n = level.constraint_rows
+    active = np.concatenate([np.ones(n, dtype=bool), ~np.isnan(values)])
+    target = np.concatenate([np.zeros(n), np.nan_to_num(values)])
+    return active, target
+
+
+def missing_values(p: Plan, g: Givens, only: set[str]) -> list[int]:
+    """Parameters and ``t`` that have no value and may not be solved for, yet are needed by an
+    equation or by an objective in ``only``."""
+    missing = {i for i in range(p.index.size) if not g.known[i] and not g.solvable[i]}
+    if not missing:
+        return []
+    needed: set[int] = set()
+    for level in p.levels:
+        active, _ = rows(level, g)
+        for uses, on in zip(level.uses, active):
+            if on:
+                needed |= uses
+    for oid, uses in p.objective_uses:
+        if oid in only:
+            needed |= uses
+    return sorted(missing & needed)
+
+
+# ---------------------------------------------------------------------------- non-linear
+
+
+@dataclass(frozen=True)
+class Roots:
+    """The distinct solutions of a non-linear level (states), the first from the first start;
+    ``free`` the unknowns the equations left free; ``picked`` whether the spec chose the root
+    (guesses or a branch)."""
+
+    states: tuple[State, ...]
+    free: tuple[int, ...]
+    picked: bool
+
+
+def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+                    free_values: Mapping[int, float] | None = None,
+                    start: np.ndarray | None = None) -> Roots:
+    """Solve level ``order`` numerically for its unknowns.
+
+    Unknowns the equations determine are solved by least squares from the spec's guesses (only
+    those, when the spec guessed any of them), else from a few deterministic starts spread
+    around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
+    whole state) replaces the starts: re-solving near a root already chosen.
+    """
+    level = p.levels[order]
+    columns = list(p.index.unknowns(order))
+    active, target = rows(level, g)
+    x = state.values.copy()
+    unknown = [i for i in columns if not g.known[i] and g.solvable[i]]
+    origin = g.guess if start is None else start
+    x[unknown] = origin[unknown]
+    for i in columns:
+        if not g.known[i] and not g.solvable[i]:
+            x[i] = np.nan
+    if not unknown or not active.any():
+        for i in unknown:
+            x[i] = (free_values or {}).get(i, x[i])
+        result = replace(state, values=x, given=g.known, free=state.free | frozenset(unknown))
+        error = _unsolved(problem, level, g, x, active, target, 0, 1) if active.any() else None
+        if error is not None:
+            raise error
+        return Roots((result,), tuple(unknown), True)
+
+    def evaluate(full, f, shape):
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return np.asarray(f(*full), dtype=float).reshape(shape)
+
+    position = {c: j for j, c in enumerate(columns)}
+    # Equal default guesses can make a Jacobian singular (two angles both 0.3): which unknowns
+    # the equations determine is read where it is not.
+    nearby = x.copy()
+    nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
+    jacobians = [evaluate(at, level.jacobian, (len(level.labels), len(columns)))[active][
+        :, [position[i] for i in unknown]] for at in (x, nearby)]
+    determined, free = max((_split_free(J, unknown) for J in jacobians),
+                           key=lambda split: len(split[0]))
+    # equations linear in the unknowns at hand (the rest given) have one root: one start
+    linear = not (level.jacobian_uses & set(determined))
+    for i in free:
+        x[i] = (free_values or {}).get(i, x[i])
+    solve_for = [position[i] for i in determined]
+
+    def residual(vals, base):
+        full = base.copy()
+        full[determined] = vals
+        return evaluate(full, level.residual, (-1,))[active] - target[active]
+
+    def jac(vals, base):
+        full = base.copy()
+        full[determined] = vals
+        return evaluate(full, level.jacobian, (len(level.labels), len(columns)))[active][
+            :, solve_for]
+
+    picked_by_guess = start is not None or bool(g.guessed[determined].any())
+    picked = picked_by_guess or any(i in g.branches for i in determined)
+    starts = [x[determined]]
+    if not picked_by_guess and not linear:
+        starts += _starts(x[determined], g.scales[determined], order)
+    found: list[np.ndarray] = []
+    best = None
+    for k, s in enumerate(starts):
+        if not determined:
+            break
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                # Levenberg-Marquardt from the other starts: it keeps to the root a start is
+                # in the basin of, where a trust region drifts to the nearest one.
+                fit = optimize.least_squares(residual, s, jac=jac, args=(x,), xtol=1e-14,
+                                             ftol=1e-14, gtol=1e-14, max_nfev=200,
+                                             method="trf" if k == 0 else "lm")
+            except ValueError:  # a start where the equations are undefined
+                continue
+        full = x.copy()
+        full[determined] = fit.x
+        if best is None or fit.cost < best[0]:
+            best = (fit.cost, full)
+        if _satisfied(problem, level, full, active, target) and \
+                not any(_same(p, g, full, other, determined) for other in found):
+            found.append(full)
+    if not found:
+        full = best[1] if best is not None else x
+        raise _unsolved(problem, level, g, full, active, target, len(determined), len(starts))
+    roots = [r for r in found if _on_branch(g, r, determined)]
+    if not roots:
+        wanted = "; ".join(f"{p.index.spelling(i)}: {g.branches[i].value}"
+                           for i in determined if i in g.branches)
+        listing = configurations(problem, p, g, found, determined)
+        raise SolveError(f"no solution of the {level.name} equations is on the branch asked "
+                         f"for ({wanted}); solutions found: {listing}",
+                         where=_branch_where(problem))
+    roots = _choose_branch(g, roots, determined)
+    states = tuple(replace(state, values=r, given=g.known, free=state.free | frozenset(free))
+                   for r in roots)
+    return Roots(states, tuple(free), picked)
+
+
+def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray]:
+    """Deterministic starts around ``guess``: each of the first four unknowns moved alone by
+    1 and 3 typical sizes either way (angles: a quarter and three quarters of a turn), then all
+    of them moved together at random (a fixed seed) by a few spreads."""
+    out = []
+    for j in range(min(len(guess), 4)):
+        for step in (1.0, -1.0, 3.0, -3.0):
+            s = guess.copy()
+            s[j] += step * (scale[j] / 2 if scale[j] == np.pi else scale[j])
+            out.append(s)
+    rng = np.random.default_rng(11 + order)
+    for spread in JOINT_SPREADS:
+        out.append(guess + spread * scale * rng.standard_normal(len(guess)))
+    return out
+
+
+def _satisfied(problem, level, x, active, target) -> bool:
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
+        scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
+    return bool(np.all(np.abs(r) <= problem.consistency * scale + 1e-10))
+
+
+def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
+    """Whether two roots are the same configuration (angles compared modulo a turn), within
+    a small part of the quantity's typical size: a double root is only found that well."""
+    for i in positions:
+        d = a[i] - b[i]
+        if g.scales[i] == np.pi:
+            d = (d + np.pi) % (2 * np.pi) - np.pi
+        if abs(d) > SAME_ROOT * max(g.scales[i], abs(a[i]), abs(b[i])):
+            return False
+    return True
+
+
+def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
+    for i in positions:
+        root = g.branches.get(i)
+        if root in (Root.POSITIVE, Root.FIRST_POSITIVE) and not x[i] > 1e-9 * g.scales[i]:
+            return False
+        if root is Root.NEGATIVE and not x[i] < -1e-9 * g.scales[i]:
+            return False
+    return True
+
+
+def _choose_branch(g: Givens, roots: list, positions) -> list:
+    """``first positive`` keeps the smallest root of that quantity."""
+    for i in positions:
+        if g.branches.get(i) is Root.FIRST_POSITIVE:
+            smallest = min(r[i] for r in roots)
+            roots = [r for r in roots if abs(r[i] - smallest) <= 1e-6 * (1 + abs(smallest))]
+    return roots
+
+
+def _branch_where(problem: Problem) -> Location:
+    return problem.branches[0].where if problem.branches else Location()
+
+
+def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> str:
+    """Roots listed by their solved quantities in the author's units."""
+    units = author_units(problem, p, g)
+    out = []
+    for x in states:
+        parts = []
+        for i in positions:
+            unit = units[i]
+            value = from_si(x[i], unit) if unit else x[i]
+            value = 0.0 if abs(x[i]) < 1e-12 * g.scales[i] else value + 0.0
+            parts.append(f"{p.index.spelling(i)} = {value:.6g}{' ' + unit if unit else ''}")
+        out.append("(" + ", ".join(parts) + ")")
+    return "; ".join(out)
+
+
+def author_units(problem: Problem, p: Plan, g: Givens | None = None) -> list[str]:
+    """The unit each position is reported in: that of its given or guess, else its own."""
+    index = p.index
+    declared = {c.name: c.unit for c in problem.coordinates}
+    declared.update({q.name: q.unit for q in problem.parameters})
+    written = {to_text(x.key.node): x.unit for x in problem.guesses}
+    written.update({to_text(x.key.node): x.unit for x in problem.givens})
+    out = []
+    for i in range(index.size):
+        name = index.spelling(i)
+        if name in written and written[name]:
+            out.append(written[name])
+        elif i == index.time:
+            out.append("s")
+        elif index.coordinate_of(i) and index.level_of(i):
+            base = declared[index.coordinate_of(i)] or "1"
+            out.append(f"{base}/s" if index.level_of(i) == 1 else f"{base}/s^2")
+        else:
+            out.append(declared.get(name, ""))
+    return out
+
+
+def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError | None:
+    """The error of a level not satisfied at ``x`` (``None`` if it is): a conflict when the
+    givens over-determine it (more equations than the ``rank`` of their Jacobian), else a
+    solve that found no root (no real solution, or starts too far from it)."""
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = np.asarray(level.residual(*x), dtype=float).ravel() - target
+        scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())
+    bad = [i for i in np.flatnonzero(active)
+           if not abs(r[i]) <= problem.consistency * scale[i] + 1e-10]
+    if not bad:
+        return None
+    i = bad[0]
+    if int(active.sum()) > rank:
+        return InconsistentError(
+            f"the givens conflict at the {level.name} level: '{level.labels[i]}' is not "
+            f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
+            f"involved: {'; '.join(g.texts.values()) or 'none'}", where=level.wheres[i])
+    guesses = "give guesses: near the configuration meant" if level.order == 0 else \
+        "give a branch: for the rate's sign or check the givens"
+    return SolveError(
+        f"the {level.name} equations were not solved: '{level.labels[i]}' keeps a residual of "
+        f"{r[i]:.4g} (terms of size {scale[i]:.4g}) from {starts} start(s): "
+        f"either they have no real solution with these values, or the solve did not "
+        f"converge; {guesses}", where=level.wheres[i])
+
+
+# ---------------------------------------------------------------------------- linear
+
+
+def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+                 shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
+    """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
+    ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
+    level = p.levels[order]
+    cols = list(p.index.rates(order))
+    n = len(cols)
+    active, target = rows(level, g)
+    x = state.values.copy()
+    x[cols] = np.where(g.known[cols], g.values[cols], 0.0)
+    with np.errstate(all="ignore"):
+        A = np.asarray(level.jacobian(*x), dtype=float).reshape(len(level.labels), n)
+        b = np.asarray(level.residual(*x), dtype=float).ravel() - target
+    A, b = A[active], b[active]
+    wheres = [w for w, on in zip(level.wheres, active) if on]
+    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+        bad = next(j for j in range(len(b)) if not (np.isfinite(A[j]).all()
+                                                     and np.isfinite(b[j])))
+        raise SolveError(f"the {level.name} equations are undefined at this instant (a "
+                         f"division by zero in '{np.array(level.labels)[active][bad]}')",
+                         where=wheres[bad])
+    unknown = [j for j in range(n) if not g.known[cols[j]]]
+    rhs = -b  # the unknown rates are 0 in x, so b is the residual of the known part
+    null = np.zeros((len(unknown), 0))
+    free = set(state.free)
+    if unknown:
+        A_u = A[:, unknown]
+        if len(b):
+            sol, *_ = linalg.lstsq(A_u, rhs)
+            null = nullspace(A_u)
+        else:
+            sol = np.zeros(len(unknown))
+            null = np.eye(len(unknown))
+        if shift is not None and null.shape[1]:
+            sol = sol + null @ shift
+        for j, value in zip(unknown, sol):
+            x[cols[j]] = value
+        free |= {cols[unknown[i]] for i in range(len(unknown))
+                 if null.shape[1] and np.abs(null[i]).max() > 1e-9}
+    if len(b):
+        with np.errstate(all="ignore"):
+            r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
+            scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
+        labels = np.array(level.labels)[active]
+        bad = [i for i in range(len(r)) if not abs(r[i]) <= problem.consistency * scale[i]
+               + 1e-10]
+        if bad:
+            i = bad[0]
+            raise InconsistentError(
+                f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
+                f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
+                f"involved: {'; '.join(g.texts.values()) or 'none'}", where=wheres[i])
+    return State(x, g.known, frozenset(free)), null
+
+
+def constraint_rank(p: Plan, state: State) -> int:
+    """Rank of the velocity-level constraints in the rates at the solved configuration."""
+    level = p.levels[1]
+    if not level.constraint_rows:
+        return 0
+    with np.errstate(all="ignore"):
+        A = np.asarray(level.jacobian(*state.values), dtype=float).reshape(len(level.labels),
+                                                                           p.index.n)
+    A = A[:level.constraint_rows]
+    return int(np.linalg.matrix_rank(A)) if np.isfinite(A).all() else 0
+
+
+def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:
+    """Which unknowns the equations determine (pivoted QR), and which stay free."""
+    if J.size == 0:
+        return [], list(unknown)
+    if not np.isfinite(J).all():
+        return list(unknown), []
+    with np.errstate(all="ignore"):
+        _, R, piv = linalg.qr(J, pivoting=True, mode="economic")
+    diag = np.abs(np.diag(R)) if R.size else np.zeros(0)
+    rank = int((diag > RANK_TOL * max(diag.max(initial=0.0), 1.0)).sum())
+    determined = sorted(unknown[j] for j in piv[:rank])
+    free = sorted(unknown[j] for j in piv[rank:])
+    return determined, free
+
+
+def nullspace(A: np.ndarray) -> np.ndarray:
+    if A.shape[0] == 0:
+        return np.eye(A.shape[1])
+    _, s, vt = linalg.svd(A)
+    rank = int((s > RANK_TOL * max(s.max(initial=0.0), 1.0)).sum())
+    return vt[rank:].T
+
+
+def evaluate(functions, state: State, only: set[str]) -> dict:
+    """``{id: values}`` of ``(id, function)`` pairs whose id is in ``only``, at ``state``."""
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return {oid: np.asarray(f(*state.values), dtype=float).ravel()
+                for oid, f in functions if oid in only}

@@ -1,0 +1,266 @@
+"""The numeric instant: every level solved, the root chosen knowingly, freedoms probed, and
+every given and constraint checked against the solution.
+
+Several roots (assembly branches, a degenerate configuration, the launch and the landing of a
+projectile, the two senses of a given speed) are an error when they give different answers and
+the spec did not pick one (``guesses:`` or ``branch:``). Degenerate configurations (two points
+coinciding, a singular constraint Jacobian) are warnings.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping
+
+import numpy as np
+
+from ..errors import AuthorWarning, Location, MechgradeError, SolveError, UnderdeterminedError
+from ..spec.model import Problem
+from ..units import from_si
+from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
+                     place_givens, rows, solve_linear, solve_nonlinear)
+from .plan import Plan
+
+PROBE_TOL = 1e-7
+SINGULAR = 1e-3
+
+
+@dataclass(frozen=True)
+class Branch:
+    """One complete solution of the levels: the state, the nullspaces of the linear rate
+    levels, the unknowns the non-linear levels left free, and whether every choice of root on
+    the way was the spec's."""
+
+    state: State
+    nulls: tuple[np.ndarray | None, np.ndarray | None]
+    free: tuple[int, ...]
+    picked: bool
+
+
+@dataclass(frozen=True)
+class Instant:
+    """The solved instant: the chosen state, each numeric objective's SI values or error, and
+    the warnings found on the way."""
+
+    state: State
+    values: Mapping[str, np.ndarray]
+    errors: Mapping[str, MechgradeError]
+    warnings: tuple[AuthorWarning, ...]
+
+
+def _branches(problem: Problem, p: Plan, g: Givens, *, free_values=None,
+              shifts=(None, None), start=None) -> list[Branch]:
+    """Every complete solution: each root of each non-linear level followed to the end."""
+    initial = State(g.values.copy(), g.known)
+    out = []
+    first = solve_nonlinear(problem, p, 0, initial, g, free_values, start)
+    for s0 in first.states:
+        for s1, n1, f1, k1 in _rate_level(problem, p, 1, s0, g, free_values, shifts[0], start):
+            for s2, n2, f2, k2 in _rate_level(problem, p, 2, s1, g, free_values, shifts[1],
+                                              start):
+                out.append(Branch(s2, (n1, n2), first.free + f1 + f2,
+                                  first.picked and k1 and k2))
+    return out
+
+
+def _rate_level(problem, p, order, state, g, free_values, shift, start):
+    if p.levels[order].linear:
+        s, null = solve_linear(problem, p, order, state, g, shift)
+        return [(s, null, (), True)]
+    roots = solve_nonlinear(problem, p, order, state, g, free_values, start)
+    return [(s, None, roots.free, roots.picked) for s in roots.states]
+
+
+def solve_numeric(problem: Problem, p: Plan, givens: Mapping, only: set[str]) -> Instant:
+    """Solve the instant and evaluate the numeric objectives in ``only``.
+
+    Raises when the instant itself cannot be solved; an objective that depends on something
+    the givens leave free gets its own error in :attr:`Instant.errors`.
+    """
+    g = place_givens(problem, p, givens)
+    missing = missing_values(p, g, only)
+    if missing:
+        raise _missing_error(problem, p, missing[0])
+    candidates = _branches(problem, p, g)
+    base = candidates[0]
+    values = evaluate(p.objectives, base.state, only)
+    distinct = [base]
+    for c in candidates[1:]:
+        other = evaluate(p.objectives, c.state, only)
+        if any(not _close(values[o], other[o]) for o in values) and \
+                not any(_same_answers(p, d, c, only) for d in distinct[1:]):
+            distinct.append(c)
+    if len(distinct) > 1:
+        raise _ambiguous(problem, p, g, distinct)
+    _check_givens_hold(problem, p, g, givens, base.state)
+    errors = _undetermined(problem, p, g, base, values, only)
+    solved = [i for i in p.index.config if not g.known[i] and i not in base.free]
+    return Instant(base.state, values, errors, _degenerate(problem, p, base.state, solved))
+
+
+def _same_answers(p: Plan, a: Branch, b: Branch, only) -> bool:
+    va, vb = evaluate(p.objectives, a.state, only), evaluate(p.objectives, b.state, only)
+    return all(_close(va[o], vb[o]) for o in va)
+
+
+def _ambiguous(problem: Problem, p: Plan, g: Givens, branches: list[Branch]) -> SolveError:
+    states = [b.state.values for b in branches]
+    free = set().union(*(b.state.free for b in branches))
+
+    def differs(i):
+        first = states[0][i]
+        return not g.known[i] and i not in free and any(
+            abs(s[i] - first) > 1e-6 * (1 + abs(first)) for s in states[1:]
+            if np.isfinite(s[i]) and np.isfinite(first))
+
+    differ = [i for i in range(p.index.size) if differs(i)]
+    order = min((p.index.level_of(i) for i in differ), default=0)
+    differ = [i for i in differ if p.index.level_of(i) == order]
+    listing = configurations(problem, p, g, states, differ)
+    preferred = [i for i in differ if i == p.index.time or p.index.is_parameter(i)] + differ
+    example = f"{p.index.spelling(preferred[0])}: positive" if preferred else "x: positive"
+    level = p.levels[order]
+    active, _ = rows(level, g)
+    # a non-linear given (a speed) is the likelier cause than the constraints
+    lines = [i for i in range(level.constraint_rows, len(level.labels)) if active[i]] + \
+        list(range(level.constraint_rows))
+    where = level.wheres[lines[0]] if lines else Location()
+    return SolveError(
+        f"the {level.name} equations have {len(branches)} solutions that give different "
+        f"answers: {listing}; pick one with guesses: (near the one meant) or a branch: "
+        f"(e.g. branch: {{{example}}})", where=where)
+
+
+def _missing_error(problem: Problem, p: Plan, i: int) -> SolveError:
+    name = p.index.spelling(i)
+    where = next((q.where for q in problem.parameters if q.name == name), None)
+    if where is None:  # t: point at the first equation that needs it
+        where = next((level.wheres[r] for level in p.levels
+                      for r, uses in enumerate(level.uses) if i in uses), Location())
+    what = "time t" if i == p.index.time else f"parameter '{name}'"
+    return SolveError(f"the {what} has no value: give it under givens:, or list it under "
+                      f"unknown: to solve for it (with a branch: for the root wanted)",
+                      where=where)
+
+
+def _check_givens_hold(problem: Problem, p: Plan, g: Givens, givens: Mapping,
+                       state: State) -> None:
+    """Every constraint and expression given, at every level, holds in ``state``."""
+    for level in p.levels:
+        active, target = rows(level, g)
+        if not active.any():
+            continue
+        with np.errstate(all="ignore"):
+            value = np.asarray(level.residual(*state.values), dtype=float).ravel()
+            scale = np.abs(np.asarray(level.scale(*state.values), dtype=float).ravel())
+        for i in np.flatnonzero(active):
+            r = value[i] - target[i]
+            if np.isfinite(value[i]) and abs(r) <= problem.consistency * scale[i] + 1e-10:
+                continue
+            j = i - level.constraint_rows
+            if j < 0:
+                raise SolveError(f"the constraint '{level.labels[i]}' does not hold in the "
+                                 f"solution (residual {r:.4g} against terms of size "
+                                 f"{scale[i]:.4g})", where=level.wheres[i])
+            key = level.conditions[j]
+            _, si, given = givens[key]
+            unit = given.unit if given is not None else ""
+            found = from_si(value[i], unit) if unit else value[i]
+            raise SolveError(f"the given '{g.texts[key]}' does not hold in the solution: "
+                             f"{key} is {found:.6g}{' ' + unit if unit else ''} there",
+                             where=level.wheres[i])
+
+
+def _undetermined(problem: Problem, p: Plan, g: Givens, base: Branch, values: Mapping,
+                  only: set[str]) -> dict[str, MechgradeError]:
+    """Probe each freedom the givens leave: an objective that changes depends on it."""
+    state = base.state
+    depends: dict[str, list[str]] = {}
+    keep = {i: state.values[i] for i in base.free}
+    null_v, null_a = base.nulls
+    probes = [("free", i) for i in base.free]
+    probes += [("velocity", j) for j in range(null_v.shape[1] if null_v is not None else 0)]
+    probes += [("acceleration", j) for j in range(null_a.shape[1] if null_a is not None else 0)]
+    for kind, which in probes:
+        if kind == "free":
+            trial = _branches(problem, p, g, free_values={**keep, which: keep[which] + 0.37},
+                              start=state.values)[0].state
+            level = p.levels[p.index.level_of(which)].name
+            missing = f"{p.index.spelling(which)} ({level} level)"
+        else:
+            order = 1 if kind == "velocity" else 2
+            null = null_v if order == 1 else null_a
+            z = np.zeros(null.shape[1])
+            z[which] = 0.73
+            zero_v = np.zeros(null_v.shape[1]) if null_v is not None else None
+            shifts = (z, None) if order == 1 else (zero_v, z)
+            trial = _branches(problem, p, g, free_values=keep, shifts=shifts,
+                              start=state.values)[0].state
+            unknown = [i for i in p.index.rates(order) if not g.known[i]]
+            missing = f"{_rate_names(p, unknown, null[:, which])} ({kind} level)"
+        changed = evaluate(p.objectives, trial, only)
+        for oid, value in values.items():
+            if not _close(value, changed[oid]):
+                depends.setdefault(oid, []).append(missing)
+    return {oid: UnderdeterminedError(
+        f"objective '{oid}' is not determined by the givens: give a value for "
+        f"{' or '.join(missing)}", where=problem.objective(oid).where)
+        for oid, missing in depends.items()}
+
+
+def _degenerate(problem: Problem, p: Plan, state: State,
+                solved: list[int]) -> tuple[AuthorWarning, ...]:
+    """Warnings for a degenerate configuration the position solve landed on: points that
+    coincide there but not nearby, a singular constraint Jacobian."""
+    if not solved:
+        return ()
+    out = []
+    with np.errstate(all="ignore"):
+        here = np.asarray(p.point_positions(*state.values), dtype=float).reshape(3, -1)
+        other = state.values.copy()
+        other[solved] = other[solved] * 1.13 + 0.07
+        there = np.asarray(p.point_positions(*other), dtype=float).reshape(3, -1)
+    size = max(np.abs(here[np.isfinite(here)]).max(initial=0.0), 1e-12)
+    wheres = {q.name: q.where for q in problem.points}
+    for a in range(len(p.points)):
+        for b in range(a):
+            close = np.abs(here[:, a] - here[:, b]).max() <= SAME_ROOT * size
+            always = np.abs(there[:, a] - there[:, b]).max() <= SAME_ROOT * size
+            if close and not always:
+                out.append(AuthorWarning(
+                    f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
+                    "coincide in the solution", wheres.get(p.points[a], Location())))
+    level = p.levels[0]
+    rank = p.constraint_rank
+    if level.constraint_rows and rank:
+        def weakest(values):
+            """The rank-th singular value of the constraints' Jacobian in the coordinates."""
+            with np.errstate(all="ignore"):
+                J = np.asarray(level.jacobian(*values), dtype=float).reshape(
+                    len(level.labels), -1)[:level.constraint_rows, :p.index.n]
+            if not np.isfinite(J).all():
+                return np.nan
+            sv = np.linalg.svd(J, compute_uv=False)
+            return sv[rank - 1] if len(sv) >= rank else 0.0
+
+        # singular: far weaker here than in the configurations around it
+        if weakest(state.values) < SINGULAR * weakest(other):
+            out.append(AuthorWarning(
+                "degenerate configuration: the position constraints are singular in the "
+                "solution (their Jacobian loses rank: a dead point or a folded linkage)",
+                level.wheres[0]))
+    return tuple(out)
+
+
+def _rate_names(p: Plan, unknown: list[int], direction: np.ndarray) -> str:
+    names = [p.index.spelling(i) for i, w in zip(unknown, direction) if abs(w) > 1e-6]
+    return " or ".join(names) if names else "a rate"
+
+
+def _close(a: np.ndarray, b: np.ndarray) -> bool:
+    if a.shape != b.shape:
+        return False
+    if not (np.isfinite(a).all() and np.isfinite(b).all()):
+        return np.array_equal(np.isfinite(a), np.isfinite(b))
+    scale = max(np.abs(a).max(initial=0.0), 1e-12)
+    return bool(np.abs(a - b).max(initial=0.0) <= PROBE_TOL * scale + 1e-12)

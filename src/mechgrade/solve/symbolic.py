@@ -1,0 +1,81 @@
+"""Symbolic objectives: the objective solved with sympy, level by level, in the symbols the
+objective declares (givens that are pure numbers may stand in; givens with units may not)."""
+
+from __future__ import annotations
+
+import math
+
+import sympy as sp
+
+from ..errors import SolveError, UnderdeterminedError
+from ..expressions.syntax import Name, Prime
+from ..mechanics import Kinematics
+from ..spec.model import Objective, Problem
+from ..spec.validate import symbol_meanings
+from ..units import si_unit
+
+
+def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict):
+    meanings = symbol_meanings(problem, objective)
+    declared = {name: k.quantity(node) for name, node in meanings.items()}
+    given_symbols = {}
+    for key, (node, si, given) in givens.items():
+        if isinstance(node, (Name, Prime)):
+            given_symbols[k.quantity(node)] = (key, si, given)
+    known = set(declared.values()) | set(given_symbols)
+    # A zero is a zero in every unit: such givens may always stand in.
+    zeros = {sym: sp.Integer(0) for sym, (_, si, _) in given_symbols.items()
+             if si == 0 and sym not in declared.values()}
+    expr = _simplify(k.objective(objective.id).xreplace(zeros))
+    for level, rates, equations in ((2, k.qdd, k.acceleration), (1, k.qd, k.velocity),
+                                    (0, k.q, k.position)):
+        unknown = [s for s in rates if s not in known]
+        needed = [str(u) for u in unknown if u in expr.free_symbols]
+        if not needed:
+            continue
+        eqs = [e.expr.xreplace(zeros) for e in equations]
+        solution = sp.solve(eqs, unknown, dict=True) if eqs else []
+        if len(solution) != 1:
+            reason = ("several solutions" if solution else
+                      "no constraint fixes it" if not eqs else "no solution")
+            raise UnderdeterminedError(
+                f"objective '{objective.id}' cannot be solved symbolically for "
+                f"{', '.join(needed)} ({reason}); declare it among the symbols or give it",
+                where=objective.where)
+        expr = _simplify(expr.xreplace(solution[0]))
+    # Pure-number givens (angles, tooth counts) may stand in; givens with units may not.
+    extra = {}
+    for sym in expr.free_symbols - set(declared.values()):
+        entry = given_symbols.get(sym)
+        if entry is not None and (entry[2] is None or si_unit(entry[2].unit) in ("", "rad")):
+            extra[sym] = _exact(entry)
+    if extra:
+        expr = _simplify(expr.xreplace(extra))
+    leftover = expr.free_symbols - set(declared.values())
+    if leftover:
+        names = ", ".join(sorted(str(s) for s in leftover))
+        raise SolveError(f"symbolic objective '{objective.id}' depends on {names}, which is "
+                         f"not among its symbols ({', '.join(declared)}); add it to symbols",
+                         where=objective.where)
+    rename = {sym: sp.Symbol(name, **sym.assumptions0) for name, sym in declared.items()}
+    return expr.xreplace(rename), meanings
+
+
+def _simplify(expr):
+    if sp.count_ops(expr) > 300:
+        return expr
+    simple = sp.simplify(expr)
+    return simple if sp.count_ops(simple) <= sp.count_ops(expr) else expr
+
+
+def _exact(entry) -> sp.Expr:
+    key, si, given = entry
+    if given is None:
+        return sp.Float(si)
+    value = sp.Rational(repr(given.value)) if math.isfinite(given.value) else sp.Float(si)
+    unit = given.unit
+    if unit in ("deg", "degree"):
+        return value * sp.pi / 180
+    if unit in ("", "rad", "radian"):
+        return value
+    return sp.Float(si)

@@ -1,0 +1,191 @@
+"""The spec sections that tell the solver what to solve for and which root to take:
+``unknown:`` (parameters or ``t`` solved from the givens), ``branch:`` (the root wanted),
+``define:`` (named intermediate quantities), and givens whose value is an expression of
+other givens (``x: L/2``).
+
+>>> from mechgrade.expressions.syntax import parse, to_text
+>>> defs = {"r_AB": parse("pos(B, A)", functions={"pos"})}
+>>> to_text(expand(parse("mag(r_AB)/2", functions={"mag"}), defs))
+'mag(pos(B, A))/2'
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Mapping
+
+from ..errors import SpecError, UnitError
+from ..expressions.syntax import Name, Node, Num, Prime, fold, to_text, walk
+from ..units import from_si, registry, si_unit
+from .model import TIME, Branch, Coordinate, Definition, Expr, Given, Parameter, Root
+
+_FUNCTIONS = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
+              "asin": math.asin, "acos": math.acos, "atan": math.atan, "abs": abs,
+              "exp": math.exp, "log": math.log}
+
+
+def expand(node: Node, definitions: Mapping[str, Node]) -> Node:
+    """``node`` with every name of ``definitions`` replaced by the tree it stands for."""
+    if not definitions:
+        return node
+    if isinstance(node, Name):
+        return definitions.get(node.id, node)
+    fields = getattr(node, "__dataclass_fields__", {})
+    changes = {}
+    for name in fields:
+        value = getattr(node, name)
+        if isinstance(value, tuple) and value and all(hasattr(v, "__dataclass_fields__")
+                                                      for v in value):
+            changes[name] = tuple(expand(v, definitions) for v in value)
+        elif hasattr(value, "__dataclass_fields__"):
+            changes[name] = expand(value, definitions)
+    return replace(node, **changes) if changes else node
+
+
+def read_definitions(data: dict, expr, where) -> tuple[Definition, ...]:
+    """``define:`` in order; ``expr(text, *path)`` reads an expression (earlier definitions
+    already expanded), ``where(*path)`` locates a field."""
+    out = []
+    for name, text in (data.get("define") or {}).items():
+        out.append(Definition(name, expr(text, "define", name), where("define", name)))
+    return tuple(out)
+
+
+def read_unknowns(data: dict, expr) -> tuple[Expr, ...]:
+    return tuple(expr(name, "unknown", i) for i, name in enumerate(data.get("unknown") or []))
+
+
+def read_branches(data: dict, expr, where) -> tuple[Branch, ...]:
+    return tuple(Branch(expr(key, "branch", key), Root(rule), where("branch", key))
+                 for key, rule in (data.get("branch") or {}).items())
+
+
+def check_solving(coordinates, parameters, givens, unknowns, branches, definitions,
+                  reserved) -> None:
+    """Names in ``unknown:``, ``branch:`` and ``define:`` make sense together."""
+    params = {p.name for p in parameters}
+    coords = {c.name for c in coordinates}
+    given = {to_text(g.key.node) for g in givens}
+    for u in unknowns:
+        name = u.text.strip()
+        if name != TIME and name not in params:
+            raise SpecError(f"expected a parameter or t to solve for, found '{name}' "
+                            "(coordinates that are not given are always solved for)",
+                            where=u.where)
+        if name in given:
+            raise SpecError(f"'{name}' is both given and unknown; expected one of them",
+                            where=u.where)
+    solvable = coords | {u.text.strip() for u in unknowns}
+    for b in branches:
+        node = b.key.node
+        ok = (isinstance(node, Name) and node.id in solvable) or \
+            (isinstance(node, Prime) and node.id in coords)
+        if not ok:
+            raise SpecError(f"expected a coordinate, a rate (theta') or a quantity listed under "
+                            f"unknown: as a branch, found '{b.key.text}'", where=b.where)
+    for d in definitions:
+        if d.name in coords | params or d.name in reserved:
+            raise SpecError(f"'{d.name}' is already a name of the problem or of the language; "
+                            "expected another name for the definition", where=d.where)
+
+
+def given_expression(text: str, givens: Mapping, expr, section: tuple, key: str) -> Expr | None:
+    """The value of a given in ``givens:`` written as an expression of other givens
+    (``x: L/2``), or ``None`` when ``text`` is not one (then it is a malformed quantity)."""
+    if section != ("givens",):
+        return None
+    try:
+        value = expr(text, *section, key)
+    except SpecError:
+        return None
+    keys = {str(k).replace(" ", "") for k in givens}
+    names = {to_text(n) for n in walk(value.node) if isinstance(n, (Name, Prime))}
+    return value if names and names - {"pi"} <= keys else None
+
+
+def given_unit(key: Node, coordinates: tuple[Coordinate, ...],
+               parameters: tuple[Parameter, ...]) -> str | None:
+    """The unit of a coordinate, rate, parameter or time key (``None`` for other keys)."""
+    units = {c.name: c.unit for c in coordinates}
+    units.update({p.name: p.unit for p in parameters})
+    if isinstance(key, Name):
+        return "s" if key.id == TIME else units.get(key.id)
+    if isinstance(key, Prime) and key.id in units:
+        base = units[key.id] or "1"
+        base = f"({base})" if any(c in base for c in "/* ") else base
+        return f"{base}/s" if key.order == 1 else f"{base}/s^{key.order}"
+    return None
+
+
+def resolve_given_values(givens: tuple[Given, ...], coordinates, parameters) -> tuple[Given, ...]:
+    """Givens whose value is an expression (``value`` NaN, ``text`` the expression) evaluated
+    from the other givens, in the key's unit; a cycle or an unknown name is an error."""
+    pending = {to_text(g.key.node): g for g in givens if math.isnan(g.si)}
+    if not pending:
+        return givens
+    ureg = registry()
+    done = {to_text(g.key.node): ureg.Quantity(g.si, si_unit(g.unit) or "dimensionless")
+            for g in givens if not math.isnan(g.si)}
+    resolved = {}
+    while pending:
+        progress = False
+        for key, g in list(pending.items()):
+            node = g.value_expr.node
+            needed = {to_text(n) for n in walk(node) if isinstance(n, (Name, Prime))
+                      and not (isinstance(n, Name) and n.id == "pi")}
+            if needed - set(done):  # another expression given first
+                continue
+            unit = given_unit(g.key.node, coordinates, parameters)
+            if unit is None:
+                raise SpecError("expected a number with a unit for a given that is an "
+                                "expression; only coordinates, rates, parameters and t may "
+                                "be given as expressions of other givens", where=g.where)
+            quantity = _evaluate(node, done, g)
+            target = ureg.Quantity(1.0, si_unit(unit) or "dimensionless")
+            if quantity.dimensionality != target.dimensionality:
+                raise SpecError(f"expected '{g.text}' to have the dimension of {unit or '1'} "
+                                f"(the unit of '{key}'), found {quantity.units:~}",
+                                where=g.where)
+            si = float(quantity.to_base_units().magnitude)
+            resolved[key] = replace(g, value=from_si(si, unit), unit=unit, si=si)
+            done[key] = quantity
+            del pending[key]
+            progress = True
+        if not progress:
+            first = next(iter(pending.values()))
+            raise SpecError(f"the givens {', '.join(pending)} are defined in terms of each "
+                            "other; expected a value for at least one", where=first.where)
+    return tuple(resolved.get(to_text(g.key.node), g) for g in givens)
+
+
+def _evaluate(node: Node, values: Mapping, g: Given):
+    ureg = registry()
+
+    def number(n: Num):
+        return ureg.Quantity(n.value, "dimensionless")
+
+    def resolve(n):
+        if isinstance(n, Name) and n.id == "pi":
+            return ureg.Quantity(math.pi, "dimensionless")
+        return values[to_text(n)]
+
+    def call(func: str, args: tuple):
+        if func not in _FUNCTIONS or len(args) != 1:
+            raise SpecError(f"expected arithmetic of givens and {', '.join(sorted(_FUNCTIONS))} "
+                            f"in a given's value, found {func}()", where=g.where)
+        inner = fold(args[0], number=number, resolve=resolve, call=call)
+        if func in ("sqrt", "abs"):
+            return inner ** 0.5 if func == "sqrt" else abs(inner)
+        magnitude = inner.to("dimensionless").magnitude
+        return ureg.Quantity(_FUNCTIONS[func](magnitude), "dimensionless")
+
+    try:
+        return fold(node, number=number, resolve=resolve, call=call)
+    except (UnitError, ValueError, ZeroDivisionError, TypeError) as err:
+        # pint's DimensionalityError (adding a length to a time) is a TypeError
+        raise SpecError(f"cannot evaluate '{g.text}': {err}", where=g.where) from None
+
+
+__all__ = ["expand", "read_definitions", "read_unknowns", "read_branches", "check_solving",
+           "resolve_given_values", "given_unit"]
