@@ -152,3 +152,17 @@ def test_solve_json_lists_failures_beside_the_answers_and_exits_2():
     assert data["objectives"]["speed"]["value"] == 6.0
     assert list(data["failures"]) == ["accel"]
     assert data["failures"]["accel"].endswith("give a value for theta'' (acceleration level)")
+
+
+def test_check_reports_a_failing_objective_beside_the_passing_ones_and_the_state():
+    path = ROOT / "tests" / "data" / "authoring_mistakes" / "solve_one_objective_fails.yaml"
+    result = CliRunner().invoke(main, ["check", "-v", str(path)])
+    assert result.exit_code == 1
+    assert result.output.splitlines() == [
+        f"FAIL {path} (1 tests, DOF 1)",
+        "  pass speed: 6 ~ expected 6 m/s",
+        f"  {path}:28:5: objectives[1]: objective 'accel' is not determined by the givens: give "
+        "a value for theta'' (acceleration level)",
+        "  state at the instant: theta = 30 deg; L = 2 m; theta' = 3 rad / s",
+        "1 file(s), 1 failing",
+    ]

@@ -52,6 +52,7 @@ class CheckReport:
     untested: tuple[str, ...] = ()
     faults: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
+    state: tuple[str, ...] = ()  # the solved state, "theta' = 7 rad/s   (solved)"
 
     @property
     def passed(self) -> bool:
@@ -84,7 +85,12 @@ def check_problem(path) -> CheckReport:
                            warnings=tuple(str(w) for w in problem.warnings))
     outcomes = []
     untested = []
+    errors = [str(f.error) if f.error.where.file else f"{path}: {f.error}"
+              for f in solution.failures]
+    solved = {r.id for r in solution.results}
     for objective in problem.objectives:
+        if objective.id not in solved:
+            continue  # its failure is listed in errors
         if objective.expect is None:
             untested.append(objective.id)
             continue
@@ -92,19 +98,22 @@ def check_problem(path) -> CheckReport:
             outcomes.append(expect_outcome(objective, solution.result(objective.id)))
         except MechgradeError as err:
             where = err.where if err.where.file else objective.expect.where
-            return CheckReport(str(path), problem.id, error=str(err.located(where)))
+            errors.append(str(err.located(where)))
     faults, warnings = mistake_findings(problem, solution)
+    state = tuple(str(s) for s in solution.state)
     return CheckReport(str(path), problem.id, None, tuple(outcomes), solution.dof,
-                       tuple(untested), tuple(faults),
-                       tuple(str(w) for w in problem.warnings + tuple(warnings)))
+                       tuple(untested), tuple(errors + faults),
+                       tuple(str(w) for w in problem.warnings + solution.warnings
+                             + tuple(warnings)), state)
 
 
 def mistake_findings(problem: Problem, solution) -> tuple[list[str], list[AuthorWarning]]:
     """Declared mistakes equal to the answer (errors) or within its tolerance (warnings)."""
     faults, warnings = [], []
+    results = {r.id: r for r in solution.results}
     for objective in problem.objectives:
-        result = solution.result(objective.id)
-        if result.value is None:
+        result = results.get(objective.id)
+        if result is None or result.value is None:
             continue
         for declared, mistake in zip(objective.mistakes, result.mistakes):
             if mistake.value is None:

@@ -47,6 +47,8 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
             click.echo(f"  {line}")
         if verbose and report.untested:
             click.echo(f"  untested: {', '.join(report.untested)}")
+        if verbose and report.state:
+            click.echo("  state at the instant: " + "; ".join(report.state))
     click.echo(f"{len(reports)} file(s), {failures} failing")
     if failures:
         raise SystemExit(1)

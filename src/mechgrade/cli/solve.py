@@ -22,7 +22,7 @@ def solution_json(problem, solution) -> dict:
             "failures": {f.id: str(f.error) for f in solution.failures},
             "state": [{"name": v.name, "value": v.value, "unit": v.unit, "given": v.given}
                       for v in solution.state],
-            "warnings": [str(w) for w in solution.warnings]}
+            "warnings": [str(w) for w in problem.warnings + solution.warnings]}
 
 
 def _value_text(result) -> str:
@@ -70,7 +70,6 @@ def _print_text(problem, solution, failed, steps: bool) -> None:
     if solution.state:
         click.echo("State at the instant")
         for s in solution.state:
-            unit = f" {s.unit}" if s.unit else ""
-            click.echo(f"  {s.name} = {s.value:.6g}{unit}{'' if s.given else '   (solved)'}")
-    for warning in solution.warnings:
+            click.echo(f"  {s}")
+    for warning in problem.warnings + solution.warnings:
         click.echo(str(warning))

@@ -61,6 +61,15 @@ class StateValue:
     given: bool
     si: float
 
+    def __str__(self) -> str:
+        """``theta' = 7 rad/s``, marked ``(solved)`` when the solver found it.
+
+        >>> str(StateValue("R", 0.25, "m", False, 0.25))
+        'R = 0.25 m   (solved)'
+        """
+        unit = f" {self.unit}" if self.unit else ""
+        return f"{self.name} = {self.value:.6g}{unit}{'' if self.given else '   (solved)'}"
+
 
 @dataclass(frozen=True)
 class ObjectiveFailure:
