@@ -460,3 +460,11 @@ def test_arbitrary_text_gets_a_verdict_or_a_short_reason(text, objective):
     assert judged.verdict in VERDICTS
     assert len(judged.feedback) <= 200, judged.feedback
     assert judged.diagnosis is None or len(judged.diagnosis) <= 200
+
+
+@pytest.mark.parametrize("signed, verdict", [(True, "incorrect"), (False, "correct")])
+def test_symbols_are_sampled_over_the_domain_the_solver_declares(signed, verdict):
+    # xA is a parameter declared positive: false (signed) or a positive length.
+    result = ObjectiveResult("d", "symbolic", "m", expr="2*xA", symbols=("xA",),
+                             symbol_units=("m",), symbol_signed=(signed,))
+    assert assess("2*sqrt(xA^2)", result).verdict == verdict

@@ -475,12 +475,13 @@ def _signed_by_reference(node: Node) -> set[str]:
 
 
 def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
-    """How to sample each symbol: ``angle``, ``signed`` (rates, and symbols the reference
-    treats as signed) or ``positive``."""
+    """How to sample each symbol: ``angle``, ``signed`` (what the solver says may be negative,
+    rates, and symbols the reference treats as signed) or ``positive``."""
     aliases = symbol_aliases(result.symbols)
     derivatives = {target for key, target in aliases.items() if isinstance(key, tuple)}
     signed = _signed_by_reference(_reference_tree(result.expr, tuple(result.symbols))) \
         if result.expr else set()
+    signed |= {s for s, may in zip(result.symbols, result.symbol_signed) if may}
     kinds = {}
     units = dict(zip(result.symbols, result.symbol_units))
     for symbol in result.symbols:

@@ -163,9 +163,11 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     obj = problem.objective(objective_id)
     expr, meanings = symbolic(problem, plan(problem).k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
+    signed = tuple(_may_be_negative(problem, node) for node in meanings.values())
     return ObjectiveResult(
         id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(expr), symbols=tuple(meanings),
-        symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
+        symbol_units=units, symbol_signed=signed, rel=obj.tolerance.rel, abs=obj.tolerance.abs,
+        prompt=obj.prompt)
 
 
 def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:
@@ -195,6 +197,16 @@ def _report(si_values: np.ndarray, obj: Objective):
     if obj.kind == "vector":
         return tuple(float(from_si(v, obj.unit)) + 0.0 for v in si_values)
     return float(from_si(si_values[0], obj.unit)) + 0.0
+
+
+def _may_be_negative(problem: Problem, node) -> bool:
+    """Whether a symbol's quantity may be negative: a rate, a coordinate, or a parameter
+    declared ``positive: false`` (time and positive parameters may not)."""
+    if isinstance(node, Prime):
+        return True
+    if any(c.name == node.id for c in problem.coordinates):
+        return True
+    return any(q.name == node.id and not q.positive for q in problem.parameters)
 
 
 def _quantity_unit(problem: Problem, node) -> str:

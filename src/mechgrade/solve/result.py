@@ -31,7 +31,9 @@ class ObjectiveResult:
     ``value`` is a float (scalar), an ``(x, y, z)`` tuple of components in ``frame``
     (vector), or ``None`` for a symbolic objective, whose answer is ``expr`` (sympy syntax,
     readable by :func:`mechgrade.expressions.syntax.parse`) in the names ``symbols``.
-    ``symbol_units`` gives each symbol's SI unit, for dimension checks of student answers.
+    ``symbol_units`` gives each symbol's SI unit, for dimension checks of student answers;
+    ``symbol_signed`` says which symbols may be negative (coordinates, their rates, parameters
+    declared ``positive: false``), so an answer is checked over each symbol's whole domain.
     ``rel`` and ``abs`` are the objective's tolerance (``abs`` in ``unit``).
     """
 
@@ -43,6 +45,7 @@ class ObjectiveResult:
     expr: str | None = None
     symbols: tuple[str, ...] = ()
     symbol_units: tuple[str, ...] = ()
+    symbol_signed: tuple[bool, ...] = ()
     mistakes: tuple[MistakeValue, ...] = ()
     rel: float = 0.01
     abs: float = 0.0
