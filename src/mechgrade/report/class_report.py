@@ -36,6 +36,7 @@ import statistics
 from collections import Counter
 from dataclasses import dataclass
 
+from ..errors import ExportError
 from ..files import write_text
 from ..grade.results import GradeReport, SkippedEntry, StudentResult
 
