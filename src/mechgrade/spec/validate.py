@@ -28,6 +28,17 @@ class _Quiet(SpecError):
     """An error caused by an earlier one (an undefined name whose definition failed)."""
 
 
+def unknown_name(what: str, name: str, known, context: str = "") -> str:
+    """The one wording of a name that is not defined, with the closest known one.
+
+    >>> unknown_name("frame", "NN", ["N", "A"])
+    "unknown frame 'NN'; did you mean 'N'? (expected one of: N, A)"
+    """
+    known = list(known)
+    return (f"unknown {what} '{name}'{context}{did_you_mean(name, known)} (expected one of: "
+            f"{', '.join(known) or 'none'})")
+
+
 def did_you_mean(name: str, known) -> str:
     """``"; did you mean 'x'?"`` when ``known`` holds a name close to ``name``, else ``""``.
 
@@ -167,15 +178,13 @@ class _Checker:
                 if frame.parent not in self.frames:
                     parented = False
                     self.quiet_if_broken(frame.parent, "frames")
-                    raise SpecError(f"unknown parent frame '{frame.parent}'"
-                                    f"{did_you_mean(frame.parent, self.frames)} (expected one "
-                                    f"of: {', '.join(self.frames)})", where=frame.parent_where)
+                    raise SpecError(unknown_name("parent frame", frame.parent, self.frames),
+                                    where=frame.parent_where)
             with self.each():
                 if frame.origin is not None and frame.origin not in self.points:
                     self.quiet_if_broken(frame.origin, "points")
-                    raise SpecError(f"unknown origin point '{frame.origin}'"
-                                    f"{did_you_mean(frame.origin, self.points)} (expected one "
-                                    f"of: {', '.join(self.points)})", where=frame.origin_where)
+                    raise SpecError(unknown_name("origin point", frame.origin, self.points),
+                                    where=frame.origin_where)
             for rotation in frame.rotations:
                 with self.each():
                     self.expect_type(rotation.angle, Type("scalar", dimensionless()), "an angle")
@@ -195,9 +204,8 @@ class _Checker:
                 if point.origin not in self.points:
                     chained = False
                     self.quiet_if_broken(point.origin, "points")
-                    raise SpecError(f"unknown point '{point.origin}' in 'from'"
-                                    f"{did_you_mean(point.origin, self.points)} (expected one "
-                                    f"of: {', '.join(self.points)})", where=point.origin_where)
+                    raise SpecError(unknown_name("point", point.origin, self.points,
+                                                 " in 'from'"), where=point.origin_where)
             with self.each():
                 self.expect_type(point.position, Type("vector", dimension("m")),
                                  "a position vector (a length times unit vectors, e.g. L*A.x)")
@@ -310,8 +318,7 @@ class _Checker:
                                 "its components are in", where=obj.where)
             if obj.frame is not None and obj.frame not in self.frames:
                 self.quiet_if_broken(obj.frame, "frames")
-                raise SpecError(f"unknown frame '{obj.frame}'{did_you_mean(obj.frame, self.frames)}"
-                                f" (expected one of: {', '.join(self.frames)})",
+                raise SpecError(unknown_name("frame", obj.frame, self.frames),
                                 where=obj.frame_where)
         with self.each():
             if obj.kind == "symbolic" and not obj.symbols:
