@@ -6,10 +6,10 @@ import jsonschema
 import pytest
 import yaml
 
-from mechgrade.check import check_problem
+from mechgrade.check import check_problem, written_tolerance
 from mechgrade.errors import OutputError, SpecError
 from mechgrade.resources import shipped_dir
-from mechgrade.spec import problem_schema
+from mechgrade.spec import load_problem, problem_schema
 from mechgrade.spec.load import SCHEMA_PATH
 from mechgrade.spec.starter import (TEMPLATES, check_problem_id, schema_reference, starter_spec,
                                     write_starter)
@@ -78,3 +78,16 @@ def test_existing_file_is_never_overwritten(tmp_path):
 def test_missing_folder_is_refused(tmp_path):
     with pytest.raises(OutputError, match="expected an existing folder"):
         write_starter("p", "particle", tmp_path / "nowhere")
+
+
+@pytest.mark.parametrize("template", TEMPLATES)
+def test_starter_expects_are_written_to_tight_digits(template, tmp_path):
+    problem = load_problem(write_starter("p", template, tmp_path))
+    loose = []
+    for objective in problem.objectives:
+        written = objective.expect.written
+        for text in (written if isinstance(written, tuple) else (written,)):
+            if isinstance(text, str) and float(text) != 0 and \
+                    written_tolerance(text) > 2e-3 * abs(float(text)):
+                loose.append((objective.id, text))
+    assert loose == []
