@@ -48,8 +48,16 @@ def spec(tmp_path):
 
 
 def patch_sleep(monkeypatch, sleep):
-    """Replace the watcher's pause between looks (only in mechgrade.check)."""
-    monkeypatch.setattr(mechgrade.check, "time", types.SimpleNamespace(sleep=sleep))
+    """Replace the watcher's pause between looks (only in mechgrade.check); a watch that
+    never sees the change is stopped after about 30 s instead of hanging the suite."""
+    calls = iter(range(600))
+
+    def bounded(seconds):
+        if next(calls, None) is None:
+            raise KeyboardInterrupt
+        sleep(seconds)
+
+    monkeypatch.setattr(mechgrade.check, "time", types.SimpleNamespace(sleep=bounded))
 
 
 def watch(*args):
@@ -131,3 +139,9 @@ def test_max_runs_must_be_positive(spec):
     result = watch(str(spec), "--max-runs", "0")
     assert result.exit_code == 2
     assert "0 is not in the range x>=1" in result.output
+
+
+def test_watch_options_without_watch_are_a_usage_error(spec):
+    result = CliRunner().invoke(main, ["check", str(spec), "--max-runs", "2"])
+    assert result.exit_code == 2
+    assert "Error: --max-runs and --interval need --watch" in result.output

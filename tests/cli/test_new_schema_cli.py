@@ -26,7 +26,8 @@ def test_new_writes_the_spec_and_says_how_to_watch_it(tmp_path):
 def test_new_spec_passes_check(tmp_path):
     run("new", "hw1_p1", "--out", str(tmp_path))
     result = run("check", str(tmp_path / "hw1_p1.yaml"))
-    assert result.output == f"ok   {tmp_path / 'hw1_p1.yaml'} (5 tests, DOF 2)\n1 file(s), 0 failing\n"
+    assert result.output == (f"ok   {tmp_path / 'hw1_p1.yaml'} (5 tests, DOF 2)\n"
+                             "1 file(s), 0 failing\n")
     assert result.exit_code == 0
 
 
@@ -51,8 +52,8 @@ def test_new_refuses_a_bad_id(tmp_path):
 def test_new_refuses_an_unknown_template(tmp_path):
     result = run("new", "p", "--template", "orbit", "--out", str(tmp_path))
     assert result.exit_code == 2
-    assert "'orbit' is not one of 'particle', 'rotating-frame', 'rolling', 'linkage', 'rigid-body'" \
-        in result.output
+    assert ("'orbit' is not one of 'particle', 'rotating-frame', 'rolling', 'linkage', "
+            "'rigid-body'") in result.output
 
 
 def test_schema_prints_the_shipped_schema_path():

@@ -17,11 +17,11 @@ from .solve import value_text
               help="Re-check each file when it is saved and show its solved values; Ctrl-C stops.")
 @click.option("--max-runs", type=click.IntRange(min=1),
               help="With --watch: stop after this many runs (the first check is run 1).")
-@click.option("--interval", type=click.FloatRange(min=0.01), default=0.5, show_default=True,
-              help="With --watch: seconds between looks at the files.")
+@click.option("--interval", type=click.FloatRange(min=0.01),
+              help="With --watch: seconds between looks at the files [default: 0.5].")
 @reports_errors
 def check_command(paths: tuple[str, ...], verbose: bool, watching: bool, max_runs: int | None,
-                  interval: float) -> None:
+                  interval: float | None) -> None:
     """Validate problem files (or folders of them) and run every expect: test.
 
     Every error of a file is listed, one per line, in file order; warnings follow the tests.
@@ -29,10 +29,12 @@ def check_command(paths: tuple[str, ...], verbose: bool, watching: bool, max_run
     With --watch, checks every file, then each file again when it changes (the -v output plus
     its solved values), until Ctrl-C or --max-runs; it then exits 0.
     """
+    if not watching and (max_runs is not None or interval is not None):
+        raise click.UsageError("--max-runs and --interval need --watch")
     if not problem_files(paths):
         raise SpecError(f"expected problem files (*.yaml), found none in {', '.join(paths)}")
     if watching:
-        _watch(paths, max_runs, interval)
+        _watch(paths, max_runs, 0.5 if interval is None else interval)
         return
     reports = check_paths(paths)
     failures = sum(_print_report(report, verbose) for report in reports)

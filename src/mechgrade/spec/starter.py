@@ -33,10 +33,10 @@ def check_problem_id(problem_id: str) -> str:
 
     >>> check_problem_id("hw3_p1")
     'hw3_p1'
-    >>> check_problem_id("hw3.p1")
+    >>> check_problem_id("hw3.p1")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    mechgrade.errors.SpecError: ID: expected letters, digits and '_' starting with a letter (the id is the file name and answers are named problem_id.objective_id), found 'hw3.p1'
+    mechgrade.errors.SpecError: ID: expected letters, digits and '_' ... found 'hw3.p1'
     """
     pattern = problem_schema()["$defs"]["identifier"]["pattern"]
     if not re.fullmatch(pattern, problem_id):
@@ -83,7 +83,7 @@ def write_starter(problem_id: str, template: str, folder: str | os.PathLike = ".
     >>> write_starter("p1", "rolling", folder)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    mechgrade.errors.OutputError: .../p1.yaml: expected a new file, found an existing one; choose another ID or --out folder (new never overwrites)
+    mechgrade.errors.OutputError: .../p1.yaml: expected a new file, found an existing one; ...
     """
     folder = Path(folder)
     target = folder / f"{check_problem_id(problem_id)}.yaml"
@@ -96,7 +96,8 @@ def write_starter(problem_id: str, template: str, folder: str | os.PathLike = ".
             handle.write(text)
     except FileExistsError:
         raise OutputError("expected a new file, found an existing one; choose another ID or "
-                          "--out folder (new never overwrites)", where=Location(str(target))) from None
+                          "--out folder (new never overwrites)",
+                          where=Location(str(target))) from None
     except OSError as err:
         raise OutputError(f"cannot write the file ({err.strerror or err})",
                           where=Location(str(target))) from None
