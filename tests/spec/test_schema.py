@@ -8,7 +8,7 @@ import jsonschema
 import pytest
 import yaml
 
-from mechgrade.spec import problem_schema
+from mechgrade.spec import load_problem_text, problem_schema
 from mechgrade.spec.load import SCHEMA_PATH
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -63,13 +63,21 @@ def test_every_example_and_default_is_valid_for_its_field():
     assert invalid == []
 
 
-def test_defaults_are_the_loaders():
+def test_defaults_are_what_the_loader_takes_when_a_key_is_left_out():
     schema = problem_schema()
     objective = schema["properties"]["objectives"]["items"]["properties"]
-    assert schema["properties"]["consistency"]["default"] == 0.005
-    assert objective["tolerance"]["properties"]["rel"]["default"] == 0.01
-    assert objective["tolerance"]["properties"]["abs"]["default"] == 0
-    assert objective["mistakes"]["items"]["properties"]["credit"]["default"] == 0
+    text = (ROOT / "tests" / "data" / "spec" / "base.yaml").read_text(encoding="utf-8")
+    mistake = "\n    mistakes: [{find: 'mag(vel(P, N))*2', message: m}]"
+    text = text.replace("    expect: {value: 6}", "    expect: {value: 6}" + mistake)
+    problem = load_problem_text(text, "base.yaml")
+    speed = problem.objectives[0]
+    assert problem.consistency == schema["properties"]["consistency"]["default"]
+    assert speed.tolerance.rel == objective["tolerance"]["properties"]["rel"]["default"]
+    assert speed.tolerance.abs == objective["tolerance"]["properties"]["abs"]["default"]
+    assert speed.mistakes[0].credit == objective["mistakes"]["items"]["properties"]["credit"][
+        "default"]
+    positive = schema["properties"]["parameters"]["additionalProperties"]["oneOf"][1]
+    assert problem.parameters[0].positive is positive["properties"]["positive"]["default"]
 
 
 def test_a_wrong_example_is_caught():
