@@ -13,6 +13,9 @@ warning (a student making it gets full credit).
 
 from __future__ import annotations
 
+import os
+import time
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -53,6 +56,7 @@ class CheckReport:
     faults: tuple[str, ...] = ()
     warnings: tuple[str, ...] = ()
     state: tuple[str, ...] = ()  # the solved state, "theta' = 7 rad/s   (solved)"
+    results: tuple[ObjectiveResult, ...] = ()  # the solved objectives, in file order
 
     @property
     def passed(self) -> bool:
@@ -68,6 +72,45 @@ def problem_files(paths) -> list[Path]:
         else:
             out.append(path)
     return out
+
+
+def watch(paths, interval: float = 0.5) -> Iterator[list[Path]]:
+    """The problem files under ``paths``: all of them first, then, polling every ``interval``
+    seconds, those created or saved since the last look (modification time or size changed).
+
+    Polling needs no dependency and works on every file system; a file caught mid-save (gone
+    for a moment while an editor replaces it) is picked up on the next look.
+
+    >>> import tempfile
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> _ = (folder / "a.yaml").write_text("id: a")
+    >>> changes = watch([folder], interval=0.01)
+    >>> [p.name for p in next(changes)]
+    ['a.yaml']
+    >>> _ = (folder / "b.yaml").write_text("id: b")
+    >>> [p.name for p in next(changes)]
+    ['b.yaml']
+    """
+    seen = _stamps(paths)
+    yield sorted(seen)
+    while True:
+        time.sleep(interval)
+        now = _stamps(paths)
+        changed = sorted(p for p, stamp in now.items() if seen.get(p) != stamp)
+        seen = now
+        if changed:
+            yield changed
+
+
+def _stamps(paths) -> dict[Path, tuple[int, int]]:
+    stamps = {}
+    for path in problem_files(paths):
+        try:
+            info = os.stat(path)
+        except OSError:
+            continue
+        stamps[path] = (info.st_mtime_ns, info.st_size)
+    return stamps
 
 
 def check_problem(path) -> CheckReport:
@@ -104,7 +147,7 @@ def check_problem(path) -> CheckReport:
     return CheckReport(str(path), problem.id, None, tuple(outcomes), solution.dof,
                        tuple(untested), tuple(errors + faults),
                        tuple(str(w) for w in problem.warnings + solution.warnings
-                             + tuple(warnings)), state)
+                             + tuple(warnings)), state, solution.results)
 
 
 def mistake_findings(problem: Problem, solution) -> tuple[list[str], list[AuthorWarning]]:

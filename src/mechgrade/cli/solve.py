@@ -25,7 +25,13 @@ def solution_json(problem, solution) -> dict:
             "warnings": [str(w) for w in problem.warnings + solution.warnings]}
 
 
-def _value_text(result) -> str:
+def value_text(result) -> str:
+    """One objective's answer as ``solve`` prints it.
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> value_text(ObjectiveResult("v", "vector", "m/s", (1.0, 2.5, 0.0), "N"))
+    '(1, 2.5, 0) m/s in N'
+    """
     if result.kind == "symbolic":
         return f"{result.expr}   [{result.unit or '1'}; in {', '.join(result.symbols)}]"
     if result.kind == "vector":
@@ -65,7 +71,7 @@ def _print_text(problem, solution, failed, steps: bool) -> None:
     ids = [o.id for o in problem.objectives if o.id in results or o.id in failed]
     width = max(len(i) for i in ids)
     for oid in ids:
-        text = _value_text(results[oid]) if oid in results else f"error: {failed[oid]}"
+        text = value_text(results[oid]) if oid in results else f"error: {failed[oid]}"
         click.echo(f"  {oid.ljust(width)}  {text}")
     if solution.state:
         click.echo("State at the instant")
