@@ -6,14 +6,18 @@ import click
 
 from ..check import check_paths, problem_files
 from ..errors import SpecError
+from ..grade.variants import variant_lines
 from .common import main, reports_errors
 
 
 @main.command("check")
 @click.argument("paths", nargs=-1, required=True, type=click.Path())
 @click.option("-v", "--verbose", is_flag=True, help="Also show passing tests and book notes.")
+@click.option("--variants", "variant_count", type=click.IntRange(0, 100_000), default=200,
+              show_default=True, help="Variants drawn and verified per problem with a "
+                                      "variants: section (0: none).")
 @reports_errors
-def check_command(paths: tuple[str, ...], verbose: bool) -> None:
+def check_command(paths: tuple[str, ...], verbose: bool, variant_count: int) -> None:
     """Validate problem files (or folders of them) and run every expect: test.
 
     Every error of a file is listed, one per line, in file order; warnings follow the tests.
@@ -31,7 +35,8 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
                 click.echo(f"  {line}")
             continue
         bad = [o for o in report.outcomes if not o.passed]
-        failed = bool(bad or report.faults)
+        refused = variant_lines(report.path, variant_count)
+        failed = bool(bad or report.faults or refused)
         failures += failed
         status = "FAIL" if failed else "ok  "
         click.echo(f"{status} {report.path} ({len(report.outcomes)} tests, DOF {report.dof})")
@@ -44,6 +49,8 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
             if verbose and outcome.note:
                 click.echo(f"       note: {outcome.note}")
         for line in report.faults + report.warnings:
+            click.echo(f"  {line}")
+        for line in refused:
             click.echo(f"  {line}")
         if verbose and report.untested:
             click.echo(f"  untested: {', '.join(report.untested)}")
