@@ -64,6 +64,15 @@ class AnswerResult:
     expected: str | None = None
 
 
+def unit_text(unit: str) -> str:
+    """A unit as a student writes it.
+
+    >>> unit_text("ft / s ** 2")
+    'ft/s^2'
+    """
+    return unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
+
+
 @dataclass(frozen=True)
 class VariantGiven:
     """One given drawn for a student: ``value`` in ``unit``, from draw number ``draw``."""
@@ -81,8 +90,7 @@ class VariantGiven:
         >>> VariantGiven("p", "a", 1.5, "m / s ** 2").text
         '1.5 m/s^2'
         """
-        unit = self.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
-        return f"{self.value:g} {unit}".strip()
+        return f"{self.value:g} {unit_text(self.unit)}".strip()
 
 
 @dataclass(frozen=True)

@@ -197,8 +197,7 @@ def _with_variant(student: StudentResult, plan: Plan, own: dict, person_id: str,
         return {o.key: o.result for o in p.objectives}
 
     others = [references(p) for pid, (p, _) in own.items() if pid != person_id]
-    student = mark_neighbours(student, references(own[person_id][0]), others, variants,
-                              _si_value)
+    student = mark_neighbours(student, references(own[person_id][0]), others, variants)
     seed = plan.assignment.variants.seed or plan.assignment.id
     return replace(student, variant=student_record(seed, variants))
 

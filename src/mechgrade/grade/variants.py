@@ -7,7 +7,8 @@ breaks a ``require:`` condition is replaced by the next draw index; with ``redra
 the assignment, so is one that fails verification (:func:`variant_faults`).
 
 >>> from mechgrade.spec import load_problem
->>> problem = load_problem("examples/hw2_variants/pendulum_variants.yaml")
+>>> from mechgrade.resources import shipped_dir
+>>> problem = load_problem(shipped_dir("examples") / "hw2_variants" / "pendulum_variants.yaml")
 >>> a = draw_variant(problem, "fall", "10001")
 >>> a == draw_variant(problem, "fall", "10001"), a == draw_variant(problem, "fall", "10002")
 (True, False)
@@ -34,7 +35,7 @@ from ..spec.solving import resolve_given_values
 from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, RoundedRange, SteppedRange
 from ..tolerance import within
 from ..units import from_si, to_si
-from .results import StudentResult, StudentVariant, VariantGiven
+from .results import StudentResult, StudentVariant, VariantGiven, unit_text
 
 DRAW_LIMIT = 1000
 """Draw indices tried for one student before the ``require:`` conditions are declared
@@ -139,8 +140,11 @@ def variant_faults(problem: Problem, variant: Variant,
     for bound in problem.variants.bounds if problem.variants else ():
         value = _bounded_value(bound.name, bound.unit, results, state)
         if value is not None and not bound.contains(value):
-            faults.append(f"{bound.name} = {value:.4g} {bound.unit} is outside its bounds "
-                          f"{bound}")
+            unit = unit_text(bound.unit)
+            ends = [f"at least {bound.low:g} {unit}" if bound.low is not None else "",
+                    f"at most {bound.high:g} {unit}" if bound.high is not None else ""]
+            faults.append(f"{bound.name} = {value:.4g} {unit} is outside its bounds "
+                          f"({', '.join(e for e in ends if e)})")
     for result in solution.results:
         for mistake in result.mistakes:
             if _indistinguishable(mistake.value, result):
@@ -194,7 +198,8 @@ def statement(problem: Problem, variant: Variant | None = None) -> str:
     """The statement with each ``{given}`` replaced by the variant's value and unit.
 
     >>> from mechgrade.spec import load_problem
-    >>> p = load_problem("examples/hw2_variants/pendulum_variants.yaml")
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("examples") / "hw2_variants" / "pendulum_variants.yaml")
     >>> statement(p).split(".")[0]
     'A rigid pendulum of length 2 ft turns about a fixed pin O'
     """
@@ -242,7 +247,8 @@ def variant_lines(path, count: int, shown: int = 10) -> list[str]:
     """``mechgrade check``'s lines about the variants of the problem in ``path``: one per
     refused draw (at most ``shown``) and a count; none without a ``variants:`` section.
 
-    >>> variant_lines("examples/hw2_variants/pendulum_variants.yaml", 20)
+    >>> from mechgrade.resources import shipped_dir
+    >>> variant_lines(shipped_dir("examples") / "hw2_variants" / "pendulum_variants.yaml", 20)
     []
     """
     from ..spec import load_problem
@@ -269,26 +275,23 @@ def student_record(seed: str, variants: list[Variant]) -> StudentVariant | None:
 
 
 def mark_neighbours(result: StudentResult, own: dict[str, ObjectiveResult],
-                    others: list[dict[str, ObjectiveResult]], variants: list[Variant],
-                    si_value: Callable[[str, ObjectiveResult], float | None]
+                    others: list[dict[str, ObjectiveResult]], variants: list[Variant]
                     ) -> StudentResult:
-    """``result`` with every incorrect scalar answer that fits another student's reference
-    (``others``: objective key -> result) diagnosed as answered with another variant's
-    givens. ``own`` holds this student's references by objective key; ``si_value(text,
-    reference)`` reads an answer in SI (``None`` if it is not a number)."""
+    """``result`` with every incorrect number or vector answer that fits another student's
+    reference (``others``: objective key -> result) diagnosed as answered with another
+    variant's givens. ``own`` holds this student's references by objective key."""
     if not variants:
         return result
     mine = "; ".join(v.text() for v in variants)
+    drawn = {v.problem for v in variants}
     answers = []
     for answer in result.answers:
         key = f"{answer.problem}.{answer.objective}"
         reference = own.get(key)
         if (answer.verdict == "incorrect" and answer.answer and reference is not None
-                and reference.kind == "scalar"
-                and any(v.problem == answer.problem for v in variants)):
-            value = si_value(answer.answer, reference)
-            if value is not None and any(
-                    _fits(value, other.get(key)) for other in others):
+                and answer.problem in drawn):
+            value = answer_si(answer.answer, reference)
+            if value is not None and any(_fits(value, other.get(key)) for other in others):
                 note = (f"This answer fits another variant's givens, not yours ({mine}): "
                         f"solve with your own numbers.")
                 answer = replace(answer, diagnosis=OTHER_VARIANT,
@@ -297,8 +300,36 @@ def mark_neighbours(result: StudentResult, own: dict[str, ObjectiveResult],
     return replace(result, answers=tuple(answers))
 
 
-def _fits(value: float, other: ObjectiveResult | None) -> bool:
-    if other is None or not isinstance(other.value, float):
+def answer_si(text: str, reference: ObjectiveResult):
+    """A number or vector answer in SI (a float or a tuple), read in the reference's unit
+    when none is written; ``None`` when it is neither, or a vector in another frame.
+
+    >>> ref = ObjectiveResult("v", "vector", "ft/s", (1.0, 0.0, 0.0), frame="N")
+    >>> [round(x, 4) for x in answer_si("(1, 2) ft/s", ref)]
+    [0.3048, 0.6096, 0.0]
+    """
+    from .answers import NumberAnswer, VectorAnswer, read_answer
+
+    try:
+        answer = read_answer(text, reference)
+        if isinstance(answer, NumberAnswer) and reference.kind == "scalar":
+            return to_si(answer.value, answer.unit if answer.unit is not None
+                         else reference.unit)
+        if isinstance(answer, VectorAnswer) and reference.kind == "vector" \
+                and answer.frame in (None, reference.frame):
+            unit = answer.unit if answer.unit is not None else reference.unit
+            return tuple(to_si(c, unit) for c in answer.components)
+    except MechgradeError:
+        return None
+    return None
+
+
+def _fits(value, other: ObjectiveResult | None) -> bool:
+    if other is None or other.value is None or isinstance(value, tuple) != isinstance(
+            other.value, tuple):
         return False
-    return within(value, to_si(other.value, other.unit), other.rel,
-                  abs(to_si(other.abs, other.unit)) if other.abs else 0.0)
+    reference = (tuple(to_si(c, other.unit) for c in other.value)
+                 if isinstance(other.value, tuple) else to_si(other.value, other.unit))
+    scale = float(np.linalg.norm(reference)) if isinstance(reference, tuple) else None
+    tolerance = abs(to_si(other.abs, other.unit) - to_si(0.0, other.unit)) if other.abs else 0.0
+    return within(value, reference, other.rel, tolerance, scale)

@@ -366,7 +366,7 @@ class _Builder:
         names = {o.id for o in objectives} | {"t"} | {p.name for p in parameters}
         names |= {c.name + "'" * n for c in coordinates for n in range(3)}
         variants, errors = read_variants(self.data, tuple(givens), names, self.where,
-                                         str(self.data.get("statement", "")))
+                                         str(self.data.get("statement", "")), self.usable)
         self.errors += errors
         return variants
 

@@ -131,11 +131,6 @@ class Bound:
         return ((self.low is None or value >= self.low)
                 and (self.high is None or value <= self.high))
 
-    def __str__(self) -> str:
-        low = "-inf" if self.low is None else f"{self.low:g}"
-        high = "inf" if self.high is None else f"{self.high:g}"
-        return f"[{low}, {high}] {self.unit}".strip()
-
 
 @dataclass(frozen=True)
 class Variants:

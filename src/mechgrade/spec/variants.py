@@ -71,10 +71,12 @@ def read_requirement(text: str, where: Location) -> Requirement:
 
 
 def read_variants(data: dict, givens: tuple[Given, ...], names, where,
-                  statement: str = "") -> tuple[Variants | None, list[SpecError]]:
+                  statement: str = "", usable=lambda *path: True
+                  ) -> tuple[Variants | None, list[SpecError]]:
     """The ``variants:`` section of a problem's data (already schema-checked), and every
     error found in it. ``where(*path)`` locates a value; ``names`` are those a bound may
-    name (objective ids, coordinates and their rates, parameters, ``t``).
+    name (objective ids, coordinates and their rates, parameters, ``t``); entries where
+    ``usable(*path)`` is false had schema errors and are left out.
     """
     section = data.get("variants")
     if not section:
@@ -83,6 +85,8 @@ def read_variants(data: dict, givens: tuple[Given, ...], names, where,
     by_key = {to_text(g.key.node): g for g in givens}
     draws = []
     for key, spec in (section.get("draw") or {}).items():
+        if not usable("variants", "draw", key):
+            continue
         try:
             draws.append(_draw(str(key), spec, by_key, where))
         except SpecError as err:
@@ -90,22 +94,27 @@ def read_variants(data: dict, givens: tuple[Given, ...], names, where,
     requires = []
     drawn = {d.key for d in draws}
     for i, text in enumerate(section.get("require") or []):
+        if not usable("variants", "require", i):
+            continue
         here = where("variants", "require", i)
         try:
             requirement = read_requirement(str(text), here)
         except SpecError as err:
             errors.append(err)
             continue
-        for name in sorted(requirement.names - set(by_key)):
+        unknown = sorted(requirement.names - set(by_key))
+        for name in unknown:
             errors.append(SpecError(f"expected a given in the condition ({', '.join(by_key)}), "
                                     f"found '{name}'{did_you_mean(name, by_key)}", where=here))
-        if requirement.names and not requirement.names & drawn:
+        if not unknown and not requirement.names & drawn:
             errors.append(SpecError(f"expected a condition on a drawn given "
                                     f"({', '.join(sorted(drawn))}), found {text!r}",
                                     where=here))
         requires.append(requirement)
     bounds = []
     for name, spec in (section.get("bounds") or {}).items():
+        if not usable("variants", "bounds", name):
+            continue
         if str(name) not in names:
             errors.append(SpecError(
                 f"expected an objective, coordinate, rate or parameter to bound, found "
@@ -137,6 +146,13 @@ def _draw(key: str, spec: dict, givens: Mapping[str, Given], where) -> Draw:
     def value(raw, *path) -> float:
         return _in_unit(raw, unit, where("variants", "draw", key, *path))
 
+    kinds = [k for k in ("from", "choices", "integers") if k in spec]
+    if len(kinds) > 1:
+        raise SpecError(f"expected only one of from, choices, integers, found "
+                        f"{', '.join(kinds)}", where=here)
+    if not kinds:
+        raise SpecError("expected one of the keys from (with to), choices, integers",
+                        where=here)
     if "choices" in spec:
         return Choices(canonical, unit, tuple(value(v, "choices", i)
                                               for i, v in enumerate(spec["choices"])), here)
@@ -199,8 +215,6 @@ def _bound(name: str, spec: dict, where) -> Bound:
         if unit is None or (not unit and q.unit):
             unit = q.unit
         ends[end] = q
-    if unit is None:
-        raise SpecError("expected 'min', 'max' or both", where=here)
     values = {end: (from_si(to_si(q.value, q.unit), unit) if q.unit else q.value)
               for end, q in ends.items()}
     low, high = values.get("min"), values.get("max")
