@@ -13,5 +13,6 @@ from . import check as _check  # noqa: F401
 from . import export as _export  # noqa: F401
 from . import grade as _grade  # noqa: F401
 from . import gradescope as _gradescope  # noqa: F401
+from . import handout as _handout  # noqa: F401
 
 __all__ = ["main"]

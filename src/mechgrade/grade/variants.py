@@ -36,6 +36,7 @@ from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, RoundedRange, 
 from ..tolerance import within
 from ..units import from_si, to_si
 from .results import StudentResult, StudentVariant, VariantGiven, unit_text
+from .sheets import Question, Sheet, SheetProblem
 
 DRAW_LIMIT = 1000
 """Draw indices tried for one student before the ``require:`` conditions are declared
@@ -263,6 +264,33 @@ def variant_lines(path, count: int, shown: int = 10) -> list[str]:
         lines.append(f"{len(refused)} of {count} variants refused (set redraw: true in the "
                      f"assignment to draw again, or narrow the ranges / add require:)")
     return lines
+
+
+# ---------------------------------------------------------------------------- handouts
+
+
+def handout_sheets(plan, students) -> tuple[Sheet, ...]:
+    """Every student's problem sheet: ``plan`` is the assignment's
+    :class:`~mechgrade.grade.run.Plan`, ``students`` ``(id, name)`` pairs (the id decides
+    the variant, as in grading)."""
+    assignment = plan.assignment
+    seed = assignment.variants.seed or assignment.id
+    sheets = []
+    for student_id, name in students:
+        problems = []
+        for problem in plan.problems:
+            variant = None
+            if problem.variants is not None:
+                variant, _ = student_variant(problem, seed, student_id,
+                                             assignment.variants.redraw)
+            questions = tuple(Question(o.key, o.objective.prompt, unit_text(o.objective.unit))
+                              for o in plan.objectives if o.problem.id == problem.id)
+            problems.append(SheetProblem(problem.id, problem.title,
+                                         statement(problem, variant),
+                                         variant.drawn if variant else (), questions))
+        sheets.append(Sheet(assignment.id, assignment.title, student_id, name, seed,
+                            tuple(problems)))
+    return tuple(sheets)
 
 
 # ---------------------------------------------------------------------------- grading
