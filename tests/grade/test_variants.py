@@ -258,3 +258,42 @@ def test_solve_variant_is_the_problem_solved_with_the_variants_givens():
     problem = load_problem(PENDULUM)
     variant = draw_variant(problem, "fall", "20001")
     assert solve_variant(problem, variant) == solve(problem, givens=dict(variant.overrides))
+
+
+def _index_and_result(answers: dict[str, str]):
+    from types import SimpleNamespace
+
+    from mechgrade.grade.results import AnswerResult
+    from mechgrade.grade.variants import NeighbourIndex, Variant
+    from mechgrade.solve.result import ObjectiveResult
+
+    def refs(speed, acc):
+        return [SimpleNamespace(key="p.speed", result=ObjectiveResult("speed", "scalar", "m/s", speed)),
+                SimpleNamespace(key="p.acc", result=ObjectiveResult("acc", "vector", "m/s^2", acc,
+                                                                    frame="N"))]
+
+    index = NeighbourIndex({"me": refs(10.0, (1.0, 2.0, 0.0)), "ana": refs(20.0, (3.0, 4.0, 0.0)),
+                            "ben": refs(30.0, (5.0, 6.0, 0.0))})
+    own = {o.key: o.result for o in refs(10.0, (1.0, 2.0, 0.0))}
+    result = StudentResult("me", "", "graded", 0.0, 2.0, tuple(
+        AnswerResult("p", key, text, "incorrect", 0.0, 1.0) for key, text in answers.items()))
+    variant = Variant("p", "me", "s", 0, (), ())
+    return index, own, result, variant
+
+
+def test_answers_that_all_fit_one_neighbour_are_diagnosed():
+    from mechgrade.grade.variants import mark_neighbours
+
+    index, own, result, variant = _index_and_result({"speed": "20.1 m/s", "acc": "(3, 4) m/s^2"})
+    marked = mark_neighbours(result, own, index, "me", [variant])
+    assert [a.diagnosis for a in marked.answers] == [OTHER_VARIANT, OTHER_VARIANT]
+
+
+def test_answers_fitting_different_neighbours_are_a_coincidence_not_a_diagnosis():
+    from mechgrade.grade.variants import mark_neighbours
+
+    index, own, result, variant = _index_and_result({"speed": "20 m/s", "acc": "(5, 6) m/s^2"})
+    marked = mark_neighbours(result, own, index, "me", [variant])
+    assert [a.diagnosis for a in marked.answers] == [None, None]
+    index, own, result, variant = _index_and_result({"speed": "25 m/s"})
+    assert mark_neighbours(result, own, index, "me", [variant]).answers[0].diagnosis is None

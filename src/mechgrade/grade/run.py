@@ -139,11 +139,17 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     students: list[StudentResult] = []
     faults: list[str] = [s.internal_error for s in submissions.students if s.internal_error]
     own = {person.id: _own_plan(plan, person) for person, _ in people}
+    neighbours = None
+    if any(variants for _, variants in own.values()):
+        from .variants import NeighbourIndex
+
+        neighbours = NeighbourIndex({pid: p.objectives for pid, (p, _) in own.items()})
     try:
         for done, (person, submission) in enumerate(people, start=1):
             judge.plan, variants = own[person.id]
             student = _grade_student_safely(judge.plan, judge, person, submission, faults)
-            students.append(_with_variant(student, plan, own, person.id, variants))
+            students.append(_with_variant(student, plan, own, person.id, variants,
+                                          neighbours))
             if progress:
                 progress(done, total)
     finally:
@@ -185,7 +191,7 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
 
 
 def _with_variant(student: StudentResult, plan: Plan, own: dict, person_id: str,
-                  variants: list) -> StudentResult:
+                  variants: list, neighbours) -> StudentResult:
     """The student's numbers recorded, and answers that fit a neighbour's numbers noted."""
     if not variants:
         return student
@@ -193,11 +199,8 @@ def _with_variant(student: StudentResult, plan: Plan, own: dict, person_id: str,
 
     from .variants import mark_neighbours, student_record
 
-    def references(p: Plan) -> dict:
-        return {o.key: o.result for o in p.objectives}
-
-    others = [references(p) for pid, (p, _) in own.items() if pid != person_id]
-    student = mark_neighbours(student, references(own[person_id][0]), others, variants)
+    references = {o.key: o.result for o in own[person_id][0].objectives}
+    student = mark_neighbours(student, references, neighbours, person_id, variants)
     seed = plan.assignment.variants.seed or plan.assignment.id
     return replace(student, variant=student_record(seed, variants))
 

@@ -302,30 +302,86 @@ def student_record(seed: str, variants: list[Variant]) -> StudentVariant | None:
     return StudentVariant(seed, givens) if variants else None
 
 
+class NeighbourIndex:
+    """Every student's reference values, per objective, in SI: which students' references a
+    value fits (within each objective's tolerance), found for the whole class at once."""
+
+    def __init__(self, objectives_by_student: dict):
+        """``objectives_by_student``: student id -> that student's planned objectives (each
+        with ``key`` and ``result``)."""
+        table: dict[str, tuple[list[str], list]] = {}
+        for student, objectives in objectives_by_student.items():
+            for item in objectives:
+                result = item.result
+                if result.value is None:
+                    continue
+                ids, rows = table.setdefault(item.key, ([], []))
+                ids.append(student)
+                rows.append(np.atleast_1d(np.asarray(
+                    [to_si(v, result.unit) for v in np.atleast_1d(result.value)], dtype=float)))
+        self._ids = {key: np.asarray(ids) for key, (ids, _) in table.items()}
+        self._values = {key: np.vstack(rows) for key, (_, rows) in table.items()}
+        self._tolerance: dict[str, tuple[float, float]] = {}
+        for objectives in objectives_by_student.values():
+            for item in objectives:
+                result = item.result
+                absolute = (abs(to_si(result.abs, result.unit) - to_si(0.0, result.unit))
+                            if result.abs else 0.0)
+                self._tolerance.setdefault(item.key, (result.rel, absolute))
+
+    def fitting(self, key: str, value, student: str) -> set[str]:
+        """The students other than ``student`` whose reference for objective ``key``
+        ``value`` (SI; a float or components) fits."""
+        if key not in self._values:
+            return set()
+        values = self._values[key]
+        value = np.atleast_1d(np.asarray(value, dtype=float))
+        if value.shape[0] != values.shape[1]:
+            return set()
+        rel, absolute = self._tolerance[key]
+        scale = np.linalg.norm(values, axis=1) if values.shape[1] > 1 else np.abs(values[:, 0])
+        # a loose vectorised filter over the class, then the one tolerance rule on the few left
+        with np.errstate(all="ignore"):
+            near = np.max(np.abs(values - value), axis=1) <= 2 * np.maximum(rel * scale,
+                                                                            absolute) + 1e-300
+        return {str(self._ids[key][i]) for i in np.flatnonzero(near & (self._ids[key] != student))
+                if within(value, values[i], rel, absolute,
+                          scale[i] if values.shape[1] > 1 else None)}
+
+
 def mark_neighbours(result: StudentResult, own: dict[str, ObjectiveResult],
-                    others: list[dict[str, ObjectiveResult]], variants: list[Variant]
+                    neighbours: NeighbourIndex, student: str, variants: list[Variant]
                     ) -> StudentResult:
-    """``result`` with every incorrect number or vector answer that fits another student's
-    reference (``others``: objective key -> result) diagnosed as answered with another
-    variant's givens. ``own`` holds this student's references by objective key."""
+    """``result`` with the incorrect number and vector answers to a problem diagnosed as
+    answered with another variant's givens when they all fit one other student's references
+    (one coincidence in a large class is not enough when there are several). ``own`` holds
+    this student's references by objective key; ``student`` is their id in ``neighbours``."""
     if not variants:
         return result
     mine = "; ".join(v.text() for v in variants)
     drawn = {v.problem for v in variants}
-    answers = []
-    for answer in result.answers:
+    shared: dict[str, set[str]] = {}  # problem -> students whose references every answer fits
+    flagged: set[int] = set()
+    for i, answer in enumerate(result.answers):
         key = f"{answer.problem}.{answer.objective}"
         reference = own.get(key)
-        if (answer.verdict == "incorrect" and answer.answer and reference is not None
-                and answer.problem in drawn):
-            value = answer_si(answer.answer, reference)
-            if value is not None and any(_fits(value, other.get(key)) for other in others):
-                note = (f"This answer fits another variant's givens, not yours ({mine}): "
-                        f"solve with your own numbers.")
-                answer = replace(answer, diagnosis=OTHER_VARIANT,
-                                 feedback=" ".join(x for x in (answer.feedback, note) if x))
-        answers.append(answer)
-    return replace(result, answers=tuple(answers))
+        if (answer.verdict != "incorrect" or not answer.answer or reference is None
+                or answer.problem not in drawn):
+            continue
+        value = answer_si(answer.answer, reference)
+        if value is None:
+            continue
+        others = neighbours.fitting(key, value, student)
+        shared[answer.problem] = (others if answer.problem not in shared
+                                  else shared[answer.problem] & others)
+        flagged.add(i)
+    note = (f"This answer fits another variant's givens, not yours ({mine}): solve with your "
+            f"own numbers.")
+    answers = tuple(
+        replace(a, diagnosis=OTHER_VARIANT, feedback=" ".join(x for x in (a.feedback, note) if x))
+        if i in flagged and shared.get(a.problem) else a
+        for i, a in enumerate(result.answers))
+    return replace(result, answers=answers)
 
 
 def answer_si(text: str, reference: ObjectiveResult):
@@ -350,14 +406,3 @@ def answer_si(text: str, reference: ObjectiveResult):
     except MechgradeError:
         return None
     return None
-
-
-def _fits(value, other: ObjectiveResult | None) -> bool:
-    if other is None or other.value is None or isinstance(value, tuple) != isinstance(
-            other.value, tuple):
-        return False
-    reference = (tuple(to_si(c, other.unit) for c in other.value)
-                 if isinstance(other.value, tuple) else to_si(other.value, other.unit))
-    scale = float(np.linalg.norm(reference)) if isinstance(reference, tuple) else None
-    tolerance = abs(to_si(other.abs, other.unit) - to_si(0.0, other.unit)) if other.abs else 0.0
-    return within(value, reference, other.rel, tolerance, scale)
