@@ -127,6 +127,11 @@ class Assignment:
                 return value
         return self.default_points
 
+    @property
+    def variant_seed(self) -> str:
+        """The seed students' variants are drawn with: ``variants.seed``, else the id."""
+        return self.variants.seed or self.id
+
     def where_points(self, key: str) -> Location:
         """Where ``points.<key>`` was written (for messages about unknown objectives)."""
         for name, where in self.points_where:

@@ -146,10 +146,11 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
         neighbours = NeighbourIndex({pid: p.objectives for pid, (p, _) in own.items()})
     try:
         for done, (person, submission) in enumerate(people, start=1):
+            # the student's own references, also for ECF's look-ups
             judge.plan, variants = own[person.id]
             student = _grade_student_safely(judge.plan, judge, person, submission, faults)
-            students.append(_with_variant(student, plan, own, person.id, variants,
-                                          neighbours))
+            students.append(_with_variant(student, judge.plan, variants, neighbours,
+                                          person.id))
             if progress:
                 progress(done, total)
     finally:
@@ -171,13 +172,13 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
         return plan, []
     from .variants import student_variant
 
-    policy = plan.assignment.variants
-    seed = policy.seed or plan.assignment.id
+    assignment = plan.assignment
     solutions, variants, givens = list(plan.solutions), [], {}
     for i, problem in enumerate(plan.problems):
         if problem.variants is not None:
-            variant, solutions[i] = student_variant(problem, seed, person.variant_key or
-                                                    person.id, policy.redraw)
+            variant, solutions[i] = student_variant(
+                problem, assignment.variant_seed, person.variant_key or person.id,
+                assignment.variants.redraw)
             variants.append(variant)
             givens[problem.id] = variant.overrides
     index = {p.id: i for i, p in enumerate(plan.problems)}
@@ -190,19 +191,19 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
     return Plan(plan.assignment, plan.problems, tuple(solutions), objectives), variants
 
 
-def _with_variant(student: StudentResult, plan: Plan, own: dict, person_id: str,
-                  variants: list, neighbours) -> StudentResult:
-    """The student's numbers recorded, and answers that fit a neighbour's numbers noted."""
+def _with_variant(student: StudentResult, own: Plan, variants: list, neighbours,
+                  person_id: str) -> StudentResult:
+    """The student's numbers recorded, and answers that fit a neighbour's numbers noted
+    (``own``: the student's plan; ``neighbours``: the class's references by student)."""
     if not variants:
         return student
     from dataclasses import replace
 
     from .variants import mark_neighbours, student_record
 
-    references = {o.key: o.result for o in own[person_id][0].objectives}
+    references = {o.key: o.result for o in own.objectives}
     student = mark_neighbours(student, references, neighbours, person_id, variants)
-    seed = plan.assignment.variants.seed or plan.assignment.id
-    return replace(student, variant=student_record(seed, variants))
+    return replace(student, variant=student_record(own.assignment.variant_seed, variants))
 
 
 # ---------------------------------------------------------------------------- students

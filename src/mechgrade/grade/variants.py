@@ -274,7 +274,7 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
     :class:`~mechgrade.grade.run.Plan`, ``students`` ``(id, name)`` pairs (the id decides
     the variant, as in grading)."""
     assignment = plan.assignment
-    seed = assignment.variants.seed or assignment.id
+    seed = assignment.variant_seed
     sheets = []
     for student_id, name in students:
         problems = []
