@@ -4,6 +4,7 @@ before handing out, and graded against each student's own reference."""
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -297,3 +298,19 @@ def test_answers_fitting_different_neighbours_are_a_coincidence_not_a_diagnosis(
     assert [a.diagnosis for a in marked.answers] == [None, None]
     index, own, result, variant = _index_and_result({"speed": "25 m/s"})
     assert mark_neighbours(result, own, index, "me", [variant]).answers[0].diagnosis is None
+
+
+def test_a_draw_where_a_given_written_as_an_expression_is_undefined_is_drawn_again():
+    text = base_with("variants:\n  draw:\n    L: {choices: [0.5 m, 4 m]}\n")
+    text = text.replace("  L: m\n", "  L: m\n  a: m\n").replace(
+        "  theta: 30 deg\n", "  theta: acos(a/L)\n  a: 1 m\n")
+    problem = load_problem_text(text, "p.yaml")
+    for n in range(10):
+        variant = draw_variant(problem, "s", str(n))
+        assert dict(variant.overrides)["L"] == 4.0
+        assert dict(variant.overrides)["theta"] == pytest.approx(math.acos(0.25))
+    stuck = load_problem_text(text.replace("choices: [0.5 m, 4 m]", "choices: [0.5 m]"),
+                              "p.yaml")
+    with pytest.raises(SolveError, match=r"meets its conditions \(givens written as "
+                                          r"expressions\)"):
+        draw_variant(stuck, "s", "a")

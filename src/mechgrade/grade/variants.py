@@ -21,18 +21,17 @@ from __future__ import annotations
 import hashlib
 import math
 from dataclasses import dataclass, replace
-from typing import Callable
 
 import numpy as np
 
-from ..errors import MechgradeError, SolveError
+from ..errors import MechgradeError, SolveError, SpecError
 from ..expressions.syntax import to_text
 from ..solve import Solution, solve
 from ..solve.plan import plan as solver_plan
 from ..solve.result import ObjectiveResult
 from ..spec.model import Problem
 from ..spec.solving import resolve_given_values
-from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, RoundedRange, SteppedRange
+from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, SteppedRange
 from ..tolerance import within
 from ..units import from_si, to_si
 from .results import StudentResult, StudentVariant, VariantGiven, unit_text
@@ -78,11 +77,10 @@ def _value(draw: Draw, n: int) -> float:
     if isinstance(draw, SteppedRange):
         count = int(math.floor((draw.high - draw.low) / draw.step + 1e-9)) + 1
         return round(draw.low + (n % count) * draw.step, 12)
-    if isinstance(draw, RoundedRange):
-        u = (n >> 192) / 2.0 ** 64
-        value = float(f"{draw.low + u * (draw.high - draw.low):.{draw.sig_figs - 1}e}")
-        return min(max(value, draw.low), draw.high)
-    raise TypeError(f"unknown draw {draw!r}")
+    # a RoundedRange: the top 64 bits as a fraction of the range, then rounded
+    u = (n >> 192) / 2.0 ** 64
+    value = float(f"{draw.low + u * (draw.high - draw.low):.{draw.sig_figs - 1}e}")
+    return min(max(value, draw.low), draw.high)
 
 
 def draw_variant(problem: Problem, seed: str, student: str, start: int = 0) -> Variant:
@@ -104,7 +102,11 @@ def draw_variant(problem: Problem, seed: str, student: str, start: int = 0) -> V
                 givens.append(replace(g, si=math.nan))
             else:
                 givens.append(g)
-        givens = resolve_given_values(tuple(givens), problem.coordinates, problem.parameters)
+        try:
+            givens = resolve_given_values(tuple(givens), problem.coordinates,
+                                          problem.parameters)
+        except SpecError:
+            continue  # a given written as an expression is undefined here (sqrt of < 0)
         values = {to_text(g.key.node): g.si for g in givens}
         if all(r.holds(values) for r in variants.requires):
             spec = {to_text(g.key.node): g.si for g in problem.givens}
@@ -112,9 +114,9 @@ def draw_variant(problem: Problem, seed: str, student: str, start: int = 0) -> V
             return Variant(problem.id, student, seed, index,
                            tuple(VariantGiven(problem.id, d.key, drawn[d.key][0], d.unit, index)
                                  for d in variants.draws), overrides)
-    raise SolveError(f"no draw of problem '{problem.id}' meets its conditions "
-                     f"({'; '.join(r.text for r in variants.requires)}) in {DRAW_LIMIT} "
-                     f"tries; widen the ranges", where=variants.where)
+    conditions = "; ".join(r.text for r in variants.requires) or "givens written as expressions"
+    raise SolveError(f"no draw of problem '{problem.id}' meets its conditions ({conditions}) "
+                     f"in {DRAW_LIMIT} tries; widen the ranges", where=variants.where)
 
 
 def solve_variant(problem: Problem, variant: Variant) -> Solution:

@@ -47,6 +47,7 @@ from .variant_model import (COMPARISON, PLACEHOLDER, Bound, Choices, Draw, Integ
 __all__ = ["read_variants", "read_requirement", "Variants", "Draw", "SteppedRange",
            "RoundedRange", "Choices", "Integers", "Requirement", "Bound", "PLACEHOLDER"]
 
+
 def read_requirement(text: str, where: Location) -> Requirement:
     """A condition ``left op right`` (``op`` one of ``< <= > >= !=``); raises SpecError.
 
