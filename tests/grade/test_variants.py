@@ -15,7 +15,7 @@ import pytest
 from mechgrade.errors import SolveError
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.results import AssignmentInfo, GradeReport, StudentResult
-from mechgrade.grade.run import grade_submissions
+from mechgrade.grade.run import expected_text, grade_submissions
 from mechgrade.grade.variants import (OTHER_VARIANT, check_variants, draw_variant,
                                       solve_variant, statement, student_variant,
                                       variant_faults)
@@ -210,6 +210,9 @@ def test_each_student_is_graded_against_the_reference_solved_with_their_own_give
         assert student.variant.seed == "engr201-fall2026"
         assert tuple(g.text for g in student.variant.givens) == tuple(g.text for g in variant.drawn)
         assert own.result("acc_mag").value != solve(problem).result("acc_mag").value
+        shown = {a.objective: a.expected for a in student.answers
+                 if a.problem == "pendulum_variants"}
+        assert shown == {r.id: expected_text(r) for r in own.results}
     scores = {s.id: s.score for s in report.students}
     assert scores == {"ana_silva": 8.0, "ben_okafor": 2.0, "chen_li": 4.0, "dara_novak": 0.0}
     assert assignment.variants.redraw
