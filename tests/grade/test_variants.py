@@ -317,3 +317,26 @@ def test_a_draw_where_a_given_written_as_an_expression_is_undefined_is_drawn_aga
     with pytest.raises(SolveError, match=r"meets its conditions \(givens written as "
                                           r"expressions\)"):
         draw_variant(stuck, "s", "a")
+
+
+@pytest.mark.parametrize("section, message", [
+    ("variants: {sed: 3}\n", "hw.yaml:4:17: variants.sed: expected only the fields seed, redraw, found 'sed'"),
+    ('variants: {seed: ""}\n', "hw.yaml:4:18: variants.seed: expected at least 1 character(s), found empty text"),
+    ("variants: {seed: s, redraw: 1}\n", "hw.yaml:4:29: variants.redraw: expected true or false, found 1"),
+])
+def test_a_bad_variants_section_of_an_assignment_says_where_and_what(tmp_path, section, message):
+    from mechgrade.errors import AssignmentError
+
+    (tmp_path / "p.yaml").write_text("id: p\n")
+    (tmp_path / "hw.yaml").write_text("id: hw\ntitle: T\nproblems: [p.yaml]\n" + section)
+    with pytest.raises(AssignmentError) as info:
+        load_assignment(tmp_path / "hw.yaml")
+    assert message in str(info.value)
+
+
+def test_the_seed_is_the_assignments_or_else_its_id(tmp_path):
+    (tmp_path / "p.yaml").write_text("id: p\n")
+    (tmp_path / "hw.yaml").write_text("id: hw\ntitle: T\nproblems: [p.yaml]\n")
+    assert load_assignment(tmp_path / "hw.yaml").variant_seed == "hw"
+    (tmp_path / "hw.yaml").write_text("id: hw\ntitle: T\nproblems: [p.yaml]\nvariants: {seed: 7}\n")
+    assert load_assignment(tmp_path / "hw.yaml").variant_seed == "7"
