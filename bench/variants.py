@@ -3,8 +3,9 @@
 Cold = load the spec, build the model and the solver plan (caches cleared) and solve once;
 warm variant = solve the same problem with one student's givens, the plan already built (the
 median over ``--students`` students, each a new variant). Problems with a ``variants:`` section
-draw their variants; for the others a variant scales each parameter given by 0.8..1.2 (the same
-re-solve path). ``numeric`` times the warm solve without the symbolic objectives, which sympy
+draw their variants; for the others a variant scales each parameter given (or, without any,
+each rate given) by 0.8..1.2: the same re-solve path. Only variants that solve every objective
+are timed (``n``). ``numeric`` times the warm solve without the symbolic objectives, which sympy
 re-solves whenever a variant changes a given they depend on.
 
 Run: PYTHONPATH=src python bench/variants.py [--students N] [problem.yaml ...]
@@ -18,7 +19,7 @@ import time
 from pathlib import Path
 
 from mechgrade.errors import MechgradeError
-from mechgrade.expressions.syntax import Name, to_text
+from mechgrade.expressions.syntax import Name, Prime, to_text
 from mechgrade.grade.variants import draw_variant
 from mechgrade.mechanics import derive
 from mechgrade.solve import plan, solve
@@ -33,17 +34,19 @@ def variants_of(problem, count: int) -> list[dict[str, float]]:
     if problem.variants is not None:
         return [dict(draw_variant(problem, "bench", str(n)).overrides) for n in range(count)]
     parameters = {p.name for p in problem.parameters}
-    scalable = [g for g in problem.givens
-                if isinstance(g.key.node, Name) and g.key.node.id in parameters
-                and g.value_expr is None and g.si]
+    plain = [g for g in problem.givens if g.value_expr is None and g.si]
+    scalable = ([g for g in plain if isinstance(g.key.node, Name)
+                 and g.key.node.id in parameters]
+                or [g for g in plain if isinstance(g.key.node, Prime)])
     return [{to_text(g.key.node): g.si * (0.8 + 0.4 * ((7 * n + i) % 11) / 10)
              for i, g in enumerate(scalable)} for n in range(1, count + 1)]
 
 
-def timed(call) -> float:
+def timed(call):
+    """(seconds, result) of ``call()``."""
     start = time.perf_counter()
-    call()
-    return time.perf_counter() - start
+    result = call()
+    return time.perf_counter() - start, result
 
 
 def measure(path: Path, students: int):
@@ -57,16 +60,19 @@ def measure(path: Path, students: int):
         plan(problem)
         solve(problem)
 
-    cold = timed(cold_run)
-    overrides = variants_of(problem, students)
+    cold, _ = timed(cold_run)
+    overrides = [g for g in variants_of(problem, students) if g]
     numeric = [o.id for o in problem.objectives if o.kind != "symbolic"]
     warm, warm_numeric = [], []
     for givens in overrides:
         try:
-            warm.append(timed(lambda: solve(problem, givens=givens)))
+            seconds, solution = timed(lambda: solve(problem, givens=givens))
+            if solution.failures:
+                continue
+            warm.append(seconds)
             if numeric:
                 warm_numeric.append(timed(lambda: solve(problem, givens=givens,
-                                                        objectives=numeric)))
+                                                        objectives=numeric))[0])
         except MechgradeError:
             continue  # a synthetic variant may not assemble; drawn ones are verified
     return problem.id, cold, statistics.median(warm) if warm else float("nan"), \
@@ -86,6 +92,10 @@ def main() -> None:
             pid, cold, warm, num, n = measure(path, args.students)
         except MechgradeError as err:
             print(f"{path.stem:42s} error: {err}")
+            continue
+        if not n:
+            print(f"{pid:42s} {cold * 1e3:7.0f}ms   (no variant to time: no givens to vary, or "
+                  f"none solved)")
             continue
         ratio = cold / warm
         ratios.append(ratio)
