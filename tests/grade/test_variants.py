@@ -340,3 +340,10 @@ def test_the_seed_is_the_assignments_or_else_its_id(tmp_path):
     assert load_assignment(tmp_path / "hw.yaml").variant_seed == "hw"
     (tmp_path / "hw.yaml").write_text("id: hw\ntitle: T\nproblems: [p.yaml]\nvariants: {seed: 7}\n")
     assert load_assignment(tmp_path / "hw.yaml").variant_seed == "7"
+
+
+def test_any_student_id_draws_a_variant_even_one_that_is_not_valid_utf8():
+    problem = load_problem(PENDULUM)
+    for sid in ("bad\udce9name", "名前", "", " 20001 ", "a" * 5000):
+        assert draw_variant(problem, "fall", sid).drawn
+    assert draw_variant(problem, "fall", "é").drawn == draw_variant(problem, "fall", "é").drawn

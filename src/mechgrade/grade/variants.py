@@ -65,7 +65,9 @@ class Variant:
 def _number(seed: str, problem: str, student: str, index: int, key: str) -> int:
     """A 256-bit number fixed by its arguments, the same in every process and version."""
     text = "\x1f".join((seed, problem, student, str(index), key))
-    return int.from_bytes(hashlib.sha256(text.encode("utf-8")).digest(), "big")
+    # a folder name that is not valid UTF-8 reaches here with surrogates; it still has bytes
+    data = text.encode("utf-8", "surrogatepass")
+    return int.from_bytes(hashlib.sha256(data).digest(), "big")
 
 
 def _value(draw: Draw, n: int) -> float:
