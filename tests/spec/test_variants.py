@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -52,8 +53,9 @@ def test_each_kind_of_draw_is_read_in_the_given_unit():
     assert draws["theta'"] == RoundedRange("theta'", "rad / s", 2.0, 4.0, 2)
     assert draws["theta''"] == Integers("theta''", "rad / s ** 2", 1, 5)
     bounds = {b.name: b for b in problem.variants.bounds}
-    assert (bounds["speed"].low, bounds["speed"].high, bounds["speed"].unit) == (1.0, 20.0, "m / s")
-    assert (bounds["theta"].low, bounds["theta"].high) == (None, 90.0)
+    assert (bounds["speed"].low, bounds["speed"].high, bounds["speed"].unit) == (1.0, 20.0, "m/s")
+    assert (bounds["theta"].low, bounds["theta"].unit) == (None, "rad")
+    assert bounds["theta"].high == pytest.approx(math.pi / 2)  # in the coordinate's unit
     assert problem.variants.requires[0].holds({"theta'": 3.0, "L": 2.0, "theta": 0.5,
                                                "theta''": 1.0})
 
@@ -114,9 +116,12 @@ CASES = [
      "parameter to bound, found 'sped'; did you mean 'speed'?"),
     ("bound reversed", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {speed: {min: 2 m/s, max: 1 m/s}}\n",
      "p.yaml:21:19: variants.bounds.speed: expected min <= max, found 2 > 1"),
-    ("bound in two kinds of unit", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {speed: {min: 2 m/s, max: 1 s}}\n",
-     "p.yaml:21:37: variants.bounds.speed.max: expected min and max in the same kind of unit, "
-     "found '1 s'"),
+    ("bound in another kind of unit", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {speed: {min: 2 m/s, max: 1 s}}\n",
+     "p.yaml:21:37: variants.bounds.speed.max: expected a value in units like m/s (the unit of "
+     "'speed'), found '1 s'"),
+    ("bound on a rate in another kind of unit", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {\"theta'\": {max: 2 m}}\n",
+     "p.yaml:21:28: variants.bounds.theta'.max: expected a value in units like rad/s (the unit "
+     "of \"theta'\"), found '2 m'"),
     ("bound unreadable", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {speed: {min: fast}}\n",
      "p.yaml:21:25: variants.bounds.speed.min: expected a number followed by a unit"),
     ("empty bound", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {speed: {}}\n",

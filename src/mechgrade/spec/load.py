@@ -363,8 +363,12 @@ class _Builder:
             return None
         from .variants import read_variants
 
-        names = {o.id for o in objectives} | {"t"} | {p.name for p in parameters}
-        names |= {c.name + "'" * n for c in coordinates for n in range(3)}
+        names = {"t": "s", **{o.id: o.unit for o in objectives},
+                 **{p.name: p.unit for p in parameters}}
+        for c in coordinates:
+            base = f"({c.unit})" if any(ch in c.unit for ch in "/* ") else c.unit or "1"
+            names.update({c.name: c.unit, c.name + "'": f"{base}/s",
+                          c.name + "''": f"{base}/s^2"})
         variants, errors = read_variants(self.data, tuple(givens), names, self.where,
                                          str(self.data.get("statement", "")), self.usable)
         self.errors += errors

@@ -71,12 +71,12 @@ def read_requirement(text: str, where: Location) -> Requirement:
     return Requirement(text.strip(), left, ops[0], right, where)
 
 
-def read_variants(data: dict, givens: tuple[Given, ...], names, where,
+def read_variants(data: dict, givens: tuple[Given, ...], names: Mapping[str, str], where,
                   statement: str = "", usable=lambda *path: True
                   ) -> tuple[Variants | None, list[SpecError]]:
     """The ``variants:`` section of a problem's data (already schema-checked), and every
-    error found in it. ``where(*path)`` locates a value; ``names`` are those a bound may
-    name (objective ids, coordinates and their rates, parameters, ``t``); entries where
+    error found in it. ``where(*path)`` locates a value; ``names`` maps what a bound may
+    name (objective ids, coordinates and their rates, parameters, ``t``) to its unit; entries where
     ``usable(*path)`` is false had schema errors and are left out.
     """
     section = data.get("variants")
@@ -123,7 +123,7 @@ def read_variants(data: dict, givens: tuple[Given, ...], names, where,
                 where=where("variants", "bounds", name)))
             continue
         try:
-            bounds.append(_bound(str(name), spec, where))
+            bounds.append(_bound(str(name), spec, names[str(name)], where))
         except SpecError as err:
             errors.append(err)
     for found in PLACEHOLDER.findall(statement):
@@ -179,7 +179,7 @@ def _draw(key: str, spec: dict, givens: Mapping[str, Given], where) -> Draw:
     return SteppedRange(canonical, unit, low, high, step, here)
 
 
-def _in_unit(raw, unit: str, where: Location) -> float:
+def _in_unit(raw, unit: str, where: Location, whose: str = "the given's unit") -> float:
     """A value written with a unit (or bare, read in ``unit``) converted to ``unit``."""
     if raw is None:
         raise SpecError("expected 'to' with 'from' (a range needs both ends)", where=where)
@@ -193,32 +193,26 @@ def _in_unit(raw, unit: str, where: Location) -> float:
     if not q.unit or q.unit == unit:
         return q.value
     if not same_dimension(q.unit, unit or "1"):
-        raise SpecError(f"expected a value in units like {unit or 'a pure number'} (the given's "
-                        f"unit), found {raw!r}", where=where)
+        raise SpecError(f"expected a value in units like {unit or 'a pure number'} ({whose}), "
+                        f"found {raw!r}", where=where)
     return from_si(to_si(q.value, q.unit), unit) if unit else to_si(q.value, q.unit)
 
 
-def _bound(name: str, spec: dict, where) -> Bound:
+def _bound(name: str, spec: dict, unit: str, where) -> Bound:
+    """A bound in the unit of the quantity it bounds (``unit``; a bare number is in it)."""
     here = where("variants", "bounds", name)
-    ends = {}
-    unit = None
+    values = {}
     for end in ("min", "max"):
         if end not in spec:
             continue
-        q = None
-        try:
-            q = parse_quantity(str(spec[end]))
-        except UnitError as err:
-            raise SpecError(err.message, where=where("variants", "bounds", name, end)) from None
-        if unit is not None and q.unit and not same_dimension(q.unit, unit or "1"):
-            raise SpecError(f"expected min and max in the same kind of unit, found "
-                            f"{spec[end]!r}", where=where("variants", "bounds", name, end))
-        if unit is None or (not unit and q.unit):
-            unit = q.unit
-        ends[end] = q
-    values = {end: (from_si(to_si(q.value, q.unit), unit) if q.unit else q.value)
-              for end, q in ends.items()}
+        values[end] = _in_unit(spec[end], unit, where("variants", "bounds", name, end),
+                               f"the unit of {_quoted(name)}")
     low, high = values.get("min"), values.get("max")
     if low is not None and high is not None and low > high:
         raise SpecError(f"expected min <= max, found {low:g} > {high:g}", where=here)
     return Bound(name, unit, low, high, here)
+
+
+def _quoted(name: str) -> str:
+    """``'x'``, or ``"x'"`` for a rate (its prime would end single quotes)."""
+    return f'"{name}"' if "'" in name else f"'{name}'"
