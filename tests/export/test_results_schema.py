@@ -58,7 +58,7 @@ DELETE = object()
      "students[0].identity.email: expected text, found 5"),
     (("students", 0, "grade"), 3,
      "students[0].grade: expected only the fields id, name, status, score, max_score, answers, "
-     "messages, identity, found 'grade'"),
+     "messages, identity, variant, found 'grade'"),
     (("assignment",), DELETE, "expected a field 'assignment', found none"),
     (("assignment", "title"), None, "assignment.title: expected text, found null"),
     (("objectives", 0, "max_points"), DELETE,

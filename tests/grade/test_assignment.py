@@ -90,7 +90,7 @@ def test_assignment_is_frozen(folder):
     ("id: hw1\nproblems: [p.yaml]\n", "hw.yaml:1:1: expected a field 'title', found none"),
     ("id: hw1\ntitle: T\n", "hw.yaml:1:1: expected a field 'problems', found none"),
     (MINIMAL + "due: tomorrow\n",
-     "hw.yaml:4:6: due: expected only the fields id, title, problems, points, policy, "
+     "hw.yaml:4:6: due: expected only the fields id, title, problems, points, variants, policy, "
      "found 'due'"),
     (MINIMAL + "policy: {reveal: true}\n",
      "hw.yaml:4:18: policy.reveal: expected only the fields reveal_answers, tolerance, "

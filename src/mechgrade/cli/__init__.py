@@ -15,5 +15,6 @@ from . import grade as _grade  # noqa: F401
 from . import gradescope as _gradescope  # noqa: F401
 from . import schema as _schema  # noqa: F401
 from . import new as _new  # noqa: F401
+from . import handout as _handout  # noqa: F401
 
 __all__ = ["main"]

@@ -6,6 +6,7 @@ import click
 
 from ..check import CheckReport, check_paths, check_problem, problem_files, watch
 from ..errors import SpecError
+from ..grade.variants import variant_lines
 from .common import main, reports_errors
 from .solve import value_text
 
@@ -19,9 +20,12 @@ from .solve import value_text
               help="With --watch: stop after this many runs (the first check is run 1).")
 @click.option("--interval", type=click.FloatRange(min=0.01),
               help="With --watch: seconds between looks at the files [default: 0.5].")
+@click.option("--variants", "variant_count", type=click.IntRange(0, 100_000), default=200,
+              show_default=True, help="Variants drawn and verified per problem with a "
+                                      "variants: section (0: none).")
 @reports_errors
 def check_command(paths: tuple[str, ...], verbose: bool, watching: bool, max_runs: int | None,
-                  interval: float | None) -> None:
+                  interval: float | None, variant_count: int) -> None:
     """Validate problem files (or folders of them) and run every expect: test.
 
     Every error of a file is listed, one per line, in file order; warnings follow the tests.
@@ -34,23 +38,26 @@ def check_command(paths: tuple[str, ...], verbose: bool, watching: bool, max_run
     if not problem_files(paths):
         raise SpecError(f"expected problem files (*.yaml), found none in {', '.join(paths)}")
     if watching:
-        _watch(paths, max_runs, 0.5 if interval is None else interval)
+        _watch(paths, max_runs, 0.5 if interval is None else interval, variant_count)
         return
     reports = check_paths(paths)
-    failures = sum(_print_report(report, verbose) for report in reports)
+    failures = sum(_print_report(report, verbose, variant_count=variant_count)
+                   for report in reports)
     click.echo(f"{len(reports)} file(s), {failures} failing")
     if failures:
         raise SystemExit(1)
 
 
-def _watch(paths: tuple[str, ...], max_runs: int | None, interval: float) -> None:
+def _watch(paths: tuple[str, ...], max_runs: int | None, interval: float,
+           variant_count: int) -> None:
     """Check on every save until Ctrl-C or ``max_runs``; a failing spec is shown, not an exit."""
     runs = 0
     try:
         for changed in watch(paths, interval):
             runs += 1
             for path in changed:
-                _print_report(check_problem(path), verbose=True, values=True)
+                _print_report(check_problem(path), verbose=True, values=True,
+                              variant_count=variant_count)
             if max_runs is not None and runs >= max_runs:
                 break
             click.echo(f"-- run {runs} done; watching {', '.join(paths)} (Ctrl-C to stop)")
@@ -59,15 +66,18 @@ def _watch(paths: tuple[str, ...], max_runs: int | None, interval: float) -> Non
     click.echo(f"stopped after {runs} run(s)")
 
 
-def _print_report(report: CheckReport, verbose: bool, values: bool = False) -> bool:
-    """Print one file's report; whether it failed."""
+def _print_report(report: CheckReport, verbose: bool, values: bool = False,
+                  variant_count: int = 0) -> bool:
+    """Print one file's report (with ``variant_count`` variants drawn and verified, for a
+    problem with variants); whether it failed."""
     if report.error:
         click.echo(f"FAIL {report.path}")
         for line in report.error.splitlines() + list(report.warnings):
             click.echo(f"  {line}")
         return True
     bad = [o for o in report.outcomes if not o.passed]
-    failed = bool(bad or report.faults)
+    refused = variant_lines(report.path, variant_count) if variant_count else []
+    failed = bool(bad or report.faults or refused)
     status = "FAIL" if failed else "ok  "
     click.echo(f"{status} {report.path} ({len(report.outcomes)} tests, DOF {report.dof})")
     for outcome in report.outcomes:
@@ -78,7 +88,7 @@ def _print_report(report: CheckReport, verbose: bool, values: bool = False) -> b
             click.echo(f"       book prints: {outcome.book}")
         if verbose and outcome.note:
             click.echo(f"       note: {outcome.note}")
-    for line in report.faults + report.warnings:
+    for line in (*report.faults, *report.warnings, *refused):
         click.echo(f"  {line}")
     if verbose and report.untested:
         click.echo(f"  untested: {', '.join(report.untested)}")

@@ -2,7 +2,8 @@
 student and objective).
 
 ``grades.csv`` columns: ``id,name,status,<problem/objective>...,total,max``. ``results.csv``
-columns: ``student,name,problem,objective,answer,verdict,points,max_points,diagnosis``. Roster
+columns: ``student,name,problem,objective,answer,verdict,points,max_points,diagnosis``, then
+``seed,givens`` when students have their own variants. Roster
 students without a submission get a row (status ``missing``); results not in the roster follow.
 """
 
@@ -48,15 +49,22 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
                     roster: Roster | None = None,
                     options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write ``results.csv``: one row per student and objective, with answer and diagnosis."""
-    rows: list[list[object]] = [list(LONG_HEADER)]
+    # Variants add each student's seed and own givens (of the row's problem).
+    variants = any(student.variant for student in report.students)
+    rows: list[list[object]] = [list(LONG_HEADER) + (["seed", "givens"] if variants else [])]
     match = match_roster(report, roster)
     for pair in match.pairs:
         ident, name = _who(pair.roster, pair.result)
+        variant = pair.result.variant if pair.result is not None else None
         for objective, answer in answers_by_objective(report, pair.result):
             points = answer.points if has_submission(pair.result) else score_cell(None, options)
             rows.append([ident, name, objective.problem, objective.objective,
                          answer.answer or "", answer.verdict, points, answer.max_points,
                          answer.diagnosis or ""])
+            if variants:
+                givens = [f"{g.name} = {g.text}" for g in (variant.givens if variant else ())
+                          if g.problem == objective.problem]
+                rows[-1] += [variant.seed if variant else "", "; ".join(givens)]
     write_csv(out_path, rows, excel_bom=options.excel_bom)
     return _roster_warnings(match, roster, options)
 

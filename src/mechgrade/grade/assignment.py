@@ -97,6 +97,15 @@ class GradingPolicy:
 
 
 @dataclass(frozen=True)
+class VariantPolicy:
+    """How students' variants are drawn: ``seed`` (with the student id) decides the numbers;
+    ``redraw`` refuses draws that fail verification and takes the next one."""
+
+    seed: str = ""
+    redraw: bool = False
+
+
+@dataclass(frozen=True)
 class Assignment:
     """A validated assignment file. ``points`` maps ``"problem_id.objective_id"`` to points."""
 
@@ -107,6 +116,7 @@ class Assignment:
     default_points: float = 1.0
     points: tuple[tuple[str, float], ...] = ()
     policy: GradingPolicy = GradingPolicy()
+    variants: VariantPolicy = VariantPolicy()
     points_where: tuple[tuple[str, Location], ...] = field(default=(), compare=False, repr=False)
 
     def points_for(self, problem_id: str, objective_id: str) -> float:
@@ -116,6 +126,11 @@ class Assignment:
             if name == key:
                 return value
         return self.default_points
+
+    @property
+    def variant_seed(self) -> str:
+        """The seed students' variants are drawn with: ``variants.seed``, else the id."""
+        return self.variants.seed or self.id
 
     def where_points(self, key: str) -> Location:
         """Where ``points.<key>`` was written (for messages about unknown objectives)."""
@@ -171,6 +186,8 @@ def load_assignment(path: str | Path) -> Assignment:
                                     float(ecf.get("credit", 1.0))),
         ),
         points_where=tuple((k, doc.where(("points", k))) for k in keys),
+        variants=VariantPolicy(str((data.get("variants") or {}).get("seed", "")),
+                               bool((data.get("variants") or {}).get("redraw", False))),
     )
 
 

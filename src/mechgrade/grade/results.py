@@ -4,7 +4,7 @@
 
     {"assignment": {"id": ..., "title": ...},
      "objectives": [{"problem", "objective", "prompt", "max_points"}],
-     "students": [{"id", "name", "status", "score", "max_score",
+     "students": [{"id", "name", "status", "score", "max_score", "variant" (if drawn),
                    "answers": [{"problem", "objective", "answer", "verdict", "points",
                                 "max_points", "diagnosis", "feedback"}]}],
      "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...]}
@@ -64,6 +64,43 @@ class AnswerResult:
     expected: str | None = None
 
 
+def unit_text(unit: str) -> str:
+    """A unit as a student writes it.
+
+    >>> unit_text("ft / s ** 2")
+    'ft/s^2'
+    """
+    return unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
+
+
+@dataclass(frozen=True)
+class VariantGiven:
+    """One given drawn for a student: ``value`` in ``unit``, from draw number ``draw``."""
+
+    problem: str
+    name: str
+    value: float
+    unit: str
+    draw: int = 0
+
+    @property
+    def text(self) -> str:
+        """The value with its unit.
+
+        >>> VariantGiven("p", "a", 1.5, "m / s ** 2").text
+        '1.5 m/s^2'
+        """
+        return f"{self.value:g} {unit_text(self.unit)}".strip()
+
+
+@dataclass(frozen=True)
+class StudentVariant:
+    """A student's own numbers: the assignment's ``seed`` and every drawn given."""
+
+    seed: str
+    givens: tuple[VariantGiven, ...] = ()
+
+
 @dataclass(frozen=True)
 class StudentResult:
     """One student's grade. ``identity`` keeps roster columns (name, SIS ids, email...)."""
@@ -76,6 +113,7 @@ class StudentResult:
     answers: tuple[AnswerResult, ...] = ()
     messages: tuple[str, ...] = ()
     identity: tuple[tuple[str, str], ...] = ()
+    variant: StudentVariant | None = None
 
 
 @dataclass(frozen=True)
@@ -109,6 +147,8 @@ class GradeReport:
         data = asdict(self)
         for student in data["students"]:
             student["identity"] = {k: v for k, v in student["identity"]}
+            if student["variant"] is None:  # results without variants read as before
+                del student["variant"]
         return data
 
     @classmethod
@@ -118,10 +158,14 @@ class GradeReport:
         for s in data.get("students", []):
             answers = tuple(AnswerResult(**a) for a in s.get("answers", []))
             identity = tuple((str(k), str(v)) for k, v in (s.get("identity") or {}).items())
+            variant = s.get("variant")
             students.append(StudentResult(
                 id=s["id"], name=s.get("name", ""), status=s["status"], score=s["score"],
                 max_score=s["max_score"], answers=answers,
-                messages=tuple(s.get("messages", ())), identity=identity))
+                messages=tuple(s.get("messages", ())), identity=identity,
+                variant=(StudentVariant(variant["seed"], tuple(
+                    VariantGiven(**g) for g in variant.get("givens", ())))
+                    if variant else None)))
         return cls(AssignmentInfo(**data["assignment"]),
                    tuple(ObjectiveInfo(**o) for o in data.get("objectives", [])),
                    tuple(students),

@@ -46,6 +46,7 @@ class PlannedObjective:
     objective: Objective
     result: ObjectiveResult
     max_points: float
+    givens: tuple[tuple[str, float], ...] = ()  # the student's variant: SI overrides
 
     @property
     def key(self) -> str:
@@ -137,9 +138,19 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     judge = _Judge(plan, resolve)
     students: list[StudentResult] = []
     faults: list[str] = [s.internal_error for s in submissions.students if s.internal_error]
+    own = {person.id: _own_plan(plan, person) for person, _ in people}
+    neighbours = None
+    if any(variants for _, variants in own.values()):
+        from .variants import NeighbourIndex
+
+        neighbours = NeighbourIndex({pid: p.objectives for pid, (p, _) in own.items()})
     try:
         for done, (person, submission) in enumerate(people, start=1):
-            students.append(_grade_student_safely(plan, judge, person, submission, faults))
+            # the student's own references, also for ECF's look-ups
+            judge.plan, variants = own[person.id]
+            student = _grade_student_safely(judge.plan, judge, person, submission, faults)
+            students.append(_with_variant(student, judge.plan, variants, neighbours,
+                                          person.id))
             if progress:
                 progress(done, total)
     finally:
@@ -151,6 +162,50 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
                        tuple(students), submissions.skipped, submissions.notes, tuple(faults))
 
 
+# ---------------------------------------------------------------------------- variants
+
+
+def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
+    """The plan with the student's own variant of every problem that draws one (solved warm);
+    the plan itself when none does. See :mod:`.variants`."""
+    if not any(p.variants for p in plan.problems):
+        return plan, []
+    from .variants import student_variant
+
+    assignment = plan.assignment
+    solutions, variants, givens = list(plan.solutions), [], {}
+    for i, problem in enumerate(plan.problems):
+        if problem.variants is not None:
+            variant, solutions[i] = student_variant(
+                problem, assignment.variant_seed, person.variant_key or person.id,
+                assignment.variants.redraw)
+            variants.append(variant)
+            givens[problem.id] = variant.overrides
+    index = {p.id: i for i, p in enumerate(plan.problems)}
+    objectives = tuple(
+        o if o.problem.id not in givens else
+        PlannedObjective(o.problem, o.objective,
+                         solutions[index[o.problem.id]].result(o.objective.id), o.max_points,
+                         givens[o.problem.id])
+        for o in plan.objectives)
+    return Plan(plan.assignment, plan.problems, tuple(solutions), objectives), variants
+
+
+def _with_variant(student: StudentResult, own: Plan, variants: list, neighbours,
+                  person_id: str) -> StudentResult:
+    """The student's numbers recorded, and answers that fit a neighbour's numbers noted
+    (``own``: the student's plan; ``neighbours``: the class's references by student)."""
+    if not variants:
+        return student
+    from dataclasses import replace
+
+    from .variants import mark_neighbours, student_record
+
+    references = {o.key: o.result for o in own.objectives}
+    student = mark_neighbours(student, references, neighbours, person_id, variants)
+    return replace(student, variant=student_record(own.assignment.variant_seed, variants))
+
+
 # ---------------------------------------------------------------------------- students
 
 
@@ -160,6 +215,7 @@ class _Person:
     name: str
     identity: tuple[tuple[str, str], ...] = ()
     on_roster: bool = True
+    variant_key: str = ""  # the roster id: what a student's variant is drawn for
 
 
 def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submission | None]]:
@@ -179,10 +235,11 @@ def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submissio
         identity = tuple(student.columns)
         if index is not None:
             found = submissions.students[index]
-            out.append((_Person(found.student, student.name, identity), found))
+            out.append((_Person(found.student, student.name, identity, True, student.id),
+                        found))
         else:
             sid = _roster_value(student, usual) or student.id
-            out.append((_Person(sid, student.name, identity), None))
+            out.append((_Person(sid, student.name, identity, True, student.id), None))
     claimed = {index for index, _ in matches if index is not None}
     for i, submission in enumerate(submissions.students):
         if i not in claimed:
@@ -348,10 +405,12 @@ class _Judge:
             overrides[given_key] = value
         if not overrides:
             return verdict, credit
+        answered = sorted(overrides)
+        overrides = {**dict(item.givens), **overrides}  # on the student's own variant
         solution, replaced = self._solve_with(problem, overrides, item.objective.id)
         if isinstance(solution, MechgradeError):
             feedback.append(f"Error carried forward could not be applied: with your "
-                            f"{_listing(sorted(overrides))} the problem cannot be solved "
+                            f"{_listing(answered)} the problem cannot be solved "
                             f"({solution.message}).")
             return verdict, credit
         try:

@@ -201,6 +201,10 @@ def _context(report: GradeReport, student: StudentResult) -> dict:
             "percent": percent,
         },
         "messages": list(student.messages),
+        "variant": ({"seed": student.variant.seed,
+                     "givens": [{"problem": g.problem, "name": g.name, "value": g.text}
+                                for g in student.variant.givens]}
+                    if student.variant else None),
         "rows": rows,
         "reveal": any(row["expected"] for row in rows),
     }

@@ -39,12 +39,19 @@ def _numeric(objective: Objective) -> bool:
 # ---------------------------------------------------------------------------- givens
 
 
+@lru_cache(maxsize=1024)
+def _key(text: str):
+    """A given key's tree and canonical text; re-solves (ECF, every student's variant) pass the
+    same few keys again and again."""
+    node = parse(text, functions=FUNCTIONS)
+    return node, to_text(node)
+
+
 def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
     """Given values keyed by canonical key text -> (key node, SI value, Given or None)."""
     out = {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
     for key, value in (overrides or {}).items():
-        node = parse(key, functions=FUNCTIONS)
-        canonical = to_text(node)
+        node, canonical = _key(key)
         if value is None:
             out.pop(canonical, None)
             continue

@@ -341,6 +341,7 @@ class _Builder:
         self.attempt(check_solving, tuple(coordinates), tuple(parameters), tuple(givens),
                      unknowns, branches, self.definition_items,
                      RESERVED | {f.name for f in frames} | {p.name for p in points})
+        variants = self.variants(givens, objectives, coordinates, parameters)
         problem_id = d.get("id") if self.usable("id") else ""
         return Problem(
             id=problem_id, title=d.get("title", "") if self.usable("title") else "",
@@ -353,7 +354,25 @@ class _Builder:
             guesses=tuple(g for g in guesses if g is not None), objectives=tuple(objectives),
             consistency=float(d.get("consistency", 5e-3)) if self.usable("consistency") else 5e-3,
             path=self.doc.file, unknowns=unknowns, branches=branches,
-            definitions=self.definition_items, warnings=self.warnings(problem_id))
+            definitions=self.definition_items, warnings=self.warnings(problem_id),
+            variants=variants)
+
+    def variants(self, givens, objectives, coordinates, parameters):
+        """The ``variants:`` section (:mod:`.variants`); its errors join the others."""
+        if not self.usable("variants") or not self.usable("givens"):
+            return None
+        from .variants import read_variants
+
+        names = {"t": "s", **{o.id: o.unit for o in objectives},
+                 **{p.name: p.unit for p in parameters}}
+        for c in coordinates:
+            base = f"({c.unit})" if any(ch in c.unit for ch in "/* ") else c.unit or "1"
+            names.update({c.name: c.unit, c.name + "'": f"{base}/s",
+                          c.name + "''": f"{base}/s^2"})
+        variants, errors = read_variants(self.data, tuple(givens), names, self.where,
+                                         str(self.data.get("statement", "")), self.usable)
+        self.errors += errors
+        return variants
 
     def warnings(self, problem_id) -> tuple[AuthorWarning, ...]:
         stem = Path(self.doc.file).stem

@@ -14,6 +14,7 @@ from enum import Enum
 
 from ..errors import AuthorWarning, Location
 from ..expressions.syntax import Node
+from .variant_model import Variants
 
 TIME = "t"
 """The reserved name of time in every expression."""
@@ -243,6 +244,7 @@ class Problem:
     branches: tuple[Branch, ...] = ()
     definitions: tuple[Definition, ...] = ()
     warnings: tuple[AuthorWarning, ...] = field(default=(), compare=False)
+    variants: Variants | None = None  # spec.variants: how each student's givens are drawn
 
     def objective(self, objective_id: str) -> Objective:
         for objective in self.objectives:

@@ -1,0 +1,41 @@
+"""Problem sheets handed to students: plain data for the handout templates (no sympy)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .results import VariantGiven
+
+
+@dataclass(frozen=True)
+class Question:
+    """One objective as the student sees it: the answer key (``problem.objective``), the
+    prompt and the unit to answer in."""
+
+    key: str
+    prompt: str
+    unit: str
+
+
+@dataclass(frozen=True)
+class SheetProblem:
+    """One problem of a sheet: its statement with the student's numbers, the givens drawn
+    for the student (empty when the problem has no variants) and its questions."""
+
+    id: str
+    title: str
+    statement: str
+    givens: tuple[VariantGiven, ...]
+    questions: tuple[Question, ...]
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """One student's problem sheet for an assignment."""
+
+    assignment_id: str
+    assignment_title: str
+    student_id: str
+    student_name: str
+    seed: str
+    problems: tuple[SheetProblem, ...]
