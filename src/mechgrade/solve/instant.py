@@ -86,6 +86,9 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
     An objective that cannot be solved is a failure beside the others' answers
     (:attr:`Solution.failures`); when none of them can be, the first error is raised.
     """
+    if problem.dynamics is not None:
+        from .dynamics import solve_dynamics
+        return solve_dynamics(problem, givens=givens, objectives=objectives)
     p = plan(problem)
     results: dict[str, ObjectiveResult] = {}
     failures: dict[str, MechgradeError] = {}

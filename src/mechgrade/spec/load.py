@@ -19,6 +19,7 @@ from ..errors import ExpressionError, Location, SpecError, UnitError
 from ..expressions.syntax import Name, parse
 from ..units import normalize_unit, parse_quantity, to_si
 from ..yamlio import Document, read_yaml, read_yaml_text
+from .dynamics import read_dynamics
 from .language import FUNCTIONS
 from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake, Objective,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
@@ -239,7 +240,8 @@ class _Builder:
             coordinates=coordinates, parameters=tuple(parameters), constraints=constraints,
             givens=givens, guesses=guesses, objectives=objectives,
             consistency=float(d.get("consistency", 5e-3)), path=self.doc.file,
-            unknowns=unknowns, branches=branches, definitions=definitions)
+            unknowns=unknowns, branches=branches, definitions=definitions,
+            dynamics=read_dynamics(d, self.expr, self.where))
 
     def rotation(self, spec: dict, *path) -> Rotation:
         return Rotation(spec["axis"], self.expr(spec["angle"], *path, "angle"))

@@ -11,9 +11,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import Enum
+from typing import TYPE_CHECKING
 
 from ..errors import Location
 from ..expressions.syntax import Node
+
+if TYPE_CHECKING:
+    from .dynamics import Dynamics
 
 TIME = "t"
 """The reserved name of time in every expression."""
@@ -234,6 +238,7 @@ class Problem:
     unknowns: tuple[Expr, ...] = ()
     branches: tuple[Branch, ...] = ()
     definitions: tuple[Definition, ...] = ()
+    dynamics: "Dynamics | None" = None  # bodies and loads (spec/dynamics.py)
 
     def objective(self, objective_id: str) -> Objective:
         for objective in self.objectives:

@@ -12,9 +12,11 @@ from ..errors import ExpressionError, SpecError
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Num, Prime,
                                   Unary, constant_value, parse, to_text)
 from ..units import describe_dimension, dimension, dimensionless, time_dimension
+from .dynamics import argument_dimension, check_dynamics
 from .language import FUNCTIONS
 from .model import TIME, Expr, Objective, Problem
 
+DYNAMICS_KINDS = ("body", "load", "body or spring", "coordinate")
 RESERVED = {TIME, "pi"} | set(MATH_FUNCTIONS) | set(FUNCTIONS)
 
 
@@ -398,6 +400,8 @@ class _Checker:
                 return self._type(arg, inside_pos=(func == "pos")).dim
             raise SpecError(f"expected a point as argument of {func}(...), found "
                             f"'{to_text(arg)}'")
+        if kind in DYNAMICS_KINDS:
+            return argument_dimension(self.p, func, arg, kind)
         t = self._type(arg, inside_pos=False)
         if t.kind == "zero" and kind == "vector":
             return t.dim
@@ -463,6 +467,7 @@ def validate_problem(problem: Problem) -> None:
     checker.check_constraints()
     checker.check_givens()
     checker.check_objectives()
+    check_dynamics(problem, checker)
 
 
 def symbol_meanings(problem: Problem, objective: Objective) -> dict[str, Node]:

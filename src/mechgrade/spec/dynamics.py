@@ -1,0 +1,472 @@
+"""The dynamics sections of a problem file: ``bodies:`` and ``loads:``.
+
+Bodies are particles (a mass at a point) or rigid bodies (a body frame, a mass centre, and an
+inertia given explicitly about the mass centre or by shape); a composite body lists ``parts``,
+each a mass at its own centre with its own shape: the mechanics core shifts every part's
+inertia to the body's reference point (parallel axes), never the author. Loads are gravity,
+applied forces and couples, linear springs and dampers, unknown reactions (normal forces, pins,
+tensions, contact forces) and friction (kinetic, or static with its bound checked).
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> d = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml").dynamics
+>>> [b.name for b in d.bodies], [r.name for r in d.reactions]
+(['rod'], ['R_O'])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..errors import Location, SpecError
+from ..expressions.syntax import Name, Node, to_text
+from ..units import dimension, dimensionless
+from .model import Expr
+
+GROUND = "ground"
+"""The name standing for the inertial frame where a load's other end is fixed."""
+
+
+# ---------------------------------------------------------------------------- shapes
+
+
+@dataclass(frozen=True)
+class Rod:
+    """A slender rod along body axis ``axis``: m L^2/12 about the perpendicular axes."""
+
+    length: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Ring:
+    """A thin ring of ``radius`` about body axis ``axis``: m R^2 about it, m R^2/2 across."""
+
+    radius: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Disk:
+    """A uniform thin disk of ``radius`` about body axis ``axis``: m R^2/2, m R^2/4 across."""
+
+    radius: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """A solid cylinder: m R^2/2 about its axis, m (3R^2 + h^2)/12 across."""
+
+    radius: Expr
+    length: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Sphere:
+    """A uniform solid sphere: 2 m R^2/5 about every axis."""
+
+    radius: Expr
+
+
+@dataclass(frozen=True)
+class Shell:
+    """A thin spherical shell: 2 m R^2/3 about every axis."""
+
+    radius: Expr
+
+
+@dataclass(frozen=True)
+class Block:
+    """A rectangular block with sides along the body x, y, z axes (a plate has one side 0)."""
+
+    sides: tuple[Expr, Expr, Expr]
+
+
+@dataclass(frozen=True)
+class Explicit:
+    """Moments and products of inertia about the mass centre in the body axes."""
+
+    entries: tuple[tuple[str, Expr], ...]  # ("xx", expr), ... ; missing entries are zero
+
+
+Shape = Rod | Ring | Disk | Cylinder | Sphere | Shell | Block | Explicit
+INERTIA_KEYS = ("xx", "yy", "zz", "xy", "yz", "zx")
+
+
+# ---------------------------------------------------------------------------- bodies
+
+
+@dataclass(frozen=True)
+class Part:
+    """A mass at its own centre ``at``, with the inertia of ``shape`` about ``at`` (None: a
+    point mass)."""
+
+    mass: Expr
+    at: str
+    shape: Shape | None
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Body:
+    """A particle (``frame`` None: one part without a shape) or a rigid body turning with
+    ``frame``; ``centre`` is the point its momentum balances refer to (the mass centre of a
+    one-part body)."""
+
+    name: str
+    frame: str | None
+    centre: str
+    parts: tuple[Part, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+# ---------------------------------------------------------------------------- loads
+
+
+@dataclass(frozen=True)
+class Force:
+    """A known force ``force`` on body ``on`` at point ``at``."""
+
+    name: str
+    on: str
+    at: str
+    force: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Couple:
+    """A known couple (pure moment) on body ``on``."""
+
+    name: str
+    on: str
+    moment: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A linear spring from point ``between[0]`` on body ``on[0]`` to ``between[1]`` on
+    ``on[1]`` (``ground`` for a fixed end): tension k (l - l0) along the line."""
+
+    name: str
+    between: tuple[str, str]
+    on: tuple[str, str]
+    stiffness: Expr
+    length: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Damper:
+    """A linear damper between two points: tension c times the rate of its length."""
+
+    name: str
+    between: tuple[str, str]
+    on: tuple[str, str]
+    coefficient: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Act:
+    """Where an unknown force acts: on body ``on`` at point ``at``, with ``sign`` +1 or -1."""
+
+    on: str
+    at: str
+    sign: int = 1
+
+
+@dataclass(frozen=True)
+class Reaction:
+    """An unknown force: one unknown magnitude per direction in ``directions``, acting
+    wherever ``acts`` says (a joint between two bodies acts on each with opposite signs; a
+    string over ideal pulleys pulls every end it ``acts`` on with the same tension)."""
+
+    name: str
+    directions: tuple[Expr, ...]
+    acts: tuple[Act, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class KineticFriction:
+    """mu N opposing the slip velocity of body ``on`` at ``at`` relative to ``surface``;
+    ``normal`` is the reaction (one direction) pressing the surfaces together."""
+
+    name: str
+    on: str
+    at: str
+    normal: str
+    mu: Expr
+    surface: str
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class StaticFriction:
+    """An unknown tangential force (one unknown per direction) at a contact that does not
+    slip; the solution must satisfy |F| <= mu N, or the contact slips."""
+
+    name: str
+    on: str
+    at: str
+    normal: str
+    mu: Expr
+    directions: tuple[Expr, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+Friction = KineticFriction | StaticFriction
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    """The bodies and loads of a problem (``Problem.dynamics``)."""
+
+    bodies: tuple[Body, ...]
+    gravity: Expr | None = None
+    forces: tuple[Force, ...] = ()
+    couples: tuple[Couple, ...] = ()
+    springs: tuple[Spring, ...] = ()
+    dampers: tuple[Damper, ...] = ()
+    reactions: tuple[Reaction, ...] = ()
+    friction: tuple[Friction, ...] = ()
+
+    def body(self, name: str) -> Body:
+        return {b.name: b for b in self.bodies}[name]
+
+    @property
+    def loads(self) -> tuple:
+        """Every named load, in the order of the file's sections."""
+        return (*self.forces, *self.couples, *self.springs, *self.dampers, *self.reactions,
+                *self.friction)
+
+    def load(self, name: str):
+        return {item.name: item for item in self.loads}[name]
+
+
+# ---------------------------------------------------------------------------- reading
+
+
+_SHAPES = {"rod": (Rod, ("length",)), "ring": (Ring, ("radius",)), "disk": (Disk, ("radius",)),
+           "cylinder": (Cylinder, ("radius", "length")), "sphere": (Sphere, ("radius",)),
+           "shell": (Shell, ("radius",))}
+
+
+def read_dynamics(data: dict, expr, where) -> Dynamics | None:
+    """The ``bodies:`` and ``loads:`` sections (already schema-checked), or None if absent.
+
+    ``expr(text, *path)`` parses an expression at a field path; ``where(*path)`` locates it.
+    """
+    if "bodies" not in data:
+        if "loads" in data:
+            raise SpecError("'loads' act on bodies: expected a 'bodies' section",
+                            where=where("loads"))
+        return None
+    bodies = tuple(_body(name, spec, expr, where) for name, spec in data["bodies"].items())
+    loads = data.get("loads") or {}
+
+    def section(key):
+        return (loads.get(key) or {}).items()
+
+    forces = tuple(Force(n, s["body"], s["at"], expr(s["force"], "loads", "forces", n, "force"),
+                         where("loads", "forces", n)) for n, s in section("forces"))
+    couples = tuple(Couple(n, s["body"], expr(s["moment"], "loads", "couples", n, "moment"),
+                           where("loads", "couples", n)) for n, s in section("couples"))
+    springs = tuple(Spring(n, tuple(s["between"]), tuple(s["bodies"]),
+                           expr(s["stiffness"], "loads", "springs", n, "stiffness"),
+                           expr(s.get("length", 0), "loads", "springs", n, "length"),
+                           where("loads", "springs", n)) for n, s in section("springs"))
+    dampers = tuple(Damper(n, tuple(s["between"]), tuple(s["bodies"]),
+                           expr(s["coefficient"], "loads", "dampers", n, "coefficient"),
+                           where("loads", "dampers", n)) for n, s in section("dampers"))
+    reactions = tuple(_reaction(n, s, expr, where) for n, s in section("reactions"))
+    friction = tuple(_friction(n, s, expr, where) for n, s in section("friction"))
+    gravity = expr(loads["gravity"], "loads", "gravity") if "gravity" in loads else None
+    return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction)
+
+
+def _directions(spec: dict, expr, *path) -> tuple[Expr, ...]:
+    if "direction" in spec:
+        return (expr(spec["direction"], *path, "direction"),)
+    return tuple(expr(d, *path, "directions", i) for i, d in enumerate(spec["directions"]))
+
+
+def _reaction(name: str, spec: dict, expr, where) -> Reaction:
+    path = ("loads", "reactions", name)
+    if "acts" in spec:
+        acts = tuple(Act(a["body"], a["at"]) for a in spec["acts"])
+    elif "bodies" in spec:
+        # a joint: equal and opposite on the two bodies it connects
+        acts = (Act(spec["bodies"][0], spec["at"], 1), Act(spec["bodies"][1], spec["at"], -1))
+    else:
+        acts = (Act(spec["body"], spec["at"]),)
+    return Reaction(name, _directions(spec, expr, *path), acts, where(*path))
+
+
+def _friction(name: str, spec: dict, expr, where) -> Friction:
+    path = ("loads", "friction", name)
+    mu = expr(spec["mu"], *path, "mu")
+    if spec["kind"] == "kinetic":
+        return KineticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
+                               spec.get("surface", GROUND), where(*path))
+    return StaticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
+                          _directions(spec, expr, *path), where(*path))
+
+
+def _body(name: str, spec: dict, expr, where) -> Body:
+    path = ("bodies", name)
+    if "parts" in spec:
+        parts = tuple(_part(p, expr, where, *path, "parts", i)
+                      for i, p in enumerate(spec["parts"]))
+        centre = spec.get("centre", parts[0].at)
+    else:
+        centre = spec["centre"]
+        parts = (_part({"mass": spec["mass"], "at": centre, "inertia": spec.get("inertia")},
+                       expr, where, *path),)
+    return Body(name, spec.get("frame"), centre, parts, where(*path))
+
+
+def _part(spec: dict, expr, where, *path) -> Part:
+    shape = None
+    inertia = spec.get("inertia")
+    if inertia is not None:
+        (kind, args), = inertia.items()
+        ipath = (*path, "inertia", kind)
+        if kind in _SHAPES:
+            cls, keys = _SHAPES[kind]
+            values = [expr(args[k], *ipath, k) for k in keys]
+            shape = cls(*values, args["axis"]) if "axis" in args else cls(*values)
+        elif kind == "block":
+            shape = Block(tuple(expr(s, *ipath, "sides", i) for i, s in enumerate(args["sides"])))
+        else:  # about_centre
+            shape = Explicit(tuple((k, expr(args[k], *ipath, k)) for k in INERTIA_KEYS
+                                   if k in args))
+    return Part(expr(spec["mass"], *path, "mass"), spec["at"], shape, where(*path))
+
+
+# ---------------------------------------------------------------------------- validation
+
+
+def check_dynamics(problem, checker) -> None:
+    """Names, kinds and dimensions of the dynamics sections (``checker`` types expressions)."""
+    d = problem.dynamics
+    if d is None:
+        return
+    frames = {f.name for f in problem.frames}
+    points = {p.name for p in problem.points}
+    scalars = {c.name for c in problem.coordinates} | {p.name for p in problem.parameters}
+    seen: dict[str, str] = {}
+    for item, what in [(b, "body") for b in d.bodies] + [(x, "load") for x in d.loads]:
+        if item.name in seen or item.name in frames | points | scalars | {GROUND}:
+            raise SpecError(f"'{item.name}' names a {what} and something else already; "
+                            "expected a distinct name", where=item.where)
+        seen[item.name] = what
+    bodies = {b.name for b in d.bodies}
+
+    def point(name, where, field_name):
+        if name not in points:
+            raise SpecError(f"unknown point '{name}' in '{field_name}' (points: "
+                            f"{', '.join(sorted(points))})", where=where)
+
+    def body(name, where, ground_ok=False):
+        if name not in bodies and not (ground_ok and name == GROUND):
+            known = sorted(bodies | ({GROUND} if ground_ok else set()))
+            raise SpecError(f"unknown body '{name}' (bodies: {', '.join(known)})", where=where)
+
+    def typed(e: Expr, kind: str, unit: str, what: str):
+        t = checker.type_of(e)
+        if t.kind == "zero":
+            return
+        if t.kind != kind:
+            raise SpecError(f"expected {what}, found a {t.kind} ('{e.text}')", where=e.where)
+        if t.dim != dimension(unit):
+            checker._dims_match(t.dim, dimension(unit), e.where, f"'{e.text}' ({what})")
+
+    for b in d.bodies:
+        point(b.centre, b.where, "centre")
+        if b.frame is not None and b.frame not in frames:
+            raise SpecError(f"unknown frame '{b.frame}' (frames: {', '.join(sorted(frames))})",
+                            where=b.where)
+        for part in b.parts:
+            point(part.at, part.where, "at")
+            typed(part.mass, "scalar", "kg", "a mass")
+            if part.shape is not None and b.frame is None:
+                raise SpecError(f"body '{b.name}' has an inertia but no 'frame': a rigid body "
+                                "needs the frame it turns with (a particle has no inertia)",
+                                where=part.where)
+            for e in _shape_exprs(part.shape):
+                unit = "kg*m^2" if isinstance(part.shape, Explicit) else "m"
+                typed(e, "scalar", unit, "a moment of inertia" if unit != "m" else "a length")
+    if d.gravity is not None:
+        typed(d.gravity, "vector", "m/s^2", "the gravitational acceleration as a vector "
+              "(e.g. -g*N.y)")
+    for f in d.forces:
+        body(f.on, f.where)
+        point(f.at, f.where, "at")
+        typed(f.force, "vector", "N", "a force vector")
+    for c in d.couples:
+        body(c.on, c.where)
+        typed(c.moment, "vector", "N*m", "a moment vector")
+    for s in (*d.springs, *d.dampers):
+        for p, b in zip(s.between, s.on):
+            point(p, s.where, "between")
+            body(b, s.where, ground_ok=True)
+    for s in d.springs:
+        typed(s.stiffness, "scalar", "N/m", "a stiffness")
+        typed(s.length, "scalar", "m", "a free length")
+    for s in d.dampers:
+        typed(s.coefficient, "scalar", "N*s/m", "a damping coefficient")
+    reactions = {r.name: r for r in d.reactions}
+    for r in d.reactions:
+        for act in r.acts:
+            body(act.on, r.where, ground_ok=True)
+            point(act.at, r.where, "at")
+    for f in d.friction:
+        body(f.on, f.where)
+        point(f.at, f.where, "at")
+        typed(f.mu, "scalar", "", "a friction coefficient")
+        normal = reactions.get(f.normal)
+        if normal is None or len(normal.directions) != 1:
+            raise SpecError(f"friction '{f.name}': 'normal' must name a reaction with one "
+                            f"direction (reactions: {', '.join(sorted(reactions)) or 'none'})",
+                            where=f.where)
+        if isinstance(f, KineticFriction) and f.surface not in frames | {GROUND}:
+            raise SpecError(f"unknown surface frame '{f.surface}' (frames: "
+                            f"{', '.join(sorted(frames))})", where=f.where)
+    for e in (*(x for r in d.reactions for x in r.directions),
+              *(x for f in d.friction if isinstance(f, StaticFriction) for x in f.directions)):
+        typed(e, "vector", "", "a direction (a vector without units, e.g. N.x)")
+
+
+def _shape_exprs(shape) -> tuple[Expr, ...]:
+    if shape is None:
+        return ()
+    if isinstance(shape, Block):
+        return shape.sides
+    if isinstance(shape, Explicit):
+        return tuple(e for _, e in shape.entries)
+    return tuple(v for v in vars(shape).values() if isinstance(v, Expr))
+
+
+def argument_dimension(problem, func: str, arg: Node, kind: str):
+    """The dimension of a ``body``, ``load`` or ``coordinate`` argument of an objective
+    function (see :mod:`mechgrade.spec.language`), after checking that it names one."""
+    d = problem.dynamics
+    name = arg.id if isinstance(arg, Name) else to_text(arg)
+    if kind == "coordinate":
+        coords = {c.name: c for c in problem.coordinates}
+        if name not in coords:
+            raise SpecError(f"expected a coordinate as argument of {func}(...), found "
+                            f"'{name}' (coordinates: {', '.join(coords) or 'none'})")
+        return dimension(coords[name].unit)
+    bodies = [b.name for b in d.bodies] if d else []
+    names = {"body": bodies, "load": [x.name for x in d.loads] if d else [],
+             "body or spring": bodies + ([s.name for s in d.springs] if d else [])}[kind]
+    if name not in names:
+        raise SpecError(f"expected a {kind} as argument of {func}(...), found '{name}' "
+                        f"(known: {', '.join(names) or 'none: add a bodies/loads section'})")
+    return dimensionless()

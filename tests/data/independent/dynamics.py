@@ -1,0 +1,99 @@
+"""Independent reference values for the dynamics problems (numpy only).
+
+Run:  python tests/data/independent/dynamics.py
+
+Each ``case_*`` function returns {objective_id: value} for one problem of problems/, in that
+objective's unit (vectors as [x, y, z] in the objective's frame, symbolic objectives as
+sympy-syntax strings). The solver writes Newton-Euler balances about each body's mass centre
+with the reactions as unknowns; every value here comes by another route: Lagrange's equations
+from hand-written T and V, moments about a fixed pin with the parallel-axis theorem applied by
+hand, whole-system balances, polar acceleration formulas. Nothing here imports mechgrade or
+sympy.
+"""
+
+import numpy as np
+
+DEG = np.pi / 180.0
+
+
+def case_pendulum_pin_reaction():
+    m, L, g, th, w = 2.0, 1.2, 9.81, 40 * DEG, 3.0
+    I_O = m * L**2 / 12 + m * (L / 2) ** 2  # parallel axis by hand: m L^2 / 3
+    alpha = -m * g * (L / 2) * np.sin(th) / I_O  # moments about the fixed pin
+    r = np.array([L / 2 * np.sin(th), -L / 2 * np.cos(th)])  # G from O
+    a_G = alpha * np.array([-r[1], r[0]]) - w**2 * r
+    R = m * a_G - m * np.array([0.0, -g])
+    e_rod_up = np.array([-np.sin(th), np.cos(th)])  # B.y
+    return {"alpha": alpha, "pin_force": [R[0], R[1], 0.0],
+            "pin_force_along_rod": float(R @ e_rod_up),
+            "eom_symbolic": "-3*g*sin(theta)/(2*L)"}
+
+
+def case_atwood_machine():
+    m1, m2, g = 3.0, 5.0, 9.81
+    a = (m2 - m1) * g / (m1 + m2)  # the whole string-and-blocks system
+    T = m1 * (g + a)  # block 1 alone
+    return {"a1": a, "tension": T, "a1_symbolic": "g*(m2 - m1)/(m1 + m2)",
+            "tension_symbolic": "2*m1*m2*g/(m1 + m2)"}
+
+
+def case_block_on_turntable():
+    m, r, g, w, alpha = 0.5, 0.3, 9.81, 4.0, 2.0
+    a_r, a_t = -r * w**2, r * alpha  # polar components of the acceleration
+    F = m * np.array([a_r, a_t])  # friction is the only horizontal force
+    N = m * g
+    return {"friction_B": [F[0], F[1], 0.0], "normal": N,
+            "mu_needed": float(np.hypot(*F) / N),
+            "mu_needed_symbolic": "r*sqrt(phid**4 + phidd**2)/g"}
+
+
+def case_block_sliding_down_incline():
+    m, g, beta, mu = 4.0, 9.81, 30 * DEG, 0.25
+    N = m * g * np.cos(beta)
+    F = -mu * N  # opposes the downhill slip
+    return {"accel": g * np.sin(beta) + F / m, "normal": N, "friction": [F, 0.0, 0.0],
+            "accel_symbolic": "g*(sin(beta) - mu_k*cos(beta)*sign(xd))"}
+
+
+def case_two_mass_spring_chain():
+    m1, m2, k1, k2, L1, L2, c = 2.0, 1.0, 100.0, 50.0, 0.5, 0.8, 4.0
+    x1, x2, v1, v2 = 0.6, 1.5, 0.5, -0.2
+    # Lagrange with V = k1 (x1-L1)^2/2 + k2 (x2-x1-L2)^2/2 and Rayleigh D = c (v2-v1)^2/2
+    dV = np.array([k1 * (x1 - L1) - k2 * (x2 - x1 - L2), k2 * (x2 - x1 - L2)])
+    dD = np.array([-c * (v2 - v1), c * (v2 - v1)])
+    a = -(dV + dD) / np.array([m1, m2])
+    return {"a1": a[0], "a2": a[1], "spring2_on_block1": [k2 * (x2 - x1 - L2), 0.0, 0.0],
+            "spring1_energy": k1 * (x1 - L1) ** 2 / 2, "ke2": m2 * v2**2 / 2,
+            "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0]}
+
+
+def case_ruina_9_19_falling_ladder():
+    m, L, g, th, thd = 10.0, 4.0, 9.81, 60 * DEG, -0.5
+    # Lagrange: T = m L^2 thd^2 / 6 (centre speed L thd / 2 plus spin), V = m g L sin(th) / 2
+    thdd = -(m * g * L / 2 * np.cos(th)) / (m * L**2 / 3)
+    # the reactions are the only horizontal / the vertical forces besides gravity
+    xdd = -L / 2 * (np.sin(th) * thdd + np.cos(th) * thd**2)
+    ydd = L / 2 * (np.cos(th) * thdd - np.sin(th) * thd**2)
+    return {"G_path_radius": "L/2", "eom_thetaddot": "-3*g*cos(theta)/(2*L)",
+            "N1_wall": "m*cos(theta)*(3*g*sin(theta) - 2*L*thetad**2)/4",
+            "N2_floor": "m*(g + 3*g*sin(theta)**2 - 2*L*thetad**2*sin(theta))/4",
+            "thetaddot_now": thdd, "reactions_now": [m * xdd, m * (ydd + g), 0.0]}
+
+
+def case_ruina_9_21_wheel_incline():
+    m, M, r, R, g, th = 1.0, 2.0, 0.1, 0.187, 9.81, 30 * DEG
+    mass = m + 2 * M
+    I = m * r**2 / 2 + 2 * M * R**2 / 2
+    # Lagrange in x with phi' = -x'/r: (mass + I/r^2) x'' = mass g sin(th)
+    a = mass * g * np.sin(th) / (mass + I / r**2)
+    return {"aG_symbolic": "(m + 2*M)*g*sin(theta)/(m + 2*M + (m*r**2/2 + M*R**2)/r**2)",
+            "aG_over_g_at_book_R": a / g,
+            "contact_force": [mass * a - mass * g * np.sin(th), mass * g * np.cos(th), 0.0]}
+
+
+CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
+         if name.startswith("case_")}
+
+if __name__ == "__main__":
+    for name, f in CASES.items():
+        print(name, f())
