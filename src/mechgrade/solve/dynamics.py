@@ -123,6 +123,11 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
     cols = [j for j, i in enumerate(kp.columns) if not known[i]]
     for j in cols:
         x[kp.columns[j]] = 0.0
+    for slip, speed, _ in kp.slips:
+        if not _call(speed, x)[0] > 1e-12:
+            raise SolveError(f"kinetic friction '{slip.name}' needs the contact at {slip.point} "
+                             "to slip, but its slip velocity is zero at this instant; use "
+                             "'kind: static'", where=slip.where)
     A = _call(kp.jacobian, x).reshape(len(kp.labels), len(kp.columns))[:, cols]
     b = _call(kp.residual, x)
     if not (np.isfinite(A).all() and np.isfinite(b).all()):
@@ -138,7 +143,7 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
         names = [kp.name(j) for j in open_]
         involved = sorted({label.split(":")[0] for i, label in enumerate(kp.labels)
                            if any(abs(A[i, cols.index(j)]) > 1e-12 for j in open_)})
-        kind = "statically indeterminate" if all(kp.columns[j] >= kp.kp.index.size
+        kind = "statically indeterminate" if any(kp.columns[j] >= kp.kp.index.size
                                                  for j in open_) else "under-constrained"
         raise UnderdeterminedError(
             f"the model is {kind}: the momentum balances ({', '.join(involved)}) do not "
@@ -166,12 +171,8 @@ def _body_where(problem: Problem, involved) -> Location:
 
 
 def _check_friction(kp: KineticsPlan, x: np.ndarray) -> None:
-    for slip, speed, normal in kp.slips:
+    for slip, _, normal in kp.slips:
         n = _call(normal, x)[0]
-        if _call(speed, x)[0] <= 1e-12:
-            raise SolveError(f"kinetic friction '{slip.name}' needs the contact at {slip.point} "
-                             "to slip, but its slip velocity is zero at this instant; use "
-                             "'kind: static'", where=slip.where)
         if n < -1e-9:
             raise SolveError(f"contact lost at {slip.point}: the normal force would be "
                              f"{n:.4g} N (pulling)", where=slip.where)
@@ -294,9 +295,11 @@ def solved_symbolically(problem: Problem, objective_id: str, givens: tuple):
     solution = _linear_solve(equations, tuple(u for u in unknowns if u not in declared)) or \
         _linear_solve(equations, tuple(unknowns))
     if solution is None:
+        names = {s: label for s, label in zip(kin.reactions, kin.labels)}
+        listing = ", ".join(names.get(u, str(u)) for u in unknowns)
         raise UnderdeterminedError(
             f"objective '{objective_id}' cannot be solved symbolically: the momentum balances "
-            "do not determine the unknown accelerations and reactions uniquely",
+            f"do not determine the unknowns {listing} uniquely (or contradict each other)",
             where=problem.objective(objective_id).where)
     return expr.xreplace(stand_in).xreplace(solution)
 

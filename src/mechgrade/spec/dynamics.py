@@ -324,6 +324,9 @@ def _body(name: str, spec: dict, expr, where) -> Body:
                       for i, p in enumerate(spec["parts"]))
         centre = spec.get("centre", parts[0].at)
     else:
+        if "centre" not in spec:
+            raise SpecError(f"body '{name}' has a mass but no 'centre' (its mass-centre "
+                            "point)", where=where(*path))
         centre = spec["centre"]
         parts = (_part({"mass": spec["mass"], "at": centre, "inertia": spec.get("inertia")},
                        expr, where, *path),)

@@ -1,0 +1,134 @@
+"""The dynamics solver: answers, symbolic and numeric agreement, and the models it must refuse
+(under-constrained, statically indeterminate, missing reactions, slipping, lost contact)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechgrade.errors import InconsistentError, SolveError, UnderdeterminedError
+from mechgrade.expressions.build import to_sympy
+from mechgrade.expressions.syntax import parse
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem, load_problem_text
+
+ROOT = Path(__file__).resolve().parents[2]
+DYNAMICS = sorted(p for p in (ROOT / "problems").glob("*.yaml")
+                  if "bodies:" in p.read_text())
+
+
+def text(name: str) -> str:
+    return (ROOT / "problems" / f"{name}.yaml").read_text()
+
+
+def solve_text(body: str):
+    return solve(load_problem_text(body, "p.yaml"))
+
+
+def error_of(body: str, kind=SolveError, objectives=None) -> str:
+    with pytest.raises(kind) as info:
+        solution = solve(load_problem_text(body, "p.yaml"), objectives=objectives)
+        for failure in solution.failures:
+            raise failure.error
+    return str(info.value)
+
+
+@pytest.mark.parametrize("path", DYNAMICS, ids=[p.stem for p in DYNAMICS])
+def test_symbolic_answers_agree_with_the_numeric_solution(path):
+    """Each symbolic objective, evaluated at the givens, equals the same quantity solved
+    numerically (the problem re-solved with the objective's find as a scalar)."""
+    problem = load_problem(path)
+    solution = solve(problem)
+    state = {s.name.replace("''", "dd").replace("'", "d"): s.si for s in solution.state}
+    for obj in problem.objectives:
+        if obj.kind != "symbolic":
+            continue
+        result = solution.result(obj.id)
+        values = {name: state[name] for name in result.symbols}
+        expr = to_sympy(parse(result.expr), lambda n: values[n.id], None)
+        reference = _numeric_value(problem, obj)
+        assert float(expr) == pytest.approx(reference, rel=1e-9, abs=1e-12), obj.id
+
+
+def _numeric_value(problem, obj):
+    from dataclasses import replace
+    twin = replace(obj, kind="scalar", symbols=(), expect=None, id=obj.id + "_numeric")
+    solution = solve(replace(problem, objectives=(twin,)))
+    return solution.result(twin.id).value
+
+
+def test_statically_indeterminate_model_names_the_reactions():
+    body = text("ruina_9_19_falling_ladder").replace(
+        "    N2: {body: ladder, at: B, direction: N.y}          # floor\n",
+        "    N2: {body: ladder, at: B, direction: N.y}          # floor\n"
+        "    N3: {body: ladder, at: A, direction: N.y}\n")
+    message = error_of(body, UnderdeterminedError, objectives=["thetaddot_now"])
+    assert "the model is statically indeterminate" in message
+    assert "N2 (along N.y), N3 (along N.y)" in message
+    assert message.startswith("p.yaml:")
+
+
+def test_under_constrained_model_names_the_free_acceleration():
+    body = text("atwood_machine").replace("coordinates:\n  y: m\n",
+                                          "coordinates:\n  y: m\n  s: m\n")
+    body = body.replace("  y': 0 m/s\n", "  y': 0 m/s\n  s: 0 m\n  s': 0 m/s\n")
+    message = error_of(body, UnderdeterminedError, objectives=["a1"])
+    assert "the model is under-constrained" in message and "do not determine s''" in message
+
+
+def test_a_missing_reaction_is_an_inconsistency_naming_the_balance():
+    body = text("pendulum_pin_reaction").replace(
+        "  reactions:\n    R_O: {body: rod, at: O, directions: [N.x, N.y]}\n", "")
+    body = body.replace("force(R_O)", "m*acc(G, N)")
+    message = error_of(body, InconsistentError, objectives=["alpha"])
+    assert "the equations of motion cannot all hold: 'body rod: N.x force balance'" in message
+
+
+def test_a_given_acceleration_that_contradicts_the_loads_is_reported():
+    body = text("atwood_machine").replace("  y': 0 m/s\n", "  y': 0 m/s\n  y'': 1 m/s^2\n")
+    assert "cannot all hold" in error_of(body, InconsistentError, objectives=["a1"])
+
+
+def test_static_friction_bound_violated_says_how_large_mu_must_be():
+    body = text("block_on_turntable").replace("  mu_s: 0.6\n", "  mu_s: 0.3\n")
+    message = error_of(body)
+    assert "the block slips at P: sticking needs mu >= 0.493" in message
+    assert "but mu = 0.3" in message
+
+
+def test_kinetic_friction_without_slip_asks_for_static_friction():
+    body = text("block_sliding_down_incline").replace("  x': 2 m/s\n", "  x': 0 m/s\n")
+    assert "needs the contact at P to slip" in error_of(body)
+
+
+def test_kinetic_friction_contact_that_would_pull_is_lost():
+    body = text("block_sliding_down_incline").replace("gravity: -g*N.y", "gravity: g*N.y")
+    assert "contact lost at P" in error_of(body)
+
+
+def test_a_composite_part_that_moves_in_its_body_is_refused():
+    body = text("ruina_9_21_wheel_incline").replace(
+        "      - {mass: M, at: G, inertia: {disk: {radius: R, axis: z}}}\n"
+        "      - {mass: M, at: G,",
+        "      - {mass: M, at: G, inertia: {disk: {radius: R, axis: z}}}\n"
+        "      - {mass: M, at: C,")
+    assert "moves relative to its frame W" in error_of(body)
+
+
+def test_parallel_axis_inertia_of_a_rod_with_a_point_mass():
+    """A composite pendulum (rod plus a point mass at the tip) swings like its textbook
+    inertia about the pin: (m L^2/3 + M L^2) theta'' = -(m L/2 + M L) g sin(theta)."""
+    body = text("pendulum_pin_reaction").replace(
+        "  rod: {mass: m, centre: G, frame: B, inertia: {rod: {length: L, axis: y}}}\n",
+        "  rod:\n    frame: B\n    parts:\n"
+        "      - {mass: m, at: G, inertia: {rod: {length: L, axis: y}}}\n"
+        "      - {mass: m, at: T}\n").replace(
+        "  G: {from: O, position: -L/2*B.y}\n",
+        "  G: {from: O, position: -L/2*B.y}\n  T: {from: O, position: -L*B.y}\n")
+    solution = solve_text(body)
+    m, L, g, th = 2.0, 1.2, 9.81, np.radians(40)
+    expected = -(m * L / 2 + m * L) * g * np.sin(th) / (m * L**2 / 3 + m * L**2)
+    assert solution.result("alpha").value == pytest.approx(expected, rel=1e-12)
+    assert solution.result("eom_symbolic").expr == "-9*g*sin(theta)/(8*L)"
