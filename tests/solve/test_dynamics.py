@@ -132,3 +132,76 @@ def test_parallel_axis_inertia_of_a_rod_with_a_point_mass():
     expected = -(m * L / 2 + m * L) * g * np.sin(th) / (m * L**2 / 3 + m * L**2)
     assert solution.result("alpha").value == pytest.approx(expected, rel=1e-12)
     assert solution.result("eom_symbolic").expr == "-9*g*sin(theta)/(8*L)"
+
+
+def test_integration_conserves_energy_and_finds_the_event_to_1e_6():
+    """The ladder released at 80 deg: mechanical energy at the lift-off event equals the
+    start's (drift below 1e-9 relative), and the event angle is asin(2/3 sin 80 deg)."""
+    solution = solve(load_problem(ROOT / "problems" / "ladder_wall_lift_off.yaml"))
+    m, L, g = 12.0, 4.0, 9.81
+    start = m * g * L / 2 * np.sin(np.radians(80))
+    assert solution.result("energy_at_lift_off").value == pytest.approx(start, rel=1e-9)
+    expected = np.degrees(np.arcsin(2 / 3 * np.sin(np.radians(80))))
+    assert solution.result("theta_wall_contact_lost_deg").value == pytest.approx(expected,
+                                                                                 rel=1e-8)
+
+
+def test_rolling_time_is_the_same_for_a_marble_and_a_bowling_ball():
+    """Sample 9.22: t* = 2 v0 / (7 mu g) does not depend on the radius or the mass."""
+    body = text("ruina_9_23_ball_impulse_momentum")
+    marble = solve_text(body).result("t_star").value
+    bowling = solve_text(body.replace("  r: 0.1 m\n", "  r: 1.6 m\n").replace(
+        "  m: 1 kg\n", "  m: 4096 kg\n")).result("t_star").value
+    assert bowling == pytest.approx(marble, rel=1e-9)
+    assert marble == pytest.approx(2 * 5 / (7 * 0.12 * 9.8), rel=1e-9)
+
+
+def test_an_event_that_never_happens_is_reported():
+    body = text("ladder_wall_lift_off").replace("max_time: 10 s", "max_time: 0.2 s")
+    assert "does not happen within 0.2 s" in error_of(body)
+
+
+def test_an_integration_that_chatters_past_the_end_of_slip_is_stopped(monkeypatch):
+    from mechgrade.solve import events
+
+    monkeypatch.setattr(events, "MAX_CALLS", 4000)
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "until: x' + r*phi' = 0", "until: x' = 0")
+    assert "the integration stalls near t = 1.2" in error_of(body)
+
+
+def test_symbolic_objective_of_an_integrated_motion_is_refused():
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "    find: x\n    kind: scalar\n    unit: m\n    expect: {value: 5.2061641}",
+        "    find: x\n    kind: symbolic\n    unit: m\n    symbols: [v0]\n    expect: {expr: v0}")
+    assert "the motion is integrated numerically" in error_of(body)
+
+
+def test_work_energy_refuses_non_conservative_loads():
+    body = text("ruina_9_20_ladder_energy").replace(
+        "    N2: {body: ladder, at: B, direction: N.y}\n",
+        "    N2: {body: ladder, at: B, direction: N.y}\n  friction:\n"
+        "    F2: {body: ladder, at: B, normal: N2, mu: 0.3, kind: kinetic}\n")
+    assert "work_energy needs conservative loads: F2" in error_of(body, objectives=[
+        "vG_over_sqrt_gL"])
+
+
+def test_work_energy_needs_the_sense_of_the_rate():
+    body = text("ruina_9_20_ladder_energy").replace(
+        "    sense: {theta': negative}             # falling\n", "")
+    assert "give 'sense'" in error_of(body, objectives=["vG_over_sqrt_gL"])
+
+
+def test_work_energy_refuses_an_unreachable_instant():
+    body = text("ruina_9_20_ladder_energy").replace("  theta: 45 deg\n", "  theta: 85 deg\n")
+    assert "cannot be reached from the start state" in error_of(body, objectives=[
+        "vG_over_sqrt_gL"])
+
+
+def test_work_energy_refuses_a_reaction_that_works():
+    """A reaction pushing along the motion of its point is not workless."""
+    body = text("ruina_9_20_ladder_energy").replace(
+        "N1: {body: ladder, at: A, direction: N.x}", "N1: {body: ladder, at: A, direction: N.y}")
+    body = body.replace("N2: {body: ladder, at: B, direction: N.y}",
+                        "N2: {body: ladder, at: B, direction: N.x}")
+    assert "does work at the instant" in error_of(body, objectives=["vG_over_sqrt_gL"])

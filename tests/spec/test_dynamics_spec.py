@@ -70,7 +70,7 @@ CASES = [
     ("spring on an unknown body", CHAIN, "bodies: [ground, block1]", "bodies: [wall, block1]",
      "unknown body 'wall'"),
     ("loads without bodies", CHAIN, "bodies:\n  block1: {mass: m1, centre: P1}\n  block2: {mass: m2, centre: P2}\n",
-     "", "'loads' act on bodies: expected a 'bodies' section"),
+     "", "'loads' needs bodies: expected a 'bodies' section"),
     ("force of an unknown load", PENDULUM, "find: force(R_O)", "find: force(R_Q)",
      "expected a load as argument of force(...), found 'R_Q' (known: R_O)"),
     ("eom of a parameter", PENDULUM, "find: eom(theta)\n    kind: scalar",

@@ -26,8 +26,8 @@ from sympy.physics.vector import Dyadic, Vector
 
 from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node
-from ..spec.dynamics import (GROUND, Block, Body, Damper, Dynamics, Explicit, KineticFriction,
-                             Reaction, Spring, StaticFriction)
+from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Integration,
+                             KineticFriction, Spring, StaticFriction)
 from ..spec.model import Problem
 from .bodies import explicit_inertia, parallel_axis, shape_inertia
 from .build import Model, build
@@ -78,6 +78,11 @@ class Kinetics:
     bounds: tuple[Bound, ...]
     slips: tuple[Slip, ...]
     steps: tuple[tuple[str, tuple[str, ...]], ...]
+    energy: sp.Expr = sp.Integer(0)
+    nonconservative: tuple[str, ...] = ()
+    workless: tuple[tuple[str, sp.Expr], ...] = ()
+    start: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    until: sp.Expr | None = None
 
     def objective(self, objective_id: str):
         return dict(self.objectives)[objective_id]
@@ -346,6 +351,18 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
         else:
             speed = model.plain(loads.slip_velocity(f).magnitude())
             slips.append(Slip(f.name, f.at, speed, normal, f.where))
+    N_node = Name(problem.inertial_frame)
+    energy = sum((language._fn_ke(Name(b.name), N_node) + language._fn_pe(Name(b.name))
+                  for b in d.bodies), sp.Integer(0))
+    energy += sum((language._fn_pe(Name(s.name)) for s in d.springs), sp.Integer(0))
+    nonconservative = tuple(x.name for x in (*d.forces, *d.couples, *d.dampers, *d.friction)
+                            if not isinstance(x, StaticFriction))
+    workless = []
+    for name, symbols in reactions.items():
+        power = model.plain(language._fn_power(Name(name), N_node))
+        workless += [(label, sp.diff(power, s)) for s, label in
+                     zip(symbols, [lb for lb in labels if lb.startswith(name + " ")])]
+    start, until = _analysis(problem, model, language, k)
     unknowns = [f"{label}" for label in labels]
     steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
              ("Momentum balances", tuple(steps_balances)),
@@ -353,7 +370,28 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     return Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
                     labels=tuple(labels), balances=tuple(balances),
                     objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
-                    slips=tuple(slips), steps=steps)
+                    slips=tuple(slips), steps=steps, energy=model.plain(energy),
+                    nonconservative=nonconservative, workless=tuple(workless), start=start,
+                    until=until)
+
+
+def _analysis(problem: Problem, model: Model, language, k: Kinematics):
+    """The start state (plain symbol -> value; rates not named are 0) and the event."""
+    analysis = problem.dynamics.analysis
+    if analysis is None:
+        return (), None
+    values = {}
+    for s in analysis.start:
+        symbol = k.quantity(s.key.node)
+        values[symbol] = sp.nsimplify(s.si) if s.value is None and s.si == 0 else \
+            sp.Float(s.si) if s.value is None else model.plain(language.scalar(s.value))
+    start = tuple((q, values[q]) for q in k.q) + \
+        tuple((qd, values.get(qd, sp.Integer(0))) for qd in k.qd)
+    until = None
+    if isinstance(analysis, Integration):
+        left, right = (model.plain(language.value(e.node)) for e in analysis.until)
+        until = left - right
+    return start, until
 
 
 class _View:

@@ -33,7 +33,9 @@ from ..expressions.syntax import Name, Prime
 from ..mechanics.kinematics import locations
 from ..spec.model import Problem
 from ..spec.validate import symbol_meanings
-from .levels import RANK_TOL, State
+from ..spec.dynamics import Integration, WorkEnergy
+from .events import energy_rate_symbolic, energy_state, integrate_to_event
+from .levels import RANK_TOL, State, place_givens
 from .numeric import solve_numeric
 from .plan import Plan, plan
 from .result import ObjectiveFailure, ObjectiveResult, Solution
@@ -163,6 +165,26 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
     return x
 
 
+def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:
+    """The extended state with every second rate and reaction solved by least squares, without
+    the checks of :func:`solve_kinetics` (the right-hand side of an integration)."""
+    x = np.concatenate([values, np.zeros(len(kp.kin.reactions))])
+    cols = list(kp.columns)
+    x[cols] = 0.0
+    A = _call(kp.jacobian, x).reshape(len(kp.labels), len(cols))
+    b = _call(kp.residual, x)
+    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+        raise SolveError("the equations of motion became undefined during the integration "
+                         "(a division by zero)", where=problem_where(kp))
+    sol, *_ = linalg.lstsq(A, -b, check_finite=False)
+    x[cols] = sol
+    return x
+
+
+def problem_where(kp: KineticsPlan) -> Location:
+    return kp.wheres[0] if kp.wheres else Location()
+
+
 def _body_where(problem: Problem, involved) -> Location:
     for b in problem.dynamics.bodies:
         if involved and involved[0] == f"body {b.name}":
@@ -218,17 +240,16 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
         values, mistakes = {}, {}
         if numeric:
             try:
-                instant = solve_numeric(kproblem, kp.kp, given_map, set())
-                x = solve_kinetics(problem, kp, instant.state)
+                state, x, found = _instant(problem, kproblem, kp, given_map)
             except MechgradeError as err:
                 failures.update({oid: err for oid in numeric})
             else:
                 values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
                 mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
                             if oid in numeric}
-                warned += [w for w in instant.warnings if w not in warned]
+                warned += [w for w in found if w not in warned]
                 if not overrides or base is None:
-                    base = (instant.state, given_map)
+                    base = (state, given_map)
         for obj in chosen:
             if obj.id in failures:
                 continue
@@ -253,6 +274,30 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                     warnings=tuple(warned))
 
 
+def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):
+    """The state at the instant, the extended state (with second rates and reactions) the
+    objectives are read from, and the kinematics' warnings."""
+    analysis = problem.dynamics.analysis
+    if isinstance(analysis, Integration):
+        g = place_givens(kproblem, kp.kp, given_map)
+        state, before = integrate_to_event(problem, kp, g.values,
+                                           lambda values: accelerations(kp, values))
+        size = kp.kp.index.size
+        # the contact checks hold along the way: judge them just before the event
+        solve_kinetics(problem, kp, State(before[:size], state.given))
+        x = before.copy()
+        keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
+        x[keep] = state.values[keep]
+        return state, x, ()
+    instant = solve_numeric(kproblem, kp.kp, given_map, set())
+    state = instant.state
+    if isinstance(analysis, WorkEnergy):
+        rates = [key for key, (node, _, _) in given_map.items()
+                 if isinstance(node, Prime) and node.order == 1]
+        state = energy_state(problem, kp, state, rates)
+    return state, solve_kinetics(problem, kp, state), instant.warnings
+
+
 @lru_cache(maxsize=512)
 def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
     from .instant import _quantity_unit
@@ -261,6 +306,13 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     obj = problem.objective(objective_id)
     kin = derive_kinetics(problem)
     expr = solved_symbolically(problem, objective_id, givens)
+    analysis = problem.dynamics.analysis
+    if isinstance(analysis, Integration):
+        raise SolveError(f"objective '{objective_id}' is symbolic, but the motion is "
+                         "integrated numerically: ask for a scalar", where=obj.where)
+    if isinstance(analysis, WorkEnergy):
+        declared = {kin.k.quantity(node) for node in symbol_meanings(problem, obj).values()}
+        expr = energy_rate_symbolic(problem, kinetics_plan(problem), expr, declared)
     k = replace(kin.k, objectives=((objective_id, expr),))
     answer, meanings = symbolic(problem, k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())

@@ -18,9 +18,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..errors import Location, SpecError
-from ..expressions.syntax import Name, Node, to_text
-from ..units import dimension, dimensionless
+from ..errors import Location, SpecError, UnitError
+from ..expressions.syntax import Name, Node, Prime, to_text, walk
+from ..units import dimension, dimensionless, parse_quantity, to_si
 from .model import Expr
 
 GROUND = "ground"
@@ -223,6 +223,42 @@ Friction = KineticFriction | StaticFriction
 
 
 @dataclass(frozen=True)
+class Start:
+    """A coordinate or rate at the start of a motion: a quantity (``si``, in SI units) or an
+    expression of parameters (``value``, such as ``theta0``)."""
+
+    key: Expr
+    value: Expr | None
+    si: float | None
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class WorkEnergy:
+    """The instant is reached from the state ``start`` with the mechanical energy conserved:
+    the givens fix the configuration, the energy fixes the speed; ``sense`` says which sign
+    a rate has (``{"theta'": negative}``)."""
+
+    start: tuple[Start, ...]
+    sense: tuple[tuple[Expr, str], ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Integration:
+    """The motion integrated in time from ``start`` (at t = 0) until ``until`` (``lhs = rhs``)
+    first holds, at most ``max_time`` seconds: the instant of the objectives is that event."""
+
+    start: tuple[Start, ...]
+    until: tuple[Expr, Expr]
+    max_time: float
+    where: Location = field(default_factory=Location, compare=False)
+
+
+Analysis = WorkEnergy | Integration
+
+
+@dataclass(frozen=True)
 class Dynamics:
     """The bodies and loads of a problem (``Problem.dynamics``)."""
 
@@ -234,6 +270,7 @@ class Dynamics:
     dampers: tuple[Damper, ...] = ()
     reactions: tuple[Reaction, ...] = ()
     friction: tuple[Friction, ...] = ()
+    analysis: Analysis | None = None
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]
@@ -262,9 +299,10 @@ def read_dynamics(data: dict, expr, where) -> Dynamics | None:
     ``expr(text, *path)`` parses an expression at a field path; ``where(*path)`` locates it.
     """
     if "bodies" not in data:
-        if "loads" in data:
-            raise SpecError("'loads' act on bodies: expected a 'bodies' section",
-                            where=where("loads"))
+        for key in ("loads", "analysis"):
+            if key in data:
+                raise SpecError(f"'{key}' needs bodies: expected a 'bodies' section",
+                                where=where(key))
         return None
     bodies = tuple(_body(name, spec, expr, where) for name, spec in data["bodies"].items())
     loads = data.get("loads") or {}
@@ -286,7 +324,49 @@ def read_dynamics(data: dict, expr, where) -> Dynamics | None:
     reactions = tuple(_reaction(n, s, expr, where) for n, s in section("reactions"))
     friction = tuple(_friction(n, s, expr, where) for n, s in section("friction"))
     gravity = expr(loads["gravity"], "loads", "gravity") if "gravity" in loads else None
-    return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction)
+    return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction,
+                    _analysis(data.get("analysis"), expr, where))
+
+
+def _analysis(spec: dict | None, expr, where) -> Analysis | None:
+    if not spec:
+        return None
+    (kind, body), = spec.items()
+    path = ("analysis", kind)
+    start = tuple(_start(key, value, expr, where, *path, "from")
+                  for key, value in (body.get("from") or {}).items())
+    if kind == "work_energy":
+        sense = tuple((expr(key, *path, "sense", key), value)
+                      for key, value in (body.get("sense") or {}).items())
+        return WorkEnergy(start, sense, where(*path))
+    if body["until"].count("=") != 1:
+        raise SpecError(f"expected an equation 'left = right', found {body['until']!r}",
+                        where=where(*path, "until"))
+    left, right = body["until"].split("=")
+    until = (expr(left.strip(), *path, "until"), expr(right.strip(), *path, "until"))
+    max_time = to_si(*_quantity(body.get("max_time", "60 s"), where(*path, "max_time")))
+    return Integration(start, until, max_time, where(*path))
+
+
+def _quantity(value, where) -> tuple[float, str]:
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value), ""
+    try:
+        q = parse_quantity(str(value))
+    except UnitError as err:
+        raise SpecError(err.message, where=where) from None
+    return q.value, q.unit
+
+
+def _start(key, value, expr, where, *path) -> Start:
+    place = where(*path, key)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return Start(expr(key, *path, key), None, float(value), place)
+    try:
+        q = parse_quantity(str(value))
+    except UnitError:
+        return Start(expr(key, *path, key), expr(value, *path, key), None, place)
+    return Start(expr(key, *path, key), None, to_si(q.value, q.unit), place)
 
 
 def _directions(spec: dict, expr, *path) -> tuple[Expr, ...]:
@@ -440,9 +520,46 @@ def check_dynamics(problem, checker) -> None:
         if isinstance(f, KineticFriction) and f.surface not in frames | {GROUND}:
             raise SpecError(f"unknown surface frame '{f.surface}' (frames: "
                             f"{', '.join(sorted(frames))})", where=f.where)
+    if d.analysis is not None:
+        _check_analysis(problem, checker, d.analysis)
     for e in (*(x for r in d.reactions for x in r.directions),
               *(x for f in d.friction if isinstance(f, StaticFriction) for x in f.directions)):
         typed(e, "vector", "", "a direction (a vector without units, e.g. N.x)")
+
+
+def _check_analysis(problem, checker, analysis: Analysis) -> None:
+    coords = {c.name: c for c in problem.coordinates}
+    named = set()
+    for start in analysis.start:
+        node = start.key.node
+        if not (isinstance(node, (Name, Prime)) and node.id in coords
+                and (isinstance(node, Name) or node.order == 1)):
+            raise SpecError(f"expected a coordinate or its rate (q, q') in 'from', found "
+                            f"'{start.key.text}'", where=start.where)
+        named.add(to_text(node))
+        if start.value is not None:
+            checker._dims_match(checker.type_of(start.value).dim, checker.type_of(start.key).dim,
+                                start.where, f"the start value of '{start.key.text}'")
+            params = {p.name for p in problem.parameters}
+            for n in walk(start.value.node):
+                if isinstance(n, (Name, Prime)) and n.id not in params | {"pi"}:
+                    raise SpecError(f"a start value is a quantity or an expression of "
+                                    f"parameters; '{to_text(n)}' is not a parameter",
+                                    where=start.where)
+    missing = [c for c in coords if c not in named]
+    if missing:
+        raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "
+                        f"{', '.join(missing)}", where=analysis.where)
+    if isinstance(analysis, WorkEnergy):
+        for key, sense in analysis.sense:
+            node = key.node
+            if not (isinstance(node, Prime) and node.order == 1 and node.id in coords):
+                raise SpecError(f"expected a rate (q') in 'sense', found '{key.text}'",
+                                where=key.where)
+    else:
+        left, right = analysis.until
+        checker._same(checker.type_of(left), checker.type_of(right), left,
+                      "both sides of 'until'")
 
 
 def _shape_exprs(shape) -> tuple[Expr, ...]:

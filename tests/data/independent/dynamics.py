@@ -91,6 +91,43 @@ def case_ruina_9_21_wheel_incline():
             "contact_force": [mass * a - mass * g * np.sin(th), mass * g * np.cos(th), 0.0]}
 
 
+def case_ruina_9_20_ladder_energy():
+    # energy: m g (L/2) (sin th0 - sin th) = (m L^2 / 6) thd^2, v_G = (L/2) |thd|
+    th0, th = 80 * DEG, 45 * DEG  # with g = L = 1
+    thd2 = 3 * (np.sin(th0) - np.sin(th))
+    return {"vG_over_sqrt_gL": 0.5 * np.sqrt(thd2),
+            "eom_thetaddot": "-3*g*cos(theta)/(2*L)",
+            # written with g, L > 0 split out: the comparison samples signed symbols
+            "vG_symbolic": "sqrt(3)*sqrt(g)*sqrt(L)*sqrt(sin(theta0) - sin(theta))/2",
+            # N1 = m x_G'' with L thd^2 = 3 g (sin th0 - sin th)
+            "N1_wall": "3*m*g*cos(theta)*(3*sin(theta) - 2*sin(theta0))/4"}
+
+
+def case_ruina_9_23_ball_impulse_momentum():
+    m, r, g, v0 = 1.0, 0.1, 9.8, 5.0
+    I = 2 * m * r**2 / 5
+
+    def rolling(mu):
+        # angular impulse about the contact point is zero: m v0 r = m v r + I v / r
+        v = m * v0 * r / (m * r + I / r)
+        t = (v0 - v) / (mu * g)  # linear impulse of the friction force
+        return t, v, v0 * t - mu * g * t**2 / 2
+
+    t, v, x = rolling(0.12)
+    return {"t_star": t, "v_at_t_star": v, "omega_at_t_star_z": -v / r,
+            "distance_to_pure_rolling": x, "t_star_if_mu_0p2": rolling(0.2)[0]}
+
+
+def case_ladder_wall_lift_off():
+    m, L, g, th0 = 12.0, 4.0, 9.81, 80 * DEG
+    # N1 = (3/4) m g cos(th) (3 sin th - 2 sin th0) (Sample 9.19) vanishes at sin th = 2/3 sin th0
+    th = np.arcsin(2 * np.sin(th0) / 3)
+    thd = -np.sqrt(3 * g * (np.sin(th0) - np.sin(th)) / L)  # energy from rest
+    N2 = m * (g + 3 * g * np.sin(th) ** 2 - 2 * L * thd**2 * np.sin(th)) / 4
+    return {"theta_wall_contact_lost_deg": th / DEG, "thetad_at_lift_off": thd,
+            "floor_reaction": N2, "energy_at_lift_off": m * g * L / 2 * np.sin(th0)}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
