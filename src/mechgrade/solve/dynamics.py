@@ -365,4 +365,4 @@ def _linear_solve(equations: tuple, unknowns: tuple):
     (values,) = solutions
     if any(v.free_symbols & set(unknowns) for v in values):
         return None
-    return {u: sp.simplify(v) for u, v in zip(unknowns, values)}
+    return dict(zip(unknowns, values))
