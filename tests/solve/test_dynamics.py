@@ -205,3 +205,22 @@ def test_work_energy_refuses_a_reaction_that_works():
     body = body.replace("N2: {body: ladder, at: B, direction: N.y}",
                         "N2: {body: ladder, at: B, direction: N.x}")
     assert "does work at the instant" in error_of(body, objectives=["vG_over_sqrt_gL"])
+
+
+def test_steps_show_the_parallel_axis_shift_balances_and_unknowns():
+    from mechgrade.mechanics import derivation
+
+    body = text("pendulum_pin_reaction").replace(
+        "  rod: {mass: m, centre: G, frame: B, inertia: {rod: {length: L, axis: y}}}\n",
+        "  rod:\n    frame: B\n    centre: O\n    parts:\n"
+        "      - {mass: m, at: G, inertia: {rod: {length: L, axis: y}}}\n")
+    sections = dict(derivation(load_problem_text(body, "p.yaml")))
+    assert sections["Bodies"][1] == ("  part of mass m at G: I_G = [L**2*m/12, 0, 0; 0, 0, 0; "
+                                     "0, 0, L**2*m/12]; shifted to O by r = - L/2*B.y: "
+                                     "I + m (|r|^2 U - r r)")
+    assert sections["Bodies"][2] == "  I_O (in B axes) = [L**2*m/3, 0, 0; 0, 0, 0; 0, 0, L**2*m/3]"
+    assert "rod: gravity at G: - g*m*N.y; R_O at O: R_O_1*N.x + R_O_2*N.y" in \
+        sections["Free-body loads"]
+    assert sections["Solution"][1] == "unknowns: theta'', R_O (along N.x), R_O (along N.y) " \
+                                      "(those not given)"
+    assert "alpha: eom(theta) = thetadd" in sections["Objectives in the model's quantities"]

@@ -15,6 +15,9 @@ def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tup
     """The model in the write-up order, as text: frames, points, coordinates, constraints,
     degrees of freedom (``dof``, as the solver found it), velocities and accelerations of every
     point in the inertial frame."""
+    if problem.dynamics is not None:
+        from .dynamics import kinetics_derivation
+        return kinetics_derivation(problem, dof)
     model = build(problem)
     k = derive(problem)
     N = problem.inertial_frame

@@ -434,7 +434,8 @@ def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
     lines = [f"{body.name}: rigid body, frame {body.frame}, mass {sp.sstr(mass)}, "
              f"reference point {body.centre}"]
     for m, at, central in parts:
-        own = sp.sstr(central.to_matrix(frame)) if central is not None else "0 (point mass)"
+        own = _matrix_text(central.to_matrix(frame)) if central is not None \
+            else "0 (point mass)"
         offset = model.plain(model.positions[at] - model.positions[body.centre])
         if offset == Vector(0):
             lines.append(f"  part of mass {sp.sstr(m)} at {at}: I_{at} = {own}")
@@ -442,8 +443,43 @@ def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
             lines.append(f"  part of mass {sp.sstr(m)} at {at}: I_{at} = {own}; shifted to "
                          f"{body.centre} by r = {offset}: I + m (|r|^2 U - r r)")
     matrix = sp.simplify(model.plain(total.to_matrix(frame))) if total != Dyadic(0) else 0
-    lines.append(f"  I_{body.centre} (in {body.frame} axes) = {sp.sstr(matrix)}")
+    lines.append(f"  I_{body.centre} (in {body.frame} axes) = {_matrix_text(matrix)}")
     return lines
+
+
+def _matrix_text(matrix) -> str:
+    if not isinstance(matrix, sp.MatrixBase):
+        return sp.sstr(matrix)
+    return "[" + "; ".join(", ".join(sp.sstr(e) for e in matrix.row(i))
+                           for i in range(matrix.rows)) + "]"
+
+
+def kinetics_derivation(problem: Problem, dof: int | None = None):
+    """The write-up of a dynamics problem: the kinematics, then bodies (with the parallel-axis
+    shifts), free-body loads, momentum balances, the unknowns and how they are solved, and
+    each objective in the model's quantities."""
+    from .derivation import derivation
+
+    kin = derive_kinetics(problem)
+    kinematics = derivation(replace(problem, objectives=(), dynamics=None), dof)
+    unknowns = [f"{c}''" for c in kin.k.coordinates] + list(kin.labels)
+    analysis = problem.dynamics.analysis
+    how = "the givens state the configuration and the rates at the instant"
+    if isinstance(analysis, Integration):
+        how = (f"integrated from t = 0 until {analysis.until[0].text} = "
+               f"{analysis.until[1].text}; the objectives are read there")
+    elif analysis is not None:
+        how = "the givens fix the configuration; the work-energy balance from the start " \
+              "state fixes the rates"
+    solved = (f"instant: {how}",
+              f"unknowns: {', '.join(unknowns)} (those not given)",
+              f"{len(kin.balances)} momentum balances and {len(kin.k.acceleration)} "
+              "acceleration-level constraints, linear in the unknowns, solved together "
+              "(rank and every equation checked)")
+    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
+                       for o, (_, value) in zip(problem.objectives, kin.objectives))
+    return (*kinematics[:-2], *kin.steps, ("Solution", solved),
+            ("Objectives in the model's quantities", objectives))
 
 
 derive_kinetics.cache_clear = _derive_kinetics.cache_clear
