@@ -224,3 +224,17 @@ def test_steps_show_the_parallel_axis_shift_balances_and_unknowns():
     assert sections["Solution"][1] == "unknowns: theta'', R_O (along N.x), R_O (along N.y) " \
                                       "(those not given)"
     assert "alpha: eom(theta) = thetadd" in sections["Objectives in the model's quantities"]
+
+
+def test_vibration_away_from_an_equilibrium_is_refused():
+    body = text("damped_pendulum_vibration").replace("  theta: 0 rad\n", "  theta: 10 deg\n")
+    message = error_of(body, objectives=["omega_n"])
+    assert "objective 'omega_n' does not exist at this instant: the configuration is not an " \
+           "equilibrium (theta'' is not zero at rest there)" in message
+
+
+def test_vibration_needs_one_degree_of_freedom():
+    body = text("two_mass_spring_chain").replace("find: ke(block2, N)\n    kind: scalar\n    unit: J",
+                                                 "find: omega_n(x1)\n    kind: scalar\n    unit: rad/s")
+    body = body.replace("expect: {value: 0.02}", "expect: {value: 1}")
+    assert "omega_n and zeta need a single coordinate" in error_of(body)

@@ -83,6 +83,7 @@ class Kinetics:
     workless: tuple[tuple[str, sp.Expr], ...] = ()
     start: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
     until: sp.Expr | None = None
+    requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
 
     def objective(self, objective_id: str):
         return dict(self.objectives)[objective_id]
@@ -175,6 +176,7 @@ class DynamicsInterpreter(Interpreter):
         self.loads = loads
         self.inertias = inertias  # body -> [(mass, centre, central inertia or None)]
         self.d = problem.dynamics
+        self._linearised: dict[str, tuple] = {}
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -255,6 +257,49 @@ class DynamicsInterpreter(Interpreter):
         r = self.positions[spring.between[1]] - self.positions[spring.between[0]]
         return self.scalar(spring.stiffness) * (r.magnitude() - self.scalar(spring.length)) ** 2 / 2
 
+    def linearised(self, coordinate: Node) -> tuple[sp.Expr, sp.Expr]:
+        """``(k, c)`` of q'' = -k (q - q_eq) - c q' + ..., the motion of a single degree of
+        freedom linearised about the instant's configuration (rates zero there); an
+        equilibrium requirement (q'' = 0 at rest) is recorded."""
+        if coordinate.id in self._linearised:
+            stiffness, damping, requirement = self._linearised[coordinate.id]
+            self.requirements.append(requirement)
+            return stiffness, damping
+        k = self.kinematics
+        if len(k.q) != 1 or k.velocity:
+            raise SolveError("omega_n and zeta need a single coordinate without constraints "
+                             "(one degree of freedom)", where=self.where)
+        unknowns = (*k.qdd, *self.reactions)
+        A, b = sp.linear_eq_to_matrix([e.expr for e in self.balances], list(unknowns))
+        if A.rows != A.cols:
+            raise SolveError("omega_n and zeta need as many momentum balances as unknown "
+                             "accelerations and reactions", where=self.where)
+        q, qd = k.q[0], k.qd[0]
+        rest = {qd: 0}
+        # A x = b  =>  A dx/ds = db/ds - dA/ds x  (s = q or q'): differentiate the balances,
+        # not a solved (and much larger) expression
+        x = A.LUsolve(b)
+
+        def rate(s):
+            dx = A.LUsolve(b.diff(s) - A.diff(s) * x)
+            return dx[0].xreplace(rest)
+
+        equilibrium = x[0].xreplace(rest)
+        stiffness, damping = _tidy(-rate(q)), _tidy(-rate(qd))
+        requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
+                       "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
+        self._linearised[coordinate.id] = (stiffness, damping, requirement)
+        self.requirements.append(requirement)
+        return stiffness, damping
+
+    def _fn_omega_n(self, coordinate: Node):
+        stiffness, _ = self.linearised(coordinate)
+        return sp.sqrt(stiffness)
+
+    def _fn_zeta(self, coordinate: Node):
+        stiffness, damping = self.linearised(coordinate)
+        return damping / (2 * sp.sqrt(stiffness))
+
     def _fn_eom(self, coordinate: Node):
         from .symbols import TIME_SYMBOL
         return self.dyn[coordinate.id].diff(TIME_SYMBOL, 2)
@@ -334,12 +379,19 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                 continue
             balances.append(Equation(label, plain, b.where))
             steps_balances.append(f"{label}: {sp.sstr(plain)} = 0")
-    objectives, mistakes = [], []
+    language.kinematics = k
+    language.balances = tuple(balances) + k.acceleration
+    language.reactions = tuple(s for v in reactions.values() for s in v)
+    objectives, mistakes, requirements = [], [], []
     for obj in problem.objectives:
+        language.requirements.clear()
+        language.where = obj.where
         model_view = _View(model, language)
         objectives.append((obj.id, _objective_value(model_view, obj.find, obj.frame)))
         mistakes.append((obj.id, tuple(_objective_value(model_view, m.find, obj.frame)
                                        for m in obj.mistakes)))
+        requirements += [(obj.id, reason, model.plain(expr))
+                         for reason, expr in language.requirements]
     bounds = []
     slips = []
     for f in d.friction:
@@ -372,7 +424,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
                     slips=tuple(slips), steps=steps, energy=model.plain(energy),
                     nonconservative=nonconservative, workless=tuple(workless), start=start,
-                    until=until)
+                    until=until, requirements=tuple(requirements))
 
 
 def _analysis(problem: Problem, model: Model, language, k: Kinematics):
@@ -445,6 +497,14 @@ def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
     matrix = sp.simplify(model.plain(total.to_matrix(frame))) if total != Dyadic(0) else 0
     lines.append(f"  I_{body.centre} (in {body.frame} axes) = {_matrix_text(matrix)}")
     return lines
+
+
+def _tidy(expr):
+    """A simpler form when one is cheap to find (the solver lambdifies either)."""
+    if sp.count_ops(expr) > 400:
+        return expr
+    simple = sp.simplify(expr)
+    return simple if sp.count_ops(simple) <= sp.count_ops(expr) else expr
 
 
 def _matrix_text(matrix) -> str:

@@ -65,6 +65,7 @@ class KineticsPlan:
     mistakes: tuple[tuple[str, tuple[Callable, ...]], ...]
     bounds: tuple[tuple[object, Callable, Callable, Callable], ...]
     slips: tuple[tuple[object, Callable, Callable], ...]
+    requirements: tuple[tuple[str, str, Callable], ...] = ()
 
     def name(self, column: int) -> str:
         """How an unknown is named in messages."""
@@ -108,7 +109,9 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
         bounds=tuple((b, _lambdify(symbols, b.tangential), _lambdify(symbols, b.normal),
                       _lambdify(symbols, b.mu)) for b in kin.bounds),
         slips=tuple((s, _lambdify(symbols, s.speed), _lambdify(symbols, s.normal))
-                    for s in kin.slips))
+                    for s in kin.slips),
+        requirements=tuple((oid, reason, _lambdify(symbols, expr))
+                           for oid, reason, expr in kin.requirements))
 
 
 def _call(f: Callable, x: np.ndarray) -> np.ndarray:
@@ -245,6 +248,11 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                 failures.update({oid: err for oid in numeric})
             else:
                 values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
+                for oid, reason, f in kp.requirements:
+                    if oid in numeric and oid not in failures and abs(_call(f, x)[0]) > 1e-8:
+                        failures[oid] = SolveError(f"objective '{oid}' does not exist at this "
+                                                   f"instant: {reason}",
+                                                   where=problem.objective(oid).where)
                 mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
                             if oid in numeric}
                 warned += [w for w in found if w not in warned]

@@ -97,4 +97,9 @@ FUNCTIONS: dict[str, Signature] = {
                        "power(R, F): power of a load, with velocities in frame F"),
     "eom": Signature(("coordinate",), "scalar", lambda dims: dims[0] * _per_time(2),
                      "eom(q): q'' from the equations of motion"),
+    "omega_n": Signature(("coordinate",), "scalar", _fixed("rad/s"),
+                         "omega_n(q): natural frequency of the motion linearised about the "
+                         "instant's configuration (an equilibrium)"),
+    "zeta": Signature(("coordinate",), "scalar", lambda dims: dimensionless(),
+                      "zeta(q): damping ratio of the motion linearised about the equilibrium"),
 }

@@ -128,6 +128,19 @@ def case_ladder_wall_lift_off():
             "floor_reaction": N2, "energy_at_lift_off": m * g * L / 2 * np.sin(th0)}
 
 
+def case_damped_pendulum_vibration():
+    m, L, g, c = 1.5, 0.8, 9.81, 0.6
+    # about the pin: (m L^2/3) th'' = -(m g L/2) sin th - c L^2 th' (the horizontal dashpot
+    # at the tip stretches at -L th' near th = 0): linearised k = 3g/(2L), c_eff = 3c/m
+    wn = np.sqrt(3 * g / (2 * L))
+    zeta = 3 * c / m / (2 * wn)
+    # symbolic forms with g, L > 0 split out: the comparison samples signed symbols
+    return {"omega_n": wn, "zeta": zeta,
+            "damped_period": 2 * np.pi / (wn * np.sqrt(1 - zeta**2)),
+            "omega_n_symbolic": "sqrt(6)*sqrt(g)/(2*sqrt(L))",
+            "zeta_symbolic": "sqrt(6)*sqrt(L)*c/(2*sqrt(g)*m)"}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
