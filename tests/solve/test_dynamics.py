@@ -10,9 +10,10 @@ import pytest
 
 from mechgrade.errors import InconsistentError, SolveError, UnderdeterminedError
 from mechgrade.expressions.build import to_sympy
-from mechgrade.expressions.syntax import parse
+from mechgrade.expressions.syntax import parse, to_text
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem, load_problem_text
+from mechgrade.spec.validate import symbol_meanings
 
 ROOT = Path(__file__).resolve().parents[2]
 DYNAMICS = sorted(p for p in (ROOT / "problems").glob("*.yaml")
@@ -41,12 +42,13 @@ def test_symbolic_answers_agree_with_the_numeric_solution(path):
     numerically (the problem re-solved with the objective's find as a scalar)."""
     problem = load_problem(path)
     solution = solve(problem)
-    state = {s.name.replace("''", "dd").replace("'", "d"): s.si for s in solution.state}
+    state = {s.name: s.si for s in solution.state}
     for obj in problem.objectives:
         if obj.kind != "symbolic":
             continue
+        values = {name: state[to_text(node)]
+                  for name, node in symbol_meanings(problem, obj).items()}
         result = solution.result(obj.id)
-        values = {name: state[name] for name in result.symbols}
         expr = to_sympy(parse(result.expr), lambda n: values[n.id], None)
         reference = _numeric_value(problem, obj)
         assert float(expr) == pytest.approx(reference, rel=1e-9, abs=1e-12), obj.id
@@ -238,3 +240,21 @@ def test_vibration_needs_one_degree_of_freedom():
                                                  "find: omega_n(x1)\n    kind: scalar\n    unit: rad/s")
     body = body.replace("expect: {value: 0.02}", "expect: {value: 1}")
     assert "omega_n and zeta need a single coordinate" in error_of(body)
+
+
+def test_impulse_needs_an_impact_and_an_impact_reaction_is_no_force():
+    body = text("ruina_9_26_billiard_cue")
+    assert "impulse(P) needs an impact" in error_of(body.replace(
+        "analysis:\n  impulse:\n    before: {x': 0 m/s, phi': 0 rad/s}           # at rest\n",
+        ""))
+    assert "ask for impulse(P)" in error_of(body.replace("mag(impulse(P))\n    kind: scalar\n"
+                                                         "    unit: N*s",
+                                                         "mag(force(P))\n    kind: scalar\n"
+                                                         "    unit: N"))
+
+
+def test_an_impact_does_not_change_the_configuration():
+    body = text("ruina_9_26_billiard_cue").replace("before: {x': 0 m/s,", "before: {x: 0 m,")
+    from mechgrade.errors import SpecError
+    with pytest.raises(SpecError, match="expected a rate"):
+        load_problem_text(body, "p.yaml")

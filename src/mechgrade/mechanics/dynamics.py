@@ -22,11 +22,11 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import sympy as sp
-from sympy.physics.vector import Dyadic, Vector
+from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 
 from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node
-from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Integration,
+from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Impulse, Integration,
                              KineticFriction, Spring, StaticFriction)
 from ..spec.model import Problem
 from .bodies import explicit_inertia, parallel_axis, shape_inertia
@@ -84,6 +84,18 @@ class Kinetics:
     start: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
     until: sp.Expr | None = None
     requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
+    impact: bool = False
+
+    @property
+    def rates(self) -> tuple[sp.Symbol, ...]:
+        """The rates the balances are solved for: second rates, or (an impact) the rates just
+        after it."""
+        return self.k.qd if self.impact else self.k.qdd
+
+    @property
+    def constraints(self):
+        """The constraint equations solved with the balances, at the level of ``rates``."""
+        return self.k.velocity if self.impact else self.k.acceleration
 
     def objective(self, objective_id: str):
         return dict(self.objectives)[objective_id]
@@ -177,6 +189,8 @@ class DynamicsInterpreter(Interpreter):
         self.inertias = inertias  # body -> [(mass, centre, central inertia or None)]
         self.d = problem.dynamics
         self._linearised: dict[str, tuple] = {}
+        self.reactions_by_name = loads.reactions
+        self.where = Location()
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -191,8 +205,20 @@ class DynamicsInterpreter(Interpreter):
         return next((b for b in bodies if b != GROUND), None)
 
     def _fn_force(self, load: Node):
+        if isinstance(self.d.analysis, Impulse) and load.id in self.reactions_by_name:
+            raise SolveError(f"during an impact the reaction {load.id} is an impulse: ask for "
+                             f"impulse({load.id})", where=self.where)
+        return self._load_force(load)
+
+    def _load_force(self, load: Node):
         body = self._first_body(load.id)
         return sum((F for b, _, F in self.loads.forces.get(load.id, ()) if b == body), Vector(0))
+
+    def _fn_impulse(self, load: Node):
+        if not isinstance(self.d.analysis, Impulse):
+            raise SolveError(f"impulse({load.id}) needs an impact: 'analysis: impulse'",
+                             where=self.where)
+        return self._load_force(load)
 
     def _fn_moment(self, load: Node, point: Node):
         body = self._first_body(load.id)
@@ -348,16 +374,35 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     steps_loads: list[str] = []
     steps_balances: list[str] = []
     axes = [f"{problem.inertial_frame}.{a}" for a in "xyz"]
+    impact = isinstance(d.analysis, Impulse)
+    before = {}
+    if impact:
+        values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
+                  if s.value is None else model.plain(lang.scalar(s.value))
+                  for s in d.analysis.start}
+        before = {model.symbols.dyn[c].diff(dynamicsymbols._t): values.get(qd, sp.Integer(0))
+                  for c, qd in zip(k.coordinates, k.qd)}
+
+    def change(vector: Vector) -> Vector:
+        """After minus before: the same expression with the rates just before put in."""
+        return vector - vector.subs(before)
+
     for b in d.bodies:
         forces, couples = loads.on(b.name)
         steps_loads.append(f"{b.name}: " + "; ".join(
             [f"{name} at {p}: {model.plain(F)}" for name, p, F in forces]
             + [f"couple {name}: {model.plain(M)}" for name, M in couples]))
+        if impact:
+            # only the impulses act during the impact; momenta change by them
+            forces = [(name, p, F) for name, p, F in forces if name in reactions]
+            couples = []
         total = sum((F for _, _, F in forces), Vector(0))
-        ma = sum((m * lang.point_acceleration(Name(at), problem.inertial_frame)
+        ma = sum((m * change(lang.point_velocity(Name(at), problem.inertial_frame))
+                  if impact else m * lang.point_acceleration(Name(at), problem.inertial_frame)
                   for m, at, _ in inertias[b.name]), Vector(0))
         linear = (total - ma).to_matrix(N)
-        equations = [(f"body {b.name}: {axes[i]} force balance", linear[i]) for i in range(3)]
+        kind = "impulse-momentum" if impact else "force"
+        equations = [(f"body {b.name}: {axes[i]} {kind} balance", linear[i]) for i in range(3)]
         if b.frame is not None:
             C = model.positions[b.centre]
             moment = sum((M for _, M in couples), Vector(0))
@@ -366,12 +411,19 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
             omega = model.frames[b.frame].ang_vel_in(N)
             rate = Vector(0)
             for m, at, central in inertias[b.name]:
+                if impact:
+                    rate += (model.positions[at] - C) ^ (m * change(lang.point_velocity(
+                        Name(at), problem.inertial_frame)))
+                    if central is not None:
+                        rate += change(central & omega)
+                    continue
                 rate += (model.positions[at] - C) ^ (m * lang.point_acceleration(
                     Name(at), problem.inertial_frame))
                 if central is not None:
                     rate += (central & omega).dt(N)
             angular = (moment - rate).to_matrix(N)
-            equations += [(f"body {b.name}: moment balance about {b.centre} ({axes[i]} "
+            kind = "angular impulse-momentum" if impact else "moment"
+            equations += [(f"body {b.name}: {kind} balance about {b.centre} ({axes[i]} "
                            "component)", angular[i]) for i in range(3)]
         for label, expr in equations:
             plain = sp.expand(model.plain(expr))
@@ -397,7 +449,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     for f in d.friction:
         normal = reactions[f.normal][0]
         if isinstance(f, StaticFriction):
-            force = model.plain(language._fn_force(Name(f.name)).to_matrix(N))
+            force = model.plain(language._load_force(Name(f.name)).to_matrix(N))
             bounds.append(Bound(f.name, f.on, f.at, force, normal, model.plain(lang.scalar(f.mu)),
                                 f.where))
         else:
@@ -424,13 +476,13 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
                     slips=tuple(slips), steps=steps, energy=model.plain(energy),
                     nonconservative=nonconservative, workless=tuple(workless), start=start,
-                    until=until, requirements=tuple(requirements))
+                    until=until, requirements=tuple(requirements), impact=impact)
 
 
 def _analysis(problem: Problem, model: Model, language, k: Kinematics):
     """The start state (plain symbol -> value; rates not named are 0) and the event."""
     analysis = problem.dynamics.analysis
-    if analysis is None:
+    if analysis is None or isinstance(analysis, Impulse):
         return (), None
     values = {}
     for s in analysis.start:
@@ -522,19 +574,23 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
 
     kin = derive_kinetics(problem)
     kinematics = derivation(replace(problem, objectives=(), dynamics=None), dof)
-    unknowns = [f"{c}''" for c in kin.k.coordinates] + list(kin.labels)
+    mark = "'" if kin.impact else "''"
+    unknowns = [f"{c}{mark}" for c in kin.k.coordinates] + list(kin.labels)
     analysis = problem.dynamics.analysis
     how = "the givens state the configuration and the rates at the instant"
     if isinstance(analysis, Integration):
         how = (f"integrated from t = 0 until {analysis.until[0].text} = "
                f"{analysis.until[1].text}; the objectives are read there")
+    elif isinstance(analysis, Impulse):
+        how = "an impact: the rates given are those just after it, the reactions are impulses"
     elif analysis is not None:
         how = "the givens fix the configuration; the work-energy balance from the start " \
               "state fixes the rates"
+    level = "velocity" if kin.impact else "acceleration"
     solved = (f"instant: {how}",
               f"unknowns: {', '.join(unknowns)} (those not given)",
-              f"{len(kin.balances)} momentum balances and {len(kin.k.acceleration)} "
-              "acceleration-level constraints, linear in the unknowns, solved together "
+              f"{len(kin.balances)} momentum balances and {len(kin.constraints)} "
+              f"{level}-level constraints, linear in the unknowns, solved together "
               "(rank and every equation checked)")
     objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
                        for o, (_, value) in zip(problem.objectives, kin.objectives))

@@ -90,8 +90,9 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     kin = derive_kinetics(problem)
     kp = plan(kinematic_problem(problem))
     symbols = kp.index.symbols + kin.reactions
-    columns = tuple(kp.index.rates(2)) + tuple(range(kp.index.size, len(symbols)))
-    equations = kin.balances + kin.k.acceleration
+    level = 1 if kin.impact else 2
+    columns = tuple(kp.index.rates(level)) + tuple(range(kp.index.size, len(symbols)))
+    equations = kin.balances + kin.constraints
     exprs = sp.Matrix([e.expr for e in equations])
     unknowns = [symbols[i] for i in columns]
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
@@ -343,13 +344,13 @@ def solved_symbolically(problem: Problem, objective_id: str, givens: tuple):
             symbol = k.quantity(node)
             if symbol in declared:
                 continue
-            if si == 0 or symbol in k.qdd:
+            if si == 0 or symbol in kin.rates:
                 stand_in[symbol] = sp.nsimplify(si) if si == 0 else sp.Float(si)
-    unknowns = [s for s in (*k.qdd, *kin.reactions) if s not in stand_in]
+    unknowns = [s for s in (*kin.rates, *kin.reactions) if s not in stand_in]
     if not (expr.free_symbols if not isinstance(expr, sp.MatrixBase)
             else set().union(*(e.free_symbols for e in expr))) & set(unknowns):
         return expr
-    equations = tuple(e.expr.xreplace(stand_in) for e in (*kin.balances, *k.acceleration))
+    equations = tuple(e.expr.xreplace(stand_in) for e in (*kin.balances, *kin.constraints))
     # a declared second rate (phidd of a driven turntable) is known, unless the balances
     # determine it
     solution = _linear_solve(equations, tuple(u for u in unknowns if u not in declared)) or \

@@ -255,7 +255,17 @@ class Integration:
     where: Location = field(default_factory=Location, compare=False)
 
 
-Analysis = WorkEnergy | Integration
+@dataclass(frozen=True)
+class Impulse:
+    """An impact: the rates just ``before`` it are known (left out: 0), the givens' rates are
+    those just after; the reactions are impulses (N s), every other load is finite and does
+    not act during the impact."""
+
+    start: tuple[Start, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+Analysis = WorkEnergy | Integration | Impulse
 
 
 @dataclass(frozen=True)
@@ -333,6 +343,10 @@ def _analysis(spec: dict | None, expr, where) -> Analysis | None:
         return None
     (kind, body), = spec.items()
     path = ("analysis", kind)
+    if kind == "impulse":
+        return Impulse(tuple(_start(key, value, expr, where, *path, "before")
+                             for key, value in (body.get("before") or {}).items()),
+                       where(*path))
     start = tuple(_start(key, value, expr, where, *path, "from")
                   for key, value in (body.get("from") or {}).items())
     if kind == "work_energy":
@@ -546,6 +560,13 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
                     raise SpecError(f"a start value is a quantity or an expression of "
                                     f"parameters; '{to_text(n)}' is not a parameter",
                                     where=start.where)
+    if isinstance(analysis, Impulse):
+        for start in analysis.start:
+            if not isinstance(start.key.node, Prime):
+                raise SpecError(f"expected a rate (q') in 'before', found '{start.key.text}' "
+                                "(the configuration does not change during an impact)",
+                                where=start.where)
+        return
     missing = [c for c in coords if c not in named]
     if missing:
         raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "

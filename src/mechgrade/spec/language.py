@@ -82,6 +82,8 @@ FUNCTIONS: dict[str, Signature] = {
     # dynamics (see spec/dynamics.py): loads, momenta and energies of bodies
     "force": Signature(("load",), "vector", _fixed("N"),
                        "force(R): the force of a load (a reaction, friction, spring, applied force)"),
+    "impulse": Signature(("load",), "vector", _fixed("N*s"),
+                         "impulse(R): the impulse of a reaction during an impact"),
     "moment": Signature(("load", "point"), "vector", _fixed("N*m"),
                         "moment(R, P): the moment of a load about point P"),
     "momentum": Signature(("body", "frame"), "vector", _fixed("kg*m/s"),

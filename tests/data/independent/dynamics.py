@@ -141,6 +141,14 @@ def case_damped_pendulum_vibration():
             "zeta_symbolic": "sqrt(6)*sqrt(L)*c/(2*sqrt(g)*m)"}
 
 
+def case_ruina_9_26_billiard_cue():
+    m, r, d, v = 0.2, 0.03, 0.01, 1.0
+    P = m * v  # linear impulse = change of linear momentum
+    # angular impulse about the centre: the cue above the centre spins the ball clockwise
+    omega = -P * d / (2 * m * r**2 / 5)
+    return {"omega_z": omega, "impulse": P, "omega_symbolic": "-5*d*v/(2*r**2)"}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
