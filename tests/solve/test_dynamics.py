@@ -258,3 +258,28 @@ def test_an_impact_does_not_change_the_configuration():
     from mechgrade.errors import SpecError
     with pytest.raises(SpecError, match="expected a rate"):
         load_problem_text(body, "p.yaml")
+
+
+def test_a_gripping_impact_conserves_angular_momentum_about_the_contact():
+    """The rod's end sticks to the ledge: it turns about A with H_A conserved,
+    (m L^2/3) w' = -m v0 L/2."""
+    body = text("rod_strikes_ledge").replace(
+        "P: {body: rod, at: A, direction: N.y}", "P: {body: rod, at: A, directions: [N.x, N.y]}")
+    body = body.replace("      - {at: A, bodies: [rod, ground], direction: N.y, restitution: e}",
+                        "      - {at: A, bodies: [rod, ground], directions: [N.x, N.y]}")
+    solution = solve(load_problem_text(body, "p.yaml"), objectives=["omega_after"])
+    assert solution.result("omega_after").value == pytest.approx(-3 * 4.0 / (2 * 1.2), rel=1e-12)
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("{at: A, bodies: [rod, ground]", "{at: Z, bodies: [rod, ground]", "unknown point 'Z'"),
+    ("bodies: [rod, ground], direction", "bodies: [rod, floor], direction", "unknown body 'floor'"),
+    ("direction: N.y, restitution: e}", "direction: L*N.y, restitution: e}",
+     "expected a direction (a vector without units, e.g. N.y), found 'L*N.y'"),
+    ("restitution: e}", "restitution: L}", "expected a pure number for the coefficient"),
+])
+def test_bad_impact_contact_is_located(old, new, message):
+    from mechgrade.errors import SpecError
+    with pytest.raises(SpecError) as info:
+        load_problem_text(text("rod_strikes_ledge").replace(old, new), "p.yaml")
+    assert message in str(info.value) and str(info.value).startswith("p.yaml:")

@@ -27,7 +27,7 @@ from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node
 from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Impulse, Integration,
-                             KineticFriction, Spring, StaticFriction)
+                             KineticFriction, Restitution, Spring, StaticFriction)
 from ..spec.model import Problem
 from .bodies import explicit_inertia, parallel_axis, shape_inertia
 from .build import Model, build
@@ -434,6 +434,21 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
+    if impact:
+        for i, c in enumerate(d.analysis.contacts):
+            relative = loads.velocity(c.bodies[0], c.at) - loads.velocity(c.bodies[1], c.at)
+            if isinstance(c, Restitution):
+                n = lang.vector(c.direction)
+                after = relative & n
+                rows = [(f"contact {i + 1} at {c.at}: restitution",
+                         after + lang.scalar(c.e) * after.subs(before))]
+            else:
+                rows = [(f"contact {i + 1} at {c.at}: sticking along {e.text}",
+                         relative & lang.vector(e)) for e in c.directions]
+            for label, expr in rows:
+                plain = sp.expand(model.plain(expr))
+                balances.append(Equation(label, plain, c.where))
+                steps_balances.append(f"{label}: {sp.sstr(plain)} = 0")
     objectives, mistakes, requirements = [], [], []
     for obj in problem.objectives:
         language.requirements.clear()

@@ -256,13 +256,37 @@ class Integration:
 
 
 @dataclass(frozen=True)
+class Restitution:
+    """At the contact point ``at`` of ``bodies`` (the second may be ``ground``): the relative
+    velocity along ``direction`` just after is ``-e`` times the one just before."""
+
+    at: str
+    bodies: tuple[str, str]
+    direction: Expr
+    e: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Sticking:
+    """At ``at`` the relative velocity of ``bodies`` along ``directions`` is zero just after
+    the impact (the contact grips)."""
+
+    at: str
+    bodies: tuple[str, str]
+    directions: tuple[Expr, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
 class Impulse:
     """An impact: the rates just ``before`` it are known (left out: 0), the givens' rates are
     those just after; the reactions are impulses (N s), every other load is finite and does
-    not act during the impact."""
+    not act during the impact. Contacts add their restitution or sticking conditions."""
 
     start: tuple[Start, ...]
     where: Location = field(default_factory=Location, compare=False)
+    contacts: tuple[Restitution | Sticking, ...] = ()
 
 
 Analysis = WorkEnergy | Integration | Impulse
@@ -344,9 +368,20 @@ def _analysis(spec: dict | None, expr, where) -> Analysis | None:
     (kind, body), = spec.items()
     path = ("analysis", kind)
     if kind == "impulse":
+        contacts = []
+        for i, c in enumerate(body.get("contacts") or []):
+            cpath = (*path, "contacts", i)
+            if "restitution" in c:
+                contacts.append(Restitution(c["at"], tuple(c["bodies"]),
+                                            expr(c["direction"], *cpath, "direction"),
+                                            expr(c["restitution"], *cpath, "restitution"),
+                                            where(*cpath)))
+            else:
+                contacts.append(Sticking(c["at"], tuple(c["bodies"]),
+                                         _directions(c, expr, *cpath), where(*cpath)))
         return Impulse(tuple(_start(key, value, expr, where, *path, "before")
                              for key, value in (body.get("before") or {}).items()),
-                       where(*path))
+                       where(*path), tuple(contacts))
     start = tuple(_start(key, value, expr, where, *path, "from")
                   for key, value in (body.get("from") or {}).items())
     if kind == "work_energy":
@@ -561,6 +596,24 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
                                     f"parameters; '{to_text(n)}' is not a parameter",
                                     where=start.where)
     if isinstance(analysis, Impulse):
+        bodies = {b.name for b in problem.dynamics.bodies} | {GROUND}
+        points = {p.name for p in problem.points}
+        for c in analysis.contacts:
+            if c.at not in points:
+                raise SpecError(f"unknown point '{c.at}' in 'at'", where=c.where)
+            for b in c.bodies:
+                if b not in bodies:
+                    raise SpecError(f"unknown body '{b}' (bodies: {', '.join(sorted(bodies))})",
+                                    where=c.where)
+            directions = (c.direction,) if isinstance(c, Restitution) else c.directions
+            for d in directions:
+                t = checker.type_of(d)
+                if t.kind != "vector" or t.dim != dimensionless():
+                    raise SpecError(f"expected a direction (a vector without units, e.g. N.y), "
+                                    f"found '{d.text}'", where=c.where)
+            if isinstance(c, Restitution) and checker.type_of(c.e).dim != dimensionless():
+                raise SpecError(f"expected a pure number for the coefficient of restitution, "
+                                f"found '{c.e.text}'", where=c.where)
         for start in analysis.start:
             if not isinstance(start.key.node, Prime):
                 raise SpecError(f"expected a rate (q') in 'before', found '{start.key.text}' "

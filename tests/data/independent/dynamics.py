@@ -149,6 +149,17 @@ def case_ruina_9_26_billiard_cue():
     return {"omega_z": omega, "impulse": P, "omega_symbolic": "-5*d*v/(2*r**2)"}
 
 
+def case_rod_strikes_ledge():
+    m, L, v0, e = 3.0, 1.2, 4.0, 0.5
+    # P = m (vG' + v0); (m L^2/12) w' = -(L/2) P; end A: vG' - (L/2) w' = e v0
+    # => vG' + 3 (vG' + v0) = e v0
+    vG = (e * v0 - 3 * v0) / 4
+    P = m * (vG + v0)
+    w = -(L / 2) * P / (m * L**2 / 12)
+    return {"vG_after": vG, "omega_after": w, "impulse": [0.0, P, 0.0],
+            "omega_symbolic": "-3*v0*(1 + e)/(2*L)"}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
