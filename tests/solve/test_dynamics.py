@@ -283,3 +283,16 @@ def test_bad_impact_contact_is_located(old, new, message):
     with pytest.raises(SpecError) as info:
         load_problem_text(text("rod_strikes_ledge").replace(old, new), "p.yaml")
     assert message in str(info.value) and str(info.value).startswith("p.yaml:")
+
+
+def test_design_of_an_unreachable_target_is_reported():
+    body = text("ruina_9_21_wheel_incline").replace("= 0.2*g", "= 0.9*g")
+    assert "design: no value of R near 0.15 (SI) makes dot(acc(G, N), A.x) = 0.9*g" in \
+        error_of(body, objectives=["R_min"])
+
+
+def test_design_parameter_must_not_be_given():
+    from mechgrade.errors import SpecError
+    body = text("ruina_9_21_wheel_incline").replace("  r: 0.1 m\n", "  r: 0.1 m\n  R: 0.2 m\n")
+    with pytest.raises(SpecError, match="design 'find' must name a parameter that is not given"):
+        load_problem_text(body, "p.yaml")

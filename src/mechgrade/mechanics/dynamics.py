@@ -85,6 +85,7 @@ class Kinetics:
     until: sp.Expr | None = None
     requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
     impact: bool = False
+    design: sp.Expr | None = None
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -491,7 +492,13 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
                     slips=tuple(slips), steps=steps, energy=model.plain(energy),
                     nonconservative=nonconservative, workless=tuple(workless), start=start,
-                    until=until, requirements=tuple(requirements), impact=impact)
+                    until=until, requirements=tuple(requirements), impact=impact,
+                    design=_difference(d.design.so_that, model, language) if d.design else None)
+
+
+def _difference(equation, model: Model, language) -> sp.Expr:
+    left, right = (model.plain(language.value(e.node)) for e in equation)
+    return left - right
 
 
 def _analysis(problem: Problem, model: Model, language, k: Kinematics):

@@ -24,7 +24,7 @@ from typing import Callable, Collection, Mapping
 
 import numpy as np
 import sympy as sp
-from scipy import linalg
+from scipy import linalg, optimize
 
 from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
@@ -66,6 +66,7 @@ class KineticsPlan:
     bounds: tuple[tuple[object, Callable, Callable, Callable], ...]
     slips: tuple[tuple[object, Callable, Callable], ...]
     requirements: tuple[tuple[str, str, Callable], ...] = ()
+    design: Callable | None = None
 
     def name(self, column: int) -> str:
         """How an unknown is named in messages."""
@@ -112,7 +113,8 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
         slips=tuple((s, _lambdify(symbols, s.speed), _lambdify(symbols, s.normal))
                     for s in kin.slips),
         requirements=tuple((oid, reason, _lambdify(symbols, expr))
-                           for oid, reason, expr in kin.requirements))
+                           for oid, reason, expr in kin.requirements),
+        design=_lambdify(symbols, kin.design) if kin.design is not None else None)
 
 
 def _call(f: Callable, x: np.ndarray) -> np.ndarray:
@@ -244,6 +246,7 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
         values, mistakes = {}, {}
         if numeric:
             try:
+                given_map = _designed(problem, kproblem, kp, given_map)
                 state, x, found = _instant(problem, kproblem, kp, given_map)
             except MechgradeError as err:
                 failures.update({oid: err for oid in numeric})
@@ -281,6 +284,36 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
                     warnings=tuple(warned))
+
+
+def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
+    """``given_map`` with the design parameter solved (secant iterations on the whole
+    instant) so that the design equation holds."""
+    design = problem.dynamics.design
+    if design is None:
+        return given_map
+    node = Name(design.find)
+
+    def with_value(value: float) -> dict:
+        out = dict(given_map)
+        out[design.find] = (node, float(value), None)
+        return out
+
+    def residual(value: float) -> float:
+        try:
+            _, x, _ = _instant(problem, kproblem, kp, with_value(value))
+        except MechgradeError:  # the iteration wandered where the model fails: no root here
+            return np.nan
+        return float(_call(kp.design, x)[0])
+
+    guess = design.guess
+    result = optimize.root_scalar(residual, x0=guess, x1=guess * (1 + 1e-3) + 1e-12,
+                                  method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
+    left, right = design.so_that
+    if not result.converged or not np.isfinite(result.root):
+        raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
+                         f"{left.text} = {right.text} ({result.flag})", where=design.where)
+    return with_value(result.root)
 
 
 def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):

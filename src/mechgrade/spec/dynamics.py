@@ -293,6 +293,17 @@ Analysis = WorkEnergy | Integration | Impulse
 
 
 @dataclass(frozen=True)
+class Design:
+    """Inverse design: the parameter ``find`` (not given) is solved so that ``so_that``
+    (``lhs = rhs``, any objective-language equation) holds, starting from ``guess`` (SI)."""
+
+    find: str
+    so_that: tuple[Expr, Expr]
+    guess: float
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
 class Dynamics:
     """The bodies and loads of a problem (``Problem.dynamics``)."""
 
@@ -305,6 +316,7 @@ class Dynamics:
     reactions: tuple[Reaction, ...] = ()
     friction: tuple[Friction, ...] = ()
     analysis: Analysis | None = None
+    design: Design | None = None
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]
@@ -358,13 +370,35 @@ def read_dynamics(data: dict, expr, where) -> Dynamics | None:
     reactions = tuple(_reaction(n, s, expr, where) for n, s in section("reactions"))
     friction = tuple(_friction(n, s, expr, where) for n, s in section("friction"))
     gravity = expr(loads["gravity"], "loads", "gravity") if "gravity" in loads else None
+    analysis = dict(data.get("analysis") or {})
+    design = analysis.pop("design", None)
     return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction,
-                    _analysis(data.get("analysis"), expr, where))
+                    _analysis(analysis, expr, where), _design(design, expr, where))
+
+
+def _equation(text: str, expr, where, *path) -> tuple[Expr, Expr]:
+    if text.count("=") != 1:
+        raise SpecError(f"expected an equation 'left = right', found {text!r}",
+                        where=where(*path))
+    left, right = text.split("=")
+    return expr(left.strip(), *path), expr(right.strip(), *path)
+
+
+def _design(spec: dict | None, expr, where) -> Design | None:
+    if spec is None:
+        return None
+    path = ("analysis", "design")
+    guess = to_si(*_quantity(spec["guess"], where(*path, "guess")))
+    return Design(spec["find"], _equation(spec["so_that"], expr, where, *path, "so_that"), guess,
+                  where(*path))
 
 
 def _analysis(spec: dict | None, expr, where) -> Analysis | None:
     if not spec:
         return None
+    if len(spec) > 1:
+        raise SpecError(f"expected one of work_energy, integrate, impulse (and design), found "
+                        f"{', '.join(spec)}", where=where("analysis"))
     (kind, body), = spec.items()
     path = ("analysis", kind)
     if kind == "impulse":
@@ -388,11 +422,7 @@ def _analysis(spec: dict | None, expr, where) -> Analysis | None:
         sense = tuple((expr(key, *path, "sense", key), value)
                       for key, value in (body.get("sense") or {}).items())
         return WorkEnergy(start, sense, where(*path))
-    if body["until"].count("=") != 1:
-        raise SpecError(f"expected an equation 'left = right', found {body['until']!r}",
-                        where=where(*path, "until"))
-    left, right = body["until"].split("=")
-    until = (expr(left.strip(), *path, "until"), expr(right.strip(), *path, "until"))
+    until = _equation(body["until"], expr, where, *path, "until")
     max_time = to_si(*_quantity(body.get("max_time", "60 s"), where(*path, "max_time")))
     return Integration(start, until, max_time, where(*path))
 
@@ -571,6 +601,16 @@ def check_dynamics(problem, checker) -> None:
                             f"{', '.join(sorted(frames))})", where=f.where)
     if d.analysis is not None:
         _check_analysis(problem, checker, d.analysis)
+    if d.design is not None:
+        params = {p.name: p for p in problem.parameters}
+        given = {g.key.text.strip() for g in problem.givens}
+        if d.design.find not in params or d.design.find in given:
+            raise SpecError(f"design 'find' must name a parameter that is not given, found "
+                            f"'{d.design.find}'", where=d.design.where)
+        left, right = d.design.so_that
+        checker._same(checker.type_of(left), checker.type_of(right), left,
+                      "both sides of 'so_that'")
+
     for e in (*(x for r in d.reactions for x in r.directions),
               *(x for f in d.friction if isinstance(f, StaticFriction) for x in f.directions)):
         typed(e, "vector", "", "a direction (a vector without units, e.g. N.x)")

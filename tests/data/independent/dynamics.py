@@ -81,15 +81,16 @@ def case_ruina_9_19_falling_ladder():
 
 
 def case_ruina_9_21_wheel_incline():
-    m, M, r, R, g, th = 1.0, 2.0, 0.1, 0.187, 9.81, 30 * DEG
+    m, M, r, g, th = 1.0, 2.0, 0.1, 9.81, 30 * DEG
     mass = m + 2 * M
-    I = m * r**2 / 2 + 2 * M * R**2 / 2
-    # Lagrange in x with phi' = -x'/r: (mass + I/r^2) x'' = mass g sin(th)
-    a = mass * g * np.sin(th) / (mass + I / r**2)
+    # Lagrange in x with phi' = -x'/r: (mass + I/r^2) x'' = mass g sin(th), I = m r^2/2 + M R^2;
+    # a = 0.2 g  =>  I/r^2 = mass (sin(th)/0.2 - 1)
+    I = mass * (np.sin(th) / 0.2 - 1) * r**2
+    R = np.sqrt((I - m * r**2 / 2) / M)
+    a = 0.2 * g
     return {"aG_symbolic": "(m + 2*M)*g*sin(theta)/(m + 2*M + (m*r**2/2 + M*R**2)/r**2)",
-            "aG_over_g_at_book_R": a / g,
+            "R_min": R,
             "contact_force": [mass * a - mass * g * np.sin(th), mass * g * np.cos(th), 0.0]}
-
 
 def case_ruina_9_20_ladder_energy():
     # energy: m g (L/2) (sin th0 - sin th) = (m L^2 / 6) thd^2, v_G = (L/2) |thd|
