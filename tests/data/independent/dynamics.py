@@ -161,6 +161,25 @@ def case_rod_strikes_ledge():
             "omega_symbolic": "-3*v0*(1 + e)/(2*L)"}
 
 
+def case_yo_yo_unwinding():
+    m, k, r, g, yd = 0.2, 0.03, 0.01, 9.81, -0.5
+    # about the string point S (the instantaneous centre, moving with G's acceleration
+    # parallel to GS = 0): (m k^2 + m r^2) phi'' = m g r, y'' = r phi''
+    a = -g * r**2 / (k**2 + r**2)
+    T = m * (g + a)
+    return {"accel": a, "tension": T, "tension_symbolic": "m*g*k**2/(k**2 + r**2)",
+            "spin_momentum": [0.0, 0.0, m * k**2 * yd / r]}
+
+
+def case_car_braking_weight_transfer():
+    m, g, h, a, b, mu = 1200.0, 9.81, 0.55, 1.1, 1.5, 0.8
+    # moments about the rear contact (the car does not pitch): N_F (a + b) - m g b = m a_x h
+    ax = -mu * g  # all wheels slide: friction mu (N_F + N_R) = mu m g
+    NF = (m * g * b - m * ax * h) / (a + b)
+    return {"decel": ax, "front_normal": NF, "rear_normal": m * g - NF,
+            "front_share_symbolic": "m*g*(b + mu*h*sign(xd))/(a + b)"}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
