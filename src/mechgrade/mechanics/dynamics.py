@@ -33,7 +33,7 @@ from .bodies import explicit_inertia, parallel_axis, shape_inertia
 from .build import Model, build
 from .interpret import Interpreter
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
-from .symbols import as_expr, identically_zero
+from .symbols import identically_zero
 
 
 @dataclass(frozen=True)
