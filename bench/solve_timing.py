@@ -3,7 +3,7 @@
 Cold derivation = load the spec + build the sympy.physics model + lambdify (caches cleared);
 numeric evaluation = solve the instant(s) (position, velocity, acceleration levels) and evaluate
 every numeric objective with the plan already built; symbolic = the sympy solve of the
-symbolic objectives. Run: PYTHONPATH=src python bench/solve_timing.py [problems/...]
+symbolic objectives. Dynamics problems: see ``measure_dynamics``. Run: PYTHONPATH=src python bench/solve_timing.py [problems/...]
 """
 
 from __future__ import annotations
@@ -19,6 +19,10 @@ from mechgrade.solve import plan
 from mechgrade.solve.instant import _givens, _instants
 from mechgrade.solve.numeric import solve_numeric
 from mechgrade.solve.symbolic import symbolic as solve_symbolic
+from mechgrade.mechanics.dynamics import derive_kinetics
+from mechgrade.solve.dynamics import (_kinetics_plan, _linear_solve, _symbolic_result,
+                                      kinetics_plan, solve_dynamics)
+from mechgrade.solve.events import _analysis_plan
 from mechgrade.spec import load_problem
 
 
@@ -45,6 +49,8 @@ def measure(path: Path):
     plan.cache_clear()
     start = time.perf_counter()
     problem = load_problem(path)
+    if problem.dynamics is not None:
+        return measure_dynamics(problem, start)
     p = plan(problem)
     cold = time.perf_counter() - start
     groups = []
@@ -68,6 +74,31 @@ def measure(path: Path):
             solve_symbolic(problem, p.k, obj, givens)
     symbolic = time.perf_counter() - start
     return cold, statistics.median(runs) if runs else float("nan"), symbolic, problem.id
+
+
+def measure_dynamics(problem, start: float):
+    """Cold: load + kinematics + Newton-Euler balances + lambdify; numeric: the instant (or the
+    work-energy state, or the integration to the event) and the kinetics, every numeric
+    objective; symbolic: the sympy solve of the balances and the symbolic objectives."""
+    derive_kinetics.cache_clear()
+    _kinetics_plan.cache_clear()
+    _analysis_plan.cache_clear()
+    kinetics_plan(problem)
+    cold = time.perf_counter() - start
+    numeric = [o.id for o in problem.objectives if o.kind != "symbolic"]
+    runs = []
+    for _ in range(5 if numeric else 0):
+        begin = time.perf_counter()
+        solve_dynamics(problem, objectives=numeric)
+        runs.append(time.perf_counter() - begin)
+    symbolic = [o.id for o in problem.objectives if o.kind == "symbolic"]
+    _linear_solve.cache_clear()
+    _symbolic_result.cache_clear()
+    begin = time.perf_counter()
+    if symbolic:
+        solve_dynamics(problem, objectives=symbolic)
+    return (cold, statistics.median(runs) if runs else float("nan"),
+            time.perf_counter() - begin, problem.id)
 
 
 if __name__ == "__main__":

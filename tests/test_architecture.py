@@ -42,7 +42,13 @@ def imports(name: str, path: Path, known: dict[str, Path] = MODULES):
     tree = ast.parse(path.read_text(encoding="utf-8"))
     package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
     package = [p for p in package if p]
+    # Imports under "if TYPE_CHECKING:" never run: they name types for annotations only.
+    type_only = {id(inner) for node in ast.walk(tree) if isinstance(node, ast.If)
+                 and getattr(node.test, "id", None) == "TYPE_CHECKING"
+                 for inner in ast.walk(node)}
     for node in ast.walk(tree):
+        if id(node) in type_only:
+            continue
         if isinstance(node, ast.Import):
             yield from (alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom):

@@ -20,7 +20,7 @@ PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
 def _independent():
     """Case id -> function returning {objective id: value} from the independent derivations."""
     out = {}
-    for name in ("bowling", "ruina"):
+    for name in ("bowling", "ruina", "dynamics"):
         path = ROOT / "tests" / "data" / "independent" / f"{name}.py"
         spec = importlib.util.spec_from_file_location(f"independent_{name}", path)
         module = importlib.util.module_from_spec(spec)
@@ -36,7 +36,7 @@ def _independent():
 INDEPENDENT = _independent()
 
 
-def test_the_library_covers_every_kinematics_case():
+def test_the_library_covers_every_independently_derived_case():
     assert sorted(p.stem for p in PROBLEMS) == sorted(INDEPENDENT)
 
 

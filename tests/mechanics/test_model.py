@@ -96,9 +96,10 @@ def test_derivation_lists_the_write_up_sections():
 
 
 def test_every_function_of_the_objective_language_is_implemented():
-    from mechgrade.mechanics.interpret import Interpreter
+    from mechgrade.mechanics.dynamics import DynamicsInterpreter
     from mechgrade.spec.language import FUNCTIONS
 
-    implemented = {name[len("_fn_"):] for name in dir(Interpreter) if name.startswith("_fn_")}
+    implemented = {name[len("_fn_"):] for name in dir(DynamicsInterpreter)
+                   if name.startswith("_fn_")}
     points = {"coincident", "ic"}  # point-valued: read by vel/acc/pos, not called directly
     assert implemented == set(FUNCTIONS) - points

@@ -198,7 +198,7 @@ def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutco
     """Compare the solver's ``result`` with the objective's ``expect:``, to the digits written."""
     e: Expect = objective.expect
     if objective.kind == "symbolic":
-        same = equivalent(result.expr, e.expr, result.symbols)
+        same = equivalent(result.expr, e.expr, result.symbols, result.symbol_signed)
         message = (f"{result.expr} {'==' if same else '!='} expected {e.expr}")
         return ExpectOutcome(objective.id, same, message, e.note, e.book)
     unit = objective.unit
@@ -252,20 +252,25 @@ def _convert(value: float, unit: str | None, target: str) -> float:
     return from_si(to_si(value, unit), target)
 
 
-def equivalent(a: str, b: str, symbols, *, trials: int = 12, seed: int = 20261121) -> bool:
-    """Whether expressions ``a`` and ``b`` in ``symbols`` agree at random points, each symbol
-    drawn with either sign (the one "equal at random points" test of
-    :func:`mechgrade.tolerance.agree_at_points`).
+def equivalent(a: str, b: str, symbols, signed=None, *, trials: int = 24,
+               seed: int = 20261121) -> bool:
+    """Whether expressions ``a`` and ``b`` in ``symbols`` agree at random points (the one
+    "equal at random points" test of :func:`mechgrade.tolerance.agree_at_points`). Each
+    symbol is drawn with either sign, or positive where ``signed`` (one flag per symbol, as
+    :attr:`ObjectiveResult.symbol_signed`) says it cannot be negative.
 
     >>> equivalent("sqrt(xd**2)", "Abs(xd)", ["xd"])
     True
     >>> equivalent("xd", "Abs(xd)", ["xd"]), equivalent("sqrt(x)", "x**(1/2)", ["x"])
     (False, True)
+    >>> equivalent("sqrt(g)*sqrt(L)", "sqrt(g*L)", ["g", "L"], [False, False])
+    True
     """
     symbols = tuple(symbols)
+    signed = tuple(signed) if signed else (True,) * len(symbols)
     rng = np.random.default_rng(seed)
-    env = {name: rng.choice([-1.0, 1.0], trials) * rng.uniform(0.3, 1.7, trials)
-           for name in symbols}
+    env = {name: (rng.choice([-1.0, 1.0], trials) if may else 1.0)
+           * rng.uniform(0.3, 1.7, trials) for name, may in zip(symbols, signed)}
     env["E"] = np.full(trials, np.e)
     try:
         va, vb = (evaluate(reference_tree(text, symbols), env) for text in (a, b))

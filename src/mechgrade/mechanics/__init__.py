@@ -5,7 +5,7 @@ language as ``sympy.physics`` values), ``build`` (frames and points), ``kinemati
 equations, givens and objectives at every level), ``derivation`` (the write-up text).
 """
 
-from .derivation import derivation
+from .writeup import derivation
 from .kinematics import Kinematics, derive
 
 __all__ = ["Kinematics", "derive", "derivation"]

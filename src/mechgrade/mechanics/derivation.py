@@ -11,7 +11,8 @@ from .build import build
 from .kinematics import derive
 
 
-def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tuple[str, ...]], ...]:
+def kinematics_derivation(problem: Problem, dof: int | None = None
+                          ) -> tuple[tuple[str, tuple[str, ...]], ...]:
     """The model in the write-up order, as text: frames, points, coordinates, constraints,
     degrees of freedom (``dof``, as the solver found it), velocities and accelerations of every
     point in the inertial frame."""

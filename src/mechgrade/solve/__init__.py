@@ -1,6 +1,6 @@
 """The reference solver: every objective of a problem, derived from its model."""
 
-from .instant import solve
+from .entry import solve
 from .plan import plan
 from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 

@@ -7,7 +7,7 @@ failure beside the others' answers; the solved state is reported in the author's
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
->>> solution = solve(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
+>>> solution = solve_kinematics(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
 >>> round(solution.result("acc_mag").value, 2), solution.result("acc_mag_symbolic").expr
 (98.51, 'L*sqrt(thetad**4 + thetadd**2)')
 """
@@ -87,17 +87,9 @@ def _mistake_values(p: Plan, state: State, only: set[str]) -> dict[str, list[np.
 # ---------------------------------------------------------------------------- entry point
 
 
-def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
-          objectives: Collection[str] | None = None) -> Solution:
-    """Solve every objective of ``problem`` (or only those named in ``objectives``).
-
-    ``givens`` overrides given values for this call only: keys are given names as written in
-    the spec (``"theta'"``, ``"dot(vel(B, N), B.x)"``), values are SI numbers, ``None`` removes
-    a given. Objectives with givens of their own are solved at their own instant.
-
-    An objective that cannot be solved is a failure beside the others' answers
-    (:attr:`Solution.failures`); when none of them can be, the first error is raised.
-    """
+def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
+                     objectives: Collection[str] | None = None) -> Solution:
+    """:func:`mechgrade.solve.solve` for a problem without bodies and loads."""
     p = plan(problem)
     results: dict[str, ObjectiveResult] = {}
     failures: dict[str, MechgradeError] = {}

@@ -79,4 +79,29 @@ FUNCTIONS: dict[str, Signature] = {
     "ic": Signature(("frame", "frame"), "point", lambda dims: _length(),
                     "ic(A, F): instantaneous centre of zero velocity of body A in F "
                     "(usable inside pos)"),
+    # dynamics (see spec/dynamics.py): loads, momenta and energies of bodies
+    "force": Signature(("load",), "vector", _fixed("N"),
+                       "force(R): the force of a load (a reaction, friction, spring, applied force)"),
+    "impulse": Signature(("load",), "vector", _fixed("N*s"),
+                         "impulse(R): the impulse of a reaction during an impact"),
+    "moment": Signature(("load", "point"), "vector", _fixed("N*m"),
+                        "moment(R, P): the moment of a load about point P"),
+    "momentum": Signature(("body", "frame"), "vector", _fixed("kg*m/s"),
+                          "momentum(B, F): linear momentum of body B in frame F"),
+    "angmom": Signature(("body", "point", "frame"), "vector", _fixed("kg*m^2/s"),
+                        "angmom(B, P, F): angular momentum of body B about point P in frame F"),
+    "ke": Signature(("body", "frame"), "scalar", _fixed("J"),
+                    "ke(B, F): kinetic energy of body B in frame F"),
+    "pe": Signature(("body or spring",), "scalar", _fixed("J"),
+                    "pe(X): potential energy of body X in gravity (zero at the inertial point) "
+                    "or of spring X"),
+    "power": Signature(("load", "frame"), "scalar", _fixed("W"),
+                       "power(R, F): power of a load, with velocities in frame F"),
+    "eom": Signature(("coordinate",), "scalar", lambda dims: dims[0] * _per_time(2),
+                     "eom(q): q'' from the equations of motion"),
+    "omega_n": Signature(("coordinate",), "scalar", _fixed("rad/s"),
+                         "omega_n(q): natural frequency of the motion linearised about the "
+                         "instant's configuration (an equilibrium)"),
+    "zeta": Signature(("coordinate",), "scalar", lambda dims: dimensionless(),
+                      "zeta(q): damping ratio of the motion linearised about the equilibrium"),
 }

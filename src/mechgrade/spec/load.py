@@ -20,6 +20,7 @@ from ..errors import AuthorWarning, ExpressionError, Location, SpecError, SpecEr
 from ..expressions.syntax import MATH_FUNCTIONS, Name, Num, Unary, constant_value, parse
 from ..units import normalize_unit, parse_quantity, to_si
 from ..yamlio import Document, read_yaml, read_yaml_text
+from .dynamics import read_dynamics
 from .language import FUNCTIONS
 from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake, Objective,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
@@ -355,7 +356,13 @@ class _Builder:
             consistency=float(d.get("consistency", 5e-3)) if self.usable("consistency") else 5e-3,
             path=self.doc.file, unknowns=unknowns, branches=branches,
             definitions=self.definition_items, warnings=self.warnings(problem_id),
-            variants=variants)
+            variants=variants, dynamics=self.dynamics())
+
+    def dynamics(self):
+        """The ``bodies:``, ``loads:`` and ``analysis:`` sections (:mod:`.dynamics`)."""
+        if not all(self.usable(k) for k in ("bodies", "loads", "analysis")):
+            return None
+        return self.attempt(read_dynamics, self.data, self.expr, self.where)
 
     def variants(self, givens, objectives, coordinates, parameters):
         """The ``variants:`` section (:mod:`.variants`); its errors join the others."""

@@ -11,10 +11,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import Enum
+from typing import TYPE_CHECKING
 
 from ..errors import AuthorWarning, Location
 from ..expressions.syntax import Node
 from .variant_model import Variants
+
+if TYPE_CHECKING:
+    from .dynamics import Dynamics
 
 TIME = "t"
 """The reserved name of time in every expression."""
@@ -245,6 +249,7 @@ class Problem:
     definitions: tuple[Definition, ...] = ()
     warnings: tuple[AuthorWarning, ...] = field(default=(), compare=False)
     variants: Variants | None = None  # spec.variants: how each student's givens are drawn
+    dynamics: "Dynamics | None" = None  # bodies and loads (spec/dynamics.py)
 
     def objective(self, objective_id: str) -> Objective:
         for objective in self.objectives:

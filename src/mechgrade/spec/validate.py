@@ -18,9 +18,11 @@ from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, N
                                   Unary, constant_value, parse, to_text)
 from ..units import (describe_dimension, dimension, dimensionless, normalize_unit, registry,
                      time_dimension)
+from .dynamics import argument_dimension, check_dynamics
 from .language import FUNCTIONS
 from .model import TIME, Expr, Objective, Problem
 
+DYNAMICS_KINDS = ("body", "load", "body or spring", "coordinate")
 RESERVED = {TIME, "pi"} | set(MATH_FUNCTIONS) | set(FUNCTIONS)
 
 
@@ -553,6 +555,8 @@ class _Checker:
                 return self._type(arg, inside_pos=(func == "pos")).dim
             raise SpecError(f"expected a point as argument of {func}(...), found "
                             f"'{to_text(arg)}'")
+        if kind in DYNAMICS_KINDS:
+            return argument_dimension(self.p, func, arg, kind)
         t = self._type(arg, inside_pos=False)
         if t.kind == "zero" and kind == "vector":
             return t.dim
@@ -639,6 +643,10 @@ def problem_errors(problem: Problem, broken: frozenset[str] = frozenset()) -> li
     checker.check_constraints()
     checker.check_givens()
     checker.check_objectives()
+    try:
+        check_dynamics(problem, checker)
+    except SpecError as err:  # the dynamics checks stop at their first error
+        checker.errors.append(err)
     return checker.errors
 
 

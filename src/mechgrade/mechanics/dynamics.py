@@ -1,0 +1,622 @@
+"""The kinetics of a problem: Newton–Euler balances of every body, written from its free-body
+loads, in plain symbols, with the unknown reactions as symbols of their own.
+
+For each body: the linear momentum balance ``sum F = sum m_i a_Gi`` (three components in the
+inertial frame) and, for a rigid body, the angular momentum balance about its reference point
+C, ``sum M_C = sum r_Gi/C x m_i a_Gi + sum d/dt (I_Gi . omega)``, which holds for any C and
+any composition of parts, so a composite body never needs its mass centre worked out by hand.
+Components that vanish identically (a planar problem's out-of-plane balances) are dropped.
+Together with the kinematic constraints at the acceleration level these equations are linear in
+the unknown second rates and reactions.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> kin = derive_kinetics(load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml"))
+>>> [str(s) for s in kin.reactions], len(kin.balances)
+(['R_O_1', 'R_O_2'], 3)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import sympy as sp
+from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
+
+from ..errors import Location, SolveError
+from ..expressions.syntax import Call, Name, Node
+from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Impulse, Integration,
+                             KineticFriction, Restitution, Spring, StaticFriction)
+from ..spec.model import Problem
+from .derivation import kinematics_derivation
+from .bodies import explicit_inertia, parallel_axis, shape_inertia
+from .build import Model, build
+from .interpret import Interpreter
+from .kinematics import Equation, Kinematics, _objective_value, derive, locations
+from .symbols import identically_zero
+
+
+@dataclass(frozen=True)
+class Bound:
+    """A friction bound to check in the solution: ``|tangential| <= mu * normal``."""
+
+    name: str
+    body: str
+    point: str
+    tangential: object  # 3x1 matrix of the friction force, inertial components
+    normal: sp.Expr
+    mu: sp.Expr
+    where: Location = Location()
+
+
+@dataclass(frozen=True)
+class Slip:
+    """A kinetic-friction contact: it needs a slip speed and a compressive normal force."""
+
+    name: str
+    point: str
+    speed: sp.Expr
+    normal: sp.Expr
+    where: Location = Location()
+
+
+@dataclass(frozen=True)
+class Kinetics:
+    """A problem's kinetics in plain symbols.
+
+    ``balances`` are the momentum balances (``expr = 0``); ``reactions`` the unknown force
+    magnitudes, one per direction of each reaction (``labels`` says which); ``objectives`` and
+    ``mistakes`` are in these symbols too; ``steps`` is the write-up text.
+    """
+
+    k: Kinematics
+    reactions: tuple[sp.Symbol, ...]
+    labels: tuple[str, ...]
+    balances: tuple[Equation, ...]
+    objectives: tuple[tuple[str, object], ...]
+    mistakes: tuple[tuple[str, tuple[object, ...]], ...]
+    bounds: tuple[Bound, ...]
+    slips: tuple[Slip, ...]
+    steps: tuple[tuple[str, tuple[str, ...]], ...]
+    energy: sp.Expr = sp.Integer(0)
+    nonconservative: tuple[str, ...] = ()
+    workless: tuple[tuple[str, sp.Expr], ...] = ()
+    start: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    until: sp.Expr | None = None
+    requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
+    impact: bool = False
+    design: sp.Expr | None = None
+
+    @property
+    def rates(self) -> tuple[sp.Symbol, ...]:
+        """The rates the balances are solved for: second rates, or (an impact) the rates just
+        after it."""
+        return self.k.qd if self.impact else self.k.qdd
+
+    @property
+    def constraints(self):
+        """The constraint equations solved with the balances, at the level of ``rates``."""
+        return self.k.velocity if self.impact else self.k.acceleration
+
+    def objective(self, objective_id: str):
+        return dict(self.objectives)[objective_id]
+
+
+class _Loads:
+    """Every load as applications ``(body, point, force)`` and couples ``(body, moment)``,
+    in ``sympy.physics`` vectors, keyed by load name (gravity under ``gravity``)."""
+
+    def __init__(self, problem: Problem, model: Model, reactions: dict):
+        self.problem = problem
+        self.d: Dynamics = problem.dynamics
+        self.model = model
+        self.language = model.language
+        self.N = problem.inertial_frame
+        self.forces: dict[str, list[tuple[str, str, Vector]]] = {}
+        self.couples: dict[str, list[tuple[str, Vector]]] = {}
+        self.reactions = reactions
+
+    def velocity(self, body: str, point: str) -> Vector:
+        """Velocity in the inertial frame of the material point of ``body`` at ``point``."""
+        if body == GROUND:
+            return Vector(0)
+        b = self.d.body(body)
+        v = self.language.point_velocity(Name(b.centre), self.N)
+        if b.frame is None:
+            return v
+        omega = self.model.frames[b.frame].ang_vel_in(self.model.inertial)
+        return v + (omega ^ (self.model.positions[point] - self.model.positions[b.centre]))
+
+    def build(self) -> None:
+        lang, d = self.language, self.d
+        if d.gravity is not None:
+            g = lang.vector(d.gravity)
+            self.forces["gravity"] = [(b.name, p.at, lang.scalar(p.mass) * g)
+                                      for b in d.bodies for p in b.parts]
+        for f in d.forces:
+            self.forces[f.name] = [(f.on, f.at, lang.vector(f.force))]
+        for c in d.couples:
+            self.couples[c.name] = [(c.on, lang.vector(c.moment))]
+        for s in (*d.springs, *d.dampers):
+            a, b = (self.model.positions[p] for p in s.between)
+            r = b - a
+            length = r.magnitude()
+            if isinstance(s, Spring):
+                tension = lang.scalar(s.stiffness) * (length - lang.scalar(s.length))
+            else:
+                tension = lang.scalar(s.coefficient) * (r & r.dt(self.model.inertial)) / length
+            pull = tension * r / length  # on the first end, toward the second
+            self.forces[s.name] = [(s.on[0], s.between[0], pull), (s.on[1], s.between[1], -pull)]
+        for r in d.reactions:
+            vector = self.reaction_vector(r.name, r.directions)
+            self.forces[r.name] = [(a.on, a.at, a.sign * vector) for a in r.acts]
+        for f in d.friction:
+            if isinstance(f, StaticFriction):
+                vector = self.reaction_vector(f.name, f.directions)
+            else:
+                slip = self.slip_velocity(f)
+                vector = -lang.scalar(f.mu) * self.normal(f.normal) * slip / slip.magnitude()
+            self.forces[f.name] = [(f.on, f.at, vector)]
+
+    def reaction_vector(self, name: str, directions) -> Vector:
+        return sum((s * self.language.vector(e) for s, e in zip(self.reactions[name], directions)),
+                   Vector(0))
+
+    def normal(self, name: str) -> sp.Symbol:
+        return self.reactions[name][0]
+
+    def slip_velocity(self, f: KineticFriction) -> Vector:
+        v = self.velocity(f.on, f.at)
+        if f.surface not in (GROUND, self.N):
+            v -= self.language.point_velocity(Call("coincident", (Name(f.at), Name(f.surface))),
+                                              self.N)
+        return v
+
+    def on(self, body: str):
+        """The applications and couples acting on ``body``."""
+        forces = [(name, p, F) for name, apps in self.forces.items() for b, p, F in apps
+                  if b == body]
+        couples = [(name, M) for name, items in self.couples.items() for b, M in items
+                   if b == body]
+        return forces, couples
+
+
+class DynamicsInterpreter(Interpreter):
+    """The objective language with the dynamics functions: loads, momenta, energies."""
+
+    def __init__(self, problem: Problem, model: Model, loads: _Loads, inertias: dict):
+        super().__init__(problem, model.symbols, model.frames, model.positions)
+        self.loads = loads
+        self.inertias = inertias  # body -> [(mass, centre, central inertia or None)]
+        self.d = problem.dynamics
+        self._linearised: dict[str, tuple] = {}
+        self.reactions_by_name = loads.reactions
+        self.where = Location()
+
+    def _omega(self, body: Body, frame: str) -> Vector:
+        if body.frame is None:
+            return Vector(0)
+        return self.frames[body.frame].ang_vel_in(self.frames[frame])
+
+    def _first_body(self, load: str) -> str | None:
+        """The body a load's ``force``/``moment`` refer to: the first it acts on (a spring
+        fixed to the ground at one end: the body at the other end)."""
+        bodies = [b for b, _, _ in self.loads.forces.get(load, ())] + \
+            [b for b, _ in self.loads.couples.get(load, ())]
+        return next((b for b in bodies if b != GROUND), None)
+
+    def _fn_force(self, load: Node):
+        if isinstance(self.d.analysis, Impulse) and load.id in self.reactions_by_name:
+            raise SolveError(f"during an impact the reaction {load.id} is an impulse: ask for "
+                             f"impulse({load.id})", where=self.where)
+        return self._load_force(load)
+
+    def _load_force(self, load: Node):
+        body = self._first_body(load.id)
+        return sum((F for b, _, F in self.loads.forces.get(load.id, ()) if b == body), Vector(0))
+
+    def _fn_impulse(self, load: Node):
+        if not isinstance(self.d.analysis, Impulse):
+            raise SolveError(f"impulse({load.id}) needs an impact: 'analysis: impulse'",
+                             where=self.where)
+        return self._load_force(load)
+
+    def _fn_moment(self, load: Node, point: Node):
+        body = self._first_body(load.id)
+        about = self.point_position(point)
+        moment = sum((M for b, M in self.loads.couples.get(load.id, ()) if b == body),
+                     Vector(0))
+        for b, at, F in self.loads.forces.get(load.id, ()):
+            if b == body:
+                moment += (self.positions[at] - about) ^ F
+        return moment
+
+    def _fn_power(self, load: Node, frame: Node):
+        total = sp.Integer(0)
+        for body, at, F in self.loads.forces.get(load.id, ()):
+            total += F & self._material_velocity(body, at, frame.id)
+        for body, M in self.loads.couples.get(load.id, ()):
+            total += M & self._omega(self.d.body(body), frame.id)
+        return total
+
+    def _material_velocity(self, body: str, point: str, frame: str) -> Vector:
+        if body == GROUND:
+            return self.point_velocity(
+                Call("coincident", (Name(point), Name(self.problem.inertial_frame))), frame)
+        b = self.d.body(body)
+        v = self.point_velocity(Name(b.centre), frame)
+        return v + (self._omega(b, frame) ^ (self.positions[point] - self.positions[b.centre]))
+
+    def _fn_momentum(self, body: Node, frame: Node):
+        return sum((m * self.point_velocity(Name(at), frame.id)
+                    for m, at, _ in self.inertias[body.id]), Vector(0))
+
+    def _fn_angmom(self, body: Node, point: Node, frame: Node):
+        b = self.d.body(body.id)
+        omega = self._omega(b, frame.id)
+        about = self.point_position(point)
+        total = Vector(0)
+        for m, at, central in self.inertias[body.id]:
+            total += (self.positions[at] - about) ^ (m * self.point_velocity(Name(at), frame.id))
+            if central is not None:
+                total += central & omega
+        return total
+
+    def _fn_ke(self, body: Node, frame: Node):
+        b = self.d.body(body.id)
+        omega = self._omega(b, frame.id)
+        total = sp.Integer(0)
+        for m, at, central in self.inertias[body.id]:
+            v = self.point_velocity(Name(at), frame.id)
+            total += m * (v & v) / 2
+            if central is not None:
+                total += (omega & (central & omega)) / 2
+        return total
+
+    def _fn_pe(self, item: Node):
+        if item.id in self.inertias:
+            if self.d.gravity is None:
+                return sp.Integer(0)
+            g = self.vector(self.d.gravity)
+            return -sum((m * (g & self.positions[at]) for m, at, _ in self.inertias[item.id]),
+                        sp.Integer(0))
+        spring = self.d.load(item.id)
+        r = self.positions[spring.between[1]] - self.positions[spring.between[0]]
+        return self.scalar(spring.stiffness) * (r.magnitude() - self.scalar(spring.length)) ** 2 / 2
+
+    def linearised(self, coordinate: Node) -> tuple[sp.Expr, sp.Expr]:
+        """``(k, c)`` of q'' = -k (q - q_eq) - c q' + ..., the motion of a single degree of
+        freedom linearised about the instant's configuration (rates zero there); an
+        equilibrium requirement (q'' = 0 at rest) is recorded."""
+        if coordinate.id in self._linearised:
+            stiffness, damping, requirement = self._linearised[coordinate.id]
+            self.requirements.append(requirement)
+            return stiffness, damping
+        k = self.kinematics
+        if len(k.q) != 1 or k.velocity:
+            raise SolveError("omega_n and zeta need a single coordinate without constraints "
+                             "(one degree of freedom)", where=self.where)
+        unknowns = (*k.qdd, *self.reactions)
+        A, b = sp.linear_eq_to_matrix([e.expr for e in self.balances], list(unknowns))
+        if A.rows != A.cols:
+            raise SolveError("omega_n and zeta need as many momentum balances as unknown "
+                             "accelerations and reactions", where=self.where)
+        q, qd = k.q[0], k.qd[0]
+        rest = {qd: 0}
+        # A x = b  =>  A dx/ds = db/ds - dA/ds x  (s = q or q'): differentiate the balances,
+        # not a solved (and much larger) expression
+        x = A.LUsolve(b)
+
+        def rate(s):
+            dx = A.LUsolve(b.diff(s) - A.diff(s) * x)
+            return dx[0].xreplace(rest)
+
+        equilibrium = x[0].xreplace(rest)
+        stiffness, damping = _tidy(-rate(q)), _tidy(-rate(qd))
+        requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
+                       "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
+        self._linearised[coordinate.id] = (stiffness, damping, requirement)
+        self.requirements.append(requirement)
+        return stiffness, damping
+
+    def _fn_omega_n(self, coordinate: Node):
+        stiffness, _ = self.linearised(coordinate)
+        return sp.sqrt(stiffness)
+
+    def _fn_zeta(self, coordinate: Node):
+        stiffness, damping = self.linearised(coordinate)
+        return damping / (2 * sp.sqrt(stiffness))
+
+    def _fn_eom(self, coordinate: Node):
+        from .symbols import TIME_SYMBOL
+        return self.dyn[coordinate.id].diff(TIME_SYMBOL, 2)
+
+
+def derive_kinetics(problem: Problem) -> Kinetics:
+    """The momentum balances, reactions, friction checks and objectives of ``problem``."""
+    return _derive_kinetics(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
+    d = problem.dynamics
+    k = derive(replace(problem, objectives=(), dynamics=None))
+    model = build(problem)
+    N = model.inertial
+    reactions: dict[str, tuple[sp.Symbol, ...]] = {}
+    labels: list[str] = []
+    for r in (*d.reactions, *(f for f in d.friction if isinstance(f, StaticFriction))):
+        names = [r.name] if len(r.directions) == 1 else \
+            [f"{r.name}_{i + 1}" for i in range(len(r.directions))]
+        reactions[r.name] = tuple(sp.Symbol(n, real=True) for n in names)
+        labels += [f"{r.name} (along {e.text})" for e in r.directions]
+    loads = _Loads(problem, model, reactions)
+    loads.build()
+    lang = model.language
+    inertias: dict[str, list] = {}
+    steps_bodies: list[str] = []
+    for b in d.bodies:
+        parts = []
+        frame = model.frames[b.frame] if b.frame else None
+        total = Dyadic(0)
+        for part in b.parts:
+            m = lang.scalar(part.mass)
+            central = _central(part.shape, m, frame, lang) if frame is not None else None
+            if frame is not None:
+                _check_fixed(model, part.at, b, part.where)
+                offset = model.positions[part.at] - model.positions[b.centre]
+                total += parallel_axis(central if central is not None else Dyadic(0), m,
+                                       offset, frame)
+            parts.append((m, part.at, central))
+        inertias[b.name] = parts
+        steps_bodies += _body_lines(b, parts, total, model)
+    language = DynamicsInterpreter(problem, model, loads, inertias)
+    balances: list[Equation] = []
+    steps_loads: list[str] = []
+    steps_balances: list[str] = []
+    axes = [f"{problem.inertial_frame}.{a}" for a in "xyz"]
+    impact = isinstance(d.analysis, Impulse)
+    before = {}
+    if impact:
+        values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
+                  if s.value is None else model.plain(lang.scalar(s.value))
+                  for s in d.analysis.start}
+        before = {model.symbols.dyn[c].diff(dynamicsymbols._t): values.get(qd, sp.Integer(0))
+                  for c, qd in zip(k.coordinates, k.qd)}
+
+    def change(vector: Vector) -> Vector:
+        """After minus before: the same expression with the rates just before put in."""
+        return vector - vector.subs(before)
+
+    for b in d.bodies:
+        forces, couples = loads.on(b.name)
+        steps_loads.append(f"{b.name}: " + "; ".join(
+            [f"{name} at {p}: {model.plain(F)}" for name, p, F in forces]
+            + [f"couple {name}: {model.plain(M)}" for name, M in couples]))
+        if impact:
+            # only the impulses act during the impact; momenta change by them
+            forces = [(name, p, F) for name, p, F in forces if name in reactions]
+            couples = []
+        total = sum((F for _, _, F in forces), Vector(0))
+        ma = sum((m * change(lang.point_velocity(Name(at), problem.inertial_frame))
+                  if impact else m * lang.point_acceleration(Name(at), problem.inertial_frame)
+                  for m, at, _ in inertias[b.name]), Vector(0))
+        linear = (total - ma).to_matrix(N)
+        kind = "impulse-momentum" if impact else "force"
+        equations = [(f"body {b.name}: {axes[i]} {kind} balance", linear[i]) for i in range(3)]
+        if b.frame is not None:
+            C = model.positions[b.centre]
+            moment = sum((M for _, M in couples), Vector(0))
+            for _, p, F in forces:
+                moment += (model.positions[p] - C) ^ F
+            omega = model.frames[b.frame].ang_vel_in(N)
+            rate = Vector(0)
+            for m, at, central in inertias[b.name]:
+                if impact:
+                    rate += (model.positions[at] - C) ^ (m * change(lang.point_velocity(
+                        Name(at), problem.inertial_frame)))
+                    if central is not None:
+                        rate += change(central & omega)
+                    continue
+                rate += (model.positions[at] - C) ^ (m * lang.point_acceleration(
+                    Name(at), problem.inertial_frame))
+                if central is not None:
+                    rate += (central & omega).dt(N)
+            angular = (moment - rate).to_matrix(N)
+            kind = "angular impulse-momentum" if impact else "moment"
+            equations += [(f"body {b.name}: {kind} balance about {b.centre} ({axes[i]} "
+                           "component)", angular[i]) for i in range(3)]
+        for label, expr in equations:
+            plain = sp.expand(model.plain(expr))
+            if identically_zero(plain):
+                continue
+            balances.append(Equation(label, plain, b.where))
+            steps_balances.append(f"{label}: {sp.sstr(plain)} = 0")
+    language.kinematics = k
+    language.balances = tuple(balances) + k.acceleration
+    language.reactions = tuple(s for v in reactions.values() for s in v)
+    if impact:
+        for i, c in enumerate(d.analysis.contacts):
+            relative = loads.velocity(c.bodies[0], c.at) - loads.velocity(c.bodies[1], c.at)
+            if isinstance(c, Restitution):
+                n = lang.vector(c.direction)
+                after = relative & n
+                rows = [(f"contact {i + 1} at {c.at}: restitution",
+                         after + lang.scalar(c.e) * after.subs(before))]
+            else:
+                rows = [(f"contact {i + 1} at {c.at}: sticking along {e.text}",
+                         relative & lang.vector(e)) for e in c.directions]
+            for label, expr in rows:
+                plain = sp.expand(model.plain(expr))
+                balances.append(Equation(label, plain, c.where))
+                steps_balances.append(f"{label}: {sp.sstr(plain)} = 0")
+    objectives, mistakes, requirements = [], [], []
+    for obj in problem.objectives:
+        language.requirements.clear()
+        language.where = obj.where
+        model_view = _View(model, language)
+        objectives.append((obj.id, _objective_value(model_view, obj.find, obj.frame)))
+        mistakes.append((obj.id, tuple(_objective_value(model_view, m.find, obj.frame)
+                                       for m in obj.mistakes)))
+        requirements += [(obj.id, reason, model.plain(expr))
+                         for reason, expr in language.requirements]
+    bounds = []
+    slips = []
+    for f in d.friction:
+        normal = reactions[f.normal][0]
+        if isinstance(f, StaticFriction):
+            force = model.plain(language._load_force(Name(f.name)).to_matrix(N))
+            bounds.append(Bound(f.name, f.on, f.at, force, normal, model.plain(lang.scalar(f.mu)),
+                                f.where))
+        else:
+            speed = model.plain(loads.slip_velocity(f).magnitude())
+            slips.append(Slip(f.name, f.at, speed, normal, f.where))
+    N_node = Name(problem.inertial_frame)
+    energy = sum((language._fn_ke(Name(b.name), N_node) + language._fn_pe(Name(b.name))
+                  for b in d.bodies), sp.Integer(0))
+    energy += sum((language._fn_pe(Name(s.name)) for s in d.springs), sp.Integer(0))
+    nonconservative = tuple(x.name for x in (*d.forces, *d.couples, *d.dampers, *d.friction)
+                            if not isinstance(x, StaticFriction))
+    workless = []
+    for name, symbols in reactions.items():
+        power = model.plain(language._fn_power(Name(name), N_node))
+        workless += [(label, sp.diff(power, s)) for s, label in
+                     zip(symbols, [lb for lb in labels if lb.startswith(name + " ")])]
+    start, until = _analysis(problem, model, language, k)
+    unknowns = [f"{label}" for label in labels]
+    steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
+             ("Momentum balances", tuple(steps_balances)),
+             ("Unknown reactions", tuple(unknowns) or ("none",)))
+    return Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
+                    labels=tuple(labels), balances=tuple(balances),
+                    objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
+                    slips=tuple(slips), steps=steps, energy=model.plain(energy),
+                    nonconservative=nonconservative, workless=tuple(workless), start=start,
+                    until=until, requirements=tuple(requirements), impact=impact,
+                    design=_difference(d.design.so_that, model, language) if d.design else None)
+
+
+def _difference(equation, model: Model, language) -> sp.Expr:
+    left, right = (model.plain(language.value(e.node)) for e in equation)
+    return left - right
+
+
+def _analysis(problem: Problem, model: Model, language, k: Kinematics):
+    """The start state (plain symbol -> value; rates not named are 0) and the event."""
+    analysis = problem.dynamics.analysis
+    if analysis is None or isinstance(analysis, Impulse):
+        return (), None
+    values = {}
+    for s in analysis.start:
+        symbol = k.quantity(s.key.node)
+        values[symbol] = sp.nsimplify(s.si) if s.value is None and s.si == 0 else \
+            sp.Float(s.si) if s.value is None else model.plain(language.scalar(s.value))
+    start = tuple((q, values[q]) for q in k.q) + \
+        tuple((qd, values.get(qd, sp.Integer(0))) for qd in k.qd)
+    until = None
+    if isinstance(analysis, Integration):
+        left, right = (model.plain(language.value(e.node)) for e in analysis.until)
+        until = left - right
+    return start, until
+
+
+class _View:
+    """A model whose language is the dynamics interpreter (for ``_objective_value``)."""
+
+    def __init__(self, model: Model, language: DynamicsInterpreter):
+        self.problem = model.problem
+        self.frames = model.frames
+        self.inertial = model.inertial
+        self.language = language
+        self.plain = model.plain
+
+
+def _central(shape, m, frame, lang) -> Dyadic | None:
+    if shape is None:
+        return None
+    if isinstance(shape, Explicit):
+        return explicit_inertia({key: lang.scalar(e) for key, e in shape.entries}, frame)
+    if isinstance(shape, Block):
+        return shape_inertia("block", {"sides": [lang.scalar(s) for s in shape.sides]}, m, frame)
+    size = {key: (lang.scalar(v) if not isinstance(v, str) else v)
+            for key, v in vars(shape).items()}
+    return shape_inertia(type(shape).__name__.lower(), size, m, frame)
+
+
+def _check_fixed(model: Model, point: str, body: Body, where: Location) -> None:
+    frame = model.frames[body.frame]
+    relative = (model.positions[point] - model.positions[body.centre]).dt(frame)
+    if not all(identically_zero(model.plain(c)) for c in relative.to_matrix(frame)):
+        raise SolveError(f"the centre '{point}' of a part of body '{body.name}' moves relative "
+                         f"to its frame {body.frame}; expected a point fixed in the body",
+                         where=where)
+
+
+def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
+    mass = sum((m for m, _, _ in parts), sp.Integer(0))
+    if body.frame is None:
+        return [f"{body.name}: particle of mass {sp.sstr(mass)} at {body.centre}"]
+    frame = model.frames[body.frame]
+    lines = [f"{body.name}: rigid body, frame {body.frame}, mass {sp.sstr(mass)}, "
+             f"reference point {body.centre}"]
+    for m, at, central in parts:
+        own = _matrix_text(central.to_matrix(frame)) if central is not None \
+            else "0 (point mass)"
+        offset = model.plain(model.positions[at] - model.positions[body.centre])
+        if offset == Vector(0):
+            lines.append(f"  part of mass {sp.sstr(m)} at {at}: I_{at} = {own}")
+        else:
+            lines.append(f"  part of mass {sp.sstr(m)} at {at}: I_{at} = {own}; shifted to "
+                         f"{body.centre} by r = {offset}: I + m (|r|^2 U - r r)")
+    matrix = sp.simplify(model.plain(total.to_matrix(frame))) if total != Dyadic(0) else 0
+    lines.append(f"  I_{body.centre} (in {body.frame} axes) = {_matrix_text(matrix)}")
+    return lines
+
+
+def _tidy(expr):
+    """A simpler form when one is cheap to find (the solver lambdifies either)."""
+    if sp.count_ops(expr) > 400:
+        return expr
+    simple = sp.simplify(expr)
+    return simple if sp.count_ops(simple) <= sp.count_ops(expr) else expr
+
+
+def _matrix_text(matrix) -> str:
+    if not isinstance(matrix, sp.MatrixBase):
+        return sp.sstr(matrix)
+    return "[" + "; ".join(", ".join(sp.sstr(e) for e in matrix.row(i))
+                           for i in range(matrix.rows)) + "]"
+
+
+def kinetics_derivation(problem: Problem, dof: int | None = None):
+    """The write-up of a dynamics problem: the kinematics, then bodies (with the parallel-axis
+    shifts), free-body loads, momentum balances, the unknowns and how they are solved, and
+    each objective in the model's quantities."""
+    kin = derive_kinetics(problem)
+    kinematics = kinematics_derivation(replace(problem, objectives=(), dynamics=None), dof)
+    mark = "'" if kin.impact else "''"
+    unknowns = [f"{c}{mark}" for c in kin.k.coordinates] + list(kin.labels)
+    analysis = problem.dynamics.analysis
+    how = "the givens state the configuration and the rates at the instant"
+    if isinstance(analysis, Integration):
+        how = (f"integrated from t = 0 until {analysis.until[0].text} = "
+               f"{analysis.until[1].text}; the objectives are read there")
+    elif isinstance(analysis, Impulse):
+        how = "an impact: the rates given are those just after it, the reactions are impulses"
+    elif analysis is not None:
+        how = "the givens fix the configuration; the work-energy balance from the start " \
+              "state fixes the rates"
+    level = "velocity" if kin.impact else "acceleration"
+    solved = (f"instant: {how}",
+              f"unknowns: {', '.join(unknowns)} (those not given)",
+              f"{len(kin.balances)} momentum balances and {len(kin.constraints)} "
+              f"{level}-level constraints, linear in the unknowns, solved together "
+              "(rank and every equation checked)")
+    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
+                       for o, (_, value) in zip(problem.objectives, kin.objectives))
+    return (*kinematics[:-2], *kin.steps, ("Solution", solved),
+            ("Objectives in the model's quantities", objectives))
+
+
+derive_kinetics.cache_clear = _derive_kinetics.cache_clear

@@ -1,0 +1,410 @@
+"""Solve a dynamics problem at an instant: the kinematics gives the configuration and the rates,
+then the momentum balances and the acceleration-level constraints, linear in the unknown
+second rates and reactions (the ``[M C^T; C 0]`` system), are solved together.
+
+Every step is checked: a rank-deficient system (under-constrained or statically indeterminate)
+is an error naming the unknowns it leaves open and the bodies they act on; equations the
+solution does not satisfy (a missing reaction, a given q'' that contradicts the loads) are an
+error naming the balance; a kinetic-friction contact needs slip and a pressing normal force; a
+static-friction force must satisfy |F| <= mu N, else the contact slips and the message says how
+large mu would have to be.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> solution = solve_dynamics(load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml"))
+>>> round(solution.result("alpha").value, 4), solution.result("eom_symbolic").expr
+(-7.8822, '-3*g*sin(theta)/(2*L)')
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from typing import Callable, Collection, Mapping
+
+import numpy as np
+import sympy as sp
+from scipy import linalg, optimize
+
+from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
+                      UnderdeterminedError)
+from ..mechanics.dynamics import Kinetics, derive_kinetics
+from ..expressions.syntax import Name, Prime
+from ..mechanics.kinematics import locations
+from ..spec.model import Problem
+from ..spec.validate import symbol_meanings
+from ..spec.dynamics import Integration, WorkEnergy
+from .events import energy_rate_symbolic, energy_state, integrate_to_event
+from .instant import _givens, _instants, _numeric_result, _state, degrees_of_freedom
+from .levels import RANK_TOL, State, place_givens
+from .numeric import solve_numeric
+from .plan import Plan, plan
+from .result import ObjectiveFailure, ObjectiveResult, Solution
+
+
+def kinematic_problem(problem: Problem) -> Problem:
+    """The problem's kinematics alone (its objectives are read by the dynamics language)."""
+    return replace(problem, objectives=(), dynamics=None)
+
+
+@dataclass(frozen=True)
+class KineticsPlan:
+    """The lambdified kinetics: the system ``A(state) x = rhs(state)`` in the unknown second
+    rates and reactions (``residual`` is the equations with every unknown in place), objectives,
+    mistakes and friction checks, each a function of ``state values + reactions``."""
+
+    kin: Kinetics
+    kp: Plan
+    symbols: tuple[sp.Symbol, ...]
+    columns: tuple[int, ...]  # positions of the unknowns in the extended state
+    residual: Callable
+    jacobian: Callable
+    scale: Callable
+    labels: tuple[str, ...]
+    wheres: tuple[Location, ...]
+    objectives: tuple[tuple[str, Callable], ...]
+    mistakes: tuple[tuple[str, tuple[Callable, ...]], ...]
+    bounds: tuple[tuple[object, Callable, Callable, Callable], ...]
+    slips: tuple[tuple[object, Callable, Callable], ...]
+    requirements: tuple[tuple[str, str, Callable], ...] = ()
+    design: Callable | None = None
+
+    def name(self, column: int) -> str:
+        """How an unknown is named in messages."""
+        i = self.columns[column]
+        n = self.kp.index.size
+        if i >= n:
+            return self.kin.labels[i - n]
+        return self.kp.index.spelling(i)
+
+
+def _lambdify(symbols, expr):
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True)
+
+
+def kinetics_plan(problem: Problem) -> KineticsPlan:
+    """Derive and lambdify ``problem``'s kinetics once."""
+    return _kinetics_plan(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
+    kin = derive_kinetics(problem)
+    kp = plan(kinematic_problem(problem))
+    symbols = kp.index.symbols + kin.reactions
+    level = 1 if kin.impact else 2
+    columns = tuple(kp.index.rates(level)) + tuple(range(kp.index.size, len(symbols)))
+    equations = kin.balances + kin.constraints
+    exprs = sp.Matrix([e.expr for e in equations])
+    unknowns = [symbols[i] for i in columns]
+    scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
+                       for e in exprs])
+    numeric = {o.id for o in problem.objectives if o.kind != "symbolic"}
+    return KineticsPlan(
+        kin=kin, kp=kp, symbols=symbols, columns=columns,
+        residual=_lambdify(symbols, exprs), jacobian=_lambdify(symbols, exprs.jacobian(unknowns)),
+        scale=_lambdify(symbols, scale), labels=tuple(e.label for e in equations),
+        wheres=tuple(e.where for e in equations),
+        objectives=tuple((oid, _lambdify(symbols, e)) for oid, e in kin.objectives
+                         if oid in numeric),
+        mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs_))
+                       for oid, exprs_ in kin.mistakes if oid in numeric),
+        bounds=tuple((b, _lambdify(symbols, b.tangential), _lambdify(symbols, b.normal),
+                      _lambdify(symbols, b.mu)) for b in kin.bounds),
+        slips=tuple((s, _lambdify(symbols, s.speed), _lambdify(symbols, s.normal))
+                    for s in kin.slips),
+        requirements=tuple((oid, reason, _lambdify(symbols, expr))
+                           for oid, reason, expr in kin.requirements),
+        design=_lambdify(symbols, kin.design) if kin.design is not None else None)
+
+
+def _call(f: Callable, x: np.ndarray) -> np.ndarray:
+    with np.errstate(all="ignore"):
+        return np.asarray(f(*x), dtype=float).ravel()
+
+
+def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarray:
+    """The extended state (state values, then reactions) with the unknown second rates and
+    reactions solved from the momentum balances; raises when they are not determined, the
+    equations cannot all hold, or a friction contact contradicts its model."""
+    x = np.concatenate([state.values, np.zeros(len(kp.kin.reactions))])
+    known = np.concatenate([state.given, np.zeros(len(kp.kin.reactions), dtype=bool)])
+    cols = [j for j, i in enumerate(kp.columns) if not known[i]]
+    for j in cols:
+        x[kp.columns[j]] = 0.0
+    for slip, speed, _ in kp.slips:
+        if not _call(speed, x)[0] > 1e-12:
+            raise SolveError(f"kinetic friction '{slip.name}' needs the contact at {slip.point} "
+                             "to slip, but its slip velocity is zero at this instant; use "
+                             "'kind: static'", where=slip.where)
+    A = _call(kp.jacobian, x).reshape(len(kp.labels), len(kp.columns))[:, cols]
+    b = _call(kp.residual, x)
+    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+        bad = next(i for i in range(len(b)) if not (np.isfinite(A[i]).all() and np.isfinite(b[i])))
+        raise SolveError(f"the equations of motion are undefined at this instant (a division by "
+                         f"zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
+    sol, *_ = linalg.lstsq(A, -b)
+    _, s, vt = linalg.svd(A)
+    rank = int((s > RANK_TOL * max(s.max(initial=0.0), 1.0)).sum())
+    if rank < len(cols):
+        null = vt[rank:].T
+        open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > 1e-9]
+        names = [kp.name(j) for j in open_]
+        involved = sorted({label.split(":")[0] for i, label in enumerate(kp.labels)
+                           if any(abs(A[i, cols.index(j)]) > 1e-12 for j in open_)})
+        kind = "statically indeterminate" if any(kp.columns[j] >= kp.kp.index.size
+                                                 for j in open_) else "under-constrained"
+        raise UnderdeterminedError(
+            f"the model is {kind}: the momentum balances ({', '.join(involved)}) do not "
+            f"determine {', '.join(names)}; remove a redundant reaction or add a constraint",
+            where=_body_where(problem, involved))
+    for j, value in zip(cols, sol):
+        x[kp.columns[j]] = value
+    r = _call(kp.residual, x)
+    size = np.abs(_call(kp.scale, x))
+    for i in range(len(r)):
+        if not abs(r[i]) <= problem.consistency * size[i] + 1e-10:
+            raise InconsistentError(
+                f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
+                f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
+                "loads, or a given second rate contradicts them", where=kp.wheres[i])
+    _check_friction(kp, x)
+    return x
+
+
+def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:
+    """The extended state with every second rate and reaction solved by least squares, without
+    the checks of :func:`solve_kinetics` (the right-hand side of an integration)."""
+    x = np.concatenate([values, np.zeros(len(kp.kin.reactions))])
+    cols = list(kp.columns)
+    x[cols] = 0.0
+    A = _call(kp.jacobian, x).reshape(len(kp.labels), len(cols))
+    b = _call(kp.residual, x)
+    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+        raise SolveError("the equations of motion became undefined during the integration "
+                         "(a division by zero)", where=problem_where(kp))
+    sol, *_ = linalg.lstsq(A, -b, check_finite=False)
+    x[cols] = sol
+    return x
+
+
+def problem_where(kp: KineticsPlan) -> Location:
+    return kp.wheres[0] if kp.wheres else Location()
+
+
+def _body_where(problem: Problem, involved) -> Location:
+    for b in problem.dynamics.bodies:
+        if involved and involved[0] == f"body {b.name}":
+            return b.where
+    return Location()
+
+
+def _check_friction(kp: KineticsPlan, x: np.ndarray) -> None:
+    for slip, _, normal in kp.slips:
+        n = _call(normal, x)[0]
+        if n < -1e-9:
+            raise SolveError(f"contact lost at {slip.point}: the normal force would be "
+                             f"{n:.4g} N (pulling)", where=slip.where)
+    for bound, tangential, normal, mu in kp.bounds:
+        f = np.linalg.norm(_call(tangential, x))
+        n = _call(normal, x)[0]
+        m = _call(mu, x)[0]
+        if n < -1e-9:
+            raise SolveError(f"contact lost at {bound.point}: the normal force would be "
+                             f"{n:.4g} N (pulling)", where=bound.where)
+        if f > m * n * (1 + 1e-9) + 1e-12:
+            needed = f / n if n > 0 else np.inf
+            raise SolveError(f"the {bound.body} slips at {bound.point}: sticking needs "
+                             f"mu >= {needed:.4g} (friction {f:.4g} N against a normal force "
+                             f"of {n:.4g} N), but mu = {m:.4g}", where=bound.where)
+
+
+# ---------------------------------------------------------------------------- entry point
+
+
+def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
+                   objectives: Collection[str] | None = None) -> Solution:
+    """Like :func:`mechgrade.solve.solve`, for a problem with bodies and loads."""
+
+    kp = kinetics_plan(problem)
+    kproblem = kinematic_problem(problem)
+    results: dict[str, ObjectiveResult] = {}
+    failures: dict[str, MechgradeError] = {}
+    warned: list[AuthorWarning] = list(kp.kp.k.warnings)
+    base = None
+    wanted = set(objectives) if objectives is not None else {o.id for o in problem.objectives}
+    unknown = wanted - {o.id for o in problem.objectives}
+    if unknown:
+        raise SolveError(f"no objective '{sorted(unknown)[0]}' in problem '{problem.id}'")
+    for overrides, group in _instants(problem):
+        chosen = [o for o in group if o.id in wanted]
+        if not chosen:
+            continue
+        given_map = _givens(problem, givens)
+        given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
+        numeric = {o.id for o in chosen if o.kind != "symbolic"}
+        values, mistakes = {}, {}
+        if numeric:
+            try:
+                given_map = _designed(problem, kproblem, kp, given_map)
+                state, x, found = _instant(problem, kproblem, kp, given_map)
+            except MechgradeError as err:
+                failures.update({oid: err for oid in numeric})
+            else:
+                values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
+                for oid, reason, f in kp.requirements:
+                    if oid in numeric and oid not in failures and abs(_call(f, x)[0]) > 1e-8:
+                        failures[oid] = SolveError(f"objective '{oid}' does not exist at this "
+                                                   f"instant: {reason}",
+                                                   where=problem.objective(oid).where)
+                mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
+                            if oid in numeric}
+                warned += [w for w in found if w not in warned]
+                if not overrides or base is None:
+                    base = (state, given_map)
+        for obj in chosen:
+            if obj.id in failures:
+                continue
+            try:
+                if obj.kind == "symbolic":
+                    frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
+                    results[obj.id] = _symbolic_result(problem, obj.id, frozen)
+                else:
+                    results[obj.id] = _numeric_result(obj, values[obj.id],
+                                                      mistakes.get(obj.id, ()))
+            except MechgradeError as err:
+                failures[obj.id] = err
+    order = [o.id for o in problem.objectives if o.id in wanted]
+    if not results:
+        raise failures[order[0]]
+    return Solution(problem=problem.id,
+                    results=tuple(results[oid] for oid in order if oid in results),
+                    state=_state(kproblem, kp.kp, base),
+                    dof=degrees_of_freedom(kp.kp, base[0] if base else None),
+                    failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
+                                   if oid in failures),
+                    warnings=tuple(warned))
+
+
+def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
+    """``given_map`` with the design parameter solved (secant iterations on the whole
+    instant) so that the design equation holds."""
+    design = problem.dynamics.design
+    if design is None:
+        return given_map
+    node = Name(design.find)
+
+    def with_value(value: float) -> dict:
+        out = dict(given_map)
+        out[design.find] = (node, float(value), None)
+        return out
+
+    def residual(value: float) -> float:
+        try:
+            _, x, _ = _instant(problem, kproblem, kp, with_value(value))
+        except MechgradeError:  # the iteration wandered where the model fails: no root here
+            return np.nan
+        return float(_call(kp.design, x)[0])
+
+    guess = design.guess
+    result = optimize.root_scalar(residual, x0=guess, x1=guess * (1 + 1e-3) + 1e-12,
+                                  method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
+    left, right = design.so_that
+    if not result.converged or not np.isfinite(result.root):
+        raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
+                         f"{left.text} = {right.text} ({result.flag})", where=design.where)
+    return with_value(result.root)
+
+
+def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):
+    """The state at the instant, the extended state (with second rates and reactions) the
+    objectives are read from, and the kinematics' warnings."""
+    analysis = problem.dynamics.analysis
+    if isinstance(analysis, Integration):
+        g = place_givens(kproblem, kp.kp, given_map)
+        state, before = integrate_to_event(problem, kp, g.values,
+                                           lambda values: accelerations(kp, values))
+        size = kp.kp.index.size
+        # the contact checks hold along the way: judge them just before the event
+        solve_kinetics(problem, kp, State(before[:size], state.given))
+        x = before.copy()
+        keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
+        x[keep] = state.values[keep]
+        return state, x, ()
+    instant = solve_numeric(kproblem, kp.kp, given_map, set())
+    state = instant.state
+    if isinstance(analysis, WorkEnergy):
+        rates = [key for key, (node, _, _) in given_map.items()
+                 if isinstance(node, Prime) and node.order == 1]
+        state = energy_state(problem, kp, state, rates)
+    return state, solve_kinetics(problem, kp, state), instant.warnings
+
+
+@lru_cache(maxsize=512)
+def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
+    from .instant import _quantity_unit
+    from .symbolic import symbolic
+
+    obj = problem.objective(objective_id)
+    kin = derive_kinetics(problem)
+    expr = solved_symbolically(problem, objective_id, givens)
+    analysis = problem.dynamics.analysis
+    if isinstance(analysis, Integration):
+        raise SolveError(f"objective '{objective_id}' is symbolic, but the motion is "
+                         "integrated numerically: ask for a scalar", where=obj.where)
+    if isinstance(analysis, WorkEnergy):
+        declared = {kin.k.quantity(node) for node in symbol_meanings(problem, obj).values()}
+        expr = energy_rate_symbolic(problem, kinetics_plan(problem), expr, declared)
+    k = replace(kin.k, objectives=((objective_id, expr),))
+    answer, meanings = symbolic(problem, k, obj, dict(givens))
+    units = tuple(_quantity_unit(problem, node) for node in meanings.values())
+    return ObjectiveResult(
+        id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(answer), symbols=tuple(meanings),
+        symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
+
+
+def solved_symbolically(problem: Problem, objective_id: str, givens: tuple):
+    """The objective with the unknown second rates and reactions replaced by their symbolic
+    solution of the momentum balances (zero givens and given second rates stand in)."""
+    kin = derive_kinetics(problem)
+    expr = kin.objective(objective_id)
+    k = kin.k
+    declared = {k.quantity(node) for node in
+                symbol_meanings(problem, problem.objective(objective_id)).values()}
+    stand_in = {}
+    for _, (node, si, _) in givens:
+        if isinstance(node, (Name, Prime)):
+            symbol = k.quantity(node)
+            if symbol in declared:
+                continue
+            if si == 0 or symbol in kin.rates:
+                stand_in[symbol] = sp.nsimplify(si) if si == 0 else sp.Float(si)
+    unknowns = [s for s in (*kin.rates, *kin.reactions) if s not in stand_in]
+    if not (expr.free_symbols if not isinstance(expr, sp.MatrixBase)
+            else set().union(*(e.free_symbols for e in expr))) & set(unknowns):
+        return expr
+    equations = tuple(e.expr.xreplace(stand_in) for e in (*kin.balances, *kin.constraints))
+    # a declared second rate (phidd of a driven turntable) is known, unless the balances
+    # determine it
+    solution = _linear_solve(equations, tuple(u for u in unknowns if u not in declared)) or \
+        _linear_solve(equations, tuple(unknowns))
+    if solution is None:
+        names = {s: label for s, label in zip(kin.reactions, kin.labels)}
+        listing = ", ".join(names.get(u, str(u)) for u in unknowns)
+        raise UnderdeterminedError(
+            f"objective '{objective_id}' cannot be solved symbolically: the momentum balances "
+            f"do not determine the unknowns {listing} uniquely (or contradict each other)",
+            where=problem.objective(objective_id).where)
+    return expr.xreplace(stand_in).xreplace(solution)
+
+
+@lru_cache(maxsize=128)
+def _linear_solve(equations: tuple, unknowns: tuple):
+    A, b = sp.linear_eq_to_matrix(list(equations), list(unknowns))
+    solutions = sp.linsolve((A, b), list(unknowns))
+    if not solutions:
+        return None
+    (values,) = solutions
+    if any(v.free_symbols & set(unknowns) for v in values):
+        return None
+    return dict(zip(unknowns, values))

@@ -1,0 +1,27 @@
+"""The solver's one entry point: a problem with bodies and loads goes to the dynamics solver,
+any other to the kinematics solver (each a module of its own)."""
+
+from __future__ import annotations
+
+from typing import Collection, Mapping
+
+from ..spec.model import Problem
+from .dynamics import solve_dynamics
+from .instant import solve_kinematics
+from .result import Solution
+
+
+def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
+          objectives: Collection[str] | None = None) -> Solution:
+    """Solve every objective of ``problem`` (or only those named in ``objectives``).
+
+    ``givens`` overrides given values for this call only: keys are given names as written in
+    the spec (``"theta'"``, ``"dot(vel(B, N), B.x)"``), values are SI numbers, ``None`` removes
+    a given. Objectives with givens of their own are solved at their own instant.
+
+    An objective that cannot be solved is a failure beside the others' answers
+    (:attr:`Solution.failures`); when none of them can be, the first error is raised.
+    """
+    if problem.dynamics is not None:
+        return solve_dynamics(problem, givens=givens, objectives=objectives)
+    return solve_kinematics(problem, givens=givens, objectives=objectives)

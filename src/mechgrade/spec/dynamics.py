@@ -1,0 +1,706 @@
+"""The dynamics sections of a problem file: ``bodies:`` and ``loads:``.
+
+Bodies are particles (a mass at a point) or rigid bodies (a body frame, a mass centre, and an
+inertia given explicitly about the mass centre or by shape); a composite body lists ``parts``,
+each a mass at its own centre with its own shape: the mechanics core shifts every part's
+inertia to the body's reference point (parallel axes), never the author. Loads are gravity,
+applied forces and couples, linear springs and dampers, unknown reactions (normal forces, pins,
+tensions, contact forces) and friction (kinetic, or static with its bound checked).
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> d = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml").dynamics
+>>> [b.name for b in d.bodies], [r.name for r in d.reactions]
+(['rod'], ['R_O'])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..errors import Location, SpecError, UnitError
+from ..expressions.syntax import Name, Node, Prime, to_text, walk
+from ..units import dimension, dimensionless, parse_quantity, to_si
+from .model import Expr
+
+GROUND = "ground"
+"""The name standing for the inertial frame where a load's other end is fixed."""
+
+
+# ---------------------------------------------------------------------------- shapes
+
+
+@dataclass(frozen=True)
+class Rod:
+    """A slender rod along body axis ``axis``: m L^2/12 about the perpendicular axes."""
+
+    length: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Ring:
+    """A thin ring of ``radius`` about body axis ``axis``: m R^2 about it, m R^2/2 across."""
+
+    radius: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Disk:
+    """A uniform thin disk of ``radius`` about body axis ``axis``: m R^2/2, m R^2/4 across."""
+
+    radius: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """A solid cylinder: m R^2/2 about its axis, m (3R^2 + h^2)/12 across."""
+
+    radius: Expr
+    length: Expr
+    axis: str
+
+
+@dataclass(frozen=True)
+class Sphere:
+    """A uniform solid sphere: 2 m R^2/5 about every axis."""
+
+    radius: Expr
+
+
+@dataclass(frozen=True)
+class Shell:
+    """A thin spherical shell: 2 m R^2/3 about every axis."""
+
+    radius: Expr
+
+
+@dataclass(frozen=True)
+class Block:
+    """A rectangular block with sides along the body x, y, z axes (a plate has one side 0)."""
+
+    sides: tuple[Expr, Expr, Expr]
+
+
+@dataclass(frozen=True)
+class Explicit:
+    """Moments and products of inertia about the mass centre in the body axes."""
+
+    entries: tuple[tuple[str, Expr], ...]  # ("xx", expr), ... ; missing entries are zero
+
+
+Shape = Rod | Ring | Disk | Cylinder | Sphere | Shell | Block | Explicit
+INERTIA_KEYS = ("xx", "yy", "zz", "xy", "yz", "zx")
+
+
+# ---------------------------------------------------------------------------- bodies
+
+
+@dataclass(frozen=True)
+class Part:
+    """A mass at its own centre ``at``, with the inertia of ``shape`` about ``at`` (None: a
+    point mass)."""
+
+    mass: Expr
+    at: str
+    shape: Shape | None
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Body:
+    """A particle (``frame`` None: one part without a shape) or a rigid body turning with
+    ``frame``; ``centre`` is the point its momentum balances refer to (the mass centre of a
+    one-part body)."""
+
+    name: str
+    frame: str | None
+    centre: str
+    parts: tuple[Part, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+# ---------------------------------------------------------------------------- loads
+
+
+@dataclass(frozen=True)
+class Force:
+    """A known force ``force`` on body ``on`` at point ``at``."""
+
+    name: str
+    on: str
+    at: str
+    force: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Couple:
+    """A known couple (pure moment) on body ``on``."""
+
+    name: str
+    on: str
+    moment: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A linear spring from point ``between[0]`` on body ``on[0]`` to ``between[1]`` on
+    ``on[1]`` (``ground`` for a fixed end): tension k (l - l0) along the line."""
+
+    name: str
+    between: tuple[str, str]
+    on: tuple[str, str]
+    stiffness: Expr
+    length: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Damper:
+    """A linear damper between two points: tension c times the rate of its length."""
+
+    name: str
+    between: tuple[str, str]
+    on: tuple[str, str]
+    coefficient: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Act:
+    """Where an unknown force acts: on body ``on`` at point ``at``, with ``sign`` +1 or -1."""
+
+    on: str
+    at: str
+    sign: int = 1
+
+
+@dataclass(frozen=True)
+class Reaction:
+    """An unknown force: one unknown magnitude per direction in ``directions``, acting
+    wherever ``acts`` says (a joint between two bodies acts on each with opposite signs; a
+    string over ideal pulleys pulls every end it ``acts`` on with the same tension)."""
+
+    name: str
+    directions: tuple[Expr, ...]
+    acts: tuple[Act, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class KineticFriction:
+    """mu N opposing the slip velocity of body ``on`` at ``at`` relative to ``surface``;
+    ``normal`` is the reaction (one direction) pressing the surfaces together."""
+
+    name: str
+    on: str
+    at: str
+    normal: str
+    mu: Expr
+    surface: str
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class StaticFriction:
+    """An unknown tangential force (one unknown per direction) at a contact that does not
+    slip; the solution must satisfy |F| <= mu N, or the contact slips."""
+
+    name: str
+    on: str
+    at: str
+    normal: str
+    mu: Expr
+    directions: tuple[Expr, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+Friction = KineticFriction | StaticFriction
+
+
+@dataclass(frozen=True)
+class Start:
+    """A coordinate or rate at the start of a motion: a quantity (``si``, in SI units) or an
+    expression of parameters (``value``, such as ``theta0``)."""
+
+    key: Expr
+    value: Expr | None
+    si: float | None
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class WorkEnergy:
+    """The instant is reached from the state ``start`` with the mechanical energy conserved:
+    the givens fix the configuration, the energy fixes the speed; ``sense`` says which sign
+    a rate has (``{"theta'": negative}``)."""
+
+    start: tuple[Start, ...]
+    sense: tuple[tuple[Expr, str], ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Integration:
+    """The motion integrated in time from ``start`` (at t = 0) until ``until`` (``lhs = rhs``)
+    first holds, at most ``max_time`` seconds: the instant of the objectives is that event."""
+
+    start: tuple[Start, ...]
+    until: tuple[Expr, Expr]
+    max_time: float
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Restitution:
+    """At the contact point ``at`` of ``bodies`` (the second may be ``ground``): the relative
+    velocity along ``direction`` just after is ``-e`` times the one just before."""
+
+    at: str
+    bodies: tuple[str, str]
+    direction: Expr
+    e: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Sticking:
+    """At ``at`` the relative velocity of ``bodies`` along ``directions`` is zero just after
+    the impact (the contact grips)."""
+
+    at: str
+    bodies: tuple[str, str]
+    directions: tuple[Expr, ...]
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Impulse:
+    """An impact: the rates just ``before`` it are known (left out: 0), the givens' rates are
+    those just after; the reactions are impulses (N s), every other load is finite and does
+    not act during the impact. Contacts add their restitution or sticking conditions."""
+
+    start: tuple[Start, ...]
+    where: Location = field(default_factory=Location, compare=False)
+    contacts: tuple[Restitution | Sticking, ...] = ()
+
+
+Analysis = WorkEnergy | Integration | Impulse
+
+
+@dataclass(frozen=True)
+class Design:
+    """Inverse design: the parameter ``find`` (not given) is solved so that ``so_that``
+    (``lhs = rhs``, any objective-language equation) holds, starting from ``guess`` (SI)."""
+
+    find: str
+    so_that: tuple[Expr, Expr]
+    guess: float
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    """The bodies and loads of a problem (``Problem.dynamics``)."""
+
+    bodies: tuple[Body, ...]
+    gravity: Expr | None = None
+    forces: tuple[Force, ...] = ()
+    couples: tuple[Couple, ...] = ()
+    springs: tuple[Spring, ...] = ()
+    dampers: tuple[Damper, ...] = ()
+    reactions: tuple[Reaction, ...] = ()
+    friction: tuple[Friction, ...] = ()
+    analysis: Analysis | None = None
+    design: Design | None = None
+
+    def body(self, name: str) -> Body:
+        return {b.name: b for b in self.bodies}[name]
+
+    @property
+    def loads(self) -> tuple:
+        """Every named load, in the order of the file's sections."""
+        return (*self.forces, *self.couples, *self.springs, *self.dampers, *self.reactions,
+                *self.friction)
+
+    def load(self, name: str):
+        return {item.name: item for item in self.loads}[name]
+
+
+# ---------------------------------------------------------------------------- reading
+
+
+_SHAPES = {"rod": (Rod, ("length",)), "ring": (Ring, ("radius",)), "disk": (Disk, ("radius",)),
+           "cylinder": (Cylinder, ("radius", "length")), "sphere": (Sphere, ("radius",)),
+           "shell": (Shell, ("radius",))}
+
+
+def read_dynamics(data: dict, expr, where) -> Dynamics | None:
+    """The ``bodies:`` and ``loads:`` sections (already schema-checked), or None if absent.
+
+    ``expr(text, *path)`` parses an expression at a field path; ``where(*path)`` locates it.
+    """
+    if "bodies" not in data:
+        for key in ("loads", "analysis"):
+            if key in data:
+                raise SpecError(f"'{key}' needs bodies: expected a 'bodies' section",
+                                where=where(key))
+        return None
+    bodies = tuple(_body(name, spec, expr, where) for name, spec in data["bodies"].items())
+    loads = data.get("loads") or {}
+
+    def section(key):
+        return (loads.get(key) or {}).items()
+
+    forces = tuple(Force(n, s["body"], s["at"], expr(s["force"], "loads", "forces", n, "force"),
+                         where("loads", "forces", n)) for n, s in section("forces"))
+    couples = tuple(Couple(n, s["body"], expr(s["moment"], "loads", "couples", n, "moment"),
+                           where("loads", "couples", n)) for n, s in section("couples"))
+    springs = tuple(Spring(n, tuple(s["between"]), tuple(s["bodies"]),
+                           expr(s["stiffness"], "loads", "springs", n, "stiffness"),
+                           expr(s.get("length", 0), "loads", "springs", n, "length"),
+                           where("loads", "springs", n)) for n, s in section("springs"))
+    dampers = tuple(Damper(n, tuple(s["between"]), tuple(s["bodies"]),
+                           expr(s["coefficient"], "loads", "dampers", n, "coefficient"),
+                           where("loads", "dampers", n)) for n, s in section("dampers"))
+    reactions = tuple(_reaction(n, s, expr, where) for n, s in section("reactions"))
+    friction = tuple(_friction(n, s, expr, where) for n, s in section("friction"))
+    gravity = expr(loads["gravity"], "loads", "gravity") if "gravity" in loads else None
+    analysis = dict(data.get("analysis") or {})
+    design = analysis.pop("design", None)
+    return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction,
+                    _analysis(analysis, expr, where), _design(design, expr, where))
+
+
+def _equation(text: str, expr, where, *path) -> tuple[Expr, Expr]:
+    if text.count("=") != 1:
+        raise SpecError(f"expected an equation 'left = right', found {text!r}",
+                        where=where(*path))
+    left, right = text.split("=")
+    return expr(left.strip(), *path), expr(right.strip(), *path)
+
+
+def _design(spec: dict | None, expr, where) -> Design | None:
+    if spec is None:
+        return None
+    path = ("analysis", "design")
+    guess = to_si(*_quantity(spec["guess"], where(*path, "guess")))
+    return Design(spec["find"], _equation(spec["so_that"], expr, where, *path, "so_that"), guess,
+                  where(*path))
+
+
+def _analysis(spec: dict | None, expr, where) -> Analysis | None:
+    if not spec:
+        return None
+    if len(spec) > 1:
+        raise SpecError(f"expected one of work_energy, integrate, impulse (and design), found "
+                        f"{', '.join(spec)}", where=where("analysis"))
+    (kind, body), = spec.items()
+    path = ("analysis", kind)
+    if kind == "impulse":
+        contacts = []
+        for i, c in enumerate(body.get("contacts") or []):
+            cpath = (*path, "contacts", i)
+            if "restitution" in c:
+                contacts.append(Restitution(c["at"], tuple(c["bodies"]),
+                                            expr(c["direction"], *cpath, "direction"),
+                                            expr(c["restitution"], *cpath, "restitution"),
+                                            where(*cpath)))
+            else:
+                contacts.append(Sticking(c["at"], tuple(c["bodies"]),
+                                         _directions(c, expr, *cpath), where(*cpath)))
+        return Impulse(tuple(_start(key, value, expr, where, *path, "before")
+                             for key, value in (body.get("before") or {}).items()),
+                       where(*path), tuple(contacts))
+    start = tuple(_start(key, value, expr, where, *path, "from")
+                  for key, value in (body.get("from") or {}).items())
+    if kind == "work_energy":
+        sense = tuple((expr(key, *path, "sense", key), value)
+                      for key, value in (body.get("sense") or {}).items())
+        return WorkEnergy(start, sense, where(*path))
+    until = _equation(body["until"], expr, where, *path, "until")
+    max_time = to_si(*_quantity(body.get("max_time", "60 s"), where(*path, "max_time")))
+    return Integration(start, until, max_time, where(*path))
+
+
+def _quantity(value, where) -> tuple[float, str]:
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value), ""
+    try:
+        q = parse_quantity(str(value))
+    except UnitError as err:
+        raise SpecError(err.message, where=where) from None
+    return q.value, q.unit
+
+
+def _start(key, value, expr, where, *path) -> Start:
+    place = where(*path, key)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return Start(expr(key, *path, key), None, float(value), place)
+    try:
+        q = parse_quantity(str(value))
+    except UnitError:
+        return Start(expr(key, *path, key), expr(value, *path, key), None, place)
+    return Start(expr(key, *path, key), None, to_si(q.value, q.unit), place)
+
+
+def _directions(spec: dict, expr, *path) -> tuple[Expr, ...]:
+    if "direction" in spec:
+        return (expr(spec["direction"], *path, "direction"),)
+    return tuple(expr(d, *path, "directions", i) for i, d in enumerate(spec["directions"]))
+
+
+def _reaction(name: str, spec: dict, expr, where) -> Reaction:
+    path = ("loads", "reactions", name)
+    if "acts" in spec:
+        acts = tuple(Act(a["body"], a["at"]) for a in spec["acts"])
+    elif "bodies" in spec:
+        # a joint: equal and opposite on the two bodies it connects
+        acts = (Act(spec["bodies"][0], spec["at"], 1), Act(spec["bodies"][1], spec["at"], -1))
+    else:
+        acts = (Act(spec["body"], spec["at"]),)
+    return Reaction(name, _directions(spec, expr, *path), acts, where(*path))
+
+
+def _friction(name: str, spec: dict, expr, where) -> Friction:
+    path = ("loads", "friction", name)
+    mu = expr(spec["mu"], *path, "mu")
+    if spec["kind"] == "kinetic":
+        return KineticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
+                               spec.get("surface", GROUND), where(*path))
+    return StaticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
+                          _directions(spec, expr, *path), where(*path))
+
+
+def _body(name: str, spec: dict, expr, where) -> Body:
+    path = ("bodies", name)
+    if "parts" in spec:
+        parts = tuple(_part(p, expr, where, *path, "parts", i)
+                      for i, p in enumerate(spec["parts"]))
+        centre = spec.get("centre", parts[0].at)
+    else:
+        if "centre" not in spec:
+            raise SpecError(f"body '{name}' has a mass but no 'centre' (its mass-centre "
+                            "point)", where=where(*path))
+        centre = spec["centre"]
+        parts = (_part({"mass": spec["mass"], "at": centre, "inertia": spec.get("inertia")},
+                       expr, where, *path),)
+    return Body(name, spec.get("frame"), centre, parts, where(*path))
+
+
+def _part(spec: dict, expr, where, *path) -> Part:
+    shape = None
+    inertia = spec.get("inertia")
+    if inertia is not None:
+        (kind, args), = inertia.items()
+        ipath = (*path, "inertia", kind)
+        if kind in _SHAPES:
+            cls, keys = _SHAPES[kind]
+            values = [expr(args[k], *ipath, k) for k in keys]
+            shape = cls(*values, args["axis"]) if "axis" in args else cls(*values)
+        elif kind == "block":
+            shape = Block(tuple(expr(s, *ipath, "sides", i) for i, s in enumerate(args["sides"])))
+        else:  # about_centre
+            shape = Explicit(tuple((k, expr(args[k], *ipath, k)) for k in INERTIA_KEYS
+                                   if k in args))
+    return Part(expr(spec["mass"], *path, "mass"), spec["at"], shape, where(*path))
+
+
+# ---------------------------------------------------------------------------- validation
+
+
+def check_dynamics(problem, checker) -> None:
+    """Names, kinds and dimensions of the dynamics sections (``checker`` types expressions)."""
+    d = problem.dynamics
+    if d is None:
+        return
+    frames = {f.name for f in problem.frames}
+    points = {p.name for p in problem.points}
+    scalars = {c.name for c in problem.coordinates} | {p.name for p in problem.parameters}
+    seen: dict[str, str] = {}
+    for item, what in [(b, "body") for b in d.bodies] + [(x, "load") for x in d.loads]:
+        if item.name in seen or item.name in frames | points | scalars | {GROUND}:
+            raise SpecError(f"'{item.name}' names a {what} and something else already; "
+                            "expected a distinct name", where=item.where)
+        seen[item.name] = what
+    bodies = {b.name for b in d.bodies}
+
+    def point(name, where, field_name):
+        if name not in points:
+            raise SpecError(f"unknown point '{name}' in '{field_name}' (points: "
+                            f"{', '.join(sorted(points))})", where=where)
+
+    def body(name, where, ground_ok=False):
+        if name not in bodies and not (ground_ok and name == GROUND):
+            known = sorted(bodies | ({GROUND} if ground_ok else set()))
+            raise SpecError(f"unknown body '{name}' (bodies: {', '.join(known)})", where=where)
+
+    def typed(e: Expr, kind: str, unit: str, what: str):
+        t = checker.type_of(e)
+        if t.kind == "zero":
+            return
+        if t.kind != kind:
+            raise SpecError(f"expected {what}, found a {t.kind} ('{e.text}')", where=e.where)
+        if t.dim != dimension(unit):
+            checker._dims_match(t.dim, dimension(unit), e.where, f"'{e.text}' ({what})")
+
+    for b in d.bodies:
+        point(b.centre, b.where, "centre")
+        if b.frame is not None and b.frame not in frames:
+            raise SpecError(f"unknown frame '{b.frame}' (frames: {', '.join(sorted(frames))})",
+                            where=b.where)
+        for part in b.parts:
+            point(part.at, part.where, "at")
+            typed(part.mass, "scalar", "kg", "a mass")
+            if part.shape is not None and b.frame is None:
+                raise SpecError(f"body '{b.name}' has an inertia but no 'frame': a rigid body "
+                                "needs the frame it turns with (a particle has no inertia)",
+                                where=part.where)
+            for e in _shape_exprs(part.shape):
+                unit = "kg*m^2" if isinstance(part.shape, Explicit) else "m"
+                typed(e, "scalar", unit, "a moment of inertia" if unit != "m" else "a length")
+    if d.gravity is not None:
+        typed(d.gravity, "vector", "m/s^2", "the gravitational acceleration as a vector "
+              "(e.g. -g*N.y)")
+    for f in d.forces:
+        body(f.on, f.where)
+        point(f.at, f.where, "at")
+        typed(f.force, "vector", "N", "a force vector")
+    for c in d.couples:
+        body(c.on, c.where)
+        typed(c.moment, "vector", "N*m", "a moment vector")
+    for s in (*d.springs, *d.dampers):
+        for p, b in zip(s.between, s.on):
+            point(p, s.where, "between")
+            body(b, s.where, ground_ok=True)
+    for s in d.springs:
+        typed(s.stiffness, "scalar", "N/m", "a stiffness")
+        typed(s.length, "scalar", "m", "a free length")
+    for s in d.dampers:
+        typed(s.coefficient, "scalar", "N*s/m", "a damping coefficient")
+    reactions = {r.name: r for r in d.reactions}
+    for r in d.reactions:
+        for act in r.acts:
+            body(act.on, r.where, ground_ok=True)
+            point(act.at, r.where, "at")
+    for f in d.friction:
+        body(f.on, f.where)
+        point(f.at, f.where, "at")
+        typed(f.mu, "scalar", "", "a friction coefficient")
+        normal = reactions.get(f.normal)
+        if normal is None or len(normal.directions) != 1:
+            raise SpecError(f"friction '{f.name}': 'normal' must name a reaction with one "
+                            f"direction (reactions: {', '.join(sorted(reactions)) or 'none'})",
+                            where=f.where)
+        if isinstance(f, KineticFriction) and f.surface not in frames | {GROUND}:
+            raise SpecError(f"unknown surface frame '{f.surface}' (frames: "
+                            f"{', '.join(sorted(frames))})", where=f.where)
+    if d.analysis is not None:
+        _check_analysis(problem, checker, d.analysis)
+    if d.design is not None:
+        params = {p.name: p for p in problem.parameters}
+        given = {g.key.text.strip() for g in problem.givens}
+        if d.design.find not in params or d.design.find in given:
+            raise SpecError(f"design 'find' must name a parameter that is not given, found "
+                            f"'{d.design.find}'", where=d.design.where)
+        left, right = d.design.so_that
+        checker._same(checker.type_of(left), checker.type_of(right), left,
+                      "both sides of 'so_that'")
+
+    for e in (*(x for r in d.reactions for x in r.directions),
+              *(x for f in d.friction if isinstance(f, StaticFriction) for x in f.directions)):
+        typed(e, "vector", "", "a direction (a vector without units, e.g. N.x)")
+
+
+def _check_analysis(problem, checker, analysis: Analysis) -> None:
+    coords = {c.name: c for c in problem.coordinates}
+    named = set()
+    for start in analysis.start:
+        node = start.key.node
+        if not (isinstance(node, (Name, Prime)) and node.id in coords
+                and (isinstance(node, Name) or node.order == 1)):
+            raise SpecError(f"expected a coordinate or its rate (q, q') in 'from', found "
+                            f"'{start.key.text}'", where=start.where)
+        named.add(to_text(node))
+        if start.value is not None:
+            checker._dims_match(checker.type_of(start.value).dim, checker.type_of(start.key).dim,
+                                start.where, f"the start value of '{start.key.text}'")
+            params = {p.name for p in problem.parameters}
+            for n in walk(start.value.node):
+                if isinstance(n, (Name, Prime)) and n.id not in params | {"pi"}:
+                    raise SpecError(f"a start value is a quantity or an expression of "
+                                    f"parameters; '{to_text(n)}' is not a parameter",
+                                    where=start.where)
+    if isinstance(analysis, Impulse):
+        bodies = {b.name for b in problem.dynamics.bodies} | {GROUND}
+        points = {p.name for p in problem.points}
+        for c in analysis.contacts:
+            if c.at not in points:
+                raise SpecError(f"unknown point '{c.at}' in 'at'", where=c.where)
+            for b in c.bodies:
+                if b not in bodies:
+                    raise SpecError(f"unknown body '{b}' (bodies: {', '.join(sorted(bodies))})",
+                                    where=c.where)
+            directions = (c.direction,) if isinstance(c, Restitution) else c.directions
+            for d in directions:
+                t = checker.type_of(d)
+                if t.kind != "vector" or t.dim != dimensionless():
+                    raise SpecError(f"expected a direction (a vector without units, e.g. N.y), "
+                                    f"found '{d.text}'", where=c.where)
+            if isinstance(c, Restitution) and checker.type_of(c.e).dim != dimensionless():
+                raise SpecError(f"expected a pure number for the coefficient of restitution, "
+                                f"found '{c.e.text}'", where=c.where)
+        for start in analysis.start:
+            if not isinstance(start.key.node, Prime):
+                raise SpecError(f"expected a rate (q') in 'before', found '{start.key.text}' "
+                                "(the configuration does not change during an impact)",
+                                where=start.where)
+        return
+    missing = [c for c in coords if c not in named]
+    if missing:
+        raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "
+                        f"{', '.join(missing)}", where=analysis.where)
+    if isinstance(analysis, WorkEnergy):
+        for key, sense in analysis.sense:
+            node = key.node
+            if not (isinstance(node, Prime) and node.order == 1 and node.id in coords):
+                raise SpecError(f"expected a rate (q') in 'sense', found '{key.text}'",
+                                where=key.where)
+    else:
+        left, right = analysis.until
+        checker._same(checker.type_of(left), checker.type_of(right), left,
+                      "both sides of 'until'")
+
+
+def _shape_exprs(shape) -> tuple[Expr, ...]:
+    if shape is None:
+        return ()
+    if isinstance(shape, Block):
+        return shape.sides
+    if isinstance(shape, Explicit):
+        return tuple(e for _, e in shape.entries)
+    return tuple(v for v in vars(shape).values() if isinstance(v, Expr))
+
+
+def argument_dimension(problem, func: str, arg: Node, kind: str):
+    """The dimension of a ``body``, ``load`` or ``coordinate`` argument of an objective
+    function (see :mod:`mechgrade.spec.language`), after checking that it names one."""
+    d = problem.dynamics
+    name = arg.id if isinstance(arg, Name) else to_text(arg)
+    if kind == "coordinate":
+        coords = {c.name: c for c in problem.coordinates}
+        if name not in coords:
+            raise SpecError(f"expected a coordinate as argument of {func}(...), found "
+                            f"'{name}' (coordinates: {', '.join(coords) or 'none'})")
+        return dimension(coords[name].unit)
+    bodies = [b.name for b in d.bodies] if d else []
+    names = {"body": bodies, "load": [x.name for x in d.loads] if d else [],
+             "body or spring": bodies + ([s.name for s in d.springs] if d else [])}[kind]
+    if name not in names:
+        raise SpecError(f"expected a {kind} as argument of {func}(...), found '{name}' "
+                        f"(known: {', '.join(names) or 'none: add a bodies/loads section'})")
+    return dimensionless()

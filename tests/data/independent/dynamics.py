@@ -1,0 +1,188 @@
+"""Independent reference values for the dynamics problems (numpy only).
+
+Run:  python tests/data/independent/dynamics.py
+
+Each ``case_*`` function returns {objective_id: value} for one problem of problems/, in that
+objective's unit (vectors as [x, y, z] in the objective's frame, symbolic objectives as
+sympy-syntax strings). The solver writes Newton-Euler balances about each body's mass centre
+with the reactions as unknowns; every value here comes by another route: Lagrange's equations
+from hand-written T and V, moments about a fixed pin with the parallel-axis theorem applied by
+hand, whole-system balances, polar acceleration formulas. Nothing here imports mechgrade or
+sympy.
+"""
+
+import numpy as np
+
+DEG = np.pi / 180.0
+
+
+def case_pendulum_pin_reaction():
+    m, L, g, th, w = 2.0, 1.2, 9.81, 40 * DEG, 3.0
+    I_O = m * L**2 / 12 + m * (L / 2) ** 2  # parallel axis by hand: m L^2 / 3
+    alpha = -m * g * (L / 2) * np.sin(th) / I_O  # moments about the fixed pin
+    r = np.array([L / 2 * np.sin(th), -L / 2 * np.cos(th)])  # G from O
+    a_G = alpha * np.array([-r[1], r[0]]) - w**2 * r
+    R = m * a_G - m * np.array([0.0, -g])
+    e_rod_up = np.array([-np.sin(th), np.cos(th)])  # B.y
+    return {"alpha": alpha, "pin_force": [R[0], R[1], 0.0],
+            "pin_force_along_rod": float(R @ e_rod_up),
+            "eom_symbolic": "-3*g*sin(theta)/(2*L)"}
+
+
+def case_atwood_machine():
+    m1, m2, g = 3.0, 5.0, 9.81
+    a = (m2 - m1) * g / (m1 + m2)  # the whole string-and-blocks system
+    T = m1 * (g + a)  # block 1 alone
+    return {"a1": a, "tension": T, "a1_symbolic": "g*(m2 - m1)/(m1 + m2)",
+            "tension_symbolic": "2*m1*m2*g/(m1 + m2)"}
+
+
+def case_block_on_turntable():
+    m, r, g, w, alpha = 0.5, 0.3, 9.81, 4.0, 2.0
+    a_r, a_t = -r * w**2, r * alpha  # polar components of the acceleration
+    F = m * np.array([a_r, a_t])  # friction is the only horizontal force
+    N = m * g
+    return {"friction_B": [F[0], F[1], 0.0], "normal": N,
+            "mu_needed": float(np.hypot(*F) / N),
+            "mu_needed_symbolic": "r*sqrt(phid**4 + phidd**2)/g"}
+
+
+def case_block_sliding_down_incline():
+    m, g, beta, mu = 4.0, 9.81, 30 * DEG, 0.25
+    N = m * g * np.cos(beta)
+    F = -mu * N  # opposes the downhill slip
+    return {"accel": g * np.sin(beta) + F / m, "normal": N, "friction": [F, 0.0, 0.0],
+            "accel_symbolic": "g*(sin(beta) - mu_k*cos(beta)*sign(xd))"}
+
+
+def case_two_mass_spring_chain():
+    m1, m2, k1, k2, L1, L2, c = 2.0, 1.0, 100.0, 50.0, 0.5, 0.8, 4.0
+    x1, x2, v1, v2 = 0.6, 1.5, 0.5, -0.2
+    # Lagrange with V = k1 (x1-L1)^2/2 + k2 (x2-x1-L2)^2/2 and Rayleigh D = c (v2-v1)^2/2
+    dV = np.array([k1 * (x1 - L1) - k2 * (x2 - x1 - L2), k2 * (x2 - x1 - L2)])
+    dD = np.array([-c * (v2 - v1), c * (v2 - v1)])
+    a = -(dV + dD) / np.array([m1, m2])
+    return {"a1": a[0], "a2": a[1], "spring2_on_block1": [k2 * (x2 - x1 - L2), 0.0, 0.0],
+            "spring1_energy": k1 * (x1 - L1) ** 2 / 2, "ke2": m2 * v2**2 / 2,
+            "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0]}
+
+
+def case_ruina_9_19_falling_ladder():
+    m, L, g, th, thd = 10.0, 4.0, 9.81, 60 * DEG, -0.5
+    # Lagrange: T = m L^2 thd^2 / 6 (centre speed L thd / 2 plus spin), V = m g L sin(th) / 2
+    thdd = -(m * g * L / 2 * np.cos(th)) / (m * L**2 / 3)
+    # the reactions are the only horizontal / the vertical forces besides gravity
+    xdd = -L / 2 * (np.sin(th) * thdd + np.cos(th) * thd**2)
+    ydd = L / 2 * (np.cos(th) * thdd - np.sin(th) * thd**2)
+    return {"G_path_radius": "L/2", "eom_thetaddot": "-3*g*cos(theta)/(2*L)",
+            "N1_wall": "m*cos(theta)*(3*g*sin(theta) - 2*L*thetad**2)/4",
+            "N2_floor": "m*(g + 3*g*sin(theta)**2 - 2*L*thetad**2*sin(theta))/4",
+            "thetaddot_now": thdd, "reactions_now": [m * xdd, m * (ydd + g), 0.0]}
+
+
+def case_ruina_9_21_wheel_incline():
+    m, M, r, g, th = 1.0, 2.0, 0.1, 9.81, 30 * DEG
+    mass = m + 2 * M
+    # Lagrange in x with phi' = -x'/r: (mass + I/r^2) x'' = mass g sin(th), I = m r^2/2 + M R^2;
+    # a = 0.2 g  =>  I/r^2 = mass (sin(th)/0.2 - 1)
+    I = mass * (np.sin(th) / 0.2 - 1) * r**2
+    R = np.sqrt((I - m * r**2 / 2) / M)
+    a = 0.2 * g
+    return {"aG_symbolic": "(m + 2*M)*g*sin(theta)/(m + 2*M + (m*r**2/2 + M*R**2)/r**2)",
+            "R_min": R,
+            "contact_force": [mass * a - mass * g * np.sin(th), mass * g * np.cos(th), 0.0]}
+
+def case_ruina_9_20_ladder_energy():
+    # energy: m g (L/2) (sin th0 - sin th) = (m L^2 / 6) thd^2, v_G = (L/2) |thd|
+    th0, th = 80 * DEG, 45 * DEG  # with g = L = 1
+    thd2 = 3 * (np.sin(th0) - np.sin(th))
+    return {"vG_over_sqrt_gL": 0.5 * np.sqrt(thd2),
+            "eom_thetaddot": "-3*g*cos(theta)/(2*L)",
+            # written with g, L > 0 split out: the comparison samples signed symbols
+            "vG_symbolic": "sqrt(3)*sqrt(g)*sqrt(L)*sqrt(sin(theta0) - sin(theta))/2",
+            # N1 = m x_G'' with L thd^2 = 3 g (sin th0 - sin th)
+            "N1_wall": "3*m*g*cos(theta)*(3*sin(theta) - 2*sin(theta0))/4"}
+
+
+def case_ruina_9_23_ball_impulse_momentum():
+    m, r, g, v0 = 1.0, 0.1, 9.8, 5.0
+    I = 2 * m * r**2 / 5
+
+    def rolling(mu):
+        # angular impulse about the contact point is zero: m v0 r = m v r + I v / r
+        v = m * v0 * r / (m * r + I / r)
+        t = (v0 - v) / (mu * g)  # linear impulse of the friction force
+        return t, v, v0 * t - mu * g * t**2 / 2
+
+    t, v, x = rolling(0.12)
+    return {"t_star": t, "v_at_t_star": v, "omega_at_t_star_z": -v / r,
+            "distance_to_pure_rolling": x, "t_star_if_mu_0p2": rolling(0.2)[0]}
+
+
+def case_ladder_wall_lift_off():
+    m, L, g, th0 = 12.0, 4.0, 9.81, 80 * DEG
+    # N1 = (3/4) m g cos(th) (3 sin th - 2 sin th0) (Sample 9.19) vanishes at sin th = 2/3 sin th0
+    th = np.arcsin(2 * np.sin(th0) / 3)
+    thd = -np.sqrt(3 * g * (np.sin(th0) - np.sin(th)) / L)  # energy from rest
+    N2 = m * (g + 3 * g * np.sin(th) ** 2 - 2 * L * thd**2 * np.sin(th)) / 4
+    return {"theta_wall_contact_lost_deg": th / DEG, "thetad_at_lift_off": thd,
+            "floor_reaction": N2, "energy_at_lift_off": m * g * L / 2 * np.sin(th0)}
+
+
+def case_damped_pendulum_vibration():
+    m, L, g, c = 1.5, 0.8, 9.81, 0.6
+    # about the pin: (m L^2/3) th'' = -(m g L/2) sin th - c L^2 th' (the horizontal dashpot
+    # at the tip stretches at -L th' near th = 0): linearised k = 3g/(2L), c_eff = 3c/m
+    wn = np.sqrt(3 * g / (2 * L))
+    zeta = 3 * c / m / (2 * wn)
+    # symbolic forms with g, L > 0 split out: the comparison samples signed symbols
+    return {"omega_n": wn, "zeta": zeta,
+            "damped_period": 2 * np.pi / (wn * np.sqrt(1 - zeta**2)),
+            "omega_n_symbolic": "sqrt(6)*sqrt(g)/(2*sqrt(L))",
+            "zeta_symbolic": "sqrt(6)*sqrt(L)*c/(2*sqrt(g)*m)"}
+
+
+def case_ruina_9_26_billiard_cue():
+    m, r, d, v = 0.2, 0.03, 0.01, 1.0
+    P = m * v  # linear impulse = change of linear momentum
+    # angular impulse about the centre: the cue above the centre spins the ball clockwise
+    omega = -P * d / (2 * m * r**2 / 5)
+    return {"omega_z": omega, "impulse": P, "omega_symbolic": "-5*d*v/(2*r**2)"}
+
+
+def case_rod_strikes_ledge():
+    m, L, v0, e = 3.0, 1.2, 4.0, 0.5
+    # P = m (vG' + v0); (m L^2/12) w' = -(L/2) P; end A: vG' - (L/2) w' = e v0
+    # => vG' + 3 (vG' + v0) = e v0
+    vG = (e * v0 - 3 * v0) / 4
+    P = m * (vG + v0)
+    w = -(L / 2) * P / (m * L**2 / 12)
+    return {"vG_after": vG, "omega_after": w, "impulse": [0.0, P, 0.0],
+            "omega_symbolic": "-3*v0*(1 + e)/(2*L)"}
+
+
+def case_yo_yo_unwinding():
+    m, k, r, g, yd = 0.2, 0.03, 0.01, 9.81, -0.5
+    # about the string point S (the instantaneous centre, moving with G's acceleration
+    # parallel to GS = 0): (m k^2 + m r^2) phi'' = m g r, y'' = r phi''
+    a = -g * r**2 / (k**2 + r**2)
+    T = m * (g + a)
+    return {"accel": a, "tension": T, "tension_symbolic": "m*g*k**2/(k**2 + r**2)",
+            "spin_momentum": [0.0, 0.0, m * k**2 * yd / r]}
+
+
+def case_car_braking_weight_transfer():
+    m, g, h, a, b, mu = 1200.0, 9.81, 0.55, 1.1, 1.5, 0.8
+    # moments about the rear contact (the car does not pitch): N_F (a + b) - m g b = m a_x h
+    ax = -mu * g  # all wheels slide: friction mu (N_F + N_R) = mu m g
+    NF = (m * g * b - m * ax * h) / (a + b)
+    return {"decel": ax, "front_normal": NF, "rear_normal": m * g - NF,
+            "front_share_symbolic": "m*g*(b + mu*h*sign(xd))/(a + b)"}
+
+
+CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
+         if name.startswith("case_")}
+
+if __name__ == "__main__":
+    for name, f in CASES.items():
+        print(name, f())

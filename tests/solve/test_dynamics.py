@@ -1,0 +1,298 @@
+"""The dynamics solver: answers, symbolic and numeric agreement, and the models it must refuse
+(under-constrained, statically indeterminate, missing reactions, slipping, lost contact)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechgrade.errors import InconsistentError, SolveError, UnderdeterminedError
+from mechgrade.expressions.build import to_sympy
+from mechgrade.expressions.syntax import parse, to_text
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem, load_problem_text
+from mechgrade.spec.validate import symbol_meanings
+
+ROOT = Path(__file__).resolve().parents[2]
+DYNAMICS = sorted(p for p in (ROOT / "problems").glob("*.yaml")
+                  if "bodies:" in p.read_text())
+
+
+def text(name: str) -> str:
+    return (ROOT / "problems" / f"{name}.yaml").read_text()
+
+
+def solve_text(body: str):
+    return solve(load_problem_text(body, "p.yaml"))
+
+
+def error_of(body: str, kind=SolveError, objectives=None) -> str:
+    with pytest.raises(kind) as info:
+        solution = solve(load_problem_text(body, "p.yaml"), objectives=objectives)
+        for failure in solution.failures:
+            raise failure.error
+    return str(info.value)
+
+
+@pytest.mark.parametrize("path", DYNAMICS, ids=[p.stem for p in DYNAMICS])
+def test_symbolic_answers_agree_with_the_numeric_solution(path):
+    """Each symbolic objective, evaluated at the givens, equals the same quantity solved
+    numerically (the problem re-solved with the objective's find as a scalar)."""
+    problem = load_problem(path)
+    solution = solve(problem)
+    state = {s.name: s.si for s in solution.state}
+    for obj in problem.objectives:
+        if obj.kind != "symbolic":
+            continue
+        values = {name: state[to_text(node)]
+                  for name, node in symbol_meanings(problem, obj).items()}
+        result = solution.result(obj.id)
+        expr = to_sympy(parse(result.expr), lambda n: values[n.id], None)
+        reference = _numeric_value(problem, obj)
+        assert float(expr) == pytest.approx(reference, rel=1e-9, abs=1e-12), obj.id
+
+
+def _numeric_value(problem, obj):
+    from dataclasses import replace
+    twin = replace(obj, kind="scalar", symbols=(), expect=None, id=obj.id + "_numeric")
+    solution = solve(replace(problem, objectives=(twin,)))
+    return solution.result(twin.id).value
+
+
+def test_statically_indeterminate_model_names_the_reactions():
+    body = text("ruina_9_19_falling_ladder").replace(
+        "    N2: {body: ladder, at: B, direction: N.y}          # floor\n",
+        "    N2: {body: ladder, at: B, direction: N.y}          # floor\n"
+        "    N3: {body: ladder, at: A, direction: N.y}\n")
+    message = error_of(body, UnderdeterminedError, objectives=["thetaddot_now"])
+    assert "the model is statically indeterminate" in message
+    assert "N2 (along N.y), N3 (along N.y)" in message
+    assert message.startswith("p.yaml:")
+
+
+def test_under_constrained_model_names_the_free_acceleration():
+    body = text("atwood_machine").replace("coordinates:\n  y: m\n",
+                                          "coordinates:\n  y: m\n  s: m\n")
+    body = body.replace("  y': 0 m/s\n", "  y': 0 m/s\n  s: 0 m\n  s': 0 m/s\n")
+    message = error_of(body, UnderdeterminedError, objectives=["a1"])
+    assert "the model is under-constrained" in message and "do not determine s''" in message
+
+
+def test_a_missing_reaction_is_an_inconsistency_naming_the_balance():
+    body = text("pendulum_pin_reaction").replace(
+        "  reactions:\n    R_O: {body: rod, at: O, directions: [N.x, N.y]}\n", "")
+    body = body.replace("force(R_O)", "m*acc(G, N)")
+    message = error_of(body, InconsistentError, objectives=["alpha"])
+    assert "the equations of motion cannot all hold: 'body rod: N.x force balance'" in message
+
+
+def test_a_given_acceleration_that_contradicts_the_loads_is_reported():
+    body = text("atwood_machine").replace("  y': 0 m/s\n", "  y': 0 m/s\n  y'': 1 m/s^2\n")
+    assert "cannot all hold" in error_of(body, InconsistentError, objectives=["a1"])
+
+
+def test_static_friction_bound_violated_says_how_large_mu_must_be():
+    body = text("block_on_turntable").replace("  mu_s: 0.6\n", "  mu_s: 0.3\n")
+    message = error_of(body)
+    assert "the block slips at P: sticking needs mu >= 0.493" in message
+    assert "but mu = 0.3" in message
+
+
+def test_kinetic_friction_without_slip_asks_for_static_friction():
+    body = text("block_sliding_down_incline").replace("  x': 2 m/s\n", "  x': 0 m/s\n")
+    assert "needs the contact at P to slip" in error_of(body)
+
+
+def test_kinetic_friction_contact_that_would_pull_is_lost():
+    body = text("block_sliding_down_incline").replace("gravity: -g*N.y", "gravity: g*N.y")
+    assert "contact lost at P" in error_of(body)
+
+
+def test_a_composite_part_that_moves_in_its_body_is_refused():
+    body = text("ruina_9_21_wheel_incline").replace(
+        "      - {mass: M, at: G, inertia: {disk: {radius: R, axis: z}}}\n"
+        "      - {mass: M, at: G,",
+        "      - {mass: M, at: G, inertia: {disk: {radius: R, axis: z}}}\n"
+        "      - {mass: M, at: C,")
+    assert "moves relative to its frame W" in error_of(body)
+
+
+def test_parallel_axis_inertia_of_a_rod_with_a_point_mass():
+    """A composite pendulum (rod plus a point mass at the tip) swings like its textbook
+    inertia about the pin: (m L^2/3 + M L^2) theta'' = -(m L/2 + M L) g sin(theta)."""
+    body = text("pendulum_pin_reaction").replace(
+        "  rod: {mass: m, centre: G, frame: B, inertia: {rod: {length: L, axis: y}}}\n",
+        "  rod:\n    frame: B\n    parts:\n"
+        "      - {mass: m, at: G, inertia: {rod: {length: L, axis: y}}}\n"
+        "      - {mass: m, at: T}\n").replace(
+        "  G: {from: O, position: -L/2*B.y}\n",
+        "  G: {from: O, position: -L/2*B.y}\n  T: {from: O, position: -L*B.y}\n")
+    solution = solve_text(body)
+    m, L, g, th = 2.0, 1.2, 9.81, np.radians(40)
+    expected = -(m * L / 2 + m * L) * g * np.sin(th) / (m * L**2 / 3 + m * L**2)
+    assert solution.result("alpha").value == pytest.approx(expected, rel=1e-12)
+    assert solution.result("eom_symbolic").expr == "-9*g*sin(theta)/(8*L)"
+
+
+def test_integration_conserves_energy_and_finds_the_event_to_1e_6():
+    """The ladder released at 80 deg: mechanical energy at the lift-off event equals the
+    start's (drift below 1e-9 relative), and the event angle is asin(2/3 sin 80 deg)."""
+    solution = solve(load_problem(ROOT / "problems" / "ladder_wall_lift_off.yaml"))
+    m, L, g = 12.0, 4.0, 9.81
+    start = m * g * L / 2 * np.sin(np.radians(80))
+    assert solution.result("energy_at_lift_off").value == pytest.approx(start, rel=1e-9)
+    expected = np.degrees(np.arcsin(2 / 3 * np.sin(np.radians(80))))
+    assert solution.result("theta_wall_contact_lost_deg").value == pytest.approx(expected,
+                                                                                 rel=1e-8)
+
+
+def test_rolling_time_is_the_same_for_a_marble_and_a_bowling_ball():
+    """Sample 9.22: t* = 2 v0 / (7 mu g) does not depend on the radius or the mass."""
+    body = text("ruina_9_23_ball_impulse_momentum")
+    marble = solve_text(body).result("t_star").value
+    bowling = solve_text(body.replace("  r: 0.1 m\n", "  r: 1.6 m\n").replace(
+        "  m: 1 kg\n", "  m: 4096 kg\n")).result("t_star").value
+    assert bowling == pytest.approx(marble, rel=1e-9)
+    assert marble == pytest.approx(2 * 5 / (7 * 0.12 * 9.8), rel=1e-9)
+
+
+def test_an_event_that_never_happens_is_reported():
+    body = text("ladder_wall_lift_off").replace("max_time: 10 s", "max_time: 0.2 s")
+    assert "does not happen within 0.2 s" in error_of(body)
+
+
+def test_an_integration_that_chatters_past_the_end_of_slip_is_stopped(monkeypatch):
+    from mechgrade.solve import events
+
+    monkeypatch.setattr(events, "MAX_CALLS", 4000)
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "until: x' + r*phi' = 0", "until: x' = 0")
+    assert "the integration stalls near t = 1.2" in error_of(body)
+
+
+def test_symbolic_objective_of_an_integrated_motion_is_refused():
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "    find: x\n    kind: scalar\n    unit: m\n    expect: {value: 5.2061641}",
+        "    find: x\n    kind: symbolic\n    unit: m\n    symbols: [v0]\n    expect: {expr: v0}")
+    assert "the motion is integrated numerically" in error_of(body)
+
+
+def test_work_energy_refuses_non_conservative_loads():
+    body = text("ruina_9_20_ladder_energy").replace(
+        "    N2: {body: ladder, at: B, direction: N.y}\n",
+        "    N2: {body: ladder, at: B, direction: N.y}\n  friction:\n"
+        "    F2: {body: ladder, at: B, normal: N2, mu: 0.3, kind: kinetic}\n")
+    assert "work_energy needs conservative loads: F2" in error_of(body, objectives=[
+        "vG_over_sqrt_gL"])
+
+
+def test_work_energy_needs_the_sense_of_the_rate():
+    body = text("ruina_9_20_ladder_energy").replace(
+        "    sense: {theta': negative}             # falling\n", "")
+    assert "give 'sense'" in error_of(body, objectives=["vG_over_sqrt_gL"])
+
+
+def test_work_energy_refuses_an_unreachable_instant():
+    body = text("ruina_9_20_ladder_energy").replace("  theta: 45 deg\n", "  theta: 85 deg\n")
+    assert "cannot be reached from the start state" in error_of(body, objectives=[
+        "vG_over_sqrt_gL"])
+
+
+def test_work_energy_refuses_a_reaction_that_works():
+    """A reaction pushing along the motion of its point is not workless."""
+    body = text("ruina_9_20_ladder_energy").replace(
+        "N1: {body: ladder, at: A, direction: N.x}", "N1: {body: ladder, at: A, direction: N.y}")
+    body = body.replace("N2: {body: ladder, at: B, direction: N.y}",
+                        "N2: {body: ladder, at: B, direction: N.x}")
+    assert "does work at the instant" in error_of(body, objectives=["vG_over_sqrt_gL"])
+
+
+def test_steps_show_the_parallel_axis_shift_balances_and_unknowns():
+    from mechgrade.mechanics import derivation
+
+    body = text("pendulum_pin_reaction").replace(
+        "  rod: {mass: m, centre: G, frame: B, inertia: {rod: {length: L, axis: y}}}\n",
+        "  rod:\n    frame: B\n    centre: O\n    parts:\n"
+        "      - {mass: m, at: G, inertia: {rod: {length: L, axis: y}}}\n")
+    sections = dict(derivation(load_problem_text(body, "p.yaml")))
+    assert sections["Bodies"][1] == ("  part of mass m at G: I_G = [L**2*m/12, 0, 0; 0, 0, 0; "
+                                     "0, 0, L**2*m/12]; shifted to O by r = - L/2*B.y: "
+                                     "I + m (|r|^2 U - r r)")
+    assert sections["Bodies"][2] == "  I_O (in B axes) = [L**2*m/3, 0, 0; 0, 0, 0; 0, 0, L**2*m/3]"
+    assert "rod: gravity at G: - g*m*N.y; R_O at O: R_O_1*N.x + R_O_2*N.y" in \
+        sections["Free-body loads"]
+    assert sections["Solution"][1] == "unknowns: theta'', R_O (along N.x), R_O (along N.y) " \
+                                      "(those not given)"
+    assert "alpha: eom(theta) = thetadd" in sections["Objectives in the model's quantities"]
+
+
+def test_vibration_away_from_an_equilibrium_is_refused():
+    body = text("damped_pendulum_vibration").replace("  theta: 0 rad\n", "  theta: 10 deg\n")
+    message = error_of(body, objectives=["omega_n"])
+    assert "objective 'omega_n' does not exist at this instant: the configuration is not an " \
+           "equilibrium (theta'' is not zero at rest there)" in message
+
+
+def test_vibration_needs_one_degree_of_freedom():
+    body = text("two_mass_spring_chain").replace("find: ke(block2, N)\n    kind: scalar\n    unit: J",
+                                                 "find: omega_n(x1)\n    kind: scalar\n    unit: rad/s")
+    body = body.replace("expect: {value: 0.02}", "expect: {value: 1}")
+    assert "omega_n and zeta need a single coordinate" in error_of(body)
+
+
+def test_impulse_needs_an_impact_and_an_impact_reaction_is_no_force():
+    body = text("ruina_9_26_billiard_cue")
+    assert "impulse(P) needs an impact" in error_of(body.replace(
+        "analysis:\n  impulse:\n    before: {x': 0 m/s, phi': 0 rad/s}           # at rest\n",
+        ""))
+    assert "ask for impulse(P)" in error_of(body.replace("mag(impulse(P))\n    kind: scalar\n"
+                                                         "    unit: N*s",
+                                                         "mag(force(P))\n    kind: scalar\n"
+                                                         "    unit: N"))
+
+
+def test_an_impact_does_not_change_the_configuration():
+    body = text("ruina_9_26_billiard_cue").replace("before: {x': 0 m/s,", "before: {x: 0 m,")
+    from mechgrade.errors import SpecError
+    with pytest.raises(SpecError, match="expected a rate"):
+        load_problem_text(body, "p.yaml")
+
+
+def test_a_gripping_impact_conserves_angular_momentum_about_the_contact():
+    """The rod's end sticks to the ledge: it turns about A with H_A conserved,
+    (m L^2/3) w' = -m v0 L/2."""
+    body = text("rod_strikes_ledge").replace(
+        "P: {body: rod, at: A, direction: N.y}", "P: {body: rod, at: A, directions: [N.x, N.y]}")
+    body = body.replace("      - {at: A, bodies: [rod, ground], direction: N.y, restitution: e}",
+                        "      - {at: A, bodies: [rod, ground], directions: [N.x, N.y]}")
+    solution = solve(load_problem_text(body, "p.yaml"), objectives=["omega_after"])
+    assert solution.result("omega_after").value == pytest.approx(-3 * 4.0 / (2 * 1.2), rel=1e-12)
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("{at: A, bodies: [rod, ground]", "{at: Z, bodies: [rod, ground]", "unknown point 'Z'"),
+    ("bodies: [rod, ground], direction", "bodies: [rod, floor], direction", "unknown body 'floor'"),
+    ("direction: N.y, restitution: e}", "direction: L*N.y, restitution: e}",
+     "expected a direction (a vector without units, e.g. N.y), found 'L*N.y'"),
+    ("restitution: e}", "restitution: L}", "expected a pure number for the coefficient"),
+])
+def test_bad_impact_contact_is_located(old, new, message):
+    from mechgrade.errors import SpecError
+    with pytest.raises(SpecError) as info:
+        load_problem_text(text("rod_strikes_ledge").replace(old, new), "p.yaml")
+    assert message in str(info.value) and str(info.value).startswith("p.yaml:")
+
+
+def test_design_of_an_unreachable_target_is_reported():
+    body = text("ruina_9_21_wheel_incline").replace("= 0.2*g", "= 0.9*g")
+    assert "design: no value of R near 0.15 (SI) makes dot(acc(G, N), A.x) = 0.9*g" in \
+        error_of(body, objectives=["R_min"])
+
+
+def test_design_parameter_must_not_be_given():
+    from mechgrade.errors import SpecError
+    body = text("ruina_9_21_wheel_incline").replace("  r: 0.1 m\n", "  r: 0.1 m\n  R: 0.2 m\n")
+    with pytest.raises(SpecError, match="design 'find' must name a parameter that is not given"):
+        load_problem_text(body, "p.yaml")

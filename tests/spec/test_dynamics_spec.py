@@ -1,0 +1,101 @@
+"""The bodies: and loads: sections: every validation branch gives one located message."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mechgrade.errors import SpecError
+from mechgrade.spec import load_problem_text
+
+ROOT = Path(__file__).resolve().parents[2]
+PENDULUM = (ROOT / "problems" / "pendulum_pin_reaction.yaml").read_text()
+INCLINE = (ROOT / "problems" / "block_sliding_down_incline.yaml").read_text()
+CHAIN = (ROOT / "problems" / "two_mass_spring_chain.yaml").read_text()
+
+
+def error_of(text: str) -> str:
+    with pytest.raises(SpecError) as info:
+        load_problem_text(text, "p.yaml")
+    return str(info.value)
+
+
+CASES = [
+    ("body named like a point", PENDULUM, "  rod: {mass: m", "  G: {mass: m",
+     "bodies.G: 'G' names a body and something else already"),
+    ("unknown centre", PENDULUM, "centre: G, frame: B", "centre: Q, frame: B",
+     "unknown point 'Q' in 'centre'"),
+    ("unknown body frame", PENDULUM, "centre: G, frame: B", "centre: G, frame: K",
+     "unknown frame 'K' (frames: B, N)"),
+    ("particle with inertia", PENDULUM, "centre: G, frame: B, ", "centre: G, ",
+     "body 'rod' has an inertia but no 'frame'"),
+    ("mass without units of mass", PENDULUM, "rod: {mass: m,", "rod: {mass: L,",
+     "dimension mismatch in 'L' (a mass)"),
+    ("shape size not a length", PENDULUM, "rod: {length: L,", "rod: {length: m,",
+     "dimension mismatch in 'm' (a length)"),
+    ("explicit inertia in wrong units", PENDULUM, "inertia: {rod: {length: L, axis: y}}",
+     "inertia: {about_centre: {xx: m, zz: m*L}}", "(a moment of inertia)"),
+    ("unknown shape key", PENDULUM, "inertia: {rod: {length: L, axis: y}}",
+     "inertia: {cone: {length: L}}", "unknown key 'cone'"),
+    ("mass without centre", PENDULUM, "mass: m, centre: G,", "mass: m,",
+     "body 'rod' has a mass but no 'centre'"),
+    ("both mass and parts", PENDULUM, "rod: {mass: m,", "rod: {parts: [], mass: m,",
+     "expected only one of mass, parts"),
+    ("gravity as a scalar", PENDULUM, "gravity: -g*N.y", "gravity: -g",
+     "expected the gravitational acceleration as a vector"),
+    ("gravity not an acceleration", PENDULUM, "gravity: -g*N.y", "gravity: -L*N.y",
+     "dimension mismatch in '-L*N.y'"),
+    ("reaction on an unknown body", PENDULUM, "{body: rod, at: O", "{body: bar, at: O",
+     "unknown body 'bar' (bodies: ground, rod)"),
+    ("reaction at an unknown point", PENDULUM, "{body: rod, at: O", "{body: rod, at: Z",
+     "unknown point 'Z' in 'at'"),
+    ("direction with units", PENDULUM, "directions: [N.x, N.y]", "directions: [L*N.x, N.y]",
+     "(a direction (a vector without units, e.g. N.x))"),
+    ("reaction without direction", PENDULUM, ", directions: [N.x, N.y]}", "}",
+     "expected one of the keys direction, directions"),
+    ("yaml 'on' key", PENDULUM, "{body: rod, at: O", "{on: rod, at: O", "unknown key"),
+    ("friction normal not a reaction", INCLINE, "normal: N_P", "normal: block",
+     "friction 'F_P': 'normal' must name a reaction with one direction"),
+    ("friction coefficient with units", INCLINE, "mu: mu_k", "mu: g",
+     "dimension mismatch in 'g' (a friction coefficient)"),
+    ("kinetic friction on an unknown surface", INCLINE, "kind: kinetic}",
+     "kind: kinetic, surface: K}", "unknown surface frame 'K'"),
+    ("spring stiffness units", CHAIN, "stiffness: k1", "stiffness: m1",
+     "dimension mismatch in 'm1' (a stiffness)"),
+    ("spring free length units", CHAIN, "length: L1", "length: k1",
+     "dimension mismatch in 'k1' (a free length)"),
+    ("damper coefficient units", CHAIN, "coefficient: c", "coefficient: k1",
+     "dimension mismatch in 'k1' (a damping coefficient)"),
+    ("spring on an unknown body", CHAIN, "bodies: [ground, block1]", "bodies: [wall, block1]",
+     "unknown body 'wall'"),
+    ("loads without bodies", CHAIN, "bodies:\n  block1: {mass: m1, centre: P1}\n  block2: {mass: m2, centre: P2}\n",
+     "", "'loads' needs bodies: expected a 'bodies' section"),
+    ("force of an unknown load", PENDULUM, "find: force(R_O)", "find: force(R_Q)",
+     "expected a load as argument of force(...), found 'R_Q' (known: R_O)"),
+    ("eom of a parameter", PENDULUM, "find: eom(theta)\n    kind: scalar",
+     "find: eom(L)\n    kind: scalar", "expected a coordinate as argument of eom(...)"),
+    ("pe of a reaction", PENDULUM, "find: dot(force(R_O), B.y)", "find: pe(R_O)",
+     "expected a body or spring as argument of pe(...)"),
+    ("force in the wrong unit", PENDULUM, "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: N",
+     "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: J", "dimension mismatch"),
+]
+
+
+@pytest.mark.parametrize("base, old, new, message", [c[1:] for c in CASES],
+                         ids=[c[0] for c in CASES])
+def test_bad_dynamics_section_gives_located_message(base, old, new, message):
+    assert old in base
+    err = error_of(base.replace(old, new, 1))
+    assert message in err
+    assert err.startswith("p.yaml:")
+
+
+def test_a_composite_body_reads_its_parts():
+    from mechgrade.spec import load_problem
+    from mechgrade.spec.dynamics import Disk
+
+    wheel = load_problem(ROOT / "problems" / "ruina_9_21_wheel_incline.yaml").dynamics.body("wheel")
+    assert [p.mass.text for p in wheel.parts] == ["m", "M", "M"]
+    assert all(isinstance(p.shape, Disk) for p in wheel.parts)
+    assert wheel.centre == "G"
