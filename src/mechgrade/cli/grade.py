@@ -8,9 +8,6 @@ from pathlib import Path
 import click
 
 from ..files import clean_text
-from ..grade.assignment import load_assignment
-from ..grade.run import grade_submissions
-from ..report.output import write_outputs
 from ..roster import read_roster
 from .common import INTERNAL_ERROR_EXIT, main, reports_errors
 
@@ -34,6 +31,11 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     A bad assignment stops with one message (exit code 2); a bad submission never stops the
     run: it is reported in that student's feedback and in the summary.
     """
+    # Here, not at the top: sympy and the solver load only when a run starts (not for --help).
+    from ..grade.assignment import load_assignment
+    from ..grade.run import grade_submissions
+    from ..report.output import write_outputs
+
     spec = load_assignment(assignment)
     class_roster = read_roster(roster) if roster is not None else None
     bar = None
