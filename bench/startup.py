@@ -26,7 +26,8 @@ def median_seconds(command: list[str], runs: int) -> float:
 
 def main(runs: int) -> None:
     python = sys.executable
-    mechgrade = [python, "-m", "mechgrade"]
+    script = Path(python).with_name("mechgrade")  # the installed command, as users run it
+    mechgrade = [str(script)] if script.exists() else [python, "-m", "mechgrade"]
     commands = {
         "mechgrade --help": mechgrade + ["--help"],
         "mechgrade export --help": mechgrade + ["export", "--help"],

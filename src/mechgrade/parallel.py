@@ -37,23 +37,31 @@ def default_jobs() -> int:
 def fork_map(func: Callable[[T], R], items: Iterable[T], *, jobs: int) -> list[R]:
     """``[func(item) for item in items]``, in up to ``jobs`` forked processes.
 
-    ``func`` and the items' results must pickle; an exception raised by ``func`` is raised here
-    as in a plain loop. Without ``fork`` (or with ``jobs`` 1, or one item) the work runs in this
-    process; so does any item whose worker died.
+    The items go to the workers in a few chunks per worker (a round trip per item would cost
+    more than reading a small file). ``func`` and the items' results must pickle; an exception
+    raised by ``func`` is raised here as in a plain loop. Without ``fork`` (or with ``jobs`` 1,
+    or one item) the work runs in this process; so does a chunk whose worker died.
     """
     items = list(items)
     if jobs <= 1 or len(items) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
         return [func(item) for item in items]
+    pieces = min(len(items), 4 * jobs)
+    chunks = [items[len(items) * i // pieces:len(items) * (i + 1) // pieces]
+              for i in range(pieces)]
     context = multiprocessing.get_context("fork")
-    with ProcessPoolExecutor(max_workers=min(jobs, len(items)), mp_context=context) as pool:
-        futures = [pool.submit(func, item) for item in items]
-        results = []
-        for item, future in zip(items, futures):
+    results: list[R] = []
+    with ProcessPoolExecutor(max_workers=min(jobs, pieces), mp_context=context) as pool:
+        futures = [pool.submit(_map_chunk, func, chunk) for chunk in chunks]
+        for chunk, future in zip(chunks, futures):
             try:
-                results.append(future.result())
+                results.extend(future.result())
             except BrokenProcessPool:  # a worker was killed (out of memory?): do it here
-                results.append(func(item))
-        return results
+                results.extend(_map_chunk(func, chunk))
+    return results
+
+
+def _map_chunk(func: Callable[[T], R], chunk: list[T]) -> list[R]:
+    return [func(item) for item in chunk]
 
 
 def outcome(work: Callable[[], R]) -> R | MechgradeError:

@@ -140,3 +140,19 @@ def test_jobs_must_be_positive(tmp_path):
     folder = small_class(tmp_path)
     result = run(folder / "hw.yaml", folder / "subs", "--out", tmp_path / "out", "--jobs", "0")
     assert result.exit_code == 2 and "--jobs" in result.stderr
+
+
+def test_a_template_failing_in_a_worker_is_one_message_and_nothing_is_written(tmp_path):
+    templates = tmp_path / "t"
+    templates.mkdir()
+    (templates / "feedback.html.j2").write_text("{{ student.grade_letter }}", encoding="utf-8")
+    (templates / "feedback.md.j2").write_text("x", encoding="utf-8")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["grade", str(EXAMPLE / "assignment.yaml"),
+                                       str(EXAMPLE / "submissions"), "--out", str(out),
+                                       "--templates", str(templates), "--jobs", "2"])
+    assert result.exit_code == 2
+    message = result.stderr.splitlines()[-1]
+    assert "feedback.html.j2: the template uses a value mechgrade does not provide" in message
+    assert "Traceback" not in result.stderr
+    assert not (out / "results.json").exists() and not list((out / "feedback").iterdir())

@@ -2,7 +2,7 @@
 
 Each problem of the assignment is loaded and solved once; every answer is judged in the bounded
 sandbox (a worker per job, reused for the whole run, answers sent in batches), identical answers
-only once. With several jobs the problems are solved while the submissions are read, in forked
+only once. With several jobs the problems are solved, and the submissions read, in forked
 processes; the report never depends on the number of jobs. Points are the judged
 credit times the objective's points. Every roster student and every submission appears in the
 report with a status, in a fixed order (roster order, then students not on the roster by id),
@@ -141,20 +141,12 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
                       progress: Progress | None = None, jobs: int = 1) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 
-    ``progress(done, total)`` is called as students are finished. With ``jobs`` > 1 the
-    submissions are read while the problems are solved, in ``jobs`` processes, and answers are
-    judged by ``jobs`` workers; the report is the same for any ``jobs``.
+    ``progress(done, total)`` is called as students are finished. The problems are solved, the
+    submissions read and the answers judged by ``jobs`` processes; the report is the same for
+    any ``jobs``.
     """
-    problems = load_problems(assignment)
-    chosen = _choose_objectives(assignment, problems)
-    keys = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen)
-    # Reading first: it is the longest piece of work, the solves share the other workers.
-    work = [partial(read_submissions, submissions_dir, keys=keys)]
-    work += [partial(_solve, problem) for problem in problems]
-    submissions, *solutions = fork_map(outcome, work, jobs=jobs)
-    solutions = raise_first(solutions)  # a broken problem is reported before the folder
-    raise_first([submissions])
-    plan = _plan(assignment, problems, tuple(solutions), chosen)
+    plan = plan_assignment(assignment, jobs=jobs)
+    submissions = read_submissions(submissions_dir, keys=plan.keys, jobs=jobs)
     return grade_plan(plan, submissions, roster, progress=progress, jobs=jobs)
 
 
