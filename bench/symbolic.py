@@ -8,9 +8,12 @@ answers:
   difference, one answer after the other;
 * mechgrade in-process: :func:`mechgrade.grade.compare.assess` of every answer;
 * mechgrade through the worker: every answer through one bounded :class:`Sandbox`, one answer
-  per round trip (as grading did before batches) and in batches;
-* mechgrade through a worker per core: every answer through a :class:`SandboxPool`;
-* mechgrade as a grading run judges: each distinct answer once per objective, through the pool.
+  per round trip (as grading did before batches) and in batches (a repeated answer is judged
+  once);
+* mechgrade through a worker per core: every answer through a :class:`SandboxPool`.
+
+Then again on 1,000 answers each written differently (``k*(form)/k``), which shows the cost of
+judging itself, without repeats.
 
 A verdict is right when "correct" goes with an equivalent answer and any other verdict with a
 wrong one. Run: ``.venv/bin/python bench/symbolic.py [count]``.
@@ -69,9 +72,16 @@ def references() -> dict:
 
 
 def answers(count: int) -> list[tuple[tuple[str, str], str, bool]]:
+    """Answers as a class writes them: the same few forms, many times over."""
     rng = random.Random(7)
     keys = list(FORMS)
     return [(key, *rng.choice(FORMS[key])) for key in (rng.choice(keys) for _ in range(count))]
+
+
+def distinct_answers(count: int) -> list[tuple[tuple[str, str], str, bool]]:
+    """Every answer written differently (``k*(form)/k``), so none is judged from another."""
+    return [(key, f"{i + 2}*({text})/{i + 2}", equivalent)
+            for i, (key, text, equivalent) in enumerate(answers(count))]
 
 
 def naive_equal(text: str, reference: str) -> bool:
@@ -86,9 +96,7 @@ def timed(func):
     return time.perf_counter() - start, value
 
 
-def main(count: int) -> None:
-    refs = references()
-    sample = answers(count)
+def compare(title: str, refs: dict, sample) -> None:
     policy = Policy()
     items = [(text, refs[key], policy) for key, text, _ in sample]
     truth = [equivalent for _, _, equivalent in sample]
@@ -105,33 +113,29 @@ def main(count: int) -> None:
         pool.assess_many(items[:jobs])  # start the workers outside the timing
         pool_s, pooled = timed(lambda: pool.assess_many(items))
 
-    with SandboxPool(jobs) as pool:
-        pool.assess_many(items[:jobs])
-
-        def as_graded():
-            distinct = list(dict.fromkeys((text, result) for text, result, _ in items))
-            judged = dict(zip(distinct, pool.assess_many([(t, r, policy) for t, r in distinct])))
-            return [judged[text, result] for text, result, _ in items], len(distinct)
-
-        graded_s, (graded, distinct) = timed(as_graded)
-
     def right(verdicts) -> str:
         good = sum((v == "correct") == t for v, t in zip(verdicts, truth))
         return f"{good}/{len(truth)} right"
 
-    print(f"{count} symbolic answers ({distinct} distinct answer-objective pairs), {jobs} cores")
+    distinct = len(set(items))
+    print(f"{title}: {len(items)} symbolic answers ({distinct} distinct), {jobs} cores")
     rows = [("naive simplify(sympify(a) - sympify(b)) == 0", naive_s,
              right(["correct" if n else "incorrect" for n in naive])),
-            ("mechgrade in-process", inproc_s, right([a.verdict for a in inproc])),
-            ("mechgrade through the worker (one answer a trip)", single_s,
+            ("mechgrade in-process, one by one", inproc_s, right([a.verdict for a in inproc])),
+            ("mechgrade through the worker, one answer a trip", single_s,
              right([a.verdict for a in single])),
-            ("mechgrade through the worker (batches)", worker_s, right([a.verdict for a in worker])),
-            (f"mechgrade through {jobs} workers (batches)", pool_s,
-             right([a.verdict for a in pooled])),
-            (f"mechgrade as grading judges ({jobs} workers, once each)", graded_s,
-             right([a.verdict for a in graded]))]
+            ("mechgrade through the worker, batches", worker_s,
+             right([a.verdict for a in worker])),
+            (f"mechgrade through {jobs} workers, batches", pool_s,
+             right([a.verdict for a in pooled]))]
     for label, seconds, verdicts in rows:
-        print(f"  {label:<56} {seconds:7.3f} s  {naive_s / seconds:7.1f}x  {verdicts}")
+        print(f"  {label:<50} {seconds:7.3f} s  {naive_s / seconds:7.1f}x  {verdicts}")
+
+
+def main(count: int) -> None:
+    refs = references()
+    compare("as a class answers", refs, answers(count))
+    compare("every answer written differently", refs, distinct_answers(count))
 
 
 if __name__ == "__main__":

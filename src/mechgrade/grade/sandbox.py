@@ -256,9 +256,21 @@ MAX_BATCH = 64
 
 def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     """Judge ``items`` with ``boxes`` working side by side, each taking the next batch when its
-    last one is done. Every answer gets ``seconds`` from the previous outcome of its worker; an
-    overrun, a memory overrun or a crash makes that one answer ``not_evaluated``, and the
-    worker is restarted for the rest of its batch."""
+    last one is done; an item repeated in ``items`` is judged once (judging is a function of
+    the text, the reference and the policy). Every answer gets ``seconds`` from the previous
+    outcome of its worker; an overrun, a memory overrun or a crash makes that one answer
+    ``not_evaluated``, and the worker is restarted for the rest of its batch."""
+    try:
+        distinct = list(dict.fromkeys(items))
+    except TypeError:  # an unhashable item (a judge's own argument types): judge every one
+        return _judge_each(boxes, items)
+    if len(distinct) == len(items):
+        return _judge_each(boxes, items)
+    judged = dict(zip(distinct, _judge_each(boxes, distinct)))
+    return [judged[item] for item in items]
+
+
+def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     results: list[Assessment | None] = [None] * len(items)
     size = max(1, min(MAX_BATCH, len(items) // (4 * len(boxes)) or 1))
     batches = deque(range(start, min(start + size, len(items)))
