@@ -79,19 +79,18 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
     """Load (unless given) and solve (unless given; over ``jobs`` processes) every problem; check
     the assignment's objective lists and point keys against the problems. Raises
     :class:`MechgradeError`."""
-    problems = tuple(problems) if problems is not None else load_problems(assignment)
-    chosen = _choose_objectives(assignment, problems)
+    if problems is None:
+        from ..spec import load_problem
+
+        problems = [load_problem(ref.path) for ref in assignment.problems]
+    problems = tuple(problems)
+    chosen = _choose_objectives(assignment, problems)  # before solving: its errors are cheap
     if solutions is None:
-        solutions = raise_first(fork_map(outcome, [partial(_solve, p) for p in problems],
+        from ..solve import solve
+
+        solutions = raise_first(fork_map(outcome, [partial(solve, p) for p in problems],
                                           jobs=jobs))
     return _plan(assignment, problems, tuple(solutions), chosen)
-
-
-def load_problems(assignment: Assignment) -> tuple[Problem, ...]:
-    """Every problem file of the assignment, loaded (not solved)."""
-    from ..spec import load_problem
-
-    return tuple(load_problem(ref.path) for ref in assignment.problems)
 
 
 def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
@@ -129,12 +128,6 @@ def _plan(assignment: Assignment, problems: tuple[Problem, ...],
                                      solutions[index].result(objective.id), points)
                     for index, objective, points in chosen)
     return Plan(assignment, problems, solutions, planned)
-
-
-def _solve(problem: Problem) -> Solution:
-    from ..solve import solve
-
-    return solve(problem)
 
 
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,

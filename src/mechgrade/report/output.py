@@ -66,8 +66,8 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     Rendering one student's feedback is one unit of work: a fault of mechgrade's there gives
     that student a short page saying so, and the other outputs are written as usual. The pages
     are rendered in ``jobs`` forked processes (the files are the same for any ``jobs``). Raises
-    :class:`~mechgrade.errors.MechgradeError` when a template is missing or broken, or the
-    folder cannot be written; then no file is written.
+    :class:`~mechgrade.errors.MechgradeError` when a template is missing or broken (then no file
+    is written), or the folder cannot be written.
     """
     out = Path(out_dir)
     env = template_environment(templates_dir)
@@ -84,7 +84,8 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     try:
         # results.json is made while the pages render; made again if a page met a fault.
         work = [_results_text] + [partial(_render_students, b) for b in bounds]
-        results_text, *rendered = raise_first(fork_map(outcome, work, jobs=jobs))
+        results_text, *rendered = fork_map(outcome, work, jobs=jobs)
+        raise_first(rendered)
     finally:
         _RENDERING.clear()
     pages: list[tuple[Path, str]] = []
@@ -99,7 +100,8 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     written: list[Path] = [out / "results.json"]
     if faults:
         report = replace(report, internal_errors=report.internal_errors + tuple(faults))
-        write_json(written[0], report.to_json())
+    if faults or isinstance(results_text, MechgradeError):
+        write_json(written[0], report.to_json())  # raises the error with the file's name
     else:
         write_text(written[0], results_text)
     for name, fmt in (("grades.csv", "grades-csv"), ("results.csv", "long-csv")):
