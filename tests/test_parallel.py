@@ -8,7 +8,7 @@ from functools import partial
 import pytest
 
 from mechgrade.errors import Location, SpecError
-from mechgrade.parallel import fork_map, outcome, raise_first
+from mechgrade.parallel import Forked, fork_map, outcome, raise_first
 
 
 def square_or_fail(n: int) -> int:
@@ -46,3 +46,28 @@ def test_errors_come_back_whole_and_the_first_in_order_is_raised():
 
 def test_work_of_a_dead_worker_is_done_here():
     assert fork_map(partial(die_in_a_worker, os.getpid()), range(5), jobs=2) == list(range(5))
+
+
+def exit_unless_in(parent: int) -> int:
+    if os.getpid() != parent:
+        os._exit(1)
+    return 7
+
+
+def test_forked_work_runs_elsewhere_and_its_value_comes_back():
+    assert Forked(partial(pid_of, 0)).result() != os.getpid()
+
+
+def test_forked_work_that_dies_or_fails_is_done_here_with_its_own_error():
+    assert Forked(partial(exit_unless_in, os.getpid())).result() == 7
+    with pytest.raises(ZeroDivisionError):
+        Forked(lambda: 1 / 0).result()
+
+
+def test_forked_work_can_be_stopped():
+    import time
+
+    forked = Forked(partial(time.sleep, 60))
+    started = time.monotonic()
+    forked.cancel()
+    assert time.monotonic() - started < 10

@@ -23,23 +23,25 @@ from collections import Counter
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import TYPE_CHECKING, Callable, Iterable
 
 from ..errors import AssignmentError, InconsistentError, MechgradeError, brief_exception
-from ..parallel import fork_map, outcome, raise_first
+from ..parallel import Forked, fork_map, outcome, raise_first
 from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
-from ..solve.result import ObjectiveResult, Solution
 from ..spec.model import Objective, Problem
 from .assignment import Assignment, GradingPolicy
 from .results import AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo, StudentResult
 from .submissions import Submission, SubmissionSet, read_submissions
 
+if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
+    from ..solve.result import ObjectiveResult, Solution
+
 POINTS_DIGITS = 4
 """Points are rounded to this many decimals, so that sums are the same on every machine."""
 
 Progress = Callable[[int, int], None]
-Resolver = Callable[[Problem, dict], Solution]
+Resolver = Callable[[Problem, dict], "Solution"]
 
 
 @dataclass(frozen=True)
@@ -79,11 +81,7 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
     """Load (unless given) and solve (unless given; over ``jobs`` processes) every problem; check
     the assignment's objective lists and point keys against the problems. Raises
     :class:`MechgradeError`."""
-    if problems is None:
-        from ..spec import load_problem
-
-        problems = [load_problem(ref.path) for ref in assignment.problems]
-    problems = tuple(problems)
+    problems = tuple(problems) if problems is not None else _load_problems(assignment)
     chosen = _choose_objectives(assignment, problems)  # before solving: its errors are cheap
     if solutions is None:
         from ..solve import solve
@@ -91,6 +89,12 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
         solutions = raise_first(fork_map(outcome, [partial(solve, p) for p in problems],
                                           jobs=jobs))
     return _plan(assignment, problems, tuple(solutions), chosen)
+
+
+def _load_problems(assignment: Assignment) -> tuple[Problem, ...]:
+    from ..spec import load_problem
+
+    return tuple(load_problem(ref.path) for ref in assignment.problems)
 
 
 def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
@@ -134,12 +138,27 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
                       progress: Progress | None = None, jobs: int = 1) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 
-    ``progress(done, total)`` is called as students are finished. The problems are solved, the
-    submissions read and the answers judged by ``jobs`` processes; the report is the same for
-    any ``jobs``.
+    ``progress(done, total)`` is called as students are finished. With ``jobs`` > 1 the
+    submissions are read (by ``jobs`` processes) while the problems are solved (by ``jobs``
+    processes), and the answers are judged by ``jobs`` workers; the report is the same for any
+    ``jobs``.
     """
-    plan = plan_assignment(assignment, jobs=jobs)
-    submissions = read_submissions(submissions_dir, keys=plan.keys, jobs=jobs)
+    problems = _load_problems(assignment)
+    chosen = _choose_objectives(assignment, problems)
+    keys = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen)
+    if jobs <= 1:
+        plan = plan_assignment(assignment, problems=problems)
+        submissions = read_submissions(submissions_dir, keys=keys)
+        return grade_plan(plan, submissions, roster, progress=progress)
+    # Reading needs only the keys: it runs in a process forked now, before this one imports
+    # sympy and the solver and solves, so the two overlap.
+    reading = Forked(partial(outcome, partial(read_submissions, submissions_dir, keys=keys,
+                                              jobs=jobs)))
+    try:
+        plan = plan_assignment(assignment, problems=problems, jobs=jobs)
+        submissions = raise_first([reading.result()])[0]
+    finally:
+        reading.cancel()
     return grade_plan(plan, submissions, roster, progress=progress, jobs=jobs)
 
 
@@ -537,6 +556,7 @@ def compare_policy(policy: GradingPolicy):
 def expected_text(result: ObjectiveResult) -> str:
     """The reference answer as text, in the objective's unit.
 
+    >>> from mechgrade.solve.result import ObjectiveResult
     >>> expected_text(ObjectiveResult("a", "scalar", "ft / s ** 2", 98.5096))
     '98.51 ft/s^2'
     >>> expected_text(ObjectiveResult("a", "vector", "m/s", (0.0, -7.6712, 0.0), frame="A"))
