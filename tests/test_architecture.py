@@ -11,7 +11,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
 # Each layer may import only from itself and the layers listed before it.
 ORDER = ["base", "spec", "mechanics", "solve", "check", "grade", "export", "report", "cli"]
 BASE = {"errors", "units", "yamlio", "files", "resources", "expressions", "roster",
-        "schema_errors", "tolerance", "__init__", "__main__"}
+        "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
 
 
 def layer(module: str) -> str:

@@ -59,3 +59,20 @@ def test_json_with_lone_surrogates_is_valid_utf8_json(tmp_path):
 def test_json_refuses_nan_with_a_message(tmp_path):
     with pytest.raises(OutputError, match="expected finite numbers"):
         write_json(tmp_path / "r.json", {"x": float("nan")})
+
+
+def test_a_file_that_already_holds_the_text_is_left_alone(tmp_path):
+    path = tmp_path / "page.html"
+    write_text(path, "same\n")
+    before = path.stat()
+    write_text(path, "same\n")
+    assert path.stat().st_ino == before.st_ino and path.read_text() == "same\n"
+    write_text(path, "other\n")
+    assert path.stat().st_ino != before.st_ino and path.read_text() == "other\n"
+
+
+def test_a_named_pipe_in_the_way_is_replaced_without_waiting(tmp_path):
+    path = tmp_path / "page.html"
+    os.mkfifo(path)
+    write_text(path, "text\n")
+    assert stat.S_ISREG(path.stat().st_mode) and path.read_text() == "text\n"

@@ -49,10 +49,18 @@ _DEGREE_SIGNS = (("°C", " degC "), ("°F", " degF "), ("°K", " K "), ("°R", "
 
 @lru_cache(maxsize=1)
 def registry():
-    """The process-wide pint ``UnitRegistry`` (created once; pint is slow to load)."""
+    """The process-wide pint ``UnitRegistry`` (created once; pint is slow to load).
+
+    Parsing pint's definition file takes most of the registry's start-up, so pint caches the
+    parsed definitions in the user's cache folder (pint's own ``cache_folder=":auto:"``). When
+    that folder cannot be created, written or read, the registry is built without the cache.
+    """
     import pint
 
-    ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    try:
+        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
+    except Exception:  # noqa: BLE001 - no usable cache folder (read-only, broken, racing)
+        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.formatter.default_format = "~"
     return ureg
 

@@ -115,3 +115,44 @@ def test_readme_command_on_the_example_class(tmp_path):
     assert first == {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob("*"))
                      if p.is_file()}
     assert len([p for p in first if str(p).startswith("feedback")]) == 20
+
+
+def _files(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_outputs_are_byte_identical_for_any_number_of_jobs(tmp_path):
+    outs = []
+    for jobs in (1, 2, 3):
+        out = tmp_path / f"out{jobs}"
+        result = CliRunner().invoke(main, ["grade", str(EXAMPLE / "assignment.yaml"),
+                                           str(EXAMPLE / "submissions"), "--roster",
+                                           str(EXAMPLE / "roster.csv"), "--out", str(out),
+                                           "--jobs", str(jobs)])
+        assert result.exit_code == 0, result.output
+        outs.append(_files(out))
+    assert len(outs[0]) > 10 and any("feedback/" in name for name in outs[0])
+    assert outs[0] == outs[1] == outs[2]
+
+
+def test_jobs_must_be_positive(tmp_path):
+    folder = small_class(tmp_path)
+    result = run(folder / "hw.yaml", folder / "subs", "--out", tmp_path / "out", "--jobs", "0")
+    assert result.exit_code == 2 and "--jobs" in result.stderr
+
+
+def test_a_template_failing_in_a_worker_is_one_message_and_nothing_is_written(tmp_path):
+    templates = tmp_path / "t"
+    templates.mkdir()
+    (templates / "feedback.html.j2").write_text("{{ student.grade_letter }}", encoding="utf-8")
+    (templates / "feedback.md.j2").write_text("x", encoding="utf-8")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["grade", str(EXAMPLE / "assignment.yaml"),
+                                       str(EXAMPLE / "submissions"), "--out", str(out),
+                                       "--templates", str(templates), "--jobs", "2"])
+    assert result.exit_code == 2
+    message = result.stderr.splitlines()[-1]
+    assert "feedback.html.j2: the template uses a value mechgrade does not provide" in message
+    assert "Traceback" not in result.stderr
+    assert not (out / "results.json").exists() and not list((out / "feedback").iterdir())

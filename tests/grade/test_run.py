@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from mechgrade.errors import AssignmentError, InconsistentError, SolveError
+from mechgrade.errors import (AssignmentError, InconsistentError, MechgradeError, SolveError,
+                             SubmissionError)
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.run import (expected_text, given_key_of, grade_plan, grade_submissions,
                                  plan_assignment)
@@ -374,3 +375,57 @@ def test_example_class_end_to_end():
     eve = answers_of(report, "eve_mallory")
     assert eve["acc_mag"].verdict == "unreadable"
     assert report == grade_submissions(hw, EXAMPLE / "submissions", roster)
+
+
+def test_the_report_is_the_same_for_any_number_of_jobs(tmp_path, blocks_text):
+    """Solving, reading and judging spread over processes change nothing, ECF included."""
+    hw = load_assignment(EXAMPLE / "assignment.yaml")
+    roster = read_roster(EXAMPLE / "roster.csv")
+    assert (grade_submissions(hw, EXAMPLE / "submissions", roster, jobs=3)
+            == grade_submissions(hw, EXAMPLE / "submissions", roster, jobs=1))
+    ecf = ecf_class(tmp_path, with_dependency(blocks_text, "rod_omega_z", "xdot"), {
+        "hal": "bowling_3_15_8_connected_blocks.xdot = -7.00 m/s\n"
+               "bowling_3_15_8_connected_blocks.rod_omega_z = 66.97 rad/s\n"})
+    parallel = grade_submissions(ecf, tmp_path / "subs", jobs=2)
+    assert parallel == grade_submissions(ecf, tmp_path / "subs", jobs=1)
+    assert answers_of(parallel, "hal")["rod_omega_z"].verdict == "correct"
+
+
+def test_a_broken_problem_is_reported_before_a_missing_folder_with_any_jobs(class_dir):
+    (class_dir / "pendulum.yaml").write_text(
+        PENDULUM.read_text(encoding="utf-8").replace("L: 2 ft", "L: -2 furlongz"),
+        encoding="utf-8")
+    hw = load_assignment(class_dir / "hw.yaml")
+    errors = []
+    for jobs in (1, 2):
+        with pytest.raises(MechgradeError) as info:
+            grade_submissions(hw, class_dir / "no_such_folder", jobs=jobs)
+        errors.append(str(info.value))
+    assert errors[0] == errors[1] and "furlongz" in errors[0]
+
+
+def test_a_missing_folder_is_reported_with_any_jobs(class_dir):
+    hw = load_assignment(class_dir / "hw.yaml")
+    for jobs in (1, 2):
+        with pytest.raises(SubmissionError, match="expected a folder of submissions"):
+            grade_submissions(hw, class_dir / "no_such_folder", jobs=jobs)
+
+
+def test_answers_are_judged_once_each_in_one_batch(class_dir, monkeypatch):
+    from mechgrade.grade import sandbox
+
+    batches = []
+    original = sandbox.SandboxPool.assess_many
+
+    def spy(self, items):
+        items = list(items)
+        batches.append([text for text, _, _ in items])
+        return original(self, items)
+
+    monkeypatch.setattr(sandbox.SandboxPool, "assess_many", spy)
+    for name in ("dee", "eli"):  # the same answers as ann
+        write(class_dir / "subs" / name / "answers.txt", (class_dir / "subs" / "ann" /
+                                                          "answers.txt").read_text())
+    report = grade(class_dir)
+    assert len(batches) == 1 and len(batches[0]) == len(set(batches[0])) == 4
+    assert {s.id: s.score for s in report.students}["dee"] == 6.0

@@ -3,7 +3,7 @@
 import pytest
 
 from mechgrade.grade.compare import Assessment, Policy, assess
-from mechgrade.grade.sandbox import Sandbox, assess_batch, assess_bounded
+from mechgrade.grade.sandbox import Sandbox, SandboxPool, assess_batch, assess_bounded
 from mechgrade.solve.result import ObjectiveResult
 
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
@@ -79,3 +79,43 @@ def test_sandbox_refuses_bad_limits():
         Sandbox(seconds=0)
     with pytest.raises(ValueError, match="positive memory limit"):
         Sandbox(memory_mb=-1)
+
+
+MIXED = ["98.5 ft/s^2", "spin", "-98.5 ft/s^2", "crash", "30 m/s", "exit", "98.5", None,
+         "1 ft", "spin", "98.6 ft/s^2"]
+
+
+def test_pool_judges_in_item_order_like_one_worker():
+    items = [(t, ACC, Policy()) for t in ("98.5 ft/s^2", "-98.5 ft/s^2", "30 m/s", None, "x")] * 7
+    with SandboxPool(2, seconds=20) as pool:
+        assert pool.assess_many(items) == [assess(*item) for item in items]
+        assert pool.restarts == 0
+
+
+def test_pool_bounds_every_answer_and_finishes_the_rest():
+    items = [(t, ACC, Policy()) for t in MIXED]
+    with SandboxPool(2, seconds=0.5, judge=hostile_judge) as pool:
+        judged = pool.assess_many(items)
+    verdicts = [a.verdict for a in judged]
+    assert verdicts == [a.verdict for a in (assess(t, ACC, Policy()) if t not in
+                                            ("spin", "crash", "exit") else
+                                            Assessment("not_evaluated", 0.0, None, None, None)
+                                            for t in MIXED)]
+    assert "longer than 0.5 s" in judged[1].feedback and "stopped" in judged[5].feedback
+
+
+def test_each_answer_of_a_batch_has_its_own_time_limit():
+    import time
+
+    def slow(text, result, policy):
+        time.sleep(0.3)
+        return assess(text, result, policy)
+
+    with Sandbox(seconds=1.0, judge=slow) as box:
+        judged = box.assess_many([("98.5 ft/s^2", ACC, Policy())] * 6)  # 1.8 s in all
+        assert [a.verdict for a in judged] == ["correct"] * 6 and box.restarts == 0
+
+
+def test_pool_refuses_no_workers():
+    with pytest.raises(ValueError, match="positive number of workers"):
+        SandboxPool(0)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import importlib
 
 import click
 
@@ -37,7 +38,62 @@ def reports_errors(command):
     return wrapper
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+COMMANDS = {
+    "check": ("check", "Validate problem files (or folders of them) and run every expect: test."),
+    "export": ("export", "Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a "
+                         "spreadsheet."),
+    "grade": ("grade", "Grade every submission in SUBMISSIONS_DIR against ASSIGNMENT."),
+    "gradescope": ("gradescope", "Grade one Gradescope submission against ASSIGNMENT and write "
+                                 "results.json."),
+    "handout": ("handout", "Write every roster student's sheet for ASSIGNMENT, with their own "
+                           "numbers, and givens.csv (every student's givens) for the instructor."),
+    "new": ("new", "Write ID.yaml, a commented starting spec that passes `mechgrade check` as "
+                   "written."),
+    "report": ("export", "Write the class report of RESULTS_JSON as one self-contained HTML file."),
+    "schema": ("schema", "Print the path of the problem-spec JSON Schema, or write a copy of it to "
+                         "--out."),
+    "solve": ("solve", "Solve PROBLEM_FILE and print each objective's reference answer."),
+}
+"""Every command: the module of :mod:`mechgrade.cli` that defines it, and its one-line help.
+
+A command module is imported only when its command runs (or shows its own help): importing
+sympy alone takes longer than click's whole start-up. ``tests/cli/test_startup.py`` checks that
+each line is the command's own short help."""
+
+
+class LazyGroup(click.Group):
+    """A group that imports a command's module on first use (click's lazy-group pattern).
+
+    The module registers its command with ``@main.command(...)`` as it is imported; the group's
+    own help lists every command from :data:`COMMANDS` without importing any of them.
+    """
+
+    def __init__(self, *args, lazy: dict[str, tuple[str, str]], **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.lazy = lazy
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted({*self.commands, *self.lazy})
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in self.commands and cmd_name in self.lazy:
+            importlib.import_module(f"{__package__}.{self.lazy[cmd_name][0]}")
+        return self.commands.get(cmd_name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        names = self.list_commands(ctx)
+        if not names:
+            return
+        limit = formatter.width - 6 - max(len(name) for name in names)
+        rows = [(name, self.commands[name].get_short_help_str(limit) if name in self.commands
+                 else click.Command(name, help=self.lazy[name][1]).get_short_help_str(limit))
+                for name in names]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+@click.group(cls=LazyGroup, lazy=COMMANDS,
+             context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="mechgrade")
 def main() -> None:
     """Check and grade engineering dynamics homework against a model-driven reference solver."""

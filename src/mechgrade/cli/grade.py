@@ -8,9 +8,6 @@ from pathlib import Path
 import click
 
 from ..files import clean_text
-from ..grade.assignment import load_assignment
-from ..grade.run import grade_submissions
-from ..report.output import write_outputs
 from ..roster import read_roster
 from .common import INTERNAL_ERROR_EXIT, main, reports_errors
 
@@ -26,14 +23,24 @@ from .common import INTERNAL_ERROR_EXIT, main, reports_errors
               type=click.Path(exists=True, file_okay=False, path_type=Path),
               help="Folder with feedback.html.j2 and feedback.md.j2 to use instead of the "
                    "shipped templates.")
+@click.option("--jobs", "-j", type=click.IntRange(min=1), default=None,
+              help="Processes to grade with (default: one per core). The outputs are the same "
+                   "for any number.")
 @reports_errors
 def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path | None,
-          templates_dir: Path | None) -> None:
+          templates_dir: Path | None, jobs: int | None) -> None:
     """Grade every submission in SUBMISSIONS_DIR against ASSIGNMENT.
 
     A bad assignment stops with one message (exit code 2); a bad submission never stops the
     run: it is reported in that student's feedback and in the summary.
     """
+    # Here, not at the top: sympy and the solver load only when a run starts (not for --help).
+    from ..grade.assignment import load_assignment
+    from ..grade.run import grade_submissions
+    from ..parallel import default_jobs
+    from ..report.output import write_outputs
+
+    jobs = jobs if jobs is not None else default_jobs()
     spec = load_assignment(assignment)
     class_roster = read_roster(roster) if roster is not None else None
     bar = None
@@ -47,11 +54,12 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
         bar.update(done - bar.pos)
 
     try:
-        report = grade_submissions(spec, submissions_dir, class_roster, progress=progress)
+        report = grade_submissions(spec, submissions_dir, class_roster, progress=progress,
+                                   jobs=jobs)
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
-    report = write_outputs(report, out_dir, templates_dir, roster=class_roster).report
+    report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs).report
     click.echo(summary(report, out_dir))
     if report.internal_errors:
         sys.exit(INTERNAL_ERROR_EXIT)

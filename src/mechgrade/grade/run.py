@@ -1,7 +1,9 @@
 """The grading run: every student's answers against the reference solutions, into a report.
 
 Each problem of the assignment is loaded and solved once; every answer is judged in the bounded
-sandbox (one worker for the whole run), identical answers only once. Points are the judged
+sandbox (a worker per job, reused for the whole run, answers sent in batches), identical answers
+only once. With several jobs the problems are solved, and the submissions read, in forked
+processes; the report never depends on the number of jobs. Points are the judged
 credit times the objective's points. Every roster student and every submission appears in the
 report with a status, in a fixed order (roster order, then students not on the roster by id),
 so a re-run gives byte-identical outputs.
@@ -19,23 +21,27 @@ from __future__ import annotations
 import math
 from collections import Counter
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import TYPE_CHECKING, Callable, Iterable
 
 from ..errors import AssignmentError, InconsistentError, MechgradeError, brief_exception
+from ..parallel import Forked, fork_map, outcome, raise_first
 from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
-from ..solve.result import ObjectiveResult, Solution
 from ..spec.model import Objective, Problem
 from .assignment import Assignment, GradingPolicy
 from .results import AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo, StudentResult
 from .submissions import Submission, SubmissionSet, read_submissions
 
+if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
+    from ..solve.result import ObjectiveResult, Solution
+
 POINTS_DIGITS = 4
 """Points are rounded to this many decimals, so that sums are the same on every machine."""
 
 Progress = Callable[[int, int], None]
-Resolver = Callable[[Problem, dict], Solution]
+Resolver = Callable[[Problem, dict], "Solution"]
 
 
 @dataclass(frozen=True)
@@ -72,22 +78,33 @@ class Plan:
 
 
 def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | None = None,
-                    solutions: Iterable[Solution] | None = None) -> Plan:
-    """Load (unless given) and solve (unless given) every problem; check the assignment's
-    objective lists and point keys against the problems. Raises :class:`MechgradeError`."""
-    if problems is None:
-        from ..spec import load_problem
-
-        problems = [load_problem(ref.path) for ref in assignment.problems]
-    problems = tuple(problems)
+                    solutions: Iterable[Solution] | None = None, jobs: int = 1) -> Plan:
+    """Load (unless given) and solve (unless given; over ``jobs`` processes) every problem; check
+    the assignment's objective lists and point keys against the problems. Raises
+    :class:`MechgradeError`."""
+    problems = tuple(problems) if problems is not None else _load_problems(assignment)
+    chosen = _choose_objectives(assignment, problems)  # before solving: its errors are cheap
     if solutions is None:
         from ..solve import solve
 
-        solutions = [solve(problem) for problem in problems]
-    solutions = tuple(solutions)
+        solutions = raise_first(fork_map(outcome, [partial(solve, p) for p in problems],
+                                          jobs=jobs))
+    return _plan(assignment, problems, tuple(solutions), chosen)
+
+
+def _load_problems(assignment: Assignment) -> tuple[Problem, ...]:
+    from ..spec import load_problem
+
+    return tuple(load_problem(ref.path) for ref in assignment.problems)
+
+
+def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
+                       ) -> list[tuple[int, Objective, float]]:
+    """(problem index, objective, points) of every graded objective, in assignment order;
+    raises :class:`AssignmentError` for a repeated problem, an unknown objective or point key."""
     seen: dict[str, Problem] = {}
-    planned: list[PlannedObjective] = []
-    for ref, problem, solution in zip(assignment.problems, problems, solutions):
+    chosen: list[tuple[int, Objective, float]] = []
+    for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
         if problem.id in seen:
             raise AssignmentError(f"expected problems with different ids, found '{problem.id}' "
                                   f"twice", where=ref.where)
@@ -99,43 +116,66 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
                 raise AssignmentError(
                     f"expected an objective of problem '{problem.id}' ({', '.join(known)}), "
                     f"found '{objective_id}'", where=ref.where)
-            objective = problem.objective(objective_id)
-            result = solution.result(objective_id)
-            planned.append(PlannedObjective(problem, objective, result,
-                                            assignment.points_for(problem.id, objective_id)))
-    keys = {o.key for o in planned}
+            chosen.append((index, problem.objective(objective_id),
+                           assignment.points_for(problem.id, objective_id)))
+    keys = {f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen}
     for key, _ in assignment.points:
         if key not in keys:
             raise AssignmentError(f"expected a graded objective 'problem_id.objective_id' "
                                   f"({_listing(sorted(keys))}), found '{key}'",
                                   where=assignment.where_points(key))
-    return Plan(assignment, problems, solutions, tuple(planned))
+    return chosen
+
+
+def _plan(assignment: Assignment, problems: tuple[Problem, ...],
+          solutions: tuple[Solution, ...], chosen) -> Plan:
+    planned = tuple(PlannedObjective(problems[index], objective,
+                                     solutions[index].result(objective.id), points)
+                    for index, objective, points in chosen)
+    return Plan(assignment, problems, solutions, planned)
 
 
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
-                      progress: Progress | None = None) -> GradeReport:
+                      progress: Progress | None = None, jobs: int = 1) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 
-    ``progress(done, total)`` is called as students are finished.
+    ``progress(done, total)`` is called as students are finished. With ``jobs`` > 1 the
+    submissions are read (by ``jobs`` processes) while the problems are solved (by ``jobs``
+    processes), and the answers are judged by ``jobs`` workers; the report is the same for any
+    ``jobs``.
     """
-    plan = plan_assignment(assignment)
-    submissions = read_submissions(submissions_dir, keys=plan.keys)
-    return grade_plan(plan, submissions, roster, progress=progress)
+    problems = _load_problems(assignment)
+    chosen = _choose_objectives(assignment, problems)
+    keys = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen)
+    if jobs <= 1:
+        plan = plan_assignment(assignment, problems=problems)
+        submissions = read_submissions(submissions_dir, keys=keys)
+        return grade_plan(plan, submissions, roster, progress=progress)
+    # Reading needs only the keys: it runs in a process forked now, before this one imports
+    # sympy and the solver and solves, so the two overlap.
+    reading = Forked(partial(outcome, partial(read_submissions, submissions_dir, keys=keys,
+                                              jobs=jobs)))
+    try:
+        plan = plan_assignment(assignment, problems=problems, jobs=jobs)
+        submissions = raise_first([reading.result()])[0]
+    finally:
+        reading.cancel()
+    return grade_plan(plan, submissions, roster, progress=progress, jobs=jobs)
 
 
 def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
-               progress: Progress | None = None, resolve: Resolver | None = None
-               ) -> GradeReport:
+               progress: Progress | None = None, resolve: Resolver | None = None,
+               jobs: int = 1) -> GradeReport:
     """Grade read submissions against a :class:`Plan` (see :func:`grade_submissions`).
 
     ``resolve(problem, givens)`` recomputes a solution with overridden givens (for ECF); the
-    default is :func:`mechgrade.solve.solve`.
+    default is :func:`mechgrade.solve.solve`. Answers are judged by ``jobs`` sandbox workers.
     """
     people = _people(submissions, roster)
     total = len(people)
     if progress:
         progress(0, total)
-    judge = _Judge(plan, resolve)
+    judge = _Judge(plan, resolve, jobs)
     students: list[StudentResult] = []
     faults: list[str] = [s.internal_error for s in submissions.students if s.internal_error]
     own = {person.id: _own_plan(plan, person) for person, _ in people}
@@ -145,6 +185,7 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
 
         neighbours = NeighbourIndex({pid: p.objectives for pid, (p, _) in own.items()})
     try:
+        judge.prefetch(submissions.students)
         for done, (person, submission) in enumerate(people, start=1):
             # the student's own references, also for ECF's look-ups
             judge.plan, variants = own[person.id]
@@ -320,32 +361,58 @@ def _judge_safely(judge: "_Judge", item: PlannedObjective, text: str, submission
 
 
 class _Judge:
-    """Judges answers in one sandbox worker, once per distinct (objective, text)."""
+    """Judges answers in sandbox workers (one per job), once per distinct (objective, text)."""
 
-    def __init__(self, plan: Plan, resolve: Resolver | None):
+    def __init__(self, plan: Plan, resolve: Resolver | None, jobs: int = 1):
         self.plan = plan
         self.policy = plan.assignment.policy
         self._resolve = resolve
+        self._jobs = jobs
         self._cache: dict[tuple, object] = {}
         self._ecf_solutions: dict[tuple, tuple] = {}
         self._policy = compare_policy(self.policy)
-        self._box = None
+        self._pool = None
 
     def close(self) -> None:
-        if self._box is not None:
-            self._box.close()
-            self._box = None
+        if self._pool is not None:
+            self._pool.close()
+            self._pool = None
+
+    def _sandboxes(self):
+        if self._pool is None:
+            from .sandbox import SandboxPool
+
+            self._pool = SandboxPool(self._jobs)
+        return self._pool
 
     def assess(self, text: str, result: ObjectiveResult):
-        """Judge one answer in the run's sandbox worker (started once, reused for all)."""
+        """Judge one answer in the run's sandbox workers (started once, reused for all)."""
         key = (result, text)
         if key not in self._cache:
-            if self._box is None:
-                from .sandbox import Sandbox
-
-                self._box = Sandbox()
-            self._cache[key] = self._box.assess(text, result, self._policy)
+            self._cache[key] = self._sandboxes().assess(text, result, self._policy)
         return self._cache[key]
+
+    def prefetch(self, submissions: Iterable[Submission]) -> None:
+        """Judge every distinct answer of ``submissions`` up front, in batches spread over the
+        workers; :meth:`judge` then finds them judged. A fault of mechgrade's here leaves the
+        answers to be judged one by one, each inside its own boundary (:func:`_judge_safely`)."""
+        try:
+            todo: dict[tuple, None] = {}
+            for submission in submissions:
+                if submission.status != "read":
+                    continue
+                for item in self.plan.objectives:
+                    text = submission.answer(item.key)
+                    if text is not None and text.strip():
+                        key = (item.result, text)
+                        if key not in self._cache:
+                            todo[key] = None
+            if todo:
+                judged = self._sandboxes().assess_many(
+                    [(text, result, self._policy) for result, text in todo])
+                self._cache.update(zip(todo, judged))
+        except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
+            pass
 
     def expected(self, item: PlannedObjective) -> str | None:
         return expected_text(item.result) if self.policy.reveal_answers else None
@@ -548,6 +615,7 @@ def compare_policy(policy: GradingPolicy):
 def expected_text(result: ObjectiveResult) -> str:
     """The reference answer as text, in the objective's unit.
 
+    >>> from mechgrade.solve.result import ObjectiveResult
     >>> expected_text(ObjectiveResult("a", "scalar", "ft / s ** 2", 98.5096))
     '98.51 ft/s^2'
     >>> expected_text(ObjectiveResult("a", "vector", "m/s", (0.0, -7.6712, 0.0), frame="A"))

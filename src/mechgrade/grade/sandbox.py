@@ -7,7 +7,8 @@ imported (the fork inherits them, so starting a worker costs milliseconds, not s
 worker limits its address space (``RLIMIT_AS``); the parent waits at most ``seconds`` per answer
 and kills the worker on overrun. An overrun gives the verdict ``not_evaluated`` ("could not be
 evaluated", never "wrong") and the run goes on with a fresh worker; a worker is reused for many
-answers and replaced only after a kill or a crash.
+answers and replaced only after a kill or a crash. Answers travel in batches (one round trip for
+many answers, each still timed on its own), and a :class:`SandboxPool` runs a worker per core.
 
 >>> from mechgrade.solve.result import ObjectiveResult
 >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
@@ -20,6 +21,9 @@ from __future__ import annotations
 import multiprocessing
 import os
 import signal
+import time
+from collections import deque
+from multiprocessing import connection
 from typing import Callable, Iterable, Sequence
 
 from ..solve.result import ObjectiveResult
@@ -69,36 +73,41 @@ def _limit_memory(memory_mb: int) -> None:
 
 
 def _worker(conn, judge: Judge, memory_mb: int) -> None:
+    """Judge each batch of items sent, one answer at a time, sending each outcome back as soon
+    as it is known (the parent times every answer from the previous outcome)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
     _limit_memory(memory_mb)
     while True:
         try:
-            item = conn.recv()
+            batch = conn.recv()
         except (EOFError, OSError):
             return
-        if item is None:
+        if batch is None:
             return
-        text, result, policy = item
-        try:
-            outcome = ("ok", judge(text, result, policy))
-        except MemoryError:
-            outcome = ("memory", None)
-        except RecursionError:
-            outcome = ("error", "the expression is nested too deeply to evaluate")
-        except Exception as exc:  # noqa: BLE001 - any failure is "could not be evaluated"
-            outcome = ("error", f"{type(exc).__name__} while judging")
-        try:
-            conn.send(outcome)
-        except MemoryError:
-            conn.send(("memory", None))
-        if outcome[0] == "memory":
-            return  # the heap may be fragmented near the limit: let the parent start afresh
+        for text, result, policy in batch:
+            try:
+                outcome = ("ok", judge(text, result, policy))
+            except MemoryError:
+                outcome = ("memory", None)
+            except RecursionError:
+                outcome = ("error", "the expression is nested too deeply to evaluate")
+            except Exception as exc:  # noqa: BLE001 - any failure is "could not be evaluated"
+                outcome = ("error", f"{type(exc).__name__} while judging")
+            try:
+                conn.send(outcome)
+            except MemoryError:
+                conn.send(("memory", None))
+                outcome = ("memory", None)
+            if outcome[0] == "memory":
+                return  # the heap may be fragmented near the limit: let the parent start afresh
 
 
 class Sandbox:
     """A reusable worker process that judges answers one at a time, each within bounds.
 
-    ``judge`` defaults to :func:`mechgrade.grade.compare.assess` (tests pass others).
+    Answers travel in batches (one round trip for many answers); each answer still has its own
+    time limit, counted from the previous answer's outcome. ``judge`` defaults to
+    :func:`mechgrade.grade.compare.assess` (tests pass others).
 
     >>> from mechgrade.solve.result import ObjectiveResult
     >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
@@ -109,10 +118,7 @@ class Sandbox:
 
     def __init__(self, *, seconds: float = DEFAULT_SECONDS, memory_mb: int = DEFAULT_MEMORY_MB,
                  judge: Judge = assess) -> None:
-        if not seconds > 0:
-            raise ValueError(f"expected a positive time limit, found {seconds!r}")
-        if not (isinstance(memory_mb, int) and memory_mb > 0):
-            raise ValueError(f"expected a positive memory limit in MiB, found {memory_mb!r}")
+        _check_limits(seconds, memory_mb)
         self.seconds = float(seconds)
         self.memory_mb = memory_mb
         self.judge = judge
@@ -166,42 +172,164 @@ class Sandbox:
     def __exit__(self, *exc) -> None:
         self.close()
 
-    # -- judging
-
-    def assess(self, text: str | None, result: ObjectiveResult,
-               policy: Policy = Policy()) -> Assessment:
-        """Judge one answer; ``not_evaluated`` if it overruns time or memory or crashes."""
+    def _send(self, batch: list[Item]) -> bool:
+        """Send a batch to a live worker (started or restarted as needed); False if it died."""
         if self._process is None or not self._process.is_alive():
             if self._process is not None:
                 self._kill()
             self._start()
         try:
-            self._conn.send((text, result, policy))
+            self._conn.send(batch)
+            return True
         except (OSError, BrokenPipeError):
             self._kill()
-            return not_evaluated("the judging process stopped", None)
-        try:
-            ready = self._conn.poll(self.seconds)
-        except (OSError, EOFError):
-            ready = False
-        if not ready:
-            self._kill()
-            return not_evaluated(f"judging took longer than {self.seconds:g} s")
-        try:
-            status, payload = self._conn.recv()
-        except (EOFError, OSError):
-            self._kill()
-            return not_evaluated("the judging process stopped (out of memory?)")
-        if status == "ok":
-            return payload
-        if status == "memory":
-            self._kill()
-            return not_evaluated(f"judging needed more than {self.memory_mb} MiB")
-        return not_evaluated(payload)
+            return False
+
+    # -- judging
+
+    def assess(self, text: str | None, result: ObjectiveResult,
+               policy: Policy = Policy()) -> Assessment:
+        """Judge one answer; ``not_evaluated`` if it overruns time or memory or crashes."""
+        return self.assess_many([(text, result, policy)])[0]
 
     def assess_many(self, items: Iterable[Item]) -> list[Assessment]:
         """Judge many answers with one worker, in order (a kill restarts it and goes on)."""
-        return [self.assess(text, result, policy) for text, result, policy in items]
+        return _judge_spread([self], list(items))
+
+
+class SandboxPool:
+    """Several sandboxes judging one list of answers together: a worker per core.
+
+    Results are in the order of the items, whichever worker judged them, so they do not depend
+    on the number of workers.
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
+    >>> with SandboxPool(2, seconds=10) as pool:
+    ...     [a.verdict for a in pool.assess_many([("98.5 ft/s^2", acc, Policy()), ("1 m", acc, Policy())])]
+    ['correct', 'incorrect']
+    """
+
+    def __init__(self, workers: int, *, seconds: float = DEFAULT_SECONDS,
+                 memory_mb: int = DEFAULT_MEMORY_MB, judge: Judge = assess) -> None:
+        if not (isinstance(workers, int) and workers > 0):
+            raise ValueError(f"expected a positive number of workers, found {workers!r}")
+        _check_limits(seconds, memory_mb)
+        self.boxes = [Sandbox(seconds=seconds, memory_mb=memory_mb, judge=judge)
+                      for _ in range(workers)]
+
+    @property
+    def restarts(self) -> int:
+        return sum(box.restarts for box in self.boxes)
+
+    def close(self) -> None:
+        for box in self.boxes:
+            box.close()
+
+    def __enter__(self) -> "SandboxPool":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def assess(self, text: str | None, result: ObjectiveResult,
+               policy: Policy = Policy()) -> Assessment:
+        """Judge one answer (in the first worker)."""
+        return self.boxes[0].assess(text, result, policy)
+
+    def assess_many(self, items: Iterable[Item]) -> list[Assessment]:
+        """Judge many answers, spread over the workers in small batches, in order."""
+        items = list(items)
+        boxes = self.boxes[:max(1, min(len(self.boxes), len(items)))]
+        return _judge_spread(boxes, items)
+
+
+def _check_limits(seconds: float, memory_mb: int) -> None:
+    if not seconds > 0:
+        raise ValueError(f"expected a positive time limit, found {seconds!r}")
+    if not (isinstance(memory_mb, int) and memory_mb > 0):
+        raise ValueError(f"expected a positive memory limit in MiB, found {memory_mb!r}")
+
+
+MAX_BATCH = 64
+
+
+def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
+    """Judge ``items`` with ``boxes`` working side by side, each taking the next batch when its
+    last one is done; an item repeated in ``items`` is judged once (judging is a function of
+    the text, the reference and the policy). Every answer gets ``seconds`` from the previous
+    outcome of its worker; an overrun, a memory overrun or a crash makes that one answer
+    ``not_evaluated``, and the worker is restarted for the rest of its batch."""
+    try:
+        distinct = list(dict.fromkeys(items))
+    except TypeError:  # an unhashable item (a judge's own argument types): judge every one
+        return _judge_each(boxes, items)
+    if len(distinct) == len(items):
+        return _judge_each(boxes, items)
+    judged = dict(zip(distinct, _judge_each(boxes, distinct)))
+    return [judged[item] for item in items]
+
+
+def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
+    results: list[Assessment | None] = [None] * len(items)
+    size = max(1, min(MAX_BATCH, len(items) // (4 * len(boxes)) or 1))
+    batches = deque(range(start, min(start + size, len(items)))
+                    for start in range(0, len(items), size))
+    pending: dict[Sandbox, deque[int]] = {}
+    deadline: dict[Sandbox, float] = {}
+
+    def send(box: Sandbox, indices: deque[int]) -> None:
+        """Hand ``indices`` to ``box``; an answer the worker cannot even receive is not judged."""
+        while indices:
+            if box._send([items[i] for i in indices]):
+                pending[box], deadline[box] = indices, time.monotonic() + box.seconds
+                return
+            results[indices.popleft()] = not_evaluated("the judging process stopped", None)
+        pending.pop(box, None)
+
+    def next_batch(box: Sandbox) -> None:
+        pending.pop(box, None)
+        while batches and box not in pending:
+            send(box, deque(batches.popleft()))
+
+    def fail(box: Sandbox, assessment: Assessment) -> None:
+        """The current answer of ``box`` gets ``assessment``; the rest go to a fresh worker."""
+        indices = pending[box]
+        results[indices.popleft()] = assessment
+        box._kill()
+        if indices:
+            send(box, indices)
+        else:
+            next_batch(box)
+
+    for box in boxes:
+        next_batch(box)
+    while pending:
+        by_conn = {box._conn: box for box in pending}
+        wait_for = max(0.0, min(deadline.values()) - time.monotonic())
+        try:
+            ready = connection.wait(list(by_conn), wait_for)
+        except OSError:
+            ready = []
+        for conn in ready:
+            box = by_conn[conn]
+            try:
+                status, payload = conn.recv()
+            except (EOFError, OSError):
+                fail(box, not_evaluated("the judging process stopped (out of memory?)"))
+                continue
+            if status == "memory":
+                fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
+                continue
+            indices = pending[box]
+            results[indices.popleft()] = payload if status == "ok" else not_evaluated(payload)
+            deadline[box] = time.monotonic() + box.seconds
+            if not indices:
+                next_batch(box)
+        now = time.monotonic()
+        for box in [b for b in pending if deadline[b] <= now and b._conn not in ready]:
+            fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
+    return results  # type: ignore[return-value]
 
 
 def assess_bounded(text: str | None, result: ObjectiveResult, policy: Policy = Policy(), *,
@@ -214,7 +342,8 @@ def assess_bounded(text: str | None, result: ObjectiveResult, policy: Policy = P
 
 def assess_batch(items: Sequence[Item] | Iterable[Item], *, seconds: float = DEFAULT_SECONDS,
                  memory_mb: int = DEFAULT_MEMORY_MB) -> list[Assessment]:
-    """Judge many answers in one reused worker, each within ``seconds`` and ``memory_mb``.
+    """Judge many answers in one reused worker, each within ``seconds`` and ``memory_mb``
+    (the answers travel to the worker in batches).
 
     >>> from mechgrade.solve.result import ObjectiveResult
     >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)

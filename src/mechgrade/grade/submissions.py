@@ -26,10 +26,12 @@ import os
 import stat
 import unicodedata
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 from ..errors import MechgradeError, SubmissionError, brief_exception
 from ..files import clean_text
+from ..parallel import fork_map
 from ..yamlio import read_yaml_text
 from .results import SkippedEntry
 
@@ -90,8 +92,8 @@ class SubmissionSet:
     notes: tuple[str, ...] = ()
 
 
-def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | None = None
-                     ) -> SubmissionSet:
+def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | None = None,
+                     jobs: int = 1) -> SubmissionSet:
     """Read every submission in ``folder``.
 
     Every entry of the folder ends up either in a student's submission or in ``skipped`` with
@@ -101,7 +103,7 @@ def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | No
     When ``keys`` (the assignment's ``problem_id.objective_id`` keys) is given, answers under
     other keys are reported in the student's messages, and a key that matches one of ``keys``
     but for letter case is read as that key (also reported). Raises :class:`SubmissionError`
-    only when ``folder`` itself cannot be listed.
+    only when ``folder`` itself cannot be listed. The students are read by ``jobs`` processes.
     """
     folder = Path(folder)
     try:
@@ -120,8 +122,7 @@ def read_submissions(folder: str | Path, *, keys: frozenset[str] | set[str] | No
         except Exception as exc:  # noqa: BLE001 - one odd entry must not stop the run
             skipped.append(SkippedEntry(clean_text(entry.name),
                                         f"internal error while listing it: {brief_exception(exc)}"))
-    students = tuple(_read_student_safely(student, sources, keys)
-                     for student, sources in sorted(found.items()))
+    students = tuple(fork_map(partial(_read_found, keys=keys), sorted(found.items()), jobs=jobs))
     for source in (s for sources in found.values() for s in sources):
         skipped.extend(source.skipped)
         if source.problem and source.problem.endswith(SHARED_WORK):
@@ -303,6 +304,10 @@ def _read_student_safely(student: str, sources: list[_Source], keys) -> Submissi
                           messages=(f"internal error while reading this submission: {detail}; "
                                     f"please tell your instructor",),
                           internal_error=f"reading '{student}': {detail}")
+
+
+def _read_found(found: tuple[str, list[_Source]], keys) -> Submission:
+    return _read_student_safely(*found, keys)
 
 
 def _look_alike_notes(students: list[str]) -> list[str]:

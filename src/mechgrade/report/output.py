@@ -22,12 +22,14 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, replace
+from functools import lru_cache, partial
 from html import escape as html_escape
 from pathlib import Path
 
 from ..errors import Location, MechgradeError, brief_exception
-from ..files import safe_file_names, write_json, write_text
+from ..files import json_text, safe_file_names, write_json, write_text
 from ..export import EXPORTERS
+from ..parallel import fork_map, outcome, raise_first
 from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
 
@@ -58,13 +60,14 @@ class Written:
 
 
 def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str | Path | None = None,
-                  *, roster=None) -> Written:
+                  *, roster=None, jobs: int = 1) -> Written:
     """Write every output of ``report`` into ``out_dir``.
 
     Rendering one student's feedback is one unit of work: a fault of mechgrade's there gives
-    that student a short page saying so, and the other outputs are written as usual. Raises
-    :class:`~mechgrade.errors.MechgradeError` when a template is missing or broken, or the
-    folder cannot be written.
+    that student a short page saying so, and the other outputs are written as usual. The pages
+    are rendered in ``jobs`` forked processes (the files are the same for any ``jobs``). Raises
+    :class:`~mechgrade.errors.MechgradeError` when a template is missing or broken (then no file
+    is written), or the folder cannot be written.
     """
     out = Path(out_dir)
     env = template_environment(templates_dir)
@@ -74,16 +77,33 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     except OSError as exc:
         raise MechgradeError(f"cannot create the output folder ({exc.strerror or exc})",
                              where=_where(out)) from None
+    count = len(report.students)
+    pieces = max(1, min(count, 4 * jobs)) if jobs > 1 else 1
+    bounds = [(count * i // pieces, count * (i + 1) // pieces) for i in range(pieces)]
+    _RENDERING[:] = [(report, templates, templates_dir)]  # inherited by the forked workers
+    try:
+        # results.json is made while the pages render; made again if a page met a fault.
+        work = [_results_text] + [partial(_render_students, b) for b in bounds]
+        results_text, *rendered = fork_map(outcome, work, jobs=jobs)
+        raise_first(rendered)
+    finally:
+        _RENDERING.clear()
     pages: list[tuple[Path, str]] = []
     faults: list[str] = []
-    for student, filename in zip(report.students, feedback_names(report)):
-        for template, suffix in zip(templates, (".html", ".md")):
-            page = _feedback_page(report, student, template, suffix, templates_dir, faults)
-            pages.append((out / "feedback" / (filename + suffix), page))
+    names = iter(feedback_names(report))
+    for chunk_pages, chunk_faults in rendered:
+        faults.extend(chunk_faults)
+        for html, markdown in chunk_pages:
+            filename = next(names)
+            pages.append((out / "feedback" / (filename + ".html"), html))
+            pages.append((out / "feedback" / (filename + ".md"), markdown))
+    written: list[Path] = [out / "results.json"]
     if faults:
         report = replace(report, internal_errors=report.internal_errors + tuple(faults))
-    written: list[Path] = [out / "results.json"]
-    write_json(written[0], report.to_json())
+    if faults or isinstance(results_text, MechgradeError):
+        write_json(written[0], report.to_json())  # raises the error with the file's name
+    else:
+        write_text(written[0], results_text)
     for name, fmt in (("grades.csv", "grades-csv"), ("results.csv", "long-csv")):
         EXPORTERS[fmt](report, out / name, roster=roster)
         written.append(out / name)
@@ -93,10 +113,33 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     return Written(tuple(written), report)
 
 
+_RENDERING: list = []
+
+
+def _results_text() -> str:
+    return json_text(_RENDERING[0][0].to_json())
+
+
+def _render_students(bounds: tuple[int, int]) -> tuple[list[tuple[str, str]], list[str]]:
+    """The (html, markdown) pages of the report's students ``bounds[0]:bounds[1]``, and the
+    faults met (a broken template raises :class:`MechgradeError`)."""
+    report, templates, templates_dir = _RENDERING[0]
+    prompts = _prompts(report)
+    pages: list[tuple[str, str]] = []
+    faults: list[str] = []
+    for student in report.students[bounds[0]:bounds[1]]:
+        pages.append(tuple(_feedback_page(report, student, template, suffix, templates_dir,
+                                          faults, prompts)
+                           for template, suffix in zip(templates, (".html", ".md"))))
+    return pages, faults
+
+
 def _feedback_page(report: GradeReport, student: StudentResult, template, suffix: str,
-                   templates_dir, faults: list[str]) -> str:
+                   templates_dir, faults: list[str], prompts: dict) -> str:
     try:
-        context = feedback_context(report, student, markdown=suffix == ".md")
+        context = _context(report, student, prompts)
+        if suffix == ".md":
+            context = _escape_all(context)
         return _render(template, context, templates_dir)
     except MechgradeError:
         raise  # a broken template is the instructor's to fix, for every student alike
@@ -164,12 +207,15 @@ def feedback_context(report: GradeReport, student: StudentResult, *,
     With ``markdown`` every text is escaped for Markdown (the HTML template relies on Jinja's
     autoescaping instead), so a student's answer can never turn into markup.
     """
-    context = _context(report, student)
+    context = _context(report, student, _prompts(report))
     return _escape_all(context) if markdown else context
 
 
-def _context(report: GradeReport, student: StudentResult) -> dict:
-    prompts = {(o.problem, o.objective): o.prompt for o in report.objectives}
+def _prompts(report: GradeReport) -> dict:
+    return {(o.problem, o.objective): o.prompt for o in report.objectives}
+
+
+def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict:
     rows = []
     for answer in student.answers:
         rows.append({
@@ -214,6 +260,7 @@ def _context(report: GradeReport, student: StudentResult) -> dict:
 _MD_SPECIAL = re.compile(r"([\\`*\[\]<>|~&#]|(?<![A-Za-z0-9])_|_(?![A-Za-z0-9]))")
 
 
+@lru_cache(maxsize=1 << 16)  # prompts, verdicts and common answers repeat across students
 def markdown_escape(text: str) -> str:
     """Text shown literally by any Markdown renderer (no markup, no raw HTML).
 
@@ -233,6 +280,7 @@ def _escape_all(value):
     return value
 
 
+@lru_cache(maxsize=4096)
 def format_points(value: float) -> str:
     """Points without needless decimals.
 
@@ -247,6 +295,7 @@ _SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 _POWER = re.compile(r"(?:\*\*|\^)\s*(?:\((-?\d+)\)|(-?\d+))")
 
 
+@lru_cache(maxsize=1 << 16)
 def pretty_math(text: str) -> str:
     """Answer and unit text made easier to read: powers raised, products as middle dots.
 

@@ -1,0 +1,213 @@
+"""Grading at scale: ``mechgrade grade`` on generated classes next to the floor of the work.
+
+Each class has 12 graded objectives (4 symbolic) from the shipped problems: the hw1 example's
+eight plus the cannonball's speed and three of the cylinder's. Every student writes an
+``answers.yaml`` with a random mix of right, rounded, wrong-unit, sign-flipped, missing and
+alternative symbolic answers (fixed seed, so a run is repeatable).
+
+The floor is a script that only walks the submission folders and ``yaml.safe_load``s each
+answers file: the least any grader must do. Both run as fresh processes; "cores" is the CPU
+time of the process and its workers (user + sys) over the wall time. Each command runs
+``--repeat`` times and the fastest run counts. The CPU columns (least CPU time of the runs)
+compare the work done, which other load on the machine changes less than the wall time.
+
+Run: ``.venv/bin/python bench/scale.py [sizes...] [--jobs N]`` (default sizes 100 1000 5000).
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PROBLEMS = ROOT / "problems"
+WORK = Path(tempfile.gettempdir()) / "mechgrade-bench-scale"
+
+ASSIGNMENT = f"""\
+id: scale
+title: Scale benchmark
+problems:
+  - {PROBLEMS / 'bowling_3_15_4_pendulum.yaml'}
+  - path: {PROBLEMS / 'bowling_3_15_8_connected_blocks.yaml'}
+    objectives: [xdot, rod_omega_z, P_ZA_frameA]
+  - path: {PROBLEMS / 'ruina_10_4_10_7_rotating_tube_accel.yaml'}
+    objectives: [a_P_N]
+  - path: {PROBLEMS / 'bowling_3_15_2_cannonball.yaml'}
+    objectives: [speed]
+  - path: {PROBLEMS / 'bowling_3_15_5_cylinder.yaml'}
+    objectives: [vB_mag, vB_symbolic_x, vB_symbolic_y]
+points:
+  default: 2
+policy:
+  reveal_answers: true
+  missing_unit: {{action: penalize, credit: 0.5}}
+  partial_credit:
+    diagnoses: {{sign: 0.5, swapped: 0.5, deg_as_rad: 0.25, cm_m: 0.25}}
+  ecf: {{enabled: true, credit: 1.0}}
+"""
+
+# (problem, objective): answer makers (rng -> text); numbers are the reference values.
+SCALARS = {
+    ("bowling_3_15_4_pendulum", "acc_mag"): (98.5089, [("ft/s^2", 1.0), ("m/s^2", 0.3048)]),
+    ("bowling_3_15_8_connected_blocks", "xdot"): (-7.66598, [("m/s", 1.0), ("ft/s", 1 / 0.3048)]),
+    ("bowling_3_15_8_connected_blocks", "rod_omega_z"): (73.3429, [("rad/s", 1.0),
+                                                                   ("rpm", 60 / 6.283185)]),
+    ("bowling_3_15_5_cylinder", "vB_mag"): (5.00368, [("m/s", 1.0), ("cm/s", 100.0)]),
+}
+VECTORS = {
+    ("bowling_3_15_4_pendulum", "acc_N"): ((-89.8705, -40.3397), "ft/s^2", "N"),
+    ("bowling_3_15_4_pendulum", "acc_A"): ((-98.0, 10.0), "ft/s^2", "A"),
+    ("bowling_3_15_8_connected_blocks", "P_ZA_frameA"): ((-0.104522, 0.0), "m", "A"),
+    ("ruina_10_4_10_7_rotating_tube_accel", "a_P_N"): ((-66.0, -40.0), "ft/s^2", "N"),
+}
+SYMBOLIC = {
+    ("bowling_3_15_4_pendulum", "acc_mag_symbolic"): [
+        "L*sqrt(thetad**4 + thetadd**2)", "L sqrt(thetad^4 + thetadd^2)",
+        "sqrt(L^2 thetad^4 + L^2 thetadd^2)", "L*(thetad^4 + thetadd^2)^(1/2)", "L*thetad^2",
+        "L*sqrt(thetad^2 + thetadd^2)", "-L*sqrt(thetad^4 + thetadd^2)",
+        "L*sqrt((thetad^2)^2 + thetadd^2)"],
+    ("bowling_3_15_2_cannonball", "speed"): [
+        "sqrt(xd^2 + yd^2)", "sqrt(xd**2+yd**2)", "(xd^2 + yd^2)^(1/2)", "xd + yd",
+        "sqrt(xd^2 - yd^2)", "sqrt(yd^2 + xd^2)", "xd^2 + yd^2"],
+    ("bowling_3_15_5_cylinder", "vB_symbolic_x"): [
+        "-xd - r*thetad*sin(theta)", "-(xd + r thetad sin(theta))", "xd + r*thetad*sin(theta)",
+        "-xd - r*thetad*cos(theta)", "-r*thetad*sin(theta) - xd", "-xd + r*thetad*sin(theta)"],
+    ("bowling_3_15_5_cylinder", "vB_symbolic_y"): [
+        "-yd + r*thetad*cos(theta)", "r thetad cos(theta) - yd", "yd - r*thetad*cos(theta)",
+        "-yd + r*thetad*sin(theta)", "r*thetad*cos(theta)-yd", "-yd + thetad*cos(theta)"],
+}
+
+
+def scalar_answer(rng: random.Random, value: float, units) -> str:
+    unit, factor = rng.choice(units)
+    roll = rng.random()
+    if roll < 0.1:
+        value = -value
+    elif roll < 0.2:
+        value *= rng.uniform(0.5, 1.5)
+    text = f"{value * factor * rng.uniform(0.999, 1.001):.{rng.choice((3, 4))}g}"
+    return text if rng.random() < 0.05 else f"{text} {unit}"
+
+
+def vector_answer(rng: random.Random, comps, unit: str, frame: str) -> str:
+    comps = list(comps)
+    roll = rng.random()
+    if roll < 0.1:
+        comps.reverse()
+    elif roll < 0.2:
+        comps = [-c for c in comps]
+    shown = [f"{c * rng.uniform(0.999, 1.001):.3g}" for c in comps]
+    if frame != "N" or rng.random() < 0.5:
+        return f"({', '.join(shown)}) {unit}"
+    return f"{shown[0]} i + {shown[1]} j {unit}".replace("+ -", "- ")
+
+
+def answers_yaml(rng: random.Random) -> str:
+    per_problem: dict[str, list[str]] = {}
+
+    def put(key, text):
+        if rng.random() < 0.03:
+            return  # left blank
+        problem, objective = key
+        quoted = text.replace("'", "''")
+        per_problem.setdefault(problem, []).append(f"  {objective}: '{quoted}'")
+
+    for key, (value, units) in SCALARS.items():
+        put(key, scalar_answer(rng, value, units))
+    for key, (comps, unit, frame) in VECTORS.items():
+        put(key, vector_answer(rng, comps, unit, frame))
+    for key, forms in SYMBOLIC.items():
+        put(key, rng.choice(forms))
+    lines = ["# generated by bench/scale.py"]
+    for problem, entries in per_problem.items():
+        lines.append(f"{problem}:")
+        lines.extend(entries)
+    return "\n".join(lines) + "\n"
+
+
+def make_class(size: int) -> Path:
+    """The class folder for ``size`` students (generated once, reused)."""
+    folder = WORK / f"class{size}"
+    done = folder / ".complete"
+    if done.exists():
+        return folder
+    shutil.rmtree(folder, ignore_errors=True)
+    rng = random.Random(size)
+    subs = folder / "submissions"
+    for i in range(size):
+        student = subs / f"s{i:05d}"
+        student.mkdir(parents=True)
+        (student / "answers.yaml").write_text(answers_yaml(rng), encoding="utf-8")
+    (folder / "assignment.yaml").write_text(ASSIGNMENT, encoding="utf-8")
+    done.touch()
+    return folder
+
+
+FLOOR = """\
+import os, sys, yaml
+count = 0
+for root, dirs, files in os.walk(sys.argv[1]):
+    dirs.sort()
+    for name in sorted(files):
+        if name.endswith(".yaml"):
+            with open(os.path.join(root, name), encoding="utf-8") as handle:
+                yaml.safe_load(handle)
+            count += 1
+print(count)
+"""
+
+
+def timed(command: list[str]) -> tuple[float, float]:
+    """(wall seconds, CPU seconds of the process and its children) of one run."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode not in (0, 3):
+        raise SystemExit(f"{' '.join(command)} failed ({done.returncode}):\n{done.stderr}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("sizes", nargs="*", type=int, default=[100, 1000, 5000])
+    parser.add_argument("--jobs", type=int, default=None, help="pass --jobs to mechgrade grade")
+    parser.add_argument("--repeat", type=int, default=3,
+                        help="runs of each command; the fastest is shown (other load on the "
+                             "machine only ever slows a run down)")
+    args = parser.parse_args()
+    python = sys.executable
+    mechgrade = [python, "-m", "mechgrade"]
+    print(f"{'students':>8} {'grade s':>8} {'floor s':>8} {'ratio':>6} {'cores':>6}  "
+          f"{'grade cpu s':>11} {'floor cpu s':>11} {'cpu ratio':>9}")
+    for size in args.sizes:
+        folder = make_class(size)
+        out = folder / "out"
+        command = mechgrade + ["grade", str(folder / "assignment.yaml"),
+                               str(folder / "submissions"), "--out", str(out)]
+        if args.jobs is not None:
+            command += ["--jobs", str(args.jobs)]
+        floors = [timed([python, "-c", FLOOR, str(folder / "submissions")])
+                  for _ in range(args.repeat)]
+        runs = []
+        for _ in range(args.repeat):
+            shutil.rmtree(out, ignore_errors=True)
+            runs.append(timed(command))
+        (wall, cpu), (floor_wall, _) = min(runs), min(floors)
+        least_cpu, floor_cpu = min(c for _, c in runs), min(c for _, c in floors)
+        print(f"{size:>8} {wall:>8.2f} {floor_wall:>8.2f} {wall / floor_wall:>6.2f} "
+              f"{cpu / wall:>6.2f}  {least_cpu:>11.2f} {floor_cpu:>11.2f} "
+              f"{least_cpu / floor_cpu:>9.2f}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

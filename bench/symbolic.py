@@ -1,0 +1,142 @@
+"""Symbolic answers: mechgrade's check next to the naive ``simplify(sympify(a) - sympify(b)) == 0``.
+
+1,000 answers to the four symbolic objectives of ``bench/scale.py`` (its answer forms, each
+labelled equivalent or not by hand), drawn with repeats as in a real class. Timed on the same
+answers:
+
+* naive: sympy's ``parse_expr`` (implicit products, ``^``) of both sides, ``simplify`` of the
+  difference, one answer after the other;
+* mechgrade in-process: :func:`mechgrade.grade.compare.assess` of every answer;
+* mechgrade through the worker: every answer through one bounded :class:`Sandbox`, one answer
+  per round trip (as grading did before batches) and in batches (a repeated answer is judged
+  once);
+* mechgrade through a worker per core: every answer through a :class:`SandboxPool`.
+
+Then again on 1,000 answers each written differently (``k*(form)/k``), which shows the cost of
+judging itself, without repeats.
+
+A verdict is right when "correct" goes with an equivalent answer and any other verdict with a
+wrong one. Run: ``.venv/bin/python bench/symbolic.py [count]``.
+"""
+
+from __future__ import annotations
+
+import random
+import sys
+import time
+from pathlib import Path
+
+import sympy
+from sympy.parsing.sympy_parser import (convert_xor, implicit_multiplication_application,
+                                        parse_expr, standard_transformations)
+
+from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.sandbox import Sandbox, SandboxPool
+from mechgrade.parallel import default_jobs
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem
+
+PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
+
+# (problem file, objective): [(answer, equivalent to the reference?)]
+FORMS = {
+    ("bowling_3_15_4_pendulum", "acc_mag_symbolic"): [
+        ("L*sqrt(thetad**4 + thetadd**2)", True), ("L sqrt(thetad^4 + thetadd^2)", True),
+        ("sqrt(L^2 thetad^4 + L^2 thetadd^2)", True), ("L*(thetad^4 + thetadd^2)^(1/2)", True),
+        ("L*thetad^2", False), ("L*sqrt(thetad^2 + thetadd^2)", False),
+        ("-L*sqrt(thetad^4 + thetadd^2)", False), ("L*sqrt((thetad^2)^2 + thetadd^2)", True)],
+    ("bowling_3_15_2_cannonball", "speed"): [
+        ("sqrt(xd^2 + yd^2)", True), ("sqrt(xd**2+yd**2)", True), ("(xd^2 + yd^2)^(1/2)", True),
+        ("xd + yd", False), ("sqrt(xd^2 - yd^2)", False), ("sqrt(yd^2 + xd^2)", True),
+        ("xd^2 + yd^2", False)],
+    ("bowling_3_15_5_cylinder", "vB_symbolic_x"): [
+        ("-xd - r*thetad*sin(theta)", True), ("-(xd + r thetad sin(theta))", True),
+        ("xd + r*thetad*sin(theta)", False), ("-xd - r*thetad*cos(theta)", False),
+        ("-r*thetad*sin(theta) - xd", True), ("-xd + r*thetad*sin(theta)", False)],
+    ("bowling_3_15_5_cylinder", "vB_symbolic_y"): [
+        ("-yd + r*thetad*cos(theta)", True), ("r thetad cos(theta) - yd", True),
+        ("yd - r*thetad*cos(theta)", False), ("-yd + r*thetad*sin(theta)", False),
+        ("r*thetad*cos(theta)-yd", True), ("-yd + thetad*cos(theta)", False)],
+}
+TRANSFORMS = standard_transformations + (implicit_multiplication_application, convert_xor)
+
+
+def references() -> dict:
+    out = {}
+    for name in sorted({problem for problem, _ in FORMS}):
+        solution = solve(load_problem(PROBLEMS / f"{name}.yaml"))
+        for problem, objective in FORMS:
+            if problem == name:
+                out[problem, objective] = solution.result(objective)
+    return out
+
+
+def answers(count: int) -> list[tuple[tuple[str, str], str, bool]]:
+    """Answers as a class writes them: the same few forms, many times over."""
+    rng = random.Random(7)
+    keys = list(FORMS)
+    return [(key, *rng.choice(FORMS[key])) for key in (rng.choice(keys) for _ in range(count))]
+
+
+def distinct_answers(count: int) -> list[tuple[tuple[str, str], str, bool]]:
+    """Every answer written differently (``k*(form)/k``), so none is judged from another."""
+    return [(key, f"{i + 2}*({text})/{i + 2}", equivalent)
+            for i, (key, text, equivalent) in enumerate(answers(count))]
+
+
+def naive_equal(text: str, reference: str) -> bool:
+    a = parse_expr(text, transformations=TRANSFORMS)
+    b = parse_expr(reference, transformations=TRANSFORMS)
+    return sympy.simplify(a - b) == 0
+
+
+def timed(func):
+    start = time.perf_counter()
+    value = func()
+    return time.perf_counter() - start, value
+
+
+def compare(title: str, refs: dict, sample) -> None:
+    policy = Policy()
+    items = [(text, refs[key], policy) for key, text, _ in sample]
+    truth = [equivalent for _, _, equivalent in sample]
+    jobs = default_jobs()
+
+    naive_s, naive = timed(lambda: [naive_equal(text, refs[key].expr)
+                                    for key, text, _ in sample])
+    inproc_s, inproc = timed(lambda: [assess(*item) for item in items])
+    with Sandbox() as box:
+        box.assess("0", refs[sample[0][0]], policy)  # start the worker outside the timing
+        single_s, single = timed(lambda: [box.assess(*item) for item in items])
+        worker_s, worker = timed(lambda: box.assess_many(items))
+    with SandboxPool(jobs) as pool:
+        pool.assess_many(items[:jobs])  # start the workers outside the timing
+        pool_s, pooled = timed(lambda: pool.assess_many(items))
+
+    def right(verdicts) -> str:
+        good = sum((v == "correct") == t for v, t in zip(verdicts, truth))
+        return f"{good}/{len(truth)} right"
+
+    distinct = len(set(items))
+    print(f"{title}: {len(items)} symbolic answers ({distinct} distinct), {jobs} cores")
+    rows = [("naive simplify(sympify(a) - sympify(b)) == 0", naive_s,
+             right(["correct" if n else "incorrect" for n in naive])),
+            ("mechgrade in-process, one by one", inproc_s, right([a.verdict for a in inproc])),
+            ("mechgrade through the worker, one answer a trip", single_s,
+             right([a.verdict for a in single])),
+            ("mechgrade through the worker, batches", worker_s,
+             right([a.verdict for a in worker])),
+            (f"mechgrade through {jobs} workers, batches", pool_s,
+             right([a.verdict for a in pooled]))]
+    for label, seconds, verdicts in rows:
+        print(f"  {label:<50} {seconds:7.3f} s  {naive_s / seconds:7.1f}x  {verdicts}")
+
+
+def main(count: int) -> None:
+    refs = references()
+    compare("as a class answers", refs, answers(count))
+    compare("every answer written differently", refs, distinct_answers(count))
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 1000)
