@@ -29,6 +29,7 @@ from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import Plan, plan
+from .mutants import attach, given_mistakes, model_mistakes, plausible_slips
 from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 from .symbolic import symbolic
 
@@ -107,7 +108,7 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
         given_map = _givens(problem, givens)
         given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
         numeric = {o.id for o in objectives if _numeric(o)}
-        values, mistakes = {}, {}
+        values, mistakes, generated = {}, {}, []
         if numeric:
             try:
                 instant = solve_numeric(problem, p, given_map, numeric)
@@ -118,6 +119,8 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                 failures.update(_check_requirements(problem, p, instant.state, numeric))
                 values = instant.values
                 mistakes = _mistake_values(p, instant.state, numeric)
+                generated = [model_mistakes(problem, p, instant.state, numeric),
+                             given_mistakes(problem, p, given_map, numeric, solve_numeric)]
                 warned += [w for w in instant.warnings if w not in warned]
                 if not overrides or base is None:
                     base = (instant.state, given_map)
@@ -133,6 +136,8 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                                                       mistakes.get(obj.id, ()))
             except MechgradeError as err:
                 failures[obj.id] = err
+        results.update(attach({o.id: results[o.id] for o in objectives if o.id in results
+                               and o.id in numeric}, generated, plausible_slips(problem)))
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results:
         raise failures[order[0]]

@@ -25,6 +25,17 @@ class MistakeValue:
 
 
 @dataclass(frozen=True)
+class GeneratedMistake:
+    """The value a typical conceptual mistake gives (see :mod:`mechgrade.solve.mutants`):
+    ``code`` its family (a key of the assignment's ``partial_credit``), ``message`` one
+    sentence naming the term and the quantity, ``value`` in the objective's unit."""
+
+    code: str
+    message: str
+    value: Value
+
+
+@dataclass(frozen=True)
 class ObjectiveResult:
     """One objective's reference answer.
 
@@ -33,6 +44,9 @@ class ObjectiveResult:
     readable by :func:`mechgrade.expressions.syntax.parse`) in the names ``symbols``.
     ``symbol_units`` gives each symbol's SI unit, for dimension checks of student answers.
     ``rel`` and ``abs`` are the objective's tolerance (``abs`` in ``unit``).
+    ``mistakes`` are the author's; ``generated_mistakes`` those the solver derives from the
+    model; ``plausible`` the whole-answer slips the model makes plausible (``"g"`` only with a
+    ``g``, ``"deg_as_rad"`` only with an angle in degrees...).
     """
 
     id: str
@@ -47,6 +61,8 @@ class ObjectiveResult:
     rel: float = 0.01
     abs: float = 0.0
     prompt: str = ""
+    generated_mistakes: tuple[GeneratedMistake, ...] = ()
+    plausible: frozenset[str] | None = None
 
 
 @dataclass(frozen=True)
