@@ -306,7 +306,9 @@ def _judge_number(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
                                read_back, "")
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(np.array([student]), np.array([reference]), close,
-                     mistakes=_numeric_mistakes(result, scalar=True))
+                     mistakes=_numeric_mistakes(result, scalar=True),
+                     generated=_numeric_mistakes(result, scalar=True, generated=True),
+                     plausible=result.plausible)
     return _wrong(found, policy, units,
                   f"Not {_describe_tolerance(result, policy)}.", read_back)
 
@@ -331,13 +333,13 @@ def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,
     credit = max(0.0, min(1.0, credit * units.factor))
     verdict = "partial" if credit > 0 else "incorrect"
     message = found.message if found.message.endswith((".", "?", "!")) else found.message + "."
-    return Assessment(verdict, credit, found.label, f"{summary} {message}{units.note}",
-                      read_back)
+    # the diagnosis says more than the summary: it alone is the feedback
+    return Assessment(verdict, credit, found.label, f"{message}{units.note}", read_back)
 
 
-def _numeric_mistakes(result: ObjectiveResult, scalar: bool):
+def _numeric_mistakes(result: ObjectiveResult, scalar: bool, generated: bool = False):
     out = []
-    for mistake in result.mistakes:
+    for mistake in result.generated_mistakes if generated else result.mistakes:
         value = mistake.value
         if value is None:
             out.append((mistake, None))
@@ -418,7 +420,9 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
         return _finish_correct(units, figures, policy, read_back, "")
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(student, reference, close, kind="vector",
-                     mistakes=_numeric_mistakes(result, scalar=False))
+                     mistakes=_numeric_mistakes(result, scalar=False),
+                     generated=_numeric_mistakes(result, scalar=False, generated=True),
+                     plausible=result.plausible)
     right = [axis for axis in "xyz" if axis not in wrong]
     summary = (f"The {_listing(wrong)} component{'s are' if len(wrong) > 1 else ' is'} not "
                f"{_describe_tolerance(result, policy)}"
@@ -557,7 +561,8 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
     # such as 9.81 for g (1%), unlike the equivalence test itself.
     loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
-    found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes)
+    found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes,
+                     plausible=result.plausible)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
     return _wrong(found, policy, _Units(result.unit),

@@ -136,8 +136,8 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                                                       mistakes.get(obj.id, ()))
             except MechgradeError as err:
                 failures[obj.id] = err
-        results.update(attach({o.id: results[o.id] for o in objectives if o.id in results
-                               and o.id in numeric}, generated, plausible_slips(problem)))
+        results.update(attach({o.id: results[o.id] for o in objectives if o.id in results},
+                              generated, plausible_slips(problem)))
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results:
         raise failures[order[0]]
