@@ -26,7 +26,7 @@ from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeErr
 from ..expressions import syntax
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary
-from ..solve.result import MistakeValue, ObjectiveResult
+from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
@@ -561,15 +561,16 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
     # such as 9.81 for g (1%), unlike the equivalence test itself.
     loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
+    generated = [(g, _mistake_values(g, result, env)) for g in result.generated_mistakes]
     found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes,
-                     plausible=result.plausible)
+                     generated=generated, plausible=result.plausible)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
     return _wrong(found, policy, _Units(result.unit),
                   "Not equivalent to the expected expression.", read_back)
 
 
-def _mistake_values(mistake: MistakeValue, result: ObjectiveResult, env) -> np.ndarray | None:
+def _mistake_values(mistake: MistakeValue | GeneratedMistake, result: ObjectiveResult, env) -> np.ndarray | None:
     if not mistake.expr:
         return None
     try:

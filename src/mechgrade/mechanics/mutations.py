@@ -19,14 +19,14 @@ term's value.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Call, Name, Node
-from ..spec.model import Objective, Problem
+from ..expressions.syntax import Bin, Call, Name, Node, Unary, to_text
+from ..spec.model import Expr, Objective, Problem
 from .build import Model, build
 from .interpret import Interpreter
 from .kinematics import locations
@@ -37,7 +37,7 @@ ACCELERATION_CODES = ("drop_transport_acc", "drop_tangential", "drop_centripetal
 VELOCITY_CODES = ("drop_transport_vel", "drop_omega_r", "drop_relative_vel")
 CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc", "acc_for_acc_t",
-    "acc_for_acc_n", "rho_formula", "component_for_speed")
+    "acc_for_acc_n", "rho_formula", "component_for_speed", "mag_as_sum", "position_term")
 """Family codes of the model mutations (keys of an assignment's ``partial_credit``)."""
 
 
@@ -87,9 +87,8 @@ def _mutations(problem: Problem, _locations: tuple) -> tuple[Mutation, ...]:
     model = build(problem)
     out: list[Mutation] = []
     for obj in problem.objectives:
-        if obj.kind == "symbolic":
-            continue
         out += _objective_mutations(model, obj)
+        out += _position_mutations(problem, model, obj)
     # a reading undefined for every state (a speed divided by where it is zero) is no mistake
     return tuple(m for m in out if not sp.sympify(m.value).has(sp.zoo, sp.nan, sp.oo))
 
@@ -193,8 +192,15 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             out.append(Mutation(obj.id, "rho_formula", model.plain(
                 (v & v) / a.magnitude()), "Your value is v²/|a|; the radius of curvature is "
                 "v²/a_n, with the normal part a_n of the acceleration only."))
-    if top == "speed":
-        v = base.point_velocity(node.args[0], node.args[1].id)
+    speed = top == "speed" or (top == "mag" and isinstance(node.args[0], Call)
+                               and node.args[0].func == "vel")
+    if speed:
+        args = node.args if top == "speed" else node.args[0].args
+        v = base.point_velocity(args[0], args[1].id)
+        x, y, z = v.to_matrix(frame)
+        out.append(Mutation(obj.id, "mag_as_sum", model.plain(x + y + z),
+                            "Your value adds the components of the velocity; the speed is "
+                            "the square root of the sum of their squares."))
         for G in model.frames:
             for axis, unit in zip("xyz", (model.frames[G].x, model.frames[G].y,
                                           model.frames[G].z)):
@@ -211,6 +217,57 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
                                 f"Your components are those of the right vector along frame "
                                 f"{G}'s unit vectors; give them along frame {obj.frame}'s."))
     return out
+
+
+def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:
+    """The objective with one term of a point's position left out (half a side for half a
+    diagonal, the offset of a pin forgotten)."""
+    try:
+        right = _matrix(model, model.language.value(obj.find.node),
+                        model.frames[obj.frame or problem.inertial_frame])
+    except Exception:  # a failing objective has no mutants
+        return []
+    out = []
+    for spec in problem.points:
+        terms = _terms(spec.position.node) if spec.position is not None else []
+        if len(terms) < 2:
+            continue
+        for i, (_, dropped) in enumerate(terms):
+            rest = _sum(terms[:i] + terms[i + 1:])
+            text = to_text(rest)
+            points = tuple(replace(p, position=Expr(text, rest)) if p.name == spec.name else p
+                           for p in problem.points)
+            try:
+                mutated = build(replace(problem, points=points))
+                value = _matrix(mutated, mutated.language.value(obj.find.node),
+                                mutated.frames[obj.frame or problem.inertial_frame])
+            except Exception:  # the shortened description is not a position
+                continue
+            if _zero(model, sp.Matrix([value]) - sp.Matrix([right])):
+                continue
+            out.append(Mutation(obj.id, "position_term", value,
+                                f"Your value matches what {spec.name} placed at {text} from "
+                                f"{spec.origin} gives, without the term {to_text(dropped)} of "
+                                f"its position: check the distance from {spec.origin} to "
+                                f"{spec.name}."))
+    return out
+
+
+def _terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
+    """The additive terms of ``node`` with their signs."""
+    if isinstance(node, Bin) and node.op in "+-":
+        return _terms(node.left, sign) + _terms(node.right, sign if node.op == "+" else -sign)
+    if isinstance(node, Unary) and node.op == "-":
+        return _terms(node.operand, -sign)
+    return [(sign, node)]
+
+
+def _sum(terms: list[tuple[int, Node]]) -> Node:
+    sign, node = terms[0]
+    total = node if sign > 0 else Unary("-", node)
+    for sign, node in terms[1:]:
+        total = Bin("+" if sign > 0 else "-", total, node)
+    return total
 
 
 def _relabel(vector: Vector, source, target) -> Vector:
@@ -243,6 +300,8 @@ def _calls(node: Node, names: tuple[str, ...]):
 
 
 def _zero(model: Model, vector) -> bool:
+    if isinstance(vector, sp.MatrixBase):
+        return all(identically_zero(c) for c in vector)
     if isinstance(vector, Vector):
         return all(identically_zero(model.plain(c)) for c in vector.to_matrix(model.inertial))
     return identically_zero(model.plain(vector))

@@ -29,7 +29,8 @@ from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import Plan, plan
-from .mutants import attach, given_mistakes, model_mistakes, plausible_slips
+from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
+                      symbolic_mistakes)
 from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 from .symbolic import symbolic
 
@@ -170,7 +171,8 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
     return ObjectiveResult(
         id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(expr), symbols=tuple(meanings),
-        symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
+        symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt,
+        generated_mistakes=symbolic_mistakes(problem, obj, expr, dict(givens), symbolic))
 
 
 def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:

@@ -27,16 +27,17 @@ import numpy as np
 import sympy as sp
 
 from ..errors import MechgradeError
-from ..expressions.syntax import Prime, to_text
+from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..mechanics.mutations import VELOCITY_CODES, mutations
 from ..spec.model import Objective, Problem
 from ..units import dimension, from_si, to_si
 from .levels import State, evaluate
-from .plan import Plan
+from .plan import Plan, plan
 from .result import GeneratedMistake, ObjectiveResult
 
-GIVEN_CODES = ("given_deg_as_rad", "given_rate_unit", "given_length_unit", "given_sign")
+GIVEN_CODES = ("given_deg_as_rad", "given_rate_unit", "given_length_unit", "given_sign",
+               "given_swap")
 """Family codes of mistaken givens (keys of an assignment's ``partial_credit``)."""
 
 # a length unit a student may read as the base unit of its system
@@ -78,25 +79,67 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
     return out
 
 
+def symbolic_mistakes(problem: Problem, obj: Objective, right, givens: dict,
+                      solve_symbolic) -> tuple[GeneratedMistake, ...]:
+    """The model mutations of a symbolic objective, each solved in the objective's symbols
+    like the objective itself (``solve_symbolic`` is :func:`.symbolic.symbolic`)."""
+    from ..mechanics.symbols import identically_zero
+
+    k = plan(problem).k
+    out: list[GeneratedMistake] = []
+    kept = [right]
+    for m in mutations(problem):
+        if m.objective != obj.id or isinstance(m.value, sp.MatrixBase):
+            continue
+        try:
+            expr, _ = solve_symbolic(problem, k, obj, givens, expr=m.value)
+        except MechgradeError:
+            continue
+        if expr.has(sp.zoo, sp.nan, sp.oo) or any(identically_zero(expr - e) for e in kept) \
+                or (m.code != "other_point" and identically_zero(expr)):
+            continue
+        kept.append(expr)
+        sentence = m.sentence.replace(" = {term}", "")
+        out.append(GeneratedMistake(m.code, sentence, None, sp.sstr(expr)))
+    return tuple(out)
+
+
 def given_mistakes(problem: Problem, p: Plan, givens: Mapping, wanted: set[str],
                    solve_numeric) -> dict[str, list[GeneratedMistake]]:
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}
-    for key, (node, si, given) in givens.items():
-        if given is None:
-            continue
-        for code, mistaken_si, sentence in _given_slips(node, si, given):
-            changed = dict(givens)
+    for code, changes, sentence in _slips(givens):
+        changed = dict(givens)
+        for key, mistaken_si in changes:
+            node, _, given = givens[key]
             changed[key] = (node, mistaken_si, replace(given, si=mistaken_si))
-            try:
-                instant = solve_numeric(problem, p, changed, wanted)
-            except MechgradeError:
-                continue
-            for oid, values in instant.values.items():
-                if oid in wanted and np.all(np.isfinite(values)):
-                    out.setdefault(oid, []).append(GeneratedMistake(
-                        code, sentence, _in_unit(values, problem.objective(oid))))
+        try:
+            instant = solve_numeric(problem, p, changed, wanted)
+        except MechgradeError:
+            continue
+        for oid, values in instant.values.items():
+            if oid in wanted and np.all(np.isfinite(values)):
+                out.setdefault(oid, []).append(GeneratedMistake(
+                    code, sentence, _in_unit(values, problem.objective(oid))))
     return out
+
+
+def _slips(givens: Mapping):
+    """``(code, ((key, mistaken SI value), ...), sentence)`` for each typical misreading: of
+    one given, or two parameters of the same unit exchanged (a tooth ratio inverted)."""
+    named = [(key, node, si, given) for key, (node, si, given) in givens.items()
+             if given is not None]
+    for key, node, si, given in named:
+        for code, mistaken_si, sentence in _given_slips(node, si, given):
+            yield code, ((key, mistaken_si),), sentence
+    parameters = [(key, si, given) for key, node, si, given in named
+                  if isinstance(node, Name) and not isinstance(node, Prime)]
+    for i, (key, si, given) in enumerate(parameters):
+        for other, other_si, other_given in parameters[i + 1:]:
+            if given.unit == other_given.unit and si != other_si and si and other_si:
+                yield ("given_swap", ((key, other_si), (other, si)),
+                       f"Your value is what {key} and {other} exchanged gives ({key} = "
+                       f"{other_given.text}, {other} = {given.text}): check which is which.")
 
 
 def _given_slips(node, si: float, given):
@@ -155,15 +198,21 @@ def attach(results: Mapping[str, ObjectiveResult],
     earlier one, dropped) and the model's ``plausible`` slips."""
     out = dict(results)
     for oid, result in results.items():
-        kept: list[GeneratedMistake] = []
+        kept: list[GeneratedMistake] = list(result.generated_mistakes)
         for source in found:
             for mistake in source.get(oid, ()):
                 # the same value as the answer at this instant: no mistake here
                 if not any(_same(mistake.value, k.value) for k in kept) \
-                        and not _same(mistake.value, result.value):
+                        and not _same(mistake.value, result.value) and not _vague(mistake):
                     kept.append(mistake)
         out[oid] = replace(result, generated_mistakes=tuple(kept), plausible=plausible)
     return out
+
+
+def _vague(mistake: GeneratedMistake) -> bool:
+    """A zero is what many mistakes give: only another point's zero velocity (a contact
+    point's) is named from it."""
+    return mistake.code != "other_point" and not np.any(np.asarray(mistake.value, float))
 
 
 def _same(a, b) -> bool:

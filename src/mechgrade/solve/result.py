@@ -28,11 +28,13 @@ class MistakeValue:
 class GeneratedMistake:
     """The value a typical conceptual mistake gives (see :mod:`mechgrade.solve.mutants`):
     ``code`` its family (a key of the assignment's ``partial_credit``), ``message`` one
-    sentence naming the term and the quantity, ``value`` in the objective's unit."""
+    sentence naming the term and the quantity, ``value`` in the objective's unit (``expr``
+    for a symbolic objective, in its symbols)."""
 
     code: str
     message: str
     value: Value
+    expr: str | None = None
 
 
 @dataclass(frozen=True)
