@@ -43,7 +43,7 @@ def check_command(paths: tuple[str, ...], verbose: bool) -> None:
                 click.echo(f"       book prints: {outcome.book}")
             if verbose and outcome.note:
                 click.echo(f"       note: {outcome.note}")
-        for line in report.faults + report.warnings:
+        for line in report.faults + report.warnings + report.separations:
             click.echo(f"  {line}")
         if verbose and report.untested:
             click.echo(f"  untested: {', '.join(report.untested)}")

@@ -26,6 +26,7 @@ from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeErr
 from ..expressions import syntax
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary
+from ..solve.mutants import separating_rel
 from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
@@ -50,6 +51,8 @@ class Policy:
     * ``partial_credit``: credit for automatic diagnoses, by code (``(("sign", 0.5),)``);
       author-declared mistakes carry their own credit.
     * ``symbolic_rel``/``symbolic_points``/``seed``: expression equivalence by evaluation.
+    * ``separate_mistakes``: tighten an objective's relative tolerance to the one that puts
+      every generated mistake outside it (:func:`mechgrade.solve.mutants.separating_rel`).
 
     >>> Policy(missing_unit="guess")
     Traceback (most recent call last):
@@ -69,6 +72,7 @@ class Policy:
     symbolic_rel: float = 1e-6
     symbolic_points: int = 10
     seed: int = 0
+    separate_mistakes: bool = False
 
     def __post_init__(self) -> None:
         def fail(name: str, expected: str, found) -> None:
@@ -195,6 +199,10 @@ def within_sig_figs(student: float, reference: float, figures: int, basis=None) 
 def _tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
     rel = result.rel if policy.rel is None else policy.rel
     abs_ = result.abs if policy.abs is None else policy.abs
+    if policy.separate_mistakes and result.generated_mistakes:
+        separating = separating_rel(result)
+        if separating is not None:
+            rel = min(rel, separating)
     return float(rel), float(abs_)
 
 

@@ -149,20 +149,23 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
         if values is None:
             continue
         values = np.asarray(values, dtype=float)
-        if values.shape != reference.shape or not np.all(np.isfinite(values)) \
-                or not close(student, values):
+        if values.shape != reference.shape or not np.all(np.isfinite(values)):
+            continue
+        # a mistaken value near zero (a contact point's velocity) is matched on the scale of
+        # the reference, as a zero answer would be
+        if not (close(student, values) or close(student - values + reference, reference)):
             continue
         distance = float(np.linalg.norm(student - values))
         if distance < best_distance:
             best, best_distance = mistake, distance
     if best is None:
         return None
-    values = np.asarray(best.value, dtype=float).reshape(reference.shape)
-    for code, label, _, factors in _FACTORS:
-        # the mistake scales the whole answer (a sign flipped in a velocity linear in one
-        # rate): it is that slip too, graded as the policy grades the slip
-        if any(np.allclose(values, f * reference, rtol=1e-9, atol=0) for f in factors):
-            return Diagnosis(code, label, best.message)
+    if best.code == "given_sign" and best.value is not None and np.allclose(
+            np.asarray(best.value, dtype=float).reshape(reference.shape), -reference,
+            rtol=1e-9, atol=0):
+        # a flipped rate in a quantity linear in it flips the whole answer: a sign error,
+        # graded as the policy grades one, with the sentence that says which sign
+        return Diagnosis("sign", "sign error", best.message)
     return Diagnosis(best.code, LABELS.get(best.code, best.code), best.message)
 
 
@@ -177,6 +180,10 @@ LABELS = {
     "drop_omega_r": "transport term ω × r left out",
     "drop_relative_vel": "relative velocity left out",
     "other_point": "another point's motion",
+    "relative_omega": "relative angular velocity for the absolute one",
+    "mag_as_sum": "components added for the magnitude",
+    "position_term": "a term of the position left out",
+    "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",
     "acc_n_for_acc": "normal acceleration for the whole",

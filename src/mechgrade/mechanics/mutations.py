@@ -35,7 +35,7 @@ from .symbols import identically_zero
 ACCELERATION_CODES = ("drop_transport_acc", "drop_tangential", "drop_centripetal",
                       "drop_coriolis", "coriolis_half", "drop_relative_acc")
 VELOCITY_CODES = ("drop_transport_vel", "drop_omega_r", "drop_relative_vel")
-CODES = ACCELERATION_CODES + VELOCITY_CODES + (
+CODES = ACCELERATION_CODES + VELOCITY_CODES + ("relative_omega",
     "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc", "acc_for_acc_t",
     "acc_for_acc_n", "rho_formula", "component_for_speed", "mag_as_sum", "position_term")
 """Family codes of the model mutations (keys of an assignment's ``partial_credit``)."""
@@ -55,14 +55,21 @@ class Mutation:
 
 
 class _Mistaken(Interpreter):
-    """An interpreter whose velocity or acceleration of ``point`` in ``frame`` is replaced."""
+    """An interpreter whose velocity or acceleration of ``point`` in ``frame`` (or its
+    position) is replaced."""
 
     def __init__(self, base: Interpreter, point: str, frame: str, velocity=None,
-                 acceleration=None):
+                 acceleration=None, position=None):
         super().__init__(base.problem, base.symbols, base.frames, base.positions)
         self.target = (point, frame)
         self.velocity = velocity
         self.acceleration = acceleration
+        self.position = position
+
+    def point_position(self, node: Node) -> Vector:
+        if self.position is not None and node == Name(self.target[0]):
+            return self.position
+        return super().point_position(node)
 
     def point_velocity(self, node: Node, frame: str) -> Vector:
         if self.velocity is not None and node == Name(self.target[0]) \
@@ -141,9 +148,27 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
                 add(code, _Mistaken(base, P, in_frame, velocity=v_true - term),
                     f"Your value matches the velocity of {P} computed without {name} = "
                     "{term}: include it.", term)
+            parent = model.problem.frames[[f.name for f in model.problem.frames].index(B)].parent
+            relative = parent not in (None, in_frame) and not _zero(
+                model, model.frames[parent].ang_vel_in(F))
+            if relative:
+                omega_p = model.frames[B].ang_vel_in(model.frames[parent])
+                alpha_p = model.frames[B].ang_acc_in(model.frames[parent])
+                sentence = (f"Your value matches the {{kind}} of {P} computed with the angular "
+                            f"velocity of frame {B} relative to frame {parent} instead of its "
+                            f"absolute one in {in_frame}: add the angular velocity of {parent}.")
+            if relative and not uses_acc:
+                add("relative_omega", _Mistaken(base, P, in_frame,
+                                                velocity=v_true - (omega ^ r) + (omega_p ^ r)),
+                    sentence.format(kind="velocity"))
             if not uses_acc:
                 continue
             a_true = base.point_acceleration(point, in_frame)
+            if relative:
+                mistaken = a_true - (alpha ^ r) - (omega ^ (omega ^ r)) + (alpha_p ^ r) \
+                    + (omega_p ^ (omega_p ^ r))
+                add("relative_omega", _Mistaken(base, P, in_frame, acceleration=mistaken),
+                    sentence.format(kind="acceleration"))
             a_rel = v_rel.dt(model.frames[B])
             acceleration_terms = (
                 ("drop_transport_acc", base.point_acceleration(Name(origin), in_frame), 1,
@@ -173,6 +198,28 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
                               acceleration=base.point_acceleration(Name(Q), in_frame))
             add("other_point", other, f"Your value matches the {kind} of {Q}, not of {P}: "
                 f"use the point the question asks about.")
+            for body in model.problem.frames:
+                if body.origin is None or body.origin == Q or body.name == in_frame \
+                        or _zero(model, model.frames[body.name].ang_vel_in(
+                            model.frames[in_frame])):
+                    continue
+                material = Call("coincident", (Name(Q), Name(body.name)))
+                other = _Mistaken(base, P, in_frame,
+                                  velocity=base.point_velocity(material, in_frame),
+                                  acceleration=base.point_acceleration(material, in_frame))
+                add("other_point", other, f"Your value matches the {kind} of the point of "
+                    f"body {body.name} at {Q}, not of {P}: use the point the question asks "
+                    "about.")
+    for call in _calls(node, ("pos",)):
+        point, origin = call.args
+        if not isinstance(point, Name):
+            continue
+        for Q in model.positions:
+            if Q in (point.id, model.problem.inertial_point) or Name(Q) == origin:
+                continue
+            add("other_point", _Mistaken(base, point.id, "", position=model.positions[Q]),
+                f"Your value matches the position of {Q}, not of {point.id}: use the point "
+                "the question asks about.")
     top = node.func if isinstance(node, Call) else None
     if top == "mag" and isinstance(node.args[0], Call) and node.args[0].func == "acc":
         args = node.args[0].args

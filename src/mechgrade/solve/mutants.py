@@ -31,6 +31,7 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..mechanics.mutations import VELOCITY_CODES, mutations
 from ..spec.model import Objective, Problem
+from ..tolerance import within
 from ..units import dimension, from_si, to_si
 from .levels import State, evaluate
 from .plan import Plan, plan
@@ -108,7 +109,8 @@ def given_mistakes(problem: Problem, p: Plan, givens: Mapping, wanted: set[str],
                    solve_numeric) -> dict[str, list[GeneratedMistake]]:
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}
-    for code, changes, sentence in _slips(givens):
+    parameters = {q.name for q in problem.parameters}
+    for code, changes, sentence in _slips(givens, parameters):
         changed = dict(givens)
         for key, mistaken_si in changes:
             node, _, given = givens[key]
@@ -124,7 +126,7 @@ def given_mistakes(problem: Problem, p: Plan, givens: Mapping, wanted: set[str],
     return out
 
 
-def _slips(givens: Mapping):
+def _slips(givens: Mapping, parameters: set[str]):
     """``(code, ((key, mistaken SI value), ...), sentence)`` for each typical misreading: of
     one given, or two parameters of the same unit exchanged (a tooth ratio inverted)."""
     named = [(key, node, si, given) for key, (node, si, given) in givens.items()
@@ -133,7 +135,7 @@ def _slips(givens: Mapping):
         for code, mistaken_si, sentence in _given_slips(node, si, given):
             yield code, ((key, mistaken_si),), sentence
     parameters = [(key, si, given) for key, node, si, given in named
-                  if isinstance(node, Name) and not isinstance(node, Prime)]
+                  if isinstance(node, Name) and node.id in parameters]
     for i, (key, si, given) in enumerate(parameters):
         for other, other_si, other_given in parameters[i + 1:]:
             if given.unit == other_given.unit and si != other_si and si and other_si:
@@ -212,13 +214,14 @@ def attach(results: Mapping[str, ObjectiveResult],
 def _vague(mistake: GeneratedMistake) -> bool:
     """A zero is what many mistakes give: only another point's zero velocity (a contact
     point's) is named from it."""
-    return mistake.code != "other_point" and not np.any(np.asarray(mistake.value, float))
+    return mistake.code != "other_point" and not np.any(
+        np.abs(np.asarray(mistake.value, float)) > 1e-12)
 
 
 def _same(a, b) -> bool:
     a, b = np.atleast_1d(np.asarray(a, float)), np.atleast_1d(np.asarray(b, float))
     scale = max(float(np.linalg.norm(a)), float(np.linalg.norm(b)), 1e-12)
-    return bool(np.linalg.norm(a - b) <= 1e-9 * scale)
+    return bool(np.linalg.norm(a - b) <= 1e-9 * scale + 1e-12)
 
 
 def _in_unit(si_values: np.ndarray, obj: Objective):
@@ -234,3 +237,45 @@ def _term_text(si_values: np.ndarray, obj: Objective, code: str) -> str:
     shown = [float(from_si(v, unit)) + 0.0 for v in si_values]
     parts = shown[:2] if shown[2] == 0 else shown
     return "(" + ", ".join(f"{v:.4g}" for v in parts) + f") {unit}"
+
+
+def inside_tolerance(result: ObjectiveResult, rel: float | None = None,
+                     abs_: float | None = None) -> tuple[GeneratedMistake, ...]:
+    """The generated mistakes of a numeric ``result`` within its tolerance (or ``rel``,
+    ``abs_``): a student making one gets full credit.
+
+    >>> r = ObjectiveResult("a", "scalar", "ft/s^2", 98.51, generated_mistakes=(
+    ...     GeneratedMistake("drop_tangential", "...", 98.0),))
+    >>> [m.code for m in inside_tolerance(r)], separating_rel(r)
+    (['drop_tangential'], 0.002)
+    """
+    if result.value is None:
+        return ()
+    rel = result.rel if rel is None else rel
+    abs_ = result.abs if abs_ is None else abs_
+    right = np.atleast_1d(np.asarray(result.value, float))
+    size = float(np.linalg.norm(right))
+    return tuple(m for m in result.generated_mistakes if m.value is not None and within(
+        np.atleast_1d(np.asarray(m.value, float)), right, rel, abs_, scale=size))
+
+
+# a tolerance tighter than this would fail answers written to four significant figures
+TIGHTEST_REL = 5e-4
+
+
+def separating_rel(result: ObjectiveResult) -> float | None:
+    """The relative tolerance (one significant figure, at most the objective's) that puts
+    every generated mistake outside it; ``None`` when one is closer than :data:`TIGHTEST_REL`
+    allows to separate, or none is inside. Half the nearest mistake's relative distance."""
+    inside = inside_tolerance(result)
+    if not inside:
+        return None
+    right = np.atleast_1d(np.asarray(result.value, float))
+    size = float(np.linalg.norm(right))
+    nearest = min(float(np.linalg.norm(np.atleast_1d(np.asarray(m.value, float)) - right))
+                  for m in inside) / size if size else 0.0
+    half = nearest / 2
+    if half < TIGHTEST_REL:
+        return None
+    exponent = math.floor(math.log10(half))
+    return min(result.rel, math.floor(half / 10 ** exponent) * 10 ** exponent)
