@@ -431,7 +431,9 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
                      mistakes=_numeric_mistakes(result, scalar=False),
                      generated=_numeric_mistakes(result, scalar=False, generated=True),
                      plausible=result.plausible)
-    right = [axis for axis in "xyz" if axis not in wrong]
+    # a planar answer's zero z is no news
+    right = [axis for i, axis in enumerate("xyz") if axis not in wrong
+             and not (i == 2 and reference[2] == 0 and student[2] == 0)]
     summary = (f"The {_listing(wrong)} component{'s are' if len(wrong) > 1 else ' is'} not "
                f"{_describe_tolerance(result, policy)}"
                + (f" ({_listing(right)} {'are' if len(right) > 1 else 'is'} right)."

@@ -170,9 +170,21 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     expr, meanings = symbolic(problem, plan(problem).k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
     return ObjectiveResult(
-        id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(expr), symbols=tuple(meanings),
+        id=obj.id, kind=obj.kind, unit=obj.unit, expr=_shortest(expr), symbols=tuple(meanings),
         symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt,
         generated_mistakes=symbolic_mistakes(problem, obj, expr, dict(givens), symbolic))
+
+
+def _shortest(expr) -> str:
+    """The expression as text in its shortest equivalent form (as simplified, or expanded:
+    ``l*thetadd + 2*ld*thetad - s*thetad**2`` rather than ``... + thetad*(ld - s*thetad)``).
+
+    >>> x, y = sp.symbols("x y")
+    >>> _shortest(x*y + y*(x - y))
+    '2*x*y - y**2'
+    """
+    forms = [expr] + ([sp.expand(expr)] if sp.count_ops(expr) <= 300 else [])
+    return min((sp.sstr(f) for f in forms), key=lambda text: (len(text), text))
 
 
 def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:
