@@ -116,7 +116,8 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             value = (interpreter or base).value(value_node or node)
         except Exception:  # the mistaken reading is undefined (a zero magnitude divided by)
             return
-        if isinstance(value, Vector) != isinstance(right, Vector) or _zero(model, value - right):
+        # a reading equal to the answer is dropped where the values are known (solve)
+        if isinstance(value, Vector) != isinstance(right, Vector):
             return
         out.append(Mutation(obj.id, code, _matrix(model, value, frame),
                             sentence, None if term is None else model.plain(term.to_matrix(
@@ -269,11 +270,6 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:
     """The objective with one term of a point's position left out (half a side for half a
     diagonal, the offset of a pin forgotten)."""
-    try:
-        right = _matrix(model, model.language.value(obj.find.node),
-                        model.frames[obj.frame or problem.inertial_frame])
-    except Exception:  # a failing objective has no mutants
-        return []
     out = []
     for spec in problem.points:
         terms = _terms(spec.position.node) if spec.position is not None else []
@@ -289,8 +285,6 @@ def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[
                 value = _matrix(mutated, mutated.language.value(obj.find.node),
                                 mutated.frames[obj.frame or problem.inertial_frame])
             except Exception:  # the shortened description is not a position
-                continue
-            if _zero(model, sp.Matrix([value]) - sp.Matrix([right])):
                 continue
             out.append(Mutation(obj.id, "position_term", value,
                                 f"Your value matches what {spec.name} placed at {text} from "
