@@ -7,7 +7,10 @@ import json
 import click
 
 from ..mechanics import derivation
+from ..files import write_text
+from ..report.picture import picture_svg
 from ..solve import solve as solve_problem
+from ..solve.picture import scene
 from ..spec import load_problem
 from .common import main, reports_errors
 
@@ -39,11 +42,15 @@ def _value_text(result) -> str:
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
               show_default=True, help="Output format.")
 @click.option("--steps", is_flag=True, help="Print the derivation in the write-up order.")
+@click.option("--plot", type=click.Path(dir_okay=False), default=None,
+              help="Also draw the mechanism at the instant as an SVG file.")
 @reports_errors
-def solve_command(problem_file: str, fmt: str, steps: bool) -> None:
+def solve_command(problem_file: str, fmt: str, steps: bool, plot: str | None) -> None:
     """Solve PROBLEM_FILE and print each objective's reference answer."""
     problem = load_problem(problem_file)
     solution = solve_problem(problem)
+    if plot:
+        write_text(plot, picture_svg(scene(problem, solution)))
     failed = {f.id: f.error for f in solution.failures}
     if fmt == "json":
         click.echo(json.dumps(solution_json(problem, solution), indent=2))
