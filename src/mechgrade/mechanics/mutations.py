@@ -137,7 +137,8 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             alpha = model.frames[B].ang_acc_in(F)
             v_rel = r.dt(model.frames[B])
             v_true = base.point_velocity(point, in_frame)
-            where = f"(ω and α of frame {B} in {in_frame}, r from {origin} to {P})"
+            where = f"(ω of frame {B} in {in_frame}, r from {origin} to {P})"
+            where_acc = f"(ω and α of frame {B} in {in_frame}, r from {origin} to {P})"
             velocity_terms = (
                 ("drop_transport_vel", base.point_velocity(Name(origin), in_frame),
                  f"the velocity of {origin}, the origin of frame {B}"),
@@ -174,7 +175,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             acceleration_terms = (
                 ("drop_transport_acc", base.point_acceleration(Name(origin), in_frame), 1,
                  f"the acceleration of {origin}, the origin of frame {B}"),
-                ("drop_tangential", alpha ^ r, 1, f"the tangential term α × r {where}"),
+                ("drop_tangential", alpha ^ r, 1, f"the tangential term α × r {where_acc}"),
                 ("drop_centripetal", omega ^ (omega ^ r), 1,
                  f"the centripetal term ω × (ω × r) {where}"),
                 ("drop_coriolis", 2 * (omega ^ v_rel), 1,
