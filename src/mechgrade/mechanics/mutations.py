@@ -230,6 +230,9 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             value_node=Call("acc_t", args))
         add("acc_n_for_acc", None, "Your value is the normal acceleration v²/ρ alone; the "
             "magnitude of the acceleration is √(a_t² + a_n²).", value_node=Call("acc_n", args))
+        add("mag_as_sum", None, "Your value adds the tangential and normal accelerations; the "
+            "magnitude of the acceleration is √(a_t² + a_n²).",
+            value_node=Bin("+", Call("acc_t", args), Call("acc_n", args)))
     if top in ("acc_t", "acc_n"):
         add(f"acc_for_{top}", None, f"Your value is the magnitude of the whole acceleration; "
             f"the {'tangential' if top == 'acc_t' else 'normal'} component was asked.",

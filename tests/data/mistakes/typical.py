@@ -70,6 +70,8 @@ def pendulum():
                  "drop_tangential", inside=True),
            entry("acc_mag", "centripetal term L ω² left out",
                  num(np.linalg.norm(tangential), "ft/s^2"), "drop_centripetal"),
+           entry("acc_mag", "a_t + a_n added instead of √(a_t² + a_n²)",
+                 num(L * al + L * w**2, "ft/s^2"), "mag_as_sum"),
            entry("acc_N", "body components (-Lω², Lα) copied as X_N, Y_N",
                  vec(V(-L * w**2, L * al), "ft/s^2"), "other_basis")]
     th_r = 30.0  # 30 used as radians
