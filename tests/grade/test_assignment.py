@@ -110,7 +110,8 @@ def test_assignment_is_frozen(folder):
     (MINIMAL + "policy: {tolerance: {rel: 2}}\n",
      "hw.yaml:4:27: policy.tolerance.rel: expected a number <= 1, found 2"),
     (MINIMAL + "policy: {tolerance: {separate_mistakes: yes please}}\n",
-     "hw.yaml:4:41: policy.tolerance.separate_mistakes: expected true or false, found 'yes please'"),
+     "hw.yaml:4:41: policy.tolerance.separate_mistakes: expected true or false, "
+     "found 'yes please'"),
     (MINIMAL + "policy: {reveal_answers: maybe}\n",
      "hw.yaml:4:26: policy.reveal_answers: expected true or false, found 'maybe'"),
     (MINIMAL + "policy: {sig_figs: {figures: 2.5}}\n",

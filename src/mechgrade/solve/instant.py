@@ -121,7 +121,7 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                 values = instant.values
                 mistakes = _mistake_values(p, instant.state, numeric)
                 generated = [model_mistakes(problem, p, instant.state, numeric),
-                             given_mistakes(problem, p, given_map, numeric, solve_numeric)]
+                             given_mistakes(problem, p, given_map, numeric)]
                 warned += [w for w in instant.warnings if w not in warned]
                 if not overrides or base is None:
                     base = (instant.state, given_map)
@@ -172,7 +172,7 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     return ObjectiveResult(
         id=obj.id, kind=obj.kind, unit=obj.unit, expr=_shortest(expr), symbols=tuple(meanings),
         symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt,
-        generated_mistakes=symbolic_mistakes(problem, obj, expr, dict(givens), symbolic))
+        generated_mistakes=symbolic_mistakes(problem, obj, expr, dict(givens)))
 
 
 def _shortest(expr) -> str:

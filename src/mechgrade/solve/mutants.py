@@ -33,9 +33,12 @@ from ..mechanics.mutations import VELOCITY_CODES, mutations
 from ..spec.model import Objective, Problem
 from ..tolerance import within
 from ..units import dimension, from_si, to_si
+from ..mechanics.symbols import identically_zero
 from .levels import State, evaluate
+from .numeric import solve_numeric
 from .plan import Plan, plan
 from .result import GeneratedMistake, ObjectiveResult
+from .symbolic import symbolic
 
 GIVEN_CODES = ("given_deg_as_rad", "given_rate_unit", "given_length_unit", "given_sign",
                "given_swap")
@@ -80,12 +83,10 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
     return out
 
 
-def symbolic_mistakes(problem: Problem, obj: Objective, right, givens: dict,
-                      solve_symbolic) -> tuple[GeneratedMistake, ...]:
+def symbolic_mistakes(problem: Problem, obj: Objective, right,
+                      givens: dict) -> tuple[GeneratedMistake, ...]:
     """The model mutations of a symbolic objective, each solved in the objective's symbols
-    like the objective itself (``solve_symbolic`` is :func:`.symbolic.symbolic`)."""
-    from ..mechanics.symbols import identically_zero
-
+    like the objective itself."""
     k = plan(problem).k
     out: list[GeneratedMistake] = []
     kept = [right]
@@ -93,7 +94,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right, givens: dict,
         if m.objective != obj.id or isinstance(m.value, sp.MatrixBase):
             continue
         try:
-            expr, _ = solve_symbolic(problem, k, obj, givens, expr=m.value)
+            expr, _ = symbolic(problem, k, obj, givens, expr=m.value)
         except MechgradeError:
             continue
         if expr.has(sp.zoo, sp.nan, sp.oo) or any(identically_zero(expr - e) for e in kept) \
@@ -105,8 +106,8 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right, givens: dict,
     return tuple(out)
 
 
-def given_mistakes(problem: Problem, p: Plan, givens: Mapping, wanted: set[str],
-                   solve_numeric) -> dict[str, list[GeneratedMistake]]:
+def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
+                   wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}
     parameters = {q.name for q in problem.parameters}
