@@ -102,7 +102,8 @@ def _mutations(problem: Problem, _locations: tuple) -> tuple[Mutation, ...]:
 
 def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     node = obj.find.node
-    frame = model.frames[obj.frame or model.problem.inertial_frame]
+    basis = obj.frame or model.problem.inertial_frame
+    frame = model.frames[basis]
     base = model.language
     try:
         right = base.value(node)
@@ -149,7 +150,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
                     continue
                 add(code, _Mistaken(base, P, in_frame, velocity=v_true - term),
                     f"Your value matches the velocity of {P} computed without {name} = "
-                    "{term}: include it.", term)
+                    "{term} along " + basis + ": include it.", term)
             parent = model.problem.frames[[f.name for f in model.problem.frames].index(B)].parent
             relative = parent not in (None, in_frame) and not _zero(
                 model, model.frames[parent].ang_vel_in(F))
@@ -190,7 +191,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
                 part = term * share
                 add(code, _Mistaken(base, P, in_frame, acceleration=a_true - part),
                     f"Your value matches the acceleration of {P} computed without {name} = "
-                    "{term}: include it.", term)
+                    "{term} along " + basis + ": include it.", term)
         for Q in model.positions:
             if Q in (P, model.problem.inertial_point):
                 continue

@@ -19,6 +19,7 @@ again.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import replace
 from functools import lru_cache
 from typing import Mapping
@@ -101,7 +102,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
                 or (m.code != "other_point" and identically_zero(expr)):
             continue
         kept.append(expr)
-        sentence = m.sentence.replace(" = {term}", "")
+        sentence = re.sub(r" = \{term\} along \w+", "", m.sentence)
         out.append(GeneratedMistake(m.code, sentence, None, sp.sstr(expr)))
     return tuple(out)
 
@@ -233,9 +234,16 @@ def _in_unit(si_values: np.ndarray, obj: Objective):
 
 def _term_text(si_values: np.ndarray, obj: Objective, code: str) -> str:
     """A dropped term's components, in the objective's unit when it is of the same kind."""
-    si_unit = "m/s" if code in VELOCITY_CODES else "m/s^2"
-    unit = obj.unit if dimension(obj.unit) == dimension(si_unit) else si_unit
+    per = "/s" if code in VELOCITY_CODES else "/s^2"
+    if dimension(obj.unit) == dimension("m" + per):
+        unit = obj.unit
+    elif dimension(obj.unit) == dimension("m"):  # a radius of curvature: its length unit
+        unit = obj.unit + per
+    else:
+        unit = "m" + per
     shown = [float(from_si(v, unit)) + 0.0 for v in si_values]
+    size = max(abs(v) for v in shown)
+    shown = [0.0 if abs(v) <= 1e-9 * size else v for v in shown]  # round-off, not a part
     parts = shown[:2] if shown[2] == 0 else shown
     return "(" + ", ".join(f"{v:.4g}" for v in parts) + f") {unit}"
 
