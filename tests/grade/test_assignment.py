@@ -109,6 +109,9 @@ def test_assignment_is_frozen(folder):
      "hw.yaml:4:15: points.p.a: expected a number <= 1000, found 5000"),
     (MINIMAL + "policy: {tolerance: {rel: 2}}\n",
      "hw.yaml:4:27: policy.tolerance.rel: expected a number <= 1, found 2"),
+    (MINIMAL + "policy: {tolerance: {separate_mistakes: yes please}}\n",
+     "hw.yaml:4:41: policy.tolerance.separate_mistakes: expected true or false, "
+     "found 'yes please'"),
     (MINIMAL + "policy: {reveal_answers: maybe}\n",
      "hw.yaml:4:26: policy.reveal_answers: expected true or false, found 'maybe'"),
     (MINIMAL + "policy: {sig_figs: {figures: 2.5}}\n",
@@ -192,3 +195,9 @@ def test_example_assignment_loads():
     hw = load_assignment(shipped_dir("examples") / "hw1" / "assignment.yaml")
     assert hw.id == "hw1"
     assert hw.policy.reveal_answers is True
+
+
+def test_separate_mistakes_is_read_from_the_tolerance(folder):
+    (folder / "hw.yaml").write_text(MINIMAL + "policy: {tolerance: {separate_mistakes: true}}\n",
+                                    encoding="utf-8")
+    assert load_assignment(folder / "hw.yaml").policy.separate_mistakes is True

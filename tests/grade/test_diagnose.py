@@ -133,3 +133,72 @@ def test_non_finite_student_values_are_not_diagnosed():
 def test_every_code_can_be_given_partial_credit():
     for code in CODES:
         assert Policy(partial_credit=((code, 0.5),)).credit_for(code) == 0.5
+
+
+# ---------------------------------------------------------------------------- generated mistakes
+
+def _with_generated(*mistakes, plausible=frozenset()):
+    from mechgrade.solve.result import GeneratedMistake
+    return ObjectiveResult("a_P", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N",
+                           generated_mistakes=tuple(GeneratedMistake(c, m, v)
+                                                    for c, m, v in mistakes),
+                           plausible=plausible)
+
+
+CORIOLIS = ("drop_coriolis", "Without the Coriolis term.", (-106.0, -40.0, 0.0))
+HALF = ("coriolis_half", "Without the factor 2 of the Coriolis term.", (-86.0, -40.0, 0.0))
+
+
+def test_the_nearest_generated_mistake_names_the_answer():
+    judged = assess("(-105.5, -40, 0) ft/s^2", _with_generated(HALF, CORIOLIS))
+    assert (judged.diagnosis, judged.feedback) == ("Coriolis term left out",
+                                                   "Without the Coriolis term.")
+
+
+def test_a_generated_mistake_gets_the_policy_credit_of_its_family():
+    judged = assess("(-106, -40, 0) ft/s^2", _with_generated(CORIOLIS),
+                    Policy(partial_credit=(("drop_coriolis", 0.5),)))
+    assert (judged.verdict, judged.credit) == ("partial", 0.5)
+
+
+def test_an_answer_nearer_the_reference_than_the_mistake_is_not_named_by_it():
+    from mechgrade.solve.result import GeneratedMistake
+    loose = lambda s, t: bool(np.all(np.abs(s - t) <= 0.1 * np.abs(t)))  # noqa: E731
+    mistake = [(GeneratedMistake("drop_tangential", "...", 108.0), np.array([108.0]))]
+    assert diagnose(np.array([103.9]), np.array([100.0]), loose, generated=mistake) is None
+    assert diagnose(np.array([104.1]), np.array([100.0]), loose,
+                    generated=mistake).code == "drop_tangential"
+
+
+def test_the_authors_mistake_wins_over_a_generated_one():
+    from dataclasses import replace
+    result = replace(_with_generated(CORIOLIS),
+                     mistakes=(MistakeValue("The author's words.", 0.3, (-106.0, -40.0, 0.0)),))
+    assert assess("(-106, -40, 0) ft/s^2", result).diagnosis == "The author's words."
+
+
+def test_a_generated_zero_velocity_is_matched_on_the_references_scale():
+    rest = ("other_point", "The contact point's velocity.", (0.0, 1e-16, 0.0))
+    assert assess("(0, 0, 0) ft/s^2", _with_generated(rest)).diagnosis == \
+        "another point's motion"
+
+
+@pytest.mark.parametrize("value", [98.51 * 9.80665, 98.51 * 60 / (2 * math.pi)])
+def test_a_slip_the_model_cannot_make_is_not_named(value):
+    from dataclasses import replace
+    no_g = replace(ACC, plausible=frozenset())
+    assert assess(f"{value} ft/s^2", no_g).diagnosis is None
+
+
+def test_a_flipped_rate_that_flips_the_whole_answer_is_a_sign_error_saying_which():
+    flipped = ("given_sign", "Your value is what q' with the opposite sign gives.",
+               (66.0, 40.0, 0.0))
+    judged = assess("(66, 40, 0) ft/s^2", _with_generated(flipped),
+                    Policy(partial_credit=(("sign", 0.5),)))
+    assert (judged.diagnosis, judged.credit, judged.feedback) == (
+        "sign error", 0.5, "Your value is what q' with the opposite sign gives.")
+
+
+def test_every_generated_family_is_a_policy_code_with_a_label():
+    from mechgrade.grade.diagnose import GENERATED_CODES, LABELS
+    assert set(GENERATED_CODES) <= set(CODES) and set(GENERATED_CODES) == set(LABELS)

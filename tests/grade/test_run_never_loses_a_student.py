@@ -13,6 +13,7 @@ import tempfile
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
+from mechgrade.export.cells import safe_cell
 from mechgrade.files import clean_text
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.run import grade_plan, plan_assignment
@@ -75,7 +76,7 @@ def test_any_submission_goes_through_the_whole_pipeline(plan, name, filename, co
         assert written.internal_errors == ()
         grades = open(os.path.join(out, "grades.csv"), "rb").read().decode("utf-8")
         rows = list(csv.reader(io.StringIO(grades, newline="")))
-        assert sorted(r[0].lstrip("'") for r in rows[1:]) == sorted(ids)
+        assert sorted(r[0] for r in rows[1:]) == sorted(safe_cell(i) for i in ids)
         pages = sorted(os.listdir(os.path.join(out, "feedback")))
         assert pages == sorted(f"{n}{s}" for n in feedback_names(report) for s in (".html", ".md"))
     finally:

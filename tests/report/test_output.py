@@ -73,7 +73,7 @@ def test_html_feedback_shows_every_objective_and_escapes_student_text(tmp_path):
     assert "<title>Homework &lt;1&gt; – feedback for Ana Ash</title>" in ana
     assert '<b>3.5</b> <span>/ 5 points (70%)</span>' in ana
     assert '<dd class="verdict">Partly correct</dd>' in ana
-    assert "<strong>Diagnosis:</strong> sign error" in ana
+    assert "<strong>Sign error:</strong>" in ana
     assert '<dt>Expected</dt><dd><span class="math">-L·thetad² ft/s²</span></dd>' in ana
     assert '<span class="math">L·thetad²</span>' in ana
     assert "read the key &#39;P.acc&#39; as &#39;p.acc&#39;" in ana
@@ -92,7 +92,7 @@ def test_markdown_feedback_escapes_student_text(tmp_path):
     ana = (tmp_path / "feedback" / "ana.md").read_text(encoding="utf-8")
     assert "# Homework \\<1\\>" in ana
     assert "**Score: 3.5 / 5 points (70%)**" in ana
-    assert "## p · sym — 1.5 / 3" in ana
+    assert "## Speed in terms of L. — 1.5 / 3\n\np · sym\n" in ana
     assert "- Expected: -L·thetad² ft/s²" in ana
 
 
@@ -162,7 +162,7 @@ def test_feedback_page_renders_in_headless_chromium(tmp_path, chromium):
     write_outputs(REPORT, tmp_path)
     dom, log = chromium(tmp_path / "feedback" / "ana.html")
     assert "CONSOLE" not in log and "Uncaught" not in log
-    assert "Ana Ash" in dom and "98.5 ft/s^2" in dom and "sign error" in dom
+    assert "Ana Ash" in dom and "98.5 ft/s^2" in dom and "Sign error" in dom
     # Hostile student text stays text: no script element came from it.
     hostile_dom, _ = chromium(next((tmp_path / "feedback").glob("*eve*.html")))
     assert "<script>alert" not in hostile_dom and "&lt;script&gt;" in hostile_dom

@@ -24,6 +24,7 @@ import numpy as np
 from ..errors import AuthorWarning, ExpressionError, MechgradeError, SpecError
 from ..expressions.numeric import evaluate, reference_tree
 from ..solve import solve
+from ..solve.mutants import inside_tolerance, separating_rel
 from ..solve.result import ObjectiveResult
 from ..spec import load_problem
 from ..spec.model import Expect, Objective, Problem
@@ -57,6 +58,8 @@ class CheckReport:
     warnings: tuple[str, ...] = ()
     state: tuple[str, ...] = ()  # the solved state, "theta' = 7 rad/s   (solved)"
     results: tuple[ObjectiveResult, ...] = ()  # the solved objectives, in file order
+    # generated mistakes a student gets full credit for, and the tolerance that separates them
+    separations: tuple[str, ...] = ()
 
     @property
     def passed(self) -> bool:
@@ -147,7 +150,37 @@ def check_problem(path) -> CheckReport:
     return CheckReport(str(path), problem.id, None, tuple(outcomes), solution.dof,
                        tuple(untested), tuple(errors + faults),
                        tuple(str(w) for w in problem.warnings + solution.warnings
-                             + tuple(warnings)), state, solution.results)
+                             + tuple(warnings)), state, solution.results,
+                       tuple(str(w) for w in separation_findings(problem, solution)))
+
+
+def separation_findings(problem: Problem, solution) -> list[AuthorWarning]:
+    """One warning per objective whose tolerance a generated mistake falls inside (a student
+    making it gets full credit), with the tolerance that separates them.
+
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> print(separation_findings(p, solve(p))[0].message)  # doctest: +ELLIPSIS
+    objective 'acc_mag': generated mistake drop_tangential gives 98 ft/s^2, within the ...
+    """
+    out = []
+    for result in solution.results:
+        inside = inside_tolerance(result)
+        if not inside:
+            continue
+        objective = problem.objective(result.id)
+        unit = f" {result.unit}" if result.unit not in ("", "1") else ""
+        listed = "; ".join(f"{m.code} gives {_show(m.value)}{unit}" for m in inside)
+        rel = separating_rel(result)
+        advice = (f"tolerance: {{rel: {rel:g}}} separates them (or policy: {{tolerance: "
+                  "{separate_mistakes: true}} in the assignment)" if rel is not None else
+                  "no tolerance that still accepts four significant figures separates them")
+        out.append(AuthorWarning(
+            f"objective '{result.id}': generated mistake{'s' if len(inside) > 1 else ''} "
+            f"{listed}, within the tolerance ({result.rel * 100:g} %) of the answer "
+            f"{_show(result.value)}: a student making {'them' if len(inside) > 1 else 'it'} "
+            f"gets full credit; {advice}", objective.where))
+    return out
 
 
 def mistake_findings(problem: Problem, solution) -> tuple[list[str], list[AuthorWarning]]:

@@ -88,7 +88,7 @@ def _print_report(report: CheckReport, verbose: bool, values: bool = False,
             click.echo(f"       book prints: {outcome.book}")
         if verbose and outcome.note:
             click.echo(f"       note: {outcome.note}")
-    for line in (*report.faults, *report.warnings, *refused):
+    for line in (*report.faults, *report.warnings, *report.separations, *refused):
         click.echo(f"  {line}")
     if verbose and report.untested:
         click.echo(f"  untested: {', '.join(report.untested)}")

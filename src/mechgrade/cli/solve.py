@@ -7,7 +7,12 @@ import json
 import click
 
 from ..mechanics import derivation
+from ..mechanics.derivation import derivation_mathml
+from ..files import write_text
+from ..report.picture import picture_svg
+from ..report.worked import steps_html, steps_markdown
 from ..solve import solve as solve_problem
+from ..solve.picture import scene
 from ..spec import load_problem
 from .common import main, reports_errors
 
@@ -42,21 +47,40 @@ def value_text(result) -> str:
 
 @main.command("solve")
 @click.argument("problem_file", type=click.Path(dir_okay=False))
-@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
-              show_default=True, help="Output format.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "html", "md"]),
+              default="text", show_default=True,
+              help="Output format (html and md are the worked derivation: --steps).")
 @click.option("--steps", is_flag=True, help="Print the derivation in the write-up order.")
+@click.option("--plot", type=click.Path(dir_okay=False), default=None,
+              help="Also draw the mechanism at the instant as an SVG file.")
 @reports_errors
-def solve_command(problem_file: str, fmt: str, steps: bool) -> None:
+def solve_command(problem_file: str, fmt: str, steps: bool, plot: str | None) -> None:
     """Solve PROBLEM_FILE and print each objective's reference answer."""
     problem = load_problem(problem_file)
     solution = solve_problem(problem)
+    if plot:
+        write_text(plot, picture_svg(scene(problem, solution)))
     failed = {f.id: f.error for f in solution.failures}
     if fmt == "json":
         click.echo(json.dumps(solution_json(problem, solution), indent=2))
+    elif fmt in ("html", "md"):
+        title = f"{problem.id}: {problem.title}"
+        sections = derivation(problem, solution.dof)
+        lines = _objective_lines(problem, solution, failed)
+        click.echo(steps_html(title, sections, derivation_mathml(problem), lines)
+                   if fmt == "html" else steps_markdown(title, sections, lines), nl=False)
     else:
         _print_text(problem, solution, failed, steps)
     if failed:
         click.get_current_context().exit(next(iter(failed.values())).exit_code)
+
+
+def _objective_lines(problem, solution, failed) -> list[str]:
+    results = {r.id: r for r in solution.results}
+    ids = [o.id for o in problem.objectives if o.id in results or o.id in failed]
+    width = max(len(i) for i in ids)
+    return [f"{oid.ljust(width)}  " + (value_text(results[oid]) if oid in results
+                                       else f"error: {failed[oid]}") for oid in ids]
 
 
 def _print_text(problem, solution, failed, steps: bool) -> None:
@@ -67,12 +91,8 @@ def _print_text(problem, solution, failed, steps: bool) -> None:
             for line in lines or ("(none)",):
                 click.echo(f"  {line}")
         click.echo("\nObjectives")
-    results = {r.id: r for r in solution.results}
-    ids = [o.id for o in problem.objectives if o.id in results or o.id in failed]
-    width = max(len(i) for i in ids)
-    for oid in ids:
-        text = value_text(results[oid]) if oid in results else f"error: {failed[oid]}"
-        click.echo(f"  {oid.ljust(width)}  {text}")
+    for line in _objective_lines(problem, solution, failed):
+        click.echo(f"  {line}")
     if solution.state:
         click.echo("State at the instant")
         for s in solution.state:

@@ -84,12 +84,14 @@ class ErrorCarriedForward:
 @dataclass(frozen=True)
 class GradingPolicy:
     """How answers are judged. ``rel``/``abs`` replace every objective's own tolerance when
-    set; ``accuracy_sig_figs`` judges values to that many significant figures instead."""
+    set; ``accuracy_sig_figs`` judges values to that many significant figures instead;
+    ``separate_mistakes`` tightens each tolerance so no generated mistake falls inside it."""
 
     reveal_answers: bool = False
     rel: float | None = None
     abs: float | None = None
     accuracy_sig_figs: int | None = None
+    separate_mistakes: bool = False
     sig_figs: SigFigRule | None = None
     missing_unit: MissingUnitRule = MissingUnitRule()
     partial_credit: PartialCredit = PartialCredit()
@@ -173,6 +175,7 @@ def load_assignment(path: str | Path) -> Assignment:
             abs=_float_or_none(tolerance.get("abs")),
             accuracy_sig_figs=(int(tolerance["sig_figs"]) if "sig_figs" in tolerance
                                else None),
+            separate_mistakes=bool(tolerance.get("separate_mistakes", False)),
             sig_figs=(SigFigRule(int(sig["figures"]), float(sig.get("credit", 0.75)),
                                  bool(sig.get("strict", False)))
                       if sig is not None else None),

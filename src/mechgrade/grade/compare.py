@@ -26,7 +26,8 @@ from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeErr
 from ..expressions import syntax
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary
-from ..solve.result import MistakeValue, ObjectiveResult
+from ..solve.mutants import separating_rel
+from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
@@ -50,6 +51,8 @@ class Policy:
     * ``partial_credit``: credit for automatic diagnoses, by code (``(("sign", 0.5),)``);
       author-declared mistakes carry their own credit.
     * ``symbolic_rel``/``symbolic_points``/``seed``: expression equivalence by evaluation.
+    * ``separate_mistakes``: tighten an objective's relative tolerance to the one that puts
+      every generated mistake outside it (:func:`mechgrade.solve.mutants.separating_rel`).
 
     >>> Policy(missing_unit="guess")
     Traceback (most recent call last):
@@ -69,6 +72,7 @@ class Policy:
     symbolic_rel: float = 1e-6
     symbolic_points: int = 10
     seed: int = 0
+    separate_mistakes: bool = False
 
     def __post_init__(self) -> None:
         def fail(name: str, expected: str, found) -> None:
@@ -195,6 +199,10 @@ def within_sig_figs(student: float, reference: float, figures: int, basis=None) 
 def _tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
     rel = result.rel if policy.rel is None else policy.rel
     abs_ = result.abs if policy.abs is None else policy.abs
+    if policy.separate_mistakes and result.generated_mistakes:
+        separating = separating_rel(result)
+        if separating is not None:
+            rel = min(rel, separating)
     return float(rel), float(abs_)
 
 
@@ -306,7 +314,9 @@ def _judge_number(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
                                read_back, "")
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(np.array([student]), np.array([reference]), close,
-                     mistakes=_numeric_mistakes(result, scalar=True))
+                     mistakes=_numeric_mistakes(result, scalar=True),
+                     generated=_numeric_mistakes(result, scalar=True, generated=True),
+                     plausible=result.plausible)
     return _wrong(found, policy, units,
                   f"Not {_describe_tolerance(result, policy)}.", read_back)
 
@@ -331,13 +341,13 @@ def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,
     credit = max(0.0, min(1.0, credit * units.factor))
     verdict = "partial" if credit > 0 else "incorrect"
     message = found.message if found.message.endswith((".", "?", "!")) else found.message + "."
-    return Assessment(verdict, credit, found.label, f"{summary} {message}{units.note}",
-                      read_back)
+    # the diagnosis says more than the summary: it alone is the feedback
+    return Assessment(verdict, credit, found.label, f"{message}{units.note}", read_back)
 
 
-def _numeric_mistakes(result: ObjectiveResult, scalar: bool):
+def _numeric_mistakes(result: ObjectiveResult, scalar: bool, generated: bool = False):
     out = []
-    for mistake in result.mistakes:
+    for mistake in result.generated_mistakes if generated else result.mistakes:
         value = mistake.value
         if value is None:
             out.append((mistake, None))
@@ -418,8 +428,12 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
         return _finish_correct(units, figures, policy, read_back, "")
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(student, reference, close, kind="vector",
-                     mistakes=_numeric_mistakes(result, scalar=False))
-    right = [axis for axis in "xyz" if axis not in wrong]
+                     mistakes=_numeric_mistakes(result, scalar=False),
+                     generated=_numeric_mistakes(result, scalar=False, generated=True),
+                     plausible=result.plausible)
+    # a planar answer's zero z is no news
+    right = [axis for i, axis in enumerate("xyz") if axis not in wrong
+             and not (i == 2 and reference[2] == 0 and student[2] == 0)]
     summary = (f"The {_listing(wrong)} component{'s are' if len(wrong) > 1 else ' is'} not "
                f"{_describe_tolerance(result, policy)}"
                + (f" ({_listing(right)} {'are' if len(right) > 1 else 'is'} right)."
@@ -558,14 +572,16 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
     # such as 9.81 for g (1%), unlike the equivalence test itself.
     loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
-    found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes)
+    generated = [(g, _mistake_values(g, result, env)) for g in result.generated_mistakes]
+    found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes,
+                     generated=generated, plausible=result.plausible)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
     return _wrong(found, policy, _Units(result.unit),
                   "Not equivalent to the expected expression.", read_back)
 
 
-def _mistake_values(mistake: MistakeValue, result: ObjectiveResult, env) -> np.ndarray | None:
+def _mistake_values(mistake: MistakeValue | GeneratedMistake, result: ObjectiveResult, env) -> np.ndarray | None:
     if not mistake.expr:
         return None
     try:

@@ -5,7 +5,10 @@ components) and expressions (values at the sample points): the student's values 
 with transformed reference values using the same closeness test that judged the answer.
 
 Author-declared mistakes (``result.mistakes``) are tried first and carry their own message and
-credit; then sign, factor and unit-slip diagnoses; then, for vectors, swapped components and
+credit; then the mistakes the solver generated from the model (``result.generated_mistakes``:
+the nearest one the answer matches, if it is nearer than the reference); then sign, factor and
+unit-slip diagnoses, those that need something in the model (a factor of g needs a g) only when
+the model makes them plausible; then, for vectors, swapped components and
 right-magnitude/wrong-direction.
 
 >>> import numpy as np
@@ -25,7 +28,9 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..solve.result import MistakeValue
+from ..mechanics.mutations import CODES as MODEL_CODES
+from ..solve.mutants import GIVEN_CODES
+from ..solve.result import GeneratedMistake, MistakeValue
 
 Close = Callable[[np.ndarray, np.ndarray], bool]
 
@@ -76,19 +81,24 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
 
 FACTOR_CODES = tuple(code for code, *_ in _FACTORS)
 VECTOR_CODES = ("swapped", "direction", "magnitude")
-CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + ("dimension", "frame", "missing_unit",
-                                                     "sig_figs", "shape")
+GENERATED_CODES = MODEL_CODES + GIVEN_CODES
+CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (
+    "dimension", "frame", "missing_unit", "sig_figs", "shape")
 """Every diagnosis code (keys for :attr:`mechgrade.grade.compare.Policy.partial_credit`)."""
 
 _AXES = "xyz"
 
 
 def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: str = "scalar",
-             mistakes: Sequence[tuple[MistakeValue, np.ndarray | None]] = ()) -> Diagnosis | None:
+             mistakes: Sequence[tuple[MistakeValue, np.ndarray | None]] = (),
+             generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]] = (),
+             plausible: frozenset[str] | None = None) -> Diagnosis | None:
     """The first diagnosis that explains ``student`` (already known not to match ``reference``).
 
     ``close(s, t)`` is the judging test; ``mistakes`` pairs each author-declared mistake with its
-    values in the same form as ``reference`` (``None`` when it cannot be evaluated).
+    values in the same form as ``reference`` (``None`` when it cannot be evaluated), and
+    ``generated`` each generated mistake likewise; ``plausible`` names the model-dependent
+    slips (:data:`MODEL_SLIPS`) the model makes plausible (``None``: all of them).
 
     >>> import numpy as np
     >>> close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.linalg.norm(t)))
@@ -108,15 +118,85 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         if values.shape == reference.shape and np.all(np.isfinite(values)) \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
+    found = _generated(student, reference, close, generated)
+    if found is not None:
+        return found
     if not np.any(reference != 0):
         return None
     for code, label, message, factors in _FACTORS:
+        if plausible is not None and code in MODEL_SLIPS and code not in plausible:
+            continue
         for factor in factors:
             if close(student, factor * reference):
                 return Diagnosis(code, label, message)
     if kind == "vector":
         return _vector(student, reference, close)
     return None
+
+
+MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad")
+"""Whole-answer slips that are only plausible when the model has what they name."""
+
+
+def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
+               generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]]
+               ) -> Diagnosis | None:
+    """The generated mistake nearest ``student`` among those it matches and is nearer to than
+    to ``reference``: a value that merely lies between two candidates names neither."""
+    own = float(np.linalg.norm(student - reference))
+    best, best_distance = None, own
+    for mistake, values in generated:
+        if values is None:
+            continue
+        values = np.asarray(values, dtype=float)
+        if values.shape != reference.shape or not np.all(np.isfinite(values)):
+            continue
+        # a mistaken value near zero (a contact point's velocity) is matched on the scale of
+        # the reference, as a zero answer would be
+        if not (close(student, values) or close(student - values + reference, reference)):
+            continue
+        distance = float(np.linalg.norm(student - values))
+        if distance < best_distance:
+            best, best_distance = mistake, distance
+    if best is None:
+        return None
+    if best.code == "given_sign" and best.value is not None and np.allclose(
+            np.asarray(best.value, dtype=float).reshape(reference.shape), -reference,
+            rtol=1e-9, atol=0):
+        # a flipped rate in a quantity linear in it flips the whole answer: a sign error,
+        # graded as the policy grades one, with the sentence that says which sign
+        return Diagnosis("sign", "sign error", best.message)
+    return Diagnosis(best.code, LABELS.get(best.code, best.code), best.message)
+
+
+LABELS = {
+    "drop_transport_acc": "frame origin's acceleration left out",
+    "drop_tangential": "tangential term α × r left out",
+    "drop_centripetal": "centripetal term ω × (ω × r) left out",
+    "drop_coriolis": "Coriolis term left out",
+    "coriolis_half": "Coriolis term without its factor 2",
+    "drop_relative_acc": "relative acceleration left out",
+    "drop_transport_vel": "frame origin's velocity left out",
+    "drop_omega_r": "transport term ω × r left out",
+    "drop_relative_vel": "relative velocity left out",
+    "other_point": "another point's motion",
+    "relative_omega": "relative angular velocity for the absolute one",
+    "mag_as_sum": "components added for the magnitude",
+    "position_term": "a term of the position left out",
+    "given_swap": "two givens exchanged",
+    "other_basis": "components along another frame",
+    "acc_t_for_acc": "tangential acceleration for the whole",
+    "acc_n_for_acc": "normal acceleration for the whole",
+    "acc_for_acc_t": "whole acceleration for its tangential part",
+    "acc_for_acc_n": "whole acceleration for its normal part",
+    "rho_formula": "radius of curvature from |a|",
+    "component_for_speed": "a velocity component for the speed",
+    "given_deg_as_rad": "given angle's degrees used as radians",
+    "given_rate_unit": "given rate's unit not converted to rad/s",
+    "given_length_unit": "given length's unit not converted",
+    "given_sign": "given rate's sign flipped",
+}
+"""Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 
 
 def _vector(student: np.ndarray, reference: np.ndarray, close: Close) -> Diagnosis | None:

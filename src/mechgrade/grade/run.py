@@ -604,6 +604,7 @@ def compare_policy(policy: GradingPolicy):
     missing = policy.missing_unit
     return Policy(
         rel=policy.rel, abs=policy.abs, sig_figs=policy.accuracy_sig_figs,
+        separate_mistakes=policy.separate_mistakes,
         written_sig_figs=sig.figures if sig else None,
         written_sig_figs_strict=sig.strict if sig else False,
         written_sig_figs_deduction=1.0 - sig.credit if sig else 0.25,

@@ -29,6 +29,8 @@ from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import Plan, plan
+from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
+                      symbolic_mistakes)
 from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 from .symbolic import symbolic
 
@@ -106,7 +108,7 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
         given_map = _givens(problem, givens)
         given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
         numeric = {o.id for o in objectives if _numeric(o)}
-        values, mistakes = {}, {}
+        values, mistakes, generated = {}, {}, []
         if numeric:
             try:
                 instant = solve_numeric(problem, p, given_map, numeric)
@@ -117,6 +119,8 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
                 failures.update(_check_requirements(problem, p, instant.state, numeric))
                 values = instant.values
                 mistakes = _mistake_values(p, instant.state, numeric)
+                generated = [model_mistakes(problem, p, instant.state, numeric),
+                             given_mistakes(problem, p, given_map, numeric)]
                 warned += [w for w in instant.warnings if w not in warned]
                 if not overrides or base is None:
                     base = (instant.state, given_map)
@@ -132,6 +136,8 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
                                                       mistakes.get(obj.id, ()))
             except MechgradeError as err:
                 failures[obj.id] = err
+        results.update(attach({o.id: results[o.id] for o in objectives if o.id in results},
+                              generated, plausible_slips(problem)))
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results:
         raise failures[order[0]]
@@ -164,9 +170,22 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
     signed = tuple(_may_be_negative(problem, node) for node in meanings.values())
     return ObjectiveResult(
-        id=obj.id, kind=obj.kind, unit=obj.unit, expr=sp.sstr(expr), symbols=tuple(meanings),
+        id=obj.id, kind=obj.kind, unit=obj.unit, expr=_shortest(expr), symbols=tuple(meanings),
         symbol_units=units, symbol_signed=signed, rel=obj.tolerance.rel, abs=obj.tolerance.abs,
-        prompt=obj.prompt)
+        prompt=obj.prompt,
+        generated_mistakes=symbolic_mistakes(problem, obj, expr, dict(givens)))
+
+
+def _shortest(expr) -> str:
+    """The expression as text in its shortest equivalent form (as simplified, or expanded:
+    ``l*thetadd + 2*ld*thetad - s*thetad**2`` rather than ``... + thetad*(ld - s*thetad)``).
+
+    >>> x, y = sp.symbols("x y")
+    >>> _shortest(x*y + y*(x - y))
+    '2*x*y - y**2'
+    """
+    forms = [expr] + ([sp.expand(expr)] if sp.count_ops(expr) <= 300 else [])
+    return min((sp.sstr(f) for f in forms), key=lambda text: (len(text), text))
 
 
 def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:

@@ -25,6 +25,19 @@ class MistakeValue:
 
 
 @dataclass(frozen=True)
+class GeneratedMistake:
+    """The value a typical conceptual mistake gives (see :mod:`mechgrade.solve.mutants`):
+    ``code`` its family (a key of the assignment's ``partial_credit``), ``message`` one
+    sentence naming the term and the quantity, ``value`` in the objective's unit (``expr``
+    for a symbolic objective, in its symbols)."""
+
+    code: str
+    message: str
+    value: Value
+    expr: str | None = None
+
+
+@dataclass(frozen=True)
 class ObjectiveResult:
     """One objective's reference answer.
 
@@ -35,6 +48,9 @@ class ObjectiveResult:
     ``symbol_signed`` says which symbols may be negative (coordinates, their rates, parameters
     declared ``positive: false``), so an answer is checked over each symbol's whole domain.
     ``rel`` and ``abs`` are the objective's tolerance (``abs`` in ``unit``).
+    ``mistakes`` are the author's; ``generated_mistakes`` those the solver derives from the
+    model; ``plausible`` the whole-answer slips the model makes plausible (``"g"`` only with a
+    ``g``, ``"deg_as_rad"`` only with an angle in degrees...).
     """
 
     id: str
@@ -50,6 +66,8 @@ class ObjectiveResult:
     rel: float = 0.01
     abs: float = 0.0
     prompt: str = ""
+    generated_mistakes: tuple[GeneratedMistake, ...] = ()
+    plausible: frozenset[str] | None = None
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,9 @@ from ..spec.validate import symbol_meanings
 from ..units import si_unit
 
 
-def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict):
+def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict, expr=None):
+    """The objective (or ``expr``, a mistaken reading of it, in the model's plain symbols)
+    solved in the objective's symbols, and the symbols' meanings."""
     meanings = symbol_meanings(problem, objective)
     declared = {name: k.quantity(node) for name, node in meanings.items()}
     given_symbols = {}
@@ -26,7 +28,7 @@ def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict
     # A zero is a zero in every unit: such givens may always stand in.
     zeros = {sym: sp.Integer(0) for sym, (_, si, _) in given_symbols.items()
              if si == 0 and sym not in declared.values()}
-    expr = _simplify(k.objective(objective.id).xreplace(zeros))
+    expr = _simplify((k.objective(objective.id) if expr is None else expr).xreplace(zeros))
     for level, rates, equations in ((2, k.qdd, k.acceleration), (1, k.qd, k.velocity),
                                     (0, k.q, k.position)):
         unknown = [s for s in rates if s not in known]

@@ -1,0 +1,359 @@
+"""Conceptual mistakes applied to a problem's model: each objective re-read with one term of
+the composition of motion dropped, another point, another frame's unit vectors, or a path
+quantity confused with its neighbour.
+
+A mutation works on the model, not on the number: the objective's own expression is read again
+by an interpreter whose velocity or acceleration of one point in one frame is the mistaken one,
+so a magnitude, a component or a tangential part of a mistaken acceleration is mistaken the way
+a student's would be. Each :class:`Mutation` carries its family ``code`` (for partial-credit
+settings), the mistaken value in plain symbols, the term that was dropped (components along the
+objective's frame, or the inertial frame) and a sentence in which ``{term}`` stands for that
+term's value.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+>>> sorted({m.code for m in mutations(problem) if m.objective == "acc_mag"})[:3]
+['acc_n_for_acc', 'acc_t_for_acc', 'drop_centripetal']
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import sympy as sp
+from sympy.physics.vector import Vector
+
+from ..expressions.syntax import Bin, Call, Name, Node, Unary, to_text
+from ..spec.model import Expr, Objective, Problem
+from .build import Model, build
+from .interpret import Interpreter
+from .kinematics import locations
+from .symbols import identically_zero
+
+ACCELERATION_CODES = ("drop_transport_acc", "drop_tangential", "drop_centripetal",
+                      "drop_coriolis", "coriolis_half", "drop_relative_acc")
+VELOCITY_CODES = ("drop_transport_vel", "drop_omega_r", "drop_relative_vel")
+CODES = ACCELERATION_CODES + VELOCITY_CODES + ("relative_omega",
+    "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc", "acc_for_acc_t",
+    "acc_for_acc_n", "rho_formula", "component_for_speed", "mag_as_sum", "position_term")
+"""Family codes of the model mutations (keys of an assignment's ``partial_credit``)."""
+
+
+@dataclass(frozen=True)
+class Mutation:
+    """One mistaken reading of one objective: ``value`` a scalar or a 3x1 matrix along the
+    objective's frame, ``term`` the dropped term as a 3x1 matrix (or ``None``), ``sentence``
+    the diagnosis, with ``{term}`` where the term's value goes."""
+
+    objective: str
+    code: str
+    value: object
+    sentence: str
+    term: object = None
+
+
+class _Mistaken(Interpreter):
+    """An interpreter whose velocity or acceleration of ``point`` in ``frame`` (or its
+    position) is replaced."""
+
+    def __init__(self, base: Interpreter, point: str, frame: str, velocity=None,
+                 acceleration=None, position=None):
+        super().__init__(base.problem, base.symbols, base.frames, base.positions)
+        self.target = (point, frame)
+        self.velocity = velocity
+        self.acceleration = acceleration
+        self.position = position
+
+    def point_position(self, node: Node) -> Vector:
+        if self.position is not None and node == Name(self.target[0]):
+            return self.position
+        return super().point_position(node)
+
+    def point_velocity(self, node: Node, frame: str) -> Vector:
+        if self.velocity is not None and node == Name(self.target[0]) \
+                and frame == self.target[1]:
+            return self.velocity
+        return super().point_velocity(node, frame)
+
+    def point_acceleration(self, node: Node, frame: str) -> Vector:
+        if self.acceleration is not None and node == Name(self.target[0]) \
+                and frame == self.target[1]:
+            return self.acceleration
+        return super().point_acceleration(node, frame)
+
+
+def mutations(problem: Problem) -> tuple[Mutation, ...]:
+    """Every model mutation of every numeric objective of ``problem``."""
+    return _mutations(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _mutations(problem: Problem, _locations: tuple) -> tuple[Mutation, ...]:
+    model = build(problem)
+    out: list[Mutation] = []
+    for obj in problem.objectives:
+        out += _objective_mutations(model, obj)
+        out += _position_mutations(problem, model, obj)
+    # a reading undefined for every state (a speed divided by where it is zero) is no mistake
+    return tuple(m for m in out if not sp.sympify(m.value).has(sp.zoo, sp.nan, sp.oo))
+
+
+def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
+    node = obj.find.node
+    basis = obj.frame or model.problem.inertial_frame
+    frame = model.frames[basis]
+    base = model.language
+    try:
+        right = base.value(node)
+    except Exception:  # an objective the solver reports as a failure has no mutants
+        return []
+    out: list[Mutation] = []
+
+    def add(code: str, interpreter: Interpreter | None, sentence: str, term=None,
+            value_node: Node | None = None):
+        try:
+            value = (interpreter or base).value(value_node or node)
+        except Exception:  # the mistaken reading is undefined (a zero magnitude divided by)
+            return
+        # a reading equal to the answer is dropped where the values are known (solve)
+        if isinstance(value, Vector) != isinstance(right, Vector):
+            return
+        out.append(Mutation(obj.id, code, _matrix(model, value, frame),
+                            sentence, None if term is None else model.plain(term.to_matrix(
+                                frame))))
+
+    for call in _calls(node, ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent",
+                              "normal")):
+        point, in_frame = call.args[0], call.args[1].id
+        if not isinstance(point, Name):
+            continue
+        P = point.id
+        uses_acc = call.func in ("acc", "acc_t", "acc_n", "rho", "normal")
+        for B, origin in _moving_frames(model, P, in_frame):
+            F = model.frames[in_frame]
+            r = model.positions[P] - model.positions[origin]
+            omega = model.frames[B].ang_vel_in(F)
+            alpha = model.frames[B].ang_acc_in(F)
+            v_rel = r.dt(model.frames[B])
+            v_true = base.point_velocity(point, in_frame)
+            where = f"(ω of frame {B} in {in_frame}, r from {origin} to {P})"
+            where_acc = f"(ω and α of frame {B} in {in_frame}, r from {origin} to {P})"
+            velocity_terms = (
+                ("drop_transport_vel", base.point_velocity(Name(origin), in_frame),
+                 f"the velocity of {origin}, the origin of frame {B}"),
+                ("drop_omega_r", omega ^ r, f"the transport term ω × r {where}"),
+                ("drop_relative_vel", v_rel, f"the velocity of {P} relative to frame {B}"))
+            for code, term, name in velocity_terms:
+                if uses_acc or _zero(model, term):
+                    continue
+                add(code, _Mistaken(base, P, in_frame, velocity=v_true - term),
+                    f"Your value matches the velocity of {P} computed without {name} = "
+                    "{term} along " + basis + ": include it.", term)
+            parent = model.problem.frames[[f.name for f in model.problem.frames].index(B)].parent
+            relative = parent not in (None, in_frame) and not _zero(
+                model, model.frames[parent].ang_vel_in(F))
+            if relative:
+                omega_p = model.frames[B].ang_vel_in(model.frames[parent])
+                alpha_p = model.frames[B].ang_acc_in(model.frames[parent])
+                sentence = (f"Your value matches the {{kind}} of {P} computed with the angular "
+                            f"velocity of frame {B} relative to frame {parent} instead of its "
+                            f"absolute one in {in_frame}: add the angular velocity of {parent}.")
+            if relative and not uses_acc:
+                add("relative_omega", _Mistaken(base, P, in_frame,
+                                                velocity=v_true - (omega ^ r) + (omega_p ^ r)),
+                    sentence.format(kind="velocity"))
+            if not uses_acc:
+                continue
+            a_true = base.point_acceleration(point, in_frame)
+            if relative:
+                mistaken = a_true - (alpha ^ r) - (omega ^ (omega ^ r)) + (alpha_p ^ r) \
+                    + (omega_p ^ (omega_p ^ r))
+                add("relative_omega", _Mistaken(base, P, in_frame, acceleration=mistaken),
+                    sentence.format(kind="acceleration"))
+            a_rel = v_rel.dt(model.frames[B])
+            acceleration_terms = (
+                ("drop_transport_acc", base.point_acceleration(Name(origin), in_frame), 1,
+                 f"the acceleration of {origin}, the origin of frame {B}"),
+                ("drop_tangential", alpha ^ r, 1, f"the tangential term α × r {where_acc}"),
+                ("drop_centripetal", omega ^ (omega ^ r), 1,
+                 f"the centripetal term ω × (ω × r) {where}"),
+                ("drop_coriolis", 2 * (omega ^ v_rel), 1,
+                 f"the Coriolis term 2 ω × v_rel (ω of frame {B}, v_rel of {P} in {B})"),
+                ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
+                 "the factor 2 of the Coriolis term 2 ω × v_rel"),
+                ("drop_relative_acc", a_rel, 1,
+                 f"the acceleration of {P} relative to frame {B}"))
+            for code, term, share, name in acceleration_terms:
+                if _zero(model, term):
+                    continue
+                part = term * share
+                add(code, _Mistaken(base, P, in_frame, acceleration=a_true - part),
+                    f"Your value matches the acceleration of {P} computed without {name} = "
+                    "{term} along " + basis + ": include it.", term)
+        for Q in model.positions:
+            if Q in (P, model.problem.inertial_point):
+                continue
+            kind = "acceleration" if uses_acc else "velocity"
+            other = _Mistaken(base, P, in_frame,
+                              velocity=base.point_velocity(Name(Q), in_frame),
+                              acceleration=base.point_acceleration(Name(Q), in_frame))
+            add("other_point", other, f"Your value matches the {kind} of {Q}, not of {P}: "
+                f"use the point the question asks about.")
+            for body in model.problem.frames:
+                if body.origin is None or body.origin == Q or body.name == in_frame \
+                        or _zero(model, model.frames[body.name].ang_vel_in(
+                            model.frames[in_frame])):
+                    continue
+                material = Call("coincident", (Name(Q), Name(body.name)))
+                other = _Mistaken(base, P, in_frame,
+                                  velocity=base.point_velocity(material, in_frame),
+                                  acceleration=base.point_acceleration(material, in_frame))
+                add("other_point", other, f"Your value matches the {kind} of the point of "
+                    f"body {body.name} at {Q}, not of {P}: use the point the question asks "
+                    "about.")
+    for call in _calls(node, ("pos",)):
+        point, origin = call.args
+        if not isinstance(point, Name):
+            continue
+        for Q in model.positions:
+            if Q in (point.id, model.problem.inertial_point) or Name(Q) == origin:
+                continue
+            add("other_point", _Mistaken(base, point.id, "", position=model.positions[Q]),
+                f"Your value matches the position of {Q}, not of {point.id}: use the point "
+                "the question asks about.")
+    top = node.func if isinstance(node, Call) else None
+    if top == "mag" and isinstance(node.args[0], Call) and node.args[0].func == "acc":
+        args = node.args[0].args
+        add("acc_t_for_acc", None, "Your value is the tangential acceleration a_t = dv/dt "
+            "alone; the magnitude of the acceleration is √(a_t² + a_n²).",
+            value_node=Call("acc_t", args))
+        add("acc_n_for_acc", None, "Your value is the normal acceleration v²/ρ alone; the "
+            "magnitude of the acceleration is √(a_t² + a_n²).", value_node=Call("acc_n", args))
+        add("mag_as_sum", None, "Your value adds the tangential and normal accelerations; the "
+            "magnitude of the acceleration is √(a_t² + a_n²).",
+            value_node=Bin("+", Call("acc_t", args), Call("acc_n", args)))
+    if top in ("acc_t", "acc_n"):
+        add(f"acc_for_{top}", None, f"Your value is the magnitude of the whole acceleration; "
+            f"the {'tangential' if top == 'acc_t' else 'normal'} component was asked.",
+            value_node=Call("mag", (Call("acc", node.args),)))
+    if top == "rho":
+        v = base.point_velocity(node.args[0], node.args[1].id)
+        a = base.point_acceleration(node.args[0], node.args[1].id)
+        if not _zero(model, v ^ a):
+            out.append(Mutation(obj.id, "rho_formula", model.plain(
+                (v & v) / a.magnitude()), "Your value is v²/|a|; the radius of curvature is "
+                "v²/a_n, with the normal part a_n of the acceleration only."))
+    speed = top == "speed" or (top == "mag" and isinstance(node.args[0], Call)
+                               and node.args[0].func == "vel")
+    if speed:
+        args = node.args if top == "speed" else node.args[0].args
+        v = base.point_velocity(args[0], args[1].id)
+        x, y, z = v.to_matrix(frame)
+        out.append(Mutation(obj.id, "mag_as_sum", model.plain(x + y + z),
+                            "Your value adds the components of the velocity; the speed is "
+                            "the square root of the sum of their squares."))
+        for G in model.frames:
+            for axis, unit in zip("xyz", (model.frames[G].x, model.frames[G].y,
+                                          model.frames[G].z)):
+                if not _zero(model, v & unit):
+                    out.append(Mutation(obj.id, "component_for_speed", model.plain(v & unit),
+                                        f"Your value is only the {G}.{axis} component of the "
+                                        "velocity; the speed is the magnitude of the whole "
+                                        "velocity."))
+    if isinstance(right, Vector) and obj.frame:
+        for G, other in model.frames.items():
+            if G == obj.frame or _zero(model, right - _relabel(right, other, frame)):
+                continue
+            out.append(Mutation(obj.id, "other_basis", model.plain(right.to_matrix(other)),
+                                f"Your components are those of the right vector along frame "
+                                f"{G}'s unit vectors; give them along frame {obj.frame}'s."))
+    return out
+
+
+def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:
+    """The objective with one term of a point's position left out (half a side for half a
+    diagonal, the offset of a pin forgotten)."""
+    out = []
+    for spec in problem.points:
+        terms = _terms(spec.position.node) if spec.position is not None else []
+        if len(terms) < 2:
+            continue
+        for i, (_, dropped) in enumerate(terms):
+            rest = _sum(terms[:i] + terms[i + 1:])
+            text = to_text(rest)
+            points = tuple(replace(p, position=Expr(text, rest)) if p.name == spec.name else p
+                           for p in problem.points)
+            try:
+                mutated = build(replace(problem, points=points))
+                value = _matrix(mutated, mutated.language.value(obj.find.node),
+                                mutated.frames[obj.frame or problem.inertial_frame])
+            except Exception:  # the shortened description is not a position
+                continue
+            out.append(Mutation(obj.id, "position_term", value,
+                                f"Your value matches what {spec.name} placed at {text} from "
+                                f"{spec.origin} gives, without the term {to_text(dropped)} of "
+                                f"its position: check the distance from {spec.origin} to "
+                                f"{spec.name}."))
+    return out
+
+
+def _terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
+    """The additive terms of ``node`` with their signs."""
+    if isinstance(node, Bin) and node.op in "+-":
+        return _terms(node.left, sign) + _terms(node.right, sign if node.op == "+" else -sign)
+    if isinstance(node, Unary) and node.op == "-":
+        return _terms(node.operand, -sign)
+    return [(sign, node)]
+
+
+def _sum(terms: list[tuple[int, Node]]) -> Node:
+    sign, node = terms[0]
+    total = node if sign > 0 else Unary("-", node)
+    for sign, node in terms[1:]:
+        total = Bin("+" if sign > 0 else "-", total, node)
+    return total
+
+
+def _relabel(vector: Vector, source, target) -> Vector:
+    """``vector``'s components along ``source`` read as components along ``target``."""
+    x, y, z = vector.to_matrix(source)
+    return x * target.x + y * target.y + z * target.z
+
+
+def _moving_frames(model: Model, point: str, frame: str):
+    """Frames (other than ``frame``) with an origin and an angular velocity in ``frame``, in
+    which ``point`` is described: a composition of motion applies."""
+    for spec in model.problem.frames:
+        if spec.name == frame or spec.origin is None or spec.origin == point:
+            continue
+        if _zero(model, model.frames[spec.name].ang_vel_in(model.frames[frame])):
+            continue
+        yield spec.name, spec.origin
+
+
+def _calls(node: Node, names: tuple[str, ...]):
+    if isinstance(node, Call):
+        if node.func in names:
+            yield node
+        for arg in node.args:
+            yield from _calls(arg, names)
+    for child in (getattr(node, "left", None), getattr(node, "right", None),
+                  getattr(node, "operand", None)):
+        if child is not None:
+            yield from _calls(child, names)
+
+
+def _zero(model: Model, vector) -> bool:
+    if isinstance(vector, sp.MatrixBase):
+        return all(identically_zero(c) for c in vector)
+    if isinstance(vector, Vector):
+        return all(identically_zero(model.plain(c)) for c in vector.to_matrix(model.inertial))
+    return identically_zero(model.plain(vector))
+
+
+def _matrix(model: Model, value, frame):
+    if isinstance(value, Vector):
+        return model.plain(value.to_matrix(frame))
+    return model.plain(value)

@@ -1,0 +1,290 @@
+"""The values typical conceptual mistakes give, for the grader to name them.
+
+Two sources, both applied to the model and never to the answer: the model mutations of
+:mod:`mechgrade.mechanics.mutations` (a term of the composition of motion dropped, another point,
+another frame's unit vectors, a path quantity for its neighbour), evaluated at the solved
+instant; and mistaken givens (an angle in degrees used as radians, a rate in rpm or deg/s used as
+rad/s, a length read in the wrong unit, a rate's sign flipped), for which the instant is solved
+again.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.solve import solve
+>>> result = solve(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+...               ).result("acc_mag")
+>>> [(m.code, round(m.value, 1)) for m in result.generated_mistakes][:2]
+[('drop_tangential', 98.0), ('drop_centripetal', 10.0)]
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import replace
+from functools import lru_cache
+from typing import Mapping
+
+import numpy as np
+import sympy as sp
+
+from ..errors import MechgradeError
+from ..expressions.syntax import Name, Prime, to_text
+from ..mechanics.kinematics import locations
+from ..mechanics.mutations import VELOCITY_CODES, mutations
+from ..spec.model import Objective, Problem
+from ..tolerance import within
+from ..units import dimension, from_si, to_si
+from ..mechanics.symbols import identically_zero
+from .levels import State, evaluate
+from .numeric import solve_numeric
+from .plan import Plan, plan
+from .result import GeneratedMistake, ObjectiveResult
+from .symbolic import symbolic
+
+GIVEN_CODES = ("given_deg_as_rad", "given_rate_unit", "given_length_unit", "given_sign",
+               "given_swap")
+"""Family codes of mistaken givens (keys of an assignment's ``partial_credit``)."""
+
+# a length unit a student may read as the base unit of its system
+_LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd": "ft"}
+
+
+def _lambdified(problem: Problem, p: Plan):
+    return _lambdified_cached(problem, locations(problem), p)
+
+
+@lru_cache(maxsize=64)
+def _lambdified_cached(problem: Problem, _locations: tuple, p: Plan):
+    symbols = p.index.symbols
+    out = []
+    for m in mutations(problem):
+        value = sp.lambdify(symbols, m.value, modules="numpy", cse=True)
+        term = None if m.term is None else sp.lambdify(symbols, m.term, modules="numpy")
+        out.append((m, value, term))
+    return tuple(out)
+
+
+def model_mistakes(problem: Problem, p: Plan, state: State,
+                   wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
+    """The model mutations of the objectives in ``wanted``, at ``state``."""
+    out: dict[str, list[GeneratedMistake]] = {}
+    for m, value, term in _lambdified(problem, p):
+        if m.objective not in wanted:
+            continue
+        obj = problem.objective(m.objective)
+        si = evaluate((("v", value),), state, {"v"})["v"]
+        if not np.all(np.isfinite(si)):
+            continue
+        sentence = m.sentence
+        if term is not None:
+            sentence = sentence.replace("{term}", _term_text(
+                evaluate((("t", term),), state, {"t"})["t"], obj, m.code))
+        out.setdefault(m.objective, []).append(
+            GeneratedMistake(m.code, sentence, _in_unit(si, obj)))
+    return out
+
+
+def symbolic_mistakes(problem: Problem, obj: Objective, right,
+                      givens: dict) -> tuple[GeneratedMistake, ...]:
+    """The model mutations of a symbolic objective, each solved in the objective's symbols
+    like the objective itself."""
+    k = plan(problem).k
+    out: list[GeneratedMistake] = []
+    kept = [right]
+    for m in mutations(problem):
+        if m.objective != obj.id or isinstance(m.value, sp.MatrixBase):
+            continue
+        try:
+            expr, _ = symbolic(problem, k, obj, givens, expr=m.value)
+        except MechgradeError:
+            continue
+        if expr.has(sp.zoo, sp.nan, sp.oo) or any(identically_zero(expr - e) for e in kept) \
+                or (m.code != "other_point" and identically_zero(expr)):
+            continue
+        kept.append(expr)
+        sentence = re.sub(r" = \{term\} along \w+", "", m.sentence)
+        out.append(GeneratedMistake(m.code, sentence, None, sp.sstr(expr)))
+    return tuple(out)
+
+
+def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
+                   wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
+    """The objectives in ``wanted`` solved again with each given mistaken in one way."""
+    out: dict[str, list[GeneratedMistake]] = {}
+    parameters = {q.name for q in problem.parameters}
+    for code, changes, sentence in _slips(givens, parameters):
+        changed = dict(givens)
+        for key, mistaken_si in changes:
+            node, _, given = givens[key]
+            changed[key] = (node, mistaken_si, replace(given, si=mistaken_si))
+        try:
+            instant = solve_numeric(problem, p, changed, wanted)
+        except MechgradeError:
+            continue
+        for oid, values in instant.values.items():
+            if oid in wanted and np.all(np.isfinite(values)):
+                out.setdefault(oid, []).append(GeneratedMistake(
+                    code, sentence, _in_unit(values, problem.objective(oid))))
+    return out
+
+
+def _slips(givens: Mapping, parameters: set[str]):
+    """``(code, ((key, mistaken SI value), ...), sentence)`` for each typical misreading: of
+    one given, or two parameters of the same unit exchanged (a tooth ratio inverted)."""
+    named = [(key, node, si, given) for key, (node, si, given) in givens.items()
+             if given is not None]
+    for key, node, si, given in named:
+        for code, mistaken_si, sentence in _given_slips(node, si, given):
+            yield code, ((key, mistaken_si),), sentence
+    parameters = [(key, si, given) for key, node, si, given in named
+                  if isinstance(node, Name) and node.id in parameters]
+    for i, (key, si, given) in enumerate(parameters):
+        for other, other_si, other_given in parameters[i + 1:]:
+            if given.unit == other_given.unit and si != other_si and si and other_si:
+                yield ("given_swap", ((key, other_si), (other, si)),
+                       f"Your value is what {key} and {other} exchanged gives ({key} = "
+                       f"{other_given.text}, {other} = {given.text}): check which is which.")
+
+
+def _given_slips(node, si: float, given):
+    """``(code, mistaken SI value, sentence)`` for each way ``given`` is typically misread."""
+    name, unit, value = to_text(node), given.unit.strip(), given.value
+    if unit in ("deg", "degree", "degrees", "°") and value != 0:
+        yield ("given_deg_as_rad", value,
+               f"Your value is what {name} = {given.text} gives when {value:g} is used as "
+               "radians (a calculator in radian mode): convert degrees to radians.")
+    if isinstance(node, Prime) and any(u in unit for u in ("rpm", "rev", "deg", "Hz")) \
+            and value != 0 and not math.isclose(value, si):
+        yield ("given_rate_unit", value,
+               f"Your value is what {name} = {given.text} gives when the number is used "
+               f"as rad/s{'' if node.order == 1 else '²'}: convert it to radians per "
+               "second first.")
+    if unit in _LENGTH_SLIPS and value != 0:
+        base = _LENGTH_SLIPS[unit]
+        yield ("given_length_unit", to_si(value, base),
+               f"Your value is what {name} = {given.text} gives when read as {value:g} "
+               f"{base}: convert {unit} to {base}.")
+    if isinstance(node, Prime) and si != 0:
+        yield ("given_sign", -si,
+               f"Your value is what {name} with the opposite sign gives: check the "
+               f"direction of {name} ({given.text}) against the positive sense of "
+               f"{node.id}.")
+
+
+def plausible_slips(problem: Problem) -> frozenset[str]:
+    """The whole-answer slips of :mod:`mechgrade.grade.diagnose` that need something in the
+    model to be plausible: a factor of g needs a ``g``; degrees for radians an angle in
+    degrees; rpm or revolutions a rate in them. Slips of the answer's own unit always are.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> sorted(plausible_slips(load_problem(shipped_dir("problems")
+    ...                                     / "bowling_3_15_4_pendulum.yaml")))
+    ['deg_as_rad', 'rad_as_deg']
+    """
+    units = " ".join([g.unit for g in problem.givens]
+                     + [g.unit for o in problem.objectives for g in o.givens]
+                     + [o.unit for o in problem.objectives])
+    out = set()
+    if any(p.name in ("g", "g0") for p in problem.parameters):
+        out.add("g")
+    if "deg" in units or "°" in units:
+        out |= {"deg_as_rad", "rad_as_deg"}
+    if any(u in units for u in ("rpm", "rev", "Hz")):
+        out |= {"rpm_rad", "rev_rad"}
+    return frozenset(out)
+
+
+def attach(results: Mapping[str, ObjectiveResult],
+           found: list[dict[str, list[GeneratedMistake]]],
+           plausible: frozenset[str]) -> dict[str, ObjectiveResult]:
+    """``results`` with the generated mistakes in ``found`` (duplicates, the same value as an
+    earlier one, dropped) and the model's ``plausible`` slips."""
+    out = dict(results)
+    for oid, result in results.items():
+        kept: list[GeneratedMistake] = list(result.generated_mistakes)
+        for source in found:
+            for mistake in source.get(oid, ()):
+                # the same value as the answer at this instant: no mistake here
+                if not any(_same(mistake.value, k.value) for k in kept) \
+                        and not _same(mistake.value, result.value) and not _vague(mistake):
+                    kept.append(mistake)
+        out[oid] = replace(result, generated_mistakes=tuple(kept), plausible=plausible)
+    return out
+
+
+def _vague(mistake: GeneratedMistake) -> bool:
+    """A zero is what many mistakes give: only another point's zero velocity (a contact
+    point's) is named from it."""
+    return mistake.code != "other_point" and not np.any(
+        np.abs(np.asarray(mistake.value, float)) > 1e-12)
+
+
+def _same(a, b) -> bool:
+    a, b = np.atleast_1d(np.asarray(a, float)), np.atleast_1d(np.asarray(b, float))
+    scale = max(float(np.linalg.norm(a)), float(np.linalg.norm(b)), 1e-12)
+    return bool(np.linalg.norm(a - b) <= 1e-9 * scale + 1e-12)
+
+
+def _in_unit(si_values: np.ndarray, obj: Objective):
+    if obj.kind == "vector":
+        return tuple(float(from_si(v, obj.unit)) + 0.0 for v in si_values)
+    return float(from_si(si_values[0], obj.unit)) + 0.0
+
+
+def _term_text(si_values: np.ndarray, obj: Objective, code: str) -> str:
+    """A dropped term's components, in the objective's unit when it is of the same kind."""
+    per = "/s" if code in VELOCITY_CODES else "/s^2"
+    if dimension(obj.unit) == dimension("m" + per):
+        unit = obj.unit
+    elif dimension(obj.unit) == dimension("m"):  # a radius of curvature: its length unit
+        unit = obj.unit + per
+    else:
+        unit = "m" + per
+    shown = [float(from_si(v, unit)) + 0.0 for v in si_values]
+    size = max(abs(v) for v in shown)
+    shown = [0.0 if abs(v) <= 1e-9 * size else v for v in shown]  # round-off, not a part
+    parts = shown[:2] if shown[2] == 0 else shown
+    return "(" + ", ".join(f"{v:.4g}" for v in parts) + f") {unit}"
+
+
+def inside_tolerance(result: ObjectiveResult, rel: float | None = None,
+                     abs_: float | None = None) -> tuple[GeneratedMistake, ...]:
+    """The generated mistakes of a numeric ``result`` within its tolerance (or ``rel``,
+    ``abs_``): a student making one gets full credit.
+
+    >>> r = ObjectiveResult("a", "scalar", "ft/s^2", 98.51, generated_mistakes=(
+    ...     GeneratedMistake("drop_tangential", "...", 98.0),))
+    >>> [m.code for m in inside_tolerance(r)], separating_rel(r)
+    (['drop_tangential'], 0.002)
+    """
+    if result.value is None:
+        return ()
+    rel = result.rel if rel is None else rel
+    abs_ = result.abs if abs_ is None else abs_
+    right = np.atleast_1d(np.asarray(result.value, float))
+    size = float(np.linalg.norm(right))
+    return tuple(m for m in result.generated_mistakes if m.value is not None and within(
+        np.atleast_1d(np.asarray(m.value, float)), right, rel, abs_, scale=size))
+
+
+# a tolerance tighter than this would fail answers written to four significant figures
+TIGHTEST_REL = 5e-4
+
+
+def separating_rel(result: ObjectiveResult) -> float | None:
+    """The relative tolerance (one significant figure, at most the objective's) that puts
+    every generated mistake outside it; ``None`` when one is closer than :data:`TIGHTEST_REL`
+    allows to separate, or none is inside. Half the nearest mistake's relative distance."""
+    inside = inside_tolerance(result)
+    if not inside:
+        return None
+    right = np.atleast_1d(np.asarray(result.value, float))
+    size = float(np.linalg.norm(right))
+    nearest = min(float(np.linalg.norm(np.atleast_1d(np.asarray(m.value, float)) - right))
+                  for m in inside) / size if size else 0.0
+    half = nearest / 2
+    if half < TIGHTEST_REL:
+        return None
+    exponent = math.floor(math.log10(half))
+    return min(result.rel, math.floor(half / 10 ** exponent) * 10 ** exponent)

@@ -1,0 +1,67 @@
+"""Grade every typical mistake of the tables beside this file and count how it was diagnosed.
+
+Run: python tests/data/mistakes/measure.py [-v]   (with the mechgrade to measure importable)
+Classes: ``named`` (a code the table lists), ``generic`` (judged wrong, no diagnosis),
+``correct`` (judged right: the mistake is inside the tolerance), ``wrong`` (another diagnosis).
+A mistake the problem's author declared is named in the author's words (code ``mistake``).
+"""
+from __future__ import annotations
+
+import sys
+from collections import Counter
+from pathlib import Path
+
+import yaml
+
+from mechgrade.grade import diagnose
+from mechgrade.grade.compare import Policy, assess
+from mechgrade.resources import shipped_dir
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem
+
+HERE = Path(__file__).parent
+
+
+def code_of(label: str | None, result) -> str | None:
+    """The diagnosis code behind an assessment's label."""
+    if label is None:
+        return None
+    if any(m.message == label for m in result.mistakes):
+        return "mistake"
+    codes = {lab: code for code, lab, *_ in diagnose._FACTORS}
+    codes.update({v: k for k, v in getattr(diagnose, "LABELS", {}).items()})
+    codes.update({"swapped components": "swapped", "wrong direction": "direction",
+                  "wrong magnitude": "magnitude", "wrong dimension": "dimension"})
+    return codes.get(label, label)
+
+
+def classify(row: dict, result, policy: Policy = Policy()) -> tuple[str, object]:
+    judged = assess(row["answer"], result, policy)
+    if judged.verdict == "correct":
+        return "correct", judged
+    code = code_of(judged.diagnosis, result)
+    if code is None:
+        return "generic", judged
+    # the author's declared mistakes name theirs in the author's words
+    return ("named" if code in row["diagnosis"] or code == "mistake" else "wrong"), judged
+
+
+def rows():
+    for path in sorted(HERE.glob("*.yaml")):
+        problem = load_problem(shipped_dir("problems") / path.name)
+        solution = solve(problem)
+        for row in yaml.safe_load(path.read_text(encoding="utf-8")):
+            yield path.stem, row, solution.result(row["objective"])
+
+
+if __name__ == "__main__":
+    counts = Counter()
+    for problem, row, result in rows():
+        kind, judged = classify(row, result)
+        counts[kind] += 1
+        if "-v" in sys.argv or kind != "named":
+            print(f"{kind:8} {problem}.{row['objective']}: {row['mistake']} -> "
+                  f"{judged.diagnosis!r}: {judged.feedback}")
+    total = sum(counts.values())
+    print(", ".join(f"{k} {counts[k]} ({100 * counts[k] / total:.0f} %)"
+                    for k in ("named", "generic", "correct", "wrong")), f"of {total}")

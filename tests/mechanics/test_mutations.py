@@ -1,0 +1,69 @@
+"""Mistakes applied to the model: each composition term dropped, other points and bases."""
+
+from __future__ import annotations
+
+import pytest
+
+from mechgrade.mechanics.mutations import CODES, mutations
+from mechgrade.resources import shipped_dir
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem
+
+
+def _problem(name):
+    return load_problem(shipped_dir("problems") / f"{name}.yaml")
+
+
+def _codes(name, objective):
+    return [m.code for m in mutations(_problem(name)) if m.objective == objective]
+
+
+def test_a_point_moving_in_a_rotating_frame_has_every_acceleration_term_dropped():
+    codes = _codes("ruina_10_4_10_7_rotating_tube_accel", "a_P_N")
+    assert {"drop_tangential", "drop_centripetal", "drop_coriolis", "coriolis_half",
+            "drop_relative_acc"} <= set(codes)
+
+
+def test_a_point_fixed_in_its_body_has_no_coriolis_or_relative_terms():
+    codes = _codes("bowling_3_15_4_pendulum", "acc_N")
+    assert "drop_tangential" in codes and "drop_coriolis" not in codes \
+        and "drop_relative_acc" not in codes
+
+
+def test_a_frame_turning_in_a_turning_frame_gives_the_relative_angular_velocity_mistake():
+    assert "relative_omega" in _codes("ruina_10_11_wheel_on_rotating_rod", "v_P_N")
+
+
+def test_dropped_terms_are_named_with_their_value_in_the_objectives_unit():
+    result = solve(_problem("ruina_10_4_10_7_rotating_tube_accel")).result("a_P_N")
+    coriolis = [m for m in result.generated_mistakes if m.code == "drop_coriolis"]
+    assert coriolis[0].value == pytest.approx((-106.0, -40.0, 0.0))
+    assert "Coriolis term 2 ω × v_rel" in coriolis[0].message \
+        and "= (40, 0) ft/s^2" in coriolis[0].message
+
+
+def test_components_along_the_polar_frame_are_the_other_basis_mistake():
+    result = solve(_problem("ruina_10_3_spiral_bug")).result("a_N")
+    basis = [m for m in result.generated_mistakes if m.code == "other_basis"]
+    assert basis[0].value == pytest.approx((-13.6342, 2.48143, 0.0), rel=1e-4)
+
+
+def test_a_position_term_left_out_is_half_the_side_for_half_the_diagonal():
+    result = solve(_problem("bowling_P3_17_rocking_block")).result("vG_mag")
+    by_code = {round(m.value, 6): m.code for m in result.generated_mistakes}
+    # |β'| b/2 is also the A.x component of v_G, found first
+    assert by_code[4.2] == "position_term" and by_code[2.45] == "component_for_speed"
+    assert _codes("bowling_P3_17_rocking_block", "vG_mag").count("position_term") == 2
+
+
+def test_no_generated_mistake_equals_the_answer():
+    result = solve(_problem("ruina_10_4_10_7_rotating_tube_accel")).result("a_Pprime_N")
+    # at q = 0 frame B's components equal N's: that reading is no mistake at this instant
+    assert all(m.code != "other_basis" for m in result.generated_mistakes)
+    assert len(set(CODES)) == len(CODES)
+
+
+def test_mistaken_givens_are_solved_again():
+    result = solve(_problem("bowling_3_15_6_gears")).result("alpha_A_z")
+    swap = [m for m in result.generated_mistakes if m.code == "given_swap"]
+    assert swap[0].value == pytest.approx(10.8)

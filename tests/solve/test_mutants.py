@@ -1,0 +1,36 @@
+"""Mistaken givens: the instant solved again with a given misread."""
+
+from dataclasses import replace
+
+import pytest
+
+from mechgrade.resources import shipped_dir
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem
+
+PENDULUM = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
+
+
+def _generated(problem, objective, code):
+    return [m for m in solve(problem).result(objective).generated_mistakes if m.code == code]
+
+
+def test_a_rate_in_rpm_used_as_rad_per_second_is_a_mistake():
+    problem = load_problem(PENDULUM)
+    rpm = 7 * 60 / (2 * 3.141592653589793)
+    givens = tuple(replace(g, value=rpm, unit="rpm", text=f"{rpm:.6g} rpm")
+                   if g.key.text == "theta'" else g for g in problem.givens)
+    (slip,) = _generated(replace(problem, givens=givens), "acc_A", "given_rate_unit")
+    assert slip.value[0] == pytest.approx(-2 * rpm ** 2)
+    assert "theta' = 66.8451 rpm" in slip.message and "rad/s" in slip.message
+
+
+def test_an_angle_in_degrees_used_as_radians_is_a_mistake():
+    (slip,) = _generated(load_problem(PENDULUM), "acc_N", "given_deg_as_rad")
+    assert "30 is used as radians" in slip.message
+
+
+def test_each_nonzero_rate_has_its_sign_flipped():
+    flipped = _generated(load_problem(PENDULUM), "acc_A", "given_sign")
+    # theta' squared: flipping it changes nothing and is no mistake; theta'' flips the y part
+    assert [m.value for m in flipped] == [pytest.approx((-98.0, -10.0, 0.0))]
