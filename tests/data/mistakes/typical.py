@@ -95,7 +95,6 @@ def cylinder():
     v, a, ex, ey = b()
     v_rad, _, _, _ = b(th=60.0)
     v_m, _, _, _ = b(r=1.0)
-    a_n = np.linalg.norm(np.cross(v, a)) / np.linalg.norm(v)
     return [entry("vB_mag", "60 used as radians", num(np.linalg.norm(v_rad), "m/s"),
                   "given_deg_as_rad", inside=True),
             entry("vB_mag", "r = 1 cm used as 1 m", num(np.linalg.norm(v_m), "m/s"),
@@ -185,7 +184,7 @@ def wheel_on_rotating_rod():
     rAP = r * V(math.cos(q1 + q2), math.sin(q1 + q2))
     vA, aA = cross_z(q1d, rA), -q1d**2 * rA
     w, al = q1d + q2d, q2dd
-    v = vA + cross_z(w, rAP)
+    vA + cross_z(w, rAP)
     a = aA + cross_z(al, rAP) - w**2 * rAP
     coriolis = 2 * cross_z(q1d, cross_z(q2d, rAP))  # 2 ω_B × v_rel in B
     return [entry("v_P_N", "wheel's relative rate q2' used as its absolute ω",
@@ -263,7 +262,7 @@ def rotating_tube_accel():
 
 def rod_collar_disk():
     L, R, th, ph, xAd = 2.0, 0.5, 30 * D, 30 * D, -2.0
-    rod_x, rod_y = V(math.cos(th), math.sin(th)), V(-math.sin(th), math.cos(th))
+    _rod_x, rod_y = V(math.cos(th), math.sin(th)), V(-math.sin(th), math.cos(th))
     disk_x = V(math.cos(ph), math.sin(ph))
     # xAd X + L θ' rod_y + R φ' disk_x = 0 (x and y components)
     m = np.array([[L * rod_y[0], R * disk_x[0]], [L * rod_y[1], R * disk_x[1]]])
