@@ -7,9 +7,12 @@ from pathlib import Path
 import jsonschema
 import pytest
 import yaml
+from sympy.physics.vector import ReferenceFrame
 
+from mechgrade.mechanics.bodies import explicit_inertia
 from mechgrade.spec import load_problem_text, problem_schema
 from mechgrade.spec.load import SCHEMA_PATH
+from mechgrade.units import parse_quantity
 
 ROOT = Path(__file__).resolve().parents[2]
 PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
@@ -98,3 +101,27 @@ def test_problem_names_the_shipped_schema_on_its_first_line(path):
     first = path.read_text(encoding="utf-8").splitlines()[0]
     assert first.startswith(MODELINE)
     assert (path.parent / first[len(MODELINE):]).resolve() == SCHEMA_PATH.resolve()
+
+
+def test_dynamics_defaults_are_what_the_loader_and_the_core_take_when_a_key_is_left_out():
+    schema = problem_schema()
+    loads = schema["properties"]["loads"]["properties"]
+    spring = loads["springs"]["additionalProperties"]["properties"]
+    friction = loads["friction"]["additionalProperties"]["properties"]
+    integrate = schema["properties"]["analysis"]["properties"]["integrate"]["properties"]
+    about_centre = schema["$defs"]["inertia"]["properties"]["about_centre"]["properties"]
+
+    def loaded(name, old, new):
+        text = (ROOT / "problems" / f"{name}.yaml").read_text(encoding="utf-8")
+        assert old in text
+        return load_problem_text(text.replace(old, new), f"{name}.yaml").dynamics
+
+    chain = loaded("two_mass_spring_chain", ", length: L2}", "}")
+    assert chain.load("s2").length.text == str(spring["length"]["default"])
+    incline = loaded("block_sliding_down_incline", "kind: kinetic}", "kind: kinetic}")  # as is
+    assert incline.load("F_P").surface == friction["surface"]["default"]
+    ladder = loaded("ladder_wall_lift_off", "    max_time: 10 s\n", "")
+    assert ladder.analysis.max_time == parse_quantity(integrate["max_time"]["default"]).to_si()
+    frame = ReferenceFrame("B")
+    assert explicit_inertia({}, frame).to_matrix(frame).is_zero_matrix
+    assert [about_centre[k]["default"] for k in about_centre] == [0] * 6
