@@ -166,3 +166,17 @@ def test_check_reports_a_failing_objective_beside_the_passing_ones_and_the_state
         "  state at the instant: theta = 30 deg; L = 2 m; theta' = 3 rad / s",
         "1 file(s), 1 failing",
     ]
+
+
+def test_a_bug_is_one_line_and_exit_3_never_a_traceback(monkeypatch):
+    import mechgrade.cli.solve as solve_cli
+
+    def broken(path):
+        raise KeyError("body")
+
+    monkeypatch.setattr(solve_cli, "load_problem", broken)
+    result = CliRunner().invoke(main, ["solve", "problems/bowling_3_15_4_pendulum.yaml"])
+    assert result.exit_code == 3
+    assert result.stderr == ("internal error: KeyError: 'body'; please report it with the "
+                             "command and files that caused it (set MECHGRADE_DEBUG=1 for the "
+                             "traceback)\n")

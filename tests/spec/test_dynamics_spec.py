@@ -22,6 +22,10 @@ def error_of(text: str) -> str:
 
 
 CASES = [
+    ("reaction on no body", PENDULUM, "R_O: {body: rod, at: O,", "R_O: {",
+     "p.yaml:26:10: loads.reactions.R_O: expected one of the keys body, bodies, acts"),
+    ("joint without its point", PENDULUM, "R_O: {body: rod, at: O,", "R_O: {bodies: [rod, rod],",
+     "p.yaml:26:10: loads.reactions.R_O: missing required key 'at' (with 'bodies')"),
     ("body named like a point", PENDULUM, "  rod: {mass: m", "  G: {mass: m",
      "bodies.G: 'G' names a body and something else already"),
     ("unknown centre", PENDULUM, "centre: G, frame: B", "centre: Q, frame: B",

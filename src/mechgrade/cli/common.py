@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import functools
 import importlib
+import os
 
 import click
 
 from .. import __version__
-from ..errors import MechgradeError
+from ..errors import MechgradeError, brief_exception
 
 
 INTERNAL_ERROR_EXIT = 3
@@ -25,8 +26,19 @@ class UserFailure(click.ClickException):
         click.echo(self.format_message(), err=True)
 
 
+class InternalFailure(click.ClickException):
+    """A fault of mechgrade's: one line saying so, exit code 3 (``MECHGRADE_DEBUG=1`` shows the
+    traceback instead)."""
+
+    exit_code = INTERNAL_ERROR_EXIT
+
+    def show(self, file=None) -> None:  # noqa: D102 - click's hook
+        click.echo(self.format_message(), err=True)
+
+
 def reports_errors(command):
-    """Run a command body, turning :class:`MechgradeError` into one message and exit code 2."""
+    """Run a command body, turning :class:`MechgradeError` into one message and exit code 2,
+    and any other exception (a bug) into one line and exit code 3, never a traceback."""
 
     @functools.wraps(command)
     def wrapper(*args, **kwargs):
@@ -34,6 +46,15 @@ def reports_errors(command):
             return command(*args, **kwargs)
         except MechgradeError as err:
             raise UserFailure(str(err)) from None
+        except (click.ClickException, click.exceptions.Exit, click.Abort, SystemExit,
+                KeyboardInterrupt):
+            raise
+        except Exception as exc:  # noqa: BLE001 - the last boundary before the user
+            if os.environ.get("MECHGRADE_DEBUG"):
+                raise
+            raise InternalFailure(f"internal error: {brief_exception(exc)}; please report it "
+                                  f"with the command and files that caused it (set "
+                                  f"MECHGRADE_DEBUG=1 for the traceback)") from None
 
     return wrapper
 

@@ -163,6 +163,12 @@ def _schema_message(err: jsonschema.ValidationError) -> str:
                 return f"expected only one of {', '.join(required)}, found {', '.join(present)}"
             if not present:
                 return f"expected one of the keys {', '.join(required)}"
+            # The branch whose first key is there, missing its other keys ({bodies, at}).
+            branch = next(sub["required"] for sub in err.validator_value
+                          if sub.get("required", [None])[0] == present[0])
+            missing = [key for key in branch if key not in inst]
+            if missing:
+                return f"missing required key '{missing[0]}' (with '{present[0]}')"
         best = jsonschema.exceptions.best_match(err.context) if err.context else None
         if best is not None:
             return _schema_message(best)
@@ -360,9 +366,11 @@ class _Builder:
 
     def dynamics(self):
         """The ``bodies:``, ``loads:`` and ``analysis:`` sections (:mod:`.dynamics`)."""
-        if not all(self.usable(k) for k in ("bodies", "loads", "analysis")):
-            return None
-        return self.attempt(read_dynamics, self.data, self.expr, self.where)
+        dynamics = (self.attempt(read_dynamics, self.data, self.expr, self.where)
+                    if all(self.usable(k) for k in ("bodies", "loads", "analysis")) else None)
+        if dynamics is None and any(k in self.data for k in ("bodies", "loads")):
+            self.broken_names.add("dynamics:*")  # uses of its bodies and loads stay quiet
+        return dynamics
 
     def variants(self, givens, objectives, coordinates, parameters):
         """The ``variants:`` section (:mod:`.variants`); its errors join the others."""

@@ -556,6 +556,8 @@ class _Checker:
             raise SpecError(f"expected a point as argument of {func}(...), found "
                             f"'{to_text(arg)}'")
         if kind in DYNAMICS_KINDS:
+            if self.p.dynamics is None and isinstance(arg, Name):
+                self.quiet_if_broken(arg.id, "dynamics")  # its section's error is reported
             return argument_dimension(self.p, func, arg, kind)
         t = self._type(arg, inside_pos=False)
         if t.kind == "zero" and kind == "vector":
