@@ -77,7 +77,7 @@ class Quantity:
 
 
 @lru_cache(maxsize=4096)
-def normalize_unit(text: str) -> str:
+def normalize_unit(text: str) -> str:  # noqa: C901 - the unit allow-list rules; to split (issue 12)
     """Check unit text against the allow-list and return it in pint's syntax.
 
     Accepts ``^`` or ``**`` powers, superscripts (``s²``), a power glued to a name (``s2``),

@@ -339,7 +339,7 @@ def derive_kinetics(problem: Problem) -> Kinetics:
 
 
 @lru_cache(maxsize=64)
-def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
+def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:  # noqa: C901 - one balance per load kind; to split (issue 12)
     d = problem.dynamics
     k = derive(replace(problem, objectives=(), dynamics=None))
     model = build(problem)

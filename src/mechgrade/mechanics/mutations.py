@@ -100,7 +100,7 @@ def _mutations(problem: Problem, _locations: tuple) -> tuple[Mutation, ...]:
     return tuple(m for m in out if not sp.sympify(m.value).has(sp.zoo, sp.nan, sp.oo))
 
 
-def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
+def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:  # noqa: C901 - one branch per mistake family; to split (issue 12)
     node = obj.find.node
     basis = obj.frame or model.problem.inertial_frame
     frame = model.frames[basis]
