@@ -35,7 +35,7 @@ from ..spec.model import Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy
 from .events import energy_rate_symbolic, energy_state, integrate_to_event
-from .instant import _givens, _instants, _numeric_result, _state, degrees_of_freedom
+from .instant import _givens, _instants, _state, collect_results, degrees_of_freedom
 from .levels import RANK_TOL, State, place_givens
 from .numeric import solve_numeric
 from .plan import Plan, plan
@@ -262,18 +262,8 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                 warned += [w for w in found if w not in warned]
                 if not overrides or base is None:
                     base = (state, given_map)
-        for obj in chosen:
-            if obj.id in failures:
-                continue
-            try:
-                if obj.kind == "symbolic":
-                    frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
-                    results[obj.id] = _symbolic_result(problem, obj.id, frozen)
-                else:
-                    results[obj.id] = _numeric_result(obj, values[obj.id],
-                                                      mistakes.get(obj.id, ()))
-            except MechgradeError as err:
-                failures[obj.id] = err
+        collect_results(problem, chosen, given_map, values, mistakes, results, failures,
+                        symbolic=_symbolic_result)
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results:
         raise failures[order[0]]

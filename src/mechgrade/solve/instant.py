@@ -124,18 +124,7 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
                 warned += [w for w in instant.warnings if w not in warned]
                 if not overrides or base is None:
                     base = (instant.state, given_map)
-        for obj in objectives:
-            if obj.id in failures:
-                continue
-            try:
-                if obj.kind == "symbolic":
-                    frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
-                    results[obj.id] = _symbolic_result(problem, obj.id, frozen)
-                else:
-                    results[obj.id] = _numeric_result(obj, values[obj.id],
-                                                      mistakes.get(obj.id, ()))
-            except MechgradeError as err:
-                failures[obj.id] = err
+        collect_results(problem, objectives, given_map, values, mistakes, results, failures)
         results.update(attach({o.id: results[o.id] for o in objectives if o.id in results},
                               generated, plausible_slips(problem)))
     order = [o.id for o in problem.objectives if o.id in wanted]
@@ -148,6 +137,25 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
                     warnings=tuple(warned))
+
+
+def collect_results(problem: Problem, objectives, given_map: dict, values: dict, mistakes: dict,
+                    results: dict, failures: dict, symbolic=None) -> None:
+    """Each objective's result at one instant into ``results`` (numeric ones from ``values``,
+    symbolic ones from ``symbolic(problem, id, givens)``, by default the kinematic one), or its
+    error into ``failures``; objectives that failed already are left alone."""
+    symbolic = symbolic or _symbolic_result
+    for obj in objectives:
+        if obj.id in failures:
+            continue
+        try:
+            if obj.kind == "symbolic":
+                frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
+                results[obj.id] = symbolic(problem, obj.id, frozen)
+            else:
+                results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
+        except MechgradeError as err:
+            failures[obj.id] = err
 
 
 def _instants(problem: Problem):
