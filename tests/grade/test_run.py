@@ -429,3 +429,23 @@ def test_answers_are_judged_once_each_in_one_batch(class_dir, monkeypatch):
     report = grade(class_dir)
     assert len(batches) == 1 and len(batches[0]) == len(set(batches[0])) == 4
     assert {s.id: s.score for s in report.students}["dee"] == 6.0
+
+
+def test_unanswered_objectives_never_reveal_their_expected_answer(tmp_path):
+    from mechgrade.grade.assignment import load_assignment
+    from mechgrade.grade.run import grade_submissions
+    from mechgrade.resources import shipped_dir
+
+    problem = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
+    (tmp_path / "p.yaml").write_bytes(problem.read_bytes())
+    (tmp_path / "hw.yaml").write_text("id: hw\ntitle: HW\nproblems: [p.yaml]\n"
+                                      "policy: {reveal_answers: true}\n", encoding="utf-8")
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "ann.txt").write_text("bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n",
+                                  encoding="utf-8")
+    (subs / "empty").mkdir()
+    report = grade_submissions(load_assignment(tmp_path / "hw.yaml"), subs)
+    ann, empty = report.students
+    assert [a.expected is not None for a in ann.answers] == [True, False, False, False]
+    assert all(a.expected is None for a in empty.answers)

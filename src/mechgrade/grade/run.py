@@ -323,17 +323,17 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
         messages.append("no submission found")
     answers: list[AnswerResult] = []
     verdicts: dict[str, AnswerResult] = {}
+    # An objective not answered never shows its expected answer, even when the assignment
+    # reveals answers: an empty upload must not harvest them.
     for item in plan.objectives:
         text = submission.answer(item.key) if submission is not None else None
         if status == "unreadable":
             answer = AnswerResult(item.problem.id, item.objective.id, None, "unreadable", 0.0,
                                   item.max_points, None,
-                                  "Your answer file could not be read (see the messages).",
-                                  None, judge.expected(item))
+                                  "Your answer file could not be read (see the messages).")
         elif text is None or not text.strip():
             answer = AnswerResult(item.problem.id, item.objective.id, text, "missing", 0.0,
-                                  item.max_points, None, "No answer was given.", None,
-                                  judge.expected(item))
+                                  item.max_points, None, "No answer was given.")
         else:
             answer = _judge_safely(judge, item, text, submission, verdicts, person, faults)
         verdicts[item.key] = answer
