@@ -166,3 +166,15 @@ def test_feedback_page_renders_in_headless_chromium(tmp_path, chromium):
     # Hostile student text stays text: no script element came from it.
     hostile_dom, _ = chromium(next((tmp_path / "feedback").glob("*eve*.html")))
     assert "<script>alert" not in hostile_dom and "&lt;script&gt;" in hostile_dom
+
+
+def test_an_authors_mistake_message_is_printed_once(tmp_path):
+    message = "That is only the centripetal part; add the tangential part."
+    report = GradeReport(AssignmentInfo("hw1", "HW"), (ObjectiveInfo("p", "a", "Acc.", 2.0),),
+                         (StudentResult("ana", "Ana", "graded", 1.0, 2.0, (
+                             AnswerResult("p", "a", "66.8 ft/s^2", "partial", 1.0, 2.0,
+                                          message, message),)),))
+    write_outputs(report, tmp_path)
+    for suffix in (".html", ".md"):
+        page = (tmp_path / "feedback" / f"ana{suffix}").read_text(encoding="utf-8")
+        assert page.count("centripetal part") == 1, suffix

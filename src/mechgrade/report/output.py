@@ -228,7 +228,7 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
             "verdict_label": VERDICT_LABELS.get(answer.verdict, answer.verdict),
             "points": format_points(answer.points),
             "max_points": format_points(answer.max_points),
-            "diagnosis": answer.diagnosis or "",
+            "diagnosis": diagnosis_label(answer.diagnosis, answer.feedback),
             "feedback": answer.feedback or "",
             "expected": pretty_math(answer.expected) if answer.expected else "",
         })
@@ -254,6 +254,21 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
         "rows": rows,
         "reveal": any(row["expected"] for row in rows),
     }
+
+
+def diagnosis_label(diagnosis: str | None, feedback: str | None) -> str:
+    """The diagnosis as the bold lead of the feedback line, capitalised; empty when the
+    feedback already says it (an author's mistake message is both), so it is printed once.
+
+    >>> diagnosis_label("sign error", "Your answer has the wrong sign.")
+    'Sign error'
+    >>> diagnosis_label("Only the centripetal part.", "Only the centripetal part.")
+    ''
+    """
+    text = (diagnosis or "").strip()
+    if not text or (feedback or "").strip().startswith(text.rstrip(".")):
+        return ""
+    return text[:1].upper() + text[1:]
 
 
 # "_" inside a word (dan_wu) is never emphasis in CommonMark, so it is left readable.
