@@ -35,7 +35,8 @@ from ..spec.model import Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy
 from .events import energy_rate_symbolic, energy_state, integrate_to_event
-from .instant import _givens, _instants, _state, collect_results, degrees_of_freedom
+from .instant import (_instants, _state, collect_results, degrees_of_freedom,
+                      instant_givens, wanted_objectives)
 from .levels import RANK_TOL, State, place_givens
 from .numeric import solve_numeric
 from .plan import Plan, plan
@@ -232,16 +233,12 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
     failures: dict[str, MechgradeError] = {}
     warned: list[AuthorWarning] = list(kp.kp.k.warnings)
     base = None
-    wanted = set(objectives) if objectives is not None else {o.id for o in problem.objectives}
-    unknown = wanted - {o.id for o in problem.objectives}
-    if unknown:
-        raise SolveError(f"no objective '{sorted(unknown)[0]}' in problem '{problem.id}'")
+    wanted = wanted_objectives(problem, objectives)
     for overrides, group in _instants(problem):
         chosen = [o for o in group if o.id in wanted]
         if not chosen:
             continue
-        given_map = _givens(problem, givens)
-        given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
+        given_map = instant_givens(problem, givens, overrides)
         numeric = {o.id for o in chosen if o.kind != "symbolic"}
         values, mistakes = {}, {}
         if numeric:

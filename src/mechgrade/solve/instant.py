@@ -97,16 +97,12 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
     failures: dict[str, MechgradeError] = {}
     warned: list[AuthorWarning] = list(p.k.warnings)
     base = None
-    wanted = set(objectives) if objectives is not None else {o.id for o in problem.objectives}
-    unknown = wanted - {o.id for o in problem.objectives}
-    if unknown:
-        raise SolveError(f"no objective '{sorted(unknown)[0]}' in problem '{problem.id}'")
+    wanted = wanted_objectives(problem, objectives)
     for overrides, group in _instants(problem):
         objectives = [o for o in group if o.id in wanted]
         if not objectives:
             continue
-        given_map = _givens(problem, givens)
-        given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
+        given_map = instant_givens(problem, givens, overrides)
         numeric = {o.id for o in objectives if _numeric(o)}
         values, mistakes, generated = {}, {}, []
         if numeric:
@@ -137,6 +133,23 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
                     warnings=tuple(warned))
+
+
+def wanted_objectives(problem: Problem, objectives: Collection[str] | None) -> set[str]:
+    """The ids of the objectives asked for (all by default); an unknown id is an error."""
+    wanted = set(objectives) if objectives is not None else {o.id for o in problem.objectives}
+    unknown = wanted - {o.id for o in problem.objectives}
+    if unknown:
+        raise SolveError(f"no objective '{sorted(unknown)[0]}' in problem '{problem.id}'")
+    return wanted
+
+
+def instant_givens(problem: Problem, givens, overrides: dict) -> dict:
+    """The givens at one instant: the problem's (with the caller's ``givens`` overrides),
+    then the objective group's own givens on top."""
+    given_map = _givens(problem, givens)
+    given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
+    return given_map
 
 
 def collect_results(problem: Problem, objectives, given_map: dict, values: dict, mistakes: dict,
