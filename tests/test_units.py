@@ -92,3 +92,10 @@ def test_units_a_student_does_not_mean_are_refused(text, message):
 def test_standard_gravity_absolute_temperatures_and_full_plurals_are_units(text, canonical):
     assert normalize_unit(text) == canonical
     assert to_si(1.0, "g0") == pytest.approx(9.80665)
+
+
+@pytest.mark.parametrize("unit, name", [
+    ("N", "a force"), ("lbf", "a force"), ("kg*m/s^2", "a force"), ("J", "an energy or moment"),
+    ("N*m", "an energy or moment"), ("W", "a power"), ("kg*m^2/s", "an angular momentum")])
+def test_dynamics_dimensions_are_named_whatever_unit_wrote_them(unit, name):
+    assert describe_dimension(dimension(unit)).startswith(name + " (")

@@ -289,26 +289,31 @@ def describe_dimension(dim) -> str:
 
     >>> describe_dimension(dimension("m/s"))
     'a velocity ([length] / [time])'
+    >>> describe_dimension(dimension("N")), describe_dimension(dimension("W"))
+    ('a force ([mass] * [length] / [time] ** 2)', 'a power ([mass] * [length] ** 2 / [time] ** 3)')
     """
     text = str(dim) if str(dim) else "dimensionless"
-    name = _DIMENSION_NAMES.get(text)
     if text == "dimensionless":
         return "a pure number (or an angle)"
+    name = _dimension_names().get(frozenset(dict(dim).items()))
     return f"{name} ({text})" if name else text
 
 
-_DIMENSION_NAMES = {
-    "[length]": "a length",
-    "[time]": "a time",
-    "[mass]": "a mass",
-    "[length] / [time]": "a velocity",
-    "[length] / [time] ** 2": "an acceleration",
-    "1 / [time]": "an angular velocity or rate",
-    "1 / [time] ** 2": "an angular acceleration",
-    "[length] * [mass] / [time] ** 2": "a force",
-    "[length] ** 2 * [mass] / [time] ** 2": "an energy or moment",
-    "[length] * [mass] / [time]": "a momentum",
-}
+_NAMED_DIMENSIONS = (
+    ("m", "a length"), ("s", "a time"), ("kg", "a mass"), ("m/s", "a velocity"),
+    ("m/s^2", "an acceleration"), ("1/s", "an angular velocity or rate"),
+    ("1/s^2", "an angular acceleration"), ("N", "a force"), ("J", "an energy or moment"),
+    ("W", "a power"), ("N*s", "a momentum or impulse"), ("kg*m^2/s", "an angular momentum"),
+    ("kg*m^2", "a moment of inertia"), ("N/m", "a stiffness"),
+    ("N*s/m", "a damping coefficient"))
+
+
+@lru_cache(maxsize=1)
+def _dimension_names() -> dict:
+    """Names by dimensionality, keyed by its (base, power) pairs: pint writes the bases in the
+    order it met them ('[mass] * [length]' for N, '[length] * [mass]' for lbf), so the text
+    cannot be the key."""
+    return {frozenset(dict(dimension(unit)).items()): name for unit, name in _NAMED_DIMENSIONS}
 
 
 @lru_cache(maxsize=1024)

@@ -265,9 +265,11 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
     text = clean(text)
     if not text:
         raise AnswerError("expected an answer, found nothing")
+    # a leading label is ignored: 'a = 9.8 m/s^2', and an equation of motion written as one,
+    # "theta'' = -3 g sin(theta)/(2 L)"
+    text = _ASSIGNMENT.sub("", text, count=1)
     if result.kind == "symbolic":
         return read_expression(text, result.symbols)
-    text = _ASSIGNMENT.sub("", text, count=1)
     signs = _DOUBLE_SIGN.search(text)
     if signs:
         raise AnswerError(f"expected one sign, found two at {excerpt(text, signs.start(), signs.end())}"

@@ -67,8 +67,11 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
      "Your answer is off by 60/(2π) ≈ 9.55: rpm mixed with rad/s?",
      (60 / (2 * math.pi), 2 * math.pi / 60)),
     ("g", "factor of g",
-     "Your answer is off by a factor of g: weight used for mass, or g applied twice?",
-     (G_SI, 1 / G_SI, G_FT, 1 / G_FT)),
+     "Your answer is g times too large: weight used for mass, or g applied twice?",
+     (G_SI, G_FT)),
+    # a force g times too small is the usual dynamics slip: m written for the weight m g
+    ("g", "factor of g", "Your answer is g times too small: mass used for weight (g left out)?",
+     (1 / G_SI, 1 / G_FT)),
     ("cm_m", "unit slip (cm vs m)", "Your answer is off by a factor of 100: cm mixed with m?",
      (100.0, 0.01)),
     ("mm_m", "unit slip (mm vs m)", "Your answer is off by a factor of 1000: mm mixed with m?",
@@ -79,7 +82,7 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
      "Your answer is off by a factor of 12: inches mixed with feet?", (12.0, 1 / 12)),
 )
 
-FACTOR_CODES = tuple(code for code, *_ in _FACTORS)
+FACTOR_CODES = tuple(dict.fromkeys(code for code, *_ in _FACTORS))
 VECTOR_CODES = ("swapped", "direction", "magnitude")
 GENERATED_CODES = MODEL_CODES + GIVEN_CODES
 CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterable
@@ -36,6 +36,9 @@ from .submissions import Submission, SubmissionSet, read_submissions
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.result import ObjectiveResult, Solution
+
+ECF_DIAGNOSIS = "error carried forward"
+"""The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
 
 POINTS_DIGITS = 4
 """Points are rounded to this many decimals, so that sums are the same on every machine."""
@@ -423,12 +426,16 @@ class _Judge:
         verdict, credit = assessment.verdict, float(assessment.credit)
         feedback = [assessment.feedback] if assessment.feedback else []
         credit = min(max(credit, 0.0), 1.0)
+        diagnosis = assessment.diagnosis
         if verdict != "correct" and item.objective.depends_on and self.policy.ecf.enabled:
+            judged = credit
             verdict, credit = self._carry_forward(item, text, submission, earlier, verdict,
                                                   credit, feedback)
+            if credit > judged:  # the mistake was upstream: this answer is consistent with it
+                diagnosis = ECF_DIAGNOSIS
         return AnswerResult(item.problem.id, item.objective.id, text, verdict,
                             _round(credit * item.max_points), item.max_points,
-                            assessment.diagnosis, " ".join(f for f in feedback if f),
+                            diagnosis, " ".join(f for f in feedback if f),
                             assessment.read_back, self.expected(item))
 
     def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
@@ -489,8 +496,7 @@ class _Judge:
         upstream_names = _listing(sorted(objective_id for objective_id in
                                          item.objective.depends_on))
         if again.verdict in ("correct", "partial") and ecf_credit > credit:
-            instead = (f" (used in place of the given {_listing(replaced)})" if replaced
-                       else "")
+            instead = f" (used in place of {_listing(replaced)})" if replaced else ""
             feedback.append(f"Error carried forward: this answer follows correctly from your "
                             f"answer to {upstream_names}{instead} and earns {ecf_credit:.0%} "
                             f"of the points.")
@@ -513,7 +519,8 @@ class _Judge:
         key = (problem.id, objective_id, tuple(sorted(overrides.items())))
         if key in self._ecf_solutions:
             return self._ecf_solutions[key]
-        outcome = self._attempt(problem, dict(overrides), objective_id), ()
+        problem, instead = _rates_from_student(problem, overrides)
+        outcome = self._attempt(problem, dict(overrides), objective_id), instead
         if isinstance(outcome[0], InconsistentError):
             orders = {_order(k) for k in overrides}
             for given in problem.givens:
@@ -522,7 +529,7 @@ class _Judge:
                     continue
                 attempt = self._attempt(problem, {**overrides, name: None}, objective_id)
                 if not isinstance(attempt, MechgradeError):
-                    outcome = attempt, (name,)
+                    outcome = attempt, (f"the given {name}",)
                     break
         self._ecf_solutions[key] = outcome
         return outcome
@@ -537,6 +544,21 @@ class _Judge:
             return solve(problem, givens=givens, objectives=(objective_id,))
         except MechgradeError as err:
             return err
+
+
+def _rates_from_student(problem: Problem, overrides: dict[str, float]
+                        ) -> tuple[Problem, tuple[str, ...]]:
+    """The problem to re-solve for ECF, and what the student's values replace in it: a
+    work-energy problem's rates come from its energy balance, so a student's rate takes the
+    balance's place (the instant is then solved from that rate, as any other given one)."""
+    from ..spec.dynamics import WorkEnergy
+
+    dynamics = problem.dynamics
+    if dynamics is None or not isinstance(dynamics.analysis, WorkEnergy) \
+            or not any(_order(key) == 1 for key in overrides):
+        return problem, ()
+    return (replace(problem, dynamics=replace(dynamics, analysis=None)),
+            ("the energy balance",))
 
 
 def _order(key: str) -> int:

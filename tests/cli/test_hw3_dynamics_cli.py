@@ -1,0 +1,176 @@
+"""``mechgrade grade`` on examples/hw3_dynamics, as an instructor runs it: a dynamics homework
+(Atwood machine, block on a rough incline, a pendulum released from rest, a spring chain) with
+right answers in other units and notations, typical dynamics mistakes, error carried forward
+through a work-energy balance, an empty and a malformed submission.
+
+Every student's values are worked out by hand in their answer files (comments) and in the
+problem's comments; nothing here was copied from the solver.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from mechgrade.cli import main
+from mechgrade.resources import shipped_dir
+
+HW3 = shipped_dir("examples") / "hw3_dynamics"
+
+
+def run(*args):
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory):
+    out = tmp_path_factory.mktemp("hw3") / "out"
+    result = run("grade", HW3 / "assignment.yaml", HW3 / "submissions", "--roster",
+                 HW3 / "roster.csv", "--out", out)
+    return result, out, json.loads((out / "results.json").read_text(encoding="utf-8"))
+
+
+def answers(results, sid):
+    student = next(s for s in results["students"] if s["id"] == sid)
+    return {f"{a['problem']}.{a['objective']}": a for a in student["answers"]}
+
+
+def test_grading_hw3_exits_0_with_the_summary(graded):
+    result, out, _ = graded
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        f"Graded 8 students (1 unreadable answer, 1 unreadable submission, 1 missing "
+        f"submission, 1 skipped entry); wrote {out.as_posix()}/\n"
+        f"Skipped (not read as anyone's answers):\n"
+        f"  ivan_empty/.keep: hidden (its name starts with '.')\n")
+
+
+def test_every_student_has_the_status_and_score_worked_out_by_hand(graded):
+    _, _, results = graded
+    assert [(s["id"], s["status"], s["score"], s["max_score"]) for s in results["students"]] == [
+        ("ana_alvarez", "graded", 32.0, 32.0),    # all right: g0, lbf, cm/s^2, kN, cw, deg/s^2, mJ
+        ("ben_okafor", "graded", 29.0, 32.0),     # friction along N's unit vectors (-3)
+        ("carla_diaz", "graded", 5.25, 32.0),
+        ("dan_wu", "graded", 10.5, 32.0),
+        ("erin_park", "graded", 30.0, 32.0),      # only (a) lost: (c), (d) by ECF
+        ("femi_adeyemi", "graded", 14.0, 32.0),
+        ("gus_schmidt", "graded", 27.5, 32.0),    # three sign errors at half credit
+        ("hana_kim", "graded", 30.0, 32.0),       # rev/s is not a unit mechgrade reads
+        ("ivan_empty", "missing", 0.0, 32.0),
+        ("jo_broken", "unreadable", 0.0, 32.0),
+    ]
+
+
+# (student, objective): (verdict, points, diagnosis) of every answer that is not plainly right.
+# None where no diagnosis is known yet: a tension taken equal to a weight, friction reversed,
+# N = m g on a slope, the weight left out of a pin force, the parallel-axis term left out.
+NOT_PLAINLY_RIGHT = {
+    ("ben_okafor", "block_sliding_down_incline.friction"): ("incorrect", 0.0, "wrong frame"),
+    ("carla_diaz", "atwood_machine.a1"): ("incorrect", 0.0, None),
+    ("carla_diaz", "atwood_machine.tension"): ("incorrect", 0.0, None),
+    ("carla_diaz", "atwood_machine.tension_symbolic"): ("incorrect", 0.0, "wrong dimension"),
+    ("carla_diaz", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
+    ("carla_diaz", "block_sliding_down_incline.normal"): ("partial", 0.5, "factor of g"),
+    ("carla_diaz", "block_sliding_down_incline.friction"): ("partial", 0.75, "factor of g"),
+    ("dan_wu", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
+    ("dan_wu", "block_sliding_down_incline.friction"): ("partial", 1.5, "sign error"),
+    ("dan_wu", "pendulum_release.omega"): ("incorrect", 0.0, "factor of 2"),
+    ("dan_wu", "pendulum_release.alpha"): ("incorrect", 0.0, None),
+    ("dan_wu", "pendulum_release.pin_force"): ("incorrect", 0.0, None),
+    ("dan_wu", "pendulum_release.eom"): ("incorrect", 0.0, None),
+    ("dan_wu", "two_mass_spring_chain.spring1_energy"): ("incorrect", 0.0, "factor of 2"),
+    ("dan_wu", "two_mass_spring_chain.ke2"): ("incorrect", 0.0, "factor of 2"),
+    ("dan_wu", "two_mass_spring_chain.damper_power"): ("partial", 1.0, "sign error"),
+    ("erin_park", "pendulum_release.omega"): ("incorrect", 0.0, None),
+    ("erin_park", "pendulum_release.pin_force"): ("correct", 3.0, "error carried forward"),
+    ("erin_park", "pendulum_release.kinetic_energy"): ("correct", 2.0, "error carried forward"),
+    ("femi_adeyemi", "atwood_machine.a1"): ("incorrect", 0.0, "wrong dimension"),
+    ("femi_adeyemi", "atwood_machine.tension"): ("partial", 1.0, "missing unit"),
+    ("femi_adeyemi", "atwood_machine.tension_symbolic"): ("incorrect", 0.0, "wrong dimension"),
+    ("femi_adeyemi", "block_sliding_down_incline.normal"): ("incorrect", 0.0, None),
+    ("femi_adeyemi", "block_sliding_down_incline.friction"): ("incorrect", 0.0,
+                                                              "wrong magnitude"),
+    ("femi_adeyemi", "pendulum_release.pin_force"): ("incorrect", 0.0, None),
+    ("femi_adeyemi", "two_mass_spring_chain.ke2"): ("incorrect", 0.0, "wrong dimension"),
+    ("gus_schmidt", "atwood_machine.a1"): ("partial", 1.0, "sign error"),
+    ("gus_schmidt", "block_sliding_down_incline.friction"): ("partial", 1.5, "missing unit"),
+    ("gus_schmidt", "pendulum_release.alpha"): ("partial", 1.0, "sign error"),
+    ("gus_schmidt", "two_mass_spring_chain.damper_power"): ("partial", 1.0, "sign error"),
+    ("hana_kim", "pendulum_release.omega"): ("unreadable", 0.0, None),
+}
+
+
+def test_each_mistake_gets_its_verdict_points_and_diagnosis(graded):
+    _, _, results = graded
+    found = {}
+    for student in results["students"]:
+        if student["status"] != "graded":
+            continue
+        for answer in student["answers"]:
+            key = (student["id"], f"{answer['problem']}.{answer['objective']}")
+            judged = (answer["verdict"], answer["points"], answer["diagnosis"])
+            if answer["verdict"] != "missing" and judged != ("correct", answer["max_points"],
+                                                            None):
+                found[key] = judged
+    assert found == NOT_PLAINLY_RIGHT
+
+
+def test_dynamics_feedback_names_forces_energies_powers_and_mass_for_weight(graded):
+    _, _, results = graded
+    carla, femi = answers(results, "carla_diaz"), answers(results, "femi_adeyemi")
+    assert carla["block_sliding_down_incline.normal"]["feedback"] == (
+        "Your answer is g times too small: mass used for weight (g left out)?")
+    assert carla["atwood_machine.tension_symbolic"]["feedback"] == (
+        "Your expression is a mass ([mass]); a force ([mass] * [length] / [time] ** 2) was "
+        "asked.")
+    assert femi["two_mass_spring_chain.ke2"]["feedback"] == (
+        "You gave a power ([mass] * [length] ** 2 / [time] ** 3); an energy or moment "
+        "([mass] * [length] ** 2 / [time] ** 2) was asked.")
+    assert femi["pendulum_release.pin_force"]["feedback"] == (
+        "The y component is not within 1% of the expected value (x is right).")
+
+
+def test_ecf_credits_the_pin_force_and_energy_that_follow_from_a_wrong_rate(graded):
+    _, _, results = graded
+    erin, dan = answers(results, "erin_park"), answers(results, "dan_wu")
+    for key in ("pendulum_release.pin_force", "pendulum_release.kinetic_energy"):
+        assert erin[key]["feedback"].endswith(
+            "Error carried forward: this answer follows correctly from your answer to omega "
+            "(used in place of the energy balance) and earns 100% of the points.")
+    # Dan's pin force uses his wrong alpha as well: it follows from neither answer
+    assert dan["pendulum_release.pin_force"]["feedback"].endswith(
+        "Also checked with your own answer to omega (error carried forward): it does not "
+        "follow from it either.")
+
+
+def test_right_answers_in_other_units_notations_and_labels_are_read(graded):
+    _, _, results = graded
+    read = {(sid, key): a["read_back"] for sid in ("ana_alvarez", "gus_schmidt", "hana_kim")
+            for key, a in answers(results, sid).items()}
+    assert read[("ana_alvarez", "pendulum_release.omega")] == "-4.33 rad/s"
+    assert read[("ana_alvarez", "block_sliding_down_incline.friction")] == "(-8.50, 0, 0) N in A"
+    assert read[("gus_schmidt", "pendulum_release.eom")] == "-3*g*sin(theta)/(2*L)"
+    assert read[("hana_kim", "pendulum_release.pin_force")] == "(-21.74, 30.81, 0) N in N"
+    assert answers(results, "hana_kim")["pendulum_release.omega"]["feedback"] == (
+        "Could not read the answer: expected a unit such as 'm/s^2', found 'rev/s' ('rev' is "
+        "not a unit).")
+
+
+def test_report_and_canvas_export_of_hw3(graded, tmp_path):
+    _, out, _ = graded
+    report = run("report", out / "results.json", "--out", tmp_path / "class_report.html")
+    assert report.exit_code == 0, report.output
+    assert "pendulum_release/pin_force" in (tmp_path / "class_report.html").read_text(
+        encoding="utf-8")
+    export = run("export", out / "results.json", "--format", "canvas", "--roster",
+                 HW3 / "roster.csv", "--out", tmp_path / "canvas.csv")
+    assert export.exit_code == 0, export.output
+    rows = list(csv.reader((tmp_path / "canvas.csv").open(encoding="utf-8")))
+    assert rows[1][-1] == "32"
+    assert [(row[3], row[-1]) for row in rows[2:]] == [
+        ("ana_alvarez", "32"), ("ben_okafor", "29"), ("carla_diaz", "5.25"), ("dan_wu", "10.5"),
+        ("erin_park", "30"), ("femi_adeyemi", "14"), ("gus_schmidt", "27.5"),
+        ("hana_kim", "30"), ("ivan_empty", "0"), ("jo_broken", "0")]

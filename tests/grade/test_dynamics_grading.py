@@ -1,0 +1,106 @@
+"""Dynamics objectives are graded as kinematic ones: forces, energies and powers with their
+units named, equations of motion written as equations, mass-for-weight slips, and ECF from a
+rate that a work-energy balance fixes."""
+
+from __future__ import annotations
+
+import pytest
+
+from mechgrade.grade.assignment import load_assignment
+from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.run import grade_submissions
+from mechgrade.resources import shipped_dir
+from mechgrade.solve.result import ObjectiveResult
+
+TENSION = ObjectiveResult("T", "scalar", "N", 36.7875, plausible=frozenset({"g"}))
+ENERGY = ObjectiveResult("ke", "scalar", "J", 0.02)
+TENSION_SYMBOLIC = ObjectiveResult("T", "symbolic", "N", expr="2*g*m1*m2/(m1 + m2)",
+                                   symbols=("m1", "m2", "g"),
+                                   symbol_units=("kg", "kg", "m/s^2"))
+EOM = ObjectiveResult("eom", "symbolic", "rad/s^2", expr="-3*g*sin(theta)/(2*L)",
+                      symbols=("g", "L", "theta"), symbol_units=("m/s^2", "m", "rad"))
+PENDULUM = shipped_dir("examples") / "hw3_dynamics" / "pendulum_release.yaml"
+
+
+@pytest.mark.parametrize("text, result, feedback", [
+    ("0.02 W", ENERGY, "You gave a power ([mass] * [length] ** 2 / [time] ** 3); an energy or "
+                       "moment ([mass] * [length] ** 2 / [time] ** 2) was asked."),
+    ("36.8 J", TENSION, "You gave an energy or moment ([mass] * [length] ** 2 / [time] ** 2); "
+                        "a force ([mass] * [length] / [time] ** 2) was asked."),
+    ("(m2 - m1)*g/(m1 + m2)", TENSION_SYMBOLIC,
+     "Your expression is an acceleration ([length] / [time] ** 2); a force ([mass] * [length] "
+     "/ [time] ** 2) was asked."),
+])
+def test_a_wrong_dimension_names_forces_energies_and_powers(text, result, feedback):
+    judged = assess(text, result)
+    assert (judged.verdict, judged.feedback) == ("incorrect", feedback)
+
+
+def test_a_force_g_times_too_small_is_read_as_mass_used_for_weight():
+    small, large = assess("3.751 N", TENSION), assess("360.8 N", TENSION)
+    assert small.diagnosis == large.diagnosis == "factor of g"
+    assert small.feedback == "Your answer is g times too small: mass used for weight (g left out)?"
+    assert large.feedback == "Your answer is g times too large: weight used for mass, or g " \
+                             "applied twice?"
+    assert assess("3.751 N", TENSION, Policy(partial_credit=(("g", 0.25),))).credit == 0.25
+
+
+@pytest.mark.parametrize("text, read_back", [
+    ("θ̈ = -3 g sin(θ)/(2 L)", "-3*g*sin(theta)/(2*L)"),
+    ("theta'' = -3*g*sin(theta)/(2*L)", "-3*g*sin(theta)/(2*L)"),
+    ("alpha = -1.5 g/L sin(theta)", "-1.5*g/L*sin(theta)"),
+])
+def test_an_equation_of_motion_written_as_an_equation_is_read_as_its_right_side(text,
+                                                                                read_back):
+    judged = assess(text, EOM)
+    assert (judged.verdict, judged.read_back) == ("correct", read_back)
+
+
+def test_a_labelled_wrong_equation_is_still_judged_wrong():
+    assert assess("θ̈ = -3 g cos(θ)/(2 L)", EOM).verdict == "incorrect"
+    assert assess("θ̈ == -3 g sin(θ)/(2 L)", EOM).verdict == "unreadable"
+
+
+@pytest.fixture(scope="module")
+def released_pendulum_class(tmp_path_factory):
+    """The hw3 pendulum released from rest: a wrong rate in (a), forces and energy from it."""
+    folder = tmp_path_factory.mktemp("ecf")
+    (folder / "pendulum_release.yaml").write_text(PENDULUM.read_text(encoding="utf-8"),
+                                                   encoding="utf-8")
+    (folder / "hw.yaml").write_text(
+        "id: ecf\ntitle: ECF\nproblems: [pendulum_release.yaml]\npolicy: {ecf: {credit: 1.0}}\n",
+        encoding="utf-8")
+    subs = folder / "subs"
+    subs.mkdir()
+    # (1/2)(m L^2/3) w^2 = m g L cos 40 (G's drop taken as L cos 40): w^2 = 6 g cos 40/L,
+    # w = -6.130 rad/s; R_O = m (alpha k x r_G - w^2 r_G) + m g j = (-36.23, 48.08) N;
+    # T = (1/2)(m L^2/3) w^2 = 18.04 J
+    (subs / "erin.txt").write_text(
+        "pendulum_release.omega = -6.13 rad/s\n"
+        "pendulum_release.pin_force = (-36.23, 48.08) N\n"
+        "pendulum_release.kinetic_energy = 18.0 J\n", encoding="utf-8")
+    # the same wrong rate, and a pin force that follows from neither rate (weight left out)
+    (subs / "finn.txt").write_text(
+        "pendulum_release.omega = -6.13 rad/s\n"
+        "pendulum_release.pin_force = (-36.23, 28.46) N\n", encoding="utf-8")
+    return grade_submissions(load_assignment(folder / "hw.yaml"), subs)
+
+
+def test_ecf_takes_a_students_rate_in_place_of_the_energy_balance(released_pendulum_class):
+    erin = {a.objective: a for a in released_pendulum_class.students[0].answers}
+    assert (erin["omega"].verdict, erin["omega"].points) == ("incorrect", 0.0)
+    for objective in ("pin_force", "kinetic_energy"):
+        assert (erin[objective].verdict, erin[objective].points,
+                erin[objective].diagnosis) == ("correct", 1.0, "error carried forward")
+        assert erin[objective].feedback.endswith(
+            "Error carried forward: this answer follows correctly from your answer to omega "
+            "(used in place of the energy balance) and earns 100% of the points.")
+
+
+def test_ecf_through_the_energy_balance_still_finds_an_answer_that_follows_from_nothing(
+        released_pendulum_class):
+    finn = {a.objective: a for a in released_pendulum_class.students[1].answers}
+    assert (finn["pin_force"].verdict, finn["pin_force"].diagnosis) == ("incorrect", None)
+    assert finn["pin_force"].feedback.endswith(
+        "Also checked with your own answer to omega (error carried forward): it does not "
+        "follow from it either.")
