@@ -75,6 +75,7 @@ NOT_PLAINLY_RIGHT = {
     ("carla_diaz", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
     ("carla_diaz", "block_sliding_down_incline.normal"): ("partial", 0.5, "factor of g"),
     ("carla_diaz", "block_sliding_down_incline.friction"): ("partial", 0.75, "factor of g"),
+    ("carla_diaz", "pendulum_release.eom"): ("incorrect", 0.0, "number typed for g"),
     ("dan_wu", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
     ("dan_wu", "block_sliding_down_incline.friction"): ("partial", 1.5, "sign error"),
     ("dan_wu", "pendulum_release.omega"): ("incorrect", 0.0, "factor of 2"),

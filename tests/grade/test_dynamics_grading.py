@@ -104,3 +104,34 @@ def test_ecf_through_the_energy_balance_still_finds_an_answer_that_follows_from_
     assert finn["pin_force"].feedback.endswith(
         "Also checked with your own answer to omega (error carried forward): it does not "
         "follow from it either.")
+
+
+@pytest.mark.parametrize("text", ["-3*9.81*sin(theta)/(2*L)", "-1.5*32.2 sin(theta)/L"])
+def test_a_number_typed_for_g_is_named(text):
+    judged = assess(text, EOM, Policy(partial_credit=(("g_number", 0.5),)))
+    assert (judged.verdict, judged.credit, judged.diagnosis, judged.feedback) == (
+        "partial", 0.5, "number typed for g",
+        "Your expression has a number where the symbol g was asked: write g.")
+
+
+def test_a_wrong_expression_with_a_number_for_g_is_not_called_a_number_for_g():
+    assert assess("-3*9.81*cos(theta)/(2*L)", EOM).diagnosis == "wrong dimension"
+
+
+SPIN = ObjectiveResult("H_G", "vector", "kg*m^2/s", (0.0, 0.0, -0.009), frame="N")
+MOMENT = ObjectiveResult("M_O", "vector", "N*m", (0.0, 0.0, 12.0), frame="N")
+
+
+@pytest.mark.parametrize("text, result", [("0.009 kg*m^2/s cw", SPIN), ("0.009 J*s cw", SPIN),
+                                          ("12 N*m ccw", MOMENT), ("12 N·m counterclockwise",
+                                                                   MOMENT)])
+def test_angular_momenta_and_moments_may_be_written_with_a_sense_of_rotation(text, result):
+    assert assess(text, result).verdict == "correct"
+
+
+def test_a_sense_of_rotation_is_refused_for_an_energy():
+    judged = assess("9.02 J cw", ObjectiveResult("T", "scalar", "J", 9.02))
+    assert (judged.verdict, judged.feedback) == (
+        "unreadable", "Could not read the answer: expected a signed value: a sense of rotation "
+                      "(cw) only goes with an angle or angular velocity or acceleration, an "
+                      "angular momentum or a moment.")

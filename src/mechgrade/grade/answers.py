@@ -292,16 +292,23 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
 _DOUBLE_SIGN = re.compile(r"[+-]\s*[+-]")
 
 
-def _angular(unit: str) -> bool:
-    """Whether an objective in ``unit`` is an angle, angular velocity or angular acceleration."""
-    return str(dimension(unit)) in ("dimensionless", "1 / [time]", "1 / [time] ** 2")
+def _rotational(result: ObjectiveResult) -> bool:
+    """Whether a sense of rotation can describe the objective: an angle, angular velocity or
+    acceleration, an angular momentum, or a moment asked as a vector (a scalar in N*m may be
+    an energy)."""
+    dim = dimension(result.unit)
+    if str(dim) in ("dimensionless", "1 / [time]", "1 / [time] ** 2"):
+        return True
+    return dim == dimension("kg*m^2/s") or (result.kind == "vector" and dim == dimension("N*m"))
 
 
 def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:
-    """``0.5 rad/s cw``: counter-clockwise is +k (right-handed, k out of the page)."""
-    if not _angular(result.unit):
+    """``0.5 rad/s cw``, ``12 N*m ccw``: counter-clockwise is +k (right-handed, k out of the
+    page)."""
+    if not _rotational(result):
         raise AnswerError(f"expected a signed value: a sense of rotation ({sense}) only goes "
-                          f"with an angle or angular velocity or acceleration")
+                          f"with an angle or angular velocity or acceleration, an angular "
+                          f"momentum or a moment")
     number = _scalar(text)
     if number.value < 0:
         raise AnswerError(f"expected a positive size with '{sense}', found "

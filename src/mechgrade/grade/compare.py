@@ -32,7 +32,7 @@ from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
-from .diagnose import CODES, Diagnosis, diagnose
+from .diagnose import CODES, G_FT, G_SI, Diagnosis, diagnose
 
 MISSING_UNIT_CHOICES = ("reject", "assume")
 
@@ -576,9 +576,33 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes,
                      generated=generated, plausible=result.plausible)
     if found is None:
+        found = _number_for_g(answer.node, reference_node, result, env, student, loose)
+    if found is None:
         found = _dimension_diagnosis(answer.node, result)
     return _wrong(found, policy, _Units(result.unit),
                   "Not equivalent to the expected expression.", read_back)
+
+
+def _number_for_g(node: Node, reference_node: Node, result: ObjectiveResult, env,
+                  student: np.ndarray, close) -> Diagnosis | None:
+    """An expression with 9.81 (or 32.2) typed where the symbol g was asked: it matches the
+    reference evaluated with g at standard gravity, in m/s² or ft/s².
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> eom = ObjectiveResult("eom", "symbolic", "rad/s^2", expr="-3*g*sin(theta)/(2*L)",
+    ...                       symbols=("g", "L", "theta"), symbol_units=("m/s^2", "m", "rad"))
+    >>> assess("-3*9.81*sin(theta)/(2*L)", eom).diagnosis
+    'number typed for g'
+    """
+    if "g" not in result.symbols or "g" in syntax.names(node):
+        return None
+    for gravity in (G_SI, G_FT):
+        there = evaluate(reference_node, {**env, "g": np.full_like(env["g"], gravity)})
+        if close(student, there):
+            return Diagnosis("g_number", "number typed for g",
+                             "Your expression has a number where the symbol g was asked: "
+                             "write g.")
+    return None
 
 
 def _mistake_values(mistake: MistakeValue | GeneratedMistake, result: ObjectiveResult, env) -> np.ndarray | None:

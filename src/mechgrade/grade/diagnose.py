@@ -86,7 +86,7 @@ FACTOR_CODES = tuple(dict.fromkeys(code for code, *_ in _FACTORS))
 VECTOR_CODES = ("swapped", "direction", "magnitude")
 GENERATED_CODES = MODEL_CODES + GIVEN_CODES
 CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (
-    "dimension", "frame", "missing_unit", "sig_figs", "shape")
+    "dimension", "g_number", "frame", "missing_unit", "sig_figs", "shape")
 """Every diagnosis code (keys for :attr:`mechgrade.grade.compare.Policy.partial_credit`)."""
 
 _AXES = "xyz"
