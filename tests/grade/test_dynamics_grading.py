@@ -135,3 +135,31 @@ def test_a_sense_of_rotation_is_refused_for_an_energy():
         "unreadable", "Could not read the answer: expected a signed value: a sense of rotation "
                       "(cw) only goes with an angle or angular velocity or acceleration, an "
                       "angular momentum or a moment.")
+
+
+def test_ecf_takes_a_students_designed_parameter_in_place_of_the_design_condition(tmp_path):
+    """Sample 9.21: the outer radius R is designed so that a_G = 0.2 g; the contact force is
+    asked 'with that R'. A student's wrong R, and the force that follows from it, by hand:
+    R = 0.25 m: I_G = m r^2/2 + M R^2 = 0.005 + 0.125 = 0.13 kg m^2, total mass 5 kg,
+    a_G = 5 g sin 30/(5 + I_G/r^2) = 24.525/18 = 1.3625 m/s^2,
+    F_x = 5 a_G - 5 g sin 30 = -17.71 N, F_y = 5 g cos 30 = 42.48 N."""
+    spec = (shipped_dir("problems") / "ruina_9_21_wheel_incline.yaml").read_text(
+        encoding="utf-8")
+    assert "  - id: contact_force\n" in spec
+    (tmp_path / "wheel.yaml").write_text(spec.replace(
+        "  - id: contact_force\n", "  - id: contact_force\n    depends_on: [R_min]\n"),
+        encoding="utf-8")
+    (tmp_path / "hw.yaml").write_text(
+        "id: ecf\ntitle: ECF\nproblems: [{path: wheel.yaml, objectives: [R_min, contact_force]}]"
+        "\npolicy: {ecf: {credit: 1.0}}\n", encoding="utf-8")
+    (tmp_path / "subs").mkdir()
+    (tmp_path / "subs" / "wes.txt").write_text(
+        "ruina_9_21_wheel_incline.R_min = 0.25 m\n"
+        "ruina_9_21_wheel_incline.contact_force = (-17.71, 42.48) N\n", encoding="utf-8")
+    report = grade_submissions(load_assignment(tmp_path / "hw.yaml"), tmp_path / "subs")
+    force = report.students[0].answers[1]
+    assert (force.verdict, force.points, force.diagnosis) == ("correct", 1.0,
+                                                              "error carried forward")
+    assert force.feedback.endswith(
+        "Error carried forward: this answer follows correctly from your answer to R_min (used "
+        "in place of the design condition) and earns 100% of the points.")

@@ -548,17 +548,25 @@ class _Judge:
 
 def _rates_from_student(problem: Problem, overrides: dict[str, float]
                         ) -> tuple[Problem, tuple[str, ...]]:
-    """The problem to re-solve for ECF, and what the student's values replace in it: a
-    work-energy problem's rates come from its energy balance, so a student's rate takes the
-    balance's place (the instant is then solved from that rate, as any other given one)."""
+    """The problem to re-solve for ECF, and what the student's values replace in it. A
+    work-energy problem's rates come from its energy balance, and a designed parameter from
+    its design condition: a student's rate (or parameter) takes that balance's (or
+    condition's) place, and the instant is solved from it as from any other given."""
     from ..spec.dynamics import WorkEnergy
 
     dynamics = problem.dynamics
-    if dynamics is None or not isinstance(dynamics.analysis, WorkEnergy) \
-            or not any(_order(key) == 1 for key in overrides):
+    if dynamics is None:
         return problem, ()
-    return (replace(problem, dynamics=replace(dynamics, analysis=None)),
-            ("the energy balance",))
+    replaced, changes = [], {}
+    if isinstance(dynamics.analysis, WorkEnergy) and any(_order(k) == 1 for k in overrides):
+        replaced.append("the energy balance")
+        changes["analysis"] = None
+    if dynamics.design is not None and dynamics.design.find in overrides:
+        replaced.append("the design condition")
+        changes["design"] = None
+    if not changes:
+        return problem, ()
+    return replace(problem, dynamics=replace(dynamics, **changes)), tuple(replaced)
 
 
 def _order(key: str) -> int:
