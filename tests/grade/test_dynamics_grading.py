@@ -163,3 +163,51 @@ def test_ecf_takes_a_students_designed_parameter_in_place_of_the_design_conditio
     assert force.feedback.endswith(
         "Error carried forward: this answer follows correctly from your answer to R_min (used "
         "in place of the design condition) and earns 100% of the points.")
+
+
+SLIDING = ObjectiveResult("a", "symbolic", "m/s^2",
+                          expr="-g*mu_k*xd*cos(beta)/Abs(xd) + g*sin(beta)",
+                          symbols=("g", "beta", "mu_k", "xd"),
+                          symbol_units=("m/s^2", "rad", "", "m/s"))
+
+
+@pytest.mark.parametrize("sign, text, verdict", [
+    (1, "g*(sin(beta) - mu_k*cos(beta))", "correct"),         # sliding down, as stated
+    (1, "g*(sin(beta) - mu_k*cos(beta)*sign(xd))", "correct"),
+    (1, "g*(sin(beta) + mu_k*cos(beta))", "incorrect"),       # friction reversed
+    (1, "g*sin(beta)", "incorrect"),                           # friction left out
+    (-1, "g*(sin(beta) + mu_k*cos(beta))", "correct"),        # sliding up
+    (-1, "g*(sin(beta) - mu_k*cos(beta))", "incorrect"),
+    (0, "g*(sin(beta) - mu_k*cos(beta))", "incorrect"),       # sense unknown: both judged
+    (0, "g*(sin(beta) - mu_k*cos(beta)*sign(xd))", "correct"),
+])
+def test_kinetic_friction_in_symbols_is_judged_for_the_stated_sense_of_sliding(sign, text,
+                                                                                verdict):
+    from dataclasses import replace
+
+    result = replace(SLIDING, symbol_signs=(1, 1, 1, sign))
+    assert assess(text, result).verdict == verdict
+
+
+def test_a_rate_the_reference_uses_beyond_its_sign_keeps_both_signs():
+    from dataclasses import replace
+
+    speed = ObjectiveResult("v", "symbolic", "m/s", expr="L*thetad",
+                            symbols=("L", "thetad"), symbol_units=("m", "rad/s"),
+                            symbol_signs=(1, 1))
+    assert assess("L*Abs(thetad)", speed).verdict == "incorrect"
+    constant = ObjectiveResult("k", "symbolic", "1", expr="1", symbols=("thetad",),
+                               symbol_units=("rad/s",))
+    assert assess("Abs(thetad)/thetad", replace(constant, symbol_signs=(1,))).verdict \
+        == "incorrect"
+
+
+def test_graded_references_record_the_instant_sign_of_a_sliding_rate():
+    from mechgrade.grade.run import graded_result
+    from mechgrade.solve import solve
+    from mechgrade.spec import load_problem
+
+    block = solve(load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml"))
+    result = graded_result(block, "accel_symbolic")
+    assert dict(zip(result.symbols, result.symbol_signs))["xd"] == 1   # x' = 2 m/s
+    assert assess("g (sin(β) - mu_k cos(β))", result).verdict == "correct"

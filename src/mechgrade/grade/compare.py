@@ -537,7 +537,36 @@ def sample_points(result: ObjectiveResult, count: int, seed: int = 0) -> dict[st
             env[symbol] = rng.uniform(0.5, 2.5, count) * rng.choice([-1.0, 1.0], count)
         else:
             env[symbol] = rng.uniform(0.5, 2.5, count)
-    return env
+    return _with_instant_signs(result, env)
+
+
+def _with_instant_signs(result: ObjectiveResult, env: dict[str, np.ndarray]
+                        ) -> dict[str, np.ndarray]:
+    """``env`` with each symbol the reference takes only through its sign (unchanged when
+    the symbol is scaled: ``g*(sin(beta) - mu_k*xd*cos(beta)/Abs(xd))``) given the sign it
+    has at the instant (``result.symbol_signs``): the problem states which way the block
+    slides, and an answer written for that sense is right. Friction pointing the other way
+    stays wrong."""
+    signs = dict(zip(result.symbols, result.symbol_signs))
+    if not result.expr or not any(signs.values()):
+        return env
+    try:
+        node = _reference_tree(result.expr, tuple(result.symbols))
+        base = evaluate(node, env)
+    except (ExpressionError, KeyError):
+        return env
+    out = dict(env)
+    for symbol, sign in signs.items():
+        if not sign or symbol not in env:
+            continue
+        scaled = evaluate(node, {**env, symbol: env[symbol] * 1.7})
+        flipped = evaluate(node, {**env, symbol: -env[symbol]})
+        both = np.isfinite(base) & np.isfinite(scaled) & np.isfinite(flipped)
+        if both.sum() >= MIN_VALID_POINTS and np.allclose(scaled[both], base[both],
+                                                         rtol=1e-9, atol=1e-12) \
+                and not np.allclose(flipped[both], base[both], rtol=1e-9, atol=1e-12):
+            out[symbol] = sign * np.abs(env[symbol])
+    return out
 
 
 MIN_VALID_POINTS = 3

@@ -133,9 +133,28 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
 def _plan(assignment: Assignment, problems: tuple[Problem, ...],
           solutions: tuple[Solution, ...], chosen) -> Plan:
     planned = tuple(PlannedObjective(problems[index], objective,
-                                     solutions[index].result(objective.id), points)
+                                     graded_result(solutions[index], objective.id), points)
                     for index, objective, points in chosen)
     return Plan(assignment, problems, solutions, planned)
+
+
+def graded_result(solution: Solution, objective_id: str) -> ObjectiveResult:
+    """The objective's reference as graded: a symbolic one records each symbol's sign at the
+    solved instant (``symbol_signs``), so that kinetic friction's ``sign(xd)`` is judged for
+    the sense of sliding the problem states (see :func:`mechgrade.grade.compare.sample_points`).
+    """
+    result = solution.result(objective_id)
+    if result.kind != "symbolic" or not solution.state:
+        return result
+    from .answers import symbol_aliases
+
+    state = {s.name: s.si for s in solution.state}
+    for (base, order), symbol in ((k, v) for k, v in symbol_aliases(result.symbols).items()
+                                  if isinstance(k, tuple)):
+        state.setdefault(symbol, state.get(base + "'" * order, 0.0))
+    signs = tuple(int(math.copysign(1, state[s])) if state.get(s) else 0
+                  for s in result.symbols)
+    return replace(result, symbol_signs=signs) if any(signs) else result
 
 
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
@@ -229,8 +248,8 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
     objectives = tuple(
         o if o.problem.id not in givens else
         PlannedObjective(o.problem, o.objective,
-                         solutions[index[o.problem.id]].result(o.objective.id), o.max_points,
-                         givens[o.problem.id])
+                         graded_result(solutions[index[o.problem.id]], o.objective.id),
+                         o.max_points, givens[o.problem.id])
         for o in plan.objectives)
     return Plan(plan.assignment, plan.problems, tuple(solutions), objectives), variants
 

@@ -47,6 +47,9 @@ class ObjectiveResult:
     ``symbol_units`` gives each symbol's SI unit, for dimension checks of student answers;
     ``symbol_signed`` says which symbols may be negative (coordinates, their rates, parameters
     declared ``positive: false``), so an answer is checked over each symbol's whole domain.
+    ``symbol_signs`` gives each symbol's sign at the instant the problem describes (+1, -1;
+    0 when unknown), so a symbol the reference takes only through its sign (kinetic friction's
+    sense of sliding, ``sign(xd)``) is judged for the sense the problem states.
     ``rel`` and ``abs`` are the objective's tolerance (``abs`` in ``unit``).
     ``mistakes`` are the author's; ``generated_mistakes`` those the solver derives from the
     model; ``plausible`` the whole-answer slips the model makes plausible (``"g"`` only with a
@@ -68,6 +71,7 @@ class ObjectiveResult:
     prompt: str = ""
     generated_mistakes: tuple[GeneratedMistake, ...] = ()
     plausible: frozenset[str] | None = None
+    symbol_signs: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)
