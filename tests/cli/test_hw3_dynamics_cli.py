@@ -51,16 +51,16 @@ def test_grading_hw3_exits_0_with_the_summary(graded):
 def test_every_student_has_the_status_and_score_worked_out_by_hand(graded):
     _, _, results = graded
     assert [(s["id"], s["status"], s["score"], s["max_score"]) for s in results["students"]] == [
-        ("ana_alvarez", "graded", 32.0, 32.0),    # all right: g0, lbf, cm/s^2, kN, cw, deg/s^2, mJ
-        ("ben_okafor", "graded", 29.0, 32.0),     # friction along N's unit vectors (-3)
-        ("carla_diaz", "graded", 5.25, 32.0),
-        ("dan_wu", "graded", 10.5, 32.0),
-        ("erin_park", "graded", 30.0, 32.0),      # only (a) lost: (c), (d) by ECF
-        ("femi_adeyemi", "graded", 14.0, 32.0),
-        ("gus_schmidt", "graded", 27.5, 32.0),    # three sign errors at half credit
-        ("hana_kim", "graded", 30.0, 32.0),       # rev/s is not a unit mechgrade reads
-        ("ivan_empty", "missing", 0.0, 32.0),
-        ("jo_broken", "unreadable", 0.0, 32.0),
+        ("ana_alvarez", "graded", 34.0, 34.0),    # all right: g0, lbf, cm/s^2, kN, cw, deg/s^2, mJ
+        ("ben_okafor", "graded", 31.0, 34.0),     # friction along N's unit vectors (-3)
+        ("carla_diaz", "graded", 5.25, 34.0),
+        ("dan_wu", "graded", 10.5, 34.0),
+        ("erin_park", "graded", 32.0, 34.0),      # only (a) lost: (c), (d) by ECF
+        ("femi_adeyemi", "graded", 14.0, 34.0),
+        ("gus_schmidt", "graded", 29.5, 34.0),    # three sign errors at half credit
+        ("hana_kim", "graded", 32.0, 34.0),       # rev/s is not a unit mechgrade reads
+        ("ivan_empty", "missing", 0.0, 34.0),
+        ("jo_broken", "unreadable", 0.0, 34.0),
     ]
 
 
@@ -75,9 +75,12 @@ NOT_PLAINLY_RIGHT = {
     ("carla_diaz", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
     ("carla_diaz", "block_sliding_down_incline.normal"): ("partial", 0.5, "factor of g"),
     ("carla_diaz", "block_sliding_down_incline.friction"): ("partial", 0.75, "factor of g"),
+    ("carla_diaz", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0,
+                                                                  "wrong dimension"),
     ("carla_diaz", "pendulum_release.eom"): ("incorrect", 0.0, "number typed for g"),
     ("dan_wu", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
     ("dan_wu", "block_sliding_down_incline.friction"): ("partial", 1.5, "sign error"),
+    ("dan_wu", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0, None),
     ("dan_wu", "pendulum_release.omega"): ("incorrect", 0.0, "factor of 2"),
     ("dan_wu", "pendulum_release.alpha"): ("incorrect", 0.0, None),
     ("dan_wu", "pendulum_release.pin_force"): ("incorrect", 0.0, None),
@@ -94,6 +97,7 @@ NOT_PLAINLY_RIGHT = {
     ("femi_adeyemi", "block_sliding_down_incline.normal"): ("incorrect", 0.0, None),
     ("femi_adeyemi", "block_sliding_down_incline.friction"): ("incorrect", 0.0,
                                                               "wrong magnitude"),
+    ("femi_adeyemi", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0, None),
     ("femi_adeyemi", "pendulum_release.pin_force"): ("incorrect", 0.0, None),
     ("femi_adeyemi", "two_mass_spring_chain.ke2"): ("incorrect", 0.0, "wrong dimension"),
     ("gus_schmidt", "atwood_machine.a1"): ("partial", 1.0, "sign error"),
@@ -154,6 +158,9 @@ def test_right_answers_in_other_units_notations_and_labels_are_read(graded):
     assert read[("ana_alvarez", "pendulum_release.omega")] == "-4.33 rad/s"
     assert read[("ana_alvarez", "block_sliding_down_incline.friction")] == "(-8.50, 0, 0) N in A"
     assert read[("gus_schmidt", "pendulum_release.eom")] == "-3*g*sin(theta)/(2*L)"
+    # sliding down, as stated: friction's sign(x') is +1 (Erin wrote it, Ana and Gus did not)
+    assert read[("gus_schmidt", "block_sliding_down_incline.accel_symbolic")] == \
+        "g*(sin(beta) - mu_k*cos(beta))"
     assert read[("hana_kim", "pendulum_release.pin_force")] == "(-21.74, 30.81, 0) N in N"
     assert answers(results, "hana_kim")["pendulum_release.omega"]["feedback"] == (
         "Could not read the answer: expected a unit such as 'm/s^2', found 'rev/s' ('rev' is "
@@ -170,8 +177,8 @@ def test_report_and_canvas_export_of_hw3(graded, tmp_path):
                  HW3 / "roster.csv", "--out", tmp_path / "canvas.csv")
     assert export.exit_code == 0, export.output
     rows = list(csv.reader((tmp_path / "canvas.csv").open(encoding="utf-8")))
-    assert rows[1][-1] == "32"
+    assert rows[1][-1] == "34"
     assert [(row[3], row[-1]) for row in rows[2:]] == [
-        ("ana_alvarez", "32"), ("ben_okafor", "29"), ("carla_diaz", "5.25"), ("dan_wu", "10.5"),
-        ("erin_park", "30"), ("femi_adeyemi", "14"), ("gus_schmidt", "27.5"),
-        ("hana_kim", "30"), ("ivan_empty", "0"), ("jo_broken", "0")]
+        ("ana_alvarez", "34"), ("ben_okafor", "31"), ("carla_diaz", "5.25"), ("dan_wu", "10.5"),
+        ("erin_park", "32"), ("femi_adeyemi", "14"), ("gus_schmidt", "29.5"),
+        ("hana_kim", "32"), ("ivan_empty", "0"), ("jo_broken", "0")]
