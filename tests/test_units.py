@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -99,3 +101,9 @@ def test_standard_gravity_absolute_temperatures_and_full_plurals_are_units(text,
     ("N*m", "an energy or moment"), ("W", "a power"), ("kg*m^2/s", "an angular momentum")])
 def test_dynamics_dimensions_are_named_whatever_unit_wrote_them(unit, name):
     assert describe_dimension(dimension(unit)).startswith(name + " (")
+
+
+def test_revolutions_are_written_rev():
+    assert normalize_unit("rev/s") == "revolution / s"
+    assert to_si(0.69, "rev/s") == pytest.approx(0.69 * 2 * math.pi)
+    assert to_si(41.4, "rev/min") == pytest.approx(to_si(41.4, "rpm"))

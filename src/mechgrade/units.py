@@ -124,6 +124,7 @@ def normalize_unit(text: str) -> str:  # noqa: C901 - the unit allow-list rules;
         pos = m.end()
         if m.group("name"):
             name = m.group("name").replace("µ", "u").replace("g0", "g_0")
+            name = _STUDENT_NAMES.get(name, name)
             if not expect_operand:
                 out.append("*")
             _check_unit_name(name, raw)
@@ -202,6 +203,10 @@ def _exponent(text: str, raw: str) -> str:
         raise UnitError(f"expected a power of at most {MAX_EXPONENT} in {excerpt(raw)}, "
                         f"found {excerpt(text)}")
     return str(value)
+
+
+_STUDENT_NAMES = {"rev": "revolution"}
+"""Unit names students write that pint spells otherwise (``rev/s``, ``rev/min``)."""
 
 
 @lru_cache(maxsize=1024)

@@ -58,7 +58,7 @@ def test_every_student_has_the_status_and_score_worked_out_by_hand(graded):
         ("erin_park", "graded", 32.0, 34.0),      # only (a) lost: (c), (d) by ECF
         ("femi_adeyemi", "graded", 14.0, 34.0),
         ("gus_schmidt", "graded", 29.5, 34.0),    # three sign errors at half credit
-        ("hana_kim", "graded", 32.0, 34.0),       # rev/s is not a unit mechgrade reads
+        ("hana_kim", "graded", 34.0, 34.0),       # kN, kJ, kW, rev/s, N.x + N.y
         ("ivan_empty", "missing", 0.0, 34.0),
         ("jo_broken", "unreadable", 0.0, 34.0),
     ]
@@ -104,7 +104,7 @@ NOT_PLAINLY_RIGHT = {
     ("gus_schmidt", "block_sliding_down_incline.friction"): ("partial", 1.5, "missing unit"),
     ("gus_schmidt", "pendulum_release.alpha"): ("partial", 1.0, "sign error"),
     ("gus_schmidt", "two_mass_spring_chain.damper_power"): ("partial", 1.0, "sign error"),
-    ("hana_kim", "pendulum_release.omega"): ("unreadable", 0.0, None),
+    ("femi_adeyemi", "pendulum_release.kinetic_energy"): ("unreadable", 0.0, None),
 }
 
 
@@ -162,9 +162,10 @@ def test_right_answers_in_other_units_notations_and_labels_are_read(graded):
     assert read[("gus_schmidt", "block_sliding_down_incline.accel_symbolic")] == \
         "g*(sin(beta) - mu_k*cos(beta))"
     assert read[("hana_kim", "pendulum_release.pin_force")] == "(-21.74, 30.81, 0) N in N"
-    assert answers(results, "hana_kim")["pendulum_release.omega"]["feedback"] == (
-        "Could not read the answer: expected a unit such as 'm/s^2', found 'rev/s' ('rev' is "
-        "not a unit).")
+    assert read[("hana_kim", "pendulum_release.omega")] == "-0.690 revolution/s"
+    assert answers(results, "femi_adeyemi")["pendulum_release.kinetic_energy"]["feedback"] == (
+        "Could not read the answer: expected a unit such as 'm/s^2', found 'Nm' in 'Nm' (not a "
+        "unit here: write N*m for newton metres).")
 
 
 def test_report_and_canvas_export_of_hw3(graded, tmp_path):
@@ -181,4 +182,4 @@ def test_report_and_canvas_export_of_hw3(graded, tmp_path):
     assert [(row[3], row[-1]) for row in rows[2:]] == [
         ("ana_alvarez", "34"), ("ben_okafor", "31"), ("carla_diaz", "5.25"), ("dan_wu", "10.5"),
         ("erin_park", "32"), ("femi_adeyemi", "14"), ("gus_schmidt", "29.5"),
-        ("hana_kim", "32"), ("ivan_empty", "0"), ("jo_broken", "0")]
+        ("hana_kim", "34"), ("ivan_empty", "0"), ("jo_broken", "0")]
