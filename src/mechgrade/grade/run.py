@@ -142,6 +142,12 @@ def graded_result(solution: Solution, objective_id: str) -> ObjectiveResult:
     """The objective's reference as graded: a symbolic one records each symbol's sign at the
     solved instant (``symbol_signs``), so that kinetic friction's ``sign(xd)`` is judged for
     the sense of sliding the problem states (see :func:`mechgrade.grade.compare.sample_points`).
+
+    >>> from mechgrade.solve.result import ObjectiveResult, Solution, StateValue
+    >>> a = ObjectiveResult("a", "symbolic", "m/s^2", expr="g*sign(xd)", symbols=("g", "xd"))
+    >>> graded_result(Solution("p", (a,), (StateValue("g", 9.81, "m/s^2", True, 9.81),
+    ...               StateValue("x'", -2.0, "m/s", True, -2.0))), "a").symbol_signs
+    (1, -1)
     """
     result = solution.result(objective_id)
     if result.kind != "symbolic" or not solution.state:
@@ -538,7 +544,7 @@ class _Judge:
         key = (problem.id, objective_id, tuple(sorted(overrides.items())))
         if key in self._ecf_solutions:
             return self._ecf_solutions[key]
-        problem, instead = _rates_from_student(problem, overrides)
+        problem, instead = _replaced_by_student(problem, overrides)
         outcome = self._attempt(problem, dict(overrides), objective_id), instead
         if isinstance(outcome[0], InconsistentError):
             orders = {_order(k) for k in overrides}
@@ -565,7 +571,7 @@ class _Judge:
             return err
 
 
-def _rates_from_student(problem: Problem, overrides: dict[str, float]
+def _replaced_by_student(problem: Problem, overrides: dict[str, float]
                         ) -> tuple[Problem, tuple[str, ...]]:
     """The problem to re-solve for ECF, and what the student's values replace in it. A
     work-energy problem's rates come from its energy balance, and a designed parameter from
