@@ -134,7 +134,10 @@ def _message(err: jsonschema.ValidationError) -> str:
     if kind == "dependentRequired":
         key, missing = next((k, m) for k, needed in wanted.items() if k in found
                             for m in needed if m not in found)
-        return f"expected a field '{missing}' with '{key}', found none"
+        # A field needed only because of another says what it is for (its description).
+        about = schema.get("properties", {}).get(missing, {}).get("description", "")
+        about = f" ({about[:1].lower()}{about[1:].rstrip('.')})" if about else ""
+        return f"expected a field '{missing}'{about} with '{key}', found none"
     if kind == "type":
         return f"expected {_types(wanted)}, found {describe(found)}"
     if kind == "enum":
@@ -210,15 +213,12 @@ def _choice(path: Path, choices: list[list[str]], found: dict[str, Any]) -> Sche
     ``rotations``; ``body`` with ``at``, ``bodies`` with ``at``, or ``acts``)."""
     chosen = [fields for fields in choices if fields[0] in found]
     if len(chosen) == 1:
-        missing = next((name for name in chosen[0] if name not in found), None)
-        if missing is not None:
-            return SchemaProblem(path, f"expected a field '{missing}' with '{chosen[0][0]}', "
-                                       f"found none", missing=missing)
+        # The set begun is the one meant; it failed, so one of its fields is missing.
+        missing = next(name for name in chosen[0] if name not in found)
+        return SchemaProblem(path, f"expected a field '{missing}' with '{chosen[0][0]}', "
+                                   f"found none", missing=missing)
     if chosen:
-        firsts = list(dict.fromkeys(fields[0] for fields in chosen))
-        if len(firsts) < 2:  # a set of fields plus part of another set
-            firsts = [name for name in dict.fromkeys(f for c in choices for f in c)
-                      if name in found]
+        firsts = [fields[0] for fields in chosen]
         return SchemaProblem(path, f"expected only one of the fields "
                                    f"{', '.join(c[0] for c in choices)}, found "
                                    f"{', '.join(firsts[:-1])} and {firsts[-1]}")

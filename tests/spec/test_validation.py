@@ -49,7 +49,7 @@ CASES = [
     ("rotation and rotations", mutated("rotation: {axis: z, angle: theta}", "rotation: {axis: z, angle: theta}, rotations: [{axis: x, angle: 0}]"), "p.yaml:6:6: frames.A: expected only one of the fields rotation, rotations, found rotation and rotations"),
     ("bad axis", mutated("axis: z", "axis: w"), "p.yaml:6:35: frames.A.rotation.axis: expected one of x, y, z, found 'w'"),
     ("equation without =", BASE.replace("givens:", "constraints:\n  - {name: c, position: theta}\ngivens:"), "p.yaml:14:25: constraints[0].position: expected an equation 'left = right', found 'theta'"),
-    ("book without note", mutated("expect: {value: 6}", "expect: {value: 6, book: 7}"), "p.yaml:24:13: objectives[0].expect: expected a field 'note' with 'book', found none"),
+    ("book without note", mutated("expect: {value: 6}", "expect: {value: 6, book: 7}"), "p.yaml:24:13: objectives[0].expect: expected a field 'note' (why the book's printed answer differs) with 'book', found none"),
     ("tolerance too big", mutated("    expect: {value: 6}", "    tolerance: {rel: 2}\n    expect: {value: 6}"), "p.yaml:24:22: objectives[0].tolerance.rel: expected a number <= 1, found 2"),
     # expressions and units
     ("unreadable expression", mutated("position: L*A.x", "position: L*A.x +"), "p.yaml:8:26: points.P.position: expected a complete expression, found 'L*A.x +' (invalid syntax)"),
