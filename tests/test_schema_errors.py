@@ -31,6 +31,9 @@ from mechgrade.schema_errors import describe, field_text, schema_problems
      "y: expected only the fields named like ^x_, found 'y'"),
     ({"oneOf": [{"type": "string"}, {"type": "array", "items": {"type": "string"}}]}, [1],
      "[0]: expected text, found 1"),
+    ({"oneOf": [{"type": "number"}, {"type": "integer"}]}, 3,
+     "(top level): expected a value that fits one of 2 alternatives, found 3, which fits "
+     "several"),
     ({"dependentRequired": {"book": ["note"]}}, {"book": 1},
      "(top level): expected a field 'note' with 'book', found none"),
     ({"dependentRequired": {"book": ["note"]},

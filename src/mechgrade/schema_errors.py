@@ -198,8 +198,9 @@ def _alternatives(err: jsonschema.ValidationError, path: Path) -> list[SchemaPro
     if choices and len(choices) == len(branches) and isinstance(found, dict):
         return [_choice(path, choices, found)]
     context = list(err.context or ())
-    if not context:
-        return [SchemaProblem(path, _message(err))]
+    if not context:  # a oneOf that several alternatives fit
+        return [SchemaProblem(path, f"expected a value that fits one of {len(branches)} "
+                                    f"alternatives, found {describe(found)}, which fits several")]
     if all(e.validator == "type" and e.absolute_path == err.absolute_path for e in context):
         wanted = [_parts(e)[1] for e in context]
         types = [t for w in wanted for t in ([w] if isinstance(w, str) else w)]
