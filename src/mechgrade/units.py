@@ -195,7 +195,7 @@ class _UnitReader:
         return exp.end()
 
     def operator(self, m: re.Match) -> None:
-        """A product (``*``, ``·``, ``.``, a space), ``/`` or a bracket."""
+        """A product (``*``, ``·``, ``.``), ``/``, a bracket or a stray minus sign."""
         op = m.group("op")
         if op in ("*", "·", "⋅", ".", "/") and self.expect_operand and (self.out or op != "/"):
             raise self.refuse(m, "op", "an operator with nothing before it")
@@ -215,9 +215,8 @@ class _UnitReader:
         elif op == ")":
             self.out.append(")")
             self.expect_operand = False
-        else:
-            raise UnitError(f"expected a unit such as 'm/s^2', found "
-                            f"{excerpt(self.text, m.start('op'), m.end())}")
+        else:  # "-": units are not subtracted
+            raise self.refuse(m, "op", "a minus sign between units")
 
 
 def _exponent(text: str, raw: str) -> str:
