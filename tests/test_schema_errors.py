@@ -28,13 +28,19 @@ from mechgrade.schema_errors import describe, field_text, schema_problems
      "a.b: expected text, found 1"),
     ({"items": {"required": ["id"]}}, [{"id": 1}, {}], "[1]: expected a field 'id', found none"),
     ({"additionalProperties": False, "patternProperties": {"^x_": {}}}, {"x_a": 1, "y": 2},
-     "y: expected only the fields none, found 'y'"),
+     "y: expected only the fields named like ^x_, found 'y'"),
     ({"oneOf": [{"type": "string"}, {"type": "array", "items": {"type": "string"}}]}, [1],
      "[0]: expected text, found 1"),
+    ({"oneOf": [{"type": "number"}, {"type": "integer"}]}, 3,
+     "(top level): expected a value that fits one of 2 alternatives, found 3, which fits "
+     "several"),
     ({"dependentRequired": {"book": ["note"]}}, {"book": 1},
      "(top level): expected a field 'note' with 'book', found none"),
+    ({"dependentRequired": {"book": ["note"]},
+      "properties": {"note": {"description": "Why the book differs."}}}, {"book": 1},
+     "(top level): expected a field 'note' (why the book differs) with 'book', found none"),
     ({"propertyNames": {"pattern": "^[a-z]+$", "x-expected": "a lower-case name"}}, {"A": 1},
-     "(top level): expected a lower-case name, found 'A'"),
+     "A: expected a lower-case name, found 'A'"),
     ({"multipleOf": 2}, 3,
      "(top level): expected a value valid for the schema keyword 'multipleOf' (2), found 3"),
 ])
@@ -56,3 +62,48 @@ def test_valid_data_has_no_problems():
 def test_field_text_and_describe():
     assert field_text(("a", 0, "b", 10)) == "a[0].b[10]"
     assert describe(False) == "false" and describe(1.5) == "1.5"
+
+
+CHOICE = {"oneOf": [{"required": ["rotation"]}, {"required": ["rotations"]},
+                    {"required": ["bodies", "at"]}]}
+
+
+@pytest.mark.parametrize("data, text", [
+    ({"rotation": 1, "rotations": 2},
+     "(top level): expected only one of the fields rotation, rotations, bodies, found rotation "
+     "and rotations"),
+    ({}, "(top level): expected one of the fields rotation, rotations, bodies (with at), found "
+         "none of them"),
+    ({"bodies": 1}, "(top level): expected a field 'at' with 'bodies', found none"),
+])
+def test_a_choice_between_fields_says_which_fields(data, text):
+    (problem,) = schema_problems(CHOICE, data)
+    assert str(problem) == text
+
+
+def test_alternative_types_are_listed_together():
+    schema = {"oneOf": [{"type": "string"}, {"type": "number"}, {"type": "object"}]}
+    (problem,) = schema_problems(schema, [1])
+    assert problem.message == "expected text, a number or a mapping, found a list of 1"
+
+
+def test_a_misspelt_required_field_is_one_problem_with_a_suggestion():
+    schema = {"required": ["title", "id"], "additionalProperties": False,
+              "properties": {"title": {}, "id": {}}}
+    problems = schema_problems(schema, {"titel": "x"})
+    assert [str(p) for p in problems] == [
+        "(top level): expected a field 'id', found none",
+        "titel: expected only the fields title, id, found 'titel'; did you mean 'title'?"]
+    assert problems[1].at_key and problems[1].meant == "title"
+    assert problems[0].missing == "id"
+
+
+def test_an_enum_value_gets_the_closest_choice():
+    (problem,) = schema_problems({"enum": ["scalar", "vector"]}, "scalr")
+    assert problem.message == "expected one of scalar, vector, found 'scalr'; did you mean 'scalar'?"
+
+
+def test_a_badly_formed_key_is_located_at_the_key():
+    schema = {"propertyNames": {"pattern": "^[a-z]+$"}}
+    (problem,) = schema_problems({"properties": {"a": schema}}, {"a": {"B2": 1}})
+    assert problem.path == ("a", "B2") and problem.at_key

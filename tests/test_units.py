@@ -33,6 +33,11 @@ def test_unit_text_is_normalised(text, canonical):
     ("m" * 70, "expected a unit of at most 64 characters"),
     ("__import__", "('__import__' is not a unit)"),
     ("m;s", "found 'm«;»s' (cannot read it)"),
+    ("m - s", "found 'm «-» s' (a minus sign between units)"),
+    ("m)", "expected a complete unit such as 'm/s^2', found 'm)'"),
+    ("(m", "expected a complete unit such as 'm/s^2', found '(m'"),
+    ("*m", "found '«*»m' (an operator with nothing before it)"),
+    ("m/*s", "found 'm/«*»s' (an operator with nothing before it)"),
 ])
 def test_bad_unit_text_is_refused(text, message):
     with pytest.raises(UnitError) as info:

@@ -13,6 +13,7 @@ with :attr:`MechgradeError.exit_code`. Nothing else in the package prints or exi
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import TypeVar
 
 
 @dataclass(frozen=True)
@@ -38,6 +39,9 @@ class Location:
         return ": ".join(parts)
 
 
+E = TypeVar("E", bound="MechgradeError")
+
+
 class MechgradeError(Exception):
     """Base of every error caused by bad input; carries a :class:`Location`."""
 
@@ -48,7 +52,7 @@ class MechgradeError(Exception):
         self.message = message
         self.where = where or Location()
 
-    def located(self, where: Location) -> "MechgradeError":
+    def located(self: E, where: Location) -> E:
         """The same error placed at ``where``, keeping any field path it already had below it."""
         field = where.field
         if self.where.field and field:
@@ -106,11 +110,14 @@ class SpecErrors(SpecError):
         super().__init__("\n".join(str(e) for e in errors), where=Location(errors[0].where.file))
         self.errors = errors
 
-    def located(self, where: Location) -> "SpecErrors":
+    def located(self: E, where: Location) -> E:
         return self
 
     def __str__(self) -> str:
         return "\n".join(str(e) for e in self.errors)
+
+
+EE = TypeVar("EE", bound="ExpressionError")
 
 
 class ExpressionError(MechgradeError):
@@ -123,7 +130,7 @@ class ExpressionError(MechgradeError):
         super().__init__(message, where=where)
         self.offset = offset
 
-    def located(self, where: Location) -> "ExpressionError":
+    def located(self: EE, where: Location) -> EE:
         err = super().located(where)
         err.offset = self.offset
         return err

@@ -14,9 +14,13 @@ import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from typing import Callable, Iterable, TypeVar
+from typing import TYPE_CHECKING, Callable, Generic, Iterable, TypeVar
 
 from .errors import MechgradeError
+
+if TYPE_CHECKING:
+    from multiprocessing.connection import Connection
+    from multiprocessing.process import BaseProcess
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -64,7 +68,7 @@ def _map_chunk(func: Callable[[T], R], chunk: list[T]) -> list[R]:
     return [func(item) for item in chunk]
 
 
-class Forked:
+class Forked(Generic[R]):
     """``work()`` running in a forked process from now on; :meth:`result` waits for its value.
 
     For work that needs little of what the parent still has to load (reading submissions while
@@ -77,7 +81,8 @@ class Forked:
 
     def __init__(self, work: Callable[[], R]) -> None:
         self._work = work
-        self._process = self._conn = None
+        self._process: BaseProcess | None = None
+        self._conn: Connection | None = None
         if "fork" in multiprocessing.get_all_start_methods():
             context = multiprocessing.get_context("fork")
             self._conn, child = context.Pipe(duplex=False)
@@ -87,7 +92,7 @@ class Forked:
             child.close()
 
     def result(self) -> R:
-        if self._process is None:
+        if self._process is None or self._conn is None:
             return self._work()
         try:
             status, value = self._conn.recv()
@@ -109,6 +114,7 @@ class Forked:
 
 
 def _send_outcome(conn, work: Callable[[], R]) -> None:
+    message: tuple[str, object]
     try:
         message = ("ok", work())
     except Exception:  # noqa: BLE001 - the parent does the work again and sees the error

@@ -156,8 +156,8 @@ def read_roster(path: str | os.PathLike) -> Roster:
     if not rows:
         raise AssignmentError("expected a roster header row, found an empty file",
                               where=Location(name, 1))
-    header_line, header = rows[0]
-    header = tuple(cell.strip() for cell in header)
+    header_line, cells = rows[0]
+    header = tuple(cell.strip() for cell in cells)
     kind = header_format(header)
     if kind is None:
         raise AssignmentError(

@@ -2,25 +2,28 @@
 
 Every file mechgrade checks against a JSON Schema (problem files, assignments, ``results.json``)
 reports a violation the same way: where (the path to the field, ``students[3].status``), what
-was expected and what was found. A schema can word what it expects in its own terms with the
-annotation ``"x-expected"`` on the failing sub-schema (``"x-expected": "an equation 'left =
-right'"``), which replaces the generic wording of any keyword, and a mapping that takes keys by
-pattern can word them with ``"x-fields"``.
+was expected and what was found, with the closest known name when a name is misspelt. A schema
+can word what it expects in its own terms with the annotation ``"x-expected"`` on the failing
+sub-schema (``"x-expected": "an equation 'left = right'"``), which replaces the generic wording
+of any keyword, and a mapping that takes keys by pattern can word them with ``"x-fields"``.
 
 >>> schema = {"type": "object", "required": ["id"], "additionalProperties": False,
 ...           "properties": {"id": {"type": "string"},
 ...                          "status": {"enum": ["graded", "missing"]}}}
->>> for problem in schema_problems(schema, {"id": 3, "status": "great", "x": 1}):
+>>> for problem in schema_problems(schema, {"id": 3, "status": "gradd", "x": 1}):
 ...     print(problem)
 id: expected text, found 3
-status: expected one of graded, missing, found 'great'
+status: expected one of graded, missing, found 'gradd'; did you mean 'graded'?
 x: expected only the fields id, status, found 'x'
 """
 
 from __future__ import annotations
 
+import difflib
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import jsonschema
 
@@ -28,14 +31,25 @@ Path = tuple[str | int, ...]
 
 _TYPES = {"object": "a mapping", "array": "a list", "string": "text", "number": "a number",
           "integer": "a whole number", "boolean": "true or false", "null": "null"}
+_SIGNS = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}
+_BOUNDS = {"minItems": ("at least", "item(s)"), "maxItems": ("at most", "item(s)"),
+           "minProperties": ("at least", "field(s)"), "maxProperties": ("at most", "field(s)")}
 
 
 @dataclass(frozen=True)
 class SchemaProblem:
-    """One violation: ``path`` to the offending value and the message ``expected ..., found``."""
+    """One violation: ``path`` to the offending value and the message ``expected ..., found``.
+
+    ``at_key`` says the path ends at a mapping key (an unknown or badly formed name), best shown
+    at the key itself; ``missing`` names the required field absent from the mapping at ``path``;
+    ``meant`` is the known field an unknown key most likely misspells.
+    """
 
     path: Path
     message: str
+    at_key: bool = False
+    missing: str | None = None
+    meant: str | None = None
 
     @property
     def field(self) -> str:
@@ -58,70 +72,161 @@ def field_text(path: Path) -> str:
     return text
 
 
+def closest(name: object, known: Iterable[object]) -> str | None:
+    """The known name closest to ``name`` (a likely misspelling of it), else None.
+
+    >>> closest("vell", ["vel", "acc"]), closest("zzz", ["vel"])
+    ('vel', None)
+    """
+    close = difflib.get_close_matches(str(name), sorted({str(k) for k in known}), n=1,
+                                      cutoff=0.6)
+    return close[0] if close else None
+
+
+def did_you_mean(name: object, known: Iterable[object]) -> str:
+    """``"; did you mean 'x'?"`` when ``known`` holds a name close to ``name``, else ``""``.
+
+    >>> did_you_mean("vell", ["vel", "acc"])
+    "; did you mean 'vel'?"
+    >>> did_you_mean("zzz", ["vel"])
+    ''
+    """
+    meant = closest(name, known)
+    if meant is None:
+        return ""
+    quote = '"' if "'" in meant else "'"
+    return f"; did you mean {quote}{meant}{quote}?"
+
+
 def schema_problems(schema: dict, data: object) -> tuple[SchemaProblem, ...]:
     """Every violation of ``schema`` by ``data``, in document order (the first is the one to
-    report when only one is)."""
+    report when only one is). A misspelt required field is one mistake: the unknown key with
+    its suggestion is reported, not also the missing field it was meant to be."""
     errors = jsonschema.Draft202012Validator(schema).iter_errors(data)
-    problems = [explain(err) for err in errors]
-    return tuple(sorted(problems, key=lambda p: _order(p.path)))
+    problems = [problem for err in errors for problem in _explain(err)]
+    meant = {(p.path[:-1], p.meant) for p in problems if p.meant}
+    kept = [p for p in problems if not p.missing or (p.path, p.missing) not in meant]
+    return tuple(sorted(dict.fromkeys(kept), key=lambda p: _order(p.path)))
 
 
-def explain(err: jsonschema.ValidationError) -> SchemaProblem:
-    """One jsonschema error as a :class:`SchemaProblem`."""
+def _explain(err: jsonschema.ValidationError) -> list[SchemaProblem]:
+    """One jsonschema error as the problems it stands for (one per unknown or missing key)."""
     path: Path = tuple(err.absolute_path)
-    kind, wanted, found, schema = err.validator, err.validator_value, err.instance, err.schema
-    if isinstance(schema, dict) and "x-expected" in schema and kind != "required":
-        return SchemaProblem(path, f"expected {schema['x-expected']}, found {describe(found)}")
+    kind, wanted, found, schema = _parts(err)
+    if "propertyNames" in err.relative_schema_path:
+        # The offending value is a key of the mapping at ``path``: locate it at the key.
+        return [SchemaProblem(path + (found,), _message(err), at_key=True)]
     if kind == "required":
-        missing = next(name for name in wanted if name not in found)
-        return SchemaProblem(path, f"expected a field '{missing}', found none")
+        return [SchemaProblem(path, f"expected a field '{name}', found none", missing=name)
+                for name in wanted if name not in found]
+    if kind == "additionalProperties" and isinstance(schema, dict):
+        return _unknown_keys(path, schema, found)
+    if kind in ("oneOf", "anyOf"):
+        return _alternatives(err, path)
+    return [SchemaProblem(path, _message(err))]
+
+
+def _message(err: jsonschema.ValidationError) -> str:
+    """The ``expected ..., found ...`` message of one keyword's failure at one value."""
+    kind, wanted, found, schema = _parts(err)
+    if isinstance(schema, dict) and "x-expected" in schema:
+        return f"expected {schema['x-expected']}, found {describe(found)}"
     if kind == "dependentRequired":
         key, missing = next((k, m) for k, needed in wanted.items() if k in found
                             for m in needed if m not in found)
-        return SchemaProblem(path, f"expected a field '{missing}' with '{key}', found none")
-    if kind == "additionalProperties":
-        # Located at the unknown key itself; "x-fields" words what else a mapping takes.
-        allowed = list(schema.get("properties", {}))
-        patterns = schema.get("patternProperties", {})
-        extra = next(key for key in found if key not in allowed
-                     and not any(re.search(p, key) for p in patterns))
-        listing = schema.get("x-fields") or (", ".join(allowed) if allowed else "none")
-        return SchemaProblem(path + (extra,),
-                             f"expected only the fields {listing}, found '{extra}'")
+        # A field needed only because of another says what it is for (its description).
+        about = schema.get("properties", {}).get(missing, {}).get("description", "")
+        about = f" ({about[:1].lower()}{about[1:].rstrip('.')})" if about else ""
+        return f"expected a field '{missing}'{about} with '{key}', found none"
     if kind == "type":
-        types = wanted if isinstance(wanted, list) else [wanted]
-        return SchemaProblem(path, f"expected {' or '.join(_TYPES.get(t, t) for t in types)}, "
-                                   f"found {describe(found)}")
+        return f"expected {_types(wanted)}, found {describe(found)}"
     if kind == "enum":
-        return SchemaProblem(path, f"expected one of {', '.join(str(v) for v in wanted)}, "
-                                   f"found {describe(found)}")
+        hint = did_you_mean(found, wanted) if isinstance(found, str) else ""
+        return f"expected one of {', '.join(str(v) for v in wanted)}, found {describe(found)}{hint}"
     if kind == "const":
-        return SchemaProblem(path, f"expected {wanted!r}, found {describe(found)}")
-    if kind in ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum"):
-        sign = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">",
-                "exclusiveMaximum": "<"}[kind]
-        return SchemaProblem(path, f"expected a number {sign} {wanted:g}, found "
-                                   f"{describe(found)}")
-    if kind in ("minItems", "maxItems"):
-        bound = "at least" if kind == "minItems" else "at most"
-        return SchemaProblem(path, f"expected {bound} {wanted} item(s), found {describe(found)}")
+        return f"expected {wanted!r}, found {describe(found)}"
+    if kind in _SIGNS:
+        return f"expected a number {_SIGNS[kind]} {wanted:g}, found {describe(found)}"
+    if kind in _BOUNDS:
+        bound, noun = _BOUNDS[kind]
+        return f"expected {bound} {wanted} {noun}, found {describe(found)}"
     if kind in ("minLength", "maxLength"):
         bound = "at least" if kind == "minLength" else "at most"
-        return SchemaProblem(path, f"expected {bound} {wanted} character(s), found "
-                                   f"{len(found) if found else 'empty text'}"
-                                   f"{' characters' if found else ''}")
-    if kind in ("minProperties", "maxProperties"):
-        bound = "at least" if kind == "minProperties" else "at most"
-        return SchemaProblem(path, f"expected {bound} {wanted} field(s), found "
-                                   f"{describe(found)}")
+        return (f"expected {bound} {wanted} character(s), found "
+                f"{f'{len(found)} characters' if found else 'empty text'}")
     if kind == "pattern":
-        return SchemaProblem(path, f"expected text matching {wanted}, found {describe(found)}")
-    if kind in ("oneOf", "anyOf") and err.context:
-        # The branch that got furthest into the value is the one the author meant.
-        return explain(max(err.context,
-                           key=lambda e: (len(e.absolute_path), e.validator != "type")))
-    return SchemaProblem(path, f"expected a value valid for the schema keyword {kind!r} "
-                               f"({wanted!r}), found {describe(found)}")
+        return f"expected text matching {wanted}, found {describe(found)}"
+    return (f"expected a value valid for the schema keyword {kind!r} ({wanted!r}), found "
+            f"{describe(found)}")
+
+
+def _parts(err: jsonschema.ValidationError) -> tuple[str, Any, Any, Any]:
+    """The keyword, its value in the schema, the value found and the failing sub-schema (typed
+    as possibly unset by jsonschema; always set on a reported error)."""
+    return str(err.validator), err.validator_value, err.instance, err.schema
+
+
+def _types(wanted: str | list[str]) -> str:
+    """``["string", "number", "object"]`` as ``text, a number or a mapping``."""
+    words = [_TYPES.get(t, t) for t in ([wanted] if isinstance(wanted, str) else wanted)]
+    return " or ".join(words) if len(words) <= 2 else f"{', '.join(words[:-1])} or {words[-1]}"
+
+
+def _unknown_keys(path: Path, schema: dict, found: dict) -> list[SchemaProblem]:
+    """One problem per key the mapping does not take, located at the key, with the closest
+    field it takes; ``"x-fields"`` words the fields a mapping takes by pattern."""
+    allowed = list(schema.get("properties", {}))
+    patterns = list(schema.get("patternProperties", {}))
+    listing = schema.get("x-fields") or ", ".join(allowed) or (
+        f"named like {', '.join(patterns)}" if patterns else "none")
+    out = []
+    for key in found:
+        if key in allowed or any(re.search(p, str(key)) for p in patterns):
+            continue
+        out.append(SchemaProblem(path + (key,), f"expected only the fields {listing}, found "
+                                                f"'{key}'{did_you_mean(key, allowed)}",
+                                 at_key=True, meant=closest(key, allowed)))
+    return out
+
+
+def _alternatives(err: jsonschema.ValidationError, path: Path) -> list[SchemaProblem]:
+    """A failed ``oneOf``/``anyOf``: a choice between sets of fields is worded as such; else the
+    branch that got furthest into the value is the one the author meant."""
+    _, branches, found, _ = _parts(err)
+    choices = [branch["required"] for branch in branches
+               if isinstance(branch, dict) and set(branch) == {"required"}]
+    if choices and len(choices) == len(branches) and isinstance(found, dict):
+        return [_choice(path, choices, found)]
+    context = list(err.context or ())
+    if not context:  # a oneOf that several alternatives fit
+        return [SchemaProblem(path, f"expected a value that fits one of {len(branches)} "
+                                    f"alternatives, found {describe(found)}, which fits several")]
+    if all(e.validator == "type" and e.absolute_path == err.absolute_path for e in context):
+        wanted = [_parts(e)[1] for e in context]
+        types = [t for w in wanted for t in ([w] if isinstance(w, str) else w)]
+        return [SchemaProblem(path, f"expected {_types(list(dict.fromkeys(types)))}, found "
+                                    f"{describe(found)}")]
+    return _explain(max(context, key=lambda e: (len(e.absolute_path), e.validator != "type")))
+
+
+def _choice(path: Path, choices: list[list[str]], found: dict[str, Any]) -> SchemaProblem:
+    """A mapping that takes exactly one of several sets of fields (``rotation`` or
+    ``rotations``; ``body`` with ``at``, ``bodies`` with ``at``, or ``acts``)."""
+    chosen = [fields for fields in choices if fields[0] in found]
+    if len(chosen) == 1:
+        # The set begun is the one meant; it failed, so one of its fields is missing.
+        missing = next(name for name in chosen[0] if name not in found)
+        return SchemaProblem(path, f"expected a field '{missing}' with '{chosen[0][0]}', "
+                                   f"found none", missing=missing)
+    if chosen:
+        firsts = [fields[0] for fields in chosen]
+        return SchemaProblem(path, f"expected only one of the fields "
+                                   f"{', '.join(c[0] for c in choices)}, found "
+                                   f"{', '.join(firsts[:-1])} and {firsts[-1]}")
+    names = [fields[0] + (f" (with {', '.join(fields[1:])})" if len(fields) > 1 else "")
+             for fields in choices]
+    return SchemaProblem(path, f"expected one of the fields {', '.join(names)}, found none "
+                               f"of them")
 
 
 def describe(value: object) -> str:

@@ -77,7 +77,7 @@ class Quantity:
 
 
 @lru_cache(maxsize=4096)
-def normalize_unit(text: str) -> str:  # noqa: C901 - the unit allow-list rules; to split (issue 12)
+def normalize_unit(text: str) -> str:
     """Check unit text against the allow-list and return it in pint's syntax.
 
     Accepts ``^`` or ``**`` powers, superscripts (``s²``), a power glued to a name (``s2``),
@@ -99,98 +99,125 @@ def normalize_unit(text: str) -> str:  # noqa: C901 - the unit allow-list rules;
     ...
     mechgrade.errors.UnitError: expected an absolute temperature (K or degR), found 'degC' (an offset scale: convert to K first)
     """
-    raw = text
-    text = unicodedata.normalize("NFC", str(text)).strip()
+    prepared = _prepared(str(text))
+    if prepared is None:
+        return ""
+    canonical = _UnitReader(prepared, text).read()
+    _pint_unit(canonical, text)  # proves pint reads it
+    return canonical
+
+
+def _prepared(text: str) -> str | None:
+    """The text with superscripts and degree signs spelled out; None for a pure number's
+    words (``1``, ``dimensionless``...). Refuses text longer than ``MAX_UNIT_LENGTH``."""
+    text = unicodedata.normalize("NFC", text).strip()
     if len(text) > MAX_UNIT_LENGTH:
         raise UnitError(f"expected a unit of at most {MAX_UNIT_LENGTH} characters, "
                         f"found {len(text)} characters: {excerpt(text)}")
     if text.lower() in _DIMENSIONLESS_WORDS:
-        return ""
+        return None
     text = text.translate(_SUPERSCRIPTS)
     for sign, name in _DEGREE_SIGNS:
         text = text.replace(sign, name)
-    text = text.replace("°", " deg ")
-    out: list[str] = []
-    pos = 0
-    expect_operand = True
-    while pos < len(text):
-        if text[pos:].strip() == "":
-            break
-        m = _TOKEN.match(text, pos)
-        if not m:
-            start = len(text) - len(text[pos:].lstrip())
-            raise UnitError(f"expected a unit such as 'm/s^2', found "
-                            f"{excerpt(text, start)} (cannot read it)")
-        pos = m.end()
-        if m.group("name"):
-            name = m.group("name").replace("µ", "u").replace("g0", "g_0")
-            name = _STUDENT_NAMES.get(name, name)
-            if not expect_operand:
-                out.append("*")
-            _check_unit_name(name, raw)
-            out.append(name)
-            if m.group("power"):
-                if m.group("power").startswith("-") and len(out) >= 2 and out[-2] == "/":
-                    raise UnitError(f"expected a unit such as 'm/s^2', found "
-                                    f"{excerpt(text, m.start('name'), m.end())} (a negative "
-                                    f"power after '/' is ambiguous: write s^2 or *s^-2)")
-                out += ["**", _exponent(m.group("power"), raw)]
-            expect_operand = False
-        elif m.group("num"):
-            if out and out[-1] == "**":
-                out.append(_exponent(m.group("num"), raw))
-                expect_operand = False
-            elif m.group("num") == "1" and expect_operand:
-                out.append("1")
-                expect_operand = False
-            else:
+    return text.replace("°", " deg ")
+
+
+class _UnitReader:
+    """Reads unit text token by token (names, numbers, operators) into pint's syntax, keeping
+    whether an operand (a name, a number or ``(``) is due next; ``raw`` is the text as written,
+    for messages."""
+
+    def __init__(self, text: str, raw: str) -> None:
+        self.text, self.raw = text, raw
+        self.out: list[str] = []
+        self.expect_operand = True
+
+    def read(self) -> str:
+        """The whole text in pint's syntax (``m * s ** -2``)."""
+        pos = 0
+        while self.text[pos:].strip():
+            m = _TOKEN.match(self.text, pos)
+            if not m:
+                start = len(self.text) - len(self.text[pos:].lstrip())
                 raise UnitError(f"expected a unit such as 'm/s^2', found "
-                                f"{excerpt(text, m.start('num'), m.end())} (a number inside "
-                                f"a unit)")
+                                f"{excerpt(self.text, start)} (cannot read it)")
+            pos = m.end()
+            if m.group("name"):
+                self.name(m)
+            elif m.group("num"):
+                self.number(m)
+            elif m.group("op") in ("^", "**"):
+                pos = self.power(m)
+            else:
+                self.operator(m)
+        if self.expect_operand or self.out.count("(") != self.out.count(")"):
+            raise UnitError(f"expected a complete unit such as 'm/s^2', found "
+                            f"{excerpt(self.raw)}")
+        return " ".join(self.out).replace("( ", "(").replace(" )", ")")
+
+    def refuse(self, m: re.Match, group: str, why: str) -> UnitError:
+        return UnitError(f"expected a unit such as 'm/s^2', found "
+                         f"{excerpt(self.text, m.start(group), m.end())} ({why})")
+
+    def name(self, m: re.Match) -> None:
+        """A unit name, with a power glued to it (``s2``, ``s-2``)."""
+        name = m.group("name").replace("µ", "u").replace("g0", "g_0")
+        name = _STUDENT_NAMES.get(name, name)
+        if not self.expect_operand:
+            self.out.append("*")
+        _check_unit_name(name, self.raw)
+        self.out.append(name)
+        if m.group("power"):
+            if m.group("power").startswith("-") and self.out[-2:-1] == ["/"]:
+                raise self.refuse(m, "name", "a negative power after '/' is ambiguous: write "
+                                             "s^2 or *s^-2")
+            self.out += ["**", _exponent(m.group("power"), self.raw)]
+        self.expect_operand = False
+
+    def number(self, m: re.Match) -> None:
+        """A power after ``**``, or a lone 1 (``1/s``); any other number is refused."""
+        if self.out and self.out[-1] == "**":
+            self.out.append(_exponent(m.group("num"), self.raw))
+        elif m.group("num") == "1" and self.expect_operand:
+            self.out.append("1")
         else:
-            op = m.group("op")
-            if op in ("^", "**"):
-                if expect_operand or (len(out) >= 2 and out[-2] == "**"):
-                    raise UnitError(f"expected a unit such as 'm/s^2', found "
-                                    f"{excerpt(text, m.start('op'), m.end())} (misplaced power)")
-                exp = _NUMBER.match(text, pos)
-                if not exp:
-                    raise UnitError(f"expected a whole-number power after '^', found "
-                                    f"{excerpt(text, m.start('op'), m.end())}")
-                out += ["**", _exponent(exp.group(1), raw)]
-                pos = exp.end()
-            elif op in ("*", "·", "⋅", ".", "/") and expect_operand and out:
-                raise UnitError(f"expected a unit such as 'm/s^2', found "
-                                f"{excerpt(text, m.start('op'), m.end())} (an operator "
-                                f"with nothing before it)")
-            elif op in ("*", "·", "⋅", "."):
-                if expect_operand:
-                    raise UnitError(f"expected a unit such as 'm/s^2', found "
-                                    f"{excerpt(text, m.start('op'), m.end())} (an operator "
-                                    f"with nothing before it)")
-                out.append("*")
-                expect_operand = True
-            elif op == "/":
-                if expect_operand:
-                    out.append("1")
-                out.append("/")
-                expect_operand = True
-            elif op == "(":
-                if not expect_operand:
-                    out.append("*")
-                out.append("(")
-                expect_operand = True
-            elif op == ")":
-                out.append(")")
-                expect_operand = False
-            else:
-                raise UnitError(f"expected a unit such as 'm/s^2', found "
-                                f"{excerpt(text, m.start('op'), m.end())}")
-    if expect_operand or out.count("(") != out.count(")"):
-        raise UnitError(f"expected a complete unit such as 'm/s^2', found {excerpt(raw)}")
-    canonical = " ".join(out).replace("( ", "(").replace(" )", ")")
-    _pint_unit(canonical, raw)  # proves pint reads it
-    return canonical
+            raise self.refuse(m, "num", "a number inside a unit")
+        self.expect_operand = False
+
+    def power(self, m: re.Match) -> int:
+        """``^`` or ``**`` and the whole number after it; returns where reading goes on."""
+        if self.expect_operand or self.out[-2:-1] == ["**"]:
+            raise self.refuse(m, "op", "misplaced power")
+        exp = _NUMBER.match(self.text, m.end())
+        if not exp:
+            raise UnitError(f"expected a whole-number power after '^', found "
+                            f"{excerpt(self.text, m.start('op'), m.end())}")
+        self.out += ["**", _exponent(exp.group(1), self.raw)]
+        return exp.end()
+
+    def operator(self, m: re.Match) -> None:
+        """A product (``*``, ``·``, ``.``), ``/``, a bracket or a stray minus sign."""
+        op = m.group("op")
+        if op in ("*", "·", "⋅", ".", "/") and self.expect_operand and (self.out or op != "/"):
+            raise self.refuse(m, "op", "an operator with nothing before it")
+        if op in ("*", "·", "⋅", "."):
+            self.out.append("*")
+            self.expect_operand = True
+        elif op == "/":
+            if self.expect_operand:
+                self.out.append("1")
+            self.out.append("/")
+            self.expect_operand = True
+        elif op == "(":
+            if not self.expect_operand:
+                self.out.append("*")
+            self.out.append("(")
+            self.expect_operand = True
+        elif op == ")":
+            self.out.append(")")
+            self.expect_operand = False
+        else:  # "-": units are not subtracted
+            raise self.refuse(m, "op", "a minus sign between units")
 
 
 def _exponent(text: str, raw: str) -> str:

@@ -220,14 +220,15 @@ def _quote_left_open(lines: list[str], line: int) -> tuple[int, int] | None:
 def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
     """Plain words (and the mark to point at) for a PyYAML syntax error."""
     problem, context = exc.problem or "", exc.context or ""
-    mark, opened = exc.problem_mark or exc.context_mark, exc.context_mark
+    mark = exc.problem_mark or exc.context_mark or yaml.Mark("", 0, 0, 0, None, 0)
+    opened = exc.context_mark
     if "'\\t'" in problem or "'\t'" in problem:
         return "tabs are not allowed, use spaces", mark
     for number in range(min(mark.line, len(lines) - 1), max(mark.line - 3, -1), -1):
         glued = _GLUED_COLON.match(lines[number])
         if glued:
             lead, key, rest = glued.groups()
-            at = yaml.Mark("", 0, number, len(lead) + len(key), None, None)
+            at = yaml.Mark("", 0, number, len(lead) + len(key), None, 0)
             return (f"expected a space after ':' in '{key}:{rest}' (write '{key}: {rest}')", at)
     if "quoted scalar" in context and opened is not None:
         quote = lines[opened.line][opened.column]
@@ -242,7 +243,7 @@ def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
         opened_at = _quote_left_open(lines, mark.line)
         if opened_at is not None:
             number, column = opened_at
-            at = yaml.Mark("", 0, number, column, None, None)
+            at = yaml.Mark("", 0, number, column, None, 0)
             return (f"unclosed quote: the {lines[number][column]} opened here is closed only "
                     f"on line {mark.line + 1}", at)
     stray = re.search(r"but found '([\]}])'", problem)
@@ -258,8 +259,8 @@ def _syntax_message(lines: list[str], exc: yaml.MarkedYAMLError):
         misplaced = above is not None and (
             here > _indent(above) and _SCALAR_PAIR.match(above) if "mapping values" in problem
             else here != _indent(above))
-        if misplaced:
-            at = yaml.Mark("", 0, mark.line, here, None, None)
+        if misplaced and above is not None:
+            at = yaml.Mark("", 0, mark.line, here, None, 0)
             return (f"indentation: this line is indented {_spaces(here)}, the key above "
                     f"{_indent(above)}", at)
         if "mapping values" in problem:

@@ -133,7 +133,7 @@ def test_check_lists_every_error_of_a_file_and_its_warnings(tmp_path):
         "one of: N, A)",
         f"  {bad}:15:6: givens.L: dimension mismatch in the value of 'L': expected a length "
         "([length]), found a time ([time])",
-        f"  {bad}:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; found "
+        f"  {bad}:22:11: objectives[0].kind: expected one of scalar, vector, symbolic, found "
         "'scalr'; did you mean 'scalar'?",
         f"FAIL {unsolvable}",
         f"  {unsolvable}:18:5: objectives[0]: objective 'speed' is not determined by the "

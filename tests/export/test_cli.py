@@ -39,10 +39,10 @@ def test_export_canvas_with_roster_writes_file_and_warns(run, tmp_path):
         "'Student, Test'\n"
         "warning: 70007 (Only Roster) has no submission; written with 0\n"
         f"warning: 1 row kept out of {out} because Canvas could not import it: see "
-        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
+        f"{tmp_path / 'canvas.unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
         "or export again with --roster set to the gradebook exported from Canvas\n")
     assert len(read_csv(out)) == 2 + 7
-    assert read_csv(tmp_path / "unmatched.csv")[1][0] == "x-ghost"
+    assert read_csv(tmp_path / "canvas.unmatched.csv")[1][0] == "x-ghost"
 
 
 def test_readme_example_round_trips_into_the_rosters_column(run, tmp_path):
@@ -198,9 +198,9 @@ def test_moodle_export_holds_back_rows_and_says_so(run, tmp_path):
     assert result.exit_code == 0
     assert result.stderr == (
         f"warning: 6 rows kept out of {out} because Moodle could not import them: see "
-        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
+        f"{tmp_path / 'moodle.unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
         "or export again with --roster set to the grades exported from Moodle\n")
-    held = read_csv(tmp_path / "unmatched.csv")
+    held = read_csv(tmp_path / "moodle.unmatched.csv")
     assert held[1] == ["s1004", "Missing Mo", "missing", "",
                        "no grade (no submission and --missing blank); Moodle clears the grade "
                        "of a row imported with feedback only"]

@@ -60,7 +60,7 @@ def test_canvas_without_roster_holds_back_rows_without_a_canvas_id(report, tmp_p
     assert all(len(row) == 6 for row in rows)
     assert_no_formula(rows)
     # A folder name in Canvas's numeric ID column could match another user: never written.
-    assert read_csv(tmp_path / "unmatched.csv") == [
+    assert read_csv(tmp_path / "canvas.unmatched.csv") == [
         UNMATCHED_HEADER,
         ["s1005", "Unreadable Uma", "unreadable", "0", NO_CANVAS_ID],
         ["s1006", "Seán O'Brien", "graded", "3", NO_CANVAS_ID],
@@ -70,7 +70,7 @@ def test_canvas_without_roster_holds_back_rows_without_a_canvas_id(report, tmp_p
         "the assignment of exactly that title or creates a new one; name it with "
         "--canvas-assignment (its id, as in 'Title (12345)')",
         f"3 rows kept out of {out} because Canvas could not import them: see "
-        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
+        f"{tmp_path / 'canvas.unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
         "or export again with --roster set to the gradebook exported from Canvas")
 
 
@@ -80,7 +80,7 @@ def test_canvas_without_any_canvas_identity_writes_no_student_row(report, tmp_pa
     rows = read_csv(out)
     assert rows == [["Student", "ID", "SIS User ID", "SIS Login ID", "Section",
                      "Homework 3 (48213)"], ["    Points Possible", "", "", "", "", "10"]]
-    assert len(read_csv(tmp_path / "unmatched.csv")) == 1 + len(report.students)
+    assert len(read_csv(tmp_path / "canvas.unmatched.csv")) == 1 + len(report.students)
 
 
 def test_canvas_with_a_plain_roster_matches_by_sis_id_with_the_id_left_blank(report, tmp_path):
@@ -89,7 +89,7 @@ def test_canvas_with_a_plain_roster_matches_by_sis_id_with_the_id_left_blank(rep
     EXPORTERS["canvas"](report, tmp_path / "canvas.csv", roster=roster)
     rows = read_csv(tmp_path / "canvas.csv")
     assert rows[2:] == [["Ada Lovelace", "", "s1001", "", "", "10"]]
-    held = read_csv(tmp_path / "unmatched.csv")
+    held = read_csv(tmp_path / "canvas.unmatched.csv")
     assert held[1] == ["r2", "Bob Roe", "missing", "0", NO_CANVAS_ID]
     assert [row[4] for row in held[2:]] == ["not in the roster"] * 6
 
@@ -112,13 +112,13 @@ def test_canvas_with_canvas_roster_writes_every_roster_student_back(report, canv
     assert grade["70001"] == "10" and grade["70006"] == "3"  # Seán matched by name
     assert grade["70007"] == "0"  # in the roster, no submission
     assert "70099" not in ids  # the Canvas test student
-    assert read_csv(tmp_path / "unmatched.csv") == [
+    assert read_csv(tmp_path / "canvas.unmatched.csv") == [
         UNMATCHED_HEADER,
         ["x-ghost", "Ghost Student", "graded", "7", "not in the roster"]]
     assert warnings == (
         "70007 (Only Roster) has no submission; written with 0",
         f"1 row kept out of {out} because Canvas could not import it: see "
-        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
+        f"{tmp_path / 'canvas.unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
         "or export again with --roster set to the gradebook exported from Canvas")
 
 
@@ -140,7 +140,7 @@ def test_the_bundled_example_round_trips_into_the_rosters_own_column(tmp_path):
     assert rows[0] == exported[0]
     assert [row[:5] for row in rows[2:]] == [row[:5] for row in exported[2:-1]]
     assert [row[5] for row in rows[2:]][:2] == ["19", "14"]
-    assert not (tmp_path / "unmatched.csv").exists()
+    assert not (tmp_path / "canvas.unmatched.csv").exists()
 
 
 def roster_with(columns: list[str]) -> Roster:
@@ -195,10 +195,35 @@ def test_canvas_missing_blank_leaves_the_grade_empty(report, canvas_roster, tmp_
     assert rows[1][0] != "    Points Possible"
 
 
-def test_an_import_file_named_unmatched_csv_is_refused(report, canvas_roster, tmp_path):
-    with pytest.raises(ExportError, match="expected an import file name other than "
-                                          "'unmatched.csv'"):
-        EXPORTERS["canvas"](report, tmp_path / "unmatched.csv", roster=canvas_roster)
+def test_each_import_file_keeps_its_own_unmatched_rows(report, canvas_roster, moodle_roster,
+                                                       tmp_path):
+    EXPORTERS["canvas"](report, tmp_path / "canvas.csv", roster=canvas_roster)
+    EXPORTERS["moodle"](report, tmp_path / "moodle.csv", roster=moodle_roster)
+    canvas = read_csv(tmp_path / "canvas.unmatched.csv")
+    moodle = read_csv(tmp_path / "moodle.unmatched.csv")
+    assert canvas[0] == moodle[0] == ["id", "name", "status", "score", "reason"]
+    assert len(canvas) > 1 and len(moodle) > 1
+    assert not (tmp_path / "unmatched.csv").exists()
+
+
+def test_an_export_holding_nothing_back_removes_its_old_unmatched_rows(report, canvas_roster,
+                                                                       tmp_path):
+    out = tmp_path / "canvas.csv"
+    EXPORTERS["canvas"](report, out, roster=canvas_roster)
+    assert (tmp_path / "canvas.unmatched.csv").exists()
+    matched = replace(report, students=tuple(s for s in report.students
+                                             if s.id in {r.id for r in canvas_roster.students}))
+    assert not [w for w in EXPORTERS["canvas"](matched, out, roster=canvas_roster)
+                if "kept out" in w]
+    assert not (tmp_path / "canvas.unmatched.csv").exists()
+
+
+def test_an_unmatched_file_that_cannot_be_removed_is_an_error(report, canvas_roster, tmp_path):
+    (tmp_path / "canvas.unmatched.csv").mkdir()
+    matched = replace(report, students=())
+    with pytest.raises(ExportError, match="canvas.unmatched.csv: expected to remove the "
+                                          "unmatched rows of an earlier export"):
+        EXPORTERS["canvas"](matched, tmp_path / "canvas.csv", roster=canvas_roster)
 
 
 def test_roster_matching_reports_who_is_not_in_the_roster(report, canvas_roster):
@@ -234,7 +259,7 @@ def test_moodle_has_key_columns_grade_and_feedback(report, moodle_roster, tmp_pa
     assert by_email["uma@uni.example"][4] == "0"
     assert_no_formula(rows)
     # Rows Moodle cannot match would abort the whole import: they are held back.
-    assert read_csv(tmp_path / "unmatched.csv") == [
+    assert read_csv(tmp_path / "moodle.unmatched.csv") == [
         UNMATCHED_HEADER,
         ["s1005", "Unreadable Uma", "unreadable", "0", "not in the roster"],
         ["s1006", "Seán O'Brien", "graded", "3", "not in the roster"],
@@ -243,7 +268,7 @@ def test_moodle_has_key_columns_grade_and_feedback(report, moodle_roster, tmp_pa
         "uma@uni.example (Uma Unreadable) has no submission; written with 0",
         "s1007 (Roster Only) has no submission; written with 0",
         f"3 rows kept out of {out} because Moodle could not import them: see "
-        f"{tmp_path / 'unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
+        f"{tmp_path / 'moodle.unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
         "or export again with --roster set to the grades exported from Moodle")
 
 
@@ -252,7 +277,7 @@ def test_moodle_never_writes_a_row_with_a_blank_user_key(report, moodle_roster, 
     EXPORTERS["moodle"](report, out, roster=moodle_roster,
                         options=ExportOptions(moodle_key="idnumber"))
     assert all(row[0] for row in read_csv(out))
-    held = read_csv(tmp_path / "unmatched.csv")
+    held = read_csv(tmp_path / "moodle.unmatched.csv")
     assert held[1] == ["uma@uni.example", "Uma Unreadable", "missing", "0",
                        "no ID number to match the Moodle user by (one unknown user aborts the "
                        "whole Moodle import)"]
@@ -265,7 +290,7 @@ def test_moodle_without_a_roster_warns_that_the_keys_are_unchecked(report, tmp_p
     assert rows[0][:2] == ["ID number", "Email address"]
     assert rows[0][4:] == ["Homework 3 (Real)", "Homework 3 (Feedback)"]
     assert [row[0] for row in rows[1:]] == []  # the results carry no ID number
-    assert len(read_csv(tmp_path / "unmatched.csv")) == 1 + len(report.students)
+    assert len(read_csv(tmp_path / "moodle.unmatched.csv")) == 1 + len(report.students)
     EXPORTERS["moodle"](report, out)
     warnings = EXPORTERS["moodle"](report, out)
     assert warnings[0] == (
@@ -299,7 +324,7 @@ def test_moodle_never_writes_feedback_without_a_grade(report, moodle_roster, tmp
                         roster=moodle_roster, options=ExportOptions(missing=missing))
     assert "ada@uni.example" not in {row[0] for row in read_csv(tmp_path / "m.csv")}
     assert ["s1001", "Ada Lovelace", status, "", f"no grade ({why}); Moodle clears the grade "
-            "of a row imported with feedback only"] in read_csv(tmp_path / "unmatched.csv")
+            "of a row imported with feedback only"] in read_csv(tmp_path / "m.unmatched.csv")
 
 
 def test_moodle_names_from_a_canvas_roster_split_at_the_comma(report, canvas_roster, tmp_path):

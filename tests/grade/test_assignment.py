@@ -90,13 +90,14 @@ def test_assignment_is_frozen(folder):
     ("id: hw1\nproblems: [p.yaml]\n", "hw.yaml:1:1: expected a field 'title', found none"),
     ("id: hw1\ntitle: T\n", "hw.yaml:1:1: expected a field 'problems', found none"),
     (MINIMAL + "due: tomorrow\n",
-     "hw.yaml:4:6: due: expected only the fields id, title, problems, points, variants, policy, "
+     "hw.yaml:4:1: due: expected only the fields id, title, problems, points, variants, policy, "
      "found 'due'"),
     (MINIMAL + "policy: {reveal: true}\n",
-     "hw.yaml:4:18: policy.reveal: expected only the fields reveal_answers, tolerance, "
-     "sig_figs, missing_unit, partial_credit, ecf, found 'reveal'"),
+     "hw.yaml:4:10: policy.reveal: expected only the fields reveal_answers, tolerance, "
+     "sig_figs, missing_unit, partial_credit, ecf, found 'reveal'; did you mean "
+     "'reveal_answers'?"),
     (MINIMAL + "points: {p: 3}\n",
-     "hw.yaml:4:13: points.p: expected only the fields 'default' or "
+     "hw.yaml:4:10: points.p: expected only the fields 'default' or "
      "'problem_id.objective_id', found 'p'"),
     ("id: 12\ntitle: T\nproblems: [p.yaml]\n", "hw.yaml:1:5: id: expected an id of letters, digits, '_', '-' and '.' (at most 64), found 12"),
     ("id: hw1\ntitle: T\nproblems: p.yaml\n",

@@ -322,7 +322,7 @@ def test_a_draw_where_a_given_written_as_an_expression_is_undefined_is_drawn_aga
 
 
 @pytest.mark.parametrize("section, message", [
-    ("variants: {sed: 3}\n", "hw.yaml:4:17: variants.sed: expected only the fields seed, redraw, found 'sed'"),
+    ("variants: {sed: 3}\n", "hw.yaml:4:12: variants.sed: expected only the fields seed, redraw, found 'sed'; did you mean 'seed'?"),
     ('variants: {seed: ""}\n', "hw.yaml:4:18: variants.seed: expected at least 1 character(s), found empty text"),
     ("variants: {seed: s, redraw: 1}\n", "hw.yaml:4:29: variants.redraw: expected true or false, found 1"),
 ])

@@ -55,7 +55,7 @@ def test_unknown_branch_and_define_are_read():
      "p.yaml:18:13: branch.L: expected a coordinate, a rate (theta') or a quantity listed "
      "under unknown: as a branch, found 'L'"),
     (BASE.replace("objectives:\n", "branch: {t: sideways}\nobjectives:\n"),
-     "p.yaml:18:13: branch.t: expected one of: positive, negative, first positive; found "
+     "p.yaml:18:13: branch.t: expected one of positive, negative, first positive, found "
      "'sideways'"),
     (BASE.replace("objectives:\n", "define: {L: 3}\nobjectives:\n"),
      "p.yaml:18:13: define.L: 'L' is already a name of the problem or of the language; "

@@ -40,17 +40,17 @@ CASES = [
     ("alias", BASE.replace("L: m", "L: &u m\n  M: *u"), "p.yaml:13:6: expected plain YAML, found an alias (*name); anchors and aliases are not allowed"),
     ("duplicate key", BASE.replace("L: m", "L: m\n  L: ft"), "p.yaml:13:3: parameters.L: expected each key once, found 'L' again"),
     # schema
-    ("unknown key", BASE + "colour: red\n", "p.yaml:25:1: colour: unknown key 'colour' (expected one of: analysis, bodies, branch, consistency, constraints, coordinates, define, frames, givens, guesses, id, inertial, loads, objectives, parameters, points, source, statement, title, unknown, variants)"),
-    ("missing key", BASE.replace("title: Base problem for validation tests\n", ""), "p.yaml:1:1: missing required key 'title'"),
-    ("wrong type", mutated("title: Base problem for validation tests", "title: [a]"), "p.yaml:2:8: title: expected a string, found a list of 1"),
-    ("bad kind", mutated("kind: scalar", "kind: number"), "p.yaml:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; found 'number'"),
-    ("bad name", mutated("  P: {from: O", "  2P: {from: O"), "p.yaml:8:3: points: expected a name made of letters, digits and '_' starting with a letter, found '2P'"),
-    ("no objectives", BASE.split("objectives:")[0] + "objectives: []\n", "p.yaml:18:13: objectives: expected min 1 item(s), found a list of 0"),
-    ("rotation and rotations", mutated("rotation: {axis: z, angle: theta}", "rotation: {axis: z, angle: theta}, rotations: [{axis: x, angle: 0}]"), "p.yaml:6:6: frames.A: expected only one of rotation, rotations, found rotation, rotations"),
-    ("bad axis", mutated("axis: z", "axis: w"), "p.yaml:6:35: frames.A.rotation.axis: expected one of: x, y, z; found 'w'"),
+    ("unknown key", BASE + "colour: red\n", "p.yaml:25:1: colour: expected only the fields id, title, source, statement, inertial, frames, points, coordinates, parameters, constraints, givens, guesses, unknown, branch, define, variants, consistency, bodies, loads, analysis, objectives, found 'colour'"),
+    ("missing key", BASE.replace("title: Base problem for validation tests\n", ""), "p.yaml:1:1: expected a field 'title', found none"),
+    ("wrong type", mutated("title: Base problem for validation tests", "title: [a]"), "p.yaml:2:8: title: expected text, found a list of 1"),
+    ("bad kind", mutated("kind: scalar", "kind: number"), "p.yaml:22:11: objectives[0].kind: expected one of scalar, vector, symbolic, found 'number'"),
+    ("bad name", mutated("  P: {from: O", "  2P: {from: O"), "p.yaml:8:3: points.2P: expected a name made of letters, digits and '_', starting with a letter, found '2P'"),
+    ("no objectives", BASE.split("objectives:")[0] + "objectives: []\n", "p.yaml:18:13: objectives: expected at least 1 item(s), found an empty list"),
+    ("rotation and rotations", mutated("rotation: {axis: z, angle: theta}", "rotation: {axis: z, angle: theta}, rotations: [{axis: x, angle: 0}]"), "p.yaml:6:6: frames.A: expected only one of the fields rotation, rotations, found rotation and rotations"),
+    ("bad axis", mutated("axis: z", "axis: w"), "p.yaml:6:35: frames.A.rotation.axis: expected one of x, y, z, found 'w'"),
     ("equation without =", BASE.replace("givens:", "constraints:\n  - {name: c, position: theta}\ngivens:"), "p.yaml:14:25: constraints[0].position: expected an equation 'left = right', found 'theta'"),
-    ("book without note", mutated("expect: {value: 6}", "expect: {value: 6, book: 7}"), "p.yaml:24:13: objectives[0].expect: a 'book' answer needs a 'note' explaining the discrepancy"),
-    ("tolerance too big", mutated("    expect: {value: 6}", "    tolerance: {rel: 2}\n    expect: {value: 6}"), "p.yaml:24:22: objectives[0].tolerance.rel: expected a number within bounds (maximum 1), found 2"),
+    ("book without note", mutated("expect: {value: 6}", "expect: {value: 6, book: 7}"), "p.yaml:24:13: objectives[0].expect: expected a field 'note' (why the book's printed answer differs) with 'book', found none"),
+    ("tolerance too big", mutated("    expect: {value: 6}", "    tolerance: {rel: 2}\n    expect: {value: 6}"), "p.yaml:24:22: objectives[0].tolerance.rel: expected a number <= 1, found 2"),
     # expressions and units
     ("unreadable expression", mutated("position: L*A.x", "position: L*A.x +"), "p.yaml:8:26: points.P.position: expected a complete expression, found 'L*A.x +' (invalid syntax)"),
     ("eval payload", mutated("position: L*A.x", "position: __import__(1)"), "points.P.position: expected names, numbers, operators and functions, found '__import__'"),
@@ -161,7 +161,7 @@ def test_independent_errors_come_together_in_file_order():
         "(expected one of: N, A)",
         "base.yaml:15:6: givens.L: dimension mismatch in the value of 'L': expected a length "
         "([length]), found a time ([time])",
-        "base.yaml:22:11: objectives[0].kind: expected one of: scalar, vector, symbolic; "
+        "base.yaml:22:11: objectives[0].kind: expected one of scalar, vector, symbolic, "
         "found 'scalr'; did you mean 'scalar'?",
     ]
 
@@ -178,9 +178,12 @@ def test_independent_errors_come_together_in_file_order():
      "('radz' is not a unit); did you mean 'rad'?"),
     ("  P: {from: O, position: L*A.x}", "  - P", "base.yaml:8:3: points: expected a mapping, "
      "found a list of 1"),
-    ("  A: {parent: N,", "  A: {parnt: N,", "base.yaml:6:7: frames.A.parnt: unknown key 'parnt'; "
-     "did you mean 'parent'?"),
-    ("title:", "titel:", "base.yaml:2:1: titel: unknown key 'titel'; did you mean 'title'?"),
+    ("  A: {parent: N,", "  A: {parnt: N,", "base.yaml:6:7: frames.A.parnt: expected only the fields parent, rotation, "
+     "rotations, origin, found 'parnt'; did you mean 'parent'?"),
+    ("title:", "titel:", "base.yaml:2:1: titel: expected only the fields id, title, source, statement, "
+     "inertial, frames, points, coordinates, parameters, constraints, givens, guesses, unknown, "
+     "branch, define, variants, consistency, bodies, loads, analysis, objectives, found 'titel'; "
+     "did you mean 'title'?"),
     ("find: speed(P, N)", "find: speed(P,, N)", "base.yaml:21:11: objectives[0].find: expected "
      "a complete expression, found 'speed(P,, N)' (invalid syntax)"),
 ])
@@ -260,3 +263,9 @@ def test_names_defined_twice_point_at_the_key():
     assert errors_of(mutated("L: m", "L: m\n  theta: rad")) == [
         "base.yaml:10:3: coordinates.theta: 'theta' is both a coordinate and a parameter; "
         "expected distinct names"]
+
+
+def test_a_badly_formed_name_spoils_its_section_without_cascade():
+    assert errors_of(mutated("  P: {from: O", "  2P: {from: O")) == [
+        "base.yaml:8:3: points.2P: expected a name made of letters, digits and '_', starting "
+        "with a letter, found '2P'"]

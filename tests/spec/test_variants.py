@@ -75,7 +75,7 @@ CASES = [
      "p.yaml:20:15: variants.draw.L.from: expected a unit such as 'm/s^2', found ' mq' "
      "('mq' is not a unit)"),
     ("bool value", "variants:\n  draw:\n    L: {choices: [true]}\n",
-     "p.yaml:20:19: variants.draw.L.choices[0]: expected a string or number, found true"),
+     "p.yaml:20:19: variants.draw.L.choices[0]: expected text or a number, found true"),
     ("empty range", "variants:\n  draw:\n    L: {from: 2 m, to: 1 m, step: 0.1 m}\n",
      "p.yaml:20:8: variants.draw.L: expected 'from' below 'to', found 2 and 1 m"),
     ("to missing", "variants:\n  draw:\n    L: {from: 2 m, step: 0.1 m}\n",
@@ -96,9 +96,10 @@ CASES = [
      "p.yaml:20:8: variants.draw.L: expected one of the keys from (with to), choices, "
      "integers"),
     ("misspelt kind", "variants:\n  draw:\n    L: {choice: [1 m]}\n",
-     "p.yaml:20:9: variants.draw.L.choice: unknown key 'choice'; did you mean 'choices'?"),
+     "p.yaml:20:9: variants.draw.L.choice: expected only the fields from, to, step, "
+     "sig_figs, choices, integers, found 'choice'; did you mean 'choices'?"),
     ("draw missing", "variants:\n  require: [L > 1]\n",
-     "p.yaml:19:3: variants: missing required key 'draw'"),
+     "p.yaml:19:3: variants: expected a field 'draw', found none"),
     ("not a condition", "variants:\n  draw:\n    L: {choices: [1 m]}\n  require: [L = 1]\n",
      "p.yaml:21:13: variants.require[0]: expected a condition 'left < right' (one of <, <=, "
      ">, >=, !=), found 'L = 1'"),
@@ -125,7 +126,8 @@ CASES = [
     ("bound unreadable", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {speed: {min: fast}}\n",
      "p.yaml:21:25: variants.bounds.speed.min: expected a number followed by a unit"),
     ("empty bound", "variants:\n  draw:\n    L: {choices: [1 m]}\n  bounds: {speed: {}}\n",
-     "p.yaml:21:19: variants.bounds.speed: expected min 1 item(s), found a mapping"),
+     "p.yaml:21:19: variants.bounds.speed: expected at least 1 field(s), found an empty "
+     "mapping"),
 ]
 
 

@@ -71,7 +71,7 @@ def read_results(path: str | os.PathLike) -> GradeReport:
     mechgrade.errors.ExportError: ...results.json: students[0]: expected a field 'id', found none
     """
     name = str(path)
-    text = read_text(path, what="a results.json file", error=ExportError,
+    text = read_text(Path(path), what="a results.json file", error=ExportError,
                      max_bytes=200_000_000)
     try:
         data = json.loads(text)

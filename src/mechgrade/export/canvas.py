@@ -10,8 +10,8 @@ ids, then the name.
 So the file holds only rows Canvas can match: a row's ``ID`` must come from Canvas (a Canvas
 gradebook export given as roster, now or when grading); without one, a row with a SIS id is
 written with ``ID`` blank; every other row (a student not in the roster, a folder name where
-Canvas expects its user id: ``"000421"`` is read as user 421) goes to ``unmatched.csv``
-(:mod:`mechgrade.export.unmatched`).
+Canvas expects its user id: ``"000421"`` is read as user 421) goes to
+``<name>.unmatched.csv`` beside it (:mod:`mechgrade.export.unmatched`).
 """
 
 from __future__ import annotations
@@ -38,8 +38,8 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
                   roster: Roster | None = None,
                   options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write a Canvas gradebook import CSV (see module doc); return the warnings to show."""
-    canvas_roster = roster is not None and roster.format == "canvas"
-    identity = roster.identity_header if canvas_roster else CANVAS_IDENTITY
+    identity = roster.identity_header if roster is not None and roster.format == "canvas" \
+        else CANVAS_IDENTITY
     column = canvas_column(report, roster, options.canvas_assignment)
     rows: list[list[object]] = [[*identity, column]]
     if options.points_possible:
@@ -116,8 +116,8 @@ def canvas_column(report: GradeReport, roster: Roster | None, wanted: str | None
 
 def _names(column: str, wanted: str) -> bool:
     found = _COLUMN.fullmatch(column.strip())
-    return column.strip() == wanted or found["id"] == wanted or \
-        found["title"].casefold() == wanted.casefold()
+    return column.strip() == wanted or found is not None and (
+        found["id"] == wanted or found["title"].casefold() == wanted.casefold())
 
 
 def _listing(columns) -> str:
@@ -130,7 +130,7 @@ def _identity_cells(identity: tuple[str, ...], pair: Pair, roster: Roster | None
     student, result = pair.roster, pair.result
     if student is None and roster is not None:
         return "not in the roster"
-    if student is not None and roster.format == "canvas":
+    if student is not None and roster is not None and roster.format == "canvas":
         if tuple(name for name, _ in student.columns) == identity:
             return [value for _, value in student.columns]
         known = {"student": student.name, "id": student.id, "sis user id": student.sis_user_id,
@@ -143,7 +143,9 @@ def _identity_cells(identity: tuple[str, ...], pair: Pair, roster: Roster | None
         or (identity_value(result, "sis_login_id") if result else "")
     if not (canvas.get("id") or sis_user or sis_login):
         return "no Canvas user ID or SIS id to match it by (not from a Canvas gradebook export)"
-    known = {"student": canvas.get("student") or (student.name if student else result.name),
+    who = student if student is not None else result
+    assert who is not None  # a row has a roster student, a result or both
+    known = {"student": canvas.get("student") or who.name,
              "id": canvas.get("id", ""), "sis user id": sis_user, "sis login id": sis_login,
              "section": canvas.get("section") or (student.section if student else "")}
     return [known.get(name.lower(), "") for name in identity]

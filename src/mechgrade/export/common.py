@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from typing import TypeGuard
+
 from ..grade.results import AnswerResult, GradeReport, ObjectiveInfo, StudentResult
 from .matching import RosterMatch
 from .options import ExportOptions
 
 
-def has_submission(result: StudentResult | None) -> bool:
+def has_submission(result: StudentResult | None) -> TypeGuard[StudentResult]:
     return result is not None and result.status != "missing"
 
 

@@ -26,7 +26,7 @@ def export_json(report: GradeReport, out_path: str | os.PathLike, *,
         for pair in match.pairs:
             if pair.result is not None:
                 students.append(pair.result)
-            else:
+            elif pair.roster is not None:
                 students.append(StudentResult(
                     pair.roster.id, pair.roster.name, "missing", 0.0, max_score(report),
                     messages=("in the roster, no submission found",),

@@ -9,7 +9,7 @@ them.
 What the importer does decides what is written:
 
 * one row whose user key is blank or unknown aborts the whole import, so rows without a key,
-  and (with a roster) students not in the roster, go to ``unmatched.csv`` instead
+  and (with a roster) students not in the roster, go to ``<name>.unmatched.csv`` instead
   (:mod:`mechgrade.export.unmatched`);
 * feedback without a grade clears the grade, so a row whose grade is blank (a
   ``not_evaluated`` student, or ``--missing blank``) is held back there too;
@@ -130,6 +130,7 @@ def _keys(pair: Pair) -> tuple[str, str]:
     if student is not None:
         number = student.sis_user_id or ("" if student.id == student.email else student.id)
         return student.email, number
+    assert result is not None  # a row has a roster student, a result or both
     email = identity_value(result, "email") or (result.id if "@" in result.id else "")
     return email, identity_value(result, "sis_user_id")
 
@@ -146,11 +147,15 @@ def moodle_names(student: RosterStudent | None, result: StudentResult | None
     >>> moodle_names(RosterStudent("2", "Mary Ann Smith"), None)
     ('Mary Ann Smith', '')
     """
-    columns = student.columns if student is not None else result.identity
+    if student is not None:
+        columns, whole = student.columns, student.name
+    else:
+        assert result is not None  # a row has a roster student, a result or both
+        columns, whole = result.identity, result.name
     cols = {k.strip().lower(): v for k, v in columns}
     if "first name" in cols and "last name" in cols:
         return cols["first name"], cols["last name"]
-    name = cols.get("student") or (student.name if student is not None else result.name)
+    name = cols.get("student") or whole
     if name.count(",") == 1:
         last, first = (part.strip() for part in name.split(","))
         if first and last:

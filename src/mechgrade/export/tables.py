@@ -35,6 +35,7 @@ def export_grades_csv(report: GradeReport, out_path: str | os.PathLike, *,
     for pair in match.pairs:
         ident, name = _who(pair.roster, pair.result)
         status = pair.result.status if pair.result is not None else "missing"
+        points: list[float | str]
         if has_submission(pair.result):
             points = [a.points for _, a in answers_by_objective(report, pair.result)]
             points = points[:len(report.objectives)]
@@ -51,7 +52,7 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
     """Write ``results.csv``: one row per student and objective, with answer and diagnosis."""
     # Variants add each student's seed and own givens (of the row's problem).
     variants = any(student.variant for student in report.students)
-    rows: list[list[object]] = [list(LONG_HEADER) + (["seed", "givens"] if variants else [])]
+    rows: list[list[object]] = [[*LONG_HEADER, *(["seed", "givens"] if variants else [])]]
     match = match_roster(report, roster)
     for pair in match.pairs:
         ident, name = _who(pair.roster, pair.result)

@@ -188,6 +188,7 @@ def _bytes_of(chosen: Candidate, notes: list[str]) -> bytes | None:
         if chosen.path is not None:
             with open(chosen.path, "rb") as handle:
                 return handle.read(MAX_FILE_BYTES + 1)
+        assert chosen.zip_path is not None and chosen.member is not None  # else a file
         with zipfile.ZipFile(chosen.zip_path) as archive:
             if archive.getinfo(chosen.member).flag_bits & 0x1:
                 notes.append(f"'{chosen.label}' is encrypted; it was not read")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
+from typing import Any, Callable
 
 import numpy as np
 
@@ -17,7 +18,7 @@ from . import syntax
 from .excerpt import excerpt
 from .syntax import Name, Node
 
-NUMPY_FUNCTIONS = {
+NUMPY_FUNCTIONS: dict[str, Callable[..., Any]] = {
     "sin": np.sin, "cos": np.cos, "tan": np.tan, "cot": lambda a: 1 / np.tan(a),
     "sec": lambda a: 1 / np.cos(a), "csc": lambda a: 1 / np.sin(a), "asin": np.arcsin,
     "acos": np.arccos, "atan": np.arctan, "atan2": np.arctan2, "sinh": np.sinh,

@@ -25,7 +25,7 @@ import re
 import tokenize
 import unicodedata
 from dataclasses import dataclass
-from typing import Iterable, Union
+from typing import Callable, Iterable, Union
 
 from ..errors import ExpressionError
 from .excerpt import excerpt
@@ -379,9 +379,9 @@ class _Builder:
                     raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
                                           f"for {func}(...), found {len(args)}")
                 func = canonical
-            out = Call(func, args)
-            _check_magnitude(out)
-            return out
+            call = Call(func, args)
+            _check_magnitude(call)
+            return call
         raise ExpressionError(f"expected names, numbers, operators and functions, "
                               f"found {_describe(node)}")
 
@@ -473,7 +473,7 @@ class _NotConstant(Exception):
     pass
 
 
-_CONST_FUNCS = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
+_CONST_FUNCS: dict[str, Callable[[float], float]] = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
                 "exp": math.exp, "log": math.log, "abs": abs, "asin": math.asin,
                 "acos": math.acos, "atan": math.atan, "sinh": math.sinh, "cosh": math.cosh,
                 "tanh": math.tanh}

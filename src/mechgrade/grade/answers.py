@@ -77,11 +77,11 @@ class VectorAnswer:
     ``texts`` the components as written (``"0"`` for an omitted one).
     """
 
-    components: tuple[float, float, float]
+    components: tuple[float, ...]  # always three
     unit: str | None
     frame: str | None
     sig_figs: tuple[tuple[int | None, int | None], ...]
-    texts: tuple[str, str, str]
+    texts: tuple[str, ...]  # always three
 
     kind = "vector"
 
@@ -518,8 +518,8 @@ def _unit_vector_sum(text: str) -> VectorAnswer | None:
         if count == 1 and not any(c.isdigit() for c in body[:pos]):
             return None  # a lone letter such as "k" followed by something else: not a vector
         raise
-    shown = tuple(_join(t) for t in texts)
-    return VectorAnswer(tuple(values), unit, frames.pop(), tuple(figures), shown)
+    return VectorAnswer(tuple(values), unit, frames.pop(), tuple(figures),
+                        tuple(_join(t) for t in texts))
 
 
 def _join(parts: list[str]) -> str:

@@ -207,7 +207,8 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
         raise AssignmentError(f"expected a mapping of fields (id, title, problems...), found "
                               f"{describe(doc.data)}", where=doc.where(()))
     for problem in schema_problems(schema(), doc.data):
-        problems_.append(AssignmentError(problem.message, where=doc.where(problem.path)))
+        where = doc.where_key(problem.path) if problem.at_key else doc.where(problem.path)
+        problems_.append(AssignmentError(problem.message, where=where))
     refs: list[ProblemRef] = []
     if not problems_:
         base = doc.file and Path(doc.file).parent

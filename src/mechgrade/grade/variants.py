@@ -105,11 +105,11 @@ def draw_variant(problem: Problem, seed: str, student: str, start: int = 0) -> V
             else:
                 givens.append(g)
         try:
-            givens = resolve_given_values(tuple(givens), problem.coordinates,
-                                          problem.parameters)
+            resolved = resolve_given_values(tuple(givens), problem.coordinates,
+                                            problem.parameters)
         except SpecError:
             continue  # a given written as an expression is undefined here (sqrt of < 0)
-        values = {to_text(g.key.node): g.si for g in givens}
+        values = {to_text(g.key.node): g.si for g in resolved}
         if all(r.holds(values) for r in variants.requires):
             spec = {to_text(g.key.node): g.si for g in problem.givens}
             overrides = tuple((k, v) for k, v in values.items() if v != spec[k])
@@ -190,7 +190,8 @@ def student_variant(problem: Problem, seed: str, student: str,
             if not redraw:
                 raise
             solution = None
-        if not redraw or (solution is not None and not variant_faults(problem, variant,
+        # Without redraw a failed solve has raised: the solution is there.
+        if solution is not None and (not redraw or not variant_faults(problem, variant,
                                                                         solution)):
             return variant, solution
         variant = draw_variant(problem, seed, student, variant.index + 1)

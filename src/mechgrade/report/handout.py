@@ -83,7 +83,7 @@ def givens_table(sheets: tuple[Sheet, ...]) -> list[list[object]]:
     for sheet in sheets[:1]:
         for problem in sheet.problems:
             columns += [(problem.id, g.name) for g in problem.givens]
-    header = ["id", "name", "seed"]
+    header: list[object] = ["id", "name", "seed"]
     problems = list(dict.fromkeys(pid for pid, _ in columns))
     for pid, name in columns:
         header += [f"{pid}.{name}", f"{pid}.{name} unit"]

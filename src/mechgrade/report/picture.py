@@ -36,7 +36,7 @@ def picture_svg(scene: Scene) -> str:
     fig, ax = plt.subplots(figsize=(6, 6))
     by_name = {p.name: p for p in shown}
     for p in shown:
-        origin = by_name.get(p.described_from)
+        origin = by_name.get(p.described_from) if p.described_from is not None else None
         if origin is not None:
             ax.plot([origin.position[0], p.position[0]], [origin.position[1], p.position[1]],
                     color="#323f4b", linewidth=2.5, solid_capstyle="round")

@@ -402,7 +402,7 @@ def _analysis(spec: dict | None, expr, where) -> Analysis | None:
     (kind, body), = spec.items()
     path = ("analysis", kind)
     if kind == "impulse":
-        contacts = []
+        contacts: list[Restitution | Sticking] = []
         for i, c in enumerate(body.get("contacts") or []):
             cpath = (*path, "contacts", i)
             if "restitution" in c:

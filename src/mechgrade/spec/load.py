@@ -14,10 +14,9 @@ import re
 from functools import lru_cache
 from pathlib import Path
 
-import jsonschema
-
 from ..errors import AuthorWarning, ExpressionError, Location, SpecError, SpecErrors, UnitError
 from ..expressions.syntax import MATH_FUNCTIONS, Name, Num, Unary, constant_value, parse
+from ..schema_errors import SchemaProblem, did_you_mean, schema_problems
 from ..units import normalize_unit, parse_quantity, to_si
 from ..yamlio import Document, read_yaml, read_yaml_text
 from .dynamics import read_dynamics
@@ -26,7 +25,7 @@ from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
 from .solving import (check_solving, expand, given_expression, read_branches, read_definitions,
                       read_unknowns, resolve_given_values)
-from .validate import RESERVED, bare_angle_message, did_you_mean, is_angle_unit, problem_errors
+from .validate import RESERVED, bare_angle_message, is_angle_unit, problem_errors
 
 SCHEMA_PATH = Path(__file__).with_name("problem.schema.json")
 
@@ -61,6 +60,7 @@ def problem_from_document(doc: Document) -> Problem:
     if problem is not None:
         errors += problem_errors(problem, frozenset(builder.broken_names))
     _raise_all(errors)
+    assert problem is not None  # build() gives None only after a schema error, raised above
     return problem
 
 
@@ -82,123 +82,25 @@ def _raise_all(errors: list[SpecError]) -> None:
 
 
 def _schema_errors(doc: Document) -> tuple[list[SpecError], set[tuple]]:
-    """Every schema error of ``doc``, and the paths of the values they make unusable."""
-    validator = jsonschema.Draft202012Validator(problem_schema())
+    """Every schema error of ``doc`` (worded by :mod:`mechgrade.schema_errors`), and the paths
+    of the values they make unusable."""
     errors, broken = [], set()
-    meant, missing = set(), {}
-    for err in validator.iter_errors(doc.data):
-        path = tuple(err.absolute_path)
-        if err.validator == "additionalProperties" and isinstance(err.instance, dict):
-            allowed = sorted(err.schema.get("properties", {}))
-            for extra in sorted(set(err.instance) - set(allowed)):
-                hint = did_you_mean(extra, allowed)
-                if hint:
-                    meant.add((path, hint.split("'")[1]))
-                listing = ", ".join(allowed) if allowed else "none"
-                message = (f"unknown key '{extra}'{hint}" if hint else
-                           f"unknown key '{extra}' (expected one of: {listing})")
-                errors.append(SpecError(message, where=doc.where_key(path + (extra,))))
-                broken.add(path + (extra,))
-            continue
-        if err.validator == "required" and isinstance(err.instance, dict):
-            for key in err.validator_value:
-                if key not in err.instance:
-                    errors.append(SpecError(f"missing required key '{key}'",
-                                            where=doc.where(path)))
-                    missing[(path, key)] = errors[-1]
-                    broken.add(path + (key,) if not path else path)
-            continue
-        if err.validator == "propertyNames":
-            path += (err.instance,)
-            errors.append(SpecError(_schema_message(err), where=doc.where_key(path)))
-        else:
-            errors.append(SpecError(_schema_message(err), where=doc.where(path)))
-        broken.add(path)
-    # A misspelt required key is one mistake: keep "unknown key 'titel'; did you mean 'title'?"
-    # and drop "missing required key 'title'".
-    errors = [e for e in errors if id(e) not in {id(m) for m in _missing_meant(meant, missing)}]
+    for problem in schema_problems(problem_schema(), doc.data):
+        where = doc.where_key(problem.path) if problem.at_key else doc.where(problem.path)
+        errors.append(SpecError(problem.message, where=where))
+        broken.add(_unusable(problem))
     return errors, broken
 
 
-def _missing_meant(meant: set, missing: dict) -> list[SpecError]:
-    """The "missing required key" errors explained by a misspelt key in the same mapping."""
-    return [err for where, err in missing.items() if where in meant]
-
-
-def _schema_message(err: jsonschema.ValidationError) -> str:
-    kind = err.validator
-    inst = err.instance
-    schema = err.schema
-    if kind == "additionalProperties":
-        allowed = sorted(schema.get("properties", {}))
-        extra = sorted(set(inst) - set(allowed))
-        listing = ", ".join(allowed) if allowed else "none"
-        return f"unknown key '{extra[0]}' (expected one of: {listing})"
-    if kind == "required":
-        missing = [r for r in err.validator_value if r not in inst]
-        return f"missing required key '{missing[0]}'"
-    if kind == "type":
-        expected = err.validator_value
-        expected = " or ".join(expected) if isinstance(expected, list) else expected
-        return f"expected {_article(expected)}, found {_describe(inst)}"
-    if kind == "enum":
-        options = ", ".join(str(v) for v in err.validator_value)
-        hint = did_you_mean(inst, map(str, err.validator_value)) if isinstance(inst, str) else ""
-        return f"expected one of: {options}; found {inst!r}{hint}"
-    if kind == "pattern":
-        if err.validator_value.startswith("^[^=]"):
-            return f"expected an equation 'left = right', found {inst!r}"
-        return (f"expected a name made of letters, digits and '_' starting with a letter, "
-                f"found {inst!r}")
-    if kind in ("minItems", "maxItems", "minLength", "minProperties", "maxProperties"):
-        return f"expected {kind[:3]} {err.validator_value} item(s), found {_describe(inst)}"
-    if kind in ("minimum", "maximum", "exclusiveMinimum"):
-        return f"expected a number within bounds ({kind} {err.validator_value}), found {inst!r}"
-    if kind == "oneOf":
-        required = [sub.get("required", [None])[0] for sub in err.validator_value
-                    if "required" in sub]
-        if required and isinstance(inst, dict):
-            present = [r for r in required if r in inst]
-            if len(present) > 1:
-                return f"expected only one of {', '.join(required)}, found {', '.join(present)}"
-            if not present:
-                return f"expected one of the keys {', '.join(required)}"
-            # The branch whose first key is there, missing its other keys ({bodies, at}).
-            branch = next(sub["required"] for sub in err.validator_value
-                          if sub.get("required", [None])[0] == present[0])
-            missing = [key for key in branch if key not in inst]
-            if missing:
-                return f"missing required key '{missing[0]}' (with '{present[0]}')"
-        best = jsonschema.exceptions.best_match(err.context) if err.context else None
-        if best is not None:
-            return _schema_message(best)
-        return f"expected a valid value, found {_describe(inst)}"
-    if kind == "dependentRequired":
-        return "a 'book' answer needs a 'note' explaining the discrepancy"
-    if kind == "propertyNames":
-        return f"expected a name made of letters, digits and '_', found {inst!r}"
-    return err.message
-
-
-def _article(word: str) -> str:
-    words = {"object": "a mapping", "array": "a list", "string": "a string",
-             "number": "a number", "integer": "an integer", "boolean": "true or false",
-             "string or number": "a string or number", "string or integer": "a string"}
-    return words.get(word, word)
-
-
-def _describe(value) -> str:
-    if value is None:
-        return "nothing"
-    if isinstance(value, bool):
-        return str(value).lower()
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return f"a list of {len(value)}"
-    if isinstance(value, str):
-        return repr(value[:40])
-    return repr(value)
+def _unusable(problem: SchemaProblem) -> tuple:
+    """The path a schema problem makes unusable. An unknown or badly formed key spoils its
+    mapping (later uses of the name the author meant stay quiet); a missing or unknown
+    top-level field only itself."""
+    if problem.at_key and len(problem.path) > 1:
+        return problem.path[:-1]
+    if problem.missing and not problem.path:
+        return (problem.missing,)
+    return problem.path
 
 
 # ---------------------------------------------------------------------------- building
@@ -399,6 +301,7 @@ class _Builder:
                               self.where("id")),)
 
     def frame(self, name: str, spec: dict) -> Frame:
+        rotations: tuple[Rotation, ...]
         if "rotation" in spec:
             rotations = (self.rotation(spec["rotation"], "frames", name, "rotation"),)
         else:

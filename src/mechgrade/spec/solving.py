@@ -13,14 +13,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Mapping
+from typing import Any, Callable, Mapping
 
 from ..errors import SpecError, UnitError
 from ..expressions.syntax import Name, Node, Num, Prime, fold, to_text, walk
 from ..units import from_si, registry, si_unit
 from .model import TIME, Branch, Coordinate, Definition, Expr, Given, Parameter, Root
 
-_FUNCTIONS = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
+_FUNCTIONS: dict[str, Callable[[float], float]] = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
               "asin": math.asin, "acos": math.acos, "atan": math.atan, "abs": abs,
               "exp": math.exp, "log": math.log}
 
@@ -32,7 +32,7 @@ def expand(node: Node, definitions: Mapping[str, Node]) -> Node:
     if isinstance(node, Name):
         return definitions.get(node.id, node)
     fields = getattr(node, "__dataclass_fields__", {})
-    changes = {}
+    changes: dict[str, Any] = {}
     for name in fields:
         value = getattr(node, name)
         if isinstance(value, tuple) and value and all(hasattr(v, "__dataclass_fields__")
@@ -131,6 +131,7 @@ def resolve_given_values(givens: tuple[Given, ...], coordinates, parameters) -> 
     while pending:
         progress = False
         for key, g in list(pending.items()):
+            assert g.value_expr is not None  # a NaN value stands for an expression
             node = g.value_expr.node
             needed = {to_text(n) for n in walk(node) if isinstance(n, (Name, Prime))
                       and not (isinstance(n, Name) and n.id == "pi")}

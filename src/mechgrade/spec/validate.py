@@ -8,7 +8,6 @@ to load is left out, so one mistake gives one message. Nothing here solves anyth
 
 from __future__ import annotations
 
-import difflib
 import math
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -16,6 +15,7 @@ from dataclasses import dataclass
 from ..errors import ExpressionError, SpecError
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Num, Prime,
                                   Unary, constant_value, parse, to_text)
+from ..schema_errors import did_you_mean
 from ..units import (describe_dimension, dimension, dimensionless, normalize_unit, registry,
                      time_dimension)
 from .dynamics import argument_dimension, check_dynamics
@@ -39,21 +39,6 @@ def unknown_name(what: str, name: str, known, context: str = "") -> str:
     known = list(known)
     return (f"unknown {what} '{name}'{context}{did_you_mean(name, known)} (expected one of: "
             f"{', '.join(known) or 'none'})")
-
-
-def did_you_mean(name: str, known) -> str:
-    """``"; did you mean 'x'?"`` when ``known`` holds a name close to ``name``, else ``""``.
-
-    >>> did_you_mean("vell", ["vel", "acc"])
-    "; did you mean 'vel'?"
-    >>> did_you_mean("zzz", ["vel"])
-    ''
-    """
-    close = difflib.get_close_matches(str(name), sorted(set(known)), n=1, cutoff=0.6)
-    if not close:
-        return ""
-    quote = '"' if "'" in close[0] else "'"
-    return f"; did you mean {quote}{close[0]}{quote}?"
 
 
 def is_angle_unit(unit: str) -> bool:
