@@ -260,3 +260,17 @@ def test_names_defined_twice_point_at_the_key():
     assert errors_of(mutated("L: m", "L: m\n  theta: rad")) == [
         "base.yaml:10:3: coordinates.theta: 'theta' is both a coordinate and a parameter; "
         "expected distinct names"]
+
+
+def test_the_sign_of_a_quantity_is_a_pure_number_as_in_student_answers():
+    problem = load_problem_text(mutated("find: speed(P, N)", "find: speed(P, N)*sign(L)"),
+                                "p.yaml")
+    assert problem.objectives[0].find.text == "speed(P, N)*sign(L)"
+
+
+def test_objective_kinds_are_typed_and_read_as_their_text():
+    from mechgrade.spec.model import ObjectiveKind
+
+    objective = load_problem_text(BASE, "p.yaml").objectives[0]
+    assert objective.kind is ObjectiveKind.SCALAR
+    assert objective.kind == "scalar" and f"{objective.kind}" == "scalar"

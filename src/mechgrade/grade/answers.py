@@ -33,6 +33,7 @@ from ..expressions import syntax
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Prime, Unary
 from ..expressions.excerpt import excerpt
 from ..solve.result import ObjectiveResult
+from ..spec.model import ObjectiveKind
 from ..units import MAX_UNIT_LENGTH, dimension, normalize_unit
 
 MAX_ANSWER_LENGTH = 2000
@@ -265,7 +266,7 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
     text = clean(text)
     if not text:
         raise AnswerError("expected an answer, found nothing")
-    if result.kind == "symbolic":
+    if result.kind == ObjectiveKind.SYMBOLIC:
         return read_expression(text, result.symbols)
     text = _ASSIGNMENT.sub("", text, count=1)
     signs = _DOUBLE_SIGN.search(text)
@@ -307,7 +308,7 @@ def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:
     clockwise = sense.startswith("cl") or sense == "cw"
     value = -number.value if clockwise else number.value
     shown = ("-" if clockwise else "") + number.text
-    if result.kind == "vector":
+    if result.kind == ObjectiveKind.VECTOR:
         return VectorAnswer((0.0, 0.0, value), number.unit, None,
                             ((None, None), (None, None), (number.sig_figs, number.sig_figs_max)),
                             ("0", "0", shown))
