@@ -76,3 +76,14 @@ def test_vector_arithmetic_keeps_the_kind():
     assert typed("L*N.x - 0").kind == Kind.VECTOR
     assert typed("0*N.x").kind == Kind.ZERO
     assert typed("L*N.x/t") == Type(Kind.VECTOR, dimension("m/s"))
+
+
+def test_a_located_dimension_error_keeps_both_wordings():
+    from mechgrade.errors import Location
+
+    with pytest.raises(DimensionError) as info:
+        typed("L - t")
+    located = info.value.located(Location("p.yaml", 3, 4, "find"))
+    assert str(located) == "p.yaml:3:4: find: cannot add a length ([length]) and a time " \
+        "([time]) in 'L-t'"
+    assert located.student == "subtracts a length ([length]) and a time ([time])"

@@ -26,7 +26,7 @@ from functools import lru_cache
 from operator import attrgetter
 from typing import Callable
 
-from ..errors import ExpressionError
+from ..errors import ExpressionError, Location
 from ..units import describe_dimension, dimension, dimensionless
 
 try:
@@ -62,9 +62,14 @@ class DimensionError(ExpressionError):
     completes "Your expression ..." in a student's feedback.
     """
 
-    def __init__(self, message: str, student: str | None = None):
-        super().__init__(message)
+    def __init__(self, message: str, student: str | None = None, **where):
+        super().__init__(message, **where)
         self.student = student or message
+
+    def located(self, where: Location) -> "DimensionError":
+        err = super().located(where)
+        err.student = self.student
+        return err
 
 
 # ---------------------------------------------------------------------------- dimension rules

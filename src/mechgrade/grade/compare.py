@@ -429,7 +429,7 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
         figures = [f for f, v in zip(answer.sig_figs, answer.components) if v != 0]
         return _finish_correct(units, figures, policy, read_back, "")
     close = _close(max(rel, 1e-3), abs_)
-    found = diagnose(student, reference, close, kind="vector",
+    found = diagnose(student, reference, close, kind=ObjectiveKind.VECTOR,
                      mistakes=_numeric_mistakes(result, scalar=False),
                      generated=_numeric_mistakes(result, scalar=False, generated=True),
                      plausible=result.plausible)
@@ -575,7 +575,7 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     # such as 9.81 for g (1%), unlike the equivalence test itself.
     loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
     generated = [(g, _mistake_values(g, result, env)) for g in result.generated_mistakes]
-    found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes,
+    found = diagnose(student, reference, loose, kind=ObjectiveKind.SYMBOLIC, mistakes=mistakes,
                      generated=generated, plausible=result.plausible)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
