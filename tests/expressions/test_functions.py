@@ -12,7 +12,7 @@ import pytest
 import sympy as sp
 
 from mechgrade.errors import ExpressionError
-from mechgrade.expressions.functions import (ALIASES, CONSTANT_FUNCTIONS, MATH_FUNCTIONS,
+from mechgrade.expressions.functions import (ALIASES, CONSTANT_FUNCTIONS, MATH_FUNCTIONS, Kind,
                                              OBJECTIVE_FUNCTIONS, TABLE, numpy_functions,
                                              sympy_functions)
 from mechgrade.expressions.syntax import Call, Name, parse
@@ -86,3 +86,10 @@ def test_reading_an_expression_imports_neither_sympy_nor_numpy():
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                           timeout=60, check=True)
     assert done.stdout.strip() == "[]"
+
+
+def test_the_origin_a_function_needs_belongs_to_one_of_its_frame_arguments():
+    needing = {f.name: f.args[f.origin_of] for f in OBJECTIVE_FUNCTIONS.values()
+               if f.origin_of is not None}
+    assert set(needing.values()) == {Kind.FRAME}
+    assert {"vel", "acc", "coincident", "ic"} <= set(needing)

@@ -189,13 +189,18 @@ def _pure_number(dims: tuple):
 class ObjectiveFunction:
     """A function of points, frames, vectors, bodies or loads: argument kinds, result kind,
     the rule giving the result's dimension from the arguments', and a description. Its
-    implementation is :mod:`mechgrade.mechanics`'s function of the same name."""
+    implementation is :mod:`mechgrade.mechanics`'s function of the same name.
+
+    ``origin_of`` is the position of the frame argument whose origin (a point fixed in it) the
+    function needs, if any: velocities are taken relative to it.
+    """
 
     name: str
     args: tuple[Kind, ...]
     result: Kind
     dim: Callable[[tuple], object]
     doc: str
+    origin_of: int | None = None
 
 
 _P, _F, _V, _S = Kind.POINT, Kind.FRAME, Kind.VECTOR, Kind.SCALAR
@@ -205,9 +210,9 @@ _OBJECTIVE = (
     ObjectiveFunction("pos", (_P, _P), _V, _fixed("m"),
                       "pos(P, Q): position of point P relative to point Q"),
     ObjectiveFunction("vel", (_P, _F), _V, _fixed("m/s"),
-                      "vel(P, F): velocity of P as seen in frame F"),
+                      "vel(P, F): velocity of P as seen in frame F", origin_of=1),
     ObjectiveFunction("acc", (_P, _F), _V, _fixed("m/s^2"),
-                      "acc(P, F): acceleration of P as seen in frame F"),
+                      "acc(P, F): acceleration of P as seen in frame F", origin_of=1),
     ObjectiveFunction("angvel", (_F, _F), _V, _fixed("1/s"),
                       "angvel(A, F): angular velocity of frame A in frame F"),
     ObjectiveFunction("angacc", (_F, _F), _V, _fixed("1/s^2"),
@@ -221,22 +226,23 @@ _OBJECTIVE = (
                       "cross(u, v): cross product"),
     ObjectiveFunction("unit", (_V,), _V, _pure_number, "unit(v): unit vector along v"),
     ObjectiveFunction("speed", (_P, _F), _S, _fixed("m/s"),
-                      "speed(P, F): speed (s-dot) of P in F"),
+                      "speed(P, F): speed (s-dot) of P in F", origin_of=1),
     ObjectiveFunction("acc_t", (_P, _F), _S, _fixed("m/s^2"),
-                      "acc_t(P, F): tangential acceleration (s-double-dot) of P in F"),
+                      "acc_t(P, F): tangential acceleration (s-double-dot) of P in F", origin_of=1),
     ObjectiveFunction("acc_n", (_P, _F), _S, _fixed("m/s^2"),
-                      "acc_n(P, F): normal acceleration s-dot^2/rho of P in F"),
+                      "acc_n(P, F): normal acceleration s-dot^2/rho of P in F", origin_of=1),
     ObjectiveFunction("rho", (_P, _F), _S, _fixed("m"),
-                      "rho(P, F): radius of curvature of P's path in F"),
+                      "rho(P, F): radius of curvature of P's path in F", origin_of=1),
     ObjectiveFunction("tangent", (_P, _F), _V, _pure_number,
-                      "tangent(P, F): unit tangent of P's path in F"),
+                      "tangent(P, F): unit tangent of P's path in F", origin_of=1),
     ObjectiveFunction("normal", (_P, _F), _V, _pure_number,
-                      "normal(P, F): unit normal of P's path in F, toward the centre of curvature"),
+                      "normal(P, F): unit normal of P's path in F, toward the centre of "
+                      "curvature", origin_of=1),
     ObjectiveFunction("coincident", (_P, _F), _P, _fixed("m"),
-                      "coincident(P, A): the point fixed in frame A that is at P now"),
+                      "coincident(P, A): the point fixed in frame A that is at P now", origin_of=1),
     ObjectiveFunction("ic", (_F, _F), _P, _fixed("m"),
                       "ic(A, F): instantaneous centre of zero velocity of body A in F "
-                      "(usable inside pos)"),
+                      "(usable inside pos)", origin_of=0),
     # dynamics (see spec/dynamics.py): loads, momenta and energies of bodies
     ObjectiveFunction("force", (_L,), _V, _fixed("N"),
                       "force(R): the force of a load (a reaction, friction, spring, applied "

@@ -491,14 +491,10 @@ class _Checker:
         return t.dim
 
     def _needs_origin(self, node: Call) -> None:
-        frame_arg = None
-        if node.func in ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent", "normal"):
-            frame_arg = node.args[1]
-        elif node.func in ("coincident", "ic"):
-            frame_arg = node.args[1] if node.func == "coincident" else node.args[0]
-        if frame_arg is None:
+        index = FUNCTIONS[node.func].origin_of
+        if index is None:
             return
-        frame = self.frames.get(getattr(frame_arg, "id", None))
+        frame = self.frames.get(getattr(node.args[index], "id", None))
         if frame is None:
             return
         if frame.name != self.p.inertial_frame and frame.origin is None:
