@@ -96,10 +96,9 @@ def test_derivation_lists_the_write_up_sections():
 
 
 def test_every_function_of_the_objective_language_is_implemented():
+    from mechgrade.expressions.functions import OBJECTIVE_FUNCTIONS, Kind
     from mechgrade.mechanics.dynamics import DynamicsInterpreter
-    from mechgrade.spec.language import FUNCTIONS
 
-    implemented = {name[len("_fn_"):] for name in dir(DynamicsInterpreter)
-                   if name.startswith("_fn_")}
-    points = {"coincident", "ic"}  # point-valued: read by vel/acc/pos, not called directly
-    assert implemented == set(FUNCTIONS) - points
+    # point-valued functions (coincident, ic) are read by vel/acc/pos, not called directly
+    valued = {name for name, f in OBJECTIVE_FUNCTIONS.items() if f.result != Kind.POINT}
+    assert set(DynamicsInterpreter.functions) == valued

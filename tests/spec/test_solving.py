@@ -40,7 +40,8 @@ def test_unknown_branch_and_define_are_read():
      "p.yaml:17:11: givens.theta': the givens theta', v are defined in terms of each other; "
      "expected a value for at least one"),
     (with_rate("atan2(v, L)"), "p.yaml:17:11: givens.theta': expected arithmetic of givens and "
-                               "abs, acos, asin, atan, cos, exp, log, sin, sqrt, tan in a "
+                               "abs, acos, asin, atan, cos, cosh, exp, log, sin, sinh, sqrt, tan, "
+                               "tanh in a "
                                "given's value, found atan2()"),
     (with_rate("3 rad/s", "") .replace("  v: 8 m/s\n", "  v: 8 m/s\n  dot(vel(P, N), A.y): v\n"),
      "p.yaml:19:24: givens.dot(vel(P, N), A.y): expected a number with a unit for a given "

@@ -269,3 +269,17 @@ def test_a_badly_formed_name_spoils_its_section_without_cascade():
     assert errors_of(mutated("  P: {from: O", "  2P: {from: O")) == [
         "base.yaml:8:3: points.2P: expected a name made of letters, digits and '_', starting "
         "with a letter, found '2P'"]
+
+
+def test_the_sign_of_a_quantity_is_a_pure_number_as_in_student_answers():
+    problem = load_problem_text(mutated("find: speed(P, N)", "find: speed(P, N)*sign(L)"),
+                                "p.yaml")
+    assert problem.objectives[0].find.text == "speed(P, N)*sign(L)"
+
+
+def test_objective_kinds_are_typed_and_read_as_their_text():
+    from mechgrade.spec.model import ObjectiveKind
+
+    objective = load_problem_text(BASE, "p.yaml").objectives[0]
+    assert objective.kind is ObjectiveKind.SCALAR
+    assert objective.kind == "scalar" and f"{objective.kind}" == "scalar"

@@ -27,7 +27,7 @@ from ..solve import solve
 from ..solve.mutants import inside_tolerance, separating_rel
 from ..solve.result import ObjectiveResult
 from ..spec import load_problem
-from ..spec.model import Expect, Objective, Problem
+from ..spec.model import Expect, Objective, ObjectiveKind, Problem
 from ..tolerance import agree_at_points, within
 from ..units import from_si, to_si
 
@@ -230,12 +230,12 @@ def check_paths(paths) -> tuple[CheckReport, ...]:
 def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutcome:
     """Compare the solver's ``result`` with the objective's ``expect:``, to the digits written."""
     e: Expect = objective.expect
-    if objective.kind == "symbolic":
+    if objective.kind == ObjectiveKind.SYMBOLIC:
         same = equivalent(result.expr, e.expr, result.symbols, result.symbol_signed)
         message = (f"{result.expr} {'==' if same else '!='} expected {e.expr}")
         return ExpectOutcome(objective.id, same, message, e.note, e.book)
     unit = objective.unit
-    if objective.kind == "scalar":
+    if objective.kind == ObjectiveKind.SCALAR:
         written = e.written if isinstance(e.written, str) else repr(e.value)
         expected = _convert(e.value, e.unit, unit)
         limit = (_convert(written_tolerance(written), e.unit, unit) if float(written) != 0

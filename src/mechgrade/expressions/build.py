@@ -14,17 +14,8 @@ from typing import Callable
 import sympy
 
 from ..errors import ExpressionError
-from .syntax import MATH_FUNCTIONS, Name, Node, Num, fold, to_text
-
-SYMPY_FUNCTIONS: dict[str, Callable] = {
-    "sin": sympy.sin, "cos": sympy.cos, "tan": sympy.tan, "cot": sympy.cot,
-    "sec": sympy.sec, "csc": sympy.csc, "asin": sympy.asin, "acos": sympy.acos,
-    "atan": sympy.atan, "atan2": sympy.atan2, "sinh": sympy.sinh, "cosh": sympy.cosh,
-    "tanh": sympy.tanh, "sqrt": sympy.sqrt, "exp": sympy.exp, "log": sympy.log,
-    "abs": sympy.Abs, "sign": sympy.sign,
-}
-assert {canonical for canonical, _ in MATH_FUNCTIONS.values()} == set(SYMPY_FUNCTIONS)
-
+from .functions import sympy_functions
+from .syntax import Name, Node, Num, fold, to_text
 
 def number(node: Num) -> sympy.Expr:
     """A literal as sympy: integers exact, decimals as floats.
@@ -57,8 +48,9 @@ def to_sympy(node: Node, resolve: Callable[[Node], object],
             raise ExpressionError(f"expected a known name, found '{to_text(n)}'") from None
 
     def function(func: str, args: tuple):
-        if func in SYMPY_FUNCTIONS:
-            return SYMPY_FUNCTIONS[func](*(to_sympy(a, resolve, call) for a in args))
+        implementation = sympy_functions().get(func)
+        if implementation is not None:
+            return implementation(*(to_sympy(a, resolve, call) for a in args))
         if call is None:
             raise ExpressionError(f"expected a math function, found '{func}(...)'")
         return call(func, args)

@@ -9,23 +9,14 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from typing import Any, Callable
 
 import numpy as np
 
 from ..errors import ExpressionError
 from . import syntax
 from .excerpt import excerpt
+from .functions import numpy_functions
 from .syntax import Name, Node
-
-NUMPY_FUNCTIONS: dict[str, Callable[..., Any]] = {
-    "sin": np.sin, "cos": np.cos, "tan": np.tan, "cot": lambda a: 1 / np.tan(a),
-    "sec": lambda a: 1 / np.cos(a), "csc": lambda a: 1 / np.sin(a), "asin": np.arcsin,
-    "acos": np.arccos, "atan": np.arctan, "atan2": np.arctan2, "sinh": np.sinh,
-    "cosh": np.cosh, "tanh": np.tanh, "sqrt": np.sqrt, "exp": np.exp, "log": np.log,
-    "abs": np.abs, "sign": np.sign,
-}
-
 
 def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
     """Values of a checked tree at sample points (NaN where undefined); never calls sympy.
@@ -57,7 +48,7 @@ def _eval(node: Node, env: dict[str, np.ndarray]):
                               f"{excerpt(syntax.to_text(n))}")
 
     def function(func: str, args: tuple):
-        return NUMPY_FUNCTIONS[func](*(np.asarray(_eval(a, env), dtype=float) for a in args))
+        return numpy_functions()[func](*(np.asarray(_eval(a, env), dtype=float) for a in args))
 
     # numpy division and powers: inf or nan where Python would raise or go complex
     return syntax.fold(node, number=lambda n: float(n.text), resolve=leaf, call=function,

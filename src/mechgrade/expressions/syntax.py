@@ -25,9 +25,10 @@ import re
 import tokenize
 import unicodedata
 from dataclasses import dataclass
-from typing import Callable, Iterable, Union
+from typing import Iterable, Union
 
 from ..errors import ExpressionError
+from . import functions
 from .excerpt import excerpt
 
 MAX_LENGTH = 2000
@@ -38,17 +39,10 @@ MAX_POWER = 64
 MAX_MAGNITUDE = 1e150
 TOO_MANY_PARTS = f"expected an expression of at most {MAX_NODES} parts"
 
-# Fixed table of scalar math functions: name -> (canonical name, arity).
+# Every spelling of a math function -> (canonical name, arity): a view of the one table.
 MATH_FUNCTIONS: dict[str, tuple[str, int]] = {
-    "sin": ("sin", 1), "cos": ("cos", 1), "tan": ("tan", 1),
-    "cot": ("cot", 1), "sec": ("sec", 1), "csc": ("csc", 1),
-    "asin": ("asin", 1), "acos": ("acos", 1), "atan": ("atan", 1),
-    "arcsin": ("asin", 1), "arccos": ("acos", 1), "arctan": ("atan", 1),
-    "atan2": ("atan2", 2), "arctan2": ("atan2", 2),
-    "sinh": ("sinh", 1), "cosh": ("cosh", 1), "tanh": ("tanh", 1),
-    "sqrt": ("sqrt", 1), "exp": ("exp", 1), "log": ("log", 1), "ln": ("log", 1),
-    "abs": ("abs", 1), "Abs": ("abs", 1), "sign": ("sign", 1),
-}
+    written: (f.name, f.arity) for f in functions.MATH_FUNCTIONS.values()
+    for written in (f.name, *f.aliases)}
 
 GREEK = {
     "α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "ε": "epsilon", "ϵ": "epsilon",
@@ -473,12 +467,6 @@ class _NotConstant(Exception):
     pass
 
 
-_CONST_FUNCS: dict[str, Callable[[float], float]] = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
-                "exp": math.exp, "log": math.log, "abs": abs, "asin": math.asin,
-                "acos": math.acos, "atan": math.atan, "sinh": math.sinh, "cosh": math.cosh,
-                "tanh": math.tanh}
-
-
 def _const_power(a: float, b: float) -> float:
     if abs(b) > MAX_POWER:
         raise OverflowError
@@ -495,9 +483,9 @@ def _const_name(node: Node) -> float:
 
 
 def _const_call(func: str, args: tuple) -> float:
-    if func not in _CONST_FUNCS or len(args) != 1:
+    if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1:
         raise _NotConstant
-    return _CONST_FUNCS[func](_const(args[0]))
+    return functions.CONSTANT_FUNCTIONS[func](_const(args[0]))
 
 
 def _const(node: Node) -> float:

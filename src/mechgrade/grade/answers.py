@@ -33,6 +33,7 @@ from ..expressions import syntax
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Prime, Unary
 from ..expressions.excerpt import excerpt
 from ..solve.result import ObjectiveResult
+from ..spec.model import ObjectiveKind
 from ..units import MAX_UNIT_LENGTH, dimension, normalize_unit
 
 MAX_ANSWER_LENGTH = 2000
@@ -268,7 +269,7 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
     # a leading label is ignored: 'a = 9.8 m/s^2', and an equation of motion written as one,
     # "theta'' = -3 g sin(theta)/(2 L)"
     text = _ASSIGNMENT.sub("", text, count=1)
-    if result.kind == "symbolic":
+    if result.kind == ObjectiveKind.SYMBOLIC:
         return read_expression(text, result.symbols)
     signs = _DOUBLE_SIGN.search(text)
     if signs:
@@ -316,7 +317,7 @@ def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:
     clockwise = sense.startswith("cl") or sense == "cw"
     value = -number.value if clockwise else number.value
     shown = ("-" if clockwise else "") + number.text
-    if result.kind == "vector":
+    if result.kind == ObjectiveKind.VECTOR:
         return VectorAnswer((0.0, 0.0, value), number.unit, None,
                             ((None, None), (None, None), (number.sig_figs, number.sig_figs_max)),
                             ("0", "0", shown))

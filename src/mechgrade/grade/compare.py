@@ -24,10 +24,12 @@ import numpy as np
 
 from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeError
 from ..expressions import syntax
+from ..expressions.dimensions import DimensionError, Kind, Type, infer
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
-from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary
+from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
 from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
+from ..spec.model import ObjectiveKind
 from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
@@ -161,11 +163,11 @@ def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy())
 
 
 def _judge(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
-    if result.kind == "symbolic":
+    if result.kind == ObjectiveKind.SYMBOLIC:
         return _judge_expression(answer, result, policy)
     if result.value is None:
         return not_evaluated("the reference answer is not available", answer.read_back())
-    if result.kind == "vector":
+    if result.kind == ObjectiveKind.VECTOR:
         return _judge_vector(answer, result, policy)
     return _judge_number(answer, result, policy)
 
@@ -427,7 +429,7 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
         figures = [f for f, v in zip(answer.sig_figs, answer.components) if v != 0]
         return _finish_correct(units, figures, policy, read_back, "")
     close = _close(max(rel, 1e-3), abs_)
-    found = diagnose(student, reference, close, kind="vector",
+    found = diagnose(student, reference, close, kind=ObjectiveKind.VECTOR,
                      mistakes=_numeric_mistakes(result, scalar=False),
                      generated=_numeric_mistakes(result, scalar=False, generated=True),
                      plausible=result.plausible)
@@ -602,7 +604,7 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     # such as 9.81 for g (1%), unlike the equivalence test itself.
     loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
     generated = [(g, _mistake_values(g, result, env)) for g in result.generated_mistakes]
-    found = diagnose(student, reference, loose, kind="symbolic", mistakes=mistakes,
+    found = diagnose(student, reference, loose, kind=ObjectiveKind.SYMBOLIC, mistakes=mistakes,
                      generated=generated, plausible=result.plausible)
     if found is None:
         found = _number_for_g(answer.node, reference_node, result, env, student, loose)
@@ -676,7 +678,8 @@ class DimensionMismatch(Exception):
 
 
 def expression_dimension(node: Node, units: dict[str, str]):
-    """The dimension of an expression whose names have the given units.
+    """The dimension of an expression whose names have the given units (the rules of
+    :func:`mechgrade.expressions.dimensions.infer`, worded for the student).
 
     >>> str(expression_dimension(syntax.parse("L*thetad^2"), {"L": "m", "thetad": "rad/s"}))
     '[length] / [time] ** 2'
@@ -685,49 +688,14 @@ def expression_dimension(node: Node, units: dict[str, str]):
     ...
     mechgrade.grade.compare.DimensionMismatch: adds a length ([length]) to an angular velocity or rate (1 / [time])
     """
-    none = dimension("")
-    if isinstance(node, Num):
-        return none
-    if isinstance(node, Name):
-        if node.id in ("pi", "E"):
-            return none
-        return dimension(units.get(node.id, ""))
-    if isinstance(node, Unary):
-        return expression_dimension(node.operand, units)
-    if isinstance(node, Bin):
-        left = expression_dimension(node.left, units)
-        if node.op == "**":
-            exponent = syntax.constant_value(node.right)
-            if exponent is None:
-                right = expression_dimension(node.right, units)
-                if left != none or right != none:
-                    raise DimensionMismatch("raises a quantity with units to a variable power")
-                return none
-            return left ** exponent if left != none else none
-        right = expression_dimension(node.right, units)
-        if node.op in "+-":
-            if left != right:
-                verb = "adds" if node.op == "+" else "subtracts"
-                raise DimensionMismatch(f"{verb} {describe_dimension(left)} "
-                                        f"{'to' if node.op == '+' else 'and'} "
-                                        f"{describe_dimension(right)}")
-            return left
-        return left * right if node.op == "*" else left / right
-    if isinstance(node, Call):
-        dims = [expression_dimension(a, units) for a in node.args]
-        if node.func == "sqrt":
-            return dims[0] ** 0.5
-        if node.func in ("abs", "sign"):
-            return dims[0] if node.func == "abs" else none
-        if node.func == "atan2":
-            if dims[0] != dims[1]:
-                raise DimensionMismatch("compares quantities of different dimensions in atan2")
-            return none
-        if any(d != none for d in dims):
-            raise DimensionMismatch(f"takes {node.func} of "
-                                    f"{describe_dimension(dims[0])}, which needs a pure number")
-        return none
-    return none
+    def leaf(leaf: Node) -> Type:  # Euler's E, and anything not a symbol: a pure number
+        named = isinstance(leaf, Name) and leaf.id != "E"
+        return Type(Kind.SCALAR, dimension(units.get(leaf.id, "") if named else ""))
+
+    try:
+        return infer(node, leaf).dim
+    except DimensionError as exc:
+        raise DimensionMismatch(exc.student) from None
 
 
 def _dimension_diagnosis(node: Node, result: ObjectiveResult) -> Diagnosis | None:

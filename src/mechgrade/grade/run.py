@@ -29,7 +29,7 @@ from ..errors import AssignmentError, InconsistentError, MechgradeError, brief_e
 from ..parallel import Forked, fork_map, outcome, raise_first
 from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
-from ..spec.model import Objective, Problem
+from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
 from .results import AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo, StudentResult
 from .submissions import Submission, SubmissionSet, read_submissions
@@ -611,7 +611,7 @@ def given_key_of(objective: Objective) -> str | None:
     >>> given_key_of(ob("x'")), given_key_of(ob("mag(vel(A, N))")), given_key_of(ob("x", "vector"))
     ("x'", None, None)
     """
-    if objective.kind != "scalar":
+    if objective.kind != ObjectiveKind.SCALAR:
         return None
     node = objective.find.node
     if isinstance(node, Name):
@@ -679,7 +679,7 @@ def expected_text(result: ObjectiveResult) -> str:
     """
     unit = result.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
     suffix = f" {unit}" if unit else ""
-    if result.kind == "symbolic" or result.value is None:
+    if result.kind == ObjectiveKind.SYMBOLIC or result.value is None:
         return f"{result.expr}{suffix}" if result.expr else "(no reference)"
     if isinstance(result.value, tuple):
         parts = ", ".join(_number(v) for v in result.value)

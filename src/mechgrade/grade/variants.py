@@ -29,7 +29,7 @@ from ..expressions.syntax import to_text
 from ..solve import Solution, solve
 from ..solve.plan import plan as solver_plan
 from ..solve.result import ObjectiveResult
-from ..spec.model import Problem
+from ..spec.model import ObjectiveKind, Problem
 from ..spec.solving import resolve_given_values
 from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, SteppedRange
 from ..tolerance import within
@@ -401,10 +401,10 @@ def answer_si(text: str, reference: ObjectiveResult):
 
     try:
         answer = read_answer(text, reference)
-        if isinstance(answer, NumberAnswer) and reference.kind == "scalar":
+        if isinstance(answer, NumberAnswer) and reference.kind == ObjectiveKind.SCALAR:
             return to_si(answer.value, answer.unit if answer.unit is not None
                          else reference.unit)
-        if isinstance(answer, VectorAnswer) and reference.kind == "vector" \
+        if isinstance(answer, VectorAnswer) and reference.kind == ObjectiveKind.VECTOR \
                 and answer.frame in (None, reference.frame):
             unit = answer.unit if answer.unit is not None else reference.unit
             return tuple(to_si(c, unit) for c in answer.components)

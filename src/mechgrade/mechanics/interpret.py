@@ -2,11 +2,17 @@
 accelerations of points (named, ``coincident(P, A)``, ``ic(A, F)``), angular velocities, and the
 vector functions of the objective language, each an ``_fn_<name>`` method.
 
+An interpreter's :attr:`~Interpreter.functions` maps each function name of the language's table
+(:mod:`mechgrade.expressions.functions`) to its implementation; adding a function is one table
+entry and one ``_fn_<name>`` method.
+
 Velocities and accelerations come from explicit time derivatives of positions in the frame
 asked for (never from ``Point.vel``'s path search).
 """
 
 from __future__ import annotations
+
+from typing import Callable
 
 from sympy.physics.vector import ReferenceFrame, Vector
 
@@ -25,6 +31,13 @@ class Interpreter:
     ``requirements`` collects ``(reason, expr)``: conditions an expression read since the last
     ``clear`` needs at the instant (an instantaneous centre needs planar motion).
     """
+
+    functions: dict[str, Callable] = {}
+    """Objective function name -> the method computing its value (set per class)."""
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        cls.functions = implementations(cls)
 
     def __init__(self, problem: Problem, symbols: Symbols, frames: dict[str, ReferenceFrame],
                  positions: dict[str, Vector]):
@@ -67,7 +80,7 @@ class Interpreter:
         return getattr(self.frames[node.base], node.attr)
 
     def _call(self, func: str, args: tuple):
-        return getattr(self, "_fn_" + func)(*args)
+        return self.functions[func](self, *args)
 
     def frame(self, node: Node) -> ReferenceFrame:
         return self.frames[node.id]
@@ -194,3 +207,16 @@ class Interpreter:
         if value == 0:
             return Vector(0)
         raise SpecError("expected a vector, found a scalar")  # pragma: no cover
+
+
+def implementations(interpreter: type) -> dict[str, Callable]:
+    """The objective functions a class implements, by name: its ``_fn_<name>`` methods.
+
+    >>> sorted(implementations(Interpreter))[:3]
+    ['acc', 'acc_n', 'acc_t']
+    """
+    return {name[len("_fn_"):]: getattr(interpreter, name) for name in dir(interpreter)
+            if name.startswith("_fn_")}
+
+
+Interpreter.functions = implementations(Interpreter)

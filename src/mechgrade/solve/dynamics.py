@@ -31,7 +31,7 @@ from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError
 from ..mechanics.dynamics import Kinetics, derive_kinetics
 from ..expressions.syntax import Name, Prime
 from ..mechanics.kinematics import locations
-from ..spec.model import Problem
+from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy
 from .events import energy_rate_symbolic, energy_state, integrate_to_event
@@ -100,7 +100,7 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     unknowns = [symbols[i] for i in columns]
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
-    numeric = {o.id for o in problem.objectives if o.kind != "symbolic"}
+    numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
     return KineticsPlan(
         kin=kin, kp=kp, symbols=symbols, columns=columns,
         residual=_lambdify(symbols, exprs), jacobian=_lambdify(symbols, exprs.jacobian(unknowns)),
@@ -239,7 +239,7 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
         if not chosen:
             continue
         given_map = instant_givens(problem, givens, overrides)
-        numeric = {o.id for o in chosen if o.kind != "symbolic"}
+        numeric = {o.id for o in chosen if o.kind != ObjectiveKind.SYMBOLIC}
         values, mistakes = {}, {}
         if numeric:
             try:

@@ -24,7 +24,7 @@ import sympy as sp
 from ..errors import AuthorWarning, MechgradeError, SolveError
 from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
-from ..spec.model import Objective, Problem
+from ..spec.model import Objective, ObjectiveKind, Problem
 from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
@@ -35,7 +35,7 @@ from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, S
 from .symbolic import symbolic
 
 def _numeric(objective: Objective) -> bool:
-    return objective.kind != "symbolic"
+    return objective.kind != ObjectiveKind.SYMBOLIC
 
 
 # ---------------------------------------------------------------------------- givens
@@ -162,7 +162,7 @@ def collect_results(problem: Problem, objectives, given_map: dict, values: dict,
         if obj.id in failures:
             continue
         try:
-            if obj.kind == "symbolic":
+            if obj.kind == ObjectiveKind.SYMBOLIC:
                 frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
                 results[obj.id] = symbolic(problem, obj.id, frozen)
             else:
@@ -233,7 +233,7 @@ def _report(si_values: np.ndarray, obj: Objective):
     if not np.isfinite(si_values).all():
         raise SolveError(f"objective '{obj.id}' is undefined at this instant (for example a "
                          "direction of motion when the speed is zero)", where=obj.where)
-    if obj.kind == "vector":
+    if obj.kind == ObjectiveKind.VECTOR:
         return tuple(float(from_si(v, obj.unit)) + 0.0 for v in si_values)
     return float(from_si(si_values[0], obj.unit)) + 0.0
 

@@ -31,7 +31,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..mechanics.mutations import VELOCITY_CODES, mutations
-from ..spec.model import Objective, Problem
+from ..spec.model import Objective, ObjectiveKind, Problem
 from ..tolerance import within
 from ..units import dimension, from_si, to_si
 from ..mechanics.symbols import identically_zero
@@ -227,7 +227,7 @@ def _same(a, b) -> bool:
 
 
 def _in_unit(si_values: np.ndarray, obj: Objective):
-    if obj.kind == "vector":
+    if obj.kind == ObjectiveKind.VECTOR:
         return tuple(float(from_si(v, obj.unit)) + 0.0 for v in si_values)
     return float(from_si(si_values[0], obj.unit)) + 0.0
 

@@ -21,7 +21,7 @@ import sympy as sp
 from ..errors import Location
 from ..mechanics import Kinematics, derive
 from ..mechanics.kinematics import locations
-from ..spec.model import Problem
+from ..spec.model import ObjectiveKind, Problem
 from .index import SymbolIndex
 
 LEVEL_NAMES = ("position", "velocity", "acceleration")
@@ -117,7 +117,7 @@ def _plan(problem: Problem, _locations: tuple) -> Plan:
         by_level[c.level].append(c)
     levels = tuple(_level(index, order, equations, by_level[order])
                    for order, equations in enumerate((k.position, k.velocity, k.acceleration)))
-    numeric = {o.id for o in problem.objectives if o.kind != "symbolic"}
+    numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
     positions = {s: i for i, s in enumerate(symbols)}
     points = sp.Matrix.hstack(*(r for _, r in k.points)) if k.points else sp.zeros(3, 0)
     return Plan(

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import Union
 
 from ..errors import AuthorWarning, MechgradeError
+from ..spec.model import ObjectiveKind
 
 Value = Union[float, tuple[float, float, float], None]
 
@@ -57,7 +58,7 @@ class ObjectiveResult:
     """
 
     id: str
-    kind: str
+    kind: ObjectiveKind
     unit: str
     value: Value = None
     frame: str | None = None
@@ -72,6 +73,9 @@ class ObjectiveResult:
     generated_mistakes: tuple[GeneratedMistake, ...] = ()
     plausible: frozenset[str] | None = None
     symbol_signs: tuple[int, ...] = ()
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kind", ObjectiveKind(self.kind))  # text from results.json
 
 
 @dataclass(frozen=True)

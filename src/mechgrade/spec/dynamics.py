@@ -19,6 +19,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import Location, SpecError, UnitError
+from ..expressions.functions import Kind
 from ..expressions.syntax import Name, Node, Prime, to_text, walk
 from ..units import dimension, dimensionless, parse_quantity, to_si
 from .model import Expr
@@ -541,7 +542,7 @@ def check_dynamics(problem, checker) -> None:  # noqa: C901 - one check per sect
 
     def typed(e: Expr, kind: str, unit: str, what: str):
         t = checker.type_of(e)
-        if t.kind == "zero":
+        if t.kind == Kind.ZERO:
             return
         if t.kind != kind:
             raise SpecError(f"expected {what}, found a {t.kind} ('{e.text}')", where=e.where)
@@ -648,7 +649,7 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
             directions = (c.direction,) if isinstance(c, Restitution) else c.directions
             for d in directions:
                 t = checker.type_of(d)
-                if t.kind != "vector" or t.dim != dimensionless():
+                if t.kind != Kind.VECTOR or t.dim != dimensionless():
                     raise SpecError(f"expected a direction (a vector without units, e.g. N.y), "
                                     f"found '{d.text}'", where=c.where)
             if isinstance(c, Restitution) and checker.type_of(c.e).dim != dimensionless():

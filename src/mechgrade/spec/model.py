@@ -14,6 +14,7 @@ from enum import Enum
 from typing import TYPE_CHECKING
 
 from ..errors import AuthorWarning, Location
+from ..expressions.functions import StrEnum
 from ..expressions.syntax import Node
 from .variant_model import Variants
 
@@ -187,6 +188,21 @@ class Expect:
     written: str | tuple[str, ...] | None = None
 
 
+class ObjectiveKind(StrEnum):
+    """What an objective's answer is: a number, components in a frame, or an expression in
+    the objective's symbols. Members equal their text (``ObjectiveKind.SCALAR == "scalar"``)
+    and serialise as it.
+
+    >>> import json
+    >>> ObjectiveKind("vector"), json.dumps(ObjectiveKind.VECTOR), f"{ObjectiveKind.SYMBOLIC}"
+    (<ObjectiveKind.VECTOR: 'vector'>, '"vector"', 'symbolic')
+    """
+
+    SCALAR = "scalar"
+    VECTOR = "vector"
+    SYMBOLIC = "symbolic"
+
+
 @dataclass(frozen=True)
 class Mistake:
     """An author-declared typical mistake: the mistaken model's expression, a message for the
@@ -210,7 +226,7 @@ class Objective:
     id: str
     prompt: str
     find: Expr
-    kind: str
+    kind: ObjectiveKind
     unit: str
     frame: str | None = None
     symbols: tuple[SymbolDecl, ...] = ()
@@ -222,6 +238,9 @@ class Objective:
     where: Location = field(default_factory=Location, compare=False)
     frame_where: Location = field(default_factory=Location, compare=False)
     depends_where: tuple[Location, ...] = field(default=(), compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kind", ObjectiveKind(self.kind))  # text from a file
 
 
 @dataclass(frozen=True)

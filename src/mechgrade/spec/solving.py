@@ -13,16 +13,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Any, Callable, Mapping
+from typing import Any, Mapping
 
 from ..errors import SpecError, UnitError
+from ..expressions.functions import CONSTANT_FUNCTIONS
 from ..expressions.syntax import Name, Node, Num, Prime, fold, to_text, walk
 from ..units import from_si, registry, si_unit
 from .model import TIME, Branch, Coordinate, Definition, Expr, Given, Parameter, Root
 
-_FUNCTIONS: dict[str, Callable[[float], float]] = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "sqrt": math.sqrt,
-              "asin": math.asin, "acos": math.acos, "atan": math.atan, "abs": abs,
-              "exp": math.exp, "log": math.log}
+_FUNCTIONS = CONSTANT_FUNCTIONS  # the one-argument functions a given's value may use
 
 
 def expand(node: Node, definitions: Mapping[str, Node]) -> Node:

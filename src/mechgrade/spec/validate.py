@@ -10,19 +10,18 @@ from __future__ import annotations
 
 import math
 from contextlib import contextmanager
-from dataclasses import dataclass
 
 from ..errors import ExpressionError, SpecError
-from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Num, Prime,
-                                  Unary, constant_value, parse, to_text)
+from ..expressions.dimensions import DimensionError, Kind, Type, infer
+from ..expressions.syntax import MATH_FUNCTIONS, Attr, Call, Name, Node, Prime, parse, to_text
 from ..schema_errors import did_you_mean
 from ..units import (describe_dimension, dimension, dimensionless, normalize_unit, registry,
                      time_dimension)
 from .dynamics import argument_dimension, check_dynamics
 from .language import FUNCTIONS
-from .model import TIME, Expr, Objective, Problem
+from .model import TIME, Expr, Objective, ObjectiveKind, Problem
 
-DYNAMICS_KINDS = ("body", "load", "body or spring", "coordinate")
+DYNAMICS_KINDS = (Kind.BODY, Kind.LOAD, Kind.BODY_OR_SPRING, Kind.COORDINATE)
 RESERVED = {TIME, "pi"} | set(MATH_FUNCTIONS) | set(FUNCTIONS)
 
 
@@ -64,14 +63,6 @@ def bare_angle_message(text: str) -> str:
     radians = math.radians(float(text))
     return (f"expected an angle with its unit, found the bare number {text}; write "
             f"`{text} deg` or `{radians:.3g} rad`")
-
-
-@dataclass(frozen=True)
-class Type:
-    """Kind (scalar, vector, point, frame or zero) and dimension of an expression."""
-
-    kind: str
-    dim: object = None
 
 
 def rate_symbol_names(problem: Problem) -> dict[str, tuple[str, int]]:
@@ -174,7 +165,7 @@ class _Checker:
                                     where=frame.origin_where)
             for rotation in frame.rotations:
                 with self.each():
-                    self.expect_type(rotation.angle, Type("scalar", dimensionless()), "an angle")
+                    self.expect_type(rotation.angle, Type(Kind.SCALAR, dimensionless()), "an angle")
         for frame in self.p.frames[1:] if parented else ():
             cycle = _cycle(frame.name, lambda f: self.frames[f].parent, inertial)
             if cycle:
@@ -194,7 +185,7 @@ class _Checker:
                     raise SpecError(unknown_name("point", point.origin, self.points,
                                                  " in 'from'"), where=point.origin_where)
             with self.each():
-                self.expect_type(point.position, Type("vector", dimension("m")),
+                self.expect_type(point.position, Type(Kind.VECTOR, dimension("m")),
                                  "a position vector (a length times unit vectors, e.g. L*A.x)")
         for point in self.p.points[1:] if chained else ():
             cycle = _cycle(point.name, lambda q: self.points[q].origin, self.p.inertial_point)
@@ -240,7 +231,7 @@ class _Checker:
     def check_given(self, given, seen: dict) -> None:
         node = given.key.node
         t = self.type_of(given.key)
-        if t.kind != "scalar":
+        if t.kind != Kind.SCALAR:
             raise SpecError(f"expected a scalar quantity as a given's name, found a "
                             f"{t.kind} ('{given.key.text}')", where=given.where)
         canonical = to_text(node)
@@ -291,7 +282,7 @@ class _Checker:
         t = None
         with self.each():
             found = self.type_of(obj.find)
-            want = "vector" if obj.kind == "vector" else "scalar"
+            want = Kind.VECTOR if obj.kind == ObjectiveKind.VECTOR else Kind.SCALAR
             if found.kind != want:
                 raise SpecError(f"expected a {want} expression for a {obj.kind} objective, "
                                 f"found a {found.kind} ('{obj.find.text}')",
@@ -300,7 +291,7 @@ class _Checker:
             self._dims_match(t.dim, dimension(obj.unit), obj.find.where,
                              f"objective '{obj.id}' (unit '{obj.unit}')")
         with self.each():
-            if obj.kind == "vector" and obj.frame is None:
+            if obj.kind == ObjectiveKind.VECTOR and obj.frame is None:
                 raise SpecError("a vector objective needs 'frame': the frame whose unit vectors "
                                 "its components are in", where=obj.where)
             if obj.frame is not None and obj.frame not in self.frames:
@@ -308,10 +299,10 @@ class _Checker:
                 raise SpecError(unknown_name("frame", obj.frame, self.frames),
                                 where=obj.frame_where)
         with self.each():
-            if obj.kind == "symbolic" and not obj.symbols:
+            if obj.kind == ObjectiveKind.SYMBOLIC and not obj.symbols:
                 raise SpecError("a symbolic objective needs 'symbols': the names its answer is "
                                 "written in", where=obj.where)
-            if obj.kind != "symbolic" and obj.symbols:
+            if obj.kind != ObjectiveKind.SYMBOLIC and obj.symbols:
                 raise SpecError("'symbols' belongs to symbolic objectives only", where=obj.where)
         for decl in obj.symbols:
             with self.each():
@@ -356,7 +347,8 @@ class _Checker:
 
     def check_expect(self, obj: Objective) -> None:
         e = obj.expect
-        shape = {"scalar": "value", "vector": "components", "symbolic": "expr"}[obj.kind]
+        shape = {ObjectiveKind.SCALAR: "value", ObjectiveKind.VECTOR: "components",
+                 ObjectiveKind.SYMBOLIC: "expr"}[obj.kind]
         given = "value" if e.value is not None else "components" if e.components else "expr"
         if given != shape:
             raise SpecError(f"expected 'expect.{shape}' for a {obj.kind} objective, found "
@@ -380,30 +372,31 @@ class _Checker:
 
     def expect_type(self, expr: Expr, want: Type, what: str) -> None:
         t = self.type_of(expr)
-        if t.kind != want.kind and t.kind != "zero":
+        if t.kind != want.kind and t.kind != Kind.ZERO:
             raise SpecError(f"expected {what}, found a {t.kind} ('{expr.text}')",
                             where=expr.where)
-        if t.kind != "zero":
+        if t.kind != Kind.ZERO:
             self._dims_match(t.dim, want.dim, expr.where, f"'{expr.text}'")
 
     def type_of(self, expr: Expr) -> Type:
         try:
-            return self._type(expr.node, inside_pos=False)
+            return self._type(expr.node)
         except SpecError as err:
             raise type(err)(err.message, where=expr.where) from None
+        except DimensionError as err:
+            raise SpecError(err.message, where=expr.where) from None
 
-    def _type(self, node: Node, inside_pos: bool) -> Type:
-        if isinstance(node, Num):
-            return Type("zero" if node.value == 0 else "scalar", dimensionless())
+    def _type(self, node: Node, inside_pos: bool = False) -> Type:
+        return infer(node, self._leaf, lambda call: self._call(call, inside_pos))
+
+    def _leaf(self, node: Node) -> Type:
         if isinstance(node, Name):
-            if node.id == "pi":
-                return Type("scalar", dimensionless())
             if node.id == TIME:
-                return Type("scalar", time_dimension())
+                return Type(Kind.SCALAR, time_dimension())
             if node.id in self.coords:
-                return Type("scalar", dimension(self.coords[node.id].unit))
+                return Type(Kind.SCALAR, dimension(self.coords[node.id].unit))
             if node.id in self.params:
-                return Type("scalar", dimension(self.params[node.id].unit))
+                return Type(Kind.SCALAR, dimension(self.params[node.id].unit))
             if node.id in self.points or node.id in self.frames:
                 what = "point" if node.id in self.points else "frame"
                 raise SpecError(f"'{node.id}' is a {what}; expected a scalar or vector here "
@@ -421,7 +414,7 @@ class _Checker:
                                 f"(coordinates: {', '.join(self.coords) or 'none'})")
             if node.order > 2:
                 raise SpecError("expected at most a second time derivative (q'')")
-            return Type("scalar", dimension(self.coords[node.id].unit)
+            return Type(Kind.SCALAR, dimension(self.coords[node.id].unit)
                         * time_dimension() ** -node.order)
         if isinstance(node, Attr):
             if node.base not in self.frames:
@@ -429,96 +422,26 @@ class _Checker:
                 raise SpecError(f"unknown frame '{node.base}' in '{node.base}.{node.attr}'"
                                 f"{did_you_mean(node.base, self.frames)} "
                                 f"(frames: {', '.join(self.frames)})")
-            return Type("vector", dimensionless())
-        if isinstance(node, Unary):
-            t = self._type(node.operand, inside_pos)
-            if t.kind not in ("scalar", "vector", "zero"):
-                raise SpecError(f"cannot negate a {t.kind}")
-            return t
-        if isinstance(node, Bin):
-            return self._binary(node, inside_pos)
-        if isinstance(node, Call):
-            return self._call(node, inside_pos)
+            return Type(Kind.VECTOR, dimensionless())
         raise SpecError(f"unexpected expression {node!r}")  # pragma: no cover
 
-    def _binary(self, node: Bin, inside_pos: bool) -> Type:
-        a = self._type(node.left, inside_pos)
-        b = self._type(node.right, inside_pos)
-        for t in (a, b):
-            if t.kind in ("point", "frame"):
-                raise SpecError(f"a {t.kind} cannot take part in arithmetic; expected scalars "
-                                "or vectors")
-        if node.op in "+-":
-            if a.kind == "zero":
-                return b
-            if b.kind == "zero":
-                return a
-            if a.kind != b.kind:
-                raise SpecError(f"cannot add a {a.kind} and a {b.kind} in '{to_text(node)}'")
-            if a.dim != b.dim:
-                raise SpecError(f"cannot add {describe_dimension(a.dim)} and "
-                                f"{describe_dimension(b.dim)} in '{to_text(node)}'")
-            return a
-        if node.op == "*":
-            if a.kind == "vector" and b.kind == "vector":
-                raise SpecError(f"cannot multiply two vectors in '{to_text(node)}'; expected "
-                                "dot(u, v) or cross(u, v)")
-            kind = "vector" if "vector" in (a.kind, b.kind) else "scalar"
-            if "zero" in (a.kind, b.kind):
-                return Type("zero", a.dim * b.dim)
-            return Type(kind, a.dim * b.dim)
-        if node.op == "/":
-            if b.kind != "scalar":
-                raise SpecError(f"expected a nonzero scalar divisor in '{to_text(node)}'")
-            return Type(a.kind, a.dim / b.dim)
-        # power
-        if a.kind == "vector" or b.kind == "vector":
-            raise SpecError(f"cannot raise a vector to a power in '{to_text(node)}'")
-        if b.dim != dimensionless():
-            raise SpecError(f"expected a pure-number exponent in '{to_text(node)}'")
-        if a.dim == dimensionless():
-            return Type(a.kind if a.kind != "zero" else "scalar", a.dim)
-        exponent = constant_value(node.right)
-        if exponent is None:
-            raise SpecError(f"a quantity with units needs a constant exponent in "
-                            f"'{to_text(node)}'")
-        return Type("scalar", a.dim ** exponent)
-
     def _call(self, node: Call, inside_pos: bool) -> Type:
-        if node.func in FUNCTIONS:
-            sig = FUNCTIONS[node.func]
-            if len(node.args) != len(sig.args):
-                raise SpecError(f"expected {len(sig.args)} arguments for {node.func}(...) "
-                                f"({sig.doc}), found {len(node.args)}")
-            if node.func == "ic" and not inside_pos:
-                raise SpecError("ic(A, F) is a point: use it as pos(ic(A, F), P)")
-            dims = []
-            for arg, kind in zip(node.args, sig.args):
-                dims.append(self._argument(node.func, arg, kind))
-            self._needs_origin(node)
-            return Type(sig.result, sig.dim(tuple(dims)))
-        # math function of scalars
-        args = [self._type(a, inside_pos) for a in node.args]
-        for t in args:
-            if t.kind == "vector":
-                raise SpecError(f"{node.func}(...) takes a scalar, found a vector "
-                                "(use mag(v) or dot(u, v))")
-        if node.func == "sqrt":
-            return Type("scalar", args[0].dim ** 0.5)
-        if node.func == "abs":
-            return Type("scalar", args[0].dim)
-        if node.func == "atan2":
-            if args[0].dim != args[1].dim:
-                raise SpecError("atan2(y, x) needs y and x in the same dimension")
-            return Type("scalar", dimensionless())
-        for t in args:
-            if t.dim != dimensionless():
-                raise SpecError(f"{node.func}(...) needs a pure number or angle, found "
-                                f"{describe_dimension(t.dim)}")
-        return Type("scalar", dimensionless())
+        """The type of a call of an objective function (math functions are typed by
+        :func:`~mechgrade.expressions.dimensions.infer`)."""
+        sig = FUNCTIONS[node.func]
+        if len(node.args) != len(sig.args):
+            raise SpecError(f"expected {len(sig.args)} arguments for {node.func}(...) "
+                            f"({sig.doc}), found {len(node.args)}")
+        if node.func == "ic" and not inside_pos:
+            raise SpecError("ic(A, F) is a point: use it as pos(ic(A, F), P)")
+        dims = []
+        for arg, kind in zip(node.args, sig.args):
+            dims.append(self._argument(node.func, arg, kind))
+        self._needs_origin(node)
+        return Type(sig.result, sig.dim(tuple(dims)))
 
-    def _argument(self, func: str, arg: Node, kind: str):
-        if kind == "frame":
+    def _argument(self, func: str, arg: Node, kind: Kind):
+        if kind == Kind.FRAME:
             if not (isinstance(arg, Name) and arg.id in self.frames):
                 hint = ""
                 if isinstance(arg, Name):
@@ -527,7 +450,7 @@ class _Checker:
                 raise SpecError(f"expected a frame as argument of {func}(...), found "
                                 f"'{to_text(arg)}'{hint} (frames: {', '.join(self.frames)})")
             return dimensionless()
-        if kind == "point":
+        if kind == Kind.POINT:
             if isinstance(arg, Name):
                 if arg.id not in self.points:
                     self.quiet_if_broken(arg.id, "points")
@@ -536,7 +459,7 @@ class _Checker:
                                     f"(points: {', '.join(self.points)})")
                 return dimension("m")
             if isinstance(arg, Call) and arg.func in FUNCTIONS and \
-                    FUNCTIONS[arg.func].result == "point":
+                    FUNCTIONS[arg.func].result == Kind.POINT:
                 return self._type(arg, inside_pos=(func == "pos")).dim
             raise SpecError(f"expected a point as argument of {func}(...), found "
                             f"'{to_text(arg)}'")
@@ -545,7 +468,7 @@ class _Checker:
                 self.quiet_if_broken(arg.id, "dynamics")  # its section's error is reported
             return argument_dimension(self.p, func, arg, kind)
         t = self._type(arg, inside_pos=False)
-        if t.kind == "zero" and kind == "vector":
+        if t.kind == Kind.ZERO and kind == Kind.VECTOR:
             return t.dim
         if t.kind != kind:
             raise SpecError(f"expected a {kind} as argument of {func}(...), found a {t.kind} "
@@ -553,14 +476,10 @@ class _Checker:
         return t.dim
 
     def _needs_origin(self, node: Call) -> None:
-        frame_arg = None
-        if node.func in ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent", "normal"):
-            frame_arg = node.args[1]
-        elif node.func in ("coincident", "ic"):
-            frame_arg = node.args[1] if node.func == "coincident" else node.args[0]
-        if frame_arg is None:
+        index = FUNCTIONS[node.func].origin_of
+        if index is None:
             return
-        frame = self.frames.get(getattr(frame_arg, "id", None))
+        frame = self.frames.get(getattr(node.args[index], "id", None))
         if frame is None:
             return
         if frame.name != self.p.inertial_frame and frame.origin is None:
@@ -577,11 +496,11 @@ class _Checker:
         return did_you_mean(name, known)
 
     def _same(self, a: Type, b: Type, expr: Expr, what: str) -> None:
-        kinds = {a.kind, b.kind} - {"zero"}
+        kinds = {a.kind, b.kind} - {Kind.ZERO}
         if len(kinds) > 1:
             raise SpecError(f"expected {what} to be of the same kind, found a {a.kind} and a "
                             f"{b.kind}", where=expr.where)
-        if "zero" not in (a.kind, b.kind):
+        if Kind.ZERO not in (a.kind, b.kind):
             self._dims_match(a.dim, b.dim, expr.where, what)
 
     @staticmethod

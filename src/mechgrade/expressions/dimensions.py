@@ -1,0 +1,122 @@
+"""The kind (scalar, vector, ...) and dimension of an expression: one inference for the spec
+checks and for students' answers.
+
+The caller says what names stand for (``leaf``) and, for a spec, how to type calls of the
+objective language (``call``); arithmetic and math functions follow the rules here and in the
+language's table. An inconsistent expression raises :class:`DimensionError`, worded for the
+author and, in ``student``, for feedback ("Your expression ...").
+
+>>> from mechgrade.expressions.syntax import parse
+>>> from mechgrade.units import dimension
+>>> units = {"L": "m", "thetad": "rad/s"}
+>>> leaf = lambda n: Type(Kind.SCALAR, dimension(units[n.id]))
+>>> str(infer(parse("L*thetad^2"), leaf).dim)
+'[length] / [time] ** 2'
+>>> infer(parse("L + thetad"), leaf)
+Traceback (most recent call last):
+...
+mechgrade.expressions.functions.DimensionError: cannot add a length ([length]) and an angular velocity or rate (1 / [time]) in 'L+thetad'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable
+
+from ..units import describe_dimension, dimensionless
+from .functions import MATH_FUNCTIONS, DimensionError, Kind
+from .syntax import Bin, Call, Name, Node, Num, Unary, constant_value, to_text
+
+__all__ = ["DimensionError", "Kind", "Type", "infer"]
+
+
+@dataclass(frozen=True)
+class Type:
+    """Kind (scalar, vector, point, frame or zero) and dimension of an expression."""
+
+    kind: Kind
+    dim: Any = None  # a pint dimensionality (UnitsContainer), None for points and frames
+
+
+def infer(node: Node, leaf: Callable[[Node], Type],
+          call: Callable[[Call], Type] | None = None) -> Type:
+    """The type of ``node``: ``leaf`` types names (other than ``pi``), primes and unit vectors;
+    ``call`` types calls of functions outside the math table."""
+    def walk(n: Node) -> Type:
+        if isinstance(n, Num):
+            return Type(Kind.ZERO if n.value == 0 else Kind.SCALAR, dimensionless())
+        if isinstance(n, Name) and n.id == "pi":
+            return Type(Kind.SCALAR, dimensionless())
+        if isinstance(n, Unary):
+            t = walk(n.operand)
+            if t.kind not in (Kind.SCALAR, Kind.VECTOR, Kind.ZERO):
+                raise DimensionError(f"cannot negate a {t.kind}")
+            return t
+        if isinstance(n, Bin):
+            return _binary(n, walk(n.left), walk(n.right))
+        if isinstance(n, Call):
+            if n.func in MATH_FUNCTIONS:
+                return _math(n, [walk(a) for a in n.args])
+            if call is None:
+                raise DimensionError(f"expected a math function, found '{n.func}(...)'")
+            return call(n)
+        return leaf(n)
+
+    return walk(node)
+
+
+def _binary(node: Bin, a: Type, b: Type) -> Type:  # noqa: C901 - one rule per operator and kind
+    for t in (a, b):
+        if t.kind in (Kind.POINT, Kind.FRAME):
+            raise DimensionError(f"a {t.kind} cannot take part in arithmetic; expected scalars "
+                                 "or vectors")
+    text = to_text(node)
+    if node.op in "+-":
+        if a.kind == Kind.ZERO:
+            return b
+        if b.kind == Kind.ZERO:
+            return a
+        if a.kind != b.kind:
+            raise DimensionError(f"cannot add a {a.kind} and a {b.kind} in '{text}'")
+        if a.dim != b.dim:
+            verb, joint = ("adds", "to") if node.op == "+" else ("subtracts", "and")
+            raise DimensionError(f"cannot add {describe_dimension(a.dim)} and "
+                                 f"{describe_dimension(b.dim)} in '{text}'",
+                                 f"{verb} {describe_dimension(a.dim)} {joint} "
+                                 f"{describe_dimension(b.dim)}")
+        return a
+    if node.op == "*":
+        if a.kind == Kind.VECTOR and b.kind == Kind.VECTOR:
+            raise DimensionError(f"cannot multiply two vectors in '{text}'; expected "
+                                 "dot(u, v) or cross(u, v)")
+        if Kind.ZERO in (a.kind, b.kind):
+            return Type(Kind.ZERO, a.dim * b.dim)
+        kind = Kind.VECTOR if Kind.VECTOR in (a.kind, b.kind) else Kind.SCALAR
+        return Type(kind, a.dim * b.dim)
+    if node.op == "/":
+        if b.kind != Kind.SCALAR:
+            raise DimensionError(f"expected a nonzero scalar divisor in '{text}'",
+                                 "divides by zero" if b.kind == Kind.ZERO else None)
+        return Type(a.kind, a.dim / b.dim)
+    # power
+    if a.kind == Kind.VECTOR or b.kind == Kind.VECTOR:
+        raise DimensionError(f"cannot raise a vector to a power in '{text}'")
+    variable = "raises a quantity with units to a variable power"
+    if b.dim != dimensionless():
+        raise DimensionError(f"expected a pure-number exponent in '{text}'", variable)
+    if a.dim == dimensionless():
+        return Type(a.kind if a.kind != Kind.ZERO else Kind.SCALAR, a.dim)
+    exponent = constant_value(node.right)
+    if exponent is None:
+        raise DimensionError(f"a quantity with units needs a constant exponent in '{text}'",
+                             variable)
+    return Type(Kind.SCALAR, a.dim ** exponent)
+
+
+def _math(node: Call, args: list[Type]) -> Type:
+    for t in args:
+        if t.kind == Kind.VECTOR:
+            raise DimensionError(f"{node.func}(...) takes a scalar, found a vector "
+                                 "(use mag(v) or dot(u, v))")
+    entry = MATH_FUNCTIONS[node.func]
+    return Type(Kind.SCALAR, entry.dimension(node.func, tuple(t.dim for t in args)))
