@@ -9,10 +9,9 @@ import click
 from ..mechanics import derivation
 from ..mechanics.derivation import derivation_mathml
 from ..files import write_text
-from ..report.picture import picture_svg
+from ..solve.picture import picture_svg, scene
 from ..report.worked import steps_html, steps_markdown
 from ..solve import solve as solve_problem
-from ..solve.picture import scene
 from ..spec import load_problem
 from .common import main, reports_errors
 
