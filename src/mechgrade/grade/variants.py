@@ -306,21 +306,29 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
     """Every student's problem sheet: ``plan`` is the assignment's
     :class:`~mechgrade.grade.run.Plan`, ``students`` ``(id, name)`` pairs (the id decides
     the variant, as in grading)."""
+    from ..solve.picture import geometry, picture_svg, scene
+
     assignment = plan.assignment
     seed = assignment.variant_seed
+    # a problem without variants looks the same on every sheet: drawn once
+    pictures = {p.id: picture_svg(geometry(scene(p, s)))
+                for p, s in zip(plan.problems, plan.solutions) if p.variants is None}
     sheets = []
     for student_id, name in students:
         problems = []
         for problem in plan.problems:
             variant = None
+            picture = pictures.get(problem.id)
             if problem.variants is not None:
-                variant, _ = student_variant(problem, seed, student_id,
-                                             assignment.variants.redraw)
+                variant, solution = student_variant(problem, seed, student_id,
+                                                    assignment.variants.redraw)
+                picture = picture_svg(geometry(scene(problem, solution)))
             questions = tuple(Question(o.key, o.objective.prompt, unit_text(o.objective.unit))
                               for o in plan.objectives if o.problem.id == problem.id)
             problems.append(SheetProblem(problem.id, problem.title,
                                          statement(problem, variant),
-                                         variant.drawn if variant else (), questions))
+                                         variant.drawn if variant else (), questions,
+                                         picture))
         sheets.append(Sheet(assignment.id, assignment.title, student_id, name, seed,
                             tuple(problems)))
     return tuple(sheets)

@@ -83,6 +83,18 @@ def scene(problem: Problem, solution: Solution) -> Scene:
         for name, origin, x, y in frames))
 
 
+def geometry(s: Scene) -> Scene:
+    """The scene without its velocities and accelerations: the mechanism as a problem sheet
+    shows it (the motion is what the student works out).
+
+    >>> s = Scene("p", (ScenePoint("A", (1, 0, 0), (0, 2, 0), (-4, 0, 0), None),), ())
+    >>> geometry(s).points[0].velocity is None
+    True
+    """
+    return replace(s, points=tuple(replace(p, velocity=None, acceleration=None)
+                                   for p in s.points))
+
+
 @lru_cache(maxsize=64)
 def _drawing(problem: Problem):
     """The state's names, and every point's position, velocity and acceleration and every
@@ -117,7 +129,8 @@ def _drawing(problem: Problem):
 # ---------------------------------------------------------------------------- drawing
 
 VELOCITY, ACCELERATION, FRAME, BODY = "#1565c0", "#c62828", "#7b8794", "#323f4b"
-WIDTH, HEIGHT, MARGIN = 480.0, 360.0, 56.0
+WIDTH, HEIGHT, MARGIN = 480.0, 360.0, 40.0
+HALO = 'paint-order="stroke" stroke="#fff" stroke-width="3"'  # labels stay readable on lines
 
 
 def picture_svg(s: Scene, ident: str | None = None) -> str:
@@ -133,12 +146,14 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
     True
     """
     ident = _ident(ident or s.problem)
+    motion = (", velocities and accelerations"
+              if any(p.velocity or p.acceleration for p in s.points) else "")
     shown = [p for p in s.points if all(math.isfinite(c) for c in p.position[:2])]
     xs = [p.position[0] for p in shown] or [0.0]
     ys = [p.position[1] for p in shown] or [0.0]
     size = max(max(xs) - min(xs), max(ys) - min(ys), 1e-9)
-    # the arrows reach up to 0.35 size beyond the points: the view covers them too
-    reach = 0.4 * size
+    # motion arrows reach 0.35 size beyond the points, frame labels 0.25: the view covers them
+    reach = (0.4 if motion else 0.3) * size
     x0, x1 = min(xs) - reach, max(xs) + reach
     y0, y1 = min(ys) - reach, max(ys) + reach
     scale = min((WIDTH - 2 * MARGIN) / (x1 - x0), (HEIGHT - 2 * MARGIN) / (y1 - y0))
@@ -152,7 +167,7 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
            f'aria-labelledby="{ident}-title" class="mechanism" '
            f'font-family="system-ui, sans-serif" font-size="13">',
            f'<title id="{ident}-title">The mechanism of {escape(s.problem)} at the instant: '
-           f'points, frames, velocities and accelerations</title>', "<defs>"]
+           f'points and frames{motion}</title>', "<defs>"]
     for name, colour in (("v", VELOCITY), ("a", ACCELERATION), ("f", FRAME)):
         out.append(f'<marker id="{ident}-{name}" viewBox="0 0 10 10" refX="9" refY="5" '
                    f'markerWidth="7" markerHeight="7" orient="auto-start-reverse">'
@@ -179,7 +194,7 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
             axes[key][1].append(f"{frame.name}.{axis}")
     for label, names in axes.values():
         out.append(_text(label, " = ".join(names), FRAME, 'font-size="11" '
-                         'text-anchor="middle" dominant-baseline="middle"'))
+                         'text-anchor="middle" dominant-baseline="middle" ' + HALO))
     legend = []
     for kind, colour, mark, unit in (("velocity", VELOCITY, "v", "m/s"),
                                      ("acceleration", ACCELERATION, "a", "m/s²")):
@@ -196,8 +211,8 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
     for p in shown:
         x, y = at(*p.position[:2])
         out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="4" fill="#1f2933"/>')
-        out.append(_text((x + 7, y - 7), p.name, "#1f2933", 'font-weight="bold" '
-                         'font-size="15" paint-order="stroke" stroke="#fff" stroke-width="3"'))
+        out.append(_text((x + 7, y - 7), p.name, "#1f2933",
+                         'font-weight="bold" font-size="15" ' + HALO))
     for i, (colour, text) in enumerate(legend):
         y = HEIGHT - 14 - 18 * (len(legend) - 1 - i)
         out.append(_line((12, y - 4), (36, y - 4), colour, 2.2))
