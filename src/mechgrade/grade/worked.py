@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from datetime import datetime, timezone
+from functools import cached_property
 
 from ..solve.worked import WorkedSolution
 from ..spec.model import Problem
@@ -41,13 +42,13 @@ class FeedbackSolutions:
     def for_student(self, student: StudentResult) -> tuple[WorkedSolution, ...]:
         """The worked solutions of every problem, with the student's own numbers."""
         drawn = student.variant.givens if student.variant else ()
-        out = []
-        for worked in self.solutions:
-            own = tuple(g for g in drawn if g.problem == worked.problem)
-            out.append(next((w for p, givens, w in self.variants
-                             if p == worked.problem and givens == own), worked)
-                       if own else worked)
-        return tuple(out)
+        return tuple(self._by_variant.get(
+            (w.problem, tuple(g for g in drawn if g.problem == w.problem)), w)
+            for w in self.solutions)
+
+    @cached_property
+    def _by_variant(self) -> dict:
+        return {(problem, givens): w for problem, givens, w in self.variants}
 
     def code(self, label: str | None) -> str | None:
         """The code of a generated mistake's diagnosis label (``None`` for any other)."""

@@ -180,7 +180,8 @@ def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ..
             continue
         omega = model.frames[f.name].ang_vel_in(model.frames[N])
         alpha = model.frames[f.name].ang_acc_in(model.frames[N])
-        for symbol, value, kind in (("ω", omega, "angvel"), ("α", alpha, "angacc")):
+        turning = (("ω", omega, "angvel"), ("α", alpha, "angacc"))
+        for symbol, value, kind in turning[:1] if _is_zero(omega, model) else turning:
             frame_rows.append(Row(f"{kind}-{f.name}", show.equation(
                 _scripted(symbol, N, f.name), model.plain(value)),
                 f"{N}_{'omega' if symbol == 'ω' else 'alpha'}_{f.name} = "
