@@ -306,13 +306,17 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
     """Every student's problem sheet: ``plan`` is the assignment's
     :class:`~mechgrade.grade.run.Plan`, ``students`` ``(id, name)`` pairs (the id decides
     the variant, as in grading)."""
-    from ..solve.picture import geometry, picture_svg, scene
+    from ..solve.picture import drawable, geometry, picture_svg, scene
+
+    def drawn(problem, solution) -> str:
+        picture = scene(problem, solution)
+        return picture_svg(geometry(picture)) if drawable(picture) else ""
 
     assignment = plan.assignment
     seed = assignment.variant_seed
     # a problem without variants looks the same on every sheet: drawn once
-    pictures = {p.id: picture_svg(geometry(scene(p, s)))
-                for p, s in zip(plan.problems, plan.solutions) if p.variants is None}
+    pictures = {p.id: drawn(p, s) for p, s in zip(plan.problems, plan.solutions)
+                if p.variants is None}
     sheets = []
     for student_id, name in students:
         problems = []
@@ -322,7 +326,7 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
             if problem.variants is not None:
                 variant, solution = student_variant(problem, seed, student_id,
                                                     assignment.variants.redraw)
-                picture = picture_svg(geometry(scene(problem, solution)))
+                picture = drawn(problem, solution)
             questions = tuple(Question(o.key, o.objective.prompt, unit_text(o.objective.unit))
                               for o in plan.objectives if o.problem.id == problem.id)
             problems.append(SheetProblem(problem.id, problem.title,

@@ -83,6 +83,16 @@ def scene(problem: Problem, solution: Solution) -> Scene:
         for name, origin, x, y in frames))
 
 
+def drawable(s: Scene) -> bool:
+    """Whether the scene has a mechanism to draw: two points with a known position (a
+    problem answered only in symbols has no numbers to place its points with).
+
+    >>> drawable(Scene("p", (ScenePoint("O", (0, 0, 0), None, None, None),), ()))
+    False
+    """
+    return sum(all(math.isfinite(c) for c in p.position[:2]) for p in s.points) >= 2
+
+
 def geometry(s: Scene) -> Scene:
     """The scene without its velocities and accelerations: the mechanism as a problem sheet
     shows it (the motion is what the student works out).
@@ -208,10 +218,13 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
                                  at(*_tip(p.position, v, 0.35 * size / largest)), colour, 2.2,
                                  f'marker-end="url(#{ident}-{mark})"'))
         legend.append((colour, f"{kind} (longest {largest:.2g} {unit})"))
+    places: dict[tuple[int, int], list[str]] = {}  # coincident points share one label
     for p in shown:
         x, y = at(*p.position[:2])
-        out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="4" fill="#1f2933"/>')
-        out.append(_text((x + 7, y - 7), p.name, "#1f2933",
+        places.setdefault((round(x), round(y)), []).append(p.name)
+    for (x, y), names in places.items():
+        out.append(f'<circle cx="{x}" cy="{y}" r="4" fill="#1f2933"/>')
+        out.append(_text((x + 7, y - 7), ", ".join(names), "#1f2933",
                          'font-weight="bold" font-size="15" ' + HALO))
     for i, (colour, text) in enumerate(legend):
         y = HEIGHT - 14 - 18 * (len(legend) - 1 - i)

@@ -27,7 +27,7 @@ from ..mechanics.mutations import CODES as MODEL_CODES
 from ..mechanics.writeup import worked_steps
 from ..spec.model import Problem
 from .mutants import GIVEN_CODES
-from .picture import picture_svg, scene
+from .picture import drawable, picture_svg, scene
 from .result import ObjectiveResult, Solution, StateValue
 
 __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
@@ -39,7 +39,7 @@ _MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")
 @dataclass(frozen=True)
 class WorkedSolution:
     """One problem's worked solution (for one set of givens): ``steps`` in the write-up order,
-    ``picture`` an SVG document, ``places`` ``(objective, code, anchor)``: the step or row
+    ``picture`` an SVG document (empty when there is nothing to draw), ``places`` ``(objective, code, anchor)``: the step or row
     (by anchor) where the generated mistake ``code`` of an objective happens."""
 
     problem: str
@@ -92,8 +92,9 @@ def worked_solution(problem: Problem, solution: Solution,
     places = tuple((o.id, code, _place(steps, o.id, o.find.node, code))
                    for o in chosen if o.id in results
                    for code in MODEL_CODES + GIVEN_CODES)
+    drawing = scene(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
-                          picture_svg(scene(problem, solution)), places)
+                          picture_svg(drawing) if drawable(drawing) else "", places)
 
 
 def _state_text(value: StateValue) -> str:
