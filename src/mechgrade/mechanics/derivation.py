@@ -308,8 +308,9 @@ class _Display:
         self.marks = {}
         for i, (q, qd, qdd) in enumerate(zip(symbols.q, symbols.qd, symbols.qdd)):
             base = sp.printing.mathml(q, printer="presentation")
-            for symbol, mark, name in ((qd, "&#729;", f"zzrate{i}x"),
-                                       (qdd, "&#168;", f"zzrate{i}xx")):
+            # the bullet operator: the dot above (U+02D9) is a pixel at text size in Chromium
+            for symbol, mark, name in ((qd, "&#8729;", f"zzrate{i}x"),
+                                       (qdd, "&#8729;&#8729;", f"zzrate{i}xx")):
                 self.swap[symbol] = sp.Symbol(name, real=True)
                 self.marks[f"<mi>{name}</mi>"] = \
                     f'<mover accent="true">{base}<mo>{mark}</mo></mover>'
@@ -329,14 +330,26 @@ class _Display:
         return f'<math display="block"><mrow>{label}<mo>=</mo>{body}</mrow></math>'
 
     def _vector(self, v: Vector) -> str:
-        parts = []
+        """A vector as its components times its frames' unit vectors: a sum in parentheses,
+        a product or a symbol bare, a negative one after a minus sign."""
+        out = []
         for matrix, frame in v.args:
             for coefficient, axis in zip(matrix, "xyz"):
                 coefficient = min((sp.simplify(coefficient), sp.expand(coefficient)),
                                   key=sp.count_ops)
                 if coefficient == 0:
                     continue
+                negative = not isinstance(coefficient, sp.Add) \
+                    and coefficient.could_extract_minus_sign()
+                shown = -coefficient if negative else coefficient
                 unit = (f"<msub><mover accent=\"true\"><mi mathvariant=\"bold\">"
                         f"{frame.name.lower()}</mi><mo>^</mo></mover><mi>{axis}</mi></msub>")
-                parts.append(f"<mrow><mo>(</mo>{self._inner(coefficient)}<mo>)</mo>{unit}</mrow>")
-        return f"<mrow>{'<mo>+</mo>'.join(parts) if parts else '<mn>0</mn>'}</mrow>"
+                if shown == 1:
+                    term = unit
+                elif isinstance(shown, sp.Add):
+                    term = f"<mo>(</mo>{self._inner(shown)}<mo>)</mo>{unit}"
+                else:
+                    term = f"{self._inner(shown)}<mo>&#8290;</mo>{unit}"
+                out.append(("<mo>&#8722;</mo>" if negative else
+                            "<mo>+</mo>" if out else "") + f"<mrow>{term}</mrow>")
+        return f"<mrow>{''.join(out) if out else '<mn>0</mn>'}</mrow>"
