@@ -25,12 +25,14 @@ def _class(tmp_path, policy: str = "", due: str | None = None):
         f"  - path: {PROBLEMS / 'ruina_10_4_10_7_rotating_tube_accel.yaml'}\n"
         f"    objectives: [a_P_N]\n" + (f"due: {due}\n" if due else "")
         + (f"policy: {{worked_solution: {policy}}}\n" if policy else ""), encoding="utf-8")
-    for student, acc_mag in (("ana", "98.5 ft/s^2"), ("zoe", "10 ft/s^2")):
+    for student, acc_mag, a_p in (("ana", "98.5 ft/s^2", "-66 i - 40 j"),
+                                  ("zoe", "10 ft/s^2", "-66 i - 40 j"),
+                                  ("max", "98.5 ft/s^2", "-106 i - 40 j")):  # no Coriolis
         folder = tmp_path / "submissions" / student
         folder.mkdir(parents=True)
         (folder / "answers.yaml").write_text(
             f"{PENDULUM}:\n  acc_mag: {acc_mag}\nruina_10_4_10_7_rotating_tube_accel:\n"
-            f"  a_P_N: -66 i - 40 j ft/s^2\n", encoding="utf-8")
+            f"  a_P_N: {a_p} ft/s^2\n", encoding="utf-8")
     assignment = load_assignment(tmp_path / "hw.yaml")
     return assignment, grade_submissions(assignment, tmp_path / "submissions")
 
@@ -69,6 +71,16 @@ def test_the_step_where_the_students_mistake_happens_is_highlighted_and_linked(g
     assert "- Where this happens in the worked solution: The acceleration of A in N" in markdown
     # a right answer marks nothing
     assert "#ws-" not in (feedback / "ana.html").read_text(encoding="utf-8")
+
+
+def test_an_authors_mistake_with_a_generated_mistakes_value_marks_its_step_too(graded):
+    feedback, report = graded
+    max_ = next(s for s in report.students if s.id == "max")
+    # the problem's author declared this mistake: their message is the diagnosis
+    assert max_.answers[-1].diagnosis == "The Coriolis term 2 omega x v_rel is missing."
+    row = "ws-ruina_10_4_10_7_rotating_tube_accel-acc-P-coriolis"
+    page = (feedback / "max.html").read_text(encoding="utf-8")
+    assert f"#{row} {{ background" in page and f'<a href="#{row}">' in page
 
 
 @pytest.mark.parametrize("policy, due, shown", [

@@ -269,7 +269,9 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
     for answer in student.answers:
         worked = by_problem.get(answer.problem)
         code = pages.worked.code(answer.diagnosis)
-        place = worked.place(answer.objective, code) if worked and code else None
+        place = None if worked is None or not answer.diagnosis else (
+            worked.place(answer.objective, code) if code
+            else worked.declared_place(answer.objective, answer.diagnosis))
         if place is None:
             continue
         prompt = prompts.get((answer.problem, answer.objective)) or answer.objective

@@ -13,6 +13,8 @@ show a :class:`WorkedSolution` without importing sympy.
 >>> worked = worked_solution(problem, solve(problem))
 >>> worked.place("a_P_N", "drop_coriolis"), worked.place("a_P_N", "given_sign")
 ('acc-P-coriolis', 'givens')
+>>> worked.declared_place("a_P_N", "The Coriolis term 2 omega x v_rel is missing.")
+'acc-P-coriolis'
 >>> worked.picture.startswith("<svg")
 True
 """
@@ -21,6 +23,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..expressions.syntax import Call, Name, Node
 from ..mechanics.derivation import Row, Step
 from ..mechanics.mutations import CODES as MODEL_CODES
@@ -28,7 +32,7 @@ from ..mechanics.writeup import worked_steps
 from ..spec.model import Problem
 from .mutants import GIVEN_CODES
 from .picture import drawable, picture_svg, scene
-from .result import ObjectiveResult, Solution, StateValue
+from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue
 
 __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
 
@@ -47,11 +51,19 @@ class WorkedSolution:
     steps: tuple[Step, ...]
     picture: str
     places: tuple[tuple[str, str, str], ...] = ()
+    declared: tuple[tuple[str, str, str], ...] = ()
 
     def place(self, objective: str, code: str) -> str | None:
         """The anchor of the step or row where ``code``'s mistake happens for ``objective``."""
         for o, c, anchor in self.places:
             if (o, c) == (objective, code):
+                return anchor
+        return None
+
+    def declared_place(self, objective: str, message: str) -> str | None:
+        """The anchor where the author's mistake with ``message`` happens, when known."""
+        for o, m, anchor in self.declared:
+            if (o, m) == (objective, message):
                 return anchor
         return None
 
@@ -92,9 +104,25 @@ def worked_solution(problem: Problem, solution: Solution,
     places = tuple((o.id, code, _place(steps, o.id, o.find.node, code))
                    for o in chosen if o.id in results
                    for code in MODEL_CODES + GIVEN_CODES)
+    declared = tuple((o.id, m.message, _place(steps, o.id, o.find.node, g.code))
+                     for o in chosen if o.id in results
+                     for m in results[o.id].mistakes
+                     for g in _same_value(m, results[o.id].generated_mistakes))
     drawing = scene(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
-                          picture_svg(drawing) if drawable(drawing) else "", places)
+                          picture_svg(drawing) if drawable(drawing) else "", places, declared)
+
+
+def _same_value(mistake: MistakeValue, generated) -> tuple[GeneratedMistake, ...]:
+    """The first generated mistake with the value of an author's ``mistake`` (or none)."""
+    if mistake.value is None:
+        return ()
+    author = np.atleast_1d(np.asarray(mistake.value, float))
+    for g in generated:
+        if g.value is not None and np.allclose(np.atleast_1d(np.asarray(g.value, float)),
+                                               author, rtol=1e-6, atol=1e-12):
+            return (g,)
+    return ()
 
 
 def _state_text(value: StateValue) -> str:
