@@ -56,7 +56,10 @@ def test_the_steps_follow_the_write_up_order():
 def test_other_numbers_change_the_numbers_not_the_symbolic_steps():
     base = _worked("bowling_3_15_4_pendulum")
     other = _worked("bowling_3_15_4_pendulum", **{"theta'": 3.0})
-    symbolic = [s for s in base.steps if s.rows]
-    assert symbolic == [s for s in other.steps if s.rows]
-    assert symbolic[0] is [s for s in other.steps if s.rows][0]  # made once per problem
+    symbolic = [s.rows for s in base.steps if s.rows]
+    assert symbolic == [s.rows for s in other.steps if s.rows]
+    assert symbolic[0] is [s.rows for s in other.steps if s.rows][0]  # made once per problem
     assert "theta' = 3 rad/s" in other.steps[0].lines and other.picture != base.picture
+    # the numbers at the instant, in the unit the objective asks (|v| = L theta' = 6 ft/s)
+    velocity = next(s for s in other.steps if s.anchor == "vel-A")
+    assert velocity.lines[-1] == "At the instant: N_v_A = (-3, 5.196, 0) ft/s along N"

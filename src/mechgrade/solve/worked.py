@@ -21,7 +21,7 @@ True
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -30,6 +30,7 @@ from ..mechanics.derivation import Row, Step
 from ..mechanics.mutations import CODES as MODEL_CODES
 from ..mechanics.writeup import worked_steps
 from ..spec.model import Problem
+from ..units import from_si, same_dimension
 from .mutants import GIVEN_CODES
 from .picture import drawable, picture_svg, scene
 from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue
@@ -97,8 +98,9 @@ def worked_solution(problem: Problem, solution: Solution,
              (f"{o.id} = {o.find.text}" + (f", components along {o.frame}" if o.frame else ""),
               f"= {answer_text(results[o.id])}"))
         for o in chosen if o.id in results)
+    drawing = scene(problem, solution)
     steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
-             *worked_steps(problem, solution.dof),
+             *_at_the_instant(problem, worked_steps(problem, solution.dof), drawing),
              *((Step("state", "The instant, solved", solved),) if solved else ()),
              *answers)
     places = tuple((o.id, code, _place(steps, o.id, o.find.node, code))
@@ -108,9 +110,40 @@ def worked_solution(problem: Problem, solution: Solution,
                      for o in chosen if o.id in results
                      for m in results[o.id].mistakes
                      for g in _same_value(m, results[o.id].generated_mistakes))
-    drawing = scene(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
                           picture_svg(drawing) if drawable(drawing) else "", places, declared)
+
+
+def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple[Step, ...]:
+    """``steps`` with each point's velocity and acceleration in numbers at the instant, along
+    the inertial frame, in the unit an objective asks it in, else in the length unit of the
+    givens per second (squared)."""
+    points = {p.name: p for p in drawing.points}
+    length = next((g.unit for g in problem.givens if g.unit and same_dimension(g.unit, "m")),
+                  "m")
+    units = {"vel": f"{length}/s", "acc": f"{length}/s^2"}
+    asked: dict[tuple[str, str], str] = {}
+    for o in problem.objectives:
+        for call in _calls(o.find.node):
+            kind = "acc" if call.func in _ACCELERATION_CALLS else "vel"
+            if isinstance(call.args[0], Name) and o.unit \
+                    and same_dimension(o.unit, units[kind]):
+                asked.setdefault((kind, call.args[0].id), o.unit)
+    out = []
+    for step in steps:
+        kind, _, name = step.anchor.partition("-")
+        point = points.get(name) if kind in units else None
+        value = getattr(point, "velocity" if kind == "vel" else "acceleration", None) \
+            if point is not None else None
+        if value is not None:
+            unit = asked.get((kind, name), units[kind])
+            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in value)
+            letter = "v" if kind == "vel" else "a"
+            step = replace(step, lines=step.lines + (
+                f"At the instant: {problem.inertial_frame}_{letter}_{name} = ({shown}) "
+                f"{unit} along {problem.inertial_frame}",))
+        out.append(step)
+    return tuple(out)
 
 
 def _same_value(mistake: MistakeValue, generated) -> tuple[GeneratedMistake, ...]:
