@@ -89,12 +89,22 @@ def test_assignment_is_frozen(folder):
     ("title: T\nproblems: [p.yaml]\n", "hw.yaml:1:1: expected a field 'id', found none"),
     ("id: hw1\nproblems: [p.yaml]\n", "hw.yaml:1:1: expected a field 'title', found none"),
     ("id: hw1\ntitle: T\n", "hw.yaml:1:1: expected a field 'problems', found none"),
+    (MINIMAL + "deadline: tomorrow\n",
+     "hw.yaml:4:1: deadline: expected only the fields id, title, problems, points, variants, "
+     "due, policy, found 'deadline'"),
     (MINIMAL + "due: tomorrow\n",
-     "hw.yaml:4:1: due: expected only the fields id, title, problems, points, variants, policy, "
-     "found 'due'"),
+     "hw.yaml:4:6: due: expected a date (2026-11-20) or a date and time (2026-11-20T23:59, "
+     "with an offset such as +01:00 or Z, else UTC), found 'tomorrow'"),
+    (MINIMAL + "due: 2026-11-20T25:00\n",
+     "hw.yaml:4:6: due: expected a date (2026-11-20) or a date and time"),
+    (MINIMAL + "due: 20261120\n",
+     "hw.yaml:4:6: due: expected text, found 20261120"),
+    (MINIMAL + "policy: {worked_solution: later}\n",
+     "hw.yaml:4:27: policy.worked_solution: expected one of always, after_due_date, never, "
+     "found 'later'"),
     (MINIMAL + "policy: {reveal: true}\n",
-     "hw.yaml:4:10: policy.reveal: expected only the fields reveal_answers, tolerance, "
-     "sig_figs, missing_unit, partial_credit, ecf, found 'reveal'; did you mean "
+     "hw.yaml:4:10: policy.reveal: expected only the fields reveal_answers, worked_solution, "
+     "tolerance, sig_figs, missing_unit, partial_credit, ecf, found 'reveal'; did you mean "
      "'reveal_answers'?"),
     (MINIMAL + "points: {p: 3}\n",
      "hw.yaml:4:10: points.p: expected only the fields 'default' or "
@@ -202,3 +212,26 @@ def test_separate_mistakes_is_read_from_the_tolerance(folder):
     (folder / "hw.yaml").write_text(MINIMAL + "policy: {tolerance: {separate_mistakes: true}}\n",
                                     encoding="utf-8")
     assert load_assignment(folder / "hw.yaml").policy.separate_mistakes is True
+
+
+@pytest.mark.parametrize("due, rule, shown_on", [
+    ("2026-11-20", None, ("2026-11-21T00:00:00+00:00",)),
+    ("2026-11-20T18:00-05:00", "after_due_date", ("2026-11-20T23:00:00+00:00",)),
+    (None, "always", ("2026-01-01T00:00:00+00:00", "2027-01-01T00:00:00+00:00")),
+    ("2026-11-20", "never", ()),
+    (None, None, ()),
+])
+def test_the_worked_solution_is_shown_by_the_due_date_rule(folder, due, rule, shown_on):
+    from datetime import datetime
+
+    text = MINIMAL + (f"due: {due}\n" if due else "") + (
+        f"policy: {{worked_solution: {rule}}}\n" if rule else "")
+    (folder / "hw.yaml").write_text(text, encoding="utf-8")
+    hw = load_assignment(folder / "hw.yaml")
+    moments = ["2026-01-01T00:00:00+00:00", "2026-11-20T22:00:00+00:00",
+               "2026-11-20T23:00:00+00:00", "2026-11-21T00:00:00+00:00",
+               "2027-01-01T00:00:00+00:00"]
+    shown = [m for m in moments if hw.shows_worked_solution(datetime.fromisoformat(m))]
+    assert [m for m in shown if m in shown_on] == list(shown_on)
+    assert len(shown) == (0 if rule == "never" or (due is None and rule != "always")
+                          else len(moments) - moments.index(shown_on[0]))

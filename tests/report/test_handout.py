@@ -37,3 +37,29 @@ def test_a_missing_template_is_named(tmp_path):
     (tmp_path / "t").mkdir()
     with pytest.raises(MechgradeError, match="expected a template 'handout.html.j2', found none"):
         write_handouts((sheet(),), tmp_path / "out", tmp_path / "t")
+
+
+def test_each_sheet_draws_the_mechanism_with_the_students_numbers_and_no_motion(tmp_path):
+    import re
+
+    from mechgrade.grade.assignment import load_assignment
+    from mechgrade.grade.run import plan_assignment
+    from mechgrade.grade.variants import handout_sheets
+    from mechgrade.resources import shipped_dir
+
+    plan = plan_assignment(load_assignment(shipped_dir("examples") / "hw2_variants"
+                                           / "assignment.yaml"))
+    sheets = handout_sheets(plan, [("20001", "Ana"), ("20002", "Ben")])
+    write_handouts(sheets, tmp_path)
+    tips = []
+    for student in ("20001", "20002"):
+        page = (tmp_path / f"{student}.html").read_text(encoding="utf-8")
+        assert page.count("<svg") == 2 and "velocity (longest" not in page
+        pendulum = page[page.index("<svg"):page.index("</svg>")]
+        tips.append(re.findall(r'<circle cx="([\d.]+)" cy="([\d.]+)"', pendulum))
+        assert "<svg" not in (tmp_path / f"{student}.md").read_text(encoding="utf-8")
+    lengths = {g.value for s in sheets for g in s.problems[0].givens if g.name == "L"}
+    # two students with different lengths or angles see two different drawings
+    assert len(lengths) == 2 and tips[0] != tips[1]
+    # the problem without variants is drawn once for every sheet
+    assert sheets[0].problems[1].picture is sheets[1].problems[1].picture

@@ -37,6 +37,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     # Here, not at the top: sympy and the solver load only when a run starts (not for --help).
     from ..grade.assignment import load_assignment
     from ..grade.run import grade_submissions
+    from ..grade.worked import shown_solutions
     from ..parallel import default_jobs
     from ..report.output import write_outputs
 
@@ -59,7 +60,9 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
-    report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs).report
+    worked = shown_solutions(spec, report)  # the assignment's worked_solution rule
+    report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
+                           worked=worked).report
     click.echo(summary(report, out_dir))
     if report.internal_errors:
         sys.exit(INTERNAL_ERROR_EXIT)

@@ -7,12 +7,12 @@ import json
 import click
 
 from ..mechanics import derivation
-from ..mechanics.derivation import derivation_mathml
 from ..files import write_text
-from ..report.picture import picture_svg
+from ..solve.picture import picture_svg, scene
+from ..solve.worked import answer_text as value_text
+from ..solve.worked import worked_solution
 from ..report.worked import steps_html, steps_markdown
 from ..solve import solve as solve_problem
-from ..solve.picture import scene
 from ..spec import load_problem
 from .common import main, reports_errors
 
@@ -28,21 +28,6 @@ def solution_json(problem, solution) -> dict:
             "state": [{"name": v.name, "value": v.value, "unit": v.unit, "given": v.given}
                       for v in solution.state],
             "warnings": [str(w) for w in problem.warnings + solution.warnings]}
-
-
-def value_text(result) -> str:
-    """One objective's answer as ``solve`` prints it.
-
-    >>> from mechgrade.solve.result import ObjectiveResult
-    >>> value_text(ObjectiveResult("v", "vector", "m/s", (1.0, 2.5, 0.0), "N"))
-    '(1, 2.5, 0) m/s in N'
-    """
-    if result.kind == "symbolic":
-        return f"{result.expr}   [{result.unit or '1'}; in {', '.join(result.symbols)}]"
-    if result.kind == "vector":
-        inner = ", ".join(f"{v:.6g}" for v in result.value)
-        return f"({inner}) {result.unit} in {result.frame}"
-    return f"{result.value:.6g} {result.unit}".rstrip()
 
 
 @main.command("solve")
@@ -64,11 +49,8 @@ def solve_command(problem_file: str, fmt: str, steps: bool, plot: str | None) ->
     if fmt == "json":
         click.echo(json.dumps(solution_json(problem, solution), indent=2))
     elif fmt in ("html", "md"):
-        title = f"{problem.id}: {problem.title}"
-        sections = derivation(problem, solution.dof)
-        lines = _objective_lines(problem, solution, failed)
-        click.echo(steps_html(title, sections, derivation_mathml(problem), lines)
-                   if fmt == "html" else steps_markdown(title, sections, lines), nl=False)
+        worked = worked_solution(problem, solution)
+        click.echo(steps_html(worked) if fmt == "html" else steps_markdown(worked), nl=False)
     else:
         _print_text(problem, solution, failed, steps)
     if failed:

@@ -17,7 +17,9 @@ Errors say ``file:line:col: field.path: message``; when a file has several, each
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass, field
+from datetime import date, datetime, time, timezone
 from functools import lru_cache
 from pathlib import Path
 
@@ -25,6 +27,8 @@ from ..errors import AssignmentError, Location
 from ..yamlio import Document, read_yaml
 
 SCHEMA_FILE = Path(__file__).with_name("assignment.schema.json")
+WORKED_SOLUTION = ("always", "after_due_date", "never")
+"""When feedback pages show the worked solution (``policy.worked_solution``)."""
 
 
 @dataclass(frozen=True)
@@ -85,9 +89,12 @@ class ErrorCarriedForward:
 class GradingPolicy:
     """How answers are judged. ``rel``/``abs`` replace every objective's own tolerance when
     set; ``accuracy_sig_figs`` judges values to that many significant figures instead;
-    ``separate_mistakes`` tightens each tolerance so no generated mistake falls inside it."""
+    ``separate_mistakes`` tightens each tolerance so no generated mistake falls inside it.
+    ``worked_solution`` (one of :data:`WORKED_SOLUTION`) says when feedback shows each
+    problem's worked solution: see :meth:`Assignment.shows_worked_solution`."""
 
     reveal_answers: bool = False
+    worked_solution: str = "after_due_date"
     rel: float | None = None
     abs: float | None = None
     accuracy_sig_figs: int | None = None
@@ -119,6 +126,7 @@ class Assignment:
     points: tuple[tuple[str, float], ...] = ()
     policy: GradingPolicy = GradingPolicy()
     variants: VariantPolicy = VariantPolicy()
+    due: datetime | None = None  # timezone-aware
     points_where: tuple[tuple[str, Location], ...] = field(default=(), compare=False, repr=False)
 
     def points_for(self, problem_id: str, objective_id: str) -> float:
@@ -133,6 +141,25 @@ class Assignment:
     def variant_seed(self) -> str:
         """The seed students' variants are drawn with: ``variants.seed``, else the id."""
         return self.variants.seed or self.id
+
+    def shows_worked_solution(self, now: datetime) -> bool:
+        """Whether feedback made at ``now`` (timezone-aware) shows the worked solutions:
+        ``always``; ``never``; ``after_due_date`` (the default) once ``due`` has passed, and
+        never without a ``due`` date, since the worked solution reveals every answer.
+
+        >>> from datetime import datetime, timezone
+        >>> due = datetime(2026, 11, 20, 23, 59, tzinfo=timezone.utc)
+        >>> before, after = due.replace(hour=12), due.replace(day=21)
+        >>> hw = Assignment("hw", "Homework", Path("hw.yaml"), (), due=due)
+        >>> hw.shows_worked_solution(before), hw.shows_worked_solution(after)
+        (False, True)
+        >>> Assignment("hw", "Homework", Path("hw.yaml"), ()).shows_worked_solution(after)
+        False
+        """
+        rule = self.policy.worked_solution
+        if rule == "after_due_date":
+            return self.due is not None and now >= self.due
+        return rule == "always"
 
     def where_points(self, key: str) -> Location:
         """Where ``points.<key>`` was written (for messages about unknown objectives)."""
@@ -171,6 +198,7 @@ def load_assignment(path: str | Path) -> Assignment:
         points=tuple((k, float(points[k])) for k in keys),
         policy=GradingPolicy(
             reveal_answers=bool(policy.get("reveal_answers", False)),
+            worked_solution=policy.get("worked_solution", "after_due_date"),
             rel=_float_or_none(tolerance.get("rel")),
             abs=_float_or_none(tolerance.get("abs")),
             accuracy_sig_figs=(int(tolerance["sig_figs"]) if "sig_figs" in tolerance
@@ -191,7 +219,25 @@ def load_assignment(path: str | Path) -> Assignment:
         points_where=tuple((k, doc.where(("points", k))) for k in keys),
         variants=VariantPolicy(str((data.get("variants") or {}).get("seed", "")),
                                bool((data.get("variants") or {}).get("redraw", False))),
+        due=_due(data["due"]) if "due" in data else None,
     )
+
+
+def _due(text: str) -> datetime:
+    """A ``due`` field (checked by :func:`_validate`) as a timezone-aware time: a date is the
+    end of that day, a time without an offset is UTC.
+
+    >>> _due("2026-11-20").isoformat(), _due("2026-11-20T18:00-05:00").isoformat()
+    ('2026-11-20T23:59:59+00:00', '2026-11-20T18:00:00-05:00')
+    """
+    if not re.fullmatch(r"\d{4}-\d{2}-\d{2}([T ]\d{2}:\d{2}(:\d{2})?(Z|[+-]\d{2}:\d{2})?)?",
+                        text):
+        raise ValueError(text)
+    if len(text) == 10:
+        moment = datetime.combine(date.fromisoformat(text), time(23, 59, 59))
+    else:
+        moment = datetime.fromisoformat(text.replace("Z", "+00:00"))
+    return moment if moment.tzinfo is not None else moment.replace(tzinfo=timezone.utc)
 
 
 def _float_or_none(value) -> float | None:
@@ -238,6 +284,14 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
                         f"expected each objective once, found '{dup[0]}' more than once",
                         where=doc.where(("problems", i, "objectives"))))
             refs.append(ProblemRef(target, objectives, where))
+        if "due" in doc.data:
+            try:
+                _due(doc.data["due"])
+            except ValueError:
+                problems_.append(AssignmentError(
+                    f"expected a date (2026-11-20) or a date and time (2026-11-20T23:59, "
+                    f"with an offset such as +01:00 or Z, else UTC), found "
+                    f"'{doc.data['due']}'", where=doc.where(("due",))))
         from .diagnose import CODES
 
         diagnoses = ((doc.data.get("policy") or {}).get("partial_credit") or {}).get("diagnoses")

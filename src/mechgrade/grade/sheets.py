@@ -20,13 +20,15 @@ class Question:
 @dataclass(frozen=True)
 class SheetProblem:
     """One problem of a sheet: its statement with the student's numbers, the givens drawn
-    for the student (empty when the problem has no variants) and its questions."""
+    for the student (empty when the problem has no variants), its questions and ``picture``,
+    the mechanism with the student's numbers as SVG text (without the motion asked for)."""
 
     id: str
     title: str
     statement: str
     givens: tuple[VariantGiven, ...]
     questions: tuple[Question, ...]
+    picture: str = ""
 
 
 @dataclass(frozen=True)

@@ -94,31 +94,63 @@ def draw_variant(problem: Problem, seed: str, student: str, start: int = 0) -> V
     for index in range(start, start + DRAW_LIMIT):
         drawn = {d.key: (_value(d, _number(seed, problem.id, student, index, d.key)), d.unit)
                  for d in variants.draws}
-        givens = []
-        for g in problem.givens:
-            key = to_text(g.key.node)
-            if key in drawn:
-                value, unit = drawn[key]
-                givens.append(replace(g, value=value, si=to_si(value, unit), value_expr=None))
-            elif g.value_expr is not None:
-                givens.append(replace(g, si=math.nan))
-            else:
-                givens.append(g)
-        try:
-            resolved = resolve_given_values(tuple(givens), problem.coordinates,
-                                            problem.parameters)
-        except SpecError:
-            continue  # a given written as an expression is undefined here (sqrt of < 0)
-        values = {to_text(g.key.node): g.si for g in resolved}
-        if all(r.holds(values) for r in variants.requires):
-            spec = {to_text(g.key.node): g.si for g in problem.givens}
-            overrides = tuple((k, v) for k, v in values.items() if v != spec[k])
-            return Variant(problem.id, student, seed, index,
-                           tuple(VariantGiven(problem.id, d.key, drawn[d.key][0], d.unit, index)
-                                 for d in variants.draws), overrides)
+        variant = _variant(problem, seed, student, index, drawn)
+        if variant is not None:
+            return variant
     conditions = "; ".join(r.text for r in variants.requires) or "givens written as expressions"
     raise SolveError(f"no draw of problem '{problem.id}' meets its conditions ({conditions}) "
                      f"in {DRAW_LIMIT} tries; widen the ranges", where=variants.where)
+
+
+def _variant(problem: Problem, seed: str, student: str, index: int,
+             drawn: dict[str, tuple[float, str]]) -> Variant | None:
+    """The variant of the ``drawn`` values (key -> value, unit), its derived givens worked
+    out; ``None`` when it breaks a ``require:`` condition or a derived given is undefined."""
+    variants = problem.variants
+    assert variants is not None  # only problems with a variants: section are drawn
+    givens = []
+    for g in problem.givens:
+        key = to_text(g.key.node)
+        if key in drawn:
+            value, unit = drawn[key]
+            givens.append(replace(g, value=value, si=to_si(value, unit), value_expr=None))
+        elif g.value_expr is not None:
+            givens.append(replace(g, si=math.nan))
+        else:
+            givens.append(g)
+    try:
+        resolved = resolve_given_values(tuple(givens), problem.coordinates,
+                                        problem.parameters)
+    except SpecError:
+        return None  # a given written as an expression is undefined here (sqrt of < 0)
+    values = {to_text(g.key.node): g.si for g in resolved}
+    if not all(r.holds(values) for r in variants.requires):
+        return None
+    spec = {to_text(g.key.node): g.si for g in problem.givens}
+    overrides = tuple((k, v) for k, v in values.items() if v != spec[k])
+    return Variant(problem.id, student, seed, index,
+                   tuple(VariantGiven(problem.id, d.key, drawn[d.key][0], d.unit, index)
+                         for d in variants.draws), overrides)
+
+
+def recorded_variant(problem: Problem, seed: str, student: str,
+                     drawn: tuple[VariantGiven, ...]) -> Variant:
+    """The variant whose drawn givens a result recorded (``StudentResult.variant``).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("examples") / "hw2_variants" / "pendulum_variants.yaml")
+    >>> a = draw_variant(p, "fall", "10001")
+    >>> recorded_variant(p, "fall", "10001", a.drawn) == a
+    True
+    """
+    index = drawn[0].draw if drawn else 0
+    variant = _variant(problem, seed, student, index,
+                       {g.name: (g.value, g.unit) for g in drawn if g.problem == problem.id})
+    if variant is None:
+        raise SolveError(f"the recorded givens of problem '{problem.id}' for student "
+                         f"'{student}' do not make a variant of it")
+    return variant
 
 
 def solve_variant(problem: Problem, variant: Variant) -> Solution:
@@ -278,21 +310,33 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
     """Every student's problem sheet: ``plan`` is the assignment's
     :class:`~mechgrade.grade.run.Plan`, ``students`` ``(id, name)`` pairs (the id decides
     the variant, as in grading)."""
+    from ..solve.picture import drawable, geometry, picture_svg, scene
+
+    def drawn(problem, solution) -> str:
+        picture = scene(problem, solution)
+        return picture_svg(geometry(picture)) if drawable(picture) else ""
+
     assignment = plan.assignment
     seed = assignment.variant_seed
+    # a problem without variants looks the same on every sheet: drawn once
+    pictures = {p.id: drawn(p, s) for p, s in zip(plan.problems, plan.solutions)
+                if p.variants is None}
     sheets = []
     for student_id, name in students:
         problems = []
         for problem in plan.problems:
             variant = None
+            picture = pictures.get(problem.id)
             if problem.variants is not None:
-                variant, _ = student_variant(problem, seed, student_id,
-                                             assignment.variants.redraw)
+                variant, solution = student_variant(problem, seed, student_id,
+                                                    assignment.variants.redraw)
+                picture = drawn(problem, solution)
             questions = tuple(Question(o.key, o.objective.prompt, unit_text(o.objective.unit))
                               for o in plan.objectives if o.problem.id == problem.id)
             problems.append(SheetProblem(problem.id, problem.title,
                                          statement(problem, variant),
-                                         variant.drawn if variant else (), questions))
+                                         variant.drawn if variant else (), questions,
+                                         picture or ""))
         sheets.append(Sheet(assignment.id, assignment.title, student_id, name, seed,
                             tuple(problems)))
     return tuple(sheets)

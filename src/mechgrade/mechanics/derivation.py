@@ -3,13 +3,17 @@ and vectors as presentation MathML (sympy's printer; no script, no CDN)."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from functools import lru_cache
+
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Name
+from ..expressions.syntax import Attr, Name
 from ..spec.model import Problem
 from .build import build
 from .kinematics import derive
+from .symbols import identically_zero
 
 
 def kinematics_derivation(problem: Problem, dof: int | None = None
@@ -113,3 +117,239 @@ def _vector_math(v: Vector) -> str:
             parts.append(f"<mrow><mo>(</mo>{inner}<mo>)</mo>{unit}</mrow>")
     body = "<mo>+</mo>".join(parts) if parts else "<mn>0</mn>"
     return f'<math display="block"><mrow>{body}</mrow></math>'
+
+
+# ---------------------------------------------------------------------------- worked steps
+
+
+@dataclass(frozen=True)
+class Row:
+    """One equation of a worked step: ``math`` its presentation MathML (generated from the
+    model, never from student text), ``text`` the same in plain text, ``anchor`` its id on a
+    page, ``codes`` the generated-mistake families (:data:`~.mutations.CODES`) that leave
+    this very term out, so a feedback page can point at it."""
+
+    anchor: str
+    math: str
+    text: str
+    codes: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step of the worked solution: a title, lines of text and equations."""
+
+    anchor: str
+    title: str
+    lines: tuple[str, ...] = ()
+    rows: tuple[Row, ...] = ()
+
+
+VELOCITY_TERMS = (("drop_transport_vel", "origin"), ("drop_omega_r", "omega_r"),
+                  ("drop_relative_vel", "relative"))
+ACCELERATION_TERMS = (("drop_transport_acc", "origin"), ("drop_tangential", "alpha_r"),
+                      ("drop_centripetal", "omega_omega_r"), ("drop_coriolis", "coriolis"),
+                      ("drop_relative_acc", "relative"))
+"""The terms of the composition of motion (transport theorem), by the code of the generated
+mistake that leaves each out (``coriolis_half`` halves the Coriolis row)."""
+
+
+@lru_cache(maxsize=64)
+def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
+    """The kinematic steps of the worked solution, in the write-up order: frames with their
+    angular velocities, where the points are, constraints and degrees of freedom, then the
+    velocity and acceleration of every point in the inertial frame, each composed term by
+    term (transport theorem) in the moving frame its position is written in.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> steps = kinematics_steps(load_problem(shipped_dir("problems")
+    ...                                   / "ruina_10_4_10_7_rotating_tube_accel.yaml"))
+    >>> [s.anchor for s in steps]
+    ['frames', 'points', 'constraints', 'vel-P', 'acc-P']
+    >>> [(r.anchor, r.codes) for r in steps[-1].rows][2:4]
+    [('acc-P-coriolis', ('drop_coriolis', 'coriolis_half')), ('acc-P-relative', ('drop_relative_acc',))]
+    """
+    text = dict(kinematics_derivation(problem, dof))
+    model = build(problem)
+    N = problem.inertial_frame
+    show = _Display(model)
+    frame_rows = []
+    for f in problem.frames:
+        if f.parent is None:
+            continue
+        omega = model.frames[f.name].ang_vel_in(model.frames[N])
+        alpha = model.frames[f.name].ang_acc_in(model.frames[N])
+        turning = (("ω", omega, "angvel"), ("α", alpha, "angacc"))
+        for symbol, value, kind in turning[:1] if _is_zero(omega, model) else turning:
+            frame_rows.append(Row(f"{kind}-{f.name}", show.equation(
+                _scripted(symbol, N, f.name), model.plain(value)),
+                f"{N}_{'omega' if symbol == 'ω' else 'alpha'}_{f.name} = "
+                f"{_vector_text(model.plain(value))}",
+                ("relative_omega",) if symbol == "ω" else ()))
+    k = derive(problem)
+    constraint_rows = [Row(f"constraint-{i}", show.math(sp.Eq(e.expr, 0)),
+                           f"{e.label}: {sp.sstr(e.expr)} = 0")
+                       for i, e in enumerate(k.position + k.velocity)]
+    steps = [Step("frames", "Frames and their angular velocities", text["Frames"],
+                  tuple(frame_rows)),
+             Step("points", "Where the points are", text["Points"]
+                  + text.get("Definitions", ())),
+             Step("constraints", "Constraints and degrees of freedom",
+                  text["Constraints"] + text["Degrees of freedom"], tuple(constraint_rows))]
+    for kind in ("vel", "acc"):
+        for p in problem.points:
+            if p.origin is not None:
+                steps.append(_motion_step(problem, model, show, p.name, kind))
+    return tuple(steps)
+
+
+def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: str) -> Step:
+    """The velocity (``kind`` ``"vel"``) or acceleration of ``point`` in the inertial frame:
+    each term of its composition in the moving frame it is described in, then the sum."""
+    N = problem.inertial_frame
+    language = model.language
+    whole = (language.point_velocity if kind == "vel" else language.point_acceleration)(
+        Name(point), N)
+    letter, noun = ("v", "velocity") if kind == "vel" else ("a", "acceleration")
+    rows = []
+    moving = _moving_frame(problem, model, point)
+    if moving is not None:
+        B, origin = moving
+        F, frame = model.frames[N], model.frames[B]
+        r = model.positions[point] - model.positions[origin]
+        omega, alpha = frame.ang_vel_in(F), frame.ang_acc_in(F)
+        v_rel = r.dt(frame)
+        r_math = f"<msub><mi mathvariant=\"bold\">r</mi><mrow><mi>{point}</mi><mo>/</mo>" \
+                 f"<mi>{origin}</mi></mrow></msub>"
+        w, a = _scripted("ω", N, B), _scripted("α", N, B)
+        if kind == "vel":
+            terms = {"origin": (language.point_velocity(Name(origin), N),
+                                _scripted("v", N, origin), f"{N}_v_{origin}"),
+                     "omega_r": (omega ^ r, f"{w}<mo>×</mo>{r_math}", f"omega x r_{point}/{origin}"),
+                     "relative": (v_rel, _scripted("v", B, point), f"{B}_v_{point}")}
+            codes = VELOCITY_TERMS
+        else:
+            terms = {"origin": (language.point_acceleration(Name(origin), N),
+                                _scripted("a", N, origin), f"{N}_a_{origin}"),
+                     "alpha_r": (alpha ^ r, f"{a}<mo>×</mo>{r_math}", f"alpha x r_{point}/{origin}"),
+                     "omega_omega_r": (omega ^ (omega ^ r),
+                                       f"{w}<mo>×</mo><mo>(</mo>{w}<mo>×</mo>{r_math}<mo>)</mo>",
+                                       f"omega x (omega x r_{point}/{origin})"),
+                     "coriolis": (2 * (omega ^ v_rel),
+                                  f"<mn>2</mn>{w}<mo>×</mo>{_scripted('v', B, point)}",
+                                  f"2 omega x {B}_v_{point}"),
+                     "relative": (v_rel.dt(frame), _scripted("a", B, point), f"{B}_a_{point}")}
+            codes = ACCELERATION_TERMS
+        for code, name in codes:
+            value, label, label_text = terms[name]
+            value = model.plain(value)
+            if _is_zero(value, model):
+                continue
+            rows.append(Row(f"{kind}-{point}-{name}", show.equation(label, value),
+                            f"{label_text} = {_vector_text(value)}",
+                            (code, "coriolis_half") if name == "coriolis" else (code,)))
+    rows.append(Row(f"{kind}-{point}-total", show.equation(_scripted(letter, N, point),
+                                                            model.plain(whole)),
+                    f"{N}_{letter}_{point} = {_vector_text(model.plain(whole))}"))
+    where = f" (composed in frame {moving[0]}, from {moving[1]})" if moving else ""
+    return Step(f"{kind}-{point}", f"The {noun} of {point} in {N}{where}", (), tuple(rows))
+
+
+def _moving_frame(problem: Problem, model, point: str) -> tuple[str, str] | None:
+    """The frame (and its origin) ``point`` is described in, when it turns in the inertial
+    frame and has an origin: its motion is composed there (transport theorem)."""
+    spec = next(p for p in problem.points if p.name == point)
+    used = _frames_used(spec.position.node)
+    for f in problem.frames:
+        if f.name in used and f.origin is not None and f.origin != point \
+                and f.origin == spec.origin and not _is_zero(model.plain(
+                    model.frames[f.name].ang_vel_in(model.frames[problem.inertial_frame])),
+                    model):
+            return f.name, f.origin
+    return None
+
+
+def _frames_used(node) -> set[str]:
+    """The frames whose unit vectors a position expression uses (``B.x`` -> ``B``)."""
+    found = set()
+    stack = [node]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, Attr):
+            found.add(item.base)
+        for child in ("left", "right", "operand"):
+            if getattr(item, child, None) is not None:
+                stack.append(getattr(item, child))
+        stack.extend(getattr(item, "args", ()) or ())
+    return found
+
+
+def _is_zero(value, model) -> bool:
+    if isinstance(value, Vector):
+        return all(identically_zero(c) for c in model.plain(value.to_matrix(model.inertial)))
+    return identically_zero(value)
+
+
+def _scripted(letter: str, frame: str, point: str) -> str:
+    """``letter`` with ``frame`` as a left superscript and ``point`` as a right one:
+    :math:`{}^N\\mathbf{v}^A`, the textbook's velocity of A in N."""
+    return (f"<mmultiscripts><mi mathvariant=\"bold\">{letter}</mi><none/><mi>{point}</mi>"
+            f"<mprescripts/><none/><mi>{frame}</mi></mmultiscripts>")
+
+
+class _Display:
+    """MathML of a model's expressions, with rates as dots over their coordinate
+    (``thetad`` -> θ̇)."""
+
+    def __init__(self, model):
+        symbols = model.symbols
+        self.swap = {}
+        self.marks = {}
+        for i, (q, qd, qdd) in enumerate(zip(symbols.q, symbols.qd, symbols.qdd)):
+            base = sp.printing.mathml(q, printer="presentation")
+            # the bullet operator: the dot above (U+02D9) is a pixel at text size in Chromium
+            for symbol, mark, name in ((qd, "&#8729;", f"zzrate{i}x"),
+                                       (qdd, "&#8729;&#8729;", f"zzrate{i}xx")):
+                self.swap[symbol] = sp.Symbol(name, real=True)
+                self.marks[f"<mi>{name}</mi>"] = \
+                    f'<mover accent="true">{base}<mo>{mark}</mo></mover>'
+
+    def _inner(self, expr) -> str:
+        text = sp.printing.mathml(sp.sympify(expr).xreplace(self.swap), printer="presentation")
+        for placeholder, shown in self.marks.items():
+            text = text.replace(placeholder, shown)
+        return text
+
+    def math(self, expr) -> str:
+        return f'<math display="block">{self._inner(expr)}</math>'
+
+    def equation(self, label: str, value) -> str:
+        """``label = value`` (a vector as components along its frames' unit vectors)."""
+        body = self._vector(value) if isinstance(value, Vector) else self._inner(value)
+        return f'<math display="block"><mrow>{label}<mo>=</mo>{body}</mrow></math>'
+
+    def _vector(self, v: Vector) -> str:
+        """A vector as its components times its frames' unit vectors: a sum in parentheses,
+        a product or a symbol bare, a negative one after a minus sign."""
+        out = []
+        for matrix, frame in v.args:
+            for coefficient, axis in zip(matrix, "xyz"):
+                coefficient = min((sp.simplify(coefficient), sp.expand(coefficient)),
+                                  key=sp.count_ops)
+                if coefficient == 0:
+                    continue
+                negative = not isinstance(coefficient, sp.Add) \
+                    and coefficient.could_extract_minus_sign()
+                shown = -coefficient if negative else coefficient
+                unit = (f"<msub><mover accent=\"true\"><mi mathvariant=\"bold\">"
+                        f"{frame.name.lower()}</mi><mo>^</mo></mover><mi>{axis}</mi></msub>")
+                if shown == 1:
+                    term = unit
+                elif isinstance(shown, sp.Add):
+                    term = f"<mo>(</mo>{self._inner(shown)}<mo>)</mo>{unit}"
+                else:
+                    term = f"{self._inner(shown)}<mo>&#8290;</mo>{unit}"
+                out.append(("<mo>&#8722;</mo>" if negative else
+                            "<mo>+</mo>" if out else "") + f"<mrow>{term}</mrow>")
+        return f"<mrow>{''.join(out) if out else '<mn>0</mn>'}</mrow>"

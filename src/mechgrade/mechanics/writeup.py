@@ -3,8 +3,10 @@ problem with bodies and loads, the kinematics write-up for any other."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ..spec.model import Problem
-from .derivation import kinematics_derivation
+from .derivation import Step, kinematics_derivation, kinematics_steps
 from .dynamics import kinetics_derivation
 
 
@@ -14,3 +16,28 @@ def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tup
     if problem.dynamics is not None:
         return kinetics_derivation(problem, dof)
     return kinematics_derivation(problem, dof)
+
+
+def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
+    """The symbolic steps of the worked solution: the kinematics (:func:`kinematics_steps`),
+    then, for a problem with bodies and loads, the kinetics sections of the write-up (bodies,
+    free-body loads, momentum balances, how the unknowns are solved).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> steps = worked_steps(load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml"))
+    >>> steps[0].anchor, steps[-1].anchor
+    ('frames', 'kinetics-solution')
+    """
+    kinematic = replace(problem, objectives=(), dynamics=None)
+    steps = kinematics_steps(kinematic, dof)
+    if problem.dynamics is None:
+        return steps
+    before = len(kinematics_derivation(kinematic, dof)) - 2  # without velocities, accelerations
+    tail = kinetics_derivation(problem, dof)[before:-1]  # the objectives come with their numbers
+    return steps + tuple(Step("kinetics-" + _slug(title), title, tuple(lines))
+                         for title, lines in tail)
+
+
+def _slug(title: str) -> str:
+    return "-".join("".join(c if c.isalnum() else " " for c in title.lower()).split())

@@ -62,6 +62,8 @@ def sheet_context(sheet: Sheet, markdown: bool = False) -> dict:
     >>> sheet_context(Sheet("hw", "Hw *2*", "a_", "", "s", ()), markdown=True)["title"]
     'Hw \\\\*2\\\\*'
     """
+    from markupsafe import Markup
+
     text = markdown_escape if markdown else (lambda value: value)
     return {
         "title": text(sheet.assignment_title),
@@ -72,6 +74,8 @@ def sheet_context(sheet: Sheet, markdown: bool = False) -> dict:
             "givens": [{"name": text(g.name), "value": text(g.text)} for g in p.givens],
             "questions": [{"key": text(q.key), "prompt": text(q.prompt), "unit": text(q.unit)}
                           for q in p.questions],
+            # SVG drawn by mechgrade from the model (never from student text); HTML only
+            "picture": "" if markdown else Markup(p.picture),
         } for p in sheet.problems],
     }
 

@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 from functools import lru_cache, partial
 from html import escape as html_escape
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import Location, MechgradeError, brief_exception
 from ..files import json_text, safe_file_names, write_json, write_text
@@ -32,6 +33,10 @@ from ..export import EXPORTERS
 from ..parallel import fork_map, outcome, raise_first
 from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
+
+if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
+    from ..grade.worked import FeedbackSolutions
+    from ..solve.worked import WorkedSolution
 
 TEMPLATE_NAMES = ("feedback.html.j2", "feedback.md.j2")
 
@@ -60,8 +65,13 @@ class Written:
 
 
 def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str | Path | None = None,
-                  *, roster=None, jobs: int = 1) -> Written:
+                  *, roster=None, jobs: int = 1,
+                  worked: FeedbackSolutions | None = None) -> Written:
     """Write every output of ``report`` into ``out_dir``.
+
+    With ``worked`` every feedback page shows the worked solution and picture of each
+    problem (the student's own variant), each rendered once and shared by the pages, with
+    the step where a student's named mistake happens highlighted.
 
     Rendering one student's feedback is one unit of work: a fault of mechgrade's there gives
     that student a short page saying so, and the other outputs are written as usual. The pages
@@ -81,6 +91,7 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     pieces = max(1, min(count, 4 * jobs)) if jobs > 1 else 1
     bounds = [(count * i // pieces, count * (i + 1) // pieces) for i in range(pieces)]
     _RENDERING[:] = [(report, templates, templates_dir)]  # inherited by the forked workers
+    _WORKED[:] = [_worked_pages(worked, env, templates_dir)] if worked is not None else []
     try:
         # results.json is made while the pages render; made again if a page met a fault.
         work = [_results_text] + [partial(_render_students, b) for b in bounds]
@@ -88,6 +99,7 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
         raise_first(rendered)
     finally:
         _RENDERING.clear()
+        _WORKED.clear()
     pages: list[tuple[Path, str]] = []
     faults: list[str] = []
     names = iter(feedback_names(report))
@@ -114,6 +126,7 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
 
 
 _RENDERING: list = []
+_WORKED: list = []  # the worked solutions and their fragments, rendered once per run
 
 
 def _results_text() -> str:
@@ -140,6 +153,8 @@ def _feedback_page(report: GradeReport, student: StudentResult, template, suffix
         context = _context(report, student, prompts)
         if suffix == ".md":
             context = _escape_all(context)
+        context.update(worked_context(_WORKED[0] if _WORKED else None, student, prompts,
+                                      markdown=suffix == ".md"))
         return _render(template, context, templates_dir)
     except MechgradeError:
         raise  # a broken template is the instructor's to fix, for every student alike
@@ -201,14 +216,135 @@ def feedback_names(report: GradeReport) -> list[str]:
 
 
 def feedback_context(report: GradeReport, student: StudentResult, *,
-                     markdown: bool = False) -> dict:
+                     markdown: bool = False, worked: FeedbackSolutions | None = None,
+                     templates_dir: str | Path | None = None) -> dict:
     """Everything a feedback template shows for one student, as ready-made text.
 
     With ``markdown`` every text is escaped for Markdown (the HTML template relies on Jinja's
-    autoescaping instead), so a student's answer can never turn into markup.
+    autoescaping instead), so a student's answer can never turn into markup. With ``worked``,
+    the worked solutions (see :func:`worked_context`).
     """
-    context = _context(report, student, _prompts(report))
-    return _escape_all(context) if markdown else context
+    prompts = _prompts(report)
+    context = _context(report, student, prompts)
+    context = _escape_all(context) if markdown else context
+    pages = (_worked_pages(worked, template_environment(templates_dir), templates_dir)
+             if worked is not None else None)
+    context.update(worked_context(pages, student, prompts, markdown=markdown))
+    return context
+
+
+@dataclass(frozen=True)
+class WorkedPages:
+    """A run's worked solutions with their HTML and Markdown fragments, by the solution's
+    ``id()`` (each rendered once, whatever the number of students sharing it)."""
+
+    worked: FeedbackSolutions
+    html: dict
+    markdown: dict
+
+
+def _worked_pages(worked: FeedbackSolutions, env, templates_dir) -> WorkedPages:
+    if templates_dir is not None and not (Path(templates_dir) / "worked.html.j2").is_file():
+        # a folder of one's own feedback templates: the worked solution as shipped
+        env, templates_dir = template_environment(), None
+    every = list(worked.solutions) + [w for _, _, w in worked.variants]
+    return WorkedPages(worked, {id(w): worked_html(w, templates_dir, env) for w in every},
+                       {id(w): worked_markdown(w) for w in every})
+
+
+def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: dict, *,
+                   markdown: bool = False) -> dict:
+    """The worked-solution part of a feedback page: ``worked`` (each problem's fragment),
+    ``highlight`` (for the HTML page: a style marking the steps where the student's named
+    mistakes happen) and ``mistake_steps`` (objective key -> the link and title of that step).
+    Empty lists and text without worked solutions."""
+    if pages is None:
+        return {"worked": [], "highlight": "", "mistake_steps": {}}
+    from markupsafe import Markup
+
+    mine = pages.worked.for_student(student)
+    by_problem = {w.problem: w for w in mine}
+    marked: dict[str, str] = {}
+    steps: dict[str, dict] = {}
+    for answer in student.answers:
+        worked = by_problem.get(answer.problem)
+        code = pages.worked.code(answer.diagnosis)
+        place = None if worked is None or not answer.diagnosis else (
+            worked.place(answer.objective, code) if code
+            else worked.declared_place(answer.objective, answer.diagnosis))
+        if place is None:
+            continue
+        prompt = prompts.get((answer.problem, answer.objective)) or answer.objective
+        title = _step_title(worked, place)
+        steps[f"{answer.problem}.{answer.objective}"] = {
+            "href": "#" + anchor(answer.problem, place),
+            "title": markdown_escape(title) if markdown else title}
+        note = f"Your answer to “{_shorten(prompt)}”: {answer.diagnosis}"
+        marked[anchor(answer.problem, place)] = (
+            marked[anchor(answer.problem, place)] + "; " + note
+            if anchor(answer.problem, place) in marked else note)
+    fragments = pages.markdown if markdown else pages.html
+    highlight = "".join(
+        f"#{ident} {{ background: #fff4e5; outline: 2px solid #f0b429; }}\n"
+        f"#{ident}::before {{ content: {_css_string(note)}; display: block; color: #8d6b00; "
+        f"font-weight: 600; font-size: .85rem; font-family: system-ui, sans-serif; }}\n"
+        for ident, note in marked.items())
+    return {"worked": [{"problem": w.problem, "fragment": fragments[id(w)]} for w in mine],
+            "highlight": "" if markdown else Markup(highlight), "mistake_steps": steps}
+
+
+def anchor(problem: str, step: str) -> str:
+    """The page id of a step or row of ``problem``'s worked solution.
+
+    >>> anchor("bowling 3.15", "acc-P-coriolis")
+    'ws-bowling-3-15-acc-P-coriolis'
+    """
+    return re.sub(r"[^A-Za-z0-9_-]", "-", f"ws-{problem}-{step}")
+
+
+def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
+    """The worked solution as an HTML fragment (``worked.html.j2``), safe markup."""
+    from markupsafe import Markup
+
+    env = env if env is not None else template_environment(templates_dir)
+    context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
+                     "picture": worked.picture, "steps": worked.steps}}
+    return Markup(_render(_template(env, "worked.html.j2"), context, templates_dir))
+
+
+def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
+    """The worked solution as Markdown: each step's text, its equations as the solver
+    writes them (the picture and the MathML need the HTML page)."""
+    hashes = "#" * level
+    out = [f"{hashes} {markdown_escape(worked.title)}"]
+    for step in worked.steps:
+        out += ["", f"{hashes}# {markdown_escape(step.title)}", ""]
+        lines = [line for line in step.lines if line] + [row.text for row in step.rows]
+        out += [f"- `{line.strip()}`" for line in lines] or ["(none)"]
+    return "\n".join(out) + "\n"
+
+
+def _step_title(worked, place: str) -> str:
+    for step in worked.steps:
+        if step.anchor == place or any(row.anchor == place for row in step.rows):
+            return step.title
+    return place
+
+
+def _shorten(text: str, limit: int = 60) -> str:
+    text = " ".join(text.split())
+    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+
+
+def _css_string(text: str) -> str:
+    """``text`` as a CSS string: every character but letters, digits and spaces escaped, so
+    no text can end the string or the style element.
+
+    >>> print(_css_string('a "b" </style>'))
+    "a \\22 b\\22  \\3c \\2f style\\3e "
+    """
+    return '"' + "".join(c if c.isascii() and (c.isalnum() or c == " ") else f"\\{ord(c):x} "
+                         for c in text) + '"'
 
 
 def _prompts(report: GradeReport) -> dict:

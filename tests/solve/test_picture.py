@@ -3,10 +3,9 @@
 from click.testing import CliRunner
 
 from mechgrade.cli import main
-from mechgrade.report.picture import picture_svg
+from mechgrade.solve.picture import picture_svg, scene
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.solve.picture import scene
 from mechgrade.spec import load_problem
 
 TUBE = shipped_dir("problems") / "ruina_10_4_10_7_rotating_tube_accel.yaml"

@@ -1,0 +1,199 @@
+"""The worked solution of a problem as ready-made text for pages: its steps in the write-up
+order (MathML generated from the model), the answers in the asked units, the picture as inline
+SVG, and where each generated mistake happens in it.
+
+Everything symbolic (the steps, the picture's functions) is made once per problem; a solution
+(a student's variant) only adds its numbers. Nothing here holds a sympy object, so reports can
+show a :class:`WorkedSolution` without importing sympy.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.solve import solve
+>>> problem = load_problem(shipped_dir("problems") / "ruina_10_4_10_7_rotating_tube_accel.yaml")
+>>> worked = worked_solution(problem, solve(problem))
+>>> worked.place("a_P_N", "drop_coriolis"), worked.place("a_P_N", "given_sign")
+('acc-P-coriolis', 'givens')
+>>> worked.declared_place("a_P_N", "The Coriolis term 2 omega x v_rel is missing.")
+'acc-P-coriolis'
+>>> worked.picture.startswith("<svg")
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..expressions.syntax import Call, Name, Node
+from ..mechanics.derivation import Row, Step
+from ..mechanics.mutations import CODES as MODEL_CODES
+from ..mechanics.writeup import worked_steps
+from ..spec.model import ObjectiveKind, Problem
+from ..units import from_si, same_dimension
+from .mutants import GIVEN_CODES
+from .picture import drawable, picture_svg, scene
+from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue
+
+__all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
+
+_ACCELERATION_CALLS = ("acc", "acc_t", "acc_n", "rho", "normal")
+_MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")
+
+
+@dataclass(frozen=True)
+class WorkedSolution:
+    """One problem's worked solution (for one set of givens): ``steps`` in the write-up order,
+    ``picture`` an SVG document (empty when there is nothing to draw), ``places`` ``(objective, code, anchor)``: the step or row
+    (by anchor) where the generated mistake ``code`` of an objective happens."""
+
+    problem: str
+    title: str
+    steps: tuple[Step, ...]
+    picture: str
+    places: tuple[tuple[str, str, str], ...] = ()
+    declared: tuple[tuple[str, str, str], ...] = ()
+
+    def place(self, objective: str, code: str) -> str | None:
+        """The anchor of the step or row where ``code``'s mistake happens for ``objective``."""
+        for o, c, anchor in self.places:
+            if (o, c) == (objective, code):
+                return anchor
+        return None
+
+    def declared_place(self, objective: str, message: str) -> str | None:
+        """The anchor where the author's mistake with ``message`` happens, when known."""
+        for o, m, anchor in self.declared:
+            if (o, m) == (objective, message):
+                return anchor
+        return None
+
+
+def answer_text(result: ObjectiveResult) -> str:
+    """One objective's answer as the write-up (and ``mechgrade solve``) prints it.
+
+    >>> answer_text(ObjectiveResult("v", "vector", "m/s", (1.0, 2.5, 0.0), "N"))
+    '(1, 2.5, 0) m/s in N'
+    """
+    if result.kind == ObjectiveKind.SYMBOLIC:
+        return f"{result.expr}   [{result.unit or '1'}; in {', '.join(result.symbols)}]"
+    if isinstance(result.value, tuple):
+        inner = ", ".join(f"{v:.6g}" for v in result.value)
+        return f"({inner}) {result.unit} in {result.frame}"
+    return f"{result.value:.6g} {result.unit}".rstrip()
+
+
+def worked_solution(problem: Problem, solution: Solution,
+                    objectives: tuple[str, ...] | None = None) -> WorkedSolution:
+    """The worked solution of ``problem`` with ``solution``'s numbers (its givens, its
+    answers, its picture), for the ``objectives`` named (default: every one)."""
+    chosen = tuple(o for o in problem.objectives if objectives is None or o.id in objectives)
+    givens = tuple(_state_text(s) for s in solution.state if s.given)
+    solved = tuple(_state_text(s) for s in solution.state if not s.given)
+    asked = tuple(f"{o.id}: {o.prompt or o.find.text}" + (f" [{o.unit}]" if o.unit else "")
+                  for o in chosen)
+    results = {r.id: r for r in solution.results}
+    answers = tuple(
+        Step(f"answer-{o.id}", o.prompt or o.id,
+             (f"{o.id} = {o.find.text}" + (f", components along {o.frame}" if o.frame else ""),
+              f"= {answer_text(results[o.id])}"))
+        for o in chosen if o.id in results)
+    drawing = scene(problem, solution)
+    steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
+             *_at_the_instant(problem, worked_steps(problem, solution.dof), drawing),
+             *((Step("state", "The instant, solved", solved),) if solved else ()),
+             *answers)
+    places = tuple((o.id, code, _place(steps, o.id, o.find.node, code))
+                   for o in chosen if o.id in results
+                   for code in MODEL_CODES + GIVEN_CODES)
+    declared = tuple((o.id, m.message, _place(steps, o.id, o.find.node, g.code))
+                     for o in chosen if o.id in results
+                     for m in results[o.id].mistakes
+                     for g in _same_value(m, results[o.id].generated_mistakes))
+    return WorkedSolution(problem.id, problem.title, steps,
+                          picture_svg(drawing) if drawable(drawing) else "", places, declared)
+
+
+def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple[Step, ...]:
+    """``steps`` with each point's velocity and acceleration in numbers at the instant, along
+    the inertial frame, in the unit an objective asks it in, else in the length unit of the
+    givens per second (squared)."""
+    points = {p.name: p for p in drawing.points}
+    length = next((g.unit for g in problem.givens if g.unit and same_dimension(g.unit, "m")),
+                  "m")
+    units = {"vel": f"{length}/s", "acc": f"{length}/s^2"}
+    asked: dict[tuple[str, str], str] = {}
+    for o in problem.objectives:
+        for call in _calls(o.find.node):
+            kind = "acc" if call.func in _ACCELERATION_CALLS else "vel"
+            if isinstance(call.args[0], Name) and o.unit \
+                    and same_dimension(o.unit, units[kind]):
+                asked.setdefault((kind, call.args[0].id), o.unit)
+    out = []
+    for step in steps:
+        kind, _, name = step.anchor.partition("-")
+        point = points.get(name) if kind in units else None
+        value = getattr(point, "velocity" if kind == "vel" else "acceleration", None) \
+            if point is not None else None
+        if value is not None:
+            unit = asked.get((kind, name), units[kind])
+            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in value)
+            letter = "v" if kind == "vel" else "a"
+            step = replace(step, lines=step.lines + (
+                f"At the instant: {problem.inertial_frame}_{letter}_{name} = ({shown}) "
+                f"{unit} along {problem.inertial_frame}",))
+        out.append(step)
+    return tuple(out)
+
+
+def _same_value(mistake: MistakeValue, generated) -> tuple[GeneratedMistake, ...]:
+    """The first generated mistake with the value of an author's ``mistake`` (or none)."""
+    if mistake.value is None:
+        return ()
+    author = np.atleast_1d(np.asarray(mistake.value, float))
+    for g in generated:
+        if g.value is not None and np.allclose(np.atleast_1d(np.asarray(g.value, float)),
+                                               author, rtol=1e-6, atol=1e-12):
+            return (g,)
+    return ()
+
+
+def _state_text(value: StateValue) -> str:
+    """``q'' = 3 rad/s^2``: a value of the instant, its unit as a student writes it."""
+    unit = value.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
+    return f"{value.name} = {value.value:.6g} {unit}".rstrip()
+
+
+def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> str:
+    """Where the mistake ``code`` happens in the steps, for the objective ``node`` asks."""
+    if code in GIVEN_CODES:
+        return "givens"
+    if code == "position_term":
+        return "points"
+    by_anchor = {s.anchor: s for s in steps}
+    rows = [row for step in steps for row in step.rows]
+    if code == "relative_omega":
+        return next((r.anchor for r in rows if code in r.codes), "frames")
+    for call in _calls(node):
+        if not isinstance(call.args[0], Name):
+            continue
+        kind = "acc" if call.func in _ACCELERATION_CALLS else "vel"
+        step = by_anchor.get(f"{kind}-{call.args[0].id}")
+        if step is None:
+            continue
+        for row in step.rows:
+            if code in row.codes:
+                return row.anchor
+    return f"answer-{objective}"
+
+
+def _calls(node: Node):
+    """The motion calls (``vel(P, N)``, ``acc(P, N)``...) in ``node``, outermost first."""
+    if isinstance(node, Call):
+        if node.func in _MOTION_CALLS and len(node.args) == 2:
+            yield node
+        for arg in node.args:
+            yield from _calls(arg)
+    for child in ("left", "right", "operand"):
+        if getattr(node, child, None) is not None:
+            yield from _calls(getattr(node, child))

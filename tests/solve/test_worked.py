@@ -1,0 +1,65 @@
+"""The worked solution made by the solver: steps in the write-up order, where each generated
+mistake happens, the picture; made once per problem, numbers per solution."""
+
+import pytest
+
+from mechgrade.mechanics.mutations import CODES
+from mechgrade.resources import shipped_dir
+from mechgrade.solve import solve
+from mechgrade.solve.mutants import GIVEN_CODES
+from mechgrade.solve.worked import worked_solution
+from mechgrade.spec import load_problem
+
+PROBLEMS = shipped_dir("problems")
+
+
+def _worked(name, **givens):
+    problem = load_problem(PROBLEMS / f"{name}.yaml")
+    return worked_solution(problem, solve(problem, givens=givens or None))
+
+
+@pytest.mark.parametrize("name, objective, code, place", [
+    ("ruina_10_4_10_7_rotating_tube_accel", "a_P_N", "drop_coriolis", "acc-P-coriolis"),
+    ("ruina_10_4_10_7_rotating_tube_accel", "a_P_N", "coriolis_half", "acc-P-coriolis"),
+    ("ruina_10_4_10_7_rotating_tube_accel", "a_P_N", "drop_centripetal",
+     "acc-P-omega_omega_r"),
+    ("ruina_10_4_10_7_rotating_tube_accel", "a_P_N", "drop_relative_acc", "acc-P-relative"),
+    ("ruina_10_6_rotating_tube_velocity", "v_P_N", "drop_omega_r", "vel-P-omega_r"),
+    ("bowling_3_15_4_pendulum", "acc_mag", "drop_tangential", "acc-A-alpha_r"),
+    ("bowling_3_15_4_pendulum", "acc_mag", "acc_t_for_acc", "answer-acc_mag"),
+    ("bowling_3_15_4_pendulum", "acc_mag", "given_deg_as_rad", "givens"),
+    ("bowling_3_15_4_pendulum", "acc_mag", "position_term", "points"),
+])
+def test_each_mistake_points_at_the_step_where_it_happens(name, objective, code, place):
+    assert _worked(name).place(objective, code) == place
+
+
+@pytest.mark.parametrize("name", ["ruina_10_4_10_7_rotating_tube_accel",
+                                  "ruina_10_6_rotating_tube_velocity",
+                                  "bowling_3_15_4_pendulum", "bowling_3_15_5_cylinder",
+                                  "pendulum_pin_reaction"])
+def test_every_place_is_a_step_or_row_of_the_solution(name):
+    worked = _worked(name)
+    anchors = {s.anchor for s in worked.steps} | {r.anchor for s in worked.steps
+                                                  for r in s.rows}
+    assert {place for _, _, place in worked.places} <= anchors
+    assert {code for _, code, _ in worked.places} == set(CODES + GIVEN_CODES)
+
+
+def test_the_steps_follow_the_write_up_order():
+    steps = [s.anchor for s in _worked("pendulum_pin_reaction").steps]
+    assert steps[:4] == ["givens", "frames", "points", "constraints"]
+    assert steps.index("vel-G") < steps.index("acc-G") < steps.index("kinetics-solution") \
+        < steps.index(next(s for s in steps if s.startswith("answer-")))
+
+
+def test_other_numbers_change_the_numbers_not_the_symbolic_steps():
+    base = _worked("bowling_3_15_4_pendulum")
+    other = _worked("bowling_3_15_4_pendulum", **{"theta'": 3.0})
+    symbolic = [s.rows for s in base.steps if s.rows]
+    assert symbolic == [s.rows for s in other.steps if s.rows]
+    assert symbolic[0] is [s.rows for s in other.steps if s.rows][0]  # made once per problem
+    assert "theta' = 3 rad/s" in other.steps[0].lines and other.picture != base.picture
+    # the numbers at the instant, in the unit the objective asks (|v| = L theta' = 6 ft/s)
+    velocity = next(s for s in other.steps if s.anchor == "vel-A")
+    assert velocity.lines[-1] == "At the instant: N_v_A = (-3, 5.196, 0) ft/s along N"
