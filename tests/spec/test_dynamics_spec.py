@@ -64,7 +64,7 @@ CASES = [
     ("friction coefficient with units", INCLINE, "mu: mu_k", "mu: g",
      "dimension mismatch in 'g' (a friction coefficient)"),
     ("kinetic friction on an unknown surface", INCLINE, "kind: kinetic}",
-     "kind: kinetic, surface: K}", "unknown surface frame 'K'"),
+     "kind: kinetic, surface: K}", "unknown surface 'K' (frames or bodies: A, N, block)"),
     ("spring stiffness units", CHAIN, "stiffness: k1", "stiffness: m1",
      "dimension mismatch in 'm1' (a stiffness)"),
     ("spring free length units", CHAIN, "length: L1", "length: k1",
