@@ -13,6 +13,8 @@ ROOT = Path(__file__).resolve().parents[2]
 PENDULUM = (ROOT / "problems" / "pendulum_pin_reaction.yaml").read_text()
 INCLINE = (ROOT / "problems" / "block_sliding_down_incline.yaml").read_text()
 CHAIN = (ROOT / "problems" / "two_mass_spring_chain.yaml").read_text()
+CART = (ROOT / "problems" / "block_slides_on_cart.yaml").read_text()
+TURNTABLE = (ROOT / "problems" / "block_on_turntable.yaml").read_text()
 
 
 def error_of(text: str) -> str:
@@ -65,6 +67,13 @@ CASES = [
      "dimension mismatch in 'g' (a friction coefficient)"),
     ("kinetic friction on an unknown surface", INCLINE, "kind: kinetic}",
      "kind: kinetic, surface: K}", "unknown surface 'K' (frames or bodies: A, N, block)"),
+    ("friction between bodies pressed by a one-body normal", CART,
+     "N_P: {bodies: [block, cart], at: P,", "N_P: {body: block, at: P,",
+     "friction 'F_P' between block and cart: its normal 'N_P' must act on both bodies"),
+    ("friction of a body on itself", CART, "surface: cart}", "surface: block}",
+     "friction 'F_P' between block and block"),
+    ("static friction on a frame", TURNTABLE, "kind: static,", "kind: static, surface: B,",
+     "unknown surface 'B' (bodies: block)"),
     ("spring stiffness units", CHAIN, "stiffness: k1", "stiffness: m1",
      "dimension mismatch in 'm1' (a stiffness)"),
     ("spring free length units", CHAIN, "length: L1", "length: k1",

@@ -180,6 +180,28 @@ def case_car_braking_weight_transfer():
             "front_share_symbolic": "m*g*(b + mu*h*sign(xd))/(a + b)"}
 
 
+def case_block_slides_on_cart():
+    m, M, mu, g, v0 = 2.0, 8.0, 0.3, 9.81, 5.0
+    # momentum of block + cart is conserved (friction is internal, the floor smooth);
+    # the relative speed falls at mu g (1 + m/M); energy: mu m g d = KE lost
+    v = m * v0 / (m + M)
+    rate = mu * g * (1 + m / M)
+    lost = m * v0**2 / 2 - (m + M) * v**2 / 2
+    return {"t_slide": v0 / rate, "common_speed": v, "slide_distance": lost / (mu * m * g),
+            "energy_lost": lost, "friction_on_block": [-mu * m * g, 0.0, 0.0],
+            "cart_acceleration": mu * m * g / M}
+
+
+def case_flywheel_speed_drop():
+    m, M, T, w0 = 500.0, 1500.0, 0.2, 300 * 2 * np.pi / 60
+    # angular impulse about the axle: I (w0 - w1) = M T with w1 = 0.9 w0; I = m R^2 / 2
+    I = M * T / (0.1 * w0)
+    w1 = 0.9 * w0
+    return {"R_needed": np.sqrt(2 * I / m), "speed_after": w1 * 60 / (2 * np.pi),
+            "energy_taken": I * (w0**2 - w1**2) / 2,  # = the punch's work M * angle
+            "turns_during_stroke": (w0 + w1) / 2 * T / DEG}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
