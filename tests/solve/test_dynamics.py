@@ -65,7 +65,7 @@ def test_statically_indeterminate_model_names_the_reactions():
     body = text("ruina_9_19_falling_ladder").replace(
         "    N2: {body: ladder, at: B, direction: N.y}          # floor\n",
         "    N2: {body: ladder, at: B, direction: N.y}          # floor\n"
-        "    N3: {body: ladder, at: A, direction: N.y}\n")
+        "    N3: {body: ladder, at: B, direction: N.y}\n")
     message = error_of(body, UnderdeterminedError, objectives=["thetaddot_now"])
     assert "the model is statically indeterminate" in message
     assert "N2 (along N.y), N3 (along N.y)" in message

@@ -68,13 +68,19 @@ def case_two_mass_spring_chain():
 
 
 def case_ruina_9_19_falling_ladder():
-    m, L, g, th, thd = 10.0, 4.0, 9.81, 60 * DEG, -0.5
-    # Lagrange: T = m L^2 thd^2 / 6 (centre speed L thd / 2 plus spin), V = m g L sin(th) / 2
+    m, L, g, th0, th = 10.0, 4.0, 9.81, 80 * DEG, 60 * DEG
+    # Lagrange: T = m L^2 thd^2 / 6 (centre speed L thd / 2 plus spin), V = m g L sin(th) / 2;
+    # energy from rest at th0 (theta decreases)
+    thd = -np.sqrt(3 * g * (np.sin(th0) - np.sin(th)) / L)
     thdd = -(m * g * L / 2 * np.cos(th)) / (m * L**2 / 3)
     # the reactions are the only horizontal / the vertical forces besides gravity
     xdd = -L / 2 * (np.sin(th) * thdd + np.cos(th) * thd**2)
     ydd = L / 2 * (np.cos(th) * thdd - np.sin(th) * thd**2)
+    # symbolic forms with g, L > 0 split out: the comparison samples signed symbols; the
+    # ladder's angle from +x is pi - theta, so omega_z = -theta'
+    rate = "sqrt(3)*sqrt(g)*sqrt(sin(theta0) - sin(theta))/sqrt(L)"
     return {"G_path_radius": "L/2", "eom_thetaddot": "-3*g*cos(theta)/(2*L)",
+            "thetadot_of_theta": "-" + rate, "omega_z_of_theta": rate,
             "N1_wall": "m*cos(theta)*(3*g*sin(theta) - 2*L*thetad**2)/4",
             "N2_floor": "m*(g + 3*g*sin(theta)**2 - 2*L*thetad**2*sin(theta))/4",
             "thetaddot_now": thdd, "reactions_now": [m * xdd, m * (ydd + g), 0.0]}
