@@ -42,23 +42,23 @@ def test_symbolic_answers_agree_with_the_numeric_solution(path):
     numerically (the problem re-solved with the objective's find as a scalar)."""
     problem = load_problem(path)
     solution = solve(problem)
-    state = {s.name: s.si for s in solution.state}
     for obj in problem.objectives:
         if obj.kind != "symbolic":
             continue
+        reference, state = _numeric_value(problem, obj)
         values = {name: state[to_text(node)]
                   for name, node in symbol_meanings(problem, obj).items()}
         result = solution.result(obj.id)
         expr = to_sympy(parse(result.expr), lambda n: values[n.id], None)
-        reference = _numeric_value(problem, obj)
         assert float(expr) == pytest.approx(reference, rel=1e-9, abs=1e-12), obj.id
 
 
 def _numeric_value(problem, obj):
+    """The objective solved as a scalar, and the solved state it was read in."""
     from dataclasses import replace
     twin = replace(obj, kind="scalar", symbols=(), expect=None, id=obj.id + "_numeric")
     solution = solve(replace(problem, objectives=(twin,)))
-    return solution.result(twin.id).value
+    return solution.result(twin.id).value, {s.name: s.si for s in solution.state}
 
 
 def test_statically_indeterminate_model_names_the_reactions():
@@ -296,3 +296,27 @@ def test_design_parameter_must_not_be_given():
     body = text("ruina_9_21_wheel_incline").replace("  r: 0.1 m\n", "  r: 0.1 m\n  R: 0.2 m\n")
     with pytest.raises(SpecError, match="design 'find' must name a parameter that is not given"):
         load_problem_text(body, "p.yaml")
+
+
+def test_before_needs_an_impact():
+    body = text("atwood_machine").replace("find: y''", "find: dot(before(acc(P1, N)), N.y)", 1)
+    assert "before(...) needs an impact: 'analysis: impulse'" in error_of(body)
+
+
+def test_a_known_impulse_is_asked_for_as_an_impulse():
+    body = text("rod_struck_on_ice").replace("find: dot(angvel(R, N), N.z)\n    kind: scalar\n"
+                                             "    unit: rad/s",
+                                             "find: mag(force(hammer))\n    kind: scalar\n"
+                                             "    unit: N")
+    assert "during an impact hammer is an impulse: ask for impulse(hammer)" in error_of(body)
+
+
+def test_a_known_impulse_adds_to_the_impulsive_reactions():
+    """The hammer's impulse acts with the impulsive reactions: the same blow on a rod pinned at
+    its centre only spins it, and the pin takes no impulse (centre of percussion aside)."""
+    body = text("rod_struck_on_ice").replace(
+        "loads:\n", "loads:\n  reactions:\n    pin: {body: rod, at: G, directions: [N.x, N.y]}\n")
+    body = body.replace("givens:\n", "givens:\n  x': 0 m/s\n  y': 0 m/s\n")
+    solution = solve_text(body)
+    assert solution.result("omega_after").value == pytest.approx(10.0)
+    assert solution.result("vG_after").value == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)

@@ -14,6 +14,7 @@ PENDULUM = (ROOT / "problems" / "pendulum_pin_reaction.yaml").read_text()
 INCLINE = (ROOT / "problems" / "block_sliding_down_incline.yaml").read_text()
 CHAIN = (ROOT / "problems" / "two_mass_spring_chain.yaml").read_text()
 CART = (ROOT / "problems" / "block_slides_on_cart.yaml").read_text()
+ICE = (ROOT / "problems" / "rod_struck_on_ice.yaml").read_text()
 TURNTABLE = (ROOT / "problems" / "block_on_turntable.yaml").read_text()
 
 
@@ -74,6 +75,15 @@ CASES = [
      "friction 'F_P' between block and block"),
     ("static friction on a frame", TURNTABLE, "kind: static,", "kind: static, surface: B,",
      "unknown surface 'B' (bodies: block)"),
+    ("known impulse without an impact", ICE,
+     "analysis:\n  impulse:\n    before: {x': 0 m/s, y': 0 m/s, theta': 0 rad/s}   # at rest\n", "",
+     "loads.impulses.hammer: the known impulse 'hammer' acts during an impact only"),
+    ("known impulse in newtons", ICE, "impulse: J*N.y}", "impulse: J/L*N.y}",
+     "(an impulse vector)"),
+    ("known impulse on an unknown body", ICE, "hammer: {body: rod,", "hammer: {body: bat,",
+     "unknown body 'bat' (bodies: rod)"),
+    ("before of a scalar", ICE, "find: dot(angvel(R, N), N.z)",
+     "find: dot(before(mag(vel(G, N))), N.z)", "expected a vector as argument of before(...)"),
     ("spring stiffness units", CHAIN, "stiffness: k1", "stiffness: m1",
      "dimension mismatch in 'm1' (a stiffness)"),
     ("spring free length units", CHAIN, "length: L1", "length: k1",

@@ -117,6 +117,10 @@ class _Loads:
         self.couples: dict[str, list[tuple[str, Vector]]] = {}
         self.reactions = reactions
 
+    def impulsive(self, name: str) -> bool:
+        """Whether load ``name`` acts during an impact (a reaction or a known impulse)."""
+        return name in self.reactions or name in {j.name for j in self.d.impulses}
+
     def velocity(self, body: str, point: str) -> Vector:
         """Velocity in the inertial frame of the material point of ``body`` at ``point``."""
         if body == GROUND:
@@ -138,6 +142,8 @@ class _Loads:
             self.forces[f.name] = [(f.on, f.at, lang.vector(f.force))]
         for c in d.couples:
             self.couples[c.name] = [(c.on, lang.vector(c.moment))]
+        for j in d.impulses:
+            self.forces[j.name] = [(j.on, j.at, lang.vector(j.impulse))]
         for s in (*d.springs, *d.dampers):
             a, b = (self.model.positions[p] for p in s.between)
             r = b - a
@@ -200,6 +206,7 @@ class DynamicsInterpreter(Interpreter):
         self._linearised: dict[str, tuple] = {}
         self.reactions_by_name = loads.reactions
         self.where = Location()
+        self.before: dict = {}  # the rates just before an impact
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -214,10 +221,16 @@ class DynamicsInterpreter(Interpreter):
         return next((b for b in bodies if b != GROUND), None)
 
     def _fn_force(self, load: Node):
-        if isinstance(self.d.analysis, Impulse) and load.id in self.reactions_by_name:
-            raise SolveError(f"during an impact the reaction {load.id} is an impulse: ask for "
+        if isinstance(self.d.analysis, Impulse) and self.loads.impulsive(load.id):
+            raise SolveError(f"during an impact {load.id} is an impulse: ask for "
                              f"impulse({load.id})", where=self.where)
         return self._load_force(load)
+
+    def _fn_before(self, vector: Node):
+        if not isinstance(self.d.analysis, Impulse):
+            raise SolveError("before(...) needs an impact: 'analysis: impulse'",
+                             where=self.where)
+        return self._as_vector(self.value(vector)).subs(self.before)
 
     def _load_force(self, load: Node):
         body = self._first_body(load.id)
@@ -357,6 +370,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language = DynamicsInterpreter(problem, model, loads, inertias)
     impact = isinstance(d.analysis, Impulse)
     before = _rates_before(problem, model, k) if impact else {}
+    language.before = before
     balances: list[Equation] = []
     steps_loads: list[str] = []
     for b in d.bodies:
@@ -451,7 +465,7 @@ def _body_balances(problem: Problem, model: Model, loads: _Loads, inertias: dict
     N, lang = model.inertial, model.language
     forces, couples = loads.on(b.name)
     if impact:
-        forces = [(name, p, F) for name, p, F in forces if name in loads.reactions]
+        forces = [(name, p, F) for name, p, F in forces if loads.impulsive(name)]
         couples = []
 
     def motion(at: str) -> Vector:

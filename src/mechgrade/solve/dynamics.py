@@ -258,7 +258,7 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                             if oid in numeric}
                 warned += [w for w in found if w not in warned]
                 if not overrides or base is None:
-                    base = (state, given_map)
+                    base = (_with_kinetics(kp, state, x), given_map)
         collect_results(problem, chosen, given_map, values, mistakes, results, failures,
                         symbolic=_symbolic_result)
     order = [o.id for o in problem.objectives if o.id in wanted]
@@ -271,6 +271,14 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
                     warnings=tuple(warned))
+
+
+def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
+    """``state`` with the rates the momentum balances solved (second rates, or the rates just
+    after an impact) put in."""
+    size = kp.kp.index.size
+    solved = {i for i in kp.columns if i < size and np.isfinite(x[i])}
+    return State(x[:size].copy(), state.given, frozenset(state.free - solved))
 
 
 def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
@@ -367,8 +375,9 @@ def solved_symbolically(problem: Problem, objective_id: str, givens: tuple):
             if si == 0 or symbol in kin.rates:
                 stand_in[symbol] = sp.nsimplify(si) if si == 0 else sp.Float(si)
     unknowns = [s for s in (*kin.rates, *kin.reactions) if s not in stand_in]
+    # declared rates stay symbols (the velocities after an impact in a projected balance)
     if not (expr.free_symbols if not isinstance(expr, sp.MatrixBase)
-            else set().union(*(e.free_symbols for e in expr))) & set(unknowns):
+            else set().union(*(e.free_symbols for e in expr))) & (set(unknowns) - declared):
         return expr
     equations = tuple(e.expr.xreplace(stand_in) for e in (*kin.balances, *kin.constraints))
     # a declared second rate (phidd of a driven turntable) is known, unless the balances

@@ -137,6 +137,18 @@ class Force:
 
 
 @dataclass(frozen=True)
+class KnownImpulse:
+    """A known impulse ``impulse`` (N s) on body ``on`` at point ``at`` during an impact (a
+    hammer blow of known strength); it acts in ``analysis: impulse`` only."""
+
+    name: str
+    on: str
+    at: str
+    impulse: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
 class Couple:
     """A known couple (pure moment) on body ``on``."""
 
@@ -319,6 +331,7 @@ class Dynamics:
     friction: tuple[Friction, ...] = ()
     analysis: Analysis | None = None
     design: Design | None = None
+    impulses: tuple[KnownImpulse, ...] = ()
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]
@@ -327,7 +340,7 @@ class Dynamics:
     def loads(self) -> tuple:
         """Every named load, in the order of the file's sections."""
         return (*self.forces, *self.couples, *self.springs, *self.dampers, *self.reactions,
-                *self.friction)
+                *self.friction, *self.impulses)
 
     def load(self, name: str):
         return {item.name: item for item in self.loads}[name]
@@ -369,13 +382,16 @@ def read_dynamics(data: dict, expr, where) -> Dynamics | None:
     dampers = tuple(Damper(n, tuple(s["between"]), tuple(s["bodies"]),
                            expr(s["coefficient"], "loads", "dampers", n, "coefficient"),
                            where("loads", "dampers", n)) for n, s in section("dampers"))
+    impulses = tuple(KnownImpulse(n, s["body"], s["at"],
+                                  expr(s["impulse"], "loads", "impulses", n, "impulse"),
+                                  where("loads", "impulses", n)) for n, s in section("impulses"))
     reactions = tuple(_reaction(n, s, expr, where) for n, s in section("reactions"))
     friction = tuple(_friction(n, s, expr, where) for n, s in section("friction"))
     gravity = expr(loads["gravity"], "loads", "gravity") if "gravity" in loads else None
     analysis = dict(data.get("analysis") or {})
     design = analysis.pop("design", None)
     return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction,
-                    _analysis(analysis, expr, where), _design(design, expr, where))
+                    _analysis(analysis, expr, where), _design(design, expr, where), impulses)
 
 
 def _equation(text: str, expr, where, *path) -> tuple[Expr, Expr]:
@@ -618,6 +634,13 @@ class _Checker:
             self.typed(s.length, "scalar", "m", "a free length")
         for s in d.dampers:
             self.typed(s.coefficient, "scalar", "N*s/m", "a damping coefficient")
+        for j in d.impulses:
+            self.body(j.on, j.where)
+            self.point(j.at, j.where, "at")
+            self.typed(j.impulse, "vector", "N*s", "an impulse vector")
+            if not isinstance(d.analysis, Impulse):
+                raise SpecError(f"the known impulse '{j.name}' acts during an impact only: "
+                                "expected 'analysis: impulse'", where=j.where)
 
     def reactions_and_friction(self):
         d = self.d

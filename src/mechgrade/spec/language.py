@@ -84,6 +84,9 @@ FUNCTIONS: dict[str, Signature] = {
                        "force(R): the force of a load (a reaction, friction, spring, applied force)"),
     "impulse": Signature(("load",), "vector", _fixed("N*s"),
                          "impulse(R): the impulse of a reaction during an impact"),
+    "before": Signature(("vector",), "vector", lambda dims: dims[0],
+                        "before(v): vector v with the rates just before the impact "
+                        "(analysis: impulse)"),
     "moment": Signature(("load", "point"), "vector", _fixed("N*m"),
                         "moment(R, P): the moment of a load about point P"),
     "momentum": Signature(("body", "frame"), "vector", _fixed("kg*m/s"),

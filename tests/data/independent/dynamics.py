@@ -208,6 +208,36 @@ def case_flywheel_speed_drop():
             "turns_during_stroke": (w0 + w1) / 2 * T / DEG}
 
 
+def case_ruina_9_24_momentum_projection():
+    # e_n . i = -sin(theta), e_n . j = cos(theta), e_t . i = cos(theta), e_t . j = sin(theta);
+    # before: m2 (-v0 j); after: m1 v1p i + m2 (v2t e_t + v2n e_n)
+    return {"en_equation_residual": "-m2*v0*cos(theta) + m1*v1p*sin(theta) - m2*v2n",
+            "et_equation_residual": "-m2*v0*sin(theta) - m1*v1p*cos(theta) - m2*v2t"}
+
+
+def case_ruina_9_25_units_matrix():
+    v0, th, m1, m2 = 20.0, 60 * DEG, 20.0, 5.0  # ft/s, lbm: the equations are homogeneous
+    # the book's scaled system: rows divided by m1, by m2, and the given v2t = -v0 sin(theta)
+    A = np.array([[-np.sin(th), 0.0, m2 / m1],
+                  [m1 / m2 * np.cos(th), 1.0, 0.0],
+                  [0.0, 1.0, 0.0]])
+    b = np.array([-m2 / m1 * v0 * np.cos(th), -v0 * np.sin(th), -v0 * np.sin(th)])
+    v1p, v2t, v2n = np.linalg.solve(A, b)
+    e_t, e_n = np.array([np.cos(th), np.sin(th)]), np.array([-np.sin(th), np.cos(th)])
+    v2 = v2t * e_t + v2n * e_n
+    return {"v1p": v1p, "v2t": v2t, "v2n": v2n, "v2_N": [v2[0], v2[1], 0.0]}
+
+
+def case_rod_struck_on_ice():
+    m, L, J = 1.5, 1.2, 3.0
+    # linear impulse: m vG = J; angular impulse about G: (m L^2/12) w = (L/2) J
+    vG = J / m
+    w = (L / 2) * J / (m * L**2 / 12)
+    # the point at rest: vG + w x r = 0 along the rod, r = -vG / w (behind the centre)
+    return {"vG_after": [0.0, vG, 0.0], "omega_after": w, "vB_after": [0.0, vG - w * L / 2, 0.0],
+            "point_at_rest": [-vG / w, 0.0, 0.0], "omega_symbolic": "6*J/(m*L)"}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
