@@ -320,3 +320,35 @@ def test_a_known_impulse_adds_to_the_impulsive_reactions():
     solution = solve_text(body)
     assert solution.result("omega_after").value == pytest.approx(10.0)
     assert solution.result("vG_after").value == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
+
+
+def test_symbolic_answer_of_an_integration_needs_constant_accelerations():
+    body = text("ladder_wall_lift_off").replace(
+        "    find: theta\n    kind: scalar\n    unit: deg\n    expect: {value: 41.036426}",
+        "    find: theta\n    kind: symbolic\n    unit: deg\n    symbols: [g]\n"
+        "    expect: {expr: g}", 1)
+    message = error_of(body, objectives=["theta_wall_contact_lost_deg"])
+    assert "needs accelerations that stay constant until the event" in message
+
+
+def test_symbolic_answer_of_an_integration_needs_the_slip_direction():
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "  v0: m/s\n", "  v0: {unit: m/s, positive: false}\n")
+    body = body.replace("    find: t\n    kind: scalar\n    unit: s\n",
+                        "    find: t\n    kind: symbolic\n    unit: s\n"
+                        "    symbols: [v0, mu, g]\n", 1)
+    body = body.replace("      value: 1.2147716\n", "      expr: 2*v0/(7*mu*g)\n")
+    message = error_of(body, objectives=["t_star"])
+    assert "needs every slip's direction fixed" in message
+
+
+def test_an_integration_in_closed_form_agrees_with_the_numerical_event():
+    """Sample 9.23's event time from the closed form equals the integrated one."""
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "    find: t\n    kind: scalar\n    unit: s\n",
+        "    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g]\n", 1)
+    body = body.replace("      value: 1.2147716\n", "      expr: 2*v0/(7*mu*g)\n")
+    solution = solve_text(body)
+    assert solution.result("t_star").expr == "2*v0/(7*g*mu)"
+    t_numeric = solution.result("t_star_if_mu_0p2").value
+    assert t_numeric == pytest.approx(2 * 5.0 / (7 * 0.2 * 9.8), rel=1e-8)

@@ -34,7 +34,8 @@ from ..mechanics.kinematics import locations
 from ..spec.model import Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy
-from .events import energy_rate_symbolic, energy_state, integrate_to_event
+from .events import (energy_rate_symbolic, energy_state, integrate_to_event,
+                     integrated_symbolically)
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
 from .levels import RANK_TOL, State, place_givens
@@ -345,8 +346,9 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     expr = solved_symbolically(problem, objective_id, givens)
     analysis = problem.dynamics.analysis
     if isinstance(analysis, Integration):
-        raise SolveError(f"objective '{objective_id}' is symbolic, but the motion is "
-                         "integrated numerically: ask for a scalar", where=obj.where)
+        numbers = {kin.k.quantity(node): si for _, (node, si, _) in givens
+                   if isinstance(node, (Name, Prime))}
+        expr = integrated_symbolically(problem, kin, expr, numbers, obj.where)
     if isinstance(analysis, WorkEnergy):
         declared = {kin.k.quantity(node) for node in symbol_meanings(problem, obj).values()}
         expr = energy_rate_symbolic(problem, kinetics_plan(problem), expr, declared)

@@ -238,6 +238,22 @@ def case_rod_struck_on_ice():
             "point_at_rest": [-vG / w, 0.0, 0.0], "omega_symbolic": "6*J/(m*L)"}
 
 
+def case_ruina_9_22_marble_bowling_ball():
+    v0, mu, g, r, R = 3.0, 0.1, 9.81, 0.01, 0.16
+
+    def rolling(radius, mass):
+        # angular momentum about the contact point is conserved while sliding (friction and
+        # the normal force pass through it): m v0 r = m v r + (2/5) m r^2 v / r
+        v = mass * v0 * radius / (mass * radius + 0.4 * mass * radius)
+        return (v0 - v) / (mu * g), v  # linear impulse of mu m g
+
+    t_marble, v = rolling(r, 0.005)
+    t_bowling, _ = rolling(R, 20.48)
+    return {"t_star": "2*v0/(7*mu*g)", "v_at_t_star": "5*v0/7",
+            "ratio_t_star_bowling_over_marble": t_bowling / t_marble, "t_star_s": t_marble,
+            "bowling_ball_slip_at_t_star": 0.0}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
