@@ -172,11 +172,21 @@ def test_an_integration_that_chatters_past_the_end_of_slip_is_stopped(monkeypatc
     assert "the integration stalls near t = 1.2" in error_of(body)
 
 
-def test_symbolic_objective_of_an_integrated_motion_is_refused():
+def test_symbolic_objective_of_an_integrated_motion_is_in_closed_form():
+    """The distance slid before rolling: v0 t* - mu g t*^2/2 with t* = 2 v0/(7 mu g)."""
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "    find: x\n    kind: scalar\n    unit: m\n    expect: {value: 5.2061641}",
+        "    find: x\n    kind: symbolic\n    unit: m\n    symbols: [v0, mu, g]\n"
+        "    expect: {expr: 12*v0**2/(49*mu*g)}")
+    result = solve_text(body).result("distance_to_pure_rolling")
+    assert result.expr == "12*v0**2/(49*g*mu)"
+
+
+def test_a_symbolic_answer_of_an_integration_declares_what_it_depends_on():
     body = text("ruina_9_23_ball_impulse_momentum").replace(
         "    find: x\n    kind: scalar\n    unit: m\n    expect: {value: 5.2061641}",
         "    find: x\n    kind: symbolic\n    unit: m\n    symbols: [v0]\n    expect: {expr: v0}")
-    assert "the motion is integrated numerically" in error_of(body)
+    assert "which is not among its symbols (v0); add it to symbols" in error_of(body)
 
 
 def test_work_energy_refuses_non_conservative_loads():
@@ -352,3 +362,34 @@ def test_an_integration_in_closed_form_agrees_with_the_numerical_event():
     assert solution.result("t_star").expr == "2*v0/(7*g*mu)"
     t_numeric = solution.result("t_star_if_mu_0p2").value
     assert t_numeric == pytest.approx(2 * 5.0 / (7 * 0.2 * 9.8), rel=1e-8)
+
+
+def test_a_mode_number_beyond_the_coordinates_is_refused():
+    body = text("two_mass_spring_chain").replace("find: mode_frequency(2)", "find: mode_frequency(3)")
+    assert "expected a mode number 1 to 2 (the coordinates), found '3'" in error_of(body)
+
+
+def test_natural_modes_need_an_equilibrium():
+    body = text("two_mass_spring_chain").replace(
+        "    find: mode_frequency(1)\n    kind: scalar\n    unit: rad/s\n"
+        "    givens: {x1: 0.5 m, x2: 1.3 m, \"x1'\": 0 m/s, \"x2'\": 0 m/s}   # the equilibrium\n",
+        "    find: mode_frequency(1)\n    kind: scalar\n    unit: rad/s\n")
+    message = error_of(body, objectives=["omega_1"])
+    assert "objective 'omega_1' does not exist at this instant: the configuration is not an " \
+           "equilibrium" in message
+
+
+def test_natural_modes_need_unconstrained_coordinates():
+    body = text("ruina_9_21_wheel_incline").replace(
+        "    find: R\n    kind: scalar\n    unit: m\n",
+        "    find: mode_frequency(1)\n    kind: scalar\n    unit: rad/s\n")
+    assert "natural modes need coordinates without constraints" in error_of(body)
+
+
+def test_a_mode_shape_is_a_ratio_of_the_coordinates_units():
+    from mechgrade.errors import SpecError
+    body = text("two_mass_spring_chain").replace(
+        "find: mode_shape(1, x2, x1)\n    kind: scalar\n    unit: \"1\"",
+        "find: mode_shape(1, x2, x1)\n    kind: scalar\n    unit: m")
+    with pytest.raises(SpecError, match="dimension mismatch in objective 'mode_1_ratio'"):
+        load_problem_text(body, "p.yaml")

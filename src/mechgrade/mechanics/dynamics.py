@@ -25,7 +25,7 @@ import sympy as sp
 from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 
 from ..errors import Location, SolveError
-from ..expressions.syntax import Call, Name, Node
+from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Impulse, Integration,
                              KineticFriction, Restitution, Spring, StaticFriction)
 from ..spec.model import Problem
@@ -340,6 +340,74 @@ class DynamicsInterpreter(Interpreter):
         self.requirements.append(requirement)
         return stiffness, damping
 
+    def stiffness(self) -> sp.Matrix:
+        """K of q'' = -K (q - q_eq) + ... for every coordinate, the motion linearised about the
+        instant's configuration (rates zero there), which must be an equilibrium (recorded)."""
+        if "*" in self._linearised:
+            K, requirement = self._linearised["*"]
+            self.requirements.append(requirement)
+            return K
+        k = self.kinematics
+        if k.velocity:
+            raise SolveError("natural modes need coordinates without constraints",
+                             where=self.where)
+        unknowns = (*k.qdd, *self.reactions)
+        A, b = sp.linear_eq_to_matrix([e.expr for e in self.balances], list(unknowns))
+        if A.rows != A.cols:
+            raise SolveError("natural modes need as many momentum balances as unknown "
+                             "accelerations and reactions", where=self.where)
+        n = len(k.q)
+        rest = {qd: 0 for qd in k.qd}
+        x = A.LUsolve(b)
+        K = sp.zeros(n, n)
+        for j, q in enumerate(k.q):
+            dx = A.LUsolve(b.diff(q) - A.diff(q) * x)
+            for i in range(n):
+                K[i, j] = _without_signs(-dx[i].xreplace(rest))
+        off = sum((sp.Abs(x[i].xreplace(rest)) for i in range(n)), sp.Integer(0))
+        requirement = ("the configuration is not an equilibrium (a second rate is not zero at "
+                       "rest there)", off / (1 + sum((sp.Abs(e) for e in K), sp.Integer(0))))
+        self._linearised["*"] = (K, requirement)
+        self.requirements.append(requirement)
+        return K
+
+    def _mode(self, number: Node):
+        """The squared natural frequency of mode ``number`` (1 the lowest) and the stiffness
+        matrix, for one or two coordinates."""
+        K = self.stiffness()
+        n = K.rows
+        value = constant_value(number)
+        if value is None or value != int(value) or not 1 <= value <= n:
+            raise SolveError(f"expected a mode number 1 to {n} (the coordinates), found "
+                             f"'{to_text(number)}'", where=self.where)
+        if n == 1:
+            return K[0, 0], K
+        if n > 2:
+            raise SolveError("natural modes are worked out for one or two coordinates; this "
+                             f"problem has {n}", where=self.where)
+        trace, det = K[0, 0] + K[1, 1], K.det()
+        root = sp.sqrt(trace ** 2 - 4 * det)
+        return _tidy((trace - root) / 2 if value == 1 else (trace + root) / 2), K
+
+    def _fn_mode_frequency(self, number: Node):
+        squared, _ = self._mode(number)
+        return sp.sqrt(squared)
+
+    def _fn_mode_shape(self, number: Node, coordinate: Node, reference: Node):
+        squared, K = self._mode(number)
+        names = list(self.kinematics.coordinates)
+        i, j = names.index(coordinate.id), names.index(reference.id)
+        if K.rows == 1 or i == j:
+            return sp.Integer(1)
+        if not identically_zero(K[0, 1]):
+            shape = (K[0, 1], squared - K[0, 0])
+        elif not identically_zero(K[1, 0]):
+            shape = (squared - K[1, 1], K[1, 0])
+        else:
+            raise SolveError("the coordinates are not coupled: each mode moves one of them "
+                             "only", where=self.where)
+        return _tidy(shape[i] / shape[j])
+
     def _fn_omega_n(self, coordinate: Node):
         stiffness, _ = self.linearised(coordinate)
         return sp.sqrt(stiffness)
@@ -648,11 +716,21 @@ def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
     return lines
 
 
+def _without_signs(expr):
+    """``expr`` with ``sign(u)`` written ``u/|u|`` and cancelled: a spring's stiffness k, not
+    k (1 - L/|u| + L u sign(u)/u^2), which holds wherever its length u is not zero."""
+    expr = expr.replace(sp.DiracDelta, lambda *args: sp.Integer(0))
+    return sp.cancel(expr.replace(sp.sign, lambda u: u / sp.Abs(u)))
+
+
 def _tidy(expr):
     """A simpler form when one is cheap to find (the solver lambdifies either)."""
     if sp.count_ops(expr) > 400:
         return expr
-    simple = sp.simplify(expr)
+    try:
+        simple = sp.simplify(expr)
+    except TypeError:  # sympy's simplify can trip over its own comparisons (NaN)
+        return expr
     return simple if sp.count_ops(simple) <= sp.count_ops(expr) else expr
 
 

@@ -105,6 +105,12 @@ FUNCTIONS: dict[str, Signature] = {
     "omega_n": Signature(("coordinate",), "scalar", _fixed("rad/s"),
                          "omega_n(q): natural frequency of the motion linearised about the "
                          "instant's configuration (an equilibrium)"),
+    "mode_frequency": Signature(("scalar",), "scalar", _fixed("rad/s"),
+                                "mode_frequency(n): the n-th natural frequency (1 the lowest) "
+                                "of the motion linearised about the equilibrium"),
+    "mode_shape": Signature(("scalar", "coordinate", "coordinate"), "scalar",
+                            lambda dims: dims[1] / dims[2],
+                            "mode_shape(n, q, r): the amplitude ratio of q to r in mode n"),
     "zeta": Signature(("coordinate",), "scalar", lambda dims: dimensionless(),
                       "zeta(q): damping ratio of the motion linearised about the equilibrium"),
 }

@@ -64,7 +64,21 @@ def case_two_mass_spring_chain():
     a = -(dV + dD) / np.array([m1, m2])
     return {"a1": a[0], "a2": a[1], "spring2_on_block1": [k2 * (x2 - x1 - L2), 0.0, 0.0],
             "spring1_energy": k1 * (x1 - L1) ** 2 / 2, "ke2": m2 * v2**2 / 2,
-            "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0]}
+            "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0],
+            **_chain_modes(m1, m2, k1, k2)}
+
+
+def _chain_modes(m1, m2, k1, k2):
+    # M x'' + K x = 0 about the equilibrium, K from V's second derivatives by hand;
+    # numpy's symmetric generalized eigenproblem through M^(-1/2) K M^(-1/2)
+    M = np.diag([m1, m2])
+    K = np.array([[k1 + k2, -k2], [-k2, k2]])
+    root = np.diag(1 / np.sqrt(np.diag(M)))
+    w2, u = np.linalg.eigh(root @ K @ root)
+    shapes = root @ u
+    ratio = shapes[1] / shapes[0]
+    return {"omega_1": np.sqrt(w2[0]), "omega_2": np.sqrt(w2[1]), "mode_1_ratio": ratio[0],
+            "mode_2_ratio": ratio[1]}
 
 
 def case_ruina_9_19_falling_ladder():
