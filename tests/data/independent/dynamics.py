@@ -268,6 +268,18 @@ def case_ruina_9_22_marble_bowling_ball():
             "bowling_ball_slip_at_t_star": 0.0}
 
 
+def case_bead_on_rotating_hoop():
+    m, R, g, th = 0.1, 0.5, 9.81, 60 * DEG
+    # Lagrange: T = m (R^2 th'^2 + R^2 sin^2(th) W^2)/2, V = -m g R cos(th)
+    #   => th'' = sin(th) (W^2 cos(th) - g/R); at rest at th: W^2 = g/(R cos th)
+    W = np.sqrt(g / (R * np.cos(th)))
+    # d(th'')/d(th) at th: W^2 cos(2 th) - (g/R) cos(th) = -W^2 sin^2(th)
+    wn = W * np.sin(th)
+    a = W**2 * R * np.sin(th)  # centripetal, horizontal
+    return {"eom_symbolic": "sin(theta)*(Omega**2*cos(theta) - g/R)", "Omega_for_60": W,
+            "omega_small_oscillations": wn, "hoop_force": m * np.hypot(a, g)}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
