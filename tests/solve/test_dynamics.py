@@ -393,3 +393,24 @@ def test_a_mode_shape_is_a_ratio_of_the_coordinates_units():
         "find: mode_shape(1, x2, x1)\n    kind: scalar\n    unit: m")
     with pytest.raises(SpecError, match="dimension mismatch in objective 'mode_1_ratio'"):
         load_problem_text(body, "p.yaml")
+
+
+def test_a_closed_form_event_needs_a_positive_time():
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "until: x' + r*phi' = 0", "until: x' + r*phi' = 2*v0")
+    body = body.replace("    find: t\n    kind: scalar\n    unit: s\n",
+                        "    find: t\n    kind: symbolic\n    unit: s\n"
+                        "    symbols: [v0, mu, g]\n", 1)
+    body = body.replace("      value: 1.2147716\n", "      expr: 2*v0/(7*mu*g)\n")
+    assert "the event of the integrated motion has no closed-form time" in \
+        error_of(body, objectives=["t_star"])
+
+
+def test_a_closed_form_integration_needs_determined_accelerations():
+    body = text("block_slides_on_cart").replace(
+        "    N_F: {body: cart, at: K, direction: N.y}",
+        "    N_F: {body: cart, at: K, direction: N.y}\n    N_G: {body: cart, at: K, direction: N.y}")
+    body = body.replace("    find: t\n    kind: scalar\n    unit: s\n    expect: {value: 1.359157}",
+                        "    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g, m, M]\n"
+                        "    expect: {expr: v0/(mu*g*(1 + m/M))}")
+    assert "are not determined symbolically" in error_of(body, objectives=["t_slide"])

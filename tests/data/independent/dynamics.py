@@ -207,7 +207,7 @@ def case_block_slides_on_cart():
     v = m * v0 / (m + M)
     rate = mu * g * (1 + m / M)
     lost = m * v0**2 / 2 - (m + M) * v**2 / 2
-    return {"t_slide": v0 / rate, "common_speed": v, "slide_distance": lost / (mu * m * g),
+    return {"t_slide": v0 / rate, "t_slide_symbolic": "v0/(mu*g*(1 + m/M))", "common_speed": v, "slide_distance": lost / (mu * m * g),
             "energy_lost": lost, "friction_on_block": [-mu * m * g, 0.0, 0.0],
             "cart_acceleration": mu * m * g / M}
 
