@@ -414,3 +414,60 @@ def test_a_closed_form_integration_needs_determined_accelerations():
                         "    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g, m, M]\n"
                         "    expect: {expr: v0/(mu*g*(1 + m/M))}")
     assert "are not determined symbolically" in error_of(body, objectives=["t_slide"])
+
+
+STUCK_ON_CART = """
+id: p
+title: A block carried by a pushed cart
+source: test
+statement: A push P0 on the cart; the block does not slip on it.
+inertial: {frame: N, point: O}
+points:
+  B: {from: O, position: x*N.x + h*N.y}
+  P: {from: B, position: -h/2*N.y}
+  K: {from: O, position: X*N.x}
+coordinates: {x: m, X: m}
+parameters: {m: kg, M: kg, mu: "1", g: m/s^2, h: m, P0: N}
+constraints:
+  - name: stuck
+    position: x = X
+bodies:
+  block: {mass: m, centre: B}
+  cart: {mass: M, centre: K}
+loads:
+  gravity: -g*N.y
+  forces:
+    push: {body: cart, at: K, force: P0*N.x}
+  reactions:
+    N_P: {bodies: [block, cart], at: P, direction: N.y}
+    N_F: {body: cart, at: K, direction: N.y}
+  friction:
+    F_P: {body: block, at: P, normal: N_P, mu: mu, kind: static, direction: N.x, surface: cart}
+givens: {m: 2 kg, M: 8 kg, mu: 0.3, g: 9.81 m/s^2, h: 0.5 m, P0: 20 N, x: 0 m, X: 0 m,
+         "x'": 1 m/s}
+objectives:
+  - id: friction
+    prompt: The friction force on the block.
+    find: force(F_P)
+    kind: vector
+    frame: N
+    unit: N
+  - id: cart_net
+    prompt: The push plus the friction on the cart (the block's friction reversed).
+    find: m*acc(B, N) + M*acc(K, N) - force(push)
+    kind: vector
+    frame: N
+    unit: N
+"""
+
+
+def test_static_friction_between_two_bodies_acts_on_both():
+    solution = solve_text(STUCK_ON_CART)
+    assert solution.result("friction").value == pytest.approx((4.0, 0.0, 0.0))
+    # the whole system's horizontal momentum changes by the push alone
+    assert solution.result("cart_net").value[0] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_static_friction_between_two_bodies_is_bounded():
+    message = error_of(STUCK_ON_CART.replace("P0: 20 N", "P0: 40 N"))
+    assert "the block slips at P: sticking needs mu >= 0.4077" in message
