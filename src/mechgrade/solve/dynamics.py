@@ -348,7 +348,7 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     if isinstance(analysis, Integration):
         numbers = {kin.k.quantity(node): si for _, (node, si, _) in givens
                    if isinstance(node, (Name, Prime))}
-        expr = integrated_symbolically(problem, kin, expr, numbers, obj.where)
+        expr = integrated_symbolically(kin, expr, numbers, obj.where)
     if isinstance(analysis, WorkEnergy):
         declared = {kin.k.quantity(node) for node in symbol_meanings(problem, obj).values()}
         expr = energy_rate_symbolic(problem, kinetics_plan(problem), expr, declared)

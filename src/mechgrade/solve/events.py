@@ -236,11 +236,20 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
 # ---------------------------------------------------------------------------- closed form
 
 
-def integrated_symbolically(problem: Problem, kin, expr, numbers: dict, where):
+def integrated_symbolically(kin, expr, numbers: dict, where=None):
     """``expr`` at the event in closed form, for a motion whose accelerations stay constant
     until it: q = q0 + q0' t + a t^2 / 2, with each kinetic-friction slip keeping the direction
     it has at the start (``|u|`` read as ``sign(u0) u``). The event time is the smallest root
-    that is positive at the givens (``numbers``: plain symbol -> SI value)."""
+    that is positive at the givens (``numbers``: plain symbol -> SI value).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.mechanics.dynamics import derive_kinetics
+    >>> kin = derive_kinetics(load_problem(shipped_dir("problems")
+    ...                                    / "ruina_9_23_ball_impulse_momentum.yaml"))
+    >>> integrated_symbolically(kin, kin.k.time, {s: 1.0 for _, s in kin.k.parameters})
+    2*v0/(7*g*mu)
+    """
     k = kin.k
     start = {**dict(kin.start), k.time: sp.Integer(0)}
     equations = [_frozen(e.expr, start, where) for e in (*kin.balances, *kin.constraints)]
