@@ -471,3 +471,14 @@ def test_static_friction_between_two_bodies_acts_on_both():
 def test_static_friction_between_two_bodies_is_bounded():
     message = error_of(STUCK_ON_CART.replace("P0: 20 N", "P0: 40 N"))
     assert "the block slips at P: sticking needs mu >= 0.4077" in message
+
+
+def test_integrations_keep_their_energy_books():
+    """The kinetic energy the friction between block and cart took is mu m g times the
+    distance slid; the flywheel's lost energy is the punch's work M phi."""
+    cart = solve(load_problem(ROOT / "problems" / "block_slides_on_cart.yaml"))
+    lost, slid = cart.result("energy_lost").value, cart.result("slide_distance").value
+    assert lost == pytest.approx(0.3 * 2 * 9.81 * slid, rel=1e-9)
+    flywheel = solve(load_problem(ROOT / "problems" / "flywheel_speed_drop.yaml"))
+    turned = np.radians(flywheel.result("turns_during_stroke").value)
+    assert flywheel.result("energy_taken").value == pytest.approx(1500 * turned, rel=1e-9)
