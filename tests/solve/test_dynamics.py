@@ -42,30 +42,30 @@ def test_symbolic_answers_agree_with_the_numeric_solution(path):
     numerically (the problem re-solved with the objective's find as a scalar)."""
     problem = load_problem(path)
     solution = solve(problem)
-    state = {s.name: s.si for s in solution.state}
     for obj in problem.objectives:
         if obj.kind != "symbolic":
             continue
+        reference, state = _numeric_value(problem, obj)
         values = {name: state[to_text(node)]
                   for name, node in symbol_meanings(problem, obj).items()}
         result = solution.result(obj.id)
         expr = to_sympy(parse(result.expr), lambda n: values[n.id], None)
-        reference = _numeric_value(problem, obj)
         assert float(expr) == pytest.approx(reference, rel=1e-9, abs=1e-12), obj.id
 
 
 def _numeric_value(problem, obj):
+    """The objective solved as a scalar, and the solved state it was read in."""
     from dataclasses import replace
     twin = replace(obj, kind="scalar", symbols=(), expect=None, id=obj.id + "_numeric")
     solution = solve(replace(problem, objectives=(twin,)))
-    return solution.result(twin.id).value
+    return solution.result(twin.id).value, {s.name: s.si for s in solution.state}
 
 
 def test_statically_indeterminate_model_names_the_reactions():
     body = text("ruina_9_19_falling_ladder").replace(
         "    N2: {body: ladder, at: B, direction: N.y}          # floor\n",
         "    N2: {body: ladder, at: B, direction: N.y}          # floor\n"
-        "    N3: {body: ladder, at: A, direction: N.y}\n")
+        "    N3: {body: ladder, at: B, direction: N.y}\n")
     message = error_of(body, UnderdeterminedError, objectives=["thetaddot_now"])
     assert "the model is statically indeterminate" in message
     assert "N2 (along N.y), N3 (along N.y)" in message
@@ -172,11 +172,21 @@ def test_an_integration_that_chatters_past_the_end_of_slip_is_stopped(monkeypatc
     assert "the integration stalls near t = 1.2" in error_of(body)
 
 
-def test_symbolic_objective_of_an_integrated_motion_is_refused():
+def test_symbolic_objective_of_an_integrated_motion_is_in_closed_form():
+    """The distance slid before rolling: v0 t* - mu g t*^2/2 with t* = 2 v0/(7 mu g)."""
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "    find: x\n    kind: scalar\n    unit: m\n    expect: {value: 5.2061641}",
+        "    find: x\n    kind: symbolic\n    unit: m\n    symbols: [v0, mu, g]\n"
+        "    expect: {expr: 12*v0**2/(49*mu*g)}")
+    result = solve_text(body).result("distance_to_pure_rolling")
+    assert result.expr == "12*v0**2/(49*g*mu)"
+
+
+def test_a_symbolic_answer_of_an_integration_declares_what_it_depends_on():
     body = text("ruina_9_23_ball_impulse_momentum").replace(
         "    find: x\n    kind: scalar\n    unit: m\n    expect: {value: 5.2061641}",
         "    find: x\n    kind: symbolic\n    unit: m\n    symbols: [v0]\n    expect: {expr: v0}")
-    assert "the motion is integrated numerically" in error_of(body)
+    assert "which is not among its symbols (v0); add it to symbols" in error_of(body)
 
 
 def test_work_energy_refuses_non_conservative_loads():
@@ -296,3 +306,179 @@ def test_design_parameter_must_not_be_given():
     body = text("ruina_9_21_wheel_incline").replace("  r: 0.1 m\n", "  r: 0.1 m\n  R: 0.2 m\n")
     with pytest.raises(SpecError, match="design 'find' must name a parameter that is not given"):
         load_problem_text(body, "p.yaml")
+
+
+def test_before_needs_an_impact():
+    body = text("atwood_machine").replace("find: y''", "find: dot(before(acc(P1, N)), N.y)", 1)
+    assert "before(...) needs an impact: 'analysis: impulse'" in error_of(body)
+
+
+def test_a_known_impulse_is_asked_for_as_an_impulse():
+    body = text("rod_struck_on_ice").replace("find: dot(angvel(R, N), N.z)\n    kind: scalar\n"
+                                             "    unit: rad/s",
+                                             "find: mag(force(hammer))\n    kind: scalar\n"
+                                             "    unit: N")
+    assert "during an impact hammer is an impulse: ask for impulse(hammer)" in error_of(body)
+
+
+def test_a_known_impulse_adds_to_the_impulsive_reactions():
+    """The hammer's impulse acts with the impulsive reactions: the same blow on a rod pinned at
+    its centre only spins it, and the pin takes no impulse (centre of percussion aside)."""
+    body = text("rod_struck_on_ice").replace(
+        "loads:\n", "loads:\n  reactions:\n    pin: {body: rod, at: G, directions: [N.x, N.y]}\n")
+    body = body.replace("givens:\n", "givens:\n  x': 0 m/s\n  y': 0 m/s\n")
+    solution = solve_text(body)
+    assert solution.result("omega_after").value == pytest.approx(10.0)
+    assert solution.result("vG_after").value == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
+
+
+def test_symbolic_answer_of_an_integration_needs_constant_accelerations():
+    body = text("ladder_wall_lift_off").replace(
+        "    find: theta\n    kind: scalar\n    unit: deg\n    expect: {value: 41.036426}",
+        "    find: theta\n    kind: symbolic\n    unit: deg\n    symbols: [g]\n"
+        "    expect: {expr: g}", 1)
+    message = error_of(body, objectives=["theta_wall_contact_lost_deg"])
+    assert "needs accelerations that stay constant until the event" in message
+
+
+def test_symbolic_answer_of_an_integration_needs_the_slip_direction():
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "  v0: m/s\n", "  v0: {unit: m/s, positive: false}\n")
+    body = body.replace("    find: t\n    kind: scalar\n    unit: s\n",
+                        "    find: t\n    kind: symbolic\n    unit: s\n"
+                        "    symbols: [v0, mu, g]\n", 1)
+    body = body.replace("      value: 1.2147716\n", "      expr: 2*v0/(7*mu*g)\n")
+    message = error_of(body, objectives=["t_star"])
+    assert "needs every slip's direction fixed" in message
+
+
+def test_an_integration_in_closed_form_agrees_with_the_numerical_event():
+    """Sample 9.23's event time from the closed form equals the integrated one."""
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "    find: t\n    kind: scalar\n    unit: s\n",
+        "    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g]\n", 1)
+    body = body.replace("      value: 1.2147716\n", "      expr: 2*v0/(7*mu*g)\n")
+    solution = solve_text(body)
+    assert solution.result("t_star").expr == "2*v0/(7*g*mu)"
+    t_numeric = solution.result("t_star_if_mu_0p2").value
+    assert t_numeric == pytest.approx(2 * 5.0 / (7 * 0.2 * 9.8), rel=1e-8)
+
+
+def test_a_mode_number_beyond_the_coordinates_is_refused():
+    body = text("two_mass_spring_chain").replace("find: mode_frequency(2)", "find: mode_frequency(3)")
+    assert "expected a mode number 1 to 2 (the coordinates), found '3'" in error_of(body)
+
+
+def test_natural_modes_need_an_equilibrium():
+    body = text("two_mass_spring_chain").replace(
+        "    find: mode_frequency(1)\n    kind: scalar\n    unit: rad/s\n"
+        "    givens: {x1: 0.5 m, x2: 1.3 m, \"x1'\": 0 m/s, \"x2'\": 0 m/s}   # the equilibrium\n",
+        "    find: mode_frequency(1)\n    kind: scalar\n    unit: rad/s\n")
+    message = error_of(body, objectives=["omega_1"])
+    assert "objective 'omega_1' does not exist at this instant: the configuration is not an " \
+           "equilibrium" in message
+
+
+def test_natural_modes_need_unconstrained_coordinates():
+    body = text("ruina_9_21_wheel_incline").replace(
+        "    find: R\n    kind: scalar\n    unit: m\n",
+        "    find: mode_frequency(1)\n    kind: scalar\n    unit: rad/s\n")
+    assert "natural modes need coordinates without constraints" in error_of(body)
+
+
+def test_a_mode_shape_is_a_ratio_of_the_coordinates_units():
+    from mechgrade.errors import SpecError
+    body = text("two_mass_spring_chain").replace(
+        "find: mode_shape(1, x2, x1)\n    kind: scalar\n    unit: \"1\"",
+        "find: mode_shape(1, x2, x1)\n    kind: scalar\n    unit: m")
+    with pytest.raises(SpecError, match="dimension mismatch in objective 'mode_1_ratio'"):
+        load_problem_text(body, "p.yaml")
+
+
+def test_a_closed_form_event_needs_a_positive_time():
+    body = text("ruina_9_23_ball_impulse_momentum").replace(
+        "until: x' + r*phi' = 0", "until: x' + r*phi' = 2*v0")
+    body = body.replace("    find: t\n    kind: scalar\n    unit: s\n",
+                        "    find: t\n    kind: symbolic\n    unit: s\n"
+                        "    symbols: [v0, mu, g]\n", 1)
+    body = body.replace("      value: 1.2147716\n", "      expr: 2*v0/(7*mu*g)\n")
+    assert "the event of the integrated motion has no closed-form time" in \
+        error_of(body, objectives=["t_star"])
+
+
+def test_a_closed_form_integration_needs_determined_accelerations():
+    body = text("block_slides_on_cart").replace(
+        "    N_F: {body: cart, at: K, direction: N.y}",
+        "    N_F: {body: cart, at: K, direction: N.y}\n    N_G: {body: cart, at: K, direction: N.y}")
+    body = body.replace("    find: t\n    kind: scalar\n    unit: s\n    expect: {value: 1.359157}",
+                        "    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g, m, M]\n"
+                        "    expect: {expr: v0/(mu*g*(1 + m/M))}")
+    assert "are not determined symbolically" in error_of(body, objectives=["t_slide"])
+
+
+STUCK_ON_CART = """
+id: p
+title: A block carried by a pushed cart
+source: test
+statement: A push P0 on the cart; the block does not slip on it.
+inertial: {frame: N, point: O}
+points:
+  B: {from: O, position: x*N.x + h*N.y}
+  P: {from: B, position: -h/2*N.y}
+  K: {from: O, position: X*N.x}
+coordinates: {x: m, X: m}
+parameters: {m: kg, M: kg, mu: "1", g: m/s^2, h: m, P0: N}
+constraints:
+  - name: stuck
+    position: x = X
+bodies:
+  block: {mass: m, centre: B}
+  cart: {mass: M, centre: K}
+loads:
+  gravity: -g*N.y
+  forces:
+    push: {body: cart, at: K, force: P0*N.x}
+  reactions:
+    N_P: {bodies: [block, cart], at: P, direction: N.y}
+    N_F: {body: cart, at: K, direction: N.y}
+  friction:
+    F_P: {body: block, at: P, normal: N_P, mu: mu, kind: static, direction: N.x, surface: cart}
+givens: {m: 2 kg, M: 8 kg, mu: 0.3, g: 9.81 m/s^2, h: 0.5 m, P0: 20 N, x: 0 m, X: 0 m,
+         "x'": 1 m/s}
+objectives:
+  - id: friction
+    prompt: The friction force on the block.
+    find: force(F_P)
+    kind: vector
+    frame: N
+    unit: N
+  - id: cart_net
+    prompt: The push plus the friction on the cart (the block's friction reversed).
+    find: m*acc(B, N) + M*acc(K, N) - force(push)
+    kind: vector
+    frame: N
+    unit: N
+"""
+
+
+def test_static_friction_between_two_bodies_acts_on_both():
+    solution = solve_text(STUCK_ON_CART)
+    assert solution.result("friction").value == pytest.approx((4.0, 0.0, 0.0))
+    # the whole system's horizontal momentum changes by the push alone
+    assert solution.result("cart_net").value[0] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_static_friction_between_two_bodies_is_bounded():
+    message = error_of(STUCK_ON_CART.replace("P0: 20 N", "P0: 40 N"))
+    assert "the block slips at P: sticking needs mu >= 0.4077" in message
+
+
+def test_integrations_keep_their_energy_books():
+    """The kinetic energy the friction between block and cart took is mu m g times the
+    distance slid; the flywheel's lost energy is the punch's work M phi."""
+    cart = solve(load_problem(ROOT / "problems" / "block_slides_on_cart.yaml"))
+    lost, slid = cart.result("energy_lost").value, cart.result("slide_distance").value
+    assert lost == pytest.approx(0.3 * 2 * 9.81 * slid, rel=1e-9)
+    flywheel = solve(load_problem(ROOT / "problems" / "flywheel_speed_drop.yaml"))
+    turned = np.radians(flywheel.result("turns_during_stroke").value)
+    assert flywheel.result("energy_taken").value == pytest.approx(1500 * turned, rel=1e-9)

@@ -13,6 +13,9 @@ ROOT = Path(__file__).resolve().parents[2]
 PENDULUM = (ROOT / "problems" / "pendulum_pin_reaction.yaml").read_text()
 INCLINE = (ROOT / "problems" / "block_sliding_down_incline.yaml").read_text()
 CHAIN = (ROOT / "problems" / "two_mass_spring_chain.yaml").read_text()
+CART = (ROOT / "problems" / "block_slides_on_cart.yaml").read_text()
+ICE = (ROOT / "problems" / "rod_struck_on_ice.yaml").read_text()
+TURNTABLE = (ROOT / "problems" / "block_on_turntable.yaml").read_text()
 
 
 def error_of(text: str) -> str:
@@ -68,7 +71,23 @@ CASES = [
     ("friction coefficient with units", INCLINE, "mu: mu_k", "mu: g",
      "dimension mismatch in 'g' (a friction coefficient)"),
     ("kinetic friction on an unknown surface", INCLINE, "kind: kinetic}",
-     "kind: kinetic, surface: K}", "unknown surface frame 'K'"),
+     "kind: kinetic, surface: K}", "unknown surface 'K' (frames or bodies: A, N, block)"),
+    ("friction between bodies pressed by a one-body normal", CART,
+     "N_P: {bodies: [block, cart], at: P,", "N_P: {body: block, at: P,",
+     "friction 'F_P' between block and cart: its normal 'N_P' must act on both bodies"),
+    ("friction of a body on itself", CART, "surface: cart}", "surface: block}",
+     "friction 'F_P' between block and block"),
+    ("static friction on a frame", TURNTABLE, "kind: static,", "kind: static, surface: B,",
+     "unknown surface 'B' (bodies: block)"),
+    ("known impulse without an impact", ICE,
+     "analysis:\n  impulse:\n    before: {x': 0 m/s, y': 0 m/s, theta': 0 rad/s}   # at rest\n", "",
+     "loads.impulses.hammer: the known impulse 'hammer' acts during an impact only"),
+    ("known impulse in newtons", ICE, "impulse: J*N.y}", "impulse: J/L*N.y}",
+     "(an impulse vector)"),
+    ("known impulse on an unknown body", ICE, "hammer: {body: rod,", "hammer: {body: bat,",
+     "unknown body 'bat' (bodies: rod)"),
+    ("before of a scalar", ICE, "find: dot(angvel(R, N), N.z)",
+     "find: dot(before(mag(vel(G, N))), N.z)", "expected a vector as argument of before(...)"),
     ("spring stiffness units", CHAIN, "stiffness: k1", "stiffness: m1",
      "dimension mismatch in 'm1' (a stiffness)"),
     ("spring free length units", CHAIN, "length: L1", "length: k1",

@@ -250,6 +250,9 @@ _OBJECTIVE = (
                       "force)"),
     ObjectiveFunction("impulse", (_L,), _V, _fixed("N*s"),
                       "impulse(R): the impulse of a reaction during an impact"),
+    ObjectiveFunction("before", (_V,), _V, lambda dims: dims[0],
+                      "before(v): vector v with the rates just before the impact "
+                      "(analysis: impulse)"),
     ObjectiveFunction("moment", (_L, _P), _V, _fixed("N*m"),
                       "moment(R, P): the moment of a load about point P"),
     ObjectiveFunction("momentum", (_B, _F), _V, _fixed("kg*m/s"),
@@ -268,6 +271,11 @@ _OBJECTIVE = (
     ObjectiveFunction("omega_n", (_Q,), _S, _fixed("rad/s"),
                       "omega_n(q): natural frequency of the motion linearised about the "
                       "instant's configuration (an equilibrium)"),
+    ObjectiveFunction("mode_frequency", (_S,), _S, _fixed("rad/s"),
+                      "mode_frequency(n): the n-th natural frequency (1 the lowest) of the "
+                      "motion linearised about the equilibrium"),
+    ObjectiveFunction("mode_shape", (_S, _Q, _Q), _S, lambda dims: dims[1] / dims[2],
+                      "mode_shape(n, q, r): the amplitude ratio of q to r in mode n"),
     ObjectiveFunction("zeta", (_Q,), _S, _pure_number,
                       "zeta(q): damping ratio of the motion linearised about the equilibrium"),
 )

@@ -25,7 +25,7 @@ import sympy as sp
 from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
 
 from ..errors import Location, SolveError
-from ..expressions.syntax import Call, Name, Node
+from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Impulse, Integration,
                              KineticFriction, Restitution, Spring, StaticFriction)
 from ..spec.model import Problem
@@ -117,6 +117,10 @@ class _Loads:
         self.couples: dict[str, list[tuple[str, Vector]]] = {}
         self.reactions = reactions
 
+    def impulsive(self, name: str) -> bool:
+        """Whether load ``name`` acts during an impact (a reaction or a known impulse)."""
+        return name in self.reactions or name in {j.name for j in self.d.impulses}
+
     def velocity(self, body: str, point: str) -> Vector:
         """Velocity in the inertial frame of the material point of ``body`` at ``point``."""
         if body == GROUND:
@@ -138,6 +142,8 @@ class _Loads:
             self.forces[f.name] = [(f.on, f.at, lang.vector(f.force))]
         for c in d.couples:
             self.couples[c.name] = [(c.on, lang.vector(c.moment))]
+        for j in d.impulses:
+            self.forces[j.name] = [(j.on, j.at, lang.vector(j.impulse))]
         for s in (*d.springs, *d.dampers):
             a, b = (self.model.positions[p] for p in s.between)
             r = b - a
@@ -151,6 +157,7 @@ class _Loads:
         for r in d.reactions:
             vector = self.reaction_vector(r.name, r.directions)
             self.forces[r.name] = [(a.on, a.at, a.sign * vector) for a in r.acts]
+        bodies = {b.name for b in d.bodies}
         for f in d.friction:
             if isinstance(f, StaticFriction):
                 vector = self.reaction_vector(f.name, f.directions)
@@ -158,6 +165,8 @@ class _Loads:
                 slip = self.slip_velocity(f)
                 vector = -lang.scalar(f.mu) * self.normal(f.normal) * slip / slip.magnitude()
             self.forces[f.name] = [(f.on, f.at, vector)]
+            if f.surface in bodies:  # between two free bodies: equal and opposite
+                self.forces[f.name].append((f.surface, f.at, -vector))
 
     def reaction_vector(self, name: str, directions) -> Vector:
         return sum((s * self.language.vector(e) for s, e in zip(self.reactions[name], directions)),
@@ -167,7 +176,11 @@ class _Loads:
         return self.reactions[name][0]
 
     def slip_velocity(self, f: KineticFriction) -> Vector:
+        """The velocity of ``f``'s body at its contact relative to the surface's material
+        point there (a body's, or a frame's)."""
         v = self.velocity(f.on, f.at)
+        if f.surface in {b.name for b in self.d.bodies}:
+            return v - self.velocity(f.surface, f.at)
         if f.surface not in (GROUND, self.N):
             v -= self.language.point_velocity(Call("coincident", (Name(f.at), Name(f.surface))),
                                               self.N)
@@ -193,6 +206,7 @@ class DynamicsInterpreter(Interpreter):
         self._linearised: dict[str, tuple] = {}
         self.reactions_by_name = loads.reactions
         self.where = Location()
+        self.before: dict = {}  # the rates just before an impact
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -207,10 +221,16 @@ class DynamicsInterpreter(Interpreter):
         return next((b for b in bodies if b != GROUND), None)
 
     def _fn_force(self, load: Node):
-        if isinstance(self.d.analysis, Impulse) and load.id in self.reactions_by_name:
-            raise SolveError(f"during an impact the reaction {load.id} is an impulse: ask for "
+        if isinstance(self.d.analysis, Impulse) and self.loads.impulsive(load.id):
+            raise SolveError(f"during an impact {load.id} is an impulse: ask for "
                              f"impulse({load.id})", where=self.where)
         return self._load_force(load)
+
+    def _fn_before(self, vector: Node):
+        if not isinstance(self.d.analysis, Impulse):
+            raise SolveError("before(...) needs an impact: 'analysis: impulse'",
+                             where=self.where)
+        return self._as_vector(self.value(vector)).subs(self.before)
 
     def _load_force(self, load: Node):
         body = self._first_body(load.id)
@@ -320,6 +340,74 @@ class DynamicsInterpreter(Interpreter):
         self.requirements.append(requirement)
         return stiffness, damping
 
+    def stiffness(self) -> sp.Matrix:
+        """K of q'' = -K (q - q_eq) + ... for every coordinate, the motion linearised about the
+        instant's configuration (rates zero there), which must be an equilibrium (recorded)."""
+        if "*" in self._linearised:
+            K, requirement = self._linearised["*"]
+            self.requirements.append(requirement)
+            return K
+        k = self.kinematics
+        if k.velocity:
+            raise SolveError("natural modes need coordinates without constraints",
+                             where=self.where)
+        unknowns = (*k.qdd, *self.reactions)
+        A, b = sp.linear_eq_to_matrix([e.expr for e in self.balances], list(unknowns))
+        if A.rows != A.cols:
+            raise SolveError("natural modes need as many momentum balances as unknown "
+                             "accelerations and reactions", where=self.where)
+        n = len(k.q)
+        rest = {qd: 0 for qd in k.qd}
+        x = A.LUsolve(b)
+        K = sp.zeros(n, n)
+        for j, q in enumerate(k.q):
+            dx = A.LUsolve(b.diff(q) - A.diff(q) * x)
+            for i in range(n):
+                K[i, j] = _without_signs(-dx[i].xreplace(rest))
+        off = sum((sp.Abs(x[i].xreplace(rest)) for i in range(n)), sp.Integer(0))
+        requirement = ("the configuration is not an equilibrium (a second rate is not zero at "
+                       "rest there)", off / (1 + sum((sp.Abs(e) for e in K), sp.Integer(0))))
+        self._linearised["*"] = (K, requirement)
+        self.requirements.append(requirement)
+        return K
+
+    def _mode(self, number: Node):
+        """The squared natural frequency of mode ``number`` (1 the lowest) and the stiffness
+        matrix, for one or two coordinates."""
+        K = self.stiffness()
+        n = K.rows
+        value = constant_value(number)
+        if value is None or value != int(value) or not 1 <= value <= n:
+            raise SolveError(f"expected a mode number 1 to {n} (the coordinates), found "
+                             f"'{to_text(number)}'", where=self.where)
+        if n == 1:
+            return K[0, 0], K
+        if n > 2:
+            raise SolveError("natural modes are worked out for one or two coordinates; this "
+                             f"problem has {n}", where=self.where)
+        trace, det = K[0, 0] + K[1, 1], K.det()
+        root = sp.sqrt(trace ** 2 - 4 * det)
+        return _tidy((trace - root) / 2 if value == 1 else (trace + root) / 2), K
+
+    def _fn_mode_frequency(self, number: Node):
+        squared, _ = self._mode(number)
+        return sp.sqrt(squared)
+
+    def _fn_mode_shape(self, number: Node, coordinate: Node, reference: Node):
+        squared, K = self._mode(number)
+        names = list(self.kinematics.coordinates)
+        i, j = names.index(coordinate.id), names.index(reference.id)
+        if K.rows == 1 or i == j:
+            return sp.Integer(1)
+        if not identically_zero(K[0, 1]):
+            shape = (K[0, 1], squared - K[0, 0])
+        elif not identically_zero(K[1, 0]):
+            shape = (squared - K[1, 1], K[1, 0])
+        else:
+            raise SolveError("the coordinates are not coupled: each mode moves one of them "
+                             "only", where=self.where)
+        return _tidy(shape[i] / shape[j])
+
     def _fn_omega_n(self, coordinate: Node):
         stiffness, _ = self.linearised(coordinate)
         return sp.sqrt(stiffness)
@@ -339,11 +427,52 @@ def derive_kinetics(problem: Problem) -> Kinetics:
 
 
 @lru_cache(maxsize=64)
-def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:  # noqa: C901 - one balance per load kind; to split (issue 12)
+def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     d = problem.dynamics
     k = derive(replace(problem, objectives=(), dynamics=None))
     model = build(problem)
-    N = model.inertial
+    reactions, labels = _reaction_symbols(d)
+    loads = _Loads(problem, model, reactions)
+    loads.build()
+    inertias, steps_bodies = _inertias(d, model)
+    language = DynamicsInterpreter(problem, model, loads, inertias)
+    impact = isinstance(d.analysis, Impulse)
+    before = _rates_before(problem, model, k) if impact else {}
+    language.before = before
+    balances: list[Equation] = []
+    steps_loads: list[str] = []
+    for b in d.bodies:
+        steps_loads.append(_load_line(b, loads, model))
+        for label, expr in _body_balances(problem, model, loads, inertias, b, before, impact):
+            plain = sp.expand(model.plain(expr))
+            if not identically_zero(plain):
+                balances.append(Equation(label, plain, b.where))
+    language.kinematics = k
+    language.balances = tuple(balances) + k.acceleration
+    language.reactions = tuple(s for v in reactions.values() for s in v)
+    if impact:
+        balances += _contact_conditions(d.analysis, model, loads, before)
+    objectives, mistakes, requirements = _objective_values(problem, model, language)
+    bounds, slips = _friction_checks(d, model, loads, language, reactions)
+    start, until = _analysis(problem, model, language, k)
+    steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
+             ("Momentum balances", tuple(f"{e.label}: {sp.sstr(e.expr)} = 0" for e in balances)),
+             ("Unknown reactions", tuple(labels) or ("none",)))
+    return Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
+                    labels=tuple(labels), balances=tuple(balances),
+                    objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
+                    slips=tuple(slips), steps=steps,
+                    energy=model.plain(_energy(problem, language)),
+                    nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
+                                                           *d.friction)
+                                          if not isinstance(x, StaticFriction)),
+                    workless=_workless(problem, model, language, reactions, labels),
+                    start=start, until=until, requirements=tuple(requirements), impact=impact,
+                    design=_difference(d.design.so_that, model, language) if d.design else None)
+
+
+def _reaction_symbols(d: Dynamics) -> tuple[dict[str, tuple[sp.Symbol, ...]], list[str]]:
+    """One unknown per direction of each reaction and static-friction force, with labels."""
     reactions: dict[str, tuple[sp.Symbol, ...]] = {}
     labels: list[str] = []
     for r in (*d.reactions, *(f for f in d.friction if isinstance(f, StaticFriction))):
@@ -351,11 +480,15 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:  # noqa: 
             [f"{r.name}_{i + 1}" for i in range(len(r.directions))]
         reactions[r.name] = tuple(sp.Symbol(n, real=True) for n in names)
         labels += [f"{r.name} (along {e.text})" for e in r.directions]
-    loads = _Loads(problem, model, reactions)
-    loads.build()
+    return reactions, labels
+
+
+def _inertias(d: Dynamics, model: Model) -> tuple[dict[str, list], list[str]]:
+    """Each body's parts ``(mass, centre, central inertia or None)`` and the write-up lines
+    (the parallel-axis shift of every part to the body's reference point)."""
     lang = model.language
     inertias: dict[str, list] = {}
-    steps_bodies: list[str] = []
+    lines: list[str] = []
     for b in d.bodies:
         parts = []
         frame = model.frames[b.frame] if b.frame else None
@@ -370,131 +503,140 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:  # noqa: 
                                        offset, frame)
             parts.append((m, part.at, central))
         inertias[b.name] = parts
-        steps_bodies += _body_lines(b, parts, total, model)
-    language = DynamicsInterpreter(problem, model, loads, inertias)
-    balances: list[Equation] = []
-    steps_loads: list[str] = []
-    steps_balances: list[str] = []
-    axes = [f"{problem.inertial_frame}.{a}" for a in "xyz"]
-    impact = isinstance(d.analysis, Impulse)
-    before = {}
+        lines += _body_lines(b, parts, total, model)
+    return inertias, lines
+
+
+def _rates_before(problem: Problem, model: Model, k: Kinematics) -> dict:
+    """The rates just before an impact (those not named in ``before:`` are 0), keyed by the
+    model's rate functions."""
+    lang = model.language
+    values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
+              if s.value is None else model.plain(lang.scalar(s.value))
+              for s in problem.dynamics.analysis.start}
+    return {model.symbols.dyn[c].diff(dynamicsymbols._t): values.get(qd, sp.Integer(0))
+            for c, qd in zip(k.coordinates, k.qd)}
+
+
+def _load_line(body: Body, loads: _Loads, model: Model) -> str:
+    forces, couples = loads.on(body.name)
+    return f"{body.name}: " + "; ".join(
+        [f"{name} at {p}: {model.plain(F)}" for name, p, F in forces]
+        + [f"couple {name}: {model.plain(M)}" for name, M in couples])
+
+
+def _body_balances(problem: Problem, model: Model, loads: _Loads, inertias: dict, b: Body,
+                   before: dict, impact: bool) -> list[tuple[str, object]]:
+    """The linear (and, for a rigid body, angular) momentum balance of body ``b`` as
+    ``(label, expression = 0)`` in inertial components; during an impact only the impulses act
+    and the momenta change by them."""
+    N, lang = model.inertial, model.language
+    forces, couples = loads.on(b.name)
     if impact:
-        values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
-                  if s.value is None else model.plain(lang.scalar(s.value))
-                  for s in d.analysis.start}
-        before = {model.symbols.dyn[c].diff(dynamicsymbols._t): values.get(qd, sp.Integer(0))
-                  for c, qd in zip(k.coordinates, k.qd)}
+        forces = [(name, p, F) for name, p, F in forces if loads.impulsive(name)]
+        couples = []
 
-    def change(vector: Vector) -> Vector:
-        """After minus before: the same expression with the rates just before put in."""
-        return vector - vector.subs(before)
-
-    for b in d.bodies:
-        forces, couples = loads.on(b.name)
-        steps_loads.append(f"{b.name}: " + "; ".join(
-            [f"{name} at {p}: {model.plain(F)}" for name, p, F in forces]
-            + [f"couple {name}: {model.plain(M)}" for name, M in couples]))
+    def motion(at: str) -> Vector:
+        """The velocity change (impact) or the acceleration of point ``at``."""
         if impact:
-            # only the impulses act during the impact; momenta change by them
-            forces = [(name, p, F) for name, p, F in forces if name in reactions]
-            couples = []
-        total = sum((F for _, _, F in forces), Vector(0))
-        ma = sum((m * change(lang.point_velocity(Name(at), problem.inertial_frame))
-                  if impact else m * lang.point_acceleration(Name(at), problem.inertial_frame)
-                  for m, at, _ in inertias[b.name]), Vector(0))
-        linear = (total - ma).to_matrix(N)
-        kind = "impulse-momentum" if impact else "force"
-        equations = [(f"body {b.name}: {axes[i]} {kind} balance", linear[i]) for i in range(3)]
-        if b.frame is not None:
-            C = model.positions[b.centre]
-            moment = sum((M for _, M in couples), Vector(0))
-            for _, p, F in forces:
-                moment += (model.positions[p] - C) ^ F
-            omega = model.frames[b.frame].ang_vel_in(N)
-            rate = Vector(0)
-            for m, at, central in inertias[b.name]:
-                if impact:
-                    rate += (model.positions[at] - C) ^ (m * change(lang.point_velocity(
-                        Name(at), problem.inertial_frame)))
-                    if central is not None:
-                        rate += change(central & omega)
-                    continue
-                rate += (model.positions[at] - C) ^ (m * lang.point_acceleration(
-                    Name(at), problem.inertial_frame))
-                if central is not None:
-                    rate += (central & omega).dt(N)
-            angular = (moment - rate).to_matrix(N)
-            kind = "angular impulse-momentum" if impact else "moment"
-            equations += [(f"body {b.name}: {kind} balance about {b.centre} ({axes[i]} "
-                           "component)", angular[i]) for i in range(3)]
-        for label, expr in equations:
-            plain = sp.expand(model.plain(expr))
-            if identically_zero(plain):
-                continue
-            balances.append(Equation(label, plain, b.where))
-            steps_balances.append(f"{label}: {sp.sstr(plain)} = 0")
-    language.kinematics = k
-    language.balances = tuple(balances) + k.acceleration
-    language.reactions = tuple(s for v in reactions.values() for s in v)
-    if impact:
-        for i, c in enumerate(d.analysis.contacts):
-            relative = loads.velocity(c.bodies[0], c.at) - loads.velocity(c.bodies[1], c.at)
-            if isinstance(c, Restitution):
-                n = lang.vector(c.direction)
-                after = relative & n
-                rows = [(f"contact {i + 1} at {c.at}: restitution",
-                         after + lang.scalar(c.e) * after.subs(before))]
-            else:
-                rows = [(f"contact {i + 1} at {c.at}: sticking along {e.text}",
-                         relative & lang.vector(e)) for e in c.directions]
-            for label, expr in rows:
-                plain = sp.expand(model.plain(expr))
-                balances.append(Equation(label, plain, c.where))
-                steps_balances.append(f"{label}: {sp.sstr(plain)} = 0")
+            v = lang.point_velocity(Name(at), problem.inertial_frame)
+            return v - v.subs(before)
+        return lang.point_acceleration(Name(at), problem.inertial_frame)
+
+    axes = [f"{problem.inertial_frame}.{a}" for a in "xyz"]
+    total = sum((F for _, _, F in forces), Vector(0))
+    ma = sum((m * motion(at) for m, at, _ in inertias[b.name]), Vector(0))
+    linear = (total - ma).to_matrix(N)
+    kind = "impulse-momentum" if impact else "force"
+    equations = [(f"body {b.name}: {axes[i]} {kind} balance", linear[i]) for i in range(3)]
+    if b.frame is None:
+        return equations
+    C = model.positions[b.centre]
+    moment = sum((M for _, M in couples), Vector(0))
+    for _, p, F in forces:
+        moment += (model.positions[p] - C) ^ F
+    omega = model.frames[b.frame].ang_vel_in(N)
+    rate = Vector(0)
+    for m, at, central in inertias[b.name]:
+        rate += (model.positions[at] - C) ^ (m * motion(at))
+        if central is None:
+            continue
+        spin = central & omega
+        rate += spin - spin.subs(before) if impact else spin.dt(N)
+    angular = (moment - rate).to_matrix(N)
+    kind = "angular impulse-momentum" if impact else "moment"
+    return equations + [(f"body {b.name}: {kind} balance about {b.centre} ({axes[i]} "
+                         "component)", angular[i]) for i in range(3)]
+
+
+def _contact_conditions(analysis: Impulse, model: Model, loads: _Loads,
+                        before: dict) -> list[Equation]:
+    """The restitution and sticking conditions of an impact's contacts."""
+    lang = model.language
+    out = []
+    for i, c in enumerate(analysis.contacts):
+        relative = loads.velocity(c.bodies[0], c.at) - loads.velocity(c.bodies[1], c.at)
+        if isinstance(c, Restitution):
+            after = relative & lang.vector(c.direction)
+            rows = [(f"contact {i + 1} at {c.at}: restitution",
+                     after + lang.scalar(c.e) * after.subs(before))]
+        else:
+            rows = [(f"contact {i + 1} at {c.at}: sticking along {e.text}",
+                     relative & lang.vector(e)) for e in c.directions]
+        out += [Equation(label, sp.expand(model.plain(expr)), c.where) for label, expr in rows]
+    return out
+
+
+def _objective_values(problem: Problem, model: Model, language: DynamicsInterpreter):
+    """Each objective's and mistake's value in the model's quantities, and the requirements
+    they need at the instant."""
     objectives, mistakes, requirements = [], [], []
+    view = _View(model, language)
     for obj in problem.objectives:
         language.requirements.clear()
         language.where = obj.where
-        model_view = _View(model, language)
-        objectives.append((obj.id, _objective_value(model_view, obj.find, obj.frame)))
-        mistakes.append((obj.id, tuple(_objective_value(model_view, m.find, obj.frame)
+        objectives.append((obj.id, _objective_value(view, obj.find, obj.frame)))
+        mistakes.append((obj.id, tuple(_objective_value(view, m.find, obj.frame)
                                        for m in obj.mistakes)))
         requirements += [(obj.id, reason, model.plain(expr))
                          for reason, expr in language.requirements]
-    bounds = []
-    slips = []
+    return objectives, mistakes, requirements
+
+
+def _friction_checks(d: Dynamics, model: Model, loads: _Loads, language, reactions: dict):
+    """The bound of every static-friction contact and the slip of every kinetic one."""
+    bounds, slips = [], []
+    N = model.inertial
     for f in d.friction:
         normal = reactions[f.normal][0]
         if isinstance(f, StaticFriction):
             force = model.plain(language._load_force(Name(f.name)).to_matrix(N))
-            bounds.append(Bound(f.name, f.on, f.at, force, normal, model.plain(lang.scalar(f.mu)),
-                                f.where))
+            bounds.append(Bound(f.name, f.on, f.at, force, normal,
+                                model.plain(model.language.scalar(f.mu)), f.where))
         else:
             speed = model.plain(loads.slip_velocity(f).magnitude())
             slips.append(Slip(f.name, f.at, speed, normal, f.where))
+    return bounds, slips
+
+
+def _energy(problem: Problem, language: DynamicsInterpreter):
+    """Kinetic plus potential energy of every body and spring, in the inertial frame."""
+    d = problem.dynamics
     N_node = Name(problem.inertial_frame)
     energy = sum((language._fn_ke(Name(b.name), N_node) + language._fn_pe(Name(b.name))
                   for b in d.bodies), sp.Integer(0))
-    energy += sum((language._fn_pe(Name(s.name)) for s in d.springs), sp.Integer(0))
-    nonconservative = tuple(x.name for x in (*d.forces, *d.couples, *d.dampers, *d.friction)
-                            if not isinstance(x, StaticFriction))
-    workless = []
+    return energy + sum((language._fn_pe(Name(s.name)) for s in d.springs), sp.Integer(0))
+
+
+def _workless(problem: Problem, model: Model, language, reactions: dict, labels: list[str]):
+    """The power of each reaction component per unit magnitude (zero for a workless one)."""
+    out = []
+    N_node = Name(problem.inertial_frame)
     for name, symbols in reactions.items():
         power = model.plain(language._fn_power(Name(name), N_node))
-        workless += [(label, sp.diff(power, s)) for s, label in
-                     zip(symbols, [lb for lb in labels if lb.startswith(name + " ")])]
-    start, until = _analysis(problem, model, language, k)
-    unknowns = [f"{label}" for label in labels]
-    steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
-             ("Momentum balances", tuple(steps_balances)),
-             ("Unknown reactions", tuple(unknowns) or ("none",)))
-    return Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
-                    labels=tuple(labels), balances=tuple(balances),
-                    objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
-                    slips=tuple(slips), steps=steps, energy=model.plain(energy),
-                    nonconservative=nonconservative, workless=tuple(workless), start=start,
-                    until=until, requirements=tuple(requirements), impact=impact,
-                    design=_difference(d.design.so_that, model, language) if d.design else None)
+        out += [(label, sp.diff(power, s)) for s, label in
+                zip(symbols, [lb for lb in labels if lb.startswith(name + " ")])]
+    return tuple(out)
 
 
 def _difference(equation, model: Model, language) -> sp.Expr:
@@ -574,11 +716,21 @@ def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
     return lines
 
 
+def _without_signs(expr):
+    """``expr`` with ``sign(u)`` written ``u/|u|`` and cancelled: a spring's stiffness k, not
+    k (1 - L/|u| + L u sign(u)/u^2), which holds wherever its length u is not zero."""
+    expr = expr.replace(sp.DiracDelta, lambda *args: sp.Integer(0))
+    return sp.cancel(expr.replace(sp.sign, lambda u: u / sp.Abs(u)))
+
+
 def _tidy(expr):
     """A simpler form when one is cheap to find (the solver lambdifies either)."""
     if sp.count_ops(expr) > 400:
         return expr
-    simple = sp.simplify(expr)
+    try:
+        simple = sp.simplify(expr)
+    except TypeError:  # sympy's simplify can trip over its own comparisons (NaN)
+        return expr
     return simple if sp.count_ops(simple) <= sp.count_ops(expr) else expr
 
 

@@ -34,7 +34,8 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy
-from .events import energy_rate_symbolic, energy_state, integrate_to_event
+from .events import (energy_rate_symbolic, energy_state, integrate_to_event,
+                     integrated_symbolically)
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
 from .levels import RANK_TOL, State, place_givens
@@ -258,7 +259,7 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                             if oid in numeric}
                 warned += [w for w in found if w not in warned]
                 if not overrides or base is None:
-                    base = (state, given_map)
+                    base = (_with_kinetics(kp, state, x), given_map)
         collect_results(problem, chosen, given_map, values, mistakes, results, failures,
                         symbolic=_symbolic_result)
     order = [o.id for o in problem.objectives if o.id in wanted]
@@ -271,6 +272,14 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
                     warnings=tuple(warned))
+
+
+def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
+    """``state`` with the rates the momentum balances solved (second rates, or the rates just
+    after an impact) put in."""
+    size = kp.kp.index.size
+    solved = {i for i in kp.columns if i < size and np.isfinite(x[i])}
+    return State(x[:size].copy(), state.given, frozenset(state.free - solved))
 
 
 def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
@@ -337,8 +346,9 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     expr = solved_symbolically(problem, objective_id, givens)
     analysis = problem.dynamics.analysis
     if isinstance(analysis, Integration):
-        raise SolveError(f"objective '{objective_id}' is symbolic, but the motion is "
-                         "integrated numerically: ask for a scalar", where=obj.where)
+        numbers = {kin.k.quantity(node): si for _, (node, si, _) in givens
+                   if isinstance(node, (Name, Prime))}
+        expr = integrated_symbolically(kin, expr, numbers, obj.where)
     if isinstance(analysis, WorkEnergy):
         declared = {kin.k.quantity(node) for node in symbol_meanings(problem, obj).values()}
         expr = energy_rate_symbolic(problem, kinetics_plan(problem), expr, declared)
@@ -367,8 +377,9 @@ def solved_symbolically(problem: Problem, objective_id: str, givens: tuple):
             if si == 0 or symbol in kin.rates:
                 stand_in[symbol] = sp.nsimplify(si) if si == 0 else sp.Float(si)
     unknowns = [s for s in (*kin.rates, *kin.reactions) if s not in stand_in]
+    # declared rates stay symbols (the velocities after an impact in a projected balance)
     if not (expr.free_symbols if not isinstance(expr, sp.MatrixBase)
-            else set().union(*(e.free_symbols for e in expr))) & set(unknowns):
+            else set().union(*(e.free_symbols for e in expr))) & (set(unknowns) - declared):
         return expr
     equations = tuple(e.expr.xreplace(stand_in) for e in (*kin.balances, *kin.constraints))
     # a declared second rate (phidd of a driven turntable) is known, unless the balances

@@ -41,6 +41,7 @@ class AnalysisPlan:
     start: tuple[tuple[int, Callable], ...]
     until: Callable | None
     workless: tuple[tuple[str, Callable], ...]
+    until_kinetic: bool = True  # the event reads second rates or reactions
 
 
 def analysis_plan(kp) -> AnalysisPlan:
@@ -60,7 +61,9 @@ def _analysis_plan(kp) -> AnalysisPlan:
         energy=f(kin.energy),
         start=tuple((position[s], f(value)) for s, value in kin.start),
         until=f(kin.until) if kin.until is not None else None,
-        workless=tuple((label, f(expr)) for label, expr in kin.workless))
+        workless=tuple((label, f(expr)) for label, expr in kin.workless),
+        until_kinetic=kin.until is not None and bool(
+            kin.until.free_symbols & {*kin.k.qdd, *kin.reactions}))
 
 
 def _value(fn: Callable, x: np.ndarray) -> float:
@@ -204,7 +207,10 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
         return np.concatenate([y[index.n:], x[qdd]])
 
     def event(t, y):
-        return _value(ap.until, solve(at(t, y)))
+        # an event of the state alone is read without the balances (which are undefined
+        # where a slip speed is exactly zero)
+        x = solve(at(t, y)) if ap.until_kinetic else _extended(kp, at(t, y))
+        return _value(ap.until, x)
 
     event.terminal = True
     y0 = np.concatenate([values[q], values[qd]])
@@ -225,3 +231,70 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     known[index.config] = True
     known[qd] = True
     return State(end, known, frozenset()), before
+
+
+# ---------------------------------------------------------------------------- closed form
+
+
+def integrated_symbolically(kin, expr, numbers: dict, where=None):
+    """``expr`` at the event in closed form, for a motion whose accelerations stay constant
+    until it: q = q0 + q0' t + a t^2 / 2, with each kinetic-friction slip keeping the direction
+    it has at the start (``|u|`` read as ``sign(u0) u``). The event time is the smallest root
+    that is positive at the givens (``numbers``: plain symbol -> SI value).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.mechanics.dynamics import derive_kinetics
+    >>> kin = derive_kinetics(load_problem(shipped_dir("problems")
+    ...                                    / "ruina_9_23_ball_impulse_momentum.yaml"))
+    >>> integrated_symbolically(kin, kin.k.time, {s: 1.0 for _, s in kin.k.parameters})
+    2*v0/(7*g*mu)
+    """
+    k = kin.k
+    start = {**dict(kin.start), k.time: sp.Integer(0)}
+    equations = [_frozen(e.expr, start, where) for e in (*kin.balances, *kin.constraints)]
+    unknowns = [*k.qdd, *kin.reactions]
+    A, b = sp.linear_eq_to_matrix(equations, unknowns)
+    if A.rank() < len(unknowns):
+        raise SolveError("the accelerations of the integrated motion are not determined "
+                         "symbolically: ask for a scalar", where=where)
+    solved = dict(zip(unknowns, (sp.simplify(v) for v in A.LUsolve(b))))
+    state = {*k.q, *k.qd, k.time}
+    if any(solved[a].free_symbols & state for a in k.qdd):
+        raise SolveError("a symbolic answer of an integrated motion needs accelerations that "
+                         "stay constant until the event (they change with the state here): "
+                         "ask for a scalar", where=where)
+    T = sp.Symbol("t_event", positive=True)
+    at_time = {**solved, k.time: T}
+    for q, qd, qdd in zip(k.q, k.qd, k.qdd):
+        at_time[q] = start[q] + start[qd] * T + solved[qdd] * T ** 2 / 2
+        at_time[qd] = start[qd] + solved[qdd] * T
+    event = sp.simplify(kin.until.xreplace(at_time))
+    roots = []
+    for root in sp.solve(event, T):
+        value = complex(root.xreplace(numbers).evalf())
+        if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
+            roots.append((value.real, root))
+    if not roots:
+        raise SolveError("the event of the integrated motion has no closed-form time: ask for "
+                         "a scalar", where=where)
+    t_event = min(roots, key=lambda pair: pair[0])[1]
+    result = expr.xreplace(at_time).xreplace({T: t_event})
+    return result.applyfunc(sp.simplify) if isinstance(result, sp.MatrixBase) \
+        else sp.simplify(result)
+
+
+def _frozen(expr, start: dict, where):
+    """``expr`` with every ``|u|`` and ``sign(u)`` of a slip read with the sign ``u`` has at
+    the start (the slip keeps its direction until the event)."""
+
+    def sign_at_start(u):
+        s = sp.sign(sp.simplify(u.xreplace(start)))
+        if s not in (1, -1):
+            raise SolveError(f"the sign of {u} at the start is not known: a symbolic answer of "
+                             "an integrated motion needs every slip's direction fixed",
+                             where=where)
+        return s
+
+    expr = expr.replace(lambda e: isinstance(e, sp.Abs), lambda e: sign_at_start(e.args[0]) * e.args[0])
+    return expr.replace(lambda e: isinstance(e, sp.sign), lambda e: sign_at_start(e.args[0]))

@@ -138,6 +138,18 @@ class Force:
 
 
 @dataclass(frozen=True)
+class KnownImpulse:
+    """A known impulse ``impulse`` (N s) on body ``on`` at point ``at`` during an impact (a
+    hammer blow of known strength); it acts in ``analysis: impulse`` only."""
+
+    name: str
+    on: str
+    at: str
+    impulse: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
 class Couple:
     """A known couple (pure moment) on body ``on``."""
 
@@ -194,8 +206,9 @@ class Reaction:
 
 @dataclass(frozen=True)
 class KineticFriction:
-    """mu N opposing the slip velocity of body ``on`` at ``at`` relative to ``surface``;
-    ``normal`` is the reaction (one direction) pressing the surfaces together."""
+    """mu N opposing the slip velocity of body ``on`` at ``at`` relative to ``surface`` (the
+    ground, a frame whose motion is prescribed, or another body, which then feels the opposite
+    force); ``normal`` is the reaction (one direction) pressing the surfaces together."""
 
     name: str
     on: str
@@ -218,6 +231,7 @@ class StaticFriction:
     mu: Expr
     directions: tuple[Expr, ...]
     where: Location = field(default_factory=Location, compare=False)
+    surface: str = GROUND  # the ground, or another body (which feels the opposite force)
 
 
 Friction = KineticFriction | StaticFriction
@@ -318,6 +332,7 @@ class Dynamics:
     friction: tuple[Friction, ...] = ()
     analysis: Analysis | None = None
     design: Design | None = None
+    impulses: tuple[KnownImpulse, ...] = ()
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]
@@ -326,7 +341,7 @@ class Dynamics:
     def loads(self) -> tuple:
         """Every named load, in the order of the file's sections."""
         return (*self.forces, *self.couples, *self.springs, *self.dampers, *self.reactions,
-                *self.friction)
+                *self.friction, *self.impulses)
 
     def load(self, name: str):
         return {item.name: item for item in self.loads}[name]
@@ -368,13 +383,16 @@ def read_dynamics(data: dict, expr, where) -> Dynamics | None:
     dampers = tuple(Damper(n, tuple(s["between"]), tuple(s["bodies"]),
                            expr(s["coefficient"], "loads", "dampers", n, "coefficient"),
                            where("loads", "dampers", n)) for n, s in section("dampers"))
+    impulses = tuple(KnownImpulse(n, s["body"], s["at"],
+                                  expr(s["impulse"], "loads", "impulses", n, "impulse"),
+                                  where("loads", "impulses", n)) for n, s in section("impulses"))
     reactions = tuple(_reaction(n, s, expr, where) for n, s in section("reactions"))
     friction = tuple(_friction(n, s, expr, where) for n, s in section("friction"))
     gravity = expr(loads["gravity"], "loads", "gravity") if "gravity" in loads else None
     analysis = dict(data.get("analysis") or {})
     design = analysis.pop("design", None)
     return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction,
-                    _analysis(analysis, expr, where), _design(design, expr, where))
+                    _analysis(analysis, expr, where), _design(design, expr, where), impulses)
 
 
 def _equation(text: str, expr, where, *path) -> tuple[Expr, Expr]:
@@ -474,7 +492,8 @@ def _friction(name: str, spec: dict, expr, where) -> Friction:
         return KineticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
                                spec.get("surface", GROUND), where(*path))
     return StaticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
-                          _directions(spec, expr, *path), where(*path))
+                          _directions(spec, expr, *path), where(*path),
+                          spec.get("surface", GROUND))
 
 
 def _body(name: str, spec: dict, expr, where) -> Body:
@@ -514,107 +533,160 @@ def _part(spec: dict, expr, where, *path) -> Part:
 # ---------------------------------------------------------------------------- validation
 
 
-def check_dynamics(problem, checker) -> None:  # noqa: C901 - one check per section; to split (issue 12)
+def check_dynamics(problem, checker) -> None:
     """Names, kinds and dimensions of the dynamics sections (``checker`` types expressions)."""
     d = problem.dynamics
     if d is None:
         return
-    frames = {f.name for f in problem.frames}
-    points = {p.name for p in problem.points}
-    scalars = {c.name for c in problem.coordinates} | {p.name for p in problem.parameters}
-    seen: dict[str, str] = {}
-    for item, what in [(b, "body") for b in d.bodies] + [(x, "load") for x in d.loads]:
-        if item.name in seen or item.name in frames | points | scalars | {GROUND}:
-            raise SpecError(f"'{item.name}' names a {what} and something else already; "
-                            "expected a distinct name", where=item.where)
-        seen[item.name] = what
-    bodies = {b.name for b in d.bodies}
+    c = _Checker(problem, checker)
+    c.distinct_names()
+    c.bodies()
+    c.applied_loads()
+    c.reactions_and_friction()
+    if d.analysis is not None:
+        _check_analysis(problem, checker, d.analysis)
+    if d.design is not None:
+        c.design()
+    for e in (*(x for r in d.reactions for x in r.directions),
+              *(x for f in d.friction if isinstance(f, StaticFriction) for x in f.directions)):
+        c.typed(e, "vector", "", "a direction (a vector without units, e.g. N.x)")
 
-    def point(name, where, field_name):
-        if name not in points:
+
+class _Checker:
+    """The checks of :func:`check_dynamics`, one method per section, sharing the problem's
+    names."""
+
+    def __init__(self, problem, checker):
+        self.problem = problem
+        self.checker = checker
+        self.d: Dynamics = problem.dynamics
+        self.frames = {f.name for f in problem.frames}
+        self.points = {p.name for p in problem.points}
+        self.scalars = {c.name for c in problem.coordinates} | {p.name for p in problem.parameters}
+        self.body_names = {b.name for b in self.d.bodies}
+
+    def point(self, name, where, field_name):
+        if name not in self.points:
             raise SpecError(f"unknown point '{name}' in '{field_name}' (points: "
-                            f"{', '.join(sorted(points))})", where=where)
+                            f"{', '.join(sorted(self.points))})", where=where)
 
-    def body(name, where, ground_ok=False):
-        if name not in bodies and not (ground_ok and name == GROUND):
-            known = sorted(bodies | ({GROUND} if ground_ok else set()))
+    def body(self, name, where, ground_ok=False):
+        if name not in self.body_names and not (ground_ok and name == GROUND):
+            known = sorted(self.body_names | ({GROUND} if ground_ok else set()))
             raise SpecError(f"unknown body '{name}' (bodies: {', '.join(known)})", where=where)
 
-    def typed(e: Expr, kind: str, unit: str, what: str):
-        t = checker.type_of(e)
+    def typed(self, e: Expr, kind: str, unit: str, what: str):
+        t = self.checker.type_of(e)
         if t.kind == Kind.ZERO:
             return
         if t.kind != kind:
             raise SpecError(f"expected {what}, found a {t.kind} ('{e.text}')", where=e.where)
         if t.dim != dimension(unit):
-            checker._dims_match(t.dim, dimension(unit), e.where, f"'{e.text}' ({what})")
+            self.checker._dims_match(t.dim, dimension(unit), e.where, f"'{e.text}' ({what})")
 
-    for b in d.bodies:
-        point(b.centre, b.where, "centre")
-        if b.frame is not None and b.frame not in frames:
-            raise SpecError(f"unknown frame '{b.frame}' (frames: {', '.join(sorted(frames))})",
-                            where=b.where)
-        for part in b.parts:
-            point(part.at, part.where, "at")
-            typed(part.mass, "scalar", "kg", "a mass")
-            if part.shape is not None and b.frame is None:
-                raise SpecError(f"body '{b.name}' has an inertia but no 'frame': a rigid body "
-                                "needs the frame it turns with (a particle has no inertia)",
-                                where=part.where)
-            for e in _shape_exprs(part.shape):
-                unit = "kg*m^2" if isinstance(part.shape, Explicit) else "m"
-                typed(e, "scalar", unit, "a moment of inertia" if unit != "m" else "a length")
-    if d.gravity is not None:
-        typed(d.gravity, "vector", "m/s^2", "the gravitational acceleration as a vector "
-              "(e.g. -g*N.y)")
-    for f in d.forces:
-        body(f.on, f.where)
-        point(f.at, f.where, "at")
-        typed(f.force, "vector", "N", "a force vector")
-    for c in d.couples:
-        body(c.on, c.where)
-        typed(c.moment, "vector", "N*m", "a moment vector")
-    for s in (*d.springs, *d.dampers):
-        for p, b in zip(s.between, s.on):
-            point(p, s.where, "between")
-            body(b, s.where, ground_ok=True)
-    for s in d.springs:
-        typed(s.stiffness, "scalar", "N/m", "a stiffness")
-        typed(s.length, "scalar", "m", "a free length")
-    for s in d.dampers:
-        typed(s.coefficient, "scalar", "N*s/m", "a damping coefficient")
-    reactions = {r.name: r for r in d.reactions}
-    for r in d.reactions:
-        for act in r.acts:
-            body(act.on, r.where, ground_ok=True)
-            point(act.at, r.where, "at")
-    for f in d.friction:
-        body(f.on, f.where)
-        point(f.at, f.where, "at")
-        typed(f.mu, "scalar", "", "a friction coefficient")
-        normal = reactions.get(f.normal)
-        if normal is None or len(normal.directions) != 1:
-            raise SpecError(f"friction '{f.name}': 'normal' must name a reaction with one "
-                            f"direction (reactions: {', '.join(sorted(reactions)) or 'none'})",
+    def distinct_names(self):
+        seen: dict[str, str] = {}
+        others = self.frames | self.points | self.scalars | {GROUND}
+        for item, what in [(b, "body") for b in self.d.bodies] + \
+                [(x, "load") for x in self.d.loads]:
+            if item.name in seen or item.name in others:
+                raise SpecError(f"'{item.name}' names a {what} and something else already; "
+                                "expected a distinct name", where=item.where)
+            seen[item.name] = what
+
+    def bodies(self):
+        for b in self.d.bodies:
+            self.point(b.centre, b.where, "centre")
+            if b.frame is not None and b.frame not in self.frames:
+                raise SpecError(f"unknown frame '{b.frame}' (frames: "
+                                f"{', '.join(sorted(self.frames))})", where=b.where)
+            for part in b.parts:
+                self.part(b, part)
+
+    def part(self, b: Body, part: Part):
+        self.point(part.at, part.where, "at")
+        self.typed(part.mass, "scalar", "kg", "a mass")
+        if part.shape is not None and b.frame is None:
+            raise SpecError(f"body '{b.name}' has an inertia but no 'frame': a rigid body "
+                            "needs the frame it turns with (a particle has no inertia)",
+                            where=part.where)
+        for e in _shape_exprs(part.shape):
+            unit = "kg*m^2" if isinstance(part.shape, Explicit) else "m"
+            self.typed(e, "scalar", unit, "a moment of inertia" if unit != "m" else "a length")
+
+    def applied_loads(self):
+        d = self.d
+        if d.gravity is not None:
+            self.typed(d.gravity, "vector", "m/s^2", "the gravitational acceleration as a "
+                       "vector (e.g. -g*N.y)")
+        for f in d.forces:
+            self.body(f.on, f.where)
+            self.point(f.at, f.where, "at")
+            self.typed(f.force, "vector", "N", "a force vector")
+        for c in d.couples:
+            self.body(c.on, c.where)
+            self.typed(c.moment, "vector", "N*m", "a moment vector")
+        for s in (*d.springs, *d.dampers):
+            for p, b in zip(s.between, s.on):
+                self.point(p, s.where, "between")
+                self.body(b, s.where, ground_ok=True)
+        for s in d.springs:
+            self.typed(s.stiffness, "scalar", "N/m", "a stiffness")
+            self.typed(s.length, "scalar", "m", "a free length")
+        for s in d.dampers:
+            self.typed(s.coefficient, "scalar", "N*s/m", "a damping coefficient")
+        for j in d.impulses:
+            self.body(j.on, j.where)
+            self.point(j.at, j.where, "at")
+            self.typed(j.impulse, "vector", "N*s", "an impulse vector")
+            if not isinstance(d.analysis, Impulse):
+                raise SpecError(f"the known impulse '{j.name}' acts during an impact only: "
+                                "expected 'analysis: impulse'", where=j.where)
+
+    def reactions_and_friction(self):
+        d = self.d
+        reactions = {r.name: r for r in d.reactions}
+        for r in d.reactions:
+            for act in r.acts:
+                self.body(act.on, r.where, ground_ok=True)
+                self.point(act.at, r.where, "at")
+        for f in d.friction:
+            self.body(f.on, f.where)
+            self.point(f.at, f.where, "at")
+            self.typed(f.mu, "scalar", "", "a friction coefficient")
+            normal = reactions.get(f.normal)
+            if normal is None or len(normal.directions) != 1:
+                raise SpecError(f"friction '{f.name}': 'normal' must name a reaction with one "
+                                f"direction (reactions: {', '.join(sorted(reactions)) or 'none'})",
+                                where=f.where)
+            self.surface(f, normal)
+
+    def surface(self, f: Friction, normal: Reaction):
+        """The ground, a frame (kinetic friction only) or another body pressed by ``normal``."""
+        if f.surface in self.body_names:
+            pressed = {act.on for act in normal.acts}
+            if f.surface == f.on or pressed != {f.on, f.surface}:
+                raise SpecError(f"friction '{f.name}' between {f.on} and {f.surface}: its "
+                                f"normal '{f.normal}' must act on both bodies (a reaction with "
+                                f"bodies: [{f.on}, {f.surface}])", where=f.where)
+            return
+        known = self.frames | {GROUND} if isinstance(f, KineticFriction) else {GROUND}
+        if f.surface not in known:
+            what = "frames or bodies" if isinstance(f, KineticFriction) else "bodies"
+            raise SpecError(f"unknown surface '{f.surface}' ({what}: "
+                            f"{', '.join(sorted((known - {GROUND}) | self.body_names))})",
                             where=f.where)
-        if isinstance(f, KineticFriction) and f.surface not in frames | {GROUND}:
-            raise SpecError(f"unknown surface frame '{f.surface}' (frames: "
-                            f"{', '.join(sorted(frames))})", where=f.where)
-    if d.analysis is not None:
-        _check_analysis(problem, checker, d.analysis)
-    if d.design is not None:
-        params = {p.name: p for p in problem.parameters}
-        given = {g.key.text.strip() for g in problem.givens}
-        if d.design.find not in params or d.design.find in given:
-            raise SpecError(f"design 'find' must name a parameter that is not given, found "
-                            f"'{d.design.find}'", where=d.design.where)
-        left, right = d.design.so_that
-        checker._same(checker.type_of(left), checker.type_of(right), left,
-                      "both sides of 'so_that'")
 
-    for e in (*(x for r in d.reactions for x in r.directions),
-              *(x for f in d.friction if isinstance(f, StaticFriction) for x in f.directions)):
-        typed(e, "vector", "", "a direction (a vector without units, e.g. N.x)")
+    def design(self):
+        design = self.d.design
+        params = {p.name for p in self.problem.parameters}
+        given = {g.key.text.strip() for g in self.problem.givens}
+        if design.find not in params or design.find in given:
+            raise SpecError(f"design 'find' must name a parameter that is not given, found "
+                            f"'{design.find}'", where=design.where)
+        left, right = design.so_that
+        self.checker._same(self.checker.type_of(left), self.checker.type_of(right), left,
+                           "both sides of 'so_that'")
 
 
 def _check_analysis(problem, checker, analysis: Analysis) -> None:

@@ -64,17 +64,37 @@ def case_two_mass_spring_chain():
     a = -(dV + dD) / np.array([m1, m2])
     return {"a1": a[0], "a2": a[1], "spring2_on_block1": [k2 * (x2 - x1 - L2), 0.0, 0.0],
             "spring1_energy": k1 * (x1 - L1) ** 2 / 2, "ke2": m2 * v2**2 / 2,
-            "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0]}
+            "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0],
+            **_chain_modes(m1, m2, k1, k2)}
+
+
+def _chain_modes(m1, m2, k1, k2):
+    # M x'' + K x = 0 about the equilibrium, K from V's second derivatives by hand;
+    # numpy's symmetric generalized eigenproblem through M^(-1/2) K M^(-1/2)
+    M = np.diag([m1, m2])
+    K = np.array([[k1 + k2, -k2], [-k2, k2]])
+    root = np.diag(1 / np.sqrt(np.diag(M)))
+    w2, u = np.linalg.eigh(root @ K @ root)
+    shapes = root @ u
+    ratio = shapes[1] / shapes[0]
+    return {"omega_1": np.sqrt(w2[0]), "omega_2": np.sqrt(w2[1]), "mode_1_ratio": ratio[0],
+            "mode_2_ratio": ratio[1]}
 
 
 def case_ruina_9_19_falling_ladder():
-    m, L, g, th, thd = 10.0, 4.0, 9.81, 60 * DEG, -0.5
-    # Lagrange: T = m L^2 thd^2 / 6 (centre speed L thd / 2 plus spin), V = m g L sin(th) / 2
+    m, L, g, th0, th = 10.0, 4.0, 9.81, 80 * DEG, 60 * DEG
+    # Lagrange: T = m L^2 thd^2 / 6 (centre speed L thd / 2 plus spin), V = m g L sin(th) / 2;
+    # energy from rest at th0 (theta decreases)
+    thd = -np.sqrt(3 * g * (np.sin(th0) - np.sin(th)) / L)
     thdd = -(m * g * L / 2 * np.cos(th)) / (m * L**2 / 3)
     # the reactions are the only horizontal / the vertical forces besides gravity
     xdd = -L / 2 * (np.sin(th) * thdd + np.cos(th) * thd**2)
     ydd = L / 2 * (np.cos(th) * thdd - np.sin(th) * thd**2)
+    # symbolic forms with g, L > 0 split out: the comparison samples signed symbols; the
+    # ladder's angle from +x is pi - theta, so omega_z = -theta'
+    rate = "sqrt(3)*sqrt(g)*sqrt(sin(theta0) - sin(theta))/sqrt(L)"
     return {"G_path_radius": "L/2", "eom_thetaddot": "-3*g*cos(theta)/(2*L)",
+            "thetadot_of_theta": "-" + rate, "omega_z_of_theta": rate,
             "N1_wall": "m*cos(theta)*(3*g*sin(theta) - 2*L*thetad**2)/4",
             "N2_floor": "m*(g + 3*g*sin(theta)**2 - 2*L*thetad**2*sin(theta))/4",
             "thetaddot_now": thdd, "reactions_now": [m * xdd, m * (ydd + g), 0.0]}
@@ -178,6 +198,86 @@ def case_car_braking_weight_transfer():
     NF = (m * g * b - m * ax * h) / (a + b)
     return {"decel": ax, "front_normal": NF, "rear_normal": m * g - NF,
             "front_share_symbolic": "m*g*(b + mu*h*sign(xd))/(a + b)"}
+
+
+def case_block_slides_on_cart():
+    m, M, mu, g, v0 = 2.0, 8.0, 0.3, 9.81, 5.0
+    # momentum of block + cart is conserved (friction is internal, the floor smooth);
+    # the relative speed falls at mu g (1 + m/M); energy: mu m g d = KE lost
+    v = m * v0 / (m + M)
+    rate = mu * g * (1 + m / M)
+    lost = m * v0**2 / 2 - (m + M) * v**2 / 2
+    return {"t_slide": v0 / rate, "t_slide_symbolic": "v0/(mu*g*(1 + m/M))", "common_speed": v, "slide_distance": lost / (mu * m * g),
+            "energy_lost": lost, "friction_on_block": [-mu * m * g, 0.0, 0.0],
+            "cart_acceleration": mu * m * g / M}
+
+
+def case_flywheel_speed_drop():
+    m, M, T, w0 = 500.0, 1500.0, 0.2, 300 * 2 * np.pi / 60
+    # angular impulse about the axle: I (w0 - w1) = M T with w1 = 0.9 w0; I = m R^2 / 2
+    I = M * T / (0.1 * w0)
+    w1 = 0.9 * w0
+    return {"R_needed": np.sqrt(2 * I / m), "speed_after": w1 * 60 / (2 * np.pi),
+            "energy_taken": I * (w0**2 - w1**2) / 2,  # = the punch's work M * angle
+            "turns_during_stroke": (w0 + w1) / 2 * T / DEG}
+
+
+def case_ruina_9_24_momentum_projection():
+    # e_n . i = -sin(theta), e_n . j = cos(theta), e_t . i = cos(theta), e_t . j = sin(theta);
+    # before: m2 (-v0 j); after: m1 v1p i + m2 (v2t e_t + v2n e_n)
+    return {"en_equation_residual": "-m2*v0*cos(theta) + m1*v1p*sin(theta) - m2*v2n",
+            "et_equation_residual": "-m2*v0*sin(theta) - m1*v1p*cos(theta) - m2*v2t"}
+
+
+def case_ruina_9_25_units_matrix():
+    v0, th, m1, m2 = 20.0, 60 * DEG, 20.0, 5.0  # ft/s, lbm: the equations are homogeneous
+    # the book's scaled system: rows divided by m1, by m2, and the given v2t = -v0 sin(theta)
+    A = np.array([[-np.sin(th), 0.0, m2 / m1],
+                  [m1 / m2 * np.cos(th), 1.0, 0.0],
+                  [0.0, 1.0, 0.0]])
+    b = np.array([-m2 / m1 * v0 * np.cos(th), -v0 * np.sin(th), -v0 * np.sin(th)])
+    v1p, v2t, v2n = np.linalg.solve(A, b)
+    e_t, e_n = np.array([np.cos(th), np.sin(th)]), np.array([-np.sin(th), np.cos(th)])
+    v2 = v2t * e_t + v2n * e_n
+    return {"v1p": v1p, "v2t": v2t, "v2n": v2n, "v2_N": [v2[0], v2[1], 0.0]}
+
+
+def case_rod_struck_on_ice():
+    m, L, J = 1.5, 1.2, 3.0
+    # linear impulse: m vG = J; angular impulse about G: (m L^2/12) w = (L/2) J
+    vG = J / m
+    w = (L / 2) * J / (m * L**2 / 12)
+    # the point at rest: vG + w x r = 0 along the rod, r = -vG / w (behind the centre)
+    return {"vG_after": [0.0, vG, 0.0], "omega_after": w, "vB_after": [0.0, vG - w * L / 2, 0.0],
+            "point_at_rest": [-vG / w, 0.0, 0.0], "omega_symbolic": "6*J/(m*L)"}
+
+
+def case_ruina_9_22_marble_bowling_ball():
+    v0, mu, g, r, R = 3.0, 0.1, 9.81, 0.01, 0.16
+
+    def rolling(radius, mass):
+        # angular momentum about the contact point is conserved while sliding (friction and
+        # the normal force pass through it): m v0 r = m v r + (2/5) m r^2 v / r
+        v = mass * v0 * radius / (mass * radius + 0.4 * mass * radius)
+        return (v0 - v) / (mu * g), v  # linear impulse of mu m g
+
+    t_marble, v = rolling(r, 0.005)
+    t_bowling, _ = rolling(R, 20.48)
+    return {"t_star": "2*v0/(7*mu*g)", "v_at_t_star": "5*v0/7",
+            "ratio_t_star_bowling_over_marble": t_bowling / t_marble, "t_star_s": t_marble,
+            "bowling_ball_slip_at_t_star": 0.0}
+
+
+def case_bead_on_rotating_hoop():
+    m, R, g, th = 0.1, 0.5, 9.81, 60 * DEG
+    # Lagrange: T = m (R^2 th'^2 + R^2 sin^2(th) W^2)/2, V = -m g R cos(th)
+    #   => th'' = sin(th) (W^2 cos(th) - g/R); at rest at th: W^2 = g/(R cos th)
+    W = np.sqrt(g / (R * np.cos(th)))
+    # d(th'')/d(th) at th: W^2 cos(2 th) - (g/R) cos(th) = -W^2 sin^2(th)
+    wn = W * np.sin(th)
+    a = W**2 * R * np.sin(th)  # centripetal, horizontal
+    return {"eom_symbolic": "sin(theta)*(Omega**2*cos(theta) - g/R)", "Omega_for_60": W,
+            "omega_small_oscillations": wn, "hoop_force": m * np.hypot(a, g)}
 
 
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
