@@ -132,3 +132,30 @@ def test_check_reports_a_dynamics_mistake_inside_the_tolerance():
     # m1 g is 20 % below the tension: half of that separates them
     assert any("'tension'" in f and "tension_as_weight gives 29.43" in f
                and "{rel: 0.1}" in f for f in findings), findings
+
+
+def test_generated_mistakes_are_worked_out_only_when_looked_at():
+    from mechgrade.solve import dynamics_mutants
+
+    problem = _problem("pendulum_pin_reaction")
+    givens = {"theta'": 2.5}
+    before = dynamics_mutants._generated.cache_info().misses
+    solution = solve(problem, givens=givens)
+    assert dynamics_mutants._generated.cache_info().misses == before
+    mistakes = solution.result("alpha").generated_mistakes
+    assert any(m.code == "central_inertia_at_pivot" for m in mistakes)
+    assert dynamics_mutants._generated.cache_info().misses == before + 1
+    # the same problem and givens again: kept
+    assert tuple(solve(problem, givens=givens).result("alpha").generated_mistakes) \
+        == tuple(mistakes)
+    assert dynamics_mutants._generated.cache_info().misses == before + 1
+
+
+def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
+    import pickle
+
+    solution = solve(_problem("rod_strikes_ledge"))
+    copy = pickle.loads(pickle.dumps(solution))
+    assert copy == solution
+    assert [m.code for m in copy.result("vG_after").generated_mistakes] \
+        == ["restitution_ignored", "restitution_ignored"]

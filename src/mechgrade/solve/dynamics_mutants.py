@@ -30,9 +30,11 @@ from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
+import sympy as sp
 
 from ..errors import MechgradeError
 from ..mechanics.dynamics_mutations import DynamicsMutation, dynamics_mutations
+from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, Problem
 from .dynamics import solve_dynamics
 from .instant import instant_givens
@@ -50,11 +52,9 @@ def with_generated_mistakes(problem: Problem, solution: Solution,
     numeric objectives attached (worked out when first looked at), and the whole-answer
     slips its model makes plausible."""
     plausible = plausible_slips(problem)
-    pending = _Pending(problem, tuple(sorted((givens or {}).items())),
-                       tuple(r for r in solution.results if r.value is not None))
+    pending = _Pending(problem, tuple(sorted((givens or {}).items())), solution.results)
     return replace(solution, results=tuple(
         replace(r, plausible=plausible, generated_mistakes=LazyMistakes(pending, r.id))
-        if r.value is not None else replace(r, plausible=plausible)
         for r in solution.results))
 
 
@@ -76,16 +76,54 @@ def _generated(problem: Problem, givens: tuple, results: tuple) -> dict:
     """Objective id -> its generated mistakes (those equal to the answer, or to an earlier
     one, or a zero, dropped)."""
     overrides = dict(givens)
-    numeric = {r.id for r in results}
+    numeric = {r.id: r for r in results if r.value is not None}
     mutations = dynamics_mutations(problem)
     # a mistaken model's numerical troubles (an inverse design that does not converge) are
     # nobody's to fix
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        found = [_model_mistakes(problem, mutations, overrides, numeric),
-                 given_mistakes(problem, overrides, numeric)]
-    attached = attach({r.id: r for r in results}, found, None)
-    return {oid: r.generated_mistakes for oid, r in attached.items()}
+        found = [_model_mistakes(problem, mutations, overrides, set(numeric)),
+                 given_mistakes(problem, overrides, set(numeric))] if numeric else []
+        symbolic = _symbolic_mistakes(mutations, overrides,
+                                      [r for r in results if r.expr is not None])
+    attached = attach(numeric, found, None)
+    out = {r.id: () for r in results}
+    out.update({oid: r.generated_mistakes for oid, r in attached.items()})
+    out.update(symbolic)
+    return out
+
+
+def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results: list
+                       ) -> dict[str, tuple[GeneratedMistake, ...]]:
+    """Each mistaken model's symbolic answers, in the objectives' own symbols (those
+    equivalent to the answer or to an earlier one dropped)."""
+    if not results:
+        return {}
+    kept = {r.id: [_expression(r.expr, r.symbols)] for r in results}
+    out: dict[str, list[GeneratedMistake]] = {r.id: [] for r in results}
+    for m in mutations:
+        ids = set(kept) & {o.id for o in m.problem.objectives} if m.problem else set()
+        if not ids:
+            continue
+        try:
+            solved = solve_dynamics(m.problem, givens=givens, objectives=ids)
+        except _UNSOLVABLE:
+            continue
+        for r in solved.results:
+            expr = _expression(r.expr, r.symbols) if r.expr else None
+            # a zero is what many mistakes give (the weight left out of a fall): no name
+            if expr is None or expr.has(sp.zoo, sp.nan, sp.oo) or identically_zero(expr) \
+                    or any(identically_zero(expr - k) for k in kept[r.id]):
+                continue
+            kept[r.id].append(expr)
+            out[r.id].append(GeneratedMistake(m.code, m.sentence.replace(" = {term}", ""),
+                                              None, r.expr))
+    return {oid: tuple(found) for oid, found in out.items()}
+
+
+def _expression(text: str, symbols: tuple[str, ...]):
+    """The solver's own answer text as a sympy expression (never a student's)."""
+    return sp.sympify(text, locals={name: sp.Symbol(name) for name in symbols})
 
 
 class LazyMistakes(Sequence):

@@ -586,8 +586,44 @@ TABLES = {
 }
 
 
+# Symbolic answers as a student would type them, each derived by hand from the mistaken balance.
+SYMBOLIC = {
+    "atwood_machine": [
+        entry("a1_symbolic", "tension taken as m2 g in block 1's balance", "g*(m2 - m1)/m1",
+              "tension_as_weight"),
+        entry("tension_symbolic", "tension taken as the heavier block's weight", "m2*g",
+              "tension_as_weight")],
+    "pendulum_pin_reaction": [
+        entry("eom_symbolic", "I_G θ'' = -m g (L/2) sin θ about the pin", "-6*g*sin(theta)/L",
+              "central_inertia_at_pivot")],
+    "block_sliding_down_incline": [
+        entry("accel_symbolic", "friction drawn down the slope",
+              "g*(sin(beta) + mu_k*cos(beta)*sign(xd))", "friction_reversed"),
+        entry("accel_symbolic", "friction μ m g", "g*(sin(beta) - mu_k*sign(xd))",
+              "normal_from_weight")],
+    "car_braking_weight_transfer": [
+        entry("front_share_symbolic", "static share: weight transfer ignored", "m*g*b/(a + b)",
+              "weight_transfer_ignored")],
+    "rod_strikes_ledge": [
+        entry("omega_symbolic", "perfectly elastic impact (e = 1)", "-3*v0/L",
+              "restitution_ignored")],
+    "ruina_9_20_ladder_energy": [
+        entry("vG_symbolic", "rotational energy left out: ½ m v² = m g (L/2)(sin θ0 - sin θ)",
+              "sqrt(g*L*(sin(theta0) - sin(theta)))", "rotational_ke_omitted")],
+    "ruina_9_21_wheel_incline": [
+        entry("aG_symbolic", "moments about C with I_G = m r²/2 + M R²",
+              "2*g*r^2*(m + 2*M)*sin(theta)/(m*r^2 + 2*M*R^2)", "central_inertia_at_pivot")],
+    "ruina_9_26_billiard_cue": [
+        entry("omega_symbolic", "ball taken as a thin shell (2/3 m r²)", "-3*d*v/(2*r^2)",
+              "other_shape_inertia")],
+    "yo_yo_unwinding": [
+        entry("tension_symbolic", "T = m g - m a with a = g r²/k² (I_G about S)",
+              "m*g*(1 - r^2/k^2)", "central_inertia_at_pivot")],
+}
+
+
 def tables() -> dict[str, list[dict]]:
-    return {problem: make() for problem, make in TABLES.items()}
+    return {problem: make() + SYMBOLIC.get(problem, []) for problem, make in TABLES.items()}
 
 
 if __name__ == "__main__":
