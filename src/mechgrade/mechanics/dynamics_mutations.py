@@ -355,8 +355,9 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
             if readings:
                 yield DynamicsMutation(
                     "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
-                    f"{name}, m g = {{term}}; it is not, since the body accelerates: find "
-                    f"{r.name} from the momentum balances.", BALANCES, readings=readings,
+                    f"{name}, m g = {{term}}; {r.name} comes from the momentum balance along "
+                    "its direction, where the other forces and the acceleration count too.",
+                    BALANCES, readings=readings,
                     term=weight, term_unit="N")
 
 

@@ -49,8 +49,9 @@ _UNSOLVABLE = (MechgradeError, ArithmeticError, ValueError, TypeError, KeyError)
 def with_generated_mistakes(problem: Problem, solution: Solution,
                             givens: Mapping[str, float | None] | None = None) -> Solution:
     """``solution`` (of a problem with bodies and loads) with the generated mistakes of its
-    numeric objectives attached (worked out when first looked at), and the whole-answer
-    slips its model makes plausible."""
+    objectives attached (worked out when first looked at: values for the numeric ones,
+    expressions for the symbolic ones), and the whole-answer slips its model makes
+    plausible."""
     plausible = plausible_slips(problem)
     pending = _Pending(problem, tuple(sorted((givens or {}).items())), solution.results)
     return replace(solution, results=tuple(
