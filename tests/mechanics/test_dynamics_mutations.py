@@ -39,9 +39,11 @@ def _generated(name, objective, code):
     return [m for m in _solution(name).result(objective).generated_mistakes if m.code == code]
 
 
-def test_every_family_is_registered_once_with_a_label():
-    assert len(set(CODES)) == len(CODES) == len(FAMILIES)
+def test_every_family_is_registered_once_and_every_code_has_a_label():
+    assert len(set(FAMILIES)) == len(FAMILIES) and len(set(CODES)) == len(CODES)
     assert set(CODES) <= set(GENERATED_CODES) and set(CODES) <= set(LABELS)
+    found = {m.code for name in DYNAMICS for m in dynamics_mutations(_problem(name))}
+    assert found == set(CODES)
 
 
 def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
@@ -90,6 +92,13 @@ def test_friction_turned_round_and_the_normal_force_taken_as_the_weight():
     assert reversed_.value == pytest.approx(9.81 * (0.5 + 0.25 * 3 ** 0.5 / 2))
     assert weight.value == pytest.approx(9.81 * (0.5 - 0.25))
     assert "μ N = 8.496 N" in reversed_.message and "N_P = 33.98 N" in weight.message
+
+
+def test_the_weight_left_out_of_the_force_balance_of_a_pin():
+    mistakes = _generated("pendulum_pin_reaction", "pin_force", "weight_omitted")
+    # R_O = m a_G - m g: without the weight, m a_G, with the right angular acceleration
+    assert any(m.value == pytest.approx((-14.18783, 2.19340, 0.0), rel=1e-5)
+               and "out of the force balance that gives R_O" in m.message for m in mistakes)
 
 
 def test_a_reaction_read_as_the_weight_is_read_in_the_right_model():

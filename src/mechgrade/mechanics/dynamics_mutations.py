@@ -17,9 +17,8 @@ The families are registered in :data:`FAMILIES`, one function each.
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
 >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
->>> [(m.code, m.step) for m in dynamics_mutations(problem)][:3]
-[('weight_omitted', 'Free-body loads'), ('mass_for_weight', 'Free-body loads'), \
-('central_inertia_at_pivot', 'Bodies')]
+>>> [(m.code, m.step) for m in dynamics_mutations(problem)][2:4]
+[('mass_for_weight', 'Free-body loads'), ('central_inertia_at_pivot', 'Bodies')]
 """
 
 from __future__ import annotations
@@ -171,6 +170,33 @@ def weight_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
         "weight_omitted", f"Your value is what the balances give without the weight of {names} "
         "(m g = {term}): include the gravity load in the free-body diagram.", LOADS,
         problem=_mistaken(problem, replace(d, gravity=None)), term=total, term_unit="N")
+
+
+def weight_omitted_from_reaction(problem: Problem, model: Model
+                                 ) -> Iterator[DynamicsMutation]:
+    """The weight left out of the force balance that gives the only reaction on a body (a
+    pin's force read as m a_G): the reaction read with the weight added back."""
+    d = problem.dynamics
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    on = {}
+    for load in (*d.reactions, *d.friction):
+        bodies = [a.on for a in load.acts] if isinstance(load, Reaction) else [load.on]
+        for body in bodies:
+            on.setdefault(body, []).append(load)
+    for r in d.reactions:
+        if len(r.acts) != 1 or r.acts[0].on == GROUND or len(on[r.acts[0].on]) != 1:
+            continue
+        body = d.body(r.acts[0].on)
+        weight = _weight(body, d.gravity)
+        replacement = parse(f"force({r.name}) + ({_mass(body)})*({d.gravity.text})",
+                            functions=FUNCTIONS)
+        readings = _readings(problem, "force", r.name, replacement)
+        if readings:
+            yield DynamicsMutation(
+                "weight_omitted", f"Your value leaves the weight of {body.name} (m g = "
+                f"{{term}}) out of the force balance that gives {r.name}: {r.name} + m g = "
+                "m a_G.", BALANCES, readings=readings, term=weight, term_unit="N")
 
 
 def mass_for_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -470,11 +496,15 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
 
 
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
-    weight_omitted, mass_for_weight, central_inertia_at_pivot, friction_reversed,
-    normal_from_weight, weight_transfer_ignored, tension_as_weight, reaction_as_weight,
-    rotational_ke_omitted, restitution_ignored, other_shape_inertia, spring_free_length_omitted)
+    weight_omitted, weight_omitted_from_reaction, mass_for_weight, central_inertia_at_pivot,
+    friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
+    reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
+    spring_free_length_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
-CODES = tuple(f.__name__ for f in FAMILIES)
+CODES = ("weight_omitted", "mass_for_weight", "central_inertia_at_pivot", "friction_reversed",
+         "normal_from_weight", "weight_transfer_ignored", "tension_as_weight",
+         "reaction_as_weight", "rotational_ke_omitted", "restitution_ignored",
+         "other_shape_inertia", "spring_free_length_omitted")
 """Family codes of the dynamics mutations (keys of an assignment's ``partial_credit``)."""

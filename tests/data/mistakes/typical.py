@@ -427,6 +427,8 @@ def pendulum_pin():
                   num(-3 * g * math.sin(40.0) / (2 * L), "rad/s^2"), "given_deg_as_rad"),
             entry("pin_force", "I_G used about the pin, then R = m a_G - m g",
                   vec(m * aG + V(0, m * g), "N"), "central_inertia_at_pivot"),
+            entry("pin_force", "weight left out of the force balance: R = m a_G",
+                  vec(m * (cross_z(alpha, rG) - w**2 * rG), "N"), "weight_omitted"),
             entry("pin_force_along_rod", "calculator in radian mode: cos 40",
                   num(along_rad, "N"), "given_deg_as_rad"),
             entry("alpha", "clockwise taken as positive", num(-alpha, "rad/s^2"), "sign")]
