@@ -118,3 +118,15 @@ def test_a_correct_answer_in_any_notation_gets_no_diagnosis(problem, objective):
     for text in _notations(result):
         judged = assess(text, result)
         assert (judged.verdict, judged.diagnosis) == ("correct", None), (text, judged)
+
+
+SYMBOLIC = [(p.stem, o.id) for p in PROBLEMS for o in load_problem(p).objectives
+            if o.kind == "symbolic"]
+
+
+@pytest.mark.parametrize("problem,objective", SYMBOLIC, ids=[f"{p}.{o}" for p, o in SYMBOLIC])
+def test_a_correct_expression_gets_no_diagnosis(problem, objective):
+    result = _result(problem, objective)
+    for text in (result.expr, result.expr.replace("**", "^")):
+        judged = assess(text, result)
+        assert (judged.verdict, judged.diagnosis) == ("correct", None), (text, judged)
