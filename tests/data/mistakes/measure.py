@@ -1,9 +1,9 @@
 """Grade every typical mistake of the tables beside this file and count how it was diagnosed.
 
 Run: python tests/data/mistakes/measure.py [-v]   (with the mechgrade to measure importable)
-Classes: ``named`` (a code the table lists), ``generic`` (judged wrong, no diagnosis),
+Classes: ``named`` (a code the table lists), ``generic`` (a whole-answer diagnosis true of it
+that does not name it: the row's ``generic`` codes), ``none`` (judged wrong, no diagnosis),
 ``correct`` (judged right: the mistake is inside the tolerance), ``wrong`` (another diagnosis).
-A row's ``generic`` codes are whole-answer diagnoses true of it that do not name it (generic).
 Counted for the kinematics problems, the dynamics problems (bodies and loads) and the whole
 library.
 A mistake the problem's author declared is named in the author's words (code ``mistake``).
@@ -43,7 +43,9 @@ def classify(row: dict, result, policy: Policy = Policy()) -> tuple[str, object]
     if judged.verdict == "correct":
         return "correct", judged
     code = code_of(judged.diagnosis, result)
-    if code is None or code in row.get("generic", ()):
+    if code is None:
+        return "none", judged
+    if code in row.get("generic", ()):
         return "generic", judged
     # the author's declared mistakes name theirs in the author's words
     return ("named" if code in row["diagnosis"] or code == "mistake" else "wrong"), judged
@@ -62,7 +64,7 @@ def rows():
 def rate(counts: Counter) -> str:
     total = sum(counts.values())
     return ", ".join(f"{k} {counts[k]} ({100 * counts[k] / total:.0f} %)"
-                     for k in ("named", "generic", "correct", "wrong")) + f" of {total}"
+                     for k in ("named", "generic", "none", "correct", "wrong")) + f" of {total}"
 
 
 if __name__ == "__main__":
