@@ -84,6 +84,9 @@ def test_the_parallel_axis_mistake_is_named_with_its_term():
     assert mistake.value == pytest.approx(-31.52873, rel=1e-5)
     assert "about its mass centre G" in mistake.message \
         and "m d² = 0.72 kg*m^2" in mistake.message
+    assert mistake.step == "Bodies"
+    (slip,) = _generated("pendulum_pin_reaction", "alpha", "given_deg_as_rad")
+    assert slip.step == "Coordinates"
 
 
 def test_friction_turned_round_and_the_normal_force_taken_as_the_weight():

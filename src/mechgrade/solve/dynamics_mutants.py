@@ -33,6 +33,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import MechgradeError
+from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import DynamicsMutation, dynamics_mutations
 from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, Problem
@@ -118,7 +119,7 @@ def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results:
                 continue
             kept[r.id].append(expr)
             out[r.id].append(GeneratedMistake(m.code, m.sentence.replace(" = {term}", ""),
-                                              None, r.expr))
+                                              None, r.expr, step=m.step))
     return {oid: tuple(found) for oid, found in out.items()}
 
 
@@ -176,7 +177,8 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
             values = {r.id: r.value for r in solved.results}
         for oid, value in values.items():
             if oid in numeric and value is not None and np.all(np.isfinite(value)):
-                out.setdefault(oid, []).append(GeneratedMistake(m.code, sentence, value))
+                out.setdefault(oid, []).append(GeneratedMistake(m.code, sentence, value,
+                                                                step=m.step))
     return out
 
 
@@ -209,11 +211,15 @@ def _read(problem: Problem, mutations, givens, numeric: set[str]):
 def given_mistakes(problem: Problem, givens, numeric: set[str]
                    ) -> dict[str, list[GeneratedMistake]]:
     """The numeric objectives solved again with each given mistaken in one way (the slips of
-    :func:`mechgrade.solve.mutants.given_mistakes`)."""
+    :func:`mechgrade.solve.mutants.given_mistakes`), anchored to the worked solution's
+    parameters or coordinates."""
     given_map = instant_givens(problem, givens, {})
     parameters = {q.name for q in problem.parameters}
     out: dict[str, list[GeneratedMistake]] = {}
     for code, changes, sentence in _slips(given_map, parameters):
+        node = given_map[changes[0][0]][0]
+        step = "Parameters" if isinstance(node, Name) and node.id in parameters \
+            else "Coordinates"
         changed = dict(givens or {})
         changed.update(dict(changes))
         try:
@@ -222,6 +228,6 @@ def given_mistakes(problem: Problem, givens, numeric: set[str]
             continue
         for result in solved.results:
             if result.value is not None and np.all(np.isfinite(result.value)):
-                out.setdefault(result.id, []).append(GeneratedMistake(code, sentence,
-                                                                      result.value))
+                out.setdefault(result.id, []).append(GeneratedMistake(
+                    code, sentence, result.value, step=step))
     return out
