@@ -3,7 +3,9 @@
 Cold derivation = load the spec + build the sympy.physics model + lambdify (caches cleared);
 numeric evaluation = solve the instant(s) (position, velocity, acceleration levels) and evaluate
 every numeric objective with the plan already built; symbolic = the sympy solve of the
-symbolic objectives. Dynamics problems: see ``measure_dynamics``. Run: PYTHONPATH=src python bench/solve_timing.py [problems/...]
+symbolic objectives; mistakes (dynamics problems) = working out the generated mistakes of every
+numeric objective once, cold (each mistaken model derived and solved, each given slip solved).
+Dynamics problems: see ``measure_dynamics``. Run: PYTHONPATH=src python bench/solve_timing.py [problems/...]
 """
 
 from __future__ import annotations
@@ -24,24 +26,34 @@ from mechgrade.solve.dynamics import (_kinetics_plan, _linear_solve, _symbolic_r
                                       kinetics_plan, solve_dynamics)
 from mechgrade.solve.events import _analysis_plan
 from mechgrade.spec import load_problem
+from mechgrade.solve import solve
+from mechgrade.mechanics.dynamics_mutations import _mutations as _dynamics_mutations
+from mechgrade.solve.dynamics_mutants import _generated
 
 
 def main(paths: list[str]) -> None:
     files = sorted(Path(p) for p in paths) if paths else sorted(Path("problems").glob("*.yaml"))
-    print(f"{'problem':42s} {'cold derive':>12s} {'numeric eval':>13s} {'symbolic':>10s}")
-    colds, evals = [], []
+    print(f"{'problem':42s} {'cold derive':>12s} {'numeric eval':>13s} {'symbolic':>10s} "
+          f"{'mistakes':>10s}")
+    colds, evals, extras = [], [], []
     for path in files:
         try:
-            cold, ev, symbolic, problem_id = measure(path)
+            cold, ev, symbolic, problem_id, *mistakes = measure(path)
         except MechgradeError as err:
             print(f"{path.stem:42s} error: {err}")
             continue
         colds.append(cold)
         if ev == ev:  # NaN when the problem has no numeric objective
             evals.append(ev)
-        print(f"{problem_id:42s} {cold * 1e3:10.0f} ms {ev * 1e3:11.2f} ms {symbolic * 1e3:8.0f} ms")
+        extras += mistakes
+        extra = f"{mistakes[0] * 1e3:8.0f} ms" if mistakes else f"{'':>11s}"
+        print(f"{problem_id:42s} {cold * 1e3:10.0f} ms {ev * 1e3:11.2f} ms {symbolic * 1e3:8.0f} ms"
+              f" {extra}")
     print(f"{'median':42s} {statistics.median(colds) * 1e3:10.0f} ms "
-          f"{statistics.median(evals) * 1e3:11.2f} ms")
+          f"{statistics.median(evals) * 1e3:11.2f} ms {'':>11s}"
+          + (f" {statistics.median(extras) * 1e3:8.0f} ms" if extras else ""))
+    if extras:
+        print(f"{'total generated mistakes (dynamics)':42s} {sum(extras):10.2f} s")
 
 
 def measure(path: Path):
@@ -97,8 +109,14 @@ def measure_dynamics(problem, start: float):
     begin = time.perf_counter()
     if symbolic:
         solve_dynamics(problem, objectives=symbolic)
-    return (cold, statistics.median(runs) if runs else float("nan"),
-            time.perf_counter() - begin, problem.id)
+    symbolic_time = time.perf_counter() - begin
+    _dynamics_mutations.cache_clear()
+    _generated.cache_clear()
+    begin = time.perf_counter()
+    for result in solve(problem, objectives=numeric).results:
+        tuple(result.generated_mistakes)
+    return (cold, statistics.median(runs) if runs else float("nan"), symbolic_time, problem.id,
+            time.perf_counter() - begin)
 
 
 if __name__ == "__main__":

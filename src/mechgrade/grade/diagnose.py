@@ -28,6 +28,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+from ..mechanics.dynamics_mutations import CODES as DYNAMICS_CODES
 from ..mechanics.mutations import CODES as MODEL_CODES
 from ..solve.mutants import GIVEN_CODES
 from ..solve.result import GeneratedMistake, MistakeValue
@@ -84,7 +85,7 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
 
 FACTOR_CODES = tuple(dict.fromkeys(code for code, *_ in _FACTORS))
 VECTOR_CODES = ("swapped", "direction", "magnitude")
-GENERATED_CODES = MODEL_CODES + GIVEN_CODES
+GENERATED_CODES = MODEL_CODES + DYNAMICS_CODES + GIVEN_CODES
 CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (
     "dimension", "g_number", "frame", "missing_unit", "sig_figs", "shape")
 """Every diagnosis code (keys for :attr:`mechgrade.grade.compare.Policy.partial_credit`)."""
@@ -121,7 +122,7 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         if values.shape == reference.shape and np.all(np.isfinite(values)) \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
-    found = _generated(student, reference, close, generated)
+    found = _generated(student, reference, close, generated, plausible)
     if found is not None:
         return found
     if not np.any(reference != 0):
@@ -142,8 +143,8 @@ MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad")
 
 
 def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
-               generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]]
-               ) -> Diagnosis | None:
+               generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]],
+               plausible: frozenset[str] | None = None) -> Diagnosis | None:
     """The generated mistake nearest ``student`` among those it matches and is nearer to than
     to ``reference``: a value that merely lies between two candidates names neither."""
     own = float(np.linalg.norm(student - reference))
@@ -163,13 +164,28 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
             best, best_distance = mistake, distance
     if best is None:
         return None
-    if best.code == "given_sign" and best.value is not None and np.allclose(
-            np.asarray(best.value, dtype=float).reshape(reference.shape), -reference,
-            rtol=1e-9, atol=0):
-        # a flipped rate in a quantity linear in it flips the whole answer: a sign error,
-        # graded as the policy grades one, with the sentence that says which sign
-        return Diagnosis("sign", "sign error", best.message)
+    if best.code in GIVEN_CODES and best.value is not None:
+        return _given_as_transform(best, reference, plausible) or Diagnosis(
+            best.code, LABELS.get(best.code, best.code), best.message)
     return Diagnosis(best.code, LABELS.get(best.code, best.code), best.message)
+
+
+def _given_as_transform(mistake: GeneratedMistake, reference: np.ndarray,
+                        plausible: frozenset[str] | None) -> Diagnosis | None:
+    """A mistaken given whose value is exactly a whole-answer slip of the reference: a flipped
+    rate in a quantity linear in it flips the whole answer (a sign error, graded as the
+    policy grades one, with the sentence that says which sign); any other given slip that
+    coincides with one (two masses exchanged where one is twice the other) is one of two
+    readings, and only the whole-answer slip, true of both, is said."""
+    value = np.asarray(mistake.value, dtype=float).reshape(reference.shape)
+    for code, label, message, factors in _FACTORS:
+        if plausible is not None and code in MODEL_SLIPS and code not in plausible:
+            continue
+        if any(np.allclose(value, f * reference, rtol=1e-9, atol=0) for f in factors):
+            if code == "sign" and mistake.code == "given_sign":
+                return Diagnosis("sign", label, mistake.message)
+            return Diagnosis(code, label, message)
+    return None
 
 
 LABELS = {
@@ -198,6 +214,18 @@ LABELS = {
     "given_rate_unit": "given rate's unit not converted to rad/s",
     "given_length_unit": "given length's unit not converted",
     "given_sign": "given rate's sign flipped",
+    "weight_omitted": "weight left out",
+    "mass_for_weight": "mass used for the weight",
+    "central_inertia_at_pivot": "inertia about the mass centre used at the pivot",
+    "friction_reversed": "friction in the wrong direction",
+    "normal_from_weight": "normal force taken as the weight",
+    "weight_transfer_ignored": "weight transfer ignored",
+    "tension_as_weight": "tension taken equal to a weight",
+    "reaction_as_weight": "reaction taken equal to the weight",
+    "rotational_ke_omitted": "rotational kinetic energy left out",
+    "restitution_ignored": "coefficient of restitution ignored",
+    "other_shape_inertia": "another shape's moment of inertia",
+    "spring_free_length_omitted": "spring's free length left out",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -100,176 +100,264 @@ def _mutations(problem: Problem, _locations: tuple) -> tuple[Mutation, ...]:
     return tuple(m for m in out if not sp.sympify(m.value).has(sp.zoo, sp.nan, sp.oo))
 
 
-def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:  # noqa: C901 - one branch per mistake family; to split (issue 12)
-    node = obj.find.node
-    basis = obj.frame or model.problem.inertial_frame
-    frame = model.frames[basis]
-    base = model.language
-    try:
-        right = base.value(node)
-    except Exception:  # an objective the solver reports as a failure has no mutants
-        return []
-    out: list[Mutation] = []
+class _Reading:
+    """One objective being read with mistakes: the right value, and the mutations found so
+    far (``out``, in the order they are tried)."""
 
-    def add(code: str, interpreter: Interpreter | None, sentence: str, term=None,
-            value_node: Node | None = None):
+    def __init__(self, model: Model, obj: Objective, right):
+        self.model = model
+        self.obj = obj
+        self.node = obj.find.node
+        self.basis = obj.frame or model.problem.inertial_frame
+        self.frame = model.frames[self.basis]
+        self.base = model.language
+        self.right = right
+        self.out: list[Mutation] = []
+
+    def add(self, code: str, interpreter: Interpreter | None, sentence: str, term=None,
+            value_node: Node | None = None) -> None:
+        """The objective (or ``value_node``) read by ``interpreter``, if it can be read."""
         try:
-            value = (interpreter or base).value(value_node or node)
+            value = (interpreter or self.base).value(value_node or self.node)
         except Exception:  # the mistaken reading is undefined (a zero magnitude divided by)
             return
         # a reading equal to the answer is dropped where the values are known (solve)
-        if isinstance(value, Vector) != isinstance(right, Vector):
+        if isinstance(value, Vector) != isinstance(self.right, Vector):
             return
-        out.append(Mutation(obj.id, code, _matrix(model, value, frame),
-                            sentence, None if term is None else model.plain(term.to_matrix(
-                                frame))))
+        self.out.append(Mutation(self.obj.id, code, _matrix(self.model, value, self.frame),
+                                 sentence, None if term is None else self.model.plain(
+                                     term.to_matrix(self.frame))))
 
-    for call in _calls(node, ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent",
-                              "normal")):
-        point, in_frame = call.args[0], call.args[1].id
-        if not isinstance(point, Name):
+    def append(self, code: str, value, sentence: str) -> None:
+        """A mistaken value worked out directly (not by reading the objective again)."""
+        self.out.append(Mutation(self.obj.id, code, self.model.plain(value), sentence))
+
+
+def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
+    """Every mistaken reading of one objective, step by step: the composition of motion of
+    each point it asks about, another point, another point's position, a path quantity for its
+    neighbour, a speed from the components, another frame's unit vectors."""
+    try:
+        right = model.language.value(obj.find.node)
+    except Exception:  # an objective the solver reports as a failure has no mutants
+        return []
+    r = _Reading(model, obj, right)
+    for call in _calls(r.node, ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent",
+                                "normal")):
+        if not isinstance(call.args[0], Name):
             continue
-        P = point.id
-        uses_acc = call.func in ("acc", "acc_t", "acc_n", "rho", "normal")
-        for B, origin in _moving_frames(model, P, in_frame):
-            F = model.frames[in_frame]
-            r = model.positions[P] - model.positions[origin]
-            omega = model.frames[B].ang_vel_in(F)
-            alpha = model.frames[B].ang_acc_in(F)
-            v_rel = r.dt(model.frames[B])
-            v_true = base.point_velocity(point, in_frame)
-            where = f"(ω of frame {B} in {in_frame}, r from {origin} to {P})"
-            where_acc = f"(ω and α of frame {B} in {in_frame}, r from {origin} to {P})"
-            velocity_terms = (
-                ("drop_transport_vel", base.point_velocity(Name(origin), in_frame),
-                 f"the velocity of {origin}, the origin of frame {B}"),
-                ("drop_omega_r", omega ^ r, f"the transport term ω × r {where}"),
-                ("drop_relative_vel", v_rel, f"the velocity of {P} relative to frame {B}"))
-            for code, term, name in velocity_terms:
-                if uses_acc or _zero(model, term):
-                    continue
-                add(code, _Mistaken(base, P, in_frame, velocity=v_true - term),
-                    f"Your value matches the velocity of {P} computed without {name} = "
-                    "{term} along " + basis + ": include it.", term)
-            parent = model.problem.frames[[f.name for f in model.problem.frames].index(B)].parent
-            relative = parent not in (None, in_frame) and not _zero(
-                model, model.frames[parent].ang_vel_in(F))
-            if relative:
-                omega_p = model.frames[B].ang_vel_in(model.frames[parent])
-                alpha_p = model.frames[B].ang_acc_in(model.frames[parent])
-                sentence = (f"Your value matches the {{kind}} of {P} computed with the angular "
-                            f"velocity of frame {B} relative to frame {parent} instead of its "
-                            f"absolute one in {in_frame}: add the angular velocity of {parent}.")
-            if relative and not uses_acc:
-                add("relative_omega", _Mistaken(base, P, in_frame,
-                                                velocity=v_true - (omega ^ r) + (omega_p ^ r)),
-                    sentence.format(kind="velocity"))
-            if not uses_acc:
+        for B, origin in _moving_frames(model, call.args[0].id, call.args[1].id):
+            _composition(r, call, B, origin)
+        _other_points(r, call)
+    _other_positions(r)
+    _path_quantities(r)
+    _speed_readings(r)
+    _other_bases(r)
+    return r.out
+
+
+def _uses_acceleration(call: Call) -> bool:
+    return call.func in ("acc", "acc_t", "acc_n", "rho", "normal")
+
+
+def _composition(r: _Reading, call: Call, B: str, origin: str) -> None:
+    """Each term of the composition of motion of the point of ``call`` described in the moving
+    frame ``B`` (origin ``origin``) dropped, and ω and α taken relative to B's parent."""
+    model = r.model
+    point, in_frame = call.args[0], call.args[1].id
+    uses_acc = _uses_acceleration(call)
+    F = model.frames[in_frame]
+    rel = model.positions[point.id] - model.positions[origin]
+    omega = model.frames[B].ang_vel_in(F)
+    v_rel = rel.dt(model.frames[B])
+    if not uses_acc:
+        _velocity_terms(r, point, in_frame, B, origin, omega, rel, v_rel)
+    parent = model.problem.frames[[f.name for f in model.problem.frames].index(B)].parent
+    if parent not in (None, in_frame) and not _zero(model, model.frames[parent].ang_vel_in(F)):
+        _relative_omega(r, point, in_frame, B, parent, rel, uses_acc)
+    if uses_acc:
+        _acceleration_terms(r, point, in_frame, B, origin, omega, rel, v_rel)
+
+
+def _velocity_terms(r: _Reading, point: Name, in_frame: str, B: str, origin: str, omega,
+                    rel, v_rel) -> None:
+    """The velocity of the point without the frame origin's velocity, ω × r, or v_rel."""
+    P, base = point.id, r.base
+    v_true = base.point_velocity(point, in_frame)
+    where = f"(ω of frame {B} in {in_frame}, r from {origin} to {P})"
+    terms = (("drop_transport_vel", base.point_velocity(Name(origin), in_frame),
+              f"the velocity of {origin}, the origin of frame {B}"),
+             ("drop_omega_r", omega ^ rel, f"the transport term ω × r {where}"),
+             ("drop_relative_vel", v_rel, f"the velocity of {P} relative to frame {B}"))
+    for code, term, name in terms:
+        if _zero(r.model, term):
+            continue
+        r.add(code, _Mistaken(base, P, in_frame, velocity=v_true - term),
+              f"Your value matches the velocity of {P} computed without {name} = "
+              "{term} along " + r.basis + ": include it.", term)
+
+
+def _relative_omega(r: _Reading, point: Name, in_frame: str, B: str, parent: str, rel,
+                    uses_acc: bool) -> None:
+    """The velocity or acceleration of the point with B's angular velocity (and acceleration)
+    relative to its parent instead of the absolute ones."""
+    model, base, P = r.model, r.base, point.id
+    F = model.frames[in_frame]
+    omega = model.frames[B].ang_vel_in(F)
+    omega_p = model.frames[B].ang_vel_in(model.frames[parent])
+    sentence = (f"Your value matches the {{kind}} of {P} computed with the angular "
+                f"velocity of frame {B} relative to frame {parent} instead of its "
+                f"absolute one in {in_frame}: add the angular velocity of {parent}.")
+    if not uses_acc:
+        v_true = base.point_velocity(point, in_frame)
+        r.add("relative_omega", _Mistaken(base, P, in_frame,
+                                          velocity=v_true - (omega ^ rel) + (omega_p ^ rel)),
+              sentence.format(kind="velocity"))
+        return
+    alpha = model.frames[B].ang_acc_in(F)
+    alpha_p = model.frames[B].ang_acc_in(model.frames[parent])
+    a_true = base.point_acceleration(point, in_frame)
+    mistaken = a_true - (alpha ^ rel) - (omega ^ (omega ^ rel)) + (alpha_p ^ rel) \
+        + (omega_p ^ (omega_p ^ rel))
+    r.add("relative_omega", _Mistaken(base, P, in_frame, acceleration=mistaken),
+          sentence.format(kind="acceleration"))
+
+
+def _acceleration_terms(r: _Reading, point: Name, in_frame: str, B: str, origin: str, omega,
+                        rel, v_rel) -> None:
+    """The acceleration of the point with each term of the composition dropped (or the
+    Coriolis term halved)."""
+    model, base, P = r.model, r.base, point.id
+    alpha = model.frames[B].ang_acc_in(model.frames[in_frame])
+    a_true = base.point_acceleration(point, in_frame)
+    a_rel = v_rel.dt(model.frames[B])
+    where = f"(ω of frame {B} in {in_frame}, r from {origin} to {P})"
+    where_acc = f"(ω and α of frame {B} in {in_frame}, r from {origin} to {P})"
+    terms = (("drop_transport_acc", base.point_acceleration(Name(origin), in_frame), 1,
+              f"the acceleration of {origin}, the origin of frame {B}"),
+             ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where_acc}"),
+             ("drop_centripetal", omega ^ (omega ^ rel), 1,
+              f"the centripetal term ω × (ω × r) {where}"),
+             ("drop_coriolis", 2 * (omega ^ v_rel), 1,
+              f"the Coriolis term 2 ω × v_rel (ω of frame {B}, v_rel of {P} in {B})"),
+             ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
+              "the factor 2 of the Coriolis term 2 ω × v_rel"),
+             ("drop_relative_acc", a_rel, 1, f"the acceleration of {P} relative to frame {B}"))
+    for code, term, share, name in terms:
+        if _zero(model, term):
+            continue
+        r.add(code, _Mistaken(base, P, in_frame, acceleration=a_true - term * share),
+              f"Your value matches the acceleration of {P} computed without {name} = "
+              "{term} along " + r.basis + ": include it.", term)
+
+
+def _other_points(r: _Reading, call: Call) -> None:
+    """The velocity or acceleration of another point of the model (or of the point of a
+    turning body there) for the point of ``call``."""
+    model, base = r.model, r.base
+    point, in_frame = call.args[0], call.args[1].id
+    P = point.id
+    kind = "acceleration" if _uses_acceleration(call) else "velocity"
+    for Q in model.positions:
+        if Q in (P, model.problem.inertial_point):
+            continue
+        other = _Mistaken(base, P, in_frame,
+                          velocity=base.point_velocity(Name(Q), in_frame),
+                          acceleration=base.point_acceleration(Name(Q), in_frame))
+        r.add("other_point", other, f"Your value matches the {kind} of {Q}, not of {P}: "
+              f"use the point the question asks about.")
+        for body in model.problem.frames:
+            if body.origin is None or body.origin == Q or body.name == in_frame \
+                    or _zero(model, model.frames[body.name].ang_vel_in(
+                        model.frames[in_frame])):
                 continue
-            a_true = base.point_acceleration(point, in_frame)
-            if relative:
-                mistaken = a_true - (alpha ^ r) - (omega ^ (omega ^ r)) + (alpha_p ^ r) \
-                    + (omega_p ^ (omega_p ^ r))
-                add("relative_omega", _Mistaken(base, P, in_frame, acceleration=mistaken),
-                    sentence.format(kind="acceleration"))
-            a_rel = v_rel.dt(model.frames[B])
-            acceleration_terms = (
-                ("drop_transport_acc", base.point_acceleration(Name(origin), in_frame), 1,
-                 f"the acceleration of {origin}, the origin of frame {B}"),
-                ("drop_tangential", alpha ^ r, 1, f"the tangential term α × r {where_acc}"),
-                ("drop_centripetal", omega ^ (omega ^ r), 1,
-                 f"the centripetal term ω × (ω × r) {where}"),
-                ("drop_coriolis", 2 * (omega ^ v_rel), 1,
-                 f"the Coriolis term 2 ω × v_rel (ω of frame {B}, v_rel of {P} in {B})"),
-                ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
-                 "the factor 2 of the Coriolis term 2 ω × v_rel"),
-                ("drop_relative_acc", a_rel, 1,
-                 f"the acceleration of {P} relative to frame {B}"))
-            for code, term, share, name in acceleration_terms:
-                if _zero(model, term):
-                    continue
-                part = term * share
-                add(code, _Mistaken(base, P, in_frame, acceleration=a_true - part),
-                    f"Your value matches the acceleration of {P} computed without {name} = "
-                    "{term} along " + basis + ": include it.", term)
-        for Q in model.positions:
-            if Q in (P, model.problem.inertial_point):
-                continue
-            kind = "acceleration" if uses_acc else "velocity"
+            material = Call("coincident", (Name(Q), Name(body.name)))
             other = _Mistaken(base, P, in_frame,
-                              velocity=base.point_velocity(Name(Q), in_frame),
-                              acceleration=base.point_acceleration(Name(Q), in_frame))
-            add("other_point", other, f"Your value matches the {kind} of {Q}, not of {P}: "
-                f"use the point the question asks about.")
-            for body in model.problem.frames:
-                if body.origin is None or body.origin == Q or body.name == in_frame \
-                        or _zero(model, model.frames[body.name].ang_vel_in(
-                            model.frames[in_frame])):
-                    continue
-                material = Call("coincident", (Name(Q), Name(body.name)))
-                other = _Mistaken(base, P, in_frame,
-                                  velocity=base.point_velocity(material, in_frame),
-                                  acceleration=base.point_acceleration(material, in_frame))
-                add("other_point", other, f"Your value matches the {kind} of the point of "
-                    f"body {body.name} at {Q}, not of {P}: use the point the question asks "
-                    "about.")
-    for call in _calls(node, ("pos",)):
+                              velocity=base.point_velocity(material, in_frame),
+                              acceleration=base.point_acceleration(material, in_frame))
+            r.add("other_point", other, f"Your value matches the {kind} of the point of "
+                  f"body {body.name} at {Q}, not of {P}: use the point the question asks "
+                  "about.")
+
+
+def _other_positions(r: _Reading) -> None:
+    """The position of another point for the point a ``pos`` asks about."""
+    for call in _calls(r.node, ("pos",)):
         point, origin = call.args
         if not isinstance(point, Name):
             continue
-        for Q in model.positions:
-            if Q in (point.id, model.problem.inertial_point) or Name(Q) == origin:
+        for Q in r.model.positions:
+            if Q in (point.id, r.model.problem.inertial_point) or Name(Q) == origin:
                 continue
-            add("other_point", _Mistaken(base, point.id, "", position=model.positions[Q]),
-                f"Your value matches the position of {Q}, not of {point.id}: use the point "
-                "the question asks about.")
-    top = node.func if isinstance(node, Call) else None
-    if top == "mag" and isinstance(node.args[0], Call) and node.args[0].func == "acc":
+            r.add("other_point", _Mistaken(r.base, point.id, "",
+                                           position=r.model.positions[Q]),
+                  f"Your value matches the position of {Q}, not of {point.id}: use the point "
+                  "the question asks about.")
+
+
+def _top(node: Node) -> str | None:
+    return node.func if isinstance(node, Call) else None
+
+
+def _path_quantities(r: _Reading) -> None:
+    """A path quantity for its neighbour: a_t or a_n for |a|, their sum for |a|, |a| for a
+    component, ρ from |a|."""
+    node, top = r.node, _top(r.node)
+    if top == "mag" and _top(node.args[0]) == "acc":
         args = node.args[0].args
-        add("acc_t_for_acc", None, "Your value is the tangential acceleration a_t = dv/dt "
-            "alone; the magnitude of the acceleration is √(a_t² + a_n²).",
-            value_node=Call("acc_t", args))
-        add("acc_n_for_acc", None, "Your value is the normal acceleration v²/ρ alone; the "
-            "magnitude of the acceleration is √(a_t² + a_n²).", value_node=Call("acc_n", args))
-        add("mag_as_sum", None, "Your value adds the tangential and normal accelerations; the "
-            "magnitude of the acceleration is √(a_t² + a_n²).",
-            value_node=Bin("+", Call("acc_t", args), Call("acc_n", args)))
+        r.add("acc_t_for_acc", None, "Your value is the tangential acceleration a_t = dv/dt "
+              "alone; the magnitude of the acceleration is √(a_t² + a_n²).",
+              value_node=Call("acc_t", args))
+        r.add("acc_n_for_acc", None, "Your value is the normal acceleration v²/ρ alone; the "
+              "magnitude of the acceleration is √(a_t² + a_n²).",
+              value_node=Call("acc_n", args))
+        r.add("mag_as_sum", None, "Your value adds the tangential and normal accelerations; "
+              "the magnitude of the acceleration is √(a_t² + a_n²).",
+              value_node=Bin("+", Call("acc_t", args), Call("acc_n", args)))
     if top in ("acc_t", "acc_n"):
-        add(f"acc_for_{top}", None, f"Your value is the magnitude of the whole acceleration; "
-            f"the {'tangential' if top == 'acc_t' else 'normal'} component was asked.",
-            value_node=Call("mag", (Call("acc", node.args),)))
+        r.add(f"acc_for_{top}", None, f"Your value is the magnitude of the whole "
+              f"acceleration; the {'tangential' if top == 'acc_t' else 'normal'} component "
+              "was asked.", value_node=Call("mag", (Call("acc", node.args),)))
     if top == "rho":
-        v = base.point_velocity(node.args[0], node.args[1].id)
-        a = base.point_acceleration(node.args[0], node.args[1].id)
-        if not _zero(model, v ^ a):
-            out.append(Mutation(obj.id, "rho_formula", model.plain(
-                (v & v) / a.magnitude()), "Your value is v²/|a|; the radius of curvature is "
-                "v²/a_n, with the normal part a_n of the acceleration only."))
-    speed = top == "speed" or (top == "mag" and isinstance(node.args[0], Call)
-                               and node.args[0].func == "vel")
-    if speed:
-        args = node.args if top == "speed" else node.args[0].args
-        v = base.point_velocity(args[0], args[1].id)
-        x, y, z = v.to_matrix(frame)
-        out.append(Mutation(obj.id, "mag_as_sum", model.plain(x + y + z),
-                            "Your value adds the components of the velocity; the speed is "
-                            "the square root of the sum of their squares."))
-        for G in model.frames:
-            for axis, unit in zip("xyz", (model.frames[G].x, model.frames[G].y,
-                                          model.frames[G].z)):
-                if not _zero(model, v & unit):
-                    out.append(Mutation(obj.id, "component_for_speed", model.plain(v & unit),
-                                        f"Your value is only the {G}.{axis} component of the "
-                                        "velocity; the speed is the magnitude of the whole "
-                                        "velocity."))
-    if isinstance(right, Vector) and obj.frame:
-        for G, other in model.frames.items():
-            if G == obj.frame or _zero(model, right - _relabel(right, other, frame)):
-                continue
-            out.append(Mutation(obj.id, "other_basis", model.plain(right.to_matrix(other)),
-                                f"Your components are those of the right vector along frame "
-                                f"{G}'s unit vectors; give them along frame {obj.frame}'s."))
-    return out
+        v = r.base.point_velocity(node.args[0], node.args[1].id)
+        a = r.base.point_acceleration(node.args[0], node.args[1].id)
+        if not _zero(r.model, v ^ a):
+            r.append("rho_formula", (v & v) / a.magnitude(), "Your value is v²/|a|; the "
+                     "radius of curvature is v²/a_n, with the normal part a_n of the "
+                     "acceleration only.")
+
+
+def _speed_readings(r: _Reading) -> None:
+    """A speed from the sum of the velocity's components, or one component alone."""
+    node, top = r.node, _top(r.node)
+    if top == "speed":
+        args = node.args
+    elif top == "mag" and _top(node.args[0]) == "vel":
+        args = node.args[0].args
+    else:
+        return
+    v = r.base.point_velocity(args[0], args[1].id)
+    x, y, z = v.to_matrix(r.frame)
+    r.append("mag_as_sum", x + y + z, "Your value adds the components of the velocity; the "
+             "speed is the square root of the sum of their squares.")
+    for G, frame in r.model.frames.items():
+        for axis, unit in zip("xyz", (frame.x, frame.y, frame.z)):
+            if not _zero(r.model, v & unit):
+                r.append("component_for_speed", v & unit, f"Your value is only the {G}.{axis} "
+                         "component of the velocity; the speed is the magnitude of the whole "
+                         "velocity.")
+
+
+def _other_bases(r: _Reading) -> None:
+    """The right vector's components along another frame's unit vectors."""
+    if not isinstance(r.right, Vector) or not r.obj.frame:
+        return
+    for G, other in r.model.frames.items():
+        if G == r.obj.frame or _zero(r.model, r.right - _relabel(r.right, other, r.frame)):
+            continue
+        r.append("other_basis", r.right.to_matrix(other),
+                 f"Your components are those of the right vector along frame {G}'s unit "
+                 f"vectors; give them along frame {r.obj.frame}'s.")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:

@@ -7,6 +7,7 @@ from typing import Collection, Mapping
 
 from ..spec.model import Problem
 from .dynamics import solve_dynamics
+from .dynamics_mutants import with_generated_mistakes
 from .instant import solve_kinematics
 from .result import Solution
 
@@ -23,5 +24,6 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
     (:attr:`Solution.failures`); when none of them can be, the first error is raised.
     """
     if problem.dynamics is not None:
-        return solve_dynamics(problem, givens=givens, objectives=objectives)
+        return with_generated_mistakes(problem, solve_dynamics(
+            problem, givens=givens, objectives=objectives), givens)
     return solve_kinematics(problem, givens=givens, objectives=objectives)

@@ -30,12 +30,14 @@ class GeneratedMistake:
     """The value a typical conceptual mistake gives (see :mod:`mechgrade.solve.mutants`):
     ``code`` its family (a key of the assignment's ``partial_credit``), ``message`` one
     sentence naming the term and the quantity, ``value`` in the objective's unit (``expr``
-    for a symbolic objective, in its symbols)."""
+    for a symbolic objective, in its symbols); ``step``, where known, the section of the
+    worked solution where the mistake happens (for the feedback to highlight)."""
 
     code: str
     message: str
     value: Value
     expr: str | None = None
+    step: str | None = None
 
 
 @dataclass(frozen=True)

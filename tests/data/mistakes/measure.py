@@ -1,8 +1,11 @@
 """Grade every typical mistake of the tables beside this file and count how it was diagnosed.
 
 Run: python tests/data/mistakes/measure.py [-v]   (with the mechgrade to measure importable)
-Classes: ``named`` (a code the table lists), ``generic`` (judged wrong, no diagnosis),
+Classes: ``named`` (a code the table lists), ``generic`` (a whole-answer diagnosis true of it
+that does not name it: the row's ``generic`` codes), ``none`` (judged wrong, no diagnosis),
 ``correct`` (judged right: the mistake is inside the tolerance), ``wrong`` (another diagnosis).
+Counted for the kinematics problems, the dynamics problems (bodies and loads) and the whole
+library.
 A mistake the problem's author declared is named in the author's words (code ``mistake``).
 """
 from __future__ import annotations
@@ -41,27 +44,37 @@ def classify(row: dict, result, policy: Policy = Policy()) -> tuple[str, object]
         return "correct", judged
     code = code_of(judged.diagnosis, result)
     if code is None:
+        return "none", judged
+    if code in row.get("generic", ()):
         return "generic", judged
     # the author's declared mistakes name theirs in the author's words
     return ("named" if code in row["diagnosis"] or code == "mistake" else "wrong"), judged
 
 
 def rows():
+    """``(problem id, group, row, result)`` for every row of every table."""
     for path in sorted(HERE.glob("*.yaml")):
         problem = load_problem(shipped_dir("problems") / path.name)
+        group = "kinematics" if problem.dynamics is None else "dynamics"
         solution = solve(problem)
         for row in yaml.safe_load(path.read_text(encoding="utf-8")):
-            yield path.stem, row, solution.result(row["objective"])
+            yield path.stem, group, row, solution.result(row["objective"])
+
+
+def rate(counts: Counter) -> str:
+    total = sum(counts.values())
+    return ", ".join(f"{k} {counts[k]} ({100 * counts[k] / total:.0f} %)"
+                     for k in ("named", "generic", "none", "correct", "wrong")) + f" of {total}"
 
 
 if __name__ == "__main__":
-    counts = Counter()
-    for problem, row, result in rows():
+    counts = {"kinematics": Counter(), "dynamics": Counter()}
+    for problem, group, row, result in rows():
         kind, judged = classify(row, result)
-        counts[kind] += 1
+        counts[group][kind] += 1
         if "-v" in sys.argv or kind != "named":
             print(f"{kind:8} {problem}.{row['objective']}: {row['mistake']} -> "
                   f"{judged.diagnosis!r}: {judged.feedback}")
-    total = sum(counts.values())
-    print(", ".join(f"{k} {counts[k]} ({100 * counts[k] / total:.0f} %)"
-                    for k in ("named", "generic", "correct", "wrong")), f"of {total}")
+    for group, counted in counts.items():
+        print(f"{group}: {rate(counted)}")
+    print(f"library: {rate(counts['kinematics'] + counts['dynamics'])}")

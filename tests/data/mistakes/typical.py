@@ -31,7 +31,7 @@ def cross_z(w, r):
 
 
 def num(value, unit):
-    return f"{value:.4g} {unit}"
+    return f"{value:.4g}" if unit == "1" else f"{value:.4g} {unit}"
 
 
 def vec(v, unit):
@@ -39,11 +39,17 @@ def vec(v, unit):
     return f"({x:.4g}, {y:.4g}, {z:.4g}) {unit}"
 
 
-def entry(objective, mistake, answer, *codes, inside=False):
+def entry(objective, mistake, answer, *codes, inside=False, known=None, generic=()):
+    """One typical mistake; ``known: generic`` marks one the grader does not name yet, and
+    ``generic`` the whole-answer diagnoses that are true of it without naming it."""
     out = {"objective": objective, "mistake": mistake, "answer": answer,
            "diagnosis": list(codes)}
     if inside:
         out["inside"] = True
+    if known:
+        out["known"] = known
+    if generic:
+        out["generic"] = list(generic)
     return out
 
 
@@ -319,6 +325,230 @@ def bug_on_tire():
                   "l*thetadd - s*thetad^2 + thetad*ld", "coriolis_half")]
 
 
+# ---------------------------------------------------------------------------- dynamics
+
+
+def atwood():
+    m1, m2, g = 3.0, 5.0, 9.81
+    a = g * (m2 - m1) / (m1 + m2)
+    return [entry("a1", "tension taken as block 2's weight in block 1's balance",
+                  num((m2 * g - m1 * g) / m1, "m/s^2"), "tension_as_weight"),
+            entry("tension", "tension taken as the heavier block's weight m2 g",
+                  num(m2 * g, "N"), "tension_as_weight", "reaction_as_weight"),
+            entry("tension", "tension taken as the lighter block's weight m1 g",
+                  num(m1 * g, "N"), "tension_as_weight", "reaction_as_weight"),
+            entry("a1", "masses written for the weights (m instead of m g)",
+                  num((m2 - m1) / (m1 + m2), "m/s^2"), "mass_for_weight"),
+            entry("a1", "block 1 taken to move down", num(-a, "m/s^2"), "sign")]
+
+
+def block_on_turntable():
+    m, r, w, al = 0.5, 0.3, 4.0, 2.0
+    F = m * V(-r * w**2, r * al)  # along B.x (outward), B.y
+    return [entry("normal", "normal force written as the mass m", num(m, "N"),
+                  "mass_for_weight"),
+            entry("mu_needed", "|F| divided by m instead of m g",
+                  num(np.linalg.norm(F) / m, "1"), "mass_for_weight"),
+            entry("friction_B", "friction drawn outward, against the centripetal direction",
+                  vec(-F, "N"), "sign"),
+            entry("friction_B", "turntable taken to slow down (φ'' negative)",
+                  vec(m * V(-r * w**2, -r * al), "N"), "given_sign")]
+
+
+def block_sliding_down_incline():
+    m, g, beta, mu = 4.0, 9.81, 30 * D, 0.25
+    return [entry("accel", "friction drawn down the slope",
+                  num(g * (math.sin(beta) + mu * math.cos(beta)), "m/s^2"),
+                  "friction_reversed"),
+            entry("accel", "normal force taken as m g: friction μ m g",
+                  num(g * math.sin(beta) - mu * g, "m/s^2"), "normal_from_weight"),
+            entry("normal", "normal force taken as the weight m g", num(m * g, "N"),
+                  "reaction_as_weight"),
+            entry("friction", "friction μ m g with the weight for the normal force",
+                  vec(V(-mu * m * g, 0), "N"), "normal_from_weight"),
+            entry("accel", "calculator in radian mode: sin 30, cos 30",
+                  num(g * (math.sin(30.0) - mu * math.cos(30.0)), "m/s^2"),
+                  "given_deg_as_rad")]
+
+
+def car_braking():
+    m, g, h, a, b, mu = 1200.0, 9.81, 0.55, 1.1, 1.5, 0.8
+    W = m * g
+    return [entry("front_normal", "static share m g b/(a + b): weight transfer ignored",
+                  num(W * b / (a + b), "N"), "weight_transfer_ignored"),
+            entry("rear_normal", "static share m g a/(a + b): weight transfer ignored",
+                  num(W * a / (a + b), "N"), "weight_transfer_ignored"),
+            entry("front_normal", "distances a and b exchanged",
+                  num(W * (a + mu * h) / (a + b), "N"), "given_swap"),
+            entry("decel", "deceleration given as positive", num(mu * g, "m/s^2"), "sign",
+                  "friction_reversed")]
+
+
+def damped_pendulum():
+    m, L, g, c = 1.5, 0.8, 9.81, 0.6
+    wn_m = math.sqrt(3 / (2 * L))  # g left out of the weight's moment
+    zeta_m = c * L**2 / (2 * (m * L**2 / 3) * wn_m)
+    return [entry("omega_n", "weight's moment m L/2 θ instead of m g L/2 θ",
+                  num(wn_m, "rad/s"), "mass_for_weight"),
+            entry("zeta", "weight's moment without g", num(zeta_m, "1"), "mass_for_weight"),
+            entry("damped_period", "weight's moment without g",
+                  num(2 * math.pi / (wn_m * math.sqrt(1 - zeta_m**2)), "s"), "mass_for_weight"),
+            # the solver's linearisation of the mistaken model is 0/0 at θ = 0: not named
+            # yet; it is exactly twice the answer (I_O = 4 I_G), which is all that is said
+            entry("omega_n", "I_G = m L²/12 used about the pin O",
+                  num(math.sqrt((m * g * L / 2) / (m * L**2 / 12)), "rad/s"),
+                  "central_inertia_at_pivot", known="generic", generic=("factor_2",))]
+
+
+def ladder_lift_off():
+    m, L, g, th0 = 12.0, 4.0, 9.81, 80 * D
+    th = math.asin(2 / 3 * math.sin(th0))
+    thd = -math.sqrt(3 * g / L * (math.sin(th0) - math.sin(th)))
+    energy = m * g * L / 2 * math.sin(th0)
+    return [entry("floor_reaction", "floor reaction taken as the weight m g", num(m * g, "N"),
+                  "reaction_as_weight"),
+            entry("energy_at_lift_off", "rotational energy ½ I_G θ'² left out",
+                  num(energy - 0.5 * (m * L**2 / 12) * thd**2, "J"), "rotational_ke_omitted"),
+            entry("theta_wall_contact_lost_deg", "angle left in radians", num(th, "deg"),
+                  "rad_as_deg"),
+            entry("thetad_at_lift_off", "rate given as positive", num(-thd, "rad/s"), "sign")]
+
+
+def pendulum_pin():
+    m, L, g, th, w = 2.0, 1.2, 9.81, 40 * D, 3.0
+    rG = L / 2 * V(math.sin(th), -math.cos(th))
+    alpha_G = -(m * g * L / 2 * math.sin(th)) / (m * L**2 / 12)  # I_G at the pin
+    aG = cross_z(alpha_G, rG) - w**2 * rG
+    alpha = -3 * g * math.sin(th) / (2 * L)
+    along_rad = m * (w**2 * L / 2 + g * math.cos(40.0))
+    return [entry("alpha", "I_G = m L²/12 used about the pin O", num(alpha_G, "rad/s^2"),
+                  "central_inertia_at_pivot"),
+            entry("alpha", "calculator in radian mode: sin 40",
+                  num(-3 * g * math.sin(40.0) / (2 * L), "rad/s^2"), "given_deg_as_rad"),
+            entry("pin_force", "I_G used about the pin, then R = m a_G - m g",
+                  vec(m * aG + V(0, m * g), "N"), "central_inertia_at_pivot"),
+            entry("pin_force", "weight left out of the force balance: R = m a_G",
+                  vec(m * (cross_z(alpha, rG) - w**2 * rG), "N"), "weight_omitted"),
+            entry("pin_force_along_rod", "calculator in radian mode: cos 40",
+                  num(along_rad, "N"), "given_deg_as_rad"),
+            entry("alpha", "clockwise taken as positive", num(-alpha, "rad/s^2"), "sign")]
+
+
+def rod_ledge():
+    m, L, v0, e = 3.0, 1.2, 4.0, 0.5
+
+    def after(e):
+        P = m * v0 * (1 + e) / 4  # v_A = v_G + 3P/m = e v0 with v_G = -v0 + P/m
+        return P, -v0 + P / m, -6 * P / (m * L)
+    P1, vG1, _ = after(1.0)
+    _, _, w0 = after(0.0)
+    _, _, w = after(e)
+    return [entry("vG_after", "perfectly elastic impact (e = 1)", num(vG1, "m/s"),
+                  "restitution_ignored"),
+            entry("omega_after", "perfectly plastic impact (e = 0)", num(w0, "rad/s"),
+                  "restitution_ignored"),
+            entry("impulse", "perfectly elastic impact (e = 1)", vec(V(0, P1), "N*s"),
+                  "restitution_ignored"),
+            entry("omega_after", "clockwise taken as positive", num(-w, "rad/s"), "sign")]
+
+
+def falling_ladder():
+    m, L, g, th, thd = 10.0, 4.0, 9.81, 60 * D, -0.5
+    N1 = m * math.cos(th) * (3 * g * math.sin(th) - 2 * L * thd**2) / 4
+    return [entry("thetaddot_now", "calculator in radian mode: cos 60",
+                  num(-3 * g * math.cos(60.0) / (2 * L), "rad/s^2"), "given_deg_as_rad"),
+            entry("reactions_now", "floor reaction taken as the weight m g",
+                  vec(V(N1, m * g), "N"), "reaction_as_weight"),
+            entry("thetaddot_now", "weight's moment without g (m instead of m g)",
+                  num(-3 * math.cos(th) / (2 * L), "rad/s^2"), "mass_for_weight"),
+            entry("thetaddot_now", "sign of θ'' reversed",
+                  num(3 * g * math.cos(th) / (2 * L), "rad/s^2"), "sign")]
+
+
+def ladder_energy():
+    th0, th = 80 * D, 45 * D
+    drop = math.sin(th0) - math.sin(th)  # g = L = 1
+    return [entry("vG_over_sqrt_gL", "rotational energy ½ I_G θ'² left out",
+                  num(math.sqrt(drop), "1"), "rotational_ke_omitted"),
+            entry("vG_over_sqrt_gL", "calculator in radian mode: sin 45",
+                  num(0.5 * math.sqrt(3 * (math.sin(th0) - math.sin(45.0))), "1"),
+                  "given_deg_as_rad"),
+            entry("vG_over_sqrt_gL", "L θ' (the top relative to the foot) for v_G",
+                  num(math.sqrt(3 * drop), "1"), "factor_2")]
+
+
+def wheel_incline():
+    r = 0.1  # with m = 1, M = 2 kg, theta = 30 deg and a = 0.2 g, each R solves a r² equation
+    return [entry("R_min", "moments about the contact C with I_G (m d² left out)",
+                  num(math.sqrt(6) * r, "m"), "central_inertia_at_pivot"),
+            entry("R_min", "outer disks taken as rings (M R² each)",
+                  num(math.sqrt(1.75) * r, "m"), "other_shape_inertia"),
+            entry("R_min", "answer in cm with the unit m", num(math.sqrt(3.5) * r * 100, "m"),
+                  "cm_m")]
+
+
+def ball_skid():
+    v0, mu, g = 5.0, 0.12, 9.8
+
+    def rolls(k, mu_g=mu * g):  # I = k m r²: v0 - mu g t = mu g t / k
+        t = v0 * k / (mu_g * (1 + k))
+        return t, v0 - mu_g * t, v0 * t - mu_g * t**2 / 2
+    t, v, _ = rolls(0.4)
+    return [entry("v_at_t_star", "ball taken as a thin shell (2/3 m r²)",
+                  num(rolls(2 / 3)[1], "m/s"), "other_shape_inertia"),
+            entry("t_star", "ball taken as a thin shell (2/3 m r²)",
+                  num(rolls(2 / 3)[0], "s"), "other_shape_inertia"),
+            entry("t_star", "ball taken as a disk (½ m r²)", num(rolls(0.5)[0], "s"),
+                  "other_shape_inertia"),
+            entry("t_star", "friction μ m instead of μ m g", num(rolls(0.4, mu)[0], "s"),
+                  "mass_for_weight"),
+            entry("omega_at_t_star_z", "spin given as counterclockwise", num(v / 0.1, "rad/s"),
+                  "sign")]
+
+
+def billiard():
+    r, d, v = 0.03, 0.01, 1.0  # m, m, m/s: I ω = -d m v
+
+    def omega(k):
+        return -d * v / (k * r**2)
+    return [entry("omega_z", "ball taken as a thin shell (2/3 m r²)", num(omega(2 / 3), "rad/s"),
+                  "other_shape_inertia"),
+            entry("omega_z", "ball taken as a disk (½ m r²)", num(omega(0.5), "rad/s"),
+                  "other_shape_inertia"),
+            entry("omega_z", "spin given as counterclockwise", num(-omega(0.4), "rad/s"),
+                  "sign")]
+
+
+def spring_chain():
+    m1, m2, k1, k2, L2, c = 2.0, 1.0, 100.0, 50.0, 0.8, 4.0
+    x1, x2, v1, v2 = 0.6, 1.5, 0.5, -0.2
+    s2, damper = k2 * (x2 - x1 - L2), c * (v2 - v1)  # pulls block 1 forward, block 2 back
+    return [entry("a1", "spring 1's force k1 x1 (free length left out)",
+                  num((-k1 * x1 + s2 + damper) / m1, "m/s^2"), "spring_free_length_omitted"),
+            entry("spring1_energy", "½ k1 x1² (free length left out)", num(k1 * x1**2 / 2, "J"),
+                  "spring_free_length_omitted"),
+            entry("a2", "spring 2's force k2 (x2 - x1) (free length left out)",
+                  num((-k2 * (x2 - x1) - damper) / m2, "m/s^2"), "spring_free_length_omitted"),
+            # m1 = 2 m2: the masses exchanged give the same value; the factor 2 is all that is said
+            entry("ke2", "m v² without the ½", num(m2 * v2**2, "J"), "factor_2"),
+            entry("spring2_on_block1", "spring 2 taken to push block 1 back",
+                  vec(V(-s2, 0), "N"), "sign")]
+
+
+def yo_yo():
+    m, k, r, g = 0.2, 0.03, 0.01, 9.81
+    a_G = -g * r**2 / k**2  # moments about S with I_G = m k²
+    w = 0.5 / r
+    return [entry("accel", "moments about the string point S with I_G (m r² left out)",
+                  num(a_G, "m/s^2"), "central_inertia_at_pivot"),
+            entry("tension", "tension taken as the weight m g", num(m * g, "N"),
+                  "reaction_as_weight"),
+            entry("tension", "T = m g + m a with a from I_G about S",
+                  num(m * g + m * a_G, "N"), "central_inertia_at_pivot"),
+            entry("spin_momentum", "I = m k²/2, k read as a disk's radius",
+                  vec(V(0, 0, -m * k**2 / 2 * w), "kg*m^2/s"), "factor_2")]
+
+
 TABLES = {
     "bowling_3_15_2_cannonball": cannonball,
     "bowling_3_15_3_mass_spring_damper": mass_spring_damper,
@@ -340,11 +570,62 @@ TABLES = {
     "ruina_10_8_collar_in_disk_track": collar_in_disk_track,
     "ruina_10_9_unit_vector_rates": unit_vector_rates,
     "ruina_sec10_bug_on_tire": bug_on_tire,
+    "atwood_machine": atwood,
+    "block_on_turntable": block_on_turntable,
+    "block_sliding_down_incline": block_sliding_down_incline,
+    "car_braking_weight_transfer": car_braking,
+    "damped_pendulum_vibration": damped_pendulum,
+    "ladder_wall_lift_off": ladder_lift_off,
+    "pendulum_pin_reaction": pendulum_pin,
+    "rod_strikes_ledge": rod_ledge,
+    "ruina_9_19_falling_ladder": falling_ladder,
+    "ruina_9_20_ladder_energy": ladder_energy,
+    "ruina_9_21_wheel_incline": wheel_incline,
+    "ruina_9_23_ball_impulse_momentum": ball_skid,
+    "ruina_9_26_billiard_cue": billiard,
+    "two_mass_spring_chain": spring_chain,
+    "yo_yo_unwinding": yo_yo,
+}
+
+
+# Symbolic answers as a student would type them, each derived by hand from the mistaken balance.
+SYMBOLIC = {
+    "atwood_machine": [
+        entry("a1_symbolic", "tension taken as m2 g in block 1's balance", "g*(m2 - m1)/m1",
+              "tension_as_weight"),
+        entry("tension_symbolic", "tension taken as the heavier block's weight", "m2*g",
+              "tension_as_weight")],
+    "pendulum_pin_reaction": [
+        entry("eom_symbolic", "I_G θ'' = -m g (L/2) sin θ about the pin", "-6*g*sin(theta)/L",
+              "central_inertia_at_pivot")],
+    "block_sliding_down_incline": [
+        entry("accel_symbolic", "friction drawn down the slope",
+              "g*(sin(beta) + mu_k*cos(beta)*sign(xd))", "friction_reversed"),
+        entry("accel_symbolic", "friction μ m g", "g*(sin(beta) - mu_k*sign(xd))",
+              "normal_from_weight")],
+    "car_braking_weight_transfer": [
+        entry("front_share_symbolic", "static share: weight transfer ignored", "m*g*b/(a + b)",
+              "weight_transfer_ignored")],
+    "rod_strikes_ledge": [
+        entry("omega_symbolic", "perfectly elastic impact (e = 1)", "-3*v0/L",
+              "restitution_ignored")],
+    "ruina_9_20_ladder_energy": [
+        entry("vG_symbolic", "rotational energy left out: ½ m v² = m g (L/2)(sin θ0 - sin θ)",
+              "sqrt(g*L*(sin(theta0) - sin(theta)))", "rotational_ke_omitted")],
+    "ruina_9_21_wheel_incline": [
+        entry("aG_symbolic", "moments about C with I_G = m r²/2 + M R²",
+              "2*g*r^2*(m + 2*M)*sin(theta)/(m*r^2 + 2*M*R^2)", "central_inertia_at_pivot")],
+    "ruina_9_26_billiard_cue": [
+        entry("omega_symbolic", "ball taken as a thin shell (2/3 m r²)", "-3*d*v/(2*r^2)",
+              "other_shape_inertia")],
+    "yo_yo_unwinding": [
+        entry("tension_symbolic", "T = m g - m a with a = g r²/k² (I_G about S)",
+              "m*g*(1 - r^2/k^2)", "central_inertia_at_pivot")],
 }
 
 
 def tables() -> dict[str, list[dict]]:
-    return {problem: make() for problem, make in TABLES.items()}
+    return {problem: make() + SYMBOLIC.get(problem, []) for problem, make in TABLES.items()}
 
 
 if __name__ == "__main__":

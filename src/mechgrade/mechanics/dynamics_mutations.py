@@ -1,0 +1,510 @@
+"""Conceptual mistakes of kinetics applied to a problem's bodies and loads.
+
+Each family looks at the model for its ingredient (a gravity load, a body turning about a point
+that does not move, a kinetic-friction contact, a coefficient of restitution, a string...) and,
+only where it finds it, makes a mistaken copy of the frozen :class:`~mechgrade.spec.model.Problem`
+(``dataclasses.replace``: the gravity load dropped, the inertia about the mass centre used at the
+pivot, the friction turned round, ``e`` replaced) for the solver to solve again, or a mistaken
+reading of an objective (a reaction read as a weight, a kinetic energy without its rotational
+part) for the solver to read in the right model. A :class:`DynamicsMutation` carries its family
+``code`` (for partial-credit settings), a sentence in which ``{term}`` stands for the value of
+the term it names (``term``, read in the right model, in ``term_unit``), and ``step``, the
+section of the worked solution (:func:`mechgrade.mechanics.dynamics.kinetics_derivation`) where
+the mistake happens.
+
+The families are registered in :data:`FAMILIES`, one function each.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+>>> [(m.code, m.step) for m in dynamics_mutations(problem)][2:4]
+[('mass_for_weight', 'Free-body loads'), ('central_inertia_at_pivot', 'Bodies')]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from typing import Callable, Iterator
+
+from sympy.physics.vector import Vector
+
+from ..expressions.syntax import Bin, Call, Name, Node, Unary, parse, to_text
+from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Impulse,
+                             KineticFriction, Part, Reaction, Restitution, Ring, Shell, Sphere,
+                             StaticFriction, WorkEnergy)
+from ..spec.language import FUNCTIONS
+from ..spec.model import Expr, Problem
+from .build import Model, build
+from .symbols import identically_zero
+
+LOADS, BODIES, BALANCES, OBJECTIVES = ("Free-body loads", "Bodies", "Momentum balances",
+                                       "Objectives in the model's quantities")
+
+
+@dataclass(frozen=True)
+class DynamicsMutation:
+    """One mistaken model (``problem``, solved again: every objective is mistaken) or mistaken
+    reading (``readings``: objective id and the expression read instead, in the right model).
+
+    ``sentence`` names the mistake, with ``{term}`` where the value of ``term`` (an expression
+    of the right model, in ``term_unit``) goes; ``step`` is the write-up section where the
+    mistake happens."""
+
+    code: str
+    sentence: str
+    step: str
+    problem: Problem | None = None
+    readings: tuple[tuple[str, Expr], ...] = ()
+    term: Expr | None = None
+    term_unit: str = "1"
+
+
+def dynamics_mutations(problem: Problem) -> tuple[DynamicsMutation, ...]:
+    """Every family's mutations of ``problem`` (none without bodies and loads)."""
+    if problem.dynamics is None:
+        return ()
+    return _mutations(problem)
+
+
+@lru_cache(maxsize=64)
+def _mutations(problem: Problem) -> tuple[DynamicsMutation, ...]:
+    model = build(problem)
+    return tuple(m for family in FAMILIES for m in family(problem, model))
+
+
+# ---------------------------------------------------------------------------- helpers
+
+
+def _expr(text: str) -> Expr:
+    return Expr(text, parse(text, functions=FUNCTIONS))
+
+
+def _mistaken(problem: Problem, dynamics: Dynamics, without: tuple[str, ...] = ()) -> Problem:
+    """A mistaken copy: the author's tests and mistakes dropped, static friction an unknown
+    force without its bound (a student with a mistaken model does not check it), and the
+    objectives that call a function in ``without`` left out (the mistake is not theirs)."""
+    reactions = dynamics.reactions + tuple(
+        Reaction(f.name, f.directions, (Act(f.on, f.at),), f.where)
+        for f in dynamics.friction if isinstance(f, StaticFriction))
+    friction = tuple(f for f in dynamics.friction if not isinstance(f, StaticFriction))
+    objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives
+                       if not any(next(_calls(o.find.node, f), None) for f in without))
+    return replace(problem, objectives=objectives, warnings=(),
+                   dynamics=replace(dynamics, reactions=reactions, friction=friction))
+
+
+def _mass(body: Body) -> str:
+    return " + ".join(f"({p.mass.text})" for p in body.parts)
+
+
+def _weight(body: Body, gravity: Expr) -> Expr:
+    return _expr(f"({_mass(body)})*mag({gravity.text})")
+
+
+def _zero(model: Model, vector: Vector) -> bool:
+    return all(identically_zero(model.plain(c)) for c in vector.to_matrix(model.inertial))
+
+
+def _rewrite(node: Node, change: Callable[[Node], Node | None]) -> Node:
+    """``node`` with every sub-tree ``change`` gives a replacement for replaced."""
+    new = change(node)
+    if new is not None:
+        return new
+    if isinstance(node, Bin):
+        return Bin(node.op, _rewrite(node.left, change), _rewrite(node.right, change))
+    if isinstance(node, Unary):
+        return Unary(node.op, _rewrite(node.operand, change))
+    if isinstance(node, Call):
+        return Call(node.func, tuple(_rewrite(a, change) for a in node.args))
+    return node
+
+
+def _calls(node: Node, func: str) -> Iterator[Call]:
+    if isinstance(node, Call):
+        if node.func == func:
+            yield node
+        for arg in node.args:
+            yield from _calls(arg, func)
+    for child in (getattr(node, "left", None), getattr(node, "right", None),
+                  getattr(node, "operand", None)):
+        if child is not None:
+            yield from _calls(child, func)
+
+
+def _readings(problem: Problem, func: str, name: str, replacement: Node
+              ) -> tuple[tuple[str, Expr], ...]:
+    """Each numeric objective that calls ``func(name, ...)``, read with ``replacement`` there."""
+    out = []
+    for obj in problem.objectives:
+        node = obj.find.node
+        if obj.kind == "symbolic" or not any(c.args[0] == Name(name)
+                                             for c in _calls(node, func)):
+            continue
+        new = _rewrite(node, lambda n: replacement if isinstance(n, Call) and n.func == func
+                       and n.args[0] == Name(name) else None)
+        out.append((obj.id, Expr(to_text(new), new)))
+    return tuple(out)
+
+
+def _rotating(model: Model, body: Body) -> bool:
+    """A rigid body turning about its frame's z axis only (planar rotation)."""
+    if body.frame is None:
+        return False
+    omega = model.frames[body.frame].ang_vel_in(model.inertial)
+    x, y, z = (model.plain(c) for c in omega.to_matrix(model.frames[body.frame]))
+    return identically_zero(x) and identically_zero(y) and not identically_zero(z)
+
+
+# ---------------------------------------------------------------------------- families
+
+
+def weight_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The gravity load left out of every free-body diagram."""
+    d = problem.dynamics
+    if d.gravity is None:
+        return
+    names = ", ".join(b.name for b in d.bodies)
+    total = _expr(" + ".join(f"({_weight(b, d.gravity).text})" for b in d.bodies))
+    yield DynamicsMutation(
+        "weight_omitted", f"Your value is what the balances give without the weight of {names} "
+        "(m g = {term}): include the gravity load in the free-body diagram.", LOADS,
+        problem=_mistaken(problem, replace(d, gravity=None)), term=total, term_unit="N")
+
+
+def weight_omitted_from_reaction(problem: Problem, model: Model
+                                 ) -> Iterator[DynamicsMutation]:
+    """The weight left out of the force balance that gives the only reaction on a body (a
+    pin's force read as m a_G): the reaction read with the weight added back."""
+    d = problem.dynamics
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    on = {}
+    for load in (*d.reactions, *d.friction):
+        bodies = [a.on for a in load.acts] if isinstance(load, Reaction) else [load.on]
+        for body in bodies:
+            on.setdefault(body, []).append(load)
+    for r in d.reactions:
+        if len(r.acts) != 1 or r.acts[0].on == GROUND or len(on[r.acts[0].on]) != 1:
+            continue
+        body = d.body(r.acts[0].on)
+        weight = _weight(body, d.gravity)
+        replacement = parse(f"force({r.name}) + ({_mass(body)})*({d.gravity.text})",
+                            functions=FUNCTIONS)
+        readings = _readings(problem, "force", r.name, replacement)
+        if readings:
+            yield DynamicsMutation(
+                "weight_omitted", f"Your value leaves the weight of {body.name} (m g = "
+                f"{{term}}) out of the force balance that gives {r.name}: {r.name} + m g = "
+                "m a_G.", BALANCES, readings=readings, term=weight, term_unit="N")
+
+
+def mass_for_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The mass written where the weight m g belongs (the gravity load without its g)."""
+    d = problem.dynamics
+    if d.gravity is None:
+        return
+    unit = _expr(f"({d.gravity.text})/mag({d.gravity.text})")
+    names = ", ".join(b.name for b in d.bodies)
+    its = "its" if len(d.bodies) == 1 else "their"
+    total = _expr(" + ".join(f"({_weight(b, d.gravity).text})" for b in d.bodies))
+    yield DynamicsMutation(
+        "mass_for_weight", f"Your value is what the balances give with the mass of {names} "
+        f"written for {its} weight; the weight is m g = {{term}}: multiply the mass by g.", LOADS,
+        problem=_mistaken(problem, replace(d, gravity=unit)), term=total, term_unit="N")
+
+
+def _pivots(problem: Problem, model: Model, body: Body) -> Iterator[str]:
+    """Points of ``body`` (other than its reference point) whose material point does not move:
+    a pin fixed in the ground, or a contact rolling (or unwinding) on the ground."""
+    N = problem.inertial_frame
+    frame = model.frames[body.frame]
+    omega = frame.ang_vel_in(model.inertial)
+    centre = model.language.point_velocity(Name(body.centre), N)
+    rolling = {c.lhs.node.args[0].args[0].id for c in problem.constraints
+               if c.level == "velocity" and _rolling_on_ground(c, body.frame, N)}
+    for point, position in model.positions.items():
+        offset = position - model.positions[body.centre]
+        if point == body.centre or _zero(model, offset):
+            continue
+        if point in rolling or _zero(model, centre + (omega ^ offset)):
+            yield point
+
+
+def _rolling_on_ground(constraint, frame: str, inertial: str) -> bool:
+    """``vel(coincident(Q, frame), N) = vel(coincident(Q, N), N)``: the body's point Q does
+    not slip on the ground."""
+    lhs, rhs = constraint.lhs.node, constraint.rhs.node
+    return (isinstance(lhs, Call) and lhs.func == "vel" and isinstance(lhs.args[0], Call)
+            and lhs.args[0].func == "coincident" and lhs.args[0].args[1] == Name(frame)
+            and isinstance(rhs, Call) and rhs.func == "vel" and isinstance(rhs.args[0], Call)
+            and rhs.args[0].args[1] == Name(inertial))
+
+
+def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The moment balance about a point that does not move (a pin, a rolling contact) written
+    with the inertia about the mass centre: the parallel-axis term m d^2 missing. Modelled by a
+    massless part carrying -m d^2 about the body's z axis, so I about the pivot is I_G."""
+    d = problem.dynamics
+    if isinstance(d.analysis, Impulse):
+        return
+    for body in d.bodies:
+        if not _rotating(model, body):
+            continue
+        for pivot in _pivots(problem, model, body):
+            offset = f"pos({pivot}, {body.centre})"
+            term = _expr(f"({_mass(body)})*dot({offset}, {offset})")
+            part = Part(_expr("0"), body.centre, Explicit((("zz", _expr(f"-({term.text})")),)),
+                        body.where)
+            bodies = tuple(replace(b, parts=b.parts + (part,)) if b.name == body.name else b
+                           for b in d.bodies)
+            yield DynamicsMutation(
+                "central_inertia_at_pivot", f"Your value uses the moment of inertia of "
+                f"{body.name} about its mass centre {body.centre} for the rotation about "
+                f"{pivot}; about {pivot} it needs the parallel-axis term m d² = {{term}}.",
+                BODIES, problem=_mistaken(problem, replace(d, bodies=bodies),
+                                          without=("ke", "angmom")),
+                term=term, term_unit="kg*m^2")
+
+
+def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """Every kinetic-friction force turned round (along the slip instead of against it)."""
+    d = problem.dynamics
+    kinetic = [f for f in d.friction if isinstance(f, KineticFriction)]
+    if not kinetic:
+        return
+    friction = tuple(replace(f, mu=_expr(f"-({f.mu.text})"))
+                     if isinstance(f, KineticFriction) else f for f in d.friction)
+    names = ", ".join(f.name for f in kinetic)
+    term = _expr(" + ".join(f"mag(force({f.name}))" for f in kinetic))
+    yield DynamicsMutation(
+        "friction_reversed", f"Your value is what the friction {names} (μ N = {{term}}) "
+        "pointing the wrong way gives: kinetic friction opposes the slip velocity.", LOADS,
+        problem=_mistaken(problem, replace(d, friction=friction)), term=term, term_unit="N")
+
+
+def normal_from_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The kinetic friction on a particle taken as μ m g where the normal force is not the
+    weight (an incline): μ times the weight instead of μ N."""
+    d = problem.dynamics
+    if d.gravity is None:
+        return
+    g = model.language.vector(d.gravity)
+    for f in d.friction:
+        if not isinstance(f, KineticFriction) or f.surface not in (GROUND, problem.inertial_frame):
+            continue
+        body = d.body(f.on)
+        normal = d.load(f.normal)
+        if body.frame is not None or _zero(model, g ^ model.language.vector(normal.directions[0])):
+            continue
+        N = problem.inertial_frame
+        force = Force(f.name, f.on, f.at, _expr(
+            f"-({f.mu.text})*({_weight(body, d.gravity).text})*vel({f.at}, {N})"
+            f"/speed({f.at}, {N})"), f.where)
+        friction = tuple(x for x in d.friction if x is not f)
+        yield DynamicsMutation(
+            "normal_from_weight", f"Your value takes the friction {f.name} as μ m g, with the "
+            f"weight in place of the normal force {f.normal} = {{term}}: use μ N.",
+            LOADS, problem=_mistaken(problem, replace(d, friction=friction,
+                                                      forces=d.forces + (force,))),
+            term=_expr(f"mag(force({f.normal}))"), term_unit="N")
+
+
+def weight_transfer_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The friction forces of a body that does not turn, on two or more contacts, taken to act
+    at its mass centre: their moment, which shifts load between the contacts, left out."""
+    d = problem.dynamics
+    for body in d.bodies:
+        if body.frame is None or not _zero(model, model.frames[body.frame].ang_vel_in(
+                model.inertial)):
+            continue
+        kinetic = [f for f in d.friction if isinstance(f, KineticFriction) and f.on == body.name
+                   and f.at != body.centre]
+        if len(kinetic) < 2:
+            continue
+        friction = tuple(replace(f, at=body.centre) if f in kinetic else f for f in d.friction)
+        names = ", ".join(f.normal for f in kinetic)
+        term = _expr("mag(" + " + ".join(f"moment({f.name}, {body.centre})" for f in kinetic)
+                     + ")")
+        yield DynamicsMutation(
+            "weight_transfer_ignored", f"Your value ignores the weight transfer: the friction "
+            f"forces act below the mass centre {body.centre}, and their moment about it = "
+            f"{{term}} shifts load between {names}.", BALANCES,
+            problem=_mistaken(problem, replace(d, friction=friction)), term=term,
+            term_unit="N*m")
+
+
+def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A string pulling two bodies (an Atwood machine) taken to pull with the weight of one of
+    them, and the other body's balance written with it alone."""
+    d = problem.dynamics
+    if d.gravity is None:
+        return
+    for r in d.reactions:
+        bodies = [a.on for a in r.acts if a.on != GROUND]
+        if len(r.directions) != 1 or len(set(bodies)) < 2:
+            continue
+        for act in r.acts:
+            for other in bodies:
+                if other == act.on:
+                    continue
+                weight = _weight(d.body(other), d.gravity)
+                force = Force(r.name, act.on, act.at, _expr(
+                    f"{act.sign}*({weight.text})*({r.directions[0].text})"), r.where)
+                changed = replace(d, bodies=(d.body(act.on),), forces=d.forces + (force,),
+                                  reactions=tuple(x for x in d.reactions if x is not r))
+                yield DynamicsMutation(
+                    "tension_as_weight", f"Your value takes the tension {r.name} equal to the "
+                    f"weight of {other} (m g = {{term}}) in the balance of {act.on}: the bodies "
+                    "accelerate, so the tension is not a weight; solve for it.", LOADS,
+                    problem=_mistaken(problem, changed), term=weight, term_unit="N")
+
+
+def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A reaction along the vertical (a string, a floor) or pressing a friction contact read as
+    the weight m g of a body it acts on, as if the body did not accelerate."""
+    d = problem.dynamics
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    g = model.language.vector(d.gravity)
+    normals = {f.normal for f in d.friction}
+    for r in d.reactions:
+        if len(r.directions) != 1:
+            continue
+        direction = r.directions[0]
+        if r.name not in normals and not _zero(model, g ^ model.language.vector(direction)):
+            continue
+        for name in dict.fromkeys(a.on for a in r.acts if a.on != GROUND):
+            weight = _weight(d.body(name), d.gravity)
+            replacement = parse(f"({weight.text})*({direction.text})", functions=FUNCTIONS)
+            readings = _readings(problem, "force", r.name, replacement)
+            if readings:
+                yield DynamicsMutation(
+                    "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
+                    f"{name}, m g = {{term}}; {r.name} comes from the momentum balance along "
+                    "its direction, where the other forces and the acceleration count too.",
+                    BALANCES, readings=readings,
+                    term=weight, term_unit="N")
+
+
+def rotational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The rotational kinetic energy ½ ω·I_G·ω of a rigid body left out: in an energy
+    objective, and in the work-energy balance that fixes the rates."""
+    d = problem.dynamics
+    N = problem.inertial_frame
+    for body in d.bodies:
+        if not _rotating(model, body) or any(p.at != body.centre for p in body.parts):
+            continue
+        translational = f"dot(momentum({body.name}, {N}), vel({body.centre}, {N}))/2"
+        term = _expr(f"ke({body.name}, {N}) - {translational}")
+        sentence = (f"Your value leaves out the rotational kinetic energy ½ I_G ω² = {{term}} "
+                    f"of {body.name}: a rigid body's kinetic energy is ½ m v_G² + ½ I_G ω².")
+        readings = _readings(problem, "ke", body.name,
+                             parse(translational, functions=FUNCTIONS))
+        if readings:
+            yield DynamicsMutation("rotational_ke_omitted", sentence, OBJECTIVES,
+                                   readings=readings, term=term, term_unit="J")
+        if isinstance(d.analysis, WorkEnergy):
+            bodies = tuple(replace(b, parts=tuple(replace(p, shape=None) for p in b.parts))
+                           if b.name == body.name else b for b in d.bodies)
+            yield DynamicsMutation("rotational_ke_omitted", sentence, BODIES,
+                                   problem=_mistaken(problem, replace(d, bodies=bodies)),
+                                   term=term, term_unit="J")
+
+
+def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact with the coefficient of restitution replaced by 1 (perfectly elastic) or 0
+    (the bodies stay together)."""
+    d = problem.dynamics
+    if not isinstance(d.analysis, Impulse):
+        return
+    for i, c in enumerate(d.analysis.contacts):
+        if not isinstance(c, Restitution):
+            continue
+        for e, kind in (("1", "a perfectly elastic impact (e = 1)"),
+                        ("0", "a perfectly plastic impact (e = 0)")):
+            contacts = tuple(replace(x, e=_expr(e)) if j == i else x
+                             for j, x in enumerate(d.analysis.contacts))
+            changed = replace(d, analysis=replace(d.analysis, contacts=contacts))
+            yield DynamicsMutation(
+                "restitution_ignored", f"Your value is what {kind} at {c.at} gives; the "
+                f"coefficient of restitution is e = {{term}}: use it in the contact condition.",
+                BALANCES, problem=_mistaken(problem, changed), term=c.e)
+
+
+# each shape: its moment of inertia about its axis (coefficient of m r², as written), and the
+# shapes its inertia is typically taken from instead
+_SHAPES = {Sphere: ("a solid sphere", "2/5"), Shell: ("a thin spherical shell", "2/3"),
+           Disk: ("a uniform disk", "1/2"), Ring: ("a thin ring", "1")}
+_CONFUSED_SHAPES = {Sphere: (Shell, Disk), Shell: (Sphere,), Disk: (Ring,), Ring: (Disk,)}
+
+
+def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A rigid body's moment of inertia taken from another shape's formula: a solid sphere's
+    from a shell's or a disk's, a disk's from a ring's (every part of that shape and size)."""
+    d = problem.dynamics
+    for body in d.bodies:
+        if not _rotating(model, body):
+            continue
+        kinds = dict.fromkeys((type(p.shape), p.shape.radius.text) for p in body.parts
+                              if type(p.shape) in _SHAPES)
+        for kind, radius in kinds:
+            for shape in _CONFUSED_SHAPES[kind]:
+                mine = [type(p.shape) is kind and p.shape.radius.text == radius
+                        for p in body.parts]
+                parts = tuple(replace(p, shape=_reshaped(p.shape, shape)) if same else p
+                              for p, same in zip(body.parts, mine))
+                bodies = tuple(replace(b, parts=parts) if b.name == body.name else b
+                               for b in d.bodies)
+                own, coefficient = _SHAPES[kind]
+                other, mistaken = _SHAPES[shape]
+                mass = " + ".join(f"({p.mass.text})" for p, same in zip(body.parts, mine)
+                                  if same)
+                yield DynamicsMutation(
+                    "other_shape_inertia", f"Your value uses the moment of inertia of {other} "
+                    f"({_times(mistaken)}m r²) for {own} of radius {radius}: its moment of "
+                    f"inertia is {_times(coefficient)}m r² = {{term}}.", BODIES,
+                    problem=_mistaken(problem, replace(d, bodies=bodies),
+                                      without=("ke", "angmom")),
+                    term=_expr(f"({coefficient})*({mass})*({radius})^2"), term_unit="kg*m^2")
+
+
+def _reshaped(shape, kind):
+    if kind in (Disk, Ring):
+        return kind(shape.radius, getattr(shape, "axis", "z"))
+    return kind(shape.radius)
+
+
+def _times(coefficient: str) -> str:
+    return "" if coefficient == "1" else f"{coefficient} "
+
+
+def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A spring's force (and energy) taken from its whole length, k l, instead of its
+    stretch k (l - l0): the free length left out."""
+    d = problem.dynamics
+    for spring in d.springs:
+        if identically_zero(model.plain(model.language.scalar(spring.length))):
+            continue
+        springs = tuple(replace(s, length=_expr("0")) if s is spring else s for s in d.springs)
+        yield DynamicsMutation(
+            "spring_free_length_omitted", f"Your value takes the force of spring {spring.name} "
+            f"from its whole length instead of its stretch: subtract the free length "
+            f"{spring.length.text} = {{term}}.", LOADS,
+            problem=_mistaken(problem, replace(d, springs=springs)),
+            term=spring.length, term_unit="m")
+
+
+FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
+    weight_omitted, weight_omitted_from_reaction, mass_for_weight, central_inertia_at_pivot,
+    friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
+    reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
+    spring_free_length_omitted)
+"""The dynamics mistake families, in the order their mutants are tried (the first of two
+equal values names it)."""
+
+CODES = ("weight_omitted", "mass_for_weight", "central_inertia_at_pivot", "friction_reversed",
+         "normal_from_weight", "weight_transfer_ignored", "tension_as_weight",
+         "reaction_as_weight", "rotational_ke_omitted", "restitution_ignored",
+         "other_shape_inertia", "spring_free_length_omitted")
+"""Family codes of the dynamics mutations (keys of an assignment's ``partial_credit``)."""

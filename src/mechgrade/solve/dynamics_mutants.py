@@ -1,0 +1,233 @@
+"""The values typical mistakes of kinetics give, for the grader to name them.
+
+Three sources, all applied to the model and never to the answer: the mistaken models of
+:mod:`mechgrade.mechanics.dynamics_mutations` (the weight left out, the inertia about the mass
+centre used at a pivot, friction turned round...), each solved again like the problem; the
+mistaken readings of objectives (a reaction read as a weight), read in the right model; and
+mistaken givens (an angle in degrees used as radians, a rate's sign flipped, a length in the
+wrong unit), for which the problem is solved again with the given changed.
+
+Solving the mistaken models costs from tens of milliseconds to seconds (an integration to an
+event, an inverse design), and most answers are right: a solution's generated mistakes are
+worked out, for all its objectives at once, the first time one of them is looked at
+(:class:`LazyMistakes`), and kept for the same problem and givens.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.solve import solve
+>>> result = solve(load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+...               ).result("alpha")
+>>> [(m.code, round(m.value, 2)) for m in result.generated_mistakes][:3]
+[('mass_for_weight', -0.8), ('central_inertia_at_pivot', -31.53), ('given_deg_as_rad', -9.14)]
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Sequence
+from dataclasses import replace
+from functools import lru_cache
+from typing import Mapping
+
+import numpy as np
+import sympy as sp
+
+from ..errors import MechgradeError
+from ..expressions.syntax import Name
+from ..mechanics.dynamics_mutations import DynamicsMutation, dynamics_mutations
+from ..mechanics.symbols import identically_zero
+from ..spec.model import Objective, Problem
+from .dynamics import solve_dynamics
+from .instant import instant_givens
+from .mutants import _slips, attach, plausible_slips
+from .result import GeneratedMistake, Solution
+
+# a mistaken model is no mistake where it cannot be solved (no motion, an event that never
+# happens, a division by zero): sympy and numpy raise more than MechgradeError there
+_UNSOLVABLE = (MechgradeError, ArithmeticError, ValueError, TypeError, KeyError)
+
+
+def with_generated_mistakes(problem: Problem, solution: Solution,
+                            givens: Mapping[str, float | None] | None = None) -> Solution:
+    """``solution`` (of a problem with bodies and loads) with the generated mistakes of its
+    objectives attached (worked out when first looked at: values for the numeric ones,
+    expressions for the symbolic ones), and the whole-answer slips its model makes
+    plausible."""
+    plausible = plausible_slips(problem)
+    pending = _Pending(problem, tuple(sorted((givens or {}).items())), solution.results)
+    return replace(solution, results=tuple(
+        replace(r, plausible=plausible, generated_mistakes=LazyMistakes(pending, r.id))
+        for r in solution.results))
+
+
+class _Pending:
+    """The generated mistakes of one solve, worked out once when first asked for."""
+
+    def __init__(self, problem: Problem, givens: tuple, results: tuple):
+        self.problem, self.givens, self.results = problem, givens, results
+        self.found: dict | None = None
+
+    def get(self) -> dict:
+        if self.found is None:
+            self.found = _generated(self.problem, self.givens, self.results)
+        return self.found
+
+
+@lru_cache(maxsize=256)
+def _generated(problem: Problem, givens: tuple, results: tuple) -> dict:
+    """Objective id -> its generated mistakes (those equal to the answer, or to an earlier
+    one, or a zero, dropped)."""
+    overrides = dict(givens)
+    numeric = {r.id: r for r in results if r.value is not None}
+    mutations = dynamics_mutations(problem)
+    # a mistaken model's numerical troubles (an inverse design that does not converge) are
+    # nobody's to fix
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        found = [_model_mistakes(problem, mutations, overrides, set(numeric)),
+                 given_mistakes(problem, overrides, set(numeric))] if numeric else []
+        symbolic = _symbolic_mistakes(mutations, overrides,
+                                      [r for r in results if r.expr is not None])
+    attached = attach(numeric, found, None)
+    out = {r.id: () for r in results}
+    out.update({oid: r.generated_mistakes for oid, r in attached.items()})
+    out.update(symbolic)
+    return out
+
+
+def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results: list
+                       ) -> dict[str, tuple[GeneratedMistake, ...]]:
+    """Each mistaken model's symbolic answers, in the objectives' own symbols (those
+    equivalent to the answer or to an earlier one dropped)."""
+    if not results:
+        return {}
+    kept = {r.id: [_expression(r.expr, r.symbols)] for r in results}
+    out: dict[str, list[GeneratedMistake]] = {r.id: [] for r in results}
+    for m in mutations:
+        ids = set(kept) & {o.id for o in m.problem.objectives} if m.problem else set()
+        if not ids:
+            continue
+        try:
+            solved = solve_dynamics(m.problem, givens=givens, objectives=ids)
+        except _UNSOLVABLE:
+            continue
+        for r in solved.results:
+            expr = _expression(r.expr, r.symbols) if r.expr else None
+            # a zero is what many mistakes give (the weight left out of a fall): no name
+            if expr is None or expr.has(sp.zoo, sp.nan, sp.oo) or identically_zero(expr) \
+                    or any(identically_zero(expr - k) for k in kept[r.id]):
+                continue
+            kept[r.id].append(expr)
+            out[r.id].append(GeneratedMistake(m.code, m.sentence.replace(" = {term}", ""),
+                                              None, r.expr, step=m.step))
+    return {oid: tuple(found) for oid, found in out.items()}
+
+
+def _expression(text: str, symbols: tuple[str, ...]):
+    """The solver's own answer text as a sympy expression (never a student's)."""
+    return sp.sympify(text, locals={name: sp.Symbol(name) for name in symbols})
+
+
+class LazyMistakes(Sequence):
+    """One objective's generated mistakes (a sequence of
+    :class:`~mechgrade.solve.result.GeneratedMistake`), worked out on first use."""
+
+    __slots__ = ("_pending", "_id")
+
+    def __init__(self, pending: _Pending, objective_id: str):
+        self._pending, self._id = pending, objective_id
+
+    def _items(self) -> tuple:
+        return self._pending.get()[self._id]
+
+    def __getitem__(self, index):
+        return self._items()[index]
+
+    def __len__(self) -> int:
+        return len(self._items())
+
+    def __iter__(self):
+        return iter(self._items())
+
+    def __eq__(self, other) -> bool:
+        return tuple(self) == tuple(other) if isinstance(other, Sequence) else NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self._items())
+
+    def __repr__(self) -> str:
+        return repr(self._items())
+
+
+def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], givens,
+                    numeric: set[str]) -> dict[str, list[GeneratedMistake]]:
+    """Each mistaken model solved again, and each mistaken reading read in the right model."""
+    out: dict[str, list[GeneratedMistake]] = {}
+    readings, terms = _read(problem, mutations, givens, numeric)
+    for i, m in enumerate(mutations):
+        sentence = m.sentence.replace("{term}", terms[i]) if i in terms else \
+            m.sentence.replace(" = {term}", "")
+        values = readings.get(i, {})
+        if m.problem is not None:
+            try:
+                solved = solve_dynamics(m.problem, givens=givens, objectives=numeric & {
+                    o.id for o in m.problem.objectives})
+            except _UNSOLVABLE:
+                continue
+            values = {r.id: r.value for r in solved.results}
+        for oid, value in values.items():
+            if oid in numeric and value is not None and np.all(np.isfinite(value)):
+                out.setdefault(oid, []).append(GeneratedMistake(m.code, sentence, value,
+                                                                step=m.step))
+    return out
+
+
+def _read(problem: Problem, mutations, givens, numeric: set[str]):
+    """The mistaken readings (mutation index -> objective id -> value) and each mutation's
+    named term as text with its unit (mutation index -> text), read together in the right
+    model: one more solve of the problem."""
+    objectives = [replace(problem.objective(oid), id=f"{oid}~{i}", find=find, expect=None,
+                          mistakes=())
+                  for i, m in enumerate(mutations) for oid, find in m.readings if oid in numeric]
+    objectives += [Objective(f"~{i}", "", m.term, "scalar", m.term_unit)
+                   for i, m in enumerate(mutations) if m.term is not None]
+    readings: dict[int, dict] = {}
+    terms: dict[int, str] = {}
+    try:
+        results = solve_dynamics(replace(problem, objectives=tuple(objectives), warnings=()),
+                                 givens=givens).results if objectives else ()
+    except _UNSOLVABLE:
+        results = ()
+    for result in results:
+        oid, i = result.id.rsplit("~", 1)
+        if oid:
+            readings.setdefault(int(i), {})[oid] = result.value
+        elif np.isfinite(result.value):
+            unit = "" if result.unit in ("", "1") else f" {result.unit}"
+            terms[int(i)] = f"{result.value + 0.0:.4g}{unit}"
+    return readings, terms
+
+
+def given_mistakes(problem: Problem, givens, numeric: set[str]
+                   ) -> dict[str, list[GeneratedMistake]]:
+    """The numeric objectives solved again with each given mistaken in one way (the slips of
+    :func:`mechgrade.solve.mutants.given_mistakes`), anchored to the worked solution's
+    parameters or coordinates."""
+    given_map = instant_givens(problem, givens, {})
+    parameters = {q.name for q in problem.parameters}
+    out: dict[str, list[GeneratedMistake]] = {}
+    for code, changes, sentence in _slips(given_map, parameters):
+        node = given_map[changes[0][0]][0]
+        step = "Parameters" if isinstance(node, Name) and node.id in parameters \
+            else "Coordinates"
+        changed = dict(givens or {})
+        changed.update(dict(changes))
+        try:
+            solved = solve_dynamics(problem, givens=changed, objectives=numeric)
+        except _UNSOLVABLE:
+            continue
+        for result in solved.results:
+            if result.value is not None and np.all(np.isfinite(result.value)):
+                out.setdefault(result.id, []).append(GeneratedMistake(
+                    code, sentence, result.value, step=step))
+    return out

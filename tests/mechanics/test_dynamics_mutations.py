@@ -1,0 +1,173 @@
+"""Mistakes of kinetics applied to the model: only where the model has the ingredient, each
+named with its term's value and the step of the worked solution where it happens."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from functools import lru_cache
+
+import pytest
+
+from mechgrade.check import separation_findings
+from mechgrade.grade.compare import assess
+from mechgrade.grade.diagnose import GENERATED_CODES, LABELS
+from mechgrade.mechanics.dynamics import kinetics_derivation
+from mechgrade.mechanics.dynamics_mutations import CODES, FAMILIES, dynamics_mutations
+from mechgrade.resources import shipped_dir
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem
+from mechgrade.spec.model import Tolerance
+
+DYNAMICS = sorted(p.stem for p in shipped_dir("problems").glob("*.yaml")
+                  if load_problem(p).dynamics is not None)
+
+
+def _problem(name):
+    return load_problem(shipped_dir("problems") / f"{name}.yaml")
+
+
+@lru_cache(maxsize=None)
+def _solution(name):
+    return solve(_problem(name))
+
+
+def _codes(name):
+    return {m.code for m in dynamics_mutations(_problem(name))}
+
+
+def _generated(name, objective, code):
+    return [m for m in _solution(name).result(objective).generated_mistakes if m.code == code]
+
+
+def test_every_family_is_registered_once_and_every_code_has_a_label():
+    assert len(set(FAMILIES)) == len(FAMILIES) and len(set(CODES)) == len(CODES)
+    assert set(CODES) <= set(GENERATED_CODES) and set(CODES) <= set(LABELS)
+    found = {m.code for name in DYNAMICS for m in dynamics_mutations(_problem(name))}
+    assert found == set(CODES)
+
+
+def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
+    # no gravity load: no weight mistakes; no friction: no friction mistakes
+    assert not _codes("rod_strikes_ledge") & {"weight_omitted", "mass_for_weight",
+                                              "friction_reversed"}
+    assert _codes("rod_strikes_ledge") == {"restitution_ignored"}
+    # a pin: the parallel-axis term; no pin, no rolling contact (a sliding ladder): none
+    assert "central_inertia_at_pivot" in _codes("pendulum_pin_reaction")
+    assert "central_inertia_at_pivot" not in _codes("ruina_9_19_falling_ladder")
+    # a string over a pulley between two bodies: the tension taken as a weight
+    assert "tension_as_weight" in _codes("atwood_machine")
+    assert "tension_as_weight" not in _codes("yo_yo_unwinding")
+    # a body that does not turn, braking on two contacts: the weight transfer
+    assert "weight_transfer_ignored" in _codes("car_braking_weight_transfer")
+    assert "normal_from_weight" in _codes("block_sliding_down_incline")
+    assert "normal_from_weight" not in _codes("car_braking_weight_transfer")
+    assert not dynamics_mutations(_problem("bowling_3_15_4_pendulum"))
+
+
+def test_the_mistaken_model_is_a_copy():
+    problem = _problem("pendulum_pin_reaction")
+    mutated = next(m.problem for m in dynamics_mutations(problem) if m.code == "weight_omitted")
+    assert problem.dynamics.gravity is not None and mutated.dynamics.gravity is None
+    assert mutated.frames == problem.frames and mutated.points == problem.points
+
+
+@pytest.mark.parametrize("name", DYNAMICS)
+def test_every_mistake_is_anchored_to_a_step_of_the_worked_solution(name):
+    problem = _problem(name)
+    sections = {section for section, _ in kinetics_derivation(problem)}
+    assert all(m.step in sections for m in dynamics_mutations(problem))
+
+
+def test_the_parallel_axis_mistake_is_named_with_its_term():
+    (mistake,) = _generated("pendulum_pin_reaction", "alpha", "central_inertia_at_pivot")
+    # I_G alpha = -m g L/2 sin(theta): alpha = -6 g sin(40 deg)/L
+    assert mistake.value == pytest.approx(-31.52873, rel=1e-5)
+    assert "about its mass centre G" in mistake.message \
+        and "m d² = 0.72 kg*m^2" in mistake.message
+    assert mistake.step == "Bodies"
+    (slip,) = _generated("pendulum_pin_reaction", "alpha", "given_deg_as_rad")
+    assert slip.step == "Coordinates"
+
+
+def test_friction_turned_round_and_the_normal_force_taken_as_the_weight():
+    (reversed_,) = _generated("block_sliding_down_incline", "accel", "friction_reversed")
+    (weight,) = _generated("block_sliding_down_incline", "accel", "normal_from_weight")
+    assert reversed_.value == pytest.approx(9.81 * (0.5 + 0.25 * 3 ** 0.5 / 2))
+    assert weight.value == pytest.approx(9.81 * (0.5 - 0.25))
+    assert "μ N = 8.496 N" in reversed_.message and "N_P = 33.98 N" in weight.message
+
+
+def test_the_weight_left_out_of_the_force_balance_of_a_pin():
+    mistakes = _generated("pendulum_pin_reaction", "pin_force", "weight_omitted")
+    # R_O = m a_G - m g: without the weight, m a_G, with the right angular acceleration
+    assert any(m.value == pytest.approx((-14.18783, 2.19340, 0.0), rel=1e-5)
+               and "out of the force balance that gives R_O" in m.message for m in mistakes)
+
+
+def test_a_reaction_read_as_the_weight_is_read_in_the_right_model():
+    (floor,) = _generated("ladder_wall_lift_off", "floor_reaction", "reaction_as_weight")
+    assert floor.value == pytest.approx(12 * 9.81)
+
+
+def test_restitution_replaced_by_one_and_by_zero():
+    values = sorted(m.value for m in _generated("rod_strikes_ledge", "omega_after",
+                                                "restitution_ignored"))
+    assert values == pytest.approx([-10.0, -5.0])
+
+
+def test_a_mistake_that_changes_nothing_here_is_no_mistake():
+    # g = 1 m/s^2 in the problem: the mass is the weight, so the slip gives the answer
+    assert "mass_for_weight" in _codes("ruina_9_20_ladder_energy")
+    assert not _generated("ruina_9_20_ladder_energy", "vG_over_sqrt_gL", "mass_for_weight")
+
+
+def test_a_student_making_the_mistake_is_told_so():
+    judged = assess("6.54 m/s^2", _solution("atwood_machine").result("a1"))
+    assert judged.verdict != "correct" and judged.diagnosis == LABELS["tension_as_weight"]
+    assert "weight of block2 (m g = 49.05 N)" in judged.feedback
+
+
+def test_a_given_slip_that_is_also_a_factor_names_only_the_factor():
+    # m1 = 2 m2: block 2's kinetic energy with the masses exchanged is m2 v2^2, twice it
+    result = _solution("two_mass_spring_chain").result("ke2")
+    assert any(m.code == "given_swap" and m.value == pytest.approx(0.04)
+               for m in result.generated_mistakes)
+    assert assess("0.04 J", result).diagnosis == "factor of 2"
+
+
+def test_check_reports_a_dynamics_mistake_inside_the_tolerance():
+    problem = _problem("atwood_machine")
+    wide = replace(problem, objectives=tuple(
+        replace(o, tolerance=Tolerance(rel=0.3)) if o.id == "tension" else o
+        for o in problem.objectives))
+    findings = [w.message for w in separation_findings(wide, solve(wide))]
+    # m1 g is 20 % below the tension: half of that separates them
+    assert any("'tension'" in f and "tension_as_weight gives 29.43" in f
+               and "{rel: 0.1}" in f for f in findings), findings
+
+
+def test_generated_mistakes_are_worked_out_only_when_looked_at():
+    from mechgrade.solve import dynamics_mutants
+
+    problem = _problem("pendulum_pin_reaction")
+    givens = {"theta'": 2.5}
+    before = dynamics_mutants._generated.cache_info().misses
+    solution = solve(problem, givens=givens)
+    assert dynamics_mutants._generated.cache_info().misses == before
+    mistakes = solution.result("alpha").generated_mistakes
+    assert any(m.code == "central_inertia_at_pivot" for m in mistakes)
+    assert dynamics_mutants._generated.cache_info().misses == before + 1
+    # the same problem and givens again: kept
+    assert tuple(solve(problem, givens=givens).result("alpha").generated_mistakes) \
+        == tuple(mistakes)
+    assert dynamics_mutants._generated.cache_info().misses == before + 1
+
+
+def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
+    import pickle
+
+    solution = solve(_problem("rod_strikes_ledge"))
+    copy = pickle.loads(pickle.dumps(solution))
+    assert copy == solution
+    assert [m.code for m in copy.result("vG_after").generated_mistakes] \
+        == ["restitution_ignored", "restitution_ignored"]
