@@ -112,3 +112,9 @@ def test_revolutions_are_written_rev():
     assert normalize_unit("rev/s") == "revolution / s"
     assert to_si(0.69, "rev/s") == pytest.approx(0.69 * 2 * math.pi)
     assert to_si(41.4, "rev/min") == pytest.approx(to_si(41.4, "rpm"))
+
+
+def test_pound_mass_is_written_lbm():
+    assert normalize_unit("lbm") == "pound"
+    assert to_si(20, "lbm") == pytest.approx(20 * 0.45359237)
+    assert to_si(1, "lbm*ft/s") == pytest.approx(0.45359237 * 0.3048)

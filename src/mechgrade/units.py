@@ -232,8 +232,8 @@ def _exponent(text: str, raw: str) -> str:
     return str(value)
 
 
-_STUDENT_NAMES = {"rev": "revolution"}
-"""Unit names students write that pint spells otherwise (``rev/s``, ``rev/min``)."""
+_STUDENT_NAMES = {"rev": "revolution", "lbm": "pound"}
+"""Unit names students write that pint spells otherwise (``rev/s``, ``rev/min``, ``lbm``)."""
 
 
 @lru_cache(maxsize=1024)

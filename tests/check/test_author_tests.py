@@ -15,9 +15,10 @@ BASE = (Path(__file__).resolve().parents[1] / "data" / "spec" / "base.yaml").rea
 
 @pytest.mark.parametrize("text, tolerance", [
     ("98.51", 0.005), ("7", 0.5), ("-3.0", 0.05), ("0.0025", 0.00005), ("1.5e3", 50.0),
-    ("2.0E-3", 0.00005), ("5.00368", 5.00368e-4), ("-89.8705", 89.8705e-4), ("12345", 1.2345),
+    ("2.0E-3", 0.00005), ("5.00368", 5.00368e-5), ("-89.8705", 89.8705e-5), ("12345", 0.5),
+    ("41.036426", 41.036426e-5),
 ])
-def test_written_tolerance_is_half_the_last_digit_or_1e_4(text, tolerance):
+def test_written_tolerance_is_half_the_last_digit_and_at_least_1e_5(text, tolerance):
     assert written_tolerance(text) == pytest.approx(tolerance)
 
 
@@ -35,8 +36,9 @@ def outcome(tmp_path, expect: str, **result):
     ("{value: 98.51}", 98.5151, False),
     ("{value: 98.51}", 98.5049, False),
     ("{value: 98.510}", 98.5200, False),
-    ("{value: 5.00368}", 5.0040, True),
-    ("{value: 5.00368}", 5.0042, False),
+    ("{value: 5.00368}", 5.00372, True),
+    ("{value: 5.00368}", 5.0040, False),
+    ("{value: 2.78112}", 2.78107, False),  # a typo in the fifth digit is caught
     ("{value: 0}", 1e-12, True),
     ("{value: 0}", 1e-3, False),
     ("{value: 9.85, unit: cm/s}", 0.09854, True),

@@ -53,8 +53,8 @@ def test_every_student_has_the_status_and_score_worked_out_by_hand(graded):
     assert [(s["id"], s["status"], s["score"], s["max_score"]) for s in results["students"]] == [
         ("ana_alvarez", "graded", 34.0, 34.0),    # all right: g0, lbf, cm/s^2, kN, cw, deg/s^2, mJ
         ("ben_okafor", "graded", 31.0, 34.0),     # friction along N's unit vectors (-3)
-        ("carla_diaz", "graded", 5.25, 34.0),
-        ("dan_wu", "graded", 10.5, 34.0),
+        ("carla_diaz", "graded", 6.5, 34.0),
+        ("dan_wu", "graded", 9.0, 34.0),        # friction reversed: no sign credit
         ("erin_park", "graded", 32.0, 34.0),      # only (a) lost: (c), (d) by ECF
         ("femi_adeyemi", "graded", 14.0, 34.0),
         ("gus_schmidt", "graded", 29.5, 34.0),    # three sign errors at half credit
@@ -65,26 +65,33 @@ def test_every_student_has_the_status_and_score_worked_out_by_hand(graded):
 
 
 # (student, objective): (verdict, points, diagnosis) of every answer that is not plainly right.
-# None where no diagnosis is known yet: a tension taken equal to a weight, friction reversed,
-# N = m g on a slope, the weight left out of a pin force, the parallel-axis term left out.
+# None where no diagnosis is known: a1 = 0 from a tension taken equal to a weight, Erin's omega.
+CENTRAL_AT_PIVOT = "inertia about the mass centre used at the pivot"
 NOT_PLAINLY_RIGHT = {
     ("ben_okafor", "block_sliding_down_incline.friction"): ("incorrect", 0.0, "wrong frame"),
     ("carla_diaz", "atwood_machine.a1"): ("incorrect", 0.0, None),
-    ("carla_diaz", "atwood_machine.tension"): ("incorrect", 0.0, None),
-    ("carla_diaz", "atwood_machine.tension_symbolic"): ("incorrect", 0.0, "wrong dimension"),
+    ("carla_diaz", "atwood_machine.tension"): ("incorrect", 0.0,
+                                            "tension taken equal to a weight"),
+    ("carla_diaz", "atwood_machine.tension_symbolic"): ("partial", 0.75,
+                                                     "mass used for the weight"),
     ("carla_diaz", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
-    ("carla_diaz", "block_sliding_down_incline.normal"): ("partial", 0.5, "factor of g"),
-    ("carla_diaz", "block_sliding_down_incline.friction"): ("partial", 0.75, "factor of g"),
-    ("carla_diaz", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0,
-                                                                  "wrong dimension"),
+    ("carla_diaz", "block_sliding_down_incline.normal"): ("partial", 0.5,
+                                                       "mass used for the weight"),
+    ("carla_diaz", "block_sliding_down_incline.friction"): ("partial", 0.75,
+                                                         "mass used for the weight"),
+    ("carla_diaz", "block_sliding_down_incline.accel_symbolic"): ("partial", 0.5,
+                                                                  "mass used for the weight"),
     ("carla_diaz", "pendulum_release.eom"): ("incorrect", 0.0, "number typed for g"),
-    ("dan_wu", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
-    ("dan_wu", "block_sliding_down_incline.friction"): ("partial", 1.5, "sign error"),
-    ("dan_wu", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0, None),
-    ("dan_wu", "pendulum_release.omega"): ("incorrect", 0.0, "factor of 2"),
-    ("dan_wu", "pendulum_release.alpha"): ("incorrect", 0.0, None),
-    ("dan_wu", "pendulum_release.pin_force"): ("incorrect", 0.0, None),
-    ("dan_wu", "pendulum_release.eom"): ("incorrect", 0.0, None),
+    ("dan_wu", "block_sliding_down_incline.accel"): ("incorrect", 0.0,
+                                                   "friction in the wrong direction"),
+    ("dan_wu", "block_sliding_down_incline.friction"): ("incorrect", 0.0,
+                                                      "friction in the wrong direction"),
+    ("dan_wu", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0,
+                                                            "friction in the wrong direction"),
+    ("dan_wu", "pendulum_release.omega"): ("incorrect", 0.0, CENTRAL_AT_PIVOT),
+    ("dan_wu", "pendulum_release.alpha"): ("incorrect", 0.0, CENTRAL_AT_PIVOT),
+    ("dan_wu", "pendulum_release.pin_force"): ("incorrect", 0.0, CENTRAL_AT_PIVOT),
+    ("dan_wu", "pendulum_release.eom"): ("incorrect", 0.0, CENTRAL_AT_PIVOT),
     ("dan_wu", "two_mass_spring_chain.spring1_energy"): ("incorrect", 0.0, "factor of 2"),
     ("dan_wu", "two_mass_spring_chain.ke2"): ("incorrect", 0.0, "factor of 2"),
     ("dan_wu", "two_mass_spring_chain.damper_power"): ("partial", 1.0, "sign error"),
@@ -94,11 +101,13 @@ NOT_PLAINLY_RIGHT = {
     ("femi_adeyemi", "atwood_machine.a1"): ("incorrect", 0.0, "wrong dimension"),
     ("femi_adeyemi", "atwood_machine.tension"): ("partial", 1.0, "missing unit"),
     ("femi_adeyemi", "atwood_machine.tension_symbolic"): ("incorrect", 0.0, "wrong dimension"),
-    ("femi_adeyemi", "block_sliding_down_incline.normal"): ("incorrect", 0.0, None),
+    ("femi_adeyemi", "block_sliding_down_incline.normal"): ("incorrect", 0.0,
+                                                          "reaction taken equal to the weight"),
     ("femi_adeyemi", "block_sliding_down_incline.friction"): ("incorrect", 0.0,
-                                                              "wrong magnitude"),
-    ("femi_adeyemi", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0, None),
-    ("femi_adeyemi", "pendulum_release.pin_force"): ("incorrect", 0.0, None),
+                                                              "normal force taken as the weight"),
+    ("femi_adeyemi", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0,
+                                                                  "normal force taken as the weight"),
+    ("femi_adeyemi", "pendulum_release.pin_force"): ("incorrect", 0.0, "weight left out"),
     ("femi_adeyemi", "two_mass_spring_chain.ke2"): ("incorrect", 0.0, "wrong dimension"),
     ("gus_schmidt", "atwood_machine.a1"): ("partial", 1.0, "sign error"),
     ("gus_schmidt", "block_sliding_down_incline.friction"): ("partial", 1.5, "missing unit"),
@@ -123,19 +132,21 @@ def test_each_mistake_gets_its_verdict_points_and_diagnosis(graded):
     assert found == NOT_PLAINLY_RIGHT
 
 
-def test_dynamics_feedback_names_forces_energies_powers_and_mass_for_weight(graded):
+def test_dynamics_feedback_names_the_mistaken_load_and_the_dimension(graded):
     _, _, results = graded
     carla, femi = answers(results, "carla_diaz"), answers(results, "femi_adeyemi")
     assert carla["block_sliding_down_incline.normal"]["feedback"] == (
-        "Your answer is g times too small: mass used for weight (g left out)?")
+        "Your value is what the balances give with the mass of block written for its weight; "
+        "the weight is m g = 39.24 N: multiply the mass by g.")
     assert carla["atwood_machine.tension_symbolic"]["feedback"] == (
-        "Your expression is a mass ([mass]); a force ([mass] * [length] / [time] ** 2) was "
-        "asked.")
+        "Your value is what the balances give with the mass of block1, block2 written for "
+        "their weight; the weight is m g: multiply the mass by g.")
     assert femi["two_mass_spring_chain.ke2"]["feedback"] == (
         "You gave a power ([mass] * [length] ** 2 / [time] ** 3); an energy or moment "
         "([mass] * [length] ** 2 / [time] ** 2) was asked.")
     assert femi["pendulum_release.pin_force"]["feedback"] == (
-        "The y component is not within 1% of the expected value (x is right).")
+        "Your value leaves the weight of rod (m g = 19.62 N) out of the force balance that "
+        "gives R_O: R_O + m g = m a_G.")
 
 
 def test_ecf_credits_the_pin_force_and_energy_that_follow_from_a_wrong_rate(graded):
@@ -149,6 +160,14 @@ def test_ecf_credits_the_pin_force_and_energy_that_follow_from_a_wrong_rate(grad
     assert dan["pendulum_release.pin_force"]["feedback"].endswith(
         "Also checked with your own answer to omega (error carried forward): it does not "
         "follow from it either.")
+
+
+def test_a_student_credited_by_ecf_reads_why_on_the_feedback_page(graded):
+    _, out, _ = graded
+    for page in sorted((out / "feedback").glob("erin_park*")):
+        text = page.read_text(encoding="utf-8")
+        assert "Error carried forward: this answer follows correctly from your answer to omega" \
+            in text, page.name
 
 
 def test_right_answers_in_other_units_notations_and_labels_are_read(graded):
@@ -180,6 +199,6 @@ def test_report_and_canvas_export_of_hw3(graded, tmp_path):
     rows = list(csv.reader((tmp_path / "canvas.csv").open(encoding="utf-8")))
     assert rows[1][-1] == "34"
     assert [(row[3], row[-1]) for row in rows[2:]] == [
-        ("ana_alvarez", "34"), ("ben_okafor", "31"), ("carla_diaz", "5.25"), ("dan_wu", "10.5"),
+        ("ana_alvarez", "34"), ("ben_okafor", "31"), ("carla_diaz", "6.5"), ("dan_wu", "9"),
         ("erin_park", "32"), ("femi_adeyemi", "14"), ("gus_schmidt", "29.5"),
         ("hana_kim", "34"), ("ivan_empty", "0"), ("jo_broken", "0")]

@@ -264,19 +264,17 @@ def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutco
 
 def written_tolerance(text: str) -> float:
     """How far a value may be from the number written as ``text``: half a unit in its last
-    digit, or 1e-4 of it when more than four significant digits are written.
+    digit, and never less than 1e-5 of it (a solver's own precision, as in an integration).
+    An author's test is far tighter than a student's: a typo in the fifth digit is caught.
 
     >>> written_tolerance("98.51"), written_tolerance("6"), written_tolerance("1.5e3")
     (0.005, 0.5, 50.0)
-    >>> round(written_tolerance("-89.8705"), 6)
-    0.008987
+    >>> written_tolerance("-89.87"), round(written_tolerance("41.036426"), 9)
+    (0.005, 0.00041036)
     """
     mantissa, _, exponent = text.strip().lstrip("+-").lower().partition("e")
     whole, _, decimals = mantissa.partition(".")
-    significant = (whole + decimals).lstrip("0")
-    if len(significant) > 4:
-        return 1e-4 * abs(float(text))
-    return 0.5 * 10.0 ** (int(exponent or 0) - len(decimals))
+    return max(0.5 * 10.0 ** (int(exponent or 0) - len(decimals)), 1e-5 * abs(float(text)))
 
 
 def _convert(value: float, unit: str | None, target: str) -> float:

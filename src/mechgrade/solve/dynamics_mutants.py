@@ -169,9 +169,11 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
             m.sentence.replace(" = {term}", "")
         values = readings.get(i, {})
         if m.problem is not None:
+            wanted = numeric & {o.id for o in m.problem.objectives}
+            if not wanted:
+                continue
             try:
-                solved = solve_dynamics(m.problem, givens=givens, objectives=numeric & {
-                    o.id for o in m.problem.objectives})
+                solved = solve_dynamics(m.problem, givens=givens, objectives=wanted)
             except _UNSOLVABLE:
                 continue
             values = {r.id: r.value for r in solved.results}
