@@ -21,8 +21,10 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import jsonschema
+if TYPE_CHECKING:
+    import jsonschema
 
 Path = tuple[str | int, ...]
 
@@ -61,6 +63,9 @@ def field_text(path: Path) -> str:
 def schema_problems(schema: dict, data: object) -> tuple[SchemaProblem, ...]:
     """Every violation of ``schema`` by ``data``, in document order (the first is the one to
     report when only one is)."""
+    # imported here: jsonschema takes longer to import than click, and `--help` needs neither
+    import jsonschema
+
     errors = jsonschema.Draft202012Validator(schema).iter_errors(data)
     problems = [explain(err) for err in errors]
     return tuple(sorted(problems, key=lambda p: _order(p.path)))

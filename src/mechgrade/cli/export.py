@@ -10,7 +10,6 @@ from ..errors import ExportError
 from ..files import clean_text
 from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
-from ..report.class_report import write_class_report
 from ..roster import read_roster
 from .common import main, reports_errors
 
@@ -75,6 +74,9 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
 @reports_errors
 def report_command(results_json: Path, out: Path) -> None:
     """Write the class report of RESULTS_JSON as one self-contained HTML file."""
+    # the report's charts need matplotlib and jinja2, which `export` and --help never load
+    from ..report.class_report import write_class_report
+
     report = read_results(results_json)
     write_class_report(report, out)
     click.echo(f"wrote class report of {len(report.students)} students to {out}")

@@ -6,13 +6,9 @@ import json
 
 import click
 
-from ..mechanics import derivation
-from ..mechanics.derivation import derivation_mathml
 from ..files import write_text
-from ..report.picture import picture_svg
-from ..report.worked import steps_html, steps_markdown
+from ..mechanics import derivation
 from ..solve import solve as solve_problem
-from ..solve.picture import scene
 from ..spec import load_problem
 from .common import main, reports_errors
 
@@ -59,11 +55,18 @@ def solve_command(problem_file: str, fmt: str, steps: bool, plot: str | None) ->
     problem = load_problem(problem_file)
     solution = solve_problem(problem)
     if plot:
+        # matplotlib takes longer to import than the rest of the command: only when drawing
+        from ..report.picture import picture_svg
+        from ..solve.picture import scene
+
         write_text(plot, picture_svg(scene(problem, solution)))
     failed = {f.id: f.error for f in solution.failures}
     if fmt == "json":
         click.echo(json.dumps(solution_json(problem, solution), indent=2))
     elif fmt in ("html", "md"):
+        from ..mechanics.derivation import derivation_mathml
+        from ..report.worked import steps_html, steps_markdown
+
         title = f"{problem.id}: {problem.title}"
         sections = derivation(problem, solution.dof)
         lines = _objective_lines(problem, solution, failed)
