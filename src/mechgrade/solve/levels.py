@@ -16,7 +16,9 @@ from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
-from scipy import linalg, optimize
+
+# scipy is imported by the functions that use it: it takes longer to import than a whole
+# `mechgrade check` of most problems, which never needs it.
 
 from ..errors import InconsistentError, Location, SolveError
 from ..expressions.syntax import Name, Prime, to_text
@@ -179,6 +181,8 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
+    from scipy import optimize
+
     level = p.levels[order]
     columns = list(p.index.unknowns(order))
     active, target = rows(level, g)
@@ -403,6 +407,8 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
                  shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
     """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
     ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
+    from scipy import linalg
+
     level = p.levels[order]
     cols = list(p.index.rates(order))
     n = len(cols)
@@ -468,6 +474,8 @@ def constraint_rank(p: Plan, state: State) -> int:
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:
     """Which unknowns the equations determine (pivoted QR), and which stay free."""
+    from scipy import linalg
+
     if J.size == 0:
         return [], list(unknown)
     if not np.isfinite(J).all():
@@ -482,6 +490,8 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
 
 
 def nullspace(A: np.ndarray) -> np.ndarray:
+    from scipy import linalg
+
     if A.shape[0] == 0:
         return np.eye(A.shape[1])
     _, s, vt = linalg.svd(A)
