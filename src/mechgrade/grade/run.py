@@ -87,9 +87,30 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
     if solutions is None:
         from ..solve import solve
 
-        solutions = raise_first(fork_map(outcome, [partial(solve, p) for p in problems],
-                                          jobs=jobs))
+        work = [partial(solve, p, objectives=_needed(p, [o for i, o, _ in chosen if i == index]))
+                for index, p in enumerate(problems)]
+        solutions = raise_first(fork_map(outcome, work, jobs=jobs))
     return _plan(assignment, problems, tuple(solutions), chosen)
+
+
+def _needed(problem: Problem, graded: list[Objective]) -> tuple[str, ...]:
+    """The objectives of ``problem`` grading needs solved: the graded ones and, for error
+    carried forward, those they depend on (deriving the others' mistakes is most of a solve).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_8_connected_blocks.yaml")
+    >>> _needed(p, [p.objective("rod_omega_z"), p.objective("V_A_N")])
+    ('xdot', 'V_A_N', 'rod_omega_z')
+    """
+    needed = {o.id for o in graded}
+    todo = [o.id for o in graded]
+    while todo:
+        for upstream in _objective(problem, todo.pop()).depends_on:
+            if upstream not in needed and _objective(problem, upstream) is not None:
+                needed.add(upstream)
+                todo.append(upstream)
+    return tuple(o.id for o in problem.objectives if o.id in needed)
 
 
 def _load_problems(assignment: Assignment) -> tuple[Problem, ...]:
