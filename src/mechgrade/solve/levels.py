@@ -181,8 +181,6 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
-    from scipy import optimize
-
     level = p.levels[order]
     columns = list(p.index.unknowns(order))
     active, target = rows(level, g)
@@ -243,6 +241,8 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     for k, s in enumerate(starts):
         if not determined:
             break
+        from scipy import optimize
+
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
@@ -407,8 +407,6 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
                  shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
     """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
     ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
-    from scipy import linalg
-
     level = p.levels[order]
     cols = list(p.index.rates(order))
     n = len(cols)
@@ -433,6 +431,8 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
     if unknown:
         A_u = A[:, unknown]
         if len(b):
+            from scipy import linalg
+
             sol, *_ = linalg.lstsq(A_u, rhs)
             null = nullspace(A_u)
         else:
