@@ -1,8 +1,8 @@
 """The grading run: every student's answers against the reference solutions, into a report.
 
-Each problem of the assignment is loaded and solved once; every answer is judged in the bounded
-sandbox (a worker per job, reused for the whole run, answers sent in batches), identical answers
-only once. With several jobs the problems are solved, and the submissions read, in forked
+Each problem of the assignment is loaded and solved once, for the objectives graded and those
+they depend on; every answer is judged in the bounded sandbox (a worker per job, reused for the
+whole run, answers sent in batches), identical answers only once. With several jobs the problems are solved, and the submissions read, in forked
 processes; the report never depends on the number of jobs. Points are the judged
 credit times the objective's points. Every roster student and every submission appears in the
 report with a status, in a fixed order (roster order, then students not on the roster by id),
