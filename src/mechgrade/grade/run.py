@@ -207,6 +207,8 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
         neighbours = NeighbourIndex({pid: p.objectives for pid, (p, _) in own.items()})
     try:
         judge.prefetch(submissions.students)
+        judge.prefetch_carried_forward((own[person.id][0], submission)
+                                       for person, submission in people if submission is not None)
         for done, (person, submission) in enumerate(people, start=1):
             # the student's own references, also for ECF's look-ups
             judge.plan, variants = own[person.id]
@@ -452,9 +454,44 @@ class _Judge:
                             assessment.diagnosis, " ".join(f for f in feedback if f),
                             assessment.read_back, self.expected(item))
 
-    def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
-        """Judge ``text`` again against the reference recomputed from the student's own
-        (wrong) upstream answers; keep the better credit."""
+    def prefetch_carried_forward(self, work: Iterable[tuple[Plan, Submission]]) -> None:
+        """Solve, over the jobs, the re-solves error carried forward will ask for (each
+        student's ``(plan, submission)`` in ``work``), into :meth:`_solve_with`'s cache: they
+        take most of a run's grading time when they are solved one after the other. One not
+        foreseen here (an upstream answer itself carried forward) is solved when asked; a fault
+        of mechgrade's here leaves every one to be solved when asked."""
+        if self._jobs <= 1 or self._resolve is not None or not self.policy.ecf.enabled:
+            return
+        own = self.plan
+        try:
+            requests: dict[tuple, tuple] = {}
+            for plan, submission in work:
+                self.plan = plan  # the student's references, for the upstream look-ups
+                for item in (i for i in plan.objectives if i.objective.depends_on):
+                    text = submission.answer(item.key) if submission.status == "read" else None
+                    judged = self._cache.get((item.result, text))
+                    if judged is None or judged.verdict == "correct":
+                        continue
+                    found = self._upstream_givens(item, submission, {})
+                    if isinstance(found, dict) and found:
+                        givens = {**dict(item.givens), **found}
+                        key = _ecf_key(item.problem, givens, item.objective.id)
+                        if key not in self._ecf_solutions:
+                            requests[key] = (item.problem, givens, item.objective.id)
+            _CARRYING[:] = [self]  # inherited by the forked workers
+            try:
+                solved = fork_map(_solve_carried, list(requests.values()), jobs=self._jobs)
+            finally:
+                _CARRYING.clear()
+            self._ecf_solutions.update(zip(requests, solved))
+        except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
+            pass
+        finally:
+            self.plan = own
+
+    def _upstream_givens(self, item, submission, earlier) -> dict[str, float] | str:
+        """The givens (SI, by given key) the student's wrong upstream answers stand for, or
+        the feedback saying why error carried forward cannot use them."""
         problem = item.problem
         overrides: dict[str, float] = {}
         for upstream_id in item.objective.depends_on:
@@ -481,16 +518,23 @@ class _Judge:
                 continue
             given_key = given_key_of(objective)
             if given_key is None:
-                feedback.append(f"Error carried forward could not be applied: '{upstream_id}' "
-                                f"is not a plain given quantity the solver can take from your "
-                                f"answer.")
-                return verdict, credit
+                return (f"Error carried forward could not be applied: '{upstream_id}' is not a "
+                        f"plain given quantity the solver can take from your answer.")
             value = _si_value(upstream_text, self._reference(problem, upstream_id))
             if value is None:
-                feedback.append(f"Error carried forward could not be applied: your answer to "
-                                f"'{upstream_id}' could not be read as a number.")
-                return verdict, credit
+                return (f"Error carried forward could not be applied: your answer to "
+                        f"'{upstream_id}' could not be read as a number.")
             overrides[given_key] = value
+        return overrides
+
+    def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
+        """Judge ``text`` again against the reference recomputed from the student's own
+        (wrong) upstream answers; keep the better credit."""
+        problem = item.problem
+        overrides = self._upstream_givens(item, submission, earlier)
+        if isinstance(overrides, str):
+            feedback.append(overrides)
+            return verdict, credit
         if not overrides:
             return verdict, credit
         answered = sorted(overrides)
@@ -531,7 +575,7 @@ class _Judge:
         added (x' given while y' fixes it). Then each given of the same derivative order is
         dropped in turn, in spec order, and the first consistent solution is used.
         """
-        key = (problem.id, objective_id, tuple(sorted(overrides.items())))
+        key = _ecf_key(problem, overrides, objective_id)
         if key in self._ecf_solutions:
             return self._ecf_solutions[key]
         outcome = self._attempt(problem, dict(overrides), objective_id), ()
@@ -558,6 +602,18 @@ class _Judge:
             return solve(problem, givens=givens, objectives=(objective_id,))
         except MechgradeError as err:
             return err
+
+
+_CARRYING: list = []
+
+
+def _ecf_key(problem: Problem, givens: dict, objective_id: str) -> tuple:
+    return problem.id, objective_id, tuple(sorted(givens.items()))
+
+
+def _solve_carried(request: tuple) -> tuple:
+    """:meth:`_Judge._solve_with` in a forked worker (see :meth:`_Judge.prefetch_carried_forward`)."""
+    return _CARRYING[0]._solve_with(*request)
 
 
 def _order(key: str) -> int:
