@@ -1,9 +1,10 @@
 """Safe YAML reading that remembers where every value came from.
 
-Documents are composed with PyYAML's safe loader (on libyaml's parser where PyYAML has it, the
-pure-Python one for messages) into plain Python values (dict, list, str, int, float, bool, None); anchors and aliases are refused (no "billion laughs"), duplicate keys
-are an error rather than silently overwritten, and files above a size cap are refused. Every
-value's position is kept in a :class:`Document` so messages can say ``file:line:col``.
+Documents are composed with PyYAML's safe loader (on libyaml's parser where PyYAML has it; the
+pure-Python one words the messages) into plain Python values (dict, list, str, int, float, bool,
+None); anchors and aliases are refused (no "billion laughs"), duplicate keys are an error
+rather than silently overwritten, and files above a size cap are refused. Every value's
+position is kept in a :class:`Document` so messages can say ``file:line:col``.
 
 Whatever goes wrong while reading becomes the caller's error class with a location: control
 characters, nesting deeper than :data:`MAX_DEPTH`, integers longer than :data:`MAX_INT_DIGITS`,
