@@ -24,11 +24,14 @@ import subprocess
 import sys
 import tempfile
 import time
+import zlib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 PROBLEMS = ROOT / "problems"
-WORK = Path(tempfile.gettempdir()) / "mechgrade-bench-scale"
+# one folder per checkout: the assignment names this checkout's problems, and two checkouts
+# benchmarking at once must not grade into each other's output folders
+WORK = Path(tempfile.gettempdir()) / f"mechgrade-bench-scale-{zlib.crc32(bytes(ROOT)):08x}"
 
 ASSIGNMENT = f"""\
 id: scale

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from mechgrade.errors import SpecError
@@ -104,7 +106,7 @@ def test_any_reader_failure_becomes_the_callers_error(monkeypatch):
     def broken(self):
         raise MemoryError("out of memory")
 
-    monkeypatch.setattr(yamlio._Loader, "get_single_node", broken)
+    monkeypatch.setattr(yamlio._Refusals, "get_single_node", broken)
     with pytest.raises(SubmissionError) as info:
         read_yaml_text("a: 1\n", "s.yaml", SubmissionError)
     assert str(info.value) == ("s.yaml: expected valid YAML, found something the reader cannot "
@@ -133,3 +135,49 @@ def test_explicit_tags_are_refused(text, column):
         read_yaml_text(text, "t.yaml")
     assert str(info.value).startswith(f"t.yaml:1:{column}: expected plain YAML, found the tag ")
     assert str(info.value).endswith("; tags are not allowed")
+
+
+def _tables(loader, text):
+    from mechgrade import yamlio
+
+    try:
+        doc = yamlio._read(loader, text, "f.yaml", SpecError)
+    except SpecError as err:
+        return str(err)
+    return doc.data, doc.marks, doc.texts, doc.keys
+
+
+SHIPPED_YAML = sorted(str(p) for folder in ("problems", "examples")
+                      for p in (Path(__file__).resolve().parents[1] / folder).rglob("*.yaml"))
+
+
+@pytest.mark.parametrize("text", [
+    "a: {frame: , point: O}\n", "p: {from: O, position: ,L*A.x}\n", "a: {axis?: z}\n",
+    "a: [x?, 1]\n", "a:\n  b:\n  c: 1\n", "- \n- x\n", "k: 'it''s'\nv: \"\\u00e9\\n\"\n",
+    "v: 7.10  # typed\nw: [1.50, -0, .5]\n", "t: |\n  two\n  lines\n", "é: ü\n  more\n",
+])
+def test_the_libyaml_reader_reads_as_the_python_reader(text):
+    from mechgrade import yamlio
+
+    if yamlio._CLoader is None:
+        pytest.skip("PyYAML without libyaml")
+    fast = _tables(yamlio._CLoader, text)
+    # where libyaml would differ it refuses, and read_yaml_text reads the text again
+    assert fast == _tables(yamlio._Loader, text) or isinstance(fast, str)
+    try:
+        doc = read_yaml_text(text, "f.yaml")
+        public = doc.data, doc.marks, doc.texts, doc.keys
+    except SpecError as err:
+        public = str(err)
+    assert public == _tables(yamlio._Loader, text)
+
+
+def test_the_shipped_files_read_the_same_with_libyaml():
+    from mechgrade import yamlio
+
+    if yamlio._CLoader is None:
+        pytest.skip("PyYAML without libyaml")
+    assert SHIPPED_YAML
+    for path in SHIPPED_YAML:
+        text = Path(path).read_text(encoding="utf-8")
+        assert _tables(yamlio._CLoader, text) == _tables(yamlio._Loader, text), path

@@ -23,9 +23,10 @@ import difflib
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import jsonschema
+if TYPE_CHECKING:
+    import jsonschema
 
 Path = tuple[str | int, ...]
 
@@ -102,6 +103,9 @@ def schema_problems(schema: dict, data: object) -> tuple[SchemaProblem, ...]:
     """Every violation of ``schema`` by ``data``, in document order (the first is the one to
     report when only one is). A misspelt required field is one mistake: the unknown key with
     its suggestion is reported, not also the missing field it was meant to be."""
+    # imported here: jsonschema takes longer to import than click, and `--help` needs neither
+    import jsonschema
+
     errors = jsonschema.Draft202012Validator(schema).iter_errors(data)
     problems = [problem for err in errors for problem in _explain(err)]
     meant = {(p.path[:-1], p.meant) for p in problems if p.meant}

@@ -22,6 +22,16 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
     (True, False, True)
     """
     s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
+    if s.shape == t.shape and s.size <= 3 and abs_ == abs_:
+        # The same arithmetic on Python floats: for a number or a vector, numpy's set-up costs
+        # more than the test, and judging one answer tries it against every diagnosis.
+        fixed = None if scale is None else abs(float(scale))
+        for a, b in zip(s.ravel().tolist(), t.ravel().tolist()):
+            size = abs(b) if fixed is None else fixed
+            limit = max(rel * size, abs_)
+            if not abs(a - b) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size:
+                return False
+        return True
     size = np.abs(t) if scale is None else abs(float(scale))
     limit = np.maximum(rel * size, abs_)
     with np.errstate(all="ignore"):

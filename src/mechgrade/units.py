@@ -52,13 +52,20 @@ def registry():
     """The process-wide pint ``UnitRegistry`` (created once; pint is slow to load).
 
     Parsing pint's definition file takes most of the registry's start-up, so pint caches the
-    parsed definitions in the user's cache folder (pint's own ``cache_folder=":auto:"``). When
-    that folder cannot be created, written or read, the registry is built without the cache.
+    parsed definitions in the user's cache folder (pint's own cache), one folder per pint
+    installation: in the folder all installations share (``cache_folder=":auto:"``), an entry
+    written by another virtual environment makes every read fail. When the folder cannot be
+    created, written or read, the registry is built without the cache.
     """
-    import pint
+    import zlib
 
+    import pint
+    import platformdirs
+
+    folder = platformdirs.user_cache_path("pint", appauthor=False) / \
+        f"mechgrade-{zlib.crc32(pint.__file__.encode()):08x}"
     try:
-        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
+        ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=folder)
     except Exception:  # noqa: BLE001 - no usable cache folder (read-only, broken, racing)
         ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.formatter.default_format = "~"

@@ -1,9 +1,10 @@
 """Safe YAML reading that remembers where every value came from.
 
-Documents are composed with PyYAML's safe loader into plain Python values (dict, list, str,
-int, float, bool, None); anchors and aliases are refused (no "billion laughs"), duplicate keys
-are an error rather than silently overwritten, and files above a size cap are refused. Every
-value's position is kept in a :class:`Document` so messages can say ``file:line:col``.
+Documents are composed with PyYAML's safe loader (on libyaml's parser where PyYAML has it; the
+pure-Python one words the messages) into plain Python values (dict, list, str, int, float, bool,
+None); anchors and aliases are refused (no "billion laughs"), duplicate keys are an error
+rather than silently overwritten, and files above a size cap are refused. Every value's
+position is kept in a :class:`Document` so messages can say ``file:line:col``.
 
 Whatever goes wrong while reading becomes the caller's error class with a location: control
 characters, nesting deeper than :data:`MAX_DEPTH`, integers longer than :data:`MAX_INT_DIGITS`,
@@ -99,8 +100,9 @@ class Document:
         return self.texts.get(tuple(path))
 
 
-class _Loader(yaml.SafeLoader):
-    """Safe loader that refuses aliases (and so anchors are pointless) and explicit tags."""
+class _Refusals(yaml.composer.Composer):
+    """Composition that refuses aliases (and so anchors are pointless) and explicit tags, and
+    counts the depth (PyYAML composes recursively)."""
 
     depth = 0
 
@@ -123,6 +125,54 @@ class _Loader(yaml.SafeLoader):
             return super().compose_node(parent, index)
         finally:
             self.depth -= 1
+
+
+class _Loader(_Refusals, yaml.SafeLoader):
+    """The pure-Python safe loader with :class:`_Refusals`: its error messages are the ones
+    shown (their wording and positions are what :func:`_syntax_message` reads)."""
+
+
+CParser: Any = getattr(yaml, "CParser", None)  # None when PyYAML is built without libyaml
+_CLoader: Any = None
+
+if CParser is not None:
+    class _LibyamlLoader(_Refusals, CParser, yaml.constructor.SafeConstructor,
+                   yaml.resolver.Resolver):
+        """libyaml's parser (several times faster than PyYAML's own) under the same
+        :class:`_Refusals` composition. Only documents it reads without objection are kept
+        from it; anything else is read again by :class:`_Loader` for the message."""
+
+        flow = 0  # flow collections ([...], {...}) open around the node being composed
+
+        def __init__(self, stream):
+            CParser.__init__(self, stream)
+            yaml.composer.Composer.__init__(self)
+            yaml.constructor.SafeConstructor.__init__(self)
+            yaml.resolver.Resolver.__init__(self)
+
+        def compose_scalar_node(self, anchor):
+            event = self.peek_event()
+            if self.flow and not event.style and (not event.value or "?" in event.value):
+                # libyaml places an empty value in a flow collection one column further on,
+                # and takes a '?' inside one where PyYAML refuses it
+                raise _YamlProblem("a plain value PyYAML reads otherwise", event.start_mark)
+            return super().compose_scalar_node(anchor)
+
+        def compose_sequence_node(self, anchor):
+            return self._nested(super().compose_sequence_node, anchor)
+
+        def compose_mapping_node(self, anchor):
+            return self._nested(super().compose_mapping_node, anchor)
+
+        def _nested(self, compose, anchor):
+            flow = bool(self.peek_event().flow_style)
+            self.flow += flow
+            try:
+                return compose(anchor)
+            finally:
+                self.flow -= flow
+
+    _CLoader = _LibyamlLoader
 
 
 class _YamlProblem(Exception):
@@ -156,7 +206,18 @@ def read_yaml_text(text: str, file: str = "<text>",
         column = control.start() - (text.rfind("\n", 0, control.start()) + 1) + 1
         raise error(f"expected printable text, found {name} (U+{code:04X}); delete it",
                     where=Location(file, line, column))
-    loader = _Loader(text)
+    # libyaml accepts tabs where PyYAML refuses them, and places marks differently around a
+    # byte order mark: such texts go to the pure-Python reader only.
+    if _CLoader is not None and "\t" not in text and "\ufeff" not in text:
+        try:
+            return _read(_CLoader, text, file, error)
+        except Exception:  # noqa: BLE001 - read again below, for the exact message
+            pass
+    return _read(_Loader, text, file, error)
+
+
+def _read(loader_class, text: str, file: str, error: type[MechgradeError]) -> Document:
+    loader = loader_class(text)
     marks: dict = {}
     texts: dict = {}
     keys: dict = {}

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import click
 import pytest
@@ -25,9 +26,9 @@ print(json.dumps(sorted(m for m in {heavy!r} if m in sys.modules)), file=sys.std
 """
 
 
-def heavy_modules_after(*args: str) -> list[str]:
-    """The heavy libraries imported by running ``mechgrade *args`` in a fresh interpreter."""
-    done = subprocess.run([sys.executable, "-c", PROBE.format(heavy=HEAVY), *args],
+def heavy_modules_after(*args: str, heavy: tuple[str, ...] = HEAVY) -> list[str]:
+    """The ``heavy`` libraries imported by running ``mechgrade *args`` in a fresh interpreter."""
+    done = subprocess.run([sys.executable, "-c", PROBE.format(heavy=heavy), *args],
                           capture_output=True, text=True, timeout=120)
     return json.loads(done.stderr.strip().splitlines()[-1])
 
@@ -48,6 +49,13 @@ def test_export_and_report_never_import_sympy(tmp_path):
                  ["report", str(results), "--out", str(tmp_path / "r.html")]):
         assert "sympy" not in heavy_modules_after(*args)
         assert "scipy" not in heavy_modules_after(*args)
+
+
+def test_check_of_a_kinematics_problem_loads_no_solver_of_scipy_and_no_plotting():
+    problem = Path(__file__).resolve().parents[2] / "problems" / "bowling_3_15_4_pendulum.yaml"
+    # pint imports the top-level scipy package when it is installed; its solvers are the cost
+    assert heavy_modules_after("check", str(problem), heavy=(
+        "scipy.linalg", "scipy.optimize", "scipy.integrate", "matplotlib", "jinja2")) == []
 
 
 @pytest.mark.parametrize("name", sorted(COMMANDS))

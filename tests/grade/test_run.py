@@ -11,6 +11,7 @@ import pytest
 from mechgrade.errors import (AssignmentError, InconsistentError, MechgradeError, SolveError,
                              SubmissionError)
 from mechgrade.grade.assignment import load_assignment
+from mechgrade.grade import run as run_module
 from mechgrade.grade.run import (expected_text, given_key_of, grade_plan, grade_submissions,
                                  plan_assignment)
 from mechgrade.grade.submissions import read_submissions
@@ -389,6 +390,24 @@ def test_the_report_is_the_same_for_any_number_of_jobs(tmp_path, blocks_text):
     parallel = grade_submissions(ecf, tmp_path / "subs", jobs=2)
     assert parallel == grade_submissions(ecf, tmp_path / "subs", jobs=1)
     assert answers_of(parallel, "hal")["rod_omega_z"].verdict == "correct"
+
+
+def test_carried_forward_re_solves_are_solved_ahead_over_the_jobs(tmp_path, blocks_text,
+                                                                   monkeypatch):
+    ecf = ecf_class(tmp_path, with_dependency(blocks_text, "rod_omega_z", "xdot"), {
+        sid: f"bowling_3_15_8_connected_blocks.xdot = {xdot} m/s\n"
+             f"bowling_3_15_8_connected_blocks.rod_omega_z = {omega} rad/s\n"
+        for sid, xdot, omega in (("hal", "-7.00", "66.97"), ("ida", "-7.00", "60"),
+                                 ("jon", "-6.50", "62.19"), ("kim", "-7.66598", "73.3429"))})
+    alone = grade_submissions(ecf, tmp_path / "subs", jobs=1)
+    asked = []
+    real = run_module._Judge._attempt
+    monkeypatch.setattr(run_module._Judge, "_attempt",
+                        lambda self, *args: asked.append(args) or real(self, *args))
+    assert grade_submissions(ecf, tmp_path / "subs", jobs=2) == alone
+    assert asked == []  # every re-solve was made ahead, in the forked workers
+    assert answers_of(alone, "hal")["rod_omega_z"].verdict == "correct"
+    assert answers_of(alone, "jon")["rod_omega_z"].verdict == "correct"
 
 
 def test_a_broken_problem_is_reported_before_a_missing_folder_with_any_jobs(class_dir):

@@ -60,6 +60,7 @@ class CheckReport:
     results: tuple[ObjectiveResult, ...] = ()  # the solved objectives, in file order
     # generated mistakes a student gets full credit for, and the tolerance that separates them
     separations: tuple[str, ...] = ()
+    variants: bool = False  # the problem draws per-student variants (a variants: section)
 
     @property
     def passed(self) -> bool:
@@ -151,7 +152,8 @@ def check_problem(path) -> CheckReport:
                        tuple(untested), tuple(errors + faults),
                        tuple(str(w) for w in problem.warnings + solution.warnings
                              + tuple(warnings)), state, solution.results,
-                       tuple(str(w) for w in separation_findings(problem, solution)))
+                       tuple(str(w) for w in separation_findings(problem, solution)),
+                       problem.variants is not None)
 
 
 def separation_findings(problem: Problem, solution) -> list[AuthorWarning]:

@@ -6,7 +6,6 @@ import click
 
 from ..check import CheckReport, check_paths, check_problem, problem_files, watch
 from ..errors import SpecError
-from ..grade.variants import variant_lines
 from .common import main, reports_errors
 from .solve import value_text
 
@@ -76,7 +75,11 @@ def _print_report(report: CheckReport, verbose: bool, values: bool = False,
             click.echo(f"  {line}")
         return True
     bad = [o for o in report.outcomes if not o.passed]
-    refused = variant_lines(report.path, variant_count) if variant_count else []
+    refused = []
+    if variant_count and report.variants:
+        from ..grade.variants import variant_lines  # drawing variants: only for such problems
+
+        refused = variant_lines(report.path, variant_count)
     failed = bool(bad or report.faults or refused)
     status = "FAIL" if failed else "ok  "
     click.echo(f"{status} {report.path} ({len(report.outcomes)} tests, DOF {report.dof})")

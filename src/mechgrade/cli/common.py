@@ -70,7 +70,7 @@ COMMANDS = {
                            "numbers, and givens.csv (every student's givens) for the instructor."),
     "new": ("new", "Write ID.yaml, a commented starting spec that passes `mechgrade check` as "
                    "written."),
-    "report": ("export", "Write the class report of RESULTS_JSON as one self-contained HTML file."),
+    "report": ("report", "Write the class report of RESULTS_JSON as one self-contained HTML file."),
     "schema": ("schema", "Print the path of the problem-spec JSON Schema, or write a copy of it to "
                          "--out."),
     "solve": ("solve", "Solve PROBLEM_FILE and print each objective's reference answer."),

@@ -1,4 +1,4 @@
-"""``mechgrade export`` and ``mechgrade report``: results.json to LMS files and a class report."""
+"""``mechgrade export``: results.json to LMS files and spreadsheets."""
 
 from __future__ import annotations
 
@@ -10,7 +10,6 @@ from ..errors import ExportError
 from ..files import clean_text
 from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
-from ..report.class_report import write_class_report
 from ..roster import read_roster
 from .common import main, reports_errors
 
@@ -67,14 +66,3 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
     click.echo(f"wrote {fmt} export of {len(report.students)} "
                f"{'result' if len(report.students) == 1 else 'results'} to {out}")
 
-
-@main.command("report")
-@click.argument("results_json", type=click.Path(dir_okay=True, path_type=Path))
-@click.option("--out", type=click.Path(path_type=Path), default=Path("class_report.html"),
-              show_default=True, help="HTML file to write.")
-@reports_errors
-def report_command(results_json: Path, out: Path) -> None:
-    """Write the class report of RESULTS_JSON as one self-contained HTML file."""
-    report = read_results(results_json)
-    write_class_report(report, out)
-    click.echo(f"wrote class report of {len(report.students)} students to {out}")

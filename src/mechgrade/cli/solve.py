@@ -6,12 +6,9 @@ import json
 
 import click
 
-from ..mechanics import derivation
 from ..files import write_text
-from ..solve.picture import picture_svg, scene
+from ..mechanics import derivation
 from ..solve.worked import answer_text as value_text
-from ..solve.worked import worked_solution
-from ..report.worked import steps_html, steps_markdown
 from ..solve import solve as solve_problem
 from ..spec import load_problem
 from .common import main, reports_errors
@@ -44,11 +41,17 @@ def solve_command(problem_file: str, fmt: str, steps: bool, plot: str | None) ->
     problem = load_problem(problem_file)
     solution = solve_problem(problem)
     if plot:
+        from ..solve.picture import picture_svg, scene
+
         write_text(plot, picture_svg(scene(problem, solution)))
     failed = {f.id: f.error for f in solution.failures}
     if fmt == "json":
         click.echo(json.dumps(solution_json(problem, solution), indent=2))
     elif fmt in ("html", "md"):
+        # the write-up's templates are only needed here
+        from ..report.worked import steps_html, steps_markdown
+        from ..solve.worked import worked_solution
+
         worked = worked_solution(problem, solution)
         click.echo(steps_html(worked) if fmt == "html" else steps_markdown(worked), nl=False)
     else:

@@ -150,18 +150,20 @@ def clean(text: str) -> str:
     if len(text) > MAX_ANSWER_LENGTH:
         raise AnswerError(f"expected an answer of at most {MAX_ANSWER_LENGTH} characters, "
                           f"found {len(text)} characters: {excerpt(text)}")
-    bad = next((i for i, c in enumerate(text) if c == "\ufffd" or 0xD800 <= ord(c) <= 0xDFFF),
-               None)
+    # printable ASCII (most answers) holds none of the characters looked for below
+    plain = text.isascii() and text.isprintable()
+    bad = None if plain else next((i for i, c in enumerate(text)
+                                   if c == "\ufffd" or 0xD800 <= ord(c) <= 0xDFFF), None)
     if bad is not None:
         raise AnswerError(f"expected readable text, found bytes that are not valid UTF-8 at "
                           f"{excerpt(text, bad)}")
     text = text.strip()
-    bad = next((i for i, c in enumerate(text)
-                if unicodedata.category(c) == "Cc" and c not in _LINE_BREAKS and c != "\t"), None)
+    bad = None if plain else next((i for i, c in enumerate(text) if unicodedata.category(c)
+                                   == "Cc" and c not in _LINE_BREAKS and c != "\t"), None)
     if bad is not None:
         raise AnswerError(f"expected text, found a control character at {excerpt(text, bad)} "
                           f"(binary data?)")
-    bad = next((i for i, c in enumerate(text) if c in _LINE_BREAKS), None)
+    bad = None if plain else next((i for i, c in enumerate(text) if c in _LINE_BREAKS), None)
     if bad is not None:
         raise AnswerError(f"expected one answer on one line, found a line break at "
                           f"{excerpt(text, bad)}")

@@ -19,7 +19,8 @@ True
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+
+from dataclasses import dataclass, field, fields
 
 VERDICTS = ("correct", "partial", "incorrect", "unreadable", "missing", "not_evaluated")
 STATUSES = ("graded", "missing", "unreadable", "not_evaluated")
@@ -144,12 +145,13 @@ class GradeReport:
 
     def to_json(self) -> dict:
         """The ``results.json`` document (plain dicts and lists, stable key order)."""
-        data = asdict(self)
-        for student in data["students"]:
-            student["identity"] = {k: v for k, v in student["identity"]}
-            if student["variant"] is None:  # results without variants read as before
-                del student["variant"]
-        return data
+        # Field by field rather than dataclasses.asdict, which deep-copies every value and
+        # took longer than writing the file.
+        return {"assignment": _fields(self.assignment),
+                "objectives": tuple(map(_fields, self.objectives)),
+                "students": tuple(map(_student_json, self.students)),
+                "skipped": tuple(map(_fields, self.skipped)),
+                "notes": self.notes, "internal_errors": self.internal_errors}
 
     @classmethod
     def from_json(cls, data: dict) -> "GradeReport":
@@ -171,3 +173,31 @@ class GradeReport:
                    tuple(students),
                    tuple(SkippedEntry(**e) for e in data.get("skipped", [])),
                    tuple(data.get("notes", ())), tuple(data.get("internal_errors", ())))
+
+
+_NAMES: dict[type, tuple[str, ...]] = {}
+
+
+def _names(cls: type) -> tuple[str, ...]:
+    """A dataclass type's field names, worked out once per type."""
+    names = _NAMES.get(cls)
+    if names is None:
+        names = _NAMES[cls] = tuple(f.name for f in fields(cls))
+    return names
+
+
+def _fields(item) -> dict:
+    """A dataclass of plain values as a dict, in field order."""
+    return {name: getattr(item, name) for name in _names(type(item))}
+
+
+def _student_json(student: StudentResult) -> dict:
+    data = _fields(student)
+    data["answers"] = tuple(map(_fields, student.answers))
+    data["identity"] = dict(student.identity)
+    if student.variant is None:  # results without variants read as before
+        del data["variant"]
+    else:
+        data["variant"] = {"seed": student.variant.seed,
+                           "givens": tuple(map(_fields, student.variant.givens))}
+    return data

@@ -1,8 +1,8 @@
 """The grading run: every student's answers against the reference solutions, into a report.
 
-Each problem of the assignment is loaded and solved once; every answer is judged in the bounded
-sandbox (a worker per job, reused for the whole run, answers sent in batches), identical answers
-only once. With several jobs the problems are solved, and the submissions read, in forked
+Each problem of the assignment is loaded and solved once, for the objectives graded and those
+they depend on; every answer is judged in the bounded sandbox (a worker per job, reused for the
+whole run, answers sent in batches), identical answers only once. With several jobs the problems are solved, and the submissions read, in forked
 processes; the report never depends on the number of jobs. Points are the judged
 credit times the objective's points. Every roster student and every submission appears in the
 report with a status, in a fixed order (roster order, then students not on the roster by id),
@@ -90,9 +90,30 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
     if solutions is None:
         from ..solve import solve
 
-        solutions = raise_first(fork_map(outcome, [partial(solve, p) for p in problems],
-                                          jobs=jobs))
+        work = [partial(solve, p, objectives=_needed(p, [o for i, o, _ in chosen if i == index]))
+                for index, p in enumerate(problems)]
+        solutions = raise_first(fork_map(outcome, work, jobs=jobs))
     return _plan(assignment, problems, tuple(solutions), chosen)
+
+
+def _needed(problem: Problem, graded: list[Objective]) -> tuple[str, ...]:
+    """The objectives of ``problem`` grading needs solved: the graded ones and, for error
+    carried forward, those they depend on (deriving the others' mistakes is most of a solve).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_8_connected_blocks.yaml")
+    >>> _needed(p, [p.objective("rod_omega_z"), p.objective("V_A_N")])
+    ('xdot', 'V_A_N', 'rod_omega_z')
+    """
+    needed = {o.id for o in graded}
+    todo = [o.id for o in graded]
+    while todo:
+        for upstream in _objective(problem, todo.pop()).depends_on:
+            if upstream not in needed and _objective(problem, upstream) is not None:
+                needed.add(upstream)
+                todo.append(upstream)
+    return tuple(o.id for o in problem.objectives if o.id in needed)
 
 
 def _load_problems(assignment: Assignment) -> tuple[Problem, ...]:
@@ -214,6 +235,8 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
         neighbours = NeighbourIndex({pid: p.objectives for pid, (p, _) in own.items()})
     try:
         judge.prefetch(submissions.students)
+        judge.prefetch_carried_forward((own[person.id][0], submission)
+                                       for person, submission in people if submission is not None)
         for done, (person, submission) in enumerate(people, start=1):
             # the student's own references, also for ECF's look-ups
             judge.plan, variants = own[person.id]
@@ -463,9 +486,44 @@ class _Judge:
                             diagnosis, " ".join(f for f in feedback if f),
                             assessment.read_back, self.expected(item))
 
-    def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
-        """Judge ``text`` again against the reference recomputed from the student's own
-        (wrong) upstream answers; keep the better credit."""
+    def prefetch_carried_forward(self, work: Iterable[tuple[Plan, Submission]]) -> None:
+        """Solve, over the jobs, the re-solves error carried forward will ask for (each
+        student's ``(plan, submission)`` in ``work``), into :meth:`_solve_with`'s cache: they
+        take most of a run's grading time when they are solved one after the other. One not
+        foreseen here (an upstream answer itself carried forward) is solved when asked; a fault
+        of mechgrade's here leaves every one to be solved when asked."""
+        if self._jobs <= 1 or self._resolve is not None or not self.policy.ecf.enabled:
+            return
+        own = self.plan
+        try:
+            requests: dict[tuple, tuple] = {}
+            for plan, submission in work:
+                self.plan = plan  # the student's references, for the upstream look-ups
+                for item in (i for i in plan.objectives if i.objective.depends_on):
+                    text = submission.answer(item.key) if submission.status == "read" else None
+                    judged = self._cache.get((item.result, text))
+                    if judged is None or judged.verdict == "correct":
+                        continue
+                    found = self._upstream_givens(item, submission, {})
+                    if isinstance(found, dict) and found:
+                        givens = {**dict(item.givens), **found}
+                        key = _ecf_key(item.problem, givens, item.objective.id)
+                        if key not in self._ecf_solutions:
+                            requests[key] = (item.problem, givens, item.objective.id)
+            _CARRYING[:] = [self]  # inherited by the forked workers
+            try:
+                solved = fork_map(_solve_carried, list(requests.values()), jobs=self._jobs)
+            finally:
+                _CARRYING.clear()
+            self._ecf_solutions.update(zip(requests, solved))
+        except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
+            pass
+        finally:
+            self.plan = own
+
+    def _upstream_givens(self, item, submission, earlier) -> dict[str, float] | str:
+        """The givens (SI, by given key) the student's wrong upstream answers stand for, or
+        the feedback saying why error carried forward cannot use them."""
         problem = item.problem
         overrides: dict[str, float] = {}
         for upstream_id in item.objective.depends_on:
@@ -492,16 +550,23 @@ class _Judge:
                 continue
             given_key = given_key_of(objective)
             if given_key is None:
-                feedback.append(f"Error carried forward could not be applied: '{upstream_id}' "
-                                f"is not a plain given quantity the solver can take from your "
-                                f"answer.")
-                return verdict, credit
+                return (f"Error carried forward could not be applied: '{upstream_id}' is not a "
+                        f"plain given quantity the solver can take from your answer.")
             value = _si_value(upstream_text, self._reference(problem, upstream_id))
             if value is None:
-                feedback.append(f"Error carried forward could not be applied: your answer to "
-                                f"'{upstream_id}' could not be read as a number.")
-                return verdict, credit
+                return (f"Error carried forward could not be applied: your answer to "
+                        f"'{upstream_id}' could not be read as a number.")
             overrides[given_key] = value
+        return overrides
+
+    def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
+        """Judge ``text`` again against the reference recomputed from the student's own
+        (wrong) upstream answers; keep the better credit."""
+        problem = item.problem
+        overrides = self._upstream_givens(item, submission, earlier)
+        if isinstance(overrides, str):
+            feedback.append(overrides)
+            return verdict, credit
         if not overrides:
             return verdict, credit
         answered = sorted(overrides)
@@ -541,7 +606,7 @@ class _Judge:
         added (x' given while y' fixes it). Then each given of the same derivative order is
         dropped in turn, in spec order, and the first consistent solution is used.
         """
-        key = (problem.id, objective_id, tuple(sorted(overrides.items())))
+        key = _ecf_key(problem, overrides, objective_id)
         if key in self._ecf_solutions:
             return self._ecf_solutions[key]
         problem, instead = _replaced_by_student(problem, overrides)
@@ -592,6 +657,18 @@ def _replaced_by_student(problem: Problem, overrides: dict[str, float]
     if not changes:
         return problem, ()
     return replace(problem, dynamics=replace(dynamics, **changes)), tuple(replaced)
+
+
+_CARRYING: list = []
+
+
+def _ecf_key(problem: Problem, givens: dict, objective_id: str) -> tuple:
+    return problem.id, objective_id, tuple(sorted(givens.items()))
+
+
+def _solve_carried(request: tuple) -> tuple:
+    """:meth:`_Judge._solve_with` in a forked worker (see :meth:`_Judge.prefetch_carried_forward`)."""
+    return _CARRYING[0]._solve_with(*request)
 
 
 def _order(key: str) -> int:

@@ -84,18 +84,24 @@ class _Mistaken(Interpreter):
         return super().point_acceleration(node, frame)
 
 
-def mutations(problem: Problem) -> tuple[Mutation, ...]:
-    """Every model mutation of every numeric objective of ``problem``."""
-    return _mutations(problem, locations(problem))
+def mutations(problem: Problem, objective: str | None = None) -> tuple[Mutation, ...]:
+    """Every model mutation of every numeric objective of ``problem`` (of ``objective`` only,
+    when named: a grader asking for a few objectives derives only theirs)."""
+    where = locations(problem)
+    ids = [o.id for o in problem.objectives] if objective is None else [objective]
+    return tuple(m for oid in ids for m in _mutations(problem, where, oid))
 
 
 @lru_cache(maxsize=64)
-def _mutations(problem: Problem, _locations: tuple) -> tuple[Mutation, ...]:
-    model = build(problem)
-    out: list[Mutation] = []
-    for obj in problem.objectives:
-        out += _objective_mutations(model, obj)
-        out += _position_mutations(problem, model, obj)
+def _model(problem: Problem, _locations: tuple) -> Model:
+    return build(problem)
+
+
+@lru_cache(maxsize=512)
+def _mutations(problem: Problem, _locations: tuple, objective: str) -> tuple[Mutation, ...]:
+    model = _model(problem, _locations)
+    obj = problem.objective(objective)
+    out = _objective_mutations(model, obj) + _position_mutations(problem, model, obj)
     # a reading undefined for every state (a speed divided by where it is zero) is no mistake
     return tuple(m for m in out if not sp.sympify(m.value).has(sp.zoo, sp.nan, sp.oo))
 

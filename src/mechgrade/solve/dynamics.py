@@ -24,7 +24,9 @@ from typing import Callable, Collection, Mapping
 
 import numpy as np
 import sympy as sp
-from scipy import linalg, optimize
+
+# scipy is imported by the functions that use it: it takes longer to import than a whole
+# `mechgrade check` of most problems, which never needs it.
 
 from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
@@ -129,6 +131,8 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
     """The extended state (state values, then reactions) with the unknown second rates and
     reactions solved from the momentum balances; raises when they are not determined, the
     equations cannot all hold, or a friction contact contradicts its model."""
+    from scipy import linalg
+
     x = np.concatenate([state.values, np.zeros(len(kp.kin.reactions))])
     known = np.concatenate([state.given, np.zeros(len(kp.kin.reactions), dtype=bool)])
     cols = [j for j, i in enumerate(kp.columns) if not known[i]]
@@ -177,6 +181,8 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
 def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:
     """The extended state with every second rate and reaction solved by least squares, without
     the checks of :func:`solve_kinetics` (the right-hand side of an integration)."""
+    from scipy import linalg
+
     x = np.concatenate([values, np.zeros(len(kp.kin.reactions))])
     cols = list(kp.columns)
     x[cols] = 0.0
@@ -285,6 +291,8 @@ def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
 def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
     """``given_map`` with the design parameter solved (secant iterations on the whole
     instant) so that the design equation holds."""
+    from scipy import optimize
+
     design = problem.dynamics.design
     if design is None:
         return given_map

@@ -21,7 +21,9 @@ from typing import Callable
 
 import numpy as np
 import sympy as sp
-from scipy.integrate import solve_ivp
+
+# scipy is imported by the functions that use it: it takes longer to import than a whole
+# `mechgrade check` of most problems, which never needs it.
 
 from ..errors import SolveError
 from ..spec.dynamics import Integration, WorkEnergy
@@ -180,6 +182,8 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     """The state at the event and the extended state just before it (accelerations and
     reactions as limits). ``base`` holds the parameters; ``solve(values)`` returns the
     extended state with the second rates and reactions solved."""
+    from scipy.integrate import solve_ivp
+
     analysis: Integration = problem.dynamics.analysis
     ap = analysis_plan(kp)
     index = kp.kp.index

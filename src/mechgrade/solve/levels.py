@@ -16,7 +16,9 @@ from dataclasses import dataclass, replace
 from typing import Mapping
 
 import numpy as np
-from scipy import linalg, optimize
+
+# scipy is imported by the functions that use it: it takes longer to import than a whole
+# `mechgrade check` of most problems, which never needs it.
 
 from ..errors import InconsistentError, Location, SolveError
 from ..expressions.syntax import Name, Prime, to_text
@@ -239,6 +241,8 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
     for k, s in enumerate(starts):
         if not determined:
             break
+        from scipy import optimize
+
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
@@ -427,6 +431,8 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
     if unknown:
         A_u = A[:, unknown]
         if len(b):
+            from scipy import linalg
+
             sol, *_ = linalg.lstsq(A_u, rhs)
             null = nullspace(A_u)
         else:
@@ -468,6 +474,8 @@ def constraint_rank(p: Plan, state: State) -> int:
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:
     """Which unknowns the equations determine (pivoted QR), and which stay free."""
+    from scipy import linalg
+
     if J.size == 0:
         return [], list(unknown)
     if not np.isfinite(J).all():
@@ -482,6 +490,8 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
 
 
 def nullspace(A: np.ndarray) -> np.ndarray:
+    from scipy import linalg
+
     if A.shape[0] == 0:
         return np.eye(A.shape[1])
     _, s, vt = linalg.svd(A)

@@ -49,15 +49,15 @@ GIVEN_CODES = ("given_deg_as_rad", "given_rate_unit", "given_length_unit", "give
 _LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd": "ft"}
 
 
-def _lambdified(problem: Problem, p: Plan):
-    return _lambdified_cached(problem, locations(problem), p)
+def _lambdified(problem: Problem, p: Plan, objective: str):
+    return _lambdified_cached(problem, locations(problem), p, objective)
 
 
-@lru_cache(maxsize=64)
-def _lambdified_cached(problem: Problem, _locations: tuple, p: Plan):
+@lru_cache(maxsize=512)
+def _lambdified_cached(problem: Problem, _locations: tuple, p: Plan, objective: str):
     symbols = p.index.symbols
     out = []
-    for m in mutations(problem):
+    for m in mutations(problem, objective):
         value = sp.lambdify(symbols, m.value, modules="numpy", cse=True)
         term = None if m.term is None else sp.lambdify(symbols, m.term, modules="numpy")
         out.append((m, value, term))
@@ -68,9 +68,9 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
                    wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
     """The model mutations of the objectives in ``wanted``, at ``state``."""
     out: dict[str, list[GeneratedMistake]] = {}
-    for m, value, term in _lambdified(problem, p):
-        if m.objective not in wanted:
-            continue
+    # objective by objective: only the wanted ones are derived and lambdified
+    for m, value, term in (item for o in problem.objectives if o.id in wanted
+                           for item in _lambdified(problem, p, o.id)):
         obj = problem.objective(m.objective)
         si = evaluate((("v", value),), state, {"v"})["v"]
         if not np.all(np.isfinite(si)):
@@ -91,8 +91,8 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
     k = plan(problem).k
     out: list[GeneratedMistake] = []
     kept = [right]
-    for m in mutations(problem):
-        if m.objective != obj.id or isinstance(m.value, sp.MatrixBase):
+    for m in mutations(problem, obj.id):
+        if isinstance(m.value, sp.MatrixBase):
             continue
         try:
             expr, _ = symbolic(problem, k, obj, givens, expr=m.value)

@@ -76,6 +76,20 @@ def _lambdify(symbols, expr):
     return sp.lambdify(symbols, expr, modules="numpy", cse=True)
 
 
+class _OnFirstCall:
+    """``_lambdify(symbols, expr)``, made when first called: a grader asking for a few
+    objectives of a problem never pays for the others'."""
+
+    def __init__(self, symbols, expr):
+        self._args = (symbols, expr)
+        self._function = None
+
+    def __call__(self, *values):
+        if self._function is None:
+            self._function = _lambdify(*self._args)
+        return self._function(*values)
+
+
 def _scale(exprs):
     """Sum of the absolute values of each equation's terms: the size a residual is judged by."""
     return sp.Matrix([sum((sp.Abs(term) for term in sp.Add.make_args(e)), sp.Integer(0))
@@ -122,9 +136,9 @@ def _plan(problem: Problem, _locations: tuple) -> Plan:
     points = sp.Matrix.hstack(*(r for _, r in k.points)) if k.points else sp.zeros(3, 0)
     return Plan(
         k=k, index=index, levels=levels,
-        objectives=tuple((oid, _lambdify(symbols, expr)) for oid, expr in k.objectives
+        objectives=tuple((oid, _OnFirstCall(symbols, expr)) for oid, expr in k.objectives
                          if oid in numeric),
-        mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs))
+        mistakes=tuple((oid, tuple(_OnFirstCall(symbols, e) for e in exprs))
                        for oid, exprs in k.mistakes if oid in numeric),
         requirements=tuple((oid, reason, _lambdify(symbols, expr))
                            for oid, reason, expr in k.requirements),

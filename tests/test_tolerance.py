@@ -1,0 +1,38 @@
+"""The tolerance rule gives the same verdict on numbers and short vectors as on arrays."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, strategies as st
+
+from mechgrade.tolerance import FLOAT_SLACK, within
+
+floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
+finite = st.floats(min_value=-1e6, max_value=1e6)
+
+
+def numpy_within(student, reference, rel, abs_, scale=None) -> bool:
+    """The rule written with numpy alone (the path of long arrays)."""
+    s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
+    size = np.abs(t) if scale is None else abs(float(scale))
+    with np.errstate(all="ignore"):
+        limit = np.maximum(rel * size, abs_)
+        return bool(np.all(np.abs(s - t) <= limit * (1 + FLOAT_SLACK)
+                           + 1e-3 * FLOAT_SLACK * size))
+
+
+@given(st.lists(st.tuples(floats, floats), min_size=1, max_size=3),
+       st.sampled_from([0.0, 1e-9, 0.01, 0.05]), st.sampled_from([0.0, 1e-9, 0.5]),
+       st.one_of(st.none(), floats))
+def test_short_vectors_and_numbers_are_judged_as_arrays_are(pairs, rel, abs_, scale):
+    student, reference = [p[0] for p in pairs], [p[1] for p in pairs]
+    assert within(student, reference, rel, abs_, scale) == \
+        numpy_within(student, reference, rel, abs_, scale)
+    assert within(student[0], reference[0], rel, abs_, scale) == \
+        numpy_within(student[0], reference[0], rel, abs_, scale)
+
+
+@given(finite, st.sampled_from([0.01, 0.05]))
+def test_the_boundary_is_included(reference, rel):
+    edge = reference + rel * abs(reference)
+    assert within(edge, reference, rel, 0.0) == numpy_within(edge, reference, rel, 0.0)
