@@ -453,7 +453,8 @@ def rod_ledge():
 
 
 def falling_ladder():
-    m, L, g, th, thd = 10.0, 4.0, 9.81, 60 * D, -0.5
+    m, L, g, th, th0 = 10.0, 4.0, 9.81, 60 * D, 80 * D
+    thd = -math.sqrt(3 * g * (math.sin(th0) - math.sin(th)) / L)  # energy from rest at th0
     N1 = m * math.cos(th) * (3 * g * math.sin(th) - 2 * L * thd**2) / 4
     return [entry("thetaddot_now", "calculator in radian mode: cos 60",
                   num(-3 * g * math.cos(60.0) / (2 * L), "rad/s^2"), "given_deg_as_rad"),
