@@ -27,6 +27,7 @@ import numpy as np
 from ..errors import MechgradeError, SolveError, SpecError
 from ..expressions.syntax import to_text
 from ..solve import Solution, solve
+from ..solve.mutants import inside_tolerance
 from ..solve.plan import plan as solver_plan
 from ..solve.result import ObjectiveResult
 from ..spec.model import Problem
@@ -129,8 +130,9 @@ def solve_variant(problem: Problem, variant: Variant) -> Solution:
 def variant_faults(problem: Problem, variant: Variant,
                    solution: Solution | None = None) -> tuple[str, ...]:
     """Why a variant should not be handed out (empty when it is fine): it does not solve,
-    lands on a degenerate configuration, leaves a declared bound, or a declared mistake gives
-    the right answer within the tolerance."""
+    lands on a degenerate configuration, leaves a declared bound, or a declared or generated
+    mistake (:func:`mechgrade.solve.mutants.inside_tolerance`) gives the right answer within
+    the tolerance."""
     if solution is None:
         try:
             solution = solve_variant(problem, variant)
@@ -155,7 +157,18 @@ def variant_faults(problem: Problem, variant: Variant,
             if _indistinguishable(mistake.value, result):
                 faults.append(f"objective '{result.id}': the mistake '{mistake.message}' gives "
                               f"the right answer within the tolerance")
+        for mistake in inside_tolerance(result):
+            unit = unit_text(result.unit)
+            faults.append(f"objective '{result.id}': the generated mistake {mistake.code} "
+                          f"gives {_shown(mistake.value)} {unit}, within the tolerance "
+                          f"({result.rel * 100:g} %) of the answer {_shown(result.value)} {unit}")
     return tuple(faults)
+
+
+def _shown(value) -> str:
+    if isinstance(value, tuple):
+        return "(" + ", ".join(f"{v:.4g}" for v in value) + ")"
+    return f"{value:.4g}"
 
 
 def _bounded_value(name: str, unit: str, results: dict, state: dict) -> float | None:

@@ -163,12 +163,55 @@ def collect_results(problem: Problem, objectives, given_map: dict, values: dict,
             continue
         try:
             if obj.kind == "symbolic":
-                frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
-                results[obj.id] = symbolic(problem, obj.id, frozen)
+                results[obj.id] = _symbolic_answer(symbolic, problem, obj.id, given_map)
             else:
                 results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
         except MechgradeError as err:
             failures[obj.id] = err
+
+
+_SYMBOLIC_ANSWERS: dict = {}
+_SYMBOLIC_LIMIT = 4096
+
+
+def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: dict):
+    """A symbolic objective's answer, solved once per problem and :func:`symbolic_dependence`
+    of the givens: a variant that changes only givens with units (not to or from zero) reuses
+    the answer of the first, without sympy."""
+    key = (symbolic, problem, objective_id, symbolic_dependence(problem, given_map))
+    answer = _SYMBOLIC_ANSWERS.get(key)
+    if answer is None:
+        answer = symbolic(problem, objective_id,
+                          tuple(sorted(given_map.items(), key=lambda item: item[0])))
+        if len(_SYMBOLIC_ANSWERS) >= _SYMBOLIC_LIMIT:
+            _SYMBOLIC_ANSWERS.clear()
+        _SYMBOLIC_ANSWERS[key] = answer
+    return answer
+
+
+def symbolic_dependence(problem: Problem, given_map: dict) -> tuple:
+    """What a symbolic answer can depend on in the givens: which are given, which are zero
+    (a zero stands in for its symbol in every unit), and the values of those that may stand in
+    for their symbols (pure numbers and angles; in dynamics also given rates, which enter the
+    momentum balances). A given with a unit is never substituted, so its value is left out.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> a, b = instant_givens(problem, None, {}), instant_givens(problem, {"L": 0.5}, {})
+    >>> symbolic_dependence(problem, a) == symbolic_dependence(problem, b)
+    True
+    """
+    dynamics = problem.dynamics is not None
+    out = []
+    for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
+        if given is None or si_unit(given.unit) in ("", "rad") or \
+                (dynamics and isinstance(node, Prime)):
+            token = (si, None if given is None else (given.value, given.unit))
+        else:
+            token = si == 0
+        out.append((key, token))
+    return tuple(out)
 
 
 def _instants(problem: Problem):
@@ -277,3 +320,6 @@ def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:
         out.append(StateValue(p.index.spelling(i), shown, unit, bool(state.given[i]),
                               float(value)))
     return tuple(out)
+
+
+_symbolic_answer.cache_clear = _SYMBOLIC_ANSWERS.clear  # type: ignore[attr-defined]
