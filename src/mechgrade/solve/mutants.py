@@ -22,7 +22,7 @@ import math
 import re
 from dataclasses import replace
 from functools import lru_cache
-from typing import Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -71,17 +71,47 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
     for m, value, term in _lambdified(problem, p):
         if m.objective not in wanted:
             continue
-        obj = problem.objective(m.objective)
         si = evaluate((("v", value),), state, {"v"})["v"]
-        if not np.all(np.isfinite(si)):
-            continue
-        sentence = m.sentence
-        if term is not None:
-            sentence = sentence.replace("{term}", _term_text(
-                evaluate((("t", term),), state, {"t"})["t"], obj, m.code))
-        out.setdefault(m.objective, []).append(
-            GeneratedMistake(m.code, sentence, _in_unit(si, obj)))
+        values = None if term is None else evaluate((("t", term),), state, {"t"})["t"]
+        mistake = _model_mistake(problem, m, si, values)
+        if mistake is not None:
+            out.setdefault(m.objective, []).append(mistake)
     return out
+
+
+def model_mistake_values(problem: Problem, p: Plan, states: np.ndarray, wanted,
+                         call) -> "Callable[[int], dict[str, list[GeneratedMistake]]]":
+    """:func:`model_mistakes` at many instants at once: ``states`` holds one state per
+    column, ``call(f, states, size)`` evaluates a lambdified function at every column as a
+    ``(size, N)`` array. Returns the mistakes of the instant in column ``i``, made on demand."""
+    evaluated = []
+    for m, value, term in _lambdified(problem, p):
+        if m.objective in wanted:
+            size = len(m.value) if isinstance(m.value, sp.MatrixBase) else 1
+            evaluated.append((m, call(value, states, size),
+                              None if term is None else call(term, states, 3)))
+
+    def at(i: int) -> dict[str, list[GeneratedMistake]]:
+        out: dict[str, list[GeneratedMistake]] = {}
+        for m, si, terms in evaluated:
+            mistake = _model_mistake(problem, m, si[:, i],
+                                     None if terms is None else terms[:, i])
+            if mistake is not None:
+                out.setdefault(m.objective, []).append(mistake)
+        return out
+    return at
+
+
+def _model_mistake(problem: Problem, m, si: np.ndarray, term) -> GeneratedMistake | None:
+    """The mistake a mutation gives (``si`` its SI value, ``term`` the dropped term's), or
+    ``None`` where it is undefined."""
+    if not np.all(np.isfinite(si)):
+        return None
+    obj = problem.objective(m.objective)
+    sentence = m.sentence
+    if term is not None:
+        sentence = sentence.replace("{term}", _term_text(term, obj, m.code))
+    return GeneratedMistake(m.code, sentence, _in_unit(si, obj))
 
 
 def symbolic_mistakes(problem: Problem, obj: Objective, right,
@@ -112,11 +142,8 @@ def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}
     parameters = {q.name for q in problem.parameters}
-    for code, changes, sentence in _slips(givens, parameters):
-        changed = dict(givens)
-        for key, mistaken_si in changes:
-            node, _, given = givens[key]
-            changed[key] = (node, mistaken_si, replace(given, si=mistaken_si))
+    for code, changes, sentence in slips_of(givens, parameters):
+        changed = misread(givens, changes)
         try:
             instant = solve_numeric(problem, p, changed, wanted)
         except MechgradeError:
@@ -128,7 +155,16 @@ def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
     return out
 
 
-def _slips(givens: Mapping, parameters: set[str]):
+def misread(givens: Mapping, changes) -> dict:
+    """``givens`` with each ``(key, mistaken SI value)`` of ``changes`` in place."""
+    changed = dict(givens)
+    for key, mistaken_si in changes:
+        node, _, given = givens[key]
+        changed[key] = (node, mistaken_si, replace(given, si=mistaken_si))
+    return changed
+
+
+def slips_of(givens: Mapping, parameters: set[str]):
     """``(code, ((key, mistaken SI value), ...), sentence)`` for each typical misreading: of
     one given, or two parameters of the same unit exchanged (a tooth ratio inverted)."""
     named = [(key, node, si, given) for key, (node, si, given) in givens.items()
@@ -171,6 +207,7 @@ def _given_slips(node, si: float, given):
                f"{node.id}.")
 
 
+@lru_cache(maxsize=256)
 def plausible_slips(problem: Problem) -> frozenset[str]:
     """The whole-answer slips of :mod:`mechgrade.grade.diagnose` that need something in the
     model to be plausible: a factor of g needs a ``g``; degrees for radians an angle in

@@ -1,0 +1,498 @@
+"""Many variants of one problem solved together: every student's givens at once.
+
+The lambdified functions of a problem's plan take arrays as well as numbers, so the levels of
+many instants are solved in one pass: each level by Newton steps from the reference's root (the
+solution with the spec's own givens), every step a stacked least-squares solve. That is the root
+a variant continues from the configuration the author checked, and for a level with one root
+(every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
+finds.
+
+Every instant solved this way is screened for what the scalar solver would report: a level
+not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
+undefined or not existing there, a contact that slips or lets go. A variant that fails a screen,
+and any problem or variant this path does not cover (integration to an event, work-energy, a
+design parameter, givens the reference does not have), is solved by :func:`~.entry.solve`, so
+the answers and messages are the same either way.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+>>> a, b = solve_variants(problem, [{"L": 0.5}, {"L": 1.0}])
+>>> round(b.result("acc_mag").value / a.result("acc_mag").value, 6)
+2.0
+"""
+
+from __future__ import annotations
+
+import types
+import warnings
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+
+from ..errors import MechgradeError
+from ..expressions.syntax import Name, Prime, to_text
+from ..mechanics.kinematics import locations
+from ..spec.model import Objective, Problem, Root
+from .entry import solve
+from .instant import (_instants, _key, _state, collect_results, degrees_of_freedom,
+                      instant_givens, wanted_objectives)
+from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
+from .mutants import _in_unit, attach, misread, model_mistake_values, plausible_slips, slips_of
+from .numeric import SINGULAR, solve_numeric
+from .plan import Plan, plan
+from .result import GeneratedMistake, Solution
+
+NEWTON_STEPS = 30
+"""Newton steps a non-linear level may take from the reference's root."""
+
+Outcome = Solution | MechgradeError
+
+
+def solve_variants(problem: Problem,
+                   variants: Sequence[Mapping[str, float | None] | None]) -> list[Outcome]:
+    """``[solve(problem, givens=g) for g in variants]``, each a :class:`Solution` or the
+    error :func:`~.entry.solve` raises, computed together (see the module's docstring)."""
+    variants = [dict(g or {}) for g in variants]
+    out: list[Outcome | None] = [None] * len(variants)
+    template = _template(problem)
+    if template is not None:
+        chosen = [i for i, g in enumerate(variants) if template.covers(g)]
+        for i, solution in zip(chosen, template.solve([variants[i] for i in chosen])):
+            out[i] = solution
+    for i, solution in enumerate(out):
+        if solution is None:
+            try:
+                out[i] = solve(problem, givens=variants[i])
+            except MechgradeError as err:
+                out[i] = err
+    return out  # type: ignore[return-value]
+
+
+# ---------------------------------------------------------------------------- arrays
+
+
+@lru_cache(maxsize=4096)
+def _batched(f: Callable) -> Callable:
+    """``f`` (made by ``sympy.lambdify``) with its matrices built from entries that may be
+    arrays of different shapes (a constant beside a column of values)."""
+    namespace = dict(f.__globals__)
+    namespace["array"] = _array
+    return types.FunctionType(f.__code__, namespace, f.__name__, f.__defaults__, f.__closure__)
+
+
+def _array(rows):
+    try:
+        out = np.array(rows, dtype=float)
+        return out
+    except ValueError:  # ragged: a constant entry beside arrays
+        entries = [e for row in rows for e in row]
+        shape = np.broadcast_shapes(*(np.shape(e) for e in entries))
+        return np.array([[np.broadcast_to(np.asarray(e, dtype=float), shape) for e in row]
+                         for row in rows])
+
+
+def _call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
+    """``f`` at every column of ``X`` (the states, one per column): ``size`` values each, as
+    a ``(size, N)`` array."""
+    n = X.shape[1]
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        out = np.asarray(_batched(f)(*X), dtype=float)
+    if out.size == size * n:
+        return out.reshape(size, n)
+    return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
+
+
+def _newton(level_residual, level_jacobian, X, rows_on, target, columns, unknown, nrows,
+            linear: bool):
+    """Solve the active rows for the ``unknown`` positions of every column of ``X`` (in
+    place), from the values there; returns which columns converged with full column rank."""
+    ncols = len(columns)
+    place = [columns.index(i) for i in unknown]
+    n = X.shape[1]
+    ok = np.ones(n, dtype=bool)
+    for step in range(2 if linear else NEWTON_STEPS):
+        r = _call(level_residual, X, nrows)[rows_on] - target[rows_on]
+        J = _call(level_jacobian, X, nrows * ncols).reshape(nrows, ncols, n)[rows_on][:, place]
+        good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
+        ok &= good
+        if not ok.any():
+            break
+        Jb = np.where(good, J, 0.0).transpose(2, 0, 1)
+        U, s, Vt = np.linalg.svd(Jb, full_matrices=False)
+        full = s[:, -1] > RANK_TOL * np.maximum(s[:, 0], 1.0)
+        ok &= full
+        with np.errstate(all="ignore"):
+            inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
+            coeff = np.einsum("nmk,mn->nk", U, np.where(good, r, 0.0)) * inverse
+            delta = -np.einsum("nkj,nk->jn", Vt, coeff)
+        delta[:, ~ok] = 0.0
+        X[unknown] += delta
+        size = np.maximum(np.abs(X[unknown]), 1.0)
+        if not linear and np.all(np.abs(delta) <= 1e-15 * size):
+            break
+    return ok
+
+
+# ---------------------------------------------------------------------------- the template
+
+
+@dataclass(frozen=True)
+class _Group:
+    """One instant of the problem (objectives asked with the same givens) as the reference
+    solved it: its givens, root and the unknowns of each level."""
+
+    overrides: dict
+    objectives: tuple[Objective, ...]
+    numeric: frozenset[str]
+    givens: dict
+    state: np.ndarray
+    known: np.ndarray
+    unknown: tuple[tuple[int, ...], ...]
+    active: tuple[np.ndarray, ...]
+    target: tuple[np.ndarray, ...]
+    conditions: Mapping[str, tuple[int, int]]
+    solved: tuple[int, ...]
+    free: frozenset[int]
+    positions: Mapping[str, int]
+
+
+class _Template:
+    """What every variant of a problem shares with the reference solve."""
+
+    def __init__(self, problem: Problem, kproblem: Problem, p: Plan, kinetics, groups):
+        self.problem, self.kproblem, self.p, self.kinetics = problem, kproblem, p, kinetics
+        self.groups: tuple[_Group, ...] = groups
+        self.keys = frozenset(to_text(g.key.node) for g in problem.givens)
+        self.branches = {p.index.position(to_text(b.key.node)): b.root
+                         for b in problem.branches}
+        self.parameters = {q.name for q in problem.parameters}
+        self.plausible = plausible_slips(problem)
+
+    def covers(self, givens: dict) -> bool:
+        """Whether ``givens`` only change values the reference has (no new given, none
+        removed)."""
+        try:
+            return all(value is not None and _key(key)[1] in self.keys
+                       for key, value in givens.items())
+        except MechgradeError:
+            return False
+
+    # -- solving
+
+    def solve(self, variants: list[dict]) -> list[Solution | None]:
+        """Each variant's solution, or ``None`` where it must be solved one by one."""
+        n = len(variants)
+        if not n:
+            return []
+        problem = self.problem
+        wanted = wanted_objectives(problem, None)
+        symbolic = None
+        if self.kinetics is not None:
+            from .dynamics import _symbolic_result as symbolic
+        results: list[dict] = [{} for _ in range(n)]
+        ok = np.ones(n, dtype=bool)
+        base: list = [None] * n
+        for group in self.groups:
+            maps = [instant_givens(problem, g, group.overrides) for g in variants]
+            objectives = [o for o in group.objectives if o.id in wanted]
+            values: dict = {}
+            mistakes: dict = {}
+            generated: list = [[] for _ in range(n)]
+            if group.numeric:
+                X, fine, values, mistakes = self._instant(group, maps, True)
+                ok &= fine
+                if self.kinetics is None:
+                    generated = self._generated(group, maps, X, ok)
+                for i in np.flatnonzero(ok):
+                    if not group.overrides or base[i] is None:
+                        base[i] = (State(X[:self.p.index.size, i], group.known, group.free),
+                                   maps[i])
+            for i in np.flatnonzero(ok):
+                failures: dict = {}
+                collect_results(problem, objectives, maps[i],
+                                {oid: v[:, i] for oid, v in values.items()},
+                                {oid: [m[:, i] for m in ms] for oid, ms in mistakes.items()},
+                                results[i], failures, symbolic=symbolic)
+                if failures:
+                    ok[i] = False
+                elif self.kinetics is None:
+                    results[i].update(attach({o.id: results[i][o.id] for o in objectives},
+                                             generated[i], self.plausible))
+        return [self._solution(results[i], base[i]) if ok[i] else None for i in range(n)]
+
+    def _solution(self, results: dict, base) -> Solution:
+        problem, p = self.problem, self.p
+        order = [o.id for o in problem.objectives]
+        return Solution(problem=problem.id,
+                        results=tuple(results[oid] for oid in order if oid in results),
+                        state=_state(self.kproblem, p, base),
+                        dof=degrees_of_freedom(p, base[0] if base else None), failures=(),
+                        warnings=tuple(p.k.warnings))
+
+    def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
+        """The numeric objectives and declared mistakes of ``group`` at every variant's
+        instant, and which instants passed every screen (with ``degenerate``, also the one
+        for a degenerate configuration)."""
+        p = self.p
+        n = len(maps)
+        X = np.repeat(group.state[:, None], n, axis=1)
+        targets = [np.repeat(t[:, None], n, axis=1) for t in group.target]
+        for key in maps[0]:
+            column = np.array([m[key][1] for m in maps], dtype=float)
+            if key in group.positions:
+                X[group.positions[key]] = column
+            elif key in group.conditions:
+                level, row = group.conditions[key]
+                targets[level][row] = column
+        ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
+            np.ones(n, dtype=bool)
+        last = 2 if self.kinetics is not None else 3
+        for level in p.levels:
+            if level.order >= last:  # solved with the momentum balances
+                break
+            unknown = list(group.unknown[level.order])
+            active = group.active[level.order]
+            target = targets[level.order]
+            nrows = len(level.labels)
+            if unknown:
+                columns = list(p.index.unknowns(level.order))
+                linear = level.linear and level.order > 0
+                ok &= _newton(level.residual, level.jacobian, X, active, target, columns,
+                              unknown, nrows, linear)
+            if active.any():
+                r = _call(level.residual, X, nrows)[active] - target[active]
+                scale = np.abs(_call(level.scale, X, nrows))[active]
+                with np.errstate(invalid="ignore"):
+                    ok &= np.all(np.abs(r) <= self.problem.consistency * scale + 1e-10, axis=0)
+        ok &= self._on_branch(group, X)
+        if degenerate:
+            ok &= ~self._degenerate(group, X)
+        if self.kinetics is not None:
+            X, fine = self._kinetics(X, group.known)
+            ok &= fine
+            objectives, mistakes, requirements = (self.kinetics.objectives,
+                                                  self.kinetics.mistakes,
+                                                  self.kinetics.requirements)
+            limit = 1e-8
+        else:
+            objectives, mistakes, requirements = p.objectives, p.mistakes, p.requirements
+            limit = 1e-9
+        values = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in objectives
+                  if oid in group.numeric}
+        for v in values.values():
+            ok &= np.isfinite(v).all(axis=0)
+        for oid, _, f in requirements:
+            if oid in group.numeric:
+                with np.errstate(invalid="ignore"):
+                    ok &= ~(np.abs(_call(f, X, 1)[0]) > limit)
+        declared = {oid: [_call(f, X, _size(self.problem, oid)) for f in fs]
+                    for oid, fs in mistakes if oid in group.numeric}
+        return X, ok, values, declared
+
+    def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:
+        ok = np.ones(X.shape[1], dtype=bool)
+        scale = 1e-6 * np.maximum(np.abs(group.state), 1.0)
+        for i, root in self.branches.items():
+            if i not in group.unknown[self.p.index.level_of(i)]:
+                continue
+            if root is Root.POSITIVE:
+                ok &= X[i] > scale[i]
+            elif root is Root.NEGATIVE:
+                ok &= X[i] < -scale[i]
+        return ok
+
+    def _degenerate(self, group: _Group, X: np.ndarray) -> np.ndarray:
+        """Instants where the scalar solver would warn of a degenerate configuration."""
+        p = self.p
+        n = X.shape[1]
+        flagged = np.zeros(n, dtype=bool)
+        solved = list(group.solved)
+        if not solved:
+            return flagged
+        size = p.index.size
+        other = X.copy()
+        other[solved] = other[solved] * 1.13 + 0.07
+        count = len(p.points)
+        if count > 1:
+            here = _call(p.point_positions, X[:size], 3 * count).reshape(3, count, n)
+            there = _call(p.point_positions, other[:size], 3 * count).reshape(3, count, n)
+            finite = np.where(np.isfinite(here), np.abs(here), 0.0)
+            scale = SAME_ROOT * np.maximum(finite.max(axis=(0, 1)), 1e-12)
+            for a in range(count):
+                for b in range(a):
+                    close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
+                    always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
+                    flagged |= close & ~always
+        level = p.levels[0]
+        rank = p.constraint_rank
+        if level.constraint_rows and rank:
+            flagged |= self._weakest(X) < SINGULAR * self._weakest(other)
+        return flagged
+
+    def _weakest(self, X: np.ndarray) -> np.ndarray:
+        p = self.p
+        level = p.levels[0]
+        n = X.shape[1]
+        ncols = len(p.index.unknowns(0))
+        J = _call(level.jacobian, X[:p.index.size], len(level.labels) * ncols).reshape(
+            len(level.labels), ncols, n)[:level.constraint_rows, :p.index.n]
+        finite = np.isfinite(J).all(axis=(0, 1))
+        sv = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1), compute_uv=False)
+        rank = p.constraint_rank
+        weakest = sv[:, rank - 1] if sv.shape[1] >= rank else np.zeros(n)
+        return np.where(finite, weakest, np.nan)
+
+    def _kinetics(self, X: np.ndarray, known: np.ndarray):
+        """The extended states (second rates and reactions solved from the momentum
+        balances), and which passed the checks of :func:`~.dynamics.solve_kinetics`."""
+        kp = self.kinetics
+        n = X.shape[1]
+        x = np.concatenate([X, np.zeros((len(kp.kin.reactions), n))])
+        known = np.concatenate([known, np.zeros(len(kp.kin.reactions), bool)])
+        cols = [j for j, i in enumerate(kp.columns) if not known[i]]
+        for j in cols:
+            x[kp.columns[j]] = 0.0
+        ok = np.ones(n, dtype=bool)
+        for _, speed, _ in kp.slips:
+            ok &= _call(speed, x, 1)[0] > 1e-12
+        rows_ = len(kp.labels)
+        A = _call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)
+        A = A[:, cols]
+        b = _call(kp.residual, x, rows_)
+        ok &= np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+        Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
+        U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
+        ok &= s[:, -1] > RANK_TOL * np.maximum(s[:, 0], 1.0) if len(cols) else ok
+        with np.errstate(all="ignore"):
+            inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
+            coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
+            sol = np.einsum("nkj,nk->jn", Vt, coeff)
+        for j, value in zip(cols, sol):
+            x[kp.columns[j]] = value
+        r = _call(kp.residual, x, rows_)
+        scale = np.abs(_call(kp.scale, x, rows_))
+        with np.errstate(invalid="ignore"):
+            ok &= np.all(np.abs(r) <= self.problem.consistency * scale + 1e-10, axis=0)
+            for _, _, normal in kp.slips:
+                ok &= ~(_call(normal, x, 1)[0] < -1e-9)
+            for _, tangential, normal, mu in kp.bounds:
+                f = np.linalg.norm(_call(tangential, x, 3), axis=0)
+                nn = _call(normal, x, 1)[0]
+                m = _call(mu, x, 1)[0]
+                ok &= ~(nn < -1e-9) & ~(f > m * nn * (1 + 1e-9) + 1e-12)
+        return x, ok
+
+    # -- generated mistakes
+
+    def _generated(self, group: _Group, maps: list[dict], X: np.ndarray, ok: np.ndarray):
+        """Each variant's generated mistakes: the model mutations at its instant, and its
+        givens misread (those instants solved together too)."""
+        problem, p = self.problem, self.p
+        model = model_mistake_values(problem, p, X[:p.index.size], group.numeric, _call)
+        changed, owner = [], []
+        for i in np.flatnonzero(ok):
+            for code, changes, sentence in slips_of(maps[i], self.parameters):
+                changed.append(misread(maps[i], changes))
+                owner.append((i, code, sentence))
+        misreadings: list[dict] = [{} for _ in maps]
+        for (i, code, sentence), values in zip(owner, self._misread_values(group, changed)):
+            for oid, v in (values or {}).items():
+                if oid in group.numeric and np.all(np.isfinite(v)):
+                    misreadings[i].setdefault(oid, []).append(GeneratedMistake(
+                        code, sentence, _in_unit(v, problem.objective(oid))))
+        return [[model(i), misreadings[i]] if ok[i] else [] for i in range(len(maps))]
+
+    def _misread_values(self, group: _Group, maps: list[dict]) -> list[dict | None]:
+        """The numeric objectives at each misread instant (``None``: it does not solve); a
+        degenerate configuration is no reason to drop a mistake
+        (:func:`~.mutants.given_mistakes`)."""
+        if not maps:
+            return []
+        _, ok, values, _ = self._instant(group, maps, False)
+        out: list[dict | None] = []
+        for i, m in enumerate(maps):
+            if ok[i]:
+                out.append({oid: v[:, i] for oid, v in values.items()})
+                continue
+            try:
+                out.append(dict(solve_numeric(self.problem, self.p, m,
+                                              set(group.numeric)).values))
+            except MechgradeError:
+                out.append(None)
+        return out
+
+
+def _size(problem: Problem, oid: str) -> int:
+    return 3 if problem.objective(oid).kind == "vector" else 1
+
+
+def _template(problem: Problem) -> _Template | None:
+    return _template_cached(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
+    """The reference solve of ``problem`` kept for its variants; ``None`` when this path does
+    not cover the problem, or the reference itself needs the scalar solver's care (a failed
+    objective, a freedom, a warning)."""
+    kinetics = None
+    kproblem = problem
+    if problem.dynamics is not None:
+        from .dynamics import kinematic_problem, kinetics_plan
+        if problem.dynamics.analysis is not None or problem.dynamics.design is not None:
+            return None
+        kinetics = kinetics_plan(problem)
+        kproblem = kinematic_problem(problem)
+        p = kinetics.kp
+    else:
+        p = plan(problem)
+    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches):
+        return None
+    try:
+        reference = solve(problem)
+    except MechgradeError:
+        return None
+    if reference.failures or tuple(reference.warnings) != tuple(p.k.warnings):
+        return None
+    groups = []
+    last = 2 if kinetics is not None else 3
+    for overrides, objectives in _instants(problem):
+        given_map = instant_givens(problem, None, overrides)
+        numeric = frozenset(o.id for o in objectives if o.kind != "symbolic")
+        try:
+            instant = solve_numeric(kproblem, p, given_map,
+                                    set() if kinetics is not None else set(numeric))
+            g = place_givens(kproblem, p, given_map)
+        except MechgradeError:
+            return None
+        free = instant.state.free
+        # the momentum balances solve the rates of their level: the kinematics leaves them
+        if instant.errors or instant.warnings or any(p.index.level_of(i) < last for i in free):
+            return None
+        unknown, active, target, conditions = [], [], [], {}
+        for level in p.levels:
+            on, goal = rows(level, g)
+            unknown.append(tuple(i for i in p.index.unknowns(level.order)
+                                 if not g.known[i] and g.solvable[i]))
+            active.append(on)
+            target.append(goal)
+            for j, key in enumerate(level.conditions):
+                conditions[key] = (level.order, level.constraint_rows + j)
+        solved = tuple(i for i in p.index.config if not g.known[i])
+        positions = {key: p.index.symbols.index(p.k.quantity(node))
+                     for key, (node, _, _) in given_map.items()
+                     if isinstance(node, (Name, Prime))}
+        groups.append(_Group(overrides, tuple(objectives), numeric, given_map,
+                             instant.state.values.copy(), g.known.copy(), tuple(unknown),
+                             tuple(active), tuple(target), conditions, solved, free,
+                             positions))
+    if not groups:
+        return None
+    return _Template(problem, kproblem, p, kinetics, tuple(groups))
+
+
+solve_variants.cache_clear = _template_cached.cache_clear  # type: ignore[attr-defined]
