@@ -37,11 +37,12 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..spec.model import Objective, Problem, Root
 from .entry import solve
-from .instant import (_instants, _key, _state, collect_results, degrees_of_freedom,
-                      instant_givens, wanted_objectives)
+from .instant import (_instants, _key, _state, _symbolic_answer, _symbolic_result,
+                      collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
+                      wanted_objectives)
 from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
 from .mutants import _in_unit, attach, misread, model_mistake_values, plausible_slips, slips_of
-from .numeric import SINGULAR, solve_numeric
+from .numeric import PROBE_TOL, SINGULAR, solve_numeric
 from .plan import Plan, plan
 from .result import GeneratedMistake, Solution
 
@@ -106,35 +107,21 @@ def _call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
 
 
-def _newton(level_residual, level_jacobian, X, rows_on, target, columns, unknown, nrows,
-            linear: bool):
-    """Solve the active rows for the ``unknown`` positions of every column of ``X`` (in
-    place), from the values there; returns which columns converged with full column rank."""
-    ncols = len(columns)
-    place = [columns.index(i) for i in unknown]
-    n = X.shape[1]
-    ok = np.ones(n, dtype=bool)
-    for step in range(2 if linear else NEWTON_STEPS):
-        r = _call(level_residual, X, nrows)[rows_on] - target[rows_on]
-        J = _call(level_jacobian, X, nrows * ncols).reshape(nrows, ncols, n)[rows_on][:, place]
-        good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
-        ok &= good
-        if not ok.any():
-            break
-        Jb = np.where(good, J, 0.0).transpose(2, 0, 1)
-        U, s, Vt = np.linalg.svd(Jb, full_matrices=False)
-        full = s[:, -1] > RANK_TOL * np.maximum(s[:, 0], 1.0)
-        ok &= full
-        with np.errstate(all="ignore"):
-            inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
-            coeff = np.einsum("nmk,mn->nk", U, np.where(good, r, 0.0)) * inverse
-            delta = -np.einsum("nkj,nk->jn", Vt, coeff)
-        delta[:, ~ok] = 0.0
-        X[unknown] += delta
-        size = np.maximum(np.abs(X[unknown]), 1.0)
-        if not linear and np.all(np.abs(delta) <= 1e-15 * size):
-            break
-    return ok
+def _least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
+    """The minimum-norm least-squares step ``-pinv(J) r`` of every column (``J``: rows x
+    unknowns x N), the rank of each ``J`` (as :func:`~.levels.nullspace` counts it) and the
+    basis of its nullspace (N x unknowns x unknowns, the first ``unknowns - rank`` columns
+    of a column's block spanning it where the rank is that of the first)."""
+    Jb = np.where(good, J, 0.0).transpose(2, 0, 1)
+    U, s, Vt = np.linalg.svd(Jb, full_matrices=True)
+    k = s.shape[1]
+    big = s > RANK_TOL * np.maximum(s.max(axis=1, initial=0.0), 1.0)[:, None]
+    rank = big.sum(axis=1)
+    with np.errstate(all="ignore"):
+        inverse = np.where(big, 1.0 / np.where(big, s, 1.0), 0.0)
+        coeff = np.einsum("nmk,mn->nk", U[:, :, :k], np.where(good, r, 0.0)) * inverse
+        step = -np.einsum("nkj,nk->jn", Vt[:, :k, :], coeff)
+    return step, rank, Vt
 
 
 # ---------------------------------------------------------------------------- the template
@@ -158,6 +145,7 @@ class _Group:
     solved: tuple[int, ...]
     free: frozenset[int]
     positions: Mapping[str, int]
+    nullity: tuple[int, int, int]
 
 
 class _Template:
@@ -211,12 +199,30 @@ class _Template:
                     if not group.overrides or base[i] is None:
                         base[i] = (State(X[:self.p.index.size, i], group.known, group.free),
                                    maps[i])
+            numeric = [o for o in objectives if o.kind != "symbolic"]
+            symbols = [o.id for o in objectives if o.kind == "symbolic"]
+            answers: dict = {}  # this problem's symbolic answers, by what they depend on
             for i in np.flatnonzero(ok):
                 failures: dict = {}
-                collect_results(problem, objectives, maps[i],
+                collect_results(problem, numeric, maps[i],
                                 {oid: v[:, i] for oid, v in values.items()},
                                 {oid: [m[:, i] for m in ms] for oid, ms in mistakes.items()},
-                                results[i], failures, symbolic=symbolic)
+                                results[i], failures)
+                if symbols:
+                    depends = symbolic_dependence(problem, maps[i])
+                    for oid in symbols:
+                        answer = answers.get((oid, depends))
+                        if answer is None:
+                            try:
+                                answer = _symbolic_answer(symbolic or _symbolic_result, problem,
+                                                          oid, maps[i])
+                            except MechgradeError as err:
+                                answer = err
+                            answers[oid, depends] = answer
+                        if isinstance(answer, MechgradeError):
+                            failures[oid] = answer
+                        else:
+                            results[i][oid] = answer
                 if failures:
                     ok[i] = False
                 elif self.kinetics is None:
@@ -250,24 +256,9 @@ class _Template:
                 targets[level][row] = column
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
             np.ones(n, dtype=bool)
-        last = 2 if self.kinetics is not None else 3
-        for level in p.levels:
-            if level.order >= last:  # solved with the momentum balances
-                break
-            unknown = list(group.unknown[level.order])
-            active = group.active[level.order]
-            target = targets[level.order]
-            nrows = len(level.labels)
-            if unknown:
-                columns = list(p.index.unknowns(level.order))
-                linear = level.linear and level.order > 0
-                ok &= _newton(level.residual, level.jacobian, X, active, target, columns,
-                              unknown, nrows, linear)
-            if active.any():
-                r = _call(level.residual, X, nrows)[active] - target[active]
-                scale = np.abs(_call(level.scale, X, nrows))[active]
-                with np.errstate(invalid="ignore"):
-                    ok &= np.all(np.abs(r) <= self.problem.consistency * scale + 1e-10, axis=0)
+        nulls = self._levels(group, X, targets, 0, ok)
+        if self.kinetics is None and (group.free or any(k for k in group.nullity)):
+            ok &= self._determined(group, X, targets, nulls, ok)
         ok &= self._on_branch(group, X)
         if degenerate:
             ok &= ~self._degenerate(group, X)
@@ -292,6 +283,83 @@ class _Template:
         declared = {oid: [_call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
         return X, ok, values, declared
+
+    def _levels(self, group: _Group, X: np.ndarray, targets, first: int,
+                ok: np.ndarray) -> dict[int, np.ndarray]:
+        """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
+        ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
+        linear rate levels (N x unknowns x nullity)."""
+        p = self.p
+        nulls = {}
+        last = 2 if self.kinetics is not None else 3  # the balances solve the second rates
+        for level in p.levels[first:last]:
+            order = level.order
+            unknown = list(group.unknown[order])
+            active, target = group.active[order], targets[order]
+            nrows = len(level.labels)
+            columns = list(p.index.unknowns(order))
+            linear = level.linear and order > 0
+            # a linear rate level: the minimum-norm solution, as least squares gives it;
+            # any other: Newton steps for the unknowns it determines, the others kept
+            solve_for = unknown if linear else [i for i in unknown if i not in group.free]
+            if linear:
+                X[unknown] = 0.0
+            if linear and solve_for and not active.any():  # nothing fixes them: all free
+                nulls[order] = np.broadcast_to(np.eye(len(solve_for)),
+                                               (X.shape[1], len(solve_for), len(solve_for)))
+                continue
+            for _ in range(1 if linear else NEWTON_STEPS if solve_for else 0):
+                place = [columns.index(i) for i in solve_for]
+                r = _call(level.residual, X, nrows)[active] - target[active]
+                J = _call(level.jacobian, X, nrows * len(columns)).reshape(
+                    nrows, len(columns), X.shape[1])[active][:, place]
+                good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
+                ok &= good
+                step, rank, Vt = _least_squares(J, r, good)
+                ok &= rank == len(solve_for) - group.nullity[order]
+                step[:, ~ok] = 0.0
+                X[solve_for] += step
+                if linear:
+                    nulls[order] = Vt[:, rank.max(initial=0):, :].transpose(0, 2, 1) \
+                        if group.nullity[order] else None
+                    break
+                if np.all(np.abs(step) <= 1e-15 * np.maximum(np.abs(X[solve_for]), 1.0)):
+                    break
+            if active.any():
+                r = _call(level.residual, X, nrows)[active] - target[active]
+                scale = np.abs(_call(level.scale, X, nrows))[active]
+                with np.errstate(invalid="ignore"):
+                    ok &= np.all(np.abs(r) <= self.problem.consistency * scale + 1e-10, axis=0)
+        return nulls
+
+    def _determined(self, group: _Group, X: np.ndarray, targets, nulls,
+                    ok: np.ndarray) -> np.ndarray:
+        """Whether every numeric objective stays the same when what the givens leave free
+        moves (each free unknown, each direction of a nullspace), as the scalar solver
+        probes: where one changes, that solver names the objective not determined."""
+        p = self.p
+        same = ok.copy()
+        before = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
+                  if oid in group.numeric}
+        probes = [(p.index.level_of(i), i, None) for i in sorted(group.free)
+                  if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
+        probes += [(order, None, j) for order, null in nulls.items() if null is not None
+                   for j in range(null.shape[2])]
+        for order, i, j in probes:
+            moved = X.copy()
+            if i is not None:
+                moved[i] += 0.37
+                first = order
+            else:
+                moved[list(group.unknown[order])] += 0.73 * nulls[order][:, :, j].T
+                first = order + 1
+            self._levels(group, moved, targets, first, same)
+            for oid, value in before.items():
+                after = _call(dict(p.objectives)[oid], moved, value.shape[0])
+                size = np.maximum(np.abs(value).max(axis=0), 1e-12)
+                with np.errstate(invalid="ignore"):
+                    same &= np.abs(after - value).max(axis=0) <= PROBE_TOL * size + 1e-12
+        return same
 
     def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:
         ok = np.ones(X.shape[1], dtype=bool)
@@ -396,7 +464,10 @@ class _Template:
         changed, owner = [], []
         for i in np.flatnonzero(ok):
             for code, changes, sentence in slips_of(maps[i], self.parameters):
-                changed.append(misread(maps[i], changes))
+                values = dict(maps[i])  # only the values are read by the stacked solve
+                for key, mistaken_si in changes:
+                    values[key] = (None, mistaken_si, None)
+                changed.append((values, maps[i], changes))
                 owner.append((i, code, sentence))
         misreadings: list[dict] = [{} for _ in maps]
         for (i, code, sentence), values in zip(owner, self._misread_values(group, changed)):
@@ -406,20 +477,20 @@ class _Template:
                         code, sentence, _in_unit(v, problem.objective(oid))))
         return [[model(i), misreadings[i]] if ok[i] else [] for i in range(len(maps))]
 
-    def _misread_values(self, group: _Group, maps: list[dict]) -> list[dict | None]:
-        """The numeric objectives at each misread instant (``None``: it does not solve); a
-        degenerate configuration is no reason to drop a mistake
-        (:func:`~.mutants.given_mistakes`)."""
-        if not maps:
+    def _misread_values(self, group: _Group, changed: list) -> list[dict | None]:
+        """The numeric objectives at each misread instant (``None``: it does not solve);
+        ``changed`` holds ``(values, givens, changes)``. A degenerate configuration is no
+        reason to drop a mistake (:func:`~.mutants.given_mistakes`)."""
+        if not changed:
             return []
-        _, ok, values, _ = self._instant(group, maps, False)
+        _, ok, values, _ = self._instant(group, [c[0] for c in changed], False)
         out: list[dict | None] = []
-        for i, m in enumerate(maps):
+        for i, (_, givens, changes) in enumerate(changed):
             if ok[i]:
                 out.append({oid: v[:, i] for oid, v in values.items()})
                 continue
             try:
-                out.append(dict(solve_numeric(self.problem, self.p, m,
+                out.append(dict(solve_numeric(self.problem, self.p, misread(givens, changes),
                                               set(group.numeric)).values))
             except MechgradeError:
                 out.append(None)
@@ -428,6 +499,21 @@ class _Template:
 
 def _size(problem: Problem, oid: str) -> int:
     return 3 if problem.objective(oid).kind == "vector" else 1
+
+
+def _nullity(p: Plan, level, values: np.ndarray, active: np.ndarray, unknown: list) -> int:
+    """How many directions of the linear ``level``'s unknowns its equations leave free at the
+    reference's instant."""
+    if not unknown:
+        return 0
+    if not active.any():
+        return len(unknown)
+    columns = list(p.index.unknowns(level.order))
+    J = _call(level.jacobian, values[:, None], len(level.labels) * len(columns)).reshape(
+        len(level.labels), len(columns), 1)[active][:, [columns.index(i) for i in unknown]]
+    _, rank, _ = _least_squares(J, np.zeros((int(active.sum()), 1)),
+                                np.isfinite(J).all(axis=(0, 1)))
+    return len(unknown) - int(rank[0])
 
 
 def _template(problem: Problem) -> _Template | None:
@@ -471,25 +557,28 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             return None
         free = instant.state.free
         # the momentum balances solve the rates of their level: the kinematics leaves them
-        if instant.errors or instant.warnings or any(p.index.level_of(i) < last for i in free):
+        if instant.errors or instant.warnings:
             return None
-        unknown, active, target, conditions = [], [], [], {}
+        unknown, active, target, conditions, nullity = [], [], [], {}, []
         for level in p.levels:
             on, goal = rows(level, g)
-            unknown.append(tuple(i for i in p.index.unknowns(level.order)
-                                 if not g.known[i] and g.solvable[i]))
+            mine = [i for i in p.index.unknowns(level.order)
+                    if not g.known[i] and g.solvable[i]]
+            unknown.append(tuple(mine))
             active.append(on)
             target.append(goal)
+            nullity.append(_nullity(p, level, instant.state.values, on, mine)
+                           if level.linear and level.order > 0 and level.order < last else 0)
             for j, key in enumerate(level.conditions):
                 conditions[key] = (level.order, level.constraint_rows + j)
-        solved = tuple(i for i in p.index.config if not g.known[i])
+        solved = tuple(i for i in p.index.config if not g.known[i] and i not in free)
         positions = {key: p.index.symbols.index(p.k.quantity(node))
                      for key, (node, _, _) in given_map.items()
                      if isinstance(node, (Name, Prime))}
         groups.append(_Group(overrides, tuple(objectives), numeric, given_map,
                              instant.state.values.copy(), g.known.copy(), tuple(unknown),
                              tuple(active), tuple(target), conditions, solved, free,
-                             positions))
+                             positions, tuple(nullity)))
     if not groups:
         return None
     return _Template(problem, kproblem, p, kinetics, tuple(groups))

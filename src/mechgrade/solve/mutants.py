@@ -33,7 +33,7 @@ from ..mechanics.kinematics import locations
 from ..mechanics.mutations import VELOCITY_CODES, mutations
 from ..spec.model import Objective, Problem
 from ..tolerance import within
-from ..units import dimension, from_si, to_si
+from ..units import dimension, from_si, si_factor, to_si
 from ..mechanics.symbols import identically_zero
 from .levels import State, evaluate
 from .numeric import solve_numeric
@@ -86,18 +86,26 @@ def model_mistake_values(problem: Problem, p: Plan, states: np.ndarray, wanted,
     ``(size, N)`` array. Returns the mistakes of the instant in column ``i``, made on demand."""
     evaluated = []
     for m, value, term in _lambdified(problem, p):
-        if m.objective in wanted:
-            size = len(m.value) if isinstance(m.value, sp.MatrixBase) else 1
-            evaluated.append((m, call(value, states, size),
-                              None if term is None else call(term, states, 3)))
+        if m.objective not in wanted:
+            continue
+        obj = problem.objective(m.objective)
+        size = len(m.value) if isinstance(m.value, sp.MatrixBase) else 1
+        si = call(value, states, size)
+        finite = np.isfinite(si).all(axis=0).tolist()
+        shown = (si / si_factor(obj.unit) + 0.0).T.tolist()  # as _in_unit, every column
+        shown = [tuple(v) for v in shown] if obj.kind == "vector" else [v[0] for v in shown]
+        terms = None if term is None else call(term, states, 3).T
+        evaluated.append((m, obj, finite, shown, terms))
 
     def at(i: int) -> dict[str, list[GeneratedMistake]]:
         out: dict[str, list[GeneratedMistake]] = {}
-        for m, si, terms in evaluated:
-            mistake = _model_mistake(problem, m, si[:, i],
-                                     None if terms is None else terms[:, i])
-            if mistake is not None:
-                out.setdefault(m.objective, []).append(mistake)
+        for m, obj, finite, shown, terms in evaluated:
+            if not finite[i]:
+                continue
+            sentence = m.sentence if terms is None else m.sentence.replace(
+                "{term}", _term_text(terms[i], obj, m.code))
+            out.setdefault(m.objective, []).append(GeneratedMistake(m.code, sentence,
+                                                                    shown[i]))
         return out
     return at
 
@@ -239,15 +247,48 @@ def attach(results: Mapping[str, ObjectiveResult],
     earlier one, dropped) and the model's ``plausible`` slips."""
     out = dict(results)
     for oid, result in results.items():
-        kept: list[GeneratedMistake] = list(result.generated_mistakes)
-        for source in found:
-            for mistake in source.get(oid, ()):
-                # the same value as the answer at this instant: no mistake here
-                if not any(_same(mistake.value, k.value) for k in kept) \
-                        and not _same(mistake.value, result.value) and not _vague(mistake):
-                    kept.append(mistake)
-        out[oid] = replace(result, generated_mistakes=tuple(kept), plausible=plausible)
+        kept = tuple(result.generated_mistakes)
+        new = [mistake for source in found for mistake in source.get(oid, ())]
+        if new:
+            kept = _distinct(result.value, kept, new)
+        out[oid] = replace(result, generated_mistakes=kept, plausible=plausible)
     return out
+
+
+def _distinct(right, kept: tuple[GeneratedMistake, ...],
+              new: list[GeneratedMistake]) -> tuple[GeneratedMistake, ...]:
+    """``kept`` and each mistake of ``new`` whose value differs from the answer ``right``
+    (the same value as the answer at this instant: no mistake here) and from every one kept
+    before it (:func:`_same`), and is not :func:`_vague`; compared all at once."""
+    try:
+        V = np.array([np.atleast_1d(np.asarray(m.value, float)) for m in kept + tuple(new)])
+        r = np.atleast_1d(np.asarray(right, float))
+    except (TypeError, ValueError):  # values of different shapes: compare one by one
+        V = None
+    if V is None or V.ndim != 2 or r.shape != V.shape[1:]:
+        out = list(kept)
+        for mistake in new:
+            if not any(_same(mistake.value, k.value) for k in out) \
+                    and not _same(mistake.value, right) and not _vague(mistake):
+                out.append(mistake)
+        return tuple(out)
+    with np.errstate(invalid="ignore"):
+        norms = np.linalg.norm(V, axis=1)
+        apart = np.linalg.norm(V[:, None, :] - V[None, :, :], axis=2)
+        same = apart <= 1e-9 * np.maximum(np.maximum(norms[:, None], norms[None, :]), 1e-12) \
+            + 1e-12
+        size = max(float(np.linalg.norm(r)), 1e-12)
+        answer = np.linalg.norm(V - r, axis=1) <= 1e-9 * np.maximum(norms, size) + 1e-12
+        nonzero = (np.abs(V) > 1e-12).any(axis=1)
+    keep = list(range(len(kept)))
+    out = list(kept)
+    for j in range(len(kept), len(V)):
+        mistake = new[j - len(kept)]
+        vague = mistake.code != "other_point" and not nonzero[j]
+        if not same[j, keep].any() and not answer[j] and not vague:
+            keep.append(j)
+            out.append(mistake)
+    return tuple(out)
 
 
 def _vague(mistake: GeneratedMistake) -> bool:
