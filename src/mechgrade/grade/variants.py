@@ -195,21 +195,60 @@ def student_variant(problem: Problem, seed: str, student: str,
                     redraw: bool) -> tuple[Variant, Solution]:
     """The student's variant and its solution; with ``redraw``, the first draw that passes
     :func:`variant_faults` (after at most :data:`REDRAW_LIMIT` refusals, raises)."""
-    variant = draw_variant(problem, seed, student)
+    key = (problem, seed, student, redraw)
+    found = _SOLVED.get(key)
+    if found is None:
+        found = student_variants(problem, seed, [student], redraw)[student]
+    return found
+
+
+_SOLVED: dict = {}
+_SOLVED_LIMIT = 100_000
+
+
+def student_variants(problem: Problem, seed: str, students, redraw: bool
+                     ) -> dict[str, tuple[Variant, Solution]]:
+    """:func:`student_variant` for many students at once: their variants are solved together
+    (:func:`mechgrade.solve.batch.solve_variants`), and remembered for
+    :func:`student_variant` (call this once with the class, then per student as before).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("examples") / "hw2_variants" / "pendulum_variants.yaml")
+    >>> both = student_variants(p, "fall", ["10001", "10002"], redraw=True)
+    >>> both["10001"] == student_variant(p, "fall", "10001", redraw=True)
+    True
+    """
+    from ..solve.batch import solve_variants
+
+    out: dict[str, tuple[Variant, Solution]] = {}
+    pending = {student: draw_variant(problem, seed, student) for student in students}
     for _ in range(REDRAW_LIMIT if redraw else 1):
-        try:
-            solution = solve_variant(problem, variant)
-        except MechgradeError:
-            if not redraw:
-                raise
-            solution = None
-        if not redraw or (solution is not None and not variant_faults(problem, variant,
-                                                                        solution)):
-            return variant, solution
-        variant = draw_variant(problem, seed, student, variant.index + 1)
-    raise SolveError(f"no verified variant of problem '{problem.id}' for student "
-                     f"'{student}' in {REDRAW_LIMIT} draws; run mechgrade check --variants "
-                     f"on the problem")
+        if not pending:
+            break
+        names = list(pending)
+        solutions = solve_variants(problem, [dict(pending[s].overrides) for s in names])
+        refused = {}
+        for student, solution in zip(names, solutions):
+            variant = pending[student]
+            if isinstance(solution, MechgradeError):
+                if not redraw:
+                    raise solution
+                solution = None
+            if not redraw or (solution is not None
+                              and not variant_faults(problem, variant, solution)):
+                out[student] = (variant, solution)
+            else:
+                refused[student] = draw_variant(problem, seed, student, variant.index + 1)
+        pending = refused
+    if pending:
+        raise SolveError(f"no verified variant of problem '{problem.id}' for student "
+                         f"'{next(iter(pending))}' in {REDRAW_LIMIT} draws; run mechgrade check "
+                         f"--variants on the problem")
+    if len(_SOLVED) + len(out) > _SOLVED_LIMIT:
+        _SOLVED.clear()
+    _SOLVED.update({(problem, seed, student, redraw): found for student, found in out.items()})
+    return out
 
 
 def statement(problem: Problem, variant: Variant | None = None) -> str:
@@ -249,15 +288,22 @@ def check_variants(problem: Problem, count: int = 200, seed: str = "check"
                    ) -> tuple[RefusedDraw, ...]:
     """Draw ``count`` variants (for students ``"1"``, ``"2"``...) and return those that fail
     :func:`variant_faults`."""
-    refused = []
+    from ..solve.batch import solve_variants
+
+    variants = []
     for n in range(1, count + 1):
         try:
-            variant = draw_variant(problem, seed, str(n))
+            variants.append(draw_variant(problem, seed, str(n)))
         except MechgradeError as err:
             return (RefusedDraw(str(n), "", (err.message,)),)
-        faults = variant_faults(problem, variant)
+    solutions = solve_variants(problem, [dict(v.overrides) for v in variants])
+    refused = []
+    for variant, solution in zip(variants, solutions):
+        faults = ((f"does not solve: {solution.message}",)
+                  if isinstance(solution, MechgradeError)
+                  else variant_faults(problem, variant, solution))
         if faults:
-            refused.append(RefusedDraw(str(n), variant.text(), faults))
+            refused.append(RefusedDraw(variant.student, variant.text(), faults))
     return tuple(refused)
 
 

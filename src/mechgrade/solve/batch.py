@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import types
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Callable, Mapping, Sequence
 
@@ -36,15 +36,17 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..spec.model import Objective, Problem, Root
+from ..units import si_factor
 from .entry import solve
 from .instant import (_instants, _key, _state, _symbolic_answer, _symbolic_result,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
 from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
-from .mutants import _in_unit, attach, misread, model_mistake_values, plausible_slips, slips_of
+from .mutants import (_in_unit, misread, model_mistake_at, model_mistake_table, plausible_slips,
+                      slips_of)
 from .numeric import PROBE_TOL, SINGULAR, solve_numeric
 from .plan import Plan, plan
-from .result import GeneratedMistake, Solution
+from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution
 
 NEWTON_STEPS = 30
 """Newton steps a non-linear level may take from the reference's root."""
@@ -189,12 +191,15 @@ class _Template:
             objectives = [o for o in group.objectives if o.id in wanted]
             values: dict = {}
             mistakes: dict = {}
-            generated: list = [[] for _ in range(n)]
+            generated: dict = {}
             if group.numeric:
                 X, fine, values, mistakes = self._instant(group, maps, True)
                 ok &= fine
+                for ms in mistakes.values():
+                    for m in ms:  # an undefined declared mistake fails its objective
+                        ok &= np.isfinite(m).all(axis=0)
                 if self.kinetics is None:
-                    generated = self._generated(group, maps, X, ok)
+                    generated = self._generated(group, maps, X, ok, values)
                 for i in np.flatnonzero(ok):
                     if not group.overrides or base[i] is None:
                         base[i] = (State(X[:self.p.index.size, i], group.known, group.free),
@@ -202,12 +207,24 @@ class _Template:
             numeric = [o for o in objectives if o.kind != "symbolic"]
             symbols = [o.id for o in objectives if o.kind == "symbolic"]
             answers: dict = {}  # this problem's symbolic answers, by what they depend on
+            shown = {o.id: _shown(values[o.id], o) for o in numeric}
+            declared = {o.id: [_shown(v, o) for v in mistakes.get(o.id, ())] for o in numeric}
             for i in np.flatnonzero(ok):
                 failures: dict = {}
-                collect_results(problem, numeric, maps[i],
-                                {oid: v[:, i] for oid, v in values.items()},
-                                {oid: [m[:, i] for m in ms] for oid, ms in mistakes.items()},
-                                results[i], failures)
+                if self.kinetics is not None:
+                    collect_results(problem, numeric, maps[i],
+                                    {oid: v[:, i] for oid, v in values.items()},
+                                    {oid: [m[:, i] for m in ms] for oid, ms in mistakes.items()},
+                                    results[i], failures)
+                else:
+                    for o in numeric:
+                        results[i][o.id] = ObjectiveResult(
+                            id=o.id, kind=o.kind, unit=o.unit, value=shown[o.id][i],
+                            frame=o.frame, mistakes=tuple(
+                                MistakeValue(m.message, m.credit, v[i])
+                                for m, v in zip(o.mistakes, declared[o.id])),
+                            rel=o.tolerance.rel, abs=o.tolerance.abs, prompt=o.prompt,
+                            generated_mistakes=generated[o.id](i), plausible=self.plausible)
                 if symbols:
                     depends = symbolic_dependence(problem, maps[i])
                     for oid in symbols:
@@ -216,6 +233,8 @@ class _Template:
                             try:
                                 answer = _symbolic_answer(symbolic or _symbolic_result, problem,
                                                           oid, maps[i])
+                                if self.kinetics is None:  # as attach() leaves it
+                                    answer = replace(answer, plausible=self.plausible)
                             except MechgradeError as err:
                                 answer = err
                             answers[oid, depends] = answer
@@ -225,9 +244,6 @@ class _Template:
                             results[i][oid] = answer
                 if failures:
                     ok[i] = False
-                elif self.kinetics is None:
-                    results[i].update(attach({o.id: results[i][o.id] for o in objectives},
-                                             generated[i], self.plausible))
         return [self._solution(results[i], base[i]) if ok[i] else None for i in range(n)]
 
     def _solution(self, results: dict, base) -> Solution:
@@ -456,26 +472,35 @@ class _Template:
 
     # -- generated mistakes
 
-    def _generated(self, group: _Group, maps: list[dict], X: np.ndarray, ok: np.ndarray):
-        """Each variant's generated mistakes: the model mutations at its instant, and its
-        givens misread (those instants solved together too)."""
+    def _generated(self, group: _Group, maps: list[dict], X: np.ndarray, ok: np.ndarray,
+                   values: dict) -> dict:
+        """Each numeric objective's generated mistakes at every variant's instant, as a
+        function of the variant: the model mutations there, then its givens misread (those
+        instants solved together too); kept as :func:`~.mutants.attach` keeps them."""
         problem, p = self.problem, self.p
-        model = model_mistake_values(problem, p, X[:p.index.size], group.numeric, _call)
+        n = len(maps)
+        table = model_mistake_table(problem, p, X[:p.index.size], group.numeric, _call)
         changed, owner = [], []
         for i in np.flatnonzero(ok):
             for code, changes, sentence in slips_of(maps[i], self.parameters):
-                values = dict(maps[i])  # only the values are read by the stacked solve
+                moved = dict(maps[i])  # only the values are read by the stacked solve
                 for key, mistaken_si in changes:
-                    values[key] = (None, mistaken_si, None)
-                changed.append((values, maps[i], changes))
+                    moved[key] = (None, mistaken_si, None)
+                changed.append((moved, maps[i], changes))
                 owner.append((i, code, sentence))
-        misreadings: list[dict] = [{} for _ in maps]
-        for (i, code, sentence), values in zip(owner, self._misread_values(group, changed)):
-            for oid, v in (values or {}).items():
+        misreadings: dict[str, list[list]] = {oid: [[] for _ in range(n)]
+                                              for oid in group.numeric}
+        for (i, code, sentence), found in zip(owner, self._misread_values(group, changed)):
+            for oid, v in (found or {}).items():
                 if oid in group.numeric and np.all(np.isfinite(v)):
-                    misreadings[i].setdefault(oid, []).append(GeneratedMistake(
+                    misreadings[oid][i].append(GeneratedMistake(
                         code, sentence, _in_unit(v, problem.objective(oid))))
-        return [[model(i), misreadings[i]] if ok[i] else [] for i in range(len(maps))]
+        out = {}
+        for oid in group.numeric:
+            obj = problem.objective(oid)
+            rows_ = [row for row in table if row[0].objective == oid]
+            out[oid] = _kept(obj, values[oid], rows_, misreadings[oid])
+        return out
 
     def _misread_values(self, group: _Group, changed: list) -> list[dict | None]:
         """The numeric objectives at each misread instant (``None``: it does not solve);
@@ -495,6 +520,57 @@ class _Template:
             except MechgradeError:
                 out.append(None)
         return out
+
+
+def _shown(si: np.ndarray, obj: Objective) -> list:
+    """SI values (size x N) in the objective's unit, as :func:`~.instant._report` gives
+    each (a float, or a tuple of components)."""
+    values = (si / si_factor(obj.unit) + 0.0).T.tolist()
+    return [tuple(v) for v in values] if obj.kind == "vector" else [v[0] for v in values]
+
+
+def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
+    """The generated mistakes :func:`~.mutants.attach` keeps for every variant at once (the
+    model mutations in ``rows_``, then each variant's ``misread`` givens): those that differ
+    from the answer and from every one kept before them, and are not a vague zero. Returns
+    the mistakes of variant ``i`` as a function of ``i``."""
+    n = si.shape[1]
+    size = si.shape[0]
+    slots = max((len(m) for m in misread), default=0)
+    count = len(rows_) + slots
+    if not count:
+        return lambda i: ()
+    V = np.full((n, count, size), np.nan)
+    exists = np.zeros((n, count), dtype=bool)
+    other = np.zeros((n, count), dtype=bool)
+    for j, row in enumerate(rows_):
+        V[:, j] = row[3]
+        exists[:, j] = row[2]
+        other[:, j] = row[0].code == "other_point"
+    for i, mistakes in enumerate(misread):
+        for k, mistake in enumerate(mistakes):
+            V[i, len(rows_) + k] = np.atleast_1d(np.asarray(mistake.value, float))
+            exists[i, len(rows_) + k] = True
+            other[i, len(rows_) + k] = mistake.code == "other_point"
+    right = (si / si_factor(obj.unit) + 0.0).T
+    with np.errstate(invalid="ignore"):
+        norms = np.linalg.norm(V, axis=2)
+        scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
+        answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
+            1e-9 * np.maximum(norms, scale[:, None]) + 1e-12
+        vague = ~other & ~(np.abs(V) > 1e-12).any(axis=2)
+        keep = np.zeros((n, count), dtype=bool)
+        for j in range(count):
+            apart = np.linalg.norm(V[:, :j] - V[:, j:j + 1], axis=2)
+            same = apart <= 1e-9 * np.maximum(np.maximum(norms[:, :j], norms[:, j:j + 1]),
+                                              1e-12) + 1e-12
+            keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
+                & ~vague[:, j]
+
+    def at(i: int) -> tuple[GeneratedMistake, ...]:
+        return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
+                     else misread[i][j - len(rows_)] for j in np.flatnonzero(keep[i]))
+    return at
 
 
 def _size(problem: Problem, oid: str) -> int:

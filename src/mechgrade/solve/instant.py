@@ -49,9 +49,15 @@ def _key(text: str):
     return node, to_text(node)
 
 
+@lru_cache(maxsize=256)
+def _spec_givens(problem: Problem) -> dict:
+    """The spec's own givens keyed by canonical key text (copied by :func:`_givens`)."""
+    return {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
+
+
 def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
     """Given values keyed by canonical key text -> (key node, SI value, Given or None)."""
-    out = {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
+    out = dict(_spec_givens(problem))
     for key, value in (overrides or {}).items():
         node, canonical = _key(key)
         if value is None:
@@ -300,12 +306,17 @@ def _quantity_unit(problem: Problem, node) -> str:
     return si_unit(units[node.id])
 
 
+@lru_cache(maxsize=256)
+def _author_units(problem: Problem, p: Plan) -> list[str]:
+    return author_units(problem, p)
+
+
 def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:
     """The solved coordinates, rates, parameters and time, in the author's units."""
     if base is None:
         return ()
     state, givens = base
-    units = author_units(problem, p)
+    units = _author_units(problem, p)
     out = []
     for i in range(p.index.size):
         value = state.values[i]

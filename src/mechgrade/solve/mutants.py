@@ -22,7 +22,7 @@ import math
 import re
 from dataclasses import replace
 from functools import lru_cache
-from typing import Callable, Mapping
+from typing import Mapping
 
 import numpy as np
 import sympy as sp
@@ -79,35 +79,33 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
     return out
 
 
-def model_mistake_values(problem: Problem, p: Plan, states: np.ndarray, wanted,
-                         call) -> "Callable[[int], dict[str, list[GeneratedMistake]]]":
+def model_mistake_table(problem: Problem, p: Plan, states: np.ndarray, wanted, call) -> list:
     """:func:`model_mistakes` at many instants at once: ``states`` holds one state per
     column, ``call(f, states, size)`` evaluates a lambdified function at every column as a
-    ``(size, N)`` array. Returns the mistakes of the instant in column ``i``, made on demand."""
-    evaluated = []
+    ``(size, N)`` array. One row per mutation of an objective in ``wanted``: ``(mutation,
+    objective, where it is defined (N), its values in the objective's unit (N x size), the
+    dropped term's SI values (N x 3) or None)``; :func:`model_mistake_at` makes the mistake of
+    one instant."""
+    table = []
     for m, value, term in _lambdified(problem, p):
         if m.objective not in wanted:
             continue
         obj = problem.objective(m.objective)
         size = len(m.value) if isinstance(m.value, sp.MatrixBase) else 1
         si = call(value, states, size)
-        finite = np.isfinite(si).all(axis=0).tolist()
-        shown = (si / si_factor(obj.unit) + 0.0).T.tolist()  # as _in_unit, every column
-        shown = [tuple(v) for v in shown] if obj.kind == "vector" else [v[0] for v in shown]
-        terms = None if term is None else call(term, states, 3).T
-        evaluated.append((m, obj, finite, shown, terms))
+        shown = (si / si_factor(obj.unit) + 0.0).T  # as _in_unit, every column at once
+        table.append((m, obj, np.isfinite(si).all(axis=0), shown,
+                      None if term is None else call(term, states, 3).T))
+    return table
 
-    def at(i: int) -> dict[str, list[GeneratedMistake]]:
-        out: dict[str, list[GeneratedMistake]] = {}
-        for m, obj, finite, shown, terms in evaluated:
-            if not finite[i]:
-                continue
-            sentence = m.sentence if terms is None else m.sentence.replace(
-                "{term}", _term_text(terms[i], obj, m.code))
-            out.setdefault(m.objective, []).append(GeneratedMistake(m.code, sentence,
-                                                                    shown[i]))
-        return out
-    return at
+
+def model_mistake_at(row, i: int) -> GeneratedMistake:
+    """The mistake of :func:`model_mistake_table`'s ``row`` at instant ``i``."""
+    m, obj, _, shown, terms = row
+    sentence = m.sentence if terms is None else m.sentence.replace(
+        "{term}", _term_text(terms[i], obj, m.code))
+    value = tuple(shown[i].tolist()) if obj.kind == "vector" else float(shown[i, 0])
+    return GeneratedMistake(m.code, sentence, value)
 
 
 def _model_mistake(problem: Problem, m, si: np.ndarray, term) -> GeneratedMistake | None:
