@@ -1,7 +1,7 @@
 """Print, per problem: cold derivation time, warm variant time and their ratio (target >= 1000).
 
-Cold = load the spec, build the model and the solver plan (every derivation cache cleared) and
-solve once. Warm, one at a time = ``solve`` with one student's givens, the plan already built
+Cold = load the spec, build the model and the solver plan and solve once, in a fresh process
+(its imports done before the clock starts): what grading pays the first time it meets a problem. Warm, one at a time = ``solve`` with one student's givens, the plan already built
 (the median over the first ``--alone`` students, each a new variant). Warm, a class = the
 variants of all ``--students`` students solved together (``solve_variants``, as grading and
 ``check --variants`` do), per student. Problems with a ``variants:`` section draw their
@@ -15,7 +15,9 @@ Run: PYTHONPATH=src python bench/variants.py [--students N] [--alone N] [problem
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -61,16 +63,32 @@ def clear_caches() -> None:
                     value.cache_clear()
 
 
+COLD = """
+import sys, time
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem
+import mechgrade.solve.dynamics, mechgrade.solve.events, sympy.physics.mechanics, scipy.integrate
+start = time.perf_counter()
+solve(load_problem(sys.argv[1]))
+print(time.perf_counter() - start)
+"""
+
+
+def cold_seconds(path: Path) -> float:
+    """Load and solve ``path`` in a fresh process, timed after the imports."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(Path(__file__).parents[1] / "src"),
+                                                      env.get("PYTHONPATH")]))
+    done = subprocess.run([sys.executable, "-c", COLD, str(path)], capture_output=True,
+                          text=True, env=env, check=True)
+    return float(done.stdout.split()[-1])
+
+
 def measure(path: Path, students: int, alone: int):
     clear_caches()
-    problem = None
-
-    def cold_run():
-        nonlocal problem
-        problem = load_problem(path)
-        solve(problem)
-
-    cold, _ = timed(cold_run)
+    cold = cold_seconds(path)
+    problem = load_problem(path)
+    solve(problem)
     overrides = [g for g in variants_of(problem, students) if g]
     warm = []
     solved = []

@@ -87,14 +87,15 @@ def _batched(f: Callable) -> Callable:
 
 
 def _array(rows):
-    try:
-        out = np.array(rows, dtype=float)
-        return out
-    except ValueError:  # ragged: a constant entry beside arrays
-        entries = [e for row in rows for e in row]
-        shape = np.broadcast_shapes(*(np.shape(e) for e in entries))
-        return np.array([[np.broadcast_to(np.asarray(e, dtype=float), shape) for e in row]
-                         for row in rows])
+    shapes = {np.shape(e) for row in rows for e in row}
+    if len(shapes) <= 1:
+        return np.array(rows, dtype=float)
+    # a constant entry beside arrays: every entry broadcast to the arrays' shape
+    out = np.empty((len(rows), len(rows[0])) + np.broadcast_shapes(*shapes))
+    for r, row in enumerate(rows):
+        for c, entry in enumerate(row):
+            out[r, c] = entry
+    return out
 
 
 def _call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
@@ -339,7 +340,7 @@ class _Template:
                     nulls[order] = Vt[:, rank.max(initial=0):, :].transpose(0, 2, 1) \
                         if group.nullity[order] else None
                     break
-                if np.all(np.abs(step) <= 1e-15 * np.maximum(np.abs(X[solve_for]), 1.0)):
+                if np.all(np.abs(step) <= 1e-12 * np.maximum(np.abs(X[solve_for]), 1.0)):
                     break
             if active.any():
                 r = _call(level.residual, X, nrows)[active] - target[active]

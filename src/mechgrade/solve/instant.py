@@ -49,10 +49,26 @@ def _key(text: str):
     return node, to_text(node)
 
 
-@lru_cache(maxsize=256)
+_BY_PROBLEM: dict = {}
+
+
+def _per_problem(make, *args):
+    """``make(*args)``, kept per identity of ``args`` (a problem and its plan): hashing a
+    problem walks all of it, and re-solves ask for the same few again and again. The entry
+    holds ``args``, so an identity is not reused while it is kept."""
+    key = (make, *map(id, args))
+    entry = _BY_PROBLEM.get(key)
+    if entry is None or any(a is not b for a, b in zip(entry[0], args)):
+        if len(_BY_PROBLEM) >= 1024:
+            _BY_PROBLEM.clear()
+        entry = _BY_PROBLEM[key] = (args, make(*args))
+    return entry[1]
+
+
 def _spec_givens(problem: Problem) -> dict:
     """The spec's own givens keyed by canonical key text (copied by :func:`_givens`)."""
-    return {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
+    return _per_problem(lambda p: {to_text(g.key.node): (g.key.node, g.si, g)
+                                   for g in p.givens}, problem)
 
 
 def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
@@ -306,9 +322,8 @@ def _quantity_unit(problem: Problem, node) -> str:
     return si_unit(units[node.id])
 
 
-@lru_cache(maxsize=256)
 def _author_units(problem: Problem, p: Plan) -> list[str]:
-    return author_units(problem, p)
+    return _per_problem(author_units, problem, p)
 
 
 def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:

@@ -308,16 +308,22 @@ def _in_unit(si_values: np.ndarray, obj: Objective):
     return float(from_si(si_values[0], obj.unit)) + 0.0
 
 
+@lru_cache(maxsize=256)
+def _term_unit(unit: str, velocity: bool) -> str:
+    """The unit a dropped term is shown in: the objective's when it is of the same kind."""
+    per = "/s" if velocity else "/s^2"
+    if dimension(unit) == dimension("m" + per):
+        return unit
+    if dimension(unit) == dimension("m"):  # a radius of curvature: its length unit
+        return unit + per
+    return "m" + per
+
+
 def _term_text(si_values: np.ndarray, obj: Objective, code: str) -> str:
     """A dropped term's components, in the objective's unit when it is of the same kind."""
-    per = "/s" if code in VELOCITY_CODES else "/s^2"
-    if dimension(obj.unit) == dimension("m" + per):
-        unit = obj.unit
-    elif dimension(obj.unit) == dimension("m"):  # a radius of curvature: its length unit
-        unit = obj.unit + per
-    else:
-        unit = "m" + per
-    shown = [float(from_si(v, unit)) + 0.0 for v in si_values]
+    unit = _term_unit(obj.unit, code in VELOCITY_CODES)
+    factor = si_factor(unit)
+    shown = [float(v) / factor + 0.0 for v in si_values]  # from_si, as floats
     size = max(abs(v) for v in shown)
     shown = [0.0 if abs(v) <= 1e-9 * size else v for v in shown]  # round-off, not a part
     parts = shown[:2] if shown[2] == 0 else shown
