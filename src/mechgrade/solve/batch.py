@@ -38,7 +38,7 @@ from ..mechanics.kinematics import locations
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .entry import solve
-from .instant import (_instants, _key, _state, _symbolic_answer, _symbolic_result,
+from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
 from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
@@ -226,23 +226,21 @@ class _Template:
                                 for m, v in zip(o.mistakes, declared[o.id])),
                             rel=o.tolerance.rel, abs=o.tolerance.abs, prompt=o.prompt,
                             generated_mistakes=generated[o.id](i), plausible=self.plausible)
-                if symbols:
-                    depends = symbolic_dependence(problem, maps[i])
-                    for oid in symbols:
-                        answer = answers.get((oid, depends))
-                        if answer is None:
-                            try:
-                                answer = _symbolic_answer(symbolic or _symbolic_result, problem,
-                                                          oid, maps[i])
-                                if self.kinetics is None:  # as attach() leaves it
-                                    answer = replace(answer, plausible=self.plausible)
-                            except MechgradeError as err:
-                                answer = err
-                            answers[oid, depends] = answer
-                        if isinstance(answer, MechgradeError):
-                            failures[oid] = answer
-                        else:
-                            results[i][oid] = answer
+                for oid in symbols:
+                    depends = symbolic_dependence(problem, maps[i], oid)
+                    answer = answers.get((oid, depends))
+                    if answer is None:
+                        try:
+                            answer = _symbolic_answer(symbolic, problem, oid, maps[i])
+                            if self.kinetics is None:  # as attach() leaves it
+                                answer = replace(answer, plausible=self.plausible)
+                        except MechgradeError as err:
+                            answer = err
+                        answers[oid, depends] = answer
+                    if isinstance(answer, MechgradeError):
+                        failures[oid] = answer
+                    else:
+                        results[i][oid] = answer
                 if failures:
                     ok[i] = False
         return [self._solution(results[i], base[i]) if ok[i] else None for i in range(n)]

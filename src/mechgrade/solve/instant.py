@@ -24,6 +24,7 @@ import sympy as sp
 from ..errors import AuthorWarning, MechgradeError, SolveError
 from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
+from ..spec.validate import symbol_meanings
 from ..spec.model import Objective, Problem
 from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
@@ -197,10 +198,13 @@ _SYMBOLIC_LIMIT = 4096
 
 
 def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: dict):
-    """A symbolic objective's answer, solved once per problem and :func:`symbolic_dependence`
+    """A symbolic objective's answer (by ``symbolic``, by default the kinematic one), solved
+    once per problem and :func:`symbolic_dependence`
     of the givens: a variant that changes only givens with units (not to or from zero) reuses
     the answer of the first, without sympy."""
-    key = (symbolic, problem, objective_id, symbolic_dependence(problem, given_map))
+    symbolic = symbolic or _symbolic_result
+    key = (symbolic, problem, objective_id,
+           symbolic_dependence(problem, given_map, objective_id))
     answer = _SYMBOLIC_ANSWERS.get(key)
     if answer is None:
         answer = symbolic(problem, objective_id,
@@ -211,29 +215,39 @@ def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: d
     return answer
 
 
-def symbolic_dependence(problem: Problem, given_map: dict) -> tuple:
-    """What a symbolic answer can depend on in the givens: which are given, which are zero
-    (a zero stands in for its symbol in every unit), and the values of those that may stand in
-    for their symbols (pure numbers and angles; in dynamics also given rates, which enter the
-    momentum balances). A given with a unit is never substituted, so its value is left out.
+def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) -> tuple:
+    """What a symbolic objective's answer can depend on in the givens: which are given, which
+    are zero (a zero stands in for its symbol in every unit), and the values of those that may
+    stand in for their symbols (pure numbers and angles; in dynamics also given rates, which
+    enter the momentum balances). A given with a unit is never substituted, nor is one of the
+    objective's own symbols, so their values are left out.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
     >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
     >>> a, b = instant_givens(problem, None, {}), instant_givens(problem, {"L": 0.5}, {})
-    >>> symbolic_dependence(problem, a) == symbolic_dependence(problem, b)
+    >>> key = "acc_mag_symbolic"
+    >>> symbolic_dependence(problem, a, key) == symbolic_dependence(problem, b, key)
     True
     """
     dynamics = problem.dynamics is not None
+    declared = _per_problem(_declared, problem, problem.objective(objective_id))
     out = []
     for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
-        if given is None or si_unit(given.unit) in ("", "rad") or \
+        if key in declared:
+            token = None
+        elif given is None or si_unit(given.unit) in ("", "rad") or \
                 (dynamics and isinstance(node, Prime)):
             token = (si, None if given is None else (given.value, given.unit))
         else:
             token = si == 0
         out.append((key, token))
     return tuple(out)
+
+
+def _declared(problem: Problem, objective: Objective) -> frozenset[str]:
+    """The given keys an objective's declared symbols stand for (``theta'`` for ``thetad``)."""
+    return frozenset(to_text(node) for node in symbol_meanings(problem, objective).values())
 
 
 def _instants(problem: Problem):
