@@ -70,6 +70,7 @@ def scaled(problem, keys, count=6):
     ("ruina_10_2_limacon", ["b", "theta'"]),                  # a non-linear level from guesses
     ("bowling_3_15_6_gears", ["teeth_A", "dot(angacc(B, N), N.z)"]),  # free unknowns
     ("pendulum_pin_reaction", ["L", "m"]),               # dynamics at an instant
+    ("rod_strikes_ledge", ["L", "v0", "e"]),             # an impact
 ])
 def test_variants_solved_together_are_the_variants_solved_alone(name, keys):
     problem = load_problem(PROBLEMS / f"{name}.yaml")
@@ -78,6 +79,13 @@ def test_variants_solved_together_are_the_variants_solved_alone(name, keys):
     assert _template(problem) is not None
     for together, one in zip(solve_variants(problem, variants), alone(problem, variants)):
         assert_same(together, one)
+
+
+def test_a_problem_with_symbolic_objectives_only_is_solved_together():
+    problem = load_problem(PROBLEMS / "ruina_sec10_bug_on_tire.yaml")
+    assert _template(problem) is not None
+    together, = solve_variants(problem, [{}])
+    assert_same(together, solve(problem))
 
 
 def test_drawn_variants_solved_together_are_the_drawn_variants_solved_alone():

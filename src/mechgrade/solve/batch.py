@@ -35,6 +35,7 @@ import numpy as np
 from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
+from ..spec.dynamics import Impulse
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .entry import solve
@@ -306,8 +307,7 @@ class _Template:
         linear rate levels (N x unknowns x nullity)."""
         p = self.p
         nulls = {}
-        last = 2 if self.kinetics is not None else 3  # the balances solve the second rates
-        for level in p.levels[first:last]:
+        for level in p.levels[first:]:
             order = level.order
             unknown = list(group.unknown[order])
             active, target = group.active[order], targets[order]
@@ -604,7 +604,11 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     kproblem = problem
     if problem.dynamics is not None:
         from .dynamics import kinematic_problem, kinetics_plan
-        if problem.dynamics.analysis is not None or problem.dynamics.design is not None:
+        # at an instant or an impact; not reached by work-energy or an integration, nor with a
+        # design parameter solved for
+        if not (problem.dynamics.analysis is None or
+                isinstance(problem.dynamics.analysis, Impulse)) or \
+                problem.dynamics.design is not None:
             return None
         kinetics = kinetics_plan(problem)
         kproblem = kinematic_problem(problem)
@@ -620,10 +624,15 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     if reference.failures or tuple(reference.warnings) != tuple(p.k.warnings):
         return None
     groups = []
-    last = 2 if kinetics is not None else 3
     for overrides, objectives in _instants(problem):
         given_map = instant_givens(problem, None, overrides)
         numeric = frozenset(o.id for o in objectives if o.kind != "symbolic")
+        if not numeric:  # symbolic objectives only: no instant to solve
+            empty = np.zeros(p.index.size)
+            groups.append(_Group(overrides, tuple(objectives), numeric, given_map, empty,
+                                 empty.astype(bool), ((), (), ()), (), (), {}, (),
+                                 frozenset(), {}, (0, 0, 0)))
+            continue
         try:
             instant = solve_numeric(kproblem, p, given_map,
                                     set() if kinetics is not None else set(numeric))
@@ -631,7 +640,6 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         except MechgradeError:
             return None
         free = instant.state.free
-        # the momentum balances solve the rates of their level: the kinematics leaves them
         if instant.errors or instant.warnings:
             return None
         unknown, active, target, conditions, nullity = [], [], [], {}, []
@@ -643,7 +651,7 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             active.append(on)
             target.append(goal)
             nullity.append(_nullity(p, level, instant.state.values, on, mine)
-                           if level.linear and level.order > 0 and level.order < last else 0)
+                           if level.linear and level.order > 0 else 0)
             for j, key in enumerate(level.conditions):
                 conditions[key] = (level.order, level.constraint_rows + j)
         solved = tuple(i for i in p.index.config if not g.known[i] and i not in free)
