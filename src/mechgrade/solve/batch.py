@@ -88,6 +88,8 @@ def _batched(f: Callable) -> Callable:
 
 
 def _array(rows):
+    """``numpy.array`` for the matrices lambdified functions build, with entries of
+    different shapes broadcast together."""
     shapes = {np.shape(e) for row in rows for e in row}
     if len(shapes) <= 1:
         return np.array(rows, dtype=float)
@@ -113,9 +115,9 @@ def _call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
 
 def _least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
     """The minimum-norm least-squares step ``-pinv(J) r`` of every column (``J``: rows x
-    unknowns x N), the rank of each ``J`` (as :func:`~.levels.nullspace` counts it) and the
-    basis of its nullspace (N x unknowns x unknowns, the first ``unknowns - rank`` columns
-    of a column's block spanning it where the rank is that of the first)."""
+    unknowns x N, ``r``: rows x N; columns not ``good`` are left at zero), the rank of each
+    ``J`` (as :func:`~.levels.nullspace` counts it) and each one's right singular vectors
+    (N x unknowns x unknowns: the rows after the rank span its nullspace)."""
     Jb = np.where(good, J, 0.0).transpose(2, 0, 1)
     U, s, Vt = np.linalg.svd(Jb, full_matrices=True)
     k = s.shape[1]
