@@ -251,6 +251,22 @@ def student_variants(problem: Problem, seed: str, students, redraw: bool
     return out
 
 
+def prepare_variants(plan, students) -> None:
+    """Solve every student's variant of every problem of ``plan`` (the assignment's
+    :class:`~mechgrade.grade.run.Plan`) together, so that :func:`student_variant` finds each
+    solved; ``students`` are the ids variants are drawn for. A problem whose variants cannot
+    all be drawn or solved is left to :func:`student_variant`, which reports it per student."""
+    assignment = plan.assignment
+    students = list(dict.fromkeys(students))
+    for problem in plan.problems:
+        if problem.variants is not None:
+            try:
+                student_variants(problem, assignment.variant_seed, students,
+                                 assignment.variants.redraw)
+            except MechgradeError:
+                continue
+
+
 def statement(problem: Problem, variant: Variant | None = None) -> str:
     """The statement with each ``{given}`` replaced by the variant's value and unit.
 
@@ -338,6 +354,8 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
     the variant, as in grading)."""
     assignment = plan.assignment
     seed = assignment.variant_seed
+    students = list(students)
+    prepare_variants(plan, [student_id for student_id, _ in students])
     sheets = []
     for student_id, name in students:
         problems = []
