@@ -43,7 +43,7 @@ from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
 from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
-from .mutants import (_in_unit, misread, model_mistake_at, model_mistake_table, plausible_slips,
+from .mutants import (misread, model_mistake_at, model_mistake_table, plausible_slips,
                       slips_of)
 from .numeric import PROBE_TOL, SINGULAR, solve_numeric
 from .plan import Plan, plan
@@ -491,11 +491,14 @@ class _Template:
                 owner.append((i, code, sentence))
         misreadings: dict[str, list[list]] = {oid: [[] for _ in range(n)]
                                               for oid in group.numeric}
-        for (i, code, sentence), found in zip(owner, self._misread_values(group, changed)):
-            for oid, v in (found or {}).items():
-                if oid in group.numeric and np.all(np.isfinite(v)):
-                    misreadings[oid][i].append(GeneratedMistake(
-                        code, sentence, _in_unit(v, problem.objective(oid))))
+        solved, found = self._misread_values(group, changed)
+        for oid in group.numeric:
+            obj = problem.objective(oid)
+            shown = _shown(found[oid], obj) if changed else []
+            defined = (solved & np.isfinite(found[oid]).all(axis=0)) if changed else []
+            for k in np.flatnonzero(defined):
+                i, code, sentence = owner[k]
+                misreadings[oid][i].append(GeneratedMistake(code, sentence, shown[k]))
         out = {}
         for oid in group.numeric:
             obj = problem.objective(oid)
@@ -503,24 +506,26 @@ class _Template:
             out[oid] = _kept(obj, values[oid], rows_, misreadings[oid])
         return out
 
-    def _misread_values(self, group: _Group, changed: list) -> list[dict | None]:
-        """The numeric objectives at each misread instant (``None``: it does not solve);
-        ``changed`` holds ``(values, givens, changes)``. A degenerate configuration is no
-        reason to drop a mistake (:func:`~.mutants.given_mistakes`)."""
+    def _misread_values(self, group: _Group, changed: list) -> tuple[np.ndarray, dict]:
+        """The numeric objectives at each misread instant (``changed`` holds ``(values,
+        givens, changes)``): which solved, and each objective's SI values (size x count). A
+        degenerate configuration is no reason to drop a mistake
+        (:func:`~.mutants.given_mistakes`)."""
         if not changed:
-            return []
+            return np.zeros(0, dtype=bool), {}
         _, ok, values, _ = self._instant(group, [c[0] for c in changed], False)
-        out: list[dict | None] = []
-        for i, (_, givens, changes) in enumerate(changed):
-            if ok[i]:
-                out.append({oid: v[:, i] for oid, v in values.items()})
-                continue
+        solved = ok.copy()
+        for i in np.flatnonzero(~ok):  # what the stacked path does not vouch for: alone
+            _, givens, changes = changed[i]
             try:
-                out.append(dict(solve_numeric(self.problem, self.p, misread(givens, changes),
-                                              set(group.numeric)).values))
+                alone = solve_numeric(self.problem, self.p, misread(givens, changes),
+                                      set(group.numeric)).values
             except MechgradeError:
-                out.append(None)
-        return out
+                continue
+            solved[i] = True
+            for oid, v in values.items():
+                v[:, i] = alone[oid]
+        return solved, values
 
 
 def _shown(si: np.ndarray, obj: Objective) -> list:
@@ -548,11 +553,13 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
         V[:, j] = row[3]
         exists[:, j] = row[2]
         other[:, j] = row[0].code == "other_point"
+    first = len(rows_)
     for i, mistakes in enumerate(misread):
-        for k, mistake in enumerate(mistakes):
-            V[i, len(rows_) + k] = np.atleast_1d(np.asarray(mistake.value, float))
-            exists[i, len(rows_) + k] = True
-            other[i, len(rows_) + k] = mistake.code == "other_point"
+        if mistakes:
+            last = first + len(mistakes)
+            V[i, first:last] = np.array([m.value for m in mistakes], float).reshape(-1, size)
+            exists[i, first:last] = True
+            other[i, first:last] = [m.code == "other_point" for m in mistakes]
     right = (si / si_factor(obj.unit) + 0.0).T
     with np.errstate(invalid="ignore"):
         norms = np.linalg.norm(V, axis=2)
