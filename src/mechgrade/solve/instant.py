@@ -68,8 +68,11 @@ def _per_problem(make, *args):
 
 def _spec_givens(problem: Problem) -> dict:
     """The spec's own givens keyed by canonical key text (copied by :func:`_givens`)."""
-    return _per_problem(lambda p: {to_text(g.key.node): (g.key.node, g.si, g)
-                                   for g in p.givens}, problem)
+    return _per_problem(_keyed_givens, problem)
+
+
+def _keyed_givens(problem: Problem) -> dict:
+    return {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
 
 
 def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
