@@ -18,7 +18,7 @@ from pathlib import Path
 from mechgrade.errors import MechgradeError
 from mechgrade.mechanics import derive
 from mechgrade.solve import plan
-from mechgrade.solve.instant import _givens, _instants
+from mechgrade.solve.instant import _givens, _instants, _symbolic_answer
 from mechgrade.solve.numeric import solve_numeric
 from mechgrade.solve.symbolic import symbolic as solve_symbolic
 from mechgrade.mechanics.dynamics import derive_kinetics
@@ -106,6 +106,7 @@ def measure_dynamics(problem, start: float):
     symbolic = [o.id for o in problem.objectives if o.kind == "symbolic"]
     _linear_solve.cache_clear()
     _symbolic_result.cache_clear()
+    _symbolic_answer.cache_clear()
     begin = time.perf_counter()
     if symbolic:
         solve_dynamics(problem, objectives=symbolic)

@@ -21,6 +21,12 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
     >>> within(99.0, 100.0, 0.01, 0.0), within(98.99, 100.0, 0.01, 0.0), within(1.05, 1, 0.05, 0)
     (True, False, True)
     """
+    if isinstance(student, _NUMBERS) and isinstance(reference, _NUMBERS):
+        # plain floats follow the same IEEE rules as numpy's, without its call overhead
+        a, b = float(student), float(reference)
+        size = abs(b) if scale is None else abs(float(scale))
+        limit = max(rel * size, abs_)
+        return abs(a - b) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size
     s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
     if s.shape == t.shape and s.size <= 3 and abs_ == abs_:
         # The same arithmetic on Python floats: for a number or a vector, numpy's set-up costs
@@ -32,10 +38,14 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
             if not abs(a - b) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size:
                 return False
         return True
-    size = np.abs(t) if scale is None else abs(float(scale))
-    limit = np.maximum(rel * size, abs_)
     with np.errstate(all="ignore"):
-        return bool(np.all(np.abs(s - t) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size))
+        size = np.abs(t) if scale is None else abs(float(scale))
+        limit = np.maximum(rel * size, abs_)
+        return bool((np.abs(s - t) <= limit * (1 + FLOAT_SLACK)
+                     + 1e-3 * FLOAT_SLACK * size).all())
+
+
+_NUMBERS = (float, int)
 
 
 def agree_at_points(rel: float, reference: np.ndarray):

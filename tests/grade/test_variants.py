@@ -156,6 +156,21 @@ def test_verification_refuses_a_mistake_indistinguishable_from_the_answer():
                             "the right answer within the tolerance",)
 
 
+def test_verification_refuses_a_generated_mistake_indistinguishable_from_the_answer():
+    # with a small theta'', dropping the tangential acceleration changes |a| by < 1 %
+    acc = ("  - {id: acc, prompt: Acceleration of the tip., find: \"mag(acc(P, N))\", "
+           "kind: scalar, unit: m/s^2}\n")
+    problem = load_problem_text(base_with(
+        "variants:\n  draw:\n    theta'': {choices: [20 rad/s^2, 0.5 rad/s^2]}\n", acc),
+        "p.yaml")
+    refused = check_variants(problem, 30)
+    assert refused and len(refused) < 30
+    for r in refused:
+        assert r.givens == "theta'' = 0.5 rad/s^2"
+        assert r.faults == ("objective 'acc': the generated mistake drop_tangential gives "
+                            "18 m/s^2, within the tolerance (1 %) of the answer 18.03 m/s^2",)
+
+
 def test_verification_refuses_an_answer_outside_its_bounds():
     problem = load_problem_text(base_with("""
 variants:

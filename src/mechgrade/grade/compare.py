@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -28,7 +29,7 @@ from ..expressions.dimensions import DimensionError, Kind, Type, infer
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
-from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
+from ..solve.result import ObjectiveResult
 from ..spec.model import ObjectiveKind
 from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
@@ -580,33 +581,28 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     read_back = answer.read_back()
     if not result.expr:
         return not_evaluated("the reference expression is not available", read_back)
-    reference_node = _reference_tree(result.expr, tuple(result.symbols))
-    wanted = policy.symbolic_points
-    env = sample_points(result, 4 * wanted, policy.seed)
-    reference = evaluate(reference_node, env)
-    valid = np.isfinite(reference)
-    if int(valid.sum()) < MIN_VALID_POINTS:
+    sampled = _sampled(result, policy.symbolic_points, policy.seed)
+    if sampled is None:
+        reference_node = _reference_tree(result.expr, tuple(result.symbols))
         confirmed = _sympy_equivalent(answer.node, reference_node, result)
         if confirmed is True:
             return Assessment("correct", 1.0, None, "Correct.", read_back)
         return not_evaluated("the reference is undefined at the sample points", read_back)
-    keep = np.flatnonzero(valid)[:wanted]
-    env = {name: values[keep] for name, values in env.items()}
-    reference = reference[keep]
+    env, reference = sampled
     student = evaluate(answer.node, env)
     close = agree_at_points(policy.symbolic_rel, reference)
     if close(student, reference):
         return Assessment("correct", 1.0, None, "Correct.", read_back)
-    mistakes = []
-    for mistake in result.mistakes:
-        mistakes.append((mistake, _mistake_values(mistake, result, env)))
+    mistakes = [(m, _sampled_mistake(m.expr, result, policy)) for m in result.mistakes]
     # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
     # such as 9.81 for g (1%), unlike the equivalence test itself.
     loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
-    generated = [(g, _mistake_values(g, result, env)) for g in result.generated_mistakes]
+    generated = [(g, _sampled_mistake(g.expr, result, policy))
+                 for g in result.generated_mistakes]
     found = diagnose(student, reference, loose, kind=ObjectiveKind.SYMBOLIC, mistakes=mistakes,
                      generated=generated, plausible=result.plausible)
     if found is None:
+        reference_node = _reference_tree(result.expr, tuple(result.symbols))
         found = _number_for_g(answer.node, reference_node, result, env, student, loose)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
@@ -636,13 +632,55 @@ def _number_for_g(node: Node, reference_node: Node, result: ObjectiveResult, env
     return None
 
 
-def _mistake_values(mistake: MistakeValue | GeneratedMistake, result: ObjectiveResult, env) -> np.ndarray | None:
-    if not mistake.expr:
+def _sampled(result: ObjectiveResult, wanted: int, seed: int):
+    """The sample points of ``result`` and the reference's values there: ``wanted`` points
+    where the reference is defined (of ``4 * wanted`` drawn), or ``None`` when fewer than
+    :data:`MIN_VALID_POINTS` are. The same for every answer to the objective, so kept per
+    objective (a worker judges many answers to few objectives)."""
+    return _sampled_cached(result.id, result.expr, tuple(result.symbols),
+                           tuple(result.symbol_units), tuple(result.symbol_signed),
+                           tuple(result.symbol_signs), wanted, seed)
+
+
+@lru_cache(maxsize=256)
+def _sampled_cached(oid, expr, symbols, units, signed, signs, wanted, seed):
+    result = ObjectiveResult(oid, "symbolic", "", expr=expr, symbols=symbols, symbol_units=units,
+                             symbol_signed=signed, symbol_signs=signs)
+    env = sample_points(result, 4 * wanted, seed)
+    reference = evaluate(_reference_tree(expr, symbols), env)
+    valid = np.isfinite(reference)
+    if int(valid.sum()) < MIN_VALID_POINTS:
         return None
+    keep = np.flatnonzero(valid)[:wanted]
+    env = {name: values[keep] for name, values in env.items()}
+    for values in env.values():
+        values.flags.writeable = False
+    reference = np.array(reference[keep])
+    reference.flags.writeable = False
+    return env, reference
+
+
+def _sampled_mistake(expr: str | None, result: ObjectiveResult, policy: Policy):
+    """A mistaken expression's values at the sample points of ``result`` (``None`` when it
+    has none or cannot be evaluated there)."""
+    if not expr:
+        return None
+    return _sampled_mistake_cached(expr, result.id, result.expr, tuple(result.symbols),
+                                   tuple(result.symbol_units), tuple(result.symbol_signed),
+                                   tuple(result.symbol_signs), policy.symbolic_points,
+                                   policy.seed)
+
+
+@lru_cache(maxsize=1024)
+def _sampled_mistake_cached(expr, oid, reference, symbols, units, signed, signs, wanted, seed):
+    sampled = _sampled_cached(oid, reference, symbols, units, signed, signs, wanted, seed)
     try:
-        return evaluate(_reference_tree(mistake.expr, tuple(result.symbols)), env)
+        values = evaluate(_reference_tree(expr, symbols), sampled[0])
     except (ExpressionError, KeyError):
         return None
+    if isinstance(values, np.ndarray):
+        values.flags.writeable = False
+    return values
 
 
 SYMPY_MAX_NODES = 60

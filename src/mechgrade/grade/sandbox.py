@@ -18,6 +18,7 @@ many answers, each still timed on its own), and a :class:`SandboxPool` runs a wo
 
 from __future__ import annotations
 
+import gc
 import multiprocessing
 import os
 import signal
@@ -135,7 +136,13 @@ class Sandbox:
         parent, child = context.Pipe()
         process = context.Process(target=_worker, args=(child, self.judge, self.memory_mb),
                                   daemon=True, name="mechgrade-judge")
-        process.start()
+        # The worker's collector would walk, and so copy page by page, every object it
+        # inherits (sympy's and the solver's): frozen, they are left alone.
+        gc.freeze()
+        try:
+            process.start()
+        finally:
+            gc.unfreeze()
         child.close()
         self._process, self._conn = process, parent
 

@@ -27,6 +27,7 @@ import numpy as np
 from ..errors import MechgradeError, SolveError, SpecError
 from ..expressions.syntax import to_text
 from ..solve import Solution, solve
+from ..solve.mutants import inside_tolerance
 from ..solve.plan import plan as solver_plan
 from ..solve.result import ObjectiveResult
 from ..spec.model import ObjectiveKind, Problem
@@ -161,8 +162,9 @@ def solve_variant(problem: Problem, variant: Variant) -> Solution:
 def variant_faults(problem: Problem, variant: Variant,
                    solution: Solution | None = None) -> tuple[str, ...]:
     """Why a variant should not be handed out (empty when it is fine): it does not solve,
-    lands on a degenerate configuration, leaves a declared bound, or a declared mistake gives
-    the right answer within the tolerance."""
+    lands on a degenerate configuration, leaves a declared bound, or a declared or generated
+    mistake (:func:`mechgrade.solve.mutants.inside_tolerance`) gives the right answer within
+    the tolerance."""
     if solution is None:
         try:
             solution = solve_variant(problem, variant)
@@ -187,7 +189,18 @@ def variant_faults(problem: Problem, variant: Variant,
             if _indistinguishable(mistake.value, result):
                 faults.append(f"objective '{result.id}': the mistake '{mistake.message}' gives "
                               f"the right answer within the tolerance")
+        for generated in inside_tolerance(result):
+            unit = unit_text(result.unit)
+            faults.append(f"objective '{result.id}': the generated mistake {generated.code} "
+                          f"gives {_shown(generated.value)} {unit}, within the tolerance "
+                          f"({result.rel * 100:g} %) of the answer {_shown(result.value)} {unit}")
     return tuple(faults)
+
+
+def _shown(value) -> str:
+    if isinstance(value, tuple):
+        return "(" + ", ".join(f"{v:.4g}" for v in value) + ")"
+    return f"{value:.4g}"
 
 
 def _bounded_value(name: str, unit: str, results: dict, state: dict) -> float | None:
@@ -214,22 +227,75 @@ def student_variant(problem: Problem, seed: str, student: str,
                     redraw: bool) -> tuple[Variant, Solution]:
     """The student's variant and its solution; with ``redraw``, the first draw that passes
     :func:`variant_faults` (after at most :data:`REDRAW_LIMIT` refusals, raises)."""
-    variant = draw_variant(problem, seed, student)
+    key = (problem, seed, student, redraw)
+    found = _SOLVED.get(key)
+    if found is None:
+        found = student_variants(problem, seed, [student], redraw)[student]
+    return found
+
+
+_SOLVED: dict = {}
+_SOLVED_LIMIT = 100_000
+
+
+def student_variants(problem: Problem, seed: str, students, redraw: bool
+                     ) -> dict[str, tuple[Variant, Solution]]:
+    """:func:`student_variant` for many students at once: their variants are solved together
+    (:func:`mechgrade.solve.batch.solve_variants`), and remembered for
+    :func:`student_variant` (call this once with the class, then per student as before).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("examples") / "hw2_variants" / "pendulum_variants.yaml")
+    >>> both = student_variants(p, "fall", ["10001", "10002"], redraw=True)
+    >>> both["10001"] == student_variant(p, "fall", "10001", redraw=True)
+    True
+    """
+    from ..solve.batch import solve_variants
+
+    out: dict[str, tuple[Variant, Solution]] = {}
+    pending = {student: draw_variant(problem, seed, student) for student in students}
     for _ in range(REDRAW_LIMIT if redraw else 1):
-        try:
-            solution = solve_variant(problem, variant)
-        except MechgradeError:
-            if not redraw:
-                raise
-            solution = None
-        # Without redraw a failed solve has raised: the solution is there.
-        if solution is not None and (not redraw or not variant_faults(problem, variant,
-                                                                        solution)):
-            return variant, solution
-        variant = draw_variant(problem, seed, student, variant.index + 1)
-    raise SolveError(f"no verified variant of problem '{problem.id}' for student "
-                     f"'{student}' in {REDRAW_LIMIT} draws; run mechgrade check --variants "
-                     f"on the problem")
+        if not pending:
+            break
+        names = list(pending)
+        solutions = solve_variants(problem, [dict(pending[s].overrides) for s in names])
+        refused = {}
+        for student, solved in zip(names, solutions):
+            variant = pending[student]
+            if isinstance(solved, MechgradeError) and not redraw:
+                raise solved
+            # Without redraw a failed solve has raised: the solution is there.
+            if isinstance(solved, Solution) and (not redraw
+                                                 or not variant_faults(problem, variant, solved)):
+                out[student] = (variant, solved)
+            else:
+                refused[student] = draw_variant(problem, seed, student, variant.index + 1)
+        pending = refused
+    if pending:
+        raise SolveError(f"no verified variant of problem '{problem.id}' for student "
+                         f"'{next(iter(pending))}' in {REDRAW_LIMIT} draws; run mechgrade check "
+                         f"--variants on the problem")
+    if len(_SOLVED) + len(out) > _SOLVED_LIMIT:
+        _SOLVED.clear()
+    _SOLVED.update({(problem, seed, student, redraw): found for student, found in out.items()})
+    return out
+
+
+def prepare_variants(plan, students) -> None:
+    """Solve every student's variant of every problem of ``plan`` (the assignment's
+    :class:`~mechgrade.grade.run.Plan`) together, so that :func:`student_variant` finds each
+    solved; ``students`` are the ids variants are drawn for. A problem whose variants cannot
+    all be drawn or solved is left to :func:`student_variant`, which reports it per student."""
+    assignment = plan.assignment
+    students = list(dict.fromkeys(students))
+    for problem in plan.problems:
+        if problem.variants is not None:
+            try:
+                student_variants(problem, assignment.variant_seed, students,
+                                 assignment.variants.redraw)
+            except MechgradeError:
+                continue
 
 
 def statement(problem: Problem, variant: Variant | None = None) -> str:
@@ -269,15 +335,22 @@ def check_variants(problem: Problem, count: int = 200, seed: str = "check"
                    ) -> tuple[RefusedDraw, ...]:
     """Draw ``count`` variants (for students ``"1"``, ``"2"``...) and return those that fail
     :func:`variant_faults`."""
-    refused = []
+    from ..solve.batch import solve_variants
+
+    variants = []
     for n in range(1, count + 1):
         try:
-            variant = draw_variant(problem, seed, str(n))
+            variants.append(draw_variant(problem, seed, str(n)))
         except MechgradeError as err:
             return (RefusedDraw(str(n), "", (err.message,)),)
-        faults = variant_faults(problem, variant)
+    solutions = solve_variants(problem, [dict(v.overrides) for v in variants])
+    refused = []
+    for variant, solution in zip(variants, solutions):
+        faults = ((f"does not solve: {solution.message}",)
+                  if isinstance(solution, MechgradeError)
+                  else variant_faults(problem, variant, solution))
         if faults:
-            refused.append(RefusedDraw(str(n), variant.text(), faults))
+            refused.append(RefusedDraw(variant.student, variant.text(), faults))
     return tuple(refused)
 
 
@@ -318,6 +391,8 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
 
     assignment = plan.assignment
     seed = assignment.variant_seed
+    students = list(students)
+    prepare_variants(plan, [student_id for student_id, _ in students])
     # a problem without variants looks the same on every sheet: drawn once
     pictures = {p.id: drawn(p, s) for p, s in zip(plan.problems, plan.solutions)
                 if p.variants is None}

@@ -25,6 +25,7 @@ from ..errors import AuthorWarning, MechgradeError, SolveError
 from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
 from ..spec.model import Objective, ObjectiveKind, Problem
+from ..spec.validate import symbol_meanings
 from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
@@ -49,9 +50,34 @@ def _key(text: str):
     return node, to_text(node)
 
 
+_BY_PROBLEM: dict = {}
+
+
+def _per_problem(make, *args):
+    """``make(*args)``, kept per identity of ``args`` (a problem and its plan): hashing a
+    problem walks all of it, and re-solves ask for the same few again and again. The entry
+    holds ``args``, so an identity is not reused while it is kept."""
+    key = (make, *map(id, args))
+    entry = _BY_PROBLEM.get(key)
+    if entry is None or any(a is not b for a, b in zip(entry[0], args)):
+        if len(_BY_PROBLEM) >= 1024:
+            _BY_PROBLEM.clear()
+        entry = _BY_PROBLEM[key] = (args, make(*args))
+    return entry[1]
+
+
+def _spec_givens(problem: Problem) -> dict:
+    """The spec's own givens keyed by canonical key text (copied by :func:`_givens`)."""
+    return _per_problem(_keyed_givens, problem)
+
+
+def _keyed_givens(problem: Problem) -> dict:
+    return {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
+
+
 def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
     """Given values keyed by canonical key text -> (key node, SI value, Given or None)."""
-    out = {to_text(g.key.node): (g.key.node, g.si, g) for g in problem.givens}
+    out = dict(_spec_givens(problem))
     for key, value in (overrides or {}).items():
         node, canonical = _key(key)
         if value is None:
@@ -163,12 +189,68 @@ def collect_results(problem: Problem, objectives, given_map: dict, values: dict,
             continue
         try:
             if obj.kind == ObjectiveKind.SYMBOLIC:
-                frozen = tuple(sorted(given_map.items(), key=lambda item: item[0]))
-                results[obj.id] = symbolic(problem, obj.id, frozen)
+                results[obj.id] = _symbolic_answer(symbolic, problem, obj.id, given_map)
             else:
                 results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
         except MechgradeError as err:
             failures[obj.id] = err
+
+
+_SYMBOLIC_ANSWERS: dict = {}
+_SYMBOLIC_LIMIT = 4096
+
+
+def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: dict):
+    """A symbolic objective's answer (by ``symbolic``, by default the kinematic one), solved
+    once per problem and :func:`symbolic_dependence`
+    of the givens: a variant that changes only givens with units (not to or from zero) reuses
+    the answer of the first, without sympy."""
+    symbolic = symbolic or _symbolic_result
+    key = (symbolic, problem, objective_id,
+           symbolic_dependence(problem, given_map, objective_id))
+    answer = _SYMBOLIC_ANSWERS.get(key)
+    if answer is None:
+        answer = symbolic(problem, objective_id,
+                          tuple(sorted(given_map.items(), key=lambda item: item[0])))
+        if len(_SYMBOLIC_ANSWERS) >= _SYMBOLIC_LIMIT:
+            _SYMBOLIC_ANSWERS.clear()
+        _SYMBOLIC_ANSWERS[key] = answer
+    return answer
+
+
+def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) -> tuple:
+    """What a symbolic objective's answer can depend on in the givens: which are given, which
+    are zero (a zero stands in for its symbol in every unit), and the values of those that may
+    stand in for their symbols (pure numbers and angles; in dynamics also given rates, which
+    enter the momentum balances). A given with a unit is never substituted, nor is one of the
+    objective's own symbols, so their values are left out.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> a, b = instant_givens(problem, None, {}), instant_givens(problem, {"L": 0.5}, {})
+    >>> key = "acc_mag_symbolic"
+    >>> symbolic_dependence(problem, a, key) == symbolic_dependence(problem, b, key)
+    True
+    """
+    dynamics = problem.dynamics is not None
+    declared = _per_problem(_declared, problem, problem.objective(objective_id))
+    out = []
+    for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
+        if key in declared:
+            token = None
+        elif given is None or si_unit(given.unit) in ("", "rad") or \
+                (dynamics and isinstance(node, Prime)):
+            token = (si, None if given is None else (given.value, given.unit))
+        else:
+            token = si == 0
+        out.append((key, token))
+    return tuple(out)
+
+
+def _declared(problem: Problem, objective: Objective) -> frozenset[str]:
+    """The given keys an objective's declared symbols stand for (``theta'`` for ``thetad``)."""
+    return frozenset(to_text(node) for node in symbol_meanings(problem, objective).values())
 
 
 def _instants(problem: Problem):
@@ -257,12 +339,16 @@ def _quantity_unit(problem: Problem, node) -> str:
     return si_unit(units[node.id])
 
 
+def _author_units(problem: Problem, p: Plan) -> list[str]:
+    return _per_problem(author_units, problem, p)
+
+
 def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:
     """The solved coordinates, rates, parameters and time, in the author's units."""
     if base is None:
         return ()
     state, givens = base
-    units = author_units(problem, p)
+    units = _author_units(problem, p)
     out = []
     for i in range(p.index.size):
         value = state.values[i]
@@ -277,3 +363,6 @@ def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:
         out.append(StateValue(p.index.spelling(i), shown, unit, bool(state.given[i]),
                               float(value)))
     return tuple(out)
+
+
+_symbolic_answer.cache_clear = _SYMBOLIC_ANSWERS.clear  # type: ignore[attr-defined]

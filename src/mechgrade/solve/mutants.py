@@ -33,7 +33,7 @@ from ..mechanics.kinematics import locations
 from ..mechanics.mutations import VELOCITY_CODES, mutations
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..tolerance import within
-from ..units import dimension, from_si, to_si
+from ..units import dimension, from_si, si_factor, to_si
 from ..mechanics.symbols import identically_zero
 from .levels import State, evaluate
 from .numeric import solve_numeric
@@ -71,17 +71,52 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
     # objective by objective: only the wanted ones are derived and lambdified
     for m, value, term in (item for o in problem.objectives if o.id in wanted
                            for item in _lambdified(problem, p, o.id)):
-        obj = problem.objective(m.objective)
         si = evaluate((("v", value),), state, {"v"})["v"]
-        if not np.all(np.isfinite(si)):
-            continue
-        sentence = m.sentence
-        if term is not None:
-            sentence = sentence.replace("{term}", _term_text(
-                evaluate((("t", term),), state, {"t"})["t"], obj, m.code))
-        out.setdefault(m.objective, []).append(
-            GeneratedMistake(m.code, sentence, _in_unit(si, obj)))
+        values = None if term is None else evaluate((("t", term),), state, {"t"})["t"]
+        mistake = _model_mistake(problem, m, si, values)
+        if mistake is not None:
+            out.setdefault(m.objective, []).append(mistake)
     return out
+
+
+def model_mistake_table(problem: Problem, p: Plan, states: np.ndarray, wanted, call) -> list:
+    """:func:`model_mistakes` at many instants at once: ``states`` holds one state per
+    column, ``call(f, states, size)`` evaluates a lambdified function at every column as a
+    ``(size, N)`` array. One row per mutation of an objective in ``wanted``: ``(mutation,
+    objective, where it is defined (N), its values in the objective's unit (N x size), the
+    dropped term's SI values (N x 3) or None)``; :func:`model_mistake_at` makes the mistake of
+    one instant."""
+    table = []
+    for m, value, term in (item for o in problem.objectives if o.id in wanted
+                           for item in _lambdified(problem, p, o.id)):
+        obj = problem.objective(m.objective)
+        size = len(m.value) if isinstance(m.value, sp.MatrixBase) else 1
+        si = call(value, states, size)
+        shown = (si / si_factor(obj.unit) + 0.0).T  # as _in_unit, every column at once
+        table.append((m, obj, np.isfinite(si).all(axis=0), shown,
+                      None if term is None else call(term, states, 3).T))
+    return table
+
+
+def model_mistake_at(row, i: int) -> GeneratedMistake:
+    """The mistake of :func:`model_mistake_table`'s ``row`` at instant ``i``."""
+    m, obj, _, shown, terms = row
+    sentence = m.sentence if terms is None else m.sentence.replace(
+        "{term}", _term_text(terms[i], obj, m.code))
+    value = tuple(shown[i].tolist()) if obj.kind == ObjectiveKind.VECTOR else float(shown[i, 0])
+    return GeneratedMistake(m.code, sentence, value)
+
+
+def _model_mistake(problem: Problem, m, si: np.ndarray, term) -> GeneratedMistake | None:
+    """The mistake a mutation gives (``si`` its SI value, ``term`` the dropped term's), or
+    ``None`` where it is undefined."""
+    if not np.all(np.isfinite(si)):
+        return None
+    obj = problem.objective(m.objective)
+    sentence = m.sentence
+    if term is not None:
+        sentence = sentence.replace("{term}", _term_text(term, obj, m.code))
+    return GeneratedMistake(m.code, sentence, _in_unit(si, obj))
 
 
 def symbolic_mistakes(problem: Problem, obj: Objective, right,
@@ -112,11 +147,8 @@ def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}
     parameters = {q.name for q in problem.parameters}
-    for code, changes, sentence in _slips(givens, parameters):
-        changed = dict(givens)
-        for key, mistaken_si in changes:
-            node, _, given = givens[key]
-            changed[key] = (node, mistaken_si, replace(given, si=mistaken_si))
+    for code, changes, sentence in slips_of(givens, parameters):
+        changed = misread(givens, changes)
         try:
             instant = solve_numeric(problem, p, changed, wanted)
         except MechgradeError:
@@ -128,7 +160,16 @@ def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
     return out
 
 
-def _slips(givens: Mapping, parameters: set[str]):
+def misread(givens: Mapping, changes) -> dict:
+    """``givens`` with each ``(key, mistaken SI value)`` of ``changes`` in place."""
+    changed = dict(givens)
+    for key, mistaken_si in changes:
+        node, _, given = givens[key]
+        changed[key] = (node, mistaken_si, replace(given, si=mistaken_si))
+    return changed
+
+
+def slips_of(givens: Mapping, parameters: set[str]):
     """``(code, ((key, mistaken SI value), ...), sentence)`` for each typical misreading: of
     one given, or two parameters of the same unit exchanged (a tooth ratio inverted)."""
     named = [(key, node, si, given) for key, (node, si, given) in givens.items()
@@ -171,6 +212,7 @@ def _given_slips(node, si: float, given):
                f"{node.id}.")
 
 
+@lru_cache(maxsize=256)
 def plausible_slips(problem: Problem) -> frozenset[str]:
     """The whole-answer slips of :mod:`mechgrade.grade.diagnose` that need something in the
     model to be plausible: a factor of g needs a ``g``; degrees for radians an angle in
@@ -202,15 +244,48 @@ def attach(results: Mapping[str, ObjectiveResult],
     earlier one, dropped) and the model's ``plausible`` slips."""
     out = dict(results)
     for oid, result in results.items():
-        kept: list[GeneratedMistake] = list(result.generated_mistakes)
-        for source in found:
-            for mistake in source.get(oid, ()):
-                # the same value as the answer at this instant: no mistake here
-                if not any(_same(mistake.value, k.value) for k in kept) \
-                        and not _same(mistake.value, result.value) and not _vague(mistake):
-                    kept.append(mistake)
-        out[oid] = replace(result, generated_mistakes=tuple(kept), plausible=plausible)
+        kept = tuple(result.generated_mistakes)
+        new = [mistake for source in found for mistake in source.get(oid, ())]
+        if new:
+            kept = _distinct(result.value, kept, new)
+        out[oid] = replace(result, generated_mistakes=kept, plausible=plausible)
     return out
+
+
+def _distinct(right, kept: tuple[GeneratedMistake, ...],
+              new: list[GeneratedMistake]) -> tuple[GeneratedMistake, ...]:
+    """``kept`` and each mistake of ``new`` whose value differs from the answer ``right``
+    (the same value as the answer at this instant: no mistake here) and from every one kept
+    before it (:func:`_same`), and is not :func:`_vague`; compared all at once."""
+    try:
+        V = np.array([np.atleast_1d(np.asarray(m.value, float)) for m in kept + tuple(new)])
+        r = np.atleast_1d(np.asarray(right, float))
+    except (TypeError, ValueError):  # values of different shapes: compare one by one
+        V = None
+    if V is None or V.ndim != 2 or r.shape != V.shape[1:]:
+        out = list(kept)
+        for mistake in new:
+            if not any(_same(mistake.value, k.value) for k in out) \
+                    and not _same(mistake.value, right) and not _vague(mistake):
+                out.append(mistake)
+        return tuple(out)
+    with np.errstate(invalid="ignore"):
+        norms = np.linalg.norm(V, axis=1)
+        apart = np.linalg.norm(V[:, None, :] - V[None, :, :], axis=2)
+        same = apart <= 1e-9 * np.maximum(np.maximum(norms[:, None], norms[None, :]), 1e-12) \
+            + 1e-12
+        size = max(float(np.linalg.norm(r)), 1e-12)
+        answer = np.linalg.norm(V - r, axis=1) <= 1e-9 * np.maximum(norms, size) + 1e-12
+        nonzero = (np.abs(V) > 1e-12).any(axis=1)
+    keep = list(range(len(kept)))
+    out = list(kept)
+    for j in range(len(kept), len(V)):
+        mistake = new[j - len(kept)]
+        vague = mistake.code != "other_point" and not nonzero[j]
+        if not same[j, keep].any() and not answer[j] and not vague:
+            keep.append(j)
+            out.append(mistake)
+    return tuple(out)
 
 
 def _vague(mistake: GeneratedMistake) -> bool:
@@ -232,16 +307,22 @@ def _in_unit(si_values: np.ndarray, obj: Objective):
     return float(from_si(si_values[0], obj.unit)) + 0.0
 
 
+@lru_cache(maxsize=256)
+def _term_unit(unit: str, velocity: bool) -> str:
+    """The unit a dropped term is shown in: the objective's when it is of the same kind."""
+    per = "/s" if velocity else "/s^2"
+    if dimension(unit) == dimension("m" + per):
+        return unit
+    if dimension(unit) == dimension("m"):  # a radius of curvature: its length unit
+        return unit + per
+    return "m" + per
+
+
 def _term_text(si_values: np.ndarray, obj: Objective, code: str) -> str:
     """A dropped term's components, in the objective's unit when it is of the same kind."""
-    per = "/s" if code in VELOCITY_CODES else "/s^2"
-    if dimension(obj.unit) == dimension("m" + per):
-        unit = obj.unit
-    elif dimension(obj.unit) == dimension("m"):  # a radius of curvature: its length unit
-        unit = obj.unit + per
-    else:
-        unit = "m" + per
-    shown = [float(from_si(v, unit)) + 0.0 for v in si_values]
+    unit = _term_unit(obj.unit, code in VELOCITY_CODES)
+    factor = si_factor(unit)
+    shown = [float(v) / factor + 0.0 for v in si_values]  # from_si, as floats
     size = max(abs(v) for v in shown)
     shown = [0.0 if abs(v) <= 1e-9 * size else v for v in shown]  # round-off, not a part
     parts = shown[:2] if shown[2] == 0 else shown

@@ -23,7 +23,11 @@ def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict
     given_symbols = {}
     for key, (node, si, given) in givens.items():
         if isinstance(node, (Name, Prime)):
-            given_symbols[k.quantity(node)] = (key, si, given)
+            try:
+                given_symbols[k.quantity(node)] = (key, si, given)
+            except KeyError:
+                raise SolveError(f"cannot give '{key}': not a coordinate, rate, parameter "
+                                 "or t of this problem") from None
     known = set(declared.values()) | set(given_symbols)
     # A zero is a zero in every unit: such givens may always stand in.
     zeros = {sym: sp.Integer(0) for sym, (_, si, _) in given_symbols.items()

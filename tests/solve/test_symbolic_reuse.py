@@ -1,0 +1,59 @@
+"""A symbolic answer is derived again only when a given it can depend on changes: its value
+where the given stands in for a symbol (a pure number or an angle), or whether it is zero."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+import mechgrade.solve.instant as instant
+from mechgrade.errors import SolveError
+from mechgrade.solve import solve
+from mechgrade.solve.batch import solve_variants
+from mechgrade.spec import load_problem_text
+
+ROOT = Path(__file__).resolve().parents[2]
+BASE = (ROOT / "tests" / "data" / "spec" / "base.yaml").read_text()
+VX = ("  - {id: vx, prompt: x-velocity of the tip., find: \"dot(vel(P, N), N.x)\", "
+      "kind: symbolic, unit: m/s, symbols: [L, thetad]}\n")
+
+
+@pytest.fixture
+def derivations(monkeypatch):
+    """How many times the symbolic answer is derived with sympy."""
+    calls = []
+    derive = instant._symbolic_result
+
+    def counted(*args):
+        calls.append(args[1])
+        return derive(*args)
+    instant._symbolic_answer.cache_clear()
+    derive.cache_clear()
+    monkeypatch.setattr(instant, "_symbolic_result", counted)
+    return calls
+
+
+def test_a_given_with_a_unit_changed_reuses_the_answer(derivations):
+    problem = load_problem_text(BASE + VX, "p.yaml")
+    answers = {solve(problem, givens={"L": L}).result("vx").expr for L in (0.5, 1.0, 3.0)}
+    assert answers == {"-L*thetad/2"} and derivations == ["vx"]
+
+
+def test_an_angle_that_stands_in_for_a_symbol_changed_gives_its_own_answer(derivations):
+    problem = load_problem_text(BASE + VX, "p.yaml")
+    answers = [s.result("vx").expr for s in
+               solve_variants(problem, [{"theta": math.pi / 6}, {"theta": math.pi / 2},
+                                        {"theta": math.pi / 6, "L": 3.0}])]
+    assert answers == ["-L*thetad/2", "-L*thetad", "-L*thetad/2"]
+    assert derivations == ["vx", "vx"]
+
+
+def test_a_given_made_zero_gives_its_own_answer(derivations):
+    # theta' has a unit and is not among the symbols: only a zero may stand in for it
+    problem = load_problem_text(BASE + VX.replace("[L, thetad]", "[L, theta]"), "p.yaml")
+    assert solve(problem, givens={"theta'": 0.0}).result("vx").expr == "0"
+    for rate in (3.0, 5.0):
+        with pytest.raises(SolveError, match="depends on thetad"):
+            solve(problem, givens={"theta'": rate}).result("vx")
