@@ -39,7 +39,7 @@ from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, Problem
 from .dynamics import solve_dynamics
 from .instant import instant_givens
-from .mutants import _slips, attach, plausible_slips
+from .mutants import attach, plausible_slips, slips_of
 from .result import GeneratedMistake, Solution
 
 # a mistaken model is no mistake where it cannot be solved (no motion, an event that never
@@ -218,7 +218,7 @@ def given_mistakes(problem: Problem, givens, numeric: set[str]
     given_map = instant_givens(problem, givens, {})
     parameters = {q.name for q in problem.parameters}
     out: dict[str, list[GeneratedMistake]] = {}
-    for code, changes, sentence in _slips(given_map, parameters):
+    for code, changes, sentence in slips_of(given_map, parameters):
         node = given_map[changes[0][0]][0]
         step = "Parameters" if isinstance(node, Name) and node.id in parameters \
             else "Coordinates"
