@@ -46,7 +46,8 @@ from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
 from .mutants import (misread, model_mistake_at, model_mistake_table, plausible_slips,
                       slips_of)
 from .numeric import PROBE_TOL, SINGULAR, solve_numeric
-from .plan import Plan, plan
+from .dynamics_mutants import with_generated_mistakes
+from .plan import Plan, _OnFirstCall, plan
 from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution
 
 NEWTON_STEPS = 30
@@ -65,7 +66,9 @@ def solve_variants(problem: Problem,
     if template is not None:
         chosen = [i for i, g in enumerate(variants) if template.covers(g)]
         for i, solution in zip(chosen, template.solve([variants[i] for i in chosen])):
-            out[i] = solution
+            # as solve() does: a dynamics solution carries its model's generated mistakes
+            out[i] = (solution if problem.dynamics is None or isinstance(solution, MechgradeError)
+                      else with_generated_mistakes(problem, solution, variants[i]))
     for i, solution in enumerate(out):
         if solution is None:
             try:
@@ -82,6 +85,8 @@ def solve_variants(problem: Problem,
 def _batched(f: Callable) -> Callable:
     """``f`` (made by ``sympy.lambdify``) with its matrices built from entries that may be
     arrays of different shapes (a constant beside a column of values)."""
+    if isinstance(f, _OnFirstCall):
+        f = f.function
     namespace = dict(f.__globals__)
     namespace["array"] = _array
     return types.FunctionType(f.__code__, namespace, f.__name__, f.__defaults__, f.__closure__)
@@ -204,10 +209,14 @@ class _Template:
                         ok &= np.isfinite(m).all(axis=0)
                 if self.kinetics is None:
                     generated = self._generated(group, maps, X, ok, values)
+                size = self.p.index.size
                 for i in np.flatnonzero(ok):
                     if not group.overrides or base[i] is None:
-                        base[i] = (State(X[:self.p.index.size, i], group.known, group.free),
-                                   maps[i])
+                        free = group.free
+                        if self.kinetics is not None:  # the rates the balances solved
+                            free = frozenset(free - {c for c in self.kinetics.columns
+                                                     if c < size and np.isfinite(X[c, i])})
+                        base[i] = (State(X[:size, i], group.known, free), maps[i])
             numeric = [o for o in objectives if o.kind != "symbolic"]
             symbols = [o.id for o in objectives if o.kind == "symbolic"]
             answers: dict = {}  # this problem's symbolic answers, by what they depend on

@@ -84,10 +84,15 @@ class _OnFirstCall:
         self._args = (symbols, expr)
         self._function = None
 
-    def __call__(self, *values):
+    @property
+    def function(self):
+        """The lambdified function itself, made now if it was not yet."""
         if self._function is None:
             self._function = _lambdify(*self._args)
-        return self._function(*values)
+        return self._function
+
+    def __call__(self, *values):
+        return self.function(*values)
 
 
 def _scale(exprs):
