@@ -28,12 +28,12 @@ from scipy import linalg, optimize
 
 from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
-from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
+from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics, dynamics_of
 from ..expressions.syntax import Name, Prime
 from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..spec.dynamics import Dynamics, Integration, WorkEnergy
+from ..spec.dynamics import Integration, WorkEnergy
 from .events import (energy_rate_symbolic, energy_state, integrate_to_event,
                      integrated_symbolically)
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
@@ -194,14 +194,8 @@ def problem_where(kp: KineticsPlan) -> Location:
     return kp.wheres[0] if kp.wheres else Location()
 
 
-def _dynamics(problem: Problem) -> Dynamics:
-    """The problem's dynamics section: every problem solved here has one."""
-    assert problem.dynamics is not None
-    return problem.dynamics
-
-
 def _body_where(problem: Problem, involved) -> Location:
-    for b in _dynamics(problem).bodies:
+    for b in dynamics_of(problem).bodies:
         if involved and involved[0] == f"body {b.name}":
             return b.where
     return Location()
@@ -291,7 +285,7 @@ def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
 def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
     """``given_map`` with the design parameter solved (secant iterations on the whole
     instant) so that the design equation holds."""
-    design = _dynamics(problem).design
+    design = dynamics_of(problem).design
     equation = kp.design
     if design is None or equation is None:  # both, or neither: the kinetics carry the design
         return given_map
@@ -322,7 +316,7 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
 def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):
     """The state at the instant, the extended state (with second rates and reactions) the
     objectives are read from, and the kinematics' warnings."""
-    analysis = _dynamics(problem).analysis
+    analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         g = place_givens(kproblem, kp.kp, given_map)
         state, before = integrate_to_event(problem, kp, g.values,
@@ -351,7 +345,7 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     obj = problem.objective(objective_id)
     kin = derive_kinetics(problem)
     expr = solved_symbolically(problem, objective_id, givens)
-    analysis = _dynamics(problem).analysis
+    analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         numbers = {kin.k.quantity(node): si for _, (node, si, _) in givens
                    if isinstance(node, (Name, Prime))}
