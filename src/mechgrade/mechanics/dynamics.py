@@ -28,7 +28,7 @@ from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Block, Body, Damper, Dynamics, Explicit, Impulse,
                              Integration, KineticFriction, Reaction, Restitution, Spring,
-                             StaticFriction)
+                             StaticFriction, dynamics_of)
 from ..spec.model import Problem
 from .derivation import kinematics_derivation
 from .bodies import explicit_inertia, parallel_axis, shape_inertia
@@ -430,12 +430,6 @@ class DynamicsInterpreter(Interpreter):
     def _fn_eom(self, coordinate: Name):
         from .symbols import TIME_SYMBOL
         return self.dyn[coordinate.id].diff(TIME_SYMBOL, 2)
-
-
-def dynamics_of(problem: Problem) -> Dynamics:
-    """The dynamics section of a problem the kinetics are derived for: it has one."""
-    assert problem.dynamics is not None, problem.id
-    return problem.dynamics
 
 
 def derive_kinetics(problem: Problem) -> Kinetics:

@@ -28,12 +28,12 @@ from scipy import linalg, optimize
 
 from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
-from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics, dynamics_of
+from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
 from ..expressions.syntax import Name, Prime
 from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..spec.dynamics import Integration, WorkEnergy
+from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from .events import (energy_rate_symbolic, energy_state, integrate_to_event,
                      integrated_symbolically)
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
