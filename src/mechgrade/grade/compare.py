@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass
-from typing import TypeVar
+from typing import Sequence, TypeVar
 
 import numpy as np
 
@@ -357,7 +357,7 @@ def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,
 _Mistake = TypeVar("_Mistake", MistakeValue, GeneratedMistake)
 
 
-def _numeric_mistakes(mistakes: tuple[_Mistake, ...],
+def _numeric_mistakes(mistakes: Sequence[_Mistake],
                       scalar: bool) -> list[tuple[_Mistake, np.ndarray | None]]:
     """Each mistake with its value as an array, or ``None`` where it has no value of the
     objective's shape."""
