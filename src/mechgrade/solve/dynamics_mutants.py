@@ -172,9 +172,12 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
             m.sentence.replace(" = {term}", "")
         values = readings.get(i, {})
         if m.problem is not None:
+            # a mistaken model may leave out the objectives asked (those it cannot read)
+            ids = numeric & {o.id for o in m.problem.objectives}
+            if not ids:
+                continue
             try:
-                solved = solve_dynamics(m.problem, givens=givens, objectives=numeric & {
-                    o.id for o in m.problem.objectives})
+                solved = solve_dynamics(m.problem, givens=givens, objectives=ids)
             except _UNSOLVABLE:
                 continue
             values = {r.id: r.value for r in solved.results}
