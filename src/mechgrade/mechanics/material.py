@@ -34,8 +34,10 @@ def material_warnings(problem: Problem, model: Model) -> tuple[AuthorWarning, ..
     bodies: dict[str, set[str]] = {}
     for c in problem.constraints:
         for node in (*walk(c.lhs.node), *walk(c.rhs.node)):
-            if isinstance(node, Call) and node.func == "coincident":
-                bodies.setdefault(name_of(node.args[0]), set()).add(name_of(node.args[1]))
+            # coincident's point may itself be a coincident(...) point: its inner call is walked
+            if isinstance(node, Call) and node.func == "coincident" \
+                    and isinstance(node.args[0], Name):
+                bodies.setdefault(node.args[0].id, set()).add(name_of(node.args[1]))
     for f in problem.frames:
         if f.parent is None or f.origin is None:
             continue
