@@ -24,7 +24,7 @@ import sympy as sp
 from scipy.integrate import solve_ivp
 
 from ..errors import SolveError
-from ..spec.dynamics import Integration, WorkEnergy
+from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Problem
 from .levels import State, nullspace
 
@@ -89,7 +89,7 @@ _Analysis = TypeVar("_Analysis", WorkEnergy, Integration)
 
 def _analysis(problem: Problem, kind: type[_Analysis]) -> _Analysis:
     """The problem's analysis, of the kind the solver chose this function for."""
-    analysis = problem.dynamics.analysis if problem.dynamics is not None else None
+    analysis = dynamics_of(problem).analysis
     assert isinstance(analysis, kind), analysis
     return analysis
 

@@ -357,7 +357,14 @@ _SHAPES = {"rod": (Rod, ("length",)), "ring": (Ring, ("radius",)), "disk": (Disk
 
 def dynamics_of(problem: Problem) -> Dynamics:
     """The dynamics section of a problem that has one (the solver and the mistake families
-    for bodies and loads are chosen for such problems only)."""
+    for bodies and loads are chosen for such problems only).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> [b.name for b in dynamics_of(problem).bodies]
+    ['rod']
+    """
     assert problem.dynamics is not None, problem.id
     return problem.dynamics
 
