@@ -25,3 +25,12 @@ def test_a_point_fixed_in_its_body_is_not_flagged():
     text = (DATA / "solve_speed_given_branch.yaml").read_text()
     assert derive(load_problem(DATA / "solve_speed_given_branch.yaml")).warnings == ()
     assert "vel(P, N)" in text
+
+
+def test_a_material_point_written_of_a_material_point_in_a_constraint_is_read(tmp_path):
+    problem = tmp_path / "solve_material_point.yaml"
+    problem.write_text((DATA / "solve_material_point.yaml").read_text().replace(
+        "    rolling: {body: Disk, contact: T, surface: N}",
+        "    velocity: vel(coincident(coincident(T, Disk), Disk), N) = vel(coincident(T, N), N)"))
+    warnings = derive(load_problem(problem)).warnings
+    assert [w.where.field for w in warnings] == ["givens.dot(vel(T, N), N.x)"]

@@ -141,6 +141,17 @@ def names(node: Node) -> set[str]:
     return {n.id for n in walk(node) if isinstance(n, Name)}
 
 
+def name_of(node: Node) -> str:
+    """The name written where the language allows only a name (a frame, body or point
+    argument); the spec checks make sure of it before any solver reads the argument.
+
+    >>> name_of(Call("vel", (Name("P"), Name("N"))).args[1])
+    'N'
+    """
+    assert isinstance(node, Name), node
+    return node.id
+
+
 def to_text(node: Node) -> str:
     """Canonical text for a tree (fully parenthesised where needed; parses back to the same tree).
 

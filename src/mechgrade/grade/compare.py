@@ -20,6 +20,7 @@ import math
 import zlib
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Sequence, TypeVar
 
 import numpy as np
 
@@ -29,7 +30,7 @@ from ..expressions.dimensions import DimensionError, Kind, Type, infer
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
-from ..solve.result import ObjectiveResult
+from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from ..spec.model import ObjectiveKind
 from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
@@ -166,6 +167,8 @@ def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy())
 def _judge(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
     if result.kind == ObjectiveKind.SYMBOLIC:
         return _judge_expression(answer, result, policy)
+    # read_answer reads an expression for a symbolic objective only
+    assert not isinstance(answer, ExpressionAnswer)
     if result.value is None:
         return not_evaluated("the reference answer is not available", answer.read_back())
     if result.kind == ObjectiveKind.VECTOR:
@@ -266,7 +269,8 @@ def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
     if units.label:
         labels.append(units.label)
     if policy.written_sig_figs:
-        bad = [f for f in figures if not _figures_ok(f, policy)]
+        bad = [f for f in figures
+               if not _figures_ok(f, policy.written_sig_figs, policy.written_sig_figs_strict)]
         if bad:
             credit *= 1.0 - policy.written_sig_figs_deduction
             labels.append("significant figures")
@@ -286,19 +290,22 @@ def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
                                                                   ", but"), read_back)
 
 
-def _figures_ok(figures: tuple[int | None, int | None], policy: Policy) -> bool:
-    """Whether written figures meet the rule; an exact expression (``pi/6``) has none."""
+def _figures_ok(figures: tuple[int | None, int | None], n: int, strict: bool) -> bool:
+    """Whether written figures meet the rule (``n`` figures, exactly if ``strict``); an exact
+    expression (``pi/6``) has none."""
     lo, hi = figures
-    if lo is None:
+    if lo is None or hi is None:  # both or neither: a written number has a range
         return False
-    n = policy.written_sig_figs
-    if policy.written_sig_figs_strict:
+    if strict:
         return lo == n
     return lo <= n <= hi
 
 
-def _judge_number(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
-    reference = float(result.value)
+def _judge_number(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
+                  policy: Policy) -> Assessment:
+    value = result.value
+    assert value is not None and not isinstance(value, tuple)  # _judge: a scalar's value
+    reference = float(value)
     read_back = answer.read_back()
     if isinstance(answer, VectorAnswer):
         return _vector_for_scalar(answer, result, policy, read_back)
@@ -317,8 +324,8 @@ def _judge_number(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
                                read_back, "")
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(np.array([student]), np.array([reference]), close,
-                     mistakes=_numeric_mistakes(result, scalar=True),
-                     generated=_numeric_mistakes(result, scalar=True, generated=True),
+                     mistakes=_numeric_mistakes(result.mistakes, scalar=True),
+                     generated=_numeric_mistakes(result.generated_mistakes, scalar=True),
                      plausible=result.plausible)
     return _wrong(found, policy, units,
                   f"Not {_describe_tolerance(result, policy)}.", read_back)
@@ -348,9 +355,15 @@ def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,
     return Assessment(verdict, credit, found.label, f"{message}{units.note}", read_back)
 
 
-def _numeric_mistakes(result: ObjectiveResult, scalar: bool, generated: bool = False):
-    out = []
-    for mistake in result.generated_mistakes if generated else result.mistakes:
+_Mistake = TypeVar("_Mistake", MistakeValue, GeneratedMistake)
+
+
+def _numeric_mistakes(mistakes: Sequence[_Mistake],
+                      scalar: bool) -> list[tuple[_Mistake, np.ndarray | None]]:
+    """Each mistake with its value as an array, or ``None`` where it has no value of the
+    objective's shape."""
+    out: list[tuple[_Mistake, np.ndarray | None]] = []
+    for mistake in mistakes:
         value = mistake.value
         if value is None:
             out.append((mistake, None))
@@ -377,7 +390,9 @@ def _vector_for_scalar(answer: VectorAnswer, result: ObjectiveResult, policy: Po
     if not isinstance(units, Assessment):
         rel, abs_ = _tolerance(result, policy)
         size = from_si(to_si(magnitude, units.unit), result.unit)
-        if within(size, abs(float(result.value)), rel, abs_):
+        value = result.value
+        assert value is not None and not isinstance(value, tuple)  # _judge: a scalar's value
+        if within(size, abs(float(value)), rel, abs_):
             return Assessment("incorrect", policy.credit_for("shape"), "vector for a scalar",
                               "A single value was asked, not a vector (its magnitude is "
                               "right).", read_back)
@@ -388,8 +403,11 @@ def _vector_for_scalar(answer: VectorAnswer, result: ObjectiveResult, policy: Po
 # ---------------------------------------------------------------------------- vectors
 
 
-def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
-    reference = np.array([float(v) for v in result.value])
+def _judge_vector(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
+                  policy: Policy) -> Assessment:
+    value = result.value
+    assert value is not None and not isinstance(value, (int, float))  # _judge: components
+    reference = np.array([float(v) for v in value])
     read_back = answer.read_back()
     if isinstance(answer, NumberAnswer):
         if reference[0] == 0 and reference[1] == 0:  # planar: a signed scalar is its k part
@@ -412,14 +430,16 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
                           f"Your components are along {answer.frame}'s unit vectors; give them "
                           f"along {result.frame}'s" + (" (the magnitude is right)." if same_size
                                                        else "."), read_back)
-    if policy.sig_figs:
+    sig_figs = policy.sig_figs
+    components = answer.components
+    if sig_figs:
         magnitude_there = float(np.linalg.norm(reference)) / factor
-        tiny = last_place(magnitude_there, policy.sig_figs)
+        tiny = last_place(magnitude_there, sig_figs)
 
         def ok(i: int) -> bool:
             there = reference[i] / factor
             basis = there if abs(there) >= tiny else magnitude_there
-            return within_sig_figs(answer.components[i], there, policy.sig_figs, basis)
+            return within_sig_figs(components[i], there, sig_figs, basis)
     else:
         magnitude = float(np.linalg.norm(reference))
 
@@ -431,8 +451,8 @@ def _judge_vector(answer: StudentAnswer, result: ObjectiveResult, policy: Policy
         return _finish_correct(units, figures, policy, read_back, "")
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(student, reference, close, kind=ObjectiveKind.VECTOR,
-                     mistakes=_numeric_mistakes(result, scalar=False),
-                     generated=_numeric_mistakes(result, scalar=False, generated=True),
+                     mistakes=_numeric_mistakes(result.mistakes, scalar=False),
+                     generated=_numeric_mistakes(result.generated_mistakes, scalar=False),
                      plausible=result.plausible)
     # a planar answer's zero z is no news
     right = [axis for i, axis in enumerate("xyz") if axis not in wrong
@@ -727,8 +747,8 @@ def expression_dimension(node: Node, units: dict[str, str]):
     mechgrade.grade.compare.DimensionMismatch: adds a length ([length]) to an angular velocity or rate (1 / [time])
     """
     def leaf(leaf: Node) -> Type:  # Euler's E, and anything not a symbol: a pure number
-        named = isinstance(leaf, Name) and leaf.id != "E"
-        return Type(Kind.SCALAR, dimension(units.get(leaf.id, "") if named else ""))
+        unit = units.get(leaf.id, "") if isinstance(leaf, Name) and leaf.id != "E" else ""
+        return Type(Kind.SCALAR, dimension(unit))
 
     try:
         return infer(node, leaf).dim

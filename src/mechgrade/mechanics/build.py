@@ -74,8 +74,10 @@ def build(problem: Problem) -> Model:
         if name in positions:
             return positions[name]
         spec = spec_points[name]
-        vector = Vector(0) if spec.origin is None else \
-            position(spec.origin) + language.vector(spec.position)
+        origin, located = spec.origin, spec.position
+        # both, or neither: only the inertial point has no location description
+        vector = Vector(0) if origin is None or located is None else \
+            position(origin) + language.vector(located)
         positions[name] = vector
         return vector
 

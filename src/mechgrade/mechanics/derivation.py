@@ -33,7 +33,8 @@ def kinematics_derivation(problem: Problem, dof: int | None = None
                                f"{r.axis}" for i, r in enumerate(f.rotations))
         origin = f"; origin {f.origin}" if f.origin else ""
         frames.append(f"{f.name}: from {f.parent} by {turns}{origin}")
-    points = [f"P_{p.origin}{p.name} = {p.position.text}" for p in problem.points if p.origin]
+    points = [f"P_{p.origin}{p.name} = {p.position.text}" for p in problem.points
+              if p.origin and p.position is not None]  # both, or neither (the inertial point)
     coordinates = [f"{c.name} [{c.unit or '1'}]" for c in problem.coordinates]
     parameters = [f"{p.name} [{p.unit or '1'}]" for p in problem.parameters]
     constraints = [f"{c.name} ({c.level}): {c.lhs.text} = {c.rhs.text}"
@@ -145,9 +146,9 @@ class Step:
     rows: tuple[Row, ...] = ()
 
 
-VELOCITY_TERMS = (("drop_transport_vel", "origin"), ("drop_omega_r", "omega_r"),
+VELOCITY_TERMS: tuple[tuple[str, str], ...] = (("drop_transport_vel", "origin"), ("drop_omega_r", "omega_r"),
                   ("drop_relative_vel", "relative"))
-ACCELERATION_TERMS = (("drop_transport_acc", "origin"), ("drop_tangential", "alpha_r"),
+ACCELERATION_TERMS: tuple[tuple[str, str], ...] = (("drop_transport_acc", "origin"), ("drop_tangential", "alpha_r"),
                       ("drop_centripetal", "omega_omega_r"), ("drop_coriolis", "coriolis"),
                       ("drop_relative_acc", "relative"))
 """The terms of the composition of motion (transport theorem), by the code of the generated
@@ -260,6 +261,7 @@ def _moving_frame(problem: Problem, model, point: str) -> tuple[str, str] | None
     """The frame (and its origin) ``point`` is described in, when it turns in the inertial
     frame and has an origin: its motion is composed there (transport theorem)."""
     spec = next(p for p in problem.points if p.name == point)
+    assert spec.position is not None  # only located points (those with an origin) get here
     used = _frames_used(spec.position.node)
     for f in problem.frames:
         if f.name in used and f.origin is not None and f.origin != point \
@@ -332,7 +334,7 @@ class _Display:
     def _vector(self, v: Vector) -> str:
         """A vector as its components times its frames' unit vectors: a sum in parentheses,
         a product or a symbol bare, a negative one after a minus sign."""
-        out = []
+        out: list[str] = []
         for matrix, frame in v.args:
             for coefficient, axis in zip(matrix, "xyz"):
                 coefficient = min((sp.simplify(coefficient), sp.expand(coefficient)),

@@ -22,12 +22,13 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import sympy as sp
-from sympy.physics.vector import Dyadic, Vector, dynamicsymbols
+from sympy.physics.vector import Dyadic, ReferenceFrame, Vector, dynamicsymbols
 
 from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node, constant_value, to_text
-from ..spec.dynamics import (GROUND, Block, Body, Dynamics, Explicit, Impulse, Integration,
-                             KineticFriction, Restitution, Spring, StaticFriction)
+from ..spec.dynamics import (GROUND, Block, Body, Damper, Dynamics, Explicit, Impulse,
+                             Integration, KineticFriction, Reaction, Restitution, Spring,
+                             StaticFriction, dynamics_of)
 from ..spec.model import Problem
 from .derivation import kinematics_derivation
 from .bodies import explicit_inertia, parallel_axis, shape_inertia
@@ -109,7 +110,7 @@ class _Loads:
 
     def __init__(self, problem: Problem, model: Model, reactions: dict):
         self.problem = problem
-        self.d: Dynamics = problem.dynamics
+        self.d = dynamics_of(problem)
         self.model = model
         self.language = model.language
         self.N = problem.inertial_frame
@@ -144,7 +145,8 @@ class _Loads:
             self.couples[c.name] = [(c.on, lang.vector(c.moment))]
         for j in d.impulses:
             self.forces[j.name] = [(j.on, j.at, lang.vector(j.impulse))]
-        for s in (*d.springs, *d.dampers):
+        ends: tuple[Spring | Damper, ...] = (*d.springs, *d.dampers)
+        for s in ends:
             a, b = (self.model.positions[p] for p in s.between)
             r = b - a
             length = r.magnitude()
@@ -158,15 +160,16 @@ class _Loads:
             vector = self.reaction_vector(r.name, r.directions)
             self.forces[r.name] = [(a.on, a.at, a.sign * vector) for a in r.acts]
         bodies = {b.name for b in d.bodies}
-        for f in d.friction:
-            if isinstance(f, StaticFriction):
-                vector = self.reaction_vector(f.name, f.directions)
+        for contact in d.friction:
+            if isinstance(contact, StaticFriction):
+                vector = self.reaction_vector(contact.name, contact.directions)
             else:
-                slip = self.slip_velocity(f)
-                vector = -lang.scalar(f.mu) * self.normal(f.normal) * slip / slip.magnitude()
-            self.forces[f.name] = [(f.on, f.at, vector)]
-            if f.surface in bodies:  # between two free bodies: equal and opposite
-                self.forces[f.name].append((f.surface, f.at, -vector))
+                slip = self.slip_velocity(contact)
+                vector = -lang.scalar(contact.mu) * self.normal(contact.normal) * slip \
+                    / slip.magnitude()
+            self.forces[contact.name] = [(contact.on, contact.at, vector)]
+            if contact.surface in bodies:  # between two free bodies: equal and opposite
+                self.forces[contact.name].append((contact.surface, contact.at, -vector))
 
     def reaction_vector(self, name: str, directions) -> Vector:
         return sum((s * self.language.vector(e) for s, e in zip(self.reactions[name], directions)),
@@ -196,13 +199,21 @@ class _Loads:
 
 
 class DynamicsInterpreter(Interpreter):
-    """The objective language with the dynamics functions: loads, momenta, energies."""
+    """The objective language with the dynamics functions: loads, momenta, energies.
+
+    ``kinematics``, ``balances`` and ``reactions`` are set once the balances are written (they
+    need the loads this interpreter reads); only the linearised motion reads them.
+    """
+
+    kinematics: Kinematics
+    balances: tuple[Equation, ...]
+    reactions: tuple[sp.Symbol, ...]
 
     def __init__(self, problem: Problem, model: Model, loads: _Loads, inertias: dict):
         super().__init__(problem, model.symbols, model.frames, model.positions)
         self.loads = loads
         self.inertias = inertias  # body -> [(mass, centre, central inertia or None)]
-        self.d = problem.dynamics
+        self.d = dynamics_of(problem)
         self._linearised: dict[str, tuple] = {}
         self.reactions_by_name = loads.reactions
         self.where = Location()
@@ -220,7 +231,7 @@ class DynamicsInterpreter(Interpreter):
             [b for b, _ in self.loads.couples.get(load, ())]
         return next((b for b in bodies if b != GROUND), None)
 
-    def _fn_force(self, load: Node):
+    def _fn_force(self, load: Name):
         if isinstance(self.d.analysis, Impulse) and self.loads.impulsive(load.id):
             raise SolveError(f"during an impact {load.id} is an impulse: ask for "
                              f"impulse({load.id})", where=self.where)
@@ -232,17 +243,17 @@ class DynamicsInterpreter(Interpreter):
                              where=self.where)
         return self._as_vector(self.value(vector)).subs(self.before)
 
-    def _load_force(self, load: Node):
+    def _load_force(self, load: Name):
         body = self._first_body(load.id)
         return sum((F for b, _, F in self.loads.forces.get(load.id, ()) if b == body), Vector(0))
 
-    def _fn_impulse(self, load: Node):
+    def _fn_impulse(self, load: Name):
         if not isinstance(self.d.analysis, Impulse):
             raise SolveError(f"impulse({load.id}) needs an impact: 'analysis: impulse'",
                              where=self.where)
         return self._load_force(load)
 
-    def _fn_moment(self, load: Node, point: Node):
+    def _fn_moment(self, load: Name, point: Node):
         body = self._first_body(load.id)
         about = self.point_position(point)
         moment = sum((M for b, M in self.loads.couples.get(load.id, ()) if b == body),
@@ -252,7 +263,7 @@ class DynamicsInterpreter(Interpreter):
                 moment += (self.positions[at] - about) ^ F
         return moment
 
-    def _fn_power(self, load: Node, frame: Node):
+    def _fn_power(self, load: Name, frame: Name):
         total = sp.Integer(0)
         for body, at, F in self.loads.forces.get(load.id, ()):
             total += F & self._material_velocity(body, at, frame.id)
@@ -268,11 +279,11 @@ class DynamicsInterpreter(Interpreter):
         v = self.point_velocity(Name(b.centre), frame)
         return v + (self._omega(b, frame) ^ (self.positions[point] - self.positions[b.centre]))
 
-    def _fn_momentum(self, body: Node, frame: Node):
+    def _fn_momentum(self, body: Name, frame: Name):
         return sum((m * self.point_velocity(Name(at), frame.id)
                     for m, at, _ in self.inertias[body.id]), Vector(0))
 
-    def _fn_angmom(self, body: Node, point: Node, frame: Node):
+    def _fn_angmom(self, body: Name, point: Node, frame: Name):
         b = self.d.body(body.id)
         omega = self._omega(b, frame.id)
         about = self.point_position(point)
@@ -283,7 +294,7 @@ class DynamicsInterpreter(Interpreter):
                 total += central & omega
         return total
 
-    def _fn_ke(self, body: Node, frame: Node):
+    def _fn_ke(self, body: Name, frame: Name):
         b = self.d.body(body.id)
         omega = self._omega(b, frame.id)
         total = sp.Integer(0)
@@ -294,7 +305,7 @@ class DynamicsInterpreter(Interpreter):
                 total += (omega & (central & omega)) / 2
         return total
 
-    def _fn_pe(self, item: Node):
+    def _fn_pe(self, item: Name):
         if item.id in self.inertias:
             if self.d.gravity is None:
                 return sp.Integer(0)
@@ -305,7 +316,7 @@ class DynamicsInterpreter(Interpreter):
         r = self.positions[spring.between[1]] - self.positions[spring.between[0]]
         return self.scalar(spring.stiffness) * (r.magnitude() - self.scalar(spring.length)) ** 2 / 2
 
-    def linearised(self, coordinate: Node) -> tuple[sp.Expr, sp.Expr]:
+    def linearised(self, coordinate: Name) -> tuple[sp.Expr, sp.Expr]:
         """``(k, c)`` of q'' = -k (q - q_eq) - c q' + ..., the motion of a single degree of
         freedom linearised about the instant's configuration (rates zero there); an
         equilibrium requirement (q'' = 0 at rest) is recorded."""
@@ -393,7 +404,7 @@ class DynamicsInterpreter(Interpreter):
         squared, _ = self._mode(number)
         return sp.sqrt(squared)
 
-    def _fn_mode_shape(self, number: Node, coordinate: Node, reference: Node):
+    def _fn_mode_shape(self, number: Node, coordinate: Name, reference: Name):
         squared, K = self._mode(number)
         names = list(self.kinematics.coordinates)
         i, j = names.index(coordinate.id), names.index(reference.id)
@@ -408,15 +419,15 @@ class DynamicsInterpreter(Interpreter):
                              "only", where=self.where)
         return _tidy(shape[i] / shape[j])
 
-    def _fn_omega_n(self, coordinate: Node):
+    def _fn_omega_n(self, coordinate: Name):
         stiffness, _ = self.linearised(coordinate)
         return sp.sqrt(stiffness)
 
-    def _fn_zeta(self, coordinate: Node):
+    def _fn_zeta(self, coordinate: Name):
         stiffness, damping = self.linearised(coordinate)
         return damping / (2 * sp.sqrt(stiffness))
 
-    def _fn_eom(self, coordinate: Node):
+    def _fn_eom(self, coordinate: Name):
         from .symbols import TIME_SYMBOL
         return self.dyn[coordinate.id].diff(TIME_SYMBOL, 2)
 
@@ -428,7 +439,7 @@ def derive_kinetics(problem: Problem) -> Kinetics:
 
 @lru_cache(maxsize=64)
 def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
-    d = problem.dynamics
+    d = dynamics_of(problem)
     k = derive(replace(problem, objectives=(), dynamics=None))
     model = build(problem)
     reactions, labels = _reaction_symbols(d)
@@ -436,8 +447,9 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     loads.build()
     inertias, steps_bodies = _inertias(d, model)
     language = DynamicsInterpreter(problem, model, loads, inertias)
-    impact = isinstance(d.analysis, Impulse)
-    before = _rates_before(problem, model, k) if impact else {}
+    analysis = d.analysis
+    impact = isinstance(analysis, Impulse)
+    before = _rates_before(analysis, model, k) if isinstance(analysis, Impulse) else {}
     language.before = before
     balances: list[Equation] = []
     steps_loads: list[str] = []
@@ -450,8 +462,8 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
-    if impact:
-        balances += _contact_conditions(d.analysis, model, loads, before)
+    if isinstance(analysis, Impulse):
+        balances += _contact_conditions(analysis, model, loads, before)
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until = _analysis(problem, model, language, k)
@@ -475,7 +487,9 @@ def _reaction_symbols(d: Dynamics) -> tuple[dict[str, tuple[sp.Symbol, ...]], li
     """One unknown per direction of each reaction and static-friction force, with labels."""
     reactions: dict[str, tuple[sp.Symbol, ...]] = {}
     labels: list[str] = []
-    for r in (*d.reactions, *(f for f in d.friction if isinstance(f, StaticFriction))):
+    unknown: tuple[Reaction | StaticFriction, ...] = (
+        *d.reactions, *(f for f in d.friction if isinstance(f, StaticFriction)))
+    for r in unknown:
         names = [r.name] if len(r.directions) == 1 else \
             [f"{r.name}_{i + 1}" for i in range(len(r.directions))]
         reactions[r.name] = tuple(sp.Symbol(n, real=True) for n in names)
@@ -497,7 +511,7 @@ def _inertias(d: Dynamics, model: Model) -> tuple[dict[str, list], list[str]]:
             m = lang.scalar(part.mass)
             central = _central(part.shape, m, frame, lang) if frame is not None else None
             if frame is not None:
-                _check_fixed(model, part.at, b, part.where)
+                _check_fixed(model, part.at, b, frame, part.where)
                 offset = model.positions[part.at] - model.positions[b.centre]
                 total += parallel_axis(central if central is not None else Dyadic(0), m,
                                        offset, frame)
@@ -507,13 +521,13 @@ def _inertias(d: Dynamics, model: Model) -> tuple[dict[str, list], list[str]]:
     return inertias, lines
 
 
-def _rates_before(problem: Problem, model: Model, k: Kinematics) -> dict:
+def _rates_before(analysis: Impulse, model: Model, k: Kinematics) -> dict:
     """The rates just before an impact (those not named in ``before:`` are 0), keyed by the
     model's rate functions."""
     lang = model.language
     values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
               if s.value is None else model.plain(lang.scalar(s.value))
-              for s in problem.dynamics.analysis.start}
+              for s in analysis.start}
     return {model.symbols.dyn[c].diff(dynamicsymbols._t): values.get(qd, sp.Integer(0))
             for c, qd in zip(k.coordinates, k.qd)}
 
@@ -591,7 +605,7 @@ def _objective_values(problem: Problem, model: Model, language: DynamicsInterpre
     """Each objective's and mistake's value in the model's quantities, and the requirements
     they need at the instant."""
     objectives, mistakes, requirements = [], [], []
-    view = _View(model, language)
+    view = replace(model, language=language)
     for obj in problem.objectives:
         language.requirements.clear()
         language.where = obj.where
@@ -621,7 +635,7 @@ def _friction_checks(d: Dynamics, model: Model, loads: _Loads, language, reactio
 
 def _energy(problem: Problem, language: DynamicsInterpreter):
     """Kinetic plus potential energy of every body and spring, in the inertial frame."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     N_node = Name(problem.inertial_frame)
     energy = sum((language._fn_ke(Name(b.name), N_node) + language._fn_pe(Name(b.name))
                   for b in d.bodies), sp.Integer(0))
@@ -646,7 +660,7 @@ def _difference(equation, model: Model, language) -> sp.Expr:
 
 def _analysis(problem: Problem, model: Model, language, k: Kinematics):
     """The start state (plain symbol -> value; rates not named are 0) and the event."""
-    analysis = problem.dynamics.analysis
+    analysis = dynamics_of(problem).analysis
     if analysis is None or isinstance(analysis, Impulse):
         return (), None
     values = {}
@@ -663,17 +677,6 @@ def _analysis(problem: Problem, model: Model, language, k: Kinematics):
     return start, until
 
 
-class _View:
-    """A model whose language is the dynamics interpreter (for ``_objective_value``)."""
-
-    def __init__(self, model: Model, language: DynamicsInterpreter):
-        self.problem = model.problem
-        self.frames = model.frames
-        self.inertial = model.inertial
-        self.language = language
-        self.plain = model.plain
-
-
 def _central(shape, m, frame, lang) -> Dyadic | None:
     if shape is None:
         return None
@@ -686,8 +689,8 @@ def _central(shape, m, frame, lang) -> Dyadic | None:
     return shape_inertia(type(shape).__name__.lower(), size, m, frame)
 
 
-def _check_fixed(model: Model, point: str, body: Body, where: Location) -> None:
-    frame = model.frames[body.frame]
+def _check_fixed(model: Model, point: str, body: Body, frame: ReferenceFrame,
+                 where: Location) -> None:
     relative = (model.positions[point] - model.positions[body.centre]).dt(frame)
     if not all(identically_zero(model.plain(c)) for c in relative.to_matrix(frame)):
         raise SolveError(f"the centre '{point}' of a part of body '{body.name}' moves relative "
@@ -749,7 +752,7 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
     kinematics = kinematics_derivation(replace(problem, objectives=(), dynamics=None), dof)
     mark = "'" if kin.impact else "''"
     unknowns = [f"{c}{mark}" for c in kin.k.coordinates] + list(kin.labels)
-    analysis = problem.dynamics.analysis
+    analysis = dynamics_of(problem).analysis
     how = "the givens state the configuration and the rates at the instant"
     if isinstance(analysis, Integration):
         how = (f"integrated from t = 0 until {analysis.until[0].text} = "
@@ -771,4 +774,5 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
             ("Objectives in the model's quantities", objectives))
 
 
-derive_kinetics.cache_clear = _derive_kinetics.cache_clear
+# Functions take attributes at run time; mypy models none (python/mypy#2087).
+derive_kinetics.cache_clear = _derive_kinetics.cache_clear  # type: ignore[attr-defined]

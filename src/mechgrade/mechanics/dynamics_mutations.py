@@ -29,12 +29,12 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Unary, parse, to_text
-from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Impulse,
-                             KineticFriction, Part, Reaction, Restitution, Ring, Shell, Sphere,
-                             StaticFriction, WorkEnergy)
+from ..expressions.syntax import Bin, Call, Name, Node, Unary, name_of, parse, to_text
+from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
+                             Impulse, KineticFriction, Part, Reaction, Restitution, Ring, Shape,
+                             Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
 from ..spec.language import FUNCTIONS
-from ..spec.model import Expr, Problem
+from ..spec.model import Constraint, Expr, Problem
 from .build import Model, build
 from .symbols import identically_zero
 
@@ -161,7 +161,7 @@ def _rotating(model: Model, body: Body) -> bool:
 
 def weight_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The gravity load left out of every free-body diagram."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if d.gravity is None:
         return
     names = ", ".join(b.name for b in d.bodies)
@@ -176,14 +176,14 @@ def weight_omitted_from_reaction(problem: Problem, model: Model
                                  ) -> Iterator[DynamicsMutation]:
     """The weight left out of the force balance that gives the only reaction on a body (a
     pin's force read as m a_G): the reaction read with the weight added back."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if d.gravity is None or isinstance(d.analysis, Impulse):
         return
-    on = {}
+    on: dict[str, list[Reaction | Friction]] = {}
     for load in (*d.reactions, *d.friction):
         bodies = [a.on for a in load.acts] if isinstance(load, Reaction) else [load.on]
-        for body in bodies:
-            on.setdefault(body, []).append(load)
+        for owner in bodies:
+            on.setdefault(owner, []).append(load)
     for r in d.reactions:
         if len(r.acts) != 1 or r.acts[0].on == GROUND or len(on[r.acts[0].on]) != 1:
             continue
@@ -201,7 +201,7 @@ def weight_omitted_from_reaction(problem: Problem, model: Model
 
 def mass_for_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The mass written where the weight m g belongs (the gravity load without its g)."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if d.gravity is None:
         return
     unit = _expr(f"({d.gravity.text})/mag({d.gravity.text})")
@@ -218,11 +218,12 @@ def _pivots(problem: Problem, model: Model, body: Body) -> Iterator[str]:
     """Points of ``body`` (other than its reference point) whose material point does not move:
     a pin fixed in the ground, or a contact rolling (or unwinding) on the ground."""
     N = problem.inertial_frame
+    assert body.frame is not None  # a rotating body (the only kind asked about) has a frame
     frame = model.frames[body.frame]
     omega = frame.ang_vel_in(model.inertial)
     centre = model.language.point_velocity(Name(body.centre), N)
-    rolling = {c.lhs.node.args[0].args[0].id for c in problem.constraints
-               if c.level == "velocity" and _rolling_on_ground(c, body.frame, N)}
+    rolling = {q for c in problem.constraints if c.level == "velocity"
+               and (q := _rolling_on_ground(c, body.frame, N)) is not None}
     for point, position in model.positions.items():
         offset = position - model.positions[body.centre]
         if point == body.centre or _zero(model, offset):
@@ -231,21 +232,23 @@ def _pivots(problem: Problem, model: Model, body: Body) -> Iterator[str]:
             yield point
 
 
-def _rolling_on_ground(constraint, frame: str, inertial: str) -> bool:
-    """``vel(coincident(Q, frame), N) = vel(coincident(Q, N), N)``: the body's point Q does
-    not slip on the ground."""
+def _rolling_on_ground(constraint: Constraint, frame: str, inertial: str) -> str | None:
+    """Q of ``vel(coincident(Q, frame), N) = vel(coincident(Q, N), N)``: the body's point Q
+    does not slip on the ground (``None`` for any other constraint)."""
     lhs, rhs = constraint.lhs.node, constraint.rhs.node
-    return (isinstance(lhs, Call) and lhs.func == "vel" and isinstance(lhs.args[0], Call)
+    if not (isinstance(lhs, Call) and lhs.func == "vel" and isinstance(lhs.args[0], Call)
             and lhs.args[0].func == "coincident" and lhs.args[0].args[1] == Name(frame)
             and isinstance(rhs, Call) and rhs.func == "vel" and isinstance(rhs.args[0], Call)
-            and rhs.args[0].args[1] == Name(inertial))
+            and rhs.args[0].args[1] == Name(inertial)):
+        return None
+    return name_of(lhs.args[0].args[0])
 
 
 def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The moment balance about a point that does not move (a pin, a rolling contact) written
     with the inertia about the mass centre: the parallel-axis term m d^2 missing. Modelled by a
     massless part carrying -m d^2 about the body's z axis, so I about the pivot is I_G."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if isinstance(d.analysis, Impulse):
         return
     for body in d.bodies:
@@ -269,7 +272,7 @@ def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[Dynamic
 
 def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """Every kinetic-friction force turned round (along the slip instead of against it)."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     kinetic = [f for f in d.friction if isinstance(f, KineticFriction)]
     if not kinetic:
         return
@@ -286,7 +289,7 @@ def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutati
 def normal_from_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The kinetic friction on a particle taken as μ m g where the normal force is not the
     weight (an incline): μ times the weight instead of μ N."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if d.gravity is None:
         return
     g = model.language.vector(d.gravity)
@@ -313,7 +316,7 @@ def normal_from_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
 def weight_transfer_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The friction forces of a body that does not turn, on two or more contacts, taken to act
     at its mass centre: their moment, which shifts load between the contacts, left out."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     for body in d.bodies:
         if body.frame is None or not _zero(model, model.frames[body.frame].ang_vel_in(
                 model.inertial)):
@@ -337,7 +340,7 @@ def weight_transfer_ignored(problem: Problem, model: Model) -> Iterator[Dynamics
 def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A string pulling two bodies (an Atwood machine) taken to pull with the weight of one of
     them, and the other body's balance written with it alone."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if d.gravity is None:
         return
     for r in d.reactions:
@@ -363,7 +366,7 @@ def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutati
 def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A reaction along the vertical (a string, a floor) or pressing a friction contact read as
     the weight m g of a body it acts on, as if the body did not accelerate."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if d.gravity is None or isinstance(d.analysis, Impulse):
         return
     g = model.language.vector(d.gravity)
@@ -390,7 +393,7 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
 def rotational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The rotational kinetic energy ½ ω·I_G·ω of a rigid body left out: in an energy
     objective, and in the work-energy balance that fixes the rates."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     N = problem.inertial_frame
     for body in d.bodies:
         if not _rotating(model, body) or any(p.at != body.centre for p in body.parts):
@@ -415,7 +418,7 @@ def rotational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMu
 def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """An impact with the coefficient of restitution replaced by 1 (perfectly elastic) or 0
     (the bodies stay together)."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if not isinstance(d.analysis, Impulse):
         return
     for i, c in enumerate(d.analysis.contacts):
@@ -423,7 +426,7 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
             continue
         for e, kind in (("1", "a perfectly elastic impact (e = 1)"),
                         ("0", "a perfectly plastic impact (e = 0)")):
-            contacts = tuple(replace(x, e=_expr(e)) if j == i else x
+            contacts = tuple(replace(c, e=_expr(e)) if j == i else x
                              for j, x in enumerate(d.analysis.contacts))
             changed = replace(d, analysis=replace(d.analysis, contacts=contacts))
             yield DynamicsMutation(
@@ -442,15 +445,15 @@ _CONFUSED_SHAPES = {Sphere: (Shell, Disk), Shell: (Sphere,), Disk: (Ring,), Ring
 def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A rigid body's moment of inertia taken from another shape's formula: a solid sphere's
     from a shell's or a disk's, a disk's from a ring's (every part of that shape and size)."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     for body in d.bodies:
         if not _rotating(model, body):
             continue
-        kinds = dict.fromkeys((type(p.shape), p.shape.radius.text) for p in body.parts
+        kinds = dict.fromkeys((type(p.shape), _radius(p.shape)) for p in body.parts
                               if type(p.shape) in _SHAPES)
         for kind, radius in kinds:
             for shape in _CONFUSED_SHAPES[kind]:
-                mine = [type(p.shape) is kind and p.shape.radius.text == radius
+                mine = [type(p.shape) is kind and _radius(p.shape) == radius
                         for p in body.parts]
                 parts = tuple(replace(p, shape=_reshaped(p.shape, shape)) if same else p
                               for p, same in zip(body.parts, mine))
@@ -469,6 +472,12 @@ def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                     term=_expr(f"({coefficient})*({mass})*({radius})^2"), term_unit="kg*m^2")
 
 
+def _radius(shape: Shape | None) -> str:
+    """The radius, as written, of a shape of ``_SHAPES``."""
+    assert isinstance(shape, (Sphere, Shell, Disk, Ring)), shape
+    return shape.radius.text
+
+
 def _reshaped(shape, kind):
     if kind in (Disk, Ring):
         return kind(shape.radius, getattr(shape, "axis", "z"))
@@ -482,7 +491,7 @@ def _times(coefficient: str) -> str:
 def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A spring's force (and energy) taken from its whole length, k l, instead of its
     stretch k (l - l0): the free length left out."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     for spring in d.springs:
         if identically_zero(model.plain(model.language.scalar(spring.length))):
             continue

@@ -18,7 +18,7 @@ from sympy.physics.vector import ReferenceFrame, Vector
 
 from ..errors import SpecError
 from ..expressions.build import to_sympy
-from ..expressions.syntax import Name, Node, Prime
+from ..expressions.syntax import Attr, Call, Name, Node, Prime, name_of
 from ..spec.model import TIME, Expr, Problem
 from .symbols import TIME_SYMBOL, Symbols, as_expr
 
@@ -77,13 +77,14 @@ class Interpreter:
             return self.params[node.id]
         if isinstance(node, Prime):
             return self.dyn[node.id].diff(TIME_SYMBOL, node.order)
+        assert isinstance(node, Attr), node  # fold resolves names, primes and unit vectors
         return getattr(self.frames[node.base], node.attr)
 
     def _call(self, func: str, args: tuple):
         return self.functions[func](self, *args)
 
     def frame(self, node: Node) -> ReferenceFrame:
-        return self.frames[node.id]
+        return self.frames[name_of(node)]
 
     def origin(self, frame: str) -> str:
         """A point fixed in ``frame``: the inertial point for the inertial frame."""
@@ -100,9 +101,10 @@ class Interpreter:
     def point_position(self, node: Node) -> Vector:
         if isinstance(node, Name):
             return self.positions[node.id]
+        assert isinstance(node, Call), node  # a point: a name, coincident(P, A) or ic(A, F)
         if node.func == "coincident":
             return self.point_position(node.args[0])
-        body, frame = node.args[0].id, node.args[1].id
+        body, frame = name_of(node.args[0]), name_of(node.args[1])
         origin = self.origin(body)
         omega = self.frames[body].ang_vel_in(self.frames[frame])
         v = self.point_velocity(Name(origin), frame)
@@ -119,8 +121,9 @@ class Interpreter:
         if isinstance(node, Name):
             relative = self.positions[node.id] - self.positions[self.origin(frame)]
             return relative.dt(F)
+        assert isinstance(node, Call), node  # a point: a name, coincident(P, A) or ic(A, F)
         if node.func == "coincident":
-            body = node.args[1].id
+            body = name_of(node.args[1])
             origin = self.origin(body)
             r = self.point_position(node.args[0]) - self.positions[origin]
             return self.point_velocity(Name(origin), frame) + \
@@ -132,8 +135,9 @@ class Interpreter:
         if isinstance(node, Name):
             relative = self.positions[node.id] - self.positions[self.origin(frame)]
             return relative.dt(F).dt(F)
+        assert isinstance(node, Call), node  # a point: a name, coincident(P, A) or ic(A, F)
         if node.func == "coincident":
-            body = node.args[1].id
+            body = name_of(node.args[1])
             origin = self.origin(body)
             r = self.point_position(node.args[0]) - self.positions[origin]
             omega = self.frames[body].ang_vel_in(F)

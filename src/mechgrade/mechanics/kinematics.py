@@ -26,7 +26,7 @@ from sympy.physics.vector import Vector
 
 from ..errors import AuthorWarning, Location, SolveError
 from ..expressions.syntax import Name, Node, Prime, to_text
-from ..spec.model import TIME, Expr, Problem
+from ..spec.model import TIME, Constraint, Expr, Given, Objective, Point, Problem
 from .build import Model, build
 from .material import material_warnings
 from .symbols import TIME_SYMBOL, identically_zero
@@ -104,9 +104,10 @@ class Kinematics:
 def locations(problem: Problem) -> tuple:
     """Where the problem's parts are written. Problems compare equal whatever their
     locations, so caches that keep locations (in equations and warnings) key on these too."""
-    parts = (*problem.points, *problem.constraints, *problem.givens, *problem.objectives,
-             *(g for o in problem.objectives for g in o.givens),
-             *(o.find for o in problem.objectives))
+    parts: tuple[Point | Constraint | Given | Objective | Expr, ...] = (
+        *problem.points, *problem.constraints, *problem.givens, *problem.objectives,
+        *(g for o in problem.objectives for g in o.givens),
+        *(o.find for o in problem.objectives))
     return (problem.path, *(str(x.where) for x in parts))
 
 
@@ -195,4 +196,5 @@ def _objective_value(model: Model, expr: Expr, frame: str | None):
 
 
 
-derive.cache_clear = _derive.cache_clear
+# Functions take attributes at run time; mypy models none (python/mypy#2087).
+derive.cache_clear = _derive.cache_clear  # type: ignore[attr-defined]

@@ -9,7 +9,7 @@ velocity of that geometric point, not of the disk's material point at ``T``.
 from __future__ import annotations
 
 from ..errors import AuthorWarning, Location, SpecError
-from ..expressions.syntax import Attr, Call, Name, Node, to_text, walk
+from ..expressions.syntax import Attr, Call, Name, Node, name_of, to_text, walk
 from ..spec.model import Problem
 from .build import Model
 from .symbols import identically_zero
@@ -34,15 +34,17 @@ def material_warnings(problem: Problem, model: Model) -> tuple[AuthorWarning, ..
     bodies: dict[str, set[str]] = {}
     for c in problem.constraints:
         for node in (*walk(c.lhs.node), *walk(c.rhs.node)):
-            if isinstance(node, Call) and node.func == "coincident":
-                bodies.setdefault(node.args[0].id, set()).add(node.args[1].id)
+            # coincident's point may itself be a coincident(...) point: its inner call is walked
+            if isinstance(node, Call) and node.func == "coincident" \
+                    and isinstance(node.args[0], Name):
+                bodies.setdefault(node.args[0].id, set()).add(name_of(node.args[1]))
     for f in problem.frames:
         if f.parent is None or f.origin is None:
             continue
         for p in problem.points:
             # located from the body's origin without the body's own axes: it does not turn
             # with the body (a collar located along the rod by R*Rod.x is meant to slide)
-            if p.origin == f.origin and not any(isinstance(n, Attr) and n.base == f.name
+            if p.origin == f.origin and p.position is not None and not any(isinstance(n, Attr) and n.base == f.name
                                                 for n in walk(p.position.node)):
                 bodies.setdefault(p.name, set()).add(f.name)
     uses: list[tuple[str, Node, Location]] = []

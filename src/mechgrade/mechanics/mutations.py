@@ -21,11 +21,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import Iterator
 
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Unary, to_text
+from ..expressions.syntax import Bin, Call, Name, Node, Unary, name_of, to_text
 from ..spec.model import Expr, Objective, Problem
 from .build import Model, build
 from .interpret import Interpreter
@@ -150,11 +151,13 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     r = _Reading(model, obj, right)
     for call in _calls(r.node, ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent",
                                 "normal")):
-        if not isinstance(call.args[0], Name):
+        point = call.args[0]
+        if not isinstance(point, Name):
             continue
-        for B, origin in _moving_frames(model, call.args[0].id, call.args[1].id):
-            _composition(r, call, B, origin)
-        _other_points(r, call)
+        in_frame = name_of(call.args[1])
+        for B, origin in _moving_frames(model, point.id, in_frame):
+            _composition(r, call, point, in_frame, B, origin)
+        _other_points(r, call, point, in_frame)
     _other_positions(r)
     _path_quantities(r)
     _speed_readings(r)
@@ -166,11 +169,12 @@ def _uses_acceleration(call: Call) -> bool:
     return call.func in ("acc", "acc_t", "acc_n", "rho", "normal")
 
 
-def _composition(r: _Reading, call: Call, B: str, origin: str) -> None:
-    """Each term of the composition of motion of the point of ``call`` described in the moving
-    frame ``B`` (origin ``origin``) dropped, and ω and α taken relative to B's parent."""
+def _composition(r: _Reading, call: Call, point: Name, in_frame: str, B: str,
+                 origin: str) -> None:
+    """Each term of the composition of motion of the point of ``call`` (``point`` in
+    ``in_frame``) described in the moving frame ``B`` (origin ``origin``) dropped, and ω and α
+    taken relative to B's parent."""
     model = r.model
-    point, in_frame = call.args[0], call.args[1].id
     uses_acc = _uses_acceleration(call)
     F = model.frames[in_frame]
     rel = model.positions[point.id] - model.positions[origin]
@@ -257,11 +261,10 @@ def _acceleration_terms(r: _Reading, point: Name, in_frame: str, B: str, origin:
               "{term} along " + r.basis + ": include it.", term)
 
 
-def _other_points(r: _Reading, call: Call) -> None:
+def _other_points(r: _Reading, call: Call, point: Name, in_frame: str) -> None:
     """The velocity or acceleration of another point of the model (or of the point of a
-    turning body there) for the point of ``call``."""
+    turning body there) for the point of ``call`` (``point`` in ``in_frame``)."""
     model, base = r.model, r.base
-    point, in_frame = call.args[0], call.args[1].id
     P = point.id
     kind = "acceleration" if _uses_acceleration(call) else "velocity"
     for Q in model.positions:
@@ -301,16 +304,21 @@ def _other_positions(r: _Reading) -> None:
                   "the question asks about.")
 
 
-def _top(node: Node) -> str | None:
-    return node.func if isinstance(node, Call) else None
+def _call_of(node: Node, func: str) -> Call | None:
+    """``node`` if it is a call of ``func``."""
+    return node if isinstance(node, Call) and node.func == func else None
 
 
 def _path_quantities(r: _Reading) -> None:
     """A path quantity for its neighbour: a_t or a_n for |a|, their sum for |a|, |a| for a
     component, ρ from |a|."""
-    node, top = r.node, _top(r.node)
-    if top == "mag" and _top(node.args[0]) == "acc":
-        args = node.args[0].args
+    node = r.node
+    if not isinstance(node, Call):
+        return
+    top = node.func
+    inner = _call_of(node.args[0], "acc") if top == "mag" else None
+    if inner is not None:
+        args = inner.args
         r.add("acc_t_for_acc", None, "Your value is the tangential acceleration a_t = dv/dt "
               "alone; the magnitude of the acceleration is √(a_t² + a_n²).",
               value_node=Call("acc_t", args))
@@ -325,8 +333,9 @@ def _path_quantities(r: _Reading) -> None:
               f"acceleration; the {'tangential' if top == 'acc_t' else 'normal'} component "
               "was asked.", value_node=Call("mag", (Call("acc", node.args),)))
     if top == "rho":
-        v = r.base.point_velocity(node.args[0], node.args[1].id)
-        a = r.base.point_acceleration(node.args[0], node.args[1].id)
+        in_frame = name_of(node.args[1])
+        v = r.base.point_velocity(node.args[0], in_frame)
+        a = r.base.point_acceleration(node.args[0], in_frame)
         if not _zero(r.model, v ^ a):
             r.append("rho_formula", (v & v) / a.magnitude(), "Your value is v²/|a|; the "
                      "radius of curvature is v²/a_n, with the normal part a_n of the "
@@ -335,14 +344,17 @@ def _path_quantities(r: _Reading) -> None:
 
 def _speed_readings(r: _Reading) -> None:
     """A speed from the sum of the velocity's components, or one component alone."""
-    node, top = r.node, _top(r.node)
-    if top == "speed":
+    node = r.node
+    if not isinstance(node, Call):
+        return
+    inner = _call_of(node.args[0], "vel") if node.func == "mag" else None
+    if node.func == "speed":
         args = node.args
-    elif top == "mag" and _top(node.args[0]) == "vel":
-        args = node.args[0].args
+    elif inner is not None:
+        args = inner.args
     else:
         return
-    v = r.base.point_velocity(args[0], args[1].id)
+    v = r.base.point_velocity(args[0], name_of(args[1]))
     x, y, z = v.to_matrix(r.frame)
     r.append("mag_as_sum", x + y + z, "Your value adds the components of the velocity; the "
              "speed is the square root of the sum of their squares.")
@@ -427,7 +439,7 @@ def _moving_frames(model: Model, point: str, frame: str):
         yield spec.name, spec.origin
 
 
-def _calls(node: Node, names: tuple[str, ...]):
+def _calls(node: Node, names: tuple[str, ...]) -> Iterator[Call]:
     if isinstance(node, Call):
         if node.func in names:
             yield node

@@ -30,12 +30,12 @@ import sympy as sp
 
 from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
-from ..mechanics.dynamics import Kinetics, derive_kinetics
+from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
 from ..expressions.syntax import Name, Prime
 from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..spec.dynamics import Integration, WorkEnergy
+from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from .events import (energy_rate_symbolic, energy_state, integrate_to_event,
                      integrated_symbolically)
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
@@ -68,8 +68,8 @@ class KineticsPlan:
     wheres: tuple[Location, ...]
     objectives: tuple[tuple[str, Callable], ...]
     mistakes: tuple[tuple[str, tuple[Callable, ...]], ...]
-    bounds: tuple[tuple[object, Callable, Callable, Callable], ...]
-    slips: tuple[tuple[object, Callable, Callable], ...]
+    bounds: tuple[tuple[Bound, Callable, Callable, Callable], ...]
+    slips: tuple[tuple[Slip, Callable, Callable], ...]
     requirements: tuple[tuple[str, str, Callable], ...] = ()
     design: Callable | None = None
 
@@ -201,7 +201,7 @@ def problem_where(kp: KineticsPlan) -> Location:
 
 
 def _body_where(problem: Problem, involved) -> Location:
-    for b in problem.dynamics.bodies:
+    for b in dynamics_of(problem).bodies:
         if involved and involved[0] == f"body {b.name}":
             return b.where
     return Location()
@@ -293,8 +293,9 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
     instant) so that the design equation holds."""
     from scipy import optimize
 
-    design = problem.dynamics.design
-    if design is None:
+    design = dynamics_of(problem).design
+    equation = kp.design
+    if design is None or equation is None:  # both, or neither: the kinetics carry the design
         return given_map
     node = Name(design.find)
 
@@ -308,7 +309,7 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
             _, x, _ = _instant(problem, kproblem, kp, with_value(value))
         except MechgradeError:  # the iteration wandered where the model fails: no root here
             return np.nan
-        return float(_call(kp.design, x)[0])
+        return float(_call(equation, x)[0])
 
     guess = design.guess
     result = optimize.root_scalar(residual, x0=guess, x1=guess * (1 + 1e-3) + 1e-12,
@@ -323,7 +324,7 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
 def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):
     """The state at the instant, the extended state (with second rates and reactions) the
     objectives are read from, and the kinematics' warnings."""
-    analysis = problem.dynamics.analysis
+    analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         g = place_givens(kproblem, kp.kp, given_map)
         state, before = integrate_to_event(problem, kp, g.values,
@@ -352,7 +353,7 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     obj = problem.objective(objective_id)
     kin = derive_kinetics(problem)
     expr = solved_symbolically(problem, objective_id, givens)
-    analysis = problem.dynamics.analysis
+    analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         numbers = {kin.k.quantity(node): si for _, (node, si, _) in givens
                    if isinstance(node, (Name, Prime))}

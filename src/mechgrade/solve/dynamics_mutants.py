@@ -36,7 +36,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import DynamicsMutation, dynamics_mutations
 from ..mechanics.symbols import identically_zero
-from ..spec.model import Objective, Problem
+from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import solve_dynamics
 from .instant import instant_givens
 from .mutants import attach, plausible_slips, slips_of
@@ -88,8 +88,8 @@ def _generated(problem: Problem, givens: tuple, results: tuple) -> dict:
                  given_mistakes(problem, overrides, set(numeric))] if numeric else []
         symbolic = _symbolic_mistakes(mutations, overrides,
                                       [r for r in results if r.expr is not None])
-    attached = attach(numeric, found, None)
-    out = {r.id: () for r in results}
+    attached = attach(numeric, found, frozenset())  # only the mistakes are kept from these
+    out: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in results}
     out.update({oid: r.generated_mistakes for oid, r in attached.items()})
     out.update(symbolic)
     return out
@@ -104,11 +104,14 @@ def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results:
     kept = {r.id: [_expression(r.expr, r.symbols)] for r in results}
     out: dict[str, list[GeneratedMistake]] = {r.id: [] for r in results}
     for m in mutations:
-        ids = set(kept) & {o.id for o in m.problem.objectives} if m.problem else set()
+        mistaken = m.problem
+        if mistaken is None:
+            continue
+        ids = set(kept) & {o.id for o in mistaken.objectives}
         if not ids:
             continue
         try:
-            solved = solve_dynamics(m.problem, givens=givens, objectives=ids)
+            solved = solve_dynamics(mistaken, givens=givens, objectives=ids)
         except _UNSOLVABLE:
             continue
         for r in solved.results:
@@ -169,11 +172,12 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
             m.sentence.replace(" = {term}", "")
         values = readings.get(i, {})
         if m.problem is not None:
-            wanted = numeric & {o.id for o in m.problem.objectives}
-            if not wanted:
+            # a mistaken model may leave out the objectives asked (those it cannot read)
+            ids = numeric & {o.id for o in m.problem.objectives}
+            if not ids:
                 continue
             try:
-                solved = solve_dynamics(m.problem, givens=givens, objectives=wanted)
+                solved = solve_dynamics(m.problem, givens=givens, objectives=ids)
             except _UNSOLVABLE:
                 continue
             values = {r.id: r.value for r in solved.results}
@@ -191,7 +195,7 @@ def _read(problem: Problem, mutations, givens, numeric: set[str]):
     objectives = [replace(problem.objective(oid), id=f"{oid}~{i}", find=find, expect=None,
                           mistakes=())
                   for i, m in enumerate(mutations) for oid, find in m.readings if oid in numeric]
-    objectives += [Objective(f"~{i}", "", m.term, "scalar", m.term_unit)
+    objectives += [Objective(f"~{i}", "", m.term, ObjectiveKind.SCALAR, m.term_unit)
                    for i, m in enumerate(mutations) if m.term is not None]
     readings: dict[int, dict] = {}
     terms: dict[int, str] = {}
@@ -204,9 +208,12 @@ def _read(problem: Problem, mutations, givens, numeric: set[str]):
         oid, i = result.id.rsplit("~", 1)
         if oid:
             readings.setdefault(int(i), {})[oid] = result.value
-        elif np.isfinite(result.value):
+            continue
+        term = result.value
+        assert term is not None and not isinstance(term, tuple)  # a term is a scalar objective
+        if np.isfinite(term):
             unit = "" if result.unit in ("", "1") else f" {result.unit}"
-            terms[int(i)] = f"{result.value + 0.0:.4g}{unit}"
+            terms[int(i)] = f"{term + 0.0:.4g}{unit}"
     return readings, terms
 
 

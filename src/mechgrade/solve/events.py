@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Callable
+from typing import Callable, TypeVar
 
 import numpy as np
 import sympy as sp
@@ -26,7 +26,7 @@ import sympy as sp
 # `mechgrade check` of most problems, which never needs it.
 
 from ..errors import SolveError
-from ..spec.dynamics import Integration, WorkEnergy
+from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Problem
 from .levels import State, nullspace
 
@@ -86,12 +86,22 @@ def start_values(kp, ap: AnalysisPlan, values: np.ndarray) -> np.ndarray:
     return out
 
 
+_Analysis = TypeVar("_Analysis", WorkEnergy, Integration)
+
+
+def _analysis(problem: Problem, kind: type[_Analysis]) -> _Analysis:
+    """The problem's analysis, of the kind the solver chose this function for."""
+    analysis = dynamics_of(problem).analysis
+    assert isinstance(analysis, kind), analysis
+    return analysis
+
+
 # ---------------------------------------------------------------------------- work-energy
 
 
 def energy_state(problem: Problem, kp, state: State, given_rates: list[str]) -> State:
     """The instant's rates from the energy balance (see the module docstring)."""
-    analysis: WorkEnergy = problem.dynamics.analysis
+    analysis = _analysis(problem, WorkEnergy)
     index = kp.kp.index
     rates = list(index.rates(1))
     if given_rates:
@@ -155,7 +165,7 @@ def energy_rate_symbolic(problem: Problem, kp, expr, declared: set):
     single coordinate without constraints: q' = s sqrt(2 (E0 - V(q)) / M(q))."""
     kin = kp.kin
     k = kin.k
-    analysis: WorkEnergy = problem.dynamics.analysis
+    analysis = _analysis(problem, WorkEnergy)
     free = expr.free_symbols if not isinstance(expr, sp.MatrixBase) \
         else set().union(*(e.free_symbols for e in expr))
     wanted = [qd for qd in k.qd if qd in free and qd not in declared]
@@ -184,7 +194,7 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     extended state with the second rates and reactions solved."""
     from scipy.integrate import solve_ivp
 
-    analysis: Integration = problem.dynamics.analysis
+    analysis = _analysis(problem, Integration)
     ap = analysis_plan(kp)
     index = kp.kp.index
     q, qd, qdd = list(range(index.n)), list(index.rates(1)), list(index.rates(2))
@@ -216,7 +226,8 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
         x = solve(at(t, y)) if ap.until_kinetic else _extended(kp, at(t, y))
         return _value(ap.until, x)
 
-    event.terminal = True
+    # scipy reads the event's function attribute; mypy models none (python/mypy#2087)
+    event.terminal = True  # type: ignore[attr-defined]
     y0 = np.concatenate([values[q], values[qd]])
     if abs(event(0.0, y0)) == 0.0:
         raise SolveError("the event already holds at the start (t = 0)", where=analysis.where)

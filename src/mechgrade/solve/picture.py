@@ -46,12 +46,13 @@ class ScenePoint:
 
 @dataclass(frozen=True)
 class SceneFrame:
-    """A frame's origin (``None`` without one) and its x and y unit vectors."""
+    """A frame's origin (``None`` without one) and its x and y unit vectors (``None`` where
+    not known at the instant)."""
 
     name: str
     origin: Triple | None
-    x: Triple
-    y: Triple
+    x: Triple | None
+    y: Triple | None
 
 
 @dataclass(frozen=True)
@@ -73,7 +74,10 @@ def scene(problem: Problem, solution: Solution) -> Scene:
     def number(f) -> Triple | None:
         with np.errstate(all="ignore"):
             out = np.asarray(f(*values), dtype=float).ravel()
-        return tuple(float(c) for c in out) if np.all(np.isfinite(out)) else None
+        if not np.all(np.isfinite(out)):
+            return None
+        x, y, z = (float(c) for c in out)  # a vector's components
+        return x, y, z
 
     return Scene(problem.id, tuple(
         ScenePoint(name, number(position) or (np.nan,) * 3, number(velocity),
@@ -185,7 +189,7 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
     out += ["</defs>", f'<rect width="{WIDTH:g}" height="{HEIGHT:g}" fill="#fff"/>']
     by_name = {p.name: p for p in shown}
     for p in shown:
-        origin = by_name.get(p.described_from)
+        origin = by_name.get(p.described_from) if p.described_from is not None else None
         if origin is not None:
             out.append(_line(at(*origin.position[:2]), at(*p.position[:2]), BODY, 4,
                              'stroke-linecap="round"'))

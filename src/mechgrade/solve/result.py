@@ -7,7 +7,7 @@ Nothing here holds a sympy object, so grading, reports and exports can use a
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Union
+from typing import Sequence, Union
 
 from ..errors import AuthorWarning, MechgradeError
 from ..spec.model import ObjectiveKind
@@ -72,7 +72,7 @@ class ObjectiveResult:
     rel: float = 0.01
     abs: float = 0.0
     prompt: str = ""
-    generated_mistakes: tuple[GeneratedMistake, ...] = ()
+    generated_mistakes: Sequence[GeneratedMistake] = ()  # a tuple, or worked out when read
     plausible: frozenset[str] | None = None
     symbol_signs: tuple[int, ...] = ()
 

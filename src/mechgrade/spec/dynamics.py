@@ -22,7 +22,7 @@ from ..errors import Location, SpecError, UnitError
 from ..expressions.functions import Kind
 from ..expressions.syntax import Name, Node, Prime, to_text, walk
 from ..units import dimension, dimensionless, parse_quantity, to_si
-from .model import Expr
+from .model import Expr, Problem
 
 GROUND = "ground"
 """The name standing for the inertial frame where a load's other end is fixed."""
@@ -353,6 +353,20 @@ class Dynamics:
 _SHAPES = {"rod": (Rod, ("length",)), "ring": (Ring, ("radius",)), "disk": (Disk, ("radius",)),
            "cylinder": (Cylinder, ("radius", "length")), "sphere": (Sphere, ("radius",)),
            "shell": (Shell, ("radius",))}
+
+
+def dynamics_of(problem: Problem) -> Dynamics:
+    """The dynamics section of a problem that has one (the solver and the mistake families
+    for bodies and loads are chosen for such problems only).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> [b.name for b in dynamics_of(problem).bodies]
+    ['rod']
+    """
+    assert problem.dynamics is not None, problem.id
+    return problem.dynamics
 
 
 def read_dynamics(data: dict, expr, where) -> Dynamics | None:

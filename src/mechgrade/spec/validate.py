@@ -19,7 +19,7 @@ from ..units import (describe_dimension, dimension, dimensionless, normalize_uni
                      time_dimension)
 from .dynamics import argument_dimension, check_dynamics
 from .language import FUNCTIONS
-from .model import TIME, Expr, Objective, ObjectiveKind, Problem
+from .model import TIME, Expect, Expr, Given, Objective, ObjectiveKind, Problem
 
 DYNAMICS_KINDS = (Kind.BODY, Kind.LOAD, Kind.BODY_OR_SPRING, Kind.COORDINATE)
 RESERVED = {TIME, "pi"} | set(MATH_FUNCTIONS) | set(FUNCTIONS)
@@ -152,11 +152,13 @@ class _Checker:
         for frame in self.p.frames:
             if frame.name == inertial:
                 continue
+            parent = frame.parent
+            assert parent is not None  # the loader requires a parent of every other frame
             with self.each():
-                if frame.parent not in self.frames:
+                if parent not in self.frames:
                     parented = False
-                    self.quiet_if_broken(frame.parent, "frames")
-                    raise SpecError(unknown_name("parent frame", frame.parent, self.frames),
+                    self.quiet_if_broken(parent, "frames")
+                    raise SpecError(unknown_name("parent frame", parent, self.frames),
                                     where=frame.parent_where)
             with self.each():
                 if frame.origin is not None and frame.origin not in self.points:
@@ -178,6 +180,8 @@ class _Checker:
         for point in self.p.points:
             if point.origin is None:
                 continue
+            # Only the inertial point (no origin, skipped above) has no position.
+            assert point.position is not None
             with self.each():
                 if point.origin not in self.points:
                     chained = False
@@ -222,13 +226,13 @@ class _Checker:
                 self._dims_match(dimension(guess.unit), self.type_of(guess.key).dim,
                                  guess.where, f"the guess for '{guess.key.text}'")
 
-    def check_given_list(self, givens) -> None:
-        seen = {}
+    def check_given_list(self, givens: tuple[Given, ...]) -> None:
+        seen: dict[str, Given] = {}
         for given in givens:
             with self.each():
                 self.check_given(given, seen)
 
-    def check_given(self, given, seen: dict) -> None:
+    def check_given(self, given: Given, seen: dict[str, Given]) -> None:
         node = given.key.node
         t = self.type_of(given.key)
         if t.kind != Kind.SCALAR:
@@ -323,7 +327,7 @@ class _Checker:
         self.check_given_list(obj.givens)
         if obj.expect is not None:
             with self.each():
-                self.check_expect(obj)
+                self.check_expect(obj, obj.expect)
 
     def symbol_meaning(self, decl) -> Node:
         """The spec quantity (a Name or Prime node) a declared symbol stands for."""
@@ -345,8 +349,7 @@ class _Checker:
         raise SpecError(f"expected symbol '{decl.name}' to stand for a parameter, coordinate "
                         f"or rate, found '{decl.means.text}'", where=decl.means.where)
 
-    def check_expect(self, obj: Objective) -> None:
-        e = obj.expect
+    def check_expect(self, obj: Objective, e: Expect) -> None:
         shape = {ObjectiveKind.SCALAR: "value", ObjectiveKind.VECTOR: "components",
                  ObjectiveKind.SYMBOLIC: "expr"}[obj.kind]
         given = "value" if e.value is not None else "components" if e.components else "expr"
@@ -479,7 +482,9 @@ class _Checker:
         index = FUNCTIONS[node.func].origin_of
         if index is None:
             return
-        frame = self.frames.get(getattr(node.args[index], "id", None))
+        arg = node.args[index]
+        # The argument's kind was checked first: a frame argument is a Name.
+        frame = self.frames.get(arg.id) if isinstance(arg, Name) else None
         if frame is None:
             return
         if frame.name != self.p.inertial_frame and frame.origin is None:
