@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+import yaml
 
 from mechgrade.errors import SpecError
 from mechgrade.yamlio import MAX_BYTES, field_path, read_yaml, read_yaml_text
@@ -159,8 +160,9 @@ SHIPPED_YAML = sorted(str(p) for folder in ("problems", "examples")
 def test_the_libyaml_reader_reads_as_the_python_reader(text):
     from mechgrade import yamlio
 
-    if yamlio._CLoader is None:
+    if not yaml.__with_libyaml__:
         pytest.skip("PyYAML without libyaml")
+    assert yamlio._CLoader is not None  # libyaml is there: the fast reader must be used
     fast = _tables(yamlio._CLoader, text)
     # where libyaml would differ it refuses, and read_yaml_text reads the text again
     assert fast == _tables(yamlio._Loader, text) or isinstance(fast, str)
@@ -175,8 +177,9 @@ def test_the_libyaml_reader_reads_as_the_python_reader(text):
 def test_the_shipped_files_read_the_same_with_libyaml():
     from mechgrade import yamlio
 
-    if yamlio._CLoader is None:
+    if not yaml.__with_libyaml__:
         pytest.skip("PyYAML without libyaml")
+    assert yamlio._CLoader is not None  # libyaml is there: the fast reader must be used
     assert SHIPPED_YAML
     for path in SHIPPED_YAML:
         text = Path(path).read_text(encoding="utf-8")

@@ -132,7 +132,14 @@ class _Loader(_Refusals, yaml.SafeLoader):
     shown (their wording and positions are what :func:`_syntax_message` reads)."""
 
 
-CParser: Any = getattr(yaml, "CParser", None)  # None when PyYAML is built without libyaml
+CParser: Any = None
+try:
+    from yaml import cyaml as _cyaml
+
+    # not in cyaml's __all__ (nor its type stubs): yaml.CParser does not exist
+    CParser = getattr(_cyaml, "CParser")
+except ImportError:  # pragma: no cover - PyYAML built without libyaml
+    pass
 _CLoader: Any = None
 
 if CParser is not None:
