@@ -62,6 +62,9 @@ def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     assert "normal_from_weight" in _codes("block_sliding_down_incline")
     assert "normal_from_weight" not in _codes("car_braking_weight_transfer")
     assert not dynamics_mutations(_problem("bowling_3_15_4_pendulum"))
+    # friction between two bodies: the one slid on taken as fixed; on the ground: no such
+    assert "surface_taken_fixed" in _codes("block_slides_on_cart")
+    assert "surface_taken_fixed" not in _codes("block_sliding_down_incline")
 
 
 def test_the_mistaken_model_is_a_copy():
@@ -171,3 +174,17 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
     assert copy == solution
     assert [m.code for m in copy.result("vG_after").generated_mistakes] \
         == ["restitution_ignored", "restitution_ignored"]
+
+
+def test_the_body_slid_on_taken_as_fixed_stops_the_slider_on_it():
+    # the cart at rest: the block stops in v0/(μ g) = 5/(0.3 × 9.81) s, all of ½ m v0² lost
+    assert [round(m.value, 4) for m in _generated("block_slides_on_cart", "t_slide",
+                                                  "surface_taken_fixed")] == [1.6989]
+    assert [round(m.value, 4) for m in _generated("block_slides_on_cart", "energy_lost",
+                                                  "surface_taken_fixed")] == [25.0]
+    # the friction on the block is μ N in both models (and has no direction where it
+    # stops on the ground): no force is read from the mistaken model
+    assert not _generated("block_slides_on_cart", "friction_on_block", "surface_taken_fixed")
+    judged = assess("1.70 s", _solution("block_slides_on_cart").result("t_slide"))
+    assert judged.diagnosis == LABELS["surface_taken_fixed"]
+    assert "cart taken as fixed" in judged.feedback

@@ -226,6 +226,7 @@ LABELS = {
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",
     "spring_free_length_omitted": "spring's free length left out",
+    "surface_taken_fixed": "the body slid on taken as fixed",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -495,16 +495,36 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
             term=spring.length, term_unit="m")
 
 
+def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A kinetic-friction contact between two bodies (a block sliding on a cart) with the
+    body it slides on taken as fixed: the friction acts on the slider only, its reaction on
+    the other body left out."""
+    d = problem.dynamics
+    bodies = {b.name for b in d.bodies}
+    for f in d.friction:
+        if not isinstance(f, KineticFriction) or f.surface not in bodies:
+            continue
+        friction = tuple(replace(x, surface=GROUND) if x is f else x for x in d.friction)
+        # the slider's friction is μ N in both models, and where its slip on the ground ends
+        # it has no direction: no force is read from the mistaken model
+        yield DynamicsMutation(
+            "surface_taken_fixed", f"Your value is what the balances give with {f.surface} "
+            f"taken as fixed: the friction {f.name} (μ N = {{term}}) acts on {f.surface} too, "
+            f"the opposite way, and sets it moving.", LOADS,
+            problem=_mistaken(problem, replace(d, friction=friction), without=("force",)),
+            term=_expr(f"mag(force({f.name}))"), term_unit="N")
+
+
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, mass_for_weight, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
-    spring_free_length_omitted)
+    spring_free_length_omitted, surface_taken_fixed)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
 CODES = ("weight_omitted", "mass_for_weight", "central_inertia_at_pivot", "friction_reversed",
          "normal_from_weight", "weight_transfer_ignored", "tension_as_weight",
          "reaction_as_weight", "rotational_ke_omitted", "restitution_ignored",
-         "other_shape_inertia", "spring_free_length_omitted")
+         "other_shape_inertia", "spring_free_length_omitted", "surface_taken_fixed")
 """Family codes of the dynamics mutations (keys of an assignment's ``partial_credit``)."""

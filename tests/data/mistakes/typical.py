@@ -584,12 +584,12 @@ def block_on_cart():
                   num(M * v0 / (m + M), "m/s"), "given_swap"),
             entry("cart_acceleration", "masses exchanged: μ M g/m", num(mu * M * g / m, "m/s^2"),
                   "given_swap"),
-            # the cart taken as fixed (friction on the block only): no family makes the
-            # surface a body rubs on the ground yet; nothing is said of it
             entry("t_slide", "cart taken as fixed: the block stops at v0/(μ g)",
-                  num(v0 / (mu * g), "s"), "surface_fixed", known="none"),
+                  num(v0 / (mu * g), "s"), "surface_taken_fixed"),
             entry("slide_distance", "cart taken as fixed: v0²/(2 μ g)",
-                  num(v0**2 / (2 * mu * g), "m"), "surface_fixed", known="none"),
+                  num(v0**2 / (2 * mu * g), "m"), "surface_taken_fixed"),
+            entry("energy_lost", "cart taken as fixed: all of ½ m v0² lost",
+                  num(m * v0**2 / 2, "J"), "surface_taken_fixed"),
             # momentum conserved, but only the block's kinetic energy counted (the cart's
             # ½ M v² gained left out)
             entry("energy_lost", "the cart's kinetic energy left out: ½ m (v0² - v²)",
@@ -764,8 +764,7 @@ SYMBOLIC = {
     "block_slides_on_cart": [
         entry("t_slide_symbolic", "friction μ m instead of μ m g", "M*v0/(mu*(m + M))",
               "mass_for_weight"),
-        entry("t_slide_symbolic", "cart taken as fixed", "v0/(mu*g)", "surface_fixed",
-              known="none")],
+        entry("t_slide_symbolic", "cart taken as fixed", "v0/(mu*g)", "surface_taken_fixed")],
     "rod_struck_on_ice": [
         entry("omega_symbolic", "moment arm L instead of L/2", "12*J/(m*L)", "factor_2"),
         entry("omega_symbolic", "spin taken as clockwise", "-6*J/(m*L)", "sign")],
