@@ -453,7 +453,8 @@ def rod_ledge():
 
 
 def falling_ladder():
-    m, L, g, th, thd = 10.0, 4.0, 9.81, 60 * D, -0.5
+    m, L, g, th0, th = 10.0, 4.0, 9.81, 80 * D, 60 * D
+    thd = -math.sqrt(3 * g * (math.sin(th0) - math.sin(th)) / L)  # released from rest at θ0
     N1 = m * math.cos(th) * (3 * g * math.sin(th) - 2 * L * thd**2) / 4
     return [entry("thetaddot_now", "calculator in radian mode: cos 60",
                   num(-3 * g * math.cos(60.0) / (2 * L), "rad/s^2"), "given_deg_as_rad"),
@@ -610,7 +611,8 @@ def flywheel():
             entry("turns_during_stroke", "answer left in radians", num(turned, "deg"),
                   "rad_as_deg"),
             # w0 is a parameter, not a coordinate's rate: the rpm-as-rad/s slip is generated
-            # for rates only
+            # for rates only (and the mistaken design, R = 0.2 m, does not converge from the
+            # author's guess 0.5 m)
             entry("R_needed", "300 rpm used as rad/s",
                   num(math.sqrt(2 * M * T / (0.1 * 300) / m), "m"), "given_rate_unit",
                   known="none"),
