@@ -65,6 +65,12 @@ def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     # friction between two bodies: the one slid on taken as fixed; on the ground: no such
     assert "surface_taken_fixed" in _codes("block_slides_on_cart")
     assert "surface_taken_fixed" not in _codes("block_sliding_down_incline")
+    # an energy adding two bodies' kinetic energies: each left out; one body's: none
+    assert "body_ke_omitted" in _codes("block_slides_on_cart")
+    assert "body_ke_omitted" not in _codes("flywheel_speed_drop")
+    # a known blow away from the centre of a body that turns; an impact with no known blow
+    assert "impulse_moment_omitted" in _codes("rod_struck_on_ice")
+    assert "impulse_moment_omitted" not in _codes("rod_strikes_ledge")
 
 
 def test_the_mistaken_model_is_a_copy():
@@ -188,3 +194,22 @@ def test_the_body_slid_on_taken_as_fixed_stops_the_slider_on_it():
     judged = assess("1.70 s", _solution("block_slides_on_cart").result("t_slide"))
     assert judged.diagnosis == LABELS["surface_taken_fixed"]
     assert "cart taken as fixed" in judged.feedback
+
+
+def test_one_body_kinetic_energy_left_out_of_the_system_energy():
+    # ½ m v0² - ½ M v² (the block's ½ m v² left out) and ½ m v0² - ½ m v² (the cart's)
+    assert sorted(round(m.value, 6) for m in _generated("block_slides_on_cart", "energy_lost",
+                                                        "body_ke_omitted")) == [21.0, 24.0]
+    judged = assess("24 J", _solution("block_slides_on_cart").result("energy_lost"))
+    assert judged.diagnosis == LABELS["body_ke_omitted"]
+    assert "kinetic energy of cart (= 4 J)" in judged.feedback
+
+
+def test_a_blow_taken_at_the_mass_centre_sets_nothing_spinning():
+    # the far end then moves with the centre, J/m = 2 m/s; no spin is no value to name
+    assert [m.value for m in _generated("rod_struck_on_ice", "vB_after",
+                                        "impulse_moment_omitted")] == [(0.0, 2.0, 0.0)]
+    assert not _generated("rod_struck_on_ice", "omega_after", "impulse_moment_omitted")
+    judged = assess("(0, 2) m/s", _solution("rod_struck_on_ice").result("vB_after"))
+    assert judged.diagnosis == LABELS["impulse_moment_omitted"]
+    assert "0.6 m from G" in judged.feedback

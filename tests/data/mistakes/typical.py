@@ -594,7 +594,7 @@ def block_on_cart():
             # momentum conserved, but only the block's kinetic energy counted (the cart's
             # ½ M v² gained left out)
             entry("energy_lost", "the cart's kinetic energy left out: ½ m (v0² - v²)",
-                  num(m * (v0**2 - v**2) / 2, "J"), "ke_omitted", known="none"),
+                  num(m * (v0**2 - v**2) / 2, "J"), "body_ke_omitted"),
             entry("slide_distance", "the block's travel over the floor for its slide on the cart",
                   num(v0 * t + a_block * t**2 / 2, "m"), "other_point", known="none")]
 
@@ -630,10 +630,10 @@ def rod_on_ice():
                   num(J * L / (m * L**2 / 12), "rad/s"), "factor_2"),
             entry("point_at_rest", "the point at rest placed on the struck side of G",
                   vec(V(vG / w, 0), "m"), "sign"),
-            # dynamics problems have no generated kinematic readings (another point, ω × r
-            # left out) yet; nothing is said of these
             entry("vB_after", "the impulse's moment forgotten (no spin): v_B = v_G",
-                  vec(V(0, vG), "m/s"), "drop_omega_r", known="none"),
+                  vec(V(0, vG), "m/s"), "impulse_moment_omitted"),
+            # dynamics problems have no generated kinematic readings (another point, ω × r
+            # the wrong way) yet; nothing is said of this
             entry("vB_after", "ω × r added the wrong way: the struck end A's velocity",
                   vec(V(0, vG + w * L / 2), "m/s"), "other_point", known="none"),
             entry("omega_after", "I about the end (m L²/3) instead of about G",
