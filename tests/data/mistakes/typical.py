@@ -558,8 +558,9 @@ def bead_on_hoop():
                   num(math.sqrt(1 / (R * math.cos(th))), "rad/s"), "mass_for_weight"),
             entry("hoop_force", "weight left out: the hoop's force only turns the bead, m Ω² ρ",
                   num(m * W**2 * rho, "N"), "weight_omitted"),
-            entry("omega_small_oscillations", "g left out (m for m g): ω_n = Ω sin θ with Ω² = "
-                  "1/(R cos θ)", num(math.sqrt(1 / (R * math.cos(th))) * math.sin(th), "rad/s"),
+            entry("omega_small_oscillations",
+                  "g left out (m for m g): ω_n = Ω sin θ with Ω² = 1/(R cos θ)",
+                  num(math.sqrt(1 / (R * math.cos(th))) * math.sin(th), "rad/s"),
                   "mass_for_weight"),
             # the spin axis's distance taken as R, not R sin θ: not generated (a geometric slip
             # of the position, in a dynamics model); nothing is said of it
@@ -577,7 +578,7 @@ def bead_on_hoop():
 def block_on_cart():
     m, M, mu, g, v0 = 2.0, 8.0, 0.3, 9.81, 5.0
     v = m * v0 / (m + M)  # momentum
-    a_block, a_cart = -mu * g, mu * m * g / M
+    a_block = -mu * g
     t = (v - v0) / a_block
     return [entry("t_slide", "friction μ m instead of μ m g",
                   num(v0 / (mu * (1 + m / M)), "s"), "mass_for_weight"),
@@ -602,7 +603,6 @@ def block_on_cart():
 def flywheel():
     m, M, T, w0 = 500.0, 1500.0, 0.2, 300 * 2 * math.pi / 60
     I = M * T / (0.1 * w0)  # I Δω = M T
-    R = math.sqrt(2 * I / m)
     w1 = 0.9 * w0
     turned = (w0 + w1) / 2 * T  # rad
     return [entry("R_needed", "flywheel taken as a ring (I = m R²)", num(math.sqrt(I / m), "m"),
