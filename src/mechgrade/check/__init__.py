@@ -272,7 +272,7 @@ def written_tolerance(text: str) -> float:
     >>> written_tolerance("98.51"), written_tolerance("6"), written_tolerance("1.5e3")
     (0.005, 0.5, 50.0)
     >>> written_tolerance("-89.87"), round(written_tolerance("41.036426"), 9)
-    (0.005, 0.00041036)
+    (0.005, 0.000410364)
     """
     mantissa, _, exponent = text.strip().lstrip("+-").lower().partition("e")
     whole, _, decimals = mantissa.partition(".")
