@@ -62,6 +62,15 @@ def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     assert "normal_from_weight" in _codes("block_sliding_down_incline")
     assert "normal_from_weight" not in _codes("car_braking_weight_transfer")
     assert not dynamics_mutations(_problem("bowling_3_15_4_pendulum"))
+    # friction between two bodies: the one slid on taken as fixed; on the ground: no such
+    assert "surface_taken_fixed" in _codes("block_slides_on_cart")
+    assert "surface_taken_fixed" not in _codes("block_sliding_down_incline")
+    # an energy adding two bodies' kinetic energies: each left out; one body's: none
+    assert "body_ke_omitted" in _codes("block_slides_on_cart")
+    assert "body_ke_omitted" not in _codes("flywheel_speed_drop")
+    # a known blow away from the centre of a body that turns; an impact with no known blow
+    assert "impulse_moment_omitted" in _codes("rod_struck_on_ice")
+    assert "impulse_moment_omitted" not in _codes("rod_strikes_ledge")
 
 
 def test_the_mistaken_model_is_a_copy():
@@ -171,3 +180,36 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
     assert copy == solution
     assert [m.code for m in copy.result("vG_after").generated_mistakes] \
         == ["restitution_ignored", "restitution_ignored"]
+
+
+def test_the_body_slid_on_taken_as_fixed_stops_the_slider_on_it():
+    # the cart at rest: the block stops in v0/(μ g) = 5/(0.3 × 9.81) s, all of ½ m v0² lost
+    assert [round(m.value, 4) for m in _generated("block_slides_on_cart", "t_slide",
+                                                  "surface_taken_fixed")] == [1.6989]
+    assert [round(m.value, 4) for m in _generated("block_slides_on_cart", "energy_lost",
+                                                  "surface_taken_fixed")] == [25.0]
+    # the friction on the block is μ N in both models (and has no direction where it
+    # stops on the ground): no force is read from the mistaken model
+    assert not _generated("block_slides_on_cart", "friction_on_block", "surface_taken_fixed")
+    judged = assess("1.70 s", _solution("block_slides_on_cart").result("t_slide"))
+    assert judged.diagnosis == LABELS["surface_taken_fixed"]
+    assert "cart taken as fixed" in judged.feedback
+
+
+def test_one_body_kinetic_energy_left_out_of_the_system_energy():
+    # ½ m v0² - ½ M v² (the block's ½ m v² left out) and ½ m v0² - ½ m v² (the cart's)
+    assert sorted(round(m.value, 6) for m in _generated("block_slides_on_cart", "energy_lost",
+                                                        "body_ke_omitted")) == [21.0, 24.0]
+    judged = assess("24 J", _solution("block_slides_on_cart").result("energy_lost"))
+    assert judged.diagnosis == LABELS["body_ke_omitted"]
+    assert "kinetic energy of cart (= 4 J)" in judged.feedback
+
+
+def test_a_blow_taken_at_the_mass_centre_sets_nothing_spinning():
+    # the far end then moves with the centre, J/m = 2 m/s; no spin is no value to name
+    assert [m.value for m in _generated("rod_struck_on_ice", "vB_after",
+                                        "impulse_moment_omitted")] == [(0.0, 2.0, 0.0)]
+    assert not _generated("rod_struck_on_ice", "omega_after", "impulse_moment_omitted")
+    judged = assess("(0, 2) m/s", _solution("rod_struck_on_ice").result("vB_after"))
+    assert judged.diagnosis == LABELS["impulse_moment_omitted"]
+    assert "0.6 m from G" in judged.feedback

@@ -226,6 +226,9 @@ LABELS = {
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",
     "spring_free_length_omitted": "spring's free length left out",
+    "surface_taken_fixed": "the body slid on taken as fixed",
+    "body_ke_omitted": "a body's kinetic energy left out",
+    "impulse_moment_omitted": "the blow's moment left out",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -504,16 +504,76 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
             term=spring.length, term_unit="m")
 
 
+def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A kinetic-friction contact between two bodies (a block sliding on a cart) with the
+    body it slides on taken as fixed: the friction acts on the slider only, its reaction on
+    the other body left out."""
+    d = problem.dynamics
+    bodies = {b.name for b in d.bodies}
+    for f in d.friction:
+        if not isinstance(f, KineticFriction) or f.surface not in bodies:
+            continue
+        friction = tuple(replace(x, surface=GROUND) if x is f else x for x in d.friction)
+        # the slider's friction is μ N in both models, and where its slip on the ground ends
+        # it has no direction: no force is read from the mistaken model
+        yield DynamicsMutation(
+            "surface_taken_fixed", f"Your value is what the balances give with {f.surface} "
+            f"taken as fixed: the friction {f.name} (μ N = {{term}}) acts on {f.surface} too, "
+            f"the opposite way, and sets it moving.", LOADS,
+            problem=_mistaken(problem, replace(d, friction=friction), without=("force",)),
+            term=_expr(f"mag(force({f.name}))"), term_unit="N")
+
+
+def body_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In an objective that adds the kinetic energies of two or more bodies (the energy a
+    block sliding on a cart loses), one body's kinetic energy left out."""
+    d = problem.dynamics
+    N = problem.inertial_frame
+    several = {o.id for o in problem.objectives
+               if len({c.args[0] for c in _calls(o.find.node, "ke")}) > 1}
+    for body in d.bodies:
+        readings = tuple((oid, find) for oid, find in _readings(
+            problem, "ke", body.name, parse("0", functions=FUNCTIONS)) if oid in several)
+        if readings:
+            yield DynamicsMutation(
+                "body_ke_omitted", f"Your value leaves out the kinetic energy of {body.name} "
+                "(= {term}): the system's kinetic energy adds those of all its bodies.",
+                OBJECTIVES, readings=readings, term=_expr(f"ke({body.name}, {N})"),
+                term_unit="J")
+
+
+def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A known blow on a turning body away from its mass centre taken to act at the centre:
+    its moment, which sets the body spinning, left out of the angular momentum balance."""
+    d = problem.dynamics
+    if not isinstance(d.analysis, Impulse):
+        return
+    for blow in d.impulses:
+        body = d.body(blow.on)
+        if not _rotating(model, body) or _zero(model, model.positions[blow.at]
+                                               - model.positions[body.centre]):
+            continue
+        impulses = tuple(replace(x, at=body.centre) if x is blow else x for x in d.impulses)
+        # a body that does not spin has no instantaneous centre
+        yield DynamicsMutation(
+            "impulse_moment_omitted", f"Your value takes the blow {blow.name} at the mass "
+            f"centre {body.centre}: it acts at {blow.at}, {{term}} from {body.centre}, and its "
+            f"moment about {body.centre} sets {body.name} spinning.", BALANCES,
+            problem=_mistaken(problem, replace(d, impulses=impulses), without=("ic",)),
+            term=_expr(f"mag(pos({blow.at}, {body.centre}))"), term_unit="m")
+
+
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, mass_for_weight, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
-    spring_free_length_omitted)
+    spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
 CODES = ("weight_omitted", "mass_for_weight", "central_inertia_at_pivot", "friction_reversed",
          "normal_from_weight", "weight_transfer_ignored", "tension_as_weight",
          "reaction_as_weight", "rotational_ke_omitted", "restitution_ignored",
-         "other_shape_inertia", "spring_free_length_omitted")
+         "other_shape_inertia", "spring_free_length_omitted", "surface_taken_fixed",
+         "body_ke_omitted", "impulse_moment_omitted")
 """Family codes of the dynamics mutations (keys of an assignment's ``partial_credit``)."""

@@ -453,8 +453,8 @@ def rod_ledge():
 
 
 def falling_ladder():
-    m, L, g, th, th0 = 10.0, 4.0, 9.81, 60 * D, 80 * D
-    thd = -math.sqrt(3 * g * (math.sin(th0) - math.sin(th)) / L)  # energy from rest at th0
+    m, L, g, th0, th = 10.0, 4.0, 9.81, 80 * D, 60 * D
+    thd = -math.sqrt(3 * g * (math.sin(th0) - math.sin(th)) / L)  # released from rest at θ0
     N1 = m * math.cos(th) * (3 * g * math.sin(th) - 2 * L * thd**2) / 4
     return [entry("thetaddot_now", "calculator in radian mode: cos 60",
                   num(-3 * g * math.cos(60.0) / (2 * L), "rad/s^2"), "given_deg_as_rad"),
@@ -550,6 +550,133 @@ def yo_yo():
                   vec(V(0, 0, -m * k**2 / 2 * w), "kg*m^2/s"), "factor_2")]
 
 
+def bead_on_hoop():
+    m, R, g, th = 0.1, 0.5, 9.81, 60 * D
+    W = math.sqrt(g / (R * math.cos(th)))  # θ'' = sin θ (Ω² cos θ - g/R) = 0
+    rho = R * math.sin(th)  # the bead's distance from the spin axis
+    return [entry("Omega_for_60", "g left out of the tangential balance (m for m g)",
+                  num(math.sqrt(1 / (R * math.cos(th))), "rad/s"), "mass_for_weight"),
+            entry("hoop_force", "weight left out: the hoop's force only turns the bead, m Ω² ρ",
+                  num(m * W**2 * rho, "N"), "weight_omitted"),
+            entry("omega_small_oscillations",
+                  "g left out (m for m g): ω_n = Ω sin θ with Ω² = 1/(R cos θ)",
+                  num(math.sqrt(1 / (R * math.cos(th))) * math.sin(th), "rad/s"),
+                  "mass_for_weight"),
+            # the spin axis's distance taken as R, not R sin θ: not generated (a geometric slip
+            # of the position, in a dynamics model); nothing is said of it
+            entry("Omega_for_60", "centripetal term m Ω² R instead of m Ω² R sin θ: tan θ = "
+                  "Ω² R/g", num(math.sqrt(g * math.tan(th) / R), "rad/s"), "position_term",
+                  known="none"),
+            entry("omega_small_oscillations", "the linearisation's sin² θ left out: ω_n = Ω",
+                  num(W, "rad/s"), "position_term", known="none"),
+            # at 60° the weight is exactly half the answer (cos 60° = ½): the factor 2 is all
+            # that is said
+            entry("hoop_force", "hoop's force taken as the weight m g", num(m * g, "N"),
+                  "reaction_as_weight", known="generic", generic=("factor_2",))]
+
+
+def block_on_cart():
+    m, M, mu, g, v0 = 2.0, 8.0, 0.3, 9.81, 5.0
+    v = m * v0 / (m + M)  # momentum
+    a_block = -mu * g
+    t = (v - v0) / a_block
+    return [entry("t_slide", "friction μ m instead of μ m g",
+                  num(v0 / (mu * (1 + m / M)), "s"), "mass_for_weight"),
+            entry("common_speed", "masses exchanged in the momentum balance: M v0/(m + M)",
+                  num(M * v0 / (m + M), "m/s"), "given_swap"),
+            entry("cart_acceleration", "masses exchanged: μ M g/m", num(mu * M * g / m, "m/s^2"),
+                  "given_swap"),
+            entry("t_slide", "cart taken as fixed: the block stops at v0/(μ g)",
+                  num(v0 / (mu * g), "s"), "surface_taken_fixed"),
+            entry("slide_distance", "cart taken as fixed: v0²/(2 μ g)",
+                  num(v0**2 / (2 * mu * g), "m"), "surface_taken_fixed"),
+            entry("energy_lost", "cart taken as fixed: all of ½ m v0² lost",
+                  num(m * v0**2 / 2, "J"), "surface_taken_fixed"),
+            # momentum conserved, but only the block's kinetic energy counted (the cart's
+            # ½ M v² gained left out)
+            entry("energy_lost", "the cart's kinetic energy left out: ½ m (v0² - v²)",
+                  num(m * (v0**2 - v**2) / 2, "J"), "body_ke_omitted"),
+            entry("slide_distance", "the block's travel over the floor for its slide on the cart",
+                  num(v0 * t + a_block * t**2 / 2, "m"), "other_point", known="none")]
+
+
+def flywheel():
+    m, M, T, w0 = 500.0, 1500.0, 0.2, 300 * 2 * math.pi / 60
+    I = M * T / (0.1 * w0)  # I Δω = M T
+    w1 = 0.9 * w0
+    turned = (w0 + w1) / 2 * T  # rad
+    return [entry("R_needed", "flywheel taken as a ring (I = m R²)", num(math.sqrt(I / m), "m"),
+                  "other_shape_inertia"),
+            entry("speed_after", "answer left in rad/s", num(w1, "rpm"), "rpm_rad"),
+            entry("turns_during_stroke", "answer left in radians", num(turned, "deg"),
+                  "rad_as_deg"),
+            # w0 is a parameter, not a coordinate's rate: the rpm-as-rad/s slip is generated
+            # for rates only (and the mistaken design, R = 0.2 m, does not converge from the
+            # author's guess 0.5 m)
+            entry("R_needed", "300 rpm used as rad/s",
+                  num(math.sqrt(2 * M * T / (0.1 * 300) / m), "m"), "given_rate_unit",
+                  known="none"),
+            entry("energy_taken", "a 10 % speed drop taken as a 10 % energy drop",
+                  num(0.1 * I * w0**2 / 2, "J"), "energy_formula", known="none"),
+            entry("turns_during_stroke", "the deceleration left out: ω0 T",
+                  num(w0 * T / D, "deg"), "drop_tangential", known="none")]
+
+
+def rod_on_ice():
+    m, L, J = 1.5, 1.2, 3.0
+    vG, w = J / m, J * (L / 2) / (m * L**2 / 12)
+    return [entry("omega_after", "spin taken as clockwise", num(-w, "rad/s"), "sign"),
+            entry("omega_after", "moment arm L instead of L/2: J L = I_G ω",
+                  num(J * L / (m * L**2 / 12), "rad/s"), "factor_2"),
+            entry("point_at_rest", "the point at rest placed on the struck side of G",
+                  vec(V(vG / w, 0), "m"), "sign"),
+            entry("vB_after", "the impulse's moment forgotten (no spin): v_B = v_G",
+                  vec(V(0, vG), "m/s"), "impulse_moment_omitted"),
+            # dynamics problems have no generated kinematic readings (another point, ω × r
+            # the wrong way) yet; nothing is said of this
+            entry("vB_after", "ω × r added the wrong way: the struck end A's velocity",
+                  vec(V(0, vG + w * L / 2), "m/s"), "other_point", known="none"),
+            entry("omega_after", "I about the end (m L²/3) instead of about G",
+                  num(J * (L / 2) / (m * L**2 / 3), "rad/s"), "central_inertia_at_pivot",
+                  known="none")]
+
+
+def marble():
+    v0, mu, g = 3.0, 0.1, 9.81
+    return [entry("t_star_s", "friction μ m instead of μ m g", num(2 * v0 / (7 * mu), "s"),
+                  "mass_for_weight"),
+            entry("t_star_s", "slip rate μ g: the friction's moment (the spin-up) left out",
+                  num(v0 / (mu * g), "s"), "spin_omitted", known="none"),
+            # with the marble's inertia mistaken it rolls after the bowling ball, and the
+            # solver cannot integrate past the bowling ball's end of slip: not generated
+            entry("t_star_s", "marble taken as a thin shell (2/3 m r²)",
+                  num(2 * v0 / (5 * mu * g), "s"), "other_shape_inertia", known="none")]
+
+
+def momentum_projection():
+    return []
+
+
+def units_matrix():
+    v0, th = 20.0, 60 * D
+    v2t, v2n = -v0 * math.sin(th), -v0 * math.cos(th)
+    return [entry("v2t", "calculator in radian mode: sin 60", num(-v0 * math.sin(60.0), "ft/s"),
+                  "given_deg_as_rad"),
+            entry("v2n", "calculator in radian mode: cos 60", num(-v0 * math.cos(60.0), "ft/s"),
+                  "given_deg_as_rad"),
+            entry("v2n", "e_n taken as sin θ i - cos θ j (its sign flipped)", num(-v2n, "ft/s"),
+                  "sign"),
+            entry("v2t", "v0 converted to m/s, the answer labelled ft/s",
+                  num(v2t * 0.3048, "ft/s"), "ft_m"),
+            # sin and cos exchanged in the projection: nothing names it yet
+            entry("v2t", "sin and cos exchanged: -v0 cos θ", num(v2n, "ft/s"), "given_complement",
+                  known="none"),
+            # the e_t, e_n components copied as i, j: the magnitude is right, which is all that
+            # is said (dynamics problems have no generated other-basis reading)
+            entry("v2_N", "e_t, e_n components copied as i, j", vec(V(v2t, v2n), "ft/s"),
+                  "other_basis", known="generic", generic=("direction",))]
+
+
 TABLES = {
     "bowling_3_15_2_cannonball": cannonball,
     "bowling_3_15_3_mass_spring_damper": mass_spring_damper,
@@ -586,6 +713,13 @@ TABLES = {
     "ruina_9_26_billiard_cue": billiard,
     "two_mass_spring_chain": spring_chain,
     "yo_yo_unwinding": yo_yo,
+    "bead_on_rotating_hoop": bead_on_hoop,
+    "block_slides_on_cart": block_on_cart,
+    "flywheel_speed_drop": flywheel,
+    "rod_struck_on_ice": rod_on_ice,
+    "ruina_9_22_marble_bowling_ball": marble,
+    "ruina_9_24_momentum_projection": momentum_projection,
+    "ruina_9_25_units_matrix": units_matrix,
 }
 
 
@@ -622,6 +756,44 @@ SYMBOLIC = {
     "yo_yo_unwinding": [
         entry("tension_symbolic", "T = m g - m a with a = g r²/k² (I_G about S)",
               "m*g*(1 - r^2/k^2)", "central_inertia_at_pivot")],
+    "bead_on_rotating_hoop": [
+        entry("eom_symbolic", "g left out of the weight's tangential part (m for m g)",
+              "sin(theta)*(Omega^2*cos(theta) - 1/R)", "mass_for_weight"),
+        entry("eom_symbolic", "weight left out: only the spin's centripetal part",
+              "Omega^2*sin(theta)*cos(theta)", "weight_omitted"),
+        entry("eom_symbolic", "centripetal term with R instead of R sin θ",
+              "Omega^2*cos(theta) - g*sin(theta)/R", "position_term", known="none")],
+    "block_slides_on_cart": [
+        entry("t_slide_symbolic", "friction μ m instead of μ m g", "M*v0/(mu*(m + M))",
+              "mass_for_weight"),
+        entry("t_slide_symbolic", "cart taken as fixed", "v0/(mu*g)", "surface_taken_fixed")],
+    "rod_struck_on_ice": [
+        entry("omega_symbolic", "moment arm L instead of L/2", "12*J/(m*L)", "factor_2"),
+        entry("omega_symbolic", "spin taken as clockwise", "-6*J/(m*L)", "sign")],
+    "ruina_9_22_marble_bowling_ball": [
+        entry("t_star", "marble taken as a thin shell (2/3 m r²)", "2*v0/(5*mu*g)",
+              "other_shape_inertia"),
+        entry("t_star", "marble taken as a disk (½ m r²)", "v0/(3*mu*g)", "other_shape_inertia"),
+        entry("t_star", "friction μ m instead of μ m g", "2*v0/(7*mu)", "mass_for_weight"),
+        entry("v_at_t_star", "marble taken as a thin shell: v = v0/(1 + 2/3)", "3*v0/5",
+              "other_shape_inertia"),
+        # friction taken as static: the marble rolls from the start and keeps v0
+        entry("v_at_t_star", "friction taken as static: rolling from the start", "v0",
+              "static_for_kinetic", known="none")],
+    "ruina_9_24_momentum_projection": [
+        entry("en_equation_residual", "e_n taken as sin θ i - cos θ j (its sign flipped)",
+              "m2*v0*cos(theta) + (-m1*v1p*sin(theta) + m2*v2n)", "sign"),
+        entry("et_equation_residual", "e_t taken as -cos θ i - sin θ j (its sign flipped)",
+              "m2*v0*sin(theta) + m1*v1p*cos(theta) + m2*v2t", "sign"),
+        entry("en_equation_residual", "masses left out: velocities balanced, not momenta",
+              "-v0*cos(theta) - (-v1p*sin(theta) + v2n)", "dimension"),
+        entry("en_equation_residual", "sin and cos exchanged in the projections",
+              "-m2*v0*sin(theta) - (-m1*v1p*cos(theta) + m2*v2n)", "given_complement",
+              known="none"),
+        entry("en_equation_residual", "the block's momentum left out (it moves along i only)",
+              "-m2*v0*cos(theta) - m2*v2n", "drop_body", known="none"),
+        entry("et_equation_residual", "the ball's velocity before taken upward (+v0 j)",
+              "m2*v0*sin(theta) - (m1*v1p*cos(theta) + m2*v2t)", "given_sign", known="none")],
 }
 
 
