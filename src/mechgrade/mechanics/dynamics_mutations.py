@@ -508,7 +508,7 @@ def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMuta
     """A kinetic-friction contact between two bodies (a block sliding on a cart) with the
     body it slides on taken as fixed: the friction acts on the slider only, its reaction on
     the other body left out."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     bodies = {b.name for b in d.bodies}
     for f in d.friction:
         if not isinstance(f, KineticFriction) or f.surface not in bodies:
@@ -527,7 +527,7 @@ def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMuta
 def body_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """In an objective that adds the kinetic energies of two or more bodies (the energy a
     block sliding on a cart loses), one body's kinetic energy left out."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     N = problem.inertial_frame
     several = {o.id for o in problem.objectives
                if len({c.args[0] for c in _calls(o.find.node, "ke")}) > 1}
@@ -545,7 +545,7 @@ def body_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation
 def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A known blow on a turning body away from its mass centre taken to act at the centre:
     its moment, which sets the body spinning, left out of the angular momentum balance."""
-    d = problem.dynamics
+    d = dynamics_of(problem)
     if not isinstance(d.analysis, Impulse):
         return
     for blow in d.impulses:
