@@ -182,6 +182,17 @@ if CParser is not None:
     _CLoader = _LibyamlLoader
 
 
+def libyaml_reads(text: str) -> bool:
+    r"""Whether ``text`` is read by libyaml's parser (when PyYAML has it): libyaml accepts
+    tabs where PyYAML refuses them, and places marks differently around a byte order mark,
+    so such texts go to the pure-Python reader only.
+
+    >>> libyaml_reads("a: 1\n") == (_CLoader is not None), libyaml_reads("a:\t1\n")
+    (True, False)
+    """
+    return _CLoader is not None and "\t" not in text and "\ufeff" not in text
+
+
 class _YamlProblem(Exception):
     def __init__(self, message, mark):
         super().__init__(message)
@@ -213,9 +224,7 @@ def read_yaml_text(text: str, file: str = "<text>",
         column = control.start() - (text.rfind("\n", 0, control.start()) + 1) + 1
         raise error(f"expected printable text, found {name} (U+{code:04X}); delete it",
                     where=Location(file, line, column))
-    # libyaml accepts tabs where PyYAML refuses them, and places marks differently around a
-    # byte order mark: such texts go to the pure-Python reader only.
-    if _CLoader is not None and "\t" not in text and "\ufeff" not in text:
+    if libyaml_reads(text):
         try:
             return _read(_CLoader, text, file, error)
         except Exception:  # noqa: BLE001 - read again below, for the exact message
