@@ -274,3 +274,12 @@ def test_only_the_objectives_asked_for_are_solved():
     assert [r.id for r in solution.results] == ["speed"]
     with pytest.raises(SolveError, match="no objective 'nope'"):
         solve(problem, objectives=["nope"])
+
+
+@pytest.mark.parametrize("name", ["bowling_3_15_4_pendulum", "ruina_9_24_momentum_projection"])
+def test_asking_for_no_objective_solves_nothing_and_fails_nothing(name):
+    from mechgrade.resources import shipped_dir
+    from mechgrade.spec import load_problem
+
+    solution = solve(load_problem(shipped_dir("problems") / f"{name}.yaml"), objectives=())
+    assert solution.results == () and solution.failures == ()

@@ -269,7 +269,7 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
         collect_results(problem, chosen, given_map, values, mistakes, results, failures,
                         symbolic=_symbolic_result)
     order = [o.id for o in problem.objectives if o.id in wanted]
-    if not results:
+    if not results and order:  # nothing solved of what was asked
         raise failures[order[0]]
     return Solution(problem=problem.id,
                     results=tuple(results[oid] for oid in order if oid in results),

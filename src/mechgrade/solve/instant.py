@@ -150,7 +150,7 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
         results.update(attach({o.id: results[o.id] for o in objectives if o.id in results},
                               generated, plausible_slips(problem)))
     order = [o.id for o in problem.objectives if o.id in wanted]
-    if not results:
+    if not results and order:  # nothing solved of what was asked
         raise failures[order[0]]
     return Solution(problem=problem.id,
                     results=tuple(results[oid] for oid in order if oid in results),
