@@ -70,56 +70,6 @@ def _vector_text(v: Vector) -> str:
     return text if text != "0" else "0"
 
 
-def derivation_mathml(problem: Problem) -> tuple[tuple[str, tuple[tuple[str, str], ...]], ...]:
-    """The equations of the write-up as ``(label, MathML)``: each scalar constraint and its
-    rate form, then the velocity and acceleration of every point in the inertial frame.
-
-    >>> from mechgrade.spec import load_problem
-    >>> from mechgrade.resources import shipped_dir
-    >>> math = dict(derivation_mathml(load_problem(shipped_dir("problems")
-    ...                                            / "bowling_3_15_4_pendulum.yaml")))
-    >>> label, mathml = math["Velocities"][0]
-    >>> label, mathml.startswith('<math display="block">')
-    ('N_V_A', True)
-    """
-    model = build(problem)
-    k = derive(problem)
-    N = problem.inertial_frame
-    constraints = [(e.label, _math(sp.Eq(e.expr, 0))) for e in k.position]
-    constraints += [(f"{e.label}, rate form", _math(sp.Eq(e.expr, 0))) for e in k.velocity]
-    velocities, accelerations = [], []
-    for p in problem.points:
-        if p.origin is None:
-            continue
-        v = model.language.point_velocity(Name(p.name), N)
-        a = model.language.point_acceleration(Name(p.name), N)
-        velocities.append((f"{N}_V_{p.name}", _vector_math(model.plain(v))))
-        accelerations.append((f"{N}_A_{p.name}", _vector_math(model.plain(a))))
-    return (("Constraints", tuple(constraints)), ("Velocities", tuple(velocities)),
-            ("Accelerations", tuple(accelerations)))
-
-
-def _math(expr) -> str:
-    return f'<math display="block">{sp.printing.mathml(expr, printer="presentation")}</math>'
-
-
-def _vector_math(v: Vector) -> str:
-    """A vector as a sum of (simplified coefficient) times unit vector, frame by frame."""
-    parts = []
-    for matrix, frame in v.args:
-        for coefficient, axis in zip(matrix, "xyz"):
-            coefficient = min((sp.simplify(coefficient), sp.expand(coefficient)),
-                              key=sp.count_ops)
-            if coefficient == 0:
-                continue
-            inner = sp.printing.mathml(coefficient, printer="presentation")
-            unit = f"<msub><mover><mi>{frame.name.lower()}</mi><mo>^</mo></mover>" \
-                   f"<mi>{axis}</mi></msub>"
-            parts.append(f"<mrow><mo>(</mo>{inner}<mo>)</mo>{unit}</mrow>")
-    body = "<mo>+</mo>".join(parts) if parts else "<mn>0</mn>"
-    return f'<math display="block"><mrow>{body}</mrow></math>'
-
-
 # ---------------------------------------------------------------------------- worked steps
 
 
