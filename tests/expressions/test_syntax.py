@@ -41,7 +41,7 @@ def test_friendly_notation_is_normalised(text, canonical):
     ("x.__class__", "expected a unit vector such as N.x, found 'x.__class__'"),
     ("lambda: 1", "expected names, numbers, operators and functions, found 'lambda: 1'"),
     ("x[0]", "found 'x[0]'"),
-    ("x == y", "found 'x == y'"),
+    ("x == y", "found an equation 'x == y' (write only its right-hand side)"),
     ("x if y else z", "found 'x if y else z'"),
     ('"text"', "expected a number, found a string"),
     ("True", "expected a number, found True"),

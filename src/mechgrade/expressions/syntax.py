@@ -419,12 +419,24 @@ def _listing(functions: set[str]) -> str:
 
 
 def _describe(node: ast.AST) -> str:
+    """The refused part as the writer would recognise it: rates shown with their primes
+    again (``theta''``, not the reader's internal name), an equation named as such.
+
+    >>> parse("θ̈ == -g")
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.ExpressionError: expected names, numbers, operators and functions, found an equation "theta'' == -g" (write only its right-hand side)
+    """
     if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
         return f"'{node.func.id}(...)'"
     try:
         text = ast.unparse(node)
     except Exception:  # pragma: no cover - unparse handles every parsed node
         text = type(node).__name__
+    text = re.sub(r"__d([12])__([A-Za-z][A-Za-z0-9_]*)",
+                  lambda m: m.group(2) + "'" * int(m.group(1)), text)
+    if isinstance(node, ast.Compare):
+        return f"an equation {text[:40]!r} (write only its right-hand side)"
     return repr(text[:40])
 
 
