@@ -185,3 +185,8 @@ def test_the_shipped_files_read_the_same_with_libyaml():
         text = Path(path).read_text(encoding="utf-8")
         if yamlio.libyaml_reads(text):  # a text with a tab is only read by PyYAML's reader
             assert _tables(yamlio._CLoader, text) == _tables(yamlio._Loader, text), path
+
+
+def test_a_date_that_does_not_exist_is_kept_as_typed_for_its_field_to_refuse():
+    assert read_yaml_text("due: 2026-02-30\nday: 2026-02-28\n", "f.yaml").data == {
+        "due": "2026-02-30", "day": "2026-02-28"}

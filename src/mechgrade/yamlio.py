@@ -393,8 +393,11 @@ def _scalar(node, file, error):
         if digits > MAX_INT_DIGITS:
             raise error(f"expected a number of at most {MAX_INT_DIGITS} digits, found one of "
                         f"{digits} (quote it if it is text)", where=_mark(file, node.start_mark))
+    # Dates and binary blobs are not part of any mechgrade format: keep what was typed (not
+    # even built: a date that does not exist, 2026-02-30, is the field's reader's to refuse).
+    if node.tag in ("tag:yaml.org,2002:timestamp", "tag:yaml.org,2002:binary"):
+        return node.value
     value = _SCALAR_LOADER.construct_object(node)
-    # Dates and binary blobs are not part of any mechgrade format: keep what was typed.
     if not isinstance(value, (str, int, float, bool, type(None))):
         return node.value
     return value

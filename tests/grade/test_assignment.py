@@ -95,6 +95,8 @@ def test_assignment_is_frozen(folder):
     (MINIMAL + "due: tomorrow\n",
      "hw.yaml:4:6: due: expected a date (2026-11-20) or a date and time (2026-11-20T23:59, "
      "with an offset such as +01:00 or Z, else UTC), found 'tomorrow'"),
+    (MINIMAL + "due: 2026-02-30\n",
+     "hw.yaml:4:6: due: expected a date (2026-11-20) or a date and time"),
     (MINIMAL + "due: 2026-11-20T25:00\n",
      "hw.yaml:4:6: due: expected a date (2026-11-20) or a date and time"),
     (MINIMAL + "due: 20261120\n",
