@@ -42,8 +42,9 @@ def kinematics_derivation(problem: Problem, dof: int | None = None
     constraints += [f"  {e.label}: {sp.sstr(e.expr)} = 0" for e in k.position]
     constraints += [f"  {e.label}, rate form: {sp.sstr(e.expr)} = 0" for e in k.velocity]
     independent = len(k.coordinates) - dof if dof is not None else k.constraint_count
-    dof_lines = [f"{len(k.coordinates)} coordinates - {independent} independent scalar "
-                 f"constraints = {len(k.coordinates) - independent}"]
+    dof_lines = [f"{_count(len(k.coordinates), 'coordinate')} - "
+                 f"{_count(independent, 'independent scalar constraint')} = "
+                 f"{len(k.coordinates) - independent}"]
     if independent != k.constraint_count:
         dof_lines.append(f"({k.constraint_count} scalar constraint equations, "
                          f"{k.constraint_count - independent} of them redundant)")
@@ -68,6 +69,15 @@ def kinematics_derivation(problem: Problem, dof: int | None = None
 def _vector_text(v: Vector) -> str:
     text = str(v)
     return text if text != "0" else "0"
+
+
+def _count(n: int, noun: str) -> str:
+    """``1 coordinate``, ``2 coordinates``.
+
+    >>> _count(1, "coordinate"), _count(0, "independent scalar constraint")
+    ('1 coordinate', '0 independent scalar constraints')
+    """
+    return f"{n} {noun}" + ("" if n == 1 else "s")
 
 
 # ---------------------------------------------------------------------------- worked steps
