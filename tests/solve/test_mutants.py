@@ -58,3 +58,19 @@ def test_a_parameter_rate_in_rpm_used_as_rad_per_second_is_a_mistake():
     (slip,) = _generated(problem, "R_needed", "given_rate_unit")
     assert slip.value == pytest.approx(0.2, rel=1e-9)
     assert "w0 = 300 rpm" in slip.message and "rad/s" in slip.message
+
+
+def test_a_kinematic_objective_of_a_dynamics_problem_gets_another_points_velocity():
+    # after the blow v_G = J/m = 2 m/s, ω = 6 J/(m L) = 10 rad/s: the struck end A moves at
+    # v_G + ω L/2 = 8 m/s, the velocity asked is B's
+    problem = load_problem(shipped_dir("problems") / "rod_struck_on_ice.yaml")
+    values = [m.value for m in _generated(problem, "vB_after", "other_point")]
+    assert pytest.approx((0.0, 8.0, 0.0)) in values
+
+
+def test_a_kinematic_objective_of_a_dynamics_problem_gets_another_frames_components():
+    # v2 = v2t e_t + v2n e_n with theta = 60 deg: (-17.32, -10) along E copied as i, j
+    problem = load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml")
+    (basis,) = _generated(problem, "v2_N", "other_basis")
+    assert basis.value == pytest.approx((-20 * 3 ** 0.5 / 2, -10.0, 0.0))
+    assert "frame E" in basis.message

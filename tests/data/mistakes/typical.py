@@ -628,10 +628,8 @@ def rod_on_ice():
                   vec(V(vG / w, 0), "m"), "sign"),
             entry("vB_after", "the impulse's moment forgotten (no spin): v_B = v_G",
                   vec(V(0, vG), "m/s"), "impulse_moment_omitted"),
-            # dynamics problems have no generated kinematic readings (another point, ω × r
-            # the wrong way) yet; nothing is said of this
             entry("vB_after", "ω × r added the wrong way: the struck end A's velocity",
-                  vec(V(0, vG + w * L / 2), "m/s"), "other_point", known="none"),
+                  vec(V(0, vG + w * L / 2), "m/s"), "other_point"),
             entry("omega_after", "I about the end (m L²/3) instead of about G",
                   num(J * (L / 2) / (m * L**2 / 3), "rad/s"), "central_inertia_at_pivot",
                   known="none")]
@@ -666,10 +664,8 @@ def units_matrix():
                   num(v2t * 0.3048, "ft/s"), "ft_m"),
             entry("v2t", "sin and cos exchanged: -v0 cos θ", num(v2n, "ft/s"),
                   "given_complement"),
-            # the e_t, e_n components copied as i, j: the magnitude is right, which is all that
-            # is said (dynamics problems have no generated other-basis reading)
             entry("v2_N", "e_t, e_n components copied as i, j", vec(V(v2t, v2n), "ft/s"),
-                  "other_basis", known="generic", generic=("direction",))]
+                  "other_basis")]
 
 
 TABLES = {
