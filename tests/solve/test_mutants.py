@@ -34,3 +34,43 @@ def test_each_nonzero_rate_has_its_sign_flipped():
     flipped = _generated(load_problem(PENDULUM), "acc_A", "given_sign")
     # theta' squared: flipping it changes nothing and is no mistake; theta'' flips the y part
     assert [m.value for m in flipped] == [pytest.approx((-98.0, -10.0, 0.0))]
+
+
+def test_an_acute_angle_in_degrees_read_as_its_complement_is_a_mistake():
+    (slip,) = _generated(load_problem(PENDULUM), "acc_N", "given_complement")
+    # theta = 60 deg for 30: sin and cos exchanged in e_x = (cos, sin), e_y = (-sin, cos)
+    c, s = 0.5, 3 ** 0.5 / 2
+    assert slip.value[:2] == pytest.approx((-98 * c - 10 * s, -98 * s + 10 * c))
+    assert "theta = 60 deg" in slip.message and "complement of 30 deg" in slip.message
+
+
+def test_an_angle_of_45_degrees_has_no_complement_slip():
+    problem = load_problem(PENDULUM)
+    givens = tuple(replace(g, value=45.0, text="45 deg") if g.key.text == "theta" else g
+                   for g in problem.givens)
+    assert _generated(replace(problem, givens=givens), "acc_N", "given_complement") == []
+
+
+def test_a_parameter_rate_in_rpm_used_as_rad_per_second_is_a_mistake():
+    # the flywheel's w0 = 300 rpm is a parameter, not a coordinate's rate; the mistaken design
+    # (R = 0.2 m) is out of the secant's reach from the author's guess, 0.5 m
+    problem = load_problem(shipped_dir("problems") / "flywheel_speed_drop.yaml")
+    (slip,) = _generated(problem, "R_needed", "given_rate_unit")
+    assert slip.value == pytest.approx(0.2, rel=1e-9)
+    assert "w0 = 300 rpm" in slip.message and "rad/s" in slip.message
+
+
+def test_a_kinematic_objective_of_a_dynamics_problem_gets_another_points_velocity():
+    # after the blow v_G = J/m = 2 m/s, ω = 6 J/(m L) = 10 rad/s: the struck end A moves at
+    # v_G + ω L/2 = 8 m/s, the velocity asked is B's
+    problem = load_problem(shipped_dir("problems") / "rod_struck_on_ice.yaml")
+    values = [m.value for m in _generated(problem, "vB_after", "other_point")]
+    assert pytest.approx((0.0, 8.0, 0.0)) in values
+
+
+def test_a_kinematic_objective_of_a_dynamics_problem_gets_another_frames_components():
+    # v2 = v2t e_t + v2n e_n with theta = 60 deg: (-17.32, -10) along E copied as i, j
+    problem = load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml")
+    (basis,) = _generated(problem, "v2_N", "other_basis")
+    assert basis.value == pytest.approx((-20 * 3 ** 0.5 / 2, -10.0, 0.0))
+    assert "frame E" in basis.message

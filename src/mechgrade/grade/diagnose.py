@@ -211,6 +211,7 @@ LABELS = {
     "rho_formula": "radius of curvature from |a|",
     "component_for_speed": "a velocity component for the speed",
     "given_deg_as_rad": "given angle's degrees used as radians",
+    "given_complement": "given angle read as its complement (sin and cos exchanged)",
     "given_rate_unit": "given rate's unit not converted to rad/s",
     "given_length_unit": "given length's unit not converted",
     "given_sign": "given rate's sign flipped",

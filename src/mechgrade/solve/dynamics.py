@@ -18,6 +18,8 @@ large mu would have to be.
 
 from __future__ import annotations
 
+import warnings
+
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Callable, Collection, Mapping
@@ -312,13 +314,44 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
         return float(_call(equation, x)[0])
 
     guess = design.guess
-    result = optimize.root_scalar(residual, x0=guess, x1=guess * (1 + 1e-3) + 1e-12,
-                                  method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
+    with warnings.catch_warnings():  # a secant that wanders off is bracketed below instead
+        warnings.simplefilter("ignore", RuntimeWarning)
+        result = optimize.root_scalar(residual, x0=guess, x1=guess * (1 + 1e-3) + 1e-12,
+                                      method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
+    if not result.converged or not np.isfinite(result.root):
+        result = _bracketed(residual, guess) or result
     left, right = design.so_that
     if not result.converged or not np.isfinite(result.root):
         raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
                          f"{left.text} = {right.text} ({result.flag})", where=design.where)
     return with_value(result.root)
+
+
+def _bracketed(residual: Callable[[float], float], guess: float):
+    """A root of ``residual`` between two neighbours of the guess scaled by powers of 2 (up to
+    64 times either way, the guess's sign kept, the nearest first), found by bisection once
+    the sign changes there; ``None`` when it does not. For a design the secant overshoots from
+    the guess (a residual like 1/R²)."""
+    from scipy import optimize
+
+    if guess == 0:
+        return None
+    values: dict[int, float] = {}
+
+    def at(k: int) -> float:
+        if k not in values:
+            values[k] = residual(guess * 2.0 ** k)
+        return values[k]
+
+    for n in range(1, 7):
+        for a, b in ((n - 1, n), (-n, 1 - n)):
+            fa, fb = at(a), at(b)
+            if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
+                return optimize.root_scalar(residual, bracket=(guess * 2.0 ** a,
+                                                               guess * 2.0 ** b),
+                                            method="brentq", xtol=1e-15, rtol=1e-13,
+                                            maxiter=100)
+    return None
 
 
 def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):

@@ -1,11 +1,13 @@
 """The values typical mistakes of kinetics give, for the grader to name them.
 
-Three sources, all applied to the model and never to the answer: the mistaken models of
+Four sources, all applied to the model and never to the answer: the mistaken models of
 :mod:`mechgrade.mechanics.dynamics_mutations` (the weight left out, the inertia about the mass
 centre used at a pivot, friction turned round...), each solved again like the problem; the
-mistaken readings of objectives (a reaction read as a weight), read in the right model; and
+mistaken readings of objectives (a reaction read as a weight), read in the right model;
 mistaken givens (an angle in degrees used as radians, a rate's sign flipped, a length in the
-wrong unit), for which the problem is solved again with the given changed.
+wrong unit), for which the problem is solved again with the given changed; and the kinematic
+mutations of :mod:`mechgrade.mechanics.mutations` (another point's velocity, ω × r left out,
+another frame's unit vectors), read at the solved instant.
 
 Solving the mistaken models costs from tens of milliseconds to seconds (an integration to an
 event, an inverse design), and most answers are right: a solution's generated mistakes are
@@ -37,10 +39,11 @@ from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import DynamicsMutation, dynamics_mutations
 from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, ObjectiveKind, Problem
-from .dynamics import solve_dynamics
-from .instant import instant_givens
-from .mutants import attach, plausible_slips, slips_of
-from .result import GeneratedMistake, Solution
+from .dynamics import kinetics_plan, solve_dynamics
+from .instant import _instants, instant_givens
+from .levels import State
+from .mutants import attach, model_mistakes, plausible_slips, slips_of
+from .result import GeneratedMistake, Solution, StateValue
 
 # a mistaken model is no mistake where it cannot be solved (no motion, an event that never
 # happens, a division by zero): sympy and numpy raise more than MechgradeError there
@@ -54,7 +57,8 @@ def with_generated_mistakes(problem: Problem, solution: Solution,
     expressions for the symbolic ones), and the whole-answer slips its model makes
     plausible."""
     plausible = plausible_slips(problem)
-    pending = _Pending(problem, tuple(sorted((givens or {}).items())), solution.results)
+    pending = _Pending(problem, tuple(sorted((givens or {}).items())), solution.results,
+                       solution.state)
     return replace(solution, results=tuple(
         replace(r, plausible=plausible, generated_mistakes=LazyMistakes(pending, r.id))
         for r in solution.results))
@@ -63,20 +67,23 @@ def with_generated_mistakes(problem: Problem, solution: Solution,
 class _Pending:
     """The generated mistakes of one solve, worked out once when first asked for."""
 
-    def __init__(self, problem: Problem, givens: tuple, results: tuple):
-        self.problem, self.givens, self.results = problem, givens, results
+    def __init__(self, problem: Problem, givens: tuple, results: tuple,
+                 state: tuple[StateValue, ...]):
+        self.problem, self.givens, self.results, self.state = problem, givens, results, state
         self.found: dict | None = None
 
     def get(self) -> dict:
         if self.found is None:
-            self.found = _generated(self.problem, self.givens, self.results)
+            self.found = _generated(self.problem, self.givens, self.results, self.state)
         return self.found
 
 
 @lru_cache(maxsize=256)
-def _generated(problem: Problem, givens: tuple, results: tuple) -> dict:
+def _generated(problem: Problem, givens: tuple, results: tuple,
+               state: tuple[StateValue, ...] = ()) -> dict:
     """Objective id -> its generated mistakes (those equal to the answer, or to an earlier
-    one, or a zero, dropped)."""
+    one, or a zero, dropped); ``state`` is the solved instant the kinematic readings are read
+    at."""
     overrides = dict(givens)
     numeric = {r.id: r for r in results if r.value is not None}
     mutations = dynamics_mutations(problem)
@@ -85,7 +92,8 @@ def _generated(problem: Problem, givens: tuple, results: tuple) -> dict:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         found = [_model_mistakes(problem, mutations, overrides, set(numeric)),
-                 given_mistakes(problem, overrides, set(numeric))] if numeric else []
+                 given_mistakes(problem, overrides, set(numeric)),
+                 kinematic_mistakes(problem, state, set(numeric))] if numeric else []
         symbolic = _symbolic_mistakes(mutations, overrides,
                                       [r for r in results if r.expr is not None])
     attached = attach(numeric, found, frozenset())  # only the mistakes are kept from these
@@ -240,3 +248,24 @@ def given_mistakes(problem: Problem, givens, numeric: set[str]
                 out.setdefault(result.id, []).append(GeneratedMistake(
                     code, sentence, result.value, step=step))
     return out
+
+
+def kinematic_mistakes(problem: Problem, state: tuple[StateValue, ...], numeric: set[str]
+                       ) -> dict[str, list[GeneratedMistake]]:
+    """The kinematic mistakes (:func:`mechgrade.solve.mutants.model_mistakes`: another point's
+    velocity, ω × r left out, another frame's unit vectors...) of the numeric objectives asked
+    at the problem's own instant, read at its solved ``state``: the balances right, the
+    reading of the motion they give mistaken."""
+    wanted = {o.id for overrides, group in _instants(problem) if not overrides
+              for o in group} & numeric
+    if not wanted or not state:
+        return {}
+    p = kinetics_plan(problem).kp
+    values = np.full(p.index.size, np.nan)
+    for value in state:
+        if value.name in p.index.names:
+            values[p.index.position(value.name)] = value.si
+    try:
+        return model_mistakes(problem, p, State(values, np.isfinite(values)), wanted)
+    except _UNSOLVABLE:
+        return {}

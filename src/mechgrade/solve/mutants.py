@@ -3,7 +3,7 @@
 Two sources, both applied to the model and never to the answer: the model mutations of
 :mod:`mechgrade.mechanics.mutations` (a term of the composition of motion dropped, another point,
 another frame's unit vectors, a path quantity for its neighbour), evaluated at the solved
-instant; and mistaken givens (an angle in degrees used as radians, a rate in rpm or deg/s used as
+instant; and mistaken givens (an angle in degrees used as radians or read as its complement, a rate in rpm or deg/s used as
 rad/s, a length read in the wrong unit, a rate's sign flipped), for which the instant is solved
 again.
 
@@ -41,8 +41,8 @@ from .plan import Plan, plan
 from .result import GeneratedMistake, ObjectiveResult
 from .symbolic import symbolic
 
-GIVEN_CODES = ("given_deg_as_rad", "given_rate_unit", "given_length_unit", "given_sign",
-               "given_swap")
+GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
+               "given_sign", "given_swap")
 """Family codes of mistaken givens (keys of an assignment's ``partial_credit``)."""
 
 # a length unit a student may read as the base unit of its system
@@ -194,11 +194,18 @@ def _given_slips(node, si: float, given):
         yield ("given_deg_as_rad", value,
                f"Your value is what {name} = {given.text} gives when {value:g} is used as "
                "radians (a calculator in radian mode): convert degrees to radians.")
-    if isinstance(node, Prime) and any(u in unit for u in ("rpm", "rev", "deg", "Hz")) \
+    if unit in ("deg", "degree", "degrees", "°") and 0 < value < 90 and value != 45:
+        # the sine and cosine of an acute angle exchanged: the angle read from the other leg
+        yield ("given_complement", math.radians(90 - value),
+               f"Your value is what {name} = {90 - value:g} deg gives, the complement of "
+               f"{given.text} (sin and cos exchanged): check which side of the angle each "
+               "component lies on.")
+    order = _rate_order(unit)
+    if order and any(u in unit for u in ("rpm", "rev", "deg", "Hz")) \
             and value != 0 and not math.isclose(value, si):
         yield ("given_rate_unit", value,
                f"Your value is what {name} = {given.text} gives when the number is used "
-               f"as rad/s{'' if node.order == 1 else '²'}: convert it to radians per "
+               f"as rad/s{'' if order == 1 else '²'}: convert it to radians per "
                "second first.")
     if unit in _LENGTH_SLIPS and value != 0:
         base = _LENGTH_SLIPS[unit]
@@ -210,6 +217,17 @@ def _given_slips(node, si: float, given):
                f"Your value is what {name} with the opposite sign gives: check the "
                f"direction of {name} ({given.text}) against the positive sense of "
                f"{node.id}.")
+
+
+@lru_cache(maxsize=64)
+def _rate_order(unit: str) -> int | None:
+    """1 for an angular rate's unit (rpm, deg/s), 2 for an angular acceleration's, else
+    ``None``: a coordinate's rate or a parameter (a flywheel's speed) alike."""
+    try:
+        dim = dimension(unit)
+    except MechgradeError:
+        return None
+    return {dimension("1/s"): 1, dimension("1/s^2"): 2}.get(dim)
 
 
 @lru_cache(maxsize=256)

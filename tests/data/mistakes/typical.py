@@ -610,12 +610,8 @@ def flywheel():
             entry("speed_after", "answer left in rad/s", num(w1, "rpm"), "rpm_rad"),
             entry("turns_during_stroke", "answer left in radians", num(turned, "deg"),
                   "rad_as_deg"),
-            # w0 is a parameter, not a coordinate's rate: the rpm-as-rad/s slip is generated
-            # for rates only (and the mistaken design, R = 0.2 m, does not converge from the
-            # author's guess 0.5 m)
             entry("R_needed", "300 rpm used as rad/s",
-                  num(math.sqrt(2 * M * T / (0.1 * 300) / m), "m"), "given_rate_unit",
-                  known="none"),
+                  num(math.sqrt(2 * M * T / (0.1 * 300) / m), "m"), "given_rate_unit"),
             entry("energy_taken", "a 10 % speed drop taken as a 10 % energy drop",
                   num(0.1 * I * w0**2 / 2, "J"), "energy_formula", known="none"),
             entry("turns_during_stroke", "the deceleration left out: ω0 T",
@@ -632,10 +628,8 @@ def rod_on_ice():
                   vec(V(vG / w, 0), "m"), "sign"),
             entry("vB_after", "the impulse's moment forgotten (no spin): v_B = v_G",
                   vec(V(0, vG), "m/s"), "impulse_moment_omitted"),
-            # dynamics problems have no generated kinematic readings (another point, ω × r
-            # the wrong way) yet; nothing is said of this
             entry("vB_after", "ω × r added the wrong way: the struck end A's velocity",
-                  vec(V(0, vG + w * L / 2), "m/s"), "other_point", known="none"),
+                  vec(V(0, vG + w * L / 2), "m/s"), "other_point"),
             entry("omega_after", "I about the end (m L²/3) instead of about G",
                   num(J * (L / 2) / (m * L**2 / 3), "rad/s"), "central_inertia_at_pivot",
                   known="none")]
@@ -668,13 +662,10 @@ def units_matrix():
                   "sign"),
             entry("v2t", "v0 converted to m/s, the answer labelled ft/s",
                   num(v2t * 0.3048, "ft/s"), "ft_m"),
-            # sin and cos exchanged in the projection: nothing names it yet
-            entry("v2t", "sin and cos exchanged: -v0 cos θ", num(v2n, "ft/s"), "given_complement",
-                  known="none"),
-            # the e_t, e_n components copied as i, j: the magnitude is right, which is all that
-            # is said (dynamics problems have no generated other-basis reading)
+            entry("v2t", "sin and cos exchanged: -v0 cos θ", num(v2n, "ft/s"),
+                  "given_complement"),
             entry("v2_N", "e_t, e_n components copied as i, j", vec(V(v2t, v2n), "ft/s"),
-                  "other_basis", known="generic", generic=("direction",))]
+                  "other_basis")]
 
 
 TABLES = {
