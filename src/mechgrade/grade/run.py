@@ -36,6 +36,7 @@ from .submissions import Submission, SubmissionSet, read_submissions
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.result import ObjectiveResult, Solution
+    from .compare import Assessment
 
 ECF_DIAGNOSIS = "error carried forward"
 """The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
@@ -109,7 +110,7 @@ def _needed(problem: Problem, graded: list[Objective]) -> tuple[str, ...]:
     needed = {o.id for o in graded}
     todo = [o.id for o in graded]
     while todo:
-        for upstream in _objective(problem, todo.pop()).depends_on:
+        for upstream in problem.objective(todo.pop()).depends_on:
             if upstream not in needed and _objective(problem, upstream) is not None:
                 needed.add(upstream)
                 todo.append(upstream)
@@ -385,7 +386,7 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
             answer = AnswerResult(item.problem.id, item.objective.id, None, "unreadable", 0.0,
                                   item.max_points, None,
                                   "Your answer file could not be read (see the messages).")
-        elif text is None or not text.strip():
+        elif submission is None or text is None or not text.strip():
             answer = AnswerResult(item.problem.id, item.objective.id, text, "missing", 0.0,
                                   item.max_points, None, "No answer was given.")
         else:
@@ -422,7 +423,7 @@ class _Judge:
         self.policy = plan.assignment.policy
         self._resolve = resolve
         self._jobs = jobs
-        self._cache: dict[tuple, object] = {}
+        self._cache: dict[tuple, Assessment] = {}
         self._ecf_solutions: dict[tuple, tuple] = {}
         self._policy = compare_policy(self.policy)
         self._pool = None
@@ -650,16 +651,18 @@ def _replaced_by_student(problem: Problem, overrides: dict[str, float]
     dynamics = problem.dynamics
     if dynamics is None:
         return problem, ()
-    replaced, changes = [], {}
-    if isinstance(dynamics.analysis, WorkEnergy) and any(_order(k) == 1 for k in overrides):
+    replaced: list[str] = []
+    analysis, design = dynamics.analysis, dynamics.design
+    if isinstance(analysis, WorkEnergy) and any(_order(k) == 1 for k in overrides):
         replaced.append("the energy balance")
-        changes["analysis"] = None
-    if dynamics.design is not None and dynamics.design.find in overrides:
+        analysis = None
+    if design is not None and design.find in overrides:
         replaced.append("the design condition")
-        changes["design"] = None
-    if not changes:
+        design = None
+    if not replaced:
         return problem, ()
-    return replace(problem, dynamics=replace(dynamics, **changes)), tuple(replaced)
+    return (replace(problem, dynamics=replace(dynamics, analysis=analysis, design=design)),
+            tuple(replaced))
 
 
 _CARRYING: list = []

@@ -25,7 +25,7 @@ from dataclasses import dataclass, replace
 from functools import lru_cache, partial
 from html import escape as html_escape
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from ..errors import Location, MechgradeError, brief_exception
 from ..files import json_text, safe_file_names, write_json, write_text
@@ -95,8 +95,10 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     try:
         # results.json is made while the pages render; made again if a page met a fault.
         work = [_results_text] + [partial(_render_students, b) for b in bounds]
-        results_text, *rendered = fork_map(outcome, work, jobs=jobs)
-        raise_first(rendered)
+        results_text, *outcomes = fork_map(outcome, work, jobs=jobs)
+        raise_first(outcomes)
+        # raise_first has raised any error: each outcome is a chunk's (pages, faults)
+        rendered = cast("list[tuple[list[tuple[str, str]], list[str]]]", outcomes)
     finally:
         _RENDERING.clear()
         _WORKED.clear()
@@ -112,7 +114,7 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
     written: list[Path] = [out / "results.json"]
     if faults:
         report = replace(report, internal_errors=report.internal_errors + tuple(faults))
-    if faults or isinstance(results_text, MechgradeError):
+    if faults or not isinstance(results_text, str):
         write_json(written[0], report.to_json())  # raises the error with the file's name
     else:
         write_text(written[0], results_text)
@@ -141,9 +143,10 @@ def _render_students(bounds: tuple[int, int]) -> tuple[list[tuple[str, str]], li
     pages: list[tuple[str, str]] = []
     faults: list[str] = []
     for student in report.students[bounds[0]:bounds[1]]:
-        pages.append(tuple(_feedback_page(report, student, template, suffix, templates_dir,
-                                          faults, prompts)
-                           for template, suffix in zip(templates, (".html", ".md"))))
+        html, markdown = (_feedback_page(report, student, template, suffix, templates_dir,
+                                         faults, prompts)
+                          for template, suffix in zip(templates, (".html", ".md")))
+        pages.append((html, markdown))
     return pages, faults
 
 

@@ -125,12 +125,14 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
     base = None
     wanted = wanted_objectives(problem, objectives)
     for overrides, group in _instants(problem):
-        objectives = [o for o in group if o.id in wanted]
-        if not objectives:
+        chosen = [o for o in group if o.id in wanted]
+        if not chosen:
             continue
         given_map = instant_givens(problem, givens, overrides)
-        numeric = {o.id for o in objectives if _numeric(o)}
-        values, mistakes, generated = {}, {}, []
+        numeric = {o.id for o in chosen if _numeric(o)}
+        values: Mapping[str, np.ndarray] = {}
+        mistakes: dict = {}
+        generated: list = []
         if numeric:
             try:
                 instant = solve_numeric(problem, p, given_map, numeric)
@@ -146,8 +148,8 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
                 warned += [w for w in instant.warnings if w not in warned]
                 if not overrides or base is None:
                     base = (instant.state, given_map)
-        collect_results(problem, objectives, given_map, values, mistakes, results, failures)
-        results.update(attach({o.id: results[o.id] for o in objectives if o.id in results},
+        collect_results(problem, chosen, given_map, values, mistakes, results, failures)
+        results.update(attach({o.id: results[o.id] for o in chosen if o.id in results},
                               generated, plausible_slips(problem)))
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results and order:  # nothing solved of what was asked
@@ -178,7 +180,7 @@ def instant_givens(problem: Problem, givens, overrides: dict) -> dict:
     return given_map
 
 
-def collect_results(problem: Problem, objectives, given_map: dict, values: dict, mistakes: dict,
+def collect_results(problem: Problem, objectives, given_map: dict, values: Mapping, mistakes: dict,
                     results: dict, failures: dict, symbolic=None) -> None:
     """Each objective's result at one instant into ``results`` (numeric ones from ``values``,
     symbolic ones from ``symbolic(problem, id, givens)``, by default the kinematic one), or its

@@ -177,10 +177,10 @@ def slips_of(givens: Mapping, parameters: set[str]):
     for key, node, si, given in named:
         for code, mistaken_si, sentence in _given_slips(node, si, given):
             yield code, ((key, mistaken_si),), sentence
-    parameters = [(key, si, given) for key, node, si, given in named
-                  if isinstance(node, Name) and node.id in parameters]
-    for i, (key, si, given) in enumerate(parameters):
-        for other, other_si, other_given in parameters[i + 1:]:
+    swappable = [(key, si, given) for key, node, si, given in named
+                 if isinstance(node, Name) and node.id in parameters]
+    for i, (key, si, given) in enumerate(swappable):
+        for other, other_si, other_given in swappable[i + 1:]:
             if given.unit == other_given.unit and si != other_si and si and other_si:
                 yield ("given_swap", ((key, other_si), (other, si)),
                        f"Your value is what {key} and {other} exchanged gives ({key} = "

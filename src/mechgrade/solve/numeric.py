@@ -190,6 +190,7 @@ def _undetermined(problem: Problem, p: Plan, g: Givens, base: Branch, values: Ma
         else:
             order = 1 if kind == "velocity" else 2
             null = null_v if order == 1 else null_a
+            assert null is not None  # a probe of this level exists only with its null space
             z = np.zeros(null.shape[1])
             z[which] = 0.73
             zero_v = np.zeros(null_v.shape[1]) if null_v is not None else None

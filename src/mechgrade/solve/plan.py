@@ -131,11 +131,13 @@ def _plan(problem: Problem, _locations: tuple) -> Plan:
     k = derive(problem)
     index = SymbolIndex.of(k)
     symbols = index.symbols
-    by_level = {0: [], 1: [], 2: []}
+    by_level: dict[int, list] = {0: [], 1: [], 2: []}
     for c in k.conditions:
         by_level[c.level].append(c)
-    levels = tuple(_level(index, order, equations, by_level[order])
-                   for order, equations in enumerate((k.position, k.velocity, k.acceleration)))
+    position, velocity, acceleration = (
+        _level(index, order, equations, by_level[order])
+        for order, equations in enumerate((k.position, k.velocity, k.acceleration)))
+    levels = (position, velocity, acceleration)
     numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
     positions = {s: i for i, s in enumerate(symbols)}
     points = sp.Matrix.hstack(*(r for _, r in k.points)) if k.points else sp.zeros(3, 0)
@@ -167,4 +169,4 @@ def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     return int(np.linalg.matrix_rank(value)) if np.isfinite(value).all() else len(k.q)
 
 
-plan.cache_clear = _plan.cache_clear
+plan.cache_clear = _plan.cache_clear  # type: ignore[attr-defined]  # as functools' caches
