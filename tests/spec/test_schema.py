@@ -16,6 +16,8 @@ from mechgrade.units import parse_quantity
 
 ROOT = Path(__file__).resolve().parents[2]
 PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
+# the problem specs beside the example assignments (an assignment file is not a problem spec)
+PROBLEMS += sorted(p for p in (ROOT / "examples").glob("*/*.yaml") if p.name != "assignment.yaml")
 MODELINE = "# yaml-language-server: $schema="
 
 
