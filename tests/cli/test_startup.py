@@ -39,6 +39,12 @@ def test_help_imports_no_heavy_library(args):
     assert heavy_modules_after(*args) == []
 
 
+def test_export_help_imports_no_exporter_and_no_roster_reader():
+    exporters = ("mechgrade.export.canvas", "mechgrade.export.moodle", "mechgrade.export.gradescope",
+                 "mechgrade.export.tables", "mechgrade.export.jsonfile", "mechgrade.roster")
+    assert heavy_modules_after("export", "--help", heavy=exporters) == []
+
+
 def test_export_and_report_never_import_sympy(tmp_path):
     results = tmp_path / "results.json"
     results.write_text(json.dumps({

@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 from mechgrade.errors import ExportError
-from mechgrade.export import EXPORTERS, ExportOptions, export, match_roster
+from mechgrade.export import EXPORTERS, ExportOptions, export
+from mechgrade.export.matching import match_roster
 from mechgrade.export.canvas import canvas_column
 from mechgrade.export.moodle import moodle_names
 from mechgrade.grade.results import GradeReport
@@ -474,3 +475,11 @@ def test_bad_options_are_refused():
                                           "'hidden', 'after_due_date', 'after_published', "
                                           "found 'public'"):
         ExportOptions(gradescope_visibility="public")
+
+
+@pytest.mark.parametrize("fmt", list(EXPORTERS))
+def test_every_format_in_the_registry_writes_its_file(report, tmp_path, fmt):
+    out = tmp_path / f"{fmt}.out"
+    warnings = export(report, fmt, out)
+    assert isinstance(warnings, tuple)
+    assert out.exists() or (fmt == "gradescope" and any(tmp_path.iterdir()))

@@ -10,7 +10,6 @@ from ..errors import ExportError
 from ..files import clean_text
 from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
-from ..roster import read_roster
 from .common import main, reports_errors
 
 DEFAULT_OUT = {
@@ -48,6 +47,8 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
                    missing: str, excel_bom: bool, no_points_possible: bool, moodle_key: str,
                    visibility: str, canvas_assignment: str | None) -> None:
     """Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a spreadsheet."""
+    from ..roster import read_roster  # imported here: 'export --help' needs no roster reader
+
     report = read_results(results_json)
     class_roster = read_roster(roster) if roster is not None else None
     out = out if out is not None else Path(DEFAULT_OUT[fmt])

@@ -12,38 +12,50 @@ cell is neutralised against formula injection (:func:`mechgrade.export.cells.saf
 
 from __future__ import annotations
 
+import importlib
 import json
 import os
 from functools import lru_cache
 from pathlib import Path
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 from ..errors import ExportError, Location
 from ..files import read_text
-from ..grade.results import GradeReport
-from ..roster import Roster
-from ..schema_errors import schema_problems
-from .canvas import export_canvas
-from .gradescope import export_gradescope
-from .jsonfile import export_json
-from .matching import RosterMatch, match_roster
-from .moodle import export_moodle
 from .options import ExportOptions
-from .tables import export_grades_csv, export_long_csv
+
+if TYPE_CHECKING:
+    from ..grade.results import GradeReport
+    from ..roster import Roster
 
 Exporter = Callable[..., tuple[str, ...]]
 
+
+class _Exporter:
+    """The exporter ``function`` of module ``export.<module>``, imported when first called:
+    ``mechgrade export --help`` lists every format without importing any exporter."""
+
+    def __init__(self, module: str, function: str):
+        self.module, self.function = module, function
+
+    def __call__(self, *args, **kwargs) -> tuple[str, ...]:
+        exporter = getattr(importlib.import_module(f"{__package__}.{self.module}"),
+                           self.function)
+        return exporter(*args, **kwargs)
+
+    def __repr__(self) -> str:
+        return f"<exporter {self.module}.{self.function}>"
+
+
 EXPORTERS: dict[str, Exporter] = {
-    "canvas": export_canvas,
-    "moodle": export_moodle,
-    "gradescope": export_gradescope,
-    "grades-csv": export_grades_csv,
-    "long-csv": export_long_csv,
-    "json": export_json,
+    "canvas": _Exporter("canvas", "export_canvas"),
+    "moodle": _Exporter("moodle", "export_moodle"),
+    "gradescope": _Exporter("gradescope", "export_gradescope"),
+    "grades-csv": _Exporter("tables", "export_grades_csv"),
+    "long-csv": _Exporter("tables", "export_long_csv"),
+    "json": _Exporter("jsonfile", "export_json"),
 }
 
-__all__ = ["EXPORTERS", "ExportOptions", "RosterMatch", "export", "match_roster",
-           "read_results", "results_schema"]
+__all__ = ["EXPORTERS", "ExportOptions", "export", "read_results", "results_schema"]
 
 
 def export(report: GradeReport, fmt: str, out_path: str | os.PathLike, *,
@@ -79,6 +91,9 @@ def read_results(path: str | os.PathLike) -> GradeReport:
         raise ExportError(f"expected JSON (a results.json written by mechgrade), found "
                           f"invalid JSON: {err.msg}", where=Location(name, err.lineno, err.colno)) \
             from None
+    from ..grade.results import GradeReport
+    from ..schema_errors import schema_problems
+
     problems = schema_problems(results_schema(), data)
     if problems:
         raise ExportError(problems[0].message, where=Location(name, field=problems[0].field))
