@@ -483,3 +483,17 @@ def test_every_format_in_the_registry_writes_its_file(report, tmp_path, fmt):
     warnings = export(report, fmt, out)
     assert isinstance(warnings, tuple)
     assert out.exists() or (fmt == "gradescope" and any(tmp_path.iterdir()))
+
+
+@pytest.mark.parametrize("title", ["Final Score", "HW current points (1)", "Override Grade 2"])
+def test_canvas_refuses_a_column_title_canvas_ignores(report, tmp_path, title):
+    out = tmp_path / "canvas.csv"
+    with pytest.raises(ExportError, match="Canvas ignores a column whose title holds"):
+        EXPORTERS["canvas"](report, out, options=ExportOptions(canvas_assignment=title))
+    assert not out.exists()
+
+
+def test_canvas_accepts_a_title_that_only_mentions_a_grade(report, tmp_path):
+    out = tmp_path / "canvas.csv"
+    EXPORTERS["canvas"](report, out, options=ExportOptions(canvas_assignment="Grade check (7)"))
+    assert "Grade check (7)" in out.read_text(encoding="utf-8").splitlines()[0]

@@ -30,6 +30,9 @@ from .unmatched import HeldBack, held_back, write_unmatched
 
 CANVAS_IDENTITY = ("Student", "ID", "SIS User ID", "SIS Login ID", "Section")
 _COLUMN = re.compile(r"(?P<title>.*\S)\s*\((?P<id>\d+)\)")
+# Canvas's importer skips a column whose title holds one of its totals' names
+_IGNORED = re.compile(r"\b(current|final|override|unposted)\s+(score|points|grade|status)\b",
+                      re.IGNORECASE)
 _REMEDY = ("enter those grades in Canvas by hand, or export again with --roster set to the "
            "gradebook exported from Canvas")
 
@@ -41,6 +44,12 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
     identity = roster.identity_header if roster is not None and roster.format == "canvas" \
         else CANVAS_IDENTITY
     column = canvas_column(report, roster, options.canvas_assignment)
+    ignored = _IGNORED.search(column)
+    if ignored:
+        raise ExportError(f"expected an assignment column Canvas imports, found {column!r}: "
+                          f"Canvas ignores a column whose title holds {ignored[0]!r}; rename the "
+                          "assignment in Canvas or name another with --canvas-assignment",
+                          where=Location(field="canvas_assignment"))
     rows: list[list[object]] = [[*identity, column]]
     if options.points_possible:
         rows.append(["    Points Possible", *([""] * (len(identity) - 1)), max_score(report)])
