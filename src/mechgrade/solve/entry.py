@@ -1,13 +1,13 @@
 """The solver's one entry point: a problem with bodies and loads goes to the dynamics solver,
-any other to the kinematics solver (each a module of its own)."""
+any other to the kinematics solver (each a module of its own). The dynamics solver is imported
+only for a problem that needs it: it imports sympy, which a kinematics problem whose plan is
+in the disk cache is solved without."""
 
 from __future__ import annotations
 
 from typing import Collection, Mapping
 
 from ..spec.model import Problem
-from .dynamics import solve_dynamics
-from .dynamics_mutants import with_generated_mistakes
 from .instant import solve_kinematics
 from .result import Solution
 
@@ -24,6 +24,9 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
     (:attr:`Solution.failures`); when none of them can be, the first error is raised.
     """
     if problem.dynamics is not None:
+        from .dynamics import solve_dynamics
+        from .dynamics_mutants import with_generated_mistakes
+
         return with_generated_mistakes(problem, solve_dynamics(
             problem, givens=givens, objectives=objectives), givens)
     return solve_kinematics(problem, givens=givens, objectives=objectives)

@@ -78,7 +78,7 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
         wheres[key] = given.where if given is not None else Location()
         if isinstance(node, (Name, Prime)):
             try:
-                i = index.symbols.index(p.k.quantity(node))
+                i = p.position(node)
             except (KeyError, ValueError):
                 raise SolveError(f"cannot give '{key}': not a coordinate, rate, parameter "
                                  "or t of this problem") from None
