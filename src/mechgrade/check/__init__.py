@@ -27,7 +27,7 @@ from ..solve import solve
 from ..solve.mutants import inside_tolerance, separating_rel
 from ..solve.result import ObjectiveResult
 from ..spec import load_problem
-from ..spec.model import Expect, Objective, ObjectiveKind, Problem
+from ..spec.model import Expect, Objective, Problem
 from ..tolerance import agree_at_points, within
 from ..units import from_si, to_si
 
@@ -230,25 +230,40 @@ def check_paths(paths) -> tuple[CheckReport, ...]:
 
 
 def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutcome:
-    """Compare the solver's ``result`` with the objective's ``expect:``, to the digits written."""
-    e: Expect = objective.expect
-    if objective.kind == ObjectiveKind.SYMBOLIC:
+    """Compare the solver's ``result`` with the objective's ``expect:``, to the digits written.
+    The expect's one value (``expr``, ``value`` or ``components``, as the loader checked
+    against the objective's kind) says which comparison."""
+    e = objective.expect
+    if e is not None and e.expr is not None and result.expr is not None:
         same = equivalent(result.expr, e.expr, result.symbols, result.symbol_signed)
         message = (f"{result.expr} {'==' if same else '!='} expected {e.expr}")
         return ExpectOutcome(objective.id, same, message, e.note, e.book)
+    if e is not None and e.value is not None and isinstance(result.value, (int, float)):
+        return _scalar_outcome(objective, e, e.value, result.value)
+    if e is not None and e.components is not None and isinstance(result.value, tuple):
+        return _vector_outcome(objective, e, e.components, result.value)
+    raise ValueError(f"objective '{objective.id}': no expect: of its kind to compare with")
+
+
+def _scalar_outcome(objective: Objective, e: Expect, value: float,
+                    solved: float) -> ExpectOutcome:
     unit = objective.unit
-    if objective.kind == ObjectiveKind.SCALAR:
-        written = e.written if isinstance(e.written, str) else repr(e.value)
-        expected = _convert(e.value, e.unit, unit)
-        limit = (_convert(written_tolerance(written), e.unit, unit) if float(written) != 0
-                 else 1e-9)
-        ok = within(result.value, expected, 0.0, limit)
-        message = f"{result.value:.6g} {'~' if ok else '!='} expected {written} {unit}"
-        if not ok:
-            message += f" (±{limit:.3g}, from the digits written)"
-        return ExpectOutcome(objective.id, ok, message, e.note, e.book)
-    texts = e.written if isinstance(e.written, tuple) else tuple(map(repr, e.components))
-    expected = [_convert(c, e.unit, unit) for c in e.components]
+    written = e.written if isinstance(e.written, str) else repr(value)
+    expected = _convert(value, e.unit, unit)
+    limit = (_convert(written_tolerance(written), e.unit, unit) if float(written) != 0
+             else 1e-9)
+    ok = within(solved, expected, 0.0, limit)
+    message = f"{solved:.6g} {'~' if ok else '!='} expected {written} {unit}"
+    if not ok:
+        message += f" (±{limit:.3g}, from the digits written)"
+    return ExpectOutcome(objective.id, ok, message, e.note, e.book)
+
+
+def _vector_outcome(objective: Objective, e: Expect, components: tuple[float, ...],
+                    solved: tuple[float, ...]) -> ExpectOutcome:
+    unit = objective.unit
+    texts = e.written if isinstance(e.written, tuple) else tuple(map(repr, components))
+    expected = [_convert(c, e.unit, unit) for c in components]
     expected += [0.0] * (3 - len(expected))
     size = sum(c * c for c in expected) ** 0.5
     # A written zero stands for an exact zero: zero to 1e-4 of the vector's size (1e-9 when the
@@ -257,8 +272,8 @@ def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutco
     limits = [_convert(written_tolerance(t), e.unit, unit) if float(t) != 0 else zero
               for t in texts]
     limits += [zero] * (3 - len(limits))
-    ok = all(within(a, b, 0.0, lim) for a, b, lim in zip(result.value, expected, limits))
-    shown = ", ".join(f"{v:.6g}" for v in result.value)
+    ok = all(within(a, b, 0.0, lim) for a, b, lim in zip(solved, expected, limits))
+    shown = ", ".join(f"{v:.6g}" for v in solved)
     want = ", ".join(texts + ("0",) * (3 - len(texts)))
     message = f"({shown}) {'~' if ok else '!='} expected ({want}) {unit} in {objective.frame}"
     return ExpectOutcome(objective.id, ok, message, e.note, e.book)

@@ -228,10 +228,10 @@ def _planned(problem: Problem, key: str | None) -> Plan:
     p = _derived(problem)
     try:
         entry = _entry(problem, p)
+        compiled = _from_entry(problem, key, entry)  # as a later run will read it back
     except cache.UnsafeSource:
         return p  # something the printer wrote that the reader would refuse: not cached
     cache.store(key, entry)
-    compiled = _from_entry(problem, key, entry)
     compiled.__dict__["k"] = p.k  # derived already
     return compiled
 
@@ -301,16 +301,14 @@ def generic_dof(k: Kinematics) -> int:
 
 def source(function: Callable) -> str:
     """The source sympy printed for a lambdified ``function`` (or :class:`_OnFirstCall`),
-    checked to read back as the same function (:func:`.cache.numpy_function`)."""
+    when the numpy names it uses are those :func:`.cache.numpy_function` gives."""
     import inspect
 
     if isinstance(function, _OnFirstCall):
         function = function.function
-    text = inspect.getsource(function)
     if not cache.same_namespace(function):
         raise cache.UnsafeSource("a lambdified function uses names numpy does not give")
-    cache.numpy_function(text)
-    return text
+    return inspect.getsource(function)
 
 
 def _where(where: Location) -> list:
