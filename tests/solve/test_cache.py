@@ -14,7 +14,9 @@ from pathlib import Path
 import pytest
 
 import mechgrade.solve.cache as cache
+from mechgrade.expressions.syntax import to_text
 from mechgrade.solve import plan, solve
+from mechgrade.solve.entry import _numeric_versions
 from mechgrade.solve.mutants import inside_tolerance
 from mechgrade.spec import load_problem, load_problem_text
 
@@ -25,7 +27,7 @@ BASE = (ROOT / "tests" / "data" / "spec" / "base.yaml").read_text()
 
 # A representative set (the whole of problems/ takes a minute): a symbolic objective, vector
 # objectives, non-linear position levels, a gear train, rolling, a path (n-t) problem, an
-# objective with givens of its own, and a dynamics problem (whose kinematic part is cached).
+# objective with givens of its own, and dynamics problems (whose solution is cached).
 REPRESENTATIVE = [
     "bowling_3_15_2_cannonball.yaml", "bowling_3_15_3_mass_spring_damper.yaml",
     "bowling_3_15_4_pendulum.yaml", "bowling_3_15_6_gears.yaml",
@@ -33,7 +35,9 @@ REPRESENTATIVE = [
     "bowling_P3_8_planetary_gears.yaml", "ruina_10_10_collar_bent_arm.yaml",
     "ruina_10_3_spiral_bug.yaml", "ruina_10_5_rod_collar_disk.yaml",
     "ruina_10_6_rotating_tube_velocity.yaml", "ruina_10_9_unit_vector_rates.yaml",
-    "ladder_wall_lift_off.yaml"]
+    "ladder_wall_lift_off.yaml", "atwood_machine.yaml", "ruina_9_26_billiard_cue.yaml",
+    "yo_yo_unwinding.yaml"]
+LADDER = PROBLEMS / "ladder_wall_lift_off.yaml"
 
 
 def forget() -> None:
@@ -92,12 +96,13 @@ def test_a_plan_read_back_is_not_derived_until_its_kinematics_are_asked_for(disk
     assert again.index.symbols == first.index.symbols
 
 
-def test_a_warm_check_imports_no_sympy(tmp_path):
+@pytest.mark.parametrize("path", [PENDULUM, LADDER], ids=["kinematics", "dynamics"])
+def test_a_warm_check_imports_no_sympy(path, tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "MECHGRADE_NO_CACHE"}
     env["MECHGRADE_CACHE_DIR"] = str(tmp_path)
     script = ("import sys\n"
               "from mechgrade.check import check_problem\n"
-              f"report = check_problem({str(PENDULUM)!r})\n"
+              f"report = check_problem({str(path)!r})\n"
               "assert report.passed, report\n"
               "print(sorted(m for m in sys.modules if m.split('.')[0] == 'sympy')[:3])\n")
     runs = [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
@@ -130,7 +135,6 @@ def test_the_key_changes_with_a_given_an_objective_and_the_versions(monkeypatch)
     monkeypatch.setattr(cache, "__version__", "99.0")
     assert cache.problem_key(load_problem_text(text, "p.yaml")) != key
     monkeypatch.undo()
-    cache._sympy_version.cache_clear()
     monkeypatch.setattr(cache, "_sympy_version", lambda: "0.0")
     assert cache.problem_key(load_problem_text(text, "p.yaml")) != key
 
@@ -247,3 +251,25 @@ def test_a_problem_without_a_canonical_text_is_not_cached(disk):
     problem = load_problem(PENDULUM)
     odd = replace(problem, statement=object())  # type: ignore[arg-type]
     assert cache.problem_key(odd) is None
+
+
+def test_a_spoilt_dynamics_solution_entry_is_solved_again(disk):
+    problem = load_problem(LADDER)
+    right = comparable(solve(problem))
+    key = cache.digest("solution", cache.problem_key(problem), *_numeric_versions())
+    entry = disk / f"{key}.json"
+    data = json.loads(entry.read_text())
+    data["data"]["failures"] = [["x", "SystemExit", "no", [None, None, None, None]]]
+    entry.write_text(json.dumps(data))
+    forget()
+    assert comparable(solve(problem)) == right
+
+
+def test_a_dynamics_solution_with_other_givens_is_solved(disk):
+    problem = load_problem(LADDER)
+    solve(problem)
+    stored = entries(disk)
+    given = problem.givens[0]
+    other = solve(problem, givens={to_text(given.key.node): given.si * 1.1})
+    assert entries(disk) == stored  # nothing kept for it
+    assert comparable(other) != comparable(solve(problem))

@@ -46,7 +46,7 @@ from typing import Any, Callable
 import numpy as np
 
 from .. import __version__
-from ..errors import MechgradeError
+from ..errors import Location, MechgradeError
 from ..files import write_text
 
 FORMAT = 1
@@ -128,6 +128,19 @@ def store(key: str, data: Any) -> None:
         pass
 
 
+def where_data(where: Location) -> list:
+    """A location as an entry keeps it."""
+    return [where.file, where.line, where.column, where.field]
+
+
+def where_from(data: Any) -> Location:
+    """The location :func:`where_data` gave ``data`` for."""
+    file, line, column, field = data
+    return Location(None if file is None else str(file), None if line is None else int(line),
+                    None if column is None else int(column),
+                    None if field is None else str(field))
+
+
 class UnsafeSource(ValueError):
     """Generated source that is not one plain function of numbers."""
 
@@ -197,18 +210,23 @@ def same_namespace(function: Callable) -> bool:
                if name in function.__code__.co_names)
 
 
-@lru_cache(maxsize=1)
 def _sympy_version() -> str:
-    """sympy's version, read from its release file: asking the package metadata takes as long
-    as a whole warm check."""
+    return package_version("sympy", "release.py")
+
+
+@lru_cache(maxsize=8)
+def package_version(name: str, release: str) -> str:
+    """A package's version, read from its ``release`` file without importing it (asking the
+    package metadata takes as long as a whole warm check); its modification time if that
+    file has none."""
     import importlib.util
 
-    spec = importlib.util.find_spec("sympy")
+    spec = importlib.util.find_spec(name)
     if spec is None or spec.origin is None:
         return "none"
-    release = Path(spec.origin).with_name("release.py")
     try:
-        found = re.search(r"__version__\s*=\s*['\"]([^'\"]+)", release.read_text())
+        found = re.search(r"^(?:__version__|version)\s*=\s*['\"]([^'\"]+)",
+                          Path(spec.origin).with_name(release).read_text(), re.MULTILINE)
     except OSError:
         found = None
     return found.group(1) if found else str(os.stat(spec.origin).st_mtime_ns)

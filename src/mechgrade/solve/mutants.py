@@ -33,7 +33,7 @@ from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
 from .levels import State, evaluate
 from .numeric import solve_numeric
-from .plan import Mutant, Plan, plan, source
+from .plan import Mutant, Plan, lambdified_mutants, plan
 from .result import GeneratedMistake, ObjectiveResult
 
 # sympy and the mechanics are imported by the functions that derive: a plan read from the disk
@@ -48,36 +48,10 @@ _LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd"
 
 
 def _lambdified(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
-    """The model mutations of a numeric objective, compiled with the plan or lambdified now
-    (kept per plan, as the plan is per problem and place)."""
+    """The model mutations of a numeric objective, compiled with the plan or lambdified now."""
     if p.mutants is not None:
         return p.mutants.get(objective, ())
-    return _lambdified_cached(problem, p, objective)
-
-
-@lru_cache(maxsize=512)
-def _lambdified_cached(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
-    import sympy as sp
-
-    from ..mechanics.mutations import VELOCITY_CODES, mutations
-
-    symbols = p.index.symbols
-    return tuple(Mutant(
-        m.objective, m.code, m.sentence,
-        len(m.value) if isinstance(m.value, sp.MatrixBase) else 1, m.code in VELOCITY_CODES,
-        sp.lambdify(symbols, m.value, modules="numpy", cse=True),
-        None if m.term is None else sp.lambdify(symbols, m.term, modules="numpy"))
-        for m in mutations(problem, objective))
-
-
-def compiled_mutations(problem: Problem, p: Plan) -> dict[str, list[dict]]:
-    """The model mutations of every numeric objective as the disk cache keeps them (the
-    functions as source)."""
-    return {o.id: [{"code": m.code, "sentence": m.sentence, "size": m.size,
-                    "velocity": m.velocity, "value": source(m.value),
-                    "term": None if m.term is None else source(m.term)}
-                   for m in _lambdified_cached(problem, p, o.id)]
-            for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
+    return lambdified_mutants(problem, p, objective)
 
 
 def model_mistakes(problem: Problem, p: Plan, state: State,

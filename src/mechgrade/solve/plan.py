@@ -16,7 +16,7 @@ kinematics (:attr:`Plan.k`) are derived again only if something asks for them.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
@@ -271,6 +271,23 @@ def _derived(problem: Problem) -> Plan:
     return p
 
 
+@lru_cache(maxsize=512)
+def lambdified_mutants(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
+    """The model mutations of a numeric objective (:mod:`mechgrade.mechanics.mutations`),
+    lambdified in ``p``'s state layout (kept per plan, as a plan is per problem and place)."""
+    import sympy as sp
+
+    from ..mechanics.mutations import VELOCITY_CODES, mutations
+
+    symbols = p.index.symbols
+    return tuple(Mutant(
+        m.objective, m.code, m.sentence,
+        len(m.value) if isinstance(m.value, sp.MatrixBase) else 1, m.code in VELOCITY_CODES,
+        sp.lambdify(symbols, m.value, modules="numpy", cse=True),
+        None if m.term is None else sp.lambdify(symbols, m.term, modules="numpy"))
+        for m in mutations(problem, objective))
+
+
 def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     """Rank of the position constraints' Jacobian in the coordinates at a generic
     configuration: a configuration where it is lower is singular."""
@@ -311,21 +328,15 @@ def source(function: Callable) -> str:
     return inspect.getsource(function)
 
 
-def _where(where: Location) -> list:
-    return [where.file, where.line, where.column, where.field]
-
-
 def _entry(problem: Problem, p: Plan) -> dict:
     """The plan (and its model mutations) as plain JSON with the functions' source."""
-    from .mutants import compiled_mutations
-
     index = p.index
     return {
         "index": [list(index.names), list(index.coordinates), list(index.parameters)],
         "levels": [{
             "order": level.order, "residual": source(level.residual),
             "jacobian": source(level.jacobian), "scale": source(level.scale),
-            "labels": list(level.labels), "wheres": [_where(w) for w in level.wheres],
+            "labels": list(level.labels), "wheres": [cache.where_data(w) for w in level.wheres],
             "conditions": list(level.conditions), "linear": level.linear,
             "uses": [sorted(u) for u in level.uses],
             "jacobian_uses": sorted(level.jacobian_uses)} for level in p.levels],
@@ -335,8 +346,12 @@ def _entry(problem: Problem, p: Plan) -> dict:
         "objective_uses": [[oid, sorted(uses)] for oid, uses in p.objective_uses],
         "points": list(p.points), "point_positions": source(p.point_positions),
         "constraint_rank": p.constraint_rank,
-        "warnings": [[w.message, _where(w.where)] for w in p.warnings],
-        "mutants": compiled_mutations(problem, p),
+        "warnings": [[w.message, cache.where_data(w.where)] for w in p.warnings],
+        "mutants": {o.id: [{"code": m.code, "sentence": m.sentence, "size": m.size,
+                            "velocity": m.velocity, "value": source(m.value),
+                            "term": None if m.term is None else source(m.term)}
+                           for m in lambdified_mutants(problem, p, o.id)]
+                    for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC},
         "generic_dof": generic_dof(p.k)}
 
 
@@ -354,7 +369,7 @@ def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
         residual=_compiled(level["residual"]), jacobian=_compiled(level["jacobian"]),
         scale=_compiled(level["scale"]),
         labels=tuple(map(str, level["labels"])),
-        wheres=tuple(_location(w) for w in level["wheres"]),
+        wheres=tuple(cache.where_from(w) for w in level["wheres"]),
         conditions=tuple(map(str, level["conditions"])), linear=bool(level["linear"]),
         uses=tuple(frozenset(map(int, u)) for u in level["uses"]),
         jacobian_uses=frozenset(map(int, level["jacobian_uses"])))
@@ -373,7 +388,7 @@ def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
         points=tuple(map(str, entry["points"])),
         point_positions=_compiled(entry["point_positions"]),
         constraint_rank=int(entry["constraint_rank"]),
-        warnings=tuple(AuthorWarning(str(message), _location(where))
+        warnings=tuple(AuthorWarning(str(message), cache.where_from(where))
                        for message, where in entry["warnings"]),
         problem=problem, key=key,
         mutants={str(oid): tuple(Mutant(
@@ -391,8 +406,3 @@ def _compiled(text: str) -> Callable:
     if not isinstance(text, str):
         raise TypeError("expected a function's source")
     return cache.numpy_function(text)
-
-
-def _location(where) -> Location:
-    file, line, column, field = where
-    return Location(file, line, column, field)
