@@ -1,5 +1,7 @@
 """The on-disk cache of compiled problems: what deriving a problem with sympy produced, kept so
-that solving it again (``mechgrade check`` of an unchanged file) needs no sympy at all.
+that solving it again (``mechgrade check`` of an unchanged file) needs no sympy at all: a
+kinematics problem's plan (:mod:`.plan`) and symbolic answers (:mod:`.instant`), a dynamics
+problem's solution at its own givens (:mod:`.stored`).
 
 An entry is a JSON document named by :func:`problem_key`, a SHA-256 of the loaded problem's
 canonical text (its ``repr``: every field, locations included, so a moved line gives messages

@@ -210,14 +210,13 @@ def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: d
     of the givens: a variant that changes only givens with units (not to or from zero) reuses
     the answer of the first, without sympy. The kinematic answers are kept in the disk cache
     too (:mod:`.cache`), under the problem's plan and that dependence."""
-    stored = None
+    kinematic = symbolic is None
+    symbolic = symbolic or _symbolic_result
     dependence = symbolic_dependence(problem, given_map, objective_id)
-    if symbolic is None:
-        symbolic = _symbolic_result
-        stored = _stored_answer_key(problem, objective_id, dependence)
     key = (symbolic, problem, objective_id, dependence)
     answer = _SYMBOLIC_ANSWERS.get(key)
     if answer is None:
+        stored = _stored_answer_key(problem, objective_id, dependence) if kinematic else None
         answer = _stored_answer(stored) if stored is not None else None
         if answer is None:
             answer = symbolic(problem, objective_id,
