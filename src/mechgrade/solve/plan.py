@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping
 import numpy as np
 
 from ..errors import AuthorWarning, Location
+from ..expressions.syntax import Name, Prime
 from ..spec.model import ObjectiveKind, Problem
 from . import cache
 from .index import SymbolIndex
@@ -112,8 +113,6 @@ class Plan:
     def position(self, node) -> int:
         """The state position of a coordinate, rate, parameter or time node (``theta``,
         ``theta'``, ``t``); :class:`KeyError` for any other, as ``Kinematics.quantity``."""
-        from ..expressions.syntax import Name, Prime
-
         index = self.index
         if isinstance(node, Name) and node.id in index.names[:len(index.config)]:
             return index.names.index(node.id)
@@ -129,26 +128,22 @@ def _lambdify(symbols, expr):
 
 
 class _OnFirstCall:
-    """A function made when first called (``make()``): a grader asking for a few objectives
-    of a problem never pays for the others'."""
+    """``_lambdify(symbols, expr)``, made when first called: a grader asking for a few
+    objectives of a problem never pays for the others'."""
 
-    def __init__(self, make: Callable[[], Callable]):
-        self._make = make
+    def __init__(self, symbols, expr):
+        self._args = (symbols, expr)
         self._function: Callable | None = None
 
     @property
     def function(self) -> Callable:
-        """The function itself, made now if it was not yet."""
+        """The lambdified function itself, made now if it was not yet."""
         if self._function is None:
-            self._function = self._make()
+            self._function = _lambdify(*self._args)
         return self._function
 
     def __call__(self, *values):
         return self.function(*values)
-
-
-def _lazy(symbols, expr) -> _OnFirstCall:
-    return _OnFirstCall(lambda: _lambdify(symbols, expr))
 
 
 def _scale(exprs):
@@ -256,9 +251,9 @@ def _derived(problem: Problem) -> Plan:
     points = sp.Matrix.hstack(*(r for _, r in k.points)) if k.points else sp.zeros(3, 0)
     p = Plan(
         index=index, levels=levels,
-        objectives=tuple((oid, _lazy(symbols, expr)) for oid, expr in k.objectives
+        objectives=tuple((oid, _OnFirstCall(symbols, expr)) for oid, expr in k.objectives
                          if oid in numeric),
-        mistakes=tuple((oid, tuple(_lazy(symbols, e) for e in exprs))
+        mistakes=tuple((oid, tuple(_OnFirstCall(symbols, e) for e in exprs))
                        for oid, exprs in k.mistakes if oid in numeric),
         requirements=tuple((oid, reason, _lambdify(symbols, expr))
                            for oid, reason, expr in k.requirements),
