@@ -187,11 +187,11 @@ def plan(problem: Problem) -> Plan:
     known = _BY_IDENTITY.get(id(problem))
     if known is not None and known[0] is problem:
         return known[1]
-    key = cache.problem_key(problem)
+    key = cache.problem_key(problem) if cache.enabled() else None
     memory = key if key is not None else repr(problem)
     p = _BY_TEXT.get(memory)
     if p is None:
-        p = _planned(problem, key if cache.enabled() else None)
+        p = _planned(problem, key)
         if len(_BY_TEXT) >= _LIMIT:
             _BY_TEXT.clear()
         _BY_TEXT[memory] = p
