@@ -238,13 +238,16 @@ def package_version(name: str, release: str) -> str:
 def _source_fingerprint() -> str:
     """Sizes and modification times of mechgrade's own source files: an edited derivation (a
     working copy, not only a new version) never reads an entry made by the old code."""
-    root = Path(__file__).resolve().parents[1]
-    stamps = []
-    for directory, subdirectories, files in os.walk(root):
-        subdirectories.sort()
-        for name in sorted(files):
-            if name.endswith(".py"):
-                info = os.stat(os.path.join(directory, name))
-                stamps.append((os.path.relpath(os.path.join(directory, name), root),
-                               info.st_size, info.st_mtime_ns))
+    stamps: list[tuple[str, int, int]] = []
+
+    def scan(folder: str, prefix: str) -> None:
+        with os.scandir(folder) as found:
+            for entry in sorted(found, key=lambda e: e.name):
+                if entry.name.endswith(".py") and entry.is_file():
+                    info = entry.stat()
+                    stamps.append((prefix + entry.name, info.st_size, info.st_mtime_ns))
+                elif entry.name != "__pycache__" and entry.is_dir():
+                    scan(entry.path, f"{prefix}{entry.name}/")
+
+    scan(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "")
     return digest(stamps)
