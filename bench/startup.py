@@ -2,7 +2,8 @@
 
 ``check`` is timed three ways: warm (the solver's disk cache filled by an earlier run: no
 sympy), cold (an empty cache: derived with sympy, then written) and with the cache off. Every
-run uses a cache folder of its own, never the user's.
+run uses a cache folder of its own, never the user's. Loading the spec alone (its imports
+and the file, no solve) is the floor a warm check stands on.
 
 Run: ``.venv/bin/python bench/startup.py [runs]`` (default 7 runs of each command).
 """
@@ -48,6 +49,10 @@ def main(runs: int) -> None:
         "mechgrade --help": (mechgrade + ["--help"], off),
         "mechgrade export --help": (mechgrade + ["export", "--help"], off),
         "mechgrade report --help": (mechgrade + ["report", "--help"], off),
+        # what no check can go below: the imports and the loading of the spec, no solve
+        f"load_problem({PROBLEM.name}) alone": (
+            [python, "-c", "import click\nfrom mechgrade.spec import load_problem\n"
+                           f"load_problem({str(PROBLEM)!r})"], off),
         f"mechgrade check {PROBLEM.name} (warm cache)":
             (check, environment(MECHGRADE_CACHE_DIR=warm)),
         f"mechgrade check {PROBLEM.name} (cold cache)": (check, None),

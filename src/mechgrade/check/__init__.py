@@ -19,14 +19,17 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+import hashlib
+from typing import Any
+
 import numpy as np
 
 from ..errors import AuthorWarning, ExpressionError, MechgradeError, SpecError
 from ..expressions.numeric import evaluate, reference_tree
-from ..solve import solve
+from ..solve import cache
 from ..solve.mutants import inside_tolerance, separating_rel
 from ..solve.result import ObjectiveResult
-from ..spec import load_problem
+from ..solve.stored import result_data, result_from
 from ..spec.model import Expect, Objective, Problem
 from ..tolerance import agree_at_points, within
 from ..units import from_si, to_si
@@ -119,7 +122,70 @@ def _stamps(paths) -> dict[Path, tuple[int, int]]:
 
 def check_problem(path) -> CheckReport:
     """Load, validate and solve one file, then compare every objective with its ``expect:``
-    and its declared mistakes with its answer."""
+    and its declared mistakes with its answer.
+
+    The report of a file is kept in the disk cache (:mod:`mechgrade.solve.cache`), keyed by
+    its path and bytes and the code that checked it (mechgrade's and its libraries'): a file
+    checked again unchanged is neither loaded nor solved, its report is read back."""
+    key = _report_key(path)
+    if key is not None:
+        try:
+            return report_from(cache.load(key))
+        except (KeyError, TypeError, ValueError):
+            pass  # none, or not an entry this code wrote
+    report = _checked(path)
+    if key is not None and _report_key(path) == key and report_from(report_data(report)) \
+            == report:  # the file did not change meanwhile; nothing the stored form leaves out
+        cache.store(key, report_data(report))
+    return report
+
+
+def _report_key(path) -> str | None:
+    if not cache.enabled():
+        return None
+    try:
+        with open(path, "rb") as handle:
+            content = hashlib.sha256(handle.read()).hexdigest()
+    except OSError:
+        return None
+    return cache.digest("check", str(path), content, *cache.code_key(
+        "yaml", "jsonschema", "pint", "numpy", "scipy"))
+
+
+def report_data(report: CheckReport) -> dict:
+    """``report`` as plain JSON (as :func:`report_from` reads it)."""
+    return {"path": report.path, "problem": report.problem, "error": report.error,
+            "outcomes": [[o.objective, o.passed, o.message, o.note, o.book]
+                         for o in report.outcomes],
+            "dof": report.dof, "untested": list(report.untested), "faults": list(report.faults),
+            "warnings": list(report.warnings), "state": list(report.state),
+            "results": [result_data(r) for r in report.results],
+            "separations": list(report.separations), "variants": report.variants}
+
+
+def report_from(data: Any) -> CheckReport:
+    """The report :func:`report_data` gave ``data`` for; raises (``KeyError``,
+    ``TypeError``, ``ValueError``) on anything else."""
+    def texts(values) -> tuple[str, ...]:
+        return tuple(map(str, values))
+
+    def text(value) -> str | None:
+        return None if value is None else str(value)
+
+    return CheckReport(
+        str(data["path"]), text(data["problem"]), text(data["error"]),
+        tuple(ExpectOutcome(str(objective), bool(passed), str(message), text(note), text(book))
+              for objective, passed, message, note, book in data["outcomes"]),
+        None if data["dof"] is None else int(data["dof"]), texts(data["untested"]),
+        texts(data["faults"]), texts(data["warnings"]), texts(data["state"]),
+        tuple(result_from(r) for r in data["results"]), texts(data["separations"]),
+        bool(data["variants"]))
+
+
+def _checked(path) -> CheckReport:
+    from ..solve import solve
+    from ..spec import load_problem
+
     try:
         problem = load_problem(path)
     except MechgradeError as err:
@@ -161,6 +227,8 @@ def separation_findings(problem: Problem, solution) -> list[AuthorWarning]:
     making it gets full credit), with the tolerance that separates them.
 
     >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve import solve
+    >>> from mechgrade.spec import load_problem
     >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
     >>> print(separation_findings(p, solve(p))[0].message)  # doctest: +ELLIPSIS
     objective 'acc_mag': generated mistake drop_tangential gives 98 ft/s^2, within the ...

@@ -1,7 +1,8 @@
 """The on-disk cache of compiled problems: what deriving a problem with sympy produced, kept so
 that solving it again (``mechgrade check`` of an unchanged file) needs no sympy at all: a
 kinematics problem's plan (:mod:`.plan`) and symbolic answers (:mod:`.instant`), a dynamics
-problem's solution at its own givens (:mod:`.stored`).
+problem's solution at its own givens (:mod:`.stored`), and a checked file's report
+(:func:`mechgrade.check.check_problem`, keyed by the file's path and bytes).
 
 An entry is a JSON document named by :func:`problem_key`, a SHA-256 of the loaded problem's
 canonical text (its ``repr``: every field, locations included, so a moved line gives messages
@@ -97,7 +98,14 @@ def problem_key(problem) -> str | None:
     text = repr(problem)
     if " at 0x" in text:
         return None
-    return digest(FORMAT, __version__, _source_fingerprint(), _sympy_version(), text)
+    return digest(*code_key(), text)
+
+
+def code_key(*libraries: str) -> tuple[Any, ...]:
+    """What an entry's key names of the code that made it: :data:`FORMAT`, mechgrade's
+    version and source files, sympy's version, and each of ``libraries``' (import names)."""
+    return (FORMAT, __version__, _source_fingerprint(), _sympy_version(),
+            *(package_version(name, "version.py") for name in libraries))
 
 
 def digest(*parts: Any) -> str:
@@ -216,11 +224,11 @@ def _sympy_version() -> str:
     return package_version("sympy", "release.py")
 
 
-@lru_cache(maxsize=8)
+@lru_cache(maxsize=16)
 def package_version(name: str, release: str) -> str:
-    """A package's version, read from its ``release`` file without importing it (asking the
-    package metadata takes as long as a whole warm check); its modification time if that
-    file has none."""
+    """A package's version as read from its ``release`` file (without importing it: asking
+    the package metadata takes as long as a whole warm check), and the size and modification
+    time of its ``__init__.py``, which any upgrade rewrites."""
     import importlib.util
 
     spec = importlib.util.find_spec(name)
@@ -231,19 +239,21 @@ def package_version(name: str, release: str) -> str:
                           Path(spec.origin).with_name(release).read_text(), re.MULTILINE)
     except OSError:
         found = None
-    return found.group(1) if found else str(os.stat(spec.origin).st_mtime_ns)
+    info = os.stat(spec.origin)
+    return f"{found.group(1) if found else ''}:{info.st_size}:{info.st_mtime_ns}"
 
 
 @lru_cache(maxsize=1)
 def _source_fingerprint() -> str:
-    """Sizes and modification times of mechgrade's own source files: an edited derivation (a
-    working copy, not only a new version) never reads an entry made by the old code."""
+    """Sizes and modification times of mechgrade's own source files (and its schema): an
+    edited derivation (a working copy, not only a new version) never reads an entry made by
+    the old code."""
     stamps: list[tuple[str, int, int]] = []
 
     def scan(folder: str, prefix: str) -> None:
         with os.scandir(folder) as found:
             for entry in sorted(found, key=lambda e: e.name):
-                if entry.name.endswith(".py") and entry.is_file():
+                if entry.name.endswith((".py", ".json")) and entry.is_file():
                     info = entry.stat()
                     stamps.append((prefix + entry.name, info.st_size, info.st_mtime_ns))
                 elif entry.name != "__pycache__" and entry.is_dir():
