@@ -3,7 +3,8 @@
 ``check`` is timed three ways: warm (the solver's disk cache filled by an earlier run: no
 sympy), cold (an empty cache: derived with sympy, then written) and with the cache off. Every
 run uses a cache folder of its own, never the user's. Loading the spec alone (its imports
-and the file, no solve) is the floor a warm check stands on.
+and the file, no solve) is shown beside them: what a check without a kept report needs at
+least (a warm check reads its report back instead).
 
 Run: ``.venv/bin/python bench/startup.py [runs]`` (default 7 runs of each command).
 """
@@ -49,7 +50,7 @@ def main(runs: int) -> None:
         "mechgrade --help": (mechgrade + ["--help"], off),
         "mechgrade export --help": (mechgrade + ["export", "--help"], off),
         "mechgrade report --help": (mechgrade + ["report", "--help"], off),
-        # what no check can go below: the imports and the loading of the spec, no solve
+        # the least a check that loads the spec needs: its imports and the loading
         f"load_problem({PROBLEM.name}) alone": (
             [python, "-c", "import click\nfrom mechgrade.spec import load_problem\n"
                            f"load_problem({str(PROBLEM)!r})"], off),
