@@ -10,6 +10,7 @@ Dynamics problems: see ``measure_dynamics``. Run: PYTHONPATH=src python bench/so
 
 from __future__ import annotations
 
+import os
 import statistics
 import sys
 import time
@@ -29,6 +30,9 @@ from mechgrade.spec import load_problem
 from mechgrade.solve import solve
 from mechgrade.mechanics.dynamics_mutations import _mutations as _dynamics_mutations
 from mechgrade.solve.dynamics_mutants import _generated
+
+# Cold derivations are derived: the solver's disk cache stays off.
+os.environ["MECHGRADE_NO_CACHE"] = "1"
 
 
 def main(paths: list[str]) -> None:

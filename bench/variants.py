@@ -29,6 +29,9 @@ from mechgrade.solve import solve
 from mechgrade.solve.batch import _template, solve_variants
 from mechgrade.spec import load_problem
 
+# Cold is a true derivation: the solver's disk cache is off here and in the cold process.
+os.environ["MECHGRADE_NO_CACHE"] = "1"
+
 DEFAULT = sorted(Path("problems").glob("*.yaml")) + [
     Path("examples/hw2_variants/pendulum_variants.yaml")]
 

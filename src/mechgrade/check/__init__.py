@@ -19,15 +19,18 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+import hashlib
+from typing import Any
+
 import numpy as np
 
 from ..errors import AuthorWarning, ExpressionError, MechgradeError, SpecError
 from ..expressions.numeric import evaluate, reference_tree
-from ..solve import solve
+from ..solve import cache
 from ..solve.mutants import inside_tolerance, separating_rel
 from ..solve.result import ObjectiveResult
-from ..spec import load_problem
-from ..spec.model import Expect, Objective, ObjectiveKind, Problem
+from ..solve.stored import result_data, result_from
+from ..spec.model import Expect, Objective, Problem
 from ..tolerance import agree_at_points, within
 from ..units import from_si, to_si
 
@@ -119,7 +122,70 @@ def _stamps(paths) -> dict[Path, tuple[int, int]]:
 
 def check_problem(path) -> CheckReport:
     """Load, validate and solve one file, then compare every objective with its ``expect:``
-    and its declared mistakes with its answer."""
+    and its declared mistakes with its answer.
+
+    The report of a file is kept in the disk cache (:mod:`mechgrade.solve.cache`), keyed by
+    its path and bytes and the code that checked it (mechgrade's and its libraries'): a file
+    checked again unchanged is neither loaded nor solved, its report is read back."""
+    key = _report_key(path)
+    if key is not None:
+        try:
+            return report_from(cache.load(key))
+        except (KeyError, TypeError, ValueError):
+            pass  # none, or not an entry this code wrote
+    report = _checked(path)
+    if key is not None and _report_key(path) == key and report_from(report_data(report)) \
+            == report:  # the file did not change meanwhile; nothing the stored form leaves out
+        cache.store(key, report_data(report))
+    return report
+
+
+def _report_key(path) -> str | None:
+    if not cache.enabled():
+        return None
+    try:
+        with open(path, "rb") as handle:
+            content = hashlib.sha256(handle.read()).hexdigest()
+    except OSError:
+        return None
+    return cache.digest("check", str(path), content, *cache.code_key(
+        "yaml", "jsonschema", "pint", "numpy", "scipy"))
+
+
+def report_data(report: CheckReport) -> dict:
+    """``report`` as plain JSON (as :func:`report_from` reads it)."""
+    return {"path": report.path, "problem": report.problem, "error": report.error,
+            "outcomes": [[o.objective, o.passed, o.message, o.note, o.book]
+                         for o in report.outcomes],
+            "dof": report.dof, "untested": list(report.untested), "faults": list(report.faults),
+            "warnings": list(report.warnings), "state": list(report.state),
+            "results": [result_data(r) for r in report.results],
+            "separations": list(report.separations), "variants": report.variants}
+
+
+def report_from(data: Any) -> CheckReport:
+    """The report :func:`report_data` gave ``data`` for; raises (``KeyError``,
+    ``TypeError``, ``ValueError``) on anything else."""
+    def texts(values) -> tuple[str, ...]:
+        return tuple(map(str, values))
+
+    def text(value) -> str | None:
+        return None if value is None else str(value)
+
+    return CheckReport(
+        str(data["path"]), text(data["problem"]), text(data["error"]),
+        tuple(ExpectOutcome(str(objective), bool(passed), str(message), text(note), text(book))
+              for objective, passed, message, note, book in data["outcomes"]),
+        None if data["dof"] is None else int(data["dof"]), texts(data["untested"]),
+        texts(data["faults"]), texts(data["warnings"]), texts(data["state"]),
+        tuple(result_from(r) for r in data["results"]), texts(data["separations"]),
+        bool(data["variants"]))
+
+
+def _checked(path) -> CheckReport:
+    from ..solve import solve
+    from ..spec import load_problem
+
     try:
         problem = load_problem(path)
     except MechgradeError as err:
@@ -161,6 +227,8 @@ def separation_findings(problem: Problem, solution) -> list[AuthorWarning]:
     making it gets full credit), with the tolerance that separates them.
 
     >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve import solve
+    >>> from mechgrade.spec import load_problem
     >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
     >>> print(separation_findings(p, solve(p))[0].message)  # doctest: +ELLIPSIS
     objective 'acc_mag': generated mistake drop_tangential gives 98 ft/s^2, within the ...
@@ -230,25 +298,40 @@ def check_paths(paths) -> tuple[CheckReport, ...]:
 
 
 def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutcome:
-    """Compare the solver's ``result`` with the objective's ``expect:``, to the digits written."""
-    e: Expect = objective.expect
-    if objective.kind == ObjectiveKind.SYMBOLIC:
+    """Compare the solver's ``result`` with the objective's ``expect:``, to the digits written.
+    The expect's one value (``expr``, ``value`` or ``components``, as the loader checked
+    against the objective's kind) says which comparison."""
+    e = objective.expect
+    if e is not None and e.expr is not None and result.expr is not None:
         same = equivalent(result.expr, e.expr, result.symbols, result.symbol_signed)
         message = (f"{result.expr} {'==' if same else '!='} expected {e.expr}")
         return ExpectOutcome(objective.id, same, message, e.note, e.book)
+    if e is not None and e.value is not None and isinstance(result.value, (int, float)):
+        return _scalar_outcome(objective, e, e.value, result.value)
+    if e is not None and e.components is not None and isinstance(result.value, tuple):
+        return _vector_outcome(objective, e, e.components, result.value)
+    raise ValueError(f"objective '{objective.id}': no expect: of its kind to compare with")
+
+
+def _scalar_outcome(objective: Objective, e: Expect, value: float,
+                    solved: float) -> ExpectOutcome:
     unit = objective.unit
-    if objective.kind == ObjectiveKind.SCALAR:
-        written = e.written if isinstance(e.written, str) else repr(e.value)
-        expected = _convert(e.value, e.unit, unit)
-        limit = (_convert(written_tolerance(written), e.unit, unit) if float(written) != 0
-                 else 1e-9)
-        ok = within(result.value, expected, 0.0, limit)
-        message = f"{result.value:.6g} {'~' if ok else '!='} expected {written} {unit}"
-        if not ok:
-            message += f" (±{limit:.3g}, from the digits written)"
-        return ExpectOutcome(objective.id, ok, message, e.note, e.book)
-    texts = e.written if isinstance(e.written, tuple) else tuple(map(repr, e.components))
-    expected = [_convert(c, e.unit, unit) for c in e.components]
+    written = e.written if isinstance(e.written, str) else repr(value)
+    expected = _convert(value, e.unit, unit)
+    limit = (_convert(written_tolerance(written), e.unit, unit) if float(written) != 0
+             else 1e-9)
+    ok = within(solved, expected, 0.0, limit)
+    message = f"{solved:.6g} {'~' if ok else '!='} expected {written} {unit}"
+    if not ok:
+        message += f" (±{limit:.3g}, from the digits written)"
+    return ExpectOutcome(objective.id, ok, message, e.note, e.book)
+
+
+def _vector_outcome(objective: Objective, e: Expect, components: tuple[float, ...],
+                    solved: tuple[float, ...]) -> ExpectOutcome:
+    unit = objective.unit
+    texts = e.written if isinstance(e.written, tuple) else tuple(map(repr, components))
+    expected = [_convert(c, e.unit, unit) for c in components]
     expected += [0.0] * (3 - len(expected))
     size = sum(c * c for c in expected) ** 0.5
     # A written zero stands for an exact zero: zero to 1e-4 of the vector's size (1e-9 when the
@@ -257,8 +340,8 @@ def expect_outcome(objective: Objective, result: ObjectiveResult) -> ExpectOutco
     limits = [_convert(written_tolerance(t), e.unit, unit) if float(t) != 0 else zero
               for t in texts]
     limits += [zero] * (3 - len(limits))
-    ok = all(within(a, b, 0.0, lim) for a, b, lim in zip(result.value, expected, limits))
-    shown = ", ".join(f"{v:.6g}" for v in result.value)
+    ok = all(within(a, b, 0.0, lim) for a, b, lim in zip(solved, expected, limits))
+    shown = ", ".join(f"{v:.6g}" for v in solved)
     want = ", ".join(texts + ("0",) * (3 - len(texts)))
     message = f"({shown}) {'~' if ok else '!='} expected ({want}) {unit} in {objective.frame}"
     return ExpectOutcome(objective.id, ok, message, e.note, e.book)

@@ -7,7 +7,6 @@ import click
 from ..check import CheckReport, check_paths, check_problem, problem_files, watch
 from ..errors import SpecError
 from .common import main, reports_errors
-from .solve import value_text
 
 
 @main.command("check")
@@ -98,6 +97,8 @@ def _print_report(report: CheckReport, verbose: bool, values: bool = False,
     if verbose and report.state:
         click.echo("  state at the instant: " + "; ".join(report.state))
     if values and report.results:
+        from .solve import value_text  # imports the mechanics (sympy): only when watching
+
         click.echo("  solved values:")
         width = max(len(r.id) for r in report.results)
         for result in report.results:

@@ -1,13 +1,18 @@
 """The solver's one entry point: a problem with bodies and loads goes to the dynamics solver,
-any other to the kinematics solver (each a module of its own)."""
+any other to the kinematics solver (each a module of its own).
+
+The dynamics solver is imported only for a problem that needs it (it imports sympy), and a
+dynamics problem's solution at its own givens is kept in the disk cache (:mod:`.stored`): a
+kinematics problem whose plan is cached, or a dynamics problem whose solution is, is solved
+again without sympy.
+"""
 
 from __future__ import annotations
 
 from typing import Collection, Mapping
 
 from ..spec.model import Problem
-from .dynamics import solve_dynamics
-from .dynamics_mutants import with_generated_mistakes
+from . import cache
 from .instant import solve_kinematics
 from .result import Solution
 
@@ -23,7 +28,45 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
     An objective that cannot be solved is a failure beside the others' answers
     (:attr:`Solution.failures`); when none of them can be, the first error is raised.
     """
-    if problem.dynamics is not None:
-        return with_generated_mistakes(problem, solve_dynamics(
-            problem, givens=givens, objectives=objectives), givens)
-    return solve_kinematics(problem, givens=givens, objectives=objectives)
+    if problem.dynamics is None:
+        return solve_kinematics(problem, givens=givens, objectives=objectives)
+    if givens is None and objectives is None:
+        return _stored_dynamics(problem)
+    return _solve_dynamics(problem, givens, objectives)
+
+
+def _solve_dynamics(problem: Problem, givens, objectives) -> Solution:
+    from .dynamics import solve_dynamics
+    from .dynamics_mutants import with_generated_mistakes
+
+    return with_generated_mistakes(problem, solve_dynamics(
+        problem, givens=givens, objectives=objectives), givens)
+
+
+def _stored_dynamics(problem: Problem) -> Solution:
+    """A dynamics problem solved at its own givens: read from the disk cache, or solved and
+    (its generated mistakes worked out) written there."""
+    from .stored import same, solution_data, solution_from
+
+    problem_key = cache.problem_key(problem) if cache.enabled() else None
+    if problem_key is None:
+        return _solve_dynamics(problem, None, None)
+    key = cache.digest("solution", problem_key, *_numeric_versions())
+    data = cache.load(key)
+    if data is not None:
+        try:
+            return solution_from(data)
+        except (KeyError, TypeError, ValueError):
+            pass  # not an entry this code wrote: solve and write it again
+    solution = _solve_dynamics(problem, None, None)
+    data = solution_data(solution)
+    if same(solution_from(data), solution):  # nothing the stored form leaves out
+        cache.store(key, data)
+    return solution
+
+
+def _numeric_versions() -> tuple[str, str]:
+    """numpy's and scipy's versions: the roots a numeric solve lands on are theirs."""
+    import numpy
+
+    return numpy.__version__, cache.package_version("scipy", "version.py")

@@ -11,32 +11,42 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING, Callable
 
-import sympy as sp
-
-from ..mechanics import Kinematics
 from ..spec.model import TIME
+
+if TYPE_CHECKING:
+    import sympy as sp
+
+    from ..mechanics import Kinematics
 
 
 @dataclass(frozen=True)
 class SymbolIndex:
     """The state vector's layout: coordinates, parameters and time (the configuration), then
-    the first and second rates of the coordinates. ``symbols[i]`` is the plain sympy symbol
-    at position ``i``; ``names[i]`` its spelling in a spec (``theta``, ``theta'``, ``t``)."""
+    the first and second rates of the coordinates. ``names[i]`` is the spelling in a spec
+    (``theta``, ``theta'``, ``t``) of the quantity at position ``i``; ``symbols[i]`` its plain
+    sympy symbol, taken from the kinematics ``source()`` gives when first read (a plan read
+    from the disk cache is solved without them)."""
 
-    symbols: tuple[sp.Symbol, ...]
     names: tuple[str, ...]
     coordinates: tuple[str, ...]
     parameters: tuple[str, ...]
+    source: Callable[[], Kinematics] = field(compare=False, repr=False)
 
     @classmethod
     def of(cls, k: Kinematics) -> "SymbolIndex":
         params = tuple(name for name, _ in k.parameters)
-        symbols = k.q + tuple(s for _, s in k.parameters) + (k.time,) + k.qd + k.qdd
         names = (k.coordinates + params + (TIME,) + tuple(c + "'" for c in k.coordinates)
                  + tuple(c + "''" for c in k.coordinates))
-        return cls(symbols, names, k.coordinates, params)
+        return cls(names, k.coordinates, params, source=lambda: k)
+
+    @cached_property
+    def symbols(self) -> tuple[sp.Symbol, ...]:
+        k = self.source()
+        return k.q + tuple(s for _, s in k.parameters) + (k.time,) + k.qd + k.qdd
 
     @property
     def n(self) -> int:
@@ -45,7 +55,7 @@ class SymbolIndex:
 
     @property
     def size(self) -> int:
-        return len(self.symbols)
+        return len(self.names)
 
     @property
     def config(self) -> range:

@@ -19,7 +19,6 @@ from functools import lru_cache
 from typing import Collection, Mapping
 
 import numpy as np
-import sympy as sp
 
 from ..errors import AuthorWarning, MechgradeError, SolveError
 from ..expressions.syntax import Prime, parse, to_text
@@ -29,11 +28,15 @@ from ..spec.validate import symbol_meanings
 from ..units import from_si, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
-from .plan import Plan, plan
+from .plan import Plan, generic_dof, plan
 from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
                       symbolic_mistakes)
-from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
-from .symbolic import symbolic
+from . import cache
+from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
+                     Solution, StateValue)
+
+# sympy is imported by the functions that derive a symbolic answer: a warm solve of a problem
+# whose plan and symbolic answers are in the disk cache never imports it.
 
 def _numeric(objective: Objective) -> bool:
     return objective.kind != ObjectiveKind.SYMBOLIC
@@ -121,7 +124,7 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
     p = plan(problem)
     results: dict[str, ObjectiveResult] = {}
     failures: dict[str, MechgradeError] = {}
-    warned: list[AuthorWarning] = list(p.k.warnings)
+    warned: list[AuthorWarning] = list(p.warnings)
     base = None
     wanted = wanted_objectives(problem, objectives)
     for overrides, group in _instants(problem):
@@ -185,7 +188,6 @@ def collect_results(problem: Problem, objectives, given_map: dict, values: Mappi
     """Each objective's result at one instant into ``results`` (numeric ones from ``values``,
     symbolic ones from ``symbolic(problem, id, givens)``, by default the kinematic one), or its
     error into ``failures``; objectives that failed already are left alone."""
-    symbolic = symbolic or _symbolic_result
     for obj in objectives:
         if obj.id in failures:
             continue
@@ -206,18 +208,65 @@ def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: d
     """A symbolic objective's answer (by ``symbolic``, by default the kinematic one), solved
     once per problem and :func:`symbolic_dependence`
     of the givens: a variant that changes only givens with units (not to or from zero) reuses
-    the answer of the first, without sympy."""
+    the answer of the first, without sympy. The kinematic answers are kept in the disk cache
+    too (:mod:`.cache`), under the problem's plan and that dependence."""
+    kinematic = symbolic is None
     symbolic = symbolic or _symbolic_result
-    key = (symbolic, problem, objective_id,
-           symbolic_dependence(problem, given_map, objective_id))
+    dependence = symbolic_dependence(problem, given_map, objective_id)
+    key = (symbolic, problem, objective_id, dependence)
     answer = _SYMBOLIC_ANSWERS.get(key)
     if answer is None:
-        answer = symbolic(problem, objective_id,
-                          tuple(sorted(given_map.items(), key=lambda item: item[0])))
+        stored = _stored_answer_key(problem, objective_id, dependence) if kinematic else None
+        answer = _stored_answer(stored) if stored is not None else None
+        if answer is None:
+            answer = symbolic(problem, objective_id,
+                              tuple(sorted(given_map.items(), key=lambda item: item[0])))
+            if stored is not None:
+                _store_answer(stored, answer)
         if len(_SYMBOLIC_ANSWERS) >= _SYMBOLIC_LIMIT:
             _SYMBOLIC_ANSWERS.clear()
         _SYMBOLIC_ANSWERS[key] = answer
     return answer
+
+
+def _stored_answer_key(problem: Problem, objective_id: str, dependence: tuple) -> str | None:
+    key = plan(problem).key
+    return None if key is None else cache.digest("symbolic", key, objective_id, dependence)
+
+
+def _answer_data(answer: ObjectiveResult) -> dict:
+    return {"id": answer.id, "kind": answer.kind.value, "unit": answer.unit,
+            "expr": answer.expr, "symbols": list(answer.symbols),
+            "symbol_units": list(answer.symbol_units),
+            "symbol_signed": list(answer.symbol_signed), "rel": answer.rel, "abs": answer.abs,
+            "prompt": answer.prompt,
+            "generated_mistakes": [[m.code, m.message, m.expr, m.step]
+                                   for m in answer.generated_mistakes]}
+
+
+def _stored_answer(key: str) -> ObjectiveResult | None:
+    """The symbolic answer the disk cache holds under ``key`` (``None``: none, or unreadable)."""
+    try:
+        return _answer_from(cache.load(key))
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
+def _answer_from(data) -> ObjectiveResult:
+    return ObjectiveResult(
+        id=str(data["id"]), kind=data["kind"], unit=str(data["unit"]), expr=str(data["expr"]),
+        symbols=tuple(map(str, data["symbols"])),
+        symbol_units=tuple(map(str, data["symbol_units"])),
+        symbol_signed=tuple(map(bool, data["symbol_signed"])), rel=float(data["rel"]),
+        abs=float(data["abs"]), prompt=str(data["prompt"]),
+        generated_mistakes=tuple(GeneratedMistake(str(code), str(message), None, expr, step)
+                                 for code, message, expr, step in data["generated_mistakes"]))
+
+
+def _store_answer(key: str, answer: ObjectiveResult) -> None:
+    data = _answer_data(answer)
+    if _answer_from(data) == answer:  # nothing the stored form leaves out
+        cache.store(key, data)
 
 
 def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) -> tuple:
@@ -270,6 +319,8 @@ def _instants(problem: Problem):
 def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
     """A symbolic objective's answer; cached, since re-solving with other givens (error carried
     forward, variants) rarely changes the pure-number givens it depends on."""
+    from .symbolic import symbolic
+
     obj = problem.objective(objective_id)
     expr, meanings = symbolic(problem, plan(problem).k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
@@ -285,10 +336,13 @@ def _shortest(expr) -> str:
     """The expression as text in its shortest equivalent form (as simplified, or expanded:
     ``l*thetadd + 2*ld*thetad - s*thetad**2`` rather than ``... + thetad*(ld - s*thetad)``).
 
+    >>> import sympy as sp
     >>> x, y = sp.symbols("x y")
     >>> _shortest(x*y + y*(x - y))
     '2*x*y - y**2'
     """
+    import sympy as sp
+
     forms = [expr] + ([sp.expand(expr)] if sp.count_ops(expr) <= 300 else [])
     return min((sp.sstr(f) for f in forms), key=lambda text: (len(text), text))
 
@@ -305,12 +359,9 @@ def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> Objectiv
 def degrees_of_freedom(p: Plan, state: State | None = None) -> int:
     """Coordinates minus independent constraint equations (rank of the velocity-level
     constraints in the rates, at the instant when it is solved)."""
-    k = p.k
     if state is not None:
-        return len(k.coordinates) - constraint_rank(p, state)
-    if not k.velocity:
-        return len(k.coordinates)
-    return len(k.coordinates) - sp.Matrix([e.expr for e in k.velocity]).jacobian(k.qd).rank()
+        return p.index.n - constraint_rank(p, state)
+    return p.generic_dof if p.generic_dof is not None else generic_dof(p.k)
 
 
 def _report(si_values: np.ndarray, obj: Objective):

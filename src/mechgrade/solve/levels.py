@@ -78,7 +78,7 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
         wheres[key] = given.where if given is not None else Location()
         if isinstance(node, (Name, Prime)):
             try:
-                i = index.symbols.index(p.k.quantity(node))
+                i = p.position(node)
             except (KeyError, ValueError):
                 raise SolveError(f"cannot give '{key}': not a coordinate, rate, parameter "
                                  "or t of this problem") from None
@@ -116,8 +116,16 @@ def _scales(problem: Problem, p: Plan, values, known) -> np.ndarray:
         if unit in ("rad", "deg", "degree", "radian"):
             out[i] = np.pi
         elif by_unit.get(unit):
-            out[i] = float(np.median(by_unit[unit]))
+            out[i] = _median(by_unit[unit])
     return out
+
+
+def _median(values: list[float]) -> float:
+    """The median, as ``numpy.median`` gives it, without the import of numpy's masked arrays
+    that ``numpy.median`` makes (milliseconds of every ``check``)."""
+    ordered = sorted(values)
+    middle = len(ordered) // 2
+    return ordered[middle] if len(ordered) % 2 else (ordered[middle - 1] + ordered[middle]) / 2
 
 
 def _unit_of(index, units, i) -> str:

@@ -25,21 +25,19 @@ from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
-import sympy as sp
 
 from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
-from ..mechanics.kinematics import locations
-from ..mechanics.mutations import VELOCITY_CODES, mutations
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
-from ..mechanics.symbols import identically_zero
 from .levels import State, evaluate
 from .numeric import solve_numeric
-from .plan import Plan, plan
+from .plan import Mutant, Plan, lambdified_mutants, plan
 from .result import GeneratedMistake, ObjectiveResult
-from .symbolic import symbolic
+
+# sympy and the mechanics are imported by the functions that derive: a plan read from the disk
+# cache carries its mutations compiled, and a warm check never imports them.
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
                "given_sign", "given_swap")
@@ -49,19 +47,11 @@ GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given
 _LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd": "ft"}
 
 
-def _lambdified(problem: Problem, p: Plan, objective: str):
-    return _lambdified_cached(problem, locations(problem), p, objective)
-
-
-@lru_cache(maxsize=512)
-def _lambdified_cached(problem: Problem, _locations: tuple, p: Plan, objective: str):
-    symbols = p.index.symbols
-    out = []
-    for m in mutations(problem, objective):
-        value = sp.lambdify(symbols, m.value, modules="numpy", cse=True)
-        term = None if m.term is None else sp.lambdify(symbols, m.term, modules="numpy")
-        out.append((m, value, term))
-    return tuple(out)
+def _lambdified(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
+    """The model mutations of a numeric objective, compiled with the plan or lambdified now."""
+    if p.mutants is not None:
+        return p.mutants.get(objective, ())
+    return lambdified_mutants(problem, p, objective)
 
 
 def model_mistakes(problem: Problem, p: Plan, state: State,
@@ -69,10 +59,10 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
     """The model mutations of the objectives in ``wanted``, at ``state``."""
     out: dict[str, list[GeneratedMistake]] = {}
     # objective by objective: only the wanted ones are derived and lambdified
-    for m, value, term in (item for o in problem.objectives if o.id in wanted
-                           for item in _lambdified(problem, p, o.id)):
-        si = evaluate((("v", value),), state, {"v"})["v"]
-        values = None if term is None else evaluate((("t", term),), state, {"t"})["t"]
+    for m in (item for o in problem.objectives if o.id in wanted
+              for item in _lambdified(problem, p, o.id)):
+        si = evaluate((("v", m.value),), state, {"v"})["v"]
+        values = None if m.term is None else evaluate((("t", m.term),), state, {"t"})["t"]
         mistake = _model_mistake(problem, m, si, values)
         if mistake is not None:
             out.setdefault(m.objective, []).append(mistake)
@@ -87,14 +77,13 @@ def model_mistake_table(problem: Problem, p: Plan, states: np.ndarray, wanted, c
     dropped term's SI values (N x 3) or None)``; :func:`model_mistake_at` makes the mistake of
     one instant."""
     table = []
-    for m, value, term in (item for o in problem.objectives if o.id in wanted
-                           for item in _lambdified(problem, p, o.id)):
+    for m in (item for o in problem.objectives if o.id in wanted
+              for item in _lambdified(problem, p, o.id)):
         obj = problem.objective(m.objective)
-        size = len(m.value) if isinstance(m.value, sp.MatrixBase) else 1
-        si = call(value, states, size)
+        si = call(m.value, states, m.size)
         shown = (si / si_factor(obj.unit) + 0.0).T  # as _in_unit, every column at once
         table.append((m, obj, np.isfinite(si).all(axis=0), shown,
-                      None if term is None else call(term, states, 3).T))
+                      None if m.term is None else call(m.term, states, 3).T))
     return table
 
 
@@ -102,12 +91,13 @@ def model_mistake_at(row, i: int) -> GeneratedMistake:
     """The mistake of :func:`model_mistake_table`'s ``row`` at instant ``i``."""
     m, obj, _, shown, terms = row
     sentence = m.sentence if terms is None else m.sentence.replace(
-        "{term}", _term_text(terms[i], obj, m.code))
+        "{term}", _term_text(terms[i], obj, m.velocity))
     value = tuple(shown[i].tolist()) if obj.kind == ObjectiveKind.VECTOR else float(shown[i, 0])
     return GeneratedMistake(m.code, sentence, value)
 
 
-def _model_mistake(problem: Problem, m, si: np.ndarray, term) -> GeneratedMistake | None:
+def _model_mistake(problem: Problem, m: Mutant, si: np.ndarray,
+                   term) -> GeneratedMistake | None:
     """The mistake a mutation gives (``si`` its SI value, ``term`` the dropped term's), or
     ``None`` where it is undefined."""
     if not np.all(np.isfinite(si)):
@@ -115,7 +105,7 @@ def _model_mistake(problem: Problem, m, si: np.ndarray, term) -> GeneratedMistak
     obj = problem.objective(m.objective)
     sentence = m.sentence
     if term is not None:
-        sentence = sentence.replace("{term}", _term_text(term, obj, m.code))
+        sentence = sentence.replace("{term}", _term_text(term, obj, m.velocity))
     return GeneratedMistake(m.code, sentence, _in_unit(si, obj))
 
 
@@ -123,6 +113,12 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
                       givens: dict) -> tuple[GeneratedMistake, ...]:
     """The model mutations of a symbolic objective, each solved in the objective's symbols
     like the objective itself."""
+    import sympy as sp
+
+    from ..mechanics.mutations import mutations
+    from ..mechanics.symbols import identically_zero
+    from .symbolic import symbolic
+
     k = plan(problem).k
     out: list[GeneratedMistake] = []
     kept = [right]
@@ -336,9 +332,10 @@ def _term_unit(unit: str, velocity: bool) -> str:
     return "m" + per
 
 
-def _term_text(si_values: np.ndarray, obj: Objective, code: str) -> str:
-    """A dropped term's components, in the objective's unit when it is of the same kind."""
-    unit = _term_unit(obj.unit, code in VELOCITY_CODES)
+def _term_text(si_values: np.ndarray, obj: Objective, velocity: bool) -> str:
+    """A dropped term's components (a velocity's or an acceleration's), in the objective's
+    unit when it is of the same kind."""
+    unit = _term_unit(obj.unit, velocity)
     factor = si_factor(unit)
     shown = [float(v) / factor + 0.0 for v in si_values]  # from_si, as floats
     size = max(abs(v) for v in shown)

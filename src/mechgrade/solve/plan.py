@@ -2,6 +2,10 @@
 part of solving): each level's equations, their Jacobian in the level's unknowns and the size
 their residuals are judged by; the objectives, mistaken models and requirements.
 
+A plan is kept in memory and, compiled (the functions as the source sympy printed for them),
+on disk (:mod:`.cache`): a plan read back from disk is used without importing sympy; its
+kinematics (:attr:`Plan.k`) are derived again only if something asks for them.
+
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
 >>> p = plan(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
@@ -12,17 +16,19 @@ their residuals are judged by; the objectives, mistaken models and requirements.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
-from typing import Callable
+from functools import cached_property, lru_cache
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
-import sympy as sp
 
-from ..errors import Location
-from ..mechanics import Kinematics, derive
-from ..mechanics.kinematics import locations
+from ..errors import AuthorWarning, Location
+from ..expressions.syntax import Name, Prime
 from ..spec.model import ObjectiveKind, Problem
+from . import cache
 from .index import SymbolIndex
+
+if TYPE_CHECKING:
+    from ..mechanics import Kinematics
 
 LEVEL_NAMES = ("position", "velocity", "acceleration")
 
@@ -56,11 +62,32 @@ class Level:
 
 
 @dataclass(frozen=True)
+class Mutant:
+    """A model mutation of a numeric objective (:mod:`mechgrade.mechanics.mutations`), ready
+    for numbers: ``value`` its mistaken value (``size`` entries) and ``term`` the dropped
+    term's three components (or ``None``), each called with the whole state; ``velocity``
+    says the term is a velocity (else an acceleration)."""
+
+    objective: str
+    code: str
+    sentence: str
+    size: int
+    velocity: bool
+    value: Callable
+    term: Callable | None
+
+
+@dataclass(frozen=True, eq=False)
 class Plan:
     """A problem's kinematics, ready for numbers: its state layout, its three levels and the
-    objective, mistake and requirement functions (each called with the whole state)."""
+    objective, mistake and requirement functions (each called with the whole state).
 
-    k: Kinematics
+    ``warnings`` are the model's; ``key`` names the plan's entries in the disk cache (``None``
+    when it is off); ``mutants`` are the numeric objectives' model mutations when compiled
+    with the plan (``None``: made when first asked for); ``generic_dof`` the degrees of
+    freedom away from any instant, when known. ``k`` (the sympy kinematics) is derived when
+    first read."""
+
     index: SymbolIndex
     levels: tuple[Level, Level, Level]
     objectives: tuple[tuple[str, Callable], ...]
@@ -70,9 +97,33 @@ class Plan:
     points: tuple[str, ...]
     point_positions: Callable
     constraint_rank: int
+    warnings: tuple[AuthorWarning, ...]
+    problem: Problem
+    key: str | None = None
+    mutants: Mapping[str, tuple[Mutant, ...]] | None = None
+    generic_dof: int | None = None
+
+    @cached_property
+    def k(self) -> Kinematics:
+        """The problem's kinematics (sympy), derived now if this plan was read from disk."""
+        from ..mechanics import derive
+
+        return derive(self.problem)
+
+    def position(self, node) -> int:
+        """The state position of a coordinate, rate, parameter or time node (``theta``,
+        ``theta'``, ``t``); :class:`KeyError` for any other, as ``Kinematics.quantity``."""
+        index = self.index
+        if isinstance(node, Name) and node.id in index.names[:len(index.config)]:
+            return index.names.index(node.id)
+        if isinstance(node, Prime) and node.id in index.coordinates:
+            return index.position(node.id + ("'" if node.order == 1 else "''"))
+        raise KeyError(node)
 
 
 def _lambdify(symbols, expr):
+    import sympy as sp
+
     return sp.lambdify(symbols, expr, modules="numpy", cse=True)
 
 
@@ -82,10 +133,10 @@ class _OnFirstCall:
 
     def __init__(self, symbols, expr):
         self._args = (symbols, expr)
-        self._function = None
+        self._function: Callable | None = None
 
     @property
-    def function(self):
+    def function(self) -> Callable:
         """The lambdified function itself, made now if it was not yet."""
         if self._function is None:
             self._function = _lambdify(*self._args)
@@ -97,11 +148,15 @@ class _OnFirstCall:
 
 def _scale(exprs):
     """Sum of the absolute values of each equation's terms: the size a residual is judged by."""
+    import sympy as sp
+
     return sp.Matrix([sum((sp.Abs(term) for term in sp.Add.make_args(e)), sp.Integer(0))
                       for e in exprs])
 
 
 def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
+    import sympy as sp
+
     symbols = index.symbols
     unknowns = [symbols[i] for i in index.unknowns(order)]
     exprs = [e.expr for e in equations] + [c.expr for c in conditions]
@@ -121,13 +176,66 @@ def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
         jacobian_uses=frozenset(positions[s] for s in jac.free_symbols if s in positions))
 
 
+_BY_IDENTITY: dict[int, tuple[Problem, Plan]] = {}
+_BY_TEXT: dict[Any, Plan] = {}
+_LIMIT = 64
+
+
 def plan(problem: Problem) -> Plan:
-    """Derive and lambdify ``problem`` once (per place it was written: plans keep locations)."""
-    return _plan(problem, locations(problem))
+    """Derive and lambdify ``problem`` once (per place it was written: plans keep locations),
+    or read it from the disk cache."""
+    known = _BY_IDENTITY.get(id(problem))
+    if known is not None and known[0] is problem:
+        return known[1]
+    key = cache.problem_key(problem) if cache.enabled() else None
+    memory = key if key is not None else repr(problem)
+    p = _BY_TEXT.get(memory)
+    if p is None:
+        p = _planned(problem, key)
+        if len(_BY_TEXT) >= _LIMIT:
+            _BY_TEXT.clear()
+        _BY_TEXT[memory] = p
+    if len(_BY_IDENTITY) >= 4 * _LIMIT:
+        _BY_IDENTITY.clear()
+    _BY_IDENTITY[id(problem)] = (problem, p)
+    return p
 
 
-@lru_cache(maxsize=64)
-def _plan(problem: Problem, _locations: tuple) -> Plan:
+def _cache_clear() -> None:
+    _BY_IDENTITY.clear()
+    _BY_TEXT.clear()
+
+
+plan.cache_clear = _cache_clear  # type: ignore[attr-defined]  # as functools' caches
+
+
+def _planned(problem: Problem, key: str | None) -> Plan:
+    """The plan read from the disk cache under ``key``, else derived (and, with a ``key``,
+    compiled and stored)."""
+    if key is None:
+        return _derived(problem)
+    entry = cache.load(key)
+    if entry is not None:
+        try:
+            return _from_entry(problem, key, entry)
+        except (KeyError, TypeError, ValueError, SyntaxError, IndexError, AttributeError):
+            pass  # not an entry this code wrote: derive and write it again
+    p = _derived(problem)
+    try:
+        entry = _entry(problem, p)
+        compiled = _from_entry(problem, key, entry)  # as a later run will read it back
+    except cache.UnsafeSource:
+        return p  # something the printer wrote that the reader would refuse: not cached
+    cache.store(key, entry)
+    compiled.__dict__["k"] = p.k  # derived already
+    return compiled
+
+
+def _derived(problem: Problem) -> Plan:
+    import sympy as sp
+
+    from ..mechanics import derive
+
     k = derive(problem)
     index = SymbolIndex.of(k)
     symbols = index.symbols
@@ -141,8 +249,8 @@ def _plan(problem: Problem, _locations: tuple) -> Plan:
     numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
     positions = {s: i for i, s in enumerate(symbols)}
     points = sp.Matrix.hstack(*(r for _, r in k.points)) if k.points else sp.zeros(3, 0)
-    return Plan(
-        k=k, index=index, levels=levels,
+    p = Plan(
+        index=index, levels=levels,
         objectives=tuple((oid, _OnFirstCall(symbols, expr)) for oid, expr in k.objectives
                          if oid in numeric),
         mistakes=tuple((oid, tuple(_OnFirstCall(symbols, e) for e in exprs))
@@ -153,12 +261,33 @@ def _plan(problem: Problem, _locations: tuple) -> Plan:
                                              if s in positions))
                              for oid, expr in k.objectives),
         points=tuple(name for name, _ in k.points), point_positions=_lambdify(symbols, points),
-        constraint_rank=_generic_rank(index, k))
+        constraint_rank=_generic_rank(index, k), warnings=tuple(k.warnings), problem=problem)
+    p.__dict__["k"] = k
+    return p
+
+
+@lru_cache(maxsize=512)
+def lambdified_mutants(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
+    """The model mutations of a numeric objective (:mod:`mechgrade.mechanics.mutations`),
+    lambdified in ``p``'s state layout (kept per plan, as a plan is per problem and place)."""
+    import sympy as sp
+
+    from ..mechanics.mutations import VELOCITY_CODES, mutations
+
+    symbols = p.index.symbols
+    return tuple(Mutant(
+        m.objective, m.code, m.sentence,
+        len(m.value) if isinstance(m.value, sp.MatrixBase) else 1, m.code in VELOCITY_CODES,
+        sp.lambdify(symbols, m.value, modules="numpy", cse=True),
+        None if m.term is None else sp.lambdify(symbols, m.term, modules="numpy"))
+        for m in mutations(problem, objective))
 
 
 def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     """Rank of the position constraints' Jacobian in the coordinates at a generic
     configuration: a configuration where it is lower is singular."""
+    import sympy as sp
+
     if not k.position:
         return 0
     jac = sp.Matrix([e.expr for e in k.position]).jacobian(list(k.q))
@@ -169,4 +298,106 @@ def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     return int(np.linalg.matrix_rank(value)) if np.isfinite(value).all() else len(k.q)
 
 
-plan.cache_clear = _plan.cache_clear  # type: ignore[attr-defined]  # as functools' caches
+def generic_dof(k: Kinematics) -> int:
+    """Coordinates minus the rank of the velocity constraints in the rates, away from any
+    instant."""
+    import sympy as sp
+
+    if not k.velocity:
+        return len(k.coordinates)
+    return len(k.coordinates) - sp.Matrix([e.expr for e in k.velocity]).jacobian(k.qd).rank()
+
+
+# ---------------------------------------------------------------------------- compiled form
+
+
+def source(function: Callable) -> str:
+    """The source sympy printed for a lambdified ``function`` (or :class:`_OnFirstCall`),
+    when the numpy names it uses are those :func:`.cache.numpy_function` gives."""
+    import inspect
+
+    if isinstance(function, _OnFirstCall):
+        function = function.function
+    if not cache.same_namespace(function):
+        raise cache.UnsafeSource("a lambdified function uses names numpy does not give")
+    return inspect.getsource(function)
+
+
+def _entry(problem: Problem, p: Plan) -> dict:
+    """The plan (and its model mutations) as plain JSON with the functions' source."""
+    index = p.index
+    return {
+        "index": [list(index.names), list(index.coordinates), list(index.parameters)],
+        "levels": [{
+            "order": level.order, "residual": source(level.residual),
+            "jacobian": source(level.jacobian), "scale": source(level.scale),
+            "labels": list(level.labels), "wheres": [cache.where_data(w) for w in level.wheres],
+            "conditions": list(level.conditions), "linear": level.linear,
+            "uses": [sorted(u) for u in level.uses],
+            "jacobian_uses": sorted(level.jacobian_uses)} for level in p.levels],
+        "objectives": [[oid, source(f)] for oid, f in p.objectives],
+        "mistakes": [[oid, [source(f) for f in fs]] for oid, fs in p.mistakes],
+        "requirements": [[oid, reason, source(f)] for oid, reason, f in p.requirements],
+        "objective_uses": [[oid, sorted(uses)] for oid, uses in p.objective_uses],
+        "points": list(p.points), "point_positions": source(p.point_positions),
+        "constraint_rank": p.constraint_rank,
+        "warnings": [[w.message, cache.where_data(w.where)] for w in p.warnings],
+        "mutants": {o.id: [{"code": m.code, "sentence": m.sentence, "size": m.size,
+                            "velocity": m.velocity, "value": source(m.value),
+                            "term": None if m.term is None else source(m.term)}
+                           for m in lambdified_mutants(problem, p, o.id)]
+                    for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC},
+        "generic_dof": generic_dof(p.k)}
+
+
+def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
+    """The plan an :func:`_entry` describes; raises (``KeyError``, ``ValueError``...) on
+    anything else."""
+    names, coordinates, parameters = entry["index"]
+    holder: list[Plan] = []
+    index = SymbolIndex(tuple(map(str, names)), tuple(map(str, coordinates)),
+                        tuple(map(str, parameters)), source=lambda: holder[0].k)
+    if index.size != len(coordinates) * 3 + len(parameters) + 1:
+        raise ValueError("a state layout of another size")
+    levels = tuple(Level(
+        order=int(level["order"]), name=LEVEL_NAMES[int(level["order"])],
+        residual=_compiled(level["residual"]), jacobian=_compiled(level["jacobian"]),
+        scale=_compiled(level["scale"]),
+        labels=tuple(map(str, level["labels"])),
+        wheres=tuple(cache.where_from(w) for w in level["wheres"]),
+        conditions=tuple(map(str, level["conditions"])), linear=bool(level["linear"]),
+        uses=tuple(frozenset(map(int, u)) for u in level["uses"]),
+        jacobian_uses=frozenset(map(int, level["jacobian_uses"])))
+        for level in entry["levels"])
+    if [level.order for level in levels] != [0, 1, 2]:
+        raise ValueError("expected the three levels")
+    p = Plan(
+        index=index, levels=levels,  # type: ignore[arg-type]  # three, checked above
+        objectives=tuple((str(oid), _compiled(text)) for oid, text in entry["objectives"]),
+        mistakes=tuple((str(oid), tuple(_compiled(t) for t in texts))
+                       for oid, texts in entry["mistakes"]),
+        requirements=tuple((str(oid), str(reason), _compiled(text))
+                           for oid, reason, text in entry["requirements"]),
+        objective_uses=tuple((str(oid), frozenset(map(int, uses)))
+                             for oid, uses in entry["objective_uses"]),
+        points=tuple(map(str, entry["points"])),
+        point_positions=_compiled(entry["point_positions"]),
+        constraint_rank=int(entry["constraint_rank"]),
+        warnings=tuple(AuthorWarning(str(message), cache.where_from(where))
+                       for message, where in entry["warnings"]),
+        problem=problem, key=key,
+        mutants={str(oid): tuple(Mutant(
+            str(oid), str(m["code"]), str(m["sentence"]), int(m["size"]), bool(m["velocity"]),
+            _compiled(m["value"]), None if m["term"] is None else _compiled(m["term"]))
+            for m in rows) for oid, rows in entry["mutants"].items()},
+        generic_dof=int(entry["generic_dof"]))
+    holder.append(p)
+    return p
+
+
+def _compiled(text: str) -> Callable:
+    """A function of the entry, checked and compiled now: an entry that is not what this code
+    wrote is refused whole, never found out in the middle of a solve."""
+    if not isinstance(text, str):
+        raise TypeError("expected a function's source")
+    return cache.numpy_function(text)
