@@ -410,6 +410,50 @@ def test_carried_forward_re_solves_are_solved_ahead_over_the_jobs(tmp_path, bloc
     assert answers_of(alone, "jon")["rod_omega_z"].verdict == "correct"
 
 
+_SOLVED: list = []  # (log file, real solve, pid of the test) while a test notes solves
+
+
+def _noted_solve(problem, **kwargs):
+    import os
+
+    log, real, here = _SOLVED
+    with open(log, "a", encoding="utf-8") as handle:
+        handle.write(f"{problem.id} {os.getpid() == here}\n")
+    return real(problem, **kwargs)
+
+
+def test_a_problem_carried_forward_re_solves_is_solved_here_the_others_in_forked_processes(
+        tmp_path, blocks_text, monkeypatch):
+    import os
+
+    import mechgrade.solve
+
+    write(tmp_path / "blocks.yaml", with_dependency(blocks_text, "rod_omega_z", "xdot"))
+    write(tmp_path / "hw.yaml", f"""\
+        id: two
+        title: Three problems
+        problems:
+          - path: blocks.yaml
+            objectives: [xdot, rod_omega_z]
+          - path: {shipped_dir("problems") / "bowling_3_15_2_cannonball.yaml"}
+            objectives: [speed]
+          - path: {shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"}
+            objectives: [acc_mag]
+        """)
+    hw = load_assignment(tmp_path / "hw.yaml")
+    alone = run_module.plan_assignment(hw, jobs=1)
+    _SOLVED[:] = [tmp_path / "where.txt", mechgrade.solve.solve, os.getpid()]
+    monkeypatch.setattr(mechgrade.solve, "solve", _noted_solve)
+    try:
+        assert run_module.plan_assignment(hw, jobs=2).solutions == alone.solutions
+    finally:
+        _SOLVED.clear()
+    solved = dict(line.split() for line in
+                  (tmp_path / "where.txt").read_text(encoding="utf-8").splitlines())
+    assert solved == {"bowling_3_15_8_connected_blocks": "True",
+                      "bowling_3_15_2_cannonball": "False", "bowling_3_15_4_pendulum": "False"}
+
+
 def test_a_broken_problem_is_reported_before_a_missing_folder_with_any_jobs(class_dir):
     (class_dir / "pendulum.yaml").write_text(
         PENDULUM.read_text(encoding="utf-8").replace("L: 2 ft", "L: -2 furlongz"),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import sys
 from pathlib import Path
 
@@ -64,6 +65,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
                            worked=worked).report
     click.echo(summary(report, out_dir))
+    gc.freeze()  # the run is over: exiting need not walk every object it made once more
     if report.internal_errors:
         sys.exit(INTERNAL_ERROR_EXIT)
 

@@ -2,9 +2,11 @@
 
 Each problem of the assignment is loaded and solved once, for the objectives graded and those
 they depend on; every answer is judged in the bounded sandbox (a worker per job, reused for the
-whole run, answers sent in batches), identical answers only once. With several jobs the problems are solved, and the submissions read, in forked
-processes; the report never depends on the number of jobs. Points are the judged
-credit times the objective's points. Every roster student and every submission appears in the
+whole run, answers sent in batches), identical answers only once. With several jobs the
+submissions are read, and the problems solved, in forked processes (but for a problem that error
+carried forward re-solves: it is solved here, where its re-solves find its derivation made); the
+report never depends on the number of jobs. Points are the judged credit times the objective's
+points. Every roster student and every submission appears in the
 report with a status, in a fixed order (roster order, then students not on the roster by id),
 so a re-run gives byte-identical outputs.
 
@@ -89,12 +91,40 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
     problems = tuple(problems) if problems is not None else _load_problems(assignment)
     chosen = _choose_objectives(assignment, problems)  # before solving: its errors are cheap
     if solutions is None:
-        from ..solve import solve
-
-        work = [partial(solve, p, objectives=_needed(p, [o for i, o, _ in chosen if i == index]))
-                for index, p in enumerate(problems)]
-        solutions = raise_first(fork_map(outcome, work, jobs=jobs))
+        solutions = _solve_all(assignment, problems, chosen, jobs)
     return _plan(assignment, problems, tuple(solutions), chosen)
+
+
+def _solve_all(assignment: Assignment, problems: tuple[Problem, ...], chosen,
+               jobs: int) -> list[Solution]:
+    """Every problem solved for what grading needs. With several jobs, a problem error carried
+    forward may re-solve is solved in this process (the re-solves, here or in processes forked
+    from here, find its derivation made) while the others are solved in forked processes."""
+    from ..solve import solve
+
+    graded = [[o for i, o, _ in chosen if i == index] for index in range(len(problems))]
+    work = [partial(solve, p, objectives=_needed(p, graded[index]))
+            for index, p in enumerate(problems)]
+    ecf = assignment.policy.ecf.enabled
+    here = [index for index, p in enumerate(problems)
+            if jobs <= 1 or (ecf and any(_re_solved(p, o) for o in graded[index]))]
+    away = [index for index in range(len(problems)) if index not in here]
+    forked = Forked(partial(fork_map, outcome, [work[i] for i in away], jobs=jobs)) \
+        if away else None
+    try:
+        outcomes = dict(zip(here, (outcome(work[i]) for i in here)))
+        if forked is not None:
+            outcomes.update(zip(away, forked.result()))
+    finally:
+        if forked is not None:
+            forked.cancel()
+    return raise_first([outcomes[index] for index in range(len(problems))])
+
+
+def _re_solved(problem: Problem, objective: Objective) -> bool:
+    """Whether error carried forward may re-solve ``problem`` for ``objective``: it depends on
+    an objective of the problem."""
+    return any(_objective(problem, upstream) is not None for upstream in objective.depends_on)
 
 
 def _needed(problem: Problem, graded: list[Objective]) -> tuple[str, ...]:
