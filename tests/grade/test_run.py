@@ -14,6 +14,7 @@ from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade import run as run_module
 from mechgrade.grade.run import (expected_text, given_key_of, grade_plan, grade_submissions,
                                  plan_assignment)
+from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.grade.submissions import read_submissions
 from mechgrade.resources import shipped_dir
 from mechgrade.roster import read_roster
@@ -400,12 +401,16 @@ def test_carried_forward_re_solves_are_solved_ahead_over_the_jobs(tmp_path, bloc
         for sid, xdot, omega in (("hal", "-7.00", "66.97"), ("ida", "-7.00", "60"),
                                  ("jon", "-6.50", "62.19"), ("kim", "-7.66598", "73.3429"))})
     alone = grade_submissions(ecf, tmp_path / "subs", jobs=1)
-    asked = []
+    asked, judged_alone = [], []
     real = run_module._Judge._attempt
     monkeypatch.setattr(run_module._Judge, "_attempt",
                         lambda self, *args: asked.append(args) or real(self, *args))
+    real_assess = SandboxPool.assess
+    monkeypatch.setattr(SandboxPool, "assess", lambda self, *args:
+                        judged_alone.append(args) or real_assess(self, *args))
     assert grade_submissions(ecf, tmp_path / "subs", jobs=2) == alone
     assert asked == []  # every re-solve was made ahead, in the forked workers
+    assert judged_alone == []  # and the answers judged again against them in a batch
     assert answers_of(alone, "hal")["rod_omega_z"].verdict == "correct"
     assert answers_of(alone, "jon")["rod_omega_z"].verdict == "correct"
 

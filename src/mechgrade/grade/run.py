@@ -523,7 +523,8 @@ class _Judge:
     def prefetch_carried_forward(self, work: Iterable[tuple[Plan, Submission]]) -> None:
         """Solve, over the jobs, the re-solves error carried forward will ask for (each
         student's ``(plan, submission)`` in ``work``), into :meth:`_solve_with`'s cache: they
-        take most of a run's grading time when they are solved one after the other. One not
+        take most of a run's grading time when they are solved one after the other. Then judge
+        the answers again against them, in one batch over the sandbox workers. One not
         foreseen here (an upstream answer itself carried forward) is solved when asked; a fault
         of mechgrade's here leaves every one to be solved when asked."""
         if self._jobs <= 1 or self._resolve is not None or not self.policy.ecf.enabled:
@@ -531,6 +532,7 @@ class _Judge:
         own = self.plan
         try:
             requests: dict[tuple, tuple] = {}
+            again: dict[tuple, None] = {}  # (re-solve key, answer, objective) to judge again
             for plan, submission in work:
                 self.plan = plan  # the student's references, for the upstream look-ups
                 for item in (i for i in plan.objectives if i.objective.depends_on):
@@ -544,12 +546,28 @@ class _Judge:
                         key = _ecf_key(item.problem, givens, item.objective.id)
                         if key not in self._ecf_solutions:
                             requests[key] = (item.problem, givens, item.objective.id)
+                        again[key, text, item.objective.id] = None
             _CARRYING[:] = [self]  # inherited by the forked workers
             try:
                 solved = fork_map(_solve_carried, list(requests.values()), jobs=self._jobs)
             finally:
                 _CARRYING.clear()
             self._ecf_solutions.update(zip(requests, solved))
+            todo: dict[tuple, None] = {}
+            for key, text, objective_id in again:
+                solution = self._ecf_solutions[key][0]
+                if isinstance(solution, MechgradeError):
+                    continue  # not solved: the per-answer path says why
+                try:
+                    judging = (solution.result(objective_id), text)
+                except (KeyError, MechgradeError):
+                    continue
+                if judging not in self._cache:
+                    todo[judging] = None
+            if todo:
+                judged = self._sandboxes().assess_many(
+                    [(text, result, self._policy) for result, text in todo])
+                self._cache.update(zip(todo, judged))
         except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
             pass
         finally:
