@@ -38,7 +38,6 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     # Here, not at the top: sympy and the solver load only when a run starts (not for --help).
     from ..grade.assignment import load_assignment
     from ..grade.run import grade_submissions
-    from ..grade.worked import shown_solutions
     from ..parallel import default_jobs
     from ..report.output import write_outputs
 
@@ -61,6 +60,10 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
+    # Imported once graded: it loads the solver, which the processes forked at the start
+    # of grading (reading the submissions) do without.
+    from ..grade.worked import shown_solutions
+
     worked = shown_solutions(spec, report)  # the assignment's worked_solution rule
     report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
                            worked=worked).report
