@@ -280,18 +280,18 @@ def _help(crew: _Crew, conn: Connection) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
     done, error = crew.render_claimed()
     if error is not None:
-        conn.send(("error", error))
+        _tell(conn, ("error", error))
         return
-    conn.send(("rendered", {piece: chunk_faults for piece, (_, chunk_faults) in done.items()}))
+    _tell(conn, ("rendered", {piece: faults for piece, (_, faults) in done.items()}))
     if _receive(conn) != "write":
         return
     for piece in sorted(done):
         try:
             _write_piece(piece, done[piece][0])
         except MechgradeError as err:
-            conn.send(("error", (piece, err)))
+            _tell(conn, ("error", (piece, err)))
             return
-    conn.send(("written",))
+    _tell(conn, ("written",))
 
 
 def _receive(conn: Connection):
@@ -301,10 +301,10 @@ def _receive(conn: Connection):
         return None
 
 
-def _tell(conn: Connection, word: str) -> None:
+def _tell(conn: Connection, message) -> None:
     try:
-        conn.send(word)
-    except OSError:  # the helper is gone; what it left undone is done here
+        conn.send(message)
+    except OSError:  # the other end is gone (and what a helper left undone is done here)
         pass
 
 
