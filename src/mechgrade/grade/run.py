@@ -524,10 +524,11 @@ class _Judge:
         """Solve, over the jobs, the re-solves error carried forward will ask for (each
         student's ``(plan, submission)`` in ``work``), into :meth:`_solve_with`'s cache: they
         take most of a run's grading time when they are solved one after the other. Then judge
-        the answers again against them, in one batch over the sandbox workers. One not
+        the answers again against them, in one batch over the sandbox workers (not one round
+        trip per answer). One not
         foreseen here (an upstream answer itself carried forward) is solved when asked; a fault
         of mechgrade's here leaves every one to be solved when asked."""
-        if self._jobs <= 1 or self._resolve is not None or not self.policy.ecf.enabled:
+        if self._resolve is not None or not self.policy.ecf.enabled:
             return
         own = self.plan
         try:
