@@ -109,6 +109,8 @@ def _solve_all(assignment: Assignment, problems: tuple[Problem, ...], chosen,
     here = [index for index, p in enumerate(problems)
             if jobs <= 1 or (ecf and any(_re_solved(p, o) for o in graded[index]))]
     away = [index for index in range(len(problems)) if index not in here]
+    if not here:
+        return raise_first(fork_map(outcome, work, jobs=jobs))
     forked = Forked(partial(fork_map, outcome, [work[i] for i in away], jobs=jobs)) \
         if away else None
     try:
