@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import atexit
 import gc
 import sys
 from pathlib import Path
@@ -68,7 +69,10 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
                            worked=worked).report
     click.echo(summary(report, out_dir))
-    gc.freeze()  # the run is over: exiting need not walk every object it made once more
+    # At exit the interpreter's last collection need not walk every object of the run
+    # (a tenth of a second or more); registered once, whatever runs in this process.
+    atexit.unregister(gc.freeze)
+    atexit.register(gc.freeze)
     if report.internal_errors:
         sys.exit(INTERNAL_ERROR_EXIT)
 
