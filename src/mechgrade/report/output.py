@@ -37,10 +37,10 @@ from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
 
 if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
-    from ..grade.worked import FeedbackSolutions
     from multiprocessing.connection import Connection
     from multiprocessing.process import BaseProcess
 
+    from ..grade.worked import FeedbackSolutions
     from ..solve.worked import WorkedSolution
 
 TEMPLATE_NAMES = ("feedback.html.j2", "feedback.md.j2")
@@ -80,9 +80,9 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
 
     Rendering one student's feedback is one unit of work: a fault of mechgrade's there gives
     that student a short page saying so, and the other outputs are written as usual. The pages
-    are rendered in ``jobs`` forked processes (the files are the same for any ``jobs``). Raises
-    :class:`~mechgrade.errors.MechgradeError` when a template is missing or broken (then no file
-    is written), or the folder cannot be written.
+    are rendered and written by this process and ``jobs - 1`` forked helpers (the files are the
+    same for any ``jobs``). Raises :class:`~mechgrade.errors.MechgradeError` when a template is
+    missing or broken (then no file is written), or the folder cannot be written.
     """
     out = Path(out_dir)
     env = template_environment(templates_dir)
