@@ -260,3 +260,15 @@ def test_what_a_helper_that_died_left_is_done_here(tmp_path, small_pieces, monke
     monkeypatch.setattr(output, dies_in, dies_in_a_helper)
     write_outputs(_class_of(9), tmp_path / "helped", jobs=3)
     assert _files(tmp_path / "alone") == _files(tmp_path / "helped")
+
+
+def test_without_shared_memory_every_page_is_done_here(tmp_path, small_pieces, monkeypatch):
+    import multiprocessing.context
+
+    def no_shared_memory(*args, **kwargs):
+        raise PermissionError("no /dev/shm")
+
+    write_outputs(_class_of(5), tmp_path / "alone", jobs=1)
+    monkeypatch.setattr(multiprocessing.context.BaseContext, "Value", no_shared_memory)
+    write_outputs(_class_of(5), tmp_path / "here", jobs=3)
+    assert _files(tmp_path / "alone") == _files(tmp_path / "here")

@@ -175,8 +175,11 @@ class _Crew:
         if helpers <= 0 or "fork" not in multiprocessing.get_all_start_methods():
             return
         context = multiprocessing.get_context("fork")
-        self._next = context.Value("i", 0)
-        for me in range(1, helpers + 1):
+        try:
+            self._next = context.Value("i", 0)
+        except OSError:  # no shared memory (a locked-down /dev/shm): every page is done here
+            return
+        for _ in range(helpers):
             conn, child = context.Pipe()
             process = context.Process(target=_help, args=(self, child), daemon=True,
                                       name="mechgrade-pages")
