@@ -6,9 +6,9 @@ whole run, answers sent in batches), identical answers only once. With several j
 submissions are read, and the problems solved, in forked processes (but for a problem that error
 carried forward re-solves: it is solved here, where its re-solves find its derivation made); the
 report never depends on the number of jobs. Points are the judged credit times the objective's
-points. Every roster student and every submission appears in the
-report with a status, in a fixed order (roster order, then students not on the roster by id),
-so a re-run gives byte-identical outputs.
+points. Every roster student and every submission appears in the report with a status, in a
+fixed order (roster order, then students not on the roster by id), so a re-run gives
+byte-identical outputs.
 
 Error carried forward (ECF): an objective may declare ``depends_on: [upstream]`` in its spec.
 When a student's upstream answer is wrong and the downstream one is not right, the downstream
@@ -527,9 +527,9 @@ class _Judge:
         student's ``(plan, submission)`` in ``work``), into :meth:`_solve_with`'s cache: they
         take most of a run's grading time when they are solved one after the other. Then judge
         the answers again against them, in one batch over the sandbox workers (not one round
-        trip per answer). One not
-        foreseen here (an upstream answer itself carried forward) is solved when asked; a fault
-        of mechgrade's here leaves every one to be solved when asked."""
+        trip per answer). One not foreseen here (an upstream answer itself carried forward) is
+        solved when asked; a fault of mechgrade's here leaves every one to be solved when
+        asked."""
         if self._resolve is not None or not self.policy.ecf.enabled:
             return
         own = self.plan

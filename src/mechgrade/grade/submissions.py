@@ -620,8 +620,8 @@ def _kind(value) -> str:
 def _printable(text: str) -> str:
     """Control characters out of keys and echoed lines (they end up in messages and files).
 
-    >>> _printable("p.v"), _printable("p\x1b[2J.v")
-    ('p.v', 'p\ufffd[2J.v')
+    >>> _printable("p.v"), _printable("p\\tv") == "p\\ufffdv"
+    ('p.v', True)
     """
     if text.isprintable():
         return text
