@@ -455,7 +455,9 @@ class _Judge:
         self.policy = plan.assignment.policy
         self._resolve = resolve
         self._jobs = jobs
-        self._cache: dict[tuple, Assessment] = {}
+        self._cache: dict[tuple[int, str], Assessment] = {}
+        self._references: dict[ObjectiveResult, int] = {}  # each distinct one, numbered
+        self._numbers: dict[int, tuple[ObjectiveResult, int]] = {}  # by id(): its number
         self._ecf_solutions: dict[tuple, tuple] = {}
         self._policy = compare_policy(self.policy)
         self._pool = None
@@ -472,9 +474,19 @@ class _Judge:
             self._pool = SandboxPool(self._jobs)
         return self._pool
 
+    def _key(self, result: ObjectiveResult, text: str) -> tuple[int, str]:
+        """The cache key of judging ``text`` against ``result``: equal references share their
+        judgements, and a reference (hashed over all its fields) is hashed once per object,
+        not once per answer."""
+        known = self._numbers.get(id(result))
+        if known is None:  # kept with its number, so that its id() stays its own
+            number = self._references.setdefault(result, len(self._references))
+            known = self._numbers[id(result)] = (result, number)
+        return known[1], text
+
     def assess(self, text: str, result: ObjectiveResult):
         """Judge one answer in the run's sandbox workers (started once, reused for all)."""
-        key = (result, text)
+        key = self._key(result, text)
         if key not in self._cache:
             self._cache[key] = self._sandboxes().assess(text, result, self._policy)
         return self._cache[key]
@@ -484,22 +496,27 @@ class _Judge:
         workers; :meth:`judge` then finds them judged. A fault of mechgrade's here leaves the
         answers to be judged one by one, each inside its own boundary (:func:`_judge_safely`)."""
         try:
-            todo: dict[tuple, None] = {}
+            todo: dict[tuple[int, str], ObjectiveResult] = {}
             for submission in submissions:
                 if submission.status != "read":
                     continue
                 for item in self.plan.objectives:
                     text = submission.answer(item.key)
                     if text is not None and text.strip():
-                        key = (item.result, text)
+                        key = self._key(item.result, text)
                         if key not in self._cache:
-                            todo[key] = None
-            if todo:
-                judged = self._sandboxes().assess_many(
-                    [(text, result, self._policy) for result, text in todo])
-                self._cache.update(zip(todo, judged))
+                            todo[key] = item.result
+            self._judge_all(todo)
         except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
             pass
+
+    def _judge_all(self, todo: dict[tuple[int, str], ObjectiveResult]) -> None:
+        """Judge the answers of ``todo`` (cache key -> reference) in one batch over the sandbox
+        workers, into the cache."""
+        if todo:
+            judged = self._sandboxes().assess_many(
+                [(text, result, self._policy) for (_, text), result in todo.items()])
+            self._cache.update(zip(todo, judged))
 
     def expected(self, item: PlannedObjective) -> str | None:
         return expected_text(item.result) if self.policy.reveal_answers else None
@@ -540,7 +557,8 @@ class _Judge:
                 self.plan = plan  # the student's references, for the upstream look-ups
                 for item in (i for i in plan.objectives if i.objective.depends_on):
                     text = submission.answer(item.key) if submission.status == "read" else None
-                    judged = self._cache.get((item.result, text))
+                    judged = self._cache.get(self._key(item.result, text)) \
+                        if text is not None else None
                     if judged is None or judged.verdict == "correct":
                         continue
                     found = self._upstream_givens(item, submission, {})
@@ -556,21 +574,18 @@ class _Judge:
             finally:
                 _CARRYING.clear()
             self._ecf_solutions.update(zip(requests, solved))
-            todo: dict[tuple, None] = {}
+            todo: dict[tuple[int, str], ObjectiveResult] = {}
             for key, text, objective_id in again:
                 solution = self._ecf_solutions[key][0]
                 if isinstance(solution, MechgradeError):
                     continue  # not solved: the per-answer path says why
                 try:
-                    judging = (solution.result(objective_id), text)
+                    recomputed = solution.result(objective_id)
                 except (KeyError, MechgradeError):
                     continue
-                if judging not in self._cache:
-                    todo[judging] = None
-            if todo:
-                judged = self._sandboxes().assess_many(
-                    [(text, result, self._policy) for result, text in todo])
-                self._cache.update(zip(todo, judged))
+                if self._key(recomputed, text) not in self._cache:
+                    todo[self._key(recomputed, text)] = recomputed
+            self._judge_all(todo)
         except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
             pass
         finally:
