@@ -15,9 +15,10 @@ Run: ``.venv/bin/python bench/scale.py [sizes...] [--jobs N]`` (default sizes 10
 
 ``--phases`` times the steps of a run instead, in this process, through the library's public
 functions one after the other (so reading does not overlap solving as in ``mechgrade grade``):
-importing the solver, loading the assignment and its problems, solving (``plan_assignment``), reading,
-judging (``grade_plan``) and writing the outputs, each with its wall and CPU time (this process
-and its workers), and the total without the solving (what a run costs once solving is cached).
+importing the solver, loading the assignment and its problems, reading (started first, as in a
+run), solving (``plan_assignment``), judging (``grade_plan``) and writing the outputs, each with
+its wall and CPU time (this process and its workers), and the total without the solving (what a
+run costs once solving is cached).
 """
 
 from __future__ import annotations
@@ -256,9 +257,10 @@ def phases(size: int, jobs: int | None) -> None:
     spec = step("load the assignment", lambda: load_assignment(folder / "assignment.yaml"))
     problems = step("load the problems",
                     lambda: tuple(load_problem(ref.path) for ref in spec.problems))
+    keys = {f"{p.id}.{objective}" for ref, p in zip(spec.problems, problems)
+            for objective in ref.objectives or [o.id for o in p.objectives]}
+    subs = step("read", lambda: read_submissions(folder / "submissions", keys=keys, jobs=jobs))
     plan = step("solve", lambda: plan_assignment(spec, problems=problems, jobs=jobs))
-    subs = step("read", lambda: read_submissions(folder / "submissions", keys=plan.keys,
-                                                 jobs=jobs))
     report = step("judge", lambda: grade_plan(plan, subs, jobs=jobs))
     step("write the outputs", lambda: write_outputs(
         report, out, jobs=jobs, worked=shown_solutions(spec, report)))
