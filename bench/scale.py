@@ -12,6 +12,13 @@ time of the process and its workers (user + sys) over the wall time. Each comman
 compare the work done, which other load on the machine changes less than the wall time.
 
 Run: ``.venv/bin/python bench/scale.py [sizes...] [--jobs N]`` (default sizes 100 1000 5000).
+
+``--phases`` times the steps of a run instead, in this process, through the library's public
+functions one after the other (so reading does not overlap solving as in ``mechgrade grade``):
+importing the solver, loading the assignment and its problems, reading (started first, as in a
+run), solving (``plan_assignment``), judging (``grade_plan``) and writing the outputs, each with
+its wall and CPU time (this process and its workers), and the total without the solving (what a
+run costs once solving is cached).
 """
 
 from __future__ import annotations
@@ -187,7 +194,13 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3,
                         help="runs of each command; the fastest is shown (other load on the "
                              "machine only ever slows a run down)")
+    parser.add_argument("--phases", action="store_true",
+                        help="time the steps of one run in this process (see the docstring)")
     args = parser.parse_args()
+    if args.phases:
+        for size in args.sizes:
+            phases(size, args.jobs)
+        return
     python = sys.executable
     mechgrade = [python, "-m", "mechgrade"]
     print(f"{'students':>8} {'grade s':>8} {'floor s':>8} {'ratio':>6} {'cores':>6}  "
@@ -210,6 +223,56 @@ def main() -> None:
         print(f"{size:>8} {wall:>8.2f} {floor_wall:>8.2f} {wall / floor_wall:>6.2f} "
               f"{cpu / wall:>6.2f}  {least_cpu:>11.2f} {floor_cpu:>11.2f} "
               f"{least_cpu / floor_cpu:>9.2f}", flush=True)
+
+
+def _cpu() -> float:
+    own, children = (resource.getrusage(who) for who in (resource.RUSAGE_SELF,
+                                                         resource.RUSAGE_CHILDREN))
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def phases(size: int, jobs: int | None) -> None:
+    """Print the wall and CPU seconds of each step of grading ``size`` students."""
+    folder = make_class(size)
+    out = folder / "out-phases"
+    shutil.rmtree(out, ignore_errors=True)
+    rows: list[tuple[str, float, float]] = []
+
+    def step(name, work):
+        wall, cpu = time.perf_counter(), _cpu()
+        value = work()
+        rows.append((name, time.perf_counter() - wall, _cpu() - cpu))
+        return value
+
+    step("import the solver", lambda: __import__("mechgrade.solve"))
+    from mechgrade.grade.assignment import load_assignment
+    from mechgrade.grade.run import grade_plan, plan_assignment
+    from mechgrade.grade.submissions import read_submissions
+    from mechgrade.grade.worked import shown_solutions
+    from mechgrade.parallel import default_jobs
+    from mechgrade.report.output import write_outputs
+    from mechgrade.spec import load_problem
+
+    jobs = jobs or default_jobs()
+    spec = step("load the assignment", lambda: load_assignment(folder / "assignment.yaml"))
+    problems = step("load the problems",
+                    lambda: tuple(load_problem(ref.path) for ref in spec.problems))
+    keys = {f"{p.id}.{objective}" for ref, p in zip(spec.problems, problems)
+            for objective in ref.objectives or [o.id for o in p.objectives]}
+    subs = step("read", lambda: read_submissions(folder / "submissions", keys=keys, jobs=jobs))
+    plan = step("solve", lambda: plan_assignment(spec, problems=problems, jobs=jobs))
+    report = step("judge", lambda: grade_plan(plan, subs, jobs=jobs))
+    step("write the outputs", lambda: write_outputs(
+        report, out, jobs=jobs, worked=shown_solutions(spec, report)))
+    print(f"{size} students, --jobs {jobs}")
+    print(f"  {'step':<22} {'wall s':>7} {'cpu s':>7}")
+    for name, wall, cpu in rows:
+        print(f"  {name:<22} {wall:>7.2f} {cpu:>7.2f}")
+    total = [sum(r[i] for r in rows) for i in (1, 2)]
+    solve = [r for r in rows if r[0] == "solve"][0]
+    print(f"  {'total':<22} {total[0]:>7.2f} {total[1]:>7.2f}")
+    print(f"  {'total but solving':<22} {total[0] - solve[1]:>7.2f} {total[1] - solve[2]:>7.2f}",
+          flush=True)
 
 
 if __name__ == "__main__":

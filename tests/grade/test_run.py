@@ -14,6 +14,7 @@ from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade import run as run_module
 from mechgrade.grade.run import (expected_text, given_key_of, grade_plan, grade_submissions,
                                  plan_assignment)
+from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.grade.submissions import read_submissions
 from mechgrade.resources import shipped_dir
 from mechgrade.roster import read_roster
@@ -400,14 +401,62 @@ def test_carried_forward_re_solves_are_solved_ahead_over_the_jobs(tmp_path, bloc
         for sid, xdot, omega in (("hal", "-7.00", "66.97"), ("ida", "-7.00", "60"),
                                  ("jon", "-6.50", "62.19"), ("kim", "-7.66598", "73.3429"))})
     alone = grade_submissions(ecf, tmp_path / "subs", jobs=1)
-    asked = []
+    asked, judged_alone = [], []
     real = run_module._Judge._attempt
     monkeypatch.setattr(run_module._Judge, "_attempt",
                         lambda self, *args: asked.append(args) or real(self, *args))
+    real_assess = SandboxPool.assess
+    monkeypatch.setattr(SandboxPool, "assess", lambda self, *args:
+                        judged_alone.append(args) or real_assess(self, *args))
     assert grade_submissions(ecf, tmp_path / "subs", jobs=2) == alone
     assert asked == []  # every re-solve was made ahead, in the forked workers
+    assert judged_alone == []  # and the answers judged again against them in a batch
     assert answers_of(alone, "hal")["rod_omega_z"].verdict == "correct"
     assert answers_of(alone, "jon")["rod_omega_z"].verdict == "correct"
+
+
+_SOLVED: list = []  # (log file, real solve, pid of the test) while a test notes solves
+
+
+def _noted_solve(problem, **kwargs):
+    import os
+
+    log, real, here = _SOLVED
+    with open(log, "a", encoding="utf-8") as handle:
+        handle.write(f"{problem.id} {os.getpid() == here}\n")
+    return real(problem, **kwargs)
+
+
+def test_a_problem_carried_forward_re_solves_is_solved_here_the_others_in_forked_processes(
+        tmp_path, blocks_text, monkeypatch):
+    import os
+
+    import mechgrade.solve
+
+    write(tmp_path / "blocks.yaml", with_dependency(blocks_text, "rod_omega_z", "xdot"))
+    write(tmp_path / "hw.yaml", f"""\
+        id: two
+        title: Three problems
+        problems:
+          - path: blocks.yaml
+            objectives: [xdot, rod_omega_z]
+          - path: {shipped_dir("problems") / "bowling_3_15_2_cannonball.yaml"}
+            objectives: [speed]
+          - path: {shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"}
+            objectives: [acc_mag]
+        """)
+    hw = load_assignment(tmp_path / "hw.yaml")
+    alone = run_module.plan_assignment(hw, jobs=1)
+    _SOLVED[:] = [tmp_path / "where.txt", mechgrade.solve.solve, os.getpid()]
+    monkeypatch.setattr(mechgrade.solve, "solve", _noted_solve)
+    try:
+        assert run_module.plan_assignment(hw, jobs=2).solutions == alone.solutions
+    finally:
+        _SOLVED.clear()
+    solved = dict(line.split() for line in
+                  (tmp_path / "where.txt").read_text(encoding="utf-8").splitlines())
+    assert solved == {"bowling_3_15_8_connected_blocks": "True",
+                      "bowling_3_15_2_cannonball": "False", "bowling_3_15_4_pendulum": "False"}
 
 
 def test_a_broken_problem_is_reported_before_a_missing_folder_with_any_jobs(class_dir):

@@ -9,6 +9,7 @@ import pytest
 from mechgrade.errors import MechgradeError
 from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo,
                                      StudentResult)
+from mechgrade.report import output
 from mechgrade.report.output import (feedback_context, feedback_names, write_outputs)
 from mechgrade.resources import shipped_dir
 
@@ -178,3 +179,96 @@ def test_an_authors_mistake_message_is_printed_once(tmp_path):
     for suffix in (".html", ".md"):
         page = (tmp_path / "feedback" / f"ana{suffix}").read_text(encoding="utf-8")
         assert page.count("centripetal part") == 1, suffix
+
+
+def _class_of(count):
+    answers = lambda i: (AnswerResult("p", "acc", f"{i} ft/s^2", "partial", 1.0, 2.0, "sign error",
+                                      "Your answer has the wrong sign.", f"{i} ft/s^2",
+                                      "98.51 ft/s^2"),)
+    return GradeReport(AssignmentInfo("hw1", "HW"), (ObjectiveInfo("p", "acc", "Acc.", 2.0),),
+                       tuple(StudentResult(f"s{i}", f"S {i}", "graded", 1.0, 2.0, answers(i))
+                             for i in range(count)))
+
+
+def _files(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+@pytest.fixture
+def small_pieces(monkeypatch):
+    """Pieces of two students, so that a small class is spread over the helpers."""
+    monkeypatch.setattr(output, "PIECE_STUDENTS", 2)
+
+
+def test_outputs_are_the_same_for_any_number_of_jobs(tmp_path, small_pieces):
+    report = _class_of(9)
+    written = {jobs: write_outputs(report, tmp_path / str(jobs), jobs=jobs) for jobs in (1, 2, 3)}
+    assert [p.relative_to(tmp_path / "1") for p in written[1].paths] == \
+        [p.relative_to(tmp_path / "3") for p in written[3].paths]
+    assert _files(tmp_path / "1") == _files(tmp_path / "2") == _files(tmp_path / "3")
+    assert len(_files(tmp_path / "1")) == 3 + 2 * 9
+
+
+def test_a_template_breaking_for_some_students_stops_with_the_first_and_writes_nothing(
+        tmp_path, small_pieces):
+    templates = tmp_path / "t"
+    templates.mkdir()
+    (templates / "feedback.html.j2").write_text(
+        '{% if student.id == "s7" %}{{ student.late }}{% endif %}'
+        '{% if student.id == "s3" %}{{ student.early }}{% endif %}', encoding="utf-8")
+    (templates / "feedback.md.j2").write_text("x", encoding="utf-8")
+    for jobs in (1, 2, 3):
+        out = tmp_path / f"out{jobs}"
+        with pytest.raises(MechgradeError, match="has no attribute 'early'"):
+            write_outputs(_class_of(9), out, templates, jobs=jobs)
+        assert not [p for p in out.rglob("*") if p.is_file()]
+
+
+def test_a_page_fault_is_recorded_in_student_order_with_any_jobs(tmp_path, small_pieces,
+                                                                   monkeypatch):
+    real = output._context
+
+    def fails_for_some(report, student, prompts):
+        if student.id in ("s2", "s7"):
+            raise RuntimeError(f"no context for {student.id}")
+        return real(report, student, prompts)
+
+    monkeypatch.setattr(output, "_context", fails_for_some)
+    reports = [write_outputs(_class_of(9), tmp_path / str(jobs), jobs=jobs).report
+               for jobs in (1, 3)]
+    assert reports[0] == reports[1]
+    assert [e.split(":")[0] for e in reports[0].internal_errors] == [
+        "feedback of 's2' (html)", "feedback of 's2' (md)", "feedback of 's7' (html)",
+        "feedback of 's7' (md)"]
+    assert _files(tmp_path / "1") == _files(tmp_path / "3")
+
+
+@pytest.mark.parametrize("dies_in", ["_render_students", "_write_piece"])
+def test_what_a_helper_that_died_left_is_done_here(tmp_path, small_pieces, monkeypatch,
+                                                   dies_in):
+    import os
+
+    parent, real = os.getpid(), getattr(output, dies_in)
+
+    def dies_in_a_helper(*args):
+        if os.getpid() != parent:
+            os._exit(1)
+        return real(*args)
+
+    write_outputs(_class_of(9), tmp_path / "alone", jobs=1)
+    monkeypatch.setattr(output, dies_in, dies_in_a_helper)
+    write_outputs(_class_of(9), tmp_path / "helped", jobs=3)
+    assert _files(tmp_path / "alone") == _files(tmp_path / "helped")
+
+
+def test_without_shared_memory_every_page_is_done_here(tmp_path, small_pieces, monkeypatch):
+    import multiprocessing.context
+
+    def no_shared_memory(*args, **kwargs):
+        raise PermissionError("no /dev/shm")
+
+    write_outputs(_class_of(5), tmp_path / "alone", jobs=1)
+    monkeypatch.setattr(multiprocessing.context.BaseContext, "Value", no_shared_memory)
+    write_outputs(_class_of(5), tmp_path / "here", jobs=3)
+    assert _files(tmp_path / "alone") == _files(tmp_path / "here")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import atexit
+import gc
 import sys
 from pathlib import Path
 
@@ -37,7 +39,6 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     # Here, not at the top: sympy and the solver load only when a run starts (not for --help).
     from ..grade.assignment import load_assignment
     from ..grade.run import grade_submissions
-    from ..grade.worked import shown_solutions
     from ..parallel import default_jobs
     from ..report.output import write_outputs
 
@@ -60,10 +61,18 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
+    # Imported once graded: it loads the solver, which the processes forked at the start
+    # of grading (reading the submissions) do without.
+    from ..grade.worked import shown_solutions
+
     worked = shown_solutions(spec, report)  # the assignment's worked_solution rule
     report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
                            worked=worked).report
     click.echo(summary(report, out_dir))
+    # At exit the interpreter's last collection need not walk every object of the run
+    # (a tenth of a second or more); registered once, whatever runs in this process.
+    atexit.unregister(gc.freeze)
+    atexit.register(gc.freeze)
     if report.internal_errors:
         sys.exit(INTERNAL_ERROR_EXIT)
 

@@ -2,11 +2,13 @@
 
 Each problem of the assignment is loaded and solved once, for the objectives graded and those
 they depend on; every answer is judged in the bounded sandbox (a worker per job, reused for the
-whole run, answers sent in batches), identical answers only once. With several jobs the problems are solved, and the submissions read, in forked
-processes; the report never depends on the number of jobs. Points are the judged
-credit times the objective's points. Every roster student and every submission appears in the
-report with a status, in a fixed order (roster order, then students not on the roster by id),
-so a re-run gives byte-identical outputs.
+whole run, answers sent in batches), identical answers only once. With several jobs the
+submissions are read, and the problems solved, in forked processes (but for a problem that error
+carried forward re-solves: it is solved here, where its re-solves find its derivation made); the
+report never depends on the number of jobs. Points are the judged credit times the objective's
+points. Every roster student and every submission appears in the report with a status, in a
+fixed order (roster order, then students not on the roster by id), so a re-run gives
+byte-identical outputs.
 
 Error carried forward (ECF): an objective may declare ``depends_on: [upstream]`` in its spec.
 When a student's upstream answer is wrong and the downstream one is not right, the downstream
@@ -89,12 +91,42 @@ def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | Non
     problems = tuple(problems) if problems is not None else _load_problems(assignment)
     chosen = _choose_objectives(assignment, problems)  # before solving: its errors are cheap
     if solutions is None:
-        from ..solve import solve
-
-        work = [partial(solve, p, objectives=_needed(p, [o for i, o, _ in chosen if i == index]))
-                for index, p in enumerate(problems)]
-        solutions = raise_first(fork_map(outcome, work, jobs=jobs))
+        solutions = _solve_all(assignment, problems, chosen, jobs)
     return _plan(assignment, problems, tuple(solutions), chosen)
+
+
+def _solve_all(assignment: Assignment, problems: tuple[Problem, ...], chosen,
+               jobs: int) -> list[Solution]:
+    """Every problem solved for what grading needs. With several jobs, a problem error carried
+    forward may re-solve is solved in this process (the re-solves, here or in processes forked
+    from here, find its derivation made) while the others are solved in forked processes."""
+    from ..solve import solve
+
+    graded = [[o for i, o, _ in chosen if i == index] for index in range(len(problems))]
+    work = [partial(solve, p, objectives=_needed(p, graded[index]))
+            for index, p in enumerate(problems)]
+    ecf = assignment.policy.ecf.enabled
+    here = [index for index, p in enumerate(problems)
+            if jobs <= 1 or (ecf and any(_re_solved(p, o) for o in graded[index]))]
+    away = [index for index in range(len(problems)) if index not in here]
+    if not here:
+        return raise_first(fork_map(outcome, work, jobs=jobs))
+    forked = Forked(partial(fork_map, outcome, [work[i] for i in away], jobs=jobs)) \
+        if away else None
+    try:
+        outcomes = dict(zip(here, (outcome(work[i]) for i in here)))
+        if forked is not None:
+            outcomes.update(zip(away, forked.result()))
+    finally:
+        if forked is not None:
+            forked.cancel()
+    return raise_first([outcomes[index] for index in range(len(problems))])
+
+
+def _re_solved(problem: Problem, objective: Objective) -> bool:
+    """Whether error carried forward may re-solve ``problem`` for ``objective``: it depends on
+    an objective of the problem."""
+    return any(_objective(problem, upstream) is not None for upstream in objective.depends_on)
 
 
 def _needed(problem: Problem, graded: list[Objective]) -> tuple[str, ...]:
@@ -423,7 +455,9 @@ class _Judge:
         self.policy = plan.assignment.policy
         self._resolve = resolve
         self._jobs = jobs
-        self._cache: dict[tuple, Assessment] = {}
+        self._cache: dict[tuple[int, str], Assessment] = {}
+        self._references: dict[ObjectiveResult, int] = {}  # each distinct one, numbered
+        self._numbers: dict[int, tuple[ObjectiveResult, int]] = {}  # by id(): its number
         self._ecf_solutions: dict[tuple, tuple] = {}
         self._policy = compare_policy(self.policy)
         self._pool = None
@@ -440,9 +474,19 @@ class _Judge:
             self._pool = SandboxPool(self._jobs)
         return self._pool
 
+    def _key(self, result: ObjectiveResult, text: str) -> tuple[int, str]:
+        """The cache key of judging ``text`` against ``result``: equal references share their
+        judgements, and a reference (hashed over all its fields) is hashed once per object,
+        not once per answer."""
+        known = self._numbers.get(id(result))
+        if known is None:  # kept with its number, so that its id() stays its own
+            number = self._references.setdefault(result, len(self._references))
+            known = self._numbers[id(result)] = (result, number)
+        return known[1], text
+
     def assess(self, text: str, result: ObjectiveResult):
         """Judge one answer in the run's sandbox workers (started once, reused for all)."""
-        key = (result, text)
+        key = self._key(result, text)
         if key not in self._cache:
             self._cache[key] = self._sandboxes().assess(text, result, self._policy)
         return self._cache[key]
@@ -452,22 +496,27 @@ class _Judge:
         workers; :meth:`judge` then finds them judged. A fault of mechgrade's here leaves the
         answers to be judged one by one, each inside its own boundary (:func:`_judge_safely`)."""
         try:
-            todo: dict[tuple, None] = {}
+            todo: dict[tuple[int, str], ObjectiveResult] = {}
             for submission in submissions:
                 if submission.status != "read":
                     continue
                 for item in self.plan.objectives:
                     text = submission.answer(item.key)
                     if text is not None and text.strip():
-                        key = (item.result, text)
+                        key = self._key(item.result, text)
                         if key not in self._cache:
-                            todo[key] = None
-            if todo:
-                judged = self._sandboxes().assess_many(
-                    [(text, result, self._policy) for result, text in todo])
-                self._cache.update(zip(todo, judged))
+                            todo[key] = item.result
+            self._judge_all(todo)
         except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
             pass
+
+    def _judge_all(self, todo: dict[tuple[int, str], ObjectiveResult]) -> None:
+        """Judge the answers of ``todo`` (cache key -> reference) in one batch over the sandbox
+        workers, into the cache."""
+        if todo:
+            judged = self._sandboxes().assess_many(
+                [(text, result, self._policy) for (_, text), result in todo.items()])
+            self._cache.update(zip(todo, judged))
 
     def expected(self, item: PlannedObjective) -> str | None:
         return expected_text(item.result) if self.policy.reveal_answers else None
@@ -493,19 +542,23 @@ class _Judge:
     def prefetch_carried_forward(self, work: Iterable[tuple[Plan, Submission]]) -> None:
         """Solve, over the jobs, the re-solves error carried forward will ask for (each
         student's ``(plan, submission)`` in ``work``), into :meth:`_solve_with`'s cache: they
-        take most of a run's grading time when they are solved one after the other. One not
-        foreseen here (an upstream answer itself carried forward) is solved when asked; a fault
-        of mechgrade's here leaves every one to be solved when asked."""
-        if self._jobs <= 1 or self._resolve is not None or not self.policy.ecf.enabled:
+        take most of a run's grading time when they are solved one after the other. Then judge
+        the answers again against them, in one batch over the sandbox workers (not one round
+        trip per answer). One not foreseen here (an upstream answer itself carried forward) is
+        solved when asked; a fault of mechgrade's here leaves every one to be solved when
+        asked."""
+        if self._resolve is not None or not self.policy.ecf.enabled:
             return
         own = self.plan
         try:
             requests: dict[tuple, tuple] = {}
+            again: dict[tuple, None] = {}  # (re-solve key, answer, objective) to judge again
             for plan, submission in work:
                 self.plan = plan  # the student's references, for the upstream look-ups
                 for item in (i for i in plan.objectives if i.objective.depends_on):
                     text = submission.answer(item.key) if submission.status == "read" else None
-                    judged = self._cache.get((item.result, text))
+                    judged = self._cache.get(self._key(item.result, text)) \
+                        if text is not None else None
                     if judged is None or judged.verdict == "correct":
                         continue
                     found = self._upstream_givens(item, submission, {})
@@ -514,12 +567,25 @@ class _Judge:
                         key = _ecf_key(item.problem, givens, item.objective.id)
                         if key not in self._ecf_solutions:
                             requests[key] = (item.problem, givens, item.objective.id)
+                        again[key, text, item.objective.id] = None
             _CARRYING[:] = [self]  # inherited by the forked workers
             try:
                 solved = fork_map(_solve_carried, list(requests.values()), jobs=self._jobs)
             finally:
                 _CARRYING.clear()
             self._ecf_solutions.update(zip(requests, solved))
+            todo: dict[tuple[int, str], ObjectiveResult] = {}
+            for key, text, objective_id in again:
+                solution = self._ecf_solutions[key][0]
+                if isinstance(solution, MechgradeError):
+                    continue  # not solved: the per-answer path says why
+                try:
+                    recomputed = solution.result(objective_id)
+                except (KeyError, MechgradeError):
+                    continue
+                if self._key(recomputed, text) not in self._cache:
+                    todo[self._key(recomputed, text)] = recomputed
+            self._judge_all(todo)
         except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
             pass
         finally:

@@ -618,5 +618,11 @@ def _kind(value) -> str:
 
 
 def _printable(text: str) -> str:
-    """Control characters out of keys and echoed lines (they end up in messages and files)."""
+    """Control characters out of keys and echoed lines (they end up in messages and files).
+
+    >>> _printable("p.v"), _printable("p\\tv") == "p\\ufffdv"
+    ('p.v', True)
+    """
+    if text.isprintable():
+        return text
     return "".join(ch if ch.isprintable() else "\ufffd" for ch in text)

@@ -20,21 +20,26 @@ temporary file and moved into place, so a crash never leaves half a file.
 
 from __future__ import annotations
 
+import multiprocessing
 import re
+import signal
 from dataclasses import dataclass, replace
-from functools import lru_cache, partial
+from functools import lru_cache
 from html import escape as html_escape
 from pathlib import Path
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING, Any
 
 from ..errors import Location, MechgradeError, brief_exception
 from ..files import json_text, safe_file_names, write_json, write_text
 from ..export import EXPORTERS
-from ..parallel import fork_map, outcome, raise_first
+from ..parallel import outcome
 from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
 
 if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
+    from multiprocessing.connection import Connection
+    from multiprocessing.process import BaseProcess
+
     from ..grade.worked import FeedbackSolutions
     from ..solve.worked import WorkedSolution
 
@@ -75,9 +80,9 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
 
     Rendering one student's feedback is one unit of work: a fault of mechgrade's there gives
     that student a short page saying so, and the other outputs are written as usual. The pages
-    are rendered in ``jobs`` forked processes (the files are the same for any ``jobs``). Raises
-    :class:`~mechgrade.errors.MechgradeError` when a template is missing or broken (then no file
-    is written), or the folder cannot be written.
+    are rendered and written by this process and ``jobs - 1`` forked helpers (the files are the
+    same for any ``jobs``). Raises :class:`~mechgrade.errors.MechgradeError` when a template is
+    missing or broken (then no file is written), or the folder cannot be written.
     """
     out = Path(out_dir)
     env = template_environment(templates_dir)
@@ -88,64 +93,244 @@ def write_outputs(report: GradeReport, out_dir: str | Path, templates_dir: str |
         raise MechgradeError(f"cannot create the output folder ({exc.strerror or exc})",
                              where=_where(out)) from None
     count = len(report.students)
-    pieces = max(1, min(count, 4 * jobs)) if jobs > 1 else 1
-    bounds = [(count * i // pieces, count * (i + 1) // pieces) for i in range(pieces)]
-    _RENDERING[:] = [(report, templates, templates_dir)]  # inherited by the forked workers
+    bounds = [(low, min(low + PIECE_STUDENTS, count)) for low in range(0, count, PIECE_STUDENTS)]
+    paths = [(out / "feedback" / (name + ".html"), out / "feedback" / (name + ".md"))
+             for name in feedback_names(report)]
+    # inherited by the forked helpers
+    _RENDERING[:] = [_Rendering(report, tuple(templates), templates_dir, tuple(bounds),
+                                tuple(paths))]
     _WORKED[:] = [_worked_pages(worked, env, templates_dir)] if worked is not None else []
+    crew = _Crew(len(bounds), jobs)
     try:
-        # results.json is made while the pages render; made again if a page met a fault.
-        work = [_results_text] + [partial(_render_students, b) for b in bounds]
-        results_text, *outcomes = fork_map(outcome, work, jobs=jobs)
-        raise_first(outcomes)
-        # raise_first has raised any error: each outcome is a chunk's (pages, faults)
-        rendered = cast("list[tuple[list[tuple[str, str]], list[str]]]", outcomes)
+        # results.json is made while the helpers render; made again if a page met a fault.
+        results_text = outcome(_results_text)
+        faults = crew.render()
+        written: list[Path] = [out / "results.json"]
+        if faults:
+            report = replace(report, internal_errors=report.internal_errors + tuple(faults))
+        if faults or not isinstance(results_text, str):
+            write_json(written[0], report.to_json())  # raises the error with the file's name
+        else:
+            write_text(written[0], results_text)
+        crew.start_writing()
+        errors: list[tuple[int, MechgradeError]] = []
+        for name, fmt in (("grades.csv", "grades-csv"), ("results.csv", "long-csv")):
+            try:
+                EXPORTERS[fmt](report, out / name, roster=roster)
+            except MechgradeError as err:
+                errors.append((-1, err))
+                break
+            written.append(out / name)
+        crew.write(errors)
+        if errors:
+            raise min(errors, key=lambda e: e[0])[1]
     finally:
+        crew.close()
         _RENDERING.clear()
         _WORKED.clear()
-    pages: list[tuple[Path, str]] = []
-    faults: list[str] = []
-    names = iter(feedback_names(report))
-    for chunk_pages, chunk_faults in rendered:
-        faults.extend(chunk_faults)
-        for html, markdown in chunk_pages:
-            filename = next(names)
-            pages.append((out / "feedback" / (filename + ".html"), html))
-            pages.append((out / "feedback" / (filename + ".md"), markdown))
-    written: list[Path] = [out / "results.json"]
-    if faults:
-        report = replace(report, internal_errors=report.internal_errors + tuple(faults))
-    if faults or not isinstance(results_text, str):
-        write_json(written[0], report.to_json())  # raises the error with the file's name
-    else:
-        write_text(written[0], results_text)
-    for name, fmt in (("grades.csv", "grades-csv"), ("results.csv", "long-csv")):
-        EXPORTERS[fmt](report, out / name, roster=roster)
-        written.append(out / name)
-    for path, page in pages:
-        write_text(path, page)
-        written.append(path)
+    written.extend(path for pair in paths for path in pair)
     return Written(tuple(written), report)
 
 
-_RENDERING: list = []
+PIECE_STUDENTS = 25
+"""Students whose pages a process renders and writes as one piece of work: pieces are claimed
+one at a time, so that every process stays busy to the end whatever else it does."""
+
+
+@dataclass(frozen=True)
+class _Rendering:
+    report: GradeReport
+    templates: tuple
+    templates_dir: str | Path | None
+    bounds: tuple[tuple[int, int], ...]  # the students of each piece
+    paths: tuple[tuple[Path, Path], ...]  # every student's (html, markdown) file
+
+
+_RENDERING: list[_Rendering] = []
 _WORKED: list = []  # the worked solutions and their fragments, rendered once per run
 
 
 def _results_text() -> str:
-    return json_text(_RENDERING[0][0].to_json())
+    return json_text(_RENDERING[0].report.to_json())
+
+
+class _Crew:
+    """The feedback pages rendered and written by this process and ``jobs - 1`` forked helpers.
+
+    Every process claims the next piece of students (:data:`PIECE_STUDENTS`) until none is
+    left and keeps its pages; no page is written before every page has rendered, so a broken
+    template stops the run with no page written (:meth:`render` raises the error of the first
+    student it breaks for, whatever the number of processes). Then each process writes the
+    pages it rendered (:meth:`write`). What a helper that died left undone is done here.
+    """
+
+    def __init__(self, pieces: int, jobs: int) -> None:
+        self._pieces = pieces
+        self._helpers: list[tuple[BaseProcess, Connection]] = []
+        self._next: Any = None  # the next piece to claim, shared with the helpers
+        self._claimed = 0  # ... or, without helpers, counted here
+        self._done: dict[int, tuple[list[tuple[str, str]], list[str]]] = {}
+        self._theirs: dict[int, list[int]] = {}  # the pieces each helper rendered
+        helpers = min(jobs, pieces) - 1
+        if helpers <= 0 or "fork" not in multiprocessing.get_all_start_methods():
+            return
+        context = multiprocessing.get_context("fork")
+        try:
+            self._next = context.Value("i", 0)
+        except OSError:  # no shared memory (a locked-down /dev/shm): every page is done here
+            return
+        for _ in range(helpers):
+            conn, child = context.Pipe()
+            process = context.Process(target=_help, args=(self, child), daemon=True,
+                                      name="mechgrade-pages")
+            process.start()
+            child.close()
+            self._helpers.append((process, conn))
+
+    def _claim(self) -> int | None:
+        """The next piece nobody has claimed, or ``None`` when every piece is taken."""
+        if self._next is None:
+            piece, self._claimed = self._claimed, self._claimed + 1
+        else:
+            with self._next.get_lock():
+                piece = self._next.value
+                self._next.value = piece + 1
+        return piece if piece < self._pieces else None
+
+    def _stop_claims(self) -> None:
+        if self._next is None:
+            self._claimed = self._pieces
+        else:
+            with self._next.get_lock():
+                self._next.value = self._pieces
+
+    def render_claimed(self) -> tuple[dict, tuple[int, MechgradeError] | None]:
+        """Render the pieces this process claims: ``{piece: (pages, faults)}``, and the
+        ``(piece, error)`` of a broken template (which ends the claiming for every process)."""
+        done: dict[int, tuple[list[tuple[str, str]], list[str]]] = {}
+        while (piece := self._claim()) is not None:
+            try:
+                done[piece] = _render_students(_RENDERING[0].bounds[piece])
+            except MechgradeError as err:
+                self._stop_claims()
+                return done, (piece, err)
+        return done, None
+
+    def render(self) -> list[str]:
+        """Render every page (here and in the helpers); the faults met, in student order.
+        Raises the :class:`MechgradeError` of a broken template."""
+        self._done, error = self.render_claimed()
+        errors = [error] if error else []
+        faults = {piece: chunk_faults for piece, (_, chunk_faults) in self._done.items()}
+        for me, (_, conn) in enumerate(self._helpers):
+            message = _receive(conn)
+            if message is not None and message[0] == "rendered":
+                faults.update(message[1])
+                self._theirs[me] = sorted(message[1])
+            elif message is not None and message[0] == "error":
+                errors.append(message[1])
+        first = min((piece for piece, _ in errors), default=self._pieces)
+        for piece in range(first):  # a helper died: its pieces are done here
+            if piece not in faults:
+                try:
+                    self._done[piece] = _render_students(_RENDERING[0].bounds[piece])
+                except MechgradeError as err:
+                    errors.append((piece, err))
+                    break
+                faults[piece] = self._done[piece][1]
+        if errors:
+            raise min(errors, key=lambda e: e[0])[1]
+        return [fault for piece in sorted(faults) for fault in faults[piece]]
+
+    def start_writing(self) -> None:
+        """Tell the helpers to write the pages they rendered."""
+        for _, conn in self._helpers:
+            _tell(conn, "write")
+
+    def write(self, errors: list[tuple[int, MechgradeError]]) -> None:
+        """Write the pages rendered here and wait for the helpers' (writing here what a helper
+        that died left), adding each piece's first error to ``errors`` as ``(piece, error)``."""
+        for piece in sorted(self._done):
+            self._write(piece, self._done[piece][0], errors)
+        for me, (_, conn) in enumerate(self._helpers):
+            message = _receive(conn)
+            if message is not None and message[0] == "error":
+                errors.append(message[1])
+            elif message is None:
+                for piece in self._theirs.get(me, ()):
+                    self._write(piece, _render_students(_RENDERING[0].bounds[piece])[0],
+                                errors)
+
+    @staticmethod
+    def _write(piece: int, pages: list[tuple[str, str]], errors: list) -> None:
+        try:
+            _write_piece(piece, pages)
+        except MechgradeError as err:
+            errors.append((piece, err))
+
+    def close(self) -> None:
+        """Let the helpers go (one still waiting to write is told to stop) and wait for them."""
+        for process, conn in self._helpers:
+            _tell(conn, "stop")
+            conn.close()
+            process.join()
+        self._helpers = []
+
+
+def _help(crew: _Crew, conn: Connection) -> None:
+    """A forked helper of :class:`_Crew`: render the pieces it claims, say how it went, and
+    write them when told to."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
+    done, error = crew.render_claimed()
+    if error is not None:
+        _tell(conn, ("error", error))
+        return
+    _tell(conn, ("rendered", {piece: faults for piece, (_, faults) in done.items()}))
+    if _receive(conn) != "write":
+        return
+    for piece in sorted(done):
+        try:
+            _write_piece(piece, done[piece][0])
+        except MechgradeError as err:
+            _tell(conn, ("error", (piece, err)))
+            return
+    _tell(conn, ("written",))
+
+
+def _receive(conn: Connection):
+    try:
+        return conn.recv()
+    except (EOFError, OSError):
+        return None
+
+
+def _tell(conn: Connection, message) -> None:
+    try:
+        conn.send(message)
+    except OSError:  # the other end is gone (and what a helper left undone is done here)
+        pass
+
+
+def _write_piece(piece: int, pages: list[tuple[str, str]]) -> None:
+    rendering = _RENDERING[0]
+    low, _ = rendering.bounds[piece]
+    for (html_path, markdown_path), (html, markdown) in zip(rendering.paths[low:], pages):
+        write_text(html_path, html)
+        write_text(markdown_path, markdown)
 
 
 def _render_students(bounds: tuple[int, int]) -> tuple[list[tuple[str, str]], list[str]]:
     """The (html, markdown) pages of the report's students ``bounds[0]:bounds[1]``, and the
     faults met (a broken template raises :class:`MechgradeError`)."""
-    report, templates, templates_dir = _RENDERING[0]
+    rendering = _RENDERING[0]
+    report, templates_dir = rendering.report, rendering.templates_dir
     prompts = _prompts(report)
     pages: list[tuple[str, str]] = []
     faults: list[str] = []
     for student in report.students[bounds[0]:bounds[1]]:
         html, markdown = (_feedback_page(report, student, template, suffix, templates_dir,
                                          faults, prompts)
-                          for template, suffix in zip(templates, (".html", ".md")))
+                          for template, suffix in zip(rendering.templates, (".html", ".md")))
         pages.append((html, markdown))
     return pages, faults
 
@@ -178,9 +363,30 @@ def template_environment(templates_dir: str | Path | None = None):
     if not folder.is_dir():
         raise MechgradeError("expected a folder of templates, found none",
                              where=_where(folder))
-    return jinja2.Environment(loader=jinja2.FileSystemLoader(str(folder)), autoescape=True,
-                              undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
-                              trim_blocks=True, lstrip_blocks=True)
+    return _environment_class()(
+        loader=jinja2.FileSystemLoader(str(folder)), autoescape=True,
+        undefined=jinja2.StrictUndefined, keep_trailing_newline=True, trim_blocks=True,
+        lstrip_blocks=True)
+
+
+@lru_cache(maxsize=None)
+def _environment_class():
+    import jinja2
+
+    class FieldsEnvironment(jinja2.Environment):
+        """Jinja's environment, with ``row.verdict`` on a context dict looked up as its key
+        first: Jinja tries the attribute first and pays for a raised ``AttributeError`` on
+        every field shown, a third of the time a feedback page takes to render."""
+
+        def getattr(self, obj, attribute):
+            if type(obj) is dict:
+                try:
+                    return obj[attribute]
+                except KeyError:
+                    pass
+            return super().getattr(obj, attribute)
+
+    return FieldsEnvironment
 
 
 def _template(env, name: str):
