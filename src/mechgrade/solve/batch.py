@@ -35,10 +35,12 @@ import numpy as np
 from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
-from ..spec.dynamics import Impulse
+from ..spec.dynamics import Integration, WorkEnergy
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
+from .batch_motion import FIRED, integrate_to_events, secant
 from .entry import solve
+from .events import ATOL, MAX_CALLS, RTOL, analysis_plan
 from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
@@ -67,7 +69,7 @@ def solve_variants(problem: Problem,
         chosen = [i for i, g in enumerate(variants) if template.covers(g)]
         for i, solution in zip(chosen, template.solve([variants[i] for i in chosen])):
             # as solve() does: a dynamics solution carries its model's generated mistakes
-            out[i] = (solution if problem.dynamics is None or isinstance(solution, MechgradeError)
+            out[i] = (solution if problem.dynamics is None or solution is None
                       else with_generated_mistakes(problem, solution, variants[i]))
     for i, solution in enumerate(out):
         if solution is None:
@@ -157,6 +159,8 @@ class _Group:
     free: frozenset[int]
     positions: Mapping[str, int]
     nullity: tuple[int, int, int]
+    after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
+    loose: frozenset[int]  # and leaves free
 
 
 class _Template:
@@ -170,6 +174,9 @@ class _Template:
                          for b in problem.branches}
         self.parameters = {q.name for q in problem.parameters}
         self.plausible = plausible_slips(problem)
+        dynamics = problem.dynamics
+        self.analysis = dynamics.analysis if dynamics is not None else None
+        self.design = dynamics.design if dynamics is not None else None
 
     def covers(self, givens: dict) -> bool:
         """Whether ``givens`` only change values the reference has (no new given, none
@@ -204,6 +211,11 @@ class _Template:
             if group.numeric:
                 X, fine, values, mistakes = self._instant(group, maps, True)
                 ok &= fine
+                if self.design is not None:  # the value solved for is given at the instant
+                    at = self.p.index.position(self.design.find)
+                    for i in np.flatnonzero(ok):
+                        maps[i][self.design.find] = (Name(self.design.find), float(X[at, i]),
+                                                     None)
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
                         ok &= np.isfinite(m).all(axis=0)
@@ -212,11 +224,11 @@ class _Template:
                 size = self.p.index.size
                 for i in np.flatnonzero(ok):
                     if not group.overrides or base[i] is None:
-                        free = group.free
+                        free = group.loose
                         if self.kinetics is not None:  # the rates the balances solved
                             free = frozenset(free - {c for c in self.kinetics.columns
                                                      if c < size and np.isfinite(X[c, i])})
-                        base[i] = (State(X[:size, i], group.known, free), maps[i])
+                        base[i] = (State(X[:size, i], group.after, free), maps[i])
             numeric = [o for o in objectives if o.kind != "symbolic"]
             symbols = [o.id for o in objectives if o.kind == "symbolic"]
             answers: dict = {}  # this problem's symbolic answers, by what they depend on
@@ -281,17 +293,11 @@ class _Template:
             elif key in group.conditions:
                 level, row = group.conditions[key]
                 targets[level][row] = column
-        ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
-            np.ones(n, dtype=bool)
-        nulls = self._levels(group, X, targets, 0, ok)
-        if self.kinetics is None and (group.free or any(k for k in group.nullity)):
-            ok &= self._determined(group, X, targets, nulls, ok)
-        ok &= self._on_branch(group, X)
-        if degenerate:
-            ok &= ~self._degenerate(group, X)
+        if self.design is not None:
+            X, ok = self._designed(group, X, targets, degenerate)
+        else:
+            X, ok = self._reached(group, X, targets, degenerate)
         if self.kinetics is not None:
-            X, fine = self._kinetics(X, group.known)
-            ok &= fine
             objectives, mistakes, requirements = (self.kinetics.objectives,
                                                   self.kinetics.mistakes,
                                                   self.kinetics.requirements)
@@ -310,6 +316,185 @@ class _Template:
         declared = {oid: [_call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
         return X, ok, values, declared
+
+    def _reached(self, group: _Group, X: np.ndarray, targets: list,
+                 degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
+        """The instants (each column of ``X`` the givens placed, the state extended by the
+        reactions for a dynamics problem) and which passed the screens."""
+        if isinstance(self.analysis, Integration):
+            return self._integrated(group, X)
+        n = X.shape[1]
+        ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
+            np.ones(n, dtype=bool)
+        nulls = self._levels(group, X, targets, 0, ok)
+        if self.kinetics is None and (group.free or any(k for k in group.nullity)):
+            ok &= self._determined(group, X, targets, nulls, ok)
+        ok &= self._on_branch(group, X)
+        if degenerate:
+            ok &= ~self._degenerate(group, X)
+        if self.kinetics is None:
+            return X, ok
+        if isinstance(self.analysis, WorkEnergy):
+            ok &= self._energy(X, ok)
+        X, fine = self._kinetics(X, group.after)
+        return X, ok & fine
+
+    def _designed(self, group: _Group, X: np.ndarray, targets: list,
+                  degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_reached` with the design parameter solved at every column, by the secant
+        iterations :func:`~.dynamics._designed` takes (a column they do not converge for is
+        solved alone, where the bracketing search may find its root)."""
+        assert self.design is not None and self.kinetics is not None
+        at = self.p.index.position(self.design.find)
+        equation = self.kinetics.design
+
+        def residual(cols: np.ndarray, value: np.ndarray) -> np.ndarray:
+            moved = X[:, cols].copy()
+            moved[at] = value
+            reached, fine = self._reached(group, moved, [t[:, cols] for t in targets], False)
+            return np.where(fine, _call(equation, reached, 1)[0], np.nan)
+
+        guess = self.design.guess
+        n = X.shape[1]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            root, converged = secant(residual, np.full(n, guess),
+                                     np.full(n, guess * (1 + 1e-3) + 1e-12), 1e-15, 1e-13, 100)
+        converged &= np.isfinite(root)
+        X[at] = np.where(converged, root, guess)
+        X, ok = self._reached(group, X, targets, degenerate)
+        return X, ok & converged
+
+    def _energy(self, X: np.ndarray, ok: np.ndarray) -> np.ndarray:
+        """Put in every column the rates the energy balance gives (as
+        :func:`~.events.energy_state` does), and say which columns it would not refuse."""
+        assert self.kinetics is not None and isinstance(self.analysis, WorkEnergy)
+        kp, index = self.kinetics, self.p.index
+        analysis = self.analysis
+        ap = analysis_plan(kp)
+        rates, n = list(index.rates(1)), index.n
+        count = X.shape[1]
+        reactions = np.zeros((len(kp.kin.reactions), count))
+        fine = ok.copy()
+        X[rates] = 0.0
+        X[list(index.rates(2))] = 0.0
+        level = self.p.levels[1]
+        if level.constraint_rows:
+            J = _call(level.jacobian, X, len(level.labels) * n).reshape(
+                len(level.labels), n, count)[:level.constraint_rows]
+            finite = np.isfinite(J).all(axis=(0, 1))
+            fine &= finite
+            _, s, Vt = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1),
+                                     full_matrices=True)
+            big = s > RANK_TOL * np.maximum(s.max(axis=1, initial=0.0), 1.0)[:, None]
+            fine &= big.sum(axis=1) == n - 1  # one free direction
+            u = Vt[:, n - 1, :].T
+        else:
+            fine &= n == 1
+            u = np.ones((n, count))
+        start = np.concatenate([X, reactions])
+        for i, fn in ap.start:
+            start[i] = _call(fn, np.concatenate([X, reactions]), 1)[0]
+        e0 = _call(ap.energy, start, 1)[0]
+        v = _call(ap.energy, np.concatenate([X, reactions]), 1)[0]
+        moving = X.copy()
+        moving[rates] = u
+        with np.errstate(all="ignore"):
+            t_unit = _call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
+            square = (e0 - v) / t_unit
+            fine &= ~(square < -1e-9 * (np.abs(e0) + np.abs(v) + 1e-300) / t_unit)
+            fine &= np.isfinite(square)
+            speed = np.sqrt(np.maximum(square, 0.0))
+        sign = np.ones(count)
+        if analysis.sense:
+            key, sense = analysis.sense[0]
+            component = u[rates.index(index.position(key.text.replace(" ", "")))]
+            fine &= ~((speed > 0) & (np.abs(component) < 1e-12))
+            sign = np.where(speed > 0, np.sign(component) * (1 if sense == "positive" else -1),
+                            1.0)
+        else:
+            fine &= ~(speed > 0)
+        X[rates] = sign * speed * u
+        x = np.concatenate([X, reactions])
+        size = 1.0 + np.abs(X[rates]).max(axis=0, initial=0.0)
+        for _, fn in ap.workless:
+            with np.errstate(invalid="ignore"):
+                fine &= ~(np.abs(_call(fn, x, 1)[0]) > 1e-8 * size)
+        return fine
+
+    def _integrated(self, group: _Group, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Every column's motion integrated from its start state to its event (together:
+        :func:`~.batch_motion.integrate_to_events`, the steps
+        :func:`~.events.integrate_to_event` takes for each alone): the extended state at
+        the event, the accelerations and reactions the limits just before it."""
+        kp = self.kinetics
+        assert kp is not None and isinstance(self.analysis, Integration)
+        ap = analysis_plan(kp)
+        index = self.p.index
+        n, size, count = index.n, index.size, X.shape[1]
+        qd, qdd = list(index.rates(1)), list(index.rates(2))
+        reactions = np.zeros((len(kp.kin.reactions), count))
+        extended = np.concatenate([X, reactions])
+        values = X.copy()
+        for i, fn in ap.start:
+            values[i] = _call(fn, extended, 1)[0]
+        values[index.time] = 0.0
+        values[qdd] = 0.0
+
+        def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+            v = values[:, cols]  # a copy: fancy indexing
+            v[:n] = y[:n]
+            v[qd] = y[n:]
+            v[index.time] = t
+            return v
+
+        def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+            return np.concatenate([y[n:], self._accelerations(at(cols, t, y))[qdd]])
+
+        def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+            v = at(cols, t, y)
+            x = self._accelerations(v) if ap.until_kinetic else \
+                np.concatenate([v, reactions[:, :len(cols)]])
+            return _call(ap.until, x, 1)[0]
+
+        y0 = np.concatenate([values[:n], values[qd]])
+        arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
+                                      MAX_CALLS)
+        ok = arrival.status == FIRED
+        everyone = np.arange(count)
+        end = at(everyone, arrival.t, arrival.y)
+        x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before),
+                                 group.after)
+        keep = [i for i in range(size) if i not in qdd]
+        x[keep] = end[keep]
+        return x, ok & fine
+
+    def _accelerations(self, V: np.ndarray) -> np.ndarray:
+        """The extended states with every second rate and reaction solved by least squares
+        (as :func:`~.dynamics.accelerations`); NaN where the equations are undefined."""
+        kp = self.kinetics
+        assert kp is not None
+        count = V.shape[1]
+        x = np.concatenate([V, np.zeros((len(kp.kin.reactions), count))])
+        cols = list(kp.columns)
+        x[cols] = 0.0
+        rows_ = len(kp.labels)
+        A = _call(kp.jacobian, x, rows_ * len(cols)).reshape(rows_, len(cols), count)
+        b = _call(kp.residual, x, rows_)
+        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+        Ab = np.where(good, A, 0.0).transpose(2, 0, 1)
+        bb = np.where(good, -b, 0.0).T[:, :, None]
+        solved = None
+        if rows_ == len(cols):
+            try:
+                solved = np.linalg.solve(Ab, bb)
+            except np.linalg.LinAlgError:  # a singular column: the least-squares solution
+                pass
+        if solved is None:
+            solved = np.linalg.pinv(Ab) @ bb
+        x[cols] = solved[:, :, 0].T
+        x[:, ~good] = np.nan
+        return x
 
     def _levels(self, group: _Group, X: np.ndarray, targets, first: int,
                 ok: np.ndarray) -> dict[int, np.ndarray]:
@@ -609,6 +794,26 @@ def _nullity(p: Plan, level, values: np.ndarray, active: np.ndarray, unknown: li
     return len(unknown) - int(rank[0])
 
 
+def _positions(p: Plan, given_map: dict) -> dict[str, int]:
+    """Where each given of a coordinate, rate, parameter or ``t`` sits in the state."""
+    return {key: p.index.symbols.index(p.k.quantity(node))
+            for key, (node, _, _) in given_map.items() if isinstance(node, (Name, Prime))}
+
+
+def _integration_group(p: Plan, overrides: dict, objectives, numeric: frozenset,
+                       given_map: dict, g) -> _Group:
+    """An instant reached by integrating the motion: only the givens are placed (the start
+    state and the motion come from them), and the state at the event has its coordinates,
+    rates, parameters and time known (as :func:`~.events.integrate_to_event` marks them)."""
+    index = p.index
+    after = np.zeros(index.size, dtype=bool)
+    after[list(index.config)] = True
+    after[list(index.rates(1))] = True
+    return _Group(overrides, tuple(objectives), numeric, given_map, g.values.copy(),
+                  g.known.copy(), ((), (), ()), (), (), {}, (), frozenset(),
+                  _positions(p, given_map), (0, 0, 0), after, frozenset())
+
+
 def _template(problem: Problem) -> _Template | None:
     return _template_cached(problem, locations(problem))
 
@@ -620,14 +825,9 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     objective, a freedom, a warning)."""
     kinetics = None
     kproblem = problem
+    analysis = problem.dynamics.analysis if problem.dynamics is not None else None
     if problem.dynamics is not None:
         from .dynamics import kinematic_problem, kinetics_plan
-        # at an instant or an impact; not reached by work-energy or an integration, nor with a
-        # design parameter solved for
-        if not (problem.dynamics.analysis is None or
-                isinstance(problem.dynamics.analysis, Impulse)) or \
-                problem.dynamics.design is not None:
-            return None
         kinetics = kinetics_plan(problem)
         kproblem = kinematic_problem(problem)
         p = kinetics.kp
@@ -649,12 +849,20 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             empty = np.zeros(p.index.size)
             groups.append(_Group(overrides, tuple(objectives), numeric, given_map, empty,
                                  empty.astype(bool), ((), (), ()), (), (), {}, (),
-                                 frozenset(), {}, (0, 0, 0)))
+                                 frozenset(), {}, (0, 0, 0), empty.astype(bool),
+                                 frozenset()))
             continue
         try:
+            if problem.dynamics is not None and problem.dynamics.design is not None:
+                from .dynamics import _designed
+                given_map = _designed(problem, kproblem, kinetics, given_map)
+            g = place_givens(kproblem, p, given_map)
+            if isinstance(analysis, Integration):
+                groups.append(_integration_group(p, overrides, objectives, numeric,
+                                                 given_map, g))
+                continue
             instant = solve_numeric(kproblem, p, given_map,
                                     set() if kinetics is not None else set(numeric))
-            g = place_givens(kproblem, p, given_map)
         except MechgradeError:
             return None
         free = instant.state.free
@@ -673,13 +881,14 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             for j, key in enumerate(level.conditions):
                 conditions[key] = (level.order, level.constraint_rows + j)
         solved = tuple(i for i in p.index.config if not g.known[i] and i not in free)
-        positions = {key: p.index.symbols.index(p.k.quantity(node))
-                     for key, (node, _, _) in given_map.items()
-                     if isinstance(node, (Name, Prime))}
+        after, loose = g.known.copy(), free
+        if isinstance(analysis, WorkEnergy):  # the energy balance fixes the rates
+            after[list(p.index.rates(1))] = True
+            loose = frozenset()
         groups.append(_Group(overrides, tuple(objectives), numeric, given_map,
                              instant.state.values.copy(), g.known.copy(), tuple(unknown),
                              tuple(active), tuple(target), conditions, solved, free,
-                             positions, tuple(nullity)))
+                             _positions(p, given_map), tuple(nullity), after, loose))
     if not groups:
         return None
     return _Template(problem, kproblem, p, kinetics, tuple(groups))
