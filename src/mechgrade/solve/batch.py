@@ -97,8 +97,9 @@ def _batched(f: Callable) -> Callable:
 def _array(rows):
     """``numpy.array`` for the matrices lambdified functions build, with entries of
     different shapes broadcast together."""
-    shapes = {np.shape(e) for row in rows for e in row}
-    if len(shapes) <= 1:
+    arrays = [e.shape for row in rows for e in row if type(e) is np.ndarray]
+    shapes = set(arrays)
+    if not arrays or (len(shapes) == 1 and len(arrays) == len(rows) * len(rows[0])):
         return np.array(rows, dtype=float)
     # a constant entry beside arrays: every entry broadcast to the arrays' shape
     out = np.empty((len(rows), len(rows[0])) + np.broadcast_shapes(*shapes))
@@ -111,10 +112,16 @@ def _array(rows):
 def _call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
     """``f`` at every column of ``X`` (the states, one per column): ``size`` values each, as
     a ``(size, N)`` array."""
-    n = X.shape[1]
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        out = np.asarray(_batched(f)(*X), dtype=float)
+        return _loud_call(f, X, size)
+
+
+def _loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
+    """:func:`_call` for a caller that has silenced numpy's warnings already (an
+    integration evaluates its right-hand side thousands of times)."""
+    n = X.shape[1]
+    out = np.asarray(_batched(f)(*X), dtype=float)
     if out.size == size * n:
         return out.reshape(size, n)
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
@@ -448,18 +455,30 @@ class _Template:
             v[index.time] = t
             return v
 
-        def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
-            return np.concatenate([y[n:], self._accelerations(at(cols, t, y))[qdd]])
+        switches = _switches(kp)
 
-        def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+        def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                modes: np.ndarray) -> np.ndarray:
+            return np.concatenate([y[n:], self._accelerations(at(cols, t, y), modes)[qdd]])
+
+        def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                  modes: np.ndarray) -> np.ndarray:
             v = at(cols, t, y)
-            x = self._accelerations(v) if ap.until_kinetic else \
+            x = self._accelerations(v, modes) if ap.until_kinetic else \
                 np.concatenate([v, reactions[:, :len(cols)]])
-            return _call(ap.until, x, 1)[0]
+            return _loud_call(ap.until, x, 1)[0]
+
+        def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+            assert switches is not None
+            v = at(cols, t, y)
+            x = np.concatenate([v, reactions[:, :len(cols)]])
+            return np.sign(_loud_call(switches.speeds, x, switches.count))
 
         y0 = np.concatenate([values[:n], values[qd]])
-        arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
-                                      MAX_CALLS)
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
+                                          MAX_CALLS, mode=mode if switches else None)
         ok = arrival.status == FIRED
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
@@ -469,9 +488,11 @@ class _Template:
         x[keep] = end[keep]
         return x, ok & fine
 
-    def _accelerations(self, V: np.ndarray) -> np.ndarray:
+    def _accelerations(self, V: np.ndarray, modes: np.ndarray) -> np.ndarray:
         """The extended states with every second rate and reaction solved by least squares
-        (as :func:`~.dynamics.accelerations`); NaN where the equations are undefined."""
+        (as :func:`~.dynamics.accelerations`), each slip in its direction in ``modes`` (see
+        :func:`_switches`); NaN where the equations are undefined. Called with numpy's
+        warnings silenced."""
         kp = self.kinetics
         assert kp is not None
         count = V.shape[1]
@@ -479,8 +500,13 @@ class _Template:
         cols = list(kp.columns)
         x[cols] = 0.0
         rows_ = len(kp.labels)
-        A = _call(kp.jacobian, x, rows_ * len(cols)).reshape(rows_, len(cols), count)
-        b = _call(kp.residual, x, rows_)
+        switches = _switches(kp)
+        jacobian, residual, args = kp.jacobian, kp.residual, x
+        if switches is not None:
+            jacobian, residual = switches.jacobian, switches.residual
+            args = np.concatenate([x, modes])
+        A = _loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+        b = _loud_call(residual, args, rows_)
         good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
         Ab = np.where(good, A, 0.0).transpose(2, 0, 1)
         bb = np.where(good, -b, 0.0).T[:, :, None]
@@ -792,6 +818,51 @@ def _nullity(p: Plan, level, values: np.ndarray, active: np.ndarray, unknown: li
     _, rank, _ = _least_squares(J, np.zeros((int(active.sum()), 1)),
                                 np.isfinite(J).all(axis=(0, 1)))
     return len(unknown) - int(rank[0])
+
+
+@dataclass(frozen=True)
+class _Switching:
+    """The kinetics with each ``|u|`` and ``sign(u)`` read with a direction given beside the
+    state (one per ``u``, the *mode*: ``|u|`` as ``mode * u``): the equations of the motion
+    before a slip ends, continued smoothly past it. ``speeds`` gives every ``u``."""
+
+    speeds: Callable
+    residual: Callable
+    jacobian: Callable
+    count: int
+
+
+@lru_cache(maxsize=64)
+def _switches(kp) -> _Switching | None:
+    """The kinetics of ``kp`` with their switches read as :class:`_Switching` says; ``None``
+    when nothing switches."""
+    import sympy as sp
+
+    exprs = [e.expr for e in (*kp.kin.balances, *kp.kin.constraints)]
+    speeds: list = []
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, (sp.Abs, sp.sign)) and node.args[0] not in speeds:
+                speeds.append(node.args[0])
+    if not speeds:
+        return None
+    modes = sp.symbols(f"_mode0:{len(speeds)}")
+    table = dict(zip(speeds, modes))
+
+    def kept(e):
+        e = e.replace(lambda a: isinstance(a, sp.Abs) and a.args[0] in table,
+                      lambda a: table[a.args[0]] * a.args[0])
+        return e.replace(lambda a: isinstance(a, sp.sign) and a.args[0] in table,
+                         lambda a: table[a.args[0]])
+
+    matrix = sp.Matrix([kept(e) for e in exprs])
+    unknowns = [kp.symbols[i] for i in kp.columns]
+    symbols = (*kp.symbols, *modes)
+    return _Switching(
+        speeds=sp.lambdify(kp.symbols, speeds, modules="numpy", cse=True),
+        residual=sp.lambdify(symbols, matrix, modules="numpy", cse=True),
+        jacobian=sp.lambdify(symbols, matrix.jacobian(unknowns), modules="numpy", cse=True),
+        count=len(speeds))
 
 
 def _positions(p: Plan, given_map: dict) -> dict[str, int]:

@@ -1,18 +1,25 @@
 """Numerics of many variants at once, each a column of a stacked array: the motions integrated
 to their events, and a secant iteration on one scalar per variant.
 
-Every column keeps the step sequence :func:`scipy.integrate.solve_ivp` (DOP853) would take
-for it alone — its own step size, error norm, accepted and rejected steps, the same
-coefficients — while the right-hand side is evaluated for all the columns still moving in one
-call. A column stops at its event (located on its last step's dense output) or at the end of
-the time allowed; its derivative is never evaluated again, so it costs the others nothing.
+Every column takes the steps :func:`scipy.integrate.solve_ivp` (DOP853) would take for it
+alone — its own step size, error norm, accepted and rejected steps, the same coefficients —
+while the right-hand side is evaluated for all the columns still moving in one call. A column
+stops at its event (located on its last step's dense output) or at the end of the time
+allowed; its derivative is never evaluated again, so it costs the others nothing.
+
+One difference, for a motion that switches (a slip that ends): the right-hand side may depend
+on *modes* (the direction of each slip), read at the start of every step and kept through it,
+so a step across the switch integrates the motion before it continued, smoothly. A motion
+switching at its event (friction reversing as the slip ends) then reaches it in a few steps
+where ``solve_ivp`` shrinks its steps many times against the jump, and as accurately; a
+column that switches anywhere but at its event is not answered here.
 Likewise :func:`secant` takes, per column, the iterates of ``scipy.optimize.root_scalar``'s
 secant method.
 
 >>> import numpy as np
 >>> rates = np.array([[1.0, 2.0]])
->>> arrival = integrate_to_events(lambda cols, t, y: rates[:, cols] + 0 * y,
-...                               lambda cols, t, y: y[0] - 1.0, np.zeros((1, 2)), 5.0,
+>>> arrival = integrate_to_events(lambda cols, t, y, modes: rates[:, cols] + 0 * y,
+...                               lambda cols, t, y, modes: y[0] - 1.0, np.zeros((1, 2)), 5.0,
 ...                               1e-11, 1e-12, 20_000)
 >>> arrival.status.tolist(), np.round(arrival.t, 12).tolist()
 ([1, 1], [1.0, 0.5])
@@ -33,9 +40,9 @@ FIRED, NEVER, FAILED = 1, 0, -1
 it, or without an answer this path vouches for (a step too small, too many evaluations, an
 undefined value): that column is solved alone."""
 
-Field = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
-"""``f(columns, t, y)``: a value per column of ``y`` (``columns``: which variants they are,
-``t``: each one's time)."""
+Field = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+"""``f(columns, t, y, modes)``: a value per column of ``y`` (``columns``: which variants they
+are, ``t``: each one's time, ``modes``: each one's modes, see :func:`integrate_to_events`)."""
 
 
 
@@ -57,29 +64,31 @@ class Arrival:
 
 
 def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
-                        rtol: float, atol: float, max_calls: int,
-                        lead: float = 1e-9) -> Arrival:
+                        rtol: float, atol: float, max_calls: int, lead: float = 1e-9,
+                        mode: Callable | None = None) -> Arrival:
     """Integrate ``y' = rhs`` from ``y0`` (states x columns) at t = 0 until ``event`` changes
     sign (or becomes zero), per column, as ``solve_ivp(method="DOP853", events=event)`` with
-    a terminal event does for each column alone (see the module docstring)."""
+    a terminal event does for each column alone; ``mode(columns, t, y)`` gives the modes
+    (modes x columns) each step keeps (see the module docstring)."""
     c = _coefficients()
     m, count = y0.shape
     status = np.full(count, FAILED)
     cols = np.arange(count)
     t = np.zeros(count)
     y = y0.astype(float).copy()
-    f = rhs(cols, t, y)
-    g = event(cols, t, y)
-    h_abs = _first_step(rhs, cols, t, y, f, t_bound, rtol, atol, c)
+    modes = mode(cols, t, y) if mode is not None else np.zeros((0, count))
+    f = rhs(cols, t, y, modes)
+    g = event(cols, t, y, modes)
+    h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
     calls = np.full(count, 2)
     retry = np.zeros(count, dtype=bool)
     moving = np.isfinite(f).all(axis=0) & np.isfinite(g) & (g != 0)
-    history = _History(count, m, c.N_STAGES + 1)
+    history = _History(count, m, c.N_STAGES + 1, len(modes))
     ends = np.zeros((2, count))  # the event's values at the ends of the step it fired in
     exponent = -1.0 / 8.0  # the error estimator's order, 7, plus one
     while moving.any():
         a = np.flatnonzero(moving)
-        ta, ya, fa = t[a], y[:, a], f[:, a]
+        ta, ya, fa, ma = t[a], y[:, a], f[:, a], modes[:, a]
         min_step = 10 * np.abs(np.nextafter(ta, np.inf) - ta)
         ha = np.where(~retry[a] & (h_abs[a] < min_step), min_step, h_abs[a])
         small = retry[a] & (ha < min_step)
@@ -88,9 +97,9 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         K = np.empty((c.N_STAGES + 1, m, len(a)))
         K[0] = fa
         for s in range(1, c.N_STAGES):
-            K[s] = rhs(a, ta + c.C[s] * h, ya + np.tensordot(c.A[s, :s], K[:s], 1) * h)
+            K[s] = rhs(a, ta + c.C[s] * h, ya + np.tensordot(c.A[s, :s], K[:s], 1) * h, ma)
         y_new = ya + h * np.tensordot(c.B, K[:c.N_STAGES], 1)
-        K[c.N_STAGES] = rhs(a, t_new, y_new)
+        K[c.N_STAGES] = rhs(a, t_new, y_new, ma)
         calls[a] += c.N_STAGES
         scale = atol + np.maximum(np.abs(ya), np.abs(y_new)) * rtol
         with np.errstate(all="ignore"):
@@ -112,21 +121,24 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
             continue
         k = np.flatnonzero(accepted)
         b = a[k]
-        history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k])
-        g_new = event(b, t_new[k], y_new[:, k])
+        history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k], ma[:, k])
+        g_new = event(b, t_new[k], y_new[:, k], ma[:, k])
         g_old = g[b]
         t[b], y[:, b], f[:, b], g[b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
         fired = ((g_old <= 0) & (g_new >= 0)) | ((g_old >= 0) & (g_new <= 0))
         undefined = ~np.isfinite(g_new)
+        if mode is not None:  # a switch anywhere but at the event: not answered here
+            modes[:, b] = mode(b, t_new[k], y_new[:, k])
+            undefined |= ~fired & (modes[:, b] != ma[:, k]).any(axis=0)
         ended = ~fired & ~undefined & (t_new[k] >= t_bound)
         status[b[ended]] = NEVER
         status[b[fired]] = FIRED  # provisionally: until its event is located
         ends[:, b[fired]] = g_old[fired], g_new[fired]
         moving[b[fired | undefined | ended]] = False
-    return _arrivals(rhs, event, history, status, ends, lead, c)
+    return _arrivals(rhs, event, mode, history, status, ends, lead, c)
 
 
-def _arrivals(rhs, event, history: "_History", status, ends, lead, c) -> Arrival:
+def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c) -> Arrival:
     """Each fired column's event located on the dense output of the step it fired in, and
     its state a moment before (on the dense output of the step that holds that moment)."""
     m, count = history.y_old.shape[1:]
@@ -138,7 +150,9 @@ def _arrivals(rhs, event, history: "_History", status, ends, lead, c) -> Arrival
         return Arrival(status, t_event, y_event, before)
     last = (history.pushed[e] - 1) % history.size
     dense, t_old, t_new = history.dense(rhs, e, last, c)
-    root, found = _event_time(event, e, dense, t_old, t_new, ends[0, e], ends[1, e])
+    kept = history.modes[last, :, e].T
+    root, found = _event_time(lambda i, t, y: event(e[i], t, y, kept[:, i]), dense, t_old,
+                              t_new, ends[0, e], ends[1, e])
     everyone = np.arange(len(e))
     t_event[e] = root
     y_event[:, e] = dense(root, everyone)
@@ -149,6 +163,8 @@ def _arrivals(rhs, event, history: "_History", status, ends, lead, c) -> Arrival
     if len(back):
         dense_back, _, _ = history.dense(rhs, e[back], slot[back], c)
         before[:, e[back]] = dense_back(earlier[back], np.arange(len(back)))
+    if mode is not None:  # the motion just before the event is the one integrated to it
+        held &= (mode(e, earlier, before[:, e]) == kept).all(axis=0)
     status[e[~(found & held)]] = FAILED  # an event not located, or a moment not kept
     return Arrival(status, t_event, y_event, before)
 
@@ -159,8 +175,9 @@ class _History:
 
     size = 64
 
-    def __init__(self, count: int, m: int, stages: int):
+    def __init__(self, count: int, m: int, stages: int, modes: int):
         L = self.size
+        self.modes = np.zeros((L, modes, count))
         self.t_old = np.full((L, count), np.nan)
         self.t_new = np.full((L, count), np.nan)
         self.y_old = np.zeros((L, m, count))
@@ -168,8 +185,9 @@ class _History:
         self.K = np.zeros((L, stages, m, count))
         self.pushed = np.zeros(count, dtype=int)
 
-    def push(self, cols, t_old, t_new, y_old, y_new, K) -> None:
+    def push(self, cols, t_old, t_new, y_old, y_new, K, modes) -> None:
         slot = self.pushed[cols] % self.size
+        self.modes[slot, :, cols] = modes.T
         self.t_old[slot, cols] = t_old
         self.t_new[slot, cols] = t_new
         self.y_old[slot, :, cols] = y_old.T
@@ -190,10 +208,11 @@ class _History:
         K[:stages] = self.K[slots, :, :, cols].transpose(1, 2, 0)
         t_old, t_new = self.t_old[slots, cols], self.t_new[slots, cols]
         return (_dense(rhs, cols, t_old, t_new - t_old, self.y_old[slots, :, cols].T,
-                       self.y_new[slots, :, cols].T, K, c), t_old, t_new)
+                       self.y_new[slots, :, cols].T, K, self.modes[slots, :, cols].T, c),
+                t_old, t_new)
 
 
-def _first_step(rhs, cols, t, y, f, t_bound, rtol, atol, c) -> np.ndarray:
+def _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol) -> np.ndarray:
     """scipy's ``select_initial_step`` for every column."""
     m = y.shape[0]
     scale = atol + np.abs(y) * rtol
@@ -202,18 +221,19 @@ def _first_step(rhs, cols, t, y, f, t_bound, rtol, atol, c) -> np.ndarray:
         d1 = np.sqrt((((f / scale) ** 2).sum(axis=0)) / m)
         h0 = np.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / d1)
         h0 = np.minimum(h0, t_bound)
-        f1 = rhs(cols, t + h0, y + h0 * f)
+        f1 = rhs(cols, t + h0, y + h0 * f, modes)
         d2 = np.sqrt(((((f1 - f) / scale) ** 2).sum(axis=0)) / m) / h0
         h1 = np.where((d1 <= 1e-15) & (d2 <= 1e-15), np.maximum(1e-6, h0 * 1e-3),
                       (0.01 / np.maximum(d1, d2)) ** (1 / 8))
     return np.minimum(np.minimum(100 * h0, h1), t_bound)
 
 
-def _dense(rhs, cols, t_old, h, y_old, y_new, K, c):
+def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):
     """The DOP853 dense output of each column's last step (its three extra stages
     evaluated): ``at(t, which)`` the states of the columns ``which``, each at its time."""
     for s in range(c.N_STAGES + 1, c.N_STAGES_EXTENDED):
-        K[s] = rhs(cols, t_old + c.C[s] * h, y_old + np.tensordot(c.A[s, :s], K[:s], 1) * h)
+        K[s] = rhs(cols, t_old + c.C[s] * h, y_old + np.tensordot(c.A[s, :s], K[:s], 1) * h,
+                   modes)
     delta = y_new - y_old
     F = np.empty((c.INTERPOLATOR_POWER,) + y_old.shape)
     F[0] = delta
@@ -231,7 +251,7 @@ def _dense(rhs, cols, t_old, h, y_old, y_new, K, c):
     return at
 
 
-def _event_time(event, cols, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
+def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
     """Each column's root of ``event`` on its dense output between ``a`` and ``b`` (where
     it changes sign), to a few units in the last place as ``brentq`` finds it: regula falsi
     with the Illinois correction, bisecting where that stalls. Returns the roots and which
@@ -250,7 +270,7 @@ def _event_time(event, cols, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarra
         lo, hi = np.minimum(a[i], b[i]), np.maximum(a[i], b[i])
         stalled = ~((x > lo) & (x < hi)) | (step % 4 == 3)
         x = np.where(stalled, 0.5 * (a[i] + b[i]), x)
-        fx = event(cols[i], x, dense(x, i))
+        fx = event(i, x, dense(x, i))
         undefined = ~np.isfinite(fx)
         todo[i[undefined]] = False
         same_a = np.sign(fx) == np.sign(fa[i])
