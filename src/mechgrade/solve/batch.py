@@ -50,7 +50,8 @@ from .mutants import (misread, model_mistake_at, model_mistake_table, plausible_
 from .numeric import PROBE_TOL, SINGULAR, solve_numeric
 from .dynamics_mutants import with_generated_mistakes
 from .plan import Plan, _OnFirstCall, plan
-from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution
+from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
+                     Solution)
 
 NEWTON_STEPS = 30
 """Newton steps a non-linear level may take from the reference's root."""
@@ -69,8 +70,9 @@ def solve_variants(problem: Problem,
         chosen = [i for i, g in enumerate(variants) if template.covers(g)]
         for i, solution in zip(chosen, template.solve([variants[i] for i in chosen])):
             # as solve() does: a dynamics solution carries its model's generated mistakes
-            out[i] = (solution if problem.dynamics is None or solution is None
-                      else with_generated_mistakes(problem, solution, variants[i]))
+            out[i] = (with_generated_mistakes(problem, solution, variants[i])
+                      if problem.dynamics is not None and isinstance(solution, Solution)
+                      else solution)
     for i, solution in enumerate(out):
         if solution is None:
             try:
@@ -196,8 +198,10 @@ class _Template:
 
     # -- solving
 
-    def solve(self, variants: list[dict]) -> list[Solution | None]:
-        """Each variant's solution, or ``None`` where it must be solved one by one."""
+    def solve(self, variants: list[dict]) -> list[Solution | MechgradeError | None]:
+        """Each variant's solution (or, for a dynamics problem, the error
+        :func:`~.dynamics.solve_dynamics` raises when no objective is solved), or ``None``
+        where it must be solved one by one."""
         n = len(variants)
         if not n:
             return []
@@ -207,6 +211,7 @@ class _Template:
         if self.kinetics is not None:
             from .dynamics import _symbolic_result as symbolic
         results: list[dict] = [{} for _ in range(n)]
+        lost: list[dict] = [{} for _ in range(n)]
         ok = np.ones(n, dtype=bool)
         base: list = [None] * n
         for group in self.groups:
@@ -272,17 +277,23 @@ class _Template:
                         failures[oid] = answer
                     else:
                         results[i][oid] = answer
-                if failures:
+                if failures and self.kinetics is None:
                     ok[i] = False
-        return [self._solution(results[i], base[i]) if ok[i] else None for i in range(n)]
+                lost[i].update(failures)  # as solve_dynamics keeps them
+        return [self._solution(results[i], base[i], lost[i]) if ok[i] else None
+                for i in range(n)]
 
-    def _solution(self, results: dict, base) -> Solution:
+    def _solution(self, results: dict, base, failures: dict) -> Solution | MechgradeError:
         problem, p = self.problem, self.p
         order = [o.id for o in problem.objectives]
+        if not results and order:  # nothing solved: solve_dynamics raises the first error
+            return failures[order[0]]
         return Solution(problem=problem.id,
                         results=tuple(results[oid] for oid in order if oid in results),
                         state=_state(self.kproblem, p, base),
-                        dof=degrees_of_freedom(p, base[0] if base else None), failures=(),
+                        dof=degrees_of_freedom(p, base[0] if base else None),
+                        failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
+                                       if oid in failures),
                         warnings=tuple(p.k.warnings))
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
@@ -314,8 +325,9 @@ class _Template:
             limit = 1e-9
         values = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in objectives
                   if oid in group.numeric}
-        for v in values.values():
-            ok &= np.isfinite(v).all(axis=0)
+        if self.kinetics is None:  # a dynamics objective undefined there is its failure
+            for v in values.values():
+                ok &= np.isfinite(v).all(axis=0)
         for oid, _, f in requirements:
             if oid in group.numeric:
                 with np.errstate(invalid="ignore"):
@@ -459,12 +471,13 @@ class _Template:
 
         def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                 modes: np.ndarray) -> np.ndarray:
-            return np.concatenate([y[n:], self._accelerations(at(cols, t, y), modes)[qdd]])
+            return np.concatenate([y[n:], self._accelerations(at(cols, t, y), modes,
+                                                              switches)[qdd]])
 
         def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                   modes: np.ndarray) -> np.ndarray:
             v = at(cols, t, y)
-            x = self._accelerations(v, modes) if ap.until_kinetic else \
+            x = self._accelerations(v, modes, switches) if ap.until_kinetic else \
                 np.concatenate([v, reactions[:, :len(cols)]])
             return _loud_call(ap.until, x, 1)[0]
 
@@ -488,10 +501,11 @@ class _Template:
         x[keep] = end[keep]
         return x, ok & fine
 
-    def _accelerations(self, V: np.ndarray, modes: np.ndarray) -> np.ndarray:
+    def _accelerations(self, V: np.ndarray, modes: np.ndarray,
+                       switches: _Switching | None) -> np.ndarray:
         """The extended states with every second rate and reaction solved by least squares
-        (as :func:`~.dynamics.accelerations`), each slip in its direction in ``modes`` (see
-        :func:`_switches`); NaN where the equations are undefined. Called with numpy's
+        (as :func:`~.dynamics.accelerations`), each slip in its direction in ``modes`` (the
+        ``switches`` of the kinetics); NaN where the equations are undefined. Called with numpy's
         warnings silenced."""
         kp = self.kinetics
         assert kp is not None
@@ -500,7 +514,6 @@ class _Template:
         cols = list(kp.columns)
         x[cols] = 0.0
         rows_ = len(kp.labels)
-        switches = _switches(kp)
         jacobian, residual, args = kp.jacobian, kp.residual, x
         if switches is not None:
             jacobian, residual = switches.jacobian, switches.residual

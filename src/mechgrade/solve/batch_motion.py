@@ -46,6 +46,13 @@ are, ``t``: each one's time, ``modes``: each one's modes, see :func:`integrate_t
 
 
 
+def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
+    """``sum_k weights[..., k] * K[k]`` (``K``: stages x states x columns), as
+    ``numpy.tensordot(weights, K, 1)`` without its overhead."""
+    k = weights.shape[-1]
+    return (weights @ K[:k].reshape(k, -1)).reshape(weights.shape[:-1] + K.shape[1:])
+
+
 def _coefficients():
     from scipy.integrate._ivp import dop853_coefficients as c
     return c
@@ -97,14 +104,14 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         K = np.empty((c.N_STAGES + 1, m, len(a)))
         K[0] = fa
         for s in range(1, c.N_STAGES):
-            K[s] = rhs(a, ta + c.C[s] * h, ya + np.tensordot(c.A[s, :s], K[:s], 1) * h, ma)
-        y_new = ya + h * np.tensordot(c.B, K[:c.N_STAGES], 1)
+            K[s] = rhs(a, ta + c.C[s] * h, ya + _combine(c.A[s, :s], K[:s]) * h, ma)
+        y_new = ya + h * _combine(c.B, K[:c.N_STAGES])
         K[c.N_STAGES] = rhs(a, t_new, y_new, ma)
         calls[a] += c.N_STAGES
         scale = atol + np.maximum(np.abs(ya), np.abs(y_new)) * rtol
         with np.errstate(all="ignore"):
-            e5 = ((np.tensordot(c.E5, K, 1) / scale) ** 2).sum(axis=0)
-            e3 = ((np.tensordot(c.E3, K, 1) / scale) ** 2).sum(axis=0)
+            e5 = ((_combine(c.E5, K) / scale) ** 2).sum(axis=0)
+            e3 = ((_combine(c.E3, K) / scale) ** 2).sum(axis=0)
             norm = np.where((e5 == 0) & (e3 == 0), 0.0,
                             np.abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * m))
             grow = np.where(norm == 0, MAX_FACTOR,
@@ -173,16 +180,16 @@ class _History:
     """The last accepted steps of every column (the step's ends and stages), enough to
     build the dense output of any of them."""
 
-    size = 64
+    size = 24
 
     def __init__(self, count: int, m: int, stages: int, modes: int):
         L = self.size
-        self.modes = np.zeros((L, modes, count))
+        self.modes = np.empty((L, modes, count))
         self.t_old = np.full((L, count), np.nan)
         self.t_new = np.full((L, count), np.nan)
-        self.y_old = np.zeros((L, m, count))
-        self.y_new = np.zeros((L, m, count))
-        self.K = np.zeros((L, stages, m, count))
+        self.y_old = np.empty((L, m, count))  # read only where a step was pushed
+        self.y_new = np.empty((L, m, count))
+        self.K = np.empty((L, stages, m, count))
         self.pushed = np.zeros(count, dtype=int)
 
     def push(self, cols, t_old, t_new, y_old, y_new, K, modes) -> None:
@@ -232,14 +239,14 @@ def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):
     """The DOP853 dense output of each column's last step (its three extra stages
     evaluated): ``at(t, which)`` the states of the columns ``which``, each at its time."""
     for s in range(c.N_STAGES + 1, c.N_STAGES_EXTENDED):
-        K[s] = rhs(cols, t_old + c.C[s] * h, y_old + np.tensordot(c.A[s, :s], K[:s], 1) * h,
+        K[s] = rhs(cols, t_old + c.C[s] * h, y_old + _combine(c.A[s, :s], K[:s]) * h,
                    modes)
     delta = y_new - y_old
     F = np.empty((c.INTERPOLATOR_POWER,) + y_old.shape)
     F[0] = delta
     F[1] = h * K[0] - delta
     F[2] = 2 * delta - h * (K[c.N_STAGES] + K[0])
-    F[3:] = h * np.tensordot(c.D, K, 1)
+    F[3:] = h * _combine(c.D, K)
 
     def at(t: np.ndarray, which: np.ndarray) -> np.ndarray:
         x = (t - t_old[which]) / h[which]
