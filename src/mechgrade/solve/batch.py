@@ -223,24 +223,12 @@ class _Template:
             if group.numeric:
                 X, fine, values, mistakes = self._instant(group, maps, True)
                 ok &= fine
-                if self.design is not None:  # the value solved for is given at the instant
-                    at = self.p.index.position(self.design.find)
-                    for i in np.flatnonzero(ok):
-                        maps[i][self.design.find] = (Name(self.design.find), float(X[at, i]),
-                                                     None)
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
                         ok &= np.isfinite(m).all(axis=0)
+                self._keep_state(group, X, ok, maps, base)
                 if self.kinetics is None:
                     generated = self._generated(group, maps, X, ok, values)
-                size = self.p.index.size
-                for i in np.flatnonzero(ok):
-                    if not group.overrides or base[i] is None:
-                        free = group.loose
-                        if self.kinetics is not None:  # the rates the balances solved
-                            free = frozenset(free - {c for c in self.kinetics.columns
-                                                     if c < size and np.isfinite(X[c, i])})
-                        base[i] = (State(X[:size, i], group.after, free), maps[i])
             numeric = [o for o in objectives if o.kind != "symbolic"]
             symbols = [o.id for o in objectives if o.kind == "symbolic"]
             answers: dict = {}  # this problem's symbolic answers, by what they depend on
@@ -282,6 +270,24 @@ class _Template:
                 lost[i].update(failures)  # as solve_dynamics keeps them
         return [self._solution(results[i], base[i], lost[i]) if ok[i] else None
                 for i in range(n)]
+
+    def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
+                    base: list) -> None:
+        """Each variant's solved state and givens (a design parameter's value among them) as
+        the solution reports them: those of the problem's own instant, else the first
+        solved."""
+        if self.design is not None:  # the value solved for is given at the instant
+            at = self.p.index.position(self.design.find)
+            for i in np.flatnonzero(ok):
+                maps[i][self.design.find] = (Name(self.design.find), float(X[at, i]), None)
+        size = self.p.index.size
+        for i in np.flatnonzero(ok):
+            if not group.overrides or base[i] is None:
+                free = group.loose
+                if self.kinetics is not None:  # the rates the balances solved
+                    free = frozenset(free - {c for c in self.kinetics.columns
+                                             if c < size and np.isfinite(X[c, i])})
+                base[i] = (State(X[:size, i], group.after, free), maps[i])
 
     def _solution(self, results: dict, base, failures: dict) -> Solution | MechgradeError:
         problem, p = self.problem, self.p
