@@ -63,23 +63,25 @@ def solve_variants(problem: Problem,
                    variants: Sequence[Mapping[str, float | None] | None]) -> list[Outcome]:
     """``[solve(problem, givens=g) for g in variants]``, each a :class:`Solution` or the
     error :func:`~.entry.solve` raises, computed together (see the module's docstring)."""
-    variants = [dict(g or {}) for g in variants]
-    out: list[Outcome | None] = [None] * len(variants)
+    given = [dict(g or {}) for g in variants]
+    found: list[Outcome | None] = [None] * len(given)
     template = _template(problem)
     if template is not None:
-        chosen = [i for i, g in enumerate(variants) if template.covers(g)]
-        for i, solution in zip(chosen, template.solve([variants[i] for i in chosen])):
+        chosen = [i for i, g in enumerate(given) if template.covers(g)]
+        for i, solution in zip(chosen, template.solve([given[i] for i in chosen])):
             # as solve() does: a dynamics solution carries its model's generated mistakes
-            out[i] = (with_generated_mistakes(problem, solution, variants[i])
-                      if problem.dynamics is not None and isinstance(solution, Solution)
-                      else solution)
-    for i, solution in enumerate(out):
+            found[i] = (with_generated_mistakes(problem, solution, given[i])
+                        if problem.dynamics is not None and isinstance(solution, Solution)
+                        else solution)
+    out: list[Outcome] = []
+    for givens, solution in zip(given, found):
         if solution is None:
             try:
-                out[i] = solve(problem, givens=variants[i])
+                solution = solve(problem, givens=givens)
             except MechgradeError as err:
-                out[i] = err
-    return out  # type: ignore[return-value]
+                solution = err
+        out.append(solution)
+    return out
 
 
 # ---------------------------------------------------------------------------- arrays
@@ -129,6 +131,46 @@ def _loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
 
 
+def _least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The least-squares solution of ``A x = b`` at every column (``A``: rows x unknowns x N,
+    ``b``: rows x N), the minimum-norm one where ``A`` is singular, as ``scipy.linalg.lstsq``
+    gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
+    cost is most of the time of so small a solve)."""
+    rows_, k, count = A.shape
+    solved = np.full((k, count), np.nan)
+    if rows_ == k and k <= 3:
+        det = _determinant(A)
+        with np.errstate(all="ignore"):
+            for j in range(k):
+                replaced = A.copy()
+                replaced[:, j] = b
+                solved[j] = _determinant(replaced) / det
+    left = ~np.isfinite(solved).all(axis=0)
+    if left.any():
+        Ab = A[:, :, left].transpose(2, 0, 1)
+        bb = b[:, left].T[:, :, None]
+        try:
+            part = np.linalg.solve(Ab, bb) if rows_ == k else None
+        except np.linalg.LinAlgError:  # a singular column: the least-squares solution
+            part = None
+        if part is None:
+            part = np.linalg.pinv(Ab) @ bb
+        solved[:, left] = part[:, :, 0].T
+    return solved
+
+
+def _determinant(A: np.ndarray) -> np.ndarray:
+    """The determinant of every column's square matrix of up to three rows."""
+    k = A.shape[0]
+    if k == 1:
+        return A[0, 0]
+    if k == 2:
+        return A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
+    return (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1])
+            - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
+            + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
+
+
 def _least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
     """The minimum-norm least-squares step ``-pinv(J) r`` of every column (``J``: rows x
     unknowns x N, ``r``: rows x N; columns not ``good`` are left at zero), the rank of each
@@ -167,7 +209,7 @@ class _Group:
     solved: tuple[int, ...]
     free: frozenset[int]
     positions: Mapping[str, int]
-    nullity: tuple[int, int, int]
+    nullity: tuple[int, ...]  # per level
     after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
     loose: frozenset[int]  # and leaves free
 
@@ -207,9 +249,10 @@ class _Template:
             return []
         problem = self.problem
         wanted = wanted_objectives(problem, None)
-        symbolic = None
+        symbolic: Callable | None = None
         if self.kinetics is not None:
-            from .dynamics import _symbolic_result as symbolic
+            from .dynamics import _symbolic_result
+            symbolic = _symbolic_result
         results: list[dict] = [{} for _ in range(n)]
         lost: list[dict] = [{} for _ in range(n)]
         ok = np.ones(n, dtype=bool)
@@ -485,6 +528,7 @@ class _Template:
             v = at(cols, t, y)
             x = self._accelerations(v, modes, switches) if ap.until_kinetic else \
                 np.concatenate([v, reactions[:, :len(cols)]])
+            assert ap.until is not None  # an integration has its event
             return _loud_call(ap.until, x, 1)[0]
 
         def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -527,27 +571,17 @@ class _Template:
         A = _loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
         b = _loud_call(residual, args, rows_)
         good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        Ab = np.where(good, A, 0.0).transpose(2, 0, 1)
-        bb = np.where(good, -b, 0.0).T[:, :, None]
-        solved = None
-        if rows_ == len(cols):
-            try:
-                solved = np.linalg.solve(Ab, bb)
-            except np.linalg.LinAlgError:  # a singular column: the least-squares solution
-                pass
-        if solved is None:
-            solved = np.linalg.pinv(Ab) @ bb
-        x[cols] = solved[:, :, 0].T
+        x[cols] = _least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
         x[:, ~good] = np.nan
         return x
 
     def _levels(self, group: _Group, X: np.ndarray, targets, first: int,
-                ok: np.ndarray) -> dict[int, np.ndarray]:
+                ok: np.ndarray) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
         linear rate levels (N x unknowns x nullity)."""
         p = self.p
-        nulls = {}
+        nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
             order = level.order
             unknown = list(group.unknown[order])
@@ -597,8 +631,9 @@ class _Template:
         same = ok.copy()
         before = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
                   if oid in group.numeric}
-        probes = [(p.index.level_of(i), i, None) for i in sorted(group.free)
-                  if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
+        probes: list[tuple[int, int | None, int | None]] = [
+            (p.index.level_of(i), i, None) for i in sorted(group.free)
+            if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
         probes += [(order, None, j) for order, null in nulls.items() if null is not None
                    for j in range(null.shape[2])]
         for order, i, j in probes:
@@ -943,7 +978,8 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
                                  frozenset()))
             continue
         try:
-            if problem.dynamics is not None and problem.dynamics.design is not None:
+            if kinetics is not None and problem.dynamics is not None \
+                    and problem.dynamics.design is not None:
                 from .dynamics import _designed
                 given_map = _designed(problem, kproblem, kinetics, given_map)
             g = place_givens(kproblem, p, given_map)
@@ -958,7 +994,8 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         free = instant.state.free
         if instant.errors or instant.warnings:
             return None
-        unknown, active, target, conditions, nullity = [], [], [], {}, []
+        unknown, active, target, conditions = [], [], [], {}
+        nullity: list[int] = []
         for level in p.levels:
             on, goal = rows(level, g)
             mine = [i for i in p.index.unknowns(level.order)
