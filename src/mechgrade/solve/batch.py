@@ -571,6 +571,9 @@ class _Template:
         A = _loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
         b = _loud_call(residual, args, rows_)
         good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+        if good.all():
+            x[cols] = _least_squares_solution(A, -b)
+            return x
         x[cols] = _least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
         x[:, ~good] = np.nan
         return x

@@ -28,6 +28,7 @@ secant method.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Callable
 
 import numpy as np
@@ -53,6 +54,7 @@ def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
     return (weights @ K[:k].reshape(k, -1)).reshape(weights.shape[:-1] + K.shape[1:])
 
 
+@lru_cache(maxsize=1)
 def _coefficients():
     from scipy.integrate._ivp import dop853_coefficients as c
     return c
@@ -261,8 +263,8 @@ def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):
 def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
     """Each column's root of ``event`` on its dense output between ``a`` and ``b`` (where
     it changes sign), to a few units in the last place as ``brentq`` finds it: regula falsi
-    with the Illinois correction, bisecting where that stalls. Returns the roots and which
-    converged."""
+    with the Illinois correction, bisecting where that stalls, until the bracket or the
+    step is that small. Returns the roots and which converged."""
     a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
     root = np.where(fb == 0, b, a)
     todo = (fa != 0) & (fb != 0)
@@ -289,8 +291,10 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
         b[i] = np.where(same_a, b[i], x)
         fb[i] = np.where(same_a, fb[i], fx)
         last[i] = np.where(same_a, -1, 1)
+        # two iterates a few units in the last place apart: the root is that well known
+        settled = (step > 0) & ~stalled & (np.abs(x - root[i]) <= 4 * EPS * np.abs(x))
         root[i] = x
-        done = (fx == 0) | (np.abs(b[i] - a[i]) <= 4 * EPS + 4 * EPS * np.abs(x))
+        done = (fx == 0) | settled | (np.abs(b[i] - a[i]) <= 4 * EPS + 4 * EPS * np.abs(x))
         done &= ~undefined
         converged[i[done]] = True
         todo[i[done]] = False
