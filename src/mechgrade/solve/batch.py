@@ -138,7 +138,10 @@ def _least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     cost is most of the time of so small a solve)."""
     rows_, k, count = A.shape
     solved = np.full((k, count), np.nan)
-    if rows_ == k and k <= 3:
+    if rows_ == k == 1:
+        with np.errstate(all="ignore"):
+            solved = b / A[0]
+    elif rows_ == k and k <= 3:
         det = _determinant(A)
         with np.errstate(all="ignore"):
             for j in range(k):
@@ -501,40 +504,45 @@ class _Template:
         index = self.p.index
         n, size, count = index.n, index.size, X.shape[1]
         qd, qdd = list(index.rates(1)), list(index.rates(2))
-        reactions = np.zeros((len(kp.kin.reactions), count))
-        extended = np.concatenate([X, reactions])
+        kinetic = size + len(kp.kin.reactions)
+        extended = np.concatenate([X, np.zeros((kinetic - size, count))])
         values = X.copy()
         for i, fn in ap.start:
             values[i] = _call(fn, extended, 1)[0]
         values[index.time] = 0.0
         values[qdd] = 0.0
-
-        def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
-            v = values[:, cols]  # a copy: fancy indexing
-            v[:n] = y[:n]
-            v[qd] = y[n:]
-            v[index.time] = t
-            return v
-
         switches = _switches(kp)
+        # every column's extended state (second rates and reactions 0, as the unknowns of
+        # the balances), then its modes
+        full = np.zeros((kinetic + (switches.count if switches else 0), count))
+        full[:size] = values
+
+        def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+               modes: np.ndarray | None = None) -> np.ndarray:
+            x = full[:, cols]  # a copy: fancy indexing
+            x[:n] = y[:n]
+            x[qd] = y[n:]
+            x[index.time] = t
+            if modes is not None and switches is not None:
+                x[kinetic:] = modes
+            return x
 
         def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                 modes: np.ndarray) -> np.ndarray:
-            return np.concatenate([y[n:], self._accelerations(at(cols, t, y), modes,
+            return np.concatenate([y[n:], self._accelerations(at(cols, t, y, modes),
                                                               switches)[qdd]])
 
         def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                   modes: np.ndarray) -> np.ndarray:
-            v = at(cols, t, y)
-            x = self._accelerations(v, modes, switches) if ap.until_kinetic else \
-                np.concatenate([v, reactions[:, :len(cols)]])
+            x = at(cols, t, y, modes)
+            if ap.until_kinetic:
+                x = self._accelerations(x, switches)
             assert ap.until is not None  # an integration has its event
-            return _loud_call(ap.until, x, 1)[0]
+            return _loud_call(ap.until, x[:kinetic], 1)[0]
 
         def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
             assert switches is not None
-            v = at(cols, t, y)
-            x = np.concatenate([v, reactions[:, :len(cols)]])
+            x = at(cols, t, y)[:kinetic]
             return np.sign(_loud_call(switches.speeds, x, switches.count))
 
         y0 = np.concatenate([values[:n], values[qd]])
@@ -545,29 +553,27 @@ class _Template:
         ok = arrival.status == FIRED
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
-        x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before),
+        x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
                                  group.after)
         keep = [i for i in range(size) if i not in qdd]
         x[keep] = end[keep]
         return x, ok & fine
 
-    def _accelerations(self, V: np.ndarray, modes: np.ndarray,
-                       switches: _Switching | None) -> np.ndarray:
-        """The extended states with every second rate and reaction solved by least squares
-        (as :func:`~.dynamics.accelerations`), each slip in its direction in ``modes`` (the
-        ``switches`` of the kinetics); NaN where the equations are undefined. Called with numpy's
-        warnings silenced."""
+    def _accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
+        """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's
+        direction) with every second rate and reaction solved by least squares (as
+        :func:`~.dynamics.accelerations`), in place; NaN where the equations are undefined.
+        Called with numpy's warnings silenced."""
         kp = self.kinetics
         assert kp is not None
-        count = V.shape[1]
-        x = np.concatenate([V, np.zeros((len(kp.kin.reactions), count))])
+        count = x.shape[1]
         cols = list(kp.columns)
-        x[cols] = 0.0
         rows_ = len(kp.labels)
-        jacobian, residual, args = kp.jacobian, kp.residual, x
         if switches is not None:
-            jacobian, residual = switches.jacobian, switches.residual
-            args = np.concatenate([x, modes])
+            jacobian, residual, args = switches.jacobian, switches.residual, x
+        else:
+            jacobian, residual = kp.jacobian, kp.residual
+            args = x[:len(kp.symbols)]
         A = _loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
         b = _loud_call(residual, args, rows_)
         good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
