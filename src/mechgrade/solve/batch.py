@@ -7,12 +7,20 @@ a variant continues from the configuration the author checked, and for a level w
 (every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
 finds.
 
+A dynamics instant reached otherwise is reached the same way for every variant at once: the
+rates from the energy balance (:func:`~.events.energy_state` on arrays); the motion integrated
+to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
+variants' right-hand sides in one call); a design parameter by the secant iterations of
+:func:`~.dynamics._designed`, per variant, around the whole instant.
+
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
-undefined or not existing there, a contact that slips or lets go. A variant that fails a screen,
-and any problem or variant this path does not cover (integration to an event, work-energy, a
-design parameter, givens the reference does not have), is solved by :func:`~.entry.solve`, so
-the answers and messages are the same either way.
+undefined or not existing there, a contact that slips or lets go, an energy the instant needs
+more of than the start has, an event that does not happen, a design that does not converge. A
+variant that fails a screen, and any problem or variant this path does not cover (givens the
+reference does not have), is solved by :func:`~.entry.solve`, so the answers and messages are
+the same either way. (An objective of a dynamics problem undefined at its instant is that
+variant's failure, as :func:`~.dynamics.solve_dynamics` reports it.)
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
