@@ -182,7 +182,7 @@ class _History:
     """The last accepted steps of every column (the step's ends and stages), enough to
     build the dense output of any of them."""
 
-    size = 24
+    size = 12  # steps kept per column: the moment before the event is in the last few
 
     def __init__(self, count: int, m: int, stages: int, modes: int):
         L = self.size
