@@ -427,10 +427,16 @@ class _Template:
         at = self.p.index.position(self.design.find)
         equation = self.kinetics.design
 
+        last: dict[str, np.ndarray] = {}  # each column's instant at its latest iterate
+
         def residual(cols: np.ndarray, value: np.ndarray) -> np.ndarray:
             moved = X[:, cols].copy()
             moved[at] = value
             reached, fine = self._reached(group, moved, [t[:, cols] for t in targets], False)
+            if not last:
+                last.update(X=np.full((reached.shape[0], n), np.nan),
+                            ok=np.zeros(n, dtype=bool), at=np.full(n, np.nan))
+            last["X"][:, cols], last["ok"][cols], last["at"][cols] = reached, fine, value
             return np.where(fine, _call(equation, reached, 1)[0], np.nan)
 
         guess = self.design.guess
@@ -440,9 +446,20 @@ class _Template:
             root, converged = secant(residual, np.full(n, guess),
                                      np.full(n, guess * (1 + 1e-3) + 1e-12), 1e-15, 1e-13, 100)
         converged &= np.isfinite(root)
-        X[at] = np.where(converged, root, guess)
-        X, ok = self._reached(group, X, targets, degenerate)
-        return X, ok & converged
+        # the secant stops once its next iterate is within 1e-13 of the last one evaluated:
+        # that instant is the root's (as closely as the root is known), not reached again
+        kept = converged & (np.abs(last["at"] - root) <= 1e-13 * np.abs(root) + 1e-15)
+        out, ok = last["X"].copy(), last["ok"] & kept
+        redo = np.flatnonzero(~kept)
+        if len(redo):
+            moved = X[:, redo].copy()
+            moved[at] = np.where(converged[redo], root[redo], guess)
+            out[:, redo], ok[redo] = self._reached(group, moved,
+                                                   [t[:, redo] for t in targets], degenerate)
+        again = np.flatnonzero(kept)
+        if degenerate and len(again) and not isinstance(self.analysis, Integration):
+            ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
+        return out, ok & converged
 
     def _energy(self, X: np.ndarray, ok: np.ndarray) -> np.ndarray:
         """Put in every column the rates the energy balance gives (as

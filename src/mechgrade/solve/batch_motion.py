@@ -305,8 +305,8 @@ def secant(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
            x1: np.ndarray, xtol: float, rtol: float, maxiter: int
            ) -> tuple[np.ndarray, np.ndarray]:
     """Per column, the root ``scipy.optimize.root_scalar(method="secant")`` finds from ``x0``
-    and ``x1``; ``residual(columns, x)`` gives each column's residual (a column may be
-    asked for twice in one call). Returns the roots and which converged (a column whose residual becomes undefined stops, unconverged).
+    and ``x1``; ``residual(columns, x)`` gives each column's residual. Returns the roots and
+    which converged (a column whose residual becomes undefined stops, unconverged).
 
     >>> roots, ok = secant(lambda cols, x: x ** 2 - np.array([2.0, 9.0])[cols],
     ...                    np.array([1.0, 1.0]), np.array([1.1, 1.1]), 1e-15, 1e-13, 100)
@@ -316,8 +316,7 @@ def secant(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
     count = len(x0)
     cols = np.arange(count)
     p0, p1 = x0.astype(float).copy(), x1.astype(float).copy()
-    both = residual(np.concatenate([cols, cols]), np.concatenate([p0, p1]))  # one call
-    q0, q1 = both[:count], both[count:]
+    q0, q1 = residual(cols, p0), residual(cols, p1)
     swap = np.abs(q1) < np.abs(q0)
     p0, p1 = np.where(swap, p1, p0), np.where(swap, p0, p1)
     q0, q1 = np.where(swap, q1, q0), np.where(swap, q0, q1)
