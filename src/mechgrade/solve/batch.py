@@ -7,12 +7,20 @@ a variant continues from the configuration the author checked, and for a level w
 (every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
 finds.
 
+A dynamics instant reached otherwise is reached the same way for every variant at once: the
+rates from the energy balance (:func:`~.events.energy_state` on arrays); the motion integrated
+to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
+variants' right-hand sides in one call); a design parameter by the secant iterations of
+:func:`~.dynamics._designed`, per variant, around the whole instant.
+
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
-undefined or not existing there, a contact that slips or lets go. A variant that fails a screen,
-and any problem or variant this path does not cover (integration to an event, work-energy, a
-design parameter, givens the reference does not have), is solved by :func:`~.entry.solve`, so
-the answers and messages are the same either way.
+undefined or not existing there, a contact that slips or lets go, an energy the instant needs
+more of than the start has, an event that does not happen, a design that does not converge. A
+variant that fails a screen, and any problem or variant this path does not cover (givens the
+reference does not have), is solved by :func:`~.entry.solve`, so the answers and messages are
+the same either way. (An objective of a dynamics problem undefined at its instant is that
+variant's failure, as :func:`~.dynamics.solve_dynamics` reports it.)
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
@@ -35,10 +43,12 @@ import numpy as np
 from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
-from ..spec.dynamics import Impulse
+from ..spec.dynamics import Integration, WorkEnergy
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
+from .batch_motion import FIRED, integrate_to_events, secant
 from .entry import solve
+from .events import ATOL, MAX_CALLS, RTOL, analysis_plan
 from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
@@ -48,7 +58,8 @@ from .mutants import (misread, model_mistake_at, model_mistake_table, plausible_
 from .numeric import PROBE_TOL, SINGULAR, solve_numeric
 from .dynamics_mutants import with_generated_mistakes
 from .plan import Plan, _OnFirstCall, plan
-from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution
+from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
+                     Solution)
 
 NEWTON_STEPS = 30
 """Newton steps a non-linear level may take from the reference's root."""
@@ -60,22 +71,25 @@ def solve_variants(problem: Problem,
                    variants: Sequence[Mapping[str, float | None] | None]) -> list[Outcome]:
     """``[solve(problem, givens=g) for g in variants]``, each a :class:`Solution` or the
     error :func:`~.entry.solve` raises, computed together (see the module's docstring)."""
-    variants = [dict(g or {}) for g in variants]
-    out: list[Outcome | None] = [None] * len(variants)
+    given = [dict(g or {}) for g in variants]
+    found: list[Outcome | None] = [None] * len(given)
     template = _template(problem)
     if template is not None:
-        chosen = [i for i, g in enumerate(variants) if template.covers(g)]
-        for i, solution in zip(chosen, template.solve([variants[i] for i in chosen])):
+        chosen = [i for i, g in enumerate(given) if template.covers(g)]
+        for i, solution in zip(chosen, template.solve([given[i] for i in chosen])):
             # as solve() does: a dynamics solution carries its model's generated mistakes
-            out[i] = (solution if problem.dynamics is None or isinstance(solution, MechgradeError)
-                      else with_generated_mistakes(problem, solution, variants[i]))
-    for i, solution in enumerate(out):
+            found[i] = (with_generated_mistakes(problem, solution, given[i])
+                        if problem.dynamics is not None and isinstance(solution, Solution)
+                        else solution)
+    out: list[Outcome] = []
+    for givens, solution in zip(given, found):
         if solution is None:
             try:
-                out[i] = solve(problem, givens=variants[i])
+                solution = solve(problem, givens=givens)
             except MechgradeError as err:
-                out[i] = err
-    return out  # type: ignore[return-value]
+                solution = err
+        out.append(solution)
+    return out
 
 
 # ---------------------------------------------------------------------------- arrays
@@ -95,8 +109,9 @@ def _batched(f: Callable) -> Callable:
 def _array(rows):
     """``numpy.array`` for the matrices lambdified functions build, with entries of
     different shapes broadcast together."""
-    shapes = {np.shape(e) for row in rows for e in row}
-    if len(shapes) <= 1:
+    arrays = [e.shape for row in rows for e in row if type(e) is np.ndarray]
+    shapes = set(arrays)
+    if not arrays or (len(shapes) == 1 and len(arrays) == len(rows) * len(rows[0])):
         return np.array(rows, dtype=float)
     # a constant entry beside arrays: every entry broadcast to the arrays' shape
     out = np.empty((len(rows), len(rows[0])) + np.broadcast_shapes(*shapes))
@@ -109,13 +124,62 @@ def _array(rows):
 def _call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
     """``f`` at every column of ``X`` (the states, one per column): ``size`` values each, as
     a ``(size, N)`` array."""
-    n = X.shape[1]
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        out = np.asarray(_batched(f)(*X), dtype=float)
+        return _loud_call(f, X, size)
+
+
+def _loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
+    """:func:`_call` for a caller that has silenced numpy's warnings already (an
+    integration evaluates its right-hand side thousands of times)."""
+    n = X.shape[1]
+    out = np.asarray(_batched(f)(*X), dtype=float)
     if out.size == size * n:
         return out.reshape(size, n)
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
+
+
+def _least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The least-squares solution of ``A x = b`` at every column (``A``: rows x unknowns x N,
+    ``b``: rows x N), the minimum-norm one where ``A`` is singular, as ``scipy.linalg.lstsq``
+    gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
+    cost is most of the time of so small a solve)."""
+    rows_, k, count = A.shape
+    solved = np.full((k, count), np.nan)
+    if rows_ == k == 1:
+        with np.errstate(all="ignore"):
+            solved = b / A[0]
+    elif rows_ == k and k <= 3:
+        det = _determinant(A)
+        with np.errstate(all="ignore"):
+            for j in range(k):
+                replaced = A.copy()
+                replaced[:, j] = b
+                solved[j] = _determinant(replaced) / det
+    left = ~np.isfinite(solved).all(axis=0)
+    if left.any():
+        Ab = A[:, :, left].transpose(2, 0, 1)
+        bb = b[:, left].T[:, :, None]
+        try:
+            part = np.linalg.solve(Ab, bb) if rows_ == k else None
+        except np.linalg.LinAlgError:  # a singular column: the least-squares solution
+            part = None
+        if part is None:
+            part = np.linalg.pinv(Ab) @ bb
+        solved[:, left] = part[:, :, 0].T
+    return solved
+
+
+def _determinant(A: np.ndarray) -> np.ndarray:
+    """The determinant of every column's square matrix of up to three rows."""
+    k = A.shape[0]
+    if k == 1:
+        return A[0, 0]
+    if k == 2:
+        return A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
+    return (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1])
+            - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
+            + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
 
 
 def _least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
@@ -156,7 +220,9 @@ class _Group:
     solved: tuple[int, ...]
     free: frozenset[int]
     positions: Mapping[str, int]
-    nullity: tuple[int, int, int]
+    nullity: tuple[int, ...]  # per level
+    after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
+    loose: frozenset[int]  # and leaves free
 
 
 class _Template:
@@ -170,6 +236,9 @@ class _Template:
                          for b in problem.branches}
         self.parameters = {q.name for q in problem.parameters}
         self.plausible = plausible_slips(problem)
+        dynamics = problem.dynamics
+        self.analysis = dynamics.analysis if dynamics is not None else None
+        self.design = dynamics.design if dynamics is not None else None
 
     def covers(self, givens: dict) -> bool:
         """Whether ``givens`` only change values the reference has (no new given, none
@@ -182,17 +251,21 @@ class _Template:
 
     # -- solving
 
-    def solve(self, variants: list[dict]) -> list[Solution | None]:
-        """Each variant's solution, or ``None`` where it must be solved one by one."""
+    def solve(self, variants: list[dict]) -> list[Solution | MechgradeError | None]:
+        """Each variant's solution (or, for a dynamics problem, the error
+        :func:`~.dynamics.solve_dynamics` raises when no objective is solved), or ``None``
+        where it must be solved one by one."""
         n = len(variants)
         if not n:
             return []
         problem = self.problem
         wanted = wanted_objectives(problem, None)
-        symbolic = None
+        symbolic: Callable | None = None
         if self.kinetics is not None:
-            from .dynamics import _symbolic_result as symbolic
+            from .dynamics import _symbolic_result
+            symbolic = _symbolic_result
         results: list[dict] = [{} for _ in range(n)]
+        lost: list[dict] = [{} for _ in range(n)]
         ok = np.ones(n, dtype=bool)
         base: list = [None] * n
         for group in self.groups:
@@ -207,16 +280,9 @@ class _Template:
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
                         ok &= np.isfinite(m).all(axis=0)
+                self._keep_state(group, X, ok, maps, base)
                 if self.kinetics is None:
                     generated = self._generated(group, maps, X, ok, values)
-                size = self.p.index.size
-                for i in np.flatnonzero(ok):
-                    if not group.overrides or base[i] is None:
-                        free = group.free
-                        if self.kinetics is not None:  # the rates the balances solved
-                            free = frozenset(free - {c for c in self.kinetics.columns
-                                                     if c < size and np.isfinite(X[c, i])})
-                        base[i] = (State(X[:size, i], group.known, free), maps[i])
             numeric = [o for o in objectives if o.kind != "symbolic"]
             symbols = [o.id for o in objectives if o.kind == "symbolic"]
             answers: dict = {}  # this problem's symbolic answers, by what they depend on
@@ -253,17 +319,41 @@ class _Template:
                         failures[oid] = answer
                     else:
                         results[i][oid] = answer
-                if failures:
+                if failures and self.kinetics is None:
                     ok[i] = False
-        return [self._solution(results[i], base[i]) if ok[i] else None for i in range(n)]
+                lost[i].update(failures)  # as solve_dynamics keeps them
+        return [self._solution(results[i], base[i], lost[i]) if ok[i] else None
+                for i in range(n)]
 
-    def _solution(self, results: dict, base) -> Solution:
+    def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
+                    base: list) -> None:
+        """Each variant's solved state and givens (a design parameter's value among them) as
+        the solution reports them: those of the problem's own instant, else the first
+        solved."""
+        if self.design is not None:  # the value solved for is given at the instant
+            at = self.p.index.position(self.design.find)
+            for i in np.flatnonzero(ok):
+                maps[i][self.design.find] = (Name(self.design.find), float(X[at, i]), None)
+        size = self.p.index.size
+        for i in np.flatnonzero(ok):
+            if not group.overrides or base[i] is None:
+                free = group.loose
+                if self.kinetics is not None:  # the rates the balances solved
+                    free = frozenset(free - {c for c in self.kinetics.columns
+                                             if c < size and np.isfinite(X[c, i])})
+                base[i] = (State(X[:size, i], group.after, free), maps[i])
+
+    def _solution(self, results: dict, base, failures: dict) -> Solution | MechgradeError:
         problem, p = self.problem, self.p
         order = [o.id for o in problem.objectives]
+        if not results and order:  # nothing solved: solve_dynamics raises the first error
+            return failures[order[0]]
         return Solution(problem=problem.id,
                         results=tuple(results[oid] for oid in order if oid in results),
                         state=_state(self.kproblem, p, base),
-                        dof=degrees_of_freedom(p, base[0] if base else None), failures=(),
+                        dof=degrees_of_freedom(p, base[0] if base else None),
+                        failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
+                                       if oid in failures),
                         warnings=tuple(p.k.warnings))
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
@@ -281,17 +371,11 @@ class _Template:
             elif key in group.conditions:
                 level, row = group.conditions[key]
                 targets[level][row] = column
-        ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
-            np.ones(n, dtype=bool)
-        nulls = self._levels(group, X, targets, 0, ok)
-        if self.kinetics is None and (group.free or any(k for k in group.nullity)):
-            ok &= self._determined(group, X, targets, nulls, ok)
-        ok &= self._on_branch(group, X)
-        if degenerate:
-            ok &= ~self._degenerate(group, X)
+        if self.design is not None:
+            X, ok = self._designed(group, X, targets, degenerate)
+        else:
+            X, ok = self._reached(group, X, targets, degenerate)
         if self.kinetics is not None:
-            X, fine = self._kinetics(X, group.known)
-            ok &= fine
             objectives, mistakes, requirements = (self.kinetics.objectives,
                                                   self.kinetics.mistakes,
                                                   self.kinetics.requirements)
@@ -301,8 +385,9 @@ class _Template:
             limit = 1e-9
         values = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in objectives
                   if oid in group.numeric}
-        for v in values.values():
-            ok &= np.isfinite(v).all(axis=0)
+        if self.kinetics is None:  # a dynamics objective undefined there is its failure
+            for v in values.values():
+                ok &= np.isfinite(v).all(axis=0)
         for oid, _, f in requirements:
             if oid in group.numeric:
                 with np.errstate(invalid="ignore"):
@@ -311,13 +396,226 @@ class _Template:
                     for oid, fs in mistakes if oid in group.numeric}
         return X, ok, values, declared
 
+    def _reached(self, group: _Group, X: np.ndarray, targets: list,
+                 degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
+        """The instants (each column of ``X`` the givens placed, the state extended by the
+        reactions for a dynamics problem) and which passed the screens."""
+        if isinstance(self.analysis, Integration):
+            return self._integrated(group, X)
+        n = X.shape[1]
+        ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
+            np.ones(n, dtype=bool)
+        nulls = self._levels(group, X, targets, 0, ok)
+        if self.kinetics is None and (group.free or any(k for k in group.nullity)):
+            ok &= self._determined(group, X, targets, nulls, ok)
+        ok &= self._on_branch(group, X)
+        if degenerate:
+            ok &= ~self._degenerate(group, X)
+        if self.kinetics is None:
+            return X, ok
+        if isinstance(self.analysis, WorkEnergy):
+            ok &= self._energy(X, ok)
+        X, fine = self._kinetics(X, group.after)
+        return X, ok & fine
+
+    def _designed(self, group: _Group, X: np.ndarray, targets: list,
+                  degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_reached` with the design parameter solved at every column, by the secant
+        iterations :func:`~.dynamics._designed` takes (a column they do not converge for is
+        solved alone, where the bracketing search may find its root)."""
+        assert self.design is not None and self.kinetics is not None
+        at = self.p.index.position(self.design.find)
+        equation = self.kinetics.design
+
+        last: dict[str, np.ndarray] = {}  # each column's instant at its latest iterate
+
+        def residual(cols: np.ndarray, value: np.ndarray) -> np.ndarray:
+            moved = X[:, cols].copy()
+            moved[at] = value
+            reached, fine = self._reached(group, moved, [t[:, cols] for t in targets], False)
+            if not last:
+                last.update(X=np.full((reached.shape[0], n), np.nan),
+                            ok=np.zeros(n, dtype=bool), at=np.full(n, np.nan))
+            last["X"][:, cols], last["ok"][cols], last["at"][cols] = reached, fine, value
+            return np.where(fine, _call(equation, reached, 1)[0], np.nan)
+
+        guess = self.design.guess
+        n = X.shape[1]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            root, converged = secant(residual, np.full(n, guess),
+                                     np.full(n, guess * (1 + 1e-3) + 1e-12), 1e-15, 1e-13, 100)
+        converged &= np.isfinite(root)
+        # the secant stops once its next iterate is within 1e-13 of the last one evaluated:
+        # that instant is the root's (as closely as the root is known), not reached again
+        kept = converged & (np.abs(last["at"] - root) <= 1e-13 * np.abs(root) + 1e-15)
+        out, ok = last["X"].copy(), last["ok"] & kept
+        redo = np.flatnonzero(~kept)
+        if len(redo):
+            moved = X[:, redo].copy()
+            moved[at] = np.where(converged[redo], root[redo], guess)
+            out[:, redo], ok[redo] = self._reached(group, moved,
+                                                   [t[:, redo] for t in targets], degenerate)
+        again = np.flatnonzero(kept)
+        if degenerate and len(again) and not isinstance(self.analysis, Integration):
+            ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
+        return out, ok & converged
+
+    def _energy(self, X: np.ndarray, ok: np.ndarray) -> np.ndarray:
+        """Put in every column the rates the energy balance gives (as
+        :func:`~.events.energy_state` does), and say which columns it would not refuse."""
+        assert self.kinetics is not None and isinstance(self.analysis, WorkEnergy)
+        kp, index = self.kinetics, self.p.index
+        analysis = self.analysis
+        ap = analysis_plan(kp)
+        rates, n = list(index.rates(1)), index.n
+        count = X.shape[1]
+        reactions = np.zeros((len(kp.kin.reactions), count))
+        fine = ok.copy()
+        X[rates] = 0.0
+        X[list(index.rates(2))] = 0.0
+        level = self.p.levels[1]
+        if level.constraint_rows:
+            J = _call(level.jacobian, X, len(level.labels) * n).reshape(
+                len(level.labels), n, count)[:level.constraint_rows]
+            finite = np.isfinite(J).all(axis=(0, 1))
+            fine &= finite
+            _, s, Vt = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1),
+                                     full_matrices=True)
+            big = s > RANK_TOL * np.maximum(s.max(axis=1, initial=0.0), 1.0)[:, None]
+            fine &= big.sum(axis=1) == n - 1  # one free direction
+            u = Vt[:, n - 1, :].T
+        else:
+            fine &= n == 1
+            u = np.ones((n, count))
+        start = np.concatenate([X, reactions])
+        for i, fn in ap.start:
+            start[i] = _call(fn, np.concatenate([X, reactions]), 1)[0]
+        e0 = _call(ap.energy, start, 1)[0]
+        v = _call(ap.energy, np.concatenate([X, reactions]), 1)[0]
+        moving = X.copy()
+        moving[rates] = u
+        with np.errstate(all="ignore"):
+            t_unit = _call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
+            square = (e0 - v) / t_unit
+            fine &= ~(square < -1e-9 * (np.abs(e0) + np.abs(v) + 1e-300) / t_unit)
+            fine &= np.isfinite(square)
+            speed = np.sqrt(np.maximum(square, 0.0))
+        sign = np.ones(count)
+        if analysis.sense:
+            key, sense = analysis.sense[0]
+            component = u[rates.index(index.position(key.text.replace(" ", "")))]
+            fine &= ~((speed > 0) & (np.abs(component) < 1e-12))
+            sign = np.where(speed > 0, np.sign(component) * (1 if sense == "positive" else -1),
+                            1.0)
+        else:
+            fine &= ~(speed > 0)
+        X[rates] = sign * speed * u
+        x = np.concatenate([X, reactions])
+        size = 1.0 + np.abs(X[rates]).max(axis=0, initial=0.0)
+        for _, fn in ap.workless:
+            with np.errstate(invalid="ignore"):
+                fine &= ~(np.abs(_call(fn, x, 1)[0]) > 1e-8 * size)
+        return fine
+
+    def _integrated(self, group: _Group, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Every column's motion integrated from its start state to its event (together:
+        :func:`~.batch_motion.integrate_to_events`, the steps
+        :func:`~.events.integrate_to_event` takes for each alone): the extended state at
+        the event, the accelerations and reactions the limits just before it."""
+        kp = self.kinetics
+        assert kp is not None and isinstance(self.analysis, Integration)
+        ap = analysis_plan(kp)
+        index = self.p.index
+        n, size, count = index.n, index.size, X.shape[1]
+        qd, qdd = list(index.rates(1)), list(index.rates(2))
+        kinetic = size + len(kp.kin.reactions)
+        extended = np.concatenate([X, np.zeros((kinetic - size, count))])
+        values = X.copy()
+        for i, fn in ap.start:
+            values[i] = _call(fn, extended, 1)[0]
+        values[index.time] = 0.0
+        values[qdd] = 0.0
+        switches = _switches(kp)
+        # every column's extended state (second rates and reactions 0, as the unknowns of
+        # the balances), then its modes
+        full = np.zeros((kinetic + (switches.count if switches else 0), count))
+        full[:size] = values
+
+        def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+               modes: np.ndarray | None = None) -> np.ndarray:
+            x = full[:, cols]  # a copy: fancy indexing
+            x[:n] = y[:n]
+            x[qd] = y[n:]
+            x[index.time] = t
+            if modes is not None and switches is not None:
+                x[kinetic:] = modes
+            return x
+
+        def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                modes: np.ndarray) -> np.ndarray:
+            return np.concatenate([y[n:], self._accelerations(at(cols, t, y, modes),
+                                                              switches)[qdd]])
+
+        def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                  modes: np.ndarray) -> np.ndarray:
+            x = at(cols, t, y, modes)
+            if ap.until_kinetic:
+                x = self._accelerations(x, switches)
+            assert ap.until is not None  # an integration has its event
+            return _loud_call(ap.until, x[:kinetic], 1)[0]
+
+        def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+            assert switches is not None
+            x = at(cols, t, y)[:kinetic]
+            return np.sign(_loud_call(switches.speeds, x, switches.count))
+
+        y0 = np.concatenate([values[:n], values[qd]])
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
+                                          MAX_CALLS, mode=mode if switches else None)
+        ok = arrival.status == FIRED
+        everyone = np.arange(count)
+        end = at(everyone, arrival.t, arrival.y)
+        x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
+                                 group.after)
+        keep = [i for i in range(size) if i not in qdd]
+        x[keep] = end[keep]
+        return x, ok & fine
+
+    def _accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
+        """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's
+        direction) with every second rate and reaction solved by least squares (as
+        :func:`~.dynamics.accelerations`), in place; NaN where the equations are undefined.
+        Called with numpy's warnings silenced."""
+        kp = self.kinetics
+        assert kp is not None
+        count = x.shape[1]
+        cols = list(kp.columns)
+        rows_ = len(kp.labels)
+        if switches is not None:
+            jacobian, residual, args = switches.jacobian, switches.residual, x
+        else:
+            jacobian, residual = kp.jacobian, kp.residual
+            args = x[:len(kp.symbols)]
+        A = _loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+        b = _loud_call(residual, args, rows_)
+        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+        if good.all():
+            x[cols] = _least_squares_solution(A, -b)
+            return x
+        x[cols] = _least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
+        x[:, ~good] = np.nan
+        return x
+
     def _levels(self, group: _Group, X: np.ndarray, targets, first: int,
-                ok: np.ndarray) -> dict[int, np.ndarray]:
+                ok: np.ndarray) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
         linear rate levels (N x unknowns x nullity)."""
         p = self.p
-        nulls = {}
+        nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
             order = level.order
             unknown = list(group.unknown[order])
@@ -367,8 +665,9 @@ class _Template:
         same = ok.copy()
         before = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
                   if oid in group.numeric}
-        probes = [(p.index.level_of(i), i, None) for i in sorted(group.free)
-                  if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
+        probes: list[tuple[int, int | None, int | None]] = [
+            (p.index.level_of(i), i, None) for i in sorted(group.free)
+            if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
         probes += [(order, None, j) for order, null in nulls.items() if null is not None
                    for j in range(null.shape[2])]
         for order, i, j in probes:
@@ -609,6 +908,71 @@ def _nullity(p: Plan, level, values: np.ndarray, active: np.ndarray, unknown: li
     return len(unknown) - int(rank[0])
 
 
+@dataclass(frozen=True)
+class _Switching:
+    """The kinetics with each ``|u|`` and ``sign(u)`` read with a direction given beside the
+    state (one per ``u``, the *mode*: ``|u|`` as ``mode * u``): the equations of the motion
+    before a slip ends, continued smoothly past it. ``speeds`` gives every ``u``."""
+
+    speeds: Callable
+    residual: Callable
+    jacobian: Callable
+    count: int
+
+
+@lru_cache(maxsize=64)
+def _switches(kp) -> _Switching | None:
+    """The kinetics of ``kp`` with their switches read as :class:`_Switching` says; ``None``
+    when nothing switches."""
+    import sympy as sp
+
+    exprs = [e.expr for e in (*kp.kin.balances, *kp.kin.constraints)]
+    speeds: list = []
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, (sp.Abs, sp.sign)) and node.args[0] not in speeds:
+                speeds.append(node.args[0])
+    if not speeds:
+        return None
+    modes = sp.symbols(f"_mode0:{len(speeds)}")
+    table = dict(zip(speeds, modes))
+
+    def kept(e):
+        e = e.replace(lambda a: isinstance(a, sp.Abs) and a.args[0] in table,
+                      lambda a: table[a.args[0]] * a.args[0])
+        return e.replace(lambda a: isinstance(a, sp.sign) and a.args[0] in table,
+                         lambda a: table[a.args[0]])
+
+    matrix = sp.Matrix([kept(e) for e in exprs])
+    unknowns = [kp.symbols[i] for i in kp.columns]
+    symbols = (*kp.symbols, *modes)
+    return _Switching(
+        speeds=sp.lambdify(kp.symbols, speeds, modules="numpy", cse=True),
+        residual=sp.lambdify(symbols, matrix, modules="numpy", cse=True),
+        jacobian=sp.lambdify(symbols, matrix.jacobian(unknowns), modules="numpy", cse=True),
+        count=len(speeds))
+
+
+def _positions(p: Plan, given_map: dict) -> dict[str, int]:
+    """Where each given of a coordinate, rate, parameter or ``t`` sits in the state."""
+    return {key: p.index.symbols.index(p.k.quantity(node))
+            for key, (node, _, _) in given_map.items() if isinstance(node, (Name, Prime))}
+
+
+def _integration_group(p: Plan, overrides: dict, objectives, numeric: frozenset,
+                       given_map: dict, g) -> _Group:
+    """An instant reached by integrating the motion: only the givens are placed (the start
+    state and the motion come from them), and the state at the event has its coordinates,
+    rates, parameters and time known (as :func:`~.events.integrate_to_event` marks them)."""
+    index = p.index
+    after = np.zeros(index.size, dtype=bool)
+    after[list(index.config)] = True
+    after[list(index.rates(1))] = True
+    return _Group(overrides, tuple(objectives), numeric, given_map, g.values.copy(),
+                  g.known.copy(), ((), (), ()), (), (), {}, (), frozenset(),
+                  _positions(p, given_map), (0, 0, 0), after, frozenset())
+
+
 def _template(problem: Problem) -> _Template | None:
     return _template_cached(problem, locations(problem))
 
@@ -620,14 +984,9 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     objective, a freedom, a warning)."""
     kinetics = None
     kproblem = problem
+    analysis = problem.dynamics.analysis if problem.dynamics is not None else None
     if problem.dynamics is not None:
         from .dynamics import kinematic_problem, kinetics_plan
-        # at an instant or an impact; not reached by work-energy or an integration, nor with a
-        # design parameter solved for
-        if not (problem.dynamics.analysis is None or
-                isinstance(problem.dynamics.analysis, Impulse)) or \
-                problem.dynamics.design is not None:
-            return None
         kinetics = kinetics_plan(problem)
         kproblem = kinematic_problem(problem)
         p = kinetics.kp
@@ -649,18 +1008,28 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             empty = np.zeros(p.index.size)
             groups.append(_Group(overrides, tuple(objectives), numeric, given_map, empty,
                                  empty.astype(bool), ((), (), ()), (), (), {}, (),
-                                 frozenset(), {}, (0, 0, 0)))
+                                 frozenset(), {}, (0, 0, 0), empty.astype(bool),
+                                 frozenset()))
             continue
         try:
+            if kinetics is not None and problem.dynamics is not None \
+                    and problem.dynamics.design is not None:
+                from .dynamics import _designed
+                given_map = _designed(problem, kproblem, kinetics, given_map)
+            g = place_givens(kproblem, p, given_map)
+            if isinstance(analysis, Integration):
+                groups.append(_integration_group(p, overrides, objectives, numeric,
+                                                 given_map, g))
+                continue
             instant = solve_numeric(kproblem, p, given_map,
                                     set() if kinetics is not None else set(numeric))
-            g = place_givens(kproblem, p, given_map)
         except MechgradeError:
             return None
         free = instant.state.free
         if instant.errors or instant.warnings:
             return None
-        unknown, active, target, conditions, nullity = [], [], [], {}, []
+        unknown, active, target, conditions = [], [], [], {}
+        nullity: list[int] = []
         for level in p.levels:
             on, goal = rows(level, g)
             mine = [i for i in p.index.unknowns(level.order)
@@ -673,13 +1042,14 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             for j, key in enumerate(level.conditions):
                 conditions[key] = (level.order, level.constraint_rows + j)
         solved = tuple(i for i in p.index.config if not g.known[i] and i not in free)
-        positions = {key: p.index.symbols.index(p.k.quantity(node))
-                     for key, (node, _, _) in given_map.items()
-                     if isinstance(node, (Name, Prime))}
+        after, loose = g.known.copy(), free
+        if isinstance(analysis, WorkEnergy):  # the energy balance fixes the rates
+            after[list(p.index.rates(1))] = True
+            loose = frozenset()
         groups.append(_Group(overrides, tuple(objectives), numeric, given_map,
                              instant.state.values.copy(), g.known.copy(), tuple(unknown),
                              tuple(active), tuple(target), conditions, solved, free,
-                             positions, tuple(nullity)))
+                             _positions(p, given_map), tuple(nullity), after, loose))
     if not groups:
         return None
     return _Template(problem, kproblem, p, kinetics, tuple(groups))

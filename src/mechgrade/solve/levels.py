@@ -71,7 +71,7 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
     index = p.index
     values = np.full(index.size, np.nan)
     known = np.zeros(index.size, dtype=bool)
-    conditions = ({}, {}, {})
+    conditions: tuple[dict[str, float], dict[str, float], dict[str, float]] = ({}, {}, {})
     texts, wheres = {}, {}
     for key, (node, si, given) in givens.items():
         texts[key] = f"{key} = {given.text}" if given is not None else f"{key} = {si:g} (SI)"
@@ -270,7 +270,9 @@ def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Give
             found.append(full)
     if not found:
         full = best[1] if best is not None else x
-        raise _unsolved(problem, level, g, full, active, target, len(determined), len(starts))
+        error = _unsolved(problem, level, g, full, active, target, len(determined), len(starts))
+        assert error is not None, "no start solved the level, so a residual is left"
+        raise error
     roots = [r for r in found if _on_branch(g, r, determined)]
     if not roots:
         wanted = "; ".join(f"{p.index.spelling(i)}: {g.branches[i].value}"
@@ -373,8 +375,8 @@ def author_units(problem: Problem, p: Plan, g: Givens | None = None) -> list[str
             out.append(written[name])
         elif i == index.time:
             out.append("s")
-        elif index.coordinate_of(i) and index.level_of(i):
-            base = declared[index.coordinate_of(i)] or "1"
+        elif (coordinate := index.coordinate_of(i)) and index.level_of(i):
+            base = declared[coordinate] or "1"
             out.append(f"{base}/s" if index.level_of(i) == 1 else f"{base}/s^2")
         else:
             out.append(declared.get(name, ""))
@@ -457,10 +459,10 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
             r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
             scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
         labels = np.array(level.labels)[active]
-        bad = [i for i in range(len(r)) if not abs(r[i]) <= problem.consistency * scale[i]
+        off = [i for i in range(len(r)) if not abs(r[i]) <= problem.consistency * scale[i]
                + 1e-10]
-        if bad:
-            i = bad[0]
+        if off:
+            i = off[0]
             raise InconsistentError(
                 f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
                 f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "

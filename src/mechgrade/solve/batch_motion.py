@@ -1,0 +1,348 @@
+"""Numerics of many variants at once, each a column of a stacked array: the motions integrated
+to their events, and a secant iteration on one scalar per variant.
+
+Every column takes the steps :func:`scipy.integrate.solve_ivp` (DOP853) would take for it
+alone — its own step size, error norm, accepted and rejected steps, the same coefficients —
+while the right-hand side is evaluated for all the columns still moving in one call. A column
+stops at its event (located on its last step's dense output) or at the end of the time
+allowed; its derivative is never evaluated again, so it costs the others nothing.
+
+One difference, for a motion that switches (a slip that ends): the right-hand side may depend
+on *modes* (the direction of each slip), read at the start of every step and kept through it,
+so a step across the switch integrates the motion before it continued, smoothly. A motion
+switching at its event (friction reversing as the slip ends) then reaches it in a few steps
+where ``solve_ivp`` shrinks its steps many times against the jump, and as accurately; a
+column that switches anywhere but at its event is not answered here.
+Likewise :func:`secant` takes, per column, the iterates of ``scipy.optimize.root_scalar``'s
+secant method.
+
+>>> import numpy as np
+>>> rates = np.array([[1.0, 2.0]])
+>>> arrival = integrate_to_events(lambda cols, t, y, modes: rates[:, cols] + 0 * y,
+...                               lambda cols, t, y, modes: y[0] - 1.0, np.zeros((1, 2)), 5.0,
+...                               1e-11, 1e-12, 20_000)
+>>> arrival.status.tolist(), np.round(arrival.t, 12).tolist()
+([1, 1], [1.0, 0.5])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Callable
+
+import numpy as np
+
+SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # as scipy's Runge-Kutta step control
+EPS = np.finfo(float).eps
+
+FIRED, NEVER, FAILED = 1, 0, -1
+"""How a column's integration ended: at its event, at the end of the time allowed without
+it, or without an answer this path vouches for (a step too small, too many evaluations, an
+undefined value): that column is solved alone."""
+
+Field = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+"""``f(columns, t, y, modes)``: a value per column of ``y`` (``columns``: which variants they
+are, ``t``: each one's time, ``modes``: each one's modes, see :func:`integrate_to_events`)."""
+
+
+
+def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
+    """``sum_k weights[..., k] * K[k]`` (``K``: stages x states x columns), as
+    ``numpy.tensordot(weights, K, 1)`` without its overhead."""
+    k = weights.shape[-1]
+    return (weights @ K[:k].reshape(k, -1)).reshape(weights.shape[:-1] + K.shape[1:])
+
+
+@lru_cache(maxsize=1)
+def _coefficients():
+    from scipy.integrate._ivp import dop853_coefficients as c
+    return c
+
+
+@dataclass(frozen=True)
+class Arrival:
+    """Where each column's integration ended: ``status`` (:data:`FIRED`, :data:`NEVER` or
+    :data:`FAILED`), the time ``t`` and state ``y`` of the event, and ``before``: the state a
+    moment earlier (``t * (1 - lead)``), read on the same dense output."""
+
+    status: np.ndarray
+    t: np.ndarray
+    y: np.ndarray
+    before: np.ndarray
+
+
+def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
+                        rtol: float, atol: float, max_calls: int, lead: float = 1e-9,
+                        mode: Callable | None = None) -> Arrival:
+    """Integrate ``y' = rhs`` from ``y0`` (states x columns) at t = 0 until ``event`` changes
+    sign (or becomes zero), per column, as ``solve_ivp(method="DOP853", events=event)`` with
+    a terminal event does for each column alone; ``mode(columns, t, y)`` gives the modes
+    (modes x columns) each step keeps (see the module docstring)."""
+    c = _coefficients()
+    m, count = y0.shape
+    status = np.full(count, FAILED)
+    cols = np.arange(count)
+    t = np.zeros(count)
+    y = y0.astype(float).copy()
+    modes = mode(cols, t, y) if mode is not None else np.zeros((0, count))
+    f = rhs(cols, t, y, modes)
+    g = event(cols, t, y, modes)
+    h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
+    calls = np.full(count, 2)
+    retry = np.zeros(count, dtype=bool)
+    moving = np.isfinite(f).all(axis=0) & np.isfinite(g) & (g != 0)
+    history = _History(count, m, c.N_STAGES + 1, len(modes))
+    ends = np.zeros((2, count))  # the event's values at the ends of the step it fired in
+    exponent = -1.0 / 8.0  # the error estimator's order, 7, plus one
+    while moving.any():
+        a = np.flatnonzero(moving)
+        ta, ya, fa, ma = t[a], y[:, a], f[:, a], modes[:, a]
+        min_step = 10 * np.abs(np.nextafter(ta, np.inf) - ta)
+        ha = np.where(~retry[a] & (h_abs[a] < min_step), min_step, h_abs[a])
+        small = retry[a] & (ha < min_step)
+        t_new = np.minimum(ta + ha, t_bound)
+        h = t_new - ta
+        K = np.empty((c.N_STAGES + 1, m, len(a)))
+        K[0] = fa
+        for s in range(1, c.N_STAGES):
+            K[s] = rhs(a, ta + c.C[s] * h, ya + _combine(c.A[s, :s], K[:s]) * h, ma)
+        y_new = ya + h * _combine(c.B, K[:c.N_STAGES])
+        K[c.N_STAGES] = rhs(a, t_new, y_new, ma)
+        calls[a] += c.N_STAGES
+        scale = atol + np.maximum(np.abs(ya), np.abs(y_new)) * rtol
+        with np.errstate(all="ignore"):
+            e5 = ((_combine(c.E5, K) / scale) ** 2).sum(axis=0)
+            e3 = ((_combine(c.E3, K) / scale) ** 2).sum(axis=0)
+            norm = np.where((e5 == 0) & (e3 == 0), 0.0,
+                            np.abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * m))
+            grow = np.where(norm == 0, MAX_FACTOR,
+                            np.minimum(MAX_FACTOR, SAFETY * norm ** exponent))
+            shrink = np.maximum(MIN_FACTOR, SAFETY * norm ** exponent)
+        broken = small | ~np.isfinite(norm) | ~np.isfinite(y_new).all(axis=0) | \
+            (calls[a] > max_calls)
+        accepted = (norm < 1) & ~broken
+        h_abs[a] = np.abs(h) * np.where(
+            accepted, np.where(retry[a], np.minimum(1.0, grow), grow), shrink)
+        retry[a] = ~accepted
+        moving[a[broken]] = False
+        if not accepted.any():
+            continue
+        k = np.flatnonzero(accepted)
+        b = a[k]
+        history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k], ma[:, k])
+        g_new = event(b, t_new[k], y_new[:, k], ma[:, k])
+        g_old = g[b]
+        t[b], y[:, b], f[:, b], g[b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
+        fired = ((g_old <= 0) & (g_new >= 0)) | ((g_old >= 0) & (g_new <= 0))
+        undefined = ~np.isfinite(g_new)
+        if mode is not None:  # a switch anywhere but at the event: not answered here
+            modes[:, b] = mode(b, t_new[k], y_new[:, k])
+            undefined |= ~fired & (modes[:, b] != ma[:, k]).any(axis=0)
+        ended = ~fired & ~undefined & (t_new[k] >= t_bound)
+        status[b[ended]] = NEVER
+        status[b[fired]] = FIRED  # provisionally: until its event is located
+        ends[:, b[fired]] = g_old[fired], g_new[fired]
+        moving[b[fired | undefined | ended]] = False
+    return _arrivals(rhs, event, mode, history, status, ends, lead, c)
+
+
+def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c) -> Arrival:
+    """Each fired column's event located on the dense output of the step it fired in, and
+    its state a moment before (on the dense output of the step that holds that moment)."""
+    m, count = history.y_old.shape[1:]
+    t_event = np.full(count, np.nan)
+    y_event = np.full((m, count), np.nan)
+    before = np.full((m, count), np.nan)
+    e = np.flatnonzero(status == FIRED)
+    if not len(e):
+        return Arrival(status, t_event, y_event, before)
+    last = (history.pushed[e] - 1) % history.size
+    dense, t_old, t_new = history.dense(rhs, e, last, c)
+    kept = history.modes[last, :, e].T
+    root, found = _event_time(lambda i, t, y: event(e[i], t, y, kept[:, i]), dense, t_old,
+                              t_new, ends[0, e], ends[1, e])
+    everyone = np.arange(len(e))
+    t_event[e] = root
+    y_event[:, e] = dense(root, everyone)
+    earlier = root * (1 - lead)
+    before[:, e] = dense(np.clip(earlier, t_old, t_new), everyone)
+    slot, held = history.holding(e, earlier)
+    back = np.flatnonzero(held & (slot != last))
+    if len(back):
+        dense_back, _, _ = history.dense(rhs, e[back], slot[back], c)
+        before[:, e[back]] = dense_back(earlier[back], np.arange(len(back)))
+    if mode is not None:  # the motion just before the event is the one integrated to it
+        held &= (mode(e, earlier, before[:, e]) == kept).all(axis=0)
+    status[e[~(found & held)]] = FAILED  # an event not located, or a moment not kept
+    return Arrival(status, t_event, y_event, before)
+
+
+class _History:
+    """The last accepted steps of every column (the step's ends and stages), enough to
+    build the dense output of any of them."""
+
+    size = 12  # steps kept per column: the moment before the event is in the last few
+
+    def __init__(self, count: int, m: int, stages: int, modes: int):
+        L = self.size
+        self.modes = np.empty((L, modes, count))
+        self.t_old = np.full((L, count), np.nan)
+        self.t_new = np.full((L, count), np.nan)
+        self.y_old = np.empty((L, m, count))  # read only where a step was pushed
+        self.y_new = np.empty((L, m, count))
+        self.K = np.empty((L, stages, m, count))
+        self.pushed = np.zeros(count, dtype=int)
+
+    def push(self, cols, t_old, t_new, y_old, y_new, K, modes) -> None:
+        slot = self.pushed[cols] % self.size
+        self.modes[slot, :, cols] = modes.T
+        self.t_old[slot, cols] = t_old
+        self.t_new[slot, cols] = t_new
+        self.y_old[slot, :, cols] = y_old.T
+        self.y_new[slot, :, cols] = y_new.T
+        self.K[slot, :, :, cols] = K.transpose(2, 0, 1)
+        self.pushed[cols] += 1
+
+    def holding(self, cols, t) -> tuple[np.ndarray, np.ndarray]:
+        """The slot of the step of each column that holds its time ``t`` (``t_old < t <=
+        t_new``, as ``OdeSolution`` picks the step), and whether one is kept."""
+        inside = (self.t_old[:, cols] < t) & (t <= self.t_new[:, cols])
+        return inside.argmax(axis=0), inside.any(axis=0)
+
+    def dense(self, rhs, cols, slots, c):
+        """The dense output of each column's step in ``slots``, and the steps' ends."""
+        stages = self.K.shape[1]
+        K = np.empty((c.N_STAGES_EXTENDED,) + self.y_old.shape[1:2] + (len(cols),))
+        K[:stages] = self.K[slots, :, :, cols].transpose(1, 2, 0)
+        t_old, t_new = self.t_old[slots, cols], self.t_new[slots, cols]
+        return (_dense(rhs, cols, t_old, t_new - t_old, self.y_old[slots, :, cols].T,
+                       self.y_new[slots, :, cols].T, K, self.modes[slots, :, cols].T, c),
+                t_old, t_new)
+
+
+def _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol) -> np.ndarray:
+    """scipy's ``select_initial_step`` for every column."""
+    m = y.shape[0]
+    scale = atol + np.abs(y) * rtol
+    with np.errstate(all="ignore"):
+        d0 = np.sqrt((((y / scale) ** 2).sum(axis=0)) / m)
+        d1 = np.sqrt((((f / scale) ** 2).sum(axis=0)) / m)
+        h0 = np.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / d1)
+        h0 = np.minimum(h0, t_bound)
+        f1 = rhs(cols, t + h0, y + h0 * f, modes)
+        d2 = np.sqrt(((((f1 - f) / scale) ** 2).sum(axis=0)) / m) / h0
+        h1 = np.where((d1 <= 1e-15) & (d2 <= 1e-15), np.maximum(1e-6, h0 * 1e-3),
+                      (0.01 / np.maximum(d1, d2)) ** (1 / 8))
+    return np.minimum(np.minimum(100 * h0, h1), t_bound)
+
+
+def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):
+    """The DOP853 dense output of each column's last step (its three extra stages
+    evaluated): ``at(t, which)`` the states of the columns ``which``, each at its time."""
+    for s in range(c.N_STAGES + 1, c.N_STAGES_EXTENDED):
+        K[s] = rhs(cols, t_old + c.C[s] * h, y_old + _combine(c.A[s, :s], K[:s]) * h,
+                   modes)
+    delta = y_new - y_old
+    F = np.empty((c.INTERPOLATOR_POWER,) + y_old.shape)
+    F[0] = delta
+    F[1] = h * K[0] - delta
+    F[2] = 2 * delta - h * (K[c.N_STAGES] + K[0])
+    F[3:] = h * _combine(c.D, K)
+
+    def at(t: np.ndarray, which: np.ndarray) -> np.ndarray:
+        x = (t - t_old[which]) / h[which]
+        y = np.zeros((y_old.shape[0], len(which)))
+        for i, term in enumerate(F[::-1, :, which]):
+            y += term
+            y *= x if i % 2 == 0 else 1 - x
+        return y + y_old[:, which]
+    return at
+
+
+def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
+    """Each column's root of ``event`` on its dense output between ``a`` and ``b`` (where
+    it changes sign), to a few units in the last place as ``brentq`` finds it: regula falsi
+    with the Illinois correction, bisecting where that stalls, until the bracket or the
+    step is that small. Returns the roots and which converged."""
+    a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
+    root = np.where(fb == 0, b, a)
+    todo = (fa != 0) & (fb != 0)
+    converged = ~todo
+    last = np.zeros(len(a), dtype=int)  # which end moved last: -1 a, +1 b
+    for step in range(200):
+        if not todo.any():
+            break
+        i = np.flatnonzero(todo)
+        with np.errstate(all="ignore"):
+            x = (a[i] * fb[i] - b[i] * fa[i]) / (fb[i] - fa[i])
+        lo, hi = np.minimum(a[i], b[i]), np.maximum(a[i], b[i])
+        stalled = ~((x > lo) & (x < hi)) | (step % 4 == 3)
+        x = np.where(stalled, 0.5 * (a[i] + b[i]), x)
+        fx = event(i, x, dense(x, i))
+        undefined = ~np.isfinite(fx)
+        todo[i[undefined]] = False
+        same_a = np.sign(fx) == np.sign(fa[i])
+        # Illinois: the end that stays twice in a row has its value halved
+        fb[i] = np.where(same_a & (last[i] == -1), fb[i] / 2, fb[i])
+        fa[i] = np.where(~same_a & (last[i] == 1), fa[i] / 2, fa[i])
+        a[i] = np.where(same_a, x, a[i])
+        fa[i] = np.where(same_a, fx, fa[i])
+        b[i] = np.where(same_a, b[i], x)
+        fb[i] = np.where(same_a, fb[i], fx)
+        last[i] = np.where(same_a, -1, 1)
+        # two iterates a few units in the last place apart: the root is that well known
+        settled = (step > 0) & ~stalled & (np.abs(x - root[i]) <= 4 * EPS * np.abs(x))
+        root[i] = x
+        done = (fx == 0) | settled | (np.abs(b[i] - a[i]) <= 4 * EPS + 4 * EPS * np.abs(x))
+        done &= ~undefined
+        converged[i[done]] = True
+        todo[i[done]] = False
+    return root, converged
+
+
+def secant(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndarray,
+           x1: np.ndarray, xtol: float, rtol: float, maxiter: int
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """Per column, the root ``scipy.optimize.root_scalar(method="secant")`` finds from ``x0``
+    and ``x1``; ``residual(columns, x)`` gives each column's residual. Returns the roots and
+    which converged (a column whose residual becomes undefined stops, unconverged).
+
+    >>> roots, ok = secant(lambda cols, x: x ** 2 - np.array([2.0, 9.0])[cols],
+    ...                    np.array([1.0, 1.0]), np.array([1.1, 1.1]), 1e-15, 1e-13, 100)
+    >>> np.round(roots, 12).tolist(), ok.tolist()
+    ([1.414213562373, 3.0], [True, True])
+    """
+    count = len(x0)
+    cols = np.arange(count)
+    p0, p1 = x0.astype(float).copy(), x1.astype(float).copy()
+    q0, q1 = residual(cols, p0), residual(cols, p1)
+    swap = np.abs(q1) < np.abs(q0)
+    p0, p1 = np.where(swap, p1, p0), np.where(swap, p0, p1)
+    q0, q1 = np.where(swap, q1, q0), np.where(swap, q0, q1)
+    root = np.full(count, np.nan)
+    converged = np.zeros(count, dtype=bool)
+    todo = np.isfinite(q0) & np.isfinite(q1)
+    for _ in range(maxiter):
+        if not todo.any():
+            break
+        i = np.flatnonzero(todo)
+        flat = q1[i] == q0[i]  # scipy stops there, unconverged
+        todo[i[flat]] = False
+        with np.errstate(all="ignore"):
+            p = np.where(np.abs(q1[i]) > np.abs(q0[i]),
+                         (-q0[i] / q1[i] * p1[i] + p0[i]) / (1 - q0[i] / q1[i]),
+                         (-q1[i] / q0[i] * p0[i] + p1[i]) / (1 - q1[i] / q0[i]))
+        close = ~flat & np.isclose(p, p1[i], rtol=rtol, atol=xtol)
+        root[i[close]] = p[close]
+        converged[i[close]] = True
+        todo[i[close]] = False
+        go = ~flat & ~close
+        j = i[go]
+        if not len(j):
+            break
+        p0[j], q0[j] = p1[j], q1[j]
+        p1[j] = p[go]
+        q1[j] = residual(j, p1[j])
+        todo[j[~np.isfinite(q1[j])]] = False
+    return root, converged

@@ -1,0 +1,92 @@
+"""Many columns integrated to their events, or iterated to their roots, at once: each as
+scipy's solvers take it alone."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import integrate, optimize
+
+from mechgrade.solve.batch_motion import (FAILED, FIRED, NEVER, integrate_to_events,
+                                          secant)
+
+OMEGA = np.array([1.0, 2.0, 3.0])
+
+
+def oscillators(cols, t, y, modes):
+    """x'' = -omega^2 x for every column."""
+    return np.array([y[1], -OMEGA[cols] ** 2 * y[0]])
+
+
+def crossing(level):
+    return lambda cols, t, y, modes: y[0] - level[cols]
+
+
+def test_each_column_reaches_its_event_where_solve_ivp_finds_it():
+    level = np.array([0.5, -0.25, 0.0])
+    y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
+    arrival = integrate_to_events(oscillators, crossing(level), y0, 10.0, 1e-11, 1e-12, 20_000)
+    assert arrival.status.tolist() == [FIRED] * 3
+    for j in range(3):
+        def event(t, y):
+            return y[0] - level[j]
+        event.terminal = True
+        alone = integrate.solve_ivp(lambda t, y: oscillators(np.array([j]), t, y[:, None],
+                                                             None)[:, 0],
+                                    (0.0, 10.0), y0[:, j], method="DOP853", rtol=1e-11,
+                                    atol=1e-12, events=event, dense_output=True)
+        assert arrival.t[j] == pytest.approx(alone.t_events[0][0], rel=1e-13)
+        assert np.allclose(arrival.y[:, j], alone.y_events[0][0], rtol=1e-12, atol=1e-13)
+        earlier = alone.sol(alone.t_events[0][0] * (1 - 1e-9))
+        assert np.allclose(arrival.before[:, j], earlier, rtol=1e-12, atol=1e-13)
+    assert arrival.t == pytest.approx(np.arccos(level) / OMEGA, rel=1e-10)
+
+
+def test_a_column_whose_event_never_happens_ends_at_the_time_allowed_without_it():
+    level = np.array([0.5, 2.0, 0.5])  # the second never reaches 2
+    y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
+    arrival = integrate_to_events(oscillators, crossing(level), y0, 3.0, 1e-11, 1e-12, 20_000)
+    assert arrival.status.tolist() == [FIRED, NEVER, FIRED]
+    assert np.isnan(arrival.t[1])
+
+
+def test_a_column_that_starts_on_its_event_or_runs_out_of_evaluations_is_left_alone():
+    level = np.array([1.0, 0.5, -0.9])
+    y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
+    arrival = integrate_to_events(oscillators, crossing(level), y0, 10.0, 1e-11, 1e-12, 100)
+    assert arrival.status[0] == FAILED  # on its event at t = 0
+    assert arrival.status[2] == FAILED  # too many evaluations before it
+
+
+def test_a_column_that_switches_before_its_event_is_left_alone():
+    """A mode kept through a step: the column whose mode changes away from its event is
+    not answered (the step across the switch integrated the motion before it)."""
+    def rhs(cols, t, y, modes):
+        return np.array([modes[0] * 1.0 + 0 * y[0]])
+
+    def mode(cols, t, y):
+        return np.array([np.where(t < switch[cols], 1.0, -1.0)])
+
+    switch = np.array([5.0, 0.5])
+    arrival = integrate_to_events(rhs, lambda cols, t, y, modes: y[0] - 1.0,
+                                  np.zeros((1, 2)), 10.0, 1e-11, 1e-12, 20_000, mode=mode)
+    assert arrival.status.tolist() == [FIRED, FAILED]
+    assert arrival.t[0] == pytest.approx(1.0, rel=1e-12)
+
+
+def test_the_secant_finds_each_column_root_as_root_scalar_does():
+    targets = np.array([2.0, 9.0, -1.0])
+    roots, converged = secant(lambda cols, x: x ** 3 - targets[cols], np.full(3, 0.5),
+                              np.full(3, 0.5005), 1e-15, 1e-13, 100)
+    for j, target in enumerate(targets):
+        alone = optimize.root_scalar(lambda x: x ** 3 - target, x0=0.5, x1=0.5005,
+                                     method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
+        assert converged[j] == alone.converged
+        assert roots[j] == pytest.approx(alone.root, rel=1e-13)
+
+
+def test_a_column_whose_residual_becomes_undefined_does_not_converge():
+    roots, converged = secant(lambda cols, x: np.where(cols == 1, np.nan, x - 3.0),
+                              np.ones(2), np.full(2, 1.1), 1e-15, 1e-13, 100)
+    assert converged.tolist() == [True, False]
+    assert roots[0] == pytest.approx(3.0)
