@@ -53,7 +53,7 @@ from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
 from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
-from .mutants import (misread, model_mistake_at, model_mistake_table, plausible_slips,
+from .mutants import (SAME, misread, model_mistake_at, model_mistake_table, plausible_slips,
                       slips_of)
 from .numeric import PROBE_TOL, SINGULAR, solve_numeric
 from .dynamics_mutants import with_generated_mistakes
@@ -873,12 +873,12 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
         norms = np.linalg.norm(V, axis=2)
         scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
         answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
-            1e-9 * np.maximum(norms, scale[:, None]) + 1e-12
+            SAME * np.maximum(norms, scale[:, None]) + 1e-12
         vague = ~other & ~(np.abs(V) > 1e-12).any(axis=2)
         keep = np.zeros((n, count), dtype=bool)
         for j in range(count):
             apart = np.linalg.norm(V[:, :j] - V[:, j:j + 1], axis=2)
-            same = apart <= 1e-9 * np.maximum(np.maximum(norms[:, :j], norms[:, j:j + 1]),
+            same = apart <= SAME * np.maximum(np.maximum(norms[:, :j], norms[:, j:j + 1]),
                                               1e-12) + 1e-12
             keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
                 & ~vague[:, j]

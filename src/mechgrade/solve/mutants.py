@@ -286,10 +286,10 @@ def _distinct(right, kept: tuple[GeneratedMistake, ...],
     with np.errstate(invalid="ignore"):
         norms = np.linalg.norm(V, axis=1)
         apart = np.linalg.norm(V[:, None, :] - V[None, :, :], axis=2)
-        same = apart <= 1e-9 * np.maximum(np.maximum(norms[:, None], norms[None, :]), 1e-12) \
+        same = apart <= SAME * np.maximum(np.maximum(norms[:, None], norms[None, :]), 1e-12) \
             + 1e-12
         size = max(float(np.linalg.norm(r)), 1e-12)
-        answer = np.linalg.norm(V - r, axis=1) <= 1e-9 * np.maximum(norms, size) + 1e-12
+        answer = np.linalg.norm(V - r, axis=1) <= SAME * np.maximum(norms, size) + 1e-12
         nonzero = (np.abs(V) > 1e-12).any(axis=1)
     keep = list(range(len(kept)))
     out = list(kept)
@@ -309,10 +309,16 @@ def _vague(mistake: GeneratedMistake) -> bool:
         np.abs(np.asarray(mistake.value, float)) > 1e-12)
 
 
+SAME = 1e-7
+"""Relative distance within which a mistake's value is the answer's or another mistake's (one
+value): values read at an integration's event (limits just before it) carry errors near
+1e-8, and no tolerance a student can meet tells apart values closer than that."""
+
+
 def _same(a, b) -> bool:
     a, b = np.atleast_1d(np.asarray(a, float)), np.atleast_1d(np.asarray(b, float))
     scale = max(float(np.linalg.norm(a)), float(np.linalg.norm(b)), 1e-12)
-    return bool(np.linalg.norm(a - b) <= 1e-9 * scale + 1e-12)
+    return bool(np.linalg.norm(a - b) <= SAME * scale + 1e-12)
 
 
 def _in_unit(si_values: np.ndarray, obj: Objective):
