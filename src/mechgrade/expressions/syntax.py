@@ -209,6 +209,17 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
     if "#" in text:  # Python's tokenizer would drop the rest as a comment
         raise ExpressionError(f"expected an expression without '#', found "
                               f"{excerpt(text, text.index('#'))}")
+    if not text.isascii():  # plain ASCII is its own NFC form, with no letters to rewrite
+        text = _rewrite_unicode(text)
+    text = text.replace("^", "**")
+    text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
+    if "'" in text:
+        raise ExpressionError("expected a prime (') only right after a name, as in theta'")
+    return _implicit_products(text, set(MATH_FUNCTIONS) | set(functions))
+
+
+def _rewrite_unicode(text: str) -> str:
+    """Greek letters to names, symbols to operators, dot accents to primes (NFC first)."""
     text = unicodedata.normalize("NFC", text)
     out: list[str] = []
     for ch in text:
@@ -234,58 +245,112 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
             raise ExpressionError(
                 f"expected names, numbers, operators and functions, found {ch!r}")
         out.append(ch + accent)
-    text = "".join(out).replace("^", "**")
-    text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
-    if "'" in text:
-        raise ExpressionError("expected a prime (') only right after a name, as in theta'")
-    return _implicit_products(text, set(MATH_FUNCTIONS) | set(functions))
+    return "".join(out)
 
 
-_OPERAND_END = {tokenize.NUMBER, tokenize.NAME}
-_OPERAND_START = {tokenize.NUMBER, tokenize.NAME}
+Token = tuple[int, str, int, int]
+"""A token as Python's tokenizer reads it: type (``tokenize.NAME``...), text, start and end
+column."""
+
+_SIMPLE = re.compile(r"[A-Za-z0-9_ +\-*/().,]*")
+_SCAN = re.compile(r" *(?:(?P<number>" + tokenize.Number + r")"
+                   r"|(?P<op>\*\*|\*|//|/|\.\.\.|\.|[-+(),])|(?P<name>[A-Za-z_][A-Za-z0-9_]*))")
+_TOKEN_TYPES = {"number": tokenize.NUMBER, "op": tokenize.OP, "name": tokenize.NAME}
 
 
-def _implicit_products(text: str, functions: set[str]) -> str:
+def tokens(text: str) -> list[Token]:
+    """The tokens of one line of normalised text, as :mod:`tokenize` reads them (without its
+    line structure: no NEWLINE, INDENT or ENDMARKER).
+
+    Text made only of names, numbers, spaces and ``+ - * / ( ) , .`` with balanced
+    parentheses (nearly every answer) is read by one compiled pattern built on tokenize's own
+    number pattern; anything else goes through :mod:`tokenize` itself, which also words the
+    errors. The tests prove both readings agree.
+
+    >>> tokens("2L (x)")
+    [(2, '2', 0, 1), (1, 'L', 1, 2), (54, '(', 3, 4), (1, 'x', 4, 5), (54, ')', 5, 6)]
+    """
+    if _SIMPLE.fullmatch(text):
+        scanned = _scan(text)
+        if scanned is not None:
+            return scanned
+    return python_tokens(text)
+
+
+def _scan(text: str) -> list[Token] | None:
+    """``text`` (only characters of :data:`_SIMPLE`) read with :data:`_SCAN`; ``None`` when
+    its parentheses do not balance (tokenize then says how)."""
+    out: list[Token] = []
+    depth = 0
+    pos = 0
+    match = _SCAN.match
+    while (found := match(text, pos)) is not None:
+        group = found.lastgroup
+        assert group is not None  # every alternative of _SCAN is named
+        string = found.group(group)
+        start, pos = found.start(group), found.end()
+        if string == "(":
+            depth += 1
+        elif string == ")":
+            depth -= 1
+            if depth < 0:
+                return None
+        out.append((_TOKEN_TYPES[group], string, start, pos))
+    return out if depth == 0 else None
+
+
+def python_tokens(text: str) -> list[Token]:
+    """The tokens of ``text`` read by :mod:`tokenize` (any text; see :func:`tokens`)."""
     try:
-        tokens = [t for t in tokenize.generate_tokens(io.StringIO(text).readline)
-                  if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER,
-                                    tokenize.INDENT, tokenize.DEDENT)]
+        return [(t.type, t.string, t.start[1], t.end[1])
+                for t in tokenize.generate_tokens(io.StringIO(text).readline)
+                if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER,
+                                  tokenize.INDENT, tokenize.DEDENT)]
     except (tokenize.TokenError, IndentationError, SyntaxError) as exc:
         raise ExpressionError(f"expected a complete expression, found {excerpt(text)} "
                               f"({_reason(exc)})") from None
+
+
+_OPERANDS = (tokenize.NUMBER, tokenize.NAME)
+
+
+def _implicit_products(text: str, functions: set[str]) -> str:
     pieces: list[str] = []
-    prev = None
-    for tok in tokens:
-        if tok.type == tokenize.ERRORTOKEN and not tok.string.isspace():
+    prev: Token | None = None
+    for tok in tokens(text):
+        kind, string, start, end = tok
+        if kind == tokenize.ERRORTOKEN and not string.isspace():
             raise ExpressionError(f"expected names, numbers, operators and functions, "
-                                  f"found {excerpt(tok.string)}")
-        if prev is not None and prev.type == tok.type == tokenize.NUMBER:
+                                  f"found {excerpt(string)}")
+        if prev is not None and prev[0] == kind == tokenize.NUMBER:
             # "98.5.0", "1 000", "9.85e1.5": never read number fragments as a product
             raise ExpressionError(f"expected an operator between two numbers, found "
-                                  f"{excerpt(text, tok.start[1], tok.end[1])}")
+                                  f"{excerpt(text, start, end)}")
         if prev is not None and _juxtaposed(prev, tok, functions):
             pieces.append("*")
-        if tok.type == tokenize.NUMBER and tok.string[-1] in "jJ":
+        if kind == tokenize.NUMBER and string[-1] in "jJ":
             # Python's imaginary literal: "3j" is 3 times the name j
-            pieces += [tok.string[:-1], "*", tok.string[-1]]
+            pieces += [string[:-1], "*", string[-1]]
             prev = tok
             continue
-        pieces.append(tok.string)
-        if not (tok.type == tokenize.ERRORTOKEN and tok.string.isspace()):
+        pieces.append(string)
+        if not (kind == tokenize.ERRORTOKEN and string.isspace()):
             prev = tok
     return " ".join(pieces)
 
 
-def _juxtaposed(prev: tokenize.TokenInfo, tok: tokenize.TokenInfo, functions: set[str]) -> bool:
-    prev_ends = prev.type in _OPERAND_END or prev.string == ")"
-    if prev.type == tokenize.NAME and prev.string in _KEYWORDS:
+def _juxtaposed(prev: Token, tok: Token, functions: set[str]) -> bool:
+    prev_kind, prev_string = prev[0], prev[1]
+    kind, string = tok[0], tok[1]
+    prev_ends = prev_kind in _OPERANDS or prev_string == ")"
+    if prev_kind == tokenize.NAME and prev_string in _KEYWORDS:
         return False
-    if tok.type == tokenize.NAME and tok.string in _KEYWORDS:
+    if kind == tokenize.NAME and string in _KEYWORDS:
         return False
-    starts = tok.type in _OPERAND_START or tok.string == "("
+    starts = kind in _OPERANDS or string == "("
     if not (prev_ends and starts):
         return False
-    if tok.string == "(" and prev.type == tokenize.NAME and prev.string in functions:
+    if string == "(" and prev_kind == tokenize.NAME and prev_string in functions:
         return False
     return True
 
