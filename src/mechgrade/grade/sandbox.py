@@ -277,11 +277,19 @@ def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     return [judged[item] for item in items]
 
 
+COALESCE_SECONDS = 0.002
+"""How long the parent lets outcomes gather in the pipes before reading them: every outcome
+a waiting parent receives wakes it, and on a busy machine those wake-ups take the workers'
+cores (a worker judges an answer in a fraction of a millisecond)."""
+
+
 def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     results: list[Assessment | None] = [None] * len(items)
     size = max(1, min(MAX_BATCH, len(items) // (4 * len(boxes)) or 1))
     batches = deque(range(start, min(start + size, len(items)))
                     for start in range(0, len(items), size))
+    # the answers each worker has been sent and not answered, in order; a worker holds up to
+    # two batches, so it starts the next as soon as it finishes one
     pending: dict[Sandbox, deque[int]] = {}
     deadline: dict[Sandbox, float] = {}
 
@@ -289,53 +297,63 @@ def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
         """Hand ``indices`` to ``box``; an answer the worker cannot even receive is not judged."""
         while indices:
             if box._send([items[i] for i in indices]):
-                pending[box], deadline[box] = indices, time.monotonic() + box.seconds
+                if pending.get(box):
+                    pending[box] += indices
+                else:
+                    pending[box], deadline[box] = indices, time.monotonic() + box.seconds
                 return
             results[indices.popleft()] = not_evaluated("the judging process stopped", None)
-        pending.pop(box, None)
 
-    def next_batch(box: Sandbox) -> None:
-        pending.pop(box, None)
-        while batches and box not in pending:
+    def refill(box: Sandbox) -> None:
+        """Keep ``box`` holding a batch beyond the one it is judging, while batches remain."""
+        while batches and len(pending.get(box, ())) <= size:
             send(box, deque(batches.popleft()))
+        if box in pending and not pending[box]:
+            del pending[box]
 
     def fail(box: Sandbox, assessment: Assessment) -> None:
         """The current answer of ``box`` gets ``assessment``; the rest go to a fresh worker."""
-        indices = pending[box]
+        indices = pending.pop(box)
         results[indices.popleft()] = assessment
         box._kill()
-        if indices:
-            send(box, indices)
-        else:
-            next_batch(box)
+        send(box, indices)
+        refill(box)
+
+    def receive(box: Sandbox) -> None:
+        """Read every outcome ``box`` has sent so far."""
+        conn = box._conn
+        while box in pending and conn is box._conn:
+            try:
+                status, payload = conn.recv()
+            except (EOFError, OSError):
+                fail(box, not_evaluated("the judging process stopped (out of memory?)"))
+                return
+            if status == "memory":
+                fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
+                return
+            results[pending[box].popleft()] = (payload if status == "ok"
+                                               else not_evaluated(payload))
+            deadline[box] = time.monotonic() + box.seconds
+            refill(box)
+            if not conn.poll():
+                return
 
     for box in boxes:
-        next_batch(box)
+        refill(box)
     while pending:
         by_conn = {box._conn: box for box in pending}
-        wait_for = max(0.0, min(deadline.values()) - time.monotonic())
+        wait_for = max(0.0, min(deadline[box] for box in pending) - time.monotonic())
         try:
             ready = connection.wait(list(by_conn), wait_for)
         except OSError:
             ready = []
         for conn in ready:
-            box = by_conn[conn]
-            try:
-                status, payload = conn.recv()
-            except (EOFError, OSError):
-                fail(box, not_evaluated("the judging process stopped (out of memory?)"))
-                continue
-            if status == "memory":
-                fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
-                continue
-            indices = pending[box]
-            results[indices.popleft()] = payload if status == "ok" else not_evaluated(payload)
-            deadline[box] = time.monotonic() + box.seconds
-            if not indices:
-                next_batch(box)
+            receive(by_conn[conn])
         now = time.monotonic()
         for box in [b for b in pending if deadline[b] <= now and b._conn not in ready]:
             fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
+        if ready and all(len(indices) > 1 for indices in pending.values()):
+            time.sleep(COALESCE_SECONDS)
     return results  # type: ignore[return-value]
 
 
