@@ -215,7 +215,7 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
     text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
     if "'" in text:
         raise ExpressionError("expected a prime (') only right after a name, as in theta'")
-    return _implicit_products(text, set(MATH_FUNCTIONS) | set(functions))
+    return _implicit_products(text, _MATH_NAMES | set(functions) if functions else _MATH_NAMES)
 
 
 def _rewrite_unicode(text: str) -> str:
@@ -314,7 +314,7 @@ def python_tokens(text: str) -> list[Token]:
 _OPERANDS = (tokenize.NUMBER, tokenize.NAME)
 
 
-def _implicit_products(text: str, functions: set[str]) -> str:
+def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> str:
     pieces: list[str] = []
     prev: Token | None = None
     for tok in tokens(text):
@@ -339,7 +339,7 @@ def _implicit_products(text: str, functions: set[str]) -> str:
     return " ".join(pieces)
 
 
-def _juxtaposed(prev: Token, tok: Token, functions: set[str]) -> bool:
+def _juxtaposed(prev: Token, tok: Token, functions: frozenset[str] | set[str]) -> bool:
     prev_kind, prev_string = prev[0], prev[1]
     kind, string = tok[0], tok[1]
     prev_ends = prev_kind in _OPERANDS or prev_string == ")"
@@ -386,29 +386,41 @@ def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) 
                               f"({_reason(exc)})", offset=exc.offset) from None
     except (MemoryError, RecursionError, ValueError):
         raise ExpressionError("expected a simpler expression (too deeply nested)") from None
-    builder = _Builder(set(MATH_FUNCTIONS) | set(functions), attributes)
-    node = builder.build(tree.body, 0)
-    return node
+    builder = _Builder(_MATH_NAMES | set(functions) if functions else _MATH_NAMES, attributes)
+    return builder.build(tree.body, 0)[0]
+
+
+_MATH_NAMES = frozenset(MATH_FUNCTIONS)
+_RATE_NAME = re.compile(r"__d([12])__([A-Za-z][A-Za-z0-9_]*)")
+
+Built = tuple["Node", Union[float, None]]
+"""A tree and its constant value (:func:`constant_value`; ``None`` when it uses a name)."""
 
 
 class _Builder:
+    """Checked trees from Python's syntax tree. Each part's constant value is carried up with
+    it, so the bounds on constants (:func:`constant_value`) are checked once per part rather
+    than refolded for every enclosing one."""
+
     _BINOPS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**"}
 
-    def __init__(self, functions: set[str], attributes: bool):
+    def __init__(self, functions: frozenset[str] | set[str], attributes: bool):
         self.functions = functions
         self.attributes = attributes
         self.count = 0
 
-    def build(self, node: ast.AST, depth: int) -> Node:
+    def build(self, node: ast.AST, depth: int) -> Built:
         self.count += 1
         if self.count > MAX_NODES:
             raise ExpressionError(TOO_MANY_PARTS)
         if depth > MAX_DEPTH:
             raise ExpressionError(f"expected an expression nested at most {MAX_DEPTH} deep")
         if isinstance(node, ast.Constant):
-            return self._number(node.value)
+            number = self._number(node.value)
+            return number, number.value
         if isinstance(node, ast.Name):
-            return self._name(node.id)
+            leaf = self._name(node.id)
+            return leaf, math.pi if leaf == _PI else None
         if isinstance(node, ast.Attribute):
             if not self.attributes or not isinstance(node.value, ast.Name):
                 raise ExpressionError("expected a unit vector such as N.x, found an attribute")
@@ -416,23 +428,27 @@ class _Builder:
             if not isinstance(base, Name) or node.attr not in ("x", "y", "z"):
                 raise ExpressionError(f"expected a unit vector such as N.x, "
                                       f"found '{node.value.id}.{node.attr}'")
-            return Attr(base.id, node.attr)
+            return Attr(base.id, node.attr), None
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
-            operand = self.build(node.operand, depth + 1)
+            operand, value = self.build(node.operand, depth + 1)
             if isinstance(node.op, ast.UAdd):
-                return operand
-            return Unary("-", operand)
+                return operand, value
+            return Unary("-", operand), None if value is None else -value
         if isinstance(node, ast.BinOp) and type(node.op) in self._BINOPS:
             op = self._BINOPS[type(node.op)]
             # A flat chain a + b + c ... nests to the left; count it as one level, not many.
             chained = isinstance(node.left, ast.BinOp) and op != "**"
-            left = self.build(node.left, depth + (0 if chained else 1))
-            right = self.build(node.right, depth + 1)
+            left, a = self.build(node.left, depth + (0 if chained else 1))
+            right, b = self.build(node.right, depth + 1)
             out = Bin(op, left, right)
+            if op == "**" and b is not None and abs(b) > MAX_POWER:
+                raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
+                                      f"{excerpt(to_text(right))} {CONSTANT_PROBLEMS[0]}")
+            if a is None or b is None:
+                return out, None
             if op == "**":
-                _check_power(out)
-            _check_magnitude(out)
-            return out
+                return out, _settled(out, _const_power, a, b)
+            return out, _settled(out, PYTHON_OPERATORS[op], a, b)
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name):
                 raise ExpressionError("expected a call of a named function such as sin(x)")
@@ -442,7 +458,8 @@ class _Builder:
                                       f"found '{func}(...)'")
             if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
                 raise ExpressionError(f"expected plain arguments in '{func}(...)'")
-            args = tuple(self.build(a, depth + 1) for a in node.args)
+            built = [self.build(a, depth + 1) for a in node.args]
+            args = tuple(arg for arg, _ in built)
             if func in MATH_FUNCTIONS:
                 canonical, arity = MATH_FUNCTIONS[func]
                 if len(args) != arity:
@@ -450,8 +467,10 @@ class _Builder:
                                           f"for {func}(...), found {len(args)}")
                 func = canonical
             call = Call(func, args)
-            _check_magnitude(call)
-            return call
+            if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 \
+                    or built[0][1] is None:
+                return call, None
+            return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1])
         raise ExpressionError(f"expected names, numbers, operators and functions, "
                               f"found {_describe(node)}")
 
@@ -467,7 +486,7 @@ class _Builder:
         return Num(text)
 
     def _name(self, name: str) -> Node:
-        match = re.fullmatch(r"__d([12])__([A-Za-z][A-Za-z0-9_]*)", name)
+        match = _RATE_NAME.fullmatch(name)
         if match:
             return Prime(match.group(2), int(match.group(1)))
         if name.startswith("_"):
@@ -478,7 +497,10 @@ class _Builder:
         return Name(name)
 
 
-def _listing(functions: set[str]) -> str:
+_PI = Name("pi")
+
+
+def _listing(functions: frozenset[str] | set[str]) -> str:
     shown = sorted(functions)
     return ", ".join(shown[:12]) + (", ..." if len(shown) > 12 else "")
 
@@ -530,9 +552,16 @@ def constant_value(node: Node) -> float | None:
     mechgrade.errors.ExpressionError: expected numbers of at most 1e+150, found 'exp(exp(1000))' (too large)
     """
     try:
-        value = _const(node)
+        return _settled(node, _const, node)
     except _NotConstant:
         return None
+
+
+def _settled(node: Node, operation, *operands) -> float:
+    """``operation(*operands)``, the value of the constant part ``node``, within the bounds of
+    :func:`constant_value` (which raises as it says)."""
+    try:
+        value = operation(*operands)
     except OverflowError:
         value = math.inf
     except ZeroDivisionError:
@@ -613,14 +642,3 @@ def fold(node: Node, *, number, resolve, call, power=operator.pow, divide=operat
         return call(n.func, n.args)
 
     return walk_(node)
-
-
-def _check_power(node: Bin) -> None:
-    exponent = constant_value(node.right)
-    if exponent is not None and abs(exponent) > MAX_POWER:
-        raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
-                              f"{excerpt(to_text(node.right))} {CONSTANT_PROBLEMS[0]}")
-
-
-def _check_magnitude(node: Bin | Call) -> None:
-    constant_value(node)  # raises when a constant part is too large, undefined or not real
