@@ -435,44 +435,48 @@ class _Builder:
                 return operand, value
             return Unary("-", operand), None if value is None else -value
         if isinstance(node, ast.BinOp) and type(node.op) in self._BINOPS:
-            op = self._BINOPS[type(node.op)]
-            # A flat chain a + b + c ... nests to the left; count it as one level, not many.
-            chained = isinstance(node.left, ast.BinOp) and op != "**"
-            left, a = self.build(node.left, depth + (0 if chained else 1))
-            right, b = self.build(node.right, depth + 1)
-            out = Bin(op, left, right)
-            if op == "**" and b is not None and abs(b) > MAX_POWER:
-                raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
-                                      f"{excerpt(to_text(right))} {CONSTANT_PROBLEMS[0]}")
-            if a is None or b is None:
-                return out, None
-            if op == "**":
-                return out, _settled(out, _const_power, a, b)
-            return out, _settled(out, PYTHON_OPERATORS[op], a, b)
+            return self._binary(node, self._BINOPS[type(node.op)], depth)
         if isinstance(node, ast.Call):
-            if not isinstance(node.func, ast.Name):
-                raise ExpressionError("expected a call of a named function such as sin(x)")
-            func = node.func.id
-            if func not in self.functions:
-                raise ExpressionError(f"expected a known function ({_listing(self.functions)}), "
-                                      f"found '{func}(...)'")
-            if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
-                raise ExpressionError(f"expected plain arguments in '{func}(...)'")
-            built = [self.build(a, depth + 1) for a in node.args]
-            args = tuple(arg for arg, _ in built)
-            if func in MATH_FUNCTIONS:
-                canonical, arity = MATH_FUNCTIONS[func]
-                if len(args) != arity:
-                    raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
-                                          f"for {func}(...), found {len(args)}")
-                func = canonical
-            call = Call(func, args)
-            if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 \
-                    or built[0][1] is None:
-                return call, None
-            return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1])
+            return self._call(node, depth)
         raise ExpressionError(f"expected names, numbers, operators and functions, "
                               f"found {_describe(node)}")
+
+    def _binary(self, node: ast.BinOp, op: str, depth: int) -> Built:
+        # A flat chain a + b + c ... nests to the left; count it as one level, not many.
+        chained = isinstance(node.left, ast.BinOp) and op != "**"
+        left, a = self.build(node.left, depth + (0 if chained else 1))
+        right, b = self.build(node.right, depth + 1)
+        out = Bin(op, left, right)
+        if op == "**" and b is not None and abs(b) > MAX_POWER:
+            raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
+                                  f"{excerpt(to_text(right))} {CONSTANT_PROBLEMS[0]}")
+        if a is None or b is None:
+            return out, None
+        if op == "**":
+            return out, _settled(out, _const_power, a, b)
+        return out, _settled(out, PYTHON_OPERATORS[op], a, b)
+
+    def _call(self, node: ast.Call, depth: int) -> Built:
+        if not isinstance(node.func, ast.Name):
+            raise ExpressionError("expected a call of a named function such as sin(x)")
+        func = node.func.id
+        if func not in self.functions:
+            raise ExpressionError(f"expected a known function ({_listing(self.functions)}), "
+                                  f"found '{func}(...)'")
+        if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
+            raise ExpressionError(f"expected plain arguments in '{func}(...)'")
+        built = [self.build(a, depth + 1) for a in node.args]
+        args = tuple(arg for arg, _ in built)
+        if func in MATH_FUNCTIONS:
+            canonical, arity = MATH_FUNCTIONS[func]
+            if len(args) != arity:
+                raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
+                                      f"for {func}(...), found {len(args)}")
+            func = canonical
+        call = Call(func, args)
+        if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 or built[0][1] is None:
+            return call, None
+        return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1])
 
     def _number(self, value) -> Num:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
