@@ -352,7 +352,7 @@ def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
         now = time.monotonic()
         for box in [b for b in pending if deadline[b] <= now and b._conn not in ready]:
             fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
-        if ready and all(len(indices) > 1 for indices in pending.values()):
+        if ready and pending and all(len(indices) > 1 for indices in pending.values()):
             time.sleep(COALESCE_SECONDS)
     return results  # type: ignore[return-value]
 
