@@ -327,50 +327,45 @@ def python_tokens(text: str) -> list[Token]:
                               f"({_reason(exc)})") from None
 
 
-_OPERANDS = (tokenize.NUMBER, tokenize.NAME)
-
-
 def _implicit_products(text: str, functions: frozenset[str] | set[str]
                        ) -> tuple[list[str], bool]:
     pieces: list[str] = []
-    prev: Token | None = None
+    # the last token that is not stray whitespace: whether it ends an operand, whether it is
+    # a number, and whether a "(" after it opens a call
+    ends = number = calls = False
     read, plain = _read_tokens(text)
-    for tok in read:
-        kind, string, start, end = tok
-        if kind == tokenize.ERRORTOKEN and not string.isspace():
-            raise ExpressionError(f"expected names, numbers, operators and functions, "
-                                  f"found {excerpt(string)}")
-        if prev is not None and prev[0] == kind == tokenize.NUMBER:
-            # "98.5.0", "1 000", "9.85e1.5": never read number fragments as a product
-            raise ExpressionError(f"expected an operator between two numbers, found "
-                                  f"{excerpt(text, start, end)}")
-        if prev is not None and _juxtaposed(prev, tok, functions):
-            pieces.append("*")
-        if kind == tokenize.NUMBER and string[-1] in "jJ":
-            # Python's imaginary literal: "3j" is 3 times the name j
-            pieces += [string[:-1], "*", string[-1]]
-            prev = tok
+    for kind, string, start, end in read:
+        if kind == tokenize.ERRORTOKEN:
+            if not string.isspace():
+                raise ExpressionError(f"expected names, numbers, operators and functions, "
+                                      f"found {excerpt(string)}")
+            pieces.append(string)
             continue
-        pieces.append(string)
-        if not (kind == tokenize.ERRORTOKEN and string.isspace()):
-            prev = tok
+        if kind == tokenize.NUMBER:
+            if number:
+                # "98.5.0", "1 000", "9.85e1.5": never read number fragments as a product
+                raise ExpressionError(f"expected an operator between two numbers, found "
+                                      f"{excerpt(text, start, end)}")
+            if ends:
+                pieces.append("*")
+            if string[-1] in "jJ":
+                # Python's imaginary literal: "3j" is 3 times the name j
+                pieces += [string[:-1], "*", string[-1]]
+            else:
+                pieces.append(string)
+            ends, number, calls = True, True, False
+        elif kind == tokenize.NAME:
+            keyword = string in _KEYWORDS
+            if ends and not keyword:
+                pieces.append("*")
+            pieces.append(string)
+            ends, number, calls = not keyword, False, string in functions
+        else:
+            if string == "(" and ends and not calls:
+                pieces.append("*")
+            pieces.append(string)
+            ends, number, calls = string == ")", False, False
     return pieces, plain
-
-
-def _juxtaposed(prev: Token, tok: Token, functions: frozenset[str] | set[str]) -> bool:
-    prev_kind, prev_string = prev[0], prev[1]
-    kind, string = tok[0], tok[1]
-    prev_ends = prev_kind in _OPERANDS or prev_string == ")"
-    if prev_kind == tokenize.NAME and prev_string in _KEYWORDS:
-        return False
-    if kind == tokenize.NAME and string in _KEYWORDS:
-        return False
-    starts = kind in _OPERANDS or string == "("
-    if not (prev_ends and starts):
-        return False
-    if string == "(" and prev_kind == tokenize.NAME and prev_string in functions:
-        return False
-    return True
 
 
 _KEYWORDS = {"and", "or", "not", "in", "is", "if", "else", "lambda", "for"}
