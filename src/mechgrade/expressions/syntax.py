@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import ast
 import io
-import keyword
 import math
 import operator
 import re
@@ -203,7 +202,7 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
     >>> normalize("2 L θ̇^2 + ẍ")
     '2 * L * __d1__theta ** 2 + __d2__x'
     """
-    return " ".join(_normalized(text, _function_names(functions))[0])
+    return _normalized(text, _function_names(functions))
 
 
 def _function_names(functions: Iterable[str]) -> frozenset[str] | set[str]:
@@ -211,9 +210,7 @@ def _function_names(functions: Iterable[str]) -> frozenset[str] | set[str]:
     return _MATH_NAMES | set(functions) if functions else _MATH_NAMES
 
 
-def _normalized(text: str, functions: frozenset[str] | set[str]) -> tuple[list[str], bool]:
-    """The pieces of :func:`normalize`'s text, and whether the compiled scanner read them
-    (then every piece is a name, a number or an operator)."""
+def _normalized(text: str, functions: frozenset[str] | set[str]) -> str:
     if not isinstance(text, str):
         raise ExpressionError(f"expected text, found {type(text).__name__}")
     if len(text) > MAX_LENGTH:
@@ -282,15 +279,11 @@ def tokens(text: str) -> list[Token]:
     >>> tokens("2L (x)")
     [(2, '2', 0, 1), (1, 'L', 1, 2), (54, '(', 3, 4), (1, 'x', 4, 5), (54, ')', 5, 6)]
     """
-    return _read_tokens(text)[0]
-
-
-def _read_tokens(text: str) -> tuple[list[Token], bool]:
     if _SIMPLE.fullmatch(text):
         scanned = _scan(text)
         if scanned is not None:
-            return scanned, True
-    return python_tokens(text), False
+            return scanned
+    return python_tokens(text)
 
 
 def _scan(text: str) -> list[Token] | None:
@@ -327,14 +320,12 @@ def python_tokens(text: str) -> list[Token]:
                               f"({_reason(exc)})") from None
 
 
-def _implicit_products(text: str, functions: frozenset[str] | set[str]
-                       ) -> tuple[list[str], bool]:
+def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> str:
     pieces: list[str] = []
     # the last token that is not stray whitespace: whether it ends an operand, whether it is
     # a number, and whether a "(" after it opens a call
     ends = number = calls = False
-    read, plain = _read_tokens(text)
-    for kind, string, start, end in read:
+    for kind, string, start, end in tokens(text):
         if kind == tokenize.ERRORTOKEN:
             if not string.isspace():
                 raise ExpressionError(f"expected names, numbers, operators and functions, "
@@ -365,7 +356,7 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]
                 pieces.append("*")
             pieces.append(string)
             ends, number, calls = string == ")", False, False
-    return pieces, plain
+    return " ".join(pieces)
 
 
 _KEYWORDS = {"and", "or", "not", "in", "is", "if", "else", "lambda", "for"}
@@ -389,14 +380,9 @@ def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) 
     Call(func='sqrt', args=(Bin(op='+', left=Bin(op='**', left=Name(id='xd'), right=Num(text='2')), right=Bin(op='**', left=Name(id='yd'), right=Num(text='2'))),))
     """
     names = _function_names(functions)
-    pieces, plain = _normalized(text, names)
-    source = " ".join(pieces)
+    source = _normalized(text, names)
     if not source.strip():
         raise ExpressionError("expected an expression, found nothing")
-    if plain:
-        node = _Plain(pieces, names, attributes).read()
-        if node is not None:
-            return node
     try:
         tree = ast.parse(source.strip(), mode="eval")
     except SyntaxError as exc:
@@ -496,196 +482,26 @@ class _Builder:
         return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1])
 
     def _number(self, value) -> Num:
-        return _literal(value)
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ExpressionError(f"expected a number, found {_describe_constant(value)}")
+        text = repr(value) if isinstance(value, float) else str(value)
+        if len(text.replace("-", "").replace(".", "").split("e")[0]) > MAX_LITERAL_DIGITS:
+            raise ExpressionError(f"expected a number of at most {MAX_LITERAL_DIGITS} digits")
+        if not abs(value) <= MAX_MAGNITUDE:
+            raise ExpressionError(f"expected numbers of at most {MAX_MAGNITUDE:g}, found "
+                                  f"{excerpt(text)} {CONSTANT_PROBLEMS[0]}")
+        return Num(text)
 
     def _name(self, name: str) -> Node:
-        return _leaf(name, self.functions)
-
-
-def _literal(value) -> Num:
-    """A number of Python's syntax tree as a checked :class:`Num`."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ExpressionError(f"expected a number, found {_describe_constant(value)}")
-    text = repr(value) if isinstance(value, float) else str(value)
-    if len(text.replace("-", "").replace(".", "").split("e")[0]) > MAX_LITERAL_DIGITS:
-        raise ExpressionError(f"expected a number of at most {MAX_LITERAL_DIGITS} digits")
-    if not abs(value) <= MAX_MAGNITUDE:
-        raise ExpressionError(f"expected numbers of at most {MAX_MAGNITUDE:g}, found "
-                              f"{excerpt(text)} {CONSTANT_PROBLEMS[0]}")
-    return Num(text)
-
-
-def _leaf(name: str, functions: frozenset[str] | set[str]) -> Node:
-    """A name as a checked :class:`Name`, or the :class:`Prime` the reader wrote for it."""
-    match = _RATE_NAME.fullmatch(name)
-    if match:
-        return Prime(match.group(2), int(match.group(1)))
-    if name.startswith("_"):
-        raise ExpressionError(f"expected names, numbers, operators and functions, "
-                              f"found '{name}' (names may not start with '_')")
-    if name in functions:
-        raise ExpressionError(f"expected '{name}(...)' with its argument in parentheses")
-    return Name(name)
-
-
-class _Unusual(Exception):
-    """Text the plain reader leaves to Python's parser and :class:`_Builder`."""
-
-
-class _Plain:
-    """The reader of plain normalised text (names, numbers, ``+ - * / **``, unary minus,
-    parentheses, calls and unit vectors): the tree :class:`_Builder` makes of Python's syntax
-    tree for the same text, read straight from the pieces.
-
-    Anything else, and any text the builder would refuse, is left to Python's parser and the
-    builder (:meth:`read` gives ``None``), so refusals are worded in one place. The tests
-    prove both readers agree.
-    """
-
-    def __init__(self, pieces: list[str], functions: frozenset[str] | set[str],
-                 attributes: bool):
-        self.pieces = pieces
-        self.functions = functions
-        self.attributes = attributes
-        self.at = 0
-        self.count = 0
-        self.nesting = 0
-
-    def read(self) -> Node | None:
-        try:
-            node, _, height = self._sum()
-            if self.at != len(self.pieces) or self.count > MAX_NODES or height > MAX_DEPTH:
-                return None
-        except (_Unusual, ExpressionError):
-            return None
-        return node
-
-    # Each reader gives the tree, its constant value and its height: the depth the builder
-    # reaches below it (a left operand that is itself an operation is not a level deeper).
-
-    def _nested(self, read) -> tuple[Node, float | None, int]:
-        """``read()`` one level further in; text nested deeper than the builder allows (or
-        Python's parser, in parentheses) is left to them."""
-        self.nesting += 1
-        if self.nesting > MAX_DEPTH:
-            raise _Unusual
-        out = read()
-        self.nesting -= 1
-        return out
-
-    def _peek(self) -> str | None:
-        return self.pieces[self.at] if self.at < len(self.pieces) else None
-
-    def _take(self) -> str:
-        if self.at >= len(self.pieces):
-            raise _Unusual
-        self.at += 1
-        return self.pieces[self.at - 1]
-
-    def _sum(self) -> tuple[Node, float | None, int]:
-        out = self._product()
-        while self._peek() in ("+", "-"):
-            out = self._binary(self._take(), out, self._product())
-        return out
-
-    def _product(self) -> tuple[Node, float | None, int]:
-        out = self._signed()
-        while self._peek() in ("*", "/"):
-            out = self._binary(self._take(), out, self._signed())
-        return out
-
-    def _signed(self) -> tuple[Node, float | None, int]:
-        if self._peek() == "-":
-            self.at += 1
-            self.count += 1
-            operand, value, height = self._nested(self._signed)
-            return Unary("-", operand), None if value is None else -value, height + 1
-        return self._power()
-
-    def _power(self) -> tuple[Node, float | None, int]:
-        base = self._atom()
-        if self._peek() == "**":
-            self.at += 1
-            return self._binary("**", base, self._nested(self._signed))
-        return base
-
-    def _binary(self, op: str, left: tuple[Node, float | None, int],
-                right: tuple[Node, float | None, int]) -> tuple[Node, float | None, int]:
-        self.count += 1
-        (a_node, a, a_height), (b_node, b, b_height) = left, right
-        chained = isinstance(a_node, Bin) and op != "**"
-        height = max(a_height + (0 if chained else 1), b_height + 1)
-        node = Bin(op, a_node, b_node)
-        if op == "**" and b is not None and abs(b) > MAX_POWER:
-            raise _Unusual
-        if a is None or b is None:
-            return node, None, height
-        operation = _const_power if op == "**" else PYTHON_OPERATORS[op]
-        return node, _settled(node, operation, a, b), height
-
-    def _atom(self) -> tuple[Node, float | None, int]:
-        piece = self._take()
-        self.count += 1
-        first = piece[0]
-        if first.isdigit() or (first == "." and piece[1:2].isdigit()):
-            if self._peek() == ".":  # an attribute of a number
-                raise _Unusual
-            return self._number(piece)
-        if first == "(":
-            self.count -= 1  # parentheses are not a part of the tree
-            inner = self._nested(self._sum)
-            if self._take() != ")" or self._peek() == ".":
-                raise _Unusual
-            return inner
-        if not (first.isalpha() or first == "_") or keyword.iskeyword(piece):
-            raise _Unusual
-        after = self._peek()
-        if after == "(":
-            return self._call(piece)
-        if after == ".":
-            self.at += 1
-            attr = self._take()
-            base = _leaf(piece, self.functions)
-            if not self.attributes or not isinstance(base, Name) or attr not in ("x", "y", "z") \
-                    or self._peek() in ("(", "."):
-                raise _Unusual
-            return Attr(base.id, attr), None, 0
-        leaf = _leaf(piece, self.functions)
-        return leaf, math.pi if leaf == _PI else None, 0
-
-    def _number(self, piece: str) -> tuple[Node, float | None, int]:
-        if piece[:2].lower() in ("0x", "0o", "0b"):
-            value: int | float = int(piece, 0)
-        elif any(c in piece for c in ".eE"):
-            value = float(piece)
-        elif piece[0] == "0" and piece.strip("0_"):  # "03" (of "03j"): Python refuses it
-            raise _Unusual
-        else:
-            value = int(piece)
-        number = _literal(value)
-        return number, number.value, 0
-
-    def _call(self, func: str) -> tuple[Node, float | None, int]:
-        if func not in self.functions:
-            raise _Unusual
-        self.at += 1
-        args: list[tuple[Node, float | None, int]] = []
-        if self._peek() != ")":
-            args.append(self._nested(self._sum))
-            while self._peek() == ",":
-                self.at += 1
-                args.append(self._nested(self._sum))
-        if self._take() != ")" or self._peek() == ".":
-            raise _Unusual
-        if func in MATH_FUNCTIONS:
-            func, arity = MATH_FUNCTIONS[func]
-            if len(args) != arity:
-                raise _Unusual
-        call = Call(func, tuple(arg for arg, _, _ in args))
-        height = 1 + max((h for _, _, h in args), default=-1)
-        if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 or args[0][1] is None:
-            return call, None, height
-        return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], args[0][1]), height
+        match = _RATE_NAME.fullmatch(name)
+        if match:
+            return Prime(match.group(2), int(match.group(1)))
+        if name.startswith("_"):
+            raise ExpressionError(f"expected names, numbers, operators and functions, "
+                                  f"found '{name}' (names may not start with '_')")
+        if name in self.functions:
+            raise ExpressionError(f"expected '{name}(...)' with its argument in parentheses")
+        return Name(name)
 
 
 _PI = Name("pi")
