@@ -36,3 +36,16 @@ def test_numbers_vectors_and_short_arrays_are_judged_as_long_arrays_are(pairs, r
 def test_the_boundary_is_included(reference, rel):
     edge = reference + rel * abs(reference)
     assert within(edge, reference, rel, 0.0) == numpy_within(edge, reference, rel, 0.0)
+
+
+@given(st.lists(st.tuples(finite, finite), min_size=1, max_size=40),
+       st.sampled_from([1e-6, 0.01]))
+def test_agreement_at_points_has_a_floor_from_the_mean_size(pairs, rel):
+    from mechgrade.tolerance import agree_at_points
+
+    student = np.array([p[0] for p in pairs])
+    reference = np.array([p[1] for p in pairs])
+    floor = max(rel * float(np.mean(np.abs(reference))) * 1e-3, 1e-12)
+    assert agree_at_points(rel, reference)(student, reference) == \
+        numpy_within(student, reference, rel, floor)
+    assert agree_at_points(rel, reference)(reference, reference)

@@ -27,7 +27,7 @@ from ..units import describe_dimension, dimensionless
 from .functions import MATH_FUNCTIONS, DimensionError, Kind
 from .syntax import Bin, Call, Name, Node, Num, Unary, constant_value, to_text
 
-__all__ = ["DimensionError", "Kind", "Type", "infer"]
+__all__ = ["DimensionError", "Kind", "Type", "described", "infer"]
 
 
 @dataclass(frozen=True)
@@ -82,10 +82,10 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:  # noqa: C901 - one rule per o
             raise DimensionError(f"cannot add a {a.kind} and a {b.kind} in '{text()}'")
         if a.dim != b.dim:
             verb, joint = ("adds", "to") if node.op == "+" else ("subtracts", "and")
-            raise DimensionError(f"cannot add {describe_dimension(a.dim)} and "
-                                 f"{describe_dimension(b.dim)} in '{text()}'",
-                                 f"{verb} {describe_dimension(a.dim)} {joint} "
-                                 f"{describe_dimension(b.dim)}")
+            raise DimensionError(f"cannot add {described(a.dim)} and "
+                                 f"{described(b.dim)} in '{text()}'",
+                                 f"{verb} {described(a.dim)} {joint} "
+                                 f"{described(b.dim)}")
         return a
     if node.op == "*":
         if a.kind == Kind.VECTOR and b.kind == Kind.VECTOR:
@@ -122,3 +122,23 @@ def _math(node: Call, args: list[Type]) -> Type:
                                  "(use mag(v) or dot(u, v))")
     entry = MATH_FUNCTIONS[node.func]
     return Type(Kind.SCALAR, entry.dimension(node.func, tuple(t.dim for t in args)))
+
+
+_DESCRIBED: dict[tuple, str] = {}
+
+
+def described(dim) -> str:
+    """:func:`mechgrade.units.describe_dimension`, kept per dimensionality: pint's text of one
+    costs more than judging an answer. Kept by its bases in pint's order and their powers as
+    written, which the text follows ('[mass] * [length]' for N, '[length] * [mass]' for lbf).
+
+    >>> from mechgrade.units import dimension
+    >>> described(dimension("m/s"))
+    'a velocity ([length] / [time])'
+    """
+    key = tuple((base, repr(power)) for base, power in dict(dim).items())  # 2 is not 2.0
+    if key not in _DESCRIBED:
+        if len(_DESCRIBED) > 1024:
+            _DESCRIBED.clear()
+        _DESCRIBED[key] = describe_dimension(dim)
+    return _DESCRIBED[key]

@@ -83,6 +83,7 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
      "Your answer is off by a factor of 12: inches mixed with feet?", (12.0, 1 / 12)),
 )
 
+_ALL_FACTORS = np.array([factor for *_, factors in _FACTORS for factor in factors])
 FACTOR_CODES = tuple(dict.fromkeys(code for code, *_ in _FACTORS))
 VECTOR_CODES = ("swapped", "direction", "magnitude")
 GENERATED_CODES = MODEL_CODES + DYNAMICS_CODES + GIVEN_CODES
@@ -127,11 +128,14 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         return found
     if not np.any(reference != 0):
         return None
+    # every factor times the reference at once (row by row the same products)
+    scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
     for code, label, message, factors in _FACTORS:
+        rows = [next(scaled) for _ in factors]
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
             continue
-        for factor in factors:
-            if close(student, factor * reference):
+        for row in rows:
+            if close(student, row):
                 return Diagnosis(code, label, message)
     if kind == "vector":
         return _vector(student, reference, close)
