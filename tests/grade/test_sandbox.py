@@ -119,3 +119,15 @@ def test_each_answer_of_a_batch_has_its_own_time_limit():
 def test_pool_refuses_no_workers():
     with pytest.raises(ValueError, match="positive number of workers"):
         SandboxPool(0)
+
+
+def test_answers_in_flight_when_a_worker_dies_go_to_the_fresh_worker_in_order():
+    texts = [f"{i} ft/s^2" for i in range(40)]
+    for at in range(3, 40, 4):
+        texts[at] = "exit"
+    items = [(t, ACC, Policy()) for t in texts]
+    with SandboxPool(2, seconds=20, judge=hostile_judge) as pool:
+        judged = pool.assess_many(items)
+    assert [(a.verdict, a.read_back) for a in judged] == [
+        ("not_evaluated", None) if t == "exit" else (assess(t, ACC).verdict, assess(t, ACC).read_back)
+        for t in texts]

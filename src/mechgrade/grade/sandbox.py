@@ -25,13 +25,18 @@ import signal
 import time
 from collections import deque
 from multiprocessing import connection
-from typing import Callable, Iterable, Sequence
+from multiprocessing.connection import Connection
+from multiprocessing.process import BaseProcess
+from typing import Callable, Iterable, Sequence, Union, cast
 
 from ..solve.result import ObjectiveResult
 from .compare import Assessment, Policy, assess, not_evaluated
 
 Judge = Callable[[str | None, ObjectiveResult, Policy], Assessment]
 Item = tuple[str | None, ObjectiveResult, Policy]
+Outcome = tuple[str, Union[Assessment, str, None]]
+"""What the worker sends for one answer: ``("ok", assessment)``, ``("error", reason)`` or
+``("memory", None)``."""
 
 DEFAULT_SECONDS = 5.0
 DEFAULT_MEMORY_MB = 512
@@ -73,7 +78,7 @@ def _limit_memory(memory_mb: int) -> None:
         pass
 
 
-def _worker(conn, judge: Judge, memory_mb: int) -> None:
+def _worker(conn: Connection, judge: Judge, memory_mb: int) -> None:
     """Judge each batch of items sent, one answer at a time, sending each outcome back as soon
     as it is known (the parent times every answer from the previous outcome)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
@@ -86,6 +91,7 @@ def _worker(conn, judge: Judge, memory_mb: int) -> None:
         if batch is None:
             return
         for text, result, policy in batch:
+            outcome: Outcome
             try:
                 outcome = ("ok", judge(text, result, policy))
             except MemoryError:
@@ -124,8 +130,8 @@ class Sandbox:
         self.memory_mb = memory_mb
         self.judge = judge
         self.restarts = 0
-        self._process = None
-        self._conn = None
+        self._process: BaseProcess | None = None
+        self._conn: Connection | None = None
 
     # -- lifecycle
 
@@ -151,7 +157,7 @@ class Sandbox:
         self._process = self._conn = None
         if conn is not None:
             conn.close()
-        if process is not None and process.is_alive():
+        if process is not None and process.pid is not None and process.is_alive():
             try:
                 os.kill(process.pid, signal.SIGKILL)
             except (ProcessLookupError, OSError):
@@ -166,7 +172,8 @@ class Sandbox:
         if process is None:
             return
         try:
-            conn.send(None)
+            if conn is not None:
+                conn.send(None)
         except (OSError, BrokenPipeError):
             pass
         process.join(1)
@@ -186,11 +193,16 @@ class Sandbox:
                 self._kill()
             self._start()
         try:
-            self._conn.send(batch)
+            self.pipe().send(batch)
             return True
         except (OSError, BrokenPipeError):
             self._kill()
             return False
+
+    def pipe(self) -> Connection:
+        """The parent's end of the pipe to the live worker."""
+        assert self._conn is not None, "the worker is not running"
+        return self._conn
 
     # -- judging
 
@@ -284,77 +296,102 @@ cores (a worker judges an answer in a fraction of a millisecond)."""
 
 
 def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
-    results: list[Assessment | None] = [None] * len(items)
-    size = max(1, min(MAX_BATCH, len(items) // (4 * len(boxes)) or 1))
-    batches = deque(range(start, min(start + size, len(items)))
-                    for start in range(0, len(items), size))
-    # the answers each worker has been sent and not answered, in order; a worker holds up to
-    # two batches, so it starts the next as soon as it finishes one
-    pending: dict[Sandbox, deque[int]] = {}
-    deadline: dict[Sandbox, float] = {}
+    return _Spread(boxes, items).run()
 
-    def send(box: Sandbox, indices: deque[int]) -> None:
+
+class _Spread:
+    """One list of answers judged by workers side by side (:func:`_judge_spread`)."""
+
+    def __init__(self, boxes: list[Sandbox], items: list[Item]) -> None:
+        self.boxes = boxes
+        self.items = items
+        self.results: list[Assessment | None] = [None] * len(items)
+        self.sent = 0  # items[:sent] have gone to a worker
+        # the answers each worker has been sent and not answered, in order; a worker holds up
+        # to two batches, so it starts the next as soon as it finishes one
+        self.pending: dict[Sandbox, deque[int]] = {}
+        self.deadline: dict[Sandbox, float] = {}
+
+    def batch_size(self) -> int:
+        """A quarter of each worker's share of what is left (at most :data:`MAX_BATCH`):
+        batches shrink towards the end, so the workers finish together."""
+        return max(1, min(MAX_BATCH, (len(self.items) - self.sent) // (4 * len(self.boxes))))
+
+    def send(self, box: Sandbox, indices: deque[int]) -> None:
         """Hand ``indices`` to ``box``; an answer the worker cannot even receive is not judged."""
+        if self.pending.get(box):
+            # Answers are in flight: the worker is never restarted under them. If it has died,
+            # its end of file is read as usual and these go to the fresh worker with the rest.
+            try:
+                box.pipe().send([self.items[i] for i in indices])
+            except OSError:
+                pass
+            self.pending[box] += indices
+            return
         while indices:
-            if box._send([items[i] for i in indices]):
-                if pending.get(box):
-                    pending[box] += indices
-                else:
-                    pending[box], deadline[box] = indices, time.monotonic() + box.seconds
+            if box._send([self.items[i] for i in indices]):
+                self.pending[box] = indices
+                self.deadline[box] = time.monotonic() + box.seconds
                 return
-            results[indices.popleft()] = not_evaluated("the judging process stopped", None)
+            self.results[indices.popleft()] = not_evaluated("the judging process stopped", None)
 
-    def refill(box: Sandbox) -> None:
-        """Keep ``box`` holding a batch beyond the one it is judging, while batches remain."""
-        while batches and len(pending.get(box, ())) <= size:
-            send(box, deque(batches.popleft()))
-        if box in pending and not pending[box]:
-            del pending[box]
+    def refill(self, box: Sandbox) -> None:
+        """Keep ``box`` holding a batch beyond the one it is judging, while answers remain."""
+        while self.sent < len(self.items) and len(self.pending.get(box, ())) <= self.batch_size():
+            size = self.batch_size()
+            self.sent += size
+            self.send(box, deque(range(self.sent - size, self.sent)))
+        if box in self.pending and not self.pending[box]:
+            del self.pending[box]
 
-    def fail(box: Sandbox, assessment: Assessment) -> None:
+    def fail(self, box: Sandbox, assessment: Assessment) -> None:
         """The current answer of ``box`` gets ``assessment``; the rest go to a fresh worker."""
-        indices = pending.pop(box)
-        results[indices.popleft()] = assessment
+        indices = self.pending.pop(box)
+        self.results[indices.popleft()] = assessment
         box._kill()
-        send(box, indices)
-        refill(box)
+        self.send(box, indices)
+        self.refill(box)
 
-    def receive(box: Sandbox) -> None:
+    def receive(self, box: Sandbox) -> None:
         """Read every outcome ``box`` has sent so far."""
-        conn = box._conn
-        while box in pending and conn is box._conn:
+        conn = box.pipe()
+        while True:
             try:
                 status, payload = conn.recv()
             except (EOFError, OSError):
-                fail(box, not_evaluated("the judging process stopped (out of memory?)"))
+                self.fail(box, not_evaluated("the judging process stopped (out of memory?)"))
                 return
             if status == "memory":
-                fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
+                self.fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
                 return
-            results[pending[box].popleft()] = (payload if status == "ok"
-                                               else not_evaluated(payload))
-            deadline[box] = time.monotonic() + box.seconds
-            refill(box)
-            if not conn.poll():
+            self.results[self.pending[box].popleft()] = (
+                cast(Assessment, payload) if status == "ok" else not_evaluated(str(payload)))
+            self.deadline[box] = time.monotonic() + box.seconds
+            self.refill(box)  # may start a fresh worker, when this one died after its outcome
+            if box not in self.pending or conn is not box._conn or not conn.poll():
                 return
 
-    for box in boxes:
-        refill(box)
-    while pending:
-        by_conn = {box._conn: box for box in pending}
-        wait_for = max(0.0, min(deadline[box] for box in pending) - time.monotonic())
-        try:
-            ready = connection.wait(list(by_conn), wait_for)
-        except OSError:
-            ready = []
-        for conn in ready:
-            receive(by_conn[conn])
-        now = time.monotonic()
-        for box in [b for b in pending if deadline[b] <= now and b._conn not in ready]:
-            fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
-        if ready and pending and all(len(indices) > 1 for indices in pending.values()):
-            time.sleep(COALESCE_SECONDS)
-    return results  # type: ignore[return-value]
+    def run(self) -> list[Assessment]:
+        for box in self.boxes:
+            self.refill(box)
+        while self.pending:
+            wait_for = max(0.0, min(self.deadline[box] for box in self.pending)
+                           - time.monotonic())
+            try:
+                ready = connection.wait([box.pipe() for box in self.pending], wait_for)
+            except OSError:
+                ready = []
+            answered = [box for box in self.pending if box._conn in ready]
+            for box in answered:
+                self.receive(box)
+            now = time.monotonic()
+            for box in [b for b in self.pending if self.deadline[b] <= now and b not in answered]:
+                self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
+            if answered and self.pending \
+                    and all(len(indices) > 1 for indices in self.pending.values()):
+                time.sleep(COALESCE_SECONDS)
+        assert all(result is not None for result in self.results)
+        return cast(list[Assessment], self.results)
 
 
 def assess_bounded(text: str | None, result: ObjectiveResult, policy: Policy = Policy(), *,
