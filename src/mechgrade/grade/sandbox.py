@@ -292,7 +292,8 @@ def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
 COALESCE_SECONDS = 0.002
 """How long the parent lets outcomes gather in the pipes before reading them: every outcome
 a waiting parent receives wakes it, and on a busy machine those wake-ups take the workers'
-cores (a worker judges an answer in a fraction of a millisecond)."""
+cores (a worker judges an answer in a fraction of a millisecond). An answer's time limit may
+so start up to this much after the previous outcome."""
 
 
 def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
