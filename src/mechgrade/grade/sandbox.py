@@ -21,6 +21,7 @@ from __future__ import annotations
 import gc
 import multiprocessing
 import os
+import select
 import signal
 import time
 from collections import deque
@@ -280,24 +281,53 @@ def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     outcome of its worker; an overrun, a memory overrun or a crash makes that one answer
     ``not_evaluated``, and the worker is restarted for the rest of its batch."""
     try:
-        distinct = list(dict.fromkeys(items))
+        keys = _keys(items)
+        first: dict[tuple, int] = {}  # key -> its place among the distinct items
+        distinct: list[Item] = []
+        for key, item in zip(keys, items):
+            if key not in first:
+                first[key] = len(distinct)
+                distinct.append(item)
     except TypeError:  # an unhashable item (a judge's own argument types): judge every one
         return _judge_each(boxes, items)
     if len(distinct) == len(items):
         return _judge_each(boxes, items)
-    judged = dict(zip(distinct, _judge_each(boxes, distinct)))
-    return [judged[item] for item in items]
+    judged = _judge_each(boxes, distinct)
+    return [judged[first[key]] for key in keys]
+
+
+def _keys(items: list[Item]) -> list[tuple]:
+    """Keys that are equal exactly when the items are, hashing each distinct object once
+    (hashing a reference with its mistakes costs more than a worker's round trip)."""
+    same: dict[int, int] = {}  # id of an object -> id of the first equal one
+    seen: dict[object, int] = {}
+
+    def representative(thing: object) -> int:
+        if id(thing) not in same:
+            same[id(thing)] = seen.setdefault(thing, id(thing))
+        return same[id(thing)]
+    return [(text, representative(result), representative(policy))
+            for text, result, policy in items]
 
 
 COALESCE_SECONDS = 0.002
 """How long the parent lets outcomes gather in the pipes before reading them: every outcome
 a waiting parent receives wakes it, and on a busy machine those wake-ups take the workers'
 cores (a worker judges an answer in a fraction of a millisecond). An answer's time limit may
-so start up to this much after the previous outcome."""
+so start up to this much (or what the system's sleep overshoots) after the previous outcome."""
+COALESCE_AT_LEAST = 16
+"""The parent pauses only while every worker holds at least this many answers, so none runs
+out of work during the pause."""
 
 
 def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     return _Spread(boxes, items).run()
+
+
+def _readable(conn: Connection) -> bool:
+    """Whether ``conn`` has something to read now: one ``select`` (``conn.poll`` builds a
+    selector each time, which costs more than receiving an outcome)."""
+    return bool(select.select([conn], [], [], 0)[0])
 
 
 class _Spread:
@@ -369,7 +399,7 @@ class _Spread:
                 cast(Assessment, payload) if status == "ok" else not_evaluated(str(payload)))
             self.deadline[box] = time.monotonic() + box.seconds
             self.refill(box)  # may start a fresh worker, when this one died after its outcome
-            if box not in self.pending or conn is not box._conn or not conn.poll():
+            if box not in self.pending or conn is not box._conn or not _readable(conn):
                 return
 
     def run(self) -> list[Assessment]:
@@ -388,8 +418,8 @@ class _Spread:
             now = time.monotonic()
             for box in [b for b in self.pending if self.deadline[b] <= now and b not in answered]:
                 self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
-            if answered and self.pending \
-                    and all(len(indices) > 1 for indices in self.pending.values()):
+            if answered and self.pending and all(len(indices) >= COALESCE_AT_LEAST
+                                                 for indices in self.pending.values()):
                 time.sleep(COALESCE_SECONDS)
         assert all(result is not None for result in self.results)
         return cast(list[Assessment], self.results)
