@@ -313,11 +313,9 @@ def _keys(items: list[Item]) -> list[tuple]:
 COALESCE_SECONDS = 0.002
 """How long the parent lets outcomes gather in the pipes before reading them: every outcome
 a waiting parent receives wakes it, and on a busy machine those wake-ups take the workers'
-cores (a worker judges an answer in a fraction of a millisecond). An answer's time limit may
-so start up to this much (or what the system's sleep overshoots) after the previous outcome."""
-COALESCE_AT_LEAST = 16
-"""The parent pauses only while every worker holds at least this many answers, so none runs
-out of work during the pause."""
+cores (a worker judges an answer in a fraction of a millisecond). The parent pauses less when
+a worker holds less work than that, and each worker is kept holding several pauses' worth.
+An answer's time limit may so start up to a pause late."""
 
 
 def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
@@ -342,6 +340,8 @@ class _Spread:
         # to two batches, so it starts the next as soon as it finishes one
         self.pending: dict[Sandbox, deque[int]] = {}
         self.deadline: dict[Sandbox, float] = {}
+        self.began = time.monotonic()
+        self.answered = 0
 
     def batch_size(self) -> int:
         """A quarter of each worker's share of what is left (at most :data:`MAX_BATCH`):
@@ -366,9 +366,19 @@ class _Spread:
                 return
             self.results[indices.popleft()] = not_evaluated("the judging process stopped", None)
 
+    def per_answer(self) -> float | None:
+        """Seconds per answer of one worker so far (``None`` before the first outcome)."""
+        if not self.answered:
+            return None
+        return (time.monotonic() - self.began) * len(self.boxes) / self.answered
+
     def refill(self, box: Sandbox) -> None:
-        """Keep ``box`` holding a batch beyond the one it is judging, while answers remain."""
-        while self.sent < len(self.items) and len(self.pending.get(box, ())) <= self.batch_size():
+        """Keep ``box`` holding a batch beyond the one it is judging, and at least four
+        pauses' worth of answers, while answers remain."""
+        per_answer = self.per_answer()
+        hold = self.batch_size() if per_answer is None else max(
+            self.batch_size(), min(4 * MAX_BATCH, int(4 * COALESCE_SECONDS / per_answer)))
+        while self.sent < len(self.items) and len(self.pending.get(box, ())) <= hold:
             size = self.batch_size()
             self.sent += size
             self.send(box, deque(range(self.sent - size, self.sent)))
@@ -397,10 +407,22 @@ class _Spread:
                 return
             self.results[self.pending[box].popleft()] = (
                 cast(Assessment, payload) if status == "ok" else not_evaluated(str(payload)))
+            self.answered += 1
             self.deadline[box] = time.monotonic() + box.seconds
             self.refill(box)  # may start a fresh worker, when this one died after its outcome
             if box not in self.pending or conn is not box._conn or not _readable(conn):
                 return
+
+    def pause(self) -> None:
+        """Let outcomes gather: :data:`COALESCE_SECONDS`, or a quarter of the work the least
+        busy worker holds (none when that is under half a millisecond)."""
+        per_answer = self.per_answer()
+        if not self.pending or per_answer is None:
+            return
+        least = min(len(indices) for indices in self.pending.values())
+        seconds = min(COALESCE_SECONDS, 0.25 * least * per_answer)
+        if seconds >= 0.0005:
+            time.sleep(seconds)
 
     def run(self) -> list[Assessment]:
         for box in self.boxes:
@@ -418,9 +440,8 @@ class _Spread:
             now = time.monotonic()
             for box in [b for b in self.pending if self.deadline[b] <= now and b not in answered]:
                 self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
-            if answered and self.pending and all(len(indices) >= COALESCE_AT_LEAST
-                                                 for indices in self.pending.values()):
-                time.sleep(COALESCE_SECONDS)
+            if answered:
+                self.pause()
         assert all(result is not None for result in self.results)
         return cast(list[Assessment], self.results)
 
