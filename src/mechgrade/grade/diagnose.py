@@ -114,19 +114,19 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     """
     student = np.asarray(student, dtype=float)
     reference = np.asarray(reference, dtype=float)
-    if student.shape != reference.shape or not np.all(np.isfinite(student)):
+    if student.shape != reference.shape or not np.isfinite(student).all():
         return None
     for mistake, values in mistakes:
         if values is None:
             continue
         values = np.asarray(values, dtype=float)
-        if values.shape == reference.shape and np.all(np.isfinite(values)) \
+        if values.shape == reference.shape and np.isfinite(values).all() \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
     found = _generated(student, reference, close, generated, plausible)
     if found is not None:
         return found
-    if not np.any(reference != 0):
+    if not (reference != 0).any():
         return None
     # every factor times the reference at once (row by row the same products)
     scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
@@ -157,7 +157,7 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
         if values is None:
             continue
         values = np.asarray(values, dtype=float)
-        if values.shape != reference.shape or not np.all(np.isfinite(values)):
+        if values.shape != reference.shape or not np.isfinite(values).all():
             continue
         # a mistaken value near zero (a contact point's velocity) is matched on the scale of
         # the reference, as a zero answer would be
