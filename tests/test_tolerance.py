@@ -1,11 +1,11 @@
-"""The tolerance rule gives the same verdict on numbers and short vectors as on arrays."""
+"""The tolerance rule gives the same verdict on numbers, vectors and short arrays as on long arrays."""
 
 from __future__ import annotations
 
 import numpy as np
 from hypothesis import given, strategies as st
 
-from mechgrade.tolerance import FLOAT_SLACK, within
+from mechgrade.tolerance import FLOAT_SLACK, PYTHON_SIZE, within
 
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
 finite = st.floats(min_value=-1e6, max_value=1e6)
@@ -21,10 +21,10 @@ def numpy_within(student, reference, rel, abs_, scale=None) -> bool:
                            + 1e-3 * FLOAT_SLACK * size))
 
 
-@given(st.lists(st.tuples(floats, floats), min_size=1, max_size=3),
+@given(st.lists(st.tuples(floats, floats), min_size=1, max_size=PYTHON_SIZE + 2),
        st.sampled_from([0.0, 1e-9, 0.01, 0.05]), st.sampled_from([0.0, 1e-9, 0.5]),
        st.one_of(st.none(), floats))
-def test_short_vectors_and_numbers_are_judged_as_arrays_are(pairs, rel, abs_, scale):
+def test_numbers_vectors_and_short_arrays_are_judged_as_long_arrays_are(pairs, rel, abs_, scale):
     student, reference = [p[0] for p in pairs], [p[1] for p in pairs]
     assert within(student, reference, rel, abs_, scale) == \
         numpy_within(student, reference, rel, abs_, scale)
@@ -36,3 +36,16 @@ def test_short_vectors_and_numbers_are_judged_as_arrays_are(pairs, rel, abs_, sc
 def test_the_boundary_is_included(reference, rel):
     edge = reference + rel * abs(reference)
     assert within(edge, reference, rel, 0.0) == numpy_within(edge, reference, rel, 0.0)
+
+
+@given(st.lists(st.tuples(finite, finite), min_size=1, max_size=40),
+       st.sampled_from([1e-6, 0.01]))
+def test_agreement_at_points_has_a_floor_from_the_mean_size(pairs, rel):
+    from mechgrade.tolerance import agree_at_points
+
+    student = np.array([p[0] for p in pairs])
+    reference = np.array([p[1] for p in pairs])
+    floor = max(rel * float(np.mean(np.abs(reference))) * 1e-3, 1e-12)
+    assert agree_at_points(rel, reference)(student, reference) == \
+        numpy_within(student, reference, rel, floor)
+    assert agree_at_points(rel, reference)(reference, reference)

@@ -28,9 +28,10 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
         limit = max(rel * size, abs_)
         return abs(a - b) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size
     s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
-    if s.shape == t.shape and s.size <= 3 and abs_ == abs_:
-        # The same arithmetic on Python floats: for a number or a vector, numpy's set-up costs
-        # more than the test, and judging one answer tries it against every diagnosis.
+    if s.shape == t.shape and s.size <= PYTHON_SIZE and abs_ == abs_:
+        # The same arithmetic on Python floats: for a number, a vector or the values at a few
+        # sample points numpy's set-up costs more than the test, which stops at the first
+        # value that fails (judging one answer tries it against every diagnosis).
         fixed = None if scale is None else abs(float(scale))
         for a, b in zip(s.ravel().tolist(), t.ravel().tolist()):
             size = abs(b) if fixed is None else fixed
@@ -46,6 +47,9 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
 
 
 _NUMBERS = (float, int)
+PYTHON_SIZE = 32
+"""Arrays up to this size are compared value by value in Python floats (the same IEEE
+arithmetic as numpy's, without its set-up)."""
 
 
 def agree_at_points(rel: float, reference: np.ndarray):
@@ -57,7 +61,9 @@ def agree_at_points(rel: float, reference: np.ndarray):
     >>> agree_at_points(1e-6, np.array([1.0, 2.0]))(np.array([1.0, 2.0 + 1e-7]), np.array([1.0, 2.0]))
     True
     """
-    scale = float(np.mean(np.abs(reference))) if reference.size else 0.0
+    # the mean size, as np.mean sums it (np.mean itself costs more than judging an answer)
+    scale = float(np.add.reduce(np.abs(reference), axis=None, dtype=float)) / reference.size \
+        if reference.size else 0.0
     floor = max(rel * scale * 1e-3, 1e-12)
 
     def close(s: np.ndarray, t: np.ndarray) -> bool:

@@ -87,3 +87,14 @@ def test_a_located_dimension_error_keeps_both_wordings():
     assert str(located) == "p.yaml:3:4: find: cannot add a length ([length]) and a time " \
         "([time]) in 'L-t'"
     assert located.student == "subtracts a length ([length]) and a time ([time])"
+
+
+def test_kept_descriptions_follow_pints_order_and_powers():
+    from mechgrade.expressions.dimensions import described
+    from mechgrade.units import describe_dimension, dimension
+
+    length = dimension("m")
+    for dim in (dimension("N"), dimension("lbf"), dimension("N") / dimension("s"),
+                dimension("lbf") / dimension("s"), length * length, length ** 0.5, dimension("")):
+        assert described(dim) == describe_dimension(dim)
+        assert described(dim) == describe_dimension(dim)  # and again, from the kept text

@@ -135,3 +135,65 @@ def test_number_fragments_comments_and_bad_constants_are_refused(text, message):
 
 def test_an_imaginary_literal_is_a_product_with_j():
     assert to_text(parse("3j + 2.5J")) == "3*j+2.5*J"
+
+
+# ---------------------------------------------------------------------------- the fast scanner
+
+_SCANNER_ALPHABET = "aZe_jJx019 +-*/().,"  # letters that make numbers (e, j, x), digits, operators
+_PIECES = ("1", "0", "00", "1_0", "1__0", "0x1f", "0b1", "0o7", ".5", "5.", "1.5e-3", "2e", "3j",
+           "1e5j", "...", "**", "//", "sqrt", "sin", "(", ")", " ", "thetad", "__d1__x", "N.x")
+
+
+def _answer_forms() -> list[str]:
+    """Every answer written in tests/data, and the hostile class's answers."""
+    import re
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    forms = set()
+    for path in data.rglob("*"):
+        if path.suffix in (".yaml", ".py", ".md"):
+            text = path.read_text(encoding="utf-8", errors="replace")
+            forms.update(m.group(1).strip().strip("'\"")
+                         for m in re.finditer(r"answer\w*:\s*(.+)", text))
+            forms.update(re.findall(r"""["']([^"'\n]{1,80})["']""", text))
+    return sorted(forms)
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.one_of(st.text(alphabet=_SCANNER_ALPHABET, max_size=30),
+                 st.lists(st.sampled_from(_PIECES), max_size=12).map("".join)))
+def test_the_compiled_scanner_reads_as_pythons_tokenizer(text):
+    from mechgrade.expressions.syntax import python_tokens, tokens
+
+    def outcome(read):
+        try:
+            return read(text)
+        except ExpressionError as exc:
+            return exc.message
+    assert outcome(tokens) == outcome(python_tokens)
+
+
+@pytest.mark.parametrize("text", ["2 L thetad**2", "-(x + r*thetad*sin(theta))/17",
+                                  "sqrt(xd**2 + yd**2)", "1.5e-3 .5 N.x", "a ... b // c"])
+def test_plain_answers_are_read_by_the_compiled_scanner(text, monkeypatch):
+    from mechgrade.expressions import syntax
+
+    def refuse(text):
+        raise AssertionError("read by tokenize")
+    monkeypatch.setattr(syntax, "python_tokens", refuse)
+    assert syntax.tokens(text)
+
+
+@pytest.mark.parametrize("text", _answer_forms())
+def test_every_answer_form_normalises_as_with_pythons_tokenizer(text, monkeypatch):
+    from mechgrade.expressions import syntax
+
+    def outcome():
+        try:
+            return syntax.normalize(text, ("vel",))
+        except ExpressionError as exc:
+            return exc.message
+    fast = outcome()
+    monkeypatch.setattr(syntax, "_scan", lambda text: None)  # tokenize reads every text
+    assert fast == outcome()

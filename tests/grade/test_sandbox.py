@@ -119,3 +119,26 @@ def test_each_answer_of_a_batch_has_its_own_time_limit():
 def test_pool_refuses_no_workers():
     with pytest.raises(ValueError, match="positive number of workers"):
         SandboxPool(0)
+
+
+def test_answers_in_flight_when_a_worker_dies_go_to_the_fresh_worker_in_order():
+    texts = [f"{i} ft/s^2" for i in range(40)]
+    for at in range(3, 40, 4):
+        texts[at] = "exit"
+    items = [(t, ACC, Policy()) for t in texts]
+    with SandboxPool(2, seconds=20, judge=hostile_judge) as pool:
+        judged = pool.assess_many(items)
+    assert [(a.verdict, a.read_back) for a in judged] == [
+        ("not_evaluated", None) if t == "exit" else (assess(t, ACC).verdict, assess(t, ACC).read_back)
+        for t in texts]
+
+
+def test_items_are_the_same_exactly_when_equal_whichever_objects_hold_them():
+    from dataclasses import replace
+
+    from mechgrade.grade.sandbox import _keys
+
+    twin, other = replace(SYM), replace(SYM, unit="m")
+    keys = _keys([("L", SYM, Policy()), ("L", twin, Policy()), ("L", other, Policy()),
+                  ("2 L", SYM, Policy()), ("L", SYM, Policy(seed=1))])
+    assert keys[0] == keys[1] and len(set(keys)) == 4

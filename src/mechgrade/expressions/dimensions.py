@@ -27,7 +27,7 @@ from ..units import describe_dimension, dimensionless
 from .functions import MATH_FUNCTIONS, DimensionError, Kind
 from .syntax import Bin, Call, Name, Node, Num, Unary, constant_value, to_text
 
-__all__ = ["DimensionError", "Kind", "Type", "infer"]
+__all__ = ["DimensionError", "Kind", "Type", "described", "infer"]
 
 
 @dataclass(frozen=True)
@@ -70,24 +70,26 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:  # noqa: C901 - one rule per o
         if t.kind in (Kind.POINT, Kind.FRAME):
             raise DimensionError(f"a {t.kind} cannot take part in arithmetic; expected scalars "
                                  "or vectors")
-    text = to_text(node)
+    def text() -> str:  # for messages only: most expressions are consistent
+        return to_text(node)
+
     if node.op in "+-":
         if a.kind == Kind.ZERO:
             return b
         if b.kind == Kind.ZERO:
             return a
         if a.kind != b.kind:
-            raise DimensionError(f"cannot add a {a.kind} and a {b.kind} in '{text}'")
+            raise DimensionError(f"cannot add a {a.kind} and a {b.kind} in '{text()}'")
         if a.dim != b.dim:
             verb, joint = ("adds", "to") if node.op == "+" else ("subtracts", "and")
-            raise DimensionError(f"cannot add {describe_dimension(a.dim)} and "
-                                 f"{describe_dimension(b.dim)} in '{text}'",
-                                 f"{verb} {describe_dimension(a.dim)} {joint} "
-                                 f"{describe_dimension(b.dim)}")
+            raise DimensionError(f"cannot add {described(a.dim)} and "
+                                 f"{described(b.dim)} in '{text()}'",
+                                 f"{verb} {described(a.dim)} {joint} "
+                                 f"{described(b.dim)}")
         return a
     if node.op == "*":
         if a.kind == Kind.VECTOR and b.kind == Kind.VECTOR:
-            raise DimensionError(f"cannot multiply two vectors in '{text}'; expected "
+            raise DimensionError(f"cannot multiply two vectors in '{text()}'; expected "
                                  "dot(u, v) or cross(u, v)")
         if Kind.ZERO in (a.kind, b.kind):
             return Type(Kind.ZERO, a.dim * b.dim)
@@ -95,20 +97,20 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:  # noqa: C901 - one rule per o
         return Type(kind, a.dim * b.dim)
     if node.op == "/":
         if b.kind != Kind.SCALAR:
-            raise DimensionError(f"expected a nonzero scalar divisor in '{text}'",
+            raise DimensionError(f"expected a nonzero scalar divisor in '{text()}'",
                                  "divides by zero" if b.kind == Kind.ZERO else None)
         return Type(a.kind, a.dim / b.dim)
     # power
     if a.kind == Kind.VECTOR or b.kind == Kind.VECTOR:
-        raise DimensionError(f"cannot raise a vector to a power in '{text}'")
+        raise DimensionError(f"cannot raise a vector to a power in '{text()}'")
     variable = "raises a quantity with units to a variable power"
     if b.dim != dimensionless():
-        raise DimensionError(f"expected a pure-number exponent in '{text}'", variable)
+        raise DimensionError(f"expected a pure-number exponent in '{text()}'", variable)
     if a.dim == dimensionless():
         return Type(a.kind if a.kind != Kind.ZERO else Kind.SCALAR, a.dim)
     exponent = constant_value(node.right)
     if exponent is None:
-        raise DimensionError(f"a quantity with units needs a constant exponent in '{text}'",
+        raise DimensionError(f"a quantity with units needs a constant exponent in '{text()}'",
                              variable)
     return Type(Kind.SCALAR, a.dim ** exponent)
 
@@ -120,3 +122,23 @@ def _math(node: Call, args: list[Type]) -> Type:
                                  "(use mag(v) or dot(u, v))")
     entry = MATH_FUNCTIONS[node.func]
     return Type(Kind.SCALAR, entry.dimension(node.func, tuple(t.dim for t in args)))
+
+
+_DESCRIBED: dict[tuple, str] = {}
+
+
+def described(dim) -> str:
+    """:func:`mechgrade.units.describe_dimension`, kept per dimensionality: pint's text of one
+    costs more than judging an answer. Kept by its bases in pint's order and their powers as
+    written, which the text follows ('[mass] * [length]' for N, '[length] * [mass]' for lbf).
+
+    >>> from mechgrade.units import dimension
+    >>> described(dimension("m/s"))
+    'a velocity ([length] / [time])'
+    """
+    key = tuple((base, repr(power)) for base, power in dict(dim).items())  # 2 is not 2.0
+    if key not in _DESCRIBED:
+        if len(_DESCRIBED) > 1024:
+            _DESCRIBED.clear()
+        _DESCRIBED[key] = describe_dimension(dim)
+    return _DESCRIBED[key]

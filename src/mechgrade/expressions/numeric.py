@@ -35,7 +35,12 @@ def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
     """
     count = len(next(iter(env.values()))) if env else 1
     with np.errstate(all="ignore"):
-        return np.broadcast_to(np.asarray(_eval(node, env), dtype=float), (count,)).copy()
+        values = _eval(node, env)
+        if isinstance(values, np.ndarray) and values.shape == (count,) \
+                and values.dtype == np.float64 and values.flags.owndata \
+                and not any(values is given for given in env.values()):
+            return values  # computed here, so already the caller's own copy
+        return np.broadcast_to(np.asarray(values, dtype=float), (count,)).copy()
 
 
 def _eval(node: Node, env: dict[str, np.ndarray]):

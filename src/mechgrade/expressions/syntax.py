@@ -202,6 +202,15 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
     >>> normalize("2 L θ̇^2 + ẍ")
     '2 * L * __d1__theta ** 2 + __d2__x'
     """
+    return _normalized(text, _function_names(functions))
+
+
+def _function_names(functions: Iterable[str]) -> frozenset[str] | set[str]:
+    functions = tuple(functions)
+    return _MATH_NAMES | set(functions) if functions else _MATH_NAMES
+
+
+def _normalized(text: str, functions: frozenset[str] | set[str]) -> str:
     if not isinstance(text, str):
         raise ExpressionError(f"expected text, found {type(text).__name__}")
     if len(text) > MAX_LENGTH:
@@ -209,6 +218,17 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
     if "#" in text:  # Python's tokenizer would drop the rest as a comment
         raise ExpressionError(f"expected an expression without '#', found "
                               f"{excerpt(text, text.index('#'))}")
+    if not text.isascii():  # plain ASCII is its own NFC form, with no letters to rewrite
+        text = _rewrite_unicode(text)
+    text = text.replace("^", "**")
+    text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
+    if "'" in text:
+        raise ExpressionError("expected a prime (') only right after a name, as in theta'")
+    return _implicit_products(text, functions)
+
+
+def _rewrite_unicode(text: str) -> str:
+    """Greek letters to names, symbols to operators, dot accents to primes (NFC first)."""
     text = unicodedata.normalize("NFC", text)
     out: list[str] = []
     for ch in text:
@@ -234,60 +254,109 @@ def normalize(text: str, functions: Iterable[str] = ()) -> str:
             raise ExpressionError(
                 f"expected names, numbers, operators and functions, found {ch!r}")
         out.append(ch + accent)
-    text = "".join(out).replace("^", "**")
-    text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
-    if "'" in text:
-        raise ExpressionError("expected a prime (') only right after a name, as in theta'")
-    return _implicit_products(text, set(MATH_FUNCTIONS) | set(functions))
+    return "".join(out)
 
 
-_OPERAND_END = {tokenize.NUMBER, tokenize.NAME}
-_OPERAND_START = {tokenize.NUMBER, tokenize.NAME}
+Token = tuple[int, str, int, int]
+"""A token as Python's tokenizer reads it: type (``tokenize.NAME``...), text, start and end
+column."""
+
+_SIMPLE = re.compile(r"[A-Za-z0-9_ +\-*/().,]*")
+_SCAN = re.compile(r" *(?:(?P<number>" + tokenize.Number + r")"
+                   r"|(?P<op>\*\*|\*|//|/|\.\.\.|\.|[-+(),])|(?P<name>[A-Za-z_][A-Za-z0-9_]*))")
+_TOKEN_TYPES = {"number": tokenize.NUMBER, "op": tokenize.OP, "name": tokenize.NAME}
 
 
-def _implicit_products(text: str, functions: set[str]) -> str:
+def tokens(text: str) -> list[Token]:
+    """The tokens of one line of normalised text, as :mod:`tokenize` reads them (without its
+    line structure: no NEWLINE, INDENT or ENDMARKER).
+
+    Text made only of names, numbers, spaces and ``+ - * / ( ) , .`` with balanced
+    parentheses (nearly every answer) is read by one compiled pattern built on tokenize's own
+    number pattern; anything else goes through :mod:`tokenize` itself, which also words the
+    errors. The tests prove both readings agree.
+
+    >>> tokens("2L (x)")
+    [(2, '2', 0, 1), (1, 'L', 1, 2), (54, '(', 3, 4), (1, 'x', 4, 5), (54, ')', 5, 6)]
+    """
+    if _SIMPLE.fullmatch(text):
+        scanned = _scan(text)
+        if scanned is not None:
+            return scanned
+    return python_tokens(text)
+
+
+def _scan(text: str) -> list[Token] | None:
+    """``text`` (only characters of :data:`_SIMPLE`) read with :data:`_SCAN`; ``None`` when
+    its parentheses do not balance (tokenize then says how)."""
+    out: list[Token] = []
+    depth = 0
+    pos = 0
+    match = _SCAN.match
+    while (found := match(text, pos)) is not None:
+        group = found.lastgroup
+        assert group is not None  # every alternative of _SCAN is named
+        string = found.group(group)
+        start, pos = found.start(group), found.end()
+        if string == "(":
+            depth += 1
+        elif string == ")":
+            depth -= 1
+            if depth < 0:
+                return None
+        out.append((_TOKEN_TYPES[group], string, start, pos))
+    return out if depth == 0 else None
+
+
+def python_tokens(text: str) -> list[Token]:
+    """The tokens of ``text`` read by :mod:`tokenize` (any text; see :func:`tokens`)."""
     try:
-        tokens = [t for t in tokenize.generate_tokens(io.StringIO(text).readline)
-                  if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER,
-                                    tokenize.INDENT, tokenize.DEDENT)]
+        return [(t.type, t.string, t.start[1], t.end[1])
+                for t in tokenize.generate_tokens(io.StringIO(text).readline)
+                if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER,
+                                  tokenize.INDENT, tokenize.DEDENT)]
     except (tokenize.TokenError, IndentationError, SyntaxError) as exc:
         raise ExpressionError(f"expected a complete expression, found {excerpt(text)} "
                               f"({_reason(exc)})") from None
+
+
+def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> str:
     pieces: list[str] = []
-    prev = None
-    for tok in tokens:
-        if tok.type == tokenize.ERRORTOKEN and not tok.string.isspace():
-            raise ExpressionError(f"expected names, numbers, operators and functions, "
-                                  f"found {excerpt(tok.string)}")
-        if prev is not None and prev.type == tok.type == tokenize.NUMBER:
-            # "98.5.0", "1 000", "9.85e1.5": never read number fragments as a product
-            raise ExpressionError(f"expected an operator between two numbers, found "
-                                  f"{excerpt(text, tok.start[1], tok.end[1])}")
-        if prev is not None and _juxtaposed(prev, tok, functions):
-            pieces.append("*")
-        if tok.type == tokenize.NUMBER and tok.string[-1] in "jJ":
-            # Python's imaginary literal: "3j" is 3 times the name j
-            pieces += [tok.string[:-1], "*", tok.string[-1]]
-            prev = tok
+    # the last token that is not stray whitespace: whether it ends an operand, whether it is
+    # a number, and whether a "(" after it opens a call
+    ends = number = calls = False
+    for kind, string, start, end in tokens(text):
+        if kind == tokenize.ERRORTOKEN:
+            if not string.isspace():
+                raise ExpressionError(f"expected names, numbers, operators and functions, "
+                                      f"found {excerpt(string)}")
+            pieces.append(string)
             continue
-        pieces.append(tok.string)
-        if not (tok.type == tokenize.ERRORTOKEN and tok.string.isspace()):
-            prev = tok
+        if kind == tokenize.NUMBER:
+            if number:
+                # "98.5.0", "1 000", "9.85e1.5": never read number fragments as a product
+                raise ExpressionError(f"expected an operator between two numbers, found "
+                                      f"{excerpt(text, start, end)}")
+            if ends:
+                pieces.append("*")
+            if string[-1] in "jJ":
+                # Python's imaginary literal: "3j" is 3 times the name j
+                pieces += [string[:-1], "*", string[-1]]
+            else:
+                pieces.append(string)
+            ends, number, calls = True, True, False
+        elif kind == tokenize.NAME:
+            keyword = string in _KEYWORDS
+            if ends and not keyword:
+                pieces.append("*")
+            pieces.append(string)
+            ends, number, calls = not keyword, False, string in functions
+        else:
+            if string == "(" and ends and not calls:
+                pieces.append("*")
+            pieces.append(string)
+            ends, number, calls = string == ")", False, False
     return " ".join(pieces)
-
-
-def _juxtaposed(prev: tokenize.TokenInfo, tok: tokenize.TokenInfo, functions: set[str]) -> bool:
-    prev_ends = prev.type in _OPERAND_END or prev.string == ")"
-    if prev.type == tokenize.NAME and prev.string in _KEYWORDS:
-        return False
-    if tok.type == tokenize.NAME and tok.string in _KEYWORDS:
-        return False
-    starts = tok.type in _OPERAND_START or tok.string == "("
-    if not (prev_ends and starts):
-        return False
-    if tok.string == "(" and prev.type == tokenize.NAME and prev.string in functions:
-        return False
-    return True
 
 
 _KEYWORDS = {"and", "or", "not", "in", "is", "if", "else", "lambda", "for"}
@@ -310,8 +379,8 @@ def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) 
     >>> parse("sqrt(xd**2 + yd**2)")
     Call(func='sqrt', args=(Bin(op='+', left=Bin(op='**', left=Name(id='xd'), right=Num(text='2')), right=Bin(op='**', left=Name(id='yd'), right=Num(text='2'))),))
     """
-    functions = tuple(functions)
-    source = normalize(text, functions)
+    names = _function_names(functions)
+    source = _normalized(text, names)
     if not source.strip():
         raise ExpressionError("expected an expression, found nothing")
     try:
@@ -321,29 +390,40 @@ def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) 
                               f"({_reason(exc)})", offset=exc.offset) from None
     except (MemoryError, RecursionError, ValueError):
         raise ExpressionError("expected a simpler expression (too deeply nested)") from None
-    builder = _Builder(set(MATH_FUNCTIONS) | set(functions), attributes)
-    node = builder.build(tree.body, 0)
-    return node
+    return _Builder(names, attributes).build(tree.body, 0)[0]
+
+
+_MATH_NAMES = frozenset(MATH_FUNCTIONS)
+_RATE_NAME = re.compile(r"__d([12])__([A-Za-z][A-Za-z0-9_]*)")
+
+Built = tuple["Node", Union[float, None]]
+"""A tree and its constant value (:func:`constant_value`; ``None`` when it uses a name)."""
 
 
 class _Builder:
+    """Checked trees from Python's syntax tree. Each part's constant value is carried up with
+    it, so the bounds on constants (:func:`constant_value`) are checked once per part rather
+    than refolded for every enclosing one."""
+
     _BINOPS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**"}
 
-    def __init__(self, functions: set[str], attributes: bool):
+    def __init__(self, functions: frozenset[str] | set[str], attributes: bool):
         self.functions = functions
         self.attributes = attributes
         self.count = 0
 
-    def build(self, node: ast.AST, depth: int) -> Node:
+    def build(self, node: ast.AST, depth: int) -> Built:
         self.count += 1
         if self.count > MAX_NODES:
             raise ExpressionError(TOO_MANY_PARTS)
         if depth > MAX_DEPTH:
             raise ExpressionError(f"expected an expression nested at most {MAX_DEPTH} deep")
         if isinstance(node, ast.Constant):
-            return self._number(node.value)
+            number = self._number(node.value)
+            return number, number.value
         if isinstance(node, ast.Name):
-            return self._name(node.id)
+            leaf = self._name(node.id)
+            return leaf, math.pi if leaf == _PI else None
         if isinstance(node, ast.Attribute):
             if not self.attributes or not isinstance(node.value, ast.Name):
                 raise ExpressionError("expected a unit vector such as N.x, found an attribute")
@@ -351,44 +431,55 @@ class _Builder:
             if not isinstance(base, Name) or node.attr not in ("x", "y", "z"):
                 raise ExpressionError(f"expected a unit vector such as N.x, "
                                       f"found '{node.value.id}.{node.attr}'")
-            return Attr(base.id, node.attr)
+            return Attr(base.id, node.attr), None
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
-            operand = self.build(node.operand, depth + 1)
+            operand, value = self.build(node.operand, depth + 1)
             if isinstance(node.op, ast.UAdd):
-                return operand
-            return Unary("-", operand)
+                return operand, value
+            return Unary("-", operand), None if value is None else -value
         if isinstance(node, ast.BinOp) and type(node.op) in self._BINOPS:
-            op = self._BINOPS[type(node.op)]
-            # A flat chain a + b + c ... nests to the left; count it as one level, not many.
-            chained = isinstance(node.left, ast.BinOp) and op != "**"
-            left = self.build(node.left, depth + (0 if chained else 1))
-            right = self.build(node.right, depth + 1)
-            out = Bin(op, left, right)
-            if op == "**":
-                _check_power(out)
-            _check_magnitude(out)
-            return out
+            return self._binary(node, self._BINOPS[type(node.op)], depth)
         if isinstance(node, ast.Call):
-            if not isinstance(node.func, ast.Name):
-                raise ExpressionError("expected a call of a named function such as sin(x)")
-            func = node.func.id
-            if func not in self.functions:
-                raise ExpressionError(f"expected a known function ({_listing(self.functions)}), "
-                                      f"found '{func}(...)'")
-            if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
-                raise ExpressionError(f"expected plain arguments in '{func}(...)'")
-            args = tuple(self.build(a, depth + 1) for a in node.args)
-            if func in MATH_FUNCTIONS:
-                canonical, arity = MATH_FUNCTIONS[func]
-                if len(args) != arity:
-                    raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
-                                          f"for {func}(...), found {len(args)}")
-                func = canonical
-            call = Call(func, args)
-            _check_magnitude(call)
-            return call
+            return self._call(node, depth)
         raise ExpressionError(f"expected names, numbers, operators and functions, "
                               f"found {_describe(node)}")
+
+    def _binary(self, node: ast.BinOp, op: str, depth: int) -> Built:
+        # A flat chain a + b + c ... nests to the left; count it as one level, not many.
+        chained = isinstance(node.left, ast.BinOp) and op != "**"
+        left, a = self.build(node.left, depth + (0 if chained else 1))
+        right, b = self.build(node.right, depth + 1)
+        out = Bin(op, left, right)
+        if op == "**" and b is not None and abs(b) > MAX_POWER:
+            raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
+                                  f"{excerpt(to_text(right))} {CONSTANT_PROBLEMS[0]}")
+        if a is None or b is None:
+            return out, None
+        if op == "**":
+            return out, _settled(out, _const_power, a, b)
+        return out, _settled(out, PYTHON_OPERATORS[op], a, b)
+
+    def _call(self, node: ast.Call, depth: int) -> Built:
+        if not isinstance(node.func, ast.Name):
+            raise ExpressionError("expected a call of a named function such as sin(x)")
+        func = node.func.id
+        if func not in self.functions:
+            raise ExpressionError(f"expected a known function ({_listing(self.functions)}), "
+                                  f"found '{func}(...)'")
+        if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
+            raise ExpressionError(f"expected plain arguments in '{func}(...)'")
+        built = [self.build(a, depth + 1) for a in node.args]
+        args = tuple(arg for arg, _ in built)
+        if func in MATH_FUNCTIONS:
+            canonical, arity = MATH_FUNCTIONS[func]
+            if len(args) != arity:
+                raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
+                                      f"for {func}(...), found {len(args)}")
+            func = canonical
+        call = Call(func, args)
+        if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 or built[0][1] is None:
+            return call, None
+        return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1])
 
     def _number(self, value) -> Num:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -402,7 +493,7 @@ class _Builder:
         return Num(text)
 
     def _name(self, name: str) -> Node:
-        match = re.fullmatch(r"__d([12])__([A-Za-z][A-Za-z0-9_]*)", name)
+        match = _RATE_NAME.fullmatch(name)
         if match:
             return Prime(match.group(2), int(match.group(1)))
         if name.startswith("_"):
@@ -413,7 +504,10 @@ class _Builder:
         return Name(name)
 
 
-def _listing(functions: set[str]) -> str:
+_PI = Name("pi")
+
+
+def _listing(functions: frozenset[str] | set[str]) -> str:
     shown = sorted(functions)
     return ", ".join(shown[:12]) + (", ..." if len(shown) > 12 else "")
 
@@ -465,9 +559,16 @@ def constant_value(node: Node) -> float | None:
     mechgrade.errors.ExpressionError: expected numbers of at most 1e+150, found 'exp(exp(1000))' (too large)
     """
     try:
-        value = _const(node)
+        return _settled(node, _const, node)
     except _NotConstant:
         return None
+
+
+def _settled(node: Node, operation, *operands) -> float:
+    """``operation(*operands)``, the value of the constant part ``node``, within the bounds of
+    :func:`constant_value` (which raises as it says)."""
+    try:
+        value = operation(*operands)
     except OverflowError:
         value = math.inf
     except ZeroDivisionError:
@@ -548,14 +649,3 @@ def fold(node: Node, *, number, resolve, call, power=operator.pow, divide=operat
         return call(n.func, n.args)
 
     return walk_(node)
-
-
-def _check_power(node: Bin) -> None:
-    exponent = constant_value(node.right)
-    if exponent is not None and abs(exponent) > MAX_POWER:
-        raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
-                              f"{excerpt(to_text(node.right))} {CONSTANT_PROBLEMS[0]}")
-
-
-def _check_magnitude(node: Bin | Call) -> None:
-    constant_value(node)  # raises when a constant part is too large, undefined or not real

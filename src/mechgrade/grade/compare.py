@@ -26,7 +26,7 @@ import numpy as np
 
 from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeError
 from ..expressions import syntax
-from ..expressions.dimensions import DimensionError, Kind, Type, infer
+from ..expressions.dimensions import DimensionError, Kind, Type, described, infer
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
@@ -765,6 +765,7 @@ def _dimension_diagnosis(node: Node, result: ObjectiveResult) -> Diagnosis | Non
     wanted = dimension(result.unit)
     if given != wanted:
         return Diagnosis("dimension", "wrong dimension",
-                         f"Your expression is {describe_dimension(given)}; "
-                         f"{describe_dimension(wanted)} was asked.")
+                         f"Your expression is {described(given)}; "
+                         f"{described(wanted)} was asked.")
     return None
+

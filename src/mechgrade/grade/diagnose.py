@@ -83,6 +83,7 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
      "Your answer is off by a factor of 12: inches mixed with feet?", (12.0, 1 / 12)),
 )
 
+_ALL_FACTORS = np.array([factor for *_, factors in _FACTORS for factor in factors])
 FACTOR_CODES = tuple(dict.fromkeys(code for code, *_ in _FACTORS))
 VECTOR_CODES = ("swapped", "direction", "magnitude")
 GENERATED_CODES = MODEL_CODES + DYNAMICS_CODES + GIVEN_CODES
@@ -113,25 +114,28 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     """
     student = np.asarray(student, dtype=float)
     reference = np.asarray(reference, dtype=float)
-    if student.shape != reference.shape or not np.all(np.isfinite(student)):
+    if student.shape != reference.shape or not np.isfinite(student).all():
         return None
     for mistake, values in mistakes:
         if values is None:
             continue
         values = np.asarray(values, dtype=float)
-        if values.shape == reference.shape and np.all(np.isfinite(values)) \
+        if values.shape == reference.shape and np.isfinite(values).all() \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
     found = _generated(student, reference, close, generated, plausible)
     if found is not None:
         return found
-    if not np.any(reference != 0):
+    if not (reference != 0).any():
         return None
+    # every factor times the reference at once (row by row the same products)
+    scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
     for code, label, message, factors in _FACTORS:
+        rows = [next(scaled) for _ in factors]
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
             continue
-        for factor in factors:
-            if close(student, factor * reference):
+        for row in rows:
+            if close(student, row):
                 return Diagnosis(code, label, message)
     if kind == "vector":
         return _vector(student, reference, close)
@@ -153,7 +157,7 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
         if values is None:
             continue
         values = np.asarray(values, dtype=float)
-        if values.shape != reference.shape or not np.all(np.isfinite(values)):
+        if values.shape != reference.shape or not np.isfinite(values).all():
             continue
         # a mistaken value near zero (a contact point's velocity) is matched on the scale of
         # the reference, as a zero answer would be

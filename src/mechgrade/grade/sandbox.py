@@ -21,17 +21,23 @@ from __future__ import annotations
 import gc
 import multiprocessing
 import os
+import select
 import signal
 import time
 from collections import deque
 from multiprocessing import connection
-from typing import Callable, Iterable, Sequence
+from multiprocessing.connection import Connection
+from multiprocessing.process import BaseProcess
+from typing import Callable, Iterable, Sequence, Union, cast
 
 from ..solve.result import ObjectiveResult
 from .compare import Assessment, Policy, assess, not_evaluated
 
 Judge = Callable[[str | None, ObjectiveResult, Policy], Assessment]
 Item = tuple[str | None, ObjectiveResult, Policy]
+Outcome = tuple[str, Union[Assessment, str, None]]
+"""What the worker sends for one answer: ``("ok", assessment)``, ``("error", reason)`` or
+``("memory", None)``."""
 
 DEFAULT_SECONDS = 5.0
 DEFAULT_MEMORY_MB = 512
@@ -73,7 +79,7 @@ def _limit_memory(memory_mb: int) -> None:
         pass
 
 
-def _worker(conn, judge: Judge, memory_mb: int) -> None:
+def _worker(conn: Connection, judge: Judge, memory_mb: int) -> None:
     """Judge each batch of items sent, one answer at a time, sending each outcome back as soon
     as it is known (the parent times every answer from the previous outcome)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
@@ -86,6 +92,7 @@ def _worker(conn, judge: Judge, memory_mb: int) -> None:
         if batch is None:
             return
         for text, result, policy in batch:
+            outcome: Outcome
             try:
                 outcome = ("ok", judge(text, result, policy))
             except MemoryError:
@@ -124,8 +131,8 @@ class Sandbox:
         self.memory_mb = memory_mb
         self.judge = judge
         self.restarts = 0
-        self._process = None
-        self._conn = None
+        self._process: BaseProcess | None = None
+        self._conn: Connection | None = None
 
     # -- lifecycle
 
@@ -151,7 +158,7 @@ class Sandbox:
         self._process = self._conn = None
         if conn is not None:
             conn.close()
-        if process is not None and process.is_alive():
+        if process is not None and process.pid is not None and process.is_alive():
             try:
                 os.kill(process.pid, signal.SIGKILL)
             except (ProcessLookupError, OSError):
@@ -166,7 +173,8 @@ class Sandbox:
         if process is None:
             return
         try:
-            conn.send(None)
+            if conn is not None:
+                conn.send(None)
         except (OSError, BrokenPipeError):
             pass
         process.join(1)
@@ -186,11 +194,16 @@ class Sandbox:
                 self._kill()
             self._start()
         try:
-            self._conn.send(batch)
+            self.pipe().send(batch)
             return True
         except (OSError, BrokenPipeError):
             self._kill()
             return False
+
+    def pipe(self) -> Connection:
+        """The parent's end of the pipe to the live worker."""
+        assert self._conn is not None, "the worker is not running"
+        return self._conn
 
     # -- judging
 
@@ -268,75 +281,169 @@ def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     outcome of its worker; an overrun, a memory overrun or a crash makes that one answer
     ``not_evaluated``, and the worker is restarted for the rest of its batch."""
     try:
-        distinct = list(dict.fromkeys(items))
+        keys = _keys(items)
+        first: dict[tuple, int] = {}  # key -> its place among the distinct items
+        distinct: list[Item] = []
+        for key, item in zip(keys, items):
+            if key not in first:
+                first[key] = len(distinct)
+                distinct.append(item)
     except TypeError:  # an unhashable item (a judge's own argument types): judge every one
         return _judge_each(boxes, items)
     if len(distinct) == len(items):
         return _judge_each(boxes, items)
-    judged = dict(zip(distinct, _judge_each(boxes, distinct)))
-    return [judged[item] for item in items]
+    judged = _judge_each(boxes, distinct)
+    return [judged[first[key]] for key in keys]
+
+
+def _keys(items: list[Item]) -> list[tuple]:
+    """Keys that are equal exactly when the items are, hashing each distinct object once
+    (hashing a reference with its mistakes costs more than a worker's round trip)."""
+    same: dict[int, int] = {}  # id of an object -> id of the first equal one
+    seen: dict[object, int] = {}
+
+    def representative(thing: object) -> int:
+        if id(thing) not in same:
+            same[id(thing)] = seen.setdefault(thing, id(thing))
+        return same[id(thing)]
+    return [(text, representative(result), representative(policy))
+            for text, result, policy in items]
+
+
+COALESCE_SECONDS = 0.002
+"""How long the parent lets outcomes gather in the pipes before reading them: every outcome
+a waiting parent receives wakes it, and on a busy machine those wake-ups take the workers'
+cores (a worker judges an answer in a fraction of a millisecond). The parent pauses less when
+a worker holds less work than that, and each worker is kept holding several pauses' worth.
+An answer's time limit may so start up to a pause late."""
 
 
 def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
-    results: list[Assessment | None] = [None] * len(items)
-    size = max(1, min(MAX_BATCH, len(items) // (4 * len(boxes)) or 1))
-    batches = deque(range(start, min(start + size, len(items)))
-                    for start in range(0, len(items), size))
-    pending: dict[Sandbox, deque[int]] = {}
-    deadline: dict[Sandbox, float] = {}
+    return _Spread(boxes, items).run()
 
-    def send(box: Sandbox, indices: deque[int]) -> None:
+
+def _readable(conn: Connection) -> bool:
+    """Whether ``conn`` has something to read now: one ``select`` (``conn.poll`` builds a
+    selector each time, which costs more than receiving an outcome)."""
+    return bool(select.select([conn], [], [], 0)[0])
+
+
+class _Spread:
+    """One list of answers judged by workers side by side (:func:`_judge_spread`)."""
+
+    def __init__(self, boxes: list[Sandbox], items: list[Item]) -> None:
+        self.boxes = boxes
+        self.items = items
+        self.results: list[Assessment | None] = [None] * len(items)
+        self.sent = 0  # items[:sent] have gone to a worker
+        # the answers each worker has been sent and not answered, in order; a worker holds up
+        # to two batches, so it starts the next as soon as it finishes one
+        self.pending: dict[Sandbox, deque[int]] = {}
+        self.deadline: dict[Sandbox, float] = {}
+        self.began = time.monotonic()
+        self.answered = 0
+
+    def batch_size(self) -> int:
+        """A quarter of each worker's share of what is left (at most :data:`MAX_BATCH`):
+        batches shrink towards the end, so the workers finish together."""
+        return max(1, min(MAX_BATCH, (len(self.items) - self.sent) // (4 * len(self.boxes))))
+
+    def send(self, box: Sandbox, indices: deque[int]) -> None:
         """Hand ``indices`` to ``box``; an answer the worker cannot even receive is not judged."""
+        if self.pending.get(box):
+            # Answers are in flight: the worker is never restarted under them. If it has died,
+            # its end of file is read as usual and these go to the fresh worker with the rest.
+            try:
+                box.pipe().send([self.items[i] for i in indices])
+            except OSError:
+                pass
+            self.pending[box] += indices
+            return
         while indices:
-            if box._send([items[i] for i in indices]):
-                pending[box], deadline[box] = indices, time.monotonic() + box.seconds
+            if box._send([self.items[i] for i in indices]):
+                self.pending[box] = indices
+                self.deadline[box] = time.monotonic() + box.seconds
                 return
-            results[indices.popleft()] = not_evaluated("the judging process stopped", None)
-        pending.pop(box, None)
+            self.results[indices.popleft()] = not_evaluated("the judging process stopped", None)
 
-    def next_batch(box: Sandbox) -> None:
-        pending.pop(box, None)
-        while batches and box not in pending:
-            send(box, deque(batches.popleft()))
+    def per_answer(self) -> float | None:
+        """Seconds per answer of one worker so far (``None`` before the first outcome)."""
+        if not self.answered:
+            return None
+        return (time.monotonic() - self.began) * len(self.boxes) / self.answered
 
-    def fail(box: Sandbox, assessment: Assessment) -> None:
+    def refill(self, box: Sandbox) -> None:
+        """Keep ``box`` holding a batch beyond the one it is judging, and at least four
+        pauses' worth of answers, while answers remain."""
+        per_answer = self.per_answer()
+        hold = self.batch_size() if per_answer is None else max(
+            self.batch_size(), min(4 * MAX_BATCH, int(4 * COALESCE_SECONDS / per_answer)))
+        while self.sent < len(self.items) and len(self.pending.get(box, ())) <= hold:
+            size = self.batch_size()
+            self.sent += size
+            self.send(box, deque(range(self.sent - size, self.sent)))
+        if box in self.pending and not self.pending[box]:
+            del self.pending[box]
+
+    def fail(self, box: Sandbox, assessment: Assessment) -> None:
         """The current answer of ``box`` gets ``assessment``; the rest go to a fresh worker."""
-        indices = pending[box]
-        results[indices.popleft()] = assessment
+        indices = self.pending.pop(box)
+        self.results[indices.popleft()] = assessment
         box._kill()
-        if indices:
-            send(box, indices)
-        else:
-            next_batch(box)
+        self.send(box, indices)
+        self.refill(box)
 
-    for box in boxes:
-        next_batch(box)
-    while pending:
-        by_conn = {box._conn: box for box in pending}
-        wait_for = max(0.0, min(deadline.values()) - time.monotonic())
-        try:
-            ready = connection.wait(list(by_conn), wait_for)
-        except OSError:
-            ready = []
-        for conn in ready:
-            box = by_conn[conn]
+    def receive(self, box: Sandbox) -> None:
+        """Read every outcome ``box`` has sent so far."""
+        conn = box.pipe()
+        while True:
             try:
                 status, payload = conn.recv()
             except (EOFError, OSError):
-                fail(box, not_evaluated("the judging process stopped (out of memory?)"))
-                continue
+                self.fail(box, not_evaluated("the judging process stopped (out of memory?)"))
+                return
             if status == "memory":
-                fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
-                continue
-            indices = pending[box]
-            results[indices.popleft()] = payload if status == "ok" else not_evaluated(payload)
-            deadline[box] = time.monotonic() + box.seconds
-            if not indices:
-                next_batch(box)
-        now = time.monotonic()
-        for box in [b for b in pending if deadline[b] <= now and b._conn not in ready]:
-            fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
-    return results  # type: ignore[return-value]
+                self.fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
+                return
+            self.results[self.pending[box].popleft()] = (
+                cast(Assessment, payload) if status == "ok" else not_evaluated(str(payload)))
+            self.answered += 1
+            self.deadline[box] = time.monotonic() + box.seconds
+            self.refill(box)  # may start a fresh worker, when this one died after its outcome
+            if box not in self.pending or conn is not box._conn or not _readable(conn):
+                return
+
+    def pause(self) -> None:
+        """Let outcomes gather: :data:`COALESCE_SECONDS`, or a quarter of the work the least
+        busy worker holds (none when that is under half a millisecond)."""
+        per_answer = self.per_answer()
+        if not self.pending or per_answer is None:
+            return
+        least = min(len(indices) for indices in self.pending.values())
+        seconds = min(COALESCE_SECONDS, 0.25 * least * per_answer)
+        if seconds >= 0.0005:
+            time.sleep(seconds)
+
+    def run(self) -> list[Assessment]:
+        for box in self.boxes:
+            self.refill(box)
+        while self.pending:
+            wait_for = max(0.0, min(self.deadline[box] for box in self.pending)
+                           - time.monotonic())
+            try:
+                ready = connection.wait([box.pipe() for box in self.pending], wait_for)
+            except OSError:
+                ready = []
+            answered = [box for box in self.pending if box._conn in ready]
+            for box in answered:
+                self.receive(box)
+            now = time.monotonic()
+            for box in [b for b in self.pending if self.deadline[b] <= now and b not in answered]:
+                self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
+            if answered:
+                self.pause()
+        assert all(result is not None for result in self.results)
+        return cast(list[Assessment], self.results)
 
 
 def assess_bounded(text: str | None, result: ObjectiveResult, policy: Policy = Policy(), *,
