@@ -12,7 +12,8 @@ from mechgrade.check import separation_findings
 from mechgrade.grade.compare import assess
 from mechgrade.grade.diagnose import GENERATED_CODES, LABELS
 from mechgrade.mechanics.dynamics import kinetics_derivation
-from mechgrade.mechanics.dynamics_mutations import CODES, FAMILIES, dynamics_mutations
+from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations
+from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem

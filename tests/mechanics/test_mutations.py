@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from mechgrade.mechanics.mutations import CODES, mutations
+from mechgrade.mechanics.mutations import mutations
+from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem

@@ -3,10 +3,10 @@ mistake happens, the picture; made once per problem, numbers per solution."""
 
 import pytest
 
-from mechgrade.mechanics.mutations import CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.solve.mutants import GIVEN_CODES
+from mechgrade.spec.mistake_codes import GIVEN_CODES
+from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.solve.worked import worked_solution
 from mechgrade.spec import load_problem
 

@@ -28,9 +28,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..mechanics.dynamics_mutations import CODES as DYNAMICS_CODES
-from ..mechanics.mutations import CODES as MODEL_CODES
-from ..solve.mutants import GIVEN_CODES
+from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from ..solve.result import GeneratedMistake, MistakeValue
 
 Close = Callable[[np.ndarray, np.ndarray], bool]

@@ -87,7 +87,7 @@ def _count(n: int, noun: str) -> str:
 class Row:
     """One equation of a worked step: ``math`` its presentation MathML (generated from the
     model, never from student text), ``text`` the same in plain text, ``anchor`` its id on a
-    page, ``codes`` the generated-mistake families (:data:`~.mutations.CODES`) that leave
+    page, ``codes`` the generated-mistake families (:data:`~mechgrade.spec.mistake_codes.MODEL_CODES`) that leave
     this very term out, so a feedback page can point at it."""
 
     anchor: str

@@ -571,9 +571,3 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
-CODES = ("weight_omitted", "mass_for_weight", "central_inertia_at_pivot", "friction_reversed",
-         "normal_from_weight", "weight_transfer_ignored", "tension_as_weight",
-         "reaction_as_weight", "rotational_ke_omitted", "restitution_ignored",
-         "other_shape_inertia", "spring_free_length_omitted", "surface_taken_fixed",
-         "body_ke_omitted", "impulse_moment_omitted")
-"""Family codes of the dynamics mutations (keys of an assignment's ``partial_credit``)."""

@@ -33,13 +33,6 @@ from .interpret import Interpreter
 from .kinematics import locations
 from .symbols import identically_zero
 
-ACCELERATION_CODES = ("drop_transport_acc", "drop_tangential", "drop_centripetal",
-                      "drop_coriolis", "coriolis_half", "drop_relative_acc")
-VELOCITY_CODES = ("drop_transport_vel", "drop_omega_r", "drop_relative_vel")
-CODES = ACCELERATION_CODES + VELOCITY_CODES + ("relative_omega",
-    "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc", "acc_for_acc_t",
-    "acc_for_acc_n", "rho_formula", "component_for_speed", "mag_as_sum", "position_term")
-"""Family codes of the model mutations (keys of an assignment's ``partial_credit``)."""
 
 
 @dataclass(frozen=True)

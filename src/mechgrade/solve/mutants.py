@@ -39,9 +39,6 @@ from .result import GeneratedMistake, ObjectiveResult
 # sympy and the mechanics are imported by the functions that derive: a plan read from the disk
 # cache carries its mutations compiled, and a warm check never imports them.
 
-GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
-               "given_sign", "given_swap")
-"""Family codes of mistaken givens (keys of an assignment's ``partial_credit``)."""
 
 # a length unit a student may read as the base unit of its system
 _LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd": "ft"}

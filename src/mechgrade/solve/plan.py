@@ -272,7 +272,8 @@ def lambdified_mutants(problem: Problem, p: Plan, objective: str) -> tuple[Mutan
     lambdified in ``p``'s state layout (kept per plan, as a plan is per problem and place)."""
     import sympy as sp
 
-    from ..mechanics.mutations import VELOCITY_CODES, mutations
+    from ..mechanics.mutations import mutations
+    from ..spec.mistake_codes import VELOCITY_CODES
 
     symbols = p.index.symbols
     return tuple(Mutant(

@@ -27,11 +27,10 @@ import numpy as np
 
 from ..expressions.syntax import Call, Name, Node
 from ..mechanics.derivation import Row, Step
-from ..mechanics.mutations import CODES as MODEL_CODES
 from ..mechanics.writeup import worked_steps
 from ..spec.model import ObjectiveKind, Problem
 from ..units import from_si, same_dimension
-from .mutants import GIVEN_CODES
+from ..spec.mistake_codes import GIVEN_CODES, MODEL_CODES
 from .picture import drawable, picture_svg, scene
 from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue
 

@@ -1,0 +1,37 @@
+"""The codes of the mistake families the solver generates: keys of an assignment's
+``partial_credit.diagnoses`` and of the worked solution's highlighted steps.
+
+They are plain names, kept apart from the families that produce them (``mechanics.mutations``,
+``mechanics.dynamics_mutations``, ``solve.mutants``), so that reading an assignment never
+imports the symbolic core.
+
+>>> "drop_coriolis" in MODEL_CODES and "weight_omitted" in DYNAMICS_CODES
+True
+"""
+
+from __future__ import annotations
+
+ACCELERATION_CODES = ("drop_transport_acc", "drop_tangential", "drop_centripetal",
+                      "drop_coriolis", "coriolis_half", "drop_relative_acc")
+"""Kinematic mutations that drop or misweigh a term of an acceleration."""
+
+VELOCITY_CODES = ("drop_transport_vel", "drop_omega_r", "drop_relative_vel")
+"""Kinematic mutations that drop a term of a velocity."""
+
+MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
+    "relative_omega", "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc",
+    "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "component_for_speed", "mag_as_sum",
+    "position_term")
+"""Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
+
+DYNAMICS_CODES = (
+    "weight_omitted", "mass_for_weight", "central_inertia_at_pivot", "friction_reversed",
+    "normal_from_weight", "weight_transfer_ignored", "tension_as_weight", "reaction_as_weight",
+    "rotational_ke_omitted", "restitution_ignored", "other_shape_inertia",
+    "spring_free_length_omitted", "surface_taken_fixed", "body_ke_omitted",
+    "impulse_moment_omitted")
+"""Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
+
+GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
+               "given_sign", "given_swap")
+"""Family codes of mistaken givens (:mod:`mechgrade.solve.mutants`)."""
