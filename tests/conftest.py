@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -40,3 +41,28 @@ def chromium(tmp_path):
         return dom.stdout, dom.stderr
 
     return open_page
+
+
+def _forget() -> None:
+    """Forget every derivation and plan kept in memory (the solver's and the mechanics')."""
+    for name, module in list(sys.modules.items()):
+        if name.startswith(("mechgrade.mechanics", "mechgrade.solve")):
+            for value in list(vars(module).values()):
+                if callable(getattr(value, "cache_clear", None)):
+                    value.cache_clear()
+
+
+@pytest.fixture
+def forget():
+    """A function that forgets every derivation kept in memory: what a fresh process knows."""
+    return _forget
+
+
+@pytest.fixture
+def disk(tmp_path, monkeypatch) -> Path:
+    """The disk cache on, in a folder of this test's own (the suite runs with it off)."""
+    monkeypatch.delenv("MECHGRADE_NO_CACHE", raising=False)
+    monkeypatch.setenv("MECHGRADE_CACHE_DIR", str(tmp_path / "cache"))
+    _forget()
+    yield tmp_path / "cache"
+    _forget()

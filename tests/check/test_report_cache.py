@@ -20,25 +20,8 @@ FILES = [PROBLEMS / "bowling_3_15_4_pendulum.yaml", PROBLEMS / "ruina_10_3_spira
          ROOT / "tests" / "data" / "variants" / "degenerate_range.yaml"]
 
 
-def forget() -> None:
-    for name, module in list(sys.modules.items()):
-        if name.startswith(("mechgrade.mechanics", "mechgrade.solve")):
-            for value in list(vars(module).values()):
-                if callable(getattr(value, "cache_clear", None)):
-                    value.cache_clear()
-
-
-@pytest.fixture
-def disk(tmp_path, monkeypatch) -> Path:
-    monkeypatch.delenv("MECHGRADE_NO_CACHE", raising=False)
-    monkeypatch.setenv("MECHGRADE_CACHE_DIR", str(tmp_path / "cache"))
-    forget()
-    yield tmp_path / "cache"
-    forget()
-
-
 @pytest.mark.parametrize("path", FILES, ids=[f.stem for f in FILES])
-def test_a_report_read_back_is_the_report_checked(path, disk, monkeypatch):
+def test_a_report_read_back_is_the_report_checked(path, disk, monkeypatch, forget):
     monkeypatch.setenv("MECHGRADE_NO_CACHE", "1")
     checked = check_problem(path)
     monkeypatch.delenv("MECHGRADE_NO_CACHE")
@@ -59,7 +42,7 @@ def test_a_changed_file_is_checked_again(disk, tmp_path):
     assert not check_problem(spec).passed
 
 
-def test_a_spoilt_report_entry_is_checked_again(disk):
+def test_a_spoilt_report_entry_is_checked_again(disk, forget):
     path = FILES[0]
     right = check_problem(path)
     for entry in disk.glob("*.json"):

@@ -40,25 +40,6 @@ REPRESENTATIVE = [
 LADDER = PROBLEMS / "ladder_wall_lift_off.yaml"
 
 
-def forget() -> None:
-    """Forget every derivation and plan kept in memory (the solver's and the mechanics')."""
-    for name, module in list(sys.modules.items()):
-        if name.startswith(("mechgrade.mechanics", "mechgrade.solve")):
-            for value in list(vars(module).values()):
-                if callable(getattr(value, "cache_clear", None)):
-                    value.cache_clear()
-
-
-@pytest.fixture
-def disk(tmp_path, monkeypatch) -> Path:
-    """The cache on, in a folder of this test's own."""
-    monkeypatch.delenv("MECHGRADE_NO_CACHE", raising=False)
-    monkeypatch.setenv("MECHGRADE_CACHE_DIR", str(tmp_path / "cache"))
-    forget()
-    yield tmp_path / "cache"
-    forget()
-
-
 def comparable(solution):
     """A solution's content (an error compares by identity: by its message here)."""
     return (solution.problem, solution.results, solution.state, solution.dof,
@@ -70,7 +51,7 @@ def entries(folder: Path) -> list[Path]:
 
 
 @pytest.mark.parametrize("name", REPRESENTATIVE)
-def test_a_problem_read_back_from_the_cache_solves_as_one_derived(name, disk, monkeypatch):
+def test_a_problem_read_back_from_the_cache_solves_as_one_derived(name, disk, monkeypatch, forget):
     problem = load_problem(PROBLEMS / name)
     monkeypatch.setenv("MECHGRADE_NO_CACHE", "1")
     derived = comparable(solve(problem))
@@ -83,7 +64,7 @@ def test_a_problem_read_back_from_the_cache_solves_as_one_derived(name, disk, mo
     assert derived == cold == warm
 
 
-def test_a_plan_read_back_is_not_derived_until_its_kinematics_are_asked_for(disk):
+def test_a_plan_read_back_is_not_derived_until_its_kinematics_are_asked_for(disk, forget):
     problem = load_problem(PENDULUM)
     solve(problem)  # its plan and symbolic answers written
     first = plan(problem)
@@ -111,7 +92,7 @@ def test_a_warm_check_imports_no_sympy(path, tmp_path):
     assert runs[1] == "[]"
 
 
-def test_cached_mistakes_and_symbolic_answers_are_those_derived(disk):
+def test_cached_mistakes_and_symbolic_answers_are_those_derived(disk, forget):
     problem = load_problem(PENDULUM)
     cold = solve(problem)
     forget()
@@ -157,7 +138,7 @@ def test_with_the_cache_off_nothing_is_written(disk, monkeypatch):
     assert not disk.exists()
 
 
-def test_a_cache_that_cannot_be_written_is_no_error(tmp_path, monkeypatch):
+def test_a_cache_that_cannot_be_written_is_no_error(tmp_path, monkeypatch, forget):
     blocker = tmp_path / "file"
     blocker.write_text("not a folder")
     monkeypatch.delenv("MECHGRADE_NO_CACHE", raising=False)
@@ -196,7 +177,7 @@ def wrong_numbers(text: str) -> str:
     wrong_numbers,  # another problem's
     tampered_source,  # code that is not numpy arithmetic
 ], ids=["truncated", "corrupt", "not-an-entry", "format", "layout", "foreign", "tampered"])
-def test_a_spoilt_entry_is_ignored_and_written_again(spoil, disk, tmp_path, monkeypatch):
+def test_a_spoilt_entry_is_ignored_and_written_again(spoil, disk, tmp_path, monkeypatch, forget):
     monkeypatch.chdir(tmp_path)
     problem = load_problem(PENDULUM)
     right = comparable(solve(problem))
@@ -208,7 +189,7 @@ def test_a_spoilt_entry_is_ignored_and_written_again(spoil, disk, tmp_path, monk
     assert "k" not in vars(plan(problem))  # written again: read back whole this time
 
 
-def test_an_entry_of_another_problem_under_this_ones_name_is_not_used(disk):
+def test_an_entry_of_another_problem_under_this_ones_name_is_not_used(disk, forget):
     pendulum = load_problem(PENDULUM)
     other = load_problem(PROBLEMS / "bowling_3_15_2_cannonball.yaml")
     right = comparable(solve(pendulum))
@@ -219,7 +200,7 @@ def test_an_entry_of_another_problem_under_this_ones_name_is_not_used(disk):
     assert comparable(solve(pendulum)) == right
 
 
-def test_a_symbolic_answer_entry_that_is_spoilt_is_derived_again(disk):
+def test_a_symbolic_answer_entry_that_is_spoilt_is_derived_again(disk, forget):
     problem = load_problem(PENDULUM)
     right = solve(problem).result("acc_mag_symbolic")
     plan_file = disk / f"{cache.problem_key(problem)}.json"
@@ -253,7 +234,7 @@ def test_a_problem_without_a_canonical_text_is_not_cached(disk):
     assert cache.problem_key(odd) is None
 
 
-def test_a_spoilt_dynamics_solution_entry_is_solved_again(disk):
+def test_a_spoilt_dynamics_solution_entry_is_solved_again(disk, forget):
     problem = load_problem(LADDER)
     right = comparable(solve(problem))
     key = cache.digest("solution", cache.problem_key(problem), *_numeric_versions())
