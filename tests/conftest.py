@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 import sys
@@ -66,3 +67,15 @@ def disk(tmp_path, monkeypatch) -> Path:
     _forget()
     yield tmp_path / "cache"
     _forget()
+
+
+@pytest.fixture
+def twice(tmp_path):
+    """Run a Python script in two fresh processes that share a disk cache of their own (what
+    the first writes, the second reads); return their outputs."""
+    def run(script: str) -> list[str]:
+        env = {k: v for k, v in os.environ.items() if k != "MECHGRADE_NO_CACHE"}
+        env["MECHGRADE_CACHE_DIR"] = str(tmp_path / "shared-cache")
+        return [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                               env=env, check=True).stdout.strip() for _ in range(2)]
+    return run

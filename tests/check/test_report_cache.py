@@ -4,9 +4,6 @@ report, without loading or solving it; a changed file, or a spoilt entry, is che
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -54,15 +51,11 @@ def test_a_spoilt_report_entry_is_checked_again(disk, forget):
     assert check_problem(path) == right
 
 
-def test_a_warm_check_loads_no_units_schema_or_sympy(tmp_path):
-    env = {k: v for k, v in os.environ.items() if k != "MECHGRADE_NO_CACHE"}
-    env["MECHGRADE_CACHE_DIR"] = str(tmp_path)
-    script = ("import sys\n"
-              "from mechgrade.check import check_problem\n"
-              f"assert check_problem({str(FILES[0])!r}).passed\n"
-              "print(sorted({m.split('.')[0] for m in sys.modules} & "
-              "{'sympy', 'pint', 'jsonschema', 'scipy'}))\n")
-    runs = [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                           env=env, check=True).stdout.strip() for _ in range(2)]
+def test_a_warm_check_loads_no_units_schema_or_sympy(twice):
+    runs = twice("import sys\n"
+                 "from mechgrade.check import check_problem\n"
+                 f"assert check_problem({str(FILES[0])!r}).passed\n"
+                 "print(sorted({m.split('.')[0] for m in sys.modules} & "
+                 "{'sympy', 'pint', 'jsonschema', 'scipy'}))\n")
     assert "'pint'" in runs[0] and "'sympy'" in runs[0]  # cold: loaded and derived
     assert runs[1] == "[]"

@@ -5,9 +5,6 @@ an entry that is corrupt, truncated, foreign or tampered with is ignored and wri
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from dataclasses import replace
 from pathlib import Path
 
@@ -78,18 +75,14 @@ def test_a_plan_read_back_is_not_derived_until_its_kinematics_are_asked_for(disk
 
 
 @pytest.mark.parametrize("path", [PENDULUM, LADDER], ids=["kinematics", "dynamics"])
-def test_a_warm_solve_imports_no_sympy(path, tmp_path):
+def test_a_warm_solve_imports_no_sympy(path, twice):
     # solve itself, not check: check's own report cache would answer before any plan is read
-    env = {k: v for k, v in os.environ.items() if k != "MECHGRADE_NO_CACHE"}
-    env["MECHGRADE_CACHE_DIR"] = str(tmp_path)
-    script = ("import sys\n"
-              "from mechgrade.solve import solve\n"
-              "from mechgrade.spec import load_problem\n"
-              f"solution = solve(load_problem({str(path)!r}))\n"
-              "assert solution.results and not solution.failures, solution\n"
-              "print(sorted(m for m in sys.modules if m.split('.')[0] == 'sympy')[:3])\n")
-    runs = [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                           env=env, check=True).stdout.strip() for _ in range(2)]
+    runs = twice("import sys\n"
+                 "from mechgrade.solve import solve\n"
+                 "from mechgrade.spec import load_problem\n"
+                 f"solution = solve(load_problem({str(path)!r}))\n"
+                 "assert solution.results and not solution.failures, solution\n"
+                 "print(sorted(m for m in sys.modules if m.split('.')[0] == 'sympy')[:3])\n")
     assert runs[0] != "[]"  # cold: derived with sympy
     assert runs[1] == "[]"
 
