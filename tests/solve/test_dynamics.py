@@ -489,3 +489,15 @@ def test_a_design_the_secant_overshoots_is_bracketed_from_the_guess():
     body = text("flywheel_speed_drop").replace("guess: 0.5 m", "guess: 4 m")
     solution = solve(load_problem_text(body, "p.yaml"), objectives=["R_needed"])
     assert solution.result("R_needed").value == pytest.approx(0.618039, rel=1e-6)
+
+
+@pytest.mark.parametrize("mu, v0", [(0.2, 4.0), (0.25, 5.0), (0.3, 3.0), (0.3, 4.0),
+                                    (0.35, 6.5)])
+def test_the_friction_on_the_sliding_block_is_right_for_every_variant(mu, v0):
+    # asked as force(F_P) at the event where the slip ends, its direction was 0/0 there and
+    # these givens gave +mu m g or "undefined" as rounding fell; m a_B is its limit before
+    problem = load_problem(ROOT / "problems" / "block_slides_on_cart.yaml")
+    solution = solve(problem, givens={"mu": mu, "v0": v0}, objectives=["friction_on_block"])
+    assert not solution.failures
+    force = solution.result("friction_on_block").value
+    assert np.allclose(force, (-mu * 2 * 9.81, 0, 0), rtol=1e-7, atol=1e-9)
