@@ -493,9 +493,9 @@ def test_a_design_the_secant_overshoots_is_bracketed_from_the_guess():
 
 @pytest.mark.parametrize("mu, v0", [(0.2, 4.0), (0.25, 5.0), (0.3, 3.0), (0.3, 4.0),
                                     (0.35, 6.5)])
-def test_the_friction_on_the_sliding_block_is_right_for_every_variant(mu, v0):
-    # asked as force(F_P) at the event where the slip ends, its direction was 0/0 there and
-    # these givens gave +mu m g or "undefined" as rounding fell; m a_B is its limit before
+def test_friction_whose_slip_ends_at_the_event_is_its_limit_just_before(mu, v0):
+    # force(F_P) at the event where the slip ends: its direction is 0/0 there, and these
+    # givens gave +mu m g or "undefined" as rounding fell; the limit just before is -mu m g
     problem = load_problem(ROOT / "problems" / "block_slides_on_cart.yaml")
     solution = solve(problem, givens={"mu": mu, "v0": v0}, objectives=["friction_on_block"])
     assert not solution.failures

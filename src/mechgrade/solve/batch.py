@@ -48,7 +48,7 @@ from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .batch_motion import FIRED, integrate_to_events, secant
 from .entry import solve
-from .events import ATOL, MAX_CALLS, RTOL, analysis_plan
+from .events import ATOL, MAX_CALLS, RTOL, analysis_plan, at_the_event
 from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
@@ -375,6 +375,7 @@ class _Template:
             X, ok = self._designed(group, X, targets, degenerate)
         else:
             X, ok = self._reached(group, X, targets, degenerate)
+        X, before = self._at_event(X)
         if self.kinetics is not None:
             objectives, mistakes, requirements = (self.kinetics.objectives,
                                                   self.kinetics.mistakes,
@@ -385,6 +386,11 @@ class _Template:
             limit = 1e-9
         values = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in objectives
                   if oid in group.numeric}
+        if before is not None:
+            functions = dict(objectives)
+            values = {oid: at_the_event(v, _call(functions[oid], before, len(v)),
+                                        self.problem.objective(oid))
+                      for oid, v in values.items()}
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
             for v in values.values():
                 ok &= np.isfinite(v).all(axis=0)
@@ -437,7 +443,7 @@ class _Template:
                 last.update(X=np.full((reached.shape[0], n), np.nan),
                             ok=np.zeros(n, dtype=bool), at=np.full(n, np.nan))
             last["X"][:, cols], last["ok"][cols], last["at"][cols] = reached, fine, value
-            return np.where(fine, _call(equation, reached, 1)[0], np.nan)
+            return np.where(fine, _call(equation, self._at_event(reached)[0], 1)[0], np.nan)
 
         guess = self.design.guess
         n = X.shape[1]
@@ -522,7 +528,8 @@ class _Template:
         """Every column's motion integrated from its start state to its event (together:
         :func:`~.batch_motion.integrate_to_events`, the steps
         :func:`~.events.integrate_to_event` takes for each alone): the extended state at
-        the event, the accelerations and reactions the limits just before it."""
+        the event, the accelerations and reactions the limits just before it, with the
+        extended states just before the event stacked under them (:meth:`_at_event`)."""
         kp = self.kinetics
         assert kp is not None and isinstance(self.analysis, Integration)
         ap = analysis_plan(kp)
@@ -580,9 +587,19 @@ class _Template:
         end = at(everyone, arrival.t, arrival.y)
         x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
                                  group.after)
+        before = x.copy()
         keep = [i for i in range(size) if i not in qdd]
         x[keep] = end[keep]
-        return x, ok & fine
+        return np.vstack([x, before]), ok & fine
+
+    def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+        """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
+        read from, and for an integration the states just before the event stacked under
+        them by :meth:`_integrated` (else ``None``)."""
+        if not isinstance(self.analysis, Integration):
+            return X, None
+        half = X.shape[0] // 2
+        return X[:half], X[half:]
 
     def _accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
         """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's

@@ -38,7 +38,7 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
-from .events import (energy_rate_symbolic, energy_state, integrate_to_event,
+from .events import (at_the_event, energy_rate_symbolic, energy_state, integrate_to_event,
                      integrated_symbolically)
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
@@ -253,11 +253,16 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
         if numeric:
             try:
                 given_map = _designed(problem, kproblem, kp, given_map)
-                state, x, found = _instant(problem, kproblem, kp, given_map)
+                state, x, found, limit = _instant(problem, kproblem, kp, given_map)
             except MechgradeError as err:
                 failures.update({oid: err for oid in numeric})
             else:
                 values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
+                if limit is not None:  # an integration's event
+                    functions = dict(kp.objectives)
+                    values = {oid: at_the_event(v[:, None], _call(functions[oid], limit)[:, None],
+                                                problem.objective(oid))[:, 0]
+                              for oid, v in values.items()}
                 for oid, reason, f in kp.requirements:
                     if oid in numeric and oid not in failures and abs(_call(f, x)[0]) > 1e-8:
                         failures[oid] = SolveError(f"objective '{oid}' does not exist at this "
@@ -308,7 +313,7 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
 
     def residual(value: float) -> float:
         try:
-            _, x, _ = _instant(problem, kproblem, kp, with_value(value))
+            _, x, _, _ = _instant(problem, kproblem, kp, with_value(value))
         except MechgradeError:  # the iteration wandered where the model fails: no root here
             return np.nan
         return float(_call(equation, x)[0])
@@ -356,7 +361,8 @@ def _bracketed(residual: Callable[[float], float], guess: float):
 
 def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):
     """The state at the instant, the extended state (with second rates and reactions) the
-    objectives are read from, and the kinematics' warnings."""
+    objectives are read from, the kinematics' warnings, and for an integration the extended
+    state just before its event (:func:`~.events.at_the_event`), else ``None``."""
     analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         g = place_givens(kproblem, kp.kp, given_map)
@@ -368,14 +374,14 @@ def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: d
         x = before.copy()
         keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
         x[keep] = state.values[keep]
-        return state, x, ()
+        return state, x, (), before
     instant = solve_numeric(kproblem, kp.kp, given_map, set())
     state = instant.state
     if isinstance(analysis, WorkEnergy):
         rates = [key for key, (node, _, _) in given_map.items()
                  if isinstance(node, Prime) and node.order == 1]
         state = energy_state(problem, kp, state, rates)
-    return state, solve_kinetics(problem, kp, state), instant.warnings
+    return state, solve_kinetics(problem, kp, state), instant.warnings, None
 
 
 @lru_cache(maxsize=512)

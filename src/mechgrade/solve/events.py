@@ -27,7 +27,9 @@ import sympy as sp
 
 from ..errors import SolveError
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
-from ..spec.model import Problem
+from ..spec.model import Objective, Problem
+from ..tolerance import within
+from ..units import si_factor
 from .levels import State, nullspace
 
 RTOL, ATOL = 1e-11, 1e-12
@@ -246,6 +248,31 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     known[index.config] = True
     known[qd] = True
     return State(end, known, frozenset()), before
+
+
+def at_the_event(event: np.ndarray, before: np.ndarray, objective: Objective) -> np.ndarray:
+    """An objective of an integration at its event: ``event`` (its SI values there, one column
+    per variant), but where that is undefined or would be graded otherwise (the objective's
+    tolerance) than ``before``, its limit just before the event, that limit. A kinetic
+    friction force whose slip ends at the event has direction 0/0 there: a sign by rounding.
+
+    >>> from mechgrade.spec.model import Objective, ObjectiveKind
+    >>> friction = Objective(id="F", prompt="", find=None, kind=ObjectiveKind.VECTOR, unit="N")
+    >>> at_the_event(np.array([[5.886, -5.886], [0.0, 0.0]]),
+    ...              np.array([[-5.886, -5.886], [0.0, 0.0]]), friction)[0].tolist()
+    [-5.886, -5.886]
+    """
+    tolerance = objective.tolerance
+    abs_ = tolerance.abs * si_factor(objective.unit) if objective.unit else tolerance.abs
+    out = event.copy()
+    for j in range(event.shape[1]):
+        limit = before[:, j]
+        if not np.isfinite(limit).all():
+            continue  # nothing better to read
+        scale = float(np.linalg.norm(limit))
+        if not within(event[:, j], limit, tolerance.rel, abs_, scale=scale):
+            out[:, j] = limit
+    return out
 
 
 # ---------------------------------------------------------------------------- closed form
