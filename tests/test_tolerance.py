@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import given, strategies as st
 
-from mechgrade.tolerance import FLOAT_SLACK, PYTHON_SIZE, within
+from mechgrade.tolerance import FLOAT_SLACK, PYTHON_SIZE, within, within_each
 
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
 finite = st.floats(min_value=-1e6, max_value=1e6)
@@ -49,3 +49,14 @@ def test_agreement_at_points_has_a_floor_from_the_mean_size(pairs, rel):
     assert agree_at_points(rel, reference)(student, reference) == \
         numpy_within(student, reference, rel, floor)
     assert agree_at_points(rel, reference)(reference, reference)
+
+
+@given(st.lists(st.tuples(floats, floats, floats), min_size=1, max_size=6),
+       st.sampled_from([0.0, 1e-9, 0.01]), st.sampled_from([0.0, 0.5]), finite)
+def test_each_column_is_judged_as_within_judges_it_alone(rows, rel, abs_, scale):
+    student = np.array([[r[0], r[1]] for r in rows])
+    reference = np.array([[r[2], r[2]] for r in rows])
+    scales = np.array([scale, -scale])
+    verdicts = within_each(student, reference, rel, abs_, scales)
+    assert verdicts.tolist() == [within(student[:, j], reference[:, j], rel, abs_, scales[j])
+                                 for j in range(2)]

@@ -25,8 +25,7 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
         # plain floats follow the same IEEE rules as numpy's, without its call overhead
         a, b = float(student), float(reference)
         size = abs(b) if scale is None else abs(float(scale))
-        limit = max(rel * size, abs_)
-        return abs(a - b) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size
+        return _fits(abs(a - b), max(rel * size, abs_), size)
     s, t = np.asarray(student, dtype=float), np.asarray(reference, dtype=float)
     if s.shape == t.shape and s.size <= PYTHON_SIZE and abs_ == abs_:
         # The same arithmetic on Python floats: for a number, a vector or the values at a few
@@ -35,15 +34,36 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
         fixed = None if scale is None else abs(float(scale))
         for a, b in zip(s.ravel().tolist(), t.ravel().tolist()):
             size = abs(b) if fixed is None else fixed
-            limit = max(rel * size, abs_)
-            if not abs(a - b) <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size:
+            if not _fits(abs(a - b), max(rel * size, abs_), size):
                 return False
         return True
+    return bool(_elementwise(s, t, rel, abs_, None if scale is None else abs(float(scale)))
+                .all())
+
+
+def within_each(student: np.ndarray, reference: np.ndarray, rel: float, abs_: float,
+                scale: np.ndarray) -> np.ndarray:
+    """:func:`within` for every column of ``student`` and ``reference`` (values x columns),
+    each column with its own ``scale``: one boolean per column.
+
+    >>> within_each(np.array([[99.0, 98.99]]), np.array([[100.0, 100.0]]), 0.01, 0.0,
+    ...             np.array([100.0, 100.0])).tolist()
+    [True, False]
+    """
+    fits = _elementwise(np.asarray(student, dtype=float), np.asarray(reference, dtype=float),
+                        rel, abs_, np.abs(scale))
+    return np.all(fits, axis=0, keepdims=False).reshape(-1)
+
+
+def _elementwise(s: np.ndarray, t: np.ndarray, rel: float, abs_: float, scale) -> np.ndarray:
     with np.errstate(all="ignore"):
-        size = np.abs(t) if scale is None else abs(float(scale))
-        limit = np.maximum(rel * size, abs_)
-        return bool((np.abs(s - t) <= limit * (1 + FLOAT_SLACK)
-                     + 1e-3 * FLOAT_SLACK * size).all())
+        size = np.abs(t) if scale is None else scale
+        return _fits(np.abs(s - t), np.maximum(rel * size, abs_), size)
+
+
+def _fits(difference, limit, size):
+    """The rule itself, for floats and arrays alike (a NaN never fits)."""
+    return difference <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size
 
 
 _NUMBERS = (float, int)

@@ -1,5 +1,5 @@
 """Many columns integrated to their events, or iterated to their roots, at once: each as
-scipy's solvers take it alone."""
+scipy's solvers take it alone (the events), or to the root scipy's secant finds (the roots)."""
 
 from __future__ import annotations
 
@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 from scipy import integrate, optimize
 
-from mechgrade.solve.batch_motion import (FAILED, FIRED, NEVER, integrate_to_events,
-                                          secant)
+from mechgrade.solve.batch_motion import FAILED, FIRED, NEVER, integrate_to_events, newton
 
 OMEGA = np.array([1.0, 2.0, 3.0])
 
@@ -74,19 +73,32 @@ def test_a_column_that_switches_before_its_event_is_left_alone():
     assert arrival.t[0] == pytest.approx(1.0, rel=1e-12)
 
 
-def test_the_secant_finds_each_column_root_as_root_scalar_does():
-    targets = np.array([2.0, 9.0, -1.0])
-    roots, converged = secant(lambda cols, x: x ** 3 - targets[cols], np.full(3, 0.5),
-                              np.full(3, 0.5005), 1e-15, 1e-13, 100)
+def test_newton_finds_each_column_root_the_secant_finds_from_the_same_guess():
+    targets = np.array([2.0, 9.0, -1.0, 1e-6])
+    calls = []
+
+    def residual(cols, x):
+        calls.append(x.shape)
+        return x ** 3 - targets[cols]
+    roots, converged = newton(residual, np.full(4, 0.5), 1e-15, 1e-13, 100)
     for j, target in enumerate(targets):
         alone = optimize.root_scalar(lambda x: x ** 3 - target, x0=0.5, x1=0.5005,
                                      method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
-        assert converged[j] == alone.converged
+        assert converged[j] and alone.converged
         assert roots[j] == pytest.approx(alone.root, rel=1e-13)
+    assert all(shape[0] == 2 for shape in calls)  # each call: the iterates, and beside them
+    assert calls[0] == (2, 4) and calls[-1][1] < 4  # a converged column is not evaluated again
 
 
-def test_a_column_whose_residual_becomes_undefined_does_not_converge():
-    roots, converged = secant(lambda cols, x: np.where(cols == 1, np.nan, x - 3.0),
-                              np.ones(2), np.full(2, 1.1), 1e-15, 1e-13, 100)
-    assert converged.tolist() == [True, False]
+def test_a_column_whose_residual_is_undefined_or_flat_does_not_converge():
+    def residual(cols, x):
+        return np.where(cols == 1, np.nan, np.where(cols == 2, 5.0, x - 3.0))
+    roots, converged = newton(residual, np.ones(3), 1e-15, 1e-13, 100)
+    assert converged.tolist() == [True, False, False]
     assert roots[0] == pytest.approx(3.0)
+    assert np.isnan(roots[1:]).all()
+
+
+def test_a_column_that_never_settles_stops_after_maxiter():
+    roots, converged = newton(lambda cols, x: np.cbrt(x), np.array([1.0]), 1e-15, 1e-13, 30)
+    assert not converged[0] and np.isnan(roots[0])  # Newton doubles |x| on cbrt each step

@@ -10,8 +10,9 @@ finds.
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
 rates from the energy balance (:func:`~.events.energy_state` on arrays); the motion integrated
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
-variants' right-hand sides in one call); a design parameter by the secant iterations of
-:func:`~.dynamics._designed`, per variant, around the whole instant.
+variants' right-hand sides in one call); a design parameter by Newton's method around the
+whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
+in one call), from the guess :func:`~.dynamics._designed` starts its secant at.
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -46,7 +47,7 @@ from ..mechanics.kinematics import locations
 from ..spec.dynamics import Integration, WorkEnergy
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
-from .batch_motion import FIRED, integrate_to_events, secant
+from .batch_motion import FIRED, integrate_to_events, newton
 from .entry import solve
 from .events import ATOL, MAX_CALLS, RTOL, analysis_plan, at_the_event
 from .instant import (_instants, _key, _state, _symbolic_answer,
@@ -145,11 +146,14 @@ def _least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
     cost is most of the time of so small a solve)."""
     rows_, k, count = A.shape
-    solved = np.full((k, count), np.nan)
     if rows_ == k == 1:
         with np.errstate(all="ignore"):
             solved = b / A[0]
-    elif rows_ == k and k <= 3:
+        if np.isfinite(solved.sum()):
+            return solved
+    else:
+        solved = np.full((k, count), np.nan)
+    if rows_ == k and 1 < k <= 3:
         det = _determinant(A)
         with np.errstate(all="ignore"):
             for j in range(k):
@@ -288,22 +292,27 @@ class _Template:
             answers: dict = {}  # this problem's symbolic answers, by what they depend on
             shown = {o.id: _shown(values[o.id], o) for o in numeric}
             declared = {o.id: [_shown(v, o) for v in mistakes.get(o.id, ())] for o in numeric}
+            # a dynamics objective undefined at a variant's instant is that objective's
+            # failure (as collect_results words it); any other has made the variant not ok
+            defined = {o.id: np.isfinite(values[o.id]).all(axis=0)
+                       & np.all([np.isfinite(v).all(axis=0) for v in mistakes.get(o.id, ())]
+                                + [np.ones(n, dtype=bool)], axis=0) for o in numeric}
             for i in np.flatnonzero(ok):
                 failures: dict = {}
-                if self.kinetics is not None:
-                    collect_results(problem, numeric, maps[i],
-                                    {oid: v[:, i] for oid, v in values.items()},
-                                    {oid: [m[:, i] for m in ms] for oid, ms in mistakes.items()},
-                                    results[i], failures)
-                else:
-                    for o in numeric:
-                        results[i][o.id] = ObjectiveResult(
-                            id=o.id, kind=o.kind, unit=o.unit, value=shown[o.id][i],
-                            frame=o.frame, mistakes=tuple(
-                                MistakeValue(m.message, m.credit, v[i])
-                                for m, v in zip(o.mistakes, declared[o.id])),
-                            rel=o.tolerance.rel, abs=o.tolerance.abs, prompt=o.prompt,
-                            generated_mistakes=generated[o.id](i), plausible=self.plausible)
+                for o in numeric:
+                    if not defined[o.id][i]:
+                        collect_results(problem, [o], maps[i], {o.id: values[o.id][:, i]},
+                                        {o.id: [m[:, i] for m in mistakes.get(o.id, ())]},
+                                        results[i], failures)
+                        continue
+                    results[i][o.id] = ObjectiveResult(
+                        id=o.id, kind=o.kind, unit=o.unit, value=shown[o.id][i],
+                        frame=o.frame, mistakes=tuple(
+                            MistakeValue(m.message, m.credit, v[i])
+                            for m, v in zip(o.mistakes, declared[o.id])),
+                        rel=o.tolerance.rel, abs=o.tolerance.abs, prompt=o.prompt,
+                        generated_mistakes=generated[o.id](i) if generated else (),
+                        plausible=self.plausible if self.kinetics is None else None)
                 for oid in symbols:
                     depends = symbolic_dependence(problem, maps[i], oid)
                     answer = answers.get((oid, depends))
@@ -426,33 +435,36 @@ class _Template:
 
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
                   degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`_reached` with the design parameter solved at every column, by the secant
-        iterations :func:`~.dynamics._designed` takes (a column they do not converge for is
-        solved alone, where the bracketing search may find its root)."""
+        """:meth:`_reached` with the design parameter solved at every column by Newton's
+        method from the guess (:func:`~.batch_motion.newton`; the one-by-one solver's secant
+        takes 10 calls for the flywheel where it takes 7); a column it does not converge for
+        is solved alone, where the bracketing search may find its root."""
         assert self.design is not None and self.kinetics is not None
         at = self.p.index.position(self.design.find)
         equation = self.kinetics.design
-
+        n = X.shape[1]
         last: dict[str, np.ndarray] = {}  # each column's instant at its latest iterate
 
-        def residual(cols: np.ndarray, value: np.ndarray) -> np.ndarray:
-            moved = X[:, cols].copy()
-            moved[at] = value
-            reached, fine = self._reached(group, moved, [t[:, cols] for t in targets], False)
+        def residual(cols: np.ndarray, values: np.ndarray) -> np.ndarray:
+            both = np.concatenate([cols, cols])  # the iterates, then the points beside them
+            moved = X[:, both]
+            moved[at] = values.ravel()
+            reached, fine = self._reached(group, moved, [t[:, both] for t in targets], False)
             if not last:
                 last.update(X=np.full((reached.shape[0], n), np.nan),
                             ok=np.zeros(n, dtype=bool), at=np.full(n, np.nan))
-            last["X"][:, cols], last["ok"][cols], last["at"][cols] = reached, fine, value
-            return np.where(fine, _call(equation, self._at_event(reached)[0], 1)[0], np.nan)
+            k = len(cols)
+            last["X"][:, cols], last["ok"][cols], last["at"][cols] = \
+                reached[:, :k], fine[:k], values[0]
+            r = np.where(fine, _call(equation, self._at_event(reached)[0], 1)[0], np.nan)
+            return r.reshape(2, k)
 
         guess = self.design.guess
-        n = X.shape[1]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            root, converged = secant(residual, np.full(n, guess),
-                                     np.full(n, guess * (1 + 1e-3) + 1e-12), 1e-15, 1e-13, 100)
+            root, converged = newton(residual, np.full(n, guess), 1e-15, 1e-13, 100)
         converged &= np.isfinite(root)
-        # the secant stops once its next iterate is within 1e-13 of the last one evaluated:
+        # Newton stops once its next iterate is within 1e-13 of the last one evaluated:
         # that instant is the root's (as closely as the root is known), not reached again
         kept = converged & (np.abs(last["at"] - root) <= 1e-13 * np.abs(root) + 1e-15)
         out, ok = last["X"].copy(), last["ok"] & kept
@@ -535,7 +547,9 @@ class _Template:
         ap = analysis_plan(kp)
         index = self.p.index
         n, size, count = index.n, index.size, X.shape[1]
-        qd, qdd = list(index.rates(1)), list(index.rates(2))
+        rates, seconds = index.rates(1), index.rates(2)
+        # slices: the right-hand side is evaluated thousands of times
+        qd, qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
         kinetic = size + len(kp.kin.reactions)
         extended = np.concatenate([X, np.zeros((kinetic - size, count))])
         values = X.copy()
@@ -588,7 +602,7 @@ class _Template:
         x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
                                  group.after)
         before = x.copy()
-        keep = [i for i in range(size) if i not in qdd]
+        keep = [i for i in range(size) if i not in seconds]
         x[keep] = end[keep]
         return np.vstack([x, before]), ok & fine
 
@@ -618,10 +632,10 @@ class _Template:
             args = x[:len(kp.symbols)]
         A = _loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
         b = _loud_call(residual, args, rows_)
-        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        if good.all():
+        if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
             x[cols] = _least_squares_solution(A, -b)
             return x
+        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
         x[cols] = _least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
         x[:, ~good] = np.nan
         return x

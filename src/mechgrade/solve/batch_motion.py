@@ -1,5 +1,5 @@
 """Numerics of many variants at once, each a column of a stacked array: the motions integrated
-to their events, and a secant iteration on one scalar per variant.
+to their events, and Newton's method on one scalar per variant.
 
 Every column takes the steps :func:`scipy.integrate.solve_ivp` (DOP853) would take for it
 alone — its own step size, error norm, accepted and rejected steps, the same coefficients —
@@ -13,8 +13,7 @@ so a step across the switch integrates the motion before it continued, smoothly.
 switching at its event (friction reversing as the slip ends) then reaches it in a few steps
 where ``solve_ivp`` shrinks its steps many times against the jump, and as accurately; a
 column that switches anywhere but at its event is not answered here.
-Likewise :func:`secant` takes, per column, the iterates of ``scipy.optimize.root_scalar``'s
-secant method.
+:func:`newton` solves one scalar per column, each iteration one call for all of them.
 
 >>> import numpy as np
 >>> rates = np.array([[1.0, 2.0]])
@@ -301,48 +300,45 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
     return root, converged
 
 
-def secant(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndarray,
-           x1: np.ndarray, xtol: float, rtol: float, maxiter: int
+def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndarray,
+           xtol: float, rtol: float, maxiter: int, step: float = 1e-7
            ) -> tuple[np.ndarray, np.ndarray]:
-    """Per column, the root ``scipy.optimize.root_scalar(method="secant")`` finds from ``x0``
-    and ``x1``; ``residual(columns, x)`` gives each column's residual. Returns the roots and
-    which converged (a column whose residual becomes undefined stops, unconverged).
+    """Per column, a root of ``residual`` by Newton's method from ``x0``, the slope a forward
+    difference (``step`` relative); ``residual(columns, x)`` gets the iterates (row 0) and
+    the points a step beside them (row 1) together, one call per iteration, and gives their
+    residuals. A column converges, as ``scipy.optimize.root_scalar``'s secant does, once its
+    next iterate is within ``xtol + rtol * |x|`` of its last (whose residual was the last row
+    0 evaluated for it); an undefined residual or a zero slope stops it, unconverged.
 
-    >>> roots, ok = secant(lambda cols, x: x ** 2 - np.array([2.0, 9.0])[cols],
-    ...                    np.array([1.0, 1.0]), np.array([1.1, 1.1]), 1e-15, 1e-13, 100)
+    An iteration costs one call whatever the number of columns, so the count of calls is
+    what matters: where a call is an integration, Newton's iterations (two points each,
+    converging quadratically) are fewer than the secant's (one point each, order 1.6).
+
+    >>> roots, ok = newton(lambda cols, x: x ** 2 - np.array([2.0, 9.0])[cols],
+    ...                    np.array([1.0, 1.0]), 1e-15, 1e-13, 100)
     >>> np.round(roots, 12).tolist(), ok.tolist()
     ([1.414213562373, 3.0], [True, True])
     """
     count = len(x0)
-    cols = np.arange(count)
-    p0, p1 = x0.astype(float).copy(), x1.astype(float).copy()
-    q0, q1 = residual(cols, p0), residual(cols, p1)
-    swap = np.abs(q1) < np.abs(q0)
-    p0, p1 = np.where(swap, p1, p0), np.where(swap, p0, p1)
-    q0, q1 = np.where(swap, q1, q0), np.where(swap, q0, q1)
+    x = x0.astype(float).copy()
+    scale = np.where(x != 0, np.abs(x), 1.0)
     root = np.full(count, np.nan)
     converged = np.zeros(count, dtype=bool)
-    todo = np.isfinite(q0) & np.isfinite(q1)
+    todo = np.isfinite(x)
     for _ in range(maxiter):
-        if not todo.any():
-            break
         i = np.flatnonzero(todo)
-        flat = q1[i] == q0[i]  # scipy stops there, unconverged
-        todo[i[flat]] = False
+        if not len(i):
+            break
+        h = step * np.maximum(np.abs(x[i]), scale[i])
+        r = residual(i, np.stack([x[i], x[i] + h]))
         with np.errstate(all="ignore"):
-            p = np.where(np.abs(q1[i]) > np.abs(q0[i]),
-                         (-q0[i] / q1[i] * p1[i] + p0[i]) / (1 - q0[i] / q1[i]),
-                         (-q1[i] / q0[i] * p0[i] + p1[i]) / (1 - q1[i] / q0[i]))
-        close = ~flat & np.isclose(p, p1[i], rtol=rtol, atol=xtol)
+            p = x[i] - r[0] * h / (r[1] - r[0])
+        stuck = ~np.isfinite(p)  # an undefined residual, or no slope: stops, unconverged
+        todo[i[stuck]] = False
+        close = ~stuck & np.isclose(p, x[i], rtol=rtol, atol=xtol)
         root[i[close]] = p[close]
         converged[i[close]] = True
         todo[i[close]] = False
-        go = ~flat & ~close
-        j = i[go]
-        if not len(j):
-            break
-        p0[j], q0[j] = p1[j], q1[j]
-        p1[j] = p[go]
-        q1[j] = residual(j, p1[j])
-        todo[j[~np.isfinite(q1[j])]] = False
+        go = ~stuck & ~close
+        x[i[go]] = p[go]
     return root, converged

@@ -28,7 +28,7 @@ import sympy as sp
 from ..errors import SolveError
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Objective, Problem
-from ..tolerance import within
+from ..tolerance import within_each
 from ..units import si_factor
 from .levels import State, nullspace
 
@@ -264,14 +264,11 @@ def at_the_event(event: np.ndarray, before: np.ndarray, objective: Objective) ->
     """
     tolerance = objective.tolerance
     abs_ = tolerance.abs * si_factor(objective.unit) if objective.unit else tolerance.abs
+    defined = np.isfinite(before).all(axis=0)  # else nothing better to read
+    graded_alike = within_each(event, before, tolerance.rel, abs_,
+                               np.sqrt((before ** 2).sum(axis=0)))
     out = event.copy()
-    for j in range(event.shape[1]):
-        limit = before[:, j]
-        if not np.isfinite(limit).all():
-            continue  # nothing better to read
-        scale = float(np.linalg.norm(limit))
-        if not within(event[:, j], limit, tolerance.rel, abs_, scale=scale):
-            out[:, j] = limit
+    out[:, defined & ~graded_alike] = before[:, defined & ~graded_alike]
     return out
 
 

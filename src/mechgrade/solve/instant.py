@@ -14,6 +14,7 @@ failure beside the others' answers; the solved state is reported in the author's
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 from functools import lru_cache
 from typing import Collection, Mapping
@@ -25,7 +26,7 @@ from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..units import from_si, si_unit
+from ..units import from_si, si_factor, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import Plan, generic_dof, plan
@@ -396,25 +397,34 @@ def _author_units(problem: Problem, p: Plan) -> list[str]:
     return _per_problem(author_units, problem, p)
 
 
+def _reported(problem: Problem, p: Plan) -> list[tuple[int, str, str, float]]:
+    """Each position's index, spelling, author's unit and that unit's SI factor."""
+    return _per_problem(_positions_reported, problem, p)
+
+
+def _positions_reported(problem: Problem, p: Plan) -> list[tuple[int, str, str, float]]:
+    units = _author_units(problem, p)
+    return [(i, p.index.spelling(i), units[i], si_factor(units[i]) if units[i] else 1.0)
+            for i in range(p.index.size)]
+
+
 def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:
     """The solved coordinates, rates, parameters and time, in the author's units."""
     if base is None:
         return ()
     state, givens = base
-    units = _author_units(problem, p)
+    values = state.values.tolist()
+    given = state.given.tolist()
     out = []
-    for i in range(p.index.size):
-        value = state.values[i]
-        if not np.isfinite(value) or i in state.free:
+    for i, name, unit, factor in _reported(problem, p):
+        value = values[i]
+        if not math.isfinite(value) or i in state.free:
             continue
-        unit = units[i]
-        shown = from_si(value, unit) + 0.0 if unit else float(value)
-        entry = givens.get(p.index.spelling(i))
-        if state.given[i] and entry is not None and entry[2] is not None \
-                and entry[1] == value:
+        shown = value / factor + 0.0 if unit else value  # as from_si reports it
+        entry = givens.get(name) if given[i] else None
+        if entry is not None and entry[2] is not None and entry[1] == value:
             shown, unit = entry[2].value, entry[2].unit
-        out.append(StateValue(p.index.spelling(i), shown, unit, bool(state.given[i]),
-                              float(value)))
+        out.append(StateValue(name, shown, unit, bool(given[i]), value))
     return tuple(out)
 
 

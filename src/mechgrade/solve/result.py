@@ -77,7 +77,8 @@ class ObjectiveResult:
     symbol_signs: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "kind", ObjectiveKind(self.kind))  # text from results.json
+        if type(self.kind) is not ObjectiveKind:  # text from results.json
+            object.__setattr__(self, "kind", ObjectiveKind(self.kind))
 
 
 @dataclass(frozen=True)

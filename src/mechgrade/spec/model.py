@@ -9,7 +9,7 @@ from, so any later error can point back into the file.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from enum import Enum
 from typing import TYPE_CHECKING
 
@@ -269,6 +269,18 @@ class Problem:
     warnings: tuple[AuthorWarning, ...] = field(default=(), compare=False)
     variants: Variants | None = None  # spec.variants: how each student's givens are drawn
     dynamics: "Dynamics | None" = None  # bodies and loads (spec/dynamics.py)
+
+    def __hash__(self) -> int:
+        # the solver's caches are keyed by the problem, and hashing one walks all of it
+        known = self.__dict__.get("_hash")
+        if known is None:
+            known = hash(tuple(getattr(self, f.name) for f in fields(self) if f.compare))
+            object.__setattr__(self, "_hash", known)
+        return known
+
+    def __getstate__(self) -> dict:
+        # a string's hash differs from process to process
+        return {k: v for k, v in self.__dict__.items() if k != "_hash"}
 
     def objective(self, objective_id: str) -> Objective:
         for objective in self.objectives:
