@@ -33,6 +33,16 @@ def test_the_givens_table_has_one_row_per_student_with_its_draw_number():
                     ["a", "A", "fall", "2.5", "m", 0], ["b", "B", "fall", "2.5", "m", 3]]
 
 
+def test_a_statement_wrapped_in_the_spec_is_one_paragraph_on_the_page(tmp_path):
+    wrapped = Sheet("hw", "Hw", "s1", "Ana", "fall", (
+        SheetProblem("p", "P", "A rod of length\n2 m turns.\n\nFind <its> speed.\n", (),
+                     (Question("p.v", "v?", "m/s"),)),))
+    write_handouts((wrapped,), tmp_path)
+    html = (tmp_path / "s1.html").read_text()
+    assert "<p>A rod of length 2 m turns.</p>" in html
+    assert "<p>Find &lt;its&gt; speed.</p>" in html
+
+
 def test_a_missing_template_is_named(tmp_path):
     (tmp_path / "t").mkdir()
     with pytest.raises(MechgradeError, match="expected a template 'handout.html.j2', found none"):

@@ -20,6 +20,7 @@ id,name,seed,p.L,p.L unit,p draw
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from ..errors import MechgradeError
@@ -71,6 +72,7 @@ def sheet_context(sheet: Sheet, markdown: bool = False) -> dict:
                     "name": text(sheet.student_name or sheet.student_id)},
         "problems": [{
             "id": text(p.id), "title": text(p.title), "statement": text(p.statement),
+            "paragraphs": [text(part) for part in paragraphs(p.statement)],
             "givens": [{"name": text(g.name), "value": text(g.text)} for g in p.givens],
             "questions": [{"key": text(q.key), "prompt": text(q.prompt), "unit": text(q.unit)}
                           for q in p.questions],
@@ -78,6 +80,17 @@ def sheet_context(sheet: Sheet, markdown: bool = False) -> dict:
             "picture": "" if markdown else Markup(p.picture),
         } for p in sheet.problems],
     }
+
+
+def paragraphs(statement: str) -> list[str]:
+    """A statement's paragraphs (parted by blank lines), each one line: a spec wraps its
+    prose to the file's width, a page to the reader's.
+
+    >>> paragraphs("A rod of length\\nL turns.\\n\\nFind its speed.\\n")
+    ['A rod of length L turns.', 'Find its speed.']
+    """
+    parts = re.split(r"\n\s*\n", statement.strip())
+    return [" ".join(part.split()) for part in parts if part.strip()]
 
 
 def givens_table(sheets: tuple[Sheet, ...]) -> list[list[object]]:
