@@ -100,7 +100,8 @@ def store_outcome(key: str, outcome: Outcome) -> None:
     """Keep ``outcome`` under ``key`` (a solution's generated mistakes worked out), unless its
     stored form would leave something out."""
     data = outcome_data(outcome)
-    if same_outcome(outcome_from(data), outcome):
+    back = _outcome(data)
+    if back is not None and same_outcome(back, outcome):
         cache.store(key, data)
 
 
