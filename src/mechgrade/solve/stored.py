@@ -6,7 +6,7 @@ to is plain data, so that is what is kept for it: one entry per problem, givens 
 objectives asked (:func:`solution_key`), holding the solution (its generated mistakes worked
 out) or the error solving raised. ``check`` of an unchanged problem, a second grading run (its
 objectives, each answer carried forward) and each student's variant
-(:func:`mechgrade.solve.batch.solve_variants`, :func:`variant_key`) read them back without
+(:func:`mechgrade.solve.batch.solve_variants`, :func:`variant_keys`) read them back without
 sympy. An entry is kept only when reading it back gives exactly what was solved.
 
 >>> from mechgrade.errors import Location, SolveError
