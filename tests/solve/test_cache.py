@@ -4,16 +4,16 @@ an entry that is corrupt, truncated, foreign or tampered with is ignored and wri
 
 from __future__ import annotations
 
+import itertools
 import json
+import os
 from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
 import mechgrade.solve.cache as cache
-from mechgrade.expressions.syntax import to_text
 from mechgrade.solve import plan, solve
-from mechgrade.solve.entry import _numeric_versions
 from mechgrade.solve.mutants import inside_tolerance
 from mechgrade.spec import load_problem, load_problem_text
 
@@ -167,7 +167,7 @@ def wrong_numbers(text: str) -> str:
     lambda text: text[:len(text) // 2],  # truncated
     lambda text: "\x00\xff garbage",  # corrupt
     lambda text: "[]",  # not an entry
-    lambda text: text.replace('"format":1', '"format":0'),  # another format
+    lambda text: text.replace(f'"format":{cache.FORMAT}', '"format":0'),  # another format
     lambda text: text.replace('"index":[', '"index":[[],'),  # another layout
     wrong_numbers,  # another problem's
     tampered_source,  # code that is not numpy arithmetic
@@ -201,7 +201,8 @@ def test_a_symbolic_answer_entry_that_is_spoilt_is_derived_again(disk, forget):
     plan_file = disk / f"{cache.problem_key(problem)}.json"
     for path in entries(disk):
         if path != plan_file:
-            path.write_text('{"format": 1, "key": "%s", "data": {"id": 3}}' % path.stem)
+            path.write_text('{"format": %d, "key": "%s", "data": {"id": 3}}'
+                            % (cache.FORMAT, path.stem))
     forget()
     assert solve(problem).result("acc_mag_symbolic") == right
 
@@ -229,23 +230,78 @@ def test_a_problem_without_a_canonical_text_is_not_cached(disk):
     assert cache.problem_key(odd) is None
 
 
-def test_a_spoilt_dynamics_solution_entry_is_solved_again(disk, forget):
+def aged(disk: Path, names: str, size: int = 1000) -> None:
+    """An entry per letter of ``names`` of about ``size`` bytes, each used after the one
+    before."""
+    for age, name in enumerate(names):
+        cache.store(name * 64, "x" * size)
+        os.utime(disk / f"{name * 64}.json", ns=(0, (1_000_000 + age) * 10**9))
+
+
+def kept(disk: Path) -> str:
+    return "".join(sorted(p.name[0] for p in entries(disk)))
+
+
+def test_pruning_removes_the_least_recently_used_entries(disk):
+    aged(disk, "abcde")
+    size = (disk / f"{'a' * 64}.json").stat().st_size
+    cache.prune(5 * size)
+    assert kept(disk) == "abcde"  # within the bound: nothing removed
+    cache.prune(4 * size)
+    assert kept(disk) == "cde"  # down to three quarters of the bound
+    cache.prune(0)
+    assert kept(disk) == ""
+
+
+def test_an_entry_read_counts_as_used(disk):
+    aged(disk, "abc")
+    size = (disk / f"{'a' * 64}.json").stat().st_size
+    assert cache.load("a" * 64) == "x" * 1000
+    cache.prune(2 * size)
+    assert kept(disk) == "a"
+
+
+def test_an_entry_gone_while_pruning_is_no_error(disk, monkeypatch):
+    aged(disk, "abcd")
+    size = (disk / f"{'a' * 64}.json").stat().st_size
+    remove = os.remove
+
+    def raced(path):  # another process pruned the oldest one first
+        remove(path)
+        if Path(path).name.startswith("a"):
+            raise FileNotFoundError(path)
+
+    monkeypatch.setattr(os, "remove", raced)
+    cache.prune(3 * size)
+    assert kept(disk) == "cd"
+
+
+def test_the_folder_is_pruned_on_a_process_first_store_and_every_so_many(disk, monkeypatch):
+    bounds = []
+    monkeypatch.setattr(cache, "prune", bounds.append)
+    monkeypatch.setattr(cache, "_stores", itertools.count())
+    monkeypatch.setenv("MECHGRADE_CACHE_MAX_MB", "0.5")
+    for n in range(2 * cache.PRUNE_EVERY + 1):
+        cache.store(f"{n:064d}", n)
+    assert bounds == [512 * 1024] * 3
+
+
+@pytest.mark.parametrize("value, megabytes", [
+    (None, cache.MAX_MB), ("", cache.MAX_MB), ("50", 50), ("0", 0), ("lots", cache.MAX_MB)])
+def test_the_size_bound_follows_the_environment(value, megabytes, monkeypatch):
+    if value is None:
+        monkeypatch.delenv("MECHGRADE_CACHE_MAX_MB", raising=False)
+    else:
+        monkeypatch.setenv("MECHGRADE_CACHE_MAX_MB", value)
+    assert cache.limit() == megabytes * 1024 * 1024
+
+
+def test_a_dynamics_solution_entry_in_a_small_cache_is_pruned_and_solved_again(
+        disk, forget, monkeypatch):
     problem = load_problem(LADDER)
     right = comparable(solve(problem))
-    key = cache.digest("solution", cache.problem_key(problem), *_numeric_versions())
-    entry = disk / f"{key}.json"
-    data = json.loads(entry.read_text())
-    data["data"]["failures"] = [["x", "SystemExit", "no", [None, None, None, None]]]
-    entry.write_text(json.dumps(data))
+    cache.prune(0)
+    assert not entries(disk)
     forget()
     assert comparable(solve(problem)) == right
-
-
-def test_a_dynamics_solution_with_other_givens_is_solved(disk):
-    problem = load_problem(LADDER)
-    solve(problem)
-    stored = entries(disk)
-    given = problem.givens[0]
-    other = solve(problem, givens={to_text(given.key.node): given.si * 1.1})
-    assert entries(disk) == stored  # nothing kept for it
-    assert comparable(other) != comparable(solve(problem))
+    assert entries(disk)

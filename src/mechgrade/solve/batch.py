@@ -61,6 +61,7 @@ from .dynamics_mutants import with_generated_mistakes
 from .plan import Plan, _OnFirstCall, plan
 from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
                      Solution)
+from .stored import load_variant, store_variant, variant_keys
 
 NEWTON_STEPS = 30
 """Newton steps a non-linear level may take from the reference's root."""
@@ -71,10 +72,36 @@ Outcome = Solution | MechgradeError
 def solve_variants(problem: Problem,
                    variants: Sequence[Mapping[str, float | None] | None]) -> list[Outcome]:
     """``[solve(problem, givens=g) for g in variants]``, each a :class:`Solution` or the
-    error :func:`~.entry.solve` raises, computed together (see the module's docstring)."""
+    error :func:`~.entry.solve` raises, computed together (see the module's docstring).
+
+    With the disk cache on, a dynamics problem's variants are kept there (:mod:`.stored`):
+    those stored are read back, the others solved together and stored, equal givens once (a
+    variant's last digits depend on the others solved with it: one entry per givens gives
+    them all the same, in this run and the next)."""
     given = [dict(g or {}) for g in variants]
+    keys = [key for key in variant_keys(problem, given) if key is not None] \
+        if problem.dynamics is not None else []
+    if len(keys) < len(given):  # not kept (a kinematics problem, the cache off...)
+        return [outcome for outcome, _ in _solved_together(problem, given)]
+    distinct = dict(zip(keys, given))
+    out: dict[str, Outcome] = {}
+    for key, givens in distinct.items():
+        stored = load_variant(problem, givens, key)
+        if stored is not None:
+            out[key] = stored
+    todo = [key for key in distinct if key not in out]
+    for key, (outcome, together) in zip(todo, _solved_together(
+            problem, [distinct[key] for key in todo])):
+        store_variant(key, outcome, together)
+        out[key] = outcome
+    return [out[key] for key in keys]
+
+
+def _solved_together(problem: Problem, given: list[dict]) -> list[tuple[Outcome, bool]]:
+    """Each variant's outcome, and whether it was solved with the others (else by
+    :func:`~.entry.solve`)."""
     found: list[Outcome | None] = [None] * len(given)
-    template = _template(problem)
+    template = _template(problem) if given else None
     if template is not None:
         chosen = [i for i, g in enumerate(given) if template.covers(g)]
         for i, solution in zip(chosen, template.solve([given[i] for i in chosen])):
@@ -82,14 +109,15 @@ def solve_variants(problem: Problem,
             found[i] = (with_generated_mistakes(problem, solution, given[i])
                         if problem.dynamics is not None and isinstance(solution, Solution)
                         else solution)
-    out: list[Outcome] = []
+    out: list[tuple[Outcome, bool]] = []
     for givens, solution in zip(given, found):
         if solution is None:
             try:
-                solution = solve(problem, givens=givens)
+                out.append((solve(problem, givens=givens), False))
             except MechgradeError as err:
-                solution = err
-        out.append(solution)
+                out.append((err, False))
+        else:
+            out.append((solution, True))
     return out
 
 

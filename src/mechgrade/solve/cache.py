@@ -1,8 +1,8 @@
 """The on-disk cache of compiled problems: what deriving a problem with sympy produced, kept so
 that solving it again (``mechgrade check`` of an unchanged file) needs no sympy at all: a
 kinematics problem's plan (:mod:`.plan`) and symbolic answers (:mod:`.instant`), a dynamics
-problem's solution at its own givens (:mod:`.stored`), and a checked file's report
-(:func:`mechgrade.check.check_problem`, keyed by the file's path and bytes).
+problem's solutions, for each givens and objectives asked (:mod:`.stored`), and a checked
+file's report (:func:`mechgrade.check.check_problem`, keyed by the file's path and bytes).
 
 An entry is a JSON document named by :func:`problem_key`, a SHA-256 of the loaded problem's
 canonical text (its ``repr``: every field, locations included, so a moved line gives messages
@@ -14,7 +14,8 @@ entry.
 
 Where: ``$MECHGRADE_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/mechgrade``, else
 ``~/.cache/mechgrade``. ``MECHGRADE_NO_CACHE=1`` turns the cache off (nothing read or written).
-Deleting the folder clears it.
+Deleting the folder clears it. Its size is bounded (:func:`prune`): past :data:`MAX_MB`
+megabytes (``$MECHGRADE_CACHE_MAX_MB``), the entries used least recently are removed.
 
 Trust model: the folder is the user's own, as writable by them as their shell start-up files,
 so an entry is not a secret to guard but it is never trusted blindly either. Entries are JSON
@@ -41,6 +42,7 @@ import ast
 import hashlib
 import json
 import os
+import itertools
 import re
 from functools import lru_cache
 from pathlib import Path
@@ -52,8 +54,15 @@ from .. import __version__
 from ..errors import Location, MechgradeError
 from ..files import write_text
 
-FORMAT = 1
+FORMAT = 2
 """The layout of an entry; raised whenever what is stored changes."""
+
+MAX_MB = 200
+"""The megabytes of entries the folder is kept under, unless ``$MECHGRADE_CACHE_MAX_MB`` says
+otherwise (a value that is not a number is ignored)."""
+
+PRUNE_EVERY = 100
+"""Stores between two looks at the folder's size (the first store of a process looks)."""
 
 NUMPY_NAMES = frozenset((
     "sin", "cos", "tan", "arcsin", "arccos", "arctan", "arctan2", "sinh", "cosh", "tanh",
@@ -115,12 +124,18 @@ def digest(*parts: Any) -> str:
 
 def load(key: str) -> Any:
     """The data stored under ``key``, or ``None`` when there is none or it is unreadable
-    (missing, corrupt, truncated, another format or another key's)."""
+    (missing, corrupt, truncated, another format or another key's). An entry read is marked
+    used now (its modification time), for :func:`prune`."""
+    path = folder() / f"{key}.json"
     try:
-        with open(folder() / f"{key}.json", encoding="utf-8") as handle:
+        with open(path, encoding="utf-8") as handle:
             entry = json.load(handle)
     except (OSError, ValueError):
         return None
+    try:
+        os.utime(path)
+    except OSError:
+        pass  # a read-only folder, or pruned meanwhile: it was read all the same
     if not isinstance(entry, dict) or entry.get("format") != FORMAT or entry.get("key") != key:
         return None
     return entry.get("data")
@@ -128,14 +143,71 @@ def load(key: str) -> Any:
 
 def store(key: str, data: Any) -> None:
     """Keep ``data`` (plain JSON) under ``key``, written atomically; a cache that cannot be
-    written (a read-only home, a full disk) is no error: the next run derives again."""
+    written (a read-only home, a full disk) is no error: the next run derives again. Every
+    :data:`PRUNE_EVERY` stores of a process, the first included, the folder is pruned."""
     try:
         place = folder()
         place.mkdir(parents=True, exist_ok=True)
         write_text(place / f"{key}.json", json.dumps(
             {"format": FORMAT, "key": key, "data": data}, separators=(",", ":")))
     except (OSError, MechgradeError):
-        pass
+        return
+    if next(_stores) % PRUNE_EVERY == 0:
+        prune(limit())
+
+
+_stores = itertools.count()
+
+
+def limit() -> int:
+    """The bytes of entries the folder is kept under (:data:`MAX_MB`)."""
+    try:
+        megabytes = float(os.environ.get("MECHGRADE_CACHE_MAX_MB") or MAX_MB)
+    except ValueError:
+        megabytes = MAX_MB
+    return max(0, int(megabytes * 1024 * 1024))
+
+
+def prune(bound: int) -> None:
+    """When the folder's entries take more than ``bound`` bytes, remove the least recently
+    used ones (oldest modification time first) until they take three quarters of it, so that
+    the next stores do not prune again at once. Another process may store, read or prune
+    meanwhile: an entry gone already is no error, and one removed under a reader is a miss.
+
+    >>> import tempfile, time
+    >>> os.environ["MECHGRADE_CACHE_DIR"] = tempfile.mkdtemp()
+    >>> for name in "abc":
+    ...     store(name * 64, "x" * 1000)
+    ...     os.utime(folder() / f"{name * 64}.json", (time.time(), time.time() + ord(name)))
+    >>> prune(2500); sorted(p.name[0] for p in folder().iterdir())
+    ['c']
+    >>> del os.environ["MECHGRADE_CACHE_DIR"]
+    """
+    found = []
+    try:
+        with os.scandir(folder()) as entries:
+            for entry in entries:
+                if entry.name.endswith(".json"):
+                    try:
+                        info = entry.stat()
+                    except OSError:
+                        continue  # removed meanwhile
+                    found.append((info.st_mtime_ns, info.st_size, entry.path))
+    except OSError:
+        return
+    total = sum(size for _, size, _ in found)
+    if total <= bound:
+        return
+    for _, size, path in sorted(found):
+        if total <= bound * 3 // 4:
+            break
+        try:
+            os.remove(path)
+        except FileNotFoundError:
+            pass  # another process pruned it
+        except OSError:
+            continue
+        total -= size
 
 
 def where_data(where: Location) -> list:

@@ -2,17 +2,17 @@
 any other to the kinematics solver (each a module of its own).
 
 The dynamics solver is imported only for a problem that needs it (it imports sympy), and a
-dynamics problem's solution at its own givens is kept in the disk cache (:mod:`.stored`): a
-kinematics problem whose plan is cached, or a dynamics problem whose solution is, is solved
-again without sympy.
+dynamics problem's solution, for any givens and objectives, is kept in the disk cache
+(:mod:`.stored`): a kinematics problem whose plan is cached, or a dynamics problem whose
+solution is, is solved again without sympy.
 """
 
 from __future__ import annotations
 
 from typing import Collection, Mapping
 
+from ..errors import MechgradeError
 from ..spec.model import Problem
-from . import cache
 from .instant import solve_kinematics
 from .result import Solution
 
@@ -30,9 +30,7 @@ def solve(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
     """
     if problem.dynamics is None:
         return solve_kinematics(problem, givens=givens, objectives=objectives)
-    if givens is None and objectives is None:
-        return _stored_dynamics(problem)
-    return _solve_dynamics(problem, givens, objectives)
+    return _stored_dynamics(problem, givens, objectives)
 
 
 def _solve_dynamics(problem: Problem, givens, objectives) -> Solution:
@@ -43,30 +41,22 @@ def _solve_dynamics(problem: Problem, givens, objectives) -> Solution:
         problem, givens=givens, objectives=objectives), givens)
 
 
-def _stored_dynamics(problem: Problem) -> Solution:
-    """A dynamics problem solved at its own givens: read from the disk cache, or solved and
-    (its generated mistakes worked out) written there."""
-    from .stored import same, solution_data, solution_from
+def _stored_dynamics(problem: Problem, givens, objectives) -> Solution:
+    """A dynamics problem solved: read from the disk cache, or solved and (its generated
+    mistakes worked out, or the error it raised) written there."""
+    from .stored import load_outcome, solution_key, store_outcome
 
-    problem_key = cache.problem_key(problem) if cache.enabled() else None
-    if problem_key is None:
-        return _solve_dynamics(problem, None, None)
-    key = cache.digest("solution", problem_key, *_numeric_versions())
-    data = cache.load(key)
-    if data is not None:
+    key = solution_key(problem, givens, objectives)
+    if key is None:
+        return _solve_dynamics(problem, givens, objectives)
+    found = load_outcome(key)
+    if found is None:
         try:
-            return solution_from(data)
-        except (KeyError, TypeError, ValueError):
-            pass  # not an entry this code wrote: solve and write it again
-    solution = _solve_dynamics(problem, None, None)
-    data = solution_data(solution)
-    if same(solution_from(data), solution):  # nothing the stored form leaves out
-        cache.store(key, data)
-    return solution
-
-
-def _numeric_versions() -> tuple[str, str]:
-    """numpy's and scipy's versions: the roots a numeric solve lands on are theirs."""
-    import numpy
-
-    return numpy.__version__, cache.package_version("scipy", "version.py")
+            found = _solve_dynamics(problem, givens, objectives)
+        except MechgradeError as err:
+            store_outcome(key, err)
+            raise
+        store_outcome(key, found)
+    if isinstance(found, MechgradeError):
+        raise found
+    return found

@@ -1,10 +1,13 @@
-"""A problem's solution at its own givens, kept in the disk cache (:mod:`.cache`).
+"""Solutions of problems with bodies and loads, kept in the disk cache (:mod:`.cache`).
 
 A problem with bodies and loads is derived with sympy in more places than its plan (its
 kinetics, its events, each mistaken model its generated mistakes come from); what it is solved
-to at the instant its spec describes is plain data, so that is what is kept for it: ``check``
-of an unchanged dynamics problem reads it back without sympy. A solution with other givens (a
-variant, an answer carried forward) is always solved.
+to is plain data, so that is what is kept for it: one entry per problem, givens overrides and
+objectives asked (:func:`solution_key`), holding the solution (its generated mistakes worked
+out) or the error solving raised. ``check`` of an unchanged problem, a second grading run (its
+objectives, each answer carried forward) and each student's variant
+(:func:`mechgrade.solve.batch.solve_variants`, :func:`variant_keys`) read them back without
+sympy. An entry is kept only when reading it back gives exactly what was solved.
 
 >>> from mechgrade.errors import Location, SolveError
 >>> from mechgrade.solve.result import ObjectiveFailure, ObjectiveResult, Solution
@@ -18,13 +21,145 @@ variant, an answer carried forward) is always solved.
 from __future__ import annotations
 
 import json
-from typing import Any
+from typing import Any, Collection, Mapping, Sequence
 
 from .. import errors
 from ..errors import AuthorWarning, MechgradeError
+from . import cache
 from .cache import where_data, where_from
 from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
                      Solution, StateValue)
+
+
+Outcome = Solution | MechgradeError
+"""What solving gives: a solution, or the error it raised."""
+
+
+def solution_key(problem, givens: Mapping[str, float | None] | None,
+                 objectives: Collection[str] | None) -> str | None:
+    """The entry of ``solve(problem, givens=givens, objectives=objectives)``, or ``None`` when
+    it is not kept (the cache off, a problem without a canonical text, a given's value that is
+    not a number). Overrides are keyed exactly (each value's ``repr``, in name order) and
+    objectives as a set; numpy's and scipy's versions are part of it (the roots a numeric
+    solve lands on are theirs).
+
+    >>> from unittest import mock
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "atwood_machine.yaml")
+    >>> with mock.patch.dict("os.environ", MECHGRADE_NO_CACHE="0"):
+    ...     alike = solution_key(p, {"m1": 2, "g": None}, ["tension", "a1"]) == \\
+    ...         solution_key(p, {"g": None, "m1": 2.0}, ("a1", "tension"))
+    ...     apart = solution_key(p, {"m1": 2.0}, None) == \\
+    ...         solution_key(p, {"m1": 2.0000000000000004}, None)
+    >>> alike, apart, solution_key(p, None, None)  # the last with the cache off
+    (True, False, None)
+    """
+    return _key("solution", _problem_key(problem), givens, objectives)
+
+
+def variant_keys(problem, variants: Sequence[Mapping[str, float | None]]
+                 ) -> list[str | None]:
+    """The entries of ``variants`` (givens overrides) of ``problem`` as
+    :func:`~mechgrade.solve.batch.solve_variants` solves them together (apart from
+    :func:`solution_key`'s: the two may differ in the last digits)."""
+    problem_key = _problem_key(problem)
+    return [_key("variant", problem_key, givens, None) for givens in variants]
+
+
+def _problem_key(problem) -> str | None:
+    return cache.problem_key(problem) if cache.enabled() else None
+
+
+def _key(what: str, problem_key: str | None, givens, objectives) -> str | None:
+    if problem_key is None:
+        return None
+    try:
+        overrides = [[name, None if value is None else repr(float(value))]
+                     for name, value in sorted((givens or {}).items())]
+    except (TypeError, ValueError):
+        return None
+    asked = None if objectives is None else sorted(set(objectives))
+    return cache.digest(what, problem_key, overrides, asked, *numeric_versions())
+
+
+def numeric_versions() -> tuple[str, str]:
+    """numpy's and scipy's versions."""
+    import numpy
+
+    return numpy.__version__, cache.package_version("scipy", "version.py")
+
+
+def load_outcome(key: str) -> Outcome | None:
+    """The outcome stored under ``key``, or ``None`` when there is none this code could have
+    written."""
+    return _outcome(cache.load(key))
+
+
+def store_outcome(key: str, outcome: Outcome) -> None:
+    """Keep ``outcome`` under ``key`` (a solution's generated mistakes worked out), unless its
+    stored form would leave something out."""
+    data = outcome_data(outcome)
+    back = _outcome(data)
+    if back is not None and same_outcome(back, outcome):
+        cache.store(key, data)
+
+
+ALONE = {"alone": True}
+"""The entry of a variant solved on its own (by :func:`~mechgrade.solve.entry.solve`, which
+keeps it under :func:`solution_key`)."""
+
+
+def load_variant(problem, givens: Mapping[str, float | None], key: str) -> Outcome | None:
+    """The variant ``givens`` of ``problem`` as :func:`store_variant` kept it under ``key``
+    (one of :func:`variant_keys`), or ``None``."""
+    data = cache.load(key)
+    if data == ALONE:
+        alone = solution_key(problem, givens, None)
+        data = None if alone is None else cache.load(alone)
+    return _outcome(data)
+
+
+def store_variant(key: str, outcome: Outcome, together: bool) -> None:
+    """Keep a variant under ``key`` (one of :func:`variant_keys`): its ``outcome`` if it was
+    solved together with others, else only that :func:`solution_key` names it (solving it on
+    its own kept it there)."""
+    if together:
+        store_outcome(key, outcome)
+    else:
+        cache.store(key, ALONE)
+
+
+def _outcome(data: Any) -> Outcome | None:
+    if data is None:
+        return None
+    try:
+        return outcome_from(data)
+    except (KeyError, TypeError, ValueError, AttributeError):
+        return None  # not an entry this code wrote: solved and written again
+
+
+def outcome_data(outcome: Outcome) -> dict:
+    """``outcome`` as plain JSON."""
+    if isinstance(outcome, MechgradeError):
+        return {"error": [type(outcome).__name__, outcome.message, where_data(outcome.where)]}
+    return {"solution": solution_data(outcome)}
+
+
+def outcome_from(data: Any) -> Outcome:
+    """The outcome :func:`outcome_data` gave ``data`` for; raises (``KeyError``,
+    ``TypeError``, ``ValueError``) on anything else."""
+    if "error" in data:
+        name, message, where = data["error"]
+        return _error(name, message, where)
+    return solution_from(data["solution"])
+
+
+def same_outcome(a: Outcome, b: Outcome) -> bool:
+    """Whether two outcomes say the same (errors: of one kind, with equal attributes)."""
+    if isinstance(a, Solution) and isinstance(b, Solution):
+        return same(a, b)
+    return type(a) is type(b) and vars(a) == vars(b) and str(a) == str(b)
 
 
 def solution_data(solution: Solution) -> dict:
