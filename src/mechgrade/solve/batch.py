@@ -593,7 +593,8 @@ class _Template:
 
         def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                modes: np.ndarray | None = None) -> np.ndarray:
-            x = full[:, cols]  # a copy: fancy indexing
+            # a copy (every column: cols is sorted, so all of them is all in order)
+            x = full.copy() if len(cols) == count else full[:, cols]
             x[:n] = y[:n]
             x[qd] = y[n:]
             x[index.time] = t
@@ -691,6 +692,9 @@ class _Template:
                 nulls[order] = np.broadcast_to(np.eye(len(solve_for)),
                                                (X.shape[1], len(solve_for), len(solve_for)))
                 continue
+            # a column stops once its own step is that small: its root does not depend on
+            # the other variants solved with it
+            moving = np.ones(X.shape[1], dtype=bool)
             for _ in range(1 if linear else NEWTON_STEPS if solve_for else 0):
                 place = [columns.index(i) for i in solve_for]
                 r = _call(level.residual, X, nrows)[active] - target[active]
@@ -700,13 +704,15 @@ class _Template:
                 ok &= good
                 step, rank, Vt = _least_squares(J, r, good)
                 ok &= rank == len(solve_for) - group.nullity[order]
-                step[:, ~ok] = 0.0
+                step[:, ~ok | ~moving] = 0.0
                 X[solve_for] += step
                 if linear:
                     nulls[order] = Vt[:, rank.max(initial=0):, :].transpose(0, 2, 1) \
                         if group.nullity[order] else None
                     break
-                if np.all(np.abs(step) <= 1e-12 * np.maximum(np.abs(X[solve_for]), 1.0)):
+                moving &= ~np.all(np.abs(step) <= 1e-12 * np.maximum(np.abs(X[solve_for]), 1.0),
+                                  axis=0)
+                if not moving.any():
                     break
             if active.any():
                 r = _call(level.residual, X, nrows)[active] - target[active]

@@ -15,7 +15,6 @@ failure beside the others' answers; the solved state is reported in the author's
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from functools import lru_cache
 from typing import Collection, Mapping
 
@@ -24,7 +23,7 @@ import numpy as np
 from ..errors import AuthorWarning, MechgradeError, SolveError
 from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
-from ..spec.model import Objective, ObjectiveKind, Problem
+from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..units import from_si, si_factor, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
@@ -91,8 +90,9 @@ def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
         if given is not None and given.si != float(value):
             # the value replaced, in the spec's unit, so messages show what was solved with
             number = from_si(float(value), given.unit) + 0.0
-            given = replace(given, value=number, si=float(value),
-                            text=f"{number:.6g} {given.unit}".strip())
+            # as replace() gives it, at two thirds of the cost (givens of a whole class)
+            given = Given(**{**vars(given), "value": number, "si": float(value),
+                             "text": f"{number:.6g} {given.unit}".strip()})
         out[canonical] = (node, float(value), given)
     return out
 
