@@ -13,6 +13,7 @@ import jsonschema
 import pytest
 
 from mechgrade.errors import SolveError
+from mechgrade.expressions.syntax import to_text
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.results import AssignmentInfo, GradeReport, StudentResult
 from mechgrade.grade.run import expected_text, grade_submissions
@@ -364,3 +365,51 @@ def test_any_student_id_draws_a_variant_even_one_that_is_not_valid_utf8():
     for sid in ("bad\udce9name", "名前", "", " 20001 ", "a" * 5000):
         assert draw_variant(problem, "fall", sid).drawn
     assert draw_variant(problem, "fall", "é").drawn == draw_variant(problem, "fall", "é").drawn
+
+
+# ---------------------------------------------------------------------------- dynamics
+
+DYNAMICS = ROOT / "tests" / "data" / "variants" / "dynamics"
+
+
+def pin_pendulum_by_hand(m: float, L: float, theta: float, omega: float, g: float = 9.81):
+    """A uniform rod pinned at its end (theta from the downward vertical), by moments about
+    the pin and F = m a_G: its angular acceleration, the pin force (N.x, N.y) and that
+    force's component along the rod toward the pin."""
+    alpha = -3 * g * math.sin(theta) / (2 * L)
+    # G at (L/2 sin, -L/2 cos): a_G = alpha k x r_G - omega^2 r_G
+    a_g = (alpha * L / 2 * math.cos(theta) - omega ** 2 * L / 2 * math.sin(theta),
+           alpha * L / 2 * math.sin(theta) + omega ** 2 * L / 2 * math.cos(theta))
+    force = (m * a_g[0], m * a_g[1] + m * g)
+    return alpha, force, -force[0] * math.sin(theta) + force[1] * math.cos(theta)
+
+
+def answers_file(values) -> str:
+    alpha, force, along = values
+    return (f"pin_pendulum:\n  alpha: {alpha:.6g} rad/s^2\n"
+            f"  pin_force: ({force[0]:.6g}, {force[1]:.6g}) N\n"
+            f"  pin_force_along_rod: {along:.6g} N\n")
+
+
+def test_a_dynamics_problem_with_variants_is_checked_and_graded_per_student(tmp_path):
+    problem = load_problem(DYNAMICS / "pin_pendulum.yaml")
+    assert check_variants(problem, 30) == ()  # its kinetics checked for every draw
+    book = {to_text(g.key.node): g.si for g in problem.givens}
+    for student in ("101", "102"):
+        (tmp_path / student).mkdir()
+    ann, _ = student_variant(problem, "dynamics-test", "101", redraw=True)
+    mine = {**book, **dict(ann.overrides)}  # (a drawn value equal to the book's is no override)
+    (tmp_path / "101" / "answers.yaml").write_text(answers_file(pin_pendulum_by_hand(
+        mine["m"], mine["L"], mine["theta"], mine["theta'"])))
+    # Bo solves the problem with its own givens (the book's numbers), not his
+    (tmp_path / "102" / "answers.yaml").write_text(answers_file(pin_pendulum_by_hand(
+        book["m"], book["L"], book["theta"], book["theta'"])))
+    report = grade_submissions(load_assignment(DYNAMICS / "assignment.yaml"), tmp_path,
+                               read_roster(DYNAMICS / "roster.csv"))
+    verdicts = {s.id: {a.objective: (a.verdict, a.diagnosis) for a in s.answers
+                       if a.verdict != "missing"} for s in report.students}
+    assert verdicts["101"] == {o: ("correct", None) for o in
+                               ("alpha", "pin_force", "pin_force_along_rod")}
+    assert verdicts["102"] == {o: ("incorrect", OTHER_VARIANT) for o in
+                               ("alpha", "pin_force", "pin_force_along_rod")}
+    assert mine != book

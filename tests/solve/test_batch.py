@@ -184,8 +184,16 @@ def with_drawn_parameters(path: Path, folder: Path):
              f"to: {max(0.8 * g.value, 1.2 * g.value)!r}, sig_figs: 4}}"
              for g in problem.givens if isinstance(g.key.node, Name)
              and g.key.node.id in parameters and g.value_expr is None and g.value]
+    text = path.read_text()
+    for line in problem.statement.splitlines():  # each drawn value a placeholder, as an
+        shown = line                               # author writes it
+        for g in problem.givens:
+            if any(f"    {to_text(g.key.node)}:" in drawn for drawn in lines):
+                shown = re.sub(rf"(?<![\w.]){re.escape(g.text)}(?!\w)",
+                               f"{{{to_text(g.key.node)}}}", shown)
+        text = text.replace(f"  {line}\n", f"  {shown}\n")
     copy = folder / path.name
-    copy.write_text(path.read_text() + "\nvariants:\n  draw:\n" + "\n".join(lines) + "\n")
+    copy.write_text(text + "\nvariants:\n  draw:\n" + "\n".join(lines) + "\n")
     return load_problem(copy)
 
 

@@ -145,6 +145,20 @@ def test_a_statement_placeholder_names_a_given():
                               "mean 'L'?")
 
 
+def test_a_statement_that_writes_a_drawn_givens_own_value_is_refused():
+    # every student's sheet would give the book's length beside their own
+    text = with_variants("variants:\n  draw:\n    L: {choices: [1 m, 3 m]}\n",
+                         "A pendulum of length 2 m turns about O.")
+    assert error_of(text) == ("p.yaml:3:12: statement: expected {L} where the statement gives "
+                              "the drawn value of L (each student's own), found its reference "
+                              "value '2 m'")
+    for fine in ("A pendulum of length {L} turns about O.",  # the student's value
+                 "A pendulum of length 12 m turns about O.",  # another number
+                 "A pendulum of length {L} (2 m in the book) turns about O."):
+        load_problem_text(with_variants("variants:\n  draw:\n    L: {choices: [1 m, 3 m]}\n",
+                                        fine), "p.yaml")
+
+
 def test_every_error_of_the_section_is_reported_at_once():
     text = with_variants("variants:\n  draw:\n    Lx: {choices: [1 m]}\n"
                          "    L: {from: 2 m, to: 1 m, step: 1 m}\n")

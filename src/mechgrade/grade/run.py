@@ -266,9 +266,11 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     own = {person.id: _own_plan(plan, person) for person, _ in people}
     neighbours = None
     if any(variants for _, variants in own.values()):
-        from .variants import NeighbourIndex
+        from .variants import OWN_GIVENS, NeighbourIndex
 
-        neighbours = NeighbourIndex({pid: p.objectives for pid, (p, _) in own.items()})
+        # the problem's own givens are a variant too: the one in the book, or last year's
+        neighbours = NeighbourIndex({OWN_GIVENS: plan.objectives,
+                                     **{pid: p.objectives for pid, (p, _) in own.items()}})
     try:
         judge.prefetch(submissions.students)
         judge.prefetch_carried_forward((own[person.id][0], submission)

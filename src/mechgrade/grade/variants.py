@@ -42,6 +42,10 @@ DRAW_LIMIT = 1000
 """Draw indices tried for one student before the ``require:`` conditions are declared
 unsatisfiable."""
 OTHER_VARIANT = "fits another variant's givens"
+OWN_GIVENS = "(the problem's own givens)"
+"""Where :class:`NeighbourIndex` keeps the references at the problem's own givens, beside the
+students' (a student with this very id would take its place: that student's answers would
+then not be compared with the problem's own numbers, and nothing else changes)."""
 """The diagnosis of an answer computed with another student's numbers."""
 REDRAW_LIMIT = 50
 """Draw indices tried for one student before no verified variant is declared found."""
@@ -172,7 +176,7 @@ def variant_faults(problem: Problem, variant: Variant,
             return (f"does not solve: {err.message}",)
     faults = [f"objective '{f.id}' cannot be solved: {f.error.message}"
               for f in solution.failures]
-    structural = solver_plan(problem).k.warnings  # the same for every variant
+    structural = _structural_warnings(problem)  # the same for every variant
     faults += [w.message for w in solution.warnings if w not in structural]
     results = {r.id: r for r in solution.results}
     state = {s.name: s for s in solution.state}
@@ -195,6 +199,16 @@ def variant_faults(problem: Problem, variant: Variant,
                           f"gives {_shown(generated.value)} {unit}, within the tolerance "
                           f"({result.rel * 100:g} %) of the answer {_shown(result.value)} {unit}")
     return tuple(faults)
+
+
+def _structural_warnings(problem: Problem) -> tuple:
+    """The warnings of the problem's kinematic plan: those of its model, not of an instant
+    (a dynamics problem's objectives are read in the dynamics language: its plan is of its
+    kinematics alone, as its solver builds it)."""
+    if problem.dynamics is not None:
+        from ..solve.dynamics import kinematic_problem
+        problem = kinematic_problem(problem)
+    return tuple(solver_plan(problem).k.warnings)
 
 
 def _shown(value) -> str:

@@ -34,6 +34,8 @@ The statement may show a given's value with ``{L}``.
 
 from __future__ import annotations
 
+import re
+
 from typing import Mapping
 
 from ..errors import ExpressionError, Location, SpecError, UnitError
@@ -126,12 +128,24 @@ def read_variants(data: dict, givens: tuple[Given, ...], names: Mapping[str, str
             bounds.append(_bound(str(name), spec, names[str(name)], where))
         except SpecError as err:
             errors.append(err)
+    shown = set()
     for found in PLACEHOLDER.findall(statement):
         key = found.strip().replace(" ", "")
+        shown.add(key)
         if key not in by_key:
             errors.append(SpecError(f"expected a given between braces in the statement "
                                     f"({', '.join(by_key)}), found '{{{found}}}'"
                                     f"{did_you_mean(key, by_key)}", where=where("statement")))
+    prose = PLACEHOLDER.sub(" ", statement)
+    for draw in draws:
+        text = by_key[draw.key].text
+        if draw.key not in shown and text and re.search(
+                rf"(?<![\w.]){re.escape(text)}(?![\w])", prose):
+            # the sheet would tell every student the reference value beside their own
+            errors.append(SpecError(
+                f"expected {{{draw.key}}} where the statement gives the drawn value of "
+                f"{draw.key} (each student's own), found its reference value '{text}'",
+                where=where("statement")))
     return Variants(tuple(draws), tuple(requires), tuple(bounds), where("variants")), errors
 
 
