@@ -10,6 +10,7 @@ import click
 
 from .. import __version__
 from ..errors import MechgradeError, brief_exception
+from ..files import clean_text
 
 
 INTERNAL_ERROR_EXIT = 3
@@ -57,6 +58,17 @@ def reports_errors(command):
                                   f"MECHGRADE_DEBUG=1 for the traceback)") from None
 
     return wrapper
+
+
+def warn_about_the_cache() -> None:
+    """Print, once before a command solves anything, why the solver's disk cache is not used
+    (a folder or key others may write or own); a cache setting that is not valid is an error
+    (:class:`~mechgrade.errors.SettingError`, exit 2)."""
+    from ..solve import cache
+
+    message = cache.warning()
+    if message:
+        click.echo(clean_text(f"warning: {message}"), err=True)
 
 
 COMMANDS = {

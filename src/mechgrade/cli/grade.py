@@ -11,7 +11,7 @@ import click
 
 from ..files import clean_text
 from ..roster import read_roster
-from .common import INTERNAL_ERROR_EXIT, main, reports_errors
+from .common import INTERNAL_ERROR_EXIT, main, reports_errors, warn_about_the_cache
 
 
 @main.command("grade")
@@ -44,6 +44,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
 
     jobs = jobs if jobs is not None else default_jobs()
     spec = load_assignment(assignment)
+    warn_about_the_cache()
     class_roster = read_roster(roster) if roster is not None else None
     bar = None
 

@@ -17,7 +17,7 @@ from ..export.upload import read_upload
 from ..grade.assignment import load_assignment
 from ..grade.run import grade_plan, plan_assignment
 from ..grade.submissions import SubmissionSet
-from .common import INTERNAL_ERROR_EXIT, UserFailure, main
+from .common import INTERNAL_ERROR_EXIT, UserFailure, main, warn_about_the_cache
 
 
 def student_of(metadata_path: Path) -> tuple[str, str]:
@@ -56,7 +56,9 @@ def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
     student, name = student_of(metadata_path)
     options = ExportOptions(gradescope_visibility=visibility)
     try:
-        plan = plan_assignment(load_assignment(assignment))
+        spec = load_assignment(assignment)
+        warn_about_the_cache()
+        plan = plan_assignment(spec)
         upload = read_upload(submission_dir, student, keys=plan.keys)
         report = grade_plan(plan, SubmissionSet(submission_dir, (upload.submission,)))
         result = report.students[0]
