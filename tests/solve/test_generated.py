@@ -61,3 +61,11 @@ def test_what_sympy_prints_for_a_piecewise_is_accepted():
     f = generated.numpy_function("def f(x):\n    return array([[(select([less(x, 0),equal(x, 0),"
                              "True], [0,1/2,1], default=nan))], [sign(x)]])\n")
     assert f(-2.0).tolist() == [[0.0], [-1.0]] and f(0.0).tolist() == [[0.5], [0.0]]
+
+
+def test_a_symbol_may_shadow_a_numpy_constant_but_not_a_function():
+    # a coefficient of restitution named e
+    f = generated.numpy_function("def f(e, x):\n    return e*x + pi\n")
+    assert f(0.5, 2.0) == pytest.approx(1 + 3.141592653589793)
+    with pytest.raises(generated.UnsafeSource, match="name 'cos' may not be bound"):
+        generated.numpy_function("def f(cos, x):\n    return cos(x)\n")

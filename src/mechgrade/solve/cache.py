@@ -226,7 +226,8 @@ def _private_folder(root: Path) -> str:
         fd = os.open(entries, os.O_RDONLY | _NOFOLLOW | getattr(os, "O_DIRECTORY", 0))
     except OSError as err:
         raise _Refused(f"cannot use the cache folder {root} ({err.strerror or err}): not "
-                       "using the cache in this run") from None
+                       "using the cache in this run (set MECHGRADE_CACHE_DIR to a folder of "
+                       "your own, or MECHGRADE_NO_CACHE=1)") from None
     try:
         _check_private(os.fstat(fd), entries, "cache folder")
     finally:

@@ -30,9 +30,10 @@ NUMPY_NAMES = frozenset((
 MAX_SOURCE_CHARS = 100_000
 MAX_NODES = 20_000
 MAX_DEPTH = 200
-"""Bounds of a generated function's source: characters, syntax-tree nodes and nesting (the
-shipped problems' largest: 863 characters, 513 nodes, 18 deep). Python's own compiler fails
-on a few hundred levels; past these bounds a function is not cached (derived each time)."""
+"""Bounds of a generated function's source: characters, parts (each number, name, operation
+or call) and nesting of parts (the shipped problems' largest: 863 characters, 224
+parts, 14 deep). Python's own compiler fails on a few hundred levels; past these bounds a
+function is not cached (derived each time)."""
 
 MAX_ELEMENTS = 10_000
 """The most elements of an array of zeros or ones a generated function may make."""
@@ -73,7 +74,6 @@ def numpy_function(source: str) -> Callable:
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         # MemoryError: what Python's parser raises for nesting too deep for its stack
         raise UnsafeSource("expected the source of a function") from None
-    _check_size(tree)
     function = _Checker().function(tree)
     namespace: dict[str, Any] = {"__builtins__": {}, **_numpy_namespace()}
     try:
@@ -81,19 +81,6 @@ def numpy_function(source: str) -> Callable:
     except (RecursionError, MemoryError, SyntaxError, ValueError):
         raise UnsafeSource("expected a function Python can compile") from None
     return namespace[function.name]
-
-
-def _check_size(tree: ast.AST) -> None:
-    nodes = 0
-    stack = [(tree, 1)]
-    while stack:
-        node, depth = stack.pop()
-        nodes += 1
-        if nodes > MAX_NODES:
-            raise UnsafeSource(f"expected at most {MAX_NODES} parts")
-        if depth > MAX_DEPTH:
-            raise UnsafeSource(f"expected parts nested at most {MAX_DEPTH} deep")
-        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
 
 
 _BINARY: dict[type, Callable[[Any, Any], Any]] = {
@@ -108,6 +95,7 @@ _COMPARE: dict[type, Callable[[Any, Any], bool]] = {
 _ARITY = {"array": 1, "zeros": 1, "ones": 1, "select": 2, "where": 3, "real": 1, "imag": 1,
           "angle": 1}
 _ARRAYS = frozenset(("array", "zeros", "ones"))
+_CONSTANTS = frozenset(("pi", "e", "nan"))
 _VARIABLE = object()
 """What a part that depends on the arguments folds to."""
 
@@ -118,6 +106,17 @@ class _Checker:
 
     def __init__(self) -> None:
         self.names: dict[str, Any] = {}  # the names bound: constant values, or _VARIABLE
+        self.parts = 0
+        self.depth = 0
+
+    def enter(self) -> None:
+        """One more part, one level deeper (checked before going on: the checker recurses)."""
+        self.parts += 1
+        self.depth += 1
+        if self.parts > MAX_NODES:
+            raise UnsafeSource(f"expected at most {MAX_NODES} parts")
+        if self.depth > MAX_DEPTH:
+            raise UnsafeSource(f"expected parts nested at most {MAX_DEPTH} deep")
 
     def function(self, tree: ast.Module) -> ast.FunctionDef:
         if len(tree.body) != 1 or not isinstance(tree.body[0], ast.FunctionDef):
@@ -141,7 +140,10 @@ class _Checker:
         return function
 
     def bind(self, name: str, value: Any) -> None:
-        if name in self.names or name in NUMPY_NAMES or name.startswith("__"):
+        # a symbol may shadow a constant (a coefficient of restitution named e), never a
+        # function the body calls
+        if name in self.names or name.startswith("__") or \
+                (name in NUMPY_NAMES and name not in _CONSTANTS):
             raise UnsafeSource(f"name {name!r} may not be bound here")
         self.names[name] = value
 
@@ -159,6 +161,13 @@ class _Checker:
 
     def rows(self, node: ast.expr) -> tuple[int, ...]:
         """An array's literal: lists of equal length down to numbers; its shape."""
+        self.enter()
+        try:
+            return self._rows(node)
+        finally:
+            self.depth -= 1
+
+    def _rows(self, node: ast.expr) -> tuple[int, ...]:
         if not isinstance(node, ast.List):
             self.scalar(node)
             return ()
@@ -193,6 +202,13 @@ class _Checker:
     def scalar(self, node: ast.expr) -> Any:
         """Check a part that gives a number (or numbers, one per column of the arguments):
         its value when it is constant, else ``_VARIABLE``."""
+        self.enter()
+        try:
+            return self._scalar(node)
+        finally:
+            self.depth -= 1
+
+    def _scalar(self, node: ast.expr) -> Any:
         if isinstance(node, ast.Constant):
             value = node.value
             if type(value) not in (int, float, bool):
@@ -226,7 +242,7 @@ class _Checker:
 
     def call(self, node: ast.Call) -> Any:
         if not isinstance(node.func, ast.Name) or node.func.id not in NUMPY_NAMES \
-                or node.func.id in ("pi", "e", "nan"):
+                or node.func.id in _CONSTANTS:
             raise UnsafeSource("only calls of numpy functions are allowed")
         name = node.func.id
         if name in _ARRAYS:
