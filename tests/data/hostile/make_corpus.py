@@ -72,6 +72,8 @@ def build(root: str | Path) -> Path:
     _write(root / "yaml_deep_map.yaml", "".join(" " * i + "a:\n" for i in range(2000)))
     _write(root / "yaml_control.yaml", f"{P}.acc_mag: \"98.5\x07\x1b\x7f\x85\x9b\"\n")
     _write(root / "yaml_control_plain.yaml", f"{P}.acc_mag: 98.5\x07 ft/s^2\n")
+    _write(root / "yaml_noncharacter.yaml", f"{P}.acc_mag: 98.5\ufffe ft/s^2\n")
+    _write(root / "yaml_surrogate.yaml", f"{P}.acc_mag: '98.5\ud800'\n")
     _write(root / "yaml_bigint.yaml", f"{P}.acc_mag: {'9' * 5000}\n")
     _write(root / "yaml_bigfloat.yaml", f"{P}.acc_mag: {'9' * 5000}.5e99999\n")
     _write(root / "yaml_tags.yaml", f"{P}.acc_mag: !!python/object/apply:os.system ['touch PWNED']\n")
