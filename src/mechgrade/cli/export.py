@@ -64,6 +64,9 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
             click.echo(clean_text(f"warning: {roster}:{line}: skipped {reason}"), err=True)
     for warning in warnings:
         click.echo(clean_text(f"warning: {warning}"), err=True)
+    for failing in report.failing_expects:
+        click.echo(clean_text(f"warning: graded although the problem fails this expect: test "
+                              f"(--accept-failing-expect): {failing}"), err=True)
     click.echo(f"wrote {fmt} export of {len(report.students)} "
                f"{'result' if len(report.students) == 1 else 'results'} to {out}")
 

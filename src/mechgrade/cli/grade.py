@@ -28,9 +28,12 @@ from .common import INTERNAL_ERROR_EXIT, main, reports_errors
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=None,
               help="Processes to grade with (default: one per core). The outputs are the same "
                    "for any number.")
+@click.option("--accept-failing-expect", is_flag=True,
+              help="Grade even if a problem fails its own expect: tests (refused otherwise); "
+                   "every output records the tests it fails.")
 @reports_errors
 def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path | None,
-          templates_dir: Path | None, jobs: int | None) -> None:
+          templates_dir: Path | None, jobs: int | None, accept_failing_expect: bool) -> None:
     """Grade every submission in SUBMISSIONS_DIR against ASSIGNMENT.
 
     A bad assignment stops with one message (exit code 2); a bad submission never stops the
@@ -57,7 +60,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
 
     try:
         report = grade_submissions(spec, submissions_dir, class_roster, progress=progress,
-                                   jobs=jobs)
+                                   jobs=jobs, accept_failing_expect=accept_failing_expect)
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
@@ -84,6 +87,8 @@ def summary(report, out_dir: Path) -> str:
     """The run summary: the count line, then every skipped entry, note and internal error."""
     lines = [summary_line(report, out_dir)]
     for title, items in (
+            ("Graded although the problems fail these expect: tests (--accept-failing-expect)",
+             [str(f) for f in report.failing_expects]),
             ("Skipped (not read as anyone's answers)",
              [f"{e.path}: {e.reason}" for e in report.skipped]),
             ("Notes", list(report.notes)),

@@ -27,13 +27,15 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterable
 
-from ..errors import AssignmentError, InconsistentError, MechgradeError, brief_exception
+from ..errors import (AssignmentError, InconsistentError, MechgradeError, SpecError, SpecErrors,
+                      brief_exception)
 from ..parallel import Forked, fork_map, outcome, raise_first
 from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
-from .results import AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo, StudentResult
+from .results import (AnswerResult, AssignmentInfo, FailingExpect, GradeReport, ObjectiveInfo,
+                      StudentResult)
 from .submissions import Submission, SubmissionSet, read_submissions
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
@@ -217,14 +219,59 @@ def graded_result(solution: Solution, objective_id: str) -> ObjectiveResult:
     return replace(result, symbol_signs=signs) if any(signs) else result
 
 
+def failing_expects(plan: Plan) -> tuple[FailingExpect, ...]:
+    """The ``expect:`` tests of the plan's problems its solutions fail, each with where it is
+    written and what ``mechgrade check`` says; only the objectives solved for grading are
+    tested (their solutions are at hand, so this costs a comparison per test).
+
+    >>> from mechgrade.grade.assignment import Assignment
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.solve import solve
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> plan = Plan(Assignment("hw", "HW", p.path, ()), (p,), (solve(p, objectives=("acc_mag",)),), ())
+    >>> failing_expects(plan)
+    ()
+    """
+    from ..check import expect_outcome
+
+    failing = []
+    for problem, solution in zip(plan.problems, plan.solutions):
+        solved = {r.id: r for r in solution.results}
+        for objective in problem.objectives:
+            if objective.expect is None or objective.id not in solved:
+                continue
+            try:
+                outcome = expect_outcome(objective, solved[objective.id])
+                passed, said = outcome.passed, outcome.message
+            except MechgradeError as err:
+                passed, said = False, err.message
+            if not passed:
+                failing.append(FailingExpect(problem.id, objective.id,
+                                             str(objective.expect.where), said))
+    return tuple(failing)
+
+
+def _refuse_failing_expects(failing: tuple[FailingExpect, ...]) -> None:
+    """Stop a grading run whose problems fail their own tests: every student would be graded
+    against a reference its author says is wrong."""
+    errors = [SpecError(f"{f.where}: expected the solver to pass this expect: test before "
+                        f"grading, found {f.objective}: {f.message}; fix the problem file "
+                        f"(mechgrade check shows it) or grade anyway with "
+                        f"--accept-failing-expect") for f in failing]
+    raise errors[0] if len(errors) == 1 else SpecErrors(errors)
+
+
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
-                      progress: Progress | None = None, jobs: int = 1) -> GradeReport:
+                      progress: Progress | None = None, jobs: int = 1,
+                      accept_failing_expect: bool = False) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 
     ``progress(done, total)`` is called as students are finished. With ``jobs`` > 1 the
     submissions are read (by ``jobs`` processes) while the problems are solved (by ``jobs``
     processes), and the answers are judged by ``jobs`` workers; the report is the same for any
-    ``jobs``.
+    ``jobs``. A problem failing its own ``expect:`` tests stops the run (see
+    :func:`grade_plan`).
     """
     problems = _load_problems(assignment)
     chosen = _choose_objectives(assignment, problems)
@@ -232,7 +279,8 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
     if jobs <= 1:
         plan = plan_assignment(assignment, problems=problems)
         submissions = read_submissions(submissions_dir, keys=keys)
-        return grade_plan(plan, submissions, roster, progress=progress)
+        return grade_plan(plan, submissions, roster, progress=progress,
+                          accept_failing_expect=accept_failing_expect)
     # Reading needs only the keys: it runs in a process forked now, before this one imports
     # sympy and the solver and solves, so the two overlap.
     reading = Forked(partial(outcome, partial(read_submissions, submissions_dir, keys=keys,
@@ -242,17 +290,25 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
         submissions = raise_first([reading.result()])[0]
     finally:
         reading.cancel()
-    return grade_plan(plan, submissions, roster, progress=progress, jobs=jobs)
+    return grade_plan(plan, submissions, roster, progress=progress, jobs=jobs,
+                      accept_failing_expect=accept_failing_expect)
 
 
 def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
                progress: Progress | None = None, resolve: Resolver | None = None,
-               jobs: int = 1) -> GradeReport:
+               jobs: int = 1, accept_failing_expect: bool = False) -> GradeReport:
     """Grade read submissions against a :class:`Plan` (see :func:`grade_submissions`).
 
     ``resolve(problem, givens)`` recomputes a solution with overridden givens (for ECF); the
     default is :func:`mechgrade.solve.solve`. Answers are judged by ``jobs`` sandbox workers.
+
+    A problem whose solution fails its own ``expect:`` tests (:func:`failing_expects`) is
+    refused with a :class:`SpecError` naming each, before anything is judged; with
+    ``accept_failing_expect`` it is graded, and the report records the tests it fails.
     """
+    failing = failing_expects(plan)
+    if failing and not accept_failing_expect:
+        _refuse_failing_expects(failing)
     people = _people(submissions, roster)
     total = len(people)
     if progress:
@@ -289,7 +345,8 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
-                       tuple(students), submissions.skipped, submissions.notes, tuple(faults))
+                       tuple(students), submissions.skipped, submissions.notes, tuple(faults),
+                       failing)
 
 
 # ---------------------------------------------------------------------------- variants

@@ -598,6 +598,8 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
                     if student.variant else None),
         "rows": rows,
         "reveal": any(row["expected"] for row in rows),
+        # what the answer key fails of its author's own tests, graded anyway
+        "failing_expects": [f"{f.problem} · {f.objective}" for f in report.failing_expects],
     }
 
 
