@@ -9,9 +9,9 @@ from pathlib import Path
 
 import click
 
-from ..files import clean_text
+from ..files import visible_text
 from ..roster import read_roster
-from .common import INTERNAL_ERROR_EXIT, main, reports_errors
+from .common import INTERNAL_ERROR_EXIT, main, reports_errors, say
 
 
 @main.command("grade")
@@ -71,7 +71,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     worked = shown_solutions(spec, report)  # the assignment's worked_solution rule
     report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
                            worked=worked).report
-    click.echo(summary(report, out_dir))
+    say(summary(report, out_dir))
     # At exit the interpreter's last collection need not walk every object of the run
     # (a tenth of a second or more); registered once, whatever runs in this process.
     atexit.unregister(gc.freeze)
@@ -100,7 +100,7 @@ def summary(report, out_dir: Path) -> str:
         lines.extend(f"  {item}" for item in items[:MAX_LISTED])
         if len(items) > MAX_LISTED:
             lines.append(f"  ... and {len(items) - MAX_LISTED} more (all in results.json)")
-    return "\n".join(clean_text(line) for line in lines)
+    return "\n".join(visible_text(line) for line in lines)
 
 
 def summary_line(report, out_dir: Path) -> str:

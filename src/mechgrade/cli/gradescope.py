@@ -10,14 +10,14 @@ from pathlib import Path
 import click
 
 from ..errors import MechgradeError, brief_exception
-from ..files import clean_text, write_json
+from ..files import write_json
 from ..export.gradescope import gradescope_failure, gradescope_results
 from ..export.options import GRADESCOPE_VISIBILITIES, ExportOptions
 from ..export.upload import read_upload
 from ..grade.assignment import load_assignment
 from ..grade.run import grade_plan, plan_assignment
 from ..grade.submissions import SubmissionSet
-from .common import INTERNAL_ERROR_EXIT, UserFailure, main
+from .common import INTERNAL_ERROR_EXIT, UserFailure, main, say
 
 
 def student_of(metadata_path: Path) -> tuple[str, str]:
@@ -70,11 +70,11 @@ def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
         message = (f"internal error while grading this submission: {brief_exception(exc)}; "
                    f"please tell your instructor")
         _write_failure(results_path, message, options)
-        click.echo(message, err=True)
+        say(message, err=True)
         sys.exit(INTERNAL_ERROR_EXIT)
     read = f" (read {upload.read_from})" if upload.read_from else ""
-    click.echo(clean_text(f"{student}: {result.score:g} / {result.max_score:g} points{read}; "
-                          f"wrote {results_path}"))
+    say(f"{student}: {result.score:g} / {result.max_score:g} points{read}; wrote "
+        f"{results_path}")
 
 
 def _write_failure(results_path: Path, message: str, options: ExportOptions) -> None:
