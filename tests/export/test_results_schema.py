@@ -43,7 +43,7 @@ DELETE = object()
 
 @pytest.mark.parametrize("path, value, message", [
     (("students", 3, "status"), "absent",
-     "students[3].status: expected one of graded, missing, unreadable, not_evaluated, found "
+     "students[3].status: expected one of graded, missing, unreadable, not_evaluated, conflict, found "
      "'absent'"),
     (("students", 2, "answers", 0, "verdict"), "great",
      "students[2].answers[0].verdict: expected one of correct, partial, incorrect, unreadable, "

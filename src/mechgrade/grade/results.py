@@ -25,9 +25,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 
 VERDICTS = ("correct", "partial", "incorrect", "unreadable", "missing", "not_evaluated")
-STATUSES = ("graded", "missing", "unreadable", "not_evaluated")
+STATUSES = ("graded", "missing", "unreadable", "not_evaluated", "conflict")
 """``not_evaluated``: grading this student failed through a fault of mechgrade's (see
-``GradeReport.internal_errors``); no grade is exported for them."""
+``GradeReport.internal_errors``); no grade is exported for them. ``conflict``: a roster student
+and the folders that match it other than one to one (two folders one student, a folder two
+students; see ``GradeReport.notes``): graded as no one's, no grade is exported for them."""
 
 
 @dataclass(frozen=True)

@@ -309,7 +309,7 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     failing = failing_expects(plan)
     if failing and not accept_failing_expect:
         _refuse_failing_expects(failing)
-    people = _people(submissions, roster)
+    people, conflicts = _people(submissions, roster)
     total = len(people)
     if progress:
         progress(0, total)
@@ -345,8 +345,8 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
-                       tuple(students), submissions.skipped, submissions.notes, tuple(faults),
-                       failing)
+                       tuple(students), submissions.skipped, submissions.notes + conflicts,
+                       tuple(faults), failing)
 
 
 # ---------------------------------------------------------------------------- variants
@@ -403,22 +403,36 @@ class _Person:
     identity: tuple[tuple[str, str], ...] = ()
     on_roster: bool = True
     variant_key: str = ""  # the roster id: what a student's variant is drawn for
+    conflict: str = ""  # the roster conflict this student or folder is in (see _people)
 
 
-def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submission | None]]:
+def _people(submissions: SubmissionSet, roster) -> tuple[list[tuple[_Person, Submission | None]],
+                                                        tuple[str, ...]]:
     """Roster students in roster order (with their submission, if any), then the submissions
-    no roster student claimed, by id."""
+    no roster student claimed, by id; and a note per roster conflict. The students and folders
+    of a conflict (:func:`mechgrade.roster.pair_students`) are not paired: each is listed with
+    the conflict, and graded as no one's."""
     if roster is None:
-        return [(_Person(s.student, ""), s) for s in submissions.students]
+        return [(_Person(s.student, ""), s) for s in submissions.students], ()
     # A submission folder may be named by any of a student's identifiers.
     candidates = [{kind: {fold(s.student)} for kind in MATCH_KINDS if kind != "name"}
                   for s in submissions.students]
-    matches = pair_students(roster, candidates)
-    kinds = Counter(kind for _, kind in matches if kind is not None)
+    pairing = pair_students(roster, candidates)
+    kinds = Counter(kind for _, kind in pairing.pairs if kind is not None)
     # A student without a submission is named like the submissions that were matched.
     usual = kinds.most_common(1)[0][0] if kinds else "id"
+    labels = [s.student for s in submissions.students]
+    conflicted: dict[tuple[str, int], str] = {}
+    notes = []
+    for conflict in pairing.conflicts:
+        said = conflict.describe(roster, labels)
+        notes.append(f"roster conflict: {said}; none of these folders was graded as anyone's "
+                     f"(status 'conflict', kept out of exports): rename the folders so that "
+                     f"each matches one student")
+        conflicted.update({("s", s): said for s in conflict.students})
+        conflicted.update({("c", c): said for c in conflict.candidates})
     out: list[tuple[_Person, Submission | None]] = []
-    for student, (index, _) in zip(roster.students, matches):
+    for number, (student, (index, _)) in enumerate(zip(roster.students, pairing.pairs)):
         identity = tuple(student.columns)
         if index is not None:
             found = submissions.students[index]
@@ -426,12 +440,14 @@ def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submissio
                         found))
         else:
             sid = _roster_value(student, usual) or student.id
-            out.append((_Person(sid, student.name, identity, True, student.id), None))
-    claimed = {index for index, _ in matches if index is not None}
+            out.append((_Person(sid, student.name, identity, True, student.id,
+                                conflicted.get(("s", number), "")), None))
+    claimed = {index for index, _ in pairing.pairs if index is not None}
     for i, submission in enumerate(submissions.students):
         if i not in claimed:
-            out.append((_Person(submission.student, "", (), False), submission))
-    return out
+            out.append((_Person(submission.student, "", (), False,
+                                conflict=conflicted.get(("c", i), "")), submission))
+    return out, tuple(notes)
 
 
 def _roster_value(student, kind: str) -> str:
@@ -459,13 +475,16 @@ def _grade_student_safely(plan: Plan, judge: "_Judge", person: _Person,
 def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
                    submission: Submission | None, faults: list[str]) -> StudentResult:
     messages: list[str] = []
-    if not person.on_roster:
+    if person.conflict:
+        messages.append(f"not graded as anyone's: a roster conflict ({person.conflict}); your "
+                        f"instructor will sort it out")
+    elif not person.on_roster:
         messages.append("not on the roster")
     if submission is not None:
         messages.extend(submission.messages)
     status = {None: "missing", "missing": "missing", "read": "graded",
               "unreadable": "unreadable"}[submission.status if submission else None]
-    if submission is None:
+    if submission is None and not person.conflict:
         messages.append("no submission found")
     answers: list[AnswerResult] = []
     verdicts: dict[str, AnswerResult] = {}
@@ -485,8 +504,9 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
         verdicts[item.key] = answer
         answers.append(answer)
     score = _round(sum(a.points for a in answers))
-    return StudentResult(person.id, person.name, status, score, plan.max_score, tuple(answers),
-                         tuple(messages), person.identity)
+    return StudentResult(person.id, person.name, "conflict" if person.conflict else status,
+                         score, plan.max_score, tuple(answers), tuple(messages),
+                         person.identity)
 
 
 def _judge_safely(judge: "_Judge", item: PlannedObjective, text: str, submission: Submission,

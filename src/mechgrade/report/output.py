@@ -57,6 +57,7 @@ STATUS_LABELS = {
     "graded": "Graded",
     "missing": "No submission",
     "unreadable": "Submission could not be read",
+    "conflict": "Not graded: more than one match with the roster",
 }
 
 
