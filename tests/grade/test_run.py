@@ -142,8 +142,8 @@ def test_a_folder_named_with_another_students_id_is_a_conflict_not_a_grade(class
         ("ben", "Ben Bo", "graded"), ("s-ann", "Ann Ash", "conflict"), ("ann", "", "conflict"),
         ("cat", "", "unreadable"), ("s-ann", "", "conflict")]
     ann = report.students[1]
-    assert ann.messages == (f"not graded as anyone's: a roster conflict ({said}); your "
-                            f"instructor will sort it out",)
+    assert ann.messages == (f"roster conflict: {said}; graded as no one's until your "
+                            f"instructor sorts it out",)
     assert dict(ann.identity)["id"] == "s-ann"
     assert report.students[2].score == 6.0  # graded, as no one's
     assert report.notes == (f"roster conflict: {said}; none of these folders was graded as "

@@ -117,6 +117,9 @@ def summary_line(report, out_dir: Path) -> str:
     parts.append(_count(missing, "missing submission"))
     if not_evaluated:
         parts.append(f"{_count(not_evaluated, 'student')} not evaluated")
+    conflicts = sum(1 for s in report.students if s.status == "conflict")
+    if conflicts:
+        parts.append(f"{conflicts} in roster conflicts (students and folders)")
     if report.skipped:
         parts.append(_count(len(report.skipped), "skipped entry", "skipped entries"))
     return (f"Graded {_count(graded, 'student')} ({', '.join(parts)}); "

@@ -476,8 +476,8 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
                    submission: Submission | None, faults: list[str]) -> StudentResult:
     messages: list[str] = []
     if person.conflict:
-        messages.append(f"not graded as anyone's: a roster conflict ({person.conflict}); your "
-                        f"instructor will sort it out")
+        messages.append(f"roster conflict: {person.conflict}; graded as no one's until your "
+                        f"instructor sorts it out")
     elif not person.on_roster:
         messages.append("not on the roster")
     if submission is not None:
