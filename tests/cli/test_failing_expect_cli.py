@@ -93,3 +93,34 @@ def test_graded_anyway_the_class_report_and_exports_say_so(folder, accepted):
     assert (f"warning: graded although the problem fails this expect: test "
             f"(--accept-failing-expect): {folder / 'p.yaml'}:30:13: objectives[0].expect: "
             f"{SAYS}") in export.stderr
+
+
+def test_the_gradescope_autograder_refuses_without_showing_the_values(folder):
+    results = folder / "gs_refused.json"
+    result = CliRunner().invoke(main, ["gradescope", str(folder / "hw.yaml"), "--submission",
+                                       str(folder / "subs"), "--results", str(results),
+                                       "--metadata", str(folder / "none.json")])
+    assert result.exit_code == 2
+    assert SAYS in result.stderr and "--accept-failing-expect" in result.stderr
+    shown = json.loads(results.read_text(encoding="utf-8"))
+    assert shown["score"] == 0.0
+    assert shown["output"] == ("The autograder could not grade this submission: the answer key "
+                               "fails its author's own checks (bowling_3_15_4_pendulum · "
+                               "acc_mag); please tell your instructor")
+
+
+def test_the_gradescope_autograder_grades_anyway_and_says_so(folder):
+    upload = folder / "upload"
+    upload.mkdir()
+    (upload / "answers.txt").write_text("bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n",
+                                        encoding="utf-8")
+    results = folder / "gs_accepted.json"
+    result = CliRunner().invoke(main, ["gradescope", str(folder / "hw.yaml"), "--submission",
+                                       str(upload), "--results", str(results), "--metadata",
+                                       str(folder / "none.json"), "--accept-failing-expect"])
+    assert result.exit_code == 0, result.output
+    shown = json.loads(results.read_text(encoding="utf-8"))
+    assert shown["score"] == 1.0
+    assert ("fail their author's own checks; your instructor graded them anyway, and their "
+            "points may change: bowling_3_15_4_pendulum · acc_mag.") in shown["output"]
+    assert "97.51" not in json.dumps(shown)

@@ -252,14 +252,14 @@ def failing_expects(plan: Plan) -> tuple[FailingExpect, ...]:
     return tuple(failing)
 
 
-def _refuse_failing_expects(failing: tuple[FailingExpect, ...]) -> None:
-    """Stop a grading run whose problems fail their own tests: every student would be graded
-    against a reference its author says is wrong."""
+def failing_expects_error(failing: tuple[FailingExpect, ...]) -> SpecError:
+    """The error that stops a grading run whose problems fail their own tests (every student
+    would be graded against a reference its author says is wrong): one line per test."""
     errors = [SpecError(f"{f.where}: expected the solver to pass this expect: test before "
                         f"grading, found {f.objective}: {f.message}; fix the problem file "
                         f"(mechgrade check shows it) or grade anyway with "
                         f"--accept-failing-expect") for f in failing]
-    raise errors[0] if len(errors) == 1 else SpecErrors(errors)
+    return errors[0] if len(errors) == 1 else SpecErrors(errors)
 
 
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
@@ -308,7 +308,7 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     """
     failing = failing_expects(plan)
     if failing and not accept_failing_expect:
-        _refuse_failing_expects(failing)
+        raise failing_expects_error(failing)
     people, conflicts = _people(submissions, roster)
     total = len(people)
     if progress:
