@@ -69,9 +69,13 @@ def test_a_conflict_from_grading_is_held_back_in_every_import(tmp_path):
                                       (None, "ann")]
     assert match.no_submission == ()
     EXPORTERS["grades-csv"](found, tmp_path / "grades.csv", roster=ROSTER)
-    assert [r[:3] + r[-2:] for r in rows(tmp_path / "grades.csv")[1:]] == [
-        ["101", "Ann Ash", "conflict", "", "2"], ["102", "Ben Bo", "graded", "2", "2"],
-        ["101", "", "conflict", "", "2"], ["ann", "", "conflict", "", "2"]]
+    assert rows(tmp_path / "grades.csv")[1:] == [
+        ["101", "Ann Ash", "conflict", "", "", "2"], ["102", "Ben Bo", "graded", "0", "2", "2"],
+        ["101", "", "conflict", "", "", "2"], ["ann", "", "conflict", "", "", "2"]]
+    EXPORTERS["long-csv"](found, tmp_path / "results.csv", roster=ROSTER)
+    assert [(r[0], r[5], r[6]) for r in rows(tmp_path / "results.csv")[1:]] == [
+        ("101", "missing", ""), ("102", "missing", "0"), ("101", "missing", ""),
+        ("ann", "missing", "")]
     EXPORTERS["canvas"](found, tmp_path / "canvas.csv", roster=ROSTER)
     assert [r[1] for r in rows(tmp_path / "canvas.csv")[2:]] == ["102"]
     assert [r[2:] for r in rows(tmp_path / "canvas.unmatched.csv")[1:]] == [
