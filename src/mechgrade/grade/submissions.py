@@ -288,9 +288,9 @@ def _folder_sources(folder: Path, root: Path, label: str, *, own: str | None = N
         others += 1
         hidden = entry.name.startswith(".") or entry.name in SYSTEM_NAMES
         if others <= MAX_LISTED_KEYS:
-            reason = (NOT_AN_ANSWER_FILE if not hidden else "hidden (its name starts with '.')"
-                      if entry.name.startswith(".")
-                      else f"{SYSTEM_NAMES[entry.name]}, not a submission")
+            reason = ("hidden (its name starts with '.')" if entry.name.startswith(".")
+                      else f"{SYSTEM_NAMES[entry.name]}, not a submission" if hidden
+                      else NOT_AN_ANSWER_FILE)
             skipped.append(SkippedEntry(shown, reason))
         if not hidden:
             ignored.append(clean_text(entry.name))
