@@ -11,7 +11,7 @@ from ..grade.run import plan_assignment
 from ..grade.variants import handout_sheets
 from ..report.handout import write_handouts
 from ..roster import read_roster
-from .common import main, reports_errors, warn_about_the_cache
+from .common import main, reports_errors, say, warn_about_the_cache
 
 
 @main.command("handout")
@@ -38,5 +38,5 @@ def handout(assignment: Path, roster: Path, out_dir: Path, templates_dir: Path |
     plan = plan_assignment(spec)
     students = [(s.id, s.name) for s in read_roster(roster).students]
     written = write_handouts(handout_sheets(plan, students), out_dir, templates_dir)
-    click.echo(f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
-               f"({len(written)} files)")
+    say(f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
+        f"({len(written)} files)")
