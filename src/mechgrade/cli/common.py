@@ -60,6 +60,8 @@ def reports_errors(command):
 
 
 COMMANDS = {
+    "catalog": ("catalog", "Write a browsable HTML catalogue of the problems in PATHS (files or "
+                           "folders)."),
     "check": ("check", "Validate problem files (or folders of them) and run every expect: test."),
     "export": ("export", "Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a "
                          "spreadsheet."),
