@@ -88,3 +88,18 @@ def test_an_output_folder_that_cannot_be_made_is_one_error(entries, tmp_path):
     with pytest.raises(MechgradeError) as caught:
         write_catalog(entries, (), blocker / "out")
     assert str(caught.value).startswith(f"{blocker / 'out'}: cannot create the output folder")
+
+
+def test_the_index_filters_in_headless_chromium_without_console_errors(entries, tmp_path,
+                                                                         chromium):
+    write_catalog(entries, (), tmp_path)
+    page = tmp_path / "index_clicked.html"
+    # the reader presses the "circular motion" topic: only the problem tagged with it stays
+    text = (tmp_path / "index.html").read_text(encoding="utf-8")
+    page.write_text(text.replace("</body>", '<script>document.querySelector('
+                                 '"button[data-topic=circular-motion]").click();</script></body>'),
+                    encoding="utf-8")
+    dom, log = chromium(page)
+    assert "CONSOLE" not in log and "Uncaught" not in log
+    assert '<p id="shown">1 of 2 shown</p>' in dom
+    assert dom.count(" hidden=\"\"") == 1 and 'aria-pressed="true">circular motion' in dom
