@@ -212,13 +212,16 @@ def false_alarms(problem_id: str) -> list[tuple[str, str, object]]:
     return out
 
 
-def measure(verbose: bool = False, out=sys.stdout) -> dict[str, Counter]:
-    """Classify every row, print the figures per problem, per topic and overall; the counts by
-    problem id (and ``"*"`` for all), with ``false_alarms`` and ``notations`` keys."""
+def measure(verbose: bool = False, out=sys.stdout, problems=None) -> dict[str, Counter]:
+    """Classify every row (of ``problems`` only, when given), print the figures per problem,
+    per topic and overall; the counts by problem id (and ``"*"`` for all), with
+    ``false_alarms`` and ``notations`` keys."""
     counts: dict[str, Counter] = {}
     by_topic: dict[str, Counter] = {}
     missing: Counter = Counter()
     for problem, rows in tables().items():
+        if problems is not None and problem not in problems:
+            continue
         counted = counts.setdefault(problem, Counter())
         for row in rows:
             kind, judged = classify(row, solution(problem).result(row["objective"]))
