@@ -10,7 +10,7 @@ import pytest
 
 from mechgrade.errors import MechgradeError
 from mechgrade.report.catalog import write_catalog
-from mechgrade.solve.catalog import CatalogFault, catalog_entries
+from mechgrade.grade.catalog import CatalogFault, catalog_entries
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "catalog"
 
@@ -46,7 +46,7 @@ def test_a_problem_page_shows_statement_picture_answers_worked_solution_and_vari
         entries, tmp_path):
     write_catalog(entries, (), tmp_path)
     page = (tmp_path / "problems" / "pendulum_variants.html").read_text(encoding="utf-8")
-    assert "<p>A rigid pendulum of length {L} turns about a fixed pin O. Its body frame A is a " \
+    assert "<p>A rigid pendulum of length 2 ft turns about a fixed pin O. Its body frame A is a " \
            "simple rotation theta" in page
     assert '<figure class="picture">\n<svg' in page
     assert '<td class="answer">37.7359 ft/s^2</td>' in page

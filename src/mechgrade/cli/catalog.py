@@ -7,7 +7,7 @@ import click
 from ..check import problem_files
 from ..errors import SpecError
 from ..report.catalog import write_catalog
-from ..solve.catalog import catalog_entries
+from ..grade.catalog import catalog_entries
 from .common import main, reports_errors
 
 

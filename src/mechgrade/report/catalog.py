@@ -3,10 +3,10 @@ analyses, filters to narrow the list, the files that could not be shown) and one
 problem in ``problems/`` (statement, picture, objectives with their answers, worked solution,
 variants), from the Jinja templates ``catalog_index.html.j2`` and ``catalog_problem.html.j2``
 (``templates_dir`` overrides the shipped ones). The entries come ready-made from
-:mod:`mechgrade.solve.catalog`; nothing here imports sympy.
+:mod:`mechgrade.grade.catalog`; nothing here imports sympy.
 
 >>> import tempfile, pathlib
->>> from mechgrade.solve.catalog import CatalogFault
+>>> from mechgrade.grade.catalog import CatalogFault
 >>> out = pathlib.Path(tempfile.mkdtemp())
 >>> [p.relative_to(out).as_posix() for p in write_catalog((), (CatalogFault("x.yaml", "bad"),), out)]
 ['index.html']
@@ -26,7 +26,7 @@ from .handout import paragraphs
 from .output import _render, _template, _where, template_environment, worked_html
 
 if TYPE_CHECKING:  # the entries come ready-made: reading them needs no solver
-    from ..solve.catalog import CatalogEntry, CatalogFault
+    from ..grade.catalog import CatalogEntry, CatalogFault
 
 CATALOG_TEMPLATES = ("catalog_index.html.j2", "catalog_problem.html.j2")
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from mechgrade.resources import shipped_dir
-from mechgrade.solve.catalog import Analysis, analyses, catalog_entries, catalog_entry
+from mechgrade.grade.catalog import Analysis, analyses, catalog_entries, catalog_entry
 from mechgrade.spec import load_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "catalog"
@@ -36,6 +36,8 @@ def test_an_entry_has_the_statement_tags_answers_and_the_variants_drawn():
         ("speed", "8 ft/s"), ("acc_mag", "37.7359 ft/s^2"),
         ("acc_N", "(-37.7128, 1.32051, 0) ft/s^2 in N")]
     assert [d.key for d in entry.variants] == ["L", "theta", "theta'", "theta''"]
+    # the statement is shown with the problem's own givens, not {L}
+    assert entry.statement.startswith("A rigid pendulum of length 2 ft turns about a fixed pin")
     assert entry.requires == ("theta'' > 0.2*theta'^2",)
     assert entry.worked.picture.startswith("<svg") and entry.failures == ()
 

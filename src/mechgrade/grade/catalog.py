@@ -1,6 +1,7 @@
 """A problem as a catalogue shows it: its statement, topics, how it is analysed, the answers,
 the worked solution (with its picture) and the variants it draws, all ready-made for
-:mod:`mechgrade.report.catalog`, which renders them without sympy.
+:mod:`mechgrade.report.catalog`, which renders them without sympy. Built here, beside the
+students' sheets, because a problem with variants shows its statement with its own givens.
 
 >>> from mechgrade.resources import shipped_dir
 >>> entry = catalog_entry(shipped_dir("problems") / "atwood_machine.yaml")
@@ -16,12 +17,13 @@ from pathlib import Path
 
 from ..errors import MechgradeError
 from ..expressions.syntax import Call, Node
+from ..solve import solve
+from ..solve.worked import WorkedSolution, answer_text, worked_solution
 from ..spec import load_problem
 from ..spec.dynamics import Impulse, Integration, WorkEnergy
 from ..spec.model import Problem
 from ..spec.variant_model import Draw
-from .entry import solve
-from .worked import WorkedSolution, answer_text, worked_solution
+from .variants import statement
 
 _VIBRATION_CALLS = frozenset({"omega_n", "zeta", "mode_frequency", "mode_shape"})
 
@@ -52,8 +54,9 @@ class CatalogObjective:
 
 @dataclass(frozen=True)
 class CatalogEntry:
-    """One problem's page: ``variants`` are the draws of its givens, ``requires`` the
-    conditions on a draw; ``worked`` is the worked solution at the problem's own givens."""
+    """One problem's page: ``statement`` with the problem's own givens written in,
+    ``variants`` the draws of its givens, ``requires`` the conditions on a draw; ``worked`` the
+    worked solution at the problem's own givens."""
 
     id: str
     title: str
@@ -97,7 +100,7 @@ def catalog_entry(path: str | Path) -> CatalogEntry:
     variants = problem.variants
     return CatalogEntry(
         id=problem.id, title=problem.title, source=problem.source,
-        statement=problem.statement, file=str(path), tags=problem.tags,
+        statement=statement(problem), file=str(path), tags=problem.tags,
         analyses=analyses(problem), objectives=objectives,
         worked=worked_solution(problem, solution),
         variants=variants.draws if variants else (),
