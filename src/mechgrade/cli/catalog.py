@@ -8,7 +8,7 @@ from ..check import problem_files
 from ..errors import SpecError
 from ..report.catalog import write_catalog
 from ..grade.catalog import catalog_entries
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 
 @main.command("catalog")
@@ -34,10 +34,10 @@ def catalog_command(paths: tuple[str, ...], out_dir: str, templates_dir: str | N
     written = write_catalog(entries, faults, out_dir, templates_dir)
     unsolved = [(e, o) for e in entries for o in e.failures]
     for fault in faults:
-        click.echo(fault.message, err=True)
+        say(fault.message, err=True)
     for _, objective in unsolved:
-        click.echo(objective.answer, err=True)  # the solver's message says where and why
-    click.echo(f"wrote {written[0]} and {len(written) - 1} problem page(s); "
+        say(objective.answer, err=True)  # the solver's message says where and why
+    say(f"wrote {written[0]} and {len(written) - 1} problem page(s); "
                f"{len(faults)} file(s) could not be shown")
     if faults or unsolved:
         raise SystemExit(1)
