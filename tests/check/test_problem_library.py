@@ -20,7 +20,7 @@ PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
 def _independent():
     """Case id -> function returning {objective id: value} from the independent derivations."""
     out = {}
-    for name in ("bowling", "ruina", "dynamics"):
+    for name in ("bowling", "ruina", "dynamics", "bank"):
         path = ROOT / "tests" / "data" / "independent" / f"{name}.py"
         spec = importlib.util.spec_from_file_location(f"independent_{name}", path)
         module = importlib.util.module_from_spec(spec)

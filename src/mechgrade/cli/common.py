@@ -81,6 +81,8 @@ def warn_about_the_cache() -> None:
 
 
 COMMANDS = {
+    "catalog": ("catalog", "Write a browsable HTML catalogue of the problems in PATHS (files or "
+                           "folders)."),
     "check": ("check", "Validate problem files (or folders of them) and run every expect: test."),
     "export": ("export", "Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a "
                          "spreadsheet."),

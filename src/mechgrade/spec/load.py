@@ -264,7 +264,8 @@ class _Builder:
             consistency=float(d.get("consistency", 5e-3)) if self.usable("consistency") else 5e-3,
             path=self.doc.file, unknowns=unknowns, branches=branches,
             definitions=self.definition_items, warnings=self.warnings(problem_id),
-            variants=variants, dynamics=self.dynamics())
+            variants=variants, dynamics=self.dynamics(),
+            tags=tuple(d.get("tags", ())) if self.usable("tags") else ())
 
     def dynamics(self):
         """The ``bodies:``, ``loads:`` and ``analysis:`` sections (:mod:`.dynamics`)."""

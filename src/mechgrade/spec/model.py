@@ -269,6 +269,7 @@ class Problem:
     warnings: tuple[AuthorWarning, ...] = field(default=(), compare=False)
     variants: Variants | None = None  # spec.variants: how each student's givens are drawn
     dynamics: "Dynamics | None" = None  # bodies and loads (spec/dynamics.py)
+    tags: tuple[str, ...] = field(default=(), compare=False)  # a catalogue's topics, not physics
 
     def __hash__(self) -> int:
         # the solver's caches are keyed by the problem, and hashing one walks all of it

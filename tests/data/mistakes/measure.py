@@ -21,6 +21,7 @@ from mechgrade.grade.compare import Policy, assess
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem
+from mechgrade.units import from_si, to_si
 
 HERE = Path(__file__).parent
 
@@ -59,6 +60,34 @@ def rows():
         solution = solve(problem)
         for row in yaml.safe_load(path.read_text(encoding="utf-8")):
             yield path.stem, group, row, solution.result(row["objective"])
+
+
+def notations(result):
+    """Correct answers as the docs allow: 3 s.f., another unit of the same kind, and for
+    vectors the i/j form."""
+    unit = result.unit
+    other = {"ft/s^2": "m/s^2", "m/s^2": "ft/s^2", "ft/s": "m/s", "m/s": "km/h",
+             "in/s": "cm/s", "cm/s": "m/s", "mm/s^2": "m/s^2", "m": "cm", "ft": "in",
+             "deg": "rad", "rad/s": "deg/s", "rad/s^2": "deg/s^2", "N": "kN", "J": "kJ",
+             "s": "ms", "W": "kW", "N*s": "kN*s"}.get(unit)
+    values = result.value if result.kind == "vector" else (result.value,)
+
+    def three(v):
+        return "0" if abs(v) < 1e-9 else f"{v:.3g}"
+    u = f" {unit}" if unit not in ("", "1") else ""
+    if result.kind == "vector":
+        yield "(" + ", ".join(three(v) for v in values) + ")" + u
+        terms = [f"{three(v)} {axis}" for v, axis in zip(values, "ijk") if abs(v) > 1e-9]
+        if terms and unit not in ("", "1"):
+            yield "(" + " + ".join(terms).replace("+ -", "- ") + ")" + u
+        if other:
+            converted = [from_si(to_si(v, unit), other) for v in values]
+            yield "(" + ", ".join(f"{v:.4g}" if abs(v) > 1e-9 else "0"
+                                  for v in converted) + f") {other}"
+    else:
+        yield three(values[0]) + u
+        if other:
+            yield f"{from_si(to_si(values[0], unit), other):.4g} {other}"
 
 
 def rate(counts: Counter) -> str:
