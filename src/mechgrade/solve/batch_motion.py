@@ -27,10 +27,11 @@ column that switches anywhere but at its event is not answered here.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Callable
 
 import numpy as np
+
+from . import dop853
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # as scipy's Runge-Kutta step control
 EPS = np.finfo(float).eps
@@ -53,12 +54,6 @@ def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
     return (weights @ K[:k].reshape(k, -1)).reshape(weights.shape[:-1] + K.shape[1:])
 
 
-@lru_cache(maxsize=1)
-def _coefficients():
-    from scipy.integrate._ivp import dop853_coefficients as c
-    return c
-
-
 @dataclass(frozen=True)
 class Arrival:
     """Where each column's integration ended: ``status`` (:data:`FIRED`, :data:`NEVER` or
@@ -78,7 +73,7 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     sign (or becomes zero), per column, as ``solve_ivp(method="DOP853", events=event)`` with
     a terminal event does for each column alone; ``mode(columns, t, y)`` gives the modes
     (modes x columns) each step keeps (see the module docstring)."""
-    c = _coefficients()
+    c = dop853
     m, count = y0.shape
     status = np.full(count, FAILED)
     cols = np.arange(count)
