@@ -33,7 +33,6 @@ variant's failure, as :func:`~.dynamics.solve_dynamics` reports it.)
 
 from __future__ import annotations
 
-import types
 import warnings
 from dataclasses import dataclass, replace
 from functools import lru_cache
@@ -53,12 +52,15 @@ from .events import ATOL, MAX_CALLS, RTOL, analysis_plan, at_the_event
 from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
-from .levels import RANK_TOL, SAME_ROOT, State, place_givens, rows
-from .mutants import (SAME, misread, model_mistake_at, model_mistake_table, plausible_slips,
-                      slips_of)
-from .numeric import PROBE_TOL, SINGULAR, solve_numeric
+from .columns import call, least_squares, least_squares_solution, loud_call
+from .levels import State, place_givens, rows, typical_sizes
+from .mutants import (kept_mistakes, misread, model_mistake_at, model_mistake_table,
+                      plausible_slips, slips_of)
+from .numeric import PROBE_TOL, degenerate, solve_numeric
 from .dynamics_mutants import with_generated_mistakes
-from .plan import Plan, _OnFirstCall, plan
+from .plan import Plan, plan
+from . import rules
+from .rules import on_branch, satisfied
 from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
                      Solution)
 from .stored import load_variant, store_variant, variant_keys
@@ -119,116 +121,6 @@ def _solved_together(problem: Problem, given: list[dict]) -> list[tuple[Outcome,
         else:
             out.append((solution, True))
     return out
-
-
-# ---------------------------------------------------------------------------- arrays
-
-
-@lru_cache(maxsize=4096)
-def _batched(f: Callable) -> Callable:
-    """``f`` (made by ``sympy.lambdify``) with its matrices built from entries that may be
-    arrays of different shapes (a constant beside a column of values)."""
-    if isinstance(f, _OnFirstCall):
-        f = f.function
-    namespace = dict(f.__globals__)
-    namespace["array"] = _array
-    return types.FunctionType(f.__code__, namespace, f.__name__, f.__defaults__, f.__closure__)
-
-
-def _array(rows):
-    """``numpy.array`` for the matrices lambdified functions build, with entries of
-    different shapes broadcast together."""
-    arrays = [e.shape for row in rows for e in row if type(e) is np.ndarray]
-    shapes = set(arrays)
-    if not arrays or (len(shapes) == 1 and len(arrays) == len(rows) * len(rows[0])):
-        return np.array(rows, dtype=float)
-    # a constant entry beside arrays: every entry broadcast to the arrays' shape
-    out = np.empty((len(rows), len(rows[0])) + np.broadcast_shapes(*shapes))
-    for r, row in enumerate(rows):
-        for c, entry in enumerate(row):
-            out[r, c] = entry
-    return out
-
-
-def _call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
-    """``f`` at every column of ``X`` (the states, one per column): ``size`` values each, as
-    a ``(size, N)`` array."""
-    with np.errstate(all="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return _loud_call(f, X, size)
-
-
-def _loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
-    """:func:`_call` for a caller that has silenced numpy's warnings already (an
-    integration evaluates its right-hand side thousands of times)."""
-    n = X.shape[1]
-    out = np.asarray(_batched(f)(*X), dtype=float)
-    if out.size == size * n:
-        return out.reshape(size, n)
-    return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
-
-
-def _least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The least-squares solution of ``A x = b`` at every column (``A``: rows x unknowns x N,
-    ``b``: rows x N), the minimum-norm one where ``A`` is singular, as ``scipy.linalg.lstsq``
-    gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
-    cost is most of the time of so small a solve)."""
-    rows_, k, count = A.shape
-    if rows_ == k == 1:
-        with np.errstate(all="ignore"):
-            solved = b / A[0]
-        if np.isfinite(solved.sum()):
-            return solved
-    else:
-        solved = np.full((k, count), np.nan)
-    if rows_ == k and 1 < k <= 3:
-        det = _determinant(A)
-        with np.errstate(all="ignore"):
-            for j in range(k):
-                replaced = A.copy()
-                replaced[:, j] = b
-                solved[j] = _determinant(replaced) / det
-    left = ~np.isfinite(solved).all(axis=0)
-    if left.any():
-        Ab = A[:, :, left].transpose(2, 0, 1)
-        bb = b[:, left].T[:, :, None]
-        try:
-            part = np.linalg.solve(Ab, bb) if rows_ == k else None
-        except np.linalg.LinAlgError:  # a singular column: the least-squares solution
-            part = None
-        if part is None:
-            part = np.linalg.pinv(Ab) @ bb
-        solved[:, left] = part[:, :, 0].T
-    return solved
-
-
-def _determinant(A: np.ndarray) -> np.ndarray:
-    """The determinant of every column's square matrix of up to three rows."""
-    k = A.shape[0]
-    if k == 1:
-        return A[0, 0]
-    if k == 2:
-        return A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
-    return (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1])
-            - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
-            + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
-
-
-def _least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
-    """The minimum-norm least-squares step ``-pinv(J) r`` of every column (``J``: rows x
-    unknowns x N, ``r``: rows x N; columns not ``good`` are left at zero), the rank of each
-    ``J`` (as :func:`~.levels.nullspace` counts it) and each one's right singular vectors
-    (N x unknowns x unknowns: the rows after the rank span its nullspace)."""
-    Jb = np.where(good, J, 0.0).transpose(2, 0, 1)
-    U, s, Vt = np.linalg.svd(Jb, full_matrices=True)
-    k = s.shape[1]
-    big = s > RANK_TOL * np.maximum(s.max(axis=1, initial=0.0), 1.0)[:, None]
-    rank = big.sum(axis=1)
-    with np.errstate(all="ignore"):
-        inverse = np.where(big, 1.0 / np.where(big, s, 1.0), 0.0)
-        coeff = np.einsum("nmk,mn->nk", U[:, :, :k], np.where(good, r, 0.0)) * inverse
-        step = -np.einsum("nkj,nk->jn", Vt[:, :k, :], coeff)
-    return step, rank, Vt
 
 
 # ---------------------------------------------------------------------------- the template
@@ -421,11 +313,11 @@ class _Template:
         else:
             objectives, mistakes, requirements = p.objectives, p.mistakes, p.requirements
             limit = 1e-9
-        values = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in objectives
+        values = {oid: call(f, X, _size(self.problem, oid)) for oid, f in objectives
                   if oid in group.numeric}
         if before is not None:
             functions = dict(objectives)
-            values = {oid: at_the_event(v, _call(functions[oid], before, len(v)),
+            values = {oid: at_the_event(v, call(functions[oid], before, len(v)),
                                         self.problem.objective(oid))
                       for oid, v in values.items()}
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
@@ -434,8 +326,8 @@ class _Template:
         for oid, _, f in requirements:
             if oid in group.numeric:
                 with np.errstate(invalid="ignore"):
-                    ok &= ~(np.abs(_call(f, X, 1)[0]) > limit)
-        declared = {oid: [_call(f, X, _size(self.problem, oid)) for f in fs]
+                    ok &= ~(np.abs(call(f, X, 1)[0]) > limit)
+        declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
         return X, ok, values, declared
 
@@ -484,7 +376,7 @@ class _Template:
             k = len(cols)
             last["X"][:, cols], last["ok"][cols], last["at"][cols] = \
                 reached[:, :k], fine[:k], values[0]
-            r = np.where(fine, _call(equation, self._at_event(reached)[0], 1)[0], np.nan)
+            r = np.where(fine, call(equation, self._at_event(reached)[0], 1)[0], np.nan)
             return r.reshape(2, k)
 
         guess = self.design.guess
@@ -522,27 +414,26 @@ class _Template:
         X[list(index.rates(2))] = 0.0
         level = self.p.levels[1]
         if level.constraint_rows:
-            J = _call(level.jacobian, X, len(level.labels) * n).reshape(
+            J = call(level.jacobian, X, len(level.labels) * n).reshape(
                 len(level.labels), n, count)[:level.constraint_rows]
             finite = np.isfinite(J).all(axis=(0, 1))
             fine &= finite
             _, s, Vt = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1),
                                      full_matrices=True)
-            big = s > RANK_TOL * np.maximum(s.max(axis=1, initial=0.0), 1.0)[:, None]
-            fine &= big.sum(axis=1) == n - 1  # one free direction
+            fine &= rules.rank(s) == n - 1  # one free direction
             u = Vt[:, n - 1, :].T
         else:
             fine &= n == 1
             u = np.ones((n, count))
         start = np.concatenate([X, reactions])
         for i, fn in ap.start:
-            start[i] = _call(fn, np.concatenate([X, reactions]), 1)[0]
-        e0 = _call(ap.energy, start, 1)[0]
-        v = _call(ap.energy, np.concatenate([X, reactions]), 1)[0]
+            start[i] = call(fn, np.concatenate([X, reactions]), 1)[0]
+        e0 = call(ap.energy, start, 1)[0]
+        v = call(ap.energy, np.concatenate([X, reactions]), 1)[0]
         moving = X.copy()
         moving[rates] = u
         with np.errstate(all="ignore"):
-            t_unit = _call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
+            t_unit = call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
             square = (e0 - v) / t_unit
             fine &= ~(square < -1e-9 * (np.abs(e0) + np.abs(v) + 1e-300) / t_unit)
             fine &= np.isfinite(square)
@@ -561,7 +452,7 @@ class _Template:
         size = 1.0 + np.abs(X[rates]).max(axis=0, initial=0.0)
         for _, fn in ap.workless:
             with np.errstate(invalid="ignore"):
-                fine &= ~(np.abs(_call(fn, x, 1)[0]) > 1e-8 * size)
+                fine &= ~(np.abs(call(fn, x, 1)[0]) > 1e-8 * size)
         return fine
 
     def _integrated(self, group: _Group, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -582,7 +473,7 @@ class _Template:
         extended = np.concatenate([X, np.zeros((kinetic - size, count))])
         values = X.copy()
         for i, fn in ap.start:
-            values[i] = _call(fn, extended, 1)[0]
+            values[i] = call(fn, extended, 1)[0]
         values[index.time] = 0.0
         values[qdd] = 0.0
         switches = _switches(kp)
@@ -613,12 +504,12 @@ class _Template:
             if ap.until_kinetic:
                 x = self._accelerations(x, switches)
             assert ap.until is not None  # an integration has its event
-            return _loud_call(ap.until, x[:kinetic], 1)[0]
+            return loud_call(ap.until, x[:kinetic], 1)[0]
 
         def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
             assert switches is not None
             x = at(cols, t, y)[:kinetic]
-            return np.sign(_loud_call(switches.speeds, x, switches.count))
+            return np.sign(loud_call(switches.speeds, x, switches.count))
 
         y0 = np.concatenate([values[:n], values[qd]])
         with np.errstate(all="ignore"), warnings.catch_warnings():
@@ -659,13 +550,13 @@ class _Template:
         else:
             jacobian, residual = kp.jacobian, kp.residual
             args = x[:len(kp.symbols)]
-        A = _loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
-        b = _loud_call(residual, args, rows_)
+        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+        b = loud_call(residual, args, rows_)
         if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
-            x[cols] = _least_squares_solution(A, -b)
+            x[cols] = least_squares_solution(A, -b)
             return x
         good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        x[cols] = _least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
+        x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
         x[:, ~good] = np.nan
         return x
 
@@ -697,12 +588,12 @@ class _Template:
             moving = np.ones(X.shape[1], dtype=bool)
             for _ in range(1 if linear else NEWTON_STEPS if solve_for else 0):
                 place = [columns.index(i) for i in solve_for]
-                r = _call(level.residual, X, nrows)[active] - target[active]
-                J = _call(level.jacobian, X, nrows * len(columns)).reshape(
+                r = call(level.residual, X, nrows)[active] - target[active]
+                J = call(level.jacobian, X, nrows * len(columns)).reshape(
                     nrows, len(columns), X.shape[1])[active][:, place]
                 good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
                 ok &= good
-                step, rank, Vt = _least_squares(J, r, good)
+                step, rank, Vt = least_squares(J, r, good)
                 ok &= rank == len(solve_for) - group.nullity[order]
                 step[:, ~ok | ~moving] = 0.0
                 X[solve_for] += step
@@ -715,10 +606,9 @@ class _Template:
                 if not moving.any():
                     break
             if active.any():
-                r = _call(level.residual, X, nrows)[active] - target[active]
-                scale = np.abs(_call(level.scale, X, nrows))[active]
-                with np.errstate(invalid="ignore"):
-                    ok &= np.all(np.abs(r) <= self.problem.consistency * scale + 1e-10, axis=0)
+                r = call(level.residual, X, nrows)[active] - target[active]
+                scale = np.abs(call(level.scale, X, nrows))[active]
+                ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
         return nulls
 
     def _determined(self, group: _Group, X: np.ndarray, targets, nulls,
@@ -728,7 +618,7 @@ class _Template:
         probes: where one changes, that solver names the objective not determined."""
         p = self.p
         same = ok.copy()
-        before = {oid: _call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
+        before = {oid: call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
                   if oid in group.numeric}
         probes: list[tuple[int, int | None, int | None]] = [
             (p.index.level_of(i), i, None) for i in sorted(group.free)
@@ -745,64 +635,32 @@ class _Template:
                 first = order + 1
             self._levels(group, moved, targets, first, same)
             for oid, value in before.items():
-                after = _call(dict(p.objectives)[oid], moved, value.shape[0])
+                after = call(dict(p.objectives)[oid], moved, value.shape[0])
                 size = np.maximum(np.abs(value).max(axis=0), 1e-12)
                 with np.errstate(invalid="ignore"):
                     same &= np.abs(after - value).max(axis=0) <= PROBE_TOL * size + 1e-12
         return same
 
     def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:
+        """Which columns have every root the spec picks a branch of on it (as
+        :func:`~.rules.on_branch` judges it for a quantity of the size the column's own
+        givens give it)."""
         ok = np.ones(X.shape[1], dtype=bool)
-        scale = 1e-6 * np.maximum(np.abs(group.state), 1.0)
-        for i, root in self.branches.items():
-            if i not in group.unknown[self.p.index.level_of(i)]:
-                continue
-            if root is Root.POSITIVE:
-                ok &= X[i] > scale[i]
-            elif root is Root.NEGATIVE:
-                ok &= X[i] < -scale[i]
+        index = self.p.index
+        picked = [(i, root) for i, root in self.branches.items()
+                  if i in group.unknown[index.level_of(i)]]
+        if picked:
+            scales = typical_sizes(self.kproblem, self.p, X[:index.size], group.known)
+            for i, root in picked:
+                ok &= on_branch(X[i], scales[i], root)
         return ok
 
     def _degenerate(self, group: _Group, X: np.ndarray) -> np.ndarray:
         """Instants where the scalar solver would warn of a degenerate configuration."""
-        p = self.p
-        n = X.shape[1]
-        flagged = np.zeros(n, dtype=bool)
-        solved = list(group.solved)
-        if not solved:
-            return flagged
-        size = p.index.size
-        other = X.copy()
-        other[solved] = other[solved] * 1.13 + 0.07
-        count = len(p.points)
-        if count > 1:
-            here = _call(p.point_positions, X[:size], 3 * count).reshape(3, count, n)
-            there = _call(p.point_positions, other[:size], 3 * count).reshape(3, count, n)
-            finite = np.where(np.isfinite(here), np.abs(here), 0.0)
-            scale = SAME_ROOT * np.maximum(finite.max(axis=(0, 1)), 1e-12)
-            for a in range(count):
-                for b in range(a):
-                    close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
-                    always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
-                    flagged |= close & ~always
-        level = p.levels[0]
-        rank = p.constraint_rank
-        if level.constraint_rows and rank:
-            flagged |= self._weakest(X) < SINGULAR * self._weakest(other)
-        return flagged
-
-    def _weakest(self, X: np.ndarray) -> np.ndarray:
-        p = self.p
-        level = p.levels[0]
-        n = X.shape[1]
-        ncols = len(p.index.unknowns(0))
-        J = _call(level.jacobian, X[:p.index.size], len(level.labels) * ncols).reshape(
-            len(level.labels), ncols, n)[:level.constraint_rows, :p.index.n]
-        finite = np.isfinite(J).all(axis=(0, 1))
-        sv = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1), compute_uv=False)
-        rank = p.constraint_rank
-        weakest = sv[:, rank - 1] if sv.shape[1] >= rank else np.zeros(n)
-        return np.where(finite, weakest, np.nan)
+        pairs, singular = degenerate(self.p, X, list(group.solved))
+        for _, _, flagged in pairs:
+            singular = singular | flagged
+        return singular
 
     def _kinetics(self, X: np.ndarray, known: np.ndarray):
         """The extended states (second rates and reactions solved from the momentum
@@ -816,31 +674,31 @@ class _Template:
             x[kp.columns[j]] = 0.0
         ok = np.ones(n, dtype=bool)
         for _, speed, _ in kp.slips:
-            ok &= _call(speed, x, 1)[0] > 1e-12
+            ok &= call(speed, x, 1)[0] > 1e-12
         rows_ = len(kp.labels)
-        A = _call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)
+        A = call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)
         A = A[:, cols]
-        b = _call(kp.residual, x, rows_)
+        b = call(kp.residual, x, rows_)
         ok &= np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
         Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
         U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
-        ok &= s[:, -1] > RANK_TOL * np.maximum(s[:, 0], 1.0) if len(cols) else ok
+        ok &= rules.rank(s) == len(cols)
         with np.errstate(all="ignore"):
             inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
             coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
             sol = np.einsum("nkj,nk->jn", Vt, coeff)
         for j, value in zip(cols, sol):
             x[kp.columns[j]] = value
-        r = _call(kp.residual, x, rows_)
-        scale = np.abs(_call(kp.scale, x, rows_))
+        r = call(kp.residual, x, rows_)
+        scale = np.abs(call(kp.scale, x, rows_))
         with np.errstate(invalid="ignore"):
-            ok &= np.all(np.abs(r) <= self.problem.consistency * scale + 1e-10, axis=0)
+            ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
             for _, _, normal in kp.slips:
-                ok &= ~(_call(normal, x, 1)[0] < -1e-9)
+                ok &= ~(call(normal, x, 1)[0] < -1e-9)
             for _, tangential, normal, mu in kp.bounds:
-                f = np.linalg.norm(_call(tangential, x, 3), axis=0)
-                nn = _call(normal, x, 1)[0]
-                m = _call(mu, x, 1)[0]
+                f = np.linalg.norm(call(tangential, x, 3), axis=0)
+                nn = call(normal, x, 1)[0]
+                m = call(mu, x, 1)[0]
                 ok &= ~(nn < -1e-9) & ~(f > m * nn * (1 + 1e-9) + 1e-12)
         return x, ok
 
@@ -853,7 +711,7 @@ class _Template:
         instants solved together too); kept as :func:`~.mutants.attach` keeps them."""
         problem, p = self.problem, self.p
         n = len(maps)
-        table = model_mistake_table(problem, p, X[:p.index.size], group.numeric, _call)
+        table = model_mistake_table(problem, p, X[:p.index.size], group.numeric)
         changed, owner = [], []
         for i in np.flatnonzero(ok):
             for code, changes, sentence in slips_of(maps[i], self.parameters):
@@ -933,20 +791,7 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
             V[i, first:last] = np.array([m.value for m in mistakes], float).reshape(-1, size)
             exists[i, first:last] = True
             other[i, first:last] = [m.code == "other_point" for m in mistakes]
-    right = (si / si_factor(obj.unit) + 0.0).T
-    with np.errstate(invalid="ignore"):
-        norms = np.linalg.norm(V, axis=2)
-        scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
-        answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
-            SAME * np.maximum(norms, scale[:, None]) + 1e-12
-        vague = ~other & ~(np.abs(V) > 1e-12).any(axis=2)
-        keep = np.zeros((n, count), dtype=bool)
-        for j in range(count):
-            apart = np.linalg.norm(V[:, :j] - V[:, j:j + 1], axis=2)
-            same = apart <= SAME * np.maximum(np.maximum(norms[:, :j], norms[:, j:j + 1]),
-                                              1e-12) + 1e-12
-            keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
-                & ~vague[:, j]
+    keep = kept_mistakes((si / si_factor(obj.unit) + 0.0).T, V, exists, other)
 
     def at(i: int) -> tuple[GeneratedMistake, ...]:
         return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
@@ -966,9 +811,9 @@ def _nullity(p: Plan, level, values: np.ndarray, active: np.ndarray, unknown: li
     if not active.any():
         return len(unknown)
     columns = list(p.index.unknowns(level.order))
-    J = _call(level.jacobian, values[:, None], len(level.labels) * len(columns)).reshape(
+    J = call(level.jacobian, values[:, None], len(level.labels) * len(columns)).reshape(
         len(level.labels), len(columns), 1)[active][:, [columns.index(i) for i in unknown]]
-    _, rank, _ = _least_squares(J, np.zeros((int(active.sum()), 1)),
+    _, rank, _ = least_squares(J, np.zeros((int(active.sum()), 1)),
                                 np.isfinite(J).all(axis=(0, 1)))
     return len(unknown) - int(rank[0])
 

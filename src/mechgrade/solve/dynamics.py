@@ -42,10 +42,12 @@ from .events import (at_the_event, energy_rate_symbolic, energy_state, integrate
                      integrated_symbolically)
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
-from .levels import RANK_TOL, State, place_givens
+from . import rules
+from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import Plan, plan
 from .result import ObjectiveFailure, ObjectiveResult, Solution
+from .rules import satisfied
 
 
 def kinematic_problem(problem: Problem) -> Problem:
@@ -153,7 +155,7 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
                          f"zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
     sol, *_ = linalg.lstsq(A, -b)
     _, s, vt = linalg.svd(A)
-    rank = int((s > RANK_TOL * max(s.max(initial=0.0), 1.0)).sum())
+    rank = int(rules.rank(s))
     if rank < len(cols):
         null = vt[rank:].T
         open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > 1e-9]
@@ -170,12 +172,13 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
         x[kp.columns[j]] = value
     r = _call(kp.residual, x)
     size = np.abs(_call(kp.scale, x))
-    for i in range(len(r)):
-        if not abs(r[i]) <= problem.consistency * size[i] + 1e-10:
-            raise InconsistentError(
-                f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
-                f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
-                "loads, or a given second rate contradicts them", where=kp.wheres[i])
+    off = np.flatnonzero(~satisfied(r, size, problem.consistency))
+    if len(off):
+        i = off[0]
+        raise InconsistentError(
+            f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
+            f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
+            "loads, or a given second rate contradicts them", where=kp.wheres[i])
     _check_friction(kp, x)
     return x
 

@@ -30,7 +30,8 @@ from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Objective, Problem
 from ..tolerance import within_each
 from ..units import si_factor
-from .levels import State, nullspace
+from .levels import State
+from .rules import null_space
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
@@ -121,7 +122,7 @@ def energy_state(problem: Problem, kp, state: State, given_rates: list[str]) -> 
     with np.errstate(all="ignore"):
         J = np.asarray(level.jacobian(*values), dtype=float).reshape(len(level.labels), index.n)
     J = J[:level.constraint_rows]
-    u = nullspace(J) if len(J) else np.eye(index.n)
+    u = null_space(J) if len(J) else np.eye(index.n)
     if u.shape[1] != 1:
         raise SolveError(f"work_energy finds the speed of a motion with one degree of freedom; "
                          f"this one has {u.shape[1]} at the instant", where=analysis.where)

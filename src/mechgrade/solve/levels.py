@@ -24,9 +24,10 @@ from ..errors import InconsistentError, Location, SolveError
 from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
+from . import rules
 from .plan import Level, Plan
+from .rules import on_branch, satisfied
 
-RANK_TOL = 1e-9
 DEFAULT_GUESS = 0.3
 JOINT_SPREADS = (0.5, 2.0, 8.0)
 SAME_ROOT = 1e-4
@@ -102,30 +103,45 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
 
 
 def _scales(problem: Problem, p: Plan, values, known) -> np.ndarray:
-    """A typical size for each position, from the givens of the same unit (angles: pi)."""
+    """A typical size for each position, from the givens of the same unit (angles: pi).
+    ``values`` holds one state (size) or one per column (size x N): the sizes then are too."""
+    return typical_sizes(problem, p, np.asarray(values, dtype=float)[:, None],
+                         known)[:, 0] if np.ndim(values) == 1 else \
+        typical_sizes(problem, p, values, known)
+
+
+def typical_sizes(problem: Problem, p: Plan, values: np.ndarray, known) -> np.ndarray:
+    """:func:`_scales` of every column of ``values`` (size x N): the median of the nonzero
+    givens of each unit, in each column."""
     index = p.index
     units = {c.name: c.unit for c in problem.coordinates}
     units.update({q.name: q.unit for q in problem.parameters})
-    by_unit: dict[str, list[float]] = {}
+    by_unit: dict[str, list[int]] = {}
+    of = [_unit_of(index, units, i) for i in range(index.size)]
     for i in range(index.size):
-        if known[i] and values[i]:
-            by_unit.setdefault(_unit_of(index, units, i), []).append(abs(values[i]))
-    out = np.ones(index.size)
+        if known[i]:
+            by_unit.setdefault(of[i], []).append(i)
+    out = np.ones((index.size, values.shape[1]))
+    medians = {unit: _median(np.abs(values[rows_])) for unit, rows_ in by_unit.items()}
     for i in range(index.size):
-        unit = _unit_of(index, units, i)
-        if unit in ("rad", "deg", "degree", "radian"):
+        if of[i] in ("rad", "deg", "degree", "radian"):
             out[i] = np.pi
-        elif by_unit.get(unit):
-            out[i] = _median(by_unit[unit])
+        elif of[i] in medians:
+            out[i] = medians[of[i]]
     return out
 
 
-def _median(values: list[float]) -> float:
-    """The median, as ``numpy.median`` gives it, without the import of numpy's masked arrays
-    that ``numpy.median`` makes (milliseconds of every ``check``)."""
-    ordered = sorted(values)
-    middle = len(ordered) // 2
-    return ordered[middle] if len(ordered) % 2 else (ordered[middle - 1] + ordered[middle]) / 2
+def _median(values: np.ndarray) -> np.ndarray:
+    """The median of each column's nonzero entries (1 where there are none), as
+    ``numpy.median`` gives it, without the import of numpy's masked arrays that
+    ``numpy.median`` makes (milliseconds of every ``check``)."""
+    ordered = np.sort(np.where(values != 0, values, np.inf), axis=0)
+    count = (values != 0).sum(axis=0)
+    middle = count // 2
+    columns = np.arange(values.shape[1])
+    upper = ordered[np.minimum(middle, len(ordered) - 1), columns]
+    lower = ordered[np.maximum(middle - 1, 0), columns]
+    return np.where(count == 0, 1.0, np.where(count % 2 == 1, upper, (lower + upper) / 2))
 
 
 def _unit_of(index, units, i) -> str:
@@ -308,7 +324,7 @@ def _satisfied(problem, level, x, active, target) -> bool:
         warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
         scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-    return bool(np.all(np.abs(r) <= problem.consistency * scale + 1e-10))
+    return bool(np.all(satisfied(r, scale, problem.consistency)))
 
 
 def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
@@ -324,13 +340,7 @@ def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
 
 
 def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
-    for i in positions:
-        root = g.branches.get(i)
-        if root in (Root.POSITIVE, Root.FIRST_POSITIVE) and not x[i] > 1e-9 * g.scales[i]:
-            return False
-        if root is Root.NEGATIVE and not x[i] < -1e-9 * g.scales[i]:
-            return False
-    return True
+    return all(on_branch(x[i], g.scales[i], g.branches.get(i)) for i in positions)
 
 
 def _choose_branch(g: Givens, roots: list, positions) -> list:
@@ -391,9 +401,8 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
         warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel() - target
         scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())
-    bad = [i for i in np.flatnonzero(active)
-           if not abs(r[i]) <= problem.consistency * scale[i] + 1e-10]
-    if not bad:
+    bad = np.flatnonzero(active & ~satisfied(r, scale, problem.consistency))
+    if not len(bad):
         return None
     i = bad[0]
     if int(active.sum()) > rank:
@@ -444,7 +453,7 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
             from scipy import linalg
 
             sol, *_ = linalg.lstsq(A_u, rhs)
-            null = nullspace(A_u)
+            null = rules.null_space(A_u)
         else:
             sol = np.zeros(len(unknown))
             null = np.eye(len(unknown))
@@ -459,9 +468,8 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
             r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
             scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
         labels = np.array(level.labels)[active]
-        off = [i for i in range(len(r)) if not abs(r[i]) <= problem.consistency * scale[i]
-               + 1e-10]
-        if off:
+        off = np.flatnonzero(~satisfied(r, scale, problem.consistency))
+        if len(off):
             i = off[0]
             raise InconsistentError(
                 f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
@@ -492,21 +500,10 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
         return list(unknown), []
     with np.errstate(all="ignore"):
         _, R, piv = linalg.qr(J, pivoting=True, mode="economic")
-    diag = np.abs(np.diag(R)) if R.size else np.zeros(0)
-    rank = int((diag > RANK_TOL * max(diag.max(initial=0.0), 1.0)).sum())
+    rank = int(rules.rank(np.diag(R))) if R.size else 0
     determined = sorted(unknown[j] for j in piv[:rank])
     free = sorted(unknown[j] for j in piv[rank:])
     return determined, free
-
-
-def nullspace(A: np.ndarray) -> np.ndarray:
-    from scipy import linalg
-
-    if A.shape[0] == 0:
-        return np.eye(A.shape[1])
-    _, s, vt = linalg.svd(A)
-    rank = int((s > RANK_TOL * max(s.max(initial=0.0), 1.0)).sum())
-    return vt[rank:].T
 
 
 def evaluate(functions, state: State, only: set[str]) -> dict:
