@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 import mechgrade.solve.cache as cache
-from mechgrade.solve import plan, solve
+from mechgrade.solve import kinematics_plan, solve
 from mechgrade.solve.mutants import inside_tolerance
 from mechgrade.spec import load_problem, load_problem_text
 
@@ -64,9 +64,9 @@ def test_a_problem_read_back_from_the_cache_solves_as_one_derived(name, disk, mo
 def test_a_plan_read_back_is_not_derived_until_its_kinematics_are_asked_for(disk, forget):
     problem = load_problem(PENDULUM)
     solve(problem)  # its plan and symbolic answers written
-    first = plan(problem)
+    first = kinematics_plan(problem)
     forget()
-    again = plan(problem)
+    again = kinematics_plan(problem)
     assert "k" in vars(first) and "k" not in vars(again)
     solve(problem)
     assert "k" not in vars(again)
@@ -181,7 +181,7 @@ def test_a_spoilt_entry_is_ignored_and_written_again(spoil, disk, tmp_path, monk
     assert comparable(solve(problem)) == right
     assert not (tmp_path / "pwned").exists()
     forget()
-    assert "k" not in vars(plan(problem))  # written again: read back whole this time
+    assert "k" not in vars(kinematics_plan(problem))  # written again: read back whole this time
 
 
 def test_an_entry_of_another_problem_under_this_ones_name_is_not_used(disk, forget):

@@ -8,7 +8,7 @@ a variant continues from the configuration the author checked, and for a level w
 finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
-rates from the energy balance (:func:`~.events.energy_state` on arrays); the motion integrated
+rates from the energy balance (:func:`~.work_energy.energy_state` on arrays); the motion integrated
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
 variants' right-hand sides in one call); a design parameter by Newton's method around the
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
@@ -36,7 +36,7 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Callable, Mapping, Sequence
+from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -46,9 +46,10 @@ from ..mechanics.kinematics import locations
 from ..spec.dynamics import Integration, WorkEnergy
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
-from .batch_motion import FIRED, integrate_to_events, newton
+from .batch_motion import FIRED, NEVER, integrate_to_events, newton
 from .entry import solve
-from .events import ATOL, MAX_CALLS, RTOL, analysis_plan, at_the_event
+from .analysis import analysis_plan
+from .events import ATOL, MAX_CALLS, RTOL, at_the_event, event_never_happens
 from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
@@ -57,34 +58,32 @@ from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of)
 from .numeric import PROBE_TOL, degenerate, solve_numeric
-from .dynamics_mutants import with_generated_mistakes
-from .plan import Plan, plan
+from .dynamics_mutants import with_class_mistakes
+from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
 from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
                      Solution)
-from .stored import load_variant, store_variant, variant_keys
+from .stored import Outcome, load_variant, store_variant, variant_keys
 
 NEWTON_STEPS = 30
 """Newton steps a non-linear level may take from the reference's root."""
 
-Outcome = Solution | MechgradeError
+def solve_variants(problem: Problem, variants: Sequence[Mapping[str, float | None] | None],
+                   objectives: Collection[str] | None = None) -> list[Outcome]:
+    """``[solve(problem, givens=g, objectives=objectives) for g in variants]``, each a
+    :class:`Solution` or the error :func:`~.entry.solve` raises, computed together (see the
+    module's docstring).
 
-
-def solve_variants(problem: Problem,
-                   variants: Sequence[Mapping[str, float | None] | None]) -> list[Outcome]:
-    """``[solve(problem, givens=g) for g in variants]``, each a :class:`Solution` or the
-    error :func:`~.entry.solve` raises, computed together (see the module's docstring).
-
-    With the disk cache on, a dynamics problem's variants are kept there (:mod:`.stored`):
-    those stored are read back, the others solved together and stored, equal givens once (a
-    variant's last digits depend on the others solved with it: one entry per givens gives
-    them all the same, in this run and the next)."""
+    With the disk cache on, a dynamics problem's variants (all its objectives) are kept there
+    (:mod:`.stored`): those stored are read back, the others solved together and stored, equal
+    givens once (a variant's last digits depend on the others solved with it: one entry per
+    givens gives them all the same, in this run and the next)."""
     given = [dict(g or {}) for g in variants]
     keys = [key for key in variant_keys(problem, given) if key is not None] \
-        if problem.dynamics is not None else []
+        if problem.dynamics is not None and objectives is None else []
     if len(keys) < len(given):  # not kept (a kinematics problem, the cache off...)
-        return [outcome for outcome, _ in _solved_together(problem, given)]
+        return [outcome for outcome, _ in _solved_together(problem, given, objectives)]
     distinct = dict(zip(keys, given))
     out: dict[str, Outcome] = {}
     for key, givens in distinct.items():
@@ -99,23 +98,44 @@ def solve_variants(problem: Problem,
     return [out[key] for key in keys]
 
 
-def _solved_together(problem: Problem, given: list[dict]) -> list[tuple[Outcome, bool]]:
+def answers_together(problem: Problem, variants: Sequence[Mapping[str, float | None]],
+                     objectives: Collection[str]) -> list[Outcome]:
+    """:func:`solve_variants` of a dynamics problem (a mistaken model, a misread given) for
+    the answers alone: no generated mistakes attached and nothing kept in the disk cache, a
+    variant not solved together solved by :func:`~.dynamics.solve_dynamics`."""
+    return [outcome for outcome, _ in _solved_together(problem, [dict(g) for g in variants],
+                                                       objectives, mistakes=False)]
+
+
+def _solved_together(problem: Problem, given: list[dict],
+                     objectives: Collection[str] | None = None,
+                     mistakes: bool = True) -> list[tuple[Outcome, bool]]:
     """Each variant's outcome, and whether it was solved with the others (else by
-    :func:`~.entry.solve`)."""
+    :func:`~.entry.solve`). A dynamics solution carries its model's generated mistakes, as
+    :func:`~.entry.solve` gives them: those solved together are worked out together, for all
+    of them at once, when one is first looked at (without ``mistakes``: none, and a variant
+    solved alone by :func:`~.dynamics.solve_dynamics`)."""
     found: list[Outcome | None] = [None] * len(given)
     template = _template(problem) if given else None
     if template is not None:
         chosen = [i for i, g in enumerate(given) if template.covers(g)]
-        for i, solution in zip(chosen, template.solve([given[i] for i in chosen])):
-            # as solve() does: a dynamics solution carries its model's generated mistakes
-            found[i] = (with_generated_mistakes(problem, solution, given[i])
-                        if problem.dynamics is not None and isinstance(solution, Solution)
-                        else solution)
+        for i, solution in zip(chosen, template.solve([given[i] for i in chosen],
+                                                      objectives)):
+            found[i] = solution
+        if problem.dynamics is not None and mistakes:
+            together = [i for i in chosen if isinstance(found[i], Solution)]
+            solved = [s for s in found if isinstance(s, Solution)]
+            for i, solution in zip(together, with_class_mistakes(
+                    problem, solved, [given[i] for i in together])):
+                found[i] = solution
+    alone = solve
+    if not mistakes:
+        from .dynamics import solve_dynamics as alone
     out: list[tuple[Outcome, bool]] = []
     for givens, solution in zip(given, found):
         if solution is None:
             try:
-                out.append((solve(problem, givens=givens), False))
+                out.append((alone(problem, givens=givens, objectives=objectives), False))
             except MechgradeError as err:
                 out.append((err, False))
         else:
@@ -152,7 +172,7 @@ class _Group:
 class _Template:
     """What every variant of a problem shares with the reference solve."""
 
-    def __init__(self, problem: Problem, kproblem: Problem, p: Plan, kinetics, groups):
+    def __init__(self, problem: Problem, kproblem: Problem, p: KinematicsPlan, kinetics, groups):
         self.problem, self.kproblem, self.p, self.kinetics = problem, kproblem, p, kinetics
         self.groups: tuple[_Group, ...] = groups
         self.keys = frozenset(to_text(g.key.node) for g in problem.givens)
@@ -175,15 +195,16 @@ class _Template:
 
     # -- solving
 
-    def solve(self, variants: list[dict]) -> list[Solution | MechgradeError | None]:
+    def solve(self, variants: list[dict], asked: Collection[str] | None = None
+              ) -> list[Solution | MechgradeError | None]:
         """Each variant's solution (or, for a dynamics problem, the error
         :func:`~.dynamics.solve_dynamics` raises when no objective is solved), or ``None``
-        where it must be solved one by one."""
+        where it must be solved one by one; only the objectives ``asked`` (all by default)."""
         n = len(variants)
         if not n:
             return []
         problem = self.problem
-        wanted = wanted_objectives(problem, None)
+        wanted = wanted_objectives(problem, asked)
         symbolic: Callable | None = None
         if self.kinetics is not None:
             from .dynamics import _symbolic_result
@@ -198,13 +219,20 @@ class _Template:
             values: dict = {}
             mistakes: dict = {}
             generated: dict = {}
-            if group.numeric:
-                X, fine, values, mistakes = self._instant(group, maps, True)
-                ok &= fine
+            # the columns whose instant is not reached, for a reason solve() gives too
+            unreached: dict[int, MechgradeError] = {}
+            if group.numeric & wanted:
+                X, fine, values, mistakes, never = self._instant(group, maps, True)
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
-                        ok &= np.isfinite(m).all(axis=0)
-                self._keep_state(group, X, ok, maps, base)
+                        fine &= np.isfinite(m).all(axis=0)
+                never &= ok & ~fine
+                if never.any():
+                    assert isinstance(self.analysis, Integration)
+                    unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
+                                              event_never_happens(self.analysis))
+                ok &= fine | never
+                self._keep_state(group, X, ok & ~never, maps, base)
                 if self.kinetics is None:
                     generated = self._generated(group, maps, X, ok, values)
             numeric = [o for o in objectives if o.kind != "symbolic"]
@@ -220,6 +248,9 @@ class _Template:
             for i in np.flatnonzero(ok):
                 failures: dict = {}
                 for o in numeric:
+                    if int(i) in unreached:  # as solve_dynamics keeps it
+                        failures[o.id] = unreached[int(i)]
+                        continue
                     if not defined[o.id][i]:
                         collect_results(problem, [o], maps[i], {o.id: values[o.id][:, i]},
                                         {o.id: [m[:, i] for m in mistakes.get(o.id, ())]},
@@ -251,7 +282,7 @@ class _Template:
                 if failures and self.kinetics is None:
                     ok[i] = False
                 lost[i].update(failures)  # as solve_dynamics keeps them
-        return [self._solution(results[i], base[i], lost[i]) if ok[i] else None
+        return [self._solution(results[i], base[i], lost[i], wanted) if ok[i] else None
                 for i in range(n)]
 
     def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
@@ -272,9 +303,10 @@ class _Template:
                                              if c < size and np.isfinite(X[c, i])})
                 base[i] = (State(X[:size, i], group.after, free), maps[i])
 
-    def _solution(self, results: dict, base, failures: dict) -> Solution | MechgradeError:
+    def _solution(self, results: dict, base, failures: dict,
+                  wanted: set[str]) -> Solution | MechgradeError:
         problem, p = self.problem, self.p
-        order = [o.id for o in problem.objectives]
+        order = [o.id for o in problem.objectives if o.id in wanted]
         if not results and order:  # nothing solved: solve_dynamics raises the first error
             return failures[order[0]]
         return Solution(problem=problem.id,
@@ -287,8 +319,9 @@ class _Template:
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
-        instant, and which instants passed every screen (with ``degenerate``, also the one
-        for a degenerate configuration)."""
+        instant, which instants passed every screen (with ``degenerate``, also the one for a
+        degenerate configuration), and which are not reached because their integration's
+        event never happens (as the scalar solver finds)."""
         p = self.p
         n = len(maps)
         X = np.repeat(group.state[:, None], n, axis=1)
@@ -300,8 +333,11 @@ class _Template:
             elif key in group.conditions:
                 level, row = group.conditions[key]
                 targets[level][row] = column
+        never = np.zeros(n, dtype=bool)
         if self.design is not None:
             X, ok = self._designed(group, X, targets, degenerate)
+        elif isinstance(self.analysis, Integration):
+            X, ok, never = self._integrated(group, X)
         else:
             X, ok = self._reached(group, X, targets, degenerate)
         X, before = self._at_event(X)
@@ -329,14 +365,15 @@ class _Template:
                     ok &= ~(np.abs(call(f, X, 1)[0]) > limit)
         declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
-        return X, ok, values, declared
+        return X, ok, values, declared, never
 
     def _reached(self, group: _Group, X: np.ndarray, targets: list,
                  degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
         """The instants (each column of ``X`` the givens placed, the state extended by the
         reactions for a dynamics problem) and which passed the screens."""
         if isinstance(self.analysis, Integration):
-            return self._integrated(group, X)
+            X, ok, _ = self._integrated(group, X)
+            return X, ok
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
             np.ones(n, dtype=bool)
@@ -401,7 +438,7 @@ class _Template:
 
     def _energy(self, X: np.ndarray, ok: np.ndarray) -> np.ndarray:
         """Put in every column the rates the energy balance gives (as
-        :func:`~.events.energy_state` does), and say which columns it would not refuse."""
+        :func:`~.work_energy.energy_state` does), and say which columns it would not refuse."""
         assert self.kinetics is not None and isinstance(self.analysis, WorkEnergy)
         kp, index = self.kinetics, self.p.index
         analysis = self.analysis
@@ -443,8 +480,7 @@ class _Template:
             key, sense = analysis.sense[0]
             component = u[rates.index(index.position(key.text.replace(" ", "")))]
             fine &= ~((speed > 0) & (np.abs(component) < 1e-12))
-            sign = np.where(speed > 0, np.sign(component) * (1 if sense == "positive" else -1),
-                            1.0)
+            sign = np.where(speed > 0, np.sign(component) * sense.sign, 1.0)
         else:
             fine &= ~(speed > 0)
         X[rates] = sign * speed * u
@@ -455,12 +491,15 @@ class _Template:
                 fine &= ~(np.abs(call(fn, x, 1)[0]) > 1e-8 * size)
         return fine
 
-    def _integrated(self, group: _Group, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _integrated(self, group: _Group, X: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every column's motion integrated from its start state to its event (together:
         :func:`~.batch_motion.integrate_to_events`, the steps
         :func:`~.events.integrate_to_event` takes for each alone): the extended state at
         the event, the accelerations and reactions the limits just before it, with the
-        extended states just before the event stacked under them (:meth:`_at_event`)."""
+        extended states just before the event stacked under them (:meth:`_at_event`); which
+        columns passed the screens, and which ended without their event
+        (:data:`~.batch_motion.NEVER`)."""
         kp = self.kinetics
         assert kp is not None and isinstance(self.analysis, Integration)
         ap = analysis_plan(kp)
@@ -524,7 +563,7 @@ class _Template:
         before = x.copy()
         keep = [i for i in range(size) if i not in seconds]
         x[keep] = end[keep]
-        return np.vstack([x, before]), ok & fine
+        return np.vstack([x, before]), ok & fine, arrival.status == NEVER
 
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
@@ -744,7 +783,7 @@ class _Template:
         (:func:`~.mutants.given_mistakes`)."""
         if not changed:
             return np.zeros(0, dtype=bool), {}
-        _, ok, values, _ = self._instant(group, [c[0] for c in changed], False)
+        _, ok, values, _, _ = self._instant(group, [c[0] for c in changed], False)
         solved = ok.copy()
         for i in np.flatnonzero(~ok):  # what the stacked path does not vouch for: alone
             _, givens, changes = changed[i]
@@ -803,7 +842,8 @@ def _size(problem: Problem, oid: str) -> int:
     return 3 if problem.objective(oid).kind == "vector" else 1
 
 
-def _nullity(p: Plan, level, values: np.ndarray, active: np.ndarray, unknown: list) -> int:
+def _nullity(p: KinematicsPlan, level, values: np.ndarray, active: np.ndarray,
+             unknown: list) -> int:
     """How many directions of the linear ``level``'s unknowns its equations leave free at the
     reference's instant."""
     if not unknown:
@@ -863,13 +903,13 @@ def _switches(kp) -> _Switching | None:
         count=len(speeds))
 
 
-def _positions(p: Plan, given_map: dict) -> dict[str, int]:
+def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
     """Where each given of a coordinate, rate, parameter or ``t`` sits in the state."""
     return {key: p.index.symbols.index(p.k.quantity(node))
             for key, (node, _, _) in given_map.items() if isinstance(node, (Name, Prime))}
 
 
-def _integration_group(p: Plan, overrides: dict, objectives, numeric: frozenset,
+def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: frozenset,
                        given_map: dict, g) -> _Group:
     """An instant reached by integrating the motion: only the givens are placed (the start
     state and the motion come from them), and the state at the event has its coordinates,
@@ -896,20 +936,28 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     kproblem = problem
     analysis = problem.dynamics.analysis if problem.dynamics is not None else None
     if problem.dynamics is not None:
-        from .dynamics import kinematic_problem, kinetics_plan
+        from .dynamics import kinematic_problem, kinetics_plan, solve_dynamics
         kinetics = kinetics_plan(problem)
         kproblem = kinematic_problem(problem)
         p = kinetics.kp
     else:
-        p = plan(problem)
+        p = kinematics_plan(problem)
     if any(b.root is Root.FIRST_POSITIVE for b in problem.branches):
         return None
-    try:
-        reference = solve(problem)
-    except MechgradeError:
-        return None
-    if reference.failures or tuple(reference.warnings) != tuple(p.k.warnings):
-        return None
+    # An integrated motion's variants are reached from their own givens, each column
+    # screened: its reference need not be solved (a mistaken model's event may never happen
+    # for the spec's givens, as for every variant). Any other continues from the reference's
+    # root, which must be one the scalar solver finds without care.
+    integrated = isinstance(analysis, Integration) and problem.dynamics is not None \
+        and problem.dynamics.design is None
+    if not integrated:
+        try:
+            # the reference's answers only (a dynamics one's generated mistakes are not asked)
+            reference = solve(problem) if kinetics is None else solve_dynamics(problem)
+        except MechgradeError:
+            return None
+        if reference.failures or tuple(reference.warnings) != tuple(p.k.warnings):
+            return None
     groups = []
     for overrides, objectives in _instants(problem):
         given_map = instant_givens(problem, None, overrides)

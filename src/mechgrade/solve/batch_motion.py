@@ -38,7 +38,8 @@ EPS = np.finfo(float).eps
 
 FIRED, NEVER, FAILED = 1, 0, -1
 """How a column's integration ended: at its event, at the end of the time allowed without
-it, or without an answer this path vouches for (a step too small, too many evaluations, an
+it, or without an answer this path vouches for (a step too small, more evaluations of the
+right-hand side than allowed, counted as ``solve_ivp`` with its dense output counts them, an
 undefined value): that column is solved alone."""
 
 Field = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
@@ -124,6 +125,8 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
             continue
         k = np.flatnonzero(accepted)
         b = a[k]
+        # as solve_ivp counts them: it builds every accepted step's dense output
+        calls[b] += c.N_STAGES_EXTENDED - c.N_STAGES - 1
         history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k], ma[:, k])
         g_new = event(b, t_new[k], y_new[:, k], ma[:, k])
         g_old = g[b]
@@ -133,6 +136,9 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         if mode is not None:  # a switch anywhere but at the event: not answered here
             modes[:, b] = mode(b, t_new[k], y_new[:, k])
             undefined |= ~fired & (modes[:, b] != ma[:, k]).any(axis=0)
+        # solve_ivp would have stopped on an evaluation past the most allowed
+        undefined |= calls[b] > max_calls
+        fired &= ~undefined
         ended = ~fired & ~undefined & (t_new[k] >= t_bound)
         status[b[ended]] = NEVER
         status[b[fired]] = FIRED  # provisionally: until its event is located

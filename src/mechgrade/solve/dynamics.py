@@ -38,14 +38,14 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
-from .events import (at_the_event, energy_rate_symbolic, energy_state, integrate_to_event,
-                     integrated_symbolically)
+from .events import at_the_event, integrate_to_event, integrated_symbolically
+from .work_energy import energy_rate_symbolic, energy_state
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
 from . import rules
 from .levels import State, place_givens
 from .numeric import solve_numeric
-from .plan import Plan, plan
+from .plan import KinematicsPlan, kinematics_plan
 from .result import ObjectiveFailure, ObjectiveResult, Solution
 from .rules import satisfied
 
@@ -62,7 +62,7 @@ class KineticsPlan:
     mistakes and friction checks, each a function of ``state values + reactions``."""
 
     kin: Kinetics
-    kp: Plan
+    kp: KinematicsPlan
     symbols: tuple[sp.Symbol, ...]
     columns: tuple[int, ...]  # positions of the unknowns in the extended state
     residual: Callable
@@ -98,7 +98,7 @@ def kinetics_plan(problem: Problem) -> KineticsPlan:
 @lru_cache(maxsize=64)
 def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     kin = derive_kinetics(problem)
-    kp = plan(kinematic_problem(problem))
+    kp = kinematics_plan(kinematic_problem(problem))
     symbols = kp.index.symbols + kin.reactions
     level = 1 if kin.impact else 2
     columns = tuple(kp.index.rates(level)) + tuple(range(kp.index.size, len(symbols)))

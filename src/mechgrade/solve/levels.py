@@ -1,5 +1,6 @@
-"""Solving the instant level by level, as pure functions of a :class:`~.plan.Plan`, the givens
-placed in its state layout (:class:`Givens`) and the state solved so far (:class:`State`).
+"""Solving the instant level by level, as pure functions of a
+:class:`~.plan.KinematicsPlan`, the givens placed in its state layout (:class:`Givens`) and the
+state solved so far (:class:`State`).
 
 A level whose equations are linear in its unknowns (the velocity and acceleration constraints,
 givens that are components) is solved by least squares, with its nullspace (the combinations of
@@ -25,7 +26,7 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
-from .plan import Level, Plan
+from .plan import Level, KinematicsPlan
 from .rules import on_branch, satisfied
 
 DEFAULT_GUESS = 0.3
@@ -67,7 +68,7 @@ class State:
     free: frozenset[int] = frozenset()
 
 
-def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
+def place_givens(problem: Problem, p: KinematicsPlan, givens: Mapping) -> Givens:
     """``givens`` (canonical key -> (key node, SI value, Given or None)) in ``p``'s layout."""
     index = p.index
     values = np.full(index.size, np.nan)
@@ -102,7 +103,7 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
                   _scales(problem, p, values, known))
 
 
-def _scales(problem: Problem, p: Plan, values, known) -> np.ndarray:
+def _scales(problem: Problem, p: KinematicsPlan, values, known) -> np.ndarray:
     """A typical size for each position, from the givens of the same unit (angles: pi).
     ``values`` holds one state (size) or one per column (size x N): the sizes then are too."""
     return typical_sizes(problem, p, np.asarray(values, dtype=float)[:, None],
@@ -110,7 +111,7 @@ def _scales(problem: Problem, p: Plan, values, known) -> np.ndarray:
         typical_sizes(problem, p, values, known)
 
 
-def typical_sizes(problem: Problem, p: Plan, values: np.ndarray, known) -> np.ndarray:
+def typical_sizes(problem: Problem, p: KinematicsPlan, values: np.ndarray, known) -> np.ndarray:
     """:func:`_scales` of every column of ``values`` (size x N): the median of the nonzero
     givens of each unit, in each column."""
     index = p.index
@@ -163,7 +164,7 @@ def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     return active, target
 
 
-def missing_values(p: Plan, g: Givens, only: set[str]) -> list[int]:
+def missing_values(p: KinematicsPlan, g: Givens, only: set[str]) -> list[int]:
     """Parameters and ``t`` that have no value and may not be solved for, yet are needed by an
     equation or by an objective in ``only``."""
     missing = {i for i in range(p.index.size) if not g.known[i] and not g.solvable[i]}
@@ -195,7 +196,7 @@ class Roots:
     picked: bool
 
 
-def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Givens,
                     free_values: Mapping[int, float] | None = None,
                     start: np.ndarray | None = None) -> Roots:
     """Solve level ``order`` numerically for its unknowns.
@@ -327,7 +328,7 @@ def _satisfied(problem, level, x, active, target) -> bool:
     return bool(np.all(satisfied(r, scale, problem.consistency)))
 
 
-def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
+def _same(p: KinematicsPlan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
     """Whether two roots are the same configuration (angles compared modulo a turn), within
     a small part of the quantity's typical size: a double root is only found that well."""
     for i in positions:
@@ -356,7 +357,7 @@ def _branch_where(problem: Problem) -> Location:
     return problem.branches[0].where if problem.branches else Location()
 
 
-def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> str:
+def configurations(problem: Problem, p: KinematicsPlan, g: Givens, states, positions) -> str:
     """Roots listed by their solved quantities in the author's units."""
     units = author_units(problem, p, g)
     out = []
@@ -371,7 +372,7 @@ def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> s
     return "; ".join(out)
 
 
-def author_units(problem: Problem, p: Plan, g: Givens | None = None) -> list[str]:
+def author_units(problem: Problem, p: KinematicsPlan, g: Givens | None = None) -> list[str]:
     """The unit each position is reported in: that of its given or guess, else its own."""
     index = p.index
     declared = {c.name: c.unit for c in problem.coordinates}
@@ -422,7 +423,7 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
 # ---------------------------------------------------------------------------- linear
 
 
-def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Givens,
                  shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
     """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
     ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
@@ -478,7 +479,7 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
     return State(x, g.known, frozenset(free)), null
 
 
-def constraint_rank(p: Plan, state: State) -> int:
+def constraint_rank(p: KinematicsPlan, state: State) -> int:
     """Rank of the velocity-level constraints in the rates at the solved configuration."""
     level = p.levels[1]
     if not level.constraint_rows:

@@ -34,7 +34,7 @@ from ..units import dimension, from_si, si_factor, to_si
 from .columns import call
 from .levels import State
 from .numeric import solve_numeric
-from .plan import Mutant, Plan, lambdified_mutants, plan
+from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants
 from .result import GeneratedMistake, ObjectiveResult
 
 # sympy and the mechanics are imported by the functions that derive: a plan read from the disk
@@ -45,14 +45,14 @@ from .result import GeneratedMistake, ObjectiveResult
 _LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd": "ft"}
 
 
-def _lambdified(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
+def _lambdified(problem: Problem, p: KinematicsPlan, objective: str) -> tuple[Mutant, ...]:
     """The model mutations of a numeric objective, compiled with the plan or lambdified now."""
     if p.mutants is not None:
         return p.mutants.get(objective, ())
     return lambdified_mutants(problem, p, objective)
 
 
-def model_mistakes(problem: Problem, p: Plan, state: State,
+def model_mistakes(problem: Problem, p: KinematicsPlan, state: State,
                    wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
     """The model mutations of the objectives in ``wanted``, at ``state`` (those undefined
     there left out): :func:`model_mistake_table` at one instant."""
@@ -63,7 +63,7 @@ def model_mistakes(problem: Problem, p: Plan, state: State,
     return out
 
 
-def model_mistake_table(problem: Problem, p: Plan, states: np.ndarray, wanted) -> list:
+def model_mistake_table(problem: Problem, p: KinematicsPlan, states: np.ndarray, wanted) -> list:
     """The model mutations of the objectives in ``wanted`` at many instants at once
     (``states`` holds one state per column). One row per mutation: ``(mutation, objective,
     where it is defined (N), its values in the objective's unit (N x size), the dropped term's
@@ -99,7 +99,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
     from ..mechanics.symbols import identically_zero
     from .symbolic import symbolic
 
-    k = plan(problem).k
+    k = kinematics_plan(problem).k
     out: list[GeneratedMistake] = []
     kept = [right]
     for m in mutations(problem, obj.id):
@@ -118,7 +118,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
     return tuple(out)
 
 
-def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
+def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
                    wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}

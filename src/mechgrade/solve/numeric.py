@@ -20,7 +20,7 @@ from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
                      place_givens, rows, solve_linear, solve_nonlinear)
 from .columns import call
-from .plan import Plan
+from .plan import KinematicsPlan
 from .rules import satisfied
 
 PROBE_TOL = 1e-7
@@ -28,7 +28,7 @@ SINGULAR = 1e-3
 
 
 @dataclass(frozen=True)
-class Branch:
+class Candidate:
     """One complete solution of the levels: the state, the nullspaces of the linear rate
     levels, the unknowns the non-linear levels left free, and whether every choice of root on
     the way was the spec's."""
@@ -50,8 +50,8 @@ class Instant:
     warnings: tuple[AuthorWarning, ...]
 
 
-def _branches(problem: Problem, p: Plan, g: Givens, *, free_values=None,
-              shifts=(None, None), start=None) -> list[Branch]:
+def _branches(problem: Problem, p: KinematicsPlan, g: Givens, *, free_values=None,
+              shifts=(None, None), start=None) -> list[Candidate]:
     """Every complete solution: each root of each non-linear level followed to the end."""
     initial = State(g.values.copy(), g.known)
     out = []
@@ -60,7 +60,7 @@ def _branches(problem: Problem, p: Plan, g: Givens, *, free_values=None,
         for s1, n1, f1, k1 in _rate_level(problem, p, 1, s0, g, free_values, shifts[0], start):
             for s2, n2, f2, k2 in _rate_level(problem, p, 2, s1, g, free_values, shifts[1],
                                               start):
-                out.append(Branch(s2, (n1, n2), first.free + f1 + f2,
+                out.append(Candidate(s2, (n1, n2), first.free + f1 + f2,
                                   first.picked and k1 and k2))
     return out
 
@@ -73,7 +73,7 @@ def _rate_level(problem, p, order, state, g, free_values, shift, start):
     return [(s, None, roots.free, roots.picked) for s in roots.states]
 
 
-def solve_numeric(problem: Problem, p: Plan, givens: Mapping, only: set[str]) -> Instant:
+def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Instant:
     """Solve the instant and evaluate the numeric objectives in ``only``.
 
     Raises when the instant itself cannot be solved; an objective that depends on something
@@ -100,12 +100,13 @@ def solve_numeric(problem: Problem, p: Plan, givens: Mapping, only: set[str]) ->
     return Instant(base.state, values, errors, _degenerate(problem, p, base.state, solved))
 
 
-def _same_answers(p: Plan, a: Branch, b: Branch, only) -> bool:
+def _same_answers(p: KinematicsPlan, a: Candidate, b: Candidate, only) -> bool:
     va, vb = evaluate(p.objectives, a.state, only), evaluate(p.objectives, b.state, only)
     return all(_close(va[o], vb[o]) for o in va)
 
 
-def _ambiguous(problem: Problem, p: Plan, g: Givens, branches: list[Branch]) -> SolveError:
+def _ambiguous(problem: Problem, p: KinematicsPlan, g: Givens,
+               branches: list[Candidate]) -> SolveError:
     states = [b.state.values for b in branches]
     free = set().union(*(b.state.free for b in branches))
 
@@ -133,7 +134,7 @@ def _ambiguous(problem: Problem, p: Plan, g: Givens, branches: list[Branch]) -> 
         f"(e.g. branch: {{{example}}})", where=where)
 
 
-def _missing_error(problem: Problem, p: Plan, i: int) -> SolveError:
+def _missing_error(problem: Problem, p: KinematicsPlan, i: int) -> SolveError:
     name = p.index.spelling(i)
     where = next((q.where for q in problem.parameters if q.name == name), None)
     if where is None:  # t: point at the first equation that needs it
@@ -145,7 +146,7 @@ def _missing_error(problem: Problem, p: Plan, i: int) -> SolveError:
                       where=where)
 
 
-def _check_givens_hold(problem: Problem, p: Plan, g: Givens, givens: Mapping,
+def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
                        state: State) -> None:
     """Every constraint and expression given, at every level, holds in ``state``."""
     for level in p.levels:
@@ -173,7 +174,7 @@ def _check_givens_hold(problem: Problem, p: Plan, g: Givens, givens: Mapping,
                              where=level.wheres[i])
 
 
-def _undetermined(problem: Problem, p: Plan, g: Givens, base: Branch, values: Mapping,
+def _undetermined(problem: Problem, p: KinematicsPlan, g: Givens, base: Candidate, values: Mapping,
                   only: set[str]) -> dict[str, MechgradeError]:
     """Probe each freedom the givens leave: an objective that changes depends on it."""
     state = base.state
@@ -211,7 +212,7 @@ def _undetermined(problem: Problem, p: Plan, g: Givens, base: Branch, values: Ma
         for oid, missing in depends.items()}
 
 
-def _degenerate(problem: Problem, p: Plan, state: State,
+def _degenerate(problem: Problem, p: KinematicsPlan, state: State,
                 solved: list[int]) -> tuple[AuthorWarning, ...]:
     """Warnings for a degenerate configuration the position solve landed on
     (:func:`degenerate` at this one instant)."""
@@ -228,7 +229,7 @@ def _degenerate(problem: Problem, p: Plan, state: State,
     return tuple(out)
 
 
-def degenerate(p: Plan, X: np.ndarray, solved: list[int]
+def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
                ) -> tuple[list[tuple[int, int, np.ndarray]], np.ndarray]:
     """Where the states ``X`` (one per column) are degenerate configurations, the positions
     ``solved`` having been solved for: for each pair of points ``(a, b, columns)``, the
@@ -259,7 +260,7 @@ def degenerate(p: Plan, X: np.ndarray, solved: list[int]
     return pairs, singular
 
 
-def _weakest(p: Plan, X: np.ndarray) -> np.ndarray:
+def _weakest(p: KinematicsPlan, X: np.ndarray) -> np.ndarray:
     """The rank-th singular value of the position constraints' Jacobian in the coordinates
     (NaN where it is undefined), at every column."""
     level = p.levels[0]
@@ -274,7 +275,7 @@ def _weakest(p: Plan, X: np.ndarray) -> np.ndarray:
     return np.where(finite, weakest, np.nan)
 
 
-def _rate_names(p: Plan, unknown: list[int], direction: np.ndarray) -> str:
+def _rate_names(p: KinematicsPlan, unknown: list[int], direction: np.ndarray) -> str:
     names = [p.index.spelling(i) for i, w in zip(unknown, direction) if abs(w) > 1e-6]
     return " or ".join(names) if names else "a rate"
 
