@@ -127,20 +127,17 @@ def main() -> None:
     parser.add_argument("paths", nargs="*", type=Path)
     args = parser.parse_args()
     paths = args.paths or PATHS
+    before = json.loads(args.file.read_text()) if args.action == "compare" else {}
     now = {}
-    for path in paths:
-        now[str(path.relative_to(ROOT) if path.is_absolute() else path)] = dump(
-            path, args.variants, args.alone)
-        print(f"{path.name}", file=sys.stderr, flush=True)
-    if args.action == "record":
-        args.file.write_text(json.dumps(now, indent=1))
-        print(f"recorded {len(now)} problems in {args.file}")
-        return
-    before = json.loads(args.file.read_text())
     found = 0
-    for key, entry in now.items():
+    for path in paths:
+        key = str(path.relative_to(ROOT) if path.is_absolute() else path)
+        now[key] = entry = dump(path, args.variants, args.alone)
+        if args.action == "record":
+            print(key, file=sys.stderr, flush=True)
+            continue
         if key not in before:
-            print(f"{key}: not recorded")
+            print(f"{key}: not recorded", flush=True)
             continue
         diffs = differences(before[key], json.loads(json.dumps(entry)), args.rel, key)
         found += len(diffs)
@@ -148,6 +145,11 @@ def main() -> None:
             print(d)
         if len(diffs) > 10:
             print(f"{key}: ... {len(diffs) - 10} more")
+        print(f"{key}: {len(diffs)} differences", flush=True)
+    if args.action == "record":
+        args.file.write_text(json.dumps(now, indent=1))
+        print(f"recorded {len(now)} problems in {args.file}")
+        return
     print(f"{len(now)} problems compared, {found} differences")
     sys.exit(1 if found else 0)
 

@@ -299,9 +299,10 @@ def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
 
 
 def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
-    """``given_map`` with the design parameter solved (secant iterations on the whole
-    instant) so that the design equation holds."""
-    from scipy import optimize
+    """``given_map`` with the design parameter solved so that the design equation holds:
+    Newton's method on the whole instant from the guess (:func:`~.batch_motion.newton`, as
+    the variants of a class are solved), else a bracketing search around it."""
+    from .batch_motion import newton
 
     design = dynamics_of(problem).design
     equation = kp.design
@@ -322,16 +323,20 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
         return float(_call(equation, x)[0])
 
     guess = design.guess
-    with warnings.catch_warnings():  # a secant that wanders off is bracketed below instead
+    with warnings.catch_warnings():  # an iteration that wanders off is bracketed instead
         warnings.simplefilter("ignore", RuntimeWarning)
-        result = optimize.root_scalar(residual, x0=guess, x1=guess * (1 + 1e-3) + 1e-12,
-                                      method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
-    if not result.converged or not np.isfinite(result.root):
-        result = _bracketed(residual, guess) or result
+        roots, converged = newton(
+            lambda _, values: np.vectorize(residual, otypes=[float])(values),
+            np.array([guess]), 1e-15, 1e-13, 100)
+    if converged[0] and np.isfinite(roots[0]):
+        return with_value(roots[0])
+    result = _bracketed(residual, guess)
     left, right = design.so_that
-    if not result.converged or not np.isfinite(result.root):
+    if result is None or not result.converged or not np.isfinite(result.root):
         raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
-                         f"{left.text} = {right.text} ({result.flag})", where=design.where)
+                         f"{left.text} = {right.text} (Newton's method from it does not "
+                         "converge, and no sign change is found within 64 times it)",
+                         where=design.where)
     return with_value(result.root)
 
 
