@@ -47,7 +47,7 @@ from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
 from .result import ObjectiveFailure, ObjectiveResult, Solution
-from .rules import satisfied
+from .rules import first_off
 
 
 def kinematic_problem(problem: Problem) -> Problem:
@@ -172,9 +172,8 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
         x[kp.columns[j]] = value
     r = _call(kp.residual, x)
     size = np.abs(_call(kp.scale, x))
-    off = np.flatnonzero(~satisfied(r, size, problem.consistency))
-    if len(off):
-        i = off[0]
+    i = first_off(r, size, problem.consistency)
+    if i is not None:
         raise InconsistentError(
             f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
             f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "

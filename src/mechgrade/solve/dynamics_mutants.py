@@ -285,15 +285,8 @@ def given_mistakes(problem: Problem, givens, numeric: set[str]
     """The numeric objectives solved again with each given mistaken in one way (the slips of
     :func:`mechgrade.solve.mutants.given_mistakes`), anchored to the worked solution's
     parameters or coordinates."""
-    given_map = instant_givens(problem, givens, {})
-    parameters = {q.name for q in problem.parameters}
     out: dict[str, list[GeneratedMistake]] = {}
-    for code, changes, sentence in slips_of(given_map, parameters):
-        node = given_map[changes[0][0]][0]
-        step = "Parameters" if isinstance(node, Name) and node.id in parameters \
-            else "Coordinates"
-        changed = dict(givens or {})
-        changed.update(dict(changes))
+    for code, sentence, step, changed in _slips(problem, givens):
         try:
             solved = solve_dynamics(problem, givens=changed, objectives=numeric)
         except _UNSOLVABLE:
@@ -303,6 +296,21 @@ def given_mistakes(problem: Problem, givens, numeric: set[str]
                 out.setdefault(result.id, []).append(GeneratedMistake(
                     code, sentence, result.value, step=step))
     return out
+
+
+def _slips(problem: Problem, givens):
+    """``(code, sentence, step, the givens misread)`` for each typical misreading of the
+    givens (:func:`~mechgrade.solve.mutants.slips_of`), ``step`` the section of the worked
+    solution it is anchored to (its parameters or coordinates)."""
+    given_map = instant_givens(problem, givens, {})
+    parameters = {q.name for q in problem.parameters}
+    for code, changes, sentence in slips_of(given_map, parameters):
+        node = given_map[changes[0][0]][0]
+        step = "Parameters" if isinstance(node, Name) and node.id in parameters \
+            else "Coordinates"
+        changed = dict(givens or {})
+        changed.update(dict(changes))
+        yield code, sentence, step, changed
 
 
 def kinematic_mistakes(problem: Problem, state: tuple[StateValue, ...], numeric: set[str]
@@ -468,19 +476,8 @@ def _class_given_mistakes(problem: Problem, givens: list[dict], numeric: list[se
                           ) -> list[dict]:
     """:func:`given_mistakes` of every variant: every variant's misread givens solved
     together."""
-    parameters = {q.name for q in problem.parameters}
-    slips = []  # (variant, code, sentence, step, the misread givens)
-    for k, overrides in enumerate(givens):
-        if not numeric[k]:
-            continue
-        given_map = instant_givens(problem, overrides, {})
-        for code, changes, sentence in slips_of(given_map, parameters):
-            node = given_map[changes[0][0]][0]
-            step = "Parameters" if isinstance(node, Name) and node.id in parameters \
-                else "Coordinates"
-            changed = dict(overrides or {})
-            changed.update(dict(changes))
-            slips.append((k, code, sentence, step, changed))
+    slips = [(k, *slip) for k, overrides in enumerate(givens) if numeric[k]
+             for slip in _slips(problem, overrides)]  # (variant, code, sentence, step, givens)
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
     if not slips:
         return out

@@ -27,7 +27,7 @@ from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
 from .plan import Level, KinematicsPlan
-from .rules import on_branch, satisfied
+from .rules import first_off, on_branch, satisfied
 
 DEFAULT_GUESS = 0.3
 JOINT_SPREADS = (0.5, 2.0, 8.0)
@@ -469,9 +469,8 @@ def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, 
             r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
             scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
         labels = np.array(level.labels)[active]
-        off = np.flatnonzero(~satisfied(r, scale, problem.consistency))
-        if len(off):
-            i = off[0]
+        i = first_off(r, scale, problem.consistency)
+        if i is not None:
             raise InconsistentError(
                 f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
                 f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
@@ -488,7 +487,7 @@ def constraint_rank(p: KinematicsPlan, state: State) -> int:
         A = np.asarray(level.jacobian(*state.values), dtype=float).reshape(len(level.labels),
                                                                            p.index.n)
     A = A[:level.constraint_rows]
-    return int(np.linalg.matrix_rank(A)) if np.isfinite(A).all() else 0
+    return int(rules.rank(np.linalg.svd(A, compute_uv=False))) if np.isfinite(A).all() else 0
 
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:

@@ -26,6 +26,7 @@ from ..expressions.syntax import Name, Prime
 from ..spec.model import ObjectiveKind, Problem
 from . import cache
 from .index import SymbolIndex
+from .rules import rank
 
 if TYPE_CHECKING:
     from ..mechanics import Kinematics
@@ -296,7 +297,9 @@ def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     point = {s: float(rng.uniform(0.4, 1.6)) for s in index.symbols}
     with np.errstate(all="ignore"):
         value = np.array(jac.xreplace(point).evalf(), dtype=complex)
-    return int(np.linalg.matrix_rank(value)) if np.isfinite(value).all() else len(k.q)
+    if not np.isfinite(value).all():
+        return len(k.q)
+    return int(rank(np.linalg.svd(value, compute_uv=False)))
 
 
 def generic_dof(k: Kinematics) -> int:

@@ -34,6 +34,12 @@ def satisfied(residual, scale, consistency: float) -> np.ndarray:
         return np.abs(residual) <= consistency * np.abs(scale) + RESIDUAL_FLOOR
 
 
+def first_off(residual, scale, consistency: float) -> int | None:
+    """The first equation that does not hold (:func:`satisfied`), or ``None``."""
+    off = np.flatnonzero(~satisfied(residual, scale, consistency))
+    return int(off[0]) if len(off) else None
+
+
 def significant(magnitudes) -> np.ndarray:
     """Which of the singular values (or pivots) along the last axis count for the rank."""
     m = np.abs(np.asarray(magnitudes, dtype=float))
