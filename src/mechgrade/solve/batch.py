@@ -337,7 +337,7 @@ class _Template:
         if self.design is not None:
             X, ok = self._designed(group, X, targets, degenerate)
         elif isinstance(self.analysis, Integration):
-            X, ok, never = self._integrated(group, X)
+            X, ok, never = self.integrated(X)
         else:
             X, ok = self._reached(group, X, targets, degenerate)
         X, before = self._at_event(X)
@@ -372,7 +372,7 @@ class _Template:
         """The instants (each column of ``X`` the givens placed, the state extended by the
         reactions for a dynamics problem) and which passed the screens."""
         if isinstance(self.analysis, Integration):
-            X, ok, _ = self._integrated(group, X)
+            X, ok, _ = self.integrated(X)
             return X, ok
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
@@ -491,8 +491,7 @@ class _Template:
                 fine &= ~(np.abs(call(fn, x, 1)[0]) > 1e-8 * size)
         return fine
 
-    def _integrated(self, group: _Group, X: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def integrated(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every column's motion integrated from its start state to its event (together:
         :func:`~.batch_motion.integrate_to_events`, the steps
         :func:`~.events.integrate_to_event` takes for each alone): the extended state at
@@ -559,7 +558,7 @@ class _Template:
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
         x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
-                                 group.after)
+                                 _after_event(self.p))
         before = x.copy()
         keep = [i for i in range(size) if i not in seconds]
         x[keep] = end[keep]
@@ -568,7 +567,7 @@ class _Template:
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
         read from, and for an integration the states just before the event stacked under
-        them by :meth:`_integrated` (else ``None``)."""
+        them by :meth:`integrated` (else ``None``)."""
         if not isinstance(self.analysis, Integration):
             return X, None
         half = X.shape[0] // 2
@@ -909,18 +908,51 @@ def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
             for key, (node, _, _) in given_map.items() if isinstance(node, (Name, Prime))}
 
 
+def _after_event(p: KinematicsPlan) -> np.ndarray:
+    """What the state at an integration's event has known: its coordinates, rates, parameters
+    and time (as :func:`~.events.integrate_to_event` marks them)."""
+    after = np.zeros(p.index.size, dtype=bool)
+    after[list(p.index.config)] = True
+    after[list(p.index.rates(1))] = True
+    return after
+
+
+@lru_cache(maxsize=64)
+def _integrator(problem: Problem, _locations: tuple) -> _Template:
+    """What integrates the motion of ``problem`` over columns (no reference solved: an
+    integration starts from each column's own givens)."""
+    from .dynamics import kinematic_problem, kinetics_plan
+
+    kinetics = kinetics_plan(problem)
+    return _Template(problem, kinematic_problem(problem), kinetics.kp, kinetics, ())
+
+
+def integrated_alone(problem: Problem, values: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """One instant of an integrated motion (``values``: its givens placed in the state) by the
+    integrator over columns, as a class's variants are integrated: the extended state at the
+    event (the accelerations and reactions their limits just before it) and just before it;
+    ``None`` where that integrator does not vouch for it (the scalar one then says why).
+    Raises when the event never happens."""
+    template = _integrator(problem, locations(problem))
+    if not isinstance(template.analysis, Integration):
+        return None
+    X, ok, never = template.integrated(values[:, None].copy())
+    if never[0]:
+        raise event_never_happens(template.analysis)
+    if not ok[0]:
+        return None
+    half = X.shape[0] // 2  # the states at the event, and those just before it under them
+    return X[:half, 0], X[half:, 0]
+
+
 def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: frozenset,
                        given_map: dict, g) -> _Group:
     """An instant reached by integrating the motion: only the givens are placed (the start
     state and the motion come from them), and the state at the event has its coordinates,
     rates, parameters and time known (as :func:`~.events.integrate_to_event` marks them)."""
-    index = p.index
-    after = np.zeros(index.size, dtype=bool)
-    after[list(index.config)] = True
-    after[list(index.rates(1))] = True
     return _Group(overrides, tuple(objectives), numeric, given_map, g.values.copy(),
                   g.known.copy(), ((), (), ()), (), (), {}, (), frozenset(),
-                  _positions(p, given_map), (0, 0, 0), after, frozenset())
+                  _positions(p, given_map), (0, 0, 0), _after_event(p), frozenset())
 
 
 def _template(problem: Problem) -> _Template | None:

@@ -372,10 +372,21 @@ def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: d
     state just before its event (:func:`~.events.at_the_event`), else ``None``."""
     analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
+        from .batch import integrated_alone
+
         g = place_givens(kproblem, kp.kp, given_map)
+        size = kp.kp.index.size
+        reached = integrated_alone(problem, g.values)
+        if reached is not None:  # as the variants of a class are integrated
+            x, before = reached
+            known = np.zeros(size, dtype=bool)
+            known[list(kp.kp.index.config)] = True
+            known[list(kp.kp.index.rates(1))] = True
+            return State(x[:size].copy(), known, frozenset()), x, (), before
+        # what the integrator over columns does not vouch for: each step alone, which says
+        # why it fails where it does
         state, before = integrate_to_event(problem, kp, g.values,
                                            lambda values: accelerations(kp, values))
-        size = kp.kp.index.size
         # the contact checks hold along the way: judge them just before the event
         solve_kinetics(problem, kp, State(before[:size], state.given))
         x = before.copy()
