@@ -46,19 +46,20 @@ from ..mechanics.kinematics import locations
 from ..spec.dynamics import Integration, WorkEnergy
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
-from .batch_motion import FIRED, NEVER, integrate_to_events, newton
+from .batch_motion import newton
 from .entry import solve
 from .analysis import analysis_plan
-from .events import ATOL, MAX_CALLS, RTOL, at_the_event, event_never_happens
+from .events import at_the_event, event_never_happens
 from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
-from .columns import call, least_squares, least_squares_solution, loud_call
+from .columns import call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of)
 from .numeric import PROBE_TOL, degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
+from .motion import Motion, after_event
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
@@ -126,7 +127,7 @@ def _solved_together(problem: Problem, given: list[dict],
             together = [i for i in chosen if isinstance(found[i], Solution)]
             solved = [s for s in found if isinstance(s, Solution)]
             for i, solution in zip(together, with_class_mistakes(
-                    problem, solved, [given[i] for i in together])):
+                    problem, solved, [given[i] for i in together], answers_together)):
                 found[i] = solution
     alone = solve
     if not mistakes:
@@ -182,7 +183,13 @@ class _Template:
         self.plausible = plausible_slips(problem)
         dynamics = problem.dynamics
         self.analysis = dynamics.analysis if dynamics is not None else None
+        # the motion over columns (a problem without bodies and loads has none)
+        self.motion = Motion(problem, kinetics) if kinetics is not None else None
         self.design = dynamics.design if dynamics is not None else None
+
+    def _motion(self) -> Motion:
+        assert self.motion is not None, "a problem with bodies and loads"
+        return self.motion
 
     def covers(self, givens: dict) -> bool:
         """Whether ``givens`` only change values the reference has (no new given, none
@@ -337,7 +344,7 @@ class _Template:
         if self.design is not None:
             X, ok = self._designed(group, X, targets, degenerate)
         elif isinstance(self.analysis, Integration):
-            X, ok, never = self.integrated(X)
+            X, ok, never = self._motion().integrated(X)
         else:
             X, ok = self._reached(group, X, targets, degenerate)
         X, before = self._at_event(X)
@@ -372,7 +379,7 @@ class _Template:
         """The instants (each column of ``X`` the givens placed, the state extended by the
         reactions for a dynamics problem) and which passed the screens."""
         if isinstance(self.analysis, Integration):
-            X, ok, _ = self.integrated(X)
+            X, ok, _ = self._motion().integrated(X)
             return X, ok
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
@@ -387,7 +394,7 @@ class _Template:
             return X, ok
         if isinstance(self.analysis, WorkEnergy):
             ok &= self._energy(X, ok)
-        X, fine = self._kinetics(X, group.after)
+        X, fine = self._motion().screened(X, group.after)
         return X, ok & fine
 
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
@@ -491,79 +498,6 @@ class _Template:
                 fine &= ~(np.abs(call(fn, x, 1)[0]) > 1e-8 * size)
         return fine
 
-    def integrated(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Every column's motion integrated from its start state to its event (together:
-        :func:`~.batch_motion.integrate_to_events`, the steps
-        :func:`~.events.integrate_to_event` takes for each alone): the extended state at
-        the event, the accelerations and reactions the limits just before it, with the
-        extended states just before the event stacked under them (:meth:`_at_event`); which
-        columns passed the screens, and which ended without their event
-        (:data:`~.batch_motion.NEVER`)."""
-        kp = self.kinetics
-        assert kp is not None and isinstance(self.analysis, Integration)
-        ap = analysis_plan(kp)
-        index = self.p.index
-        n, size, count = index.n, index.size, X.shape[1]
-        rates, seconds = index.rates(1), index.rates(2)
-        # slices: the right-hand side is evaluated thousands of times
-        qd, qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
-        kinetic = size + len(kp.kin.reactions)
-        extended = np.concatenate([X, np.zeros((kinetic - size, count))])
-        values = X.copy()
-        for i, fn in ap.start:
-            values[i] = call(fn, extended, 1)[0]
-        values[index.time] = 0.0
-        values[qdd] = 0.0
-        switches = _switches(kp)
-        # every column's extended state (second rates and reactions 0, as the unknowns of
-        # the balances), then its modes
-        full = np.zeros((kinetic + (switches.count if switches else 0), count))
-        full[:size] = values
-
-        def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-               modes: np.ndarray | None = None) -> np.ndarray:
-            # a copy (every column: cols is sorted, so all of them is all in order)
-            x = full.copy() if len(cols) == count else full[:, cols]
-            x[:n] = y[:n]
-            x[qd] = y[n:]
-            x[index.time] = t
-            if modes is not None and switches is not None:
-                x[kinetic:] = modes
-            return x
-
-        def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-                modes: np.ndarray) -> np.ndarray:
-            return np.concatenate([y[n:], self._accelerations(at(cols, t, y, modes),
-                                                              switches)[qdd]])
-
-        def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-                  modes: np.ndarray) -> np.ndarray:
-            x = at(cols, t, y, modes)
-            if ap.until_kinetic:
-                x = self._accelerations(x, switches)
-            assert ap.until is not None  # an integration has its event
-            return loud_call(ap.until, x[:kinetic], 1)[0]
-
-        def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
-            assert switches is not None
-            x = at(cols, t, y)[:kinetic]
-            return np.sign(loud_call(switches.speeds, x, switches.count))
-
-        y0 = np.concatenate([values[:n], values[qd]])
-        with np.errstate(all="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
-                                          MAX_CALLS, mode=mode if switches else None)
-        ok = arrival.status == FIRED
-        everyone = np.arange(count)
-        end = at(everyone, arrival.t, arrival.y)
-        x, fine = self._kinetics(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
-                                 _after_event(self.p))
-        before = x.copy()
-        keep = [i for i in range(size) if i not in seconds]
-        x[keep] = end[keep]
-        return np.vstack([x, before]), ok & fine, arrival.status == NEVER
-
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
         read from, and for an integration the states just before the event stacked under
@@ -572,31 +506,6 @@ class _Template:
             return X, None
         half = X.shape[0] // 2
         return X[:half], X[half:]
-
-    def _accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
-        """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's
-        direction) with every second rate and reaction solved by least squares (as
-        :func:`~.dynamics.accelerations`), in place; NaN where the equations are undefined.
-        Called with numpy's warnings silenced."""
-        kp = self.kinetics
-        assert kp is not None
-        count = x.shape[1]
-        cols = list(kp.columns)
-        rows_ = len(kp.labels)
-        if switches is not None:
-            jacobian, residual, args = switches.jacobian, switches.residual, x
-        else:
-            jacobian, residual = kp.jacobian, kp.residual
-            args = x[:len(kp.symbols)]
-        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
-        b = loud_call(residual, args, rows_)
-        if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
-            x[cols] = least_squares_solution(A, -b)
-            return x
-        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
-        x[:, ~good] = np.nan
-        return x
 
     def _levels(self, group: _Group, X: np.ndarray, targets, first: int,
                 ok: np.ndarray) -> dict[int, np.ndarray | None]:
@@ -699,46 +608,6 @@ class _Template:
         for _, _, flagged in pairs:
             singular = singular | flagged
         return singular
-
-    def _kinetics(self, X: np.ndarray, known: np.ndarray):
-        """The extended states (second rates and reactions solved from the momentum
-        balances), and which passed the checks of :func:`~.dynamics.solve_kinetics`."""
-        kp = self.kinetics
-        n = X.shape[1]
-        x = np.concatenate([X, np.zeros((len(kp.kin.reactions), n))])
-        known = np.concatenate([known, np.zeros(len(kp.kin.reactions), bool)])
-        cols = [j for j, i in enumerate(kp.columns) if not known[i]]
-        for j in cols:
-            x[kp.columns[j]] = 0.0
-        ok = np.ones(n, dtype=bool)
-        for _, speed, _ in kp.slips:
-            ok &= call(speed, x, 1)[0] > 1e-12
-        rows_ = len(kp.labels)
-        A = call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)
-        A = A[:, cols]
-        b = call(kp.residual, x, rows_)
-        ok &= np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
-        U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
-        ok &= rules.rank(s) == len(cols)
-        with np.errstate(all="ignore"):
-            inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
-            coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
-            sol = np.einsum("nkj,nk->jn", Vt, coeff)
-        for j, value in zip(cols, sol):
-            x[kp.columns[j]] = value
-        r = call(kp.residual, x, rows_)
-        scale = np.abs(call(kp.scale, x, rows_))
-        with np.errstate(invalid="ignore"):
-            ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
-            for _, _, normal in kp.slips:
-                ok &= ~(call(normal, x, 1)[0] < -1e-9)
-            for _, tangential, normal, mu in kp.bounds:
-                f = np.linalg.norm(call(tangential, x, 3), axis=0)
-                nn = call(normal, x, 1)[0]
-                m = call(mu, x, 1)[0]
-                ok &= ~(nn < -1e-9) & ~(f > m * nn * (1 + 1e-9) + 1e-12)
-        return x, ok
 
     # -- generated mistakes
 
@@ -857,92 +726,10 @@ def _nullity(p: KinematicsPlan, level, values: np.ndarray, active: np.ndarray,
     return len(unknown) - int(rank[0])
 
 
-@dataclass(frozen=True)
-class _Switching:
-    """The kinetics with each ``|u|`` and ``sign(u)`` read with a direction given beside the
-    state (one per ``u``, the *mode*: ``|u|`` as ``mode * u``): the equations of the motion
-    before a slip ends, continued smoothly past it. ``speeds`` gives every ``u``."""
-
-    speeds: Callable
-    residual: Callable
-    jacobian: Callable
-    count: int
-
-
-@lru_cache(maxsize=64)
-def _switches(kp) -> _Switching | None:
-    """The kinetics of ``kp`` with their switches read as :class:`_Switching` says; ``None``
-    when nothing switches."""
-    import sympy as sp
-
-    exprs = [e.expr for e in (*kp.kin.balances, *kp.kin.constraints)]
-    speeds: list = []
-    for e in exprs:
-        for node in sp.preorder_traversal(e):
-            if isinstance(node, (sp.Abs, sp.sign)) and node.args[0] not in speeds:
-                speeds.append(node.args[0])
-    if not speeds:
-        return None
-    modes = sp.symbols(f"_mode0:{len(speeds)}")
-    table = dict(zip(speeds, modes))
-
-    def kept(e):
-        e = e.replace(lambda a: isinstance(a, sp.Abs) and a.args[0] in table,
-                      lambda a: table[a.args[0]] * a.args[0])
-        return e.replace(lambda a: isinstance(a, sp.sign) and a.args[0] in table,
-                         lambda a: table[a.args[0]])
-
-    matrix = sp.Matrix([kept(e) for e in exprs])
-    unknowns = [kp.symbols[i] for i in kp.columns]
-    symbols = (*kp.symbols, *modes)
-    return _Switching(
-        speeds=sp.lambdify(kp.symbols, speeds, modules="numpy", cse=True),
-        residual=sp.lambdify(symbols, matrix, modules="numpy", cse=True),
-        jacobian=sp.lambdify(symbols, matrix.jacobian(unknowns), modules="numpy", cse=True),
-        count=len(speeds))
-
-
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
     """Where each given of a coordinate, rate, parameter or ``t`` sits in the state."""
     return {key: p.index.symbols.index(p.k.quantity(node))
             for key, (node, _, _) in given_map.items() if isinstance(node, (Name, Prime))}
-
-
-def _after_event(p: KinematicsPlan) -> np.ndarray:
-    """What the state at an integration's event has known: its coordinates, rates, parameters
-    and time (as :func:`~.events.integrate_to_event` marks them)."""
-    after = np.zeros(p.index.size, dtype=bool)
-    after[list(p.index.config)] = True
-    after[list(p.index.rates(1))] = True
-    return after
-
-
-@lru_cache(maxsize=64)
-def _integrator(problem: Problem, _locations: tuple) -> _Template:
-    """What integrates the motion of ``problem`` over columns (no reference solved: an
-    integration starts from each column's own givens)."""
-    from .dynamics import kinematic_problem, kinetics_plan
-
-    kinetics = kinetics_plan(problem)
-    return _Template(problem, kinematic_problem(problem), kinetics.kp, kinetics, ())
-
-
-def integrated_alone(problem: Problem, values: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """One instant of an integrated motion (``values``: its givens placed in the state) by the
-    integrator over columns, as a class's variants are integrated: the extended state at the
-    event (the accelerations and reactions their limits just before it) and just before it;
-    ``None`` where that integrator does not vouch for it (the scalar one then says why).
-    Raises when the event never happens."""
-    template = _integrator(problem, locations(problem))
-    if not isinstance(template.analysis, Integration):
-        return None
-    X, ok, never = template.integrated(values[:, None].copy())
-    if never[0]:
-        raise event_never_happens(template.analysis)
-    if not ok[0]:
-        return None
-    half = X.shape[0] // 2  # the states at the event, and those just before it under them
-    return X[:half, 0], X[half:, 0]
 
 
 def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: frozenset,
@@ -952,7 +739,7 @@ def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: 
     rates, parameters and time known (as :func:`~.events.integrate_to_event` marks them)."""
     return _Group(overrides, tuple(objectives), numeric, given_map, g.values.copy(),
                   g.known.copy(), ((), (), ()), (), (), {}, (), frozenset(),
-                  _positions(p, given_map), (0, 0, 0), _after_event(p), frozenset())
+                  _positions(p, given_map), (0, 0, 0), after_event(p), frozenset())
 
 
 def _template(problem: Problem) -> _Template | None:

@@ -39,6 +39,7 @@ from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from .events import at_the_event, integrate_to_event, integrated_symbolically
+from .motion import integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
@@ -372,11 +373,9 @@ def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: d
     state just before its event (:func:`~.events.at_the_event`), else ``None``."""
     analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
-        from .batch import integrated_alone
-
         g = place_givens(kproblem, kp.kp, given_map)
         size = kp.kp.index.size
-        reached = integrated_alone(problem, g.values)
+        reached = integrated_alone(problem, kp, g.values)
         if reached is not None:  # as the variants of a class are integrated
             x, before = reached
             known = np.zeros(size, dtype=bool)

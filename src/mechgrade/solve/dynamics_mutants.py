@@ -29,7 +29,7 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import replace
 from functools import lru_cache
-from typing import Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -155,7 +155,7 @@ def _symbolic_kept(mutations: tuple[DynamicsMutation, ...], results: tuple,
     return {oid: tuple(found) for oid, found in out.items()}
 
 
-def _class_symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens: list[dict],
+def _class_symbolic_mistakes(together: Callable, mutations: tuple[DynamicsMutation, ...], givens: list[dict],
                              results: list[tuple]) -> list[dict]:
     """:func:`_symbolic_mistakes` of every variant: each mistaken model's symbolic answers
     solved for all of them at once."""
@@ -166,7 +166,8 @@ def _class_symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens: li
         mistaken = m.problem
         if mistaken is None or not ids & {o.id for o in mistaken.objectives}:
             continue
-        solved = _answers(mistaken, givens, ids & {o.id for o in mistaken.objectives})
+        asked = ids & {o.id for o in mistaken.objectives}
+        solved = _answers(together, mistaken, givens, asked)
         for k, solution in enumerate(solved):
             mine = {r.id for r in symbolic[k]}
             if solution is not None and mine & {o.id for o in mistaken.objectives}:
@@ -338,14 +339,17 @@ def kinematic_mistakes(problem: Problem, state: tuple[StateValue, ...], numeric:
 
 
 def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
-                        givens: Sequence[Mapping[str, float | None]]) -> list[Solution]:
+                        givens: Sequence[Mapping[str, float | None]],
+                        together: Callable) -> list[Solution]:
     """:func:`with_generated_mistakes` for each of ``solutions`` (the variant ``givens`` of
     ``problem``, solved together): the mistakes of all of them are worked out together, when
-    one is first looked at, each mistaken model solved for every variant at once
-    (:func:`~mechgrade.solve.batch.answers_together`)."""
+    one is first looked at, each mistaken model solved for every variant at once by
+    ``together(problem, givens, objectives)`` (:func:`~mechgrade.solve.batch.answers_together`:
+    a list of solutions or errors)."""
     plausible = plausible_slips(problem)
     pending = _ClassPending(problem, [dict(g or {}) for g in givens],
-                            [s.results for s in solutions], [s.state for s in solutions])
+                            [s.results for s in solutions], [s.state for s in solutions],
+                            together)
     return [replace(solution, results=tuple(
         ObjectiveResult(**{**vars(r), "plausible": plausible,
                            "generated_mistakes": LazyMistakes(_Member(pending, k), r.id)})
@@ -356,13 +360,15 @@ class _ClassPending:
     """The generated mistakes of a class of variants, worked out once when first asked for."""
 
     def __init__(self, problem: Problem, givens: list[dict], results: list[tuple],
-                 states: list[tuple[StateValue, ...]]):
+                 states: list[tuple[StateValue, ...]], together: Callable):
         self.problem, self.givens, self.results, self.states = problem, givens, results, states
+        self.together = together
         self.found: list[dict] | None = None
 
     def get(self, k: int) -> dict:
         if self.found is None:
-            self.found = _generated_class(self.problem, self.givens, self.results, self.states)
+            self.found = _generated_class(self.problem, self.givens, self.results, self.states,
+                                          self.together)
         return self.found[k]
 
 
@@ -377,7 +383,7 @@ class _Member:
 
 
 def _generated_class(problem: Problem, givens: list[dict], results: list[tuple],
-                     states: list[tuple[StateValue, ...]]) -> list[dict]:
+                     states: list[tuple[StateValue, ...]], together: Callable) -> list[dict]:
     """:func:`_generated` of every variant, each source of mistakes solved for all of them at
     once."""
     numeric = [{r.id: r for r in rs if r.value is not None} for rs in results]
@@ -385,10 +391,10 @@ def _generated_class(problem: Problem, givens: list[dict], results: list[tuple],
     mutations = dynamics_mutations(problem)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        models = _class_model_mistakes(problem, mutations, givens, asked)
-        slips = _class_given_mistakes(problem, givens, asked)
+        models = _class_model_mistakes(together, problem, mutations, givens, asked)
+        slips = _class_given_mistakes(together, problem, givens, asked)
         readings = _class_kinematic_mistakes(problem, states, asked)
-        symbolic = _class_symbolic_mistakes(mutations, givens, results)
+        symbolic = _class_symbolic_mistakes(together, mutations, givens, results)
     out = []
     for k, rs in enumerate(results):
         found = [models[k], slips[k], readings[k]] if numeric[k] else []
@@ -411,16 +417,15 @@ def _derivable(problem: Problem) -> bool:
     return True
 
 
-def _answers(problem: Problem, givens: list[dict], objectives: set[str]) -> list:
+def _answers(together: Callable, problem: Problem, givens: list[dict],
+             objectives: set[str]) -> list:
     """Each variant's solution of ``problem`` (or ``None`` where it has none), solved together
     (:func:`~mechgrade.solve.batch.answers_together`), else one by one where that fails."""
-    from .batch import answers_together
-
     if not _derivable(problem):
         return [None] * len(givens)
     outcomes: list = []
     try:
-        outcomes = answers_together(problem, givens, objectives)
+        outcomes = together(problem, givens, objectives)
     except _UNSOLVABLE:
         outcomes = []
         for g in givens:
@@ -431,20 +436,20 @@ def _answers(problem: Problem, givens: list[dict], objectives: set[str]) -> list
     return [o if isinstance(o, Solution) else None for o in outcomes]
 
 
-def _class_model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...],
+def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple[DynamicsMutation, ...],
                           givens: list[dict], numeric: list[set[str]]) -> list[dict]:
     """:func:`_model_mistakes` of every variant: each mistaken model solved for all of them
     at once, the mistaken readings read in the right model for all of them at once."""
     union = set().union(*numeric)
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
-    readings, terms = _class_read(problem, mutations, givens, union)
+    readings, terms = _class_read(together, problem, mutations, givens, union)
     for i, m in enumerate(mutations):
         solved = None
         if m.problem is not None:
             ids = union & {o.id for o in m.problem.objectives}
             if not ids:
                 continue
-            solved = _answers(m.problem, givens, ids)
+            solved = _answers(together, m.problem, givens, ids)
         for k in range(len(givens)):
             sentence = m.sentence.replace("{term}", terms[k][i]) if i in terms[k] else \
                 m.sentence.replace(" = {term}", "")
@@ -462,17 +467,17 @@ def _class_model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, .
     return out
 
 
-def _class_read(problem: Problem, mutations, givens: list[dict], numeric: set[str]):
+def _class_read(together: Callable, problem: Problem, mutations, givens: list[dict], numeric: set[str]):
     """:func:`_read` of every variant, read together."""
     reading = _reading(problem, mutations, numeric)
     if reading is None:
         return [{} for _ in givens], [{} for _ in givens]
     solved = [_readings(s.results if s is not None else ())
-              for s in _answers(reading, givens, {o.id for o in reading.objectives})]
+              for s in _answers(together, reading, givens, {o.id for o in reading.objectives})]
     return [r for r, _ in solved], [t for _, t in solved]
 
 
-def _class_given_mistakes(problem: Problem, givens: list[dict], numeric: list[set[str]]
+def _class_given_mistakes(together: Callable, problem: Problem, givens: list[dict], numeric: list[set[str]]
                           ) -> list[dict]:
     """:func:`given_mistakes` of every variant: every variant's misread givens solved
     together."""
@@ -481,7 +486,7 @@ def _class_given_mistakes(problem: Problem, givens: list[dict], numeric: list[se
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
     if not slips:
         return out
-    solved = _answers(problem, [s[4] for s in slips], set().union(*numeric))
+    solved = _answers(together, problem, [s[4] for s in slips], set().union(*numeric))
     for (k, code, sentence, step, _), solution in zip(slips, solved):
         for result in solution.results if solution is not None else ():
             if result.id in numeric[k] and result.value is not None \
