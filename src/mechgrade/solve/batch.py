@@ -769,7 +769,14 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     # root, which must be one the scalar solver finds without care.
     integrated = isinstance(analysis, Integration) and problem.dynamics is not None \
         and problem.dynamics.design is None
-    if not integrated:
+    if integrated:
+        # solved all the same, first: a symbolic answer, kept for the givens it depends on,
+        # is the one the spec's givens give, as when the reference must be solved
+        try:
+            solve_dynamics(problem)
+        except MechgradeError:
+            pass
+    else:
         try:
             # the reference's answers only (a dynamics one's generated mistakes are not asked)
             reference = solve(problem) if kinetics is None else solve_dynamics(problem)

@@ -209,9 +209,8 @@ def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: d
     """A symbolic objective's answer (by ``symbolic``, by default the kinematic one), solved
     once per problem and :func:`symbolic_dependence`
     of the givens: a variant that changes only givens with units (not to or from zero) reuses
-    the answer of the first, without sympy (and the error of one that has none, without
-    sympy again: a mistaken model's, for every variant). The kinematic answers are kept in the
-    disk cache too (:mod:`.cache`), under the problem's plan and that dependence."""
+    the answer of the first, without sympy. The kinematic answers are kept in the disk cache
+    too (:mod:`.cache`), under the problem's plan and that dependence."""
     kinematic = symbolic is None
     symbolic = symbolic or _symbolic_result
     dependence = symbolic_dependence(problem, given_map, objective_id)
@@ -221,18 +220,13 @@ def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: d
         stored = _stored_answer_key(problem, objective_id, dependence) if kinematic else None
         answer = _stored_answer(stored) if stored is not None else None
         if answer is None:
-            try:
-                answer = symbolic(problem, objective_id,
-                                  tuple(sorted(given_map.items(), key=lambda item: item[0])))
-            except MechgradeError as err:
-                answer = err
-            if stored is not None and not isinstance(answer, MechgradeError):
+            answer = symbolic(problem, objective_id,
+                              tuple(sorted(given_map.items(), key=lambda item: item[0])))
+            if stored is not None:
                 _store_answer(stored, answer)
         if len(_SYMBOLIC_ANSWERS) >= _SYMBOLIC_LIMIT:
             _SYMBOLIC_ANSWERS.clear()
         _SYMBOLIC_ANSWERS[key] = answer
-    if isinstance(answer, MechgradeError):
-        raise answer
     return answer
 
 
