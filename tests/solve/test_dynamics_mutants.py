@@ -37,3 +37,14 @@ def test_a_variant_whose_event_never_happens_fails_in_the_class_not_alone():
     assert never is not None and slides is not None  # neither was left to solve alone
     error = never if isinstance(never, MechgradeError) else never.failures[0].error
     assert str(error).endswith("does not happen within 60 s")
+
+
+def test_a_solution_sent_to_another_process_carries_its_mistakes_not_the_class_s_work():
+    import pickle
+
+    problem = load_problem(DATA / "variants" / "dynamics" / "pin_pendulum.yaml")
+    first, _ = solve_variants(problem, [{"m": 2.5}, {"m": 3.0}])
+    result = first.results[0]
+    sent = pickle.loads(pickle.dumps(result))
+    assert type(sent.generated_mistakes) is tuple
+    assert list(sent.generated_mistakes) == list(result.generated_mistakes)

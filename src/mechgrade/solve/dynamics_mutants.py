@@ -212,6 +212,11 @@ class LazyMistakes(Sequence):
     def __repr__(self) -> str:
         return repr(self._items())
 
+    def __reduce__(self):
+        # sent to another process (a grading worker) as the mistakes themselves: not the
+        # pending work, which for a class holds every variant's
+        return tuple, (tuple(self._items()),)
+
 
 def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], givens,
                     numeric: set[str]) -> dict[str, list[GeneratedMistake]]:
