@@ -18,14 +18,14 @@ from pathlib import Path
 
 from mechgrade.errors import MechgradeError
 from mechgrade.mechanics import derive
-from mechgrade.solve import plan
+from mechgrade.solve import kinematics_plan
 from mechgrade.solve.instant import _givens, _instants, _symbolic_answer
 from mechgrade.solve.numeric import solve_numeric
 from mechgrade.solve.symbolic import symbolic as solve_symbolic
 from mechgrade.mechanics.dynamics import derive_kinetics
 from mechgrade.solve.dynamics import (_kinetics_plan, _linear_solve, _symbolic_result,
                                       kinetics_plan, solve_dynamics)
-from mechgrade.solve.events import _analysis_plan
+from mechgrade.solve.analysis import _analysis_plan
 from mechgrade.spec import load_problem
 from mechgrade.solve import solve
 from mechgrade.mechanics.dynamics_mutations import _mutations as _dynamics_mutations
@@ -62,12 +62,12 @@ def main(paths: list[str]) -> None:
 
 def measure(path: Path):
     derive.cache_clear()
-    plan.cache_clear()
+    kinematics_plan.cache_clear()
     start = time.perf_counter()
     problem = load_problem(path)
     if problem.dynamics is not None:
         return measure_dynamics(problem, start)
-    p = plan(problem)
+    p = kinematics_plan(problem)
     cold = time.perf_counter() - start
     groups = []
     for overrides, objectives in _instants(problem):

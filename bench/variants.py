@@ -1,20 +1,31 @@
 """Print, per problem: cold derivation time, warm variant time and their ratio (target >= 1000).
 
 Cold = load the spec, build the model and the solver plan and solve once, in a fresh process
-(its imports done before the clock starts): what grading pays the first time it meets a problem. Warm, one at a time = ``solve`` with one student's givens, the plan already built
-(the median over the first ``--alone`` students, each a new variant). Warm, a class = the
-variants of all ``--students`` students solved together (``solve_variants``, as grading and
-``check --variants`` do), per student, the fastest of three runs. Problems with a ``variants:`` section draw their
-variants; for the others a variant scales each parameter given (or, without any, each rate
-given) by 0.8..1.2: the same re-solve path. Only variants that solve every objective count
-(``n``); ``fast`` is how many of them the stacked path solved (the rest went one by one).
+(its imports done before the clock starts): what grading pays the first time it meets a
+problem. Warm, a class = ``--students`` variants solved together (``solve_variants``, as
+grading and ``check --variants`` do), per student. Warm, alone = ``solve`` with one student's
+givens, the plan already built (the median over ``--alone`` students).
 
-Run: PYTHONPATH=src python bench/variants.py [--students N] [--alone N] [problem.yaml ...]
+The machine may be shared: the two sides are measured in pairs, a cold run then a warm class,
+``--pairs`` times, and the ratio printed is the median of the per-pair ratios. Every warm call
+gets variants no earlier call has seen (a class of new students each time, after a first
+class that builds what a warm solve keeps: the reference solve, the symbolic answers), so
+nothing is answered from memory that a real class would not find there.
+
+Problems with a ``variants:`` section draw their variants (distinct draws only); for the
+others a variant scales each parameter given (or, without any, each rate given) by a factor
+in 0.8..1.2, all different: the same re-solve path. Only variants that solve every objective
+count (``n``, of the last class); ``fast`` is how many of them the stacked path solved (the
+rest went one by one).
+
+Run: PYTHONPATH=src python bench/variants.py [--students N] [--pairs N] [--alone N]
+[problem.yaml ...]
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import os
 import statistics
 import subprocess
@@ -35,18 +46,32 @@ os.environ["MECHGRADE_NO_CACHE"] = "1"
 DEFAULT = sorted(Path("problems").glob("*.yaml")) + [
     Path("examples/hw2_variants/pendulum_variants.yaml")]
 
+GOLDEN = (5 ** 0.5 - 1) / 2
 
-def variants_of(problem, count: int) -> list[dict[str, float]]:
-    """``count`` students' givens overrides (SI)."""
+
+def variant_stream(problem):
+    """Students' givens overrides (SI), each different from every one before it: drawn, or
+    the scalable givens each times its own factor in 0.8..1.2 (a low-discrepancy sequence)."""
     if problem.variants is not None:
-        return [dict(draw_variant(problem, "bench", str(n)).overrides) for n in range(count)]
+        seen = set()
+        for n in itertools.count():
+            givens = dict(draw_variant(problem, "bench", str(n)).overrides)
+            key = tuple(sorted(givens.items()))
+            if key not in seen:
+                seen.add(key)
+                yield givens
+            elif n > 100 * (len(seen) + 10):
+                return  # the draws are exhausted
     parameters = {p.name for p in problem.parameters}
     plain = [g for g in problem.givens if g.value_expr is None and g.si]
     scalable = ([g for g in plain if isinstance(g.key.node, Name)
                  and g.key.node.id in parameters]
                 or [g for g in plain if isinstance(g.key.node, Prime)])
-    return [{to_text(g.key.node): g.si * (0.8 + 0.4 * ((7 * n + i) % 11) / 10)
-             for i, g in enumerate(scalable)} for n in range(1, count + 1)]
+    if not scalable:
+        return
+    for n in itertools.count(1):
+        yield {to_text(g.key.node): g.si * (0.8 + 0.4 * ((n * GOLDEN + i * 0.37) % 1.0))
+               for i, g in enumerate(scalable)}
 
 
 def timed(call):
@@ -54,16 +79,6 @@ def timed(call):
     start = time.perf_counter()
     result = call()
     return time.perf_counter() - start, result
-
-
-def clear_caches() -> None:
-    """Forget every derivation and lambdified plan (the solver's and the mechanics' caches;
-    the unit registry and the parser's tables stay: they are start-up, not derivation)."""
-    for name, module in list(sys.modules.items()):
-        if name.startswith(("mechgrade.mechanics", "mechgrade.solve")):
-            for value in list(vars(module).values()):
-                if callable(getattr(value, "cache_clear", None)):
-                    value.cache_clear()
 
 
 COLD = """
@@ -87,56 +102,71 @@ def cold_seconds(path: Path) -> float:
     return float(done.stdout.split()[-1])
 
 
-def measure(path: Path, students: int, alone: int):
-    clear_caches()
-    cold = cold_seconds(path)
+def solved_fully(problem, outcomes) -> int:
+    return sum(not isinstance(o, MechgradeError) and not o.failures for o in outcomes)
+
+
+def measure(path: Path, students: int, pairs: int, alone: int):
     problem = load_problem(path)
-    solve(problem)
-    overrides = [g for g in variants_of(problem, students) if g]
-    warm = []
-    solved = []
-    for givens in overrides:
+    stream = variant_stream(problem)
+    first = list(itertools.islice(stream, students))
+    if not first:
+        return problem.id, cold_seconds(path), None
+    solve_variants(problem, first)  # what a warm solve keeps: built once per run
+    ratios, colds, warms = [], [], []
+    for _ in range(pairs):
+        cold = cold_seconds(path)
+        variants = list(itertools.islice(stream, students))
+        if len(variants) < students:
+            break  # not enough distinct draws left for another class
+        seconds, outcomes = timed(lambda: solve_variants(problem, variants))
+        warm = seconds / len(variants)
+        colds.append(cold)
+        warms.append(warm)
+        ratios.append(cold / warm)
+    if not ratios:
+        return problem.id, cold_seconds(path), None
+    singles = []
+    for givens in itertools.islice(stream, alone):
         try:
-            seconds, solution = timed(lambda: solve(problem, givens=givens))
+            singles.append(timed(lambda: solve(problem, givens=givens))[0])
         except MechgradeError:
             continue  # a synthetic variant may not assemble; drawn ones are verified
-        if not solution.failures:
-            solved.append(givens)
-            if len(warm) < alone:
-                warm.append(seconds)
-    if not solved:
-        return problem.id, cold, float("nan"), float("nan"), 0, 0
-    solve_variants(problem, solved[:2])  # the reference kept for the variants: once per run
-    # the fastest of three runs: on a loaded machine the others measure the load
-    together = min(timed(lambda: solve_variants(problem, solved))[0] for _ in range(3))
     template = _template(problem)
-    fast = sum(s is not None for s in template.solve(solved)) if template else 0
-    return (problem.id, cold, statistics.median(warm), together / len(solved), len(solved),
-            fast)
+    fast = sum(s is not None for s in template.solve(variants)) if template else 0
+    return (problem.id, statistics.median(colds),
+            (statistics.median(singles) if singles else float("nan"),
+             statistics.median(warms), statistics.median(ratios),
+             solved_fully(problem, outcomes), fast, len(ratios)))
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("paths", nargs="*", type=Path)
     parser.add_argument("--students", type=int, default=200)
-    parser.add_argument("--alone", type=int, default=20)
+    parser.add_argument("--pairs", type=int, default=3)
+    parser.add_argument("--alone", type=int, default=10)
     args = parser.parse_args()
+    print(f"(cold and a warm class measured in {args.pairs} alternating pairs, each class of "
+          f"{args.students} new variants; ratio: the median of the per-pair ratios)")
     print(f"{'problem':40s} {'cold':>8s} {'warm alone':>11s} {'ratio':>7s} "
           f"{'warm, class':>12s} {'ratio':>7s}    n  fast")
     ratios = []
     for path in args.paths or DEFAULT:
         try:
-            pid, cold, alone, together, n, fast = measure(path, args.students, args.alone)
+            pid, cold, warm = measure(path, args.students, args.pairs, args.alone)
         except MechgradeError as err:
             print(f"{path.stem:40s} error: {err}")
             continue
-        if not n:
+        if warm is None:
             print(f"{pid:40s} {cold * 1e3:6.0f}ms   (no variant to time: no givens to vary, or "
-                  f"none solved)")
+                  f"too few distinct draws)")
             continue
-        ratios.append(cold / together)
+        alone, together, ratio, n, fast, count = warm
+        ratios.append(ratio)
         print(f"{pid:40s} {cold * 1e3:6.0f}ms {alone * 1e3:9.2f}ms {cold / alone:6.0f}x "
-              f"{together * 1e3:10.3f}ms {cold / together:6.0f}x  {n:3d}  {fast:4d}")
+              f"{together * 1e3:10.3f}ms {ratio:6.0f}x  {n:3d}  {fast:4d}"
+              + ("" if count == args.pairs else f"  ({count} pairs)"), flush=True)
     print(f"{'class ratio: median, worst':40s} {statistics.median(ratios):58.0f}x "
           f"{min(ratios):.0f}x")
 

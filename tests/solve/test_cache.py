@@ -19,7 +19,7 @@ import pytest
 
 import mechgrade.solve.cache as cache
 from mechgrade.errors import SettingError
-from mechgrade.solve import plan, solve
+from mechgrade.solve import kinematics_plan, solve
 from mechgrade.solve.mutants import inside_tolerance
 from mechgrade.spec import load_problem, load_problem_text
 
@@ -70,9 +70,9 @@ def test_a_problem_read_back_from_the_cache_solves_as_one_derived(name, disk, mo
 def test_a_plan_read_back_is_not_derived_until_its_kinematics_are_asked_for(disk, forget):
     problem = load_problem(PENDULUM)
     solve(problem)  # its plan and symbolic answers written
-    first = plan(problem)
+    first = kinematics_plan(problem)
     forget()
-    again = plan(problem)
+    again = kinematics_plan(problem)
     assert "k" in vars(first) and "k" not in vars(again)
     solve(problem)
     assert "k" not in vars(again)
@@ -174,7 +174,7 @@ def test_a_spoilt_entry_is_ignored_and_written_again(spoil, disk, tmp_path, monk
     forget()
     assert comparable(solve(problem)) == right
     forget()
-    assert "k" not in vars(plan(problem))  # written again: read back whole this time
+    assert "k" not in vars(kinematics_plan(problem))  # written again: read back whole this time
 
 
 @pytest.mark.parametrize("spoil", [
@@ -191,7 +191,7 @@ def test_an_entry_signed_with_the_key_but_not_one_this_code_wrote_is_written_aga
     assert comparable(solve(problem)) == right
     assert not (tmp_path / "pwned").exists()
     forget()
-    assert "k" not in vars(plan(problem))
+    assert "k" not in vars(kinematics_plan(problem))
 
 
 def test_an_entry_of_another_problem_under_this_ones_name_is_not_used(disk, forget):
@@ -566,11 +566,11 @@ def test_a_stored_function_edited_to_give_half_the_answer_is_not_trusted(
     right = comparable(solve(problem))
     path = plan_file(disk, problem)
     rewrite_entry(path, half_of_the_first_objective)
-    plan.cache_clear()
+    kinematics_plan.cache_clear()
     assert comparable(solve(problem)) == right
     forget()
     assert comparable(solve(problem)) == right  # written again, and read back
-    assert "k" not in vars(plan(problem))
+    assert "k" not in vars(kinematics_plan(problem))
 
 
 def test_an_edited_symbolic_answer_is_not_trusted(disk, forget, rewrite_entry):

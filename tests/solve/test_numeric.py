@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from mechgrade.errors import SolveError
-from mechgrade.solve import plan
+from mechgrade.solve import kinematics_plan
 from mechgrade.solve.instant import _givens
 from mechgrade.solve.levels import State, place_givens
 from mechgrade.solve.numeric import _check_givens_hold
@@ -19,7 +19,7 @@ BASE = (Path(__file__).resolve().parents[1] / "data" / "spec" / "base.yaml").rea
 def test_a_given_that_does_not_hold_in_the_solution_is_named_with_its_place():
     problem = load_problem_text(BASE.replace("  theta': 3 rad/s\n",
                                              "  \"dot(vel(P, N), A.y)\": 8 m/s\n"), "p.yaml")
-    p = plan(problem)
+    p = kinematics_plan(problem)
     givens = _givens(problem, None)
     g = place_givens(problem, p, givens)
     good = g.values.copy()

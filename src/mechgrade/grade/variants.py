@@ -28,7 +28,7 @@ from ..errors import MechgradeError, SolveError, SpecError
 from ..expressions.syntax import to_text
 from ..solve import Solution, solve
 from ..solve.mutants import inside_tolerance
-from ..solve.plan import plan as solver_plan
+from ..solve.plan import kinematics_plan
 from ..solve.result import ObjectiveResult
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.solving import resolve_given_values
@@ -208,7 +208,7 @@ def _structural_warnings(problem: Problem) -> tuple:
     if problem.dynamics is not None:
         from ..solve.dynamics import kinematic_problem
         problem = kinematic_problem(problem)
-    return tuple(solver_plan(problem).k.warnings)
+    return tuple(kinematics_plan(problem).k.warnings)
 
 
 def _shown(value) -> str:

@@ -26,12 +26,12 @@ from sympy.physics.vector import Dyadic, ReferenceFrame, Vector, dynamicsymbols
 
 from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node, constant_value, to_text
-from ..spec.dynamics import (GROUND, Block, Body, Damper, Dynamics, Explicit, Impulse,
+from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
                              Integration, KineticFriction, Reaction, Restitution, Spring,
                              StaticFriction, dynamics_of)
 from ..spec.model import Problem
 from .derivation import kinematics_derivation
-from .bodies import explicit_inertia, parallel_axis, shape_inertia
+from .bodies import central_inertia, parallel_axis
 from .build import Model, build
 from .interpret import Interpreter
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
@@ -678,15 +678,7 @@ def _analysis(problem: Problem, model: Model, language, k: Kinematics):
 
 
 def _central(shape, m, frame, lang) -> Dyadic | None:
-    if shape is None:
-        return None
-    if isinstance(shape, Explicit):
-        return explicit_inertia({key: lang.scalar(e) for key, e in shape.entries}, frame)
-    if isinstance(shape, Block):
-        return shape_inertia("block", {"sides": [lang.scalar(s) for s in shape.sides]}, m, frame)
-    size = {key: (lang.scalar(v) if not isinstance(v, str) else v)
-            for key, v in vars(shape).items()}
-    return shape_inertia(type(shape).__name__.lower(), size, m, frame)
+    return None if shape is None else central_inertia(shape, m, frame, lang.scalar)
 
 
 def _check_fixed(model: Model, point: str, body: Body, frame: ReferenceFrame,

@@ -35,6 +35,7 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
+from .bodies import SHAPES
 from .build import Model, build
 from .symbols import identically_zero
 
@@ -437,9 +438,8 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
 
 # each shape: its moment of inertia about its axis (coefficient of m r², as written), and the
 # shapes its inertia is typically taken from instead
-_SHAPES = {Sphere: ("a solid sphere", "2/5"), Shell: ("a thin spherical shell", "2/3"),
-           Disk: ("a uniform disk", "1/2"), Ring: ("a thin ring", "1")}
 _CONFUSED_SHAPES = {Sphere: (Shell, Disk), Shell: (Sphere,), Disk: (Ring,), Ring: (Disk,)}
+_SHAPES = {kind: (SHAPES[kind].name, SHAPES[kind].axial or "") for kind in _CONFUSED_SHAPES}
 
 
 def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:

@@ -27,17 +27,19 @@ column that switches anywhere but at its event is not answered here.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Callable
 
 import numpy as np
+
+from . import dop853
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # as scipy's Runge-Kutta step control
 EPS = np.finfo(float).eps
 
 FIRED, NEVER, FAILED = 1, 0, -1
 """How a column's integration ended: at its event, at the end of the time allowed without
-it, or without an answer this path vouches for (a step too small, too many evaluations, an
+it, or without an answer this path vouches for (a step too small, more evaluations of the
+right-hand side than allowed, counted as ``solve_ivp`` with its dense output counts them, an
 undefined value): that column is solved alone."""
 
 Field = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
@@ -51,12 +53,6 @@ def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
     ``numpy.tensordot(weights, K, 1)`` without its overhead."""
     k = weights.shape[-1]
     return (weights @ K[:k].reshape(k, -1)).reshape(weights.shape[:-1] + K.shape[1:])
-
-
-@lru_cache(maxsize=1)
-def _coefficients():
-    from scipy.integrate._ivp import dop853_coefficients as c
-    return c
 
 
 @dataclass(frozen=True)
@@ -78,7 +74,7 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     sign (or becomes zero), per column, as ``solve_ivp(method="DOP853", events=event)`` with
     a terminal event does for each column alone; ``mode(columns, t, y)`` gives the modes
     (modes x columns) each step keeps (see the module docstring)."""
-    c = _coefficients()
+    c = dop853
     m, count = y0.shape
     status = np.full(count, FAILED)
     cols = np.arange(count)
@@ -129,6 +125,8 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
             continue
         k = np.flatnonzero(accepted)
         b = a[k]
+        # as solve_ivp counts them: it builds every accepted step's dense output
+        calls[b] += c.N_STAGES_EXTENDED - c.N_STAGES - 1
         history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k], ma[:, k])
         g_new = event(b, t_new[k], y_new[:, k], ma[:, k])
         g_old = g[b]
@@ -138,6 +136,9 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         if mode is not None:  # a switch anywhere but at the event: not answered here
             modes[:, b] = mode(b, t_new[k], y_new[:, k])
             undefined |= ~fired & (modes[:, b] != ma[:, k]).any(axis=0)
+        # solve_ivp would have stopped on an evaluation past the most allowed
+        undefined |= calls[b] > max_calls
+        fired &= ~undefined
         ended = ~fired & ~undefined & (t_new[k] >= t_bound)
         status[b[ended]] = NEVER
         status[b[fired]] = FIRED  # provisionally: until its event is located

@@ -38,14 +38,17 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
-from .events import (at_the_event, energy_rate_symbolic, energy_state, integrate_to_event,
-                     integrated_symbolically)
+from .events import at_the_event, integrate_to_event, integrated_symbolically
+from .motion import integrated_alone
+from .work_energy import energy_rate_symbolic, energy_state
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
-from .levels import RANK_TOL, State, place_givens
+from . import rules
+from .levels import State, place_givens
 from .numeric import solve_numeric
-from .plan import Plan, plan
+from .plan import KinematicsPlan, kinematics_plan
 from .result import ObjectiveFailure, ObjectiveResult, Solution
+from .rules import first_off
 
 
 def kinematic_problem(problem: Problem) -> Problem:
@@ -60,7 +63,7 @@ class KineticsPlan:
     mistakes and friction checks, each a function of ``state values + reactions``."""
 
     kin: Kinetics
-    kp: Plan
+    kp: KinematicsPlan
     symbols: tuple[sp.Symbol, ...]
     columns: tuple[int, ...]  # positions of the unknowns in the extended state
     residual: Callable
@@ -96,7 +99,7 @@ def kinetics_plan(problem: Problem) -> KineticsPlan:
 @lru_cache(maxsize=64)
 def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     kin = derive_kinetics(problem)
-    kp = plan(kinematic_problem(problem))
+    kp = kinematics_plan(kinematic_problem(problem))
     symbols = kp.index.symbols + kin.reactions
     level = 1 if kin.impact else 2
     columns = tuple(kp.index.rates(level)) + tuple(range(kp.index.size, len(symbols)))
@@ -153,7 +156,7 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
                          f"zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
     sol, *_ = linalg.lstsq(A, -b)
     _, s, vt = linalg.svd(A)
-    rank = int((s > RANK_TOL * max(s.max(initial=0.0), 1.0)).sum())
+    rank = int(rules.rank(s))
     if rank < len(cols):
         null = vt[rank:].T
         open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > 1e-9]
@@ -170,12 +173,12 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
         x[kp.columns[j]] = value
     r = _call(kp.residual, x)
     size = np.abs(_call(kp.scale, x))
-    for i in range(len(r)):
-        if not abs(r[i]) <= problem.consistency * size[i] + 1e-10:
-            raise InconsistentError(
-                f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
-                f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
-                "loads, or a given second rate contradicts them", where=kp.wheres[i])
+    i = first_off(r, size, problem.consistency)
+    if i is not None:
+        raise InconsistentError(
+            f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
+            f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
+            "loads, or a given second rate contradicts them", where=kp.wheres[i])
     _check_friction(kp, x)
     return x
 
@@ -296,9 +299,10 @@ def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
 
 
 def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
-    """``given_map`` with the design parameter solved (secant iterations on the whole
-    instant) so that the design equation holds."""
-    from scipy import optimize
+    """``given_map`` with the design parameter solved so that the design equation holds:
+    Newton's method on the whole instant from the guess (:func:`~.batch_motion.newton`, as
+    the variants of a class are solved), else a bracketing search around it."""
+    from .batch_motion import newton
 
     design = dynamics_of(problem).design
     equation = kp.design
@@ -319,16 +323,20 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
         return float(_call(equation, x)[0])
 
     guess = design.guess
-    with warnings.catch_warnings():  # a secant that wanders off is bracketed below instead
+    with warnings.catch_warnings():  # an iteration that wanders off is bracketed instead
         warnings.simplefilter("ignore", RuntimeWarning)
-        result = optimize.root_scalar(residual, x0=guess, x1=guess * (1 + 1e-3) + 1e-12,
-                                      method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
-    if not result.converged or not np.isfinite(result.root):
-        result = _bracketed(residual, guess) or result
+        roots, converged = newton(
+            lambda _, values: np.vectorize(residual, otypes=[float])(values),
+            np.array([guess]), 1e-15, 1e-13, 100)
+    if converged[0] and np.isfinite(roots[0]):
+        return with_value(roots[0])
+    result = _bracketed(residual, guess)
     left, right = design.so_that
-    if not result.converged or not np.isfinite(result.root):
+    if result is None or not result.converged or not np.isfinite(result.root):
         raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
-                         f"{left.text} = {right.text} ({result.flag})", where=design.where)
+                         f"{left.text} = {right.text} (Newton's method from it does not "
+                         "converge, and no sign change is found within 64 times it)",
+                         where=design.where)
     return with_value(result.root)
 
 
@@ -366,9 +374,18 @@ def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: d
     analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         g = place_givens(kproblem, kp.kp, given_map)
+        size = kp.kp.index.size
+        reached = integrated_alone(problem, kp, g.values)
+        if reached is not None:  # as the variants of a class are integrated
+            x, before = reached
+            known = np.zeros(size, dtype=bool)
+            known[list(kp.kp.index.config)] = True
+            known[list(kp.kp.index.rates(1))] = True
+            return State(x[:size].copy(), known, frozenset()), x, (), before
+        # what the integrator over columns does not vouch for: each step alone, which says
+        # why it fails where it does
         state, before = integrate_to_event(problem, kp, g.values,
                                            lambda values: accelerations(kp, values))
-        size = kp.kp.index.size
         # the contact checks hold along the way: judge them just before the event
         solve_kinetics(problem, kp, State(before[:size], state.given))
         x = before.copy()

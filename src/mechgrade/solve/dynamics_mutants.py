@@ -29,7 +29,7 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import replace
 from functools import lru_cache
-from typing import Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import sympy as sp
@@ -42,7 +42,8 @@ from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, solve_dynamics
 from .instant import _instants, instant_givens
 from .levels import State
-from .mutants import attach, model_mistakes, plausible_slips, slips_of
+from .mutants import (attach, model_mistake_at, model_mistake_table, model_mistakes,
+                      plausible_slips, slips_of)
 from .result import GeneratedMistake, ObjectiveResult, Solution, StateValue
 
 # a mistaken model is no mistake where it cannot be solved (no motion, an event that never
@@ -112,31 +113,70 @@ def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results:
     equivalent to the answer or to an earlier one dropped)."""
     if not results:
         return {}
-    kept = {r.id: [_expression(r.expr, r.symbols)] for r in results}
-    out: dict[str, list[GeneratedMistake]] = {r.id: [] for r in results}
-    for m in mutations:
+    ids = {r.id for r in results}
+    answers = []
+    for i, m in enumerate(mutations):
         mistaken = m.problem
-        if mistaken is None:
-            continue
-        ids = set(kept) & {o.id for o in mistaken.objectives}
-        if not ids:
+        if mistaken is None or not _derivable(mistaken) \
+                or not ids & {o.id for o in mistaken.objectives}:
             continue
         try:
-            solved = solve_dynamics(mistaken, givens=givens, objectives=ids)
+            solved = solve_dynamics(mistaken, givens=givens,
+                                    objectives=ids & {o.id for o in mistaken.objectives})
         except _UNSOLVABLE:
             continue
-        for r in solved.results:
-            expr = _expression(r.expr, r.symbols) if r.expr else None
+        answers.append((i, _texts(solved.results)))
+    return _symbolic_kept(mutations, _texts(results), tuple(answers))
+
+
+def _texts(results) -> tuple[tuple[str, str | None, tuple[str, ...]], ...]:
+    return tuple((r.id, r.expr, r.symbols) for r in results)
+
+
+@lru_cache(maxsize=1024)
+def _symbolic_kept(mutations: tuple[DynamicsMutation, ...], results: tuple,
+                   answers: tuple) -> dict[str, tuple[GeneratedMistake, ...]]:
+    """The symbolic mistakes kept of each mistaken model's ``answers`` (``(mutation index,
+    (id, expr, symbols) of each answer)``) of the answers ``results``: worked out once for all
+    the variants whose answers are the same."""
+    kept = {oid: [_expression(expr, symbols)] for oid, expr, symbols in results}
+    out: dict[str, list[GeneratedMistake]] = {oid: [] for oid, _, _ in results}
+    for i, solved in answers:
+        m = mutations[i]
+        for oid, text, symbols in solved:
+            expr = _expression(text, symbols) if text else None
             # a zero is what many mistakes give (the weight left out of a fall): no name
             if expr is None or expr.has(sp.zoo, sp.nan, sp.oo) or identically_zero(expr) \
-                    or any(identically_zero(expr - k) for k in kept[r.id]):
+                    or any(identically_zero(expr - k) for k in kept[oid]):
                 continue
-            kept[r.id].append(expr)
-            out[r.id].append(GeneratedMistake(m.code, m.sentence.replace(" = {term}", ""),
-                                              None, r.expr, step=m.step))
+            kept[oid].append(expr)
+            out[oid].append(GeneratedMistake(m.code, m.sentence.replace(" = {term}", ""),
+                                             None, text, step=m.step))
     return {oid: tuple(found) for oid, found in out.items()}
 
 
+def _class_symbolic_mistakes(together: Callable, mutations: tuple[DynamicsMutation, ...], givens: list[dict],
+                             results: list[tuple]) -> list[dict]:
+    """:func:`_symbolic_mistakes` of every variant: each mistaken model's symbolic answers
+    solved for all of them at once."""
+    symbolic = [[r for r in rs if r.expr is not None] for rs in results]
+    ids = {r.id for rs in symbolic for r in rs}
+    answers: list[list] = [[] for _ in givens]
+    for i, m in enumerate(mutations):
+        mistaken = m.problem
+        if mistaken is None or not ids & {o.id for o in mistaken.objectives}:
+            continue
+        asked = ids & {o.id for o in mistaken.objectives}
+        solved = _answers(together, mistaken, givens, asked)
+        for k, solution in enumerate(solved):
+            mine = {r.id for r in symbolic[k]}
+            if solution is not None and mine & {o.id for o in mistaken.objectives}:
+                answers[k].append((i, _texts(r for r in solution.results if r.id in mine)))
+    return [_symbolic_kept(mutations, _texts(rs), tuple(found)) if rs else {}
+            for rs, found in zip(symbolic, answers)]
+
+
+@lru_cache(maxsize=4096)
 def _expression(text: str, symbols: tuple[str, ...]):
     """The solver's own answer text as a sympy expression (never a student's)."""
     return sp.sympify(text, locals={name: sp.Symbol(name) for name in symbols})
@@ -148,7 +188,7 @@ class LazyMistakes(Sequence):
 
     __slots__ = ("_pending", "_id")
 
-    def __init__(self, pending: _Pending, objective_id: str):
+    def __init__(self, pending: _Pending | _Member, objective_id: str):
         self._pending, self._id = pending, objective_id
 
     def _items(self) -> tuple:
@@ -172,6 +212,11 @@ class LazyMistakes(Sequence):
     def __repr__(self) -> str:
         return repr(self._items())
 
+    def __reduce__(self):
+        # sent to another process (a grading worker) as the mistakes themselves: not the
+        # pending work, which for a class holds every variant's
+        return tuple, (tuple(self._items()),)
+
 
 def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], givens,
                     numeric: set[str]) -> dict[str, list[GeneratedMistake]]:
@@ -185,7 +230,7 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
         if m.problem is not None:
             # a mistaken model may leave out the objectives asked (those it cannot read)
             ids = numeric & {o.id for o in m.problem.objectives}
-            if not ids:
+            if not ids or not _derivable(m.problem):
                 continue
             try:
                 solved = solve_dynamics(m.problem, givens=givens, objectives=ids)
@@ -203,18 +248,31 @@ def _read(problem: Problem, mutations, givens, numeric: set[str]):
     """The mistaken readings (mutation index -> objective id -> value) and each mutation's
     named term as text with its unit (mutation index -> text), read together in the right
     model: one more solve of the problem."""
+    reading = _reading(problem, mutations, numeric)
+    try:
+        results = solve_dynamics(reading, givens=givens).results if reading else ()
+    except _UNSOLVABLE:
+        results = ()
+    return _readings(results)
+
+
+def _reading(problem: Problem, mutations, numeric: set[str]) -> Problem | None:
+    """The right model asked for each mistaken reading of the objectives in ``numeric`` and
+    each mutation's named term (``None``: nothing to read)."""
     objectives = [replace(problem.objective(oid), id=f"{oid}~{i}", find=find, expect=None,
                           mistakes=())
                   for i, m in enumerate(mutations) for oid, find in m.readings if oid in numeric]
     objectives += [Objective(f"~{i}", "", m.term, ObjectiveKind.SCALAR, m.term_unit)
                    for i, m in enumerate(mutations) if m.term is not None]
+    return replace(problem, objectives=tuple(objectives), warnings=()) if objectives else None
+
+
+def _readings(results) -> tuple[dict[int, dict], dict[int, str]]:
+    """The readings and terms (see :func:`_read`) in the results of :func:`_reading`'s
+    problem. A term is shown to four figures of its value to twelve: the same text for values
+    that differ in their last digits (the motion integrated alone or with others)."""
     readings: dict[int, dict] = {}
     terms: dict[int, str] = {}
-    try:
-        results = solve_dynamics(replace(problem, objectives=tuple(objectives), warnings=()),
-                                 givens=givens).results if objectives else ()
-    except _UNSOLVABLE:
-        results = ()
     for result in results:
         oid, i = result.id.rsplit("~", 1)
         if oid:
@@ -224,7 +282,7 @@ def _read(problem: Problem, mutations, givens, numeric: set[str]):
         assert term is not None and not isinstance(term, tuple)  # a term is a scalar objective
         if np.isfinite(term):
             unit = "" if result.unit in ("", "1") else f" {result.unit}"
-            terms[int(i)] = f"{term + 0.0:.4g}{unit}"
+            terms[int(i)] = f"{float(f'{term:.12g}') + 0.0:.4g}{unit}"
     return readings, terms
 
 
@@ -233,15 +291,8 @@ def given_mistakes(problem: Problem, givens, numeric: set[str]
     """The numeric objectives solved again with each given mistaken in one way (the slips of
     :func:`mechgrade.solve.mutants.given_mistakes`), anchored to the worked solution's
     parameters or coordinates."""
-    given_map = instant_givens(problem, givens, {})
-    parameters = {q.name for q in problem.parameters}
     out: dict[str, list[GeneratedMistake]] = {}
-    for code, changes, sentence in slips_of(given_map, parameters):
-        node = given_map[changes[0][0]][0]
-        step = "Parameters" if isinstance(node, Name) and node.id in parameters \
-            else "Coordinates"
-        changed = dict(givens or {})
-        changed.update(dict(changes))
+    for code, sentence, step, changed in _slips(problem, givens):
         try:
             solved = solve_dynamics(problem, givens=changed, objectives=numeric)
         except _UNSOLVABLE:
@@ -251,6 +302,21 @@ def given_mistakes(problem: Problem, givens, numeric: set[str]
                 out.setdefault(result.id, []).append(GeneratedMistake(
                     code, sentence, result.value, step=step))
     return out
+
+
+def _slips(problem: Problem, givens):
+    """``(code, sentence, step, the givens misread)`` for each typical misreading of the
+    givens (:func:`~mechgrade.solve.mutants.slips_of`), ``step`` the section of the worked
+    solution it is anchored to (its parameters or coordinates)."""
+    given_map = instant_givens(problem, givens, {})
+    parameters = {q.name for q in problem.parameters}
+    for code, changes, sentence in slips_of(given_map, parameters):
+        node = given_map[changes[0][0]][0]
+        step = "Parameters" if isinstance(node, Name) and node.id in parameters \
+            else "Coordinates"
+        changed = dict(givens or {})
+        changed.update(dict(changes))
+        yield code, sentence, step, changed
 
 
 def kinematic_mistakes(problem: Problem, state: tuple[StateValue, ...], numeric: set[str]
@@ -272,3 +338,190 @@ def kinematic_mistakes(problem: Problem, state: tuple[StateValue, ...], numeric:
         return model_mistakes(problem, p, State(values, np.isfinite(values)), wanted)
     except _UNSOLVABLE:
         return {}
+
+
+# ---------------------------------------------------------------------------- a class at once
+
+
+def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
+                        givens: Sequence[Mapping[str, float | None]],
+                        together: Callable) -> list[Solution]:
+    """:func:`with_generated_mistakes` for each of ``solutions`` (the variant ``givens`` of
+    ``problem``, solved together): the mistakes of all of them are worked out together, when
+    one is first looked at, each mistaken model solved for every variant at once by
+    ``together(problem, givens, objectives)`` (:func:`~mechgrade.solve.batch.answers_together`:
+    a list of solutions or errors)."""
+    plausible = plausible_slips(problem)
+    pending = _ClassPending(problem, [dict(g or {}) for g in givens],
+                            [s.results for s in solutions], [s.state for s in solutions],
+                            together)
+    return [replace(solution, results=tuple(
+        ObjectiveResult(**{**vars(r), "plausible": plausible,
+                           "generated_mistakes": LazyMistakes(_Member(pending, k), r.id)})
+        for r in solution.results)) for k, solution in enumerate(solutions)]
+
+
+class _ClassPending:
+    """The generated mistakes of a class of variants, worked out once when first asked for."""
+
+    def __init__(self, problem: Problem, givens: list[dict], results: list[tuple],
+                 states: list[tuple[StateValue, ...]], together: Callable):
+        self.problem, self.givens, self.results, self.states = problem, givens, results, states
+        self.together = together
+        self.found: list[dict] | None = None
+
+    def get(self, k: int) -> dict:
+        if self.found is None:
+            self.found = _generated_class(self.problem, self.givens, self.results, self.states,
+                                          self.together)
+        return self.found[k]
+
+
+class _Member:
+    """Variant ``k`` of a :class:`_ClassPending`, as a :class:`_Pending` is read."""
+
+    def __init__(self, pending: _ClassPending, k: int):
+        self.pending, self.k = pending, k
+
+    def get(self) -> dict:
+        return self.pending.get(self.k)
+
+
+def _generated_class(problem: Problem, givens: list[dict], results: list[tuple],
+                     states: list[tuple[StateValue, ...]], together: Callable) -> list[dict]:
+    """:func:`_generated` of every variant, each source of mistakes solved for all of them at
+    once."""
+    numeric = [{r.id: r for r in rs if r.value is not None} for rs in results]
+    asked = [set(n) for n in numeric]
+    mutations = dynamics_mutations(problem)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        models = _class_model_mistakes(together, problem, mutations, givens, asked)
+        slips = _class_given_mistakes(together, problem, givens, asked)
+        readings = _class_kinematic_mistakes(problem, states, asked)
+        symbolic = _class_symbolic_mistakes(together, mutations, givens, results)
+    out = []
+    for k, rs in enumerate(results):
+        found = [models[k], slips[k], readings[k]] if numeric[k] else []
+        attached = attach(numeric[k], found, frozenset())
+        mine: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in rs}
+        mine.update({oid: r.generated_mistakes for oid, r in attached.items()})
+        mine.update(symbolic[k])
+        out.append(mine)
+    return out
+
+
+@lru_cache(maxsize=256)
+def _derivable(problem: Problem) -> bool:
+    """Whether a (mistaken) model's kinetics can be derived: one that cannot is solved for no
+    variant, and is derived only once to find that out."""
+    try:
+        kinetics_plan(problem)
+    except _UNSOLVABLE:
+        return False
+    return True
+
+
+def _answers(together: Callable, problem: Problem, givens: list[dict],
+             objectives: set[str]) -> list:
+    """Each variant's solution of ``problem`` (or ``None`` where it has none), solved together
+    (:func:`~mechgrade.solve.batch.answers_together`), else one by one where that fails."""
+    if not _derivable(problem):
+        return [None] * len(givens)
+    outcomes: list = []
+    try:
+        outcomes = together(problem, givens, objectives)
+    except _UNSOLVABLE:
+        outcomes = []
+        for g in givens:
+            try:
+                outcomes.append(solve_dynamics(problem, givens=g, objectives=objectives))
+            except _UNSOLVABLE as err:
+                outcomes.append(err)
+    return [o if isinstance(o, Solution) else None for o in outcomes]
+
+
+def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple[DynamicsMutation, ...],
+                          givens: list[dict], numeric: list[set[str]]) -> list[dict]:
+    """:func:`_model_mistakes` of every variant: each mistaken model solved for all of them
+    at once, the mistaken readings read in the right model for all of them at once."""
+    union = set().union(*numeric)
+    out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
+    readings, terms = _class_read(together, problem, mutations, givens, union)
+    for i, m in enumerate(mutations):
+        solved = None
+        if m.problem is not None:
+            ids = union & {o.id for o in m.problem.objectives}
+            if not ids:
+                continue
+            solved = _answers(together, m.problem, givens, ids)
+        for k in range(len(givens)):
+            sentence = m.sentence.replace("{term}", terms[k][i]) if i in terms[k] else \
+                m.sentence.replace(" = {term}", "")
+            if solved is not None:
+                solution = solved[k]
+                if solution is None:
+                    continue
+                values = {r.id: r.value for r in solution.results}
+            else:
+                values = readings[k].get(i, {})
+            for oid, value in values.items():
+                if oid in numeric[k] and value is not None and np.all(np.isfinite(value)):
+                    out[k].setdefault(oid, []).append(GeneratedMistake(
+                        m.code, sentence, value, step=m.step))
+    return out
+
+
+def _class_read(together: Callable, problem: Problem, mutations, givens: list[dict], numeric: set[str]):
+    """:func:`_read` of every variant, read together."""
+    reading = _reading(problem, mutations, numeric)
+    if reading is None:
+        return [{} for _ in givens], [{} for _ in givens]
+    solved = [_readings(s.results if s is not None else ())
+              for s in _answers(together, reading, givens, {o.id for o in reading.objectives})]
+    return [r for r, _ in solved], [t for _, t in solved]
+
+
+def _class_given_mistakes(together: Callable, problem: Problem, givens: list[dict], numeric: list[set[str]]
+                          ) -> list[dict]:
+    """:func:`given_mistakes` of every variant: every variant's misread givens solved
+    together."""
+    slips = [(k, *slip) for k, overrides in enumerate(givens) if numeric[k]
+             for slip in _slips(problem, overrides)]  # (variant, code, sentence, step, givens)
+    out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
+    if not slips:
+        return out
+    solved = _answers(together, problem, [s[4] for s in slips], set().union(*numeric))
+    for (k, code, sentence, step, _), solution in zip(slips, solved):
+        for result in solution.results if solution is not None else ():
+            if result.id in numeric[k] and result.value is not None \
+                    and np.all(np.isfinite(result.value)):
+                out[k].setdefault(result.id, []).append(GeneratedMistake(
+                    code, sentence, result.value, step=step))
+    return out
+
+
+def _class_kinematic_mistakes(problem: Problem, states: list[tuple[StateValue, ...]],
+                              numeric: list[set[str]]) -> list[dict]:
+    """:func:`kinematic_mistakes` of every variant, read at all their states at once."""
+    out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in states]
+    own = {o.id for overrides, group in _instants(problem) if not overrides for o in group}
+    wanted = own & set().union(*numeric)
+    solved = [k for k, state in enumerate(states) if state and own & numeric[k]]
+    if not wanted or not solved:
+        return out
+    p = kinetics_plan(problem).kp
+    X = np.full((p.index.size, len(solved)), np.nan)
+    for j, k in enumerate(solved):
+        for value in states[k]:
+            if value.name in p.index.names:
+                X[p.index.position(value.name), j] = value.si
+    try:
+        table = model_mistake_table(problem, p, X, wanted)
+    except _UNSOLVABLE:
+        return out
+    for j, k in enumerate(solved):
+        for row in table:
+            if row[2][j] and row[0].objective in numeric[k]:
+                out[k].setdefault(row[0].objective, []).append(model_mistake_at(row, j))
+    return out

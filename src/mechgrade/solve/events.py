@@ -1,23 +1,13 @@
-"""How the instant of a dynamics problem is reached when its rates are not given: by the
-work–energy balance from a start state, or by integrating the motion to an event.
+"""The instant of a dynamics problem reached by integrating the motion to an event.
 
-Work–energy: the givens fix the configuration; the rates are ``lambda * u`` along the one free
-direction ``u`` of the velocity constraints, with ``T(lambda u) + V = E(start)``. Every load
-must be conservative and every reaction workless at the instant (checked), and the spec says
-the sign of a rate (``sense``).
-
-Integration: the coordinates and rates from ``from:`` at t = 0, integrated with
-``scipy.integrate.solve_ivp`` (DOP853, rtol 1e-11) until the event equation first holds (root
-refined on the dense output); the objectives are read at the event, with ``t`` its time. The
-accelerations and reactions there are the limits just before the event (a kinetic-friction
-force has no direction once the slip has ended).
+The coordinates and rates from ``from:`` at t = 0, integrated with ``scipy.integrate.solve_ivp``
+(DOP853, rtol 1e-11) until the event equation first holds (root refined on the dense output);
+the objectives are read at the event, with ``t`` its time. The accelerations and reactions
+there are the limits just before the event (a kinetic-friction force has no direction once the
+slip has ended).
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
-from functools import lru_cache
-from typing import Callable, TypeVar
 
 import numpy as np
 import sympy as sp
@@ -26,168 +16,15 @@ import sympy as sp
 # `mechgrade check` of most problems, which never needs it.
 
 from ..errors import SolveError
-from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
+from ..spec.dynamics import Integration
 from ..spec.model import Objective, Problem
 from ..tolerance import within_each
 from ..units import si_factor
-from .levels import State, nullspace
+from .analysis import analysis_of, analysis_plan, extended, start_values, value_at
+from .levels import State
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
-
-
-@dataclass(frozen=True)
-class AnalysisPlan:
-    """The lambdified energy, start values, event and reaction powers (functions of the
-    extended state: state values, then reactions)."""
-
-    energy: Callable
-    start: tuple[tuple[int, Callable], ...]
-    until: Callable | None
-    workless: tuple[tuple[str, Callable], ...]
-    until_kinetic: bool = True  # the event reads second rates or reactions
-
-
-def analysis_plan(kp) -> AnalysisPlan:
-    return _analysis_plan(kp)
-
-
-@lru_cache(maxsize=64)
-def _analysis_plan(kp) -> AnalysisPlan:
-    symbols = kp.symbols
-    kin = kp.kin
-    position = {s: i for i, s in enumerate(symbols)}
-
-    def f(expr):
-        return sp.lambdify(symbols, expr, modules="numpy", cse=True)
-
-    return AnalysisPlan(
-        energy=f(kin.energy),
-        start=tuple((position[s], f(value)) for s, value in kin.start),
-        until=f(kin.until) if kin.until is not None else None,
-        workless=tuple((label, f(expr)) for label, expr in kin.workless),
-        until_kinetic=kin.until is not None and bool(
-            kin.until.free_symbols & {*kin.k.qdd, *kin.reactions}))
-
-
-def _value(fn: Callable, x: np.ndarray) -> float:
-    with np.errstate(all="ignore"):
-        return float(np.asarray(fn(*x), dtype=float).ravel()[0])
-
-
-def _extended(kp, values: np.ndarray) -> np.ndarray:
-    return np.concatenate([values, np.zeros(len(kp.kin.reactions))])
-
-
-def start_values(kp, ap: AnalysisPlan, values: np.ndarray) -> np.ndarray:
-    """``values`` with the coordinates and rates of the start state put in."""
-    x = _extended(kp, values)
-    out = values.copy()
-    for i, fn in ap.start:
-        out[i] = _value(fn, x)
-    return out
-
-
-_Analysis = TypeVar("_Analysis", WorkEnergy, Integration)
-
-
-def _analysis(problem: Problem, kind: type[_Analysis]) -> _Analysis:
-    """The problem's analysis, of the kind the solver chose this function for."""
-    analysis = dynamics_of(problem).analysis
-    assert isinstance(analysis, kind), analysis
-    return analysis
-
-
-# ---------------------------------------------------------------------------- work-energy
-
-
-def energy_state(problem: Problem, kp, state: State, given_rates: list[str]) -> State:
-    """The instant's rates from the energy balance (see the module docstring)."""
-    analysis = _analysis(problem, WorkEnergy)
-    index = kp.kp.index
-    rates = list(index.rates(1))
-    if given_rates:
-        raise SolveError(f"work_energy fixes the rates; do not also give {given_rates[0]}",
-                         where=analysis.where)
-    if kp.kin.nonconservative:
-        raise SolveError(f"work_energy needs conservative loads: "
-                         f"{', '.join(kp.kin.nonconservative)} can do work that is not a "
-                         "potential energy's change", where=analysis.where)
-    ap = analysis_plan(kp)
-    values = state.values.copy()
-    level = kp.kp.levels[1]
-    values[rates] = 0.0
-    values[list(index.rates(2))] = 0.0
-    with np.errstate(all="ignore"):
-        J = np.asarray(level.jacobian(*values), dtype=float).reshape(len(level.labels), index.n)
-    J = J[:level.constraint_rows]
-    u = nullspace(J) if len(J) else np.eye(index.n)
-    if u.shape[1] != 1:
-        raise SolveError(f"work_energy finds the speed of a motion with one degree of freedom; "
-                         f"this one has {u.shape[1]} at the instant", where=analysis.where)
-    u = u[:, 0]
-    e0 = _value(ap.energy, _extended(kp, start_values(kp, ap, values)))
-    v = _value(ap.energy, _extended(kp, values))
-    moving = values.copy()
-    moving[rates] = u
-    t_unit = _value(ap.energy, _extended(kp, moving)) - v
-    square = (e0 - v) / t_unit
-    if square < -1e-9 * (abs(e0) + abs(v) + 1e-300) / t_unit:
-        raise SolveError(f"the instant cannot be reached from the start state: it needs "
-                         f"{v - e0:.4g} J more energy than the start state has",
-                         where=analysis.where)
-    speed = np.sqrt(max(square, 0.0))
-    sign = 1.0
-    if speed > 0:
-        if not analysis.sense:
-            raise SolveError("work_energy fixes the speed, not its sign: give 'sense', such as "
-                             f"{{\"{index.spelling(rates[int(np.argmax(abs(u)))])}\": "
-                             "negative}", where=analysis.where)
-        key, sense = analysis.sense[0]
-        j = index.position(key.text.replace(" ", ""))
-        component = u[rates.index(j)]
-        if abs(component) < 1e-12:
-            raise SolveError(f"the sense of {key.text} cannot fix the sign: it is zero at the "
-                             "instant", where=key.where)
-        sign = np.sign(component) * (1 if sense == "positive" else -1)
-    values[rates] = sign * speed * u
-    x = _extended(kp, values)
-    size = 1.0 + float(np.abs(values[rates]).max(initial=0.0))
-    for label, fn in ap.workless:
-        if abs(_value(fn, x)) > 1e-8 * size:
-            raise SolveError(f"work_energy needs workless reactions: {label} does work at the "
-                             "instant (its point moves along it)", where=analysis.where)
-    known = state.given.copy()
-    known[rates] = True
-    return State(values, known, frozenset())
-
-
-def energy_rate_symbolic(problem: Problem, kp, expr, declared: set):
-    """``expr`` with an undeclared rate replaced by its value from the energy balance, for a
-    single coordinate without constraints: q' = s sqrt(2 (E0 - V(q)) / M(q))."""
-    kin = kp.kin
-    k = kin.k
-    analysis = _analysis(problem, WorkEnergy)
-    free = expr.free_symbols if not isinstance(expr, sp.MatrixBase) \
-        else set().union(*(e.free_symbols for e in expr))
-    wanted = [qd for qd in k.qd if qd in free and qd not in declared]
-    if not wanted:
-        return expr
-    if len(k.q) != 1 or k.velocity:
-        raise SolveError("a symbolic answer through work_energy needs a single coordinate "
-                         "without constraints; declare the rate among the symbols",
-                         where=analysis.where)
-    qd = k.qd[0]
-    energy = kin.energy
-    e0 = energy.xreplace(dict(kin.start))
-    v = energy.xreplace({qd: 0})
-    mass = sp.simplify(2 * (energy.xreplace({qd: 1}) - v))
-    sign = -1 if analysis.sense and analysis.sense[0][1] == "negative" else 1
-    value = sign * sp.sqrt(sp.simplify(2 * (e0 - v) / mass))
-    return expr.xreplace({qd: value})
-
-
-# ---------------------------------------------------------------------------- integration
 
 
 def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[State, np.ndarray]:
@@ -196,7 +33,7 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     extended state with the second rates and reactions solved."""
     from scipy.integrate import solve_ivp
 
-    analysis = _analysis(problem, Integration)
+    analysis = analysis_of(problem, Integration)
     ap = analysis_plan(kp)
     index = kp.kp.index
     q, qd, qdd = list(range(index.n)), list(index.rates(1)), list(index.rates(2))
@@ -225,8 +62,8 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     def event(t, y):
         # an event of the state alone is read without the balances (which are undefined
         # where a slip speed is exactly zero)
-        x = solve(at(t, y)) if ap.until_kinetic else _extended(kp, at(t, y))
-        return _value(ap.until, x)
+        x = solve(at(t, y)) if ap.until_kinetic else extended(kp, at(t, y))
+        return value_at(ap.until, x)
 
     # scipy reads the event's function attribute; mypy models none (python/mypy#2087)
     event.terminal = True  # type: ignore[attr-defined]
@@ -238,8 +75,7 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     if result.status < 0:
         raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
     if not len(result.t_events[0]):
-        raise SolveError(f"the event '{analysis.until[0].text} = {analysis.until[1].text}' does "
-                         f"not happen within {analysis.max_time:g} s", where=analysis.where)
+        raise event_never_happens(analysis)
     t_event = float(result.t_events[0][0])
     y_event = result.y_events[0][0]
     end = at(t_event, y_event)
@@ -248,6 +84,12 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     known[index.config] = True
     known[qd] = True
     return State(end, known, frozenset()), before
+
+
+def event_never_happens(analysis: Integration) -> SolveError:
+    """The error of an integration that reaches the time allowed without its event."""
+    return SolveError(f"the event '{analysis.until[0].text} = {analysis.until[1].text}' does "
+                      f"not happen within {analysis.max_time:g} s", where=analysis.where)
 
 
 def at_the_event(event: np.ndarray, before: np.ndarray, objective: Objective) -> np.ndarray:

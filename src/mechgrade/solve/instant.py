@@ -29,7 +29,7 @@ from ..spec.validate import symbol_meanings
 from ..units import from_si, si_factor, si_unit
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
-from .plan import Plan, generic_dof, plan
+from .plan import KinematicsPlan, generic_dof, kinematics_plan
 from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
                       symbolic_mistakes)
 from . import cache
@@ -100,7 +100,7 @@ def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
 # ---------------------------------------------------------------------------- numeric solve
 
 
-def _check_requirements(problem: Problem, p: Plan, state: State, only: set[str]) -> dict:
+def _check_requirements(problem: Problem, p: KinematicsPlan, state: State, only: set[str]) -> dict:
     """Errors for the objectives in ``only`` that do not exist at this instant."""
     values = evaluate(((oid, f) for oid, _, f in p.requirements), state, only)
     out = {}
@@ -111,7 +111,7 @@ def _check_requirements(problem: Problem, p: Plan, state: State, only: set[str])
     return out
 
 
-def _mistake_values(p: Plan, state: State, only: set[str]) -> dict[str, list[np.ndarray]]:
+def _mistake_values(p: KinematicsPlan, state: State, only: set[str]) -> dict[str, list[np.ndarray]]:
     return {oid: [evaluate((("m", f),), state, {"m"})["m"] for f in funcs]
             for oid, funcs in p.mistakes if oid in only}
 
@@ -122,7 +122,7 @@ def _mistake_values(p: Plan, state: State, only: set[str]) -> dict[str, list[np.
 def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                      objectives: Collection[str] | None = None) -> Solution:
     """:func:`mechgrade.solve.solve` for a problem without bodies and loads."""
-    p = plan(problem)
+    p = kinematics_plan(problem)
     results: dict[str, ObjectiveResult] = {}
     failures: dict[str, MechgradeError] = {}
     warned: list[AuthorWarning] = list(p.warnings)
@@ -231,7 +231,7 @@ def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: d
 
 
 def _stored_answer_key(problem: Problem, objective_id: str, dependence: tuple) -> str | None:
-    key = plan(problem).key
+    key = kinematics_plan(problem).key
     return None if key is None else cache.digest("symbolic", key, objective_id, dependence)
 
 
@@ -303,7 +303,7 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     from .symbolic import symbolic
 
     obj = problem.objective(objective_id)
-    expr, meanings = symbolic(problem, plan(problem).k, obj, dict(givens))
+    expr, meanings = symbolic(problem, kinematics_plan(problem).k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
     signed = tuple(_may_be_negative(problem, node) for node in meanings.values())
     return ObjectiveResult(
@@ -337,7 +337,7 @@ def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> Objectiv
         rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
 
 
-def degrees_of_freedom(p: Plan, state: State | None = None) -> int:
+def degrees_of_freedom(p: KinematicsPlan, state: State | None = None) -> int:
     """Coordinates minus independent constraint equations (rank of the velocity-level
     constraints in the rates, at the instant when it is solved)."""
     if state is not None:
@@ -373,22 +373,22 @@ def _quantity_unit(problem: Problem, node) -> str:
     return si_unit(units[node.id])
 
 
-def _author_units(problem: Problem, p: Plan) -> list[str]:
+def _author_units(problem: Problem, p: KinematicsPlan) -> list[str]:
     return _per_problem(author_units, problem, p)
 
 
-def _reported(problem: Problem, p: Plan) -> list[tuple[int, str, str, float]]:
+def _reported(problem: Problem, p: KinematicsPlan) -> list[tuple[int, str, str, float]]:
     """Each position's index, spelling, author's unit and that unit's SI factor."""
     return _per_problem(_positions_reported, problem, p)
 
 
-def _positions_reported(problem: Problem, p: Plan) -> list[tuple[int, str, str, float]]:
+def _positions_reported(problem: Problem, p: KinematicsPlan) -> list[tuple[int, str, str, float]]:
     units = _author_units(problem, p)
     return [(i, p.index.spelling(i), units[i], si_factor(units[i]) if units[i] else 1.0)
             for i in range(p.index.size)]
 
 
-def _state(problem: Problem, p: Plan, base) -> tuple[StateValue, ...]:
+def _state(problem: Problem, p: KinematicsPlan, base) -> tuple[StateValue, ...]:
     """The solved coordinates, rates, parameters and time, in the author's units."""
     if base is None:
         return ()

@@ -1,5 +1,6 @@
-"""Solving the instant level by level, as pure functions of a :class:`~.plan.Plan`, the givens
-placed in its state layout (:class:`Givens`) and the state solved so far (:class:`State`).
+"""Solving the instant level by level, as pure functions of a
+:class:`~.plan.KinematicsPlan`, the givens placed in its state layout (:class:`Givens`) and the
+state solved so far (:class:`State`).
 
 A level whose equations are linear in its unknowns (the velocity and acceleration constraints,
 givens that are components) is solved by least squares, with its nullspace (the combinations of
@@ -24,9 +25,10 @@ from ..errors import InconsistentError, Location, SolveError
 from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
-from .plan import Level, Plan
+from . import rules
+from .plan import Level, KinematicsPlan
+from .rules import first_off, on_branch, satisfied
 
-RANK_TOL = 1e-9
 DEFAULT_GUESS = 0.3
 JOINT_SPREADS = (0.5, 2.0, 8.0)
 SAME_ROOT = 1e-4
@@ -66,7 +68,7 @@ class State:
     free: frozenset[int] = frozenset()
 
 
-def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
+def place_givens(problem: Problem, p: KinematicsPlan, givens: Mapping) -> Givens:
     """``givens`` (canonical key -> (key node, SI value, Given or None)) in ``p``'s layout."""
     index = p.index
     values = np.full(index.size, np.nan)
@@ -101,31 +103,46 @@ def place_givens(problem: Problem, p: Plan, givens: Mapping) -> Givens:
                   _scales(problem, p, values, known))
 
 
-def _scales(problem: Problem, p: Plan, values, known) -> np.ndarray:
-    """A typical size for each position, from the givens of the same unit (angles: pi)."""
+def _scales(problem: Problem, p: KinematicsPlan, values, known) -> np.ndarray:
+    """A typical size for each position, from the givens of the same unit (angles: pi).
+    ``values`` holds one state (size) or one per column (size x N): the sizes then are too."""
+    return typical_sizes(problem, p, np.asarray(values, dtype=float)[:, None],
+                         known)[:, 0] if np.ndim(values) == 1 else \
+        typical_sizes(problem, p, values, known)
+
+
+def typical_sizes(problem: Problem, p: KinematicsPlan, values: np.ndarray, known) -> np.ndarray:
+    """:func:`_scales` of every column of ``values`` (size x N): the median of the nonzero
+    givens of each unit, in each column."""
     index = p.index
     units = {c.name: c.unit for c in problem.coordinates}
     units.update({q.name: q.unit for q in problem.parameters})
-    by_unit: dict[str, list[float]] = {}
+    by_unit: dict[str, list[int]] = {}
+    of = [_unit_of(index, units, i) for i in range(index.size)]
     for i in range(index.size):
-        if known[i] and values[i]:
-            by_unit.setdefault(_unit_of(index, units, i), []).append(abs(values[i]))
-    out = np.ones(index.size)
+        if known[i]:
+            by_unit.setdefault(of[i], []).append(i)
+    out = np.ones((index.size, values.shape[1]))
+    medians = {unit: _median(np.abs(values[rows_])) for unit, rows_ in by_unit.items()}
     for i in range(index.size):
-        unit = _unit_of(index, units, i)
-        if unit in ("rad", "deg", "degree", "radian"):
+        if of[i] in ("rad", "deg", "degree", "radian"):
             out[i] = np.pi
-        elif by_unit.get(unit):
-            out[i] = _median(by_unit[unit])
+        elif of[i] in medians:
+            out[i] = medians[of[i]]
     return out
 
 
-def _median(values: list[float]) -> float:
-    """The median, as ``numpy.median`` gives it, without the import of numpy's masked arrays
-    that ``numpy.median`` makes (milliseconds of every ``check``)."""
-    ordered = sorted(values)
-    middle = len(ordered) // 2
-    return ordered[middle] if len(ordered) % 2 else (ordered[middle - 1] + ordered[middle]) / 2
+def _median(values: np.ndarray) -> np.ndarray:
+    """The median of each column's nonzero entries (1 where there are none), as
+    ``numpy.median`` gives it, without the import of numpy's masked arrays that
+    ``numpy.median`` makes (milliseconds of every ``check``)."""
+    ordered = np.sort(np.where(values != 0, values, np.inf), axis=0)
+    count = (values != 0).sum(axis=0)
+    middle = count // 2
+    columns = np.arange(values.shape[1])
+    upper = ordered[np.minimum(middle, len(ordered) - 1), columns]
+    lower = ordered[np.maximum(middle - 1, 0), columns]
+    return np.where(count == 0, 1.0, np.where(count % 2 == 1, upper, (lower + upper) / 2))
 
 
 def _unit_of(index, units, i) -> str:
@@ -147,7 +164,7 @@ def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     return active, target
 
 
-def missing_values(p: Plan, g: Givens, only: set[str]) -> list[int]:
+def missing_values(p: KinematicsPlan, g: Givens, only: set[str]) -> list[int]:
     """Parameters and ``t`` that have no value and may not be solved for, yet are needed by an
     equation or by an objective in ``only``."""
     missing = {i for i in range(p.index.size) if not g.known[i] and not g.solvable[i]}
@@ -179,7 +196,7 @@ class Roots:
     picked: bool
 
 
-def solve_nonlinear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Givens,
                     free_values: Mapping[int, float] | None = None,
                     start: np.ndarray | None = None) -> Roots:
     """Solve level ``order`` numerically for its unknowns.
@@ -308,10 +325,10 @@ def _satisfied(problem, level, x, active, target) -> bool:
         warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
         scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-    return bool(np.all(np.abs(r) <= problem.consistency * scale + 1e-10))
+    return bool(np.all(satisfied(r, scale, problem.consistency)))
 
 
-def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
+def _same(p: KinematicsPlan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
     """Whether two roots are the same configuration (angles compared modulo a turn), within
     a small part of the quantity's typical size: a double root is only found that well."""
     for i in positions:
@@ -324,13 +341,7 @@ def _same(p: Plan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
 
 
 def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
-    for i in positions:
-        root = g.branches.get(i)
-        if root in (Root.POSITIVE, Root.FIRST_POSITIVE) and not x[i] > 1e-9 * g.scales[i]:
-            return False
-        if root is Root.NEGATIVE and not x[i] < -1e-9 * g.scales[i]:
-            return False
-    return True
+    return all(on_branch(x[i], g.scales[i], g.branches.get(i)) for i in positions)
 
 
 def _choose_branch(g: Givens, roots: list, positions) -> list:
@@ -346,7 +357,7 @@ def _branch_where(problem: Problem) -> Location:
     return problem.branches[0].where if problem.branches else Location()
 
 
-def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> str:
+def configurations(problem: Problem, p: KinematicsPlan, g: Givens, states, positions) -> str:
     """Roots listed by their solved quantities in the author's units."""
     units = author_units(problem, p, g)
     out = []
@@ -361,7 +372,7 @@ def configurations(problem: Problem, p: Plan, g: Givens, states, positions) -> s
     return "; ".join(out)
 
 
-def author_units(problem: Problem, p: Plan, g: Givens | None = None) -> list[str]:
+def author_units(problem: Problem, p: KinematicsPlan, g: Givens | None = None) -> list[str]:
     """The unit each position is reported in: that of its given or guess, else its own."""
     index = p.index
     declared = {c.name: c.unit for c in problem.coordinates}
@@ -391,9 +402,8 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
         warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel() - target
         scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())
-    bad = [i for i in np.flatnonzero(active)
-           if not abs(r[i]) <= problem.consistency * scale[i] + 1e-10]
-    if not bad:
+    bad = np.flatnonzero(active & ~satisfied(r, scale, problem.consistency))
+    if not len(bad):
         return None
     i = bad[0]
     if int(active.sum()) > rank:
@@ -413,7 +423,7 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
 # ---------------------------------------------------------------------------- linear
 
 
-def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
+def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Givens,
                  shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
     """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
     ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
@@ -444,7 +454,7 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
             from scipy import linalg
 
             sol, *_ = linalg.lstsq(A_u, rhs)
-            null = nullspace(A_u)
+            null = rules.null_space(A_u)
         else:
             sol = np.zeros(len(unknown))
             null = np.eye(len(unknown))
@@ -459,10 +469,8 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
             r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
             scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
         labels = np.array(level.labels)[active]
-        off = [i for i in range(len(r)) if not abs(r[i]) <= problem.consistency * scale[i]
-               + 1e-10]
-        if off:
-            i = off[0]
+        i = first_off(r, scale, problem.consistency)
+        if i is not None:
             raise InconsistentError(
                 f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
                 f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
@@ -470,7 +478,7 @@ def solve_linear(problem: Problem, p: Plan, order: int, state: State, g: Givens,
     return State(x, g.known, frozenset(free)), null
 
 
-def constraint_rank(p: Plan, state: State) -> int:
+def constraint_rank(p: KinematicsPlan, state: State) -> int:
     """Rank of the velocity-level constraints in the rates at the solved configuration."""
     level = p.levels[1]
     if not level.constraint_rows:
@@ -479,7 +487,7 @@ def constraint_rank(p: Plan, state: State) -> int:
         A = np.asarray(level.jacobian(*state.values), dtype=float).reshape(len(level.labels),
                                                                            p.index.n)
     A = A[:level.constraint_rows]
-    return int(np.linalg.matrix_rank(A)) if np.isfinite(A).all() else 0
+    return int(rules.rank(np.linalg.svd(A, compute_uv=False))) if np.isfinite(A).all() else 0
 
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:
@@ -492,21 +500,10 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
         return list(unknown), []
     with np.errstate(all="ignore"):
         _, R, piv = linalg.qr(J, pivoting=True, mode="economic")
-    diag = np.abs(np.diag(R)) if R.size else np.zeros(0)
-    rank = int((diag > RANK_TOL * max(diag.max(initial=0.0), 1.0)).sum())
+    rank = int(rules.rank(np.diag(R))) if R.size else 0
     determined = sorted(unknown[j] for j in piv[:rank])
     free = sorted(unknown[j] for j in piv[rank:])
     return determined, free
-
-
-def nullspace(A: np.ndarray) -> np.ndarray:
-    from scipy import linalg
-
-    if A.shape[0] == 0:
-        return np.eye(A.shape[1])
-    _, s, vt = linalg.svd(A)
-    rank = int((s > RANK_TOL * max(s.max(initial=0.0), 1.0)).sum())
-    return vt[rank:].T
 
 
 def evaluate(functions, state: State, only: set[str]) -> dict:

@@ -31,9 +31,10 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
-from .levels import State, evaluate
+from .columns import call
+from .levels import State
 from .numeric import solve_numeric
-from .plan import Mutant, Plan, lambdified_mutants, plan
+from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants
 from .result import GeneratedMistake, ObjectiveResult
 
 # sympy and the mechanics are imported by the functions that derive: a plan read from the disk
@@ -44,35 +45,30 @@ from .result import GeneratedMistake, ObjectiveResult
 _LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd": "ft"}
 
 
-def _lambdified(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
+def _lambdified(problem: Problem, p: KinematicsPlan, objective: str) -> tuple[Mutant, ...]:
     """The model mutations of a numeric objective, compiled with the plan or lambdified now."""
     if p.mutants is not None:
         return p.mutants.get(objective, ())
     return lambdified_mutants(problem, p, objective)
 
 
-def model_mistakes(problem: Problem, p: Plan, state: State,
+def model_mistakes(problem: Problem, p: KinematicsPlan, state: State,
                    wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
-    """The model mutations of the objectives in ``wanted``, at ``state``."""
+    """The model mutations of the objectives in ``wanted``, at ``state`` (those undefined
+    there left out): :func:`model_mistake_table` at one instant."""
     out: dict[str, list[GeneratedMistake]] = {}
-    # objective by objective: only the wanted ones are derived and lambdified
-    for m in (item for o in problem.objectives if o.id in wanted
-              for item in _lambdified(problem, p, o.id)):
-        si = evaluate((("v", m.value),), state, {"v"})["v"]
-        values = None if m.term is None else evaluate((("t", m.term),), state, {"t"})["t"]
-        mistake = _model_mistake(problem, m, si, values)
-        if mistake is not None:
-            out.setdefault(m.objective, []).append(mistake)
+    for row in model_mistake_table(problem, p, state.values[:, None], wanted):
+        if row[2][0]:
+            out.setdefault(row[0].objective, []).append(model_mistake_at(row, 0))
     return out
 
 
-def model_mistake_table(problem: Problem, p: Plan, states: np.ndarray, wanted, call) -> list:
-    """:func:`model_mistakes` at many instants at once: ``states`` holds one state per
-    column, ``call(f, states, size)`` evaluates a lambdified function at every column as a
-    ``(size, N)`` array. One row per mutation of an objective in ``wanted``: ``(mutation,
-    objective, where it is defined (N), its values in the objective's unit (N x size), the
-    dropped term's SI values (N x 3) or None)``; :func:`model_mistake_at` makes the mistake of
-    one instant."""
+def model_mistake_table(problem: Problem, p: KinematicsPlan, states: np.ndarray, wanted) -> list:
+    """The model mutations of the objectives in ``wanted`` at many instants at once
+    (``states`` holds one state per column). One row per mutation: ``(mutation, objective,
+    where it is defined (N), its values in the objective's unit (N x size), the dropped term's
+    SI values (N x 3) or None)``; :func:`model_mistake_at` makes the mistake of one instant.
+    Objective by objective: only the wanted ones are derived and lambdified."""
     table = []
     for m in (item for o in problem.objectives if o.id in wanted
               for item in _lambdified(problem, p, o.id)):
@@ -93,19 +89,6 @@ def model_mistake_at(row, i: int) -> GeneratedMistake:
     return GeneratedMistake(m.code, sentence, value)
 
 
-def _model_mistake(problem: Problem, m: Mutant, si: np.ndarray,
-                   term) -> GeneratedMistake | None:
-    """The mistake a mutation gives (``si`` its SI value, ``term`` the dropped term's), or
-    ``None`` where it is undefined."""
-    if not np.all(np.isfinite(si)):
-        return None
-    obj = problem.objective(m.objective)
-    sentence = m.sentence
-    if term is not None:
-        sentence = sentence.replace("{term}", _term_text(term, obj, m.velocity))
-    return GeneratedMistake(m.code, sentence, _in_unit(si, obj))
-
-
 def symbolic_mistakes(problem: Problem, obj: Objective, right,
                       givens: dict) -> tuple[GeneratedMistake, ...]:
     """The model mutations of a symbolic objective, each solved in the objective's symbols
@@ -116,7 +99,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
     from ..mechanics.symbols import identically_zero
     from .symbolic import symbolic
 
-    k = plan(problem).k
+    k = kinematics_plan(problem).k
     out: list[GeneratedMistake] = []
     kept = [right]
     for m in mutations(problem, obj.id):
@@ -135,7 +118,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
     return tuple(out)
 
 
-def given_mistakes(problem: Problem, p: Plan, givens: Mapping,
+def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
                    wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}
@@ -265,57 +248,54 @@ def attach(results: Mapping[str, ObjectiveResult],
 
 def _distinct(right, kept: tuple[GeneratedMistake, ...],
               new: list[GeneratedMistake]) -> tuple[GeneratedMistake, ...]:
-    """``kept`` and each mistake of ``new`` whose value differs from the answer ``right``
-    (the same value as the answer at this instant: no mistake here) and from every one kept
-    before it (:func:`_same`), and is not :func:`_vague`; compared all at once."""
-    try:
-        V = np.array([np.atleast_1d(np.asarray(m.value, float)) for m in kept + tuple(new)])
-        r = np.atleast_1d(np.asarray(right, float))
-    except (TypeError, ValueError):  # values of different shapes: compare one by one
-        V = None
-    if V is None or V.ndim != 2 or r.shape != V.shape[1:]:
-        out = list(kept)
-        for mistake in new:
-            if not any(_same(mistake.value, k.value) for k in out) \
-                    and not _same(mistake.value, right) and not _vague(mistake):
-                out.append(mistake)
-        return tuple(out)
+    """``kept`` and the mistakes of ``new`` that :func:`kept_mistakes` keeps at this one
+    instant (a value of another shape than the answer's is none of its mistakes)."""
+    r = np.atleast_1d(np.asarray(right, float))
+    mistakes = kept + tuple(new)
+    values = [np.atleast_1d(np.asarray(m.value, float)) for m in mistakes]
+    exists = np.array([[v.shape == r.shape for v in values]])
+    V = np.array([[v if v.shape == r.shape else np.full(r.shape, np.nan) for v in values]])
+    other = np.array([[m.code == "other_point" for m in mistakes]])
+    keep = kept_mistakes(r[None, :], V.reshape(1, len(mistakes), len(r)), exists, other,
+                         len(kept))
+    return tuple(m for m, k in zip(mistakes, keep[0]) if k)
+
+
+def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: np.ndarray,
+                  first: int = 0) -> np.ndarray:
+    """Which generated mistakes are kept, at every instant at once (``right``: the answer at
+    each, N x size; ``V``: the mistakes' values in order, N x count x size; ``exists``: where
+    each is defined; ``other``: which name another point's value): each that differs from the
+    answer (the same value as the answer at this instant: no mistake here) and from every one
+    kept before it (:data:`SAME`), and is not a zero other than another point's (a zero is
+    what many mistakes give). The ``first`` are kept whatever they are.
+
+    >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0 + 1e-9], [1.0], [0.0]]]),
+    ...               np.ones((1, 4), bool), np.zeros((1, 4), bool)).tolist()
+    [[True, False, False, False]]
+    """
+    n, count = exists.shape
     with np.errstate(invalid="ignore"):
-        norms = np.linalg.norm(V, axis=1)
-        apart = np.linalg.norm(V[:, None, :] - V[None, :, :], axis=2)
-        same = apart <= SAME * np.maximum(np.maximum(norms[:, None], norms[None, :]), 1e-12) \
-            + 1e-12
-        size = max(float(np.linalg.norm(r)), 1e-12)
-        answer = np.linalg.norm(V - r, axis=1) <= SAME * np.maximum(norms, size) + 1e-12
-        nonzero = (np.abs(V) > 1e-12).any(axis=1)
-    keep = list(range(len(kept)))
-    out = list(kept)
-    for j in range(len(kept), len(V)):
-        mistake = new[j - len(kept)]
-        vague = mistake.code != "other_point" and not nonzero[j]
-        if not same[j, keep].any() and not answer[j] and not vague:
-            keep.append(j)
-            out.append(mistake)
-    return tuple(out)
-
-
-def _vague(mistake: GeneratedMistake) -> bool:
-    """A zero is what many mistakes give: only another point's zero velocity (a contact
-    point's) is named from it."""
-    return mistake.code != "other_point" and not np.any(
-        np.abs(np.asarray(mistake.value, float)) > 1e-12)
+        norms = np.linalg.norm(V, axis=2)
+        scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
+        answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
+            SAME * np.maximum(norms, scale[:, None]) + 1e-12
+        vague = ~other & ~(np.abs(V) > 1e-12).any(axis=2)
+        keep = np.zeros((n, count), dtype=bool)
+        keep[:, :first] = True
+        for j in range(first, count):
+            apart = np.linalg.norm(V[:, :j] - V[:, j:j + 1], axis=2)
+            same = apart <= SAME * np.maximum(np.maximum(norms[:, :j], norms[:, j:j + 1]),
+                                              1e-12) + 1e-12
+            keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
+                & ~vague[:, j]
+    return keep
 
 
 SAME = 1e-7
 """Relative distance within which a mistake's value is the answer's or another mistake's (one
 value): values read at an integration's event (limits just before it) carry errors near
 1e-8, and no tolerance a student can meet tells apart values closer than that."""
-
-
-def _same(a, b) -> bool:
-    a, b = np.atleast_1d(np.asarray(a, float)), np.atleast_1d(np.asarray(b, float))
-    scale = max(float(np.linalg.norm(a)), float(np.linalg.norm(b)), 1e-12)
-    return bool(np.linalg.norm(a - b) <= SAME * scale + 1e-12)
 
 
 def _in_unit(si_values: np.ndarray, obj: Objective):

@@ -19,14 +19,16 @@ from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
                      place_givens, rows, solve_linear, solve_nonlinear)
-from .plan import Plan
+from .columns import call
+from .plan import KinematicsPlan
+from .rules import satisfied
 
 PROBE_TOL = 1e-7
 SINGULAR = 1e-3
 
 
 @dataclass(frozen=True)
-class Branch:
+class Candidate:
     """One complete solution of the levels: the state, the nullspaces of the linear rate
     levels, the unknowns the non-linear levels left free, and whether every choice of root on
     the way was the spec's."""
@@ -48,8 +50,8 @@ class Instant:
     warnings: tuple[AuthorWarning, ...]
 
 
-def _branches(problem: Problem, p: Plan, g: Givens, *, free_values=None,
-              shifts=(None, None), start=None) -> list[Branch]:
+def _branches(problem: Problem, p: KinematicsPlan, g: Givens, *, free_values=None,
+              shifts=(None, None), start=None) -> list[Candidate]:
     """Every complete solution: each root of each non-linear level followed to the end."""
     initial = State(g.values.copy(), g.known)
     out = []
@@ -58,7 +60,7 @@ def _branches(problem: Problem, p: Plan, g: Givens, *, free_values=None,
         for s1, n1, f1, k1 in _rate_level(problem, p, 1, s0, g, free_values, shifts[0], start):
             for s2, n2, f2, k2 in _rate_level(problem, p, 2, s1, g, free_values, shifts[1],
                                               start):
-                out.append(Branch(s2, (n1, n2), first.free + f1 + f2,
+                out.append(Candidate(s2, (n1, n2), first.free + f1 + f2,
                                   first.picked and k1 and k2))
     return out
 
@@ -71,7 +73,7 @@ def _rate_level(problem, p, order, state, g, free_values, shift, start):
     return [(s, None, roots.free, roots.picked) for s in roots.states]
 
 
-def solve_numeric(problem: Problem, p: Plan, givens: Mapping, only: set[str]) -> Instant:
+def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Instant:
     """Solve the instant and evaluate the numeric objectives in ``only``.
 
     Raises when the instant itself cannot be solved; an objective that depends on something
@@ -98,12 +100,13 @@ def solve_numeric(problem: Problem, p: Plan, givens: Mapping, only: set[str]) ->
     return Instant(base.state, values, errors, _degenerate(problem, p, base.state, solved))
 
 
-def _same_answers(p: Plan, a: Branch, b: Branch, only) -> bool:
+def _same_answers(p: KinematicsPlan, a: Candidate, b: Candidate, only) -> bool:
     va, vb = evaluate(p.objectives, a.state, only), evaluate(p.objectives, b.state, only)
     return all(_close(va[o], vb[o]) for o in va)
 
 
-def _ambiguous(problem: Problem, p: Plan, g: Givens, branches: list[Branch]) -> SolveError:
+def _ambiguous(problem: Problem, p: KinematicsPlan, g: Givens,
+               branches: list[Candidate]) -> SolveError:
     states = [b.state.values for b in branches]
     free = set().union(*(b.state.free for b in branches))
 
@@ -131,7 +134,7 @@ def _ambiguous(problem: Problem, p: Plan, g: Givens, branches: list[Branch]) -> 
         f"(e.g. branch: {{{example}}})", where=where)
 
 
-def _missing_error(problem: Problem, p: Plan, i: int) -> SolveError:
+def _missing_error(problem: Problem, p: KinematicsPlan, i: int) -> SolveError:
     name = p.index.spelling(i)
     where = next((q.where for q in problem.parameters if q.name == name), None)
     if where is None:  # t: point at the first equation that needs it
@@ -143,7 +146,7 @@ def _missing_error(problem: Problem, p: Plan, i: int) -> SolveError:
                       where=where)
 
 
-def _check_givens_hold(problem: Problem, p: Plan, g: Givens, givens: Mapping,
+def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
                        state: State) -> None:
     """Every constraint and expression given, at every level, holds in ``state``."""
     for level in p.levels:
@@ -155,7 +158,7 @@ def _check_givens_hold(problem: Problem, p: Plan, g: Givens, givens: Mapping,
             scale = np.abs(np.asarray(level.scale(*state.values), dtype=float).ravel())
         for i in np.flatnonzero(active):
             r = value[i] - target[i]
-            if np.isfinite(value[i]) and abs(r) <= problem.consistency * scale[i] + 1e-10:
+            if np.isfinite(value[i]) and satisfied(r, scale[i], problem.consistency):
                 continue
             j = i - level.constraint_rows
             if j < 0:
@@ -171,7 +174,7 @@ def _check_givens_hold(problem: Problem, p: Plan, g: Givens, givens: Mapping,
                              where=level.wheres[i])
 
 
-def _undetermined(problem: Problem, p: Plan, g: Givens, base: Branch, values: Mapping,
+def _undetermined(problem: Problem, p: KinematicsPlan, g: Givens, base: Candidate, values: Mapping,
                   only: set[str]) -> dict[str, MechgradeError]:
     """Probe each freedom the givens leave: an objective that changes depends on it."""
     state = base.state
@@ -209,51 +212,70 @@ def _undetermined(problem: Problem, p: Plan, g: Givens, base: Branch, values: Ma
         for oid, missing in depends.items()}
 
 
-def _degenerate(problem: Problem, p: Plan, state: State,
+def _degenerate(problem: Problem, p: KinematicsPlan, state: State,
                 solved: list[int]) -> tuple[AuthorWarning, ...]:
-    """Warnings for a degenerate configuration the position solve landed on: points that
-    coincide there but not nearby, a singular constraint Jacobian."""
-    if not solved:
-        return ()
-    out = []
-    with np.errstate(all="ignore"):
-        here = np.asarray(p.point_positions(*state.values), dtype=float).reshape(3, -1)
-        other = state.values.copy()
-        other[solved] = other[solved] * 1.13 + 0.07
-        there = np.asarray(p.point_positions(*other), dtype=float).reshape(3, -1)
-    size = max(np.abs(here[np.isfinite(here)]).max(initial=0.0), 1e-12)
+    """Warnings for a degenerate configuration the position solve landed on
+    (:func:`degenerate` at this one instant)."""
+    pairs, singular = degenerate(p, state.values[:, None], solved)
     wheres = {q.name: q.where for q in problem.points}
-    for a in range(len(p.points)):
-        for b in range(a):
-            close = np.abs(here[:, a] - here[:, b]).max() <= SAME_ROOT * size
-            always = np.abs(there[:, a] - there[:, b]).max() <= SAME_ROOT * size
-            if close and not always:
-                out.append(AuthorWarning(
-                    f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
-                    "coincide in the solution", wheres.get(p.points[a], Location())))
-    level = p.levels[0]
-    rank = p.constraint_rank
-    if level.constraint_rows and rank:
-        def weakest(values):
-            """The rank-th singular value of the constraints' Jacobian in the coordinates."""
-            with np.errstate(all="ignore"):
-                J = np.asarray(level.jacobian(*values), dtype=float).reshape(
-                    len(level.labels), -1)[:level.constraint_rows, :p.index.n]
-            if not np.isfinite(J).all():
-                return np.nan
-            sv = np.linalg.svd(J, compute_uv=False)
-            return sv[rank - 1] if len(sv) >= rank else 0.0
-
-        # singular: far weaker here than in the configurations around it
-        if weakest(state.values) < SINGULAR * weakest(other):
-            out.append(AuthorWarning(
-                "degenerate configuration: the position constraints are singular in the "
-                "solution (their Jacobian loses rank: a dead point or a folded linkage)",
-                level.wheres[0]))
+    out = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
+                         "coincide in the solution", wheres.get(p.points[a], Location()))
+           for a, b, flagged in pairs if flagged[0]]
+    if singular[0]:
+        out.append(AuthorWarning(
+            "degenerate configuration: the position constraints are singular in the "
+            "solution (their Jacobian loses rank: a dead point or a folded linkage)",
+            p.levels[0].wheres[0]))
     return tuple(out)
 
 
-def _rate_names(p: Plan, unknown: list[int], direction: np.ndarray) -> str:
+def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
+               ) -> tuple[list[tuple[int, int, np.ndarray]], np.ndarray]:
+    """Where the states ``X`` (one per column) are degenerate configurations, the positions
+    ``solved`` having been solved for: for each pair of points ``(a, b, columns)``, the
+    columns where they coincide but not in the configurations around (the solved positions
+    moved); and the columns where the position constraints' Jacobian is singular, far weaker
+    (its rank-th singular value) than around."""
+    n = X.shape[1]
+    if not solved:
+        return [], np.zeros(n, dtype=bool)
+    size = p.index.size
+    other = X[:size].copy()
+    other[solved] = other[solved] * 1.13 + 0.07
+    pairs = []
+    count = len(p.points)
+    if count > 1:
+        here = call(p.point_positions, X[:size], 3 * count).reshape(3, count, n)
+        there = call(p.point_positions, other, 3 * count).reshape(3, count, n)
+        finite = np.where(np.isfinite(here), np.abs(here), 0.0)
+        scale = SAME_ROOT * np.maximum(finite.max(axis=(0, 1)), 1e-12)
+        for a in range(count):
+            for b in range(a):
+                close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
+                always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
+                pairs.append((a, b, close & ~always))
+    singular = np.zeros(n, dtype=bool)
+    if p.levels[0].constraint_rows and p.constraint_rank:
+        singular = _weakest(p, X[:size]) < SINGULAR * _weakest(p, other)
+    return pairs, singular
+
+
+def _weakest(p: KinematicsPlan, X: np.ndarray) -> np.ndarray:
+    """The rank-th singular value of the position constraints' Jacobian in the coordinates
+    (NaN where it is undefined), at every column."""
+    level = p.levels[0]
+    n = X.shape[1]
+    ncols = len(p.index.unknowns(0))
+    J = call(level.jacobian, X, len(level.labels) * ncols).reshape(
+        len(level.labels), ncols, n)[:level.constraint_rows, :p.index.n]
+    finite = np.isfinite(J).all(axis=(0, 1))
+    sv = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1), compute_uv=False)
+    rank = p.constraint_rank
+    weakest = sv[:, rank - 1] if sv.shape[1] >= rank else np.zeros(n)
+    return np.where(finite, weakest, np.nan)
+
+
+def _rate_names(p: KinematicsPlan, unknown: list[int], direction: np.ndarray) -> str:
     names = [p.index.spelling(i) for i, w in zip(unknown, direction) if abs(w) > 1e-6]
     return " or ".join(names) if names else "a rate"
 

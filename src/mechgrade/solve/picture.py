@@ -27,7 +27,7 @@ import sympy as sp
 from ..expressions.syntax import Name
 from ..mechanics.build import build
 from ..spec.model import Problem
-from .plan import plan
+from .plan import kinematics_plan
 from .result import Solution
 
 Triple = tuple[float, float, float]
@@ -114,7 +114,7 @@ def _drawing(problem: Problem):
     """The state's names, and every point's position, velocity and acceleration and every
     frame's origin and unit vectors as functions of the state (inertial components)."""
     kinematic = replace(problem, objectives=(), dynamics=None)  # loads draw nothing
-    p = plan(kinematic)
+    p = kinematics_plan(kinematic)
     model = build(kinematic)
     N = model.inertial
 

@@ -4,11 +4,11 @@ their residuals are judged by; the objectives, mistaken models and requirements.
 
 A plan is kept in memory and, compiled (the functions as the source sympy printed for them),
 on disk (:mod:`.cache`): a plan read back from disk is used without importing sympy; its
-kinematics (:attr:`Plan.k`) are derived again only if something asks for them.
+kinematics (:attr:`KinematicsPlan.k`) are derived again only if something asks for them.
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
->>> p = plan(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
+>>> p = kinematics_plan(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
 >>> [(level.name, level.linear) for level in p.levels]
 [('position', True), ('velocity', True), ('acceleration', True)]
 """
@@ -28,6 +28,7 @@ from ..spec.model import ObjectiveKind, Problem
 from . import cache
 from .generated import UnsafeSource, numpy_function, same_namespace
 from .index import SymbolIndex
+from .rules import rank
 
 if TYPE_CHECKING:
     from ..mechanics import Kinematics
@@ -80,7 +81,7 @@ class Mutant:
 
 
 @dataclass(frozen=True, eq=False)
-class Plan:
+class KinematicsPlan:
     """A problem's kinematics, ready for numbers: its state layout, its three levels and the
     objective, mistake and requirement functions (each called with the whole state).
 
@@ -178,12 +179,12 @@ def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
         jacobian_uses=frozenset(positions[s] for s in jac.free_symbols if s in positions))
 
 
-_BY_IDENTITY: dict[int, tuple[Problem, Plan]] = {}
-_BY_TEXT: dict[Any, Plan] = {}
+_BY_IDENTITY: dict[int, tuple[Problem, KinematicsPlan]] = {}
+_BY_TEXT: dict[Any, KinematicsPlan] = {}
 _LIMIT = 64
 
 
-def plan(problem: Problem) -> Plan:
+def kinematics_plan(problem: Problem) -> KinematicsPlan:
     """Derive and lambdify ``problem`` once (per place it was written: plans keep locations),
     or read it from the disk cache."""
     known = _BY_IDENTITY.get(id(problem))
@@ -208,10 +209,10 @@ def _cache_clear() -> None:
     _BY_TEXT.clear()
 
 
-plan.cache_clear = _cache_clear  # type: ignore[attr-defined]  # as functools' caches
+kinematics_plan.cache_clear = _cache_clear  # type: ignore[attr-defined]  # as functools' caches
 
 
-def _planned(problem: Problem, key: str | None) -> Plan:
+def _planned(problem: Problem, key: str | None) -> KinematicsPlan:
     """The plan read from the disk cache under ``key``, else derived (and, with a ``key``,
     compiled and stored)."""
     if key is None:
@@ -233,7 +234,7 @@ def _planned(problem: Problem, key: str | None) -> Plan:
     return compiled
 
 
-def _derived(problem: Problem) -> Plan:
+def _derived(problem: Problem) -> KinematicsPlan:
     import sympy as sp
 
     from ..mechanics import derive
@@ -251,7 +252,7 @@ def _derived(problem: Problem) -> Plan:
     numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
     positions = {s: i for i, s in enumerate(symbols)}
     points = sp.Matrix.hstack(*(r for _, r in k.points)) if k.points else sp.zeros(3, 0)
-    p = Plan(
+    p = KinematicsPlan(
         index=index, levels=levels,
         objectives=tuple((oid, _OnFirstCall(symbols, expr)) for oid, expr in k.objectives
                          if oid in numeric),
@@ -269,7 +270,7 @@ def _derived(problem: Problem) -> Plan:
 
 
 @lru_cache(maxsize=512)
-def lambdified_mutants(problem: Problem, p: Plan, objective: str) -> tuple[Mutant, ...]:
+def lambdified_mutants(problem: Problem, p: KinematicsPlan, objective: str) -> tuple[Mutant, ...]:
     """The model mutations of a numeric objective (:mod:`mechgrade.mechanics.mutations`),
     lambdified in ``p``'s state layout (kept per plan, as a plan is per problem and place)."""
     import sympy as sp
@@ -298,7 +299,9 @@ def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     point = {s: float(rng.uniform(0.4, 1.6)) for s in index.symbols}
     with np.errstate(all="ignore"):
         value = np.array(jac.xreplace(point).evalf(), dtype=complex)
-    return int(np.linalg.matrix_rank(value)) if np.isfinite(value).all() else len(k.q)
+    if not np.isfinite(value).all():
+        return len(k.q)
+    return int(rank(np.linalg.svd(value, compute_uv=False)))
 
 
 def generic_dof(k: Kinematics) -> int:
@@ -326,7 +329,7 @@ def source(function: Callable) -> str:
     return inspect.getsource(function)
 
 
-def _entry(problem: Problem, p: Plan) -> dict:
+def _entry(problem: Problem, p: KinematicsPlan) -> dict:
     """The plan (and its model mutations) as plain JSON with the functions' source."""
     index = p.index
     return {
@@ -353,11 +356,11 @@ def _entry(problem: Problem, p: Plan) -> dict:
         "generic_dof": generic_dof(p.k)}
 
 
-def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
+def _from_entry(problem: Problem, key: str, entry: dict) -> KinematicsPlan:
     """The plan an :func:`_entry` describes; raises (``KeyError``, ``ValueError``...) on
     anything else."""
     names, coordinates, parameters = entry["index"]
-    holder: list[Plan] = []
+    holder: list[KinematicsPlan] = []
     index = SymbolIndex(tuple(map(str, names)), tuple(map(str, coordinates)),
                         tuple(map(str, parameters)), source=lambda: holder[0].k)
     if index.size != len(coordinates) * 3 + len(parameters) + 1:
@@ -374,7 +377,7 @@ def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
         for level in entry["levels"])
     if [level.order for level in levels] != [0, 1, 2]:
         raise ValueError("expected the three levels")
-    p = Plan(
+    p = KinematicsPlan(
         index=index, levels=levels,  # type: ignore[arg-type]  # three, checked above
         objectives=tuple((str(oid), _compiled(text)) for oid, text in entry["objectives"]),
         mistakes=tuple((str(oid), tuple(_compiled(t) for t in texts))

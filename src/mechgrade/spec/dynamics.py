@@ -17,6 +17,7 @@ tensions, contact forces) and friction (kinetic, or static with its bound checke
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import Enum
 
 from ..errors import Location, SpecError, UnitError
 from ..expressions.functions import Kind
@@ -248,6 +249,22 @@ class Start:
     where: Location = field(default_factory=Location, compare=False)
 
 
+class Sense(Enum):
+    """The sign a rate has at the instant of a work–energy analysis."""
+
+    POSITIVE = "positive"
+    NEGATIVE = "negative"
+
+    @property
+    def sign(self) -> int:
+        """+1 or -1.
+
+        >>> Sense("negative").sign
+        -1
+        """
+        return 1 if self is Sense.POSITIVE else -1
+
+
 @dataclass(frozen=True)
 class WorkEnergy:
     """The instant is reached from the state ``start`` with the mechanical energy conserved:
@@ -255,7 +272,7 @@ class WorkEnergy:
     a rate has (``{"theta'": negative}``)."""
 
     start: tuple[Start, ...]
-    sense: tuple[tuple[Expr, str], ...]
+    sense: tuple[tuple[Expr, Sense], ...]
     where: Location = field(default_factory=Location, compare=False)
 
 
@@ -452,7 +469,7 @@ def _analysis(spec: dict | None, expr, where) -> Analysis | None:
     start = tuple(_start(key, value, expr, where, *path, "from")
                   for key, value in (body.get("from") or {}).items())
     if kind == "work_energy":
-        sense = tuple((expr(key, *path, "sense", key), value)
+        sense = tuple((expr(key, *path, "sense", key), Sense(value))
                       for key, value in (body.get("sense") or {}).items())
         return WorkEnergy(start, sense, where(*path))
     until = _equation(body["until"], expr, where, *path, "until")

@@ -1,0 +1,127 @@
+"""Functions of the state evaluated at many states at once, each a column of an array, and the
+small linear algebra of every column at once: what every numeric stage of the solver works
+with, whether it solves one instant (one column) or a class of variants.
+
+>>> import numpy as np
+>>> call(lambda x, y: x + y, np.array([[1.0, 2.0], [3.0, 4.0]]), 1).tolist()
+[[4.0, 6.0]]
+"""
+
+from __future__ import annotations
+
+import types
+import warnings
+from functools import lru_cache
+from typing import Callable
+
+import numpy as np
+
+from .plan import _OnFirstCall
+from .rules import significant
+
+
+@lru_cache(maxsize=4096)
+def _batched(f: Callable) -> Callable:
+    """``f`` (made by ``sympy.lambdify``) with its matrices built from entries that may be
+    arrays of different shapes (a constant beside a column of values)."""
+    if isinstance(f, _OnFirstCall):
+        f = f.function
+    namespace = dict(f.__globals__)
+    namespace["array"] = _array
+    return types.FunctionType(f.__code__, namespace, f.__name__, f.__defaults__, f.__closure__)
+
+
+def _array(rows):
+    """``numpy.array`` for the matrices lambdified functions build, with entries of
+    different shapes broadcast together."""
+    arrays = [e.shape for row in rows for e in row if type(e) is np.ndarray]
+    shapes = set(arrays)
+    if not arrays or (len(shapes) == 1 and len(arrays) == len(rows) * len(rows[0])):
+        return np.array(rows, dtype=float)
+    # a constant entry beside arrays: every entry broadcast to the arrays' shape
+    out = np.empty((len(rows), len(rows[0])) + np.broadcast_shapes(*shapes))
+    for r, row in enumerate(rows):
+        for c, entry in enumerate(row):
+            out[r, c] = entry
+    return out
+
+
+def call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
+    """``f`` at every column of ``X`` (the states, one per column): ``size`` values each, as
+    a ``(size, N)`` array."""
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return loud_call(f, X, size)
+
+
+def loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
+    """:func:`call` for a caller that has silenced numpy's warnings already (an
+    integration evaluates its right-hand side thousands of times)."""
+    n = X.shape[1]
+    out = np.asarray(_batched(f)(*X), dtype=float)
+    if out.size == size * n:
+        return out.reshape(size, n)
+    return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
+
+
+def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The least-squares solution of ``A x = b`` at every column (``A``: rows x unknowns x N,
+    ``b``: rows x N), the minimum-norm one where ``A`` is singular, as ``scipy.linalg.lstsq``
+    gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
+    cost is most of the time of so small a solve)."""
+    rows_, k, count = A.shape
+    if rows_ == k == 1:
+        with np.errstate(all="ignore"):
+            solved = b / A[0]
+        if np.isfinite(solved.sum()):
+            return solved
+    else:
+        solved = np.full((k, count), np.nan)
+    if rows_ == k and 1 < k <= 3:
+        det = _determinant(A)
+        with np.errstate(all="ignore"):
+            for j in range(k):
+                replaced = A.copy()
+                replaced[:, j] = b
+                solved[j] = _determinant(replaced) / det
+    left = ~np.isfinite(solved).all(axis=0)
+    if left.any():
+        Ab = A[:, :, left].transpose(2, 0, 1)
+        bb = b[:, left].T[:, :, None]
+        try:
+            part = np.linalg.solve(Ab, bb) if rows_ == k else None
+        except np.linalg.LinAlgError:  # a singular column: the least-squares solution
+            part = None
+        if part is None:
+            part = np.linalg.pinv(Ab) @ bb
+        solved[:, left] = part[:, :, 0].T
+    return solved
+
+
+def _determinant(A: np.ndarray) -> np.ndarray:
+    """The determinant of every column's square matrix of up to three rows."""
+    k = A.shape[0]
+    if k == 1:
+        return A[0, 0]
+    if k == 2:
+        return A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
+    return (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1])
+            - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
+            + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
+
+
+def least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
+    """The minimum-norm least-squares step ``-pinv(J) r`` of every column (``J``: rows x
+    unknowns x N, ``r``: rows x N; columns not ``good`` are left at zero), the rank of each
+    ``J`` (as :func:`~.levels.nullspace` counts it) and each one's right singular vectors
+    (N x unknowns x unknowns: the rows after the rank span its nullspace)."""
+    Jb = np.where(good, J, 0.0).transpose(2, 0, 1)
+    U, s, Vt = np.linalg.svd(Jb, full_matrices=True)
+    k = s.shape[1]
+    big = significant(s)
+    rank = big.sum(axis=1)
+    with np.errstate(all="ignore"):
+        inverse = np.where(big, 1.0 / np.where(big, s, 1.0), 0.0)
+        coeff = np.einsum("nmk,mn->nk", U[:, :, :k], np.where(good, r, 0.0)) * inverse
+        step = -np.einsum("nkj,nk->jn", Vt[:, :k, :], coeff)
+    return step, rank, Vt

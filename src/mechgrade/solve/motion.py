@@ -1,0 +1,249 @@
+"""The motion of a dynamics problem at many states at once, each a column: the second rates and
+reactions from the momentum balances, screened as :func:`~.dynamics.solve_kinetics` checks
+them, and the motion integrated to its event (:func:`~.batch_motion.integrate_to_events`).
+A class of variants (:mod:`.batch`) and an instant solved alone (:mod:`.dynamics`) are
+integrated here alike.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Callable
+
+import numpy as np
+
+from ..spec.dynamics import Integration, dynamics_of
+from ..spec.model import Problem
+from . import rules
+from .analysis import analysis_plan
+from .batch_motion import FIRED, NEVER, integrate_to_events
+from .columns import call, least_squares_solution, loud_call
+from .events import ATOL, MAX_CALLS, RTOL, event_never_happens
+from .plan import KinematicsPlan
+from .rules import satisfied
+
+
+def after_event(p: KinematicsPlan) -> np.ndarray:
+    """What the state at an integration's event has known: its coordinates, rates, parameters
+    and time (as :func:`~.events.integrate_to_event` marks them)."""
+    after = np.zeros(p.index.size, dtype=bool)
+    after[list(p.index.config)] = True
+    after[list(p.index.rates(1))] = True
+    return after
+
+
+class Motion:
+    """The kinetics of ``problem`` (its :class:`~.dynamics.KineticsPlan`) over columns."""
+
+    def __init__(self, problem: Problem, kinetics):
+        self.problem, self.kinetics, self.p = problem, kinetics, kinetics.kp
+        self.analysis = dynamics_of(problem).analysis
+
+    def integrated(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every column's motion integrated from its start state to its event (together:
+        :func:`~.batch_motion.integrate_to_events`, the steps
+        :func:`~.events.integrate_to_event` takes for each alone): the extended state at
+        the event, the accelerations and reactions the limits just before it, with the
+        extended states just before the event stacked under them (:meth:`_at_event`); which
+        columns passed the screens, and which ended without their event
+        (:data:`~.batch_motion.NEVER`)."""
+        kp = self.kinetics
+        assert kp is not None and isinstance(self.analysis, Integration)
+        ap = analysis_plan(kp)
+        index = self.p.index
+        n, size, count = index.n, index.size, X.shape[1]
+        rates, seconds = index.rates(1), index.rates(2)
+        # slices: the right-hand side is evaluated thousands of times
+        qd, qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
+        kinetic = size + len(kp.kin.reactions)
+        extended = np.concatenate([X, np.zeros((kinetic - size, count))])
+        values = X.copy()
+        for i, fn in ap.start:
+            values[i] = call(fn, extended, 1)[0]
+        values[index.time] = 0.0
+        values[qdd] = 0.0
+        switches = _switches(kp)
+        # every column's extended state (second rates and reactions 0, as the unknowns of
+        # the balances), then its modes
+        full = np.zeros((kinetic + (switches.count if switches else 0), count))
+        full[:size] = values
+
+        def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+               modes: np.ndarray | None = None) -> np.ndarray:
+            # a copy (every column: cols is sorted, so all of them is all in order)
+            x = full.copy() if len(cols) == count else full[:, cols]
+            x[:n] = y[:n]
+            x[qd] = y[n:]
+            x[index.time] = t
+            if modes is not None and switches is not None:
+                x[kinetic:] = modes
+            return x
+
+        def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                modes: np.ndarray) -> np.ndarray:
+            return np.concatenate([y[n:], self.accelerations(at(cols, t, y, modes),
+                                                              switches)[qdd]])
+
+        def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                  modes: np.ndarray) -> np.ndarray:
+            x = at(cols, t, y, modes)
+            if ap.until_kinetic:
+                x = self.accelerations(x, switches)
+            assert ap.until is not None  # an integration has its event
+            return loud_call(ap.until, x[:kinetic], 1)[0]
+
+        def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+            assert switches is not None
+            x = at(cols, t, y)[:kinetic]
+            return np.sign(loud_call(switches.speeds, x, switches.count))
+
+        y0 = np.concatenate([values[:n], values[qd]])
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
+                                          MAX_CALLS, mode=mode if switches else None)
+        ok = arrival.status == FIRED
+        everyone = np.arange(count)
+        end = at(everyone, arrival.t, arrival.y)
+        x, fine = self.screened(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
+                                 after_event(self.p))
+        before = x.copy()
+        keep = [i for i in range(size) if i not in seconds]
+        x[keep] = end[keep]
+        return np.vstack([x, before]), ok & fine, arrival.status == NEVER
+
+    def accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
+        """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's
+        direction) with every second rate and reaction solved by least squares (as
+        :func:`~.dynamics.accelerations`), in place; NaN where the equations are undefined.
+        Called with numpy's warnings silenced."""
+        kp = self.kinetics
+        assert kp is not None
+        count = x.shape[1]
+        cols = list(kp.columns)
+        rows_ = len(kp.labels)
+        if switches is not None:
+            jacobian, residual, args = switches.jacobian, switches.residual, x
+        else:
+            jacobian, residual = kp.jacobian, kp.residual
+            args = x[:len(kp.symbols)]
+        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+        b = loud_call(residual, args, rows_)
+        if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
+            x[cols] = least_squares_solution(A, -b)
+            return x
+        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+        x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
+        x[:, ~good] = np.nan
+        return x
+
+    def screened(self, X: np.ndarray, known: np.ndarray):
+        """The extended states (second rates and reactions solved from the momentum
+        balances), and which passed the checks of :func:`~.dynamics.solve_kinetics`."""
+        kp = self.kinetics
+        n = X.shape[1]
+        x = np.concatenate([X, np.zeros((len(kp.kin.reactions), n))])
+        known = np.concatenate([known, np.zeros(len(kp.kin.reactions), bool)])
+        cols = [j for j, i in enumerate(kp.columns) if not known[i]]
+        for j in cols:
+            x[kp.columns[j]] = 0.0
+        ok = np.ones(n, dtype=bool)
+        for _, speed, _ in kp.slips:
+            ok &= call(speed, x, 1)[0] > 1e-12
+        rows_ = len(kp.labels)
+        A = call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)
+        A = A[:, cols]
+        b = call(kp.residual, x, rows_)
+        ok &= np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+        Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
+        U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
+        ok &= rules.rank(s) == len(cols)
+        with np.errstate(all="ignore"):
+            inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
+            coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
+            sol = np.einsum("nkj,nk->jn", Vt, coeff)
+        for j, value in zip(cols, sol):
+            x[kp.columns[j]] = value
+        r = call(kp.residual, x, rows_)
+        scale = np.abs(call(kp.scale, x, rows_))
+        with np.errstate(invalid="ignore"):
+            ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
+            for _, _, normal in kp.slips:
+                ok &= ~(call(normal, x, 1)[0] < -1e-9)
+            for _, tangential, normal, mu in kp.bounds:
+                f = np.linalg.norm(call(tangential, x, 3), axis=0)
+                nn = call(normal, x, 1)[0]
+                m = call(mu, x, 1)[0]
+                ok &= ~(nn < -1e-9) & ~(f > m * nn * (1 + 1e-9) + 1e-12)
+        return x, ok
+
+
+@dataclass(frozen=True)
+class _Switching:
+    """The kinetics with each ``|u|`` and ``sign(u)`` read with a direction given beside the
+    state (one per ``u``, the *mode*: ``|u|`` as ``mode * u``): the equations of the motion
+    before a slip ends, continued smoothly past it. ``speeds`` gives every ``u``."""
+
+    speeds: Callable
+    residual: Callable
+    jacobian: Callable
+    count: int
+
+
+@lru_cache(maxsize=64)
+def _switches(kp) -> _Switching | None:
+    """The kinetics of ``kp`` with their switches read as :class:`_Switching` says; ``None``
+    when nothing switches."""
+    import sympy as sp
+
+    exprs = [e.expr for e in (*kp.kin.balances, *kp.kin.constraints)]
+    speeds: list = []
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, (sp.Abs, sp.sign)) and node.args[0] not in speeds:
+                speeds.append(node.args[0])
+    if not speeds:
+        return None
+    modes = sp.symbols(f"_mode0:{len(speeds)}")
+    table = dict(zip(speeds, modes))
+
+    def kept(e):
+        e = e.replace(lambda a: isinstance(a, sp.Abs) and a.args[0] in table,
+                      lambda a: table[a.args[0]] * a.args[0])
+        return e.replace(lambda a: isinstance(a, sp.sign) and a.args[0] in table,
+                         lambda a: table[a.args[0]])
+
+    matrix = sp.Matrix([kept(e) for e in exprs])
+    unknowns = [kp.symbols[i] for i in kp.columns]
+    symbols = (*kp.symbols, *modes)
+    return _Switching(
+        speeds=sp.lambdify(kp.symbols, speeds, modules="numpy", cse=True),
+        residual=sp.lambdify(symbols, matrix, modules="numpy", cse=True),
+        jacobian=sp.lambdify(symbols, matrix.jacobian(unknowns), modules="numpy", cse=True),
+        count=len(speeds))
+
+
+@lru_cache(maxsize=64)
+def _motion(problem: Problem, kinetics) -> Motion:
+    return Motion(problem, kinetics)
+
+
+def integrated_alone(problem: Problem, kinetics,
+                     values: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """One instant of an integrated motion (``values``: its givens placed in the state) by the
+    integrator over columns, as a class's variants are integrated: the extended state at the
+    event (the accelerations and reactions their limits just before it) and just before it;
+    ``None`` where that integrator does not vouch for it (the scalar one then says why).
+    Raises when the event never happens."""
+    motion = _motion(problem, kinetics)
+    if not isinstance(motion.analysis, Integration):
+        return None
+    X, ok, never = motion.integrated(values[:, None].copy())
+    if never[0]:
+        raise event_never_happens(motion.analysis)
+    if not ok[0]:
+        return None
+    half = X.shape[0] // 2  # the states at the event, and those just before it under them
+    return X[:half, 0], X[half:, 0]

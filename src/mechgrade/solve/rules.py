@@ -1,0 +1,81 @@
+"""The rules the numeric solver judges by, each written once: whether an equation holds, the
+rank of a matrix, whether a root is on the branch the spec asks for. Each takes arrays, so one
+instant and a class of variants (one column each) are judged alike.
+
+>>> import numpy as np
+>>> satisfied(np.array([1e-12, 1e-3]), np.array([1.0, 1.0]), 1e-6).tolist()
+[True, False]
+>>> int(rank(np.array([3.0, 1e-12]))), rank(np.array([[2.0, 1.0], [1.0, 0.0]])).tolist()
+(1, [2, 1])
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..spec.model import Root
+
+RANK_TOL = 1e-9
+"""A singular value (or a pivot) smaller than this part of the largest (at least 1) is zero."""
+
+RESIDUAL_FLOOR = 1e-10
+"""What a residual may keep beside the problem's ``consistency`` times its terms' size: an
+equation whose terms are all zero holds to rounding, not exactly."""
+
+ON_BRANCH = 1e-9
+"""A root is positive (or negative) when it is more than this part of its quantity's typical
+size away from zero: nearer, it is zero to the rounding of the solve."""
+
+
+def satisfied(residual, scale, consistency: float) -> np.ndarray:
+    """Whether each equation holds: ``|residual| <= consistency * |scale| + 1e-10`` (``scale``
+    the sum of the sizes of its terms); an undefined residual does not hold."""
+    with np.errstate(invalid="ignore"):
+        return np.abs(residual) <= consistency * np.abs(scale) + RESIDUAL_FLOOR
+
+
+def first_off(residual, scale, consistency: float) -> int | None:
+    """The first equation that does not hold (:func:`satisfied`), or ``None``."""
+    off = np.flatnonzero(~satisfied(residual, scale, consistency))
+    return int(off[0]) if len(off) else None
+
+
+def significant(magnitudes) -> np.ndarray:
+    """Which of the singular values (or pivots) along the last axis count for the rank."""
+    m = np.abs(np.asarray(magnitudes, dtype=float))
+    largest = m.max(axis=-1, initial=0.0, keepdims=True)
+    return m > RANK_TOL * np.maximum(largest, 1.0)
+
+
+def rank(magnitudes) -> np.ndarray:
+    """The rank that singular values (or pivots) along the last axis give."""
+    return significant(magnitudes).sum(axis=-1)
+
+
+def null_space(A: np.ndarray) -> np.ndarray:
+    """An orthonormal basis of the null space of ``A`` (columns), by its singular values.
+
+    >>> null_space(np.array([[1.0, 1.0]])).shape
+    (2, 1)
+    """
+    if A.shape[0] == 0:
+        return np.eye(A.shape[1])
+    from scipy import linalg
+
+    _, s, vt = linalg.svd(A)
+    return vt[int(rank(s)):].T
+
+
+def on_branch(values, scales, root: Root | None) -> np.ndarray:
+    """Whether each root ``values`` (of a quantity of typical size ``scales``) is on the
+    ``root`` a branch asks for (any root is on no branch).
+
+    >>> on_branch(np.array([1.0, 1e-12, -2.0]), 1.0, Root.POSITIVE).tolist()
+    [True, False, False]
+    """
+    x = np.asarray(values, dtype=float)
+    if root in (Root.POSITIVE, Root.FIRST_POSITIVE):
+        return x > ON_BRANCH * np.asarray(scales)
+    if root is Root.NEGATIVE:
+        return x < -ON_BRANCH * np.asarray(scales)
+    return np.ones(x.shape, dtype=bool)

@@ -1,0 +1,50 @@
+"""The generated mistakes of a class of dynamics variants, worked out together, are those of
+each variant worked out alone."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from mechgrade.errors import MechgradeError
+from mechgrade.solve import solve
+from mechgrade.solve.batch import _template, solve_variants
+from mechgrade.spec import load_problem
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+
+
+def test_a_class_s_generated_mistakes_are_each_variant_s_alone():
+    problem = load_problem(DATA / "variants" / "dynamics" / "pin_pendulum.yaml")
+    variants = [{"m": 2.5, "L": 0.8}, {"m": 4.0, "L": 1.6}, {"m": 1.5, "L": 1.1}]
+    together = solve_variants(problem, variants)
+    for solution, givens in zip(together, variants):
+        one = solve(problem, givens=givens)
+        for a, b in zip(solution.results, one.results):
+            assert [(m.code, m.message, m.expr, m.step) for m in a.generated_mistakes] == \
+                [(m.code, m.message, m.expr, m.step) for m in b.generated_mistakes], a.id
+            assert all(np.allclose(np.atleast_1d(x.value), np.atleast_1d(y.value),
+                                   rtol=1e-8, atol=1e-10)
+                       for x, y in zip(a.generated_mistakes, b.generated_mistakes)
+                       if x.value is not None)
+
+
+def test_a_variant_whose_event_never_happens_fails_in_the_class_not_alone():
+    problem = load_problem(PROBLEMS / "block_slides_on_cart.yaml")
+    never, slides = _template(problem).solve([{"mu": 0.0}, {"mu": 0.25}])
+    assert never is not None and slides is not None  # neither was left to solve alone
+    error = never if isinstance(never, MechgradeError) else never.failures[0].error
+    assert str(error).endswith("does not happen within 60 s")
+
+
+def test_a_solution_sent_to_another_process_carries_its_mistakes_not_the_class_s_work():
+    import pickle
+
+    problem = load_problem(DATA / "variants" / "dynamics" / "pin_pendulum.yaml")
+    first, _ = solve_variants(problem, [{"m": 2.5}, {"m": 3.0}])
+    result = first.results[0]
+    sent = pickle.loads(pickle.dumps(result))
+    assert type(sent.generated_mistakes) is tuple
+    assert list(sent.generated_mistakes) == list(result.generated_mistakes)
