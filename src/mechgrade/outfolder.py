@@ -54,7 +54,7 @@ from typing import Iterator
 
 from . import __version__
 from .errors import Location, OutputError
-from .files import write_json
+from .files import replacing, write_json
 
 MANIFEST = "manifest.json"
 FORMAT = "mechgrade outputs 1"
@@ -237,7 +237,11 @@ def claim(out: str | os.PathLike, kind: OutputKind) -> Iterator[OutputFolder]:
         except OSError as exc:
             raise OutputError(f"cannot create the output folder ({exc.strerror or exc})",
                               where=Location(shown, field="--out")) from None
-        yield folder
+        if target.is_dir():
+            with replacing(folder.staging, target):
+                yield folder
+        else:
+            yield folder
     finally:
         if folder.committed is None and folder.staging != target:
             shutil.rmtree(folder.staging, ignore_errors=True)
@@ -409,7 +413,13 @@ def _entries(folder: Path) -> list[str]:
     """Every file (and link, and other entry) below ``folder`` as a relative POSIX path, and
     every empty folder as ``name/``; links are not followed."""
     found: list[str] = []
-    for root, dirs, files in os.walk(folder):
+
+    def unreadable(err: OSError) -> None:  # never leave a folder of theirs behind unseen
+        raise OutputError(f"expected to read every entry of the output folder, found one that "
+                          f"cannot be read ({err.strerror or err})",
+                          where=Location(str(err.filename))) from None
+
+    for root, dirs, files in os.walk(folder, onerror=unreadable):
         rel = Path(root).relative_to(folder)
         for name in list(dirs):
             if os.path.islink(os.path.join(root, name)):
