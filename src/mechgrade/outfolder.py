@@ -285,8 +285,9 @@ def _lock(target: Path, shown: str) -> int:
         try:
             fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_CLOEXEC", 0), 0o666)
         except OSError as exc:
-            raise OutputError(f"cannot create the lock file {path.name} beside it "
-                              f"({exc.strerror or exc})",
+            raise OutputError(f"cannot create {path.name} beside it ({exc.strerror or exc}): "
+                              f"a run locks --out and builds its outputs beside it, so the "
+                              f"folder holding --out must be writable",
                               where=Location(shown, field="--out")) from None
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)

@@ -215,16 +215,18 @@ def test_files_of_the_instructors_own_in_out_are_kept_and_never_counted_as_outpu
     (out / "notes").mkdir()
     (out / "notes" / "late.txt").write_text("bo was late\n", encoding="utf-8")
     (out / "feedback" / "README").write_text("mine\n", encoding="utf-8")
+    (out / "evil\x1b[2J.txt").write_text("a name that clears the screen\n", encoding="utf-8")
     result = run(folder / "hw.yaml", folder / "subs", "--out", out)
     assert result.exit_code == 0, result.output
     assert (out / "class.html").read_text(encoding="utf-8") == "my report\n"
     assert (out / "notes" / "late.txt").read_text(encoding="utf-8") == "bo was late\n"
     assert (out / "feedback" / "README").read_text(encoding="utf-8") == "mine\n"
-    assert _manifest(out)["kept"] == ["class.html", "feedback/README", "notes/late.txt"]
+    assert _manifest(out)["kept"] == ["class.html", "evil\x1b[2J.txt", "feedback/README",
+                                      "notes/late.txt"]
     assert "class.html" not in _manifest(out)["files"]
     assert result.stdout.splitlines()[1:] == [
-        "Kept (not written by mechgrade):", "  class.html", "  feedback/README",
-        "  notes/late.txt"]
+        "Kept (not written by mechgrade):", "  class.html", "  evil\\x1b[2J.txt",
+        "  feedback/README", "  notes/late.txt"]
 
 
 def test_outputs_of_an_earlier_version_without_a_manifest_are_replaced_whole(tmp_path):

@@ -85,11 +85,23 @@ def listed(title: str, items, where: str) -> list[str]:
 
 def output_lines(done: Committed) -> list[str]:
     """What replacing the output folder did, for the summary: the previous run's files removed,
-    the instructor's files kept, the leftovers of an interrupted run cleared."""
-    return [*listed("Removed from the previous run (not written by this one)", done.removed,
+    the instructor's files kept, the leftovers of an interrupted run cleared. A file name's
+    control characters are shown escaped, never sent to the terminal."""
+    return [*listed("Removed from the previous run (not written by this one)",
+                    [_shown(name) for name in done.removed], "manifest.json"),
+            *listed("Kept (not written by mechgrade)", [_shown(name) for name in done.kept],
                     "manifest.json"),
-            *listed("Kept (not written by mechgrade)", done.kept, "manifest.json"),
             *listed("Before this run", done.notes, "manifest.json")]
+
+
+def _shown(name: str) -> str:
+    r"""``name`` with every character that is not printable escaped.
+
+    >>> print(_shown("a\x1b]0;x\x07\nb Zoë"))
+    a\x1b]0;x\x07\x0ab Zoë
+    """
+    return "".join(c if c.isprintable() else f"\\x{ord(c):02x}" if ord(c) < 256
+                   else f"\\u{ord(c):04x}" for c in name)
 
 
 def run_arguments() -> dict:

@@ -11,7 +11,7 @@ import click
 
 from ..files import clean_text
 from ..roster import read_roster
-from .common import (INTERNAL_ERROR_EXIT, MAX_LISTED, claim_out, main, output_lines,
+from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
                      reports_errors, run_arguments, run_inputs)
 
 
@@ -94,12 +94,7 @@ def summary(report, out_dir: Path, done=None) -> str:
             ("Notes", list(report.notes)),
             ("Internal errors (not evaluated; please report them)",
              list(report.internal_errors))):
-        if not items:
-            continue
-        lines.append(f"{title}:")
-        lines.extend(f"  {item}" for item in items[:MAX_LISTED])
-        if len(items) > MAX_LISTED:
-            lines.append(f"  ... and {len(items) - MAX_LISTED} more (all in results.json)")
+        lines.extend(listed(title, items, "results.json"))
     lines.extend(output_lines(done) if done is not None else ())
     return "\n".join(clean_text(line) for line in lines)
 
