@@ -1,4 +1,5 @@
-"""The command group and the one place where library errors turn into exit codes."""
+"""The command group, the one place where library errors turn into exit codes, and the one
+place where anything is printed (:func:`say`)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import click
 
 from .. import __version__
 from ..errors import MechgradeError, brief_exception
-from ..files import clean_text
+from ..files import visible_text
 
 if TYPE_CHECKING:
     from ..outfolder import Committed
@@ -23,13 +24,21 @@ INTERNAL_ERROR_EXIT = 3
 answers (they are ``not_evaluated``; the summary lists where). Bad input exits with 2."""
 
 
+def say(text: str = "", *, err: bool = False, nl: bool = True) -> None:
+    """Print ``text`` (on stderr with ``err``), each of its lines made visible
+    (:func:`mechgrade.files.visible_text`): a name or answer holding a terminal control
+    sequence (window title, clear screen, hidden text) is shown escaped, never obeyed.
+    Every command prints through here."""
+    click.echo("\n".join(map(visible_text, text.split("\n"))), err=err, nl=nl)
+
+
 class UserFailure(click.ClickException):
     """A bad-input failure: the library's message alone, exit code 2."""
 
     exit_code = 2
 
     def show(self, file=None) -> None:  # noqa: D102 - click's hook
-        click.echo(self.format_message(), err=True)
+        say(self.format_message(), err=True)
 
 
 class InternalFailure(click.ClickException):
@@ -39,7 +48,7 @@ class InternalFailure(click.ClickException):
     exit_code = INTERNAL_ERROR_EXIT
 
     def show(self, file=None) -> None:  # noqa: D102 - click's hook
-        click.echo(self.format_message(), err=True)
+        say(self.format_message(), err=True)
 
 
 def reports_errors(command):
@@ -77,7 +86,7 @@ def listed(title: str, items, where: str) -> list[str]:
     """
     if not items:
         return []
-    lines = [f"{title}:", *(f"  {clean_text(str(item))}" for item in items[:MAX_LISTED])]
+    lines = [f"{title}:", *(f"  {item}" for item in items[:MAX_LISTED])]
     if len(items) > MAX_LISTED:
         lines.append(f"  ... and {len(items) - MAX_LISTED} more (all in {where})")
     return lines
@@ -85,23 +94,11 @@ def listed(title: str, items, where: str) -> list[str]:
 
 def output_lines(done: Committed) -> list[str]:
     """What replacing the output folder did, for the summary: the previous run's files removed,
-    the instructor's files kept, the leftovers of an interrupted run cleared. A file name's
-    control characters are shown escaped, never sent to the terminal."""
-    return [*listed("Removed from the previous run (not written by this one)",
-                    [_shown(name) for name in done.removed], "manifest.json"),
-            *listed("Kept (not written by mechgrade)", [_shown(name) for name in done.kept],
+    the instructor's files kept, the leftovers of an interrupted run cleared."""
+    return [*listed("Removed from the previous run (not written by this one)", done.removed,
                     "manifest.json"),
+            *listed("Kept (not written by mechgrade)", done.kept, "manifest.json"),
             *listed("Before this run", done.notes, "manifest.json")]
-
-
-def _shown(name: str) -> str:
-    r"""``name`` with every character that is not printable escaped.
-
-    >>> print(_shown("a\x1b]0;x\x07\nb Zoë"))
-    a\x1b]0;x\x07\x0ab Zoë
-    """
-    return "".join(c if c.isprintable() else f"\\x{ord(c):02x}" if ord(c) < 256
-                   else f"\\u{ord(c):04x}" for c in name)
 
 
 def run_arguments() -> dict:

@@ -7,12 +7,11 @@ from pathlib import Path
 import click
 
 from ..errors import ExportError
-from ..files import clean_text
 from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
 from ..outfolder import OutputKind
 from .common import (claim_out, main, output_lines, reports_errors, run_arguments,
-                     run_inputs)
+                     run_inputs, say)
 
 GRADESCOPE_FOLDER = OutputKind("mechgrade export", None, ("*.json",))
 """What ``export --format gradescope`` of several students writes into ``--out`` (a folder
@@ -74,11 +73,14 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
         if folder is not None else None
     if class_roster is not None:
         for line, reason in class_roster.skipped:
-            click.echo(clean_text(f"warning: {roster}:{line}: skipped {reason}"), err=True)
+            say(f"warning: {roster}:{line}: skipped {reason}", err=True)
     for warning in warnings:
-        click.echo(clean_text(f"warning: {warning}"), err=True)
-    click.echo(f"wrote {fmt} export of {len(report.students)} "
-               f"{'result' if len(report.students) == 1 else 'results'} to {out}")
+        say(f"warning: {warning}", err=True)
+    for failing in report.failing_expects:
+        say(f"warning: graded although the problem fails this expect: test "
+            f"(--accept-failing-expect): {failing}", err=True)
+    say(f"wrote {fmt} export of {len(report.students)} "
+        f"{'result' if len(report.students) == 1 else 'results'} to {out}")
     for text in output_lines(done) if done is not None else ():
-        click.echo(text)
+        say(text)
 

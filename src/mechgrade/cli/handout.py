@@ -12,7 +12,7 @@ from ..grade.variants import handout_sheets
 from ..report.handout import HANDOUT_OUTPUTS, HANDOUT_TEMPLATES, write_handouts
 from ..roster import read_roster
 from .common import (claim_out, main, output_lines, reports_errors, run_arguments,
-                     run_inputs)
+                     run_inputs, say)
 
 
 @main.command("handout")
@@ -42,5 +42,5 @@ def handout(assignment: Path, roster: Path, out_dir: Path, templates_dir: Path |
     done = folder.commit(run_arguments(), inputs=run_inputs(
         assignment=assignment, spec=spec, roster=roster, templates_dir=templates_dir,
         template_names=HANDOUT_TEMPLATES))
-    click.echo("\n".join([f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
-                          f"({len(written)} files)", *output_lines(done)]))
+    say("\n".join([f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
+                   f"({len(written)} files)", *output_lines(done)]))
