@@ -195,7 +195,8 @@ def test_the_manifest_records_the_run(tmp_path):
     assert manifest["command"] == "mechgrade grade"
     assert manifest["arguments"] == {
         "assignment": str(folder / "hw.yaml"), "submissions_dir": str(folder / "subs"),
-        "out_dir": str(out), "roster": None, "templates_dir": None, "jobs": 1}
+        "out_dir": str(out), "roster": None, "templates_dir": None, "jobs": 1,
+        "accept_failing_expect": False}
     assert manifest["started"] <= manifest["finished"]
     assert manifest["inputs"] == [
         {"role": "assignment", "path": str(folder / "hw.yaml"),
