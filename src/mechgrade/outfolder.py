@@ -166,10 +166,9 @@ class OutputFolder:
         }
         write_json(self.staging / MANIFEST, record)
         if old is not None:
-            for folder, _, _ in os.walk(self.staging):
-                inner = Path(folder).relative_to(self.staging)
+            for inner in _folders((*files, *self.theirs)):
                 if (old / inner).is_dir():
-                    _same_access(old / inner, Path(folder))
+                    _same_access(old / inner, self.staging / inner)
         self._swap(old is not None)
         self.committed = Committed(files, tuple(record["kept"]), removed, tuple(self.notes))
         return self.committed
@@ -421,14 +420,31 @@ def _entries(folder: Path) -> list[str]:
                           where=Location(str(err.filename))) from None
 
     for root, dirs, files in os.walk(folder, onerror=unreadable):
-        rel = Path(root).relative_to(folder)
+        rel = os.path.relpath(root, folder).replace(os.sep, "/")
+        prefix = "" if rel == "." else rel + "/"
         for name in list(dirs):
             if os.path.islink(os.path.join(root, name)):
                 dirs.remove(name)
                 files.append(name)
-        found.extend((rel / name).as_posix() for name in files)
-        if not dirs and not files and rel != Path("."):
-            found.append(rel.as_posix() + "/")
+        found.extend(prefix + name for name in files)
+        if not dirs and not files and prefix:
+            found.append(prefix)
+    return sorted(found)
+
+
+def _folders(names) -> list[str]:
+    """Every folder holding one of ``names`` (relative POSIX paths; ``x/``: the folder x), the
+    top one as ``"."``.
+
+    >>> _folders(["a.txt", "f/b.md", "f/c.md", "x/y/z", "e/"])
+    ['.', 'e', 'f', 'x', 'x/y']
+    """
+    found = {"."}
+    for inner in {name.rstrip("/").rpartition("/")[0] if not name.endswith("/") else
+                  name.rstrip("/") for name in names}:
+        while inner and inner not in found:
+            found.add(inner)
+            inner = inner.rpartition("/")[0]
     return sorted(found)
 
 
