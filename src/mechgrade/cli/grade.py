@@ -12,7 +12,7 @@ import click
 from ..files import visible_text
 from ..roster import read_roster
 from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
-                     reports_errors, run_arguments, run_inputs, say)
+                     reports_errors, run_arguments, run_inputs, say, warn_about_the_cache)
 
 
 @main.command("grade")
@@ -51,6 +51,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     folder = claim_out(out_dir, GRADE_OUTPUTS)  # locked now: a second run is refused at once
     jobs = jobs if jobs is not None else default_jobs()
     spec = load_assignment(assignment)
+    warn_about_the_cache()
     class_roster = read_roster(roster) if roster is not None else None
     bar = None
 

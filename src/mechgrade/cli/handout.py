@@ -12,7 +12,7 @@ from ..grade.variants import handout_sheets
 from ..report.handout import HANDOUT_OUTPUTS, HANDOUT_TEMPLATES, write_handouts
 from ..roster import read_roster
 from .common import (claim_out, main, output_lines, reports_errors, run_arguments,
-                     run_inputs, say)
+                     run_inputs, say, warn_about_the_cache)
 
 
 @main.command("handout")
@@ -36,6 +36,7 @@ def handout(assignment: Path, roster: Path, out_dir: Path, templates_dir: Path |
     """
     folder = claim_out(out_dir, HANDOUT_OUTPUTS)
     spec = load_assignment(assignment)
+    warn_about_the_cache()
     plan = plan_assignment(spec)
     students = [(s.id, s.name) for s in read_roster(roster).students]
     written = write_handouts(handout_sheets(plan, students), folder.staging, templates_dir)
