@@ -5,9 +5,13 @@ from __future__ import annotations
 import hmac
 import json
 import os
+import select
 import shutil
+import signal
 import subprocess
 import sys
+import time
+import uuid
 from pathlib import Path
 
 import pytest
@@ -81,6 +85,99 @@ def twice(tmp_path):
         return [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                                env=env, check=True).stdout.strip() for _ in range(2)]
     return run
+
+
+class MarkedRun:
+    """A command run in a fresh process with a marker of its own in its environment, which
+    every process it forks inherits: so the test can find them all, dead parent or not."""
+
+    def __init__(self, argv: list[str], env: dict[str, str] | None = None) -> None:
+        self.marker = f"MECHGRADE_TEST_RUN={uuid.uuid4().hex}".encode()
+        name, value = self.marker.decode().split("=")
+        self.process = subprocess.Popen(argv, stdin=subprocess.DEVNULL,
+                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                        env={**os.environ, **(env or {}), name: value})
+
+    def pids(self) -> set[int]:
+        """The live (not zombie) processes that carry the marker."""
+        found = set()
+        for entry in os.listdir("/proc"):
+            if not entry.isdigit():
+                continue
+            try:
+                with open(f"/proc/{entry}/stat", "rb") as stat:
+                    if stat.read().rsplit(b")", 1)[1].split()[0] == b"Z":
+                        continue
+                with open(f"/proc/{entry}/environ", "rb") as environ:
+                    if self.marker in environ.read().split(b"\0"):
+                        found.add(int(entry))
+            except (OSError, IndexError):
+                continue
+        return found
+
+    def workers(self) -> set[int]:
+        return self.pids() - {self.process.pid}
+
+    def kill(self) -> None:
+        """``kill -9`` of the process started (what the OOM killer does)."""
+        self.process.kill()
+        self.process.wait()
+
+    def survivors(self, seconds: float = 5.0) -> set[int]:
+        """The marked processes still alive after up to ``seconds``."""
+        deadline = time.monotonic() + seconds
+        while (alive := self.pids()) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        return alive
+
+    def output_closed(self, seconds: float = 5.0) -> bool:
+        """Whether the run's stdout and stderr reach end of file within ``seconds`` (no process
+        left holds them open)."""
+        streams = [self.process.stdout, self.process.stderr]
+        deadline = time.monotonic() + seconds
+        while streams and time.monotonic() < deadline:
+            ready, _, _ = select.select(streams, [], [], max(0.0, deadline - time.monotonic()))
+            for stream in ready:
+                if not os.read(stream.fileno(), 65536):
+                    streams.remove(stream)
+        return not streams
+
+    def wait_for(self, condition, seconds: float = 120.0) -> None:
+        deadline = time.monotonic() + seconds
+        while not condition():
+            if time.monotonic() > deadline or self.process.poll() is not None:
+                err = self.process.stderr.read().decode() if self.process.poll() is not None \
+                    else ""
+                raise AssertionError(f"the run never got there (exit {self.process.poll()}) "
+                                     f"{err}")
+            time.sleep(0.05)
+
+    def clean_up(self) -> None:
+        for pid in self.pids():
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
+        if self.process.poll() is None:
+            self.process.kill()
+        self.process.wait()
+        for stream in (self.process.stdout, self.process.stderr):
+            stream.close()
+
+
+@pytest.fixture
+def marked_run():
+    """``marked_run(argv, env=None) -> MarkedRun``; every process a run left is killed at the
+    end of the test (a failing test must not leave workers running on a shared machine)."""
+    runs: list[MarkedRun] = []
+
+    def start(argv: list[str], env: dict[str, str] | None = None) -> MarkedRun:
+        runs.append(MarkedRun(argv, env))
+        return runs[-1]
+
+    yield start
+    for run in runs:
+        run.clean_up()
 
 
 @pytest.fixture

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import textwrap
 from functools import partial
 
 import pytest
@@ -71,3 +72,58 @@ def test_forked_work_can_be_stopped():
     started = time.monotonic()
     forked.cancel()
     assert time.monotonic() - started < 10
+
+
+# A parent killed with SIGKILL (the OOM killer) runs no clean-up: its workers must still go.
+STAY = """
+import os, sys, time
+from functools import partial
+from mechgrade.parallel import Forked, fork_map
+
+def stay(n):
+    print("a worker writing to the terminal", flush=True)
+    time.sleep(600)
+"""
+
+
+def run_python(marked_run, script: str):
+    import sys
+
+    return marked_run([sys.executable, "-c", script])
+
+
+def test_pool_workers_die_with_their_killed_parent(marked_run):
+    run = run_python(marked_run, STAY + "fork_map(stay, range(4), jobs=2)\n")
+    run.wait_for(lambda: len(run.workers()) >= 2)
+    run.kill()
+    assert run.survivors() == set()
+    assert run.output_closed()
+
+
+def test_forked_work_and_its_workers_die_with_their_killed_parent(marked_run):
+    run = run_python(marked_run, STAY + "Forked(partial(fork_map, stay, range(4), jobs=2))\n"
+                                        "time.sleep(600)\n")
+    run.wait_for(lambda: len(run.workers()) >= 3)
+    run.kill()
+    assert run.survivors() == set()
+    assert run.output_closed()
+
+
+def test_a_parent_that_stops_on_an_error_leaves_no_worker_holding_its_output(marked_run,
+                                                                           tmp_path):
+    # The forked work is stopped, as on an internal error, and the parent exits: the pool the
+    # work started must not live on, holding the terminal open.
+    run = run_python(marked_run, STAY + textwrap.dedent(f"""\
+        def stay_here(n):
+            open(os.path.join({str(tmp_path)!r}, str(os.getpid())), "w").close()
+            stay(n)
+
+        forked = Forked(partial(fork_map, stay_here, range(4), jobs=2))
+        while len(os.listdir({str(tmp_path)!r})) < 2:
+            time.sleep(0.05)
+        forked.cancel()
+        sys.exit(3)
+        """))
+    assert run.process.wait(60) == 3
+    assert run.survivors() == set()
+    assert run.output_closed()

@@ -22,7 +22,9 @@ import os
 import re
 import stat
 import unicodedata
+from contextlib import contextmanager
 from pathlib import Path
+from typing import Iterator
 
 from .errors import Location, MechgradeError, OutputError
 
@@ -132,7 +134,7 @@ def write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -
     target = Path(path)
     folder = target.parent if str(target.parent) else Path(".")
     data = clean_text(text).encode(encoding)
-    if _holds(target, data):
+    if _holds(target, data) or _link_earlier(target, data):
         return
     try:
         temp_name = _write_temporary(folder, target.name, data)
@@ -171,6 +173,40 @@ def _holds(target: Path, data: bytes) -> bool:
             return handle.read(len(data) + 1) == data
     except OSError:
         return False
+
+
+_EARLIER: list[tuple[str, Path]] = []
+
+
+@contextmanager
+def replacing(new: str | os.PathLike, old: str | os.PathLike) -> Iterator[None]:
+    """While in this context, a file written into folder ``new`` that ``old`` holds already,
+    at the same place and byte for byte, is made a hard link to it instead.
+
+    For an output folder built beside the one it replaces (:mod:`mechgrade.outfolder`): a
+    regrade writes mostly the same pages again, and linking is much faster than writing a new
+    file and then deleting the old one.
+    """
+    _EARLIER.append((os.path.join(new, ""), Path(old)))
+    try:
+        yield
+    finally:
+        _EARLIER.pop()
+
+
+def _link_earlier(target: Path, data: bytes) -> bool:
+    """Whether ``target`` was made a link to the same file of the folder being replaced."""
+    for prefix, old in _EARLIER:
+        name = str(target)
+        if name.startswith(prefix):
+            earlier = old / name[len(prefix):]
+            if _holds(earlier, data):
+                try:
+                    os.link(earlier, target)
+                    return True
+                except OSError:
+                    return False
+    return False
 
 
 _temporary_names = itertools.count()

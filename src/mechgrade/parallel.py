@@ -4,14 +4,23 @@ A forked worker inherits everything the parent has loaded (sympy, the unit regis
 report), so starting one costs milliseconds. Results come back in the order of the work, so
 they never depend on the number of workers.
 
+Every worker dies with the process that forked it, even one killed with ``SIGKILL`` (as the
+out-of-memory killer does, which leaves no clean-up code a chance to run), and never holds the
+terminal's output open (:func:`worker_started`).
+
 >>> fork_map(abs, [-1, 2, -3], jobs=2)
 [1, 2, 3]
 """
 
 from __future__ import annotations
 
+import ctypes
 import multiprocessing
 import os
+import signal
+import sys
+import threading
+import time
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import TYPE_CHECKING, Callable, Generic, Iterable, TypeVar
@@ -54,7 +63,8 @@ def fork_map(func: Callable[[T], R], items: Iterable[T], *, jobs: int) -> list[R
               for i in range(pieces)]
     context = multiprocessing.get_context("fork")
     results: list[R] = []
-    with ProcessPoolExecutor(max_workers=min(jobs, pieces), mp_context=context) as pool:
+    with ProcessPoolExecutor(max_workers=min(jobs, pieces), mp_context=context,
+                             initializer=worker_started) as pool:
         futures = [pool.submit(_map_chunk, func, chunk) for chunk in chunks]
         for chunk, future in zip(chunks, futures):
             try:
@@ -114,6 +124,7 @@ class Forked(Generic[R]):
 
 
 def _send_outcome(conn, work: Callable[[], R]) -> None:
+    worker_started()
     message: tuple[str, object]
     try:
         message = ("ok", work())
@@ -123,6 +134,67 @@ def _send_outcome(conn, work: Callable[[], R]) -> None:
         conn.send(message)
     except Exception:  # noqa: BLE001 - e.g. a value that does not pickle: same as above
         conn.send(("failed", None))
+
+
+PR_SET_PDEATHSIG = 1  # from <linux/prctl.h>
+WATCH_SECONDS = 0.5
+
+
+def worker_started() -> None:
+    """Bind a forked worker (call it first thing in the worker) to the process that forked it.
+
+    * It is killed as soon as that process dies, however it dies: Linux sends it ``SIGKILL``
+      then (``prctl(PR_SET_PDEATHSIG)``); elsewhere a watchdog thread sees its parent change.
+      A worker otherwise outlives a parent killed with ``SIGKILL``, blocked for ever on a pipe
+      that its sibling workers keep open.
+    * Its standard output and error go to ``/dev/null``: a worker that outlived its parent even
+      for a moment would keep the terminal's pipe open (``mechgrade grade | tee log`` would not
+      end), and nothing a worker says is meant for the user (results travel through pipes).
+
+    Outside a process started by :mod:`multiprocessing` it does nothing.
+
+    >>> worker_started()  # in the main process: nothing to bind to
+    """
+    parent = multiprocessing.parent_process()
+    if parent is None or parent.pid is None:
+        return
+    watched = not _die_with_parent()
+    if os.getppid() != parent.pid:  # the parent died before the line above took effect
+        os._exit(1)
+    if watched:
+        threading.Thread(target=_watch_parent, args=(parent.pid,), daemon=True,
+                         name="mechgrade-parent-watch").start()
+    _away_from_the_terminal()
+
+
+def _die_with_parent() -> bool:
+    """Ask Linux to kill this process when its parent dies; whether it was done."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) == 0
+    except (OSError, AttributeError):  # pragma: no cover - no usable C library
+        return False
+
+
+def _watch_parent(parent: int) -> None:  # pragma: no cover - used where Linux's is missing
+    while os.getppid() == parent:
+        time.sleep(WATCH_SECONDS)
+    os._exit(1)
+
+
+def _away_from_the_terminal() -> None:
+    try:
+        null = os.open(os.devnull, os.O_RDWR)
+    except OSError:  # pragma: no cover - no /dev/null: keep the streams as they are
+        return
+    for fd in (1, 2):
+        try:
+            os.dup2(null, fd)
+        except OSError:  # pragma: no cover - a stream closed already
+            pass
+    os.close(null)
 
 
 def outcome(work: Callable[[], R]) -> R | MechgradeError:

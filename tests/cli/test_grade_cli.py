@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import textwrap
 
+import pytest
 from click.testing import CliRunner
 
 from mechgrade.cli import main
@@ -108,18 +109,18 @@ def test_readme_command_on_the_example_class(tmp_path):
                              f"{out.as_posix()}/\n"
                              f"Skipped (not read as anyone's answers):\n"
                              f"  frank_empty/.keep: hidden (its name starts with '.')\n")
-    first = {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob("*")) if p.is_file()}
+    first = _files(out)
     again = run(EXAMPLE / "assignment.yaml", EXAMPLE / "submissions", "--roster",
                 EXAMPLE / "roster.csv", "--out", out)
     assert again.exit_code == 0
-    assert first == {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob("*"))
-                     if p.is_file()}
+    assert first == _files(out)
     assert len([p for p in first if str(p).startswith("feedback")]) == 20
 
 
 def _files(folder):
+    """Every output but the manifest (which records the run's time and arguments)."""
     return {p.relative_to(folder).as_posix(): p.read_bytes()
-            for p in sorted(folder.rglob("*")) if p.is_file()}
+            for p in sorted(folder.rglob("*")) if p.is_file() and p.name != "manifest.json"}
 
 
 def test_outputs_are_byte_identical_for_any_number_of_jobs(tmp_path):
@@ -155,4 +156,191 @@ def test_a_template_failing_in_a_worker_is_one_message_and_nothing_is_written(tm
     message = result.stderr.splitlines()[-1]
     assert "feedback.html.j2: the template uses a value mechgrade does not provide" in message
     assert "Traceback" not in result.stderr
-    assert not (out / "results.json").exists() and not list((out / "feedback").iterdir())
+    assert not out.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["t"]
+
+
+# --out holds one run's outputs: nothing stale, nothing racing, nothing half-written.
+
+
+def _manifest(out):
+    return json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+
+
+def test_a_regrade_of_fewer_students_removes_and_lists_the_pages_of_the_others(tmp_path):
+    folder = small_class(tmp_path)
+    out = tmp_path / "out"
+    assert run(folder / "hw.yaml", folder / "subs", "--out", out).exit_code == 0
+    (folder / "subs" / "bo.txt").unlink()
+    result = run(folder / "hw.yaml", folder / "subs", "--out", out)
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in (out / "feedback").iterdir()) == [
+        "ann.html", "ann.md", "cy.html", "cy.md"]
+    assert result.stdout.splitlines()[1:] == [
+        "Removed from the previous run (not written by this one):",
+        "  feedback/bo.html", "  feedback/bo.md"]
+    assert _manifest(out)["removed"] == ["feedback/bo.html", "feedback/bo.md"]
+
+
+def test_the_manifest_records_the_run(tmp_path):
+    import hashlib
+
+    from mechgrade import __version__
+
+    folder = small_class(tmp_path)
+    out = tmp_path / "out"
+    assert run(folder / "hw.yaml", folder / "subs", "--out", out, "--jobs", "1").exit_code == 0
+    manifest = _manifest(out)
+    assert manifest["mechgrade"] == __version__
+    assert manifest["command"] == "mechgrade grade"
+    assert manifest["arguments"] == {
+        "assignment": str(folder / "hw.yaml"), "submissions_dir": str(folder / "subs"),
+        "out_dir": str(out), "roster": None, "templates_dir": None, "jobs": 1,
+        "accept_failing_expect": False}
+    assert manifest["started"] <= manifest["finished"]
+    assert manifest["inputs"] == [
+        {"role": "assignment", "path": str(folder / "hw.yaml"),
+         "sha256": hashlib.sha256((folder / "hw.yaml").read_bytes()).hexdigest()},
+        {"role": "problem", "path": str(folder / "p.yaml"),
+         "sha256": hashlib.sha256((folder / "p.yaml").read_bytes()).hexdigest()}]
+    written = sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file())
+    assert manifest["files"] == [name for name in written if name != "manifest.json"]
+    assert manifest["kept"] == [] and manifest["removed"] == []
+
+
+def test_files_of_the_instructors_own_in_out_are_kept_and_never_counted_as_outputs(tmp_path):
+    folder = small_class(tmp_path)
+    out = tmp_path / "out"
+    assert run(folder / "hw.yaml", folder / "subs", "--out", out).exit_code == 0
+    (out / "class.html").write_text("my report\n", encoding="utf-8")
+    (out / "notes").mkdir()
+    (out / "notes" / "late.txt").write_text("bo was late\n", encoding="utf-8")
+    (out / "feedback" / "README").write_text("mine\n", encoding="utf-8")
+    (out / "evil\x1b[2J.txt").write_text("a name that clears the screen\n", encoding="utf-8")
+    result = run(folder / "hw.yaml", folder / "subs", "--out", out)
+    assert result.exit_code == 0, result.output
+    assert (out / "class.html").read_text(encoding="utf-8") == "my report\n"
+    assert (out / "notes" / "late.txt").read_text(encoding="utf-8") == "bo was late\n"
+    assert (out / "feedback" / "README").read_text(encoding="utf-8") == "mine\n"
+    assert _manifest(out)["kept"] == ["class.html", "evil\x1b[2J.txt", "feedback/README",
+                                      "notes/late.txt"]
+    assert "class.html" not in _manifest(out)["files"]
+    assert result.stdout.splitlines()[1:] == [
+        "Kept (not written by mechgrade):", "  class.html", "  evil\\x1b[2J.txt",
+        "  feedback/README", "  notes/late.txt"]
+
+
+def test_outputs_of_an_earlier_version_without_a_manifest_are_replaced_whole(tmp_path):
+    folder = small_class(tmp_path)
+    out = tmp_path / "out"
+    (out / "feedback").mkdir(parents=True)
+    for name in ("results.json", "grades.csv", "results.csv", "feedback/gone.html",
+                 "feedback/gone.md", "class.html"):
+        (out / name).write_text("old\n", encoding="utf-8")
+    result = run(folder / "hw.yaml", folder / "subs", "--out", out)
+    assert result.exit_code == 0, result.output
+    assert not (out / "feedback" / "gone.html").exists()
+    assert (out / "class.html").read_text(encoding="utf-8") == "old\n"
+    assert _manifest(out)["removed"] == ["feedback/gone.html", "feedback/gone.md"]
+
+
+def test_a_folder_holding_something_else_is_refused_before_grading(tmp_path):
+    folder = small_class(tmp_path)
+    out = tmp_path / "course"
+    (out / "photos").mkdir(parents=True)
+    (out / "syllabus.pdf").write_bytes(b"%PDF")
+    result = run(folder / "hw.yaml", folder / "subs", "--out", out)
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    assert result.stderr == (
+        f"{out}: --out: expected a new or empty folder, or one 'mechgrade grade' wrote before "
+        f"(it holds manifest.json), found 2 entries of something else (photos/, syllabus.pdf); "
+        f"choose another --out\n")
+    assert sorted(p.name for p in out.iterdir()) == ["photos", "syllabus.pdf"]
+
+
+def test_a_folder_of_another_commands_outputs_is_refused(tmp_path):
+    folder = small_class(tmp_path)
+    out = tmp_path / "sheets"
+    out.mkdir()
+    (out / "manifest.json").write_text(json.dumps({"format": "mechgrade outputs 1",
+                                                   "command": "mechgrade handout",
+                                                   "files": ["givens.csv"]}),
+                                       encoding="utf-8")
+    (out / "givens.csv").write_text("id\n", encoding="utf-8")
+    result = run(folder / "hw.yaml", folder / "subs", "--out", out)
+    assert result.exit_code == 2
+    assert result.stderr == (f"{out}: --out: expected a folder of 'mechgrade grade' outputs, "
+                             f"found the outputs of 'mechgrade handout' (manifest.json); "
+                             f"choose another --out\n")
+
+
+def test_a_run_that_fails_while_writing_leaves_the_previous_outputs_whole(tmp_path,
+                                                                          monkeypatch):
+    from mechgrade.errors import OutputError
+    from mechgrade.report import output
+
+    folder = small_class(tmp_path)
+    out = tmp_path / "out"
+    assert run(folder / "hw.yaml", folder / "subs", "--out", out).exit_code == 0
+    before = _files(out)
+    (folder / "subs" / "ann.txt").write_text("bowling_3_15_4_pendulum.acc_mag = 12 ft/s^2\n",
+                                             encoding="utf-8")
+    written = []
+
+    def fail_on_the_third_file(path, text, **kwargs):
+        written.append(path)
+        if len(written) == 3:
+            raise OutputError("cannot write the file (No space left on device)")
+        original(path, text, **kwargs)
+
+    original = output.write_text
+    monkeypatch.setattr(output, "write_text", fail_on_the_third_file)
+    result = run(folder / "hw.yaml", folder / "subs", "--out", out, "--jobs", "1")
+    assert result.exit_code == 2
+    assert "No space left on device" in result.stderr
+    assert _files(out) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hw.yaml", "out", "p.yaml", "subs"]
+
+
+def test_a_second_run_into_a_folder_being_written_is_refused(tmp_path):
+    import fcntl
+    import os
+
+    folder = small_class(tmp_path)
+    out = tmp_path / "out"
+    lock = tmp_path / ".out.mechgrade-lock"
+    with open(lock, "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        held.write(f"{os.getpid()}\n")
+        held.flush()
+        result = run(folder / "hw.yaml", folder / "subs", "--out", out)
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    assert result.stderr == (f"{out}: --out: expected a folder no other run is writing, found "
+                             f"mechgrade process {os.getpid()} writing it; wait for that run "
+                             f"to end, or choose another --out\n")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("where", ["subs", "subs/out", "subs/ann/deeper"])
+def test_out_inside_the_submissions_folder_is_refused(tmp_path, where):
+    folder = small_class(tmp_path)
+    out = tmp_path / where
+    result = run(folder / "hw.yaml", folder / "subs", "--out", out)
+    assert result.exit_code == 2
+    found = ("the submissions folder itself" if where == "subs"
+             else f"a folder inside {folder / 'subs'}")
+    assert result.stderr == (f"{out}: --out: expected a folder outside the submissions folder, "
+                             f"found {found} (the next run would grade the outputs as "
+                             f"students' work); choose another --out\n")
+    assert sorted(p.name for p in (folder / "subs").iterdir()) == ["ann.txt", "bo.txt", "cy.txt"]
+
+
+def test_out_holding_the_submissions_folder_is_refused(tmp_path):
+    folder = small_class(tmp_path)
+    result = run(folder / "hw.yaml", folder / "subs", "--out", tmp_path)
+    assert result.exit_code == 2
+    assert result.stderr == (f"{tmp_path}: --out: expected a folder that does not hold the "
+                             f"submissions folder, found {folder / 'subs'} inside it (a run "
+                             f"replaces --out whole); choose another --out\n")

@@ -74,8 +74,9 @@ def _snapshot(top: Path) -> dict[str, tuple[int, int]]:
 
 
 def _outputs(out: Path) -> dict[str, str]:
+    """Every output but the manifest (which records the run's time)."""
     return {p.relative_to(out).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(out.rglob("*")) if p.is_file()}
+            for p in sorted(out.rglob("*")) if p.is_file() and p.name != "manifest.json"}
 
 
 def test_the_run_finishes_without_a_traceback(hostile):
@@ -149,6 +150,92 @@ def test_every_export_of_the_hostile_class_is_written(hostile, fmt):
     for path in [target] if target.is_file() else sorted(target.iterdir()):
         path.read_bytes().decode("utf-8-sig")
         assert not path.name.startswith(("-", "."))
+
+
+# --- outputs: nothing stale, nothing racing, nothing left running
+
+
+def test_a_regrade_of_two_students_into_the_hostile_outputs_leaves_only_theirs(hostile):
+    import shutil
+
+    top = hostile["top"]
+    out = top / "regrade"
+    shutil.copytree(top / "out", out, symlinks=True)
+    previous = set(json.loads((out / "manifest.json").read_text(encoding="utf-8"))["files"])
+    two = top / "two"
+    for name in ("ana", "ben"):
+        (two / name).mkdir(parents=True)
+        (two / name / "answers.yaml").write_text("bowling_3_15_4_pendulum:\n  acc_mag: 98.5 "
+                                                 "ft/s^2\n", encoding="utf-8")
+    result = CliRunner().invoke(main, ["grade", str(top / "hw.yaml"), str(two), "--out",
+                                       str(out)])
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in (out / "feedback").iterdir()) == [
+        "ana.html", "ana.md", "ben.html", "ben.md"]
+    manifest = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+    assert set(manifest["removed"]) == previous - set(manifest["files"])
+    assert len(manifest["removed"]) > 100
+    assert set(manifest["kept"]) <= {"class.html"}  # the class report a test wrote there
+    lines = result.stdout.splitlines()
+    start = lines.index("Removed from the previous run (not written by this one):")
+    assert lines[start + 51] == (f"  ... and {len(manifest['removed']) - 50} more (all in "
+                                 f"manifest.json)")
+    assert all(line.isprintable() for line in lines)
+    assert not [p for p in top.iterdir() if p.name.startswith(".regrade")]
+
+
+SLOW_PAGE = "{% for i in range(10 ** 10) %}{% endfor %}{{ student.id }}\n"
+
+
+def test_a_run_killed_while_writing_leaves_no_worker_and_the_previous_outputs(tmp_path,
+                                                                              marked_run):
+    """``kill -9`` (the OOM killer) of a run whose page helper is busy: no worker outlives it,
+    its output streams reach their end, and --out still holds the previous run's outputs; a
+    second run started meanwhile into the same --out is refused."""
+    import subprocess
+    import sys
+    import time
+
+    (tmp_path / "p.yaml").write_bytes(
+        (shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml").read_bytes())
+    (tmp_path / "hw.yaml").write_text("id: hw\ntitle: HW\nproblems: [{path: p.yaml, "
+                                      "objectives: [acc_mag]}]\n", encoding="utf-8")
+    for n in range(30):  # two pieces of pages: a helper process renders one of them
+        (tmp_path / "subs" / f"s{n:02d}").mkdir(parents=True)
+        (tmp_path / "subs" / f"s{n:02d}" / "answers.txt").write_text(
+            "bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n", encoding="utf-8")
+    (tmp_path / "slow").mkdir()
+    (tmp_path / "slow" / "feedback.html.j2").write_text(SLOW_PAGE, encoding="utf-8")
+    (tmp_path / "slow" / "feedback.md.j2").write_text("{{ student.id }}\n", encoding="utf-8")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "manifest.json").write_text(json.dumps({
+        "format": "mechgrade outputs 1", "command": "mechgrade grade",
+        "files": ["results.json"]}), encoding="utf-8")
+    (out / "results.json").write_text("the previous run's\n", encoding="utf-8")
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    command = [sys.executable, "-m", "mechgrade", "grade", str(tmp_path / "hw.yaml"),
+               str(tmp_path / "subs"), "--out", str(out)]
+    run = marked_run([*command, "--jobs", "2", "--templates", str(tmp_path / "slow")])
+    first_seen: dict[int, float] = {}
+
+    def a_worker_is_busy() -> bool:  # the page helper: the run's one long-lived worker
+        now = time.monotonic()
+        workers = run.workers()
+        for pid in workers:
+            first_seen.setdefault(pid, now)
+        return any(now - first_seen[pid] > 1.0 for pid in workers)
+
+    run.wait_for(a_worker_is_busy)
+    second = subprocess.run(command, capture_output=True, text=True, timeout=120)
+    assert second.returncode == 2
+    assert second.stderr == (f"{out}: --out: expected a folder no other run is writing, found "
+                             f"mechgrade process {run.process.pid} writing it; wait for that "
+                             f"run to end, or choose another --out\n")
+    run.kill()
+    assert run.survivors() == set()
+    assert run.output_closed()
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
 
 
 def _results(hostile) -> dict:

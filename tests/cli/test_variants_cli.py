@@ -104,3 +104,27 @@ def test_gradescope_grades_the_variant_of_the_student_id_in_the_metadata(tmp_pat
         outcomes[sid] = json.loads((folder / "results.json").read_text())["score"]
     # Ana's answers are right for Ana's variant (20001) only
     assert outcomes == {"20001": 8.0, "20002": 2.0}
+
+
+def test_a_handout_for_a_smaller_roster_removes_and_lists_the_sheets_of_the_others(tmp_path):
+    out = tmp_path / "sheets"
+    assert run("handout", HW2 / "assignment.yaml", "--roster", HW2 / "roster.csv", "--out",
+               out).exit_code == 0
+    roster = tmp_path / "roster.csv"
+    lines = (HW2 / "roster.csv").read_text(encoding="utf-8").splitlines()
+    roster.write_text("\n".join(lines[:3]) + "\n", encoding="utf-8")  # 20001 and 20002
+    (out / "instructions.txt").write_text("print double-sided\n", encoding="utf-8")
+    result = run("handout", HW2 / "assignment.yaml", "--roster", roster, "--out", out)
+    assert result.exit_code == 0, result.output
+    assert result.output.splitlines() == [
+        f"Wrote 2 sheets and givens.csv to {out}/ (5 files)",
+        "Removed from the previous run (not written by this one):",
+        "  20003.html", "  20003.md", "  20004.html", "  20004.md",
+        "Kept (not written by mechgrade):", "  instructions.txt"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "20001.html", "20001.md", "20002.html", "20002.md", "givens.csv", "instructions.txt",
+        "manifest.json"]
+    manifest = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
+    assert manifest["command"] == "mechgrade handout"
+    roles = [i["role"] for i in manifest["inputs"]]
+    assert roles[0] == "assignment" and set(roles[1:-1]) == {"problem"} and roles[-1] == "roster"

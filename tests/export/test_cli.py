@@ -104,7 +104,7 @@ def test_format_specific_flags_reach_the_file(run, tmp_path):
     gs = tmp_path / "gs"
     assert run("export", RESULTS, "--format", "gradescope", "--visibility", "hidden",
                "--out", str(gs)).exit_code == 0
-    documents = [json.loads(p.read_text()) for p in gs.iterdir()]
+    documents = [json.loads(p.read_text()) for p in gs.iterdir() if p.name != "manifest.json"]
     assert {t["visibility"] for d in documents for t in d["tests"]} == {"hidden"}
 
 
@@ -206,3 +206,18 @@ def test_moodle_export_holds_back_rows_and_says_so(run, tmp_path):
                        "of a row imported with feedback only"]
     assert [row[0] for row in read_csv(out)[1:]] == [
         "ada@uni.example", "emilie@uni.example", "mallory@uni.example"]
+
+
+def test_a_gradescope_folder_for_fewer_students_holds_only_theirs(run, tmp_path):
+    out = tmp_path / "gs"
+    assert run("export", RESULTS, "--format", "gradescope", "--out", str(out)).exit_code == 0
+    data = json.loads(Path(RESULTS).read_text(encoding="utf-8"))
+    data["students"] = data["students"][:2]
+    fewer = tmp_path / "fewer.json"
+    fewer.write_text(json.dumps(data), encoding="utf-8")
+    result = run("export", str(fewer), "--format", "gradescope", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    kept = sorted(p.name for p in out.iterdir())
+    assert kept == sorted([f"{s['id']}.json" for s in data["students"]] + ["manifest.json"])
+    assert result.stdout.startswith(f"wrote gradescope export of 2 results to {out}\n"
+                                    f"Removed from the previous run (not written by this one):")

@@ -142,3 +142,30 @@ def test_items_are_the_same_exactly_when_equal_whichever_objects_hold_them():
     keys = _keys([("L", SYM, Policy()), ("L", twin, Policy()), ("L", other, Policy()),
                   ("2 L", SYM, Policy()), ("L", SYM, Policy(seed=1))])
     assert keys[0] == keys[1] and len(set(keys)) == 4
+
+
+def test_idle_and_busy_workers_die_with_their_killed_parent(marked_run):
+    # One worker waits for answers, the other is stuck in one: neither may outlive a parent
+    # killed with SIGKILL (no clean-up runs), nor keep the parent's output open.
+    import sys
+    import textwrap
+
+    run = marked_run([sys.executable, "-c", textwrap.dedent("""\
+        import time
+        from mechgrade.grade.compare import Policy
+        from mechgrade.grade.sandbox import Sandbox
+        from mechgrade.solve.result import ObjectiveResult
+
+        def spin(text, result, policy):
+            while True:
+                pass
+
+        acc = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
+        idle = Sandbox(seconds=600)
+        idle.assess("98.5 ft/s^2", acc, Policy())
+        Sandbox(seconds=600, judge=spin).assess("1 m", acc, Policy())
+        """)])
+    run.wait_for(lambda: len(run.workers()) >= 2)
+    run.kill()
+    assert run.survivors() == set()
+    assert run.output_closed()

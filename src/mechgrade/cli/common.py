@@ -6,12 +6,17 @@ from __future__ import annotations
 import functools
 import importlib
 import os
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
 from .. import __version__
 from ..errors import MechgradeError, brief_exception
 from ..files import visible_text
+
+if TYPE_CHECKING:
+    from ..outfolder import Committed
 
 
 INTERNAL_ERROR_EXIT = 3
@@ -67,6 +72,70 @@ def reports_errors(command):
                                   f"MECHGRADE_DEBUG=1 for the traceback)") from None
 
     return wrapper
+
+
+MAX_LISTED = 50
+"""Items of one list a summary shows; the rest are counted (every one is in the outputs)."""
+
+
+def listed(title: str, items, where: str) -> list[str]:
+    """A summary's list: its title line, then each item indented, at most :data:`MAX_LISTED`.
+
+    >>> listed("Removed", ["a", "b"], "manifest.json")
+    ['Removed:', '  a', '  b']
+    """
+    if not items:
+        return []
+    lines = [f"{title}:", *(f"  {item}" for item in items[:MAX_LISTED])]
+    if len(items) > MAX_LISTED:
+        lines.append(f"  ... and {len(items) - MAX_LISTED} more (all in {where})")
+    return lines
+
+
+def output_lines(done: Committed) -> list[str]:
+    """What replacing the output folder did, for the summary: the previous run's files removed,
+    the instructor's files kept, the leftovers of an interrupted run cleared."""
+    return [*listed("Removed from the previous run (not written by this one)", done.removed,
+                    "manifest.json"),
+            *listed("Kept (not written by mechgrade)", done.kept, "manifest.json"),
+            *listed("Before this run", done.notes, "manifest.json")]
+
+
+def run_arguments() -> dict:
+    """The running command's arguments, as its ``manifest.json`` records them (paths as given).
+    """
+    params = click.get_current_context().params
+    return {name: str(value) if isinstance(value, os.PathLike) else
+            list(value) if isinstance(value, tuple) else value
+            for name, value in params.items()}
+
+
+def run_inputs(*, assignment: Path | None = None, spec=None, results: Path | None = None,
+               roster: Path | None = None, templates_dir: Path | None = None,
+               template_names: tuple[str, ...] = ()) -> tuple[tuple[str, Path], ...]:
+    """The ``(role, path)`` of every file a run read, for its ``manifest.json``: the assignment
+    and its problems (``spec``), a results file, the roster, the templates used from
+    ``templates_dir``."""
+    found: list[tuple[str, Path]] = []
+    if assignment is not None:
+        found.append(("assignment", assignment))
+    if spec is not None:
+        found.extend(("problem", ref.path) for ref in spec.problems)
+    if results is not None:
+        found.append(("results", results))
+    if roster is not None:
+        found.append(("roster", roster))
+    if templates_dir is not None:
+        found.extend(("template", templates_dir / name) for name in template_names)
+    return tuple(found)
+
+
+def claim_out(out_dir, kind):
+    """The claimed output folder of the running command (:func:`mechgrade.outfolder.claim`),
+    released when the command ends, whichever way."""
+    from ..outfolder import claim
+
+    return click.get_current_context().with_resource(claim(out_dir, kind))
 
 
 def warn_about_the_cache() -> None:

@@ -9,7 +9,13 @@ import click
 from ..errors import ExportError
 from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
-from .common import main, reports_errors, say
+from ..outfolder import OutputKind
+from .common import (claim_out, main, output_lines, reports_errors, run_arguments,
+                     run_inputs, say)
+
+GRADESCOPE_FOLDER = OutputKind("mechgrade export", None, ("*.json",))
+"""What ``export --format gradescope`` of several students writes into ``--out`` (a folder
+written before manifests existed is not recognised: its files are named by students' ids)."""
 
 DEFAULT_OUT = {
     "canvas": "canvas_import.csv",
@@ -46,6 +52,7 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
                    missing: str, excel_bom: bool, no_points_possible: bool, moodle_key: str,
                    visibility: str, canvas_assignment: str | None) -> None:
     """Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a spreadsheet."""
+    from ..export.gradescope import writes_folder  # imported here, as the exporters are
     from ..roster import read_roster  # imported here: 'export --help' needs no roster reader
 
     report = read_results(results_json)
@@ -57,7 +64,13 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
                             points_possible=not no_points_possible,
                             gradescope_visibility=visibility, moodle_key=moodle_key,
                             canvas_assignment=canvas_assignment)
-    warnings = EXPORTERS[fmt](report, out, roster=class_roster, options=options)
+    folder = claim_out(out, GRADESCOPE_FOLDER) if fmt == "gradescope" and \
+        writes_folder(report) else None
+    warnings = EXPORTERS[fmt](report, out if folder is None else folder.staging,
+                              roster=class_roster, options=options)
+    done = folder.commit(run_arguments(), inputs=run_inputs(results=results_json,
+                                                            roster=roster)) \
+        if folder is not None else None
     if class_roster is not None:
         for line, reason in class_roster.skipped:
             say(f"warning: {roster}:{line}: skipped {reason}", err=True)
@@ -68,4 +81,6 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
             f"(--accept-failing-expect): {failing}", err=True)
     say(f"wrote {fmt} export of {len(report.students)} "
         f"{'result' if len(report.students) == 1 else 'results'} to {out}")
+    for text in output_lines(done) if done is not None else ():
+        say(text)
 

@@ -11,7 +11,8 @@ import click
 
 from ..files import visible_text
 from ..roster import read_roster
-from .common import INTERNAL_ERROR_EXIT, main, reports_errors, say, warn_about_the_cache
+from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
+                     reports_errors, run_arguments, run_inputs, say, warn_about_the_cache)
 
 
 @main.command("grade")
@@ -42,9 +43,12 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     # Here, not at the top: sympy and the solver load only when a run starts (not for --help).
     from ..grade.assignment import load_assignment
     from ..grade.run import grade_submissions
+    from ..outfolder import check_apart
     from ..parallel import default_jobs
-    from ..report.output import write_outputs
+    from ..report.output import GRADE_OUTPUTS, TEMPLATE_NAMES, write_outputs
 
+    check_apart(out_dir, submissions_dir)
+    folder = claim_out(out_dir, GRADE_OUTPUTS)  # locked now: a second run is refused at once
     jobs = jobs if jobs is not None else default_jobs()
     spec = load_assignment(assignment)
     warn_about_the_cache()
@@ -70,9 +74,12 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     from ..grade.worked import shown_solutions
 
     worked = shown_solutions(spec, report)  # the assignment's worked_solution rule
-    report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
-                           worked=worked).report
-    say(summary(report, out_dir))
+    report = write_outputs(report, folder.staging, templates_dir, roster=class_roster,
+                           jobs=jobs, worked=worked).report
+    done = folder.commit(run_arguments(), inputs=run_inputs(
+        assignment=assignment, spec=spec, roster=roster, templates_dir=templates_dir,
+        template_names=TEMPLATE_NAMES))
+    say(summary(report, out_dir, done))
     # At exit the interpreter's last collection need not walk every object of the run
     # (a tenth of a second or more); registered once, whatever runs in this process.
     atexit.unregister(gc.freeze)
@@ -81,11 +88,9 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
         sys.exit(INTERNAL_ERROR_EXIT)
 
 
-MAX_LISTED = 50
-
-
-def summary(report, out_dir: Path) -> str:
-    """The run summary: the count line, then every skipped entry, note and internal error."""
+def summary(report, out_dir: Path, done=None) -> str:
+    """The run summary: the count line, then every skipped entry, note and internal error, and
+    what replacing ``--out`` removed and kept (``done``)."""
     lines = [summary_line(report, out_dir)]
     for title, items in (
             ("Graded although the problems fail these expect: tests (--accept-failing-expect)",
@@ -95,12 +100,8 @@ def summary(report, out_dir: Path) -> str:
             ("Notes", list(report.notes)),
             ("Internal errors (not evaluated; please report them)",
              list(report.internal_errors))):
-        if not items:
-            continue
-        lines.append(f"{title}:")
-        lines.extend(f"  {item}" for item in items[:MAX_LISTED])
-        if len(items) > MAX_LISTED:
-            lines.append(f"  ... and {len(items) - MAX_LISTED} more (all in results.json)")
+        lines.extend(listed(title, items, "results.json"))
+    lines.extend(output_lines(done) if done is not None else ())
     return "\n".join(visible_text(line) for line in lines)
 
 

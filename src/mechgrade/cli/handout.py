@@ -9,9 +9,10 @@ import click
 from ..grade.assignment import load_assignment
 from ..grade.run import plan_assignment
 from ..grade.variants import handout_sheets
-from ..report.handout import write_handouts
+from ..report.handout import HANDOUT_OUTPUTS, HANDOUT_TEMPLATES, write_handouts
 from ..roster import read_roster
-from .common import main, reports_errors, say, warn_about_the_cache
+from .common import (claim_out, main, output_lines, reports_errors, run_arguments,
+                     run_inputs, say, warn_about_the_cache)
 
 
 @main.command("handout")
@@ -33,10 +34,14 @@ def handout(assignment: Path, roster: Path, out_dir: Path, templates_dir: Path |
     A student's numbers come from the assignment's variants seed and their roster id: the
     same numbers grading uses.
     """
+    folder = claim_out(out_dir, HANDOUT_OUTPUTS)
     spec = load_assignment(assignment)
     warn_about_the_cache()
     plan = plan_assignment(spec)
     students = [(s.id, s.name) for s in read_roster(roster).students]
-    written = write_handouts(handout_sheets(plan, students), out_dir, templates_dir)
-    say(f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
-        f"({len(written)} files)")
+    written = write_handouts(handout_sheets(plan, students), folder.staging, templates_dir)
+    done = folder.commit(run_arguments(), inputs=run_inputs(
+        assignment=assignment, spec=spec, roster=roster, templates_dir=templates_dir,
+        template_names=HANDOUT_TEMPLATES))
+    say("\n".join([f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
+                   f"({len(written)} files)", *output_lines(done)]))

@@ -47,7 +47,7 @@ def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
     if not report.students:
         raise ExportError("expected at least one student in the results for a Gradescope "
                           "results.json, found none")
-    if len(report.students) == 1:
+    if not writes_folder(report):
         write_json(out_path, gradescope_results(report, report.students[0], options))
         return ()
     folder = Path(out_path)
@@ -60,6 +60,11 @@ def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
     for student, name in zip(report.students, names):
         write_json(folder / f"{name}.json", gradescope_results(report, student, options))
     return ()
+
+
+def writes_folder(report: GradeReport) -> bool:
+    """Whether the export of ``report`` is a folder (one file per student): several students."""
+    return len(report.students) > 1
 
 
 def gradescope_failure(message: str, options: ExportOptions = ExportOptions()) -> dict:

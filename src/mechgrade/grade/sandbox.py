@@ -30,6 +30,7 @@ from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
 from typing import Callable, Iterable, Sequence, Union, cast
 
+from ..parallel import worker_started
 from ..solve.result import ObjectiveResult
 from .compare import Assessment, Policy, assess, not_evaluated
 
@@ -82,6 +83,7 @@ def _limit_memory(memory_mb: int) -> None:
 def _worker(conn: Connection, judge: Judge, memory_mb: int) -> None:
     """Judge each batch of items sent, one answer at a time, sending each outcome back as soon
     as it is known (the parent times every answer from the previous outcome)."""
+    worker_started()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
     _limit_memory(memory_mb)
     while True:

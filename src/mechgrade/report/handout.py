@@ -27,9 +27,13 @@ from ..errors import MechgradeError
 from ..export.cells import write_csv
 from ..files import safe_file_names, write_text
 from ..grade.sheets import Sheet
+from ..outfolder import OutputKind
 from .output import _render, _template, _where, markdown_escape, template_environment
 
 HANDOUT_TEMPLATES = ("handout.html.j2", "handout.md.j2")
+
+HANDOUT_OUTPUTS = OutputKind("mechgrade handout", "givens.csv", ("*.html", "*.md", "givens.csv"))
+"""What ``mechgrade handout`` writes into ``--out`` (see :mod:`mechgrade.outfolder`)."""
 
 
 def write_handouts(sheets: tuple[Sheet, ...], out_dir: str | Path,

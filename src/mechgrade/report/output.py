@@ -32,7 +32,8 @@ from typing import TYPE_CHECKING, Any
 from ..errors import Location, MechgradeError, brief_exception
 from ..files import json_text, safe_file_names, write_json, write_text
 from ..export import EXPORTERS
-from ..parallel import outcome
+from ..outfolder import OutputKind
+from ..parallel import outcome, worker_started
 from ..resources import shipped_dir
 from ..grade.results import GradeReport, StudentResult
 
@@ -44,6 +45,10 @@ if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no
     from ..solve.worked import WorkedSolution
 
 TEMPLATE_NAMES = ("feedback.html.j2", "feedback.md.j2")
+
+GRADE_OUTPUTS = OutputKind("mechgrade grade", "results.json", (
+    "results.json", "grades.csv", "results.csv", "feedback/*.html", "feedback/*.md"))
+"""What ``mechgrade grade`` writes into ``--out`` (see :mod:`mechgrade.outfolder`)."""
 
 VERDICT_LABELS = {
     "correct": "Correct",
@@ -281,6 +286,7 @@ class _Crew:
 def _help(crew: _Crew, conn: Connection) -> None:
     """A forked helper of :class:`_Crew`: render the pieces it claims, say how it went, and
     write them when told to."""
+    worker_started()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
     done, error = crew.render_claimed()
     if error is not None:
