@@ -180,7 +180,7 @@ def test_independent_errors_come_together_in_file_order():
      "found a list of 1"),
     ("  A: {parent: N,", "  A: {parnt: N,", "base.yaml:6:7: frames.A.parnt: expected only the fields parent, rotation, "
      "rotations, origin, found 'parnt'; did you mean 'parent'?"),
-    ("title:", "titel:", "base.yaml:2:1: titel: expected only the fields id, title, source, statement, "
+    ("title:", "titel:", "base.yaml:2:1: titel: expected only the fields id, title, source, statement, tags, "
      "inertial, frames, points, coordinates, parameters, constraints, givens, guesses, unknown, "
      "branch, define, variants, consistency, bodies, loads, analysis, objectives, found 'titel'; "
      "did you mean 'title'?"),
