@@ -41,7 +41,7 @@ def test_the_markdown_solution_lists_every_step_and_the_answers():
                     "### The acceleration of P in N (composed in frame B, from O)"):
         assert heading in text
     assert "- `2 omega x B_v_P = - 2*qd*yd*B.x`" in text
-    assert "- `= (-66, -40, 0) ft/s^2 in N`" in text
+    assert "- `= (-66, -40, 0) ft/s^2 in frame N`" in text
     assert "- `q'' = 3 rad/s^2`" in text
 
 
