@@ -71,7 +71,7 @@ def test_students_with_missing_or_unreadable_answers_are_listed(report):
     assert set(issues) == {"s1004", "s1005", "s1006"}
     assert issues["s1004"].status == "missing" and issues["s1004"].detail == \
         "no submission file found"
-    assert issues["s1006"].objectives == "p1/v_B (unreadable), p1/a_B (missing)"
+    assert issues["s1006"].objectives == "p1.v_B (could not be read), p1.a_B (no answer)"
 
 
 def test_an_empty_class_still_renders(report):

@@ -19,12 +19,12 @@ def sheet(student_id="20001", name="Ana", draw=0) -> Sheet:
 
 def test_hostile_names_are_shown_literally_and_files_are_named_safely(tmp_path):
     written = write_handouts((sheet("../evil", "<script>alert(1)</script> *x*"),), tmp_path)
-    assert [p.name for p in written] == ["evil.html", "evil.md", "givens.csv"]
+    assert [p.name for p in written] == ["evil.html", "evil.md", "evil.txt", "givens.csv"]
     html = (tmp_path / "evil.html").read_text()
     assert "<script>alert" not in html and "&lt;script&gt;alert(1)&lt;/script&gt;" in html
     md = (tmp_path / "evil.md").read_text()
     assert r"\<script\>alert(1)\</script\> \*x\*" in md
-    assert r"Speed \*of\* the tip. In m/s. Answer as `p.speed`" in md
+    assert r"Speed \*of\* the tip. In m/s. Answer key `p.speed`" in md
 
 
 def test_the_givens_table_has_one_row_per_student_with_its_draw_number():

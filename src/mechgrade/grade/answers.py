@@ -33,6 +33,7 @@ from ..expressions import syntax
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Prime, Unary
 from ..expressions.excerpt import excerpt
 from ..solve.result import ObjectiveResult, in_frame
+from .results import EXAMPLE_NUMBER
 from ..spec.model import ObjectiveKind
 from ..units import MAX_UNIT_LENGTH, dimension, normalize_unit
 
@@ -278,10 +279,6 @@ def _in_own_unit(message: str, result: ObjectiveResult) -> str:
     message = message.replace(_SCALAR_EXAMPLE, scalar)
     message = message.replace(_VECTOR_EXAMPLE, f"components such as '{vector}'")
     return message.replace(_UNIT_EXAMPLE, f"unit such as '{unit}'") if unit else message
-
-
-EXAMPLE_NUMBER = "12.5"
-"""The number of an example answer in a message or a handout: no problem's answer."""
 
 
 def _read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:

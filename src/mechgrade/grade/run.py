@@ -34,16 +34,13 @@ from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
-from .results import (AnswerResult, AssignmentInfo, FailingExpect, GradeReport, ObjectiveInfo,
-                      StudentResult)
+from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
+                      ObjectiveInfo, StudentResult)
 from .submissions import Submission, SubmissionSet, read_submissions
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.result import ObjectiveResult, Solution
     from .compare import Assessment
-
-ECF_DIAGNOSIS = "error carried forward"
-"""The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
 
 POINTS_DIGITS = 4
 """Points are rounded to this many decimals, so that sums are the same on every machine."""
