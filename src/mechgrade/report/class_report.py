@@ -332,10 +332,12 @@ def _histogram_svg(scores: list[float], max_score: float) -> str:
         if not scores:
             ax.text(0.5, 0.5, "no graded submissions", transform=ax.transAxes, ha="center")
         width = edges[1] - edges[0]
-        said = [f"{counted(int(n), 'student')} scored "
-                + (format_points(low + width / 2) if width == 1 else
-                   f"{format_points(low)} to {format_points(low + width)}")
-                for low, n in zip(edges, counts) if n]
+        # In words, bins of one point say each score as it is: 5.5 is drawn in the bar of 6
+        # but was not scored 6
+        said = ([f"{counted(n, 'student')} scored {format_points(score)}"
+                 for score, n in sorted(Counter(scores).items())] if width == 1 else
+                [f"{counted(int(n), 'student')} scored {format_points(low)} to "
+                 f"{format_points(low + width)}" for low, n in zip(edges, counts) if n])
         return _svg(fig, "histogram", f"Score distribution (out of {format_points(top)})",
                     "; ".join(said) + "." if said else "No graded submissions.")
 
