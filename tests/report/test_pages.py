@@ -61,7 +61,7 @@ def test_every_page_passes_axe_core_wcag_2_a_and_aa(pages, axe, name):
     assert axe(pages[name]) == []
 
 
-@pytest.mark.parametrize("name", ["feedback", "class report", "sheet"])
+@pytest.mark.parametrize("name", ["feedback", "unreadable", "class report", "sheet"])
 def test_a_page_fits_a_phone_and_what_is_wider_scrolls_in_its_own_box(pages, phone, name):
     laid_out = phone(pages[name])
     assert laid_out["width"] == 375
@@ -119,3 +119,17 @@ def test_printing_keeps_a_card_a_figure_a_step_or_a_row_on_one_page(pages, in_br
     report = found["class report"]
     assert report["figures"] == [2, 2] and report["tables"][0] == report["tables"][1] > 10
     assert found["sheet"]["figures"][0] == found["sheet"]["figures"][1] == 2
+
+
+WHOLE_KEYS = """<script>
+const out = document.createElement("pre"); out.id = "keys";
+out.textContent = JSON.stringify([...document.querySelectorAll("%s")].filter(
+  e => e.getClientRects().length !== 1).map(e => e.textContent));
+document.body.append(out);
+</script>"""
+
+
+@pytest.mark.parametrize(("name", "keys"), [("unreadable", ".questions code"),
+                                            ("class report", "code.key")])
+def test_an_answer_key_is_never_broken_across_lines(pages, in_browser, name, keys):
+    assert json.loads(in_browser(pages[name], WHOLE_KEYS % keys, "keys")) == []

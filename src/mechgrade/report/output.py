@@ -633,9 +633,9 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
 
 
 NOTHING_READ = {
-    "missing": "No answers were found for you, so none of the {questions} was graded.",
-    "unreadable": "Your answers could not be read (see “About your submission”), so none of "
-                  "the {questions} was graded.",
+    "missing": "No answers were found for you, so {none} graded.",
+    "unreadable": "Your answers could not be read (see “About your submission”), so {none} "
+                  "graded.",
 }
 
 
@@ -646,13 +646,15 @@ def _nothing_read(student: StudentResult) -> str:
     >>> from mechgrade.grade.results import StudentResult, AnswerResult
     >>> _nothing_read(StudentResult("ana", "", "missing", 0.0, 2.0,
     ...                             (AnswerResult("p", "v", None, "missing", 0.0, 2.0),)))
-    'No answers were found for you, so none of the 1 question was graded.'
+    'No answers were found for you, so the question was not graded.'
     """
     if student.status not in NOTHING_READ or any(a.answer is not None
                                                   for a in student.answers):
         return ""
+    n = len(student.answers)
+    # "none of the 1 question" read as a count, not a sentence
     return NOTHING_READ[student.status].format(
-        questions=counted(len(student.answers), "question"))
+        none="the question was not" if n == 1 else f"none of the {n} questions was")
 
 
 def counted(n: int, singular: str, plural: str | None = None) -> str:
