@@ -17,7 +17,7 @@ from ..export.upload import read_upload
 from ..grade.assignment import load_assignment
 from ..grade.run import failing_expects, failing_expects_error, grade_plan, plan_assignment
 from ..grade.submissions import SubmissionSet
-from .common import INTERNAL_ERROR_EXIT, UserFailure, main, say
+from .common import INTERNAL_ERROR_EXIT, UserFailure, main, say, warn_about_the_cache
 
 
 def student_of(metadata_path: Path) -> tuple[str, str]:
@@ -59,7 +59,9 @@ def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
     student, name = student_of(metadata_path)
     options = ExportOptions(gradescope_visibility=visibility)
     try:
-        plan = plan_assignment(load_assignment(assignment))
+        spec = load_assignment(assignment)
+        warn_about_the_cache()
+        plan = plan_assignment(spec)
         failing = failing_expects(plan)
         if failing and not accept_failing_expect:
             # the student sees which questions, never the values check compares
