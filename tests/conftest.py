@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import hmac
+import html
 import json
 import os
+import re
 import select
 import shutil
 import signal
@@ -31,11 +33,7 @@ def chromium(tmp_path):
     """``chromium(page) -> (dom, log)``: the page's DOM after scripts ran, and the browser log.
 
     Also leaves a screenshot next to the page (``<page>.png``)."""
-    if shutil.which("chromium") is None:
-        pytest.skip("chromium is not installed (.ci/run installs it)")
-    common = ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-              "--disable-background-networking", "--disable-component-update",
-              "--enable-logging=stderr", "--v=0", f"--user-data-dir={tmp_path / 'profile'}"]
+    common = [*_browser(tmp_path), "--enable-logging=stderr", "--v=0"]
 
     def open_page(page: Path) -> tuple[str, str]:
         dom = subprocess.run([*common, "--dump-dom", page.as_uri()], capture_output=True,
@@ -48,6 +46,124 @@ def chromium(tmp_path):
         return dom.stdout, dom.stderr
 
     return open_page
+
+
+AXE = DATA / "axe" / "axe.min.js"  # axe-core 4.14.1, see tests/data/axe/README.md
+WCAG_AA = ("wcag2a", "wcag2aa", "wcag21a", "wcag21aa")
+"""axe-core's tags of the WCAG 2.0 and 2.1 success criteria of levels A and AA."""
+
+_AXE_RUN = """<script src="%s"></script>
+<script>
+axe.run(document, {runOnly: {type: "tag", values: %s}, resultTypes: ["violations"]})
+  .then(r => r.violations.map(v => ({id: v.id, help: v.help,
+                                     nodes: v.nodes.slice(0, 5).map(n => n.target.join(" "))})),
+        e => [{id: "axe-error", help: String(e), nodes: []}])
+  .then(found => { const out = document.createElement("pre"); out.id = "axe-violations";
+                   out.textContent = JSON.stringify(found); document.body.append(out); });
+</script>
+"""
+
+_PHONE_PROBE = """<script>
+addEventListener("load", () => parent.postMessage(JSON.stringify({
+  width: innerWidth, page: document.documentElement.scrollWidth,
+  // what reaches past the screen's edge outside any box that scrolls it sideways
+  past: [...document.querySelectorAll("body *")].filter(e => {
+    const overflow = getComputedStyle(e).overflowX;
+    if (e.getBoundingClientRect().right <= innerWidth + 1
+        && (overflow !== "visible" || e.scrollWidth <= innerWidth)) return false;
+    for (let a = e.parentElement; a; a = a.parentElement)
+      if (["auto", "scroll", "hidden"].includes(getComputedStyle(a).overflowX)) return false;
+    return true; }).slice(0, 5).map(e => e.tagName.toLowerCase() + (e.id ? "#" + e.id : ""))
+}), "*"));
+</script>
+"""
+
+_PHONE_FRAME = """<!DOCTYPE html><body><iframe src="%s" width="%d" height="800"></iframe>
+<script>addEventListener("message", m => { const out = document.createElement("pre");
+  out.id = "probe"; out.textContent = m.data; document.body.append(out); });</script></body>
+"""
+
+
+def _with_script(page: Path, script: str, copy: Path) -> Path:
+    """A copy of ``page`` with ``script`` run at the end of its body (the page is left as
+    it is)."""
+    text = page.read_text(encoding="utf-8")
+    copy.write_text(text.replace("</body>", script + "</body>") if "</body>" in text
+                    else text + script, encoding="utf-8")
+    return copy
+
+
+def _dumped(common: list[str], page: Path, element: str) -> str:
+    """The text of the element ``id=element`` that a script of ``page`` appended to it,
+    once the page's scripts have run (Chromium's virtual time runs them without waiting)."""
+    dom = subprocess.run([*common, "--virtual-time-budget=60000", "--dump-dom", page.as_uri()],
+                         capture_output=True, text=True, timeout=180)
+    assert dom.returncode == 0, dom.stderr
+    found = re.search(rf'<pre id="{element}">(.*?)</pre>', dom.stdout, re.S)
+    assert found, f"the page's script left no result: {dom.stderr[-2000:]}"
+    return html.unescape(found.group(1))
+
+
+def _browser(tmp_path: Path) -> list[str]:
+    if shutil.which("chromium") is None:
+        pytest.skip("chromium is not installed (.ci/run installs it)")
+    return ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+            "--disable-background-networking", "--disable-component-update",
+            f"--user-data-dir={tmp_path / 'profile'}"]
+
+
+@pytest.fixture
+def in_browser(tmp_path):
+    """``in_browser(page, script, element) -> text``: the text a ``<script>`` added to a copy
+    of ``page`` puts in the element ``<pre id=element>`` it appends, in headless Chromium."""
+    common = _browser(tmp_path)
+
+    def run(page: Path, script: str, element: str) -> str:
+        copy = _with_script(page, script, page.with_name(f"probe-{page.name}"))
+        try:
+            return _dumped(common, copy, element)
+        finally:
+            copy.unlink()
+
+    return run
+
+
+@pytest.fixture
+def axe(tmp_path):
+    """``axe(page) -> violations``: axe-core's WCAG 2.0/2.1 A and AA rules (:data:`WCAG_AA`)
+    run on the page in headless Chromium; each violation a dict of its rule ``id``, ``help``
+    and the first elements breaking it (``nodes``). Empty for a page that passes."""
+    common = _browser(tmp_path)
+
+    def check(page: Path) -> list[dict]:
+        script = _AXE_RUN % (AXE.as_uri(), json.dumps(list(WCAG_AA)))
+        copy = _with_script(page, script, page.with_name(f"axe-{page.name}"))
+        try:
+            return json.loads(_dumped(common, copy, "axe-violations"))
+        finally:
+            copy.unlink()
+
+    return check
+
+
+@pytest.fixture
+def phone(tmp_path):
+    """``phone(page, width=375) -> dict``: the page laid out on a screen ``width`` CSS pixels
+    wide (in an iframe: headless Chromium's window is never narrower than 500): ``width``,
+    ``page`` (how wide the page scrolls) and ``past`` (elements reaching past the screen's
+    edge outside a box that scrolls sideways)."""
+    common = _browser(tmp_path)
+
+    def lay_out(page: Path, width: int = 375) -> dict:
+        copy = _with_script(page, _PHONE_PROBE, page.with_name(f"phone-{page.name}"))
+        frame = tmp_path / f"frame-{page.name}"
+        frame.write_text(_PHONE_FRAME % (copy.as_uri(), width), encoding="utf-8")
+        try:
+            return json.loads(_dumped([*common, "--window-size=600,900"], frame, "probe"))
+        finally:
+            copy.unlink()
+
+    return lay_out
 
 
 def _forget() -> None:

@@ -17,28 +17,28 @@ REAL_SLEEP = time.sleep
 
 RUN_1 = """\
 ok   {path} (3 tests, DOF 1)
-  pass vel_C: (1, 0, 0) ~ expected (1.000, 0, 0) m/s in N
-  pass vel_top: (2, 0, 0) ~ expected (2.000, 0, 0) m/s in N
-  pass acc_contact: (0, 5, 0) ~ expected (0, 5.000, 0) m/s^2 in N
+  pass vel_C: (1, 0, 0) ~ expected (1.000, 0, 0) m/s in frame N
+  pass vel_top: (2, 0, 0) ~ expected (2.000, 0, 0) m/s in frame N
+  pass acc_contact: (0, 5, 0) ~ expected (0, 5.000, 0) m/s^2 in frame N
   state at the instant: x = 0 m; theta = 0 deg; R = 0.2 m; x' = 1 m/s   (solved); \
 theta' = -5 rad / s; x'' = 0 m/s^2   (solved); theta'' = 0 rad / s ** 2
   solved values:
-    vel_C        (1, 0, 0) m/s in N
-    vel_top      (2, 0, 0) m/s in N
-    acc_contact  (0, 5, 0) m/s^2 in N
+    vel_C        (1, 0, 0) m/s in frame N
+    vel_top      (2, 0, 0) m/s in frame N
+    acc_contact  (0, 5, 0) m/s^2 in frame N
 """
 
 RUN_2 = """\
 FAIL {path} (3 tests, DOF 1)
-  FAIL vel_C: (1.2, 0, 0) != expected (1.000, 0, 0) m/s in N
-  FAIL vel_top: (2.4, 0, 0) != expected (2.000, 0, 0) m/s in N
-  FAIL acc_contact: (0, 7.2, 0) != expected (0, 5.000, 0) m/s^2 in N
+  FAIL vel_C: (1.2, 0, 0) != expected (1.000, 0, 0) m/s in frame N
+  FAIL vel_top: (2.4, 0, 0) != expected (2.000, 0, 0) m/s in frame N
+  FAIL acc_contact: (0, 7.2, 0) != expected (0, 5.000, 0) m/s^2 in frame N
   state at the instant: x = 0 m; theta = 0 deg; R = 0.2 m; x' = 1.2 m/s   (solved); \
 theta' = -6 rad / s; x'' = 0 m/s^2   (solved); theta'' = 0 rad / s ** 2
   solved values:
-    vel_C        (1.2, 0, 0) m/s in N
-    vel_top      (2.4, 0, 0) m/s in N
-    acc_contact  (0, 7.2, 0) m/s^2 in N
+    vel_C        (1.2, 0, 0) m/s in frame N
+    vel_top      (2.4, 0, 0) m/s in frame N
+    acc_contact  (0, 7.2, 0) m/s^2 in frame N
 """
 
 

@@ -153,7 +153,7 @@ def test_ecf_credits_the_pin_force_and_energy_that_follow_from_a_wrong_rate(grad
     _, _, results = graded
     erin, dan = answers(results, "erin_park"), answers(results, "dan_wu")
     for key in ("pendulum_release.pin_force", "pendulum_release.kinetic_energy"):
-        assert erin[key]["feedback"].endswith(
+        assert erin[key]["feedback"] == (  # one sentence, nothing about the reference
             "Error carried forward: this answer follows correctly from your answer to omega "
             "(used in place of the energy balance) and earns 100% of the points.")
     # Dan's pin force uses his wrong alpha as well: it follows from neither answer
@@ -175,15 +175,16 @@ def test_right_answers_in_other_units_notations_and_labels_are_read(graded):
     read = {(sid, key): a["read_back"] for sid in ("ana_alvarez", "gus_schmidt", "hana_kim")
             for key, a in answers(results, sid).items()}
     assert read[("ana_alvarez", "pendulum_release.omega")] == "-4.33 rad/s"
-    assert read[("ana_alvarez", "block_sliding_down_incline.friction")] == "(-8.50, 0, 0) N in A"
+    assert read[("ana_alvarez", "block_sliding_down_incline.friction")] == \
+        "(-8.50, 0, 0) N in frame A"
     assert read[("gus_schmidt", "pendulum_release.eom")] == "-3*g*sin(theta)/(2*L)"
     # sliding down, as stated: friction's sign(x') is +1 (Erin wrote it, Ana and Gus did not)
     assert read[("gus_schmidt", "block_sliding_down_incline.accel_symbolic")] == \
         "g*(sin(beta) - mu_k*cos(beta))"
-    assert read[("hana_kim", "pendulum_release.pin_force")] == "(-21.74, 30.81, 0) N in N"
+    assert read[("hana_kim", "pendulum_release.pin_force")] == "(-21.74, 30.81, 0) N in frame N"
     assert read[("hana_kim", "pendulum_release.omega")] == "-0.690 revolution/s"
     assert answers(results, "femi_adeyemi")["pendulum_release.kinetic_energy"]["feedback"] == (
-        "Could not read the answer: expected a unit such as 'm/s^2', found 'Nm' in 'Nm' (not a "
+        "Could not read the answer: expected a unit such as 'J', found 'Nm' in 'Nm' (not a "
         "unit here: write N*m for newton metres).")
 
 
@@ -191,8 +192,9 @@ def test_report_and_canvas_export_of_hw3(graded, tmp_path):
     _, out, _ = graded
     report = run("report", out / "results.json", "--out", tmp_path / "class_report.html")
     assert report.exit_code == 0, report.output
-    assert "pendulum_release/pin_force" in (tmp_path / "class_report.html").read_text(
-        encoding="utf-8")
+    page = (tmp_path / "class_report.html").read_text(encoding="utf-8")
+    assert ("<td>(c) The force of the pin on the rod at theta = 40 deg, in the inertial unit "
+            'vectors.<code class="key">pendulum_release.pin_force</code></td>') in page
     export = run("export", out / "results.json", "--format", "canvas", "--roster",
                  HW3 / "roster.csv", "--out", tmp_path / "canvas.csv")
     assert export.exit_code == 0, export.output
@@ -202,3 +204,44 @@ def test_report_and_canvas_export_of_hw3(graded, tmp_path):
         ("ana_alvarez", "34"), ("ben_okafor", "31"), ("carla_diaz", "6.5"), ("dan_wu", "9"),
         ("erin_park", "32"), ("femi_adeyemi", "14"), ("gus_schmidt", "29.5"),
         ("hana_kim", "34"), ("ivan_empty", "0"), ("jo_broken", "0")]
+
+
+@pytest.mark.parametrize("page", ["feedback/dan_wu.html", "feedback/erin_park.html",
+                                  "feedback/jo_broken.html"])
+def test_dynamics_feedback_pages_pass_axe_core_wcag_2_a_and_aa(graded, axe, page):
+    _, out, _ = graded
+    assert axe(out / page) == []
+
+
+def test_the_class_report_of_hw3_passes_axe_core_and_fits_a_phone(graded, tmp_path, axe, phone):
+    _, out, _ = graded
+    assert run("report", out / "results.json", "--out", tmp_path / "report.html").exit_code == 0
+    assert axe(tmp_path / "report.html") == []
+    laid_out = phone(tmp_path / "report.html")
+    assert laid_out["past"] == [] and laid_out["page"] <= 375, laid_out
+
+
+def test_a_student_credited_by_ecf_reads_one_sentence_under_its_verdict(graded):
+    _, out, _ = graded
+    page = (out / "feedback" / "erin_park.md").read_text(encoding="utf-8")
+    card = page[page.index("## (d) The rod's kinetic energy"):]
+    card = card[:card.index("\n## ")]
+    assert card == (
+        "## (d) The rod's kinetic energy at theta = 40 deg. — 2 / 2\n\n"
+        "Answer key `pendulum_release.kinetic_energy`\n\n"
+        "Error carried forward: this answer follows correctly from your answer to omega (used "
+        "in place of the energy balance) and earns 100% of the points.\n\n"
+        "- Verdict: **Correct (error carried forward)**\n"
+        "- Your answer: 18.0 J\n"
+        "- Read as: 18.0 J\n"
+        "- Expected: 9.018 J\n")
+
+
+def test_an_unreadable_file_gets_one_card_listing_the_questions_and_their_keys(graded):
+    _, out, _ = graded
+    page = (out / "feedback" / "jo_broken.html").read_text(encoding="utf-8")
+    assert page.count('<section class="objective') == 1
+    assert ("<p class=\"note\">Your answers could not be read (see “About your submission”), so "
+            "none of the 15 questions was graded.</p>") in page
+    assert ("<tr><td>The string tension.</td><td><code>atwood_machine.tension</code></td>"
+            '<td class="pts">0 / 2</td></tr>') in page

@@ -25,8 +25,8 @@ def test_solve_prints_each_objective_with_its_unit():
     assert result.output.splitlines() == [
         "bowling_3_15_4_pendulum: Acceleration of a pendulum tip",
         "  acc_mag           98.5089 ft/s^2",
-        "  acc_N             (-89.8705, -40.3397, 0) ft/s^2 in N",
-        "  acc_A             (-98, 10, 0) ft/s^2 in A",
+        "  acc_N             (-89.8705, -40.3397, 0) ft/s^2 in frame N",
+        "  acc_A             (-98, 10, 0) ft/s^2 in frame A",
         "  acc_mag_symbolic  L*sqrt(thetad**4 + thetadd**2)   [ft/s^2; in L, thetad, thetadd]",
         "State at the instant",
         "  theta = 30 deg",

@@ -24,7 +24,8 @@ def test_handout_writes_each_students_sheet_and_the_givens_table(tmp_path):
     result = run("handout", HW2 / "assignment.yaml", "--roster", HW2 / "roster.csv",
                  "--out", tmp_path)
     assert result.exit_code == 0, result.output
-    assert result.output == f"Wrote 4 sheets and givens.csv to {tmp_path}/ (9 files)\n"
+    assert result.output == \
+        f"Wrote 4 sheets, 4 answer files and givens.csv to {tmp_path}/ (13 files)\n"
     table = list(csv.DictReader((tmp_path / "givens.csv").open(encoding="utf-8")))
     assert [row["id"] for row in table] == ["20001", "20002", "20003", "20004"]
     for row in table:
@@ -34,7 +35,9 @@ def test_handout_writes_each_students_sheet_and_the_givens_table(tmp_path):
         assert f"A rigid pendulum of length {length} turns" in sheet
         assert f"A rigid pendulum of length {length} turns" in html
         assert f"For **{row['name']}** (id {row['id']})" in sheet
-        assert "Answer as `pendulum_variants.acc_mag`" in sheet
+        assert "Answer key `pendulum_variants.acc_mag`" in sheet
+        assert "\npendulum_variants.acc_mag =\n" in \
+            (tmp_path / f"{row['id']}.txt").read_text(encoding="utf-8")
     assert len({row["pendulum_variants.L"] + row["pendulum_variants.theta'"]
                 for row in table}) == 4
 

@@ -245,7 +245,7 @@ DIST = ObjectiveResult("d", "scalar", "m", 1000.0)
     ("1e", "found 'e' in 'e' (not a unit here: the elementary charge"),
     ("98.5 e", "not a unit here: the elementary charge"),
     # malformed or ambiguous units
-    ("98.5 ft//s^2", "expected a unit such as 'm/s^2', found 'ft/«/»s^2' (an operator with "
+    ("98.5 ft//s^2", "expected a unit such as 'ft/s^2', found 'ft/«/»s^2' (an operator with "
                      "nothing before it)"),
     ("98.5 fts^-2", "found 'fts' in 'fts^-2' (ambiguous: write ft or ft*s)"),
     ("98.5 ft/s-2", "found 'ft/«s-2»' (a negative power after '/' is ambiguous: write s^2 or "
@@ -385,3 +385,25 @@ def test_many_long_symbol_names_still_give_a_short_reason():
         with pytest.raises(AnswerError) as info:
             read_expression(text, symbols + ("e",))
         assert len(info.value.message) <= 200
+
+
+SPEED = ObjectiveResult("v", "scalar", "m / s", 7.0)
+RATIO = ObjectiveResult("r", "scalar", "", 0.5)
+
+
+@pytest.mark.parametrize("text, objective, reason", [
+    ("fast", SPEED, "expected a number with its unit such as '12.5 m/s', found 'fast'"),
+    ("fast", ACC, "expected a number with its unit such as '12.5 ft/s^2', found 'fast'"),
+    ("fast", VEC, "expected a vector such as '(12.5, -3) ft/s^2', found 'fast'"),
+    ("fast", RATIO, "expected a number such as '12.5', found 'fast'"),
+    ("(1, 2, 3, 4) m/s", SPEED, "expected 2 or 3 components such as '(12.5, -3) m/s', found 4"),
+    ("7 m//s", SPEED, "expected a unit such as 'm/s', found"),
+    ("9.02 Nm", ObjectiveResult("T", "scalar", "J", 9.0),
+     "expected a unit such as 'J', found 'Nm' in 'Nm' (not a unit here: write N*m for "
+     "newton metres)"),
+])
+def test_an_example_in_a_reason_is_written_in_the_objectives_own_unit(text, objective,
+                                                                       reason):
+    with pytest.raises(AnswerError) as info:
+        read_answer(text, objective)
+    assert info.value.message.startswith(reason), info.value.message

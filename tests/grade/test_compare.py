@@ -210,7 +210,9 @@ def test_vector_in_another_frame_is_not_compared():
 def test_scalar_for_a_vector_objective_says_a_vector_was_asked():
     judged = assess("77.17 ft/s^2", VEC)
     assert judged.diagnosis == "scalar for a vector"
-    assert "right magnitude" in judged.feedback
+    assert judged.feedback == ("A vector was asked: give its components along frame N's unit "
+                               "vectors, such as '(x, y, z) ft/s^2' (your value is the right "
+                               "magnitude).")
 
 
 def test_vector_for_a_scalar_objective_says_a_scalar_was_asked():

@@ -11,7 +11,7 @@ import pytest
 
 from mechgrade.export import read_results
 from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo,
-                                     StudentResult)
+                                     SkippedEntry, StudentResult)
 from mechgrade.report.class_report import (class_statistics, render_class_report,
                                            write_class_report)
 
@@ -71,7 +71,7 @@ def test_students_with_missing_or_unreadable_answers_are_listed(report):
     assert set(issues) == {"s1004", "s1005", "s1006"}
     assert issues["s1004"].status == "missing" and issues["s1004"].detail == \
         "no submission file found"
-    assert issues["s1006"].objectives == "p1/v_B (unreadable), p1/a_B (missing)"
+    assert issues["s1006"].objectives == "p1.v_B (could not be read), p1.a_B (no answer)"
 
 
 def test_an_empty_class_still_renders(report):
@@ -149,3 +149,51 @@ def test_a_300_student_report_stays_short_in_chromium(tmp_path, chromium):
     inked = [y for y in range(0, height, 20)
              if any(page.getpixel((x, y)) < 240 for x in range(0, width, 10))]
     assert 1500 < max(inked) < 5000
+
+
+def test_objectives_are_named_by_their_titles_with_their_whole_keys(report):
+    html = render_class_report(class_statistics(report))
+    assert ('<tr><td>Speed of collar B<code class="key">p1.v_B</code></td>\n'
+            '        <td class="n">3</td>') in html
+    assert '<h3>Angular acceleration of the bar <code class="key">p2.alpha</code></h3>' in html
+    assert "p1/v_B" not in html and "word-break: break-all" not in html
+    # the chart's bars are labelled by title too, and say what they show
+    assert ">Speed of collar B</text>" in html or "Speed of collar B" in html.split(
+        '<figure class="chart" id="success-chart"')[1].split("</figure>")[0]
+
+
+def test_points_and_scores_are_written_as_the_feedback_pages_write_them(report):
+    html = render_class_report(class_statistics(report, charts=False))
+    assert "· 7 students · 10 points possible</p>" in html
+    assert "<b>3–10</b><span>range</span>" in html and "<b>5.5</b><span>median score" in html
+    assert '<td class="n">4</td>' in html and ".0</td>" not in html
+
+
+def test_the_histogram_has_bins_of_one_point_on_a_34_point_scale():
+    from mechgrade.report.class_report import score_bins
+
+    edges = score_bins(34)
+    assert len(edges) == 36 and {b - a for a, b in zip(edges, edges[1:])} == {1.0}
+    assert edges[0] == -0.5 and edges[-1] == 34.5
+    assert score_bins(200)[1] - score_bins(200)[0] == 5
+
+
+def test_the_histogram_says_in_words_how_many_students_had_each_score(report):
+    html = render_class_report(class_statistics(report))
+    assert ('<title id="histogram-title">Score distribution (out of 10)</title><desc '
+            'id="histogram-desc">2 students scored 3; 1 student scored 5.5; 1 student scored 7; '
+            '1 student scored 10.</desc>') in html
+    assert html.count('id="figure_1"') == 0 and 'id="histogram-figure_1"' in html
+
+
+def test_a_count_of_one_takes_the_singular(report):
+    one = replace(report, students=report.students[:4] + report.students[5:],
+                  skipped=(SkippedEntry("ivan/.keep", "hidden (its name starts with '.')"),))
+    html = render_class_report(class_statistics(one, charts=False))
+    for text in ("<b>1</b><span>missing submission</span>",
+                 "<b>0</b><span>unreadable submissions</span>",
+                 "<b>1</b><span>skipped folder entry</span>",
+                 "<summary>1 entry not read as anyone's answers</summary>",
+                 '<b>2</b><span><a href="#issues">students with missing or unreadable '
+                 "answers</a></span>"):
+        assert text in html

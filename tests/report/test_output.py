@@ -93,7 +93,7 @@ def test_markdown_feedback_escapes_student_text(tmp_path):
     ana = (tmp_path / "feedback" / "ana.md").read_text(encoding="utf-8")
     assert "# Homework \\<1\\>" in ana
     assert "**Score: 3.5 / 5 points (70%)**" in ana
-    assert "## Speed in terms of L. — 1.5 / 3\n\np · sym\n" in ana
+    assert "## Speed in terms of L. — 1.5 / 3\n\nAnswer key `p.sym`\n" in ana
     assert "- Expected: -L·thetad² ft/s²" in ana
 
 

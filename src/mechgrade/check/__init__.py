@@ -30,7 +30,7 @@ from ..files import MAX_BYTES
 from ..expressions.numeric import evaluate, reference_tree
 from ..solve import cache
 from ..solve.mutants import inside_tolerance, separating_rel
-from ..solve.result import ObjectiveResult
+from ..solve.result import ObjectiveResult, in_frame
 from ..spec.model import Expect, Objective, Problem
 from ..tolerance import agree_at_points, within
 from ..units import from_si, to_si
@@ -327,7 +327,8 @@ def _vector_outcome(objective: Objective, e: Expect, components: tuple[float, ..
     ok = all(within(a, b, 0.0, lim) for a, b, lim in zip(solved, expected, limits))
     shown = ", ".join(f"{v:.6g}" for v in solved)
     want = ", ".join(texts + ("0",) * (3 - len(texts)))
-    message = f"({shown}) {'~' if ok else '!='} expected ({want}) {unit} in {objective.frame}"
+    message = (f"({shown}) {'~' if ok else '!='} expected ({want}) "
+               f"{unit}{in_frame(objective.frame)}")
     return ExpectOutcome(objective.id, ok, message, e.note, e.book)
 
 

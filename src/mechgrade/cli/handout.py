@@ -10,6 +10,7 @@ from ..grade.assignment import load_assignment
 from ..grade.run import plan_assignment
 from ..grade.variants import handout_sheets
 from ..report.handout import HANDOUT_OUTPUTS, HANDOUT_TEMPLATES, write_handouts
+from ..report.output import counted
 from ..roster import read_roster
 from .common import (claim_out, main, output_lines, reports_errors, run_arguments,
                      run_inputs, say, warn_about_the_cache)
@@ -43,5 +44,6 @@ def handout(assignment: Path, roster: Path, out_dir: Path, templates_dir: Path |
     done = folder.commit(run_arguments(), inputs=run_inputs(
         assignment=assignment, spec=spec, roster=roster, templates_dir=templates_dir,
         template_names=HANDOUT_TEMPLATES))
-    say("\n".join([f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
+    say("\n".join([f"Wrote {counted(len(students), 'sheet')}, "
+                   f"{counted(len(students), 'answer file')} and givens.csv to {out_dir}/ "
                    f"({len(written)} files)", *output_lines(done)]))

@@ -32,7 +32,8 @@ from ..errors import AnswerError, ExpressionError, UnitError
 from ..expressions import syntax
 from ..expressions.syntax import Bin, Call, Name, Node, Num, Prime, Unary
 from ..expressions.excerpt import excerpt
-from ..solve.result import ObjectiveResult
+from ..solve.result import ObjectiveResult, in_frame
+from .results import EXAMPLE_NUMBER
 from ..spec.model import ObjectiveKind
 from ..units import MAX_UNIT_LENGTH, dimension, normalize_unit
 
@@ -87,8 +88,7 @@ class VectorAnswer:
     kind = "vector"
 
     def read_back(self) -> str:
-        frame = f" in {self.frame}" if self.frame else ""
-        return _with_unit(f"({', '.join(self.texts)})", self.unit) + frame
+        return _with_unit(f"({', '.join(self.texts)})", self.unit) + in_frame(self.frame)
 
 
 @dataclass(frozen=True)
@@ -248,6 +248,40 @@ def significant_figures(text: str) -> tuple[int, int]:
 
 
 def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
+    """:func:`_read_answer`, whose messages give their examples in the objective's own unit
+    and kind (an example in ft/s² for an answer asked in m/s misleads, and its number was
+    the answer to a problem of the examples).
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> read_answer("fast", ObjectiveResult("v", "scalar", "m / s", 2.0))
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.AnswerError: expected a number with its unit such as '12.5 m/s', found 'fast'
+    """
+    try:
+        return _read_answer(text, result)
+    except AnswerError as exc:
+        raise AnswerError(_in_own_unit(exc.message, result)) from None
+
+
+_SCALAR_EXAMPLE = "a number with a unit such as '98.5 ft/s^2'"
+_VECTOR_EXAMPLE = "components such as '(-66, -40) ft/s^2'"
+_UNIT_EXAMPLE = "unit such as 'm/s^2'"  # in mechgrade.units' messages about text that is no unit
+
+
+def _in_own_unit(message: str, result: ObjectiveResult) -> str:
+    """``message`` with its generic examples written as an answer to ``result`` is."""
+    unit = _pretty_unit(result.unit)
+    vector = f"({EXAMPLE_NUMBER}, -3)" + (f" {unit}" if unit else "")
+    scalar = (f"a vector such as '{vector}'" if result.kind == ObjectiveKind.VECTOR
+              else f"a number with its unit such as '{EXAMPLE_NUMBER} {unit}'" if unit
+              else f"a number such as '{EXAMPLE_NUMBER}'")
+    message = message.replace(_SCALAR_EXAMPLE, scalar)
+    message = message.replace(_VECTOR_EXAMPLE, f"components such as '{vector}'")
+    return message.replace(_UNIT_EXAMPLE, f"unit such as '{unit}'") if unit else message
+
+
+def _read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
     """Read ``text`` as an answer to ``result``; raise :class:`AnswerError` saying why not.
 
     The objective's kind decides what is expected: a symbolic objective reads an expression in
@@ -332,8 +366,7 @@ def _scalar(text: str) -> NumberAnswer:
         constant = _constant_with_unit(text)
         if constant is not None:
             return constant
-        raise AnswerError(f"expected a number with a unit such as '98.5 ft/s^2', found "
-                          f"{excerpt(text)}")
+        raise AnswerError(f"expected {_SCALAR_EXAMPLE}, found {excerpt(text)}")
     number_text = " ".join(m.group(1).split()).replace("- ", "-").replace("+ ", "")
     rest = text[m.end():].strip()
     after = len(text) - len(text[m.end():].lstrip())
@@ -442,8 +475,8 @@ def _split_components(text: str) -> tuple[list[str], str]:
 def _bracketed_vector(text: str) -> VectorAnswer:
     parts, rest = _split_components(text)
     if not 2 <= len(parts) <= MAX_COMPONENTS or not all(parts):
-        raise AnswerError(f"expected 2 or 3 components such as '(-66, -40) ft/s^2', "
-                          f"found {len(parts)} in {excerpt(text)}")
+        raise AnswerError(f"expected 2 or 3 {_VECTOR_EXAMPLE}, found {len(parts)} in "
+                          f"{excerpt(text)}")
     values, texts, figures = [], [], []
     for part in parts:
         number = _component(part)

@@ -263,6 +263,11 @@ def _example_unit(unit: str) -> str:
     return _pretty_unit(unit) or "a unit"
 
 
+def _example_vector(unit: str) -> str:
+    from .answers import _pretty_unit
+    return f"(x, y, z) {_pretty_unit(unit)}".rstrip()
+
+
 def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
                     policy: Policy, read_back: str, what: str) -> Assessment:
     credit, labels, notes = units.factor, [], units.note
@@ -477,10 +482,10 @@ def _scalar_for_vector(answer: NumberAnswer, reference: np.ndarray, result: Obje
         size = from_si(to_si(answer.value, units.unit), result.unit)
         if within(abs(size), float(np.linalg.norm(reference)), rel, abs_):
             hint = " (your value is the right magnitude)"
-    frame = result.frame or "the frame"
+    frame = f"frame {result.frame}" if result.frame else "the frame"
     return Assessment("incorrect", policy.credit_for("shape"), "scalar for a vector",
                       f"A vector was asked: give its components along {frame}'s unit vectors, "
-                      f"such as '(x, y, z) unit'{hint}.", read_back)
+                      f"such as '{_example_vector(result.unit)}'{hint}.", read_back)
 
 
 # ---------------------------------------------------------------------------- expressions

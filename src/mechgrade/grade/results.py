@@ -30,6 +30,11 @@ STATUSES = ("graded", "missing", "unreadable", "not_evaluated", "conflict")
 ``GradeReport.internal_errors``); no grade is exported for them. ``conflict``: a roster student
 and the folders that match it other than one to one (two folders one student, a folder two
 students; see ``GradeReport.notes``): graded as no one's, no grade is exported for them."""
+EXAMPLE_NUMBER = "12.5"
+"""The number of an example answer in a message or on a handout: no problem's answer."""
+
+ECF_DIAGNOSIS = "error carried forward"
+"""The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
 
 
 @dataclass(frozen=True)

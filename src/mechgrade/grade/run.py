@@ -34,16 +34,13 @@ from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
-from .results import (AnswerResult, AssignmentInfo, FailingExpect, GradeReport, ObjectiveInfo,
-                      StudentResult)
+from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
+                      ObjectiveInfo, StudentResult)
 from .submissions import Submission, SubmissionSet, read_submissions
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.result import ObjectiveResult, Solution
     from .compare import Assessment
-
-ECF_DIAGNOSIS = "error carried forward"
-"""The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
 
 POINTS_DIGITS = 4
 """Points are rounded to this many decimals, so that sums are the same on every machine."""
@@ -736,9 +733,10 @@ class _Judge:
                                          item.objective.depends_on))
         if again.verdict in ("correct", "partial") and ecf_credit > credit:
             instead = f" (used in place of {_listing(replaced)})" if replaced else ""
-            feedback.append(f"Error carried forward: this answer follows correctly from your "
-                            f"answer to {upstream_names}{instead} and earns {ecf_credit:.0%} "
-                            f"of the points.")
+            # one sentence: what the answer was told against the reference no longer holds
+            feedback[:] = [f"Error carried forward: this answer follows correctly from your "
+                           f"answer to {upstream_names}{instead} and earns {ecf_credit:.0%} "
+                           f"of the points."]
             return ("correct" if ecf_credit >= 1.0 else "partial"), ecf_credit
         feedback.append(f"Also checked with your own answer to {upstream_names} (error "
                         f"carried forward): it does not follow from it either.")
@@ -903,16 +901,17 @@ def expected_text(result: ObjectiveResult) -> str:
     >>> expected_text(ObjectiveResult("a", "scalar", "ft / s ** 2", 98.5096))
     '98.51 ft/s^2'
     >>> expected_text(ObjectiveResult("a", "vector", "m/s", (0.0, -7.6712, 0.0), frame="A"))
-    '(0, -7.671, 0) m/s in A'
+    '(0, -7.671, 0) m/s in frame A'
     """
+    from ..solve.result import in_frame
+
     unit = result.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
     suffix = f" {unit}" if unit else ""
     if result.kind == ObjectiveKind.SYMBOLIC or result.value is None:
         return f"{result.expr}{suffix}" if result.expr else "(no reference)"
     if isinstance(result.value, tuple):
         parts = ", ".join(_number(v) for v in result.value)
-        frame = f" in {result.frame}" if result.frame else ""
-        return f"({parts}){suffix}{frame}"
+        return f"({parts}){suffix}{in_frame(result.frame)}"
     return f"{_number(result.value)}{suffix}"
 
 

@@ -4,17 +4,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..spec.model import ObjectiveKind
 from .results import VariantGiven
 
 
 @dataclass(frozen=True)
 class Question:
     """One objective as the student sees it: the answer key (``problem.objective``), the
-    prompt and the unit to answer in."""
+    prompt, the unit to answer in and what the answer is (a number, components or an
+    expression)."""
 
     key: str
     prompt: str
     unit: str
+    kind: ObjectiveKind = ObjectiveKind.SCALAR
 
 
 @dataclass(frozen=True)

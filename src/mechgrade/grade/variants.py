@@ -420,7 +420,8 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
                 variant, solution = student_variant(problem, seed, student_id,
                                                     assignment.variants.redraw)
                 picture = drawn(problem, solution)
-            questions = tuple(Question(o.key, o.objective.prompt, unit_text(o.objective.unit))
+            questions = tuple(Question(o.key, o.objective.prompt, unit_text(o.objective.unit),
+                                       o.objective.kind)
                               for o in plan.objectives if o.problem.id == problem.id)
             problems.append(SheetProblem(problem.id, problem.title,
                                          statement(problem, variant),

@@ -35,10 +35,12 @@ import re
 import statistics
 from collections import Counter
 from dataclasses import dataclass
+from html import escape
 
 from ..errors import ExportError
 from ..files import write_text
 from ..grade.results import GradeReport, SkippedEntry, StudentResult
+from .output import counted, format_points, noun, shorten
 
 TOP = 5
 _CORRECT, _PARTIAL = "correct", "partial"
@@ -65,6 +67,16 @@ class ObjectiveStats:
     verdicts: tuple[Count, ...]
     wrong_answers: tuple[Count, ...]
     diagnoses: tuple[Count, ...]
+
+    @property
+    def key(self) -> str:
+        """The key a student's answer goes under (``problem.objective``)."""
+        return f"{self.problem}.{self.objective}"
+
+    @property
+    def title(self) -> str:
+        """What the report calls the objective: its prompt, or its key without one."""
+        return self.prompt or self.key
 
 
 @dataclass(frozen=True)
@@ -149,6 +161,8 @@ def render_class_report(stats: ClassReport) -> str:
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(shipped_dir("templates")),
                              autoescape=True, undefined=jinja2.StrictUndefined,
                              trim_blocks=True, lstrip_blocks=True)
+    # scores and points as the feedback pages write them; a noun as its count needs it
+    env.filters.update(points=format_points, noun=noun)
     template = env.get_template("class_report.html.j2")
     # The SVGs come from matplotlib, which escapes every text it draws; mark them as markup.
     return template.render(report=stats, histogram=Markup(stats.histogram_svg),
@@ -220,6 +234,9 @@ def _correlation(xs: list[float], ys: list[float]) -> float | None:
     return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / math.sqrt(sxx * syy)
 
 
+_SAID = {"unreadable": "could not be read", "missing": "no answer"}
+
+
 def _issues(report: GradeReport) -> tuple[StudentIssue, ...]:
     issues = []
     for s in report.students:
@@ -232,9 +249,11 @@ def _issues(report: GradeReport) -> tuple[StudentIssue, ...]:
         answered = {(a.problem, a.objective) for a in s.answers}
         absent = [o for o in report.objectives if (o.problem, o.objective) not in answered]
         if bad or absent:
-            names = [f"{a.problem}/{a.objective} ({a.verdict})" for a in bad] + \
-                    [f"{o.problem}/{o.objective} (missing)" for o in absent]
-            details = [a.feedback for a in bad if a.feedback] + list(s.messages)
+            names = [f"{a.problem}.{a.objective} ({_SAID[a.verdict]})" for a in bad] + \
+                    [f"{o.problem}.{o.objective} ({_SAID['missing']})" for o in absent]
+            # why each answer could not be read; "No answer was given." said nothing new
+            details = [f"{a.problem}.{a.objective}: {a.feedback}" for a in bad
+                       if a.feedback and a.verdict == "unreadable"] + list(s.messages)
             issues.append(StudentIssue(s.id, s.name, "graded", ", ".join(names),
                                        "; ".join(details)))
     return tuple(issues)
@@ -257,15 +276,24 @@ def _pyplot():
     return matplotlib, plt
 
 
-def _svg(fig, salt: str) -> str:
+def _svg(fig, salt: str, title: str, description: str) -> str:
+    """The figure as inline SVG named ``title`` and described in words by ``description``
+    (what a screen reader says of it), its ids starting with ``salt`` (two charts of one
+    page both had ``figure_1``)."""
     matplotlib, plt = _pyplot()
     buffer = io.StringIO()
     with matplotlib.rc_context({"svg.hashsalt": salt}):
         fig.savefig(buffer, format="svg", bbox_inches="tight", metadata={"Date": None})
     plt.close(fig)
     text = buffer.getvalue()
-    # Inline SVG in HTML needs neither the XML declaration nor the DOCTYPE.
-    return re.sub(r"^.*?(?=<svg)", "", text, flags=re.S).strip()
+    # Inline SVG in HTML needs neither the XML declaration nor the DOCTYPE, nor metadata.
+    text = re.sub(r"^.*?(?=<svg)", "", text, flags=re.S).strip()
+    text = re.sub(r"\s*<metadata>.*?</metadata>", "", text, count=1, flags=re.S)
+    text = re.sub(r'(\bid="|url\(#|href="#)', rf"\g<1>{salt}-", text)
+    return re.sub(r"<svg\b([^>]*)>", lambda m: (
+        f'<svg{m.group(1)} role="img" aria-labelledby="{salt}-title {salt}-desc">'
+        f'<title id="{salt}-title">{escape(title)}</title>'
+        f'<desc id="{salt}-desc">{escape(description)}</desc>'), text, count=1)
 
 
 def _style():
@@ -275,31 +303,57 @@ def _style():
                                   "axes.spines.top": False, "axes.spines.right": False})
 
 
+def score_bins(top: float) -> list[float]:
+    """The edges of the histogram's bins: one point wide, centred on whole scores, up to
+    60 bins; wider (2, 5, 10, 20, ... points) on a longer scale.
+
+    >>> len(score_bins(34)) - 1, score_bins(34)[:2], score_bins(34)[-1]
+    (35, [-0.5, 0.5], 34.5)
+    >>> score_bins(200)[1] - score_bins(200)[0]
+    5.0
+    """
+    width = next(w for w in (10 ** k * m for k in range(12) for m in (1, 2, 5))
+                 if top / w <= 60)
+    count = math.ceil(top / width - 1e-9)
+    return [(i - 0.5) * width for i in range(count + 2)]
+
+
 def _histogram_svg(scores: list[float], max_score: float) -> str:
     _, plt = _pyplot()
     with _style():
         fig, ax = plt.subplots(figsize=(7, 2.8))
         top = max(max_score, max(scores, default=0.0), 1.0)
-        if top <= 20 and float(top).is_integer():
-            edges = [i - 0.5 for i in range(int(top) + 2)]
-        else:
-            edges = [top * i / 10 for i in range(11)]
-        ax.hist(scores, bins=edges, color="#1565c0", edgecolor="white")
-        ax.set_xlabel(f"score (out of {top:g})")
+        edges = score_bins(top)
+        counts, _, _ = ax.hist(scores, bins=edges, color="#1565c0", edgecolor="white")
+        ax.set_xlabel(f"score (out of {format_points(top)})")
         ax.set_ylabel("students")
         ax.yaxis.get_major_locator().set_params(integer=True)
         ax.set_xlim(edges[0], edges[-1])
         if not scores:
             ax.text(0.5, 0.5, "no graded submissions", transform=ax.transAxes, ha="center")
-        return _svg(fig, "histogram")
+        width = edges[1] - edges[0]
+        # In words, bins of one point say each score as it is: 5.5 is drawn in the bar of 6
+        # but was not scored 6
+        said = ([f"{counted(n, 'student')} scored {format_points(score)}"
+                 for score, n in sorted(Counter(scores).items())] if width == 1 else
+                [f"{counted(int(n), 'student')} scored {format_points(low)} to "
+                 f"{format_points(low + width)}" for low, n in zip(edges, counts) if n])
+        return _svg(fig, "histogram", f"Score distribution (out of {format_points(top)})",
+                    "; ".join(said) + "." if said else "No graded submissions.")
+
+
+_KINDS = {"correct": "correct", "partial": "partly correct", "incorrect": "incorrect",
+          "other": "unreadable or missing"}
 
 
 def _success_svg(objectives: tuple[ObjectiveStats, ...]) -> str:
     _, plt = _pyplot()
     with _style():
-        labels = [f"{o.problem}/{o.objective}" for o in objectives]
+        labels = [shorten(o.title, 48) for o in objectives]
+        rows = list(range(len(objectives)))  # by place: two objectives may share a prompt
         fig, ax = plt.subplots(figsize=(7, 0.45 * max(len(labels), 1) + 1.0))
         left = [0.0] * len(objectives)
+        said: list[list[str]] = [[] for _ in objectives]
         for key in ("correct", "partial", "incorrect", "other"):
             shares = []
             for o in objectives:
@@ -307,12 +361,18 @@ def _success_svg(objectives: tuple[ObjectiveStats, ...]) -> str:
                 share = sum(v for k, v in wanted.items()
                             if (k == key) or (key == "other" and k not in _COLOURS))
                 shares.append(100 * share)
-            ax.barh(labels, shares, left=left, color=_COLOURS[key],
-                    label=key if key != "other" else "unreadable or missing",
+            ax.barh(rows, shares, left=left, color=_COLOURS[key], label=_KINDS[key],
                     edgecolor="white")
             left = [a + b for a, b in zip(left, shares)]
+            for words, share in zip(said, shares):
+                if share:
+                    words.append(f"{share:.0f} % {_KINDS[key]}")
+        ax.set_yticks(rows, labels)
         ax.set_xlim(0, 100)
         ax.set_xlabel("% of graded students")
         ax.invert_yaxis()
         ax.legend(ncol=4, loc="lower center", bbox_to_anchor=(0.5, 1.0), frameon=False)
-        return _svg(fig, "success")
+        return _svg(fig, "success", "Success per objective",
+                    " ".join(f"{o.title}: {', '.join(words) or 'no graded answers'}."
+                             for o, words in zip(objectives, said)))
+

@@ -1,8 +1,9 @@
 """Write problem sheets: one HTML and one Markdown page per student, and ``givens.csv``.
 
 Pages come from the Jinja templates ``handout.html.j2`` and ``handout.md.j2`` (``templates_dir``
-overrides the shipped ones); ``givens.csv`` lists every student's drawn givens, one row per
-student, for the instructor.
+overrides the shipped ones); ``<student>.txt`` is the student's answer file to fill in and hand
+in, every answer key on a line of its own (named as the sheets and the feedback pages are);
+``givens.csv`` lists every student's drawn givens, one row per student, for the instructor.
 
 >>> import tempfile, pathlib
 >>> from mechgrade.grade.sheets import *
@@ -12,7 +13,16 @@ student, for the instructor.
 ...     (Question("p.speed", "Speed of the tip.", "m/s"),)),))
 >>> out = pathlib.Path(tempfile.mkdtemp())
 >>> [p.name for p in write_handouts((sheet,), out)]
-['20001.html', '20001.md', 'givens.csv']
+['20001.html', '20001.md', '20001.txt', 'givens.csv']
+>>> print((out / "20001.txt").read_text())
+# Homework 2: answers of Ana (id 20001)
+# Hand in this file, named 20001.txt: write each answer after its '=', as the
+# line above it says. A line starting with # is not read.
+<BLANKLINE>
+# Pendulum
+# 1. Speed of the tip. In m/s.
+p.speed =
+<BLANKLINE>
 >>> print((out / "givens.csv").read_text().strip())
 id,name,seed,p.L,p.L unit,p draw
 20001,Ana,fall,2,m,0
@@ -26,20 +36,23 @@ from pathlib import Path
 from ..errors import MechgradeError
 from ..export.cells import write_csv
 from ..files import safe_file_names, write_text
-from ..grade.sheets import Sheet
+from ..grade.results import EXAMPLE_NUMBER
+from ..grade.sheets import Question, Sheet
 from ..outfolder import OutputKind
+from ..spec.model import ObjectiveKind
 from .output import _render, _template, _where, markdown_escape, template_environment
 
 HANDOUT_TEMPLATES = ("handout.html.j2", "handout.md.j2")
 
-HANDOUT_OUTPUTS = OutputKind("mechgrade handout", "givens.csv", ("*.html", "*.md", "givens.csv"))
+HANDOUT_OUTPUTS = OutputKind("mechgrade handout", "givens.csv", ("*.html", "*.md", "*.txt", "givens.csv"))
 """What ``mechgrade handout`` writes into ``--out`` (see :mod:`mechgrade.outfolder`)."""
 
 
 def write_handouts(sheets: tuple[Sheet, ...], out_dir: str | Path,
                    templates_dir: str | Path | None = None) -> tuple[Path, ...]:
-    """Write every sheet (``<student>.html``, ``<student>.md``) and ``givens.csv`` into
-    ``out_dir``; returns the paths written. Raises :class:`MechgradeError`."""
+    """Write every sheet (``<student>.html``, ``<student>.md``), answer file
+    (``<student>.txt``) and ``givens.csv`` into ``out_dir``; returns the paths written.
+    Raises :class:`MechgradeError`."""
     out = Path(out_dir)
     env = template_environment(templates_dir)
     templates = [_template(env, name) for name in HANDOUT_TEMPLATES]
@@ -52,16 +65,19 @@ def write_handouts(sheets: tuple[Sheet, ...], out_dir: str | Path,
     for sheet, name in zip(sheets, safe_file_names([s.student_id for s in sheets])):
         for template, suffix in zip(templates, (".html", ".md")):
             path = out / (name + suffix)
-            write_text(path, _render(template, sheet_context(sheet, suffix == ".md"),
-                                     templates_dir))
+            write_text(path, _render(template, sheet_context(sheet, suffix == ".md",
+                                                             name + ".txt"), templates_dir))
             written.append(path)
+        written.append(out / (name + ".txt"))
+        write_text(written[-1], answer_file(sheet, name + ".txt"))
     written.append(out / "givens.csv")
     write_csv(written[-1], givens_table(sheets))
     return tuple(written)
 
 
-def sheet_context(sheet: Sheet, markdown: bool = False) -> dict:
-    """What a handout template shows (every text escaped for Markdown with ``markdown``).
+def sheet_context(sheet: Sheet, markdown: bool = False, answer_file_name: str = "") -> dict:
+    """What a handout template shows (every text escaped for Markdown with ``markdown``);
+    ``answer_file_name`` the file the student hands in (default: ``<student id>.txt``).
 
     >>> from mechgrade.grade.sheets import Sheet
     >>> sheet_context(Sheet("hw", "Hw *2*", "a_", "", "s", ()), markdown=True)["title"]
@@ -70,20 +86,81 @@ def sheet_context(sheet: Sheet, markdown: bool = False) -> dict:
     from markupsafe import Markup
 
     text = markdown_escape if markdown else (lambda value: value)
+    first = next((q for p in sheet.problems for q in p.questions), None)
     return {
         "title": text(sheet.assignment_title),
         "student": {"id": text(sheet.student_id),
                     "name": text(sheet.student_name or sheet.student_id)},
+        # numbers drawn for this student (else everyone's sheet is the same)
+        "own_numbers": any(p.givens for p in sheet.problems),
+        "answer_file": text(answer_file_name or safe_file_names([sheet.student_id])[0]
+                            + ".txt"),
+        # one line of the answer file, as an example of its form
+        "example": (f"{first.key} = {example_answer(first)}".rstrip() if first else ""),
         "problems": [{
             "id": text(p.id), "title": text(p.title), "statement": text(p.statement),
             "paragraphs": [text(part) for part in paragraphs(p.statement)],
             "givens": [{"name": text(g.name), "value": text(g.text)} for g in p.givens],
-            "questions": [{"key": text(q.key), "prompt": text(q.prompt), "unit": text(q.unit)}
-                          for q in p.questions],
+            "questions": [{"key": text(q.key), "prompt": text(q.prompt), "unit": text(q.unit),
+                           "how": text(how_to_answer(q))} for q in p.questions],
             # SVG drawn by mechgrade from the model (never from student text); HTML only
             "picture": "" if markdown else Markup(p.picture),
         } for p in sheet.problems],
     }
+
+
+def how_to_answer(question: Question) -> str:
+    """What the answer to ``question`` is written as, for the sheet.
+
+    >>> how_to_answer(Question("p.v", "Speed.", "ft/s"))
+    'In ft/s.'
+    >>> how_to_answer(Question("p.a", "Acceleration.", "m/s^2", ObjectiveKind.VECTOR))
+    'In m/s^2, as components in brackets: (x, y, z).'
+    >>> how_to_answer(Question("p.a", "In symbols.", "m/s^2", ObjectiveKind.SYMBOLIC))
+    'As an expression, without a unit.'
+    """
+    if question.kind == ObjectiveKind.SYMBOLIC:
+        return "As an expression, without a unit."
+    shape = ", as components in brackets: (x, y, z)" if question.kind == ObjectiveKind.VECTOR \
+        else ""
+    if question.unit:
+        return f"In {question.unit}{shape}."
+    return f"A number{shape}." if shape else "A number without a unit."
+
+
+def example_answer(question: Question) -> str:
+    """An answer written as the sheet asks for it, its number no hint.
+
+    >>> example_answer(Question("p.a", "Acceleration.", "m/s^2", ObjectiveKind.VECTOR))
+    '(12.5, -3) m/s^2'
+    """
+    if question.kind == ObjectiveKind.SYMBOLIC:
+        return ""
+    value = f"({EXAMPLE_NUMBER}, -3)" if question.kind == ObjectiveKind.VECTOR \
+        else EXAMPLE_NUMBER
+    return f"{value} {question.unit}".rstrip()
+
+
+def answer_file(sheet: Sheet, name: str) -> str:
+    """The answer file of ``sheet``, to fill in and hand in as ``name``: every question as a
+    comment, then its key and ``=``, in the sheet's order (the grader reads ``key = answer``
+    lines, and ``#`` starts a comment: :mod:`mechgrade.grade.submissions`)."""
+    who = sheet.student_name or sheet.student_id
+    lines = [f"# {_comment(sheet.assignment_title)}: answers of {_comment(who)} "
+             f"(id {_comment(sheet.student_id)})",
+             f"# Hand in this file, named {name}: write each answer after its '=', as the",
+             "# line above it says. A line starting with # is not read."]
+    for problem in sheet.problems:
+        lines += ["", f"# {_comment(problem.title)}"]
+        for number, question in enumerate(problem.questions, start=1):
+            lines += [f"# {number}. {_comment(question.prompt)} {how_to_answer(question)}",
+                      f"{question.key} ="]
+    return "\n".join(lines) + "\n"
+
+
+def _comment(text: str) -> str:
+    """``text`` on one line, safe inside a comment line of the answer file."""
+    return " ".join(text.split())
 
 
 def paragraphs(statement: str) -> list[str]:

@@ -35,7 +35,7 @@ from ..export import EXPORTERS
 from ..outfolder import OutputKind
 from ..parallel import outcome, worker_started
 from ..resources import shipped_dir
-from ..grade.results import GradeReport, StudentResult
+from ..grade.results import ECF_DIAGNOSIS, GradeReport, StudentResult
 
 if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
     from multiprocessing.connection import Connection
@@ -495,7 +495,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
-        note = f"Your answer to “{_shorten(prompt)}”: {answer.diagnosis}"
+        note = f"Your answer to “{shorten(prompt)}”: {answer.diagnosis}"
         marked[anchor(answer.problem, place)] = (
             marked[anchor(answer.problem, place)] + "; " + note
             if anchor(answer.problem, place) in marked else note)
@@ -523,9 +523,24 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
     from markupsafe import Markup
 
     env = env if env is not None else template_environment(templates_dir)
+    steps = [{"anchor": step.anchor, "title": step.title, "lines": step.lines,
+              "rows": [{"anchor": row.anchor, "text": row.text,
+                        "math": Markup(spoken_math(row.math, row.text))} for row in step.rows]}
+             for step in worked.steps]
     context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
-                     "picture": worked.picture, "steps": worked.steps}}
+                     "picture": worked.picture, "steps": steps}}
     return Markup(_render(_template(env, "worked.html.j2"), context, templates_dir))
+
+
+def spoken_math(math: str, text: str) -> str:
+    """MathML labelled with its plain-text reading (``aria-label``), which a screen reader
+    says for it: the dots of a rate are drawn as operators it would read as "bullet".
+
+    >>> print(spoken_math('<math display="block"><mi>x</mi></math>', "v = x**2*y"))
+    <math aria-label="v = x²·y" display="block"><mi>x</mi></math>
+    """
+    label = html_escape(pretty_math(" ".join(text.split())), quote=True)
+    return math.replace("<math", f'<math aria-label="{label}"', 1)
 
 
 def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
@@ -547,7 +562,12 @@ def _step_title(worked, place: str) -> str:
     return place
 
 
-def _shorten(text: str, limit: int = 60) -> str:
+def shorten(text: str, limit: int = 60) -> str:
+    """``text`` on one line, cut with an ellipsis past ``limit`` characters.
+
+    >>> shorten("The force of the pin on the rod", 20)
+    'The force of the pi…'
+    """
     text = " ".join(text.split())
     return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
 
@@ -573,15 +593,19 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
         rows.append({
             "problem": answer.problem,
             "objective": answer.objective,
+            "key": f"{answer.problem}.{answer.objective}",
             "prompt": prompts.get((answer.problem, answer.objective), ""),
             "answer": answer.answer if answer.answer is not None else "",
             "read_back": pretty_math(answer.read_back) if answer.read_back else "",
             "verdict": answer.verdict,
-            "verdict_label": VERDICT_LABELS.get(answer.verdict, answer.verdict),
+            "verdict_label": verdict_label(answer.verdict, answer.diagnosis),
             "points": format_points(answer.points),
             "max_points": format_points(answer.max_points),
             "diagnosis": diagnosis_label(answer.diagnosis, answer.feedback),
             "feedback": answer.feedback or "",
+            # a right answer's "Correct." says nothing the verdict does not
+            "explained": bool(answer.feedback or answer.diagnosis)
+                         and (answer.verdict != "correct" or bool(answer.diagnosis)),
             "expected": pretty_math(answer.expected) if answer.expected else "",
         })
     percent = (f"{100 * student.score / student.max_score:.0f}%" if student.max_score
@@ -604,23 +628,85 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
                                 for g in student.variant.givens]}
                     if student.variant else None),
         "rows": rows,
+        # one card for them all when no answer was read (15 cards said 15 times "could not
+        # be read"), with the questions and the keys their answers go under
+        "nothing_read": _nothing_read(student),
         "reveal": any(row["expected"] for row in rows),
         # what the answer key fails of its author's own tests, graded anyway
-        "failing_expects": [f"{f.problem} · {f.objective}" for f in report.failing_expects],
+        "failing_expects": [prompts.get((f.problem, f.objective)) or f"{f.problem}.{f.objective}"
+                            for f in report.failing_expects],
     }
+
+
+NOTHING_READ = {
+    "missing": "No answers were found for you, so {none} graded.",
+    "unreadable": "Your answers could not be read (see “About your submission”), so {none} "
+                  "graded.",
+}
+
+
+def _nothing_read(student: StudentResult) -> str:
+    """What the one card of a student none of whose answers was read says (empty when some
+    answer was read).
+
+    >>> from mechgrade.grade.results import StudentResult, AnswerResult
+    >>> _nothing_read(StudentResult("ana", "", "missing", 0.0, 2.0,
+    ...                             (AnswerResult("p", "v", None, "missing", 0.0, 2.0),)))
+    'No answers were found for you, so the question was not graded.'
+    """
+    if student.status not in NOTHING_READ or any(a.answer is not None
+                                                  for a in student.answers):
+        return ""
+    n = len(student.answers)
+    # "none of the 1 question" read as a count, not a sentence
+    return NOTHING_READ[student.status].format(
+        none="the question was not" if n == 1 else f"none of the {n} questions was")
+
+
+def counted(n: int, singular: str, plural: str | None = None) -> str:
+    """``n`` and the noun, singular for one.
+
+    >>> counted(1, "entry", "entries"), counted(3, "question"), counted(0, "student")
+    ('1 entry', '3 questions', '0 students')
+    """
+    return f"{n} {noun(n, singular, plural)}"
+
+
+def noun(n: int, singular: str, plural: str | None = None) -> str:
+    """The noun for ``n`` of it: singular for one, else ``plural`` (default: with an s).
+
+    >>> noun(1, "skipped entry", "skipped entries"), noun(2, "missing submission")
+    ('skipped entry', 'missing submissions')
+    """
+    return singular if n == 1 else plural or singular + "s"
+
+
+def verdict_label(verdict: str, diagnosis: str | None) -> str:
+    """The verdict as the page names it; credit earned through error carried forward says so
+    (a wrong value under a bare "Correct" reads as a mistake of the grader's).
+
+    >>> verdict_label("correct", "error carried forward")
+    'Correct (error carried forward)'
+    """
+    label = VERDICT_LABELS.get(verdict, verdict)
+    return (f"{label} ({ECF_DIAGNOSIS})"
+            if diagnosis == ECF_DIAGNOSIS and verdict in ("correct", "partial") else label)
 
 
 def diagnosis_label(diagnosis: str | None, feedback: str | None) -> str:
     """The diagnosis as the bold lead of the feedback line, capitalised; empty when the
-    feedback already says it (an author's mistake message is both), so it is printed once.
+    feedback already says it (an author's mistake message is both; "Factor of 2: Your answer
+    is off by a factor of 2."), so it is printed once.
 
     >>> diagnosis_label("sign error", "Your answer has the wrong sign.")
     'Sign error'
     >>> diagnosis_label("Only the centripetal part.", "Only the centripetal part.")
     ''
+    >>> diagnosis_label("factor of 2", "Your answer is off by a factor of 2.")
+    ''
     """
     text = (diagnosis or "").strip()
-    if not text or (feedback or "").strip().startswith(text.rstrip(".")):
+    if not text or text.rstrip(".").lower() in (feedback or "").lower():
         return ""
     return text[:1].upper() + text[1:]
 

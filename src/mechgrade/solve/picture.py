@@ -60,6 +60,7 @@ class Scene:
     problem: str
     points: tuple[ScenePoint, ...]
     frames: tuple[SceneFrame, ...]
+    title: str = ""  # the problem's title, which the picture's text alternative names
 
 
 def scene(problem: Problem, solution: Solution) -> Scene:
@@ -84,7 +85,7 @@ def scene(problem: Problem, solution: Solution) -> Scene:
                    number(acceleration), origin)
         for name, position, velocity, acceleration, origin in points), tuple(
         SceneFrame(name, number(origin) if origin is not None else None, number(x), number(y))
-        for name, origin, x, y in frames))
+        for name, origin, x, y in frames), problem.title)
 
 
 def drawable(s: Scene) -> bool:
@@ -142,7 +143,7 @@ def _drawing(problem: Problem):
 
 # ---------------------------------------------------------------------------- drawing
 
-VELOCITY, ACCELERATION, FRAME, BODY = "#1565c0", "#c62828", "#7b8794", "#323f4b"
+VELOCITY, ACCELERATION, FRAME, BODY = "#1565c0", "#c62828", "#616e7c", "#323f4b"  # AA on white
 WIDTH, HEIGHT, MARGIN = 480.0, 360.0, 40.0
 HALO = 'paint-order="stroke" stroke="#fff" stroke-width="3"'  # labels stay readable on lines
 
@@ -178,10 +179,10 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
 
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {WIDTH:g} {HEIGHT:g}" '
            f'width="{WIDTH:g}" height="{HEIGHT:g}" role="img" '
-           f'aria-labelledby="{ident}-title" class="mechanism" '
-           f'font-family="system-ui, sans-serif" font-size="13">',
-           f'<title id="{ident}-title">The mechanism of {escape(s.problem)} at the instant: '
-           f'points and frames{motion}</title>', "<defs>"]
+           f'aria-labelledby="{ident}-title" aria-describedby="{ident}-desc" '
+           f'class="mechanism" font-family="system-ui, sans-serif" font-size="13">',
+           f'<title id="{ident}-title">{escape(s.title or s.problem)}: the mechanism at the '
+           f'instant, its points and frames{motion}</title>', "<defs>"]
     for name, colour in (("v", VELOCITY), ("a", ACCELERATION), ("f", FRAME)):
         out.append(f'<marker id="{ident}-{name}" viewBox="0 0 10 10" refX="9" refY="5" '
                    f'markerWidth="7" markerHeight="7" orient="auto-start-reverse">'
@@ -222,6 +223,7 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
                                  at(*_tip(p.position, v, 0.35 * size / largest)), colour, 2.2,
                                  f'marker-end="url(#{ident}-{mark})"'))
         legend.append((colour, f"{kind} (longest {largest:.2g} {unit})"))
+    out.insert(2, f'<desc id="{ident}-desc">{escape(described(s, legend))}</desc>')
     places: dict[tuple[int, int], list[str]] = {}  # coincident points share one label
     for p in shown:
         x, y = at(*p.position[:2])
@@ -236,6 +238,36 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
         out.append(_text((42, y), text, colour, 'font-size="12"'))
     out.append("</svg>")
     return "\n".join(out) + "\n"
+
+
+def described(s: Scene, legend=()) -> str:
+    """The picture in words, for whoever cannot see it: the points, what joins them, the
+    frames' unit vectors and the arrows with their scales (``legend``: colour and text).
+
+    >>> print(described(Scene("p", (ScenePoint("O", (0, 0, 0), None, None, None),
+    ...     ScenePoint("A", (1, 1, 0), None, None, "O")), (SceneFrame("N", (0, 0, 0),
+    ...     (1, 0, 0), (0, 1, 0)),)), [("#c62828", "acceleration (longest 64 m/s²)")]))
+    Points O and A; a line joins A to O. Unit vectors x and y of frame N. Arrows: acceleration (longest 64 m/s²), in red.
+    """
+    shown = [p.name for p in s.points if all(math.isfinite(c) for c in p.position[:2])]
+    parts = [f"{'Point' if len(shown) == 1 else 'Points'} {_and(shown)}"]
+    joined = [f"{p.name} to {p.described_from}" for p in s.points
+              if p.described_from in shown and p.name in shown]
+    if joined:
+        parts[0] += f"; a line joins {_and(joined)}"
+    frames = [f.name for f in s.frames if None not in (f.origin, f.x, f.y)]
+    if frames:
+        parts.append(f"Unit vectors x and y of {'frame' if len(frames) == 1 else 'frames'} "
+                     f"{_and(frames)}")
+    colours = {VELOCITY: "blue", ACCELERATION: "red"}
+    if legend:
+        parts.append("Arrows: " + "; ".join(f"{text}, in {colours.get(colour, colour)}"
+                                            for colour, text in legend))
+    return ". ".join(parts) + "."
+
+
+def _and(names: list[str]) -> str:
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _ident(text: str) -> str:

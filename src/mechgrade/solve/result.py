@@ -15,6 +15,16 @@ from ..spec.model import ObjectiveKind
 Value = Union[float, tuple[float, float, float], None]
 
 
+def in_frame(frame: str | None) -> str:
+    """What follows a vector's components and unit to name the frame they are along ("N in
+    N" read a frame's bare name as one more unit).
+
+    >>> in_frame("N"), in_frame(None)
+    (' in frame N', '')
+    """
+    return f" in frame {frame}" if frame else ""
+
+
 @dataclass(frozen=True)
 class MistakeValue:
     """The value an author-declared mistaken model gives, in the objective's unit."""

@@ -32,7 +32,8 @@ from ..spec.model import ObjectiveKind, Problem
 from ..units import from_si, same_dimension
 from ..spec.mistake_codes import GIVEN_CODES, MODEL_CODES
 from .picture import drawable, picture_svg, scene
-from .result import GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue
+from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
+                     in_frame)
 
 __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
 
@@ -72,13 +73,13 @@ def answer_text(result: ObjectiveResult) -> str:
     """One objective's answer as the write-up (and ``mechgrade solve``) prints it.
 
     >>> answer_text(ObjectiveResult("v", "vector", "m/s", (1.0, 2.5, 0.0), "N"))
-    '(1, 2.5, 0) m/s in N'
+    '(1, 2.5, 0) m/s in frame N'
     """
     if result.kind == ObjectiveKind.SYMBOLIC:
         return f"{result.expr}   [{result.unit or '1'}; in {', '.join(result.symbols)}]"
     if isinstance(result.value, tuple):
         inner = ", ".join(f"{v:.6g}" for v in result.value)
-        return f"({inner}) {result.unit} in {result.frame}"
+        return f"({inner}) {result.unit}{in_frame(result.frame)}"
     return f"{result.value:.6g} {result.unit}".rstrip()
 
 
