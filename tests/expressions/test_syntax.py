@@ -197,3 +197,44 @@ def test_every_answer_form_normalises_as_with_pythons_tokenizer(text, monkeypatc
     fast = outcome()
     monkeypatch.setattr(syntax, "_scan", lambda text: None)  # tokenize reads every text
     assert fast == outcome()
+
+
+# ------------------------------------------- issue 18: what a student typed, as they meant it
+
+
+@pytest.mark.parametrize("text, canonical", [
+    ("ζωt", "zeta*omega*t"),
+    ("mω²r", "m*omega**2*r"),
+    ("2π√(L/g)", "2*pi*sqrt(L/g)"),
+    ("√2/2", "sqrt(2)/2"),
+    ("-√3 L", "-sqrt(3)*L"),
+    ("√θ", "sqrt(theta)"),
+    ("θd + θ1 + ω_A + θdot + θ_dot", "thetad+theta1+omega_A+thetadot+theta_dot"),
+    ("sin(30°)", "sin(30*pi/180)"),
+    ("sin(30 deg) + cos(1.5e1degrees)", "sin(30*pi/180)+cos(15.0*pi/180)"),
+    ("1/2 m v^2", "1/2*m*v**2"),
+    ("g/L sin(theta)", "g/L*sin(theta)"),
+    ("3*g/2*L", "3*g/2*L"),
+    ("a/2**3 b", "a/2**3*b"),
+])
+def test_greek_letters_roots_and_degrees_read_as_written(text, canonical):
+    assert to_text(parse(text)) == canonical
+
+
+@pytest.mark.parametrize("text, message", [
+    # WeBWorK binds juxtaposition tighter than '/', STACK and sympy do not: ask
+    ("3g/2L", "expected brackets to show what is divided, found '3g/2L': 3g/(2L) or "
+              "(3g/2)L?"),
+    ("v^2/2g", "found 'v^2/2g': v^2/(2g) or (v^2/2)g?"),
+    ("a + 1/2x", "found '1/2x': 1/(2x) or (1/2)x?"),
+    ("x/y(1 + x)", "found 'x/y(1 + x)': x/(y(1 + x)) or (x/y)(1 + x)?"),
+    ("(a/b^2c)", "found 'a/b^2c': a/(b^2c) or (a/b^2)c?"),
+    ("θ̇/2L", "found 'theta'/2L': theta'/(2L) or (theta'/2)L?"),
+    ("√2gh", "expected brackets after √, found '√2gh': √(2gh) or √(2)gh?"),
+    ("√x^2", "expected brackets after √, found '√x^2': √(x^2) or √(x)^2?"),
+    ("√", "expected a number, a name or brackets after √, found nothing"),
+])
+def test_ambiguous_products_and_roots_are_refused_with_both_readings(text, message):
+    with pytest.raises(ExpressionError) as info:
+        parse(text)
+    assert message in info.value.message

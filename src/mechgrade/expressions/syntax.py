@@ -220,6 +220,8 @@ def _normalized(text: str, functions: frozenset[str] | set[str]) -> str:
                               f"{excerpt(text, text.index('#'))}")
     if not text.isascii():  # plain ASCII is its own NFC form, with no letters to rewrite
         text = _rewrite_unicode(text)
+    if "deg" in text:
+        text = _DEGREES.sub(r"(\1*pi/180)", text)
     text = text.replace("^", "**")
     text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
     if "'" in text:
@@ -228,10 +230,17 @@ def _normalized(text: str, functions: frozenset[str] | set[str]) -> str:
 
 
 def _rewrite_unicode(text: str) -> str:
-    """Greek letters to names, symbols to operators, dot accents to primes (NFC first)."""
+    """Greek letters to names, symbols to operators, dot accents to primes (NFC first).
+
+    A Greek letter is one symbol however it is spelled out: its name is kept apart from the
+    letters around it (``ζωt`` is ``zeta omega t``), except a derivative suffix (``θd``,
+    ``θdot``), a digit or an underscore after it (``θ1``, ``ω_A``). ``√`` takes the number,
+    name or brackets after it (:func:`_roots`); ``°`` after a number is degrees.
+    """
     text = unicodedata.normalize("NFC", text)
     out: list[str] = []
-    for ch in text:
+    greek = False  # whether the last piece written was a Greek letter's name
+    for at, ch in enumerate(text):
         decomposed = unicodedata.normalize("NFD", ch)
         accent = ""
         if len(decomposed) > 1 and decomposed[-1] in (_COMBINING_DOT, _COMBINING_DIAERESIS):
@@ -247,14 +256,67 @@ def _rewrite_unicode(text: str) -> str:
             raise ExpressionError(f"expected names, numbers, operators and functions, "
                                   f"found {excerpt(decomposed)}")
         if ch in GREEK:
-            ch = GREEK[ch]
+            if out and (out[-1][-1:].isalnum() or greek):
+                out.append(" ")
+            out.append(GREEK[ch] + accent)
+            greek = True
+            continue
+        if greek and ch.isascii() and ch.isalpha() and not _RATE_SUFFIX.match(text, at):
+            out.append(" ")
+        greek = False
+        if ch == "√":
+            ch = " √"
+        elif ch == "°":
+            ch = " deg "
         elif ch in _SYMBOL_CHARS:
             ch = _SYMBOL_CHARS[ch]
         elif ord(ch) > 127 and not ch.isspace():
             raise ExpressionError(
                 f"expected names, numbers, operators and functions, found {ch!r}")
         out.append(ch + accent)
-    return "".join(out)
+    return _roots("".join(out))
+
+
+_RATE_SUFFIX = re.compile(r"(?:d|dd|dot|ddot)(?![A-Za-z])")
+_DEGREES = re.compile(r"(?<![\w.])((?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*deg(?:rees?)?(?!\w)")
+_ROOT = re.compile(r"√\s*(?:(?P<open>\()|(?P<atom>(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
+                   r"|[A-Za-z_][A-Za-z0-9_]*'*))?")
+# what would make the extent of a root unclear: a power, or more glued to its operand
+_AFTER_ROOT = re.compile(r"(?:(?:\^|\*\*)[+-]?)?(?:\(|[^\s+\-*/^(),=]*)")
+
+
+def _roots(text: str) -> str:
+    """``√`` as ``sqrt``: ``√(L/g)``, or the one number or name after it (``√2/2``, ``√θ``).
+
+    A number or name glued to more (``√2gh``) or raised to a power (``√x^2``) could be under
+    the root or not: refused with both readings.
+
+    >>> _roots("2 pi √(L/g) + √2/2")
+    '2 pi sqrt(L/g) + sqrt(2)/2'
+    """
+    def root(m: re.Match) -> str:
+        atom = m.group("atom")
+        if m.group("open"):
+            return "sqrt("
+        if atom is None:
+            rest = m.string[m.end():].strip()
+            raise ExpressionError("expected a number, a name or brackets after √, found "
+                                  + (excerpt(rest) if rest else "nothing"))
+        after = _AFTER_ROOT.match(m.string, m.end())
+        assert after is not None  # every part of the pattern may be empty
+        more = after.group(0)
+        if more.endswith("("):  # a power in brackets: up to its closing bracket
+            depth, end = 0, m.end() + len(more) - 1
+            for end in range(end, len(m.string)):
+                depth += {"(": 1, ")": -1}.get(m.string[end], 0)
+                if depth == 0:
+                    break
+            more = m.string[m.end():end + 1]
+        if not more:
+            return f"sqrt({atom})"
+        raise ExpressionError(f"{AMBIGUOUS} after √, found {excerpt('√' + atom + more)}: "
+                              f"√({atom}{more}) or √({atom}){more}?")
+    return _ROOT.sub(root, text)
 
 
 Token = tuple[int, str, int, int]
@@ -325,7 +387,9 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> str:
     # the last token that is not stray whitespace: whether it ends an operand, whether it is
     # a number, and whether a "(" after it opens a call
     ends = number = calls = False
-    for kind, string, start, end in tokens(text):
+    found = tokens(text)
+    divisors = _Divisors(text, found)
+    for index, (kind, string, start, end) in enumerate(found):
         if kind == tokenize.ERRORTOKEN:
             if not string.isspace():
                 raise ExpressionError(f"expected names, numbers, operators and functions, "
@@ -338,9 +402,11 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> str:
                 raise ExpressionError(f"expected an operator between two numbers, found "
                                       f"{excerpt(text, start, end)}")
             if ends:
+                divisors.product(index)
                 pieces.append("*")
             if string[-1] in "jJ":
                 # Python's imaginary literal: "3j" is 3 times the name j
+                divisors.glued_j(index)
                 pieces += [string[:-1], "*", string[-1]]
             else:
                 pieces.append(string)
@@ -348,15 +414,120 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> str:
         elif kind == tokenize.NAME:
             keyword = string in _KEYWORDS
             if ends and not keyword:
+                divisors.product(index)
                 pieces.append("*")
+            glued = _glued_call(string, found[index + 1:index + 2], end, functions)
+            if glued:  # "pisqrt(L/g)", "Lcos(theta)": a name, then a call
+                pieces += [string[:-len(glued)], "*"]
+                string = glued
             pieces.append(string)
             ends, number, calls = not keyword, False, string in functions
         else:
             if string == "(" and ends and not calls:
+                divisors.product(index)
                 pieces.append("*")
+            divisors.operator(index, binary=ends)
             pieces.append(string)
             ends, number, calls = string == ")", False, False
+            continue
+        divisors.operand(index)
     return " ".join(pieces)
+
+
+def _glued_call(name: str, following: list[Token], end: int,
+                functions: frozenset[str] | set[str]) -> str | None:
+    """The function a name not itself a function ends with, when a bracket follows it
+    directly (``pisqrt(`` is ``pi*sqrt(``); the longest such name."""
+    if name in functions or not following or following[0][1] != "(" or following[0][2] != end:
+        return None
+    ends_with = [f for f in functions if name.endswith(f) and len(f) < len(name)]
+    if not ends_with:
+        return None
+    glued = max(ends_with, key=len)
+    prefix = name[:-len(glued)]
+    return glued if prefix.isidentifier() and not prefix.startswith("_") else None
+
+
+class _Divisors:
+    """Where a product written by juxtaposition follows a divisor (``3g/2L``, ``v^2/2g``).
+
+    WeBWorK binds juxtaposition tighter than ``/`` (3g/(2L)); STACK, sympy and Python read
+    left to right ((3g/2)L). A juxtaposition glued to the divisor (no space) is refused with
+    both readings; one after a space (``1/2 m v^2``) or an explicit ``*`` is read left to
+    right. One level of brackets is one term: ``state`` holds, per depth, where its term
+    started and where its divisor's ``/`` is (while the divisor is being read)."""
+
+    def __init__(self, text: str, found: list[Token]):
+        self.text, self.found = text, found
+        self.depth = 0
+        self.term: dict[int, int | None] = {0: None}
+        self.slash: dict[int, tuple[int, int]] = {}
+        self.last_end = -1
+
+    def operand(self, index: int) -> None:
+        """A number or name: the term starts here if nothing of it came before."""
+        _, _, start, end = self.found[index]
+        if self.term.get(self.depth) is None:
+            self.term[self.depth] = start
+        self.last_end = end
+
+    def product(self, index: int) -> None:
+        """A juxtaposition before token ``index``: after a space it ends the divisor."""
+        slash = self.slash.pop(self.depth, None)
+        start = self.found[index][2]
+        if slash is not None and start == self.last_end:
+            raise self._ambiguous(slash, start, index)
+
+    def glued_j(self, index: int) -> None:
+        slash = self.slash.get(self.depth)
+        if slash is not None:
+            raise self._ambiguous(slash, self.found[index][3] - 1, index)
+
+    def operator(self, index: int, binary: bool) -> None:
+        _, string, start, end = self.found[index]
+        if string in ("(", ")") or string in "+-" and not binary:
+            # brackets and a sign belong to the term
+            if self.term.get(self.depth) is None:
+                self.term[self.depth] = start
+        if string == "(":
+            self.depth += 1
+            self.term[self.depth] = None
+            self.slash.pop(self.depth, None)
+        elif string == ")":
+            self.slash.pop(self.depth, None)
+            self.depth -= 1
+        elif string == "/":
+            self.slash[self.depth] = (start, self.term.get(self.depth) or 0)
+        elif string in ("*", "//", ",") or (string in "+-" and binary):
+            self.slash.pop(self.depth, None)
+            if string != "*":
+                self.term[self.depth] = None
+        self.last_end = end
+
+    def _ambiguous(self, slash: tuple[int, int], start: int, index: int) -> ExpressionError:
+        """The refusal, with the term read both ways."""
+        at, term = slash
+        depth, stop = 0, len(self.text)
+        for _, string, begin, _ in self.found[index:]:  # the glued factor runs to an operator
+            if depth == 0 and (string in ("+", "-", "*", "/", ",", ")")):
+                stop = begin
+                break
+            depth += (string == "(") - (string == ")")
+        shown = [_shown(self.text[a:b]).strip()
+                 for a, b in ((term, at), (at + 1, start), (start, stop))]
+        numerator, divisor, factor = shown
+        readings = (f"{numerator}/({divisor}{factor})", f"({numerator}/{divisor}){factor}")
+        said = (f": {readings[0]} or {readings[1]}?" if max(map(len, readings)) <= 32
+                else " (put brackets around what is divided)")
+        return ExpressionError(f"{AMBIGUOUS} to show what is divided, found "
+                               f"{excerpt(_shown(self.text[term:stop]).strip())}{said}")
+
+
+def _shown(text: str) -> str:
+    """Normalised text as the writer would recognise it: ``^`` and primes again."""
+    text = re.sub(r"\s*\*\*\s*", "^", text)
+    return re.sub(r" ?__d([12])__([A-Za-z][A-Za-z0-9_]*)",
+                  lambda m: m.group(2) + "'" * int(m.group(1)), text)
 
 
 _KEYWORDS = {"and", "or", "not", "in", "is", "if", "else", "lambda", "for"}
@@ -564,6 +735,40 @@ def constant_value(node: Node) -> float | None:
         return None
 
 
+TRIG_FUNCTIONS = frozenset({"sin", "cos", "tan", "cot", "sec", "csc"})
+
+
+def degree_reading(node: Node) -> tuple[float, Call] | None:
+    """A constant's value with the arguments of its trig functions read in degrees, and the
+    first such call; ``None`` when no trig function takes a plain number (an argument with
+    ``pi`` in it, or written with ``°``, is already an angle) or when that reading is no
+    real number.
+
+    >>> value, call = degree_reading(parse("2*sin(30)"))
+    >>> round(value, 12), to_text(call)
+    (1.0, 'sin(30)')
+    >>> degree_reading(parse("sin(pi/6)")) is None, degree_reading(parse("sin(30°)")) is None
+    (True, True)
+    """
+    first: list[Call] = []
+
+    def call(func: str, args: tuple) -> float:
+        value = _const(args[0]) if len(args) == 1 else None
+        if func in TRIG_FUNCTIONS and value is not None and "pi" not in names(args[0]):
+            if not first:
+                first.append(Call(func, args))
+            value *= math.pi / 180
+        return _const_call(func, (Num(repr(value)),) if value is not None else args)
+
+    try:
+        value = _settled(node, lambda: fold(node, number=lambda n: n.value,
+                                            resolve=_const_name, call=call,
+                                            power=_const_power))
+    except (ExpressionError, _NotConstant):
+        return None
+    return (value, first[0]) if first else None
+
+
 def _settled(node: Node, operation, *operands) -> float:
     """``operation(*operands)``, the value of the constant part ``node``, within the bounds of
     :func:`constant_value` (which raises as it says)."""
@@ -582,6 +787,9 @@ def _settled(node: Node, operation, *operands) -> float:
                               f"{excerpt(to_text(node))} {CONSTANT_PROBLEMS[0]}")
     return value
 
+
+AMBIGUOUS = "expected brackets"
+"""How a refusal of text that reads two ways begins (``3g/2L``, ``√2gh``)."""
 
 CONSTANT_PROBLEMS = ("(too large)", "(divides by zero)", "(not a real number)")
 """How a constant part can fail; readers refuse such text instead of trying other readings."""
