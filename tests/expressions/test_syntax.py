@@ -238,3 +238,43 @@ def test_ambiguous_products_and_roots_are_refused_with_both_readings(text, messa
     with pytest.raises(ExpressionError) as info:
         parse(text)
     assert message in info.value.message
+
+
+# ---------------------------------------------------------------------------- the fast reader
+
+_READER_PIECES = ("1", "0", "2.5", "1e3", "007", "0x1f", "1_0", "x", "L", "N.x", "N.y.z", "True",
+                  "theta'", "sqrt(", "atan2(", "sin(", "vel(", "(", ")", ",", "+", "-", "*", "/",
+                  "**", "//", "%", "==", "9**9", "2**-1", "-", "pi", "lambda", ".", "_x", "e")
+
+
+def _outcome(read):
+    try:
+        return read()
+    except ExpressionError as exc:
+        return exc.message
+
+
+@settings(max_examples=600, deadline=None)
+@given(st.one_of(st.lists(st.sampled_from(_READER_PIECES), max_size=14).map(" ".join),
+                 st.lists(st.sampled_from(_READER_PIECES), max_size=14).map("".join), _exprs()))
+def test_the_fast_reader_reads_as_ast(text):
+    from mechgrade.expressions import syntax
+
+    names = syntax._function_names(("vel",))
+    for attributes in (True, False):
+        def by_ast():
+            return syntax._read_by_ast(text, syntax._pieces(text, names), names, attributes)
+        assert _outcome(lambda: parse(text, functions=("vel",), attributes=attributes)) \
+            == _outcome(by_ast)
+
+
+@pytest.mark.parametrize("text", ["2 L thetad**2", "-(x + r*thetad*sin(theta))/17",
+                                  "sqrt(xd**2 + yd**2)", "-x**2 + 2**-1", "3 N.x - atan2(1, 2)",
+                                  "L*sqrt(thetad**4 + thetadd**2)", "theta'' + 2.5e-3"])
+def test_plain_answers_are_read_without_ast(text, monkeypatch):
+    from mechgrade.expressions import syntax
+
+    expected = parse(text)
+    monkeypatch.setattr(syntax.ast, "parse", lambda *a, **k: (_ for _ in ()).throw(
+        AssertionError("read by ast")))
+    assert parse(text) == expected

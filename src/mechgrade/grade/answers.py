@@ -27,7 +27,9 @@ import math
 import re
 import unicodedata
 from dataclasses import dataclass
-from typing import Union
+from functools import lru_cache
+from types import MappingProxyType
+from typing import Mapping, Union
 
 from ..errors import AnswerError, ExpressionError, UnitError
 from ..expressions import syntax
@@ -465,6 +467,10 @@ def _constant_with_unit(text: str) -> NumberAnswer | None:
             expression = expression[:-1].rstrip()
         if not expression:
             break
+        try:  # the unit first: it is short, and most cuts leave no unit
+            unit = _unit(rest)
+        except AnswerError:
+            continue
         try:
             node = syntax.parse(expression, attributes=False)
             value = syntax.constant_value(node)
@@ -477,10 +483,6 @@ def _constant_with_unit(text: str) -> NumberAnswer | None:
                 ambiguous = exc.message
             continue
         if value is None:
-            continue
-        try:
-            unit = _unit(rest)
-        except AnswerError:
             continue
         degrees = syntax.degree_reading(node)
         return NumberAnswer(float(value), unit, None, None, syntax.to_text(node),
@@ -676,7 +678,8 @@ def _join(parts: list[str]) -> str:
 _DERIVATIVE_SUFFIXES = ((2, ("ddot", "_ddot", "dd", "_dd")), (1, ("dot", "_dot", "d", "_d")))
 
 
-def symbol_aliases(symbols: tuple[str, ...]) -> dict[object, str]:
+@lru_cache(maxsize=256)
+def symbol_aliases(symbols: tuple[str, ...]) -> Mapping[object, str]:
     """Other spellings of the declared symbols, keyed by name or by ``(base, order)``.
 
     A symbol ``thetad`` is the first derivative of ``theta``: students may write ``θ̇``,
@@ -698,7 +701,7 @@ def symbol_aliases(symbols: tuple[str, ...]) -> dict[object, str]:
             break
     for symbol in symbols:
         aliases[symbol] = symbol
-    return aliases
+    return MappingProxyType(aliases)  # one per objective, shared: read-only
 
 
 def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
@@ -726,7 +729,7 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
         raise AnswerError(exc.message) from None
     aliases = symbol_aliases(tuple(symbols))
     unknown: list[str] = []
-    mapped = _rename(_euler(node, aliases), aliases, unknown)
+    mapped = _rename(node, aliases, unknown)
     if unknown:
         raise AnswerError(f"expected an expression in {_names(symbols) or 'numbers only'}, "
                           f"found the unknown name {excerpt(unknown[0])}"
@@ -767,34 +770,11 @@ _EXPONENT_END = re.compile(r"(?<![A-Za-z_\d.])\d+(?:\.\d*)?e$")
 _EULER = ("e", "E")
 
 
-def _euler(node: Node, aliases: dict[object, str]) -> Node:
-    """``node`` with an undeclared ``e`` (or ``E``) as Euler's number: ``e^x`` as ``exp(x)``,
-    a lone ``e`` as ``exp(1)``."""
-    if not any(isinstance(n, Name) and n.id in _EULER and n.id not in aliases
-               for n in syntax.walk(node)):
-        return node
-
-    def euler(n: Node) -> Node:
-        if isinstance(n, Name) and n.id in _EULER and n.id not in aliases:
-            return Call("exp", (Num("1"),))
-        if isinstance(n, Bin) and n.op == "**" and isinstance(n.left, Name) \
-                and n.left.id in _EULER and n.left.id not in aliases:
-            return Call("exp", (euler(n.right),))
-        if isinstance(n, Unary):
-            return Unary(n.op, euler(n.operand))
-        if isinstance(n, Bin):
-            return Bin(n.op, euler(n.left), euler(n.right))
-        if isinstance(n, Call):
-            return Call(n.func, tuple(euler(a) for a in n.args))
-        return n
-    return euler(node)
-
-
 MAX_SPLIT = 24
 """Longest undeclared name tried as declared names written together."""
 
 
-def _split(name: str, aliases: dict[object, str]) -> list[Name] | None:
+def _split(name: str, aliases: Mapping[object, str]) -> list[Name] | None:
     """``gh`` as ``g``, ``h`` when ``g`` and ``h`` are declared (or ``pi``): the only way to
     write ``name`` with declared names; ``None`` when there is none. Greek letters' names
     are never split (``mu`` is not ``m*u``)."""
@@ -825,18 +805,22 @@ def _product(factors: list[Node], first: Node | None = None) -> Node:
     return out
 
 
-def _rename(node: Node, aliases: dict[object, str], unknown: list[str]) -> Node:
+def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> Node:
+    """``node`` in the declared names (a part unchanged is kept as it is); an undeclared
+    ``e`` is Euler's number (``e^x`` as ``exp(x)``, a lone ``e`` as ``exp(1)``)."""
     if isinstance(node, Name):
         if node.id == "pi":
             return node
         target = aliases.get(node.id)
-        if target is None:
-            split = _split(node.id, aliases)
-            if split is not None:
-                return _product(list(split))
-            unknown.append(node.id)
-            return node
-        return Name(target)
+        if target is not None:
+            return node if target == node.id else Name(target)
+        if node.id in _EULER:
+            return _EXP_1
+        split = _split(node.id, aliases)
+        if split is not None:
+            return _product(list(split))
+        unknown.append(node.id)
+        return node
     if isinstance(node, Prime):
         target = aliases.get((node.id, node.order))
         if target is None:
@@ -844,17 +828,32 @@ def _rename(node: Node, aliases: dict[object, str], unknown: list[str]) -> Node:
             return node
         return Name(target)
     if isinstance(node, Unary):
-        return Unary(node.op, _rename(node.operand, aliases, unknown))
+        operand = _rename(node.operand, aliases, unknown)
+        return node if operand is node.operand else Unary(node.op, operand)
     if isinstance(node, Bin):
+        if node.op == "**" and _euler(node.left, aliases):
+            return Call("exp", (_rename(node.right, aliases, unknown),))
         left = _rename(node.left, aliases, unknown)
-        if node.op == "*" and isinstance(node.right, Name) and node.right.id not in aliases:
+        if node.op == "*" and isinstance(node.right, Name) and node.right.id not in aliases \
+                and node.right.id != "pi" and not _euler(node.right, aliases):
             split = _split(node.right.id, aliases)  # 2gh: 2*g*h, as if spaced
             if split is not None:
                 return _product(list(split), left)
-        return Bin(node.op, left, _rename(node.right, aliases, unknown))
+        right = _rename(node.right, aliases, unknown)
+        return node if left is node.left and right is node.right else Bin(node.op, left, right)
     if isinstance(node, Call):
-        return Call(node.func, tuple(_rename(a, aliases, unknown) for a in node.args))
+        args = tuple(_rename(a, aliases, unknown) for a in node.args)
+        return node if all(a is b for a, b in zip(args, node.args)) else Call(node.func, args)
     if isinstance(node, Num):
         return node
     unknown.append(syntax.to_text(node))  # pragma: no cover - attributes are refused above
     return node
+
+
+_EULER = ("e", "E")
+_EXP_1 = Call("exp", (Num("1"),))
+
+
+def _euler(node: Node, aliases: Mapping[object, str]) -> bool:
+    """Whether ``node`` is Euler's number: an ``e`` (or ``E``) not declared."""
+    return isinstance(node, Name) and node.id in _EULER and node.id not in aliases
