@@ -72,46 +72,7 @@ PYTHON_SIZE = 32
 arithmetic as numpy's, without its set-up)."""
 
 
-class Closeness:
-    """:func:`within` as a test of one answer against candidates (a reference, a mistaken
-    value): ``close(s, t)``, and :meth:`fitting` for many candidates at once. ``by_norm``
-    scales a number or vector (up to three values) by its magnitude, as judging a vector
-    does; otherwise each value by its own size, as at sample points."""
-
-    def __init__(self, rel: float, abs_: float, by_norm: bool):
-        self.rel, self.abs, self.by_norm = rel, abs_, by_norm
-
-    def __call__(self, s: np.ndarray, t: np.ndarray) -> bool:
-        if s.shape != t.shape:
-            return False
-        if self.by_norm and t.size <= 3:
-            with np.errstate(all="ignore"):
-                return within(s, t, self.rel, self.abs, scale=float(np.linalg.norm(t)))
-        return within(s, t, self.rel, self.abs)
-
-    def each(self, students: np.ndarray, references: np.ndarray) -> np.ndarray:
-        """Whether each student row is close to its reference row, for many pairs at once
-        (rows on the first axis; either side may be one row, for all): the :func:`within`
-        test row by row, each row scaled by its reference.
-
-        >>> Closeness(0.01, 0.0, False).each(np.array([[1.0, 2.0]]),
-        ...                                  np.array([[1.0, 2.0], [1.0, 3.0]])).tolist()
-        [True, False]
-        """
-        s, t = np.asarray(students, dtype=float), np.asarray(references, dtype=float)
-        if s.shape[1:] != t.shape[1:]:
-            return np.zeros(max(len(s), len(t)), dtype=bool)
-        with np.errstate(all="ignore"):
-            if self.by_norm and t[0].size <= 3:
-                size = np.linalg.norm(t.reshape(len(t), -1), axis=1).reshape(
-                    (len(t),) + (1,) * (t.ndim - 1))
-            else:
-                size = np.abs(t)
-            fits = _fits(np.abs(s - t), np.maximum(self.rel * size, self.abs), size)
-        return fits.reshape(len(fits), -1).all(axis=1)
-
-
-def agree_at_points(rel: float, reference: np.ndarray) -> Closeness:
+def agree_at_points(rel: float, reference: np.ndarray):
     """The one "equal at the sample points" test: every value within ``rel`` of the
     reference's (:func:`within`, with a small floor near zero); a value undefined where the
     reference is defined disagrees.
@@ -123,4 +84,8 @@ def agree_at_points(rel: float, reference: np.ndarray) -> Closeness:
     # the mean size, as np.mean sums it (np.mean itself costs more than judging an answer)
     scale = float(np.add.reduce(np.abs(reference), axis=None, dtype=float)) / reference.size \
         if reference.size else 0.0
-    return Closeness(rel, max(rel * scale * 1e-3, 1e-12), by_norm=False)
+    floor = max(rel * scale * 1e-3, 1e-12)
+
+    def close(s: np.ndarray, t: np.ndarray) -> bool:
+        return s.shape == t.shape and within(s, t, rel, floor)
+    return close

@@ -216,6 +216,8 @@ def test_every_answer_form_normalises_as_with_pythons_tokenizer(text, monkeypatc
     ("g/L sin(theta)", "g/L*sin(theta)"),
     ("3*g/2*L", "3*g/2*L"),
     ("a/2**3 b", "a/2**3*b"),
+    ("2pisqrt(L/g) + Lcos(theta)", "2*pi*sqrt(L/g)+L*cos(theta)"),
+    ("x_sign(2) + x_(1)", "x_sign*2+x_*1"),
 ])
 def test_greek_letters_roots_and_degrees_read_as_written(text, canonical):
     assert to_text(parse(text)) == canonical

@@ -460,6 +460,11 @@ AS_TYPED = [
     ("3g/(2L)", EOM, "3*g/(2*L)"),
     ("(3g/2)/L", EOM, "3*g/2/L"),
     ("2pisqrt(L/g)", PERIOD, "2*pi*sqrt(L/g)"),
+    ("pir^2", ObjectiveResult("A", "symbolic", "m^2", expr="pi*r**2", symbols=("r",),
+                              symbol_units=("m",)), "pi*r**2"),
+    ("gh^2/L", ObjectiveResult("x", "symbolic", "m^2", expr="g*h**2/L",
+                               symbols=("g", "h", "L"), symbol_units=("m/s^2", "m", "m")),
+     "g*h**2/L"),
     ("sqrt(2gh)", SPEED, "sqrt(2*g*h)"),
     ("(2gh)^(1/2)", SPEED, "(2*g*h)**(1/2)"),
 ]

@@ -465,7 +465,8 @@ def _glued_call(name: str, following: list[Token], end: int,
         return None
     glued = max(ends_with, key=len)
     prefix = name[:-len(glued)]
-    return glued if prefix.isidentifier() and not prefix.startswith("_") else None
+    # x_sign(...) is a name, then a product: an underscore joins the parts of one name
+    return glued if prefix.isidentifier() and "_" not in (prefix[0], prefix[-1]) else None
 
 
 class _Divisors:

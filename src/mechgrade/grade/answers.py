@@ -29,7 +29,7 @@ import unicodedata
 from dataclasses import dataclass
 from functools import lru_cache
 from types import MappingProxyType
-from typing import Mapping, Union
+from typing import Mapping, TypeGuard, Union
 
 from ..errors import AnswerError, ExpressionError, UnitError
 from ..expressions import syntax
@@ -833,9 +833,13 @@ def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> No
     if isinstance(node, Bin):
         if node.op == "**" and _euler(node.left, aliases):
             return Call("exp", (_rename(node.right, aliases, unknown),))
+        if node.op == "**" and _splits(node.left, aliases):
+            # pir^2 is pi*r^2: the power takes the last name, as written
+            split = _split(node.left.id, aliases) or []
+            power = Bin("**", split[-1], _rename(node.right, aliases, unknown))
+            return _product(split[:-1] + [power])
         left = _rename(node.left, aliases, unknown)
-        if node.op == "*" and isinstance(node.right, Name) and node.right.id not in aliases \
-                and node.right.id != "pi" and not _euler(node.right, aliases):
+        if node.op == "*" and _splits(node.right, aliases):
             split = _split(node.right.id, aliases)  # 2gh: 2*g*h, as if spaced
             if split is not None:
                 return _product(list(split), left)
@@ -852,6 +856,13 @@ def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> No
 
 _EULER = ("e", "E")
 _EXP_1 = Call("exp", (Num("1"),))
+
+
+def _splits(node: Node, aliases: Mapping[object, str]) -> TypeGuard[Name]:
+    """Whether ``node`` is a name that is not declared (nor ``pi``, nor Euler's ``e``) but
+    may be declared names written together."""
+    return isinstance(node, Name) and node.id not in aliases and node.id != "pi" \
+        and not _euler(node, aliases) and _split(node.id, aliases) is not None
 
 
 def _euler(node: Node, aliases: Mapping[object, str]) -> bool:

@@ -32,7 +32,7 @@ from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
 from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from ..spec.model import ObjectiveKind
-from ..tolerance import Closeness, agree_at_points, within
+from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
@@ -347,10 +347,16 @@ def _trig_in_radians(text: str, result: ObjectiveResult) -> Diagnosis | None:
                                                         result.plausible)
 
 
-def _close(rel: float, abs_: float) -> Closeness:
+def _close(rel: float, abs_: float):
     """:func:`within` as a closeness test for diagnoses: a number or vector (up to three
     components, scaled by its magnitude) or values at sample points (each by its own size)."""
-    return Closeness(rel, abs_, by_norm=True)
+    def close(s: np.ndarray, t: np.ndarray) -> bool:
+        if s.shape != t.shape:
+            return False
+        with np.errstate(all="ignore"):
+            scale = float(np.linalg.norm(t)) if t.size <= 3 else None
+        return within(s, t, rel, abs_, scale=scale)
+    return close
 
 
 def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,

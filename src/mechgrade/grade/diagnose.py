@@ -29,7 +29,6 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
-from ..tolerance import Closeness
 from ..solve.result import GeneratedMistake, MistakeValue
 
 Close = Callable[[np.ndarray, np.ndarray], bool]
@@ -127,17 +126,14 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         return found
     if not (reference != 0).any():
         return None
-    # every factor times the reference at once (row by row the same products), and tried
-    # at once where the test can
-    scaled = np.multiply.outer(_ALL_FACTORS, reference)
-    fitting = close.each(student[None], scaled) if isinstance(close, Closeness) else None
-    rows = iter(range(len(scaled)))
+    # every factor times the reference at once (row by row the same products)
+    scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
     for code, label, message, factors in _FACTORS:
-        indices = [next(rows) for _ in factors]
+        rows = [next(scaled) for _ in factors]
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
             continue
-        for i in indices:
-            if fitting[i] if fitting is not None else close(student, scaled[i]):
+        for row in rows:
+            if close(student, row):
                 return Diagnosis(code, label, message)
     if kind == "vector":
         return _vector(student, reference, close)
@@ -171,25 +167,20 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
     """The generated mistake nearest ``student`` among those it matches and is nearer to than
     to ``reference``: a value that merely lies between two candidates names neither."""
     own = float(np.linalg.norm(student - reference))
-    usable = [(mistake, np.asarray(values, dtype=float)) for mistake, values in generated
-              if values is not None and np.shape(values) == reference.shape]
-    if not usable:
-        return None
-    rows = np.array([values for _, values in usable])
-    finite = np.isfinite(rows).reshape(len(rows), -1).all(axis=1)
-    # a mistaken value near zero (a contact point's velocity) is matched on the scale of
-    # the reference, as a zero answer would be
-    if isinstance(close, Closeness):
-        matches = close.each(student[None], rows) | close.each(student - rows + reference,
-                                                               reference[None])
-    else:
-        matches = np.array([close(student, v) or close(student - v + reference, reference)
-                            for v in rows])
-    distances = np.linalg.norm((student - rows).reshape(len(rows), -1), axis=1)
     best, best_distance = None, own
-    for (mistake, _), ok, match, distance in zip(usable, finite, matches, distances):
-        if ok and match and distance < best_distance:
-            best, best_distance = mistake, float(distance)
+    for mistake, values in generated:
+        if values is None:
+            continue
+        values = np.asarray(values, dtype=float)
+        if values.shape != reference.shape or not np.isfinite(values).all():
+            continue
+        # a mistaken value near zero (a contact point's velocity) is matched on the scale of
+        # the reference, as a zero answer would be
+        if not (close(student, values) or close(student - values + reference, reference)):
+            continue
+        distance = float(np.linalg.norm(student - values))
+        if distance < best_distance:
+            best, best_distance = mistake, distance
     if best is None:
         return None
     if best.code in GIVEN_CODES and best.value is not None:
