@@ -836,8 +836,9 @@ def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> No
         if node.op == "**" and _splits(node.left, aliases):
             # pir^2 is pi*r^2: the power takes the last name, as written
             split = _split(node.left.id, aliases) or []
-            power = Bin("**", split[-1], _rename(node.right, aliases, unknown))
-            return _product(split[:-1] + [power])
+            factors: list[Node] = [*split[:-1], Bin("**", split[-1],
+                                                    _rename(node.right, aliases, unknown))]
+            return _product(factors)
         left = _rename(node.left, aliases, unknown)
         if node.op == "*" and _splits(node.right, aliases):
             split = _split(node.right.id, aliases)  # 2gh: 2*g*h, as if spaced
