@@ -440,6 +440,7 @@ AS_TYPED = [
     ("sin(30°)", SI_ACC, (0.5, None, (None, None))),
     ("sin(30 deg)", SI_ACC, (0.5, None, (None, None))),
     ("5*sin(30°) m", SI_ACC, (2.5, "m", (None, None))),
+    ("2*30 deg", SI_ACC, (60.0, "deg", (None, None))),
     ("√2/2", SI_ACC, (2 ** -0.5, None, (None, None))),
     # (text, objective, (components, unit)) for vectors
     ("5 m/s at 126.87°", SI_VEC, ((-3.0, 4.0, 0.0), "m / s")),

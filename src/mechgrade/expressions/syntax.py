@@ -227,7 +227,7 @@ def _pieces(text: str, functions: frozenset[str] | set[str]) -> list[Piece]:
     if not text.isascii():  # plain ASCII is its own NFC form, with no letters to rewrite
         text = _rewrite_unicode(text)
     if "deg" in text:
-        text = _DEGREES.sub(r"(\1*pi/180)", text)
+        text = _DEGREES.sub(_in_degrees, text)
     text = text.replace("^", "**")
     text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
     if "'" in text:
@@ -281,6 +281,15 @@ def _rewrite_unicode(text: str) -> str:
                 f"expected names, numbers, operators and functions, found {ch!r}")
         out.append(ch + accent)
     return _roots("".join(out))
+
+
+def _in_degrees(m: re.Match) -> str:
+    """``30°`` or ``30 deg`` inside brackets (``sin(30°)``) as ``(30*pi/180)``; outside them
+    ``deg`` stays a unit (``2*30 deg`` is 60 degrees with its unit)."""
+    before = m.string[:m.start()]
+    if before.count("(") <= before.count(")"):
+        return m.group(0)
+    return f"({m.group(1)}*pi/180)"
 
 
 _RATE_SUFFIX = re.compile(r"(?:d|dd|dot|ddot)(?![A-Za-z])")
@@ -425,8 +434,8 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> list[
                 pieces.append((kind, string))
             ends, number, calls = True, True, False
         elif kind == tokenize.NAME:
-            keyword = string in _KEYWORDS
-            if ends and not keyword:
+            is_keyword = string in _KEYWORDS
+            if ends and not is_keyword:
                 if divisors:
                     divisors.product(index)
                 pieces.append(_TIMES)
@@ -435,7 +444,7 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> list[
                 pieces += [(kind, string[:-len(glued)]), _TIMES]
                 string = glued
             pieces.append((kind, string))
-            ends, number, calls = not keyword, False, string in functions
+            ends, number, calls = not is_keyword, False, string in functions
         else:
             if string == "(" and ends and not calls:
                 if divisors:
