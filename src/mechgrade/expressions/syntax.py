@@ -212,11 +212,16 @@ def _function_names(functions: Iterable[str]) -> frozenset[str] | set[str]:
 
 
 def _normalized(text: str, functions: frozenset[str] | set[str]) -> str:
-    return " ".join(string for _, string in _pieces(text, functions))
+    pieces, ambiguous = _pieces(text, functions)
+    if ambiguous is not None:
+        raise ambiguous
+    return " ".join(string for _, string in pieces)
 
 
-def _pieces(text: str, functions: frozenset[str] | set[str]) -> list[Piece]:
-    """The normalised tokens of ``text``, implicit products written out."""
+def _pieces(text: str, functions: frozenset[str] | set[str]
+            ) -> tuple[list[Piece], ExpressionError | None]:
+    """The normalised tokens of ``text``, implicit products written out, and the refusal
+    of an ambiguous product (see :func:`_implicit_products`)."""
     if not isinstance(text, str):
         raise ExpressionError(f"expected text, found {type(text).__name__}")
     if len(text) > MAX_LENGTH:
@@ -401,7 +406,10 @@ Piece = tuple[int, str]
 """A normalised token: its type (``tokenize.NUMBER``...) and text."""
 
 
-def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> list[Piece]:
+def _implicit_products(text: str, functions: frozenset[str] | set[str]
+                       ) -> tuple[list[Piece], ExpressionError | None]:
+    """The pieces, and the refusal of a divisor glued to a product (:class:`_Divisors`)
+    for when the text reads otherwise."""
     pieces: list[Piece] = []
     # the last token that is not stray whitespace: whether it ends an operand, whether it is
     # a number, and whether a "(" after it opens a call
@@ -457,7 +465,7 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]) -> list[
             continue
         if divisors:
             divisors.operand(index)
-    return pieces
+    return pieces, divisors.ambiguous if divisors else None
 
 
 _TIMES: Piece = (tokenize.OP, "*")
@@ -484,8 +492,8 @@ class _Divisors:
     WeBWorK binds juxtaposition tighter than ``/`` (3g/(2L)); STACK, sympy and Python read
     left to right ((3g/2)L). A juxtaposition glued to the divisor (no space) is refused with
     both readings; one after a space (``1/2 m v^2``) or an explicit ``*`` is read left to
-    right. One level of brackets is one term: ``state`` holds, per depth, where its term
-    started and where its divisor's ``/`` is (while the divisor is being read)."""
+    right. Each level of brackets has its own term: ``term`` holds, per depth, where it
+    started, and ``slash`` where its divisor's ``/`` is while the divisor is being read."""
 
     def __init__(self, text: str, found: list[Token]):
         self.text, self.found = text, found
@@ -493,6 +501,9 @@ class _Divisors:
         self.term: dict[int, int | None] = {0: None}
         self.slash: dict[int, tuple[int, int]] = {}
         self.last_end = -1
+        # the first such product: refused once the text reads otherwise (a reason about the
+        # brackets of text that cannot be read anyway would mislead)
+        self.ambiguous: ExpressionError | None = None
 
     def operand(self, index: int) -> None:
         """A number or name: the term starts here if nothing of it came before."""
@@ -505,13 +516,13 @@ class _Divisors:
         """A juxtaposition before token ``index``: after a space it ends the divisor."""
         slash = self.slash.pop(self.depth, None)
         start = self.found[index][2]
-        if slash is not None and start == self.last_end:
-            raise self._ambiguous(slash, start, index)
+        if slash is not None and start == self.last_end and self.ambiguous is None:
+            self.ambiguous = self._ambiguous(slash, start, index)
 
     def glued_j(self, index: int) -> None:
         slash = self.slash.get(self.depth)
-        if slash is not None:
-            raise self._ambiguous(slash, self.found[index][3] - 1, index)
+        if slash is not None and self.ambiguous is None:
+            self.ambiguous = self._ambiguous(slash, self.found[index][3] - 1, index)
 
     def operator(self, index: int, binary: bool) -> None:
         _, string, start, end = self.found[index]
@@ -581,9 +592,13 @@ def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) 
     Call(func='sqrt', args=(Bin(op='+', left=Bin(op='**', left=Name(id='xd'), right=Num(text='2')), right=Bin(op='**', left=Name(id='yd'), right=Num(text='2'))),))
     """
     names = _function_names(functions)
-    pieces = _pieces(text, names)
+    pieces, ambiguous = _pieces(text, names)
     read = _Reader(pieces, names, attributes).read()
-    return read if read is not None else _read_by_ast(text, pieces, names, attributes)
+    if read is None:
+        read = _read_by_ast(text, pieces, names, attributes)
+    if ambiguous is not None:
+        raise ambiguous
+    return read
 
 
 def _read_by_ast(text: str, pieces: list[Piece], names: frozenset[str] | set[str],

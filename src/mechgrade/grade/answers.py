@@ -297,9 +297,9 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
             raise AnswerError("expected a value before the sense of rotation, found only "
                               f"{excerpt(sense.group('sense'))}")
         return _rotation(text, sense.group("sense").lower(), result)
-    polar = _POLAR.search(text)
-    if polar:
-        return _polar_vector(text, polar)
+    polar = _polar_vector(text)
+    if polar is not None:
+        return polar
     if _looks_bracketed(text):
         return _bracketed_vector(text)
     vector = _unit_vector_sum(text)
@@ -568,15 +568,18 @@ def _bracketed_vector(text: str) -> VectorAnswer:
 _POLAR = re.compile(r"\s+at\s+|\s*[@∠]\s*")
 
 
-def _polar_vector(text: str, at: re.Match) -> VectorAnswer:
+def _polar_vector(text: str) -> VectorAnswer | None:
     """``5 m/s at 126.87°`` (also ``@``, ``∠``): a planar vector by its magnitude and its
     angle counter-clockwise from the x axis of the objective's frame; the angle's unit is
-    required (degrees or radians?)."""
+    required (degrees or radians?). ``None`` when the text has no magnitude before ``at``."""
+    at = _POLAR.search(text)
+    if at is None:
+        return None
     magnitude, angle_text = text[:at.start()].strip(), text[at.end():].strip()
-    if not magnitude:
-        raise AnswerError(f"expected a magnitude before {at.group(0).strip()!r}, such as "
-                          f"'5 m/s at 126.87°', found {excerpt(text)}")
-    size = _scalar(magnitude)
+    try:
+        size = _scalar(magnitude)
+    except AnswerError:
+        return None  # not this form: the text is read (and refused) as any other
     try:
         angle = _scalar(angle_text) if angle_text else None
     except AnswerError:
@@ -733,18 +736,19 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     if unknown:
         raise AnswerError(f"expected an expression in {_names(symbols) or 'numbers only'}, "
                           f"found the unknown name {excerpt(unknown[0])}"
-                          f"{_glued_function(unknown[0])}")
+                          f"{_glued_function(unknown[0], aliases)}")
     return ExpressionAnswer(mapped, _spaced(mapped))
 
 
-def _glued_function(name: str) -> str:
-    """A hint for a name that starts with a function's (``sqrt2gh``): its argument goes in
-    brackets."""
+def _glued_function(name: str, aliases: Mapping[object, str]) -> str:
+    """A hint for a name that is a function's glued to a number or declared names
+    (``sqrt2gh``, ``sinx``): its argument goes in brackets."""
     function = max((f for f in syntax.MATH_FUNCTIONS if name.startswith(f) and f != name),
                    key=len, default=None)
-    if function is None:
+    rest = name[len(function):] if function else ""
+    if not rest or not (rest[0].isdigit() or rest in aliases or _split(rest, aliases)):
         return ""
-    return f" (a function's argument goes in brackets: {function}({name[len(function):]}))"
+    return f" (a function's argument goes in brackets: {function}({rest}))"
 
 
 def _names(symbols: tuple[str, ...], most: int = 60) -> str:
