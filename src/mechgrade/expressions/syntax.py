@@ -709,16 +709,10 @@ class _Reader:
 
     def binary(self, op: str, left: _Read, right: _Read) -> _Read:
         (a_node, a, a_height), (b_node, b, b_height) = left, right
-        out = Bin(op, a_node, b_node)
         self.count += 1
         chained = isinstance(a_node, Bin) and op != "**"
-        height = max(a_height + (0 if chained else 1), b_height + 1)
-        if op == "**" and b is not None and abs(b) > MAX_POWER:
-            raise _Unread
-        if a is None or b is None:
-            return out, None, height
-        return out, _settled(out, _const_power if op == "**" else PYTHON_OPERATORS[op],
-                             a, b), height
+        node, value = _combined(op, (a_node, a), (b_node, b))
+        return node, value, max(a_height + (0 if chained else 1), b_height + 1)
 
     def nest(self) -> None:
         self.nesting += 1
@@ -774,17 +768,8 @@ class _Reader:
             raise _Unread
         self.nesting -= 1
         self.count += 1
-        args = tuple(arg for arg, _, _ in built)
-        height = 1 + max(h for _, _, h in built)
-        if func in MATH_FUNCTIONS:
-            canonical, arity = MATH_FUNCTIONS[func]
-            if len(args) != arity:
-                raise _Unread
-            func = canonical
-        call = Call(func, args)
-        if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 or built[0][1] is None:
-            return call, None, height
-        return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1]), height
+        node, value = _applied(func, [(arg, value) for arg, value, _ in built])
+        return node, value, 1 + max(height for _, _, height in built)
 
 
 _Read = tuple[Node, Union[float, None], int]
@@ -840,17 +825,8 @@ class _Builder:
     def _binary(self, node: ast.BinOp, op: str, depth: int) -> Built:
         # A flat chain a + b + c ... nests to the left; count it as one level, not many.
         chained = isinstance(node.left, ast.BinOp) and op != "**"
-        left, a = self.build(node.left, depth + (0 if chained else 1))
-        right, b = self.build(node.right, depth + 1)
-        out = Bin(op, left, right)
-        if op == "**" and b is not None and abs(b) > MAX_POWER:
-            raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
-                                  f"{excerpt(to_text(right))} {CONSTANT_PROBLEMS[0]}")
-        if a is None or b is None:
-            return out, None
-        if op == "**":
-            return out, _settled(out, _const_power, a, b)
-        return out, _settled(out, PYTHON_OPERATORS[op], a, b)
+        left = self.build(node.left, depth + (0 if chained else 1))
+        return _combined(op, left, self.build(node.right, depth + 1))
 
     def _call(self, node: ast.Call, depth: int) -> Built:
         if not isinstance(node.func, ast.Name):
@@ -861,18 +837,7 @@ class _Builder:
                                   f"found '{func}(...)'")
         if node.keywords or any(isinstance(a, ast.Starred) for a in node.args):
             raise ExpressionError(f"expected plain arguments in '{func}(...)'")
-        built = [self.build(a, depth + 1) for a in node.args]
-        args = tuple(arg for arg, _ in built)
-        if func in MATH_FUNCTIONS:
-            canonical, arity = MATH_FUNCTIONS[func]
-            if len(args) != arity:
-                raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
-                                      f"for {func}(...), found {len(args)}")
-            func = canonical
-        call = Call(func, args)
-        if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 or built[0][1] is None:
-            return call, None
-        return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1])
+        return _applied(func, [self.build(a, depth + 1) for a in node.args])
 
     def _number(self, value) -> Num:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -898,6 +863,36 @@ class _Builder:
 
 
 _PI = Name("pi")
+
+
+def _combined(op: str, left: Built, right: Built) -> Built:
+    """``left op right`` and its constant value, within the bounds on powers and constants."""
+    (a_node, a), (b_node, b) = left, right
+    out = Bin(op, a_node, b_node)
+    if op == "**" and b is not None and abs(b) > MAX_POWER:
+        raise ExpressionError(f"expected powers of at most {MAX_POWER}, found "
+                              f"{excerpt(to_text(b_node))} {CONSTANT_PROBLEMS[0]}")
+    if a is None or b is None:
+        return out, None
+    if op == "**":
+        return out, _settled(out, _const_power, a, b)
+    return out, _settled(out, PYTHON_OPERATORS[op], a, b)
+
+
+def _applied(func: str, built: list[Built]) -> Built:
+    """A call of ``func`` (a math function under its canonical name, with its number of
+    arguments) and its constant value."""
+    args = tuple(arg for arg, _ in built)
+    if func in MATH_FUNCTIONS:
+        canonical, arity = MATH_FUNCTIONS[func]
+        if len(args) != arity:
+            raise ExpressionError(f"expected {arity} argument{'s' * (arity > 1)} "
+                                  f"for {func}(...), found {len(args)}")
+        func = canonical
+    call = Call(func, args)
+    if func not in functions.CONSTANT_FUNCTIONS or len(args) != 1 or built[0][1] is None:
+        return call, None
+    return call, _settled(call, functions.CONSTANT_FUNCTIONS[func], built[0][1])
 
 
 def _listing(functions: frozenset[str] | set[str]) -> str:
