@@ -44,8 +44,6 @@ MAX_ANSWER_LENGTH = 2000
 """Longest answer text read at all (the expression reader has the same bound)."""
 
 MAX_COMPONENTS = 3
-MAX_UNIT_WORDS = 8
-"""Most space-separated words a unit after a constant expression may have (``kg m^2 / s``)."""
 
 
 # ---------------------------------------------------------------------------- values
@@ -769,9 +767,6 @@ def _spaced(node: Node) -> str:
 
 _BINARY_SIGN = re.compile(r"(?<=[\w)])([+-])")
 _EXPONENT_END = re.compile(r"(?<![A-Za-z_\d.])\d+(?:\.\d*)?e$")
-
-
-_EULER = ("e", "E")
 
 
 MAX_SPLIT = 24
