@@ -7,6 +7,7 @@ from mechgrade.errors import AnswerError
 from mechgrade.grade.answers import (ExpressionAnswer, NumberAnswer, VectorAnswer, clean,
                                      number_value, read_answer, read_expression,
                                      significant_figures, symbol_aliases)
+from mechgrade.grade.compare import assess
 from mechgrade.solve.result import ObjectiveResult
 
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
@@ -520,3 +521,17 @@ def test_ambiguous_spellings_are_refused_with_both_readings(text, objective, rea
         read_answer(text, objective)
     assert reason in info.value.message
     assert len(info.value.message) <= 200
+
+
+@pytest.mark.parametrize("text, objective", [
+    ("0" * 21 + ",0", SI_VEC),
+    ("1" + ",000" * 10 + " m/s^2", SI_ACC),
+    ("√2" + "gh" * 40, SPEED),
+    ("sqrt" + "2" * 30 + "gh", SPEED),
+    ("v^2/" + "2" * 40 + "g", FREE_FALL),
+    ("ab" * 12, ObjectiveResult("x", "symbolic", "1", expr="a", symbols=("a", "b", "ab"))),
+    ("5 m/s at " + "1" * 60, SI_VEC),
+])
+def test_long_spellings_get_short_reasons(text, objective):
+    judged = assess(text, objective)
+    assert judged.verdict == "unreadable" and len(judged.feedback) <= 200, judged.feedback

@@ -334,8 +334,9 @@ def _roots(text: str) -> str:
             more = m.string[m.end():end + 1]
         if not more:
             return f"sqrt({atom})"
-        raise ExpressionError(f"{AMBIGUOUS} after √, found {excerpt('√' + atom + more)}: "
-                              f"√({atom}{more}) or √({atom}){more}?")
+        said = (f": √({atom}{more}) or √({atom}){more}?" if len(atom + more) <= 24
+                else " (what is under the root?)")
+        raise ExpressionError(f"{AMBIGUOUS} after √, found {excerpt('√' + atom + more)}{said}")
     return _ROOT.sub(root, text)
 
 

@@ -44,6 +44,9 @@ MAX_ANSWER_LENGTH = 2000
 """Longest answer text read at all (the expression reader has the same bound)."""
 
 MAX_COMPONENTS = 3
+SHORT = 16
+"""Longest part of an answer a reason repeats in full (in its readings); longer parts are
+quoted cut, so a reason stays short."""
 
 
 # ---------------------------------------------------------------------------- values
@@ -306,6 +309,8 @@ def read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
     comma = _DECIMAL_COMMA.match(text)
     if comma and result.kind == ObjectiveKind.VECTOR:
         whole, fraction = comma.group("whole"), comma.group("fraction")
+        if len(comma.group(0)) > SHORT:
+            whole, fraction = "12", "5"  # an example: the written number is quoted already
         raise AnswerError(f"expected a vector in brackets or one number, found "
                           f"{excerpt(comma.group(0))}: two components (write ({whole}, "
                           f"{fraction})) or {whole}.{fraction} with a decimal comma?")
@@ -372,7 +377,8 @@ def _scalar(text: str) -> NumberAnswer:
                           f"(write 1000, or group digits in threes: 1 000)")
     if rest.startswith(","):
         grouped = _THOUSANDS.match(text)
-        if grouped and grouped.group("whole").strip("+- ") not in ("0", ""):
+        if grouped and grouped.group("whole").strip("+- ") not in ("0", "") \
+                and len(grouped.group(0).strip()) <= SHORT:
             number = grouped.group(0).strip()
             plain, decimal = number.replace(",", ""), number.replace(",", ".")
             raise AnswerError(f"expected one number, found {excerpt(number)}: {plain} with "
@@ -744,7 +750,8 @@ def _glued_function(name: str, aliases: Mapping[object, str]) -> str:
     function = max((f for f in syntax.MATH_FUNCTIONS if name.startswith(f) and f != name),
                    key=len, default=None)
     rest = name[len(function):] if function else ""
-    if not rest or not (rest[0].isdigit() or rest in aliases or _split(rest, aliases)):
+    if not rest or len(name) > SHORT or not (rest[0].isdigit() or rest in aliases
+                                             or _split(rest, aliases)):
         return ""
     return f" (a function's argument goes in brackets: {function}({rest}))"
 
@@ -790,8 +797,10 @@ def _split(name: str, aliases: Mapping[object, str]) -> list[Name] | None:
         return None
     if len(ways[0]) > 1:
         readings = [" ".join(way) for way in ways[0]]
-        raise AnswerError(f"expected declared names, found {excerpt(name)}: "
-                          f"{readings[0]} or {readings[1]}? (write spaces or * between them)")
+        said = (f": {readings[0]} or {readings[1]}?" if len(name) <= SHORT
+                else " in more than one way")
+        raise AnswerError(f"expected declared names, found {excerpt(name)}{said} (write "
+                          f"spaces or * between them)")
     return [Name(aliases.get(piece, piece)) for piece in ways[0][0]]
 
 
