@@ -45,6 +45,10 @@ PIECES = (
     "sqrt(2)/2", "pi", "π", "θ̇", "theta''", "L", "thetad", "x", "E", "exp(", "exp(exp(exp(100)))",
     "sqrt(-2)", "1/(R-r)", "abs(x)", "^", "**", "*", "/", "9**9**9", "log(0)", "atan2(1, 2)",
     "a =", "=", "#", "__import__('os')", "lambda: 0", "'", '"',
+    # forms read as students type them (issue 18)
+    "12,5", "1,250", "(-12.00)", "-(0.05)", "at", "126.87°", "5 m/s at 126.87°", "√", "√2gh",
+    "2π√(L/g)", "e^(-ζωt)", "ζ", "ω", "2gh", "3g/2L", "v^2/2g", "sin(30°)", "sin(30)", "dpt",
+    "G", "gauss", "2 × L",
     # unicode, whitespace and control characters
     " ", "  ", "\t", "\n", "\r\n", "\u2028", "\u2029", "\x00", "\x1a", "\x85", "\u00a0", "\u2009",
     "\u202f", "−", "–", "×", "·", "½", "\ufffd", "\U0001f600", "ﬁ", "٣", "𝟗",

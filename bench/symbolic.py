@@ -1,28 +1,33 @@
 """Symbolic answers: mechgrade's check next to the naive ``simplify(sympify(a) - sympify(b)) == 0``.
 
-1,000 answers to the four symbolic objectives of ``bench/scale.py`` (its answer forms, each
-labelled equivalent or not by hand), drawn with repeats as in a real class. Timed on the same
-answers:
+Answers to the four symbolic objectives of ``bench/scale.py`` (its answer forms, each labelled
+equivalent or not by hand) are judged three ways:
 
 * naive: sympy's ``parse_expr`` (implicit products, ``^``) of both sides, ``simplify`` of the
   difference, one answer after the other;
 * mechgrade in-process: :func:`mechgrade.grade.compare.assess` of every answer;
-* mechgrade through the worker: every answer through one bounded :class:`Sandbox`, one answer
-  per round trip (as grading did before batches) and in batches (a repeated answer is judged
-  once);
-* mechgrade through a worker per core: every answer through a :class:`SandboxPool`.
+* mechgrade through a worker per core: every answer through a :class:`SandboxPool`, in
+  batches (as a grading run judges them).
 
-Then again on 1,000 answers each written differently (``k*(form)/k``), which shows the cost of
-judging itself, without repeats. mechgrade's times are the fastest of three runs (each run of the
-second set on answers written differently again); the naive check runs once.
+The figures are paired: a round times each side once, on the same number of answers, the
+order of the sides turning round by round, and the ratio naive / mechgrade is taken within the
+round; the median of the rounds' ratios is printed (min and max show the spread a loaded
+machine gives). No call sees a text an earlier call has seen: every call's answers are written
+anew (``k*(form)/k`` with a ``k`` no earlier call used), so neither side answers from a cache
+of an earlier call. Two sets: answers as a class writes them (the same forms many times over
+within a call, as a class's submissions are judged together) and every answer written
+differently. In-process sides also give the ratio of process CPU time, which a loaded machine
+disturbs less than the wall clock.
 
 A verdict is right when "correct" goes with an equivalent answer and any other verdict with a
-wrong one. Run: ``.venv/bin/python bench/symbolic.py [count]``.
+wrong one. Run: ``.venv/bin/python bench/symbolic.py [count] [rounds]`` (default 200, 7).
 """
 
 from __future__ import annotations
 
+import itertools
 import random
+import statistics
 import sys
 import time
 from pathlib import Path
@@ -32,7 +37,7 @@ from sympy.parsing.sympy_parser import (convert_xor, implicit_multiplication_app
                                         parse_expr, standard_transformations)
 
 from mechgrade.grade.compare import Policy, assess
-from mechgrade.grade.sandbox import Sandbox, SandboxPool
+from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.parallel import default_jobs
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem
@@ -60,6 +65,8 @@ FORMS = {
         ("r*thetad*cos(theta)-yd", True), ("-yd + thetad*cos(theta)", False)],
 }
 TRANSFORMS = standard_transformations + (implicit_multiplication_application, convert_xor)
+_FRESH = itertools.count(2)
+"""Every multiplier ``k`` a call writes its answers with: none is used twice."""
 
 
 def references() -> dict:
@@ -72,18 +79,23 @@ def references() -> dict:
     return out
 
 
-def answers(count: int) -> list[tuple[tuple[str, str], str, bool]]:
-    """Answers as a class writes them: the same few forms, many times over."""
-    rng = random.Random(7)
+def forms(count: int, seed: int) -> list[tuple[tuple[str, str], str, bool]]:
+    """``count`` answers as a class writes them: the same few forms, many times over."""
+    rng = random.Random(seed)
     keys = list(FORMS)
     return [(key, *rng.choice(FORMS[key])) for key in (rng.choice(keys) for _ in range(count))]
 
 
-def distinct_answers(count: int, start: int = 2) -> list[tuple[tuple[str, str], str, bool]]:
-    """Every answer written differently (``k*(form)/k``, ``k`` from ``start``), so none is
-    judged from another."""
-    return [(key, f"{i + start}*({text})/{i + start}", equivalent)
-            for i, (key, text, equivalent) in enumerate(answers(count))]
+def as_a_class(count: int, seed: int) -> list[tuple[tuple[str, str], str, bool]]:
+    """A class's answers written with a ``k`` no earlier call used: repeats within the call."""
+    k = next(_FRESH)
+    return [(key, f"{k}*({text})/{k}", right) for key, text, right in forms(count, seed)]
+
+
+def all_different(count: int, seed: int) -> list[tuple[tuple[str, str], str, bool]]:
+    """Every answer written with its own ``k``: no repeats, within the call or across."""
+    return [(key, f"{k}*({text})/{k}", right)
+            for (key, text, right), k in zip(forms(count, seed), _FRESH)]
 
 
 def naive_equal(text: str, reference: str) -> bool:
@@ -92,72 +104,74 @@ def naive_equal(text: str, reference: str) -> bool:
     return sympy.simplify(a - b) == 0
 
 
-def timed(func):
-    start = time.perf_counter()
-    value = func()
-    return time.perf_counter() - start, value
+def timed(func, batch):
+    """Wall and process CPU seconds of ``func(batch)``, and its verdicts."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    verdicts = func(batch)
+    return time.perf_counter() - wall, time.process_time() - cpu, verdicts
 
 
-def best(func, samples, repeats: int = 3):
-    """The fastest of ``repeats`` runs of ``func`` (on a loaded machine the others measure
-    the load), each on its own list of answers from ``samples(run)``; the first run's
-    verdicts."""
-    runs = []
-    for run in range(repeats):
-        batch = samples(run)  # drawn outside the timing
-        runs.append(timed(lambda: func(batch)))
-    return min(seconds for seconds, _ in runs), runs[0][1]
-
-
-def compare(title: str, refs: dict, sample, others) -> None:
-    """``sample`` timed once with the naive check and ``others(run)`` (``sample`` itself
-    first, then answers that do not repeat earlier runs' texts when it is the distinct set)
-    with mechgrade's, fastest of three."""
+def compare(title: str, refs: dict, draw, count: int, rounds: int, pool: SandboxPool) -> None:
+    """``rounds`` rounds of the three sides, each on answers of its own from ``draw``."""
     policy = Policy()
-    truth = [equivalent for _, _, equivalent in sample]
-    jobs = default_jobs()
 
-    def items_of(run):
-        return [(text, refs[key], policy) for key, text, _ in others(run)]
+    def naive(batch):
+        return ["correct" if naive_equal(text, refs[key].expr) else "incorrect"
+                for key, text, _ in batch]
 
-    items = items_of(0)
-    naive_s, naive = timed(lambda: [naive_equal(text, refs[key].expr)
-                                    for key, text, _ in sample])
-    inproc_s, inproc = best(lambda batch: [assess(*item) for item in batch], items_of)
-    with Sandbox() as box:
-        box.assess("0", refs[sample[0][0]], policy)  # start the worker outside the timing
-        single_s, single = best(lambda batch: [box.assess(*item) for item in batch], items_of)
-        worker_s, worker = best(box.assess_many, items_of)
-    with SandboxPool(jobs) as pool:
-        pool.assess_many(items[:jobs])  # start the workers outside the timing
-        pool_s, pooled = best(pool.assess_many, items_of)
+    def in_process(batch):
+        return [assess(text, refs[key], policy).verdict for key, text, _ in batch]
 
-    def right(verdicts) -> str:
-        good = sum((v == "correct") == t for v, t in zip(verdicts, truth))
-        return f"{good}/{len(truth)} right"
+    def pooled(batch):
+        return [a.verdict for a in pool.assess_many([(text, refs[key], policy)
+                                                     for key, text, _ in batch])]
 
-    distinct = len(set(items))
-    print(f"{title}: {len(items)} symbolic answers ({distinct} distinct), {jobs} cores")
-    rows = [("naive simplify(sympify(a) - sympify(b)) == 0", naive_s,
-             right(["correct" if n else "incorrect" for n in naive])),
-            ("mechgrade in-process, one by one", inproc_s, right([a.verdict for a in inproc])),
-            ("mechgrade through the worker, one answer a trip", single_s,
-             right([a.verdict for a in single])),
-            ("mechgrade through the worker, batches", worker_s,
-             right([a.verdict for a in worker])),
-            (f"mechgrade through {jobs} workers, batches", pool_s,
-             right([a.verdict for a in pooled]))]
-    for label, seconds, verdicts in rows:
-        print(f"  {label:<50} {seconds:7.3f} s  {naive_s / seconds:7.1f}x  {verdicts}")
+    sides = [("naive simplify(sympify(a) - sympify(b)) == 0", naive),
+             ("mechgrade in-process, one by one", in_process),
+             (f"mechgrade through {len(pool.boxes)} workers, batches", pooled)]
+    figures: dict[str, list[tuple[float, float]]] = {label: [] for label, _ in sides}
+    right: dict[str, tuple[int, int]] = {}
+    for round_ in range(rounds):
+        # each side its own new answers (the same forms: one seed a round), drawn untimed
+        order = sides[round_ % 3:] + sides[:round_ % 3]
+        for label, side in order:
+            batch = draw(count, round_)
+            wall, cpu, verdicts = timed(side, batch)
+            figures[label].append((wall, cpu))
+            good = sum((v == "correct") == equivalent
+                       for v, (_, _, equivalent) in zip(verdicts, batch))
+            done = right.get(label, (0, 0))
+            right[label] = (done[0] + good, done[1] + len(batch))
+    print(f"{title}: {rounds} rounds of {count} answers a side, each side first in turn")
+    base = figures[sides[0][0]]
+    for label, _ in sides:
+        walls = [wall for wall, _ in figures[label]]
+        good, total = right[label]
+        line = f"  {label:<50} {1000 * statistics.median(walls) / count:8.3f} ms/answer"
+        if label != sides[0][0]:
+            ratios = sorted(b[0] / w for b, w in zip(base, walls))
+            line += (f"  naive/this {statistics.median(ratios):6.1f}x "
+                     f"({ratios[0]:.1f}-{ratios[-1]:.1f})")
+            if "in-process" in label:
+                cpus = sorted(b[1] / c for b, (_, c) in zip(base, figures[label]))
+                line += f", CPU {statistics.median(cpus):.1f}x ({cpus[0]:.1f}-{cpus[-1]:.1f})"
+        print(f"{line}  {good}/{total} right")
 
 
-def main(count: int) -> None:
+def main(count: int = 200, rounds: int = 7) -> None:
     refs = references()
-    sample = answers(count)
-    compare("as a class answers", refs, sample, lambda run: sample)
-    compare("every answer written differently", refs, distinct_answers(count),
-            lambda run: distinct_answers(count, 2 + run * count))
+    policy = Policy()
+    jobs = default_jobs()
+    # first calls (imports, the objectives' sample points) outside the timing, on text no
+    # timed call uses
+    for key in FORMS:
+        naive_equal("x", "x")
+        assess("1", refs[key], policy)
+    with SandboxPool(jobs) as pool:
+        pool.assess_many([("1", refs[key], policy) for key in FORMS] * jobs)
+        compare("as a class answers", refs, as_a_class, count, rounds, pool)
+        compare("every answer written differently", refs, all_different, count, rounds, pool)
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 1000)
+    main(*(int(a) for a in sys.argv[1:3]))

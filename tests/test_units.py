@@ -118,3 +118,14 @@ def test_pound_mass_is_written_lbm():
     assert normalize_unit("lbm") == "pound"
     assert to_si(20, "lbm") == pytest.approx(20 * 0.45359237)
     assert to_si(1, "lbm*ft/s") == pytest.approx(0.45359237 * 0.3048)
+
+
+@pytest.mark.parametrize("unit, si", [("G", 1e-4), ("gauss", 1e-4), ("mG", 1e-7),
+                                      ("kG", 0.1), ("dpt", 1.0), ("dioptre", 1.0),
+                                      ("diopter", 1.0)])
+def test_engineering_meanings_of_gauss_and_dioptre(unit, si):
+    # engineering's gauss (1e-4 T, as WeBWorK's lib/Units.pm), not pint's CGS-Gaussian one;
+    # dpt the dioptre (1/m, as STACK's units), not pint's deci-pint
+    assert si_unit(unit) in ("kg / A / s ** 2", "1 / m")
+    assert to_si(1.0, unit) == pytest.approx(si)
+    assert normalize_unit(unit) == unit

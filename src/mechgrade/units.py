@@ -69,7 +69,41 @@ def registry():
     except Exception:  # noqa: BLE001 - no usable cache folder (read-only, broken, racing)
         ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     ureg.formatter.default_format = "~"
+    for definition in _ENGINEERING_UNITS:
+        ureg.define(definition)
     return ureg
+
+
+_ENGINEERING_UNITS = (
+    "dioptre = 1 / meter = dpt = diopter",
+    "engineering_gauss = 1e-4 * tesla",
+    "engineering_maxwell = 1e-8 * weber",
+)
+"""Units as engineers mean them where pint reads otherwise: ``dpt`` is the dioptre (pint:
+a deci-pint), as in STACK's units; the gauss (``G``) is 1e-4 T and the maxwell (``Mx``)
+1e-8 Wb, as in WeBWorK's ``lib/Units.pm``, not pint's CGS-Gaussian units, which no SI unit
+converts to. A written ``G`` stays ``G``; pint reads it as :data:`_ENGINEERING_NAMES` says."""
+
+_ENGINEERING_NAMES = {"gauss": "engineering_gauss", "maxwell": "engineering_maxwell"}
+
+
+def _engineering(canonical: str) -> str:
+    """Canonical unit text with each (prefixed) gauss or maxwell as the engineering unit.
+
+    >>> _engineering("kG * m")
+    'kiloengineering_gauss * m'
+    """
+    def name(m: re.Match) -> str:
+        word = m.group(0)
+        for prefix, base, suffix in registry().parse_unit_name(word):
+            if base in _ENGINEERING_NAMES:
+                return prefix + _ENGINEERING_NAMES[base] + suffix
+        return word
+    return _WORD.sub(name, canonical) if _GAUSSIAN.search(canonical) else canonical
+
+
+_WORD = re.compile(r"[A-Za-z_]\w*")
+_GAUSSIAN = re.compile(r"G|gauss|Mx|maxwell")
 
 
 @dataclass(frozen=True)
@@ -274,7 +308,7 @@ def _pint_unit(canonical: str, raw: str | None = None):
     if canonical == "":
         return ureg.dimensionless
     try:
-        return ureg.parse_units(canonical)
+        return ureg.parse_units(_engineering(canonical))
     except Exception:
         raise UnitError(f"expected a unit such as 'm/s^2', found "
                         f"{excerpt(raw or canonical)}") from None

@@ -197,3 +197,91 @@ def test_every_answer_form_normalises_as_with_pythons_tokenizer(text, monkeypatc
     fast = outcome()
     monkeypatch.setattr(syntax, "_scan", lambda text: None)  # tokenize reads every text
     assert fast == outcome()
+
+
+# ------------------------------------------- issue 18: what a student typed, as they meant it
+
+
+@pytest.mark.parametrize("text, canonical", [
+    ("ζωt", "zeta*omega*t"),
+    ("mω²r", "m*omega**2*r"),
+    ("2π√(L/g)", "2*pi*sqrt(L/g)"),
+    ("√2/2", "sqrt(2)/2"),
+    ("-√3 L", "-sqrt(3)*L"),
+    ("√θ", "sqrt(theta)"),
+    ("θd + θ1 + ω_A + θdot + θ_dot", "thetad+theta1+omega_A+thetadot+theta_dot"),
+    ("sin(30°)", "sin(30*pi/180)"),
+    ("sin(30 deg) + cos(1.5e1degrees)", "sin(30*pi/180)+cos(15.0*pi/180)"),
+    ("1/2 m v^2", "1/2*m*v**2"),
+    ("g/L sin(theta)", "g/L*sin(theta)"),
+    ("3*g/2*L", "3*g/2*L"),
+    ("a/2**3 b", "a/2**3*b"),
+    ("2pisqrt(L/g) + Lcos(theta)", "2*pi*sqrt(L/g)+L*cos(theta)"),
+    ("x_sign(2) + x_(1)", "x_sign*2+x_*1"),
+])
+def test_greek_letters_roots_and_degrees_read_as_written(text, canonical):
+    assert to_text(parse(text)) == canonical
+
+
+@pytest.mark.parametrize("text, message", [
+    # WeBWorK binds juxtaposition tighter than '/', STACK and sympy do not: ask
+    ("3g/2L", "expected brackets to show what is divided, found '3g/2L': 3g/(2L) or "
+              "(3g/2)L?"),
+    ("v^2/2g", "found 'v^2/2g': v^2/(2g) or (v^2/2)g?"),
+    ("a + 1/2x", "found '1/2x': 1/(2x) or (1/2)x?"),
+    ("x/y(1 + x)", "found 'x/y(1 + x)': x/(y(1 + x)) or (x/y)(1 + x)?"),
+    ("(a/b^2c)", "found 'a/b^2c': a/(b^2c) or (a/b^2)c?"),
+    ("θ̇/2L", "found 'theta'/2L': theta'/(2L) or (theta'/2)L?"),
+    ("√2gh", "expected brackets after √, found '√2gh': √(2gh) or √(2)gh?"),
+    ("√x^2", "expected brackets after √, found '√x^2': √(x^2) or √(x)^2?"),
+    ("√", "expected a number, a name or brackets after √, found nothing"),
+])
+def test_ambiguous_products_and_roots_are_refused_with_both_readings(text, message):
+    with pytest.raises(ExpressionError) as info:
+        parse(text)
+    assert message in info.value.message
+
+
+# ---------------------------------------------------------------------------- the fast reader
+
+_READER_PIECES = ("1", "0", "2.5", "1e3", "007", "0x1f", "1_0", "x", "L", "N.x", "N.y.z", "True",
+                  "theta'", "sqrt(", "atan2(", "sin(", "vel(", "(", ")", ",", "+", "-", "*", "/",
+                  "**", "//", "%", "==", "9**9", "2**-1", "-", "pi", "lambda", ".", "_x", "e")
+
+
+def _outcome(read):
+    try:
+        return read()
+    except ExpressionError as exc:
+        return exc.message
+
+
+@settings(max_examples=600, deadline=None)
+@given(st.one_of(st.lists(st.sampled_from(_READER_PIECES), max_size=14).map(" ".join),
+                 st.lists(st.sampled_from(_READER_PIECES), max_size=14).map("".join), _exprs()))
+def test_the_fast_reader_reads_as_ast(text):
+    from mechgrade.expressions import syntax
+
+    names = syntax._function_names(("vel",))
+    for attributes in (True, False):
+        def by_ast():
+            tree = syntax._read_by_ast(text, syntax._pieces(text, names)[0], names,
+                                       attributes)
+            ambiguous = syntax._pieces(text, names)[1]
+            if ambiguous is not None:
+                raise ambiguous
+            return tree
+        assert _outcome(lambda: parse(text, functions=("vel",), attributes=attributes)) \
+            == _outcome(by_ast)
+
+
+@pytest.mark.parametrize("text", ["2 L thetad**2", "-(x + r*thetad*sin(theta))/17",
+                                  "sqrt(xd**2 + yd**2)", "-x**2 + 2**-1", "3 N.x - atan2(1, 2)",
+                                  "L*sqrt(thetad**4 + thetadd**2)", "theta'' + 2.5e-3"])
+def test_plain_answers_are_read_without_ast(text, monkeypatch):
+    from mechgrade.expressions import syntax
+
+    expected = parse(text)
+    monkeypatch.setattr(syntax.ast, "parse", lambda *a, **k: (_ for _ in ()).throw(
+        AssertionError("read by ast")))
+    assert parse(text) == expected

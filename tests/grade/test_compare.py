@@ -471,3 +471,79 @@ def test_symbols_are_sampled_over_the_domain_the_solver_declares(signed, verdict
     result = ObjectiveResult("d", "symbolic", "m", expr="2*xA", symbols=("xA",),
                              symbol_units=("m",), symbol_signed=(signed,))
     assert assess("2*sqrt(xA^2)", result).verdict == verdict
+
+
+# ------------------------------------------- issue 18: answers judged as students meant them
+
+TESLA = ObjectiveResult("B", "scalar", "T", 1.0)
+POWER = ObjectiveResult("P", "scalar", "1/m", 0.2)
+DEGREES = frozenset({"deg_as_rad", "rad_as_deg"})
+
+
+@pytest.mark.parametrize("text", ["1e4 G", "1e4 gauss", "10 kG", "1000 mT"])
+def test_gauss_is_the_engineering_unit_of_1e_minus_4_tesla(text):
+    # WeBWorK lib/Units.pm: G = 1e-4 kg/(A s^2); t/units/electromagnetic.t: 1 mT is 10 G
+    assert verdict(text, TESLA) == "correct"
+
+
+def test_dpt_is_the_dioptre():
+    # STACK answertestfixtures: Units 0.200*dpt against 0.200/m is right
+    assert verdict("0.200 dpt", POWER) == "correct"
+    assert verdict("0.200 dioptre", POWER) == "correct"
+
+
+def test_a_trig_argument_read_in_radians_gets_a_hint_when_degrees_were_meant():
+    half = ObjectiveResult("s", "scalar", "", 0.5, plausible=DEGREES)
+    judged = assess("sin(30)", half)
+    assert (judged.verdict, judged.credit, judged.diagnosis) == \
+        ("incorrect", 0.0, "trig argument read in radians")
+    assert judged.feedback == ("sin(30) was read with its argument in radians; read in "
+                               "degrees your value would be right: write sin(30°) or "
+                               "sin(30 deg).")
+    assert verdict("sin(30°)", half) == "correct"
+    assert verdict("sin(pi/6)", half) == "correct"
+    graded = assess("sin(30)", half, Policy(partial_credit=(("trig_radians", 0.5),)))
+    assert (graded.verdict, graded.credit) == ("partial", 0.5)
+
+
+def test_no_degrees_hint_where_the_problem_has_no_degrees_or_no_trig():
+    assert assess("sin(30)", ObjectiveResult("s", "scalar", "", 0.5,
+                                             plausible=frozenset())).diagnosis is None
+    assert assess("0.4", ObjectiveResult("s", "scalar", "", 0.5,
+                                         plausible=DEGREES)).diagnosis is None
+
+
+def test_vector_components_with_trig_in_radians_get_the_hint():
+    force = ObjectiveResult("F", "vector", "N", (4.330127, 2.5, 0.0), frame="N",
+                            plausible=DEGREES)
+    judged = assess("(5 cos(30), 5 sin(30)) N", force)
+    assert judged.diagnosis == "trig argument read in radians"
+    assert verdict("(5 cos(30°), 5 sin(30°)) N", force) == "correct"
+
+
+def test_a_planar_vector_in_magnitude_and_angle_form_is_judged_by_components():
+    velocity = ObjectiveResult("v", "vector", "m/s", (-3.0, 4.0, 0.0), frame="N")
+    judged = assess("5 m/s at 126.87°", velocity)
+    assert (judged.verdict, judged.read_back) == ("correct", "5 m/s at 126.87 deg")
+    assert verdict("5 m/s at 53.13°", velocity) == "incorrect"
+
+
+def test_brackets_keep_the_written_figures_of_a_number():
+    # STACK answertestfixtures: NumSigFigs 1, -(0.05) against -0.0499 is right
+    small = ObjectiveResult("x", "scalar", "", -0.0499)
+    assert verdict("-(0.05)", small, Policy(sig_figs=1, written_sig_figs=1)) == "correct"
+    acc = ObjectiveResult("a", "scalar", "m/s^2", -12.0)
+    assert verdict("(-12.00) m/s^2", acc, Policy(written_sig_figs=4)) == "correct"
+
+
+def test_an_exact_constant_times_a_unit_is_judged():
+    acc = ObjectiveResult("a", "scalar", "m/s^2", 1 / 3)
+    assert verdict("1/3*m/s^2", acc) == "correct"
+    assert verdict("(-9.81)m/s^2", ObjectiveResult("g", "scalar", "m/s^2", -9.81)) == "correct"
+
+
+def test_euler_number_in_an_expression_is_judged():
+    decay = ObjectiveResult("r", "symbolic", "1", expr="exp(-zeta*omega*t)",
+                            symbols=("zeta", "omega", "t"), symbol_units=("1", "rad/s", "s"))
+    assert verdict("e^(-ζωt)", decay) == "correct"
+    assert verdict("e^(-ζω)", decay) == "incorrect"

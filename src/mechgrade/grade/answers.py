@@ -16,17 +16,20 @@ what was expected and what was found.
 >>> from mechgrade.solve.result import ObjectiveResult
 >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
 >>> read_answer("98.5 ft/s²", acc)
-NumberAnswer(value=98.5, unit='ft / s ** 2', sig_figs=3, sig_figs_max=3, text='98.5')
+NumberAnswer(value=98.5, unit='ft / s ** 2', sig_figs=3, sig_figs_max=3, text='98.5', degrees=None)
 >>> read_answer("(-66, -40) ft/s^2", ObjectiveResult("v", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N")).components
 (-66.0, -40.0, 0.0)
 """
 
 from __future__ import annotations
 
+import math
 import re
 import unicodedata
 from dataclasses import dataclass
-from typing import Union
+from functools import lru_cache
+from types import MappingProxyType
+from typing import Mapping, TypeGuard, Union
 
 from ..errors import AnswerError, ExpressionError, UnitError
 from ..expressions import syntax
@@ -35,14 +38,16 @@ from ..expressions.excerpt import excerpt
 from ..solve.result import ObjectiveResult, in_frame
 from .results import EXAMPLE_NUMBER
 from ..spec.model import ObjectiveKind
-from ..units import MAX_UNIT_LENGTH, dimension, normalize_unit
+from ..spec.validate import is_angle_unit
+from ..units import MAX_UNIT_LENGTH, dimension, normalize_unit, to_si
 
 MAX_ANSWER_LENGTH = 2000
 """Longest answer text read at all (the expression reader has the same bound)."""
 
 MAX_COMPONENTS = 3
-MAX_UNIT_WORDS = 8
-"""Most space-separated words a unit after a constant expression may have (``kg m^2 / s``)."""
+SHORT = 16
+"""Longest part of an answer a reason repeats in full (in its readings); longer parts are
+quoted cut, so a reason stays short."""
 
 
 # ---------------------------------------------------------------------------- values
@@ -55,7 +60,9 @@ class NumberAnswer:
 
     ``sig_figs`` .. ``sig_figs_max`` is the range the written form allows: ``100`` has 1 to 3,
     ``1.00e2`` exactly 3 (the STACK convention). ``text`` is the number as written; a constant
-    expression such as ``pi/6`` has ``sig_figs=None`` (exact).
+    expression such as ``pi/6`` has ``sig_figs=None`` (exact). ``degrees`` is the value of
+    a constant such as ``sin(30)`` with its trig arguments read in degrees (a hint for the
+    judge; ``None`` without such an argument).
     """
 
     value: float
@@ -63,6 +70,7 @@ class NumberAnswer:
     sig_figs: int | None
     sig_figs_max: int | None
     text: str
+    degrees: float | None = None
 
     kind = "scalar"
 
@@ -76,7 +84,9 @@ class VectorAnswer:
     ``i, j, k`` or a bracketed tuple, meaning the objective's own frame).
 
     ``sig_figs`` holds the written range of each component, as for :class:`NumberAnswer`;
-    ``texts`` the components as written (``"0"`` for an omitted one).
+    ``texts`` the components as written (``"0"`` for an omitted one); ``degrees`` the
+    components with trig arguments read in degrees (as :class:`NumberAnswer`); ``written``
+    the answer as read when it was not given by components (``5 m/s at 126.87 deg``).
     """
 
     components: tuple[float, ...]  # always three
@@ -84,10 +94,14 @@ class VectorAnswer:
     frame: str | None
     sig_figs: tuple[tuple[int | None, int | None], ...]
     texts: tuple[str, ...]  # always three
+    degrees: tuple[float, ...] | None = None
+    written: str | None = None
 
     kind = "vector"
 
     def read_back(self) -> str:
+        if self.written:
+            return self.written
         return _with_unit(f"({', '.join(self.texts)})", self.unit) + in_frame(self.frame)
 
 
@@ -121,7 +135,7 @@ def _pretty_unit(unit: str) -> str:
 # ---------------------------------------------------------------------------- cleaning
 
 _DASHES = str.maketrans({"−": "-", "–": "-", "—": "-", "‐": "-", "﹣": "-", "－": "-",
-                         "×": "x", "⋅": "*", "·": "*", "∙": "*", "\u00a0": " ",
+                         "×": "*", "⋅": "*", "·": "*", "∙": "*", "\u00a0": " ",
                          "î": "i", "ĵ": "j", "⟨": "<", "⟩": ">"})
 _SUPERSCRIPT_RUN = re.compile(r"([⁺⁻]?)([⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
 _SUPER_DIGITS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
@@ -318,11 +332,22 @@ def _read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
             raise AnswerError("expected a value before the sense of rotation, found only "
                               f"{excerpt(sense.group('sense'))}")
         return _rotation(text, sense.group("sense").lower(), result)
+    polar = _polar_vector(text)
+    if polar is not None:
+        return polar
     if _looks_bracketed(text):
         return _bracketed_vector(text)
     vector = _unit_vector_sum(text)
     if vector is not None:
         return vector
+    comma = _DECIMAL_COMMA.match(text)
+    if comma and result.kind == ObjectiveKind.VECTOR:
+        whole, fraction = comma.group("whole"), comma.group("fraction")
+        if len(comma.group(0)) > SHORT:
+            whole, fraction = "12", "5"  # an example: the written number is quoted already
+        raise AnswerError(f"expected a vector in brackets or one number, found "
+                          f"{excerpt(comma.group(0))}: two components (write ({whole}, "
+                          f"{fraction})) or {whole}.{fraction} with a decimal comma?")
     return _scalar(text)
 
 
@@ -361,6 +386,13 @@ def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:
 
 
 def _scalar(text: str) -> NumberAnswer:
+    bracketed = _bracketed_number(text)
+    if bracketed is not None:
+        return bracketed
+    comma = _DECIMAL_COMMA.match(text)
+    point = _decimal_point(comma) if comma else None
+    if comma and point is not None:  # 12,5 m/s^2: read back as 12.5 m/s^2
+        return _scalar(point + text[comma.end():])
     m = _NUMBER.match(text)
     if not m:
         constant = _constant_with_unit(text)
@@ -377,6 +409,14 @@ def _scalar(text: str) -> NumberAnswer:
         raise AnswerError(f"expected one number, found more digits at {excerpt(text, after)} "
                           f"(write 1000, or group digits in threes: 1 000)")
     if rest.startswith(","):
+        grouped = _THOUSANDS.match(text)
+        if grouped and grouped.group("whole").strip("+- ") not in ("0", "") \
+                and len(grouped.group(0).strip()) <= SHORT:
+            number = grouped.group(0).strip()
+            plain, decimal = number.replace(",", ""), number.replace(",", ".")
+            raise AnswerError(f"expected one number, found {excerpt(number)}: {plain} with "
+                              f"thousands separators or {decimal} with a decimal comma? "
+                              f"Write {plain} or {decimal}")
         raise AnswerError(f"expected a number without thousands separators (1000, not 1,000) "
                           f"or a vector in brackets such as '(-66, -40)', found "
                           f"{excerpt(text, after)}")
@@ -401,6 +441,42 @@ def _scalar(text: str) -> NumberAnswer:
 
 
 _OPERATOR_OR_CONSTANT = re.compile(r"[*/^(]|\*\*|pi\b|(?:sqrt|sin|cos|tan|exp|log)\s*\(")
+# A decimal comma (12,5 or 1 000,25): unambiguous unless it could group thousands (1,250).
+_DECIMAL_COMMA = re.compile(r"(?P<whole>[+-]?\s*" + _INTEGER + r"),(?P<fraction>\d+)"
+                            r"(?P<exponent>[eE][+-]?\d+)?(?![\d,.])")
+_THOUSANDS = re.compile(r"(?P<whole>[+-]?\s*\d{1,3})(?:,\d{3})+(?:\.\d*)?(?![\d,])")
+_BRACKETED = re.compile(r"(?P<sign>[+-]?)\s*(?P<open>\(+)\s*(?P<number>" + _NUMBER_TEXT
+                        + r")\s*(?P<close>\)+)")
+
+
+def _decimal_point(comma: re.Match) -> str | None:
+    """The number of a decimal-comma match written with a point, or ``None`` where the comma
+    could as well group thousands (three digits after it, something other than 0 before)."""
+    whole, fraction = comma.group("whole"), comma.group("fraction")
+    if len(fraction) == 3 and whole.strip("+- ") != "0":
+        return None
+    return f"{whole}.{fraction}{comma.group('exponent') or ''}"
+
+
+def _bracketed_number(text: str) -> NumberAnswer | None:
+    """``(-12.00)``, ``-(0.05) m``, ``(-9.81)m/s^2``: one number in brackets keeps its written
+    figures (as STACK's NumSigFigs reads ``-(0.05)``); ``None`` when the text is more than
+    that (``(2)^2 m`` is a constant expression)."""
+    m = _BRACKETED.match(text)
+    if not m or len(m.group("open")) != len(m.group("close")):
+        return None
+    rest = text[m.end():].strip()
+    if rest.startswith("*") and not rest.startswith("**"):
+        rest = rest[1:]
+    try:
+        unit = _unit(rest)
+    except AnswerError:
+        return None
+    inner = " ".join(m.group("number").split()).replace("- ", "-").replace("+ ", "")
+    negative = (m.group("sign") == "-") != inner.startswith("-")
+    number_text = ("-" if negative else "") + inner.lstrip("+-")
+    lo, hi = significant_figures(number_text)
+    return NumberAnswer(number_value(number_text), unit, lo, hi, number_text)
 
 
 def _unit(text: str) -> str | None:
@@ -416,14 +492,22 @@ def _unit(text: str) -> str | None:
 
 
 def _constant_with_unit(text: str) -> NumberAnswer | None:
-    """``2*pi rad/s`` or ``sqrt(2)/2``: a constant expression, then an optional unit.
+    """``2*pi rad/s``, ``sqrt(2)/2``, ``1/3*m/s^2``, ``sqrt(2)*m``: a constant expression, then
+    an optional unit after a space, a ``*`` or a closing bracket.
 
-    A constant that overflows or is not a real number is refused, never skipped."""
-    words = text.split(" ")
-    for cut in range(len(words), max(0, len(words) - MAX_UNIT_WORDS) - 1, -1):
-        expression, rest = " ".join(words[:cut]), " ".join(words[cut:])
-        if len(rest) > MAX_UNIT_LENGTH + 2 or not cut:  # longer than any unit (+ brackets)
+    A constant that overflows or is not a real number is refused, never skipped; so is one
+    that could be read two ways (``1/2kg``), when no other cut reads."""
+    ambiguous = None
+    for cut in _cuts(text):
+        expression, rest = text[:cut].rstrip(), text[cut:]
+        if expression.endswith("*") and not expression.endswith("**"):
+            expression = expression[:-1].rstrip()
+        if not expression:
             break
+        try:  # the unit first: it is short, and most cuts leave no unit
+            unit = _unit(rest)
+        except AnswerError:
+            continue
         try:
             node = syntax.parse(expression, attributes=False)
             value = syntax.constant_value(node)
@@ -432,15 +516,40 @@ def _constant_with_unit(text: str) -> NumberAnswer | None:
                 raise AnswerError(exc.message) from None
             if exc.message == syntax.TOO_MANY_PARTS:
                 break  # a few words less will not make a constant expression of it
+            if exc.message.startswith(syntax.AMBIGUOUS) and ambiguous is None:
+                ambiguous = exc.message
             continue
         if value is None:
             continue
-        try:
-            unit = _unit(rest)
-        except AnswerError:
-            continue
-        return NumberAnswer(float(value), unit, None, None, syntax.to_text(node))
+        degrees = syntax.degree_reading(node)
+        return NumberAnswer(float(value), unit, None, None, syntax.to_text(node),
+                            None if degrees is None else degrees[0])
+    if ambiguous is not None:
+        raise AnswerError(ambiguous)
     return None
+
+
+MAX_CUTS = 12
+"""Most places a constant expression and its unit are tried apart at (the unit is short)."""
+
+
+def _cuts(text: str):
+    """Where a unit may start after a constant expression, the whole text first: after a
+    space, or a unit's first letter after ``*`` or ``)`` (``sqrt(2)*m``, ``(1+2)N``),
+    within a unit's length of the end."""
+    yield len(text)
+    count = 0
+    for cut in range(len(text) - 1, max(0, len(text) - MAX_UNIT_LENGTH - 2), -1):
+        before, first = text[cut - 1], text[cut]
+        if before == " " and first != " " or _UNIT_START.match(first) and (
+                before == ")" or before == "*" and text[cut - 2:cut] != "**"):
+            yield cut
+            count += 1
+            if count == MAX_CUTS:
+                return
+
+
+_UNIT_START = re.compile(r"[A-Za-z_\[°µΩ]")
 
 
 # ---------------------------------------------------------------------------- vectors
@@ -477,17 +586,55 @@ def _bracketed_vector(text: str) -> VectorAnswer:
     if not 2 <= len(parts) <= MAX_COMPONENTS or not all(parts):
         raise AnswerError(f"expected 2 or 3 {_VECTOR_EXAMPLE}, found {len(parts)} in "
                           f"{excerpt(text)}")
-    values, texts, figures = [], [], []
+    values, texts, figures, degrees = [], [], [], []
     for part in parts:
         number = _component(part)
         values.append(number.value)
         texts.append(number.text)
         figures.append((number.sig_figs, number.sig_figs_max))
+        degrees.append(number.value if number.degrees is None else number.degrees)
     while len(values) < 3:
         values.append(0.0)
         texts.append("0")
         figures.append((None, None))
-    return VectorAnswer(tuple(values), _unit(rest), None, tuple(figures), tuple(texts))
+        degrees.append(0.0)
+    return VectorAnswer(tuple(values), _unit(rest), None, tuple(figures), tuple(texts),
+                        tuple(degrees) if degrees != values else None)
+
+
+_POLAR = re.compile(r"\s+at\s+|\s*[@∠]\s*")
+
+
+def _polar_vector(text: str) -> VectorAnswer | None:
+    """``5 m/s at 126.87°`` (also ``@``, ``∠``): a planar vector by its magnitude and its
+    angle counter-clockwise from the x axis of the objective's frame; the angle's unit is
+    required (degrees or radians?). ``None`` when the text has no magnitude before ``at``."""
+    at = _POLAR.search(text)
+    if at is None:
+        return None
+    magnitude, angle_text = text[:at.start()].strip(), text[at.end():].strip()
+    try:
+        size = _scalar(magnitude)
+    except AnswerError:
+        return None  # not this form: the text is read (and refused) as any other
+    try:
+        angle = _scalar(angle_text) if angle_text else None
+    except AnswerError:
+        angle = None
+    if angle is None or angle.unit is None or not is_angle_unit(angle.unit):
+        raise AnswerError(f"expected an angle with its unit after {at.group(0).strip()!r}, "
+                          f"such as '126.87°' or '2.214 rad', found {excerpt(angle_text)} "
+                          f"(the magnitude's unit goes before it)")
+    theta = to_si(angle.value, angle.unit)
+    x, y = size.value * math.cos(theta), size.value * math.sin(theta)
+    figures = (size.sig_figs, size.sig_figs_max)
+    shown = " at ".join((_with_unit(size.text, size.unit), _with_unit(angle.text, angle.unit)))
+    return VectorAnswer((x, y, 0.0), size.unit, None, (figures, figures, (None, None)),
+                        (_number_text(x), _number_text(y), "0"), written=shown)
+
+
+def _number_text(value: float) -> str:
+    return f"{value:.6g}"
 
 
 def _component(text: str) -> NumberAnswer:
@@ -571,7 +718,8 @@ def _join(parts: list[str]) -> str:
 _DERIVATIVE_SUFFIXES = ((2, ("ddot", "_ddot", "dd", "_dd")), (1, ("dot", "_dot", "d", "_d")))
 
 
-def symbol_aliases(symbols: tuple[str, ...]) -> dict[object, str]:
+@lru_cache(maxsize=256)
+def symbol_aliases(symbols: tuple[str, ...]) -> Mapping[object, str]:
     """Other spellings of the declared symbols, keyed by name or by ``(base, order)``.
 
     A symbol ``thetad`` is the first derivative of ``theta``: students may write ``θ̇``,
@@ -593,14 +741,21 @@ def symbol_aliases(symbols: tuple[str, ...]) -> dict[object, str]:
             break
     for symbol in symbols:
         aliases[symbol] = symbol
-    return aliases
+    return MappingProxyType(aliases)  # one per objective, shared: read-only
 
 
 def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     """Read an expression and rename its names to the declared ``symbols``.
 
+    An undeclared ``e`` (or ``E``) is Euler's number, as in PrairieLearn (``e^x`` is read
+    back as ``exp(x)``); a name that is not declared but is declared names written together
+    is their product (``gh`` for ``g h``, as WeBWorK reads it), refused when it splits more
+    than one way.
+
     >>> read_expression("2L omega^2", ("L", "omega")).text
     '2*L*omega**2'
+    >>> read_expression("e^(-t/tau) sqrt(2gh)", ("t", "tau", "g", "h")).text
+    'exp(-t/tau)*sqrt(2*g*h)'
     """
     exponent = _E_NOTATION.search(text)
     if exponent and exponent.group("e") in symbols:
@@ -617,8 +772,21 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     mapped = _rename(node, aliases, unknown)
     if unknown:
         raise AnswerError(f"expected an expression in {_names(symbols) or 'numbers only'}, "
-                          f"found the unknown name {excerpt(unknown[0])}")
+                          f"found the unknown name {excerpt(unknown[0])}"
+                          f"{_glued_function(unknown[0], aliases)}")
     return ExpressionAnswer(mapped, _spaced(mapped))
+
+
+def _glued_function(name: str, aliases: Mapping[object, str]) -> str:
+    """A hint for a name that is a function's glued to a number or declared names
+    (``sqrt2gh``, ``sinx``): its argument goes in brackets."""
+    function = max((f for f in syntax.MATH_FUNCTIONS if name.startswith(f) and f != name),
+                   key=len, default=None)
+    rest = name[len(function):] if function else ""
+    if not rest or len(name) > SHORT or not (rest[0].isdigit() or rest in aliases
+                                             or _split(rest, aliases)):
+        return ""
+    return f" (a function's argument goes in brackets: {function}({rest}))"
 
 
 def _names(symbols: tuple[str, ...], most: int = 60) -> str:
@@ -641,15 +809,59 @@ _BINARY_SIGN = re.compile(r"(?<=[\w)])([+-])")
 _EXPONENT_END = re.compile(r"(?<![A-Za-z_\d.])\d+(?:\.\d*)?e$")
 
 
-def _rename(node: Node, aliases: dict[object, str], unknown: list[str]) -> Node:
+MAX_SPLIT = 24
+"""Longest undeclared name tried as declared names written together."""
+
+
+def _split(name: str, aliases: Mapping[object, str]) -> list[Name] | None:
+    """``gh`` as ``g``, ``h`` when ``g`` and ``h`` are declared (or ``pi``): the only way to
+    write ``name`` with declared names; ``None`` when there is none. Greek letters' names
+    are never split (``mu`` is not ``m*u``)."""
+    if len(name) > MAX_SPLIT or name in syntax.GREEK.values():
+        return None
+    pieces = [k for k in aliases if isinstance(k, str)] + ["pi"]
+    # ways[i]: up to two ways to write name[i:] with declared names
+    ways: list[list[list[str]]] = [[] for _ in name] + [[[]]]
+    for i in range(len(name) - 1, -1, -1):
+        for piece in pieces:
+            if name.startswith(piece, i):
+                ways[i] += [[piece] + rest for rest in ways[i + len(piece)]][:2 - len(ways[i])]
+    if not ways[0]:
+        return None
+    if len(ways[0]) > 1:
+        readings = [" ".join(way) for way in ways[0]]
+        said = (f": {readings[0]} or {readings[1]}?" if len(name) <= SHORT
+                else " in more than one way")
+        raise AnswerError(f"expected declared names, found {excerpt(name)}{said} (write "
+                          f"spaces or * between them)")
+    return [Name(aliases.get(piece, piece)) for piece in ways[0][0]]
+
+
+def _product(factors: list[Node], first: Node | None = None) -> Node:
+    """``first * factors[0] * factors[1] ...``, nested to the left as the reader nests it."""
+    out = first
+    for factor in factors:
+        out = factor if out is None else Bin("*", out, factor)
+    assert out is not None  # factors is never empty
+    return out
+
+
+def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> Node:
+    """``node`` in the declared names (a part unchanged is kept as it is); an undeclared
+    ``e`` is Euler's number (``e^x`` as ``exp(x)``, a lone ``e`` as ``exp(1)``)."""
     if isinstance(node, Name):
         if node.id == "pi":
             return node
         target = aliases.get(node.id)
-        if target is None:
-            unknown.append(node.id)
-            return node
-        return Name(target)
+        if target is not None:
+            return node if target == node.id else Name(target)
+        if node.id in _EULER:
+            return _EXP_1
+        split = _split(node.id, aliases)
+        if split is not None:
+            return _product(list(split))
+        unknown.append(node.id)
+        return node
     if isinstance(node, Prime):
         target = aliases.get((node.id, node.order))
         if target is None:
@@ -657,13 +869,44 @@ def _rename(node: Node, aliases: dict[object, str], unknown: list[str]) -> Node:
             return node
         return Name(target)
     if isinstance(node, Unary):
-        return Unary(node.op, _rename(node.operand, aliases, unknown))
+        operand = _rename(node.operand, aliases, unknown)
+        return node if operand is node.operand else Unary(node.op, operand)
     if isinstance(node, Bin):
-        return Bin(node.op, _rename(node.left, aliases, unknown),
-                   _rename(node.right, aliases, unknown))
+        if node.op == "**" and _euler(node.left, aliases):
+            return Call("exp", (_rename(node.right, aliases, unknown),))
+        if node.op == "**" and _splits(node.left, aliases):
+            # pir^2 is pi*r^2: the power takes the last name, as written
+            split = _split(node.left.id, aliases) or []
+            factors: list[Node] = [*split[:-1], Bin("**", split[-1],
+                                                    _rename(node.right, aliases, unknown))]
+            return _product(factors)
+        left = _rename(node.left, aliases, unknown)
+        if node.op == "*" and _splits(node.right, aliases):
+            split = _split(node.right.id, aliases)  # 2gh: 2*g*h, as if spaced
+            if split is not None:
+                return _product(list(split), left)
+        right = _rename(node.right, aliases, unknown)
+        return node if left is node.left and right is node.right else Bin(node.op, left, right)
     if isinstance(node, Call):
-        return Call(node.func, tuple(_rename(a, aliases, unknown) for a in node.args))
+        args = tuple(_rename(a, aliases, unknown) for a in node.args)
+        return node if all(a is b for a, b in zip(args, node.args)) else Call(node.func, args)
     if isinstance(node, Num):
         return node
     unknown.append(syntax.to_text(node))  # pragma: no cover - attributes are refused above
     return node
+
+
+_EULER = ("e", "E")
+_EXP_1 = Call("exp", (Num("1"),))
+
+
+def _splits(node: Node, aliases: Mapping[object, str]) -> TypeGuard[Name]:
+    """Whether ``node`` is a name that is not declared (nor ``pi``, nor Euler's ``e``) but
+    may be declared names written together."""
+    return isinstance(node, Name) and node.id not in aliases and node.id != "pi" \
+        and not _euler(node, aliases) and _split(node.id, aliases) is not None
+
+
+def _euler(node: Node, aliases: Mapping[object, str]) -> bool:
+    """Whether ``node`` is Euler's number: an ``e`` (or ``E``) not declared."""
+    return isinstance(node, Name) and node.id in _EULER and node.id not in aliases

@@ -36,7 +36,7 @@ from ..tolerance import agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
-from .diagnose import CODES, G_FT, G_SI, Diagnosis, diagnose
+from .diagnose import CODES, G_FT, G_SI, Diagnosis, diagnose, trig_in_radians
 
 MISSING_UNIT_CHOICES = ("reject", "assume")
 
@@ -128,7 +128,9 @@ def missing() -> Assessment:
 
 
 def unreadable(reason: str) -> Assessment:
-    return Assessment("unreadable", 0.0, None, f"Could not read the answer: {reason}.", None)
+    end = "" if reason.endswith("?") else "."  # a reason may end by asking which reading
+    return Assessment("unreadable", 0.0, None, f"Could not read the answer: {reason}{end}",
+                      None)
 
 
 def not_evaluated(reason: str, read_back: str | None = None) -> Assessment:
@@ -327,6 +329,12 @@ def _judge_number(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
     if ok:
         return _finish_correct(units, [(answer.sig_figs, answer.sig_figs_max)], policy,
                                read_back, "")
+    if answer.degrees is not None:
+        in_degrees = from_si(to_si(answer.degrees, units.unit), result.unit)
+        found = _trig_in_radians(answer.text, result) if within(
+            in_degrees, reference, rel, abs_) else None
+        if found is not None:
+            return _wrong(found, policy, units, "", read_back)
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(np.array([student]), np.array([reference]), close,
                      mistakes=_numeric_mistakes(result.mistakes, scalar=True),
@@ -334,6 +342,14 @@ def _judge_number(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
                      plausible=result.plausible)
     return _wrong(found, policy, units,
                   f"Not {_describe_tolerance(result, policy)}.", read_back)
+
+
+def _trig_in_radians(text: str, result: ObjectiveResult) -> Diagnosis | None:
+    """The degrees hint (:func:`~mechgrade.grade.diagnose.trig_in_radians`) for a constant
+    written ``text`` (``5*sin(30)``), naming its first trig call of a plain number."""
+    reading = syntax.degree_reading(syntax.parse(text, attributes=False))
+    return None if reading is None else trig_in_radians(syntax.to_text(reading[1]),
+                                                        result.plausible)
 
 
 def _close(rel: float, abs_: float):
@@ -454,6 +470,15 @@ def _judge_vector(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
     if not wrong:
         figures = [f for f, v in zip(answer.sig_figs, answer.components) if v != 0]
         return _finish_correct(units, figures, policy, read_back, "")
+    if answer.degrees is not None:
+        in_degrees = np.array(answer.degrees) * factor
+        if all(within(in_degrees[i], reference[i], rel, abs_, scale=float(np.linalg.norm(
+                reference))) for i in range(3)):
+            trig = next(t for t, v, d in zip(answer.texts, answer.components, answer.degrees)
+                        if v != d)
+            found = _trig_in_radians(trig, result)
+            if found is not None:
+                return _wrong(found, policy, units, "", read_back)
     close = _close(max(rel, 1e-3), abs_)
     found = diagnose(student, reference, close, kind=ObjectiveKind.VECTOR,
                      mistakes=_numeric_mistakes(result.mistakes, scalar=False),
@@ -519,7 +544,7 @@ def _signed_by_reference(node: Node) -> set[str]:
 def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
     """How to sample each symbol: ``angle``, ``signed`` (what the solver says may be negative,
     rates, and symbols the reference treats as signed) or ``positive``."""
-    aliases = symbol_aliases(result.symbols)
+    aliases = symbol_aliases(tuple(result.symbols))
     derivatives = {target for key, target in aliases.items() if isinstance(key, tuple)}
     signed = _signed_by_reference(_reference_tree(result.expr, tuple(result.symbols))) \
         if result.expr else set()

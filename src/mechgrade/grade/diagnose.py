@@ -86,7 +86,7 @@ FACTOR_CODES = tuple(dict.fromkeys(code for code, *_ in _FACTORS))
 VECTOR_CODES = ("swapped", "direction", "magnitude")
 GENERATED_CODES = MODEL_CODES + DYNAMICS_CODES + GIVEN_CODES
 CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (
-    "dimension", "g_number", "frame", "missing_unit", "sig_figs", "shape")
+    "dimension", "g_number", "frame", "missing_unit", "sig_figs", "shape", "trig_radians")
 """Every diagnosis code (keys for :attr:`mechgrade.grade.compare.Policy.partial_credit`)."""
 
 _AXES = "xyz"
@@ -138,6 +138,23 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     if kind == "vector":
         return _vector(student, reference, close)
     return None
+
+
+def trig_in_radians(call: str, plausible: frozenset[str] | None) -> Diagnosis | None:
+    """The hint for an answer such as ``sin(30)`` that is wrong as read (its argument in
+    radians, as every calculator language reads it) and right with the argument in degrees:
+    given only where the model has angles in degrees (``plausible``, as ``deg_as_rad``).
+
+    >>> trig_in_radians("sin(30)", None).message
+    'sin(30) was read with its argument in radians; read in degrees your value would be right: write sin(30°) or sin(30 deg).'
+    """
+    if plausible is not None and "deg_as_rad" not in plausible:
+        return None
+    inside = call[call.index("(") + 1:-1]
+    return Diagnosis("trig_radians", "trig argument read in radians",
+                     f"{call} was read with its argument in radians; read in degrees your "
+                     f"value would be right: write {call[:call.index('(')]}({inside}°) or "
+                     f"{call[:call.index('(')]}({inside} deg).")
 
 
 MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad")
