@@ -120,13 +120,13 @@ def test_a_handout_for_a_smaller_roster_removes_and_lists_the_sheets_of_the_othe
     result = run("handout", HW2 / "assignment.yaml", "--roster", roster, "--out", out)
     assert result.exit_code == 0, result.output
     assert result.output.splitlines() == [
-        f"Wrote 2 sheets and givens.csv to {out}/ (5 files)",
+        f"Wrote 2 sheets, 2 answer files and givens.csv to {out}/ (7 files)",
         "Removed from the previous run (not written by this one):",
-        "  20003.html", "  20003.md", "  20004.html", "  20004.md",
+        "  20003.html", "  20003.md", "  20003.txt", "  20004.html", "  20004.md", "  20004.txt",
         "Kept (not written by mechgrade):", "  instructions.txt"]
     assert sorted(p.name for p in out.iterdir()) == [
-        "20001.html", "20001.md", "20002.html", "20002.md", "givens.csv", "instructions.txt",
-        "manifest.json"]
+        "20001.html", "20001.md", "20001.txt", "20002.html", "20002.md", "20002.txt",
+        "givens.csv", "instructions.txt", "manifest.json"]
     manifest = json.loads((out / "manifest.json").read_text(encoding="utf-8"))
     assert manifest["command"] == "mechgrade handout"
     roles = [i["role"] for i in manifest["inputs"]]

@@ -44,8 +44,10 @@ from .output import _render, _template, _where, markdown_escape, template_enviro
 
 HANDOUT_TEMPLATES = ("handout.html.j2", "handout.md.j2")
 
-HANDOUT_OUTPUTS = OutputKind("mechgrade handout", "givens.csv", ("*.html", "*.md", "*.txt", "givens.csv"))
-"""What ``mechgrade handout`` writes into ``--out`` (see :mod:`mechgrade.outfolder`)."""
+HANDOUT_OUTPUTS = OutputKind("mechgrade handout", "givens.csv", ("*.html", "*.md", "givens.csv"))
+"""What ``mechgrade handout`` writes into ``--out`` (see :mod:`mechgrade.outfolder`). The
+patterns read only folders written before manifests, which held no answer files: a ``.txt``
+beside such sheets is the instructor's."""
 
 
 def write_handouts(sheets: tuple[Sheet, ...], out_dir: str | Path,
