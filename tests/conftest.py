@@ -39,6 +39,11 @@ def heavy_problems() -> frozenset[str]:
     return frozenset(line for line in lines if line)
 
 
+@pytest.fixture
+def heavy_problem_names() -> frozenset[str]:
+    return heavy_problems()
+
+
 def pytest_collection_modifyitems(items):
     """A test parametrized by a heavy problem (its path, or its name as the tables give it)
     is marked ``slow``: one list decides it for every library-wide test."""

@@ -198,6 +198,7 @@ def test_variants_of_a_problem_with_the_cache_off_are_not_kept(disk, monkeypatch
     assert not disk.exists()
 
 
+@pytest.mark.slow  # two whole-class gradings of hw3
 def test_a_second_grading_run_derives_nothing_and_writes_the_same_results(twice, tmp_path):
     # sympy itself is imported all the same: the sandboxes judging symbolic answers load it
     script = (
