@@ -64,8 +64,8 @@ CASES = [
     ("reaction without direction", PENDULUM, ", directions: [N.x, N.y]}", "}",
      "expected one of the fields direction, directions, found none of them"),
     ("yaml 'on' key", PENDULUM, "{body: rod, at: O", "{on: rod, at: O",
-     "loads.reactions.R_O.True: expected only the fields body, bodies, at, direction, "
-     "directions, acts, found 'True'"),
+     "loads.reactions.R_O.True: expected only the fields kind, surface, body, bodies, at, "
+     "direction, directions, acts, found 'True'"),
     ("friction normal not a reaction", INCLINE, "normal: N_P", "normal: block",
      "friction 'F_P': 'normal' must name a reaction with one direction"),
     ("friction coefficient with units", INCLINE, "mu: mu_k", "mu: g",

@@ -35,6 +35,7 @@ from .bodies import explicit_inertia, parallel_axis, shape_inertia
 from .build import Model, build
 from .interpret import Interpreter
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
+from .loads import AppliedLoad, PhysicalBound, check_loads, diagram, physical_bounds
 from .symbols import identically_zero
 
 
@@ -88,6 +89,8 @@ class Kinetics:
     requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
     impact: bool = False
     design: sp.Expr | None = None
+    diagram: tuple[AppliedLoad, ...] = ()  # every body's free-body diagram (mechanics.loads)
+    physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -459,6 +462,8 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
             plain = sp.expand(model.plain(expr))
             if not identically_zero(plain):
                 balances.append(Equation(label, plain, b.where))
+    check_loads(problem, model, loads, k.qd if impact else k.qdd, balances,
+                k.velocity if impact else k.acceleration, impact)
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
@@ -480,7 +485,9 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                                           if not isinstance(x, StaticFriction)),
                     workless=_workless(problem, model, language, reactions, labels),
                     start=start, until=until, requirements=tuple(requirements), impact=impact,
-                    design=_difference(d.design.so_that, model, language) if d.design else None)
+                    design=_difference(d.design.so_that, model, language) if d.design else None,
+                    diagram=diagram(problem, model, loads),
+                    physical=physical_bounds(problem, model, reactions, impact))
 
 
 def _reaction_symbols(d: Dynamics) -> tuple[dict[str, tuple[sp.Symbol, ...]], list[str]]:
