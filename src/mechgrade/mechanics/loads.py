@@ -376,7 +376,7 @@ def _check_massless(problem: Problem, model: Model, rates, balances, constraints
         moved = [p.name for p in problem.points
                  if any(c.has(q) for c in model.positions[p.name].to_matrix(N))]
         centres = {part.at for b in d.bodies for part in b.parts}
-        ends = sorted({x.name for x in (*d.springs, *d.dampers) for p in x.between if p in moved})
+        ends = sorted({x.name for x in _ends(d) for p in x.between if p in moved})
         turned = [f.name for f in problem.frames if f.name in model.frames and any(
             c.has(q) for c in model.frames[f.name].ang_vel_in(N).to_matrix(N))]
         frames = {b.frame for b in d.bodies}
@@ -398,6 +398,11 @@ def _check_massless(problem: Problem, model: Model, rates, balances, constraints
         raise SolveError(f"coordinate '{coordinate.name}' moves no mass: {coordinate.name}'' "
                          "appears in no body's momentum balance, so the balances cannot "
                          f"determine it; {'; '.join(cause)}", where=coordinate.where)
+
+
+def _ends(d: Dynamics) -> tuple[Spring | Damper, ...]:
+    """The loads with two ends: springs and dampers."""
+    return (*d.springs, *d.dampers)
 
 
 def _check_down(problem: Problem, model: Model) -> None:
@@ -452,7 +457,7 @@ def _attachments(d: Dynamics) -> list[tuple[str, str, str, Location]]:
     for r in d.reactions:
         if r.kind == LoadKind.PIN:
             out += [(a.on, a.at, f"the pin '{r.name}'", r.where) for a in r.acts]
-    for s in (*d.springs, *d.dampers):
+    for s in _ends(d):
         what = f"{'spring' if isinstance(s, Spring) else 'damper'} '{s.name}'"
         out += [(body, point, f"an end of {what}", s.where)
                 for point, body in zip(s.between, s.on)]
@@ -499,8 +504,6 @@ def _not_a_point(problem: Problem, model: Model, body: Body, point: str, what: s
                       "the order of the points)"
     if body.frame is None:
         return text
-    turning = [f.name for f in problem.frames if f.name != frame
-               and _fixed_in(relative, model.frames[f.name], model)]
     return text + _turning_hint(problem, model, body, point, relative)
 
 
