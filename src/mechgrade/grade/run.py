@@ -289,7 +289,16 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
-                       tuple(students), submissions.skipped, submissions.notes, tuple(faults))
+                       tuple(students), submissions.skipped,
+                       (*submissions.notes, *author_warnings(plan)), tuple(faults))
+
+
+def author_warnings(plan: Plan) -> tuple[str, ...]:
+    """The warnings of the assignment's problems and of solving them (a magnitude implausible
+    for its unit system, a material point meant): printed by ``grade`` as by ``check``."""
+    found = (str(w) for p, s in zip(plan.problems, plan.solutions)
+             for w in (*p.warnings, *s.warnings))
+    return tuple(dict.fromkeys(found))
 
 
 # ---------------------------------------------------------------------------- variants

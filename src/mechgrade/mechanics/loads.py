@@ -261,6 +261,8 @@ def physical_bounds(problem: Problem, model: Model, reactions: dict, impact: boo
     coefficient >= 0, each restitution in [0, 1], each one-sided normal force pushing and
     each string pulling."""
     d: Dynamics = problem.dynamics  # type: ignore[assignment]
+    if d.mistaken:
+        return ()
     lang, plain = model.language, model.plain
     out = []
     for b in d.bodies:
@@ -300,7 +302,10 @@ def _value_where(problem: Problem, expr, fallback: Location) -> Location:
 
 def check_loads(problem: Problem, model: Model, loads: "_Loads", rates, balances,
                 constraints, impact: bool) -> None:
-    """Refuse a model whose loads contradict what they are (see the module's doc)."""
+    """Refuse a model whose loads contradict what they are (see the module's doc); a
+    student's mistaken model (``Dynamics.mistaken``) is taken as it is."""
+    if problem.dynamics.mistaken:  # type: ignore[union-attr]
+        return
     _check_massless(problem, model, rates, balances, constraints, impact)
     _check_down(problem, model)
     _check_weight_forces(problem, model)

@@ -395,6 +395,7 @@ class Dynamics:
     design: Design | None = None
     impulses: tuple[KnownImpulse, ...] = ()
     down: Expr | None = None  # the problem's "down" (loads.down), a direction
+    mistaken: bool = False  # a student's mistaken model: its loads are not checked
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]
