@@ -150,12 +150,12 @@ def _masses(problem: Problem) -> list[AuthorWarning]:
     d = problem.dynamics
     assert d is not None
     masses = []
-    for b in d.bodies:
-        if len(b.parts) != 1 or _density(problem, b.parts[0]) is not None:
+    for body in d.bodies:
+        if len(body.parts) != 1 or _density(problem, body.parts[0]) is not None:
             continue  # a composite, or a shape whose size vouches for (or against) its mass
-        given = _given(problem, b.parts[0].mass)
+        given = _given(problem, body.parts[0].mass)
         if given is not None and given.unit and given.si > 0:
-            masses.append((b.name, given))
+            masses.append((body.name, given))
     out: list[AuthorWarning] = []
     for i, (a, ga) in enumerate(masses):
         for b, gb in masses[i + 1:]:
