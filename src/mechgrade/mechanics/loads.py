@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 import sympy as sp
 from sympy.physics.vector import ReferenceFrame, Vector
 
-from ..errors import Location, SolveError
+from ..errors import Location, SolveError, UnderdeterminedError
 from ..expressions.syntax import Call, Name, Prime, to_text
 from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Force, Impulse, KineticFriction,
                              LoadKind, Reaction, Restitution, Rod, Spring, StaticFriction)
@@ -333,7 +333,7 @@ def _givens(problem: Problem, model: Model) -> dict:
 
 
 def _number(expr, values: dict) -> float | None:
-    value = sp.sympify(expr).xreplace(values)
+    value = sp.sympify(sp.sympify(expr).xreplace(values))
     if value.free_symbols:
         return None
     try:
@@ -399,10 +399,11 @@ def _check_massless(problem: Problem, model: Model, rates, balances, constraints
                              f"if a body turns with it, write frame: {frame} for that body")
         if not cause:
             cause.append(f"give a body moved by {coordinate.name} its mass and inertia, or "
-                         f"give {coordinate.name}'' (a prescribed motion)")
-        raise SolveError(f"coordinate '{coordinate.name}' moves no mass: {coordinate.name}'' "
-                         "appears in no body's momentum balance, so the balances cannot "
-                         f"determine it; {'; '.join(cause)}", where=coordinate.where)
+                         f"give {coordinate.name}{mark} (a prescribed motion)")
+        raise UnderdeterminedError(
+            f"the model is under-constrained: coordinate '{coordinate.name}' moves no mass: "
+            f"{coordinate.name}{mark} appears in no body's momentum balance, so the balances do "
+            f"not determine {coordinate.name}{mark}; {'; '.join(cause)}", where=coordinate.where)
 
 
 def _ends(d: Dynamics) -> tuple[Spring | Damper, ...]:
