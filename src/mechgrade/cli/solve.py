@@ -84,3 +84,7 @@ def _print_text(problem, solution, failed, steps: bool) -> None:
             click.echo(f"  {s}")
     for warning in problem.warnings + solution.warnings:
         click.echo(str(warning))
+    from ..check import tolerance_faults  # check refuses these; solve says so
+
+    for fault in tolerance_faults(problem, solution):
+        click.echo(fault)

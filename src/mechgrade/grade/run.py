@@ -296,8 +296,10 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
 def author_warnings(plan: Plan) -> tuple[str, ...]:
     """The warnings of the assignment's problems and of solving them (a magnitude implausible
     for its unit system, a material point meant): printed by ``grade`` as by ``check``."""
-    found = (str(w) for p, s in zip(plan.problems, plan.solutions)
-             for w in (*p.warnings, *s.warnings))
+    from ..check import tolerance_faults  # grading never applies them: it says so
+
+    found = [str(w) for p, s in zip(plan.problems, plan.solutions)
+             for w in (*p.warnings, *s.warnings, *tolerance_faults(p, s))]
     return tuple(dict.fromkeys(found))
 
 

@@ -207,6 +207,7 @@ class PhysicalBound:
     point: str = ""
     unit: str = ""
     where: Location = Location()
+    direction: str = ""  # a reaction's direction as written
 
     def holds(self, value: float) -> bool:
         """Whether ``value`` keeps the bound (with room for rounding).
@@ -225,7 +226,7 @@ class PhysicalBound:
 
         >>> b = PhysicalBound(Bounded.RESTITUTION, "e", sp.Integer(0), 0.0, 1.0, point="A")
         >>> b.message(50.0)
-        'the coefficient of restitution at A is 50, outside [0, 1] (0 plastic, 1 elastic); a percentage? write 0.5'
+        'the coefficient of restitution at A is 50; expected a value from 0 (plastic) to 1 (elastic); a percentage? write 0.5'
         """
         shown = f"{value:.4g}"
         if self.what == Bounded.MASS:
@@ -237,8 +238,8 @@ class PhysicalBound:
                     ">= 0 (the force opposes the slip by its direction, never by the sign of "
                     "mu)")
         if self.what == Bounded.RESTITUTION:
-            text = (f"the coefficient of restitution at {self.point} is {shown}, outside "
-                    "[0, 1] (0 plastic, 1 elastic)")
+            text = (f"the coefficient of restitution at {self.point} is {shown}; expected a "
+                    "value from 0 (plastic) to 1 (elastic)")
             if 2 <= value <= 100:
                 text += f"; a percentage? write {value / 100:g}"
             return text
@@ -246,7 +247,8 @@ class PhysicalBound:
             return (f"contact lost at {self.point}: the normal force '{self.name}' would be "
                     f"{shown} {self.unit} (pulling); a surface only pushes, so the body has "
                     "left it before this instant: ask for an instant before it lifts off (an "
-                    f"integration can stop there: until: {self.name} = 0), or, if "
+                    f"integration can stop there: until: dot(force({self.name}), "
+                    f"{self.direction}) = 0), or, if "
                     f"'{self.name}' pushes the other way, give its direction reversed "
                     "(a normal force's direction is the way the surface pushes the body)")
         return (f"the string '{self.name}' would push: its tension is {shown} {self.unit} at "
@@ -284,7 +286,8 @@ def physical_bounds(problem: Problem, model: Model, reactions: dict, impact: boo
             continue
         what = Bounded.PUSHING if r.kind == LoadKind.NORMAL else Bounded.PULLING
         out.append(PhysicalBound(what, r.name, reactions[r.name][0], 0.0, None, given=False,
-                                 point=r.acts[0].at, unit=unit, where=r.where))
+                                 point=r.acts[0].at, unit=unit, where=r.where,
+                                 direction=r.directions[0].text))
     return tuple(out)
 
 
