@@ -161,7 +161,10 @@ class _Loads:
             self.forces[s.name] = [(s.on[0], s.between[0], pull), (s.on[1], s.between[1], -pull)]
         for r in d.reactions:
             vector = self.reaction_vector(r.name, r.directions)
-            self.forces[r.name] = [(a.on, a.at, a.sign * vector) for a in r.acts]
+            self.forces[r.name] = [
+                (a.on, a.at, a.sign * (vector if a.direction is None else
+                                       self.reaction_vector(r.name, (a.direction,))))
+                for a in r.acts]
         bodies = {b.name for b in d.bodies}
         for contact in d.friction:
             if isinstance(contact, StaticFriction):

@@ -355,7 +355,7 @@ def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutati
                     continue
                 weight = _weight(d.body(other), d.gravity)
                 force = Force(r.name, act.on, act.at, _expr(
-                    f"{act.sign}*({weight.text})*({r.directions[0].text})"), r.where)
+                    f"{act.sign}*({weight.text})*({r.direction_at(act).text})"), r.where)
                 changed = replace(d, bodies=(d.body(act.on),), forces=d.forces + (force,),
                                   reactions=tuple(x for x in d.reactions if x is not r))
                 yield DynamicsMutation(

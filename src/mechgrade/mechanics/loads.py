@@ -126,9 +126,11 @@ def _applied(item, kind: LoadKind, i: int, body: str, point: str, F: Vector, loa
     if isinstance(item, (Reaction, StaticFriction)):
         sign = item.acts[i].sign if isinstance(item, Reaction) else (1 if i == 0 else -1)
         symbols = loads.reactions[item.name]
+        written = (item.direction_at(item.acts[i]),) if isinstance(item, Reaction) and \
+            item.acts[i].direction is not None else item.directions
         directions = tuple(sign * plain(lang.vector(e).normalize().to_matrix(N))
-                           for e in item.directions)
-        texts = tuple(e.text for e in item.directions)
+                           for e in written)
+        texts = tuple(e.text for e in written)
         magnitude = symbols[0] if len(symbols) == 1 else None
         surface, normal = None, None
         if kind in (LoadKind.NORMAL, LoadKind.CONTACT) and isinstance(item, Reaction):

@@ -232,11 +232,14 @@ class Damper:
 
 @dataclass(frozen=True)
 class Act:
-    """Where an unknown force acts: on body ``on`` at point ``at``, with ``sign`` +1 or -1."""
+    """Where an unknown force acts: on body ``on`` at point ``at``, with ``sign`` +1 or -1;
+    ``direction``, when set, is this end's own (a cord's segment ending here pulls along its
+    line, over ideal pulleys with the same tension as the others)."""
 
     on: str
     at: str
     sign: int = 1
+    direction: Expr | None = None
 
 
 @dataclass(frozen=True)
@@ -255,6 +258,10 @@ class Reaction:
     where: Location = field(default_factory=Location, compare=False)
     kind: LoadKind = LoadKind.REACTION
     surface: str | None = None
+
+    def direction_at(self, act: Act) -> Expr:
+        """The direction of a one-direction reaction at one of its ends."""
+        return act.direction if act.direction is not None else self.directions[0]
 
     @property
     def contact_surface(self) -> str:
@@ -617,7 +624,8 @@ def _directions(spec: dict, expr, *path) -> tuple[Expr, ...]:
 def _reaction(name: str, spec: dict, expr, where) -> Reaction:
     path = ("loads", "reactions", name)
     if "acts" in spec:
-        acts = tuple(Act(a["body"], a["at"]) for a in spec["acts"])
+        acts = tuple(Act(a["body"], a["at"], 1, expr(a["direction"], *path, "acts", i, "direction")
+                         if "direction" in a else None) for i, a in enumerate(spec["acts"]))
     elif "bodies" in spec:
         # a joint: equal and opposite on the two bodies it connects
         acts = (Act(spec["bodies"][0], spec["at"], 1), Act(spec["bodies"][1], spec["at"], -1))
@@ -829,6 +837,14 @@ class _Checker:
             for act in r.acts:
                 self.body(act.on, r.where, ground_ok=True)
                 self.point(act.at, r.where, "at")
+                if act.direction is None:
+                    continue
+                if len(r.directions) != 1:
+                    raise SpecError(f"'{r.name}': an end with its own direction belongs to a "
+                                    "cord (one unknown tension): expected one 'direction', "
+                                    f"found {len(r.directions)}", where=r.where)
+                self.typed(act.direction, "vector", "", "a direction (a vector without units, "
+                           "e.g. N.x)")
         for f in d.friction:
             self.body(f.on, f.where)
             self.point(f.at, f.where, "at")
