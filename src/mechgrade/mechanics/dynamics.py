@@ -350,7 +350,10 @@ class DynamicsInterpreter(Interpreter):
             return dx[0].xreplace(rest)
 
         equilibrium = x[0].xreplace(rest)
-        stiffness, damping = _tidy(-rate(q)), _tidy(-rate(qd))
+        # a spring along the coordinate has |q| in its length: its sign is that of the side
+        # the instant is on (Piecewise's zoo at q = 0 would reach the lambdified answer)
+        stiffness = _tidy(_without_signs(-rate(q)))
+        damping = _tidy(_without_signs(-rate(qd)))
         requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
                        "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
         self._linearised[coordinate.id] = (stiffness, damping, requirement)
