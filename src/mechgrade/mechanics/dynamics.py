@@ -18,7 +18,7 @@ the unknown second rates and reactions.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import sympy as sp
@@ -89,8 +89,8 @@ class Kinetics:
     requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
     impact: bool = False
     design: sp.Expr | None = None
-    diagram: tuple[AppliedLoad, ...] = ()  # every body's free-body diagram (mechanics.loads)
     physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
+    built: tuple = field(default=(), compare=False, repr=False)  # (model, loads) it came from
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -350,10 +350,7 @@ class DynamicsInterpreter(Interpreter):
             return dx[0].xreplace(rest)
 
         equilibrium = x[0].xreplace(rest)
-        # a spring along the coordinate has |q| in its length: its sign is that of the side
-        # the instant is on (Piecewise's zoo at q = 0 would reach the lambdified answer)
-        stiffness = _tidy(_without_signs(-rate(q)))
-        damping = _tidy(_without_signs(-rate(qd)))
+        stiffness, damping = _linear_term(-rate(q)), _linear_term(-rate(qd))
         requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
                        "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
         self._linearised[coordinate.id] = (stiffness, damping, requirement)
@@ -492,8 +489,27 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     workless=_workless(problem, model, language, reactions, labels),
                     start=start, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
-                    diagram=diagram(problem, model, loads),
-                    physical=physical_bounds(problem, model, reactions, impact))
+                    physical=physical_bounds(problem, model, reactions, impact),
+                    built=(model, loads))
+
+
+def free_body_loads(problem: Problem) -> tuple[AppliedLoad, ...]:
+    """Every body's free-body diagram in the model's symbols (:func:`.loads.diagram`), built
+    the first time it is asked for (solving does not need it).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> [(a.name, str(a.kind), a.point, a.unknowns) for a in free_body_loads(p)]
+    [('gravity', 'weight', 'G', ()), ('R_O', 'pin', 'O', (R_O_1, R_O_2))]
+    """
+    return _free_body_loads(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _free_body_loads(problem: Problem, _locations: tuple) -> tuple[AppliedLoad, ...]:
+    model, loads = derive_kinetics(problem).built
+    return diagram(problem, model, loads)
 
 
 def _reaction_symbols(d: Dynamics) -> tuple[dict[str, tuple[sp.Symbol, ...]], list[str]]:
@@ -737,6 +753,16 @@ def _without_signs(expr):
     k (1 - L/|u| + L u sign(u)/u^2), which holds wherever its length u is not zero."""
     expr = expr.replace(sp.DiracDelta, lambda *args: sp.Integer(0))
     return sp.cancel(expr.replace(sp.sign, lambda u: u / sp.Abs(u)))
+
+
+def _linear_term(expr):
+    """A coefficient of the linearised motion, tidied; a spring along the coordinate has |q|
+    in its length, whose simplified derivative is a Piecewise with zoo at q = 0 (lambdify
+    cannot print it): then with the signs cancelled first (:func:`_without_signs`)."""
+    tidy = _tidy(expr)
+    if tidy.has(sp.zoo, sp.Piecewise):
+        return _tidy(_without_signs(expr))
+    return tidy
 
 
 def _tidy(expr):

@@ -18,9 +18,9 @@ mass, mu >= 0, 0 <= e <= 1, a one-sided contact that pushes, a string that pulls
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
->>> from mechgrade.mechanics.dynamics import derive_kinetics
->>> kin = derive_kinetics(load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml"))
->>> [(a.name, str(a.kind), str(a.magnitude)) for a in kin.diagram]
+>>> from mechgrade.mechanics.dynamics import free_body_loads
+>>> problem = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+>>> [(a.name, str(a.kind), str(a.magnitude)) for a in free_body_loads(problem)]
 [('gravity', 'weight', 'g*m'), ('N_P', 'normal', 'N_P'), ('F_P', 'kinetic friction', 'N_P*mu_k')]
 """
 

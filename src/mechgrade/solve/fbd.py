@@ -1,8 +1,8 @@
 """Each body's free-body diagram at the solved instant, as plain data (strings, floats and
 tuples: no sympy), for the layers that draw, write up and grade it without importing sympy.
 
-The symbolic diagram is :func:`mechgrade.mechanics.loads.diagram` (in
-``Kinetics.diagram``); here it is evaluated at the instant a :class:`~.result.Solution` solved
+The symbolic diagram is :func:`mechgrade.mechanics.dynamics.free_body_loads`; here it is
+evaluated at the instant a :class:`~.result.Solution` solved
 (its state; the reactions solved again from the balances there). Vectors are in the inertial
 frame's components, in SI (forces in N, couples in N m, impulses in N s); a diagram whose
 numbers cannot be had (a failed solve) keeps ``None`` for them, its structure intact.
@@ -31,7 +31,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import MechgradeError
-from ..mechanics.dynamics import derive_kinetics
+from ..mechanics.dynamics import derive_kinetics, free_body_loads
 from ..mechanics.kinematics import locations
 from ..spec.dynamics import LoadKind, dynamics_of
 from ..spec.model import Problem
@@ -145,17 +145,18 @@ class _DiagramPlan:
 @lru_cache(maxsize=32)
 def _diagram_plan(problem: Problem, _locations: tuple) -> _DiagramPlan:
     kin = derive_kinetics(problem)
+    applied = free_body_loads(problem)
     symbols = kinetics_plan(problem).symbols
 
     def f(expr):
         return None if expr is None else sp.lambdify(symbols, expr, modules="numpy")
 
     loads = tuple((a, f(a.force), f(a.moment), f(a.magnitude), tuple(f(e) for e in a.directions),
-                   f(a.surface_normal)) for a in kin.diagram)
+                   f(a.surface_normal)) for a in applied)
     points = {name: f(sp.Matrix(r)) for name, r in kin.k.points}
     d = dynamics_of(problem)
     down = None
-    weights = [a for a in kin.diagram if a.kind == LoadKind.WEIGHT]
+    weights = [a for a in applied if a.kind == LoadKind.WEIGHT]
     if d.down is not None:
         from ..mechanics.build import build
         model = build(problem)
