@@ -36,8 +36,8 @@ class LoadKind(StrEnum):
     """What a load is physically: the name a free-body diagram gives its arrow. Members equal
     their text and serialise as it.
 
-    >>> LoadKind("normal"), f"{LoadKind.KINETIC_FRICTION}", LoadKind.TENSION.is_unknown_kind
-    (<LoadKind.NORMAL: 'normal'>, 'kinetic friction', True)
+    >>> LoadKind("normal"), f"{LoadKind.KINETIC_FRICTION}"
+    (<LoadKind.NORMAL: 'normal'>, 'kinetic friction')
     """
 
     WEIGHT = "weight"
@@ -53,16 +53,6 @@ class LoadKind(StrEnum):
     APPLIED_COUPLE = "applied couple"
     IMPULSE = "impulse"
     REACTION = "reaction"  # an unknown force whose kind the file does not state
-
-    @property
-    def is_unknown_kind(self) -> bool:
-        """Whether a load of this kind may be an unknown of the balances (a reaction)."""
-        return self in _REACTION_KINDS.values() or self in (LoadKind.REACTION,
-                                                             LoadKind.STATIC_FRICTION)
-
-    @property
-    def is_friction(self) -> bool:
-        return self in (LoadKind.STATIC_FRICTION, LoadKind.KINETIC_FRICTION)
 
 
 _REACTION_KINDS = {"normal": LoadKind.NORMAL, "pin": LoadKind.PIN, "tension": LoadKind.TENSION,
