@@ -363,4 +363,3 @@ def unknown_slip_sign(u, u0, coordinates=("x",)) -> str:
             f"is {sp.sstr(u0.xreplace(spelled))} there{may}; a symbolic answer of an integrated "
             f"motion needs every slip's direction fixed: {fix}, or ask for a scalar objective "
             "(integrated numerically)")
-

@@ -263,4 +263,3 @@ def _densities(problem: Problem) -> list[AuthorWarning]:
 def _written(problem: Problem, expr: Expr) -> str:
     given = _given(problem, expr)
     return given.text if given is not None else expr.text
-
