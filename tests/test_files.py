@@ -76,3 +76,12 @@ def test_a_named_pipe_in_the_way_is_replaced_without_waiting(tmp_path):
     os.mkfifo(path)
     write_text(path, "text\n")
     assert stat.S_ISREG(path.stat().st_mode) and path.read_text() == "text\n"
+
+
+def test_visible_text_escapes_what_would_act_on_a_terminal():
+    from mechgrade.files import visible_text
+
+    assert visible_text("Zoë Ω 😀 dan_wu") == "Zoë Ω 😀 dan_wu"
+    assert visible_text("\x1b]0;t\x07\x1b[2J\x9b\r\t\n\u2028\u202e") == \
+        "\\x1b]0;t\\x07\\x1b[2J\\x9b\\r\\t\\n\\u2028\\u202e"
+    assert visible_text("bad\udce9name") == "bad\\xe9name"

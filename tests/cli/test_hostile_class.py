@@ -1,6 +1,9 @@
 """A class folder built to break the grader (tests/data/hostile/make_corpus.py), graded through
-the CLI: the run finishes, every entry is accounted for, every output is valid and stable, and
-nothing is written outside ``--out``."""
+the CLI with its roster: the run finishes, every entry is accounted for, every output is valid
+and stable, nothing is written outside ``--out``, roster conflicts are listed and never
+exported as grades, what a file repeats is not repeated in every output, names holding
+terminal control sequences are printed escaped, and a solver's cache folder edited by others
+changes no result."""
 
 from __future__ import annotations
 
@@ -10,6 +13,8 @@ import importlib.util
 import io
 import json
 import os
+import subprocess
+import sys
 import textwrap
 from pathlib import Path
 
@@ -42,12 +47,13 @@ def hostile(tmp_path_factory):
         title: Hostile class
         problems: [p.yaml]
         """), encoding="utf-8")
+    (top / "roster.csv").write_text(corpus.ROSTER, encoding="utf-8")
     before = _snapshot(top)
-    first = CliRunner().invoke(main, ["grade", str(top / "hw.yaml"), str(top / "class"),
-                                      "--out", str(top / "out")])
+    command = ["grade", str(top / "hw.yaml"), str(top / "class"), "--out", str(top / "out"),
+               "--roster", str(top / "roster.csv")]
+    first = CliRunner().invoke(main, command)
     outputs = _outputs(top / "out")
-    again = CliRunner().invoke(main, ["grade", str(top / "hw.yaml"), str(top / "class"),
-                                      "--out", str(top / "out")])
+    again = CliRunner().invoke(main, command)
     yield {"top": top, "first": first, "again": again, "outputs": outputs,
            "before": before, "after": _snapshot(top), "corpus": corpus}
     corpus.unlock(top / "class")
@@ -143,3 +149,197 @@ def test_every_export_of_the_hostile_class_is_written(hostile, fmt):
     for path in [target] if target.is_file() else sorted(target.iterdir()):
         path.read_bytes().decode("utf-8-sig")
         assert not path.name.startswith(("-", "."))
+
+
+def _results(hostile) -> dict:
+    return json.loads((hostile["top"] / "out" / "results.json").read_bytes().decode("utf-8"))
+
+
+def test_roster_conflicts_are_listed_and_no_folder_is_anyones(hostile):
+    data = _results(hostile)
+    conflicts = [(s["id"], s["name"]) for s in data["students"] if s["status"] == "conflict"]
+    assert sorted(conflicts) == sorted([("cy", "Cy Cole"), ("101", "Dee Dunn"), ("CY", ""),
+                                        ("cy", ""), ("101", ""), ("dee", "")])
+    notes = [n for n in data["notes"] if n.startswith("roster conflict: ")]
+    assert [n.split(";")[0] for n in notes] == [
+        "roster conflict: 'CY' matches Cy Cole (cy) by id and email user name",
+        "roster conflict: '101' matches Dee Dunn (101) by id"]
+    summary = hostile["first"].stdout
+    assert "6 in roster conflicts (students and folders)" in summary.splitlines()[0]
+    assert all(note in summary for note in notes)
+    ana = next(s for s in data["students"] if s["name"] == "Ana Able")
+    assert (ana["id"], ana["status"]) == ("ana", "graded")
+
+
+def test_students_in_roster_conflicts_are_not_exported_as_zero(hostile):
+    top = hostile["top"]
+    out = top / "out"
+    result = CliRunner().invoke(main, ["export", str(out / "results.json"), "--format",
+                                       "grades-csv", "--roster", str(top / "roster.csv"),
+                                       "--out", str(top / "conflicts.csv")])
+    assert result.exit_code == 0, result.output
+    rows = list(csv.reader(io.StringIO((top / "conflicts.csv").read_text("utf-8"),
+                                       newline="")))
+    named = {row[1]: (row[2], row[-2]) for row in rows[1:] if row[1]}
+    assert named["Cy Cole"] == ("conflict", "") and named["Dee Dunn"] == ("conflict", "")
+    assert named["No Body"] == ("missing", "0")
+    moodle = CliRunner().invoke(main, ["export", str(out / "results.json"), "--format",
+                                       "moodle", "--roster", str(top / "roster.csv"),
+                                       "--out", str(top / "moodle.csv")])
+    assert moodle.exit_code == 0, moodle.output
+    imported = (top / "moodle.csv").read_text("utf-8")
+    assert "cy@uni.edu" not in imported and "dee@uni.edu" not in imported
+    held = (top / "moodle.unmatched.csv").read_text("utf-8")
+    assert held.count("roster conflict: ") == 6
+
+
+def test_what_a_file_repeats_is_not_repeated_in_every_output(hostile):
+    """A key answered thousands of times, thousands of unreadable lines, repeated JSON keys,
+    answers that are not text and thousands of stray files: each student's record stays small
+    (one message per repeat made a 256 KiB file 1.2 MB of results)."""
+    data = _results(hostile)
+    amplifiers = [s for s in data["students"] if s["id"].startswith("amp_")]
+    assert len(amplifiers) == 5
+    for student in amplifiers:
+        assert len(student["messages"]) <= 25, student["id"]
+        assert len(json.dumps(student)) < 8_000, student["id"]
+    stray = [e for e in data["skipped"] if e["path"].startswith("amp_stray/")]
+    assert len(stray) == 11 and stray[0]["reason"].startswith("2990 more entries")
+    page = hostile["top"] / "out" / "feedback" / "amp_stray.html"
+    assert page.stat().st_size < 20_000
+
+
+def test_names_holding_terminal_sequences_are_printed_escaped(hostile):
+    printed = hostile["first"].stdout + hostile["first"].stderr
+    for control in ("\x1b", "\x07", "\x9b"):
+        assert control not in printed
+    assert "\r" not in hostile["first"].stdout
+    for shown in ("\\x1b]0;owned\\x07title.pdf", "\\x1b[2J\\x1b[8mhidden.pdf", "\\rcr.pdf",
+                  "\\x9b31mred.pdf"):
+        assert f"  {shown}: not a submission" in hostile["first"].stdout
+
+
+def test_a_gradescope_upload_full_of_stray_files_and_control_sequences_stays_small(hostile):
+    top = hostile["top"]
+    upload = top / "upload"
+    upload.mkdir()
+    (upload / "answers.txt").write_text(
+        "bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n" * 3000, encoding="utf-8")
+    for i in range(3000):
+        (upload / f"scan{i:04d}.pdf").write_bytes(b"")
+    (top / "metadata.json").write_text(json.dumps(
+        {"users": [{"sid": "\x1b]0;owned\x07s1", "name": "\x1b[2JEve"}]}), encoding="utf-8")
+    result = CliRunner().invoke(main, ["gradescope", str(top / "hw.yaml"), "--submission",
+                                       str(upload), "--results", str(top / "gs.json"),
+                                       "--metadata", str(top / "metadata.json")])
+    assert result.exit_code == 0, result.output
+    assert result.stdout.startswith("\\x1b]0;owned\\x07s1: ")
+    assert "\x1b" not in result.output
+    assert (top / "gs.json").stat().st_size < 20_000
+
+
+# ---------------------------------------------------------------------------- the cache folder
+# Whoever may write the solver's cache folder (another user, a careless script) edits every
+# entry it holds, swaps some for a pipe, an endless file or one too large, and leaves files of
+# the user's beside them: a real grading run still writes the results it writes with no cache,
+# in bounded time and memory, and removes nothing of the user's.
+
+HW3 = shipped_dir("examples") / "hw3_dynamics"
+PENDULUM_ONLY = Path(__file__).parents[1] / "data" / "cache" / "assignment.yaml"
+GRADE = """\
+import resource, sys
+resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))
+from mechgrade.cli import main
+main(sys.argv[1:], prog_name="mechgrade")
+"""
+
+
+def _graded(top: Path, name: str, folder: Path, assignment: Path = PENDULUM_ONLY,
+            submissions: Path = HW3 / "submissions"):
+    env = {k: v for k, v in os.environ.items() if k != "MECHGRADE_NO_CACHE"}
+    env["MECHGRADE_CACHE_DIR"] = str(folder)
+    done = subprocess.run(
+        [sys.executable, "-c", GRADE, "grade", str(assignment), str(submissions),
+         "--out", str(top / name), "--jobs", "2"],
+        capture_output=True, text=True, env=env, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
+    return done, (top / name / "results.json").read_bytes()
+
+
+def _edited(data):
+    """An entry's data as a hostile editor leaves it: every number and answer changed."""
+    if isinstance(data, dict) and "levels" in data:  # a plan: its functions give half
+        for row in data["objectives"]:
+            head, _, value = row[1].rpartition("return ")
+            row[1] = f"{head}return 0.5*({value.strip()})\n"
+        return data
+    if isinstance(data, dict) and "results" in data:  # a solution: numbers turned round
+        for result in data["results"]:
+            value = result["value"]
+            result["value"] = [-v for v in value] if isinstance(value, list) else \
+                None if value is None else -value
+            if result["expr"] is not None:
+                result["expr"] = "0"
+        return data
+    if isinstance(data, dict) and "expr" in data:  # a symbolic answer
+        return {**data, "expr": "0"}
+    return {"alone": False}
+
+
+@pytest.fixture(scope="module")
+def tampered_cache(tmp_path_factory):
+    top = tmp_path_factory.mktemp("cache-class")
+    folder = top / "cache"
+    _, cold = _graded(top, "cold", folder)
+    solutions = []
+    for path in sorted((folder / "entries").glob("*.json"), key=lambda p: p.stat().st_size):
+        head, body = path.read_bytes().split(b"\n", 1)
+        data = json.loads(body)
+        if "results" in data:
+            solutions.append(path)
+        path.write_bytes(head + b"\n" + json.dumps(_edited(data)).encode())
+    assert len(solutions) >= 4  # its own givens', and those its answers carried forward ask
+    # the smaller ones (answers carried forward) swapped for a pipe, an endless file and one
+    # too large; the solution at the problem's own givens and the plan stay, edited
+    solutions[0].unlink()
+    os.mkfifo(solutions[0], 0o600)
+    solutions[1].unlink()
+    solutions[1].symlink_to("/dev/zero")
+    solutions[2].write_bytes(b"[" + b"0," * 5_000_000 + b"0]")
+    mine = {"results.json": b"{}", "backup.json": b"[]", "entries/notes.json": b"{}"}
+    for name, data in mine.items():
+        (folder / name).write_bytes(data)
+    tampered, after = _graded(top, "tampered", folder)
+    again, warm = _graded(top, "again", folder)
+    return {"cold": cold, "tampered": after, "warm": warm, "runs": (tampered, again),
+            "folder": folder, "mine": mine}
+
+
+def test_a_tampered_cache_folder_changes_no_result(tampered_cache):
+    assert tampered_cache["tampered"] == tampered_cache["cold"]
+    assert tampered_cache["warm"] == tampered_cache["cold"]  # what it wrote again reads back
+
+
+def test_a_tampered_cache_folder_is_no_warning_and_loses_no_file_of_the_users(tampered_cache):
+    for run in tampered_cache["runs"]:
+        assert "cache" not in run.stderr
+    for name, data in tampered_cache["mine"].items():
+        assert (tampered_cache["folder"] / name).read_bytes() == data
+
+
+def test_a_cache_folder_others_may_write_is_one_warning_of_a_grading_run(hostile, tmp_path):
+    # the run's workers (two) find the same folder and say nothing: only the command prints
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    shared.chmod(0o777)
+    answers = tmp_path / "class" / "ann" / "answers.yaml"
+    answers.parent.mkdir(parents=True)
+    answers.write_text("bowling_3_15_4_pendulum:\n  acc_mag: 98.5 ft/s^2\n", encoding="utf-8")
+    done, results = _graded(tmp_path, "out", shared, hostile["top"] / "hw.yaml",
+                            tmp_path / "class")
+    assert [line for line in done.stderr.splitlines() if "cache" in line] == [
+        f"warning: cache folder {shared} may be written by other users (mode 777): not using "
+        f"the cache in this run (make it private with 'chmod 700 {shared}', or set "
+        "MECHGRADE_CACHE_DIR to a private folder)"]
+    assert json.loads(results)["students"][0]["score"] > 0
+    assert list(shared.iterdir()) == []

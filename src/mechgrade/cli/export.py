@@ -7,10 +7,9 @@ from pathlib import Path
 import click
 
 from ..errors import ExportError
-from ..files import clean_text
 from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 DEFAULT_OUT = {
     "canvas": "canvas_import.csv",
@@ -61,9 +60,12 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
     warnings = EXPORTERS[fmt](report, out, roster=class_roster, options=options)
     if class_roster is not None:
         for line, reason in class_roster.skipped:
-            click.echo(clean_text(f"warning: {roster}:{line}: skipped {reason}"), err=True)
+            say(f"warning: {roster}:{line}: skipped {reason}", err=True)
     for warning in warnings:
-        click.echo(clean_text(f"warning: {warning}"), err=True)
-    click.echo(f"wrote {fmt} export of {len(report.students)} "
-               f"{'result' if len(report.students) == 1 else 'results'} to {out}")
+        say(f"warning: {warning}", err=True)
+    for failing in report.failing_expects:
+        say(f"warning: graded although the problem fails this expect: test "
+            f"(--accept-failing-expect): {failing}", err=True)
+    say(f"wrote {fmt} export of {len(report.students)} "
+        f"{'result' if len(report.students) == 1 else 'results'} to {out}")
 

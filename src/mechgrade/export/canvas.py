@@ -23,7 +23,7 @@ from ..errors import ExportError, Location
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster, header_format
 from .cells import write_csv
-from .common import max_score, no_submission_warnings, score_cell
+from .common import conflict_reason, max_score, no_submission_warnings, score_cell
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
 from .unmatched import HeldBack, held_back, write_unmatched
@@ -56,7 +56,7 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
     held: list[HeldBack] = []
     match = match_roster(report, roster)
     for pair in match.pairs:
-        cells = _identity_cells(identity, pair, roster)
+        cells = conflict_reason(pair.result) or _identity_cells(identity, pair, roster)
         score = score_cell(pair.result, options)
         if isinstance(cells, str):
             held.append(held_back(pair, score, cells))

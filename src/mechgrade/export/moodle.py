@@ -31,8 +31,8 @@ import re
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster, RosterStudent
 from .cells import format_points, write_csv
-from .common import (answers_by_objective, has_submission, no_submission_warnings,
-                     objective_label, score_cell)
+from .common import (answers_by_objective, conflict_reason, has_submission,
+                     no_submission_warnings, objective_label, score_cell)
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
 from .unmatched import HeldBack, held_back, write_unmatched
@@ -79,6 +79,9 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
 def _hold_back_reason(pair: Pair, roster: Roster | None, key: str, score: float | str,
                       options: ExportOptions) -> str:
     """Why a row must stay out of the Moodle import file, or ``""``."""
+    conflict = conflict_reason(pair.result)
+    if conflict is not None:
+        return conflict
     if roster is not None and pair.roster is None:
         return "not in the roster"
     if not key:

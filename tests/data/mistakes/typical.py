@@ -370,7 +370,7 @@ def gyroscope():
 
 
 def truck_pendulum():
-    m, L, g, a0 = 0.5, 0.8, 9.81, 3.0
+    m, L, a0 = 0.5, 0.8, 3.0
     return [entry("alpha", "the bob taken to swing forward", num(a0 / L, "rad/s^2"), "sign",
                   "given_sign"),
             entry("tension", "tension written as the mass m", num(m, "N"), "mass_for_weight"),
