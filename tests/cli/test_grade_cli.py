@@ -20,11 +20,11 @@ def run(*args):
 
 
 def small_class(tmp_path):
-    (tmp_path / "p.yaml").write_text(PENDULUM.read_text(encoding="utf-8"), encoding="utf-8")
+    (tmp_path / PENDULUM.name).write_text(PENDULUM.read_text(encoding="utf-8"), encoding="utf-8")
     (tmp_path / "hw.yaml").write_text(textwrap.dedent("""\
         id: hw
         title: HW
-        problems: [{path: p.yaml, objectives: [acc_mag]}]
+        problems: [{path: bowling_3_15_4_pendulum.yaml, objectives: [acc_mag]}]
         """), encoding="utf-8")
     subs = tmp_path / "subs"
     subs.mkdir()

@@ -342,8 +342,19 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
-                       tuple(students), submissions.skipped, submissions.notes + conflicts,
-                       tuple(faults), failing)
+                       tuple(students), submissions.skipped,
+                       (*submissions.notes, *conflicts, *author_warnings(plan)), tuple(faults),
+                       failing)
+
+
+def author_warnings(plan: Plan) -> tuple[str, ...]:
+    """The warnings of the assignment's problems and of solving them (a magnitude implausible
+    for its unit system, a material point meant): printed by ``grade`` as by ``check``."""
+    from ..check import tolerance_faults  # grading never applies them: it says so
+
+    found = [str(w) for p, s in zip(plan.problems, plan.solutions)
+             for w in (*p.warnings, *s.warnings, *tolerance_faults(p, s))]
+    return tuple(dict.fromkeys(found))
 
 
 # ---------------------------------------------------------------------------- variants
