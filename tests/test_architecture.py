@@ -10,7 +10,7 @@ import pytest
 SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
 # Each layer may import only from itself and the layers listed before it.
 ORDER = ["base", "spec", "mechanics", "solve", "check", "grade", "export", "report", "cli"]
-BASE = {"errors", "units", "yamlio", "files", "resources", "expressions", "roster",
+BASE = {"errors", "units", "yamlio", "jsonio", "files", "resources", "expressions", "roster",
         "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
 
 
