@@ -12,6 +12,7 @@ import textwrap
 import zipfile
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from mechgrade.cli import main
@@ -63,6 +64,49 @@ def test_a_broken_assignment_still_writes_results_and_exits_2(tmp_path):
     assert "hw.yaml" in outcome.output and "Traceback" not in outcome.output
     assert data["score"] == 0.0 and data["tests"] == []
     assert data["output"].startswith("The autograder could not grade this submission: ")
+
+
+@pytest.mark.parametrize("metadata, message", [
+    ('{"users": {"sid": "1"}}', "users: expected a list of users, found a mapping"),
+    ('{"users": [5]}', "users[0]: expected a user (a mapping with sid, email, name), found a "
+                       "whole number"),
+    ('[{"sid": "1"}]', "expected a mapping (Gradescope's submission metadata), found a list"),
+    ('{"users": [{"sid": ["1"]}]}', "users[0].sid: expected text or a whole number, found a "
+                                    "list"),
+    ('{"users": [{"sid": NaN}]}', "users[0].sid: expected a finite number, found NaN"),
+    ('{"users": [{"sid": 1' + "0" * 4999 + '}]}',
+     "users[0].sid: expected a finite number, found 100000000000...0000 (5000 characters), "
+     "longer than 400 characters"),
+    ('{"users": [' + "[" * 100_000, "1:110: expected JSON nested at most 100 levels deep, "
+                                    "found deeper nesting"),
+    ('{"users": [', "1:12: expected JSON, found invalid JSON: Expecting value"),
+    (None, "expected Gradescope's submission metadata (JSON), found a FIFO (named pipe), not a "
+           "regular file"),
+])
+def test_unreadable_metadata_still_writes_results_saying_why(tmp_path, metadata, message):
+    # The metadata names the student, whose id decides the variant graded: a guess would
+    # grade another student's numbers, so the run stops, and Gradescope shows why.
+    shutil.copytree(ADA, tmp_path / "sub")
+    meta = tmp_path / "meta.json"
+    if metadata is None:
+        os.mkfifo(meta)
+    else:
+        meta.write_text(metadata)
+    outcome, data = run(tmp_path)
+    located = f"{meta}:{message}" if message[0].isdigit() else f"{meta}: {message}"
+    assert outcome.exit_code == 2
+    assert outcome.output == located + "\n"
+    assert data == {"score": 0.0, "output": "The autograder could not grade this submission: "
+                                            + located, "output_format": "text",
+                    "visibility": "visible", "tests": []}
+
+
+def test_without_metadata_the_submission_is_graded_as_submission(tmp_path):
+    shutil.copytree(ADA, tmp_path / "sub")
+    outcome, data = run(tmp_path)
+    assert outcome.exit_code == 0
+    assert outcome.output == f"submission: 19 / 19 points; wrote {tmp_path / 'results.json'}\n"
+    assert data["score"] == 19.0
 
 
 def run_with(tmp_path, *extra):

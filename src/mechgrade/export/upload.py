@@ -29,7 +29,9 @@ import zlib
 from dataclasses import dataclass, replace
 from pathlib import Path, PurePosixPath
 
+from ..errors import Location, SubmissionError
 from ..files import clean_text
+from ..jsonio import read_json
 from ..grade.submissions import (ANSWER_FILES, MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES,
                                  Submission, read_student_folder)
 
@@ -37,6 +39,7 @@ MAX_MEMBERS = 1000
 """Entries looked at: files of the upload folder plus members of its zip files."""
 MAX_ZIP_BYTES = 50_000_000
 MAX_DEPTH = 6
+MAX_METADATA_BYTES = 10_000_000
 
 
 @dataclass(frozen=True)
@@ -199,3 +202,57 @@ def _bytes_of(chosen: Candidate, notes: list[str]) -> bytes | None:
             NotImplementedError, EOFError, zlib.error) as exc:
         notes.append(f"'{chosen.label}' cannot be read ({type(exc).__name__})")
         return None
+
+
+def submitter(metadata_path: str | Path) -> tuple[str, str]:
+    """(id, name) of who submitted, from Gradescope's ``submission_metadata.json``: the first
+    user's ``sid`` (the student id the variants and rosters use), else ``email``, else ``id``.
+
+    No file (a run outside Gradescope) is the submitter ``"submission"``; a file that cannot be
+    read or is not shaped as Gradescope writes it raises :class:`SubmissionError` at the field,
+    since a guessed id would grade the wrong student's variant.
+
+    >>> import tempfile, pathlib, json
+    >>> meta = pathlib.Path(tempfile.mkdtemp()) / "submission_metadata.json"
+    >>> _ = meta.write_text(json.dumps({"users": [{"name": "Ada", "sid": 10001}]}))
+    >>> submitter(meta), submitter(meta.with_name("none.json"))
+    (('10001', 'Ada'), ('submission', ''))
+    >>> _ = meta.write_text(json.dumps({"users": {"name": "Ada"}}))
+    >>> submitter(meta)
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.SubmissionError: ...submission_metadata.json: users: expected a list of users, found a mapping
+    """
+    name = str(metadata_path)
+    if not os.path.lexists(metadata_path):
+        return "submission", ""
+    data = read_json(metadata_path, what="Gradescope's submission metadata (JSON)",
+                     error=SubmissionError, max_bytes=MAX_METADATA_BYTES)
+    if not isinstance(data, dict):
+        raise SubmissionError(f"expected a mapping (Gradescope's submission metadata), found "
+                              f"{_json_kind(data)}", where=Location(name))
+    users = data.get("users", [])
+    if not isinstance(users, list):
+        raise SubmissionError(f"expected a list of users, found {_json_kind(users)}",
+                              where=Location(name, field="users"))
+    if not users:
+        return "submission", ""
+    user = users[0]
+    if not isinstance(user, dict):
+        raise SubmissionError(f"expected a user (a mapping with sid, email, name), found "
+                              f"{_json_kind(user)}", where=Location(name, field="users[0]"))
+    for key in ("sid", "email", "id", "name"):
+        value = user.get(key)
+        if value is not None and (isinstance(value, bool) or
+                                  not isinstance(value, (str, int))):
+            raise SubmissionError(f"expected text or a whole number, found {_json_kind(value)}",
+                                  where=Location(name, field=f"users[0].{key}"))
+    ident = next((str(user[k]) for k in ("sid", "email", "id")
+                  if user.get(k) is not None and str(user[k]).strip()), "submission")
+    return clean_text(ident), clean_text(str(user.get("name") or ""))
+
+
+def _json_kind(value: object) -> str:
+    kinds = ((dict, "a mapping"), (list, "a list"), (str, "text"), (bool, "true or false"),
+             (int, "a whole number"), (float, "a decimal number"))
+    return next((noun for kind, noun in kinds if isinstance(value, kind)), "null")
