@@ -34,7 +34,10 @@ def test_export_canvas_with_roster_writes_file_and_warns(run, tmp_path):
     result = run("export", RESULTS, "--format", "canvas", "--roster",
                  str(DATA / "canvas_gradebook.csv"), "--out", str(out))
     assert result.exit_code == 0
-    assert result.stdout == f"wrote canvas export of 7 results to {out}\n"
+    assert result.stdout == (
+        f"{out}: 7 new, 0 changed, 0 kept as Canvas has them, 0 unchanged; each listed in "
+        f"{tmp_path / 'canvas.changes.csv'}\n"
+        f"wrote canvas export of 7 results to {out}\n")
     assert result.stderr == (
         f"warning: {DATA / 'canvas_gradebook.csv'}:11: skipped Canvas test student "
         "'Student, Test'\n"
@@ -106,7 +109,8 @@ def test_format_specific_flags_reach_the_file(run, tmp_path):
     assert run("export", RESULTS, "--format", "gradescope", "--visibility", "hidden",
                "--out", str(gs)).exit_code == 0
     documents = [json.loads(p.read_text()) for p in gs.iterdir()]
-    assert {t["visibility"] for d in documents for t in d["tests"]} == {"hidden"}
+    # every test but the receipt saying what was read
+    assert {t["visibility"] for d in documents for t in d["tests"][1:]} == {"hidden"}
 
 
 def test_export_default_output_name(run, tmp_path, monkeypatch):
@@ -271,6 +275,12 @@ def test_moodle_export_holds_back_rows_and_says_so(run, tmp_path):
                  str(DATA / "moodle_grades.csv"), "--missing", "blank", "--out", str(out))
     assert result.exit_code == 0
     assert result.stderr == (
+        "warning: Moodle cuts a grade above the grade item's maximum grade to that maximum "
+        "without a word: check that 'Assignment: Homework 3 (Real)' is out of 10 points in "
+        "Moodle, or export with --scale-to <its maximum grade>\n"
+        "warning: the grades export's 'Last downloaded from this course' of s1001 is "
+        "'1700000000': Moodle refuses the whole import unless that is a time within the last "
+        "year; export the grades from Moodle again and give that file as --roster\n"
         f"warning: 6 rows kept out of {out} because Moodle could not import them: see "
         f"{tmp_path / 'moodle.unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
         "or export again with --roster set to the grades exported from Moodle\n")

@@ -65,11 +65,15 @@ def unmatched_path(out_path: str | os.PathLike) -> Path:
 
 
 def write_unmatched(out_path: str | os.PathLike, rows: list[HeldBack], lms: str,
-                    remedy: str) -> tuple[str, ...]:
+                    remedy: str, dry_run: bool = False) -> tuple[str, ...]:
     """Write ``rows`` to :func:`unmatched_path` and return the warning about them; with no
     rows, remove that file if an earlier export left one (it would list rows this export
-    imports) and return no warning."""
+    imports) and return no warning. With ``dry_run`` nothing is written or removed: one
+    warning per row says why it would be kept out."""
     path = unmatched_path(out_path)
+    if dry_run:
+        return tuple(f"{r.id} ({r.name}) would be kept out of {out_path}: {r.reason}"
+                     for r in rows)
     if not rows:
         try:
             path.unlink(missing_ok=True)

@@ -287,7 +287,7 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
         judge.close()
     assignment = plan.assignment
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
-                                     o.max_points) for o in plan.objectives)
+                                     o.max_points, o.problem.title) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
                        tuple(students), submissions.skipped, submissions.notes, tuple(faults))
 
