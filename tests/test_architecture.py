@@ -1,4 +1,11 @@
-"""Imports point one way: spec -> mechanics -> solve -> grade -> report/export -> cli; no cycles."""
+"""Imports point one way: spec -> mechanics -> solve -> grade -> report/export -> cli; no cycles.
+
+Inside the base layer too there is an order (:data:`BASE_ORDER`); only ``mechanics`` imports
+``sympy.physics``; ``report`` and ``export`` import no sympy at all; an import under
+``if TYPE_CHECKING:`` is for annotations only (its ``else:`` branch runs, so it counts); and a
+module found by name at run time (``importlib.import_module``, ``__import__``) escapes all of
+this, so only :data:`DYNAMIC_IMPORTERS` may do it (each looks up a registry of its own layer).
+"""
 
 from __future__ import annotations
 
@@ -12,6 +19,13 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
 ORDER = ["base", "spec", "mechanics", "solve", "check", "grade", "export", "report", "cli"]
 BASE = {"errors", "units", "yamlio", "jsonio", "files", "resources", "expressions", "roster",
         "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
+# The base layer's own order: a base module imports only base modules listed before it (or its
+# own package's modules, whose cycles test_no_module_imports_itself_through_others catches).
+BASE_ORDER = ["", "errors", "resources", "tolerance", "schema_errors", "files", "parallel",
+              "yamlio", "roster", "expressions.excerpt", "units", "expressions", "__main__"]
+# The only modules that import a module named at run time: the exporter registry and the CLI's
+# lazily loaded commands, each naming modules of its own package.
+DYNAMIC_IMPORTERS = {"export", "cli.common"}
 
 
 def layer(module: str) -> str:
@@ -19,6 +33,13 @@ def layer(module: str) -> str:
     package itself)."""
     top = module.split(".")[0] or "__init__"
     return "base" if top in BASE else top
+
+
+def base_rank(module: str) -> int:
+    """A base module's place in :data:`BASE_ORDER` (its longest listed prefix)."""
+    matches = [i for i, entry in enumerate(BASE_ORDER)
+               if module == entry or (entry and module.startswith(entry + "."))]
+    return max(matches, key=lambda i: len(BASE_ORDER[i]))
 
 
 def modules() -> dict[str, Path]:
@@ -42,10 +63,11 @@ def imports(name: str, path: Path, known: dict[str, Path] = MODULES):
     tree = ast.parse(path.read_text(encoding="utf-8"))
     package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
     package = [p for p in package if p]
-    # Imports under "if TYPE_CHECKING:" never run: they name types for annotations only.
+    # Imports under "if TYPE_CHECKING:" never run: they name types for annotations only (its
+    # "else:" branch does run).
     type_only = {id(inner) for node in ast.walk(tree) if isinstance(node, ast.If)
-                 and getattr(node.test, "id", None) == "TYPE_CHECKING"
-                 for inner in ast.walk(node)}
+                 and _is_type_checking(node.test)
+                 for statement in node.body for inner in ast.walk(statement)}
     for node in ast.walk(tree):
         if id(node) in type_only:
             continue
@@ -63,8 +85,23 @@ def imports(name: str, path: Path, known: dict[str, Path] = MODULES):
                 if candidate.startswith("mechgrade.") and \
                         candidate[len("mechgrade."):] in known:
                     yield candidate
-                else:
+                elif target.startswith("mechgrade"):
                     yield target
+                else:  # "from sympy import physics" imports sympy.physics
+                    yield candidate
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or \
+        (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+
+
+def dynamic_imports(path: Path) -> list[int]:
+    """The lines where ``path`` imports a module named at run time."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    return [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Call) and (
+        (isinstance(node.func, ast.Attribute) and node.func.attr == "import_module")
+        or (isinstance(node.func, ast.Name) and node.func.id in ("import_module", "__import__")))]
 
 
 def own(target: str) -> str | None:
@@ -74,18 +111,37 @@ def own(target: str) -> str | None:
     return target[len("mechgrade."):] if target.startswith("mechgrade.") else None
 
 
-@pytest.mark.parametrize("name, path", list(MODULES.items()), ids=list(MODULES))
-def test_module_imports_only_earlier_layers(name, path):
-    mine = ORDER.index(layer(name))
-    for target in imports(name, path):
-        if target.startswith("sympy.physics"):
-            assert layer(name) == "mechanics", f"{name} imports {target}"
-        if target.startswith("sympy"):
-            assert layer(name) not in ("report", "export"), f"{name} imports {target}"
+def violations(name: str, path: Path, known: dict[str, Path] = MODULES) -> list[str]:
+    """What ``name`` (at ``path``) imports against the layering rules, one line each."""
+    found = []
+    mine = layer(name)
+    for target in imports(name, path, known):
+        if target.startswith("sympy.physics") and mine != "mechanics":
+            found.append(f"{name} imports {target} (only mechanics/ may)")
+        if (target == "sympy" or target.startswith("sympy.")) and mine in ("report", "export"):
+            found.append(f"{name} imports {target} ({mine}/ never imports sympy)")
         other = own(target)
         if other is None or name == "__main__":
             continue
-        assert ORDER.index(layer(other)) <= mine, f"{name} imports {target}"
+        if ORDER.index(layer(other)) > ORDER.index(mine):
+            found.append(f"{name} imports {target} (layer {layer(other)} after {mine})")
+        elif mine == "base" == layer(other) and base_rank(other) > base_rank(name):
+            found.append(f"{name} imports {target} (later in the base layer's order)")
+    if name not in DYNAMIC_IMPORTERS:
+        found += [f"{name}:{line} imports a module named at run time"
+                  for line in dynamic_imports(path)]
+    return found
+
+
+@pytest.mark.parametrize("name, path", list(MODULES.items()), ids=list(MODULES))
+def test_module_imports_only_earlier_layers(name, path):
+    assert violations(name, path) == []
+
+
+def test_every_module_has_a_place_in_the_base_order():
+    for name in MODULES:
+        if layer(name) == "base":
+            base_rank(name)  # raises ValueError for a base module the order does not list
 
 
 def import_graph(known: dict[str, Path] = MODULES) -> dict[str, set[str]]:
@@ -175,3 +231,37 @@ def test_a_cycle_through_three_modules_is_found(tmp_path):
     known = fake_modules(tmp_path, {"": "", "a": "from . import b\n", "b": "from .c import x\n",
                                     "c": "import mechgrade.a\n", "d": "from . import a\n"})
     assert cycles(import_graph(known)) == [["a", "b", "c"]]
+
+
+@pytest.mark.parametrize("importer, text", [
+    ("report.page", "from sympy import physics\n"),
+    ("solve.plan", "from sympy import physics\n"),
+    ("solve.plan", "from sympy.physics import mechanics\n"),
+    ("report.page", "import sympy\n"),
+    ("export.csvfile", "from sympy import Symbol\n"),
+    ("spec.model", "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    pass\n"
+                   "else:\n    from ..solve import plan\n"),
+    ("spec.model", "import importlib\nplan = importlib.import_module('mechgrade.solve.plan')\n"),
+    ("spec.model", "from importlib import import_module\nimport_module('x')\n"),
+    ("spec.model", "__import__('mechgrade.solve.plan')\n"),
+    ("errors", "from . import files\n"),
+    ("files", "from .expressions import syntax\n"),
+    ("grade.run", "from .. import cli\n"),
+])
+def test_a_planted_forbidden_import_is_caught(tmp_path, importer, text):
+    known = fake_modules(tmp_path, {"": "", "errors": "", "files": "", "expressions": "",
+                                    "expressions.syntax": "", "spec": "", "spec.model": "",
+                                    "solve": "", "solve.plan": "", "grade": "", "grade.run": "",
+                                    "report": "", "report.page": "", "export": "",
+                                    "export.csvfile": "", "cli": ""})
+    assert violations(importer, known[importer], known) == []
+    known[importer].write_text(text, encoding="utf-8")
+    assert violations(importer, known[importer], known) != []
+
+
+def test_imports_for_annotations_only_are_allowed(tmp_path):
+    known = fake_modules(tmp_path, {"": "", "spec": "", "spec.model": "", "solve": "",
+                                    "solve.plan": ""})
+    known["spec.model"].write_text("import typing\nif typing.TYPE_CHECKING:\n"
+                                   "    from ..solve import plan\n", encoding="utf-8")
+    assert violations("spec.model", known["spec.model"], known) == []

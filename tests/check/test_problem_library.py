@@ -41,11 +41,12 @@ def test_the_library_covers_every_independently_derived_case():
 
 
 @pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])
-def test_problem_passes_its_expect_tests(path):
+def test_problem_passes_its_expect_tests_with_no_author_warnings(path):
     report = check_problem(path)
     assert report.error is None, report.error
     failing = [o.message for o in report.outcomes if not o.passed]
     assert not failing
+    assert report.passed and report.warnings == ()
     assert not report.untested, f"objectives without expect: {report.untested}"
 
 
