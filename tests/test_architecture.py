@@ -21,8 +21,9 @@ BASE = {"errors", "units", "yamlio", "jsonio", "files", "resources", "expression
         "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
 # The base layer's own order: a base module imports only base modules listed before it (or its
 # own package's modules, whose cycles test_no_module_imports_itself_through_others catches).
-BASE_ORDER = ["", "errors", "resources", "tolerance", "schema_errors", "files", "parallel",
-              "yamlio", "roster", "expressions.excerpt", "units", "expressions", "__main__"]
+BASE_ORDER = ["", "errors", "resources", "tolerance", "schema_errors", "files", "jsonio",
+              "parallel", "yamlio", "roster", "expressions.excerpt", "units", "expressions",
+              "__main__"]
 # The only modules that import a module named at run time: the exporter registry and the CLI's
 # lazily loaded commands, each naming modules of its own package.
 DYNAMIC_IMPORTERS = {"export", "cli.common"}
