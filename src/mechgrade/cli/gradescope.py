@@ -12,7 +12,7 @@ from ..errors import MechgradeError, brief_exception
 from ..files import clean_text, write_json
 from ..export.gradescope import gradescope_failure, gradescope_results
 from ..export.options import GRADESCOPE_VISIBILITIES, ExportOptions
-from ..export.upload import read_upload, submitter
+from ..grade.upload import read_upload, submitter
 from ..grade.assignment import load_assignment
 from ..grade.run import grade_plan, plan_assignment
 from ..grade.submissions import SubmissionSet

@@ -13,7 +13,8 @@ file is chosen by one rule:
    guessed between: the student is told to name the one to grade ``answers.yaml``.
 
 Zip files are read in memory and never extracted: no member name becomes a path, links are not
-followed, and the counts and sizes are bounded (:data:`MAX_MEMBERS`, :data:`MAX_ZIP_BYTES`; a
+followed, members refused by :mod:`mechgrade.grade.archives` (``..``, absolute names, links,
+duplicate names, bombs) are noted, and the counts and sizes are bounded (:data:`MAX_MEMBERS`, :data:`MAX_ZIP_BYTES`; a
 member is read at most :data:`~mechgrade.grade.submissions.MAX_FILE_BYTES` + 1 bytes, so a zip
 bomb is cut short). The chosen file is copied into a temporary folder and read there like any
 answers file; the student's feedback says which file was read.
@@ -32,8 +33,9 @@ from pathlib import Path, PurePosixPath
 from ..errors import Location, SubmissionError
 from ..files import clean_text
 from ..jsonio import read_json
-from ..grade.submissions import (ANSWER_FILES, MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES,
-                                 Submission, read_student_folder)
+from .archives import safe_members
+from .submissions import (ANSWER_FILES, MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES, Submission,
+                          read_student_folder)
 
 MAX_MEMBERS = 1000
 """Entries looked at: files of the upload folder plus members of its zip files."""
@@ -160,28 +162,34 @@ def _zip_members(path: Path, label: str, depth: int, notes: list[str]) -> list[C
             notes.append(f"'{label}' is larger than {MAX_ZIP_BYTES} bytes; it was not opened")
             return []
         with zipfile.ZipFile(path) as archive:
-            infos = archive.infolist()
+            count = len(archive.infolist())
+            members, refused = safe_members(archive) if count <= MAX_MEMBERS else ([], [])
     except (OSError, zipfile.BadZipFile, ValueError, RuntimeError, NotImplementedError) as exc:
         notes.append(f"'{label}' is not a zip file that can be read ({type(exc).__name__})")
         return []
-    if len(infos) > MAX_MEMBERS:
-        notes.append(f"'{label}' holds {len(infos)} entries (at most {MAX_MEMBERS} are "
+    if count > MAX_MEMBERS:
+        notes.append(f"'{label}' holds {count} entries (at most {MAX_MEMBERS} are "
                      "looked at); it was not searched")
         return []
+    notes.extend(f"'{label}/{name}' {reason}" for name, reason in refused)
     out = []
-    for info in infos:
-        name = info.filename.replace("\\", "/")
-        parts = PurePosixPath(name).parts
-        if info.is_dir() or not parts or name.startswith("/") or ".." in parts \
-                or not all(_wanted(p) for p in parts) or len(parts) > MAX_DEPTH:
+    for member in members:
+        parts = PurePosixPath(member.name).parts
+        if not parts or not all(_wanted(p) for p in parts) or len(parts) > MAX_DEPTH:
             continue
-        if stat.S_ISLNK(info.external_attr >> 16):
-            continue  # a link stored in the zip is never followed
-        if PurePosixPath(name).suffix.lower() not in SUFFIXES:
+        if PurePosixPath(member.name).suffix.lower() not in SUFFIXES:
             continue
-        out.append(Candidate(clean_text(f"{label}/{name}"), depth + len(parts), info.file_size,
-                             zip_path=path, member=info.filename))
+        out.append(Candidate(clean_text(f"{label}/{member.name}"), depth + len(parts),
+                             member.info.file_size, zip_path=path,
+                             member=member.info.filename))
     return out
+
+
+def archive_of(path: Path) -> zipfile.ZipFile:
+    """The zip at ``path``, its members listed (closed when collected: listing keeps no file
+    open past it)."""
+    with zipfile.ZipFile(path) as archive:
+        return archive
 
 
 def _bytes_of(chosen: Candidate, notes: list[str]) -> bytes | None:
