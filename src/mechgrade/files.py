@@ -135,9 +135,19 @@ def write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -
     >>> write_text(p, "bad\\udce9name\\n"); p.read_text()
     'bad\\\\xe9name\\n'
     """
+    write_bytes(path, clean_text(text).encode(encoding))
+
+
+def write_bytes(path: str | os.PathLike, data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically, as :func:`write_text` writes text.
+
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "f.zip"
+    >>> write_bytes(p, b"PK"); p.read_bytes()
+    b'PK'
+    """
     target = Path(path)
     folder = target.parent if str(target.parent) else Path(".")
-    data = clean_text(text).encode(encoding)
     if _holds(target, data):
         return
     try:
