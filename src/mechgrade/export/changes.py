@@ -30,8 +30,8 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import ExportError, Location
 from .cells import format_points, write_csv
+from .unmatched import remove_stale
 
 
 class Notice(str):
@@ -153,12 +153,7 @@ def report_changes(out_path: str | os.PathLike, changes: list[Change], lms: str,
                                              c.reason] for c in listed)])
         where = f"; each listed in {path}"
     else:
-        try:
-            path.unlink(missing_ok=True)
-        except OSError as exc:
-            raise ExportError(f"expected to remove the changes list of an earlier export, "
-                              f"found it cannot be removed ({exc.strerror or exc})",
-                              where=Location(str(path))) from None
+        remove_stale(path, "the changes list")
         where = ""
     return (Notice(f"{out_path}: {summary}{where}"),)
 

@@ -229,19 +229,19 @@ def _header(quiz: ET.Element, kind: str, item) -> ET.Element:
     text = _html(_rendered(item, lambda v: "{" + v.name + "}"))
     _text(question, "questiontext", text, format="html")
     _text(question, "generalfeedback", "", format="html")
-    _sub(question, "defaultgrade", number_text(item.points))
-    _sub(question, "penalty", "0.3333333")
-    _sub(question, "hidden", "0")
+    _fields(question, defaultgrade=number_text(item.points), penalty="0.3333333", hidden="0")
     return question
+
+
+def _fields(parent: ET.Element, **fields: str) -> None:
+    for tag, text in fields.items():
+        _sub(parent, tag, text)
 
 
 def _moodle_essay(quiz: ET.Element, item: EssayItem) -> None:
     question = _header(quiz, "essay", item)
-    _sub(question, "responseformat", "plain")
-    _sub(question, "responserequired", "1")
-    _sub(question, "responsefieldlines", "3")
-    _sub(question, "attachments", "0")
-    _sub(question, "attachmentsrequired", "0")
+    _fields(question, responseformat="plain", responserequired="1", responsefieldlines="3",
+            attachments="0", attachmentsrequired="0")
     _text(question, "graderinfo", "Graded by mechgrade from the quiz's responses.",
           format="html")
     _text(question, "responsetemplate", "", format="html")
@@ -265,10 +265,8 @@ def _units(question: ET.Element, item: NumberItem) -> None:
         unit = _sub(units, "unit")
         _sub(unit, "multiplier", f"{multiplier:.12g}")
         _sub(unit, "unit_name", name)
-    _sub(question, "unitgradingtype", "0")
-    _sub(question, "unitpenalty", "0.1000000")
-    _sub(question, "showunits", "0")
-    _sub(question, "unitsleft", "0")
+    _fields(question, unitgradingtype="0", unitpenalty="0.1000000", showunits="0",
+            unitsleft="0")
 
 
 def _moodle_numerical(quiz: ET.Element, item: NumberItem) -> None:
@@ -284,10 +282,7 @@ def _moodle_numerical(quiz: ET.Element, item: NumberItem) -> None:
 
 def _moodle_calculated(quiz: ET.Element, item: NumberItem) -> None:
     question = _header(quiz, "calculated", item)
-    _sub(question, "synchronize", "0")
-    _sub(question, "single", "0")
-    _sub(question, "answernumbering", "abc")
-    _sub(question, "shuffleanswers", "0")
+    _fields(question, synchronize="0", single="0", answernumbering="abc", shuffleanswers="0")
     for feedback in ("correctfeedback", "partiallycorrectfeedback", "incorrectfeedback"):
         _text(question, feedback, "", format="html")
     tolerance, kind = _tolerance(item)

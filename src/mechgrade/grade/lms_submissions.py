@@ -41,7 +41,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path, PurePosixPath
 
 from ..errors import SubmissionError
-from ..files import clean_text
+from ..files import clean_text, safe_file_names
 from ..roster import Roster, normalise_name
 from ..yamlio import read_yaml_text
 from .archives import Member, read_member, safe_members
@@ -266,8 +266,8 @@ def _materialise(archive: zipfile.ZipFile, found: _Files, folder: Path, label: s
     """Write a student's answer-like files (and zips) into ``folder`` under safe names;
     return safe name -> the member's name as shown. Other files are skipped, listed."""
     shown: dict[str, str] = {}
-    used: set[str] = set()
-    for member, file_name in found.files:
+    names = safe_file_names([PurePosixPath(f).name for _, f in found.files])
+    for (member, file_name), safe in zip(found.files, names):
         where = f"{label}/{member.name}"
         suffix = PurePosixPath(file_name).suffix.lower()
         if suffix not in (*SUFFIXES, ".zip"):
@@ -284,23 +284,9 @@ def _materialise(archive: zipfile.ZipFile, found: _Files, folder: Path, label: s
             skipped.append(SkippedEntry(where, data))
             continue
         budget[0] -= len(data)
-        safe = _safe_name(file_name, used)
         (folder / safe).write_bytes(data)
         shown[safe] = where
     return shown
-
-
-def _safe_name(file_name: str, used: set[str]) -> str:
-    """A file name safe to create (ASCII word characters, the suffix kept), distinct."""
-    path = PurePosixPath(file_name)
-    stem = re.sub(r"[^A-Za-z0-9_-]+", "_", path.stem).strip("_") or "file"
-    base = f"{stem[:60]}{path.suffix.lower()}"
-    name, n = base, 1
-    while name.casefold() in used:
-        n += 1
-        name = f"{stem[:60]}-{n}{path.suffix.lower()}"
-    used.add(name.casefold())
-    return name
 
 
 def _relabelled(submission: Submission, folder: str, shown: dict[str, str],

@@ -111,12 +111,7 @@ def _canvas(path: Path, header: list[str], rows: list[list[str]], keys, drawn_ke
         else:
             columns[i] = key
     latest: dict[str, tuple[int, list[str], int]] = {}
-    for line, row in enumerate(rows, start=2):
-        if not any(c.strip() for c in row):
-            continue
-        if len(row) != len(header):
-            raise SubmissionError(f"expected {len(header)} cells as in the header, found "
-                                  f"{len(row)}", where=Location(name, line))
+    for line, row in _records(rows, len(header), name):
         student = row[ident].strip()
         if not student:
             skipped.append(SkippedEntry(f"{path.name}: line {line}", "no Canvas user id (a "
@@ -149,12 +144,7 @@ def _moodle(path: Path, header: list[str], rows: list[list[str]], keys, drawn_ke
                               "each answers cannot be told", where=Location(name, 1))
     skipped: list[SkippedEntry] = []
     latest: dict[str, tuple[list[str], int]] = {}
-    for line, row in enumerate(rows, start=2):
-        if not any(c.strip() for c in row):
-            continue
-        if len(row) != len(header):
-            raise SubmissionError(f"expected {len(header)} cells as in the header, found "
-                                  f"{len(row)}", where=Location(name, line))
+    for line, row in _records(rows, len(header), name):
         if state is not None and row[state].strip().lower() not in ("finished", ""):
             skipped.append(SkippedEntry(f"{path.name}: line {line}",
                                         f"an attempt not finished ({row[state].strip()})"))
@@ -183,6 +173,17 @@ def _moodle(path: Path, header: list[str], rows: list[list[str]], keys, drawn_ke
                                         f"'{key}' draws numbers per student: Moodle grades "
                                         "its responses with the numbers it drew"))
     return SubmissionSet(path, tuple(students), tuple(skipped), ())
+
+
+def _records(rows: list[list[str]], width: int, name: str):
+    """``(line, row)`` of each row that is not blank; a row of another width is refused."""
+    for line, row in enumerate(rows, start=2):
+        if not any(c.strip() for c in row):
+            continue
+        if len(row) != width:
+            raise SubmissionError(f"expected {width} cells as in the header, found "
+                                  f"{len(row)}", where=Location(name, line))
+        yield line, row
 
 
 def _submission(student: str, row: list[str], columns: dict[int, str], where: str
