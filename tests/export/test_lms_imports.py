@@ -385,3 +385,13 @@ def test_gradescope_after_due_date_still_shows_what_was_read_but_not_the_score()
 def test_gradescope_results_follow_the_specification(visibility):
     check_results(gradescope_doc(result("s1", 12), visibility))
     check_results(gradescope_doc(result("s1", None), visibility))
+
+
+def test_a_roster_without_the_assignments_column_is_said_to_be_uncompared(tmp_path):
+    report = report_of(result("s1", 12), title="Homework 9")
+    messages, _ = moodle_export(tmp_path, report, moodle_roster(tmp_path))
+    out = tmp_path / "moodle.csv"
+    assert (f"{out}: the roster (the gradebook exported from Moodle) has no column "
+            "'Homework 9 (Real)', so the grades already in Moodle were not compared: Moodle "
+            "adds the column as a new grade item, or replaces the grades of an item of that "
+            "name") in messages

@@ -31,7 +31,7 @@ from ..errors import ExportError, Location
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster, header_format
 from .cells import format_points, safe_cell, write_csv
-from .changes import Change, decide, report_changes
+from .changes import Change, decide, not_compared_warning, report_changes
 from .common import lms_points, lms_score, no_submission_warnings
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
@@ -93,6 +93,8 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
         warnings.append(f"the Canvas assignment column {column!r} has no Canvas assignment id: "
                         "Canvas fills the assignment of exactly that title or creates a new "
                         "one; name it with --canvas-assignment (its id, as in 'Title (12345)')")
+    if canvas_roster is not None and column not in canvas_roster.header:
+        warnings.append(not_compared_warning(out_path, column, "Canvas"))
     if canvas_roster is None and len(rows) > 1 + options.points_possible:
         warnings.append(f"{out_path} was not compared with the grades already in Canvas (no "
                         "gradebook exported from Canvas as --roster): Canvas replaces every "

@@ -115,6 +115,14 @@ def _same(before: str, new: float) -> bool:
         return False
 
 
+def not_compared_warning(out_path, column: str, lms: str) -> str:
+    """The warning for an import column the LMS's gradebook (the roster) does not have: no
+    grade already there could be compared with mechgrade's."""
+    return (f"{out_path}: the roster (the gradebook exported from {lms}) has no column "
+            f"{column!r}, so the grades already in {lms} were not compared: {lms} adds the "
+            "column as a new grade item, or replaces the grades of an item of that name")
+
+
 def changes_path(out_path: str | os.PathLike) -> Path:
     """``<name>.changes.csv`` beside the import file.
 

@@ -39,7 +39,7 @@ import time
 from ..grade.results import GradeReport, ObjectiveInfo, StudentResult
 from ..roster import Roster, RosterStudent
 from .cells import format_points, safe_cell, write_csv
-from .changes import Change, ChangeKind, decide, report_changes
+from .changes import Change, ChangeKind, decide, not_compared_warning, report_changes
 from .common import (answers_by_objective, has_submission, lms_points, lms_score,
                      no_submission_warnings, objective_label)
 from .matching import Pair, identity_value, match_roster
@@ -99,6 +99,8 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
                         f"--roster, so its {_KEY_NAMES[options.moodle_key]} values are "
                         "unchecked: Moodle aborts the whole import if one of them is not a "
                         "Moodle user")
+    if moodle_roster is not None and grade not in moodle_roster.header:
+        warnings.append(not_compared_warning(out_path, grade, "Moodle"))
     warnings.extend(_points_warnings(report, options, grade))
     if downloaded and moodle_roster is not None:
         warnings.extend(_downloaded_warnings(moodle_roster, downloaded))
