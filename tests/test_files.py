@@ -100,3 +100,12 @@ def test_reading_anything_but_a_regular_file_is_refused_without_waiting(tmp_path
     found = {"fifo": "a FIFO (named pipe), not a regular file",
              "device": "a character device, not a regular file", "folder": "a folder"}[kind]
     assert [str(e) for e in outcome] == [f"{path}: expected a results.json file, found {found}"]
+
+
+def test_visible_text_escapes_what_would_act_on_a_terminal():
+    from mechgrade.files import visible_text
+
+    assert visible_text("Zoë Ω 😀 dan_wu") == "Zoë Ω 😀 dan_wu"
+    assert visible_text("\x1b]0;t\x07\x1b[2J\x9b\r\t\n\u2028\u202e") == \
+        "\\x1b]0;t\\x07\\x1b[2J\\x9b\\r\\t\\n\\u2028\\u202e"
+    assert visible_text("bad\udce9name") == "bad\\xe9name"

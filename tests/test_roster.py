@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from mechgrade.errors import AssignmentError
-from mechgrade.roster import read_roster
+from mechgrade.roster import MATCH_KINDS, Roster, RosterStudent, pair_students, read_roster
 
 DATA = Path(__file__).parent / "data" / "export"
 
@@ -113,3 +113,57 @@ def test_quoted_multiline_cell_keeps_line_numbers_right(tmp_path):
     path = write(tmp_path, 'id,name\ns1,"two\nlines"\ns1,again\n')
     with pytest.raises(AssignmentError, match=r"r\.csv:4: expected each student once"):
         read_roster(path)
+
+
+ADA = RosterStudent("101", "Ada Lovelace", "ada@uni.edu", sis_login_id="ada")
+BOB = RosterStudent("102", "Bob Roe", "bob@uni.edu", sis_login_id="bob")
+TWO = Roster((ADA, BOB), "plain", ("id", "name", "email"))
+
+
+def folders(*names: str) -> list[dict[str, set[str]]]:
+    """Folder names as candidates: a folder may be named by any identifier of a student."""
+    from mechgrade.roster import fold
+
+    return [{kind: {fold(name)} for kind in MATCH_KINDS if kind != "name"} for name in names]
+
+
+def test_each_student_is_paired_with_the_one_folder_that_names_them():
+    pairing = pair_students(TWO, folders("ada", "102"))
+    assert pairing.pairs == ((0, "sis_login_id"), (1, "id")) and pairing.conflicts == ()
+
+
+def test_a_folder_named_with_another_students_id_is_a_conflict_not_a_winner():
+    """'101' (Ada's LMS id) holding Bob's work used to win over Ada's own folder 'ada'."""
+    pairing = pair_students(TWO, folders("101", "ada", "bob"))
+    assert pairing.pairs == ((None, None), (2, "sis_login_id"))
+    (conflict,) = pairing.conflicts
+    assert (conflict.students, conflict.candidates) == ((0,), (0, 1))
+    assert conflict.routes == ((0, 0, ("id",)), (0, 1, ("sis_login_id", "email_user")))
+    assert conflict.describe(TWO, ["101", "ada", "bob"]) == (
+        "'101' matches Ada Lovelace (101) by id; 'ada' matches Ada Lovelace (101) by SIS "
+        "login id and email user name")
+
+
+def test_two_folders_differing_in_letter_case_are_a_conflict_not_a_zero():
+    pairing = pair_students(TWO, folders("ADA", "ada"))
+    assert pairing.pairs == ((None, None), (None, None))
+    assert [(c.students, c.candidates) for c in pairing.conflicts] == [((0,), (0, 1))]
+
+
+def test_a_folder_matching_two_students_is_a_conflict():
+    roster = Roster((ADA, RosterStudent("7", "Cy Doe", sis_user_id="101")), "plain",
+                    ("id", "name"))
+    pairing = pair_students(roster, folders("101"))
+    assert pairing.pairs == ((None, None), (None, None))
+    (conflict,) = pairing.conflicts
+    assert (conflict.students, conflict.candidates) == ((0, 1), (0,))
+    assert conflict.describe(roster, ["101"]) == (
+        "'101' matches Ada Lovelace (101) by id; '101' matches Cy Doe (7) by SIS user id")
+
+
+def test_an_identifier_two_roster_students_share_identifies_neither():
+    twins = Roster((RosterStudent("1", "Jo Smith"), RosterStudent("2", "Jo Smith")), "plain",
+                   ("id", "name"))
+    results = [{"id": {"1"}, "name": {"jo smith"}}, {"id": {"2"}, "name": {"jo smith"}}]
+    pairing = pair_students(twins, results)
+    assert pairing.pairs == ((0, "id"), (1, "id")) and pairing.conflicts == ()

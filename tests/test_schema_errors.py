@@ -107,3 +107,27 @@ def test_a_badly_formed_key_is_located_at_the_key():
     schema = {"propertyNames": {"pattern": "^[a-z]+$"}}
     (problem,) = schema_problems({"properties": {"a": schema}}, {"a": {"B2": 1}})
     assert problem.path == ("a", "B2") and problem.at_key
+
+
+@pytest.mark.parametrize("schema, data, text", [
+    ({"type": "number"}, float("nan"), "(top level): expected a finite number, found nan (not a "
+                                       "number)"),
+    ({"maximum": 1}, float("inf"), "(top level): expected a finite number, found inf (infinite)"),
+    ({"items": {"type": "string"}}, ["a", -float("inf")],
+     "[1]: expected a finite number, found -inf (infinite)"),
+    ({}, {"a": {"b": 1e300}}, "a.b: expected a number of magnitude at most 1e+40, found 1e+300"),
+    ({}, [10 ** 60], "[0]: expected a number of magnitude at most 1e+40, found a number of 61 "
+                     "digits"),
+    ({}, 1e-300, "(top level): expected zero or a number of magnitude at least 1e-40, found "
+                 "1e-300"),
+])
+def test_numbers_no_file_may_hold_are_one_problem_each(schema, data, text):
+    assert [str(p) for p in schema_problems(schema, data)] == [text]
+
+
+def test_a_deeply_nested_document_is_walked_for_numbers():
+    data: list = [float("nan")]
+    for _ in range(5000):
+        data = [data]
+    (problem,) = [p for p in schema_problems({}, data)]
+    assert len(problem.path) == 5001 and problem.message.startswith("expected a finite number")

@@ -62,6 +62,9 @@ def test_size_cap_and_encoding(tmp_path):
     ("a: x\x7f\n", "f.yaml:1:5: expected printable text, found DEL (U+007F); delete it"),
     ("a: x\x85y\n", "f.yaml:1:5: expected printable text, found NEL (U+0085); delete it"),
     ("a: \x9b\n", "f.yaml:1:4: expected printable text, found a control character (U+009B); delete it"),
+    ("a: 1\nb: x\ufffe\n", "f.yaml:2:5: expected printable text, found the noncharacter U+FFFE; delete it"),
+    ("\uffff: 1\n", "f.yaml:1:1: expected printable text, found the noncharacter U+FFFF; delete it"),
+    ("a: '\ud800'\n", "f.yaml:1:5: expected printable text, found a lone surrogate (U+D800); delete it"),
     ("a: " + "9" * 5000 + "\n",
      "f.yaml:1:4: expected a number of at most 100 digits, found one of 5000 (quote it if it is text)"),
     ("a: [1, 0x" + "f" * 5000 + "]\n",
@@ -190,3 +193,14 @@ def test_the_shipped_files_read_the_same_with_libyaml():
 def test_a_date_that_does_not_exist_is_kept_as_typed_for_its_field_to_refuse():
     assert read_yaml_text("due: 2026-02-30\nday: 2026-02-28\n", "f.yaml").data == {
         "due": "2026-02-30", "day": "2026-02-28"}
+
+
+def test_a_reader_refusing_the_text_itself_is_located(monkeypatch):
+    """What PyYAML's reader refuses as it is made (before parsing) is the caller's error too."""
+    from mechgrade import yamlio
+
+    monkeypatch.setattr(yamlio, "_UNPRINTABLE", yamlio.re.compile("(?!)"))
+    with pytest.raises(SpecError) as info:
+        read_yaml_text("a: 1\nb: x\ufffe\n", "f.yaml")
+    assert str(info.value) == ("f.yaml:2:5: expected printable text, found a character YAML "
+                               "does not allow (U+FFFE); delete it")

@@ -103,6 +103,23 @@ def clean_text(text: str) -> str:
     return _SURROGATE.sub(_escape_surrogate, text) if _SURROGATE.search(text) else text
 
 
+def visible_text(text: str) -> str:
+    """One line of ``text`` as shown on a terminal: :func:`clean_text`, then every character
+    that is not printable but a space (controls: ESC starting a sequence that sets the window
+    title, clears the screen or hides text; a carriage return; a line break; bidirectional
+    overrides) escaped as ``\\x1b``, ``\\r``, ``\\u202e``: such text can neither act on the
+    terminal nor hide what follows.
+
+    >>> print(visible_text("ana\\x1b]0;owned\\x07 \\x1b[2J\\rZoë\\u202e\\nx"))
+    ana\\x1b]0;owned\\x07 \\x1b[2J\\rZoë\\u202e\\nx
+    """
+    text = clean_text(text)
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() or c == " " else c.encode("unicode_escape").decode()
+                   for c in text)
+
+
 def clean_data(value):
     """:func:`clean_text` applied to every string (keys too) of a JSON-like value.
 

@@ -125,38 +125,95 @@ def student_keys(student: RosterStudent) -> dict[str, str]:
             "name": normalise_name(student.name)}
 
 
-def pair_students(roster: Roster, candidates: Sequence[Mapping[str, Collection[str]]]
-                  ) -> tuple[tuple[int | None, str | None], ...]:
-    """Match each roster student, in roster order, with at most one candidate.
+KIND_WORDS = {"id": "id", "sis_user_id": "SIS user id", "sis_login_id": "SIS login id",
+              "email": "email", "email_user": "email user name", "name": "name"}
+"""Each kind of :data:`MATCH_KINDS` as messages name it."""
 
-    A candidate offers folded identifiers per kind of :data:`MATCH_KINDS`. A student takes the
-    first kind whose identifier exactly one unclaimed candidate offers; an identifier two
-    candidates share identifies nobody. Returns ``(candidate index or None, kind or None)`` per
-    roster student.
+
+@dataclass(frozen=True)
+class RosterConflict:
+    """Roster students and candidates (folders, results) that match each other other than one
+    to one: none of them is paired. ``routes`` holds ``(student, candidate, kinds)`` for every
+    match: the indices of a roster student and a candidate, and the kinds of identifier by
+    which they match."""
+
+    students: tuple[int, ...]
+    candidates: tuple[int, ...]
+    routes: tuple[tuple[int, int, tuple[str, ...]], ...]
+
+    def describe(self, roster: Roster, labels: Sequence[str]) -> str:
+        """Every match, with the candidates named by ``labels`` (their folder names or ids):
+        ``'101' matches Ada Lovelace (101) by id; 'ada' matches ...``."""
+        return "; ".join(
+            f"'{labels[c]}' matches {roster.students[s].name or roster.students[s].id} "
+            f"({roster.students[s].id}) by " + " and ".join(KIND_WORDS[k] for k in kinds)
+            for s, c, kinds in self.routes)
+
+
+@dataclass(frozen=True)
+class Pairing:
+    """The outcome of :func:`pair_students`: ``(candidate index or None, kind or None)`` per
+    roster student, in roster order, and the conflicts that left students unpaired."""
+
+    pairs: tuple[tuple[int | None, str | None], ...]
+    conflicts: tuple[RosterConflict, ...] = ()
+
+
+def pair_students(roster: Roster, candidates: Sequence[Mapping[str, Collection[str]]]
+                  ) -> Pairing:
+    """Pair roster students with candidates, each with at most one, never by a guess.
+
+    A candidate offers folded identifiers per kind of :data:`MATCH_KINDS`; it matches a roster
+    student whose identifier of that kind it offers (an identifier two roster students share
+    identifies neither). A roster student and a candidate that match only each other are
+    paired, by the first kind in :data:`MATCH_KINDS` order by which they match. Students and
+    candidates matching more than that (two folders one student, one folder two students,
+    through any kinds) form a :class:`RosterConflict`: none of them is paired, so a folder
+    named with one student's id never wins over that student's own folder.
 
     >>> roster = Roster((RosterStudent("101", "Ada Lovelace", sis_login_id="ada"),
     ...                  RosterStudent("102", "Bob Roe")), "plain", ("id", "name"))
-    >>> pair_students(roster, [{"sis_login_id": {"ada"}}, {"id": {"999"}}])
+    >>> pair_students(roster, [{"sis_login_id": {"ada"}}, {"id": {"999"}}]).pairs
     ((0, 'sis_login_id'), (None, None))
     """
-    claimed: set[int] = set()
-    out: list[tuple[int | None, str | None]] = []
-    for student in roster.students:
-        keys = student_keys(student)
-        found: tuple[int | None, str | None] = (None, None)
+    owners: dict[tuple[str, str], list[int]] = {}
+    for s, student in enumerate(roster.students):
+        for kind, key in student_keys(student).items():
+            if key:
+                owners.setdefault((kind, key), []).append(s)
+    routes: dict[tuple[int, int], list[str]] = {}
+    for c, offered in enumerate(candidates):
         for kind in MATCH_KINDS:
-            key = keys[kind]
-            if not key:
-                continue
-            offering = [i for i, c in enumerate(candidates) if key in c.get(kind, ())]
-            free = [i for i in offering if i not in claimed]
-            if len(offering) == 1 and free:
-                found = (free[0], kind)
-                break
-        if found[0] is not None:
-            claimed.add(found[0])
-        out.append(found)
-    return tuple(out)
+            for key in offered.get(kind, ()):
+                owner = owners.get((kind, key), [])
+                if len(owner) == 1 and kind not in routes.get((owner[0], c), []):
+                    routes.setdefault((owner[0], c), []).append(kind)
+    # the students and candidates linked by matches, as connected groups (union-find)
+    parent: dict[tuple[str, int], tuple[str, int]] = {}
+
+    def root(node: tuple[str, int]) -> tuple[str, int]:
+        while parent.setdefault(node, node) != node:
+            parent[node] = parent[parent[node]]
+            node = parent[node]
+        return node
+
+    for s, c in routes:
+        parent[root(("s", s))] = root(("c", c))
+    groups: dict[tuple[str, int], list[tuple[int, int]]] = {}
+    for s, c in sorted(routes):
+        groups.setdefault(root(("s", s)), []).append((s, c))
+    pairs: list[tuple[int | None, str | None]] = [(None, None)] * len(roster.students)
+    conflicts = []
+    for links in groups.values():
+        students = tuple(sorted({s for s, _ in links}))
+        found = tuple(sorted({c for _, c in links}))
+        if len(students) == 1 and len(found) == 1:
+            kinds = routes[students[0], found[0]]
+            pairs[students[0]] = (found[0], min(kinds, key=MATCH_KINDS.index))
+        else:
+            conflicts.append(RosterConflict(students, found, tuple(
+                (s, c, tuple(sorted(routes[s, c], key=MATCH_KINDS.index))) for s, c in links)))
+    return Pairing(tuple(pairs), tuple(sorted(conflicts, key=lambda k: k.students)))
 
 
 def read_roster(path: str | os.PathLike) -> Roster:

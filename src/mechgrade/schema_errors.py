@@ -15,11 +15,16 @@ of any keyword, and a mapping that takes keys by pattern can word them with ``"x
 id: expected text, found 3
 status: expected one of graded, missing, found 'gradd'; did you mean 'graded'?
 x: expected only the fields id, status, found 'x'
+
+Every number a checked file holds is finite and of a magnitude no physical value reaches
+(:func:`number_problem`): JSON has no NaN or infinity, and YAML's ``.nan`` and ``.inf`` never
+mean anything in a mechgrade file.
 """
 
 from __future__ import annotations
 
 import difflib
+import math
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -35,6 +40,39 @@ _TYPES = {"object": "a mapping", "array": "a list", "string": "text", "number": 
 _SIGNS = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}
 _BOUNDS = {"minItems": ("at least", "item(s)"), "maxItems": ("at most", "item(s)"),
            "minProperties": ("at least", "field(s)"), "maxProperties": ("at most", "field(s)")}
+
+
+LARGEST = 1e40
+"""The largest magnitude of a number in a file mechgrade reads (and, for a problem file, of
+each value in SI units): far beyond any physical quantity a dynamics problem gives (the Sun's
+mass is 2e30 kg), and far enough inside the float range (1.8e308) that a product of seven such
+numbers stays finite."""
+
+SMALLEST = 1e-40
+"""The smallest magnitude of a number other than zero (Planck's constant is 6.6e-34 J s): a
+product of seven such numbers stays a normal float, not zero."""
+
+
+def number_problem(value: float, found: str | None = None, unit: str = "") -> str | None:
+    """Why ``value`` is not a number a file may hold (not finite, of a magnitude above
+    :data:`LARGEST`, or other than zero below :data:`SMALLEST`) as ``expected ..., found
+    ...``; ``None`` when it is one. ``found`` words the value as written; ``unit`` names the units
+    ``value`` is in.
+
+    >>> number_problem(2.5), number_problem(float("nan"))
+    (None, 'expected a finite number, found nan (not a number)')
+    >>> number_problem(3.048e299, "'1e300 ft'", "SI units")
+    "expected a number of magnitude at most 1e+40 in SI units, found '1e300 ft'"
+    """
+    if isinstance(value, float) and not math.isfinite(value):
+        return f"expected a finite number, found {found or describe(value)}"
+    if abs(value) > LARGEST:
+        return (f"expected a number of magnitude at most {LARGEST:g}{f' in {unit}' * bool(unit)}"
+                f", found {found or describe(value)}")
+    if value and abs(value) < SMALLEST:
+        return (f"expected zero or a number of magnitude at least {SMALLEST:g}"
+                f"{f' in {unit}' * bool(unit)}, found {found or describe(value)}")
+    return None
 
 
 @dataclass(frozen=True)
@@ -107,10 +145,31 @@ def schema_problems(schema: dict, data: object) -> tuple[SchemaProblem, ...]:
     import jsonschema
 
     errors = jsonschema.Draft202012Validator(schema).iter_errors(data)
-    problems = [problem for err in errors for problem in _explain(err)]
+    numbers = _number_problems(data)
+    spoilt = {p.path for p in numbers}  # a keyword's failure on such a number says less
+    problems = [problem for err in errors for problem in _explain(err)
+                if problem.path not in spoilt] + numbers
     meant = {(p.path[:-1], p.meant) for p in problems if p.meant}
     kept = [p for p in problems if not p.missing or (p.path, p.missing) not in meant]
     return tuple(sorted(dict.fromkeys(kept), key=lambda p: _order(p.path)))
+
+
+def _number_problems(data: object) -> list[SchemaProblem]:
+    """A problem for every number of ``data`` :func:`number_problem` refuses (walked without
+    recursion: a document read from JSON may be nested deeply)."""
+    out = []
+    todo: list[tuple[Path, object]] = [((), data)]
+    while todo:
+        path, value = todo.pop()
+        if isinstance(value, dict):
+            todo.extend((path + (key,), item) for key, item in value.items())
+        elif isinstance(value, list):
+            todo.extend((path + (i,), item) for i, item in enumerate(value))
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            message = number_problem(value)
+            if message is not None:
+                out.append(SchemaProblem(path, message))
+    return out
 
 
 def _explain(err: jsonschema.ValidationError) -> list[SchemaProblem]:
@@ -250,6 +309,10 @@ def describe(value: object) -> str:
     if isinstance(value, str):
         return repr(value if len(value) <= 40 else value[:37] + "...") if value \
             else "empty text"
+    if isinstance(value, float) and not math.isfinite(value):
+        return f"{value!r} ({'not a number' if math.isnan(value) else 'infinite'})"
+    if isinstance(value, int) and abs(value) > LARGEST:
+        return f"a number of {len(str(abs(value)))} digits"
     return repr(value)
 
 

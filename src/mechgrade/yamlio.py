@@ -49,6 +49,9 @@ MAX_INT_DIGITS = 100
 _CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")
 _CONTROL_NAMES = {0x00: "NUL", 0x07: "BEL", 0x08: "BS", 0x0B: "VT", 0x0C: "FF", 0x1B: "ESC",
                   0x7F: "DEL", 0x85: "NEL"}
+# The rest of what YAML does not allow: lone surrogates (a file's bytes that are not UTF-8,
+# kept by Python) and the noncharacters U+FFFE and U+FFFF.
+_UNPRINTABLE = re.compile("[\ud800-\udfff\ufffe\uffff]")
 
 
 def field_path(path: tuple) -> str:
@@ -220,10 +223,15 @@ def read_yaml_text(text: str, file: str = "<text>",
     if control:
         code = ord(control.group())
         name = _CONTROL_NAMES.get(code, "a control character")
-        line = text.count("\n", 0, control.start()) + 1
-        column = control.start() - (text.rfind("\n", 0, control.start()) + 1) + 1
         raise error(f"expected printable text, found {name} (U+{code:04X}); delete it",
-                    where=Location(file, line, column))
+                    where=_place(file, text, control.start()))
+    unprintable = _UNPRINTABLE.search(text)
+    if unprintable:
+        code = ord(unprintable.group())
+        name = (f"the noncharacter U+{code:04X}" if code >= 0xFFFE
+                else f"a lone surrogate (U+{code:04X})")
+        raise error(f"expected printable text, found {name}; delete it",
+                    where=_place(file, text, unprintable.start()))
     if libyaml_reads(text):
         try:
             return _read(_CLoader, text, file, error)
@@ -232,8 +240,22 @@ def read_yaml_text(text: str, file: str = "<text>",
     return _read(_Loader, text, file, error)
 
 
+def _place(file: str, text: str, index: int) -> Location:
+    """The location of the character at ``index`` of ``text``."""
+    line = text.count("\n", 0, index) + 1
+    return Location(file, line, index - (text.rfind("\n", 0, index) + 1) + 1)
+
+
 def _read(loader_class, text: str, file: str, error: type[MechgradeError]) -> Document:
-    loader = loader_class(text)
+    try:
+        loader = loader_class(text)  # PyYAML's reader checks every character here
+    except yaml.reader.ReaderError as exc:
+        raise error(f"expected printable text, found a character YAML does not allow "
+                    f"(U+{exc.character if isinstance(exc.character, int) else 0:04X}); "
+                    f"delete it", where=_place(file, text, exc.position)) from None
+    except Exception as exc:  # noqa: BLE001 - the boundary: nothing else may escape a read
+        raise error(f"expected valid YAML, found something the reader cannot handle "
+                    f"({type(exc).__name__}: {str(exc)[:80]})", where=Location(file)) from None
     marks: dict = {}
     texts: dict = {}
     keys: dict = {}

@@ -1,6 +1,8 @@
 """A class folder built to break the grader (tests/data/hostile/make_corpus.py), graded through
-the CLI: the run finishes, every entry is accounted for, every output is valid and stable, and
-nothing is written outside ``--out``."""
+the CLI with its roster: the run finishes, every entry is accounted for, every output is valid
+and stable, nothing is written outside ``--out``, roster conflicts are listed and never
+exported as grades, what a file repeats is not repeated in every output, and names holding
+terminal control sequences are printed escaped."""
 
 from __future__ import annotations
 
@@ -42,12 +44,13 @@ def hostile(tmp_path_factory):
         title: Hostile class
         problems: [p.yaml]
         """), encoding="utf-8")
+    (top / "roster.csv").write_text(corpus.ROSTER, encoding="utf-8")
     before = _snapshot(top)
-    first = CliRunner().invoke(main, ["grade", str(top / "hw.yaml"), str(top / "class"),
-                                      "--out", str(top / "out")])
+    command = ["grade", str(top / "hw.yaml"), str(top / "class"), "--out", str(top / "out"),
+               "--roster", str(top / "roster.csv")]
+    first = CliRunner().invoke(main, command)
     outputs = _outputs(top / "out")
-    again = CliRunner().invoke(main, ["grade", str(top / "hw.yaml"), str(top / "class"),
-                                      "--out", str(top / "out")])
+    again = CliRunner().invoke(main, command)
     yield {"top": top, "first": first, "again": again, "outputs": outputs,
            "before": before, "after": _snapshot(top), "corpus": corpus}
     corpus.unlock(top / "class")
@@ -143,3 +146,90 @@ def test_every_export_of_the_hostile_class_is_written(hostile, fmt):
     for path in [target] if target.is_file() else sorted(target.iterdir()):
         path.read_bytes().decode("utf-8-sig")
         assert not path.name.startswith(("-", "."))
+
+
+def _results(hostile) -> dict:
+    return json.loads((hostile["top"] / "out" / "results.json").read_bytes().decode("utf-8"))
+
+
+def test_roster_conflicts_are_listed_and_no_folder_is_anyones(hostile):
+    data = _results(hostile)
+    conflicts = [(s["id"], s["name"]) for s in data["students"] if s["status"] == "conflict"]
+    assert sorted(conflicts) == sorted([("cy", "Cy Cole"), ("101", "Dee Dunn"), ("CY", ""),
+                                        ("cy", ""), ("101", ""), ("dee", "")])
+    notes = [n for n in data["notes"] if n.startswith("roster conflict: ")]
+    assert [n.split(";")[0] for n in notes] == [
+        "roster conflict: 'CY' matches Cy Cole (cy) by id and email user name",
+        "roster conflict: '101' matches Dee Dunn (101) by id"]
+    summary = hostile["first"].stdout
+    assert "6 in roster conflicts (students and folders)" in summary.splitlines()[0]
+    assert all(note in summary for note in notes)
+    ana = next(s for s in data["students"] if s["name"] == "Ana Able")
+    assert (ana["id"], ana["status"]) == ("ana", "graded")
+
+
+def test_students_in_roster_conflicts_are_not_exported_as_zero(hostile):
+    top = hostile["top"]
+    out = top / "out"
+    result = CliRunner().invoke(main, ["export", str(out / "results.json"), "--format",
+                                       "grades-csv", "--roster", str(top / "roster.csv"),
+                                       "--out", str(top / "conflicts.csv")])
+    assert result.exit_code == 0, result.output
+    rows = list(csv.reader(io.StringIO((top / "conflicts.csv").read_text("utf-8"),
+                                       newline="")))
+    named = {row[1]: (row[2], row[-2]) for row in rows[1:] if row[1]}
+    assert named["Cy Cole"] == ("conflict", "") and named["Dee Dunn"] == ("conflict", "")
+    assert named["No Body"] == ("missing", "0")
+    moodle = CliRunner().invoke(main, ["export", str(out / "results.json"), "--format",
+                                       "moodle", "--roster", str(top / "roster.csv"),
+                                       "--out", str(top / "moodle.csv")])
+    assert moodle.exit_code == 0, moodle.output
+    imported = (top / "moodle.csv").read_text("utf-8")
+    assert "cy@uni.edu" not in imported and "dee@uni.edu" not in imported
+    held = (top / "moodle.unmatched.csv").read_text("utf-8")
+    assert held.count("roster conflict: ") == 6
+
+
+def test_what_a_file_repeats_is_not_repeated_in_every_output(hostile):
+    """A key answered thousands of times, thousands of unreadable lines, repeated JSON keys,
+    answers that are not text and thousands of stray files: each student's record stays small
+    (one message per repeat made a 256 KiB file 1.2 MB of results)."""
+    data = _results(hostile)
+    amplifiers = [s for s in data["students"] if s["id"].startswith("amp_")]
+    assert len(amplifiers) == 5
+    for student in amplifiers:
+        assert len(student["messages"]) <= 25, student["id"]
+        assert len(json.dumps(student)) < 8_000, student["id"]
+    stray = [e for e in data["skipped"] if e["path"].startswith("amp_stray/")]
+    assert len(stray) == 11 and stray[0]["reason"].startswith("2990 more entries")
+    page = hostile["top"] / "out" / "feedback" / "amp_stray.html"
+    assert page.stat().st_size < 20_000
+
+
+def test_names_holding_terminal_sequences_are_printed_escaped(hostile):
+    printed = hostile["first"].stdout + hostile["first"].stderr
+    for control in ("\x1b", "\x07", "\x9b"):
+        assert control not in printed
+    assert "\r" not in hostile["first"].stdout
+    for shown in ("\\x1b]0;owned\\x07title.pdf", "\\x1b[2J\\x1b[8mhidden.pdf", "\\rcr.pdf",
+                  "\\x9b31mred.pdf"):
+        assert f"  {shown}: not a submission" in hostile["first"].stdout
+
+
+def test_a_gradescope_upload_full_of_stray_files_and_control_sequences_stays_small(hostile):
+    top = hostile["top"]
+    upload = top / "upload"
+    upload.mkdir()
+    (upload / "answers.txt").write_text(
+        "bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n" * 3000, encoding="utf-8")
+    for i in range(3000):
+        (upload / f"scan{i:04d}.pdf").write_bytes(b"")
+    (top / "metadata.json").write_text(json.dumps(
+        {"users": [{"sid": "\x1b]0;owned\x07s1", "name": "\x1b[2JEve"}]}), encoding="utf-8")
+    result = CliRunner().invoke(main, ["gradescope", str(top / "hw.yaml"), "--submission",
+                                       str(upload), "--results", str(top / "gs.json"),
+                                       "--metadata", str(top / "metadata.json")])
+    assert result.exit_code == 0, result.output
+    assert result.stdout.startswith("\\x1b]0;owned\\x07s1: ")
+    assert "\x1b" not in result.output
+    assert (top / "gs.json").stat().st_size < 20_000

@@ -43,7 +43,7 @@ DELETE = object()
 
 @pytest.mark.parametrize("path, value, message", [
     (("students", 3, "status"), "absent",
-     "students[3].status: expected one of graded, missing, unreadable, not_evaluated, found "
+     "students[3].status: expected one of graded, missing, unreadable, not_evaluated, conflict, found "
      "'absent'"),
     (("students", 2, "answers", 0, "verdict"), "great",
      "students[2].answers[0].verdict: expected one of correct, partial, incorrect, unreadable, "
@@ -66,7 +66,7 @@ DELETE = object()
     (("skipped",), [{"path": "x"}], "skipped[0]: expected a field 'reason', found none"),
     (("notes",), "a note", "notes: expected a list, found 'a note'"),
     (("extra",), 1, "extra: expected only the fields assignment, objectives, students, skipped, notes, "
-                    "internal_errors, found 'extra'"),
+                    "internal_errors, failing_expects, found 'extra'"),
 ])
 def test_each_violation_is_one_located_message(tmp_path, path, value, message):
     doc = copy.deepcopy(GOOD)

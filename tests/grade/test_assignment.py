@@ -237,3 +237,31 @@ def test_the_worked_solution_is_shown_by_the_due_date_rule(folder, due, rule, sh
     assert [m for m in shown if m in shown_on] == list(shown_on)
     assert len(shown) == (0 if rule == "never" or (due is None and rule != "always")
                           else len(moments) - moments.index(shown_on[0]))
+
+
+@pytest.mark.parametrize("text, expected", [
+    (MINIMAL + "points: {default: .nan}\n",
+     "hw.yaml:4:19: points.default: expected a finite number, found nan (not a number)"),
+    (MINIMAL + "points: {p.a: .inf}\n",
+     "hw.yaml:4:15: points.p.a: expected a finite number, found inf (infinite)"),
+    (MINIMAL + "policy: {tolerance: {rel: .nan}}\n",
+     "hw.yaml:4:27: policy.tolerance.rel: expected a finite number, found nan (not a number)"),
+    (MINIMAL + "policy: {tolerance: {abs: .inf}}\n",
+     "hw.yaml:4:27: policy.tolerance.abs: expected a finite number, found inf (infinite)"),
+    (MINIMAL + "policy: {tolerance: {abs: 1.0e+300}}\n",
+     "hw.yaml:4:27: policy.tolerance.abs: expected a number of magnitude at most 1e+40, "
+     "found 1e+300"),
+    (MINIMAL + "policy: {sig_figs: {figures: 3, credit: .nan}}\n",
+     "hw.yaml:4:41: policy.sig_figs.credit: expected a finite number, found nan (not a number)"),
+    (MINIMAL + "policy: {missing_unit: {action: penalize, credit: .nan}}\n",
+     "hw.yaml:4:51: policy.missing_unit.credit: expected a finite number, found nan"),
+    (MINIMAL + "policy: {partial_credit: {diagnoses: {sign: .nan}}}\n",
+     "hw.yaml:4:45: policy.partial_credit.diagnoses.sign: expected a finite number, found nan"),
+    (MINIMAL + "policy: {ecf: {credit: .nan}}\n",
+     "hw.yaml:4:24: policy.ecf.credit: expected a finite number, found nan (not a number)"),
+])
+def test_nan_infinity_and_absurd_magnitudes_are_refused(folder, text, expected):
+    """Each would grade the whole class wrongly (``points.default: .nan`` graded everyone,
+    then wrote nothing)."""
+    message = error_of(folder, text)
+    assert message.startswith(str(folder / "hw.yaml") + expected[len("hw.yaml"):]), message

@@ -127,6 +127,41 @@ def test_every_roster_student_appears_in_roster_order_then_others(class_dir):
     assert dict(report.students[0].identity)["email"] == "ben@uni.edu"
 
 
+def test_a_folder_named_with_another_students_id_is_a_conflict_not_a_grade(class_dir):
+    """'s-ann' (Ann's roster id) holding Ben's work used to win over Ann's own folder 'ann';
+    now neither is Ann's, and both are listed with the conflict."""
+    write(class_dir / "subs" / "s-ann.txt", "bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n")
+    roster_path = write(class_dir / "roster.csv", """\
+        id,name,email
+        ben,Ben Bo,ben@uni.edu
+        s-ann,Ann Ash,ann@uni.edu
+        """)
+    report = grade(class_dir, read_roster(roster_path))
+    said = "'ann' matches Ann Ash (s-ann) by email user name; 's-ann' matches Ann Ash (s-ann) by id"
+    assert [(s.id, s.name, s.status) for s in report.students] == [
+        ("ben", "Ben Bo", "graded"), ("s-ann", "Ann Ash", "conflict"), ("ann", "", "conflict"),
+        ("cat", "", "unreadable"), ("s-ann", "", "conflict")]
+    ann = report.students[1]
+    assert ann.messages == (f"roster conflict: {said}; graded as no one's until your "
+                            f"instructor sorts it out",)
+    assert dict(ann.identity)["id"] == "s-ann"
+    assert report.students[2].score == 6.0  # graded, as no one's
+    assert report.notes == (f"roster conflict: {said}; none of these folders was graded as "
+                            f"anyone's (status 'conflict', kept out of exports): rename the "
+                            f"folders so that each matches one student",)
+
+
+def test_two_folders_differing_in_letter_case_are_a_conflict_not_a_zero(class_dir):
+    write(class_dir / "subs" / "ANN.txt", "bowling_3_15_4_pendulum.acc_mag = 1 ft/s^2\n")
+    roster_path = write(class_dir / "roster.csv", "id,name\nann,Ann Ash\n")
+    report = grade(class_dir, read_roster(roster_path))
+    assert [(s.id, s.status) for s in report.students] == [
+        ("ann", "conflict"), ("ANN", "conflict"), ("ann", "conflict"), ("ben", "graded"),
+        ("cat", "unreadable")]
+    assert report.notes[-1].startswith("roster conflict: 'ANN' matches Ann Ash (ann) by id; "
+                                       "'ann' matches Ann Ash (ann) by id;")
+
+
 def test_without_roster_students_are_sorted_by_id(class_dir):
     assert [s.id for s in grade(class_dir).students] == ["ann", "ben", "cat"]
 

@@ -423,3 +423,64 @@ def test_read_answer_file_refuses_a_file_with_nothing_readable(tmp_path):
     path.write_text("no equals here\n", encoding="utf-8")
     with pytest.raises(SubmissionError, match="holds no answers"):
         read_answer_file(path)
+
+
+# What a file repeats many times is listed at most MAX_LISTED_KEYS times and summarised, as
+# unknown keys are: one message per repeat made a 256 KiB file 1.2 MB of results.
+LISTED = subs.MAX_LISTED_KEYS
+
+
+def _capped(messages, listed_start: str, summary: str) -> None:
+    assert sum(m.startswith(listed_start) and m != summary for m in messages) == LISTED, \
+        messages[:3]
+    assert summary in messages
+
+
+def test_a_key_repeated_thousands_of_times_is_summarised(tmp_path):
+    (tmp_path / "ann.txt").write_text("p.speed = 1 m/s\n" * 5000, encoding="utf-8")
+    ann = student(tmp_path, "ann", KEYS)
+    assert ann.answers == (("p.speed", "1 m/s"),)
+    _capped(ann.messages, "ann.txt:", "ann.txt: 4989 more lines answer a key again; the "
+                                      "latest answer to each was graded")
+    assert len(ann.messages) == LISTED + 1
+
+
+def test_thousands_of_unreadable_lines_are_summarised(tmp_path):
+    (tmp_path / "bob.txt").write_text("p.speed = 1 m/s\n" + "garbage\n" * 5000 + "= 3\n",
+                                      encoding="utf-8")
+    bob = student(tmp_path, "bob", KEYS)
+    _capped(bob.messages, "bob.txt:", "bob.txt: 4991 more lines were not read (expected "
+                                      "'problem_id.objective_id = answer')")
+    assert len(bob.messages) == LISTED + 1
+
+
+def test_thousands_of_keys_repeated_in_json_are_summarised(tmp_path):
+    pairs = ",".join(f'"k{i}": 1, "k{i}": 2' for i in range(3000))
+    (tmp_path / "eve.json").write_text("{" + pairs + ', "p.speed": "1 m/s"}', encoding="utf-8")
+    eve = student(tmp_path, "eve", KEYS)
+    _capped(eve.messages, "'eve.json': 'k", "'eve.json': 2990 more keys are given more than "
+                                            "once; the last of each was graded")
+
+
+def test_thousands_of_answers_that_are_not_text_are_summarised(tmp_path):
+    pairs = ",".join(f'"p.k{i}": [[1]]' for i in range(3000))
+    (tmp_path / "eve.json").write_text("{" + pairs + ', "p.speed": "1 m/s"}', encoding="utf-8")
+    eve = student(tmp_path, "eve", KEYS)
+    _capped(eve.messages, "'eve.json': the answer to", "'eve.json': 2990 more answers are "
+                                                      "not text; they were not read")
+
+
+def test_thousands_of_stray_files_in_a_students_folder_are_summarised(tmp_path):
+    (tmp_path / "dora").mkdir()
+    (tmp_path / "dora" / "answers.txt").write_text("p.speed = 1 m/s\n", encoding="utf-8")
+    for i in range(3000):
+        (tmp_path / "dora" / f"scan{i:04d}.pdf").write_bytes(b"")
+    found = read_submissions(tmp_path, keys=KEYS)
+    (dora,) = found.students
+    (message,) = dora.messages
+    assert message.startswith("ignored 'dora/scan0000.pdf', 'dora/scan0001.pdf'")
+    assert message.endswith("'dora/scan0009.pdf' and 2990 more files: answers go in "
+                            "answers.yaml, answers.json or answers.txt")
+    assert len(found.skipped) == LISTED + 1
+    assert found.skipped[0] == SkippedEntry("dora/", "2990 more entries of this folder are not "
+                                                     "answers files (not listed one by one)")

@@ -43,3 +43,28 @@ def test_the_markdown_solution_lists_every_step_and_the_answers():
     assert "- `2 omega x B_v_P = - 2*qd*yd*B.x`" in text
     assert "- `= (-66, -40, 0) ft/s^2 in N`" in text
     assert "- `q'' = 3 rad/s^2`" in text
+
+
+def test_author_text_with_backticks_stays_literal_in_the_markdown():
+    """A prompt holding a backtick closed the code span its line was written in, and what
+    followed (an <img onerror>) was raw HTML to a Markdown renderer."""
+    from mechgrade.report.output import worked_markdown
+    from mechgrade.solve.worked import Step, WorkedSolution
+
+    prompt = "Magnitude of the `tip` acceleration <img src=x onerror=alert(1)> ``x"
+    worked = WorkedSolution("p", "P", (
+        Step("givens", "Givens and what is asked", ("L = 2 ft", "", f"acc_mag: {prompt}")),
+        Step("answer-acc_mag", prompt, ("= 98.5 ft/s^2",))), "")
+    lines = worked_markdown(worked).splitlines()
+    # a code span fenced by more backticks than any run inside it: all of it literal
+    assert f"- ``` acc_mag: {prompt} ```" in lines
+    assert "#### Magnitude of the \\`tip\\` acceleration \\<img src=x onerror=alert(1)\\> " \
+           "\\`\\`x" in lines
+
+
+def test_code_spans_hold_any_text():
+    from mechgrade.report.output import code_span
+
+    assert code_span("a = 1") == "`a = 1`"
+    assert code_span("`a` b") == "`` `a` b ``"
+    assert code_span("x ``` y\n z") == "```` x ``` y z ````"

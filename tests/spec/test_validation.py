@@ -283,3 +283,77 @@ def test_objective_kinds_are_typed_and_read_as_their_text():
     objective = load_problem_text(BASE, "p.yaml").objectives[0]
     assert objective.kind is ObjectiveKind.SCALAR
     assert objective.kind == "scalar" and f"{objective.kind}" == "scalar"
+
+
+ROOT = Path(__file__).resolve().parents[2]
+VARIANTS = (ROOT / "examples" / "hw2_variants" / "pendulum_variants.yaml").read_text()
+LADDER = (ROOT / "problems" / "ladder_wall_lift_off.yaml").read_text()
+FLYWHEEL = (ROOT / "problems" / "flywheel_speed_drop.yaml").read_text()
+LIMACON = (ROOT / "problems" / "ruina_10_2_limacon.yaml").read_text()
+TOLERANCE = "    tolerance: {rel: 0.01}\n    expect: {value: 6}"
+
+# One failing input per kind of numeric field: NaN, infinity and magnitudes no physical value
+# reaches are refused at load, located, before anything is solved or graded.
+NUMBER_CASES = [
+    ("tolerance rel nan", BASE, "    expect: {value: 6}", TOLERANCE.replace("0.01", ".nan"),
+     "p.yaml:24:22: objectives[0].tolerance.rel: expected a finite number, found nan (not a "
+     "number)"),
+    ("tolerance abs inf", BASE, "    expect: {value: 6}",
+     TOLERANCE.replace("rel: 0.01", "abs: .inf"),
+     "p.yaml:24:22: objectives[0].tolerance.abs: expected a finite number, found inf "
+     "(infinite)"),
+    ("tolerance abs huge", BASE, "    expect: {value: 6}",
+     TOLERANCE.replace("rel: 0.01", "abs: 1.0e+300"),
+     "p.yaml:24:22: objectives[0].tolerance.abs: expected a number of magnitude at most "
+     "1e+40, found 1e+300"),
+    ("expect value nan", BASE, "expect: {value: 6}", "expect: {value: .nan}",
+     "p.yaml:24:21: objectives[0].expect.value: expected a finite number, found nan (not a "
+     "number)"),
+    ("given as a YAML number", BASE, "theta'': 1 rad/s^2", "theta'': -.inf",
+     "p.yaml:17:12: givens.theta'': expected a finite number, found -inf (infinite)"),
+    ("given value in a mapping", BASE, "L: 2 m", "L: {value: .nan, unit: m}",
+     "p.yaml:15:14: givens.L.value: expected a finite number, found nan (not a number)"),
+    ("given with a unit", BASE, "L: 2 m", "L: 1.0e300 ft",
+     "p.yaml:15:6: givens.L: expected a number of magnitude at most 1e+40 in SI units, found "
+     "'1.0e300 ft'"),
+    ("given too small", BASE, "L: 2 m", "L: 1e-300 m",
+     "p.yaml:15:6: givens.L: expected zero or a number of magnitude at least 1e-40 in SI "
+     "units, found '1e-300 m'"),
+    ("given worked out from others", BASE, "theta': 3 rad/s\n  theta'': 1 rad/s^2",
+     "theta': 1e30 rad/s\n  theta'': theta'^2",
+     "p.yaml:17:12: givens.theta'': expected a number of magnitude at most 1e+40 in SI "
+     "units, found \"theta'^2\""),
+    ("number in an expression", BASE, "position: L*A.x", "position: 1e100*L*A.x",
+     "p.yaml:8:26: points.P.position: expected a number of magnitude at most 1e+40, found "
+     "1e+100"),
+    ("mistake credit", BASE, "expect: {value: 6}",
+     "expect: {value: 6}\n    mistakes: [{find: L, message: m, credit: .nan}]",
+     "p.yaml:25:46: objectives[0].mistakes[0].credit: expected a finite number, found nan "
+     "(not a number)"),
+    ("consistency", BASE, "objectives:", "consistency: .nan\nobjectives:",
+     "p.yaml:18:14: consistency: expected a finite number, found nan (not a number)"),
+    ("guess", LIMACON, "R: 1 ft", "R: 1e99 ft",
+     "p.yaml:34:6: guesses.R: expected a number of magnitude at most 1e+40 in SI units, found "
+     "'1e99 ft'"),
+    ("variant range", VARIANTS, "from: 1.5 ft", "from: .nan",
+     "p.yaml:26:15: variants.draw.L.from: expected a finite number, found nan (not a number)"),
+    ("variant range with a unit", VARIANTS, "to: 4 ft", "to: 4e99 ft",
+     "variants.draw.L: expected a number of magnitude at most 1e+40, found 4e+99"),
+    ("variant choice", VARIANTS, "[20 deg,", "[1e50,",
+     "p.yaml:27:12: variants.draw.theta: expected a number of magnitude at most "
+     "1e+40, found 1e+50"),
+    ("integration time limit", LADDER, "max_time: 10 s", "max_time: .inf",
+     "p.yaml:34:15: analysis.integrate.max_time: expected a finite number, found inf "
+     "(infinite)"),
+    ("integration time limit with a unit", LADDER, "max_time: 10 s", "max_time: 1e300 s",
+     "analysis.integrate: expected a number of magnitude at most 1e+40, found 1e+300"),
+    ("design guess", FLYWHEEL, "guess: 0.5 m", "guess: 1e-60 m",
+     "analysis.design: expected zero or a number of magnitude at least 1e-40, found 1e-60"),
+]
+
+
+@pytest.mark.parametrize("base, old, new, message", [c[1:] for c in NUMBER_CASES],
+                         ids=[c[0] for c in NUMBER_CASES])
+def test_numbers_no_physical_value_reaches_are_refused_at_load(base, old, new, message):
+    assert old in base, old
+    assert message in error_of(base.replace(old, new, 1))

@@ -6,7 +6,7 @@ import click
 
 from ..check import CheckReport, check_paths, check_problem, problem_files, watch
 from ..errors import SpecError
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 
 @main.command("check")
@@ -41,7 +41,7 @@ def check_command(paths: tuple[str, ...], verbose: bool, watching: bool, max_run
     reports = check_paths(paths)
     failures = sum(_print_report(report, verbose, variant_count=variant_count)
                    for report in reports)
-    click.echo(f"{len(reports)} file(s), {failures} failing")
+    say(f"{len(reports)} file(s), {failures} failing")
     if failures:
         raise SystemExit(1)
 
@@ -58,10 +58,10 @@ def _watch(paths: tuple[str, ...], max_runs: int | None, interval: float,
                               variant_count=variant_count)
             if max_runs is not None and runs >= max_runs:
                 break
-            click.echo(f"-- run {runs} done; watching {', '.join(paths)} (Ctrl-C to stop)")
+            say(f"-- run {runs} done; watching {', '.join(paths)} (Ctrl-C to stop)")
     except KeyboardInterrupt:
-        click.echo("")
-    click.echo(f"stopped after {runs} run(s)")
+        say("")
+    say(f"stopped after {runs} run(s)")
 
 
 def _print_report(report: CheckReport, verbose: bool, values: bool = False,
@@ -69,9 +69,9 @@ def _print_report(report: CheckReport, verbose: bool, values: bool = False,
     """Print one file's report (with ``variant_count`` variants drawn and verified, for a
     problem with variants); whether it failed."""
     if report.error:
-        click.echo(f"FAIL {report.path}")
+        say(f"FAIL {report.path}")
         for line in report.error.splitlines() + list(report.warnings):
-            click.echo(f"  {line}")
+            say(f"  {line}")
         return True
     bad = [o for o in report.outcomes if not o.passed]
     refused = []
@@ -81,26 +81,26 @@ def _print_report(report: CheckReport, verbose: bool, values: bool = False,
         refused = variant_lines(report.path, variant_count)
     failed = bool(bad or report.faults or refused)
     status = "FAIL" if failed else "ok  "
-    click.echo(f"{status} {report.path} ({len(report.outcomes)} tests, DOF {report.dof})")
+    say(f"{status} {report.path} ({len(report.outcomes)} tests, DOF {report.dof})")
     for outcome in report.outcomes:
         if not outcome.passed or verbose:
             mark = "FAIL" if not outcome.passed else "pass"
-            click.echo(f"  {mark} {outcome.objective}: {outcome.message}")
+            say(f"  {mark} {outcome.objective}: {outcome.message}")
         if verbose and outcome.book:
-            click.echo(f"       book prints: {outcome.book}")
+            say(f"       book prints: {outcome.book}")
         if verbose and outcome.note:
-            click.echo(f"       note: {outcome.note}")
+            say(f"       note: {outcome.note}")
     for line in (*report.faults, *report.warnings, *report.separations, *refused):
-        click.echo(f"  {line}")
+        say(f"  {line}")
     if verbose and report.untested:
-        click.echo(f"  untested: {', '.join(report.untested)}")
+        say(f"  untested: {', '.join(report.untested)}")
     if verbose and report.state:
-        click.echo("  state at the instant: " + "; ".join(report.state))
+        say("  state at the instant: " + "; ".join(report.state))
     if values and report.results:
         from .solve import value_text  # imports the mechanics (sympy): only when watching
 
-        click.echo("  solved values:")
+        say("  solved values:")
         width = max(len(r.id) for r in report.results)
         for result in report.results:
-            click.echo(f"    {result.id.ljust(width)}  {value_text(result)}")
+            say(f"    {result.id.ljust(width)}  {value_text(result)}")
     return failed

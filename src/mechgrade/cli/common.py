@@ -1,4 +1,5 @@
-"""The command group and the one place where library errors turn into exit codes."""
+"""The command group, the one place where library errors turn into exit codes, and the one
+place where anything is printed (:func:`say`)."""
 
 from __future__ import annotations
 
@@ -10,11 +11,20 @@ import click
 
 from .. import __version__
 from ..errors import MechgradeError, brief_exception
+from ..files import visible_text
 
 
 INTERNAL_ERROR_EXIT = 3
 """The run finished and wrote its outputs, but mechgrade itself failed on some students or
 answers (they are ``not_evaluated``; the summary lists where). Bad input exits with 2."""
+
+
+def say(text: str = "", *, err: bool = False, nl: bool = True) -> None:
+    """Print ``text`` (on stderr with ``err``), each of its lines made visible
+    (:func:`mechgrade.files.visible_text`): a name or answer holding a terminal control
+    sequence (window title, clear screen, hidden text) is shown escaped, never obeyed.
+    Every command prints through here."""
+    click.echo("\n".join(map(visible_text, text.split("\n"))), err=err, nl=nl)
 
 
 class UserFailure(click.ClickException):
@@ -23,7 +33,7 @@ class UserFailure(click.ClickException):
     exit_code = 2
 
     def show(self, file=None) -> None:  # noqa: D102 - click's hook
-        click.echo(self.format_message(), err=True)
+        say(self.format_message(), err=True)
 
 
 class InternalFailure(click.ClickException):
@@ -33,7 +43,7 @@ class InternalFailure(click.ClickException):
     exit_code = INTERNAL_ERROR_EXIT
 
     def show(self, file=None) -> None:  # noqa: D102 - click's hook
-        click.echo(self.format_message(), err=True)
+        say(self.format_message(), err=True)
 
 
 def reports_errors(command):

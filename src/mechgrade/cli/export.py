@@ -7,10 +7,9 @@ from pathlib import Path
 import click
 
 from ..errors import ExportError, Location
-from ..files import clean_text
 from ..export import EXPORTERS, ExportOptions, read_results
 from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 LMS_FORMATS = ("canvas", "moodle")
 DEFAULT_OUT = {
@@ -80,14 +79,17 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
     messages = EXPORTERS[fmt](report, out, roster=class_roster, options=options)
     if class_roster is not None:
         for line, reason in class_roster.skipped:
-            click.echo(clean_text(f"warning: {roster}:{line}: skipped {reason}"), err=True)
+            say(f"warning: {roster}:{line}: skipped {reason}", err=True)
     for message in messages:
         if not isinstance(message, Notice):
-            click.echo(clean_text(f"warning: {message}"), err=True)
+            say(f"warning: {message}", err=True)
+    for failing in report.failing_expects:
+        say(f"warning: graded although the problem fails this expect: test "
+            f"(--accept-failing-expect): {failing}", err=True)
     for message in messages:
         if isinstance(message, Notice):
-            click.echo(clean_text(str(message)))
+            say(str(message))
     if not dry_run:
-        click.echo(f"wrote {fmt} export of {len(report.students)} "
-                   f"{'result' if len(report.students) == 1 else 'results'} to {out}")
+        say(f"wrote {fmt} export of {len(report.students)} "
+            f"{'result' if len(report.students) == 1 else 'results'} to {out}")
 

@@ -9,10 +9,10 @@ from pathlib import Path
 
 import click
 
-from ..files import clean_text
+from ..files import visible_text
 from ..grade.lms_submissions import SUBMISSION_FORMATS
 from ..roster import read_roster
-from .common import INTERNAL_ERROR_EXIT, main, reports_errors
+from .common import INTERNAL_ERROR_EXIT, main, reports_errors, say
 
 
 @main.command("grade")
@@ -32,9 +32,13 @@ from .common import INTERNAL_ERROR_EXIT, main, reports_errors
 @click.option("--submissions-format", type=click.Choice(SUBMISSION_FORMATS), default=None,
               help="What SUBMISSIONS_DIR is (default: detected): a folder, an LMS's download "
                    "zip or a quiz's responses CSV.")
+@click.option("--accept-failing-expect", is_flag=True,
+              help="Grade even if a problem fails its own expect: tests (refused otherwise); "
+                   "every output records the tests it fails.")
 @reports_errors
 def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path | None,
-          templates_dir: Path | None, jobs: int | None, submissions_format: str | None) -> None:
+          templates_dir: Path | None, jobs: int | None, submissions_format: str | None,
+          accept_failing_expect: bool) -> None:
     """Grade every submission in SUBMISSIONS_DIR against ASSIGNMENT.
 
     SUBMISSIONS_DIR is a folder, or what an LMS hands out: a Canvas, Moodle or Gradescope
@@ -64,7 +68,8 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
 
     try:
         report = grade_submissions(spec, submissions_dir, class_roster, progress=progress,
-                                   jobs=jobs, submissions_format=submissions_format)
+                                   jobs=jobs, submissions_format=submissions_format,
+                                   accept_failing_expect=accept_failing_expect)
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)
@@ -75,7 +80,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
     worked = shown_solutions(spec, report)  # the assignment's worked_solution rule
     report = write_outputs(report, out_dir, templates_dir, roster=class_roster, jobs=jobs,
                            worked=worked).report
-    click.echo(summary(report, out_dir))
+    say(summary(report, out_dir))
     # At exit the interpreter's last collection need not walk every object of the run
     # (a tenth of a second or more); registered once, whatever runs in this process.
     atexit.unregister(gc.freeze)
@@ -91,6 +96,8 @@ def summary(report, out_dir: Path) -> str:
     """The run summary: the count line, then every skipped entry, note and internal error."""
     lines = [summary_line(report, out_dir)]
     for title, items in (
+            ("Graded although the problems fail these expect: tests (--accept-failing-expect)",
+             [str(f) for f in report.failing_expects]),
             ("Skipped (not read as anyone's answers)",
              [f"{e.path}: {e.reason}" for e in report.skipped]),
             ("Notes", list(report.notes)),
@@ -102,7 +109,7 @@ def summary(report, out_dir: Path) -> str:
         lines.extend(f"  {item}" for item in items[:MAX_LISTED])
         if len(items) > MAX_LISTED:
             lines.append(f"  ... and {len(items) - MAX_LISTED} more (all in results.json)")
-    return "\n".join(clean_text(line) for line in lines)
+    return "\n".join(visible_text(line) for line in lines)
 
 
 def summary_line(report, out_dir: Path) -> str:
@@ -119,6 +126,9 @@ def summary_line(report, out_dir: Path) -> str:
     parts.append(_count(missing, "missing submission"))
     if not_evaluated:
         parts.append(f"{_count(not_evaluated, 'student')} not evaluated")
+    conflicts = sum(1 for s in report.students if s.status == "conflict")
+    if conflicts:
+        parts.append(f"{conflicts} in roster conflicts (students and folders)")
     if report.skipped:
         parts.append(_count(len(report.skipped), "skipped entry", "skipped entries"))
     return (f"Graded {_count(graded, 'student')} ({', '.join(parts)}); "

@@ -11,7 +11,7 @@ from ..grade.run import plan_assignment
 from ..grade.variants import handout_sheets
 from ..report.handout import write_handouts
 from ..roster import read_roster
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 
 @main.command("handout")
@@ -36,5 +36,5 @@ def handout(assignment: Path, roster: Path, out_dir: Path, templates_dir: Path |
     plan = plan_assignment(load_assignment(assignment))
     students = [(s.id, s.name) for s in read_roster(roster).students]
     written = write_handouts(handout_sheets(plan, students), out_dir, templates_dir)
-    click.echo(f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
-               f"({len(written)} files)")
+    say(f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "
+        f"({len(written)} files)")

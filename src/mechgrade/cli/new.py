@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from ..spec.starter import TEMPLATES, write_starter
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 
 @main.command("new")
@@ -22,5 +22,5 @@ def new_command(problem_id: str, template: str, out: str) -> None:
     overwritten.
     """
     path = write_starter(problem_id, template, out)
-    click.echo(f"wrote {path} (template {template})")
-    click.echo(f"next: edit it, and watch it with `mechgrade check --watch {path}`")
+    say(f"wrote {path} (template {template})")
+    say(f"next: edit it, and watch it with `mechgrade check --watch {path}`")

@@ -6,8 +6,7 @@ from pathlib import Path
 
 import click
 
-from ..files import clean_text
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 FORMATS = ("canvas-qti", "moodle-xml")
 DEFAULT_VARIANTS = 20
@@ -37,11 +36,10 @@ def export_questions(assignment: Path, fmt: str, count: int, out: Path | None) -
     bank = question_bank(plan_assignment(spec), count)
     out = out if out is not None else Path(f"{spec.id}-questions{DEFAULT_SUFFIX[fmt]}")
     for note in QUESTION_WRITERS[fmt](bank, out):
-        click.echo(clean_text(f"note: {note}"), err=True)
+        say(f"note: {note}", err=True)
     essays = sum(isinstance(item, EssayItem) for item in bank.items)
     numbers = len(bank.items) - essays
-    click.echo(clean_text(
-        f"wrote {numbers} numerical question{'s' * (numbers != 1)} "
+    say(f"wrote {numbers} numerical question{'s' * (numbers != 1)} "
         f"({bank.variants} variant{'s' * (bank.variants != 1)} each where the problem draws "
         f"its givens) and {essays} essay question{'s' * (essays != 1)} (graded by mechgrade "
-        f"from the quiz's responses) to {out}"))
+        f"from the quiz's responses) to {out}")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 
 @main.command("report")
@@ -22,4 +22,4 @@ def report_command(results_json: Path, out: Path) -> None:
 
     report = read_results(results_json)
     write_class_report(report, out)
-    click.echo(f"wrote class report of {len(report.students)} students to {out}")
+    say(f"wrote class report of {len(report.students)} students to {out}")

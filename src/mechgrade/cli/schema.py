@@ -6,7 +6,7 @@ import click
 
 from ..files import write_text
 from ..spec.load import SCHEMA_PATH
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 
 @main.command("schema")
@@ -19,7 +19,7 @@ def schema_command(out: str | None) -> None:
     writing a problem file (docs/spec.md, "Editor set-up").
     """
     if out is None:
-        click.echo(str(SCHEMA_PATH))
+        say(str(SCHEMA_PATH))
         return
     write_text(out, SCHEMA_PATH.read_text(encoding="utf-8"))
-    click.echo(f"wrote {out}")
+    say(f"wrote {out}")

@@ -11,7 +11,7 @@ from ..mechanics import derivation
 from ..solve.worked import answer_text as value_text
 from ..solve import solve as solve_problem
 from ..spec import load_problem
-from .common import main, reports_errors
+from .common import main, reports_errors, say
 
 
 def solution_json(problem, solution) -> dict:
@@ -46,14 +46,14 @@ def solve_command(problem_file: str, fmt: str, steps: bool, plot: str | None) ->
         write_text(plot, picture_svg(scene(problem, solution)))
     failed = {f.id: f.error for f in solution.failures}
     if fmt == "json":
-        click.echo(json.dumps(solution_json(problem, solution), indent=2))
+        say(json.dumps(solution_json(problem, solution), indent=2))
     elif fmt in ("html", "md"):
         # the write-up's templates are only needed here
         from ..report.worked import steps_html, steps_markdown
         from ..solve.worked import worked_solution
 
         worked = worked_solution(problem, solution)
-        click.echo(steps_html(worked) if fmt == "html" else steps_markdown(worked), nl=False)
+        say(steps_html(worked) if fmt == "html" else steps_markdown(worked), nl=False)
     else:
         _print_text(problem, solution, failed, steps)
     if failed:
@@ -69,18 +69,18 @@ def _objective_lines(problem, solution, failed) -> list[str]:
 
 
 def _print_text(problem, solution, failed, steps: bool) -> None:
-    click.echo(f"{problem.id}: {problem.title}")
+    say(f"{problem.id}: {problem.title}")
     if steps:
         for section, lines in derivation(problem, solution.dof):
-            click.echo(f"\n{section}")
+            say(f"\n{section}")
             for line in lines or ("(none)",):
-                click.echo(f"  {line}")
-        click.echo("\nObjectives")
+                say(f"  {line}")
+        say("\nObjectives")
     for line in _objective_lines(problem, solution, failed):
-        click.echo(f"  {line}")
+        say(f"  {line}")
     if solution.state:
-        click.echo("State at the instant")
+        say("State at the instant")
         for s in solution.state:
-            click.echo(f"  {s}")
+            say(f"  {s}")
     for warning in problem.warnings + solution.warnings:
-        click.echo(str(warning))
+        say(str(warning))

@@ -32,7 +32,7 @@ from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster, header_format
 from .cells import format_points, safe_cell, write_csv
 from .changes import Change, decide, not_compared_warning, report_changes
-from .common import lms_points, lms_score, no_submission_warnings
+from .common import conflict_reason, lms_points, lms_score, no_submission_warnings
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
 from .unmatched import HeldBack, held_back, write_unmatched
@@ -73,7 +73,7 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
     changes: list[Change] = []
     match = match_roster(report, roster)
     for pair in match.pairs:
-        cells = _identity_cells(identity, pair, roster)
+        cells = conflict_reason(pair.result) or _identity_cells(identity, pair, roster)
         score = lms_score(pair.result, report, options)
         if isinstance(cells, str):
             held.append(held_back(pair, score, cells))

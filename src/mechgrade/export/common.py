@@ -16,12 +16,13 @@ def has_submission(result: StudentResult | None) -> TypeGuard[StudentResult]:
 def score_cell(result: StudentResult | None, options: ExportOptions) -> float | str:
     """The total to write: the score, or 0 / blank (``options.missing``) with no submission.
 
-    A student whose grading failed through a fault of mechgrade's (``not_evaluated``) gets a
-    blank cell, which every LMS reads as "no score": a bug never becomes a grade.
+    A student whose grading failed through a fault of mechgrade's (``not_evaluated``) or who
+    is in a roster conflict (``conflict``) gets a blank cell, which every LMS reads as "no
+    score": a bug or a guess never becomes a grade.
     """
     if not has_submission(result):
         return 0.0 if options.missing == "zero" else ""
-    if result.status == "not_evaluated":
+    if result.status in ("not_evaluated", "conflict"):
         return ""
     return result.score
 
@@ -46,6 +47,14 @@ def lms_score(result: StudentResult | None, report: GradeReport,
     if options.scale_to is None or cell == "" or not total:
         return cell
     return float(cell) * options.scale_to / total
+
+
+def conflict_reason(result: StudentResult | None) -> str | None:
+    """Why a row is kept out of an import file: its student is in a roster conflict (the
+    result's first message says which); ``None`` for any other row."""
+    if result is None or result.status != "conflict":
+        return None
+    return result.messages[0] if result.messages else "roster conflict"
 
 
 def max_score(report: GradeReport) -> float:
@@ -85,7 +94,7 @@ def objective_label(objective: ObjectiveInfo) -> str:
 def not_in_roster_warnings(match: RosterMatch) -> tuple[str, ...]:
     """One warning per result no roster student claimed, written after the roster students."""
     return tuple(f"{r.id} ({r.name}) is not in the roster; written after the roster students"
-                 for r in match.not_in_roster)
+                 for r in match.not_in_roster if r.status != "conflict")
 
 
 def no_submission_warnings(match: RosterMatch, options: ExportOptions) -> tuple[str, ...]:

@@ -2,7 +2,10 @@
 
 A roster student is matched, in this order, by Canvas/roster ID, SIS user ID (or Moodle ID
 number), SIS login ID, email, and last by name ("Last, First" and "First Last" are the same
-name; a name shared by two students never matches). Each result is used at most once.
+name; a name shared by two students never matches). Each result is used at most once, and
+results and roster students that match other than one to one are a roster conflict (see
+:func:`mechgrade.roster.pair_students`): each is paired with (or is) a result of status
+``conflict``, which no exporter writes as a grade.
 
 >>> from mechgrade.grade.results import AssignmentInfo, GradeReport, StudentResult
 >>> from mechgrade.roster import Roster, RosterStudent
@@ -21,7 +24,7 @@ name; a name shared by two students never matches). Each result is used at most 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster, RosterStudent, fold, normalise_name, pair_students
@@ -65,10 +68,20 @@ def match_roster(report: GradeReport, roster: Roster | None) -> RosterMatch:
     if roster is None:
         return RosterMatch(tuple(Pair(None, s) for s in report.students))
     results = list(report.students)
-    matches = pair_students(roster, [_keys(result) for result in results])
+    pairing = pair_students(roster, [_keys(result) for result in results])
     pairs = [Pair(student, results[i] if i is not None else None, kind)
-             for student, (i, kind) in zip(roster.students, matches)]
-    used = {i for i, _ in matches if i is not None}
+             for student, (i, kind) in zip(roster.students, pairing.pairs)]
+    for conflict in pairing.conflicts:
+        said = "roster conflict: " + conflict.describe(roster, [r.id for r in results])
+        for c in conflict.candidates:
+            results[c] = replace(results[c], status="conflict",
+                                 messages=(said, *results[c].messages))
+        for s in conflict.students:
+            student = roster.students[s]
+            pairs[s] = Pair(student, StudentResult(
+                student.id, student.name, "conflict", 0.0, results[conflict.candidates[0]]
+                .max_score, messages=(said,), identity=student.columns))
+    used = {i for i, _ in pairing.pairs if i is not None}
     pairs.extend(Pair(None, s) for i, s in enumerate(results) if i not in used)
     return RosterMatch(tuple(pairs))
 
@@ -83,7 +96,8 @@ def identity_value(result: StudentResult, kind: str) -> str:
 def _keys(result: StudentResult) -> dict[str, set[str]]:
     """The identifiers a result offers: its id (a submission folder may be named by any of
     them) and the roster columns it carries, folded."""
-    own = fold(result.id)
+    # a result in a roster conflict is no one's by its id: only its roster columns name it
+    own = fold(result.id) if result.status != "conflict" else ""
     keys = {kind: {own, fold(identity_value(result, source))} - {""}
             for kind, source in (("id", "canvas_id"), ("sis_user_id", "sis_user_id"),
                                  ("sis_login_id", "sis_login_id"), ("email", "email"))}

@@ -40,8 +40,8 @@ from ..grade.results import GradeReport, ObjectiveInfo, StudentResult
 from ..roster import Roster, RosterStudent
 from .cells import format_points, safe_cell, write_csv
 from .changes import Change, ChangeKind, decide, not_compared_warning, report_changes
-from .common import (answers_by_objective, has_submission, lms_points, lms_score,
-                     no_submission_warnings, objective_label)
+from .common import (answers_by_objective, conflict_reason, has_submission, lms_points,
+                     lms_score, no_submission_warnings, objective_label)
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
 from .unmatched import HeldBack, held_back, write_unmatched
@@ -79,7 +79,7 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
         reason = _hold_back_reason(pair, roster, ids[0], score, options)
         who = pair.roster if pair.roster is not None else pair.result
         assert who is not None  # a pair holds a result, a roster student or both
-        if reason and decision.kind is not ChangeKind.KEPT:
+        if reason and (decision.kind is not ChangeKind.KEPT or conflict_reason(pair.result)):
             held.append(held_back(pair, score, reason))
             continue
         changes.append(Change(who.id, who.name, existing or "", safe_cell(decision.written),
@@ -165,6 +165,9 @@ def _downloaded_warnings(roster: Roster, column: str) -> list[str]:
 def _hold_back_reason(pair: Pair, roster: Roster | None, key: str, score: float | str,
                       options: ExportOptions) -> str:
     """Why a row must stay out of the Moodle import file, or ``""``."""
+    conflict = conflict_reason(pair.result)
+    if conflict is not None:
+        return conflict
     if roster is not None and pair.roster is None:
         return "not in the roster"
     if not key:

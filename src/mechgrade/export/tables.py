@@ -36,11 +36,11 @@ def export_grades_csv(report: GradeReport, out_path: str | os.PathLike, *,
         ident, name = _who(pair.roster, pair.result)
         status = pair.result.status if pair.result is not None else "missing"
         points: list[float | str]
-        if has_submission(pair.result):
+        if _points_shown(pair.result):
             points = [a.points for _, a in answers_by_objective(report, pair.result)]
             points = points[:len(report.objectives)]
         else:
-            points = [score_cell(None, options)] * len(report.objectives)
+            points = [score_cell(pair.result, options)] * len(report.objectives)
         rows.append([ident, name, status, *points, score_cell(pair.result, options), total])
     write_csv(out_path, rows, excel_bom=options.excel_bom)
     return _roster_warnings(match, roster, options)
@@ -58,7 +58,8 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
         ident, name = _who(pair.roster, pair.result)
         variant = pair.result.variant if pair.result is not None else None
         for objective, answer in answers_by_objective(report, pair.result):
-            points = answer.points if has_submission(pair.result) else score_cell(None, options)
+            points = answer.points if _points_shown(pair.result) \
+                else score_cell(pair.result, options)
             rows.append([ident, name, objective.problem, objective.objective,
                          answer.answer or "", answer.verdict, points, answer.max_points,
                          answer.diagnosis or ""])
@@ -68,6 +69,12 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
                 rows[-1] += [variant.seed if variant else "", "; ".join(givens)]
     write_csv(out_path, rows, excel_bom=options.excel_bom)
     return _roster_warnings(match, roster, options)
+
+
+def _points_shown(result: StudentResult | None) -> bool:
+    """Whether a row shows its points: not without a submission, nor in a roster conflict
+    (whose points are no one's: the row's cells are blank)."""
+    return has_submission(result) and result.status != "conflict"
 
 
 def _who(student: RosterStudent | None, result: StudentResult | None) -> tuple[str, str]:

@@ -7,7 +7,9 @@
      "students": [{"id", "name", "status", "score", "max_score", "variant" (if drawn),
                    "answers": [{"problem", "objective", "answer", "verdict", "points",
                                 "max_points", "diagnosis", "feedback"}]}],
-     "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...]}
+     "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...],
+     "failing_expects": [{"problem", "objective", "where", "message"}] (only when graded
+                                                                        with them)}
 
 Verdicts come from :data:`VERDICTS`; student statuses from :data:`STATUSES`. Reports and
 exports read these dataclasses (never sympy).
@@ -23,9 +25,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 
 VERDICTS = ("correct", "partial", "incorrect", "unreadable", "missing", "not_evaluated")
-STATUSES = ("graded", "missing", "unreadable", "not_evaluated")
+STATUSES = ("graded", "missing", "unreadable", "not_evaluated", "conflict")
 """``not_evaluated``: grading this student failed through a fault of mechgrade's (see
-``GradeReport.internal_errors``); no grade is exported for them."""
+``GradeReport.internal_errors``); no grade is exported for them. ``conflict``: a roster student
+and the folders that match it other than one to one (two folders one student, a folder two
+students; see ``GradeReport.notes``): graded as no one's, no grade is exported for them."""
 
 
 @dataclass(frozen=True)
@@ -129,13 +133,32 @@ class SkippedEntry:
 
 
 @dataclass(frozen=True)
+class FailingExpect:
+    """An ``expect:`` test a graded problem fails, graded anyway (``--accept-failing-expect``):
+    where it is written (``file:line:col: field``) and what ``mechgrade check`` says of it.
+
+    >>> str(FailingExpect("p", "v", "p.yaml:9:5: objectives[0].expect", "7 != expected 8 m/s"))
+    'p.yaml:9:5: objectives[0].expect: v: 7 != expected 8 m/s'
+    """
+
+    problem: str
+    objective: str
+    where: str
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.where}: {self.objective}: {self.message}"
+
+
+@dataclass(frozen=True)
 class GradeReport:
     """A whole grading run.
 
     ``skipped`` lists every entry of the submissions folder not read as answers; ``notes``
     are remarks about the folder as a whole (look-alike names, shared files);
     ``internal_errors`` says, one line each, where mechgrade itself failed (those students
-    or answers are ``not_evaluated``).
+    or answers are ``not_evaluated``); ``failing_expects`` the ``expect:`` tests the problems
+    fail, when they were graded anyway (``--accept-failing-expect``), one line each.
     """
 
     assignment: AssignmentInfo
@@ -144,16 +167,20 @@ class GradeReport:
     skipped: tuple[SkippedEntry, ...] = ()
     notes: tuple[str, ...] = ()
     internal_errors: tuple[str, ...] = ()
+    failing_expects: tuple[FailingExpect, ...] = ()
 
     def to_json(self) -> dict:
         """The ``results.json`` document (plain dicts and lists, stable key order)."""
         # Field by field rather than dataclasses.asdict, which deep-copies every value and
         # took longer than writing the file.
-        return {"assignment": _fields(self.assignment),
+        data = {"assignment": _fields(self.assignment),
                 "objectives": tuple(map(_fields, self.objectives)),
                 "students": tuple(map(_student_json, self.students)),
                 "skipped": tuple(map(_fields, self.skipped)),
                 "notes": self.notes, "internal_errors": self.internal_errors}
+        if self.failing_expects:  # results of specs that pass their tests read as before
+            data["failing_expects"] = tuple(map(_fields, self.failing_expects))
+        return data
 
     @classmethod
     def from_json(cls, data: dict) -> "GradeReport":
@@ -174,7 +201,8 @@ class GradeReport:
                    tuple(ObjectiveInfo(**o) for o in data.get("objectives", [])),
                    tuple(students),
                    tuple(SkippedEntry(**e) for e in data.get("skipped", [])),
-                   tuple(data.get("notes", ())), tuple(data.get("internal_errors", ())))
+                   tuple(data.get("notes", ())), tuple(data.get("internal_errors", ())),
+                   tuple(FailingExpect(**f) for f in data.get("failing_expects", ())))
 
 
 _NAMES: dict[type, tuple[str, ...]] = {}

@@ -27,14 +27,16 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterable
 
-from ..errors import AssignmentError, InconsistentError, MechgradeError, brief_exception
+from ..errors import (AssignmentError, InconsistentError, MechgradeError, SpecError, SpecErrors,
+                      brief_exception)
 from ..parallel import Forked, fork_map, outcome, raise_first
 from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
-from .results import AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo, StudentResult
 from .lms_submissions import read_any_submissions
+from .results import (AnswerResult, AssignmentInfo, FailingExpect, GradeReport, ObjectiveInfo,
+                      StudentResult)
 from .submissions import Submission, SubmissionSet
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
@@ -218,9 +220,53 @@ def graded_result(solution: Solution, objective_id: str) -> ObjectiveResult:
     return replace(result, symbol_signs=signs) if any(signs) else result
 
 
+def failing_expects(plan: Plan) -> tuple[FailingExpect, ...]:
+    """The ``expect:`` tests of the plan's problems its solutions fail, each with where it is
+    written and what ``mechgrade check`` says; only the objectives solved for grading are
+    tested (their solutions are at hand, so this costs a comparison per test).
+
+    >>> from mechgrade.grade.assignment import Assignment
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.solve import solve
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> plan = Plan(Assignment("hw", "HW", p.path, ()), (p,), (solve(p, objectives=("acc_mag",)),), ())
+    >>> failing_expects(plan)
+    ()
+    """
+    from ..check import expect_outcome
+
+    failing = []
+    for problem, solution in zip(plan.problems, plan.solutions):
+        solved = {r.id: r for r in solution.results}
+        for objective in problem.objectives:
+            if objective.expect is None or objective.id not in solved:
+                continue
+            try:
+                outcome = expect_outcome(objective, solved[objective.id])
+                passed, said = outcome.passed, outcome.message
+            except MechgradeError as err:
+                passed, said = False, err.message
+            if not passed:
+                failing.append(FailingExpect(problem.id, objective.id,
+                                             str(objective.expect.where), said))
+    return tuple(failing)
+
+
+def failing_expects_error(failing: tuple[FailingExpect, ...]) -> SpecError:
+    """The error that stops a grading run whose problems fail their own tests (every student
+    would be graded against a reference its author says is wrong): one line per test."""
+    errors = [SpecError(f"{f.where}: expected the solver to pass this expect: test before "
+                        f"grading, found {f.objective}: {f.message}; fix the problem file "
+                        f"(mechgrade check shows it) or grade anyway with "
+                        f"--accept-failing-expect") for f in failing]
+    return errors[0] if len(errors) == 1 else SpecErrors(errors)
+
+
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
                       progress: Progress | None = None, jobs: int = 1,
-                      submissions_format: str | None = None) -> GradeReport:
+                      submissions_format: str | None = None,
+                      accept_failing_expect: bool = False) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 
     ``submissions_dir`` may also be an LMS's download zip or quiz responses CSV
@@ -228,7 +274,8 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
     names its kind, detected when ``None``). ``progress(done, total)`` is called as students
     are finished. With ``jobs`` > 1 the submissions are read (by ``jobs`` processes) while the
     problems are solved (by ``jobs`` processes), and the answers are judged by ``jobs``
-    workers; the report is the same for any ``jobs``.
+    workers; the report is the same for any ``jobs``. A problem failing its own ``expect:``
+    tests stops the run (see :func:`grade_plan`).
     """
     problems = _load_problems(assignment)
     chosen = _choose_objectives(assignment, problems)
@@ -239,7 +286,8 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
                    fmt=submissions_format, drawn_keys=drawn)
     if jobs <= 1:
         plan = plan_assignment(assignment, problems=problems)
-        return grade_plan(plan, read(), roster, progress=progress)
+        return grade_plan(plan, read(), roster, progress=progress,
+                          accept_failing_expect=accept_failing_expect)
     # Reading needs only the keys: it runs in a process forked now, before this one imports
     # sympy and the solver and solves, so the two overlap.
     reading = Forked(partial(outcome, partial(read, jobs=jobs)))
@@ -248,18 +296,26 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
         submissions = raise_first([reading.result()])[0]
     finally:
         reading.cancel()
-    return grade_plan(plan, submissions, roster, progress=progress, jobs=jobs)
+    return grade_plan(plan, submissions, roster, progress=progress, jobs=jobs,
+                      accept_failing_expect=accept_failing_expect)
 
 
 def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
                progress: Progress | None = None, resolve: Resolver | None = None,
-               jobs: int = 1) -> GradeReport:
+               jobs: int = 1, accept_failing_expect: bool = False) -> GradeReport:
     """Grade read submissions against a :class:`Plan` (see :func:`grade_submissions`).
 
     ``resolve(problem, givens)`` recomputes a solution with overridden givens (for ECF); the
     default is :func:`mechgrade.solve.solve`. Answers are judged by ``jobs`` sandbox workers.
+
+    A problem whose solution fails its own ``expect:`` tests (:func:`failing_expects`) is
+    refused with a :class:`SpecError` naming each, before anything is judged; with
+    ``accept_failing_expect`` it is graded, and the report records the tests it fails.
     """
-    people = _people(submissions, roster)
+    failing = failing_expects(plan)
+    if failing and not accept_failing_expect:
+        raise failing_expects_error(failing)
+    people, conflicts = _people(submissions, roster)
     total = len(people)
     if progress:
         progress(0, total)
@@ -295,7 +351,8 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points, o.problem.title) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
-                       tuple(students), submissions.skipped, submissions.notes, tuple(faults))
+                       tuple(students), submissions.skipped, submissions.notes + conflicts,
+                       tuple(faults), failing)
 
 
 # ---------------------------------------------------------------------------- variants
@@ -352,22 +409,36 @@ class _Person:
     identity: tuple[tuple[str, str], ...] = ()
     on_roster: bool = True
     variant_key: str = ""  # the roster id: what a student's variant is drawn for
+    conflict: str = ""  # the roster conflict this student or folder is in (see _people)
 
 
-def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submission | None]]:
+def _people(submissions: SubmissionSet, roster) -> tuple[list[tuple[_Person, Submission | None]],
+                                                        tuple[str, ...]]:
     """Roster students in roster order (with their submission, if any), then the submissions
-    no roster student claimed, by id."""
+    no roster student claimed, by id; and a note per roster conflict. The students and folders
+    of a conflict (:func:`mechgrade.roster.pair_students`) are not paired: each is listed with
+    the conflict, and graded as no one's."""
     if roster is None:
-        return [(_Person(s.student, ""), s) for s in submissions.students]
+        return [(_Person(s.student, ""), s) for s in submissions.students], ()
     # A submission folder may be named by any of a student's identifiers.
     candidates = [{kind: {fold(s.student)} for kind in MATCH_KINDS if kind != "name"}
                   for s in submissions.students]
-    matches = pair_students(roster, candidates)
-    kinds = Counter(kind for _, kind in matches if kind is not None)
+    pairing = pair_students(roster, candidates)
+    kinds = Counter(kind for _, kind in pairing.pairs if kind is not None)
     # A student without a submission is named like the submissions that were matched.
     usual = kinds.most_common(1)[0][0] if kinds else "id"
+    labels = [s.student for s in submissions.students]
+    conflicted: dict[tuple[str, int], str] = {}
+    notes = []
+    for conflict in pairing.conflicts:
+        said = conflict.describe(roster, labels)
+        notes.append(f"roster conflict: {said}; none of these folders was graded as anyone's "
+                     f"(status 'conflict', kept out of exports): rename the folders so that "
+                     f"each matches one student")
+        conflicted.update({("s", s): said for s in conflict.students})
+        conflicted.update({("c", c): said for c in conflict.candidates})
     out: list[tuple[_Person, Submission | None]] = []
-    for student, (index, _) in zip(roster.students, matches):
+    for number, (student, (index, _)) in enumerate(zip(roster.students, pairing.pairs)):
         identity = tuple(student.columns)
         if index is not None:
             found = submissions.students[index]
@@ -375,12 +446,14 @@ def _people(submissions: SubmissionSet, roster) -> list[tuple[_Person, Submissio
                         found))
         else:
             sid = _roster_value(student, usual) or student.id
-            out.append((_Person(sid, student.name, identity, True, student.id), None))
-    claimed = {index for index, _ in matches if index is not None}
+            out.append((_Person(sid, student.name, identity, True, student.id,
+                                conflicted.get(("s", number), "")), None))
+    claimed = {index for index, _ in pairing.pairs if index is not None}
     for i, submission in enumerate(submissions.students):
         if i not in claimed:
-            out.append((_Person(submission.student, "", (), False), submission))
-    return out
+            out.append((_Person(submission.student, "", (), False,
+                                conflict=conflicted.get(("c", i), "")), submission))
+    return out, tuple(notes)
 
 
 def _roster_value(student, kind: str) -> str:
@@ -408,13 +481,16 @@ def _grade_student_safely(plan: Plan, judge: "_Judge", person: _Person,
 def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
                    submission: Submission | None, faults: list[str]) -> StudentResult:
     messages: list[str] = []
-    if not person.on_roster:
+    if person.conflict:
+        messages.append(f"roster conflict: {person.conflict}; graded as no one's until your "
+                        f"instructor sorts it out")
+    elif not person.on_roster:
         messages.append("not on the roster")
     if submission is not None:
         messages.extend(submission.messages)
     status = {None: "missing", "missing": "missing", "read": "graded",
               "unreadable": "unreadable"}[submission.status if submission else None]
-    if submission is None:
+    if submission is None and not person.conflict:
         messages.append("no submission found")
     answers: list[AnswerResult] = []
     verdicts: dict[str, AnswerResult] = {}
@@ -434,8 +510,9 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
         verdicts[item.key] = answer
         answers.append(answer)
     score = _round(sum(a.points for a in answers))
-    return StudentResult(person.id, person.name, status, score, plan.max_score, tuple(answers),
-                         tuple(messages), person.identity)
+    return StudentResult(person.id, person.name, "conflict" if person.conflict else status,
+                         score, plan.max_score, tuple(answers), tuple(messages),
+                         person.identity)
 
 
 def _judge_safely(judge: "_Judge", item: PlannedObjective, text: str, submission: Submission,

@@ -37,6 +37,9 @@ from .results import SkippedEntry
 
 MAX_FILE_BYTES = 256 * 1024
 MAX_LISTED_KEYS = 10
+"""The most messages of one kind (an unknown key, a key answered again, a line not read, a
+stray file) listed for one student; the rest are counted in one message, so that what a file
+repeats thousands of times is not repeated in every output."""
 ANSWER_FILES = ("answers.yaml", "answers.yml", "answers.json", "answers.txt")
 SUFFIXES = (".yaml", ".yml", ".json", ".txt")
 SYSTEM_NAMES = {"__MACOSX": "made by macOS when zipping", "Thumbs.db": "made by Windows Explorer",
@@ -265,6 +268,7 @@ def _folder_sources(folder: Path, root: Path, label: str, *, own: str | None = N
     sources: list[_Source] = []
     ignored: list[str] = []
     skipped: list[SkippedEntry] = []
+    others = 0
     # Answers files first in the documented order; names in another letter case are read too.
     rank = {name: i for i, name in enumerate(ANSWER_FILES)}
     answer_entries = sorted((e for e in entries if e.name.lower() in rank),
@@ -281,13 +285,19 @@ def _folder_sources(folder: Path, root: Path, label: str, *, own: str | None = N
         if entry.name.lower() in rank:
             continue
         shown = f"{label}/{clean_text(entry.name)}"
-        if entry.name.startswith(".") or entry.name in SYSTEM_NAMES:
+        others += 1
+        hidden = entry.name.startswith(".") or entry.name in SYSTEM_NAMES
+        if others <= MAX_LISTED_KEYS:
             reason = ("hidden (its name starts with '.')" if entry.name.startswith(".")
-                      else f"{SYSTEM_NAMES[entry.name]}, not a submission")
+                      else f"{SYSTEM_NAMES[entry.name]}, not a submission" if hidden
+                      else NOT_AN_ANSWER_FILE)
             skipped.append(SkippedEntry(shown, reason))
-            continue
-        ignored.append(clean_text(entry.name))
-        skipped.append(SkippedEntry(shown, NOT_AN_ANSWER_FILE))
+        if not hidden:
+            ignored.append(clean_text(entry.name))
+    if others > MAX_LISTED_KEYS:
+        skipped.append(SkippedEntry(f"{label}/", f"{others - MAX_LISTED_KEYS} more entries of "
+                                                 f"this folder are not answers files (not "
+                                                 f"listed one by one)"))
     if ignored or skipped:
         sources.append(_Source(label, None, None, ignored=tuple(ignored), skipped=tuple(skipped)))
     return sources
@@ -338,9 +348,13 @@ def _read_student(student: str, sources: list[_Source], keys) -> Submission:
     files: list[str] = []
     readable = 0
     tried = 0
+    conflicts: list[str] = []
     for source in sources:
         if source.ignored:
-            messages.append("ignored " + ", ".join(f"'{source.label}/{n}'" for n in source.ignored)
+            more = len(source.ignored) - MAX_LISTED_KEYS
+            messages.append("ignored " + ", ".join(f"'{source.label}/{n}'"
+                                                   for n in source.ignored[:MAX_LISTED_KEYS])
+                            + (f" and {more} more files" if more > 0 else "")
                             + ": answers go in answers.yaml, answers.json or answers.txt")
             continue
         if source.empty:
@@ -365,10 +379,13 @@ def _read_student(student: str, sources: list[_Source], keys) -> Submission:
         messages.extend(notes)
         for key, text in pairs:
             if key in answers and answers[key][0] != text:
-                messages.append(f"'{key}' is answered in both '{answers[key][1]}' and "
-                                f"'{source.label}'; the answer in '{answers[key][1]}' was graded")
+                conflicts.append(f"'{key}' is answered in both '{answers[key][1]}' and "
+                                 f"'{source.label}'; the answer in '{answers[key][1]}' was "
+                                 f"graded")
                 continue
             answers.setdefault(key, (text, source.label))
+    listed(messages, conflicts, lambda more: f"{more} more keys are answered in two files; "
+                                            f"the answer in the first was graded")
     if len(files) > 1:
         messages.append(f"answers were read from {len(files)} files ({', '.join(files)}) "
                         f"and combined")
@@ -400,13 +417,25 @@ def _match_keys(answers: dict, keys, messages: list[str]) -> dict:
             out[match[0]] = answers[key]
         else:
             unknown.append(key)
-    for key in unknown[:MAX_LISTED_KEYS]:
-        messages.append(f"'{_short(key)}' ({answers[key][1]}) is not a question of this "
-                        f"assignment; it was not graded")
-    if len(unknown) > MAX_LISTED_KEYS:
-        messages.append(f"{len(unknown) - MAX_LISTED_KEYS} more keys are not questions of this "
-                        f"assignment; they were not graded")
+    listed(messages, [f"'{_short(key)}' ({answers[key][1]}) is not a question of this "
+                      f"assignment; it was not graded" for key in unknown],
+           lambda more: f"{more} more keys are not questions of this assignment; they were "
+                        f"not graded")
     return out
+
+
+def listed(messages: list[str], items: list[str], more) -> None:
+    """``items`` (messages of one kind) added to ``messages``: at most
+    :data:`MAX_LISTED_KEYS` of them, then ``more(count)`` saying how many more there are.
+
+    >>> out = []
+    >>> listed(out, [f"line {i}" for i in range(12)], lambda n: f"{n} more lines")
+    >>> out[-2:], len(out)
+    (['line 9', '2 more lines'], 11)
+    """
+    messages.extend(items[:MAX_LISTED_KEYS])
+    if len(items) > MAX_LISTED_KEYS:
+        messages.append(more(len(items) - MAX_LISTED_KEYS))
 
 
 def _short(text: str, limit: int = 60) -> str:
@@ -442,11 +471,14 @@ def read_answer_file(path: str | Path, *, label: str | None = None
     # Nothing is cut here: the file size bounds the answers, and an answer too long to read is
     # refused by the answer reader with its true length.
     kept: dict[str, str] = {}
+    twice: list[str] = []
     for key, value in pairs:
         if key in kept and kept[key] != value:
-            notes.append(f"'{label}': '{_short(key)}' is answered twice (flat and nested); "
+            twice.append(f"'{label}': '{_short(key)}' is answered twice (flat and nested); "
                          f"the later answer was graded")
         kept[key] = value
+    listed(notes, twice, lambda more: f"'{label}': {more} more keys are answered twice (flat "
+                                      f"and nested); the later answer was graded")
     if not kept:
         raise _Unread(f"'{label}' holds no answers (expected lines such as "
                               f"'problem_id.objective_id = 7.5 m/s')", notes=notes)
@@ -500,26 +532,32 @@ def _read_text(path: Path, label: str) -> tuple[str, str | None]:
 def _from_txt(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]:
     pairs: dict[str, str] = {}
     lines_of: dict[str, int] = {}
+    unread: list[str] = []
+    again: list[str] = []
     for number, line in enumerate(text.splitlines(), start=1):
         content = line.split("#", 1)[0].strip()
         if not content:
             continue
         if "=" not in content:
-            notes.append(f"{label}:{number}: expected 'problem_id.objective_id = answer', "
-                         f"found '{_printable(_short(content, 40))}'; the line was not read")
+            unread.append(f"{label}:{number}: expected 'problem_id.objective_id = answer', "
+                          f"found '{_printable(_short(content, 40))}'; the line was not read")
             continue
         key, value = (part.strip() for part in content.split("=", 1))
         if not key:
-            notes.append(f"{label}:{number}: expected a key before '=', found none; "
-                         f"the line was not read")
+            unread.append(f"{label}:{number}: expected a key before '=', found none; "
+                          f"the line was not read")
             continue
         key = _printable(unicodedata.normalize("NFC", key))
         if key in pairs:
-            notes.append(f"{label}:{number}: '{key}' is answered again (first on line "
+            again.append(f"{label}:{number}: '{_short(key)}' is answered again (first on line "
                          f"{lines_of[key]}); the later answer was graded")
             del pairs[key]
         pairs[key] = value
-        lines_of[key] = number
+        lines_of.setdefault(key, number)
+    listed(notes, unread, lambda more: f"{label}: {more} more lines were not read (expected "
+                                       f"'problem_id.objective_id = answer')")
+    listed(notes, again, lambda more: f"{label}: {more} more lines answer a key again; the "
+                                      f"latest answer to each was graded")
     return list(pairs.items())
 
 
@@ -543,8 +581,10 @@ def _from_json(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]
         reason = exc.msg if isinstance(exc, json.JSONDecodeError) else "nested too deeply"
         raise _Unread(f"{label}{where}: expected valid JSON, found a syntax error "
                               f"({reason})") from None
-    for key in sorted(set(repeated)):
-        notes.append(f"'{label}': '{key}' is given more than once; the last one was graded")
+    listed(notes, [f"'{label}': '{_short(key)}' is given more than once; the last one was "
+                   f"graded" for key in sorted(set(repeated))],
+           lambda more: f"'{label}': {more} more keys are given more than once; the last of "
+                        f"each was graded")
     return _flatten(data, label, notes, lambda value, key: value)
 
 
@@ -577,18 +617,21 @@ def _flatten(data, label: str, notes: list[str], as_typed) -> list[tuple[str, st
         raise _Unread(f"'{label}': expected answers keyed by 'problem_id.objective_id', "
                               f"found {_kind(data)}")
     out: list[tuple[str, str]] = []
+    not_text: list[str] = []
     for key, value in data.items():
         key = str(key)
         if isinstance(value, dict):
             for sub, inner in value.items():
-                text = _value_text(as_typed(inner, (key, sub)), f"{key}.{sub}", label, notes,
-                                   as_typed, (key, sub))
+                text = _value_text(as_typed(inner, (key, sub)), f"{key}.{sub}", label,
+                                   not_text, as_typed, (key, sub))
                 if text is not None:
                     out.append((_printable(f"{key}.{sub}"), text))
             continue
-        text = _value_text(as_typed(value, (key,)), key, label, notes, as_typed, (key,))
+        text = _value_text(as_typed(value, (key,)), key, label, not_text, as_typed, (key,))
         if text is not None:
             out.append((_printable(key), text))
+    listed(notes, not_text, lambda more: f"'{label}': {more} more answers are not text; they "
+                                         f"were not read")
     return out
 
 
@@ -602,7 +645,7 @@ def _value_text(value, key: str, label: str, notes: list[str], as_typed, path) -
     if isinstance(value, list) and all(not isinstance(v, (list, dict)) for v in value):
         items = [str(as_typed(v, path + (i,))) for i, v in enumerate(value)]
         return clean_text("(" + ", ".join(items) + ")")
-    notes.append(f"'{label}': the answer to '{key}' is {_kind(value)}, expected text; "
+    notes.append(f"'{label}': the answer to '{_short(key)}' is {_kind(value)}, expected text; "
                  f"it was not read")
     return None
 

@@ -110,6 +110,7 @@ class ClassReport:
     skipped: tuple[SkippedEntry, ...] = ()
     notes: tuple[str, ...] = ()
     internal_errors: tuple[str, ...] = ()
+    failing_expects: tuple[str, ...] = ()  # graded anyway, one line each
 
 
 def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport:
@@ -134,7 +135,8 @@ def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport
         histogram_svg=histogram, success_svg=success, objectives=objectives,
         problems=problems, issues=_issues(report),
         not_evaluated=sum(s.status == "not_evaluated" for s in report.students),
-        skipped=report.skipped, notes=report.notes, internal_errors=report.internal_errors)
+        skipped=report.skipped, notes=report.notes, internal_errors=report.internal_errors,
+        failing_expects=tuple(map(str, report.failing_expects)))
 
 
 def render_class_report(stats: ClassReport) -> str:

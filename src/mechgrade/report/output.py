@@ -57,6 +57,7 @@ STATUS_LABELS = {
     "graded": "Graded",
     "missing": "No submission",
     "unreadable": "Submission could not be read",
+    "conflict": "Not graded: more than one match with the roster",
 }
 
 
@@ -529,7 +530,7 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     for step in worked.steps:
         out += ["", f"{hashes}# {markdown_escape(step.title)}", ""]
         lines = [line for line in step.lines if line] + [row.text for row in step.rows]
-        out += [f"- `{line.strip()}`" for line in lines] or ["(none)"]
+        out += [f"- {code_span(line)}" for line in lines] or ["(none)"]
     return "\n".join(out) + "\n"
 
 
@@ -598,6 +599,8 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
                     if student.variant else None),
         "rows": rows,
         "reveal": any(row["expected"] for row in rows),
+        # what the answer key fails of its author's own tests, graded anyway
+        "failing_expects": [f"{f.problem} · {f.objective}" for f in report.failing_expects],
     }
 
 
@@ -628,6 +631,24 @@ def markdown_escape(text: str) -> str:
     \\<b\\>x\\</b\\> \\*y\\* \\`z\\` \\_w\\_ dan_wu
     """
     return _MD_SPECIAL.sub(r"\\\1", " ".join(text.split()))
+
+
+_BACKTICKS = re.compile("`+")
+
+
+def code_span(text: str) -> str:
+    """``text`` as a Markdown code span, shown literally whatever it holds (an author's
+    backtick cannot close it early and let what follows be read as markup or raw HTML): its
+    fence is longer than any run of backticks inside, and spaced from them.
+
+    >>> print(code_span("x = 1"), code_span("`a` <img>"))
+    `x = 1` `` `a` <img> ``
+    """
+    text = " ".join(text.split())
+    if "`" not in text:
+        return f"`{text}`"
+    fence = "`" * (max(map(len, _BACKTICKS.findall(text))) + 1)
+    return f"{fence} {text} {fence}"
 
 
 def _escape_all(value):

@@ -8,13 +8,16 @@ to load is left out, so one mistake gives one message. Nothing here solves anyth
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from contextlib import contextmanager
+from enum import Enum
 
-from ..errors import ExpressionError, SpecError
+from ..errors import ExpressionError, Location, SpecError
 from ..expressions.dimensions import DimensionError, Kind, Type, infer
-from ..expressions.syntax import MATH_FUNCTIONS, Attr, Call, Name, Node, Prime, parse, to_text
-from ..schema_errors import did_you_mean
+from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Call, Name, Node, Num, Prime, parse,
+                                  to_text)
+from ..schema_errors import did_you_mean, number_problem
 from ..units import (describe_dimension, dimension, dimensionless, normalize_unit, registry,
                      time_dimension)
 from .dynamics import argument_dimension, check_dynamics
@@ -558,7 +561,63 @@ def problem_errors(problem: Problem, broken: frozenset[str] = frozenset()) -> li
         check_dynamics(problem, checker)
     except SpecError as err:  # the dynamics checks stop at their first error
         checker.errors.append(err)
-    return checker.errors
+    return checker.errors + magnitude_errors(problem)
+
+
+def magnitude_errors(problem: Problem) -> list[SpecError]:
+    """One error for each item of ``problem`` holding a number no file may hold
+    (:func:`mechgrade.schema_errors.number_problem`): a value written with a unit and taken
+    to SI units (``L: 1.0e300 ft``), a given worked out from others, a number in an
+    expression. The numbers written as YAML numbers were refused with the schema already.
+
+    Every number of the model is walked, so a field added later is checked too; an item is
+    located at its own ``where`` (else its owner's), and reported once.
+
+    >>> from mechgrade.spec import load_problem_text
+    >>> from mechgrade.resources import shipped_dir
+    >>> text = (shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml").read_text()
+    >>> load_problem_text(text.replace("L: 2 ft", "L: 1.0e300 ft"), "p.yaml")
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.SpecError: p.yaml:21:6: givens.L: expected a number of magnitude at most 1e+40 in SI units, found '1.0e300 ft'
+    """
+    errors: list[SpecError] = []
+    reported: set[int] = set()
+    todo: list[tuple[object, object, Location]] = [(problem, problem, Location(problem.path))]
+    while todo:
+        value, owner, where = todo.pop()
+        if isinstance(value, (str, bool, Enum, Location)) or value is None:
+            continue
+        if isinstance(value, Num):
+            value = value.value
+        if isinstance(value, (int, float)):
+            message = _number_message(value, owner)
+            if message is not None and id(owner) not in reported:
+                reported.add(id(owner))
+                errors.append(SpecError(message, where=where))
+        elif isinstance(value, (tuple, list)):
+            todo.extend((item, owner, where) for item in reversed(value))
+        elif isinstance(value, dict):
+            todo.extend((item, owner, where) for item in value.values())
+        elif dataclasses.is_dataclass(value) and not _unresolved(value):
+            own = getattr(value, "where", None)
+            where = own if isinstance(own, Location) and own.file else where
+            todo.extend((getattr(value, f.name), value, where)
+                        for f in reversed(dataclasses.fields(value)))
+    return errors
+
+
+def _number_message(value: float, owner: object) -> str | None:
+    """:func:`number_problem`'s message for a number of ``owner``: a given is shown as
+    written, its value judged in SI units."""
+    if isinstance(owner, Given):
+        return number_problem(value, repr(owner.text), "SI units")
+    return number_problem(value)
+
+
+def _unresolved(item: object) -> bool:
+    """A given written as an expression that could not be worked out (its error says why)."""
+    return isinstance(item, Given) and item.value_expr is not None and math.isnan(item.si)
 
 
 def symbol_meanings(problem: Problem, objective: Objective) -> dict[str, Node]:

@@ -72,6 +72,8 @@ def build(root: str | Path) -> Path:
     _write(root / "yaml_deep_map.yaml", "".join(" " * i + "a:\n" for i in range(2000)))
     _write(root / "yaml_control.yaml", f"{P}.acc_mag: \"98.5\x07\x1b\x7f\x85\x9b\"\n")
     _write(root / "yaml_control_plain.yaml", f"{P}.acc_mag: 98.5\x07 ft/s^2\n")
+    _write(root / "yaml_noncharacter.yaml", f"{P}.acc_mag: 98.5\ufffe ft/s^2\n")
+    _write(root / "yaml_surrogate.yaml", f"{P}.acc_mag: '98.5\ud800'\n")
     _write(root / "yaml_bigint.yaml", f"{P}.acc_mag: {'9' * 5000}\n")
     _write(root / "yaml_bigfloat.yaml", f"{P}.acc_mag: {'9' * 5000}.5e99999\n")
     _write(root / "yaml_tags.yaml", f"{P}.acc_mag: !!python/object/apply:os.system ['touch PWNED']\n")
@@ -134,6 +136,26 @@ def build(root: str | Path) -> Path:
     _write(root / "nested" / "hw1" / "answers.txt", _txt(GOOD))
     (root / "answers.yaml_dir" / "answers.yaml").mkdir(parents=True, exist_ok=True)
 
+    # Amplification: what one file or folder repeats must not be repeated in every output.
+    _write(root / "amp_repeated.txt", _filled(lambda i: f"{P}.acc_mag = 98.5 ft/s^2\n"))
+    _write(root / "amp_garbage.txt", _filled(lambda i: "not an answer\n"))
+    _write(root / "amp_json_keys.json",
+           "{" + _filled(lambda i: f'"k{i % 500}": {i}, ') + '"end": 0}')
+    _write(root / "amp_not_text.json",
+           "{" + _filled(lambda i: f'"{P}.k{i}": [[{i}]], ') + '"end": 0}')
+    _write(root / "amp_stray" / "answers.txt", _txt(GOOD))
+    for i in range(STRAY_FILES):
+        _write(root / "amp_stray" / f"scan{i:05d}.pdf", b"")
+
+    # Terminal control sequences in names the summary prints (skipped entries): shown escaped.
+    for name in TERMINAL_NAMES:
+        _write(root / name, b"")
+
+    # Roster conflicts (ROSTER): 'CY.txt' and 'cy.txt' both name Cy; '101.txt' is named with
+    # Dee's roster id while her own folder 'dee' names her by her email.
+    _write(root / "CY.txt", _txt(GOOD))
+    _write(root / "101.txt", _txt(GOOD))
+
     # File-system tricks.
     outside = root.parent / f"{root.name}_outside"
     _write(outside / "secret.txt", _txt(GOOD))
@@ -160,6 +182,16 @@ def build(root: str | Path) -> Path:
     return root
 
 
+def _filled(piece) -> str:
+    """``piece(0) + piece(1) + ...`` as long as it stays a little below the answers file cap."""
+    out, size, i = [], 0, 0
+    while size + len(piece(i)) < MAX_BYTES - 64:
+        out.append(piece(i))
+        size += len(out[-1])
+        i += 1
+    return "".join(out)
+
+
 def _link(target: Path, link: Path) -> None:
     link.parent.mkdir(parents=True, exist_ok=True)
     if not os.path.lexists(link):
@@ -170,6 +202,19 @@ def _fifo(path: Path) -> None:
     if not os.path.lexists(path):
         os.mkfifo(path)
 
+
+MAX_BYTES = 256 * 1024  # the size cap of an answers file
+STRAY_FILES = 3000
+TERMINAL_NAMES = ("\x1b]0;owned\x07title.pdf", "\x1b[2J\x1b[8mhidden.pdf", "\rcr.pdf",
+                  "\x9b31mred.pdf")
+ROSTER = """id,name,email
+ana,Ana Able,ana@uni.edu
+cy,Cy Cole,cy@uni.edu
+101,Dee Dunn,dee@uni.edu
+nobody,No Body,nobody@uni.edu
+"""
+"""A roster for the class: Ana matches one folder, Cy and Dee are in roster conflicts, No Body
+handed in nothing."""
 
 EXPECTED_SKIPPED = {
     ".DS_Store", ".git", "Thumbs.db", "notes.pdf", "__MACOSX", "--help", "dangling.txt",

@@ -1,0 +1,37 @@
+"""The one place the command line prints: every line made visible, never obeyed."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import click
+from click.testing import CliRunner
+
+from mechgrade.cli.common import say
+
+CLI = Path(__file__).resolve().parents[2] / "src" / "mechgrade" / "cli"
+
+
+def test_say_escapes_terminal_sequences_line_by_line():
+    @click.command()
+    def shout():
+        say("ana\x1b]0;owned\x07\nbo\x1b[2J\x1b[8mhidden\rcy\u202e", err=True)
+
+    result = CliRunner().invoke(shout)
+    assert result.stderr == "ana\\x1b]0;owned\\x07\nbo\\x1b[2J\\x1b[8mhidden\\rcy\\u202e\n"
+
+
+def test_every_command_prints_through_say():
+    """No other module of the command line writes to the terminal itself."""
+    printing = []
+    for path in sorted(CLI.glob("*.py")):
+        if path.name == "common.py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call):
+                func = node.func
+                name = func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", "")
+                if name in ("echo", "secho", "print", "write"):
+                    printing.append(f"{path.name}:{node.lineno}: {ast.unparse(func)}")
+    assert printing == []
