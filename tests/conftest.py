@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hmac
+import json
 import os
 import shutil
 import subprocess
@@ -81,3 +83,27 @@ def twice(tmp_path):
         return [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                                env=env, check=True).stdout.strip() for _ in range(2)]
     return run
+
+
+@pytest.fixture
+def entry_file(disk):
+    """``entry_file(key)``: where the disk cache of :func:`disk` keeps the entry ``key``."""
+    return lambda key: disk / "entries" / f"{key}.json"
+
+
+def _rewrite_entry(path: Path, edit, *, signed: bool = False) -> None:
+    head, body = path.read_bytes().split(b"\n", 1)
+    body = json.dumps(edit(json.loads(body)), separators=(",", ":")).encode()
+    if signed:
+        secret = (path.parent / "key").read_bytes()
+        head = hmac.new(secret, path.stem.encode() + b"\n" + body, "sha256").hexdigest().encode()
+    path.write_bytes(head + b"\n" + body)
+
+
+@pytest.fixture
+def rewrite_entry():
+    """``rewrite_entry(path, edit, signed=False)``: rewrite the data of the disk-cache entry
+    at ``path`` with ``edit(data) -> data``, as someone who may write the folder but cannot
+    read its key would (the entry's first line, its HMAC, kept as it was), or ``signed``
+    again with the folder's key (someone who can)."""
+    return _rewrite_entry

@@ -18,10 +18,10 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
 # Each layer may import only from itself and the layers listed before it.
 ORDER = ["base", "spec", "mechanics", "solve", "check", "grade", "export", "report", "cli"]
 BASE = {"errors", "units", "yamlio", "jsonio", "files", "resources", "expressions", "roster",
-        "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
+        "codec", "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
 # The base layer's own order: a base module imports only base modules listed before it (or its
 # own package's modules, whose cycles test_no_module_imports_itself_through_others catches).
-BASE_ORDER = ["", "errors", "resources", "tolerance", "schema_errors", "files", "jsonio",
+BASE_ORDER = ["", "errors", "codec", "resources", "tolerance", "schema_errors", "files", "jsonio",
               "parallel", "yamlio", "roster", "expressions.excerpt", "units", "expressions",
               "__main__"]
 # The only modules that import a module named at run time: the exporter registry and the CLI's

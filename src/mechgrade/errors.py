@@ -168,6 +168,11 @@ class OutputError(MechgradeError):
     """An output file or folder could not be written."""
 
 
+class SettingError(MechgradeError):
+    """An environment variable mechgrade reads (``MECHGRADE_CACHE_DIR``...) holds a value it
+    cannot use; ``where.field`` names the variable."""
+
+
 class AnswerError(MechgradeError):
     """A student's answer text could not be read; the message says why (verdict "unreadable")."""
 

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from mechgrade.check import check_problem, report_data, report_from
+from mechgrade.check import CheckReport, check_problem
+from mechgrade.codec import decode, encode
 
 ROOT = Path(__file__).resolve().parents[2]
 PROBLEMS = ROOT / "problems"
@@ -26,7 +27,7 @@ def test_a_report_read_back_is_the_report_checked(path, disk, monkeypatch, forge
     assert check_problem(path) == checked  # checked, then written
     forget()
     assert check_problem(path) == checked  # read back
-    assert report_from(json.loads(json.dumps(report_data(checked)))) == checked
+    assert decode(CheckReport, json.loads(json.dumps(encode(checked)))) == checked
 
 
 def test_a_changed_file_is_checked_again(disk, tmp_path):
@@ -39,16 +40,35 @@ def test_a_changed_file_is_checked_again(disk, tmp_path):
     assert not check_problem(spec).passed
 
 
-def test_a_spoilt_report_entry_is_checked_again(disk, forget):
+def report_entries(disk):
+    for entry in (disk / "entries").glob("*.json"):
+        data = json.loads(entry.read_bytes().split(b"\n", 1)[1])
+        if isinstance(data, dict) and "outcomes" in data:
+            yield entry
+
+
+def test_a_spoilt_report_entry_is_checked_again(disk, forget, rewrite_entry):
+    # signed with the folder's key: read as far as the codec, which refuses it
     path = FILES[0]
     right = check_problem(path)
-    for entry in disk.glob("*.json"):
-        data = json.loads(entry.read_text())
-        if isinstance(data["data"], dict) and "outcomes" in data["data"]:
-            data["data"]["outcomes"] = [["x", "yes"]]
-            entry.write_text(json.dumps(data))
+    for entry in report_entries(disk):
+        rewrite_entry(entry, lambda data: {**data, "outcomes": [["x", "yes"]]}, signed=True)
     forget()
     assert check_problem(path) == right
+
+
+def test_a_report_flipped_to_passed_is_not_trusted(disk, tmp_path, rewrite_entry):
+    spec = tmp_path / "pendulum.yaml"
+    spec.write_text(FILES[0].read_text().replace("98.51", "98.61"))
+    failing = check_problem(spec)
+    assert not failing.passed
+    flipped = 0
+    for entry in report_entries(disk):
+        rewrite_entry(entry, lambda data: {**data, "outcomes": [
+            {**outcome, "passed": True} for outcome in data["outcomes"]]})
+        flipped += 1
+    assert flipped == 1
+    assert check_problem(spec) == failing
 
 
 def test_a_warm_check_loads_no_units_schema_or_sympy(twice):

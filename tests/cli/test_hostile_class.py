@@ -1,8 +1,9 @@
 """A class folder built to break the grader (tests/data/hostile/make_corpus.py), graded through
 the CLI with its roster: the run finishes, every entry is accounted for, every output is valid
 and stable, nothing is written outside ``--out``, roster conflicts are listed and never
-exported as grades, what a file repeats is not repeated in every output, and names holding
-terminal control sequences are printed escaped."""
+exported as grades, what a file repeats is not repeated in every output, names holding
+terminal control sequences are printed escaped, and a solver's cache folder edited by others
+changes no result."""
 
 from __future__ import annotations
 
@@ -12,6 +13,8 @@ import importlib.util
 import io
 import json
 import os
+import subprocess
+import sys
 import textwrap
 from pathlib import Path
 
@@ -233,3 +236,110 @@ def test_a_gradescope_upload_full_of_stray_files_and_control_sequences_stays_sma
     assert result.stdout.startswith("\\x1b]0;owned\\x07s1: ")
     assert "\x1b" not in result.output
     assert (top / "gs.json").stat().st_size < 20_000
+
+
+# ---------------------------------------------------------------------------- the cache folder
+# Whoever may write the solver's cache folder (another user, a careless script) edits every
+# entry it holds, swaps some for a pipe, an endless file or one too large, and leaves files of
+# the user's beside them: a real grading run still writes the results it writes with no cache,
+# in bounded time and memory, and removes nothing of the user's.
+
+HW3 = shipped_dir("examples") / "hw3_dynamics"
+PENDULUM_ONLY = Path(__file__).parents[1] / "data" / "cache" / "assignment.yaml"
+GRADE = """\
+import resource, sys
+resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))
+from mechgrade.cli import main
+main(sys.argv[1:], prog_name="mechgrade")
+"""
+
+
+def _graded(top: Path, name: str, folder: Path, assignment: Path = PENDULUM_ONLY,
+            submissions: Path = HW3 / "submissions"):
+    env = {k: v for k, v in os.environ.items() if k != "MECHGRADE_NO_CACHE"}
+    env["MECHGRADE_CACHE_DIR"] = str(folder)
+    done = subprocess.run(
+        [sys.executable, "-c", GRADE, "grade", str(assignment), str(submissions),
+         "--out", str(top / name), "--jobs", "2"],
+        capture_output=True, text=True, env=env, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
+    return done, (top / name / "results.json").read_bytes()
+
+
+def _edited(data):
+    """An entry's data as a hostile editor leaves it: every number and answer changed."""
+    if isinstance(data, dict) and "levels" in data:  # a plan: its functions give half
+        for row in data["objectives"]:
+            head, _, value = row[1].rpartition("return ")
+            row[1] = f"{head}return 0.5*({value.strip()})\n"
+        return data
+    if isinstance(data, dict) and "results" in data:  # a solution: numbers turned round
+        for result in data["results"]:
+            value = result["value"]
+            result["value"] = [-v for v in value] if isinstance(value, list) else \
+                None if value is None else -value
+            if result["expr"] is not None:
+                result["expr"] = "0"
+        return data
+    if isinstance(data, dict) and "expr" in data:  # a symbolic answer
+        return {**data, "expr": "0"}
+    return {"alone": False}
+
+
+@pytest.fixture(scope="module")
+def tampered_cache(tmp_path_factory):
+    top = tmp_path_factory.mktemp("cache-class")
+    folder = top / "cache"
+    _, cold = _graded(top, "cold", folder)
+    solutions = []
+    for path in sorted((folder / "entries").glob("*.json"), key=lambda p: p.stat().st_size):
+        head, body = path.read_bytes().split(b"\n", 1)
+        data = json.loads(body)
+        if "results" in data:
+            solutions.append(path)
+        path.write_bytes(head + b"\n" + json.dumps(_edited(data)).encode())
+    assert len(solutions) >= 4  # its own givens', and those its answers carried forward ask
+    # the smaller ones (answers carried forward) swapped for a pipe, an endless file and one
+    # too large; the solution at the problem's own givens and the plan stay, edited
+    solutions[0].unlink()
+    os.mkfifo(solutions[0], 0o600)
+    solutions[1].unlink()
+    solutions[1].symlink_to("/dev/zero")
+    solutions[2].write_bytes(b"[" + b"0," * 5_000_000 + b"0]")
+    mine = {"results.json": b"{}", "backup.json": b"[]", "entries/notes.json": b"{}"}
+    for name, data in mine.items():
+        (folder / name).write_bytes(data)
+    tampered, after = _graded(top, "tampered", folder)
+    again, warm = _graded(top, "again", folder)
+    return {"cold": cold, "tampered": after, "warm": warm, "runs": (tampered, again),
+            "folder": folder, "mine": mine}
+
+
+def test_a_tampered_cache_folder_changes_no_result(tampered_cache):
+    assert tampered_cache["tampered"] == tampered_cache["cold"]
+    assert tampered_cache["warm"] == tampered_cache["cold"]  # what it wrote again reads back
+
+
+def test_a_tampered_cache_folder_is_no_warning_and_loses_no_file_of_the_users(tampered_cache):
+    for run in tampered_cache["runs"]:
+        assert "cache" not in run.stderr
+    for name, data in tampered_cache["mine"].items():
+        assert (tampered_cache["folder"] / name).read_bytes() == data
+
+
+def test_a_cache_folder_others_may_write_is_one_warning_of_a_grading_run(hostile, tmp_path):
+    # the run's workers (two) find the same folder and say nothing: only the command prints
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    shared.chmod(0o777)
+    answers = tmp_path / "class" / "ann" / "answers.yaml"
+    answers.parent.mkdir(parents=True)
+    answers.write_text("bowling_3_15_4_pendulum:\n  acc_mag: 98.5 ft/s^2\n", encoding="utf-8")
+    done, results = _graded(tmp_path, "out", shared, hostile["top"] / "hw.yaml",
+                            tmp_path / "class")
+    assert [line for line in done.stderr.splitlines() if "cache" in line] == [
+        f"warning: cache folder {shared} may be written by other users (mode 777): not using "
+        f"the cache in this run (make it private with 'chmod 700 {shared}', or set "
+        "MECHGRADE_CACHE_DIR to a private folder)"]
+    assert json.loads(results)["students"][0]["score"] > 0
+    assert list(shared.iterdir()) == []

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from mechgrade.cli import main
@@ -180,3 +181,43 @@ def test_a_bug_is_one_line_and_exit_3_never_a_traceback(monkeypatch):
     assert result.stderr == ("internal error: KeyError: 'body'; please report it with the "
                              "command and files that caused it (set MECHGRADE_DEBUG=1 for the "
                              "traceback)\n")
+
+
+# ---------------------------------------------------------------------------- the solver's cache
+
+
+def with_cache(folder, **settings):
+    return {"MECHGRADE_NO_CACHE": None, "MECHGRADE_CACHE_DIR": str(folder), **settings}
+
+
+@pytest.mark.parametrize("command", ["check", "solve"])
+def test_a_cache_folder_others_may_write_is_one_warning_and_the_command_runs(command, tmp_path):
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    shared.chmod(0o777)
+    result = CliRunner().invoke(main, [command, PENDULUM], env=with_cache(shared))
+    assert result.exit_code == 0, result.output
+    assert result.stderr == (
+        f"warning: cache folder {shared} may be written by other users (mode 777): not using "
+        f"the cache in this run (make it private with 'chmod 700 {shared}', or set "
+        "MECHGRADE_CACHE_DIR to a private folder)\n")
+    assert list(shared.iterdir()) == []
+
+
+@pytest.mark.parametrize("value", ["nan", "inf", "1e308", "-1", "abc"])
+def test_a_cache_size_that_is_not_a_number_of_megabytes_is_one_message_and_exit_2(
+        value, tmp_path):
+    result = CliRunner().invoke(main, ["check", PENDULUM],
+                                env=with_cache(tmp_path / "c", MECHGRADE_CACHE_MAX_MB=value))
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"MECHGRADE_CACHE_MAX_MB: expected a number of megabytes from 0 to 1000000, found "
+        f"{value!r}; set it to a number such as 200, or unset it for the default (200)\n")
+    assert result.stdout == ""
+
+
+def test_a_relative_cache_folder_is_one_message_and_exit_2():
+    result = CliRunner().invoke(main, ["solve", PENDULUM], env=with_cache("rel/cache"))
+    assert result.exit_code == 2
+    assert result.stderr.startswith("MECHGRADE_CACHE_DIR: expected an absolute path to a "
+                                    "folder, found 'rel/cache'; write it in full (")

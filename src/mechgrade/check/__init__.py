@@ -13,23 +13,24 @@ warning (a student making it gets full credit).
 
 from __future__ import annotations
 
+import hashlib
 import os
+import stat
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-import hashlib
-from typing import Any
-
 import numpy as np
 
+from ..codec import decode, encode
+
 from ..errors import AuthorWarning, ExpressionError, MechgradeError, SpecError
+from ..files import MAX_BYTES
 from ..expressions.numeric import evaluate, reference_tree
 from ..solve import cache
 from ..solve.mutants import inside_tolerance, separating_rel
 from ..solve.result import ObjectiveResult
-from ..solve.stored import result_data, result_from
 from ..spec.model import Expect, Objective, Problem
 from ..tolerance import agree_at_points, within
 from ..units import from_si, to_si
@@ -129,57 +130,40 @@ def check_problem(path) -> CheckReport:
     checked again unchanged is neither loaded nor solved, its report is read back."""
     key = _report_key(path)
     if key is not None:
+        data = cache.load(key)
         try:
-            return report_from(cache.load(key))
-        except (KeyError, TypeError, ValueError):
-            pass  # none, or not an entry this code wrote
+            if data is not None:
+                return decode(CheckReport, data)
+        except ValueError:
+            pass  # not an entry this code wrote
     report = _checked(path)
-    if key is not None and _report_key(path) == key and report_from(report_data(report)) \
+    if key is not None and _report_key(path) == key and decode(CheckReport, encode(report)) \
             == report:  # the file did not change meanwhile; nothing the stored form leaves out
-        cache.store(key, report_data(report))
+        cache.store(key, encode(report))
     return report
 
 
 def _report_key(path) -> str | None:
+    """The entry of a file's report: its path and bytes (read only if it is a regular file no
+    larger than a problem file may be; a pipe is never waited on) and the code checking it."""
     if not cache.enabled():
         return None
     try:
-        with open(path, "rb") as handle:
-            content = hashlib.sha256(handle.read()).hexdigest()
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     except OSError:
         return None
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_BYTES:
+            return None
+        with open(fd, "rb", closefd=False) as handle:
+            content = hashlib.sha256(handle.read(MAX_BYTES + 1)).hexdigest()
+    except OSError:
+        return None
+    finally:
+        os.close(fd)
     return cache.digest("check", str(path), content, *cache.code_key(
         "yaml", "jsonschema", "pint", "numpy", "scipy"))
-
-
-def report_data(report: CheckReport) -> dict:
-    """``report`` as plain JSON (as :func:`report_from` reads it)."""
-    return {"path": report.path, "problem": report.problem, "error": report.error,
-            "outcomes": [[o.objective, o.passed, o.message, o.note, o.book]
-                         for o in report.outcomes],
-            "dof": report.dof, "untested": list(report.untested), "faults": list(report.faults),
-            "warnings": list(report.warnings), "state": list(report.state),
-            "results": [result_data(r) for r in report.results],
-            "separations": list(report.separations), "variants": report.variants}
-
-
-def report_from(data: Any) -> CheckReport:
-    """The report :func:`report_data` gave ``data`` for; raises (``KeyError``,
-    ``TypeError``, ``ValueError``) on anything else."""
-    def texts(values) -> tuple[str, ...]:
-        return tuple(map(str, values))
-
-    def text(value) -> str | None:
-        return None if value is None else str(value)
-
-    return CheckReport(
-        str(data["path"]), text(data["problem"]), text(data["error"]),
-        tuple(ExpectOutcome(str(objective), bool(passed), str(message), text(note), text(book))
-              for objective, passed, message, note, book in data["outcomes"]),
-        None if data["dof"] is None else int(data["dof"]), texts(data["untested"]),
-        texts(data["faults"]), texts(data["warnings"]), texts(data["state"]),
-        tuple(result_from(r) for r in data["results"]), texts(data["separations"]),
-        bool(data["variants"]))
 
 
 def _checked(path) -> CheckReport:

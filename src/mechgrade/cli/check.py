@@ -6,7 +6,7 @@ import click
 
 from ..check import CheckReport, check_paths, check_problem, problem_files, watch
 from ..errors import SpecError
-from .common import main, reports_errors, say
+from .common import main, reports_errors, say, warn_about_the_cache
 
 
 @main.command("check")
@@ -35,6 +35,7 @@ def check_command(paths: tuple[str, ...], verbose: bool, watching: bool, max_run
         raise click.UsageError("--max-runs and --interval need --watch")
     if not problem_files(paths):
         raise SpecError(f"expected problem files (*.yaml), found none in {', '.join(paths)}")
+    warn_about_the_cache()
     if watching:
         _watch(paths, max_runs, 0.5 if interval is None else interval, variant_count)
         return

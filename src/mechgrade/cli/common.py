@@ -69,6 +69,17 @@ def reports_errors(command):
     return wrapper
 
 
+def warn_about_the_cache() -> None:
+    """Print, once before a command solves anything, why the solver's disk cache is not used
+    (a folder or key others may write or own); a cache setting that is not valid is an error
+    (:class:`~mechgrade.errors.SettingError`, exit 2)."""
+    from ..solve import cache
+
+    message = cache.warning()
+    if message:
+        say(f"warning: {message}", err=True)
+
+
 COMMANDS = {
     "check": ("check", "Validate problem files (or folders of them) and run every expect: test."),
     "export": ("export", "Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a "

@@ -12,7 +12,7 @@ import click
 from ..files import visible_text
 from ..grade.lms_submissions import SUBMISSION_FORMATS
 from ..roster import read_roster
-from .common import INTERNAL_ERROR_EXIT, main, reports_errors, say
+from .common import INTERNAL_ERROR_EXIT, main, reports_errors, say, warn_about_the_cache
 
 
 @main.command("grade")
@@ -55,6 +55,7 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
 
     jobs = jobs if jobs is not None else default_jobs()
     spec = load_assignment(assignment)
+    warn_about_the_cache()
     class_roster = read_roster(roster) if roster is not None else None
     bar = None
 

@@ -16,7 +16,7 @@ from ..grade.upload import read_upload, submitter
 from ..grade.assignment import load_assignment
 from ..grade.run import failing_expects, failing_expects_error, grade_plan, plan_assignment
 from ..grade.submissions import SubmissionSet
-from .common import INTERNAL_ERROR_EXIT, UserFailure, main, say
+from .common import INTERNAL_ERROR_EXIT, UserFailure, main, say, warn_about_the_cache
 
 
 @main.command("gradescope")
@@ -48,7 +48,9 @@ def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
     options = ExportOptions(gradescope_visibility=visibility)
     try:
         student, name = submitter(metadata_path)
-        plan = plan_assignment(load_assignment(assignment))
+        spec = load_assignment(assignment)
+        warn_about_the_cache()
+        plan = plan_assignment(spec)
         failing = failing_expects(plan)
         if failing and not accept_failing_expect:
             # the student sees which questions, never the values check compares

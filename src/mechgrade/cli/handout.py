@@ -11,7 +11,7 @@ from ..grade.run import plan_assignment
 from ..grade.variants import handout_sheets
 from ..report.handout import write_handouts
 from ..roster import read_roster
-from .common import main, reports_errors, say
+from .common import main, reports_errors, say, warn_about_the_cache
 
 
 @main.command("handout")
@@ -33,7 +33,9 @@ def handout(assignment: Path, roster: Path, out_dir: Path, templates_dir: Path |
     A student's numbers come from the assignment's variants seed and their roster id: the
     same numbers grading uses.
     """
-    plan = plan_assignment(load_assignment(assignment))
+    spec = load_assignment(assignment)
+    warn_about_the_cache()
+    plan = plan_assignment(spec)
     students = [(s.id, s.name) for s in read_roster(roster).students]
     written = write_handouts(handout_sheets(plan, students), out_dir, templates_dir)
     say(f"Wrote {len(students)} sheets and givens.csv to {out_dir}/ "

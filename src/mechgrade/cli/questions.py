@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from .common import main, reports_errors, say
+from .common import main, reports_errors, say, warn_about_the_cache
 
 FORMATS = ("canvas-qti", "moodle-xml")
 DEFAULT_VARIANTS = 20
@@ -33,6 +33,7 @@ def export_questions(assignment: Path, fmt: str, count: int, out: Path | None) -
     from ..grade.run import plan_assignment
 
     spec = load_assignment(assignment)
+    warn_about_the_cache()
     bank = question_bank(plan_assignment(spec), count)
     out = out if out is not None else Path(f"{spec.id}-questions{DEFAULT_SUFFIX[fmt]}")
     for note in QUESTION_WRITERS[fmt](bank, out):

@@ -11,7 +11,7 @@ from ..mechanics import derivation
 from ..solve.worked import answer_text as value_text
 from ..solve import solve as solve_problem
 from ..spec import load_problem
-from .common import main, reports_errors, say
+from .common import main, reports_errors, say, warn_about_the_cache
 
 
 def solution_json(problem, solution) -> dict:
@@ -39,6 +39,7 @@ def solution_json(problem, solution) -> dict:
 def solve_command(problem_file: str, fmt: str, steps: bool, plot: str | None) -> None:
     """Solve PROBLEM_FILE and print each objective's reference answer."""
     problem = load_problem(problem_file)
+    warn_about_the_cache()
     solution = solve_problem(problem)
     if plot:
         from ..solve.picture import picture_svg, scene

@@ -20,6 +20,7 @@ from typing import Collection, Mapping
 
 import numpy as np
 
+from ..codec import decode, encode
 from ..errors import AuthorWarning, MechgradeError, SolveError
 from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
@@ -32,8 +33,7 @@ from .plan import Plan, generic_dof, plan
 from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
                       symbolic_mistakes)
 from . import cache
-from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
-                     Solution, StateValue)
+from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 
 # sympy is imported by the functions that derive a symbolic answer: a warm solve of a problem
 # whose plan and symbolic answers are in the disk cache never imports it.
@@ -235,38 +235,18 @@ def _stored_answer_key(problem: Problem, objective_id: str, dependence: tuple) -
     return None if key is None else cache.digest("symbolic", key, objective_id, dependence)
 
 
-def _answer_data(answer: ObjectiveResult) -> dict:
-    return {"id": answer.id, "kind": answer.kind.value, "unit": answer.unit,
-            "expr": answer.expr, "symbols": list(answer.symbols),
-            "symbol_units": list(answer.symbol_units),
-            "symbol_signed": list(answer.symbol_signed), "rel": answer.rel, "abs": answer.abs,
-            "prompt": answer.prompt,
-            "generated_mistakes": [[m.code, m.message, m.expr, m.step]
-                                   for m in answer.generated_mistakes]}
-
-
 def _stored_answer(key: str) -> ObjectiveResult | None:
     """The symbolic answer the disk cache holds under ``key`` (``None``: none, or unreadable)."""
+    data = cache.load(key)
     try:
-        return _answer_from(cache.load(key))
-    except (KeyError, TypeError, ValueError):
+        return None if data is None else decode(ObjectiveResult, data)
+    except ValueError:
         return None
 
 
-def _answer_from(data) -> ObjectiveResult:
-    return ObjectiveResult(
-        id=str(data["id"]), kind=data["kind"], unit=str(data["unit"]), expr=str(data["expr"]),
-        symbols=tuple(map(str, data["symbols"])),
-        symbol_units=tuple(map(str, data["symbol_units"])),
-        symbol_signed=tuple(map(bool, data["symbol_signed"])), rel=float(data["rel"]),
-        abs=float(data["abs"]), prompt=str(data["prompt"]),
-        generated_mistakes=tuple(GeneratedMistake(str(code), str(message), None, expr, step)
-                                 for code, message, expr, step in data["generated_mistakes"]))
-
-
 def _store_answer(key: str, answer: ObjectiveResult) -> None:
-    data = _answer_data(answer)
-    if _answer_from(data) == answer:  # nothing the stored form leaves out
+    data = encode(answer)
+    if decode(ObjectiveResult, data) == answer:  # nothing the stored form leaves out
         cache.store(key, data)
 
 

@@ -21,10 +21,12 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
 
+from ..codec import decode, encode
 from ..errors import AuthorWarning, Location
 from ..expressions.syntax import Name, Prime
 from ..spec.model import ObjectiveKind, Problem
 from . import cache
+from .generated import UnsafeSource, numpy_function, same_namespace
 from .index import SymbolIndex
 
 if TYPE_CHECKING:
@@ -224,7 +226,7 @@ def _planned(problem: Problem, key: str | None) -> Plan:
     try:
         entry = _entry(problem, p)
         compiled = _from_entry(problem, key, entry)  # as a later run will read it back
-    except cache.UnsafeSource:
+    except UnsafeSource:
         return p  # something the printer wrote that the reader would refuse: not cached
     cache.store(key, entry)
     compiled.__dict__["k"] = p.k  # derived already
@@ -314,13 +316,13 @@ def generic_dof(k: Kinematics) -> int:
 
 def source(function: Callable) -> str:
     """The source sympy printed for a lambdified ``function`` (or :class:`_OnFirstCall`),
-    when the numpy names it uses are those :func:`.cache.numpy_function` gives."""
+    when the numpy names it uses are those :func:`.generated.numpy_function` gives."""
     import inspect
 
     if isinstance(function, _OnFirstCall):
         function = function.function
-    if not cache.same_namespace(function):
-        raise cache.UnsafeSource("a lambdified function uses names numpy does not give")
+    if not same_namespace(function):
+        raise UnsafeSource("a lambdified function uses names numpy does not give")
     return inspect.getsource(function)
 
 
@@ -332,7 +334,7 @@ def _entry(problem: Problem, p: Plan) -> dict:
         "levels": [{
             "order": level.order, "residual": source(level.residual),
             "jacobian": source(level.jacobian), "scale": source(level.scale),
-            "labels": list(level.labels), "wheres": [cache.where_data(w) for w in level.wheres],
+            "labels": list(level.labels), "wheres": encode(level.wheres),
             "conditions": list(level.conditions), "linear": level.linear,
             "uses": [sorted(u) for u in level.uses],
             "jacobian_uses": sorted(level.jacobian_uses)} for level in p.levels],
@@ -342,7 +344,7 @@ def _entry(problem: Problem, p: Plan) -> dict:
         "objective_uses": [[oid, sorted(uses)] for oid, uses in p.objective_uses],
         "points": list(p.points), "point_positions": source(p.point_positions),
         "constraint_rank": p.constraint_rank,
-        "warnings": [[w.message, cache.where_data(w.where)] for w in p.warnings],
+        "warnings": encode(p.warnings),
         "mutants": {o.id: [{"code": m.code, "sentence": m.sentence, "size": m.size,
                             "velocity": m.velocity, "value": source(m.value),
                             "term": None if m.term is None else source(m.term)}
@@ -365,7 +367,7 @@ def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
         residual=_compiled(level["residual"]), jacobian=_compiled(level["jacobian"]),
         scale=_compiled(level["scale"]),
         labels=tuple(map(str, level["labels"])),
-        wheres=tuple(cache.where_from(w) for w in level["wheres"]),
+        wheres=decode(tuple[Location, ...], level["wheres"]),
         conditions=tuple(map(str, level["conditions"])), linear=bool(level["linear"]),
         uses=tuple(frozenset(map(int, u)) for u in level["uses"]),
         jacobian_uses=frozenset(map(int, level["jacobian_uses"])))
@@ -384,11 +386,10 @@ def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
         points=tuple(map(str, entry["points"])),
         point_positions=_compiled(entry["point_positions"]),
         constraint_rank=int(entry["constraint_rank"]),
-        warnings=tuple(AuthorWarning(str(message), cache.where_from(where))
-                       for message, where in entry["warnings"]),
+        warnings=decode(tuple[AuthorWarning, ...], entry["warnings"]),
         problem=problem, key=key,
         mutants={str(oid): tuple(Mutant(
-            str(oid), str(m["code"]), str(m["sentence"]), int(m["size"]), bool(m["velocity"]),
+            str(oid), str(m["code"]), str(m["sentence"]), _size(m["size"]), bool(m["velocity"]),
             _compiled(m["value"]), None if m["term"] is None else _compiled(m["term"]))
             for m in rows) for oid, rows in entry["mutants"].items()},
         generic_dof=int(entry["generic_dof"]))
@@ -396,9 +397,16 @@ def _from_entry(problem: Problem, key: str, entry: dict) -> Plan:
     return p
 
 
+def _size(value) -> int:
+    """A mutation's number of values: a scalar's or a vector's."""
+    if value not in (1, 3):
+        raise ValueError(f"expected 1 or 3 values, found {value!r:.20}")
+    return int(value)
+
+
 def _compiled(text: str) -> Callable:
     """A function of the entry, checked and compiled now: an entry that is not what this code
     wrote is refused whole, never found out in the middle of a solve."""
     if not isinstance(text, str):
         raise TypeError("expected a function's source")
-    return cache.numpy_function(text)
+    return numpy_function(text)
