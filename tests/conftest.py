@@ -21,6 +21,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PROBLEMS = ROOT / "problems"
 DATA = Path(__file__).resolve().parent / "data"
+# The LMS importers re-implemented from their source (tests/lms/), imported by module name
+sys.path.insert(0, str(Path(__file__).resolve().parent / "lms"))
 
 
 @pytest.fixture
