@@ -22,11 +22,11 @@ def folder(tmp_path_factory):
     top = tmp_path_factory.mktemp("failing")
     text = PENDULUM.read_text(encoding="utf-8").replace("expect: {value: 98.51}",
                                                          "expect: {value: 97.51}")
-    (top / "p.yaml").write_text(text, encoding="utf-8")
+    (top / PENDULUM.name).write_text(text, encoding="utf-8")
     (top / "hw.yaml").write_text(textwrap.dedent("""\
         id: hw
         title: HW
-        problems: [{path: p.yaml, objectives: [acc_mag]}]
+        problems: [{path: bowling_3_15_4_pendulum.yaml, objectives: [acc_mag]}]
         """), encoding="utf-8")
     (top / "subs").mkdir()
     (top / "subs" / "ann.txt").write_text("bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n",
@@ -49,7 +49,7 @@ def test_a_spec_failing_its_own_test_is_refused_before_grading(folder):
     assert result.exit_code == 2
     assert result.stdout == ""
     assert result.stderr == (
-        f"{folder / 'p.yaml'}:30:13: objectives[0].expect: expected the solver to pass this "
+        f"{folder / PENDULUM.name}:30:13: objectives[0].expect: expected the solver to pass this "
         f"expect: test before grading, found {SAYS}; fix the problem file (mechgrade check "
         f"shows it) or grade anyway with --accept-failing-expect\n")
     assert not out.exists()
@@ -58,7 +58,7 @@ def test_a_spec_failing_its_own_test_is_refused_before_grading(folder):
 def test_graded_anyway_the_summary_and_results_record_it(folder, accepted):
     result, out = accepted
     assert result.exit_code == 0, result.output
-    where = f"{folder / 'p.yaml'}:30:13: objectives[0].expect"
+    where = f"{folder / PENDULUM.name}:30:13: objectives[0].expect"
     assert result.stdout.splitlines()[1:] == [
         "Graded although the problems fail these expect: tests (--accept-failing-expect):",
         f"  {where}: {SAYS}"]
@@ -92,7 +92,7 @@ def test_graded_anyway_the_class_report_and_exports_say_so(folder, accepted):
                                        "grades-csv", "--out", str(folder / "grades.csv")])
     assert export.exit_code == 0, export.output
     assert (f"warning: graded although the problem fails this expect: test "
-            f"(--accept-failing-expect): {folder / 'p.yaml'}:30:13: objectives[0].expect: "
+            f"(--accept-failing-expect): {folder / PENDULUM.name}:30:13: objectives[0].expect: "
             f"{SAYS}") in export.stderr
 
 

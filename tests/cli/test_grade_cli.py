@@ -196,13 +196,13 @@ def test_the_manifest_records_the_run(tmp_path):
     assert manifest["arguments"] == {
         "assignment": str(folder / "hw.yaml"), "submissions_dir": str(folder / "subs"),
         "out_dir": str(out), "roster": None, "templates_dir": None, "jobs": 1,
-        "accept_failing_expect": False}
+        "accept_failing_expect": False, "submissions_format": None}
     assert manifest["started"] <= manifest["finished"]
     assert manifest["inputs"] == [
         {"role": "assignment", "path": str(folder / "hw.yaml"),
          "sha256": hashlib.sha256((folder / "hw.yaml").read_bytes()).hexdigest()},
-        {"role": "problem", "path": str(folder / "p.yaml"),
-         "sha256": hashlib.sha256((folder / "p.yaml").read_bytes()).hexdigest()}]
+        {"role": "problem", "path": str(folder / PENDULUM.name),
+         "sha256": hashlib.sha256((folder / PENDULUM.name).read_bytes()).hexdigest()}]
     written = sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file())
     assert manifest["files"] == [name for name in written if name != "manifest.json"]
     assert manifest["kept"] == [] and manifest["removed"] == []
@@ -300,7 +300,8 @@ def test_a_run_that_fails_while_writing_leaves_the_previous_outputs_whole(tmp_pa
     assert result.exit_code == 2
     assert "No space left on device" in result.stderr
     assert _files(out) == before
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["hw.yaml", "out", "p.yaml", "subs"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "bowling_3_15_4_pendulum.yaml", "hw.yaml", "out", "subs"]
 
 
 def test_a_second_run_into_a_folder_being_written_is_refused(tmp_path):

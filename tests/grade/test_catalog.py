@@ -34,7 +34,7 @@ def test_an_entry_has_the_statement_tags_answers_and_the_variants_drawn():
         "pendulum_variants", ("circular-motion", "particle-kinematics"), (Analysis.KINEMATICS,))
     assert [(o.id, o.answer) for o in entry.objectives] == [
         ("speed", "8 ft/s"), ("acc_mag", "37.7359 ft/s^2"),
-        ("acc_N", "(-37.7128, 1.32051, 0) ft/s^2 in N")]
+        ("acc_N", "(-37.7128, 1.32051, 0) ft/s^2 in frame N")]
     assert [d.key for d in entry.variants] == ["L", "theta", "theta'", "theta''"]
     # the statement is shown with the problem's own givens, not {L}
     assert entry.statement.startswith("A rigid pendulum of length 2 ft turns about a fixed pin")
@@ -46,7 +46,7 @@ def test_an_objective_the_givens_leave_free_is_listed_as_not_solved():
     entry = catalog_entry(DATA / "unsolved" / "free_rate.yaml")
     assert [o.id for o in entry.failures] == ["speed"]
     assert "is not determined by the givens: give a value for theta'" in entry.failures[0].answer
-    assert entry.objectives[0].answer == "(1.73205, 1, 0) m in N"
+    assert entry.objectives[0].answer == "(1.73205, 1, 0) m in frame N"
 
 
 def test_a_file_that_does_not_load_is_a_fault_and_the_others_are_still_entries():
