@@ -147,6 +147,13 @@ CASES = [
      "expected a body or spring as argument of pe(...)"),
     ("force in the wrong unit", PENDULUM, "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: N",
      "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: J", "dimension mismatch"),
+    ("an objective's own time under integrate", CART, "    expect: {value: 1.359157}\n",
+     "    expect: {value: 1.359157}\n    givens: {t: 0.1 s}\n",
+     "p.yaml:54:17: objectives[0].givens.t: expected only parameters among an objective's "
+     "own givens under 'analysis: integrate' (every objective is read at the event, when "),
+    ("an objective's own rate under integrate", CART, "    expect: {value: 1.359157}\n",
+     "    expect: {value: 1.359157}\n    givens: {x': 1 m/s}\n",
+     "found 'x': 1 m/s'; the state at another time or position is not solved yet"),
 ]
 
 

@@ -725,6 +725,8 @@ def check_dynamics(problem, checker) -> None:
     c.reactions_and_friction()
     if d.analysis is not None:
         _check_analysis(problem, checker, d.analysis)
+    if isinstance(d.analysis, Integration):
+        _objectives_at_the_event(problem, d.analysis)
     if d.design is not None:
         c.design()
     for e in (*(x for r in d.reactions for x in r.directions),
@@ -924,6 +926,24 @@ class _Checker:
         left, right = design.so_that
         self.checker._same(self.checker.type_of(left), self.checker.type_of(right), left,
                            "both sides of 'so_that'")
+
+
+def _objectives_at_the_event(problem, analysis: Integration) -> None:
+    """Under an integration every objective is read at its event: an objective's own time,
+    coordinate or rate would be silently read there (issue: honoured or refused), so only
+    parameters may be an objective's own givens."""
+    params = {p.name for p in problem.parameters}
+    until = f"{analysis.until[0].text} = {analysis.until[1].text}"
+    for obj in problem.objectives:
+        for g in obj.givens:
+            node = g.key.node
+            if isinstance(node, Name) and node.id in params:
+                continue
+            raise SpecError(f"expected only parameters among an objective's own givens under "
+                            f"'analysis: integrate' (every objective is read at the event, "
+                            f"when {until}), found '{g.key.text}: {g.text}'; the state at "
+                            "another time or position is not solved yet: ask it in a problem "
+                            "of its own, with 'until:' that instant", where=g.where)
 
 
 def _check_analysis(problem, checker, analysis: Analysis) -> None:
