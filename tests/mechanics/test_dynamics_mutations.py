@@ -51,7 +51,8 @@ def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     # no gravity load: no weight mistakes; no friction: no friction mistakes
     assert not _codes("rod_strikes_ledge") & {"weight_omitted", "mass_for_weight",
                                               "friction_reversed"}
-    assert _codes("rod_strikes_ledge") == {"restitution_ignored"}
+    # a turning rod: taken as a particle (its own inertia left out)
+    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "other_shape_inertia"}
     # a pin: the parallel-axis term; no pin, no rolling contact (a sliding ladder): none
     assert "central_inertia_at_pivot" in _codes("pendulum_pin_reaction")
     assert "central_inertia_at_pivot" not in _codes("ruina_9_19_falling_ladder")
@@ -180,7 +181,7 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
     copy = pickle.loads(pickle.dumps(solution))
     assert copy == solution
     assert [m.code for m in copy.result("vG_after").generated_mistakes] \
-        == ["restitution_ignored", "restitution_ignored"]
+        == ["restitution_ignored", "restitution_ignored", "other_shape_inertia"]
 
 
 def test_the_body_slid_on_taken_as_fixed_stops_the_slider_on_it():
@@ -214,3 +215,28 @@ def test_a_blow_taken_at_the_mass_centre_sets_nothing_spinning():
     judged = assess("(0, 2) m/s", _solution("rod_struck_on_ice").result("vB_after"))
     assert judged.diagnosis == LABELS["impulse_moment_omitted"]
     assert "0.6 m from G" in judged.feedback
+
+
+def test_the_only_reaction_on_a_body_read_as_its_static_value():
+    # R_O - m a_G: the pin holds the rod's weight m g = 19.62 N as if it did not swing
+    (static,) = _generated("pendulum_pin_reaction", "pin_force", "reaction_as_static")
+    assert static.value == pytest.approx((0.0, 19.62, 0.0), abs=1e-9)
+    assert "m a_G = 14.36 N" in static.message
+    judged = assess("(0, 19.62) N", _solution("pendulum_pin_reaction").result("pin_force"))
+    assert judged.diagnosis == LABELS["reaction_as_static"]
+
+
+def test_a_turning_body_taken_as_a_particle_at_its_mass_centre():
+    # a rod pinned at its end: m (L/2)^2 for m L^2/3, the angular acceleration 4/3 as large
+    right = _solution("pendulum_pin_reaction").result("alpha").value
+    particle = [m for m in _generated("pendulum_pin_reaction", "alpha", "other_shape_inertia")
+                if "as a particle" in m.message]
+    assert [m.value for m in particle] == [pytest.approx(right * 4 / 3)]
+
+
+def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
+    # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
+    (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")
+               if "uniform disk" in m.message]
+    assert disk.value == pytest.approx(-6.54, rel=1e-6)
+    assert "I = 0.00018 kg*m^2" in disk.message

@@ -180,15 +180,7 @@ def weight_omitted_from_reaction(problem: Problem, model: Model
     d = dynamics_of(problem)
     if d.gravity is None or isinstance(d.analysis, Impulse):
         return
-    on: dict[str, list[Reaction | Friction]] = {}
-    for load in (*d.reactions, *d.friction):
-        bodies = [a.on for a in load.acts] if isinstance(load, Reaction) else [load.on]
-        for owner in bodies:
-            on.setdefault(owner, []).append(load)
-    for r in d.reactions:
-        if len(r.acts) != 1 or r.acts[0].on == GROUND or len(on[r.acts[0].on]) != 1:
-            continue
-        body = d.body(r.acts[0].on)
+    for r, body in _only_reactions(d):
         weight = _weight(body, d.gravity)
         replacement = parse(f"force({r.name}) + ({_mass(body)})*({d.gravity.text})",
                             functions=FUNCTIONS)
@@ -198,6 +190,38 @@ def weight_omitted_from_reaction(problem: Problem, model: Model
                 "weight_omitted", f"Your value leaves the weight of {body.name} (m g = "
                 f"{{term}}) out of the force balance that gives {r.name}: {r.name} + m g = "
                 "m a_G.", BALANCES, readings=readings, term=weight, term_unit="N")
+
+
+def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The only reaction on a body read as its static value: the force balance that gives it
+    written with m a_G = 0 (a pin's force as the weight it holds at rest, a support's as if
+    the body did not precess), read in the right model as force minus m a_G."""
+    d = dynamics_of(problem)
+    if isinstance(d.analysis, Impulse):
+        return
+    N = problem.inertial_frame
+    for r, body in _only_reactions(d):
+        replacement = parse(f"force({r.name}) - ({_mass(body)})*acc({body.centre}, {N})",
+                            functions=FUNCTIONS)
+        readings = _readings(problem, "force", r.name, replacement)
+        if readings:
+            yield DynamicsMutation(
+                "reaction_as_static", f"Your value is {r.name} as if {body.name} did not "
+                f"accelerate (its static value): m a_G = {{term}} belongs in the force "
+                f"balance that gives {r.name}.", BALANCES, readings=readings,
+                term=_expr(f"({_mass(body)})*mag(acc({body.centre}, {N}))"), term_unit="N")
+
+
+def _only_reactions(d: Dynamics) -> Iterator[tuple[Reaction, Body]]:
+    """Each reaction that is the only reaction (or friction) on the one body it acts on."""
+    on: dict[str, list[Reaction | Friction]] = {}
+    for load in (*d.reactions, *d.friction):
+        bodies = [a.on for a in load.acts] if isinstance(load, Reaction) else [load.on]
+        for owner in bodies:
+            on.setdefault(owner, []).append(load)
+    for r in d.reactions:
+        if len(r.acts) == 1 and r.acts[0].on != GROUND and len(on[r.acts[0].on]) == 1:
+            yield r, d.body(r.acts[0].on)
 
 
 def mass_for_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -379,6 +403,11 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
         if r.name not in normals and not _zero(model, g ^ model.language.vector(direction)):
             continue
         for name in dict.fromkeys(a.on for a in r.acts if a.on != GROUND):
+            # a body held in place (a drum on its axle) has no weight the reaction could
+            # be taken for: its weight goes to its bearing
+            if _zero(model, model.language.point_velocity(Name(d.body(name).centre),
+                                                           problem.inertial_frame)):
+                continue
             weight = _weight(d.body(name), d.gravity)
             replacement = parse(f"({weight.text})*({direction.text})", functions=FUNCTIONS)
             readings = _readings(problem, "force", r.name, replacement)
@@ -470,6 +499,66 @@ def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                     problem=_mistaken(problem, replace(d, bodies=bodies),
                                       without=("ke", "angmom")),
                     term=_expr(f"({coefficient})*({mass})*({radius})^2"), term_unit="kg*m^2")
+
+
+def particle_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A turning body's own moment of inertia about its mass centre left out: the body taken
+    as a particle at its mass centre (a simple pendulum of the pin's distance, m d² alone;
+    a drum on its axle without inertia)."""
+    d = dynamics_of(problem)
+    if isinstance(d.analysis, WorkEnergy):  # there rotational_ke_omitted is the same model
+        return
+    for body in d.bodies:
+        if not _rotating(model, body) or all(p.shape is None for p in body.parts):
+            continue
+        parts = tuple(replace(p, shape=None) for p in body.parts)
+        bodies = tuple(replace(b, parts=parts) if b.name == body.name else b for b in d.bodies)
+        # a body turning about its fixed mass centre (a drum) as a particle has no inertia
+        held = _zero(model, model.language.point_velocity(Name(body.centre),
+                                                          problem.inertial_frame))
+        code, sentence = ("inertia_omitted", f"Your value leaves out the moment of inertia "
+                          f"of {body.name} about {body.centre}: it resists the angular "
+                          "acceleration and belongs in its moment balance.") if held else (
+            "other_shape_inertia", f"Your value takes {body.name} as a particle at its mass "
+            f"centre {body.centre}: its own moment of inertia about {body.centre}, I_G, "
+            "belongs in the moment balance too.")
+        yield DynamicsMutation(
+            code, sentence, BODIES,
+            problem=_mistaken(problem, replace(d, bodies=bodies), without=("ke", "angmom")))
+
+
+def disk_for_gyration(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A turning body whose inertia is given (m k², a radius of gyration) taken as a uniform
+    disk of the radius at which a load acts on it (a drum's cord, a brake pad): m d²/2."""
+    d = dynamics_of(problem)
+    acting: dict[str, list[str]] = {}
+    for load in (*d.reactions, *d.friction, *d.forces):
+        acts = load.acts if isinstance(load, Reaction) else (Act(load.on, load.at),)
+        for act in acts:
+            acting.setdefault(act.on, []).append(act.at)
+    for body in d.bodies:
+        if not _rotating(model, body) or len(body.parts) != 1 \
+                or not isinstance(body.parts[0].shape, Explicit):
+            continue
+        part = body.parts[0]
+        assert isinstance(part.shape, Explicit)
+        given = dict(part.shape.entries).get("zz")
+        if given is None:
+            continue
+        for point in dict.fromkeys(acting.get(body.name, ())):
+            offset = model.positions[point] - model.positions[body.centre]
+            if point == body.centre or _zero(model, offset):
+                continue
+            radius = f"pos({point}, {body.centre})"
+            zz = _expr(f"({part.mass.text})*dot({radius}, {radius})/2")
+            bodies = tuple(replace(b, parts=(replace(part, shape=Explicit((("zz", zz),))),))
+                           if b.name == body.name else b for b in d.bodies)
+            yield DynamicsMutation(
+                "other_shape_inertia", f"Your value takes {body.name} as a uniform disk of "
+                f"radius {body.centre}{point} (m r²/2) where its moment of inertia is given: "
+                "I = {term}.", BODIES,
+                problem=_mistaken(problem, replace(d, bodies=bodies), without=("ke", "angmom")),
+                term=given, term_unit="kg*m^2")
 
 
 def _radius(shape: Shape | None) -> str:
@@ -564,9 +653,10 @@ def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsM
 
 
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
-    weight_omitted, weight_omitted_from_reaction, mass_for_weight, central_inertia_at_pivot,
+    weight_omitted, weight_omitted_from_reaction, reaction_as_static, mass_for_weight, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
+    particle_inertia, disk_for_gyration,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""

@@ -154,6 +154,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _other_positions(r)
     _path_quantities(r)
     _speed_readings(r)
+    _magnitudes_combined(r)
     _other_bases(r)
     return r.out
 
@@ -357,6 +358,26 @@ def _speed_readings(r: _Reading) -> None:
                 r.append("component_for_speed", v & unit, f"Your value is only the {G}.{axis} "
                          "component of the velocity; the speed is the magnitude of the whole "
                          "velocity.")
+
+
+def _magnitudes_combined(r: _Reading) -> None:
+    """The magnitude of a sum or difference of two vectors taken as the sum, or the
+    difference, of their magnitudes (speeds added or subtracted as numbers)."""
+    node = r.node
+    if not (isinstance(node, Call) and node.func == "mag" and isinstance(node.args[0], Bin)
+            and node.args[0].op in "+-"):
+        return
+    left, right = node.args[0].left, node.args[0].right
+    try:
+        a, b = (r.base.value(Call("mag", (side,))) for side in (left, right))
+    except Exception:  # a side that is not a vector
+        return
+    names = f"{to_text(left)} and {to_text(right)}"
+    sentence = (f"Your value {{verb}} the magnitudes of {names}; the magnitude of their "
+                f"{'sum' if node.args[0].op == '+' else 'difference'} comes from the components "
+                "(the vectors are not along one line).")
+    r.append("mag_as_sum", a + b, sentence.format(verb="adds"))
+    r.append("mag_as_sum", sp.Abs(a - b), sentence.format(verb="subtracts"))
 
 
 def _other_bases(r: _Reading) -> None:

@@ -255,7 +255,7 @@ def _distinct(right, kept: tuple[GeneratedMistake, ...],
     values = [np.atleast_1d(np.asarray(m.value, float)) for m in mistakes]
     exists = np.array([[v.shape == r.shape for v in values]])
     V = np.array([[v if v.shape == r.shape else np.full(r.shape, np.nan) for v in values]])
-    other = np.array([[m.code == "other_point" for m in mistakes]])
+    other = np.array([[m.code in ZERO_NAMES for m in mistakes]])
     keep = kept_mistakes(r[None, :], V.reshape(1, len(mistakes), len(r)), exists, other,
                          len(kept))
     return tuple(m for m, k in zip(mistakes, keep[0]) if k)
@@ -265,9 +265,9 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
                   first: int = 0) -> np.ndarray:
     """Which generated mistakes are kept, at every instant at once (``right``: the answer at
     each, N x size; ``V``: the mistakes' values in order, N x count x size; ``exists``: where
-    each is defined; ``other``: which name another point's value): each that differs from the
+    each is defined; ``other``: which are of :data:`ZERO_NAMES`): each that differs from the
     answer (the same value as the answer at this instant: no mistake here) and from every one
-    kept before it (:data:`SAME`), and is not a zero other than another point's (a zero is
+    kept before it (:data:`SAME`), and is not a zero other than theirs (a zero is
     what many mistakes give). The ``first`` are kept whatever they are.
 
     >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0 + 1e-9], [1.0], [0.0]]]),
@@ -290,6 +290,11 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
             keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
                 & ~vague[:, j]
     return keep
+
+
+ZERO_NAMES = frozenset({"other_point", "reaction_as_static"})
+"""Families whose zero value names the mistake (a contact point at rest, a support that holds
+no sideways force at rest): their zeros are kept, every other family's dropped."""
 
 
 SAME = 1e-7
