@@ -51,8 +51,7 @@ def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     # no gravity load: no weight mistakes; no friction: no friction mistakes
     assert not _codes("rod_strikes_ledge") & {"weight_omitted", "mass_for_weight",
                                               "friction_reversed"}
-    # a turning rod: taken as a particle (its own inertia left out)
-    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "other_shape_inertia"}
+    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "restitution_component"}
     # a pin: the parallel-axis term; no pin, no rolling contact (a sliding ladder): none
     assert "central_inertia_at_pivot" in _codes("pendulum_pin_reaction")
     assert "central_inertia_at_pivot" not in _codes("ruina_9_19_falling_ladder")
@@ -181,7 +180,7 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
     copy = pickle.loads(pickle.dumps(solution))
     assert copy == solution
     assert [m.code for m in copy.result("vG_after").generated_mistakes] \
-        == ["restitution_ignored", "restitution_ignored", "other_shape_inertia"]
+        == ["restitution_ignored", "restitution_ignored"]
 
 
 def test_the_body_slid_on_taken_as_fixed_stops_the_slider_on_it():
@@ -240,3 +239,18 @@ def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radiu
                if "uniform disk" in m.message]
     assert disk.value == pytest.approx(-6.54, rel=1e-6)
     assert "I = 0.00018 kg*m^2" in disk.message
+
+
+def test_restitution_applied_to_the_tangential_component_of_a_smooth_impact():
+    # 20 m/s at 30 deg onto a smooth floor, e = 0.7: (17.32, 7) after; e on both components
+    # gives (0.7 x 17.32, 7), kept in sense or reversed
+    values = [m.value for m in _generated("ball_bounces_oblique_floor", "velocity_after",
+                                          "restitution_component")]
+    assert sorted(values) == [pytest.approx((-12.1244, 7.0, 0.0), rel=1e-4),
+                              pytest.approx((12.1244, 7.0, 0.0), rel=1e-4)]
+
+
+def test_no_energy_lost_names_the_perfectly_elastic_impact():
+    # a zero of e = 1 is kept: it is what "kinetic energy conserved" gives
+    judged = assess("0 J", _solution("pucks_oblique_impact").result("energy_lost"))
+    assert judged.diagnosis == LABELS["restitution_ignored"]

@@ -312,23 +312,24 @@ def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutati
 
 
 def normal_from_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """The kinetic friction on a particle taken as μ m g where the normal force is not the
-    weight (an incline): μ times the weight instead of μ N."""
+    """The kinetic friction on a body sliding on the ground on one contact taken as μ m g: μ
+    times the weight instead of μ N (an incline, a push with a part along the normal; where N is the weight
+    the mistake gives the answer and is dropped)."""
     d = dynamics_of(problem)
     if d.gravity is None:
         return
-    g = model.language.vector(d.gravity)
     for f in d.friction:
         if not isinstance(f, KineticFriction) or f.surface not in (GROUND, problem.inertial_frame):
             continue
         body = d.body(f.on)
-        normal = d.load(f.normal)
-        if body.frame is not None or _zero(model, g ^ model.language.vector(normal.directions[0])):
+        if sum(x.on == f.on for x in d.friction) > 1:  # μ times the weight is their sum's
             continue
         N = problem.inertial_frame
+        # the slip velocity: of the particle, or of the body's material point at the contact
+        at = f.at if body.frame is None else f"coincident({f.at}, {body.frame})"
         force = Force(f.name, f.on, f.at, _expr(
-            f"-({f.mu.text})*({_weight(body, d.gravity).text})*vel({f.at}, {N})"
-            f"/speed({f.at}, {N})"), f.where)
+            f"-({f.mu.text})*({_weight(body, d.gravity).text})*vel({at}, {N})"
+            f"/speed({at}, {N})"), f.where)
         friction = tuple(x for x in d.friction if x is not f)
         yield DynamicsMutation(
             "normal_from_weight", f"Your value takes the friction {f.name} as μ m g, with the "
@@ -465,6 +466,41 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
+def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A smooth impact (its impulse along the line of impact only) with the coefficient of
+    restitution applied to the tangential component too: scaling it, or reversing it."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    axis = f"{problem.inertial_frame}.z"
+    for i, c in enumerate(d.analysis.contacts):
+        if not isinstance(c, Restitution):
+            continue
+        smooth = [r for r in d.reactions if {a.at for a in r.acts} == {c.at}
+                  and [x.text for x in r.directions] == [c.direction.text]]
+        # in the plane: the tangent is the normal turned about the inertial z
+        across = model.language.vector(c.direction) & model.language.vector(_expr(axis))
+        if len(smooth) != 1 or not identically_zero(model.plain(across)):
+            continue
+        tangent = _expr(f"cross({axis}, {c.direction.text})")
+        reactions = tuple(replace(r, directions=r.directions + (tangent,)) if r is smooth[0]
+                          else r for r in d.reactions)
+        # the tangential velocity scaled by e (kept in sense), or reversed with it as the
+        # normal one is
+        for e_tangent, how in ((_expr(f"-({c.e.text})"), "scales"),
+                               (c.e, "reverses and scales")):
+            contacts = d.analysis.contacts[:i] + (
+                c, replace(c, direction=tangent, e=e_tangent)) + d.analysis.contacts[i + 1:]
+            changed = replace(d, reactions=reactions,
+                              analysis=replace(d.analysis, contacts=contacts))
+            yield DynamicsMutation(
+                "restitution_component", f"Your value {how} the tangential velocity at {c.at} "
+                "with the coefficient of restitution e = {term} too: e relates the velocities "
+                "along the line of impact only; the smooth contact leaves the tangential "
+                "velocity unchanged.",
+                BALANCES, problem=_mistaken(problem, changed), term=c.e)
+
+
 # each shape: its moment of inertia about its axis (coefficient of m r², as written), and the
 # shapes its inertia is typically taken from instead
 _CONFUSED_SHAPES = {Sphere: (Shell, Disk), Shell: (Sphere,), Disk: (Ring,), Ring: (Disk,)}
@@ -502,20 +538,26 @@ def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMuta
 
 
 def particle_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """A turning body's own moment of inertia about its mass centre left out: the body taken
-    as a particle at its mass centre (a simple pendulum of the pin's distance, m d² alone;
-    a drum on its axle without inertia)."""
+    """A body turning on a pin with its own moment of inertia about its mass centre left out:
+    taken as a particle at its mass centre (a simple pendulum of the pin's distance, m d²
+    alone; a drum on its axle without inertia)."""
     d = dynamics_of(problem)
     if isinstance(d.analysis, WorkEnergy):  # there rotational_ke_omitted is the same model
         return
     for body in d.bodies:
         if not _rotating(model, body) or all(p.shape is None for p in body.parts):
             continue
-        parts = tuple(replace(p, shape=None) for p in body.parts)
-        bodies = tuple(replace(b, parts=parts) if b.name == body.name else b for b in d.bodies)
+        # on a pin (a pendulum, a drum): a rolling body as a particle is a body without
+        # friction, a mistake of its own
+        rolling = {q for c in problem.constraints if c.level == "velocity"
+                   and (q := _rolling_on_ground(c, body.frame, problem.inertial_frame))}
         # a body turning about its fixed mass centre (a drum) as a particle has no inertia
         held = _zero(model, model.language.point_velocity(Name(body.centre),
                                                           problem.inertial_frame))
+        if not held and not set(_pivots(problem, model, body)) - rolling:
+            continue
+        parts = tuple(replace(p, shape=None) for p in body.parts)
+        bodies = tuple(replace(b, parts=parts) if b.name == body.name else b for b in d.bodies)
         code, sentence = ("inertia_omitted", f"Your value leaves out the moment of inertia "
                           f"of {body.name} about {body.centre}: it resists the angular "
                           "acceleration and belongs in its moment balance.") if held else (
@@ -656,7 +698,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, mass_for_weight, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
-    particle_inertia, disk_for_gyration,
+    particle_inertia, disk_for_gyration, restitution_component,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
