@@ -254,3 +254,16 @@ def test_no_energy_lost_names_the_perfectly_elastic_impact():
     # a zero of e = 1 is kept: it is what "kinetic energy conserved" gives
     judged = assess("0 J", _solution("pucks_oblique_impact").result("energy_lost"))
     assert judged.diagnosis == LABELS["restitution_ignored"]
+
+
+def test_the_damper_left_out_gives_the_undamped_response():
+    # the first peak of the undamped block: v0/omega_n = 50 mm a quarter period pi/(2 omega_n)
+    (undamped,) = _generated("damped_block_first_peak", "peak_displacement", "damping_omitted")
+    assert undamped.value == pytest.approx(50.0, rel=1e-6)
+    assert "c = 40 N*s/m" in undamped.message
+
+
+def test_two_springs_holding_a_block_from_either_side_combined_in_series():
+    assert "springs_in_series" not in _codes("damped_block_first_peak")  # one spring
+    (series,) = _generated("block_between_two_springs", "amplitude", "springs_in_series")
+    assert series.value == pytest.approx(44.7214, rel=1e-5)

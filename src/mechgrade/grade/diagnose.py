@@ -254,6 +254,8 @@ LABELS = {
     "reaction_as_static": "reaction taken as its static value",
     "inertia_omitted": "a body's moment of inertia left out",
     "restitution_component": "restitution applied to the wrong component",
+    "damping_omitted": "damping left out",
+    "springs_in_series": "parallel springs combined in series",
     "rotational_ke_omitted": "rotational kinetic energy left out",
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",

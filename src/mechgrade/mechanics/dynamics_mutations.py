@@ -501,6 +501,46 @@ def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMu
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
+def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """Every damper left out: the undamped response (ω_n for ω_d, no decay)."""
+    d = dynamics_of(problem)
+    if not d.dampers:
+        return
+    names = ", ".join(x.name for x in d.dampers)
+    yield DynamicsMutation(
+        "damping_omitted", f"Your value is the undamped response: {names} "
+        "(c = {term}) slows the motion and makes it decay; keep its force c x' in the "
+        "equation of motion.", LOADS,
+        problem=_mistaken(problem, replace(d, dampers=())), term=d.dampers[0].coefficient,
+        term_unit="N*s/m")
+
+
+def springs_in_series(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """Springs that hold one body from the ground along one line (in parallel: their
+    stiffnesses add) combined as if in series, 1/k = 1/k1 + 1/k2."""
+    d = dynamics_of(problem)
+    for body in d.bodies:
+        held = [x for x in d.springs if set(x.on) == {body.name, GROUND}]
+        if len(held) < 2:
+            continue
+        ends = [x.between[x.on.index(body.name)] for x in held]
+        anchors = [x.between[x.on.index(GROUND)] for x in held]
+        lines = [model.positions[a] - model.positions[e] for a, e in zip(anchors, ends)]
+        if len(set(ends)) != 1 or any(not _zero(model, lines[0] ^ line) for line in lines[1:]):
+            continue
+        total = " + ".join(f"({x.stiffness.text})" for x in held)
+        series = "1/(" + " + ".join(f"1/({x.stiffness.text})" for x in held) + ")"
+        springs = tuple(replace(x, stiffness=_expr(f"({x.stiffness.text})*({series})/({total})"))
+                        if x in held else x for x in d.springs)
+        names = " and ".join(x.name for x in held)
+        yield DynamicsMutation(
+            "springs_in_series", f"Your value combines the springs {names} as if in series "
+            f"(1/k = 1/k1 + 1/k2); both hold {body.name} from the ground, so they act in "
+            "parallel and their stiffnesses add: k = {term}.", LOADS,
+            problem=_mistaken(problem, replace(d, springs=springs)), term=_expr(total),
+            term_unit="N/m")
+
+
 # each shape: its moment of inertia about its axis (coefficient of m r², as written), and the
 # shapes its inertia is typically taken from instead
 _CONFUSED_SHAPES = {Sphere: (Shell, Disk), Shell: (Sphere,), Disk: (Ring,), Ring: (Disk,)}
@@ -698,7 +738,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, mass_for_weight, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
-    particle_inertia, disk_for_gyration, restitution_component,
+    particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
+    springs_in_series,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
