@@ -267,3 +267,11 @@ def test_two_springs_holding_a_block_from_either_side_combined_in_series():
     assert "springs_in_series" not in _codes("damped_block_first_peak")  # one spring
     (series,) = _generated("block_between_two_springs", "amplitude", "springs_in_series")
     assert series.value == pytest.approx(44.7214, rel=1e-5)
+
+
+def test_the_reactions_of_a_shaft_in_two_bearings_taken_as_their_static_values():
+    # the weight 39.24 N alone at A (its axial support), without the couple of the tilted disk
+    (static,) = _generated("disk_on_bent_shaft", "bearing_A", "reaction_as_static")
+    assert static.value == pytest.approx((0.0, 0.0, 39.24), abs=1e-9)
+    # where the motion is not prescribed the static model has none: no value
+    assert not _generated("atwood_machine", "tension", "reaction_as_static")

@@ -212,6 +212,35 @@ def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                 term=_expr(f"({_mass(body)})*mag(acc({body.centre}, {N}))"), term_unit="N")
 
 
+def reactions_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The reactions on a body held by several supports (a shaft in two bearings) taken as
+    their static values: the balances written without m a_G and the rate of the angular
+    momentum, the weights kept (solvable where the motion is prescribed)."""
+    d = dynamics_of(problem)
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    single = {r.name for r, _ in _only_reactions(d)}
+    shared = [r.name for r in d.reactions if r.name not in single]
+    asked = [o for o in problem.objectives if o.kind != "symbolic"
+             and any(next((c for c in _calls(o.find.node, "force") if c.args[0] == Name(r)),
+                          None) for r in shared)]
+    if not asked:
+        return
+    weights = tuple(Force(f"weight~{b.name}", b.name, b.centre,
+                          _expr(f"({_mass(b)})*({d.gravity.text})"), b.where) for b in d.bodies)
+    bodies = tuple(replace(b, parts=tuple(replace(p, mass=_expr("0"), shape=None)
+                                          for p in b.parts)) for b in d.bodies)
+    mistaken = _mistaken(problem, replace(d, bodies=bodies, gravity=None,
+                                          forces=d.forces + weights))
+    ids = {o.id for o in asked}
+    yield DynamicsMutation(
+        "reaction_as_static", f"Your value is {', '.join(shared)} as if nothing accelerated "
+        "(the static values, the weight alone): the dynamic part, from m a_G and the rate of "
+        "change of the angular momentum, belongs in the balances.", BALANCES,
+        problem=replace(mistaken, objectives=tuple(o for o in mistaken.objectives
+                                                   if o.id in ids)))
+
+
 def _only_reactions(d: Dynamics) -> Iterator[tuple[Reaction, Body]]:
     """Each reaction that is the only reaction (or friction) on the one body it acts on."""
     on: dict[str, list[Reaction | Friction]] = {}
@@ -735,7 +764,8 @@ def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsM
 
 
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
-    weight_omitted, weight_omitted_from_reaction, reaction_as_static, mass_for_weight, central_inertia_at_pivot,
+    weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
+    mass_for_weight, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
