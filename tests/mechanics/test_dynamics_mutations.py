@@ -275,3 +275,12 @@ def test_the_reactions_of_a_shaft_in_two_bearings_taken_as_their_static_values()
     assert static.value == pytest.approx((0.0, 0.0, 39.24), abs=1e-9)
     # where the motion is not prescribed the static model has none: no value
     assert not _generated("atwood_machine", "tension", "reaction_as_static")
+
+
+def test_the_weight_written_for_the_mass_in_the_problems_own_units():
+    # W = 10 lb used as 10 slug with k = 240 lb/ft: omega_n = sqrt(240/10) rad/s
+    (heavy,) = _generated("block_on_spring_us_units", "omega_n", "weight_for_mass")
+    assert heavy.value == pytest.approx(24 ** 0.5, rel=1e-6)
+    # 25 kg used as its weight 245.25 (N) with k = 400 kN/m
+    (heavy,) = _generated("motor_on_beam_resonance", "omega_n", "weight_for_mass")
+    assert heavy.value == pytest.approx((400e3 / (25 * 9.81)) ** 0.5, rel=1e-6)

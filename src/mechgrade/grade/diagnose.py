@@ -204,7 +204,10 @@ def _given_as_transform(mistake: GeneratedMistake, reference: np.ndarray,
     rate in a quantity linear in it flips the whole answer (a sign error, graded as the
     policy grades one, with the sentence that says which sign); any other given slip that
     coincides with one (two masses exchanged where one is twice the other) is one of two
-    readings, and only the whole-answer slip, true of both, is said."""
+    readings, and only the whole-answer slip, true of both, is said. A given's unit not
+    converted says which unit, which a factor (1000: mm or ms?) cannot."""
+    if mistake.code == "given_unit":  # the unit it names is the slip's (ms, not mm)
+        return None
     value = np.asarray(mistake.value, dtype=float).reshape(reference.shape)
     for code, label, message, factors in _FACTORS:
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
@@ -242,6 +245,7 @@ LABELS = {
     "given_complement": "given angle read as its complement (sin and cos exchanged)",
     "given_rate_unit": "given rate's unit not converted to rad/s",
     "given_length_unit": "given length's unit not converted",
+    "given_unit": "given's unit not converted",
     "given_sign": "given rate's sign flipped",
     "weight_omitted": "weight left out",
     "mass_for_weight": "mass used for the weight",
@@ -256,6 +260,7 @@ LABELS = {
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",
     "springs_in_series": "parallel springs combined in series",
+    "weight_for_mass": "weight used for the mass",
     "rotational_ke_omitted": "rotational kinetic energy left out",
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",

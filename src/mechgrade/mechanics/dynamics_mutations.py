@@ -23,6 +23,7 @@ The families are registered in :data:`FAMILIES`, one function each.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Callable, Iterator
@@ -266,6 +267,41 @@ def mass_for_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation
         "mass_for_weight", f"Your value is what the balances give with the mass of {names} "
         f"written for {its} weight; the weight is m g = {{term}}: multiply the mass by g.", LOADS,
         problem=_mistaken(problem, replace(d, gravity=unit)), term=total, term_unit="N")
+
+
+def weight_for_mass(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The weight m g written where the mass belongs (in m a, in ω_n = √(k/m)), the weight
+    itself kept."""
+    d = dynamics_of(problem)
+    if d.gravity is None:
+        return
+    size = f"mag({d.gravity.text})"
+    # the weight's number in the problem's units: in pounds where it is given in them
+    # (W = 10 lb used as 10 slug), in newtons otherwise
+    number = f"{size}/{0.3048!r}" if _customary(problem) else size
+
+    def heavier(part: Part) -> Part:
+        shape = part.shape  # a given inertia (m k²) is a mass times a length squared too
+        if isinstance(shape, Explicit):
+            shape = Explicit(tuple((key, _expr(f"({e.text})*{number}"))
+                                   for key, e in shape.entries))
+        return replace(part, mass=_expr(f"({part.mass.text})*{number}"), shape=shape)
+
+    bodies = tuple(replace(b, parts=tuple(heavier(p) for p in b.parts)) for b in d.bodies)
+    names = ", ".join(b.name for b in d.bodies)
+    total = _expr(" + ".join(f"({_mass(b)})" for b in d.bodies))
+    yield DynamicsMutation(
+        "weight_for_mass", f"Your value is what the balances give with the weight of {names} "
+        "written for the mass: the mass is m = W/g = {term}.", BODIES,
+        problem=_mistaken(problem, replace(d, bodies=bodies,
+                                           gravity=_expr(f"({d.gravity.text})/({number})"))),
+        term=total, term_unit="kg")
+
+
+def _customary(problem: Problem) -> bool:
+    """Whether the problem's givens are in US customary units (feet, pounds)."""
+    return any(w in ("ft", "lb", "lbf", "slug", "in") for g in problem.givens
+               for w in re.findall(r"[A-Za-z]+", g.unit))
 
 
 def _pivots(problem: Problem, model: Model, body: Body) -> Iterator[str]:
@@ -765,7 +801,7 @@ def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsM
 
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
-    mass_for_weight, central_inertia_at_pivot,
+    mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted,

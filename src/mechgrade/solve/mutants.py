@@ -188,11 +188,45 @@ def _given_slips(node, si: float, given):
         yield ("given_length_unit", to_si(value, base),
                f"Your value is what {name} = {given.text} gives when read as {value:g} "
                f"{base}: convert {unit} to {base}.")
+    plain = _unconverted(unit)
+    if plain is not None and value != 0 and not math.isclose(value * plain, si):
+        yield ("given_unit", value * plain,
+               f"Your value is what {name} = {given.text} gives when the number is used "
+               f"as {'SI units' if plain == 1.0 else 'feet, pounds and seconds'}: convert "
+               f"{unit} first.")
     if isinstance(node, Prime) and si != 0:
         yield ("given_sign", -si,
                f"Your value is what {name} with the opposite sign gives: check the "
                f"direction of {name} ({given.text}) against the positive sense of "
                f"{node.id}.")
+
+
+# units of the US customary system, and the one of its base units each is read as
+_US_UNITS = {"ft": "ft", "in": "ft", "inch": "ft", "mi": "ft", "yd": "ft", "lb": "lb",
+             "lbf": "lbf", "slug": "slug", "kip": "lbf", "hp": "ft*lbf/s", "s": "s",
+             "min": "s", "h": "s", "hr": "s"}
+
+
+@lru_cache(maxsize=64)
+def _unconverted(unit: str) -> float | None:
+    """The SI factor of the unit a given in ``unit`` is read in when its number is used
+    without converting it: the coherent SI unit (kN/m as N/m, km/h as m/s, kW as W, ms as s),
+    or the foot-pound-second one (lb/in as lb/ft); ``None`` when the unit is that already, or
+    its slips are another family's (a length, an angle, a rate in rpm)."""
+    words = re.findall(r"[A-Za-zµ]+", unit)
+    if not words or unit in _LENGTH_SLIPS or any(
+            w in ("deg", "degree", "degrees", "rad", "rpm", "rev", "Hz") for w in words):
+        return None
+    try:
+        factor = si_factor(unit)
+        if all(w in _US_UNITS for w in words) and any(w not in ("s", "min", "h", "hr")
+                                                     for w in words):
+            plain = si_factor(re.sub(r"[A-Za-z]+", lambda m: _US_UNITS[m.group(0)], unit))
+        else:
+            plain = 1.0
+    except MechgradeError:
+        return None
+    return None if math.isclose(plain, factor) else plain
 
 
 @lru_cache(maxsize=64)
