@@ -284,3 +284,12 @@ def test_the_weight_written_for_the_mass_in_the_problems_own_units():
     # 25 kg used as its weight 245.25 (N) with k = 400 kN/m
     (heavy,) = _generated("motor_on_beam_resonance", "omega_n", "weight_for_mass")
     assert heavy.value == pytest.approx((400e3 / (25 * 9.81)) ** 0.5, rel=1e-6)
+
+
+def test_a_movable_pulleys_two_strands_counted_once():
+    # yA + yB = c0 for yA + 2 yB = c0: the blocks move together, a = (mB - mA) g/(mA + mB)
+    # = 1.962 m/s^2 with mA = 10 kg, mB = 15 kg
+    (once,) = _generated("movable_pulley_two_blocks", "accel_A", "strands_miscounted")
+    assert once.value == pytest.approx(1.962, rel=1e-6)
+    assert "counts yB once in the length of cord_length" in once.message
+    assert "strands_miscounted" not in _codes("atwood_machine")  # one strand each side

@@ -261,6 +261,7 @@ LABELS = {
     "damping_omitted": "damping left out",
     "springs_in_series": "parallel springs combined in series",
     "weight_for_mass": "weight used for the mass",
+    "strands_miscounted": "a cord's strands miscounted",
     "rotational_ke_omitted": "rotational kinetic energy left out",
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",

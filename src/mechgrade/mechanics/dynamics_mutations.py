@@ -30,7 +30,7 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Unary, name_of, parse, to_text
+from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary, name_of, parse, to_text
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              Impulse, KineticFriction, Part, Reaction, Restitution, Ring, Shape,
                              Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
@@ -566,6 +566,73 @@ def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMu
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
+def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A cord's length written with a strand count of one: in a position constraint that
+    fixes a length (one side free of the coordinates), a term counted n times (the strands
+    of a movable pulley, 2 y_B) taken once."""
+    coordinates = {c.name for c in problem.coordinates}
+    for i, c in enumerate(problem.constraints):
+        if c.level != "position":
+            continue
+        sides = [c.lhs.node, c.rhs.node]
+        moving = [_mentions(side, coordinates) for side in sides]
+        if sum(moving) != 1:
+            continue
+        side = sides[moving.index(True)]
+        terms = _additive(side)
+        for j, term in enumerate(terms):
+            count = _strands(term)
+            if count is None or len(terms) < 2 or not _mentions(term[1], coordinates):
+                continue
+            once = _sum_of(terms[:j] + [(term[0], count[1])] + terms[j + 1:])
+            new = replace(c, **{("lhs", "rhs")[moving.index(True)]: Expr(to_text(once), once)})
+            constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
+            mistaken = replace(problem, constraints=constraints)
+            yield DynamicsMutation(
+                "strands_miscounted", f"Your value counts {to_text(count[1])} once in the "
+                f"length of {c.name} ({c.lhs.text} = {c.rhs.text}): it is there "
+                f"{count[0]} times (the strands that hold it).", BALANCES,
+                problem=_mistaken(mistaken, dynamics_of(mistaken)))
+
+
+def _mentions(node: Node, names: set[str]) -> bool:
+    """Whether ``node`` uses one of ``names``."""
+    if isinstance(node, Name):
+        return node.id in names
+    if isinstance(node, Call):
+        return any(_mentions(a, names) for a in node.args)
+    return any(_mentions(child, names) for child in (getattr(node, "left", None),
+                                                     getattr(node, "right", None),
+                                                     getattr(node, "operand", None))
+               if child is not None)
+
+
+def _additive(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
+    """The additive terms of ``node`` with their signs."""
+    if isinstance(node, Bin) and node.op in "+-":
+        return _additive(node.left, sign) + _additive(node.right,
+                                                      sign if node.op == "+" else -sign)
+    return [(sign, node)]
+
+
+def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
+    """``(n, X)`` of a term ``n*X`` (or ``X*n``) with a whole number n of 2 or more."""
+    node = term[1]
+    if not (isinstance(node, Bin) and node.op == "*"):
+        return None
+    for count, rest in ((node.left, node.right), (node.right, node.left)):
+        if isinstance(count, Num) and count.text.isdigit() and int(count.text) >= 2:
+            return int(count.text), rest
+    return None
+
+
+def _sum_of(terms: list[tuple[int, Node]]) -> Node:
+    total: Node = terms[0][1] if terms[0][0] > 0 else Unary("-", terms[0][1])
+    for sign, node in terms[1:]:
+        total = Bin("+" if sign > 0 else "-", total, node)
+    return total
+
+
 def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """Every damper left out: the undamped response (ω_n for ω_d, no decay)."""
     d = dynamics_of(problem)
@@ -805,7 +872,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
-    springs_in_series,
+    springs_in_series, strands_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
