@@ -288,7 +288,7 @@ def test_the_weight_written_for_the_mass_in_the_problems_own_units():
 
 def test_a_movable_pulleys_two_strands_counted_once():
     # yA + yB = c0 for yA + 2 yB = c0 (mA = 10 kg, mB = 30 kg, B hung on two strands): the
-    # blocks move together, (mA + mB) a = (mB - 2 mA) g, a = g/5
+    # blocks move together, (2 mA + mB) a = (mB - 2 mA) g, a = g/5
     (once,) = _generated("movable_pulley_two_blocks", "accel_A", "strands_miscounted")
     assert once.value == pytest.approx(1.962, rel=1e-6)
     assert "counts yB once in the length of cord_length" in once.message
