@@ -217,12 +217,17 @@ def test_a_blow_taken_at_the_mass_centre_sets_nothing_spinning():
 
 
 def test_the_only_reaction_on_a_body_read_as_its_static_value():
-    # R_O - m a_G: the pin holds the rod's weight m g = 19.62 N as if it did not swing
-    (static,) = _generated("pendulum_pin_reaction", "pin_force", "reaction_as_static")
-    assert static.value == pytest.approx((0.0, 19.62, 0.0), abs=1e-9)
-    assert "m a_G = 14.36 N" in static.message
+    # R_O - m a_G: the pin holds the rod's weight m g = 19.62 N as if it did not swing; held
+    # by its weight alone, that is the weight
+    static = [m for m in _generated("pendulum_pin_reaction", "pin_force", "reaction_as_weight")
+              if "as if it did not accelerate" in m.message]
+    assert [m.value for m in static] == [pytest.approx((0.0, 19.62, 0.0), abs=1e-9)]
+    assert "m a_G = 14.36 N" in static[0].message
     judged = assess("(0, 19.62) N", _solution("pendulum_pin_reaction").result("pin_force"))
-    assert judged.diagnosis == LABELS["reaction_as_static"]
+    assert judged.diagnosis == LABELS["reaction_as_weight"]
+    # with a spring on it too, its static value is no weight
+    (spring,) = _generated("bar_swings_down_spring_energy", "pin_force", "reaction_as_static")
+    assert spring.value == pytest.approx((0.0, 17.05, 0.0), abs=1e-9)
 
 
 def test_a_turning_body_taken_as_a_particle_at_its_mass_centre():

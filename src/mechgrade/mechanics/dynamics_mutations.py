@@ -205,12 +205,28 @@ def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutat
         replacement = parse(f"force({r.name}) - ({_mass(body)})*acc({body.centre}, {N})",
                             functions=FUNCTIONS)
         readings = _readings(problem, "force", r.name, replacement)
-        if readings:
+        if not readings:
+            continue
+        term = _expr(f"({_mass(body)})*mag(acc({body.centre}, {N}))")
+        # held by its weight alone, the static value is the weight: that family's mistake
+        if d.gravity is not None and not any(body.name in _bodies_of(x) for x in (
+                *d.forces, *d.couples, *d.springs, *d.dampers)):
             yield DynamicsMutation(
-                "reaction_as_static", f"Your value is {r.name} as if {body.name} did not "
-                f"accelerate (its static value): m a_G = {{term}} belongs in the force "
-                f"balance that gives {r.name}.", BALANCES, readings=readings,
-                term=_expr(f"({_mass(body)})*mag(acc({body.centre}, {N}))"), term_unit="N")
+                "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
+                f"{body.name}, as if it did not accelerate: m a_G = {{term}} belongs in the "
+                f"force balance that gives {r.name}.", BALANCES, readings=readings,
+                term=term, term_unit="N")
+            continue
+        yield DynamicsMutation(
+            "reaction_as_static", f"Your value is {r.name} as if {body.name} did not "
+            f"accelerate (its static value): m a_G = {{term}} belongs in the force "
+            f"balance that gives {r.name}.", BALANCES, readings=readings,
+            term=term, term_unit="N")
+
+
+def _bodies_of(load) -> tuple[str, ...]:
+    """The bodies a force, couple, spring or damper acts on."""
+    return tuple(load.on) if isinstance(load.on, tuple) else (load.on,)
 
 
 def reactions_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:

@@ -326,7 +326,8 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
     return keep
 
 
-ZERO_NAMES = frozenset({"other_point", "reaction_as_static", "restitution_ignored"})
+ZERO_NAMES = frozenset({"other_point", "reaction_as_static", "reaction_as_weight",
+                        "restitution_ignored"})
 """Families whose zero value names the mistake (a contact point at rest, a support that holds
 no sideways force at rest, no energy lost in a perfectly elastic impact): their zeros are
 kept, every other family's dropped."""
