@@ -21,11 +21,41 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PROBLEMS = ROOT / "problems"
 DATA = Path(__file__).resolve().parent / "data"
+# The LMS importers re-implemented from their source (tests/lms/), imported by module name
+sys.path.insert(0, str(Path(__file__).resolve().parent / "lms"))
 
 
 @pytest.fixture
 def problems_dir() -> Path:
     return PROBLEMS
+
+
+HEAVY_PROBLEMS = DATA / "heavy_problems.txt"
+"""Problems whose library-wide tests are slow end-to-end checks (one name a line, ``#``
+comments): the default command leaves them to ``pytest -m slow``, which CI runs too."""
+
+
+def heavy_problems() -> frozenset[str]:
+    lines = (line.split("#", 1)[0].strip()
+             for line in HEAVY_PROBLEMS.read_text(encoding="utf-8").splitlines())
+    return frozenset(line for line in lines if line)
+
+
+@pytest.fixture
+def heavy_problem_names() -> frozenset[str]:
+    return heavy_problems()
+
+
+def pytest_collection_modifyitems(items):
+    """A test parametrized by a heavy problem (its path, or its name as the tables give it)
+    is marked ``slow``: one list decides it for every library-wide test."""
+    heavy = heavy_problems()
+    for item in items:
+        callspec = getattr(item, "callspec", None)
+        if callspec is not None and any(
+                (value.stem if isinstance(value, Path) else value) in heavy
+                for value in callspec.params.values() if isinstance(value, (Path, str))):
+            item.add_marker(pytest.mark.slow)
 
 
 @pytest.fixture

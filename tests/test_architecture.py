@@ -17,11 +17,11 @@ import pytest
 SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
 # Each layer may import only from itself and the layers listed before it.
 ORDER = ["base", "spec", "mechanics", "solve", "check", "grade", "export", "report", "cli"]
-BASE = {"errors", "units", "yamlio", "files", "outfolder", "resources", "expressions", "roster",
-        "codec", "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
+BASE = {"errors", "units", "yamlio", "jsonio", "files", "outfolder", "resources", "expressions",
+        "roster", "codec", "schema_errors", "tolerance", "parallel", "__init__", "__main__"}
 # The base layer's own order: a base module imports only base modules listed before it (or its
 # own package's modules, whose cycles test_no_module_imports_itself_through_others catches).
-BASE_ORDER = ["", "errors", "codec", "resources", "tolerance", "schema_errors", "files",
+BASE_ORDER = ["", "errors", "codec", "resources", "tolerance", "schema_errors", "files", "jsonio",
               "parallel", "outfolder", "yamlio", "roster", "expressions.excerpt", "units",
               "expressions", "__main__"]
 # The only modules that import a module named at run time: the exporter registry and the CLI's

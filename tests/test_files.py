@@ -3,11 +3,13 @@
 import json
 import os
 import stat
+import threading
+from pathlib import Path
 
 import pytest
 
-from mechgrade.errors import OutputError
-from mechgrade.files import clean_text, write_json, write_text
+from mechgrade.errors import ExportError, OutputError
+from mechgrade.files import clean_text, read_text, write_json, write_text
 
 
 def test_atomic_write_leaves_no_temporary_file_and_replaces(tmp_path):
@@ -76,6 +78,28 @@ def test_a_named_pipe_in_the_way_is_replaced_without_waiting(tmp_path):
     os.mkfifo(path)
     write_text(path, "text\n")
     assert stat.S_ISREG(path.stat().st_mode) and path.read_text() == "text\n"
+
+
+@pytest.mark.parametrize("kind", ["fifo", "device", "folder"])
+def test_reading_anything_but_a_regular_file_is_refused_without_waiting(tmp_path, kind):
+    path = {"fifo": tmp_path / "results.json", "device": Path("/dev/zero"),
+            "folder": tmp_path}[kind]
+    if kind == "fifo":
+        os.mkfifo(path)
+    outcome: list[BaseException] = []
+
+    def read() -> None:
+        try:
+            read_text(path, what="a results.json file", error=ExportError)
+        except ExportError as err:
+            outcome.append(err)
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(60)  # a FIFO without a writer blocked open() for ever
+    found = {"fifo": "a FIFO (named pipe), not a regular file",
+             "device": "a character device, not a regular file", "folder": "a folder"}[kind]
+    assert [str(e) for e in outcome] == [f"{path}: expected a results.json file, found {found}"]
 
 
 def test_visible_text_escapes_what_would_act_on_a_terminal():

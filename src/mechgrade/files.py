@@ -39,26 +39,49 @@ def read_text(path: str | Path, *, what: str, error: type[MechgradeError],
     message (for example how to save a spreadsheet as UTF-8).
     """
     name = str(path)
-    path = Path(path)
     try:
-        size = path.stat().st_size
-        if path.is_dir():
-            raise error(f"expected {what}, found a folder", where=Location(name))
-        if size > max_bytes:
-            raise error(f"expected {what} of at most {max_bytes} bytes, found {size} bytes",
-                        where=Location(name))
-        data = path.read_bytes()
+        # Opened without blocking and checked on the open descriptor: a FIFO (or a device) in
+        # place of the file is refused, never waited on or read without end.
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as handle:
+            info = os.fstat(handle.fileno())
+            if stat.S_ISDIR(info.st_mode):
+                raise error(f"expected {what}, found a folder", where=Location(name))
+            if not stat.S_ISREG(info.st_mode):
+                raise error(f"expected {what}, found {_special_kind(info.st_mode)}",
+                            where=Location(name))
+            if info.st_size > max_bytes:
+                raise error(f"expected {what} of at most {max_bytes} bytes, found "
+                            f"{info.st_size} bytes", where=Location(name))
+            data = handle.read(max_bytes + 1)
     except FileNotFoundError:
         raise error(f"expected {what}, found no such file", where=Location(name)) from None
+    except IsADirectoryError:
+        raise error(f"expected {what}, found a folder", where=Location(name)) from None
     except OSError as exc:
         raise error(f"cannot read the file ({exc.strerror or exc})", where=Location(name)) \
             from None
+    if len(data) > max_bytes:
+        raise error(f"expected {what} of at most {max_bytes} bytes, found a larger file",
+                    where=Location(name))
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         line = data[:exc.start].count(b"\n") + 1
         raise error(f"expected UTF-8 text{hint}, found byte 0x{data[exc.start]:02x}, which is "
                     "not UTF-8", where=Location(name, line)) from None
+
+
+def _special_kind(mode: int) -> str:
+    """What a path that is no regular file or folder is, in words.
+
+    >>> _special_kind(stat.S_IFIFO)
+    'a FIFO (named pipe), not a regular file'
+    """
+    kinds = ((stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISSOCK, "a socket"),
+             (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"))
+    kind = next((noun for test, noun in kinds if test(mode)), "a special file")
+    return f"{kind}, not a regular file"
 
 
 _SURROGATE = re.compile("[\ud800-\udfff]")
@@ -131,9 +154,19 @@ def write_text(path: str | os.PathLike, text: str, *, encoding: str = "utf-8") -
     >>> write_text(p, "bad\\udce9name\\n"); p.read_text()
     'bad\\\\xe9name\\n'
     """
+    write_bytes(path, clean_text(text).encode(encoding))
+
+
+def write_bytes(path: str | os.PathLike, data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically, as :func:`write_text` writes text.
+
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "f.zip"
+    >>> write_bytes(p, b"PK"); p.read_bytes()
+    b'PK'
+    """
     target = Path(path)
     folder = target.parent if str(target.parent) else Path(".")
-    data = clean_text(text).encode(encoding)
     if _holds(target, data) or _link_earlier(target, data):
         return
     try:

@@ -2,15 +2,18 @@
 
 The format is recognised from the header row:
 
-* **Canvas** gradebook export: ``Student,ID,SIS User ID,SIS Login ID,[...,]Section,<assignments>``.
-  Its ``Points Possible`` row and other metadata rows (``Muted``, ``Manual Posting``: no ``ID``)
-  are not students; the Canvas *Test Student* is skipped and listed in :attr:`Roster.skipped`.
+* **Canvas** gradebook export: ``Student,ID,SIS User ID,SIS Login ID,[...,]Section,<assignments>``
+  (or, with separate name columns, ``LastName,FirstName,ID,...``). Its ``Points Possible`` row
+  (kept in :attr:`Roster.points_possible`) and other metadata rows (``Muted``, ``Manual
+  Posting``: no ``ID``) are not students; the Canvas *Test Student* is skipped and listed in
+  :attr:`Roster.skipped`.
 * **Moodle** grades export: ``First name,Last name,ID number,Institution,Department,
   Email address,<grade items>`` (comma, semicolon or tab separated).
 * **Plain** CSV: ``id,name[,email][,section][,...]``.
 
 Each :class:`RosterStudent` keeps every identity column of its row, in order, in ``columns``
-so an export can write the same identity back.
+so an export can write the same identity back, and its other cells (the grades already in the
+LMS) in ``cells``, so an export never overwrites them unknowingly.
 
 >>> import tempfile, pathlib
 >>> p = pathlib.Path(tempfile.mkdtemp()) / "class.csv"
@@ -38,8 +41,8 @@ FORMATS = ("canvas", "moodle", "plain")
 
 _CANVAS_META_ROWS = {"points possible", "muted", "manual posting", ""}
 _CANVAS_TEST_NAMES = {"student, test", "test student"}
-_CANVAS_IDENTITY = {"student", "id", "sis user id", "sis login id", "integration id",
-                    "root account", "section"}
+_CANVAS_IDENTITY = {"student", "lastname", "firstname", "id", "sis user id", "sis login id",
+                    "integration id", "root account", "section"}
 _MOODLE_IDENTITY = {"first name", "last name", "id number", "institution", "department",
                     "email address", "username", "phone", "mobile phone", "address",
                     "city/town", "country"}
@@ -47,7 +50,8 @@ _MOODLE_IDENTITY = {"first name", "last name", "id number", "institution", "depa
 
 @dataclass(frozen=True)
 class RosterStudent:
-    """One student of the roster; ``columns`` keeps the identity cells as ``(header, value)``."""
+    """One student of the roster; ``columns`` keeps the identity cells as ``(header, value)``,
+    ``cells`` the row's other cells (grades already in the LMS) the same way."""
 
     id: str
     name: str
@@ -56,6 +60,16 @@ class RosterStudent:
     sis_login_id: str = ""
     section: str = ""
     columns: tuple[tuple[str, str], ...] = ()
+    cells: tuple[tuple[str, str], ...] = ()
+
+    def cell(self, column: str) -> str | None:
+        """The student's cell in ``column`` (``None`` when the roster has no such column).
+
+        >>> RosterStudent("1", "Ada", cells=(("Homework 1 (40211)", "EX"),)).cell(
+        ...     "Homework 1 (40211)")
+        'EX'
+        """
+        return next((value for name, value in self.cells if name == column), None)
 
 
 @dataclass(frozen=True)
@@ -63,13 +77,16 @@ class Roster:
     """The students of a roster file in file order.
 
     ``header`` is the file's whole header row (identity and grade columns); ``skipped`` lists
-    ``(line, reason)`` for rows that were deliberately not read as students.
+    ``(line, reason)`` for rows that were deliberately not read as students;
+    ``points_possible`` holds the cells of a Canvas export's ``Points Possible`` row by column
+    (``"19"``, or ``"(read only)"`` for a column Canvas does not import).
     """
 
     students: tuple[RosterStudent, ...]
     format: str
     header: tuple[str, ...]
     skipped: tuple[tuple[int, str], ...] = ()
+    points_possible: tuple[tuple[str, str], ...] = ()
 
     @property
     def identity_header(self) -> tuple[str, ...]:
@@ -227,6 +244,7 @@ def read_roster(path: str | os.PathLike) -> Roster:
     identity = _identity_columns(kind, header)
     students: list[RosterStudent] = []
     skipped: list[tuple[int, str]] = []
+    points_possible: tuple[tuple[str, str], ...] = ()
     seen: dict[str, int] = {}
     for line, cells in rows[1:]:
         if not any(cell.strip() for cell in cells):
@@ -236,6 +254,11 @@ def read_roster(path: str | os.PathLike) -> Roster:
                 f"expected at most {len(header)} cells as in the header, found {len(cells)}",
                 where=Location(name, line))
         record = {h: (cells[i].strip() if i < len(cells) else "") for i, h in enumerate(header)}
+        if kind == "canvas" and "Points Possible" in cells[0]:
+            # Canvas's own test (gradebook_importer.rb, check_for_non_student_row)
+            points_possible = tuple((h, v) for h, v in record.items()
+                                    if h not in identity and v)
+            continue
         student = reader(record, name, line, skipped)
         if student is None:
             continue
@@ -245,10 +268,11 @@ def read_roster(path: str | os.PathLike) -> Roster:
                 f"(first on line {seen[student.id]})", where=Location(name, line))
         seen[student.id] = line
         columns = tuple((h, record[h]) for h in identity)
+        others = tuple((h, v) for h, v in record.items() if h and h not in identity)
         students.append(RosterStudent(student.id, student.name, student.email,
                                       student.sis_user_id, student.sis_login_id,
-                                      student.section, columns))
-    return Roster(tuple(students), kind, header, tuple(skipped))
+                                      student.section, columns, others))
+    return Roster(tuple(students), kind, header, tuple(skipped), points_possible)
 
 
 def _read_text(path: Path, name: str) -> str:
@@ -281,9 +305,12 @@ def header_format(header: tuple[str, ...]) -> str | None:
 
     >>> header_format(("Student", "ID", "SIS User ID", "Section")), header_format(("x",))
     ('canvas', None)
+    >>> header_format(("LastName", "FirstName", "ID", "SIS User ID", "Section"))
+    'canvas'
     """
     low = {h.lower() for h in header}
-    if {"student", "id"} <= low and low & {"sis user id", "sis login id", "section"}:
+    if ({"student", "id"} <= low or {"lastname", "firstname", "id"} <= low) \
+            and low & {"sis user id", "sis login id", "section"}:
         return "canvas"
     if {"first name", "last name"} <= low or "email address" in low:
         return "moodle"
@@ -322,6 +349,10 @@ def _column(record: dict[str, str], wanted: str) -> str:
 
 def _canvas_student(record, name, line, skipped):
     student = _get(record, "student")
+    if not student and _get(record, "lastname", "firstname"):
+        # the gradebook layout with separate name columns
+        last, first = _get(record, "lastname"), _get(record, "firstname")
+        student = f"{last}, {first}" if last and first else last or first
     canvas_id = _get(record, "id")
     if not canvas_id:
         if student.lower() in _CANVAS_META_ROWS:

@@ -12,6 +12,11 @@ FLOAT_SLACK = 1e-9
 """Relative slack on every tolerance, so a boundary value (``1.05`` for ``1`` at 5 %) is not
 lost to binary rounding."""
 
+REFERENCE_ACCURACY = 1e-6
+"""The reference's own numerical accuracy, relative (an integration to an event is trusted to
+about this): no tolerance may be tighter (``check`` refuses one; grading never applies one),
+so no answer is marked wrong for the last digits of a floating-point reference."""
+
 
 def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
     """The one tolerance test: ``|s - t| <= max(rel*scale, abs)``, boundary included (with a

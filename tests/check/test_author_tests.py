@@ -98,3 +98,24 @@ def test_a_mistake_within_tolerance_warns(tmp_path):
 def test_a_distinct_mistake_is_silent(tmp_path):
     report = with_mistake(tmp_path, "2*L*theta'")
     assert report.passed and report.faults == () and report.warnings == ()
+
+
+def test_an_absolute_tolerance_below_the_reference_accuracy_is_a_fault():
+    from dataclasses import replace
+
+    from mechgrade.check import tolerance_faults
+    from mechgrade.resources import shipped_dir
+    from mechgrade.solve import solve
+    from mechgrade.spec import load_problem
+    from mechgrade.spec.model import Tolerance
+
+    problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    tight = replace(problem, objectives=tuple(
+        replace(o, tolerance=Tolerance(0.0, 1e-9)) if o.id == "alpha" else o
+        for o in problem.objectives))
+    (fault,) = tolerance_faults(tight, solve(tight))
+    assert "expected a tolerance no tighter than the reference's own accuracy (7.88e-06 " \
+           "rad/s^2, 1e-06 of the answer -7.88218), found abs: 1e-09" in fault
+    loose = replace(problem, objectives=tuple(
+        replace(o, tolerance=Tolerance(0.0, 0.01)) for o in problem.objectives))
+    assert tolerance_faults(loose, solve(loose)) == []

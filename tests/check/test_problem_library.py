@@ -40,6 +40,12 @@ def test_the_library_covers_every_independently_derived_case():
     assert sorted(p.stem for p in PROBLEMS) == sorted(INDEPENDENT)
 
 
+def test_every_heavy_problem_is_in_the_library_and_the_fast_core_keeps_some(
+        heavy_problem_names):
+    assert heavy_problem_names <= {p.stem for p in PROBLEMS}
+    assert len(heavy_problem_names) < len(PROBLEMS) / 2
+
+
 @pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])
 def test_problem_passes_its_expect_tests_with_no_author_warnings(path):
     report = check_problem(path)

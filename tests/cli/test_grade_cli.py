@@ -20,11 +20,11 @@ def run(*args):
 
 
 def small_class(tmp_path):
-    (tmp_path / "p.yaml").write_text(PENDULUM.read_text(encoding="utf-8"), encoding="utf-8")
+    (tmp_path / PENDULUM.name).write_text(PENDULUM.read_text(encoding="utf-8"), encoding="utf-8")
     (tmp_path / "hw.yaml").write_text(textwrap.dedent("""\
         id: hw
         title: HW
-        problems: [{path: p.yaml, objectives: [acc_mag]}]
+        problems: [{path: bowling_3_15_4_pendulum.yaml, objectives: [acc_mag]}]
         """), encoding="utf-8")
     subs = tmp_path / "subs"
     subs.mkdir()
@@ -76,7 +76,7 @@ def test_missing_submissions_folder_is_a_usage_error(tmp_path):
     folder = small_class(tmp_path)
     result = run(folder / "hw.yaml", folder / "nowhere", "--out", tmp_path / "out")
     assert result.exit_code == 2
-    assert "Directory" in result.stderr and "does not exist" in result.stderr
+    assert "Path" in result.stderr and "does not exist" in result.stderr
 
 
 def test_out_is_required(tmp_path):
@@ -344,3 +344,37 @@ def test_out_holding_the_submissions_folder_is_refused(tmp_path):
     assert result.stderr == (f"{tmp_path}: --out: expected a folder that does not hold the "
                              f"submissions folder, found {folder / 'subs'} inside it (a run "
                              f"replaces --out whole); choose another --out\n")
+
+
+def test_grade_takes_an_lms_download_zip_directly(tmp_path):
+    import zipfile
+
+    folder = small_class(tmp_path)
+    with zipfile.ZipFile(tmp_path / "canvas.zip", "w") as archive:
+        archive.writestr("ann_101_9001_answers.txt",
+                         "bowling_3_15_4_pendulum.acc_mag = 98.5 ft/s^2\n")
+        archive.writestr("bo_late_102_9002_my answers.txt",
+                         "bowling_3_15_4_pendulum.acc_mag = 9 ft/s^2\n")
+        archive.writestr("../103_9003_answers.txt", "x")
+    out = tmp_path / "out"
+    result = run(folder / "hw.yaml", tmp_path / "canvas.zip", "--out", out, "-j", "1")
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (
+        "Graded 2 students (0 unreadable answers, 0 missing submissions, 1 skipped entry); "
+        f"wrote {out.as_posix()}/\n"
+        "Skipped (not read as anyone's answers):\n"
+        "  canvas.zip/../103_9003_answers.txt: its name climbs out of the zip (..); it was not "
+        "read\n")
+    scores = {s["id"]: s["score"] for s in json.loads((out / "results.json").read_text())
+              ["students"]}
+    assert scores == {"101": 1.0, "102": 0.0}  # one point per objective by default
+
+
+def test_a_file_named_as_a_folder_of_submissions_is_refused(tmp_path):
+    folder = small_class(tmp_path)
+    (tmp_path / "x.zip").write_bytes(b"PK")
+    result = run(folder / "hw.yaml", tmp_path / "x.zip", "--out", tmp_path / "out",
+                 "--submissions-format", "folder")
+    assert result.exit_code == 2
+    assert result.stderr == f"{tmp_path / 'x.zip'}: expected a folder of submissions, found a " \
+                            "file\n"

@@ -12,7 +12,9 @@ import textwrap
 import zipfile
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
+from gradescope_results import check_results, student_view
 
 from mechgrade.cli import main
 
@@ -38,12 +40,17 @@ def test_a_submission_is_graded_into_gradescope_results(tmp_path):
     assert outcome.exit_code == 0
     assert outcome.output == f"10001: 19 / 19 points; wrote {tmp_path / 'results.json'}\n"
     assert data["score"] == 19.0
-    assert len(data["tests"]) == 8
-    assert {t["status"] for t in data["tests"]} == {"passed"}
-    for test in data["tests"]:
+    check_results(data)  # Gradescope's specification (tests/lms/gradescope_results.py)
+    receipt, *graded = data["tests"]
+    assert receipt["name"] == "Submission received" and "Score: 19 / 19 points" in \
+        receipt["output"]
+    assert len(graded) == 8 + 8  # a test per objective, then its expected answer
+    assert {t["status"] for t in graded[:8]} == {"passed"}
+    for test in graded[:8]:
         assert isinstance(test["score"], float) and isinstance(test["max_score"], float)
         assert set(test) == {"name", "number", "score", "max_score", "status", "output",
                              "visibility"}
+    assert {t["visibility"] for t in graded[8:]} == {"after_due_date"}
 
 
 def test_an_empty_upload_scores_zero_and_says_so(tmp_path):
@@ -65,6 +72,49 @@ def test_a_broken_assignment_still_writes_results_and_exits_2(tmp_path):
     assert data["output"].startswith("The autograder could not grade this submission: ")
 
 
+@pytest.mark.parametrize("metadata, message", [
+    ('{"users": {"sid": "1"}}', "users: expected a list of users, found a mapping"),
+    ('{"users": [5]}', "users[0]: expected a user (a mapping with sid, email, name), found a "
+                       "whole number"),
+    ('[{"sid": "1"}]', "expected a mapping (Gradescope's submission metadata), found a list"),
+    ('{"users": [{"sid": ["1"]}]}', "users[0].sid: expected text or a whole number, found a "
+                                    "list"),
+    ('{"users": [{"sid": NaN}]}', "users[0].sid: expected a finite number, found NaN"),
+    ('{"users": [{"sid": 1' + "0" * 4999 + '}]}',
+     "users[0].sid: expected a finite number, found 100000000000...0000 (5000 characters), "
+     "longer than 400 characters"),
+    ('{"users": [' + "[" * 100_000, "1:110: expected JSON nested at most 100 levels deep, "
+                                    "found deeper nesting"),
+    ('{"users": [', "1:12: expected JSON, found invalid JSON: Expecting value"),
+    (None, "expected Gradescope's submission metadata (JSON), found a FIFO (named pipe), not a "
+           "regular file"),
+])
+def test_unreadable_metadata_still_writes_results_saying_why(tmp_path, metadata, message):
+    # The metadata names the student, whose id decides the variant graded: a guess would
+    # grade another student's numbers, so the run stops, and Gradescope shows why.
+    shutil.copytree(ADA, tmp_path / "sub")
+    meta = tmp_path / "meta.json"
+    if metadata is None:
+        os.mkfifo(meta)
+    else:
+        meta.write_text(metadata)
+    outcome, data = run(tmp_path)
+    located = f"{meta}:{message}" if message[0].isdigit() else f"{meta}: {message}"
+    assert outcome.exit_code == 2
+    assert outcome.output == located + "\n"
+    assert data == {"score": 0.0, "output": "The autograder could not grade this submission: "
+                                            + located, "output_format": "text",
+                    "visibility": "visible", "tests": []}
+
+
+def test_without_metadata_the_submission_is_graded_as_submission(tmp_path):
+    shutil.copytree(ADA, tmp_path / "sub")
+    outcome, data = run(tmp_path)
+    assert outcome.exit_code == 0
+    assert outcome.output == f"submission: 19 / 19 points; wrote {tmp_path / 'results.json'}\n"
+    assert data["score"] == 19.0
+
+
 def run_with(tmp_path, *extra):
     results = tmp_path / "results.json"
     args = ["gradescope", str(ASSIGNMENT), "--submission", str(tmp_path / "sub"),
@@ -78,7 +128,8 @@ def test_visibility_option_reaches_the_results_and_every_test(tmp_path):
     outcome, data = run_with(tmp_path, "--visibility", "after_due_date")
     assert outcome.exit_code == 0
     assert data["visibility"] == "after_due_date"
-    assert {t["visibility"] for t in data["tests"]} == {"after_due_date"}
+    assert {t["visibility"] for t in data["tests"][1:]} == {"after_due_date"}
+    assert data["tests"][0]["visibility"] == "visible"  # what was read, shown at once
 
 
 def test_a_broken_assignment_keeps_the_chosen_visibility(tmp_path):
@@ -96,26 +147,29 @@ def test_an_unknown_visibility_is_refused(tmp_path):
     assert outcome.exit_code == 2 and "'public' is not one of" in outcome.output
 
 
-def expected_lines(data) -> dict[str, list[str]]:
-    return {t["name"].split(":")[0]: [line for line in t["output"].splitlines()
-                                      if line.startswith("Expected: ")] for t in data["tests"]}
-
-
-def test_an_empty_upload_is_never_shown_the_expected_answers(tmp_path):
+def test_an_empty_upload_is_never_shown_the_expected_answers_before_the_due_date(tmp_path):
     (tmp_path / "sub").mkdir()
     _, data = run_with(tmp_path)
-    assert all(lines == [] for lines in expected_lines(data).values())
+    before = student_view(data)  # what the student sees (tests/lms/gradescope_results.py)
+    assert "Expected" not in before.text()
+    assert "No submission was found." in before.tests[0]["output"]
+    # and never after it either: the grader keeps no expected answer for what was not answered
     assert "Expected" not in json.dumps(data)
 
 
-def test_expected_answers_are_shown_only_for_the_objectives_answered(tmp_path):
+def test_an_upload_of_answers_sees_verdicts_and_what_was_read_but_no_expected_answer(tmp_path):
     (tmp_path / "sub").mkdir()
     (tmp_path / "sub" / "answers.txt").write_text(
         "bowling_3_15_4_pendulum.acc_mag = 1 ft/s^2\n"
         "bowling_3_15_8_connected_blocks.xdot =   \n")
     _, data = run_with(tmp_path)
-    shown = {name for name, lines in expected_lines(data).items() if lines}
-    assert shown == {"bowling_3_15_4_pendulum/acc_mag"}
+    view = student_view(data)
+    assert "Expected" not in view.text()
+    assert "Answers read (1 of 8):\n  bowling_3_15_4_pendulum/acc_mag = 1 ft/s^2" in view.text()
+    assert "Verdict: incorrect" in view.text() and not view.total_shown
+    assert "Score: 0 / 19 points" in view.tests[0]["output"]  # the receipt says it instead
+    after = student_view(data, due_passed=True)
+    assert after.total_shown and after.text().count("Expected: ") == 1
 
 
 def zip_of(path, members: dict[str, bytes]) -> None:
@@ -211,4 +265,4 @@ def test_documented_setup_and_run_autograder_grade_a_zipped_upload(tmp_path):
                           f"{root / 'results' / 'results.json'}\n")
     data = json.loads((root / "results" / "results.json").read_text())
     assert data["score"] == 19.0 and data["visibility"] == "after_due_date"
-    assert len(data["tests"]) == 8
+    assert len(data["tests"]) == 1 + 8 + 8

@@ -402,11 +402,13 @@ def tampered_cache(tmp_path_factory):
             "folder": folder, "mine": mine}
 
 
+@pytest.mark.slow  # three gradings of a class through subprocesses
 def test_a_tampered_cache_folder_changes_no_result(tampered_cache):
     assert tampered_cache["tampered"] == tampered_cache["cold"]
     assert tampered_cache["warm"] == tampered_cache["cold"]  # what it wrote again reads back
 
 
+@pytest.mark.slow  # three gradings of a class through subprocesses
 def test_a_tampered_cache_folder_is_no_warning_and_loses_no_file_of_the_users(tampered_cache):
     for run in tampered_cache["runs"]:
         assert "cache" not in run.stderr

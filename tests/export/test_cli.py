@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import json
+import os
 from pathlib import Path
 
 import pytest
@@ -33,7 +34,10 @@ def test_export_canvas_with_roster_writes_file_and_warns(run, tmp_path):
     result = run("export", RESULTS, "--format", "canvas", "--roster",
                  str(DATA / "canvas_gradebook.csv"), "--out", str(out))
     assert result.exit_code == 0
-    assert result.stdout == f"wrote canvas export of 7 results to {out}\n"
+    assert result.stdout == (
+        f"{out}: 7 new, 0 changed, 0 kept as Canvas has them, 0 unchanged; each listed in "
+        f"{tmp_path / 'canvas.changes.csv'}\n"
+        f"wrote canvas export of 7 results to {out}\n")
     assert result.stderr == (
         f"warning: {DATA / 'canvas_gradebook.csv'}:11: skipped Canvas test student "
         "'Student, Test'\n"
@@ -105,7 +109,8 @@ def test_format_specific_flags_reach_the_file(run, tmp_path):
     assert run("export", RESULTS, "--format", "gradescope", "--visibility", "hidden",
                "--out", str(gs)).exit_code == 0
     documents = [json.loads(p.read_text()) for p in gs.iterdir() if p.name != "manifest.json"]
-    assert {t["visibility"] for d in documents for t in d["tests"]} == {"hidden"}
+    # every test but the receipt saying what was read
+    assert {t["visibility"] for d in documents for t in d["tests"][1:]} == {"hidden"}
 
 
 def test_export_default_output_name(run, tmp_path, monkeypatch):
@@ -147,6 +152,81 @@ def test_export_of_json_with_the_wrong_shape_names_the_field(run, tmp_path):
     assert result.stderr == (f"{bad}: students[2].answers[0].verdict: expected one of correct, "
                              "partial, incorrect, unreadable, missing, not_evaluated, found "
                              "'great'\n")
+
+
+def _results_with(tmp_path, score: str) -> Path:
+    """The test results.json with its first student's score written as ``score`` (raw JSON
+    text, such as ``NaN``)."""
+    doc = json.loads((DATA / "results.json").read_text(encoding="utf-8"))
+    text = json.dumps(doc).replace(f'"score": {json.dumps(doc["students"][0]["score"])}',
+                                   f'"score": {score}', 1)
+    path = tmp_path / "results.json"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("command", ["export", "report"])
+@pytest.mark.parametrize("score, found", [
+    ("NaN", "NaN"), ("Infinity", "Infinity"), ("-Infinity", "-Infinity"),
+    ("1e999", "1e999, beyond the largest floating-point number"),
+    ("1" + "0" * 4999, "100000000000...0000 (5000 characters), longer than 400 characters"),
+])
+def test_a_score_that_is_not_a_finite_number_is_refused_at_its_field(run, tmp_path, command,
+                                                                      score, found):
+    path = _results_with(tmp_path, score)
+    out = tmp_path / "out.csv"
+    args = ["--format", "grades-csv", "--out", str(out)] if command == "export" else \
+        ["--out", str(out)]
+    result = run(command, str(path), *args)
+    assert result.exit_code == 2
+    assert result.stderr == f"{path}: students[0].score: expected a finite number, found " \
+                            f"{found}\n"
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["export", "report"])
+def test_a_results_json_nested_100k_deep_is_one_located_message(run, tmp_path, command):
+    path = tmp_path / "results.json"
+    path.write_text('{"assignment": {"id": "a", "title": "A"}, "students": [],\n"notes": '
+                    + "[" * 100_000 + "]" * 100_000 + "}", encoding="utf-8")
+    args = ["--format", "json", "--out", str(tmp_path / "o")] if command == "export" else \
+        ["--out", str(tmp_path / "o")]
+    result = run(command, str(path), *args)
+    assert result.exit_code == 2
+    assert result.stderr == f"{path}:2:109: expected JSON nested at most 100 levels deep, " \
+                            "found deeper nesting\n"
+
+
+@pytest.mark.parametrize("field, value, message", [
+    (("students", 0, "score"), 1e308, "expected a number of magnitude at most 1e+40, found "
+                                      "1e+308"),
+    (("students", 0, "score"), 2e9, "expected a number <= 1e+09, found 2000000000.0"),
+    (("students", 0, "max_score"), -1.0, "expected a number >= 0, found -1.0"),
+    (("objectives", 0, "max_points"), 1e30, "expected a number <= 1000, found 1e+30"),
+    (("students", 1, "answers", 0, "points"), 5000, "expected a number <= 1000, found 5000"),
+])
+def test_points_beyond_what_an_assignment_allows_are_refused_before_any_statistics(
+        run, tmp_path, field, value, message):
+    doc = json.loads((DATA / "results.json").read_text(encoding="utf-8"))
+    target = doc
+    for key in field[:-1]:
+        target = target[key]
+    target[field[-1]] = value
+    path = tmp_path / "results.json"
+    path.write_text(json.dumps(doc), encoding="utf-8")
+    result = run("report", str(path), "--out", str(tmp_path / "r.html"))
+    assert result.exit_code == 2
+    where = "".join(f"[{k}]" if isinstance(k, int) else f".{k}" for k in field).lstrip(".")
+    assert result.stderr == f"{path}: {where}: {message}\n"
+
+
+def test_a_results_json_that_is_a_fifo_is_refused_without_waiting(run, tmp_path):
+    path = tmp_path / "results.json"
+    os.mkfifo(path)
+    result = run("export", str(path), "--format", "json", "--out", str(tmp_path / "o.json"))
+    assert result.exit_code == 2
+    assert result.stderr == f"{path}: expected a results.json file, found a FIFO (named pipe), " \
+                            "not a regular file\n"
 
 
 def test_export_with_unknown_format_is_refused_by_click(run):
@@ -197,6 +277,12 @@ def test_moodle_export_holds_back_rows_and_says_so(run, tmp_path):
                  str(DATA / "moodle_grades.csv"), "--missing", "blank", "--out", str(out))
     assert result.exit_code == 0
     assert result.stderr == (
+        "warning: Moodle cuts a grade above the grade item's maximum grade to that maximum "
+        "without a word: check that 'Assignment: Homework 3 (Real)' is out of 10 points in "
+        "Moodle, or export with --scale-to <its maximum grade>\n"
+        "warning: the grades export's 'Last downloaded from this course' of s1001 is "
+        "'1700000000': Moodle refuses the whole import unless that is a time within the last "
+        "year; export the grades from Moodle again and give that file as --roster\n"
         f"warning: 6 rows kept out of {out} because Moodle could not import them: see "
         f"{tmp_path / 'moodle.unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
         "or export again with --roster set to the grades exported from Moodle\n")

@@ -8,6 +8,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import pytest
+from gradescope_results import check_results
 
 from mechgrade.errors import ExportError
 from mechgrade.export import EXPORTERS, ExportOptions, export
@@ -70,9 +71,14 @@ def test_canvas_without_roster_holds_back_rows_without_a_canvas_id(report, tmp_p
         "the Canvas assignment column 'Homework 3' has no Canvas assignment id: Canvas fills "
         "the assignment of exactly that title or creates a new one; name it with "
         "--canvas-assignment (its id, as in 'Title (12345)')",
+        f"{out} was not compared with the grades already in Canvas (no gradebook exported from "
+        "Canvas as --roster): Canvas replaces every grade that differs, excused (EX) and "
+        "hand-entered ones included",
         f"3 rows kept out of {out} because Canvas could not import them: see "
         f"{tmp_path / 'canvas.unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
-        "or export again with --roster set to the gradebook exported from Canvas")
+        "or export again with --roster set to the gradebook exported from Canvas",
+        f"{out}: 4 new, 0 changed, 0 kept as Canvas has them, 0 unchanged; each listed in "
+        f"{tmp_path / 'canvas.changes.csv'}")
 
 
 def test_canvas_without_any_canvas_identity_writes_no_student_row(report, tmp_path):
@@ -120,7 +126,9 @@ def test_canvas_with_canvas_roster_writes_every_roster_student_back(report, canv
         "70007 (Only Roster) has no submission; written with 0",
         f"1 row kept out of {out} because Canvas could not import it: see "
         f"{tmp_path / 'canvas.unmatched.csv'} for who and why; enter those grades in Canvas by hand, "
-        "or export again with --roster set to the gradebook exported from Canvas")
+        "or export again with --roster set to the gradebook exported from Canvas",
+        f"{out}: 7 new, 0 changed, 0 kept as Canvas has them, 0 unchanged; each listed in "
+        f"{tmp_path / 'canvas.changes.csv'}")
 
 
 def test_the_bundled_example_round_trips_into_the_rosters_own_column(tmp_path):
@@ -134,7 +142,9 @@ def test_the_bundled_example_round_trips_into_the_rosters_own_column(tmp_path):
     graded = grade_submissions(load_assignment(hw1 / "assignment.yaml"), hw1 / "submissions",
                                roster)
     out = tmp_path / "canvas.csv"
-    assert EXPORTERS["canvas"](graded, out, roster=roster) == ()
+    assert EXPORTERS["canvas"](graded, out, roster=roster) == (
+        f"{out}: 10 new, 0 changed, 0 kept as Canvas has them, 0 unchanged; each listed in "
+        f"{tmp_path / 'canvas.changes.csv'}",)
     rows = read_csv(out)
     with open(hw1 / "roster.csv", encoding="utf-8-sig", newline="") as handle:
         exported = list(csv.reader(handle))
@@ -248,8 +258,11 @@ def test_moodle_has_key_columns_grade_and_feedback(report, moodle_roster, tmp_pa
     out = tmp_path / "moodle.csv"
     warnings = EXPORTERS["moodle"](report, out, roster=moodle_roster)
     rows = read_csv(out)
+    # Moodle's own "Last downloaded" column is kept: Moodle then refuses grades changed since
     assert rows[0] == ["Email address", "ID number", "First name", "Last name",
-                       "Assignment: Homework 3 (Real)", "Assignment: Homework 3 (Feedback)"]
+                       "Assignment: Homework 3 (Real)", "Assignment: Homework 3 (Feedback)",
+                       "Last downloaded from this course"]
+    assert {row[6] for row in rows[1:]} == {"1700000000"}
     by_email = {row[0]: row for row in rows[1:]}
     assert set(by_email) == {s.email for s in moodle_roster.students}
     emilie = by_email["emilie@uni.example"]
@@ -268,9 +281,17 @@ def test_moodle_has_key_columns_grade_and_feedback(report, moodle_roster, tmp_pa
     assert warnings == (
         "uma@uni.example (Uma Unreadable) has no submission; written with 0",
         "s1007 (Roster Only) has no submission; written with 0",
+        "Moodle cuts a grade above the grade item's maximum grade to that maximum without a "
+        "word: check that 'Assignment: Homework 3 (Real)' is out of 10 points in Moodle, or "
+        "export with --scale-to <its maximum grade>",
+        "the grades export's 'Last downloaded from this course' of s1001 is '1700000000': "
+        "Moodle refuses the whole import unless that is a time within the last year; export "
+        "the grades from Moodle again and give that file as --roster",
         f"3 rows kept out of {out} because Moodle could not import them: see "
         f"{tmp_path / 'moodle.unmatched.csv'} for who and why; enter those grades in Moodle by hand, "
-        "or export again with --roster set to the grades exported from Moodle")
+        "or export again with --roster set to the grades exported from Moodle",
+        f"{out}: 6 new, 0 changed, 0 kept as Moodle has them, 0 unchanged; each listed in "
+        f"{tmp_path / 'moodle.changes.csv'}")
 
 
 def test_moodle_never_writes_a_row_with_a_blank_user_key(report, moodle_roster, tmp_path):
@@ -347,18 +368,18 @@ VISIBILITY = {"hidden", "after_due_date", "after_published", "visible"}
 
 
 def check_gradescope(doc: dict, n_objectives: int) -> None:
+    check_results(doc)  # Gradescope's specification (tests/lms/gradescope_results.py)
     assert isinstance(doc["score"], float)
-    assert isinstance(doc["output"], str) and doc["visibility"] in VISIBILITY
     assert doc["output_format"] == doc["test_output_format"] == doc["test_name_format"] == "text"
-    assert len(doc["tests"]) == n_objectives
-    for test in doc["tests"]:
+    receipt, *tests = doc["tests"]
+    assert receipt["name"] == "Submission received" and receipt["visibility"] == "visible"
+    assert "score" not in receipt  # a receipt, worth nothing
+    assert len(tests) == n_objectives
+    for test in tests:
         assert set(test) == {"name", "number", "score", "max_score", "status", "output",
                              "visibility"}
         assert isinstance(test["score"], float) and isinstance(test["max_score"], float)
         assert 0 <= test["score"] <= test["max_score"]
-        assert test["status"] in {"passed", "failed"}
-        assert isinstance(test["name"], str) and isinstance(test["output"], str)
-        assert test["visibility"] in VISIBILITY
 
 
 def test_gradescope_single_student_results_json(report, tmp_path):
@@ -368,12 +389,13 @@ def test_gradescope_single_student_results_json(report, tmp_path):
     doc = json.loads(out.read_text(encoding="utf-8"))
     check_gradescope(doc, 3)
     assert doc["score"] == 5.5 and doc["visibility"] == "after_due_date"
-    assert sum(t["score"] for t in doc["tests"]) == doc["score"]
-    a_b = doc["tests"][1]
+    assert sum(t.get("score", 0) for t in doc["tests"]) == doc["score"]
+    a_b = doc["tests"][2]
     assert a_b["name"] == "p1/a_B: Acceleration of B (rotating frame)"
     assert a_b["status"] == "failed" and a_b["score"] == 1.0 and a_b["max_score"] == 4.0
     assert "dropped the Coriolis term" in a_b["output"]
-    assert doc["tests"][0]["status"] == "passed"
+    assert doc["tests"][1]["status"] == "passed"
+    assert {t["visibility"] for t in doc["tests"][1:]} == {"after_due_date"}
 
 
 def test_gradescope_missing_student_gets_every_objective_failed(report, tmp_path):
@@ -384,6 +406,7 @@ def test_gradescope_missing_student_gets_every_objective_failed(report, tmp_path
     check_gradescope(doc, 3)
     assert doc["score"] == 0.0 and "No submission was found." in doc["output"]
     assert {t["status"] for t in doc["tests"]} == {"failed"}
+    assert "No submission was found." in doc["tests"][0]["output"]
 
 
 def test_gradescope_many_students_go_to_one_file_each(report, tmp_path):

@@ -45,6 +45,14 @@ def test_absolute_tolerance_applies_in_the_objectives_unit():
     assert verdict("0.0501 m", result) == "incorrect"
 
 
+def test_no_tolerance_is_tighter_than_the_references_accuracy():
+    """A zero tolerance (an assignment's policy; a problem's is refused by check) still
+    accepts an answer off only in the reference's last digits."""
+    result = ObjectiveResult("x", "scalar", "m", 2.78107123456, rel=0.0)
+    assert verdict("2.781071 m", result, Policy(rel=0.0)) == "correct"
+    assert verdict("2.7811 m", result, Policy(rel=0.0)) == "incorrect"
+
+
 def test_policy_overrides_the_objectives_tolerance():
     assert verdict("97 ft/s^2", ACC, Policy(rel=0.02)) == "correct"
     assert verdict("97 ft/s^2", ACC) == "incorrect"

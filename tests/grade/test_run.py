@@ -45,13 +45,14 @@ def write(path: Path, text: str) -> Path:
 
 @pytest.fixture
 def class_dir(tmp_path):
-    """An assignment on the pendulum problem and a folder of three submissions."""
-    write(tmp_path / "pendulum.yaml", PENDULUM.read_text(encoding="utf-8"))
+    """An assignment on the pendulum problem (its file named by its id, so it has no warning)
+    and a folder of three submissions."""
+    write(tmp_path / PENDULUM.name, PENDULUM.read_text(encoding="utf-8"))
     write(tmp_path / "hw.yaml", """\
         id: hw9
         title: Pendulum
         problems:
-          - path: pendulum.yaml
+          - path: bowling_3_15_4_pendulum.yaml
             objectives: [acc_mag, acc_N]
         points: {default: 2, bowling_3_15_4_pendulum.acc_N: 4}
         policy:
@@ -72,7 +73,7 @@ def class_dir(tmp_path):
 
 def pendulum_plan(folder: Path):
     hw = load_assignment(folder / "hw.yaml")
-    problem = load_problem(folder / "pendulum.yaml")
+    problem = load_problem(folder / PENDULUM.name)
     return plan_assignment(hw, problems=[problem], solutions=[PENDULUM_SOLUTION])
 
 
@@ -221,7 +222,7 @@ def test_two_problem_files_with_one_id_are_refused(class_dir):
     write(class_dir / "hw.yaml", """\
         id: hw9
         title: Pendulum
-        problems: [pendulum.yaml, copy.yaml]
+        problems: [bowling_3_15_4_pendulum.yaml, copy.yaml]
         """)
     hw = load_assignment(class_dir / "hw.yaml")
     problem = load_problem(PENDULUM)
@@ -229,7 +230,7 @@ def test_two_problem_files_with_one_id_are_refused(class_dir):
         plan_assignment(hw, problems=[problem, problem],
                         solutions=[PENDULUM_SOLUTION, PENDULUM_SOLUTION])
     assert str(info.value).endswith(
-        "hw.yaml:3:27: problems[1]: expected problems with different ids, found "
+        "hw.yaml:3:42: problems[1]: expected problems with different ids, found "
         "'bowling_3_15_4_pendulum' twice")
 
 
@@ -495,7 +496,7 @@ def test_a_problem_carried_forward_re_solves_is_solved_here_the_others_in_forked
 
 
 def test_a_broken_problem_is_reported_before_a_missing_folder_with_any_jobs(class_dir):
-    (class_dir / "pendulum.yaml").write_text(
+    (class_dir / PENDULUM.name).write_text(
         PENDULUM.read_text(encoding="utf-8").replace("L: 2 ft", "L: -2 furlongz"),
         encoding="utf-8")
     hw = load_assignment(class_dir / "hw.yaml")

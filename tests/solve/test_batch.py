@@ -216,7 +216,7 @@ def test_variants_reached_by_energy_integration_or_design_solved_together_are_th
         assert_same(together, one, tolerance, generated=k == 0)
 
 
-REACHED_OTHERWISE_COUNT = 25  # 24 problems and the pendulum released in examples/hw3
+REACHED_OTHERWISE_COUNT = 26  # 25 problems (two gyroscopes by design) and examples/hw3's pendulum
 
 
 def test_every_shipped_problem_reached_otherwise_is_covered():

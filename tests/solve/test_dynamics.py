@@ -63,8 +63,8 @@ def _numeric_value(problem, obj):
 
 def test_statically_indeterminate_model_names_the_reactions():
     body = text("ruina_9_19_falling_ladder").replace(
-        "    N2: {body: ladder, at: B, direction: N.y}          # floor\n",
-        "    N2: {body: ladder, at: B, direction: N.y}          # floor\n"
+        "    N2: {kind: normal, body: ladder, at: B, direction: N.y}          # floor\n",
+        "    N2: {kind: normal, body: ladder, at: B, direction: N.y}          # floor\n"
         "    N3: {body: ladder, at: B, direction: N.y}\n")
     message = error_of(body, UnderdeterminedError, objectives=["thetaddot_now"])
     assert "the model is statically indeterminate" in message
@@ -82,7 +82,7 @@ def test_under_constrained_model_names_the_free_acceleration():
 
 def test_a_missing_reaction_is_an_inconsistency_naming_the_balance():
     body = text("pendulum_pin_reaction").replace(
-        "  reactions:\n    R_O: {body: rod, at: O, directions: [N.x, N.y]}\n", "")
+        "  reactions:\n    R_O: {kind: pin, body: rod, at: O, directions: [N.x, N.y]}\n", "")
     body = body.replace("force(R_O)", "m*acc(G, N)")
     message = error_of(body, InconsistentError, objectives=["alpha"])
     assert "the equations of motion cannot all hold: 'body rod: N.x force balance'" in message
@@ -191,8 +191,8 @@ def test_a_symbolic_answer_of_an_integration_declares_what_it_depends_on():
 
 def test_work_energy_refuses_non_conservative_loads():
     body = text("ruina_9_20_ladder_energy").replace(
-        "    N2: {body: ladder, at: B, direction: N.y}\n",
-        "    N2: {body: ladder, at: B, direction: N.y}\n  friction:\n"
+        "    N2: {kind: normal, body: ladder, at: B, direction: N.y}\n",
+        "    N2: {kind: normal, body: ladder, at: B, direction: N.y}\n  friction:\n"
         "    F2: {body: ladder, at: B, normal: N2, mu: 0.3, kind: kinetic}\n")
     assert "work_energy needs conservative loads: F2" in error_of(body, objectives=[
         "vG_over_sqrt_gL"])
@@ -213,8 +213,9 @@ def test_work_energy_refuses_an_unreachable_instant():
 def test_work_energy_refuses_a_reaction_that_works():
     """A reaction pushing along the motion of its point is not workless."""
     body = text("ruina_9_20_ladder_energy").replace(
-        "N1: {body: ladder, at: A, direction: N.x}", "N1: {body: ladder, at: A, direction: N.y}")
-    body = body.replace("N2: {body: ladder, at: B, direction: N.y}",
+        "N1: {kind: normal, body: ladder, at: A, direction: N.x}",
+        "N1: {body: ladder, at: A, direction: N.y}")  # reactions of unstated kind: no normal check
+    body = body.replace("N2: {kind: normal, body: ladder, at: B, direction: N.y}",
                         "N2: {body: ladder, at: B, direction: N.x}")
     assert "does work at the instant" in error_of(body, objectives=["vG_over_sqrt_gL"])
 
@@ -408,8 +409,9 @@ def test_a_closed_form_event_needs_a_positive_time():
 
 def test_a_closed_form_integration_needs_determined_accelerations():
     body = text("block_slides_on_cart").replace(
-        "    N_F: {body: cart, at: K, direction: N.y}",
-        "    N_F: {body: cart, at: K, direction: N.y}\n    N_G: {body: cart, at: K, direction: N.y}")
+        "    N_F: {kind: normal, body: cart, at: K, direction: N.y}",
+        "    N_F: {kind: normal, body: cart, at: K, direction: N.y}\n"
+        "    N_G: {body: cart, at: K, direction: N.y}")
     body = body.replace("    find: t\n    kind: scalar\n    unit: s\n    expect: {value: 1.359157}",
                         "    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g, m, M]\n"
                         "    expect: {expr: v0/(mu*g*(1 + m/M))}")

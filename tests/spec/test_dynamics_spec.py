@@ -25,10 +25,11 @@ def error_of(text: str) -> str:
 
 
 CASES = [
-    ("reaction on no body", PENDULUM, "R_O: {body: rod, at: O,", "R_O: {",
+    ("reaction on no body", PENDULUM, "R_O: {kind: pin, body: rod, at: O,", "R_O: {kind: pin,",
      "p.yaml:26:10: loads.reactions.R_O: expected one of the fields body (with at), bodies "
      "(with at), acts, found none of them"),
-    ("joint without its point", PENDULUM, "R_O: {body: rod, at: O,", "R_O: {bodies: [rod, rod],",
+    ("joint without its point", PENDULUM, "R_O: {kind: pin, body: rod, at: O,",
+     "R_O: {kind: pin, bodies: [rod, rod],",
      "p.yaml:26:10: loads.reactions.R_O: expected a field 'at' with 'bodies', found none"),
     ("body named like a point", PENDULUM, "  rod: {mass: m", "  G: {mass: m",
      "bodies.G: 'G' names a body and something else already"),
@@ -55,17 +56,17 @@ CASES = [
      "expected the gravitational acceleration as a vector"),
     ("gravity not an acceleration", PENDULUM, "gravity: -g*N.y", "gravity: -L*N.y",
      "dimension mismatch in '-L*N.y'"),
-    ("reaction on an unknown body", PENDULUM, "{body: rod, at: O", "{body: bar, at: O",
+    ("reaction on an unknown body", PENDULUM, "body: rod, at: O", "body: bar, at: O",
      "unknown body 'bar' (bodies: ground, rod)"),
-    ("reaction at an unknown point", PENDULUM, "{body: rod, at: O", "{body: rod, at: Z",
+    ("reaction at an unknown point", PENDULUM, "body: rod, at: O", "body: rod, at: Z",
      "unknown point 'Z' in 'at'"),
     ("direction with units", PENDULUM, "directions: [N.x, N.y]", "directions: [L*N.x, N.y]",
      "(a direction (a vector without units, e.g. N.x))"),
     ("reaction without direction", PENDULUM, ", directions: [N.x, N.y]}", "}",
      "expected one of the fields direction, directions, found none of them"),
-    ("yaml 'on' key", PENDULUM, "{body: rod, at: O", "{on: rod, at: O",
-     "loads.reactions.R_O.True: expected only the fields body, bodies, at, direction, "
-     "directions, acts, found 'True'"),
+    ("yaml 'on' key", PENDULUM, "body: rod, at: O", "on: rod, at: O",
+     "loads.reactions.R_O.True: expected only the fields kind, surface, body, bodies, at, "
+     "direction, directions, acts, found 'True'"),
     ("friction normal not a reaction", INCLINE, "normal: N_P", "normal: block",
      "friction 'F_P': 'normal' must name a reaction with one direction"),
     ("friction coefficient with units", INCLINE, "mu: mu_k", "mu: g",
@@ -73,7 +74,7 @@ CASES = [
     ("kinetic friction on an unknown surface", INCLINE, "kind: kinetic}",
      "kind: kinetic, surface: K}", "unknown surface 'K' (frames or bodies: A, N, block)"),
     ("friction between bodies pressed by a one-body normal", CART,
-     "N_P: {bodies: [block, cart], at: P,", "N_P: {body: block, at: P,",
+     "N_P: {kind: normal, bodies: [block, cart], at: P,", "N_P: {kind: normal, body: block, at: P,",
      "friction 'F_P' between block and cart: its normal 'N_P' must act on both bodies"),
     ("friction of a body on itself", CART, "surface: cart}", "surface: block}",
      "friction 'F_P' between block and block"),
@@ -98,6 +99,46 @@ CASES = [
      "unknown body 'wall'"),
     ("loads without bodies", CHAIN, "bodies:\n  block1: {mass: m1, centre: P1}\n  block2: {mass: m2, centre: P2}\n",
      "", "'loads' needs bodies: expected a 'bodies' section"),
+    ("weight as a force beside gravity", PENDULUM, "  reactions:\n",
+     "  forces:\n    W: {kind: weight, body: rod, at: G, force: -m*g*N.y}\n  reactions:\n",
+     "loads.forces.W: the weight 'W' on rod is given twice: as this force and by 'gravity: "
+     "-g*N.y', which acts on every body; expected it once"),
+    ("gravity's magnitude without down", PENDULUM, "gravity: -g*N.y", "gravity: g",
+     "found the magnitude 'g'; give its direction as well: down: -N.y"),
+    ("down with units", PENDULUM, "gravity: -g*N.y", "gravity: g\n  down: -L*N.y",
+     "(the direction of 'down' (a vector without units, e.g. -N.y))"),
+    ("unknown reaction kind", PENDULUM, "kind: pin,", "kind: hinge,",
+     "loads.reactions.R_O.kind: expected one of normal, pin, tension, contact, applied"),
+    ("tension along two directions", PENDULUM, "kind: pin,", "kind: tension,",
+     "the tension 'R_O' pulls along its string: expected one direction, found 2"),
+    ("normal force over pulleys", PENDULUM, "R_O: {kind: pin, body: rod, at: O, directions: "
+     "[N.x, N.y]}", "R_O: {kind: normal, direction: N.y, acts: [{body: rod, at: O}, "
+     "{body: rod, at: G}]}", "a normal force acts at one point: expected 'body' and 'at'"),
+    ("surface of a pin", PENDULUM, "kind: pin,", "kind: pin, surface: ground,",
+     "'surface' belongs to a normal force or a contact; 'R_O' is a pin"),
+    ("unknown surface of a normal force", PENDULUM, "kind: pin,", "kind: normal, surface: K,",
+     "unknown surface 'K' of 'R_O' (expected ground, a frame or a body: B, N, ground, rod)"),
+    ("joint on a surface other than its second body", CART,
+     "N_P: {kind: normal, bodies: [block, cart], at: P,",
+     "N_P: {kind: normal, surface: ground, bodies: [block, cart], at: P,",
+     "the joint 'N_P' between block and cart is on cart: expected surface: cart or none, "
+     "found surface: ground"),
+    ("friction pressed by a pin", INCLINE, "N_P: {kind: normal,", "N_P: {kind: pin,",
+     "friction 'F_P': its normal 'N_P' is a pin; expected the normal force pressing the "
+     "surfaces together at P (a reaction with kind: normal)"),
+    ("cord end's direction on components", PENDULUM,
+     "R_O: {kind: pin, body: rod, at: O, directions: [N.x, N.y]}",
+     "R_O: {directions: [N.x, N.y], acts: [{body: rod, at: O, direction: N.y}]}",
+     "'R_O': an end with its own direction belongs to a cord (one unknown tension): expected "
+     "one 'direction', found 2"),
+    ("cord end's direction with units", PENDULUM,
+     "R_O: {kind: pin, body: rod, at: O, directions: [N.x, N.y]}",
+     "R_O: {direction: N.x, acts: [{body: rod, at: O, direction: L*N.y}]}",
+     "(a direction (a vector without units, e.g. N.x))"),
+    ("static friction without directions", TURNTABLE, ", directions: [B.x, B.y]}", "}",
+     "loads.friction.F_P: static friction 'F_P' needs the directions of its unknown "
+     "components: expected directions: [N.x, N.y] (in a planar problem the one in the plane "
+     "of motion), the tangents to the surface at P, found none"),
     ("force of an unknown load", PENDULUM, "find: force(R_O)", "find: force(R_Q)",
      "expected a load as argument of force(...), found 'R_Q' (known: R_O)"),
     ("eom of a parameter", PENDULUM, "find: eom(theta)\n    kind: scalar",
@@ -126,3 +167,20 @@ def test_a_composite_body_reads_its_parts():
     assert [p.mass.text for p in wheel.parts] == ["m", "M", "M"]
     assert all(isinstance(p.shape, Disk) for p in wheel.parts)
     assert wheel.centre == "G"
+
+
+def test_a_reaction_without_kind_keeps_a_kind_read_from_its_form():
+    """Specs written before kind: stay valid: a cord over pulleys is a tension, a friction's
+    normal a normal force, any other a reaction of unstated kind."""
+    text = PENDULUM.replace("kind: pin, ", "")
+    assert load_problem_text(text, "p.yaml").dynamics.kind("R_O") == "reaction"
+    incline = load_problem_text(INCLINE.replace("kind: normal, ", ""), "p.yaml").dynamics
+    assert incline.kind("N_P") == "normal" and incline.reactions[0].contact_surface == "ground"
+    cart = load_problem_text(CART, "p.yaml").dynamics
+    assert cart.kind("N_P") == "normal" and cart.load("N_P").contact_surface == "cart"
+
+
+def test_gravity_written_as_its_magnitude_points_down():
+    d = load_problem_text(PENDULUM.replace("gravity: -g*N.y", "gravity: g\n  down: -N.y"),
+                          "p.yaml").dynamics
+    assert (d.gravity.text, d.down.text) == ("(g)*(-N.y)", "-N.y")

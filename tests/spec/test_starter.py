@@ -9,7 +9,7 @@ import yaml
 from mechgrade.check import check_problem, written_tolerance
 from mechgrade.errors import OutputError, SpecError
 from mechgrade.resources import shipped_dir
-from mechgrade.spec import load_problem, problem_schema
+from mechgrade.spec import load_problem, load_problem_text, problem_schema
 from mechgrade.spec.load import SCHEMA_PATH
 from mechgrade.spec.starter import (TEMPLATES, check_problem_id, schema_reference, starter_spec,
                                     write_starter)
@@ -53,9 +53,21 @@ def test_starter_names_the_schema_relative_to_its_folder(tmp_path):
     assert (tmp_path / ref).resolve() == SCHEMA_PATH.resolve()
 
 
-def test_rigid_body_template_says_dynamics_is_not_included():
+def test_rigid_body_template_points_to_the_kinetics_templates():
     text = " ".join(starter_spec("p", "rigid-body", schema_ref="s.json").replace("#", "").split())
-    assert "Dynamics (masses, inertia, forces and moments) is not in the spec format yet" in text
+    assert "not in the spec format" not in text
+    assert "For its kinetics (mass, inertia, the forces on it and the pin's reaction) start " \
+           "from `mechgrade new --template pin-body`" in text
+
+
+@pytest.mark.parametrize("template", ["incline-friction", "pin-body", "rolling-body", "impact",
+                                      "vibration"])
+def test_kinetics_templates_state_the_kind_of_every_reaction(template):
+    problem = load_problem_text(starter_spec("p", template, schema_ref="s.json"), "p.yaml")
+    assert problem.dynamics is not None
+    assert all("kind:" in line for line in starter_spec("p", template, schema_ref="s.json")
+               .splitlines() if "{body:" in line and "direction" in line)
+    assert all(r.kind != "reaction" for r in problem.dynamics.reactions)
 
 
 @pytest.mark.parametrize("bad", ["hw3.p1", "hw-3", "3p", "", "../x", "p 1", "é"])

@@ -40,7 +40,7 @@ CASES = [
     ("alias", BASE.replace("L: m", "L: &u m\n  M: *u"), "p.yaml:13:6: expected plain YAML, found an alias (*name); anchors and aliases are not allowed"),
     ("duplicate key", BASE.replace("L: m", "L: m\n  L: ft"), "p.yaml:13:3: parameters.L: expected each key once, found 'L' again"),
     # schema
-    ("unknown key", BASE + "colour: red\n", "p.yaml:25:1: colour: expected only the fields id, title, source, statement, inertial, frames, points, coordinates, parameters, constraints, givens, guesses, unknown, branch, define, variants, consistency, bodies, loads, analysis, objectives, found 'colour'"),
+    ("unknown key", BASE + "colour: red\n", "p.yaml:25:1: colour: expected only the fields id, title, source, statement, tags, inertial, frames, points, coordinates, parameters, constraints, givens, guesses, unknown, branch, define, variants, consistency, bodies, loads, analysis, objectives, found 'colour'"),
     ("missing key", BASE.replace("title: Base problem for validation tests\n", ""), "p.yaml:1:1: expected a field 'title', found none"),
     ("wrong type", mutated("title: Base problem for validation tests", "title: [a]"), "p.yaml:2:8: title: expected text, found a list of 1"),
     ("bad kind", mutated("kind: scalar", "kind: number"), "p.yaml:22:11: objectives[0].kind: expected one of scalar, vector, symbolic, found 'number'"),

@@ -32,7 +32,7 @@ from ..solve import cache
 from ..solve.mutants import inside_tolerance, separating_rel
 from ..solve.result import ObjectiveResult, in_frame
 from ..spec.model import Expect, Objective, Problem
-from ..tolerance import agree_at_points, within
+from ..tolerance import REFERENCE_ACCURACY, agree_at_points, within
 from ..units import from_si, to_si
 
 
@@ -197,6 +197,7 @@ def _checked(path) -> CheckReport:
             where = err.where if err.where.file else objective.expect.where
             errors.append(str(err.located(where)))
     faults, warnings = mistake_findings(problem, solution)
+    faults += tolerance_faults(problem, solution)
     state = tuple(str(s) for s in solution.state)
     return CheckReport(str(path), problem.id, None, tuple(outcomes), solution.dof,
                        tuple(untested), tuple(errors + faults),
@@ -263,6 +264,26 @@ def mistake_findings(problem: Problem, solution) -> tuple[list[str], list[Author
                     f"{objective.unit}, within the tolerance of the answer "
                     f"{_show(result.value)}: a student making it gets full credit", where))
     return faults, warnings
+
+
+def tolerance_faults(problem: Problem, solution) -> list[str]:
+    """Objectives whose absolute tolerance (without a relative one) is tighter than the
+    reference's own accuracy for its answer: no student could match it."""
+    out = []
+    for result in solution.results:
+        objective = problem.objective(result.id)
+        tol = objective.tolerance
+        if result.value is None or tol.rel >= REFERENCE_ACCURACY or tol.abs <= 0:
+            continue
+        size = sum(v * v for v in _as_vector(result.value)) ** 0.5
+        floor = REFERENCE_ACCURACY * size
+        if tol.abs < floor:
+            where = tol.where if tol.where.file else objective.where
+            out.append(f"{where}: expected a tolerance no tighter than the reference's own "
+                       f"accuracy ({floor:.3g} {objective.unit}, {REFERENCE_ACCURACY:g} of the "
+                       f"answer {_show(result.value)}), found abs: {tol.abs:g}: no student could "
+                       "match it; write rel: 0.01 (1 %, the default) or a larger abs")
+    return out
 
 
 def _as_vector(value) -> tuple[float, ...]:

@@ -155,6 +155,9 @@ COMMANDS = {
     "check": ("check", "Validate problem files (or folders of them) and run every expect: test."),
     "export": ("export", "Export RESULTS_JSON (written by 'mechgrade grade') for an LMS or a "
                          "spreadsheet."),
+    "export-questions": ("questions", "Write ASSIGNMENT's objectives as quiz questions for "
+                                      "Canvas (QTI) or Moodle (XML), each problem with its own "
+                                      "verified variants."),
     "grade": ("grade", "Grade every submission in SUBMISSIONS_DIR against ASSIGNMENT."),
     "gradescope": ("gradescope", "Grade one Gradescope submission against ASSIGNMENT and write "
                                  "results.json."),

@@ -10,6 +10,7 @@ from pathlib import Path
 import click
 
 from ..files import visible_text
+from ..grade.lms_submissions import SUBMISSION_FORMATS
 from ..roster import read_roster
 from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
                      reports_errors, run_arguments, run_inputs, say, warn_about_the_cache)
@@ -17,7 +18,7 @@ from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
 
 @main.command("grade")
 @click.argument("assignment", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.argument("submissions_dir", type=click.Path(exists=True, file_okay=False, path_type=Path))
+@click.argument("submissions_dir", type=click.Path(exists=True, path_type=Path))
 @click.option("--out", "out_dir", required=True, type=click.Path(file_okay=False, path_type=Path),
               help="Folder for results.json, grades.csv, results.csv and feedback/.")
 @click.option("--roster", type=click.Path(exists=True, dir_okay=False, path_type=Path),
@@ -29,13 +30,20 @@ from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=None,
               help="Processes to grade with (default: one per core). The outputs are the same "
                    "for any number.")
+@click.option("--submissions-format", type=click.Choice(SUBMISSION_FORMATS), default=None,
+              help="What SUBMISSIONS_DIR is (default: detected): a folder, an LMS's download "
+                   "zip or a quiz's responses CSV.")
 @click.option("--accept-failing-expect", is_flag=True,
               help="Grade even if a problem fails its own expect: tests (refused otherwise); "
                    "every output records the tests it fails.")
 @reports_errors
 def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path | None,
-          templates_dir: Path | None, jobs: int | None, accept_failing_expect: bool) -> None:
+          templates_dir: Path | None, jobs: int | None, submissions_format: str | None,
+          accept_failing_expect: bool) -> None:
     """Grade every submission in SUBMISSIONS_DIR against ASSIGNMENT.
+
+    SUBMISSIONS_DIR is a folder, or what an LMS hands out: a Canvas, Moodle or Gradescope
+    download zip, or a Canvas or Moodle quiz's responses CSV.
 
     A bad assignment stops with one message (exit code 2); a bad submission never stops the
     run: it is reported in that student's feedback and in the summary.
@@ -65,7 +73,8 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
 
     try:
         report = grade_submissions(spec, submissions_dir, class_roster, progress=progress,
-                                   jobs=jobs, accept_failing_expect=accept_failing_expect)
+                                   jobs=jobs, submissions_format=submissions_format,
+                                   accept_failing_expect=accept_failing_expect)
     finally:
         if bar is not None:
             bar.__exit__(None, None, None)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -13,22 +12,11 @@ from ..errors import MechgradeError, brief_exception
 from ..files import write_json
 from ..export.gradescope import gradescope_failure, gradescope_results
 from ..export.options import GRADESCOPE_VISIBILITIES, ExportOptions
-from ..export.upload import read_upload
+from ..grade.upload import read_upload, submitter
 from ..grade.assignment import load_assignment
 from ..grade.run import failing_expects, failing_expects_error, grade_plan, plan_assignment
 from ..grade.submissions import SubmissionSet
 from .common import INTERNAL_ERROR_EXIT, UserFailure, main, say, warn_about_the_cache
-
-
-def student_of(metadata_path: Path) -> tuple[str, str]:
-    """(id, name) of the submitter from Gradescope's ``submission_metadata.json``, if readable."""
-    try:
-        data = json.loads(metadata_path.read_text(encoding="utf-8"))
-        user = (data.get("users") or [{}])[0]
-    except (OSError, ValueError, AttributeError, TypeError):
-        return "submission", ""
-    ident = user.get("sid") or user.get("email") or user.get("id") or "submission"
-    return str(ident), str(user.get("name") or "")
 
 
 @main.command("gradescope")
@@ -54,11 +42,12 @@ def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
                metadata_path: Path, visibility: str, accept_failing_expect: bool) -> None:
     """Grade one Gradescope submission against ASSIGNMENT and write results.json.
 
-    A broken assignment still writes a results.json that says why (score 0), and exits 2.
+    A broken assignment or unreadable metadata still writes a results.json that says why
+    (score 0), and exits 2.
     """
-    student, name = student_of(metadata_path)
     options = ExportOptions(gradescope_visibility=visibility)
     try:
+        student, name = submitter(metadata_path)
         spec = load_assignment(assignment)
         warn_about_the_cache()
         plan = plan_assignment(spec)

@@ -85,3 +85,7 @@ def _print_text(problem, solution, failed, steps: bool) -> None:
             say(f"  {s}")
     for warning in problem.warnings + solution.warnings:
         say(str(warning))
+    from ..check import tolerance_faults  # check refuses these; solve says so
+
+    for fault in tolerance_faults(problem, solution):
+        say(fault)

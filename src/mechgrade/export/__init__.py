@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Callable
 
 from ..errors import ExportError, Location
-from ..files import read_text
+from ..jsonio import read_json
 from .options import ExportOptions
 
 if TYPE_CHECKING:
@@ -83,14 +83,9 @@ def read_results(path: str | os.PathLike) -> GradeReport:
     mechgrade.errors.ExportError: ...results.json: students[0]: expected a field 'id', found none
     """
     name = str(path)
-    text = read_text(Path(path), what="a results.json file", error=ExportError,
-                     max_bytes=200_000_000)
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as err:
-        raise ExportError(f"expected JSON (a results.json written by mechgrade), found "
-                          f"invalid JSON: {err.msg}", where=Location(name, err.lineno, err.colno)) \
-            from None
+    data = read_json(path, what="a results.json file", error=ExportError,
+                     max_bytes=200_000_000,
+                     content="JSON (a results.json written by mechgrade)")
     from ..grade.results import GradeReport
     from ..schema_errors import schema_problems
 

@@ -12,6 +12,14 @@ gradebook export given as roster, now or when grading); without one, a row with 
 written with ``ID`` blank; every other row (a student not in the roster, a folder name where
 Canvas expects its user id: ``"000421"`` is read as user 421) goes to
 ``<name>.unmatched.csv`` beside it (:mod:`mechgrade.export.unmatched`).
+
+Canvas replaces every cell that differs from its grade, and applies the ``Points Possible``
+row to existing assignments: with a Canvas gradebook export as roster, each cell is decided
+against the student's cell in the roster (:func:`mechgrade.export.changes.decide`: ``EX``,
+``N/A`` and grades already there are kept unless ``--replace-existing``), the roster's
+``Points Possible`` is written back unchanged, and the changes are listed in
+``<name>.changes.csv``. The layout ``LastName,FirstName,ID,...`` of a roster is written back
+as it is.
 """
 
 from __future__ import annotations
@@ -22,8 +30,9 @@ import re
 from ..errors import ExportError, Location
 from ..grade.results import GradeReport, StudentResult
 from ..roster import Roster, header_format
-from .cells import write_csv
-from .common import conflict_reason, max_score, no_submission_warnings, score_cell
+from .cells import format_points, safe_cell, write_csv
+from .changes import Change, decide, not_compared_warning, report_changes
+from .common import conflict_reason, lms_points, lms_score, no_submission_warnings
 from .matching import Pair, identity_value, match_roster
 from .options import ExportOptions
 from .unmatched import HeldBack, held_back, write_unmatched
@@ -41,8 +50,8 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
                   roster: Roster | None = None,
                   options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write a Canvas gradebook import CSV (see module doc); return the warnings to show."""
-    identity = roster.identity_header if roster is not None and roster.format == "canvas" \
-        else CANVAS_IDENTITY
+    canvas_roster = roster if roster is not None and roster.format == "canvas" else None
+    identity = canvas_roster.identity_header if canvas_roster is not None else CANVAS_IDENTITY
     column = canvas_column(report, roster, options.canvas_assignment)
     ignored = _IGNORED.search(column)
     if ignored:
@@ -50,25 +59,75 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
                           f"Canvas ignores a column whose title holds {ignored[0]!r}; rename the "
                           "assignment in Canvas or name another with --canvas-assignment",
                           where=Location(field="canvas_assignment"))
+    if options.excel_bom and identity[0] == "LastName":
+        raise ExportError("expected no byte order mark with the 'LastName,FirstName' layout: "
+                          "Canvas recognises that header only when its first cell is exactly "
+                          "'LastName', and a byte order mark is part of that cell; export "
+                          "without --excel-bom", where=Location(field="excel_bom"))
+    warnings: list[str] = []
     rows: list[list[object]] = [[*identity, column]]
     if options.points_possible:
-        rows.append(["    Points Possible", *([""] * (len(identity) - 1)), max_score(report)])
+        possible = _points_possible(report, canvas_roster, column, options, warnings)
+        rows.append(["    Points Possible", *([""] * (len(identity) - 1)), possible])
     held: list[HeldBack] = []
+    changes: list[Change] = []
     match = match_roster(report, roster)
     for pair in match.pairs:
         cells = conflict_reason(pair.result) or _identity_cells(identity, pair, roster)
-        score = score_cell(pair.result, options)
+        score = lms_score(pair.result, report, options)
         if isinstance(cells, str):
             held.append(held_back(pair, score, cells))
-        else:
-            rows.append([*cells, score])
-    write_csv(out_path, rows, excel_bom=options.excel_bom)
-    warnings = list(no_submission_warnings(match, options))
+            continue
+        existing = pair.roster.cell(column) if canvas_roster is not None and \
+            pair.roster is not None else None
+        decision = decide(existing, score, options.replace_existing, "Canvas")
+        rows.append([*cells, decision.written])
+        who = pair.roster if pair.roster is not None else pair.result
+        assert who is not None  # a pair holds a result, a roster student or both
+        changes.append(Change(who.id, who.name, existing or "", safe_cell(decision.written),
+                              decision.kind, decision.reason))
+    if not options.dry_run:
+        write_csv(out_path, rows, excel_bom=options.excel_bom)
+    warnings.extend(no_submission_warnings(match, options))
     if not _COLUMN.fullmatch(column):
         warnings.append(f"the Canvas assignment column {column!r} has no Canvas assignment id: "
                         "Canvas fills the assignment of exactly that title or creates a new "
                         "one; name it with --canvas-assignment (its id, as in 'Title (12345)')")
-    return (*warnings, *write_unmatched(out_path, held, "Canvas", _REMEDY))
+    if canvas_roster is not None and column not in canvas_roster.header:
+        warnings.append(not_compared_warning(out_path, column, "Canvas"))
+    if canvas_roster is None and len(rows) > 1 + options.points_possible:
+        warnings.append(f"{out_path} was not compared with the grades already in Canvas (no "
+                        "gradebook exported from Canvas as --roster): Canvas replaces every "
+                        "grade that differs, excused (EX) and hand-entered ones included")
+    return (*warnings, *write_unmatched(out_path, held, "Canvas", _REMEDY, options.dry_run),
+            *report_changes(out_path, changes, "Canvas", options.dry_run))
+
+
+def _points_possible(report: GradeReport, canvas_roster: Roster | None, column: str,
+                     options: ExportOptions, warnings: list[str]) -> float | str:
+    """The ``Points Possible`` cell: the roster's own (Canvas applies this row to existing
+    assignments too, so a different number would change the assignment's points), else the
+    assignment's points (:func:`lms_points`). A column the roster marks read only is refused:
+    Canvas drops it from the import (``readonly_assignment?``)."""
+    points = lms_points(report, options)
+    if canvas_roster is None:
+        return points
+    possible = dict(canvas_roster.points_possible).get(column, "")
+    if re.search(r"read\s+only", possible):
+        raise ExportError(f"expected an assignment column Canvas imports, found {column!r} "
+                          f"marked {possible!r} in the roster's Points Possible row: Canvas drops "
+                          "that column from the import; choose another with --canvas-assignment",
+                          where=Location(field="canvas_assignment"))
+    try:
+        canvas_points = float(possible.replace(",", "."))
+    except ValueError:
+        return points
+    if round(canvas_points, 2) != round(points, 2):
+        warnings.append(f"Canvas's {column!r} is worth {possible} points and mechgrade's grades "
+                        f"are out of {format_points(points)}: they are written as they are and "
+                        f"Canvas's points are kept; export with --scale-to {possible} to scale "
+                        "them, or change the assignment's points in Canvas")
+    return possible
 
 
 def assignment_columns(roster: Roster) -> tuple[str, ...]:

@@ -27,6 +27,28 @@ def score_cell(result: StudentResult | None, options: ExportOptions) -> float | 
     return result.score
 
 
+def lms_points(report: GradeReport, options: ExportOptions) -> float:
+    """The assignment's points in the LMS: ``options.scale_to``, else the assignment's own."""
+    return options.scale_to if options.scale_to is not None else max_score(report)
+
+
+def lms_score(result: StudentResult | None, report: GradeReport,
+              options: ExportOptions) -> float | str:
+    """:func:`score_cell` scaled to :func:`lms_points` (``--scale-to``).
+
+    >>> from mechgrade.grade.results import AssignmentInfo
+    >>> report = GradeReport(AssignmentInfo("hw", "HW"), (ObjectiveInfo("p", "v", "", 19.0),))
+    >>> s = StudentResult("a", "A", "graded", 9.5, 19.0)
+    >>> lms_score(s, report, ExportOptions(scale_to=100))
+    50.0
+    """
+    cell = score_cell(result, options)
+    total = max_score(report)
+    if options.scale_to is None or cell == "" or not total:
+        return cell
+    return float(cell) * options.scale_to / total
+
+
 def conflict_reason(result: StudentResult | None) -> str | None:
     """Why a row is kept out of an import file: its student is in a roster conflict (the
     result's first message says which); ``None`` for any other row."""

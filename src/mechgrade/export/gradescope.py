@@ -7,10 +7,11 @@ has a top-level ``score`` (it overrides the sum of the tests), ``output``, ``vis
 ``"failed"``), ``name``, ``number``, ``output`` and ``visibility``. mechgrade writes one test per
 objective and sets every ``*_format`` to ``"text"`` so student text is never rendered as HTML.
 
-Students can resubmit without limit, so whatever a test shows can be harvested with empty
-uploads: an expected answer (an assignment with ``reveal_answers``) is shown only in the test of
-an objective the student answered, never to an upload that answered nothing. Pair it with the
-visibility ``after_due_date`` to show it only once the due date has passed.
+Students can resubmit without limit, so whatever a test shows before the due date can be
+harvested (an upload answering ``0`` everywhere would collect every expected answer): an
+expected answer (an assignment with ``reveal_answers``) is in a test of its own, shown only
+after the due date. A first test, always visible, says what was read, so a student whose tests
+are shown after the due date still knows the upload was read.
 
 With one student in the report the file is written at ``out_path``; with several, ``out_path``
 is a folder that receives ``<student id>.json`` per student (for inspection; Gradescope itself
@@ -22,8 +23,12 @@ always grades one submission at a time).
 >>> ans = AnswerResult("p1", "v_B", "3*omega", "correct", 2.0, 2.0)
 >>> s = StudentResult("s1", "Ada", "graded", 2.0, 2.0, (ans,))
 >>> doc = gradescope_results(GradeReport(AssignmentInfo("hw1", "HW 1"), (obj,), (s,)), s)
->>> doc["score"], doc["tests"][0]["status"], doc["tests"][0]["name"]
+>>> doc["score"], doc["tests"][1]["status"], doc["tests"][1]["name"]
 (2.0, 'passed', 'p1/v_B: Speed of B')
+>>> print(doc["tests"][0]["output"])
+Answers read (1 of 1):
+  p1/v_B = 3*omega
+Score: 2 / 2 points
 """
 
 from __future__ import annotations
@@ -79,30 +84,51 @@ def gradescope_failure(message: str, options: ExportOptions = ExportOptions()) -
             "visibility": options.gradescope_visibility, "tests": []}
 
 
+RECEIPT = "Submission received"
+EXPECTED_VISIBILITY = {"visible": "after_due_date", "after_due_date": "after_due_date",
+                       "after_published": "after_published", "hidden": "hidden"}
+"""The visibility of the tests holding expected answers, for each chosen visibility: never
+before the due date (students resubmit without limit and would harvest them)."""
+
+
 def gradescope_results(report: GradeReport, student: StudentResult,
                        options: ExportOptions = ExportOptions()) -> dict:
-    """The Gradescope ``results.json`` document of one student."""
-    tests = []
-    for number, (objective, answer) in enumerate(answers_by_objective(report, student), 1):
+    """The Gradescope ``results.json`` document of one student.
+
+    Its tests: first a receipt, always visible, saying what was read (and the score, when the
+    other tests are visible too: Gradescope hides the total while any test is hidden); then
+    one test per objective (``options.gradescope_visibility``: the answer as read, verdict,
+    points, diagnosis); then, when the assignment reveals answers, one test per objective with
+    the expected answer, shown only after the due date (:data:`EXPECTED_VISIBILITY`).
+    """
+    visibility = options.gradescope_visibility
+    total = max_score(report) or student.max_score
+    tests = [_receipt(report, student, visibility, total)]
+    expected = []
+    for objective, answer in answers_by_objective(report, student):
         lines = [f"Your answer: {answer.answer}" if answer.answer is not None
                  else "Your answer: (none found)"]
         if answer.read_back and answer.read_back != answer.answer:
             lines.append(f"Read as: {answer.read_back}")
         lines.append(f"Verdict: {answer.verdict.replace('_', ' ')}")
         lines.extend(text for text in (answer.diagnosis, answer.feedback) if text)
-        if answer.expected is not None and (answer.answer or "").strip():
-            lines.append(f"Expected: {answer.expected}")
         name = objective_label(objective)
+        title = f"{name}: {objective.prompt}" if objective.prompt else name
         tests.append({
-            "name": f"{name}: {objective.prompt}" if objective.prompt else name,
-            "number": str(number),
+            "name": title,
+            "number": str(len(tests)),
             "score": float(answer.points),
             "max_score": float(answer.max_points),
             "status": "passed" if answer.verdict == "correct" else "failed",
             "output": "\n".join(lines),
-            "visibility": options.gradescope_visibility,
+            "visibility": visibility,
         })
-    total = max_score(report) or student.max_score
+        if answer.expected is not None:
+            expected.append({"name": f"{name}: expected answer",
+                             "output": f"Expected: {answer.expected}",
+                             "visibility": EXPECTED_VISIBILITY[visibility]})
+    for test in expected:
+        tests.append({**test, "number": str(len(tests))})
     summary = [f"{report.assignment.title}: {format_points(student.score)} / "
                f"{format_points(total)} points"]
     if not has_submission(student):
@@ -116,6 +142,32 @@ def gradescope_results(report: GradeReport, student: StudentResult,
         "output_format": "text",
         "test_output_format": "text",
         "test_name_format": "text",
-        "visibility": options.gradescope_visibility,
+        "visibility": visibility,
         "tests": tests,
     }
+
+
+_LATER = {"after_due_date": "after the due date", "after_published":
+          "when the grades are published", "hidden": "by your instructor only"}
+
+
+def _receipt(report: GradeReport, student: StudentResult, visibility: str,
+             total: float) -> dict:
+    """The always-visible test that says what the autograder read (no points of its own)."""
+    lines = list(student.messages)
+    answered = [(o, a) for o, a in answers_by_objective(report, student)
+                if (a.answer or "").strip()]
+    if not has_submission(student):
+        lines.append("No submission was found.")
+    elif student.status == "unreadable":
+        lines.append("The submission could not be read.")
+    else:
+        lines.append(f"Answers read ({len(answered)} of {len(report.objectives)}):")
+        lines.extend(f"  {objective_label(o)} = {a.answer}" for o, a in answered)
+    if visibility == "visible":
+        lines.append(f"Score: {format_points(student.score)} / {format_points(total)} points")
+    else:
+        lines.append(f"The score and the verdicts are shown {_LATER[visibility]}.")
+    read = has_submission(student) and student.status == "graded"
+    return {"name": RECEIPT, "number": "0", "status": "passed" if read else "failed",
+            "output": "\n".join(lines), "visibility": "visible"}

@@ -10,6 +10,7 @@ mechgrade.errors.ExportError: missing: expected 'zero' or 'blank', found 'skip'
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from ..errors import ExportError, Location
@@ -17,6 +18,7 @@ from ..errors import ExportError, Location
 MISSING_POLICIES = ("zero", "blank")
 GRADESCOPE_VISIBILITIES = ("visible", "hidden", "after_due_date", "after_published")
 MOODLE_KEYS = ("email", "idnumber")
+MAX_SCALE = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -31,6 +33,16 @@ class ExportOptions:
     ``canvas_assignment``: the Canvas assignment to fill, as its column title
     (``"Homework 1 (40211)"``), its title, or its numeric Canvas id (``"40211"``); ``None``
     picks it from the roster (:func:`mechgrade.export.canvas.canvas_column`).
+    ``replace_existing``: replace grades already in the LMS (the roster's cells) that differ
+    from mechgrade's; by default they are kept (:mod:`mechgrade.export.changes`).
+    ``dry_run``: write nothing, list what the import would change. ``scale_to``: the LMS's
+    points for the assignment; Canvas and Moodle grades are scaled from the assignment's points
+    to it.
+
+    >>> ExportOptions(scale_to=0)
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.ExportError: scale_to: expected points above 0 and at most 1000000, found 0
     """
 
     missing: str = "zero"
@@ -39,6 +51,9 @@ class ExportOptions:
     gradescope_visibility: str = "visible"
     moodle_key: str = "email"
     canvas_assignment: str | None = None
+    replace_existing: bool = False
+    dry_run: bool = False
+    scale_to: float | None = None
 
     def __post_init__(self) -> None:
         for field, allowed in (("missing", MISSING_POLICIES),
@@ -50,3 +65,7 @@ class ExportOptions:
                     "one of " + ", ".join(repr(a) for a in allowed)
                 raise ExportError(f"expected {expected}, found {value!r}",
                                   where=Location(field=field))
+        if self.scale_to is not None and not (math.isfinite(self.scale_to)
+                                              and 0 < self.scale_to <= MAX_SCALE):
+            raise ExportError(f"expected points above 0 and at most {MAX_SCALE}, found "
+                              f"{self.scale_to:g}", where=Location(field="scale_to"))

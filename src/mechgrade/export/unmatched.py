@@ -64,19 +64,29 @@ def unmatched_path(out_path: str | os.PathLike) -> Path:
     return path.with_name(f"{path.stem}.unmatched.csv")
 
 
+def remove_stale(path: Path, what: str) -> None:
+    """Remove ``path``, a file an earlier export wrote beside its import file (``what`` it
+    holds), which would now describe another export."""
+    try:
+        path.unlink(missing_ok=True)
+    except OSError as exc:
+        raise ExportError(f"expected to remove {what} of an earlier export, found it cannot "
+                          f"be removed ({exc.strerror or exc})", where=Location(str(path))) \
+            from None
+
+
 def write_unmatched(out_path: str | os.PathLike, rows: list[HeldBack], lms: str,
-                    remedy: str) -> tuple[str, ...]:
+                    remedy: str, dry_run: bool = False) -> tuple[str, ...]:
     """Write ``rows`` to :func:`unmatched_path` and return the warning about them; with no
     rows, remove that file if an earlier export left one (it would list rows this export
-    imports) and return no warning."""
+    imports) and return no warning. With ``dry_run`` nothing is written or removed: one
+    warning per row says why it would be kept out."""
     path = unmatched_path(out_path)
+    if dry_run:
+        return tuple(f"{r.id} ({r.name}) would be kept out of {out_path}: {r.reason}"
+                     for r in rows)
     if not rows:
-        try:
-            path.unlink(missing_ok=True)
-        except OSError as exc:
-            raise ExportError(f"expected to remove the unmatched rows of an earlier export, "
-                              f"found it cannot be removed ({exc.strerror or exc})",
-                              where=Location(str(path))) from None
+        remove_stale(path, "the unmatched rows")
         return ()
     write_csv(path, [UNMATCHED_HEADER,
                      *([r.id, r.name, r.status, r.score, r.reason] for r in rows)])

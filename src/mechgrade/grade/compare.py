@@ -32,7 +32,7 @@ from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
 from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from ..spec.model import ObjectiveKind
-from ..tolerance import agree_at_points, within
+from ..tolerance import REFERENCE_ACCURACY, agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
@@ -205,6 +205,13 @@ def within_sig_figs(student: float, reference: float, figures: int, basis=None) 
 
 
 def _tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
+    """The tolerance an answer is judged with, never tighter than the reference's own
+    accuracy: no answer is wrong by the reference's last digits."""
+    rel, abs_ = _stated_tolerance(result, policy)
+    return max(rel, REFERENCE_ACCURACY), abs_
+
+
+def _stated_tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
     rel = result.rel if policy.rel is None else policy.rel
     abs_ = result.abs if policy.abs is None else policy.abs
     if policy.separate_mistakes and result.generated_mistakes:
@@ -217,7 +224,7 @@ def _tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
 def _describe_tolerance(result: ObjectiveResult, policy: Policy) -> str:
     if policy.sig_figs:
         return f"accurate to {policy.sig_figs} significant figures"
-    rel, abs_ = _tolerance(result, policy)
+    rel, abs_ = _stated_tolerance(result, policy)
     parts = []
     if rel:
         parts.append(f"{rel * 100:g}%")

@@ -3,7 +3,7 @@
 ``results.json`` is a public contract (documented in ``docs/grading.md``)::
 
     {"assignment": {"id": ..., "title": ...},
-     "objectives": [{"problem", "objective", "prompt", "max_points"}],
+     "objectives": [{"problem", "objective", "prompt", "max_points", "problem_title"}],
      "students": [{"id", "name", "status", "score", "max_score", "variant" (if drawn),
                    "answers": [{"problem", "objective", "answer", "verdict", "points",
                                 "max_points", "diagnosis", "feedback"}]}],
@@ -45,12 +45,14 @@ class AssignmentInfo:
 
 @dataclass(frozen=True)
 class ObjectiveInfo:
-    """One gradable objective of the assignment."""
+    """One gradable objective of the assignment; ``problem_title`` is the problem's title as
+    students see it (empty in a results.json written before it was kept)."""
 
     problem: str
     objective: str
     prompt: str
     max_points: float
+    problem_title: str = ""
 
 
 @dataclass(frozen=True)

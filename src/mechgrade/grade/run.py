@@ -34,9 +34,10 @@ from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
+from .lms_submissions import read_any_submissions
 from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
                       ObjectiveInfo, StudentResult)
-from .submissions import Submission, SubmissionSet, read_submissions
+from .submissions import Submission, SubmissionSet
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.result import ObjectiveResult, Solution
@@ -261,27 +262,32 @@ def failing_expects_error(failing: tuple[FailingExpect, ...]) -> SpecError:
 
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
                       progress: Progress | None = None, jobs: int = 1,
+                      submissions_format: str | None = None,
                       accept_failing_expect: bool = False) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 
-    ``progress(done, total)`` is called as students are finished. With ``jobs`` > 1 the
-    submissions are read (by ``jobs`` processes) while the problems are solved (by ``jobs``
-    processes), and the answers are judged by ``jobs`` workers; the report is the same for any
-    ``jobs``. A problem failing its own ``expect:`` tests stops the run (see
-    :func:`grade_plan`).
+    ``submissions_dir`` may also be an LMS's download zip or quiz responses CSV
+    (:func:`mechgrade.grade.lms_submissions.read_any_submissions`; ``submissions_format``
+    names its kind, detected when ``None``). ``progress(done, total)`` is called as students
+    are finished. With ``jobs`` > 1 the submissions are read (by ``jobs`` processes) while the
+    problems are solved (by ``jobs`` processes), and the answers are judged by ``jobs``
+    workers; the report is the same for any ``jobs``. A problem failing its own ``expect:``
+    tests stops the run (see :func:`grade_plan`).
     """
     problems = _load_problems(assignment)
     chosen = _choose_objectives(assignment, problems)
     keys = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen)
+    drawn = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen
+                      if problems[index].variants is not None)
+    read = partial(read_any_submissions, submissions_dir, keys=keys, roster=roster,
+                   fmt=submissions_format, drawn_keys=drawn)
     if jobs <= 1:
         plan = plan_assignment(assignment, problems=problems)
-        submissions = read_submissions(submissions_dir, keys=keys)
-        return grade_plan(plan, submissions, roster, progress=progress,
+        return grade_plan(plan, read(), roster, progress=progress,
                           accept_failing_expect=accept_failing_expect)
     # Reading needs only the keys: it runs in a process forked now, before this one imports
     # sympy and the solver and solves, so the two overlap.
-    reading = Forked(partial(outcome, partial(read_submissions, submissions_dir, keys=keys,
-                                              jobs=jobs)))
+    reading = Forked(partial(outcome, partial(read, jobs=jobs)))
     try:
         plan = plan_assignment(assignment, problems=problems, jobs=jobs)
         submissions = raise_first([reading.result()])[0]
@@ -340,10 +346,21 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
         judge.close()
     assignment = plan.assignment
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
-                                     o.max_points) for o in plan.objectives)
+                                     o.max_points, o.problem.title) for o in plan.objectives)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
-                       tuple(students), submissions.skipped, submissions.notes + conflicts,
-                       tuple(faults), failing)
+                       tuple(students), submissions.skipped,
+                       (*submissions.notes, *conflicts, *author_warnings(plan)), tuple(faults),
+                       failing)
+
+
+def author_warnings(plan: Plan) -> tuple[str, ...]:
+    """The warnings of the assignment's problems and of solving them (a magnitude implausible
+    for its unit system, a material point meant): printed by ``grade`` as by ``check``."""
+    from ..check import tolerance_faults  # grading never applies them: it says so
+
+    found = [str(w) for p, s in zip(plan.problems, plan.solutions)
+             for w in (*p.warnings, *s.warnings, *tolerance_faults(p, s))]
+    return tuple(dict.fromkeys(found))
 
 
 # ---------------------------------------------------------------------------- variants

@@ -18,7 +18,7 @@ the unknown second rates and reactions.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import sympy as sp
@@ -35,6 +35,7 @@ from .bodies import central_inertia, parallel_axis
 from .build import Model, build
 from .interpret import Interpreter
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
+from .loads import AppliedLoad, PhysicalBound, check_loads, diagram, physical_bounds
 from .symbols import identically_zero
 
 
@@ -88,6 +89,8 @@ class Kinetics:
     requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
     impact: bool = False
     design: sp.Expr | None = None
+    physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
+    built: tuple = field(default=(), compare=False, repr=False)  # (model, loads) it came from
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -158,7 +161,10 @@ class _Loads:
             self.forces[s.name] = [(s.on[0], s.between[0], pull), (s.on[1], s.between[1], -pull)]
         for r in d.reactions:
             vector = self.reaction_vector(r.name, r.directions)
-            self.forces[r.name] = [(a.on, a.at, a.sign * vector) for a in r.acts]
+            self.forces[r.name] = [
+                (a.on, a.at, a.sign * (vector if a.direction is None else
+                                       self.reaction_vector(r.name, (a.direction,))))
+                for a in r.acts]
         bodies = {b.name for b in d.bodies}
         for contact in d.friction:
             if isinstance(contact, StaticFriction):
@@ -344,7 +350,7 @@ class DynamicsInterpreter(Interpreter):
             return dx[0].xreplace(rest)
 
         equilibrium = x[0].xreplace(rest)
-        stiffness, damping = _tidy(-rate(q)), _tidy(-rate(qd))
+        stiffness, damping = _linear_term(-rate(q)), _linear_term(-rate(qd))
         requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
                        "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
         self._linearised[coordinate.id] = (stiffness, damping, requirement)
@@ -459,6 +465,8 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
             plain = sp.expand(model.plain(expr))
             if not identically_zero(plain):
                 balances.append(Equation(label, plain, b.where))
+    check_loads(problem, model, loads, k.qd if impact else k.qdd, balances,
+                k.velocity if impact else k.acceleration, impact)
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
@@ -480,7 +488,28 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                                           if not isinstance(x, StaticFriction)),
                     workless=_workless(problem, model, language, reactions, labels),
                     start=start, until=until, requirements=tuple(requirements), impact=impact,
-                    design=_difference(d.design.so_that, model, language) if d.design else None)
+                    design=_difference(d.design.so_that, model, language) if d.design else None,
+                    physical=physical_bounds(problem, model, reactions, impact),
+                    built=(model, loads))
+
+
+def free_body_loads(problem: Problem) -> tuple[AppliedLoad, ...]:
+    """Every body's free-body diagram in the model's symbols (:func:`.loads.diagram`), built
+    the first time it is asked for (solving does not need it).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> [(a.name, str(a.kind), a.point, a.unknowns) for a in free_body_loads(p)]
+    [('gravity', 'weight', 'G', ()), ('R_O', 'pin', 'O', (R_O_1, R_O_2))]
+    """
+    return _free_body_loads(problem, locations(problem))
+
+
+@lru_cache(maxsize=64)
+def _free_body_loads(problem: Problem, _locations: tuple) -> tuple[AppliedLoad, ...]:
+    model, loads = derive_kinetics(problem).built
+    return diagram(problem, model, loads)
 
 
 def _reaction_symbols(d: Dynamics) -> tuple[dict[str, tuple[sp.Symbol, ...]], list[str]]:
@@ -716,6 +745,16 @@ def _without_signs(expr):
     k (1 - L/|u| + L u sign(u)/u^2), which holds wherever its length u is not zero."""
     expr = expr.replace(sp.DiracDelta, lambda *args: sp.Integer(0))
     return sp.cancel(expr.replace(sp.sign, lambda u: u / sp.Abs(u)))
+
+
+def _linear_term(expr):
+    """A coefficient of the linearised motion, tidied; a spring along the coordinate has |q|
+    in its length, whose simplified derivative is a Piecewise with zoo at q = 0 (lambdify
+    cannot print it): then with the signs cancelled first (:func:`_without_signs`)."""
+    tidy = _tidy(expr)
+    if tidy.has(sp.zoo, sp.Piecewise):
+        return _tidy(_without_signs(expr))
+    return tidy
 
 
 def _tidy(expr):

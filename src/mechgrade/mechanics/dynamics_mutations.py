@@ -84,7 +84,8 @@ def _expr(text: str) -> Expr:
 
 def _mistaken(problem: Problem, dynamics: Dynamics, without: tuple[str, ...] = ()) -> Problem:
     """A mistaken copy: the author's tests and mistakes dropped, static friction an unknown
-    force without its bound (a student with a mistaken model does not check it), and the
+    force without its bound and the loads unchecked (a student with a mistaken model checks
+    neither: mechanics.loads), and the
     objectives that call a function in ``without`` left out (the mistake is not theirs)."""
     reactions = dynamics.reactions + tuple(
         Reaction(f.name, f.directions, (Act(f.on, f.at),), f.where)
@@ -93,7 +94,8 @@ def _mistaken(problem: Problem, dynamics: Dynamics, without: tuple[str, ...] = (
     objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives
                        if not any(next(_calls(o.find.node, f), None) for f in without))
     return replace(problem, objectives=objectives, warnings=(),
-                   dynamics=replace(dynamics, reactions=reactions, friction=friction))
+                   dynamics=replace(dynamics, reactions=reactions, friction=friction,
+                                    mistaken=True))
 
 
 def _mass(body: Body) -> str:
@@ -460,7 +462,7 @@ def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutati
                     continue
                 weight = _weight(d.body(other), d.gravity)
                 force = Force(r.name, act.on, act.at, _expr(
-                    f"{act.sign}*({weight.text})*({r.directions[0].text})"), r.where)
+                    f"{act.sign}*({weight.text})*({r.direction_at(act).text})"), r.where)
                 changed = replace(d, bodies=(d.body(act.on),), forces=d.forces + (force,),
                                   reactions=tuple(x for x in d.reactions if x is not r))
                 yield DynamicsMutation(

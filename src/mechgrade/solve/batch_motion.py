@@ -301,6 +301,11 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
     return root, converged
 
 
+ROUNDING_FLOOR = 1e-9
+"""A Newton step this small relative to the iterate, that no longer shrinks, is rounding
+noise of the residual: the iterate is the root as closely as the residual can tell."""
+
+
 def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndarray,
            xtol: float, rtol: float, maxiter: int, step: float = 1e-7
            ) -> tuple[np.ndarray, np.ndarray]:
@@ -309,7 +314,9 @@ def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
     the points a step beside them (row 1) together, one call per iteration, and gives their
     residuals. A column converges, as ``scipy.optimize.root_scalar``'s secant does, once its
     next iterate is within ``xtol + rtol * |x|`` of its last (whose residual was the last row
-    0 evaluated for it); an undefined residual or a zero slope stops it, unconverged.
+    0 evaluated for it), or once a step within :data:`ROUNDING_FLOOR` of ``|x|`` is no
+    shorter than the one before (the residual is rounding noise there: the steps wander,
+    they do not shrink); an undefined residual or a zero slope stops it, unconverged.
 
     An iteration costs one call whatever the number of columns, so the count of calls is
     what matters: where a call is an integration, Newton's iterations (two points each,
@@ -326,6 +333,7 @@ def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
     root = np.full(count, np.nan)
     converged = np.zeros(count, dtype=bool)
     todo = np.isfinite(x)
+    last = np.full(count, np.inf)  # each column's latest step
     for _ in range(maxiter):
         i = np.flatnonzero(todo)
         if not len(i):
@@ -334,12 +342,15 @@ def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
         r = residual(i, np.stack([x[i], x[i] + h]))
         with np.errstate(all="ignore"):
             p = x[i] - r[0] * h / (r[1] - r[0])
+            moved = np.abs(p - x[i])
+            floor = (moved >= last[i]) & (moved <= ROUNDING_FLOOR * np.abs(x[i]))
         stuck = ~np.isfinite(p)  # an undefined residual, or no slope: stops, unconverged
         todo[i[stuck]] = False
-        close = ~stuck & np.isclose(p, x[i], rtol=rtol, atol=xtol)
+        close = ~stuck & (np.isclose(p, x[i], rtol=rtol, atol=xtol) | floor)
         root[i[close]] = p[close]
         converged[i[close]] = True
         todo[i[close]] = False
         go = ~stuck & ~close
+        last[i[go]] = moved[go]
         x[i[go]] = p[go]
     return root, converged

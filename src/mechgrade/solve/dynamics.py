@@ -33,6 +33,7 @@ import sympy as sp
 from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
 from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
+from ..mechanics.loads import PhysicalBound
 from ..expressions.syntax import Name, Prime
 from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
@@ -77,6 +78,7 @@ class KineticsPlan:
     slips: tuple[tuple[Slip, Callable, Callable], ...]
     requirements: tuple[tuple[str, str, Callable], ...] = ()
     design: Callable | None = None
+    physical: tuple[tuple[PhysicalBound, Callable], ...] = ()
 
     def name(self, column: int) -> str:
         """How an unknown is named in messages."""
@@ -124,7 +126,8 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
                     for s in kin.slips),
         requirements=tuple((oid, reason, _lambdify(symbols, expr))
                            for oid, reason, expr in kin.requirements),
-        design=_lambdify(symbols, kin.design) if kin.design is not None else None)
+        design=_lambdify(symbols, kin.design) if kin.design is not None else None,
+        physical=tuple((b, _lambdify(symbols, b.expr)) for b in kin.physical))
 
 
 def _call(f: Callable, x: np.ndarray) -> np.ndarray:
@@ -148,6 +151,7 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
             raise SolveError(f"kinetic friction '{slip.name}' needs the contact at {slip.point} "
                              "to slip, but its slip velocity is zero at this instant; use "
                              "'kind: static'", where=slip.where)
+    check_physical(kp, x, given=True)
     A = _call(kp.jacobian, x).reshape(len(kp.labels), len(kp.columns))[:, cols]
     b = _call(kp.residual, x)
     if not (np.isfinite(A).all() and np.isfinite(b).all()):
@@ -179,8 +183,20 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
             f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
             f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
             "loads, or a given second rate contradicts them", where=kp.wheres[i])
+    check_physical(kp, x, given=False)
     _check_friction(kp, x)
     return x
+
+
+def check_physical(kp: KineticsPlan, x: np.ndarray, *, given: bool) -> None:
+    """The physical bounds at the extended state ``x`` (:mod:`mechgrade.mechanics.loads`):
+    those of the givens (a mass, mu, e) or those of the solution (a contact pushes, a string
+    pulls)."""
+    for bound, f in kp.physical:
+        if bound.given == given:
+            value = float(_call(f, x)[0])
+            if not bound.holds(value):
+                raise SolveError(bound.message(value), where=bound.where)
 
 
 def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:

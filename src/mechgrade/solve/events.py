@@ -133,7 +133,8 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     """
     k = kin.k
     start = {**dict(kin.start), k.time: sp.Integer(0)}
-    equations = [_frozen(e.expr, start, where) for e in (*kin.balances, *kin.constraints)]
+    equations = [_frozen(e.expr, start, where, k.coordinates)
+                 for e in (*kin.balances, *kin.constraints)]
     unknowns = [*k.qdd, *kin.reactions]
     A, b = sp.linear_eq_to_matrix(equations, unknowns)
     if A.rank() < len(unknowns):
@@ -165,17 +166,42 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
         else sp.simplify(result)
 
 
-def _frozen(expr, start: dict, where):
+def _frozen(expr, start: dict, where, coordinates=()):
     """``expr`` with every ``|u|`` and ``sign(u)`` of a slip read with the sign ``u`` has at
     the start (the slip keeps its direction until the event)."""
 
     def sign_at_start(u):
-        s = sp.sign(sp.simplify(u.xreplace(start)))
+        u0 = sp.simplify(u.xreplace(start))
+        s = sp.sign(u0)
         if s not in (1, -1):
-            raise SolveError(f"the sign of {u} at the start is not known: a symbolic answer of "
-                             "an integrated motion needs every slip's direction fixed",
-                             where=where)
+            raise SolveError(unknown_slip_sign(u, u0, coordinates), where=where)
         return s
 
     expr = expr.replace(lambda e: isinstance(e, sp.Abs), lambda e: sign_at_start(e.args[0]) * e.args[0])
     return expr.replace(lambda e: isinstance(e, sp.sign), lambda e: sign_at_start(e.args[0]))
+
+
+def unknown_slip_sign(u, u0, coordinates=("x",)) -> str:
+    """Why a slip's direction at the start is not known, and what to add.
+
+    >>> v0 = sp.Symbol("v0", real=True)
+    >>> print(unknown_slip_sign(sp.Symbol("xd", real=True), v0))  # doctest: +NORMALIZE_WHITESPACE
+    the sign of the slip x' at the start is not known: it is v0 there, and v0 may be negative;
+    a symbolic answer of an integrated motion needs every slip's direction fixed: declare v0
+    positive (leave out positive: false), or ask for a scalar objective (integrated
+    numerically)
+    """
+    rates = {f"{c}d": f"{c}'" for c in coordinates} | {f"{c}dd": f"{c}''" for c in coordinates}
+    spelled = {x: sp.Symbol(rates[str(x)]) for x in (u.free_symbols | u0.free_symbols)
+               if str(x) in rates}
+    signed = sorted((x for x in u0.free_symbols if not x.is_positive), key=str)
+    positive = {x: sp.Dummy(str(x), positive=True) for x in signed}
+    fix = "write the start so that the slip's direction is evident (its speed as one " \
+        "positive parameter)"
+    if signed and sp.sign(sp.simplify(u0.xreplace(positive))) in (1, -1):
+        fix = f"declare {', '.join(map(str, signed))} positive (leave out positive: false)"
+    may = f", and {', '.join(map(str, signed))} may be negative" if signed else ""
+    return (f"the sign of the slip {sp.sstr(u.xreplace(spelled))} at the start is not known: it "
+            f"is {sp.sstr(u0.xreplace(spelled))} there{may}; a symbolic answer of an integrated "
+            f"motion needs every slip's direction fixed: {fix}, or ask for a scalar objective "
+            "(integrated numerically)")

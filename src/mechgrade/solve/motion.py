@@ -177,6 +177,8 @@ class Motion:
                 nn = call(normal, x, 1)[0]
                 m = call(mu, x, 1)[0]
                 ok &= ~(nn < -1e-9) & ~(f > m * nn * (1 + 1e-9) + 1e-12)
+            for bound, f in kp.physical:  # as solve_kinetics's check_physical
+                ok &= np.array([bound.holds(v) for v in call(f, x, 1)[0]], dtype=bool)
         return x, ok
 
 

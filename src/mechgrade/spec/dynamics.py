@@ -5,7 +5,10 @@ inertia given explicitly about the mass centre or by shape); a composite body li
 each a mass at its own centre with its own shape: the mechanics core shifts every part's
 inertia to the body's reference point (parallel axes), never the author. Loads are gravity,
 applied forces and couples, linear springs and dampers, unknown reactions (normal forces, pins,
-tensions, contact forces) and friction (kinetic, or static with its bound checked).
+tensions, contact forces) and friction (kinetic, or static with its bound checked). Every load
+has a :class:`LoadKind` (weight, normal, friction, tension, spring, ...): stated with ``kind:``
+or read from the form of the load where that is unambiguous (:func:`reaction_kind`), so the
+free-body diagram of each body knows what its loads are.
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
@@ -16,17 +19,49 @@ tensions, contact forces) and friction (kinetic, or static with its bound checke
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 
 from ..errors import Location, SpecError, UnitError
-from ..expressions.functions import Kind
-from ..expressions.syntax import Name, Node, Prime, to_text, walk
+from ..expressions.functions import Kind, StrEnum
+from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Prime, Unary,
+                                  to_text, walk)
 from ..units import dimension, dimensionless, parse_quantity, to_si
 from .model import Expr, Problem
 
 GROUND = "ground"
 """The name standing for the inertial frame where a load's other end is fixed."""
+
+
+class LoadKind(StrEnum):
+    """What a load is physically: the name a free-body diagram gives its arrow. Members equal
+    their text and serialise as it.
+
+    >>> LoadKind("normal"), f"{LoadKind.KINETIC_FRICTION}"
+    (<LoadKind.NORMAL: 'normal'>, 'kinetic friction')
+    """
+
+    WEIGHT = "weight"
+    NORMAL = "normal"
+    STATIC_FRICTION = "static friction"
+    KINETIC_FRICTION = "kinetic friction"
+    TENSION = "tension"
+    SPRING = "spring"
+    DAMPER = "damper"
+    PIN = "pin"
+    CONTACT = "contact"
+    APPLIED_FORCE = "applied force"
+    APPLIED_COUPLE = "applied couple"
+    IMPULSE = "impulse"
+    REACTION = "reaction"  # an unknown force whose kind the file does not state
+
+
+_REACTION_KINDS = {"normal": LoadKind.NORMAL, "pin": LoadKind.PIN, "tension": LoadKind.TENSION,
+                   "contact": LoadKind.CONTACT, "applied": LoadKind.APPLIED_FORCE}
+"""``kind:`` of a reaction (an unknown force) as written, and what it means."""
+_FORCE_KINDS = {"applied": LoadKind.APPLIED_FORCE, "weight": LoadKind.WEIGHT,
+                "tension": LoadKind.TENSION}
+"""``kind:`` of a known force as written, and what it means."""
 
 
 # ---------------------------------------------------------------------------- shapes
@@ -129,13 +164,15 @@ class Body:
 
 @dataclass(frozen=True)
 class Force:
-    """A known force ``force`` on body ``on`` at point ``at``."""
+    """A known force ``force`` on body ``on`` at point ``at``: an applied force, a weight
+    written as a force (when no ``gravity:`` acts) or the known pull of a cord."""
 
     name: str
     on: str
     at: str
     force: Expr
     where: Location = field(default_factory=Location, compare=False)
+    kind: LoadKind = LoadKind.APPLIED_FORCE
 
 
 @dataclass(frozen=True)
@@ -186,23 +223,44 @@ class Damper:
 
 @dataclass(frozen=True)
 class Act:
-    """Where an unknown force acts: on body ``on`` at point ``at``, with ``sign`` +1 or -1."""
+    """Where an unknown force acts: on body ``on`` at point ``at``, with ``sign`` +1 or -1;
+    ``direction``, when set, is this end's own (a cord's segment ending here pulls along its
+    line, over ideal pulleys with the same tension as the others)."""
 
     on: str
     at: str
     sign: int = 1
+    direction: Expr | None = None
 
 
 @dataclass(frozen=True)
 class Reaction:
     """An unknown force: one unknown magnitude per direction in ``directions``, acting
     wherever ``acts`` says (a joint between two bodies acts on each with opposite signs; a
-    string over ideal pulleys pulls every end it ``acts`` on with the same tension)."""
+    string over ideal pulleys pulls every end it ``acts`` on with the same tension).
+
+    ``kind`` says what it is (:func:`reaction_kind`); a normal force or a gripping contact
+    is on ``surface``: the ground, a frame whose motion the kinematics prescribes, or the
+    other body of a joint (``None``: the second of ``bodies``, else the ground)."""
 
     name: str
     directions: tuple[Expr, ...]
     acts: tuple[Act, ...]
     where: Location = field(default_factory=Location, compare=False)
+    kind: LoadKind = LoadKind.REACTION
+    surface: str | None = None
+
+    def direction_at(self, act: Act) -> Expr:
+        """The direction of a one-direction reaction at one of its ends."""
+        return act.direction if act.direction is not None else self.directions[0]
+
+    @property
+    def contact_surface(self) -> str:
+        """What the contact is against: ``surface``, else the joint's second body, else the
+        ground."""
+        if self.surface is not None:
+            return self.surface
+        return self.acts[1].on if len(self.acts) == 2 and self.acts[1].sign < 0 else GROUND
 
 
 @dataclass(frozen=True)
@@ -350,6 +408,8 @@ class Dynamics:
     analysis: Analysis | None = None
     design: Design | None = None
     impulses: tuple[KnownImpulse, ...] = ()
+    down: Expr | None = None  # the problem's "down" (loads.down), a direction
+    mistaken: bool = False  # a student's mistaken model: its loads are not checked
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]
@@ -362,6 +422,23 @@ class Dynamics:
 
     def load(self, name: str):
         return {item.name: item for item in self.loads}[name]
+
+    def kind(self, name: str) -> LoadKind:
+        """The kind of the load named ``name``.
+
+        >>> from mechgrade.spec import load_problem
+        >>> from mechgrade.resources import shipped_dir
+        >>> d = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml").dynamics
+        >>> d.kind("N_P"), d.kind("F_P")
+        (<LoadKind.NORMAL: 'normal'>, <LoadKind.KINETIC_FRICTION: 'kinetic friction'>)
+        """
+        item = self.load(name)
+        if isinstance(item, (Force, Reaction)):
+            return item.kind
+        return {Couple: LoadKind.APPLIED_COUPLE, Spring: LoadKind.SPRING,
+                Damper: LoadKind.DAMPER, KineticFriction: LoadKind.KINETIC_FRICTION,
+                StaticFriction: LoadKind.STATIC_FRICTION,
+                KnownImpulse: LoadKind.IMPULSE}[type(item)]
 
 
 # ---------------------------------------------------------------------------- reading
@@ -404,7 +481,8 @@ def read_dynamics(data: dict, expr, where) -> Dynamics | None:
         return (loads.get(key) or {}).items()
 
     forces = tuple(Force(n, s["body"], s["at"], expr(s["force"], "loads", "forces", n, "force"),
-                         where("loads", "forces", n)) for n, s in section("forces"))
+                         where("loads", "forces", n), _FORCE_KINDS[s.get("kind", "applied")])
+                   for n, s in section("forces"))
     couples = tuple(Couple(n, s["body"], expr(s["moment"], "loads", "couples", n, "moment"),
                            where("loads", "couples", n)) for n, s in section("couples"))
     springs = tuple(Spring(n, tuple(s["between"]), tuple(s["bodies"]),
@@ -418,12 +496,58 @@ def read_dynamics(data: dict, expr, where) -> Dynamics | None:
                                   expr(s["impulse"], "loads", "impulses", n, "impulse"),
                                   where("loads", "impulses", n)) for n, s in section("impulses"))
     reactions = tuple(_reaction(n, s, expr, where) for n, s in section("reactions"))
-    friction = tuple(_friction(n, s, expr, where) for n, s in section("friction"))
-    gravity = expr(loads["gravity"], "loads", "gravity") if "gravity" in loads else None
+    friction = tuple(_friction(n, s, expr, where, reactions) for n, s in section("friction"))
+    reactions = tuple(replace(r, kind=reaction_kind(r, friction, loads["reactions"][r.name]),
+                              surface=r.surface if r.surface is not None else
+                              _friction_surface(r, friction)) for r in reactions)
+    down = expr(loads["down"], "loads", "down") if "down" in loads else None
+    gravity = _gravity(expr(loads["gravity"], "loads", "gravity"), down) \
+        if "gravity" in loads else None
     analysis = dict(data.get("analysis") or {})
     design = analysis.pop("design", None)
     return Dynamics(bodies, gravity, forces, couples, springs, dampers, reactions, friction,
-                    _analysis(analysis, expr, where), _design(design, expr, where), impulses)
+                    _analysis(analysis, expr, where), _design(design, expr, where), impulses,
+                    down)
+
+
+def reaction_kind(reaction: Reaction, friction, spec: dict) -> LoadKind:
+    """The kind of an unknown force: its ``kind:`` when written, else what its form says: a
+    string over pulleys (``acts:``) is a tension, the ``normal:`` of a friction force a normal
+    force; any other is a reaction of unstated kind (``kind:`` names it).
+
+    >>> r = Reaction("T", (), (Act("a", "P"), Act("b", "Q")))
+    >>> reaction_kind(r, (), {"acts": []}), reaction_kind(r, (), {"kind": "pin"})
+    (<LoadKind.TENSION: 'tension'>, <LoadKind.PIN: 'pin'>)
+    """
+    if "kind" in spec:
+        return _REACTION_KINDS[spec["kind"]]
+    if "acts" in spec:
+        return LoadKind.TENSION
+    if any(f.normal == reaction.name for f in friction):
+        return LoadKind.NORMAL
+    return LoadKind.REACTION
+
+
+def _friction_surface(reaction: Reaction, friction) -> str | None:
+    """The surface of a normal force that a friction force names as its ``normal:``."""
+    return next((f.surface for f in friction if f.normal == reaction.name
+                 and f.surface != GROUND), None)
+
+
+def _gravity(gravity: Expr, down: Expr | None) -> Expr:
+    """The gravitational acceleration as a vector: as written, or its magnitude written with
+    ``down:`` (``gravity: g``) times that direction."""
+    if down is None or _vector_like(gravity.node):
+        return gravity
+    text = f"({gravity.text})*({down.text})"
+    return Expr(text, Bin("*", gravity.node, down.node), gravity.where)
+
+
+def _vector_like(node: Node) -> bool:
+    """Whether an expression may be a vector: it names a unit vector or calls a function of
+    the objective language (a scalar of parameters does neither)."""
+    return any(isinstance(n, Attr) or (isinstance(n, Call) and n.func not in MATH_FUNCTIONS)
+               for n in walk(node))
 
 
 def _equation(text: str, expr, where, *path) -> tuple[Expr, Expr]:
@@ -507,24 +631,49 @@ def _directions(spec: dict, expr, *path) -> tuple[Expr, ...]:
 def _reaction(name: str, spec: dict, expr, where) -> Reaction:
     path = ("loads", "reactions", name)
     if "acts" in spec:
-        acts = tuple(Act(a["body"], a["at"]) for a in spec["acts"])
+        acts = tuple(Act(a["body"], a["at"], 1, expr(a["direction"], *path, "acts", i, "direction")
+                         if "direction" in a else None) for i, a in enumerate(spec["acts"]))
     elif "bodies" in spec:
         # a joint: equal and opposite on the two bodies it connects
         acts = (Act(spec["bodies"][0], spec["at"], 1), Act(spec["bodies"][1], spec["at"], -1))
     else:
         acts = (Act(spec["body"], spec["at"]),)
-    return Reaction(name, _directions(spec, expr, *path), acts, where(*path))
+    return Reaction(name, _directions(spec, expr, *path), acts, where(*path),
+                    surface=spec.get("surface"))
 
 
-def _friction(name: str, spec: dict, expr, where) -> Friction:
+def _friction(name: str, spec: dict, expr, where, reactions=()) -> Friction:
     path = ("loads", "friction", name)
     mu = expr(spec["mu"], *path, "mu")
     if spec["kind"] == "kinetic":
         return KineticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
                                spec.get("surface", GROUND), where(*path))
+    if "direction" not in spec and "directions" not in spec:
+        normal = next((r for r in reactions if r.name == spec["normal"]), None)
+        raise SpecError(f"static friction '{name}' needs the directions of its unknown "
+                        f"components: expected directions: {_tangents(normal)}, the tangents "
+                        f"to the surface at {spec['at']}, found none", where=where(*path))
     return StaticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
                           _directions(spec, expr, *path), where(*path),
                           spec.get("surface", GROUND))
+
+
+def _tangents(normal: Reaction | None) -> str:
+    """Directions perpendicular to a normal force along a frame's unit vector (``N.z``:
+    ``[N.x, N.y]``, one of which a planar problem needs), or a description of them.
+
+    >>> from mechgrade.expressions.syntax import parse
+    >>> _tangents(Reaction("N_P", (Expr("A.y", parse("A.y")),), ()))
+    '[A.x, A.z] (in a planar problem the one in the plane of motion)'
+    """
+    if normal is None or len(normal.directions) != 1:
+        return "[...] (perpendicular to the normal force)"
+    node = normal.directions[0].node
+    node = node.operand if isinstance(node, Unary) else node
+    if isinstance(node, Attr) and node.attr in "xyz":
+        others = ", ".join(f"{node.base}.{a}" for a in "xyz" if a != node.attr)
+        return f"[{others}] (in a planar problem the one in the plane of motion)"
+    return f"[...] (perpendicular to {normal.name} along {normal.directions[0].text})"
 
 
 def _body(name: str, spec: dict, expr, where) -> Body:
@@ -647,13 +796,27 @@ class _Checker:
 
     def applied_loads(self):
         d = self.d
+        if d.down is not None:
+            self.typed(d.down, "vector", "", "the direction of 'down' (a vector without units, "
+                       "e.g. -N.y)")
         if d.gravity is not None:
+            if d.down is None and self.checker.type_of(d.gravity).kind == Kind.SCALAR:
+                raise SpecError(f"expected the gravitational acceleration as a vector (e.g. "
+                                f"-g*N.y), found the magnitude '{d.gravity.text}'; give its "
+                                "direction as well: down: -N.y (the way down in the figure)",
+                                where=d.gravity.where)
             self.typed(d.gravity, "vector", "m/s^2", "the gravitational acceleration as a "
-                       "vector (e.g. -g*N.y)")
+                       "vector (e.g. -g*N.y), or its magnitude with down: (e.g. gravity: g, "
+                       "down: -N.y)")
         for f in d.forces:
             self.body(f.on, f.where)
             self.point(f.at, f.where, "at")
             self.typed(f.force, "vector", "N", "a force vector")
+            if f.kind == LoadKind.WEIGHT and d.gravity is not None:
+                raise SpecError(f"the weight '{f.name}' on {f.on} is given twice: as this "
+                                f"force and by 'gravity: {d.gravity.text}', which acts on "
+                                "every body; expected it once: delete this force, or delete "
+                                "gravity to give every weight as a force", where=f.where)
         for c in d.couples:
             self.body(c.on, c.where)
             self.typed(c.moment, "vector", "N*m", "a moment vector")
@@ -681,6 +844,14 @@ class _Checker:
             for act in r.acts:
                 self.body(act.on, r.where, ground_ok=True)
                 self.point(act.at, r.where, "at")
+                if act.direction is None:
+                    continue
+                if len(r.directions) != 1:
+                    raise SpecError(f"'{r.name}': an end with its own direction belongs to a "
+                                    "cord (one unknown tension): expected one 'direction', "
+                                    f"found {len(r.directions)}", where=r.where)
+                self.typed(act.direction, "vector", "", "a direction (a vector without units, "
+                           "e.g. N.x)")
         for f in d.friction:
             self.body(f.on, f.where)
             self.point(f.at, f.where, "at")
@@ -690,7 +861,42 @@ class _Checker:
                 raise SpecError(f"friction '{f.name}': 'normal' must name a reaction with one "
                                 f"direction (reactions: {', '.join(sorted(reactions)) or 'none'})",
                                 where=f.where)
+            if normal.kind != LoadKind.NORMAL:
+                raise SpecError(f"friction '{f.name}': its normal '{f.normal}' is a "
+                                f"{normal.kind}; expected the normal force pressing the "
+                                f"surfaces together at {f.at} (a reaction with kind: normal)",
+                                where=f.where)
             self.surface(f, normal)
+        for r in d.reactions:  # after friction: a normal force's surface may be its friction's
+            self.reaction_form(r)
+
+    def reaction_form(self, r: Reaction):
+        """A reaction's kind fits its form: a string pulls along its one line; a normal force,
+        a pin or a contact acts at one point (on one body, or a joint between two); only a
+        normal force or a contact is on a surface."""
+        string = len(r.acts) > 1 and all(a.sign > 0 for a in r.acts)
+        if r.kind == LoadKind.TENSION and len(r.directions) != 1:
+            raise SpecError(f"the tension '{r.name}' pulls along its string: expected one "
+                            f"direction, found {len(r.directions)}", where=r.where)
+        if string and r.kind in (LoadKind.NORMAL, LoadKind.PIN, LoadKind.CONTACT):
+            raise SpecError(f"a {r.kind} force acts at one point: expected 'body' and 'at' "
+                            f"(or 'bodies' and 'at' for a joint), found 'acts' in '{r.name}' "
+                            "(a string over pulleys is kind: tension)", where=r.where)
+        if r.surface is None:
+            return
+        if r.kind not in (LoadKind.NORMAL, LoadKind.CONTACT):
+            raise SpecError(f"'surface' belongs to a normal force or a contact; '{r.name}' is "
+                            f"a {r.kind} (write kind: normal, or leave surface out)",
+                            where=r.where)
+        joint = len(r.acts) == 2 and r.acts[1].sign < 0
+        if joint and r.surface != r.acts[1].on:
+            raise SpecError(f"the joint '{r.name}' between {r.acts[0].on} and {r.acts[1].on} "
+                            f"is on {r.acts[1].on}: expected surface: {r.acts[1].on} or none, "
+                            f"found surface: {r.surface}", where=r.where)
+        known = self.frames | self.body_names | {GROUND}
+        if r.surface not in known:
+            raise SpecError(f"unknown surface '{r.surface}' of '{r.name}' (expected ground, a "
+                            f"frame or a body: {', '.join(sorted(known))})", where=r.where)
 
     def surface(self, f: Friction, normal: Reaction):
         """The ground, a frame (kinetic friction only) or another body pressed by ``normal``."""

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 import re
+from dataclasses import replace
 from functools import lru_cache
 from pathlib import Path
 
@@ -25,6 +26,7 @@ from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake,
                     Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
 from .solving import (check_solving, expand, given_expression, read_branches, read_definitions,
                       read_unknowns, resolve_given_values)
+from .physics import given_value_hint, plausibility_warnings, tolerance_errors
 from .validate import RESERVED, bare_angle_message, is_angle_unit, problem_errors
 
 SCHEMA_PATH = Path(__file__).with_name("problem.schema.json")
@@ -59,9 +61,10 @@ def problem_from_document(doc: Document) -> Problem:
     errors += builder.errors
     if problem is not None:
         errors += problem_errors(problem, frozenset(builder.broken_names))
+        errors += tolerance_errors(problem)
     _raise_all(errors)
     assert problem is not None  # build() gives None only after a schema error, raised above
-    return problem
+    return replace(problem, warnings=problem.warnings + plausibility_warnings(problem))
 
 
 def _raise_all(errors: list[SpecError]) -> None:
@@ -367,7 +370,8 @@ class _Builder:
                 if value_expr is not None:
                     return Given(key_expr, math.nan, "", math.nan, str(value), where,
                                  value_expr=value_expr)
-                raise SpecError(_unit_hint(err.message), where=where) from None
+                raise SpecError(given_value_hint(str(value), self.data)
+                                or _unit_hint(err.message), where=where) from None
             number, unit, text = q.value, q.unit, str(value)
         return Given(key_expr, number, unit, to_si(number, unit), text, where)
 
@@ -416,7 +420,8 @@ class _Builder:
         return Objective(
             id=spec["id"], prompt=spec["prompt"].strip(), find=find, kind=spec["kind"],
             unit=unit, frame=spec.get("frame"), symbols=tuple(symbols),
-            tolerance=Tolerance(float(tol.get("rel", 0.01)), float(tol.get("abs", 0.0))),
+            tolerance=Tolerance(float(tol.get("rel", 0.01)), float(tol.get("abs", 0.0)),
+                                self.where(*path, "tolerance")),
             expect=expect, mistakes=mistakes, depends_on=tuple(spec.get("depends_on") or ()),
             givens=givens, where=self.where(*path),
             frame_where=self.where(*path, "frame"),

@@ -158,6 +158,7 @@ class Tolerance:
 
     rel: float = 0.01
     abs: float = 0.0
+    where: Location = field(default_factory=Location, compare=False)
 
 
 @dataclass(frozen=True)

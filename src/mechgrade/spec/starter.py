@@ -23,8 +23,9 @@ from ..files import clean_text
 from ..resources import shipped_dir
 from .load import SCHEMA_PATH, problem_schema
 
-TEMPLATES = ("particle", "rotating-frame", "rolling", "linkage", "rigid-body")
-"""The starting specs, simplest first."""
+TEMPLATES = ("particle", "rotating-frame", "rolling", "linkage", "rigid-body",
+             "incline-friction", "pin-body", "rolling-body", "impact", "vibration")
+"""The starting specs, simplest first: kinematics, then kinetics."""
 
 
 def check_problem_id(problem_id: str) -> str:

@@ -280,6 +280,36 @@ def case_bead_on_rotating_hoop():
             "omega_small_oscillations": wn, "hoop_force": m * np.hypot(a, g)}
 
 
+def case_cord_over_table_pulley():
+    mA, mB, mu, g = 4.0, 2.0, 0.2, 9.81
+    # the two blocks and the cord as one system along the cord: m_B g - mu m_A g = (m_A + m_B) a
+    a = (mB - mu * mA) * g / (mA + mB)
+    T = mB * (g - a)  # block B alone: m_B g - T = m_B a
+    return {"accel": a, "tension": T, "friction": [-mu * mA * g, 0.0, 0.0],
+            "accel_symbolic": "g*(m_B - mu_k*m_A*sign(xd))/(m_A + m_B)"}
+
+
+def case_gyroscope_pivot_precession():
+    m, r, L, g, spin = 1.5, 0.06, 0.10, 9.81, 250.0
+    # the moment of the weight about the pivot turns the spin's angular momentum:
+    # m g L = I_s spin Omega, I_s = m r^2 / 2 about the axle
+    Omega = m * g * L / (0.5 * m * r**2 * spin)
+    # G moves on a horizontal circle of radius L: the pivot holds the weight and gives m L W^2
+    return {"precession_rate": Omega, "pivot_force": [-m * L * Omega**2, m * g, 0.0],
+            "spin_rate_change": 0.0}
+
+
+def case_pendulum_in_accelerating_truck():
+    m, L, g, a0 = 0.5, 0.8, 9.81, 3.0
+    # in the truck's (translating) frame the bob feels g down and -a0 backwards:
+    # L th'' = -g sin(th) - a0 cos(th); the cord takes the radial part, th' = 0
+    th = 0.0
+    alpha = -(g * np.sin(th) + a0 * np.cos(th)) / L
+    T = m * (g * np.cos(th) - a0 * np.sin(th))
+    return {"alpha": alpha, "tension": T, "acc_in_truck": [L * alpha, 0.0, 0.0],
+            "alpha_symbolic": "-(g*sin(theta) + Xdd*cos(theta))/L"}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 

@@ -342,6 +342,42 @@ def atwood():
             entry("a1", "block 1 taken to move down", num(-a, "m/s^2"), "sign")]
 
 
+def cord_over_table_pulley():
+    mA, mB, mu, g = 4.0, 2.0, 0.2, 9.81
+    a = (mB - mu * mA) * g / (mA + mB)
+    return [entry("tension", "tension taken as the hanging block's weight m_B g",
+                  num(mB * g, "N"), "tension_as_weight", "reaction_as_weight"),
+            entry("accel", "friction drawn toward the pulley",
+                  num((mB + mu * mA) * g / (mA + mB), "m/s^2"), "friction_reversed"),
+            entry("accel", "masses written for the weights (m instead of m g)",
+                  num((mB - mu * mA) / (mA + mB), "m/s^2"), "mass_for_weight"),
+            entry("accel", "block A taken to move away from the pulley", num(-a, "m/s^2"),
+                  "sign")]
+
+
+def gyroscope():
+    m, r, L, g, spin = 1.5, 0.06, 0.10, 9.81, 250.0
+    Is = m * r**2 / 2
+    W = m * g * L / (Is * spin)
+    return [entry("precession_rate", "weight's moment m L instead of m g L",
+                  num(m * L / (Is * spin), "rad/s"), "mass_for_weight"),
+            entry("precession_rate", "precession taken the other way round", num(-W, "rad/s"),
+                  "sign", "given_sign"),
+            entry("pivot_force", "weight left out: only the centripetal part m L Ω²",
+                  vec(V(-m * L * W**2, 0), "N"), "weight_omitted"),
+            entry("pivot_force", "mass for the weight in the pivot's vertical part",
+                  vec(V(-m * L * (m * L / (Is * spin))**2, m), "N"), "mass_for_weight")]
+
+
+def truck_pendulum():
+    m, L, a0 = 0.5, 0.8, 3.0
+    return [entry("alpha", "the bob taken to swing forward", num(a0 / L, "rad/s^2"), "sign",
+                  "given_sign"),
+            entry("tension", "tension written as the mass m", num(m, "N"), "mass_for_weight"),
+            entry("acc_in_truck", "the truck's acceleration taken the other way",
+                  vec(V(a0, 0), "m/s^2"), "sign", "given_sign")]
+
+
 def block_on_turntable():
     m, r, w, al = 0.5, 0.3, 4.0, 2.0
     F = m * V(-r * w**2, r * al)  # along B.x (outward), B.y
@@ -691,6 +727,9 @@ TABLES = {
     "ruina_sec10_bug_on_tire": bug_on_tire,
     "atwood_machine": atwood,
     "block_on_turntable": block_on_turntable,
+    "cord_over_table_pulley": cord_over_table_pulley,
+    "gyroscope_pivot_precession": gyroscope,
+    "pendulum_in_accelerating_truck": truck_pendulum,
     "block_sliding_down_incline": block_sliding_down_incline,
     "car_braking_weight_transfer": car_braking,
     "damped_pendulum_vibration": damped_pendulum,

@@ -13,7 +13,8 @@ file is chosen by one rule:
    guessed between: the student is told to name the one to grade ``answers.yaml``.
 
 Zip files are read in memory and never extracted: no member name becomes a path, links are not
-followed, and the counts and sizes are bounded (:data:`MAX_MEMBERS`, :data:`MAX_ZIP_BYTES`; a
+followed, members refused by :mod:`mechgrade.grade.archives` (``..``, absolute names, links,
+duplicate names, bombs) are noted, and the counts and sizes are bounded (:data:`MAX_MEMBERS`, :data:`MAX_ZIP_BYTES`; a
 member is read at most :data:`~mechgrade.grade.submissions.MAX_FILE_BYTES` + 1 bytes, so a zip
 bomb is cut short). The chosen file is copied into a temporary folder and read there like any
 answers file; the student's feedback says which file was read.
@@ -29,14 +30,18 @@ import zlib
 from dataclasses import dataclass, replace
 from pathlib import Path, PurePosixPath
 
+from ..errors import Location, SubmissionError
 from ..files import clean_text
-from ..grade.submissions import (ANSWER_FILES, MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES,
-                                 Submission, read_student_folder)
+from ..jsonio import read_json
+from .archives import safe_members
+from .submissions import (ANSWER_FILES, MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES, Submission,
+                          read_student_folder)
 
 MAX_MEMBERS = 1000
 """Entries looked at: files of the upload folder plus members of its zip files."""
 MAX_ZIP_BYTES = 50_000_000
 MAX_DEPTH = 6
+MAX_METADATA_BYTES = 10_000_000
 
 
 @dataclass(frozen=True)
@@ -157,28 +162,34 @@ def _zip_members(path: Path, label: str, depth: int, notes: list[str]) -> list[C
             notes.append(f"'{label}' is larger than {MAX_ZIP_BYTES} bytes; it was not opened")
             return []
         with zipfile.ZipFile(path) as archive:
-            infos = archive.infolist()
+            count = len(archive.infolist())
+            members, refused = safe_members(archive) if count <= MAX_MEMBERS else ([], [])
     except (OSError, zipfile.BadZipFile, ValueError, RuntimeError, NotImplementedError) as exc:
         notes.append(f"'{label}' is not a zip file that can be read ({type(exc).__name__})")
         return []
-    if len(infos) > MAX_MEMBERS:
-        notes.append(f"'{label}' holds {len(infos)} entries (at most {MAX_MEMBERS} are "
+    if count > MAX_MEMBERS:
+        notes.append(f"'{label}' holds {count} entries (at most {MAX_MEMBERS} are "
                      "looked at); it was not searched")
         return []
+    notes.extend(f"'{label}/{name}' {reason}" for name, reason in refused)
     out = []
-    for info in infos:
-        name = info.filename.replace("\\", "/")
-        parts = PurePosixPath(name).parts
-        if info.is_dir() or not parts or name.startswith("/") or ".." in parts \
-                or not all(_wanted(p) for p in parts) or len(parts) > MAX_DEPTH:
+    for member in members:
+        parts = PurePosixPath(member.name).parts
+        if not parts or not all(_wanted(p) for p in parts) or len(parts) > MAX_DEPTH:
             continue
-        if stat.S_ISLNK(info.external_attr >> 16):
-            continue  # a link stored in the zip is never followed
-        if PurePosixPath(name).suffix.lower() not in SUFFIXES:
+        if PurePosixPath(member.name).suffix.lower() not in SUFFIXES:
             continue
-        out.append(Candidate(clean_text(f"{label}/{name}"), depth + len(parts), info.file_size,
-                             zip_path=path, member=info.filename))
+        out.append(Candidate(clean_text(f"{label}/{member.name}"), depth + len(parts),
+                             member.info.file_size, zip_path=path,
+                             member=member.info.filename))
     return out
+
+
+def archive_of(path: Path) -> zipfile.ZipFile:
+    """The zip at ``path``, its members listed (closed when collected: listing keeps no file
+    open past it)."""
+    with zipfile.ZipFile(path) as archive:
+        return archive
 
 
 def _bytes_of(chosen: Candidate, notes: list[str]) -> bytes | None:
@@ -199,3 +210,57 @@ def _bytes_of(chosen: Candidate, notes: list[str]) -> bytes | None:
             NotImplementedError, EOFError, zlib.error) as exc:
         notes.append(f"'{chosen.label}' cannot be read ({type(exc).__name__})")
         return None
+
+
+def submitter(metadata_path: str | Path) -> tuple[str, str]:
+    """(id, name) of who submitted, from Gradescope's ``submission_metadata.json``: the first
+    user's ``sid`` (the student id the variants and rosters use), else ``email``, else ``id``.
+
+    No file (a run outside Gradescope) is the submitter ``"submission"``; a file that cannot be
+    read or is not shaped as Gradescope writes it raises :class:`SubmissionError` at the field,
+    since a guessed id would grade the wrong student's variant.
+
+    >>> import tempfile, pathlib, json
+    >>> meta = pathlib.Path(tempfile.mkdtemp()) / "submission_metadata.json"
+    >>> _ = meta.write_text(json.dumps({"users": [{"name": "Ada", "sid": 10001}]}))
+    >>> submitter(meta), submitter(meta.with_name("none.json"))
+    (('10001', 'Ada'), ('submission', ''))
+    >>> _ = meta.write_text(json.dumps({"users": {"name": "Ada"}}))
+    >>> submitter(meta)
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.SubmissionError: ...submission_metadata.json: users: expected a list of users, found a mapping
+    """
+    name = str(metadata_path)
+    if not os.path.lexists(metadata_path):
+        return "submission", ""
+    data = read_json(metadata_path, what="Gradescope's submission metadata (JSON)",
+                     error=SubmissionError, max_bytes=MAX_METADATA_BYTES)
+    if not isinstance(data, dict):
+        raise SubmissionError(f"expected a mapping (Gradescope's submission metadata), found "
+                              f"{_json_kind(data)}", where=Location(name))
+    users = data.get("users", [])
+    if not isinstance(users, list):
+        raise SubmissionError(f"expected a list of users, found {_json_kind(users)}",
+                              where=Location(name, field="users"))
+    if not users:
+        return "submission", ""
+    user = users[0]
+    if not isinstance(user, dict):
+        raise SubmissionError(f"expected a user (a mapping with sid, email, name), found "
+                              f"{_json_kind(user)}", where=Location(name, field="users[0]"))
+    for key in ("sid", "email", "id", "name"):
+        value = user.get(key)
+        if value is not None and (isinstance(value, bool) or
+                                  not isinstance(value, (str, int))):
+            raise SubmissionError(f"expected text or a whole number, found {_json_kind(value)}",
+                                  where=Location(name, field=f"users[0].{key}"))
+    ident = next((str(user[k]) for k in ("sid", "email", "id")
+                  if user.get(k) is not None and str(user[k]).strip()), "submission")
+    return clean_text(ident), clean_text(str(user.get("name") or ""))
+
+
+def _json_kind(value: object) -> str:
+    kinds = ((dict, "a mapping"), (list, "a list"), (str, "text"), (bool, "true or false"),
+             (int, "a whole number"), (float, "a decimal number"))
+    return next((noun for kind, noun in kinds if isinstance(value, kind)), "null")
