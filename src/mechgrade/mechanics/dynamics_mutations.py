@@ -603,7 +603,8 @@ def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutat
             if count is None or len(terms) < 2 or not _mentions(term[1], coordinates):
                 continue
             once = _sum_of(terms[:j] + [(term[0], count[1])] + terms[j + 1:])
-            new = replace(c, **{("lhs", "rhs")[moving.index(True)]: Expr(to_text(once), once)})
+            written = Expr(to_text(once), once)
+            new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
             constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
             mistaken = replace(problem, constraints=constraints)
             yield DynamicsMutation(
@@ -739,8 +740,10 @@ def particle_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutatio
             continue
         # on a pin (a pendulum, a drum): a rolling body as a particle is a body without
         # friction, a mistake of its own
+        frame = body.frame
+        assert frame is not None  # a turning body has its frame
         rolling = {q for c in problem.constraints if c.level == "velocity"
-                   and (q := _rolling_on_ground(c, body.frame, problem.inertial_frame))}
+                   and (q := _rolling_on_ground(c, frame, problem.inertial_frame))}
         # a body turning about its fixed mass centre (a drum) as a particle has no inertia
         held = _zero(model, model.language.point_velocity(Name(body.centre),
                                                           problem.inertial_frame))
