@@ -17,8 +17,8 @@ The families are registered in :data:`FAMILIES`, one function each.
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
 >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
->>> [(m.code, m.step) for m in dynamics_mutations(problem)][2:4]
-[('mass_for_weight', 'Free-body loads'), ('central_inertia_at_pivot', 'Bodies')]
+>>> [(m.code, m.step) for m in dynamics_mutations(problem)][3:6]
+[('mass_for_weight', 'Free-body loads'), ('weight_for_mass', 'Bodies'), ('central_inertia_at_pivot', 'Bodies')]
 """
 
 from __future__ import annotations
@@ -30,7 +30,8 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Num, Unary, name_of, parse, to_text
+from ..expressions.syntax import (Bin, Call, Name, Node, Num, Unary, name_of, names, parse,
+                                  to_text)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              Impulse, KineticFriction, Part, Reaction, Restitution, Ring, Shape,
                              Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
@@ -38,6 +39,7 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from .bodies import SHAPES
 from .build import Model, build
+from .mutations import additive_terms, sum_of_terms
 from .symbols import identically_zero
 
 LOADS, BODIES, BALANCES, OBJECTIVES = ("Free-body loads", "Bodies", "Momentum balances",
@@ -593,16 +595,16 @@ def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutat
         if c.level != "position":
             continue
         sides = [c.lhs.node, c.rhs.node]
-        moving = [_mentions(side, coordinates) for side in sides]
+        moving = [bool(names(side) & coordinates) for side in sides]
         if sum(moving) != 1:
             continue
         side = sides[moving.index(True)]
-        terms = _additive(side)
+        terms = additive_terms(side)
         for j, term in enumerate(terms):
             count = _strands(term)
-            if count is None or len(terms) < 2 or not _mentions(term[1], coordinates):
+            if count is None or len(terms) < 2 or not names(term[1]) & coordinates:
                 continue
-            once = _sum_of(terms[:j] + [(term[0], count[1])] + terms[j + 1:])
+            once = sum_of_terms(terms[:j] + [(term[0], count[1])] + terms[j + 1:])
             written = Expr(to_text(once), once)
             new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
             constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
@@ -614,26 +616,6 @@ def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                 problem=_mistaken(mistaken, dynamics_of(mistaken)))
 
 
-def _mentions(node: Node, names: set[str]) -> bool:
-    """Whether ``node`` uses one of ``names``."""
-    if isinstance(node, Name):
-        return node.id in names
-    if isinstance(node, Call):
-        return any(_mentions(a, names) for a in node.args)
-    return any(_mentions(child, names) for child in (getattr(node, "left", None),
-                                                     getattr(node, "right", None),
-                                                     getattr(node, "operand", None))
-               if child is not None)
-
-
-def _additive(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
-    """The additive terms of ``node`` with their signs."""
-    if isinstance(node, Bin) and node.op in "+-":
-        return _additive(node.left, sign) + _additive(node.right,
-                                                      sign if node.op == "+" else -sign)
-    return [(sign, node)]
-
-
 def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
     """``(n, X)`` of a term ``n*X`` (or ``X*n``) with a whole number n of 2 or more."""
     node = term[1]
@@ -643,13 +625,6 @@ def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
         if isinstance(count, Num) and count.text.isdigit() and int(count.text) >= 2:
             return int(count.text), rest
     return None
-
-
-def _sum_of(terms: list[tuple[int, Node]]) -> Node:
-    total: Node = terms[0][1] if terms[0][0] > 0 else Unary("-", terms[0][1])
-    for sign, node in terms[1:]:
-        total = Bin("+" if sign > 0 else "-", total, node)
-    return total
 
 
 def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:

@@ -397,11 +397,11 @@ def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[
     diagonal, the offset of a pin forgotten)."""
     out = []
     for spec in problem.points:
-        terms = _terms(spec.position.node) if spec.position is not None else []
+        terms = additive_terms(spec.position.node) if spec.position is not None else []
         if len(terms) < 2:
             continue
         for i, (_, dropped) in enumerate(terms):
-            rest = _sum(terms[:i] + terms[i + 1:])
+            rest = sum_of_terms(terms[:i] + terms[i + 1:])
             text = to_text(rest)
             points = tuple(replace(p, position=Expr(text, rest)) if p.name == spec.name else p
                            for p in problem.points)
@@ -419,16 +419,23 @@ def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[
     return out
 
 
-def _terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
-    """The additive terms of ``node`` with their signs."""
+def additive_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
+    """The additive terms of ``node`` with their signs.
+
+    >>> from ..expressions.syntax import parse
+    >>> [(s, to_text(t)) for s, t in additive_terms(parse("a + 2*b - c"))]
+    [(1, 'a'), (1, '2*b'), (-1, 'c')]
+    """
     if isinstance(node, Bin) and node.op in "+-":
-        return _terms(node.left, sign) + _terms(node.right, sign if node.op == "+" else -sign)
+        return additive_terms(node.left, sign) + additive_terms(node.right,
+                                                     sign if node.op == "+" else -sign)
     if isinstance(node, Unary) and node.op == "-":
-        return _terms(node.operand, -sign)
+        return additive_terms(node.operand, -sign)
     return [(sign, node)]
 
 
-def _sum(terms: list[tuple[int, Node]]) -> Node:
+def sum_of_terms(terms: list[tuple[int, Node]]) -> Node:
+    """The sum of signed terms (:func:`additive_terms`' inverse)."""
     sign, node = terms[0]
     total = node if sign > 0 else Unary("-", node)
     for sign, node in terms[1:]:
