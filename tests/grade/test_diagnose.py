@@ -183,6 +183,22 @@ def test_a_generated_zero_velocity_is_matched_on_the_references_scale():
         "another point's motion"
 
 
+@pytest.mark.parametrize("value", [2.008 * 98.51, 98.51 / 6.25, 98.51 * 3.1321])
+def test_a_ratio_only_near_a_factor_is_no_coincidence_to_name(value):
+    # inside the 1 % tolerance of 2, 2 pi and pi, but not well inside: sqrt(g) is not pi
+    assert label(f"{value!r} ft/s^2") is None
+
+
+def test_a_mistaken_value_that_is_not_a_zero_is_matched_on_its_own_scale():
+    # 14 is within 1 % of the reference 18.68 away from 14.17, but 1.2 % from 14.17 itself
+    from mechgrade.solve.result import GeneratedMistake
+    close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))  # noqa: E731
+    mistake = [(GeneratedMistake("given_deg_as_rad", "...", 14.17), np.array([14.17]))]
+    assert diagnose(np.array([14.0]), np.array([18.68]), close, generated=mistake) is None
+    assert diagnose(np.array([14.1]), np.array([18.68]), close,
+                    generated=mistake).code == "given_deg_as_rad"
+
+
 @pytest.mark.parametrize("value", [98.51 * 9.80665, 98.51 * 60 / (2 * math.pi)])
 def test_a_slip_the_model_cannot_make_is_not_named(value):
     from dataclasses import replace

@@ -51,7 +51,7 @@ def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     # no gravity load: no weight mistakes; no friction: no friction mistakes
     assert not _codes("rod_strikes_ledge") & {"weight_omitted", "mass_for_weight",
                                               "friction_reversed"}
-    assert _codes("rod_strikes_ledge") == {"restitution_ignored"}
+    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "restitution_component"}
     # a pin: the parallel-axis term; no pin, no rolling contact (a sliding ladder): none
     assert "central_inertia_at_pivot" in _codes("pendulum_pin_reaction")
     assert "central_inertia_at_pivot" not in _codes("ruina_9_19_falling_ladder")
@@ -214,3 +214,87 @@ def test_a_blow_taken_at_the_mass_centre_sets_nothing_spinning():
     judged = assess("(0, 2) m/s", _solution("rod_struck_on_ice").result("vB_after"))
     assert judged.diagnosis == LABELS["impulse_moment_omitted"]
     assert "0.6 m from G" in judged.feedback
+
+
+def test_the_only_reaction_on_a_body_read_as_its_static_value():
+    # R_O - m a_G: the pin holds the rod's weight m g = 19.62 N as if it did not swing; held
+    # by its weight alone, that is the weight
+    static = [m for m in _generated("pendulum_pin_reaction", "pin_force", "reaction_as_weight")
+              if "as if it did not accelerate" in m.message]
+    assert [m.value for m in static] == [pytest.approx((0.0, 19.62, 0.0), abs=1e-9)]
+    assert "m a_G = 14.36 N" in static[0].message
+    judged = assess("(0, 19.62) N", _solution("pendulum_pin_reaction").result("pin_force"))
+    assert judged.diagnosis == LABELS["reaction_as_weight"]
+    # with a spring on it too, its static value is no weight
+    (spring,) = _generated("bar_swings_down_spring_energy", "pin_force", "reaction_as_static")
+    assert spring.value == pytest.approx((0.0, 17.05, 0.0), abs=1e-9)
+
+
+def test_a_turning_body_taken_as_a_particle_at_its_mass_centre():
+    # a rod pinned at its end: m (L/2)^2 for m L^2/3, the angular acceleration 4/3 as large
+    right = _solution("pendulum_pin_reaction").result("alpha").value
+    particle = [m for m in _generated("pendulum_pin_reaction", "alpha", "other_shape_inertia")
+                if "as a particle" in m.message]
+    assert [m.value for m in particle] == [pytest.approx(right * 4 / 3)]
+
+
+def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
+    # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
+    (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")
+               if "uniform disk" in m.message]
+    assert disk.value == pytest.approx(-6.54, rel=1e-6)
+    assert "I = 0.00018 kg*m^2" in disk.message
+
+
+def test_restitution_applied_to_the_tangential_component_of_a_smooth_impact():
+    # 20 m/s at 30 deg onto a smooth floor, e = 0.7: (17.32, 7) after; e on both components
+    # gives (0.7 x 17.32, 7), kept in sense or reversed
+    values = [m.value for m in _generated("ball_bounces_oblique_floor", "velocity_after",
+                                          "restitution_component")]
+    assert sorted(values) == [pytest.approx((-12.1244, 7.0, 0.0), rel=1e-4),
+                              pytest.approx((12.1244, 7.0, 0.0), rel=1e-4)]
+
+
+def test_no_energy_lost_names_the_perfectly_elastic_impact():
+    # a zero of e = 1 is kept: it is what "kinetic energy conserved" gives
+    judged = assess("0 J", _solution("pucks_oblique_impact").result("energy_lost"))
+    assert judged.diagnosis == LABELS["restitution_ignored"]
+
+
+def test_the_damper_left_out_gives_the_undamped_response():
+    # the first peak of the undamped block: v0/omega_n = 50 mm a quarter period pi/(2 omega_n)
+    (undamped,) = _generated("damped_block_first_peak", "peak_displacement", "damping_omitted")
+    assert undamped.value == pytest.approx(50.0, rel=1e-6)
+    assert "c = 40 N*s/m" in undamped.message
+
+
+def test_two_springs_holding_a_block_from_either_side_combined_in_series():
+    assert "springs_in_series" not in _codes("damped_block_first_peak")  # one spring
+    (series,) = _generated("block_between_two_springs", "amplitude", "springs_in_series")
+    assert series.value == pytest.approx(44.7214, rel=1e-5)
+
+
+def test_the_reactions_of_a_shaft_in_two_bearings_taken_as_their_static_values():
+    # the weight 39.24 N alone at A (its axial support), without the couple of the tilted disk
+    (static,) = _generated("disk_on_bent_shaft", "bearing_A", "reaction_as_static")
+    assert static.value == pytest.approx((0.0, 0.0, 39.24), abs=1e-9)
+    # where the motion is not prescribed the static model has none: no value
+    assert not _generated("atwood_machine", "tension", "reaction_as_static")
+
+
+def test_the_weight_written_for_the_mass_in_the_problems_own_units():
+    # W = 10 lb used as 10 slug with k = 240 lb/ft: omega_n = sqrt(240/10) rad/s
+    (heavy,) = _generated("block_on_spring_us_units", "omega_n", "weight_for_mass")
+    assert heavy.value == pytest.approx(24 ** 0.5, rel=1e-6)
+    # 25 kg used as its weight 245.25 (N) with k = 400 kN/m
+    (heavy,) = _generated("motor_on_beam_resonance", "omega_n", "weight_for_mass")
+    assert heavy.value == pytest.approx((400e3 / (25 * 9.81)) ** 0.5, rel=1e-6)
+
+
+def test_a_movable_pulleys_two_strands_counted_once():
+    # yA + yB = c0 for yA + 2 yB = c0 (mA = 10 kg, mB = 30 kg, B hung on two strands): the
+    # blocks move together, (2 mA + mB) a = (mB - 2 mA) g, a = g/5
+    (once,) = _generated("movable_pulley_two_blocks", "accel_A", "strands_miscounted")
+    assert once.value == pytest.approx(1.962, rel=1e-6)
+    assert "counts yB once in the length of cord_length" in once.message
+    assert "strands_miscounted" not in _codes("atwood_machine")  # one strand each side

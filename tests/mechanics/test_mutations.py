@@ -68,3 +68,10 @@ def test_mistaken_givens_are_solved_again():
     result = solve(_problem("bowling_3_15_6_gears")).result("alpha_A_z")
     swap = [m for m in result.generated_mistakes if m.code == "given_swap"]
     assert swap[0].value == pytest.approx(10.8)
+
+
+def test_the_magnitude_of_a_difference_taken_from_the_magnitudes():
+    # cars at 25 m/s and 15 m/s, 60 deg apart: 25 + 15 and 25 - 15 for |v_B - v_A|
+    result = solve(_problem("two_cars_relative_motion")).result("relative_speed")
+    values = sorted(m.value for m in result.generated_mistakes if m.code == "mag_as_sum")
+    assert values == pytest.approx([10.0, 40.0])

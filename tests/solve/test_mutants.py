@@ -4,6 +4,7 @@ from dataclasses import replace
 
 import pytest
 
+from mechgrade.grade.compare import assess
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem
@@ -74,3 +75,31 @@ def test_a_kinematic_objective_of_a_dynamics_problem_gets_another_frames_compone
     (basis,) = _generated(problem, "v2_N", "other_basis")
     assert basis.value == pytest.approx((-20 * 3 ** 0.5 / 2, -10.0, 0.0))
     assert "frame E" in basis.message
+
+
+def test_a_given_whose_unit_is_not_converted_is_read_in_its_systems_base_unit():
+    # the contact time 1.5 ms used as 1.5 s: the average force a thousand times too small,
+    # named by its unit (ms), not as a slip of mm
+    problem = load_problem(shipped_dir("problems") / "baseball_bat_impulse.yaml")
+    (slip,) = _generated(problem, "average_force", "given_unit")
+    result = solve(problem).result("average_force")
+    assert slip.value == pytest.approx(result.value / 1000)
+    judged = assess(f"{slip.value:.4g} N", result)
+    assert (judged.diagnosis, judged.feedback) == (
+        "given's unit not converted",
+        "Your value is what tc = 1.5 ms gives when the number is used as SI units: convert ms "
+        "first.")
+
+
+@pytest.mark.parametrize("unit, base", [("lbf/in", "lbf/ft"), ("kN/m", "N/m"), ("km/h", "m/s"),
+                                        ("mm/s", "m/s"), ("hp", "ft*lbf/s")])
+def test_the_unit_a_number_is_read_in_when_it_is_not_converted(unit, base):
+    from mechgrade.solve.mutants import _unconverted
+    from mechgrade.units import si_factor
+    assert _unconverted(unit) == pytest.approx(si_factor(base))
+
+
+@pytest.mark.parametrize("unit", ["N/m", "ft/s", "mm", "rpm", "deg", "lb*s/ft"])
+def test_a_unit_of_its_systems_base_or_with_a_slip_of_its_own_has_none(unit):
+    from mechgrade.solve.mutants import _unconverted
+    assert _unconverted(unit) is None

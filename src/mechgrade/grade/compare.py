@@ -346,7 +346,7 @@ def _judge_number(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
     found = diagnose(np.array([student]), np.array([reference]), close,
                      mistakes=_numeric_mistakes(result.mistakes, scalar=True),
                      generated=_numeric_mistakes(result.generated_mistakes, scalar=True),
-                     plausible=result.plausible)
+                     plausible=result.plausible, exact=_exact(rel, abs_))
     return _wrong(found, policy, units,
                   f"Not {_describe_tolerance(result, policy)}.", read_back)
 
@@ -369,6 +369,17 @@ def _close(rel: float, abs_: float):
             scale = float(np.linalg.norm(t)) if t.size <= 3 else None
         return within(s, t, rel, abs_, scale=scale)
     return close
+
+
+COINCIDENCE_SHARE = 0.25
+"""The share of the tolerance within which a numeric coincidence (a factor of 2 or π, a unit
+slip) is named: a ratio 2.016 is inside a 1 % tolerance of 2 but is not a factor of 2."""
+
+
+def _exact(rel: float, abs_: float):
+    """The closeness a numeric coincidence must meet (:data:`COINCIDENCE_SHARE` of the
+    judging tolerance)."""
+    return _close(COINCIDENCE_SHARE * max(rel, 1e-3), COINCIDENCE_SHARE * abs_)
 
 
 def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,
@@ -490,7 +501,7 @@ def _judge_vector(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
     found = diagnose(student, reference, close, kind=ObjectiveKind.VECTOR,
                      mistakes=_numeric_mistakes(result.mistakes, scalar=False),
                      generated=_numeric_mistakes(result.generated_mistakes, scalar=False),
-                     plausible=result.plausible)
+                     plausible=result.plausible, exact=_exact(rel, abs_))
     # a planar answer's zero z is no news
     right = [axis for i, axis in enumerate("xyz") if axis not in wrong
              and not (i == 2 and reference[2] == 0 and student[2] == 0)]

@@ -95,10 +95,13 @@ _AXES = "xyz"
 def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: str = "scalar",
              mistakes: Sequence[tuple[MistakeValue, np.ndarray | None]] = (),
              generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]] = (),
-             plausible: frozenset[str] | None = None) -> Diagnosis | None:
+             plausible: frozenset[str] | None = None,
+             exact: Close | None = None) -> Diagnosis | None:
     """The first diagnosis that explains ``student`` (already known not to match ``reference``).
 
-    ``close(s, t)`` is the judging test; ``mistakes`` pairs each author-declared mistake with its
+    ``close(s, t)`` is the judging test; ``exact`` the tighter one a numeric coincidence (a
+    factor, a unit slip) must meet to be named (``None``: ``close``), since a ratio that is
+    only near a factor names a mistake the student did not make; ``mistakes`` pairs each author-declared mistake with its
     values in the same form as ``reference`` (``None`` when it cannot be evaluated), and
     ``generated`` each generated mistake likewise; ``plausible`` names the model-dependent
     slips (:data:`MODEL_SLIPS`) the model makes plausible (``None``: all of them).
@@ -121,11 +124,12 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         if values.shape == reference.shape and np.isfinite(values).all() \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
-    found = _generated(student, reference, close, generated, plausible)
+    found = _generated(student, reference, close, generated, plausible, exact)
     if found is not None:
         return found
     if not (reference != 0).any():
         return None
+    exact = close if exact is None else exact
     # every factor times the reference at once (row by row the same products)
     scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
     for code, label, message, factors in _FACTORS:
@@ -133,7 +137,7 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
             continue
         for row in rows:
-            if close(student, row):
+            if exact(student, row):
                 return Diagnosis(code, label, message)
     if kind == "vector":
         return _vector(student, reference, close)
@@ -163,9 +167,13 @@ MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad")
 
 def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
                generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]],
-               plausible: frozenset[str] | None = None) -> Diagnosis | None:
+               plausible: frozenset[str] | None = None,
+               exact: Close | None = None) -> Diagnosis | None:
     """The generated mistake nearest ``student`` among those it matches and is nearer to than
-    to ``reference``: a value that merely lies between two candidates names neither."""
+    to ``reference``: a value that merely lies between two candidates names neither. A
+    mistaken value is matched on the reference's scale only when it is a zero there (within
+    ``exact``)."""
+    exact = close if exact is None else exact
     own = float(np.linalg.norm(student - reference))
     best, best_distance = None, own
     for mistake, values in generated:
@@ -175,8 +183,9 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
         if values.shape != reference.shape or not np.isfinite(values).all():
             continue
         # a mistaken value near zero (a contact point's velocity) is matched on the scale of
-        # the reference, as a zero answer would be
-        if not (close(student, values) or close(student - values + reference, reference)):
+        # the reference, as a zero answer would be; any other only on its own scale
+        if not (close(student, values) or (exact(values + reference, reference)
+                                           and close(student - values + reference, reference))):
             continue
         distance = float(np.linalg.norm(student - values))
         if distance < best_distance:
@@ -195,7 +204,10 @@ def _given_as_transform(mistake: GeneratedMistake, reference: np.ndarray,
     rate in a quantity linear in it flips the whole answer (a sign error, graded as the
     policy grades one, with the sentence that says which sign); any other given slip that
     coincides with one (two masses exchanged where one is twice the other) is one of two
-    readings, and only the whole-answer slip, true of both, is said."""
+    readings, and only the whole-answer slip, true of both, is said. A given's unit not
+    converted says which unit, which a factor (1000: mm or ms?) cannot."""
+    if mistake.code == "given_unit":  # the unit it names is the slip's (ms, not mm)
+        return None
     value = np.asarray(mistake.value, dtype=float).reshape(reference.shape)
     for code, label, message, factors in _FACTORS:
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
@@ -219,7 +231,7 @@ LABELS = {
     "drop_relative_vel": "relative velocity left out",
     "other_point": "another point's motion",
     "relative_omega": "relative angular velocity for the absolute one",
-    "mag_as_sum": "components added for the magnitude",
+    "mag_as_sum": "components or magnitudes added for a magnitude",
     "position_term": "a term of the position left out",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
@@ -233,6 +245,7 @@ LABELS = {
     "given_complement": "given angle read as its complement (sin and cos exchanged)",
     "given_rate_unit": "given rate's unit not converted to rad/s",
     "given_length_unit": "given length's unit not converted",
+    "given_unit": "given's unit not converted",
     "given_sign": "given rate's sign flipped",
     "weight_omitted": "weight left out",
     "mass_for_weight": "mass used for the weight",
@@ -242,6 +255,13 @@ LABELS = {
     "weight_transfer_ignored": "weight transfer ignored",
     "tension_as_weight": "tension taken equal to a weight",
     "reaction_as_weight": "reaction taken equal to the weight",
+    "reaction_as_static": "reaction taken as its static value",
+    "inertia_omitted": "a body's moment of inertia left out",
+    "restitution_component": "restitution applied to the wrong component",
+    "damping_omitted": "damping left out",
+    "springs_in_series": "parallel springs combined in series",
+    "weight_for_mass": "weight used for the mass",
+    "strands_miscounted": "a cord's strands miscounted",
     "rotational_ke_omitted": "rotational kinetic energy left out",
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",

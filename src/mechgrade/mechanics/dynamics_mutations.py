@@ -17,19 +17,21 @@ The families are registered in :data:`FAMILIES`, one function each.
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
 >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
->>> [(m.code, m.step) for m in dynamics_mutations(problem)][2:4]
-[('mass_for_weight', 'Free-body loads'), ('central_inertia_at_pivot', 'Bodies')]
+>>> [(m.code, m.step) for m in dynamics_mutations(problem)][3:6]
+[('mass_for_weight', 'Free-body loads'), ('weight_for_mass', 'Bodies'), ('central_inertia_at_pivot', 'Bodies')]
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Unary, name_of, parse, to_text
+from ..expressions.syntax import (Bin, Call, Name, Node, Num, Unary, name_of, names, parse,
+                                  to_text)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              Impulse, KineticFriction, Part, Reaction, Restitution, Ring, Shape,
                              Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
@@ -37,6 +39,7 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from .bodies import SHAPES
 from .build import Model, build
+from .mutations import additive_terms, sum_of_terms
 from .symbols import identically_zero
 
 LOADS, BODIES, BALANCES, OBJECTIVES = ("Free-body loads", "Bodies", "Momentum balances",
@@ -182,15 +185,7 @@ def weight_omitted_from_reaction(problem: Problem, model: Model
     d = dynamics_of(problem)
     if d.gravity is None or isinstance(d.analysis, Impulse):
         return
-    on: dict[str, list[Reaction | Friction]] = {}
-    for load in (*d.reactions, *d.friction):
-        bodies = [a.on for a in load.acts] if isinstance(load, Reaction) else [load.on]
-        for owner in bodies:
-            on.setdefault(owner, []).append(load)
-    for r in d.reactions:
-        if len(r.acts) != 1 or r.acts[0].on == GROUND or len(on[r.acts[0].on]) != 1:
-            continue
-        body = d.body(r.acts[0].on)
+    for r, body in _only_reactions(d):
         weight = _weight(body, d.gravity)
         replacement = parse(f"force({r.name}) + ({_mass(body)})*({d.gravity.text})",
                             functions=FUNCTIONS)
@@ -200,6 +195,83 @@ def weight_omitted_from_reaction(problem: Problem, model: Model
                 "weight_omitted", f"Your value leaves the weight of {body.name} (m g = "
                 f"{{term}}) out of the force balance that gives {r.name}: {r.name} + m g = "
                 "m a_G.", BALANCES, readings=readings, term=weight, term_unit="N")
+
+
+def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The only reaction on a body read as its static value: the force balance that gives it
+    written with m a_G = 0 (a pin's force as the weight it holds at rest, a support's as if
+    the body did not precess), read in the right model as force minus m a_G."""
+    d = dynamics_of(problem)
+    if isinstance(d.analysis, Impulse):
+        return
+    N = problem.inertial_frame
+    for r, body in _only_reactions(d):
+        replacement = parse(f"force({r.name}) - ({_mass(body)})*acc({body.centre}, {N})",
+                            functions=FUNCTIONS)
+        readings = _readings(problem, "force", r.name, replacement)
+        if not readings:
+            continue
+        term = _expr(f"({_mass(body)})*mag(acc({body.centre}, {N}))")
+        # held by its weight alone, the static value is the weight: that family's mistake
+        if d.gravity is not None and not any(body.name in _bodies_of(x) for x in (
+                *d.forces, *d.couples, *d.springs, *d.dampers)):
+            yield DynamicsMutation(
+                "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
+                f"{body.name}, as if it did not accelerate: m a_G = {{term}} belongs in the "
+                f"force balance that gives {r.name}.", BALANCES, readings=readings,
+                term=term, term_unit="N")
+            continue
+        yield DynamicsMutation(
+            "reaction_as_static", f"Your value is {r.name} as if {body.name} did not "
+            f"accelerate (its static value): m a_G = {{term}} belongs in the force "
+            f"balance that gives {r.name}.", BALANCES, readings=readings,
+            term=term, term_unit="N")
+
+
+def _bodies_of(load) -> tuple[str, ...]:
+    """The bodies a force, couple, spring or damper acts on."""
+    return tuple(load.on) if isinstance(load.on, tuple) else (load.on,)
+
+
+def reactions_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The reactions on a body held by several supports (a shaft in two bearings) taken as
+    their static values: the balances written without m a_G and the rate of the angular
+    momentum, the weights kept (solvable where the motion is prescribed)."""
+    d = dynamics_of(problem)
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    single = {r.name for r, _ in _only_reactions(d)}
+    shared = [r.name for r in d.reactions if r.name not in single]
+    asked = [o for o in problem.objectives if o.kind != "symbolic"
+             and any(next((c for c in _calls(o.find.node, "force") if c.args[0] == Name(r)),
+                          None) for r in shared)]
+    if not asked:
+        return
+    weights = tuple(Force(f"weight~{b.name}", b.name, b.centre,
+                          _expr(f"({_mass(b)})*({d.gravity.text})"), b.where) for b in d.bodies)
+    bodies = tuple(replace(b, parts=tuple(replace(p, mass=_expr("0"), shape=None)
+                                          for p in b.parts)) for b in d.bodies)
+    mistaken = _mistaken(problem, replace(d, bodies=bodies, gravity=None,
+                                          forces=d.forces + weights))
+    ids = {o.id for o in asked}
+    yield DynamicsMutation(
+        "reaction_as_static", f"Your value is {', '.join(shared)} as if nothing accelerated "
+        "(the static values, the weight alone): the dynamic part, from m a_G and the rate of "
+        "change of the angular momentum, belongs in the balances.", BALANCES,
+        problem=replace(mistaken, objectives=tuple(o for o in mistaken.objectives
+                                                   if o.id in ids)))
+
+
+def _only_reactions(d: Dynamics) -> Iterator[tuple[Reaction, Body]]:
+    """Each reaction that is the only reaction (or friction) on the one body it acts on."""
+    on: dict[str, list[Reaction | Friction]] = {}
+    for load in (*d.reactions, *d.friction):
+        bodies = [a.on for a in load.acts] if isinstance(load, Reaction) else [load.on]
+        for owner in bodies:
+            on.setdefault(owner, []).append(load)
+    for r in d.reactions:
+        if len(r.acts) == 1 and r.acts[0].on != GROUND and len(on[r.acts[0].on]) == 1:
+            yield r, d.body(r.acts[0].on)
 
 
 def mass_for_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -215,6 +287,41 @@ def mass_for_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation
         "mass_for_weight", f"Your value is what the balances give with the mass of {names} "
         f"written for {its} weight; the weight is m g = {{term}}: multiply the mass by g.", LOADS,
         problem=_mistaken(problem, replace(d, gravity=unit)), term=total, term_unit="N")
+
+
+def weight_for_mass(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The weight m g written where the mass belongs (in m a, in ω_n = √(k/m)), the weight
+    itself kept."""
+    d = dynamics_of(problem)
+    if d.gravity is None:
+        return
+    size = f"mag({d.gravity.text})"
+    # the weight's number in the problem's units: in pounds where it is given in them
+    # (W = 10 lb used as 10 slug), in newtons otherwise
+    number = f"{size}/{0.3048!r}" if _customary(problem) else size
+
+    def heavier(part: Part) -> Part:
+        shape = part.shape  # a given inertia (m k²) is a mass times a length squared too
+        if isinstance(shape, Explicit):
+            shape = Explicit(tuple((key, _expr(f"({e.text})*{number}"))
+                                   for key, e in shape.entries))
+        return replace(part, mass=_expr(f"({part.mass.text})*{number}"), shape=shape)
+
+    bodies = tuple(replace(b, parts=tuple(heavier(p) for p in b.parts)) for b in d.bodies)
+    names = ", ".join(b.name for b in d.bodies)
+    total = _expr(" + ".join(f"({_mass(b)})" for b in d.bodies))
+    yield DynamicsMutation(
+        "weight_for_mass", f"Your value is what the balances give with the weight of {names} "
+        "written for the mass: the mass is m = W/g = {term}.", BODIES,
+        problem=_mistaken(problem, replace(d, bodies=bodies,
+                                           gravity=_expr(f"({d.gravity.text})/({number})"))),
+        term=total, term_unit="kg")
+
+
+def _customary(problem: Problem) -> bool:
+    """Whether the problem's givens are in US customary units (feet, pounds)."""
+    return any(w in ("ft", "lb", "lbf", "slug", "in") for g in problem.givens
+               for w in re.findall(r"[A-Za-z]+", g.unit))
 
 
 def _pivots(problem: Problem, model: Model, body: Body) -> Iterator[str]:
@@ -290,23 +397,24 @@ def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutati
 
 
 def normal_from_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """The kinetic friction on a particle taken as μ m g where the normal force is not the
-    weight (an incline): μ times the weight instead of μ N."""
+    """The kinetic friction on a body sliding on the ground on one contact taken as μ m g: μ
+    times the weight instead of μ N (an incline, a push with a part along the normal; where N is the weight
+    the mistake gives the answer and is dropped)."""
     d = dynamics_of(problem)
     if d.gravity is None:
         return
-    g = model.language.vector(d.gravity)
     for f in d.friction:
         if not isinstance(f, KineticFriction) or f.surface not in (GROUND, problem.inertial_frame):
             continue
         body = d.body(f.on)
-        normal = d.load(f.normal)
-        if body.frame is not None or _zero(model, g ^ model.language.vector(normal.directions[0])):
+        if sum(x.on == f.on for x in d.friction) > 1:  # μ times the weight is their sum's
             continue
         N = problem.inertial_frame
+        # the slip velocity: of the particle, or of the body's material point at the contact
+        at = f.at if body.frame is None else f"coincident({f.at}, {body.frame})"
         force = Force(f.name, f.on, f.at, _expr(
-            f"-({f.mu.text})*({_weight(body, d.gravity).text})*vel({f.at}, {N})"
-            f"/speed({f.at}, {N})"), f.where)
+            f"-({f.mu.text})*({_weight(body, d.gravity).text})*vel({at}, {N})"
+            f"/speed({at}, {N})"), f.where)
         friction = tuple(x for x in d.friction if x is not f)
         yield DynamicsMutation(
             "normal_from_weight", f"Your value takes the friction {f.name} as μ m g, with the "
@@ -381,6 +489,11 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
         if r.name not in normals and not _zero(model, g ^ model.language.vector(direction)):
             continue
         for name in dict.fromkeys(a.on for a in r.acts if a.on != GROUND):
+            # a body held in place (a drum on its axle) has no weight the reaction could
+            # be taken for: its weight goes to its bearing
+            if _zero(model, model.language.point_velocity(Name(d.body(name).centre),
+                                                           problem.inertial_frame)):
+                continue
             weight = _weight(d.body(name), d.gravity)
             replacement = parse(f"({weight.text})*({direction.text})", functions=FUNCTIONS)
             readings = _readings(problem, "force", r.name, replacement)
@@ -438,6 +551,122 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
+def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A smooth impact (its impulse along the line of impact only) with the coefficient of
+    restitution applied to the tangential component too: scaling it, or reversing it."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    axis = f"{problem.inertial_frame}.z"
+    for i, c in enumerate(d.analysis.contacts):
+        if not isinstance(c, Restitution):
+            continue
+        smooth = [r for r in d.reactions if {a.at for a in r.acts} == {c.at}
+                  and [x.text for x in r.directions] == [c.direction.text]]
+        # in the plane: the tangent is the normal turned about the inertial z
+        across = model.language.vector(c.direction) & model.language.vector(_expr(axis))
+        if len(smooth) != 1 or not identically_zero(model.plain(across)):
+            continue
+        tangent = _expr(f"cross({axis}, {c.direction.text})")
+        reactions = tuple(replace(r, directions=r.directions + (tangent,)) if r is smooth[0]
+                          else r for r in d.reactions)
+        # the tangential velocity scaled by e (kept in sense), or reversed with it as the
+        # normal one is
+        for e_tangent, how in ((_expr(f"-({c.e.text})"), "scales"),
+                               (c.e, "reverses and scales")):
+            contacts = d.analysis.contacts[:i] + (
+                c, replace(c, direction=tangent, e=e_tangent)) + d.analysis.contacts[i + 1:]
+            changed = replace(d, reactions=reactions,
+                              analysis=replace(d.analysis, contacts=contacts))
+            yield DynamicsMutation(
+                "restitution_component", f"Your value {how} the tangential velocity at {c.at} "
+                "with the coefficient of restitution e = {term} too: e relates the velocities "
+                "along the line of impact only; the smooth contact leaves the tangential "
+                "velocity unchanged.",
+                BALANCES, problem=_mistaken(problem, changed), term=c.e)
+
+
+def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A cord's length written with a strand count of one: in a position constraint that
+    fixes a length (one side free of the coordinates), a term counted n times (the strands
+    of a movable pulley, 2 y_B) taken once."""
+    coordinates = {c.name for c in problem.coordinates}
+    for i, c in enumerate(problem.constraints):
+        if c.level != "position":
+            continue
+        sides = [c.lhs.node, c.rhs.node]
+        moving = [bool(names(side) & coordinates) for side in sides]
+        if sum(moving) != 1:
+            continue
+        side = sides[moving.index(True)]
+        terms = additive_terms(side)
+        for j, term in enumerate(terms):
+            count = _strands(term)
+            if count is None or len(terms) < 2 or not names(term[1]) & coordinates:
+                continue
+            once = sum_of_terms(terms[:j] + [(term[0], count[1])] + terms[j + 1:])
+            written = Expr(to_text(once), once)
+            new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
+            constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
+            mistaken = replace(problem, constraints=constraints)
+            yield DynamicsMutation(
+                "strands_miscounted", f"Your value counts {to_text(count[1])} once in the "
+                f"length of {c.name} ({c.lhs.text} = {c.rhs.text}): it is there "
+                f"{count[0]} times (the strands that hold it).", BALANCES,
+                problem=_mistaken(mistaken, dynamics_of(mistaken)))
+
+
+def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
+    """``(n, X)`` of a term ``n*X`` (or ``X*n``) with a whole number n of 2 or more."""
+    node = term[1]
+    if not (isinstance(node, Bin) and node.op == "*"):
+        return None
+    for count, rest in ((node.left, node.right), (node.right, node.left)):
+        if isinstance(count, Num) and count.text.isdigit() and int(count.text) >= 2:
+            return int(count.text), rest
+    return None
+
+
+def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """Every damper left out: the undamped response (ω_n for ω_d, no decay)."""
+    d = dynamics_of(problem)
+    if not d.dampers:
+        return
+    names = ", ".join(x.name for x in d.dampers)
+    yield DynamicsMutation(
+        "damping_omitted", f"Your value is the undamped response: {names} "
+        "(c = {term}) slows the motion and makes it decay; keep its force c x' in the "
+        "equation of motion.", LOADS,
+        problem=_mistaken(problem, replace(d, dampers=())), term=d.dampers[0].coefficient,
+        term_unit="N*s/m")
+
+
+def springs_in_series(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """Springs that hold one body from the ground along one line (in parallel: their
+    stiffnesses add) combined as if in series, 1/k = 1/k1 + 1/k2."""
+    d = dynamics_of(problem)
+    for body in d.bodies:
+        held = [x for x in d.springs if set(x.on) == {body.name, GROUND}]
+        if len(held) < 2:
+            continue
+        ends = [x.between[x.on.index(body.name)] for x in held]
+        anchors = [x.between[x.on.index(GROUND)] for x in held]
+        lines = [model.positions[a] - model.positions[e] for a, e in zip(anchors, ends)]
+        if len(set(ends)) != 1 or any(not _zero(model, lines[0] ^ line) for line in lines[1:]):
+            continue
+        total = " + ".join(f"({x.stiffness.text})" for x in held)
+        series = "1/(" + " + ".join(f"1/({x.stiffness.text})" for x in held) + ")"
+        springs = tuple(replace(x, stiffness=_expr(f"({x.stiffness.text})*({series})/({total})"))
+                        if x in held else x for x in d.springs)
+        names = " and ".join(x.name for x in held)
+        yield DynamicsMutation(
+            "springs_in_series", f"Your value combines the springs {names} as if in series "
+            f"(1/k = 1/k1 + 1/k2); both hold {body.name} from the ground, so they act in "
+            "parallel and their stiffnesses add: k = {term}.", LOADS,
+            problem=_mistaken(problem, replace(d, springs=springs)), term=_expr(total),
+            term_unit="N/m")
+
+
 # each shape: its moment of inertia about its axis (coefficient of m r², as written), and the
 # shapes its inertia is typically taken from instead
 _CONFUSED_SHAPES = {Sphere: (Shell, Disk), Shell: (Sphere,), Disk: (Ring,), Ring: (Disk,)}
@@ -472,6 +701,74 @@ def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                     problem=_mistaken(problem, replace(d, bodies=bodies),
                                       without=("ke", "angmom")),
                     term=_expr(f"({coefficient})*({mass})*({radius})^2"), term_unit="kg*m^2")
+
+
+def particle_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A body turning on a pin with its own moment of inertia about its mass centre left out:
+    taken as a particle at its mass centre (a simple pendulum of the pin's distance, m d²
+    alone; a drum on its axle without inertia)."""
+    d = dynamics_of(problem)
+    if isinstance(d.analysis, WorkEnergy):  # there rotational_ke_omitted is the same model
+        return
+    for body in d.bodies:
+        if not _rotating(model, body) or all(p.shape is None for p in body.parts):
+            continue
+        # on a pin (a pendulum, a drum): a rolling body as a particle is a body without
+        # friction, a mistake of its own
+        frame = body.frame
+        assert frame is not None  # a turning body has its frame
+        rolling = {q for c in problem.constraints if c.level == "velocity"
+                   and (q := _rolling_on_ground(c, frame, problem.inertial_frame))}
+        # a body turning about its fixed mass centre (a drum) as a particle has no inertia
+        held = _zero(model, model.language.point_velocity(Name(body.centre),
+                                                          problem.inertial_frame))
+        if not held and not set(_pivots(problem, model, body)) - rolling:
+            continue
+        parts = tuple(replace(p, shape=None) for p in body.parts)
+        bodies = tuple(replace(b, parts=parts) if b.name == body.name else b for b in d.bodies)
+        code, sentence = ("inertia_omitted", f"Your value leaves out the moment of inertia "
+                          f"of {body.name} about {body.centre}: it resists the angular "
+                          "acceleration and belongs in its moment balance.") if held else (
+            "other_shape_inertia", f"Your value takes {body.name} as a particle at its mass "
+            f"centre {body.centre}: its own moment of inertia about {body.centre}, I_G, "
+            "belongs in the moment balance too.")
+        yield DynamicsMutation(
+            code, sentence, BODIES,
+            problem=_mistaken(problem, replace(d, bodies=bodies), without=("ke", "angmom")))
+
+
+def disk_for_gyration(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A turning body whose inertia is given (m k², a radius of gyration) taken as a uniform
+    disk of the radius at which a load acts on it (a drum's cord, a brake pad): m d²/2."""
+    d = dynamics_of(problem)
+    acting: dict[str, list[str]] = {}
+    for load in (*d.reactions, *d.friction, *d.forces):
+        acts = load.acts if isinstance(load, Reaction) else (Act(load.on, load.at),)
+        for act in acts:
+            acting.setdefault(act.on, []).append(act.at)
+    for body in d.bodies:
+        if not _rotating(model, body) or len(body.parts) != 1 \
+                or not isinstance(body.parts[0].shape, Explicit):
+            continue
+        part = body.parts[0]
+        assert isinstance(part.shape, Explicit)
+        given = dict(part.shape.entries).get("zz")
+        if given is None:
+            continue
+        for point in dict.fromkeys(acting.get(body.name, ())):
+            offset = model.positions[point] - model.positions[body.centre]
+            if point == body.centre or _zero(model, offset):
+                continue
+            radius = f"pos({point}, {body.centre})"
+            zz = _expr(f"({part.mass.text})*dot({radius}, {radius})/2")
+            bodies = tuple(replace(b, parts=(replace(part, shape=Explicit((("zz", zz),))),))
+                           if b.name == body.name else b for b in d.bodies)
+            yield DynamicsMutation(
+                "other_shape_inertia", f"Your value takes {body.name} as a uniform disk of "
+                f"radius {body.centre}{point} (m r²/2) where its moment of inertia is given: "
+                "I = {term}.", BODIES,
+                problem=_mistaken(problem, replace(d, bodies=bodies), without=("ke", "angmom")),
+                term=given, term_unit="kg*m^2")
 
 
 def _radius(shape: Shape | None) -> str:
@@ -566,9 +863,12 @@ def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsM
 
 
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
-    weight_omitted, weight_omitted_from_reaction, mass_for_weight, central_inertia_at_pivot,
+    weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
+    mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
+    particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
+    springs_in_series, strands_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""

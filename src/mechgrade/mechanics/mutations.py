@@ -154,6 +154,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _other_positions(r)
     _path_quantities(r)
     _speed_readings(r)
+    _magnitudes_combined(r)
     _other_bases(r)
     return r.out
 
@@ -359,6 +360,26 @@ def _speed_readings(r: _Reading) -> None:
                          "velocity.")
 
 
+def _magnitudes_combined(r: _Reading) -> None:
+    """The magnitude of a sum or difference of two vectors taken as the sum, or the
+    difference, of their magnitudes (speeds added or subtracted as numbers)."""
+    node = r.node
+    if not (isinstance(node, Call) and node.func == "mag" and isinstance(node.args[0], Bin)
+            and node.args[0].op in "+-"):
+        return
+    left, right = node.args[0].left, node.args[0].right
+    try:
+        a, b = (r.base.value(Call("mag", (side,))) for side in (left, right))
+    except Exception:  # a side that is not a vector
+        return
+    names = f"{to_text(left)} and {to_text(right)}"
+    sentence = (f"Your value {{verb}} the magnitudes of {names}; the magnitude of their "
+                f"{'sum' if node.args[0].op == '+' else 'difference'} comes from the components "
+                "(the vectors are not along one line).")
+    r.append("mag_as_sum", a + b, sentence.format(verb="adds"))
+    r.append("mag_as_sum", sp.Abs(a - b), sentence.format(verb="subtracts"))
+
+
 def _other_bases(r: _Reading) -> None:
     """The right vector's components along another frame's unit vectors."""
     if not isinstance(r.right, Vector) or not r.obj.frame:
@@ -376,11 +397,11 @@ def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[
     diagonal, the offset of a pin forgotten)."""
     out = []
     for spec in problem.points:
-        terms = _terms(spec.position.node) if spec.position is not None else []
+        terms = additive_terms(spec.position.node) if spec.position is not None else []
         if len(terms) < 2:
             continue
         for i, (_, dropped) in enumerate(terms):
-            rest = _sum(terms[:i] + terms[i + 1:])
+            rest = sum_of_terms(terms[:i] + terms[i + 1:])
             text = to_text(rest)
             points = tuple(replace(p, position=Expr(text, rest)) if p.name == spec.name else p
                            for p in problem.points)
@@ -398,16 +419,23 @@ def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[
     return out
 
 
-def _terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
-    """The additive terms of ``node`` with their signs."""
+def additive_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
+    """The additive terms of ``node`` with their signs.
+
+    >>> from ..expressions.syntax import parse
+    >>> [(s, to_text(t)) for s, t in additive_terms(parse("a + 2*b - c"))]
+    [(1, 'a'), (1, '2*b'), (-1, 'c')]
+    """
     if isinstance(node, Bin) and node.op in "+-":
-        return _terms(node.left, sign) + _terms(node.right, sign if node.op == "+" else -sign)
+        return additive_terms(node.left, sign) + additive_terms(node.right,
+                                                     sign if node.op == "+" else -sign)
     if isinstance(node, Unary) and node.op == "-":
-        return _terms(node.operand, -sign)
+        return additive_terms(node.operand, -sign)
     return [(sign, node)]
 
 
-def _sum(terms: list[tuple[int, Node]]) -> Node:
+def sum_of_terms(terms: list[tuple[int, Node]]) -> Node:
+    """The sum of signed terms (:func:`additive_terms`' inverse)."""
     sign, node = terms[0]
     total = node if sign > 0 else Unary("-", node)
     for sign, node in terms[1:]:

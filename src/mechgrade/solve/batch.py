@@ -55,7 +55,7 @@ from .instant import (_instants, _key, _state, _symbolic_answer,
                       wanted_objectives)
 from .columns import call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
-from .mutants import (kept_mistakes, misread, model_mistake_at, model_mistake_table,
+from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of)
 from .numeric import PROBE_TOL, degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
@@ -690,14 +690,14 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
     for j, row in enumerate(rows_):
         V[:, j] = row[3]
         exists[:, j] = row[2]
-        other[:, j] = row[0].code == "other_point"
+        other[:, j] = row[0].code in ZERO_NAMES
     first = len(rows_)
     for i, mistakes in enumerate(misread):
         if mistakes:
             last = first + len(mistakes)
             V[i, first:last] = np.array([m.value for m in mistakes], float).reshape(-1, size)
             exists[i, first:last] = True
-            other[i, first:last] = [m.code == "other_point" for m in mistakes]
+            other[i, first:last] = [m.code in ZERO_NAMES for m in mistakes]
     keep = kept_mistakes((si / si_factor(obj.unit) + 0.0).T, V, exists, other)
 
     def at(i: int) -> tuple[GeneratedMistake, ...]:

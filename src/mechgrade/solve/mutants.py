@@ -188,11 +188,45 @@ def _given_slips(node, si: float, given):
         yield ("given_length_unit", to_si(value, base),
                f"Your value is what {name} = {given.text} gives when read as {value:g} "
                f"{base}: convert {unit} to {base}.")
+    plain = _unconverted(unit)
+    if plain is not None and value != 0 and not math.isclose(value * plain, si):
+        yield ("given_unit", value * plain,
+               f"Your value is what {name} = {given.text} gives when the number is used "
+               f"as {'SI units' if plain == 1.0 else 'feet, pounds and seconds'}: convert "
+               f"{unit} first.")
     if isinstance(node, Prime) and si != 0:
         yield ("given_sign", -si,
                f"Your value is what {name} with the opposite sign gives: check the "
                f"direction of {name} ({given.text}) against the positive sense of "
                f"{node.id}.")
+
+
+# units of the US customary system, and the one of its base units each is read as
+_US_UNITS = {"ft": "ft", "in": "ft", "inch": "ft", "mi": "ft", "yd": "ft", "lb": "lb",
+             "lbf": "lbf", "slug": "slug", "kip": "lbf", "hp": "ft*lbf/s", "s": "s",
+             "min": "s", "h": "s", "hr": "s"}
+
+
+@lru_cache(maxsize=64)
+def _unconverted(unit: str) -> float | None:
+    """The SI factor of the unit a given in ``unit`` is read in when its number is used
+    without converting it: the coherent SI unit (kN/m as N/m, km/h as m/s, kW as W, ms as s),
+    or the foot-pound-second one (lb/in as lb/ft); ``None`` when the unit is that already, or
+    its slips are another family's (a length, an angle, a rate in rpm)."""
+    words = re.findall(r"[A-Za-zµ]+", unit)
+    if not words or unit in _LENGTH_SLIPS or any(
+            w in ("deg", "degree", "degrees", "rad", "rpm", "rev", "Hz") for w in words):
+        return None
+    try:
+        factor = si_factor(unit)
+        if all(w in _US_UNITS for w in words) and any(w not in ("s", "min", "h", "hr")
+                                                     for w in words):
+            plain = si_factor(re.sub(r"[A-Za-z]+", lambda m: _US_UNITS[m.group(0)], unit))
+        else:
+            plain = 1.0
+    except MechgradeError:
+        return None
+    return None if math.isclose(plain, factor) else plain
 
 
 @lru_cache(maxsize=64)
@@ -255,7 +289,7 @@ def _distinct(right, kept: tuple[GeneratedMistake, ...],
     values = [np.atleast_1d(np.asarray(m.value, float)) for m in mistakes]
     exists = np.array([[v.shape == r.shape for v in values]])
     V = np.array([[v if v.shape == r.shape else np.full(r.shape, np.nan) for v in values]])
-    other = np.array([[m.code == "other_point" for m in mistakes]])
+    other = np.array([[m.code in ZERO_NAMES for m in mistakes]])
     keep = kept_mistakes(r[None, :], V.reshape(1, len(mistakes), len(r)), exists, other,
                          len(kept))
     return tuple(m for m, k in zip(mistakes, keep[0]) if k)
@@ -265,9 +299,9 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
                   first: int = 0) -> np.ndarray:
     """Which generated mistakes are kept, at every instant at once (``right``: the answer at
     each, N x size; ``V``: the mistakes' values in order, N x count x size; ``exists``: where
-    each is defined; ``other``: which name another point's value): each that differs from the
+    each is defined; ``other``: which are of :data:`ZERO_NAMES`): each that differs from the
     answer (the same value as the answer at this instant: no mistake here) and from every one
-    kept before it (:data:`SAME`), and is not a zero other than another point's (a zero is
+    kept before it (:data:`SAME`), and is not a zero other than theirs (a zero is
     what many mistakes give). The ``first`` are kept whatever they are.
 
     >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0 + 1e-9], [1.0], [0.0]]]),
@@ -290,6 +324,13 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
             keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
                 & ~vague[:, j]
     return keep
+
+
+ZERO_NAMES = frozenset({"other_point", "reaction_as_static", "reaction_as_weight",
+                        "restitution_ignored"})
+"""Families whose zero value names the mistake (a contact point at rest, a support that holds
+no sideways force at rest, no energy lost in a perfectly elastic impact): their zeros are
+kept, every other family's dropped."""
 
 
 SAME = 1e-7

@@ -29,9 +29,11 @@ DYNAMICS_CODES = (
     "normal_from_weight", "weight_transfer_ignored", "tension_as_weight", "reaction_as_weight",
     "rotational_ke_omitted", "restitution_ignored", "other_shape_inertia",
     "spring_free_length_omitted", "surface_taken_fixed", "body_ke_omitted",
-    "impulse_moment_omitted")
+    "impulse_moment_omitted", "reaction_as_static", "inertia_omitted",
+    "restitution_component", "damping_omitted", "springs_in_series",
+    "weight_for_mass", "strands_miscounted")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
-               "given_sign", "given_swap")
+               "given_sign", "given_swap", "given_unit")
 """Family codes of mistaken givens (:mod:`mechgrade.solve.mutants`)."""

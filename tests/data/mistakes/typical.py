@@ -605,10 +605,10 @@ def bead_on_hoop():
                   known="none"),
             entry("omega_small_oscillations", "the linearisation's sin² θ left out: ω_n = Ω",
                   num(W, "rad/s"), "position_term", known="none"),
-            # at 60° the weight is exactly half the answer (cos 60° = ½): the factor 2 is all
-            # that is said
+            # at 60° the weight is exactly half the answer (cos 60° = ½), but the bead held
+            # by its weight alone names the weight
             entry("hoop_force", "hoop's force taken as the weight m g", num(m * g, "N"),
-                  "reaction_as_weight", known="generic", generic=("factor_2",))]
+                  "reaction_as_weight")]
 
 
 def block_on_cart():
