@@ -28,6 +28,15 @@ def test_a_results_json_written_by_mechgrade_passes(tmp_path):
     assert len(read_results(path).students) == 7
 
 
+def test_an_expected_answer_in_the_students_unit_is_read(tmp_path):
+    doc = copy.deepcopy(GOOD)  # GOOD itself was written before answers kept it
+    doc["students"][0]["answers"][0].update(expected="36.79 N", expected_in_answer_unit="8.27 lbf")
+    path = tmp_path / "results.json"
+    path.write_text(json.dumps(doc), encoding="utf-8")
+    answer = read_results(path).students[0].answers[0]
+    assert (answer.expected, answer.expected_in_answer_unit) == ("36.79 N", "8.27 lbf")
+
+
 def set_in(doc, path, value):
     target = doc
     for part in path[:-1]:
@@ -59,6 +68,8 @@ DELETE = object()
     (("students", 0, "grade"), 3,
      "students[0].grade: expected only the fields id, name, status, score, max_score, answers, "
      "messages, identity, variant, found 'grade'"),
+    (("students", 0, "answers", 0, "expected_in_answer_unit"), 8.27,
+     "students[0].answers[0].expected_in_answer_unit: expected text or null, found 8.27"),
     (("assignment",), DELETE, "expected a field 'assignment', found none"),
     (("assignment", "title"), None, "assignment.title: expected text, found null"),
     (("objectives", 0, "max_points"), DELETE,

@@ -162,6 +162,19 @@ def test_missing_unit_assumed_with_deduction():
     assert "ft/s^2 was assumed" in judged.feedback
 
 
+def test_the_unit_a_number_or_vector_was_written_in_is_kept_when_of_the_objectives_dimension():
+    speed = ObjectiveResult("w", "vector", "rad/s", (0.0, 0.0, -4.334), frame="B")
+    assert assess("(0, 0, -41.4) rpm", speed).unit == "rpm"
+    assert assess("-41.4 rpm", speed).unit == "rpm"  # a scalar for a vector: judged, unit kept
+    assert assess("98.5 m/s^2", ACC).unit == "m / s ** 2"  # wrong, and still in that unit
+    assert assess("98.5 ft", ACC).unit is None  # another dimension
+    assert assess("98.5", ACC, Policy(missing_unit="assume")).unit is None  # none written
+    assert assess("98.5 parsecs_per_fortnight", ACC).unit is None  # not read
+    symbolic = ObjectiveResult("x", "symbolic", "m", expr="L*theta", symbols=("L", "theta"),
+                               symbol_units=("m", ""))
+    assert assess("L*theta", symbolic).unit is None
+
+
 def test_pure_number_objective_needs_no_unit():
     ratio = ObjectiveResult("mu", "scalar", "", 0.25)
     assert verdict("0.25", ratio) == "correct"

@@ -12,8 +12,8 @@ from mechgrade.errors import (AssignmentError, InconsistentError, MechgradeError
                              SubmissionError)
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade import run as run_module
-from mechgrade.grade.run import (expected_text, given_key_of, grade_plan, grade_submissions,
-                                 plan_assignment)
+from mechgrade.grade.run import (expected_in_unit, expected_text, given_key_of, grade_plan,
+                                 grade_submissions, plan_assignment)
 from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.grade.submissions import read_submissions
 from mechgrade.resources import shipped_dir
@@ -186,6 +186,24 @@ def test_expected_answers_are_shown_only_when_revealed(class_dir):
     assert [a.expected for a in ann.answers] == ["98.51 ft/s^2", "(-89.87, -40.34, 0) ft/s^2 in frame N"]
 
 
+def test_expected_answers_are_also_given_in_the_unit_the_student_wrote(class_dir):
+    text = (class_dir / "hw.yaml").read_text(encoding="utf-8")
+    (class_dir / "hw.yaml").write_text(text.replace("policy:\n", "policy:\n  reveal_answers: true\n"),
+                                       encoding="utf-8")
+    write(class_dir / "subs" / "ann" / "answers.txt", """\
+        bowling_3_15_4_pendulum.acc_mag = 30.03 m/s^2
+        bowling_3_15_4_pendulum.acc_N = (-89.9, -40.3) ft/s^2
+        """)
+    by_id = {s.id: s for s in grade(class_dir).students}
+    assert [(a.expected, a.expected_in_answer_unit) for a in by_id["ann"].answers] == [
+        ("98.51 ft/s^2", "30.03 m/s^2"),
+        ("(-89.87, -40.34, 0) ft/s^2 in frame N", None)]  # written in the objective's unit
+    assert {a.expected_in_answer_unit for a in by_id["cat"].answers} == {None}  # unreadable
+    hidden = (class_dir / "hw.yaml").read_text(encoding="utf-8").replace("  reveal_answers: true\n", "")
+    (class_dir / "hw.yaml").write_text(hidden, encoding="utf-8")
+    assert {a.expected_in_answer_unit for s in grade(class_dir).students for a in s.answers} == {None}
+
+
 def test_assignment_policy_reaches_the_judge(class_dir):
     text = (class_dir / "hw.yaml").read_text(encoding="utf-8")
     (class_dir / "hw.yaml").write_text(text.replace("policy:\n", "policy:\n  tolerance: {rel: 0.1}\n"),
@@ -239,6 +257,25 @@ def test_expected_text_formats_each_kind():
     assert expected_text(ObjectiveResult("a", "symbolic", "m", expr="L*x")) == "L*x m"
     assert expected_text(ObjectiveResult("a", "symbolic", "", expr=None)) == "(no reference)"
     assert expected_text(ObjectiveResult("a", "vector", "", (1.0, 2.0, 3.0))) == "(1, 2, 3)"
+
+
+def test_expected_in_the_students_unit_keeps_the_figures_of_the_expected_text():
+    speed = ObjectiveResult("w", "scalar", "rad/s", -4.3354)
+    assert expected_text(speed) == "-4.335 rad/s"
+    assert expected_in_unit(speed, "rpm") == "-41.4 rpm"
+    assert expected_in_unit(speed, "deg / s") == "-248.4 deg/s"
+    force = ObjectiveResult("F", "vector", "N", (36.787, 0.0, -1.0), frame="B")
+    assert expected_in_unit(force, "lbf") == "(8.27, 0, -0.2248) lbf"
+
+
+def test_expected_in_the_students_unit_is_nothing_when_it_would_say_nothing_more():
+    force = ObjectiveResult("F", "scalar", "N", 36.787)
+    assert expected_in_unit(force, "N") is None
+    assert expected_in_unit(force, "kg * m / s ** 2") is None  # the same numbers
+    assert expected_in_unit(force, "m") is None  # another dimension
+    assert expected_in_unit(force, "furlongs_of_doom") is None  # not a unit mechgrade reads
+    assert expected_in_unit(ObjectiveResult("a", "symbolic", "m", expr="L*x"), "ft") is None
+    assert expected_in_unit(ObjectiveResult("a", "scalar", "m", None), "ft") is None
 
 
 # ---------------------------------------------------------------------------- ECF

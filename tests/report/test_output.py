@@ -97,6 +97,48 @@ def test_markdown_feedback_escapes_student_text(tmp_path):
     assert "- Expected: -L·thetad² ft/s²" in ana
 
 
+def _answered_in_other_units(in_answer_unit: bool) -> GradeReport:
+    extra = {"expected_in_answer_unit": "8.27 lbf"} if in_answer_unit else {}
+    extra_w = {"expected_in_answer_unit": "(0, 0, -41.39) rpm"} if in_answer_unit else {}
+    return GradeReport(
+        AssignmentInfo("hw3", "Homework 3"),
+        (ObjectiveInfo("p", "F", "Tension.", 1.0), ObjectiveInfo("p", "w", "Spin.", 1.0),
+         ObjectiveInfo("p", "sym", "Speed.", 1.0)),
+        (StudentResult("ana", "Ana", "graded", 2.0, 3.0, (
+            AnswerResult("p", "F", "8.27 lbf", "correct", 1.0, 1.0, None, "Correct.",
+                         "8.27 lbf", "36.79 N", **extra),
+            AnswerResult("p", "w", "(0, 0, -41.4) rpm", "correct", 1.0, 1.0, None, "Correct.",
+                         "(0, 0, -41.4) rpm", "(0, 0, -4.334) rad/s in frame B", **extra_w),
+            AnswerResult("p", "sym", "L*w", "incorrect", 0.0, 1.0, None, "Not equivalent.",
+                         "L*w", "L*w**2 m/s"),
+        )),))
+
+
+def test_expected_is_also_shown_in_the_unit_the_student_wrote(tmp_path):
+    write_outputs(_answered_in_other_units(True), tmp_path)
+    html = (tmp_path / "feedback" / "ana.html").read_text(encoding="utf-8")
+    assert '<dt>Expected</dt><dd><span class="math">36.79 N (8.27 lbf)</span></dd>' in html
+    assert ('<dt>Expected</dt><dd><span class="math">(0, 0, -4.334) rad/s in frame B '
+            '((0, 0, -41.39) rpm)</span></dd>') in html
+    assert '<dt>Expected</dt><dd><span class="math">L·w² m/s</span></dd>' in html
+    markdown = (tmp_path / "feedback" / "ana.md").read_text(encoding="utf-8")
+    assert "- Expected: 36.79 N (8.27 lbf)\n" in markdown
+    assert "- Expected: (0, 0, -4.334) rad/s in frame B ((0, 0, -41.39) rpm)\n" in markdown
+    assert "- Expected: L·w² m/s\n" in markdown
+
+
+def test_a_results_json_from_before_the_students_unit_was_kept_renders_as_before(tmp_path):
+    data = json.loads(json.dumps(_answered_in_other_units(True).to_json()))
+    for answer in data["students"][0]["answers"]:
+        del answer["expected_in_answer_unit"]
+    old = GradeReport.from_json(data)
+    assert old == _answered_in_other_units(False)
+    write_outputs(old, tmp_path)
+    html = (tmp_path / "feedback" / "ana.html").read_text(encoding="utf-8")
+    assert '<dt>Expected</dt><dd><span class="math">36.79 N</span></dd>' in html
+    assert "lbf)" not in html and "rpm)" not in html
+
+
 def test_feedback_file_names_are_safe_and_unique():
     assert feedback_names(REPORT) == ["ana", "eve", "joe"]
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 import zlib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Sequence, TypeVar
 
@@ -114,13 +114,16 @@ class Policy:
 @dataclass(frozen=True)
 class Assessment:
     """How one answer was judged. ``read_back`` is how mechgrade read the text (``None`` when
-    it could not); ``feedback`` never reveals the reference value."""
+    it could not); ``feedback`` never reveals the reference value; ``unit`` is the unit a
+    number or vector was written in when it is one of the objective's dimension (``None``
+    otherwise), to show the reference in it."""
 
     verdict: str
     credit: float
     diagnosis: str | None
     feedback: str
     read_back: str | None = None
+    unit: str | None = None
 
 
 def missing() -> Assessment:
@@ -161,9 +164,31 @@ def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy())
     try:
         # huge but readable values overflow to inf, which no tolerance accepts: no warnings
         with np.errstate(all="ignore"):
-            return _judge(answer, result, policy)
+            assessment = _judge(answer, result, policy)
     except MechgradeError as exc:
         return not_evaluated(exc.message, answer.read_back())
+    unit = _written_unit(answer, result)
+    return replace(assessment, unit=unit) if unit else assessment
+
+
+def _written_unit(answer: StudentAnswer, result: ObjectiveResult) -> str | None:
+    """The unit a number or vector answer was written in, when it is one of the objective's
+    dimension; ``None`` for an expression, an answer without a unit or of another dimension.
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> force = ObjectiveResult("F", "scalar", "N", 36.79)
+    >>> [_written_unit(read_answer(t, force), force) for t in ("8.27 lbf", "36.8", "3 m")]
+    ['lbf', None, None]
+    """
+    if result.kind == ObjectiveKind.SYMBOLIC or not isinstance(answer, (NumberAnswer,
+                                                                        VectorAnswer)):
+        return None
+    if not answer.unit:
+        return None
+    try:
+        return answer.unit if dimension(answer.unit) == dimension(result.unit) else None
+    except MechgradeError:  # a unit pint cannot read shows nothing more
+        return None
 
 
 def _judge(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:

@@ -6,7 +6,8 @@
      "objectives": [{"problem", "objective", "prompt", "max_points", "problem_title"}],
      "students": [{"id", "name", "status", "score", "max_score", "variant" (if drawn),
                    "answers": [{"problem", "objective", "answer", "verdict", "points",
-                                "max_points", "diagnosis", "feedback"}]}],
+                                "max_points", "diagnosis", "feedback", "read_back",
+                                "expected", "expected_in_answer_unit"}]}],
      "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...],
      "failing_expects": [{"problem", "objective", "where", "message"}] (only when graded
                                                                         with them)}
@@ -61,7 +62,9 @@ class AnswerResult:
 
     ``answer`` is the text as the student typed it (``None`` if missing); ``read_back`` is how
     mechgrade read it; ``expected`` is the reference answer text, present only when the
-    assignment reveals answers.
+    assignment reveals answers; ``expected_in_answer_unit`` is the same reference in the unit
+    the student wrote a number or vector in, when that is another unit of the objective's
+    dimension (``None`` otherwise, and in a results.json written before it was kept).
     """
 
     problem: str
@@ -74,6 +77,7 @@ class AnswerResult:
     feedback: str = ""
     read_back: str | None = None
     expected: str | None = None
+    expected_in_answer_unit: str | None = None
 
 
 def unit_text(unit: str) -> str:

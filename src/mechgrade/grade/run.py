@@ -36,7 +36,7 @@ from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
 from .lms_submissions import read_any_submissions
 from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
-                      ObjectiveInfo, StudentResult)
+                      ObjectiveInfo, StudentResult, unit_text)
 from .submissions import Submission, SubmissionSet
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
@@ -614,6 +614,11 @@ class _Judge:
     def expected(self, item: PlannedObjective) -> str | None:
         return expected_text(item.result) if self.policy.reveal_answers else None
 
+    def expected_in(self, item: PlannedObjective, unit: str | None) -> str | None:
+        """The reference in the unit the student wrote (see :func:`expected_in_unit`)."""
+        return (expected_in_unit(item.result, unit)
+                if self.policy.reveal_answers and unit else None)
+
     def judge(self, item: PlannedObjective, text: str, submission: Submission,
               earlier: dict[str, AnswerResult]) -> AnswerResult:
         assessment = self.assess(text, item.result)
@@ -630,7 +635,8 @@ class _Judge:
         return AnswerResult(item.problem.id, item.objective.id, text, verdict,
                             _round(credit * item.max_points), item.max_points,
                             diagnosis, " ".join(f for f in feedback if f),
-                            assessment.read_back, self.expected(item))
+                            assessment.read_back, self.expected(item),
+                            self.expected_in(item, assessment.unit))
 
     def prefetch_carried_forward(self, work: Iterable[tuple[Plan, Submission]]) -> None:
         """Solve, over the jobs, the re-solves error carried forward will ask for (each
@@ -930,6 +936,37 @@ def expected_text(result: ObjectiveResult) -> str:
         parts = ", ".join(_number(v) for v in result.value)
         return f"({parts}){suffix}{in_frame(result.frame)}"
     return f"{_number(result.value)}{suffix}"
+
+
+def expected_in_unit(result: ObjectiveResult, unit: str) -> str | None:
+    """The numeric reference answer in ``unit``, another unit of the objective's dimension, with
+    the figures of :func:`expected_text`; ``None`` for a symbolic objective, a unit of another
+    dimension, or one whose numbers would read as those in the objective's unit.
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> expected_in_unit(ObjectiveResult("F", "scalar", "N", 36.787), "lbf")
+    '8.27 lbf'
+    >>> expected_in_unit(ObjectiveResult("v", "vector", "m/s", (0.0, -7.6712, 0.0), frame="A"),
+    ...                  "ft / s")
+    '(0, -25.17, 0) ft/s'
+    >>> expected_in_unit(ObjectiveResult("F", "scalar", "N", 36.787), "kg * m / s ** 2") is None
+    True
+    """
+    from ..units import from_si, same_dimension, to_si
+
+    if result.kind == ObjectiveKind.SYMBOLIC or result.value is None:
+        return None
+    references = result.value if isinstance(result.value, tuple) else (result.value,)
+    try:
+        if not same_dimension(unit, result.unit):
+            return None
+        texts = [_number(from_si(to_si(v, result.unit), unit)) for v in references]
+    except MechgradeError:  # a unit mechgrade cannot read shows nothing more
+        return None
+    if texts == [_number(v) for v in references]:  # N and kg*m/s^2: the same numbers again
+        return None
+    numbers = f"({', '.join(texts)})" if isinstance(result.value, tuple) else texts[0]
+    return f"{numbers} {unit_text(unit)}"
 
 
 def _number(value: float) -> str:

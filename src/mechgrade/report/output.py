@@ -35,7 +35,7 @@ from ..export import EXPORTERS
 from ..outfolder import OutputKind
 from ..parallel import outcome, worker_started
 from ..resources import shipped_dir
-from ..grade.results import ECF_DIAGNOSIS, GradeReport, StudentResult
+from ..grade.results import ECF_DIAGNOSIS, AnswerResult, GradeReport, StudentResult
 
 if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
     from multiprocessing.connection import Connection
@@ -606,7 +606,7 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
             # a right answer's "Correct." says nothing the verdict does not
             "explained": bool(answer.feedback or answer.diagnosis)
                          and (answer.verdict != "correct" or bool(answer.diagnosis)),
-            "expected": pretty_math(answer.expected) if answer.expected else "",
+            "expected": pretty_math(expected_shown(answer)),
         })
     percent = (f"{100 * student.score / student.max_score:.0f}%" if student.max_score
                else "")
@@ -636,6 +636,21 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
         "failing_expects": [prompts.get((f.problem, f.objective)) or f"{f.problem}.{f.objective}"
                             for f in report.failing_expects],
     }
+
+
+def expected_shown(answer: AnswerResult) -> str:
+    """The expected answer as a feedback page shows it: also in the unit the student wrote,
+    when that is another (empty when answers are not revealed).
+
+    >>> expected_shown(AnswerResult("p", "F", "8.27 lbf", "correct", 1.0, 1.0,
+    ...                             expected="36.79 N", expected_in_answer_unit="8.27 lbf"))
+    '36.79 N (8.27 lbf)'
+    """
+    if not answer.expected:
+        return ""
+    if answer.expected_in_answer_unit:
+        return f"{answer.expected} ({answer.expected_in_answer_unit})"
+    return answer.expected
 
 
 NOTHING_READ = {
