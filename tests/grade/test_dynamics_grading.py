@@ -137,6 +137,7 @@ def test_a_sense_of_rotation_is_refused_for_an_energy():
                       "angular momentum or a moment.")
 
 
+@pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_ecf_takes_a_students_designed_parameter_in_place_of_the_design_condition(tmp_path):
     """Sample 9.21: the outer radius R is designed so that a_G = 0.2 g; the contact force is
     asked 'with that R'. A student's wrong R, and the force that follows from it, by hand:

@@ -62,6 +62,7 @@ def test_a_mistake_inside_the_tolerance_is_judged_correct():
     assert MEASURE.classify(row, result)[0] == "inside"
 
 
+@pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_numeric_coincidence_for_another_mistake_is_counted_misleading():
     # 1.6 m/s is 3.206/2.004: "factor of 2" names a coincidence, not speed taken as conserved
     row = {"objective": "speed", "mistake": "speed conserved: r0 w0", "kind": "speed_conserved",

@@ -391,6 +391,7 @@ def answers_file(values) -> str:
             f"  pin_force_along_rod: {along:.6g} N\n")
 
 
+@pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_dynamics_problem_with_variants_is_checked_and_graded_per_student(tmp_path):
     problem = load_problem(DYNAMICS / "pin_pendulum.yaml")
     assert check_variants(problem, 30) == ()  # its kinetics checked for every draw

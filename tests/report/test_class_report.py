@@ -130,6 +130,7 @@ def test_a_short_issue_list_stays_open(report):
     assert re.search(r'id="issues-card"><b>3</b>', html)
 
 
+@pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_300_student_report_stays_short_in_chromium(tmp_path, chromium):
     """The page of a 300-student class, drawn by Chromium, ends within 5000 pixels (the
     unfolded issue table alone took some 14000)."""

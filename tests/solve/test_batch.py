@@ -118,6 +118,7 @@ def test_variants_solved_together_are_the_variants_solved_alone(name, keys):
         assert_same(together, one)
 
 
+@pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_problem_with_symbolic_objectives_only_is_solved_together():
     problem = load_problem(PROBLEMS / "ruina_sec10_bug_on_tire.yaml")
     assert _template(problem) is not None
@@ -234,6 +235,7 @@ def test_a_variant_whose_event_never_happens_fails_as_when_solved_alone():
         assert_same(a, b, INTEGRATED, generated=False)
 
 
+@pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_variant_that_cannot_reach_its_instant_fails_as_when_solved_alone():
     problem = load_problem(PROBLEMS / "ruina_9_19_falling_ladder.yaml")
     variants = [{"theta0": np.radians(50)}, {"theta0": np.radians(75)}]  # below theta: no energy
