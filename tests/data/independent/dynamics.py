@@ -310,6 +310,48 @@ def case_pendulum_in_accelerating_truck():
             "alpha_symbolic": "-(g*sin(theta) + Xdd*cos(theta))/L"}
 
 
+def _damped_free_response(m, k, c, v0):
+    """x(t), x'(t) of an underdamped mass-spring-damper started at x = 0 with x' = v0:
+    x = v0/wd exp(-zeta wn t) sin(wd t), from the characteristic roots by hand."""
+    wn = np.sqrt(k / m)
+    zeta = c / (2 * m * wn)
+    wd = wn * np.sqrt(1 - zeta**2)
+    s = zeta * wn
+
+    def x(t):
+        return v0 / wd * np.exp(-s * t) * np.sin(wd * t)
+
+    def v(t):
+        return v0 / wd * np.exp(-s * t) * (wd * np.cos(wd * t) - s * np.sin(wd * t))
+
+    return x, v, wd, s
+
+
+def _bisect(f, a, b):
+    fa = f(a)
+    for _ in range(200):
+        mid = (a + b) / 2
+        if (f(mid) > 0) == (fa > 0):
+            a, fa = mid, f(mid)
+        else:
+            b = mid
+    return (a + b) / 2
+
+
+def case_damped_block_positions():
+    m, k, c, v0 = 5.0, 2000.0, 40.0, 1.0
+    x, v, wd, s = _damped_free_response(m, k, c, v0)
+    back = np.pi / wd  # the next zero of sin(wd t) after the start
+    peak = np.arctan(wd / s) / wd  # x' = 0: tan(wd t) = wd / s
+    # x rises monotonically to the peak: 20 mm is crossed once before it
+    t20 = _bisect(lambda t: x(t) - 0.02, 0.0, peak)
+    _, v_half, wd_half, _ = _damped_free_response(m, k, c / 2, v0)
+    return {"time_back": back * 1e3, "x_at_30ms": x(0.03) * 1e3,
+            "time_to_20mm": t20 * 1e3, "speed_at_20mm": abs(v(t20)),
+            "spring_force_at_30ms": k * abs(x(0.03)), "peak_displacement": x(peak) * 1e3,
+            "speed_back_half_damping": abs(v_half(np.pi / wd_half))}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
