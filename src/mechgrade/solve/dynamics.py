@@ -388,22 +388,22 @@ def _bracketed(residual: Callable[[float], float], guess: float):
 
 
 def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict,
-             instant: str | None = None):
+             asked_at: str | None = None):
     """The state at the instant, the extended state (with second rates and reactions) the
     objectives are read from, the kinematics' warnings, and for an integration the extended
-    state just before its event (:func:`~.events.at_the_event`), else ``None``. ``instant``:
+    state just before its event (:func:`~.events.at_the_event`), else ``None``. ``asked_at``:
     the key of ``given_map`` that fixes an integration's instant before its event (the time,
     a coordinate or a rate an objective is asked at), ``None`` for the event."""
     analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         g = place_givens(kproblem, kp.kp, given_map)
         size = kp.kp.index.size
-        if instant is not None:
-            node, si, given = given_map[instant]
+        if asked_at is not None:
+            node, si, given = given_map[asked_at]
             state = integrate_to_instant(
                 problem, kp, g.values, lambda values: accelerations(kp, values),
                 kp.kp.index.symbols.index(kp.kp.k.quantity(node)), si,
-                f"{instant}: {given.text}" if given is not None else instant,
+                f"{asked_at}: {given.text}" if given is not None else asked_at,
                 given.where if given is not None else analysis.where)
             return state, solve_kinetics(problem, kp, state), (), None
         reached = integrated_alone(problem, kp, g.values)

@@ -150,7 +150,7 @@ def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
     if not side or np.abs(early.y[:, -1] - y0).max() <= ATOL:
         raise SolveError("the event holds at the start (t = 0) and stays so: expected a "
                          "motion that leaves it", where=where)
-    event.direction = -side  # type: ignore[attr-defined]
+    event.direction = -side
 
 
 def event_never_happens(analysis: Integration) -> SolveError:
