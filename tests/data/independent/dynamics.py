@@ -352,6 +352,19 @@ def case_damped_block_positions():
             "speed_back_half_damping": abs(v_half(np.pi / wd_half))}
 
 
+def case_ballistic_pendulum_energy_lost():
+    m, M, v0 = 0.010, 2.0, 400.0
+    # the cord is vertical and the bullet moves along it at right angles: the horizontal
+    # momentum of bullet + block is conserved through the impact, and they move together
+    v = m * v0 / (m + M)
+    before = m * v0**2 / 2
+    after = (m + M) * v**2 / 2
+    return {"speed_after": v, "bullet_ke_before": before, "ke_lost": before - after,
+            "share_lost": (before - after) / before,
+            "ke_lost_symbolic": "m*M*v0**2/(2*(m + M))",
+            "impulse_on_bullet": [m * (v - v0), 0.0, 0.0]}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
