@@ -87,8 +87,9 @@ CASES = [
      "(an impulse vector)"),
     ("known impulse on an unknown body", ICE, "hammer: {body: rod,", "hammer: {body: bat,",
      "unknown body 'bat' (bodies: rod)"),
-    ("before of a scalar", ICE, "find: dot(angvel(R, N), N.z)",
-     "find: dot(before(mag(vel(G, N))), N.z)", "expected a vector as argument of before(...)"),
+    ("before of a scalar is a scalar", ICE, "find: dot(angvel(R, N), N.z)",
+     "find: dot(before(mag(vel(G, N))), N.z)", "expected a vector as argument of dot(...), "
+     "found a scalar ('before(mag(vel(G, N)))')"),
     ("spring stiffness units", CHAIN, "stiffness: k1", "stiffness: m1",
      "dimension mismatch in 'm1' (a stiffness)"),
     ("spring free length units", CHAIN, "length: L1", "length: k1",
@@ -147,6 +148,11 @@ CASES = [
      "expected a body or spring as argument of pe(...)"),
     ("force in the wrong unit", PENDULUM, "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: N",
      "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: J", "dimension mismatch"),
+    ("before of a point", ICE, "find: vel(G, N)", "find: before(G)",
+     "p.yaml:43:11: objectives[0].find: 'G' is a point; expected a scalar or vector here"),
+    ("after of two quantities", ICE, "find: vel(G, N)", "find: after(vel(G, N), 2)",
+     "expected 1 arguments for after(...) (after(x): scalar or vector x with the rates just "
+     "after the impact (analysis: impulse; x alone means the same)), found 2"),
     ("an objective's own second rate under integrate", CART, "    expect: {value: 1.359157}\n",
      "    expect: {value: 1.359157}\n    givens: {x'': 1 m/s^2}\n",
      "p.yaml:54:19: objectives[0].givens.x'': expected parameters and one of the time t, a "
