@@ -365,6 +365,29 @@ def case_ballistic_pendulum_energy_lost():
             "impulse_on_bullet": [m * (v - v0), 0.0, 0.0]}
 
 
+def case_ball_thrown_with_drag_apex_and_landing():
+    m, c, g, v0, alpha = 0.2, 0.04, 9.81, 20.0, 50 * DEG
+    tau = m / c  # m v' = -m g j - c v: each component relaxes with the time constant m/c
+    u0, w0 = v0 * np.cos(alpha), v0 * np.sin(alpha)
+
+    def x(t):
+        return u0 * tau * (1 - np.exp(-t / tau))
+
+    def y(t):
+        return tau * (w0 + g * tau) * (1 - np.exp(-t / tau)) - g * tau * t
+
+    def velocity(t):
+        return np.array([u0 * np.exp(-t / tau), (w0 + g * tau) * np.exp(-t / tau) - g * tau])
+
+    apex = tau * np.log(1 + w0 / (g * tau))  # y' = 0
+    # y falls from the apex and is negative by 2 * (the time to fall from rest without drag
+    # from a height v0^2 / g): the landing is the one root between
+    landing = _bisect(y, apex, apex + 2 * np.sqrt(2 * v0**2 / g / g))
+    return {"time_of_flight": landing, "range": x(landing),
+            "landing_speed": float(np.hypot(*velocity(landing))), "apex_time": apex,
+            "apex_height": y(apex), "position_at_1s": [x(1.0), y(1.0), 0.0]}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 
