@@ -113,3 +113,20 @@ def test_a_design_parameter_an_objective_gives_is_the_value_used():
                                                            + 2 * M * R**2)
     assert value.result("a_with_R").value == pytest.approx(closed, rel=1e-9)
     assert value.result("R_min").value == pytest.approx(0.1870829, rel=1e-6)
+
+
+def test_a_symbolic_answer_of_a_motion_integrated_to_a_given_time():
+    """until: t = T with T a parameter: the closed form at the event is that at t = T (the
+    event's root is the symbol T itself); the cart's speed grows at mu m g / M."""
+    text = (ROOT / "problems" / "block_slides_on_cart.yaml").read_text()
+    text = text.replace("until: x' = X'", "until: t = T").replace(
+        "  v0: m/s\n", "  v0: m/s\n  T: s\n").replace("givens:\n", "givens:\n  T: 0.5 s\n", 1)
+    text = text.replace("    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g, m, M]",
+                        "    find: X'\n    kind: symbolic\n    unit: m/s\n"
+                        "    symbols: [v0, mu, g, m, M, T]")
+    solution = solve(load_problem_text(text, "p.yaml"),
+                     objectives=["t_slide", "t_slide_symbolic", "common_speed"])
+    assert solution.result("t_slide").value == pytest.approx(0.5, rel=1e-12)
+    assert solution.result("t_slide_symbolic").expr == "T*g*m*mu/M"
+    assert solution.result("common_speed").value == pytest.approx(0.3 * 2 * 9.81 * 0.5 / 8,
+                                                                 rel=1e-9)

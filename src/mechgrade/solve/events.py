@@ -221,7 +221,8 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     event = sp.simplify(kin.until.xreplace(at_time))
     roots = []
     for root in sp.solve(event, T):
-        value = complex(root.xreplace(numbers).evalf())
+        # sympify: a root that is one given symbol (until: t = T) becomes its float
+        value = complex(sp.sympify(root.xreplace(numbers)).evalf())
         if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
             roots.append((value.real, root))
     if not roots:
