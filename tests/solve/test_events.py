@@ -10,7 +10,6 @@ import pytest
 
 from mechgrade.errors import SolveError
 from mechgrade.solve import solve
-from mechgrade.solve.batch import solve_variants
 from mechgrade.spec import load_problem, load_problem_text
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -84,19 +83,6 @@ def test_an_event_that_holds_at_the_start_and_stays_is_refused():
     problem = swing("  v0: 1 m/s\n", "  v0: 0 m/s\n")
     assert "the event holds at the start (t = 0) and stays so: expected a motion that " \
         "leaves it" in failure_of(problem, "time_back")
-
-
-def test_variants_of_an_objective_before_the_event_are_each_integrated_alone():
-    """A class's variants get what solving each alone gives (the batched integrator reads
-    the event only, so such a problem is solved one by one)."""
-    problem = load_problem(ROOT / "problems" / "damped_block_positions.yaml")
-    variants = [{"m": 4.0}, {"k": 1800.0, "c": 30.0}]
-    for together, givens in zip(solve_variants(problem, variants), variants):
-        one = solve(problem, givens=givens)
-        assert [(r.id, r.value) for r in together.results] == \
-            [(r.id, r.value) for r in one.results]
-    assert solve_variants(problem, [{"m": 4.0}])[0].result("x_at_30ms").value != \
-        solve(problem).result("x_at_30ms").value
 
 
 def test_a_design_parameter_an_objective_gives_is_the_value_used():
