@@ -4,7 +4,9 @@ The coordinates and rates from ``from:`` at t = 0, integrated with ``scipy.integ
 (DOP853, rtol 1e-11) until the event equation first holds (root refined on the dense output);
 the objectives are read at the event, with ``t`` its time. The accelerations and reactions
 there are the limits just before the event (a kinetic-friction force has no direction once the
-slip has ended).
+slip has ended). An objective asked at its own time, coordinate or rate is read where that
+first holds, before the event (:func:`integrate_to_instant`); an event, or such a given, that
+holds at t = 0 is its next crossing.
 """
 
 from __future__ import annotations
