@@ -40,6 +40,15 @@ def test_an_objective_at_a_time_reads_the_integrated_motion_there():
             pytest.approx(expected, rel=1e-9)
 
 
+def test_an_objective_at_time_zero_reads_the_start_and_one_at_the_start_position_its_return():
+    at_start = swing("givens: {t: 30 ms}", "givens: {t: 0 s}")
+    assert solve(at_start, objectives=["x_at_30ms"]).result("x_at_30ms").value == 0.0
+    back = swing("givens: {x: 20 mm}", "givens: {x: 0 mm}")
+    wd = 20.0 * np.sqrt(1 - 0.2 ** 2)
+    assert solve(back, objectives=["time_to_20mm"]).result("time_to_20mm").value == \
+        pytest.approx(np.pi / wd * 1000, rel=1e-9)
+
+
 def test_a_position_is_read_where_it_is_first_reached_not_on_the_way_back():
     """20 mm is passed twice in the first swing; the first time is before the peak."""
     solution = solve(load_problem(ROOT / "problems" / "damped_block_positions.yaml"),

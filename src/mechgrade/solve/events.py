@@ -61,7 +61,8 @@ def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int,
     takes ``value`` (SI) on the integrated motion, before its event: an objective asked at
     another instant than the event (``given`` says it as written, ``where`` locates it).
     Raises when the event, or the time allowed, comes first. Arguments as
-    :func:`integrate_to_event`; a ``value`` that holds at t = 0 is its next crossing."""
+    :func:`integrate_to_event`; a coordinate or rate that holds at t = 0 is its next
+    crossing (t = 0 is the start)."""
     from scipy.integrate import solve_ivp
 
     m = _ScalarMotion(problem, kp, base, solve)
@@ -72,7 +73,8 @@ def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int,
 
     reached.terminal = True  # type: ignore[attr-defined]
     m.until.terminal = True  # type: ignore[attr-defined]
-    _next_crossing(reached, m.rhs, m.y0, analysis.max_time, analysis.where)
+    if at != index.time:  # t = 0 is the start itself
+        _next_crossing(reached, m.rhs, m.y0, analysis.max_time, analysis.where)
     result = solve_ivp(m.rhs, (0.0, analysis.max_time), m.y0, method="DOP853", rtol=RTOL,
                        atol=ATOL, events=[reached, m.until])
     if result.status < 0:
