@@ -970,8 +970,8 @@ def _names_an_instant(node: Node, coords: set[str]) -> bool:
 
 def instant_of_objective(problem, overrides) -> str | None:
     """The key among an objective's own givens (``overrides``: canonical key text -> Given)
-    that fixes its instant on an integrated motion (the time ``t``, a coordinate or a rate),
-    ``None`` when it is read at the event.
+    that names the time ``t``, a coordinate or a rate: on an integrated motion it fixes the
+    objective's instant (``None``: the event).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -980,8 +980,6 @@ def instant_of_objective(problem, overrides) -> str | None:
     ...  for o in problem.objectives][:3]
     [None, 't', 'x']
     """
-    if not isinstance(dynamics_of(problem).analysis, Integration):
-        return None
     coords = {c.name for c in problem.coordinates}
     return next((key for key, g in overrides.items() if _names_an_instant(g.key.node, coords)),
                 None)
