@@ -507,12 +507,17 @@ def _judge_load(load: StudentLoad, m: DiagramLoad, model: FreeBodyDiagram,
     if free:
         a = np.array([load.columns[n] for n in free]).T
         u = np.linalg.lstsq(a, target - vector, rcond=None)[0]
-        for n, value in zip(free, u):
-            bound[load.unknowns[n]] = float(value)
-        vector = vector + a @ u
         if m.unknown and not _same_span(a, m):
             direction_wrong = True
             notes.append(_span_note(a, m))
+            if len(free) == 1 and np.linalg.norm(a) > 0:
+                # the model's size along the student's direction, so that a load using this
+                # unknown (friction's mu N) is judged on its own, not on a misfit N
+                u = np.array([np.sign(a[:, 0] @ target or 1.0) * np.linalg.norm(target)
+                              / np.linalg.norm(a)])
+        for n, value in zip(free, u):
+            bound[load.unknowns[n]] = float(value)
+        vector = vector + a @ u
     size = float(np.linalg.norm(target))
     if direction_wrong:
         mistakes.append(LoadMistake.WRONG_DIRECTION)
