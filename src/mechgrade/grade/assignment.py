@@ -37,6 +37,7 @@ class ProblemRef:
 
     path: Path
     objectives: tuple[str, ...] | None = None  # None: every objective of the problem
+    diagrams: tuple[str, ...] = ()  # bodies whose free-body diagram is graded (body.fbd)
     where: Location = field(default_factory=Location, compare=False)
 
 
@@ -283,7 +284,13 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
                     problems_.append(AssignmentError(
                         f"expected each objective once, found '{dup[0]}' more than once",
                         where=doc.where(("problems", i, "objectives"))))
-            refs.append(ProblemRef(target, objectives, where))
+            diagrams = tuple(item.get("diagrams", ())) if isinstance(item, dict) else ()
+            dup = sorted({b for b in diagrams if diagrams.count(b) > 1})
+            if dup:
+                problems_.append(AssignmentError(
+                    f"expected each body's diagram once, found '{dup[0]}' more than once",
+                    where=doc.where(("problems", i, "diagrams"))))
+            refs.append(ProblemRef(target, objectives, diagrams, where))
         if "due" in doc.data:
             try:
                 _due(doc.data["due"])

@@ -41,7 +41,7 @@ from ..solve.fbd import DiagramLoad, FreeBodyDiagram
 from ..spec.dynamics import LoadKind
 from ..tolerance import within
 from .answers import rename_to_symbols
-from .compare import Assessment, unreadable
+from .compare import Assessment, not_evaluated, unreadable
 
 MAX_LOADS = 20
 """The most loads one diagram may list."""
@@ -354,6 +354,9 @@ def judge_diagram(text: str | None, instant: DerivationInstant, body: str) -> Di
     if text is None or not text.strip():
         return DiagramJudgement(body, (), None, Assessment("missing", 0.0, None,
                                                            "No answer was given.", None))
+    if not instant.values or any(vectors is None for _, vectors in instant.frames):
+        return DiagramJudgement(body, (), None, not_evaluated(
+            "the model has no solved state to judge the diagram at"))
     try:
         answer = read_diagram(text, instant, body)
     except AnswerError as exc:
