@@ -14,12 +14,13 @@ from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.results import AnswerResult, GradeReport, LoadResult
 from mechgrade.grade.run import grade_submissions, plan_assignment
 from mechgrade.report.output import write_outputs
+from mechgrade.resources import shipped_dir
 
 ROOT = Path(__file__).resolve().parents[2]
-EXAMPLE = ROOT / "examples" / "hw4_derivation"
+EXAMPLE = shipped_dir("examples") / "hw4_derivation"
 HAND = json.loads((ROOT / "tests" / "data" / "hw4_derivation_verdicts.json").read_text())
 SCHEMA = ROOT / "src" / "mechgrade" / "export" / "results.schema.json"
-INCLINE = ROOT / "problems" / "block_sliding_down_incline.yaml"
+INCLINE = shipped_dir("problems") / "block_sliding_down_incline.yaml"
 
 
 def _assignment(folder: Path, problem: str) -> Path:

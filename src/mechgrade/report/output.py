@@ -610,7 +610,9 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
             # a free-body diagram's rows, one per load
             "loads": [{"label": load.label if load.load is None or load.label == load.load
                        else f"{load.label} ({load.load})",
-                       "point": load.point or "", "answer": load.answer or "",
+                       "point": load.point or "",
+                       # the row names the load: the vector alone, as written
+                       "answer": (load.answer or "").partition(": ")[2],
                        "verdict": "correct" if not load.mistakes else "incorrect",
                        "judged": ", ".join(load.mistakes) if load.mistakes else "right"}
                       for load in answer.loads],
