@@ -212,3 +212,9 @@ def test_every_dynamics_problems_own_diagrams_are_right_and_seeded_errors_named(
     for diagram in instant.diagrams:
         assert own_diagram_failures(instant, diagram.body,
                                     lambda options: rng.choice(list(options))) == []
+
+
+def test_a_load_named_twice_by_its_model_name_is_extra_not_another_load(pendulum):
+    judged = judge_diagram("gravity at G: -m g j; gravity at O: X i + Y j", pendulum, "rod")
+    assert [(row.load, row.mistakes) for row in judged.rows] == [
+        ("gravity", ()), ("R_O", (LoadMistake.MISSING,)), (None, (LoadMistake.EXTRA,))]

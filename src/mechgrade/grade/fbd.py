@@ -449,6 +449,9 @@ def _match(answer: DiagramAnswer, model: FreeBodyDiagram,
     for s, load in loads:  # labels of the student's own: by where they act
         if s in out:
             continue
+        if load.label in names:  # a model load written twice: the second is extra
+            out[s] = None
+            continue
         out[s] = _best(load, free, model, instant, same=True)
         if out[s] is not None:
             free.remove(out[s])  # type: ignore[arg-type]
