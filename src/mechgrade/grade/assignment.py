@@ -285,6 +285,10 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
                         f"expected each objective once, found '{dup[0]}' more than once",
                         where=doc.where(("problems", i, "objectives"))))
             diagrams = tuple(item.get("diagrams", ())) if isinstance(item, dict) else ()
+            if objectives == () and not diagrams:
+                problems_.append(AssignmentError(
+                    "expected at least 1 item(s) (none only beside diagrams:), found an empty "
+                    "list", where=doc.where(("problems", i, "objectives"))))
             dup = sorted({b for b in diagrams if diagrams.count(b) > 1})
             if dup:
                 problems_.append(AssignmentError(
