@@ -218,3 +218,18 @@ def test_a_load_named_twice_by_its_model_name_is_extra_not_another_load(pendulum
     judged = judge_diagram("gravity at G: -m g j; gravity at O: X i + Y j", pendulum, "rod")
     assert [(row.load, row.mistakes) for row in judged.rows] == [
         ("gravity", ()), ("R_O", (LoadMistake.MISSING,)), (None, (LoadMistake.EXTRA,))]
+
+
+@pytest.fixture(scope="module")
+def chain():
+    return _instant("two_mass_spring_chain")
+
+
+def test_two_loads_of_one_kind_are_paired_so_that_the_most_are_right(chain):
+    # the reversed first spring (+10 i) is nearer the second one (+5 i) than its own (-10 i)
+    judged = judge_diagram("spring 1: k1 (x1 - L1) i; spring 2: k2 (x2 - x1 - L2) i; "
+                           "damper: c (x2' - x1') i", chain, "block1")
+    assert [(row.load, row.mistakes) for row in judged.rows] == [
+        ("s1", (LoadMistake.REVERSED,)), ("s2", ()), ("d", ())]
+    assert judge_diagram("spring: k2 (x2 - x1 - L2) i; spring: -k1 (x1 - L1) i; "
+                         "damper: c (x2d - x1d) i", chain, "block1").verdict == "correct"

@@ -30,6 +30,7 @@ from enum import StrEnum
 from itertools import combinations
 
 import numpy as np
+from scipy.optimize import linear_sum_assignment
 
 from ..errors import AnswerError, ExpressionError
 from ..expressions import syntax
@@ -423,8 +424,10 @@ def _fictitious(label: str) -> str | None:
 def _match(answer: DiagramAnswer, model: FreeBodyDiagram,
            instant: DerivationInstant) -> dict[int, DiagramLoad | None]:
     """Each student load's model load (``None``: extra): the model's own name first, then
-    ordinary words, then any other label by where it acts; among several, the one at the
-    same point that fits best."""
+    ordinary words (among loads of the kinds they name), then any other label (among loads at
+    the point it gives). Within a stage, the pairing that has the most loads at their point,
+    then the most loads right, then the closest fit (two springs on one block are told apart
+    by their values, whichever is written first)."""
     free = list(model.loads)
     out: dict[int, DiagramLoad | None] = {}
     names = {m.name: m for m in model.loads}
@@ -434,37 +437,40 @@ def _match(answer: DiagramAnswer, model: FreeBodyDiagram,
         if m is not None and m in free:
             out[s] = m
             free.remove(m)
-    for s, load in loads:  # ordinary words
-        if s in out or load.label in names:
-            continue
-        if _fictitious(load.label):
+        elif m is not None or _fictitious(load.label):  # written twice; not a load at all
             out[s] = None
-            continue
-        kinds = _kinds(load.label)
-        if kinds is None:
-            continue
-        out[s] = _best(load, [m for m in free if m.kind in kinds], model, instant, same=False)
-        if out[s] is not None:
-            free.remove(out[s])  # type: ignore[arg-type]
-    for s, load in loads:  # labels of the student's own: by where they act
-        if s in out:
-            continue
-        if load.label in names:  # a model load written twice: the second is extra
-            out[s] = None
-            continue
-        out[s] = _best(load, free, model, instant, same=True)
-        if out[s] is not None:
-            free.remove(out[s])  # type: ignore[arg-type]
+    words = [(s, load, _kinds(load.label)) for s, load in loads if s not in out]
+    by_word = [(s, load, kinds) for s, load, kinds in words if kinds is not None]
+    _pair(by_word, free, model, instant, out, at_point=False)
+    own = [(s, load, None) for s, load, kinds in words if kinds is None]
+    _pair(own, free, model, instant, out, at_point=True)
     return out
 
 
-def _best(load: StudentLoad, candidates: list[DiagramLoad], model: FreeBodyDiagram,
-          instant: DerivationInstant, same: bool) -> DiagramLoad | None:
-    at = [m for m in candidates if _same_point(load, m, model, instant)]
-    pool = at if at or same else candidates
-    if not pool:
-        return None
-    return min(pool, key=lambda m: _misfit(load, m))
+_NO_PAIR = 1e9
+
+
+def _pair(students: list, free: list[DiagramLoad], model: FreeBodyDiagram,
+          instant: DerivationInstant, out: dict, at_point: bool) -> None:
+    """Pair ``students`` (index, load, kinds or ``None`` for any) with ``free`` model loads
+    (removed from it as paired) into ``out``; a student load left unpaired is extra."""
+    if not students:
+        return
+    cost = np.full((len(students), len(free)), _NO_PAIR)
+    for i, (_, load, kinds) in enumerate(students):
+        for j, m in enumerate(free):
+            here = _same_point(load, m, model, instant)
+            if (kinds is not None and m.kind not in kinds) or (at_point and not here):
+                continue
+            size = float(np.linalg.norm(m.vector)) if m.vector is not None else 0.0
+            misfit = _misfit(load, m) / max(size, 1e-12)
+            cost[i, j] = 100.0 * (not here) + 10.0 * (misfit > REL) + min(misfit, 1.0)
+    rows, columns = linear_sum_assignment(cost) if free else ((), ())
+    paired = {int(i): free[j] for i, j in zip(rows, columns) if cost[i, j] < _NO_PAIR}
+    for i, (s, _, _) in enumerate(students):
+        out[s] = paired.get(i)
+    for m in paired.values():
+        free.remove(m)
 
 
 def _misfit(load: StudentLoad, m: DiagramLoad) -> float:
