@@ -22,9 +22,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import lru_cache
 
+import numpy as np
+
+from ..errors import MechgradeError
 from ..mechanics.kinematics import locations
 from ..spec.model import Problem
-from .dynamics import kinetics_plan
+from .dynamics import kinetics_plan, solve_kinetics
+from .levels import State
 from .fbd import FreeBodyDiagram, Vec3, _diagram_plan, _extended_state, _vector, free_body_diagrams
 from .result import Solution
 
@@ -113,3 +117,85 @@ def _frame_plan(problem: Problem) -> dict:
                         modules="numpy")
             for axis in AXES)
     return out
+
+
+SAMPLES = 5
+"""How many states equations of motion are judged at (the instant's and others)."""
+
+
+@dataclass(frozen=True)
+class MotionSamples:
+    """The model's motion at a few states: ``symbols`` a student may write (coordinates,
+    parameters, rates as ``xd``), ``accelerations`` (``xdd``), ``reactions`` (the model's
+    names, ``R_O_1``), and per state the value of each, in that order."""
+
+    symbols: tuple[str, ...]
+    accelerations: tuple[str, ...]
+    reactions: tuple[str, ...]
+    states: tuple[tuple[float, ...], ...]
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return self.symbols + self.accelerations + self.reactions
+
+    def state(self, k: int) -> dict[str, float]:
+        """The ``k``-th state by name."""
+        return dict(zip(self.names, self.states[k]))
+
+
+def motion_samples(problem: Problem, solution: Solution, count: int = SAMPLES,
+                   seed: int = 0) -> MotionSamples | None:
+    """The model's motion at the solved instant and at states near it: every parameter and
+    rate scaled by a seeded factor in 0.8 to 1.25 (the coordinates kept, so that constraints
+    on them hold; the parameters alone where scaling the rates breaks a constraint on them),
+    with the accelerations and reactions the model solves there. A state the model cannot
+    solve is left out; ``None`` without a solved state.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve import solve
+    >>> problem = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+    >>> samples = motion_samples(problem, solve(problem))
+    >>> samples.accelerations, samples.reactions, len(samples.states)
+    (('xdd',), ('N_P',), 5)
+    >>> s = samples.state(0)
+    >>> round(s["xdd"], 4), round(s["N_P"], 4)
+    (2.7811, 33.9828)
+    >>> all(abs(s["xdd"] - s["g"] * (np.sin(s["beta"]) - s["mu_k"] * np.cos(s["beta"])))
+    ...     < 1e-9 for s in map(samples.state, range(5)))
+    True
+    """
+    if problem.dynamics is None:
+        return None
+    x = _extended_state(problem, solution)
+    if x is None:
+        return None
+    kp = kinetics_plan(problem)
+    index = kp.kp.index
+    parameters = [i for i in range(index.size) if index.is_parameter(i)]
+    rates = list(index.rates(1))
+    given = np.zeros(index.size, dtype=bool)
+    given[list(index.config) + rates] = True
+    rng = np.random.default_rng(seed)
+    found = [x]
+    for _ in range(count - 1):
+        factors = rng.uniform(0.8, 1.25, index.size)
+        for scaled in (parameters + rates, parameters):
+            values = x[:index.size].copy()
+            values[scaled] *= factors[scaled]
+            try:
+                found.append(solve_kinetics(problem, kp, State(values, given)))
+                break
+            except MechgradeError:
+                continue
+    symbols = [i for i in list(index.config) + rates if i != index.time]
+    accelerations = list(index.rates(2))
+    reactions = list(range(index.size, len(kp.symbols)))
+    order = symbols + accelerations + reactions
+    states = tuple(tuple(float(v[i]) for i in order) for v in found
+                   if np.all(np.isfinite(v[order])))
+    if not states:
+        return None
+    return MotionSamples(tuple(rate_name(index.names[i]) for i in symbols),
+                         tuple(rate_name(index.names[i]) for i in accelerations),
+                         tuple(str(kp.symbols[i]) for i in reactions), states)
