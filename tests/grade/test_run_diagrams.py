@@ -1,5 +1,6 @@
-"""Free-body diagrams in a grading run (an assignment's ``diagrams:``): results.json rows per
-load, the feedback pages, and examples/hw4_derivation judged as by hand."""
+"""Free-body diagrams and equations of motion in a grading run (an assignment's ``diagrams:``
+and ``equations:``): results.json rows per load, the feedback pages, and
+examples/hw4_derivation judged as by hand."""
 
 from __future__ import annotations
 
@@ -76,7 +77,7 @@ def graded():
 
 
 @pytest.mark.slow
-def test_every_diagram_of_the_example_is_judged_as_by_hand(graded):
+def test_every_diagram_and_set_of_equations_of_the_example_is_judged_as_by_hand(graded):
     assert {s.id for s in graded.students} == set(HAND) - {"_comment"}
     for student in graded.students:
         for answer in student.answers:
@@ -85,6 +86,11 @@ def test_every_diagram_of_the_example_is_judged_as_by_hand(graded):
             named = {m for row in answer.loads for m in row.mistakes}
             if hand is True:
                 assert answer.verdict == "correct", (student.id, key, answer.feedback)
+            elif hand in ("wrong", "incomplete", "missing"):  # equations of motion
+                said = {"wrong": "does not hold", "incomplete": "do not determine",
+                        "missing": "No answer was given"}[hand]
+                assert answer.verdict != "correct" and said in answer.feedback, \
+                    (student.id, key, answer.feedback)
             elif hand == ["unreadable"]:
                 assert answer.verdict == "unreadable", (student.id, key)
             else:
@@ -104,3 +110,11 @@ def test_results_json_and_the_feedback_page_show_a_row_per_load(graded, tmp_path
     page = next(tmp_path.rglob("dan*.html")).read_text(encoding="utf-8")
     assert "Your free-body diagram, load by load" in page
     assert "centrifugal force" in page and "<td>extra</td>" in page
+
+
+def test_equations_of_a_problem_without_bodies_are_refused(tmp_path):
+    kinematic = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
+    hw = _assignment(tmp_path, f"  - path: {kinematic}\n    objectives: []\n"
+                               f"    equations: true\n")
+    with pytest.raises(AssignmentError, match="expected equations of a problem with bodies"):
+        plan_assignment(load_assignment(hw))

@@ -40,7 +40,7 @@ from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect
 from .submissions import Submission, SubmissionSet
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
-    from ..solve.derivation import DerivationInstant
+    from ..solve.derivation import DerivationInstant, MotionSamples
     from ..solve.result import ObjectiveResult, Solution
     from .compare import Assessment
 
@@ -86,6 +86,21 @@ class PlannedDiagram:
 
 
 @dataclass(frozen=True)
+class PlannedEquations:
+    """One problem's graded equations of motion, with the model's motion sampled, and
+    points. Answered under ``problem_id.equations``."""
+
+    problem: Problem
+    samples: "MotionSamples | None"
+    max_points: float
+    objective_id = "equations"
+
+    @property
+    def key(self) -> str:
+        return f"{self.problem.id}.{self.objective_id}"
+
+
+@dataclass(frozen=True)
 class Plan:
     """An assignment with its problems loaded and solved once, ready to grade any student."""
 
@@ -94,15 +109,18 @@ class Plan:
     solutions: tuple[Solution, ...]
     objectives: tuple[PlannedObjective, ...]
     diagrams: tuple[PlannedDiagram, ...] = ()
+    equations: tuple[PlannedEquations, ...] = ()
 
     @property
     def keys(self) -> frozenset[str]:
-        return frozenset([*(o.key for o in self.objectives), *(d.key for d in self.diagrams)])
+        return frozenset([*(o.key for o in self.objectives), *(d.key for d in self.diagrams),
+                          *(e.key for e in self.equations)])
 
     @property
     def max_score(self) -> float:
         return _round(sum(o.max_points for o in self.objectives)
-                      + sum(d.max_points for d in self.diagrams))
+                      + sum(d.max_points for d in self.diagrams)
+                      + sum(e.max_points for e in self.equations))
 
 
 def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | None = None,
@@ -126,6 +144,7 @@ def _solve_all(assignment: Assignment, problems: tuple[Problem, ...], chosen,
 
     graded = [[o for i, o, _ in chosen if i == index] for index in range(len(problems))]
     drawn = {index for index, _, _ in _choose_diagrams(assignment, problems)}
+    drawn |= {index for index, _ in _choose_equations(assignment, problems)}
     # a diagram needs the instant's state, which only solving an objective gives
     work = [partial(solve, p, objectives=_needed(p, graded[index])
                     if graded[index] or index not in drawn else None)
@@ -203,6 +222,8 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
     keys = {f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen}
     keys |= {f"{problems[index].id}.{body}.fbd"
              for index, body, _ in _choose_diagrams(assignment, problems)}
+    keys |= {f"{problems[index].id}.{PlannedEquations.objective_id}"
+             for index, _ in _choose_equations(assignment, problems)}
     for key, _ in assignment.points:
         if key not in keys:
             raise AssignmentError(f"expected a graded objective 'problem_id.objective_id' "
@@ -234,6 +255,25 @@ def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
     return chosen
 
 
+def _choose_equations(assignment: Assignment, problems: tuple[Problem, ...]
+                      ) -> list[tuple[int, float]]:
+    """(problem index, points) of every problem whose equations of motion are graded; raises
+    :class:`AssignmentError` for a problem without bodies, drawing variants, or with an
+    objective of that id."""
+    chosen = []
+    for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
+        if not ref.equations:
+            continue
+        key = PlannedEquations.objective_id
+        if problem.dynamics is None or problem.variants is not None or \
+                any(o.id == key for o in problem.objectives):
+            raise AssignmentError(
+                f"expected equations of a problem with bodies, no variants and no objective "
+                f"'{key}', found '{problem.id}'", where=ref.where)
+        chosen.append((index, assignment.points_for(problem.id, key)))
+    return chosen
+
+
 def _plan(assignment: Assignment, problems: tuple[Problem, ...],
           solutions: tuple[Solution, ...], chosen) -> Plan:
     planned = tuple(PlannedObjective(problems[index], objective,
@@ -246,7 +286,13 @@ def _plan(assignment: Assignment, problems: tuple[Problem, ...],
             from ..solve.derivation import derivation_instant
             instants[index] = derivation_instant(problems[index], solutions[index])
         diagrams.append(PlannedDiagram(problems[index], body, instants[index], points))
-    return Plan(assignment, problems, solutions, planned, tuple(diagrams))
+    equations = []
+    for index, points in _choose_equations(assignment, problems):
+        from ..solve.derivation import motion_samples
+        equations.append(PlannedEquations(problems[index],
+                                          motion_samples(problems[index], solutions[index]),
+                                          points))
+    return Plan(assignment, problems, solutions, planned, tuple(diagrams), tuple(equations))
 
 
 def graded_result(solution: Solution, objective_id: str) -> ObjectiveResult:
@@ -336,6 +382,8 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
     keys = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen)
     keys |= {f"{problems[index].id}.{body}.fbd"
              for index, body, _ in _choose_diagrams(assignment, problems)}
+    keys |= {f"{problems[index].id}.{PlannedEquations.objective_id}"
+             for index, _ in _choose_equations(assignment, problems)}
     drawn = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen
                       if problems[index].variants is not None)
     read = partial(read_any_submissions, submissions_dir, keys=keys, roster=roster,
@@ -409,6 +457,8 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives += tuple(ObjectiveInfo(d.problem.id, d.objective_id,
                                       f"The free-body diagram of the {d.body}.", d.max_points,
                                       d.problem.title) for d in plan.diagrams)
+    objectives += tuple(ObjectiveInfo(e.problem.id, e.objective_id, "The equations of motion.",
+                                      e.max_points, e.problem.title) for e in plan.equations)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
                        tuple(students), submissions.skipped,
                        (*submissions.notes, *conflicts, *author_warnings(plan)), tuple(faults),
@@ -452,7 +502,7 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
                          o.max_points, givens[o.problem.id])
         for o in plan.objectives)
     return Plan(plan.assignment, plan.problems, tuple(solutions), objectives,
-                plan.diagrams), variants
+                plan.diagrams, plan.equations), variants
 
 
 def _with_variant(student: StudentResult, own: Plan, variants: list, neighbours,
@@ -589,6 +639,15 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
                                         "messages)."))
         else:
             answers.append(_judge_diagram_safely(diagram, text, person, faults))
+    for equations in plan.equations:
+        text = submission.answer(equations.key) if submission is not None else None
+        if status == "unreadable":
+            answers.append(AnswerResult(equations.problem.id, equations.objective_id, None,
+                                        "unreadable", 0.0, equations.max_points, None,
+                                        "Your answer file could not be read (see the "
+                                        "messages)."))
+        else:
+            answers.append(_judge_equations_safely(equations, text, person, faults))
     score = _round(sum(a.points for a in answers))
     return StudentResult(person.id, person.name, "conflict" if person.conflict else status,
                          score, plan.max_score, tuple(answers), tuple(messages),
@@ -629,6 +688,25 @@ def _judge_diagram_safely(diagram: PlannedDiagram, text: str | None, person: _Pe
     return AnswerResult(diagram.problem.id, diagram.objective_id, text, judged.verdict,
                         _round(judged.credit * diagram.max_points), diagram.max_points, None,
                         judged.assessment.feedback, judged.read_back, loads=rows)
+
+
+def _judge_equations_safely(equations: PlannedEquations, text: str | None, person: _Person,
+                            faults: list[str]) -> AnswerResult:
+    """One set of equations of motion judged (:mod:`.equations`); a fault of mechgrade's
+    makes it ``not_evaluated``, nothing more."""
+    try:
+        from .equations import judge_equations
+
+        judged = judge_equations(text, equations.samples)
+    except Exception as exc:  # noqa: BLE001 - one answer must not take its student down
+        detail = brief_exception(exc)
+        faults.append(f"judging '{person.id}' {equations.key}: {detail}")
+        return AnswerResult(equations.problem.id, equations.objective_id, text,
+                            "not_evaluated", 0.0, equations.max_points, None,
+                            f"internal error: {detail}; please tell your instructor")
+    return AnswerResult(equations.problem.id, equations.objective_id, text, judged.verdict,
+                        _round(judged.credit * equations.max_points), equations.max_points,
+                        None, judged.assessment.feedback, judged.assessment.read_back)
 
 
 # ---------------------------------------------------------------------------- judging
