@@ -630,24 +630,15 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
             answer = _judge_safely(judge, item, text, submission, verdicts, person, faults)
         verdicts[item.key] = answer
         answers.append(answer)
-    for diagram in plan.diagrams:
-        text = submission.answer(diagram.key) if submission is not None else None
+    parts: list[PlannedDiagram | PlannedEquations] = [*plan.diagrams, *plan.equations]
+    for part in parts:
+        text = submission.answer(part.key) if submission is not None else None
         if status == "unreadable":
-            answers.append(AnswerResult(diagram.problem.id, diagram.objective_id, None,
-                                        "unreadable", 0.0, diagram.max_points, None,
-                                        "Your answer file could not be read (see the "
-                                        "messages)."))
+            answers.append(AnswerResult(part.problem.id, part.objective_id, None, "unreadable",
+                                        0.0, part.max_points, None, "Your answer file could "
+                                        "not be read (see the messages)."))
         else:
-            answers.append(_judge_diagram_safely(diagram, text, person, faults))
-    for equations in plan.equations:
-        text = submission.answer(equations.key) if submission is not None else None
-        if status == "unreadable":
-            answers.append(AnswerResult(equations.problem.id, equations.objective_id, None,
-                                        "unreadable", 0.0, equations.max_points, None,
-                                        "Your answer file could not be read (see the "
-                                        "messages)."))
-        else:
-            answers.append(_judge_equations_safely(equations, text, person, faults))
+            answers.append(_judge_derivation_safely(part, text, person, faults))
     score = _round(sum(a.points for a in answers))
     return StudentResult(person.id, person.name, "conflict" if person.conflict else status,
                          score, plan.max_score, tuple(answers), tuple(messages),
@@ -668,45 +659,34 @@ def _judge_safely(judge: "_Judge", item: PlannedObjective, text: str, submission
                             judge.expected(item))
 
 
-def _judge_diagram_safely(diagram: PlannedDiagram, text: str | None, person: _Person,
-                          faults: list[str]) -> AnswerResult:
-    """One free-body diagram judged, a row per load (:mod:`.fbd`); a fault of mechgrade's
-    makes it ``not_evaluated``, nothing more."""
+def _judge_derivation_safely(part: PlannedDiagram | PlannedEquations, text: str | None,
+                             person: _Person, faults: list[str]) -> AnswerResult:
+    """One free-body diagram (a row per load, :mod:`.fbd`) or set of equations of motion
+    (:mod:`.equations`) judged; a fault of mechgrade's makes it ``not_evaluated``, nothing
+    more."""
+    rows: tuple[LoadResult, ...] = ()
     try:
-        from .fbd import judge_diagram
+        if isinstance(part, PlannedDiagram):
+            from .fbd import judge_diagram
 
-        judged = judge_diagram(text, diagram.instant, diagram.body)
+            judged = judge_diagram(text, part.instant, part.body)
+            rows = tuple(LoadResult(row.label, row.load, str(row.kind) if row.kind else None,
+                                    row.point, row.answer, tuple(str(m) for m in row.mistakes),
+                                    row.feedback) for row in judged.rows)
+            assessment = judged.assessment
+        else:
+            from .equations import judge_equations
+
+            assessment = judge_equations(text, part.samples).assessment
     except Exception as exc:  # noqa: BLE001 - one answer must not take its student down
         detail = brief_exception(exc)
-        faults.append(f"judging '{person.id}' {diagram.key}: {detail}")
-        return AnswerResult(diagram.problem.id, diagram.objective_id, text, "not_evaluated",
-                            0.0, diagram.max_points, None,
+        faults.append(f"judging '{person.id}' {part.key}: {detail}")
+        return AnswerResult(part.problem.id, part.objective_id, text, "not_evaluated", 0.0,
+                            part.max_points, None,
                             f"internal error: {detail}; please tell your instructor")
-    rows = tuple(LoadResult(row.label, row.load, str(row.kind) if row.kind else None,
-                            row.point, row.answer, tuple(str(m) for m in row.mistakes),
-                            row.feedback) for row in judged.rows)
-    return AnswerResult(diagram.problem.id, diagram.objective_id, text, judged.verdict,
-                        _round(judged.credit * diagram.max_points), diagram.max_points, None,
-                        judged.assessment.feedback, judged.read_back, loads=rows)
-
-
-def _judge_equations_safely(equations: PlannedEquations, text: str | None, person: _Person,
-                            faults: list[str]) -> AnswerResult:
-    """One set of equations of motion judged (:mod:`.equations`); a fault of mechgrade's
-    makes it ``not_evaluated``, nothing more."""
-    try:
-        from .equations import judge_equations
-
-        judged = judge_equations(text, equations.samples)
-    except Exception as exc:  # noqa: BLE001 - one answer must not take its student down
-        detail = brief_exception(exc)
-        faults.append(f"judging '{person.id}' {equations.key}: {detail}")
-        return AnswerResult(equations.problem.id, equations.objective_id, text,
-                            "not_evaluated", 0.0, equations.max_points, None,
-                            f"internal error: {detail}; please tell your instructor")
-    return AnswerResult(equations.problem.id, equations.objective_id, text, judged.verdict,
-                        _round(judged.credit * equations.max_points), equations.max_points,
-                        None, judged.assessment.feedback, judged.assessment.read_back)
+    return AnswerResult(part.problem.id, part.objective_id, text, assessment.verdict,
+                        _round(assessment.credit * part.max_points), part.max_points, None,
+                        assessment.feedback, assessment.read_back, loads=rows)
 
 
 # ---------------------------------------------------------------------------- judging
