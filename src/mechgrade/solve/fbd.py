@@ -24,7 +24,6 @@ numbers cannot be had (a failed solve) keeps ``None`` for them, its structure in
 from __future__ import annotations
 
 from dataclasses import dataclass
-from enum import StrEnum
 from functools import lru_cache
 from typing import Callable
 
@@ -35,8 +34,8 @@ from ..errors import MechgradeError
 from ..mechanics.build import build
 from ..mechanics.dynamics import derive_kinetics, free_body_loads
 from ..mechanics.kinematics import locations
-from ..spec.dynamics import (Block, Cylinder, Disk, Explicit, LoadKind, Ring, Rod, Shell,
-                             Sphere, dynamics_of)
+from ..spec.dynamics import (Block, Cylinder, Disk, Explicit, LoadKind, OutlineKind, Ring, Rod,
+                             Shell, Sphere, dynamics_of)
 from ..spec.model import Problem
 from .dynamics import accelerations, kinetics_plan, solve_kinetics
 from .levels import State
@@ -84,20 +83,6 @@ class DiagramLoad:
     magnitude_value: float | None
     surface: Surface | None
     sign: int = 1
-
-
-class OutlineKind(StrEnum):
-    """The shape a part of a body is drawn as."""
-
-    PARTICLE = "particle"
-    ROD = "rod"
-    DISK = "disk"
-    RING = "ring"
-    CYLINDER = "cylinder"
-    SPHERE = "sphere"
-    SHELL = "shell"
-    BLOCK = "block"
-    BODY = "body"  # inertia given by its entries: no shape to draw, a blob at its centre
 
 
 @dataclass(frozen=True)
