@@ -523,9 +523,14 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
     from markupsafe import Markup
 
     env = env if env is not None else template_environment(templates_dir)
+    from .fbd import fbd_svg
+
+    diagrams = [Markup(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
+                for d in worked.diagrams]
     steps = [{"anchor": step.anchor, "title": step.title, "lines": step.lines,
               "rows": [{"anchor": row.anchor, "text": row.text,
-                        "math": Markup(spoken_math(row.math, row.text))} for row in step.rows]}
+                        "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
+              "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
     context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
                      "picture": worked.picture, "steps": steps}}

@@ -31,12 +31,15 @@ from ..mechanics.writeup import worked_steps
 from ..spec.model import ObjectiveKind, Problem
 from ..units import from_si, same_dimension
 from ..spec.mistake_codes import GIVEN_CODES, MODEL_CODES
+from .fbd import FreeBodyDiagram, free_body_diagrams
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
                      in_frame)
 
 __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
 
+DIAGRAM_STEP = "kinetics-free-body-loads"
+"""The step that shows the free-body diagrams."""
 _ACCELERATION_CALLS = ("acc", "acc_t", "acc_n", "rho", "normal")
 _MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")
 
@@ -44,8 +47,10 @@ _MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")
 @dataclass(frozen=True)
 class WorkedSolution:
     """One problem's worked solution (for one set of givens): ``steps`` in the write-up order,
-    ``picture`` an SVG document (empty when there is nothing to draw), ``places`` ``(objective, code, anchor)``: the step or row
-    (by anchor) where the generated mistake ``code`` of an objective happens."""
+    ``picture`` an SVG document (empty when there is nothing to draw), ``places``
+    ``(objective, code, anchor)``: the step or row (by anchor) where the generated mistake
+    ``code`` of an objective happens; ``diagrams`` each body's free-body diagram (plain
+    data), shown in the step anchored ``diagram_step``."""
 
     problem: str
     title: str
@@ -53,6 +58,8 @@ class WorkedSolution:
     picture: str
     places: tuple[tuple[str, str, str], ...] = ()
     declared: tuple[tuple[str, str, str], ...] = ()
+    diagrams: tuple[FreeBodyDiagram, ...] = ()
+    diagram_step: str = ""
 
     def place(self, objective: str, code: str) -> str | None:
         """The anchor of the step or row where ``code``'s mistake happens for ``objective``."""
@@ -110,8 +117,10 @@ def worked_solution(problem: Problem, solution: Solution,
                      for o in chosen if o.id in results
                      for m in results[o.id].mistakes
                      for g in _same_value(m, results[o.id].generated_mistakes))
+    diagrams = free_body_diagrams(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
-                          picture_svg(drawing) if drawable(drawing) else "", places, declared)
+                          picture_svg(drawing) if drawable(drawing) else "", places, declared,
+                          diagrams, DIAGRAM_STEP if diagrams else "")
 
 
 def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple[Step, ...]:
