@@ -30,7 +30,7 @@ from ..mechanics.derivation import Row, Step
 from ..mechanics.writeup import worked_steps
 from ..spec.model import ObjectiveKind, Problem
 from ..units import from_si, same_dimension
-from ..spec.mistake_codes import GIVEN_CODES, MODEL_CODES
+from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from .fbd import FreeBodyDiagram, free_body_diagrams
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
@@ -40,6 +40,12 @@ __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
 
 DIAGRAM_STEP = "kinetics-free-body-loads"
 """The step that shows the free-body diagrams."""
+_DYNAMICS_STEPS = {"strands_miscounted": "constraints", "body_ke_omitted": "kinetics-bodies",
+                   "rotational_ke_omitted": "kinetics-bodies",
+                   "spring_free_length_omitted": "kinetics-free-body-loads",
+                   "springs_in_series": "kinetics-free-body-loads",
+                   "damping_omitted": "kinetics-free-body-loads"}
+"""Where a dynamics mistake happens when no row of the steps names it: its step."""
 _ACCELERATION_CALLS = ("acc", "acc_t", "acc_n", "rho", "normal")
 _MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")
 
@@ -95,8 +101,11 @@ def worked_solution(problem: Problem, solution: Solution,
     """The worked solution of ``problem`` with ``solution``'s numbers (its givens, its
     answers, its picture), for the ``objectives`` named (default: every one)."""
     chosen = tuple(o for o in problem.objectives if objectives is None or o.id in objectives)
-    givens = tuple(_state_text(s) for s in solution.state if s.given)
-    solved = tuple(_state_text(s) for s in solution.state if not s.given)
+    # a rate an energy balance or an integration gave is a result, not a given
+    stated = {g.key.text for g in problem.givens}
+    givens = tuple(_state_text(s) for s in solution.state if s.given and s.name in stated)
+    solved = tuple(_state_text(s) for s in solution.state
+                   if not (s.given and s.name in stated))
     asked = tuple(f"{o.id}: {o.prompt or o.find.text}" + (f" [{o.unit}]" if o.unit else "")
                   for o in chosen)
     results = {r.id: r for r in solution.results}
@@ -110,9 +119,9 @@ def worked_solution(problem: Problem, solution: Solution,
              *_at_the_instant(problem, worked_steps(problem, solution.dof), drawing),
              *((Step("state", "The instant, solved", solved),) if solved else ()),
              *answers)
+    codes = MODEL_CODES + GIVEN_CODES + (DYNAMICS_CODES if problem.dynamics else ())
     places = tuple((o.id, code, _place(steps, o.id, o.find.node, code))
-                   for o in chosen if o.id in results
-                   for code in MODEL_CODES + GIVEN_CODES)
+                   for o in chosen if o.id in results for code in codes)
     declared = tuple((o.id, m.message, _place(steps, o.id, o.find.node, g.code))
                      for o in chosen if o.id in results
                      for m in results[o.id].mistakes
@@ -183,6 +192,9 @@ def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> st
     rows = [row for step in steps for row in step.rows]
     if code == "relative_omega":
         return next((r.anchor for r in rows if code in r.codes), "frames")
+    if code in DYNAMICS_CODES:
+        return next((r.anchor for r in rows if code in r.codes),
+                    _DYNAMICS_STEPS.get(code, "kinetics-momentum-balances"))
     for call in _calls(node):
         if not isinstance(call.args[0], Name):
             continue
