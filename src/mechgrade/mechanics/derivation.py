@@ -260,6 +260,32 @@ def _scripted(letter: str, frame: str, point: str) -> str:
             f"<mprescripts/><none/><mi>{frame}</mi></mmultiscripts>")
 
 
+def symbolic_math(problem: Problem, text: str, label: str = "") -> str | None:
+    """A symbolic answer the solver wrote (sympy syntax, in the problem's names) as MathML:
+    rates dotted, ``|x|`` for ``Abs(x)``, ``label =`` before it when given; ``None`` when it
+    cannot be read.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+    >>> "<mo>|</mo>" in symbolic_math(p, "xd/Abs(xd)")
+    True
+    """
+    from ..errors import ExpressionError
+    from ..expressions.build import to_sympy
+    from ..expressions.syntax import parse
+
+    model = build(problem)
+    known = {str(s): s for s in (*model.symbols.q, *model.symbols.qd, *model.symbols.qdd)}
+    try:
+        expr = to_sympy(parse(text), lambda n: known.get(n.id) or sp.Symbol(n.id, real=True))
+    except (ExpressionError, AttributeError):
+        return None
+    show = _Display(model)
+    return show.math(expr) if not label else \
+        f'<math display="block"><mrow>{label}<mo>=</mo>{show._inner(expr)}</mrow></math>'
+
+
 class _Display:
     """MathML of a model's expressions, with rates as dots over their coordinate
     (``thetad`` -> θ̇)."""

@@ -101,12 +101,12 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
         group = [f'<g class="load" data-load="{escape(load.name, quote=True)}">']
         for tail, head, label in parts:
             if tail == head:  # along the page's normal: a dot (out of it) or a cross (into it)
-                sign = "out" if label[3] > 0 else "in"
+                sign = "out-of-page" if label[3] > 0 else "into-page"
                 mark = (f'<circle cx="{tail[0]:.1f}" cy="{tail[1]:.1f}" r="2" fill="{colour}"/>'
-                        if sign == "out" else
+                        if sign == "out-of-page" else
                         f'<path d="M{tail[0] - 5:.1f},{tail[1] - 5:.1f} l10,10 m0,-10 l-10,10" '
                         f'stroke="{colour}" stroke-width="1.6"/>')
-                group += [f'<g class="arrow {sign}-of-page"><circle cx="{tail[0]:.1f}" '
+                group += [f'<g class="arrow {sign}"><circle cx="{tail[0]:.1f}" '
                           f'cy="{tail[1]:.1f}" r="8" fill="none" stroke="{colour}" '
                           f'stroke-width="1.6"/>{mark}</g>',
                           _label((tail[0] + 12, tail[1] - 12), tail, label[:3], colour, labels,

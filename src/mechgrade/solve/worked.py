@@ -26,7 +26,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..expressions.syntax import Call, Name, Node
-from ..mechanics.derivation import Row, Step
+from ..mechanics.derivation import Row, Step, symbolic_math
 from ..mechanics.writeup import worked_steps
 from ..spec.model import ObjectiveKind, Problem
 from ..units import from_si, same_dimension
@@ -109,11 +109,9 @@ def worked_solution(problem: Problem, solution: Solution,
     asked = tuple(f"{o.id}: {o.prompt or o.find.text}" + (f" [{o.unit}]" if o.unit else "")
                   for o in chosen)
     results = {r.id: r for r in solution.results}
-    answers = tuple(
-        Step(f"answer-{o.id}", o.prompt or o.id,
-             (f"{o.id} = {o.find.text}" + (f", components along {o.frame}" if o.frame else ""),
-              f"= {answer_text(results[o.id])}"))
-        for o in chosen if o.id in results)
+    signs = {v.name: int(np.sign(v.si)) for v in solution.state}
+    answers = tuple(_answer_step(problem, o, results[o.id], signs) for o in chosen
+                    if o.id in results)
     drawing = scene(problem, solution)
     steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
              *_at_the_instant(problem, worked_steps(problem, solution.dof), drawing),
@@ -130,6 +128,30 @@ def worked_solution(problem: Problem, solution: Solution,
     return WorkedSolution(problem.id, problem.title, steps,
                           picture_svg(drawing) if drawable(drawing) else "", places, declared,
                           diagrams, DIAGRAM_STEP if diagrams else "")
+
+
+def _answer_step(problem: Problem, objective, result: ObjectiveResult,
+                 signs: dict[str, int]) -> Step:
+    """An objective's answer: what it asks in the model's terms, then its value (a symbolic
+    one typeset, in its unit and the names it is in; the sense of a rate it takes through its
+    sign alone from ``signs``, the instant's sign of each value by name)."""
+    asked = f"{objective.id} = {objective.find.text}" + (
+        f", components along {objective.frame}" if objective.frame else "")
+    title = objective.prompt or objective.id
+    math = symbolic_math(problem, result.expr, f"<mi>{objective.id}</mi>") \
+        if result.kind == ObjectiveKind.SYMBOLIC and result.expr else None
+    if math is None:
+        return Step(f"answer-{objective.id}", title, (asked, f"= {answer_text(result)}"))
+    rates = {f"{c.name}d": f"{c.name}'" for c in problem.coordinates}
+    names = ", ".join(rates.get(n, n) for n in result.symbols)
+    # a rate the answer takes only through its sign (kinetic friction's sense of sliding)
+    senses = tuple(f"at this instant {rates[n]} {'>' if sign > 0 else '<'} 0, so "
+                   f"{rates[n]}/|{rates[n]}| = {sign}"
+                   for n in result.symbols if n in rates and f"Abs({n})" in result.expr
+                   for sign in (signs.get(rates[n], 0),) if sign)
+    return Step(f"answer-{objective.id}", title,
+                (asked, f"in {result.unit or '1'}, in terms of {names}", *senses),
+                (Row(f"answer-{objective.id}-value", math, answer_text(result)),))
 
 
 def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple[Step, ...]:
