@@ -52,6 +52,8 @@ const out = {
     kinetics: [...a.querySelectorAll(".ws-step")].filter(s => s.id.includes("-kinetics-"))
       .map(s => [s.id, s.querySelectorAll("math").length]),
     text: a.innerText.replace(/\\s+/g, " ")})),
+  expected: [...document.querySelectorAll(".objective dt")].filter(t => t.innerText === "Expected")
+    .map(t => t.nextElementSibling.innerText),
   links: [...document.querySelectorAll(".step-link a")].map(l => {
     const target = document.getElementById(l.getAttribute("href").slice(1));
     return [l.closest("section").id, target ? getComputedStyle(target).backgroundColor : null];
@@ -78,6 +80,7 @@ def test_a_dynamics_page_shows_diagrams_math_and_linked_kinetic_diagnoses(hw3, i
         assert problem["kinetics"] and all(n > 0 for _, n in problem["kinetics"]), problem
         for code in ("**", "Abs(", "thetad", "_1"):
             assert code not in problem["text"], (name, code)
+    assert found["expected"] and not any("**" in e or "Abs(" in e for e in found["expected"])
     diagnosed = {f"{a['problem']}.{a['objective']}"
                  for s in results["students"] if s["id"] == student
                  for a in s["answers"] if a.get("diagnosis") in KINETIC_LABELS}
