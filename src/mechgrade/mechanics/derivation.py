@@ -9,7 +9,9 @@ from functools import lru_cache
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Attr, Name
+from ..errors import ExpressionError
+from ..expressions.build import to_sympy
+from ..expressions.syntax import Attr, Name, parse
 from ..spec.model import Problem
 from .build import build
 from .kinematics import derive
@@ -271,15 +273,17 @@ def symbolic_math(problem: Problem, text: str, label: str = "") -> str | None:
     >>> "<mo>|</mo>" in symbolic_math(p, "xd/Abs(xd)")
     True
     """
-    from ..errors import ExpressionError
-    from ..expressions.build import to_sympy
-    from ..expressions.syntax import parse
-
     model = build(problem)
     known = {str(s): s for s in (*model.symbols.q, *model.symbols.qd, *model.symbols.qdd)}
+
+    def resolve(node):
+        if not isinstance(node, Name):
+            raise KeyError(node)  # a frame's unit vector or a prime: not in an answer
+        return known.get(node.id) or sp.Symbol(node.id, real=True)
+
     try:
-        expr = to_sympy(parse(text), lambda n: known.get(n.id) or sp.Symbol(n.id, real=True))
-    except (ExpressionError, AttributeError):
+        expr = to_sympy(parse(text), resolve)
+    except ExpressionError:
         return None
     show = _Display(model)
     return show.math(expr) if not label else \

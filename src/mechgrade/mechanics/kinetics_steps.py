@@ -24,8 +24,8 @@ from functools import lru_cache
 import sympy as sp
 from sympy.physics.vector import Dyadic, Vector
 
-from ..spec.dynamics import (Impulse, Integration, LoadKind, StaticFriction, WorkEnergy,
-                             dynamics_of)
+from ..spec.dynamics import (Impulse, Integration, LoadKind, Reaction, StaticFriction,
+                             WorkEnergy, dynamics_of)
 from ..spec.model import Problem
 from .bodies import parallel_axis
 from .derivation import Row, Step, _Display
@@ -83,7 +83,8 @@ def _display_names(problem: Problem, kin) -> dict:
     """Each unknown reaction symbol's textbook name: one component per axis ``R_O,x``."""
     d = dynamics_of(problem)
     out = {}
-    unknown = (*d.reactions, *(f for f in d.friction if isinstance(f, StaticFriction)))
+    unknown: tuple[Reaction | StaticFriction, ...] = (
+        *d.reactions, *(f for f in d.friction if isinstance(f, StaticFriction)))
     by_name = {s.name: s for s in kin.reactions}
     for r in unknown:
         if len(r.directions) == 1:
@@ -273,7 +274,7 @@ def _balances(problem: Problem, kin, shown: dict, expr_math, text) -> Step:
         rows.insert(0, Row(f"balance-normal-{load.body}-{load.name}", _label(
             words, f"<mrow>{expr_math(along)}<mo>=</mo><mn>0</mn></mrow>"),
             f"{words}: {text(along)} = 0", NORMAL_CODES))
-    lines = ("Newton-Euler for each body: the sum of the loads equals the rate of change of "
+    lines: tuple[str, ...] = ("Newton-Euler for each body: the sum of the loads equals the rate of change of "
              "its momentum (an impact: the impulses equal its change), in "
              f"{N}'s components; the moments about each rigid body's reference point.",)
     if d.analysis is not None and isinstance(d.analysis, Impulse):
@@ -290,7 +291,7 @@ def _solution(problem: Problem, kin, shown: dict, expr_math, dof) -> Step:
         how = (f"integrated from t = 0 until {analysis.until[0].text} = "
                f"{analysis.until[1].text}; the objectives are read there")
     elif isinstance(analysis, Impulse):
-        how = "an impact: the rates given are those just before it, the reactions are impulses"
+        how = "an impact: the rates given are those just after it, the reactions are impulses"
     elif analysis is not None:
         how = ("the givens fix the configuration; the work-energy balance from the start "
                "fixes the rates")

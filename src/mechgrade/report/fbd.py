@@ -362,7 +362,7 @@ def _overlap(t1: Point2, h1: Point2, t2: Point2, h2: Point2) -> bool:
 
 
 def _label(far: Point2, near: Point2, parts: tuple[str, str, str], colour: str,
-           taken: list, size_px: int = 14, avoid: list = ()) -> str:
+           taken: list, size_px: int = 14, avoid: tuple | list = ()) -> str:
     """A label past the ``far`` end of an arrow, moved along it until it overlaps no other."""
     dx, dy = far[0] - near[0], far[1] - near[1]
     size = math.hypot(dx, dy) or 1.0

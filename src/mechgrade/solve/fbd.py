@@ -151,7 +151,8 @@ def free_body_diagrams(problem: Problem, solution: Solution) -> tuple[FreeBodyDi
                                *(a.point for a in loads if a.point)])
         outline = tuple(
             Outline(kind, at, tuple(_scalar(f, x) for f in sizes), axis,
-                    tuple(_vector(f, x) for f in axes) if axes else None)  # type: ignore[misc]
+                    (_vector(axes[0], x), _vector(axes[1], x), _vector(axes[2], x))
+                    if axes else None)
             for kind, at, sizes, axis, axes in plan.outlines[body.name])
         out.append(FreeBodyDiagram(body.name, body.frame, body.centre,
                                    tuple((p, _vector(plan.points.get(p), x)) for p in names),

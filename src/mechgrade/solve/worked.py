@@ -147,7 +147,7 @@ def _answer_step(problem: Problem, objective, result: ObjectiveResult,
     # a rate the answer takes only through its sign (kinetic friction's sense of sliding)
     senses = tuple(f"at this instant {rates[n]} {'>' if sign > 0 else '<'} 0, so "
                    f"{rates[n]}/|{rates[n]}| = {sign}"
-                   for n in result.symbols if n in rates and f"Abs({n})" in result.expr
+                   for n in result.symbols if n in rates and f"Abs({n})" in (result.expr or "")
                    for sign in (signs.get(rates[n], 0),) if sign)
     return Step(f"answer-{objective.id}", title,
                 (asked, f"in {result.unit or '1'}, in terms of {names}", *senses),
