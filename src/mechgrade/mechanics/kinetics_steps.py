@@ -1,7 +1,8 @@
 """The kinetics steps of the worked solution in textbook order and in MathML: the bodies and
 their inertia matrices, the free-body loads as vectors, the work-energy balance
 T1 + V1 + U12 = T2 + V2 that gives the rates (when the problem reaches its instant that way),
-the momentum balances (with the balance along each contact's normal), the impact's contact
+the momentum balances (with the balance along each contact's normal and, for a body on a
+fixed pivot, the moment balance about the pivot, free of its reaction), the impact's contact
 conditions, and the unknowns solved. Rates are dotted (θ̇, θ̈), a reaction's components
 named by their axes (R_O,x), never as code; each row names the generated mistakes that happen
 in it, so a feedback page can point a diagnosis at it.
@@ -26,10 +27,12 @@ from sympy.physics.vector import Dyadic, Vector
 
 from ..spec.dynamics import (Impulse, Integration, LoadKind, Reaction, StaticFriction,
                              WorkEnergy, dynamics_of)
+from ..expressions.syntax import Name
 from ..spec.model import Problem
 from .bodies import parallel_axis
 from .derivation import Row, Step, _Display
 from .dynamics import _inertias, derive_kinetics, free_body_loads
+from .symbols import identically_zero
 
 LOAD_CODES = {LoadKind.WEIGHT: ("weight_omitted", "mass_for_weight", "weight_for_mass"),
               LoadKind.KINETIC_FRICTION: ("friction_reversed", "surface_taken_fixed"),
@@ -259,6 +262,27 @@ def _balances(problem: Problem, kin, shown: dict, expr_math, text) -> Step:
         rows.append(Row(f"balance-{i}", _label(words, f"<mrow>{expr_math(e.expr)}<mo>=</mo>"
                                                       "<mn>0</mn></mrow>"),
                         f"{words}: {text(e.expr)} = 0", codes))
+    # about a fixed pivot: the moment balance a textbook writes there, free of its reaction
+    model = kin.built[0]
+    for b in d.bodies:
+        moment = by_label.get(f"body {b.name}: moment balance about {b.centre} ({N}.z "
+                              "component)")
+        if b.frame is None or moment is None or impact:
+            continue
+        for pivot in dict.fromkeys(a.point for a in loads if a.body == b.name and a.unknown
+                                   and a.point is not None and a.point != b.centre):
+            if not _fixed(model, pivot, N):
+                continue
+            r = model.plain((model.positions[b.centre] - model.positions[pivot])
+                            .to_matrix(model.inertial))
+            fx, fy = (by_label.get(f"body {b.name}: {N}.{a} force balance", sp.Integer(0))
+                      for a in "xy")
+            about = sp.expand(sp.simplify(moment + r[0] * fy - r[1] * fx))
+            words = f"{b.name}: moment balance about the fixed pivot {pivot} ({N}.z component)"
+            rows.insert(0, Row(f"balance-pivot-{b.name}-{pivot}", _label(
+                words, f"<mrow>{expr_math(about)}<mo>=</mo><mn>0</mn></mrow>"),
+                f"{words}: {text(about)} = 0", MOMENT_CODES))
+            break
     # the balance along each contact's normal: the one that gives a normal force
     kind = "impulse-momentum" if impact else "force"
     for load in loads:
@@ -281,6 +305,13 @@ def _balances(problem: Problem, kin, shown: dict, expr_math, text) -> Step:
         lines += ("Each contact's condition: the restitution (or sticking) condition on the "
                   "velocities just after the impact.",)
     return Step("kinetics-momentum-balances", "Momentum balances", lines, tuple(rows))
+
+
+def _fixed(model, point: str, frame: str) -> bool:
+    """Whether ``point`` stays fixed in the inertial frame ``frame``."""
+    velocity = model.language.point_velocity(Name(point), frame)
+    return all(identically_zero(c)
+               for c in model.plain(velocity.to_matrix(model.inertial)))
 
 
 def _solution(problem: Problem, kin, shown: dict, expr_math, dof) -> Step:
