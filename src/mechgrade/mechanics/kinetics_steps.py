@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import re
 from functools import lru_cache
+from html import escape
+from xml.etree import ElementTree
 
 import sympy as sp
 from sympy.physics.vector import Dyadic, Vector
@@ -113,8 +115,32 @@ def _text(expr) -> str:
 
 
 def _label(words: str, math: str) -> str:
-    return (f'<math display="block"><mrow><mtext>{words}:&#160;</mtext>{math}</mrow>'
-            "</math>")
+    return _compact(f'<math display="block"><mrow><mtext>{escape(words)}:&#160;</mtext>{math}'
+                    "</mrow></math>")
+
+
+def _compact(math: str) -> str:
+    """``math`` without what only makes it longer: an ``mrow`` around one element, invisible
+    times (the row's spoken label reads the product), character references.
+
+    >>> _compact('<math><mrow><mrow><mi>x</mi></mrow><mo>&InvisibleTimes;</mo><mi>y</mi>'
+    ...          '</mrow></math>')
+    '<math><mrow><mi>x</mi><mi>y</mi></mrow></math>'
+    """
+    math = math.replace("<mo>&InvisibleTimes;</mo>", "").replace("<mo>&#8290;</mo>", "")
+    try:
+        tree = ElementTree.fromstring(math)
+    except ElementTree.ParseError:  # a named character reference XML does not know
+        return math
+    for parent in tree.iter():
+        for i, child in enumerate(list(parent)):
+            while child.tag == "mrow" and len(child) == 1 and not (child.text or "").strip() \
+                    and not child.attrib:
+                inner = child[0]
+                inner.tail = child.tail
+                parent[i] = inner
+                child = inner
+    return ElementTree.tostring(tree, encoding="unicode")
 
 
 def _bodies(problem: Problem, model, show: _Display, expr_math) -> Step:

@@ -74,7 +74,7 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
     out = ['<svg xmlns="http://www.w3.org/2000/svg" viewBox="{view}" '
            'width="{width}" height="{height}" role="img" class="fbd" '
            f'aria-labelledby="{ident}-title" aria-describedby="{ident}-desc" '
-           'font-family="system-ui, sans-serif" font-size="14">',
+           'font-family="system-ui, sans-serif" font-size="14" font-weight="600">',
            f'<title id="{ident}-title">Free-body diagram of {escape(diagram.body)}</title>',
            f'<desc id="{ident}-desc">{escape(fbd_description(diagram))}</desc>', "<defs>"]
     for name, colour in (("k", KNOWN), ("u", UNKNOWN)):
@@ -102,12 +102,12 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
         for tail, head, label in parts:
             if tail == head:  # along the page's normal: a dot (out of it) or a cross (into it)
                 sign = "out-of-page" if label[3] > 0 else "into-page"
-                mark = (f'<circle cx="{tail[0]:.1f}" cy="{tail[1]:.1f}" r="2" fill="{colour}"/>'
+                mark = (f'<circle cx="{tail[0]:.0f}" cy="{tail[1]:.0f}" r="2" fill="{colour}"/>'
                         if sign == "out-of-page" else
-                        f'<path d="M{tail[0] - 5:.1f},{tail[1] - 5:.1f} l10,10 m0,-10 l-10,10" '
+                        f'<path d="M{tail[0] - 5:.0f},{tail[1] - 5:.0f} l10,10 m0,-10 l-10,10" '
                         f'stroke="{colour}" stroke-width="1.6"/>')
-                group += [f'<g class="arrow {sign}"><circle cx="{tail[0]:.1f}" '
-                          f'cy="{tail[1]:.1f}" r="8" fill="none" stroke="{colour}" '
+                group += [f'<g class="arrow {sign}"><circle cx="{tail[0]:.0f}" '
+                          f'cy="{tail[1]:.0f}" r="8" fill="none" stroke="{colour}" '
                           f'stroke-width="1.6"/>{mark}</g>',
                           _label((tail[0] + 12, tail[1] - 12), tail, label[:3], colour, labels,
                                  avoid=every)]
@@ -115,8 +115,8 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
             tail, head = _apart(tail, head, placed)
             placed.append((tail, head))
             dash = ' stroke-dasharray="6 4"' if load.unknown else ""
-            group.append(f'<line class="arrow" x1="{tail[0]:.1f}" y1="{tail[1]:.1f}" '
-                         f'x2="{head[0]:.1f}" y2="{head[1]:.1f}" stroke="{colour}" '
+            group.append(f'<line class="arrow" x1="{tail[0]:.0f}" y1="{tail[1]:.0f}" '
+                         f'x2="{head[0]:.0f}" y2="{head[1]:.0f}" stroke="{colour}" '
                          f'stroke-width="2.2"{dash} marker-end="url(#{ident}-{marker})"/>')
             far = head if load.kind not in PUSHES else tail
             near = tail if load.kind not in PUSHES else head
@@ -131,15 +131,15 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
         end = (at[0], at[1] - r) if z >= 0 else (at[0], at[1] + r)
         dash = ' stroke-dasharray="6 4"' if load.unknown else ""
         out += [f'<g class="load" data-load="{escape(load.name, quote=True)}">',
-                f'<path class="arrow couple" d="M{start[0]:.1f},{start[1]:.1f} A{r:.1f},'
-                f'{r:.1f} 0 1 {sweep} {end[0]:.1f},{end[1]:.1f}" fill="none" '
+                f'<path class="arrow couple" d="M{start[0]:.0f},{start[1]:.0f} A{r:.0f},'
+                f'{r:.0f} 0 1 {sweep} {end[0]:.0f},{end[1]:.0f}" fill="none" '
                 f'stroke="{colour}" stroke-width="2.2"{dash} '
                 f'marker-end="url(#{ident}-{marker})"/>',
                 _label((at[0] + r * 0.8, at[1] - r * 0.8), at, _text_of(load, 0), colour,
                        labels), "</g>"]
     seen = [to_screen(p) for p in positions.values()]
     for x, y in seen:
-        out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="2.5" fill="{OUTLINE}"/>')
+        out.append(f'<circle cx="{x:.0f}" cy="{y:.0f}" r="2.5" fill="{OUTLINE}"/>')
     for name, p in positions.items():
         x, y = to_screen(p)
         out.append(_label((x - 1, y + 1), (x, y), (name, "", ""), OUTLINE, labels, 12))
@@ -256,32 +256,32 @@ def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
         if o.kind == OutlineKind.PARTICLE and page_normal is not None:
             radius = BLOCK
             angle = math.degrees(math.atan2(page_normal[0], -page_normal[1]))
-            shapes.append(f'<rect class="body" x="{x - BLOCK:.1f}" y="{y - BLOCK:.1f}" '
+            shapes.append(f'<rect class="body" x="{x - BLOCK:.0f}" y="{y - BLOCK:.0f}" '
                           f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" {style} '
-                          f'transform="rotate({angle:.1f} {x:.1f} {y:.1f})"/>')
+                          f'transform="rotate({angle:.0f} {x:.0f} {y:.0f})"/>')
             shapes.append(_surface(x, y, page_normal))
         elif o.kind in (OutlineKind.PARTICLE, OutlineKind.BODY):
             radius = PARTICLE
-            shapes.append(f'<circle class="body" cx="{x:.1f}" cy="{y:.1f}" r="{PARTICLE:g}" '
+            shapes.append(f'<circle class="body" cx="{x:.0f}" cy="{y:.0f}" r="{PARTICLE:g}" '
                           f'{style}/>')
         elif o.kind == OutlineKind.ROD:
             ends = [to_screen(e) for e in _extent(o, at)]
             if len(ends) == 2:
-                shapes.append(f'<line class="body" x1="{ends[0][0]:.1f}" y1="{ends[0][1]:.1f}" '
-                              f'x2="{ends[1][0]:.1f}" y2="{ends[1][1]:.1f}" stroke="#9aa5b1" '
+                shapes.append(f'<line class="body" x1="{ends[0][0]:.0f}" y1="{ends[0][1]:.0f}" '
+                              f'x2="{ends[1][0]:.0f}" y2="{ends[1][1]:.0f}" stroke="#9aa5b1" '
                               'stroke-width="10" stroke-linecap="round"/>')
         elif o.kind == OutlineKind.BLOCK:
             corners = [to_screen(c) for c in _block_corners(o, at)]
             if corners:
                 shapes.append('<polygon class="body" points="'
-                              + " ".join(f"{cx:.1f},{cy:.1f}" for cx, cy in corners)
+                              + " ".join(f"{cx:.0f},{cy:.0f}" for cx, cy in corners)
                               + f'" {style}/>')
         else:
             lo, hi = (to_screen(e) for e in _extent(o, at))
             r = max(abs(hi[0] - lo[0]) / 2, 4.0)
             fill = 'fill="none"' if o.kind in (OutlineKind.RING, OutlineKind.SHELL) \
                 else 'fill="#e4e7eb"'
-            shapes.append(f'<circle class="body" cx="{x:.1f}" cy="{y:.1f}" r="{r:.1f}" '
+            shapes.append(f'<circle class="body" cx="{x:.0f}" cy="{y:.0f}" r="{r:.0f}" '
                           f'{fill} stroke="{OUTLINE}" stroke-width="2"/>')
     return shapes, radius, page_normal
 
@@ -292,12 +292,12 @@ def _surface(x: float, y: float, normal: Point2) -> str:
     tx, ty = -normal[1], normal[0]
     bx, by = x - normal[0] * BLOCK, y - normal[1] * BLOCK
     reach = 2.6 * BLOCK
-    path = [f"M{bx - reach * tx:.1f},{by - reach * ty:.1f} L{bx + reach * tx:.1f},"
-            f"{by + reach * ty:.1f}"]
+    path = [f"M{bx - reach * tx:.0f},{by - reach * ty:.0f} L{bx + reach * tx:.0f},"
+            f"{by + reach * ty:.0f}"]
     for k in range(-5, 6):
         px, py = bx + k * reach / 5.5 * tx, by + k * reach / 5.5 * ty
-        path.append(f"M{px:.1f},{py:.1f} l{-7 * normal[0] - 5 * tx:.1f},"
-                    f"{-7 * normal[1] - 5 * ty:.1f}")
+        path.append(f"M{px:.0f},{py:.0f} l{-7 * normal[0] - 5 * tx:.0f},"
+                    f"{-7 * normal[1] - 5 * ty:.0f}")
     return f'<path class="surface" d="{" ".join(path)}" stroke="#9aa5b1" fill="none"/>'
 
 
@@ -382,8 +382,8 @@ def _label(far: Point2, near: Point2, parts: tuple[str, str, str], colour: str,
     base, sub, rest = parts
     text = escape(base) + (f'<tspan font-size="11" dy="4">{escape(sub)}</tspan>'
                            f'<tspan dy="-4">{escape(rest)}</tspan>' if sub else escape(rest))
-    weight = ' font-weight="600"' if size_px == 14 else f' font-size="{size_px}"'
-    return f'<text x="{box[0]:.1f}" y="{box[1] + size_px - 1:.1f}" fill="{colour}"{weight}>' \
+    weight = "" if size_px == 14 else f' font-size="{size_px}" font-weight="400"'
+    return f'<text x="{box[0]:.0f}" y="{box[1] + size_px - 1:.0f}" fill="{colour}"{weight}>' \
         f'{text}</text>'
 
 
