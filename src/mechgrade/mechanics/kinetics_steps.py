@@ -208,7 +208,7 @@ def _loads(problem: Problem, shown: dict, matrix_math, text) -> Step:
         unknown = " (unknown)" if load.unknown else ""
         words = f"{load.body}, {_KIND_WORDS.get(load.kind, 'load')} {load.name}{where}{unknown}"
         symbol = "M" if couple else "F"
-        letter = f"<msub><mi mathvariant=\"bold\">{symbol}</mi><mi>{_mi(load.name)}</mi></msub>"
+        letter = _vector_name(symbol, load.name)
         if load.kind == LoadKind.WEIGHT:
             symbol, letter = "W", "<mi mathvariant=\"bold\">W</mi>"
         math = _label(words, f"<mrow>{letter}<mo>=</mo>{matrix_math(value)}</mrow>")
@@ -221,8 +221,14 @@ def _loads(problem: Problem, shown: dict, matrix_math, text) -> Step:
                 tuple(rows))
 
 
-def _mi(name: str) -> str:
-    return name.replace("&", "&amp;").replace("<", "&lt;")
+def _vector_name(letter: str, name: str) -> str:
+    """A load's vector as a textbook names it: its own name in bold when it is a symbol
+    (``N_P``: bold N, subscript P; ``T``), else ``letter`` with the name as a subscript."""
+    base, _, sub = name.partition("_")
+    if len(base) > 2 and not sub:  # a word (gravity, pull): F with it as a subscript
+        return f'<msub><mi mathvariant="bold">{letter}</mi><mi>{escape(name)}</mi></msub>'
+    shown = f'<mi mathvariant="bold">{escape(base)}</mi>'
+    return f"<msub>{shown}<mi>{escape(sub.replace('_', ','))}</mi></msub>" if sub else shown
 
 
 def _work_energy(kin, expr_math, text) -> Step:
