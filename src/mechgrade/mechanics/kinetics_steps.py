@@ -27,13 +27,13 @@ from xml.etree import ElementTree
 import sympy as sp
 from sympy.physics.vector import Dyadic, Vector
 
-from ..spec.dynamics import (Impulse, Integration, LoadKind, Reaction, StaticFriction,
+from ..spec.dynamics import (Impulse, LoadKind, Reaction, StaticFriction,
                              WorkEnergy, dynamics_of)
 from ..expressions.syntax import Name
 from ..spec.model import Problem
 from .bodies import parallel_axis
 from .derivation import Row, Step, _Display
-from .dynamics import _inertias, derive_kinetics, free_body_loads
+from .dynamics import _inertias, derive_kinetics, free_body_loads, how_the_instant
 from .symbols import identically_zero
 
 LOAD_CODES = {LoadKind.WEIGHT: ("weight_omitted", "mass_for_weight", "weight_for_mass"),
@@ -56,7 +56,7 @@ CONTACT_CODES = ("restitution_ignored", "restitution_component")
 
 
 @lru_cache(maxsize=64)
-def kinetics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
+def kinetics_steps(problem: Problem) -> tuple[Step, ...]:
     """The kinetics steps of ``problem`` (one with bodies and loads), after its kinematics."""
     kin = derive_kinetics(problem)
     model = kin.built[0]
@@ -76,11 +76,11 @@ def kinetics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]
         return _text(sp.sympify(expr).xreplace(names))
 
     steps = [_bodies(problem, model, show, expr_math),
-             _loads(problem, shown, matrix_math, text)]
+             _loads(problem, matrix_math, text)]
     if isinstance(d.analysis, WorkEnergy):
         steps.append(_work_energy(kin, expr_math, text))
-    steps.append(_balances(problem, kin, shown, expr_math, text))
-    steps.append(_solution(problem, kin, shown, expr_math, dof))
+    steps.append(_balances(problem, kin, expr_math, text))
+    steps.append(_solution(problem, kin, shown, expr_math))
     return tuple(steps)
 
 
@@ -197,7 +197,7 @@ _KIND_WORDS = {LoadKind.WEIGHT: "weight", LoadKind.NORMAL: "normal force",
                LoadKind.IMPULSE: "impulse", LoadKind.REACTION: "reaction"}
 
 
-def _loads(problem: Problem, shown: dict, matrix_math, text) -> Step:
+def _loads(problem: Problem, matrix_math, text) -> Step:
     rows = []
     for load in free_body_loads(problem):
         couple = load.point is None
@@ -268,7 +268,7 @@ def _work_energy(kin, expr_math, text) -> Step:
                 tuple(rows))
 
 
-def _balances(problem: Problem, kin, shown: dict, expr_math, text) -> Step:
+def _balances(problem: Problem, kin, expr_math, text) -> Step:
     d = dynamics_of(problem)
     N = problem.inertial_frame
     impact = kin.impact
@@ -346,18 +346,8 @@ def _fixed(model, point: str, frame: str) -> bool:
                for c in model.plain(velocity.to_matrix(model.inertial)))
 
 
-def _solution(problem: Problem, kin, shown: dict, expr_math, dof) -> Step:
-    d = dynamics_of(problem)
-    analysis = d.analysis
-    how = "the givens state the configuration and the rates at the instant"
-    if isinstance(analysis, Integration):
-        how = (f"integrated from t = 0 until {analysis.until[0].text} = "
-               f"{analysis.until[1].text}; the objectives are read there")
-    elif isinstance(analysis, Impulse):
-        how = "an impact: the rates given are those just after it, the reactions are impulses"
-    elif analysis is not None:
-        how = ("the givens fix the configuration; the work-energy balance from the start "
-               "fixes the rates")
+def _solution(problem: Problem, kin, shown: dict, expr_math) -> Step:
+    how = how_the_instant(problem)
     unknowns = list(kin.k.qd if kin.impact else kin.k.qdd) + list(kin.reactions)
     listing = "<mo>,</mo>".join(expr_math(u) for u in unknowns)
     names = [shown.get(u, u.name) for u in unknowns]

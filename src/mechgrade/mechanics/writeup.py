@@ -35,4 +35,4 @@ def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     steps = kinematics_steps(kinematic, dof)
     if problem.dynamics is None:
         return steps
-    return steps + kinetics_steps(problem, dof)
+    return steps + kinetics_steps(problem)
