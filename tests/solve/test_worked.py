@@ -5,7 +5,7 @@ import pytest
 
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.spec.mistake_codes import GIVEN_CODES
+from mechgrade.spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.solve.worked import worked_solution
 from mechgrade.spec import load_problem
@@ -43,7 +43,37 @@ def test_every_place_is_a_step_or_row_of_the_solution(name):
     anchors = {s.anchor for s in worked.steps} | {r.anchor for s in worked.steps
                                                   for r in s.rows}
     assert {place for _, _, place in worked.places} <= anchors
-    assert {code for _, code, _ in worked.places} == set(CODES + GIVEN_CODES)
+    kinetic = DYNAMICS_CODES if any(a.startswith("kinetics-") for a in anchors) else ()
+    assert {code for _, code, _ in worked.places} == set(CODES + GIVEN_CODES + kinetic)
+
+
+@pytest.mark.parametrize("name, objective, code, place", [
+    ("pendulum_pin_reaction", "pin_force", "central_inertia_at_pivot",
+     "balance-pivot-rod-O"),
+    ("pendulum_pin_reaction", "pin_force", "weight_omitted", "load-rod-gravity"),
+    ("block_sliding_down_incline", "normal", "normal_from_weight",
+     "balance-normal-block-N_P"),
+    ("block_sliding_down_incline", "accel", "friction_reversed", "load-block-F_P"),
+    ("atwood_machine", "tension", "tension_as_weight", "balance-0"),
+])
+def test_each_kinetic_mistake_points_at_the_row_where_it_happens(name, objective, code, place):
+    assert _worked(name).place(objective, code) == place
+
+
+def test_a_rate_from_the_energy_balance_is_a_result_not_a_given():
+    problem = load_problem(shipped_dir("examples") / "hw3_dynamics" / "pendulum_release.yaml")
+    steps = {s.anchor: s for s in worked_solution(problem, solve(problem)).steps}
+    assert not any(line.startswith("theta' =") for line in steps["givens"].lines)
+    assert "theta' = -4.33442 rad/s" in steps["state"].lines
+    assert "theta = 40 deg" in steps["givens"].lines
+
+
+def test_a_symbolic_answer_is_typeset_with_the_sense_of_the_slip():
+    (step,) = [s for s in _worked("block_sliding_down_incline").steps
+               if s.anchor == "answer-accel_symbolic"]
+    (row,) = step.rows
+    assert "<mo>|</mo>" in row.math and "Abs" not in row.math and "xd" not in row.math
+    assert "at this instant x' > 0, so x'/|x'| = 1" in step.lines
 
 
 def test_the_steps_follow_the_write_up_order():

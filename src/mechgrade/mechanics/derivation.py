@@ -9,7 +9,9 @@ from functools import lru_cache
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Attr, Name
+from ..errors import ExpressionError
+from ..expressions.build import to_sympy
+from ..expressions.syntax import Attr, Name, parse
 from ..spec.model import Problem
 from .build import build
 from .kinematics import derive
@@ -258,6 +260,34 @@ def _scripted(letter: str, frame: str, point: str) -> str:
     :math:`{}^N\\mathbf{v}^A`, the textbook's velocity of A in N."""
     return (f"<mmultiscripts><mi mathvariant=\"bold\">{letter}</mi><none/><mi>{point}</mi>"
             f"<mprescripts/><none/><mi>{frame}</mi></mmultiscripts>")
+
+
+def symbolic_math(problem: Problem, text: str, label: str = "") -> str | None:
+    """A symbolic answer the solver wrote (sympy syntax, in the problem's names) as MathML:
+    rates dotted, ``|x|`` for ``Abs(x)``, ``label =`` before it when given; ``None`` when it
+    cannot be read.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+    >>> "<mo>|</mo>" in symbolic_math(p, "xd/Abs(xd)")
+    True
+    """
+    model = build(problem)
+    known = {str(s): s for s in (*model.symbols.q, *model.symbols.qd, *model.symbols.qdd)}
+
+    def resolve(node):
+        if not isinstance(node, Name):
+            raise KeyError(node)  # a frame's unit vector or a prime: not in an answer
+        return known.get(node.id) or sp.Symbol(node.id, real=True)
+
+    try:
+        expr = to_sympy(parse(text), resolve)
+    except ExpressionError:
+        return None
+    show = _Display(model)
+    return show.math(expr) if not label else \
+        f'<math display="block"><mrow>{label}<mo>=</mo>{show._inner(expr)}</mrow></math>'
 
 
 class _Display:

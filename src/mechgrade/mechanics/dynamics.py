@@ -785,6 +785,20 @@ def _matrix_text(matrix) -> str:
                            for i in range(matrix.rows)) + "]"
 
 
+def how_the_instant(problem: Problem) -> str:
+    """How a dynamics problem reaches its instant, in words (its ``analysis``)."""
+    analysis = dynamics_of(problem).analysis
+    if isinstance(analysis, Integration):
+        return (f"integrated from t = 0 until {analysis.until[0].text} = "
+                f"{analysis.until[1].text}; the objectives are read there")
+    if isinstance(analysis, Impulse):
+        return "an impact: the rates given are those just after it, the reactions are impulses"
+    if analysis is not None:
+        return ("the givens fix the configuration; the work-energy balance from the start "
+                "state fixes the rates")
+    return "the givens state the configuration and the rates at the instant"
+
+
 def kinetics_derivation(problem: Problem, dof: int | None = None):
     """The write-up of a dynamics problem: the kinematics, then bodies (with the parallel-axis
     shifts), free-body loads, momentum balances, the unknowns and how they are solved, and
@@ -793,18 +807,8 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
     kinematics = kinematics_derivation(replace(problem, objectives=(), dynamics=None), dof)
     mark = "'" if kin.impact else "''"
     unknowns = [f"{c}{mark}" for c in kin.k.coordinates] + list(kin.labels)
-    analysis = dynamics_of(problem).analysis
-    how = "the givens state the configuration and the rates at the instant"
-    if isinstance(analysis, Integration):
-        how = (f"integrated from t = 0 until {analysis.until[0].text} = "
-               f"{analysis.until[1].text}; the objectives are read there")
-    elif isinstance(analysis, Impulse):
-        how = "an impact: the rates given are those just after it, the reactions are impulses"
-    elif analysis is not None:
-        how = "the givens fix the configuration; the work-energy balance from the start " \
-              "state fixes the rates"
     level = "velocity" if kin.impact else "acceleration"
-    solved = (f"instant: {how}",
+    solved = (f"instant: {how_the_instant(problem)}",
               f"unknowns: {', '.join(unknowns)} (those not given)",
               f"{len(kin.balances)} momentum balances and {len(kin.constraints)} "
               f"{level}-level constraints, linear in the unknowns, solved together "

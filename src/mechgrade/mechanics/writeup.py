@@ -7,6 +7,7 @@ from dataclasses import replace
 
 from ..spec.model import Problem
 from .derivation import Step, kinematics_derivation, kinematics_steps
+from .kinetics_steps import kinetics_steps
 from .dynamics import kinetics_derivation
 
 
@@ -21,7 +22,8 @@ def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tup
 def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     """The symbolic steps of the worked solution: the kinematics (:func:`kinematics_steps`),
     then, for a problem with bodies and loads, the kinetics sections of the write-up (bodies,
-    free-body loads, momentum balances, how the unknowns are solved).
+    free-body loads, the work-energy balance, momentum balances, how the unknowns are solved:
+    :func:`~mechgrade.mechanics.kinetics_steps.kinetics_steps`).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -33,11 +35,4 @@ def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     steps = kinematics_steps(kinematic, dof)
     if problem.dynamics is None:
         return steps
-    before = len(kinematics_derivation(kinematic, dof)) - 2  # without velocities, accelerations
-    tail = kinetics_derivation(problem, dof)[before:-1]  # the objectives come with their numbers
-    return steps + tuple(Step("kinetics-" + _slug(title), title, tuple(lines))
-                         for title, lines in tail)
-
-
-def _slug(title: str) -> str:
-    return "-".join("".join(c if c.isalnum() else " " for c in title.lower()).split())
+    return steps + kinetics_steps(problem)

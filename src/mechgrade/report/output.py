@@ -523,9 +523,14 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
     from markupsafe import Markup
 
     env = env if env is not None else template_environment(templates_dir)
+    from .fbd import fbd_svg
+
+    diagrams = [Markup(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
+                for d in worked.diagrams]
     steps = [{"anchor": step.anchor, "title": step.title, "lines": step.lines,
               "rows": [{"anchor": row.anchor, "text": row.text,
-                        "math": Markup(spoken_math(row.math, row.text))} for row in step.rows]}
+                        "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
+              "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
     context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
                      "picture": worked.picture, "steps": steps}}
@@ -794,10 +799,30 @@ _POWER = re.compile(r"(?:\*\*|\^)\s*(?:\((-?\d+)\)|(-?\d+))")
 
 @lru_cache(maxsize=1 << 16)
 def pretty_math(text: str) -> str:
-    """Answer and unit text made easier to read: powers raised, products as middle dots.
+    """Answer and unit text made easier to read: powers raised, products as middle dots,
+    absolute values between bars.
 
     >>> pretty_math("L*sqrt(thetadd**2 + thetad**4) ft/s^2")
     'L·sqrt(thetadd² + thetad⁴) ft/s²'
+    >>> pretty_math("xd*cos(b)/Abs(xd*(a + b))")
+    'xd·cos(b)/|xd·(a + b)|'
     """
     text = _POWER.sub(lambda m: (m.group(1) or m.group(2)).translate(_SUPERSCRIPTS), text)
-    return text.replace("*", "·")
+    return _bars(text).replace("*", "·")
+
+
+def _bars(text: str) -> str:
+    """``Abs(x)`` written ``|x|`` (its parentheses matched; one left open stays as it is)."""
+    start = text.find("Abs(")
+    while start >= 0:
+        depth, end = 0, None
+        for i in range(start + 3, len(text)):
+            depth += {"(": 1, ")": -1}.get(text[i], 0)
+            if depth == 0:
+                end = i
+                break
+        if end is None:
+            return text
+        text = f"{text[:start]}|{text[start + 4:end]}|{text[end + 1:]}"
+        start = text.find("Abs(", start)
+    return text

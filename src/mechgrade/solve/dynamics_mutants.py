@@ -270,7 +270,13 @@ def _reading(problem: Problem, mutations, numeric: set[str]) -> Problem | None:
 def _readings(results) -> tuple[dict[int, dict], dict[int, str]]:
     """The readings and terms (see :func:`_read`) in the results of :func:`_reading`'s
     problem. A term is shown to four figures of its value to twelve: the same text for values
-    that differ in their last digits (the motion integrated alone or with others)."""
+    that differ in their last digits (the motion integrated alone or with others); a term
+    that is zero there is left out of the sentence (its `` = {term}`` goes).
+
+    >>> from mechgrade.solve.result import ObjectiveResult
+    >>> _readings([ObjectiveResult("~0", "scalar", "J", 0.0), ObjectiveResult("~1", "scalar",
+    ...                                                                        "J", 2.5)])
+    ({}, {1: '2.5 J'})"""
     readings: dict[int, dict] = {}
     terms: dict[int, str] = {}
     for result in results:
@@ -280,7 +286,8 @@ def _readings(results) -> tuple[dict[int, dict], dict[int, str]]:
             continue
         term = result.value
         assert term is not None and not isinstance(term, tuple)  # a term is a scalar objective
-        if np.isfinite(term):
+        # a term zero at this instant is not named by its value ("½ I_G ω² = 0 J")
+        if np.isfinite(term) and float(f"{term:.12g}") != 0:
             unit = "" if result.unit in ("", "1") else f" {result.unit}"
             terms[int(i)] = f"{float(f'{term:.12g}') + 0.0:.4g}{unit}"
     return readings, terms

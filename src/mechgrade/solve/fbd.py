@@ -31,9 +31,11 @@ import numpy as np
 import sympy as sp
 
 from ..errors import MechgradeError
+from ..mechanics.build import build
 from ..mechanics.dynamics import derive_kinetics, free_body_loads
 from ..mechanics.kinematics import locations
-from ..spec.dynamics import LoadKind, dynamics_of
+from ..spec.dynamics import (Block, Cylinder, Disk, Explicit, LoadKind, OutlineKind, Ring, Rod,
+                             Shell, Sphere, dynamics_of)
 from ..spec.model import Problem
 from .dynamics import accelerations, kinetics_plan, solve_kinetics
 from .levels import State
@@ -84,11 +86,27 @@ class DiagramLoad:
 
 
 @dataclass(frozen=True)
+class Outline:
+    """One part of a body as a drawing shows it: its ``kind``, its centre ``at``, its
+    ``sizes`` in m (a rod's or cylinder's length, a radius, a block's three sides, in the
+    order the problem file gives them; ``None`` where not known at the instant), the body
+    ``axis`` the shape is about or along (``x``/``y``/``z``, ``""`` for none) and the body's
+    ``axes`` (its x, y, z unit vectors, inertial components; ``None`` for a particle)."""
+
+    kind: OutlineKind
+    at: str
+    sizes: tuple[float | None, ...]
+    axis: str
+    axes: tuple[Vec3 | None, Vec3 | None, Vec3 | None] | None
+
+
+@dataclass(frozen=True)
 class FreeBodyDiagram:
     """A body with every load on it. ``points`` are the positions (m, from the inertial point,
-    inertial components) of its centre and of every point a load acts at; ``down`` is the
-    problem's down (``loads.down``, else gravity's direction; ``None`` without either), a unit
-    vector; ``frame`` the frame the body turns with (``None``: a particle)."""
+    inertial components) of its centre, of every part's centre and of every point a load acts
+    at; ``outline`` its parts as drawn; ``down`` is the problem's down (``loads.down``, else
+    gravity's direction; ``None`` without either), a unit vector; ``frame`` the frame the body
+    turns with (``None``: a particle)."""
 
     body: str
     frame: str | None
@@ -97,6 +115,7 @@ class FreeBodyDiagram:
     loads: tuple[DiagramLoad, ...]
     down: Vec3 | None
     inertial_frame: str
+    outline: tuple[Outline, ...] = ()
 
 
 def free_body_diagrams(problem: Problem, solution: Solution) -> tuple[FreeBodyDiagram, ...]:
@@ -128,10 +147,16 @@ def free_body_diagrams(problem: Problem, solution: Solution) -> tuple[FreeBodyDi
                 applied.unknown, tuple(str(s) for s in applied.unknowns),
                 tuple(_vector(f, x) for f in directions), applied.direction_texts, text,
                 _scalar(magnitude, x), surface, applied.sign))
-        names = dict.fromkeys([body.centre, *(a.point for a in loads if a.point)])
+        names = dict.fromkeys([body.centre, *(p.at for p in body.parts),
+                               *(a.point for a in loads if a.point)])
+        outline = tuple(
+            Outline(kind, at, tuple(_scalar(f, x) for f in sizes), axis,
+                    (_vector(axes[0], x), _vector(axes[1], x), _vector(axes[2], x))
+                    if axes else None)
+            for kind, at, sizes, axis, axes in plan.outlines[body.name])
         out.append(FreeBodyDiagram(body.name, body.frame, body.centre,
                                    tuple((p, _vector(plan.points.get(p), x)) for p in names),
-                                   tuple(loads), down, problem.inertial_frame))
+                                   tuple(loads), down, problem.inertial_frame, outline))
     return tuple(out)
 
 
@@ -140,6 +165,7 @@ class _DiagramPlan:
     loads: tuple  # (AppliedLoad, force f, moment f, magnitude f, direction fs, normal f)
     points: dict[str, Callable]
     down: Callable | None
+    outlines: dict[str, tuple]  # body -> ((kind, at, size fs, axis, axis fs), ...)
 
 
 @lru_cache(maxsize=32)
@@ -157,13 +183,38 @@ def _diagram_plan(problem: Problem, _locations: tuple) -> _DiagramPlan:
     d = dynamics_of(problem)
     down = None
     weights = [a for a in applied if a.kind == LoadKind.WEIGHT]
+    model = build(problem)
     if d.down is not None:
-        from ..mechanics.build import build
-        model = build(problem)
         down = f(model.plain(model.language.vector(d.down).to_matrix(model.inertial)))
     elif weights:
         down = f(weights[0].directions[0])
-    return _DiagramPlan(loads, points, down)
+    outlines = {}
+    for body in d.bodies:
+        frame = model.frames[body.frame] if body.frame is not None else None
+        axes = () if frame is None else tuple(
+            f(model.plain(e.to_matrix(model.inertial))) for e in (frame.x, frame.y, frame.z))
+        parts = []
+        for part in body.parts:
+            kind, sizes, axis = _shape(part.shape if frame is not None else None)
+            parts.append((kind, part.at, tuple(f(model.plain(model.language.scalar(e)))
+                                               for e in sizes), axis, axes))
+        outlines[body.name] = tuple(parts)
+    return _DiagramPlan(loads, points, down, outlines)
+
+
+def _shape(shape) -> tuple[OutlineKind, tuple, str]:
+    """A part's shape as drawn: its kind, its sizes (spec expressions) and its axis."""
+    if shape is None:
+        return OutlineKind.PARTICLE, (), ""
+    if isinstance(shape, Block):
+        return OutlineKind.BLOCK, shape.sides, ""
+    if isinstance(shape, Explicit):
+        return OutlineKind.BODY, (), ""
+    kind = {Rod: OutlineKind.ROD, Disk: OutlineKind.DISK, Ring: OutlineKind.RING,
+            Cylinder: OutlineKind.CYLINDER, Sphere: OutlineKind.SPHERE,
+            Shell: OutlineKind.SHELL}[type(shape)]
+    sizes = tuple(getattr(shape, n) for n in ("length", "radius") if hasattr(shape, n))
+    return kind, sizes, getattr(shape, "axis", "")
 
 
 def _extended_state(problem: Problem, solution: Solution) -> np.ndarray | None:

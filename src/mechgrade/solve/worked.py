@@ -26,17 +26,26 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..expressions.syntax import Call, Name, Node
-from ..mechanics.derivation import Row, Step
+from ..mechanics.derivation import Row, Step, symbolic_math
 from ..mechanics.writeup import worked_steps
 from ..spec.model import ObjectiveKind, Problem
 from ..units import from_si, same_dimension
-from ..spec.mistake_codes import GIVEN_CODES, MODEL_CODES
+from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
+from .fbd import FreeBodyDiagram, free_body_diagrams
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
                      in_frame)
 
 __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
 
+DIAGRAM_STEP = "kinetics-free-body-loads"
+"""The step that shows the free-body diagrams."""
+_DYNAMICS_STEPS = {"strands_miscounted": "constraints", "body_ke_omitted": "kinetics-bodies",
+                   "rotational_ke_omitted": "kinetics-bodies",
+                   "spring_free_length_omitted": "kinetics-free-body-loads",
+                   "springs_in_series": "kinetics-free-body-loads",
+                   "damping_omitted": "kinetics-free-body-loads"}
+"""Where a dynamics mistake happens when no row of the steps names it: its step."""
 _ACCELERATION_CALLS = ("acc", "acc_t", "acc_n", "rho", "normal")
 _MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")
 
@@ -44,8 +53,10 @@ _MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")
 @dataclass(frozen=True)
 class WorkedSolution:
     """One problem's worked solution (for one set of givens): ``steps`` in the write-up order,
-    ``picture`` an SVG document (empty when there is nothing to draw), ``places`` ``(objective, code, anchor)``: the step or row
-    (by anchor) where the generated mistake ``code`` of an objective happens."""
+    ``picture`` an SVG document (empty when there is nothing to draw), ``places``
+    ``(objective, code, anchor)``: the step or row (by anchor) where the generated mistake
+    ``code`` of an objective happens; ``diagrams`` each body's free-body diagram (plain
+    data), shown in the step anchored ``diagram_step``."""
 
     problem: str
     title: str
@@ -53,6 +64,8 @@ class WorkedSolution:
     picture: str
     places: tuple[tuple[str, str, str], ...] = ()
     declared: tuple[tuple[str, str, str], ...] = ()
+    diagrams: tuple[FreeBodyDiagram, ...] = ()
+    diagram_step: str = ""
 
     def place(self, objective: str, code: str) -> str | None:
         """The anchor of the step or row where ``code``'s mistake happens for ``objective``."""
@@ -88,30 +101,57 @@ def worked_solution(problem: Problem, solution: Solution,
     """The worked solution of ``problem`` with ``solution``'s numbers (its givens, its
     answers, its picture), for the ``objectives`` named (default: every one)."""
     chosen = tuple(o for o in problem.objectives if objectives is None or o.id in objectives)
-    givens = tuple(_state_text(s) for s in solution.state if s.given)
-    solved = tuple(_state_text(s) for s in solution.state if not s.given)
+    # a rate an energy balance or an integration gave is a result, not a given
+    stated = {g.key.text for g in problem.givens}
+    givens = tuple(_state_text(s) for s in solution.state if s.given and s.name in stated)
+    solved = tuple(_state_text(s) for s in solution.state
+                   if not (s.given and s.name in stated))
     asked = tuple(f"{o.id}: {o.prompt or o.find.text}" + (f" [{o.unit}]" if o.unit else "")
                   for o in chosen)
     results = {r.id: r for r in solution.results}
-    answers = tuple(
-        Step(f"answer-{o.id}", o.prompt or o.id,
-             (f"{o.id} = {o.find.text}" + (f", components along {o.frame}" if o.frame else ""),
-              f"= {answer_text(results[o.id])}"))
-        for o in chosen if o.id in results)
+    signs = {v.name: int(np.sign(v.si)) for v in solution.state}
+    answers = tuple(_answer_step(problem, o, results[o.id], signs) for o in chosen
+                    if o.id in results)
     drawing = scene(problem, solution)
     steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
              *_at_the_instant(problem, worked_steps(problem, solution.dof), drawing),
              *((Step("state", "The instant, solved", solved),) if solved else ()),
              *answers)
+    codes = MODEL_CODES + GIVEN_CODES + (DYNAMICS_CODES if problem.dynamics else ())
     places = tuple((o.id, code, _place(steps, o.id, o.find.node, code))
-                   for o in chosen if o.id in results
-                   for code in MODEL_CODES + GIVEN_CODES)
+                   for o in chosen if o.id in results for code in codes)
     declared = tuple((o.id, m.message, _place(steps, o.id, o.find.node, g.code))
                      for o in chosen if o.id in results
                      for m in results[o.id].mistakes
                      for g in _same_value(m, results[o.id].generated_mistakes))
+    diagrams = free_body_diagrams(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
-                          picture_svg(drawing) if drawable(drawing) else "", places, declared)
+                          picture_svg(drawing) if drawable(drawing) else "", places, declared,
+                          diagrams, DIAGRAM_STEP if diagrams else "")
+
+
+def _answer_step(problem: Problem, objective, result: ObjectiveResult,
+                 signs: dict[str, int]) -> Step:
+    """An objective's answer: what it asks in the model's terms, then its value (a symbolic
+    one typeset, in its unit and the names it is in; the sense of a rate it takes through its
+    sign alone from ``signs``, the instant's sign of each value by name)."""
+    asked = f"{objective.id} = {objective.find.text}" + (
+        f", components along {objective.frame}" if objective.frame else "")
+    title = objective.prompt or objective.id
+    math = symbolic_math(problem, result.expr, f"<mi>{objective.id}</mi>") \
+        if result.kind == ObjectiveKind.SYMBOLIC and result.expr else None
+    if math is None:
+        return Step(f"answer-{objective.id}", title, (asked, f"= {answer_text(result)}"))
+    rates = {f"{c.name}d": f"{c.name}'" for c in problem.coordinates}
+    names = ", ".join(rates.get(n, n) for n in result.symbols)
+    # a rate the answer takes only through its sign (kinetic friction's sense of sliding)
+    senses = tuple(f"at this instant {rates[n]} {'>' if sign > 0 else '<'} 0, so "
+                   f"{rates[n]}/|{rates[n]}| = {sign}"
+                   for n in result.symbols if n in rates and f"Abs({n})" in (result.expr or "")
+                   for sign in (signs.get(rates[n], 0),) if sign)
+    return Step(f"answer-{objective.id}", title,
+                (asked, f"in {result.unit or '1'}, in terms of {names}", *senses),
+                (Row(f"answer-{objective.id}-value", math, answer_text(result)),))
 
 
 def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple[Step, ...]:
@@ -174,6 +214,9 @@ def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> st
     rows = [row for step in steps for row in step.rows]
     if code == "relative_omega":
         return next((r.anchor for r in rows if code in r.codes), "frames")
+    if code in DYNAMICS_CODES:
+        return next((r.anchor for r in rows if code in r.codes),
+                    _DYNAMICS_STEPS.get(code, "kinetics-momentum-balances"))
     for call in _calls(node):
         if not isinstance(call.args[0], Name):
             continue

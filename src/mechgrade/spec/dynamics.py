@@ -135,6 +135,20 @@ INERTIA_KEYS = ("xx", "yy", "zz", "xy", "yz", "zx")
 # ---------------------------------------------------------------------------- bodies
 
 
+class OutlineKind(StrEnum):
+    """The shape a part of a body is drawn as (a free-body diagram's outline)."""
+
+    PARTICLE = "particle"
+    ROD = "rod"
+    DISK = "disk"
+    RING = "ring"
+    CYLINDER = "cylinder"
+    SPHERE = "sphere"
+    SHELL = "shell"
+    BLOCK = "block"
+    BODY = "body"  # inertia given by its entries: no shape to draw, a blob at its centre
+
+
 @dataclass(frozen=True)
 class Part:
     """A mass at its own centre ``at``, with the inertia of ``shape`` about ``at`` (None: a
