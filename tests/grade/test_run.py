@@ -12,7 +12,8 @@ from mechgrade.errors import (AssignmentError, InconsistentError, MechgradeError
                              SubmissionError)
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade import run as run_module
-from mechgrade.grade.run import (expected_in_unit, expected_text, given_key_of, grade_plan,
+from mechgrade.grade.ecf import given_key_of
+from mechgrade.grade.run import (expected_in_unit, expected_text, grade_plan,
                                  grade_submissions, plan_assignment)
 from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.grade.submissions import read_submissions

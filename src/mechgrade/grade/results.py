@@ -12,8 +12,9 @@
      "failing_expects": [{"problem", "objective", "where", "message"}] (only when graded
                                                                         with them)}
 
-Verdicts come from :data:`VERDICTS`; student statuses from :data:`STATUSES`. Reports and
-exports read these dataclasses (never sympy).
+Verdicts are :class:`Verdict`, student statuses :class:`Status`: enums whose members are the
+very strings ``results.json`` holds (:data:`VERDICTS`, :data:`STATUSES`). Reports and exports
+read these dataclasses (never sympy).
 
 >>> r = GradeReport(AssignmentInfo("hw1", "Homework 1"), (), ())
 >>> GradeReport.from_json(r.to_json()) == r
@@ -24,9 +25,48 @@ from __future__ import annotations
 
 
 from dataclasses import dataclass, field, fields
+from enum import Enum
 
-VERDICTS = ("correct", "partial", "incorrect", "unreadable", "missing", "not_evaluated")
-STATUSES = ("graded", "missing", "unreadable", "not_evaluated", "conflict")
+
+class Kind(str, Enum):
+    """A kind whose member is its text: written to JSON, CSV and pages as that text, equal to
+    it (``Verdict.CORRECT == "correct"``), and shown by ``str`` and f-strings as it.
+
+    >>> f"{Verdict.NOT_EVALUATED}", str(Status.GRADED), Verdict("partial") is Verdict.PARTIAL
+    ('not_evaluated', 'graded', True)
+    """
+
+    # str's own, not Enum's 'Verdict.CORRECT': the member is shown wherever its text was
+    def __str__(self) -> str:
+        return str.__str__(self)
+
+    def __format__(self, spec: str) -> str:
+        return str.__format__(self, spec)
+
+
+class Verdict(Kind):
+    """How one answer was judged (``docs/grading.md`` says what each means)."""
+
+    CORRECT = "correct"
+    PARTIAL = "partial"
+    INCORRECT = "incorrect"
+    UNREADABLE = "unreadable"
+    MISSING = "missing"
+    NOT_EVALUATED = "not_evaluated"
+
+
+class Status(Kind):
+    """What became of one student's submission."""
+
+    GRADED = "graded"
+    MISSING = "missing"
+    UNREADABLE = "unreadable"
+    NOT_EVALUATED = "not_evaluated"
+    CONFLICT = "conflict"
+
+
+VERDICTS = tuple(v.value for v in Verdict)
+STATUSES = tuple(s.value for s in Status)
 """``not_evaluated``: grading this student failed through a fault of mechgrade's (see
 ``GradeReport.internal_errors``); no grade is exported for them. ``conflict``: a roster student
 and the folders that match it other than one to one (two folders one student, a folder two
@@ -70,7 +110,7 @@ class AnswerResult:
     problem: str
     objective: str
     answer: str | None
-    verdict: str
+    verdict: Verdict
     points: float
     max_points: float
     diagnosis: str | None = None
@@ -123,7 +163,7 @@ class StudentResult:
 
     id: str
     name: str
-    status: str
+    status: Status
     score: float
     max_score: float
     answers: tuple[AnswerResult, ...] = ()
@@ -196,11 +236,12 @@ class GradeReport:
         """Rebuild a report from a ``results.json`` document."""
         students = []
         for s in data.get("students", []):
-            answers = tuple(AnswerResult(**a) for a in s.get("answers", []))
+            answers = tuple(AnswerResult(**{**a, "verdict": Verdict(a["verdict"])})
+                            for a in s.get("answers", []))
             identity = tuple((str(k), str(v)) for k, v in (s.get("identity") or {}).items())
             variant = s.get("variant")
             students.append(StudentResult(
-                id=s["id"], name=s.get("name", ""), status=s["status"], score=s["score"],
+                id=s["id"], name=s.get("name", ""), status=Status(s["status"]), score=s["score"],
                 max_score=s["max_score"], answers=answers,
                 messages=tuple(s.get("messages", ())), identity=identity,
                 variant=(StudentVariant(variant["seed"], tuple(

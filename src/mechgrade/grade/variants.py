@@ -35,7 +35,7 @@ from ..spec.solving import resolve_given_values
 from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, SteppedRange
 from ..tolerance import within
 from ..units import from_si, to_si
-from .results import StudentResult, StudentVariant, VariantGiven, unit_text
+from .results import StudentResult, StudentVariant, VariantGiven, Verdict, unit_text
 from .sheets import Question, Sheet, SheetProblem
 
 DRAW_LIMIT = 1000
@@ -504,7 +504,7 @@ def mark_neighbours(result: StudentResult, own: dict[str, ObjectiveResult],
     for i, answer in enumerate(result.answers):
         key = f"{answer.problem}.{answer.objective}"
         reference = own.get(key)
-        if (answer.verdict != "incorrect" or not answer.answer or reference is None
+        if (answer.verdict != Verdict.INCORRECT or not answer.answer or reference is None
                 or answer.problem not in drawn):
             continue
         value = answer_si(answer.answer, reference)

@@ -35,7 +35,8 @@ from ..export import EXPORTERS
 from ..outfolder import OutputKind
 from ..parallel import outcome, worker_started
 from ..resources import shipped_dir
-from ..grade.results import ECF_DIAGNOSIS, AnswerResult, GradeReport, StudentResult
+from ..grade.results import (ECF_DIAGNOSIS, AnswerResult, GradeReport, Status, StudentResult,
+                             Verdict)
 
 if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
     from multiprocessing.connection import Connection
@@ -51,18 +52,18 @@ GRADE_OUTPUTS = OutputKind("mechgrade grade", "results.json", (
 """What ``mechgrade grade`` writes into ``--out`` (see :mod:`mechgrade.outfolder`)."""
 
 VERDICT_LABELS = {
-    "correct": "Correct",
-    "partial": "Partly correct",
-    "incorrect": "Incorrect",
-    "unreadable": "Could not be read",
-    "missing": "No answer",
-    "not_evaluated": "Not evaluated",
+    Verdict.CORRECT: "Correct",
+    Verdict.PARTIAL: "Partly correct",
+    Verdict.INCORRECT: "Incorrect",
+    Verdict.UNREADABLE: "Could not be read",
+    Verdict.MISSING: "No answer",
+    Verdict.NOT_EVALUATED: "Not evaluated",
 }
 STATUS_LABELS = {
-    "graded": "Graded",
-    "missing": "No submission",
-    "unreadable": "Submission could not be read",
-    "conflict": "Not graded: more than one match with the roster",
+    Status.GRADED: "Graded",
+    Status.MISSING: "No submission",
+    Status.UNREADABLE: "Submission could not be read",
+    Status.CONFLICT: "Not graded: more than one match with the roster",
 }
 
 
@@ -605,7 +606,7 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
             "feedback": answer.feedback or "",
             # a right answer's "Correct." says nothing the verdict does not
             "explained": bool(answer.feedback or answer.diagnosis)
-                         and (answer.verdict != "correct" or bool(answer.diagnosis)),
+                         and (answer.verdict != Verdict.CORRECT or bool(answer.diagnosis)),
             "expected": pretty_math(expected_shown(answer)),
         })
     percent = (f"{100 * student.score / student.max_score:.0f}%" if student.max_score
@@ -654,8 +655,8 @@ def expected_shown(answer: AnswerResult) -> str:
 
 
 NOTHING_READ = {
-    "missing": "No answers were found for you, so {none} graded.",
-    "unreadable": "Your answers could not be read (see “About your submission”), so {none} "
+    Status.MISSING: "No answers were found for you, so {none} graded.",
+    Status.UNREADABLE: "Your answers could not be read (see “About your submission”), so {none} "
                   "graded.",
 }
 
@@ -696,7 +697,7 @@ def noun(n: int, singular: str, plural: str | None = None) -> str:
     return singular if n == 1 else plural or singular + "s"
 
 
-def verdict_label(verdict: str, diagnosis: str | None) -> str:
+def verdict_label(verdict: Verdict, diagnosis: str | None) -> str:
     """The verdict as the page names it; credit earned through error carried forward says so
     (a wrong value under a bare "Correct" reads as a mistake of the grader's).
 
@@ -705,7 +706,7 @@ def verdict_label(verdict: str, diagnosis: str | None) -> str:
     """
     label = VERDICT_LABELS.get(verdict, verdict)
     return (f"{label} ({ECF_DIAGNOSIS})"
-            if diagnosis == ECF_DIAGNOSIS and verdict in ("correct", "partial") else label)
+            if diagnosis == ECF_DIAGNOSIS and verdict in (Verdict.CORRECT, Verdict.PARTIAL) else label)
 
 
 def diagnosis_label(diagnosis: str | None, feedback: str | None) -> str:
