@@ -667,7 +667,7 @@ def _sampled(result: ObjectiveResult, wanted: int, seed: int):
 
 @lru_cache(maxsize=256)
 def _sampled_cached(oid, expr, symbols, units, signed, signs, wanted, seed):
-    result = ObjectiveResult(oid, "symbolic", "", expr=expr, symbols=symbols, symbol_units=units,
+    result = ObjectiveResult(oid, ObjectiveKind.SYMBOLIC, "", expr=expr, symbols=symbols, symbol_units=units,
                              symbol_signed=signed, symbol_signs=signs)
     env = sample_points(result, 4 * wanted, seed)
     reference = evaluate(_reference_tree(expr, symbols), env)

@@ -43,6 +43,7 @@ from .submissions import Submission, SubmissionSet, SubmissionStatus
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.result import ObjectiveResult, Solution
     from .compare import Assessment
+    from .sandbox import SandboxPool
 
 POINTS_DIGITS = 4
 """Points are rounded to this many decimals, so that sums are the same on every machine."""
@@ -555,14 +556,14 @@ class _Judge:
         self._references: dict[ObjectiveResult, int] = {}  # each distinct one, numbered
         self._numbers: dict[int, tuple[ObjectiveResult, int]] = {}  # by id(): its number
         self.ecf = CarriedForward(policy, self, resolve, jobs)
-        self._pool = None
+        self._pool: SandboxPool | None = None
 
     def close(self) -> None:
         if self._pool is not None:
             self._pool.close()
             self._pool = None
 
-    def _sandboxes(self):
+    def _sandboxes(self) -> SandboxPool:
         if self._pool is None:
             from .sandbox import SandboxPool
 

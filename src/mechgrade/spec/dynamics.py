@@ -822,7 +822,8 @@ class _Checker:
         for c in d.couples:
             self.body(c.on, c.where)
             self.typed(c.moment, "vector", "N*m", "a moment vector")
-        for s in (*d.springs, *d.dampers):
+        ends: tuple[Spring | Damper, ...] = (*d.springs, *d.dampers)
+        for s in ends:
             for p, b in zip(s.between, s.on):
                 self.point(p, s.where, "between")
                 self.body(b, s.where, ground_ok=True)
@@ -918,6 +919,7 @@ class _Checker:
 
     def design(self):
         design = self.d.design
+        assert design is not None  # called only for a problem with a design
         params = {p.name for p in self.problem.parameters}
         given = {g.key.text.strip() for g in self.problem.givens}
         if design.find not in params or design.find in given:
