@@ -75,8 +75,8 @@ def main(count: int) -> None:
         for label, result, answers, naive in (("numeric", ACC, numeric, naive_numeric),
                                               ("symbolic", SYM, symbolic, naive_symbolic)):
             print(f"{label} answers:")
-            rate("mechgrade assess (in-process)", lambda t: assess(t, result, policy), answers)
-            rate("mechgrade Sandbox (one worker)", lambda t: box.assess(t, result, policy),
+            rate("mechgrade assess (in-process)", lambda t, result=result: assess(t, result, policy), answers)
+            rate("mechgrade Sandbox (one worker)", lambda t, result=result: box.assess(t, result, policy),
                  answers)
             rate("naive sympy.simplify(a - b) == 0", naive, answers[:naive_count])
         print(f"worker restarts: {box.restarts}")

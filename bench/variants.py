@@ -103,7 +103,7 @@ def cold_seconds(path: Path) -> float:
     return float(done.stdout.split()[-1])
 
 
-def solved_fully(problem, outcomes) -> int:
+def solved_fully(outcomes) -> int:
     return sum(not isinstance(o, MechgradeError) and not o.failures for o in outcomes)
 
 
@@ -120,7 +120,7 @@ def measure(path: Path, students: int, pairs: int, alone: int):
         variants = list(itertools.islice(stream, students))
         if len(variants) < students:
             break  # not enough distinct draws left for another class
-        seconds, outcomes = timed(lambda: solve_variants(problem, variants))
+        seconds, outcomes = timed(lambda variants=variants: solve_variants(problem, variants))
         warm = seconds / len(variants)
         colds.append(cold)
         warms.append(warm)
@@ -128,7 +128,7 @@ def measure(path: Path, students: int, pairs: int, alone: int):
         mine = []
         for givens in itertools.islice(stream, alone):
             try:
-                mine.append(timed(lambda: solve(problem, givens=givens))[0])
+                mine.append(timed(lambda givens=givens: solve(problem, givens=givens))[0])
             except MechgradeError:
                 continue  # a synthetic variant may not assemble; drawn ones are verified
         if mine:
@@ -142,7 +142,7 @@ def measure(path: Path, students: int, pairs: int, alone: int):
             (statistics.median(singles) if singles else float("nan"),
              statistics.median(alone_ratios) if alone_ratios else float("nan"),
              statistics.median(warms), statistics.median(ratios),
-             solved_fully(problem, outcomes), fast, len(ratios)))
+             solved_fully(outcomes), fast, len(ratios)))
 
 
 def main() -> None:

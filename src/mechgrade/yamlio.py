@@ -143,7 +143,7 @@ try:
     from yaml import cyaml as _cyaml
 
     # not in cyaml's __all__ (nor its type stubs): yaml.CParser does not exist
-    CParser = getattr(_cyaml, "CParser")
+    CParser = getattr(_cyaml, "CParser")  # noqa: B009 - see above: unknown to the stubs
 except ImportError:  # pragma: no cover - PyYAML built without libyaml
     pass
 _CLoader: Any = None

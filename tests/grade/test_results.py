@@ -35,7 +35,7 @@ def test_a_read_results_json_holds_enum_members():
 def test_an_unknown_verdict_is_refused_when_read():
     doc = json.loads(json.dumps(GOOD))
     doc["students"][0]["answers"][0]["verdict"] = "right"
-    with pytest.raises(ValueError, match="AnswerResult.verdict: expected a Verdict, found 'right'"):
+    with pytest.raises(ValueError, match=r"AnswerResult.verdict: expected a Verdict, found 'right'"):
         GradeReport.from_json(doc)
 
 
@@ -90,5 +90,5 @@ def test_a_value_of_another_type_in_results_json_is_refused():
 
     doc = json.loads(json.dumps(GOOD))
     doc["students"][0]["identity"] = {"email": 3}
-    with pytest.raises(CodecError, match="StudentResult.identity: expected a text, found int"):
+    with pytest.raises(CodecError, match=r"StudentResult.identity: expected a text, found int"):
         GradeReport.from_json(doc)

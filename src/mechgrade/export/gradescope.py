@@ -46,7 +46,7 @@ from .options import ExportOptions
 
 
 def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
-                      roster: Roster | None = None,
+                      roster: Roster | None = None,  # noqa: ARG001 - every exporter's signature
                       options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write Gradescope ``results.json`` (see module doc). The roster is not used."""
     if not report.students:

@@ -47,7 +47,7 @@ DEFAULT_MEMORY_MB = 512
 
 def _warm() -> None:
     """Import what judging needs before forking, so every worker inherits it."""
-    import sympy  # noqa: F401
+    import sympy  # noqa: F401 - imported for its effect: loaded once, before the fork
 
     from ..units import registry
     registry()
@@ -73,7 +73,7 @@ def _limit_memory(memory_mb: int) -> None:
     mapped = _mapped_bytes() or 0
     limit = mapped + memory_mb * 1024 * 1024
     try:
-        soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+        _soft, hard = resource.getrlimit(resource.RLIMIT_AS)
         if hard != resource.RLIM_INFINITY:
             limit = min(limit, hard)
         resource.setrlimit(resource.RLIMIT_AS, (limit, hard))

@@ -172,7 +172,8 @@ class _Source:
     renamed: bool = False  # an answers file whose name is not written the usual way
 
 
-def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list, notes: list) -> None:
+def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list,
+                _notes: list) -> None:
     """Put one entry of the submissions folder into a student's sources or the skipped list."""
     name, shown = entry.name, clean_text(entry.name)
     if name.startswith("."):
@@ -593,7 +594,7 @@ def _from_json(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]
                    f"graded" for key in sorted(set(repeated))],
            lambda more: f"'{label}': {more} more keys are given more than once; the last of "
                         f"each was graded")
-    return _flatten(data, label, notes, lambda value, key: value)
+    return _flatten(data, label, notes, lambda value, _key: value)
 
 
 def _from_yaml(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]:

@@ -82,7 +82,7 @@ def _value(draw: Draw, n: int) -> float:
     if isinstance(draw, Integers):
         return float(draw.low + n % (draw.high - draw.low + 1))
     if isinstance(draw, SteppedRange):
-        count = int(math.floor((draw.high - draw.low) / draw.step + 1e-9)) + 1
+        count = math.floor((draw.high - draw.low) / draw.step + 1e-9) + 1
         return round(draw.low + (n % count) * draw.step, 12)
     # a RoundedRange: the top 64 bits as a fraction of the range, then rounded
     u = (n >> 192) / 2.0 ** 64

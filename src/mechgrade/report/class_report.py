@@ -130,7 +130,7 @@ def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport
     scores = [s.score for s in graded]
     max_score = sum(o.max_points for o in report.objectives) or \
         max((s.max_score for s in report.students), default=0.0)
-    objectives = tuple(_objective_stats(report, o, graded) for o in report.objectives)
+    objectives = tuple(_objective_stats(o, graded) for o in report.objectives)
     problems = _problem_stats(report, graded)
     histogram = _histogram_svg(scores, max_score) if charts else ""
     success = _success_svg(objectives) if charts else ""
@@ -183,7 +183,7 @@ def _counts(labels: list[str], n: int) -> tuple[Count, ...]:
     return tuple(Count(label, count, count / n) for label, count in ranked[:TOP])
 
 
-def _objective_stats(report, objective, graded) -> ObjectiveStats:
+def _objective_stats(objective, graded) -> ObjectiveStats:
     answers = [_answer(s, objective.problem, objective.objective) for s in graded]
     verdicts = [a.verdict if a is not None else Verdict.MISSING for a in answers]
     n = len(graded)

@@ -331,27 +331,27 @@ def _render_students(bounds: tuple[int, int]) -> tuple[list[tuple[str, str]], li
     """The (html, markdown) pages of the report's students ``bounds[0]:bounds[1]``, and the
     faults met (a broken template raises :class:`MechgradeError`)."""
     rendering = _RENDERING[0]
-    report, templates_dir = rendering.report, rendering.templates_dir
+    report = rendering.report
     prompts = _prompts(report)
     pages: list[tuple[str, str]] = []
     faults: list[str] = []
     for student in report.students[bounds[0]:bounds[1]]:
-        html, markdown = (_feedback_page(report, student, template, suffix, templates_dir,
-                                         faults, prompts)
+        html, markdown = (_feedback_page(report, student, template, suffix, faults,
+                                         prompts)
                           for template, suffix in zip(rendering.templates, (".html", ".md")))
         pages.append((html, markdown))
     return pages, faults
 
 
 def _feedback_page(report: GradeReport, student: StudentResult, template, suffix: str,
-                   templates_dir, faults: list[str], prompts: dict) -> str:
+                   faults: list[str], prompts: dict) -> str:
     try:
         context = _context(report, student, prompts)
         if suffix == ".md":
             context = _escape_all(context)
         context.update(worked_context(_WORKED[0] if _WORKED else None, student, prompts,
                                       markdown=suffix == ".md"))
-        return _render(template, context, templates_dir)
+        return _render(template, context)
     except MechgradeError:
         raise  # a broken template is the instructor's to fix, for every student alike
     except Exception as exc:  # noqa: BLE001 - one student's page must not stop the others
@@ -411,7 +411,7 @@ def _template(env, name: str):
                              ) from None
 
 
-def _render(template, context: dict, templates_dir) -> str:
+def _render(template, context: dict) -> str:
     import jinja2
 
     try:
@@ -530,7 +530,7 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
              for step in worked.steps]
     context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
                      "picture": worked.picture, "steps": steps}}
-    return Markup(_render(_template(env, "worked.html.j2"), context, templates_dir))
+    return Markup(_render(_template(env, "worked.html.j2"), context))
 
 
 def spoken_math(math: str, text: str) -> str:

@@ -997,7 +997,7 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
         raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "
                         f"{', '.join(missing)}", where=analysis.where)
     if isinstance(analysis, WorkEnergy):
-        for key, sense in analysis.sense:
+        for key, _ in analysis.sense:
             node = key.node
             if not (isinstance(node, Prime) and node.order == 1 and node.id in coords):
                 raise SpecError(f"expected a rate (q') in 'sense', found '{key.text}'",
