@@ -14,7 +14,8 @@ import sympy
 
 from mechgrade.expressions.build import to_sympy
 from mechgrade.expressions.syntax import parse
-from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.compare import assess
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.grade.sandbox import Sandbox
 from mechgrade.solve.result import ObjectiveResult
 
@@ -66,7 +67,7 @@ def rate(label: str, func, answers: list[str]) -> None:
 
 
 def main(count: int) -> None:
-    policy = Policy()
+    policy = GradingPolicy()
     numeric, symbolic = numeric_answers(count), symbolic_answers(count)
     naive_count = max(10, count // 10)
     with Sandbox(seconds=10) as box:
@@ -74,8 +75,8 @@ def main(count: int) -> None:
         for label, result, answers, naive in (("numeric", ACC, numeric, naive_numeric),
                                               ("symbolic", SYM, symbolic, naive_symbolic)):
             print(f"{label} answers:")
-            rate("mechgrade assess (in-process)", lambda t: assess(t, result, policy), answers)
-            rate("mechgrade Sandbox (one worker)", lambda t: box.assess(t, result, policy),
+            rate("mechgrade assess (in-process)", lambda t, result=result: assess(t, result, policy), answers)
+            rate("mechgrade Sandbox (one worker)", lambda t, result=result: box.assess(t, result, policy),
                  answers)
             rate("naive sympy.simplify(a - b) == 0", naive, answers[:naive_count])
         print(f"worker restarts: {box.restarts}")

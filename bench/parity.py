@@ -25,13 +25,13 @@ from pathlib import Path
 
 os.environ.setdefault("MECHGRADE_NO_CACHE", "1")
 
-from mechgrade.cli.solve import solution_json  # noqa: E402
-from mechgrade.errors import MechgradeError  # noqa: E402
-from mechgrade.expressions.syntax import Name, Prime, to_text  # noqa: E402
-from mechgrade.grade.variants import draw_variant  # noqa: E402
-from mechgrade.solve import solve  # noqa: E402
-from mechgrade.solve.batch import solve_variants  # noqa: E402
-from mechgrade.spec import load_problem  # noqa: E402
+from mechgrade.cli.solve import solution_json
+from mechgrade.errors import MechgradeError
+from mechgrade.expressions.syntax import Name, Prime, to_text
+from mechgrade.grade.variants import draw_variant
+from mechgrade.solve import solve
+from mechgrade.solve.batch import solve_variants
+from mechgrade.spec import load_problem
 
 ROOT = Path(__file__).resolve().parents[1]
 PATHS = sorted((ROOT / "problems").glob("*.yaml")) + sorted(

@@ -317,7 +317,7 @@ def phases(size: int, jobs: int | None) -> None:
     for name, wall, cpu in rows:
         print(f"  {name:<22} {wall:>7.2f} {cpu:>7.2f}")
     total = [sum(r[i] for r in rows) for i in (1, 2)]
-    solve = [r for r in rows if r[0] == "solve"][0]
+    solve = next(r for r in rows if r[0] == "solve")
     print(f"  {'total':<22} {total[0]:>7.2f} {total[1]:>7.2f}")
     print(f"  {'total but solving':<22} {total[0] - solve[1]:>7.2f} {total[1] - solve[2]:>7.2f}",
           flush=True)

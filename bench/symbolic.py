@@ -36,7 +36,9 @@ import sympy
 from sympy.parsing.sympy_parser import (convert_xor, implicit_multiplication_application,
                                         parse_expr, standard_transformations)
 
-from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.compare import assess
+
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.parallel import default_jobs
 from mechgrade.solve import solve
@@ -113,7 +115,7 @@ def timed(func, batch):
 
 def compare(title: str, refs: dict, draw, count: int, rounds: int, pool: SandboxPool) -> None:
     """``rounds`` rounds of the three sides, each on answers of its own from ``draw``."""
-    policy = Policy()
+    policy = GradingPolicy()
 
     def naive(batch):
         return ["correct" if naive_equal(text, refs[key].expr) else "incorrect"
@@ -160,7 +162,7 @@ def compare(title: str, refs: dict, draw, count: int, rounds: int, pool: Sandbox
 
 def main(count: int = 200, rounds: int = 7) -> None:
     refs = references()
-    policy = Policy()
+    policy = GradingPolicy()
     jobs = default_jobs()
     # first calls (imports, the objectives' sample points) outside the timing, on text no
     # timed call uses

@@ -4,10 +4,11 @@ Cold = load the spec, build the model and the solver plan and solve once, in a f
 (its imports done before the clock starts): what grading pays the first time it meets a
 problem. Warm, a class = ``--students`` variants solved together (``solve_variants``, as
 grading and ``check --variants`` do), per student. Warm, alone = ``solve`` with one student's
-givens, the plan already built (the median over ``--alone`` students).
+givens, the plan already built (the median over ``--alone`` students of the pair).
 
-The machine may be shared: the two sides are measured in pairs, a cold run then a warm class,
-``--pairs`` times, and the ratio printed is the median of the per-pair ratios. Every warm call
+The machine may be shared: the sides are measured in pairs, a cold run then a warm class then
+``--alone`` students alone, ``--pairs`` times, and each ratio printed is the median of the
+per-pair ratios (cold / warm of the same pair). Every warm call
 gets variants no earlier call has seen (a class of new students each time, after a first
 class that builds what a warm solve keeps: the reference solve, the symbolic answers), so
 nothing is answered from memory that a real class would not find there.
@@ -102,7 +103,7 @@ def cold_seconds(path: Path) -> float:
     return float(done.stdout.split()[-1])
 
 
-def solved_fully(problem, outcomes) -> int:
+def solved_fully(outcomes) -> int:
     return sum(not isinstance(o, MechgradeError) and not o.failures for o in outcomes)
 
 
@@ -113,31 +114,35 @@ def measure(path: Path, students: int, pairs: int, alone: int):
     if not first:
         return problem.id, cold_seconds(path), None
     solve_variants(problem, first)  # what a warm solve keeps: built once per run
-    ratios, colds, warms = [], [], []
+    ratios, alone_ratios, colds, warms, singles = [], [], [], [], []
     for _ in range(pairs):
         cold = cold_seconds(path)
         variants = list(itertools.islice(stream, students))
         if len(variants) < students:
             break  # not enough distinct draws left for another class
-        seconds, outcomes = timed(lambda: solve_variants(problem, variants))
+        seconds, outcomes = timed(lambda variants=variants: solve_variants(problem, variants))
         warm = seconds / len(variants)
         colds.append(cold)
         warms.append(warm)
         ratios.append(cold / warm)
+        mine = []
+        for givens in itertools.islice(stream, alone):
+            try:
+                mine.append(timed(lambda givens=givens: solve(problem, givens=givens))[0])
+            except MechgradeError:
+                continue  # a synthetic variant may not assemble; drawn ones are verified
+        if mine:
+            singles.append(statistics.median(mine))
+            alone_ratios.append(cold / singles[-1])
     if not ratios:
         return problem.id, cold_seconds(path), None
-    singles = []
-    for givens in itertools.islice(stream, alone):
-        try:
-            singles.append(timed(lambda: solve(problem, givens=givens))[0])
-        except MechgradeError:
-            continue  # a synthetic variant may not assemble; drawn ones are verified
     template = _template(problem)
     fast = sum(s is not None for s in template.solve(variants)) if template else 0
     return (problem.id, statistics.median(colds),
             (statistics.median(singles) if singles else float("nan"),
+             statistics.median(alone_ratios) if alone_ratios else float("nan"),
              statistics.median(warms), statistics.median(ratios),
-             solved_fully(problem, outcomes), fast, len(ratios)))
+             solved_fully(outcomes), fast, len(ratios)))
 
 
 def main() -> None:
@@ -151,7 +156,7 @@ def main() -> None:
           f"{args.students} new variants; ratio: the median of the per-pair ratios)")
     print(f"{'problem':40s} {'cold':>8s} {'warm alone':>11s} {'ratio':>7s} "
           f"{'warm, class':>12s} {'ratio':>7s}    n  fast")
-    ratios = []
+    ratios, alone_ratios = [], []
     for path in args.paths or DEFAULT:
         try:
             pid, cold, warm = measure(path, args.students, args.pairs, args.alone)
@@ -162,13 +167,17 @@ def main() -> None:
             print(f"{pid:40s} {cold * 1e3:6.0f}ms   (no variant to time: no givens to vary, or "
                   f"too few distinct draws)")
             continue
-        alone, together, ratio, n, fast, count = warm
+        alone, alone_ratio, together, ratio, n, fast, count = warm
         ratios.append(ratio)
-        print(f"{pid:40s} {cold * 1e3:6.0f}ms {alone * 1e3:9.2f}ms {cold / alone:6.0f}x "
+        if alone_ratio == alone_ratio:  # not NaN: some student solved alone
+            alone_ratios.append(alone_ratio)
+        print(f"{pid:40s} {cold * 1e3:6.0f}ms {alone * 1e3:9.2f}ms {alone_ratio:6.0f}x "
               f"{together * 1e3:10.3f}ms {ratio:6.0f}x  {n:3d}  {fast:4d}"
               + ("" if count == args.pairs else f"  ({count} pairs)"), flush=True)
+    print(f"{'alone ratio: median, worst':40s} {statistics.median(alone_ratios):29.0f}x "
+          f"{min(alone_ratios):.0f}x")
     print(f"{'class ratio: median, worst':40s} {statistics.median(ratios):58.0f}x "
-          f"{min(ratios):.0f}x")
+          f"{min(ratios):.0f}x  ({sum(r < 1000 for r in ratios)} of {len(ratios)} below 1000x)")
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ this, so only :data:`DYNAMIC_IMPORTERS` may do it (each looks up a registry of i
 from __future__ import annotations
 
 import ast
+import shutil
 from pathlib import Path
 
 import pytest
@@ -43,11 +44,12 @@ def base_rank(module: str) -> int:
     return max(matches, key=lambda i: len(BASE_ORDER[i]))
 
 
-def modules() -> dict[str, Path]:
-    """Every module by its name relative to mechgrade (a package by its own name)."""
+def modules(root: Path = SRC) -> dict[str, Path]:
+    """Every module under ``root`` (mechgrade's package folder) by its name relative to
+    mechgrade (a package by its own name)."""
     out = {}
-    for path in sorted(SRC.rglob("*.py")):
-        parts = path.relative_to(SRC).with_suffix("").parts
+    for path in sorted(root.rglob("*.py")):
+        parts = path.relative_to(root).with_suffix("").parts
         if parts[-1] == "__init__":
             parts = parts[:-1]
         out[".".join(parts)] = path
@@ -266,3 +268,62 @@ def test_imports_for_annotations_only_are_allowed(tmp_path):
     known["spec.model"].write_text("import typing\nif typing.TYPE_CHECKING:\n"
                                    "    from ..solve import plan\n", encoding="utf-8")
     assert violations("spec.model", known["spec.model"], known) == []
+
+
+# --- the whole check, on a copy of the package with a forbidden import planted -------------------
+
+def package_faults(known: dict[str, Path]) -> list[str]:
+    """Everything the architecture tests above find in the package ``known`` (every module's
+    violations, a base module missing from the base order, import cycles), one line each."""
+    found = [v for name, path in known.items() for v in violations(name, path, known)]
+    for name in known:
+        if layer(name) == "base":
+            try:
+                base_rank(name)
+            except ValueError:
+                found.append(f"{name} has no place in the base layer's order")
+    found += [" -> ".join(cycle) for cycle in cycles(import_graph(known))]
+    return found
+
+
+PLANTED = {
+    "sympy.physics outside mechanics": ("solve/plan.py", "from sympy import physics\n",
+                                        "solve.plan imports sympy.physics"),
+    "an import in the else: of TYPE_CHECKING": (
+        "spec/model.py", "from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    pass\n"
+        "else:\n    from ..solve import plan\n", "spec.model imports mechgrade.solve.plan"),
+    "importlib.import_module outside its call sites": (
+        "grade/run.py", "import importlib\n_m = importlib.import_module('mechgrade.report')\n",
+        "imports a module named at run time"),
+    "an order violation inside the base layer": (
+        "errors.py", "from . import files\n", "errors imports mechgrade.files"),
+    "a report importing sympy": ("report/output.py", "import sympy\n",
+                                 "report.output imports sympy"),
+    "an import of the CLI": ("grade/run.py", "from ..cli import main\n",
+                             "grade.run imports mechgrade.cli"),
+}
+
+
+@pytest.fixture(scope="module")
+def package_copy(tmp_path_factory) -> Path:
+    """A copy of mechgrade's package folder, untouched (each test plants in its own copy)."""
+    copy = tmp_path_factory.mktemp("pristine") / "mechgrade"
+    shutil.copytree(SRC, copy, ignore=shutil.ignore_patterns("__pycache__", "*.json", "*.j2"))
+    return copy
+
+
+def test_the_package_as_it_is_has_no_fault(package_copy):
+    assert package_faults(modules(package_copy)) == []
+
+
+@pytest.mark.parametrize("planted", list(PLANTED), ids=list(PLANTED))
+def test_a_forbidden_import_planted_in_a_copy_of_the_package_fails_the_check(
+        package_copy, tmp_path, planted):
+    module, text, said = PLANTED[planted]
+    copy = tmp_path / "mechgrade"
+    shutil.copytree(package_copy, copy)
+    target = copy / module
+    target.write_text(target.read_text(encoding="utf-8") + "\n" + text, encoding="utf-8")
+    faults = package_faults(modules(copy))
+    assert faults and all(said in f or module.replace("/", ".")[:-3] in f for f in faults)
+    assert any(said in f for f in faults), faults

@@ -21,7 +21,7 @@ def test_atomic_write_leaves_no_temporary_file_and_replaces(tmp_path):
 
 
 def test_writing_into_a_missing_folder_is_an_output_error(tmp_path):
-    with pytest.raises(OutputError, match="expected an existing folder to write 'x.csv' into, "
+    with pytest.raises(OutputError, match=r"expected an existing folder to write 'x.csv' into, "
                                           "found none"):
         write_text(tmp_path / "nope" / "x.csv", "a")
 

@@ -104,7 +104,7 @@ def test_roster_that_is_not_utf8_names_the_line(tmp_path):
 
 
 def test_missing_roster_file_is_reported(tmp_path):
-    with pytest.raises(AssignmentError, match="nope.csv: expected a roster CSV file, found no "
+    with pytest.raises(AssignmentError, match=r"nope.csv: expected a roster CSV file, found no "
                                               "such file"):
         read_roster(tmp_path / "nope.csv")
 

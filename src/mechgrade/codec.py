@@ -6,7 +6,13 @@ kind, message and place); :func:`decode` reads it back as the type named, and ch
 part against that type on the way: a text where a number belongs, a field the type lacks, an
 error that is not mechgrade's, a number that is not finite is a :class:`CodecError`, never a
 value of another shape. What the disk cache keeps (solutions, symbolic answers, ``check``
-reports) goes through it, so a stored entry is read with the same rules as it was written.
+reports) and ``results.json`` go through it, so a file is read with the same rules as it was
+written.
+
+A field's ``metadata`` may ask for a form of its own: :data:`MAPPING` (a tuple of
+``(key, value)`` pairs written as a JSON object), :data:`OMIT_DEFAULT` (left out when it holds
+its default, so files written before the field existed read the same) and :func:`absent` (the
+value taken when the field is not there, for a field without a default).
 
 >>> from mechgrade.errors import AuthorWarning, Location
 >>> w = AuthorWarning("T moves", Location("p.yaml", 3, 1))
@@ -42,6 +48,34 @@ class CodecError(ValueError):
     """JSON that is not a value of the type asked for."""
 
 
+MAPPING = {"codec": "mapping"}
+"""Field metadata: a tuple of ``(key, value)`` pairs written as a JSON object.
+
+>>> @dataclasses.dataclass(frozen=True)
+... class Tagged:
+...     tags: tuple[tuple[str, str], ...] = dataclasses.field(default=(), metadata=MAPPING)
+>>> encode(Tagged((("a", "1"),)))
+{'tags': {'a': '1'}}
+>>> decode(Tagged, {"tags": {"a": "1"}})
+Tagged(tags=(('a', '1'),))
+"""
+OMIT_DEFAULT = {"codec": "omit_default"}
+"""Field metadata: left out of the JSON when the field holds its default."""
+
+
+def absent(value: Any) -> dict:
+    """Field metadata: ``value`` is read when the field is not in the JSON.
+
+    >>> @dataclasses.dataclass(frozen=True)
+    ... class Named:
+    ...     id: str
+    ...     name: str = dataclasses.field(metadata=absent(""))
+    >>> decode(Named, {"id": "a"})
+    Named(id='a', name='')
+    """
+    return {"codec_absent": value}
+
+
 def encode(value: Any) -> Any:
     """``value`` as plain JSON (see the module's docstring).
 
@@ -54,7 +88,16 @@ def encode(value: Any) -> Any:
     if isinstance(value, enum.Enum):
         return value.value
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return {name: encode(getattr(value, name)) for name in _field_names(type(value))}
+        out = {}
+        for name, form, default in _field_forms(type(value)):
+            item = getattr(value, name)
+            if form is None:
+                out[name] = encode(item)
+            elif form == "mapping":
+                out[name] = {key: encode(v) for key, v in item}
+            elif item != default:  # omit_default
+                out[name] = encode(item)
+        return out
     if isinstance(value, (frozenset, set)):
         return sorted(encode(item) for item in value)
     if isinstance(value, Sequence):  # tuples, lists, sequences worked out when read
@@ -80,8 +123,12 @@ def decode(kind: Any, data: Any) -> Any:
 
 
 @lru_cache(maxsize=None)
-def _field_names(cls: type) -> tuple[str, ...]:
-    return tuple(f.name for f in dataclasses.fields(cls))
+def _field_forms(cls: type) -> tuple[tuple[str, str | None, Any], ...]:
+    """Each field's name, form (``None``: plain, ``"mapping"``, ``"omit_default"``) and
+    default."""
+    return tuple((f.name, f.metadata.get("codec"),
+                  f.default_factory() if f.default_factory is not dataclasses.MISSING
+                  else f.default) for f in dataclasses.fields(cls))
 
 
 Decoder = Callable[[Any], Any]
@@ -217,10 +264,12 @@ def _error(kind: type[MechgradeError]) -> Decoder:
 
 def _dataclass(cls: type) -> Decoder:
     hints = typing.get_type_hints(cls, vars(sys.modules[cls.__module__]))
-    fields = [(f.name, _decoder(hints[f.name]),
-               f.default is not dataclasses.MISSING or f.default_factory is not dataclasses.MISSING)
+    fields = [(f.name, _mapping(hints[f.name]) if f.metadata.get("codec") == "mapping"
+               else _decoder(hints[f.name]),
+               f.default is not dataclasses.MISSING or f.default_factory is not dataclasses.MISSING,
+               f.metadata.get("codec_absent", _NOTHING))
               for f in dataclasses.fields(cls) if f.init]
-    known = frozenset(name for name, _, _ in fields)
+    known = frozenset(name for name, _, _, _ in fields)
 
     def decode_dataclass(data: Any) -> Any:
         if type(data) is not dict:
@@ -230,12 +279,14 @@ def _dataclass(cls: type) -> Decoder:
         if unknown:
             raise CodecError(f"{cls.__name__}: no field {sorted(unknown)[0]!r}")
         values = {}
-        for name, decoder, optional in fields:
+        for name, decoder, optional, missing in fields:
             if name in data:
                 try:
                     values[name] = decoder(data[name])
                 except CodecError as err:
                     raise CodecError(f"{cls.__name__}.{name}: {err}") from None
+            elif missing is not _NOTHING:
+                values[name] = missing
             elif not optional:
                 raise CodecError(f"{cls.__name__}: no {name!r}")
         try:
@@ -244,3 +295,20 @@ def _dataclass(cls: type) -> Decoder:
             raise CodecError(f"{cls.__name__}: {err}") from None
 
     return decode_dataclass
+
+
+_NOTHING = object()
+"""No :func:`absent` value given."""
+
+
+def _mapping(kind: Any) -> Decoder:
+    """The decoder of a :data:`MAPPING` field of type ``tuple[tuple[K, V], ...]``."""
+    key, value = typing.get_args(typing.get_args(kind)[0])
+    read_key, read_value = _decoder(key), _decoder(value)
+
+    def decode_mapping(data: Any) -> tuple:
+        if type(data) is not dict:
+            raise CodecError(f"expected an object, found {type(data).__name__}")
+        return tuple((read_key(k), read_value(v)) for k, v in data.items())
+
+    return decode_mapping

@@ -110,7 +110,7 @@ class SpecErrors(SpecError):
         super().__init__("\n".join(str(e) for e in errors), where=Location(errors[0].where.file))
         self.errors = errors
 
-    def located(self: E, where: Location) -> E:
+    def located(self: E, where: Location) -> E:  # noqa: ARG002 - the signature it overrides
         return self
 
     def __str__(self) -> str:

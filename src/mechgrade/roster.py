@@ -219,7 +219,7 @@ def pair_students(roster: Roster, candidates: Sequence[Mapping[str, Collection[s
 def read_roster(path: str | os.PathLike) -> Roster:
     """Read a roster CSV file; a malformed file raises :class:`AssignmentError` at file:line."""
     name = str(path)
-    text = _read_text(Path(path), name)
+    text = _read_text(Path(path))
     lines = text.splitlines()
     first = next((i for i, line in enumerate(lines) if line.strip()), None)
     if first is None:
@@ -275,7 +275,7 @@ def read_roster(path: str | os.PathLike) -> Roster:
     return Roster(tuple(students), kind, header, tuple(skipped), points_possible)
 
 
-def _read_text(path: Path, name: str) -> str:
+def _read_text(path: Path) -> str:
     return read_text(path, what="a roster CSV file", error=AssignmentError,
                      hint=" (save the roster as 'CSV UTF-8')")
 
@@ -370,7 +370,7 @@ def _canvas_student(record, name, line, skipped):
                          email=_email_like(_get(record, "sis login id")))
 
 
-def _moodle_student(record, name, line, skipped):
+def _moodle_student(record, name, line, _skipped):
     first, last = _get(record, "first name"), _get(record, "last name")
     email, number = _get(record, "email address"), _get(record, "id number")
     if not (email or number):
@@ -382,7 +382,7 @@ def _moodle_student(record, name, line, skipped):
                          section=_get(record, "department"))
 
 
-def _plain_student(record, name, line, skipped):
+def _plain_student(record, name, line, _skipped):
     student_id = _get(record, "id")
     if not student_id:
         raise AssignmentError(f"column {_column(record, 'id')!r}: expected a student id, "

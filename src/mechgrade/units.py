@@ -64,6 +64,7 @@ def registry():
 
     folder = platformdirs.user_cache_path("pint", appauthor=False) / \
         f"mechgrade-{zlib.crc32(pint.__file__.encode()):08x}"
+    ureg: pint.UnitRegistry
     try:
         ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=folder)
     except Exception:  # noqa: BLE001 - no usable cache folder (read-only, broken, racing)

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import re
 
@@ -108,6 +108,9 @@ class _Refusals(yaml.composer.Composer):
     counts the depth (PyYAML composes recursively)."""
 
     depth = 0
+    # the parser's, mixed into the loader class beside this one
+    check_event: Callable[..., bool]
+    peek_event: Callable[[], Any]
 
     def compose_node(self, parent, index):
         if self.check_event(yaml.AliasEvent):
@@ -140,7 +143,7 @@ try:
     from yaml import cyaml as _cyaml
 
     # not in cyaml's __all__ (nor its type stubs): yaml.CParser does not exist
-    CParser = getattr(_cyaml, "CParser")
+    CParser = getattr(_cyaml, "CParser")  # noqa: B009 - see above: unknown to the stubs
 except ImportError:  # pragma: no cover - PyYAML built without libyaml
     pass
 _CLoader: Any = None

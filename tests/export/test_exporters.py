@@ -232,7 +232,7 @@ def test_an_export_holding_nothing_back_removes_its_old_unmatched_rows(report, c
 def test_an_unmatched_file_that_cannot_be_removed_is_an_error(report, canvas_roster, tmp_path):
     (tmp_path / "canvas.unmatched.csv").mkdir()
     matched = replace(report, students=())
-    with pytest.raises(ExportError, match="canvas.unmatched.csv: expected to remove the "
+    with pytest.raises(ExportError, match=r"canvas.unmatched.csv: expected to remove the "
                                           "unmatched rows of an earlier export"):
         EXPORTERS["canvas"](matched, tmp_path / "canvas.csv", roster=canvas_roster)
 

@@ -70,7 +70,7 @@ def solved(plan, item: NumberItem, givens: dict[str, float]) -> tuple[float, flo
 
 @pytest.fixture(scope="module")
 def canvas(hw2, tmp_path_factory):
-    plan, bank = hw2
+    _plan, bank = hw2
     out = tmp_path_factory.mktemp("canvas") / "hw2.zip"
     QUESTION_WRITERS["canvas-qti"](bank, out)
     return read_package(out.read_bytes())
@@ -78,7 +78,7 @@ def canvas(hw2, tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def moodle(hw2, tmp_path_factory):
-    plan, bank = hw2
+    _plan, bank = hw2
     out = tmp_path_factory.mktemp("moodle") / "hw2.xml"
     QUESTION_WRITERS["moodle-xml"](bank, out)
     return read_quiz(out.read_text(encoding="utf-8"))

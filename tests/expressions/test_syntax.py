@@ -264,14 +264,15 @@ def test_the_fast_reader_reads_as_ast(text):
 
     names = syntax._function_names(("vel",))
     for attributes in (True, False):
-        def by_ast():
+        def by_ast(attributes=attributes):
             tree = syntax._read_by_ast(text, syntax._pieces(text, names)[0], names,
                                        attributes)
             ambiguous = syntax._pieces(text, names)[1]
             if ambiguous is not None:
                 raise ambiguous
             return tree
-        assert _outcome(lambda: parse(text, functions=("vel",), attributes=attributes)) \
+        assert _outcome(lambda attributes=attributes: parse(text, functions=("vel",),
+                                                           attributes=attributes)) \
             == _outcome(by_ast)
 
 

@@ -7,8 +7,8 @@ import textwrap
 import pytest
 
 from mechgrade.errors import AssignmentError
-from mechgrade.grade.assignment import (Assignment, ErrorCarriedForward, MissingUnitRule,
-                                        SigFigRule, load_assignment)
+from mechgrade.grade.assignment import Assignment, load_assignment
+from mechgrade.grade.policy import ErrorCarriedForward, GradingPolicy
 
 MINIMAL = """\
 id: hw1
@@ -44,8 +44,8 @@ def test_minimal_assignment_has_defaults(folder):
     assert hw.problems[0].objectives is None
     assert hw.policy.reveal_answers is False
     assert hw.policy.rel is None and hw.policy.abs is None
-    assert hw.policy.missing_unit == MissingUnitRule("reject", 0.75)
-    assert hw.policy.ecf == ErrorCarriedForward(True, 1.0)
+    assert hw.policy.missing_unit == "reject"
+    assert hw.policy == GradingPolicy()
 
 
 def test_full_assignment_reads_every_field(folder):
@@ -69,12 +69,38 @@ def test_full_assignment_reads_every_field(folder):
     assert hw.points_for("q", "speed") == 5.0 and hw.points_for("q", "acc") == 2.0
     policy = hw.policy
     assert policy.reveal_answers is True
-    assert (policy.rel, policy.abs, policy.accuracy_sig_figs) == (0.02, 0.1, 3)
-    assert policy.sig_figs == SigFigRule(3, 0.8, True)
-    assert policy.missing_unit == MissingUnitRule("penalize", 0.5)
-    assert policy.partial_credit.diagnoses == (("sign", 0.5), ("swapped", 0.25))
+    assert (policy.rel, policy.abs, policy.sig_figs) == (0.02, 0.1, 3)
+    # a written figure or a missing unit keeps its credit: it loses the rest
+    assert (policy.written_sig_figs, policy.written_sig_figs_strict) == (3, True)
+    assert policy.written_sig_figs_deduction == pytest.approx(0.2)
+    assert (policy.missing_unit, policy.missing_unit_deduction) == ("assume", 0.5)
+    assert policy.partial_credit == (("sign", 0.5), ("swapped", 0.25))
     assert policy.ecf == ErrorCarriedForward(False, 0.5)
     assert str(hw.where_points("q.speed")).endswith("hw.yaml:6:31: points.q.speed")
+
+
+@pytest.mark.parametrize("written, taken", [
+    ("missing_unit: {action: assume}", ("assume", 0.0)),
+    ("missing_unit: {action: reject}", ("reject", GradingPolicy().missing_unit_deduction)),
+    ("partial_credit: {enabled: false, diagnoses: {sign: 0.5}}", ()),
+])
+def test_a_policy_rule_is_read_as_the_one_grading_policy(folder, written, taken):
+    hw = load_assignment(write(folder, MINIMAL + f"policy:\n  {written}\n"))
+    found = (hw.policy.missing_unit, hw.policy.missing_unit_deduction) \
+        if "missing_unit" in written else hw.policy.partial_credit
+    assert found == taken
+
+
+@pytest.mark.parametrize("field, value, message", [
+    ("worked_solution", "later", "policy.worked_solution: expected one of always, "
+                                 "after_due_date, never, found 'later'"),
+    ("ecf", ErrorCarriedForward(True, 1.5), "policy.ecf.credit: expected a number from 0 to 1, "
+                                            "found 1.5"),
+])
+def test_a_grading_policy_made_in_code_is_checked_too(field, value, message):
+    with pytest.raises(AssignmentError) as caught:
+        GradingPolicy(**{field: value})
+    assert str(caught.value) == message
 
 
 def test_assignment_is_frozen(folder):

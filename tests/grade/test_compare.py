@@ -7,8 +7,9 @@ from hypothesis import given, settings, strategies as st
 
 from mechgrade.errors import AnswerError, AssignmentError
 from mechgrade.grade.answers import read_answer
-from mechgrade.grade.compare import (Assessment, Policy, assess, expression_dimension,
-                                     last_place, sample_points, within, within_sig_figs)
+from mechgrade.grade.compare import (Assessment, assess, expression_dimension, last_place,
+                                     sample_points, within, within_sig_figs)
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.expressions.syntax import parse
 from mechgrade.grade.results import VERDICTS
 from mechgrade.solve.result import MistakeValue, ObjectiveResult
@@ -23,7 +24,7 @@ SYM = ObjectiveResult("a_sym", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + the
 ANGLE = ObjectiveResult("theta", "scalar", "rad", 0.5236)
 
 
-def verdict(text, result=ACC, policy=Policy()):
+def verdict(text, result=ACC, policy=GradingPolicy()):
     return assess(text, result, policy).verdict
 
 
@@ -49,14 +50,14 @@ def test_no_tolerance_is_tighter_than_the_references_accuracy():
     """A zero tolerance (an assignment's policy; a problem's is refused by check) still
     accepts an answer off only in the reference's last digits."""
     result = ObjectiveResult("x", "scalar", "m", 2.78107123456, rel=0.0)
-    assert verdict("2.781071 m", result, Policy(rel=0.0)) == "correct"
-    assert verdict("2.7811 m", result, Policy(rel=0.0)) == "incorrect"
+    assert verdict("2.781071 m", result, GradingPolicy(rel=0.0)) == "correct"
+    assert verdict("2.7811 m", result, GradingPolicy(rel=0.0)) == "incorrect"
 
 
 def test_policy_overrides_the_objectives_tolerance():
-    assert verdict("97 ft/s^2", ACC, Policy(rel=0.02)) == "correct"
+    assert verdict("97 ft/s^2", ACC, GradingPolicy(rel=0.02)) == "correct"
     assert verdict("97 ft/s^2", ACC) == "incorrect"
-    assert verdict("97 ft/s^2", ACC, Policy(rel=0.0, abs=2.0)) == "correct"
+    assert verdict("97 ft/s^2", ACC, GradingPolicy(rel=0.0, abs=2.0)) == "correct"
 
 
 @given(st.floats(min_value=-1.0, max_value=1.0))
@@ -82,7 +83,7 @@ def test_unit_conversions_round_trip(fraction, unit):
 
 
 def test_sig_fig_accuracy_is_half_a_unit_in_the_last_place():
-    policy = Policy(sig_figs=3)
+    policy = GradingPolicy(sig_figs=3)
     assert verdict("98.5 ft/s^2", ACC, policy) == "correct"
     assert verdict("98.46 ft/s^2", ACC, policy) == "correct"
     assert verdict("98.56 ft/s^2", ACC, policy) == "correct"
@@ -94,8 +95,8 @@ def test_sig_fig_accuracy_is_half_a_unit_in_the_last_place():
 def test_sig_fig_accuracy_is_judged_in_the_students_unit():
     # 98.51 ft/s^2 = 30.026 m/s^2: "30.0 m/s^2" is right to 3 figures, though 30.0 m/s^2 is
     # 98.43 ft/s^2, which is not within 0.05 ft/s^2 of 98.51.
-    assert verdict("30.0 m/s^2", ACC, Policy(sig_figs=3)) == "correct"
-    assert verdict("30.1 m/s^2", ACC, Policy(sig_figs=3)) == "incorrect"
+    assert verdict("30.0 m/s^2", ACC, GradingPolicy(sig_figs=3)) == "correct"
+    assert verdict("30.1 m/s^2", ACC, GradingPolicy(sig_figs=3)) == "incorrect"
 
 
 def test_last_place_and_sig_fig_helpers():
@@ -108,7 +109,7 @@ def test_last_place_and_sig_fig_helpers():
 
 def test_written_sig_figs_liberal_rule_accepts_ambiguous_trailing_zeros():
     hundred = ObjectiveResult("x", "scalar", "m", 100.0)
-    policy = Policy(written_sig_figs=3)
+    policy = GradingPolicy(written_sig_figs=3)
     assert verdict("100 m", hundred, policy) == "correct"
     assert verdict("1.00e2 m", hundred, policy) == "correct"
     partial = assess("1.0e2 m", hundred, policy)
@@ -119,20 +120,20 @@ def test_written_sig_figs_liberal_rule_accepts_ambiguous_trailing_zeros():
 
 def test_written_sig_figs_strict_rule_reads_100_as_one_figure():
     hundred = ObjectiveResult("x", "scalar", "m", 100.0)
-    policy = Policy(written_sig_figs=3, written_sig_figs_strict=True)
+    policy = GradingPolicy(written_sig_figs=3, written_sig_figs_strict=True)
     assert verdict("100 m", hundred, policy) == "partial"
     assert verdict("100. m", hundred, policy) == "correct"
     assert verdict("1.00e2 m", hundred, policy) == "correct"
 
 
 def test_written_sig_figs_deduction_is_configurable():
-    policy = Policy(written_sig_figs=2, written_sig_figs_deduction=1.0)
+    policy = GradingPolicy(written_sig_figs=2, written_sig_figs_deduction=1.0)
     judged = assess("98.51 ft/s^2", ACC, policy)
     assert (judged.verdict, judged.credit) == ("incorrect", 0.0)
 
 
 def test_exact_constants_do_not_escape_a_written_sig_figs_rule():
-    judged = assess("pi/6 rad", ANGLE, Policy(written_sig_figs=3))
+    judged = assess("pi/6 rad", ANGLE, GradingPolicy(written_sig_figs=3))
     assert (judged.verdict, judged.credit) == ("partial", 0.75)
     assert judged.feedback == ("The value is right, but written as an exact expression; "
                                "3 were asked.")
@@ -157,7 +158,7 @@ def test_missing_unit_rejected_by_default():
 
 
 def test_missing_unit_assumed_with_deduction():
-    judged = assess("98.5", ACC, Policy(missing_unit="assume", missing_unit_deduction=0.1))
+    judged = assess("98.5", ACC, GradingPolicy(missing_unit="assume", missing_unit_deduction=0.1))
     assert (judged.verdict, judged.credit) == ("partial", 0.9)
     assert "ft/s^2 was assumed" in judged.feedback
 
@@ -168,7 +169,7 @@ def test_the_unit_a_number_or_vector_was_written_in_is_kept_when_of_the_objectiv
     assert assess("-41.4 rpm", speed).unit == "rpm"  # a scalar for a vector: judged, unit kept
     assert assess("98.5 m/s^2", ACC).unit == "m / s ** 2"  # wrong, and still in that unit
     assert assess("98.5 ft", ACC).unit is None  # another dimension
-    assert assess("98.5", ACC, Policy(missing_unit="assume")).unit is None  # none written
+    assert assess("98.5", ACC, GradingPolicy(missing_unit="assume")).unit is None  # none written
     assert assess("98.5 parsecs_per_fortnight", ACC).unit is None  # not read
     symbolic = ObjectiveResult("x", "symbolic", "m", expr="L*theta", symbols=("L", "theta"),
                                symbol_units=("m", ""))
@@ -256,7 +257,7 @@ def test_signed_scalar_objective_accepts_a_k_vector():
 
 
 def test_vector_sig_figs_judge_each_component():
-    policy = Policy(sig_figs=2)
+    policy = GradingPolicy(sig_figs=2)
     assert verdict("(-66, -40) ft/s^2", VEC, policy) == "correct"
     assert verdict("(-66, -41) ft/s^2", VEC, policy) == "incorrect"
 
@@ -370,11 +371,11 @@ def test_hostile_answers_never_raise(text):
 ])
 def test_policy_refuses_bad_settings(kwargs, field):
     with pytest.raises(AssignmentError, match=f"policy.{field}: expected"):
-        Policy(**kwargs)
+        GradingPolicy(**kwargs)
 
 
 def test_partial_credit_for_an_automatic_diagnosis():
-    judged = assess("-98.5 ft/s^2", ACC, Policy(partial_credit=(("sign", 0.5),)))
+    judged = assess("-98.5 ft/s^2", ACC, GradingPolicy(partial_credit=(("sign", 0.5),)))
     assert (judged.verdict, judged.credit, judged.diagnosis) == ("partial", 0.5, "sign error")
 
 
@@ -413,7 +414,7 @@ def test_within_slack_is_tiny():
 ])
 def test_written_figures_of_zero_follow_stack_and_prairielearn(text, figures, expected):
     zero = ObjectiveResult("z", "scalar", "", 0.0, abs=0.01)
-    assert verdict(text, zero, Policy(written_sig_figs=figures,
+    assert verdict(text, zero, GradingPolicy(written_sig_figs=figures,
                                       written_sig_figs_strict=True)) == expected
 
 
@@ -523,7 +524,7 @@ def test_a_trig_argument_read_in_radians_gets_a_hint_when_degrees_were_meant():
                                "sin(30 deg).")
     assert verdict("sin(30°)", half) == "correct"
     assert verdict("sin(pi/6)", half) == "correct"
-    graded = assess("sin(30)", half, Policy(partial_credit=(("trig_radians", 0.5),)))
+    graded = assess("sin(30)", half, GradingPolicy(partial_credit=(("trig_radians", 0.5),)))
     assert (graded.verdict, graded.credit) == ("partial", 0.5)
 
 
@@ -552,9 +553,9 @@ def test_a_planar_vector_in_magnitude_and_angle_form_is_judged_by_components():
 def test_brackets_keep_the_written_figures_of_a_number():
     # STACK answertestfixtures: NumSigFigs 1, -(0.05) against -0.0499 is right
     small = ObjectiveResult("x", "scalar", "", -0.0499)
-    assert verdict("-(0.05)", small, Policy(sig_figs=1, written_sig_figs=1)) == "correct"
+    assert verdict("-(0.05)", small, GradingPolicy(sig_figs=1, written_sig_figs=1)) == "correct"
     acc = ObjectiveResult("a", "scalar", "m/s^2", -12.0)
-    assert verdict("(-12.00) m/s^2", acc, Policy(written_sig_figs=4)) == "correct"
+    assert verdict("(-12.00) m/s^2", acc, GradingPolicy(written_sig_figs=4)) == "correct"
 
 
 def test_an_exact_constant_times_a_unit_is_judged():

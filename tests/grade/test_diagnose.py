@@ -5,7 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.compare import assess
+
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.grade.diagnose import CODES, diagnose
 from mechgrade.solve.result import MistakeValue, ObjectiveResult
 
@@ -17,7 +19,7 @@ SYM = ObjectiveResult("a_sym", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + the
 
 
 def label(text, result=ACC):
-    return assess(text, result, Policy()).diagnosis
+    return assess(text, result, GradingPolicy()).diagnosis
 
 
 @pytest.mark.parametrize("value, expected", [
@@ -50,7 +52,7 @@ def test_rpm_slip_when_rpm_number_given_as_rad_per_second():
 
 def test_degrees_typed_without_unit_for_radians():
     angle = ObjectiveResult("theta", "scalar", "rad", 0.5236)
-    judged = assess("30", angle, Policy(missing_unit="assume"))
+    judged = assess("30", angle, GradingPolicy(missing_unit="assume"))
     assert judged.diagnosis == "degrees used as radians"
 
 
@@ -132,7 +134,7 @@ def test_non_finite_student_values_are_not_diagnosed():
 
 def test_every_code_can_be_given_partial_credit():
     for code in CODES:
-        assert Policy(partial_credit=((code, 0.5),)).credit_for(code) == 0.5
+        assert GradingPolicy(partial_credit=((code, 0.5),)).credit_for(code) == 0.5
 
 
 # ---------------------------------------------------------------------------- generated mistakes
@@ -157,7 +159,7 @@ def test_the_nearest_generated_mistake_names_the_answer():
 
 def test_a_generated_mistake_gets_the_policy_credit_of_its_family():
     judged = assess("(-106, -40, 0) ft/s^2", _with_generated(CORIOLIS),
-                    Policy(partial_credit=(("drop_coriolis", 0.5),)))
+                    GradingPolicy(partial_credit=(("drop_coriolis", 0.5),)))
     assert (judged.verdict, judged.credit) == ("partial", 0.5)
 
 
@@ -210,7 +212,7 @@ def test_a_flipped_rate_that_flips_the_whole_answer_is_a_sign_error_saying_which
     flipped = ("given_sign", "Your value is what q' with the opposite sign gives.",
                (66.0, 40.0, 0.0))
     judged = assess("(66, 40, 0) ft/s^2", _with_generated(flipped),
-                    Policy(partial_credit=(("sign", 0.5),)))
+                    GradingPolicy(partial_credit=(("sign", 0.5),)))
     assert (judged.diagnosis, judged.credit, judged.feedback) == (
         "sign error", 0.5, "Your value is what q' with the opposite sign gives.")
 

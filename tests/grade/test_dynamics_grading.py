@@ -7,7 +7,8 @@ from __future__ import annotations
 import pytest
 
 from mechgrade.grade.assignment import load_assignment
-from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.compare import assess
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.grade.run import grade_submissions
 from mechgrade.resources import shipped_dir
 from mechgrade.solve.result import ObjectiveResult
@@ -42,7 +43,7 @@ def test_a_force_g_times_too_small_is_read_as_mass_used_for_weight():
     assert small.feedback == "Your answer is g times too small: mass used for weight (g left out)?"
     assert large.feedback == "Your answer is g times too large: weight used for mass, or g " \
                              "applied twice?"
-    assert assess("3.751 N", TENSION, Policy(partial_credit=(("g", 0.25),))).credit == 0.25
+    assert assess("3.751 N", TENSION, GradingPolicy(partial_credit=(("g", 0.25),))).credit == 0.25
 
 
 @pytest.mark.parametrize("text, read_back", [
@@ -108,7 +109,7 @@ def test_ecf_through_the_energy_balance_still_finds_an_answer_that_follows_from_
 
 @pytest.mark.parametrize("text", ["-3*9.81*sin(theta)/(2*L)", "-1.5*32.2 sin(theta)/L"])
 def test_a_number_typed_for_g_is_named(text):
-    judged = assess(text, EOM, Policy(partial_credit=(("g_number", 0.5),)))
+    judged = assess(text, EOM, GradingPolicy(partial_credit=(("g_number", 0.5),)))
     assert (judged.verdict, judged.credit, judged.diagnosis, judged.feedback) == (
         "partial", 0.5, "number typed for g",
         "Your expression has a number where the symbol g was asked: write g.")

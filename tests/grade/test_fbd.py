@@ -67,7 +67,7 @@ def test_each_mistake_is_named_on_its_own_row(incline):
 def test_a_load_turned_by_an_angle_has_the_wrong_direction(incline):
     judged = judge_diagram("weight: -m g A.y; normal: N A.y; friction: -mu_k N A.x",
                            incline, "block")
-    assert [row.mistakes for row in judged.rows][0] == (LoadMistake.WRONG_DIRECTION,)
+    assert judged.rows[0].mistakes == (LoadMistake.WRONG_DIRECTION,)
 
 
 def test_a_rigid_bodys_force_needs_its_point_and_a_particles_does_not(incline, pendulum):

@@ -319,7 +319,7 @@ def test_a_name_flagged_utf8_that_is_not_is_one_clear_message(tmp_path):
 
 def test_a_zip_of_no_known_lms_is_refused_with_the_fix(tmp_path):
     path = zip_with(tmp_path / "x.zip", {"hw/answers.txt": b"p.v = 1"})
-    with pytest.raises(SubmissionError, match="name the format with --submissions-format$"):
+    with pytest.raises(SubmissionError, match=r"name the format with --submissions-format$"):
         read_lms_zip(path)
 
 

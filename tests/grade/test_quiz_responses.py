@@ -51,7 +51,7 @@ def canvas_student_analysis(tmp_path) -> Path:
     rows = [header]
     for user, answers in ANSWERS.items():
         stale = ["x", user, "", "ENGR", "1", "", "2026-09-18", "1"]
-        for key in KEYS:
+        for _ in KEYS:
             stale += ["0", "0"]
         rows.append(stale + ["0", "3", "0"])
         row = ["x", user, "", "ENGR", "1", "", "2026-09-18", "2"]

@@ -12,7 +12,8 @@ from mechgrade.errors import (AssignmentError, InconsistentError, MechgradeError
                              SubmissionError)
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade import run as run_module
-from mechgrade.grade.run import (expected_in_unit, expected_text, given_key_of, grade_plan,
+from mechgrade.grade.ecf import CarriedForward, given_key_of
+from mechgrade.grade.run import (expected_in_unit, expected_text, grade_plan,
                                  grade_submissions, plan_assignment)
 from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.grade.submissions import read_submissions
@@ -475,8 +476,8 @@ def test_carried_forward_re_solves_are_solved_ahead_over_the_jobs(tmp_path, bloc
                                  ("jon", "-6.50", "62.19"), ("kim", "-7.66598", "73.3429"))})
     alone = grade_submissions(ecf, tmp_path / "subs", jobs=1)
     asked, judged_alone = [], []
-    real = run_module._Judge._attempt
-    monkeypatch.setattr(run_module._Judge, "_attempt",
+    real = CarriedForward._attempt
+    monkeypatch.setattr(CarriedForward, "_attempt",
                         lambda self, *args: asked.append(args) or real(self, *args))
     real_assess = SandboxPool.assess
     monkeypatch.setattr(SandboxPool, "assess", lambda self, *args:

@@ -47,7 +47,7 @@ def test_a_body_listed_twice_is_refused(tmp_path):
 def test_points_for_a_diagram_not_graded_say_so(tmp_path):
     hw = _assignment(tmp_path, f"  - path: {INCLINE}\n    objectives: [accel]\n"
                                f"points: {{block_sliding_down_incline.block.fbd: 3}}\n")
-    with pytest.raises(AssignmentError, match="found 'block_sliding_down_incline.block.fbd'"):
+    with pytest.raises(AssignmentError, match=r"found 'block_sliding_down_incline\.block\.fbd'"):
         plan_assignment(load_assignment(hw))
 
 

@@ -2,7 +2,9 @@
 
 import pytest
 
-from mechgrade.grade.compare import Assessment, Policy, assess
+from mechgrade.grade.compare import Assessment, assess
+
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.grade.sandbox import Sandbox, SandboxPool, assess_batch, assess_bounded
 from mechgrade.solve.result import ObjectiveResult
 
@@ -34,20 +36,20 @@ def hostile_judge(text, result, policy):
 
 def test_bounded_assessment_matches_direct_assessment():
     for text in ("98.5 ft/s^2", "-98.5 ft/s^2", "30 m/s", None, "__import__('os')"):
-        assert assess_bounded(text, ACC, Policy(), seconds=20) == assess(text, ACC, Policy())
+        assert assess_bounded(text, ACC, GradingPolicy(), seconds=20) == assess(text, ACC, GradingPolicy())
 
 
 def test_batch_reuses_one_worker_and_matches_direct_assessment():
-    items = [(t, SYM, Policy()) for t in ("L sqrt(θ̇^4+θ̈^2)", "L θ̇^2", "x", "9**9**9")]
+    items = [(t, SYM, GradingPolicy()) for t in ("L sqrt(θ̇^4+θ̈^2)", "L θ̇^2", "x", "9**9**9")]
     assert assess_batch(items, seconds=20) == [assess(*item) for item in items]
 
 
 @pytest.mark.parametrize("text", ["hang", "spin"])
 def test_overrun_is_not_evaluated_and_the_run_goes_on(text):
     with Sandbox(seconds=0.5, judge=hostile_judge) as box:
-        first, killed, after = box.assess_many([("98.5 ft/s^2", ACC, Policy()),
-                                                 (text, ACC, Policy()),
-                                                 ("98.5 ft/s^2", ACC, Policy())])
+        first, killed, after = box.assess_many([("98.5 ft/s^2", ACC, GradingPolicy()),
+                                                 (text, ACC, GradingPolicy()),
+                                                 ("98.5 ft/s^2", ACC, GradingPolicy())])
         assert first.verdict == "correct" and after.verdict == "correct"
         assert killed.verdict == "not_evaluated" and killed.credit == 0.0
         assert "could not be evaluated" in killed.feedback and "not marked wrong" in killed.feedback
@@ -70,7 +72,7 @@ def test_crashing_judge_is_not_evaluated(text):
 
 def test_worker_is_reused_without_restarts():
     with Sandbox(seconds=20) as box:
-        box.assess_many([("98.5 ft/s^2", ACC, Policy())] * 20)
+        box.assess_many([("98.5 ft/s^2", ACC, GradingPolicy())] * 20)
         assert box.restarts == 0
 
 
@@ -86,18 +88,18 @@ MIXED = ["98.5 ft/s^2", "spin", "-98.5 ft/s^2", "crash", "30 m/s", "exit", "98.5
 
 
 def test_pool_judges_in_item_order_like_one_worker():
-    items = [(t, ACC, Policy()) for t in ("98.5 ft/s^2", "-98.5 ft/s^2", "30 m/s", None, "x")] * 7
+    items = [(t, ACC, GradingPolicy()) for t in ("98.5 ft/s^2", "-98.5 ft/s^2", "30 m/s", None, "x")] * 7
     with SandboxPool(2, seconds=20) as pool:
         assert pool.assess_many(items) == [assess(*item) for item in items]
         assert pool.restarts == 0
 
 
 def test_pool_bounds_every_answer_and_finishes_the_rest():
-    items = [(t, ACC, Policy()) for t in MIXED]
+    items = [(t, ACC, GradingPolicy()) for t in MIXED]
     with SandboxPool(2, seconds=0.5, judge=hostile_judge) as pool:
         judged = pool.assess_many(items)
     verdicts = [a.verdict for a in judged]
-    assert verdicts == [a.verdict for a in (assess(t, ACC, Policy()) if t not in
+    assert verdicts == [a.verdict for a in (assess(t, ACC, GradingPolicy()) if t not in
                                             ("spin", "crash", "exit") else
                                             Assessment("not_evaluated", 0.0, None, None, None)
                                             for t in MIXED)]
@@ -112,7 +114,7 @@ def test_each_answer_of_a_batch_has_its_own_time_limit():
         return assess(text, result, policy)
 
     with Sandbox(seconds=1.0, judge=slow) as box:
-        judged = box.assess_many([("98.5 ft/s^2", ACC, Policy())] * 6)  # 1.8 s in all
+        judged = box.assess_many([("98.5 ft/s^2", ACC, GradingPolicy())] * 6)  # 1.8 s in all
         assert [a.verdict for a in judged] == ["correct"] * 6 and box.restarts == 0
 
 
@@ -125,7 +127,7 @@ def test_answers_in_flight_when_a_worker_dies_go_to_the_fresh_worker_in_order():
     texts = [f"{i} ft/s^2" for i in range(40)]
     for at in range(3, 40, 4):
         texts[at] = "exit"
-    items = [(t, ACC, Policy()) for t in texts]
+    items = [(t, ACC, GradingPolicy()) for t in texts]
     with SandboxPool(2, seconds=20, judge=hostile_judge) as pool:
         judged = pool.assess_many(items)
     assert [(a.verdict, a.read_back) for a in judged] == [
@@ -139,8 +141,8 @@ def test_items_are_the_same_exactly_when_equal_whichever_objects_hold_them():
     from mechgrade.grade.sandbox import _keys
 
     twin, other = replace(SYM), replace(SYM, unit="m")
-    keys = _keys([("L", SYM, Policy()), ("L", twin, Policy()), ("L", other, Policy()),
-                  ("2 L", SYM, Policy()), ("L", SYM, Policy(seed=1))])
+    keys = _keys([("L", SYM, GradingPolicy()), ("L", twin, GradingPolicy()), ("L", other, GradingPolicy()),
+                  ("2 L", SYM, GradingPolicy()), ("L", SYM, GradingPolicy(seed=1))])
     assert keys[0] == keys[1] and len(set(keys)) == 4
 
 
@@ -152,7 +154,7 @@ def test_idle_and_busy_workers_die_with_their_killed_parent(marked_run):
 
     run = marked_run([sys.executable, "-c", textwrap.dedent("""\
         import time
-        from mechgrade.grade.compare import Policy
+        from mechgrade.grade.policy import GradingPolicy
         from mechgrade.grade.sandbox import Sandbox
         from mechgrade.solve.result import ObjectiveResult
 
@@ -162,8 +164,8 @@ def test_idle_and_busy_workers_die_with_their_killed_parent(marked_run):
 
         acc = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
         idle = Sandbox(seconds=600)
-        idle.assess("98.5 ft/s^2", acc, Policy())
-        Sandbox(seconds=600, judge=spin).assess("1 m", acc, Policy())
+        idle.assess("98.5 ft/s^2", acc, GradingPolicy())
+        Sandbox(seconds=600, judge=spin).assess("1 m", acc, GradingPolicy())
         """)])
     run.wait_for(lambda: len(run.workers()) >= 2)
     run.kill()

@@ -14,7 +14,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.compare import assess
+
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.solve import solve
 from mechgrade.solve.mutants import separating_rel
 from mechgrade.spec import load_problem
@@ -64,14 +66,14 @@ def test_the_tables_are_what_the_independent_script_computes():
                          ids=[f"{p}.{r['objective']}.{i}" for p, i, r in ROWS])
 def test_a_typical_mistake_gets_its_own_diagnosis(problem, index, row):
     result = _result(problem, row["objective"])
-    policy = Policy()
+    policy = GradingPolicy()
     if row.get("inside"):
         # inside the default tolerance it is graded right, as check warns; the separating
         # tolerance (when one exists) names it
         assert assess(row["answer"], result).verdict == "correct"
         if separating_rel(result) is None:
             return
-        policy = Policy(separate_mistakes=True)
+        policy = GradingPolicy(separate_mistakes=True)
     kind, judged = MEASURE.classify(row, result, policy)
     if row.get("known"):
         # a mistake the grader does not name yet: it must at least not name another one

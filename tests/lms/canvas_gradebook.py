@@ -236,7 +236,7 @@ def import_gradebook(text: str, course: Course) -> ImportResult:
     new_assignments = [title for _, a, title in found if a is None]
     dropped = []
     changes: dict[tuple[int, int], tuple[str, str]] = {}
-    for index, assignment, title in found:
+    for index, assignment, _title in found:
         cell = points_row[index] if index < len(points_row) else None
         if cell is not None and re.search(r"read\s+only", cell):  # readonly_assignment?
             dropped.append(header[index] or "")

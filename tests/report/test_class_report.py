@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import re
 import subprocess
 from dataclasses import replace
@@ -174,7 +175,7 @@ def test_the_histogram_has_bins_of_one_point_on_a_34_point_scale():
     from mechgrade.report.class_report import score_bins
 
     edges = score_bins(34)
-    assert len(edges) == 36 and {b - a for a, b in zip(edges, edges[1:])} == {1.0}
+    assert len(edges) == 36 and {b - a for a, b in itertools.pairwise(edges)} == {1.0}
     assert edges[0] == -0.5 and edges[-1] == 34.5
     assert score_bins(200)[1] - score_bins(200)[0] == 5
 

@@ -45,7 +45,7 @@ def test_a_statement_wrapped_in_the_spec_is_one_paragraph_on_the_page(tmp_path):
 
 def test_a_missing_template_is_named(tmp_path):
     (tmp_path / "t").mkdir()
-    with pytest.raises(MechgradeError, match="expected a template 'handout.html.j2', found none"):
+    with pytest.raises(MechgradeError, match=r"expected a template 'handout.html.j2', found none"):
         write_handouts((sheet(),), tmp_path / "out", tmp_path / "t")
 
 

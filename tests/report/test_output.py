@@ -171,7 +171,7 @@ def test_missing_or_broken_template_is_an_error(tmp_path):
     with pytest.raises(MechgradeError, match="expected a valid Jinja template"):
         write_outputs(REPORT, tmp_path / "out", templates)
     (templates / "feedback.html.j2").write_text("ok", encoding="utf-8")
-    with pytest.raises(MechgradeError, match="expected a template 'feedback.md.j2', found none"):
+    with pytest.raises(MechgradeError, match=r"expected a template 'feedback.md.j2', found none"):
         write_outputs(REPORT, tmp_path / "out", templates)
     with pytest.raises(MechgradeError, match="expected a folder of templates, found none"):
         write_outputs(REPORT, tmp_path / "out", tmp_path / "nowhere")

@@ -27,10 +27,10 @@ def test_each_column_reaches_its_event_where_solve_ivp_finds_it():
     arrival = integrate_to_events(oscillators, crossing(level), y0, 10.0, 1e-11, 1e-12, 20_000)
     assert arrival.status.tolist() == [FIRED] * 3
     for j in range(3):
-        def event(t, y):
+        def event(t, y, j=j):
             return y[0] - level[j]
         event.terminal = True
-        alone = integrate.solve_ivp(lambda t, y: oscillators(np.array([j]), t, y[:, None],
+        alone = integrate.solve_ivp(lambda t, y, j=j: oscillators(np.array([j]), t, y[:, None],
                                                              None)[:, 0],
                                     (0.0, 10.0), y0[:, j], method="DOP853", rtol=1e-11,
                                     atol=1e-12, events=event, dense_output=True)
@@ -82,7 +82,7 @@ def test_newton_finds_each_column_root_the_secant_finds_from_the_same_guess():
         return x ** 3 - targets[cols]
     roots, converged = newton(residual, np.full(4, 0.5), 1e-15, 1e-13, 100)
     for j, target in enumerate(targets):
-        alone = optimize.root_scalar(lambda x: x ** 3 - target, x0=0.5, x1=0.5005,
+        alone = optimize.root_scalar(lambda x, target=target: x ** 3 - target, x0=0.5, x1=0.5005,
                                      method="secant", xtol=1e-15, rtol=1e-13, maxiter=100)
         assert converged[j] and alone.converged
         assert roots[j] == pytest.approx(alone.root, rel=1e-13)

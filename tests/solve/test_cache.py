@@ -554,7 +554,7 @@ def test_a_relative_xdg_cache_home_is_ignored(tmp_path, monkeypatch):
 
 
 def half_of_the_first_objective(entry: dict) -> dict:
-    oid, source = entry["objectives"][0]
+    _oid, source = entry["objectives"][0]
     head, _, value = source.rpartition("return ")
     entry["objectives"][0][1] = f"{head}return 0.5*({value.strip()})\n"
     return entry

@@ -49,7 +49,7 @@ def test_symbolic_answers_agree_with_the_numeric_solution(path):
         values = {name: state[to_text(node)]
                   for name, node in symbol_meanings(problem, obj).items()}
         result = solution.result(obj.id)
-        expr = to_sympy(parse(result.expr), lambda n: values[n.id], None)
+        expr = to_sympy(parse(result.expr), lambda n, values=values: values[n.id], None)
         assert float(expr) == pytest.approx(reference, rel=1e-9, abs=1e-12), obj.id
 
 

@@ -230,7 +230,7 @@ def test_an_objective_can_be_asked_at_its_own_instant():
 
 
 def test_an_expression_given_unknown_to_the_spec_cannot_be_added_later():
-    with pytest.raises(SolveError, match="cannot give 'dot\\(vel\\(P, N\\), N.x\\)'"):
+    with pytest.raises(SolveError, match=r"cannot give 'dot\(vel\(P, N\), N.x\)'"):
         solve(load(BASE), givens={"dot(vel(P, N), N.x)": 1.0})
 
 

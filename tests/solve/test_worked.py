@@ -88,7 +88,7 @@ def test_other_numbers_change_the_numbers_not_the_symbolic_steps():
     other = _worked("bowling_3_15_4_pendulum", **{"theta'": 3.0})
     symbolic = [s.rows for s in base.steps if s.rows]
     assert symbolic == [s.rows for s in other.steps if s.rows]
-    assert symbolic[0] is [s.rows for s in other.steps if s.rows][0]  # made once per problem
+    assert symbolic[0] is next(s.rows for s in other.steps if s.rows)  # made once per problem
     assert "theta' = 3 rad/s" in other.steps[0].lines and other.picture != base.picture
     # the numbers at the instant, in the unit the objective asks (|v| = L theta' = 6 ft/s)
     velocity = next(s for s in other.steps if s.anchor == "vel-A")

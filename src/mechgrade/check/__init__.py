@@ -364,7 +364,7 @@ def written_tolerance(text: str) -> float:
     (0.005, 0.000410364)
     """
     mantissa, _, exponent = text.strip().lstrip("+-").lower().partition("e")
-    whole, _, decimals = mantissa.partition(".")
+    _whole, _, decimals = mantissa.partition(".")
     return max(0.5 * 10.0 ** (int(exponent or 0) - len(decimals)), 1e-5 * abs(float(text)))
 
 

@@ -11,6 +11,7 @@ import click
 
 from ..files import visible_text
 from ..grade.lms_submissions import SUBMISSION_FORMATS
+from ..grade.results import Status, Verdict
 from ..roster import read_roster
 from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
                      reports_errors, run_arguments, run_inputs, say, warn_about_the_cache)
@@ -116,19 +117,19 @@ def summary(report, out_dir: Path, done=None) -> str:
 
 def summary_line(report, out_dir: Path) -> str:
     """``Graded 6 students (2 unreadable answers, 1 missing submission); wrote out/.``"""
-    graded = sum(1 for s in report.students if s.status == "graded")
-    unreadable_students = sum(1 for s in report.students if s.status == "unreadable")
-    missing = sum(1 for s in report.students if s.status == "missing")
-    not_evaluated = sum(1 for s in report.students if s.status == "not_evaluated")
-    unreadable = sum(1 for s in report.students if s.status == "graded"
-                     for a in s.answers if a.verdict == "unreadable")
+    graded = sum(1 for s in report.students if s.status == Status.GRADED)
+    unreadable_students = sum(1 for s in report.students if s.status == Status.UNREADABLE)
+    missing = sum(1 for s in report.students if s.status == Status.MISSING)
+    not_evaluated = sum(1 for s in report.students if s.status == Status.NOT_EVALUATED)
+    unreadable = sum(1 for s in report.students if s.status == Status.GRADED
+                     for a in s.answers if a.verdict == Verdict.UNREADABLE)
     parts = [_count(unreadable, "unreadable answer")]
     if unreadable_students:
         parts.append(_count(unreadable_students, "unreadable submission"))
     parts.append(_count(missing, "missing submission"))
     if not_evaluated:
         parts.append(f"{_count(not_evaluated, 'student')} not evaluated")
-    conflicts = sum(1 for s in report.students if s.status == "conflict")
+    conflicts = sum(1 for s in report.students if s.status == Status.CONFLICT)
     if conflicts:
         parts.append(f"{conflicts} in roster conflicts (students and folders)")
     if report.skipped:

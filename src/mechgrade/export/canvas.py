@@ -184,8 +184,8 @@ def canvas_column(report: GradeReport, roster: Roster | None, wanted: str | None
 
 def _names(column: str, wanted: str) -> bool:
     found = _COLUMN.fullmatch(column.strip())
-    return column.strip() == wanted or found is not None and (
-        found["id"] == wanted or found["title"].casefold() == wanted.casefold())
+    return column.strip() == wanted or (found is not None and (
+        found["id"] == wanted or found["title"].casefold() == wanted.casefold()))
 
 
 def _listing(columns) -> str:

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 from typing import TypeGuard
 
-from ..grade.results import AnswerResult, GradeReport, ObjectiveInfo, StudentResult
+from ..grade.results import (AnswerResult, GradeReport, ObjectiveInfo, Status, StudentResult,
+                             Verdict)
 from .matching import RosterMatch
 from .options import ExportOptions
 
 
 def has_submission(result: StudentResult | None) -> TypeGuard[StudentResult]:
-    return result is not None and result.status != "missing"
+    return result is not None and result.status != Status.MISSING
 
 
 def score_cell(result: StudentResult | None, options: ExportOptions) -> float | str:
@@ -22,7 +23,7 @@ def score_cell(result: StudentResult | None, options: ExportOptions) -> float | 
     """
     if not has_submission(result):
         return 0.0 if options.missing == "zero" else ""
-    if result.status in ("not_evaluated", "conflict"):
+    if result.status in (Status.NOT_EVALUATED, Status.CONFLICT):
         return ""
     return result.score
 
@@ -52,7 +53,7 @@ def lms_score(result: StudentResult | None, report: GradeReport,
 def conflict_reason(result: StudentResult | None) -> str | None:
     """Why a row is kept out of an import file: its student is in a roster conflict (the
     result's first message says which); ``None`` for any other row."""
-    if result is None or result.status != "conflict":
+    if result is None or result.status != Status.CONFLICT:
         return None
     return result.messages[0] if result.messages else "roster conflict"
 
@@ -78,7 +79,8 @@ def answers_by_objective(report: GradeReport, result: StudentResult | None
     for objective in report.objectives:
         key = (objective.problem, objective.objective)
         answer = answers.pop(key, None) or AnswerResult(
-            objective.problem, objective.objective, None, "missing", 0.0, objective.max_points)
+            objective.problem, objective.objective, None, Verdict.MISSING, 0.0,
+            objective.max_points)
         out.append((objective, answer))
     for answer in answers.values():
         out.append((ObjectiveInfo(answer.problem, answer.objective, "", answer.max_points),
@@ -94,7 +96,7 @@ def objective_label(objective: ObjectiveInfo) -> str:
 def not_in_roster_warnings(match: RosterMatch) -> tuple[str, ...]:
     """One warning per result no roster student claimed, written after the roster students."""
     return tuple(f"{r.id} ({r.name}) is not in the roster; written after the roster students"
-                 for r in match.not_in_roster if r.status != "conflict")
+                 for r in match.not_in_roster if r.status != Status.CONFLICT)
 
 
 def no_submission_warnings(match: RosterMatch, options: ExportOptions) -> tuple[str, ...]:

@@ -37,7 +37,7 @@ import os
 from pathlib import Path
 
 from ..errors import ExportError
-from ..grade.results import GradeReport, StudentResult
+from ..grade.results import GradeReport, Status, StudentResult, Verdict
 from ..roster import Roster
 from ..files import safe_file_names
 from .cells import format_points, write_json
@@ -46,7 +46,7 @@ from .options import ExportOptions
 
 
 def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
-                      roster: Roster | None = None,
+                      roster: Roster | None = None,  # noqa: ARG001 - every exporter's signature
                       options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write Gradescope ``results.json`` (see module doc). The roster is not used."""
     if not report.students:
@@ -119,7 +119,7 @@ def gradescope_results(report: GradeReport, student: StudentResult,
             "number": str(len(tests)),
             "score": float(answer.points),
             "max_score": float(answer.max_points),
-            "status": "passed" if answer.verdict == "correct" else "failed",
+            "status": "passed" if answer.verdict == Verdict.CORRECT else "failed",
             "output": "\n".join(lines),
             "visibility": visibility,
         })
@@ -133,7 +133,7 @@ def gradescope_results(report: GradeReport, student: StudentResult,
                f"{format_points(total)} points"]
     if not has_submission(student):
         summary.append("No submission was found.")
-    elif student.status == "unreadable":
+    elif student.status == Status.UNREADABLE:
         summary.append("The submission could not be read.")
     summary.extend(student.messages)
     return {
@@ -159,7 +159,7 @@ def _receipt(report: GradeReport, student: StudentResult, visibility: str,
                 if (a.answer or "").strip()]
     if not has_submission(student):
         lines.append("No submission was found.")
-    elif student.status == "unreadable":
+    elif student.status == Status.UNREADABLE:
         lines.append("The submission could not be read.")
     else:
         lines.append(f"Answers read ({len(answered)} of {len(report.objectives)}):")
@@ -168,6 +168,6 @@ def _receipt(report: GradeReport, student: StudentResult, visibility: str,
         lines.append(f"Score: {format_points(student.score)} / {format_points(total)} points")
     else:
         lines.append(f"The score and the verdicts are shown {_LATER[visibility]}.")
-    read = has_submission(student) and student.status == "graded"
+    read = has_submission(student) and student.status == Status.GRADED
     return {"name": RECEIPT, "number": "0", "status": "passed" if read else "failed",
             "output": "\n".join(lines), "visibility": "visible"}

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 from dataclasses import replace
 
-from ..grade.results import GradeReport, StudentResult
+from ..grade.results import GradeReport, Status, StudentResult
 from ..roster import Roster
 from .cells import write_json
 from .common import max_score, no_submission_warnings, not_in_roster_warnings
@@ -28,7 +28,7 @@ def export_json(report: GradeReport, out_path: str | os.PathLike, *,
                 students.append(pair.result)
             elif pair.roster is not None:
                 students.append(StudentResult(
-                    pair.roster.id, pair.roster.name, "missing", 0.0, max_score(report),
+                    pair.roster.id, pair.roster.name, Status.MISSING, 0.0, max_score(report),
                     messages=("in the roster, no submission found",),
                     identity=pair.roster.columns))
         report = replace(report, students=tuple(students))

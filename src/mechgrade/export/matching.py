@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from ..grade.results import GradeReport, StudentResult
+from ..grade.results import GradeReport, Status, StudentResult
 from ..roster import Roster, RosterStudent, fold, normalise_name, pair_students
 
 # Which identity keys (lower-cased) of a StudentResult carry which kind of identifier.
@@ -74,12 +74,12 @@ def match_roster(report: GradeReport, roster: Roster | None) -> RosterMatch:
     for conflict in pairing.conflicts:
         said = "roster conflict: " + conflict.describe(roster, [r.id for r in results])
         for c in conflict.candidates:
-            results[c] = replace(results[c], status="conflict",
+            results[c] = replace(results[c], status=Status.CONFLICT,
                                  messages=(said, *results[c].messages))
         for s in conflict.students:
             student = roster.students[s]
             pairs[s] = Pair(student, StudentResult(
-                student.id, student.name, "conflict", 0.0, results[conflict.candidates[0]]
+                student.id, student.name, Status.CONFLICT, 0.0, results[conflict.candidates[0]]
                 .max_score, messages=(said,), identity=student.columns))
     used = {i for i, _ in pairing.pairs if i is not None}
     pairs.extend(Pair(None, s) for i, s in enumerate(results) if i not in used)
@@ -97,7 +97,7 @@ def _keys(result: StudentResult) -> dict[str, set[str]]:
     """The identifiers a result offers: its id (a submission folder may be named by any of
     them) and the roster columns it carries, folded."""
     # a result in a roster conflict is no one's by its id: only its roster columns name it
-    own = fold(result.id) if result.status != "conflict" else ""
+    own = fold(result.id) if result.status != Status.CONFLICT else ""
     keys = {kind: {own, fold(identity_value(result, source))} - {""}
             for kind, source in (("id", "canvas_id"), ("sis_user_id", "sis_user_id"),
                                  ("sis_login_id", "sis_login_id"), ("email", "email"))}

@@ -36,7 +36,7 @@ import os
 import re
 import time
 
-from ..grade.results import GradeReport, ObjectiveInfo, StudentResult
+from ..grade.results import GradeReport, ObjectiveInfo, Status, StudentResult
 from ..roster import Roster, RosterStudent
 from .cells import format_points, safe_cell, write_csv
 from .changes import Change, ChangeKind, decide, not_compared_warning, report_changes
@@ -175,7 +175,7 @@ def _hold_back_reason(pair: Pair, roster: Roster | None, key: str, score: float 
                 "(one unknown user aborts the whole Moodle import)")
     if score == "":
         why = "not evaluated: mechgrade failed on this student (see the internal errors)" \
-            if pair.result is not None and pair.result.status == "not_evaluated" \
+            if pair.result is not None and pair.result.status == Status.NOT_EVALUATED \
             else "no submission and --missing blank"
         return f"no grade ({why}); Moodle clears the grade of a row imported with feedback only"
     return ""

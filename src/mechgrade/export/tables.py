@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 
-from ..grade.results import GradeReport, StudentResult
+from ..grade.results import GradeReport, Status, StudentResult
 from ..roster import Roster, RosterStudent
 from .cells import write_csv
 from .common import (answers_by_objective, has_submission, max_score, no_submission_warnings,
@@ -34,7 +34,7 @@ def export_grades_csv(report: GradeReport, out_path: str | os.PathLike, *,
     match = match_roster(report, roster)
     for pair in match.pairs:
         ident, name = _who(pair.roster, pair.result)
-        status = pair.result.status if pair.result is not None else "missing"
+        status = pair.result.status if pair.result is not None else Status.MISSING
         points: list[float | str]
         if _points_shown(pair.result):
             points = [a.points for _, a in answers_by_objective(report, pair.result)]
@@ -74,7 +74,7 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
 def _points_shown(result: StudentResult | None) -> bool:
     """Whether a row shows its points: not without a submission, nor in a roster conflict
     (whose points are no one's: the row's cells are blank)."""
-    return has_submission(result) and result.status != "conflict"
+    return has_submission(result) and result.status != Status.CONFLICT
 
 
 def _who(student: RosterStudent | None, result: StudentResult | None) -> tuple[str, str]:

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import ExportError, Location
+from ..grade.results import Status
 from .cells import write_csv
 from .matching import Pair
 
@@ -40,7 +41,7 @@ class HeldBack:
 
     id: str
     name: str
-    status: str
+    status: Status
     score: float | str
     reason: str
 
@@ -50,7 +51,7 @@ def held_back(pair: Pair, score: float | str, reason: str) -> HeldBack:
     if pair.result is not None:
         return HeldBack(pair.result.id, pair.result.name, pair.result.status, score, reason)
     assert pair.roster is not None  # a pair holds a result, a roster student or both
-    return HeldBack(pair.roster.id, pair.roster.name, "missing", score, reason)
+    return HeldBack(pair.roster.id, pair.roster.name, Status.MISSING, score, reason)
 
 
 def unmatched_path(out_path: str | os.PathLike) -> Path:

@@ -65,7 +65,7 @@ def infer(node: Node, leaf: Callable[[Node], Type],
     return walk(node)
 
 
-def _binary(node: Bin, a: Type, b: Type) -> Type:  # noqa: C901 - one rule per operator and kind
+def _binary(node: Bin, a: Type, b: Type) -> Type:
     for t in (a, b):
         if t.kind in (Kind.POINT, Kind.FRAME):
             raise DimensionError(f"a {t.kind} cannot take part in arithmetic; expected scalars "

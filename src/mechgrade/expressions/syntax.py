@@ -26,7 +26,7 @@ import re
 import tokenize
 import unicodedata
 from dataclasses import dataclass
-from typing import Iterable, Union
+from typing import ClassVar, Iterable, Union
 
 from ..errors import ExpressionError
 from . import functions
@@ -326,8 +326,8 @@ def _roots(text: str) -> str:
         assert after is not None  # every part of the pattern may be empty
         more = after.group(0)
         if more.endswith("("):  # a power in brackets: up to its closing bracket
-            depth, end = 0, m.end() + len(more) - 1
-            for end in range(end, len(m.string)):
+            depth, start = 0, m.end() + len(more) - 1
+            for end in range(start, len(m.string)):
                 depth += {"(": 1, ")": -1}.get(m.string[end], 0)
                 if depth == 0:
                     break
@@ -527,7 +527,7 @@ class _Divisors:
 
     def operator(self, index: int, binary: bool) -> None:
         _, string, start, end = self.found[index]
-        if string in ("(", ")") or string in "+-" and not binary:
+        if string in ("(", ")") or (string in "+-" and not binary):
             # brackets and a sign belong to the term
             if self.term.get(self.depth) is None:
                 self.term[self.depth] = start
@@ -784,7 +784,7 @@ class _Builder:
     it, so the bounds on constants (:func:`constant_value`) are checked once per part rather
     than refolded for every enclosing one."""
 
-    _BINOPS = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**"}
+    _BINOPS: ClassVar = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/", ast.Pow: "**"}
 
     def __init__(self, functions: frozenset[str] | set[str], attributes: bool):
         self.functions = functions

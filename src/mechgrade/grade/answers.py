@@ -541,8 +541,8 @@ def _cuts(text: str):
     count = 0
     for cut in range(len(text) - 1, max(0, len(text) - MAX_UNIT_LENGTH - 2), -1):
         before, first = text[cut - 1], text[cut]
-        if before == " " and first != " " or _UNIT_START.match(first) and (
-                before == ")" or before == "*" and text[cut - 2:cut] != "**"):
+        if (before == " " and first != " ") or (_UNIT_START.match(first) and (
+                before == ")" or (before == "*" and text[cut - 2:cut] != "**"))):
             yield cut
             count += 1
             if count == MAX_CUTS:

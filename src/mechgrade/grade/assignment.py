@@ -25,10 +25,9 @@ from pathlib import Path
 
 from ..errors import AssignmentError, Location
 from ..yamlio import Document, read_yaml
+from .policy import ErrorCarriedForward, GradingPolicy
 
 SCHEMA_FILE = Path(__file__).with_name("assignment.schema.json")
-WORKED_SOLUTION = ("always", "after_due_date", "never")
-"""When feedback pages show the worked solution (``policy.worked_solution``)."""
 
 
 @dataclass(frozen=True)
@@ -40,71 +39,6 @@ class ProblemRef:
     diagrams: tuple[str, ...] = ()  # bodies whose free-body diagram is graded (body.fbd)
     equations: bool = False  # whether its equations of motion are graded (equations)
     where: Location = field(default_factory=Location, compare=False)
-
-
-@dataclass(frozen=True)
-class SigFigRule:
-    """Answers should be written with ``figures`` significant figures (as STACK's NumSigFigs:
-    more or fewer both miss); otherwise ``credit`` is kept. ``strict`` reads ``100`` as one
-    figure (otherwise as one to three)."""
-
-    figures: int
-    credit: float = 0.75
-    strict: bool = False
-
-
-@dataclass(frozen=True)
-class MissingUnitRule:
-    """What a number typed without a unit earns.
-
-    ``assume``: read in the objective's unit, full credit; ``penalize``: read in the
-    objective's unit, ``credit`` kept; ``reject``: marked incorrect.
-    """
-
-    action: str = "reject"
-    credit: float = 0.75
-
-
-@dataclass(frozen=True)
-class PartialCredit:
-    """Credit for wrong answers with a recognised mistake.
-
-    ``diagnoses`` gives credit to automatic diagnoses by code
-    (:data:`mechgrade.grade.diagnose.CODES`, e.g. ``(("sign", 0.5),)``); ``enabled: false``
-    switches that off. Author-declared mistakes in a problem spec carry their own credit.
-    """
-
-    enabled: bool = True
-    diagnoses: tuple[tuple[str, float], ...] = ()
-
-
-@dataclass(frozen=True)
-class ErrorCarriedForward:
-    """Credit for an answer that is right when computed from the student's own wrong
-    upstream answer (``depends_on`` in the problem spec)."""
-
-    enabled: bool = True
-    credit: float = 1.0
-
-
-@dataclass(frozen=True)
-class GradingPolicy:
-    """How answers are judged. ``rel``/``abs`` replace every objective's own tolerance when
-    set; ``accuracy_sig_figs`` judges values to that many significant figures instead;
-    ``separate_mistakes`` tightens each tolerance so no generated mistake falls inside it.
-    ``worked_solution`` (one of :data:`WORKED_SOLUTION`) says when feedback shows each
-    problem's worked solution: see :meth:`Assignment.shows_worked_solution`."""
-
-    reveal_answers: bool = False
-    worked_solution: str = "after_due_date"
-    rel: float | None = None
-    abs: float | None = None
-    accuracy_sig_figs: int | None = None
-    separate_mistakes: bool = False
-    sig_figs: SigFigRule | None = None
-    missing_unit: MissingUnitRule = MissingUnitRule()
-    partial_credit: PartialCredit = PartialCredit()
-    ecf: ErrorCarriedForward = ErrorCarriedForward()
 
 
 @dataclass(frozen=True)
@@ -185,11 +119,6 @@ def load_assignment(path: str | Path) -> Assignment:
     data = doc.data
     points = data.get("points") or {}
     policy = data.get("policy") or {}
-    tolerance = policy.get("tolerance") or {}
-    sig = policy.get("sig_figs")
-    missing = policy.get("missing_unit") or {}
-    partial = policy.get("partial_credit") or {}
-    ecf = policy.get("ecf") or {}
     keys = sorted(k for k in points if k != "default")
     return Assignment(
         id=data["id"],
@@ -198,30 +127,49 @@ def load_assignment(path: str | Path) -> Assignment:
         problems=problems_,
         default_points=float(points.get("default", 1.0)),
         points=tuple((k, float(points[k])) for k in keys),
-        policy=GradingPolicy(
-            reveal_answers=bool(policy.get("reveal_answers", False)),
-            worked_solution=policy.get("worked_solution", "after_due_date"),
-            rel=_float_or_none(tolerance.get("rel")),
-            abs=_float_or_none(tolerance.get("abs")),
-            accuracy_sig_figs=(int(tolerance["sig_figs"]) if "sig_figs" in tolerance
-                               else None),
-            separate_mistakes=bool(tolerance.get("separate_mistakes", False)),
-            sig_figs=(SigFigRule(int(sig["figures"]), float(sig.get("credit", 0.75)),
-                                 bool(sig.get("strict", False)))
-                      if sig is not None else None),
-            missing_unit=MissingUnitRule(missing.get("action", "reject"),
-                                         float(missing.get("credit", 0.75))),
-            partial_credit=PartialCredit(
-                bool(partial.get("enabled", True)),
-                tuple(sorted((str(k), float(v))
-                             for k, v in (partial.get("diagnoses") or {}).items()))),
-            ecf=ErrorCarriedForward(bool(ecf.get("enabled", True)),
-                                    float(ecf.get("credit", 1.0))),
-        ),
+        policy=_policy(policy),
         points_where=tuple((k, doc.where(("points", k))) for k in keys),
         variants=VariantPolicy(str((data.get("variants") or {}).get("seed", "")),
                                bool((data.get("variants") or {}).get("redraw", False))),
         due=_due(data["due"]) if "due" in data else None,
+    )
+
+
+def _policy(policy: dict) -> GradingPolicy:
+    """The ``policy:`` of an assignment file (checked by :func:`_validate`) as the grading
+    policy: a written figure or a missing unit keeps ``credit``, so loses ``1 - credit``.
+
+    >>> p = _policy({"sig_figs": {"figures": 3, "credit": 0.8},
+    ...              "missing_unit": {"action": "penalize", "credit": 0.5}})
+    >>> p.written_sig_figs, round(p.written_sig_figs_deduction, 2), p.missing_unit, p.missing_unit_deduction
+    (3, 0.2, 'assume', 0.5)
+    """
+    tolerance = policy.get("tolerance") or {}
+    sig = policy.get("sig_figs")
+    missing = policy.get("missing_unit") or {}
+    action = missing.get("action", "reject")
+    partial = policy.get("partial_credit") or {}
+    ecf = policy.get("ecf") or {}
+    return GradingPolicy(
+        reveal_answers=bool(policy.get("reveal_answers", False)),
+        worked_solution=policy.get("worked_solution", "after_due_date"),
+        rel=_float_or_none(tolerance.get("rel")),
+        abs=_float_or_none(tolerance.get("abs")),
+        sig_figs=int(tolerance["sig_figs"]) if "sig_figs" in tolerance else None,
+        separate_mistakes=bool(tolerance.get("separate_mistakes", False)),
+        written_sig_figs=int(sig["figures"]) if sig is not None else None,
+        written_sig_figs_strict=bool(sig.get("strict", False)) if sig is not None else False,
+        written_sig_figs_deduction=(1.0 - float(sig.get("credit", 0.75)) if sig is not None
+                                    else 0.25),
+        # "assume" is "penalize" keeping full credit; "reject" refuses (its deduction unused)
+        missing_unit="reject" if action == "reject" else "assume",
+        missing_unit_deduction=(GradingPolicy.missing_unit_deduction if action == "reject"
+                                else 1.0 - float(missing.get("credit", 0.75))
+                                if action == "penalize" else 0.0),
+        partial_credit=(tuple(sorted((str(k), float(v))
+                                     for k, v in (partial.get("diagnoses") or {}).items()))
+                        if partial.get("enabled", True) else ()),
+        ecf=ErrorCarriedForward(bool(ecf.get("enabled", True)), float(ecf.get("credit", 1.0))),
     )
 
 

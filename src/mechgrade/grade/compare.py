@@ -8,9 +8,9 @@ bounded fallback).
 
 >>> from mechgrade.solve.result import ObjectiveResult
 >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
->>> assess("98.5 ft/s^2", acc, Policy()).verdict
-'correct'
->>> assess("30 m/s", acc, Policy()).feedback
+>>> assess("98.5 ft/s^2", acc, GradingPolicy()).verdict
+<Verdict.CORRECT: 'correct'>
+>>> assess("30 m/s", acc, GradingPolicy()).feedback
 'You gave a velocity ([length] / [time]); an acceleration ([length] / [time] ** 2) was asked.'
 """
 
@@ -24,7 +24,7 @@ from typing import Sequence, TypeVar
 
 import numpy as np
 
-from ..errors import AnswerError, AssignmentError, ExpressionError, MechgradeError
+from ..errors import AnswerError, ExpressionError, MechgradeError
 from ..expressions import syntax
 from ..expressions.dimensions import DimensionError, Kind, Type, described, infer
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
@@ -36,80 +36,9 @@ from ..tolerance import REFERENCE_ACCURACY, agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
-from .diagnose import CODES, G_FT, G_SI, Diagnosis, diagnose, trig_in_radians
-
-MISSING_UNIT_CHOICES = ("reject", "assume")
-
-
-@dataclass(frozen=True)
-class Policy:
-    """How answers are judged (the instructor's choices; defaults are the objective's own).
-
-    * ``rel``/``abs``: override the objective's tolerance (``abs`` in the objective's unit).
-    * ``sig_figs``: judge accuracy to ``n`` significant figures instead of ``rel``/``abs``.
-    * ``written_sig_figs``: require ``n`` written significant figures (liberal by default, as
-      STACK's NumSigFigs; ``written_sig_figs_strict`` reads ``100`` as exactly one figure);
-      a correct value written otherwise loses ``written_sig_figs_deduction``.
-    * ``missing_unit``: ``"reject"`` a bare number, or ``"assume"`` the objective's unit and
-      deduct ``missing_unit_deduction``.
-    * ``partial_credit``: credit for automatic diagnoses, by code (``(("sign", 0.5),)``);
-      author-declared mistakes carry their own credit.
-    * ``symbolic_rel``/``symbolic_points``/``seed``: expression equivalence by evaluation.
-    * ``separate_mistakes``: tighten an objective's relative tolerance to the one that puts
-      every generated mistake outside it (:func:`mechgrade.solve.mutants.separating_rel`).
-
-    >>> Policy(missing_unit="guess")
-    Traceback (most recent call last):
-    ...
-    mechgrade.errors.AssignmentError: policy.missing_unit: expected one of reject, assume, found 'guess'
-    """
-
-    rel: float | None = None
-    abs: float | None = None
-    sig_figs: int | None = None
-    written_sig_figs: int | None = None
-    written_sig_figs_strict: bool = False
-    written_sig_figs_deduction: float = 0.25
-    missing_unit: str = "reject"
-    missing_unit_deduction: float = 0.25
-    partial_credit: tuple[tuple[str, float], ...] = ()
-    symbolic_rel: float = 1e-6
-    symbolic_points: int = 10
-    seed: int = 0
-    separate_mistakes: bool = False
-
-    def __post_init__(self) -> None:
-        def fail(name: str, expected: str, found) -> None:
-            raise AssignmentError(f"policy.{name}: expected {expected}, found {found!r}")
-
-        for name in ("rel", "abs"):
-            value = getattr(self, name)
-            if value is not None and not (isinstance(value, (int, float)) and 0 <= value < 1e300):
-                fail(name, "a non-negative number", value)
-        for name in ("sig_figs", "written_sig_figs"):
-            value = getattr(self, name)
-            if value is not None and not (isinstance(value, int) and 1 <= value <= 15):
-                fail(name, "a whole number from 1 to 15", value)
-        for name in ("written_sig_figs_deduction", "missing_unit_deduction"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and 0 <= value <= 1):
-                fail(name, "a number from 0 to 1", value)
-        if self.missing_unit not in MISSING_UNIT_CHOICES:
-            fail("missing_unit", "one of " + ", ".join(MISSING_UNIT_CHOICES), self.missing_unit)
-        for pair in self.partial_credit:
-            if not (isinstance(pair, tuple) and len(pair) == 2 and pair[0] in CODES
-                    and isinstance(pair[1], (int, float)) and 0 <= pair[1] <= 1):
-                fail("partial_credit", "(code, credit) pairs with a known code and credit "
-                     "from 0 to 1", pair)
-        if not (isinstance(self.symbolic_rel, (int, float)) and 0 < self.symbolic_rel < 1):
-            fail("symbolic_rel", "a number between 0 and 1", self.symbolic_rel)
-        if not (isinstance(self.symbolic_points, int) and 3 <= self.symbolic_points <= 200):
-            fail("symbolic_points", "a whole number from 3 to 200", self.symbolic_points)
-
-    def credit_for(self, code: str) -> float:
-        """Partial credit for an automatic diagnosis (0 unless configured)."""
-        return float(dict(self.partial_credit).get(code, 0.0))
-
+from .diagnose import G_FT, G_SI, Diagnosis, diagnose, trig_in_radians
+from .policy import GradingPolicy
+from .results import Verdict
 
 @dataclass(frozen=True)
 class Assessment:
@@ -118,7 +47,7 @@ class Assessment:
     number or vector was written in when it is one of the objective's dimension (``None``
     otherwise), to show the reference in it."""
 
-    verdict: str
+    verdict: Verdict
     credit: float
     diagnosis: str | None
     feedback: str
@@ -127,17 +56,17 @@ class Assessment:
 
 
 def missing() -> Assessment:
-    return Assessment("missing", 0.0, None, "No answer was given.", None)
+    return Assessment(Verdict.MISSING, 0.0, None, "No answer was given.", None)
 
 
 def unreadable(reason: str) -> Assessment:
     end = "" if reason.endswith("?") else "."  # a reason may end by asking which reading
-    return Assessment("unreadable", 0.0, None, f"Could not read the answer: {reason}{end}",
+    return Assessment(Verdict.UNREADABLE, 0.0, None, f"Could not read the answer: {reason}{end}",
                       None)
 
 
 def not_evaluated(reason: str, read_back: str | None = None) -> Assessment:
-    return Assessment("not_evaluated", 0.0, None,
+    return Assessment(Verdict.NOT_EVALUATED, 0.0, None,
                       f"This answer could not be evaluated ({reason}); it is not marked wrong.",
                       read_back)
 
@@ -145,7 +74,8 @@ def not_evaluated(reason: str, read_back: str | None = None) -> Assessment:
 # ---------------------------------------------------------------------------- entry point
 
 
-def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy()) -> Assessment:
+def assess(text: str | None, result: ObjectiveResult,
+           policy: GradingPolicy = GradingPolicy()) -> Assessment:
     """Read and judge ``text`` as an answer to ``result`` under ``policy``.
 
     >>> from mechgrade.solve.result import ObjectiveResult
@@ -153,7 +83,7 @@ def assess(text: str | None, result: ObjectiveResult, policy: Policy = Policy())
     >>> assess("-98.5 ft/s^2", acc).diagnosis
     'sign error'
     >>> assess(None, acc).verdict, assess("__import__('os')", acc).verdict
-    ('missing', 'unreadable')
+    (<Verdict.MISSING: 'missing'>, <Verdict.UNREADABLE: 'unreadable'>)
     """
     if text is None or (isinstance(text, str) and not text.strip()):
         return missing()
@@ -191,7 +121,7 @@ def _written_unit(answer: StudentAnswer, result: ObjectiveResult) -> str | None:
         return None
 
 
-def _judge(answer: StudentAnswer, result: ObjectiveResult, policy: Policy) -> Assessment:
+def _judge(answer: StudentAnswer, result: ObjectiveResult, policy: GradingPolicy) -> Assessment:
     if result.kind == ObjectiveKind.SYMBOLIC:
         return _judge_expression(answer, result, policy)
     # read_answer reads an expression for a symbolic objective only
@@ -229,14 +159,14 @@ def within_sig_figs(student: float, reference: float, figures: int, basis=None) 
     return within(student, reference, 0.0, 0.5 * last_place(basis, figures), scale=basis)
 
 
-def _tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
+def _tolerance(result: ObjectiveResult, policy: GradingPolicy) -> tuple[float, float]:
     """The tolerance an answer is judged with, never tighter than the reference's own
     accuracy: no answer is wrong by the reference's last digits."""
     rel, abs_ = _stated_tolerance(result, policy)
     return max(rel, REFERENCE_ACCURACY), abs_
 
 
-def _stated_tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, float]:
+def _stated_tolerance(result: ObjectiveResult, policy: GradingPolicy) -> tuple[float, float]:
     rel = result.rel if policy.rel is None else policy.rel
     abs_ = result.abs if policy.abs is None else policy.abs
     if policy.separate_mistakes and result.generated_mistakes:
@@ -246,7 +176,7 @@ def _stated_tolerance(result: ObjectiveResult, policy: Policy) -> tuple[float, f
     return float(rel), float(abs_)
 
 
-def _describe_tolerance(result: ObjectiveResult, policy: Policy) -> str:
+def _describe_tolerance(result: ObjectiveResult, policy: GradingPolicy) -> str:
     if policy.sig_figs:
         return f"accurate to {policy.sig_figs} significant figures"
     rel, abs_ = _stated_tolerance(result, policy)
@@ -272,13 +202,13 @@ class _Units:
     label: str | None = None
 
 
-def _resolve_unit(answer_unit: str | None, result: ObjectiveResult, policy: Policy,
+def _resolve_unit(answer_unit: str | None, result: ObjectiveResult, policy: GradingPolicy,
                   read_back: str) -> _Units | Assessment:
     if answer_unit is None:
         if not _needs_unit(result.unit):
             return _Units(result.unit)
         if policy.missing_unit == "reject":
-            return Assessment("incorrect", 0.0, "missing unit",
+            return Assessment(Verdict.INCORRECT, 0.0, "missing unit",
                               f"A unit is required (for example {_example_unit(result.unit)}).",
                               read_back)
         return _Units(result.unit, 1.0 - policy.missing_unit_deduction,
@@ -286,7 +216,7 @@ def _resolve_unit(answer_unit: str | None, result: ObjectiveResult, policy: Poli
                       "missing unit")
     given, wanted = dimension(answer_unit), dimension(result.unit)
     if given != wanted:
-        return Assessment("incorrect", policy.credit_for("dimension"), "wrong dimension",
+        return Assessment(Verdict.INCORRECT, policy.credit_for("dimension"), "wrong dimension",
                           f"You gave {describe_dimension(given)}; "
                           f"{describe_dimension(wanted)} was asked.", read_back)
     return _Units(answer_unit)
@@ -303,7 +233,7 @@ def _example_vector(unit: str) -> str:
 
 
 def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
-                    policy: Policy, read_back: str, what: str) -> Assessment:
+                    policy: GradingPolicy, read_back: str, what: str) -> Assessment:
     credit, labels, notes = units.factor, [], units.note
     if units.label:
         labels.append(units.label)
@@ -322,8 +252,8 @@ def _finish_correct(units: _Units, figures: list[tuple[int | None, int | None]],
                       f"{policy.written_sig_figs} were asked.")
     credit = max(0.0, min(1.0, credit))
     if credit >= 1.0:
-        return Assessment("correct", 1.0, None, f"Correct{what}.{notes}", read_back)
-    verdict = "partial" if credit > 0 else "incorrect"
+        return Assessment(Verdict.CORRECT, 1.0, None, f"Correct{what}.{notes}", read_back)
+    verdict = Verdict.PARTIAL if credit > 0 else Verdict.INCORRECT
     return Assessment(verdict, credit, "; ".join(labels),
                       f"The value is right{what}.{notes}".replace(". The value is right but",
                                                                   ", but"), read_back)
@@ -341,7 +271,7 @@ def _figures_ok(figures: tuple[int | None, int | None], n: int, strict: bool) ->
 
 
 def _judge_number(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
-                  policy: Policy) -> Assessment:
+                  policy: GradingPolicy) -> Assessment:
     value = result.value
     assert value is not None and not isinstance(value, tuple)  # _judge: a scalar's value
     reference = float(value)
@@ -407,13 +337,13 @@ def _exact(rel: float, abs_: float):
     return _close(COINCIDENCE_SHARE * max(rel, 1e-3), COINCIDENCE_SHARE * abs_)
 
 
-def _wrong(found: Diagnosis | None, policy: Policy, units: _Units, summary: str,
+def _wrong(found: Diagnosis | None, policy: GradingPolicy, units: _Units, summary: str,
            read_back: str) -> Assessment:
     if found is None:
-        return Assessment("incorrect", 0.0, None, summary + units.note, read_back)
+        return Assessment(Verdict.INCORRECT, 0.0, None, summary + units.note, read_back)
     credit = found.credit if found.credit is not None else policy.credit_for(found.code)
     credit = max(0.0, min(1.0, credit * units.factor))
-    verdict = "partial" if credit > 0 else "incorrect"
+    verdict = Verdict.PARTIAL if credit > 0 else Verdict.INCORRECT
     message = found.message if found.message.endswith((".", "?", "!")) else found.message + "."
     # the diagnosis says more than the summary: it alone is the feedback
     return Assessment(verdict, credit, found.label, f"{message}{units.note}", read_back)
@@ -440,7 +370,7 @@ def _numeric_mistakes(mistakes: Sequence[_Mistake],
     return out
 
 
-def _vector_for_scalar(answer: VectorAnswer, result: ObjectiveResult, policy: Policy,
+def _vector_for_scalar(answer: VectorAnswer, result: ObjectiveResult, policy: GradingPolicy,
                        read_back: str) -> Assessment:
     """A vector for a scalar objective: a lone k component is the planar signed scalar."""
     x, y, z = answer.components
@@ -457,10 +387,10 @@ def _vector_for_scalar(answer: VectorAnswer, result: ObjectiveResult, policy: Po
         value = result.value
         assert value is not None and not isinstance(value, tuple)  # _judge: a scalar's value
         if within(size, abs(float(value)), rel, abs_):
-            return Assessment("incorrect", policy.credit_for("shape"), "vector for a scalar",
+            return Assessment(Verdict.INCORRECT, policy.credit_for("shape"), "vector for a scalar",
                               "A single value was asked, not a vector (its magnitude is "
                               "right).", read_back)
-    return Assessment("incorrect", policy.credit_for("shape"), "vector for a scalar",
+    return Assessment(Verdict.INCORRECT, policy.credit_for("shape"), "vector for a scalar",
                       "A single value was asked, not a vector.", read_back)
 
 
@@ -468,7 +398,7 @@ def _vector_for_scalar(answer: VectorAnswer, result: ObjectiveResult, policy: Po
 
 
 def _judge_vector(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
-                  policy: Policy) -> Assessment:
+                  policy: GradingPolicy) -> Assessment:
     value = result.value
     assert value is not None and not isinstance(value, (int, float))  # _judge: components
     reference = np.array([float(v) for v in value])
@@ -490,7 +420,7 @@ def _judge_vector(answer: NumberAnswer | VectorAnswer, result: ObjectiveResult,
     if answer.frame is not None and result.frame is not None and answer.frame != result.frame:
         same_size = within(float(np.linalg.norm(student)), float(np.linalg.norm(reference)),
                            rel, abs_)
-        return Assessment("incorrect", policy.credit_for("frame"), "wrong frame",
+        return Assessment(Verdict.INCORRECT, policy.credit_for("frame"), "wrong frame",
                           f"Your components are along {answer.frame}'s unit vectors; give them "
                           f"along {result.frame}'s" + (" (the magnitude is right)." if same_size
                                                        else "."), read_back)
@@ -542,7 +472,7 @@ def _listing(items: list[str]) -> str:
 
 
 def _scalar_for_vector(answer: NumberAnswer, reference: np.ndarray, result: ObjectiveResult,
-                       policy: Policy, read_back: str) -> Assessment:
+                       policy: GradingPolicy, read_back: str) -> Assessment:
     units = _resolve_unit(answer.unit, result, policy, read_back)
     hint = ""
     if not isinstance(units, Assessment):
@@ -551,7 +481,7 @@ def _scalar_for_vector(answer: NumberAnswer, reference: np.ndarray, result: Obje
         if within(abs(size), float(np.linalg.norm(reference)), rel, abs_):
             hint = " (your value is the right magnitude)"
     frame = f"frame {result.frame}" if result.frame else "the frame"
-    return Assessment("incorrect", policy.credit_for("shape"), "scalar for a vector",
+    return Assessment(Verdict.INCORRECT, policy.credit_for("shape"), "scalar for a vector",
                       f"A vector was asked: give its components along {frame}'s unit vectors, "
                       f"such as '{_example_vector(result.unit)}'{hint}.", read_back)
 
@@ -669,7 +599,7 @@ MIN_VALID_POINTS = 3
 
 
 def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
-                      policy: Policy) -> Assessment:
+                      policy: GradingPolicy) -> Assessment:
     assert isinstance(answer, ExpressionAnswer)
     read_back = answer.read_back()
     if not result.expr:
@@ -679,13 +609,13 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
         reference_node = _reference_tree(result.expr, tuple(result.symbols))
         confirmed = _sympy_equivalent(answer.node, reference_node, result)
         if confirmed is True:
-            return Assessment("correct", 1.0, None, "Correct.", read_back)
+            return Assessment(Verdict.CORRECT, 1.0, None, "Correct.", read_back)
         return not_evaluated("the reference is undefined at the sample points", read_back)
     env, reference = sampled
     student = evaluate(answer.node, env)
     close = agree_at_points(policy.symbolic_rel, reference)
     if close(student, reference):
-        return Assessment("correct", 1.0, None, "Correct.", read_back)
+        return Assessment(Verdict.CORRECT, 1.0, None, "Correct.", read_back)
     mistakes = [(m, _sampled_mistake(m.expr, result, policy)) for m in result.mistakes]
     # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
     # such as 9.81 for g (1%), unlike the equivalence test itself.
@@ -737,7 +667,7 @@ def _sampled(result: ObjectiveResult, wanted: int, seed: int):
 
 @lru_cache(maxsize=256)
 def _sampled_cached(oid, expr, symbols, units, signed, signs, wanted, seed):
-    result = ObjectiveResult(oid, "symbolic", "", expr=expr, symbols=symbols, symbol_units=units,
+    result = ObjectiveResult(oid, ObjectiveKind.SYMBOLIC, "", expr=expr, symbols=symbols, symbol_units=units,
                              symbol_signed=signed, symbol_signs=signs)
     env = sample_points(result, 4 * wanted, seed)
     reference = evaluate(_reference_tree(expr, symbols), env)
@@ -753,7 +683,7 @@ def _sampled_cached(oid, expr, symbols, units, signed, signs, wanted, seed):
     return env, reference
 
 
-def _sampled_mistake(expr: str | None, result: ObjectiveResult, policy: Policy):
+def _sampled_mistake(expr: str | None, result: ObjectiveResult, policy: GradingPolicy):
     """A mistaken expression's values at the sample points of ``result`` (``None`` when it
     has none or cannot be evaluated there)."""
     if not expr:

@@ -87,7 +87,7 @@ VECTOR_CODES = ("swapped", "direction", "magnitude")
 GENERATED_CODES = MODEL_CODES + DYNAMICS_CODES + GIVEN_CODES
 CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (
     "dimension", "g_number", "frame", "missing_unit", "sig_figs", "shape", "trig_radians")
-"""Every diagnosis code (keys for :attr:`mechgrade.grade.compare.Policy.partial_credit`)."""
+"""Every diagnosis code (keys for :attr:`mechgrade.grade.policy.GradingPolicy.partial_credit`)."""
 
 _AXES = "xyz"
 

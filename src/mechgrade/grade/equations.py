@@ -37,6 +37,7 @@ from ..expressions.syntax import Bin, Node
 from ..solve.derivation import MotionSamples
 from .answers import rename_to_symbols
 from .compare import Assessment, not_evaluated, unreadable
+from .results import Verdict
 
 MAX_EQUATIONS = 12
 MAX_UNKNOWNS = 12
@@ -128,7 +129,7 @@ def _read_equation(text: str, symbols: tuple[str, ...]) -> StudentEquation:
 def judge_equations(text: str | None, samples: MotionSamples | None) -> EquationsJudgement:
     """Read and judge ``text`` as equations of motion of the model sampled in ``samples``."""
     if text is None or not text.strip():
-        return EquationsJudgement((), False, Assessment("missing", 0.0, None,
+        return EquationsJudgement((), False, Assessment(Verdict.MISSING, 0.0, None,
                                                         "No answer was given.", None))
     if samples is None:
         return EquationsJudgement((), False, not_evaluated(
@@ -148,8 +149,8 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
     count = sum(right)
     missing = 0 if complete else system.undetermined()
     credit = count / (len(rows) + missing)
-    verdict = "correct" if count == len(rows) and complete else "partial" if count else \
-        "incorrect"
+    verdict = (Verdict.CORRECT if count == len(rows) and complete else Verdict.PARTIAL if count
+               else Verdict.INCORRECT)
     notes = [row.feedback for row in rows if not row.right]
     if not complete:
         notes.append(f"The equations do not determine {system.undetermined_names()} "
@@ -207,7 +208,7 @@ class _System:
                                   f"{excerpt(e.text)} undefined (a division by zero?)")
             size = max(float(np.max(np.abs(f))), 1e-300)
 
-            def same(x: float, y: float) -> bool:
+            def same(x: float, y: float, size: float = size) -> bool:
                 return abs(x - y) <= 1e-9 * size
 
             ok = True

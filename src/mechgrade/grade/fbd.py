@@ -43,6 +43,7 @@ from ..spec.dynamics import LoadKind
 from ..tolerance import within
 from .answers import rename_to_symbols
 from .compare import Assessment, not_evaluated, unreadable
+from .results import Verdict
 
 MAX_LOADS = 20
 """The most loads one diagram may list."""
@@ -353,7 +354,7 @@ _FICTITIOUS = {
 def judge_diagram(text: str | None, instant: DerivationInstant, body: str) -> DiagramJudgement:
     """Read and judge ``text`` as the free-body diagram of ``body`` (see the module)."""
     if text is None or not text.strip():
-        return DiagramJudgement(body, (), None, Assessment("missing", 0.0, None,
+        return DiagramJudgement(body, (), None, Assessment(Verdict.MISSING, 0.0, None,
                                                            "No answer was given.", None))
     if not instant.values or any(vectors is None for _, vectors in instant.frames):
         return DiagramJudgement(body, (), None, not_evaluated(
@@ -395,7 +396,8 @@ def judge(answer: DiagramAnswer, model: FreeBodyDiagram,
                                (LoadMistake.EXTRA,), _extra_reason(load, answer.body)))
     right = sum(row.right for row in out)
     credit = right / len(out) if out else 0.0
-    verdict = "correct" if right == len(out) else "partial" if right else "incorrect"
+    verdict = (Verdict.CORRECT if right == len(out) else Verdict.PARTIAL if right
+               else Verdict.INCORRECT)
     wrong = [row.feedback for row in out if not row.right]
     feedback = " ".join(wrong) if wrong else f"Every load on {model.body} is right."
     return DiagramJudgement(model.body, tuple(out), answer.read_back,

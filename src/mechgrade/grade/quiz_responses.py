@@ -29,7 +29,7 @@ from pathlib import Path
 from ..errors import Location, SubmissionError
 from ..files import clean_text, read_text
 from .results import SkippedEntry
-from .submissions import Submission, SubmissionSet
+from .submissions import Submission, SubmissionSet, SubmissionStatus
 
 QUIZ_FORMATS = ("canvas-quiz-csv", "moodle-quiz-csv")
 KEY = re.compile(r"mechgrade key:\s*(?P<key>[A-Za-z0-9_][A-Za-z0-9_.-]*\.[A-Za-z_][A-Za-z0-9_]*)")
@@ -198,7 +198,7 @@ def _submission(student: str, row: list[str], columns: dict[int, str], where: st
             messages.append(f"{where}: '{key}' is answered in two questions; the later one "
                             "was graded")
         answers[key] = text
-    status = "read" if answers else "missing"
+    status = SubmissionStatus.READ if answers else SubmissionStatus.MISSING
     if not answers:
         messages.append(f"{where}: no response to a question of this assignment")
     return Submission(clean_text(student), status, tuple(sorted(answers.items())),

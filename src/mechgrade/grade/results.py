@@ -14,8 +14,9 @@
      "failing_expects": [{"problem", "objective", "where", "message"}] (only when graded
                                                                         with them)}
 
-Verdicts come from :data:`VERDICTS`; student statuses from :data:`STATUSES`. Reports and
-exports read these dataclasses (never sympy).
+Verdicts are :class:`Verdict`, student statuses :class:`Status`: enums whose members are the
+very strings ``results.json`` holds (:data:`VERDICTS`, :data:`STATUSES`). Reports and exports
+read these dataclasses (never sympy).
 
 >>> r = GradeReport(AssignmentInfo("hw1", "Homework 1"), (), ())
 >>> GradeReport.from_json(r.to_json()) == r
@@ -25,10 +26,51 @@ True
 from __future__ import annotations
 
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
+from enum import Enum
 
-VERDICTS = ("correct", "partial", "incorrect", "unreadable", "missing", "not_evaluated")
-STATUSES = ("graded", "missing", "unreadable", "not_evaluated", "conflict")
+from ..codec import MAPPING, OMIT_DEFAULT, absent, decode, encode
+
+
+class Kind(str, Enum):
+    """A kind whose member is its text: written to JSON, CSV and pages as that text, equal to
+    it (``Verdict.CORRECT == "correct"``), and shown by ``str`` and f-strings as it.
+
+    >>> f"{Verdict.NOT_EVALUATED}", str(Status.GRADED), Verdict("partial") is Verdict.PARTIAL
+    ('not_evaluated', 'graded', True)
+    """
+
+    # str's own, not Enum's 'Verdict.CORRECT': the member is shown wherever its text was
+    def __str__(self) -> str:
+        return str.__str__(self)
+
+    def __format__(self, spec: str) -> str:
+        return str.__format__(self, spec)
+
+
+class Verdict(Kind):
+    """How one answer was judged (``docs/grading.md`` says what each means)."""
+
+    CORRECT = "correct"
+    PARTIAL = "partial"
+    INCORRECT = "incorrect"
+    UNREADABLE = "unreadable"
+    MISSING = "missing"
+    NOT_EVALUATED = "not_evaluated"
+
+
+class Status(Kind):
+    """What became of one student's submission."""
+
+    GRADED = "graded"
+    MISSING = "missing"
+    UNREADABLE = "unreadable"
+    NOT_EVALUATED = "not_evaluated"
+    CONFLICT = "conflict"
+
+
+VERDICTS = tuple(v.value for v in Verdict)
+STATUSES = tuple(s.value for s in Status)
 """``not_evaluated``: grading this student failed through a fault of mechgrade's (see
 ``GradeReport.internal_errors``); no grade is exported for them. ``conflict``: a roster student
 and the folders that match it other than one to one (two folders one student, a folder two
@@ -72,7 +114,7 @@ class AnswerResult:
     problem: str
     objective: str
     answer: str | None
-    verdict: str
+    verdict: Verdict
     points: float
     max_points: float
     diagnosis: str | None = None
@@ -80,7 +122,7 @@ class AnswerResult:
     read_back: str | None = None
     expected: str | None = None
     expected_in_answer_unit: str | None = None
-    loads: tuple["LoadResult", ...] = ()
+    loads: tuple["LoadResult", ...] = field(default=(), metadata=OMIT_DEFAULT)
 
 
 @dataclass(frozen=True)
@@ -141,14 +183,15 @@ class StudentResult:
     """One student's grade. ``identity`` keeps roster columns (name, SIS ids, email...)."""
 
     id: str
-    name: str
-    status: str
+    name: str = field(metadata=absent(""))
+    status: Status
     score: float
     max_score: float
     answers: tuple[AnswerResult, ...] = ()
     messages: tuple[str, ...] = ()
-    identity: tuple[tuple[str, str], ...] = ()
-    variant: StudentVariant | None = None
+    identity: tuple[tuple[str, str], ...] = field(default=(), metadata=MAPPING)
+    # results without variants read as before
+    variant: StudentVariant | None = field(default=None, metadata=OMIT_DEFAULT)
 
 
 @dataclass(frozen=True)
@@ -190,83 +233,28 @@ class GradeReport:
     """
 
     assignment: AssignmentInfo
-    objectives: tuple[ObjectiveInfo, ...]
+    objectives: tuple[ObjectiveInfo, ...] = field(metadata=absent(()))
     students: tuple[StudentResult, ...] = field(default=())
     skipped: tuple[SkippedEntry, ...] = ()
     notes: tuple[str, ...] = ()
     internal_errors: tuple[str, ...] = ()
-    failing_expects: tuple[FailingExpect, ...] = ()
+    # results of specs that pass their tests read as before
+    failing_expects: tuple[FailingExpect, ...] = field(default=(), metadata=OMIT_DEFAULT)
 
     def to_json(self) -> dict:
-        """The ``results.json`` document (plain dicts and lists, stable key order)."""
-        # Field by field rather than dataclasses.asdict, which deep-copies every value and
-        # took longer than writing the file.
-        data = {"assignment": _fields(self.assignment),
-                "objectives": tuple(map(_fields, self.objectives)),
-                "students": tuple(map(_student_json, self.students)),
-                "skipped": tuple(map(_fields, self.skipped)),
-                "notes": self.notes, "internal_errors": self.internal_errors}
-        if self.failing_expects:  # results of specs that pass their tests read as before
-            data["failing_expects"] = tuple(map(_fields, self.failing_expects))
-        return data
+        """The ``results.json`` document (plain dicts and lists, stable key order), written
+        by :func:`mechgrade.codec.encode`."""
+        return encode(self)
 
     @classmethod
     def from_json(cls, data: dict) -> "GradeReport":
-        """Rebuild a report from a ``results.json`` document."""
-        students = []
-        for s in data.get("students", []):
-            answers = tuple(AnswerResult(**{**a, "loads": tuple(
-                LoadResult(**{**row, "mistakes": tuple(row["mistakes"])})
-                for row in a.get("loads", ()))}) for a in s.get("answers", []))
-            identity = tuple((str(k), str(v)) for k, v in (s.get("identity") or {}).items())
-            variant = s.get("variant")
-            students.append(StudentResult(
-                id=s["id"], name=s.get("name", ""), status=s["status"], score=s["score"],
-                max_score=s["max_score"], answers=answers,
-                messages=tuple(s.get("messages", ())), identity=identity,
-                variant=(StudentVariant(variant["seed"], tuple(
-                    VariantGiven(**g) for g in variant.get("givens", ())))
-                    if variant else None)))
-        return cls(AssignmentInfo(**data["assignment"]),
-                   tuple(ObjectiveInfo(**o) for o in data.get("objectives", [])),
-                   tuple(students),
-                   tuple(SkippedEntry(**e) for e in data.get("skipped", [])),
-                   tuple(data.get("notes", ())), tuple(data.get("internal_errors", ())),
-                   tuple(FailingExpect(**f) for f in data.get("failing_expects", ())))
+        """Rebuild a report from a ``results.json`` document (read by
+        :func:`mechgrade.codec.decode`: a value of another type is a ``CodecError``).
 
-
-_NAMES: dict[type, tuple[str, ...]] = {}
-
-
-def _names(cls: type) -> tuple[str, ...]:
-    """A dataclass type's field names, worked out once per type."""
-    names = _NAMES.get(cls)
-    if names is None:
-        names = _NAMES[cls] = tuple(f.name for f in fields(cls))
-    return names
-
-
-def _fields(item) -> dict:
-    """A dataclass of plain values as a dict, in field order."""
-    return {name: getattr(item, name) for name in _names(type(item))}
-
-
-def _student_json(student: StudentResult) -> dict:
-    data = _fields(student)
-    data["answers"] = tuple(map(_answer_json, student.answers))
-    data["identity"] = dict(student.identity)
-    if student.variant is None:  # results without variants read as before
-        del data["variant"]
-    else:
-        data["variant"] = {"seed": student.variant.seed,
-                           "givens": tuple(map(_fields, student.variant.givens))}
-    return data
-
-
-def _answer_json(answer: AnswerResult) -> dict:
-    data = _fields(answer)
-    if answer.loads:
-        data["loads"] = tuple(map(_fields, answer.loads))
-    else:  # answers that are not free-body diagrams read as before
-        del data["loads"]
-    return data
+        >>> GradeReport.from_json({"assignment": {"id": "a", "title": "A"}, "students": [
+        ...     {"id": "s", "status": "graded", "score": "7", "max_score": 9}]})
+        Traceback (most recent call last):
+        ...
+        mechgrade.codec.CodecError: GradeReport.students: StudentResult.score: expected a number, found str
+        """
+        return decode(cls, data)

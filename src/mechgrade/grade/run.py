@@ -27,28 +27,29 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterable
 
-from ..errors import (AssignmentError, InconsistentError, MechgradeError, SpecError, SpecErrors,
+from ..errors import (AssignmentError, MechgradeError, SpecError, SpecErrors,
                       brief_exception)
 from ..parallel import Forked, fork_map, outcome, raise_first
-from ..expressions.syntax import Name, Prime
 from ..roster import MATCH_KINDS, fold, pair_students
 from ..spec.model import Objective, ObjectiveKind, Problem
-from .assignment import Assignment, GradingPolicy
+from .assignment import Assignment
+from .ecf import CarriedForward, Resolver, listing, upstream_objective
 from .lms_submissions import read_any_submissions
 from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
-                      LoadResult, ObjectiveInfo, StudentResult, unit_text)
-from .submissions import Submission, SubmissionSet
+                      LoadResult, ObjectiveInfo, Status, StudentResult, Verdict, unit_text)
+from .policy import GradingPolicy
+from .submissions import Submission, SubmissionSet, SubmissionStatus
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.derivation import DerivationInstant, MotionSamples
     from ..solve.result import ObjectiveResult, Solution
     from .compare import Assessment
+    from .sandbox import SandboxPool
 
 POINTS_DIGITS = 4
 """Points are rounded to this many decimals, so that sums are the same on every machine."""
 
 Progress = Callable[[int, int], None]
-Resolver = Callable[[Problem, dict], "Solution"]
 
 
 @dataclass(frozen=True)
@@ -170,7 +171,7 @@ def _solve_all(assignment: Assignment, problems: tuple[Problem, ...], chosen,
 def _re_solved(problem: Problem, objective: Objective) -> bool:
     """Whether error carried forward may re-solve ``problem`` for ``objective``: it depends on
     an objective of the problem."""
-    return any(_objective(problem, upstream) is not None for upstream in objective.depends_on)
+    return any(upstream_objective(problem, upstream) is not None for upstream in objective.depends_on)
 
 
 def _needed(problem: Problem, graded: list[Objective]) -> tuple[str, ...]:
@@ -187,7 +188,7 @@ def _needed(problem: Problem, graded: list[Objective]) -> tuple[str, ...]:
     todo = [o.id for o in graded]
     while todo:
         for upstream in problem.objective(todo.pop()).depends_on:
-            if upstream not in needed and _objective(problem, upstream) is not None:
+            if upstream not in needed and upstream_objective(problem, upstream) is not None:
                 needed.add(upstream)
                 todo.append(upstream)
     return tuple(o.id for o in problem.objectives if o.id in needed)
@@ -227,7 +228,7 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
     for key, _ in assignment.points:
         if key not in keys:
             raise AssignmentError(f"expected a graded objective 'problem_id.objective_id' "
-                                  f"({_listing(sorted(keys))}), found '{key}'",
+                                  f"({listing(sorted(keys))}), found '{key}'",
                                   where=assignment.where_points(key))
     return chosen
 
@@ -423,7 +424,7 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     total = len(people)
     if progress:
         progress(0, total)
-    judge = _Judge(plan, resolve, jobs)
+    judge = _Judge(plan.assignment.policy, resolve, jobs)
     students: list[StudentResult] = []
     faults: list[str] = [s.internal_error for s in submissions.students if s.internal_error]
     if any(p.variants for p in plan.problems):  # every student's variant solved together
@@ -438,14 +439,14 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
         neighbours = NeighbourIndex({OWN_GIVENS: plan.objectives,
                                      **{pid: p.objectives for pid, (p, _) in own.items()}})
     try:
-        judge.prefetch(submissions.students)
-        judge.prefetch_carried_forward((own[person.id][0], submission)
+        judge.prefetch(plan, submissions.students)
+        judge.ecf.prefetch((own[person.id][0], submission)
                                        for person, submission in people if submission is not None)
         for done, (person, submission) in enumerate(people, start=1):
             # the student's own references, also for ECF's look-ups
-            judge.plan, variants = own[person.id]
-            student = _grade_student_safely(judge.plan, judge, person, submission, faults)
-            students.append(_with_variant(student, judge.plan, variants, neighbours,
+            mine, variants = own[person.id]
+            student = _grade_student_safely(mine, judge, person, submission, faults)
+            students.append(_with_variant(student, mine, variants, neighbours,
                                           person.id))
             if progress:
                 progress(done, total)
@@ -593,9 +594,9 @@ def _grade_student_safely(plan: Plan, judge: "_Judge", person: _Person,
         detail = brief_exception(exc)
         faults.append(f"grading '{person.id}': {detail}")
         reason = f"internal error: {detail}; please tell your instructor"
-        answers = tuple(AnswerResult(o.problem.id, o.objective.id, None, "not_evaluated", 0.0,
+        answers = tuple(AnswerResult(o.problem.id, o.objective.id, None, Verdict.NOT_EVALUATED, 0.0,
                                      o.max_points, None, reason) for o in plan.objectives)
-        return StudentResult(person.id, person.name, "not_evaluated", 0.0, plan.max_score,
+        return StudentResult(person.id, person.name, Status.NOT_EVALUATED, 0.0, plan.max_score,
                              answers, (reason,), person.identity)
 
 
@@ -609,8 +610,7 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
         messages.append("not on the roster")
     if submission is not None:
         messages.extend(submission.messages)
-    status = {None: "missing", "missing": "missing", "read": "graded",
-              "unreadable": "unreadable"}[submission.status if submission else None]
+    status = _STATUS[submission.status if submission else None]
     if submission is None and not person.conflict:
         messages.append("no submission found")
     answers: list[AnswerResult] = []
@@ -619,41 +619,48 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
     # reveals answers: an empty upload must not harvest them.
     for item in plan.objectives:
         text = submission.answer(item.key) if submission is not None else None
-        if status == "unreadable":
-            answer = AnswerResult(item.problem.id, item.objective.id, None, "unreadable", 0.0,
+        if status == Status.UNREADABLE:
+            answer = AnswerResult(item.problem.id, item.objective.id, None, Verdict.UNREADABLE, 0.0,
                                   item.max_points, None,
                                   "Your answer file could not be read (see the messages).")
         elif submission is None or text is None or not text.strip():
-            answer = AnswerResult(item.problem.id, item.objective.id, text, "missing", 0.0,
+            answer = AnswerResult(item.problem.id, item.objective.id, text, Verdict.MISSING, 0.0,
                                   item.max_points, None, "No answer was given.")
         else:
-            answer = _judge_safely(judge, item, text, submission, verdicts, person, faults)
+            answer = _judge_safely(plan, judge, item, text, submission, verdicts, person,
+                                   faults)
         verdicts[item.key] = answer
         answers.append(answer)
     parts: list[PlannedDiagram | PlannedEquations] = [*plan.diagrams, *plan.equations]
     for part in parts:
         text = submission.answer(part.key) if submission is not None else None
-        if status == "unreadable":
-            answers.append(AnswerResult(part.problem.id, part.objective_id, None, "unreadable",
+        if status == Status.UNREADABLE:
+            answers.append(AnswerResult(part.problem.id, part.objective_id, None,
+                                        Verdict.UNREADABLE,
                                         0.0, part.max_points, None, "Your answer file could "
                                         "not be read (see the messages)."))
         else:
             answers.append(_judge_derivation_safely(part, text, person, faults))
     score = _round(sum(a.points for a in answers))
-    return StudentResult(person.id, person.name, "conflict" if person.conflict else status,
+    return StudentResult(person.id, person.name, Status.CONFLICT if person.conflict else status,
                          score, plan.max_score, tuple(answers), tuple(messages),
                          person.identity)
 
 
-def _judge_safely(judge: "_Judge", item: PlannedObjective, text: str, submission: Submission,
+_STATUS = {None: Status.MISSING, SubmissionStatus.MISSING: Status.MISSING,
+           SubmissionStatus.READ: Status.GRADED, SubmissionStatus.UNREADABLE: Status.UNREADABLE}
+"""A student's status from their submission's (``None``: no submission)."""
+
+
+def _judge_safely(plan: Plan, judge: "_Judge", item: PlannedObjective, text: str, submission: Submission,
                   verdicts: dict, person: _Person, faults: list[str]) -> AnswerResult:
     """One answer judged; a fault of mechgrade's makes it ``not_evaluated``, nothing more."""
     try:
-        return judge.judge(item, text, submission, verdicts)
+        return judge.judge(plan, item, text, submission, verdicts)
     except Exception as exc:  # noqa: BLE001 - one answer must not take its student down
         detail = brief_exception(exc)
         faults.append(f"judging '{person.id}' {item.key}: {detail}")
-        return AnswerResult(item.problem.id, item.objective.id, text, "not_evaluated", 0.0,
+        return AnswerResult(item.problem.id, item.objective.id, text, Verdict.NOT_EVALUATED, 0.0,
                             item.max_points, None,
                             f"internal error: {detail}; please tell your instructor", None,
                             judge.expected(item))
@@ -681,7 +688,7 @@ def _judge_derivation_safely(part: PlannedDiagram | PlannedEquations, text: str 
     except Exception as exc:  # noqa: BLE001 - one answer must not take its student down
         detail = brief_exception(exc)
         faults.append(f"judging '{person.id}' {part.key}: {detail}")
-        return AnswerResult(part.problem.id, part.objective_id, text, "not_evaluated", 0.0,
+        return AnswerResult(part.problem.id, part.objective_id, text, Verdict.NOT_EVALUATED, 0.0,
                             part.max_points, None,
                             f"internal error: {detail}; please tell your instructor")
     return AnswerResult(part.problem.id, part.objective_id, text, assessment.verdict,
@@ -695,24 +702,21 @@ def _judge_derivation_safely(part: PlannedDiagram | PlannedEquations, text: str 
 class _Judge:
     """Judges answers in sandbox workers (one per job), once per distinct (objective, text)."""
 
-    def __init__(self, plan: Plan, resolve: Resolver | None, jobs: int = 1):
-        self.plan = plan
-        self.policy = plan.assignment.policy
-        self._resolve = resolve
+    def __init__(self, policy: GradingPolicy, resolve: Resolver | None, jobs: int = 1):
+        self.policy = policy
         self._jobs = jobs
         self._cache: dict[tuple[int, str], Assessment] = {}
         self._references: dict[ObjectiveResult, int] = {}  # each distinct one, numbered
         self._numbers: dict[int, tuple[ObjectiveResult, int]] = {}  # by id(): its number
-        self._ecf_solutions: dict[tuple, tuple] = {}
-        self._policy = compare_policy(self.policy)
-        self._pool = None
+        self.ecf = CarriedForward(policy, self, resolve, jobs)
+        self._pool: SandboxPool | None = None
 
     def close(self) -> None:
         if self._pool is not None:
             self._pool.close()
             self._pool = None
 
-    def _sandboxes(self):
+    def _sandboxes(self) -> SandboxPool:
         if self._pool is None:
             from .sandbox import SandboxPool
 
@@ -733,34 +737,38 @@ class _Judge:
         """Judge one answer in the run's sandbox workers (started once, reused for all)."""
         key = self._key(result, text)
         if key not in self._cache:
-            self._cache[key] = self._sandboxes().assess(text, result, self._policy)
+            self._cache[key] = self._sandboxes().assess(text, result, self.policy)
         return self._cache[key]
 
-    def prefetch(self, submissions: Iterable[Submission]) -> None:
-        """Judge every distinct answer of ``submissions`` up front, in batches spread over the
-        workers; :meth:`judge` then finds them judged. A fault of mechgrade's here leaves the
-        answers to be judged one by one, each inside its own boundary (:func:`_judge_safely`)."""
+    def judged(self, result: ObjectiveResult, text: str) -> Assessment | None:
+        """``text`` as judged against ``result`` already (``None``: not judged yet)."""
+        return self._cache.get(self._key(result, text))
+
+    def prefetch(self, plan: Plan, submissions: Iterable[Submission]) -> None:
+        """Judge every distinct answer of ``submissions`` to ``plan``'s objectives up front,
+        in batches spread over the workers; :meth:`judge` then finds them judged. A fault of
+        mechgrade's here leaves the answers to be judged one by one, each inside its own
+        boundary (:func:`_judge_safely`)."""
         try:
-            todo: dict[tuple[int, str], ObjectiveResult] = {}
-            for submission in submissions:
-                if submission.status != "read":
-                    continue
-                for item in self.plan.objectives:
-                    text = submission.answer(item.key)
-                    if text is not None and text.strip():
-                        key = self._key(item.result, text)
-                        if key not in self._cache:
-                            todo[key] = item.result
-            self._judge_all(todo)
+            self.judge_all((item.result, text)
+                           for submission in submissions
+                           if submission.status == SubmissionStatus.READ
+                           for item in plan.objectives
+                           if (text := submission.answer(item.key)) is not None and text.strip())
         except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
             pass
 
-    def _judge_all(self, todo: dict[tuple[int, str], ObjectiveResult]) -> None:
-        """Judge the answers of ``todo`` (cache key -> reference) in one batch over the sandbox
-        workers, into the cache."""
+    def judge_all(self, pairs: Iterable[tuple[ObjectiveResult, str]]) -> None:
+        """Judge each ``(reference, answer)`` of ``pairs`` not judged yet, in one batch over
+        the sandbox workers, into the cache."""
+        todo: dict[tuple[int, str], ObjectiveResult] = {}
+        for result, text in pairs:
+            key = self._key(result, text)
+            if key not in self._cache:
+                todo[key] = result
         if todo:
             judged = self._sandboxes().assess_many(
-                [(text, result, self._policy) for (_, text), result in todo.items()])
+                [(text, result, self.policy) for (_, text), result in todo.items()])
             self._cache.update(zip(todo, judged))
 
     def expected(self, item: PlannedObjective) -> str | None:
@@ -771,17 +779,19 @@ class _Judge:
         return (expected_in_unit(item.result, unit)
                 if self.policy.reveal_answers and unit else None)
 
-    def judge(self, item: PlannedObjective, text: str, submission: Submission,
+    def judge(self, plan: Plan, item: PlannedObjective, text: str, submission: Submission,
               earlier: dict[str, AnswerResult]) -> AnswerResult:
+        """One answer of the student whose references ``plan`` holds (their variant's),
+        ``earlier`` their answers judged so far (for error carried forward)."""
         assessment = self.assess(text, item.result)
         verdict, credit = assessment.verdict, float(assessment.credit)
         feedback = [assessment.feedback] if assessment.feedback else []
         credit = min(max(credit, 0.0), 1.0)
         diagnosis = assessment.diagnosis
-        if verdict != "correct" and item.objective.depends_on and self.policy.ecf.enabled:
+        if verdict != Verdict.CORRECT and item.objective.depends_on and self.ecf.enabled:
             judged = credit
-            verdict, credit = self._carry_forward(item, text, submission, earlier, verdict,
-                                                  credit, feedback)
+            verdict, credit = self.ecf.carry_forward(plan, item, text, submission, earlier,
+                                                     verdict, credit, feedback)
             if credit > judged:  # the mistake was upstream: this answer is consistent with it
                 diagnosis = ECF_DIAGNOSIS
         return AnswerResult(item.problem.id, item.objective.id, text, verdict,
@@ -789,285 +799,6 @@ class _Judge:
                             diagnosis, " ".join(f for f in feedback if f),
                             assessment.read_back, self.expected(item),
                             self.expected_in(item, assessment.unit))
-
-    def prefetch_carried_forward(self, work: Iterable[tuple[Plan, Submission]]) -> None:
-        """Solve, over the jobs, the re-solves error carried forward will ask for (each
-        student's ``(plan, submission)`` in ``work``), into :meth:`_solve_with`'s cache: they
-        take most of a run's grading time when they are solved one after the other. Then judge
-        the answers again against them, in one batch over the sandbox workers (not one round
-        trip per answer). One not foreseen here (an upstream answer itself carried forward) is
-        solved when asked; a fault of mechgrade's here leaves every one to be solved when
-        asked."""
-        if self._resolve is not None or not self.policy.ecf.enabled:
-            return
-        own = self.plan
-        try:
-            requests: dict[tuple, tuple] = {}
-            again: dict[tuple, None] = {}  # (re-solve key, answer, objective) to judge again
-            for plan, submission in work:
-                self.plan = plan  # the student's references, for the upstream look-ups
-                for item in (i for i in plan.objectives if i.objective.depends_on):
-                    text = submission.answer(item.key) if submission.status == "read" else None
-                    judged = self._cache.get(self._key(item.result, text)) \
-                        if text is not None else None
-                    if judged is None or judged.verdict == "correct":
-                        continue
-                    found = self._upstream_givens(item, submission, {})
-                    if isinstance(found, dict) and found:
-                        givens = {**dict(item.givens), **found}
-                        key = _ecf_key(item.problem, givens, item.objective.id)
-                        if key not in self._ecf_solutions:
-                            requests[key] = (item.problem, givens, item.objective.id)
-                        again[key, text, item.objective.id] = None
-            _CARRYING[:] = [self]  # inherited by the forked workers
-            try:
-                solved = fork_map(_solve_carried, list(requests.values()), jobs=self._jobs)
-            finally:
-                _CARRYING.clear()
-            self._ecf_solutions.update(zip(requests, solved))
-            todo: dict[tuple[int, str], ObjectiveResult] = {}
-            for key, text, objective_id in again:
-                solution = self._ecf_solutions[key][0]
-                if isinstance(solution, MechgradeError):
-                    continue  # not solved: the per-answer path says why
-                try:
-                    recomputed = solution.result(objective_id)
-                except (KeyError, MechgradeError):
-                    continue
-                if self._key(recomputed, text) not in self._cache:
-                    todo[self._key(recomputed, text)] = recomputed
-            self._judge_all(todo)
-        except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
-            pass
-        finally:
-            self.plan = own
-
-    def _upstream_givens(self, item, submission, earlier) -> dict[str, float] | str:
-        """The givens (SI, by given key) the student's wrong upstream answers stand for, or
-        the feedback saying why error carried forward cannot use them."""
-        problem = item.problem
-        overrides: dict[str, float] = {}
-        for upstream_id in item.objective.depends_on:
-            key = f"{problem.id}.{upstream_id}"
-            upstream = earlier.get(key)
-            if upstream is None:
-                upstream_text = submission.answer(key)
-                if upstream_text is None:
-                    continue  # not graded in this assignment and not answered
-                try:
-                    up_result = self._reference(problem, upstream_id)
-                except KeyError:
-                    continue
-                assessment = self.assess(upstream_text, up_result)
-                upstream_verdict = assessment.verdict
-            else:
-                upstream_text, upstream_verdict = upstream.answer, upstream.verdict
-            if upstream_verdict == "correct" or upstream_text is None:
-                continue
-            if upstream_verdict in ("unreadable", "missing", "not_evaluated"):
-                continue
-            objective = _objective(problem, upstream_id)
-            if objective is None:
-                continue
-            given_key = given_key_of(objective)
-            if given_key is None:
-                return (f"Error carried forward could not be applied: '{upstream_id}' is not a "
-                        f"plain given quantity the solver can take from your answer.")
-            value = _si_value(upstream_text, self._reference(problem, upstream_id))
-            if value is None:
-                return (f"Error carried forward could not be applied: your answer to "
-                        f"'{upstream_id}' could not be read as a number.")
-            overrides[given_key] = value
-        return overrides
-
-    def _carry_forward(self, item, text, submission, earlier, verdict, credit, feedback):
-        """Judge ``text`` again against the reference recomputed from the student's own
-        (wrong) upstream answers; keep the better credit."""
-        problem = item.problem
-        overrides = self._upstream_givens(item, submission, earlier)
-        if isinstance(overrides, str):
-            feedback.append(overrides)
-            return verdict, credit
-        if not overrides:
-            return verdict, credit
-        answered = sorted(overrides)
-        overrides = {**dict(item.givens), **overrides}  # on the student's own variant
-        solution, replaced = self._solve_with(problem, overrides, item.objective.id)
-        if isinstance(solution, MechgradeError):
-            feedback.append(f"Error carried forward could not be applied: with your "
-                            f"{_listing(answered)} the problem cannot be solved "
-                            f"({solution.message}).")
-            return verdict, credit
-        try:
-            recomputed = solution.result(item.objective.id)
-        except KeyError:
-            return verdict, credit
-        again = self.assess(text, recomputed)
-        ecf_credit = float(again.credit) * self.policy.ecf.credit
-        upstream_names = _listing(sorted(objective_id for objective_id in
-                                         item.objective.depends_on))
-        if again.verdict in ("correct", "partial") and ecf_credit > credit:
-            instead = f" (used in place of {_listing(replaced)})" if replaced else ""
-            # one sentence: what the answer was told against the reference no longer holds
-            feedback[:] = [f"Error carried forward: this answer follows correctly from your "
-                           f"answer to {upstream_names}{instead} and earns {ecf_credit:.0%} "
-                           f"of the points."]
-            return ("correct" if ecf_credit >= 1.0 else "partial"), ecf_credit
-        feedback.append(f"Also checked with your own answer to {upstream_names} (error "
-                        f"carried forward): it does not follow from it either.")
-        return verdict, credit
-
-    def _reference(self, problem: Problem, objective_id: str) -> ObjectiveResult:
-        index = self.plan.problems.index(problem)
-        return self.plan.solutions[index].result(objective_id)
-
-    def _solve_with(self, problem: Problem, overrides: dict[str, float], objective_id: str):
-        """Solve with the student's values; ``(solution or error, givens replaced)``.
-
-        A value the spec derives from other givens over-determines the problem when simply
-        added (x' given while y' fixes it). Then each given of the same derivative order is
-        dropped in turn, in spec order, and the first consistent solution is used.
-        """
-        key = _ecf_key(problem, overrides, objective_id)
-        if key in self._ecf_solutions:
-            return self._ecf_solutions[key]
-        problem, instead = _replaced_by_student(problem, overrides)
-        outcome = self._attempt(problem, dict(overrides), objective_id), instead
-        if isinstance(outcome[0], InconsistentError):
-            orders = {_order(k) for k in overrides}
-            for given in problem.givens:
-                name = given.key.text
-                if name in overrides or _order(name) not in orders:
-                    continue
-                attempt = self._attempt(problem, {**overrides, name: None}, objective_id)
-                if not isinstance(attempt, MechgradeError):
-                    outcome = attempt, (f"the given {name}",)
-                    break
-        self._ecf_solutions[key] = outcome
-        return outcome
-
-    def _attempt(self, problem: Problem, givens: dict, objective_id: str):
-        try:
-            if self._resolve is not None:
-                return self._resolve(problem, givens)
-            from ..solve import solve
-
-            # Only the objective being re-checked: another one may not exist with these values.
-            return solve(problem, givens=givens, objectives=(objective_id,))
-        except MechgradeError as err:
-            return err
-
-
-def _replaced_by_student(problem: Problem, overrides: dict[str, float]
-                        ) -> tuple[Problem, tuple[str, ...]]:
-    """The problem to re-solve for ECF, and what the student's values replace in it. A
-    work-energy problem's rates come from its energy balance, and a designed parameter from
-    its design condition: a student's rate (or parameter) takes that balance's (or
-    condition's) place, and the instant is solved from it as from any other given."""
-    from ..spec.dynamics import WorkEnergy
-
-    dynamics = problem.dynamics
-    if dynamics is None:
-        return problem, ()
-    replaced: list[str] = []
-    analysis, design = dynamics.analysis, dynamics.design
-    if isinstance(analysis, WorkEnergy) and any(_order(k) == 1 for k in overrides):
-        replaced.append("the energy balance")
-        analysis = None
-    if design is not None and design.find in overrides:
-        replaced.append("the design condition")
-        design = None
-    if not replaced:
-        return problem, ()
-    return (replace(problem, dynamics=replace(dynamics, analysis=analysis, design=design)),
-            tuple(replaced))
-
-
-_CARRYING: list = []
-
-
-def _ecf_key(problem: Problem, givens: dict, objective_id: str) -> tuple:
-    return problem.id, objective_id, tuple(sorted(givens.items()))
-
-
-def _solve_carried(request: tuple) -> tuple:
-    """:meth:`_Judge._solve_with` in a forked worker (see :meth:`_Judge.prefetch_carried_forward`)."""
-    return _CARRYING[0]._solve_with(*request)
-
-
-def _order(key: str) -> int:
-    """How many time derivatives a given key names (``x''`` -> 2; an expression -> -1)."""
-    stripped = key.rstrip("'")
-    return len(key) - len(stripped) if stripped.isidentifier() else -1
-
-
-def given_key_of(objective: Objective) -> str | None:
-    """The given key (``"theta'"``) an objective's value can be fed back to the solver as,
-    or ``None`` when the objective is not a plain quantity (a coordinate, its rate, a
-    parameter).
-
-    >>> from mechgrade.spec.model import Expr
-    >>> from mechgrade.expressions.syntax import parse
-    >>> ob = lambda find, kind="scalar": Objective("o", "", Expr(find, parse(find, functions=["mag", "vel"])), kind, "m/s")
-    >>> given_key_of(ob("x'")), given_key_of(ob("mag(vel(A, N))")), given_key_of(ob("x", "vector"))
-    ("x'", None, None)
-    """
-    if objective.kind != ObjectiveKind.SCALAR:
-        return None
-    node = objective.find.node
-    if isinstance(node, Name):
-        return node.id
-    if isinstance(node, Prime):
-        return node.id + "'" * node.order
-    return None
-
-
-def _objective(problem: Problem, objective_id: str) -> Objective | None:
-    try:
-        return problem.objective(objective_id)
-    except KeyError:
-        return None
-
-
-def _si_value(text: str, result: ObjectiveResult) -> float | None:
-    """The student's scalar answer in SI, read as the objective's unit when none is written."""
-    from ..units import to_si
-    from .answers import NumberAnswer, read_answer
-
-    try:
-        answer = read_answer(text, result)
-        if not isinstance(answer, NumberAnswer):
-            return None
-        unit = answer.unit if answer.unit is not None else result.unit
-        value = to_si(answer.value, unit)
-    except MechgradeError:
-        return None
-    return value if math.isfinite(value) else None
-
-
-def compare_policy(policy: GradingPolicy):
-    """The assignment's policy as the answer judge's :class:`~mechgrade.grade.compare.Policy`.
-
-    >>> from mechgrade.grade.assignment import MissingUnitRule, SigFigRule
-    >>> p = compare_policy(GradingPolicy(sig_figs=SigFigRule(3, 0.8),
-    ...                                  missing_unit=MissingUnitRule("penalize", 0.5)))
-    >>> p.written_sig_figs, round(p.written_sig_figs_deduction, 2), p.missing_unit, p.missing_unit_deduction
-    (3, 0.2, 'assume', 0.5)
-    """
-    from .compare import Policy
-
-    sig = policy.sig_figs
-    missing = policy.missing_unit
-    return Policy(
-        rel=policy.rel, abs=policy.abs, sig_figs=policy.accuracy_sig_figs,
-        separate_mistakes=policy.separate_mistakes,
-        written_sig_figs=sig.figures if sig else None,
-        written_sig_figs_strict=sig.strict if sig else False,
-        written_sig_figs_deduction=1.0 - sig.credit if sig else 0.25,
-        missing_unit="reject" if missing.action == "reject" else "assume",
-        missing_unit_deduction=1.0 - missing.credit if missing.action == "penalize" else 0.0,
-        partial_credit=policy.partial_credit.diagnoses if policy.partial_credit.enabled else ())
-
 
 def expected_text(result: ObjectiveResult) -> str:
     """The reference answer as text, in the objective's unit.
@@ -1131,10 +862,3 @@ def _number(value: float) -> str:
 def _round(value: float) -> float:
     rounded = round(float(value), POINTS_DIGITS)
     return 0.0 if rounded == 0 else rounded
-
-
-def _listing(items) -> str:
-    items = list(items)
-    if len(items) > 8:
-        return ", ".join(items[:8]) + ", ..."
-    return ", ".join(items)

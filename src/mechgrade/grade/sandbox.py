@@ -12,8 +12,8 @@ many answers, each still timed on its own), and a :class:`SandboxPool` runs a wo
 
 >>> from mechgrade.solve.result import ObjectiveResult
 >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
->>> assess_bounded("98.5 ft/s^2", acc, Policy(), seconds=10, memory_mb=512).verdict
-'correct'
+>>> assess_bounded("98.5 ft/s^2", acc, GradingPolicy(), seconds=10, memory_mb=512).verdict
+<Verdict.CORRECT: 'correct'>
 """
 
 from __future__ import annotations
@@ -32,10 +32,11 @@ from typing import Callable, Iterable, Sequence, Union, cast
 
 from ..parallel import worker_started
 from ..solve.result import ObjectiveResult
-from .compare import Assessment, Policy, assess, not_evaluated
+from .compare import Assessment, assess, not_evaluated
+from .policy import GradingPolicy
 
-Judge = Callable[[str | None, ObjectiveResult, Policy], Assessment]
-Item = tuple[str | None, ObjectiveResult, Policy]
+Judge = Callable[[str | None, ObjectiveResult, GradingPolicy], Assessment]
+Item = tuple[str | None, ObjectiveResult, GradingPolicy]
 Outcome = tuple[str, Union[Assessment, str, None]]
 """What the worker sends for one answer: ``("ok", assessment)``, ``("error", reason)`` or
 ``("memory", None)``."""
@@ -46,7 +47,7 @@ DEFAULT_MEMORY_MB = 512
 
 def _warm() -> None:
     """Import what judging needs before forking, so every worker inherits it."""
-    import sympy  # noqa: F401
+    import sympy  # noqa: F401 - imported for its effect: loaded once, before the fork
 
     from ..units import registry
     registry()
@@ -72,7 +73,7 @@ def _limit_memory(memory_mb: int) -> None:
     mapped = _mapped_bytes() or 0
     limit = mapped + memory_mb * 1024 * 1024
     try:
-        soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+        _soft, hard = resource.getrlimit(resource.RLIMIT_AS)
         if hard != resource.RLIM_INFINITY:
             limit = min(limit, hard)
         resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
@@ -122,8 +123,8 @@ class Sandbox:
     >>> from mechgrade.solve.result import ObjectiveResult
     >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
     >>> with Sandbox(seconds=10) as box:
-    ...     [a.verdict for a in box.assess_many([("98.5 ft/s^2", acc, Policy()), (None, acc, Policy())])]
-    ['correct', 'missing']
+    ...     [a.verdict for a in box.assess_many([("98.5 ft/s^2", acc, GradingPolicy()), (None, acc, GradingPolicy())])]
+    [<Verdict.CORRECT: 'correct'>, <Verdict.MISSING: 'missing'>]
     """
 
     def __init__(self, *, seconds: float = DEFAULT_SECONDS, memory_mb: int = DEFAULT_MEMORY_MB,
@@ -210,7 +211,7 @@ class Sandbox:
     # -- judging
 
     def assess(self, text: str | None, result: ObjectiveResult,
-               policy: Policy = Policy()) -> Assessment:
+               policy: GradingPolicy = GradingPolicy()) -> Assessment:
         """Judge one answer; ``not_evaluated`` if it overruns time or memory or crashes."""
         return self.assess_many([(text, result, policy)])[0]
 
@@ -228,8 +229,8 @@ class SandboxPool:
     >>> from mechgrade.solve.result import ObjectiveResult
     >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
     >>> with SandboxPool(2, seconds=10) as pool:
-    ...     [a.verdict for a in pool.assess_many([("98.5 ft/s^2", acc, Policy()), ("1 m", acc, Policy())])]
-    ['correct', 'incorrect']
+    ...     [a.verdict for a in pool.assess_many([("98.5 ft/s^2", acc, GradingPolicy()), ("1 m", acc, GradingPolicy())])]
+    [<Verdict.CORRECT: 'correct'>, <Verdict.INCORRECT: 'incorrect'>]
     """
 
     def __init__(self, workers: int, *, seconds: float = DEFAULT_SECONDS,
@@ -255,7 +256,7 @@ class SandboxPool:
         self.close()
 
     def assess(self, text: str | None, result: ObjectiveResult,
-               policy: Policy = Policy()) -> Assessment:
+               policy: GradingPolicy = GradingPolicy()) -> Assessment:
         """Judge one answer (in the first worker)."""
         return self.boxes[0].assess(text, result, policy)
 
@@ -448,7 +449,7 @@ class _Spread:
         return cast(list[Assessment], self.results)
 
 
-def assess_bounded(text: str | None, result: ObjectiveResult, policy: Policy = Policy(), *,
+def assess_bounded(text: str | None, result: ObjectiveResult, policy: GradingPolicy = GradingPolicy(), *,
                    seconds: float = DEFAULT_SECONDS,
                    memory_mb: int = DEFAULT_MEMORY_MB) -> Assessment:
     """Judge one answer in a fresh worker (for many answers use :func:`assess_batch`)."""
@@ -463,8 +464,8 @@ def assess_batch(items: Sequence[Item] | Iterable[Item], *, seconds: float = DEF
 
     >>> from mechgrade.solve.result import ObjectiveResult
     >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
-    >>> [a.verdict for a in assess_batch([("98.5 ft/s^2", acc, Policy()), ("1 m", acc, Policy())])]
-    ['correct', 'incorrect']
+    >>> [a.verdict for a in assess_batch([("98.5 ft/s^2", acc, GradingPolicy()), ("1 m", acc, GradingPolicy())])]
+    [<Verdict.CORRECT: 'correct'>, <Verdict.INCORRECT: 'incorrect'>]
     """
     with Sandbox(seconds=seconds, memory_mb=memory_mb) as box:
         return box.assess_many(items)

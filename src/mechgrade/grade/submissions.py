@@ -16,7 +16,7 @@ one student are all reported in that student's messages.
 >>> _ = (root / "ana.txt").write_text("# hw1\\np.speed = 7.0 m/s\\np.angle = 30 deg\\n")
 >>> (ana,) = read_submissions(root).students
 >>> ana.student, ana.status, ana.answer("p.speed")
-('ana', 'read', '7.0 m/s')
+('ana', <SubmissionStatus.READ: 'read'>, '7.0 m/s')
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ from ..errors import MechgradeError, SubmissionError, brief_exception
 from ..files import clean_text
 from ..parallel import fork_map
 from ..yamlio import read_yaml_text
-from .results import SkippedEntry
+from .results import Kind, SkippedEntry
 
 MAX_FILE_BYTES = 256 * 1024
 MAX_LISTED_KEYS = 10
@@ -58,6 +58,14 @@ class _Unread(SubmissionError):
         self.notes = tuple(notes)
 
 
+class SubmissionStatus(Kind):
+    """What came of reading one student's hand-in."""
+
+    READ = "read"
+    MISSING = "missing"
+    UNREADABLE = "unreadable"
+
+
 @dataclass(frozen=True)
 class Submission:
     """What one student handed in.
@@ -71,7 +79,7 @@ class Submission:
     """
 
     student: str
-    status: str
+    status: SubmissionStatus
     answers: tuple[tuple[str, str], ...] = ()
     messages: tuple[str, ...] = ()
     files: tuple[str, ...] = ()
@@ -145,7 +153,7 @@ def read_student_folder(folder: str | Path, student: str, *,
     try:
         root = folder.resolve(strict=True)
     except OSError:
-        return Submission(student, "missing", messages=(f"no submission folder at "
+        return Submission(student, SubmissionStatus.MISSING, messages=(f"no submission folder at "
                                                         f"'{clean_text(str(folder))}'",))
     sources = _folder_sources(root, root, label)
     if not any(s.path or s.problem or s.ignored for s in sources):
@@ -164,7 +172,8 @@ class _Source:
     renamed: bool = False  # an answers file whose name is not written the usual way
 
 
-def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list, notes: list) -> None:
+def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list,
+                _notes: list) -> None:
     """Put one entry of the submissions folder into a student's sources or the skipped list."""
     name, shown = entry.name, clean_text(entry.name)
     if name.startswith("."):
@@ -310,7 +319,7 @@ def _read_student_safely(student: str, sources: list[_Source], keys) -> Submissi
         return _read_student(student, sources, keys)
     except Exception as exc:  # noqa: BLE001 - the per-student boundary
         detail = brief_exception(exc)
-        return Submission(student, "unreadable",
+        return Submission(student, SubmissionStatus.UNREADABLE,
                           messages=(f"internal error while reading this submission: {detail}; "
                                     f"please tell your instructor",),
                           internal_error=f"reading '{student}': {detail}")
@@ -392,11 +401,11 @@ def _read_student(student: str, sources: list[_Source], keys) -> Submission:
     if keys is not None:
         answers = _match_keys(answers, keys, messages)
     if readable:
-        status = "read"
+        status = SubmissionStatus.READ
     elif tried:
-        status = "unreadable"
+        status = SubmissionStatus.UNREADABLE
     else:
-        status = "missing"
+        status = SubmissionStatus.MISSING
     return Submission(student, status, tuple((k, answers[k][0]) for k in sorted(answers)),
                       tuple(messages), tuple(files))
 
@@ -585,7 +594,7 @@ def _from_json(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]
                    f"graded" for key in sorted(set(repeated))],
            lambda more: f"'{label}': {more} more keys are given more than once; the last of "
                         f"each was graded")
-    return _flatten(data, label, notes, lambda value, key: value)
+    return _flatten(data, label, notes, lambda value, _key: value)
 
 
 def _from_yaml(text: str, label: str, notes: list[str]) -> list[tuple[str, str]]:

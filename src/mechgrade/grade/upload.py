@@ -34,7 +34,7 @@ from ..errors import Location, SubmissionError
 from ..files import clean_text
 from ..jsonio import read_json
 from .archives import safe_members
-from .submissions import (ANSWER_FILES, MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES, Submission,
+from .submissions import (SubmissionStatus, ANSWER_FILES, MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES, Submission,
                           read_student_folder)
 
 MAX_MEMBERS = 1000
@@ -79,7 +79,7 @@ def read_upload(folder: str | Path, student: str, *, keys=None) -> Upload:
     """
     folder = Path(folder)
     direct = read_student_folder(folder, student, keys=keys)
-    if direct.status != "missing" or not folder.is_dir():
+    if direct.status != SubmissionStatus.MISSING or not folder.is_dir():
         return Upload(direct, None)
     notes: list[str] = []
     chosen = choose(candidates(folder, notes), notes)
@@ -90,7 +90,7 @@ def read_upload(folder: str | Path, student: str, *, keys=None) -> Upload:
         if data is not None:
             notes.append(f"'{chosen.label}' is {chosen.size} bytes; answer files may be at most "
                          f"{MAX_FILE_BYTES} bytes")
-        return Upload(Submission(student, "unreadable", messages=tuple(notes)), chosen.label)
+        return Upload(Submission(student, SubmissionStatus.UNREADABLE, messages=tuple(notes)), chosen.label)
     suffix = PurePosixPath(chosen.label).suffix.lower()
     with tempfile.TemporaryDirectory(prefix="mechgrade-upload-") as tmp:
         (Path(tmp) / f"answers{suffix}").write_bytes(data)

@@ -35,7 +35,7 @@ from ..spec.solving import resolve_given_values
 from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, SteppedRange
 from ..tolerance import within
 from ..units import from_si, to_si
-from .results import StudentResult, StudentVariant, VariantGiven, unit_text
+from .results import StudentResult, StudentVariant, VariantGiven, Verdict, unit_text
 from .sheets import Question, Sheet, SheetProblem
 
 DRAW_LIMIT = 1000
@@ -82,7 +82,7 @@ def _value(draw: Draw, n: int) -> float:
     if isinstance(draw, Integers):
         return float(draw.low + n % (draw.high - draw.low + 1))
     if isinstance(draw, SteppedRange):
-        count = int(math.floor((draw.high - draw.low) / draw.step + 1e-9)) + 1
+        count = math.floor((draw.high - draw.low) / draw.step + 1e-9) + 1
         return round(draw.low + (n % count) * draw.step, 12)
     # a RoundedRange: the top 64 bits as a fraction of the range, then rounded
     u = (n >> 192) / 2.0 ** 64
@@ -504,7 +504,7 @@ def mark_neighbours(result: StudentResult, own: dict[str, ObjectiveResult],
     for i, answer in enumerate(result.answers):
         key = f"{answer.problem}.{answer.objective}"
         reference = own.get(key)
-        if (answer.verdict != "incorrect" or not answer.answer or reference is None
+        if (answer.verdict != Verdict.INCORRECT or not answer.answer or reference is None
                 or answer.problem not in drawn):
             continue
         value = answer_si(answer.answer, reference)

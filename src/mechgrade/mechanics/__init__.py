@@ -8,4 +8,4 @@ equations, givens and objectives at every level), ``derivation`` (the write-up t
 from .writeup import derivation
 from .kinematics import Kinematics, derive
 
-__all__ = ["Kinematics", "derive", "derivation"]
+__all__ = ["Kinematics", "derivation", "derive"]

@@ -81,7 +81,7 @@ SHAPES: dict[type, ShapeInertia] = {
     Sphere: ShapeInertia("a solid sphere", _round("2/5", None), "2/5"),
     Shell: ShapeInertia("a thin spherical shell", _round("2/3", None), "2/3"),
     Block: ShapeInertia("a rectangular block", _block),
-    Explicit: ShapeInertia("an inertia given", lambda shape, m, frame, scalar: explicit_inertia(
+    Explicit: ShapeInertia("an inertia given", lambda shape, _m, frame, scalar: explicit_inertia(
         {key: scalar(e) for key, e in shape.entries}, frame)),
 }
 """Every shape's inertia, by the shape's type."""

@@ -753,7 +753,7 @@ def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
 def _without_signs(expr):
     """``expr`` with ``sign(u)`` written ``u/|u|`` and cancelled: a spring's stiffness k, not
     k (1 - L/|u| + L u sign(u)/u^2), which holds wherever its length u is not zero."""
-    expr = expr.replace(sp.DiracDelta, lambda *args: sp.Integer(0))
+    expr = expr.replace(sp.DiracDelta, lambda *_: sp.Integer(0))
     return sp.cancel(expr.replace(sp.sign, lambda u: u / sp.Abs(u)))
 
 

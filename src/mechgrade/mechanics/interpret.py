@@ -12,7 +12,7 @@ asked for (never from ``Point.vel``'s path search).
 
 from __future__ import annotations
 
-from typing import Callable
+from typing import Callable, ClassVar
 
 from sympy.physics.vector import ReferenceFrame, Vector
 
@@ -32,7 +32,7 @@ class Interpreter:
     ``clear`` needs at the instant (an instantaneous centre needs planar motion).
     """
 
-    functions: dict[str, Callable] = {}
+    functions: ClassVar[dict[str, Callable]] = {}
     """Objective function name -> the method computing its value (set per class)."""
 
     def __init_subclass__(cls, **kwargs):

@@ -75,7 +75,7 @@ def kinetics_steps(problem: Problem) -> tuple[Step, ...]:
     def text(expr) -> str:
         return _text(sp.sympify(expr).xreplace(names))
 
-    steps = [_bodies(problem, model, show, expr_math),
+    steps = [_bodies(problem, model, expr_math),
              _loads(problem, matrix_math, text)]
     if isinstance(d.analysis, WorkEnergy):
         steps.append(_work_energy(kin, expr_math, text))
@@ -143,7 +143,7 @@ def _compact(math: str) -> str:
     return ElementTree.tostring(tree, encoding="unicode")
 
 
-def _bodies(problem: Problem, model, show: _Display, expr_math) -> Step:
+def _bodies(problem: Problem, model, expr_math) -> Step:
     d = dynamics_of(problem)
     inertias, _ = _inertias(d, model)
     lines, rows = [], []
@@ -170,7 +170,7 @@ def _bodies(problem: Problem, model, show: _Display, expr_math) -> Step:
                 own = central.to_matrix(frame) if central is not None else sp.zeros(3, 3)
                 rows.append(Row(f"body-{b.name}-{at}", _label(
                     f"part of mass {sp.sstr(model.plain(m))} at {at}, about {at}",
-                    _inertia(at, b.frame, expr_math(model.plain(own)))),
+                    _inertia(at, expr_math(model.plain(own)))),
                     f"I_{at} = {_text(model.plain(own))}"))
         matrix = sp.simplify(model.plain(total.to_matrix(frame))) if total != Dyadic(0) \
             else sp.zeros(3, 3)
@@ -178,12 +178,12 @@ def _bodies(problem: Problem, model, show: _Display, expr_math) -> Step:
             or any(at != b.centre for _, at, _ in parts) else ""
         rows.append(Row(f"inertia-{b.name}", _label(
             f"{b.name}, inertia about {b.centre} in {b.frame} axes{shifted}",
-            _inertia(b.centre, b.frame, expr_math(matrix))),
+            _inertia(b.centre, expr_math(matrix))),
             f"I_{b.centre} = {_text(matrix)}", ("other_shape_inertia", "inertia_omitted")))
     return Step("kinetics-bodies", "Bodies", tuple(lines), tuple(rows))
 
 
-def _inertia(at: str, frame: str, matrix: str) -> str:
+def _inertia(at: str, matrix: str) -> str:
     return (f"<mrow><msub><mi mathvariant=\"bold\">I</mi><mi>{at}</mi></msub><mo>=</mo>"
             f"{matrix}</mrow>")
 

@@ -604,7 +604,7 @@ def _check_contacts(problem: Problem, model: Model, loads: "_Loads") -> None:
             n = lang.vector(e)
             if identically_zero(model.plain(relative & n)):
                 continue
-            raise SolveError(_not_normal(problem, model, r, e.text, n, relative, act.on,
+            raise SolveError(_not_normal(model, r, e.text, n, relative, act.on,
                                          act.at), where=r.where)
     for f in d.friction:
         if not isinstance(f, StaticFriction):
@@ -636,7 +636,7 @@ def _relative_velocity(problem: Problem, model: Model, loads: "_Loads", body: st
     return v
 
 
-def _not_normal(problem: Problem, model: Model, r: Reaction, text: str, n: Vector,
+def _not_normal(model: Model, r: Reaction, text: str, n: Vector,
                 relative: Vector, body: str, point: str) -> str:
     s = model.symbols
     slides = []

@@ -46,12 +46,12 @@ def write_catalog(entries: tuple[CatalogEntry, ...], faults: tuple[CatalogFault,
                              where=_where(out)) from None
     names = safe_file_names([e.id for e in entries])
     written = [out / "index.html"]
-    write_text(written[0], _render(index, index_context(entries, faults, names), templates_dir))
+    write_text(written[0], _render(index, index_context(entries, faults, names)))
     for entry, name in zip(entries, names):
         path = out / "problems" / f"{name}.html"
         context = problem_context(entry, worked_html(replace(entry.worked, picture=""),
                                                      templates_dir, env))
-        write_text(path, _render(page, context, templates_dir))
+        write_text(path, _render(page, context))
         written.append(path)
     return tuple(written)
 

@@ -39,11 +39,10 @@ from html import escape
 
 from ..errors import ExportError
 from ..files import write_text
-from ..grade.results import GradeReport, SkippedEntry, StudentResult
+from ..grade.results import GradeReport, SkippedEntry, Status, StudentResult, Verdict
 from .output import counted, format_points, noun, shorten
 
 TOP = 5
-_CORRECT, _PARTIAL = "correct", "partial"
 
 
 @dataclass(frozen=True)
@@ -127,26 +126,26 @@ class ClassReport:
 
 def class_statistics(report: GradeReport, *, charts: bool = True) -> ClassReport:
     """All statistics of the class report (see module doc); ``charts=False`` skips the SVGs."""
-    graded = [s for s in report.students if s.status == "graded"]
+    graded = [s for s in report.students if s.status == Status.GRADED]
     scores = [s.score for s in graded]
     max_score = sum(o.max_points for o in report.objectives) or \
         max((s.max_score for s in report.students), default=0.0)
-    objectives = tuple(_objective_stats(report, o, graded) for o in report.objectives)
+    objectives = tuple(_objective_stats(o, graded) for o in report.objectives)
     problems = _problem_stats(report, graded)
     histogram = _histogram_svg(scores, max_score) if charts else ""
     success = _success_svg(objectives) if charts else ""
     return ClassReport(
         assignment_id=report.assignment.id, title=report.assignment.title, max_score=max_score,
         students=len(report.students), graded=len(graded),
-        missing=sum(s.status == "missing" for s in report.students),
-        unreadable=sum(s.status == "unreadable" for s in report.students),
+        missing=sum(s.status == Status.MISSING for s in report.students),
+        unreadable=sum(s.status == Status.UNREADABLE for s in report.students),
         mean=statistics.fmean(scores) if scores else None,
         median=statistics.median(scores) if scores else None,
         stdev=statistics.pstdev(scores) if len(scores) > 1 else None,
         lowest=min(scores, default=None), highest=max(scores, default=None),
         histogram_svg=histogram, success_svg=success, objectives=objectives,
         problems=problems, issues=_issues(report),
-        not_evaluated=sum(s.status == "not_evaluated" for s in report.students),
+        not_evaluated=sum(s.status == Status.NOT_EVALUATED for s in report.students),
         skipped=report.skipped, notes=report.notes, internal_errors=report.internal_errors,
         failing_expects=tuple(map(str, report.failing_expects)))
 
@@ -202,21 +201,21 @@ def load_mistake_label(row) -> str:
     return f"{', '.join(row.mistakes)}: the {row.kind} {row.load}"
 
 
-def _objective_stats(report, objective, graded) -> ObjectiveStats:
+def _objective_stats(objective, graded) -> ObjectiveStats:
     answers = [_answer(s, objective.problem, objective.objective) for s in graded]
-    verdicts = [a.verdict if a is not None else "missing" for a in answers]
+    verdicts = [a.verdict if a is not None else Verdict.MISSING for a in answers]
     n = len(graded)
     wrong = [" ".join(a.answer.split()) for a in answers
-             if a is not None and a.answer and a.verdict not in (_CORRECT, "unreadable")]
+             if a is not None and a.answer and a.verdict not in (Verdict.CORRECT, Verdict.UNREADABLE)]
     diagnoses = [a.diagnosis.strip() for a in answers
-                 if a is not None and a.diagnosis and a.verdict != _CORRECT]
+                 if a is not None and a.diagnosis and a.verdict != Verdict.CORRECT]
     diagnoses += [label for a in answers if a is not None
                   for label in dict.fromkeys(map(load_mistake_label, a.loads)) if label]
     fractions = [(a.points / objective.max_points) if a is not None and objective.max_points
                  else 0.0 for a in answers]
     return ObjectiveStats(
         objective.problem, objective.objective, objective.prompt, objective.max_points, n,
-        success_rate=verdicts.count(_CORRECT) / n if n else None,
+        success_rate=verdicts.count(Verdict.CORRECT) / n if n else None,
         mean_fraction=statistics.fmean(fractions) if n else None,
         verdicts=tuple(Count(v, verdicts.count(v), verdicts.count(v) / n)
                        for v in dict.fromkeys(verdicts)) if n else (),
@@ -254,34 +253,34 @@ def _correlation(xs: list[float], ys: list[float]) -> float | None:
     return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / math.sqrt(sxx * syy)
 
 
-_SAID = {"unreadable": "could not be read", "missing": "no answer"}
+_SAID = {Verdict.UNREADABLE: "could not be read", Verdict.MISSING: "no answer"}
 
 
 def _issues(report: GradeReport) -> tuple[StudentIssue, ...]:
     issues = []
     for s in report.students:
-        if s.status != "graded":
-            detail = "; ".join(s.messages) or ("no submission found" if s.status == "missing"
+        if s.status != Status.GRADED:
+            detail = "; ".join(s.messages) or ("no submission found" if s.status == Status.MISSING
                                                else "the submission could not be read")
             issues.append(StudentIssue(s.id, s.name, s.status, "all", detail))
             continue
-        bad = [a for a in s.answers if a.verdict in ("unreadable", "missing")]
+        bad = [a for a in s.answers if a.verdict in (Verdict.UNREADABLE, Verdict.MISSING)]
         answered = {(a.problem, a.objective) for a in s.answers}
         absent = [o for o in report.objectives if (o.problem, o.objective) not in answered]
         if bad or absent:
             names = [f"{a.problem}.{a.objective} ({_SAID[a.verdict]})" for a in bad] + \
-                    [f"{o.problem}.{o.objective} ({_SAID['missing']})" for o in absent]
+                    [f"{o.problem}.{o.objective} ({_SAID[Verdict.MISSING]})" for o in absent]
             # why each answer could not be read; "No answer was given." said nothing new
             details = [f"{a.problem}.{a.objective}: {a.feedback}" for a in bad
-                       if a.feedback and a.verdict == "unreadable"] + list(s.messages)
-            issues.append(StudentIssue(s.id, s.name, "graded", ", ".join(names),
+                       if a.feedback and a.verdict == Verdict.UNREADABLE] + list(s.messages)
+            issues.append(StudentIssue(s.id, s.name, Status.GRADED, ", ".join(names),
                                        "; ".join(details)))
     return tuple(issues)
 
 
 # --- charts -----------------------------------------------------------------------------------
 
-_COLOURS = {"correct": "#2e7d32", "partial": "#f9a825", "incorrect": "#c62828",
+_COLOURS = {Verdict.CORRECT: "#2e7d32", Verdict.PARTIAL: "#f9a825", Verdict.INCORRECT: "#c62828",
             "other": "#9e9e9e"}
 
 
@@ -362,7 +361,8 @@ def _histogram_svg(scores: list[float], max_score: float) -> str:
                     "; ".join(said) + "." if said else "No graded submissions.")
 
 
-_KINDS = {"correct": "correct", "partial": "partly correct", "incorrect": "incorrect",
+_KINDS = {Verdict.CORRECT: "correct", Verdict.PARTIAL: "partly correct",
+          Verdict.INCORRECT: "incorrect",
           "other": "unreadable or missing"}
 
 
@@ -374,7 +374,7 @@ def _success_svg(objectives: tuple[ObjectiveStats, ...]) -> str:
         fig, ax = plt.subplots(figsize=(7, 0.45 * max(len(labels), 1) + 1.0))
         left = [0.0] * len(objectives)
         said: list[list[str]] = [[] for _ in objectives]
-        for key in ("correct", "partial", "incorrect", "other"):
+        for key in (Verdict.CORRECT, Verdict.PARTIAL, Verdict.INCORRECT, "other"):
             shares = []
             for o in objectives:
                 wanted = {c.label: c.share for c in o.verdicts}

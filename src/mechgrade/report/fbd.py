@@ -167,7 +167,7 @@ def fbd_description(diagram: FreeBodyDiagram) -> str:
     loads = []
     for load in diagram.loads:
         where = f" at {load.point}" if load.point else ""
-        words = f"{_KIND_WORDS.get(load.kind, 'the load')} {_plain(load, 0)}{where}"
+        words = f"{_KIND_WORDS.get(load.kind, 'the load')} {_plain(load)}{where}"
         if load.unknown:
             words += ", unknown (drawn dashed, marked ?)"
             if len(load.components) > 1:
@@ -425,7 +425,7 @@ def _text_of(load: DiagramLoad, i: int) -> tuple[str, str, str]:
         else ""
 
 
-def _plain(load: DiagramLoad, i: int) -> str:
+def _plain(load: DiagramLoad) -> str:
     base, sub, rest = _text_of(load, 0)
     if load.unknown and len(load.components) > 1:
         base, sub = _symbol(load.name) if load.kind != LoadKind.WEIGHT else ("W", "")

@@ -68,7 +68,7 @@ def write_handouts(sheets: tuple[Sheet, ...], out_dir: str | Path,
         for template, suffix in zip(templates, (".html", ".md")):
             path = out / (name + suffix)
             write_text(path, _render(template, sheet_context(sheet, suffix == ".md",
-                                                             name + ".txt"), templates_dir))
+                                                             name + ".txt")))
             written.append(path)
         written.append(out / (name + ".txt"))
         write_text(written[-1], answer_file(sheet, name + ".txt"))

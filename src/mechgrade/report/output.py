@@ -35,7 +35,8 @@ from ..export import EXPORTERS
 from ..outfolder import OutputKind
 from ..parallel import outcome, worker_started
 from ..resources import shipped_dir
-from ..grade.results import ECF_DIAGNOSIS, AnswerResult, GradeReport, StudentResult
+from ..grade.results import (ECF_DIAGNOSIS, AnswerResult, GradeReport, Status, StudentResult,
+                             Verdict)
 
 if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
     from multiprocessing.connection import Connection
@@ -51,18 +52,18 @@ GRADE_OUTPUTS = OutputKind("mechgrade grade", "results.json", (
 """What ``mechgrade grade`` writes into ``--out`` (see :mod:`mechgrade.outfolder`)."""
 
 VERDICT_LABELS = {
-    "correct": "Correct",
-    "partial": "Partly correct",
-    "incorrect": "Incorrect",
-    "unreadable": "Could not be read",
-    "missing": "No answer",
-    "not_evaluated": "Not evaluated",
+    Verdict.CORRECT: "Correct",
+    Verdict.PARTIAL: "Partly correct",
+    Verdict.INCORRECT: "Incorrect",
+    Verdict.UNREADABLE: "Could not be read",
+    Verdict.MISSING: "No answer",
+    Verdict.NOT_EVALUATED: "Not evaluated",
 }
 STATUS_LABELS = {
-    "graded": "Graded",
-    "missing": "No submission",
-    "unreadable": "Submission could not be read",
-    "conflict": "Not graded: more than one match with the roster",
+    Status.GRADED: "Graded",
+    Status.MISSING: "No submission",
+    Status.UNREADABLE: "Submission could not be read",
+    Status.CONFLICT: "Not graded: more than one match with the roster",
 }
 
 
@@ -330,27 +331,27 @@ def _render_students(bounds: tuple[int, int]) -> tuple[list[tuple[str, str]], li
     """The (html, markdown) pages of the report's students ``bounds[0]:bounds[1]``, and the
     faults met (a broken template raises :class:`MechgradeError`)."""
     rendering = _RENDERING[0]
-    report, templates_dir = rendering.report, rendering.templates_dir
+    report = rendering.report
     prompts = _prompts(report)
     pages: list[tuple[str, str]] = []
     faults: list[str] = []
     for student in report.students[bounds[0]:bounds[1]]:
-        html, markdown = (_feedback_page(report, student, template, suffix, templates_dir,
-                                         faults, prompts)
+        html, markdown = (_feedback_page(report, student, template, suffix, faults,
+                                         prompts)
                           for template, suffix in zip(rendering.templates, (".html", ".md")))
         pages.append((html, markdown))
     return pages, faults
 
 
 def _feedback_page(report: GradeReport, student: StudentResult, template, suffix: str,
-                   templates_dir, faults: list[str], prompts: dict) -> str:
+                   faults: list[str], prompts: dict) -> str:
     try:
         context = _context(report, student, prompts)
         if suffix == ".md":
             context = _escape_all(context)
         context.update(worked_context(_WORKED[0] if _WORKED else None, student, prompts,
                                       markdown=suffix == ".md"))
-        return _render(template, context, templates_dir)
+        return _render(template, context)
     except MechgradeError:
         raise  # a broken template is the instructor's to fix, for every student alike
     except Exception as exc:  # noqa: BLE001 - one student's page must not stop the others
@@ -410,7 +411,7 @@ def _template(env, name: str):
                              ) from None
 
 
-def _render(template, context: dict, templates_dir) -> str:
+def _render(template, context: dict) -> str:
     import jinja2
 
     try:
@@ -534,7 +535,7 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
              for step in worked.steps]
     context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
                      "picture": worked.picture, "steps": steps}}
-    return Markup(_render(_template(env, "worked.html.j2"), context, templates_dir))
+    return Markup(_render(_template(env, "worked.html.j2"), context))
 
 
 def spoken_math(math: str, text: str) -> str:
@@ -610,7 +611,7 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
             "feedback": answer.feedback or "",
             # a right answer's "Correct." says nothing the verdict does not
             "explained": bool(answer.feedback or answer.diagnosis)
-                         and (answer.verdict != "correct" or bool(answer.diagnosis)),
+                         and (answer.verdict != Verdict.CORRECT or bool(answer.diagnosis)),
             "expected": pretty_math(expected_shown(answer)),
             # a free-body diagram's rows, one per load
             "loads": [{"label": load.label if load.load is None or load.label == load.load
@@ -668,8 +669,8 @@ def expected_shown(answer: AnswerResult) -> str:
 
 
 NOTHING_READ = {
-    "missing": "No answers were found for you, so {none} graded.",
-    "unreadable": "Your answers could not be read (see “About your submission”), so {none} "
+    Status.MISSING: "No answers were found for you, so {none} graded.",
+    Status.UNREADABLE: "Your answers could not be read (see “About your submission”), so {none} "
                   "graded.",
 }
 
@@ -710,7 +711,7 @@ def noun(n: int, singular: str, plural: str | None = None) -> str:
     return singular if n == 1 else plural or singular + "s"
 
 
-def verdict_label(verdict: str, diagnosis: str | None) -> str:
+def verdict_label(verdict: Verdict, diagnosis: str | None) -> str:
     """The verdict as the page names it; credit earned through error carried forward says so
     (a wrong value under a bare "Correct" reads as a mistake of the grader's).
 
@@ -719,7 +720,7 @@ def verdict_label(verdict: str, diagnosis: str | None) -> str:
     """
     label = VERDICT_LABELS.get(verdict, verdict)
     return (f"{label} ({ECF_DIAGNOSIS})"
-            if diagnosis == ECF_DIAGNOSIS and verdict in ("correct", "partial") else label)
+            if diagnosis == ECF_DIAGNOSIS and verdict in (Verdict.CORRECT, Verdict.PARTIAL) else label)
 
 
 def diagnosis_label(diagnosis: str | None, feedback: str | None) -> str:

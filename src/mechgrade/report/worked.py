@@ -29,7 +29,7 @@ def steps_html(worked: WorkedSolution, templates_dir=None) -> str:
     env = template_environment(templates_dir)
     context = {"title": f"{worked.problem}: {worked.title}",
                "worked": worked_html(worked, templates_dir, env)}
-    return _render(_template(env, "steps.html.j2"), context, templates_dir)
+    return _render(_template(env, "steps.html.j2"), context)
 
 
 def steps_markdown(worked: WorkedSolution) -> str:

@@ -4,5 +4,5 @@ from .entry import solve
 from .plan import kinematics_plan
 from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 
-__all__ = ["solve", "kinematics_plan", "Solution", "ObjectiveResult", "MistakeValue", "StateValue",
-           "ObjectiveFailure"]
+__all__ = ["MistakeValue", "ObjectiveFailure", "ObjectiveResult", "Solution", "StateValue",
+           "kinematics_plan", "solve"]

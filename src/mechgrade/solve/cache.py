@@ -197,7 +197,7 @@ def _opened() -> _Folder:
 
 
 @lru_cache(maxsize=8)
-def _state(on: bool, *settings: str | None) -> _Folder:
+def _state(on: bool, *settings: str | None) -> _Folder:  # noqa: ARG001 - the cache key
     """The folder for these settings (the arguments are only the cache's key), checked and
     its key read or made once per process."""
     if not on:

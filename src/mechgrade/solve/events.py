@@ -127,11 +127,14 @@ class _ScalarMotion:
             x = solve(at(t, y))
             return np.concatenate([y[index.n:], x[qdd]])
 
+        event = ap.until
+        assert event is not None, "an integration always has its event (Integration.until)"
+
         def until(t, y):
             # an event of the state alone is read without the balances (which are undefined
             # where a slip speed is exactly zero)
             x = solve(at(t, y)) if ap.until_kinetic else extended(kp, at(t, y))
-            return value_at(ap.until, x)
+            return value_at(event, x)
 
         self.at, self.rhs, self.until = at, rhs, until
         self.y0 = np.concatenate([values[q], values[qd]])

@@ -33,7 +33,7 @@ def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict
     zeros = {sym: sp.Integer(0) for sym, (_, si, _) in given_symbols.items()
              if si == 0 and sym not in declared.values()}
     expr = _simplify((k.objective(objective.id) if expr is None else expr).xreplace(zeros))
-    for level, rates, equations in ((2, k.qdd, k.acceleration), (1, k.qd, k.velocity),
+    for _level, rates, equations in ((2, k.qdd, k.acceleration), (1, k.qd, k.velocity),
                                     (0, k.q, k.position)):
         unknown = [s for s in rates if s not in known]
         needed = [str(u) for u in unknown if u in expr.free_symbols]
@@ -75,7 +75,7 @@ def _simplify(expr):
 
 
 def _exact(entry) -> sp.Expr:
-    key, si, given = entry
+    _key, si, given = entry
     if given is None:
         return sp.Float(si)
     value = sp.Rational(repr(given.value)) if math.isfinite(given.value) else sp.Float(si)

@@ -3,4 +3,4 @@
 from .load import load_problem, load_problem_text, problem_schema
 from .model import Problem
 
-__all__ = ["load_problem", "load_problem_text", "problem_schema", "Problem"]
+__all__ = ["Problem", "load_problem", "load_problem_text", "problem_schema"]

@@ -836,7 +836,8 @@ class _Checker:
         for c in d.couples:
             self.body(c.on, c.where)
             self.typed(c.moment, "vector", "N*m", "a moment vector")
-        for s in (*d.springs, *d.dampers):
+        ends: tuple[Spring | Damper, ...] = (*d.springs, *d.dampers)
+        for s in ends:
             for p, b in zip(s.between, s.on):
                 self.point(p, s.where, "between")
                 self.body(b, s.where, ground_ok=True)
@@ -932,6 +933,7 @@ class _Checker:
 
     def design(self):
         design = self.d.design
+        assert design is not None  # called only for a problem with a design
         params = {p.name for p in self.problem.parameters}
         given = {g.key.text.strip() for g in self.problem.givens}
         if design.find not in params or design.find in given:
@@ -1048,7 +1050,7 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
         raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "
                         f"{', '.join(missing)}", where=analysis.where)
     if isinstance(analysis, WorkEnergy):
-        for key, sense in analysis.sense:
+        for key, _ in analysis.sense:
             node = key.node
             if not (isinstance(node, Prime) and node.order == 1 and node.id in coords):
                 raise SpecError(f"expected a rate (q') in 'sense', found '{key.text}'",

@@ -187,5 +187,5 @@ def _evaluate(node: Node, values: Mapping, g: Given):
         raise SpecError(f"cannot evaluate '{g.text}': {err}", where=g.where) from None
 
 
-__all__ = ["expand", "read_definitions", "read_unknowns", "read_branches", "check_solving",
-           "resolve_given_values", "given_unit"]
+__all__ = ["check_solving", "expand", "given_unit", "read_branches", "read_definitions",
+           "read_unknowns", "resolve_given_values"]

@@ -94,7 +94,7 @@ class Requirement:
                 return math.pi
             return values[to_text(node)]
 
-        def call(func, args):
+        def call(func, _args):
             raise SpecError(f"expected arithmetic of givens in a condition, found {func}()",
                             where=self.where)
 

@@ -46,8 +46,8 @@ from .validate import did_you_mean
 from .variant_model import (COMPARISON, PLACEHOLDER, Bound, Choices, Draw, Integers,
                             Requirement, RoundedRange, SteppedRange, Variants)
 
-__all__ = ["read_variants", "read_requirement", "Variants", "Draw", "SteppedRange",
-           "RoundedRange", "Choices", "Integers", "Requirement", "Bound", "PLACEHOLDER"]
+__all__ = ["PLACEHOLDER", "Bound", "Choices", "Draw", "Integers", "Requirement", "RoundedRange",
+           "SteppedRange", "Variants", "read_requirement", "read_variants"]
 
 
 def read_requirement(text: str, where: Location) -> Requirement:
@@ -74,7 +74,7 @@ def read_requirement(text: str, where: Location) -> Requirement:
 
 
 def read_variants(data: dict, givens: tuple[Given, ...], names: Mapping[str, str], where,
-                  statement: str = "", usable=lambda *path: True
+                  statement: str = "", usable=lambda *_: True
                   ) -> tuple[Variants | None, list[SpecError]]:
     """The ``variants:`` section of a problem's data (already schema-checked), and every
     error found in it. ``where(*path)`` locates a value; ``names`` maps what a bound may

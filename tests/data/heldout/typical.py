@@ -423,9 +423,9 @@ def pucks_oblique_impact():
     hA, hB = line(vA, -vB, e)
     # restitution on both components: tangential parts also scaled by -e? students scale by e
     # elastic: e = 1
-    eA, eB = line(uA[0], uB[0], 1.0)
+    eA, _eB = line(uA[0], uB[0], 1.0)
     # sin/cos exchanged in the incoming velocities
-    sA, sB = line(vA * np.sin(30 * DEG), -vB * np.sin(60 * DEG), e)
+    sA, _sB = line(vA * np.sin(30 * DEG), -vB * np.sin(60 * DEG), e)
     return [row("velocity_A", "head-on: the whole speeds along the line of centres", "head_on",
                 vec([hA, 0.0], "m/s")),
             row("velocity_A", "perfectly elastic (e = 1)", "restitution_ignored",
@@ -463,11 +463,11 @@ def ball_strikes_hanging_rod():
         A = np.array([[m * d, I], [-1.0, d]])
         return np.linalg.solve(A, [m * v0 * d, ee * v0])
     v_g, w_g = solve(M * L**2 / 12, e)  # I_G for I_O
-    v_p, w_p = solve(M * L**2 / 3, 0.0)  # plastic
-    v_1, w_1 = solve(M * L**2 / 3, 1.0)  # elastic
+    _v_p, w_p = solve(M * L**2 / 3, 0.0)  # plastic
+    _v_1, w_1 = solve(M * L**2 / 3, 1.0)  # elastic
     # linear momentum conserved (pin ignored): m v0 = m v + M (L/2) w, with restitution
     A = np.array([[m, M * L / 2], [-1.0, d]])
-    v_l, w_l = np.linalg.solve(A, [m * v0, e * v0])
+    _v_l, w_l = np.linalg.solve(A, [m * v0, e * v0])
     ref = REFERENCE["ball_strikes_hanging_rod"]()
     return [row("omega_after", "I_G = M L^2/12 used about the pin", "inertia_about_wrong_point",
                 num(w_g, "rad/s")),

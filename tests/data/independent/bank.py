@@ -279,7 +279,7 @@ def case_rod_in_two_slots_ic():
     # path (the line through B perpendicular to the slot)
     n_B = np.array([-np.sin(be), np.cos(be)])
     # I = A + s (0, 1) = B + u n_B
-    s, u = np.linalg.solve(np.column_stack([[0.0, 1.0], -n_B]), B - A)
+    s, _u = np.linalg.solve(np.column_stack([[0.0, 1.0], -n_B]), B - A)
     I = A + s * np.array([0.0, 1.0])
     w = vA / s  # v_A = w k x (A - I) = w k x (-s j) = w s i
     vB = _rot(w, B - I) @ np.array([np.cos(be), np.sin(be)])

@@ -75,7 +75,7 @@ def _cylinder_givens():
 
 def case_bowling_3_15_5_cylinder():
     g = _cylinder_givens()
-    XA, YA = rot(g["th"])
+    XA, _YA = rot(g["th"])
     P_AB = g["r"] * XA
     # P_NA = -x X_N - y Y_N  ->  V_A = -xd X_N - yd Y_N, A_A = -xdd X_N - ydd Y_N
     V_A = np.array([-g["xd"], -g["yd"], 0.0])
@@ -128,7 +128,7 @@ def case_bowling_3_15_7_rolling_ball_mound():
     # integrate with alpha = theta = 0 at the top: r theta = R alpha
     # phi = alpha + theta = alpha (R + r)/r  ->  alpha = phi r/(R + r)
     alpha = phi * r / (R + r)
-    XB, YB = rot(alpha)
+    _XB, YB = rot(alpha)
     P_NA = (R + r) * YB  # line of centres along Y_B
     return {
         "P_NA_N": vec(P_NA),

@@ -282,7 +282,7 @@ def case_ruina_9_22_marble_bowling_ball():
         v = mass * v0 * radius / (mass * radius + 0.4 * mass * radius)
         return (v0 - v) / (mu * g), v  # linear impulse of mu m g
 
-    t_marble, v = rolling(r, 0.005)
+    t_marble, _v = rolling(r, 0.005)
     t_bowling, _ = rolling(R, 20.48)
     return {"t_star": "2*v0/(7*mu*g)", "v_at_t_star": "5*v0/7",
             "ratio_t_star_bowling_over_marble": t_bowling / t_marble, "t_star_s": t_marble,

@@ -74,12 +74,12 @@ def ruina_10_1_cycloid():
     for tag, t0 in (("pi_2", math.pi / 2), ("pi", math.pi), ("2pi", 2 * math.pi)):
         v = V(Vh - R * w * math.cos(w * t0), R * w * math.sin(w * t0))      # dr/dt
         a = V(R * w**2 * math.sin(w * t0), R * w**2 * math.cos(w * t0))     # d2r/dt2
-        vf, af = fd(lambda t: P(t0 + t))
+        vf, af = fd(lambda t, t0=t0: P(t0 + t))
         close(v, vf), close(a, af)
         res["v_" + tag] = out(v)
         res["speed_" + tag] = out([np.linalg.norm(v)])[0]
         if tag != "2pi":                            # cusp at 2 pi: e_t undefined
-            sp, e_t, *_, rho = path_quantities(v, a)
+            _sp, e_t, *_, rho = path_quantities(v, a)
             res["e_t_" + tag] = out(e_t)
             res["rho_" + tag] = float(rho)
             close(rho, 4 * R * abs(math.sin(w * t0 / 2)))   # known cycloid result
@@ -229,8 +229,8 @@ def ruina_10_9_unit_vector_rates():
            "jprime_dot_x": "-omega", "jprime_dot_y": "0"}
     omega, q0, beta = 1.7, 0.4, 0.9               # arbitrary check values
     for name, off in (("eR", beta), ("iprime", 0.0)):
-        e1 = lambda t: rot(q0 + omega * t + off)[0]
-        e2 = lambda t: rot(q0 + omega * t + off)[1]
+        e1 = lambda t, off=off: rot(q0 + omega * t + off)[0]
+        e2 = lambda t, off=off: rot(q0 + omega * t + off)[1]
         ax, ay = (("eR", "etheta") if name == "eR" else ("iprime", "jprime"))
         for vec, nm in ((e1, ax), (e2, ay)):
             d = fd(vec)[0]

@@ -17,7 +17,8 @@ from pathlib import Path
 import yaml
 
 from mechgrade.grade import diagnose
-from mechgrade.grade.compare import Policy, assess
+from mechgrade.grade.compare import assess
+from mechgrade.grade.policy import GradingPolicy
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem
@@ -39,7 +40,7 @@ def code_of(label: str | None, result) -> str | None:
     return codes.get(label, label)
 
 
-def classify(row: dict, result, policy: Policy = Policy()) -> tuple[str, object]:
+def classify(row: dict, result, policy: GradingPolicy = GradingPolicy()) -> tuple[str, object]:
     judged = assess(row["answer"], result, policy)
     if judged.verdict == "correct":
         return "correct", judged

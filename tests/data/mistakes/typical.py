@@ -98,7 +98,7 @@ def cylinder():
         v = vA + td * r * ey
         a = aA + tdd * r * ey - td**2 * r * ex
         return v, a, ex, ey
-    v, a, ex, ey = b()
+    v, a, ex, _ey = b()
     v_rad, _, _, _ = b(th=60.0)
     v_m, _, _, _ = b(r=1.0)
     return [entry("vB_mag", "60 used as radians", num(np.linalg.norm(v_rad), "m/s"),
@@ -272,7 +272,7 @@ def rod_collar_disk():
     disk_x = V(math.cos(ph), math.sin(ph))
     # xAd X + L θ' rod_y + R φ' disk_x = 0 (x and y components)
     m = np.array([[L * rod_y[0], R * disk_x[0]], [L * rod_y[1], R * disk_x[1]]])
-    thd, phd = np.linalg.solve(m, -np.array([xAd, 0.0]))
+    thd, _phd = np.linalg.solve(m, -np.array([xAd, 0.0]))
     vA = V(xAd, 0)
     vB = vA + L * thd * rod_y
     return [entry("omega_AB_z", "rod taken to turn counterclockwise", num(-thd, "rad/s"),
@@ -530,7 +530,7 @@ def ball_skid():
     def rolls(k, mu_g=mu * g):  # I = k m r²: v0 - mu g t = mu g t / k
         t = v0 * k / (mu_g * (1 + k))
         return t, v0 - mu_g * t, v0 * t - mu_g * t**2 / 2
-    t, v, _ = rolls(0.4)
+    _t, v, _ = rolls(0.4)
     return [entry("v_at_t_star", "ball taken as a thin shell (2/3 m r²)",
                   num(rolls(2 / 3)[1], "m/s"), "other_shape_inertia"),
             entry("t_star", "ball taken as a thin shell (2/3 m r²)",

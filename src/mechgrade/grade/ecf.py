@@ -1,0 +1,325 @@
+"""Error carried forward (ECF): an answer judged again against the reference recomputed from
+the student's own wrong upstream answers.
+
+An objective may declare ``depends_on: [upstream]`` in its spec. When a student's upstream
+answer is wrong and the downstream one is not right, the downstream answer is judged again
+against the reference recomputed from the student's own upstream value
+(``solve(problem, givens={key: si_value})``), and keeps the better credit (times
+``policy.ecf.credit``). This needs the upstream objective to be a plain given quantity (a
+coordinate, its rate or a parameter); otherwise the feedback says ECF could not be applied.
+Every method takes the student's own plan (their variant's references): nothing here holds
+one student's state between calls but the cache of re-solves, keyed by problem and givens.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import TYPE_CHECKING, Callable, Iterable, Protocol
+
+from ..errors import InconsistentError, MechgradeError
+from ..expressions.syntax import Name, Prime
+from ..parallel import fork_map
+from ..spec.model import Objective, ObjectiveKind, Problem
+from .policy import GradingPolicy
+from .results import AnswerResult, Verdict
+from .submissions import Submission, SubmissionStatus
+
+if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
+    from ..solve.result import ObjectiveResult, Solution
+    from .compare import Assessment
+    from .run import Plan, PlannedObjective
+
+Resolver = Callable[[Problem, dict], "Solution"]
+
+
+class Judging(Protocol):
+    """What ECF asks of the run's judge: judge one answer, look one up, judge a batch."""
+
+    def assess(self, text: str, result: ObjectiveResult) -> Assessment: ...
+
+    def judged(self, result: ObjectiveResult, text: str) -> Assessment | None: ...
+
+    def judge_all(self, pairs: Iterable[tuple[ObjectiveResult, str]]) -> None: ...
+
+
+class CarriedForward:
+    """ECF for one grading run: ``resolve(problem, givens)`` recomputes a solution (default
+    :func:`mechgrade.solve.solve`); re-solves are kept, and prefetched over ``jobs``."""
+
+    def __init__(self, policy: GradingPolicy, judging: Judging,
+                 resolve: Resolver | None = None, jobs: int = 1) -> None:
+        self.policy = policy
+        self._judging = judging
+        self._resolve = resolve
+        self._jobs = jobs
+        self._solutions: dict[tuple, tuple] = {}
+
+    @property
+    def enabled(self) -> bool:
+        return self.policy.ecf.enabled
+
+    def prefetch(self, work: Iterable[tuple[Plan, Submission]]) -> None:
+        """Solve, over the jobs, the re-solves :meth:`carry_forward` will ask for (each
+        student's ``(plan, submission)`` in ``work``), into :meth:`solve_with`'s cache: they
+        take most of a run's grading time when they are solved one after the other. Then judge
+        the answers again against them, in one batch (not one round trip per answer). One not
+        foreseen here (an upstream answer itself carried forward) is solved when asked; a
+        fault of mechgrade's here leaves every one to be solved when asked."""
+        if self._resolve is not None or not self.enabled:
+            return
+        try:
+            requests: dict[tuple, tuple] = {}
+            again: dict[tuple, None] = {}  # (re-solve key, answer, objective) to judge again
+            for plan, submission in work:
+                for item in (i for i in plan.objectives if i.objective.depends_on):
+                    text = (submission.answer(item.key)
+                            if submission.status == SubmissionStatus.READ else None)
+                    judged = (self._judging.judged(item.result, text)
+                              if text is not None else None)
+                    if judged is None or judged.verdict == Verdict.CORRECT:
+                        continue
+                    found = self.upstream_givens(plan, item, submission, {})
+                    if isinstance(found, dict) and found:
+                        givens = {**dict(item.givens), **found}
+                        key = _key(item.problem, givens, item.objective.id)
+                        if key not in self._solutions:
+                            requests[key] = (item.problem, givens, item.objective.id)
+                        again[key, text, item.objective.id] = None
+            _CARRYING[:] = [self]  # inherited by the forked workers
+            try:
+                solved = fork_map(_solve_carried, list(requests.values()), jobs=self._jobs)
+            finally:
+                _CARRYING.clear()
+            self._solutions.update(zip(requests, solved))
+            todo: list[tuple[ObjectiveResult, str]] = []
+            for key, text, objective_id in again:
+                solution = self._solutions[key][0]
+                if isinstance(solution, MechgradeError):
+                    continue  # not solved: the per-answer path says why
+                try:
+                    todo.append((solution.result(objective_id), text))
+                except (KeyError, MechgradeError):
+                    continue
+            self._judging.judge_all(todo)
+        except Exception:  # noqa: BLE001 - see the docstring: the per-answer path reports it
+            pass
+
+    def upstream_givens(self, plan: Plan, item: PlannedObjective, submission: Submission,
+                        earlier: dict[str, AnswerResult]) -> dict[str, float] | str:
+        """The givens (SI, by given key) the student's wrong upstream answers stand for, or
+        the feedback saying why error carried forward cannot use them."""
+        problem = item.problem
+        overrides: dict[str, float] = {}
+        for upstream_id in item.objective.depends_on:
+            key = f"{problem.id}.{upstream_id}"
+            upstream = earlier.get(key)
+            if upstream is None:
+                upstream_text = submission.answer(key)
+                if upstream_text is None:
+                    continue  # not graded in this assignment and not answered
+                try:
+                    up_result = _reference(plan, problem, upstream_id)
+                except KeyError:
+                    continue
+                upstream_verdict = self._judging.assess(upstream_text, up_result).verdict
+            else:
+                upstream_text, upstream_verdict = upstream.answer, upstream.verdict
+            if upstream_verdict == Verdict.CORRECT or upstream_text is None:
+                continue
+            if upstream_verdict in (Verdict.UNREADABLE, Verdict.MISSING, Verdict.NOT_EVALUATED):
+                continue
+            objective = upstream_objective(problem, upstream_id)
+            if objective is None:
+                continue
+            given_key = given_key_of(objective)
+            if given_key is None:
+                return (f"Error carried forward could not be applied: '{upstream_id}' is not a "
+                        f"plain given quantity the solver can take from your answer.")
+            value = _si_value(upstream_text, _reference(plan, problem, upstream_id))
+            if value is None:
+                return (f"Error carried forward could not be applied: your answer to "
+                        f"'{upstream_id}' could not be read as a number.")
+            overrides[given_key] = value
+        return overrides
+
+    def carry_forward(self, plan: Plan, item: PlannedObjective, text: str,
+                      submission: Submission, earlier: dict[str, AnswerResult],
+                      verdict: Verdict, credit: float,
+                      feedback: list[str]) -> tuple[Verdict, float]:
+        """Judge ``text`` again against the reference recomputed from the student's own
+        (wrong) upstream answers; keep the better credit (``feedback`` says which)."""
+        problem = item.problem
+        overrides = self.upstream_givens(plan, item, submission, earlier)
+        if isinstance(overrides, str):
+            feedback.append(overrides)
+            return verdict, credit
+        if not overrides:
+            return verdict, credit
+        answered = sorted(overrides)
+        overrides = {**dict(item.givens), **overrides}  # on the student's own variant
+        solution, replaced = self.solve_with(problem, overrides, item.objective.id)
+        if isinstance(solution, MechgradeError):
+            feedback.append(f"Error carried forward could not be applied: with your "
+                            f"{listing(answered)} the problem cannot be solved "
+                            f"({solution.message}).")
+            return verdict, credit
+        try:
+            recomputed = solution.result(item.objective.id)
+        except KeyError:
+            return verdict, credit
+        again = self._judging.assess(text, recomputed)
+        ecf_credit = float(again.credit) * self.policy.ecf.credit
+        upstream_names = listing(sorted(item.objective.depends_on))
+        if again.verdict in (Verdict.CORRECT, Verdict.PARTIAL) and ecf_credit > credit:
+            instead = f" (used in place of {listing(replaced)})" if replaced else ""
+            # one sentence: what the answer was told against the reference no longer holds
+            feedback[:] = [f"Error carried forward: this answer follows correctly from your "
+                           f"answer to {upstream_names}{instead} and earns {ecf_credit:.0%} "
+                           f"of the points."]
+            return (Verdict.CORRECT if ecf_credit >= 1.0 else Verdict.PARTIAL), ecf_credit
+        feedback.append(f"Also checked with your own answer to {upstream_names} (error "
+                        f"carried forward): it does not follow from it either.")
+        return verdict, credit
+
+    def solve_with(self, problem: Problem, overrides: dict[str, float], objective_id: str):
+        """Solve with the student's values; ``(solution or error, givens replaced)``.
+
+        A value the spec derives from other givens over-determines the problem when simply
+        added (x' given while y' fixes it). Then each given of the same derivative order is
+        dropped in turn, in spec order, and the first consistent solution is used.
+        """
+        key = _key(problem, overrides, objective_id)
+        if key in self._solutions:
+            return self._solutions[key]
+        problem, instead = _replaced_by_student(problem, overrides)
+        outcome = self._attempt(problem, dict(overrides), objective_id), instead
+        if isinstance(outcome[0], InconsistentError):
+            orders = {_order(k) for k in overrides}
+            for given in problem.givens:
+                name = given.key.text
+                if name in overrides or _order(name) not in orders:
+                    continue
+                attempt = self._attempt(problem, {**overrides, name: None}, objective_id)
+                if not isinstance(attempt, MechgradeError):
+                    outcome = attempt, (f"the given {name}",)
+                    break
+        self._solutions[key] = outcome
+        return outcome
+
+    def _attempt(self, problem: Problem, givens: dict, objective_id: str):
+        try:
+            if self._resolve is not None:
+                return self._resolve(problem, givens)
+            from ..solve import solve
+
+            # Only the objective being re-checked: another one may not exist with these values.
+            return solve(problem, givens=givens, objectives=(objective_id,))
+        except MechgradeError as err:
+            return err
+
+
+def _reference(plan: Plan, problem: Problem, objective_id: str) -> ObjectiveResult:
+    return plan.solutions[plan.problems.index(problem)].result(objective_id)
+
+
+def _replaced_by_student(problem: Problem, overrides: dict[str, float]
+                        ) -> tuple[Problem, tuple[str, ...]]:
+    """The problem to re-solve for ECF, and what the student's values replace in it. A
+    work-energy problem's rates come from its energy balance, and a designed parameter from
+    its design condition: a student's rate (or parameter) takes that balance's (or
+    condition's) place, and the instant is solved from it as from any other given."""
+    from ..spec.dynamics import WorkEnergy
+
+    dynamics = problem.dynamics
+    if dynamics is None:
+        return problem, ()
+    replaced: list[str] = []
+    analysis, design = dynamics.analysis, dynamics.design
+    if isinstance(analysis, WorkEnergy) and any(_order(k) == 1 for k in overrides):
+        replaced.append("the energy balance")
+        analysis = None
+    if design is not None and design.find in overrides:
+        replaced.append("the design condition")
+        design = None
+    if not replaced:
+        return problem, ()
+    return (replace(problem, dynamics=replace(dynamics, analysis=analysis, design=design)),
+            tuple(replaced))
+
+
+_CARRYING: list = []
+
+
+def _key(problem: Problem, givens: dict, objective_id: str) -> tuple:
+    return problem.id, objective_id, tuple(sorted(givens.items()))
+
+
+def _solve_carried(request: tuple) -> tuple:
+    """:meth:`CarriedForward.solve_with` in a forked worker (see
+    :meth:`CarriedForward.prefetch`)."""
+    return _CARRYING[0].solve_with(*request)
+
+
+def _order(key: str) -> int:
+    """How many time derivatives a given key names (``x''`` -> 2; an expression -> -1)."""
+    stripped = key.rstrip("'")
+    return len(key) - len(stripped) if stripped.isidentifier() else -1
+
+
+def given_key_of(objective: Objective) -> str | None:
+    """The given key (``"theta'"``) an objective's value can be fed back to the solver as,
+    or ``None`` when the objective is not a plain quantity (a coordinate, its rate, a
+    parameter).
+
+    >>> from mechgrade.spec.model import Expr
+    >>> from mechgrade.expressions.syntax import parse
+    >>> ob = lambda find, kind="scalar": Objective("o", "", Expr(find, parse(find, functions=["mag", "vel"])), kind, "m/s")
+    >>> given_key_of(ob("x'")), given_key_of(ob("mag(vel(A, N))")), given_key_of(ob("x", "vector"))
+    ("x'", None, None)
+    """
+    if objective.kind != ObjectiveKind.SCALAR:
+        return None
+    node = objective.find.node
+    if isinstance(node, Name):
+        return node.id
+    if isinstance(node, Prime):
+        return node.id + "'" * node.order
+    return None
+
+
+
+def upstream_objective(problem: Problem, objective_id: str) -> Objective | None:
+    try:
+        return problem.objective(objective_id)
+    except KeyError:
+        return None
+
+
+
+def _si_value(text: str, result: ObjectiveResult) -> float | None:
+    """The student's scalar answer in SI, read as the objective's unit when none is written."""
+    from ..units import to_si
+    from .answers import NumberAnswer, read_answer
+
+    try:
+        answer = read_answer(text, result)
+        if not isinstance(answer, NumberAnswer):
+            return None
+        unit = answer.unit if answer.unit is not None else result.unit
+        value = to_si(answer.value, unit)
+    except MechgradeError:
+        return None
+    return value if math.isfinite(value) else None
+
+
+def listing(items) -> str:
+    """Names one after the other, the first eight of them.
+
+    >>> listing(["x'", "y'"]), listing(str(i) for i in range(10))
+    ("x', y'", '0, 1, 2, 3, 4, 5, 6, 7, ...')
+    """
+    items = list(items)
+    if len(items) > 8:
+        return ", ".join(items[:8]) + ", ..."
+    return ", ".join(items)
