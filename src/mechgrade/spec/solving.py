@@ -159,6 +159,43 @@ def resolve_given_values(givens: tuple[Given, ...], coordinates, parameters) -> 
     return tuple(resolved.get(to_text(g.key.node), g) for g in givens)
 
 
+def carried(givens: Mapping[str, Given], changed: Mapping[str, float]) -> dict[str, float]:
+    """The SI values of the givens written as expressions of other givens (``x': v2*cos(beta)``)
+    once the givens in ``changed`` (key text -> SI value) take those values: a misread given
+    carried into every given stated from it. Givens that depend on none of ``changed`` keep
+    their value and are left out.
+
+    >>> from mechgrade.spec.model import Expr
+    >>> from mechgrade.expressions.syntax import parse
+    >>> v = Given(Expr("v", parse("v")), 2.0, "m/s", 2.0, "2 m/s")
+    >>> t = Given(Expr("t", parse("t")), 3.0, "s", 3.0, "3 s")
+    >>> x = Given(Expr("x", parse("x")), 6.0, "m", 6.0, "v*t", value_expr=Expr("v*t", parse("v*t")))
+    >>> carried({"v": v, "t": t, "x": x}, {"v": 5.0})
+    {'x': 15.0}
+    """
+    ureg = registry()
+    done = {key: ureg.Quantity(changed.get(key, g.si), si_unit(g.unit) or "dimensionless")
+            for key, g in givens.items()}
+    out: dict[str, float] = {}
+    moved = set(changed)
+    for _ in range(len(givens)):  # a chain of expression givens, one link per pass
+        progress = False
+        for key, g in givens.items():
+            if g.value_expr is None or key in changed or key in out:
+                continue
+            needed = {to_text(n) for n in walk(g.value_expr.node) if isinstance(n, (Name, Prime))}
+            if not needed & moved or not needed <= set(done) | {"pi"}:
+                continue
+            quantity = _evaluate(g.value_expr.node, done, g)
+            out[key] = float(quantity.to_base_units().magnitude)
+            done[key] = ureg.Quantity(out[key], si_unit(g.unit) or "dimensionless")
+            moved.add(key)
+            progress = True
+        if not progress:
+            break
+    return out
+
+
 def _evaluate(node: Node, values: Mapping, g: Given):
     ureg = registry()
 
@@ -188,4 +225,4 @@ def _evaluate(node: Node, values: Mapping, g: Given):
 
 
 __all__ = ["expand", "read_definitions", "read_unknowns", "read_branches", "check_solving",
-           "resolve_given_values", "given_unit"]
+           "resolve_given_values", "given_unit", "carried"]
