@@ -298,3 +298,18 @@ def test_a_movable_pulleys_two_strands_counted_once():
     assert once.value == pytest.approx(1.962, rel=1e-6)
     assert "counts yB once in the length of cord_length" in once.message
     assert "strands_miscounted" not in _codes("atwood_machine")  # one strand each side
+
+
+def test_the_initial_speed_left_out_starts_the_motion_from_rest():
+    # 300 N at 30 deg below the horizontal for 4 s from rest, not from 2 m/s
+    (rest,) = _generated("crate_pushed_impulse_momentum", "speed", "initial_speed_omitted")
+    assert rest.value == pytest.approx(7.41261 - 2.0, rel=1e-5)
+    assert "x' = 2 m/s (v0)" in rest.message
+    # released at 0.5 m/s from 20 mm: from rest it stops at once, at 20 mm
+    (rest,) = _generated("block_between_two_springs", "amplitude", "initial_speed_omitted")
+    assert rest.value == pytest.approx(20.0, rel=1e-6)
+
+
+def test_a_motion_that_starts_from_rest_has_no_initial_speed_to_leave_out():
+    assert "initial_speed_omitted" not in _codes("spring_launcher_a_of_x")
+    assert "initial_speed_omitted" not in _codes("pendulum_pin_reaction")

@@ -30,13 +30,14 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import (Bin, Call, Name, Node, Num, Unary, name_of, names, parse,
-                                  to_text)
+from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name_of, names,
+                                  parse, to_text)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
-                             Impulse, KineticFriction, Part, Reaction, Restitution, Ring, Shape,
-                             Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
+                             Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
+                             Ring, Shape, Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
+from ..spec.solving import given_unit
 from .bodies import SHAPES
 from .build import Model, build
 from .mutations import additive_terms, sum_of_terms
@@ -862,6 +863,37 @@ def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsM
             term=_expr(f"mag(pos({blow.at}, {body.centre}))"), term_unit="m")
 
 
+_NEAR_REST = 1e-6
+"""A rate's share of its initial value a motion "started from rest" keeps (its sense)."""
+
+
+def initial_speed_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated, or reached by work and energy, from a state with a rate that is
+    not zero, worked out from rest instead: the initial speed (or spin) left out."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, (Integration, WorkEnergy)):
+        return
+    for i, start in enumerate(d.analysis.start):
+        key = start.key.node
+        shown = start.value.text if start.value is not None else start.key.text
+        if not isinstance(key, Prime) or key.order != 1 or start.si == 0.0 or (
+                start.value is not None and identically_zero(model.plain(
+                    model.language.value(start.value.node)))):
+            continue
+        # at rest but about to move the same way: the direction of kinetic friction, or an
+        # event on the rate, stays defined at the start
+        rest = replace(start, value=_expr(f"{_NEAR_REST}*({shown})")) \
+            if start.value is not None else replace(start, si=_NEAR_REST * start.si)
+        starts = d.analysis.start[:i] + (rest,) + d.analysis.start[i + 1:]
+        yield DynamicsMutation(
+            "initial_speed_omitted", f"Your value is what the motion started with "
+            f"{start.key.text} = 0 gives: at the start {start.key.text} = {{term}} "
+            f"({shown}); keep the initial speed.", BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))),
+            term=start.value if start.value is not None else _expr(f"{start.si!r}"),
+            term_unit=given_unit(key, problem.coordinates, problem.parameters) or "1")
+
+
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
@@ -869,7 +901,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
     springs_in_series, strands_miscounted,
-    spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
+    spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
+    initial_speed_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

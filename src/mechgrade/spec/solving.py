@@ -172,6 +172,15 @@ def carried(givens: Mapping[str, Given], changed: Mapping[str, float]) -> dict[s
     >>> x = Given(Expr("x", parse("x")), 6.0, "m", 6.0, "v*t", value_expr=Expr("v*t", parse("v*t")))
     >>> carried({"v": v, "t": t, "x": x}, {"v": 5.0})
     {'x': 15.0}
+
+    A given that the change leaves undefined (the root of a negative) is an error:
+
+    >>> r = Given(Expr("r", parse("r")), 2.0, "m", 2.0, "sqrt(v*t)",
+    ...           value_expr=Expr("sqrt(v*t)", parse("sqrt(v*t)")))
+    >>> carried({"v": v, "t": t, "r": r}, {"v": -5.0})
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.SpecError: cannot evaluate 'sqrt(v*t)' with v changed: found ...
     """
     ureg = registry()
     done = {key: ureg.Quantity(changed.get(key, g.si), si_unit(g.unit) or "dimensionless")
@@ -186,8 +195,12 @@ def carried(givens: Mapping[str, Given], changed: Mapping[str, float]) -> dict[s
             needed = {to_text(n) for n in walk(g.value_expr.node) if isinstance(n, (Name, Prime))}
             if not needed & moved or not needed <= set(done) | {"pi"}:
                 continue
-            quantity = _evaluate(g.value_expr.node, done, g)
-            out[key] = float(quantity.to_base_units().magnitude)
+            magnitude = _evaluate(g.value_expr.node, done, g).to_base_units().magnitude
+            if isinstance(magnitude, complex) or not math.isfinite(magnitude):
+                raise SpecError(f"cannot evaluate '{g.text}' with "
+                                f"{', '.join(sorted(changed))} changed: found {magnitude}",
+                                where=g.where)
+            out[key] = float(magnitude)
             done[key] = ureg.Quantity(out[key], si_unit(g.unit) or "dimensionless")
             moved.add(key)
             progress = True

@@ -56,7 +56,7 @@ LIBRARY = _module(HERE.parent / "mistakes" / "measure.py", "mistakes_measure")
 # which of mechgrade's codes name each kind of typical.py (an empty set: no family names it)
 EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "constant_acceleration": (),
-    "initial_speed_forgotten": (),
+    "initial_speed_forgotten": ("initial_speed_omitted",),
     "sign": ("sign", "given_sign", "direction"),
     "sin_cos_swap": ("given_complement",),
     "deg_as_rad": ("given_deg_as_rad", "deg_as_rad", "rad_as_deg"),
@@ -84,7 +84,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
                          "drop_transport_acc", "relative_omega", "surface_taken_fixed",
                          "position_term", "strands_miscounted"),
     "angular_rate_equal": (),
-    "acceleration_zero_constant_speed": (),
+    "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
     "spring_energy_difference": (),
     "spring_term_dropped": (),
