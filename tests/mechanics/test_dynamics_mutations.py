@@ -313,3 +313,26 @@ def test_the_initial_speed_left_out_starts_the_motion_from_rest():
 def test_a_motion_that_starts_from_rest_has_no_initial_speed_to_leave_out():
     assert "initial_speed_omitted" not in _codes("spring_launcher_a_of_x")
     assert "initial_speed_omitted" not in _codes("pendulum_pin_reaction")
+
+
+def test_a_quantity_that_varies_along_the_motion_read_at_its_start():
+    # the drag c v0^2 at 12 m/s, not at the event's 4 m/s
+    (start,) = _generated("boat_coasting_quadratic_drag", "deceleration", "value_at_start")
+    assert start.value == pytest.approx(-7.2, rel=1e-5)
+    # the coordinates and the time start from the spec's own values: not read there
+    assert not _generated("boat_coasting_quadratic_drag", "distance", "value_at_start")
+    assert "value_at_start" not in _codes("pendulum_pin_reaction")  # no motion integrated
+
+
+def test_a_force_that_depends_on_the_speed_taken_constant_at_its_start():
+    # the drive P/v1 = 6000 N constant from 10 to 25 m/s: t = m (v2 - v1)/F, s = m (v2² - v1²)/(2F)
+    (time,) = _generated("car_constant_power_acceleration", "time", "force_taken_constant")
+    (distance,) = _generated("car_constant_power_acceleration", "distance",
+                             "force_taken_constant")
+    assert (time.value, distance.value) == (pytest.approx(3.0), pytest.approx(52.5))
+    assert "traction constant" in time.message
+    # the force itself keeps its starting value: that is the value read at the start
+    assert not _generated("car_constant_power_acceleration", "force_at_25",
+                          "force_taken_constant")
+    # a push that does not depend on the state is constant already
+    assert "force_taken_constant" not in _codes("crate_pushed_impulse_momentum")

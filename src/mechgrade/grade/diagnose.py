@@ -264,6 +264,8 @@ LABELS = {
     "weight_for_mass": "weight used for the mass",
     "strands_miscounted": "a cord's strands miscounted",
     "initial_speed_omitted": "the initial speed left out",
+    "value_at_start": "the value at the start of the motion",
+    "force_taken_constant": "a varying force taken constant",
     "rotational_ke_omitted": "rotational kinetic energy left out",
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",

@@ -31,7 +31,8 @@ DYNAMICS_CODES = (
     "spring_free_length_omitted", "surface_taken_fixed", "body_ke_omitted",
     "impulse_moment_omitted", "reaction_as_static", "inertia_omitted",
     "restitution_component", "damping_omitted", "springs_in_series",
-    "weight_for_mass", "strands_miscounted", "initial_speed_omitted")
+    "weight_for_mass", "strands_miscounted", "initial_speed_omitted",
+    "value_at_start", "force_taken_constant")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",

@@ -55,8 +55,8 @@ LIBRARY = _module(HERE.parent / "mistakes" / "measure.py", "mistakes_measure")
 
 # which of mechgrade's codes name each kind of typical.py (an empty set: no family names it)
 EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
-    "constant_acceleration": (),
-    "initial_speed_forgotten": ("initial_speed_omitted",),
+    "constant_acceleration": ("force_taken_constant",),
+    "initial_speed_forgotten": ("initial_speed_omitted", "value_at_start"),
     "sign": ("sign", "given_sign", "direction"),
     "sin_cos_swap": ("given_complement",),
     "deg_as_rad": ("given_deg_as_rad", "deg_as_rad", "rad_as_deg"),
@@ -97,7 +97,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "efficiency_inverted": (),
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
-    "speed_conserved": (),
+    "speed_conserved": ("value_at_start",),
     "half_factor": ("factor_2",),
     "rolling_assumed": (),
     "damping_ignored": ("damping_omitted",),
