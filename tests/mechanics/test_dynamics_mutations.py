@@ -336,3 +336,12 @@ def test_a_force_that_depends_on_the_speed_taken_constant_at_its_start():
                           "force_taken_constant")
     # a push that does not depend on the state is constant already
     assert "force_taken_constant" not in _codes("crate_pushed_impulse_momentum")
+
+
+def test_a_power_divided_by_the_efficiency_read_multiplied_by_it():
+    # the engine's power P_drive/eta with eta = 0.85, read as P_drive*eta
+    (inverted,) = _generated("car_climbs_grade_power", "engine_power", "efficiency_inverted")
+    assert inverted.value == pytest.approx(74.93918 * 0.85 ** 2, rel=1e-6)
+    assert "multiplies the power by the efficiency eta = 0.85" in inverted.message
+    # the power delivered itself has no efficiency in it
+    assert not _generated("car_climbs_grade_power", "wheel_power", "efficiency_inverted")

@@ -266,6 +266,7 @@ LABELS = {
     "initial_speed_omitted": "the initial speed left out",
     "value_at_start": "the value at the start of the motion",
     "force_taken_constant": "a varying force taken constant",
+    "efficiency_inverted": "efficiency multiplied for divided (or the reverse)",
     "rotational_ke_omitted": "rotational kinetic energy left out",
     "restitution_ignored": "coefficient of restitution ignored",
     "other_shape_inertia": "another shape's moment of inertia",

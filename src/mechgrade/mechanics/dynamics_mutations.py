@@ -961,6 +961,29 @@ def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMut
         problem=replace(mistaken, objectives=reached))
 
 
+def efficiency_inverted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A power divided by an efficiency (a pure-number parameter: the input a machine needs)
+    multiplied by it instead, or multiplied (the output it delivers) divided instead."""
+    pure = {q.name for q in problem.parameters if q.unit in ("", "1")}
+    for obj in problem.objectives:
+        node = obj.find.node
+        if obj.kind == "symbolic" or not isinstance(node, Bin) or node.op not in "*/":
+            continue
+        for power, eta in ((node.left, node.right), (node.right, node.left)):
+            if not (isinstance(eta, Name) and eta.id in pure
+                    and next(_calls(power, "power"), None) is not None) \
+                    or (node.op == "/" and eta is node.left):
+                continue
+            other = "*" if node.op == "/" else "/"
+            new = Bin(other, power, eta)
+            done, wanted = ("multiplies", "divide") if other == "*" else ("divides", "multiply")
+            yield DynamicsMutation(
+                "efficiency_inverted", f"Your value {done} the power by the efficiency {eta.id} "
+                f"= {{term}}: {wanted} by it (the power put in is more than the power "
+                "delivered).", OBJECTIVES, readings=((obj.id, Expr(to_text(new), new)),),
+                term=Expr(eta.id, eta))
+
+
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
@@ -969,7 +992,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
     springs_in_series, strands_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
-    initial_speed_omitted, value_at_start, force_taken_constant)
+    initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -94,7 +94,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "restitution_wrong_component": ("restitution_component",),
     "restitution_ignored": ("restitution_ignored",),
     "momentum_with_pin": (),
-    "efficiency_inverted": (),
+    "efficiency_inverted": ("efficiency_inverted",),
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
     "speed_conserved": ("value_at_start",),
