@@ -63,13 +63,15 @@ def test_a_mistake_inside_the_tolerance_is_judged_correct():
 
 
 @pytest.mark.slow  # a slow end-to-end check (over 5 s)
-def test_a_numeric_coincidence_for_another_mistake_is_counted_misleading():
-    # 1.6 m/s is 3.206/2.004: "factor of 2" names a coincidence, not speed taken as conserved
+def test_a_physical_family_outranks_a_coincidence_and_another_kinds_diagnosis_is_misleading():
+    # 1.6 m/s is 3.206/2.004 ("factor of 2"), and within the tolerance of the speed at the
+    # start, 1.612 m/s: the speed taken as conserved is named, not the factor
     row = {"objective": "speed", "mistake": "speed conserved: r0 w0", "kind": "speed_conserved",
            "answer": "1.6 m/s"}
     result = MEASURE.solution("puck_string_through_hole").result("speed")
     kind, judged = MEASURE.classify(row, result)
-    assert (kind, judged.diagnosis) == ("misleading", "factor of 2")
+    assert (kind, judged.diagnosis) == ("named", "the value at the start of the motion")
+    assert MEASURE.classify({**row, "kind": "kinematic_factor"}, result)[0] == "misleading"
 
 
 def test_an_exact_factor_that_is_not_the_mistake_is_counted_generic():

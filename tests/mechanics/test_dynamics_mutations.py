@@ -298,3 +298,50 @@ def test_a_movable_pulleys_two_strands_counted_once():
     assert once.value == pytest.approx(1.962, rel=1e-6)
     assert "counts yB once in the length of cord_length" in once.message
     assert "strands_miscounted" not in _codes("atwood_machine")  # one strand each side
+
+
+def test_the_initial_speed_left_out_starts_the_motion_from_rest():
+    # 300 N at 30 deg below the horizontal for 4 s from rest, not from 2 m/s
+    (rest,) = _generated("crate_pushed_impulse_momentum", "speed", "initial_speed_omitted")
+    assert rest.value == pytest.approx(7.41261 - 2.0, rel=1e-5)
+    assert "x' = 2 m/s (v0)" in rest.message
+    # released at 0.5 m/s from 20 mm: from rest it stops at once, at 20 mm
+    (rest,) = _generated("block_between_two_springs", "amplitude", "initial_speed_omitted")
+    assert rest.value == pytest.approx(20.0, rel=1e-6)
+
+
+def test_a_motion_that_starts_from_rest_has_no_initial_speed_to_leave_out():
+    assert "initial_speed_omitted" not in _codes("spring_launcher_a_of_x")
+    assert "initial_speed_omitted" not in _codes("pendulum_pin_reaction")
+
+
+def test_a_quantity_that_varies_along_the_motion_read_at_its_start():
+    # the drag c v0^2 at 12 m/s, not at the event's 4 m/s
+    (start,) = _generated("boat_coasting_quadratic_drag", "deceleration", "value_at_start")
+    assert start.value == pytest.approx(-7.2, rel=1e-5)
+    # the coordinates and the time start from the spec's own values: not read there
+    assert not _generated("boat_coasting_quadratic_drag", "distance", "value_at_start")
+    assert "value_at_start" not in _codes("pendulum_pin_reaction")  # no motion integrated
+
+
+def test_a_force_that_depends_on_the_speed_taken_constant_at_its_start():
+    # the drive P/v1 = 6000 N constant from 10 to 25 m/s: t = m (v2 - v1)/F, s = m (v2² - v1²)/(2F)
+    (time,) = _generated("car_constant_power_acceleration", "time", "force_taken_constant")
+    (distance,) = _generated("car_constant_power_acceleration", "distance",
+                             "force_taken_constant")
+    assert (time.value, distance.value) == (pytest.approx(3.0), pytest.approx(52.5))
+    assert "traction constant" in time.message
+    # the force itself keeps its starting value: that is the value read at the start
+    assert not _generated("car_constant_power_acceleration", "force_at_25",
+                          "force_taken_constant")
+    # a push that does not depend on the state is constant already
+    assert "force_taken_constant" not in _codes("crate_pushed_impulse_momentum")
+
+
+def test_a_power_divided_by_the_efficiency_read_multiplied_by_it():
+    # the engine's power P_drive/eta with eta = 0.85, read as P_drive*eta
+    (inverted,) = _generated("car_climbs_grade_power", "engine_power", "efficiency_inverted")
+    assert inverted.value == pytest.approx(74.93918 * 0.85 ** 2, rel=1e-6)
+    assert "multiplies the power by the efficiency eta = 0.85" in inverted.message
+    # the power delivered itself has no efficiency in it
+    assert not _generated("car_climbs_grade_power", "wheel_power", "efficiency_inverted")

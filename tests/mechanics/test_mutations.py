@@ -75,3 +75,15 @@ def test_the_magnitude_of_a_difference_taken_from_the_magnitudes():
     result = solve(_problem("two_cars_relative_motion")).result("relative_speed")
     values = sorted(m.value for m in result.generated_mistakes if m.code == "mag_as_sum")
     assert values == pytest.approx([10.0, 40.0])
+
+
+def test_an_acceleration_answered_zero_because_a_given_rate_is_constant():
+    # x' = 200 m/s with x'' = 0: r'' and theta'' are not zero
+    codes = {o: _codes("radar_tracks_airplane_polar", o) for o in ("r_ddot", "theta_ddot",
+                                                                   "r_dot", "distance")}
+    assert "zero_for_constant_rate" in codes["r_ddot"] and "zero_for_constant_rate" in \
+        codes["theta_ddot"]
+    assert "zero_for_constant_rate" not in codes["r_dot"] + codes["distance"]
+    # x'' = 1.5 m/s^2 given: no rate is constant
+    problem = _problem("rolling_wheel_rim_points")
+    assert not [m for m in mutations(problem) if m.code == "zero_for_constant_rate"]

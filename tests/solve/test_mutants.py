@@ -103,3 +103,24 @@ def test_the_unit_a_number_is_read_in_when_it_is_not_converted(unit, base):
 def test_a_unit_of_its_systems_base_or_with_a_slip_of_its_own_has_none(unit):
     from mechgrade.solve.mutants import _unconverted
     assert _unconverted(unit) is None
+
+
+def test_a_misread_angle_is_carried_into_the_rates_stated_from_it():
+    # x' = v2 cos(beta), y' = v2 sin(beta): beta = 30 deg read as 60 deg moves both
+    problem = load_problem(shipped_dir("problems") / "baseball_bat_impulse.yaml")
+    (slip,) = _generated(problem, "impulse", "given_complement")
+    assert slip.value == pytest.approx((0.145 * (50 * 0.5 + 40), 0.145 * 50 * 0.75 ** 0.5, 0.0))
+
+
+def test_a_misreading_that_leaves_a_stated_given_undefined_misreads_the_given_alone():
+    from mechgrade.expressions.syntax import parse
+    from mechgrade.solve.instant import instant_givens
+    from mechgrade.solve.mutants import _carried_into
+    problem = load_problem(shipped_dir("problems") / "baseball_bat_impulse.yaml")
+    givens = instant_givens(problem, {}, {})
+    node, si, given = givens["x'"]
+    root = replace(given, text="sqrt(v2*tc)", value_expr=replace(
+        given.value_expr, text="sqrt(v2*tc)", node=parse("sqrt(v2*tc)")))
+    givens["x'"] = (node, si, root)
+    assert _carried_into(givens, (("v2", -50.0),)) == (("v2", -50.0),)
+    assert dict(_carried_into(givens, (("v2", 50.0),)))["x'"] == pytest.approx((50 * 1.5e-3) ** 0.5)

@@ -66,3 +66,21 @@ def test_bad_solving_sections_give_located_messages(text, message):
     with pytest.raises(SpecError) as info:
         load_problem_text(text, "p.yaml")
     assert str(info.value) == message
+
+
+def test_a_changed_given_is_carried_into_the_givens_stated_from_it():
+    from mechgrade.spec.solving import carried
+    problem = load_problem_text(with_rate("v/L"), "p.yaml")
+    stated = {g.key.text: g for g in problem.givens}
+    # theta' = v/L: with v misread the rate follows; givens stated from nothing changed stay
+    assert carried(stated, {"v": 16.0}) == {"theta'": pytest.approx(2 * stated["theta'"].si)}
+    assert carried(stated, {"L": stated["L"].si}) == {"theta'": pytest.approx(stated["theta'"].si)}
+    assert carried(stated, {"theta": 0.1}) == {}
+
+
+def test_a_given_left_undefined_by_a_change_is_refused():
+    from mechgrade.spec.solving import carried
+    problem = load_problem_text(with_rate("sqrt(v*v*L)/(L*sqrt(L))"), "p.yaml")
+    stated = {g.key.text: g for g in problem.givens}
+    with pytest.raises(SpecError, match=r"cannot evaluate .* with L changed"):
+        carried(stated, {"L": -1.0})

@@ -30,13 +30,14 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import (Bin, Call, Name, Node, Num, Unary, name_of, names, parse,
-                                  to_text)
+from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name_of, names,
+                                  parse, to_text, walk)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
-                             Impulse, KineticFriction, Part, Reaction, Restitution, Ring, Shape,
-                             Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
+                             Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
+                             Ring, Shape, Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
+from ..spec.solving import given_unit
 from .bodies import SHAPES
 from .build import Model, build
 from .mutations import additive_terms, sum_of_terms
@@ -862,6 +863,127 @@ def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsM
             term=_expr(f"mag(pos({blow.at}, {body.centre}))"), term_unit="m")
 
 
+_NEAR_REST = 1e-6
+"""A rate's share of its initial value a motion "started from rest" keeps (its sense)."""
+
+
+def initial_speed_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated, or reached by work and energy, from a state with a rate that is
+    not zero, worked out from rest instead: the initial speed (or spin) left out."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, (Integration, WorkEnergy)):
+        return
+    for i, start in enumerate(d.analysis.start):
+        key = start.key.node
+        if not isinstance(key, Prime) or key.order != 1:
+            continue
+        # at rest but about to move the same way: the direction of kinetic friction, or an
+        # event on the rate, stays defined at the start
+        if start.value is not None and not identically_zero(model.plain(
+                model.language.value(start.value.node))):
+            rest = replace(start, value=_expr(f"{_NEAR_REST}*({start.value.text})"))
+            term, shown = start.value, f" ({start.value.text})"
+        elif start.value is None and start.si:
+            rest = replace(start, si=_NEAR_REST * start.si)
+            term, shown = _expr(f"{start.si!r}"), ""
+        else:
+            continue
+        starts = d.analysis.start[:i] + (rest,) + d.analysis.start[i + 1:]
+        yield DynamicsMutation(
+            "initial_speed_omitted", f"Your value is what the motion started with "
+            f"{start.key.text} = 0 gives: at the start {start.key.text} = {{term}}{shown}; "
+            "keep the initial speed.", BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))),
+            term=term, term_unit=given_unit(key, problem.coordinates, problem.parameters) or "1")
+
+
+def value_at_start(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated to an event with the objectives read at its start instead: a force,
+    rate or acceleration that varies along the motion (a drag at the initial speed, a drive
+    force P/v at the initial speed) taken at its initial value. The coordinates and the time
+    themselves, which start from the spec's own values, are left out."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration):
+        return
+    # an event at the start is refused (its instant is t = 0): a moment after it
+    early = replace(d.analysis, until=(_expr("t"), _expr(f"{_NEAR_REST}")))
+    mistaken = _mistaken(problem, replace(d, analysis=early))
+    objectives = tuple(o for o in mistaken.objectives if not isinstance(o.find.node, Name))
+    if not objectives:
+        return
+    event = f"{d.analysis.until[0].text} = {d.analysis.until[1].text}"
+    yield DynamicsMutation(
+        "value_at_start", f"Your value is the one at the start of the motion (t = 0); it "
+        f"changes along the motion: read it at the instant asked for ({event}).", BALANCES,
+        problem=replace(mistaken, objectives=objectives))
+
+
+def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated from a start, with each applied force that depends on the state (a
+    drag c v², a drive P/v) taken constant at its value at the start: the acceleration taken
+    constant, as in v² = v0² + 2 a s. Read for where the motion gets to (the coordinates,
+    their rates, the time)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration):
+        return
+    at_start = {to_text(s.key.node): s.value.node if s.value is not None else Num(repr(s.si))
+                for s in d.analysis.start}
+    state = {c.name for c in problem.coordinates}
+
+    def start_value(node: Node) -> Node | None:
+        if isinstance(node, (Name, Prime)) and (
+                node.id in state if isinstance(node, Name) else True):
+            return at_start.get(to_text(node), node)
+        return None
+
+    varying = [f for f in d.forces if any(
+        (isinstance(n, Name) and n.id in state) or isinstance(n, Prime)
+        for n in walk(f.force.node))]
+    if not varying or any(to_text(n) not in at_start for f in varying
+                          for n in walk(f.force.node) if (isinstance(n, Name) and n.id in state)
+                          or isinstance(n, Prime)):
+        return
+    forces = tuple(replace(f, force=Expr(f.force.text, _rewrite(f.force.node, start_value)))
+                   if f in varying else f for f in d.forces)
+    names = ", ".join(f.name for f in varying)
+    # where the motion gets to (a time, a distance, a speed): the forces themselves and the
+    # acceleration keep their starting values, which value_at_start names
+    mistaken = _mistaken(problem, replace(d, forces=forces))
+    reached = tuple(o for o in mistaken.objectives if isinstance(o.find.node, Name)
+                    or (isinstance(o.find.node, Prime) and o.find.node.order == 1))
+    if not reached:
+        return
+    yield DynamicsMutation(
+        "force_taken_constant", f"Your value takes {names} constant at its value at the start "
+        f"of the motion ({', '.join(f.force.text for f in varying)} with the starting state): "
+        "it changes as the body moves, so the acceleration is not constant; integrate "
+        "a = F/m along the motion (v dv = a dx, dv/dt = a).", BALANCES,
+        problem=replace(mistaken, objectives=reached))
+
+
+def efficiency_inverted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A power divided by an efficiency (a pure-number parameter: the input a machine needs)
+    multiplied by it instead, or multiplied (the output it delivers) divided instead."""
+    pure = {q.name for q in problem.parameters if q.unit in ("", "1")}
+    for obj in problem.objectives:
+        node = obj.find.node
+        if obj.kind == "symbolic" or not isinstance(node, Bin) or node.op not in "*/":
+            continue
+        for power, eta in ((node.left, node.right), (node.right, node.left)):
+            if not (isinstance(eta, Name) and eta.id in pure
+                    and next(_calls(power, "power"), None) is not None) \
+                    or (node.op == "/" and eta is node.left):
+                continue
+            other = "*" if node.op == "/" else "/"
+            new = Bin(other, power, eta)
+            done, wanted = ("multiplies", "divide") if other == "*" else ("divides", "multiply")
+            yield DynamicsMutation(
+                "efficiency_inverted", f"Your value {done} the power by the efficiency {eta.id} "
+                f"= {{term}}: {wanted} by it (the power put in is more than the power "
+                "delivered).", OBJECTIVES, readings=((obj.id, Expr(to_text(new), new)),),
+                term=Expr(eta.id, eta))
+
+
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
@@ -869,7 +991,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
     springs_in_series, strands_miscounted,
-    spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted)
+    spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
+    initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

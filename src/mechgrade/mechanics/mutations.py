@@ -26,7 +26,7 @@ from typing import Iterator
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Unary, name_of, to_text
+from ..expressions.syntax import Bin, Call, Name, Node, Prime, Unary, name_of, to_text, walk
 from ..spec.model import Expr, Objective, Problem
 from .build import Model, build
 from .interpret import Interpreter
@@ -156,6 +156,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _speed_readings(r)
     _magnitudes_combined(r)
     _other_bases(r)
+    _zero_for_constant_rate(r)
     return r.out
 
 
@@ -390,6 +391,27 @@ def _other_bases(r: _Reading) -> None:
         r.append("other_basis", r.right.to_matrix(other),
                  f"Your components are those of the right vector along frame {G}'s unit "
                  f"vectors; give them along frame {r.obj.frame}'s.")
+
+
+_ACCELERATIONS = ("acc", "acc_t", "angacc")
+
+
+def _zero_for_constant_rate(r: _Reading) -> None:
+    """An acceleration (a second derivative, ``acc``, ``angacc``) answered zero because a
+    given rate is constant (``q'' = 0`` given with ``q'`` not zero): the driver's steady rate
+    taken for no acceleration anywhere."""
+    givens = {to_text(g.key.node): g for g in r.model.problem.givens}
+    steady = [key for key, g in givens.items() if key.endswith("''") and g.si == 0
+              and key[:-1] in givens and givens[key[:-1]].si != 0]
+    asks = any(isinstance(n, Prime) and n.order >= 2 for n in walk(r.node)) \
+        or next(_calls(r.node, _ACCELERATIONS), None) is not None
+    if not steady or not asks:
+        return
+    zero = sp.zeros(3, 1) if isinstance(r.right, Vector) else sp.S.Zero
+    rates = ", ".join(f"{k[:-1]} = {givens[k[:-1]].text}" for k in steady)
+    r.append("zero_for_constant_rate", zero, f"Your value is zero, as if the constant rate "
+             f"({rates}) meant no acceleration: a steady rate makes its own second derivative "
+             "zero, not the other accelerations (their centripetal and coupled terms).")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:

@@ -29,6 +29,7 @@ import numpy as np
 from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Objective, ObjectiveKind, Problem
+from ..spec.solving import carried
 from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
 from .columns import call
@@ -152,15 +153,25 @@ def slips_of(givens: Mapping, parameters: set[str]):
              if given is not None]
     for key, node, si, given in named:
         for code, mistaken_si, sentence in _given_slips(node, si, given):
-            yield code, ((key, mistaken_si),), sentence
+            yield code, _carried_into(givens, ((key, mistaken_si),)), sentence
     swappable = [(key, si, given) for key, node, si, given in named
                  if isinstance(node, Name) and node.id in parameters]
     for i, (key, si, given) in enumerate(swappable):
         for other, other_si, other_given in swappable[i + 1:]:
             if given.unit == other_given.unit and si != other_si and si and other_si:
-                yield ("given_swap", ((key, other_si), (other, si)),
+                yield ("given_swap", _carried_into(givens, ((key, other_si), (other, si))),
                        f"Your value is what {key} and {other} exchanged gives ({key} = "
                        f"{other_given.text}, {other} = {given.text}): check which is which.")
+
+
+def _carried_into(givens: Mapping, changes: tuple) -> tuple:
+    """``changes`` and, after them, the givens stated as expressions of the misread ones
+    (``x': v2*cos(beta)``) worked out again: the slip carried into each given it feeds."""
+    stated = {key: given for key, (_, _, given) in givens.items() if given is not None}
+    try:
+        return changes + tuple(carried(stated, dict(changes)).items())
+    except MechgradeError:  # a dependent given undefined when misread (a root of a negative)
+        return changes
 
 
 def _given_slips(node, si: float, given):
@@ -327,10 +338,10 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
 
 
 ZERO_NAMES = frozenset({"other_point", "reaction_as_static", "reaction_as_weight",
-                        "restitution_ignored"})
+                        "restitution_ignored", "zero_for_constant_rate"})
 """Families whose zero value names the mistake (a contact point at rest, a support that holds
-no sideways force at rest, no energy lost in a perfectly elastic impact): their zeros are
-kept, every other family's dropped."""
+no sideways force at rest, no energy lost in a perfectly elastic impact, no acceleration at a
+steady rate): their zeros are kept, every other family's dropped."""
 
 
 SAME = 1e-7

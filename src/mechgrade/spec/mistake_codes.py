@@ -21,7 +21,7 @@ VELOCITY_CODES = ("drop_transport_vel", "drop_omega_r", "drop_relative_vel")
 MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "relative_omega", "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc",
     "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "component_for_speed", "mag_as_sum",
-    "position_term")
+    "position_term", "zero_for_constant_rate")
 """Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
 
 DYNAMICS_CODES = (
@@ -31,7 +31,8 @@ DYNAMICS_CODES = (
     "spring_free_length_omitted", "surface_taken_fixed", "body_ke_omitted",
     "impulse_moment_omitted", "reaction_as_static", "inertia_omitted",
     "restitution_component", "damping_omitted", "springs_in_series",
-    "weight_for_mass", "strands_miscounted")
+    "weight_for_mass", "strands_miscounted", "initial_speed_omitted",
+    "value_at_start", "force_taken_constant", "efficiency_inverted")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",

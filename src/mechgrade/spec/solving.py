@@ -159,6 +159,56 @@ def resolve_given_values(givens: tuple[Given, ...], coordinates, parameters) -> 
     return tuple(resolved.get(to_text(g.key.node), g) for g in givens)
 
 
+def carried(givens: Mapping[str, Given], changed: Mapping[str, float]) -> dict[str, float]:
+    """The SI values of the givens written as expressions of other givens (``x': v2*cos(beta)``)
+    once the givens in ``changed`` (key text -> SI value) take those values: a misread given
+    carried into every given stated from it. Givens that depend on none of ``changed`` keep
+    their value and are left out.
+
+    >>> from mechgrade.spec.model import Expr
+    >>> from mechgrade.expressions.syntax import parse
+    >>> v = Given(Expr("v", parse("v")), 2.0, "m/s", 2.0, "2 m/s")
+    >>> t = Given(Expr("t", parse("t")), 3.0, "s", 3.0, "3 s")
+    >>> x = Given(Expr("x", parse("x")), 6.0, "m", 6.0, "v*t", value_expr=Expr("v*t", parse("v*t")))
+    >>> carried({"v": v, "t": t, "x": x}, {"v": 5.0})
+    {'x': 15.0}
+
+    A given that the change leaves undefined (the root of a negative) is an error:
+
+    >>> r = Given(Expr("r", parse("r")), 2.0, "m", 2.0, "sqrt(v*t)",
+    ...           value_expr=Expr("sqrt(v*t)", parse("sqrt(v*t)")))
+    >>> carried({"v": v, "t": t, "r": r}, {"v": -5.0})
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.SpecError: cannot evaluate 'sqrt(v*t)' with v changed: found ...
+    """
+    ureg = registry()
+    done = {key: ureg.Quantity(changed.get(key, g.si), si_unit(g.unit) or "dimensionless")
+            for key, g in givens.items()}
+    out: dict[str, float] = {}
+    moved = set(changed)
+    for _ in range(len(givens)):  # a chain of expression givens, one link per pass
+        progress = False
+        for key, g in givens.items():
+            if g.value_expr is None or key in changed or key in out:
+                continue
+            needed = {to_text(n) for n in walk(g.value_expr.node) if isinstance(n, (Name, Prime))}
+            if not needed & moved or not needed <= set(done) | {"pi"}:
+                continue
+            magnitude = _evaluate(g.value_expr.node, done, g).to_base_units().magnitude
+            if isinstance(magnitude, complex) or not math.isfinite(magnitude):
+                raise SpecError(f"cannot evaluate '{g.text}' with "
+                                f"{', '.join(sorted(changed))} changed: found {magnitude}",
+                                where=g.where)
+            out[key] = float(magnitude)
+            done[key] = ureg.Quantity(out[key], si_unit(g.unit) or "dimensionless")
+            moved.add(key)
+            progress = True
+        if not progress:
+            break
+    return out
+
+
 def _evaluate(node: Node, values: Mapping, g: Given):
     ureg = registry()
 
@@ -187,5 +237,5 @@ def _evaluate(node: Node, values: Mapping, g: Given):
         raise SpecError(f"cannot evaluate '{g.text}': {err}", where=g.where) from None
 
 
-__all__ = ["check_solving", "expand", "given_unit", "read_branches", "read_definitions",
-           "read_unknowns", "resolve_given_values"]
+__all__ = ["carried", "check_solving", "expand", "given_unit", "read_branches",
+           "read_definitions", "read_unknowns", "resolve_given_values"]

@@ -55,8 +55,8 @@ LIBRARY = _module(HERE.parent / "mistakes" / "measure.py", "mistakes_measure")
 
 # which of mechgrade's codes name each kind of typical.py (an empty set: no family names it)
 EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
-    "constant_acceleration": (),
-    "initial_speed_forgotten": (),
+    "constant_acceleration": ("force_taken_constant",),
+    "initial_speed_forgotten": ("initial_speed_omitted", "value_at_start"),
     "sign": ("sign", "given_sign", "direction"),
     "sin_cos_swap": ("given_complement",),
     "deg_as_rad": ("given_deg_as_rad", "deg_as_rad", "rad_as_deg"),
@@ -84,7 +84,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
                          "drop_transport_acc", "relative_omega", "surface_taken_fixed",
                          "position_term", "strands_miscounted"),
     "angular_rate_equal": (),
-    "acceleration_zero_constant_speed": (),
+    "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
     "spring_energy_difference": (),
     "spring_term_dropped": (),
@@ -94,10 +94,10 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "restitution_wrong_component": ("restitution_component",),
     "restitution_ignored": ("restitution_ignored",),
     "momentum_with_pin": (),
-    "efficiency_inverted": (),
+    "efficiency_inverted": ("efficiency_inverted",),
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
-    "speed_conserved": (),
+    "speed_conserved": ("value_at_start",),
     "half_factor": ("factor_2",),
     "rolling_assumed": (),
     "damping_ignored": ("damping_omitted",),
