@@ -260,6 +260,7 @@ LABELS = {
     "inertia_omitted": "a body's moment of inertia left out",
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",
+    "force_omitted": "an applied force left out",
     "springs_in_series": "parallel springs combined in series",
     "weight_for_mass": "weight used for the mass",
     "strands_miscounted": "a cord's strands miscounted",

@@ -33,6 +33,7 @@ from sympy.physics.vector import Vector
 from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name_of, names,
                                   parse, to_text, walk)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
+                             LoadKind,
                              Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
                              Ring, Shape, Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
 from ..spec.language import FUNCTIONS
@@ -628,6 +629,21 @@ def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
     return None
 
 
+def force_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """Each applied force (a drag, a push, a drive) left out of its body's free-body diagram,
+    one at a time: the motion as if only the weight and the supports acted."""
+    d = dynamics_of(problem)
+    for force in d.forces:
+        if force.kind != LoadKind.APPLIED_FORCE:
+            continue
+        yield DynamicsMutation(
+            "force_omitted", f"Your value is what the balances give without the force "
+            f"{force.name} on {force.on} ({force.force.text}): include every force that acts "
+            "on the body in its free-body diagram.", LOADS,
+            problem=_mistaken(problem, replace(d, forces=tuple(
+                f for f in d.forces if f is not force))))
+
+
 def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """Every damper left out: the undamped response (ω_n for ω_d, no decay)."""
     d = dynamics_of(problem)
@@ -989,7 +1005,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
-    particle_inertia, disk_for_gyration, restitution_component, damping_omitted,
+    particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
     springs_in_series, strands_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted)

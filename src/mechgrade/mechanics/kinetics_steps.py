@@ -40,7 +40,8 @@ LOAD_CODES = {LoadKind.WEIGHT: ("weight_omitted", "mass_for_weight", "weight_for
               LoadKind.KINETIC_FRICTION: ("friction_reversed", "surface_taken_fixed"),
               LoadKind.STATIC_FRICTION: ("friction_reversed",),
               LoadKind.SPRING: ("spring_free_length_omitted", "springs_in_series"),
-              LoadKind.DAMPER: ("damping_omitted",)}
+              LoadKind.DAMPER: ("damping_omitted",),
+              LoadKind.APPLIED_FORCE: ("force_omitted",)}
 """The mistakes that happen in a load's own row of the free-body loads, by its kind."""
 MOMENT_CODES = ("central_inertia_at_pivot", "inertia_omitted", "other_shape_inertia",
                 "weight_transfer_ignored", "impulse_moment_omitted")

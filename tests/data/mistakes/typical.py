@@ -572,6 +572,79 @@ def spring_chain():
                   vec(V(-s2, 0), "N"), "sign")]
 
 
+def cart_pendulum():
+    M, m, L, k, x0, g = 2.0, 0.5, 0.8, 50.0, 1.0, 9.81
+    x, th, w = 1.1, 20 * D, 1.5
+
+    def accelerations(spring, weight):
+        # Lagrange: (M+m) x'' + m L cos th th'' = m L sin th th'^2 - spring,
+        #           m L cos th x'' + m L^2 th'' = -weight L sin th
+        mass = np.array([[M + m, m * L * math.cos(th)], [m * L * math.cos(th), m * L * L]])
+        rhs = np.array([m * L * math.sin(th) * w**2 - spring, -weight * L * math.sin(th)])
+        return np.linalg.solve(mass, rhs)
+
+    free_length_left_out = accelerations(k * x, m * g)
+    mass_for_weight = accelerations(k * (x - x0), m)
+    return [entry("cart_acceleration", "spring force k x (free length left out)",
+                  num(free_length_left_out[0], "m/s^2"), "spring_free_length_omitted"),
+            entry("alpha", "the bob's weight written as its mass m (g left out)",
+                  num(mass_for_weight[1], "rad/s^2"), "mass_for_weight"),
+            entry("rod_force", "the rod's force taken as the bob's weight m g",
+                  num(m * g, "N"), "tension_as_weight", "reaction_as_weight", known="none"),
+            entry("cart_acceleration", "the bob ignored: x'' = -k (x - x0)/M",
+                  num(-k * (x - x0) / M, "m/s^2"), known="none"),
+            # without gravity the bob has no restoring force and the cart swings with its own
+            # mass only (det(K - w^2 M) = 0 gives w^2 = k/M exactly): the same mistake
+            entry("omega_2", "the cart alone on its spring: sqrt(k/M)",
+                  num(math.sqrt(k / M), "rad/s"), "weight_omitted"),
+            entry("omega_1", "the pendulum alone on a fixed pin: sqrt(g/L)",
+                  num(math.sqrt(g / L), "rad/s"), known="none")]
+
+
+def damped_block_positions():
+    m, k, c, v0 = 5.0, 2000.0, 40.0, 1.0
+    wn = math.sqrt(k / m)  # the block started from equilibrium: x = v0/wn sin(wn t) undamped
+    return [entry("time_back", "damping ignored: half the undamped period pi/wn",
+                  num(math.pi / wn * 1000, "ms"), "damping_omitted"),
+            entry("peak_displacement", "damping ignored: the undamped amplitude v0/wn",
+                  num(v0 / wn * 1000, "mm"), "damping_omitted"),
+            entry("x_at_30ms", "damping ignored: v0/wn sin(wn t)",
+                  num(v0 / wn * math.sin(wn * 0.03) * 1000, "mm"), "damping_omitted"),
+            entry("speed_back_half_damping", "speed taken as conserved: the blow's 1 m/s",
+                  num(v0, "m/s"), "damping_omitted", "value_at_start")]
+
+
+def ballistic_pendulum():
+    m, M, v0 = 0.010, 2.0, 400.0
+    after = m * v0 / (m + M)
+    kept = 10.0 * v0 / (10.0 + M)  # the bullet's 10 g read as 10 kg
+    return [entry("bullet_ke_before", "the bullet's 10 g read as 10 kg",
+                  num(0.5 * 10.0 * v0**2, "J"), "given_unit"),
+            entry("ke_lost", "the bullet's 10 g read as 10 kg",
+                  num(0.5 * 10.0 * v0**2 - 0.5 * (10.0 + M) * kept**2, "J"), "given_unit"),
+            entry("share_lost", "the bullet's 10 g read as 10 kg: M/(m + M)",
+                  num(M / (10.0 + M), "1"), "given_unit"),
+            entry("speed_after", "the two masses exchanged",
+                  num(M * v0 / (m + M), "m/s"), "given_swap", known="none"),
+            entry("impulse_on_bullet", "the impulse on the block given for the bullet's",
+                  vec(V(-m * (after - v0), 0), "N*s"), "sign")]
+
+
+def ball_with_drag():
+    v0, alpha, g = 20.0, 50 * D, 9.81
+    # without the drag the landing speed is the throw's (energy conserved): one mistake
+    return [entry("landing_speed", "speed taken as conserved: the throw's 20 m/s",
+                  num(v0, "m/s"), "value_at_start", "force_omitted"),
+            entry("time_of_flight", "drag ignored: 2 v0 sin(alpha)/g",
+                  num(2 * v0 * math.sin(alpha) / g, "s"), "force_omitted"),
+            entry("apex_height", "drag ignored: (v0 sin(alpha))^2/(2 g)",
+                  num((v0 * math.sin(alpha)) ** 2 / (2 * g), "m"), "force_omitted"),
+            entry("range", "drag ignored: v0^2 sin(2 alpha)/g",
+                  num(v0**2 * math.sin(2 * alpha) / g, "m"), "force_omitted"),
+            entry("position_at_1s", "drag ignored: (v0 cos(alpha) t, v0 sin(alpha) t - g t^2/2)",
+                  vec(V(v0 * math.cos(alpha), v0 * math.sin(alpha) - g / 2), "m"), "force_omitted")]
+
+
 def yo_yo():
     m, k, r, g = 0.2, 0.03, 0.01, 9.81
     a_G = -g * r**2 / k**2  # moments about S with I_G = m k²
@@ -619,7 +692,7 @@ def block_on_cart():
     return [entry("t_slide", "friction μ m instead of μ m g",
                   num(v0 / (mu * (1 + m / M)), "s"), "mass_for_weight"),
             entry("common_speed", "masses exchanged in the momentum balance: M v0/(m + M)",
-                  num(M * v0 / (m + M), "m/s"), "given_swap"),
+                  num(M * v0 / (m + M), "m/s"), "given_swap", known="none"),
             entry("cart_acceleration", "masses exchanged: μ M g/m", num(mu * M * g / m, "m/s^2"),
                   "given_swap"),
             entry("t_slide", "cart taken as fixed: the block stops at v0/(μ g)",
@@ -742,6 +815,10 @@ TABLES = {
     "ruina_9_23_ball_impulse_momentum": ball_skid,
     "ruina_9_26_billiard_cue": billiard,
     "two_mass_spring_chain": spring_chain,
+    "cart_pendulum_spring_modes": cart_pendulum,
+    "damped_block_positions": damped_block_positions,
+    "ballistic_pendulum_energy_lost": ballistic_pendulum,
+    "ball_thrown_with_drag_apex_and_landing": ball_with_drag,
     "yo_yo_unwinding": yo_yo,
     "bead_on_rotating_hoop": bead_on_hoop,
     "block_slides_on_cart": block_on_cart,
