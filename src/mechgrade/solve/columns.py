@@ -16,6 +16,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..errors import MechgradeError
 from .plan import _OnFirstCall
 from .rules import significant
 
@@ -44,6 +45,33 @@ def _array(rows):
         for c, entry in enumerate(row):
             out[r, c] = entry
     return out
+
+
+class FirstErrors:
+    """Each column's first error, as the solver of that column alone would raise it: a stage
+    judges all columns at once and words a message only for a column that fails.
+
+    >>> from mechgrade.errors import SolveError
+    >>> errors = FirstErrors(3)
+    >>> errors.add(np.array([False, True, True]), lambda i: SolveError(f"first {i}"))
+    >>> errors.add(np.array([True, True, False]), lambda i: SolveError(f"second {i}"))
+    >>> [str(e) for e in errors.errors], errors.ok.tolist()
+    (['second 0', 'first 1', 'first 2'], [False, False, False])
+    """
+
+    def __init__(self, count: int) -> None:
+        self.errors: list[MechgradeError | None] = [None] * count
+
+    def add(self, failing, error: Callable[[int], MechgradeError]) -> None:
+        """``error(i)`` for every column ``i`` ``failing`` (booleans) that has no error yet."""
+        for i in np.flatnonzero(failing):
+            if self.errors[i] is None:
+                self.errors[i] = error(int(i))
+
+    @property
+    def ok(self) -> np.ndarray:
+        """Which columns have no error."""
+        return np.array([e is None for e in self.errors], dtype=bool)
 
 
 def call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:

@@ -30,7 +30,7 @@ import sympy as sp
 # scipy is imported by the functions that use it: it takes longer to import than a whole
 # `mechgrade check` of most problems, which never needs it.
 
-from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
+from ..errors import (AuthorWarning, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
 from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
 from ..mechanics.loads import PhysicalBound
@@ -40,16 +40,14 @@ from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from .events import at_the_event, integrate_to_event, integrated_symbolically
-from .motion import integrated_alone
+from .motion import balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
 from .instant import (_instants, _state, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
-from . import rules
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
 from .result import ObjectiveFailure, ObjectiveResult, Solution
-from .rules import first_off
 
 
 def kinematic_problem(problem: Problem) -> Problem:
@@ -138,65 +136,12 @@ def _call(f: Callable, x: np.ndarray) -> np.ndarray:
 def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarray:
     """The extended state (state values, then reactions) with the unknown second rates and
     reactions solved from the momentum balances; raises when they are not determined, the
-    equations cannot all hold, or a friction contact contradicts its model."""
-    from scipy import linalg
-
-    x = np.concatenate([state.values, np.zeros(len(kp.kin.reactions))])
-    known = np.concatenate([state.given, np.zeros(len(kp.kin.reactions), dtype=bool)])
-    cols = [j for j, i in enumerate(kp.columns) if not known[i]]
-    for j in cols:
-        x[kp.columns[j]] = 0.0
-    for slip, speed, _ in kp.slips:
-        if not _call(speed, x)[0] > 1e-12:
-            raise SolveError(f"kinetic friction '{slip.name}' needs the contact at {slip.point} "
-                             "to slip, but its slip velocity is zero at this instant; use "
-                             "'kind: static'", where=slip.where)
-    check_physical(kp, x, given=True)
-    A = _call(kp.jacobian, x).reshape(len(kp.labels), len(kp.columns))[:, cols]
-    b = _call(kp.residual, x)
-    if not (np.isfinite(A).all() and np.isfinite(b).all()):
-        bad = next(i for i in range(len(b)) if not (np.isfinite(A[i]).all() and np.isfinite(b[i])))
-        raise SolveError(f"the equations of motion are undefined at this instant (a division by "
-                         f"zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
-    sol, *_ = linalg.lstsq(A, -b)
-    _, s, vt = linalg.svd(A)
-    rank = int(rules.rank(s))
-    if rank < len(cols):
-        null = vt[rank:].T
-        open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > 1e-9]
-        names = [kp.name(j) for j in open_]
-        involved = sorted({label.split(":")[0] for i, label in enumerate(kp.labels)
-                           if any(abs(A[i, cols.index(j)]) > 1e-12 for j in open_)})
-        kind = "statically indeterminate" if any(kp.columns[j] >= kp.kp.index.size
-                                                 for j in open_) else "under-constrained"
-        raise UnderdeterminedError(
-            f"the model is {kind}: the momentum balances ({', '.join(involved)}) do not "
-            f"determine {', '.join(names)}; remove a redundant reaction or add a constraint",
-            where=_body_where(problem, involved))
-    for j, value in zip(cols, sol):
-        x[kp.columns[j]] = value
-    r = _call(kp.residual, x)
-    size = np.abs(_call(kp.scale, x))
-    i = first_off(r, size, problem.consistency)
-    if i is not None:
-        raise InconsistentError(
-            f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
-            f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
-            "loads, or a given second rate contradicts them", where=kp.wheres[i])
-    check_physical(kp, x, given=False)
-    _check_friction(kp, x)
-    return x
-
-
-def check_physical(kp: KineticsPlan, x: np.ndarray, *, given: bool) -> None:
-    """The physical bounds at the extended state ``x`` (:mod:`mechgrade.mechanics.loads`):
-    those of the givens (a mass, mu, e) or those of the solution (a contact pushes, a string
-    pulls)."""
-    for bound, f in kp.physical:
-        if bound.given == given:
-            value = float(_call(f, x)[0])
-            if not bound.holds(value):
-                raise SolveError(bound.message(value), where=bound.where)
+    equations cannot all hold, or a friction contact contradicts its model (the checks of
+    :func:`~.motion.balances`, with one column)."""
+    solved = balances(problem, kp, state.values[:, None], state.given)
+    if solved.errors[0] is not None:
+        raise solved.errors[0]
+    return solved.x[:, 0]
 
 
 def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:
@@ -219,33 +164,6 @@ def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:
 
 def problem_where(kp: KineticsPlan) -> Location:
     return kp.wheres[0] if kp.wheres else Location()
-
-
-def _body_where(problem: Problem, involved) -> Location:
-    for b in dynamics_of(problem).bodies:
-        if involved and involved[0] == f"body {b.name}":
-            return b.where
-    return Location()
-
-
-def _check_friction(kp: KineticsPlan, x: np.ndarray) -> None:
-    for slip, _, normal in kp.slips:
-        n = _call(normal, x)[0]
-        if n < -1e-9:
-            raise SolveError(f"contact lost at {slip.point}: the normal force would be "
-                             f"{n:.4g} N (pulling)", where=slip.where)
-    for bound, tangential, normal, mu in kp.bounds:
-        f = np.linalg.norm(_call(tangential, x))
-        n = _call(normal, x)[0]
-        m = _call(mu, x)[0]
-        if n < -1e-9:
-            raise SolveError(f"contact lost at {bound.point}: the normal force would be "
-                             f"{n:.4g} N (pulling)", where=bound.where)
-        if f > m * n * (1 + 1e-9) + 1e-12:
-            needed = f / n if n > 0 else np.inf
-            raise SolveError(f"the {bound.body} slips at {bound.point}: sticking needs "
-                             f"mu >= {needed:.4g} (friction {f:.4g} N against a normal force "
-                             f"of {n:.4g} N), but mu = {m:.4g}", where=bound.where)
 
 
 # ---------------------------------------------------------------------------- entry point
