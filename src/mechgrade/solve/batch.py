@@ -8,7 +8,7 @@ a variant continues from the configuration the author checked, and for a level w
 finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
-rates from the energy balance (:func:`~.work_energy.energy_state` on arrays); the motion integrated
+rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
 variants' right-hand sides in one call); a design parameter by Newton's method around the
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
@@ -48,7 +48,6 @@ from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .batch_motion import newton
 from .entry import solve
-from .analysis import analysis_plan
 from .events import at_the_event, event_never_happens
 from .instant import (_instants, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
@@ -61,10 +60,10 @@ from .numeric import PROBE_TOL, degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event
 from .plan import KinematicsPlan, kinematics_plan
-from . import rules
 from .rules import on_branch, satisfied
 from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
                      Solution)
+from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
 
 NEWTON_STEPS = 30
@@ -393,7 +392,8 @@ class _Template:
         if self.kinetics is None:
             return X, ok
         if isinstance(self.analysis, WorkEnergy):
-            ok &= self._energy(X, ok)
+            X, errors = energy_rates(self.problem, self.kinetics, X)
+            ok &= np.array([e is None for e in errors], dtype=bool)
         X, fine = self._motion().screened(X, group.after)
         return X, ok & fine
 
@@ -442,61 +442,6 @@ class _Template:
         if degenerate and len(again) and not isinstance(self.analysis, Integration):
             ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
         return out, ok & converged
-
-    def _energy(self, X: np.ndarray, ok: np.ndarray) -> np.ndarray:
-        """Put in every column the rates the energy balance gives (as
-        :func:`~.work_energy.energy_state` does), and say which columns it would not refuse."""
-        assert self.kinetics is not None and isinstance(self.analysis, WorkEnergy)
-        kp, index = self.kinetics, self.p.index
-        analysis = self.analysis
-        ap = analysis_plan(kp)
-        rates, n = list(index.rates(1)), index.n
-        count = X.shape[1]
-        reactions = np.zeros((len(kp.kin.reactions), count))
-        fine = ok.copy()
-        X[rates] = 0.0
-        X[list(index.rates(2))] = 0.0
-        level = self.p.levels[1]
-        if level.constraint_rows:
-            J = call(level.jacobian, X, len(level.labels) * n).reshape(
-                len(level.labels), n, count)[:level.constraint_rows]
-            finite = np.isfinite(J).all(axis=(0, 1))
-            fine &= finite
-            _, s, Vt = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1),
-                                     full_matrices=True)
-            fine &= rules.rank(s) == n - 1  # one free direction
-            u = Vt[:, n - 1, :].T
-        else:
-            fine &= n == 1
-            u = np.ones((n, count))
-        start = np.concatenate([X, reactions])
-        for i, fn in ap.start:
-            start[i] = call(fn, np.concatenate([X, reactions]), 1)[0]
-        e0 = call(ap.energy, start, 1)[0]
-        v = call(ap.energy, np.concatenate([X, reactions]), 1)[0]
-        moving = X.copy()
-        moving[rates] = u
-        with np.errstate(all="ignore"):
-            t_unit = call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
-            square = (e0 - v) / t_unit
-            fine &= ~(square < -1e-9 * (np.abs(e0) + np.abs(v) + 1e-300) / t_unit)
-            fine &= np.isfinite(square)
-            speed = np.sqrt(np.maximum(square, 0.0))
-        sign = np.ones(count)
-        if analysis.sense:
-            key, sense = analysis.sense[0]
-            component = u[rates.index(index.position(key.text.replace(" ", "")))]
-            fine &= ~((speed > 0) & (np.abs(component) < 1e-12))
-            sign = np.where(speed > 0, np.sign(component) * sense.sign, 1.0)
-        else:
-            fine &= ~(speed > 0)
-        X[rates] = sign * speed * u
-        x = np.concatenate([X, reactions])
-        size = 1.0 + np.abs(X[rates]).max(axis=0, initial=0.0)
-        for _, fn in ap.workless:
-            with np.errstate(invalid="ignore"):
-                fine &= ~(np.abs(call(fn, x, 1)[0]) > 1e-8 * size)
-        return fine
 
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
