@@ -49,17 +49,18 @@ from ..units import si_factor
 from .batch_motion import newton
 from .entry import solve
 from .events import at_the_event, event_never_happens
-from .instant import (_instants, _key, _state, _symbolic_answer,
+from .instant import (_instants, absent, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
 from .columns import call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of)
-from .numeric import PROBE_TOL, degenerate, solve_numeric
+from .numeric import degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event
 from .plan import KinematicsPlan, kinematics_plan
+from . import rules
 from .rules import on_branch, satisfied
 from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
                      Solution)
@@ -351,10 +352,10 @@ class _Template:
             objectives, mistakes, requirements = (self.kinetics.objectives,
                                                   self.kinetics.mistakes,
                                                   self.kinetics.requirements)
-            limit = 1e-8
+            limit = rules.REQUIRED_KINETIC
         else:
             objectives, mistakes, requirements = p.objectives, p.mistakes, p.requirements
-            limit = 1e-9
+            limit = rules.REQUIRED
         values = {oid: call(f, X, _size(self.problem, oid)) for oid, f in objectives
                   if oid in group.numeric}
         if before is not None:
@@ -365,10 +366,8 @@ class _Template:
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
             for v in values.values():
                 ok &= np.isfinite(v).all(axis=0)
-        for oid, _, f in requirements:
-            if oid in group.numeric:
-                with np.errstate(invalid="ignore"):
-                    ok &= ~(np.abs(call(f, X, 1)[0]) > limit)
+        ok &= np.array([not missing for missing in absent(self.problem, requirements, X,
+                                                            group.numeric, limit)], dtype=bool)
         declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
         return X, ok, values, declared, never
@@ -528,9 +527,7 @@ class _Template:
             self._levels(group, moved, targets, first, same)
             for oid, value in before.items():
                 after = call(dict(p.objectives)[oid], moved, value.shape[0])
-                size = np.maximum(np.abs(value).max(axis=0), 1e-12)
-                with np.errstate(invalid="ignore"):
-                    same &= np.abs(after - value).max(axis=0) <= PROBE_TOL * size + 1e-12
+                same &= rules.unchanged(value, after)
         return same
 
     def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:

@@ -42,7 +42,8 @@ from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from .events import at_the_event, integrate_to_event, integrated_symbolically
 from .motion import balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
-from .instant import (_instants, _state, collect_results, degrees_of_freedom,
+from . import rules
+from .instant import (_instants, _state, absent, collect_results, degrees_of_freedom,
                       instant_givens, wanted_objectives)
 from .levels import State, place_givens
 from .numeric import solve_numeric
@@ -200,11 +201,9 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
                     values = {oid: at_the_event(v[:, None], _call(functions[oid], limit)[:, None],
                                                 problem.objective(oid))[:, 0]
                               for oid, v in values.items()}
-                for oid, reason, f in kp.requirements:
-                    if oid in numeric and oid not in failures and abs(_call(f, x)[0]) > 1e-8:
-                        failures[oid] = SolveError(f"objective '{oid}' does not exist at this "
-                                                   f"instant: {reason}",
-                                                   where=problem.objective(oid).where)
+                for oid, missing in absent(problem, kp.requirements, x[:, None], numeric,
+                                           rules.REQUIRED_KINETIC)[0].items():
+                    failures.setdefault(oid, missing)
                 mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
                             if oid in numeric}
                 warned += [w for w in found if w not in warned]

@@ -27,6 +27,8 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..units import from_si, si_factor, si_unit
+from . import rules
+from .columns import call
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
@@ -102,12 +104,24 @@ def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
 
 def _check_requirements(problem: Problem, p: KinematicsPlan, state: State, only: set[str]) -> dict:
     """Errors for the objectives in ``only`` that do not exist at this instant."""
-    values = evaluate(((oid, f) for oid, _, f in p.requirements), state, only)
-    out = {}
-    for oid, reason, _ in p.requirements:
-        if oid in only and oid not in out and abs(float(values[oid][0])) > 1e-9:
-            out[oid] = SolveError(f"objective '{oid}' does not exist at this instant: {reason}",
-                                  where=problem.objective(oid).where)
+    return absent(problem, p.requirements, state.values[:, None], only, rules.REQUIRED)[0]
+
+
+def absent(problem: Problem, requirements, X: np.ndarray, only: Collection[str],
+           limit: float) -> list[dict[str, SolveError]]:
+    """For every column of ``X`` (a state), the objectives in ``only`` that do not exist
+    there (what one requires to be zero is more than ``limit`` away from it), each with its
+    error."""
+    out: list[dict[str, SolveError]] = [{} for _ in range(X.shape[1])]
+    for oid, reason, f in requirements:
+        if oid not in only:
+            continue
+        with np.errstate(invalid="ignore"):
+            off = np.abs(call(f, X, 1)[0]) > limit
+        for i in np.flatnonzero(off):
+            out[i].setdefault(oid, SolveError(
+                f"objective '{oid}' does not exist at this instant: {reason}",
+                where=problem.objective(oid).where))
     return out
 
 

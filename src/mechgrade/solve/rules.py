@@ -22,6 +22,18 @@ RESIDUAL_FLOOR = 1e-10
 """What a residual may keep beside the problem's ``consistency`` times its terms' size: an
 equation whose terms are all zero holds to rounding, not exactly."""
 
+PROBE_TOL = 1e-7
+"""An objective is the same at two states when it differs by at most this part of its size
+(and 1e-12): a root found again, an objective that what the givens leave free does not move."""
+
+REQUIRED = 1e-9
+"""How far from zero the expression an objective requires to be zero (an equilibrium, a
+motion at rest) may be at an instant of the kinematics for the objective to exist there."""
+
+REQUIRED_KINETIC = 1e-8
+""":data:`REQUIRED` at an instant of the kinetics, whose second rates and reactions come out
+of a linear solve (and an integration) with more rounding than the kinematics' levels."""
+
 ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical
 size away from zero: nearer, it is zero to the rounding of the solve."""
@@ -79,3 +91,20 @@ def on_branch(values, scales, root: Root | None) -> np.ndarray:
     if root is Root.NEGATIVE:
         return x < -ON_BRANCH * np.asarray(scales)
     return np.ones(x.shape, dtype=bool)
+
+
+def unchanged(before, after) -> np.ndarray:
+    """Whether each column (values along the first axis) of ``after`` is ``before``'s, to
+    :data:`PROBE_TOL` of ``before``'s largest size: where a value is undefined, whether the
+    same values are undefined in both.
+
+    >>> unchanged(np.array([[1.0, 1.0, np.nan]]), np.array([[1.0 + 1e-9, 1.1, np.nan]])).tolist()
+    [True, False, True]
+    """
+    a, b = np.asarray(before, dtype=float), np.asarray(after, dtype=float)
+    fa, fb = np.isfinite(a), np.isfinite(b)
+    finite = fa.all(axis=0) & fb.all(axis=0)
+    scale = np.maximum(np.abs(np.where(fa, a, 0.0)).max(axis=0, initial=0.0), 1e-12)
+    with np.errstate(invalid="ignore"):
+        gap = np.abs(np.where(finite, a - b, 0.0)).max(axis=0, initial=0.0)
+    return np.where(finite, gap <= PROBE_TOL * scale + 1e-12, (fa == fb).all(axis=0))
