@@ -43,12 +43,11 @@ from .events import at_the_event, integrate_to_event, integrated_symbolically
 from .motion import balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
-from .instant import (_instants, _state, absent, collect_results, degrees_of_freedom,
-                      instant_givens, wanted_objectives)
+from .instant import Reached, absent, drive
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
-from .result import ObjectiveFailure, ObjectiveResult, Solution
+from .result import ObjectiveResult, Solution
 
 
 def kinematic_problem(problem: Problem) -> Problem:
@@ -173,54 +172,57 @@ def problem_where(kp: KineticsPlan) -> Location:
 def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                    objectives: Collection[str] | None = None) -> Solution:
     """Like :func:`mechgrade.solve.solve`, for a problem with bodies and loads."""
+    return drive(problem, KineticInstant(problem), givens, objectives)
 
-    kp = kinetics_plan(problem)
-    kproblem = kinematic_problem(problem)
-    results: dict[str, ObjectiveResult] = {}
-    failures: dict[str, MechgradeError] = {}
-    warned: list[AuthorWarning] = list(kp.kp.k.warnings)
-    base = None
-    wanted = wanted_objectives(problem, objectives)
-    for overrides, group in _instants(problem):
-        chosen = [o for o in group if o.id in wanted]
-        if not chosen:
-            continue
-        given_map = instant_givens(problem, givens, overrides)
-        numeric = {o.id for o in chosen if o.kind != ObjectiveKind.SYMBOLIC}
-        values, mistakes = {}, {}
-        if numeric:
-            try:
-                given_map = _designed(problem, kproblem, kp, given_map)
-                state, x, found, limit = _instant(problem, kproblem, kp, given_map)
-            except MechgradeError as err:
-                failures.update({oid: err for oid in numeric})
-            else:
-                values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
-                if limit is not None:  # an integration's event
-                    functions = dict(kp.objectives)
-                    values = {oid: at_the_event(v[:, None], _call(functions[oid], limit)[:, None],
-                                                problem.objective(oid))[:, 0]
-                              for oid, v in values.items()}
-                for oid, missing in absent(problem, kp.requirements, x[:, None], numeric,
-                                           rules.REQUIRED_KINETIC)[0].items():
-                    failures.setdefault(oid, missing)
-                mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
-                            if oid in numeric}
-                warned += [w for w in found if w not in warned]
-                if not overrides or base is None:
-                    base = (_with_kinetics(kp, state, x), given_map)
-        collect_results(problem, chosen, given_map, values, mistakes, results, failures,
-                        symbolic=_symbolic_result)
-    order = [o.id for o in problem.objectives if o.id in wanted]
-    if not results and order:  # nothing solved of what was asked
-        raise failures[order[0]]
-    return Solution(problem=problem.id,
-                    results=tuple(results[oid] for oid in order if oid in results),
-                    state=_state(kproblem, kp.kp, base),
-                    dof=degrees_of_freedom(kp.kp, base[0] if base else None),
-                    failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
-                                   if oid in failures),
-                    warnings=tuple(warned))
+
+@dataclass(frozen=True)
+class KineticInstant:
+    """A dynamics problem's instants (:class:`~.instant.Reach`): its kinematics at the givens
+    (by the energy balance, integrated to an event, or given), a design parameter solved
+    for, the momentum balances; its generated mistakes are worked out once for the whole
+    solution (:mod:`.dynamics_mutants`)."""
+
+    source: Problem
+
+    @property
+    def kinetics(self) -> KineticsPlan:
+        return kinetics_plan(self.source)
+
+    @property
+    def problem(self) -> Problem:
+        return kinematic_problem(self.source)
+
+    @property
+    def plan(self) -> KinematicsPlan:
+        return self.kinetics.kp
+
+    @property
+    def warnings(self) -> tuple[AuthorWarning, ...]:
+        return tuple(self.plan.k.warnings)
+
+    def instant(self, given_map: dict, numeric: set[str]) -> Reached:
+        problem, kproblem, kp = self.source, self.problem, self.kinetics
+        given_map = _designed(problem, kproblem, kp, given_map)
+        state, x, found, limit = _instant(problem, kproblem, kp, given_map)
+        values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
+        if limit is not None:  # an integration's event
+            functions = dict(kp.objectives)
+            values = {oid: at_the_event(v[:, None], _call(functions[oid], limit)[:, None],
+                                        problem.objective(oid))[:, 0]
+                      for oid, v in values.items()}
+        missing = absent(problem, kp.requirements, x[:, None], numeric,
+                         rules.REQUIRED_KINETIC)[0]
+        mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
+                    if oid in numeric}
+        return Reached(given_map, _with_kinetics(kp, state, x), values, mistakes, missing,
+                       tuple(found))
+
+    def symbolic(self) -> Callable | None:
+        return _symbolic_result
+
+    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
+                 reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
+        return results
 
 
 def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
