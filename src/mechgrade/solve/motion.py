@@ -109,7 +109,7 @@ class Motion:
         ok = arrival.status == FIRED
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
-        x, fine = self.screened(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
+        x, fine = self.screened(at(everyone, arrival.t * (1 - rules.BEFORE_EVENT), arrival.before)[:size],
                                  after_event(self.p))
         before = x.copy()
         keep = [i for i in range(size) if i not in seconds]
@@ -200,7 +200,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
     def underdetermined(i: int) -> MechgradeError:
         a = A[:, :, i]
         null = np.linalg.svd(a)[2][int(rank[i]):].T
-        open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > 1e-9]
+        open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > rules.OPEN]
         names = [kp.name(j) for j in open_]
         involved = sorted({label.split(":")[0] for r, label in enumerate(kp.labels)
                            if any(abs(a[r, cols.index(j)]) > 1e-12 for j in open_)})

@@ -21,6 +21,7 @@ from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing
                      place_givens, rows, solve_linear, solve_nonlinear)
 from .columns import call
 from .plan import KinematicsPlan
+from . import rules
 from .rules import satisfied, unchanged
 
 SINGULAR = 1e-3
@@ -112,7 +113,7 @@ def _ambiguous(problem: Problem, p: KinematicsPlan, g: Givens,
     def differs(i):
         first = states[0][i]
         return not g.known[i] and i not in free and any(
-            abs(s[i] - first) > 1e-6 * (1 + abs(first)) for s in states[1:]
+            not rules.same_value(first, s[i]) for s in states[1:]
             if np.isfinite(s[i]) and np.isfinite(first))
 
     differ = [i for i in range(p.index.size) if differs(i)]

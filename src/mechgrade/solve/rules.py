@@ -34,6 +34,18 @@ REQUIRED_KINETIC = 1e-8
 """:data:`REQUIRED` at an instant of the kinetics, whose second rates and reactions come out
 of a linear solve (and an integration) with more rounding than the kinematics' levels."""
 
+OPEN = 1e-9
+"""An unknown is left open by equations whose solutions form a null space when its component
+in a direction of that space is more than this (the basis is orthonormal)."""
+
+SAME_VALUE = 1e-6
+"""Two roots have the same value of a quantity when they differ by at most this part of it
+(and of 1): the smallest of the first positive roots, the unknowns two branches differ in."""
+
+BEFORE_EVENT = 1e-9
+"""The moment just before an event (its time times one minus this) at which the limits of
+the second rates and reactions are read."""
+
 ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical
 size away from zero: nearer, it is zero to the rounding of the solve."""
@@ -76,6 +88,16 @@ def null_space(A: np.ndarray) -> np.ndarray:
 
     _, s, vt = linalg.svd(A)
     return vt[int(rank(s)):].T
+
+
+def same_value(a, b) -> bool:
+    """Whether the values ``a`` and ``b`` of a quantity at two roots are the same
+    (:data:`SAME_VALUE`).
+
+    >>> same_value(2.0, 2.0 + 1e-7), same_value(0.0, 1e-5)
+    (True, False)
+    """
+    return bool(abs(a - b) <= SAME_VALUE * (1 + abs(a)))
 
 
 def on_branch(values, scales, root: Root | None) -> np.ndarray:
