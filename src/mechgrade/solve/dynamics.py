@@ -40,6 +40,7 @@ from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from .events import at_the_event, integrate_to_event, integrated_symbolically
+from .motion import accelerations as columns_accelerations
 from .motion import balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
@@ -146,19 +147,16 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
 
 def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:
     """The extended state with every second rate and reaction solved by least squares, without
-    the checks of :func:`solve_kinetics` (the right-hand side of an integration)."""
-    from scipy import linalg
-
+    the checks of :func:`solve_kinetics` (:func:`~.motion.accelerations` with one column);
+    raises where the equations are undefined."""
     x = np.concatenate([values, np.zeros(len(kp.kin.reactions))])
-    cols = list(kp.columns)
-    x[cols] = 0.0
-    A = _call(kp.jacobian, x).reshape(len(kp.labels), len(cols))
-    b = _call(kp.residual, x)
-    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+    x[list(kp.columns)] = 0.0
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        x = columns_accelerations(kp, x[:, None])[:, 0]
+    if not np.isfinite(x[list(kp.columns)]).all():
         raise SolveError("the equations of motion became undefined during the integration "
                          "(a division by zero)", where=problem_where(kp))
-    sol, *_ = linalg.lstsq(A, -b, check_finite=False)
-    x[cols] = sol
     return x
 
 

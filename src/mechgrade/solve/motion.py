@@ -117,35 +117,38 @@ class Motion:
         return np.vstack([x, before]), ok & fine, arrival.status == NEVER
 
     def accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
-        """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's
-        direction) with every second rate and reaction solved by least squares (as
-        :func:`~.dynamics.accelerations`), in place; NaN where the equations are undefined.
-        Called with numpy's warnings silenced."""
-        kp = self.kinetics
-        assert kp is not None
-        count = x.shape[1]
-        cols = list(kp.columns)
-        rows_ = len(kp.labels)
-        if switches is not None:
-            jacobian, residual, args = switches.jacobian, switches.residual, x
-        else:
-            jacobian, residual = kp.jacobian, kp.residual
-            args = x[:len(kp.symbols)]
-        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
-        b = loud_call(residual, args, rows_)
-        if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
-            x[cols] = least_squares_solution(A, -b)
-            return x
-        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
-        x[:, ~good] = np.nan
-        return x
+        """:func:`accelerations` of this motion."""
+        return accelerations(self.kinetics, x, switches)
 
     def screened(self, X: np.ndarray, known: np.ndarray):
         """The extended states (second rates and reactions solved from the momentum
         balances), and which passed the checks of :func:`balances`."""
         solved = balances(self.problem, self.kinetics, X, known)
         return solved.x, solved.ok
+
+
+def accelerations(kp, x: np.ndarray, switches: _Switching | None = None) -> np.ndarray:
+    """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's direction)
+    with every second rate and reaction solved by least squares, without the checks of
+    :func:`balances` (the right-hand side of an integration), in place; NaN where the
+    equations are undefined. Called with numpy's warnings silenced."""
+    count = x.shape[1]
+    cols = list(kp.columns)
+    rows_ = len(kp.labels)
+    if switches is not None:
+        jacobian, residual, args = switches.jacobian, switches.residual, x
+    else:
+        jacobian, residual = kp.jacobian, kp.residual
+        args = x[:len(kp.symbols)]
+    A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+    b = loud_call(residual, args, rows_)
+    if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
+        x[cols] = least_squares_solution(A, -b)
+        return x
+    good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+    x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
+    x[:, ~good] = np.nan
+    return x
 
 
 @dataclass(frozen=True)
