@@ -125,8 +125,8 @@ def differences(a, b, rel: float, where: str = "") -> list[str]:
 
 
 def diff(before_file: Path, after_files: list[Path], rel: float) -> int:
-    """Print where the records in ``after_files`` differ from ``before_file`` (problems in
-    one and not the other too); 1 when they differ anywhere, else 0."""
+    """Print where the records in ``after_files`` differ from ``before_file`` for the problems
+    both hold (and which only one holds); 1 when they differ anywhere, else 0."""
     before = json.loads(before_file.read_text())
     after: dict = {}
     for f in after_files:
@@ -134,14 +134,14 @@ def diff(before_file: Path, after_files: list[Path], rel: float) -> int:
     found = 0
     for key in sorted(set(before) | set(after)):
         if key not in before or key not in after:
-            print(f"{key}: recorded in {'one' if key in before else 'the other'} only")
-            found += 1
+            print(f"{key}: recorded in {before_file if key in before else 'the other'} only")
             continue
         diffs = differences(before[key], after[key], rel, key)
         found += len(diffs)
         for d in diffs[:10]:
             print(d)
-    print(f"{len(after)} problems compared with {len(before)}, {found} differences")
+    both = len(set(before) & set(after))
+    print(f"{both} problems recorded in both compared, {found} differences")
     return 1 if found else 0
 
 
@@ -163,7 +163,8 @@ def main() -> None:
     for path in paths:
         key = str(path.relative_to(ROOT) if path.is_absolute() else path)
         now[key] = entry = dump(path, args.variants, args.alone)
-        if args.action == "record":
+        if args.action == "record":  # written after each problem: a record cut short keeps them
+            args.file.write_text(json.dumps(now, indent=1))
             print(key, file=sys.stderr, flush=True)
             continue
         if key not in before:
