@@ -105,7 +105,7 @@ def _exprs():
         inner.map(lambda e: f"({e})**2")), max_leaves=12)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=150)
 @given(_exprs())
 def test_canonical_text_reads_back_to_the_same_tree(text):
     try:
@@ -160,7 +160,7 @@ def _answer_forms() -> list[str]:
     return sorted(forms)
 
 
-@settings(max_examples=400, deadline=None)
+@settings(max_examples=400)
 @given(st.one_of(st.text(alphabet=_SCANNER_ALPHABET, max_size=30),
                  st.lists(st.sampled_from(_PIECES), max_size=12).map("".join)))
 def test_the_compiled_scanner_reads_as_pythons_tokenizer(text):
@@ -256,7 +256,7 @@ def _outcome(read):
         return exc.message
 
 
-@settings(max_examples=600, deadline=None)
+@settings(max_examples=600)
 @given(st.one_of(st.lists(st.sampled_from(_READER_PIECES), max_size=14).map(" ".join),
                  st.lists(st.sampled_from(_READER_PIECES), max_size=14).map("".join), _exprs()))
 def test_the_fast_reader_reads_as_ast(text):

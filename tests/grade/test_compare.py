@@ -472,7 +472,7 @@ _FUZZ_PIECES = st.sampled_from(["98.5", "1 000", ".", "e", "E", "e1", "j", "-", 
                                 "9" * 40, "1e999", "2E+3", "3j", "abs(", "½", "\ufffd"])
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=300)
 @given(st.one_of(st.text(max_size=80), st.lists(_FUZZ_PIECES, max_size=12).map("".join)),
        st.sampled_from(_FUZZ_OBJECTIVES))
 def test_arbitrary_text_gets_a_verdict_or_a_short_reason(text, objective):

@@ -79,6 +79,7 @@ def test_an_exact_factor_that_is_not_the_mistake_is_counted_generic():
     assert MEASURE.classify(row, result)[0] == "generic"
 
 
+@pytest.mark.slow  # the only table with rows inside the tolerance is a heavy problem's
 def test_the_measurement_prints_figures_per_problem_per_topic_and_overall(tmp_path):
     # two problems (the script measures all 44): one with rows inside the tolerance
     chosen = ("puck_string_through_hole", "collar_slides_on_spinning_rod")

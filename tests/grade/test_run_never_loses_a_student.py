@@ -47,8 +47,7 @@ files = st.sampled_from([b"answers.txt", b"answers.json", b"answers.yaml", b"Ans
                          b"notes.bin"])
 
 
-@settings(max_examples=40, deadline=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@settings(max_examples=40, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(name=names, filename=files, content=contents, flat=st.booleans())
 def test_any_submission_goes_through_the_whole_pipeline(plan, name, filename, content, flat):
     root = tempfile.mkdtemp()

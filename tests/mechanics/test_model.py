@@ -63,7 +63,7 @@ def test_rates_are_plain_symbols_named_by_the_textbook_convention():
     assert [str(s) for s in k.q + k.qd + k.qdd] == ["theta", "thetad", "thetadd"]
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=25)
 @given(theta=st.floats(-3, 3), rate=st.floats(-10, 10), accel=st.floats(-10, 10))
 def test_pendulum_acceleration_matches_the_closed_form(theta, rate, accel):
     problem = load_problem_text(PENDULUM)

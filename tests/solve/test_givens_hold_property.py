@@ -48,7 +48,7 @@ def residuals_hold(prob, solution, overrides) -> None:
             assert abs(r[i] - target) <= prob.consistency * scale[i] + 1e-9, label
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=30)
 @given(data=st.data())
 def test_perturbed_givens_hold_in_the_solution_or_solving_says_why(data):
     path = data.draw(st.sampled_from(FILES), label="problem")
