@@ -1,8 +1,8 @@
 """The motion of a dynamics problem at many states at once, each a column: the second rates and
-reactions from the momentum balances, screened as :func:`~.dynamics.solve_kinetics` checks
-them, and the motion integrated to its event (:func:`~.batch_motion.integrate_to_events`).
-A class of variants (:mod:`.batch`) and an instant solved alone (:mod:`.dynamics`) are
-integrated here alike.
+reactions from the momentum balances, each column checked and given the error it alone would
+raise (:func:`balances`, which :func:`~.dynamics.solve_kinetics` calls with one column), and
+the motion integrated to its event (:func:`~.batch_motion.integrate_to_events`). A class of
+variants (:mod:`.batch`) and an instant solved alone (:mod:`.dynamics`) are solved here alike.
 """
 
 from __future__ import annotations
