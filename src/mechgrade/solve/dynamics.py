@@ -170,7 +170,8 @@ def problem_where(kp: KineticsPlan) -> Location:
 def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                    objectives: Collection[str] | None = None) -> Solution:
     """Like :func:`mechgrade.solve.solve`, for a problem with bodies and loads."""
-    return drive(problem, KineticInstant(problem), givens, objectives)
+    return drive(problem, KineticInstant(problem, kinematic_problem(problem),
+                                         kinetics_plan(problem)), givens, objectives)
 
 
 @dataclass(frozen=True)
@@ -181,14 +182,8 @@ class KineticInstant:
     solution (:mod:`.dynamics_mutants`)."""
 
     source: Problem
-
-    @property
-    def kinetics(self) -> KineticsPlan:
-        return kinetics_plan(self.source)
-
-    @property
-    def problem(self) -> Problem:
-        return kinematic_problem(self.source)
+    problem: Problem  # its kinematics (kinematic_problem)
+    kinetics: KineticsPlan
 
     @property
     def plan(self) -> KinematicsPlan:
