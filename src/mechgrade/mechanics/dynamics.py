@@ -402,7 +402,9 @@ class DynamicsInterpreter(Interpreter):
         if n > 2:
             raise SolveError("natural modes are worked out for one or two coordinates; this "
                              f"problem has {n}", where=self.where)
-        trace, det = K[0, 0] + K[1, 1], K.det()
+        # the 2x2 determinant written out: Matrix.det() simplifies its pivots, which takes
+        # hours on the entries of a linearised multibody system
+        trace, det = K[0, 0] + K[1, 1], K[0, 0] * K[1, 1] - K[0, 1] * K[1, 0]
         root = sp.sqrt(trace ** 2 - 4 * det)
         return _tidy((trace - root) / 2 if value == 1 else (trace + root) / 2), K
 

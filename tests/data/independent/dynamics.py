@@ -68,6 +68,27 @@ def case_two_mass_spring_chain():
             **_chain_modes(m1, m2, k1, k2)}
 
 
+def case_cart_pendulum_spring_modes():
+    M, m, L, k, x0, g = 2.0, 0.5, 0.8, 50.0, 1.0, 9.81
+    x, v, th, w = 1.1, 0.4, 40 * DEG / 2, 1.5
+    # Lagrange with T = (M+m) x'^2/2 + m L x' th' cos th + m L^2 th'^2/2,
+    # V = k (x-x0)^2/2 - m g L cos th: a 2x2 linear system in x'' and th''
+    mass = np.array([[M + m, m * L * np.cos(th)], [m * L * np.cos(th), m * L * L]])
+    rhs = np.array([m * L * np.sin(th) * w**2 - k * (x - x0), -m * g * L * np.sin(th)])
+    xdd, thdd = np.linalg.solve(mass, rhs)
+    # the bob's acceleration along the rod (toward the pin): -x'' sin th + L th'^2
+    tension = m * (-xdd * np.sin(th) + L * w**2) + m * g * np.cos(th)
+    # small oscillations about x = x0, th = 0: mass and stiffness matrices at rest there,
+    # the generalized eigenproblem through the Cholesky factor of the mass matrix
+    mass0 = np.array([[M + m, m * L], [m * L, m * L * L]])
+    stiff0 = np.diag([k, m * g * L])
+    chol = np.linalg.cholesky(mass0)
+    inverse = np.linalg.inv(chol)
+    w2 = np.linalg.eigvalsh(inverse @ stiff0 @ inverse.T)
+    return {"cart_acceleration": xdd, "alpha": thdd, "rod_force": tension,
+            "omega_1": np.sqrt(w2[0]), "omega_2": np.sqrt(w2[1])}
+
+
 def _chain_modes(m1, m2, k1, k2):
     # M x'' + K x = 0 about the equilibrium, K from V's second derivatives by hand;
     # numpy's symmetric generalized eigenproblem through M^(-1/2) K M^(-1/2)
