@@ -392,7 +392,7 @@ class _Template:
             return X, ok
         if isinstance(self.analysis, WorkEnergy):
             X, errors = energy_rates(self.problem, self.kinetics, X)
-            ok &= np.array([e is None for e in errors], dtype=bool)
+            ok &= errors.ok
         X, fine = self._motion().screened(X, group.after)
         return X, ok & fine
 

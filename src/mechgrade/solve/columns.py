@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import types
 import warnings
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Callable
 
 import numpy as np
@@ -49,29 +49,38 @@ def _array(rows):
 
 class FirstErrors:
     """Each column's first error, as the solver of that column alone would raise it: a stage
-    judges all columns at once and words a message only for a column that fails.
+    judges all columns at once, and a column's message is worded only when it is read (a
+    class whose columns fail by the thousand, as a mistaken model's may, words none).
 
     >>> from mechgrade.errors import SolveError
     >>> errors = FirstErrors(3)
     >>> errors.add(np.array([False, True, True]), lambda i: SolveError(f"first {i}"))
     >>> errors.add(np.array([True, True, False]), lambda i: SolveError(f"second {i}"))
-    >>> [str(e) for e in errors.errors], errors.ok.tolist()
+    >>> [str(errors[i]) for i in range(3)], errors.ok.tolist()
     (['second 0', 'first 1', 'first 2'], [False, False, False])
     """
 
     def __init__(self, count: int) -> None:
-        self.errors: list[MechgradeError | None] = [None] * count
+        self._pending: list[Callable[[], MechgradeError] | None] = [None] * count
 
     def add(self, failing, error: Callable[[int], MechgradeError]) -> None:
         """``error(i)`` for every column ``i`` ``failing`` (booleans) that has no error yet."""
         for i in np.flatnonzero(failing):
-            if self.errors[i] is None:
-                self.errors[i] = error(int(i))
+            if self._pending[i] is None:
+                self._pending[i] = partial(error, int(i))
 
     @property
     def ok(self) -> np.ndarray:
         """Which columns have no error."""
-        return np.array([e is None for e in self.errors], dtype=bool)
+        return np.array([e is None for e in self._pending], dtype=bool)
+
+    def __len__(self) -> int:
+        return len(self._pending)
+
+    def __getitem__(self, i: int) -> MechgradeError | None:
+        """Column ``i``'s error (``None`` where it has none)."""
+        pending = self._pending[i]
+        return None if pending is None else pending()
 
 
 def call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:

@@ -140,8 +140,9 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
     equations cannot all hold, or a friction contact contradicts its model (the checks of
     :func:`~.motion.balances`, with one column)."""
     solved = balances(problem, kp, state.values[:, None], state.given)
-    if solved.errors[0] is not None:
-        raise solved.errors[0]
+    error = solved.errors[0]
+    if error is not None:
+        raise error
     return solved.x[:, 0]
 
 

@@ -158,11 +158,11 @@ class Balanced:
     error (``None`` where it has none)."""
 
     x: np.ndarray
-    errors: tuple[MechgradeError | None, ...]
+    errors: FirstErrors
 
     @property
     def ok(self) -> np.ndarray:
-        return np.array([e is None for e in self.errors], dtype=bool)
+        return self.errors.ok
 
 
 def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced:
@@ -245,7 +245,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
             m = call(mu, x, 1)[0]
             errors.add(nn < -1e-9, partial(_lost, bound, nn))
             errors.add(f > m * nn * (1 + 1e-9) + 1e-12, partial(_slips, bound, f, nn, m))
-    return Balanced(x, tuple(errors.errors))
+    return Balanced(x, errors)
 
 
 def _no_slip(slip, _: int) -> SolveError:

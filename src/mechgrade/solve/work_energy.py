@@ -13,7 +13,7 @@ from functools import partial
 import numpy as np
 import sympy as sp
 
-from ..errors import MechgradeError, SolveError
+from ..errors import SolveError
 from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
 from . import rules
@@ -30,15 +30,15 @@ def energy_state(problem: Problem, kp, state: State, given_rates: list[str]) -> 
         raise SolveError(f"work_energy fixes the rates; do not also give {given_rates[0]}",
                          where=analysis.where)
     values, errors = energy_rates(problem, kp, state.values[:, None])
-    if errors[0] is not None:
-        raise errors[0]
+    error = errors[0]
+    if error is not None:
+        raise error
     known = state.given.copy()
     known[list(kp.kp.index.rates(1))] = True
     return State(values[:, 0], known, frozenset())
 
 
-def energy_rates(problem: Problem, kp, X: np.ndarray
-                 ) -> tuple[np.ndarray, tuple[MechgradeError | None, ...]]:
+def energy_rates(problem: Problem, kp, X: np.ndarray) -> tuple[np.ndarray, FirstErrors]:
     """Every column of ``X`` (state values, the configuration solved) with its rates from the
     energy balance, and each column's error: loads that are not conservative, more than one
     free direction, an instant that needs more energy than the start state has, a speed
@@ -113,7 +113,7 @@ def energy_rates(problem: Problem, kp, X: np.ndarray
         with np.errstate(invalid="ignore"):
             errors.add(np.abs(call(fn, x, 1)[0]) > 1e-8 * size,
                        partial(_does_work, label, analysis))
-    return X, tuple(errors.errors)
+    return X, errors
 
 
 def _does_work(label: str, analysis: WorkEnergy, _: int) -> SolveError:
