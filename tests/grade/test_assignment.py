@@ -132,7 +132,7 @@ def test_assignment_is_frozen(folder):
     ("id: hw1\ntitle: T\nproblems: []\n",
      "hw.yaml:3:11: problems: expected at least 1 item(s), found an empty list"),
     ("id: hw1\ntitle: T\nproblems: [{path: p.yaml, objectives: []}]\n",
-     "hw.yaml:3:39: problems[0].objectives: expected at least 1 item(s), found an empty list"),
+     "hw.yaml:3:39: problems[0].objectives: expected at least 1 item(s) (none only beside diagrams: or equations:), found an empty list"),
     (MINIMAL + "policy: {tolerance: {}}\n",
      "hw.yaml:4:21: policy.tolerance: expected at least 1 field(s), found an empty mapping"),
     ("id: hw1\ntitle: ''\nproblems: [p.yaml]\n", "hw.yaml:2:8: title: expected at least 1 character(s), "

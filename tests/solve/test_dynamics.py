@@ -309,9 +309,31 @@ def test_design_parameter_must_not_be_given():
         load_problem_text(body, "p.yaml")
 
 
-def test_before_needs_an_impact():
-    body = text("atwood_machine").replace("find: y''", "find: dot(before(acc(P1, N)), N.y)", 1)
-    assert "before(...) needs an impact: 'analysis: impulse'" in error_of(body)
+@pytest.mark.parametrize("find, name", [("dot(before(acc(P1, N)), N.y)", "before"),
+                                        ("after(y'')", "after"),
+                                        ("before(ke(block1, N))/(m1*d)", "before")])
+def test_before_and_after_need_an_impact(find, name):
+    body = text("atwood_machine").replace("find: y''", f"find: {find}", 1)
+    assert f"{name}(...) needs an impact: 'analysis: impulse'" in error_of(body)
+
+
+def test_before_and_after_read_a_scalar_across_the_impact():
+    """The rod struck on its end by a ledge (e = 0.5) loses (1 - e^2) m v0^2 / 8: of
+    24 J before, 19.5 J are left."""
+    body = text("rod_strikes_ledge").replace("tags: [impact", """  - id: ke_before
+    prompt: x
+    find: before(ke(rod, N))
+    kind: scalar
+    unit: J
+  - id: ke_after
+    prompt: x
+    find: after(ke(rod, N))
+    kind: scalar
+    unit: J
+tags: [impact""")
+    solution = solve_text(body)
+    assert solution.result("ke_before").value == pytest.approx(24.0, rel=1e-12)
+    assert solution.result("ke_after").value == pytest.approx(19.5, rel=1e-12)
 
 
 def test_a_known_impulse_is_asked_for_as_an_impulse():

@@ -87,8 +87,9 @@ CASES = [
      "(an impulse vector)"),
     ("known impulse on an unknown body", ICE, "hammer: {body: rod,", "hammer: {body: bat,",
      "unknown body 'bat' (bodies: rod)"),
-    ("before of a scalar", ICE, "find: dot(angvel(R, N), N.z)",
-     "find: dot(before(mag(vel(G, N))), N.z)", "expected a vector as argument of before(...)"),
+    ("before of a scalar is a scalar", ICE, "find: dot(angvel(R, N), N.z)",
+     "find: dot(before(mag(vel(G, N))), N.z)", "expected a vector as argument of dot(...), "
+     "found a scalar ('before(mag(vel(G, N)))')"),
     ("spring stiffness units", CHAIN, "stiffness: k1", "stiffness: m1",
      "dimension mismatch in 'm1' (a stiffness)"),
     ("spring free length units", CHAIN, "length: L1", "length: k1",
@@ -147,13 +148,29 @@ CASES = [
      "expected a body or spring as argument of pe(...)"),
     ("force in the wrong unit", PENDULUM, "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: N",
      "find: dot(force(R_O), B.y)\n    kind: scalar\n    unit: J", "dimension mismatch"),
-    ("an objective's own time under integrate", CART, "    expect: {value: 1.359157}\n",
-     "    expect: {value: 1.359157}\n    givens: {t: 0.1 s}\n",
-     "p.yaml:54:17: objectives[0].givens.t: expected only parameters among an objective's "
-     "own givens under 'analysis: integrate' (every objective is read at the event, when "),
-    ("an objective's own rate under integrate", CART, "    expect: {value: 1.359157}\n",
-     "    expect: {value: 1.359157}\n    givens: {x': 1 m/s}\n",
-     "found 'x': 1 m/s'; the state at another time or position is not solved yet"),
+    ("before of a point", ICE, "find: vel(G, N)", "find: before(G)",
+     "p.yaml:43:11: objectives[0].find: 'G' is a point; expected a scalar or vector here"),
+    ("after of two quantities", ICE, "find: vel(G, N)", "find: after(vel(G, N), 2)",
+     "expected 1 arguments for after(...) (after(x): scalar or vector x with the rates just "
+     "after the impact (analysis: impulse; x alone means the same)), found 2"),
+    ("an objective's own second rate under integrate", CART, "    expect: {value: 1.359157}\n",
+     "    expect: {value: 1.359157}\n    givens: {x'': 1 m/s^2}\n",
+     "p.yaml:54:19: objectives[0].givens.x'': expected parameters and one of the time t, a "
+     "coordinate or a rate (q, q') among an objective's own givens under 'analysis: "
+     "integrate', found 'x'': 1 m/s^2'; the motion is integrated from 'from:' (the instant is "
+     "where the given first holds, else the event, when x' = X')"),
+    ("an objective's instant fixed twice under integrate", CART,
+     "    expect: {value: 1.359157}\n",
+     "    expect: {value: 1.359157}\n    givens: {t: 0.1 s, x: 0.2 m}\n",
+     "objectives[0].givens.x: expected one given fixing the instant of objective 't_slide' "
+     "on the integrated motion (the time t, a coordinate or a rate), found 't' and 'x'; keep "
+     "one of them"),
+    ("a symbolic objective at another instant under integrate", CART,
+     "    expect: {expr: M*v0/(mu*g*(m + M))}\n",
+     "    expect: {expr: M*v0/(mu*g*(m + M))}\n    givens: {x': 1 m/s}\n",
+     "objectives[1].givens.x': a symbolic objective of an integrated motion is answered at "
+     "the event, when x' = X' (in closed form), found 'x': 1 m/s'; ask for a scalar or a "
+     "vector at that instant"),
 ]
 
 

@@ -54,6 +54,7 @@ class Kind(StrEnum):
     LOAD = "load"
     BODY_OR_SPRING = "body or spring"
     COORDINATE = "coordinate"
+    QUANTITY = "scalar or vector"  # an argument of either kind; as a result: its argument's
 
 
 class DimensionError(ExpressionError):
@@ -250,9 +251,12 @@ _OBJECTIVE = (
                       "force)"),
     ObjectiveFunction("impulse", (_L,), _V, _fixed("N*s"),
                       "impulse(R): the impulse of a reaction during an impact"),
-    ObjectiveFunction("before", (_V,), _V, lambda dims: dims[0],
-                      "before(v): vector v with the rates just before the impact "
-                      "(analysis: impulse)"),
+    ObjectiveFunction("before", (Kind.QUANTITY,), Kind.QUANTITY, lambda dims: dims[0],
+                      "before(x): scalar or vector x with the rates just before the impact "
+                      "(analysis: impulse), e.g. before(ke(B, N))"),
+    ObjectiveFunction("after", (Kind.QUANTITY,), Kind.QUANTITY, lambda dims: dims[0],
+                      "after(x): scalar or vector x with the rates just after the impact "
+                      "(analysis: impulse; x alone means the same)"),
     ObjectiveFunction("moment", (_L, _P), _V, _fixed("N*m"),
                       "moment(R, P): the moment of a load about point P"),
     ObjectiveFunction("momentum", (_B, _F), _V, _fixed("kg*m/s"),

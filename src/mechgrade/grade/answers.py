@@ -777,6 +777,20 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     return ExpressionAnswer(mapped, _spaced(mapped))
 
 
+def rename_to_symbols(node: Node, symbols: tuple[str, ...]) -> tuple[Node, tuple[str, ...]]:
+    """``node`` in the declared ``symbols`` as :func:`read_expression` reads it (aliases,
+    names written together, Euler's ``e``) and the names it left undeclared, in order.
+
+    >>> from mechgrade.expressions import syntax
+    >>> node, unknown = rename_to_symbols(syntax.parse("mg + Ox"), ("m", "g"))
+    >>> syntax.to_text(node), unknown
+    ('m*g+Ox', ('Ox',))
+    """
+    unknown: list[str] = []
+    mapped = _rename(node, symbol_aliases(tuple(symbols)), unknown)
+    return mapped, tuple(dict.fromkeys(unknown))
+
+
 def _glued_function(name: str, aliases: Mapping[object, str]) -> str:
     """A hint for a name that is a function's glued to a number or declared names
     (``sqrt2gh``, ``sinx``): its argument goes in brackets."""

@@ -37,6 +37,8 @@ class ProblemRef:
 
     path: Path
     objectives: tuple[str, ...] | None = None  # None: every objective of the problem
+    diagrams: tuple[str, ...] = ()  # bodies whose free-body diagram is graded (body.fbd)
+    equations: bool = False  # whether its equations of motion are graded (equations)
     where: Location = field(default_factory=Location, compare=False)
 
 
@@ -283,7 +285,19 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
                     problems_.append(AssignmentError(
                         f"expected each objective once, found '{dup[0]}' more than once",
                         where=doc.where(("problems", i, "objectives"))))
-            refs.append(ProblemRef(target, objectives, where))
+            diagrams = tuple(item.get("diagrams", ())) if isinstance(item, dict) else ()
+            equations = bool(item.get("equations", False)) if isinstance(item, dict) else False
+            if objectives == () and not diagrams and not equations:
+                problems_.append(AssignmentError(
+                    "expected at least 1 item(s) (none only beside diagrams: or equations:), "
+                    "found an empty "
+                    "list", where=doc.where(("problems", i, "objectives"))))
+            dup = sorted({b for b in diagrams if diagrams.count(b) > 1})
+            if dup:
+                problems_.append(AssignmentError(
+                    f"expected each body's diagram once, found '{dup[0]}' more than once",
+                    where=doc.where(("problems", i, "diagrams"))))
+            refs.append(ProblemRef(target, objectives, diagrams, equations, where))
         if "due" in doc.data:
             try:
                 _due(doc.data["due"])

@@ -7,7 +7,9 @@
      "students": [{"id", "name", "status", "score", "max_score", "variant" (if drawn),
                    "answers": [{"problem", "objective", "answer", "verdict", "points",
                                 "max_points", "diagnosis", "feedback", "read_back",
-                                "expected", "expected_in_answer_unit"}]}],
+                                "expected", "expected_in_answer_unit",
+                                "loads" (a free-body diagram's: [{"label", "load", "kind",
+                                         "point", "answer", "mistakes", "feedback"}])}]}],
      "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...],
      "failing_expects": [{"problem", "objective", "where", "message"}] (only when graded
                                                                         with them)}
@@ -78,6 +80,23 @@ class AnswerResult:
     read_back: str | None = None
     expected: str | None = None
     expected_in_answer_unit: str | None = None
+    loads: tuple["LoadResult", ...] = ()
+
+
+@dataclass(frozen=True)
+class LoadResult:
+    """One row of a judged free-body diagram (:mod:`mechgrade.grade.fbd`): the model's load
+    (``load``, ``kind``, ``point``; ``load`` ``None`` for an extra one), the student's load as
+    read (``answer``, ``None`` when missing) and what is wrong with it (``mistakes``, empty
+    when right)."""
+
+    label: str
+    load: str | None
+    kind: str | None
+    point: str | None
+    answer: str | None
+    mistakes: tuple[str, ...]
+    feedback: str
 
 
 def unit_text(unit: str) -> str:
@@ -196,7 +215,9 @@ class GradeReport:
         """Rebuild a report from a ``results.json`` document."""
         students = []
         for s in data.get("students", []):
-            answers = tuple(AnswerResult(**a) for a in s.get("answers", []))
+            answers = tuple(AnswerResult(**{**a, "loads": tuple(
+                LoadResult(**{**row, "mistakes": tuple(row["mistakes"])})
+                for row in a.get("loads", ()))}) for a in s.get("answers", []))
             identity = tuple((str(k), str(v)) for k, v in (s.get("identity") or {}).items())
             variant = s.get("variant")
             students.append(StudentResult(
@@ -232,11 +253,20 @@ def _fields(item) -> dict:
 
 def _student_json(student: StudentResult) -> dict:
     data = _fields(student)
-    data["answers"] = tuple(map(_fields, student.answers))
+    data["answers"] = tuple(map(_answer_json, student.answers))
     data["identity"] = dict(student.identity)
     if student.variant is None:  # results without variants read as before
         del data["variant"]
     else:
         data["variant"] = {"seed": student.variant.seed,
                            "givens": tuple(map(_fields, student.variant.givens))}
+    return data
+
+
+def _answer_json(answer: AnswerResult) -> dict:
+    data = _fields(answer)
+    if answer.loads:
+        data["loads"] = tuple(map(_fields, answer.loads))
+    else:  # answers that are not free-body diagrams read as before
+        del data["loads"]
     return data

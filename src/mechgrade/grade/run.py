@@ -36,10 +36,11 @@ from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment, GradingPolicy
 from .lms_submissions import read_any_submissions
 from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
-                      ObjectiveInfo, StudentResult, unit_text)
+                      LoadResult, ObjectiveInfo, StudentResult, unit_text)
 from .submissions import Submission, SubmissionSet
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
+    from ..solve.derivation import DerivationInstant, MotionSamples
     from ..solve.result import ObjectiveResult, Solution
     from .compare import Assessment
 
@@ -66,6 +67,40 @@ class PlannedObjective:
 
 
 @dataclass(frozen=True)
+class PlannedDiagram:
+    """One graded free-body diagram: its problem, body, the model at the solved instant and
+    points. Answered under ``problem_id.body.fbd``."""
+
+    problem: Problem
+    body: str
+    instant: "DerivationInstant"
+    max_points: float
+
+    @property
+    def objective_id(self) -> str:
+        return f"{self.body}.fbd"
+
+    @property
+    def key(self) -> str:
+        return f"{self.problem.id}.{self.objective_id}"
+
+
+@dataclass(frozen=True)
+class PlannedEquations:
+    """One problem's graded equations of motion, with the model's motion sampled, and
+    points. Answered under ``problem_id.equations``."""
+
+    problem: Problem
+    samples: "MotionSamples | None"
+    max_points: float
+    objective_id = "equations"
+
+    @property
+    def key(self) -> str:
+        return f"{self.problem.id}.{self.objective_id}"
+
+
+@dataclass(frozen=True)
 class Plan:
     """An assignment with its problems loaded and solved once, ready to grade any student."""
 
@@ -73,14 +108,19 @@ class Plan:
     problems: tuple[Problem, ...]
     solutions: tuple[Solution, ...]
     objectives: tuple[PlannedObjective, ...]
+    diagrams: tuple[PlannedDiagram, ...] = ()
+    equations: tuple[PlannedEquations, ...] = ()
 
     @property
     def keys(self) -> frozenset[str]:
-        return frozenset(o.key for o in self.objectives)
+        return frozenset([*(o.key for o in self.objectives), *(d.key for d in self.diagrams),
+                          *(e.key for e in self.equations)])
 
     @property
     def max_score(self) -> float:
-        return _round(sum(o.max_points for o in self.objectives))
+        return _round(sum(o.max_points for o in self.objectives)
+                      + sum(d.max_points for d in self.diagrams)
+                      + sum(e.max_points for e in self.equations))
 
 
 def plan_assignment(assignment: Assignment, *, problems: Iterable[Problem] | None = None,
@@ -103,7 +143,11 @@ def _solve_all(assignment: Assignment, problems: tuple[Problem, ...], chosen,
     from ..solve import solve
 
     graded = [[o for i, o, _ in chosen if i == index] for index in range(len(problems))]
-    work = [partial(solve, p, objectives=_needed(p, graded[index]))
+    drawn = {index for index, _, _ in _choose_diagrams(assignment, problems)}
+    drawn |= {index for index, _ in _choose_equations(assignment, problems)}
+    # a diagram needs the instant's state, which only solving an objective gives
+    work = [partial(solve, p, objectives=_needed(p, graded[index])
+                    if graded[index] or index not in drawn else None)
             for index, p in enumerate(problems)]
     ecf = assignment.policy.ecf.enabled
     here = [index for index, p in enumerate(problems)
@@ -176,6 +220,10 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
             chosen.append((index, problem.objective(objective_id),
                            assignment.points_for(problem.id, objective_id)))
     keys = {f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen}
+    keys |= {f"{problems[index].id}.{body}.fbd"
+             for index, body, _ in _choose_diagrams(assignment, problems)}
+    keys |= {f"{problems[index].id}.{PlannedEquations.objective_id}"
+             for index, _ in _choose_equations(assignment, problems)}
     for key, _ in assignment.points:
         if key not in keys:
             raise AssignmentError(f"expected a graded objective 'problem_id.objective_id' "
@@ -184,12 +232,67 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
     return chosen
 
 
+def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
+                     ) -> list[tuple[int, str, float]]:
+    """(problem index, body, points) of every graded free-body diagram; raises
+    :class:`AssignmentError` for a body the problem does not have, or a problem drawing
+    variants (a diagram is judged at the problem's own givens)."""
+    chosen = []
+    for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
+        if not ref.diagrams:
+            continue
+        bodies = [b.name for b in problem.dynamics.bodies] if problem.dynamics else []
+        if problem.variants is not None:
+            raise AssignmentError(f"expected diagrams of problems without variants, found "
+                                  f"'{problem.id}' drawing variants (its diagrams cannot be "
+                                  f"graded yet)", where=ref.where)
+        for body in ref.diagrams:
+            if body not in bodies:
+                raise AssignmentError(f"expected a body of problem '{problem.id}' "
+                                      f"({', '.join(bodies) or 'it has none'}), found '{body}'",
+                                      where=ref.where)
+            chosen.append((index, body, assignment.points_for(problem.id, f"{body}.fbd")))
+    return chosen
+
+
+def _choose_equations(assignment: Assignment, problems: tuple[Problem, ...]
+                      ) -> list[tuple[int, float]]:
+    """(problem index, points) of every problem whose equations of motion are graded; raises
+    :class:`AssignmentError` for a problem without bodies, drawing variants, or with an
+    objective of that id."""
+    chosen = []
+    for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
+        if not ref.equations:
+            continue
+        key = PlannedEquations.objective_id
+        if problem.dynamics is None or problem.variants is not None or \
+                any(o.id == key for o in problem.objectives):
+            raise AssignmentError(
+                f"expected equations of a problem with bodies, no variants and no objective "
+                f"'{key}', found '{problem.id}'", where=ref.where)
+        chosen.append((index, assignment.points_for(problem.id, key)))
+    return chosen
+
+
 def _plan(assignment: Assignment, problems: tuple[Problem, ...],
           solutions: tuple[Solution, ...], chosen) -> Plan:
     planned = tuple(PlannedObjective(problems[index], objective,
                                      graded_result(solutions[index], objective.id), points)
                     for index, objective, points in chosen)
-    return Plan(assignment, problems, solutions, planned)
+    diagrams = []
+    instants: dict[int, DerivationInstant] = {}
+    for index, body, points in _choose_diagrams(assignment, problems):
+        if index not in instants:
+            from ..solve.derivation import derivation_instant
+            instants[index] = derivation_instant(problems[index], solutions[index])
+        diagrams.append(PlannedDiagram(problems[index], body, instants[index], points))
+    equations = []
+    for index, points in _choose_equations(assignment, problems):
+        from ..solve.derivation import motion_samples
+        equations.append(PlannedEquations(problems[index],
+                                          motion_samples(problems[index], solutions[index]),
+                                          points))
+    return Plan(assignment, problems, solutions, planned, tuple(diagrams), tuple(equations))
 
 
 def graded_result(solution: Solution, objective_id: str) -> ObjectiveResult:
@@ -277,6 +380,10 @@ def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roste
     problems = _load_problems(assignment)
     chosen = _choose_objectives(assignment, problems)
     keys = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen)
+    keys |= {f"{problems[index].id}.{body}.fbd"
+             for index, body, _ in _choose_diagrams(assignment, problems)}
+    keys |= {f"{problems[index].id}.{PlannedEquations.objective_id}"
+             for index, _ in _choose_equations(assignment, problems)}
     drawn = frozenset(f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen
                       if problems[index].variants is not None)
     read = partial(read_any_submissions, submissions_dir, keys=keys, roster=roster,
@@ -347,6 +454,11 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     assignment = plan.assignment
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points, o.problem.title) for o in plan.objectives)
+    objectives += tuple(ObjectiveInfo(d.problem.id, d.objective_id,
+                                      f"The free-body diagram of the {d.body}.", d.max_points,
+                                      d.problem.title) for d in plan.diagrams)
+    objectives += tuple(ObjectiveInfo(e.problem.id, e.objective_id, "The equations of motion.",
+                                      e.max_points, e.problem.title) for e in plan.equations)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
                        tuple(students), submissions.skipped,
                        (*submissions.notes, *conflicts, *author_warnings(plan)), tuple(faults),
@@ -389,7 +501,8 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
                          graded_result(solutions[index[o.problem.id]], o.objective.id),
                          o.max_points, givens[o.problem.id])
         for o in plan.objectives)
-    return Plan(plan.assignment, plan.problems, tuple(solutions), objectives), variants
+    return Plan(plan.assignment, plan.problems, tuple(solutions), objectives,
+                plan.diagrams, plan.equations), variants
 
 
 def _with_variant(student: StudentResult, own: Plan, variants: list, neighbours,
@@ -517,6 +630,15 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
             answer = _judge_safely(judge, item, text, submission, verdicts, person, faults)
         verdicts[item.key] = answer
         answers.append(answer)
+    parts: list[PlannedDiagram | PlannedEquations] = [*plan.diagrams, *plan.equations]
+    for part in parts:
+        text = submission.answer(part.key) if submission is not None else None
+        if status == "unreadable":
+            answers.append(AnswerResult(part.problem.id, part.objective_id, None, "unreadable",
+                                        0.0, part.max_points, None, "Your answer file could "
+                                        "not be read (see the messages)."))
+        else:
+            answers.append(_judge_derivation_safely(part, text, person, faults))
     score = _round(sum(a.points for a in answers))
     return StudentResult(person.id, person.name, "conflict" if person.conflict else status,
                          score, plan.max_score, tuple(answers), tuple(messages),
@@ -535,6 +657,36 @@ def _judge_safely(judge: "_Judge", item: PlannedObjective, text: str, submission
                             item.max_points, None,
                             f"internal error: {detail}; please tell your instructor", None,
                             judge.expected(item))
+
+
+def _judge_derivation_safely(part: PlannedDiagram | PlannedEquations, text: str | None,
+                             person: _Person, faults: list[str]) -> AnswerResult:
+    """One free-body diagram (a row per load, :mod:`.fbd`) or set of equations of motion
+    (:mod:`.equations`) judged; a fault of mechgrade's makes it ``not_evaluated``, nothing
+    more."""
+    rows: tuple[LoadResult, ...] = ()
+    try:
+        if isinstance(part, PlannedDiagram):
+            from .fbd import judge_diagram
+
+            judged = judge_diagram(text, part.instant, part.body)
+            rows = tuple(LoadResult(row.label, row.load, str(row.kind) if row.kind else None,
+                                    row.point, row.answer, tuple(str(m) for m in row.mistakes),
+                                    row.feedback) for row in judged.rows)
+            assessment = judged.assessment
+        else:
+            from .equations import judge_equations
+
+            assessment = judge_equations(text, part.samples).assessment
+    except Exception as exc:  # noqa: BLE001 - one answer must not take its student down
+        detail = brief_exception(exc)
+        faults.append(f"judging '{person.id}' {part.key}: {detail}")
+        return AnswerResult(part.problem.id, part.objective_id, text, "not_evaluated", 0.0,
+                            part.max_points, None,
+                            f"internal error: {detail}; please tell your instructor")
+    return AnswerResult(part.problem.id, part.objective_id, text, assessment.verdict,
+                        _round(assessment.credit * part.max_points), part.max_points, None,
+                        assessment.feedback, assessment.read_back, loads=rows)
 
 
 # ---------------------------------------------------------------------------- judging

@@ -243,11 +243,19 @@ class DynamicsInterpreter(Interpreter):
                              f"impulse({load.id})", where=self.where)
         return self._load_force(load)
 
-    def _fn_before(self, vector: Node):
+    def _fn_before(self, quantity: Node):
+        return self._across_the_impact("before", quantity).subs(self.before)
+
+    def _fn_after(self, quantity: Node):
+        return self._across_the_impact("after", quantity)
+
+    def _across_the_impact(self, name: str, quantity: Node):
+        """A scalar or vector read just before or after an impact, in the rates after."""
         if not isinstance(self.d.analysis, Impulse):
-            raise SolveError("before(...) needs an impact: 'analysis: impulse'",
+            raise SolveError(f"{name}(...) needs an impact: 'analysis: impulse'",
                              where=self.where)
-        return self._as_vector(self.value(vector)).subs(self.before)
+        value = self.value(quantity)
+        return sp.sympify(value) if not isinstance(value, Vector) else value
 
     def _load_force(self, load: Name):
         body = self._first_body(load.id)

@@ -184,6 +184,24 @@ def _counts(labels: list[str], n: int) -> tuple[Count, ...]:
     return tuple(Count(label, count, count / n) for label, count in ranked[:TOP])
 
 
+def load_mistake_label(row) -> str:
+    """What a row of a free-body diagram (:class:`~mechgrade.grade.results.LoadResult`) got
+    wrong, as the class report counts it (``""`` when right).
+
+    >>> from mechgrade.grade.results import LoadResult
+    >>> load_mistake_label(LoadResult("friction", "F_P", "kinetic friction", "P", None,
+    ...                               ("missing",), ""))
+    'missing: the kinetic friction F_P'
+    >>> load_mistake_label(LoadResult("centrifugal force", None, None, "G", "...", ("extra",), ""))
+    'extra: centrifugal force'
+    """
+    if not row.mistakes:
+        return ""
+    if row.load is None:
+        return f"extra: {row.label}"
+    return f"{', '.join(row.mistakes)}: the {row.kind} {row.load}"
+
+
 def _objective_stats(report, objective, graded) -> ObjectiveStats:
     answers = [_answer(s, objective.problem, objective.objective) for s in graded]
     verdicts = [a.verdict if a is not None else "missing" for a in answers]
@@ -192,6 +210,8 @@ def _objective_stats(report, objective, graded) -> ObjectiveStats:
              if a is not None and a.answer and a.verdict not in (_CORRECT, "unreadable")]
     diagnoses = [a.diagnosis.strip() for a in answers
                  if a is not None and a.diagnosis and a.verdict != _CORRECT]
+    diagnoses += [label for a in answers if a is not None
+                  for label in dict.fromkeys(map(load_mistake_label, a.loads)) if label]
     fractions = [(a.points / objective.max_points) if a is not None and objective.max_points
                  else 0.0 for a in answers]
     return ObjectiveStats(

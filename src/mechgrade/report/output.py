@@ -607,6 +607,15 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict
             "explained": bool(answer.feedback or answer.diagnosis)
                          and (answer.verdict != "correct" or bool(answer.diagnosis)),
             "expected": pretty_math(expected_shown(answer)),
+            # a free-body diagram's rows, one per load
+            "loads": [{"label": load.label if load.load is None or load.label == load.load
+                       else f"{load.label} ({load.load})",
+                       "point": load.point or "",
+                       # the row names the load: the vector alone, as written
+                       "answer": (load.answer or "").partition(": ")[2],
+                       "verdict": "correct" if not load.mistakes else "incorrect",
+                       "judged": ", ".join(load.mistakes) if load.mistakes else "right"}
+                      for load in answer.loads],
         })
     percent = (f"{100 * student.score / student.max_score:.0f}%" if student.max_score
                else "")

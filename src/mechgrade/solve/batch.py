@@ -43,7 +43,7 @@ import numpy as np
 from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
-from ..spec.dynamics import Integration, WorkEnergy
+from ..spec.dynamics import Integration, WorkEnergy, instant_of_objective
 from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .batch_motion import newton
@@ -341,7 +341,7 @@ class _Template:
                 level, row = group.conditions[key]
                 targets[level][row] = column
         never = np.zeros(n, dtype=bool)
-        if self.design is not None:
+        if self.design is not None and self.design.find not in group.overrides:
             X, ok = self._designed(group, X, targets, degenerate)
         elif isinstance(self.analysis, Integration):
             X, ok, never = self._motion().integrated(X)
@@ -744,6 +744,8 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
                 given_map = _designed(problem, kproblem, kinetics, given_map)
             g = place_givens(kproblem, p, given_map)
             if isinstance(analysis, Integration):
+                if instant_of_objective(problem, overrides) is not None:
+                    return None  # an instant before the event: each variant integrated alone
                 groups.append(_integration_group(p, overrides, objectives, numeric,
                                                  given_map, g))
                 continue

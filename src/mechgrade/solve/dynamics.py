@@ -38,8 +38,9 @@ from ..expressions.syntax import Name, Prime
 from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
-from .events import at_the_event, integrate_to_event, integrated_symbolically
+from ..spec.dynamics import Integration, WorkEnergy, dynamics_of, instant_of_objective
+from .events import (at_the_event, integrate_to_event, integrate_to_instant,
+                     integrated_symbolically)
 from .motion import accelerations as columns_accelerations
 from .motion import balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
@@ -194,10 +195,11 @@ class KineticInstant:
     def warnings(self) -> tuple[AuthorWarning, ...]:
         return tuple(self.plan.k.warnings)
 
-    def instant(self, given_map: dict, numeric: set[str]) -> Reached:
+    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
         problem, kproblem, kp = self.source, self.problem, self.kinetics
         given_map = _designed(problem, kproblem, kp, given_map)
-        state, x, found, limit = _instant(problem, kproblem, kp, given_map)
+        state, x, found, limit = _instant(problem, kproblem, kp, given_map,
+                                          instant_of_objective(problem, overrides))
         values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
         if limit is not None:  # an integration's event
             functions = dict(kp.objectives)
@@ -236,6 +238,8 @@ def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: 
     design = dynamics_of(problem).design
     equation = kp.design
     if design is None or equation is None:  # both, or neither: the kinetics carry the design
+        return given_map
+    if design.find in given_map:  # an objective's own value of it: the value to use
         return given_map
     node = Name(design.find)
 
@@ -296,14 +300,25 @@ def _bracketed(residual: Callable[[float], float], guess: float):
     return None
 
 
-def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict):
+def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict,
+             asked_at: str | None = None):
     """The state at the instant, the extended state (with second rates and reactions) the
     objectives are read from, the kinematics' warnings, and for an integration the extended
-    state just before its event (:func:`~.events.at_the_event`), else ``None``."""
+    state just before its event (:func:`~.events.at_the_event`), else ``None``. ``asked_at``:
+    the key of ``given_map`` that fixes an integration's instant before its event (the time,
+    a coordinate or a rate an objective is asked at), ``None`` for the event."""
     analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
         g = place_givens(kproblem, kp.kp, given_map)
         size = kp.kp.index.size
+        if asked_at is not None:
+            node, si, given = given_map[asked_at]
+            state = integrate_to_instant(
+                problem, kp, g.values, lambda values: accelerations(kp, values),
+                kp.kp.index.symbols.index(kp.kp.k.quantity(node)), si,
+                f"{asked_at}: {given.text}" if given is not None else asked_at,
+                given.where if given is not None else analysis.where)
+            return state, solve_kinetics(problem, kp, state), (), None
         reached = integrated_alone(problem, kp, g.values)
         if reached is not None:  # as the variants of a class are integrated
             x, before = reached

@@ -4,7 +4,9 @@ The coordinates and rates from ``from:`` at t = 0, integrated with ``scipy.integ
 (DOP853, rtol 1e-11) until the event equation first holds (root refined on the dense output);
 the objectives are read at the event, with ``t`` its time. The accelerations and reactions
 there are the limits just before the event (a kinetic-friction force has no direction once the
-slip has ended).
+slip has ended). An objective asked at its own time, coordinate or rate is read where that
+first holds, before the event (:func:`integrate_to_instant`); an event, or such a given, that
+holds at t = 0 is its next crossing.
 """
 
 from __future__ import annotations
@@ -31,61 +33,130 @@ MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judge
 def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[State, np.ndarray]:
     """The state at the event and the extended state just before it (accelerations and
     reactions as limits). ``base`` holds the parameters; ``solve(values)`` returns the
-    extended state with the second rates and reactions solved."""
+    extended state with the second rates and reactions solved. An event that already holds
+    at t = 0 is the next crossing (a projectile launched from the ground lands)."""
     from scipy.integrate import solve_ivp
 
-    analysis = analysis_of(problem, Integration)
-    ap = analysis_plan(kp)
-    index = kp.kp.index
-    q, qd, qdd = list(range(index.n)), list(index.rates(1)), list(index.rates(2))
-    values = start_values(kp, ap, base)
-    values[index.time] = 0.0
-    values[qdd] = 0.0
-
-    def at(t, y):
-        v = values.copy()
-        v[q] = y[:index.n]
-        v[qd] = y[index.n:]
-        v[index.time] = t
-        return v
-
-    calls = [0]
-
-    def rhs(t, y):
-        calls[0] += 1
-        if calls[0] > MAX_CALLS:
-            raise SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
-                             "motion may switch there, e.g. friction reversing once the slip "
-                             "ends)", where=analysis.where)
-        x = solve(at(t, y))
-        return np.concatenate([y[index.n:], x[qdd]])
-
-    def event(t, y):
-        # an event of the state alone is read without the balances (which are undefined
-        # where a slip speed is exactly zero)
-        x = solve(at(t, y)) if ap.until_kinetic else extended(kp, at(t, y))
-        return value_at(ap.until, x)
-
-    # scipy reads the event's function attribute; mypy models none (python/mypy#2087)
-    event.terminal = True  # type: ignore[attr-defined]
-    y0 = np.concatenate([values[q], values[qd]])
-    if abs(event(0.0, y0)) == 0.0:
-        raise SolveError("the event already holds at the start (t = 0)", where=analysis.where)
-    result = solve_ivp(rhs, (0.0, analysis.max_time), y0, method="DOP853", rtol=RTOL,
-                       atol=ATOL, events=event, dense_output=True)
+    m = _ScalarMotion(problem, kp, base, solve)
+    analysis, index = m.analysis, m.index
+    m.until.terminal = True  # type: ignore[attr-defined]
+    result = solve_ivp(m.rhs, (0.0, analysis.max_time), m.y0, method="DOP853", rtol=RTOL,
+                       atol=ATOL, events=m.until, dense_output=True)
     if result.status < 0:
         raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
     if not len(result.t_events[0]):
         raise event_never_happens(analysis)
     t_event = float(result.t_events[0][0])
     y_event = result.y_events[0][0]
-    end = at(t_event, y_event)
+    end = m.at(t_event, y_event)
     earlier = t_event * (1 - rules.BEFORE_EVENT)
-    before = solve(at(earlier, result.sol(earlier)))
+    before = solve(m.at(earlier, result.sol(earlier)))
     known = np.zeros(len(end), dtype=bool)
     known[index.config] = True
-    known[qd] = True
+    known[list(index.rates(1))] = True
     return State(end, known, frozenset()), before
+
+
+def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int, value: float,
+                         given: str, where) -> State:
+    """The state where entry ``at`` of the state (the time, a coordinate or a rate) first
+    takes ``value`` (SI) on the integrated motion, before its event: an objective asked at
+    another instant than the event (``given`` says it as written, ``where`` locates it).
+    Raises when the event, or the time allowed, comes first. Arguments as
+    :func:`integrate_to_event`; a coordinate or rate that holds at t = 0 is its next
+    crossing (t = 0 is the start)."""
+    from scipy.integrate import solve_ivp
+
+    m = _ScalarMotion(problem, kp, base, solve)
+    analysis, index = m.analysis, m.index
+
+    def reached(t, y):
+        return m.at(t, y)[at] - value
+
+    reached.terminal = True  # type: ignore[attr-defined]
+    m.until.terminal = True  # type: ignore[attr-defined]
+    if at != index.time:  # t = 0 is the start itself
+        _next_crossing(reached, m.rhs, m.y0, analysis.max_time, analysis.where)
+    result = solve_ivp(m.rhs, (0.0, analysis.max_time), m.y0, method="DOP853", rtol=RTOL,
+                       atol=ATOL, events=[reached, m.until])
+    if result.status < 0:
+        raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
+    if not len(result.t_events[0]):
+        if len(result.t_events[1]):
+            raise SolveError(f"'{given}' does not hold before the event ('{analysis.until[0].text} "
+                             f"= {analysis.until[1].text}', at t = {result.t_events[1][0]:.6g} "
+                             "s), where the integrated motion ends: expected an instant "
+                             "before it", where=where)
+        raise SolveError(f"'{given}' does not hold within {analysis.max_time:g} s of the "
+                         "integrated motion: expected an instant it reaches (or a larger "
+                         "max_time)", where=where)
+    end = m.at(float(result.t_events[0][0]), result.y_events[0][0])
+    end[at] = value  # where the root was found: the given holds there
+    known = np.zeros(len(end), dtype=bool)
+    known[index.config] = True
+    known[list(index.rates(1))] = True
+    return State(end, known, frozenset())
+
+
+class _ScalarMotion:
+    """One motion integrated alone: the start state ``y0`` (coordinates, then rates), the
+    state values ``at(t, y)``, the right-hand side and the analysis's event (``until``, an
+    event that holds at t = 0 set to wait for its next crossing)."""
+
+    def __init__(self, problem: Problem, kp, base: np.ndarray, solve):
+        self.analysis = analysis = analysis_of(problem, Integration)
+        ap = analysis_plan(kp)
+        self.index = index = kp.kp.index
+        q, qd, qdd = list(range(index.n)), list(index.rates(1)), list(index.rates(2))
+        values = start_values(kp, ap, base)
+        values[index.time] = 0.0
+        values[qdd] = 0.0
+        calls = [0]
+
+        def at(t, y):
+            v = values.copy()
+            v[q] = y[:index.n]
+            v[qd] = y[index.n:]
+            v[index.time] = t
+            return v
+
+        def rhs(t, y):
+            calls[0] += 1
+            if calls[0] > MAX_CALLS:
+                raise SolveError(f"the integration stalls near t = {t:.6g} s before the event "
+                                 "(the motion may switch there, e.g. friction reversing once "
+                                 "the slip ends)", where=analysis.where)
+            x = solve(at(t, y))
+            return np.concatenate([y[index.n:], x[qdd]])
+
+        def until(t, y):
+            # an event of the state alone is read without the balances (which are undefined
+            # where a slip speed is exactly zero)
+            x = solve(at(t, y)) if ap.until_kinetic else extended(kp, at(t, y))
+            return value_at(ap.until, x)
+
+        self.at, self.rhs, self.until = at, rhs, until
+        self.y0 = np.concatenate([values[q], values[qd]])
+        _next_crossing(until, rhs, self.y0, analysis.max_time, analysis.where)
+
+
+def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
+    """An event that holds at t = 0 (a projectile launched from the ground, ``until: y = 0``)
+    waits for its next crossing: the one back through zero from the side it leaves to.
+    scipy reads the event's ``direction`` attribute (mypy models none, python/mypy#2087)."""
+    from scipy.integrate import solve_ivp
+
+    if event(0.0, y0) != 0.0:
+        return
+    # a moment after the start, far shorter than any motion the time allowed holds
+    h = 1e-6 * t_bound
+    early = solve_ivp(rhs, (0.0, h), y0, method="DOP853", rtol=RTOL, atol=ATOL)
+    side = np.sign(event(h, early.y[:, -1]))
+    # a state at rest in the event (an equilibrium) moves only by rounding: it stays there
+    if not side or np.abs(early.y[:, -1] - y0).max() <= ATOL:
+        raise SolveError("the event holds at the start (t = 0) and stays so: expected a "
+                         "motion that leaves it", where=where)
+    event.direction = -side
 
 
 def event_never_happens(analysis: Integration) -> SolveError:
@@ -156,7 +227,8 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     event = sp.simplify(kin.until.xreplace(at_time))
     roots = []
     for root in sp.solve(event, T):
-        value = complex(root.xreplace(numbers).evalf())
+        # sympify: a root that is one given symbol (until: t = T) becomes its float
+        value = complex(sp.sympify(root.xreplace(numbers)).evalf())
         if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
             roots.append((value.real, root))
     if not roots:

@@ -166,9 +166,10 @@ class Reach(Protocol):
     def warnings(self) -> tuple[AuthorWarning, ...]:
         """The kinematics' warnings, before any instant's."""
 
-    def instant(self, given_map: dict, numeric: set[str]) -> Reached:
-        """The instant ``given_map`` describes with the objectives ``numeric`` read there;
-        raises what makes every one of them fail."""
+    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
+        """The instant ``given_map`` describes (``overrides``: the objectives' own givens
+        among them) with the objectives ``numeric`` read there; raises what makes every one
+        of them fail."""
 
     def symbolic(self) -> Callable | None:
         """What :func:`collect_results` derives a symbolic answer with (``None``: the
@@ -201,7 +202,7 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
         reached = None
         if numeric:
             try:
-                reached = reach.instant(given_map, numeric)
+                reached = reach.instant(given_map, numeric, overrides)
             except MechgradeError as err:
                 failures.update({oid: err for oid in numeric})
             else:
@@ -239,7 +240,7 @@ class GivenInstant:
     def warnings(self) -> tuple[AuthorWarning, ...]:
         return tuple(self.plan.warnings)
 
-    def instant(self, given_map: dict, numeric: set[str]) -> Reached:
+    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
         problem, p = self.problem, self.plan
         instant = solve_numeric(problem, p, given_map, numeric)
         return Reached(given_map, instant.state, instant.values,

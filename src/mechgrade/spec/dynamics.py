@@ -27,7 +27,7 @@ from ..expressions.functions import Kind, StrEnum
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Prime, Unary,
                                   to_text, walk)
 from ..units import dimension, dimensionless, parse_quantity, to_si
-from .model import Expr, Problem
+from .model import Expr, ObjectiveKind, Problem
 
 GROUND = "ground"
 """The name standing for the inertial frame where a load's other end is fixed."""
@@ -726,7 +726,7 @@ def check_dynamics(problem, checker) -> None:
     if d.analysis is not None:
         _check_analysis(problem, checker, d.analysis)
     if isinstance(d.analysis, Integration):
-        _objectives_at_the_event(problem, d.analysis)
+        _objective_instants(problem, d.analysis)
     if d.design is not None:
         c.design()
     for e in (*(x for r in d.reactions for x in r.directions),
@@ -928,22 +928,61 @@ class _Checker:
                            "both sides of 'so_that'")
 
 
-def _objectives_at_the_event(problem, analysis: Integration) -> None:
-    """Under an integration every objective is read at its event: an objective's own time,
-    coordinate or rate would be silently read there (issue: honoured or refused), so only
-    parameters may be an objective's own givens."""
+def _objective_instants(problem, analysis: Integration) -> None:
+    """Under an integration an objective's own givens are parameters (the values to use) and at
+    most one of the time ``t``, a coordinate or a rate: the instant of the integrated motion
+    where it first holds (:func:`instant_of_objective`). Anything else would be read at the
+    event, silently: refused."""
     params = {p.name for p in problem.parameters}
+    coords = {c.name for c in problem.coordinates}
     until = f"{analysis.until[0].text} = {analysis.until[1].text}"
     for obj in problem.objectives:
+        instant = None
         for g in obj.givens:
             node = g.key.node
             if isinstance(node, Name) and node.id in params:
                 continue
-            raise SpecError(f"expected only parameters among an objective's own givens under "
-                            f"'analysis: integrate' (every objective is read at the event, "
-                            f"when {until}), found '{g.key.text}: {g.text}'; the state at "
-                            "another time or position is not solved yet: ask it in a problem "
-                            "of its own, with 'until:' that instant", where=g.where)
+            if not _names_an_instant(node, coords):
+                raise SpecError(f"expected parameters and one of the time t, a coordinate or a "
+                                f"rate (q, q') among an objective's own givens under 'analysis: "
+                                f"integrate', found '{g.key.text}: {g.text}'; the motion is "
+                                f"integrated from 'from:' (the instant is where the given first "
+                                f"holds, else the event, when {until})", where=g.where)
+            if instant is not None:
+                raise SpecError(f"expected one given fixing the instant of objective "
+                                f"'{obj.id}' on the integrated motion (the time t, a coordinate "
+                                f"or a rate), found '{instant.key.text}' and '{g.key.text}'; "
+                                "keep one of them", where=g.where)
+            if obj.kind == ObjectiveKind.SYMBOLIC:
+                raise SpecError(f"a symbolic objective of an integrated motion is answered at "
+                                f"the event, when {until} (in closed form), found "
+                                f"'{g.key.text}: {g.text}'; ask for a scalar or a vector at "
+                                "that instant", where=g.where)
+            instant = g
+
+
+def _names_an_instant(node: Node, coords: set[str]) -> bool:
+    """Whether a given's key is the time, a coordinate or a first rate."""
+    if isinstance(node, Prime):
+        return node.order == 1 and node.id in coords
+    return isinstance(node, Name) and (node.id in coords or node.id == "t")
+
+
+def instant_of_objective(problem, overrides) -> str | None:
+    """The key among an objective's own givens (``overrides``: canonical key text -> Given)
+    that names the time ``t``, a coordinate or a rate: on an integrated motion it fixes the
+    objective's instant (``None``: the event).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "damped_block_positions.yaml")
+    >>> [instant_of_objective(problem, {g.key.text: g for g in o.givens})
+    ...  for o in problem.objectives][:3]
+    [None, 't', 'x']
+    """
+    coords = {c.name for c in problem.coordinates}
+    return next((key for key, g in overrides.items() if _names_an_instant(g.key.node, coords)),
+                None)
 
 
 def _check_analysis(problem, checker, analysis: Analysis) -> None:

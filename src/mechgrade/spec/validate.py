@@ -444,7 +444,10 @@ class _Checker:
         for arg, kind in zip(node.args, sig.args):
             dims.append(self._argument(node.func, arg, kind))
         self._needs_origin(node)
-        return Type(sig.result, sig.dim(tuple(dims)))
+        result = sig.result
+        if result == Kind.QUANTITY:  # the kind of its argument
+            result = self._type(node.args[0], inside_pos=False).kind
+        return Type(result, sig.dim(tuple(dims)))
 
     def _argument(self, func: str, arg: Node, kind: Kind):
         if kind == Kind.FRAME:
@@ -475,6 +478,8 @@ class _Checker:
             return argument_dimension(self.p, func, arg, kind)
         t = self._type(arg, inside_pos=False)
         if t.kind == Kind.ZERO and kind == Kind.VECTOR:
+            return t.dim
+        if kind == Kind.QUANTITY and t.kind in (Kind.SCALAR, Kind.VECTOR, Kind.ZERO):
             return t.dim
         if t.kind != kind:
             raise SpecError(f"expected a {kind} as argument of {func}(...), found a {t.kind} "

@@ -70,7 +70,7 @@ def case_two_mass_spring_chain():
 
 def case_cart_pendulum_spring_modes():
     M, m, L, k, x0, g = 2.0, 0.5, 0.8, 50.0, 1.0, 9.81
-    x, v, th, w = 1.1, 0.4, 40 * DEG / 2, 1.5
+    x, th, w = 1.1, 20 * DEG, 1.5  # the cart's speed (0.4 m/s) enters no answer
     # Lagrange with T = (M+m) x'^2/2 + m L x' th' cos th + m L^2 th'^2/2,
     # V = k (x-x0)^2/2 - m g L cos th: a 2x2 linear system in x'' and th''
     mass = np.array([[M + m, m * L * np.cos(th)], [m * L * np.cos(th), m * L * L]])
@@ -329,6 +329,84 @@ def case_pendulum_in_accelerating_truck():
     T = m * (g * np.cos(th) - a0 * np.sin(th))
     return {"alpha": alpha, "tension": T, "acc_in_truck": [L * alpha, 0.0, 0.0],
             "alpha_symbolic": "-(g*sin(theta) + Xdd*cos(theta))/L"}
+
+
+def _damped_free_response(m, k, c, v0):
+    """x(t), x'(t) of an underdamped mass-spring-damper started at x = 0 with x' = v0:
+    x = v0/wd exp(-zeta wn t) sin(wd t), from the characteristic roots by hand."""
+    wn = np.sqrt(k / m)
+    zeta = c / (2 * m * wn)
+    wd = wn * np.sqrt(1 - zeta**2)
+    s = zeta * wn
+
+    def x(t):
+        return v0 / wd * np.exp(-s * t) * np.sin(wd * t)
+
+    def v(t):
+        return v0 / wd * np.exp(-s * t) * (wd * np.cos(wd * t) - s * np.sin(wd * t))
+
+    return x, v, wd, s
+
+
+def _bisect(f, a, b):
+    fa = f(a)
+    for _ in range(200):
+        mid = (a + b) / 2
+        if (f(mid) > 0) == (fa > 0):
+            a, fa = mid, f(mid)
+        else:
+            b = mid
+    return (a + b) / 2
+
+
+def case_damped_block_positions():
+    m, k, c, v0 = 5.0, 2000.0, 40.0, 1.0
+    x, v, wd, s = _damped_free_response(m, k, c, v0)
+    back = np.pi / wd  # the next zero of sin(wd t) after the start
+    peak = np.arctan(wd / s) / wd  # x' = 0: tan(wd t) = wd / s
+    # x rises monotonically to the peak: 20 mm is crossed once before it
+    t20 = _bisect(lambda t: x(t) - 0.02, 0.0, peak)
+    _, v_half, wd_half, _ = _damped_free_response(m, k, c / 2, v0)
+    return {"time_back": back * 1e3, "x_at_30ms": x(0.03) * 1e3,
+            "time_to_20mm": t20 * 1e3, "speed_at_20mm": abs(v(t20)),
+            "spring_force_at_30ms": k * abs(x(0.03)), "peak_displacement": x(peak) * 1e3,
+            "speed_back_half_damping": abs(v_half(np.pi / wd_half))}
+
+
+def case_ballistic_pendulum_energy_lost():
+    m, M, v0 = 0.010, 2.0, 400.0
+    # the cord is vertical and the bullet moves along it at right angles: the horizontal
+    # momentum of bullet + block is conserved through the impact, and they move together
+    v = m * v0 / (m + M)
+    before = m * v0**2 / 2
+    after = (m + M) * v**2 / 2
+    return {"speed_after": v, "bullet_ke_before": before, "ke_lost": before - after,
+            "share_lost": (before - after) / before,
+            "ke_lost_symbolic": "m*M*v0**2/(2*(m + M))",
+            "impulse_on_bullet": [m * (v - v0), 0.0, 0.0]}
+
+
+def case_ball_thrown_with_drag_apex_and_landing():
+    m, c, g, v0, alpha = 0.2, 0.04, 9.81, 20.0, 50 * DEG
+    tau = m / c  # m v' = -m g j - c v: each component relaxes with the time constant m/c
+    u0, w0 = v0 * np.cos(alpha), v0 * np.sin(alpha)
+
+    def x(t):
+        return u0 * tau * (1 - np.exp(-t / tau))
+
+    def y(t):
+        return tau * (w0 + g * tau) * (1 - np.exp(-t / tau)) - g * tau * t
+
+    def velocity(t):
+        return np.array([u0 * np.exp(-t / tau), (w0 + g * tau) * np.exp(-t / tau) - g * tau])
+
+    apex = tau * np.log(1 + w0 / (g * tau))  # y' = 0
+    # y falls from the apex and is negative by 2 * (the time to fall from rest without drag
+    # from a height v0^2 / g): the landing is the one root between
+    landing = _bisect(y, apex, apex + 2 * np.sqrt(2 * v0**2 / g / g))
+    return {"time_of_flight": landing, "range": x(landing),
+            "landing_speed": float(np.hypot(*velocity(landing))), "apex_time": apex,
+            "apex_height": y(apex), "position_at_1s": [x(1.0), y(1.0), 0.0]}
 
 
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())

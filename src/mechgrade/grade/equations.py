@@ -1,0 +1,313 @@
+"""Equations of motion written as equations (``m x'' = m g sin(β) - mu_k N``), read safely and
+judged against the model's motion (:func:`mechgrade.solve.derivation.motion_samples`).
+
+An equation is right when it holds for the model's accelerations at every sampled state, for
+some value of the unknowns of the student's own (names that are not the problem's symbols,
+such as a reaction ``N``), the same values in every equation of the set: so any rearrangement,
+scaling or combination of the model's equations is right, and so is any name or sign for a
+reaction. The set is complete when it determines every acceleration.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.solve import solve
+>>> from mechgrade.solve.derivation import motion_samples
+>>> problem = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+>>> samples = motion_samples(problem, solve(problem))
+>>> judged = judge_equations("m x'' = m g sin(β) - μ_k N; N = m g cos(β)", samples)
+>>> judged.verdict, judged.credit
+('correct', 1.0)
+>>> judged = judge_equations("m x'' = m g sin(β) - μ_k N; N = m g sin(β)", samples)
+>>> judged.verdict, [row.right for row in judged.rows]
+('partial', [True, False])
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from itertools import combinations
+
+import numpy as np
+
+from ..errors import AnswerError, ExpressionError
+from ..expressions import syntax
+from ..expressions.excerpt import excerpt
+from ..expressions.numeric import evaluate
+from ..expressions.syntax import Bin, Node
+from ..solve.derivation import MotionSamples
+from .answers import rename_to_symbols
+from .compare import Assessment, not_evaluated, unreadable
+
+MAX_EQUATIONS = 12
+MAX_UNKNOWNS = 12
+REL = 1e-3
+"""An equation holds when its two sides differ by at most this share of their size (the
+values are the model's own, so only rounding is forgiven: 9.81 for g, 0.866 for cos 30°)."""
+
+
+
+@dataclass(frozen=True)
+class StudentEquation:
+    """One equation as read: ``residual`` is left side minus right side."""
+
+    text: str
+    residual: Node
+    unknowns: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class EquationRow:
+    equation: str
+    right: bool
+    feedback: str
+
+
+@dataclass(frozen=True)
+class EquationsJudgement:
+    """A set of equations judged: a row per equation, whether the set determines every
+    acceleration (``complete``), and the verdict and credit (``assessment``)."""
+
+    rows: tuple[EquationRow, ...]
+    complete: bool
+    assessment: Assessment
+
+    @property
+    def verdict(self) -> str:
+        return self.assessment.verdict
+
+    @property
+    def credit(self) -> float:
+        return self.assessment.credit
+
+
+def read_equations(text: str, samples: MotionSamples) -> tuple[StudentEquation, ...]:
+    """Read ``text`` as equations separated by ``;`` (or line breaks); :class:`AnswerError`
+    says why not.
+
+    >>> samples = MotionSamples(("x", "m", "g", "xd"), ("xdd",), (), ((0.0, 2.0, 9.81, 0.0, -9.81),))
+    >>> [e.text for e in read_equations("m x'' = -m g; m ẍ + mg = 0", samples)]
+    ['m*xdd = -m*g', 'm*xdd+m*g = 0']
+    >>> read_equations("m x'' == -m g", samples)
+    Traceback (most recent call last):
+    ...
+    mechgrade.errors.AnswerError: expected an equation with one '=', found 'm x'' == -m g'
+    """
+    parts = [p.strip() for p in re.split(r"[;\n\r]", text) if p.strip()]
+    if not parts:
+        raise AnswerError("expected equations such as 'm x'' = -k x', found nothing")
+    if len(parts) > MAX_EQUATIONS:
+        raise AnswerError(f"expected at most {MAX_EQUATIONS} equations, found {len(parts)}")
+    symbols = samples.symbols + samples.accelerations
+    out = [_read_equation(part, symbols) for part in parts]
+    unknowns = {u for e in out for u in e.unknowns}
+    if len(unknowns) > MAX_UNKNOWNS:
+        raise AnswerError(f"expected at most {MAX_UNKNOWNS} unknowns of your own, "
+                          f"found {len(unknowns)}")
+    return tuple(out)
+
+
+def _read_equation(text: str, symbols: tuple[str, ...]) -> StudentEquation:
+    if text.count("=") != 1:
+        raise AnswerError(f"expected an equation with one '=', found {excerpt(text)}")
+    left, right = text.split("=")
+    try:
+        sides = Bin("-", syntax.parse(left, attributes=False),
+                    syntax.parse(right, attributes=False))
+    except ExpressionError as exc:
+        raise AnswerError(f"{exc.message} (in {excerpt(text)})") from None
+    node, unknowns = rename_to_symbols(sides, symbols)
+    assert isinstance(node, Bin)
+    for name in unknowns:
+        if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name):
+            raise AnswerError(f"expected the problem's symbols or names of your own for "
+                              f"unknowns, found {excerpt(name)} (in {excerpt(text)})")
+    shown = syntax.to_text(node.left) + " = " + syntax.to_text(node.right)
+    return StudentEquation(shown, node, unknowns)
+
+
+def judge_equations(text: str | None, samples: MotionSamples | None) -> EquationsJudgement:
+    """Read and judge ``text`` as equations of motion of the model sampled in ``samples``."""
+    if text is None or not text.strip():
+        return EquationsJudgement((), False, Assessment("missing", 0.0, None,
+                                                        "No answer was given.", None))
+    if samples is None:
+        return EquationsJudgement((), False, not_evaluated(
+            "the model has no solved state to judge the equations at"))
+    try:
+        equations = read_equations(text, samples)
+        system = _System(equations, samples)
+    except AnswerError as exc:
+        return EquationsJudgement((), False, unreadable(exc.message))
+    right = system.right()
+    rows = []
+    for e, ok, trivial in zip(equations, right, system.trivial):
+        said = ("right" if ok else "says nothing about the motion" if trivial
+                else "does not hold for the motion")
+        rows.append(EquationRow(e.text, ok, f"{e.text}: {said}."))
+    complete = system.complete()
+    count = sum(right)
+    missing = 0 if complete else system.undetermined()
+    credit = count / (len(rows) + missing)
+    verdict = "correct" if count == len(rows) and complete else "partial" if count else \
+        "incorrect"
+    notes = [row.feedback for row in rows if not row.right]
+    if not complete:
+        notes.append(f"The equations do not determine {system.undetermined_names()} "
+                     f"(an equation is missing).")
+    feedback = " ".join(notes) or "Every equation is right and they determine the motion."
+    read_back = "; ".join(e.text for e in equations)
+    return EquationsJudgement(tuple(rows), complete,
+                              Assessment(verdict, credit, None, feedback, read_back))
+
+
+class _System:
+    """The equations' values at the samples, as ``A u + b`` in the unknowns ``u`` of the
+    student's own (refused unless each is linear in them and in the accelerations), and their
+    slopes along the accelerations at the first state."""
+
+    def __init__(self, equations: tuple[StudentEquation, ...], samples: MotionSamples):
+        self.unknowns = tuple(dict.fromkeys(u for e in equations for u in e.unknowns))
+        self.accelerations = samples.accelerations
+        self.reactions = np.array([[samples.state(k)[r] for r in samples.reactions]
+                                   for k in range(len(samples.states))])
+        n_eq, n_u, n_s = len(equations), len(self.unknowns), len(samples.states)
+        self.b = np.zeros((n_s, n_eq))
+        self.a = np.zeros((n_s, n_eq, n_u))
+        self.slopes = np.zeros((n_eq, len(self.accelerations)))
+        self.scale = np.zeros((n_s, n_eq))
+        for i, e in enumerate(equations):
+            self._linear(i, e, samples)
+        # an equation free of accelerations whose unknowns appear in no other one only
+        # names them: it says nothing about the motion, unless it gives a reaction
+        # (N = m g cos β); without unknowns either, it is an identity
+        shared = [{u for u in e.unknowns
+                   if any(u in other.unknowns for other in equations if other is not e)}
+                  for e in equations]
+        self.trivial = [not self.slopes[i].any() and not shared[i]
+                        and (not e.unknowns or self._flips([i]) is None)
+                        for i, e in enumerate(equations)]
+
+    def _linear(self, i: int, e: StudentEquation, samples: MotionSamples) -> None:
+        pairs = list(combinations(self.unknowns, 2))
+        moves: list[dict[str, float]] = [{}]
+        moves += [{u: 1.0} for u in self.unknowns] + [{u: 1.7} for u in self.unknowns]
+        moves += [{u: 1.0, v: 1.0} for u, v in pairs]
+        moves += [{a: 1.0} for a in self.accelerations]
+        moves += [{a: 1.7} for a in self.accelerations]
+        n, m = len(self.unknowns), len(self.accelerations)
+        for k in range(len(samples.states)):
+            state = samples.state(k)
+            env = {name: np.array([state[name] + move.get(name, 0.0) for move in moves])
+                   for name in samples.symbols + samples.accelerations}
+            for u in self.unknowns:
+                env[u] = np.array([move.get(u, 0.0) for move in moves])
+            f = evaluate(e.residual, env)
+            if not np.all(np.isfinite(f)):
+                raise AnswerError(f"expected equations defined at the problem's states, found "
+                                  f"{excerpt(e.text)} undefined (a division by zero?)")
+            size = max(float(np.max(np.abs(f))), 1e-300)
+
+            def same(x: float, y: float) -> bool:
+                return abs(x - y) <= 1e-9 * size
+
+            ok = True
+            for j in range(n):
+                self.a[k, i, j] = f[1 + j] - f[0]
+                ok = ok and same(f[1 + n + j] - f[0], 1.7 * self.a[k, i, j])
+            for p, (u, v) in enumerate(pairs):
+                ok = ok and same(f[1 + 2 * n + p] - f[0], self.a[k, i, self.unknowns.index(u)]
+                                 + self.a[k, i, self.unknowns.index(v)])
+            start = 1 + 2 * n + len(pairs)
+            for j in range(m):
+                slope = f[start + j] - f[0]
+                ok = ok and same(f[start + m + j] - f[0], 1.7 * slope)
+                if k == 0:
+                    self.slopes[i, j] = slope
+            if not ok:
+                raise AnswerError(f"expected an equation linear in the accelerations and in "
+                                  f"each unknown of your own, found {excerpt(e.text)}")
+            self.b[k, i] = f[0]
+            self.scale[k, i] = _term_size(e.residual, env)
+
+    def _holds(self, rows: list[int]) -> np.ndarray:
+        """Whether each of ``rows`` holds at every sample with the unknowns fitted to them."""
+        ok = np.ones(len(rows), dtype=bool)
+        for k in range(len(self.b)):
+            a, b = self.a[k][rows], self.b[k][rows]
+            residual = b
+            if a.size:
+                residual = a @ np.linalg.lstsq(a, -b, rcond=None)[0] + b
+            ok &= np.abs(residual) <= REL * self.scale[k][rows] + 1e-12
+        return ok
+
+    def right(self) -> list[bool]:
+        """Whether each equation is right: all hold together; else, the one whose leaving out
+        lets all the others hold is wrong; else each is judged with the unknowns fitted to it
+        and the equations free of unknowns (which say nothing of an unknown alone)."""
+        rows = list(range(self.b.shape[1]))
+        ok = self._holds(rows)
+        if not ok.all():
+            known = [r for r in rows if not self.a[:, r, :].any()]
+            ok = np.array([r in known and bool(self._holds([r])[0]) for r in rows])
+            # with the others right, the unknowns come out as the model's reactions would
+            wrong: list[tuple[int, int]] = []
+            for i in rows:
+                rest = [r for r in rows if r != i]
+                flips = self._flips(rest) if rest and self._holds(rest).all() else None
+                if flips is not None:
+                    wrong.append((flips, i))
+            # a reaction's sign is the student's to choose: the reading that flips the fewest
+            # is taken when two are possible (N = m g cos β beside m x'' = ... + μ N)
+            fewest = [i for flips, i in wrong if flips == min(f for f, _ in wrong)]
+            if len(fewest) == 1:
+                ok = np.array([r != fewest[0] for r in rows])
+        return [bool(v) and not t for v, t in zip(ok, self.trivial)]
+
+    def _flips(self, rows: list[int]) -> int | None:
+        """How many reactions the unknowns fitted to ``rows`` take the other way round, when
+        they are, over the samples, fixed non-zero combinations of the model's reactions (a
+        reaction by another name, sign or axis); ``None`` when they are not."""
+        if not self.unknowns:
+            return 0
+        if self.reactions.shape[1] == 0:
+            return None
+        fitted = np.array([np.linalg.lstsq(self.a[k][rows], -self.b[k][rows], rcond=None)[0]
+                           for k in range(len(self.b))])
+        combination = np.linalg.lstsq(self.reactions, fitted, rcond=None)[0]
+        misfit = np.abs(self.reactions @ combination - fitted)
+        if not np.all(misfit <= REL * (np.abs(fitted).max(axis=0) + 1e-12)):
+            return None
+        if not np.all(np.abs(combination).max(axis=0) > 1e-9):
+            return None
+        return int(np.sum(combination < -1e-9))
+
+    def _determined(self) -> int:
+        a = self.a[0]
+        full = np.hstack([self.slopes, a]) if a.size else self.slopes
+        return int(np.linalg.matrix_rank(full, tol=1e-9)
+                   - (np.linalg.matrix_rank(a, tol=1e-9) if a.size else 0))
+
+    def complete(self) -> bool:
+        return self._determined() >= len(self.accelerations)
+
+    def undetermined(self) -> int:
+        return max(len(self.accelerations) - self._determined(), 0)
+
+    def undetermined_names(self) -> str:
+        return ", ".join(a[:-2] + "''" for a in self.accelerations)
+
+
+def _term_size(node: Node, env: dict) -> float:
+    """The size of the largest term of either side at the first move (nothing changed), so
+    that a right equation whose sides cancel is judged against its terms."""
+    terms: list[Node] = []
+
+    def split(n: Node) -> None:
+        if isinstance(n, Bin) and n.op in "+-":
+            split(n.left)
+            split(n.right)
+        else:
+            terms.append(n)
+
+    split(node)
+    return max(float(abs(evaluate(t, env)[0])) for t in terms)

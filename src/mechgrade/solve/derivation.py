@@ -1,0 +1,201 @@
+"""What judging a student's derivation needs of the model at the solved instant, as plain
+numbers (no sympy): the value of every symbol a student may write, where every point is and
+which way every frame's unit vectors point, with each body's free-body diagram
+(:mod:`.fbd`). Rates are named as symbolic answers name them (``thetad`` for ``theta'``,
+``thetadd`` for ``theta''``); vectors are in the inertial frame's components, in SI.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.solve import solve
+>>> problem = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+>>> instant = derivation_instant(problem, solve(problem))
+>>> [(name, round(value, 4)) for name, value in instant.values if name in ("m", "beta", "xd")]
+[('m', 4.0), ('beta', 0.5236), ('xd', 2.0)]
+>>> [round(c, 4) for c in instant.unit_vector("A", "x")], instant.inertial_frame
+([0.866, -0.5, 0.0], 'N')
+>>> [d.body for d in instant.diagrams], [round(c, 4) for c in instant.point("P")]
+(['block'], [0.866, -0.5, 0.0])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import MechgradeError
+from ..mechanics.kinematics import locations
+from ..spec.model import Problem
+from .dynamics import kinetics_plan, solve_kinetics
+from .levels import State
+from .fbd import FreeBodyDiagram, Vec3, _diagram_plan, _extended_state, _vector, free_body_diagrams
+from .result import Solution
+
+AXES = ("x", "y", "z")
+
+
+@dataclass(frozen=True)
+class DerivationInstant:
+    """The model at the solved instant. ``values``: each symbol a student may write (the
+    coordinates, their rates as ``xd``/``xdd``, the parameters) and its SI value; ``points``
+    every point's position (m; ``None`` where it cannot be had); ``frames`` each frame's unit
+    vectors along x, y, z in inertial components."""
+
+    problem: str
+    inertial_frame: str
+    values: tuple[tuple[str, float], ...]
+    points: tuple[tuple[str, Vec3 | None], ...]
+    frames: tuple[tuple[str, tuple[Vec3, Vec3, Vec3] | None], ...]
+    diagrams: tuple[FreeBodyDiagram, ...]
+
+    def point(self, name: str) -> Vec3 | None:
+        """Where ``name`` is (``KeyError`` for a name that is not a point)."""
+        return dict(self.points)[name]
+
+    def unit_vector(self, frame: str, axis: str) -> Vec3 | None:
+        """The unit vector ``frame.axis`` in inertial components."""
+        vectors = dict(self.frames)[frame]
+        return None if vectors is None else vectors[AXES.index(axis)]
+
+    def diagram(self, body: str) -> FreeBodyDiagram:
+        """The free-body diagram of ``body`` (``KeyError`` for a name that is not a body)."""
+        return {d.body: d for d in self.diagrams}[body]
+
+
+def rate_name(spelling: str) -> str:
+    """A state quantity's name as symbolic answers write it.
+
+    >>> rate_name("theta''"), rate_name("x'"), rate_name("m")
+    ('thetadd', 'xd', 'm')
+    """
+    base = spelling.rstrip("'")
+    return base + "d" * (len(spelling) - len(base))
+
+
+def derivation_instant(problem: Problem, solution: Solution) -> DerivationInstant:
+    """The model of ``problem`` at the instant ``solution`` solved (a problem without bodies
+    has no diagrams)."""
+    diagrams = free_body_diagrams(problem, solution)
+    if problem.dynamics is None:
+        return DerivationInstant(problem.id, problem.inertial_frame,
+                                 _given_values(solution), (), (), ())
+    x = _extended_state(problem, solution)
+    plan = _diagram_plan(problem, locations(problem))
+    index = kinetics_plan(problem).kp.index
+    values = []
+    if x is not None:
+        for i, name in enumerate(index.names):
+            if i != index.time and x[i] == x[i]:  # NaN: not solved
+                values.append((rate_name(name), float(x[i])))
+    frames = tuple((name, _unit_vectors(f, x)) for name, f in _frame_plan(problem).items())
+    points = tuple((name, _vector(f, x)) for name, f in plan.points.items())
+    return DerivationInstant(problem.id, problem.inertial_frame, tuple(values) or
+                             _given_values(solution), points, frames, diagrams)
+
+
+def _given_values(solution: Solution) -> tuple[tuple[str, float], ...]:
+    return tuple((rate_name(s.name), s.si) for s in solution.state)
+
+
+def _unit_vectors(f, x) -> tuple[Vec3, Vec3, Vec3] | None:
+    vectors = tuple(_vector(g, x) for g in f)
+    return None if any(v is None for v in vectors) else vectors  # type: ignore
+
+
+@lru_cache(maxsize=32)
+def _frame_plan(problem: Problem) -> dict:
+    import sympy as sp
+
+    from ..mechanics.build import build
+    model = build(problem)
+    symbols = kinetics_plan(problem).symbols
+    out = {}
+    for name, frame in model.frames.items():
+        out[name] = tuple(
+            sp.lambdify(symbols, model.plain(getattr(frame, axis).to_matrix(model.inertial)),
+                        modules="numpy")
+            for axis in AXES)
+    return out
+
+
+SAMPLES = 5
+"""How many states equations of motion are judged at (the instant's and others)."""
+
+
+@dataclass(frozen=True)
+class MotionSamples:
+    """The model's motion at a few states: ``symbols`` a student may write (coordinates,
+    parameters, rates as ``xd``), ``accelerations`` (``xdd``), ``reactions`` (the model's
+    names, ``R_O_1``), and per state the value of each, in that order."""
+
+    symbols: tuple[str, ...]
+    accelerations: tuple[str, ...]
+    reactions: tuple[str, ...]
+    states: tuple[tuple[float, ...], ...]
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return self.symbols + self.accelerations + self.reactions
+
+    def state(self, k: int) -> dict[str, float]:
+        """The ``k``-th state by name."""
+        return dict(zip(self.names, self.states[k]))
+
+
+def motion_samples(problem: Problem, solution: Solution, count: int = SAMPLES,
+                   seed: int = 0) -> MotionSamples | None:
+    """The model's motion at the solved instant and at states near it: every parameter and
+    rate scaled by a seeded factor in 0.8 to 1.25 (the coordinates kept, so that constraints
+    on them hold; the parameters alone where scaling the rates breaks a constraint on them),
+    with the accelerations and reactions the model solves there. A state the model cannot
+    solve is left out; ``None`` without a solved state.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve import solve
+    >>> problem = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+    >>> samples = motion_samples(problem, solve(problem))
+    >>> samples.accelerations, samples.reactions, len(samples.states)
+    (('xdd',), ('N_P',), 5)
+    >>> s = samples.state(0)
+    >>> round(s["xdd"], 4), round(s["N_P"], 4)
+    (2.7811, 33.9828)
+    >>> all(abs(s["xdd"] - s["g"] * (np.sin(s["beta"]) - s["mu_k"] * np.cos(s["beta"])))
+    ...     < 1e-9 for s in map(samples.state, range(5)))
+    True
+    """
+    if problem.dynamics is None:
+        return None
+    x = _extended_state(problem, solution)
+    if x is None:
+        return None
+    kp = kinetics_plan(problem)
+    index = kp.kp.index
+    parameters = [i for i in range(index.size) if index.is_parameter(i)]
+    rates = list(index.rates(1))
+    given = np.zeros(index.size, dtype=bool)
+    given[list(index.config) + rates] = True
+    rng = np.random.default_rng(seed)
+    found = [x]
+    for _ in range(count - 1):
+        factors = rng.uniform(0.8, 1.25, index.size)
+        for scaled in (parameters + rates, parameters):
+            values = x[:index.size].copy()
+            values[scaled] *= factors[scaled]
+            try:
+                found.append(solve_kinetics(problem, kp, State(values, given)))
+                break
+            except MechgradeError:
+                continue
+    symbols = [i for i in list(index.config) + rates if i != index.time]
+    accelerations = list(index.rates(2))
+    reactions = list(range(index.size, len(kp.symbols)))
+    order = symbols + accelerations + reactions
+    states = tuple(tuple(float(v[i]) for i in order) for v in found
+                   if np.all(np.isfinite(v[order])))
+    if not states:
+        return None
+    return MotionSamples(tuple(rate_name(index.names[i]) for i in symbols),
+                         tuple(rate_name(index.names[i]) for i in accelerations),
+                         tuple(str(kp.symbols[i]) for i in reactions), states)

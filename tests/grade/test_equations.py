@@ -1,0 +1,85 @@
+"""Equations of motion written as equations (mechgrade.grade.equations)."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from mechgrade.grade.equations import judge_equations, read_equations
+from mechgrade.resources import shipped_dir
+from mechgrade.solve import solve
+from mechgrade.solve.derivation import motion_samples
+from mechgrade.spec import load_problem
+
+
+def _samples(name: str):
+    problem = load_problem(shipped_dir("problems") / f"{name}.yaml")
+    return motion_samples(problem, solve(problem))
+
+
+@pytest.fixture(scope="module")
+def incline():
+    return _samples("block_sliding_down_incline")
+
+
+@pytest.fixture(scope="module")
+def pendulum():
+    return _samples("pendulum_pin_reaction")
+
+
+# the incline's two balances, along the slope and across it, as terms (text, sign)
+ALONG = [("m x''", -1), ("m g sin(β)", 1), ("μ_k N", -1)]
+ACROSS = [("N", 1), ("m g cos(β)", -1)]
+
+
+def _equation(terms, scale: int) -> str:
+    """``sum(sign * term) = 0`` written with the negative terms moved to the right side and
+    every term scaled."""
+    left = [f"({scale})*({t})" for t, sign in terms if sign > 0] or ["0"]
+    right = [f"({scale})*({t})" for t, sign in terms if sign < 0] or ["0"]
+    return " + ".join(left) + " = " + " + ".join(right)
+
+
+@settings(max_examples=15, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(a=st.integers(1, 5), b=st.sampled_from([-3, -1, 2, 7]), combine=st.booleans(),
+       dropped=st.integers(0, len(ALONG) - 1))
+def test_rearranged_scaled_and_combined_equations_are_right_a_dropped_term_is_named(
+        incline, a, b, combine, dropped):
+    along = _equation(ALONG, a)
+    across = _equation(ACROSS, b)
+    if combine:  # the second equation replaced by the sum of both
+        across = _equation([(f"{a}*({t})", s) for t, s in ALONG]
+                           + [(f"({b})*({t})", s) for t, s in ACROSS], 1)
+    assert judge_equations(f"{along}; {across}", incline).verdict == "correct"
+    wrong = _equation([term for n, term in enumerate(ALONG) if n != dropped], a)
+    judged = judge_equations(f"{wrong}; {_equation(ACROSS, b)}", incline)
+    assert [row.right for row in judged.rows] == [False, True], judged.assessment.feedback
+
+
+def test_a_pendulums_moment_equation_and_its_sign(pendulum):
+    assert judge_equations("m L^2/3 θ'' = -m g L/2 sin(θ)", pendulum).verdict == "correct"
+    assert judge_equations("θ'' = -3 g sin(θ)/(2 L)", pendulum).verdict == "correct"
+    for wrong in ("m L^2/3 θ'' = m g L/2 sin(θ)", "m L^2/12 θ'' = -m g L/2 sin(θ)",
+                  "m L^2/3 θ'' = -m g L/2 cos(θ)"):
+        assert judge_equations(wrong, pendulum).verdict == "incorrect", wrong
+
+
+def test_an_equation_naming_an_unknown_alone_says_nothing(pendulum):
+    judged = judge_equations("Ox = 0", pendulum)
+    assert judged.verdict == "incorrect"
+    assert "says nothing about the motion" in judged.assessment.feedback
+
+
+def test_without_a_solved_state_equations_are_not_evaluated():
+    assert judge_equations("x'' = 0", None).verdict == "not_evaluated"
+    assert judge_equations(None, None).verdict == "missing"
+
+
+def test_too_many_equations_or_unknowns_are_refused(incline):
+    with pytest.raises(Exception, match="at most 12 equations"):
+        read_equations("; ".join(["x'' = 0"] * 13), incline)
+    with pytest.raises(Exception, match="at most 12 unknowns"):
+        read_equations(" + ".join(f"U{n}" for n in range(13)) + " = m x''", incline)
+    with pytest.raises(Exception, match="names of your own"):
+        read_equations("m z'' = 0", incline)

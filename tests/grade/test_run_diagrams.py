@@ -1,0 +1,120 @@
+"""Free-body diagrams and equations of motion in a grading run (an assignment's ``diagrams:``
+and ``equations:``): results.json rows per load, the feedback pages, and
+examples/hw4_derivation judged as by hand."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from mechgrade.errors import AssignmentError
+from mechgrade.grade.assignment import load_assignment
+from mechgrade.grade.results import AnswerResult, GradeReport, LoadResult
+from mechgrade.grade.run import grade_submissions, plan_assignment
+from mechgrade.report.output import write_outputs
+from mechgrade.resources import shipped_dir
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = shipped_dir("examples") / "hw4_derivation"
+HAND = json.loads((ROOT / "tests" / "data" / "hw4_derivation_verdicts.json").read_text())
+SCHEMA = ROOT / "src" / "mechgrade" / "export" / "results.schema.json"
+INCLINE = shipped_dir("problems") / "block_sliding_down_incline.yaml"
+
+
+def _assignment(folder: Path, problem: str) -> Path:
+    (folder / "hw.yaml").write_text(f"id: hw\ntitle: HW\nproblems:\n{problem}",
+                                    encoding="utf-8")
+    return folder / "hw.yaml"
+
+
+def test_a_diagram_of_a_body_the_problem_has_not_is_refused_before_solving(tmp_path):
+    hw = _assignment(tmp_path, f"  - path: {INCLINE}\n    objectives: []\n"
+                               f"    diagrams: [wheel]\n")
+    with pytest.raises(AssignmentError, match="expected a body of problem "
+                       "'block_sliding_down_incline' \\(block\\), found 'wheel'"):
+        plan_assignment(load_assignment(hw))
+
+
+def test_a_body_listed_twice_is_refused(tmp_path):
+    hw = _assignment(tmp_path, f"  - path: {INCLINE}\n    diagrams: [block, block]\n")
+    with pytest.raises(AssignmentError, match="found 'block' more than once"):
+        load_assignment(hw)
+
+
+def test_points_for_a_diagram_not_graded_say_so(tmp_path):
+    hw = _assignment(tmp_path, f"  - path: {INCLINE}\n    objectives: [accel]\n"
+                               f"points: {{block_sliding_down_incline.block.fbd: 3}}\n")
+    with pytest.raises(AssignmentError, match="found 'block_sliding_down_incline.block.fbd'"):
+        plan_assignment(load_assignment(hw))
+
+
+def test_a_diagrams_rows_survive_results_json():
+    rows = (LoadResult("weight", "gravity", "weight", "G", "weight: -m*g*N.y", (), "right."),
+            LoadResult("centrifugal force", None, None, "G", "centrifugal force: m*N.x",
+                       ("extra",), "Extra."))
+    student = {"id": "ana", "status": "graded", "score": 1.0, "max_score": 2.0,
+               "answers": [AnswerResult("p", "rod.fbd", "...", "partial", 1.0, 2.0,
+                                        loads=rows).__dict__]}
+    student["answers"][0]["loads"] = [row.__dict__ for row in rows]
+    report = GradeReport.from_json({"assignment": {"id": "hw", "title": "HW"},
+                                    "students": [student]})
+    assert report.students[0].answers[0].loads == rows
+    assert GradeReport.from_json(json.loads(json.dumps(report.to_json()))) == report
+    plain = AnswerResult("p", "v", "7 m/s", "correct", 2.0, 2.0)
+    assert "loads" not in json.loads(json.dumps(
+        GradeReport.from_json({"assignment": {"id": "hw", "title": "HW"}, "students": [
+            {**student, "answers": [{**plain.__dict__}]}]}).to_json()))["students"][0][
+                "answers"][0]
+
+
+@pytest.fixture(scope="module")
+def graded():
+    return grade_submissions(load_assignment(EXAMPLE / "assignment.yaml"),
+                             EXAMPLE / "submissions")
+
+
+@pytest.mark.slow
+def test_every_diagram_and_set_of_equations_of_the_example_is_judged_as_by_hand(graded):
+    assert {s.id for s in graded.students} == set(HAND) - {"_comment"}
+    for student in graded.students:
+        for answer in student.answers:
+            key = f"{answer.problem}.{answer.objective}"
+            hand = HAND[student.id][key]
+            named = {m for row in answer.loads for m in row.mistakes}
+            if hand is True:
+                assert answer.verdict == "correct", (student.id, key, answer.feedback)
+            elif hand in ("wrong", "incomplete", "missing"):  # equations of motion
+                said = {"wrong": "does not hold", "incomplete": "do not determine",
+                        "missing": "No answer was given"}[hand]
+                assert answer.verdict != "correct" and said in answer.feedback, \
+                    (student.id, key, answer.feedback)
+            elif hand == ["unreadable"]:
+                assert answer.verdict == "unreadable", (student.id, key)
+            else:
+                assert answer.verdict != "correct", (student.id, key)
+                assert sorted(named) == sorted(hand), (student.id, key, named)
+
+
+@pytest.mark.slow
+def test_results_json_and_the_feedback_page_show_a_row_per_load(graded, tmp_path):
+    write_outputs(graded, tmp_path)
+    data = json.loads((tmp_path / "results.json").read_text(encoding="utf-8"))
+    jsonschema.validate(data, json.loads(SCHEMA.read_text(encoding="utf-8")))
+    dan = next(s for s in data["students"] if s["id"] == "dan")
+    rod = next(a for a in dan["answers"] if a["objective"] == "rod.fbd")
+    assert [(row["label"], row["mistakes"]) for row in rod["loads"]] == [
+        ("weight", []), ("pin", []), ("centrifugal force", ["extra"])]
+    page = next(tmp_path.rglob("dan*.html")).read_text(encoding="utf-8")
+    assert "Your free-body diagram, load by load" in page
+    assert "centrifugal force" in page and "<td>extra</td>" in page
+
+
+def test_equations_of_a_problem_without_bodies_are_refused(tmp_path):
+    kinematic = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
+    hw = _assignment(tmp_path, f"  - path: {kinematic}\n    objectives: []\n"
+                               f"    equations: true\n")
+    with pytest.raises(AssignmentError, match="expected equations of a problem with bodies"):
+        plan_assignment(load_assignment(hw))

@@ -1,0 +1,127 @@
+"""An integrated motion read at its event, or at an objective's own time, coordinate or rate
+before it; an event that holds at the start waits for its next crossing."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechgrade.errors import SolveError
+from mechgrade.solve import solve
+from mechgrade.spec import load_problem, load_problem_text
+
+ROOT = Path(__file__).resolve().parents[2]
+SWING = (ROOT / "problems" / "damped_block_positions.yaml").read_text()
+
+
+def swing(old: str, new: str):
+    assert old in SWING
+    return load_problem_text(SWING.replace(old, new, 1), "p.yaml")
+
+
+def failure_of(problem, objective: str) -> str:
+    """The error of ``objective`` asked alone (solve raises it: nothing else was asked)."""
+    with pytest.raises(SolveError) as info:
+        solve(problem, objectives=[objective])
+    return str(info.value)
+
+
+def test_an_objective_at_a_time_reads_the_integrated_motion_there():
+    """x(t) = v0/wd exp(-zeta wn t) sin(wd t) at three times of the first swing."""
+    wn, zeta = 20.0, 0.2
+    wd = wn * np.sqrt(1 - zeta ** 2)
+    for ms in (5, 50, 120):
+        problem = swing("givens: {t: 30 ms}", f"givens: {{t: {ms} ms}}")
+        t = ms / 1000
+        expected = 1 / wd * np.exp(-zeta * wn * t) * np.sin(wd * t) * 1000
+        assert solve(problem, objectives=["x_at_30ms"]).result("x_at_30ms").value == \
+            pytest.approx(expected, rel=1e-9)
+
+
+def test_an_objective_at_time_zero_reads_the_start_and_one_at_the_start_position_its_return():
+    at_start = swing("givens: {t: 30 ms}", "givens: {t: 0 s}")
+    assert solve(at_start, objectives=["x_at_30ms"]).result("x_at_30ms").value == 0.0
+    back = swing("givens: {x: 20 mm}", "givens: {x: 0 mm}")
+    wd = 20.0 * np.sqrt(1 - 0.2 ** 2)
+    assert solve(back, objectives=["time_to_20mm"]).result("time_to_20mm").value == \
+        pytest.approx(np.pi / wd * 1000, rel=1e-9)
+
+
+def test_a_position_is_read_where_it_is_first_reached_not_on_the_way_back():
+    """20 mm is passed twice in the first swing; the first time is before the peak."""
+    solution = solve(load_problem(ROOT / "problems" / "damped_block_positions.yaml"),
+                     objectives=["time_to_20mm", "peak_displacement"])
+    problem = swing("givens: {t: 30 ms}", "givens: {t: 22.6292 ms}")
+    assert solution.result("time_to_20mm").value == pytest.approx(22.6292, rel=1e-5)
+    assert solve(problem, objectives=["x_at_30ms"]).result("x_at_30ms").value == \
+        pytest.approx(20.0, rel=1e-5)
+
+
+def test_an_instant_after_the_event_is_refused_at_its_given():
+    problem = swing("givens: {t: 30 ms}", "givens: {t: 0.5 s}")
+    assert failure_of(problem, "x_at_30ms") == (
+        "p.yaml:54:17: objectives[1].givens.t: 't: 0.5 s' does not hold before the event "
+        "('x = 0', at t = 0.160319 s), where the integrated motion ends: expected an instant "
+        "before it")
+
+
+def test_a_position_never_reached_before_the_event_is_refused():
+    problem = swing("givens: {x: 20 mm}", "givens: {x: 50 mm}")
+    assert "'x: 50 mm' does not hold before the event ('x = 0', at t = 0.160319 s)" in \
+        failure_of(problem, "time_to_20mm")
+
+
+def test_an_instant_beyond_the_time_allowed_is_refused():
+    problem = load_problem_text(SWING.replace("until: x = 0 ", "until: x = 0\n    max_time: 0.1 s")
+                                .replace("givens: {t: 30 ms}", "givens: {t: 120 ms}"), "p.yaml")
+    assert "'t: 120 ms' does not hold within 0.1 s of the integrated motion: expected an " \
+        "instant it reaches (or a larger max_time)" in failure_of(problem, "x_at_30ms")
+
+
+def test_an_event_that_holds_at_the_start_is_its_next_crossing():
+    """The block starts at equilibrium, x = 0: the event is its return, at pi / wd."""
+    wd = 20.0 * np.sqrt(1 - 0.2 ** 2)
+    solution = solve(load_problem(ROOT / "problems" / "damped_block_positions.yaml"),
+                     objectives=["time_back"])
+    assert solution.result("time_back").value == pytest.approx(np.pi / wd * 1000, rel=1e-9)
+
+
+def test_an_event_that_holds_at_the_start_and_stays_is_refused():
+    problem = swing("  v0: 1 m/s\n", "  v0: 0 m/s\n")
+    assert "the event holds at the start (t = 0) and stays so: expected a motion that " \
+        "leaves it" in failure_of(problem, "time_back")
+
+
+def test_a_design_parameter_an_objective_gives_is_the_value_used():
+    """Sample 9.21 sizes R; an objective asked with R: 0.25 m reads the wheel of that R, as
+    Sample 9.21's own formula gives; the design is still solved for R_min."""
+    text = (ROOT / "problems" / "ruina_9_21_wheel_incline.yaml").read_text()
+    asked = text.replace("    expect: {components: [-14.715, 42.4785, 0]}\n",
+                         "    expect: {components: [-14.715, 42.4785, 0]}\n"
+                         "  - id: a_with_R\n    prompt: a\n    find: dot(acc(G, N), A.x)\n"
+                         "    kind: scalar\n    unit: m/s^2\n    givens: {R: 0.25 m}\n")
+    value = solve(load_problem_text(asked, "p.yaml"), objectives=["a_with_R", "R_min"])
+    m, M, r, R, g, theta = 1.0, 2.0, 0.1, 0.25, 9.81, np.radians(30)
+    closed = 2 * g * r**2 * (m + 2 * M) * np.sin(theta) / (3 * m * r**2 + 4 * M * r**2
+                                                           + 2 * M * R**2)
+    assert value.result("a_with_R").value == pytest.approx(closed, rel=1e-9)
+    assert value.result("R_min").value == pytest.approx(0.1870829, rel=1e-6)
+
+
+def test_a_symbolic_answer_of_a_motion_integrated_to_a_given_time():
+    """until: t = T with T a parameter: the closed form at the event is that at t = T (the
+    event's root is the symbol T itself); the cart's speed grows at mu m g / M."""
+    text = (ROOT / "problems" / "block_slides_on_cart.yaml").read_text()
+    text = text.replace("until: x' = X'", "until: t = T").replace(
+        "  v0: m/s\n", "  v0: m/s\n  T: s\n").replace("givens:\n", "givens:\n  T: 0.5 s\n", 1)
+    text = text.replace("    find: t\n    kind: symbolic\n    unit: s\n    symbols: [v0, mu, g, m, M]",
+                        "    find: X'\n    kind: symbolic\n    unit: m/s\n"
+                        "    symbols: [v0, mu, g, m, M, T]")
+    solution = solve(load_problem_text(text, "p.yaml"),
+                     objectives=["t_slide", "t_slide_symbolic", "common_speed"])
+    assert solution.result("t_slide").value == pytest.approx(0.5, rel=1e-12)
+    assert solution.result("t_slide_symbolic").expr == "T*g*m*mu/M"
+    assert solution.result("common_speed").value == pytest.approx(0.3 * 2 * 9.81 * 0.5 / 8,
+                                                                 rel=1e-9)
