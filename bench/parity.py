@@ -11,6 +11,10 @@ numbers by more than ``--rel`` (default 1e-9) relative, any text or structure at
 Run (the disk cache off, as the tests):
     MECHGRADE_NO_CACHE=1 .venv/bin/python bench/parity.py record /tmp/before.json
     MECHGRADE_NO_CACHE=1 .venv/bin/python bench/parity.py compare /tmp/before.json
+    .venv/bin/python bench/parity.py diff /tmp/before.json /tmp/after.json   # two records
+
+``diff`` compares two records (say, one of main and one of a branch, each recorded from its
+own checkout while the other is worked on) without solving anything.
 """
 
 from __future__ import annotations
@@ -120,15 +124,38 @@ def differences(a, b, rel: float, where: str = "") -> list[str]:
     return [f"{where}: {a!r} != {b!r}"]
 
 
+def diff(before_file: Path, after_files: list[Path], rel: float) -> int:
+    """Print where the records in ``after_files`` differ from ``before_file`` for the problems
+    both hold (and which only one holds); 1 when they differ anywhere, else 0."""
+    before = json.loads(before_file.read_text())
+    after: dict = {}
+    for f in after_files:
+        after.update(json.loads(f.read_text()))
+    found = 0
+    for key in sorted(set(before) | set(after)):
+        if key not in before or key not in after:
+            print(f"{key}: recorded in {before_file if key in before else 'the other'} only")
+            continue
+        diffs = differences(before[key], after[key], rel, key)
+        found += len(diffs)
+        for d in diffs[:10]:
+            print(d)
+    both = len(set(before) & set(after))
+    print(f"{both} problems recorded in both compared, {found} differences")
+    return 1 if found else 0
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("action", choices=["record", "compare"])
+    parser.add_argument("action", choices=["record", "compare", "diff"])
     parser.add_argument("file", type=Path)
     parser.add_argument("--variants", type=int, default=24)
     parser.add_argument("--alone", type=int, default=3)
     parser.add_argument("--rel", type=float, default=1e-9)
     parser.add_argument("paths", nargs="*", type=Path)
     args = parser.parse_args()
+    if args.action == "diff":
+        sys.exit(diff(args.file, args.paths, args.rel))
     paths = args.paths or PATHS
     before = json.loads(args.file.read_text()) if args.action == "compare" else {}
     now = {}
@@ -136,7 +163,8 @@ def main() -> None:
     for path in paths:
         key = str(path.relative_to(ROOT) if path.is_absolute() else path)
         now[key] = entry = dump(path, args.variants, args.alone)
-        if args.action == "record":
+        if args.action == "record":  # written after each problem: a record cut short keeps them
+            args.file.write_text(json.dumps(now, indent=1))
             print(key, file=sys.stderr, flush=True)
             continue
         if key not in before:

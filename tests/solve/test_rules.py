@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechgrade.solve.rules import null_space, on_branch, rank, satisfied
+from mechgrade.solve.rules import null_space, on_branch, rank, same_value, satisfied, unchanged
 from mechgrade.spec.model import Root
 
 
@@ -32,3 +32,14 @@ def test_a_root_is_on_a_branch_when_it_is_clear_of_zero_for_the_size_of_its_quan
     assert on_branch(values, scales, Root.POSITIVE).tolist() == [False, True, False]
     assert on_branch(values, scales, Root.NEGATIVE).tolist() == [False, False, True]
     assert on_branch(values, scales, None).all()
+
+
+def test_a_value_is_unchanged_within_the_probe_tolerance_of_its_size_column_by_column():
+    before = np.array([[1e3, 1e3, 0.0, np.nan, 1.0], [0.0, 0.0, 0.0, 1.0, 1.0]])
+    after = np.array([[1e3 + 5e-5, 1e3 + 5e-4, 2e-12, np.nan, np.nan], [0.0, 0.0, 0.0, 1.0, 1.0]])
+    assert unchanged(before, after).tolist() == [True, False, False, True, False]
+
+
+def test_two_roots_have_the_same_value_within_a_millionth_of_it_and_of_one():
+    assert same_value(1e4, 1e4 + 5e-3) and not same_value(1e4, 1e4 + 2e-2)
+    assert same_value(0.0, 9e-7) and not same_value(0.0, 2e-6)

@@ -8,7 +8,7 @@ a variant continues from the configuration the author checked, and for a level w
 finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
-rates from the energy balance (:func:`~.work_energy.energy_state` on arrays); the motion integrated
+rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
 variants' right-hand sides in one call); a design parameter by Newton's method around the
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
@@ -48,16 +48,15 @@ from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .batch_motion import newton
 from .entry import solve
-from .analysis import analysis_plan
 from .events import at_the_event, event_never_happens
-from .instant import (_instants, _key, _state, _symbolic_answer,
+from .instant import (_instants, absent, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
 from .columns import call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of)
-from .numeric import PROBE_TOL, degenerate, solve_numeric
+from .numeric import degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event
 from .plan import KinematicsPlan, kinematics_plan
@@ -65,6 +64,7 @@ from . import rules
 from .rules import on_branch, satisfied
 from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
                      Solution)
+from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
 
 NEWTON_STEPS = 30
@@ -352,10 +352,10 @@ class _Template:
             objectives, mistakes, requirements = (self.kinetics.objectives,
                                                   self.kinetics.mistakes,
                                                   self.kinetics.requirements)
-            limit = 1e-8
+            limit = rules.REQUIRED_KINETIC
         else:
             objectives, mistakes, requirements = p.objectives, p.mistakes, p.requirements
-            limit = 1e-9
+            limit = rules.REQUIRED
         values = {oid: call(f, X, _size(self.problem, oid)) for oid, f in objectives
                   if oid in group.numeric}
         if before is not None:
@@ -366,10 +366,8 @@ class _Template:
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
             for v in values.values():
                 ok &= np.isfinite(v).all(axis=0)
-        for oid, _, f in requirements:
-            if oid in group.numeric:
-                with np.errstate(invalid="ignore"):
-                    ok &= ~(np.abs(call(f, X, 1)[0]) > limit)
+        ok &= np.array([not missing for missing in absent(self.problem, requirements, X,
+                                                            group.numeric, limit)], dtype=bool)
         declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
         return X, ok, values, declared, never
@@ -393,7 +391,8 @@ class _Template:
         if self.kinetics is None:
             return X, ok
         if isinstance(self.analysis, WorkEnergy):
-            ok &= self._energy(X, ok)
+            X, errors = energy_rates(self.problem, self.kinetics, X)
+            ok &= errors.ok
         X, fine = self._motion().screened(X, group.after)
         return X, ok & fine
 
@@ -442,61 +441,6 @@ class _Template:
         if degenerate and len(again) and not isinstance(self.analysis, Integration):
             ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
         return out, ok & converged
-
-    def _energy(self, X: np.ndarray, ok: np.ndarray) -> np.ndarray:
-        """Put in every column the rates the energy balance gives (as
-        :func:`~.work_energy.energy_state` does), and say which columns it would not refuse."""
-        assert self.kinetics is not None and isinstance(self.analysis, WorkEnergy)
-        kp, index = self.kinetics, self.p.index
-        analysis = self.analysis
-        ap = analysis_plan(kp)
-        rates, n = list(index.rates(1)), index.n
-        count = X.shape[1]
-        reactions = np.zeros((len(kp.kin.reactions), count))
-        fine = ok.copy()
-        X[rates] = 0.0
-        X[list(index.rates(2))] = 0.0
-        level = self.p.levels[1]
-        if level.constraint_rows:
-            J = call(level.jacobian, X, len(level.labels) * n).reshape(
-                len(level.labels), n, count)[:level.constraint_rows]
-            finite = np.isfinite(J).all(axis=(0, 1))
-            fine &= finite
-            _, s, Vt = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1),
-                                     full_matrices=True)
-            fine &= rules.rank(s) == n - 1  # one free direction
-            u = Vt[:, n - 1, :].T
-        else:
-            fine &= n == 1
-            u = np.ones((n, count))
-        start = np.concatenate([X, reactions])
-        for i, fn in ap.start:
-            start[i] = call(fn, np.concatenate([X, reactions]), 1)[0]
-        e0 = call(ap.energy, start, 1)[0]
-        v = call(ap.energy, np.concatenate([X, reactions]), 1)[0]
-        moving = X.copy()
-        moving[rates] = u
-        with np.errstate(all="ignore"):
-            t_unit = call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
-            square = (e0 - v) / t_unit
-            fine &= ~(square < -1e-9 * (np.abs(e0) + np.abs(v) + 1e-300) / t_unit)
-            fine &= np.isfinite(square)
-            speed = np.sqrt(np.maximum(square, 0.0))
-        sign = np.ones(count)
-        if analysis.sense:
-            key, sense = analysis.sense[0]
-            component = u[rates.index(index.position(key.text.replace(" ", "")))]
-            fine &= ~((speed > 0) & (np.abs(component) < 1e-12))
-            sign = np.where(speed > 0, np.sign(component) * sense.sign, 1.0)
-        else:
-            fine &= ~(speed > 0)
-        X[rates] = sign * speed * u
-        x = np.concatenate([X, reactions])
-        size = 1.0 + np.abs(X[rates]).max(axis=0, initial=0.0)
-        for _, fn in ap.workless:
-            with np.errstate(invalid="ignore"):
-                fine &= ~(np.abs(call(fn, x, 1)[0]) > 1e-8 * size)
-        return fine
 
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
@@ -583,9 +527,7 @@ class _Template:
             self._levels(group, moved, targets, first, same)
             for oid, value in before.items():
                 after = call(dict(p.objectives)[oid], moved, value.shape[0])
-                size = np.maximum(np.abs(value).max(axis=0), 1e-12)
-                with np.errstate(invalid="ignore"):
-                    same &= np.abs(after - value).max(axis=0) <= PROBE_TOL * size + 1e-12
+                same &= rules.unchanged(value, after)
         return same
 
     def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:

@@ -31,7 +31,7 @@ from typing import Callable
 
 import numpy as np
 
-from . import dop853
+from . import dop853, rules
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # as scipy's Runge-Kutta step control
 EPS = np.finfo(float).eps
@@ -68,7 +68,7 @@ class Arrival:
 
 
 def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
-                        rtol: float, atol: float, max_calls: int, lead: float = 1e-9,
+                        rtol: float, atol: float, max_calls: int, lead: float = rules.BEFORE_EVENT,
                         mode: Callable | None = None) -> Arrival:
     """Integrate ``y' = rhs`` from ``y0`` (states x columns) at t = 0 until ``event`` changes
     sign (or becomes zero), per column, as ``solve_ivp(method="DOP853", events=event)`` with

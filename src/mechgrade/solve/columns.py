@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import types
 import warnings
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Callable
 
 import numpy as np
 
+from ..errors import MechgradeError
 from .plan import _OnFirstCall
 from .rules import significant
 
@@ -44,6 +45,42 @@ def _array(rows):
         for c, entry in enumerate(row):
             out[r, c] = entry
     return out
+
+
+class FirstErrors:
+    """Each column's first error, as the solver of that column alone would raise it: a stage
+    judges all columns at once, and a column's message is worded only when it is read (a
+    class whose columns fail by the thousand, as a mistaken model's may, words none).
+
+    >>> from mechgrade.errors import SolveError
+    >>> errors = FirstErrors(3)
+    >>> errors.add(np.array([False, True, True]), lambda i: SolveError(f"first {i}"))
+    >>> errors.add(np.array([True, True, False]), lambda i: SolveError(f"second {i}"))
+    >>> [str(errors[i]) for i in range(3)], errors.ok.tolist()
+    (['second 0', 'first 1', 'first 2'], [False, False, False])
+    """
+
+    def __init__(self, count: int) -> None:
+        self._pending: list[Callable[[], MechgradeError] | None] = [None] * count
+
+    def add(self, failing, error: Callable[[int], MechgradeError]) -> None:
+        """``error(i)`` for every column ``i`` ``failing`` (booleans) that has no error yet."""
+        for i in np.flatnonzero(failing):
+            if self._pending[i] is None:
+                self._pending[i] = partial(error, int(i))
+
+    @property
+    def ok(self) -> np.ndarray:
+        """Which columns have no error."""
+        return np.array([e is None for e in self._pending], dtype=bool)
+
+    def __len__(self) -> int:
+        return len(self._pending)
+
+    def __getitem__(self, i: int) -> MechgradeError | None:
+        """Column ``i``'s error (``None`` where it has none)."""
+        pending = self._pending[i]
+        return None if pending is None else pending()
 
 
 def call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:

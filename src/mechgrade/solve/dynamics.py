@@ -30,7 +30,7 @@ import sympy as sp
 # scipy is imported by the functions that use it: it takes longer to import than a whole
 # `mechgrade check` of most problems, which never needs it.
 
-from ..errors import (AuthorWarning, InconsistentError, Location, MechgradeError, SolveError,
+from ..errors import (AuthorWarning, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
 from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
 from ..mechanics.loads import PhysicalBound
@@ -41,16 +41,15 @@ from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of, instant_of_objective
 from .events import (at_the_event, integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
-from .motion import integrated_alone
+from .motion import accelerations as columns_accelerations
+from .motion import balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
-from .instant import (_instants, _state, collect_results, degrees_of_freedom,
-                      instant_givens, wanted_objectives)
 from . import rules
+from .instant import Reached, absent, drive
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
-from .result import ObjectiveFailure, ObjectiveResult, Solution
-from .rules import first_off
+from .result import ObjectiveResult, Solution
 
 
 def kinematic_problem(problem: Problem) -> Problem:
@@ -139,114 +138,32 @@ def _call(f: Callable, x: np.ndarray) -> np.ndarray:
 def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarray:
     """The extended state (state values, then reactions) with the unknown second rates and
     reactions solved from the momentum balances; raises when they are not determined, the
-    equations cannot all hold, or a friction contact contradicts its model."""
-    from scipy import linalg
-
-    x = np.concatenate([state.values, np.zeros(len(kp.kin.reactions))])
-    known = np.concatenate([state.given, np.zeros(len(kp.kin.reactions), dtype=bool)])
-    cols = [j for j, i in enumerate(kp.columns) if not known[i]]
-    for j in cols:
-        x[kp.columns[j]] = 0.0
-    for slip, speed, _ in kp.slips:
-        if not _call(speed, x)[0] > 1e-12:
-            raise SolveError(f"kinetic friction '{slip.name}' needs the contact at {slip.point} "
-                             "to slip, but its slip velocity is zero at this instant; use "
-                             "'kind: static'", where=slip.where)
-    check_physical(kp, x, given=True)
-    A = _call(kp.jacobian, x).reshape(len(kp.labels), len(kp.columns))[:, cols]
-    b = _call(kp.residual, x)
-    if not (np.isfinite(A).all() and np.isfinite(b).all()):
-        bad = next(i for i in range(len(b)) if not (np.isfinite(A[i]).all() and np.isfinite(b[i])))
-        raise SolveError(f"the equations of motion are undefined at this instant (a division by "
-                         f"zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
-    sol, *_ = linalg.lstsq(A, -b)
-    _, s, vt = linalg.svd(A)
-    rank = int(rules.rank(s))
-    if rank < len(cols):
-        null = vt[rank:].T
-        open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > 1e-9]
-        names = [kp.name(j) for j in open_]
-        involved = sorted({label.split(":")[0] for i, label in enumerate(kp.labels)
-                           if any(abs(A[i, cols.index(j)]) > 1e-12 for j in open_)})
-        kind = "statically indeterminate" if any(kp.columns[j] >= kp.kp.index.size
-                                                 for j in open_) else "under-constrained"
-        raise UnderdeterminedError(
-            f"the model is {kind}: the momentum balances ({', '.join(involved)}) do not "
-            f"determine {', '.join(names)}; remove a redundant reaction or add a constraint",
-            where=_body_where(problem, involved))
-    for j, value in zip(cols, sol):
-        x[kp.columns[j]] = value
-    r = _call(kp.residual, x)
-    size = np.abs(_call(kp.scale, x))
-    i = first_off(r, size, problem.consistency)
-    if i is not None:
-        raise InconsistentError(
-            f"the equations of motion cannot all hold: '{kp.labels[i]}' is off by "
-            f"{r[i]:.4g} (terms of size {size[i]:.4g}); a reaction may be missing from the "
-            "loads, or a given second rate contradicts them", where=kp.wheres[i])
-    check_physical(kp, x, given=False)
-    _check_friction(kp, x)
-    return x
-
-
-def check_physical(kp: KineticsPlan, x: np.ndarray, *, given: bool) -> None:
-    """The physical bounds at the extended state ``x`` (:mod:`mechgrade.mechanics.loads`):
-    those of the givens (a mass, mu, e) or those of the solution (a contact pushes, a string
-    pulls)."""
-    for bound, f in kp.physical:
-        if bound.given == given:
-            value = float(_call(f, x)[0])
-            if not bound.holds(value):
-                raise SolveError(bound.message(value), where=bound.where)
+    equations cannot all hold, or a friction contact contradicts its model (the checks of
+    :func:`~.motion.balances`, with one column)."""
+    solved = balances(problem, kp, state.values[:, None], state.given)
+    error = solved.errors[0]
+    if error is not None:
+        raise error
+    return solved.x[:, 0]
 
 
 def accelerations(kp: KineticsPlan, values: np.ndarray) -> np.ndarray:
     """The extended state with every second rate and reaction solved by least squares, without
-    the checks of :func:`solve_kinetics` (the right-hand side of an integration)."""
-    from scipy import linalg
-
+    the checks of :func:`solve_kinetics` (:func:`~.motion.accelerations` with one column);
+    raises where the equations are undefined."""
     x = np.concatenate([values, np.zeros(len(kp.kin.reactions))])
-    cols = list(kp.columns)
-    x[cols] = 0.0
-    A = _call(kp.jacobian, x).reshape(len(kp.labels), len(cols))
-    b = _call(kp.residual, x)
-    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+    x[list(kp.columns)] = 0.0
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        x = columns_accelerations(kp, x[:, None])[:, 0]
+    if not np.isfinite(x[list(kp.columns)]).all():
         raise SolveError("the equations of motion became undefined during the integration "
                          "(a division by zero)", where=problem_where(kp))
-    sol, *_ = linalg.lstsq(A, -b, check_finite=False)
-    x[cols] = sol
     return x
 
 
 def problem_where(kp: KineticsPlan) -> Location:
     return kp.wheres[0] if kp.wheres else Location()
-
-
-def _body_where(problem: Problem, involved) -> Location:
-    for b in dynamics_of(problem).bodies:
-        if involved and involved[0] == f"body {b.name}":
-            return b.where
-    return Location()
-
-
-def _check_friction(kp: KineticsPlan, x: np.ndarray) -> None:
-    for slip, _, normal in kp.slips:
-        n = _call(normal, x)[0]
-        if n < -1e-9:
-            raise SolveError(f"contact lost at {slip.point}: the normal force would be "
-                             f"{n:.4g} N (pulling)", where=slip.where)
-    for bound, tangential, normal, mu in kp.bounds:
-        f = np.linalg.norm(_call(tangential, x))
-        n = _call(normal, x)[0]
-        m = _call(mu, x)[0]
-        if n < -1e-9:
-            raise SolveError(f"contact lost at {bound.point}: the normal force would be "
-                             f"{n:.4g} N (pulling)", where=bound.where)
-        if f > m * n * (1 + 1e-9) + 1e-12:
-            needed = f / n if n > 0 else np.inf
-            raise SolveError(f"the {bound.body} slips at {bound.point}: sticking needs "
-                             f"mu >= {needed:.4g} (friction {f:.4g} N against a normal force "
-                             f"of {n:.4g} N), but mu = {m:.4g}", where=bound.where)
 
 
 # ---------------------------------------------------------------------------- entry point
@@ -255,57 +172,53 @@ def _check_friction(kp: KineticsPlan, x: np.ndarray) -> None:
 def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                    objectives: Collection[str] | None = None) -> Solution:
     """Like :func:`mechgrade.solve.solve`, for a problem with bodies and loads."""
+    return drive(problem, KineticInstant(problem, kinematic_problem(problem),
+                                         kinetics_plan(problem)), givens, objectives)
 
-    kp = kinetics_plan(problem)
-    kproblem = kinematic_problem(problem)
-    results: dict[str, ObjectiveResult] = {}
-    failures: dict[str, MechgradeError] = {}
-    warned: list[AuthorWarning] = list(kp.kp.k.warnings)
-    base = None
-    wanted = wanted_objectives(problem, objectives)
-    for overrides, group in _instants(problem):
-        chosen = [o for o in group if o.id in wanted]
-        if not chosen:
-            continue
-        given_map = instant_givens(problem, givens, overrides)
-        numeric = {o.id for o in chosen if o.kind != ObjectiveKind.SYMBOLIC}
-        values, mistakes = {}, {}
-        if numeric:
-            try:
-                given_map = _designed(problem, kproblem, kp, given_map)
-                state, x, found, limit = _instant(problem, kproblem, kp, given_map,
-                                                  instant_of_objective(problem, overrides))
-            except MechgradeError as err:
-                failures.update({oid: err for oid in numeric})
-            else:
-                values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
-                if limit is not None:  # an integration's event
-                    functions = dict(kp.objectives)
-                    values = {oid: at_the_event(v[:, None], _call(functions[oid], limit)[:, None],
-                                                problem.objective(oid))[:, 0]
-                              for oid, v in values.items()}
-                for oid, reason, f in kp.requirements:
-                    if oid in numeric and oid not in failures and abs(_call(f, x)[0]) > 1e-8:
-                        failures[oid] = SolveError(f"objective '{oid}' does not exist at this "
-                                                   f"instant: {reason}",
-                                                   where=problem.objective(oid).where)
-                mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
-                            if oid in numeric}
-                warned += [w for w in found if w not in warned]
-                if not overrides or base is None:
-                    base = (_with_kinetics(kp, state, x), given_map)
-        collect_results(problem, chosen, given_map, values, mistakes, results, failures,
-                        symbolic=_symbolic_result)
-    order = [o.id for o in problem.objectives if o.id in wanted]
-    if not results and order:  # nothing solved of what was asked
-        raise failures[order[0]]
-    return Solution(problem=problem.id,
-                    results=tuple(results[oid] for oid in order if oid in results),
-                    state=_state(kproblem, kp.kp, base),
-                    dof=degrees_of_freedom(kp.kp, base[0] if base else None),
-                    failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
-                                   if oid in failures),
-                    warnings=tuple(warned))
+
+@dataclass(frozen=True)
+class KineticInstant:
+    """A dynamics problem's instants (:class:`~.instant.Reach`): its kinematics at the givens
+    (by the energy balance, integrated to an event, or given), a design parameter solved
+    for, the momentum balances; its generated mistakes are worked out once for the whole
+    solution (:mod:`.dynamics_mutants`)."""
+
+    source: Problem
+    problem: Problem  # its kinematics (kinematic_problem)
+    kinetics: KineticsPlan
+
+    @property
+    def plan(self) -> KinematicsPlan:
+        return self.kinetics.kp
+
+    @property
+    def warnings(self) -> tuple[AuthorWarning, ...]:
+        return tuple(self.plan.k.warnings)
+
+    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
+        problem, kproblem, kp = self.source, self.problem, self.kinetics
+        given_map = _designed(problem, kproblem, kp, given_map)
+        state, x, found, limit = _instant(problem, kproblem, kp, given_map,
+                                          instant_of_objective(problem, overrides))
+        values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
+        if limit is not None:  # an integration's event
+            functions = dict(kp.objectives)
+            values = {oid: at_the_event(v[:, None], _call(functions[oid], limit)[:, None],
+                                        problem.objective(oid))[:, 0]
+                      for oid, v in values.items()}
+        missing = absent(problem, kp.requirements, x[:, None], numeric,
+                         rules.REQUIRED_KINETIC)[0]
+        mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
+                    if oid in numeric}
+        return Reached(given_map, _with_kinetics(kp, state, x), values, mistakes, missing,
+                       tuple(found))
+
+    def symbolic(self) -> Callable | None:
+        return _symbolic_result
+
+    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
+                 reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
+        return results
 
 
 def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:

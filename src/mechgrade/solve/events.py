@@ -23,6 +23,7 @@ from ..spec.model import Objective, Problem
 from ..tolerance import within_each
 from ..units import si_factor
 from .analysis import analysis_of, analysis_plan, extended, start_values, value_at
+from . import rules
 from .levels import State
 
 RTOL, ATOL = 1e-11, 1e-12
@@ -48,7 +49,8 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     t_event = float(result.t_events[0][0])
     y_event = result.y_events[0][0]
     end = m.at(t_event, y_event)
-    before = solve(m.at(t_event * (1 - 1e-9), result.sol(t_event * (1 - 1e-9))))
+    earlier = t_event * (1 - rules.BEFORE_EVENT)
+    before = solve(m.at(earlier, result.sol(earlier)))
     known = np.zeros(len(end), dtype=bool)
     known[index.config] = True
     known[list(index.rates(1))] = True

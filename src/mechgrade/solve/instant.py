@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from typing import Collection, Mapping
+from dataclasses import dataclass
+from typing import Callable, Collection, Mapping, Protocol
 
 import numpy as np
 
@@ -27,6 +28,8 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..units import from_si, si_factor, si_unit
+from . import rules
+from .columns import call
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
@@ -102,12 +105,24 @@ def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
 
 def _check_requirements(problem: Problem, p: KinematicsPlan, state: State, only: set[str]) -> dict:
     """Errors for the objectives in ``only`` that do not exist at this instant."""
-    values = evaluate(((oid, f) for oid, _, f in p.requirements), state, only)
-    out = {}
-    for oid, reason, _ in p.requirements:
-        if oid in only and oid not in out and abs(float(values[oid][0])) > 1e-9:
-            out[oid] = SolveError(f"objective '{oid}' does not exist at this instant: {reason}",
-                                  where=problem.objective(oid).where)
+    return absent(problem, p.requirements, state.values[:, None], only, rules.REQUIRED)[0]
+
+
+def absent(problem: Problem, requirements, X: np.ndarray, only: Collection[str],
+           limit: float) -> list[dict[str, SolveError]]:
+    """For every column of ``X`` (a state), the objectives in ``only`` that do not exist
+    there (what one requires to be zero is more than ``limit`` away from it), each with its
+    error."""
+    out: list[dict[str, SolveError]] = [{} for _ in range(X.shape[1])]
+    for oid, reason, f in requirements:
+        if oid not in only:
+            continue
+        with np.errstate(invalid="ignore"):
+            off = np.abs(call(f, X, 1)[0]) > limit
+        for i in np.flatnonzero(off):
+            out[i].setdefault(oid, SolveError(
+                f"objective '{oid}' does not exist at this instant: {reason}",
+                where=problem.objective(oid).where))
     return out
 
 
@@ -119,13 +134,61 @@ def _mistake_values(p: KinematicsPlan, state: State, only: set[str]) -> dict[str
 # ---------------------------------------------------------------------------- entry point
 
 
-def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
-                     objectives: Collection[str] | None = None) -> Solution:
-    """:func:`mechgrade.solve.solve` for a problem without bodies and loads."""
-    p = kinematics_plan(problem)
+@dataclass(frozen=True)
+class Reached:
+    """One instant reached (:meth:`Reach.instant`) and its numeric objectives evaluated
+    there: the givens (a design parameter's value put in), the state the solution reports,
+    each objective's SI values and its declared mistakes' values, the objectives that failed
+    there and the kinematics' warnings."""
+
+    givens: dict
+    state: State
+    values: Mapping[str, np.ndarray]
+    mistakes: dict
+    failures: Mapping[str, MechgradeError]
+    warnings: tuple[AuthorWarning, ...]
+
+
+class Reach(Protocol):
+    """How a problem's instants are reached and its objectives read there: the one thing
+    :func:`drive` leaves to the kind of problem (kinematics here, kinetics in
+    :mod:`.dynamics`)."""
+
+    @property
+    def problem(self) -> Problem:
+        """The kinematics, whose state the solution reports."""
+
+    @property
+    def plan(self) -> KinematicsPlan:
+        """Its plan."""
+
+    @property
+    def warnings(self) -> tuple[AuthorWarning, ...]:
+        """The kinematics' warnings, before any instant's."""
+
+    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
+        """The instant ``given_map`` describes (``overrides``: the objectives' own givens
+        among them) with the objectives ``numeric`` read there; raises what makes every one
+        of them fail."""
+
+    def symbolic(self) -> Callable | None:
+        """What :func:`collect_results` derives a symbolic answer with (``None``: the
+        kinematic one)."""
+
+    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
+                 reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
+        """The results of one instant with their generated mistakes (those this kind works
+        out at each instant)."""
+
+
+def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | None,
+          objectives: Collection[str] | None) -> Solution:
+    """The one solver loop: every group of objectives asked at the same givens reached by
+    ``reach``, its objectives read there (a symbolic one derived), the solution of all of
+    them; raises the first error when none of them is solved."""
     results: dict[str, ObjectiveResult] = {}
     failures: dict[str, MechgradeError] = {}
-    warned: list[AuthorWarning] = list(p.warnings)
+    warned: list[AuthorWarning] = list(reach.warnings)
     base = None
     wanted = wanted_objectives(problem, objectives)
     for overrides, group in _instants(problem):
@@ -136,35 +199,71 @@ def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | N
         numeric = {o.id for o in chosen if _numeric(o)}
         values: Mapping[str, np.ndarray] = {}
         mistakes: dict = {}
-        generated: list = []
+        reached = None
         if numeric:
             try:
-                instant = solve_numeric(problem, p, given_map, numeric)
+                reached = reach.instant(given_map, numeric, overrides)
             except MechgradeError as err:
                 failures.update({oid: err for oid in numeric})
             else:
-                failures.update(instant.errors)
-                failures.update(_check_requirements(problem, p, instant.state, numeric))
-                values = instant.values
-                mistakes = _mistake_values(p, instant.state, numeric)
-                generated = [model_mistakes(problem, p, instant.state, numeric),
-                             given_mistakes(problem, p, given_map, numeric)]
-                warned += [w for w in instant.warnings if w not in warned]
+                given_map = reached.givens
+                failures.update(reached.failures)
+                values, mistakes = reached.values, reached.mistakes
+                warned += [w for w in reached.warnings if w not in warned]
                 if not overrides or base is None:
-                    base = (instant.state, given_map)
-        collect_results(problem, chosen, given_map, values, mistakes, results, failures)
-        results.update(attach({o.id: results[o.id] for o in chosen if o.id in results},
-                              generated, plausible_slips(problem)))
+                    base = (reached.state, given_map)
+        collect_results(problem, chosen, given_map, values, mistakes, results, failures,
+                        symbolic=reach.symbolic())
+        results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
+                                                if o.id in results}, reached, numeric))
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results and order:  # nothing solved of what was asked
         raise failures[order[0]]
     return Solution(problem=problem.id,
                     results=tuple(results[oid] for oid in order if oid in results),
-                    state=_state(problem, p, base),
-                    dof=degrees_of_freedom(p, base[0] if base else None),
+                    state=_state(reach.problem, reach.plan, base),
+                    dof=degrees_of_freedom(reach.plan, base[0] if base else None),
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
                     warnings=tuple(warned))
+
+
+@dataclass(frozen=True)
+class GivenInstant:
+    """A kinematics problem's instants: its givens fix them (:func:`~.numeric.solve_numeric`
+    solves the rest), its objectives' generated mistakes are worked out at each."""
+
+    problem: Problem
+    plan: KinematicsPlan
+
+    @property
+    def warnings(self) -> tuple[AuthorWarning, ...]:
+        return tuple(self.plan.warnings)
+
+    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
+        problem, p = self.problem, self.plan
+        instant = solve_numeric(problem, p, given_map, numeric)
+        return Reached(given_map, instant.state, instant.values,
+                       _mistake_values(p, instant.state, numeric),
+                       {**instant.errors,
+                        **_check_requirements(problem, p, instant.state, numeric)},
+                       tuple(instant.warnings))
+
+    def symbolic(self) -> Callable | None:
+        return None
+
+    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
+                 reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
+        generated = [] if reached is None else [
+            model_mistakes(problem, self.plan, reached.state, numeric),
+            given_mistakes(problem, self.plan, reached.givens, numeric)]
+        return attach(results, generated, plausible_slips(problem))
+
+
+def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
+                     objectives: Collection[str] | None = None) -> Solution:
+    """:func:`mechgrade.solve.solve` for a problem without bodies and loads."""
+    return drive(problem, GivenInstant(problem, kinematics_plan(problem)), givens, objectives)
 
 
 def wanted_objectives(problem: Problem, objectives: Collection[str] | None) -> set[str]:

@@ -349,7 +349,7 @@ def _choose_branch(g: Givens, roots: list, positions) -> list:
     for i in positions:
         if g.branches.get(i) is Root.FIRST_POSITIVE:
             smallest = min(r[i] for r in roots)
-            roots = [r for r in roots if abs(r[i] - smallest) <= 1e-6 * (1 + abs(smallest))]
+            roots = [r for r in roots if rules.same_value(smallest, r[i])]
     return roots
 
 
@@ -463,7 +463,7 @@ def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, 
         for j, value in zip(unknown, sol):
             x[cols[j]] = value
         free |= {cols[unknown[i]] for i in range(len(unknown))
-                 if null.shape[1] and np.abs(null[i]).max() > 1e-9}
+                 if null.shape[1] and np.abs(null[i]).max() > rules.OPEN}
     if len(b):
         with np.errstate(all="ignore"):
             r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]

@@ -1,25 +1,27 @@
 """The motion of a dynamics problem at many states at once, each a column: the second rates and
-reactions from the momentum balances, screened as :func:`~.dynamics.solve_kinetics` checks
-them, and the motion integrated to its event (:func:`~.batch_motion.integrate_to_events`).
-A class of variants (:mod:`.batch`) and an instant solved alone (:mod:`.dynamics`) are
-integrated here alike.
+reactions from the momentum balances, each column checked and given the error it alone would
+raise (:func:`balances`, which :func:`~.dynamics.solve_kinetics` calls with one column), and
+the motion integrated to its event (:func:`~.batch_motion.integrate_to_events`). A class of
+variants (:mod:`.batch`) and an instant solved alone (:mod:`.dynamics`) are solved here alike.
 """
 
 from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Callable
 
 import numpy as np
 
+from ..errors import (InconsistentError, Location, MechgradeError, SolveError,
+                      UnderdeterminedError)
 from ..spec.dynamics import Integration, dynamics_of
 from ..spec.model import Problem
 from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, integrate_to_events
-from .columns import call, least_squares_solution, loud_call
+from .columns import FirstErrors, call, least_squares_solution, loud_call
 from .events import ATOL, MAX_CALLS, RTOL, event_never_happens
 from .plan import KinematicsPlan
 from .rules import satisfied
@@ -107,7 +109,7 @@ class Motion:
         ok = arrival.status == FIRED
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
-        x, fine = self.screened(at(everyone, arrival.t * (1 - 1e-9), arrival.before)[:size],
+        x, fine = self.screened(at(everyone, arrival.t * (1 - rules.BEFORE_EVENT), arrival.before)[:size],
                                  after_event(self.p))
         before = x.copy()
         keep = [i for i in range(size) if i not in seconds]
@@ -115,71 +117,176 @@ class Motion:
         return np.vstack([x, before]), ok & fine, arrival.status == NEVER
 
     def accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
-        """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's
-        direction) with every second rate and reaction solved by least squares (as
-        :func:`~.dynamics.accelerations`), in place; NaN where the equations are undefined.
-        Called with numpy's warnings silenced."""
-        kp = self.kinetics
-        assert kp is not None
-        count = x.shape[1]
-        cols = list(kp.columns)
-        rows_ = len(kp.labels)
-        if switches is not None:
-            jacobian, residual, args = switches.jacobian, switches.residual, x
-        else:
-            jacobian, residual = kp.jacobian, kp.residual
-            args = x[:len(kp.symbols)]
-        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
-        b = loud_call(residual, args, rows_)
-        if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
-            x[cols] = least_squares_solution(A, -b)
-            return x
-        good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
-        x[:, ~good] = np.nan
-        return x
+        """:func:`accelerations` of this motion."""
+        return accelerations(self.kinetics, x, switches)
 
     def screened(self, X: np.ndarray, known: np.ndarray):
         """The extended states (second rates and reactions solved from the momentum
-        balances), and which passed the checks of :func:`~.dynamics.solve_kinetics`."""
-        kp = self.kinetics
-        n = X.shape[1]
-        x = np.concatenate([X, np.zeros((len(kp.kin.reactions), n))])
-        known = np.concatenate([known, np.zeros(len(kp.kin.reactions), bool)])
-        cols = [j for j, i in enumerate(kp.columns) if not known[i]]
-        for j in cols:
-            x[kp.columns[j]] = 0.0
-        ok = np.ones(n, dtype=bool)
-        for _, speed, _ in kp.slips:
-            ok &= call(speed, x, 1)[0] > 1e-12
-        rows_ = len(kp.labels)
-        A = call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)
-        A = A[:, cols]
-        b = call(kp.residual, x, rows_)
-        ok &= np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
-        Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
-        U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
-        ok &= rules.rank(s) == len(cols)
-        with np.errstate(all="ignore"):
-            inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
-            coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
-            sol = np.einsum("nkj,nk->jn", Vt, coeff)
-        for j, value in zip(cols, sol):
-            x[kp.columns[j]] = value
-        r = call(kp.residual, x, rows_)
-        scale = np.abs(call(kp.scale, x, rows_))
-        with np.errstate(invalid="ignore"):
-            ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
-            for _, _, normal in kp.slips:
-                ok &= ~(call(normal, x, 1)[0] < -1e-9)
-            for _, tangential, normal, mu in kp.bounds:
-                f = np.linalg.norm(call(tangential, x, 3), axis=0)
-                nn = call(normal, x, 1)[0]
-                m = call(mu, x, 1)[0]
-                ok &= ~(nn < -1e-9) & ~(f > m * nn * (1 + 1e-9) + 1e-12)
-            for bound, f in kp.physical:  # as solve_kinetics's check_physical
-                ok &= np.array([bound.holds(v) for v in call(f, x, 1)[0]], dtype=bool)
-        return x, ok
+        balances), and which passed the checks of :func:`balances`."""
+        solved = balances(self.problem, self.kinetics, X, known)
+        return solved.x, solved.ok
+
+
+def accelerations(kp, x: np.ndarray, switches: _Switching | None = None) -> np.ndarray:
+    """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's direction)
+    with every second rate and reaction solved by least squares, without the checks of
+    :func:`balances` (the right-hand side of an integration), in place; NaN where the
+    equations are undefined. Called with numpy's warnings silenced."""
+    count = x.shape[1]
+    cols = list(kp.columns)
+    rows_ = len(kp.labels)
+    if switches is not None:
+        jacobian, residual, args = switches.jacobian, switches.residual, x
+    else:
+        jacobian, residual = kp.jacobian, kp.residual
+        args = x[:len(kp.symbols)]
+    A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+    b = loud_call(residual, args, rows_)
+    if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
+        x[cols] = least_squares_solution(A, -b)
+        return x
+    good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
+    x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
+    x[:, ~good] = np.nan
+    return x
+
+
+@dataclass(frozen=True)
+class Balanced:
+    """The extended states (state values, then reactions; one column each) with the second
+    rates (or the rates just after an impact) and the reactions solved, and each column's
+    error (``None`` where it has none)."""
+
+    x: np.ndarray
+    errors: FirstErrors
+
+    @property
+    def ok(self) -> np.ndarray:
+        return self.errors.ok
+
+
+def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced:
+    """The unknown second rates and reactions of every column of ``X`` (state values, those
+    ``known`` given) solved from the momentum balances, each column checked: a kinetic
+    friction needs slip, the givens their physical bounds, the equations must be defined,
+    determine the unknowns and all hold, the solution its physical bounds, a contact must push
+    and a static friction keep ``|F| <= mu N``. A column's error is the first check it fails.
+    """
+    n = X.shape[1]
+    reactions = len(kp.kin.reactions)
+    x = np.concatenate([X, np.zeros((reactions, n))])
+    known = np.concatenate([known, np.zeros(reactions, bool)])
+    cols = [j for j, i in enumerate(kp.columns) if not known[i]]
+    for j in cols:
+        x[kp.columns[j]] = 0.0
+    errors = FirstErrors(n)
+    for slip, speed, _ in kp.slips:
+        errors.add(~(call(speed, x, 1)[0] > 1e-12), partial(_no_slip, slip))
+    _physical(kp, x, errors, given=True)
+    rows_ = len(kp.labels)
+    A = call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)
+    A = A[:, cols]
+    b = call(kp.residual, x, rows_)
+    defined = np.isfinite(A).all(axis=1) & np.isfinite(b)  # rows x columns
+
+    def undefined(i: int) -> MechgradeError:
+        bad = int(np.flatnonzero(~defined[:, i])[0])
+        return SolveError(f"the equations of motion are undefined at this instant (a division "
+                          f"by zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
+
+    errors.add(~defined.all(axis=0), undefined)
+    ok = errors.ok
+    Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
+    U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
+    rank = rules.rank(s)
+
+    def underdetermined(i: int) -> MechgradeError:
+        a = A[:, :, i]
+        null = np.linalg.svd(a)[2][int(rank[i]):].T
+        open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > rules.OPEN]
+        names = [kp.name(j) for j in open_]
+        involved = sorted({label.split(":")[0] for r, label in enumerate(kp.labels)
+                           if any(abs(a[r, cols.index(j)]) > 1e-12 for j in open_)})
+        kind = "statically indeterminate" if any(kp.columns[j] >= kp.kp.index.size
+                                                 for j in open_) else "under-constrained"
+        return UnderdeterminedError(
+            f"the model is {kind}: the momentum balances ({', '.join(involved)}) do not "
+            f"determine {', '.join(names)}; remove a redundant reaction or add a constraint",
+            where=_body_where(problem, involved))
+
+    errors.add(ok & (rank < len(cols)), underdetermined)
+    ok = errors.ok
+    with np.errstate(all="ignore"):
+        inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
+        coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
+        sol = np.einsum("nkj,nk->jn", Vt, coeff)
+    for j, value in zip(cols, sol):
+        x[kp.columns[j]] = value
+    r = call(kp.residual, x, rows_)
+    scale = np.abs(call(kp.scale, x, rows_))
+    holds = satisfied(r, scale, problem.consistency)
+
+    def inconsistent(i: int) -> MechgradeError:
+        k = int(np.flatnonzero(~holds[:, i])[0])
+        return InconsistentError(
+            f"the equations of motion cannot all hold: '{kp.labels[k]}' is off by "
+            f"{r[k, i]:.4g} (terms of size {scale[k, i]:.4g}); a reaction may be missing from "
+            "the loads, or a given second rate contradicts them", where=kp.wheres[k])
+
+    errors.add(~holds.all(axis=0), inconsistent)
+    _physical(kp, x, errors, given=False)
+    with np.errstate(invalid="ignore"):
+        for slip, _, normal in kp.slips:
+            nn = call(normal, x, 1)[0]
+            errors.add(nn < -1e-9, partial(_lost, slip, nn))
+        for bound, tangential, normal, mu in kp.bounds:
+            f = np.linalg.norm(call(tangential, x, 3), axis=0)
+            nn = call(normal, x, 1)[0]
+            m = call(mu, x, 1)[0]
+            errors.add(nn < -1e-9, partial(_lost, bound, nn))
+            errors.add(f > m * nn * (1 + 1e-9) + 1e-12, partial(_slips, bound, f, nn, m))
+    return Balanced(x, errors)
+
+
+def _no_slip(slip, _: int) -> SolveError:
+    return SolveError(f"kinetic friction '{slip.name}' needs the contact at {slip.point} to "
+                      "slip, but its slip velocity is zero at this instant; use 'kind: static'",
+                      where=slip.where)
+
+
+def _lost(contact, normal: np.ndarray, i: int) -> SolveError:
+    return SolveError(f"contact lost at {contact.point}: the normal force would be "
+                      f"{normal[i]:.4g} N (pulling)", where=contact.where)
+
+
+def _slips(bound, friction: np.ndarray, normal: np.ndarray, mu: np.ndarray,
+           i: int) -> SolveError:
+    f, n = friction[i], normal[i]
+    needed = f / n if n > 0 else np.inf
+    return SolveError(f"the {bound.body} slips at {bound.point}: sticking needs mu >= "
+                      f"{needed:.4g} (friction {f:.4g} N against a normal force of {n:.4g} N), "
+                      f"but mu = {mu[i]:.4g}", where=bound.where)
+
+
+def _physical(kp, x: np.ndarray, errors: FirstErrors, *, given: bool) -> None:
+    """The physical bounds (:mod:`mechgrade.mechanics.loads`) at every column: those of the
+    givens (a mass, mu, e) or those of the solution (a contact pushes, a string pulls)."""
+    for bound, f in kp.physical:
+        if bound.given == given:
+            values = call(f, x, 1)[0]
+            errors.add(~np.array([bound.holds(v) for v in values], dtype=bool),
+                       partial(_unphysical, bound, values))
+
+
+def _unphysical(bound, values: np.ndarray, i: int) -> SolveError:
+    return SolveError(bound.message(float(values[i])), where=bound.where)
+
+
+def _body_where(problem: Problem, involved) -> Location:
+    for b in dynamics_of(problem).bodies:
+        if involved and involved[0] == f"body {b.name}":
+            return b.where
+    return Location()
 
 
 @dataclass(frozen=True)

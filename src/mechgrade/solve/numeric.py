@@ -21,9 +21,9 @@ from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing
                      place_givens, rows, solve_linear, solve_nonlinear)
 from .columns import call
 from .plan import KinematicsPlan
-from .rules import satisfied
+from . import rules
+from .rules import satisfied, unchanged
 
-PROBE_TOL = 1e-7
 SINGULAR = 1e-3
 
 
@@ -113,7 +113,7 @@ def _ambiguous(problem: Problem, p: KinematicsPlan, g: Givens,
     def differs(i):
         first = states[0][i]
         return not g.known[i] and i not in free and any(
-            abs(s[i] - first) > 1e-6 * (1 + abs(first)) for s in states[1:]
+            not rules.same_value(first, s[i]) for s in states[1:]
             if np.isfinite(s[i]) and np.isfinite(first))
 
     differ = [i for i in range(p.index.size) if differs(i)]
@@ -281,9 +281,4 @@ def _rate_names(p: KinematicsPlan, unknown: list[int], direction: np.ndarray) ->
 
 
 def _close(a: np.ndarray, b: np.ndarray) -> bool:
-    if a.shape != b.shape:
-        return False
-    if not (np.isfinite(a).all() and np.isfinite(b).all()):
-        return np.array_equal(np.isfinite(a), np.isfinite(b))
-    scale = max(np.abs(a).max(initial=0.0), 1e-12)
-    return bool(np.abs(a - b).max(initial=0.0) <= PROBE_TOL * scale + 1e-12)
+    return a.shape == b.shape and bool(unchanged(a[:, None], b[:, None])[0])

@@ -22,6 +22,30 @@ RESIDUAL_FLOOR = 1e-10
 """What a residual may keep beside the problem's ``consistency`` times its terms' size: an
 equation whose terms are all zero holds to rounding, not exactly."""
 
+PROBE_TOL = 1e-7
+"""An objective is the same at two states when it differs by at most this part of its size
+(and 1e-12): a root found again, an objective that what the givens leave free does not move."""
+
+REQUIRED = 1e-9
+"""How far from zero the expression an objective requires to be zero (an equilibrium, a
+motion at rest) may be at an instant of the kinematics for the objective to exist there."""
+
+REQUIRED_KINETIC = 1e-8
+""":data:`REQUIRED` at an instant of the kinetics, whose second rates and reactions come out
+of a linear solve (and an integration) with more rounding than the kinematics' levels."""
+
+OPEN = 1e-9
+"""An unknown is left open by equations whose solutions form a null space when its component
+in a direction of that space is more than this (the basis is orthonormal)."""
+
+SAME_VALUE = 1e-6
+"""Two roots have the same value of a quantity when they differ by at most this part of it
+(and of 1): the smallest of the first positive roots, the unknowns two branches differ in."""
+
+BEFORE_EVENT = 1e-9
+"""The moment just before an event (its time times one minus this) at which the limits of
+the second rates and reactions are read."""
+
 ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical
 size away from zero: nearer, it is zero to the rounding of the solve."""
@@ -66,6 +90,16 @@ def null_space(A: np.ndarray) -> np.ndarray:
     return vt[int(rank(s)):].T
 
 
+def same_value(a, b) -> bool:
+    """Whether the values ``a`` and ``b`` of a quantity at two roots are the same
+    (:data:`SAME_VALUE`).
+
+    >>> same_value(2.0, 2.0 + 1e-7), same_value(0.0, 1e-5)
+    (True, False)
+    """
+    return bool(abs(a - b) <= SAME_VALUE * (1 + abs(a)))
+
+
 def on_branch(values, scales, root: Root | None) -> np.ndarray:
     """Whether each root ``values`` (of a quantity of typical size ``scales``) is on the
     ``root`` a branch asks for (any root is on no branch).
@@ -79,3 +113,20 @@ def on_branch(values, scales, root: Root | None) -> np.ndarray:
     if root is Root.NEGATIVE:
         return x < -ON_BRANCH * np.asarray(scales)
     return np.ones(x.shape, dtype=bool)
+
+
+def unchanged(before, after) -> np.ndarray:
+    """Whether each column (values along the first axis) of ``after`` is ``before``'s, to
+    :data:`PROBE_TOL` of ``before``'s largest size: where a value is undefined, whether the
+    same values are undefined in both.
+
+    >>> unchanged(np.array([[1.0, 1.0, np.nan]]), np.array([[1.0 + 1e-9, 1.1, np.nan]])).tolist()
+    [True, False, True]
+    """
+    a, b = np.asarray(before, dtype=float), np.asarray(after, dtype=float)
+    fa, fb = np.isfinite(a), np.isfinite(b)
+    finite = fa.all(axis=0) & fb.all(axis=0)
+    scale = np.maximum(np.abs(np.where(fa, a, 0.0)).max(axis=0, initial=0.0), 1e-12)
+    with np.errstate(invalid="ignore"):
+        gap = np.abs(np.where(finite, a - b, 0.0)).max(axis=0, initial=0.0)
+    return np.where(finite, gap <= PROBE_TOL * scale + 1e-12, (fa == fb).all(axis=0))

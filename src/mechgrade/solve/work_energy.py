@@ -8,76 +8,117 @@ of a rate (``sense``).
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import sympy as sp
 
 from ..errors import SolveError
 from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
-from .analysis import analysis_of, analysis_plan, extended, start_values, value_at
+from . import rules
+from .analysis import analysis_of, analysis_plan
+from .columns import FirstErrors, call
 from .levels import State
-from .rules import null_space
 
 
 def energy_state(problem: Problem, kp, state: State, given_rates: list[str]) -> State:
-    """The instant's rates from the energy balance (see the module docstring)."""
+    """The instant's rates from the energy balance (see the module docstring):
+    :func:`energy_rates` with one column."""
     analysis = analysis_of(problem, WorkEnergy)
-    index = kp.kp.index
-    rates = list(index.rates(1))
     if given_rates:
         raise SolveError(f"work_energy fixes the rates; do not also give {given_rates[0]}",
                          where=analysis.where)
-    if kp.kin.nonconservative:
-        raise SolveError(f"work_energy needs conservative loads: "
-                         f"{', '.join(kp.kin.nonconservative)} can do work that is not a "
-                         "potential energy's change", where=analysis.where)
-    ap = analysis_plan(kp)
-    values = state.values.copy()
-    level = kp.kp.levels[1]
-    values[rates] = 0.0
-    values[list(index.rates(2))] = 0.0
-    with np.errstate(all="ignore"):
-        J = np.asarray(level.jacobian(*values), dtype=float).reshape(len(level.labels), index.n)
-    J = J[:level.constraint_rows]
-    u = null_space(J) if len(J) else np.eye(index.n)
-    if u.shape[1] != 1:
-        raise SolveError(f"work_energy finds the speed of a motion with one degree of freedom; "
-                         f"this one has {u.shape[1]} at the instant", where=analysis.where)
-    u = u[:, 0]
-    e0 = value_at(ap.energy, extended(kp, start_values(kp, ap, values)))
-    v = value_at(ap.energy, extended(kp, values))
-    moving = values.copy()
-    moving[rates] = u
-    t_unit = value_at(ap.energy, extended(kp, moving)) - v
-    square = (e0 - v) / t_unit
-    if square < -1e-9 * (abs(e0) + abs(v) + 1e-300) / t_unit:
-        raise SolveError(f"the instant cannot be reached from the start state: it needs "
-                         f"{v - e0:.4g} J more energy than the start state has",
-                         where=analysis.where)
-    speed = np.sqrt(max(square, 0.0))
-    sign = 1.0
-    if speed > 0:
-        if not analysis.sense:
-            raise SolveError("work_energy fixes the speed, not its sign: give 'sense', such as "
-                             f"{{\"{index.spelling(rates[int(np.argmax(abs(u)))])}\": "
-                             "negative}", where=analysis.where)
-        key, sense = analysis.sense[0]
-        j = index.position(key.text.replace(" ", ""))
-        component = u[rates.index(j)]
-        if abs(component) < 1e-12:
-            raise SolveError(f"the sense of {key.text} cannot fix the sign: it is zero at the "
-                             "instant", where=key.where)
-        sign = np.sign(component) * sense.sign
-    values[rates] = sign * speed * u
-    x = extended(kp, values)
-    size = 1.0 + float(np.abs(values[rates]).max(initial=0.0))
-    for label, fn in ap.workless:
-        if abs(value_at(fn, x)) > 1e-8 * size:
-            raise SolveError(f"work_energy needs workless reactions: {label} does work at the "
-                             "instant (its point moves along it)", where=analysis.where)
+    values, errors = energy_rates(problem, kp, state.values[:, None])
+    error = errors[0]
+    if error is not None:
+        raise error
     known = state.given.copy()
-    known[rates] = True
-    return State(values, known, frozenset())
+    known[list(kp.kp.index.rates(1))] = True
+    return State(values[:, 0], known, frozenset())
+
+
+def energy_rates(problem: Problem, kp, X: np.ndarray) -> tuple[np.ndarray, FirstErrors]:
+    """Every column of ``X`` (state values, the configuration solved) with its rates from the
+    energy balance, and each column's error: loads that are not conservative, more than one
+    free direction, an instant that needs more energy than the start state has, a speed
+    without the sense of its sign (or a sense of a rate that is zero there), a reaction that
+    does work."""
+    analysis = analysis_of(problem, WorkEnergy)
+    index = kp.kp.index
+    rates, n, count = list(index.rates(1)), index.n, X.shape[1]
+    errors = FirstErrors(count)
+    if kp.kin.nonconservative:
+        errors.add(np.ones(count, dtype=bool), lambda _: SolveError(
+            f"work_energy needs conservative loads: {', '.join(kp.kin.nonconservative)} can "
+            "do work that is not a potential energy's change", where=analysis.where))
+    ap = analysis_plan(kp)
+    X = X.copy()
+    X[rates] = 0.0
+    X[list(index.rates(2))] = 0.0
+    level = kp.kp.levels[1]
+    if level.constraint_rows:
+        J = call(level.jacobian, X, len(level.labels) * n).reshape(
+            len(level.labels), n, count)[:level.constraint_rows]
+        finite = np.isfinite(J).all(axis=(0, 1))
+        errors.add(~finite, lambda _: SolveError(
+            "work_energy needs the velocity constraints at the instant, but they are "
+            "undefined there (a division by zero)", where=analysis.where))
+        _, s, Vt = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1),
+                                 full_matrices=True)
+        free = n - rules.rank(s)
+        u = Vt[:, n - 1, :].T
+    else:
+        free = np.full(count, n)
+        u = np.ones((n, count))
+    errors.add(free != 1, lambda i: SolveError(
+        f"work_energy finds the speed of a motion with one degree of freedom; this one has "
+        f"{free[i]} at the instant", where=analysis.where))
+    reactions = np.zeros((len(kp.kin.reactions), count))
+    x = np.concatenate([X, reactions])
+    start = x.copy()
+    for i, fn in ap.start:
+        start[i] = call(fn, x, 1)[0]
+    e0 = call(ap.energy, start, 1)[0]
+    v = call(ap.energy, x, 1)[0]
+    moving = X.copy()
+    moving[rates] = u
+    with np.errstate(all="ignore"):
+        t_unit = call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
+        square = (e0 - v) / t_unit
+        errors.add(square < -1e-9 * (np.abs(e0) + np.abs(v) + 1e-300) / t_unit,
+                   lambda i: SolveError(
+                       f"the instant cannot be reached from the start state: it needs "
+                       f"{v[i] - e0[i]:.4g} J more energy than the start state has",
+                       where=analysis.where))
+        speed = np.sqrt(np.maximum(square, 0.0))
+        # an undefined square stays undefined (np.maximum keeps NaN): the balances say where
+    sign = np.ones(count)
+    if analysis.sense:
+        key, sense = analysis.sense[0]
+        component = u[rates.index(index.position(key.text.replace(" ", "")))]
+        errors.add((speed > 0) & (np.abs(component) < 1e-12), lambda _: SolveError(
+            f"the sense of {key.text} cannot fix the sign: it is zero at the instant",
+            where=key.where))
+        sign = np.where(speed > 0, np.sign(component) * sense.sign, 1.0)
+    else:
+        errors.add(speed > 0, lambda i: SolveError(
+            "work_energy fixes the speed, not its sign: give 'sense', such as "
+            f"{{\"{index.spelling(rates[int(np.argmax(abs(u[:, i])))])}\": negative}}",
+            where=analysis.where))
+    X[rates] = sign * speed * u
+    x = np.concatenate([X, reactions])
+    size = 1.0 + np.abs(X[rates]).max(axis=0, initial=0.0)
+    for label, fn in ap.workless:
+        with np.errstate(invalid="ignore"):
+            errors.add(np.abs(call(fn, x, 1)[0]) > 1e-8 * size,
+                       partial(_does_work, label, analysis))
+    return X, errors
+
+
+def _does_work(label: str, analysis: WorkEnergy, _: int) -> SolveError:
+    return SolveError(f"work_energy needs workless reactions: {label} does work at the "
+                      "instant (its point moves along it)", where=analysis.where)
 
 
 def energy_rate_symbolic(problem: Problem, kp, expr, declared: set):

@@ -1,0 +1,40 @@
+"""The momentum balances over columns: each column solved and checked as the instant alone."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechgrade.errors import SolveError
+from mechgrade.solve import solve
+from mechgrade.solve.dynamics import kinematic_problem, kinetics_plan
+from mechgrade.solve.instant import instant_givens
+from mechgrade.solve.motion import balances
+from mechgrade.solve.numeric import solve_numeric
+from mechgrade.spec import load_problem
+
+TURNTABLE = Path(__file__).resolve().parents[2] / "problems" / "block_on_turntable.yaml"
+
+
+def test_a_column_that_slips_gets_the_error_the_instant_alone_raises_and_the_others_solve():
+    problem = load_problem(TURNTABLE)
+    kp = kinetics_plan(problem)
+    state = solve_numeric(kinematic_problem(problem), kp.kp,
+                          instant_givens(problem, None, {}), set()).state
+    X = np.repeat(state.values[:, None], 3, axis=1)
+    mu = kp.kp.index.position("mu_s")
+    X[mu, 1] = 0.05  # too little friction to hold the block
+    X[mu, 2] = -1.0  # not a friction coefficient at all
+    solved = balances(problem, kp, X, state.given)
+    assert solved.ok.tolist() == [True, False, False]
+    np.testing.assert_allclose(solved.x[:, 0],
+                               balances(problem, kp, X[:, :1], state.given).x[:, 0], rtol=1e-12)
+    for column, mu_s in ((1, 0.05), (2, -1.0)):
+        with pytest.raises(SolveError) as alone:
+            solution = solve(problem, givens={"mu_s": mu_s})
+            for failure in solution.failures:
+                raise failure.error
+        assert str(solved.errors[column]) == str(alone.value)
+    assert "slips at P: sticking needs mu >= " in str(solved.errors[1])
