@@ -625,7 +625,7 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
     slots = max((len(m) for m in misread), default=0)
     count = len(rows_) + slots
     if not count:
-        return lambda i: ()
+        return lambda _i: ()
     V = np.full((n, count, size), np.nan)
     exists = np.zeros((n, count), dtype=bool)
     other = np.zeros((n, count), dtype=bool)

@@ -216,9 +216,10 @@ class KineticInstant:
     def symbolic(self) -> Callable | None:
         return _symbolic_result
 
-    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
-                 reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
-        return results
+    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],  # noqa: ARG002
+                 reached: Reached | None,  # noqa: ARG002 - the Reach protocol's signature
+                 numeric: set[str]) -> dict[str, ObjectiveResult]:  # noqa: ARG002
+        return results  # a dynamics solve attaches nothing: its results are whole
 
 
 def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:

@@ -186,7 +186,7 @@ class LazyMistakes(Sequence):
     """One objective's generated mistakes (a sequence of
     :class:`~mechgrade.solve.result.GeneratedMistake`), worked out on first use."""
 
-    __slots__ = ("_pending", "_id")
+    __slots__ = ("_id", "_pending")
 
     def __init__(self, pending: _Pending | _Member, objective_id: str):
         self._pending, self._id = pending, objective_id

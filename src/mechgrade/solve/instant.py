@@ -166,7 +166,8 @@ class Reach(Protocol):
     def warnings(self) -> tuple[AuthorWarning, ...]:
         """The kinematics' warnings, before any instant's."""
 
-    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
+    def instant(self, given_map: dict, numeric: set[str],
+                overrides: dict) -> Reached:
         """The instant ``given_map`` describes (``overrides``: the objectives' own givens
         among them) with the objectives ``numeric`` read there; raises what makes every one
         of them fail."""
@@ -240,7 +241,8 @@ class GivenInstant:
     def warnings(self) -> tuple[AuthorWarning, ...]:
         return tuple(self.plan.warnings)
 
-    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
+    def instant(self, given_map: dict, numeric: set[str],
+                overrides: dict) -> Reached:  # noqa: ARG002 - kinematics has no per-objective instant
         problem, p = self.problem, self.plan
         instant = solve_numeric(problem, p, given_map, numeric)
         return Reached(given_map, instant.state, instant.values,

@@ -283,7 +283,7 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
         if best is None or fit.cost < best[0]:
             best = (fit.cost, full)
         if _satisfied(problem, level, full, active, target) and \
-                not any(_same(p, g, full, other, determined) for other in found):
+                not any(_same(g, full, other, determined) for other in found):
             found.append(full)
     if not found:
         full = best[1] if best is not None else x
@@ -328,7 +328,7 @@ def _satisfied(problem, level, x, active, target) -> bool:
     return bool(np.all(satisfied(r, scale, problem.consistency)))
 
 
-def _same(p: KinematicsPlan, g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
+def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
     """Whether two roots are the same configuration (angles compared modulo a turn), within
     a small part of the quantity's typical size: a double root is only found that well."""
     for i in positions:
@@ -359,7 +359,7 @@ def _branch_where(problem: Problem) -> Location:
 
 def configurations(problem: Problem, p: KinematicsPlan, g: Givens, states, positions) -> str:
     """Roots listed by their solved quantities in the author's units."""
-    units = author_units(problem, p, g)
+    units = author_units(problem, p)
     out = []
     for x in states:
         parts = []
@@ -372,7 +372,7 @@ def configurations(problem: Problem, p: KinematicsPlan, g: Givens, states, posit
     return "; ".join(out)
 
 
-def author_units(problem: Problem, p: KinematicsPlan, g: Givens | None = None) -> list[str]:
+def author_units(problem: Problem, p: KinematicsPlan) -> list[str]:
     """The unit each position is reported in: that of its given or guess, else its own."""
     index = p.index
     declared = {c.name: c.unit for c in problem.coordinates}
@@ -382,7 +382,7 @@ def author_units(problem: Problem, p: KinematicsPlan, g: Givens | None = None) -
     out = []
     for i in range(index.size):
         name = index.spelling(i)
-        if name in written and written[name]:
+        if written.get(name):
             out.append(written[name])
         elif i == index.time:
             out.append("s")

@@ -166,7 +166,7 @@ def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: M
                                  f"solution (residual {r:.4g} against terms of size "
                                  f"{scale[i]:.4g})", where=level.wheres[i])
             key = level.conditions[j]
-            _, si, given = givens[key]
+            _, _si, given = givens[key]
             unit = given.unit if given is not None else ""
             found = from_si(value[i], unit) if unit else value[i]
             raise SolveError(f"the given '{g.texts[key]}' does not hold in the solution: "

@@ -602,7 +602,7 @@ def cart_pendulum():
 
 
 def damped_block_positions():
-    m, k, c, v0 = 5.0, 2000.0, 40.0, 1.0
+    m, k, v0 = 5.0, 2000.0, 1.0  # c = 40 N s/m is what these mistakes leave out
     wn = math.sqrt(k / m)  # the block started from equilibrium: x = v0/wn sin(wn t) undamped
     return [entry("time_back", "damping ignored: half the undamped period pi/wn",
                   num(math.pi / wn * 1000, "ms"), "damping_omitted"),
