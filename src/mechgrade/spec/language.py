@@ -7,7 +7,7 @@ language's one table (:mod:`mechgrade.expressions.functions`); the mechanics cor
 exactly these names.
 
 >>> sorted(FUNCTIONS)[:4]
-['acc', 'acc_n', 'acc_t', 'angacc']
+['acc', 'acc_n', 'acc_t', 'after']
 >>> FUNCTIONS["vel"].args == ("point", "frame")
 True
 """
