@@ -132,7 +132,8 @@ def own_diagram_failures(instant, body: str, draw) -> list[str]:
     dropped, doubled, reversed, moved): what the judge got otherwise than expected.
     ``draw(options)`` picks one of ``options``."""
     diagram = instant.diagram(body)
-    if not instant.values:  # a problem solved symbolically only: nothing to judge at
+    if not instant.values or any(vectors is None for _, vectors in instant.frames):
+        # solved symbolically only, or where the model has no state: nothing to judge at
         verdict = judge_diagram("weight: -m g j", instant, body).verdict
         return [] if verdict == "not_evaluated" else [f"no instant, judged {verdict}"]
     order = list(range(len(diagram.loads)))
