@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import random
 import re
@@ -237,3 +238,45 @@ def test_two_loads_of_one_kind_are_paired_so_that_the_most_are_right(chain):
         ("s1", (LoadMistake.REVERSED,)), ("s2", ()), ("d", ())]
     assert judge_diagram("spring: k2 (x2 - x1 - L2) i; spring: -k1 (x1 - L1) i; "
                          "damper: c (x2d - x1d) i", chain, "block1").verdict == "correct"
+
+
+@pytest.fixture(scope="module")
+def pulley():
+    return _instant("movable_pulley_two_blocks")
+
+
+@pytest.mark.parametrize("text", [
+    "weight at B: -mB g j; tension at B1, B2: T j",
+    "T at B2 and B1: T j; gravity at B: -mB g j",
+    "T at B1: T1 j; T at B2: T2 j; weight at B: -mB g j",
+])
+def test_one_cord_pulling_at_two_points_of_a_body_is_written_once_or_at_each(pulley, text):
+    judged = judge_diagram(text, pulley, "blockB")
+    assert judged.verdict == "correct", judged.assessment.feedback
+    assert [(row.load, row.point) for row in judged.rows] == [
+        ("gravity", "B"), ("T", "B1"), ("T", "B2")]
+
+
+def test_a_cord_at_one_of_its_two_points_is_missing_at_the_other(pulley):
+    judged = judge_diagram("weight at B: -mB g j; T at B2: T j", pulley, "blockB")
+    assert [(row.point, row.mistakes) for row in judged.rows] == [
+        ("B", ()), ("B1", (LoadMistake.MISSING,)), ("B2", ())]
+    judged = judge_diagram("weight at B: -mB g j; T at B1, B2: -T j; T at B: T j", pulley,
+                           "blockB")
+    assert [(row.point, row.mistakes) for row in judged.rows] == [
+        ("B", ()), ("B1", ()), ("B2", ()), ("B", (LoadMistake.EXTRA,))]
+
+
+def test_a_point_named_twice_for_one_load_is_refused(pulley):
+    with pytest.raises(Exception, match="expected each point of 'T' once, found 'B1' twice"):
+        read_diagram("T at B1, B1: T j", pulley, "blockB")
+    with pytest.raises(Exception, match="expected a point of the problem .*found 'Q'"):
+        read_diagram("T at B1 and Q: T j", pulley, "blockB")
+
+
+def test_a_problem_symbol_without_a_value_is_refused_not_taken_for_an_unknown(incline):
+    unvalued = dataclasses.replace(
+        incline, values=tuple((n, v) for n, v in incline.values if n != "m"), unvalued=("m",))
+    with pytest.raises(Exception, match="found 'm' .* which the problem leaves without one"):
+        read_diagram("weight: m g j; normal: N A.y; friction: -mu_k N A.x", unvalued, "block")
+    assert incline.unvalued == ()

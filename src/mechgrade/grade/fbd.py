@@ -213,6 +213,10 @@ def _read_load(text: str, instant: DerivationInstant) -> list[StudentLoad]:
     units = tuple(f"{frame}.{axis}" for frame, _ in instant.frames for axis in AXES)
     node, unknowns = rename_to_symbols(node, symbols + units)
     for name in unknowns:
+        if name in instant.unvalued:
+            raise AnswerError(f"expected symbols with a value at the problem's instant, found "
+                              f"{excerpt(name)} (in {excerpt(label)}), which the problem "
+                              f"leaves without one: write its value, or ask your instructor")
         if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name):
             raise AnswerError(f"expected the problem's symbols or names of your own for "
                               f"unknowns, found {excerpt(name)} (in {excerpt(label)})")
