@@ -93,9 +93,11 @@ def test_a_diagram_not_given_is_missing_and_one_not_read_is_unreadable(incline):
     assert judged.verdict == "unreadable" and judged.rows == ()
 
 
-def test_a_diagram_too_long_or_with_too_many_unknowns_is_refused(incline):
+def test_a_diagram_too_long_or_with_too_many_unknowns_is_refused(incline, pendulum):
     with pytest.raises(Exception, match="at most 4000 characters"):
         read_diagram("w: m g j;" * 500, incline, "block")
+    with pytest.raises(Exception, match="found 22 .a load at several points counts once"):
+        read_diagram("w at G, O: m g j;" * 11, pendulum, "rod")
     many = "; ".join(f"f{n}: U{n} i" for n in range(13))
     with pytest.raises(Exception, match="at most 12 unknowns"):
         read_diagram(many, incline, "block")
