@@ -4,7 +4,8 @@ against the model's diagram (:mod:`mechgrade.solve.fbd`) at the solved instant.
 A diagram is loads separated by ``;`` (or line breaks), each ``label [at point]: vector``:
 the label is the model's name for the load (``N_P``) or ordinary words (``weight``,
 ``normal force``, ``friction``, ``tension``, ``spring``, ``pin``...), the point one of the
-problem's points, the vector an expression along unit vectors (``i j k`` or ``î ĵ k̂`` for the
+problem's points (several, ``T at B1, B2``, for one load acting at each: a cord around a
+pulley), the vector an expression along unit vectors (``i j k`` or ``î ĵ k̂`` for the
 inertial frame's, ``A.x`` for a frame's) in the problem's symbols. Any other name is an
 unknown of the student's own (``Ox``, ``N``), solved for from the loads it appears in.
 

@@ -205,9 +205,10 @@ a kinetic friction whose slip ends there has its direction only in the limit bef
 
 
 def _just_before(index, values: np.ndarray) -> np.ndarray | None:
-    """``values`` with the rates a moment earlier along the solved accelerations (the
-    coordinates kept: they move a second order less), the accelerations left to the
-    balances; ``None`` without solved accelerations."""
+    """``values`` with the rates a moment earlier along the solved accelerations, the
+    accelerations left to the balances (the coordinates kept: the points stay where the
+    event has them, the rates are off by a fraction ``BEFORE``, far inside any tolerance);
+    ``None`` without solved accelerations."""
     rates, second = list(index.rates(1)), list(index.rates(2))
     if not np.all(np.isfinite(values[rates + second])):
         return None
