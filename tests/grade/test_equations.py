@@ -83,3 +83,22 @@ def test_too_many_equations_or_unknowns_are_refused(incline):
         read_equations(" + ".join(f"U{n}" for n in range(13)) + " = m x''", incline)
     with pytest.raises(Exception, match="names of your own"):
         read_equations("m z'' = 0", incline)
+
+
+@pytest.mark.parametrize("text, term", [
+    ("m x'' = m g sin(β) + μ_k N; N = m g cos(β)", "mu_k*N"),  # friction drawn downhill
+    ("m x'' = -m g sin(β) - μ_k N; N = m g cos(β)", "-m*g*sin(beta)"),
+    ("m x'' = m g sin(β) + μ_k m g cos(β)", "mu_k*m*g*cos(beta)"),
+    ("m x'' = m g sin(β); N = m g cos(β)", None),  # a term dropped: no term to turn
+    ("m x'' = m g sin(β) - μ_k N; N = -m g cos(β)", None),  # N or m g cos β: either
+])
+def test_a_wrong_equations_one_term_of_the_wrong_sign_is_named(incline, text, term):
+    judged = judge_equations(text, incline)
+    (wrong,) = [row for row in judged.rows if not row.right]
+    assert wrong.reversed_term == term
+    assert ("has the wrong sign" in wrong.feedback) == (term is not None)
+
+
+def test_of_two_terms_either_could_have_the_wrong_sign_so_neither_is_named(pendulum):
+    (row,) = judge_equations("m L^2/3 θ'' = m g L/2 sin(θ)", pendulum).rows
+    assert not row.right and row.reversed_term is None

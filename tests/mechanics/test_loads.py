@@ -150,6 +150,15 @@ def test_the_diagram_puts_each_load_on_each_body_it_acts_on():
     assert sp.simplify(s2[0].directions[0] + s2[1].directions[0]) == sp.zeros(3, 1)
 
 
+def test_a_bodys_parts_centred_at_one_point_weigh_as_one_and_elsewhere_apart():
+    wheel = free_body_loads(load_problem_text(text("ruina_9_21_wheel_incline"), "p.yaml"))
+    assert [(a.point, str(sp.factor(a.magnitude))) for a in wheel if a.name == "gravity"] == [
+        ("G", "g*(2*M + m)")]
+    hoop = free_body_loads(load_problem_text(text("unbalanced_hoop_rolls"), "p.yaml"))
+    assert [(a.point, str(a.magnitude)) for a in hoop if a.name == "gravity"] == [
+        ("G", "M*g"), ("Q", "g*m")]
+
+
 def test_a_cord_pulls_each_end_along_its_own_segment():
     cord = free_body_loads(load_problem_text(text("cord_over_table_pulley"), "p.yaml"))
     ends = [(a.body, a.direction_texts, a.directions[0].T.tolist()) for a in cord

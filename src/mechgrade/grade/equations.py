@@ -33,7 +33,7 @@ from ..errors import AnswerError, ExpressionError
 from ..expressions import syntax
 from ..expressions.excerpt import excerpt
 from ..expressions.numeric import evaluate
-from ..expressions.syntax import Bin, Node
+from ..expressions.syntax import Bin, Node, Unary
 from ..solve.derivation import MotionSamples
 from .answers import rename_to_symbols
 from .compare import Assessment, not_evaluated, unreadable
@@ -58,9 +58,13 @@ class StudentEquation:
 
 @dataclass(frozen=True)
 class EquationRow:
+    """One equation judged; ``reversed_term`` is the term of a wrong one that is right but
+    for its sign (a load drawn the other way), when one is."""
+
     equation: str
     right: bool
     feedback: str
+    reversed_term: str | None = None
 
 
 @dataclass(frozen=True)
@@ -141,10 +145,14 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
         return EquationsJudgement((), False, unreadable(exc.message))
     right = system.right()
     rows = []
-    for e, ok, trivial in zip(equations, right, system.trivial):
+    for i, (e, ok, trivial) in enumerate(zip(equations, right, system.trivial)):
         said = ("right" if ok else "says nothing about the motion" if trivial
                 else "does not hold for the motion")
-        rows.append(EquationRow(e.text, ok, f"{e.text}: {said}."))
+        term = None if ok or trivial else system.reversed_term(
+            i, [r for r, fine in enumerate(right) if fine])
+        if term is not None:
+            said += f" (its term {term} has the wrong sign)"
+        rows.append(EquationRow(e.text, ok, f"{e.text}: {said}.", term))
     complete = system.complete()
     count = sum(right)
     missing = 0 if complete else system.undetermined()
@@ -167,6 +175,7 @@ class _System:
     slopes along the accelerations at the first state."""
 
     def __init__(self, equations: tuple[StudentEquation, ...], samples: MotionSamples):
+        self.equations, self.samples = equations, samples
         self.unknowns = tuple(dict.fromkeys(u for e in equations for u in e.unknowns))
         self.accelerations = samples.accelerations
         self.reactions = np.array([[samples.state(k)[r] for r in samples.reactions]
@@ -264,6 +273,29 @@ class _System:
                 ok = np.array([r != fewest[0] for r in rows])
         return [bool(v) and not t for v, t in zip(ok, self.trivial)]
 
+    def reversed_term(self, i: int, right: list[int]) -> str | None:
+        """The one term of equation ``i`` that, with its sign changed, makes it hold with
+        the unknowns the ``right`` equations give (its value half the equation's misfit at
+        every state); ``None`` when there is none, or the unknowns are not all given."""
+        e = self.equations[i]
+        candidates = _signed_terms(e.residual)
+        for k in range(len(self.b)):
+            u = np.zeros(len(self.unknowns))
+            if e.unknowns:  # their values from the right equations, when those fix them
+                a = self.a[k][right]
+                if not right or np.linalg.matrix_rank(a, tol=1e-9) < len(self.unknowns):
+                    return None
+                u = np.linalg.lstsq(a, -self.b[k][right], rcond=None)[0]
+            misfit = float(self.a[k][i] @ u + self.b[k][i])
+            tol = REL * self.scale[k][i] + 1e-12
+            if abs(misfit) <= tol:
+                return None
+            env = {name: np.array([value]) for name, value in self.samples.state(k).items()}
+            env.update({name: np.array([value]) for name, value in zip(self.unknowns, u)})
+            candidates = [(sign, t) for sign, t in candidates
+                          if abs(sign * float(evaluate(t, env)[0]) - misfit / 2) <= tol]
+        return syntax.to_text(candidates[0][1]) if len(candidates) == 1 else None
+
     def _flips(self, rows: list[int]) -> int | None:
         """How many reactions the unknowns fitted to ``rows`` take the other way round, when
         they are, over the samples, fixed non-zero combinations of the model's reactions (a
@@ -296,6 +328,17 @@ class _System:
 
     def undetermined_names(self) -> str:
         return ", ".join(a[:-2] + "''" for a in self.accelerations)
+
+
+def _signed_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
+    """The terms of a sum, each with the sign it enters it with (``a - (b - c)``: +a, -b,
+    +c)."""
+    if isinstance(node, Bin) and node.op in "+-":
+        return _signed_terms(node.left, sign) + _signed_terms(
+            node.right, sign if node.op == "+" else -sign)
+    if isinstance(node, Unary) and node.op == "-":
+        return _signed_terms(node.operand, -sign)
+    return [(sign, node)]
 
 
 def _term_size(node: Node, env: dict) -> float:

@@ -4,7 +4,8 @@ against the model's diagram (:mod:`mechgrade.solve.fbd`) at the solved instant.
 A diagram is loads separated by ``;`` (or line breaks), each ``label [at point]: vector``:
 the label is the model's name for the load (``N_P``) or ordinary words (``weight``,
 ``normal force``, ``friction``, ``tension``, ``spring``, ``pin``...), the point one of the
-problem's points, the vector an expression along unit vectors (``i j k`` or ``î ĵ k̂`` for the
+problem's points (several, ``T at B1, B2``, for one load acting at each: a cord around a
+pulley), the vector an expression along unit vectors (``i j k`` or ``î ĵ k̂`` for the
 inertial frame's, ``A.x`` for a frame's) in the problem's symbols. Any other name is an
 unknown of the student's own (``Ox``, ``N``), solved for from the loads it appears in.
 
@@ -138,8 +139,9 @@ class DiagramJudgement:
 # ---------------------------------------------------------------------------- reading
 
 
-_LOAD = re.compile(r"^(?P<label>[^:]+?)(?:\s+at\s+(?P<point>[A-Za-z][A-Za-z0-9_]*))?\s*:"
-                   r"(?P<vector>.*)$", re.S)
+_POINT = r"[A-Za-z][A-Za-z0-9_]*"
+_LOAD = re.compile(rf"^(?P<label>[^:]+?)(?:\s+at\s+(?P<points>{_POINT}(?:\s*(?:,|\s+and\s+)\s*"
+                   rf"{_POINT})*))?\s*:(?P<vector>.*)$", re.S)
 _LABEL = re.compile(r"[A-Za-z][A-Za-z0-9_' -]{0,39}")
 _HATS = {"î": "x", "ĵ": "y", "k̂": "z", "i\u0302": "x", "j\u0302": "y"}
 _PLAIN = {"i": "x", "j": "y", "k": "z"}
@@ -169,7 +171,10 @@ def read_diagram(text: str, instant: DerivationInstant, body: str) -> DiagramAns
         raise AnswerError("expected loads such as 'weight at G: -m g j', found nothing")
     if len(parts) > MAX_LOADS:
         raise AnswerError(f"expected at most {MAX_LOADS} loads, found {len(parts)}")
-    loads = [_read_load(part, instant) for part in parts]
+    loads = [load for part in parts for load in _read_load(part, instant)]
+    if len(loads) > MAX_LOADS:
+        raise AnswerError(f"expected at most {MAX_LOADS} loads, found {len(loads)} (a load "
+                          f"at several points counts once at each)")
     unknowns = {u for load in loads for u in load.unknowns}
     if len(unknowns) > MAX_UNKNOWNS:
         raise AnswerError(f"expected at most {MAX_UNKNOWNS} unknowns of your own, "
@@ -177,7 +182,9 @@ def read_diagram(text: str, instant: DerivationInstant, body: str) -> DiagramAns
     return DiagramAnswer(body, tuple(loads))
 
 
-def _read_load(text: str, instant: DerivationInstant) -> StudentLoad:
+def _read_load(text: str, instant: DerivationInstant) -> list[StudentLoad]:
+    """The load ``text`` writes, once at each point it names (``T at B1, B2: T j``: one
+    tension, one unknown, pulling at two points)."""
     found = _LOAD.match(text)
     if found is None:
         raise AnswerError(f"expected a load as 'label at point: vector', found "
@@ -186,11 +193,16 @@ def _read_load(text: str, instant: DerivationInstant) -> StudentLoad:
     if not _LABEL.fullmatch(label):
         raise AnswerError(f"expected a load's label of letters, digits and spaces, found "
                           f"{excerpt(label)}")
-    point = found.group("point")
+    at = re.split(r"\s*,\s*|\s+and\s+", found.group("points") or "")
     points = [name for name, _ in instant.points]
-    if point is not None and point not in points:
-        raise AnswerError(f"expected a point of the problem ({', '.join(sorted(points))}), "
-                          f"found {excerpt(point)}")
+    for point in at:
+        if point and point not in points:
+            raise AnswerError(f"expected a point of the problem "
+                              f"({', '.join(sorted(points))}), found {excerpt(point)}")
+    twice = next((point for n, point in enumerate(at) if point in at[:n]), None)
+    if twice is not None:
+        raise AnswerError(f"expected each point of {excerpt(label)} once, found "
+                          f"{excerpt(twice)} twice")
     vector = found.group("vector").strip()
     for hat, axis in _HATS.items():
         vector = vector.replace(hat, f" {instant.inertial_frame}.{axis} ")
@@ -203,11 +215,16 @@ def _read_load(text: str, instant: DerivationInstant) -> StudentLoad:
     units = tuple(f"{frame}.{axis}" for frame, _ in instant.frames for axis in AXES)
     node, unknowns = rename_to_symbols(node, symbols + units)
     for name in unknowns:
+        if name in instant.unvalued:
+            raise AnswerError(f"expected symbols with a value at the problem's instant, found "
+                              f"{excerpt(name)} (in {excerpt(label)}), which the problem "
+                              f"leaves without one: write its value, or ask your instructor")
         if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name):
             raise AnswerError(f"expected the problem's symbols or names of your own for "
                               f"unknowns, found {excerpt(name)} (in {excerpt(label)})")
     offset, columns = _linear_parts(node, instant, units, unknowns, label)
-    return StudentLoad(label, point, syntax.to_text(node), offset, columns, unknowns)
+    return [StudentLoad(label, point or None, syntax.to_text(node), offset, columns, unknowns)
+            for point in at]
 
 
 def _unit_names(node: Node, instant: DerivationInstant, symbols: set[str]) -> Node:
@@ -432,21 +449,29 @@ def _match(answer: DiagramAnswer, model: FreeBodyDiagram,
     by their values, whichever is written first)."""
     free = list(model.loads)
     out: dict[int, DiagramLoad | None] = {}
-    names = {m.name: m for m in model.loads}
     loads = list(enumerate(answer.loads))
-    for s, load in loads:  # the model's names
-        m = names.get(load.label)
-        if m is not None and m in free:
-            out[s] = m
-            free.remove(m)
-        elif m is not None or _fictitious(load.label):  # written twice; not a load at all
+    # the model's names: a name may be several loads (one cord pulling at two points, the
+    # weights of a body's parts), paired like any other loads of one kind
+    for name in dict.fromkeys(m.name for m in model.loads):
+        named = [(s, load, None) for s, load in loads if load.label == name]
+        _pair(named, [m for m in free if m.name == name], model, instant, out, at_point=False)
+        free = _unpaired(free, out)
+    for s, load in loads:
+        if s not in out and _fictitious(load.label):  # not a load at all
             out[s] = None
     words = [(s, load, _kinds(load.label)) for s, load in loads if s not in out]
     by_word = [(s, load, kinds) for s, load, kinds in words if kinds is not None]
     _pair(by_word, free, model, instant, out, at_point=False)
+    free = _unpaired(free, out)
     own = [(s, load, None) for s, load, kinds in words if kinds is None]
     _pair(own, free, model, instant, out, at_point=True)
     return out
+
+
+def _unpaired(free: list[DiagramLoad], out: dict) -> list[DiagramLoad]:
+    """``free`` but the loads paired in ``out`` (by identity: two parts' weights are equal)."""
+    paired = {id(m) for m in out.values() if m is not None}
+    return [m for m in free if id(m) not in paired]
 
 
 _NO_PAIR = 1e9
@@ -455,7 +480,7 @@ _NO_PAIR = 1e9
 def _pair(students: list, free: list[DiagramLoad], model: FreeBodyDiagram,
           instant: DerivationInstant, out: dict, at_point: bool) -> None:
     """Pair ``students`` (index, load, kinds or ``None`` for any) with ``free`` model loads
-    (removed from it as paired) into ``out``; a student load left unpaired is extra."""
+    into ``out``; a student load left unpaired is extra."""
     if not students:
         return
     cost = np.full((len(students), len(free)), _NO_PAIR)
@@ -471,8 +496,6 @@ def _pair(students: list, free: list[DiagramLoad], model: FreeBodyDiagram,
     paired = {int(i): free[j] for i, j in zip(rows, columns) if cost[i, j] < _NO_PAIR}
     for i, (s, _, _) in enumerate(students):
         out[s] = paired.get(i)
-    for m in paired.values():
-        free.remove(m)
 
 
 def _misfit(load: StudentLoad, m: DiagramLoad) -> float:

@@ -84,7 +84,8 @@ class AppliedLoad:
 
 def diagram(problem: Problem, model: Model, loads: "_Loads") -> tuple[AppliedLoad, ...]:
     """Every load on every body (the ground left out), in the order of the file's sections;
-    gravity is one weight per part, at the part's centre."""
+    gravity is one weight per point a body's parts are centred at (a wheel's disks on one axle
+    weigh as one, as a textbook draws it), of those parts' mass."""
     d: Dynamics = problem.dynamics  # type: ignore[assignment]
     N, lang = model.inertial, model.language
     plain = model.plain
@@ -97,9 +98,11 @@ def diagram(problem: Problem, model: Model, loads: "_Loads") -> tuple[AppliedLoa
         g = lang.vector(d.gravity)
         size = sp.sqrt(plain(g & g))
         for b in d.bodies:
+            masses: dict[str, sp.Expr] = {}
             for part in b.parts:
-                m = plain(lang.scalar(part.mass))
-                out.append(AppliedLoad("gravity", LoadKind.WEIGHT, b.name, part.at,
+                masses[part.at] = masses.get(part.at, sp.S.Zero) + plain(lang.scalar(part.mass))
+            for at, m in masses.items():
+                out.append(AppliedLoad("gravity", LoadKind.WEIGHT, b.name, at,
                                        matrix(m * g), None, (), (matrix(g) / size,),
                                        (d.gravity.text,), m * size, where=d.gravity.where))
     normals = {r.name: r for r in d.reactions}

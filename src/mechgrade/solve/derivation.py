@@ -40,7 +40,8 @@ class DerivationInstant:
     """The model at the solved instant. ``values``: each symbol a student may write (the
     coordinates, their rates as ``xd``/``xdd``, the parameters) and its SI value; ``points``
     every point's position (m; ``None`` where it cannot be had); ``frames`` each frame's unit
-    vectors along x, y, z in inertial components."""
+    vectors along x, y, z in inertial components; ``unvalued`` the problem's symbols with no
+    value at the instant (never a student's unknown: one would absorb any sign)."""
 
     problem: str
     inertial_frame: str
@@ -48,6 +49,7 @@ class DerivationInstant:
     points: tuple[tuple[str, Vec3 | None], ...]
     frames: tuple[tuple[str, tuple[Vec3, Vec3, Vec3] | None], ...]
     diagrams: tuple[FreeBodyDiagram, ...]
+    unvalued: tuple[str, ...] = ()
 
     def point(self, name: str) -> Vec3 | None:
         """Where ``name`` is (``KeyError`` for a name that is not a point)."""
@@ -90,8 +92,12 @@ def derivation_instant(problem: Problem, solution: Solution) -> DerivationInstan
                 values.append((rate_name(name), float(x[i])))
     frames = tuple((name, _unit_vectors(f, x)) for name, f in _frame_plan(problem).items())
     points = tuple((name, _vector(f, x)) for name, f in plan.points.items())
-    return DerivationInstant(problem.id, problem.inertial_frame, tuple(values) or
-                             _given_values(solution), points, frames, diagrams)
+    values = values or list(_given_values(solution))
+    valued = {name for name, _ in values}
+    unvalued = tuple(rate_name(name) for i, name in enumerate(index.names)
+                     if i != index.time and rate_name(name) not in valued)
+    return DerivationInstant(problem.id, problem.inertial_frame, tuple(values), points, frames,
+                             diagrams, unvalued)
 
 
 def _given_values(solution: Solution) -> tuple[tuple[str, float], ...]:

@@ -235,11 +235,40 @@ def _extended_state(problem: Problem, solution: Solution) -> np.ndarray | None:
     known = np.isfinite(values)
     try:
         return solve_kinetics(problem, kp, State(np.where(known, values, 0.0), known))
-    except MechgradeError:  # an integration's event (a slip ending): the balances alone
+    except MechgradeError:  # an integration's event (a slip ending): the limit before it
+        before = _just_before(index, values)
+        if before is not None:
+            try:
+                return solve_kinetics(problem, kp, State(np.where(np.isfinite(before),
+                                                                  before, 0.0),
+                                                         np.isfinite(before)))
+            except MechgradeError:
+                pass
         try:
             return accelerations(kp, np.where(known, values, 0.0))
         except MechgradeError:
             return None
+
+
+BEFORE = 1e-7
+"""How far before an event (a fraction of its time, or seconds at t = 0) its loads are read:
+a kinetic friction whose slip ends there has its direction only in the limit before."""
+
+
+def _just_before(index, values: np.ndarray) -> np.ndarray | None:
+    """``values`` with the rates a moment earlier along the solved accelerations, the
+    accelerations left to the balances (the coordinates kept: the points stay where the
+    event has them, the rates are off by a fraction ``BEFORE``, far inside any tolerance);
+    ``None`` without solved accelerations."""
+    rates, second = list(index.rates(1)), list(index.rates(2))
+    if not np.all(np.isfinite(values[rates + second])):
+        return None
+    step = BEFORE * max(abs(float(values[index.time])), 1.0)
+    before = values.copy()
+    before[rates] -= step * values[second]
+    before[index.time] -= step
+    before[second] = np.nan
+    return before
 
 
 def _call(f: Callable | None, x: np.ndarray | None):
