@@ -15,7 +15,7 @@ reaction. The set is complete when it determines every acceleration.
 >>> samples = motion_samples(problem, solve(problem))
 >>> judged = judge_equations("m x'' = m g sin(β) - μ_k N; N = m g cos(β)", samples)
 >>> judged.verdict, judged.credit
-('correct', 1.0)
+(<Verdict.CORRECT: 'correct'>, 1.0)
 >>> judged = judge_equations("m x'' = m g sin(β) - μ_k N; N = m g sin(β)", samples)
 >>> judged.verdict, [row.right for row in judged.rows]
 ('partial', [True, False])

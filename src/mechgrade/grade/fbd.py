@@ -17,7 +17,7 @@ unknown of the student's own (``Ox``, ``N``), solved for from the loads it appea
 >>> instant = derivation_instant(problem, solve(problem))
 >>> judged = judge_diagram("weight: -m g j; normal: N A.y; friction: -mu_k N A.x", instant, "block")
 >>> judged.verdict, judged.credit
-('correct', 1.0)
+(<Verdict.CORRECT: 'correct'>, 1.0)
 >>> judged = judge_diagram("weight: -m g j; normal: N j; centrifugal force: m xd^2 i", instant, "block")
 >>> [(row.label, [str(m) for m in row.mistakes]) for row in judged.rows]
 [('weight', []), ('normal', ['wrong direction']), ('kinetic friction', ['missing']), ('centrifugal force', ['extra'])]
