@@ -312,10 +312,13 @@ def package_copy(tmp_path_factory) -> Path:
     return copy
 
 
+# end-to-end checks of the checker: each copies the whole package and checks it (5-12 s)
+@pytest.mark.slow
 def test_the_package_as_it_is_has_no_fault(package_copy):
     assert package_faults(modules(package_copy)) == []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("planted", list(PLANTED), ids=list(PLANTED))
 def test_a_forbidden_import_planted_in_a_copy_of_the_package_fails_the_check(
         package_copy, tmp_path, planted):

@@ -96,7 +96,7 @@ def test_a_diagram_not_given_is_missing_and_one_not_read_is_unreadable(incline):
 def test_a_diagram_too_long_or_with_too_many_unknowns_is_refused(incline, pendulum):
     with pytest.raises(Exception, match="at most 4000 characters"):
         read_diagram("w: m g j;" * 500, incline, "block")
-    with pytest.raises(Exception, match="found 22 .a load at several points counts once"):
+    with pytest.raises(Exception, match=r"found 22 .a load at several points counts once"):
         read_diagram("w at G, O: m g j;" * 11, pendulum, "rod")
     many = "; ".join(f"f{n}: U{n} i" for n in range(13))
     with pytest.raises(Exception, match="at most 12 unknowns"):
@@ -272,13 +272,13 @@ def test_a_cord_at_one_of_its_two_points_is_missing_at_the_other(pulley):
 def test_a_point_named_twice_for_one_load_is_refused(pulley):
     with pytest.raises(Exception, match="expected each point of 'T' once, found 'B1' twice"):
         read_diagram("T at B1, B1: T j", pulley, "blockB")
-    with pytest.raises(Exception, match="expected a point of the problem .*found 'Q'"):
+    with pytest.raises(Exception, match=r"expected a point of the problem .*found 'Q'"):
         read_diagram("T at B1 and Q: T j", pulley, "blockB")
 
 
 def test_a_problem_symbol_without_a_value_is_refused_not_taken_for_an_unknown(incline):
     unvalued = dataclasses.replace(
         incline, values=tuple((n, v) for n, v in incline.values if n != "m"), unvalued=("m",))
-    with pytest.raises(Exception, match="found 'm' .* which the problem leaves without one"):
+    with pytest.raises(Exception, match=r"found 'm' .* which the problem leaves without one"):
         read_diagram("weight: m g j; normal: N A.y; friction: -mu_k N A.x", unvalued, "block")
     assert incline.unvalued == ()

@@ -300,6 +300,7 @@ def test_a_movable_pulleys_two_strands_counted_once():
     assert "strands_miscounted" not in _codes("atwood_machine")  # one strand each side
 
 
+@pytest.mark.slow  # integrates a heavy problem's mistaken motion (16 s)
 def test_the_initial_speed_left_out_starts_the_motion_from_rest():
     # 300 N at 30 deg below the horizontal for 4 s from rest, not from 2 m/s
     (rest,) = _generated("crate_pushed_impulse_momentum", "speed", "initial_speed_omitted")

@@ -90,8 +90,8 @@ def test_a_diagram_without_a_solved_state_keeps_its_structure():
 def test_at_the_event_where_a_slip_ends_the_loads_are_the_limit_just_before_it():
     # the marble's slip velocity is zero at the event: its kinetic friction has a direction
     # only in the limit, backwards along the motion it still opposes there
-    marble, ball = diagrams("ruina_9_22_marble_bowling_ball")
-    weight, normal, friction = marble.loads
+    marble, _ball = diagrams("ruina_9_22_marble_bowling_ball")
+    _weight, normal, friction = marble.loads
     assert friction.name == "F_C" and friction.vector is not None
     assert friction.vector[0] == pytest.approx(-0.1 * 0.005 * 9.81, rel=1e-5)
     assert normal.vector[1] == pytest.approx(0.005 * 9.81, rel=1e-5)

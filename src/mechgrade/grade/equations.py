@@ -18,7 +18,7 @@ reaction. The set is complete when it determines every acceleration.
 (<Verdict.CORRECT: 'correct'>, 1.0)
 >>> judged = judge_equations("m x'' = m g sin(β) - μ_k N; N = m g sin(β)", samples)
 >>> judged.verdict, [row.right for row in judged.rows]
-('partial', [True, False])
+(<Verdict.PARTIAL: 'partial'>, [True, False])
 """
 
 from __future__ import annotations
