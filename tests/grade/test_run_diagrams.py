@@ -66,9 +66,10 @@ def test_a_diagrams_rows_survive_results_json():
     assert GradeReport.from_json(json.loads(json.dumps(report.to_json()))) == report
     plain = AnswerResult("p", "v", "7 m/s", "correct", 2.0, 2.0)
     assert "loads" not in json.loads(json.dumps(
-        GradeReport.from_json({"assignment": {"id": "hw", "title": "HW"}, "students": [
-            {**student, "answers": [{**plain.__dict__}]}]}).to_json()))["students"][0][
-                "answers"][0]
+        GradeReport.from_json(json.loads(json.dumps({"assignment": {"id": "hw", "title": "HW"},
+                                                     "students": [{**student, "answers": [
+                                                         {**plain.__dict__}]}]})))
+        .to_json()))["students"][0]["answers"][0]
 
 
 @pytest.fixture(scope="module")
