@@ -63,3 +63,10 @@ def test_the_normal_force_has_the_balance_along_its_normal():
     assert normal.anchor == "balance-normal-block-N_P" and "normal_from_weight" in normal.codes
     assert normal.text == "block: along the normal of N_P (A.y): N_P - g*m*cos(beta) = 0"
     assert not any(s.anchor == "kinetics-work-energy" for s in steps)
+
+
+def test_the_math_holds_only_printable_characters(pendulum):
+    # a terminal shows a non-printable character (a no-break space) escaped, as "\xa0"
+    for step in pendulum.values():
+        for row in step.rows:
+            assert row.math.isprintable(), (row.anchor, row.math)

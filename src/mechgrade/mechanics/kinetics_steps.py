@@ -141,7 +141,8 @@ def _compact(math: str) -> str:
                 inner.tail = child.tail
                 parent[i] = inner
                 child = inner
-    return ElementTree.tostring(tree, encoding="unicode")
+    # the no-break space back as its reference: a terminal shows that character escaped
+    return ElementTree.tostring(tree, encoding="unicode").replace("\u00a0", "&#160;")
 
 
 def _bodies(problem: Problem, model, expr_math) -> Step:
