@@ -55,6 +55,21 @@ class Assessment:
     unit: str | None = None
 
 
+class Judged:
+    """What a judgement of several parts (a diagram's loads, a set of equations) says as a
+    whole: its ``assessment``'s verdict and credit."""
+
+    assessment: Assessment
+
+    @property
+    def verdict(self) -> Verdict:
+        return self.assessment.verdict
+
+    @property
+    def credit(self) -> float:
+        return self.assessment.credit
+
+
 def missing() -> Assessment:
     return Assessment(Verdict.MISSING, 0.0, None, "No answer was given.", None)
 

@@ -36,7 +36,7 @@ from ..expressions.numeric import evaluate
 from ..expressions.syntax import Bin, Node, Unary
 from ..solve.derivation import MotionSamples
 from .answers import rename_to_symbols
-from .compare import Assessment, not_evaluated, unreadable
+from .compare import Assessment, Judged, not_evaluated, unreadable
 from .results import Verdict
 
 MAX_EQUATIONS = 12
@@ -68,21 +68,13 @@ class EquationRow:
 
 
 @dataclass(frozen=True)
-class EquationsJudgement:
+class EquationsJudgement(Judged):
     """A set of equations judged: a row per equation, whether the set determines every
     acceleration (``complete``), and the verdict and credit (``assessment``)."""
 
     rows: tuple[EquationRow, ...]
     complete: bool
     assessment: Assessment
-
-    @property
-    def verdict(self) -> str:
-        return self.assessment.verdict
-
-    @property
-    def credit(self) -> float:
-        return self.assessment.credit
 
 
 def read_equations(text: str, samples: MotionSamples) -> tuple[StudentEquation, ...]:

@@ -43,7 +43,7 @@ from ..solve.fbd import DiagramLoad, FreeBodyDiagram
 from ..spec.dynamics import LoadKind
 from ..tolerance import within
 from .answers import rename_to_symbols
-from .compare import Assessment, not_evaluated, unreadable
+from .compare import Assessment, Judged, not_evaluated, unreadable
 from .results import Verdict
 
 MAX_LOADS = 20
@@ -119,21 +119,13 @@ class LoadRow:
 
 
 @dataclass(frozen=True)
-class DiagramJudgement:
+class DiagramJudgement(Judged):
     """A diagram judged: a row per load; credit is the share of rows that are right."""
 
     body: str
     rows: tuple[LoadRow, ...]
     read_back: str | None
     assessment: Assessment
-
-    @property
-    def verdict(self) -> str:
-        return self.assessment.verdict
-
-    @property
-    def credit(self) -> float:
-        return self.assessment.credit
 
 
 # ---------------------------------------------------------------------------- reading
