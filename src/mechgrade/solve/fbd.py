@@ -37,7 +37,6 @@ from ..mechanics.kinematics import locations
 from ..spec.dynamics import (Block, Cylinder, Disk, Explicit, LoadKind, OutlineKind, Ring, Rod,
                              Shell, Sphere, dynamics_of)
 from ..spec.model import Problem
-from .dynamics import accelerations, kinetics_plan, solve_kinetics
 from .levels import State
 from .result import Solution
 
@@ -170,6 +169,10 @@ class _DiagramPlan:
 
 @lru_cache(maxsize=32)
 def _diagram_plan(problem: Problem, _locations: tuple) -> _DiagramPlan:
+    # the dynamics solver is imported when a diagram is drawn, not when the write-up module
+    # is: a grading run that reads its solutions from the cache derives nothing
+    from .dynamics import kinetics_plan
+
     kin = derive_kinetics(problem)
     applied = free_body_loads(problem)
     symbols = kinetics_plan(problem).symbols
@@ -222,6 +225,8 @@ def _extended_state(problem: Problem, solution: Solution) -> np.ndarray | None:
     squares alone where the checks refuse the state: the event of an integration is the limit
     just before it); ``None`` when the solution has no state to read (nothing numeric was
     solved)."""
+    from .dynamics import accelerations, kinetics_plan, solve_kinetics  # see _diagram_plan
+
     kp = kinetics_plan(problem)
     index = kp.kp.index
     values = np.full(index.size, np.nan)

@@ -692,7 +692,7 @@ def block_on_cart():
     return [entry("t_slide", "friction μ m instead of μ m g",
                   num(v0 / (mu * (1 + m / M)), "s"), "mass_for_weight"),
             entry("common_speed", "masses exchanged in the momentum balance: M v0/(m + M)",
-                  num(M * v0 / (m + M), "m/s"), "given_swap", known="none"),
+                  num(M * v0 / (m + M), "m/s"), "given_swap"),
             entry("cart_acceleration", "masses exchanged: μ M g/m", num(mu * M * g / m, "m/s^2"),
                   "given_swap"),
             entry("t_slide", "cart taken as fixed: the block stops at v0/(μ g)",
