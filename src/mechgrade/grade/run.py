@@ -456,9 +456,11 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives = tuple(ObjectiveInfo(o.problem.id, o.objective.id, o.objective.prompt,
                                      o.max_points, o.problem.title) for o in plan.objectives)
     objectives += tuple(ObjectiveInfo(d.problem.id, d.objective_id,
-                                      f"The free-body diagram of the {d.body}.", d.max_points,
+                                      f"The free-body diagram of body {d.body} ({d.problem.title}).",
+                                      d.max_points,
                                       d.problem.title) for d in plan.diagrams)
-    objectives += tuple(ObjectiveInfo(e.problem.id, e.objective_id, "The equations of motion.",
+    objectives += tuple(ObjectiveInfo(e.problem.id, e.objective_id,
+                                      f"The equations of motion ({e.problem.title}).",
                                       e.max_points, e.problem.title) for e in plan.equations)
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
                        tuple(students), submissions.skipped,
