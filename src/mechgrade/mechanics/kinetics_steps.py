@@ -208,7 +208,9 @@ def _loads(problem: Problem, matrix_math, text) -> Step:
             continue
         where = "" if couple else f" at {load.point}"
         unknown = " (unknown)" if load.unknown else ""
-        words = f"{load.body}, {_KIND_WORDS.get(load.kind, 'load')} {load.name}{where}{unknown}"
+        # a weight is named by its kind alone ("weight at G", not "weight gravity at G")
+        name = "" if load.kind == LoadKind.WEIGHT else f" {load.name}"
+        words = f"{load.body}, {_KIND_WORDS.get(load.kind, 'load')}{name}{where}{unknown}"
         symbol = "M" if couple else "F"
         letter = _vector_name(symbol, load.name)
         if load.kind == LoadKind.WEIGHT:
