@@ -489,6 +489,10 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         place = None if worked is None or not answer.diagnosis else (
             worked.place(answer.objective, code) if code
             else worked.declared_place(answer.objective, answer.diagnosis))
+        wrong_loads = [f"{row.label} {', '.join(row.mistakes)}" for row in answer.loads
+                       if row.mistakes]
+        if place is None and worked is not None and wrong_loads and worked.diagram_step:
+            place = worked.diagram_step  # a free-body diagram's mistakes: the drawn diagrams
         if place is None:
             continue
         prompt = prompts.get((answer.problem, answer.objective)) or answer.objective
@@ -496,7 +500,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
-        note = f"Your answer to “{shorten(prompt)}”: {answer.diagnosis}"
+        note = f"Your answer to “{shorten(prompt)}”: {answer.diagnosis or '; '.join(wrong_loads)}"
         marked[anchor(answer.problem, place)] = (
             marked[anchor(answer.problem, place)] + "; " + note
             if anchor(answer.problem, place) in marked else note)

@@ -1,0 +1,36 @@
+"""A free-body diagram with a load wrong links to the drawn diagrams of the worked solution."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+from mechgrade.grade.assignment import load_assignment
+from mechgrade.grade.run import grade_submissions
+from mechgrade.grade.worked import feedback_solutions
+from mechgrade.report.output import write_outputs
+from mechgrade.resources import shipped_dir
+
+HW4 = shipped_dir("examples") / "hw4_derivation"
+
+
+@pytest.mark.slow  # grades a class and works out four problems' solutions (about 15 s)
+def test_a_wrong_diagram_links_to_the_free_body_diagrams_step(tmp_path):
+    folder = tmp_path / "hw4"
+    shutil.copytree(HW4, folder)
+    for student in [p for p in (folder / "submissions").iterdir() if p.name != "carla"]:
+        shutil.rmtree(student)
+    assignment = load_assignment(HW4 / "assignment.yaml")
+    report = grade_submissions(assignment, folder / "submissions")
+    write_outputs(report, tmp_path / "out", worked=feedback_solutions(assignment, report))
+    page = (tmp_path / "out" / "feedback" / "carla.html").read_text(encoding="utf-8")
+    # carla left out the block's friction and reversed block2's tension
+    link = '<a href="#ws-block_sliding_down_incline-kinetics-free-body-loads">'
+    assert link in page
+    assert '<a href="#ws-atwood_machine-kinetics-free-body-loads">' in page
+    # the highlighted step says which loads (CSS-escaped punctuation: "\\2c " is a comma)
+    assert "kinetic friction missing" in page
+    assert "tension reversed\\2c  wrong magnitude" in page
+    # the diagram she drew right (the rod) links nowhere
+    assert '<a href="#ws-pendulum_pin_reaction-kinetics-free-body-loads">' not in page
