@@ -25,6 +25,7 @@ from mechgrade.spec.dynamics import LoadKind, OutlineKind
 from mechgrade.spec.mistake_codes import DYNAMICS_CODES
 
 HW3 = shipped_dir("examples") / "hw3_dynamics"
+PROBLEMS = shipped_dir("problems")
 KINETIC_LABELS = {LABELS[c] for c in DYNAMICS_CODES}
 
 
@@ -135,3 +136,14 @@ def test_a_component_along_the_page_normal_is_a_dot_or_a_cross():
     svg = fbd_svg(d, "b")
     assert _arrows(svg) == [] and 'class="arrow out-of-page"' in svg \
         and 'class="arrow into-page"' in svg
+
+
+def test_a_problem_in_feet_labels_its_loads_in_pounds_force():
+    problem = load_problem(PROBLEMS / "block_on_spring_us_units.yaml")
+    (block,) = free_body_diagrams(problem, solve(problem))
+    assert ("N", "lbf", pytest.approx(4.4482216)) in block.shown_units
+    svg, words = fbd_svg(block, "us"), fbd_description(block)
+    assert "W = 10 lbf" in svg and " N<" not in svg and "10 lbf" in words
+    # the values the grader judges stay in SI
+    (weight,) = [load for load in block.loads if load.kind == LoadKind.WEIGHT]
+    assert weight.unit == "N" and weight.magnitude_value == pytest.approx(44.482216)

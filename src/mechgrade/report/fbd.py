@@ -27,6 +27,7 @@ Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from html import escape
 from typing import TYPE_CHECKING
 
@@ -61,9 +62,32 @@ _GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "theta": "�
 Point2 = tuple[float, float]
 
 
+def as_shown(diagram: FreeBodyDiagram) -> FreeBodyDiagram:
+    """``diagram`` with its loads' values in the units the problem writes (its
+    ``shown_units``: lbf on a problem in feet); directions are unchanged. Idempotent."""
+    shown = {unit: (to, factor) for unit, to, factor in diagram.shown_units if to != unit}
+    if not shown:
+        return diagram
+    loads = []
+    for load in diagram.loads:
+        if load.unit not in shown:
+            loads.append(load)
+            continue
+        to, factor = shown[load.unit]
+        loads.append(replace(
+            load, unit=to,
+            vector=None if load.vector is None else (load.vector[0] / factor,
+                                                     load.vector[1] / factor,
+                                                     load.vector[2] / factor),
+            magnitude_value=None if load.magnitude_value is None
+            else load.magnitude_value / factor))
+    return replace(diagram, loads=tuple(loads), shown_units=())
+
+
 def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
     """``diagram`` as a self-contained SVG (no script, no external reference), its element ids
     prefixed with ``ident``; its title and description say it in words."""
+    diagram = as_shown(diagram)
     ident = "".join(c if c.isalnum() or c in "-_" else "-" for c in ident)
     positions = {name: p for name, p in diagram.points if p is not None}
     to_screen = _projection(diagram, positions)
@@ -163,6 +187,7 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
 
 def fbd_description(diagram: FreeBodyDiagram) -> str:
     """The diagram in words: the body, its shape and every load, where and which way."""
+    diagram = as_shown(diagram)
     shape = "; ".join(_shape_words(o) for o in diagram.outline) or "a particle"
     loads = []
     for load in diagram.loads:

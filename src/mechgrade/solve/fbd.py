@@ -23,6 +23,7 @@ numbers cannot be had (a failed solve) keeps ``None`` for them, its structure in
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Callable
@@ -37,6 +38,7 @@ from ..mechanics.kinematics import locations
 from ..spec.dynamics import (Block, Cylinder, Disk, Explicit, LoadKind, OutlineKind, Ring, Rod,
                              Shell, Sphere, dynamics_of)
 from ..spec.model import Problem
+from ..units import same_dimension, si_factor
 from .levels import State
 from .result import Solution
 
@@ -115,6 +117,36 @@ class FreeBodyDiagram:
     down: Vec3 | None
     inertial_frame: str
     outline: tuple[Outline, ...] = ()
+    shown_units: tuple[tuple[str, str, float], ...] = ()
+    """``(unit, shown unit, its SI factor)``: each load unit as the problem writes it (lbf on
+    a problem in feet), for the labels; the vectors stay in SI."""
+
+
+US_UNITS = {"N": "lbf", "N*m": "lbf*ft", "N*s": "lbf*s"}
+"""The unit a problem in U.S. customary units writes for each SI load unit."""
+
+
+def shown_unit(problem: Problem, unit: str) -> str:
+    """The unit ``problem`` writes loads of ``unit`` in: an objective's or a given's unit of
+    that dimension, else the U.S. customary one when the problem's givens are in feet, pounds
+    or slugs, else ``unit``.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> shown_unit(load_problem(shipped_dir("problems") / "block_on_spring_us_units.yaml"), "N")
+    'lbf'
+    """
+    written = [o.unit for o in problem.objectives if o.unit] + \
+        [g.unit for g in problem.givens if g.unit]
+    for candidate in written:
+        if same_dimension(candidate, unit):
+            return candidate
+    if any(word in _US for u in written for word in re.findall(r"[A-Za-z_]+", u)):
+        return US_UNITS.get(unit, unit)
+    return unit
+
+
+_US = {"ft", "foot", "feet", "lb", "lbf", "lbm", "slug", "inch", "in", "mi", "mph", "kip"}
 
 
 def free_body_diagrams(problem: Problem, solution: Solution) -> tuple[FreeBodyDiagram, ...]:
@@ -155,8 +187,15 @@ def free_body_diagrams(problem: Problem, solution: Solution) -> tuple[FreeBodyDi
             for kind, at, sizes, axis, axes in plan.outlines[body.name])
         out.append(FreeBodyDiagram(body.name, body.frame, body.centre,
                                    tuple((p, _vector(plan.points.get(p), x)) for p in names),
-                                   tuple(loads), down, problem.inertial_frame, outline))
+                                   tuple(loads), down, problem.inertial_frame, outline,
+                                   tuple(_shown(problem, u) for u in
+                                         dict.fromkeys(a.unit for a in loads))))
     return tuple(out)
+
+
+def _shown(problem: Problem, unit: str) -> tuple[str, str, float]:
+    shown = shown_unit(problem, unit)
+    return unit, shown, si_factor(shown)
 
 
 @dataclass(frozen=True)
