@@ -102,7 +102,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
 
     k = kinematics_plan(problem).k
     out: list[GeneratedMistake] = []
-    kept = [right]
+    kept: list[tuple[str | None, object]] = [(None, right)]  # (family, expression)
     for m in mutations(problem, obj.id):
         if isinstance(m.value, sp.MatrixBase):
             continue
@@ -110,10 +110,12 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
             expr, _ = symbolic(problem, k, obj, givens, expr=m.value)
         except MechgradeError:
             continue
-        if expr.has(sp.zoo, sp.nan, sp.oo) or any(identically_zero(expr - e) for e in kept) \
+        # the answer, or one of this family already: no news (another family's is: both named)
+        if expr.has(sp.zoo, sp.nan, sp.oo) \
+                or any(identically_zero(expr - e) for c, e in kept if c in (None, m.code)) \
                 or (m.code != "other_point" and identically_zero(expr)):
             continue
-        kept.append(expr)
+        kept.append((m.code, expr))
         sentence = re.sub(r" = \{term\} along \w+", "", m.sentence)
         out.append(GeneratedMistake(m.code, sentence, None, sp.sstr(expr)))
     return tuple(out)
