@@ -281,3 +281,11 @@ def test_a_given_misread_that_is_a_factor_of_2_gives_way_to_a_physical_family():
         assert assess("(-132, -80, 0) ft/s^2", _with_generated(*order)).diagnosis == \
             "tangential term α × r left out"
     assert assess("(-132, -80, 0) ft/s^2", _with_generated(swapped)).diagnosis == "factor of 2"
+
+
+def test_a_physical_family_that_flips_the_answer_is_named_before_a_flipped_given():
+    flipped = ("given_sign", "Your value is what q' with the opposite sign gives.",
+               (66.0, 40.0, 0.0))
+    reversed_ = ("friction_reversed", "Friction points the other way.", (66.0, 40.0, 0.0))
+    assert assess("(66, 40, 0) ft/s^2", _with_generated(flipped, reversed_)).diagnosis == \
+        "friction in the wrong direction"

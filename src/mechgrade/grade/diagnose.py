@@ -213,9 +213,10 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
 
 
 def _coincidence(found: Diagnosis) -> bool:
-    """Whether a diagnosis names a numeric coincidence (a factor, a unit slip of the whole
-    answer), as a given misread that is exactly one is named; a sign is no coincidence."""
-    return found.code in FACTOR_CODES and found.code != "sign"
+    """Whether a diagnosis names a whole-answer slip (a sign, a factor, a unit slip), as a
+    given misread that is exactly one is named: true of the answer, but no physical family's
+    reason (friction turned round also flips the answer)."""
+    return found.code in FACTOR_CODES
 
 
 def _named(mistake: GeneratedMistake, reference: np.ndarray,
