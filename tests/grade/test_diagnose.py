@@ -289,3 +289,9 @@ def test_a_physical_family_that_flips_the_answer_is_named_before_a_flipped_given
     reversed_ = ("friction_reversed", "Friction points the other way.", (66.0, 40.0, 0.0))
     assert assess("(66, 40, 0) ft/s^2", _with_generated(flipped, reversed_)).diagnosis == \
         "friction in the wrong direction"
+
+
+def test_of_families_one_but_for_round_off_the_first_is_named_first():
+    origin = ("drop_transport_vel", "Without the hub's velocity.", (-106.0 + 1e-13, -40.0, 0.0))
+    assert assess("(-106, -40, 0) ft/s^2", _with_generated(origin, WEIGHT)).diagnosis == \
+        "frame origin's velocity left out or weight left out"

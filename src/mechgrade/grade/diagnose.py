@@ -194,8 +194,10 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
             matched.append((distance, mistake, values))
     if not matched:
         return None
-    # nearest first; among equals, the families' own order
-    matched.sort(key=lambda m: m[0])
+    # nearest first; among values one but for round-off (:data:`~mechgrade.solve.mutants.SAME`),
+    # the families' own order
+    scale = max(float(np.linalg.norm(reference)), 1e-300)
+    matched.sort(key=lambda m: round(m[0] / scale, 7))
     _, best, best_values = matched[0]
     first = _named(best, reference, plausible)
     for _, other, values in matched[1:]:
