@@ -66,12 +66,13 @@ def test_every_student_has_the_status_and_score_worked_out_by_hand(graded):
 
 # (student, objective): (verdict, points, diagnosis) of every answer that is not plainly right.
 # None where no diagnosis is known: a1 = 0 from a tension taken equal to a weight, Erin's omega.
+# Two families that give one value are both named ("X or Y").
 CENTRAL_AT_PIVOT = "inertia about the mass centre used at the pivot"
 NOT_PLAINLY_RIGHT = {
     ("ben_okafor", "block_sliding_down_incline.friction"): ("incorrect", 0.0, "wrong frame"),
     ("carla_diaz", "atwood_machine.a1"): ("incorrect", 0.0, None),
-    ("carla_diaz", "atwood_machine.tension"): ("incorrect", 0.0,
-                                            "tension taken equal to a weight"),
+    ("carla_diaz", "atwood_machine.tension"): (
+        "incorrect", 0.0, "tension taken equal to a weight or reaction taken equal to the weight"),
     ("carla_diaz", "atwood_machine.tension_symbolic"): ("partial", 0.75,
                                                      "mass used for the weight"),
     ("carla_diaz", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),
@@ -79,11 +80,11 @@ NOT_PLAINLY_RIGHT = {
                                                        "mass used for the weight"),
     ("carla_diaz", "block_sliding_down_incline.friction"): ("partial", 0.75,
                                                          "mass used for the weight"),
-    ("carla_diaz", "block_sliding_down_incline.accel_symbolic"): ("partial", 0.5,
-                                                                  "mass used for the weight"),
+    ("carla_diaz", "block_sliding_down_incline.accel_symbolic"): (
+        "partial", 0.5, "mass used for the weight or weight used for the mass"),
     ("carla_diaz", "pendulum_release.eom"): ("incorrect", 0.0, "number typed for g"),
-    ("dan_wu", "block_sliding_down_incline.accel"): ("incorrect", 0.0,
-                                                   "friction in the wrong direction"),
+    ("dan_wu", "block_sliding_down_incline.accel"): (
+        "incorrect", 0.0, "friction in the wrong direction or given rate's sign flipped"),
     ("dan_wu", "block_sliding_down_incline.friction"): ("incorrect", 0.0,
                                                       "friction in the wrong direction"),
     ("dan_wu", "block_sliding_down_incline.accel_symbolic"): ("incorrect", 0.0,

@@ -220,3 +220,78 @@ def test_a_flipped_rate_that_flips_the_whole_answer_is_a_sign_error_saying_which
 def test_every_generated_family_is_a_policy_code_with_a_label():
     from mechgrade.grade.diagnose import GENERATED_CODES, LABELS
     assert set(GENERATED_CODES) <= set(CODES) and set(GENERATED_CODES) == set(LABELS)
+
+
+WEIGHT = ("weight_omitted", "Your value is what the balances give without the weight.",
+          (-106.0, -40.0, 0.0))
+PUSH = ("force_omitted", "Your value is what the balances give without the push.",
+        (-106.0, -40.0, 0.0))
+
+
+def test_two_families_of_one_value_are_both_named_in_one_sentence():
+    judged = assess("(-106, -40, 0) ft/s^2", _with_generated(WEIGHT, PUSH))
+    assert judged.diagnosis == "weight left out or an applied force left out"
+    assert judged.feedback == (
+        "Your value is what weight left out gives, or equally what an applied force left out "
+        "gives: Your value is what the balances give without the weight. Or: Your value is "
+        "what the balances give without the push.")
+
+
+def test_two_families_within_the_tolerance_of_each_other_fit_equally():
+    near = ("force_omitted", "Without the push.", (-106.3, -40.1, 0.0))
+    # the nearer first
+    assert assess("(-106.1, -40, 0) ft/s^2", _with_generated(near, WEIGHT)).diagnosis == \
+        "weight left out or an applied force left out"
+    assert assess("(-106.3, -40.1, 0) ft/s^2", _with_generated(near, WEIGHT)).diagnosis == \
+        "an applied force left out or weight left out"
+
+
+def test_a_family_the_answer_matches_farther_from_the_nearest_is_not_named_too():
+    # both within 1 % of the answer, but 1.9 apart: more than the tolerance of either
+    far = ("force_omitted", "Without the push.", (-107.9, -40.0, 0.0))
+    assert assess("(-107, -40, 0) ft/s^2", _with_generated(WEIGHT, far)).diagnosis == \
+        "an applied force left out"
+
+
+def test_two_families_that_fit_equally_give_the_better_of_their_credits():
+    policy = GradingPolicy(partial_credit=(("weight_omitted", 0.2), ("force_omitted", 0.6)))
+    judged = assess("(-106, -40, 0) ft/s^2", _with_generated(WEIGHT, PUSH), policy)
+    assert (judged.verdict, judged.credit) == ("partial", 0.6)
+
+
+def test_one_family_twice_is_named_once():
+    again = ("weight_omitted", "The other weight left out.", (-106.0, -40.0, 0.0))
+    assert assess("(-106, -40, 0) ft/s^2", _with_generated(WEIGHT, again)).diagnosis == \
+        "weight left out"
+
+
+def test_a_physical_family_that_is_also_a_factor_of_2_is_named_alone():
+    doubled = ("drop_tangential", "Without the tangential term.", (-132.0, -80.0, 0.0))
+    judged = assess("(-132, -80, 0) ft/s^2", _with_generated(doubled))
+    assert judged.diagnosis == "tangential term α × r left out"
+    assert label(f"{2 * 98.51} ft/s^2") == "factor of 2"  # no family: the coincidence
+
+
+def test_a_given_misread_that_is_a_factor_of_2_gives_way_to_a_physical_family():
+    # two masses exchanged where one is twice the other: the whole answer doubled, which a
+    # family of the model explains as well
+    swapped = ("given_swap", "Your value is what m1 and m2 exchanged give.", (-132.0, -80.0, 0.0))
+    doubled = ("drop_tangential", "Without the tangential term.", (-132.0, -80.0, 0.0))
+    for order in ((swapped, doubled), (doubled, swapped)):
+        assert assess("(-132, -80, 0) ft/s^2", _with_generated(*order)).diagnosis == \
+            "tangential term α × r left out"
+    assert assess("(-132, -80, 0) ft/s^2", _with_generated(swapped)).diagnosis == "factor of 2"
+
+
+def test_a_physical_family_that_flips_the_answer_is_named_before_a_flipped_given():
+    flipped = ("given_sign", "Your value is what q' with the opposite sign gives.",
+               (66.0, 40.0, 0.0))
+    reversed_ = ("friction_reversed", "Friction points the other way.", (66.0, 40.0, 0.0))
+    assert assess("(66, 40, 0) ft/s^2", _with_generated(flipped, reversed_)).diagnosis == \
+        "friction in the wrong direction"
+
+
+def test_of_families_one_but_for_round_off_the_first_is_named_first():
+    origin = ("drop_transport_vel", "Without the hub's velocity.", (-106.0 + 1e-13, -40.0, 0.0))
+    assert assess("(-106, -40, 0) ft/s^2", _with_generated(origin, WEIGHT)).diagnosis == \
+        "frame origin's velocity left out or weight left out"

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from mechgrade.grade.compare import assess
 from mechgrade.mechanics.mutations import mutations
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
@@ -51,10 +52,19 @@ def test_components_along_the_polar_frame_are_the_other_basis_mistake():
 
 def test_a_position_term_left_out_is_half_the_side_for_half_the_diagonal():
     result = solve(_problem("bowling_P3_17_rocking_block")).result("vG_mag")
-    by_code = {round(m.value, 6): m.code for m in result.generated_mistakes}
-    # |β'| b/2 is also the A.x component of v_G, found first
-    assert by_code[4.2] == "position_term" and by_code[2.45] == "component_for_speed"
+    by_value: dict[float, list[str]] = {}
+    for m in result.generated_mistakes:
+        by_value.setdefault(round(m.value, 6), []).append(m.code)
+    # |β'| b/2 is also the A.x component of v_G: both families are kept, and both named
+    assert by_value[4.2] == ["position_term"]
+    assert by_value[2.45] == ["component_for_speed", "position_term"]
     assert _codes("bowling_P3_17_rocking_block", "vG_mag").count("position_term") == 2
+    judged = assess("2.45 in/s", result)
+    assert judged.diagnosis == ("a velocity component for the speed or a term of the position "
+                                "left out")
+    assert judged.feedback.startswith("Your value is what a velocity component for the speed "
+                                      "gives, or equally what a term of the position left out "
+                                      "gives: ")
 
 
 def test_no_generated_mistake_equals_the_answer():

@@ -61,7 +61,9 @@ def test_every_page_shows_the_worked_solution_and_the_picture_inline(graded):
 def test_the_step_where_the_students_mistake_happens_is_highlighted_and_linked(graded):
     feedback, report = graded
     zoe = next(s for s in report.students if s.id == "zoe")
-    assert zoe.answers[0].diagnosis == "centripetal term ω × (ω × r) left out"
+    # a_t for |a| is the same value: both named, the step of the first (the nearer) marked
+    assert zoe.answers[0].diagnosis == ("centripetal term ω × (ω × r) left out or tangential "
+                                        "acceleration for the whole")
     page = (feedback / "zoe.html").read_text(encoding="utf-8")
     assert f"#{CENTRIPETAL_ROW} {{ background" in page
     assert f'<a href="#{CENTRIPETAL_ROW}">See where this happens in the worked solution: ' \

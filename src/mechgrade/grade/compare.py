@@ -356,7 +356,9 @@ def _wrong(found: Diagnosis | None, policy: GradingPolicy, units: _Units, summar
            read_back: str) -> Assessment:
     if found is None:
         return Assessment(Verdict.INCORRECT, 0.0, None, summary + units.note, read_back)
-    credit = found.credit if found.credit is not None else policy.credit_for(found.code)
+    # two families that fit equally: the student has the benefit of the better credit
+    credit = found.credit if found.credit is not None else max(
+        policy.credit_for(code) for code in (found.code, found.also) if code is not None)
     credit = max(0.0, min(1.0, credit * units.factor))
     verdict = Verdict.PARTIAL if credit > 0 else Verdict.INCORRECT
     message = found.message if found.message.endswith((".", "?", "!")) else found.message + "."

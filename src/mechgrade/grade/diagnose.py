@@ -46,6 +46,7 @@ class Diagnosis:
     label: str
     message: str
     credit: float | None = None
+    also: str | None = None  # a second family that fits as well (its code)
 
 
 # (code, label, message, factors): the student's value is factor * reference.
@@ -172,10 +173,11 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
     """The generated mistake nearest ``student`` among those it matches and is nearer to than
     to ``reference``: a value that merely lies between two candidates names neither. A
     mistaken value is matched on the reference's scale only when it is a zero there (within
-    ``exact``)."""
+    ``exact``). When a mistake of another family matches too and its value is the nearest's
+    within ``close``, the two fit equally and both are named (:func:`_both`)."""
     exact = close if exact is None else exact
     own = float(np.linalg.norm(student - reference))
-    best, best_distance = None, own
+    matched: list[tuple[float, GeneratedMistake, np.ndarray]] = []
     for mistake, values in generated:
         if values is None:
             continue
@@ -188,14 +190,70 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
                                            and close(student - values + reference, reference))):
             continue
         distance = float(np.linalg.norm(student - values))
-        if distance < best_distance:
-            best, best_distance = mistake, distance
-    if best is None:
+        if distance < own:
+            matched.append((distance, mistake, values))
+    if not matched:
         return None
-    if best.code in GIVEN_CODES and best.value is not None:
-        return _given_as_transform(best, reference, plausible) or Diagnosis(
-            best.code, LABELS.get(best.code, best.code), best.message)
-    return Diagnosis(best.code, LABELS.get(best.code, best.code), best.message)
+    # nearest first; among values one but for round-off (:data:`~mechgrade.solve.mutants.SAME`),
+    # the families' own order
+    scale = max(float(np.linalg.norm(reference)), 1e-300)
+    matched.sort(key=lambda m: round(m[0] / scale, 7))
+    _, best, best_values = matched[0]
+    first = _named(best, reference, plausible)
+    for _, other, values in matched[1:]:
+        if other.code == best.code or not (close(values, best_values)
+                                           or close(best_values, values)):
+            continue
+        second = _named(other, reference, plausible)
+        # a physical family is the explanation before a numeric coincidence
+        if _coincidence(first) and not _coincidence(second):
+            return second
+        if _coincidence(second):
+            return first
+        return _both(first, second) or first
+    return first
+
+
+def _coincidence(found: Diagnosis) -> bool:
+    """Whether a diagnosis names a whole-answer slip (a sign, a factor, a unit slip), as a
+    given misread that is exactly one is named: true of the answer, but no physical family's
+    reason (friction turned round also flips the answer)."""
+    return found.code in FACTOR_CODES
+
+
+def _named(mistake: GeneratedMistake, reference: np.ndarray,
+           plausible: frozenset[str] | None) -> Diagnosis:
+    """One generated mistake's diagnosis."""
+    if mistake.code in GIVEN_CODES and mistake.value is not None:
+        return _given_as_transform(mistake, reference, plausible) or Diagnosis(
+            mistake.code, LABELS.get(mistake.code, mistake.code), mistake.message)
+    return Diagnosis(mistake.code, LABELS.get(mistake.code, mistake.code), mistake.message)
+
+
+def _both(first: Diagnosis, second: Diagnosis) -> Diagnosis | None:
+    """Two families that fit one value equally, named in one sentence, the nearer first;
+    ``None`` when they say the same.
+
+    >>> a = Diagnosis("weight_omitted", "weight left out", "The weight was left out.")
+    >>> b = Diagnosis("force_omitted", "an applied force left out", "The push was left out.")
+    >>> both = _both(a, b)
+    >>> both.label
+    'weight left out or an applied force left out'
+    >>> both.message
+    'Your value is what weight left out gives, or equally what an applied force left out gives: The weight was left out. Or: The push was left out.'
+    >>> _both(a, a) is None
+    True
+    """
+    if first.code == second.code or first.label == second.label:
+        return None
+    return Diagnosis(first.code, f"{first.label} or {second.label}",
+                     f"Your value is what {first.label} gives, or equally what {second.label} "
+                     f"gives: {_sentence(first.message)} Or: {_sentence(second.message)}",
+                     also=second.code)
+
+
+def _sentence(message: str) -> str:
+    return message if message.endswith((".", "?", "!")) else message + "."
 
 
 def _given_as_transform(mistake: GeneratedMistake, reference: np.ndarray,

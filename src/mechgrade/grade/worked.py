@@ -51,8 +51,20 @@ class FeedbackSolutions:
         return {(problem, givens): w for problem, givens, w in self.variants}
 
     def code(self, label: str | None) -> str | None:
-        """The code of a generated mistake's diagnosis label (``None`` for any other)."""
-        return next((c for name, c in self.labels if name == label), None)
+        """The code of a generated mistake's diagnosis label (``None`` for any other); of a
+        label naming two families that fit equally ("X or Y"), the first's (the nearer).
+
+        >>> FeedbackSolutions((), labels=(("weight left out", "weight_omitted"),
+        ...     ("a term or another left out", "other"))).code("weight left out or a term or another left out")
+        'weight_omitted'
+        """
+        codes = dict(self.labels)
+        if label is None or label in codes:
+            return None if label is None else codes[label]
+        parts = label.split(" or ")
+        return next((codes[" or ".join(parts[:i])] for i in range(1, len(parts))
+                     if " or ".join(parts[:i]) in codes and " or ".join(parts[i:]) in codes),
+                    None)
 
 
 def feedback_solutions(assignment: Assignment, report: GradeReport, *,

@@ -629,10 +629,12 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
     V = np.full((n, count, size), np.nan)
     exists = np.zeros((n, count), dtype=bool)
     other = np.zeros((n, count), dtype=bool)
+    codes = np.full((n, count), "", dtype=object)
     for j, row in enumerate(rows_):
         V[:, j] = row[3]
         exists[:, j] = row[2]
         other[:, j] = row[0].code in ZERO_NAMES
+        codes[:, j] = row[0].code
     first = len(rows_)
     for i, mistakes in enumerate(misread):
         if mistakes:
@@ -640,7 +642,8 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
             V[i, first:last] = np.array([m.value for m in mistakes], float).reshape(-1, size)
             exists[i, first:last] = True
             other[i, first:last] = [m.code in ZERO_NAMES for m in mistakes]
-    keep = kept_mistakes((si / si_factor(obj.unit) + 0.0).T, V, exists, other)
+            codes[i, first:last] = [m.code for m in mistakes]
+    keep = kept_mistakes((si / si_factor(obj.unit) + 0.0).T, V, exists, other, codes=codes)
 
     def at(i: int) -> tuple[GeneratedMistake, ...]:
         return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)

@@ -137,19 +137,23 @@ def _texts(results) -> tuple[tuple[str, str | None, tuple[str, ...]], ...]:
 def _symbolic_kept(mutations: tuple[DynamicsMutation, ...], results: tuple,
                    answers: tuple) -> dict[str, tuple[GeneratedMistake, ...]]:
     """The symbolic mistakes kept of each mistaken model's ``answers`` (``(mutation index,
-    (id, expr, symbols) of each answer)``) of the answers ``results``: worked out once for all
-    the variants whose answers are the same."""
-    kept = {oid: [_expression(expr, symbols)] for oid, expr, symbols in results}
+    (id, expr, symbols) of each answer)``) of the answers ``results`` (two families of one
+    expression both, for the grader to name both): worked out once for all the variants whose
+    answers are the same."""
+    # (family, expression): the answer's family is None
+    kept = {oid: [(None, _expression(expr, symbols))] for oid, expr, symbols in results}
     out: dict[str, list[GeneratedMistake]] = {oid: [] for oid, _, _ in results}
     for i, solved in answers:
         m = mutations[i]
         for oid, text, symbols in solved:
             expr = _expression(text, symbols) if text else None
-            # a zero is what many mistakes give (the weight left out of a fall): no name
+            # a zero is what many mistakes give (the weight left out of a fall): no name; the
+            # answer, or one of this family already, is no news (another family's is)
             if expr is None or expr.has(sp.zoo, sp.nan, sp.oo) or identically_zero(expr) \
-                    or any(identically_zero(expr - k) for k in kept[oid]):
+                    or any(identically_zero(expr - k) for c, k in kept[oid]
+                           if c in (None, m.code)):
                 continue
-            kept[oid].append(expr)
+            kept[oid].append((m.code, expr))
             out[oid].append(GeneratedMistake(m.code, m.sentence.replace(" = {term}", ""),
                                              None, text, step=m.step))
     return {oid: tuple(found) for oid, found in out.items()}

@@ -102,7 +102,7 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
 
     k = kinematics_plan(problem).k
     out: list[GeneratedMistake] = []
-    kept = [right]
+    kept: list[tuple[str | None, object]] = [(None, right)]  # (family, expression)
     for m in mutations(problem, obj.id):
         if isinstance(m.value, sp.MatrixBase):
             continue
@@ -110,10 +110,12 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
             expr, _ = symbolic(problem, k, obj, givens, expr=m.value)
         except MechgradeError:
             continue
-        if expr.has(sp.zoo, sp.nan, sp.oo) or any(identically_zero(expr - e) for e in kept) \
+        # the answer, or one of this family already: no news (another family's is: both named)
+        if expr.has(sp.zoo, sp.nan, sp.oo) \
+                or any(identically_zero(expr - e) for c, e in kept if c in (None, m.code)) \
                 or (m.code != "other_point" and identically_zero(expr)):
             continue
-        kept.append(expr)
+        kept.append((m.code, expr))
         sentence = re.sub(r" = \{term\} along \w+", "", m.sentence)
         out.append(GeneratedMistake(m.code, sentence, None, sp.sstr(expr)))
     return tuple(out)
@@ -301,23 +303,29 @@ def _distinct(right, kept: tuple[GeneratedMistake, ...],
     exists = np.array([[v.shape == r.shape for v in values]])
     V = np.array([[v if v.shape == r.shape else np.full(r.shape, np.nan) for v in values]])
     other = np.array([[m.code in ZERO_NAMES for m in mistakes]])
+    codes = np.array([[m.code for m in mistakes]], dtype=object)
     keep = kept_mistakes(r[None, :], V.reshape(1, len(mistakes), len(r)), exists, other,
-                         len(kept))
+                         len(kept), codes)
     return tuple(m for m, k in zip(mistakes, keep[0]) if k)
 
 
 def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: np.ndarray,
-                  first: int = 0) -> np.ndarray:
+                  first: int = 0, codes: np.ndarray | None = None) -> np.ndarray:
     """Which generated mistakes are kept, at every instant at once (``right``: the answer at
     each, N x size; ``V``: the mistakes' values in order, N x count x size; ``exists``: where
-    each is defined; ``other``: which are of :data:`ZERO_NAMES`): each that differs from the
-    answer (the same value as the answer at this instant: no mistake here) and from every one
-    kept before it (:data:`SAME`), and is not a zero other than theirs (a zero is
-    what many mistakes give). The ``first`` are kept whatever they are.
+    each is defined; ``other``: which are of :data:`ZERO_NAMES`; ``codes``: each one's
+    family, N x count, or ``None``): each that differs from the answer (the same value as the
+    answer at this instant: no mistake here) and from every one of its family kept before it
+    (:data:`SAME`; without ``codes``, every one), and is not a zero other than theirs (a zero
+    is what many mistakes give). Two families of one value are both kept: the grader names
+    both. The ``first`` are kept whatever they are.
 
     >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0 + 1e-9], [1.0], [0.0]]]),
     ...               np.ones((1, 4), bool), np.zeros((1, 4), bool)).tolist()
     [[True, False, False, False]]
+    >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0], [2.0]]]), np.ones((1, 3), bool),
+    ...               np.zeros((1, 3), bool), codes=np.array([["a", "b", "a"]])).tolist()
+    [[True, True, False]]
     """
     n, count = exists.shape
     with np.errstate(invalid="ignore"):
@@ -332,6 +340,8 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
             apart = np.linalg.norm(V[:, :j] - V[:, j:j + 1], axis=2)
             same = apart <= SAME * np.maximum(np.maximum(norms[:, :j], norms[:, j:j + 1]),
                                               1e-12) + 1e-12
+            if codes is not None:
+                same &= codes[:, :j] == codes[:, j:j + 1]
             keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
                 & ~vague[:, j]
     return keep

@@ -149,8 +149,9 @@ def _read(answer: str) -> np.ndarray:
 
 
 def _codes(label: str, result) -> list[str]:
-    """The diagnosis codes behind an assessment's label (a vector's labels are joined by ';')."""
-    return [LIBRARY.code_of(part.strip(), result) for part in label.split(";")]
+    """The diagnosis codes behind an assessment's label (a vector's labels are joined by ';',
+    two families that fit equally by ' or ')."""
+    return [code for part in label.split(";") for code in LIBRARY.codes_of(part.strip(), result)]
 
 
 def classify(row: dict, result) -> tuple[str, object]:

@@ -40,17 +40,37 @@ def code_of(label: str | None, result) -> str | None:
     return codes.get(label, label)
 
 
+def codes_of(label: str | None, result) -> list[str]:
+    """The codes behind a label that may name two families that fit equally ("X or Y"): a
+    label of its own wins over a split (one label has " or " in its words)."""
+    if label is None:
+        return []
+    whole = code_of(label, result)
+    if whole != label:
+        return [whole]
+    parts = label.split(" or ")
+    for i in range(1, len(parts)):
+        first, second = " or ".join(parts[:i]), " or ".join(parts[i:])
+        codes = [code_of(first, result), code_of(second, result)]
+        if codes != [first, second]:
+            return codes
+    return [label]
+
+
 def classify(row: dict, result, policy: GradingPolicy = GradingPolicy()) -> tuple[str, object]:
+    """A row's class; a diagnosis naming two families is named when either is the row's."""
     judged = assess(row["answer"], result, policy)
     if judged.verdict == "correct":
         return "correct", judged
-    code = code_of(judged.diagnosis, result)
-    if code is None:
+    codes = codes_of(judged.diagnosis, result)
+    if not codes:
         return "none", judged
-    if code in row.get("generic", ()):
-        return "generic", judged
     # the author's declared mistakes name theirs in the author's words
-    return ("named" if code in row["diagnosis"] or code == "mistake" else "wrong"), judged
+    if any(code in row["diagnosis"] or code == "mistake" for code in codes):
+        return "named", judged
+    if all(code in row.get("generic", ()) for code in codes):
+        return "generic", judged
+    return "wrong", judged
 
 
 def rows():
