@@ -216,7 +216,7 @@ def separation_findings(problem: Problem, solution) -> list[AuthorWarning]:
     >>> from mechgrade.spec import load_problem
     >>> p = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
     >>> print(separation_findings(p, solve(p))[0].message)  # doctest: +ELLIPSIS
-    objective 'acc_mag': generated mistake drop_tangential gives 98 ft/s^2, within the ...
+    objective 'acc_mag': generated mistakes drop_tangential gives 98 ft/s^2; acc_n_for_acc gives ...
     """
     out = []
     for result in solution.results:

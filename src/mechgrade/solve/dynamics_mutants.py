@@ -20,7 +20,7 @@ worked out, for all its objectives at once, the first time one of them is looked
 >>> result = solve(load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
 ...               ).result("alpha")
 >>> [(m.code, round(m.value, 2)) for m in result.generated_mistakes][:3]
-[('mass_for_weight', -0.8), ('central_inertia_at_pivot', -31.53), ('other_shape_inertia', -10.51)]
+[('mass_for_weight', -0.8), ('weight_for_mass', -0.8), ('central_inertia_at_pivot', -31.53)]
 """
 
 from __future__ import annotations
