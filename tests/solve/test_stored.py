@@ -21,7 +21,8 @@ from mechgrade.solve.batch import solve_variants
 from mechgrade.spec import load_problem
 
 ROOT = Path(__file__).resolve().parents[2]
-LADDER = ROOT / "problems" / "ladder_wall_lift_off.yaml"
+# integrates to an event, and its derivation and generated mistakes are quick to derive
+COASTING = ROOT / "problems" / "boat_coasting_quadratic_drag.yaml"
 ATWOOD = ROOT / "problems" / "atwood_machine.yaml"
 HW3 = ROOT / "examples" / "hw3_dynamics"
 PENDULUM_ONLY = ROOT / "tests" / "data" / "cache" / "assignment.yaml"  # hw3's, with its answers
@@ -102,7 +103,7 @@ NOWHERE = {"file": None, "line": None, "column": None, "field": None}
 def test_a_spoilt_solution_entry_is_solved_and_written_again(spoil, disk, forget, entry_file,
                                                              rewrite_entry):
     # signed with the folder's key: read as far as the codec, which refuses it
-    problem = load_problem(LADDER)
+    problem = load_problem(COASTING)
     given = overrides(problem, 1.1)[0]
     right = solve(problem, givens=given)
     path = entry_file(stored.solution_key(problem, given, None))
@@ -113,7 +114,7 @@ def test_a_spoilt_solution_entry_is_solved_and_written_again(spoil, disk, forget
 
 
 def test_variants_are_read_back_as_solved_together(disk, forget, monkeypatch):
-    problem = load_problem(LADDER)
+    problem = load_problem(COASTING)
     name = to_text(problem.givens[0].key.node)
     variants = overrides(problem, 0.9, 1.1, 1.2) + [{name: None}]  # the last one alone
     monkeypatch.setenv("MECHGRADE_NO_CACHE", "1")
@@ -133,7 +134,7 @@ def test_variants_are_read_back_as_solved_together(disk, forget, monkeypatch):
 
 
 def test_only_the_variants_not_stored_are_solved_and_equal_givens_once(disk, monkeypatch):
-    problem = load_problem(LADDER)
+    problem = load_problem(COASTING)
     first, second, third = overrides(problem, 0.9, 1.1, 1.2)
     solve_variants(problem, [first, second])
     asked = []
@@ -151,7 +152,7 @@ def test_only_the_variants_not_stored_are_solved_and_equal_givens_once(disk, mon
 
 
 def test_a_variant_not_read_back_whole_is_solved_again(disk, forget, entry_file):
-    problem = load_problem(LADDER)
+    problem = load_problem(COASTING)
     variant = overrides(problem, 1.1)
     right = solve_variants(problem, variant)[0]
     key = stored.variant_keys(problem, variant)[0]
@@ -183,7 +184,7 @@ def test_edited_dynamics_numbers_are_not_trusted(disk, entry_file, rewrite_entry
 
 
 def test_an_edited_variant_is_not_trusted(disk, entry_file, rewrite_entry):
-    problem = load_problem(LADDER)
+    problem = load_problem(COASTING)
     variant = overrides(problem, 1.1)
     right = solve_variants(problem, variant)[0]
     key = stored.variant_keys(problem, variant)[0]
@@ -193,7 +194,7 @@ def test_an_edited_variant_is_not_trusted(disk, entry_file, rewrite_entry):
 
 def test_variants_of_a_problem_with_the_cache_off_are_not_kept(disk, monkeypatch):
     monkeypatch.setenv("MECHGRADE_NO_CACHE", "1")
-    problem = load_problem(LADDER)
+    problem = load_problem(COASTING)
     solve_variants(problem, overrides(problem, 0.9, 1.1))
     assert not disk.exists()
 
