@@ -29,7 +29,7 @@ from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
                              Integration, KineticFriction, Reaction, Restitution, Spring,
                              StaticFriction, dynamics_of)
-from ..spec.model import Problem
+from ..spec.model import ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
 from .build import Model, build
@@ -37,6 +37,7 @@ from .interpret import Interpreter
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
 from .loads import AppliedLoad, PhysicalBound, check_loads, diagram, physical_bounds
 from .symbols import identically_zero
+from .vibration import REASONS, Modal, NaturalMode, modal_entries
 
 
 @dataclass(frozen=True)
@@ -224,6 +225,7 @@ class DynamicsInterpreter(Interpreter):
         self.reactions_by_name = loads.reactions
         self.where = Location()
         self.before: dict = {}  # the rates just before an impact
+        self.symbolic = False  # whether the objective read is a symbolic one
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -396,20 +398,62 @@ class DynamicsInterpreter(Interpreter):
         self.requirements.append(requirement)
         return K
 
-    def _mode(self, number: Node):
-        """The squared natural frequency of mode ``number`` (1 the lowest) and the stiffness
-        matrix, for one or two coordinates."""
-        K = self.stiffness()
-        n = K.rows
+    def _mode_number(self, number: Node) -> int:
+        k = self.kinematics
+        if k.velocity:
+            raise SolveError("natural modes need coordinates without constraints",
+                             where=self.where)
+        n = len(k.q)
         value = constant_value(number)
         if value is None or value != int(value) or not 1 <= value <= n:
             raise SolveError(f"expected a mode number 1 to {n} (the coordinates), found "
                              f"'{to_text(number)}'", where=self.where)
-        if n == 1:
+        return int(value)
+
+    def _numeric_mode(self, what: Modal, number: int, i: int = 0, j: int = 0):
+        """A mode's value worked out with numbers (:mod:`.vibration`): a symbolic
+        determinant of three or more coordinates does not finish. Its existence (an
+        equilibrium, stable; an oscillating mode for a damping ratio) is recorded."""
+        if self.symbolic:
+            few = "one coordinate" if what == Modal.DAMPING_RATIO else "one or two coordinates"
+            raise SolveError(f"a mode's {what.name.lower().replace('_', ' ')} in symbols is "
+                             f"worked out for {few}; this problem has "
+                             f"{len(self.kinematics.q)}: expected 'kind: scalar' (worked out "
+                             "with numbers), found 'kind: symbolic'", where=self.where)
+        if "modal" not in self._linearised:
+            self._linearised["modal"] = self._modal_entries()
+        n, m, entries = self._linearised["modal"]
+        checks = [Modal.EQUILIBRIUM, Modal.STABLE] + \
+            ([Modal.UNDERDAMPED] if what == Modal.DAMPING_RATIO else [])
+        for check in checks:
+            self.requirements.append((REASONS[check], NaturalMode(check, number, i, j, n, m,
+                                                                  *entries)))
+        return NaturalMode(what, number, i, j, n, m, *entries)
+
+    def _modal_entries(self):
+        k = self.kinematics
+        unknowns = (*k.qdd, *self.reactions)
+        A, b = sp.linear_eq_to_matrix([e.expr for e in self.balances], list(unknowns))
+        if A.rows != A.cols:
+            raise SolveError("natural modes need as many momentum balances as unknown "
+                             "accelerations and reactions", where=self.where)
+        rest = {qd: 0 for qd in k.qd}
+
+        def at_rest(matrix):
+            return matrix.xreplace(rest)
+
+        entries = modal_entries(at_rest(A), at_rest(b),
+                                [at_rest(A.diff(q)) for q in k.q], [at_rest(b.diff(q)) for q in k.q],
+                                [at_rest(A.diff(r)) for r in k.qd], [at_rest(b.diff(r)) for r in k.qd])
+        return len(k.q), A.rows, entries
+
+    def _mode(self, number: Node):
+        """The squared natural frequency of mode ``number`` (1 the lowest) and the stiffness
+        matrix, for one or two coordinates."""
+        value = self._mode_number(number)
+        K = self.stiffness()
+        if K.rows == 1:
             return K[0, 0], K
-        if n > 2:
-            raise SolveError("natural modes are worked out for one or two coordinates; this "
-                             f"problem has {n}", where=self.where)
         # the 2x2 determinant written out: Matrix.det() simplifies its pivots, which takes
         # hours on the entries of a linearised multibody system
         trace, det = K[0, 0] + K[1, 1], K[0, 0] * K[1, 1] - K[0, 1] * K[1, 0]
@@ -417,13 +461,23 @@ class DynamicsInterpreter(Interpreter):
         return _tidy((trace - root) / 2 if value == 1 else (trace + root) / 2), K
 
     def _fn_mode_frequency(self, number: Node):
+        if len(self.kinematics.q) > 2:
+            return self._numeric_mode(Modal.FREQUENCY, self._mode_number(number))
         squared, _ = self._mode(number)
         return sp.sqrt(squared)
 
+    def _fn_mode_damping(self, number: Node):
+        value = self._mode_number(number)
+        if len(self.kinematics.q) == 1:
+            return self._fn_zeta(Name(self.kinematics.coordinates[0]))
+        return self._numeric_mode(Modal.DAMPING_RATIO, value)
+
     def _fn_mode_shape(self, number: Node, coordinate: Name, reference: Name):
-        squared, K = self._mode(number)
         names = list(self.kinematics.coordinates)
         i, j = names.index(coordinate.id), names.index(reference.id)
+        if len(names) > 2 and i != j:
+            return self._numeric_mode(Modal.SHAPE, self._mode_number(number), i, j)
+        squared, K = self._mode(number)
         if K.rows == 1 or i == j:
             return sp.Integer(1)
         if not identically_zero(K[0, 1]):
@@ -648,6 +702,7 @@ def _objective_values(problem: Problem, model: Model, language: DynamicsInterpre
     for obj in problem.objectives:
         language.requirements.clear()
         language.where = obj.where
+        language.symbolic = obj.kind == ObjectiveKind.SYMBOLIC
         objectives.append((obj.id, _objective_value(view, obj.find, obj.frame)))
         mistakes.append((obj.id, tuple(_objective_value(view, m.find, obj.frame)
                                        for m in obj.mistakes)))
