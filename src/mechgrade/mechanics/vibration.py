@@ -39,16 +39,21 @@ class Modal(IntEnum):
     EQUILIBRIUM = 3
     STABLE = 4
     UNDERDAMPED = 5
+    COUPLED = 6
 
 
 REASONS = {
     Modal.EQUILIBRIUM: "the configuration is not an equilibrium (a second rate is not zero at "
-                       "rest there)",
+                       "rest there): give the equilibrium's coordinates and zero rates among "
+                       "the objective's givens",
     Modal.STABLE: "the equilibrium is not stable (a squared natural frequency is negative or "
-                  "not real), so it has no natural frequencies",
+                  "not real), so it has no natural frequencies: linearise about a stable one "
+                  "(its coordinates among the objective's givens)",
     Modal.UNDERDAMPED: "a mode does not oscillate (it is critically damped or overdamped: its "
                        "state-space eigenvalues are real), so its damping ratio is not that of "
                        "a vibration",
+    Modal.COUPLED: "the reference coordinate does not move in this mode (the coordinates are "
+                   "not coupled in it), so the amplitude ratio has no value",
 }
 """Why a mode does not exist, for each residual :func:`modal_value` checks."""
 
@@ -123,7 +128,10 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
     if what == Modal.FREQUENCY:
         return float(np.sqrt(squares.real[order[number - 1]]))
     shape = shapes[:, order[number - 1]].real
-    return float(shape[i] / shape[j])
+    moves = abs(shape[j]) > 1e-9 * np.abs(shape).max()
+    if what == Modal.COUPLED:
+        return 0.0 if moves else 1.0
+    return float(shape[i] / shape[j]) if moves else np.nan
 
 
 class NaturalMode(sp.Function):
