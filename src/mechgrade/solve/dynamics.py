@@ -90,7 +90,7 @@ class KineticsPlan:
 
 
 def _lambdify(symbols, expr):
-    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True)
 
 
 def kinetics_plan(problem: Problem) -> KineticsPlan:

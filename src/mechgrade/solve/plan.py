@@ -127,9 +127,7 @@ class KinematicsPlan:
 def _lambdify(symbols, expr):
     import sympy as sp
 
-    # docstring_limit=0: no docstring printing the whole expression, a third of lambdify's
-    # time on a large one (nothing reads the docstring)
-    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True)
 
 
 class _OnFirstCall:

@@ -65,7 +65,7 @@ def case_two_mass_spring_chain():
     return {"a1": a[0], "a2": a[1], "spring2_on_block1": [k2 * (x2 - x1 - L2), 0.0, 0.0],
             "spring1_energy": k1 * (x1 - L1) ** 2 / 2, "ke2": m2 * v2**2 / 2,
             "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0],
-            **_chain_modes(m1, m2, k1, k2)}
+            **_chain_modes(m1, m2, k1, k2), **_chain_damping(m1, m2, k1, k2, c)}
 
 
 def case_cart_pendulum_spring_modes():
@@ -87,6 +87,19 @@ def case_cart_pendulum_spring_modes():
     w2 = np.linalg.eigvalsh(inverse @ stiff0 @ inverse.T)
     return {"cart_acceleration": xdd, "alpha": thdd, "rod_force": tension,
             "omega_1": np.sqrt(w2[0]), "omega_2": np.sqrt(w2[1])}
+
+
+def _chain_damping(m1, m2, k1, k2, c):
+    # the damper between the blocks is not proportional damping: the quadratic eigenproblem
+    # (l^2 M + l C + K) phi = 0 as the pencil [[C, M], [M, 0]] l z = [[-K, 0], [0, M]] z
+    M = np.diag([m1, m2])
+    K = np.array([[k1 + k2, -k2], [-k2, k2]])
+    C = c * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    Z = np.zeros((2, 2))
+    roots = np.linalg.eigvals(np.linalg.solve(np.block([[C, M], [M, Z]]),
+                                              np.block([[-K, Z], [Z, M]])))
+    upper = sorted((r for r in roots if r.imag > 0), key=abs)
+    return {"zeta_1": -upper[0].real / abs(upper[0]), "zeta_2": -upper[1].real / abs(upper[1])}
 
 
 def _chain_modes(m1, m2, k1, k2):
