@@ -461,6 +461,16 @@ def case_three_cart_chain_vibration():
             "time_cart3_stops": stop * 1e3, "x3_at_1500ms": z(1.5)[2] * 1e3}
 
 
+def case_light_pulley_hanger():
+    mA, mB, g = 8.0, 20.0, 9.81
+    # Lagrange in yA alone (the light pulley carries no energy): yB' = yC' = -yA'/2, so
+    # T = (mA + mB/4) yA'^2/2 and V = mA g yA - mB g yA/2
+    aA = g * (mB / 2 - mA) / (mA + mB / 4)
+    tension = mA * (g + aA)  # block A alone
+    pull = mB * (g - aA / 2)  # block B alone
+    return {"accel_A": aA, "accel_B": -aA / 2, "tension": tension, "hanger_pull": pull}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 

@@ -641,6 +641,24 @@ def three_cart_chain():
                   num(math.pi / 2 * math.sqrt(m[2] / k3) * 1e3, "ms"), known="none")]
 
 
+def light_pulley_hanger():
+    mA, mB, g = 8.0, 20.0, 9.81
+    aA = g * (mB / 2 - mA) / (mA + mB / 4)
+    # the cord's two strands at the pulley counted once: yB' = -yA', T - mA g = mA aA,
+    # T - mB g = -mB aA
+    once = g * (mB - mA) / (mA + mB)
+    return [entry("accel_A", "one strand at the movable pulley: (mB - mA) g/(mA + mB)",
+                  num(once, "m/s^2"), "strands_miscounted"),
+            entry("tension", "tension taken as block A's weight mA g", num(mA * g, "N"),
+                  "tension_as_weight", "reaction_as_weight"),
+            entry("hanger_pull", "the short cord's pull taken as block B's weight mB g",
+                  num(mB * g, "N"), "tension_as_weight", "reaction_as_weight"),
+            entry("accel_B", "block B's acceleration taken equal to block A's (sign kept)",
+                  num(aA, "m/s^2"), known="none"),
+            entry("hanger_pull", "the long cord's tension for the short cord's pull",
+                  num(mA * (g + aA), "N"), known="none")]
+
+
 def damped_block_positions():
     m, k, v0 = 5.0, 2000.0, 1.0  # c = 40 N s/m is what these mistakes leave out
     wn = math.sqrt(k / m)  # the block started from equilibrium: x = v0/wn sin(wn t) undamped
@@ -858,6 +876,7 @@ TABLES = {
     "cart_pendulum_spring_modes": cart_pendulum,
     "damped_block_positions": damped_block_positions,
     "three_cart_chain_vibration": three_cart_chain,
+    "light_pulley_hanger": light_pulley_hanger,
     "ballistic_pendulum_energy_lost": ballistic_pendulum,
     "ball_thrown_with_drag_apex_and_landing": ball_with_drag,
     "yo_yo_unwinding": yo_yo,
