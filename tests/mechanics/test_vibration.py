@@ -62,6 +62,12 @@ def test_an_unstable_equilibrium_has_no_frequencies():
     assert np.isnan(_value(Modal.FREQUENCY, 1, entries))
 
 
+def test_a_mode_that_moves_freely_has_a_zero_frequency_and_the_others_their_own():
+    entries = _entries(np.eye(2), [[0.0, 0.0], [0.0, 9.0]], np.zeros((2, 2)))
+    assert _value(Modal.STABLE, 1, entries) == 0.0
+    assert [_value(Modal.FREQUENCY, r, entries) for r in (1, 2)] == [0.0, 3.0]
+
+
 def test_an_overdamped_mode_has_no_damping_ratio_of_a_vibration():
     entries = _entries(np.eye(2), np.diag([4.0, 9.0]), np.diag([5.0, 0.1]))  # zeta 1.25
     assert _value(Modal.UNDERDAMPED, 1, entries) == 1.0

@@ -109,7 +109,8 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
         return float(np.abs(x[:n]).sum() / (1 + np.abs(K).sum()))
     squares, shapes = np.linalg.eig(K)
     scale = 1e-9 * (np.abs(squares).max() + 1e-300)
-    stable = bool((np.abs(squares.imag) <= scale).all() and (squares.real > scale).all())
+    # a zero squared frequency is a mode that moves freely (a rigid-body mode), not unstable
+    stable = bool((np.abs(squares.imag) <= scale).all() and (squares.real >= -scale).all())
     if what == Modal.STABLE:
         return 0.0 if stable else 1.0
     if what in (Modal.DAMPING_RATIO, Modal.UNDERDAMPED):
@@ -126,7 +127,7 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
         return np.nan
     order = np.argsort(squares.real)
     if what == Modal.FREQUENCY:
-        return float(np.sqrt(squares.real[order[number - 1]]))
+        return float(np.sqrt(max(squares.real[order[number - 1]], 0.0)))
     shape = shapes[:, order[number - 1]].real
     moves = abs(shape[j]) > 1e-9 * np.abs(shape).max()
     if what == Modal.COUPLED:
