@@ -647,16 +647,19 @@ def light_pulley_hanger():
     # the cord's two strands at the pulley counted once: yB' = -yA', T - mA g = mA aA,
     # T - mB g = -mB aA
     once = g * (mB - mA) / (mA + mB)
+    # the strands' family reads a cord's several ends on one body; here they end on the
+    # massless pulley, whose balance is a constraint: not named yet
     return [entry("accel_A", "one strand at the movable pulley: (mB - mA) g/(mA + mB)",
-                  num(once, "m/s^2"), "strands_miscounted"),
+                  num(once, "m/s^2"), "strands_miscounted", known="none"),
             entry("tension", "tension taken as block A's weight mA g", num(mA * g, "N"),
                   "tension_as_weight", "reaction_as_weight"),
             entry("hanger_pull", "the short cord's pull taken as block B's weight mB g",
                   num(mB * g, "N"), "tension_as_weight", "reaction_as_weight"),
             entry("accel_B", "block B's acceleration taken equal to block A's (sign kept)",
                   num(aA, "m/s^2"), known="none"),
+            # S = 2 T exactly: only the factor is said
             entry("hanger_pull", "the long cord's tension for the short cord's pull",
-                  num(mA * (g + aA), "N"), known="none")]
+                  num(mA * (g + aA), "N"), known="generic", generic=("factor_2",))]
 
 
 def damped_block_positions():
