@@ -588,6 +588,6 @@ def test_natural_modes_in_symbols_too_large_to_finish_are_refused(monkeypatch):
         "find: mode_frequency(1)\n    kind: symbolic\n    symbols: [k1, k2, m1, m2]\n").replace(
         "    expect: {value: 5.0}\n", "")
     assert error_of(body) == (
-        "p.yaml:94:5: objectives[7]: natural modes in symbols are out of reach for this model "
+        "p.yaml:95:5: objectives[7]: natural modes in symbols are out of reach for this model "
         "(an entry of its stiffness matrix has 34 operations, more than 0): expected "
         "'kind: scalar' (worked out with numbers), found 'kind: symbolic'")
