@@ -137,13 +137,29 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
 
 class NaturalMode(sp.Function):
     """:func:`modal_value` as a sympy function of the balances' entries: the numpy printer
-    (and so ``lambdify``) calls :func:`modal_value`, numbers evaluate at once."""
+    (and so ``lambdify``) calls :func:`modal_value`, numbers evaluate at once.
+
+    >>> print(NaturalMode(Modal.DAMPING_RATIO, 2, 0, 0, 1, 1, sp.Symbol("k"), 0, 0, 0, 0, 0))
+    [the damping ratio of mode 2, from the eigenvalues of the linearised motion, with numbers]
+    """
 
     @classmethod
     def eval(cls, *args):
         if all(a.is_Number for a in args):
             return sp.Float(float(modal_value(*(float(a) for a in args))))
         return None
+
+    def _sympystr(self, printer):
+        """Shown in the write-up as what it is, not as its hundreds of entries."""
+        what, number, i, j = (int(a) for a in self.args[:4])
+        said = {Modal.FREQUENCY: f"the natural frequency of mode {number}",
+                Modal.DAMPING_RATIO: f"the damping ratio of mode {number}",
+                Modal.SHAPE: f"the ratio of coordinate {i + 1} to coordinate {j + 1} in mode "
+                             f"{number}"}.get(Modal(what), f"{Modal(what).name.lower()} of "
+                                                          f"mode {number}")
+        return f"[{said}, from the eigenvalues of the linearised motion, with numbers]"
+
+    _latex = _sympystr
 
     def _numpycode(self, printer):
         function = printer._module_format("mechgrade.mechanics.vibration.modal_value")
