@@ -149,7 +149,7 @@ class NaturalMode(sp.Function):
             return sp.Float(float(modal_value(*(float(a) for a in args))))
         return None
 
-    def _sympystr(self, printer):
+    def _sympystr(self, _printer):
         """Shown in the write-up as what it is, not as its hundreds of entries."""
         what, number, i, j = (int(a) for a in self.args[:4])
         said = {Modal.FREQUENCY: f"the natural frequency of mode {number}",
