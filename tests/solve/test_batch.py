@@ -163,7 +163,8 @@ def test_a_variant_whose_givens_conflict_fails_as_when_solved_alone():
 # ---------------------------------------------------------------------------- analyses
 
 
-INTEGRATED_ALONE = ("ball_thrown_with_drag_apex_and_landing", "damped_block_positions")
+INTEGRATED_ALONE = ("ball_thrown_with_drag_apex_and_landing", "damped_block_positions",
+                    "three_cart_chain_vibration")
 """Integrated problems with objectives asked before the event (an objective's own time,
 coordinate or rate): the integrator over columns reads the event only, each variant is
 integrated alone."""

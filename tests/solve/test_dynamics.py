@@ -525,3 +525,69 @@ def test_friction_whose_slip_ends_at_the_event_is_its_limit_just_before(mu, v0):
     assert not solution.failures
     force = solution.result("friction_on_block").value
     assert np.allclose(force, (-mu * 2 * 9.81, 0, 0), rtol=1e-7, atol=1e-9)
+
+
+THREE_CARTS = (ROOT / "tests" / "data" / "vibration" / "three_carts_at_rest.yaml").read_text()
+
+
+def _three_carts_with(objective: str) -> str:
+    return THREE_CARTS + objective
+
+
+@pytest.mark.parametrize("objective,message", [
+    ("  - {id: w, prompt: w, find: mode_frequency(1), kind: symbolic, unit: rad/s,\n"
+     "     symbols: [k1, m1]}\n",
+     "p.yaml:67:5: objectives[3]: natural modes in symbols are worked out for one or two "
+     "coordinates; this problem has 3: expected 'kind: scalar' (worked out with numbers), "
+     "found 'kind: symbolic'"),
+    ("  - {id: z, prompt: z, find: mode_damping(1), kind: symbolic, unit: '1',\n"
+     "     symbols: [c, k1, m1]}\n",
+     "p.yaml:67:5: objectives[3]: a mode's damping ratio in symbols is worked out for one "
+     "coordinate; this problem has 3: expected 'kind: scalar' (worked out with numbers), "
+     "found 'kind: symbolic'"),
+    ("  - {id: w, prompt: w, find: mode_frequency(4), kind: scalar, unit: rad/s}\n",
+     "p.yaml:67:5: objectives[3]: expected a mode number 1 to 3 (the coordinates), found '4'"),
+    ("  - {id: r, prompt: r, find: 'mode_shape(1.5, x3, x1)', kind: scalar, unit: '1'}\n",
+     "p.yaml:67:5: objectives[3]: expected a mode number 1 to 3 (the coordinates), found "
+     "'1.5'"),
+], ids=["symbolic-frequency", "symbolic-damping", "mode-beyond", "mode-not-whole"])
+def test_natural_modes_of_three_coordinates_refuse_what_they_cannot_give(objective, message):
+    assert error_of(_three_carts_with(objective)) == message
+
+
+@pytest.mark.slow
+def test_natural_modes_of_three_coordinates_exist_only_about_an_equilibrium_and_as_vibrations():
+    """Worked out with numbers: the three-cart chain's values are those of
+    problems/three_cart_chain_vibration.yaml (independently derived), and a state away from
+    equilibrium or an overdamped mode is refused where the objective is."""
+    body = _three_carts_with(
+        "  - {id: away, prompt: a, find: mode_frequency(1), kind: scalar, unit: rad/s,\n"
+        "     givens: {x1: 0.1 m}}\n"
+        "  - {id: overdamped, prompt: o, find: mode_damping(1), kind: scalar, unit: '1',\n"
+        "     givens: {c: 2000 N*s/m}}\n")
+    solution = solve(load_problem_text(body, "p.yaml"))
+    assert [round(solution.result(i).value, 6) for i in ("omega_3", "zeta_1")] == \
+        [20.510677, 0.056460]
+    errors = {f.id: str(f.error) for f in solution.failures}
+    assert errors == {
+        "away": "p.yaml:67:5: objectives[3]: objective 'away' does not exist at this instant: "
+                "the configuration is not an equilibrium (a second rate is not zero at rest "
+                "there): give the equilibrium's coordinates and zero rates among the "
+                "objective's givens",
+        "overdamped": "p.yaml:69:5: objectives[4]: objective 'overdamped' does not exist at "
+                      "this instant: a mode does not oscillate (it is critically damped or "
+                      "overdamped: its state-space eigenvalues are real), so its damping ratio "
+                      "is not that of a vibration"}
+
+
+def test_natural_modes_in_symbols_too_large_to_finish_are_refused(monkeypatch):
+    from mechgrade.mechanics import dynamics
+    monkeypatch.setattr(dynamics, "SYMBOLIC_MODE_OPS", 0)
+    body = text("two_mass_spring_chain").replace(
+        "find: mode_frequency(1)\n    kind: scalar\n",
+        "find: mode_frequency(1)\n    kind: symbolic\n    symbols: [k1, k2, m1, m2]\n").replace(
+        "    expect: {value: 5.0}\n", "")
+    assert error_of(body) == (
+        "p.yaml:95:5: objectives[7]: natural modes in symbols are out of reach for this model "
+        "(an entry of its stiffness matrix has 34 operations, more than 0): expected "
+        "'kind: scalar' (worked out with numbers), found 'kind: symbolic'")

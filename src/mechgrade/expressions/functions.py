@@ -278,6 +278,9 @@ _OBJECTIVE = (
     ObjectiveFunction("mode_frequency", (_S,), _S, _fixed("rad/s"),
                       "mode_frequency(n): the n-th natural frequency (1 the lowest) of the "
                       "motion linearised about the equilibrium"),
+    ObjectiveFunction("mode_damping", (_S,), _S, _pure_number,
+                      "mode_damping(n): the damping ratio of the n-th mode (1 the lowest), "
+                      "from the eigenvalues of the linearised motion's state-space matrix"),
     ObjectiveFunction("mode_shape", (_S, _Q, _Q), _S, lambda dims: dims[1] / dims[2],
                       "mode_shape(n, q, r): the amplitude ratio of q to r in mode n"),
     ObjectiveFunction("zeta", (_Q,), _S, _pure_number,

@@ -25,7 +25,8 @@ from ..spec.model import Problem
 from ..spec.variant_model import Draw
 from .variants import statement
 
-_VIBRATION_CALLS = frozenset({"omega_n", "zeta", "mode_frequency", "mode_shape"})
+_VIBRATION_CALLS = frozenset({"omega_n", "zeta", "mode_frequency", "mode_damping",
+                              "mode_shape"})
 
 
 class Analysis(Enum):

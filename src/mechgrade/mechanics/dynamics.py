@@ -29,7 +29,7 @@ from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
                              Integration, KineticFriction, Reaction, Restitution, Spring,
                              StaticFriction, dynamics_of)
-from ..spec.model import Problem
+from ..spec.model import ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
 from .build import Model, build
@@ -37,6 +37,7 @@ from .interpret import Interpreter
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
 from .loads import AppliedLoad, PhysicalBound, check_loads, diagram, physical_bounds
 from .symbols import identically_zero
+from .vibration import REASONS, Modal, NaturalMode, modal_entries
 
 
 @dataclass(frozen=True)
@@ -224,6 +225,7 @@ class DynamicsInterpreter(Interpreter):
         self.reactions_by_name = loads.reactions
         self.where = Location()
         self.before: dict = {}  # the rates just before an impact
+        self.symbolic = False  # whether the objective read is a symbolic one
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -388,28 +390,86 @@ class DynamicsInterpreter(Interpreter):
         for j, q in enumerate(k.q):
             dx = A.LUsolve(b.diff(q) - A.diff(q) * x)
             for i in range(n):
-                K[i, j] = _without_signs(-dx[i].xreplace(rest))
+                K[i, j] = self._within_reach(-dx[i].xreplace(rest))
         off = sum((sp.Abs(x[i].xreplace(rest)) for i in range(n)), sp.Integer(0))
-        requirement = ("the configuration is not an equilibrium (a second rate is not zero at "
-                       "rest there)", off / (1 + sum((sp.Abs(e) for e in K), sp.Integer(0))))
+        requirement = (REASONS[Modal.EQUILIBRIUM],
+                       off / (1 + sum((sp.Abs(e) for e in K), sp.Integer(0))))
         self._linearised["*"] = (K, requirement)
         self.requirements.append(requirement)
         return K
 
-    def _mode(self, number: Node):
-        """The squared natural frequency of mode ``number`` (1 the lowest) and the stiffness
-        matrix, for one or two coordinates."""
-        K = self.stiffness()
-        n = K.rows
+    def _within_reach(self, entry):
+        """A stiffness entry with its signs cancelled (:func:`_without_signs`), refused when it
+        is too large for that (and the frequencies built from it) to finish in seconds."""
+        size = sp.count_ops(entry)
+        if size > SYMBOLIC_MODE_OPS:
+            raise SolveError(f"natural modes in symbols are out of reach for this model (an "
+                             f"entry of its stiffness matrix has {size} operations, more than "
+                             f"{SYMBOLIC_MODE_OPS}): expected 'kind: scalar' (worked out with "
+                             "numbers), found 'kind: symbolic'", where=self.where)
+        return _without_signs(entry)
+
+    def _mode_number(self, number: Node) -> int:
+        k = self.kinematics
+        if k.velocity:
+            raise SolveError("natural modes need coordinates without constraints",
+                             where=self.where)
+        n = len(k.q)
         value = constant_value(number)
         if value is None or value != int(value) or not 1 <= value <= n:
             raise SolveError(f"expected a mode number 1 to {n} (the coordinates), found "
                              f"'{to_text(number)}'", where=self.where)
-        if n == 1:
+        return int(value)
+
+    def _numeric_mode(self, what: Modal, number: int, i: int = 0, j: int = 0):
+        """A mode's value worked out with numbers (:mod:`.vibration`), which a symbolic
+        determinant of a multibody system may take hours to give. Its existence (an
+        equilibrium, stable; an oscillating mode for a damping ratio; a reference coordinate
+        that moves in it for a shape) is recorded."""
+        if self.symbolic:  # only a damping ratio of two or more coordinates comes here
+            raise SolveError(f"a mode's damping ratio in symbols is worked out for one "
+                             f"coordinate; this problem has {len(self.kinematics.q)}: expected "
+                             "'kind: scalar' (worked out with numbers), found 'kind: symbolic'",
+                             where=self.where)
+        if "modal" not in self._linearised:
+            self._linearised["modal"] = self._modal_entries()
+        n, m, entries = self._linearised["modal"]
+        checks = [Modal.EQUILIBRIUM, Modal.STABLE] + \
+            ([Modal.UNDERDAMPED] if what == Modal.DAMPING_RATIO else []) + \
+            ([Modal.COUPLED] if what == Modal.SHAPE else [])
+        for check in checks:
+            self.requirements.append((REASONS[check], NaturalMode(check, number, i, j, n, m,
+                                                                  *entries)))
+        return NaturalMode(what, number, i, j, n, m, *entries)
+
+    def _modal_entries(self):
+        k = self.kinematics
+        unknowns = (*k.qdd, *self.reactions)
+        A, b = sp.linear_eq_to_matrix([e.expr for e in self.balances], list(unknowns))
+        if A.rows != A.cols:
+            raise SolveError("natural modes need as many momentum balances as unknown "
+                             "accelerations and reactions", where=self.where)
+        rest = {qd: 0 for qd in k.qd}
+
+        def at_rest(matrix):
+            return matrix.xreplace(rest)
+
+        entries = modal_entries(at_rest(A), at_rest(b),
+                                [at_rest(A.diff(q)) for q in k.q], [at_rest(b.diff(q)) for q in k.q],
+                                [at_rest(A.diff(r)) for r in k.qd], [at_rest(b.diff(r)) for r in k.qd])
+        return len(k.q), A.rows, entries
+
+    def _mode(self, value: int):
+        """The squared natural frequency of mode ``value`` (1 the lowest) and the stiffness
+        matrix in symbols, for one or two coordinates."""
+        if len(self.kinematics.q) > 2:
+            raise SolveError(f"natural modes in symbols are worked out for one or two "
+                             f"coordinates; this problem has {len(self.kinematics.q)}: "
+                             "expected 'kind: scalar' (worked out with numbers), found "
+                             "'kind: symbolic'", where=self.where)
+        K = self.stiffness()
+        if K.rows == 1:
             return K[0, 0], K
-        if n > 2:
-            raise SolveError("natural modes are worked out for one or two coordinates; this "
-                             f"problem has {n}", where=self.where)
         # the 2x2 determinant written out: Matrix.det() simplifies its pivots, which takes
         # hours on the entries of a linearised multibody system
         trace, det = K[0, 0] + K[1, 1], K[0, 0] * K[1, 1] - K[0, 1] * K[1, 0]
@@ -417,15 +477,27 @@ class DynamicsInterpreter(Interpreter):
         return _tidy((trace - root) / 2 if value == 1 else (trace + root) / 2), K
 
     def _fn_mode_frequency(self, number: Node):
-        squared, _ = self._mode(number)
+        value = self._mode_number(number)
+        if not self.symbolic:
+            return self._numeric_mode(Modal.FREQUENCY, value)
+        squared, _ = self._mode(value)
         return sp.sqrt(squared)
 
+    def _fn_mode_damping(self, number: Node):
+        value = self._mode_number(number)
+        if self.symbolic and len(self.kinematics.q) == 1:
+            return self._fn_zeta(Name(self.kinematics.coordinates[0]))
+        return self._numeric_mode(Modal.DAMPING_RATIO, value)
+
     def _fn_mode_shape(self, number: Node, coordinate: Name, reference: Name):
-        squared, K = self._mode(number)
+        value = self._mode_number(number)
         names = list(self.kinematics.coordinates)
         i, j = names.index(coordinate.id), names.index(reference.id)
-        if K.rows == 1 or i == j:
+        if i == j:
             return sp.Integer(1)
+        if not self.symbolic:
+            return self._numeric_mode(Modal.SHAPE, value, i, j)
+        squared, K = self._mode(value)
         if not identically_zero(K[0, 1]):
             shape = (K[0, 1], squared - K[0, 0])
         elif not identically_zero(K[1, 0]):
@@ -648,6 +720,7 @@ def _objective_values(problem: Problem, model: Model, language: DynamicsInterpre
     for obj in problem.objectives:
         language.requirements.clear()
         language.where = obj.where
+        language.symbolic = obj.kind == ObjectiveKind.SYMBOLIC
         objectives.append((obj.id, _objective_value(view, obj.find, obj.frame)))
         mistakes.append((obj.id, tuple(_objective_value(view, m.find, obj.frame)
                                        for m in obj.mistakes)))
@@ -748,6 +821,12 @@ def _body_lines(body: Body, parts, total: Dyadic, model: Model) -> list[str]:
     matrix = sp.simplify(model.plain(total.to_matrix(frame))) if total != Dyadic(0) else 0
     lines.append(f"  I_{body.centre} (in {body.frame} axes) = {_matrix_text(matrix)}")
     return lines
+
+
+SYMBOLIC_MODE_OPS = 2000
+"""The most operations a stiffness entry may have for natural modes in symbols (the pendulum
+hung from a cart on a spring: 323 at most): sympy's cancel, and the frequencies' square roots
+of sums of products of such entries, grow past what finishes in seconds beyond it."""
 
 
 def _without_signs(expr):

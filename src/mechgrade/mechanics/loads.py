@@ -213,6 +213,7 @@ class PhysicalBound:
     unit: str = ""
     where: Location = Location()
     direction: str = ""  # a reaction's direction as written
+    joins: str = ""  # the springs and dampers a body joins (a mass bound's junction)
 
     def holds(self, value: float) -> bool:
         """Whether ``value`` keeps the bound (with room for rounding).
@@ -235,9 +236,15 @@ class PhysicalBound:
         """
         shown = f"{value:.4g}"
         if self.what == Bounded.MASS:
-            return (f"body '{self.name}' has a mass of {shown} {self.unit} at this instant; "
-                    "expected a positive mass (a massless link is no body: its pull is a "
-                    "reaction, a string's tension or a pin's force)")
+            text = (f"body '{self.name}' has a mass of {shown} {self.unit} at this instant; "
+                    "expected a positive mass")
+            if self.joins:
+                return (f"{text}: {self.name} joins {self.joins}, a massless junction whose "
+                        "balance the solver does not solve for its position; replace springs "
+                        "in series by one spring (k1*k2/(k1 + k2) for two), or give the "
+                        "junction a small mass if the book neglects it")
+            return (f"{text} (a massless link is no body: its pull is a reaction, a string's "
+                    "tension or a pin's force)")
         if self.what == Bounded.FRICTION_COEFFICIENT:
             return (f"friction '{self.name}': mu = {shown}; expected a coefficient of friction "
                     ">= 0 (the force opposes the slip by its direction, never by the sign of "
@@ -287,9 +294,17 @@ def physical_bounds(problem: Problem, model: Model, reactions: dict, impact: boo
         mass = sum((plain(lang.scalar(p.mass)) for p in b.parts), sp.Integer(0))
         # a body held still (a brake lever) may be massless: its balances are a statics
         # member's; a moving one needs a mass its motion is solved from
+        # a body where springs or dampers meet and nothing else acts: a junction
+        points = {p.at for p in b.parts}
+        ends = sorted(x.name for x in _ends(d) if points & set(x.between))
+        # a body written massless (mass: 0) is one by declaration: its balances are
+        # constraints (sum of forces = 0), which the solver solves with the others when they
+        # determine the motion (a light pulley between cords), else names what they leave open
         out.append(PhysicalBound(Bounded.MASS, b.name, mass, 0.0, None,
-                                 strict=not _held_still(model, b), unit="kg",
-                                 where=_value_where(problem, b.parts[0].mass, b.where)))
+                                 strict=not (_held_still(model, b) or identically_zero(mass)),
+                                 unit="kg",
+                                 where=_value_where(problem, b.parts[0].mass, b.where),
+                                 joins=", ".join(ends) if len(ends) > 1 else ""))
     for f in d.friction:
         out.append(PhysicalBound(Bounded.FRICTION_COEFFICIENT, f.name, plain(lang.scalar(f.mu)),
                                  0.0, None, point=f.at, where=_value_where(problem, f.mu, f.where)))
@@ -402,7 +417,11 @@ def _check_massless(problem: Problem, model: Model, rates, balances, constraints
         N = model.inertial
         moved = [p.name for p in problem.points
                  if any(c.has(q) for c in model.positions[p.name].to_matrix(N))]
-        centres = {part.at for b in d.bodies for part in b.parts}
+        lang = model.language
+        # a part of no mass (mass: 0) moves no mass: its point is a junction as much as a
+        # point no body is centred at
+        centres = {part.at for b in d.bodies for part in b.parts
+                   if not identically_zero(model.plain(lang.scalar(part.mass)))}
         ends = sorted({x.name for x in _ends(d) for p in x.between if p in moved})
         turned = [f.name for f in problem.frames if f.name in model.frames and any(
             c.has(q) for c in model.frames[f.name].ang_vel_in(N).to_matrix(N))]
@@ -411,7 +430,9 @@ def _check_massless(problem: Problem, model: Model, rates, balances, constraints
         junctions = [p for p in moved if p not in centres]
         if junctions and ends:
             cause.append(f"{', '.join(junctions)} (where {', '.join(ends)} end) moves with "
-                         f"{coordinate.name} but is no body's mass centre: a massless junction; "
+                         f"{coordinate.name} but no mass is centred there: a massless "
+                         "junction, whose balance (sum of forces = 0) the solver does not "
+                         "solve for its position; "
                          "replace springs in series by one spring (k1*k2/(k1 + k2) for two), "
                          "or give the junction a body with its mass (a small one if the book "
                          "neglects it)")

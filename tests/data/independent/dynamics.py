@@ -65,7 +65,7 @@ def case_two_mass_spring_chain():
     return {"a1": a[0], "a2": a[1], "spring2_on_block1": [k2 * (x2 - x1 - L2), 0.0, 0.0],
             "spring1_energy": k1 * (x1 - L1) ** 2 / 2, "ke2": m2 * v2**2 / 2,
             "damper_power": -c * (v2 - v1) ** 2, "momentum": [m1 * v1, 0.0, 0.0],
-            **_chain_modes(m1, m2, k1, k2)}
+            **_chain_modes(m1, m2, k1, k2), **_chain_damping(m1, m2, k1, k2, c)}
 
 
 def case_cart_pendulum_spring_modes():
@@ -87,6 +87,19 @@ def case_cart_pendulum_spring_modes():
     w2 = np.linalg.eigvalsh(inverse @ stiff0 @ inverse.T)
     return {"cart_acceleration": xdd, "alpha": thdd, "rod_force": tension,
             "omega_1": np.sqrt(w2[0]), "omega_2": np.sqrt(w2[1])}
+
+
+def _chain_damping(m1, m2, k1, k2, c):
+    # the damper between the blocks is not proportional damping: the quadratic eigenproblem
+    # (l^2 M + l C + K) phi = 0 as the pencil [[C, M], [M, 0]] l z = [[-K, 0], [0, M]] z
+    M = np.diag([m1, m2])
+    K = np.array([[k1 + k2, -k2], [-k2, k2]])
+    C = c * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    Z = np.zeros((2, 2))
+    roots = np.linalg.eigvals(np.linalg.solve(np.block([[C, M], [M, Z]]),
+                                              np.block([[-K, Z], [Z, M]])))
+    upper = sorted((r for r in roots if r.imag > 0), key=abs)
+    return {"zeta_1": -upper[0].real / abs(upper[0]), "zeta_2": -upper[1].real / abs(upper[1])}
 
 
 def _chain_modes(m1, m2, k1, k2):
@@ -407,6 +420,55 @@ def case_ball_thrown_with_drag_apex_and_landing():
     return {"time_of_flight": landing, "range": x(landing),
             "landing_speed": float(np.hypot(*velocity(landing))), "apex_time": apex,
             "apex_height": y(apex), "position_at_1s": [x(1.0), y(1.0), 0.0]}
+
+
+def case_three_cart_chain_vibration():
+    m1, m2, m3, k1, k2, k3, c, v0 = 3.0, 2.0, 1.0, 400.0, 300.0, 200.0, 12.0, 0.6
+    # Lagrange with V = k1 x1^2/2 + k2 (x2-x1)^2/2 + k3 (x3-x2)^2/2 and Rayleigh's D = c x1'^2/2
+    # (displacements from equilibrium, so every spring's free length drops out)
+    M = np.diag([m1, m2, m3])
+    K = np.array([[k1 + k2, -k2, 0.0], [-k2, k2 + k3, -k3], [0.0, -k3, k3]])
+    C = np.diag([c, 0.0, 0.0])
+    # undamped modes: the symmetric eigenproblem through M^(-1/2) K M^(-1/2)
+    root = np.diag(1 / np.sqrt(np.diag(M)))
+    w2, u = np.linalg.eigh(root @ K @ root)
+    shapes = root @ u
+    # damping that is not proportional: the quadratic eigenproblem (l^2 M + l C + K) phi = 0
+    # as the symmetric pencil [[C, M], [M, 0]] l z = [[-K, 0], [0, M]] z, z = (phi, l phi)
+    Z = np.zeros((3, 3))
+    pencil = np.linalg.solve(np.block([[C, M], [M, Z]]), np.block([[-K, Z], [Z, M]]))
+    roots = np.linalg.eigvals(pencil)
+    upper = sorted((r for r in roots if r.imag > 0), key=abs)
+    zetas = [-r.real / abs(r) for r in upper]
+    # the free response from rest at equilibrium with x3' = v0: z(t) = V exp(L t) V^-1 z0 for
+    # z' = [[0, I], [-M^-1 K, -M^-1 C]] z, in the eigenvectors of that first-order system
+    system = np.block([[Z, np.eye(3)], [-np.linalg.solve(M, K), -np.linalg.solve(M, C)]])
+    lam, V = np.linalg.eig(system)
+    coefficients = np.linalg.solve(V, np.array([0, 0, 0, 0, 0, v0], dtype=complex))
+
+    def z(t):
+        return (V @ (np.exp(lam * t) * coefficients)).real
+
+    # cart 3 first stops: its velocity z[5] changes sign, bracketed on a fine grid
+    grid = np.linspace(0.0, 1.0, 2001)
+    first = next(i for i in range(1, len(grid)) if z(grid[i])[5] <= 0)
+    stop = _bisect(lambda t: z(t)[5], grid[first - 1], grid[first])
+    return {"omega_1": np.sqrt(w2[0]), "omega_2": np.sqrt(w2[1]), "omega_3": np.sqrt(w2[2]),
+            "zeta_1": zetas[0], "zeta_2": zetas[1], "zeta_3": zetas[2],
+            "mode_1_ratio": shapes[2, 0] / shapes[0, 0],
+            "x1_at_250ms": z(0.25)[0] * 1e3, "x2_at_250ms": z(0.25)[1] * 1e3,
+            "x3_at_250ms": z(0.25)[2] * 1e3, "v1_at_250ms": z(0.25)[3],
+            "time_cart3_stops": stop * 1e3, "x3_at_1500ms": z(1.5)[2] * 1e3}
+
+
+def case_light_pulley_hanger():
+    mA, mB, g = 8.0, 20.0, 9.81
+    # Lagrange in yA alone (the light pulley carries no energy): yB' = yC' = -yA'/2, so
+    # T = (mA + mB/4) yA'^2/2 and V = mA g yA - mB g yA/2
+    aA = g * (mB / 2 - mA) / (mA + mB / 4)
+    tension = mA * (g + aA)  # block A alone
+    pull = mB * (g - aA / 2)  # block B alone
+    return {"accel_A": aA, "accel_B": -aA / 2, "tension": tension, "hanger_pull": pull}
 
 
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())

@@ -601,6 +601,67 @@ def cart_pendulum():
                   num(math.sqrt(g / L), "rad/s"), known="none")]
 
 
+def three_cart_chain():
+    m = np.array([3.0, 2.0, 1.0])
+    k1, k2, k3, c, v0 = 400.0, 300.0, 200.0, 12.0, 0.6
+    K = np.array([[k1 + k2, -k2, 0.0], [-k2, k2 + k3, -k3], [0.0, -k3, k3]])
+    root = np.diag(1 / np.sqrt(m))
+    w2, u = np.linalg.eigh(root @ K @ root)
+    w, shapes = np.sqrt(w2), root @ u
+    # the damper ignored: modal superposition of the undamped modes from x = 0, x3' = v0
+    # (modal masses 1 in the mass-normalised shapes: q_r' (0) = shapes[:, r] . M x'(0))
+    rates = shapes.T @ (m * np.array([0.0, 0.0, v0]))
+
+    def undamped(t):
+        return shapes @ (rates / w * np.sin(w * t)), shapes @ (rates * np.cos(w * t))
+
+    # the damper read as proportional: zeta_r = phi_r^T C phi_r / (2 w_r) for mass-normalised
+    # shapes (only cart 1's damper: c phi_1r^2)
+    modal_zeta = c * shapes[0] ** 2 / (2 * w)
+    return [entry("omega_1", "frequency in Hz (w/2 pi) given in rad/s",
+                  num(w[0] / (2 * math.pi), "rad/s"), "rev_rad"),
+            entry("omega_1", "cart 1 alone on spring 1: sqrt(k1/m1)",
+                  num(math.sqrt(k1 / m[0]), "rad/s"), known="none"),
+            entry("omega_3", "the masses and stiffnesses summed: sqrt((k1+k2+k3)/(m1+m2+m3))",
+                  num(math.sqrt((k1 + k2 + k3) / m.sum()), "rad/s"), known="none"),
+            entry("zeta_1", "cart 1 alone with the damper: c/(2 sqrt(k1 m1))",
+                  num(c / (2 * math.sqrt(k1 * m[0])), "1"), known="none"),
+            entry("zeta_2", "the damping taken as proportional: phi^T C phi/(2 w) of the "
+                  "undamped mode", num(modal_zeta[1], "1"), known="none"),
+            entry("mode_1_ratio", "the ratio turned over: cart 1's amplitude over cart 3's",
+                  num(shapes[0, 0] / shapes[2, 0], "1"), known="none"),
+            # cart 3 is two springs from the damper: 0.5 % off at 0.25 s
+            entry("x3_at_250ms", "damping ignored: undamped modal superposition",
+                  num(undamped(0.25)[0][2] * 1e3, "mm"), "damping_omitted", inside=True),
+            entry("x1_at_250ms", "damping ignored: undamped modal superposition",
+                  num(undamped(0.25)[0][0] * 1e3, "mm"), "damping_omitted"),
+            entry("v1_at_250ms", "damping ignored: undamped modal superposition",
+                  num(undamped(0.25)[1][0], "m/s"), "damping_omitted"),
+            entry("time_cart3_stops", "cart 3 alone on spring 3: a quarter of 2 pi sqrt(m3/k3)",
+                  num(math.pi / 2 * math.sqrt(m[2] / k3) * 1e3, "ms"), known="none")]
+
+
+def light_pulley_hanger():
+    mA, mB, g = 8.0, 20.0, 9.81
+    aA = g * (mB / 2 - mA) / (mA + mB / 4)
+    # the cord's two strands at the pulley counted once: yB' = -yA', T - mA g = mA aA,
+    # T - mB g = -mB aA
+    once = g * (mB - mA) / (mA + mB)
+    # the strands' family reads a cord's several ends on one body; here they end on the
+    # massless pulley, whose balance is a constraint: not named yet
+    return [entry("accel_A", "one strand at the movable pulley: (mB - mA) g/(mA + mB)",
+                  num(once, "m/s^2"), "strands_miscounted", known="none"),
+            entry("tension", "tension taken as block A's weight mA g", num(mA * g, "N"),
+                  "tension_as_weight", "reaction_as_weight"),
+            entry("hanger_pull", "the short cord's pull taken as block B's weight mB g",
+                  num(mB * g, "N"), "tension_as_weight", "reaction_as_weight"),
+            entry("accel_B", "block B's acceleration taken equal to block A's (sign kept)",
+                  num(aA, "m/s^2"), known="none"),
+            # S = 2 T exactly: only the factor is said
+            entry("hanger_pull", "the long cord's tension for the short cord's pull",
+                  num(mA * (g + aA), "N"), known="generic", generic=("factor_2",))]
+
+
 def damped_block_positions():
     m, k, v0 = 5.0, 2000.0, 1.0  # c = 40 N s/m is what these mistakes leave out
     wn = math.sqrt(k / m)  # the block started from equilibrium: x = v0/wn sin(wn t) undamped
@@ -817,6 +878,8 @@ TABLES = {
     "two_mass_spring_chain": spring_chain,
     "cart_pendulum_spring_modes": cart_pendulum,
     "damped_block_positions": damped_block_positions,
+    "three_cart_chain_vibration": three_cart_chain,
+    "light_pulley_hanger": light_pulley_hanger,
     "ballistic_pendulum_energy_lost": ballistic_pendulum,
     "ball_thrown_with_drag_apex_and_landing": ball_with_drag,
     "yo_yo_unwinding": yo_yo,

@@ -1,0 +1,106 @@
+"""Natural modes of n coordinates worked out with numbers: frequencies, damping ratios and
+shapes of hand-written mass, stiffness and damping matrices, and the modes that do not exist
+(an unstable equilibrium, an overdamped mode, a coordinate that does not move)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from mechgrade.mechanics.vibration import Modal, NaturalMode, modal_entries, modal_value
+
+
+def _entries(M, K, C, residual=None):
+    """The balances M q'' = -K q - C q' + residual at rest, as :func:`modal_entries` lays
+    them out (no reactions: A = M)."""
+    n = len(M)
+    zero = np.zeros((n, n))
+    b = np.zeros(n) if residual is None else np.asarray(residual, float)
+    return modal_entries(M, b, [zero] * n, [-np.asarray(K, float)[:, j] for j in range(n)],
+                         [zero] * n, [-np.asarray(C, float)[:, j] for j in range(n)])
+
+
+M3 = np.diag([3.0, 2.0, 1.0])
+K3 = np.array([[700.0, -300.0, 0.0], [-300.0, 500.0, -200.0], [0.0, -200.0, 200.0]])
+
+
+def _value(what, number, entries, i=0, j=0):
+    n = next(n for n in range(1, 9) if (2 * n + 1) * (n * n + n) == len(entries))
+    return float(modal_value(what, number, i, j, n, n, *entries))
+
+
+def test_the_frequencies_of_a_chain_are_the_generalised_eigenvalues():
+    entries = _entries(M3, K3, np.zeros((3, 3)))
+    root = np.diag(1 / np.sqrt(np.diag(M3)))
+    expected = np.sqrt(np.linalg.eigvalsh(root @ K3 @ root))
+    got = [_value(Modal.FREQUENCY, r, entries) for r in (1, 2, 3)]
+    assert got == pytest.approx(expected, rel=1e-12)
+
+
+def test_proportional_damping_gives_each_mode_half_its_frequency_times_beta():
+    beta = 0.004  # C = beta K: zeta_r = beta w_r / 2 for every mode
+    entries = _entries(M3, K3, beta * K3)
+    for r in (1, 2, 3):
+        w = _value(Modal.FREQUENCY, r, entries)
+        assert _value(Modal.DAMPING_RATIO, r, entries) == pytest.approx(beta * w / 2,
+                                                                        rel=1e-10)
+
+
+def test_a_mode_shape_is_the_eigenvector_ratio():
+    entries = _entries(M3, K3, np.zeros((3, 3)))
+    root = np.diag(1 / np.sqrt(np.diag(M3)))
+    shapes = root @ np.linalg.eigh(root @ K3 @ root)[1]
+    for r in (1, 2, 3):
+        assert _value(Modal.SHAPE, r, entries, 2, 0) == pytest.approx(
+            shapes[2, r - 1] / shapes[0, r - 1], rel=1e-10)
+
+
+def test_an_unstable_equilibrium_has_no_frequencies():
+    entries = _entries(np.eye(2), [[-4.0, 0.0], [0.0, 9.0]], np.zeros((2, 2)))
+    assert _value(Modal.STABLE, 1, entries) == 1.0
+    assert np.isnan(_value(Modal.FREQUENCY, 1, entries))
+
+
+def test_a_mode_that_moves_freely_has_a_zero_frequency_and_the_others_their_own():
+    entries = _entries(np.eye(2), [[0.0, 0.0], [0.0, 9.0]], np.zeros((2, 2)))
+    assert _value(Modal.STABLE, 1, entries) == 0.0
+    assert [_value(Modal.FREQUENCY, r, entries) for r in (1, 2)] == [0.0, 3.0]
+
+
+def test_an_overdamped_mode_has_no_damping_ratio_of_a_vibration():
+    entries = _entries(np.eye(2), np.diag([4.0, 9.0]), np.diag([5.0, 0.1]))  # zeta 1.25
+    assert _value(Modal.UNDERDAMPED, 1, entries) == 1.0
+    assert np.isnan(_value(Modal.DAMPING_RATIO, 1, entries))
+    underdamped = _entries(np.eye(2), np.diag([4.0, 9.0]), np.diag([0.4, 0.6]))
+    assert _value(Modal.UNDERDAMPED, 1, underdamped) == 0.0
+    assert _value(Modal.DAMPING_RATIO, 2, underdamped) == pytest.approx(0.1, rel=1e-10)
+
+
+def test_a_shape_relative_to_a_coordinate_that_does_not_move_has_no_value():
+    entries = _entries(np.eye(2), np.diag([4.0, 9.0]), np.zeros((2, 2)))  # uncoupled
+    assert _value(Modal.COUPLED, 1, entries, 0, 1) == 1.0
+    assert np.isnan(_value(Modal.SHAPE, 1, entries, 0, 1))
+    assert _value(Modal.COUPLED, 1, entries, 1, 0) == 0.0
+
+
+def test_a_state_away_from_equilibrium_leaves_a_residual():
+    assert _value(Modal.EQUILIBRIUM, 1, _entries(M3, K3, np.zeros((3, 3)))) == 0.0
+    off = _entries(M3, K3, np.zeros((3, 3)), residual=[3.0, 0.0, 0.0])
+    assert _value(Modal.EQUILIBRIUM, 1, off) > 0.0
+
+
+def test_columns_of_entries_give_a_value_per_column():
+    entries = _entries(np.eye(1), [[4.0]], [[0.0]])
+    entries[3] = np.array([-4.0, -9.0, -16.0])  # db/dq: three stiffnesses
+    assert modal_value(Modal.FREQUENCY, 1, 0, 0, 1, 1, *entries).tolist() == [2.0, 3.0, 4.0]
+
+
+def test_the_sympy_function_evaluates_numbers_and_lambdifies_to_modal_value():
+    k = sp.Symbol("k")
+    entries = _entries(np.eye(1), [[1.0]], [[0.0]])
+    entries[3] = -k
+    mode = NaturalMode(Modal.FREQUENCY, 1, 0, 0, 1, 1, *entries)
+    assert mode.subs(k, 25) == pytest.approx(5.0)
+    f = sp.lambdify([k], mode, modules="numpy", cse=True)
+    assert f(np.array([4.0, 9.0])).tolist() == [2.0, 3.0]
