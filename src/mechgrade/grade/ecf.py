@@ -22,7 +22,7 @@ from ..expressions.syntax import Name, Prime
 from ..parallel import fork_map
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .policy import GradingPolicy
-from .results import AnswerResult, Verdict
+from .results import ECF_DIAGNOSIS, AnswerResult, Verdict
 from .submissions import Submission, SubmissionStatus
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
@@ -123,6 +123,8 @@ class CarriedForward:
                 except KeyError:
                     continue
                 upstream_verdict = self._judging.assess(upstream_text, up_result).verdict
+            elif upstream.diagnosis == ECF_DIAGNOSIS:
+                continue  # it follows from an earlier answer: the error is there, not here
             else:
                 upstream_text, upstream_verdict = upstream.answer, upstream.verdict
             if upstream_verdict == Verdict.CORRECT or upstream_text is None:
@@ -170,7 +172,9 @@ class CarriedForward:
             return verdict, credit
         again = self._judging.assess(text, recomputed)
         ecf_credit = float(again.credit) * self.policy.ecf.credit
-        upstream_names = listing(sorted(item.objective.depends_on))
+        used = [u for u in item.objective.depends_on
+                if (o := upstream_objective(problem, u)) is not None and given_key_of(o) in answered]
+        upstream_names = listing(sorted(used or item.objective.depends_on))
         if again.verdict in (Verdict.CORRECT, Verdict.PARTIAL) and ecf_credit > credit:
             instead = f" (used in place of {listing(replaced)})" if replaced else ""
             # one sentence: what the answer was told against the reference no longer holds

@@ -9,7 +9,9 @@
                                 "max_points", "diagnosis", "feedback", "read_back",
                                 "expected", "expected_in_answer_unit",
                                 "loads" (a free-body diagram's: [{"label", "load", "kind",
-                                         "point", "answer", "mistakes", "feedback"}])}]}],
+                                         "point", "answer", "mistakes", "feedback"}]),
+                                "first_wrong_step" (an answer graded after steps of its
+                                                    write-up, when one is wrong)}]}],
      "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...],
      "failing_expects": [{"problem", "objective", "where", "message"}] (only when graded
                                                                         with them)}
@@ -123,6 +125,7 @@ class AnswerResult:
     expected: str | None = None
     expected_in_answer_unit: str | None = None
     loads: tuple["LoadResult", ...] = field(default=(), metadata=OMIT_DEFAULT)
+    first_wrong_step: str | None = field(default=None, metadata=OMIT_DEFAULT)
 
 
 @dataclass(frozen=True)

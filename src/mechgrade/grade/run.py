@@ -61,6 +61,7 @@ class PlannedObjective:
     result: ObjectiveResult
     max_points: float
     givens: tuple[tuple[str, float], ...] = ()  # the student's variant: SI overrides
+    steps: tuple[str, ...] = ()  # the steps of its write-up graded before it, in order
 
     @property
     def key(self) -> str:
@@ -218,8 +219,20 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
                 raise AssignmentError(
                     f"expected an objective of problem '{problem.id}' ({', '.join(known)}), "
                     f"found '{objective_id}'", where=ref.where)
-            chosen.append((index, problem.objective(objective_id),
-                           assignment.points_for(problem.id, objective_id)))
+        _check_steps(ref, problem, wanted)
+        placed: set[str] = set()
+        for objective_id in wanted:
+            # a step is graded before the objective it leads to, its error carried forward
+            for step in (*ref.steps_of(objective_id), objective_id):
+                if step in placed:
+                    continue
+                placed.add(step)
+                objective = problem.objective(step)
+                earlier = _steps_before(ref, step)
+                if earlier:
+                    objective = replace(objective, depends_on=tuple(
+                        dict.fromkeys((*objective.depends_on, *earlier))))
+                chosen.append((index, objective, assignment.points_for(problem.id, step)))
     keys = {f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen}
     keys |= {f"{problems[index].id}.{body}.fbd"
              for index, body, _ in _choose_diagrams(assignment, problems)}
@@ -231,6 +244,42 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
                                   f"({listing(sorted(keys))}), found '{key}'",
                                   where=assignment.where_points(key))
     return chosen
+
+
+def _check_steps(ref, problem: Problem, wanted: tuple[str, ...]) -> None:
+    """Raise :class:`AssignmentError` for ``steps:`` of an objective not graded or naming
+    what is not an objective of ``problem``."""
+    known = [o.id for o in problem.objectives]
+    for objective_id, chain in ref.steps:
+        if objective_id not in wanted:
+            raise AssignmentError(
+                f"expected steps of a graded objective of problem '{problem.id}' "
+                f"({', '.join(wanted) or 'none is graded'}), found '{objective_id}'",
+                where=ref.where_steps(objective_id))
+        for step in chain:
+            if step not in known:
+                raise AssignmentError(
+                    f"expected steps that are objectives of problem '{problem.id}' "
+                    f"({', '.join(known)}), found '{step}'",
+                    where=ref.where_steps(objective_id))
+
+
+def _steps_before(ref, objective_id: str) -> tuple[str, ...]:
+    """The steps of the write-up graded before ``objective_id``: all of its own steps, or,
+    for a step, the steps before it in the first chain that lists it.
+
+    >>> from mechgrade.grade.assignment import ProblemRef
+    >>> ref = ProblemRef(Path("p.yaml"), steps=(("omega", ("xdot", "v_A")),))
+    >>> _steps_before(ref, "omega"), _steps_before(ref, "v_A"), _steps_before(ref, "xdot")
+    (('xdot', 'v_A'), ('xdot',), ())
+    """
+    own = ref.steps_of(objective_id)
+    if own:
+        return own
+    for _, chain in ref.steps:
+        if objective_id in chain:
+            return chain[:chain.index(objective_id)]
+    return ()
 
 
 def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
@@ -278,7 +327,9 @@ def _choose_equations(assignment: Assignment, problems: tuple[Problem, ...]
 def _plan(assignment: Assignment, problems: tuple[Problem, ...],
           solutions: tuple[Solution, ...], chosen) -> Plan:
     planned = tuple(PlannedObjective(problems[index], objective,
-                                     graded_result(solutions[index], objective.id), points)
+                                     graded_result(solutions[index], objective.id), points,
+                                     steps=_steps_before(assignment.problems[index],
+                                                         objective.id))
                     for index, objective, points in chosen)
     diagrams = []
     instants: dict[int, DerivationInstant] = {}
@@ -500,9 +551,8 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
     index = {p.id: i for i, p in enumerate(plan.problems)}
     objectives = tuple(
         o if o.problem.id not in givens else
-        PlannedObjective(o.problem, o.objective,
-                         graded_result(solutions[index[o.problem.id]], o.objective.id),
-                         o.max_points, givens[o.problem.id])
+        replace(o, result=graded_result(solutions[index[o.problem.id]], o.objective.id),
+                givens=givens[o.problem.id])
         for o in plan.objectives)
     return Plan(plan.assignment, plan.problems, tuple(solutions), objectives,
                 plan.diagrams, plan.equations), variants
@@ -631,6 +681,7 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
         else:
             answer = _judge_safely(plan, judge, item, text, submission, verdicts, person,
                                    faults)
+            answer = _first_wrong_step(item, answer, verdicts)
         verdicts[item.key] = answer
         answers.append(answer)
     parts: list[PlannedDiagram | PlannedEquations] = [*plan.diagrams, *plan.equations]
@@ -647,6 +698,30 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
     return StudentResult(person.id, person.name, Status.CONFLICT if person.conflict else status,
                          score, plan.max_score, tuple(answers), tuple(messages),
                          person.identity)
+
+
+def _first_wrong_step(item: PlannedObjective, answer: AnswerResult,
+                      verdicts: dict[str, AnswerResult]) -> AnswerResult:
+    """``answer`` naming the first of ``item``'s steps answered wrong (a step missing is only
+    missing; one credited by error carried forward is not where the error is).
+
+    >>> from mechgrade.grade.results import AnswerResult, Verdict
+    >>> step = AnswerResult("p", "xdot", "2", Verdict.INCORRECT, 0.0, 1.0)
+    >>> item = PlannedObjective(None, None, None, 1.0, steps=("xdot",))
+    >>> answer = AnswerResult("p", "omega", "3", Verdict.INCORRECT, 0.0, 1.0)
+    >>> named = _first_wrong_step(item, answer, {"p.xdot": step})
+    >>> named.first_wrong_step, named.feedback
+    ('xdot', "The first wrong step of your write-up is step 1, 'xdot'.")
+    """
+    for number, step in enumerate(item.steps, start=1):
+        judged = verdicts.get(f"{answer.problem}.{step}")
+        if judged is None or judged.verdict in (Verdict.CORRECT, Verdict.MISSING) or \
+                judged.diagnosis == ECF_DIAGNOSIS:
+            continue
+        said = f"The first wrong step of your write-up is step {number}, '{step}'."
+        return replace(answer, first_wrong_step=step,
+                       feedback=" ".join(f for f in (answer.feedback, said) if f))
+    return answer
 
 
 _STATUS = {None: Status.MISSING, SubmissionStatus.MISSING: Status.MISSING,
