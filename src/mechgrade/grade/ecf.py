@@ -162,9 +162,17 @@ class CarriedForward:
         overrides = {**dict(item.givens), **overrides}  # on the student's own variant
         solution, replaced = self.solve_with(problem, overrides, item.objective.id)
         if isinstance(solution, MechgradeError):
-            feedback.append(f"Error carried forward could not be applied: with your "
-                            f"{listing(answered)} the problem cannot be solved "
-                            f"({solution.message}).")
+            rates = [k for k in answered if _order(k) == 2]
+            if problem.dynamics is not None and rates:
+                # the balances fix the accelerations: one given besides them over-determines
+                feedback.append(f"Error carried forward could not be applied: your "
+                                f"{listing(rates)} is an acceleration the equations of motion "
+                                f"fix, and the later answers cannot be recomputed from one "
+                                f"that contradicts them.")
+            else:
+                feedback.append(f"Error carried forward could not be applied: with your "
+                                f"{listing(answered)} the problem cannot be solved "
+                                f"({solution.message}).")
             return verdict, credit
         try:
             recomputed = solution.result(item.objective.id)

@@ -62,6 +62,7 @@ class PlannedObjective:
     max_points: float
     givens: tuple[tuple[str, float], ...] = ()  # the student's variant: SI overrides
     steps: tuple[str, ...] = ()  # the steps of its write-up graded before it, in order
+    step_of: str = ""  # for a step, the objective its write-up leads to
 
     @property
     def key(self) -> str:
@@ -282,6 +283,11 @@ def _steps_before(ref, objective_id: str) -> tuple[str, ...]:
     return ()
 
 
+def _step_of(ref, objective_id: str) -> str:
+    """The objective whose write-up lists ``objective_id`` as a step first (``""``: none)."""
+    return next((o for o, chain in ref.steps if objective_id in chain), "")
+
+
 def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
                      ) -> list[tuple[int, str, float]]:
     """(problem index, body, points) of every graded free-body diagram; raises
@@ -329,7 +335,8 @@ def _plan(assignment: Assignment, problems: tuple[Problem, ...],
     planned = tuple(PlannedObjective(problems[index], objective,
                                      graded_result(solutions[index], objective.id), points,
                                      steps=_steps_before(assignment.problems[index],
-                                                         objective.id))
+                                                         objective.id),
+                                     step_of=_step_of(assignment.problems[index], objective.id))
                     for index, objective, points in chosen)
     diagrams = []
     instants: dict[int, DerivationInstant] = {}
@@ -703,16 +710,21 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
 def _first_wrong_step(item: PlannedObjective, answer: AnswerResult,
                       verdicts: dict[str, AnswerResult]) -> AnswerResult:
     """``answer`` naming the first of ``item``'s steps answered wrong (a step missing is only
-    missing; one credited by error carried forward is not where the error is).
+    missing; one credited by error carried forward is not where the error is): on the
+    objective the steps lead to, and on a later step not right by itself.
 
     >>> from mechgrade.grade.results import AnswerResult, Verdict
     >>> step = AnswerResult("p", "xdot", "2", Verdict.INCORRECT, 0.0, 1.0)
     >>> item = PlannedObjective(None, None, None, 1.0, steps=("xdot",))
-    >>> answer = AnswerResult("p", "omega", "3", Verdict.INCORRECT, 0.0, 1.0)
+    >>> answer = AnswerResult("p", "omega", "3", Verdict.CORRECT, 1.0, 1.0)
     >>> named = _first_wrong_step(item, answer, {"p.xdot": step})
     >>> named.first_wrong_step, named.feedback
     ('xdot', "The first wrong step of your write-up is step 1, 'xdot'.")
+    >>> _first_wrong_step(replace(item, step_of="v"), answer, {"p.xdot": step}) == answer
+    True
     """
+    if item.step_of and answer.verdict == Verdict.CORRECT and answer.diagnosis != ECF_DIAGNOSIS:
+        return answer
     for number, step in enumerate(item.steps, start=1):
         judged = verdicts.get(f"{answer.problem}.{step}")
         if judged is None or judged.verdict in (Verdict.CORRECT, Verdict.MISSING) or \
