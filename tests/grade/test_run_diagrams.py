@@ -86,6 +86,26 @@ def test_every_diagram_and_set_of_equations_of_the_example_is_judged_as_by_hand(
             key = f"{answer.problem}.{answer.objective}"
             hand = HAND[student.id][key]
             named = {m for row in answer.loads for m in row.mistakes}
+            if answer.problem == "pendulum_release":  # the steps of the pin force
+                expected = {True: "correct", "ecf": "correct", "missing": "missing"}.get(hand)
+                if expected is None:  # not right
+                    assert answer.verdict not in ("correct", "missing"), (student.id, key)
+                else:
+                    assert answer.verdict == expected, (student.id, key, answer.feedback)
+                assert (answer.diagnosis == "error carried forward") == (hand == "ecf"), \
+                    (student.id, key, answer.feedback)
+                if answer.objective == "pin_force":
+                    assert answer.first_wrong_step == HAND[student.id]["first_wrong_step"], \
+                        (student.id, answer.feedback)
+                continue
+            load = HAND[student.id]["equation_loads"].get(key)
+            if answer.objective == "equations" and load is not None:
+                kind, body, how = load
+                assert kind in answer.feedback and body in answer.feedback \
+                    and f"is {how}" in answer.feedback, (student.id, key, answer.feedback)
+            elif answer.objective == "equations":  # no load is named where a reader sees none
+                assert " is missing from it" not in answer.feedback and \
+                    " is turned round in it" not in answer.feedback, (student.id, answer.feedback)
             if hand is True:
                 assert answer.verdict == "correct", (student.id, key, answer.feedback)
             elif hand in ("wrong", "incomplete", "missing"):  # equations of motion
