@@ -80,6 +80,8 @@ students; see ``GradeReport.notes``): graded as no one's, no grade is exported f
 EXAMPLE_NUMBER = "12.5"
 """The number of an example answer in a message or on a handout: no problem's answer."""
 
+EQUATIONS_OBJECTIVE = "equations"
+"""The objective id a problem's equations of motion are answered and reported under."""
 ECF_DIAGNOSIS = "error carried forward"
 """The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
 

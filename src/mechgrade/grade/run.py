@@ -35,7 +35,7 @@ from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment
 from .ecf import CarriedForward, Resolver, listing, upstream_objective
 from .lms_submissions import read_any_submissions
-from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
+from .results import (ECF_DIAGNOSIS, EQUATIONS_OBJECTIVE, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
                       LoadResult, ObjectiveInfo, Status, StudentResult, Verdict, unit_text)
 from .policy import GradingPolicy
 from .submissions import Submission, SubmissionSet, SubmissionStatus
@@ -96,7 +96,7 @@ class PlannedEquations:
     problem: Problem
     samples: "MotionSamples | None"
     max_points: float
-    objective_id = "equations"
+    objective_id = EQUATIONS_OBJECTIVE
 
     @property
     def key(self) -> str:
