@@ -86,6 +86,16 @@ ECF_DIAGNOSIS = "error carried forward"
 """The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
 
 
+def derivation_objective(objective_id: str) -> bool:
+    """Whether ``objective_id`` is a part of a derivation: a free-body diagram
+    (``body.fbd``) or a problem's equations of motion.
+
+    >>> derivation_objective("block.fbd"), derivation_objective("equations"), derivation_objective("v")
+    (True, True, False)
+    """
+    return objective_id == EQUATIONS_OBJECTIVE or objective_id.endswith(".fbd")
+
+
 @dataclass(frozen=True)
 class AssignmentInfo:
     id: str
