@@ -291,17 +291,12 @@ def _step_of(ref, objective_id: str) -> str:
 def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
                      ) -> list[tuple[int, str, float]]:
     """(problem index, body, points) of every graded free-body diagram; raises
-    :class:`AssignmentError` for a body the problem does not have, or a problem drawing
-    variants (a diagram is judged at the problem's own givens)."""
+    :class:`AssignmentError` for a body the problem does not have."""
     chosen = []
     for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
         if not ref.diagrams:
             continue
         bodies = [b.name for b in problem.dynamics.bodies] if problem.dynamics else []
-        if problem.variants is not None:
-            raise AssignmentError(f"expected diagrams of problems without variants, found "
-                                  f"'{problem.id}' drawing variants (its diagrams cannot be "
-                                  f"graded yet)", where=ref.where)
         for body in ref.diagrams:
             if body not in bodies:
                 raise AssignmentError(f"expected a body of problem '{problem.id}' "
@@ -314,18 +309,16 @@ def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
 def _choose_equations(assignment: Assignment, problems: tuple[Problem, ...]
                       ) -> list[tuple[int, float]]:
     """(problem index, points) of every problem whose equations of motion are graded; raises
-    :class:`AssignmentError` for a problem without bodies, drawing variants, or with an
-    objective of that id."""
+    :class:`AssignmentError` for a problem without bodies or with an objective of that id."""
     chosen = []
     for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
         if not ref.equations:
             continue
         key = PlannedEquations.objective_id
-        if problem.dynamics is None or problem.variants is not None or \
-                any(o.id == key for o in problem.objectives):
+        if problem.dynamics is None or any(o.id == key for o in problem.objectives):
             raise AssignmentError(
-                f"expected equations of a problem with bodies, no variants and no objective "
-                f"'{key}', found '{problem.id}'", where=ref.where)
+                f"expected equations of a problem with bodies and no objective '{key}', "
+                f"found '{problem.id}'", where=ref.where)
         chosen.append((index, assignment.points_for(problem.id, key)))
     return chosen
 
@@ -561,8 +554,24 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
         replace(o, result=graded_result(solutions[index[o.problem.id]], o.objective.id),
                 givens=givens[o.problem.id])
         for o in plan.objectives)
+    # a diagram and the equations are judged at the student's own numbers too
+    instants: dict[str, DerivationInstant] = {}
+    diagrams = list(plan.diagrams)
+    for n, d in enumerate(diagrams):
+        if d.problem.id in givens:
+            if d.problem.id not in instants:
+                from ..solve.derivation import derivation_instant
+                instants[d.problem.id] = derivation_instant(
+                    d.problem, solutions[index[d.problem.id]])
+            diagrams[n] = replace(d, instant=instants[d.problem.id])
+    equations = list(plan.equations)
+    for n, e in enumerate(equations):
+        if e.problem.id in givens:
+            from ..solve.derivation import motion_samples
+            equations[n] = replace(e, samples=motion_samples(
+                e.problem, solutions[index[e.problem.id]]))
     return Plan(plan.assignment, plan.problems, tuple(solutions), objectives,
-                plan.diagrams, plan.equations), variants
+                tuple(diagrams), tuple(equations)), variants
 
 
 def _with_variant(student: StudentResult, own: Plan, variants: list, neighbours,
