@@ -171,5 +171,4 @@ def test_a_diagram_and_equations_of_a_problem_drawing_variants_are_judged_at_the
     verdicts = {s.id: [a.verdict for a in s.answers] for s in report.students}
     assert verdicts == {"s1": ["correct", "correct"], "s2": ["correct", "correct"],
                         "s3": ["partial", "correct"], "s4": ["partial", "correct"]}
-    assert [row.mistakes for row in report.students[2].answers[0].loads][0] == (
-        "wrong magnitude",)
+    assert report.students[2].answers[0].loads[0].mistakes == ("wrong magnitude",)

@@ -314,9 +314,10 @@ class _System:
     def wrong_load(self, i: int, right: list[int]) -> tuple[SampledLoad, str] | None:
         """The one load of the model that equation ``i``'s misfit is a fixed multiple of (a
         component or a moment of it, at every state, with the unknowns the ``right``
-        equations give), and whether it is ``missing`` from it (the misfit is once the load)
-        or ``turned round`` (twice; or a scaled equation with a term of the wrong sign). Of
-        loads alike on several bodies (a rope's tension), the one on the body most of the
+        equations give), and whether it is ``missing`` from it or ``turned round`` in it: a
+        term of the wrong sign (:meth:`reversed_term`), else the misfit twice the load at the
+        equation's scale (the multiple its other terms are of their loads; 1 when none is).
+        Of loads alike on several bodies (a rope's tension), the one on the body most of the
         equation's other terms are loads of; ``None`` when no load or several fit."""
         misfits = self._misfits(i, right)
         if misfits is None:
@@ -324,14 +325,14 @@ class _System:
         values = np.array([m for m, _, _ in misfits])
         fitting = {(load.name, load.body): (load, ratios) for load in self.samples.loads
                    if (ratios := _ratios(values, load))}
+        terms = [np.array([float(evaluate(t, env)[0]) for _, _, env in misfits])
+                 for _, t in _signed_terms(self.equations[i].residual)]
         if len(fitting) > 1:
             # a moment about another point can be a multiple too (I_G θ'' = M_G of the pin
             # beside I_O θ'' = M_O of the weight): the load the misfit is once or twice first
             plain = {k: v for k, v in fitting.items() if any(map(_plain, v[1]))}
             fitting = plain or fitting
         if len(fitting) > 1:
-            terms = [np.array([float(evaluate(t, env)[0]) for _, _, env in misfits])
-                     for _, t in _signed_terms(self.equations[i].residual)]
             bodies = Counter(load.body for load in self.samples.loads
                              for t in terms if _ratios(t, load))
             most = max(bodies[load.body] for load, _ in fitting.values())
@@ -339,10 +340,13 @@ class _System:
         if len(fitting) != 1:
             return None
         ((load, ratios),) = fitting.values()
-        times = [n for n in map(_plain, ratios) if n is not None]
-        if times:
-            return load, "missing" if times[0] == 1 else "turned round"
-        return load, "turned round" if self.reversed_term(i, right) else "missing"
+        if self.reversed_term(i, right) is not None:
+            return load, "turned round"
+        scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
+                         for r in _ratios(t, other))
+        scale = scales.most_common(1)[0][0] if scales else 1.0
+        times = [n for r in ratios if (n := _plain(r / scale)) is not None]
+        return load, "turned round" if times and times[0] == 2 else "missing"
 
     def _flips(self, rows: list[int]) -> int | None:
         """How many reactions the unknowns fitted to ``rows`` take the other way round, when
@@ -391,7 +395,7 @@ def _ratios(values: np.ndarray, load: SampledLoad) -> list[float]:
             continue
         # the equation as written, or divided by the body's mass (x'' = g sin β - μ g cos β)
         for ratio in (values / component, values * mass / component):
-            if np.all(np.isfinite(ratio)) and \
+            if np.all(np.isfinite(ratio)) and ratio[0] != 0 and \
                     np.all(np.abs(ratio - ratio[0]) <= REL * abs(ratio[0])):
                 out.append(float(ratio[0]))
                 break
