@@ -26,6 +26,7 @@ import numpy as np
 
 from ..errors import MechgradeError
 from ..mechanics.kinematics import locations
+from ..spec.dynamics import dynamics_of
 from ..spec.model import Problem
 from .dynamics import kinetics_plan, solve_kinetics
 from .levels import State
@@ -262,4 +263,4 @@ def _mass_plan(problem: Problem) -> dict:
     symbols = kinetics_plan(problem).symbols
     return {body.name: sp.lambdify(symbols, sp.Matrix([sum(
         (model.plain(model.language.scalar(part.mass)) for part in body.parts), sp.S.Zero)]),
-        modules="numpy") for body in problem.dynamics.bodies}
+        modules="numpy") for body in dynamics_of(problem).bodies}
