@@ -790,8 +790,9 @@ def _judge_derivation_safely(part: PlannedDiagram | PlannedEquations, text: str 
                             part.max_points, None,
                             f"internal error: {detail}; please tell your instructor")
     return AnswerResult(part.problem.id, part.objective_id, text, assessment.verdict,
-                        _round(assessment.credit * part.max_points), part.max_points, None,
-                        assessment.feedback, assessment.read_back, loads=rows)
+                        _round(assessment.credit * part.max_points), part.max_points,
+                        assessment.diagnosis, assessment.feedback, assessment.read_back,
+                        loads=rows)
 
 
 # ---------------------------------------------------------------------------- judging
