@@ -169,10 +169,11 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
     feedback = " ".join(notes) or "Every equation is right and they determine the motion."
     read_back = "; ".join(e.text for e in equations)
     # what the class report counts: each load left out or turned round, once
-    named = dict.fromkeys(f"{'left out of' if row.load_mistake == 'missing' else 'turned round in'}"
-                          f" an equation: {row.load}" for row in rows if row.load)
+    counted = dict.fromkeys(
+        f"{'left out of' if row.load_mistake == 'missing' else 'turned round in'} an equation: "
+        f"{row.load}" for row in rows if row.load)
     return EquationsJudgement(tuple(rows), complete,
-                              Assessment(verdict, credit, "; ".join(named) or None, feedback,
+                              Assessment(verdict, credit, "; ".join(counted) or None, feedback,
                                          read_back))
 
 
