@@ -28,8 +28,15 @@ def pendulum():
     return _samples("pendulum_pin_reaction")
 
 
+@pytest.fixture(scope="module")
+def atwood():
+    return _samples("atwood_machine")
+
+
 # the incline's two balances, along the slope and across it, as terms (text, sign)
 ALONG = [("m x''", -1), ("m g sin(β)", 1), ("μ_k N", -1)]
+LOADS = [None, "the weight of block", "the kinetic friction F_P on block"]
+"""The load each term of ALONG is of (``None``: the inertia term is no load)."""
 ACROSS = [("N", 1), ("m g cos(β)", -1)]
 
 
@@ -55,6 +62,14 @@ def test_rearranged_scaled_and_combined_equations_are_right_a_dropped_term_is_na
     wrong = _equation([term for n, term in enumerate(ALONG) if n != dropped], a)
     judged = judge_equations(f"{wrong}; {_equation(ACROSS, b)}", incline)
     assert [row.right for row in judged.rows] == [False, True], judged.assessment.feedback
+    # the load the dropped term was is named, whatever the equation's scale
+    assert judged.rows[0].load == LOADS[dropped], judged.assessment.feedback
+    assert judged.rows[0].load_mistake == ("missing" if LOADS[dropped] else None)
+    turned = _equation([(t, -sign if n == dropped else sign) for n, (t, sign) in enumerate(ALONG)],
+                       a)
+    (row, _) = judge_equations(f"{turned}; {_equation(ACROSS, b)}", incline).rows
+    assert (row.load, row.load_mistake) == ((LOADS[dropped], "turned round") if LOADS[dropped]
+                                            else (None, None)), row.feedback
 
 
 def test_a_pendulums_moment_equation_and_its_sign(pendulum):
@@ -102,3 +117,42 @@ def test_a_wrong_equations_one_term_of_the_wrong_sign_is_named(incline, text, te
 def test_of_two_terms_either_could_have_the_wrong_sign_so_neither_is_named(pendulum):
     (row,) = judge_equations("m L^2/3 θ'' = m g L/2 sin(θ)", pendulum).rows
     assert not row.right and row.reversed_term is None
+
+
+@pytest.mark.parametrize("text, load, how", [
+    ("x'' = g sin(β)", "the kinetic friction F_P on block", "missing"),  # divided by m
+    ("m x'' = -μ_k N; N = m g cos(β)", "the weight of block", "missing"),
+    ("m x'' = m g sin(β) - μ_k m g", None, None),  # a term of the wrong size names no load
+    ("N = m g; m x'' = m g sin(β) - μ_k N", None, None),
+    # N along the slope: the normal force's or the weight's component across it, twice
+    ("m x'' = m g sin(β) - μ_k N + 2 N; N = m g cos(β)", None, None),
+])
+def test_a_wrong_equation_names_the_load_it_leaves_out_or_none_when_no_one_load_fits(
+        incline, text, load, how):
+    (wrong,) = [row for row in judge_equations(text, incline).rows if not row.right]
+    assert (wrong.load, wrong.load_mistake) == (load, how), wrong.feedback
+    assert ((f"({load} is {how} from it)" if how == "missing" else "") in wrong.feedback)
+
+
+@pytest.mark.parametrize("text, feedback", [
+    ("m1 y'' = T; m2 y'' = m2 g - T",
+     "m1*ydd = T: does not hold for the motion (the weight of block1 is missing from it)."),
+    # the rope's tension acts on both blocks: the one whose balance has block 2's weight
+    ("m1 y'' = T - m1 g; m2 y'' = m2 g + T",
+     "m2*ydd = m2*g+T: does not hold for the motion (its term T has the wrong sign: the "
+     "tension T on block2 is turned round in it)."),
+    ("m1 y'' = T - m1 g; m2 y'' = m2 g",
+     "m2*ydd = m2*g: does not hold for the motion (the tension T on block2 is missing from "
+     "it)."),
+])
+def test_of_a_load_on_two_bodies_the_one_the_equation_is_about_is_named(atwood, text, feedback):
+    assert judge_equations(text, atwood).assessment.feedback == feedback
+
+
+@pytest.mark.parametrize("text, said", [
+    ("m L^2/3 θ'' = 0", "(the weight of rod is missing from it)"),
+    # either side's sign: no term is named, but the weight's moment is twice the misfit
+    ("m L^2/3 θ'' = m g L/2 sin(θ)", "(the weight of rod is turned round in it)"),
+])
+def test_a_moment_equation_names_the_load_whose_moment_it_leaves_out(pendulum, text, said):
+    assert judge_equations(text, pendulum).assessment.feedback.endswith(said + ".")

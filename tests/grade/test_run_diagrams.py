@@ -86,6 +86,26 @@ def test_every_diagram_and_set_of_equations_of_the_example_is_judged_as_by_hand(
             key = f"{answer.problem}.{answer.objective}"
             hand = HAND[student.id][key]
             named = {m for row in answer.loads for m in row.mistakes}
+            if answer.problem == "pendulum_release":  # the steps of the pin force
+                expected = {True: "correct", "ecf": "correct", "missing": "missing"}.get(hand)
+                if expected is None:  # not right
+                    assert answer.verdict not in ("correct", "missing"), (student.id, key)
+                else:
+                    assert answer.verdict == expected, (student.id, key, answer.feedback)
+                assert (answer.diagnosis == "error carried forward") == (hand == "ecf"), \
+                    (student.id, key, answer.feedback)
+                if answer.objective == "pin_force":
+                    assert answer.first_wrong_step == HAND[student.id]["first_wrong_step"], \
+                        (student.id, answer.feedback)
+                continue
+            load = HAND[student.id]["equation_loads"].get(key)
+            if answer.objective == "equations" and load is not None:
+                kind, body, how = load
+                assert kind in answer.feedback and body in answer.feedback \
+                    and f"is {how}" in answer.feedback, (student.id, key, answer.feedback)
+            elif answer.objective == "equations":  # no load is named where a reader sees none
+                assert " is missing from it" not in answer.feedback and \
+                    " is turned round in it" not in answer.feedback, (student.id, answer.feedback)
             if hand is True:
                 assert answer.verdict == "correct", (student.id, key, answer.feedback)
             elif hand in ("wrong", "incomplete", "missing"):  # equations of motion
@@ -120,3 +140,35 @@ def test_equations_of_a_problem_without_bodies_are_refused(tmp_path):
                                f"    equations: true\n")
     with pytest.raises(AssignmentError, match="expected equations of a problem with bodies"):
         plan_assignment(load_assignment(hw))
+
+
+@pytest.mark.slow  # solves two students' variants and their derivations (a few seconds)
+def test_a_diagram_and_equations_of_a_problem_drawing_variants_are_judged_at_the_students_numbers(
+        tmp_path):
+    text = INCLINE.read_text(encoding="utf-8").replace("mass m = 4 kg", "mass m = {m}").replace(
+        "\nobjectives:\n", "\nvariants:\n  draw:\n    m: {choices: [3 kg, 5 kg]}\n"
+                          "\nobjectives:\n", 1)
+    (tmp_path / "block_sliding_down_incline.yaml").write_text(text, encoding="utf-8")
+    hw = _assignment(tmp_path, "  - path: block_sliding_down_incline.yaml\n    objectives: []\n"
+                               "    diagrams: [block]\n    equations: true\n"
+                               "variants: {seed: fall}\n")
+    from mechgrade.grade.variants import student_variant
+    from mechgrade.spec import load_problem
+
+    problem = load_problem(tmp_path / "block_sliding_down_incline.yaml")
+    masses = {sid: dict(student_variant(problem, "fall", sid, False)[0].overrides)["m"]
+              for sid in ("s1", "s2", "s3", "s4")}
+    assert len(set(masses.values())) == 2  # the class has both masses
+    for sid, m in masses.items():
+        weight = m * 9.81 if sid in ("s1", "s2") else 4 * 9.81  # s3, s4: the book's 4 kg
+        (tmp_path / "subs" / sid).mkdir(parents=True)
+        (tmp_path / "subs" / sid / "answers.txt").write_text(
+            f"block_sliding_down_incline.block.fbd = weight: -{weight:.4f} j; normal: N A.y; "
+            f"friction: -mu_k N A.x\n"
+            f"block_sliding_down_incline.equations = m x'' = m g sin(β) - μ_k N; "
+            f"N = m g cos(β)\n", encoding="utf-8")
+    report = grade_submissions(load_assignment(hw), tmp_path / "subs")
+    verdicts = {s.id: [a.verdict for a in s.answers] for s in report.students}
+    assert verdicts == {"s1": ["correct", "correct"], "s2": ["correct", "correct"],
+                        "s3": ["partial", "correct"], "s4": ["partial", "correct"]}
+    assert report.students[2].answers[0].loads[0].mistakes == ("wrong magnitude",)

@@ -1,7 +1,9 @@
-"""A free-body diagram with a load wrong links to the drawn diagrams of the worked solution."""
+"""A free-body diagram with a load wrong links to the drawn diagrams of the worked solution, and
+equations of motion with one wrong to its momentum balances."""
 
 from __future__ import annotations
 
+import re
 import shutil
 
 import pytest
@@ -19,7 +21,8 @@ HW4 = shipped_dir("examples") / "hw4_derivation"
 def test_a_wrong_diagram_links_to_the_free_body_diagrams_step(tmp_path):
     folder = tmp_path / "hw4"
     shutil.copytree(HW4, folder)
-    for student in [p for p in (folder / "submissions").iterdir() if p.name != "carla"]:
+    for student in [p for p in (folder / "submissions").iterdir()
+                    if p.name not in ("carla", "mia", "kai")]:
         shutil.rmtree(student)
     assignment = load_assignment(HW4 / "assignment.yaml")
     report = grade_submissions(assignment, folder / "submissions")
@@ -32,5 +35,18 @@ def test_a_wrong_diagram_links_to_the_free_body_diagrams_step(tmp_path):
     # the highlighted step says which loads (CSS-escaped punctuation: "\\2c " is a comma)
     assert "kinetic friction missing" in page
     assert "tension reversed\\2c  wrong magnitude" in page
-    # the diagram she drew right (the rod) links nowhere
+    # the diagram she drew right (the rod) links nowhere, nor do right equations
     assert '<a href="#ws-pendulum_pin_reaction-kinetics-free-body-loads">' not in page
+    # carla's Atwood equations: block 2's balance turned round; the momentum balances marked
+    balances = '<a href="#ws-atwood_machine-kinetics-momentum-balances">'
+    assert balances in page
+    # her incline equations leave N open: the balances show the one missing
+    assert '<a href="#ws-block_sliding_down_incline-kinetics-momentum-balances">' in page
+    assert "The equations do not determine x" in page
+    mia = (tmp_path / "out" / "feedback" / "mia.html").read_text(encoding="utf-8")
+    # kai's equations are right: nothing links to the balances
+    kai = (tmp_path / "out" / "feedback" / "kai.html").read_text(encoding="utf-8")
+    assert not re.search(r'href="#ws-[^"]*-momentum-balances"', kai)
+    assert not re.search(r"#ws-[^ ]*-momentum-balances \{", kai)  # nor highlights them
+    assert '<a href="#ws-block_sliding_down_incline-kinetics-momentum-balances">' in mia
+    assert "the kinetic friction F_P on block is missing from it" in mia

@@ -209,6 +209,8 @@ def feedback_text(report: GradeReport, result: StudentResult | None) -> str:
         line = (f"{objective_title(objective)}: {answer.verdict.replace('_', ' ')} "
                 f"{format_points(answer.points)}/{format_points(answer.max_points)}")
         detail = answer.diagnosis or answer.feedback
+        if answer.first_wrong_step and answer.diagnosis:  # the feedback says it otherwise
+            detail += f"; the first wrong step: {answer.first_wrong_step}"
         lines.append(f"{line} ({detail})" if detail else line)
     return "\n".join(lines)
 

@@ -3,7 +3,8 @@ student and objective).
 
 ``grades.csv`` columns: ``id,name,status,<problem/objective>...,total,max``. ``results.csv``
 columns: ``student,name,problem,objective,answer,verdict,points,max_points,diagnosis``, then
-``seed,givens`` when students have their own variants. Roster
+``seed,givens`` when students have their own variants, then ``feedback`` when the assignment
+grades free-body diagrams or equations of motion. Roster
 students without a submission get a row (status ``missing``); results not in the roster follow.
 """
 
@@ -11,7 +12,7 @@ from __future__ import annotations
 
 import os
 
-from ..grade.results import GradeReport, Status, StudentResult
+from ..grade.results import GradeReport, Status, StudentResult, derivation_objective
 from ..roster import Roster, RosterStudent
 from .cells import write_csv
 from .common import (answers_by_objective, has_submission, max_score, no_submission_warnings,
@@ -50,9 +51,12 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
                     roster: Roster | None = None,
                     options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write ``results.csv``: one row per student and objective, with answer and diagnosis."""
-    # Variants add each student's seed and own givens (of the row's problem).
+    # Variants add each student's seed and own givens (of the row's problem); a graded
+    # derivation, what the feedback says (which loads, which equation and load).
     variants = any(student.variant for student in report.students)
-    rows: list[list[object]] = [[*LONG_HEADER, *(["seed", "givens"] if variants else [])]]
+    derivation = any(derivation_objective(o.objective) for o in report.objectives)
+    rows: list[list[object]] = [[*LONG_HEADER, *(["seed", "givens"] if variants else []),
+                                 *(["feedback"] if derivation else [])]]
     match = match_roster(report, roster)
     for pair in match.pairs:
         ident, name = _who(pair.roster, pair.result)
@@ -67,6 +71,8 @@ def export_long_csv(report: GradeReport, out_path: str | os.PathLike, *,
                 givens = [f"{g.name} = {g.text}" for g in (variant.givens if variant else ())
                           if g.problem == objective.problem]
                 rows[-1] += [variant.seed if variant else "", "; ".join(givens)]
+            if derivation:
+                rows[-1].append(answer.feedback if _points_shown(pair.result) else "")
     write_csv(out_path, rows, excel_bom=options.excel_bom)
     return _roster_warnings(match, roster, options)
 

@@ -39,6 +39,20 @@ class ProblemRef:
     diagrams: tuple[str, ...] = ()  # bodies whose free-body diagram is graded (body.fbd)
     equations: bool = False  # whether its equations of motion are graded (equations)
     where: Location = field(default_factory=Location, compare=False)
+    steps: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (objective, its steps in order)
+    steps_where: tuple[tuple[str, Location], ...] = field(default=(), compare=False)
+
+    def steps_of(self, objective_id: str) -> tuple[str, ...]:
+        """The steps ``objective_id``'s write-up is graded in (``()``: none).
+
+        >>> ProblemRef(Path("p.yaml"), steps=(("omega", ("xdot",)),)).steps_of("omega")
+        ('xdot',)
+        """
+        return dict(self.steps).get(objective_id, ())
+
+    def where_steps(self, objective_id: str) -> Location:
+        """Where ``steps.<objective_id>`` was written."""
+        return dict(self.steps_where).get(objective_id, self.where)
 
 
 @dataclass(frozen=True)
@@ -245,7 +259,28 @@ def _validate(doc: Document) -> tuple[ProblemRef, ...]:
                 problems_.append(AssignmentError(
                     f"expected each body's diagram once, found '{dup[0]}' more than once",
                     where=doc.where(("problems", i, "diagrams"))))
-            refs.append(ProblemRef(target, objectives, diagrams, equations, where))
+            steps = item.get("steps", {}) if isinstance(item, dict) else {}
+            for objective_id, chain in steps.items():
+                dup = sorted({s for s in chain if chain.count(s) > 1})
+                if dup:
+                    problems_.append(AssignmentError(
+                        f"expected each step once, found '{dup[0]}' more than once",
+                        where=doc.where(("problems", i, "steps", objective_id))))
+                if objective_id in chain:
+                    problems_.append(AssignmentError(
+                        f"expected the steps before objective '{objective_id}', found "
+                        f"'{objective_id}' itself among them",
+                        where=doc.where(("problems", i, "steps", objective_id))))
+                nested = [s for s in chain if s in steps]
+                if nested:
+                    problems_.append(AssignmentError(
+                        f"expected steps without steps of their own, found '{nested[0]}' "
+                        f"(list all of its steps under '{objective_id}' instead)",
+                        where=doc.where(("problems", i, "steps", objective_id))))
+            refs.append(ProblemRef(
+                target, objectives, diagrams, equations, where,
+                tuple((k, tuple(v)) for k, v in steps.items()),
+                tuple((k, doc.where(("problems", i, "steps", k))) for k in steps)))
         if "due" in doc.data:
             try:
                 _due(doc.data["due"])

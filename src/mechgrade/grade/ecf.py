@@ -22,7 +22,7 @@ from ..expressions.syntax import Name, Prime
 from ..parallel import fork_map
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .policy import GradingPolicy
-from .results import AnswerResult, Verdict
+from .results import ECF_DIAGNOSIS, AnswerResult, Verdict
 from .submissions import Submission, SubmissionStatus
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
@@ -123,6 +123,8 @@ class CarriedForward:
                 except KeyError:
                     continue
                 upstream_verdict = self._judging.assess(upstream_text, up_result).verdict
+            elif upstream.diagnosis == ECF_DIAGNOSIS:
+                continue  # it follows from an earlier answer: the error is there, not here
             else:
                 upstream_text, upstream_verdict = upstream.answer, upstream.verdict
             if upstream_verdict == Verdict.CORRECT or upstream_text is None:
@@ -160,9 +162,17 @@ class CarriedForward:
         overrides = {**dict(item.givens), **overrides}  # on the student's own variant
         solution, replaced = self.solve_with(problem, overrides, item.objective.id)
         if isinstance(solution, MechgradeError):
-            feedback.append(f"Error carried forward could not be applied: with your "
-                            f"{listing(answered)} the problem cannot be solved "
-                            f"({solution.message}).")
+            rates = [k for k in answered if _order(k) == 2]
+            if problem.dynamics is not None and rates:
+                # the balances fix the accelerations: one given besides them over-determines
+                feedback.append(f"Error carried forward could not be applied: your "
+                                f"{listing(rates)} is an acceleration the equations of motion "
+                                f"fix, and the later answers cannot be recomputed from one "
+                                f"that contradicts them.")
+            else:
+                feedback.append(f"Error carried forward could not be applied: with your "
+                                f"{listing(answered)} the problem cannot be solved "
+                                f"({solution.message}).")
             return verdict, credit
         try:
             recomputed = solution.result(item.objective.id)
@@ -170,7 +180,9 @@ class CarriedForward:
             return verdict, credit
         again = self._judging.assess(text, recomputed)
         ecf_credit = float(again.credit) * self.policy.ecf.credit
-        upstream_names = listing(sorted(item.objective.depends_on))
+        used = [u for u in item.objective.depends_on
+                if (o := upstream_objective(problem, u)) is not None and given_key_of(o) in answered]
+        upstream_names = listing(sorted(used or item.objective.depends_on))
         if again.verdict in (Verdict.CORRECT, Verdict.PARTIAL) and ecf_credit > credit:
             instead = f" (used in place of {listing(replaced)})" if replaced else ""
             # one sentence: what the answer was told against the reference no longer holds

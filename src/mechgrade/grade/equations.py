@@ -24,6 +24,7 @@ reaction. The set is complete when it determines every acceleration.
 from __future__ import annotations
 
 import re
+from collections import Counter
 from dataclasses import dataclass
 from itertools import combinations
 
@@ -34,7 +35,7 @@ from ..expressions import syntax
 from ..expressions.excerpt import excerpt
 from ..expressions.numeric import evaluate
 from ..expressions.syntax import Bin, Node, Unary
-from ..solve.derivation import MotionSamples
+from ..solve.derivation import MotionSamples, SampledLoad
 from .answers import rename_to_symbols
 from .compare import Assessment, Judged, not_evaluated, unreadable
 from .results import Verdict
@@ -59,12 +60,15 @@ class StudentEquation:
 @dataclass(frozen=True)
 class EquationRow:
     """One equation judged; ``reversed_term`` is the term of a wrong one that is right but
-    for its sign (a load drawn the other way), when one is."""
+    for its sign (a load drawn the other way), when one is; ``load`` the model's load that a
+    wrong one leaves out or turns round (``load_mistake``), when one load fits."""
 
     equation: str
     right: bool
     feedback: str
     reversed_term: str | None = None
+    load: str | None = None  # the model's load it leaves out or turns round, named
+    load_mistake: str | None = None  # "missing" or "turned round"
 
 
 @dataclass(frozen=True)
@@ -140,11 +144,18 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
     for i, (e, ok, trivial) in enumerate(zip(equations, right, system.trivial)):
         said = ("right" if ok else "says nothing about the motion" if trivial
                 else "does not hold for the motion")
-        term = None if ok or trivial else system.reversed_term(
-            i, [r for r, fine in enumerate(right) if fine])
-        if term is not None:
+        fine = [r for r, good in enumerate(right) if good]
+        term = None if ok or trivial else system.reversed_term(i, fine)
+        found = None if ok or trivial else system.wrong_load(i, fine)
+        named, how = (_naming(found[0]), found[1]) if found is not None else (None, None)
+        if term is not None and how == "turned round":
+            said += f" (its term {term} has the wrong sign: {named} is turned round in it)"
+        elif term is not None:
             said += f" (its term {term} has the wrong sign)"
-        rows.append(EquationRow(e.text, ok, f"{e.text}: {said}.", term))
+        elif named is not None:
+            said += (f" ({named} is missing from it)" if how == "missing"
+                     else f" ({named} is turned round in it)")
+        rows.append(EquationRow(e.text, ok, f"{e.text}: {said}.", term, named, how))
     complete = system.complete()
     count = sum(right)
     missing = 0 if complete else system.undetermined()
@@ -157,8 +168,13 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
                      f"(an equation is missing).")
     feedback = " ".join(notes) or "Every equation is right and they determine the motion."
     read_back = "; ".join(e.text for e in equations)
+    # what the class report counts: each load left out or turned round, once
+    counted = dict.fromkeys(
+        f"{'left out of' if row.load_mistake == 'missing' else 'turned round in'} an equation: "
+        f"{row.load}" for row in rows if row.load)
     return EquationsJudgement(tuple(rows), complete,
-                              Assessment(verdict, credit, None, feedback, read_back))
+                              Assessment(verdict, credit, "; ".join(counted) or None, feedback,
+                                         read_back))
 
 
 class _System:
@@ -265,12 +281,12 @@ class _System:
                 ok = np.array([r != fewest[0] for r in rows])
         return [bool(v) and not t for v, t in zip(ok, self.trivial)]
 
-    def reversed_term(self, i: int, right: list[int]) -> str | None:
-        """The one term of equation ``i`` that, with its sign changed, makes it hold with
-        the unknowns the ``right`` equations give (its value half the equation's misfit at
-        every state); ``None`` when there is none, or the unknowns are not all given."""
+    def _misfits(self, i: int, right: list[int]) -> list[tuple[float, float, dict]] | None:
+        """Equation ``i``'s misfit at each state with the unknowns the ``right`` equations
+        give, the misfit it may have, and the values it was taken at; ``None`` when the
+        unknowns are not all given, or it holds at some state."""
         e = self.equations[i]
-        candidates = _signed_terms(e.residual)
+        out = []
         for k in range(len(self.b)):
             u = np.zeros(len(self.unknowns))
             if e.unknowns:  # their values from the right equations, when those fix them
@@ -284,9 +300,58 @@ class _System:
                 return None
             env = {name: np.array([value]) for name, value in self.samples.state(k).items()}
             env.update({name: np.array([value]) for name, value in zip(self.unknowns, u)})
+            out.append((misfit, tol, env))
+        return out
+
+    def reversed_term(self, i: int, right: list[int]) -> str | None:
+        """The one term of equation ``i`` that, with its sign changed, makes it hold with
+        the unknowns the ``right`` equations give (its value half the equation's misfit at
+        every state); ``None`` when there is none, or the unknowns are not all given."""
+        misfits = self._misfits(i, right)
+        if misfits is None:
+            return None
+        candidates = _signed_terms(self.equations[i].residual)
+        for misfit, tol, env in misfits:
             candidates = [(sign, t) for sign, t in candidates
                           if abs(sign * float(evaluate(t, env)[0]) - misfit / 2) <= tol]
         return syntax.to_text(candidates[0][1]) if len(candidates) == 1 else None
+
+    def wrong_load(self, i: int, right: list[int]) -> tuple[SampledLoad, str] | None:
+        """The one load of the model that equation ``i``'s misfit is a fixed multiple of (a
+        component or a moment of it, at every state, with the unknowns the ``right``
+        equations give), and whether it is ``missing`` from it or ``turned round`` in it: a
+        term of the wrong sign (:meth:`reversed_term`), else the misfit twice the load at the
+        equation's scale (the multiple its other terms are of their loads; 1 when none is).
+        Of loads alike on several bodies (a rope's tension), the one on the body most of the
+        equation's other terms are loads of; ``None`` when no load or several fit."""
+        misfits = self._misfits(i, right)
+        if misfits is None:
+            return None
+        values = np.array([m for m, _, _ in misfits])
+        fitting = {(load.name, load.body): (load, ratios) for load in self.samples.loads
+                   if (ratios := _ratios(values, load))}
+        terms = [np.array([float(evaluate(t, env)[0]) for _, _, env in misfits])
+                 for _, t in _signed_terms(self.equations[i].residual)]
+        if len(fitting) > 1:
+            # a moment about another point can be a multiple too (I_G θ'' = M_G of the pin
+            # beside I_O θ'' = M_O of the weight): the load the misfit is once or twice first
+            plain = {k: v for k, v in fitting.items() if any(map(_plain, v[1]))}
+            fitting = plain or fitting
+        if len(fitting) > 1:
+            bodies = Counter(load.body for load in self.samples.loads
+                             for t in terms if _ratios(t, load))
+            most = max(bodies[load.body] for load, _ in fitting.values())
+            fitting = {k: v for k, v in fitting.items() if bodies[v[0].body] == most}
+        if len(fitting) != 1:
+            return None
+        ((load, ratios),) = fitting.values()
+        if self.reversed_term(i, right) is not None:
+            return load, "turned round"
+        scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
+                         for r in _ratios(t, other))
+        scale = scales.most_common(1)[0][0] if scales else 1.0
+        times = [n for r in ratios if (n := _plain(r / scale)) is not None]
+        return load, "turned round" if times and times[0] == 2 else "missing"
 
     def _flips(self, rows: list[int]) -> int | None:
         """How many reactions the unknowns fitted to ``rows`` take the other way round, when
@@ -322,6 +387,35 @@ class _System:
         return ", ".join(a[:-2] + "''" for a in self.accelerations)
 
 
+def _ratios(values: np.ndarray, load: SampledLoad) -> list[float]:
+    """The fixed non-zero multiples ``values`` (one per state) are of a component of ``load``
+    at the same states: the parameters change from state to state, so loads of other sizes
+    (a friction, a weight) are not multiples of one another's."""
+    out = []
+    mass = np.array(load.mass) if load.mass else np.ones(len(values))
+    for row in load.components:
+        component = np.array(row)
+        if not np.all(np.isfinite(component)) or np.any(
+                np.abs(component) <= 1e-9 * (np.abs(component).max() + 1e-300)):
+            continue
+        # the equation as written, or divided by the body's mass (x'' = g sin β - μ g cos β)
+        for ratio in (values / component, values * mass / component):
+            if np.all(np.isfinite(ratio)) and ratio[0] != 0 and \
+                    np.all(np.abs(ratio - ratio[0]) <= REL * abs(ratio[0])):
+                out.append(float(ratio[0]))
+                break
+    return out
+
+
+def _plain(ratio: float) -> int | None:
+    """1 or 2 when ``ratio`` is once or twice (either sign), else ``None``.
+
+    >>> _plain(-1.0), _plain(2.0004), _plain(0.25)
+    (1, 2, None)
+    """
+    return next((n for n in (1, 2) if abs(abs(ratio) - n) <= REL * n), None)
+
+
 def _signed_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
     """The terms of a sum, each with the sign it enters it with (``a - (b - c)``: +a, -b,
     +c)."""
@@ -331,6 +425,19 @@ def _signed_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
     if isinstance(node, Unary) and node.op == "-":
         return _signed_terms(node.operand, -sign)
     return [(sign, node)]
+
+
+def _naming(load: SampledLoad) -> str:
+    """A load as a reader names it.
+
+    >>> _naming(SampledLoad("F_P", "kinetic friction", "block", ()))
+    'the kinetic friction F_P on block'
+    >>> _naming(SampledLoad("gravity", "weight", "block1", ()))
+    'the weight of block1'
+    """
+    if load.kind == "weight":
+        return f"the weight of {load.body}"
+    return f"the {load.kind} {load.name} on {load.body}"
 
 
 def _term_size(node: Node, env: dict) -> float:

@@ -9,7 +9,9 @@
                                 "max_points", "diagnosis", "feedback", "read_back",
                                 "expected", "expected_in_answer_unit",
                                 "loads" (a free-body diagram's: [{"label", "load", "kind",
-                                         "point", "answer", "mistakes", "feedback"}])}]}],
+                                         "point", "answer", "mistakes", "feedback"}]),
+                                "first_wrong_step" (an answer graded after steps of its
+                                                    write-up, when one is wrong)}]}],
      "skipped": [{"path", "reason"}], "notes": [...], "internal_errors": [...],
      "failing_expects": [{"problem", "objective", "where", "message"}] (only when graded
                                                                         with them)}
@@ -78,8 +80,20 @@ students; see ``GradeReport.notes``): graded as no one's, no grade is exported f
 EXAMPLE_NUMBER = "12.5"
 """The number of an example answer in a message or on a handout: no problem's answer."""
 
+EQUATIONS_OBJECTIVE = "equations"
+"""The objective id a problem's equations of motion are answered and reported under."""
 ECF_DIAGNOSIS = "error carried forward"
 """The diagnosis of an answer credited by ECF (whatever the answer alone looked like)."""
+
+
+def derivation_objective(objective_id: str) -> bool:
+    """Whether ``objective_id`` is a part of a derivation: a free-body diagram
+    (``body.fbd``) or a problem's equations of motion.
+
+    >>> derivation_objective("block.fbd"), derivation_objective("equations"), derivation_objective("v")
+    (True, True, False)
+    """
+    return objective_id == EQUATIONS_OBJECTIVE or objective_id.endswith(".fbd")
 
 
 @dataclass(frozen=True)
@@ -123,6 +137,7 @@ class AnswerResult:
     expected: str | None = None
     expected_in_answer_unit: str | None = None
     loads: tuple["LoadResult", ...] = field(default=(), metadata=OMIT_DEFAULT)
+    first_wrong_step: str | None = field(default=None, metadata=OMIT_DEFAULT)
 
 
 @dataclass(frozen=True)

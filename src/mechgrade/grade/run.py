@@ -35,7 +35,7 @@ from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment
 from .ecf import CarriedForward, Resolver, listing, upstream_objective
 from .lms_submissions import read_any_submissions
-from .results import (ECF_DIAGNOSIS, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
+from .results import (ECF_DIAGNOSIS, EQUATIONS_OBJECTIVE, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
                       LoadResult, ObjectiveInfo, Status, StudentResult, Verdict, unit_text)
 from .policy import GradingPolicy
 from .submissions import Submission, SubmissionSet, SubmissionStatus
@@ -61,6 +61,8 @@ class PlannedObjective:
     result: ObjectiveResult
     max_points: float
     givens: tuple[tuple[str, float], ...] = ()  # the student's variant: SI overrides
+    steps: tuple[str, ...] = ()  # the steps of its write-up graded before it, in order
+    step_of: str = ""  # for a step, the objective its write-up leads to
 
     @property
     def key(self) -> str:
@@ -94,7 +96,7 @@ class PlannedEquations:
     problem: Problem
     samples: "MotionSamples | None"
     max_points: float
-    objective_id = "equations"
+    objective_id = EQUATIONS_OBJECTIVE
 
     @property
     def key(self) -> str:
@@ -218,8 +220,20 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
                 raise AssignmentError(
                     f"expected an objective of problem '{problem.id}' ({', '.join(known)}), "
                     f"found '{objective_id}'", where=ref.where)
-            chosen.append((index, problem.objective(objective_id),
-                           assignment.points_for(problem.id, objective_id)))
+        _check_steps(ref, problem, wanted)
+        placed: set[str] = set()
+        for objective_id in wanted:
+            # a step is graded before the objective it leads to, its error carried forward
+            for step in (*ref.steps_of(objective_id), objective_id):
+                if step in placed:
+                    continue
+                placed.add(step)
+                objective = problem.objective(step)
+                earlier = _steps_before(ref, step)
+                if earlier:
+                    objective = replace(objective, depends_on=tuple(
+                        dict.fromkeys((*objective.depends_on, *earlier))))
+                chosen.append((index, objective, assignment.points_for(problem.id, step)))
     keys = {f"{problems[index].id}.{objective.id}" for index, objective, _ in chosen}
     keys |= {f"{problems[index].id}.{body}.fbd"
              for index, body, _ in _choose_diagrams(assignment, problems)}
@@ -233,20 +247,56 @@ def _choose_objectives(assignment: Assignment, problems: tuple[Problem, ...]
     return chosen
 
 
+def _check_steps(ref, problem: Problem, wanted: tuple[str, ...]) -> None:
+    """Raise :class:`AssignmentError` for ``steps:`` of an objective not graded or naming
+    what is not an objective of ``problem``."""
+    known = [o.id for o in problem.objectives]
+    for objective_id, chain in ref.steps:
+        if objective_id not in wanted:
+            raise AssignmentError(
+                f"expected steps of a graded objective of problem '{problem.id}' "
+                f"({', '.join(wanted) or 'none is graded'}), found '{objective_id}'",
+                where=ref.where_steps(objective_id))
+        for step in chain:
+            if step not in known:
+                raise AssignmentError(
+                    f"expected steps that are objectives of problem '{problem.id}' "
+                    f"({', '.join(known)}), found '{step}'",
+                    where=ref.where_steps(objective_id))
+
+
+def _steps_before(ref, objective_id: str) -> tuple[str, ...]:
+    """The steps of the write-up graded before ``objective_id``: all of its own steps, or,
+    for a step, the steps before it in the first chain that lists it.
+
+    >>> from mechgrade.grade.assignment import ProblemRef
+    >>> ref = ProblemRef(Path("p.yaml"), steps=(("omega", ("xdot", "v_A")),))
+    >>> _steps_before(ref, "omega"), _steps_before(ref, "v_A"), _steps_before(ref, "xdot")
+    (('xdot', 'v_A'), ('xdot',), ())
+    """
+    own = ref.steps_of(objective_id)
+    if own:
+        return own
+    for _, chain in ref.steps:
+        if objective_id in chain:
+            return chain[:chain.index(objective_id)]
+    return ()
+
+
+def _step_of(ref, objective_id: str) -> str:
+    """The objective whose write-up lists ``objective_id`` as a step first (``""``: none)."""
+    return next((o for o, chain in ref.steps if objective_id in chain), "")
+
+
 def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
                      ) -> list[tuple[int, str, float]]:
     """(problem index, body, points) of every graded free-body diagram; raises
-    :class:`AssignmentError` for a body the problem does not have, or a problem drawing
-    variants (a diagram is judged at the problem's own givens)."""
+    :class:`AssignmentError` for a body the problem does not have."""
     chosen = []
     for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
         if not ref.diagrams:
             continue
         bodies = [b.name for b in problem.dynamics.bodies] if problem.dynamics else []
-        if problem.variants is not None:
-            raise AssignmentError(f"expected diagrams of problems without variants, found "
-                                  f"'{problem.id}' drawing variants (its diagrams cannot be "
-                                  f"graded yet)", where=ref.where)
         for body in ref.diagrams:
             if body not in bodies:
                 raise AssignmentError(f"expected a body of problem '{problem.id}' "
@@ -259,18 +309,16 @@ def _choose_diagrams(assignment: Assignment, problems: tuple[Problem, ...]
 def _choose_equations(assignment: Assignment, problems: tuple[Problem, ...]
                       ) -> list[tuple[int, float]]:
     """(problem index, points) of every problem whose equations of motion are graded; raises
-    :class:`AssignmentError` for a problem without bodies, drawing variants, or with an
-    objective of that id."""
+    :class:`AssignmentError` for a problem without bodies or with an objective of that id."""
     chosen = []
     for index, (ref, problem) in enumerate(zip(assignment.problems, problems)):
         if not ref.equations:
             continue
         key = PlannedEquations.objective_id
-        if problem.dynamics is None or problem.variants is not None or \
-                any(o.id == key for o in problem.objectives):
+        if problem.dynamics is None or any(o.id == key for o in problem.objectives):
             raise AssignmentError(
-                f"expected equations of a problem with bodies, no variants and no objective "
-                f"'{key}', found '{problem.id}'", where=ref.where)
+                f"expected equations of a problem with bodies and no objective '{key}', "
+                f"found '{problem.id}'", where=ref.where)
         chosen.append((index, assignment.points_for(problem.id, key)))
     return chosen
 
@@ -278,7 +326,10 @@ def _choose_equations(assignment: Assignment, problems: tuple[Problem, ...]
 def _plan(assignment: Assignment, problems: tuple[Problem, ...],
           solutions: tuple[Solution, ...], chosen) -> Plan:
     planned = tuple(PlannedObjective(problems[index], objective,
-                                     graded_result(solutions[index], objective.id), points)
+                                     graded_result(solutions[index], objective.id), points,
+                                     steps=_steps_before(assignment.problems[index],
+                                                         objective.id),
+                                     step_of=_step_of(assignment.problems[index], objective.id))
                     for index, objective, points in chosen)
     diagrams = []
     instants: dict[int, DerivationInstant] = {}
@@ -500,12 +551,27 @@ def _own_plan(plan: Plan, person: "_Person") -> tuple[Plan, list]:
     index = {p.id: i for i, p in enumerate(plan.problems)}
     objectives = tuple(
         o if o.problem.id not in givens else
-        PlannedObjective(o.problem, o.objective,
-                         graded_result(solutions[index[o.problem.id]], o.objective.id),
-                         o.max_points, givens[o.problem.id])
+        replace(o, result=graded_result(solutions[index[o.problem.id]], o.objective.id),
+                givens=givens[o.problem.id])
         for o in plan.objectives)
+    # a diagram and the equations are judged at the student's own numbers too
+    instants: dict[str, DerivationInstant] = {}
+    diagrams = list(plan.diagrams)
+    for n, d in enumerate(diagrams):
+        if d.problem.id in givens:
+            if d.problem.id not in instants:
+                from ..solve.derivation import derivation_instant
+                instants[d.problem.id] = derivation_instant(
+                    d.problem, solutions[index[d.problem.id]])
+            diagrams[n] = replace(d, instant=instants[d.problem.id])
+    equations = list(plan.equations)
+    for n, e in enumerate(equations):
+        if e.problem.id in givens:
+            from ..solve.derivation import motion_samples
+            equations[n] = replace(e, samples=motion_samples(
+                e.problem, solutions[index[e.problem.id]]))
     return Plan(plan.assignment, plan.problems, tuple(solutions), objectives,
-                plan.diagrams, plan.equations), variants
+                tuple(diagrams), tuple(equations)), variants
 
 
 def _with_variant(student: StudentResult, own: Plan, variants: list, neighbours,
@@ -631,6 +697,7 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
         else:
             answer = _judge_safely(plan, judge, item, text, submission, verdicts, person,
                                    faults)
+            answer = _first_wrong_step(item, answer, verdicts)
         verdicts[item.key] = answer
         answers.append(answer)
     parts: list[PlannedDiagram | PlannedEquations] = [*plan.diagrams, *plan.equations]
@@ -647,6 +714,35 @@ def _grade_student(plan: Plan, judge: "_Judge", person: _Person,
     return StudentResult(person.id, person.name, Status.CONFLICT if person.conflict else status,
                          score, plan.max_score, tuple(answers), tuple(messages),
                          person.identity)
+
+
+def _first_wrong_step(item: PlannedObjective, answer: AnswerResult,
+                      verdicts: dict[str, AnswerResult]) -> AnswerResult:
+    """``answer`` naming the first of ``item``'s steps answered wrong (a step missing is only
+    missing; one credited by error carried forward is not where the error is): on the
+    objective the steps lead to, and on a later step not right by itself.
+
+    >>> from mechgrade.grade.results import AnswerResult, Verdict
+    >>> step = AnswerResult("p", "xdot", "2", Verdict.INCORRECT, 0.0, 1.0)
+    >>> item = PlannedObjective(None, None, None, 1.0, steps=("xdot",))
+    >>> answer = AnswerResult("p", "omega", "3", Verdict.CORRECT, 1.0, 1.0)
+    >>> named = _first_wrong_step(item, answer, {"p.xdot": step})
+    >>> named.first_wrong_step, named.feedback
+    ('xdot', "The first wrong step of your write-up is step 1, 'xdot'.")
+    >>> _first_wrong_step(replace(item, step_of="v"), answer, {"p.xdot": step}) == answer
+    True
+    """
+    if item.step_of and answer.verdict == Verdict.CORRECT and answer.diagnosis != ECF_DIAGNOSIS:
+        return answer
+    for number, step in enumerate(item.steps, start=1):
+        judged = verdicts.get(f"{answer.problem}.{step}")
+        if judged is None or judged.verdict in (Verdict.CORRECT, Verdict.MISSING) or \
+                judged.diagnosis == ECF_DIAGNOSIS:
+            continue
+        said = f"The first wrong step of your write-up is step {number}, '{step}'."
+        return replace(answer, first_wrong_step=step,
+                       feedback=" ".join(f for f in (answer.feedback, said) if f))
+    return answer
 
 
 _STATUS = {None: Status.MISSING, SubmissionStatus.MISSING: Status.MISSING,
@@ -694,8 +790,9 @@ def _judge_derivation_safely(part: PlannedDiagram | PlannedEquations, text: str 
                             part.max_points, None,
                             f"internal error: {detail}; please tell your instructor")
     return AnswerResult(part.problem.id, part.objective_id, text, assessment.verdict,
-                        _round(assessment.credit * part.max_points), part.max_points, None,
-                        assessment.feedback, assessment.read_back, loads=rows)
+                        _round(assessment.credit * part.max_points), part.max_points,
+                        assessment.diagnosis, assessment.feedback, assessment.read_back,
+                        loads=rows)
 
 
 # ---------------------------------------------------------------------------- judging

@@ -35,7 +35,7 @@ from ..export import EXPORTERS
 from ..outfolder import OutputKind
 from ..parallel import outcome, worker_started
 from ..resources import shipped_dir
-from ..grade.results import (ECF_DIAGNOSIS, AnswerResult, GradeReport, Status, StudentResult,
+from ..grade.results import (ECF_DIAGNOSIS, EQUATIONS_OBJECTIVE, AnswerResult, GradeReport, Status, StudentResult,
                              Verdict)
 
 if TYPE_CHECKING:  # the worked solutions come ready-made: reading them needs no solver
@@ -493,6 +493,12 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
                        if row.mistakes]
         if place is None and worked is not None and wrong_loads and worked.diagram_step:
             place = worked.diagram_step  # a free-body diagram's mistakes: the drawn diagrams
+        said = answer.diagnosis or "; ".join(wrong_loads)
+        if place is None and worked is not None and worked.equations_step and \
+                answer.objective == EQUATIONS_OBJECTIVE and \
+                answer.verdict in (Verdict.INCORRECT, Verdict.PARTIAL):
+            place = worked.equations_step  # equations of motion wrong: the model's own
+            said = shorten(answer.feedback, 100)
         if place is None:
             continue
         prompt = prompts.get((answer.problem, answer.objective)) or answer.objective
@@ -500,7 +506,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
-        note = f"Your answer to “{shorten(prompt)}”: {answer.diagnosis or '; '.join(wrong_loads)}"
+        note = f"Your answer to “{shorten(prompt)}”: {said}"
         marked[anchor(answer.problem, place)] = (
             marked[anchor(answer.problem, place)] + "; " + note
             if anchor(answer.problem, place) in marked else note)

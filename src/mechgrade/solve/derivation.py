@@ -26,10 +26,12 @@ import numpy as np
 
 from ..errors import MechgradeError
 from ..mechanics.kinematics import locations
+from ..spec.dynamics import dynamics_of
 from ..spec.model import Problem
 from .dynamics import kinetics_plan, solve_kinetics
 from .levels import State
-from .fbd import FreeBodyDiagram, Vec3, _diagram_plan, _extended_state, _vector, free_body_diagrams
+from .fbd import (FreeBodyDiagram, Vec3, _diagram_plan, _extended_state, _scalar, _vector,
+                  free_body_diagrams)
 from .result import Solution
 
 AXES = ("x", "y", "z")
@@ -130,15 +132,31 @@ SAMPLES = 5
 
 
 @dataclass(frozen=True)
+class SampledLoad:
+    """One load of the model at each sampled state: its ``name``, ``kind`` and ``body``, and
+    ``components``: rows of one value per state, every way it can enter a balance (a force
+    along each frame's unit vectors, and its moment about each point along them; a couple's
+    moment along them), ``nan`` where it has no value; ``mass`` the body's at each state."""
+
+    name: str
+    kind: str
+    body: str
+    components: tuple[tuple[float, ...], ...]
+    mass: tuple[float, ...] = ()  # its body's mass at each state (an equation divided by it)
+
+
+@dataclass(frozen=True)
 class MotionSamples:
     """The model's motion at a few states: ``symbols`` a student may write (coordinates,
     parameters, rates as ``xd``), ``accelerations`` (``xdd``), ``reactions`` (the model's
-    names, ``R_O_1``), and per state the value of each, in that order."""
+    names, ``R_O_1``), and per state the value of each, in that order; ``loads`` each load
+    at those states."""
 
     symbols: tuple[str, ...]
     accelerations: tuple[str, ...]
     reactions: tuple[str, ...]
     states: tuple[tuple[float, ...], ...]
+    loads: tuple[SampledLoad, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -198,10 +216,51 @@ def motion_samples(problem: Problem, solution: Solution, count: int = SAMPLES,
     accelerations = list(index.rates(2))
     reactions = list(range(index.size, len(kp.symbols)))
     order = symbols + accelerations + reactions
-    states = tuple(tuple(float(v[i]) for i in order) for v in found
-                   if np.all(np.isfinite(v[order])))
+    kept = [v for v in found if np.all(np.isfinite(v[order]))]
+    states = tuple(tuple(float(v[i]) for i in order) for v in kept)
     if not states:
         return None
     return MotionSamples(tuple(rate_name(index.names[i]) for i in symbols),
                          tuple(rate_name(index.names[i]) for i in accelerations),
-                         tuple(str(kp.symbols[i]) for i in reactions), states)
+                         tuple(str(kp.symbols[i]) for i in reactions), states,
+                         _sampled_loads(problem, kept))
+
+
+def _sampled_loads(problem: Problem, states: list[np.ndarray]) -> tuple[SampledLoad, ...]:
+    """Every load of ``problem`` at each of ``states`` (see :class:`SampledLoad`)."""
+    plan = _diagram_plan(problem, locations(problem))
+    frames = _frame_plan(problem)
+    masses = {body: [_scalar(f, x) for x in states] for body, f in _mass_plan(problem).items()}
+    nan3 = (np.nan,) * 3
+    axes = [[np.array(v if v is not None else nan3) for f in frames.values()
+             for v in (_unit_vectors(f, x) or (nan3,) * 3)] for x in states]
+    out = []
+    for applied, force, moment, *_ in plan.loads:
+        rows: list[list[float]] = []
+        for k, x in enumerate(states):
+            couple = applied.point is None
+            vector = np.array(_vector(moment if couple else force, x) or nan3)
+            values = [float(vector @ e) for e in axes[k]]
+            if not couple:
+                at = np.array(_vector(plan.points.get(applied.point), x) or nan3)
+                for f in plan.points.values():
+                    arm = at - np.array(_vector(f, x) or nan3)
+                    values += [float(np.cross(arm, vector) @ e) for e in axes[k]]
+            rows.append(values)
+        out.append(SampledLoad(applied.name, str(applied.kind), applied.body,
+                               tuple(zip(*rows)), tuple(np.nan if m is None else m
+                                                        for m in masses[applied.body])))
+    return tuple(out)
+
+
+@lru_cache(maxsize=32)
+def _mass_plan(problem: Problem) -> dict:
+    """Each body's mass as a function of the kinetics symbols."""
+    import sympy as sp
+
+    from ..mechanics.build import build
+    model = build(problem)
+    symbols = kinetics_plan(problem).symbols
+    return {body.name: sp.lambdify(symbols, sp.Matrix([sum(
+        (model.plain(model.language.scalar(part.mass)) for part in body.parts), sp.S.Zero)]),
+        modules="numpy") for body in dynamics_of(problem).bodies}

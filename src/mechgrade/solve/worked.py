@@ -40,6 +40,8 @@ __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
 
 DIAGRAM_STEP = "kinetics-free-body-loads"
 """The step that shows the free-body diagrams."""
+EQUATIONS_STEP = "kinetics-momentum-balances"
+"""The step that writes the equations of motion (the momentum balances)."""
 _DYNAMICS_STEPS = {"strands_miscounted": "constraints", "body_ke_omitted": "kinetics-bodies",
                    "rotational_ke_omitted": "kinetics-bodies",
                    "spring_free_length_omitted": "kinetics-free-body-loads",
@@ -57,7 +59,8 @@ class WorkedSolution:
     ``picture`` an SVG document (empty when there is nothing to draw), ``places``
     ``(objective, code, anchor)``: the step or row (by anchor) where the generated mistake
     ``code`` of an objective happens; ``diagrams`` each body's free-body diagram (plain
-    data), shown in the step anchored ``diagram_step``."""
+    data), shown in the step anchored ``diagram_step``; ``equations_step`` the step that
+    writes its equations of motion (``""``: none)."""
 
     problem: str
     title: str
@@ -67,6 +70,7 @@ class WorkedSolution:
     declared: tuple[tuple[str, str, str], ...] = ()
     diagrams: tuple[FreeBodyDiagram, ...] = ()
     diagram_step: str = ""
+    equations_step: str = ""
 
     def place(self, objective: str, code: str) -> str | None:
         """The anchor of the step or row where ``code``'s mistake happens for ``objective``."""
@@ -128,7 +132,9 @@ def worked_solution(problem: Problem, solution: Solution,
     diagrams = free_body_diagrams(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
                           picture_svg(drawing) if drawable(drawing) else "", places, declared,
-                          diagrams, DIAGRAM_STEP if diagrams else "")
+                          diagrams, DIAGRAM_STEP if diagrams else "",
+                          EQUATIONS_STEP if any(s.anchor == EQUATIONS_STEP for s in steps)
+                          else "")
 
 
 def _answer_step(problem: Problem, objective, result: ObjectiveResult,

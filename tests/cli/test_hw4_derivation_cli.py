@@ -1,0 +1,44 @@
+"""``mechgrade grade`` on examples/hw4_derivation, as an instructor runs it: free-body diagrams,
+equations of motion and the steps of a write-up (tests/data/hw4_derivation_verdicts.json holds
+each answer judged by hand; tests/grade/test_run_diagrams.py checks the grader agrees)."""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from mechgrade.cli import main
+from mechgrade.resources import shipped_dir
+
+HW4 = shipped_dir("examples") / "hw4_derivation"
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory):
+    out = tmp_path_factory.mktemp("hw4") / "out"
+    result = CliRunner().invoke(main, ["grade", str(HW4 / "assignment.yaml"),
+                                       str(HW4 / "submissions"), "--out", str(out)])
+    return result, out
+
+
+@pytest.mark.slow  # grades thirteen students' derivations, with error carried forward
+def test_grading_hw4_writes_the_steps_the_loads_and_the_equations(graded):
+    result, out = graded
+    assert result.exit_code == 0, result.output
+    assert result.stdout == (f"Graded 13 students (1 unreadable answer, 0 missing "
+                             f"submissions); wrote {out.as_posix()}/\n")
+    data = json.loads((out / "results.json").read_text(encoding="utf-8"))
+    carla = next(s for s in data["students"] if s["id"] == "carla")
+    pin = next(a for a in carla["answers"] if a["objective"] == "pin_force")
+    assert (pin["verdict"], pin["diagnosis"], pin["first_wrong_step"]) == (
+        "correct", "error carried forward", "omega")
+    with open(out / "results.csv", newline="", encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    mia = {(r["problem"], r["objective"]): r for r in rows if r["student"] == "mia"}
+    assert mia["atwood_machine", "equations"]["feedback"] == (
+        "m1*ydd = T: does not hold for the motion (the weight of block1 is missing from it).")
+    page = (out / "feedback" / "carla.html").read_text(encoding="utf-8")
+    assert "The first wrong step of your write-up is step 1, &#39;omega&#39;." in page
