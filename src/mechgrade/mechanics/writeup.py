@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ..spec.model import Problem
-from .derivation import Step, kinematics_derivation, kinematics_steps
+from .derivation import Step, compact_math, kinematics_derivation, kinematics_steps
 from .kinetics_steps import kinetics_steps
 from .dynamics import kinetics_derivation
 
@@ -33,6 +33,7 @@ def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     """
     kinematic = replace(problem, objectives=(), dynamics=None)
     steps = kinematics_steps(kinematic, dof)
-    if problem.dynamics is None:
-        return steps
-    return steps + kinetics_steps(problem)
+    if problem.dynamics is not None:
+        steps += kinetics_steps(problem)
+    return tuple(replace(step, rows=tuple(replace(row, math=compact_math(row.math))
+                                          for row in step.rows)) for step in steps)
