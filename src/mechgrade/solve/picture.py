@@ -398,8 +398,8 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
         for p in shown:
             origin = by_name.get(p.described_from) if p.described_from is not None else None
             if origin is not None:
-                _segment(sheet, at(*origin.position[:2]), at(*p.position[:2]), BODY, 4,
-                         ' stroke-linecap="round"')
+                _segment(sheet, at(*origin.position[:2]), at(*p.position[:2]),
+                         f'stroke="{BODY}" stroke-width="4" stroke-linecap="round"')
     resting = {support.bodies[0]: support for support in s.supports
                if support.kind == SupportKind.SURFACE and support.directions[0] is not None}
     held = {b for support in s.supports for b in support.bodies}  # drawn as blocks
@@ -424,6 +424,8 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
                              f'stroke="{BODY}" stroke-width="2"/>')
     axes = _frames(sheet, s, at, size, ident)
     for colour, _, mark, kind, largest in legend:
+        sheet.out.append(f'<g stroke="{colour}" stroke-width="2.2" '
+                         f'marker-end="url(#{ident}-{mark})">')
         for p in shown:
             v = getattr(p, kind)
             if v is None or math.hypot(v[0], v[1]) <= 1e-3 * largest:
@@ -431,7 +433,8 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
             tail, head = apart(at(*p.position[:2]),
                                at(*_tip(p.position, v, 0.35 * size / largest)), sheet.arrows)
             sheet.arrows.append((tail, head))
-            _segment(sheet, tail, head, colour, 2.2, f' marker-end="url(#{ident}-{mark})"')
+            _segment(sheet, tail, head)
+        sheet.out.append("</g>")
     _frame_labels(sheet, axes)
     places: dict[tuple[int, int], list[str]] = {}  # coincident points share one label
     for p in shown:
@@ -477,10 +480,12 @@ def _page(v: Triple) -> tuple[float, float]:
     return v[0] / size, -v[1] / size
 
 
-def _segment(sheet: _Sheet, a, b, colour: str, width: float, extra: str = "") -> None:
+def _segment(sheet: _Sheet, a, b, style: str = "") -> None:
+    """A straight line from ``a`` to ``b`` (page); ``style`` its attributes, none when an
+    enclosing group gives them."""
     sheet.lines.append((a, b))
-    sheet.out.append(f'<path d="M{a[0]:.1f},{a[1]:.1f}L{b[0]:.1f},{b[1]:.1f}" '
-                     f'stroke="{colour}" stroke-width="{width:g}"{extra}/>')
+    sheet.out.append(f'<path d="M{a[0]:.0f},{a[1]:.0f}L{b[0]:.0f},{b[1]:.0f}"'
+                     + (f" {style}" if style else "") + "/>")
 
 
 def _hatch(at: tuple[float, float], along: tuple[float, float], away: tuple[float, float],
@@ -488,13 +493,13 @@ def _hatch(at: tuple[float, float], along: tuple[float, float], away: tuple[floa
     """A ground line through ``at`` along ``along`` (unit, page), ``half`` px each way,
     hatched on the side ``away`` (unit, page)."""
     x, y = at
-    path = [f"M{x - half * along[0]:.1f},{y - half * along[1]:.1f}"
-            f"L{x + half * along[0]:.1f},{y + half * along[1]:.1f}"]
+    path = [f"M{x - half * along[0]:.0f},{y - half * along[1]:.0f}"
+            f"L{x + half * along[0]:.0f},{y + half * along[1]:.0f}"]
     count = max(int(half / 7), 2)
     for k in range(-count, count + 1):
         px, py = x + k * half / count * along[0], y + k * half / count * along[1]
-        path.append(f"M{px:.1f},{py:.1f}l{7 * away[0] - 5 * along[0]:.1f},"
-                    f"{7 * away[1] - 5 * along[1]:.1f}")
+        path.append(f"M{px:.0f},{py:.0f}l{7 * away[0] - 5 * along[0]:.0f},"
+                    f"{7 * away[1] - 5 * along[1]:.0f}")
     return f'<path class="ground" d="{"".join(path)}" stroke="{SUPPORT}" fill="none"/>'
 
 
@@ -520,11 +525,11 @@ def _pin(sheet: _Sheet, p, down) -> None:
     across = (-down[1], down[0])
     base = (p[0] + 22 * down[0], p[1] + 22 * down[1])
     corners = [(base[0] + s * 11 * across[0], base[1] + s * 11 * across[1]) for s in (-1, 1)]
-    sheet.out.append(f'<path class="pin" d="M{p[0]:.1f},{p[1]:.1f}L{corners[0][0]:.1f},'
-                     f'{corners[0][1]:.1f}L{corners[1][0]:.1f},{corners[1][1]:.1f}z" '
+    sheet.out.append(f'<path class="pin" d="M{p[0]:.0f},{p[1]:.0f}L{corners[0][0]:.0f},'
+                     f'{corners[0][1]:.0f}L{corners[1][0]:.0f},{corners[1][1]:.0f}z" '
                      f'fill="{FILL}" stroke="{SUPPORT}" stroke-width="1.5"/>')
     sheet.out.append(_hatch(base, across, down, 18.0))
-    sheet.out.append(f'<circle cx="{p[0]:.1f}" cy="{p[1]:.1f}" r="4.5" fill="#fff" '
+    sheet.out.append(f'<circle cx="{p[0]:.0f}" cy="{p[1]:.0f}" r="4.5" fill="#fff" '
                      f'stroke="{BODY}" stroke-width="2"/>')
     sheet.lines.append((p, base))
 
@@ -617,14 +622,16 @@ def _string(support: SceneSupport, bodies, size: float) -> _String:
 
 
 def _draw_string(sheet: _Sheet, string: _String, at, scale: float) -> None:
+    sheet.out.append(f'<g stroke="{BODY}" stroke-width="1.5">')
     for a, b in string.runs:
-        _segment(sheet, at(*a), at(*b), BODY, 1.5)
+        _segment(sheet, at(*a), at(*b))
+    sheet.out.append("</g>")
     for c, r in string.pulleys:
         x, y = at(*c)
         radius = 8.0 if r is None else max(r * scale, 4.0)
-        sheet.out.append(f'<circle class="pulley" cx="{x:.1f}" cy="{y:.1f}" r="{radius:.1f}" '
+        sheet.out.append(f'<circle class="pulley" cx="{x:.0f}" cy="{y:.0f}" r="{radius:.0f}" '
                          f'fill="{FILL}" stroke="{BODY}" stroke-width="2"/>'
-                         f'<circle cx="{x:.1f}" cy="{y:.1f}" r="2.5" fill="{BODY}"/>')
+                         f'<circle cx="{x:.0f}" cy="{y:.0f}" r="2.5" fill="{BODY}"/>')
     for a, up in string.anchors:
         page_up = (up[0], -up[1])
         sheet.out.append(_hatch(at(*a), (-page_up[1], page_up[0]), page_up, 20.0))
@@ -657,19 +664,19 @@ def _springs(sheet: _Sheet, supports, at) -> None:
                 zigs = [along(0.2 + 0.6 * k / 12, 6.0 * (-1) ** k if 0 < k < 12 else 0.0)
                         for k in range(13)]
                 points = [a, *zigs, b]
-                d = "M" + "L".join(f"{x:.1f},{y:.1f}" for x, y in points)
+                d = "M" + "L".join(f"{x:.0f},{y:.0f}" for x, y in points)
                 sheet.out.append(f'<path class="spring" d="{d}" fill="none" stroke="{BODY}" '
                                  f'stroke-width="1.6"/>')
             else:
                 rod, wall, end = along(0.5), along(0.62), along(0.38)
-                d = (f"M{a[0]:.1f},{a[1]:.1f}L{end[0]:.1f},{end[1]:.1f}"
-                     f"M{along(0.38, -8)[0]:.1f},{along(0.38, -8)[1]:.1f}"
-                     f"L{along(0.38, 8)[0]:.1f},{along(0.38, 8)[1]:.1f}"
-                     f"M{along(0.3, -8)[0]:.1f},{along(0.3, -8)[1]:.1f}"
-                     f"L{along(0.62, -8)[0]:.1f},{along(0.62, -8)[1]:.1f}"
-                     f"L{along(0.62, 8)[0]:.1f},{along(0.62, 8)[1]:.1f}"
-                     f"L{along(0.3, 8)[0]:.1f},{along(0.3, 8)[1]:.1f}"
-                     f"M{wall[0]:.1f},{wall[1]:.1f}L{b[0]:.1f},{b[1]:.1f}")
+                d = (f"M{a[0]:.0f},{a[1]:.0f}L{end[0]:.0f},{end[1]:.0f}"
+                     f"M{along(0.38, -8)[0]:.0f},{along(0.38, -8)[1]:.0f}"
+                     f"L{along(0.38, 8)[0]:.0f},{along(0.38, 8)[1]:.0f}"
+                     f"M{along(0.3, -8)[0]:.0f},{along(0.3, -8)[1]:.0f}"
+                     f"L{along(0.62, -8)[0]:.0f},{along(0.62, -8)[1]:.0f}"
+                     f"L{along(0.62, 8)[0]:.0f},{along(0.62, 8)[1]:.0f}"
+                     f"L{along(0.3, 8)[0]:.0f},{along(0.3, 8)[1]:.0f}"
+                     f"M{wall[0]:.0f},{wall[1]:.0f}L{b[0]:.0f},{b[1]:.0f}")
                 del rod
                 sheet.out.append(f'<path class="damper" d="{d}" fill="none" stroke="{BODY}" '
                                  f'stroke-width="1.6"/>')
@@ -693,24 +700,24 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
         else:
             n = (-down[0], -down[1])
         angle = math.degrees(math.atan2(n[0], -n[1]))
-        sheet.out.append(f'<rect {cls} x="{x - BLOCK:.1f}" y="{y - BLOCK:.1f}" '
+        sheet.out.append(f'<rect {cls} x="{x - BLOCK:.0f}" y="{y - BLOCK:.0f}" '
                          f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" {style} '
-                         f'transform="rotate({angle:.0f} {x:.1f} {y:.1f})"/>')
+                         f'transform="rotate({angle:.0f} {x:.0f} {y:.0f})"/>')
         return
     if body.kind == OutlineKind.ROD:
         ends = _extent(body)
         if len(ends) == 2:
             (ax, ay), (bx, by) = at(*ends[0]), at(*ends[1])
             sheet.lines.append(((ax, ay), (bx, by)))
-            sheet.out.append(f'<path {cls} d="M{ax:.1f},{ay:.1f}L{bx:.1f},{by:.1f}" '
+            sheet.out.append(f'<path {cls} d="M{ax:.0f},{ay:.0f}L{bx:.0f},{by:.0f}" '
                              f'stroke="{BODY}" stroke-width="9" stroke-linecap="round"/>'
-                             f'<path d="M{ax:.1f},{ay:.1f}L{bx:.1f},{by:.1f}" stroke="{FILL}" '
+                             f'<path d="M{ax:.0f},{ay:.0f}L{bx:.0f},{by:.0f}" stroke="{FILL}" '
                              f'stroke-width="5" stroke-linecap="round"/>')
             return
     if body.kind == OutlineKind.BLOCK and body.axes is not None:
         corners = [at(*c) for c in _extent(body)]
         if len(corners) == 4:
-            sheet.out.append(f'<path {cls} d="M' + "L".join(f"{cx:.1f},{cy:.1f}"
+            sheet.out.append(f'<path {cls} d="M' + "L".join(f"{cx:.0f},{cy:.0f}"
                                                           for cx, cy in corners)
                              + f'z" {style}/>')
             return
@@ -719,15 +726,15 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
             and body.sizes[-1] is not None:
         r = max(body.sizes[-1] * scale, 4.0)
         fill = "none" if body.kind in (OutlineKind.RING, OutlineKind.SHELL) else FILL
-        sheet.out.append(f'<circle {cls} cx="{x:.1f}" cy="{y:.1f}" r="{r:.1f}" fill="{fill}" '
+        sheet.out.append(f'<circle {cls} cx="{x:.0f}" cy="{y:.0f}" r="{r:.0f}" fill="{fill}" '
                          f'stroke="{BODY}" stroke-width="2"/>')
         axis = body.axes[0] if body.axes is not None else None
         if axis is not None:  # a radius marked on the body shows it turn
             ex, ey = x + r * axis[0], y - r * axis[1]
-            sheet.out.append(f'<path d="M{x:.1f},{y:.1f}L{ex:.1f},{ey:.1f}" stroke="{BODY}" '
+            sheet.out.append(f'<path d="M{x:.0f},{y:.0f}L{ex:.0f},{ey:.0f}" stroke="{BODY}" '
                              f'stroke-width="1.2" stroke-dasharray="4 3"/>')
         return
-    sheet.out.append(f'<circle {cls} cx="{x:.1f}" cy="{y:.1f}" r="9" {style}/>')
+    sheet.out.append(f'<circle {cls} cx="{x:.0f}" cy="{y:.0f}" r="9" {style}/>')
 
 
 def _extent(body: SceneBody) -> list[tuple[float, float]]:
@@ -758,6 +765,7 @@ def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str) -> list:
     """Each frame's unit vectors at its origin; frames sharing an origin and a direction share
     one arrow and one label ("N.x = B.x")."""
     axes: dict[tuple, tuple[tuple[float, float], tuple[float, float], list[str]]] = {}
+    sheet.out.append(f'<g stroke="{FRAME}" stroke-width="1.5" marker-end="url(#{ident}-f)">')
     for frame in s.frames:
         if frame.origin is None or frame.x is None or frame.y is None:
             continue
@@ -766,10 +774,11 @@ def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str) -> list:
             end = at(*_tip(frame.origin, vector, 0.18 * size))
             key = (start, round(end[0]), round(end[1]))
             if key not in axes:
-                _segment(sheet, start, end, FRAME, 1.5, f' marker-end="url(#{ident}-f)"')
+                _segment(sheet, start, end)
                 sheet.arrows.append((start, end))
                 axes[key] = (start, end, [])
             axes[key][2].append(f"{frame.name}.{axis}")
+    sheet.out.append("</g>")
     return list(axes.values())
 
 
@@ -805,9 +814,8 @@ def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None) -> str:
     else:
         x, y, anchor, box = first  # type: ignore[misc]
     sheet.boxes.append(box)
-    sheet.lines.append(((box[0], box[1]), (box[0], box[1])))  # later lines keep clear too
     middle = {"start": "", "end": ' text-anchor="end"', "middle": ' text-anchor="middle"'}
-    return f'<text x="{x:.1f}" y="{y:.1f}"{middle[anchor]}>{escape(text)}</text>'
+    return f'<text x="{x:.0f}" y="{y:.0f}"{middle[anchor]}>{escape(text)}</text>'
 
 
 def described(s: Scene, legend=()) -> str:
