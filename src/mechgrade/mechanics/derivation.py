@@ -301,14 +301,15 @@ their children in a row, as the ``<mrow>`` would."""
 
 def compact_math(text: str) -> str:
     """MathML ``text`` as it renders, in fewer bytes (every feedback page carries each step):
-    an ``<mrow>`` of one child is that child, an ``<mrow>`` in a row is spread into it, and
+    an ``<mrow>`` of one child is that child, an ``<mrow>`` in a row is spread into it (but
+    one that begins or ends with an operator, whose form and stretch its row decides), and
     a bold letter is the mathematical bold character (MathML Core renders no ``mathvariant``
     but ``normal``). Characters that do not print stay character references. Unreadable
     ``text`` is returned as it is.
 
-    >>> compact_math('<math><mrow><mrow><mi mathvariant="bold">n</mi></mrow>'
-    ...              '<mo>&#160;</mo></mrow></math>')
-    '<math><mi>𝐧</mi><mo>&#160;</mo></math>'
+    >>> compact_math('<math><mrow><mrow><mi mathvariant="bold">n</mi></mrow><mi>x</mi></mrow>'
+    ...              '<mo>&#160;</mo><mrow><mo>&#8722;</mo><mi>y</mi></mrow></math>')
+    '<math><mi>𝐧</mi><mi>x</mi><mo>&#160;</mo><mrow><mo>−</mo><mi>y</mi></mrow></math>'
     """
     try:
         root = ET.fromstring(re.sub(r"&(#?\w+);", lambda m: _character(m.group(0)), text))
@@ -337,7 +338,10 @@ def _compact(element: ET.Element) -> None:
     i = 0
     while i < len(element):
         child = element[i]
+        # an operator's form (prefix, infix, postfix: its spacing) and a fence's stretch
+        # depend on its place in its row: a row with an operator at either end is kept
         if child.tag == "mrow" and not child.attrib and not (child.text or "").strip() \
+                and len(child) and child[0].tag != "mo" and child[-1].tag != "mo" \
                 and (len(child) == 1 or element.tag in _FLAT):
             grandchildren = list(child)
             if (child.tail or "").strip():

@@ -104,8 +104,8 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
            f'<desc id="{ident}-desc">{escape(fbd_description(diagram))}</desc>', "<defs>"]
     for name, colour in (("k", KNOWN), ("u", UNKNOWN)):
         out.append(f'<marker id="{ident}-{name}" viewBox="0 0 10 10" refX="9" refY="5" '
-                   'markerWidth="6" markerHeight="6" orient="auto-start-reverse">'
-                   f'<path d="M0,0 L10,5 L0,10 z" fill="{colour}"/></marker>')
+                   'markerWidth="6" markerHeight="6" orient="auto">'
+                   f'<path d="M0,0 10,5 0,10z" fill="{colour}"/></marker>')
     out += ["</defs>", '<rect x="{x0}" y="{y0}" width="{width}" height="{height}" '
             'fill="#fff"/>', *shapes]
     arrows = []  # (load, tail, head, label text parts, unknown)
