@@ -22,7 +22,6 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 from html import escape
-from xml.etree import ElementTree
 
 import sympy as sp
 from sympy.physics.vector import Dyadic, Vector
@@ -32,7 +31,7 @@ from ..spec.dynamics import (Impulse, LoadKind, Reaction, StaticFriction,
 from ..expressions.syntax import Name
 from ..spec.model import Problem
 from .bodies import parallel_axis
-from .derivation import Row, Step, _Display
+from .derivation import Row, Step, _Display, compact_math
 from .dynamics import _inertias, derive_kinetics, free_body_loads, how_the_instant
 from .symbols import identically_zero
 
@@ -116,33 +115,8 @@ def _text(expr) -> str:
 
 
 def _label(words: str, math: str) -> str:
-    return _compact(f'<math display="block"><mrow><mtext>{escape(words)}:&#160;</mtext>{math}'
+    return compact_math(f'<math display="block"><mrow><mtext>{escape(words)}:&#160;</mtext>{math}'
                     "</mrow></math>")
-
-
-def _compact(math: str) -> str:
-    """``math`` without what only makes it longer: an ``mrow`` around one element, invisible
-    times (the row's spoken label reads the product), character references.
-
-    >>> _compact('<math><mrow><mrow><mi>x</mi></mrow><mo>&InvisibleTimes;</mo><mi>y</mi>'
-    ...          '</mrow></math>')
-    '<math><mrow><mi>x</mi><mi>y</mi></mrow></math>'
-    """
-    math = math.replace("<mo>&InvisibleTimes;</mo>", "").replace("<mo>&#8290;</mo>", "")
-    try:
-        tree = ElementTree.fromstring(math)
-    except ElementTree.ParseError:  # a named character reference XML does not know
-        return math
-    for parent in tree.iter():
-        for i, child in enumerate(list(parent)):
-            while child.tag == "mrow" and len(child) == 1 and not (child.text or "").strip() \
-                    and not child.attrib:
-                inner = child[0]
-                inner.tail = child.tail
-                parent[i] = inner
-                child = inner
-    # the no-break space back as its reference: a terminal shows that character escaped
-    return ElementTree.tostring(tree, encoding="unicode").replace("\u00a0", "&#160;")
 
 
 def _bodies(problem: Problem, model, expr_math) -> Step:
