@@ -305,6 +305,14 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
         if along == 0:
             continue
         words = f"{load.body}: along the normal of {load.name} ({load.direction_texts[0]})"
+        tangent = _tangent(model, load.direction_texts[0], N)
+        if tangent is not None:  # an incline's own axes, as a textbook takes them
+            name, t = tangent
+            along_t = sp.simplify(sum((p * c for p, c in zip(parts, t)), sp.Integer(0)))
+            words_t = f"{load.body}: along the surface of {load.name} ({name})"
+            rows.insert(0, Row(f"balance-surface-{load.body}-{load.name}", _label(
+                words_t, f"<mrow>{expr_math(along_t)}<mo>=</mo><mn>0</mn></mrow>"),
+                f"{words_t}: {text(along_t)} = 0"))
         rows.insert(0, Row(f"balance-normal-{load.body}-{load.name}", _label(
             words, f"<mrow>{expr_math(along)}<mo>=</mo><mn>0</mn></mrow>"),
             f"{words}: {text(along)} = 0", NORMAL_CODES))
@@ -315,6 +323,18 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
         lines += ("Each contact's condition: the restitution (or sticking) condition on the "
                   "velocities just after the impact.",)
     return Step("kinetics-momentum-balances", "Momentum balances", lines, tuple(rows))
+
+
+def _tangent(model, normal: str, inertial: str):
+    """The surface's own axis across a normal written as a frame's axis (``A.y``: ``A.x``)
+    and its inertial components; ``None`` for a normal along the inertial frame's axes
+    (its balances are those already written) or written otherwise."""
+    frame, _, axis = normal.strip().lstrip("+").partition(".")
+    if frame == inertial or frame not in model.frames or axis not in ("x", "y"):
+        return None
+    other = "y" if axis == "x" else "x"
+    vector = getattr(model.frames[frame], other)
+    return f"{frame}.{other}", model.plain(vector.to_matrix(model.inertial))
 
 
 def _fixed(model, point: str, frame: str) -> bool:
