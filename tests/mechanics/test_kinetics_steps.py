@@ -4,6 +4,8 @@ a fixed pivot), the work-energy balance term by term, and the mistakes each row 
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from mechgrade.mechanics.kinetics_steps import kinetics_steps
@@ -81,3 +83,11 @@ def test_the_math_holds_only_printable_characters(pendulum):
     for step in pendulum.values():
         for row in step.rows:
             assert row.math.isprintable(), (row.anchor, row.math)
+
+
+def test_captions_set_a_loads_name_as_a_textbook_does(pendulum):
+    # "rod, pin reaction R_O at O": R with the subscript O, not the file's spelling
+    row = rows(pendulum["kinetics-free-body-loads"])["load-rod-R_O"]
+    captions = "".join(re.findall(r"<mtext>([^<]*)</mtext>", row.math))
+    assert "R_O" not in captions and "pin reaction" in captions
+    assert "<msub><mi>R</mi><mi>O</mi></msub><mtext>&#160;at O" in row.math

@@ -115,8 +115,27 @@ def _text(expr) -> str:
 
 
 def _label(words: str, math: str) -> str:
-    return compact_math(f'<math display="block"><mrow><mtext>{escape(words)}:&#160;</mtext>{math}'
-                    "</mrow></math>")
+    return compact_math(f'<math display="block"><mrow>{_caption(words)}{math}</mrow></math>')
+
+
+def _caption(words: str) -> str:
+    """A row's caption before its equation, a load's name set as a textbook sets it (``N_P``:
+    N with the subscript P), not as the file spells it.
+
+    >>> print(_caption("rod, pin reaction R_O at O"))
+    <mtext>rod, pin reaction&#160;</mtext><msub><mi>R</mi><mi>O</mi></msub><mtext>&#160;at O:&#160;</mtext>
+    """
+    parts = re.split(r"\b([A-Za-z]+)_([A-Za-z0-9]+)\b", words + ":\u00a0")
+    out = []
+    for i in range(0, len(parts), 3):
+        # a token's own spaces at its ends are not drawn: the no-break space is
+        text = re.sub(r"^ | $", "\u00a0", parts[i])
+        if text:
+            out.append(f"<mtext>{escape(text)}</mtext>".replace("\u00a0", "&#160;"))
+        if i + 2 < len(parts):
+            out.append(f"<msub><mi>{escape(parts[i + 1])}</mi><mi>{escape(parts[i + 2])}</mi>"
+                       "</msub>")
+    return "".join(out)
 
 
 def _bodies(problem: Problem, model, expr_math) -> Step:
