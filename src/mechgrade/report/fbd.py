@@ -31,7 +31,7 @@ from dataclasses import replace
 from html import escape
 from typing import TYPE_CHECKING
 
-from ..solve.layout import apart, collides
+from ..solve.layout import apart, collides, outline_extent
 from ..spec.dynamics import LoadKind, OutlineKind
 
 if TYPE_CHECKING:  # the diagrams come ready-made: drawing them needs no solver
@@ -237,29 +237,7 @@ def _projection(diagram: FreeBodyDiagram, positions: dict):
 
 def _extent(o, at) -> list[Point2]:
     """The points of the page an outline reaches (m, inertial x and y)."""
-    size = o.sizes[0] if o.sizes and o.sizes[0] is not None else 0.0
-    if o.kind == OutlineKind.ROD and o.axes is not None:
-        axis = o.axes["xyz".index(o.axis)]
-        if axis is not None:
-            return [(at[0] + s * size / 2 * axis[0], at[1] + s * size / 2 * axis[1])
-                    for s in (-1, 1)]
-    if o.kind == OutlineKind.BLOCK and o.axes is not None:
-        return [c for c in _block_corners(o, at) if c is not None]
-    if o.kind in (OutlineKind.DISK, OutlineKind.RING, OutlineKind.CYLINDER, OutlineKind.SPHERE,
-                  OutlineKind.SHELL):
-        radius = o.sizes[-1] if o.kind == OutlineKind.CYLINDER else size
-        radius = radius or 0.0
-        return [(at[0] - radius, at[1] - radius), (at[0] + radius, at[1] + radius)]
-    return [(at[0], at[1])]
-
-
-def _block_corners(o, at) -> list:
-    ex, ey = o.axes[0], o.axes[1]
-    a, b = (o.sizes[0] or 0.0) / 2, (o.sizes[1] or 0.0) / 2
-    if ex is None or ey is None:
-        return []
-    return [(at[0] + sa * a * ex[0] + sb * b * ey[0], at[1] + sa * a * ex[1] + sb * b * ey[1])
-            for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+    return outline_extent(o.kind, at, o.sizes, o.axis, o.axes)
 
 
 def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
@@ -297,8 +275,8 @@ def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
                               f'x2="{ends[1][0]:.0f}" y2="{ends[1][1]:.0f}" stroke="#9aa5b1" '
                               'stroke-width="10" stroke-linecap="round"/>')
         elif o.kind == OutlineKind.BLOCK:
-            corners = [to_screen(c) for c in _block_corners(o, at)]
-            if corners:
+            corners = [to_screen(c) for c in _extent(o, at)]
+            if len(corners) == 4:
                 shapes.append('<polygon class="body" points="'
                               + " ".join(f"{cx:.0f},{cy:.0f}" for cx, cy in corners)
                               + f'" {style}/>')

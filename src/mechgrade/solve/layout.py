@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 
+from ..spec.dynamics import OutlineKind
+
 Point2 = tuple[float, float]
 Box = tuple[float, float, float, float]  # left, top, right, bottom
 
@@ -68,3 +70,36 @@ def collides(box: Box, taken: list, avoid: list | tuple = ()) -> bool:
     return any(box[0] < b[2] + 4 and b[0] < box[2] + 4 and box[1] < b[3] + 2
                and b[1] < box[3] + 2 for b in taken) \
         or any(crosses(box, t, h) for t, h in avoid)
+
+
+ROUND = (OutlineKind.DISK, OutlineKind.RING, OutlineKind.CYLINDER, OutlineKind.SPHERE,
+         OutlineKind.SHELL)
+"""Shapes drawn as a circle of their radius (their last size)."""
+
+
+def outline_extent(kind: OutlineKind, at, sizes, axis: str, axes) -> list[Point2]:
+    """The points (inertial x and y, m) a body's part of shape ``kind`` centred ``at``
+    reaches: a rod's two ends along its ``axis``, a block's four corners (its first two sides
+    along the body's x and y ``axes``), a round shape's bounding box, else its centre.
+    Unknown sizes count as zero.
+
+    >>> outline_extent(OutlineKind.ROD, (0, 0), (2.0,), "x", ((1, 0, 0), (0, 1, 0), None))
+    [(-1.0, 0.0), (1.0, 0.0)]
+    """
+    size = sizes[0] if sizes and sizes[0] is not None else 0.0
+    if kind == OutlineKind.ROD and axes is not None and axis:
+        direction = axes["xyz".index(axis)]
+        if direction is not None:
+            return [(at[0] + s * size / 2 * direction[0], at[1] + s * size / 2 * direction[1])
+                    for s in (-1, 1)]
+    if kind == OutlineKind.BLOCK and axes is not None:
+        ex, ey = axes[0], axes[1]
+        if ex is not None and ey is not None:
+            a, b = size / 2, (sizes[1] or 0.0) / 2
+            return [(at[0] + sa * a * ex[0] + sb * b * ey[0],
+                     at[1] + sa * a * ex[1] + sb * b * ey[1])
+                    for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+    if kind in ROUND and sizes:
+        radius = sizes[-1] or 0.0
+        return [(at[0] - radius, at[1] - radius), (at[0] + radius, at[1] + radius)]
+    return [(at[0], at[1])]

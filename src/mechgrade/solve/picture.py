@@ -34,7 +34,7 @@ from ..spec.dynamics import GROUND, LoadKind, OutlineKind
 from ..spec.model import Problem
 from ..units import same_dimension, si_factor
 from .fbd import drawn_shape
-from .layout import apart, collides
+from .layout import ROUND, apart, collides, outline_extent
 from .plan import kinematics_plan
 from .result import Solution
 
@@ -155,8 +155,9 @@ def scene(problem: Problem, solution: Solution) -> Scene:
     for body, kind, centre, sizes, axis, axes in bodies:
         at = number(centre)
         if at is not None:
+            x, y, z = (unit(f) for f in axes) if axes else (None, None, None)
             drawn_bodies.append(SceneBody(body, kind, at, tuple(size(f) for f in sizes), axis,
-                                          tuple(unit(f) for f in axes) if axes else None))
+                                          (x, y, z) if axes else None))
     drawn_supports = []
     for kind, name, at, directions, on in supports:
         ends = placed(at)
@@ -277,7 +278,7 @@ def _mechanism(problem: Problem, model, symbols):
             kind, sizes, axis = drawn_shape(part.shape if frame is not None else None)
             bodies.append((body.name, kind, point(part.at), tuple(scalar(e) for e in sizes),
                            axis, axes))
-    supports = []
+    supports: list[tuple] = []
     for spring in d.springs:
         supports.append((SupportKind.SPRING, spring.name, tuple(point(q) for q in spring.between),
                          (), spring.on))
@@ -285,29 +286,29 @@ def _mechanism(problem: Problem, model, symbols):
         supports.append((SupportKind.DAMPER, damper.name, tuple(point(q) for q in damper.between),
                          (), damper.on))
     for reaction in d.reactions:
-        kind = _REACTION_SUPPORTS.get(reaction.kind)
-        if kind is None and len(reaction.directions) > 1 and len(reaction.acts) == 1:
-            kind = SupportKind.PIN
-        if kind is None:
+        support = _REACTION_SUPPORTS.get(reaction.kind)
+        if support is None and len(reaction.directions) > 1 and len(reaction.acts) == 1:
+            support = SupportKind.PIN
+        if support is None:
             continue
-        if kind == SupportKind.PIN and len(reaction.acts) > 1:
-            kind = SupportKind.JOINT
-        if kind == SupportKind.SURFACE:
+        if support == SupportKind.PIN and len(reaction.acts) > 1:
+            support = SupportKind.JOINT
+        if support == SupportKind.SURFACE:
             if reaction.contact_surface != GROUND and reaction.contact_surface in \
                     {b.name for b in d.bodies}:
                 continue  # against another body: that body's outline is the surface
             act = reaction.acts[0]
-            supports.append((kind, reaction.name, (point(act.at),),
+            supports.append((support, reaction.name, (point(act.at),),
                              (vector(reaction.direction_at(act), act.sign),),
                              (act.on,)))
             continue
-        if kind == SupportKind.STRING:
-            supports.append((kind, reaction.name, tuple(point(a.at) for a in reaction.acts),
+        if support == SupportKind.STRING:
+            supports.append((support, reaction.name, tuple(point(a.at) for a in reaction.acts),
                              tuple(vector(reaction.direction_at(a), a.sign)
                                    for a in reaction.acts),
                              tuple(a.on for a in reaction.acts)))
             continue
-        supports.append((kind, reaction.name, (point(reaction.acts[0].at),), (),
+        supports.append((support, reaction.name, (point(reaction.acts[0].at),), (),
                          tuple(a.on for a in reaction.acts)))
     down = d.down if d.down is not None else d.gravity
     return tuple(bodies), tuple(supports), vector(down) if down is not None else None
@@ -721,9 +722,7 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
                                                           for cx, cy in corners)
                              + f'z" {style}/>')
             return
-    if body.kind in (OutlineKind.DISK, OutlineKind.RING, OutlineKind.CYLINDER,
-                     OutlineKind.SPHERE, OutlineKind.SHELL) and body.sizes \
-            and body.sizes[-1] is not None:
+    if body.kind in ROUND and body.sizes and body.sizes[-1] is not None:
         r = max(body.sizes[-1] * scale, 4.0)
         fill = "none" if body.kind in (OutlineKind.RING, OutlineKind.SHELL) else FILL
         sheet.out.append(f'<circle {cls} cx="{x:.0f}" cy="{y:.0f}" r="{r:.0f}" fill="{fill}" '
@@ -738,27 +737,8 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
 
 
 def _extent(body: SceneBody) -> list[tuple[float, float]]:
-    """The points of the page (inertial x, y in m) a body's part reaches: a rod's ends, a
-    block's corners, a round body's bounding box, else its centre."""
-    c = body.centre
-    size = body.sizes[0] if body.sizes and body.sizes[0] is not None else 0.0
-    if body.kind == OutlineKind.ROD and body.axes is not None and body.axis:
-        axis = body.axes["xyz".index(body.axis)]
-        if axis is not None:
-            return [(c[0] + s * size / 2 * axis[0], c[1] + s * size / 2 * axis[1])
-                    for s in (-1, 1)]
-    if body.kind == OutlineKind.BLOCK and body.axes is not None:
-        ex, ey = body.axes[0], body.axes[1]
-        if ex is not None and ey is not None and None not in body.sizes[:2]:
-            a, b = (body.sizes[0] or 0.0) / 2, (body.sizes[1] or 0.0) / 2
-            return [(c[0] + sa * a * ex[0] + sb * b * ey[0], c[1] + sa * a * ex[1] + sb * b * ey[1])
-                    for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
-    if body.kind in (OutlineKind.DISK, OutlineKind.RING, OutlineKind.CYLINDER,
-                     OutlineKind.SPHERE, OutlineKind.SHELL) and body.sizes \
-            and body.sizes[-1] is not None:
-        r = body.sizes[-1]
-        return [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
-    return [(c[0], c[1])]
+    """The points (inertial x, y in m) a body's part reaches."""
+    return outline_extent(body.kind, body.centre, body.sizes, body.axis, body.axes)
 
 
 def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str) -> list:
