@@ -4,6 +4,7 @@ problem with bodies and loads, the kinematics write-up for any other."""
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 from ..spec.model import Problem
 from .derivation import Step, compact_math, kinematics_derivation, kinematics_steps
@@ -19,6 +20,7 @@ def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tup
     return kinematics_derivation(problem, dof)
 
 
+@lru_cache(maxsize=64)  # one problem's steps serve every student's variant of it
 def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     """The symbolic steps of the worked solution: the kinematics (:func:`kinematics_steps`),
     then, for a problem with bodies and loads, the kinetics sections of the write-up (bodies,
