@@ -4,6 +4,8 @@ a fixed pivot), the work-energy balance term by term, and the mistakes each row 
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from mechgrade.mechanics.kinetics_steps import kinetics_steps
@@ -63,6 +65,17 @@ def test_the_normal_force_has_the_balance_along_its_normal():
     assert normal.anchor == "balance-normal-block-N_P" and "normal_from_weight" in normal.codes
     assert normal.text == "block: along the normal of N_P (A.y): N_P - g*m*cos(beta) = 0"
     assert not any(s.anchor == "kinetics-work-energy" for s in steps)
+    # and along the incline: the textbook's axes, the normal's frame (A), not only N's
+    surface = balances.rows[1]
+    assert surface.anchor == "balance-surface-block-N_P"
+    assert surface.text == ("block: along the surface of N_P (A.x): "
+                            "-N_P*mu_k*xd/Abs(xd) + g*m*sin(beta) - m*xdd = 0")
+
+
+def test_a_normal_along_the_fixed_axes_adds_no_surface_balance():
+    steps = kinetics_steps(load_problem(PROBLEMS / "cylinder_pulled_rolls.yaml"))
+    (balances,) = [s for s in steps if s.anchor == "kinetics-momentum-balances"]
+    assert not any(r.anchor.startswith("balance-surface") for r in balances.rows)
 
 
 def test_the_math_holds_only_printable_characters(pendulum):
@@ -70,3 +83,11 @@ def test_the_math_holds_only_printable_characters(pendulum):
     for step in pendulum.values():
         for row in step.rows:
             assert row.math.isprintable(), (row.anchor, row.math)
+
+
+def test_captions_set_a_loads_name_as_a_textbook_does(pendulum):
+    # "rod, pin reaction R_O at O": R with the subscript O, not the file's spelling
+    row = rows(pendulum["kinetics-free-body-loads"])["load-rod-R_O"]
+    captions = "".join(re.findall(r"<mtext>([^<]*)</mtext>", row.math))
+    assert "R_O" not in captions and "pin reaction" in captions
+    assert "<msub><mi>R</mi><mi>O</mi></msub><mtext>&#160;at O" in row.math

@@ -84,8 +84,8 @@ def test_every_equation_says_itself_and_every_picture_is_described_in_words(page
             'mechanism at the instant, its points and frames, velocities and '
             'accelerations</title>') in feedback
     assert ('<desc id="bowling_3_15_4_pendulum-desc">Points O and A; a line joins A to O. Unit '
-            'vectors x and y of frames N and A. Arrows: velocity (longest 4.3 m/s), in blue; '
-            'acceleration (longest 30 m/s²), in red.</desc>') in feedback
+            'vectors x and y of frames N and A. Arrows: velocity (longest 14 ft/s), in blue; '
+            'acceleration (longest 99 ft/s²), in red.</desc>') in feedback  # the problem's feet
     report = pages["class report"].read_text(encoding="utf-8")
     assert '<title id="histogram-title">Score distribution (out of 19)</title>' in report
     assert '<title id="success-title">Success per objective</title>' in report

@@ -27,8 +27,8 @@ def test_the_html_solution_composes_the_acceleration_term_by_term_offline():
 
 def test_rates_are_written_with_dots_and_vectors_with_their_frames():
     text = _solve("--steps", "--format", "html")
-    dot_q = '<mover accent="true"><mi>q</mi><mo>&#8729;</mo></mover>'
-    ddot_q = '<mover accent="true"><mi>q</mi><mo>&#8729;&#8729;</mo></mover>'
+    dot_q = '<mover accent="true"><mi>q</mi><mo>∙</mo></mover>'
+    ddot_q = '<mover accent="true"><mi>q</mi><mo>∙∙</mo></mover>'
     assert dot_q in text and ddot_q in text and "<mi>qd</mi>" not in text
     # the Coriolis term 2 ^N omega^B x ^B v^P = -2 q' y' b_x
     assert ("<mn>2</mn><mmultiscripts><mi mathvariant=\"bold\">ω</mi><none/><mi>B</mi>"

@@ -23,7 +23,7 @@ def test_the_picture_labels_points_and_frames_and_is_the_same_each_time():
     problem = load_problem(TUBE)
     svg = picture_svg(scene(problem, solve(problem)))
     assert svg == picture_svg(scene(problem, solve(problem)))
-    assert "velocity (longest" in svg and "B.x" in svg
+    assert "velocity (longest 19 ft/s)" in svg and "B.x" in svg  # the problem's units
 
 
 def test_solve_plot_writes_an_svg_that_chromium_renders(tmp_path, chromium):
@@ -32,3 +32,129 @@ def test_solve_plot_writes_an_svg_that_chromium_renders(tmp_path, chromium):
     assert result.exit_code == 0, result.output
     dom, log = chromium(out)
     assert "<svg" in dom and "Uncaught" not in log
+
+
+# ---------------------------------------------------------------------------- the mechanism
+
+import re  # noqa: E402
+
+import pytest  # noqa: E402
+
+from mechgrade.solve.picture import (Scene, SceneBody, ScenePoint, SceneSupport,  # noqa: E402
+                                     SupportKind, described)
+from mechgrade.solve.result import Solution, StateValue  # noqa: E402
+from mechgrade.spec.dynamics import OutlineKind  # noqa: E402
+
+
+def _given_scene(name: str) -> Scene:
+    """The scene at the givens alone (nothing solved: the picture needs only positions)."""
+    problem = load_problem(shipped_dir("problems") / f"{name}.yaml")
+    state = tuple(StateValue(g.key.text, g.value, g.unit, True, g.si) for g in problem.givens)
+    return scene(problem, Solution(problem.id, (), state))
+
+
+def test_an_atwood_machine_hangs_two_blocks_from_one_string_over_a_pulley():
+    s = _given_scene("atwood_machine")
+    assert [b.kind for b in s.bodies] == [OutlineKind.PARTICLE] * 2
+    (string,) = s.supports
+    assert string.kind == SupportKind.STRING and string.bodies == ("block1", "block2")
+    assert [tuple(round(c, 9) for c in d) for d in string.directions] == [(0, 1, 0)] * 2
+    svg = picture_svg(s)
+    assert svg.count('class="pulley"') == 1 and svg.count('<rect class="body"') == 2
+    assert svg.count('class="ground"') == 1  # the ceiling the pulley hangs from
+    assert "string T pulling block1 and block2" in svg
+
+
+def test_a_rod_pendulum_is_drawn_its_full_length_from_its_pin():
+    s = _given_scene("pendulum_pin_reaction")
+    (rod,) = s.bodies
+    assert rod.kind == OutlineKind.ROD and rod.sizes == (pytest.approx(1.2),)
+    svg = picture_svg(s)
+    assert 'class="pin"' in svg and "rod, a rod 1.2 m long" in svg
+    # the rod's path runs from the pin O (one end) through G to the far end
+    ends = re.search(r'<path class="body" data-body="rod" d="M(-?\d+),(-?\d+)L(-?\d+),(-?\d+)"',
+                     svg).groups()
+    pin = re.search(r'<circle cx="(-?\d+)" cy="(-?\d+)" r="4.5"', svg).groups()
+    assert pin in (ends[:2], ends[2:])
+
+
+def test_springs_and_dampers_between_one_pair_of_points_lie_side_by_side():
+    s = _given_scene("two_mass_spring_chain")
+    kinds = [(x.kind, x.bodies) for x in s.supports]
+    assert kinds == [(SupportKind.SPRING, ("ground", "block1")),
+                     (SupportKind.SPRING, ("block1", "block2")),
+                     (SupportKind.DAMPER, ("block1", "block2"))]
+    svg = picture_svg(s)
+    assert svg.count('class="spring"') == 2 and svg.count('class="damper"') == 1
+    assert svg.count('class="ground"') == 1  # the wall at the first spring's fixed end
+    starts = {k: re.findall(rf'class="{k}" d="M(-?\d+),(-?\d+)', svg)
+              for k in ("spring", "damper")}
+    # the second spring and the damper join P1 to P2: across the line from each other
+    assert abs(int(starts["spring"][1][1]) - int(starts["damper"][0][1])) >= 18
+
+
+def test_a_block_on_an_incline_sits_square_to_the_hatched_surface():
+    s = _given_scene("block_sliding_down_incline")
+    (surface,) = s.supports
+    assert surface.kind == SupportKind.SURFACE
+    assert [round(c, 6) for c in surface.directions[0]] == [0.5, 0.866025, 0]
+    svg = picture_svg(s)
+    assert 'transform="rotate(30 ' in svg and 'class="ground"' in svg
+    assert "block on a fixed surface" in svg
+
+
+def test_a_string_round_a_corner_turns_over_a_pulley_there():
+    cord = SceneSupport(SupportKind.STRING, "T", ((0.0, 0.0, 0.0), (1.0, -1.0, 0.0)),
+                        ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0)), ("A", "B"))
+    s = Scene("p", (ScenePoint("P", (0, 0, 0), None, None, None),
+                    ScenePoint("Q", (1, -1, 0), None, None, None)), (),
+              bodies=(SceneBody("A", OutlineKind.PARTICLE, (0, 0, 0)),
+                      SceneBody("B", OutlineKind.PARTICLE, (1, -1, 0))), supports=(cord,))
+    svg = picture_svg(s)
+    (pulley,) = re.findall(r'class="pulley" cx="(\d+)" cy="(\d+)"', svg)
+    marks = {tuple(m) for m in re.findall(r'<circle cx="(\d+)" cy="(\d+)" r="3.5"', svg)}
+    p, q = sorted(marks)  # the pulley sits level with P and above Q
+    assert pulley == (q[0], p[1])
+
+
+def test_a_movable_pulley_wraps_its_body_and_the_strand_beyond_it_is_tied_up():
+    up = (0.0, 1.0, 0.0)
+    cord = SceneSupport(SupportKind.STRING, "T", ((0, 0, 0), (1, -0.5, 0), (1.4, -0.5, 0)),
+                        (up, up, up), ("A", "B", "B"))
+    s = Scene("p", (ScenePoint("A", (0, 0, 0), None, None, None),
+                    ScenePoint("B", (1.2, -0.5, 0), None, None, None)), (),
+              bodies=(SceneBody("A", OutlineKind.PARTICLE, (0, 0, 0)),
+                      SceneBody("B", OutlineKind.PARTICLE, (1.2, -0.5, 0))), supports=(cord,))
+    svg = picture_svg(s)
+    assert svg.count('class="pulley"') == 2  # one fixed above, one on body B
+    assert svg.count('class="ground"') == 2  # the fixed pulley's hanger and the tied strand
+
+
+def test_collinear_arrows_are_drawn_apart_and_round_off_is_not_drawn():
+    s = Scene("p", (ScenePoint("O", (0, 0, 0), None, None, None),
+                    ScenePoint("A", (1, 0, 0), (2, 0, 0), (3, 0, 0), "O")), ())
+    svg = picture_svg(s)
+    velocity, acceleration = (re.search(rf'<g stroke="{c}"[^>]*>\n<path d="([^"]+)"', svg)[1]
+                              for c in ("#1565c0", "#c62828"))
+    assert velocity != acceleration
+    still = Scene("p", (ScenePoint("O", (0, 0, 0), None, None, None),
+                        ScenePoint("A", (1, 0, 0), (4e-16, 0, 0), None, "O")), ())
+    assert "velocity" not in picture_svg(still)
+
+
+def test_labels_keep_clear_of_each_other():
+    s = Scene("p", tuple(ScenePoint(n, (x, 0, 0), None, None, None)
+                         for n, x in (("A", 0.0), ("B", 0.02), ("C", 1.0))), ())
+    svg = picture_svg(s)
+    (ax, ay), (bx, by) = (tuple(float(c) for c in re.search(rf'<text x="([\d.]+)" y="([\d.]+)"'
+                                                             rf'[^>]*>{n}<', svg).groups())
+                          for n in "AB")
+    assert abs(ax - bx) > 10 or abs(ay - by) > 14
+
+
+def test_the_picture_says_its_bodies_and_supports_in_words():
+    s = Scene("p", (ScenePoint("O", (0, 0, 0), None, None, None),), (),
+              bodies=(SceneBody("disk", OutlineKind.DISK, (0, 0, 0), (0.5,)),),
+              supports=(SceneSupport(SupportKind.PIN, "R", ((0, 0, 0),), (), ("disk",)),))
+    assert described(s) == ("Bodies: disk, a disk of radius 0.5 m. Supports: disk pinned to "
+                            "the ground. Point O.")

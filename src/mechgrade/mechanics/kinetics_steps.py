@@ -22,7 +22,6 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 from html import escape
-from xml.etree import ElementTree
 
 import sympy as sp
 from sympy.physics.vector import Dyadic, Vector
@@ -32,7 +31,7 @@ from ..spec.dynamics import (Impulse, LoadKind, Reaction, StaticFriction,
 from ..expressions.syntax import Name
 from ..spec.model import Problem
 from .bodies import parallel_axis
-from .derivation import Row, Step, _Display
+from .derivation import Row, Step, _Display, compact_math
 from .dynamics import _inertias, derive_kinetics, free_body_loads, how_the_instant
 from .symbols import identically_zero
 
@@ -116,33 +115,27 @@ def _text(expr) -> str:
 
 
 def _label(words: str, math: str) -> str:
-    return _compact(f'<math display="block"><mrow><mtext>{escape(words)}:&#160;</mtext>{math}'
-                    "</mrow></math>")
+    return compact_math(f'<math display="block"><mrow>{_caption(words)}{math}</mrow></math>')
 
 
-def _compact(math: str) -> str:
-    """``math`` without what only makes it longer: an ``mrow`` around one element, invisible
-    times (the row's spoken label reads the product), character references.
+def _caption(words: str) -> str:
+    """A row's caption before its equation, a load's name set as a textbook sets it (``N_P``:
+    N with the subscript P), not as the file spells it.
 
-    >>> _compact('<math><mrow><mrow><mi>x</mi></mrow><mo>&InvisibleTimes;</mo><mi>y</mi>'
-    ...          '</mrow></math>')
-    '<math><mrow><mi>x</mi><mi>y</mi></mrow></math>'
+    >>> print(_caption("rod, pin reaction R_O at O"))
+    <mtext>rod, pin reaction&#160;</mtext><msub><mi>R</mi><mi>O</mi></msub><mtext>&#160;at O:&#160;</mtext>
     """
-    math = math.replace("<mo>&InvisibleTimes;</mo>", "").replace("<mo>&#8290;</mo>", "")
-    try:
-        tree = ElementTree.fromstring(math)
-    except ElementTree.ParseError:  # a named character reference XML does not know
-        return math
-    for parent in tree.iter():
-        for i, child in enumerate(list(parent)):
-            while child.tag == "mrow" and len(child) == 1 and not (child.text or "").strip() \
-                    and not child.attrib:
-                inner = child[0]
-                inner.tail = child.tail
-                parent[i] = inner
-                child = inner
-    # the no-break space back as its reference: a terminal shows that character escaped
-    return ElementTree.tostring(tree, encoding="unicode").replace("\u00a0", "&#160;")
+    parts = re.split(r"\b([A-Za-z]+)_([A-Za-z0-9]+)\b", words + ":\u00a0")
+    out = []
+    for i in range(0, len(parts), 3):
+        # a token's own spaces at its ends are not drawn: the no-break space is
+        text = re.sub(r"^ | $", "\u00a0", parts[i])
+        if text:
+            out.append(f"<mtext>{escape(text)}</mtext>".replace("\u00a0", "&#160;"))
+        if i + 2 < len(parts):
+            out.append(f"<msub><mi>{escape(parts[i + 1])}</mi><mi>{escape(parts[i + 2])}</mi>"
+                       "</msub>")
+    return "".join(out)
 
 
 def _bodies(problem: Problem, model, expr_math) -> Step:
@@ -331,6 +324,14 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
         if along == 0:
             continue
         words = f"{load.body}: along the normal of {load.name} ({load.direction_texts[0]})"
+        tangent = _tangent(model, load.direction_texts[0], N)
+        if tangent is not None:  # an incline's own axes, as a textbook takes them
+            name, t = tangent
+            along_t = sp.simplify(sum((p * c for p, c in zip(parts, t)), sp.Integer(0)))
+            words_t = f"{load.body}: along the surface of {load.name} ({name})"
+            rows.insert(0, Row(f"balance-surface-{load.body}-{load.name}", _label(
+                words_t, f"<mrow>{expr_math(along_t)}<mo>=</mo><mn>0</mn></mrow>"),
+                f"{words_t}: {text(along_t)} = 0"))
         rows.insert(0, Row(f"balance-normal-{load.body}-{load.name}", _label(
             words, f"<mrow>{expr_math(along)}<mo>=</mo><mn>0</mn></mrow>"),
             f"{words}: {text(along)} = 0", NORMAL_CODES))
@@ -341,6 +342,18 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
         lines += ("Each contact's condition: the restitution (or sticking) condition on the "
                   "velocities just after the impact.",)
     return Step("kinetics-momentum-balances", "Momentum balances", lines, tuple(rows))
+
+
+def _tangent(model, normal: str, inertial: str):
+    """The surface's own axis across a normal written as a frame's axis (``A.y``: ``A.x``)
+    and its inertial components; ``None`` for a normal along the inertial frame's axes
+    (its balances are those already written) or written otherwise."""
+    frame, _, axis = normal.strip().lstrip("+").partition(".")
+    if frame == inertial or frame not in model.frames or axis not in ("x", "y"):
+        return None
+    other = "y" if axis == "x" else "x"
+    vector = getattr(model.frames[frame], other)
+    return f"{frame}.{other}", model.plain(vector.to_matrix(model.inertial))
 
 
 def _fixed(model, point: str, frame: str) -> bool:

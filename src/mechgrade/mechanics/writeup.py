@@ -4,9 +4,10 @@ problem with bodies and loads, the kinematics write-up for any other."""
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 from ..spec.model import Problem
-from .derivation import Step, kinematics_derivation, kinematics_steps
+from .derivation import Step, compact_math, kinematics_derivation, kinematics_steps
 from .kinetics_steps import kinetics_steps
 from .dynamics import kinetics_derivation
 
@@ -19,6 +20,7 @@ def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tup
     return kinematics_derivation(problem, dof)
 
 
+@lru_cache(maxsize=64)  # one problem's steps serve every student's variant of it
 def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     """The symbolic steps of the worked solution: the kinematics (:func:`kinematics_steps`),
     then, for a problem with bodies and loads, the kinetics sections of the write-up (bodies,
@@ -33,6 +35,7 @@ def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     """
     kinematic = replace(problem, objectives=(), dynamics=None)
     steps = kinematics_steps(kinematic, dof)
-    if problem.dynamics is None:
-        return steps
-    return steps + kinetics_steps(problem)
+    if problem.dynamics is not None:
+        steps += kinetics_steps(problem)
+    return tuple(replace(step, rows=tuple(replace(row, math=compact_math(row.math))
+                                          for row in step.rows)) for step in steps)

@@ -31,6 +31,7 @@ from dataclasses import replace
 from html import escape
 from typing import TYPE_CHECKING
 
+from ..solve.layout import apart, collides, outline_extent
 from ..spec.dynamics import LoadKind, OutlineKind
 
 if TYPE_CHECKING:  # the diagrams come ready-made: drawing them needs no solver
@@ -103,8 +104,8 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
            f'<desc id="{ident}-desc">{escape(fbd_description(diagram))}</desc>', "<defs>"]
     for name, colour in (("k", KNOWN), ("u", UNKNOWN)):
         out.append(f'<marker id="{ident}-{name}" viewBox="0 0 10 10" refX="9" refY="5" '
-                   'markerWidth="6" markerHeight="6" orient="auto-start-reverse">'
-                   f'<path d="M0,0 L10,5 L0,10 z" fill="{colour}"/></marker>')
+                   'markerWidth="6" markerHeight="6" orient="auto">'
+                   f'<path d="M0,0 10,5 0,10z" fill="{colour}"/></marker>')
     out += ["</defs>", '<rect x="{x0}" y="{y0}" width="{width}" height="{height}" '
             'fill="#fff"/>', *shapes]
     arrows = []  # (load, tail, head, label text parts, unknown)
@@ -136,7 +137,7 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
                           _label((tail[0] + 12, tail[1] - 12), tail, label[:3], colour, labels,
                                  avoid=every)]
                 continue
-            tail, head = _apart(tail, head, placed)
+            tail, head = apart(tail, head, placed)
             placed.append((tail, head))
             dash = ' stroke-dasharray="6 4"' if load.unknown else ""
             group.append(f'<line class="arrow" x1="{tail[0]:.0f}" y1="{tail[1]:.0f}" '
@@ -236,29 +237,7 @@ def _projection(diagram: FreeBodyDiagram, positions: dict):
 
 def _extent(o, at) -> list[Point2]:
     """The points of the page an outline reaches (m, inertial x and y)."""
-    size = o.sizes[0] if o.sizes and o.sizes[0] is not None else 0.0
-    if o.kind == OutlineKind.ROD and o.axes is not None:
-        axis = o.axes["xyz".index(o.axis)]
-        if axis is not None:
-            return [(at[0] + s * size / 2 * axis[0], at[1] + s * size / 2 * axis[1])
-                    for s in (-1, 1)]
-    if o.kind == OutlineKind.BLOCK and o.axes is not None:
-        return [c for c in _block_corners(o, at) if c is not None]
-    if o.kind in (OutlineKind.DISK, OutlineKind.RING, OutlineKind.CYLINDER, OutlineKind.SPHERE,
-                  OutlineKind.SHELL):
-        radius = o.sizes[-1] if o.kind == OutlineKind.CYLINDER else size
-        radius = radius or 0.0
-        return [(at[0] - radius, at[1] - radius), (at[0] + radius, at[1] + radius)]
-    return [(at[0], at[1])]
-
-
-def _block_corners(o, at) -> list:
-    ex, ey = o.axes[0], o.axes[1]
-    a, b = (o.sizes[0] or 0.0) / 2, (o.sizes[1] or 0.0) / 2
-    if ex is None or ey is None:
-        return []
-    return [(at[0] + sa * a * ex[0] + sb * b * ey[0], at[1] + sa * a * ex[1] + sb * b * ey[1])
-            for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+    return outline_extent(o.kind, at, o.sizes, o.axis, o.axes)
 
 
 def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
@@ -296,8 +275,8 @@ def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
                               f'x2="{ends[1][0]:.0f}" y2="{ends[1][1]:.0f}" stroke="#9aa5b1" '
                               'stroke-width="10" stroke-linecap="round"/>')
         elif o.kind == OutlineKind.BLOCK:
-            corners = [to_screen(c) for c in _block_corners(o, at)]
-            if corners:
+            corners = [to_screen(c) for c in _extent(o, at)]
+            if len(corners) == 4:
                 shapes.append('<polygon class="body" points="'
                               + " ".join(f"{cx:.0f},{cy:.0f}" for cx, cy in corners)
                               + f'" {style}/>')
@@ -359,33 +338,6 @@ def _arrows(load: DiagramLoad, at: Point2, radius: float, surface):
     return out
 
 
-def _apart(tail: Point2, head: Point2, placed: list) -> tuple[Point2, Point2]:
-    """The arrow moved across itself until it overlaps no arrow already drawn."""
-    for shift in (0.0, 10.0, -10.0, 20.0, -20.0, 30.0):
-        dx, dy = head[0] - tail[0], head[1] - tail[1]
-        size = math.hypot(dx, dy) or 1.0
-        nx, ny = -dy / size * shift, dx / size * shift
-        t, h = (tail[0] + nx, tail[1] + ny), (head[0] + nx, head[1] + ny)
-        if not any(_overlap(t, h, a, b) for a, b in placed):
-            return t, h
-    return tail, head
-
-
-def _overlap(t1: Point2, h1: Point2, t2: Point2, h2: Point2) -> bool:
-    """Whether two arrows lie along one line within a few pixels and share some length."""
-    d1 = (h1[0] - t1[0], h1[1] - t1[1])
-    d2 = (h2[0] - t2[0], h2[1] - t2[1])
-    n1, n2 = math.hypot(*d1) or 1.0, math.hypot(*d2) or 1.0
-    if abs(d1[0] * d2[1] - d1[1] * d2[0]) / (n1 * n2) > 0.15:
-        return False
-    # the distance of the second arrow's ends from the first one's line
-    off = [abs((p[0] - t1[0]) * d1[1] - (p[1] - t1[1]) * d1[0]) / n1 for p in (t2, h2)]
-    if min(off) > 6.0:
-        return False
-    along = sorted(((p[0] - t1[0]) * d1[0] + (p[1] - t1[1]) * d1[1]) / n1 for p in (t2, h2))
-    return along[1] > 2.0 and along[0] < n1 - 2.0
-
-
 def _label(far: Point2, near: Point2, parts: tuple[str, str, str], colour: str,
            taken: list, size_px: int = 14, avoid: tuple | list = ()) -> str:
     """A label past the ``far`` end of an arrow, moved along it until it overlaps no other."""
@@ -399,9 +351,7 @@ def _label(far: Point2, near: Point2, parts: tuple[str, str, str], colour: str,
         left = x if anchor == "start" else x - width if anchor == "end" else x - width / 2
         top = y - 13 + (6 if uy > 0.35 else 0)
         box = (left, top, left + width, top + size_px + 3)
-        if not any(box[0] < b[2] + 4 and b[0] < box[2] + 4 and box[1] < b[3] + 2
-                   and b[1] < box[3] + 2 for b in taken) \
-                and not any(_crosses(box, t, h) for t, h in avoid):
+        if not collides(box, taken, avoid):
             break
     taken.append(box)
     base, sub, rest = parts
@@ -410,16 +360,6 @@ def _label(far: Point2, near: Point2, parts: tuple[str, str, str], colour: str,
     weight = "" if size_px == 14 else f' font-size="{size_px}" font-weight="400"'
     return f'<text x="{box[0]:.0f}" y="{box[1] + size_px - 1:.0f}" fill="{colour}"{weight}>' \
         f'{text}</text>'
-
-
-def _crosses(box, tail: Point2, head: Point2) -> bool:
-    """Whether the segment from ``tail`` to ``head`` passes through ``box``."""
-    for k in range(11):
-        x = tail[0] + (head[0] - tail[0]) * k / 10
-        y = tail[1] + (head[1] - tail[1]) * k / 10
-        if box[0] - 2 < x < box[2] + 2 and box[1] - 2 < y < box[3] + 2:
-            return True
-    return False
 
 
 # ---------------------------------------------------------------------------- words

@@ -237,15 +237,19 @@ def _diagram_plan(problem: Problem, _locations: tuple) -> _DiagramPlan:
             f(model.plain(e.to_matrix(model.inertial))) for e in (frame.x, frame.y, frame.z))
         parts = []
         for part in body.parts:
-            kind, sizes, axis = _shape(part.shape if frame is not None else None)
+            kind, sizes, axis = drawn_shape(part.shape if frame is not None else None)
             parts.append((kind, part.at, tuple(f(model.plain(model.language.scalar(e)))
                                                for e in sizes), axis, axes))
         outlines[body.name] = tuple(parts)
     return _DiagramPlan(loads, points, down, outlines)
 
 
-def _shape(shape) -> tuple[OutlineKind, tuple, str]:
-    """A part's shape as drawn: its kind, its sizes (spec expressions) and its axis."""
+def drawn_shape(shape) -> tuple[OutlineKind, tuple, str]:
+    """A part's shape as drawn: its kind, its sizes (spec expressions) and its axis.
+
+    >>> drawn_shape(None)
+    (<OutlineKind.PARTICLE: 'particle'>, (), '')
+    """
     if shape is None:
         return OutlineKind.PARTICLE, (), ""
     if isinstance(shape, Block):
