@@ -347,3 +347,13 @@ def test_a_power_divided_by_the_efficiency_read_multiplied_by_it():
     assert "multiplies the power by the efficiency eta = 0.85" in inverted.message
     # the power delivered itself has no efficiency in it
     assert not _generated("car_climbs_grade_power", "wheel_power", "efficiency_inverted")
+
+
+def test_a_mistaken_model_keeps_static_friction_between_two_bodies_equal_and_opposite():
+    # the disk rolling on the pulled plank, with a hoop's inertia: the friction m A/2 still
+    # pulls the plank back, A = P/(M + m/2) = 60/13 (not P/M, the friction lost)
+    (hoop,) = _generated("disk_rolls_on_pulled_plank", "plank_acceleration",
+                         "other_shape_inertia")
+    assert hoop.value == pytest.approx(60 / 13, rel=1e-9)
+    # and the weight left out changes nothing along the plank: no such mistake is kept
+    assert not _generated("disk_rolls_on_pulled_plank", "plank_acceleration", "weight_omitted")

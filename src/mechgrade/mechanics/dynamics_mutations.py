@@ -91,8 +91,12 @@ def _mistaken(problem: Problem, dynamics: Dynamics, without: tuple[str, ...] = (
     force without its bound and the loads unchecked (a student with a mistaken model checks
     neither: mechanics.loads), and the
     objectives that call a function in ``without`` left out (the mistake is not theirs)."""
+    bodies = {b.name for b in dynamics.bodies}
+    # between two free bodies the friction is equal and opposite on the other (third law)
     reactions = dynamics.reactions + tuple(
-        Reaction(f.name, f.directions, (Act(f.on, f.at),), f.where)
+        Reaction(f.name, f.directions, (Act(f.on, f.at),) + (
+            (Act(f.surface, f.at, -1),) if f.surface in bodies else ()), f.where,
+            surface=f.surface)
         for f in dynamics.friction if isinstance(f, StaticFriction))
     friction = tuple(f for f in dynamics.friction if not isinstance(f, StaticFriction))
     objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives
