@@ -148,6 +148,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
         if not isinstance(point, Name):
             continue
         in_frame = name_of(call.args[1])
+        _relative_motion(r, call, point, in_frame)
         for B, origin in _moving_frames(model, point.id, in_frame):
             _composition(r, call, point, in_frame, B, origin)
         _other_points(r, call, point, in_frame)
@@ -254,6 +255,47 @@ def _acceleration_terms(r: _Reading, point: Name, in_frame: str, B: str, origin:
         r.add(code, _Mistaken(base, P, in_frame, acceleration=a_true - term * share),
               f"Your value matches the acceleration of {P} computed without {name} = "
               "{term} along " + r.basis + ": include it.", term)
+
+
+def _relative_motion(r: _Reading, call: Call, point: Name, frame: str) -> None:
+    """The motion of the point relative to a moving ``frame`` (a slotted arm) solved from its
+    composition in the inertial frame, a term of it left out: v_rel = v - v_O - ω × r and
+    a_rel = a - a_O - α × r - ω × (ω × r) - 2 ω × v_rel, each dropped term (or half the
+    Coriolis term) added back to the right relative motion."""
+    model, base, P = r.model, r.base, point.id
+    N = model.problem.inertial_frame
+    spec = next((f for f in model.problem.frames if f.name == frame), None)
+    if frame == N or spec is None or spec.origin is None or spec.origin == P:
+        return
+    F, origin = model.frames[frame], spec.origin
+    omega, alpha = F.ang_vel_in(model.inertial), F.ang_acc_in(model.inertial)
+    rel = model.positions[P] - model.positions[origin]
+    v_rel = base.point_velocity(point, frame)
+    where = f"(ω of frame {frame} in {N}, r from {origin} to {P})"
+    if not _uses_acceleration(call):
+        terms = (("drop_transport_vel", base.point_velocity(Name(origin), N), 1,
+                  f"the velocity of {origin}, the origin of frame {frame}"),
+                 ("drop_omega_r", omega ^ rel, 1, f"the transport term ω × r {where}"))
+        kind, right = "velocity", v_rel
+    else:
+        terms = (("drop_transport_acc", base.point_acceleration(Name(origin), N), 1,
+                  f"the acceleration of {origin}, the origin of frame {frame}"),
+                 ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where}"),
+                 ("drop_centripetal", omega ^ (omega ^ rel), 1,
+                  f"the centripetal term ω × (ω × r) {where}"),
+                 ("drop_coriolis", 2 * (omega ^ v_rel), 1,
+                  f"the Coriolis term 2 ω × v_rel (ω of frame {frame}, v_rel of {P} in it)"),
+                 ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
+                  "the factor 2 of the Coriolis term 2 ω × v_rel"))
+        kind, right = "acceleration", base.point_acceleration(point, frame)
+    for code, term, share, name in terms:
+        if _zero(model, term):
+            continue
+        mistaken = right + term * share
+        r.add(code, _Mistaken(base, P, frame, **{kind: mistaken}),
+              f"Your value matches the {kind} of {P} relative to frame {frame} solved from "
+              f"its composition in {N} without {name} = " + "{term} along " + r.basis
+              + ": include it.", term)
 
 
 def _other_points(r: _Reading, call: Call, point: Name, in_frame: str) -> None:

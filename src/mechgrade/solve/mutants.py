@@ -27,7 +27,7 @@ from typing import Mapping
 import numpy as np
 
 from ..errors import MechgradeError
-from ..expressions.syntax import Name, Prime, to_text
+from ..expressions.syntax import Call, Name, Prime, to_text, walk
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
 from ..tolerance import within
@@ -275,6 +275,10 @@ def plausible_slips(problem: Problem) -> frozenset[str]:
         out |= {"deg_as_rad", "rad_as_deg"}
     if any(u in units for u in ("rpm", "rev", "Hz")):
         out |= {"rpm_rad", "rev_rad"}
+    # a natural frequency: the 2π between ω_n in rad/s and f in Hz (a period taken as 1/ω_n)
+    if any(isinstance(n, Call) and n.func in ("omega_n", "mode_frequency")
+           for o in problem.objectives for n in walk(o.find.node)):
+        out.add("rev_rad")
     return frozenset(out)
 
 
