@@ -97,3 +97,15 @@ def test_an_acceleration_answered_zero_because_a_given_rate_is_constant():
     # x'' = 1.5 m/s^2 given: no rate is constant
     problem = _problem("rolling_wheel_rim_points")
     assert not [m for m in mutations(problem) if m.code == "zero_for_constant_rate"]
+
+
+def test_a_motion_relative_to_a_turning_arm_is_read_with_a_term_of_its_composition_left_out():
+    # B's acceleration along the slotted arm solved from a_B = a_O + α × r + ω × (ω × r)
+    # + 2 ω × v_rel + a_rel with the arm's centripetal term s θ'² left out: a_rel - s θ'²
+    result = solve(_problem("slotted_arm_crank_coriolis")).result("relative_acceleration")
+    dropped = [m for m in result.generated_mistakes if m.code == "drop_centripetal"
+               and "relative to frame S solved from its composition in N" in m.message]
+    assert [m.value for m in dropped] == [pytest.approx(-2.418973, rel=1e-6)]
+    # the inertial frame has no composition of its own: none of these for acc(P, N)
+    assert not any("solved from its composition" in m.sentence for m in mutations(
+        _problem("ruina_10_4_10_7_rotating_tube_accel")) if m.objective == "a_P_N")
