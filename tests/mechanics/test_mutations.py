@@ -109,3 +109,18 @@ def test_a_motion_relative_to_a_turning_arm_is_read_with_a_term_of_its_compositi
     # the inertial frame has no composition of its own: none of these for acc(P, N)
     assert not any("solved from its composition" in m.sentence for m in mutations(
         _problem("ruina_10_4_10_7_rotating_tube_accel")) if m.objective == "a_P_N")
+
+
+def test_a_speed_from_terms_or_components_added_as_numbers_and_a_carried_frame_left_out():
+    result = solve(_problem("airplane_crosswind_heading")).result("ground_speed")
+    by_code: dict[str, list[float]] = {}
+    for m in result.generated_mistakes:
+        by_code.setdefault(m.code, []).append(round(float(m.value), 6))
+    # the airspeed (240 km/h) and the wind's speed (60 km/h) added as numbers
+    assert 300.0 in by_code["mag_as_sum"]
+    # the air is carried by the wind without turning: the wind's velocity left out
+    assert 240.0 in by_code["drop_transport_vel"]
+    # on the arm turning about O: |r'| + |r θ'|, the polar components' sizes added
+    polar = solve(_problem("collar_on_circle_rotating_rod")).result("speed")
+    assert any(m.code == "mag_as_sum" and m.value == pytest.approx(2.4588, rel=1e-4)
+               for m in polar.generated_mistakes)

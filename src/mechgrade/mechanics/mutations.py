@@ -396,11 +396,38 @@ def _speed_readings(r: _Reading) -> None:
     r.append("mag_as_sum", x + y + z, "Your value adds the components of the velocity; the "
              "speed is the square root of the sum of their squares.")
     for G, frame in r.model.frames.items():
-        for axis, unit in zip("xyz", (frame.x, frame.y, frame.z)):
-            if not _zero(r.model, v & unit):
-                r.append("component_for_speed", v & unit, f"Your value is only the {G}.{axis} "
+        parts = [v & unit for unit in (frame.x, frame.y, frame.z)]
+        for axis, part in zip("xyz", parts):
+            if not _zero(r.model, part):
+                r.append("component_for_speed", part, f"Your value is only the {G}.{axis} "
                          "component of the velocity; the speed is the magnitude of the whole "
                          "velocity.")
+        if sum(not _zero(r.model, part) for part in parts) > 1:
+            r.append("mag_as_sum", sum(sp.Abs(part) for part in parts),
+                     f"Your value adds the sizes of the velocity's components along {G} (as "
+                     "|r'| + |r θ'|); the speed is the square root of the sum of their squares.")
+    _terms_added(r, args[0], name_of(args[1]))
+
+
+def _terms_added(r: _Reading, point: Node, in_frame: str) -> None:
+    """A speed taken as the sum of the sizes of the terms of its composition of motion in a
+    moving frame (the wind's speed added to the airspeed, v_O + |ω × r| + |v_rel|), as if they
+    were along one line."""
+    model, P = r.model, name_of(point)
+    F = model.frames[in_frame]
+    for spec in model.problem.frames:
+        if spec.name == in_frame or spec.origin is None or spec.origin == P:
+            continue
+        B = model.frames[spec.name]
+        rel = model.positions[P] - model.positions[spec.origin]
+        terms = [t for t in (r.base.point_velocity(Name(spec.origin), in_frame),
+                             B.ang_vel_in(F) ^ rel, rel.dt(B)) if not _zero(model, t)]
+        if len(terms) > 1:
+            r.append("mag_as_sum", sum(t.magnitude() for t in terms),
+                     f"Your value adds the speeds of the terms of the velocity of {P} seen "
+                     f"from frame {spec.name} (the velocity of its origin {spec.origin}, ω × r, "
+                     "the relative velocity) as numbers; they are vectors along different "
+                     "lines: add them as vectors.")
 
 
 def _magnitudes_combined(r: _Reading) -> None:
@@ -514,12 +541,14 @@ def _relabel(vector: Vector, source, target) -> Vector:
 
 
 def _moving_frames(model: Model, point: str, frame: str):
-    """Frames (other than ``frame``) with an origin and an angular velocity in ``frame``, in
-    which ``point`` is described: a composition of motion applies."""
+    """Frames (other than ``frame``) with an origin and an angular velocity in ``frame``, or
+    an origin moving in it (the air carried by the wind), in which ``point`` is described: a
+    composition of motion applies."""
     for spec in model.problem.frames:
         if spec.name == frame or spec.origin is None or spec.origin == point:
             continue
-        if _zero(model, model.frames[spec.name].ang_vel_in(model.frames[frame])):
+        if _zero(model, model.frames[spec.name].ang_vel_in(model.frames[frame])) and _zero(
+                model, model.language.point_velocity(Name(spec.origin), frame)):
             continue
         yield spec.name, spec.origin
 
