@@ -357,3 +357,11 @@ def test_a_mistaken_model_keeps_static_friction_between_two_bodies_equal_and_opp
     assert hoop.value == pytest.approx(60 / 13, rel=1e-9)
     # and the weight left out changes nothing along the plank: no such mistake is kept
     assert not _generated("disk_rolls_on_pulled_plank", "plank_acceleration", "weight_omitted")
+
+
+def test_a_reaction_read_as_the_weight_is_read_so_in_its_power_too():
+    # the cable's power at the cab's speed with the tension taken as the 3000 lbf weight
+    (power,) = _generated("elevator_motor_power", "power_to_cab", "reaction_as_weight")
+    assert power.value == pytest.approx(65.4545, rel=1e-5)
+    (through,) = _generated("elevator_motor_power", "motor_power", "reaction_as_weight")
+    assert through.value == pytest.approx(87.2727, rel=1e-5)

@@ -144,17 +144,27 @@ def _calls(node: Node, func: str) -> Iterator[Call]:
             yield from _calls(child, func)
 
 
-def _readings(problem: Problem, func: str, name: str, replacement: Node
+def _readings(problem: Problem, func: str, name: str, replacement: Node, at: str | None = None
               ) -> tuple[tuple[str, Expr], ...]:
-    """Each numeric objective that calls ``func(name, ...)``, read with ``replacement`` there."""
+    """Each numeric objective that calls ``func(name, ...)``, read with ``replacement`` there;
+    with ``at`` (where the force ``name`` acts), its power ``power(name, F)`` too, read as
+    the mistaken force's power ``dot(replacement, vel(at, F))``."""
+    funcs = (func, "power") if at is not None and func == "force" else (func,)
+
+    def change(n: Node) -> Node | None:
+        if not (isinstance(n, Call) and n.func in funcs and n.args[0] == Name(name)):
+            return None
+        if n.func == func:
+            return replacement
+        return Call("dot", (replacement, Call("vel", (Name(at), n.args[1]))))
+
     out = []
     for obj in problem.objectives:
         node = obj.find.node
-        if obj.kind == "symbolic" or not any(c.args[0] == Name(name)
-                                             for c in _calls(node, func)):
+        if obj.kind == "symbolic" or not any(c.args[0] == Name(name) for f in funcs
+                                             for c in _calls(node, f)):
             continue
-        new = _rewrite(node, lambda n: replacement if isinstance(n, Call) and n.func == func
-                       and n.args[0] == Name(name) else None)
+        new = _rewrite(node, change)
         out.append((obj.id, Expr(to_text(new), new)))
     return tuple(out)
 
@@ -214,7 +224,7 @@ def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutat
     for r, body in _only_reactions(d):
         replacement = parse(f"force({r.name}) - ({_mass(body)})*acc({body.centre}, {N})",
                             functions=FUNCTIONS)
-        readings = _readings(problem, "force", r.name, replacement)
+        readings = _readings(problem, "force", r.name, replacement, r.acts[0].at)
         if not readings:
             continue
         term = _expr(f"({_mass(body)})*mag(acc({body.centre}, {N}))")
@@ -502,7 +512,8 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                 continue
             weight = _weight(d.body(name), d.gravity)
             replacement = parse(f"({weight.text})*({direction.text})", functions=FUNCTIONS)
-            readings = _readings(problem, "force", r.name, replacement)
+            at = next(a.at for a in r.acts if a.on == name)
+            readings = _readings(problem, "force", r.name, replacement, at)
             if readings:
                 yield DynamicsMutation(
                     "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
