@@ -365,3 +365,12 @@ def test_a_reaction_read_as_the_weight_is_read_so_in_its_power_too():
     assert power.value == pytest.approx(65.4545, rel=1e-5)
     (through,) = _generated("elevator_motor_power", "motor_power", "reaction_as_weight")
     assert through.value == pytest.approx(87.2727, rel=1e-5)
+
+
+def test_an_impact_on_a_pinned_body_has_the_central_inertia_used_about_the_pin():
+    # the ball striking the hanging rod: angular momentum about the pin with M L^2/12 for
+    # M L^2/3 (ω' = 6.508 rad/s, not 2.477)
+    (mistake,) = _generated("ball_strikes_hanging_rod", "omega_after", "central_inertia_at_pivot")
+    assert mistake.value == pytest.approx(6.508475, rel=1e-6)
+    # a free rod struck on ice has no pin: none
+    assert "central_inertia_at_pivot" not in _codes("rod_strikes_ledge")

@@ -372,11 +372,10 @@ def _rolling_on_ground(constraint: Constraint, frame: str, inertial: str) -> str
 
 def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The moment balance about a point that does not move (a pin, a rolling contact) written
-    with the inertia about the mass centre: the parallel-axis term m d^2 missing. Modelled by a
+    with the inertia about the mass centre, also in an impact's angular impulse-momentum
+    balance about the pin: the parallel-axis term m d^2 missing. Modelled by a
     massless part carrying -m d^2 about the body's z axis, so I about the pivot is I_G."""
     d = dynamics_of(problem)
-    if isinstance(d.analysis, Impulse):
-        return
     for body in d.bodies:
         if not _rotating(model, body):
             continue
