@@ -374,3 +374,13 @@ def test_an_impact_on_a_pinned_body_has_the_central_inertia_used_about_the_pin()
     assert mistake.value == pytest.approx(6.508475, rel=1e-6)
     # a free rod struck on ice has no pin: none
     assert "central_inertia_at_pivot" not in _codes("rod_strikes_ledge")
+
+
+def test_a_tension_taken_as_a_weight_acts_on_every_strand_and_is_shared_by_the_strands_held():
+    values = sorted(round(m.value, 4) for m in _generated("movable_pulley_two_blocks", "tension",
+                                                          "tension_as_weight"))
+    # A's weight 98.1 N (on both of B's strands), or B's 294.3 N shared by its two: 147.15 N
+    assert values == [98.1, 147.15]
+    (on_b,) = [m for m in _generated("movable_pulley_two_blocks", "accel_B", "tension_as_weight")
+               if round(m.value, 4) == -3.27]
+    assert "in the balance of blockB" in on_b.message

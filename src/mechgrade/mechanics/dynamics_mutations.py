@@ -465,7 +465,9 @@ def weight_transfer_ignored(problem: Problem, model: Model) -> Iterator[Dynamics
 
 def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A string pulling two bodies (an Atwood machine) taken to pull with the weight of one of
-    them, and the other body's balance written with it alone."""
+    them, shared among the strands that hold it (half the weight of a block on a movable
+    pulley: the tension at rest), and the other body's balance written with it alone, on
+    each of its strands."""
     d = dynamics_of(problem)
     if d.gravity is None:
         return
@@ -473,19 +475,23 @@ def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutati
         bodies = [a.on for a in r.acts if a.on != GROUND]
         if len(r.directions) != 1 or len(set(bodies)) < 2:
             continue
-        for act in r.acts:
-            for other in bodies:
-                if other == act.on:
+        for on in dict.fromkeys(bodies):
+            for other in dict.fromkeys(bodies):
+                if other == on:
                     continue
+                strands = bodies.count(other)
                 weight = _weight(d.body(other), d.gravity)
-                force = Force(r.name, act.on, act.at, _expr(
-                    f"{act.sign}*({weight.text})*({r.direction_at(act).text})"), r.where)
-                changed = replace(d, bodies=(d.body(act.on),), forces=d.forces + (force,),
+                share = weight if strands == 1 else _expr(f"({weight.text})/{strands}")
+                forces = tuple(Force(r.name if i == 0 else f"{r.name}~{i}", on, act.at, _expr(
+                    f"{act.sign}*({share.text})*({r.direction_at(act).text})"), r.where)
+                    for i, act in enumerate(a for a in r.acts if a.on == on))
+                changed = replace(d, bodies=(d.body(on),), forces=d.forces + forces,
                                   reactions=tuple(x for x in d.reactions if x is not r))
+                held = "" if strands == 1 else f", shared by the {strands} strands that hold it"
                 yield DynamicsMutation(
                     "tension_as_weight", f"Your value takes the tension {r.name} equal to the "
-                    f"weight of {other} (m g = {{term}}) in the balance of {act.on}: the bodies "
-                    "accelerate, so the tension is not a weight; solve for it.", LOADS,
+                    f"weight of {other} (m g = {{term}}){held}, in the balance of {on}: the "
+                    "bodies accelerate, so the tension is not a weight; solve for it.", LOADS,
                     problem=_mistaken(problem, changed), term=weight, term_unit="N")
 
 
