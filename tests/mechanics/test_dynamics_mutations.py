@@ -295,7 +295,8 @@ def test_the_weight_written_for_the_mass_in_the_problems_own_units():
 def test_a_movable_pulleys_two_strands_counted_once():
     # yA + yB = c0 for yA + 2 yB = c0 (mA = 10 kg, mB = 30 kg, B hung on two strands): the
     # blocks move together, (2 mA + mB) a = (mB - 2 mA) g, a = g/5
-    (once,) = _generated("movable_pulley_two_blocks", "accel_A", "strands_miscounted")
+    (once,) = [m for m in _generated("movable_pulley_two_blocks", "accel_A", "strands_miscounted")
+               if "length of" in m.message]
     assert once.value == pytest.approx(1.962, rel=1e-6)
     assert "counts yB once in the length of cord_length" in once.message
     assert "strands_miscounted" not in _codes("atwood_machine")  # one strand each side
@@ -384,3 +385,13 @@ def test_a_tension_taken_as_a_weight_acts_on_every_strand_and_is_shared_by_the_s
     (on_b,) = [m for m in _generated("movable_pulley_two_blocks", "accel_B", "tension_as_weight")
                if round(m.value, 4) == -3.27]
     assert "in the balance of blockB" in on_b.message
+
+
+def test_a_cord_pulling_a_body_through_two_strands_counted_once_in_its_balance():
+    # B on the movable pulley pulled by T instead of 2 T: 50 a_B = -196.2 N, a_B = -3.924
+    pulls = [m for m in _generated("movable_pulley_two_blocks", "accel_B", "strands_miscounted")
+             if "strands hold blockB" in m.message]
+    assert [m.value for m in pulls] == [pytest.approx(-3.924, rel=1e-9)]
+    # an Atwood machine's cord pulls each block once: nothing to miscount
+    assert not [m for m in dynamics_mutations(_problem("atwood_machine"))
+                if m.code == "strands_miscounted"]

@@ -638,6 +638,27 @@ def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                 problem=_mistaken(mistaken, dynamics_of(mistaken)))
 
 
+def strands_pulling_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A cord that pulls one body through n strands (a block on a movable pulley: 2 T) and
+    another body too, counted once in that body's balance (T for 2 T)."""
+    d = dynamics_of(problem)
+    for r in d.reactions:
+        bodies = [a.on for a in r.acts if a.on != GROUND]
+        if len(r.directions) != 1 or len(set(bodies)) < 2:
+            continue
+        for body in dict.fromkeys(bodies):
+            count = bodies.count(body)
+            if count < 2:
+                continue
+            first = next(a for a in r.acts if a.on == body)
+            acts = tuple(a for a in r.acts if a.on != body or a is first)
+            reactions = tuple(replace(x, acts=acts) if x is r else x for x in d.reactions)
+            yield DynamicsMutation(
+                "strands_miscounted", f"Your value counts the pull of {r.name} on {body} "
+                f"once: {count} strands hold {body}, so the cord pulls it with {count} "
+                f"{r.name}.", LOADS, problem=_mistaken(problem, replace(d, reactions=reactions)))
+
+
 def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
     """``(n, X)`` of a term ``n*X`` (or ``X*n``) with a whole number n of 2 or more."""
     node = term[1]
@@ -1026,7 +1047,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
-    springs_in_series, strands_miscounted,
+    springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
