@@ -124,3 +124,14 @@ def test_a_speed_from_terms_or_components_added_as_numbers_and_a_carried_frame_l
     polar = solve(_problem("collar_on_circle_rotating_rod")).result("speed")
     assert any(m.code == "mag_as_sum" and m.value == pytest.approx(2.4588, rel=1e-4)
                for m in polar.generated_mistakes)
+
+
+def test_a_bodys_material_point_is_read_with_a_term_of_its_rigid_body_formula_left_out():
+    # the rolling wheel's rim point at the contact: a = a_G + α × r + ω × (ω × r) = (0, 22.5);
+    # the centre's own acceleration (1.5, 0) is another point's, α × r left out (1.5, 22.5)
+    result = solve(_problem("rolling_wheel_rim_points")).result("acceleration_contact")
+    by_code = {m.code: m.value for m in result.generated_mistakes}
+    assert by_code["other_point"] == pytest.approx((1.5, 0.0, 0.0), abs=1e-9)
+    assert by_code["drop_tangential"] == pytest.approx((1.5, 22.5, 0.0), abs=1e-9)
+    assert "material point of W at C" in next(
+        m.message for m in result.generated_mistakes if m.code == "drop_tangential")

@@ -52,27 +52,28 @@ class _Mistaken(Interpreter):
     """An interpreter whose velocity or acceleration of ``point`` in ``frame`` (or its
     position) is replaced."""
 
-    def __init__(self, base: Interpreter, point: str, frame: str, velocity=None,
+    def __init__(self, base: Interpreter, point: str | Node, frame: str, velocity=None,
                  acceleration=None, position=None):
         super().__init__(base.problem, base.symbols, base.frames, base.positions)
-        self.target = (point, frame)
+        # a point's name, or a node such as coincident(C, W) (a body's material point)
+        self.target = (point if isinstance(point, Node) else Name(point), frame)
         self.velocity = velocity
         self.acceleration = acceleration
         self.position = position
 
     def point_position(self, node: Node) -> Vector:
-        if self.position is not None and node == Name(self.target[0]):
+        if self.position is not None and node == self.target[0]:
             return self.position
         return super().point_position(node)
 
     def point_velocity(self, node: Node, frame: str) -> Vector:
-        if self.velocity is not None and node == Name(self.target[0]) \
+        if self.velocity is not None and node == self.target[0] \
                 and frame == self.target[1]:
             return self.velocity
         return super().point_velocity(node, frame)
 
     def point_acceleration(self, node: Node, frame: str) -> Vector:
-        if self.acceleration is not None and node == Name(self.target[0]) \
+        if self.acceleration is not None and node == self.target[0] \
                 and frame == self.target[1]:
             return self.acceleration
         return super().point_acceleration(node, frame)
@@ -145,6 +146,9 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     for call in _calls(r.node, ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent",
                                 "normal")):
         point = call.args[0]
+        if isinstance(point, Call) and point.func == "coincident":
+            _material_point(r, call, point, name_of(call.args[1]))
+            continue
         if not isinstance(point, Name):
             continue
         in_frame = name_of(call.args[1])
@@ -255,6 +259,44 @@ def _acceleration_terms(r: _Reading, point: Name, in_frame: str, B: str, origin:
         r.add(code, _Mistaken(base, P, in_frame, acceleration=a_true - term * share),
               f"Your value matches the acceleration of {P} computed without {name} = "
               "{term} along " + r.basis + ": include it.", term)
+
+
+def _material_point(r: _Reading, call: Call, point: Call, in_frame: str) -> None:
+    """The motion of a body's material point (``coincident(C, W)``: the rim point at the
+    contact) with a term of its rigid-body formula left out (v = v_G + ω × r, a = a_G + α × r
+    + ω × (ω × r), G the origin of the body's frame), or as G's own motion."""
+    model, base = r.model, r.base
+    if not all(isinstance(a, Name) for a in point.args):
+        return
+    Q, B = name_of(point.args[0]), name_of(point.args[1])
+    spec = next((f for f in model.problem.frames if f.name == B), None)
+    if spec is None or spec.origin is None or spec.origin == Q or B == in_frame:
+        return
+    F, origin = model.frames[in_frame], spec.origin
+    omega, alpha = model.frames[B].ang_vel_in(F), model.frames[B].ang_acc_in(F)
+    rel = model.positions[Q] - model.positions[origin]
+    where = f"(ω of frame {B} in {in_frame}, r from {origin} to {Q})"
+    if not _uses_acceleration(call):
+        kind, right = "velocity", base.point_velocity(point, in_frame)
+        ends = base.point_velocity(Name(origin), in_frame)
+        terms = (("drop_transport_vel", ends, f"the velocity of {origin}"),
+                 ("drop_omega_r", omega ^ rel, f"the transport term ω × r {where}"))
+    else:
+        kind, right = "acceleration", base.point_acceleration(point, in_frame)
+        ends = base.point_acceleration(Name(origin), in_frame)
+        terms = (("drop_transport_acc", ends, f"the acceleration of {origin}"),
+                 ("drop_tangential", alpha ^ rel, f"the tangential term α × r {where}"),
+                 ("drop_centripetal", omega ^ (omega ^ rel),
+                  f"the centripetal term ω × (ω × r) {where}"))
+    for code, term, name in terms:
+        if _zero(model, term):
+            continue
+        r.add(code, _Mistaken(base, point, in_frame, **{kind: right - term}),
+              f"Your value matches the {kind} of the material point of {B} at {Q} computed "
+              f"without {name} = " + "{term} along " + r.basis + ": include it.", term)
+    r.add("other_point", _Mistaken(base, point, in_frame, **{kind: ends}),
+          f"Your value is the {kind} of {origin}, not of the material point of {B} at {Q}: "
+          f"add the terms of the rotation of {B} about {origin}.")
 
 
 def _relative_motion(r: _Reading, call: Call, point: Name, frame: str) -> None:
