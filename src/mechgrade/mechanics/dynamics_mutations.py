@@ -154,7 +154,7 @@ def _readings(problem: Problem, func: str, name: str, replacement: Node, at: str
     def change(n: Node) -> Node | None:
         if not (isinstance(n, Call) and n.func in funcs and n.args[0] == Name(name)):
             return None
-        if n.func == func:
+        if n.func == func or at is None:
             return replacement
         return Call("dot", (replacement, Call("vel", (Name(at), n.args[1]))))
 

@@ -56,7 +56,7 @@ class _Mistaken(Interpreter):
                  acceleration=None, position=None):
         super().__init__(base.problem, base.symbols, base.frames, base.positions)
         # a point's name, or a node such as coincident(C, W) (a body's material point)
-        self.target = (point if isinstance(point, Node) else Name(point), frame)
+        self.target = (Name(point) if isinstance(point, str) else point, frame)
         self.velocity = velocity
         self.acceleration = acceleration
         self.position = position
@@ -279,15 +279,15 @@ def _material_point(r: _Reading, call: Call, point: Call, in_frame: str) -> None
     if not _uses_acceleration(call):
         kind, right = "velocity", base.point_velocity(point, in_frame)
         ends = base.point_velocity(Name(origin), in_frame)
-        terms = (("drop_transport_vel", ends, f"the velocity of {origin}"),
-                 ("drop_omega_r", omega ^ rel, f"the transport term ω × r {where}"))
+        terms = [("drop_transport_vel", ends, f"the velocity of {origin}"),
+                 ("drop_omega_r", omega ^ rel, f"the transport term ω × r {where}")]
     else:
         kind, right = "acceleration", base.point_acceleration(point, in_frame)
         ends = base.point_acceleration(Name(origin), in_frame)
-        terms = (("drop_transport_acc", ends, f"the acceleration of {origin}"),
+        terms = [("drop_transport_acc", ends, f"the acceleration of {origin}"),
                  ("drop_tangential", alpha ^ rel, f"the tangential term α × r {where}"),
                  ("drop_centripetal", omega ^ (omega ^ rel),
-                  f"the centripetal term ω × (ω × r) {where}"))
+                  f"the centripetal term ω × (ω × r) {where}")]
     for code, term, name in terms:
         if _zero(model, term):
             continue
@@ -315,12 +315,12 @@ def _relative_motion(r: _Reading, call: Call, point: Name, frame: str) -> None:
     v_rel = base.point_velocity(point, frame)
     where = f"(ω of frame {frame} in {N}, r from {origin} to {P})"
     if not _uses_acceleration(call):
-        terms = (("drop_transport_vel", base.point_velocity(Name(origin), N), 1,
+        terms = [("drop_transport_vel", base.point_velocity(Name(origin), N), 1,
                   f"the velocity of {origin}, the origin of frame {frame}"),
-                 ("drop_omega_r", omega ^ rel, 1, f"the transport term ω × r {where}"))
+                 ("drop_omega_r", omega ^ rel, 1, f"the transport term ω × r {where}")]
         kind, right = "velocity", v_rel
     else:
-        terms = (("drop_transport_acc", base.point_acceleration(Name(origin), N), 1,
+        terms = [("drop_transport_acc", base.point_acceleration(Name(origin), N), 1,
                   f"the acceleration of {origin}, the origin of frame {frame}"),
                  ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where}"),
                  ("drop_centripetal", omega ^ (omega ^ rel), 1,
@@ -328,7 +328,7 @@ def _relative_motion(r: _Reading, call: Call, point: Name, frame: str) -> None:
                  ("drop_coriolis", 2 * (omega ^ v_rel), 1,
                   f"the Coriolis term 2 ω × v_rel (ω of frame {frame}, v_rel of {P} in it)"),
                  ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
-                  "the factor 2 of the Coriolis term 2 ω × v_rel"))
+                  "the factor 2 of the Coriolis term 2 ω × v_rel")]
         kind, right = "acceleration", base.point_acceleration(point, frame)
     for code, term, share, name in terms:
         if _zero(model, term):
