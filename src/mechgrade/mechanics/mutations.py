@@ -243,16 +243,11 @@ def _acceleration_terms(r: _Reading, point: Name, in_frame: str, B: str, origin:
     a_rel = v_rel.dt(model.frames[B])
     where = f"(ω of frame {B} in {in_frame}, r from {origin} to {P})"
     where_acc = f"(ω and α of frame {B} in {in_frame}, r from {origin} to {P})"
-    terms = (("drop_transport_acc", base.point_acceleration(Name(origin), in_frame), 1,
-              f"the acceleration of {origin}, the origin of frame {B}"),
-             ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where_acc}"),
-             ("drop_centripetal", omega ^ (omega ^ rel), 1,
-              f"the centripetal term ω × (ω × r) {where}"),
-             ("drop_coriolis", 2 * (omega ^ v_rel), 1,
-              f"the Coriolis term 2 ω × v_rel (ω of frame {B}, v_rel of {P} in {B})"),
-             ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
-              "the factor 2 of the Coriolis term 2 ω × v_rel"),
-             ("drop_relative_acc", a_rel, 1, f"the acceleration of {P} relative to frame {B}"))
+    terms = _acceleration_composition(
+        base.point_acceleration(Name(origin), in_frame), alpha, omega, rel, v_rel,
+        f"the acceleration of {origin}, the origin of frame {B}", where_acc, where,
+        f"(ω of frame {B}, v_rel of {P} in {B})") + [
+        ("drop_relative_acc", a_rel, 1, f"the acceleration of {P} relative to frame {B}")]
     for code, term, share, name in terms:
         if _zero(model, term):
             continue
@@ -320,15 +315,10 @@ def _relative_motion(r: _Reading, call: Call, point: Name, frame: str) -> None:
                  ("drop_omega_r", omega ^ rel, 1, f"the transport term ω × r {where}")]
         kind, right = "velocity", v_rel
     else:
-        terms = [("drop_transport_acc", base.point_acceleration(Name(origin), N), 1,
-                  f"the acceleration of {origin}, the origin of frame {frame}"),
-                 ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where}"),
-                 ("drop_centripetal", omega ^ (omega ^ rel), 1,
-                  f"the centripetal term ω × (ω × r) {where}"),
-                 ("drop_coriolis", 2 * (omega ^ v_rel), 1,
-                  f"the Coriolis term 2 ω × v_rel (ω of frame {frame}, v_rel of {P} in it)"),
-                 ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
-                  "the factor 2 of the Coriolis term 2 ω × v_rel")]
+        terms = _acceleration_composition(
+            base.point_acceleration(Name(origin), N), alpha, omega, rel, v_rel,
+            f"the acceleration of {origin}, the origin of frame {frame}", where, where,
+            f"(ω of frame {frame}, v_rel of {P} in it)")
         kind, right = "acceleration", base.point_acceleration(point, frame)
     for code, term, share, name in terms:
         if _zero(model, term):
@@ -338,6 +328,19 @@ def _relative_motion(r: _Reading, call: Call, point: Name, frame: str) -> None:
               f"Your value matches the {kind} of {P} relative to frame {frame} solved from "
               f"its composition in {N} without {name} = " + "{term} along " + r.basis
               + ": include it.", term)
+
+
+def _acceleration_composition(a_origin, alpha, omega, rel, v_rel, origin: str, where_acc: str,
+                              where: str, coriolis: str) -> list[tuple]:
+    """``(code, term, share, name)`` of each term of a = a_O + α × r + ω × (ω × r) +
+    2 ω × v_rel (+ a_rel) that a mistake leaves out (``share`` of it: half the Coriolis term)."""
+    return [("drop_transport_acc", a_origin, 1, origin),
+            ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where_acc}"),
+            ("drop_centripetal", omega ^ (omega ^ rel), 1,
+             f"the centripetal term ω × (ω × r) {where}"),
+            ("drop_coriolis", 2 * (omega ^ v_rel), 1, f"the Coriolis term 2 ω × v_rel {coriolis}"),
+            ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
+             "the factor 2 of the Coriolis term 2 ω × v_rel")]
 
 
 def _other_points(r: _Reading, call: Call, point: Name, in_frame: str) -> None:
