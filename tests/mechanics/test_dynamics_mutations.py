@@ -295,7 +295,8 @@ def test_the_weight_written_for_the_mass_in_the_problems_own_units():
 def test_a_movable_pulleys_two_strands_counted_once():
     # yA + yB = c0 for yA + 2 yB = c0 (mA = 10 kg, mB = 30 kg, B hung on two strands): the
     # blocks move together, (2 mA + mB) a = (mB - 2 mA) g, a = g/5
-    (once,) = _generated("movable_pulley_two_blocks", "accel_A", "strands_miscounted")
+    (once,) = [m for m in _generated("movable_pulley_two_blocks", "accel_A", "strands_miscounted")
+               if "length of" in m.message]
     assert once.value == pytest.approx(1.962, rel=1e-6)
     assert "counts yB once in the length of cord_length" in once.message
     assert "strands_miscounted" not in _codes("atwood_machine")  # one strand each side
@@ -347,3 +348,50 @@ def test_a_power_divided_by_the_efficiency_read_multiplied_by_it():
     assert "multiplies the power by the efficiency eta = 0.85" in inverted.message
     # the power delivered itself has no efficiency in it
     assert not _generated("car_climbs_grade_power", "wheel_power", "efficiency_inverted")
+
+
+def test_a_mistaken_model_keeps_static_friction_between_two_bodies_equal_and_opposite():
+    # the disk rolling on the pulled plank, with a hoop's inertia: the friction m A/2 still
+    # pulls the plank back, A = P/(M + m/2) = 60/13 (not P/M, the friction lost)
+    (hoop,) = _generated("disk_rolls_on_pulled_plank", "plank_acceleration",
+                         "other_shape_inertia")
+    assert hoop.value == pytest.approx(60 / 13, rel=1e-9)
+    # and the weight left out changes nothing along the plank: no such mistake is kept
+    assert not _generated("disk_rolls_on_pulled_plank", "plank_acceleration", "weight_omitted")
+
+
+def test_a_reaction_read_as_the_weight_is_read_so_in_its_power_too():
+    # the cable's power at the cab's speed with the tension taken as the 3000 lbf weight
+    (power,) = _generated("elevator_motor_power", "power_to_cab", "reaction_as_weight")
+    assert power.value == pytest.approx(65.4545, rel=1e-5)
+    (through,) = _generated("elevator_motor_power", "motor_power", "reaction_as_weight")
+    assert through.value == pytest.approx(87.2727, rel=1e-5)
+
+
+def test_an_impact_on_a_pinned_body_has_the_central_inertia_used_about_the_pin():
+    # the ball striking the hanging rod: angular momentum about the pin with M L^2/12 for
+    # M L^2/3 (ω' = 6.508 rad/s, not 2.477)
+    (mistake,) = _generated("ball_strikes_hanging_rod", "omega_after", "central_inertia_at_pivot")
+    assert mistake.value == pytest.approx(6.508475, rel=1e-6)
+    # a free rod struck on ice has no pin: none
+    assert "central_inertia_at_pivot" not in _codes("rod_strikes_ledge")
+
+
+def test_a_tension_taken_as_a_weight_acts_on_every_strand_and_is_shared_by_the_strands_held():
+    values = sorted(round(m.value, 4) for m in _generated("movable_pulley_two_blocks", "tension",
+                                                          "tension_as_weight"))
+    # A's weight 98.1 N (on both of B's strands), or B's 294.3 N shared by its two: 147.15 N
+    assert values == [98.1, 147.15]
+    (on_b,) = [m for m in _generated("movable_pulley_two_blocks", "accel_B", "tension_as_weight")
+               if round(m.value, 4) == -3.27]
+    assert "in the balance of blockB" in on_b.message
+
+
+def test_a_cord_pulling_a_body_through_two_strands_counted_once_in_its_balance():
+    # B on the movable pulley pulled by T instead of 2 T: 50 a_B = -196.2 N, a_B = -3.924
+    pulls = [m for m in _generated("movable_pulley_two_blocks", "accel_B", "strands_miscounted")
+             if "strands hold blockB" in m.message]
+    assert [m.value for m in pulls] == [pytest.approx(-3.924, rel=1e-9)]
+    # an Atwood machine's cord pulls each block once: nothing to miscount
+    assert not [m for m in dynamics_mutations(_problem("atwood_machine"))
+                if m.code == "strands_miscounted"]

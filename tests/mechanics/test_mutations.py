@@ -97,3 +97,41 @@ def test_an_acceleration_answered_zero_because_a_given_rate_is_constant():
     # x'' = 1.5 m/s^2 given: no rate is constant
     problem = _problem("rolling_wheel_rim_points")
     assert not [m for m in mutations(problem) if m.code == "zero_for_constant_rate"]
+
+
+def test_a_motion_relative_to_a_turning_arm_is_read_with_a_term_of_its_composition_left_out():
+    # B's acceleration along the slotted arm solved from a_B = a_O + α × r + ω × (ω × r)
+    # + 2 ω × v_rel + a_rel with the arm's centripetal term s θ'² left out: a_rel - s θ'²
+    result = solve(_problem("slotted_arm_crank_coriolis")).result("relative_acceleration")
+    dropped = [m for m in result.generated_mistakes if m.code == "drop_centripetal"
+               and "relative to frame S solved from its composition in N" in m.message]
+    assert [m.value for m in dropped] == [pytest.approx(-2.418973, rel=1e-6)]
+    # the inertial frame has no composition of its own: none of these for acc(P, N)
+    assert not any("solved from its composition" in m.sentence for m in mutations(
+        _problem("ruina_10_4_10_7_rotating_tube_accel")) if m.objective == "a_P_N")
+
+
+def test_a_speed_from_terms_or_components_added_as_numbers_and_a_carried_frame_left_out():
+    result = solve(_problem("airplane_crosswind_heading")).result("ground_speed")
+    by_code: dict[str, list[float]] = {}
+    for m in result.generated_mistakes:
+        by_code.setdefault(m.code, []).append(round(float(m.value), 6))
+    # the airspeed (240 km/h) and the wind's speed (60 km/h) added as numbers
+    assert 300.0 in by_code["mag_as_sum"]
+    # the air is carried by the wind without turning: the wind's velocity left out
+    assert 240.0 in by_code["drop_transport_vel"]
+    # on the arm turning about O: |r'| + |r θ'|, the polar components' sizes added
+    polar = solve(_problem("collar_on_circle_rotating_rod")).result("speed")
+    assert any(m.code == "mag_as_sum" and m.value == pytest.approx(2.4588, rel=1e-4)
+               for m in polar.generated_mistakes)
+
+
+def test_a_bodys_material_point_is_read_with_a_term_of_its_rigid_body_formula_left_out():
+    # the rolling wheel's rim point at the contact: a = a_G + α × r + ω × (ω × r) = (0, 22.5);
+    # the centre's own acceleration (1.5, 0) is another point's, α × r left out (1.5, 22.5)
+    result = solve(_problem("rolling_wheel_rim_points")).result("acceleration_contact")
+    by_code = {m.code: m.value for m in result.generated_mistakes}
+    assert by_code["other_point"] == pytest.approx((1.5, 0.0, 0.0), abs=1e-9)
+    assert by_code["drop_tangential"] == pytest.approx((1.5, 22.5, 0.0), abs=1e-9)
+    assert "material point of W at C" in next(
+        m.message for m in result.generated_mistakes if m.code == "drop_tangential")

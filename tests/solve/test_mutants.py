@@ -124,3 +124,12 @@ def test_a_misreading_that_leaves_a_stated_given_undefined_misreads_the_given_al
     givens["x'"] = (node, si, root)
     assert _carried_into(givens, (("v2", -50.0),)) == (("v2", -50.0),)
     assert dict(_carried_into(givens, (("v2", 50.0),)))["x'"] == pytest.approx((50 * 1.5e-3) ** 0.5)
+
+
+def test_a_natural_frequency_makes_the_two_pi_between_rad_per_s_and_hertz_plausible():
+    from mechgrade.solve.mutants import plausible_slips
+    assert "rev_rad" in plausible_slips(load_problem(shipped_dir("problems")
+                                                     / "disk_pendulum_period.yaml"))
+    # a problem without a frequency or a rate in revolutions: no 2π slip
+    assert "rev_rad" not in plausible_slips(load_problem(shipped_dir("problems")
+                                                         / "pendulum_pin_reaction.yaml"))

@@ -91,8 +91,12 @@ def _mistaken(problem: Problem, dynamics: Dynamics, without: tuple[str, ...] = (
     force without its bound and the loads unchecked (a student with a mistaken model checks
     neither: mechanics.loads), and the
     objectives that call a function in ``without`` left out (the mistake is not theirs)."""
+    bodies = {b.name for b in dynamics.bodies}
+    # between two free bodies the friction is equal and opposite on the other (third law)
     reactions = dynamics.reactions + tuple(
-        Reaction(f.name, f.directions, (Act(f.on, f.at),), f.where)
+        Reaction(f.name, f.directions, (Act(f.on, f.at),) + (
+            (Act(f.surface, f.at, -1),) if f.surface in bodies else ()), f.where,
+            surface=f.surface)
         for f in dynamics.friction if isinstance(f, StaticFriction))
     friction = tuple(f for f in dynamics.friction if not isinstance(f, StaticFriction))
     objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives
@@ -140,17 +144,27 @@ def _calls(node: Node, func: str) -> Iterator[Call]:
             yield from _calls(child, func)
 
 
-def _readings(problem: Problem, func: str, name: str, replacement: Node
+def _readings(problem: Problem, func: str, name: str, replacement: Node, at: str | None = None
               ) -> tuple[tuple[str, Expr], ...]:
-    """Each numeric objective that calls ``func(name, ...)``, read with ``replacement`` there."""
+    """Each numeric objective that calls ``func(name, ...)``, read with ``replacement`` there;
+    with ``at`` (where the force ``name`` acts), its power ``power(name, F)`` too, read as
+    the mistaken force's power ``dot(replacement, vel(at, F))``."""
+    funcs = (func, "power") if at is not None and func == "force" else (func,)
+
+    def change(n: Node) -> Node | None:
+        if not (isinstance(n, Call) and n.func in funcs and n.args[0] == Name(name)):
+            return None
+        if n.func == func or at is None:
+            return replacement
+        return Call("dot", (replacement, Call("vel", (Name(at), n.args[1]))))
+
     out = []
     for obj in problem.objectives:
         node = obj.find.node
-        if obj.kind == "symbolic" or not any(c.args[0] == Name(name)
-                                             for c in _calls(node, func)):
+        if obj.kind == "symbolic" or not any(c.args[0] == Name(name) for f in funcs
+                                             for c in _calls(node, f)):
             continue
-        new = _rewrite(node, lambda n: replacement if isinstance(n, Call) and n.func == func
-                       and n.args[0] == Name(name) else None)
+        new = _rewrite(node, change)
         out.append((obj.id, Expr(to_text(new), new)))
     return tuple(out)
 
@@ -210,7 +224,7 @@ def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutat
     for r, body in _only_reactions(d):
         replacement = parse(f"force({r.name}) - ({_mass(body)})*acc({body.centre}, {N})",
                             functions=FUNCTIONS)
-        readings = _readings(problem, "force", r.name, replacement)
+        readings = _readings(problem, "force", r.name, replacement, r.acts[0].at)
         if not readings:
             continue
         term = _expr(f"({_mass(body)})*mag(acc({body.centre}, {N}))")
@@ -358,11 +372,10 @@ def _rolling_on_ground(constraint: Constraint, frame: str, inertial: str) -> str
 
 def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The moment balance about a point that does not move (a pin, a rolling contact) written
-    with the inertia about the mass centre: the parallel-axis term m d^2 missing. Modelled by a
+    with the inertia about the mass centre, also in an impact's angular impulse-momentum
+    balance about the pin: the parallel-axis term m d^2 missing. Modelled by a
     massless part carrying -m d^2 about the body's z axis, so I about the pivot is I_G."""
     d = dynamics_of(problem)
-    if isinstance(d.analysis, Impulse):
-        return
     for body in d.bodies:
         if not _rotating(model, body):
             continue
@@ -452,7 +465,9 @@ def weight_transfer_ignored(problem: Problem, model: Model) -> Iterator[Dynamics
 
 def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A string pulling two bodies (an Atwood machine) taken to pull with the weight of one of
-    them, and the other body's balance written with it alone."""
+    them, shared among the strands that hold it (half the weight of a block on a movable
+    pulley: the tension at rest), and the other body's balance written with it alone, on
+    each of its strands."""
     d = dynamics_of(problem)
     if d.gravity is None:
         return
@@ -460,19 +475,23 @@ def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutati
         bodies = [a.on for a in r.acts if a.on != GROUND]
         if len(r.directions) != 1 or len(set(bodies)) < 2:
             continue
-        for act in r.acts:
-            for other in bodies:
-                if other == act.on:
+        for on in dict.fromkeys(bodies):
+            for other in dict.fromkeys(bodies):
+                if other == on:
                     continue
+                strands = bodies.count(other)
                 weight = _weight(d.body(other), d.gravity)
-                force = Force(r.name, act.on, act.at, _expr(
-                    f"{act.sign}*({weight.text})*({r.direction_at(act).text})"), r.where)
-                changed = replace(d, bodies=(d.body(act.on),), forces=d.forces + (force,),
+                share = weight if strands == 1 else _expr(f"({weight.text})/{strands}")
+                forces = tuple(Force(r.name if i == 0 else f"{r.name}~{i}", on, act.at, _expr(
+                    f"{act.sign}*({share.text})*({r.direction_at(act).text})"), r.where)
+                    for i, act in enumerate(a for a in r.acts if a.on == on))
+                changed = replace(d, bodies=(d.body(on),), forces=d.forces + forces,
                                   reactions=tuple(x for x in d.reactions if x is not r))
+                held = "" if strands == 1 else f", shared by the {strands} strands that hold it"
                 yield DynamicsMutation(
                     "tension_as_weight", f"Your value takes the tension {r.name} equal to the "
-                    f"weight of {other} (m g = {{term}}) in the balance of {act.on}: the bodies "
-                    "accelerate, so the tension is not a weight; solve for it.", LOADS,
+                    f"weight of {other} (m g = {{term}}){held}, in the balance of {on}: the "
+                    "bodies accelerate, so the tension is not a weight; solve for it.", LOADS,
                     problem=_mistaken(problem, changed), term=weight, term_unit="N")
 
 
@@ -498,7 +517,8 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                 continue
             weight = _weight(d.body(name), d.gravity)
             replacement = parse(f"({weight.text})*({direction.text})", functions=FUNCTIONS)
-            readings = _readings(problem, "force", r.name, replacement)
+            at = next(a.at for a in r.acts if a.on == name)
+            readings = _readings(problem, "force", r.name, replacement, at)
             if readings:
                 yield DynamicsMutation(
                     "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
@@ -616,6 +636,27 @@ def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                 f"length of {c.name} ({c.lhs.text} = {c.rhs.text}): it is there "
                 f"{count[0]} times (the strands that hold it).", BALANCES,
                 problem=_mistaken(mistaken, dynamics_of(mistaken)))
+
+
+def strands_pulling_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A cord that pulls one body through n strands (a block on a movable pulley: 2 T) and
+    another body too, counted once in that body's balance (T for 2 T)."""
+    d = dynamics_of(problem)
+    for r in d.reactions:
+        bodies = [a.on for a in r.acts if a.on != GROUND]
+        if len(r.directions) != 1 or len(set(bodies)) < 2:
+            continue
+        for body in dict.fromkeys(bodies):
+            count = bodies.count(body)
+            if count < 2:
+                continue
+            first = next(a for a in r.acts if a.on == body)
+            acts = tuple(a for a in r.acts if a.on != body or a is first)
+            reactions = tuple(replace(x, acts=acts) if x is r else x for x in d.reactions)
+            yield DynamicsMutation(
+                "strands_miscounted", f"Your value counts the pull of {r.name} on {body} "
+                f"once: {count} strands hold {body}, so the cord pulls it with {count} "
+                f"{r.name}.", LOADS, problem=_mistaken(problem, replace(d, reactions=reactions)))
 
 
 def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
@@ -1006,7 +1047,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
-    springs_in_series, strands_miscounted,
+    springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two

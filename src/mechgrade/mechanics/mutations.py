@@ -52,27 +52,28 @@ class _Mistaken(Interpreter):
     """An interpreter whose velocity or acceleration of ``point`` in ``frame`` (or its
     position) is replaced."""
 
-    def __init__(self, base: Interpreter, point: str, frame: str, velocity=None,
+    def __init__(self, base: Interpreter, point: str | Node, frame: str, velocity=None,
                  acceleration=None, position=None):
         super().__init__(base.problem, base.symbols, base.frames, base.positions)
-        self.target = (point, frame)
+        # a point's name, or a node such as coincident(C, W) (a body's material point)
+        self.target = (Name(point) if isinstance(point, str) else point, frame)
         self.velocity = velocity
         self.acceleration = acceleration
         self.position = position
 
     def point_position(self, node: Node) -> Vector:
-        if self.position is not None and node == Name(self.target[0]):
+        if self.position is not None and node == self.target[0]:
             return self.position
         return super().point_position(node)
 
     def point_velocity(self, node: Node, frame: str) -> Vector:
-        if self.velocity is not None and node == Name(self.target[0]) \
+        if self.velocity is not None and node == self.target[0] \
                 and frame == self.target[1]:
             return self.velocity
         return super().point_velocity(node, frame)
 
     def point_acceleration(self, node: Node, frame: str) -> Vector:
-        if self.acceleration is not None and node == Name(self.target[0]) \
+        if self.acceleration is not None and node == self.target[0] \
                 and frame == self.target[1]:
             return self.acceleration
         return super().point_acceleration(node, frame)
@@ -145,9 +146,13 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     for call in _calls(r.node, ("vel", "acc", "speed", "acc_t", "acc_n", "rho", "tangent",
                                 "normal")):
         point = call.args[0]
+        if isinstance(point, Call) and point.func == "coincident":
+            _material_point(r, call, point, name_of(call.args[1]))
+            continue
         if not isinstance(point, Name):
             continue
         in_frame = name_of(call.args[1])
+        _relative_motion(r, call, point, in_frame)
         for B, origin in _moving_frames(model, point.id, in_frame):
             _composition(r, call, point, in_frame, B, origin)
         _other_points(r, call, point, in_frame)
@@ -238,22 +243,104 @@ def _acceleration_terms(r: _Reading, point: Name, in_frame: str, B: str, origin:
     a_rel = v_rel.dt(model.frames[B])
     where = f"(ω of frame {B} in {in_frame}, r from {origin} to {P})"
     where_acc = f"(ω and α of frame {B} in {in_frame}, r from {origin} to {P})"
-    terms = (("drop_transport_acc", base.point_acceleration(Name(origin), in_frame), 1,
-              f"the acceleration of {origin}, the origin of frame {B}"),
-             ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where_acc}"),
-             ("drop_centripetal", omega ^ (omega ^ rel), 1,
-              f"the centripetal term ω × (ω × r) {where}"),
-             ("drop_coriolis", 2 * (omega ^ v_rel), 1,
-              f"the Coriolis term 2 ω × v_rel (ω of frame {B}, v_rel of {P} in {B})"),
-             ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
-              "the factor 2 of the Coriolis term 2 ω × v_rel"),
-             ("drop_relative_acc", a_rel, 1, f"the acceleration of {P} relative to frame {B}"))
+    terms = _acceleration_composition(
+        base.point_acceleration(Name(origin), in_frame), alpha, omega, rel, v_rel,
+        f"the acceleration of {origin}, the origin of frame {B}", where_acc, where,
+        f"(ω of frame {B}, v_rel of {P} in {B})") + [
+        ("drop_relative_acc", a_rel, 1, f"the acceleration of {P} relative to frame {B}")]
     for code, term, share, name in terms:
         if _zero(model, term):
             continue
         r.add(code, _Mistaken(base, P, in_frame, acceleration=a_true - term * share),
               f"Your value matches the acceleration of {P} computed without {name} = "
               "{term} along " + r.basis + ": include it.", term)
+
+
+def _material_point(r: _Reading, call: Call, point: Call, in_frame: str) -> None:
+    """The motion of a body's material point (``coincident(C, W)``: the rim point at the
+    contact) with a term of its rigid-body formula left out (v = v_G + ω × r, a = a_G + α × r
+    + ω × (ω × r), G the origin of the body's frame), or as G's own motion."""
+    model, base = r.model, r.base
+    if not all(isinstance(a, Name) for a in point.args):
+        return
+    Q, B = name_of(point.args[0]), name_of(point.args[1])
+    spec = next((f for f in model.problem.frames if f.name == B), None)
+    if spec is None or spec.origin is None or spec.origin == Q or B == in_frame:
+        return
+    F, origin = model.frames[in_frame], spec.origin
+    omega, alpha = model.frames[B].ang_vel_in(F), model.frames[B].ang_acc_in(F)
+    rel = model.positions[Q] - model.positions[origin]
+    where = f"(ω of frame {B} in {in_frame}, r from {origin} to {Q})"
+    if not _uses_acceleration(call):
+        kind, right = "velocity", base.point_velocity(point, in_frame)
+        ends = base.point_velocity(Name(origin), in_frame)
+        terms = [("drop_transport_vel", ends, f"the velocity of {origin}"),
+                 ("drop_omega_r", omega ^ rel, f"the transport term ω × r {where}")]
+    else:
+        kind, right = "acceleration", base.point_acceleration(point, in_frame)
+        ends = base.point_acceleration(Name(origin), in_frame)
+        terms = [("drop_transport_acc", ends, f"the acceleration of {origin}"),
+                 ("drop_tangential", alpha ^ rel, f"the tangential term α × r {where}"),
+                 ("drop_centripetal", omega ^ (omega ^ rel),
+                  f"the centripetal term ω × (ω × r) {where}")]
+    for code, term, name in terms:
+        if _zero(model, term):
+            continue
+        r.add(code, _Mistaken(base, point, in_frame, **{kind: right - term}),
+              f"Your value matches the {kind} of the material point of {B} at {Q} computed "
+              f"without {name} = " + "{term} along " + r.basis + ": include it.", term)
+    r.add("other_point", _Mistaken(base, point, in_frame, **{kind: ends}),
+          f"Your value is the {kind} of {origin}, not of the material point of {B} at {Q}: "
+          f"add the terms of the rotation of {B} about {origin}.")
+
+
+def _relative_motion(r: _Reading, call: Call, point: Name, frame: str) -> None:
+    """The motion of the point relative to a moving ``frame`` (a slotted arm) solved from its
+    composition in the inertial frame, a term of it left out: v_rel = v - v_O - ω × r and
+    a_rel = a - a_O - α × r - ω × (ω × r) - 2 ω × v_rel, each dropped term (or half the
+    Coriolis term) added back to the right relative motion."""
+    model, base, P = r.model, r.base, point.id
+    N = model.problem.inertial_frame
+    spec = next((f for f in model.problem.frames if f.name == frame), None)
+    if frame == N or spec is None or spec.origin is None or spec.origin == P:
+        return
+    F, origin = model.frames[frame], spec.origin
+    omega, alpha = F.ang_vel_in(model.inertial), F.ang_acc_in(model.inertial)
+    rel = model.positions[P] - model.positions[origin]
+    v_rel = base.point_velocity(point, frame)
+    where = f"(ω of frame {frame} in {N}, r from {origin} to {P})"
+    if not _uses_acceleration(call):
+        terms = [("drop_transport_vel", base.point_velocity(Name(origin), N), 1,
+                  f"the velocity of {origin}, the origin of frame {frame}"),
+                 ("drop_omega_r", omega ^ rel, 1, f"the transport term ω × r {where}")]
+        kind, right = "velocity", v_rel
+    else:
+        terms = _acceleration_composition(
+            base.point_acceleration(Name(origin), N), alpha, omega, rel, v_rel,
+            f"the acceleration of {origin}, the origin of frame {frame}", where, where,
+            f"(ω of frame {frame}, v_rel of {P} in it)")
+        kind, right = "acceleration", base.point_acceleration(point, frame)
+    for code, term, share, name in terms:
+        if _zero(model, term):
+            continue
+        mistaken = right + term * share
+        r.add(code, _Mistaken(base, P, frame, **{kind: mistaken}),
+              f"Your value matches the {kind} of {P} relative to frame {frame} solved from "
+              f"its composition in {N} without {name} = " + "{term} along " + r.basis
+              + ": include it.", term)
+
+
+def _acceleration_composition(a_origin, alpha, omega, rel, v_rel, origin: str, where_acc: str,
+                              where: str, coriolis: str) -> list[tuple]:
+    """``(code, term, share, name)`` of each term of a = a_O + α × r + ω × (ω × r) +
+    2 ω × v_rel (+ a_rel) that a mistake leaves out (``share`` of it: half the Coriolis term)."""
+    return [("drop_transport_acc", a_origin, 1, origin),
+            ("drop_tangential", alpha ^ rel, 1, f"the tangential term α × r {where_acc}"),
+            ("drop_centripetal", omega ^ (omega ^ rel), 1,
+             f"the centripetal term ω × (ω × r) {where}"),
+            ("drop_coriolis", 2 * (omega ^ v_rel), 1, f"the Coriolis term 2 ω × v_rel {coriolis}"),
+            ("coriolis_half", 2 * (omega ^ v_rel), sp.Rational(1, 2),
+             "the factor 2 of the Coriolis term 2 ω × v_rel")]
 
 
 def _other_points(r: _Reading, call: Call, point: Name, in_frame: str) -> None:
@@ -354,11 +441,38 @@ def _speed_readings(r: _Reading) -> None:
     r.append("mag_as_sum", x + y + z, "Your value adds the components of the velocity; the "
              "speed is the square root of the sum of their squares.")
     for G, frame in r.model.frames.items():
-        for axis, unit in zip("xyz", (frame.x, frame.y, frame.z)):
-            if not _zero(r.model, v & unit):
-                r.append("component_for_speed", v & unit, f"Your value is only the {G}.{axis} "
+        parts = [v & unit for unit in (frame.x, frame.y, frame.z)]
+        for axis, part in zip("xyz", parts):
+            if not _zero(r.model, part):
+                r.append("component_for_speed", part, f"Your value is only the {G}.{axis} "
                          "component of the velocity; the speed is the magnitude of the whole "
                          "velocity.")
+        if sum(not _zero(r.model, part) for part in parts) > 1:
+            r.append("mag_as_sum", sum(sp.Abs(part) for part in parts),
+                     f"Your value adds the sizes of the velocity's components along {G} (as "
+                     "|r'| + |r θ'|); the speed is the square root of the sum of their squares.")
+    _terms_added(r, args[0], name_of(args[1]))
+
+
+def _terms_added(r: _Reading, point: Node, in_frame: str) -> None:
+    """A speed taken as the sum of the sizes of the terms of its composition of motion in a
+    moving frame (the wind's speed added to the airspeed, v_O + |ω × r| + |v_rel|), as if they
+    were along one line."""
+    model, P = r.model, name_of(point)
+    F = model.frames[in_frame]
+    for spec in model.problem.frames:
+        if spec.name == in_frame or spec.origin is None or spec.origin == P:
+            continue
+        B = model.frames[spec.name]
+        rel = model.positions[P] - model.positions[spec.origin]
+        terms = [t for t in (r.base.point_velocity(Name(spec.origin), in_frame),
+                             B.ang_vel_in(F) ^ rel, rel.dt(B)) if not _zero(model, t)]
+        if len(terms) > 1:
+            r.append("mag_as_sum", sum(t.magnitude() for t in terms),
+                     f"Your value adds the speeds of the terms of the velocity of {P} seen "
+                     f"from frame {spec.name} (the velocity of its origin {spec.origin}, ω × r, "
+                     "the relative velocity) as numbers; they are vectors along different "
+                     "lines: add them as vectors.")
 
 
 def _magnitudes_combined(r: _Reading) -> None:
@@ -472,12 +586,14 @@ def _relabel(vector: Vector, source, target) -> Vector:
 
 
 def _moving_frames(model: Model, point: str, frame: str):
-    """Frames (other than ``frame``) with an origin and an angular velocity in ``frame``, in
-    which ``point`` is described: a composition of motion applies."""
+    """Frames (other than ``frame``) with an origin and an angular velocity in ``frame``, or
+    an origin moving in it (the air carried by the wind), in which ``point`` is described: a
+    composition of motion applies."""
     for spec in model.problem.frames:
         if spec.name == frame or spec.origin is None or spec.origin == point:
             continue
-        if _zero(model, model.frames[spec.name].ang_vel_in(model.frames[frame])):
+        if _zero(model, model.frames[spec.name].ang_vel_in(model.frames[frame])) and _zero(
+                model, model.language.point_velocity(Name(spec.origin), frame)):
             continue
         yield spec.name, spec.origin
 

@@ -275,7 +275,7 @@ def plausible_slips(problem: Problem) -> frozenset[str]:
         out |= {"deg_as_rad", "rad_as_deg"}
     if any(u in units for u in ("rpm", "rev", "Hz")):
         out |= {"rpm_rad", "rev_rad"}
-    # a natural frequency is as often given in Hz (f = w/2 pi) as in rad/s
+    # a natural frequency: the 2π between ω_n in rad/s and f in Hz (a period taken as 1/ω_n)
     if any(isinstance(n, Call) and n.func in ("omega_n", "mode_frequency")
            for o in problem.objectives for n in walk(o.find.node)):
         out.add("rev_rad")
