@@ -50,7 +50,7 @@ def _result(problem: str, objective: str):
 def test_every_problem_has_at_least_three_typical_mistakes():
     counts = {p.stem: 0 for p in PROBLEMS}
     for problem, _, row in ROWS:
-        counts[problem] += not row.get("known")
+        counts[problem] += 1  # named or not yet: how many are named is measure.py's figure
     for path in (ROOT / "tests" / "data" / "heldout").glob("*.yaml"):  # the held-out problems
         counts[path.stem] += len(yaml.safe_load(path.read_text(encoding="utf-8")))
     assert min(counts.values()) >= 3, counts

@@ -653,6 +653,8 @@ def light_pulley_hanger():
                   num(once, "m/s^2"), "strands_miscounted", known="none"),
             entry("tension", "tension taken as block A's weight mA g", num(mA * g, "N"),
                   "tension_as_weight", "reaction_as_weight"),
+            entry("tension", "the tension taken as its share of B's weight at rest: mB g/2",
+                  num(mB * g / 2, "N"), "tension_as_weight", "reaction_as_weight", known="none"),
             entry("hanger_pull", "the short cord's pull taken as block B's weight mB g",
                   num(mB * g, "N"), "tension_as_weight", "reaction_as_weight"),
             entry("accel_B", "block B's acceleration taken equal to block A's (sign kept)",
