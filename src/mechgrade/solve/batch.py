@@ -228,8 +228,9 @@ class _Template:
             generated: dict = {}
             # the columns whose instant is not reached, for a reason solve() gives too
             unreached: dict[int, MechgradeError] = {}
+            missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
             if group.numeric & wanted:
-                X, fine, values, mistakes, never = self._instant(group, maps, True)
+                X, fine, values, mistakes, never, missing = self._instant(group, maps, True)
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
                         fine &= np.isfinite(m).all(axis=0)
@@ -257,6 +258,9 @@ class _Template:
                 for o in numeric:
                     if int(i) in unreached:  # as solve_dynamics keeps it
                         failures[o.id] = unreached[int(i)]
+                        continue
+                    if o.id in missing[i]:
+                        failures[o.id] = missing[i][o.id]
                         continue
                     if not defined[o.id][i]:
                         collect_results(problem, [o], maps[i], {o.id: values[o.id][:, i]},
@@ -327,8 +331,10 @@ class _Template:
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
         instant, which instants passed every screen (with ``degenerate``, also the one for a
-        degenerate configuration), and which are not reached because their integration's
-        event never happens (as the scalar solver finds)."""
+        degenerate configuration), which are not reached because their integration's
+        event never happens (as the scalar solver finds), and per column the objectives that
+        do not exist there with their errors (in dynamics each objective's failure, as
+        :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails)."""
         p = self.p
         n = len(maps)
         X = np.repeat(group.state[:, None], n, axis=1)
@@ -366,11 +372,12 @@ class _Template:
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
             for v in values.values():
                 ok &= np.isfinite(v).all(axis=0)
-        ok &= np.array([not missing for missing in absent(self.problem, requirements, X,
-                                                            group.numeric, limit)], dtype=bool)
+        missing = absent(self.problem, requirements, X, group.numeric, limit)
+        if self.kinetics is None:
+            ok &= np.array([not m for m in missing], dtype=bool)
         declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
-        return X, ok, values, declared, never
+        return X, ok, values, declared, never, missing
 
     def _reached(self, group: _Group, X: np.ndarray, targets: list,
                  degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
@@ -593,7 +600,7 @@ class _Template:
         (:func:`~.mutants.given_mistakes`)."""
         if not changed:
             return np.zeros(0, dtype=bool), {}
-        _, ok, values, _, _ = self._instant(group, [c[0] for c in changed], False)
+        _, ok, values, _, _, _ = self._instant(group, [c[0] for c in changed], False)
         solved = ok.copy()
         for i in np.flatnonzero(~ok):  # what the stacked path does not vouch for: alone
             _, givens, changes = changed[i]
