@@ -52,13 +52,13 @@ from .events import at_the_event, event_never_happens
 from .instant import (_instants, absent, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
-from .columns import call, least_squares
+from .columns import FirstErrors, call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of)
 from .numeric import degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
-from .motion import Motion, after_event
+from .motion import Motion, after_event, balances
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
@@ -230,15 +230,14 @@ class _Template:
             unreached: dict[int, MechgradeError] = {}
             missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
             if group.numeric & wanted:
-                X, fine, values, mistakes, never, missing = self._instant(group, maps, True)
+                X, fine, values, mistakes, unreached, missing = self._instant(group, maps,
+                                                                              True)
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
                         fine &= np.isfinite(m).all(axis=0)
-                never &= ok & ~fine
-                if never.any():
-                    assert isinstance(self.analysis, Integration)
-                    unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
-                                              event_never_happens(self.analysis))
+                unreached = {i: err for i, err in unreached.items() if ok[i] and not fine[i]}
+                never = np.zeros(n, dtype=bool)
+                never[list(unreached)] = True
                 ok &= fine | never
                 self._keep_state(group, X, ok & ~never, maps, base)
                 if self.kinetics is None:
@@ -331,8 +330,9 @@ class _Template:
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
         instant, which instants passed every screen (with ``degenerate``, also the one for a
-        degenerate configuration), which are not reached because their integration's
-        event never happens (as the scalar solver finds), and per column the objectives that
+        degenerate configuration), those not reached with the error the scalar solver
+        gives them (an integration's event that never happens, a balance that fails at an
+        instant otherwise reached), and per column the objectives that
         do not exist there with their errors (in dynamics each objective's failure, as
         :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails)."""
         p = self.p
@@ -346,13 +346,16 @@ class _Template:
             elif key in group.conditions:
                 level, row = group.conditions[key]
                 targets[level][row] = column
-        never = np.zeros(n, dtype=bool)
+        unreached: dict[int, MechgradeError] = {}
         if self.design is not None and self.design.find not in group.overrides:
             X, ok = self._designed(group, X, targets, degenerate)
         elif isinstance(self.analysis, Integration):
             X, ok, never = self._motion().integrated(X)
+            assert isinstance(self.analysis, Integration)
+            unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
+                                      event_never_happens(self.analysis))
         else:
-            X, ok = self._reached(group, X, targets, degenerate)
+            X, ok = self._reached(group, X, targets, degenerate, unreached)
         X, before = self._at_event(X)
         if self.kinetics is not None:
             objectives, mistakes, requirements = (self.kinetics.objectives,
@@ -377,12 +380,16 @@ class _Template:
             ok &= np.array([not m for m in missing], dtype=bool)
         declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
-        return X, ok, values, declared, never, missing
+        return X, ok, values, declared, unreached, missing
 
-    def _reached(self, group: _Group, X: np.ndarray, targets: list,
-                 degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
+    def _reached(self, group: _Group, X: np.ndarray, targets: list, degenerate: bool,
+                 raised: dict[int, MechgradeError] | None = None
+                 ) -> tuple[np.ndarray, np.ndarray]:
         """The instants (each column of ``X`` the givens placed, the state extended by the
-        reactions for a dynamics problem) and which passed the screens."""
+        reactions for a dynamics problem) and which passed the screens. Into ``raised``: the
+        columns that passed every screen of the configuration but whose energy balance or
+        momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
+        them (it would reach the instant the same way and stop there)."""
         if isinstance(self.analysis, Integration):
             X, ok, _ = self._motion().integrated(X)
             return X, ok
@@ -397,11 +404,15 @@ class _Template:
             ok &= ~self._degenerate(group, X)
         if self.kinetics is None:
             return X, ok
+        first = FirstErrors(X.shape[1])
         if isinstance(self.analysis, WorkEnergy):
-            X, errors = energy_rates(self.problem, self.kinetics, X)
-            ok &= errors.ok
-        X, fine = self._motion().screened(X, group.after)
-        return X, ok & fine
+            X, first = energy_rates(self.problem, self.kinetics, X)
+        solved = balances(self.problem, self.kinetics, X, group.after)
+        fine = first.ok & solved.ok
+        if raised is not None:
+            for i in np.flatnonzero(ok & ~fine):
+                raised[int(i)] = first[int(i)] or solved.errors[int(i)]
+        return solved.x, ok & fine
 
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
                   degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
