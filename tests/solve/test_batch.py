@@ -289,3 +289,19 @@ def test_a_variant_off_its_equilibrium_fails_in_the_batch_as_when_solved_alone()
     assert all(isinstance(o, MechgradeError) and "not an equilibrium" in str(o) for o in one)
     for a, b in zip(together, one):
         assert_same(a, b)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 1 s)
+def test_a_variant_whose_slip_ends_and_sticks_before_its_event_fails_in_the_batch_as_alone():
+    problem = load_problem(PROBLEMS / "crate_pushed_impulse_momentum.yaml")
+    # a push too weak to keep the crate sliding: it stops at t = 2 m/s / 1.511 m/s^2
+    variants = [{"F": 100.0}, {"F": 300.0}]
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # not re-solved alone
+    together = solve_variants(problem, variants)
+    one = alone(problem, variants)
+    assert isinstance(one[0], MechgradeError)
+    assert "slip ends at t = 1.32" in str(one[0]) and "sticks" in str(one[0])
+    for a, b in zip(together, one):
+        assert_same(a, b, INTEGRATED, generated=False)

@@ -350,10 +350,11 @@ class _Template:
         if self.design is not None and self.design.find not in group.overrides:
             X, ok = self._designed(group, X, targets, degenerate)
         elif isinstance(self.analysis, Integration):
-            X, ok, never = self._motion().integrated(X)
+            X, ok, never, stuck = self._motion().integrated(X)
             assert isinstance(self.analysis, Integration)
             unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
                                       event_never_happens(self.analysis))
+            unreached.update(stuck)
         else:
             X, ok = self._reached(group, X, targets, degenerate, unreached)
         X, before = self._at_event(X)
@@ -391,7 +392,7 @@ class _Template:
         momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
         them (it would reach the instant the same way and stop there)."""
         if isinstance(self.analysis, Integration):
-            X, ok, _ = self._motion().integrated(X)
+            X, ok, _, _ = self._motion().integrated(X)
             return X, ok
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
