@@ -412,7 +412,9 @@ class _Template:
         fine = first.ok & solved.ok
         if raised is not None:
             for i in np.flatnonzero(ok & ~fine):
-                raised[int(i)] = first[int(i)] or solved.errors[int(i)]
+                error = first[int(i)] or solved.errors[int(i)]
+                assert error is not None  # a column not fine has its error
+                raised[int(i)] = error
         return solved.x, ok & fine
 
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
