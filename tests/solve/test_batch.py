@@ -271,3 +271,48 @@ def test_a_variant_that_cannot_reach_its_instant_fails_as_when_solved_alone():
     assert isinstance(one[0], MechgradeError) or one[0].failures
     for a, b in zip(together, one):
         assert_same(a, b)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 1 s)
+def test_a_variant_whose_friction_slips_fails_in_the_batch_as_when_solved_alone():
+    problem = load_problem(PROBLEMS / "block_on_turntable.yaml")
+    variants = [{"mu_s": 0.3}, {"mu_s": 0.7}]  # sticking needs mu >= 0.4931
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # not re-solved alone
+    together = solve_variants(problem, variants)
+    one = alone(problem, variants)
+    assert "slips at P" in str(one[0].failures[0].error)
+    assert [r.id for r in one[0].results] == ["mu_needed_symbolic"]
+    for a, b in zip(together, one):
+        assert_same(a, b)
+
+
+@pytest.mark.slow  # a slow end-to-end check (over 5 s: omega_n's derivation)
+def test_a_variant_off_its_equilibrium_fails_in_the_batch_as_when_solved_alone():
+    problem = load_problem(PROBLEMS / "block_on_spring_us_units.yaml")
+    variants = [{"W": 50.0}, {"k": 4000.0, "y": 0.2}]  # y is no longer W/k below the spring
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # not re-solved alone
+    together = solve_variants(problem, variants)
+    one = alone(problem, variants)
+    assert all(isinstance(o, MechgradeError) and "not an equilibrium" in str(o) for o in one)
+    for a, b in zip(together, one):
+        assert_same(a, b)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 1 s)
+def test_a_variant_whose_slip_ends_and_sticks_before_its_event_fails_in_the_batch_as_alone():
+    problem = load_problem(PROBLEMS / "crate_pushed_impulse_momentum.yaml")
+    # a push too weak to keep the crate sliding: it stops at t = 2 m/s / 1.511 m/s^2
+    variants = [{"F": 100.0}, {"F": 300.0}]
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # not re-solved alone
+    together = solve_variants(problem, variants)
+    one = alone(problem, variants)
+    assert isinstance(one[0], MechgradeError)
+    assert "slip ends at t = 1.32" in str(one[0]) and "sticks" in str(one[0])
+    for a, b in zip(together, one):
+        assert_same(a, b, INTEGRATED, generated=False)

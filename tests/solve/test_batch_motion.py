@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from scipy import integrate, optimize
 
-from mechgrade.solve.batch_motion import FAILED, FIRED, NEVER, integrate_to_events, newton
+from mechgrade.solve.batch_motion import (FAILED, FIRED, NEVER, SWITCHED, integrate_to_events,
+                                          newton)
 
 OMEGA = np.array([1.0, 2.0, 3.0])
 
@@ -57,9 +58,10 @@ def test_a_column_that_starts_on_its_event_or_runs_out_of_evaluations_is_left_al
     assert arrival.status[2] == FAILED  # too many evaluations before it
 
 
-def test_a_column_that_switches_before_its_event_is_left_alone():
+def test_a_column_that_switches_before_its_event_is_located_at_its_switch():
     """A mode kept through a step: the column whose mode changes away from its event is
-    not answered (the step across the switch integrated the motion before it)."""
+    not answered (the step across the switch integrated the motion before it); where its
+    mode switched is located, with the modes it had before."""
     def rhs(cols, t, y, modes):
         return np.array([modes[0] * 1.0 + 0 * y[0]])
 
@@ -69,8 +71,10 @@ def test_a_column_that_switches_before_its_event_is_left_alone():
     switch = np.array([5.0, 0.5])
     arrival = integrate_to_events(rhs, lambda cols, t, y, modes: y[0] - 1.0,
                                   np.zeros((1, 2)), 10.0, 1e-11, 1e-12, 20_000, mode=mode)
-    assert arrival.status.tolist() == [FIRED, FAILED]
-    assert arrival.t[0] == pytest.approx(1.0, rel=1e-12)
+    assert arrival.status.tolist() == [FIRED, SWITCHED]
+    assert arrival.t.tolist() == pytest.approx([1.0, 0.5], rel=1e-12)
+    assert arrival.switch is not None and arrival.modes is not None
+    assert arrival.switch[1] == 0 and arrival.modes[0, 1] == 1.0
 
 
 def test_newton_finds_each_column_root_the_secant_finds_from_the_same_guess():

@@ -52,13 +52,13 @@ from .events import at_the_event, event_never_happens
 from .instant import (_instants, absent, _key, _state, _symbolic_answer,
                       collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
                       wanted_objectives)
-from .columns import call, least_squares
+from .columns import FirstErrors, call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of)
 from .numeric import degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
-from .motion import Motion, after_event
+from .motion import Motion, after_event, balances
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
@@ -228,16 +228,16 @@ class _Template:
             generated: dict = {}
             # the columns whose instant is not reached, for a reason solve() gives too
             unreached: dict[int, MechgradeError] = {}
+            missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
             if group.numeric & wanted:
-                X, fine, values, mistakes, never = self._instant(group, maps, True)
+                X, fine, values, mistakes, unreached, missing = self._instant(group, maps,
+                                                                              True)
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
                         fine &= np.isfinite(m).all(axis=0)
-                never &= ok & ~fine
-                if never.any():
-                    assert isinstance(self.analysis, Integration)
-                    unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
-                                              event_never_happens(self.analysis))
+                unreached = {i: err for i, err in unreached.items() if ok[i] and not fine[i]}
+                never = np.zeros(n, dtype=bool)
+                never[list(unreached)] = True
                 ok &= fine | never
                 self._keep_state(group, X, ok & ~never, maps, base)
                 if self.kinetics is None:
@@ -257,6 +257,9 @@ class _Template:
                 for o in numeric:
                     if int(i) in unreached:  # as solve_dynamics keeps it
                         failures[o.id] = unreached[int(i)]
+                        continue
+                    if o.id in missing[i]:
+                        failures[o.id] = missing[i][o.id]
                         continue
                     if not defined[o.id][i]:
                         collect_results(problem, [o], maps[i], {o.id: values[o.id][:, i]},
@@ -327,8 +330,11 @@ class _Template:
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
         instant, which instants passed every screen (with ``degenerate``, also the one for a
-        degenerate configuration), and which are not reached because their integration's
-        event never happens (as the scalar solver finds)."""
+        degenerate configuration), those not reached with the error the scalar solver
+        gives them (an integration's event that never happens, a balance that fails at an
+        instant otherwise reached), and per column the objectives that
+        do not exist there with their errors (in dynamics each objective's failure, as
+        :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails)."""
         p = self.p
         n = len(maps)
         X = np.repeat(group.state[:, None], n, axis=1)
@@ -340,13 +346,17 @@ class _Template:
             elif key in group.conditions:
                 level, row = group.conditions[key]
                 targets[level][row] = column
-        never = np.zeros(n, dtype=bool)
+        unreached: dict[int, MechgradeError] = {}
         if self.design is not None and self.design.find not in group.overrides:
             X, ok = self._designed(group, X, targets, degenerate)
         elif isinstance(self.analysis, Integration):
-            X, ok, never = self._motion().integrated(X)
+            X, ok, never, stuck = self._motion().integrated(X)
+            assert isinstance(self.analysis, Integration)
+            unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
+                                      event_never_happens(self.analysis))
+            unreached.update(stuck)
         else:
-            X, ok = self._reached(group, X, targets, degenerate)
+            X, ok = self._reached(group, X, targets, degenerate, unreached)
         X, before = self._at_event(X)
         if self.kinetics is not None:
             objectives, mistakes, requirements = (self.kinetics.objectives,
@@ -366,18 +376,23 @@ class _Template:
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
             for v in values.values():
                 ok &= np.isfinite(v).all(axis=0)
-        ok &= np.array([not missing for missing in absent(self.problem, requirements, X,
-                                                            group.numeric, limit)], dtype=bool)
+        missing = absent(self.problem, requirements, X, group.numeric, limit)
+        if self.kinetics is None:
+            ok &= np.array([not m for m in missing], dtype=bool)
         declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
                     for oid, fs in mistakes if oid in group.numeric}
-        return X, ok, values, declared, never
+        return X, ok, values, declared, unreached, missing
 
-    def _reached(self, group: _Group, X: np.ndarray, targets: list,
-                 degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
+    def _reached(self, group: _Group, X: np.ndarray, targets: list, degenerate: bool,
+                 raised: dict[int, MechgradeError] | None = None
+                 ) -> tuple[np.ndarray, np.ndarray]:
         """The instants (each column of ``X`` the givens placed, the state extended by the
-        reactions for a dynamics problem) and which passed the screens."""
+        reactions for a dynamics problem) and which passed the screens. Into ``raised``: the
+        columns that passed every screen of the configuration but whose energy balance or
+        momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
+        them (it would reach the instant the same way and stop there)."""
         if isinstance(self.analysis, Integration):
-            X, ok, _ = self._motion().integrated(X)
+            X, ok, _, _ = self._motion().integrated(X)
             return X, ok
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
@@ -390,11 +405,17 @@ class _Template:
             ok &= ~self._degenerate(group, X)
         if self.kinetics is None:
             return X, ok
+        first = FirstErrors(X.shape[1])
         if isinstance(self.analysis, WorkEnergy):
-            X, errors = energy_rates(self.problem, self.kinetics, X)
-            ok &= errors.ok
-        X, fine = self._motion().screened(X, group.after)
-        return X, ok & fine
+            X, first = energy_rates(self.problem, self.kinetics, X)
+        solved = balances(self.problem, self.kinetics, X, group.after)
+        fine = first.ok & solved.ok
+        if raised is not None:
+            for i in np.flatnonzero(ok & ~fine):
+                error = first[int(i)] or solved.errors[int(i)]
+                assert error is not None  # a column not fine has its error
+                raised[int(i)] = error
+        return solved.x, ok & fine
 
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
                   degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
@@ -593,7 +614,7 @@ class _Template:
         (:func:`~.mutants.given_mistakes`)."""
         if not changed:
             return np.zeros(0, dtype=bool), {}
-        _, ok, values, _, _ = self._instant(group, [c[0] for c in changed], False)
+        _, ok, values, _, _, _ = self._instant(group, [c[0] for c in changed], False)
         solved = ok.copy()
         for i in np.flatnonzero(~ok):  # what the stacked path does not vouch for: alone
             _, givens, changes = changed[i]

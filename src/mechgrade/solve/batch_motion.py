@@ -36,11 +36,12 @@ from . import dop853, rules
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # as scipy's Runge-Kutta step control
 EPS = np.finfo(float).eps
 
-FIRED, NEVER, FAILED = 1, 0, -1
+FIRED, NEVER, FAILED, SWITCHED = 1, 0, -1, -2
 """How a column's integration ended: at its event, at the end of the time allowed without
 it, or without an answer this path vouches for (a step too small, more evaluations of the
 right-hand side than allowed, counted as ``solve_ivp`` with its dense output counts them, an
-undefined value): that column is solved alone."""
+undefined value): that column is solved alone; or where one of its modes switched before its
+event (:attr:`Arrival.switch` says which, ``t`` and ``y`` where its speed crossed zero)."""
 
 Field = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 """``f(columns, t, y, modes)``: a value per column of ``y`` (``columns``: which variants they
@@ -59,12 +60,16 @@ def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
 class Arrival:
     """Where each column's integration ended: ``status`` (:data:`FIRED`, :data:`NEVER` or
     :data:`FAILED`), the time ``t`` and state ``y`` of the event, and ``before``: the state a
-    moment earlier (``t * (1 - lead)``), read on the same dense output."""
+    moment earlier (``t * (1 - lead)``), read on the same dense output. Where a mode switched
+    (:data:`SWITCHED`): ``switch``, which mode (else -1), and ``modes``, those the step kept
+    (modes x columns)."""
 
     status: np.ndarray
     t: np.ndarray
     y: np.ndarray
     before: np.ndarray
+    switch: np.ndarray | None = None
+    modes: np.ndarray | None = None
 
 
 def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
@@ -89,6 +94,8 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     moving = np.isfinite(f).all(axis=0) & np.isfinite(g) & (g != 0)
     history = _History(count, m, c.N_STAGES + 1, len(modes))
     ends = np.zeros((2, count))  # the event's values at the ends of the step it fired in
+    switch = np.full(count, -1)  # the mode that switched before the event
+    flips = np.zeros((2, count))  # its signs at the ends of the step it switched in
     exponent = -1.0 / 8.0  # the error estimator's order, 7, plus one
     while moving.any():
         a = np.flatnonzero(moving)
@@ -133,23 +140,62 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         t[b], y[:, b], f[:, b], g[b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
         fired = ((g_old <= 0) & (g_new >= 0)) | ((g_old >= 0) & (g_new <= 0))
         undefined = ~np.isfinite(g_new)
+        switched = np.zeros(len(b), dtype=bool)
         if mode is not None:  # a switch anywhere but at the event: not answered here
             modes[:, b] = mode(b, t_new[k], y_new[:, k])
-            undefined |= ~fired & (modes[:, b] != ma[:, k]).any(axis=0)
+            changed = modes[:, b] != ma[:, k]
+            switched = ~undefined & (changed.sum(axis=0) == 1) & \
+                np.isfinite(modes[:, b]).all(axis=0) & (modes[:, b] != 0).all(axis=0)
+            undefined |= ~fired & changed.any(axis=0)
+            switch[b[switched]] = changed[:, switched].argmax(axis=0)
+            flips[:, b[switched]] = ma[switch[b[switched]], k[switched]], \
+                modes[switch[b[switched]], b[switched]]
+            switched &= ~fired  # a switch in the step of the event: see _arrivals
         # solve_ivp would have stopped on an evaluation past the most allowed
         undefined |= calls[b] > max_calls
         fired &= ~undefined
         ended = ~fired & ~undefined & (t_new[k] >= t_bound)
         status[b[ended]] = NEVER
         status[b[fired]] = FIRED  # provisionally: until its event is located
+        # one mode switched (and the step is otherwise sound): located like an event
+        status[b[switched & (calls[b] <= max_calls)]] = SWITCHED
         ends[:, b[fired]] = g_old[fired], g_new[fired]
         moving[b[fired | undefined | ended]] = False
-    return _arrivals(rhs, event, mode, history, status, ends, lead, c)
+    arrival = _arrivals(rhs, event, mode, history, status, ends, lead, c, switch)
+    return _switches(rhs, mode, history, arrival, switch, flips, c)
 
 
-def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c) -> Arrival:
+def _switches(rhs, mode, history: "_History", arrival: Arrival, switch, flips, c) -> Arrival:
+    """``arrival`` with each switched column's switch located on the dense output of the
+    step it happened in: where its mode's sign changes (bisected); a switch not located is a
+    column failed."""
+    w = np.flatnonzero(arrival.status == SWITCHED)
+    if not len(w):
+        return arrival
+    last = (history.pushed[w] - 1) % history.size
+    dense, t_old, t_new = history.dense(rhs, w, last, c)
+    kept = history.modes[last, :, w].T
+    j = switch[w]
+
+    def sign(i, t, y):
+        return mode(w[i], t, y)[j[i], np.arange(len(i))]
+
+    root, found = _event_time(sign, dense, t_old, t_new, flips[0, w], flips[1, w])
+    status, t, y = arrival.status.copy(), arrival.t.copy(), arrival.y.copy()
+    status[w[~found]] = FAILED
+    t[w] = root
+    y[:, w] = dense(root, np.arange(len(w)))
+    modes = np.full((kept.shape[0], len(status)), np.nan)
+    modes[:, w] = kept
+    return Arrival(status, t, y, arrival.before, switch, modes)
+
+
+def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c,
+              switch) -> Arrival:
     """Each fired column's event located on the dense output of the step it fired in, and
-    its state a moment before (on the dense output of the step that holds that moment)."""
+    its state a moment before (on the dense output of the step that holds that moment); one
+    whose mode (``switch``) switched in that step before that moment has
+    :data:`SWITCHED`."""
     m, count = history.y_old.shape[1:]
     t_event = np.full(count, np.nan)
     y_event = np.full((m, count), np.nan)
@@ -172,9 +218,11 @@ def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c) -> A
     if len(back):
         dense_back, _, _ = history.dense(rhs, e[back], slot[back], c)
         before[:, e[back]] = dense_back(earlier[back], np.arange(len(back)))
+    kept_moment = held.copy()
     if mode is not None:  # the motion just before the event is the one integrated to it
         held &= (mode(e, earlier, before[:, e]) == kept).all(axis=0)
     status[e[~(found & held)]] = FAILED  # an event not located, or a moment not kept
+    status[e[found & kept_moment & ~held & (switch[e] >= 0) & (slot == last)]] = SWITCHED
     return Arrival(status, t_event, y_event, before)
 
 

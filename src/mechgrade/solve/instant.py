@@ -32,6 +32,7 @@ from . import rules
 from .columns import call
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
+from .symbolic import bearing_givens
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
 from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
                       symbolic_mistakes)
@@ -368,9 +369,10 @@ def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) ->
     """
     dynamics = problem.dynamics is not None
     declared = _per_problem(_declared, problem, problem.objective(objective_id))
+    bearing = _per_problem(bearing_givens, problem, objective_id)
     out = []
     for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
-        if key in declared:
+        if key in declared or (bearing is not None and key not in bearing):
             token = None
         elif given is None or si_unit(given.unit) in ("", "rad") or \
                 (dynamics and isinstance(node, Prime)):

@@ -20,7 +20,7 @@ from ..spec.dynamics import Integration, dynamics_of
 from ..spec.model import Problem
 from . import rules
 from .analysis import analysis_plan
-from .batch_motion import FIRED, NEVER, integrate_to_events
+from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import FirstErrors, call, least_squares_solution, loud_call
 from .events import ATOL, MAX_CALLS, RTOL, event_never_happens
 from .plan import KinematicsPlan
@@ -43,14 +43,16 @@ class Motion:
         self.problem, self.kinetics, self.p = problem, kinetics, kinetics.kp
         self.analysis = dynamics_of(problem).analysis
 
-    def integrated(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def integrated(self, X: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
         """Every column's motion integrated from its start state to its event (together:
         :func:`~.batch_motion.integrate_to_events`, the steps
         :func:`~.events.integrate_to_event` takes for each alone): the extended state at
         the event, the accelerations and reactions the limits just before it, with the
         extended states just before the event stacked under them (:meth:`_at_event`); which
-        columns passed the screens, and which ended without their event
-        (:data:`~.batch_motion.NEVER`)."""
+        columns passed the screens, which ended without their event
+        (:data:`~.batch_motion.NEVER`), and the error of each whose slip ended before its
+        event and sticks there (:meth:`_stuck`)."""
         kp = self.kinetics
         assert kp is not None and isinstance(self.analysis, Integration)
         ap = analysis_plan(kp)
@@ -114,7 +116,45 @@ class Motion:
         before = x.copy()
         keep = [i for i in range(size) if i not in seconds]
         x[keep] = end[keep]
-        return np.vstack([x, before]), ok & fine, arrival.status == NEVER
+        stuck = self._stuck(arrival, at, switches) if switches is not None else {}
+        return np.vstack([x, before]), ok & fine, arrival.status == NEVER, stuck
+
+    def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching
+               ) -> dict[int, MechgradeError]:
+        """The columns whose one slip ended before their event (:data:`~.batch_motion.SWITCHED`)
+        and where kinetic friction then holds the contact whichever way it is read: slipping
+        on, friction drives the slip speed back across zero, turned round it drives it back
+        too. That motion sticks, which an integration of these equations cannot follow (the
+        one-by-one integrator shrinks its steps against the chatter until it gives up). A
+        slip that turns round and goes on is not judged here: that column is solved alone."""
+        w = np.flatnonzero(arrival.status == SWITCHED)
+        if not len(w) or arrival.switch is None or arrival.modes is None:
+            return {}
+        index = self.p.index
+        n, kinetic = index.n, self.p.index.size + len(self.kinetics.kin.reactions)
+        qdd = slice(index.rates(2).start, index.rates(2).stop)
+        t, y, j = arrival.t[w], arrival.y[:, w], arrival.switch[w]
+        kept = arrival.modes[:, w]
+        old = kept[j, np.arange(len(w))]
+        h = 1e-7 * np.maximum(t, 1.0)  # a moment on: the slip speed's sign there
+        drift = []
+        for side in (old, -old):
+            modes = kept.copy()
+            modes[j, np.arange(len(w))] = side
+            with np.errstate(all="ignore"):
+                a = self.accelerations(at(w, t, y, modes), switches)[qdd]
+                moved = y + h * np.concatenate([y[n:], a])
+                u = loud_call(switches.speeds, at(w, t + h, moved)[:kinetic],
+                              switches.count)[j, np.arange(len(w))]
+            drift.append(np.sign(u))
+        sticks = (drift[0] == -old) & (drift[1] == old)
+        assert isinstance(self.analysis, Integration)
+        where = self.analysis.where
+        return {int(i): SolveError(
+            f"a kinetic-friction slip ends at t = {when:.6g} s, before the event, and friction "
+            "then holds the contact whichever way it slips (it sticks): expected a motion that "
+            "slips until its event, or the end of the slip as the event", where=where)
+            for i, when in zip(w[sticks], t[sticks])}
 
     def accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
         """:func:`accelerations` of this motion."""
@@ -349,9 +389,11 @@ def integrated_alone(problem: Problem, kinetics,
     motion = _motion(problem, kinetics)
     if not isinstance(motion.analysis, Integration):
         return None
-    X, ok, never = motion.integrated(values[:, None].copy())
+    X, ok, never, stuck = motion.integrated(values[:, None].copy())
     if never[0]:
         raise event_never_happens(motion.analysis)
+    if stuck:
+        raise stuck[0]
     if not ok[0]:
         return None
     half = X.shape[0] // 2  # the states at the event, and those just before it under them

@@ -304,9 +304,11 @@ def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
     return int(rank(np.linalg.svd(value, compute_uv=False)))
 
 
+@lru_cache(maxsize=64)
 def generic_dof(k: Kinematics) -> int:
     """Coordinates minus the rank of the velocity constraints in the rates, away from any
-    instant."""
+    instant. Kept per model: sympy's rank simplifies its pivots (a second or more for a
+    closed loop), and every variant of a problem whose instant is not solved asks again."""
     import sympy as sp
 
     if not k.velocity:

@@ -67,6 +67,44 @@ def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict
     return expr.xreplace(rename), meanings
 
 
+def bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None:
+    """The quantities (as givens name them: ``mu_s``, ``phi'``) a symbolic objective's answer
+    can be read from: those in the objective, the constraints it is solved with (and, in
+    dynamics, the momentum balances). A given of any other quantity cannot change the
+    answer, whatever its value. ``None`` where an analysis reaches the instant by equations
+    of its own (work-energy, an integration, a design): every given may bear on it then.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "block_on_turntable.yaml")
+    >>> sorted(bearing_givens(problem, "mu_needed_symbolic"))
+    ['g', 'm', 'phi', "phi'", "phi''", 'r']
+    """
+    from ..mechanics import derive
+
+    equations: list = []
+    if problem.dynamics is not None:
+        if problem.dynamics.analysis is not None or problem.dynamics.design is not None:
+            return None
+        from ..mechanics.dynamics import derive_kinetics
+
+        kin = derive_kinetics(problem)
+        k = kin.k
+        equations += [kin.objective(objective_id),
+                      *(e.expr for e in (*kin.balances, *kin.constraints))]
+    else:
+        k = derive(problem)
+        equations.append(k.objective(objective_id))
+    equations += [e.expr for e in (*k.position, *k.velocity, *k.acceleration)]
+    free: set = set()
+    for expr in equations:
+        free |= expr.free_symbols if isinstance(expr, sp.Basic) else set()
+    names = {k.time: "t", **{sym: name for name, sym in k.parameters}}
+    for name, q, qd, qdd in zip(k.coordinates, k.q, k.qd, k.qdd):
+        names.update({q: name, qd: f"{name}'", qdd: f"{name}''"})
+    return frozenset(name for sym, name in names.items() if sym in free)
+
+
 def _simplify(expr):
     if sp.count_ops(expr) > 300:
         return expr
