@@ -20,7 +20,9 @@ import pytest
 import mechgrade.solve.cache as cache
 from mechgrade.errors import SettingError
 from mechgrade.solve import kinematics_plan, solve
+from mechgrade.solve.instant import _bearing_givens
 from mechgrade.solve.mutants import inside_tolerance
+from mechgrade.solve.symbolic import bearing_givens
 from mechgrade.spec import load_problem, load_problem_text
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -96,6 +98,21 @@ def test_a_warm_solve_imports_no_sympy(path, twice):
                  "print(sorted(m for m in sys.modules if m.split('.')[0] == 'sympy')[:3])\n")
     assert runs[0] != "[]"  # cold: derived with sympy
     assert runs[1] == "[]"
+
+
+@pytest.mark.parametrize("spoilt", [{"bearing": 3}, {"bearing": [1]}, ["acc"], {}])
+def test_a_spoilt_entry_of_the_givens_an_answer_bears_on_is_read_again(spoilt, disk, forget):
+    problem = load_problem(PENDULUM)
+    right = solve(problem).result("acc_mag_symbolic")
+    key = cache.digest("bearing", kinematics_plan(problem).key, "acc_mag_symbolic")
+    assert isinstance(cache.load(key), dict)
+    cache.store(key, spoilt)
+    forget()
+    assert _bearing_givens(problem, "acc_mag_symbolic") == \
+        bearing_givens(problem, "acc_mag_symbolic")
+    assert cache.load(key) == {"bearing": sorted(bearing_givens(problem, "acc_mag_symbolic"))}
+    forget()
+    assert solve(problem).result("acc_mag_symbolic") == right
 
 
 def test_cached_mistakes_and_symbolic_answers_are_those_derived(disk, forget):

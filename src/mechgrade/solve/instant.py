@@ -32,7 +32,6 @@ from . import rules
 from .columns import call
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
-from .symbolic import bearing_givens
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
 from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
                       symbolic_mistakes)
@@ -352,6 +351,24 @@ def _store_answer(key: str, answer: ObjectiveResult) -> None:
         cache.store(key, data)
 
 
+def _bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None:
+    """:func:`.symbolic.bearing_givens`, kept in the disk cache beside the plan: reading it
+    derives the model with sympy, which a warm solve never imports."""
+    plan_key = kinematics_plan(problem).key
+    key = None if plan_key is None else cache.digest("bearing", plan_key, objective_id)
+    data = cache.load(key) if key is not None else None
+    if isinstance(data, dict) and set(data) == {"bearing"} and (
+            data["bearing"] is None or (isinstance(data["bearing"], list) and all(
+                isinstance(name, str) for name in data["bearing"]))):
+        return None if data["bearing"] is None else frozenset(data["bearing"])
+    from .symbolic import bearing_givens
+
+    bearing = bearing_givens(problem, objective_id)
+    if key is not None:
+        cache.store(key, {"bearing": None if bearing is None else sorted(bearing)})
+    return bearing
+
+
 def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) -> tuple:
     """What a symbolic objective's answer can depend on in the givens: which are given, which
     are zero (a zero stands in for its symbol in every unit), and the values of those that may
@@ -369,7 +386,7 @@ def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) ->
     """
     dynamics = problem.dynamics is not None
     declared = _per_problem(_declared, problem, problem.objective(objective_id))
-    bearing = _per_problem(bearing_givens, problem, objective_id)
+    bearing = _per_problem(_bearing_givens, problem, objective_id)
     out = []
     for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
         if key in declared or (bearing is not None and key not in bearing):
