@@ -49,7 +49,7 @@ def _result(problem: str, objective: str):
 
 def test_every_problem_has_at_least_three_typical_mistakes():
     counts = {p.stem: 0 for p in PROBLEMS}
-    for problem, _, row in ROWS:
+    for problem, _, _row in ROWS:
         counts[problem] += 1  # named or not yet: how many are named is measure.py's figure
     for path in (ROOT / "tests" / "data" / "heldout").glob("*.yaml"):  # the held-out problems
         counts[path.stem] += len(yaml.safe_load(path.read_text(encoding="utf-8")))
