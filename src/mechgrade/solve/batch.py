@@ -12,7 +12,7 @@ rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion i
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
 variants' right-hand sides in one call); a design parameter by Newton's method around the
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
-in one call), from the guess :func:`~.dynamics._designed` starts its secant at.
+in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at.
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -399,9 +399,9 @@ class _Template:
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
                   degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`_reached` with the design parameter solved at every column by Newton's
-        method from the guess (:func:`~.batch_motion.newton`; the one-by-one solver's secant
-        takes 10 calls for the flywheel where it takes 7); a column it does not converge for
-        is solved alone, where the bracketing search may find its root."""
+        method from the guess (:func:`~.batch_motion.newton`, as
+        :class:`~.dynamics.DesignedInstant` solves one instant); a column it does not
+        converge for is solved alone, where the bracketing search may find its root."""
         assert self.design is not None and self.kinetics is not None
         at = self.p.index.position(self.design.find)
         equation = self.kinetics.design
@@ -741,10 +741,11 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
                                  frozenset()))
             continue
         try:
-            if kinetics is not None and problem.dynamics is not None \
-                    and problem.dynamics.design is not None:
-                from .dynamics import _designed
-                given_map = _designed(problem, kproblem, kinetics, given_map)
+            if kinetics is not None:
+                from .dynamics import DesignedInstant, kinetic_reach
+                reach = kinetic_reach(problem)
+                if isinstance(reach, DesignedInstant):
+                    given_map = reach.designed(given_map)
             g = place_givens(kproblem, p, given_map)
             if isinstance(analysis, Integration):
                 if instant_of_objective(problem, overrides) is not None:
