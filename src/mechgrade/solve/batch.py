@@ -49,9 +49,8 @@ from ..units import si_factor
 from .batch_motion import newton
 from .entry import solve
 from .events import at_the_event, event_never_happens
-from .instant import (_instants, absent, _key, _state, _symbolic_answer,
-                      collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
-                      wanted_objectives)
+from .instant import (_instants, absent, _key, _symbolic_answer, collect_results,
+                      instant_givens, solution_of, symbolic_dependence, wanted_objectives)
 from .columns import call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
@@ -62,7 +61,7 @@ from .motion import Motion, after_event
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
-from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
+from .result import (GeneratedMistake, MistakeValue, ObjectiveResult,
                      Solution)
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
@@ -302,27 +301,19 @@ class _Template:
             for i in np.flatnonzero(ok):
                 maps[i][self.design.find] = (Name(self.design.find), float(X[at, i]), None)
         size = self.p.index.size
+        if self.kinetics is not None:  # the rates the balances solved
+            from .dynamics import _with_kinetics
         for i in np.flatnonzero(ok):
             if not group.overrides or base[i] is None:
-                free = group.loose
-                if self.kinetics is not None:  # the rates the balances solved
-                    free = frozenset(free - {c for c in self.kinetics.columns
-                                             if c < size and np.isfinite(X[c, i])})
-                base[i] = (State(X[:size, i], group.after, free), maps[i])
+                state = State(X[:size, i], group.after, group.loose)
+                if self.kinetics is not None:
+                    state = _with_kinetics(self.kinetics, state, X[:, i])
+                base[i] = (state, maps[i])
 
     def _solution(self, results: dict, base, failures: dict,
                   wanted: set[str]) -> Solution | MechgradeError:
-        problem, p = self.problem, self.p
-        order = [o.id for o in problem.objectives if o.id in wanted]
-        if not results and order:  # nothing solved: solve_dynamics raises the first error
-            return failures[order[0]]
-        return Solution(problem=problem.id,
-                        results=tuple(results[oid] for oid in order if oid in results),
-                        state=_state(self.kproblem, p, base),
-                        dof=degrees_of_freedom(p, base[0] if base else None),
-                        failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
-                                       if oid in failures),
-                        warnings=tuple(p.k.warnings))
+        return solution_of(self.problem, self.kproblem, self.p, results, failures, base,
+                           tuple(self.p.k.warnings), wanted)
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's

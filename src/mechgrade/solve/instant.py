@@ -217,16 +217,31 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
                         symbolic=reach.symbolic())
         results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
                                                 if o.id in results}, reached, numeric))
+    solution = solution_of(problem, reach.problem, reach.plan, results, failures, base,
+                           tuple(warned), wanted)
+    if isinstance(solution, MechgradeError):
+        raise solution
+    return solution
+
+
+def solution_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
+                results: Mapping[str, ObjectiveResult], failures: Mapping[str, MechgradeError],
+                base: tuple[State, dict] | None, warnings: tuple[AuthorWarning, ...],
+                wanted: Collection[str]) -> Solution | MechgradeError:
+    """The solution of the objectives ``wanted`` (in the problem's order) from their
+    ``results`` and ``failures``, its state ``base`` (the state and givens of the problem's
+    own instant) reported in the units of ``kinematics``; the first objective's error when
+    none of them is solved."""
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results and order:  # nothing solved of what was asked
-        raise failures[order[0]]
+        return failures[order[0]]
     return Solution(problem=problem.id,
                     results=tuple(results[oid] for oid in order if oid in results),
-                    state=_state(reach.problem, reach.plan, base),
-                    dof=degrees_of_freedom(reach.plan, base[0] if base else None),
+                    state=_state(kinematics, p, base),
+                    dof=degrees_of_freedom(p, base[0] if base else None),
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
-                    warnings=tuple(warned))
+                    warnings=warnings)
 
 
 @dataclass(frozen=True)

@@ -51,6 +51,34 @@ ON_BRANCH = 1e-9
 size away from zero: nearer, it is zero to the rounding of the solve."""
 
 
+CONTACT = 1e-9
+"""A contact lets go when its normal force is below minus this (N), and a static friction
+slips when its force is more than ``1 +`` this times ``mu N`` (and 1e-12 N): a contact that
+just holds is judged by the rounding of the solve, not against it."""
+
+
+def pushes(normal) -> np.ndarray:
+    """Whether each normal force ``normal`` (N) pushes, or is zero to rounding
+    (:data:`CONTACT`).
+
+    >>> pushes(np.array([1.0, -1e-12, -1e-3])).tolist()
+    [True, True, False]
+    """
+    with np.errstate(invalid="ignore"):
+        return ~(np.asarray(normal) < -CONTACT)
+
+
+def sticks(friction, normal, mu) -> np.ndarray:
+    """Whether each static friction force of size ``friction`` stays within ``mu`` times its
+    ``normal`` force (:data:`CONTACT`).
+
+    >>> sticks(np.array([1.0, 1.0 + 1e-12, 1.1]), 2.0, 0.5).tolist()
+    [True, True, False]
+    """
+    with np.errstate(invalid="ignore"):
+        return ~(np.asarray(friction) > mu * np.asarray(normal) * (1 + CONTACT) + 1e-12)
+
+
 def satisfied(residual, scale, consistency: float) -> np.ndarray:
     """Whether each equation holds: ``|residual| <= consistency * |scale| + 1e-10`` (``scale``
     the sum of the sizes of its terms); an undefined residual does not hold."""
