@@ -416,7 +416,7 @@ class _Template:
         guess = self.design.guess
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            root, converged = newton(residual, np.full(n, guess), 1e-15, 1e-13, 100)
+            root, converged = newton(residual, np.full(n, guess))
         converged &= np.isfinite(root)
         # Newton stops once its next iterate is within 1e-13 of the last one evaluated:
         # that instant is the root's (as closely as the root is known), not reached again

@@ -345,7 +345,7 @@ class DesignedInstant(KineticInstant):
             warnings.simplefilter("ignore", RuntimeWarning)
             roots, converged = newton(
                 lambda _, values: np.vectorize(residual, otypes=[float])(values),
-                np.array([guess]), 1e-15, 1e-13, 100)
+                np.array([guess]))
         if converged[0] and np.isfinite(roots[0]):
             return with_value(roots[0])
         result = _bracketed(residual, guess)
@@ -391,6 +391,8 @@ def _bracketed(residual: Callable[[float], float], guess: float):
     overshoots from the guess (a residual like 1/R²)."""
     from scipy import optimize
 
+    from .batch_motion import ROOT_ITERATIONS, ROOT_RTOL, ROOT_XTOL
+
     if guess == 0:
         return None
     values: dict[int, float] = {}
@@ -406,8 +408,8 @@ def _bracketed(residual: Callable[[float], float], guess: float):
             if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
                 return optimize.root_scalar(residual, bracket=(guess * 2.0 ** a,
                                                                guess * 2.0 ** b),
-                                            method="brentq", xtol=1e-15, rtol=1e-13,
-                                            maxiter=100)
+                                            method="brentq", xtol=ROOT_XTOL,
+                                            rtol=ROOT_RTOL, maxiter=ROOT_ITERATIONS)
     return None
 
 
