@@ -48,9 +48,10 @@ from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .batch_motion import newton
 from .entry import solve
-from .events import at_the_event, event_never_happens
-from .instant import (_instants, absent, _key, _symbolic_answer, collect_results,
-                      instant_givens, solution_of, symbolic_dependence, wanted_objectives)
+from .events import event_never_happens
+from .instant import (_instants, _key, _size, _symbolic_answer, collect_results,
+                      instant_givens, read_objectives, solution_of, symbolic_dependence,
+                      wanted_objectives)
 from .columns import call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
@@ -339,28 +340,14 @@ class _Template:
         else:
             X, ok = self._reached(group, X, targets, degenerate)
         X, before = self._at_event(X)
-        if self.kinetics is not None:
-            objectives, mistakes, requirements = (self.kinetics.objectives,
-                                                  self.kinetics.mistakes,
-                                                  self.kinetics.requirements)
-            limit = rules.REQUIRED_KINETIC
-        else:
-            objectives, mistakes, requirements = p.objectives, p.mistakes, p.requirements
-            limit = rules.REQUIRED
-        values = {oid: call(f, X, _size(self.problem, oid)) for oid, f in objectives
-                  if oid in group.numeric}
-        if before is not None:
-            functions = dict(objectives)
-            values = {oid: at_the_event(v, call(functions[oid], before, len(v)),
-                                        self.problem.objective(oid))
-                      for oid, v in values.items()}
+        read = read_objectives(self.problem, self.kinetics or p, X, group.numeric,
+                               rules.REQUIRED if self.kinetics is None
+                               else rules.REQUIRED_KINETIC, before)
+        values, declared = read.values, read.mistakes
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
             for v in values.values():
                 ok &= np.isfinite(v).all(axis=0)
-        ok &= np.array([not missing for missing in absent(self.problem, requirements, X,
-                                                            group.numeric, limit)], dtype=bool)
-        declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
-                    for oid, fs in mistakes if oid in group.numeric}
+        ok &= np.array([not missing for missing in read.missing], dtype=bool)
         return X, ok, values, declared, never
 
     def _reached(self, group: _Group, X: np.ndarray, targets: list,
@@ -640,10 +627,6 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
         return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
                      else misread[i][j - len(rows_)] for j in np.flatnonzero(keep[i]))
     return at
-
-
-def _size(problem: Problem, oid: str) -> int:
-    return 3 if problem.objective(oid).kind == "vector" else 1
 
 
 def _nullity(p: KinematicsPlan, level, values: np.ndarray, active: np.ndarray,

@@ -39,13 +39,13 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of, instant_of_objective
-from .events import (at_the_event, integrate_to_event, integrate_to_instant,
+from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
 from .motion import after_event, balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
-from .instant import Reached, absent, drive
+from .instant import Reached, drive, read_objectives
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
@@ -228,20 +228,13 @@ class KineticInstant:
     def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
         problem, kp = self.source, self.kinetics
         given_map, arrived = self.arrive(given_map, instant_of_objective(problem, overrides))
-        x = arrived.x
-        values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
-        if arrived.before is not None:  # an integration's event
-            functions = dict(kp.objectives)
-            values = {oid: at_the_event(v[:, None],
-                                        _call(functions[oid], arrived.before)[:, None],
-                                        problem.objective(oid))[:, 0]
-                      for oid, v in values.items()}
-        missing = absent(problem, kp.requirements, x[:, None], numeric,
-                         rules.REQUIRED_KINETIC)[0]
-        mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
-                    if oid in numeric}
-        return Reached(given_map, _with_kinetics(kp, arrived.state, x), values, mistakes,
-                       missing, arrived.warnings)
+        x, before = arrived.x, arrived.before
+        read = read_objectives(problem, kp, x[:, None], numeric, rules.REQUIRED_KINETIC,
+                               None if before is None else before[:, None])
+        return Reached(given_map, _with_kinetics(kp, arrived.state, x),
+                       {oid: v[:, 0] for oid, v in read.values.items()},
+                       {oid: [v[:, 0] for v in vs] for oid, vs in read.mistakes.items()},
+                       read.missing[0], arrived.warnings)
 
     def symbolic(self) -> Callable | None:
         return _symbolic_result

@@ -126,6 +126,43 @@ def absent(problem: Problem, requirements, X: np.ndarray, only: Collection[str],
     return out
 
 
+@dataclass(frozen=True)
+class Readings:
+    """The numeric objectives read at every column of the states: each one's SI values
+    (size x N), its declared mistakes' values, and the objectives that do not exist at each
+    column (with their errors)."""
+
+    values: dict[str, np.ndarray]
+    mistakes: dict[str, list[np.ndarray]]
+    missing: list[dict[str, SolveError]]
+
+
+def read_objectives(problem: Problem, plan, X: np.ndarray, numeric: Collection[str],
+                    limit: float, before: np.ndarray | None = None) -> Readings:
+    """The objectives ``numeric`` and their declared mistakes read by ``plan`` (a
+    kinematics or kinetics plan: its ``objectives``, ``mistakes`` and ``requirements``) at
+    every column of ``X``; ``before``: an integration's states just before its event, where
+    an objective is read as :func:`~.events.at_the_event` says. ``limit``: how far from zero
+    what an objective requires may be (:func:`absent`)."""
+    values = {oid: call(f, X, _size(problem, oid)) for oid, f in plan.objectives
+              if oid in numeric}
+    if before is not None:
+        from .events import at_the_event  # sympy: only a dynamics problem integrates
+
+        functions = dict(plan.objectives)
+        values = {oid: at_the_event(v, call(functions[oid], before, len(v)),
+                                    problem.objective(oid))
+                  for oid, v in values.items()}
+    mistakes = {oid: [call(f, X, _size(problem, oid)) for f in fs]
+                for oid, fs in plan.mistakes if oid in numeric}
+    return Readings(values, mistakes, absent(problem, plan.requirements, X, numeric, limit))
+
+
+def _size(problem: Problem, oid: str) -> int:
+    """How many values an objective has: a vector's three components, else one."""
+    return 3 if problem.objective(oid).kind == ObjectiveKind.VECTOR else 1
+
+
 def _mistake_values(p: KinematicsPlan, state: State, only: set[str]) -> dict[str, list[np.ndarray]]:
     return {oid: [evaluate((("m", f),), state, {"m"})["m"] for f in funcs]
             for oid, funcs in p.mistakes if oid in only}
