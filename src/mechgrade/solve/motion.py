@@ -217,7 +217,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
     errors.add(ok & (rank < len(cols)), underdetermined)
     ok = errors.ok
     with np.errstate(all="ignore"):
-        inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
+        inverse = rules.inverted(s, rows_, len(cols))
         coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
         sol = np.einsum("nkj,nk->jn", Vt, coeff)
     for j, value in zip(cols, sol):

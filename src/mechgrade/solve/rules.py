@@ -92,6 +92,32 @@ def first_off(residual, scale, consistency: float) -> int | None:
     return int(off[0]) if len(off) else None
 
 
+def cutoff(rows: int, columns: int) -> float:
+    """The part of the largest singular value below which a least-squares solution of a
+    ``rows`` x ``columns`` system treats one as zero (eps times the larger dimension, as
+    numpy's ``pinv`` cuts them): one cutoff for every such solution, one instant alone or a
+    class of them, whatever its rank (:func:`significant`) says of freedoms.
+
+    >>> cutoff(3, 2) == 3 * float(np.finfo(float).eps)
+    True
+    """
+    return float(np.finfo(float).eps * max(rows, columns, 1))
+
+
+def inverted(values, rows: int, columns: int) -> np.ndarray:
+    """The reciprocals of the singular values ``values`` (along the last axis) of a ``rows`` x
+    ``columns`` system that its least-squares solution divides by (:func:`cutoff`), 0 for
+    the others: the minimum-norm solution along them.
+
+    >>> inverted(np.array([2.0, 1e-17, 0.0]), 3, 3).tolist()
+    [0.5, 0.0, 0.0]
+    """
+    s = np.asarray(values, dtype=float)
+    kept = s > cutoff(rows, columns) * s.max(axis=-1, initial=0.0, keepdims=True)
+    with np.errstate(all="ignore"):
+        return np.where(kept, 1.0 / np.where(kept, s, 1.0), 0.0)
+
+
 def significant(magnitudes) -> np.ndarray:
     """Which of the singular values (or pivots) along the last axis count for the rank."""
     m = np.abs(np.asarray(magnitudes, dtype=float))
