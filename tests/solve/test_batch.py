@@ -14,7 +14,7 @@ from mechgrade.expressions.syntax import Name, to_text
 from mechgrade.grade.variants import draw_variant
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.solve.batch import _template, solve_variants
+from mechgrade.solve.batch import _solved_together, _template, solve_variants
 from mechgrade.spec import load_problem
 from mechgrade.spec.dynamics import Integration, WorkEnergy
 
@@ -139,6 +139,15 @@ def test_a_degenerate_variant_warns_as_when_solved_alone():
     together = solve_variants(problem, variants)
     assert any("degenerate configuration" in w.message for w in together[0].warnings)
     for a, b in zip(together, alone(problem, variants)):
+        assert_same(a, b)
+
+
+def test_only_the_variant_that_fails_a_screen_together_is_solved_alone():
+    problem = load_problem(ROOT / "tests" / "data" / "variants" / "degenerate_range.yaml")
+    variants = [{"theta": np.pi / 6}, {"theta": np.pi / 2}, {"theta": np.pi / 6, "a": 0.25}]
+    solved = _solved_together(problem, variants)
+    assert [together for _, together in solved] == [True, False, True]
+    for (a, _), b in zip(solved, alone(problem, variants)):
         assert_same(a, b)
 
 

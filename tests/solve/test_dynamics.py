@@ -508,8 +508,18 @@ def test_integrations_keep_their_energy_books():
     assert flywheel.result("energy_taken").value == pytest.approx(1500 * turned, rel=1e-9)
 
 
-def test_a_design_the_secant_overshoots_is_bracketed_from_the_guess():
-    # R = 0.618 m; from a guess of 4 m the secant on 0.1 w0 - 2 M T/(m R²) leaves for R < 0
+def test_a_problem_s_instants_are_reached_by_the_kind_its_analysis_names():
+    from mechgrade.solve.dynamics import (DesignedInstant, IntegratedInstant, KineticInstant,
+                                          kinetic_reach)
+
+    pendulum = kinetic_reach(load_problem(ROOT / "problems" / "pendulum_pin_reaction.yaml"))
+    flywheel = kinetic_reach(load_problem(ROOT / "problems" / "flywheel_speed_drop.yaml"))
+    assert type(pendulum) is KineticInstant  # its rates given
+    assert type(flywheel) is DesignedInstant and type(flywheel.inner) is IntegratedInstant
+
+
+def test_a_design_newton_overshoots_is_bracketed_from_the_guess():
+    # R = 0.618 m; from a guess of 4 m Newton's method on 0.1 w0 - 2 M T/(m R²) leaves for R < 0
     body = text("flywheel_speed_drop").replace("guess: 0.5 m", "guess: 4 m")
     solution = solve(load_problem_text(body, "p.yaml"), objectives=["R_needed"])
     assert solution.result("R_needed").value == pytest.approx(0.618039, rel=1e-6)

@@ -12,7 +12,7 @@ rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion i
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
 variants' right-hand sides in one call); a design parameter by Newton's method around the
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
-in one call), from the guess :func:`~.dynamics._designed` starts its secant at.
+in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at.
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -48,9 +48,9 @@ from ..spec.model import Objective, Problem, Root
 from ..units import si_factor
 from .batch_motion import newton
 from .entry import solve
-from .events import at_the_event, event_never_happens
-from .instant import (_instants, absent, _key, _state, _symbolic_answer,
-                      collect_results, degrees_of_freedom, instant_givens, symbolic_dependence,
+from .events import event_never_happens
+from .instant import (_instants, _key, _size, _symbolic_answer, collect_results,
+                      instant_givens, read_objectives, solution_of, symbolic_dependence,
                       wanted_objectives)
 from .columns import FirstErrors, call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
@@ -62,7 +62,7 @@ from .motion import Motion, after_event, balances
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
-from .result import (GeneratedMistake, MistakeValue, ObjectiveFailure, ObjectiveResult,
+from .result import (GeneratedMistake, MistakeValue, ObjectiveResult,
                      Solution)
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
@@ -305,27 +305,19 @@ class _Template:
             for i in np.flatnonzero(ok):
                 maps[i][self.design.find] = (Name(self.design.find), float(X[at, i]), None)
         size = self.p.index.size
+        if self.kinetics is not None:  # the rates the balances solved
+            from .dynamics import _with_kinetics
         for i in np.flatnonzero(ok):
             if not group.overrides or base[i] is None:
-                free = group.loose
-                if self.kinetics is not None:  # the rates the balances solved
-                    free = frozenset(free - {c for c in self.kinetics.columns
-                                             if c < size and np.isfinite(X[c, i])})
-                base[i] = (State(X[:size, i], group.after, free), maps[i])
+                state = State(X[:size, i], group.after, group.loose)
+                if self.kinetics is not None:
+                    state = _with_kinetics(self.kinetics, state, X[:, i])
+                base[i] = (state, maps[i])
 
     def _solution(self, results: dict, base, failures: dict,
                   wanted: set[str]) -> Solution | MechgradeError:
-        problem, p = self.problem, self.p
-        order = [o.id for o in problem.objectives if o.id in wanted]
-        if not results and order:  # nothing solved: solve_dynamics raises the first error
-            return failures[order[0]]
-        return Solution(problem=problem.id,
-                        results=tuple(results[oid] for oid in order if oid in results),
-                        state=_state(self.kproblem, p, base),
-                        dof=degrees_of_freedom(p, base[0] if base else None),
-                        failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
-                                       if oid in failures),
-                        warnings=tuple(p.k.warnings))
+        return solution_of(self.problem, self.kproblem, self.p, results, failures, base,
+                           tuple(self.p.k.warnings), wanted)
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
@@ -358,29 +350,16 @@ class _Template:
         else:
             X, ok = self._reached(group, X, targets, degenerate, unreached)
         X, before = self._at_event(X)
-        if self.kinetics is not None:
-            objectives, mistakes, requirements = (self.kinetics.objectives,
-                                                  self.kinetics.mistakes,
-                                                  self.kinetics.requirements)
-            limit = rules.REQUIRED_KINETIC
-        else:
-            objectives, mistakes, requirements = p.objectives, p.mistakes, p.requirements
-            limit = rules.REQUIRED
-        values = {oid: call(f, X, _size(self.problem, oid)) for oid, f in objectives
-                  if oid in group.numeric}
-        if before is not None:
-            functions = dict(objectives)
-            values = {oid: at_the_event(v, call(functions[oid], before, len(v)),
-                                        self.problem.objective(oid))
-                      for oid, v in values.items()}
+        read = read_objectives(self.problem, self.kinetics or p, X, group.numeric,
+                               rules.REQUIRED if self.kinetics is None
+                               else rules.REQUIRED_KINETIC, before)
+        values, declared = read.values, read.mistakes
         if self.kinetics is None:  # a dynamics objective undefined there is its failure
             for v in values.values():
                 ok &= np.isfinite(v).all(axis=0)
-        missing = absent(self.problem, requirements, X, group.numeric, limit)
+        missing = read.missing
         if self.kinetics is None:
             ok &= np.array([not m for m in missing], dtype=bool)
-        declared = {oid: [call(f, X, _size(self.problem, oid)) for f in fs]
-                    for oid, fs in mistakes if oid in group.numeric}
         return X, ok, values, declared, unreached, missing
 
     def _reached(self, group: _Group, X: np.ndarray, targets: list, degenerate: bool,
@@ -420,9 +399,9 @@ class _Template:
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
                   degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`_reached` with the design parameter solved at every column by Newton's
-        method from the guess (:func:`~.batch_motion.newton`; the one-by-one solver's secant
-        takes 10 calls for the flywheel where it takes 7); a column it does not converge for
-        is solved alone, where the bracketing search may find its root."""
+        method from the guess (:func:`~.batch_motion.newton`, as
+        :class:`~.dynamics.DesignedInstant` solves one instant); a column it does not
+        converge for is solved alone, where the bracketing search may find its root."""
         assert self.design is not None and self.kinetics is not None
         at = self.p.index.position(self.design.find)
         equation = self.kinetics.design
@@ -446,7 +425,7 @@ class _Template:
         guess = self.design.guess
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            root, converged = newton(residual, np.full(n, guess), 1e-15, 1e-13, 100)
+            root, converged = newton(residual, np.full(n, guess))
         converged &= np.isfinite(root)
         # Newton stops once its next iterate is within 1e-13 of the last one evaluated:
         # that instant is the root's (as closely as the root is known), not reached again
@@ -672,10 +651,6 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
     return at
 
 
-def _size(problem: Problem, oid: str) -> int:
-    return 3 if problem.objective(oid).kind == "vector" else 1
-
-
 def _nullity(p: KinematicsPlan, level, values: np.ndarray, active: np.ndarray,
              unknown: list) -> int:
     """How many directions of the linear ``level``'s unknowns its equations leave free at the
@@ -762,10 +737,11 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
                                  frozenset()))
             continue
         try:
-            if kinetics is not None and problem.dynamics is not None \
-                    and problem.dynamics.design is not None:
-                from .dynamics import _designed
-                given_map = _designed(problem, kproblem, kinetics, given_map)
+            if kinetics is not None:
+                from .dynamics import DesignedInstant, kinetic_reach
+                reach = kinetic_reach(problem)
+                if isinstance(reach, DesignedInstant):
+                    given_map = reach.designed(given_map)
             g = place_givens(kproblem, p, given_map)
             if isinstance(analysis, Integration):
                 if instant_of_objective(problem, overrides) is not None:

@@ -354,9 +354,14 @@ ROUNDING_FLOOR = 1e-9
 noise of the residual: the iterate is the root as closely as the residual can tell."""
 
 
+ROOT_XTOL, ROOT_RTOL, ROOT_ITERATIONS = 1e-15, 1e-13, 100
+"""How closely a design parameter's root is found (``xtol + rtol * |x|``) and in how many
+iterations at most: by :func:`newton`, and by the bracketing search a design falls back on."""
+
+
 def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndarray,
-           xtol: float, rtol: float, maxiter: int, step: float = 1e-7
-           ) -> tuple[np.ndarray, np.ndarray]:
+           xtol: float = ROOT_XTOL, rtol: float = ROOT_RTOL, maxiter: int = ROOT_ITERATIONS,
+           step: float = 1e-7) -> tuple[np.ndarray, np.ndarray]:
     """Per column, a root of ``residual`` by Newton's method from ``x0``, the slope a forward
     difference (``step`` relative); ``residual(columns, x)`` gets the iterates (row 0) and
     the points a step beside them (row 1) together, one call per iteration, and gives their
@@ -371,7 +376,7 @@ def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
     converging quadratically) are fewer than the secant's (one point each, order 1.6).
 
     >>> roots, ok = newton(lambda cols, x: x ** 2 - np.array([2.0, 9.0])[cols],
-    ...                    np.array([1.0, 1.0]), 1e-15, 1e-13, 100)
+    ...                    np.array([1.0, 1.0]))
     >>> np.round(roots, 12).tolist(), ok.tolist()
     ([1.414213562373, 3.0], [True, True])
     """

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..errors import MechgradeError
 from .plan import _OnFirstCall
-from .rules import significant
+from .rules import cutoff, inverted, significant
 
 
 @lru_cache(maxsize=4096)
@@ -130,7 +130,7 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
         except np.linalg.LinAlgError:  # a singular column: the least-squares solution
             part = None
         if part is None:
-            part = np.linalg.pinv(Ab) @ bb
+            part = np.linalg.pinv(Ab, rtol=cutoff(rows_, k)) @ bb
         solved[:, left] = part[:, :, 0].T
     return solved
 
@@ -158,7 +158,7 @@ def least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
     big = significant(s)
     rank = big.sum(axis=1)
     with np.errstate(all="ignore"):
-        inverse = np.where(big, 1.0 / np.where(big, s, 1.0), 0.0)
+        inverse = inverted(s, J.shape[0], J.shape[1])
         coeff = np.einsum("nmk,mn->nk", U[:, :, :k], np.where(good, r, 0.0)) * inverse
         step = -np.einsum("nkj,nk->jn", Vt[:, :k, :], coeff)
     return step, rank, Vt

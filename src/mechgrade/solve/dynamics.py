@@ -39,13 +39,13 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of, instant_of_objective
-from .events import (at_the_event, integrate_to_event, integrate_to_instant,
+from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
-from .motion import balances, integrated_alone
+from .motion import after_event, balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
-from .instant import Reached, absent, drive
+from .instant import Reached, drive, read_objectives
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
@@ -172,16 +172,29 @@ def problem_where(kp: KineticsPlan) -> Location:
 def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
                    objectives: Collection[str] | None = None) -> Solution:
     """Like :func:`mechgrade.solve.solve`, for a problem with bodies and loads."""
-    return drive(problem, KineticInstant(problem, kinematic_problem(problem),
-                                         kinetics_plan(problem)), givens, objectives)
+    return drive(problem, kinetic_reach(problem), givens, objectives)
+
+
+@dataclass(frozen=True)
+class Arrived:
+    """Where a kind of :class:`KineticInstant` reaches an instant: the state there, the
+    extended state the objectives are read from (second rates and reactions solved), the
+    kinematics' warnings, and for an integration the extended state just before its event
+    (:func:`~.events.at_the_event`), else ``None``."""
+
+    state: State
+    x: np.ndarray
+    warnings: tuple[AuthorWarning, ...] = ()
+    before: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
 class KineticInstant:
-    """A dynamics problem's instants (:class:`~.instant.Reach`): its kinematics at the givens
-    (by the energy balance, integrated to an event, or given), a design parameter solved
-    for, the momentum balances; its generated mistakes are worked out once for the whole
-    solution (:mod:`.dynamics_mutants`)."""
+    """A dynamics problem's instants (:class:`~.instant.Reach`) with its rates given: the
+    kinematics at the givens, then the momentum balances. The other kinds of reaching an
+    instant are its subclasses (:class:`WorkEnergyInstant`, :class:`IntegratedInstant`,
+    :class:`DesignedInstant`), :func:`kinetic_reach` picks one; its generated mistakes are
+    worked out once for the whole solution (:mod:`.dynamics_mutants`)."""
 
     source: Problem
     problem: Problem  # its kinematics (kinematic_problem)
@@ -195,23 +208,33 @@ class KineticInstant:
     def warnings(self) -> tuple[AuthorWarning, ...]:
         return tuple(self.plan.k.warnings)
 
+    def arrive(self, given_map: dict, asked_at: str | None) -> tuple[dict, Arrived]:
+        """The givens the instant is reached with (a design parameter's value put in) and
+        where it is reached; ``asked_at``: the key of ``given_map`` that fixes an
+        integration's instant before its event (``None``: the event)."""
+        return given_map, self.reached(given_map, asked_at)
+
+    def reached(self, given_map: dict, asked_at: str | None) -> Arrived:  # noqa: ARG002 - only an integration has instants of its own
+        """The instant ``given_map`` describes, as this kind reaches it."""
+        instant = solve_numeric(self.problem, self.plan, given_map, set())
+        state = self.rates(instant.state, given_map)
+        return Arrived(state, solve_kinetics(self.source, self.kinetics, state),
+                       tuple(instant.warnings))
+
+    def rates(self, state: State, given_map: dict) -> State:  # noqa: ARG002 - the givens fix them here
+        """The state's rates, where this kind does not take them from the givens."""
+        return state
+
     def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
-        problem, kproblem, kp = self.source, self.problem, self.kinetics
-        given_map = _designed(problem, kproblem, kp, given_map)
-        state, x, found, limit = _instant(problem, kproblem, kp, given_map,
-                                          instant_of_objective(problem, overrides))
-        values = {oid: _call(f, x) for oid, f in kp.objectives if oid in numeric}
-        if limit is not None:  # an integration's event
-            functions = dict(kp.objectives)
-            values = {oid: at_the_event(v[:, None], _call(functions[oid], limit)[:, None],
-                                        problem.objective(oid))[:, 0]
-                      for oid, v in values.items()}
-        missing = absent(problem, kp.requirements, x[:, None], numeric,
-                         rules.REQUIRED_KINETIC)[0]
-        mistakes = {oid: [_call(f, x) for f in fs] for oid, fs in kp.mistakes
-                    if oid in numeric}
-        return Reached(given_map, _with_kinetics(kp, state, x), values, mistakes, missing,
-                       tuple(found))
+        problem, kp = self.source, self.kinetics
+        given_map, arrived = self.arrive(given_map, instant_of_objective(problem, overrides))
+        x, before = arrived.x, arrived.before
+        read = read_objectives(problem, kp, x[:, None], numeric, rules.REQUIRED_KINETIC,
+                               None if before is None else before[:, None])
+        return Reached(given_map, _with_kinetics(kp, arrived.state, x),
+                       {oid: v[:, 0] for oid, v in read.values.items()},
+                       {oid: [v[:, 0] for v in vs] for oid, vs in read.mistakes.items()},
+                       read.missing[0], arrived.warnings)
 
     def symbolic(self) -> Callable | None:
         return _symbolic_result
@@ -222,6 +245,130 @@ class KineticInstant:
         return results  # a dynamics solve attaches nothing: its results are whole
 
 
+@dataclass(frozen=True)
+class WorkEnergyInstant(KineticInstant):
+    """An instant whose rates the energy balance from the start state gives
+    (:mod:`.work_energy`)."""
+
+    def rates(self, state: State, given_map: dict) -> State:
+        given_rates = [key for key, (node, _, _) in given_map.items()
+                       if isinstance(node, Prime) and node.order == 1]
+        return energy_state(self.source, self.kinetics, state, given_rates)
+
+
+@dataclass(frozen=True)
+class IntegratedInstant(KineticInstant):
+    """The motion integrated from its start state to its event (:mod:`.events`), or to the
+    time, coordinate or rate an objective is asked at (:func:`~.events.integrate_to_instant`)."""
+
+    def reached(self, given_map: dict, asked_at: str | None) -> Arrived:
+        problem, kp = self.source, self.kinetics
+        analysis = dynamics_of(problem).analysis
+        assert isinstance(analysis, Integration)
+        g = place_givens(self.problem, kp.kp, given_map)
+        size = kp.kp.index.size
+        if asked_at is not None:
+            node, si, given = given_map[asked_at]
+            state = integrate_to_instant(
+                problem, kp, g.values, lambda values: accelerations(kp, values),
+                kp.kp.index.symbols.index(kp.kp.k.quantity(node)), si,
+                f"{asked_at}: {given.text}" if given is not None else asked_at,
+                given.where if given is not None else analysis.where)
+            return Arrived(state, solve_kinetics(problem, kp, state))
+        together = integrated_alone(problem, kp, g.values)
+        if together is not None:  # as the variants of a class are integrated
+            x, before = together
+            return Arrived(State(x[:size].copy(), after_event(kp.kp), frozenset()), x,
+                           before=before)
+        # what the integrator over columns does not vouch for: each step alone, which says
+        # why it fails where it does
+        state, before = integrate_to_event(problem, kp, g.values,
+                                           lambda values: accelerations(kp, values))
+        # the contact checks hold along the way: judge them just before the event
+        solve_kinetics(problem, kp, State(before[:size], state.given))
+        x = before.copy()
+        keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
+        x[keep] = state.values[keep]
+        return Arrived(state, x, before=before)
+
+
+@dataclass(frozen=True)
+class DesignedInstant(KineticInstant):
+    """A design parameter solved so that the design equation holds at the instant ``inner``
+    reaches (the event, for an integration): Newton's method on the whole instant from the
+    guess (:func:`~.batch_motion.newton`, as the variants of a class are solved), else a
+    bracketing search around it."""
+
+    inner: KineticInstant | None = None
+
+    def arrive(self, given_map: dict, asked_at: str | None) -> tuple[dict, Arrived]:
+        given_map = self.designed(given_map)
+        return given_map, self.reached(given_map, asked_at)
+
+    def reached(self, given_map: dict, asked_at: str | None) -> Arrived:
+        assert self.inner is not None, "a design reaches its instant as another kind does"
+        return self.inner.reached(given_map, asked_at)
+
+    def designed(self, given_map: dict) -> dict:
+        """``given_map`` with the design parameter's value that makes the design equation
+        hold (an objective's own value of it is the value to use)."""
+        from .batch_motion import newton
+
+        design = dynamics_of(self.source).design
+        equation = self.kinetics.design
+        assert design is not None and equation is not None
+        if design.find in given_map:
+            return given_map
+        node = Name(design.find)
+
+        def with_value(value: float) -> dict:
+            out = dict(given_map)
+            out[design.find] = (node, float(value), None)
+            return out
+
+        def residual(value: float) -> float:
+            try:
+                x = self.reached(with_value(value), None).x
+            except MechgradeError:  # the iteration wandered where the model fails: no root
+                return np.nan
+            return float(_call(equation, x)[0])
+
+        guess = design.guess
+        with warnings.catch_warnings():  # an iteration that wanders off is bracketed instead
+            warnings.simplefilter("ignore", RuntimeWarning)
+            roots, converged = newton(
+                lambda _, values: np.vectorize(residual, otypes=[float])(values),
+                np.array([guess]))
+        if converged[0] and np.isfinite(roots[0]):
+            return with_value(roots[0])
+        result = _bracketed(residual, guess)
+        left, right = design.so_that
+        if result is None or not result.converged or not np.isfinite(result.root):
+            raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
+                             f"{left.text} = {right.text} (Newton's method from it does not "
+                             "converge, and no sign change is found within 64 times it)",
+                             where=design.where)
+        return with_value(result.root)
+
+
+def kinetic_reach(problem: Problem) -> KineticInstant:
+    """How ``problem``'s instants are reached: the kind its analysis names (rates given, by
+    the energy balance, integrated), inside a design when it has one."""
+    kproblem, kp = kinematic_problem(problem), kinetics_plan(problem)
+    dynamics = dynamics_of(problem)
+    kind = _KINDS.get(type(dynamics.analysis), KineticInstant)
+    reach = kind(problem, kproblem, kp)
+    if dynamics.design is None or kp.design is None:  # both, or neither: see derive_kinetics
+        return reach
+    return DesignedInstant(problem, kproblem, kp, reach)
+
+
+_KINDS: dict[type, type[KineticInstant]] = {WorkEnergy: WorkEnergyInstant,
+                                            Integration: IntegratedInstant}
+"""The kind of reaching an instant each analysis names; any other (none, an impulse) has
+its rates given."""
+
+
 def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
     """``state`` with the rates the momentum balances solved (second rates, or the rates just
     after an impact) put in."""
@@ -230,56 +377,14 @@ def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
     return State(x[:size].copy(), state.given, frozenset(state.free - solved))
 
 
-def _designed(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict) -> dict:
-    """``given_map`` with the design parameter solved so that the design equation holds:
-    Newton's method on the whole instant from the guess (:func:`~.batch_motion.newton`, as
-    the variants of a class are solved), else a bracketing search around it."""
-    from .batch_motion import newton
-
-    design = dynamics_of(problem).design
-    equation = kp.design
-    if design is None or equation is None:  # both, or neither: the kinetics carry the design
-        return given_map
-    if design.find in given_map:  # an objective's own value of it: the value to use
-        return given_map
-    node = Name(design.find)
-
-    def with_value(value: float) -> dict:
-        out = dict(given_map)
-        out[design.find] = (node, float(value), None)
-        return out
-
-    def residual(value: float) -> float:
-        try:
-            _, x, _, _ = _instant(problem, kproblem, kp, with_value(value))
-        except MechgradeError:  # the iteration wandered where the model fails: no root here
-            return np.nan
-        return float(_call(equation, x)[0])
-
-    guess = design.guess
-    with warnings.catch_warnings():  # an iteration that wanders off is bracketed instead
-        warnings.simplefilter("ignore", RuntimeWarning)
-        roots, converged = newton(
-            lambda _, values: np.vectorize(residual, otypes=[float])(values),
-            np.array([guess]), 1e-15, 1e-13, 100)
-    if converged[0] and np.isfinite(roots[0]):
-        return with_value(roots[0])
-    result = _bracketed(residual, guess)
-    left, right = design.so_that
-    if result is None or not result.converged or not np.isfinite(result.root):
-        raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
-                         f"{left.text} = {right.text} (Newton's method from it does not "
-                         "converge, and no sign change is found within 64 times it)",
-                         where=design.where)
-    return with_value(result.root)
-
-
 def _bracketed(residual: Callable[[float], float], guess: float):
     """A root of ``residual`` between two neighbours of the guess scaled by powers of 2 (up to
     64 times either way, the guess's sign kept, the nearest first), found by bisection once
-    the sign changes there; ``None`` when it does not. For a design the secant overshoots from
-    the guess (a residual like 1/R²)."""
+    the sign changes there; ``None`` when it does not. For a design Newton's method
+    overshoots from the guess (a residual like 1/R²)."""
     from scipy import optimize
+
+    from .batch_motion import ROOT_ITERATIONS, ROOT_RTOL, ROOT_XTOL
 
     if guess == 0:
         return None
@@ -296,54 +401,9 @@ def _bracketed(residual: Callable[[float], float], guess: float):
             if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
                 return optimize.root_scalar(residual, bracket=(guess * 2.0 ** a,
                                                                guess * 2.0 ** b),
-                                            method="brentq", xtol=1e-15, rtol=1e-13,
-                                            maxiter=100)
+                                            method="brentq", xtol=ROOT_XTOL,
+                                            rtol=ROOT_RTOL, maxiter=ROOT_ITERATIONS)
     return None
-
-
-def _instant(problem: Problem, kproblem: Problem, kp: KineticsPlan, given_map: dict,
-             asked_at: str | None = None):
-    """The state at the instant, the extended state (with second rates and reactions) the
-    objectives are read from, the kinematics' warnings, and for an integration the extended
-    state just before its event (:func:`~.events.at_the_event`), else ``None``. ``asked_at``:
-    the key of ``given_map`` that fixes an integration's instant before its event (the time,
-    a coordinate or a rate an objective is asked at), ``None`` for the event."""
-    analysis = dynamics_of(problem).analysis
-    if isinstance(analysis, Integration):
-        g = place_givens(kproblem, kp.kp, given_map)
-        size = kp.kp.index.size
-        if asked_at is not None:
-            node, si, given = given_map[asked_at]
-            state = integrate_to_instant(
-                problem, kp, g.values, lambda values: accelerations(kp, values),
-                kp.kp.index.symbols.index(kp.kp.k.quantity(node)), si,
-                f"{asked_at}: {given.text}" if given is not None else asked_at,
-                given.where if given is not None else analysis.where)
-            return state, solve_kinetics(problem, kp, state), (), None
-        reached = integrated_alone(problem, kp, g.values)
-        if reached is not None:  # as the variants of a class are integrated
-            x, before = reached
-            known = np.zeros(size, dtype=bool)
-            known[list(kp.kp.index.config)] = True
-            known[list(kp.kp.index.rates(1))] = True
-            return State(x[:size].copy(), known, frozenset()), x, (), before
-        # what the integrator over columns does not vouch for: each step alone, which says
-        # why it fails where it does
-        state, before = integrate_to_event(problem, kp, g.values,
-                                           lambda values: accelerations(kp, values))
-        # the contact checks hold along the way: judge them just before the event
-        solve_kinetics(problem, kp, State(before[:size], state.given))
-        x = before.copy()
-        keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
-        x[keep] = state.values[keep]
-        return state, x, (), before
-    instant = solve_numeric(kproblem, kp.kp, given_map, set())
-    state = instant.state
-    if isinstance(analysis, WorkEnergy):
-        rates = [key for key, (node, _, _) in given_map.items()
-                 if isinstance(node, Prime) and node.order == 1]
-        state = energy_state(problem, kp, state, rates)
-    return state, solve_kinetics(problem, kp, state), instant.warnings, None
 
 
 @lru_cache(maxsize=512)

@@ -126,6 +126,43 @@ def absent(problem: Problem, requirements, X: np.ndarray, only: Collection[str],
     return out
 
 
+@dataclass(frozen=True)
+class Readings:
+    """The numeric objectives read at every column of the states: each one's SI values
+    (size x N), its declared mistakes' values, and the objectives that do not exist at each
+    column (with their errors)."""
+
+    values: dict[str, np.ndarray]
+    mistakes: dict[str, list[np.ndarray]]
+    missing: list[dict[str, SolveError]]
+
+
+def read_objectives(problem: Problem, plan, X: np.ndarray, numeric: Collection[str],
+                    limit: float, before: np.ndarray | None = None) -> Readings:
+    """The objectives ``numeric`` and their declared mistakes read by ``plan`` (a
+    kinematics or kinetics plan: its ``objectives``, ``mistakes`` and ``requirements``) at
+    every column of ``X``; ``before``: an integration's states just before its event, where
+    an objective is read as :func:`~.events.at_the_event` says. ``limit``: how far from zero
+    what an objective requires may be (:func:`absent`)."""
+    values = {oid: call(f, X, _size(problem, oid)) for oid, f in plan.objectives
+              if oid in numeric}
+    if before is not None:
+        from .events import at_the_event  # sympy: only a dynamics problem integrates
+
+        functions = dict(plan.objectives)
+        values = {oid: at_the_event(v, call(functions[oid], before, len(v)),
+                                    problem.objective(oid))
+                  for oid, v in values.items()}
+    mistakes = {oid: [call(f, X, _size(problem, oid)) for f in fs]
+                for oid, fs in plan.mistakes if oid in numeric}
+    return Readings(values, mistakes, absent(problem, plan.requirements, X, numeric, limit))
+
+
+def _size(problem: Problem, oid: str) -> int:
+    """How many values an objective has: a vector's three components, else one."""
+    return 3 if problem.objective(oid).kind == ObjectiveKind.VECTOR else 1
+
+
 def _mistake_values(p: KinematicsPlan, state: State, only: set[str]) -> dict[str, list[np.ndarray]]:
     return {oid: [evaluate((("m", f),), state, {"m"})["m"] for f in funcs]
             for oid, funcs in p.mistakes if oid in only}
@@ -217,16 +254,31 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
                         symbolic=reach.symbolic())
         results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
                                                 if o.id in results}, reached, numeric))
+    solution = solution_of(problem, reach.problem, reach.plan, results, failures, base,
+                           tuple(warned), wanted)
+    if isinstance(solution, MechgradeError):
+        raise solution
+    return solution
+
+
+def solution_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
+                results: Mapping[str, ObjectiveResult], failures: Mapping[str, MechgradeError],
+                base: tuple[State, dict] | None, warnings: tuple[AuthorWarning, ...],
+                wanted: Collection[str]) -> Solution | MechgradeError:
+    """The solution of the objectives ``wanted`` (in the problem's order) from their
+    ``results`` and ``failures``, its state ``base`` (the state and givens of the problem's
+    own instant) reported in the units of ``kinematics``; the first objective's error when
+    none of them is solved."""
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results and order:  # nothing solved of what was asked
-        raise failures[order[0]]
+        return failures[order[0]]
     return Solution(problem=problem.id,
                     results=tuple(results[oid] for oid in order if oid in results),
-                    state=_state(reach.problem, reach.plan, base),
-                    dof=degrees_of_freedom(reach.plan, base[0] if base else None),
+                    state=_state(kinematics, p, base),
+                    dof=degrees_of_freedom(p, base[0] if base else None),
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
-                    warnings=tuple(warned))
+                    warnings=warnings)
 
 
 @dataclass(frozen=True)

@@ -453,7 +453,7 @@ def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, 
         if len(b):
             from scipy import linalg
 
-            sol, *_ = linalg.lstsq(A_u, rhs)
+            sol, *_ = linalg.lstsq(A_u, rhs, cond=rules.cutoff(*A_u.shape))
             null = rules.null_space(A_u)
         else:
             sol = np.zeros(len(unknown))

@@ -242,7 +242,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
 
     def underdetermined(i: int) -> MechgradeError:
         a = A[:, :, i]
-        null = np.linalg.svd(a)[2][int(rank[i]):].T
+        null = rules.null_space(a)
         open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > rules.OPEN]
         names = [kp.name(j) for j in open_]
         involved = sorted({label.split(":")[0] for r, label in enumerate(kp.labels)
@@ -257,7 +257,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
     errors.add(ok & (rank < len(cols)), underdetermined)
     ok = errors.ok
     with np.errstate(all="ignore"):
-        inverse = np.where(s > 0, 1.0 / np.where(s > 0, s, 1.0), 0.0)
+        inverse = rules.inverted(s, rows_, len(cols))
         coeff = np.einsum("nmk,mn->nk", U, -np.where(ok, b, 0.0)) * inverse
         sol = np.einsum("nkj,nk->jn", Vt, coeff)
     for j, value in zip(cols, sol):
@@ -278,13 +278,13 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
     with np.errstate(invalid="ignore"):
         for slip, _, normal in kp.slips:
             nn = call(normal, x, 1)[0]
-            errors.add(nn < -1e-9, partial(_lost, slip, nn))
+            errors.add(~rules.pushes(nn), partial(_lost, slip, nn))
         for bound, tangential, normal, mu in kp.bounds:
             f = np.linalg.norm(call(tangential, x, 3), axis=0)
             nn = call(normal, x, 1)[0]
             m = call(mu, x, 1)[0]
-            errors.add(nn < -1e-9, partial(_lost, bound, nn))
-            errors.add(f > m * nn * (1 + 1e-9) + 1e-12, partial(_slips, bound, f, nn, m))
+            errors.add(~rules.pushes(nn), partial(_lost, bound, nn))
+            errors.add(~rules.sticks(f, nn, m), partial(_slips, bound, f, nn, m))
     return Balanced(x, errors)
 
 

@@ -51,6 +51,34 @@ ON_BRANCH = 1e-9
 size away from zero: nearer, it is zero to the rounding of the solve."""
 
 
+CONTACT = 1e-9
+"""A contact lets go when its normal force is below minus this (N), and a static friction
+slips when its force is more than ``1 +`` this times ``mu N`` (and 1e-12 N): a contact that
+just holds is judged by the rounding of the solve, not against it."""
+
+
+def pushes(normal) -> np.ndarray:
+    """Whether each normal force ``normal`` (N) pushes, or is zero to rounding
+    (:data:`CONTACT`).
+
+    >>> pushes(np.array([1.0, -1e-12, -1e-3])).tolist()
+    [True, True, False]
+    """
+    with np.errstate(invalid="ignore"):
+        return ~(np.asarray(normal) < -CONTACT)
+
+
+def sticks(friction, normal, mu) -> np.ndarray:
+    """Whether each static friction force of size ``friction`` stays within ``mu`` times its
+    ``normal`` force (:data:`CONTACT`).
+
+    >>> sticks(np.array([1.0, 1.0 + 1e-12, 1.1]), 2.0, 0.5).tolist()
+    [True, True, False]
+    """
+    with np.errstate(invalid="ignore"):
+        return ~(np.asarray(friction) > mu * np.asarray(normal) * (1 + CONTACT) + 1e-12)
+
+
 def satisfied(residual, scale, consistency: float) -> np.ndarray:
     """Whether each equation holds: ``|residual| <= consistency * |scale| + 1e-10`` (``scale``
     the sum of the sizes of its terms); an undefined residual does not hold."""
@@ -62,6 +90,32 @@ def first_off(residual, scale, consistency: float) -> int | None:
     """The first equation that does not hold (:func:`satisfied`), or ``None``."""
     off = np.flatnonzero(~satisfied(residual, scale, consistency))
     return int(off[0]) if len(off) else None
+
+
+def cutoff(rows: int, columns: int) -> float:
+    """The part of the largest singular value below which a least-squares solution of a
+    ``rows`` x ``columns`` system treats one as zero (eps times the larger dimension, as
+    numpy's ``pinv`` cuts them): one cutoff for every such solution, one instant alone or a
+    class of them, whatever its rank (:func:`significant`) says of freedoms.
+
+    >>> cutoff(3, 2) == 3 * float(np.finfo(float).eps)
+    True
+    """
+    return float(np.finfo(float).eps * max(rows, columns, 1))
+
+
+def inverted(values, rows: int, columns: int) -> np.ndarray:
+    """The reciprocals of the singular values ``values`` (along the last axis) of a ``rows`` x
+    ``columns`` system that its least-squares solution divides by (:func:`cutoff`), 0 for
+    the others: the minimum-norm solution along them.
+
+    >>> inverted(np.array([2.0, 1e-17, 0.0]), 3, 3).tolist()
+    [0.5, 0.0, 0.0]
+    """
+    s = np.asarray(values, dtype=float)
+    kept = s > cutoff(rows, columns) * s.max(axis=-1, initial=0.0, keepdims=True)
+    with np.errstate(all="ignore"):
+        return np.where(kept, 1.0 / np.where(kept, s, 1.0), 0.0)
 
 
 def significant(magnitudes) -> np.ndarray:
