@@ -404,10 +404,10 @@ def _store_answer(key: str, answer: ObjectiveResult) -> None:
 
 
 def _bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None:
-    """:func:`.symbolic.bearing_givens`, kept in the disk cache beside the plan: reading it
+    """:func:`.symbolic.bearing_givens`, kept in the disk cache under the problem: reading it
     derives the model with sympy, which a warm solve never imports."""
-    plan_key = kinematics_plan(problem).key
-    key = None if plan_key is None else cache.digest("bearing", plan_key, objective_id)
+    problem_key = cache.problem_key(problem)
+    key = None if problem_key is None else cache.digest("bearing", problem_key, objective_id)
     data = cache.load(key) if key is not None else None
     if isinstance(data, dict) and set(data) == {"bearing"} and (
             data["bearing"] is None or (isinstance(data["bearing"], list) and all(
