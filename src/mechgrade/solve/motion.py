@@ -51,8 +51,9 @@ class Motion:
         the event, the accelerations and reactions the limits just before it, with the
         extended states just before the event stacked under them (:meth:`_at_event`); which
         columns passed the screens, which ended without their event
-        (:data:`~.batch_motion.NEVER`), and the error of each whose slip ended before its
-        event and sticks there (:meth:`_stuck`)."""
+        (:data:`~.batch_motion.NEVER`), and the error of each that failed the checks of
+        :func:`balances` just before its event, or whose slip ended before its event and
+        sticks there (:meth:`_stuck`)."""
         kp = self.kinetics
         assert kp is not None and isinstance(self.analysis, Integration)
         ap = analysis_plan(kp)
@@ -111,13 +112,19 @@ class Motion:
         ok = arrival.status == FIRED
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
-        x, fine = self.screened(at(everyone, arrival.t * (1 - rules.BEFORE_EVENT), arrival.before)[:size],
-                                 after_event(self.p))
+        solved = balances(self.problem, self.kinetics,
+                          at(everyone, arrival.t * (1 - rules.BEFORE_EVENT), arrival.before)[:size],
+                          after_event(self.p))
+        x, fine = solved.x, solved.ok
         before = x.copy()
         keep = [i for i in range(size) if i not in seconds]
         x[keep] = end[keep]
+        # an event reached whose contact checks fail just before it: the error the scalar
+        # solver raises there, without integrating that column again step by step
+        failed = {int(i): error for i in np.flatnonzero(ok & ~fine)
+                  if (error := solved.errors[int(i)]) is not None}
         stuck = self._stuck(arrival, at, switches) if switches is not None else {}
-        return np.vstack([x, before]), ok & fine, arrival.status == NEVER, stuck
+        return np.vstack([x, before]), ok & fine, arrival.status == NEVER, {**failed, **stuck}
 
     def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching
                ) -> dict[int, MechgradeError]:
@@ -159,12 +166,6 @@ class Motion:
     def accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
         """:func:`accelerations` of this motion."""
         return accelerations(self.kinetics, x, switches)
-
-    def screened(self, X: np.ndarray, known: np.ndarray):
-        """The extended states (second rates and reactions solved from the momentum
-        balances), and which passed the checks of :func:`balances`."""
-        solved = balances(self.problem, self.kinetics, X, known)
-        return solved.x, solved.ok
 
 
 def accelerations(kp, x: np.ndarray, switches: _Switching | None = None) -> np.ndarray:
