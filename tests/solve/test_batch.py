@@ -260,27 +260,19 @@ def test_every_shipped_problem_reached_otherwise_is_covered():
     assert len(REACHED_OTHERWISE) == REACHED_OTHERWISE_COUNT
 
 
-def test_a_variant_failing_the_checks_just_before_its_event_fails_in_the_class_not_alone():
+@pytest.mark.parametrize("variants, said", [
+    ([{"mu": 0.0}, {"mu": 0.25}], "does not happen within 60 s"),  # no friction: slides on
+    ([{"v0": 1e-13}, {"v0": 5.0}], "slip velocity is zero"),  # stops at once: no slip left
+], ids=["event-never-happens", "no-slip-just-before-the-event"])
+def test_a_variant_that_fails_on_the_way_to_its_event_fails_in_the_class_as_alone(variants,
+                                                                                  said):
     problem = load_problem(PROBLEMS / "block_slides_on_cart.yaml")
-    variants = [{"v0": 1e-13}, {"v0": 5.0}]  # the first stops sliding at once: no slip left
     template = _template(problem)
     assert template is not None
     assert all(s is not None for s in template.solve(variants))  # neither went alone
     together = solve_variants(problem, variants)
     one = alone(problem, variants)
-    assert together[0].failures and all("slip velocity is zero" in str(f.error)
-                                        for f in together[0].failures)
-    for a, b in zip(together, one):
-        assert_same(a, b, INTEGRATED, generated=False)
-
-
-def test_a_variant_whose_event_never_happens_fails_as_when_solved_alone():
-    problem = load_problem(PROBLEMS / "block_slides_on_cart.yaml")
-    variants = [{"mu": 0.0}, {"mu": 0.25}]  # without friction the block never stops sliding
-    together = solve_variants(problem, variants)
-    one = alone(problem, variants)
-    assert one[0].failures and all("does not happen within 60 s" in str(f.error)
-                                   for f in one[0].failures)
+    assert one[0].failures and all(said in str(f.error) for f in one[0].failures)
     for a, b in zip(together, one):
         assert_same(a, b, INTEGRATED, generated=False)
 
