@@ -156,3 +156,35 @@ def test_of_a_load_on_two_bodies_the_one_the_equation_is_about_is_named(atwood, 
 ])
 def test_a_moment_equation_names_the_load_whose_moment_it_leaves_out(pendulum, text, said):
     assert judge_equations(text, pendulum).assessment.feedback.endswith(said + ".")
+
+
+@pytest.mark.parametrize("text, feedback", [
+    # block 2's loads (down positive) with block 1's mass
+    ("m1 y'' = T - m1 g; m1 y'' = m2 g - T",
+     "m1*ydd = m2*g-T: does not hold for the motion (the wrong body: the loads on block2 "
+     "balanced against the m a of block1)."),
+    ("m1 y'' = T - m1 g; m2 y'' = m1 g - T",
+     "m2*ydd = m1*g-T: does not hold for the motion (the wrong body: the loads on block1 "
+     "balanced against the m a of block2)."),
+])
+def test_an_equation_balancing_one_bodys_loads_against_anothers_motion_is_named(
+        atwood, text, feedback):
+    judged = judge_equations(text, atwood)
+    assert judged.assessment.feedback == feedback
+    assert judged.assessment.diagnosis == "an equation for " + feedback.split("(", 1)[1][:-2]
+
+
+def test_a_moment_balance_about_the_pin_with_the_inertia_about_g_is_the_wrong_point(pendulum):
+    (row,) = judge_equations("m L^2/12 θ'' = -m g L/2 sin(θ)", pendulum).rows
+    assert row.balance == ("the wrong point: the moments about O balanced against the rate of "
+                           "angular momentum about G")
+    assert (row.load, row.reversed_term) == (None, None)
+
+
+@pytest.mark.parametrize("text", [
+    "m1 y'' = T - m1 g; m2 y'' = m2 g - T",  # right: nothing to name
+    "m1 y'' = T; m2 y'' = m2 g - T",  # a load left out is no other body's balance
+    "m1 y'' = T - m1 g; m2 y'' = 2 m2 g - T",  # nor is a load doubled
+])
+def test_an_equation_that_is_no_misplaced_balance_names_none(atwood, text):
+    assert all(row.balance is None for row in judge_equations(text, atwood).rows)

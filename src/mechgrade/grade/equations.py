@@ -69,6 +69,7 @@ class EquationRow:
     reversed_term: str | None = None
     load: str | None = None  # the model's load it leaves out or turns round, named
     load_mistake: str | None = None  # "missing" or "turned round"
+    balance: str | None = None  # the wrong body's or the wrong point's balance it is, named
 
 
 @dataclass(frozen=True)
@@ -145,17 +146,22 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
         said = ("right" if ok else "says nothing about the motion" if trivial
                 else "does not hold for the motion")
         fine = [r for r, good in enumerate(right) if good]
-        term = None if ok or trivial else system.reversed_term(i, fine)
-        found = None if ok or trivial else system.wrong_load(i, fine)
+        # a balance of the wrong body or about the wrong point explains the whole misfit:
+        # it is said before a load, which may explain it only by chance
+        balance = None if ok or trivial else system.wrong_balance(i, fine)
+        term = None if ok or trivial or balance else system.reversed_term(i, fine)
+        found = None if ok or trivial or balance else system.wrong_load(i, fine)
         named, how = (_naming(found[0]), found[1]) if found is not None else (None, None)
-        if term is not None and how == "turned round":
+        if balance is not None:
+            said += f" ({balance})"
+        elif term is not None and how == "turned round":
             said += f" (its term {term} has the wrong sign: {named} is turned round in it)"
         elif term is not None:
             said += f" (its term {term} has the wrong sign)"
         elif named is not None:
             said += (f" ({named} is missing from it)" if how == "missing"
                      else f" ({named} is turned round in it)")
-        rows.append(EquationRow(e.text, ok, f"{e.text}: {said}.", term, named, how))
+        rows.append(EquationRow(e.text, ok, f"{e.text}: {said}.", term, named, how, balance))
     complete = system.complete()
     count = sum(right)
     missing = 0 if complete else system.undetermined()
@@ -170,8 +176,9 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
     read_back = "; ".join(e.text for e in equations)
     # what the class report counts: each load left out or turned round, once
     counted = dict.fromkeys(
-        f"{'left out of' if row.load_mistake == 'missing' else 'turned round in'} an equation: "
-        f"{row.load}" for row in rows if row.load)
+        [f"{'left out of' if row.load_mistake == 'missing' else 'turned round in'} an "
+         f"equation: {row.load}" for row in rows if row.load]
+        + [f"an equation for {row.balance}" for row in rows if row.balance])
     return EquationsJudgement(tuple(rows), complete,
                               Assessment(verdict, credit, "; ".join(counted) or None, feedback,
                                          read_back))
@@ -352,6 +359,45 @@ class _System:
         scale = scales.most_common(1)[0][0] if scales else 1.0
         times = [n for r in ratios if (n := _plain(r / scale)) is not None]
         return load, "turned round" if times and times[0] == 2 else "missing"
+
+    def wrong_balance(self, i: int, right: list[int]) -> str | None:
+        """What equation ``i`` is when it is a momentum balance put together wrong, at every
+        state and with the unknowns the ``right`` equations give: one body's m a with another
+        body's loads along the same axis (either way round), or a body's rate of angular
+        momentum about one point with its loads' moment about another; ``None`` when it is
+        neither, or it could be several.
+        """
+        misfits = self._misfits(i, right)
+        slope = self.slopes[i]
+        if misfits is None or not slope.any():
+            return None
+        values = np.array([m for m, _, _ in misfits])
+        tol = np.array([t for _, t, _ in misfits])
+        balances = self.samples.balances
+        found = set()
+        for motion in balances:
+            along = np.array(motion.slope)
+            if not along.any():
+                continue
+            times = float(slope @ along / (along @ along))
+            if np.abs(slope - times * along).max() > 1e-6 * np.abs(slope).max():
+                continue  # the equation's accelerations are not this balance's
+            for loads in balances:
+                if loads.axis != motion.axis or (
+                        (loads.about is None) != (motion.about is None)
+                        or (loads.body == motion.body) == (loads.about is None)
+                        or (loads.about is not None and loads.about == motion.about)):
+                    continue
+                for sign in (1.0, -1.0):
+                    # the motion's side is the model's loads on its own body at every state
+                    wrong = times * (np.array(motion.loads) - sign * np.array(loads.loads))
+                    if np.all(np.abs(values - wrong) <= tol) and np.any(np.abs(wrong) > tol):
+                        found.add(f"the wrong body: the loads on {loads.body} balanced "
+                                  f"against the m a of {motion.body}" if loads.about is None
+                                  else f"the wrong point: the moments about {loads.about} "
+                                  f"balanced against the rate of angular momentum about "
+                                  f"{motion.about}")
+        return found.pop() if len(found) == 1 else None
 
     def _flips(self, rows: list[int]) -> int | None:
         """How many reactions the unknowns fitted to ``rows`` take the other way round, when

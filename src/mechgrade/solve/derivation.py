@@ -19,6 +19,7 @@ which way every frame's unit vectors point, with each body's free-body diagram
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -146,6 +147,22 @@ class SampledLoad:
 
 
 @dataclass(frozen=True)
+class SampledBalance:
+    """One momentum balance of a body along one frame's unit vector ``axis`` (``A.x``): of
+    forces (``about`` is ``None``) or of moments about the point ``about``. ``loads`` is the
+    loads' side at each sampled state (their resultant, or their moment about ``about``, along
+    ``axis``), which the model's motion there matches; ``slope`` how the motion's side (m a,
+    or the rate of angular momentum about ``about``, along ``axis``) changes with each
+    acceleration at the first state."""
+
+    body: str
+    axis: str
+    about: str | None
+    loads: tuple[float, ...]
+    slope: tuple[float, ...]
+
+
+@dataclass(frozen=True)
 class MotionSamples:
     """The model's motion at a few states: ``symbols`` a student may write (coordinates,
     parameters, rates as ``xd``), ``accelerations`` (``xdd``), ``reactions`` (the model's
@@ -157,6 +174,7 @@ class MotionSamples:
     reactions: tuple[str, ...]
     states: tuple[tuple[float, ...], ...]
     loads: tuple[SampledLoad, ...] = ()
+    balances: tuple[SampledBalance, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -223,7 +241,7 @@ def motion_samples(problem: Problem, solution: Solution, count: int = SAMPLES,
     return MotionSamples(tuple(rate_name(index.names[i]) for i in symbols),
                          tuple(rate_name(index.names[i]) for i in accelerations),
                          tuple(str(kp.symbols[i]) for i in reactions), states,
-                         _sampled_loads(problem, kept))
+                         _sampled_loads(problem, kept), _sampled_balances(problem, kept))
 
 
 def _sampled_loads(problem: Problem, states: list[np.ndarray]) -> tuple[SampledLoad, ...]:
@@ -264,3 +282,61 @@ def _mass_plan(problem: Problem) -> dict:
     return {body.name: sp.lambdify(symbols, sp.Matrix([sum(
         (model.plain(model.language.scalar(part.mass)) for part in body.parts), sp.S.Zero)]),
         modules="numpy") for body in dynamics_of(problem).bodies}
+
+
+# the labels mechanics.dynamics gives a body's momentum balances (in the inertial axes)
+_FORCE_LABEL = re.compile(r"body (\w+): \w+\.([xyz]) force balance")
+_MOMENT_LABEL = re.compile(r"body (\w+): moment balance about \w+ \(\w+\.([xyz]) component\)")
+
+
+def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[SampledBalance, ...]:
+    """Every body's force balance along each frame's unit vectors, and (a rigid body's) moment
+    balance about each point along them, at each of ``states`` (see
+    :class:`SampledBalance`); none for an impact (its balances are of impulses)."""
+    kp = kinetics_plan(problem)
+    if kp.kin.impact or not states:
+        return ()
+    plan = _diagram_plan(problem, locations(problem))
+    frames = _frame_plan(problem)
+    n = len(list(kp.kp.index.rates(2)))
+    x0 = states[0]
+    jacobian = np.asarray(kp.jacobian(*x0), dtype=float)[:, :n]
+    nan3 = np.full(3, np.nan)
+    points = {name: [np.array(_vector(f, x) or nan3) for x in states]
+              for name, f in plan.points.items()}
+    axes = [(f"{frame}.{AXES[a]}", [np.array((_unit_vectors(f, x) or (nan3,) * 3)[a])
+                                    for x in states])
+            for frame, f in frames.items() for a in range(3)]
+    out = []
+    for body in dynamics_of(problem).bodies:
+        # the motion's side (m a; the rate of angular momentum about the centre) is the
+        # balance's part in the accelerations, turned round
+        ma, spin = np.zeros((3, n)), np.zeros((3, n))
+        for row, label in enumerate(kp.labels):
+            for pattern, slopes in ((_FORCE_LABEL, ma), (_MOMENT_LABEL, spin)):
+                found = pattern.fullmatch(label)
+                if found and found.group(1) == body.name:
+                    slopes[AXES.index(found.group(2))] = -jacobian[row]
+        forces = [(applied, force, couple) for applied, force, couple, *_ in plan.loads
+                  if applied.body == body.name]
+        resultant = [sum((np.array(_vector(force, x) or nan3) for a, force, _ in forces
+                          if a.point is not None), np.zeros(3)) for x in states]
+        for axis, e in axes:
+            out.append(SampledBalance(body.name, axis, None,
+                                      tuple(float(r @ u) for r, u in zip(resultant, e)),
+                                      tuple(float(v) for v in e[0] @ ma)))
+        if body.frame is None:
+            continue  # a particle: no moment balance
+        for about, where in points.items():
+            moment = [sum((np.array(_vector(couple, x) or nan3) if a.point is None else
+                           np.cross(points[a.point][k] - where[k],
+                                    np.array(_vector(force, x) or nan3))
+                           for a, force, couple in forces), np.zeros(3))
+                      for k, x in enumerate(states)]
+            # about another point, the rate of angular momentum gains the moment of m a
+            rate = spin + np.cross(points[body.centre][0] - where[0], ma.T).T
+            for axis, e in axes:
+                out.append(SampledBalance(body.name, axis, about,
+                                          tuple(float(m @ u) for m, u in zip(moment, e)),
+                                          tuple(float(v) for v in e[0] @ rate)))
+    return tuple(out)
