@@ -47,6 +47,13 @@ REL = 1e-3
 values are the model's own, so only rounding is forgiven: 9.81 for g, 0.866 for cos 30°)."""
 
 
+_SAID = {"missing": "is missing from", "doubled": "is counted twice in",
+         "turned round": "is turned round in"}
+_COUNTED = {"missing": "left out of", "doubled": "counted twice in",
+            "turned round": "turned round in"}
+"""How a load's mistake in an equation is said on the feedback and counted by the class
+report."""
+
 
 @dataclass(frozen=True)
 class StudentEquation:
@@ -68,7 +75,7 @@ class EquationRow:
     feedback: str
     reversed_term: str | None = None
     load: str | None = None  # the model's load it leaves out or turns round, named
-    load_mistake: str | None = None  # "missing" or "turned round"
+    load_mistake: str | None = None  # "missing", "doubled" or "turned round"
     balance: str | None = None  # the wrong body's or the wrong point's balance it is, named
 
 
@@ -159,8 +166,7 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
         elif term is not None:
             said += f" (its term {term} has the wrong sign)"
         elif named is not None:
-            said += (f" ({named} is missing from it)" if how == "missing"
-                     else f" ({named} is turned round in it)")
+            said += f" ({named} {_SAID[how]} it)"
         rows.append(EquationRow(e.text, ok, f"{e.text}: {said}.", term, named, how, balance))
     complete = system.complete()
     count = sum(right)
@@ -176,8 +182,8 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
     read_back = "; ".join(e.text for e in equations)
     # what the class report counts: each load left out or turned round, once
     counted = dict.fromkeys(
-        [f"{'left out of' if row.load_mistake == 'missing' else 'turned round in'} an "
-         f"equation: {row.load}" for row in rows if row.load]
+        [f"{_COUNTED[row.load_mistake]} an equation: {row.load}" for row in rows
+         if row.load and row.load_mistake]
         + [f"an equation for {row.balance}" for row in rows if row.balance])
     return EquationsJudgement(tuple(rows), complete,
                               Assessment(verdict, credit, "; ".join(counted) or None, feedback,
@@ -354,11 +360,38 @@ class _System:
         ((load, ratios),) = fitting.values()
         if self.reversed_term(i, right) is not None:
             return load, "turned round"
+        times = self._multiple(i, load, misfits[0][0])
+        if times is not None:
+            return load, {-1: "missing", 1: "doubled", -2: "turned round"}[times]
         scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
                          for r in _ratios(t, other))
         scale = scales.most_common(1)[0][0] if scales else 1.0
         times = [n for r in ratios if (n := _plain(r / scale)) is not None]
         return load, "turned round" if times and times[0] == 2 else "missing"
+
+    def _multiple(self, i: int, load: SampledLoad, misfit: float) -> int | None:
+        """How many times over equation ``i`` has ``load`` at the first state: -1 (left out),
+        1 (twice), -2 (turned round), read off the balances of the load's body its
+        accelerations are a multiple of; ``None`` when none or several readings say so."""
+        slope = self.slopes[i]
+        if not slope.any():
+            return None
+        found = set()
+        for balance in self.samples.balances:
+            along = np.array(balance.slope)
+            if balance.body != load.body or not along.any() or \
+                    (balance.axis, balance.about) not in load.along:
+                continue
+            times = float(slope @ along / (along @ along))
+            if np.abs(slope - times * along).max() > 1e-6 * np.abs(slope).max():
+                continue
+            component = load.components[load.along.index((balance.axis, balance.about))][0]
+            if not abs(component) > 1e-9 * abs(misfit):
+                continue
+            # the equation is ``times`` (m a - loads): a load's error enters with -times
+            found.update(n for n in (-1, 1, -2)
+                         if abs(misfit / (-times * component) - n) <= REL * abs(n) * 10)
+        return found.pop() if len(found) == 1 else None
 
     def wrong_balance(self, i: int, right: list[int]) -> str | None:
         """What equation ``i`` is when it is a momentum balance put together wrong, at every

@@ -137,13 +137,16 @@ class SampledLoad:
     """One load of the model at each sampled state: its ``name``, ``kind`` and ``body``, and
     ``components``: rows of one value per state, every way it can enter a balance (a force
     along each frame's unit vectors, and its moment about each point along them; a couple's
-    moment along them), ``nan`` where it has no value; ``mass`` the body's at each state."""
+    moment along them, about each point), ``nan`` where it has no value; ``along`` says
+    which for each row (``("A.x", None)``: the force along ``A.x``; ``("A.x", "O")``: the
+    moment about ``O``); ``mass`` the body's at each state."""
 
     name: str
     kind: str
     body: str
     components: tuple[tuple[float, ...], ...]
     mass: tuple[float, ...] = ()  # its body's mass at each state (an equation divided by it)
+    along: tuple[tuple[str, str | None], ...] = ()  # each row's axis and point (None: a force)
 
 
 @dataclass(frozen=True)
@@ -252,22 +255,27 @@ def _sampled_loads(problem: Problem, states: list[np.ndarray]) -> tuple[SampledL
     nan3 = (np.nan,) * 3
     axes = [[np.array(v if v is not None else nan3) for f in frames.values()
              for v in (_unit_vectors(f, x) or (nan3,) * 3)] for x in states]
+    names = [f"{frame}.{a}" for frame in frames for a in AXES]
     out = []
     for applied, force, moment, *_ in plan.loads:
+        couple = applied.point is None
+        # a couple's moment is the same about every point
+        along = [] if couple else [(axis, None) for axis in names]
+        along += [(axis, about) for about in plan.points for axis in names]
         rows: list[list[float]] = []
         for k, x in enumerate(states):
-            couple = applied.point is None
             vector = np.array(_vector(moment if couple else force, x) or nan3)
-            values = [float(vector @ e) for e in axes[k]]
-            if not couple:
-                at = np.array(_vector(plan.points.get(applied.point), x) or nan3)
-                for f in plan.points.values():
-                    arm = at - np.array(_vector(f, x) or nan3)
-                    values += [float(np.cross(arm, vector) @ e) for e in axes[k]]
+            values = [] if couple else [float(vector @ e) for e in axes[k]]
+            at = None if couple else np.array(_vector(plan.points.get(applied.point), x) or nan3)
+            for f in plan.points.values():
+                turning = vector if at is None else np.cross(
+                    at - np.array(_vector(f, x) or nan3), vector)
+                values += [float(turning @ e) for e in axes[k]]
             rows.append(values)
         out.append(SampledLoad(applied.name, str(applied.kind), applied.body,
                                tuple(zip(*rows)), tuple(np.nan if m is None else m
-                                                        for m in masses[applied.body])))
+                                                        for m in masses[applied.body]),
+                               tuple(along)))
     return tuple(out)
 
 
