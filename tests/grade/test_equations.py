@@ -2,15 +2,23 @@
 
 from __future__ import annotations
 
+import random
+import re
+
 import pytest
+import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from mechgrade.grade.equations import judge_equations, read_equations
+from mechgrade.mechanics.dynamics import derive_kinetics, free_body_loads
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.derivation import motion_samples
 from mechgrade.spec import load_problem
+
+DYNAMICS = [path for path in sorted(shipped_dir("problems").glob("*.yaml"))
+            if re.search(r"^bodies:", path.read_text(encoding="utf-8"), re.M)]
 
 
 def _samples(name: str):
@@ -188,3 +196,151 @@ def test_a_moment_balance_about_the_pin_with_the_inertia_about_g_is_the_wrong_po
 ])
 def test_an_equation_that_is_no_misplaced_balance_names_none(atwood, text):
     assert all(row.balance is None for row in judge_equations(text, atwood).rows)
+
+
+# ---------------------------------------------------------- the model's own equations, rewritten
+
+_FORCE = re.compile(r"body (\w+): \w+\.([xyz]) force balance")
+_MOMENT = re.compile(r"body (\w+): moment balance about (\w+) \(\w+\.([xyz]) component\)")
+MISTAKES = (("dropped", 0, "missing"), ("reversed", -1, "turned round"),
+            ("doubled", 2, "doubled"))
+"""A seeded error: what is done to one load's term, its factor, and how it is to be named."""
+
+
+def model_equations(problem):
+    """The model's momentum balances, each as ``(m a side, [(load, its term)])`` in its plain
+    symbols, then its acceleration constraints (no loads), and its reactions; ``None`` for an
+    impact (balances of impulses)."""
+    kin = derive_kinetics(problem)
+    if kin.impact:
+        return None
+    loads = free_body_loads(problem)
+    points = {name: sp.Matrix(r) for name, r in kin.k.points}
+    out = []
+    for e in kin.balances:
+        force, moment = _FORCE.fullmatch(e.label), _MOMENT.fullmatch(e.label)
+        assert force or moment, e.label
+        if force:
+            axis = "xyz".index(force.group(2))
+            terms = [(load, load.force[axis]) for load in loads
+                     if load.body == force.group(1) and load.force is not None]
+        else:
+            centre, axis = points[moment.group(2)], "xyz".index(moment.group(3))
+            terms = [(load, load.moment[axis] if load.force is None
+                      else (points[load.point] - centre).cross(load.force)[axis])
+                     for load in loads if load.body == moment.group(1)]
+        terms = [(load, t) for load, t in ((load, sp.expand(t)) for load, t in terms) if t != 0]
+        out.append((sp.expand(sum((t for _, t in terms), sp.S.Zero) - e.expr), terms))
+    out += [(sp.expand(e.expr), []) for e in kin.constraints]
+    return out, kin.reactions
+
+
+def _written(equation, rename, sign, scale, moved):
+    """An equation as a student may write it: turned round (an axis the other way), scaled,
+    the loads on the right or everything on the left, the reactions by names of their own."""
+    inertia, terms = equation
+    left = sign * scale * inertia
+    right = sum((sign * scale * t for _, t in terms), sp.S.Zero)
+    if moved:
+        left, right = left - right, sp.S.Zero
+    return left.subs(rename), right.subs(rename)
+
+
+def _text(pair) -> str:
+    return f"{sp.sstr(pair[0])} = {sp.sstr(pair[1])}"
+
+
+def _named(load) -> str:
+    return (f"the weight of {load.body}" if load.kind == "weight"
+            else f"the {load.kind} {load.name} on {load.body}")
+
+
+def own_equations_failures(problem, samples, draw, seeded=None) -> list[str]:
+    """The model's own equations of ``problem`` rewritten in conventions ``draw`` picks
+    (order, axes flipped, scaled, rearranged, two combined, the reactions by names and signs of
+    their own), then with single seeded errors (a load's term dropped, reversed, doubled; all
+    of them, or the one ``seeded`` picks from ``(equation, term, mistake)`` choices): what
+    the judge got otherwise than expected. A seeded error is caught (the set is not right); in
+    an equation without reactions it is that equation alone that is wrong, and the load and
+    its mistake are named (a reaction's unknown of the student's own absorbs whatever the
+    model's reactions can make up, so there no more is asked)."""
+    found = model_equations(problem)
+    if found is None:
+        return []
+    equations, reactions = found
+    if len(equations) > 12:  # more than an answer may hold (MAX_EQUATIONS)
+        return []
+    rename = {r: draw([1, -1]) * sp.Symbol(f"U{n}") for n, r in enumerate(reactions)}
+    conventions = [(draw([1, -1]), draw([1, 2, 3]), draw([False, True])) for _ in equations]
+    pairs = [_written(e, rename, *c) for e, c in zip(equations, conventions)]
+    order = list(range(len(pairs)))
+    for i in range(len(order) - 1, 0, -1):  # a shuffle by draw, so that hypothesis shrinks it
+        j = draw(range(i + 1))
+        order[i], order[j] = order[j], order[i]
+
+    def judged(written):
+        return judge_equations("; ".join(map(_text, written)), samples)
+
+    failures = []
+    right = judged([pairs[i] for i in order])
+    if right.verdict != "correct":
+        failures.append(f"right: {right.assessment.feedback}")
+    if len(pairs) > 1:
+        a = draw(range(len(pairs)))
+        b = draw([n for n in range(len(pairs)) if n != a])
+        combined = list(pairs)
+        combined[a] = (pairs[a][0] + pairs[b][0], pairs[a][1] + pairs[b][1])
+        if judged(combined).verdict != "correct":
+            failures.append(f"{a} + {b} combined: {judged(combined).assessment.feedback}")
+    choices = [(e, t, m) for e, (_, terms) in enumerate(equations) for t in range(len(terms))
+               for m in MISTAKES]
+    for e, t, (what, factor, named) in choices if seeded is None else [seeded(choices)]:
+        inertia, terms = equations[e]
+        load = terms[t][0]
+        wrong = list(pairs)
+        wrong[e] = _written((inertia, [(other, factor * u if s == t else u)
+                                       for s, (other, u) in enumerate(terms)]),
+                            rename, *conventions[e])
+        judgement = judged(wrong)
+        said = f"{load.name} {what} in {_text(wrong[e])}: {judgement.assessment.feedback}"
+        if judgement.verdict == "correct":
+            failures.append(f"not caught: {said}")
+        elif not (inertia.free_symbols | terms[t][1].free_symbols) & set(reactions) and not any(
+                u.free_symbols & set(reactions) for _, u in terms):
+            rows = [(row.right, row.load, row.load_mistake) for row in judgement.rows]
+            if rows != [(n != e, _named(load) if n == e else None,
+                         named if n == e else None) for n in range(len(wrong))]:
+                failures.append(f"not named: {said}")
+    return failures
+
+
+@pytest.fixture(scope="module")
+def hanging():
+    problem = load_problem(shipped_dir("problems") / "atwood_machine.yaml")
+    return problem, motion_samples(problem, solve(problem))
+
+
+@settings(max_examples=6, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_the_models_own_equations_in_any_convention_are_right_and_a_seeded_error_named(
+        hanging, data):
+    problem, samples = hanging
+
+    def draw(options):
+        return data.draw(st.sampled_from(list(options)))
+
+    assert own_equations_failures(problem, samples, draw, seeded=draw) == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", DYNAMICS, ids=lambda path: path.stem)
+def test_every_dynamics_problems_own_equations_are_right_and_seeded_errors_named(path):
+    problem = load_problem(path)
+    samples = motion_samples(problem, solve(problem))
+    if samples is None:  # nothing solved numerically: nothing to judge at
+        assert judge_equations("x'' = 0", None).verdict == "not_evaluated"
+        return
+    rng = random.Random(path.stem)
+    assert own_equations_failures(problem, samples,
+                                  lambda options: rng.choice(list(options))) == []

@@ -201,6 +201,9 @@ class _System:
         self.accelerations = samples.accelerations
         self.reactions = np.array([[samples.state(k)[r] for r in samples.reactions]
                                    for k in range(len(samples.states))])
+        self.accelerations_sampled = np.array([[samples.state(k)[a] for a in
+                                                samples.accelerations]
+                                               for k in range(len(samples.states))])
         n_eq, n_u, n_s = len(equations), len(self.unknowns), len(samples.states)
         self.b = np.zeros((n_s, n_eq))
         self.a = np.zeros((n_s, n_eq, n_u))
@@ -277,6 +280,11 @@ class _System:
         and the equations free of unknowns (which say nothing of an unknown alone)."""
         rows = list(range(self.b.shape[1]))
         ok = self._holds(rows)
+        if ok.all() and self._flips(rows, with_accelerations=True) is None:
+            # they hold only with unknowns that are not the model's reactions (nor its
+            # accelerations, by a name of the student's): an unknown in one equation alone
+            # takes up whatever is wrong in it
+            ok[:] = False
         if not ok.all():
             known = [r for r in rows if not self.a[:, r, :].any()]
             ok = np.array([r in known and bool(self._holds([r])[0]) for r in rows])
@@ -432,18 +440,22 @@ class _System:
                                   f"{motion.about}")
         return found.pop() if len(found) == 1 else None
 
-    def _flips(self, rows: list[int]) -> int | None:
+    def _flips(self, rows: list[int], with_accelerations: bool = False) -> int | None:
         """How many reactions the unknowns fitted to ``rows`` take the other way round, when
         they are, over the samples, fixed non-zero combinations of the model's reactions (a
-        reaction by another name, sign or axis); ``None`` when they are not."""
+        reaction by another name, sign or axis; ``with_accelerations``, of its accelerations
+        too: ``a`` for ``y''``); ``None`` when they are not."""
         if not self.unknowns:
             return 0
-        if self.reactions.shape[1] == 0:
+        basis = self.reactions
+        if with_accelerations:
+            basis = np.hstack([basis, self.accelerations_sampled])
+        if basis.shape[1] == 0:
             return None
         fitted = np.array([np.linalg.lstsq(self.a[k][rows], -self.b[k][rows], rcond=None)[0]
                            for k in range(len(self.b))])
-        combination = np.linalg.lstsq(self.reactions, fitted, rcond=None)[0]
-        misfit = np.abs(self.reactions @ combination - fitted)
+        combination = np.linalg.lstsq(basis, fitted, rcond=None)[0]
+        misfit = np.abs(basis @ combination - fitted)
         if not np.all(misfit <= REL * (np.abs(fitted).max(axis=0) + 1e-12)):
             return None
         if not np.all(np.abs(combination).max(axis=0) > 1e-9):
