@@ -153,11 +153,13 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
         said = ("right" if ok else "says nothing about the motion" if trivial
                 else "does not hold for the motion")
         fine = [r for r, good in enumerate(right) if good]
+        found = None if ok or trivial else system.wrong_load(i, fine)
         # a balance of the wrong body or about the wrong point explains the whole misfit:
-        # it is said before a load, which may explain it only by chance
-        balance = None if ok or trivial else system.wrong_balance(i, fine)
+        # it is said before a load found only by its size (which fits by chance)
+        balance = (None if ok or trivial or (found is not None and found[2])
+                   else system.wrong_balance(i, fine))
+        found = None if balance else found
         term = None if ok or trivial or balance else system.reversed_term(i, fine)
-        found = None if ok or trivial or balance else system.wrong_load(i, fine)
         named, how = (_naming(found[0]), found[1]) if found is not None else (None, None)
         if balance is not None:
             said += f" ({balance})"
@@ -337,14 +339,17 @@ class _System:
                           if abs(sign * float(evaluate(t, env)[0]) - misfit / 2) <= tol]
         return syntax.to_text(candidates[0][1]) if len(candidates) == 1 else None
 
-    def wrong_load(self, i: int, right: list[int]) -> tuple[SampledLoad, str] | None:
+    def wrong_load(self, i: int, right: list[int]) -> tuple[SampledLoad, str, bool] | None:
         """The one load of the model that equation ``i``'s misfit is a fixed multiple of (a
         component or a moment of it, at every state, with the unknowns the ``right``
-        equations give), and whether it is ``missing`` from it or ``turned round`` in it: a
-        term of the wrong sign (:meth:`reversed_term`), else the misfit twice the load at the
-        equation's scale (the multiple its other terms are of their loads; 1 when none is).
-        Of loads alike on several bodies (a rope's tension), the one on the body most of the
-        equation's other terms are loads of; ``None`` when no load or several fit."""
+        equations give), whether it is ``missing`` from it, ``doubled`` or ``turned round``
+        in it, and whether that is sure: a term of the wrong sign (:meth:`reversed_term`) or
+        the multiple read off a balance of the load's body (:meth:`_multiple`) is; else the
+        misfit twice the load at the equation's scale (the multiple its other terms are of
+        their loads; 1 when none is) is a load turned round, once one left out. Of loads alike
+        on several bodies (a rope's tension), the one whose body's balance the equation is,
+        else the one on the body most of the equation's other terms are loads of; ``None``
+        when no load or several fit."""
         misfits = self._misfits(i, right)
         if misfits is None:
             return None
@@ -353,6 +358,10 @@ class _System:
                    if (ratios := _ratios(values, load))}
         terms = [np.array([float(evaluate(t, env)[0]) for _, _, env in misfits])
                  for _, t in _signed_terms(self.equations[i].residual)]
+        if len(fitting) > 1:
+            read = {k: v for k, v in fitting.items()
+                    if self._multiple(i, v[0], misfits[0][0]) is not None}
+            fitting = read if len(read) == 1 else fitting
         if len(fitting) > 1:
             # a moment about another point can be a multiple too (I_G θ'' = M_G of the pin
             # beside I_O θ'' = M_O of the weight): the load the misfit is once or twice first
@@ -367,15 +376,15 @@ class _System:
             return None
         ((load, ratios),) = fitting.values()
         if self.reversed_term(i, right) is not None:
-            return load, "turned round"
+            return load, "turned round", True
         times = self._multiple(i, load, misfits[0][0])
         if times is not None:
-            return load, {-1: "missing", 1: "doubled", -2: "turned round"}[times]
+            return load, {-1: "missing", 1: "doubled", -2: "turned round"}[times], True
         scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
                          for r in _ratios(t, other))
         scale = scales.most_common(1)[0][0] if scales else 1.0
         times = [n for r in ratios if (n := _plain(r / scale)) is not None]
-        return load, "turned round" if times and times[0] == 2 else "missing"
+        return load, "turned round" if times and times[0] == 2 else "missing", False
 
     def _multiple(self, i: int, load: SampledLoad, misfit: float) -> int | None:
         """How many times over equation ``i`` has ``load`` at the first state: -1 (left out),
