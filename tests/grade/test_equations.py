@@ -210,10 +210,12 @@ MISTAKES = (("dropped", 0, "missing"), ("reversed", -1, "turned round"),
 def model_equations(problem):
     """The model's momentum balances, each as ``(m a side, [(load, its term)])`` in its plain
     symbols, then its acceleration constraints (no loads), and its reactions; ``None`` for an
-    impact (balances of impulses)."""
+    impact, or a model whose balances do not fix its reactions (a motor's power sets a
+    tension)."""
     kin = derive_kinetics(problem)
-    if kin.impact:
-        return None
+    if kin.impact or len(kin.balances) + len(kin.constraints) < len(
+            kin.k.qdd) + len(kin.reactions):
+        return None  # an impact's balances are of impulses; some loads are set otherwise
     loads = free_body_loads(problem)
     points = {name: sp.Matrix(r) for name, r in kin.k.points}
     out = []
@@ -252,6 +254,16 @@ def _text(pair) -> str:
     return f"{sp.sstr(pair[0])} = {sp.sstr(pair[1])}"
 
 
+def _nought(term, samples) -> bool:
+    """Whether ``term`` is nought at every sampled state (no error in it can be seen)."""
+    names = sorted(term.free_symbols, key=str)
+    f = sp.lambdify(names, term, modules="numpy")
+    values = [float(f(*(samples.state(k)[str(n)] for n in names)))
+              for k in range(len(samples.states))]
+    return all(abs(v) <= 1e-9 * max(1.0, *map(abs, samples.states[k]))
+               for k, v in enumerate(values))
+
+
 def _named(load) -> str:
     return (f"the weight of {load.body}" if load.kind == "weight"
             else f"the {load.kind} {load.name} on {load.body}")
@@ -283,6 +295,11 @@ def own_equations_failures(problem, samples, draw, seeded=None) -> list[str]:
     def judged(written):
         return judge_equations("; ".join(map(_text, written)), samples)
 
+    def _own(n: int) -> set:
+        inertia, terms = equations[n]
+        return {r for r in reactions if any(r in u.free_symbols and not _nought(u, samples)
+                                            for u in (inertia, *(t for _, t in terms)))}
+
     failures = []
     right = judged([pairs[i] for i in order])
     if right.verdict != "correct":
@@ -299,6 +316,11 @@ def own_equations_failures(problem, samples, draw, seeded=None) -> list[str]:
     for e, t, (what, factor, named) in choices if seeded is None else [seeded(choices)]:
         inertia, terms = equations[e]
         load = terms[t][0]
+        if _nought(terms[t][1], samples) or _own(e) - set().union(
+                *(_own(n) for n in range(len(equations)) if n != e)):
+            # nought at every state judged at (a pendulum at rest hanging down), or the
+            # equation has a reaction no other has: it only names it, whatever its size
+            continue
         wrong = list(pairs)
         wrong[e] = _written((inertia, [(other, factor * u if s == t else u)
                                        for s, (other, u) in enumerate(terms)]),

@@ -282,7 +282,7 @@ class _System:
         and the equations free of unknowns (which say nothing of an unknown alone)."""
         rows = list(range(self.b.shape[1]))
         ok = self._holds(rows)
-        if ok.all() and self._flips(rows, with_accelerations=True) is None:
+        if ok.all() and not self._accounted(rows):
             # they hold only with unknowns that are not the model's reactions (nor its
             # accelerations, by a name of the student's): an unknown in one equation alone
             # takes up whatever is wrong in it
@@ -449,22 +449,40 @@ class _System:
                                   f"{motion.about}")
         return found.pop() if len(found) == 1 else None
 
-    def _flips(self, rows: list[int], with_accelerations: bool = False) -> int | None:
-        """How many reactions the unknowns fitted to ``rows`` take the other way round, when
-        they are, over the samples, fixed non-zero combinations of the model's reactions (a
-        reaction by another name, sign or axis; ``with_accelerations``, of its accelerations
-        too: ``a`` for ``y''``); ``None`` when they are not."""
+    def _fitted(self, rows: list[int]) -> np.ndarray:
+        """The unknowns fitted to ``rows`` at each state."""
+        return np.array([np.linalg.lstsq(self.a[k][rows], -self.b[k][rows], rcond=None)[0]
+                         for k in range(len(self.b))])
+
+    def _accounted(self, rows: list[int]) -> bool:
+        """Whether the unknowns fitted to ``rows`` are, over the samples, fixed combinations
+        of the model's reactions and accelerations (a reaction by another name, sign or axis,
+        ``a`` for ``y''``); nought at every state only as many as the model's reactions are
+        (a pendulum hanging at rest has no sideways reaction: an unknown nought besides it
+        took up what is wrong in its own equation)."""
         if not self.unknowns:
-            return 0
-        basis = self.reactions
-        if with_accelerations:
-            basis = np.hstack([basis, self.accelerations_sampled])
-        if basis.shape[1] == 0:
-            return None
-        fitted = np.array([np.linalg.lstsq(self.a[k][rows], -self.b[k][rows], rcond=None)[0]
-                           for k in range(len(self.b))])
+            return True
+        basis = np.hstack([self.reactions, self.accelerations_sampled])
+        fitted = self._fitted(rows)
+        size = np.abs(fitted).max() + np.abs(basis).max()
+        nought = int(np.sum(np.abs(fitted).max(axis=0) <= 1e-9 * size))
+        if nought > int(np.sum(np.abs(self.reactions).max(axis=0) <= 1e-9 * size)):
+            return False
         combination = np.linalg.lstsq(basis, fitted, rcond=None)[0]
         misfit = np.abs(basis @ combination - fitted)
+        return bool(np.all(misfit <= REL * size))
+
+    def _flips(self, rows: list[int]) -> int | None:
+        """How many reactions the unknowns fitted to ``rows`` take the other way round, when
+        they are, over the samples, fixed non-zero combinations of the model's reactions (a
+        reaction by another name, sign or axis); ``None`` when they are not."""
+        if not self.unknowns:
+            return 0
+        if self.reactions.shape[1] == 0:
+            return None
+        fitted = self._fitted(rows)
+        combination = np.linalg.lstsq(self.reactions, fitted, rcond=None)[0]
+        misfit = np.abs(self.reactions @ combination - fitted)
         if not np.all(misfit <= REL * (np.abs(fitted).max(axis=0) + 1e-12)):
             return None
         if not np.all(np.abs(combination).max(axis=0) > 1e-9):

@@ -513,6 +513,10 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     objectives += tuple(ObjectiveInfo(e.problem.id, e.objective_id,
                                       f"The equations of motion ({e.problem.title}).",
                                       e.max_points, e.problem.title) for e in plan.equations)
+    # in the assignment's order of problems (a problem's objectives, then its diagrams and
+    # equations), as the exports list them
+    place = {p.id: n for n, p in reversed(list(enumerate(plan.problems)))}
+    objectives = tuple(sorted(objectives, key=lambda o: place[o.problem]))
     return GradeReport(AssignmentInfo(assignment.id, assignment.title), objectives,
                        tuple(students), submissions.skipped,
                        (*submissions.notes, *conflicts, *author_warnings(plan)), tuple(faults),
