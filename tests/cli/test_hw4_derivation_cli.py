@@ -24,11 +24,11 @@ def graded(tmp_path_factory):
     return result, out
 
 
-@pytest.mark.slow  # grades thirteen students' derivations, with error carried forward
+@pytest.mark.slow  # grades fourteen students' derivations, with error carried forward
 def test_grading_hw4_writes_the_steps_the_loads_and_the_equations(graded):
     result, out = graded
     assert result.exit_code == 0, result.output
-    assert result.stdout == (f"Graded 13 students (1 unreadable answer, 0 missing "
+    assert result.stdout == (f"Graded 14 students (1 unreadable answer, 0 missing "
                              f"submissions); wrote {out.as_posix()}/\n")
     data = json.loads((out / "results.json").read_text(encoding="utf-8"))
     carla = next(s for s in data["students"] if s["id"] == "carla")

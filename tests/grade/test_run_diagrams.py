@@ -99,6 +99,10 @@ def test_every_diagram_and_set_of_equations_of_the_example_is_judged_as_by_hand(
                         (student.id, answer.feedback)
                 continue
             load = HAND[student.id]["equation_loads"].get(key)
+            balance = HAND[student.id]["equation_balances"].get(key)
+            if answer.objective == "equations":
+                assert (f"({balance}: " in answer.feedback if balance else
+                        "(the wrong " not in answer.feedback), (student.id, key, answer.feedback)
             if answer.objective == "equations" and load is not None:
                 kind, body, how = load
                 assert kind in answer.feedback and body in answer.feedback \
@@ -118,6 +122,16 @@ def test_every_diagram_and_set_of_equations_of_the_example_is_judged_as_by_hand(
             else:
                 assert answer.verdict != "correct", (student.id, key)
                 assert sorted(named) == sorted(hand), (student.id, key, named)
+
+
+@pytest.mark.slow
+def test_the_reports_objectives_follow_the_assignments_order_of_problems(graded):
+    problems = [o.problem for o in graded.objectives]
+    assert list(dict.fromkeys(problems)) == [
+        "block_sliding_down_incline", "pendulum_pin_reaction", "atwood_machine",
+        "two_mass_spring_chain", "pendulum_release"]
+    assert problems == sorted(problems, key=problems.index)  # each problem's together
+    assert [o.objective for o in graded.objectives][:2] == ["block.fbd", "equations"]
 
 
 @pytest.mark.slow
