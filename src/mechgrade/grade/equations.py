@@ -167,7 +167,7 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
             said += f" (its term {term} has the wrong sign: {named} is turned round in it)"
         elif term is not None:
             said += f" (its term {term} has the wrong sign)"
-        elif named is not None:
+        elif named is not None and how is not None:
             said += f" ({named} {_SAID[how]} it)"
         rows.append(EquationRow(e.text, ok, f"{e.text}: {said}.", term, named, how, balance))
     complete = system.complete()
@@ -377,9 +377,9 @@ class _System:
         ((load, ratios),) = fitting.values()
         if self.reversed_term(i, right) is not None:
             return load, "turned round", True
-        times = self._multiple(i, load, misfits[0][0])
-        if times is not None:
-            return load, {-1: "missing", 1: "doubled", -2: "turned round"}[times], True
+        multiple = self._multiple(i, load, misfits[0][0])
+        if multiple is not None:
+            return load, {-1: "missing", 1: "doubled", -2: "turned round"}[multiple], True
         scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
                          for r in _ratios(t, other))
         scale = scales.most_common(1)[0][0] if scales else 1.0
@@ -393,7 +393,7 @@ class _System:
         slope = self.slopes[i]
         if not slope.any():
             return None
-        found = set()
+        found: set[int] = set()
         for balance in self.samples.balances:
             along = np.array(balance.slope)
             if balance.body != load.body or not along.any() or \
@@ -424,7 +424,7 @@ class _System:
         values = np.array([m for m, _, _ in misfits])
         tol = np.array([t for _, t, _ in misfits])
         balances = self.samples.balances
-        found = set()
+        found: set[str] = set()
         for motion in balances:
             along = np.array(motion.slope)
             if not along.any():

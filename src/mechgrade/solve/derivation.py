@@ -260,7 +260,7 @@ def _sampled_loads(problem: Problem, states: list[np.ndarray]) -> tuple[SampledL
     for applied, force, moment, *_ in plan.loads:
         couple = applied.point is None
         # a couple's moment is the same about every point
-        along = [] if couple else [(axis, None) for axis in names]
+        along: list[tuple[str, str | None]] = [] if couple else [(a, None) for a in names]
         along += [(axis, about) for about in plan.points for axis in names]
         rows: list[list[float]] = []
         for k, x in enumerate(states):
