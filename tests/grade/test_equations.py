@@ -282,6 +282,25 @@ def own_equations_failures(problem, samples, draw, seeded=None) -> list[str]:
     if found is None:
         return []
     equations, reactions = found
+    accelerations = set(derive_kinetics(problem).k.qdd)
+
+    def _own(n: int) -> set:
+        inertia, terms = equations[n]
+        return {r for r in reactions if any(r in u.free_symbols and not _nought(u, samples)
+                                            for u in (inertia, *(t for _, t in terms)))}
+
+    # an equation without accelerations whose reactions no other has only names them: it
+    # says nothing about the motion (docs/answers.md), and is not written
+    def _reacting(n: int) -> set:
+        inertia, terms = equations[n]
+        return set(reactions) & set().union(inertia.free_symbols,
+                                            *(t.free_symbols for _, t in terms))
+
+    kept = [n for n, (inertia, _) in enumerate(equations)
+            if inertia.free_symbols & accelerations or not _reacting(n)
+            or _reacting(n) & set().union(*(_reacting(m) for m in range(len(equations))
+                                            if m != n))]
+    equations = [equations[n] for n in kept]
     if len(equations) > 12:  # more than an answer may hold (MAX_EQUATIONS)
         return []
     rename = {r: draw([1, -1]) * sp.Symbol(f"U{n}") for n, r in enumerate(reactions)}
@@ -294,11 +313,6 @@ def own_equations_failures(problem, samples, draw, seeded=None) -> list[str]:
 
     def judged(written):
         return judge_equations("; ".join(map(_text, written)), samples)
-
-    def _own(n: int) -> set:
-        inertia, terms = equations[n]
-        return {r for r in reactions if any(r in u.free_symbols and not _nought(u, samples)
-                                            for u in (inertia, *(t for _, t in terms)))}
 
     failures = []
     right = judged([pairs[i] for i in order])

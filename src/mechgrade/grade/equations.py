@@ -270,10 +270,14 @@ class _System:
         ok = np.ones(len(rows), dtype=bool)
         for k in range(len(self.b)):
             a, b = self.a[k][rows], self.b[k][rows]
-            residual = b
+            residual, size = b, self.scale[k][rows]
             if a.size:
-                residual = a @ np.linalg.lstsq(a, -b, rcond=None)[0] + b
-            ok &= np.abs(residual) <= REL * self.scale[k][rows] + 1e-12
+                u = np.linalg.lstsq(a, -b, rcond=None)[0]
+                residual = a @ u + b
+                # the terms of the unknowns count at their values (every term of
+                # 0 = N_F a - N_R b has one)
+                size = np.maximum(size, np.abs(a) @ np.abs(u))
+            ok &= np.abs(residual) <= REL * size + 1e-12
         return ok
 
     def right(self) -> list[bool]:
@@ -318,7 +322,7 @@ class _System:
                     return None
                 u = np.linalg.lstsq(a, -self.b[k][right], rcond=None)[0]
             misfit = float(self.a[k][i] @ u + self.b[k][i])
-            tol = REL * self.scale[k][i] + 1e-12
+            tol = REL * max(self.scale[k][i], float(np.abs(self.a[k][i]) @ np.abs(u))) + 1e-12
             if abs(misfit) <= tol:
                 return None
             env = {name: np.array([value]) for name, value in self.samples.state(k).items()}
