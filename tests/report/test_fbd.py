@@ -55,6 +55,15 @@ const out = {
     text: a.innerText.replace(/\\s+/g, " ")})),
   expected: [...document.querySelectorAll(".objective dt")].filter(t => t.innerText === "Expected")
     .map(t => t.nextElementSibling.innerText),
+  // the whole page as read, but for what the student wrote (shown as they wrote it)
+  visible: (() => { const copy = document.body.cloneNode(true);
+    [...copy.querySelectorAll("dt")].filter(t => t.textContent === "Your answer")
+      .forEach(t => t.nextElementSibling.remove());
+    copy.querySelectorAll("svg, math, style, script").forEach(e => e.remove());
+    return copy.textContent.replace(/\\s+/g, " "); })(),
+  // every arrowhead a figure asks for is defined on the page
+  unresolved: [...document.querySelectorAll("[marker-end]")].map(e => e.getAttribute("marker-end"))
+    .filter(u => !document.getElementById(u.slice(5, -1))),
   links: [...document.querySelectorAll(".step-link a")].map(l => {
     const target = document.getElementById(l.getAttribute("href").slice(1));
     return [l.closest("section").id, target ? getComputedStyle(target).backgroundColor : null];
@@ -82,6 +91,9 @@ def test_a_dynamics_page_shows_diagrams_math_and_linked_kinetic_diagnoses(hw3, i
         for code in ("**", "Abs(", "thetad", "_1"):
             assert code not in problem["text"], (name, code)
     assert found["expected"] and not any("**" in e or "Abs(" in e for e in found["expected"])
+    for code in ("**", "Abs(", "thetad", "_1"):
+        assert code not in found["visible"], code
+    assert found["unresolved"] == []
     diagnosed = {f"{a['problem']}.{a['objective']}"
                  for s in results["students"] if s["id"] == student
                  for a in s["answers"] if a.get("diagnosis") in KINETIC_LABELS}
