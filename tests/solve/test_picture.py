@@ -127,6 +127,8 @@ def test_a_movable_pulley_wraps_its_body_and_the_strand_beyond_it_is_tied_up():
                       SceneBody("B", OutlineKind.PARTICLE, (1.2, -0.5, 0))), supports=(cord,))
     svg = picture_svg(s)
     assert svg.count('class="pulley"') == 2  # one fixed above, one on body B
+    # B is that pulley (a light one's axle): no block drawn over it; A, held, is a block
+    assert 'data-body="B"' not in svg and svg.count('<rect class="body"') == 1
     assert svg.count('class="ground"') == 2  # the fixed pulley's hanger and the tied strand
 
 

@@ -403,7 +403,10 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
                          f'stroke="{BODY}" stroke-width="4" stroke-linecap="round"')
     resting = {support.bodies[0]: support for support in s.supports
                if support.kind == SupportKind.SURFACE and support.directions[0] is not None}
-    held = {b for support in s.supports for b in support.bodies}  # drawn as blocks
+    # a particle a string wraps round is the pulley drawn on it (a light pulley's axle), one
+    # something else holds a block
+    wrapped = {b for string in strings for b in string.wrapped}
+    held = {b for support in s.supports for b in support.bodies} - wrapped
     for support in s.supports:
         if support.kind == SupportKind.SURFACE and support.directions[0] is not None:
             kinds = {b.kind: b for b in s.bodies if b.body == support.bodies[0]}
@@ -415,6 +418,8 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
         _draw_string(sheet, string, at, scale)
     _springs(sheet, s.supports, at)
     for body in s.bodies:
+        if body.kind == OutlineKind.PARTICLE and body.body in wrapped:
+            continue
         _body(sheet, body, at, scale, resting, held, down)
     for support in s.supports:
         if support.kind == SupportKind.PIN:
@@ -539,11 +544,13 @@ def _pin(sheet: _Sheet, p, down) -> None:
 class _String:
     """A string as drawn (inertial x, y in m): its straight runs, its pulleys (centre,
     radius in m, or ``None`` for a small one drawn at a corner) and the points where it or a
-    pulley hangs from the ceiling (with the direction up, away from the string)."""
+    pulley hangs from the ceiling (with the direction up, away from the string), and the
+    bodies it wraps round (a pulley on each)."""
 
     runs: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
     pulleys: tuple[tuple[tuple[float, float], float | None], ...]
     anchors: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
+    wrapped: tuple[str, ...] = ()
 
     @property
     def reach(self) -> list[tuple[float, float]]:
@@ -592,12 +599,14 @@ def _string(support: SceneSupport, bodies, size: float) -> _String:
         joined = [0] * len(ends)
         wraps = [False] * len(ends)
         fixed = []
+        wrapped = []
         for i in range(len(ends) - 1):
             (p, _, a), (q, _, b) = ends[i], ends[i + 1]
             joined[i] += 1
             joined[i + 1] += 1
             if a == b:
                 wraps[i] = wraps[i + 1] = True
+                wrapped.append(a)
                 pulleys.append((((p[0] + q[0]) / 2, (p[1] + q[1]) / 2), math.dist(p, q) / 2))
             else:
                 c = ((tops[i][0] + tops[i + 1][0]) / 2, (tops[i][1] + tops[i + 1][1]) / 2)
@@ -613,7 +622,7 @@ def _string(support: SceneSupport, bodies, size: float) -> _String:
             roof = (c[0] + (ceiling - level) * u0[0], c[1] + (ceiling - level) * u0[1])
             runs.append((c, roof))
             anchors.append((roof, u0))
-        return _String(tuple(runs), tuple(pulleys + fixed), tuple(anchors))
+        return _String(tuple(runs), tuple(pulleys + fixed), tuple(anchors), tuple(wrapped))
     for p, d, _ in ends:  # a cord to a fixed point
         u = _unit2(d)
         end = (p[0] + 0.3 * size * u[0], p[1] + 0.3 * size * u[1])
