@@ -159,3 +159,13 @@ def test_a_problem_in_feet_labels_its_loads_in_pounds_force():
     # the values the grader judges stay in SI
     (weight,) = [load for load in block.loads if load.kind == LoadKind.WEIGHT]
     assert weight.unit == "N" and weight.magnitude_value == pytest.approx(44.482216)
+
+
+def test_a_body_given_by_its_inertia_entries_is_drawn_as_a_box_its_loads_clear_of_it():
+    body = Outline(OutlineKind.BODY, "P", (), "", None)
+    d = FreeBodyDiagram("drum", None, "P", (("P", (0.0, 0.0, 0.0)),),
+                        (_load("W", LoadKind.APPLIED_FORCE, (0.0, -1.0, 0.0)),), None, "N", (body,))
+    svg = fbd_svg(d, "d")
+    assert '<rect class="body"' in svg and '<circle class="body"' not in svg
+    ((x1, y1, x2, y2),) = _arrows(svg)
+    assert (x1, y1) == (0.0, 20.0) and y2 > y1  # from the box's edge, downward

@@ -160,3 +160,11 @@ def test_the_picture_says_its_bodies_and_supports_in_words():
               supports=(SceneSupport(SupportKind.PIN, "R", ((0, 0, 0),), (), ("disk",)),))
     assert described(s) == ("Bodies: disk, a disk of radius 0.5 m. Supports: disk pinned to "
                             "the ground. Point O.")
+
+
+def test_a_body_given_by_its_inertia_entries_is_a_box_not_a_dot():
+    s = Scene("p", (ScenePoint("O", (0, 0, 0), None, None, None),), (),
+              bodies=(SceneBody("drum", OutlineKind.BODY, (0, 0, 0)),))
+    svg = picture_svg(s)
+    assert re.search(r'<rect class="body" data-body="drum" [^>]*rx="14"', svg)
+    assert '<circle class="body"' not in svg

@@ -266,7 +266,12 @@ def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
                           f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" {style} '
                           f'transform="rotate({angle:.0f} {x:.0f} {y:.0f})"/>')
             shapes.append(_surface(x, y, page_normal))
-        elif o.kind in (OutlineKind.PARTICLE, OutlineKind.BODY):
+        elif o.kind == OutlineKind.BODY:  # inertia by its entries: a body of no set shape
+            radius = BLOCK
+            shapes.append(f'<rect class="body" x="{x - BLOCK:.0f}" y="{y - 0.7 * BLOCK:.0f}" '
+                          f'width="{2 * BLOCK:g}" height="{1.4 * BLOCK:g}" '
+                          f'rx="{0.5 * BLOCK:g}" {style}/>')
+        elif o.kind == OutlineKind.PARTICLE:
             radius = PARTICLE
             shapes.append(f'<circle class="body" cx="{x:.0f}" cy="{y:.0f}" r="{PARTICLE:g}" '
                           f'{style}/>')

@@ -700,7 +700,8 @@ def _springs(sheet: _Sheet, supports, at) -> None:
 def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down) -> None:
     """A body's part by its shape: a rod its full length, a disk or a ring round its centre,
     a block by its sides, a particle that something supports as a block (square to the
-    surface it rests on, else upright), a free one as a dot."""
+    surface it rests on, else upright), a free one as a dot, a body given by its inertia's
+    entries as a rounded box round its centre."""
     x, y = at(*body.centre[:2])
     style = f'fill="{FILL}" stroke="{BODY}" stroke-width="2"'
     cls = f'class="body" data-body="{escape(body.body, quote=True)}"'
@@ -741,6 +742,11 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
             ex, ey = x + r * axis[0], y - r * axis[1]
             sheet.out.append(f'<path d="M{x:.0f},{y:.0f}L{ex:.0f},{ey:.0f}" stroke="{BODY}" '
                              f'stroke-width="1.2" stroke-dasharray="4 3"/>')
+        return
+    if body.kind == OutlineKind.BODY:  # inertia by its entries: a rigid body of no set shape
+        sheet.out.append(f'<rect {cls} x="{x - 2 * BLOCK:.0f}" y="{y - 1.4 * BLOCK:.0f}" '
+                         f'width="{4 * BLOCK:g}" height="{2.8 * BLOCK:g}" rx="{BLOCK:g}" '
+                         f'{style}/>')
         return
     sheet.out.append(f'<circle {cls} cx="{x:.0f}" cy="{y:.0f}" r="9" {style}/>')
 
