@@ -63,6 +63,12 @@ def test_an_atwood_machine_hangs_two_blocks_from_one_string_over_a_pulley():
     assert svg.count('class="pulley"') == 1 and svg.count('<rect class="body"') == 2
     assert svg.count('class="ground"') == 1  # the ceiling the pulley hangs from
     assert "string T pulling block1 and block2" in svg
+    # O is at block1's centre: the frame's unit vectors are drawn in a corner, off the block
+    (block1,) = re.findall(r'<rect class="body" data-body="block1" x="(-?\d+)" y="(-?\d+)"', svg)
+    frame = re.search(r'marker-end="url\(#atwood_machine-f\)">\n<path d="M(-?\d+),(-?\d+)', svg)
+    x, y = int(frame.group(1)), int(frame.group(2))
+    assert not (int(block1[0]) - 10 <= x <= int(block1[0]) + 38
+                and int(block1[1]) - 10 <= y <= int(block1[1]) + 38)
 
 
 def test_a_rod_pendulum_is_drawn_its_full_length_from_its_pin():

@@ -428,7 +428,9 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
             x, y = at(*support.at[0][:2])
             sheet.out.append(f'<circle cx="{x:.0f}" cy="{y:.0f}" r="4.5" fill="#fff" '
                              f'stroke="{BODY}" stroke-width="2"/>')
-    axes = _frames(sheet, s, at, size, ident)
+    boxes = [at(*b.centre[:2]) for b in s.bodies
+             if b.kind == OutlineKind.BODY or (b.kind == OutlineKind.PARTICLE and b.body in held)]
+    axes = _frames(sheet, s, at, size, ident, boxes)
     for colour, _, mark, kind, largest in legend:
         sheet.out.append(f'<g stroke="{colour}" stroke-width="2.2" '
                          f'marker-end="url(#{ident}-{mark})">')
@@ -756,17 +758,26 @@ def _extent(body: SceneBody) -> list[tuple[float, float]]:
     return outline_extent(body.kind, body.centre, body.sizes, body.axis, body.axes)
 
 
-def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str) -> list:
+def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str,
+            boxes: list[tuple[float, float]] | None = None) -> list:
     """Each frame's unit vectors at its origin; frames sharing an origin and a direction share
-    one arrow and one label ("N.x = B.x")."""
+    one arrow and one label ("N.x = B.x"). A frame whose origin is inside a box drawn for a
+    body (``boxes``: their centres on the page) has them in the sheet's lower right corner
+    instead, where they hide no body."""
     axes: dict[tuple, tuple[tuple[float, float], tuple[float, float], list[str]]] = {}
     sheet.out.append(f'<g stroke="{FRAME}" stroke-width="1.5" marker-end="url(#{ident}-f)">')
     for frame in s.frames:
         if frame.origin is None or frame.x is None or frame.y is None:
             continue
+        origin = at(*frame.origin[:2])
+        crowded = any(math.dist(origin, b) < 1.5 * BLOCK for b in boxes or ())
         for axis, vector in (("x", frame.x), ("y", frame.y)):
-            start = at(*frame.origin[:2])
+            start = origin
             end = at(*_tip(frame.origin, vector, 0.18 * size))
+            if crowded:  # moved whole: the arrows keep their directions and lengths
+                corner = (WIDTH - MARGIN - 0.18 * size * _page_scale(at), HEIGHT - 24.0)
+                start, end = corner, (corner[0] + end[0] - origin[0],
+                                      corner[1] + end[1] - origin[1])
             key = (start, round(end[0]), round(end[1]))
             if key not in axes:
                 _segment(sheet, start, end)
@@ -775,6 +786,11 @@ def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str) -> list:
             axes[key][2].append(f"{frame.name}.{axis}")
     sheet.out.append("</g>")
     return list(axes.values())
+
+
+def _page_scale(at) -> float:
+    """Page pixels per metre of ``at``."""
+    return math.dist(at(0.0, 0.0), at(1.0, 0.0))
 
 
 def _frame_labels(sheet: _Sheet, axes) -> None:
