@@ -167,5 +167,5 @@ def test_a_body_given_by_its_inertia_entries_is_drawn_as_a_box_its_loads_clear_o
                         (_load("W", LoadKind.APPLIED_FORCE, (0.0, -1.0, 0.0)),), None, "N", (body,))
     svg = fbd_svg(d, "d")
     assert '<rect class="body"' in svg and '<circle class="body"' not in svg
-    ((x1, y1, x2, y2),) = _arrows(svg)
+    ((x1, y1, _, y2),) = _arrows(svg)
     assert (x1, y1) == (0.0, 20.0) and y2 > y1  # from the box's edge, downward

@@ -417,9 +417,7 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
     for string in strings:
         _draw_string(sheet, string, at, scale)
     _springs(sheet, s.supports, at)
-    for body in s.bodies:
-        if body.kind == OutlineKind.PARTICLE and body.body in wrapped:
-            continue
+    for body in _unwrapped(s.bodies, wrapped):
         _body(sheet, body, at, scale, resting, held, down)
     for support in s.supports:
         if support.kind == SupportKind.PIN:
@@ -786,6 +784,12 @@ def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str,
             axes[key][2].append(f"{frame.name}.{axis}")
     sheet.out.append("</g>")
     return list(axes.values())
+
+
+def _unwrapped(bodies, wrapped: set[str]) -> list:
+    """The bodies drawn by their own shape: not a particle a string wraps round (the pulley
+    drawn on it is its shape)."""
+    return [b for b in bodies if b.kind != OutlineKind.PARTICLE or b.body not in wrapped]
 
 
 def _page_scale(at) -> float:
