@@ -26,6 +26,12 @@ importing the solver, loading the assignment and its problems, reading (started 
 run), solving (``plan_assignment``), judging (``grade_plan``) and writing the outputs, each with
 its wall and CPU time (this process and its workers), and the total without the solving (what a
 run costs once solving is cached).
+
+``--pages`` measures the feedback pages instead: the hw3 dynamics example
+(``examples/hw3_dynamics``) graded in this process with its worked solution shown (the
+assignment's ``policy.worked_solution: always``), then every student's HTML page rendered
+``--repeat`` times; it prints each page's size in bytes and its median render time. Pair it
+with another checkout (``PYTHONPATH=<checkout>/src python bench/scale.py --pages``), run in turn.
 """
 
 from __future__ import annotations
@@ -239,7 +245,12 @@ def main() -> None:
                              "motion, cold (see the docstring)")
     parser.add_argument("--phases", action="store_true",
                         help="time the steps of one run in this process (see the docstring)")
+    parser.add_argument("--pages", action="store_true",
+                        help="size and render time of hw3's feedback pages (see the docstring)")
     args = parser.parse_args()
+    if args.pages:
+        pages(args.repeat)
+        return
     if args.phases:
         for size in args.sizes:
             phases(size, args.jobs)
@@ -321,6 +332,54 @@ def phases(size: int, jobs: int | None) -> None:
     print(f"  {'total':<22} {total[0]:>7.2f} {total[1]:>7.2f}")
     print(f"  {'total but solving':<22} {total[0] - solve[1]:>7.2f} {total[1] - solve[2]:>7.2f}",
           flush=True)
+
+
+def pages(repeat: int) -> None:
+    """Print the size and the median render time of each hw3 feedback page, worked solution
+    shown."""
+    import statistics
+
+    import mechgrade
+    from mechgrade.grade.assignment import load_assignment
+    from mechgrade.grade.run import grade_plan, plan_assignment
+    from mechgrade.grade.submissions import read_submissions
+    from mechgrade.grade.worked import feedback_solutions
+    from mechgrade.report.output import (_context, _prompts, _render, _template, _worked_pages,
+                                         feedback_names, template_environment, worked_context)
+    from mechgrade.resources import shipped_dir
+    from mechgrade.roster import read_roster
+    from mechgrade.spec import load_problem
+
+    example = shipped_dir("examples") / "hw3_dynamics"
+    text = (example / "assignment.yaml").read_text(encoding="utf-8")
+    text = text.replace("../../problems/", f"{shipped_dir('problems')}/")
+    text = text.replace("  - pendulum_release.yaml", f"  - {example / 'pendulum_release.yaml'}")
+    text = text.replace("policy:\n", "policy:\n  worked_solution: always\n")
+    WORK.mkdir(parents=True, exist_ok=True)
+    (WORK / "hw3.yaml").write_text(text, encoding="utf-8")
+    spec = load_assignment(WORK / "hw3.yaml")
+    problems = tuple(load_problem(ref.path) for ref in spec.problems)
+    plan = plan_assignment(spec, problems=problems)
+    keys = {f"{p.id}.{objective}" for ref, p in zip(spec.problems, problems)
+            for objective in ref.objectives or [o.id for o in p.objectives]}
+    subs = read_submissions(example / "submissions", keys=keys)
+    report = grade_plan(plan, subs, read_roster(example / "roster.csv"))
+    env = template_environment()
+    worked = _worked_pages(feedback_solutions(spec, report), env, None)
+    template = _template(env, "feedback.html.j2")
+    prompts = _prompts(report)
+    print(f"mechgrade from {Path(mechgrade.__file__).parents[2]}")
+    print(f"  {'student':<14} {'bytes':>7} {'render ms':>10}")
+    for name, student in zip(feedback_names(report), report.students):
+        times = []
+        for _ in range(repeat):
+            start = time.perf_counter()
+            context = _context(report, student, prompts)
+            context.update(worked_context(worked, student, prompts))
+            html = _render(template, context)
+            times.append(time.perf_counter() - start)
+        print(f"  {name:<14} {len(html.encode()):>7} {statistics.median(times) * 1e3:>10.2f}",
+              flush=True)
 
 
 if __name__ == "__main__":

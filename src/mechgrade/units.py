@@ -359,14 +359,15 @@ def time_dimension():
 
 
 def describe_dimension(dim) -> str:
-    """Words for a dimensionality, for messages ("a velocity [length] / [time]").
+    """Words for a dimensionality, for messages ("a velocity [length]/[time]"), its powers
+    written as a student reads them (pint's pretty form: ``[time]²``, not ``[time] ** 2``).
 
     >>> describe_dimension(dimension("m/s"))
-    'a velocity ([length] / [time])'
+    'a velocity ([length]/[time])'
     >>> describe_dimension(dimension("N")), describe_dimension(dimension("W"))
-    ('a force ([mass] * [length] / [time] ** 2)', 'a power ([mass] * [length] ** 2 / [time] ** 3)')
+    ('a force ([mass]·[length]/[time]²)', 'a power ([mass]·[length]²/[time]³)')
     """
-    text = str(dim) if str(dim) else "dimensionless"
+    text = f"{dim:P}" if str(dim) else "dimensionless"
     if text == "dimensionless":
         return "a pure number (or an angle)"
     name = _dimension_names().get(frozenset(dict(dim).items()))

@@ -143,8 +143,8 @@ def test_dynamics_feedback_names_the_mistaken_load_and_the_dimension(graded):
         "Your value is what the balances give with the mass of block1, block2 written for "
         "their weight; the weight is m g: multiply the mass by g.")
     assert femi["two_mass_spring_chain.ke2"]["feedback"] == (
-        "You gave a power ([mass] * [length] ** 2 / [time] ** 3); an energy or moment "
-        "([mass] * [length] ** 2 / [time] ** 2) was asked.")
+        "You gave a power ([mass]·[length]²/[time]³); an energy or moment "
+        "([mass]·[length]²/[time]²) was asked.")
     assert femi["pendulum_release.pin_force"]["feedback"] == (
         "Your value leaves the weight of rod (m g = 19.62 N) out of the force balance that "
         "gives R_O: R_O + m g = m a_G.")

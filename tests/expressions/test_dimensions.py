@@ -37,8 +37,8 @@ def test_consistent_expressions_have_their_dimension(text, unit):
 
 @pytest.mark.parametrize("text, author, student", [
     ("L + thetad", "cannot add a length ([length]) and an angular velocity or rate "
-     "(1 / [time]) in 'L+thetad'", "adds a length ([length]) to an angular velocity or rate "
-     "(1 / [time])"),
+     "(1/[time]) in 'L+thetad'", "adds a length ([length]) to an angular velocity or rate "
+     "(1/[time])"),
     ("L - t", "cannot add a length ([length]) and a time ([time]) in 'L-t'",
      "subtracts a length ([length]) and a time ([time])"),
     ("sin(L)", "sin(...) needs a pure number or angle, found a length ([length])",

@@ -24,13 +24,13 @@ PENDULUM = shipped_dir("examples") / "hw3_dynamics" / "pendulum_release.yaml"
 
 
 @pytest.mark.parametrize("text, result, feedback", [
-    ("0.02 W", ENERGY, "You gave a power ([mass] * [length] ** 2 / [time] ** 3); an energy or "
-                       "moment ([mass] * [length] ** 2 / [time] ** 2) was asked."),
-    ("36.8 J", TENSION, "You gave an energy or moment ([mass] * [length] ** 2 / [time] ** 2); "
-                        "a force ([mass] * [length] / [time] ** 2) was asked."),
+    ("0.02 W", ENERGY, "You gave a power ([mass]·[length]²/[time]³); an energy or "
+                       "moment ([mass]·[length]²/[time]²) was asked."),
+    ("36.8 J", TENSION, "You gave an energy or moment ([mass]·[length]²/[time]²); "
+                        "a force ([mass]·[length]/[time]²) was asked."),
     ("(m2 - m1)*g/(m1 + m2)", TENSION_SYMBOLIC,
-     "Your expression is an acceleration ([length] / [time] ** 2); a force ([mass] * [length] "
-     "/ [time] ** 2) was asked."),
+     "Your expression is an acceleration ([length]/[time]²); a force ([mass]·[length]"
+     "/[time]²) was asked."),
 ])
 def test_a_wrong_dimension_names_forces_energies_and_powers(text, result, feedback):
     judged = assess(text, result)

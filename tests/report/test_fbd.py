@@ -55,6 +55,15 @@ const out = {
     text: a.innerText.replace(/\\s+/g, " ")})),
   expected: [...document.querySelectorAll(".objective dt")].filter(t => t.innerText === "Expected")
     .map(t => t.nextElementSibling.innerText),
+  // the whole page as read, but for what the student wrote (shown as they wrote it)
+  visible: (() => { const copy = document.body.cloneNode(true);
+    [...copy.querySelectorAll("dt")].filter(t => t.textContent === "Your answer")
+      .forEach(t => t.nextElementSibling.remove());
+    copy.querySelectorAll("svg, math, style, script").forEach(e => e.remove());
+    return copy.textContent.replace(/\\s+/g, " "); })(),
+  // every arrowhead a figure asks for is defined on the page
+  unresolved: [...document.querySelectorAll("[marker-end]")].map(e => e.getAttribute("marker-end"))
+    .filter(u => !document.getElementById(u.slice(5, -1))),
   links: [...document.querySelectorAll(".step-link a")].map(l => {
     const target = document.getElementById(l.getAttribute("href").slice(1));
     return [l.closest("section").id, target ? getComputedStyle(target).backgroundColor : null];
@@ -82,6 +91,9 @@ def test_a_dynamics_page_shows_diagrams_math_and_linked_kinetic_diagnoses(hw3, i
         for code in ("**", "Abs(", "thetad", "_1"):
             assert code not in problem["text"], (name, code)
     assert found["expected"] and not any("**" in e or "Abs(" in e for e in found["expected"])
+    for code in ("**", "Abs(", "thetad", "_1"):
+        assert code not in found["visible"], code
+    assert found["unresolved"] == []
     diagnosed = {f"{a['problem']}.{a['objective']}"
                  for s in results["students"] if s["id"] == student
                  for a in s["answers"] if a.get("diagnosis") in KINETIC_LABELS}
@@ -102,8 +114,8 @@ def test_the_diagram_of_the_pendulum_draws_the_rod_and_a_labelled_arrow_per_load
     assert '<title id="hw3-rod-title">Free-body diagram of rod</title>' in svg
     assert fbd_description(rod) == (
         "Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; the "
-        "pin reaction R_O at O, unknown (drawn dashed, marked ?), as its components along N.x "
-        "and N.y.")
+        "pin reaction R O at O, unknown (drawn dashed, marked ?), as its components along "
+        "N's x axis and N's y axis.")
 
 
 def _load(name, kind, vector, unknown=False, point="P"):
@@ -147,3 +159,13 @@ def test_a_problem_in_feet_labels_its_loads_in_pounds_force():
     # the values the grader judges stay in SI
     (weight,) = [load for load in block.loads if load.kind == LoadKind.WEIGHT]
     assert weight.unit == "N" and weight.magnitude_value == pytest.approx(44.482216)
+
+
+def test_a_body_given_by_its_inertia_entries_is_drawn_as_a_box_its_loads_clear_of_it():
+    body = Outline(OutlineKind.BODY, "P", (), "", None)
+    d = FreeBodyDiagram("drum", None, "P", (("P", (0.0, 0.0, 0.0)),),
+                        (_load("W", LoadKind.APPLIED_FORCE, (0.0, -1.0, 0.0)),), None, "N", (body,))
+    svg = fbd_svg(d, "d")
+    assert '<rect class="body"' in svg and '<circle class="body"' not in svg
+    ((x1, y1, _, y2),) = _arrows(svg)
+    assert (x1, y1) == (0.0, 20.0) and y2 > y1  # from the box's edge, downward

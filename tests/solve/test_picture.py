@@ -61,6 +61,12 @@ def test_an_atwood_machine_hangs_two_blocks_from_one_string_over_a_pulley():
     assert svg.count('class="pulley"') == 1 and svg.count('<rect class="body"') == 2
     assert svg.count('class="ground"') == 1  # the ceiling the pulley hangs from
     assert "string T pulling block1 and block2" in svg
+    # O is at block1's centre: the frame's unit vectors are drawn in a corner, off the block
+    (block1,) = re.findall(r'<rect class="body" data-body="block1" x="(-?\d+)" y="(-?\d+)"', svg)
+    frame = re.search(r'marker-end="url\(#atwood_machine-f\)">\n<path d="M(-?\d+),(-?\d+)', svg)
+    x, y = int(frame.group(1)), int(frame.group(2))
+    assert not (int(block1[0]) - 10 <= x <= int(block1[0]) + 38
+                and int(block1[1]) - 10 <= y <= int(block1[1]) + 38)
 
 
 def test_a_rod_pendulum_is_drawn_its_full_length_from_its_pin():
@@ -125,6 +131,8 @@ def test_a_movable_pulley_wraps_its_body_and_the_strand_beyond_it_is_tied_up():
                       SceneBody("B", OutlineKind.PARTICLE, (1.2, -0.5, 0))), supports=(cord,))
     svg = picture_svg(s)
     assert svg.count('class="pulley"') == 2  # one fixed above, one on body B
+    # B is that pulley (a light one's axle): no block drawn over it; A, held, is a block
+    assert 'data-body="B"' not in svg and svg.count('<rect class="body"') == 1
     assert svg.count('class="ground"') == 2  # the fixed pulley's hanger and the tied strand
 
 
@@ -156,3 +164,11 @@ def test_the_picture_says_its_bodies_and_supports_in_words():
               supports=(SceneSupport(SupportKind.PIN, "R", ((0, 0, 0),), (), ("disk",)),))
     assert described(s) == ("Bodies: disk, a disk of radius 0.5 m. Supports: disk pinned to "
                             "the ground. Point O.")
+
+
+def test_a_body_given_by_its_inertia_entries_is_a_box_not_a_dot():
+    s = Scene("p", (ScenePoint("O", (0, 0, 0), None, None, None),), (),
+              bodies=(SceneBody("drum", OutlineKind.BODY, (0, 0, 0)),))
+    svg = picture_svg(s)
+    assert re.search(r'<rect class="body" data-body="drum" [^>]*rx="14"', svg)
+    assert '<circle class="body"' not in svg

@@ -87,7 +87,7 @@ CASES = [
     # objectives
     ("duplicate objective", BASE + "  - {id: speed, prompt: p, find: 'speed(P, N)', kind: scalar, unit: m/s}\n", "objectives[1]: objective id 'speed' used twice"),
     ("kind mismatch", mutated("find: speed(P, N)", "find: vel(P, N)"), "p.yaml:21:11: objectives[0].find: expected a scalar expression for a scalar objective, found a vector ('vel(P, N)')"),
-    ("unit mismatch", mutated("unit: m/s", "unit: m/s^2"), "p.yaml:21:11: objectives[0].find: dimension mismatch in objective 'speed' (unit 'm/s^2'): expected an acceleration ([length] / [time] ** 2), found a velocity ([length] / [time])"),
+    ("unit mismatch", mutated("unit: m/s", "unit: m/s^2"), "p.yaml:21:11: objectives[0].find: dimension mismatch in objective 'speed' (unit 'm/s^2'): expected an acceleration ([length]/[time]²), found a velocity ([length]/[time])"),
     ("vector without frame", mutated("find: speed(P, N)\n    kind: scalar", "find: vel(P, N)\n    kind: vector"), "objectives[0]: a vector objective needs 'frame'"),
     ("unknown objective frame", mutated("kind: scalar", "kind: scalar\n    frame: Q"), "p.yaml:23:12: objectives[0].frame: unknown frame 'Q' (expected one of: N, A)"),
     ("symbolic without symbols", mutated("kind: scalar", "kind: symbolic"), "objectives[0]: a symbolic objective needs 'symbols'"),
@@ -227,7 +227,7 @@ def test_close_names_are_suggested(old, new, message):
     ("angle: theta}", "angle: 25 m}", "base.yaml:6:45: frames.A.rotation.angle: expected an "
      "angle such as '25 deg', found '25 m'"),
     ("theta': 3 rad/s", "theta': 3", "base.yaml:16:11: givens.theta': expected a value with its "
-     "unit (an angular velocity or rate (1 / [time])), found the bare number 3; write `3 rad/s`"),
+     "unit (an angular velocity or rate (1/[time])), found the bare number 3; write `3 rad/s`"),
     ("L: 2 m", "L: 2", "base.yaml:15:6: givens.L: expected a value with its unit (a length "
      "([length])), found the bare number 2; write `2 m`"),
 ])

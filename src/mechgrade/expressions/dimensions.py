@@ -15,7 +15,7 @@ author and, in ``student``, for feedback ("Your expression ...").
 >>> infer(parse("L + thetad"), leaf)
 Traceback (most recent call last):
 ...
-mechgrade.expressions.functions.DimensionError: cannot add a length ([length]) and an angular velocity or rate (1 / [time]) in 'L+thetad'
+mechgrade.expressions.functions.DimensionError: cannot add a length ([length]) and an angular velocity or rate (1/[time]) in 'L+thetad'
 """
 
 from __future__ import annotations
@@ -130,11 +130,11 @@ _DESCRIBED: dict[tuple, str] = {}
 def described(dim) -> str:
     """:func:`mechgrade.units.describe_dimension`, kept per dimensionality: pint's text of one
     costs more than judging an answer. Kept by its bases in pint's order and their powers as
-    written, which the text follows ('[mass] * [length]' for N, '[length] * [mass]' for lbf).
+    written, which the text follows ('[mass]·[length]' for N, '[length]·[mass]' for lbf).
 
     >>> from mechgrade.units import dimension
     >>> described(dimension("m/s"))
-    'a velocity ([length] / [time])'
+    'a velocity ([length]/[time])'
     """
     key = tuple((base, repr(power)) for base, power in dict(dim).items())  # 2 is not 2.0
     if key not in _DESCRIBED:

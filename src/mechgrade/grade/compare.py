@@ -11,7 +11,7 @@ bounded fallback).
 >>> assess("98.5 ft/s^2", acc, GradingPolicy()).verdict
 <Verdict.CORRECT: 'correct'>
 >>> assess("30 m/s", acc, GradingPolicy()).feedback
-'You gave a velocity ([length] / [time]); an acceleration ([length] / [time] ** 2) was asked.'
+'You gave a velocity ([length]/[time]); an acceleration ([length]/[time]²) was asked.'
 """
 
 from __future__ import annotations
@@ -764,7 +764,7 @@ def expression_dimension(node: Node, units: dict[str, str]):
     >>> expression_dimension(syntax.parse("L + thetad"), {"L": "m", "thetad": "rad/s"})
     Traceback (most recent call last):
     ...
-    mechgrade.grade.compare.DimensionMismatch: adds a length ([length]) to an angular velocity or rate (1 / [time])
+    mechgrade.grade.compare.DimensionMismatch: adds a length ([length]) to an angular velocity or rate (1/[time])
     """
     def leaf(leaf: Node) -> Type:  # Euler's E, and anything not a symbol: a pure number
         unit = units.get(leaf.id, "") if isinstance(leaf, Name) and leaf.id != "E" else ""

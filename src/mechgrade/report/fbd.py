@@ -21,12 +21,13 @@ loads' at the instant, their lengths all the same, so none hides another.
 >>> svg.count('class="load"'), svg.count("<line class=\\"arrow"), svg.count('stroke-dasharray')
 (2, 3, 2)
 >>> print(fbd_description(d))
-Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; the pin reaction R_O at O, unknown (drawn dashed, marked ?), as its components along N.x and N.y.
+Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; the pin reaction R O at O, unknown (drawn dashed, marked ?), as its components along N's x axis and N's y axis.
 """
 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import replace
 from html import escape
 from typing import TYPE_CHECKING
@@ -197,9 +198,10 @@ def fbd_description(diagram: FreeBodyDiagram) -> str:
         if load.unknown:
             words += ", unknown (drawn dashed, marked ?)"
             if len(load.components) > 1:
-                words += ", as its components along " + " and ".join(load.direction_texts)
+                words += ", as its components along " + " and ".join(
+                    _spoken_direction(t) for t in load.direction_texts)
             elif load.direction_texts:
-                words += f", along {load.direction_texts[0]}"
+                words += f", along {_spoken_direction(load.direction_texts[0])}"
         elif load.point is None and load.vector is not None:
             words += ", counter-clockwise" if load.vector[2] >= 0 else ", clockwise"
         elif load.vector is not None:
@@ -264,7 +266,12 @@ def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
                           f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" {style} '
                           f'transform="rotate({angle:.0f} {x:.0f} {y:.0f})"/>')
             shapes.append(_surface(x, y, page_normal))
-        elif o.kind in (OutlineKind.PARTICLE, OutlineKind.BODY):
+        elif o.kind == OutlineKind.BODY:  # inertia by its entries: a body of no set shape
+            radius = BLOCK
+            shapes.append(f'<rect class="body" x="{x - BLOCK:.0f}" y="{y - 0.7 * BLOCK:.0f}" '
+                          f'width="{2 * BLOCK:g}" height="{1.4 * BLOCK:g}" '
+                          f'rx="{0.5 * BLOCK:g}" {style}/>')
+        elif o.kind == OutlineKind.PARTICLE:
             radius = PARTICLE
             shapes.append(f'<circle class="body" cx="{x:.0f}" cy="{y:.0f}" r="{PARTICLE:g}" '
                           f'{style}/>')
@@ -391,12 +398,27 @@ def _text_of(load: DiagramLoad, i: int) -> tuple[str, str, str]:
 
 
 def _plain(load: DiagramLoad) -> str:
+    """The load's symbol as said: its subscript after a space (``R O``, not the file's
+    ``R_O``), with its value when known."""
     base, sub, rest = _text_of(load, 0)
     if load.unknown and len(load.components) > 1:
         base, sub = _symbol(load.name) if load.kind != LoadKind.WEIGHT else ("W", "")
         rest = ""
-    name = f"{base}_{sub}" if sub else base
+    name = f"{base} {sub}" if sub else base
     return name + (rest if rest != " ?" else "")
+
+
+_UNIT_VECTOR = re.compile(r"(-?)([A-Za-z]\w*)\.([xyz])")
+
+
+def _spoken_direction(text: str) -> str:
+    """A direction as the file wrote it, in words: a frame's unit vector by its axis.
+
+    >>> _spoken_direction("N.x"), _spoken_direction("-A.y"), _spoken_direction("B.x + B.y")
+    ("N's x axis", "minus A's y axis", "B's x axis + B's y axis")
+    """
+    return _UNIT_VECTOR.sub(lambda m: ("minus " if m.group(1) else "")
+                            + f"{m.group(2)}'s {m.group(3)} axis", text)
 
 
 def _shape_words(o) -> str:

@@ -371,10 +371,29 @@ def template_environment(templates_dir: str | Path | None = None):
     if not folder.is_dir():
         raise MechgradeError("expected a folder of templates, found none",
                              where=_where(folder))
-    return _environment_class()(
+    env = _environment_class()(
         loader=jinja2.FileSystemLoader(str(folder)), autoescape=True,
         undefined=jinja2.StrictUndefined, keep_trailing_newline=True, trim_blocks=True,
         lstrip_blocks=True)
+    env.filters["css"] = compact_css
+    return env
+
+
+_CSS_COMMENT = re.compile(r"/\*.*?\*/", re.S)
+_CSS_PUNCTUATION = re.compile(r" ?([{};,]) ?|(:) ")
+
+
+@lru_cache(maxsize=8)  # a page's sheet is the same for every student: made once
+def compact_css(text: str) -> str:
+    """A template's style sheet in fewer bytes (every student's page carries it): comments
+    left out, white space one space, none around braces, semicolons and commas or after a
+    colon. Only for the templates' own style sheets: a space in a CSS string stays one.
+
+    >>> compact_css("  .a b { color: #000;  /* why */\\n  margin: 0 1px; }\\n  a, p { }")
+    '.a b{color:#000;margin:0 1px;}a,p{}'
+    """
+    text = " ".join(_CSS_COMMENT.sub("", text).split())
+    return _CSS_PUNCTUATION.sub(lambda m: m.group(1) or m.group(2), text)
 
 
 @lru_cache(maxsize=None)
@@ -458,6 +477,7 @@ class WorkedPages:
     worked: FeedbackSolutions
     html: dict
     markdown: dict
+    markers: str = ""  # the arrowheads every fragment's figures share (:func:`marker_defs`)
 
 
 def _worked_pages(worked: FeedbackSolutions, env, templates_dir) -> WorkedPages:
@@ -465,8 +485,10 @@ def _worked_pages(worked: FeedbackSolutions, env, templates_dir) -> WorkedPages:
         # a folder of one's own feedback templates: the worked solution as shipped
         env, templates_dir = template_environment(), None
     every = list(worked.solutions) + [w for _, _, w in worked.variants]
-    return WorkedPages(worked, {id(w): worked_html(w, templates_dir, env) for w in every},
-                       {id(w): worked_markdown(w) for w in every})
+    markers: dict[str, str] = {}
+    return WorkedPages(worked, {id(w): worked_html(w, templates_dir, env, markers)
+                                for w in every},
+                       {id(w): worked_markdown(w) for w in every}, marker_defs(markers))
 
 
 def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: dict, *,
@@ -476,7 +498,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
     mistakes happen) and ``mistake_steps`` (objective key -> the link and title of that step).
     Empty lists and text without worked solutions."""
     if pages is None:
-        return {"worked": [], "highlight": "", "mistake_steps": {}}
+        return {"worked": [], "highlight": "", "mistake_steps": {}, "markers": ""}
     from markupsafe import Markup
 
     mine = pages.worked.for_student(student)
@@ -517,7 +539,8 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         f"font-weight: 600; font-size: .85rem; font-family: system-ui, sans-serif; }}\n"
         for ident, note in marked.items())
     return {"worked": [{"problem": w.problem, "fragment": fragments[id(w)]} for w in mine],
-            "highlight": "" if markdown else Markup(highlight), "mistake_steps": steps}
+            "highlight": "" if markdown else Markup(highlight), "mistake_steps": steps,
+            "markers": "" if markdown else Markup(pages.markers)}
 
 
 def anchor(problem: str, step: str) -> str:
@@ -529,14 +552,20 @@ def anchor(problem: str, step: str) -> str:
     return re.sub(r"[^A-Za-z0-9_-]", "-", f"ws-{problem}-{step}")
 
 
-def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
-    """The worked solution as an HTML fragment (``worked.html.j2``), safe markup."""
+def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
+                markers: dict[str, str] | None = None):
+    """The worked solution as an HTML fragment (``worked.html.j2``), safe markup. With
+    ``markers``, its figures' arrowheads are left to the page (:func:`shared_markers`) and
+    put in ``markers``; without, each figure keeps its own."""
     from markupsafe import Markup
 
     env = env if env is not None else template_environment(templates_dir)
     from .fbd import fbd_svg
 
-    diagrams = [Markup(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
+    def figure(svg: str) -> Markup:
+        return Markup(svg if markers is None else shared_markers(svg, markers))
+
+    diagrams = [figure(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
                 for d in worked.diagrams]
     steps = [{"anchor": step.anchor, "title": step.title, "lines": step.lines,
               "rows": [{"anchor": row.anchor, "text": row.text,
@@ -544,19 +573,71 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None):
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
     context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
-                     "picture": worked.picture, "steps": steps}}
+                     "picture": figure(worked.picture) if worked.picture else "",
+                     "steps": steps}}
     return Markup(_render(_template(env, "worked.html.j2"), context))
+
+
+_MARKER = re.compile(r'<marker id="([^"]+)"([^>]*)>(.*?)</marker>\n?', re.S)
+
+
+def shared_markers(svg: str, markers: dict[str, str]) -> str:
+    """``svg`` without its arrowhead markers: each one it uses is named by what it draws and
+    put in ``markers`` (id: definition), for the page to define once (:func:`marker_defs`)
+    rather than every figure again. Only for the figures mechgrade draws.
+
+    >>> found = {}
+    >>> print(shared_markers('<svg><defs>\\n<marker id="f-k" refX="9"><path/></marker>\\n'
+    ...                      '</defs>\\n<line marker-end="url(#f-k)"/></svg>', found))
+    <svg><line marker-end="url(#mke98141fb)"/></svg>
+    >>> found
+    {'mke98141fb': '<marker id="mke98141fb" refX="9"><path/></marker>'}
+    """
+    import zlib
+
+    def take(match: re.Match) -> str:
+        old, attributes, body = match.groups()
+        if f"url(#{old})" in svg:
+            new = f"mk{zlib.crc32((attributes + body).encode()):08x}"
+            markers[new] = f'<marker id="{new}"{attributes}>{body}</marker>'
+            renamed[old] = new
+        return ""
+
+    renamed: dict[str, str] = {}
+    out = _MARKER.sub(take, svg).replace("<defs>\n</defs>\n", "")
+    for old, new in renamed.items():
+        out = out.replace(f"url(#{old})", f"url(#{new})")
+    return out
+
+
+def marker_defs(markers: dict[str, str]) -> str:
+    """The hidden SVG defining ``markers`` (:func:`shared_markers`) for a whole page.
+
+    >>> marker_defs({"mk1": '<marker id="mk1"/>'})
+    '<svg class="ws-defs" width="0" height="0" aria-hidden="true"><defs><marker id="mk1"/></defs></svg>'
+    >>> marker_defs({})
+    ''
+    """
+    if not markers:
+        return ""
+    return ('<svg class="ws-defs" width="0" height="0" aria-hidden="true"><defs>'
+            + "".join(markers[k] for k in sorted(markers)) + "</defs></svg>")
 
 
 def spoken_math(math: str, text: str) -> str:
     """MathML labelled with its plain-text reading (``aria-label``), which a screen reader
-    says for it: the dots of a rate are drawn as operators it would read as "bullet".
+    says for it: the dots of a rate are drawn as operators it would read as "bullet". A row
+    lays its math out itself (the page's style), so ``display`` is left out; a dot or a hat
+    is set over its letter as a script (Chromium sets an accent onto the letter's top: the
+    dots of θ̇ on the θ).
 
-    >>> print(spoken_math('<math display="block"><mi>x</mi></math>', "v = x**2*y"))
-    <math aria-label="v = x²·y" display="block"><mi>x</mi></math>
+    >>> print(spoken_math('<math display="block"><mover accent="true"><mi>x</mi><mo>∙</mo>'
+    ...                   '</mover></math>', "v = x**2*y"))
+    <math aria-label="v = x²·y"><mover><mi>x</mi><mo>∙</mo></mover></math>
     """
     label = html_escape(pretty_math(" ".join(text.split())), quote=True)
-    return math.replace("<math", f'<math aria-label="{label}"', 1)
+    return math.replace('<math display="block"', "<math", 1).replace(
+        "<math", f'<math aria-label="{label}"', 1).replace('<mover accent="true">', "<mover>")
 
 
 def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .output import (_render, _template, markdown_escape, template_environment, worked_html,
-                     worked_markdown)
+from .output import (_render, _template, markdown_escape, marker_defs, template_environment,
+                     worked_html, worked_markdown)
 
 if TYPE_CHECKING:  # the solver package loads sympy: a report only reads its dataclass
     from ..solve.worked import WorkedSolution
@@ -26,9 +26,13 @@ if TYPE_CHECKING:  # the solver package loads sympy: a report only reads its dat
 
 def steps_html(worked: WorkedSolution, templates_dir=None) -> str:
     """The worked solution as a page of its own (``steps.html.j2``)."""
+    from markupsafe import Markup
+
     env = template_environment(templates_dir)
+    markers: dict[str, str] = {}
     context = {"title": f"{worked.problem}: {worked.title}",
-               "worked": worked_html(worked, templates_dir, env)}
+               "worked": worked_html(worked, templates_dir, env, markers)}
+    context["markers"] = Markup(marker_defs(markers))
     return _render(_template(env, "steps.html.j2"), context)
 
 

@@ -403,7 +403,10 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
                          f'stroke="{BODY}" stroke-width="4" stroke-linecap="round"')
     resting = {support.bodies[0]: support for support in s.supports
                if support.kind == SupportKind.SURFACE and support.directions[0] is not None}
-    held = {b for support in s.supports for b in support.bodies}  # drawn as blocks
+    # a particle a string wraps round is the pulley drawn on it (a light pulley's axle), one
+    # something else holds a block
+    wrapped = {b for string in strings for b in string.wrapped}
+    held = {b for support in s.supports for b in support.bodies} - wrapped
     for support in s.supports:
         if support.kind == SupportKind.SURFACE and support.directions[0] is not None:
             kinds = {b.kind: b for b in s.bodies if b.body == support.bodies[0]}
@@ -414,7 +417,7 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
     for string in strings:
         _draw_string(sheet, string, at, scale)
     _springs(sheet, s.supports, at)
-    for body in s.bodies:
+    for body in _unwrapped(s.bodies, wrapped):
         _body(sheet, body, at, scale, resting, held, down)
     for support in s.supports:
         if support.kind == SupportKind.PIN:
@@ -423,7 +426,9 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
             x, y = at(*support.at[0][:2])
             sheet.out.append(f'<circle cx="{x:.0f}" cy="{y:.0f}" r="4.5" fill="#fff" '
                              f'stroke="{BODY}" stroke-width="2"/>')
-    axes = _frames(sheet, s, at, size, ident)
+    boxes = [at(*b.centre[:2]) for b in s.bodies
+             if b.kind == OutlineKind.BODY or (b.kind == OutlineKind.PARTICLE and b.body in held)]
+    axes = _frames(sheet, s, at, size, ident, boxes)
     for colour, _, mark, kind, largest in legend:
         sheet.out.append(f'<g stroke="{colour}" stroke-width="2.2" '
                          f'marker-end="url(#{ident}-{mark})">')
@@ -539,11 +544,13 @@ def _pin(sheet: _Sheet, p, down) -> None:
 class _String:
     """A string as drawn (inertial x, y in m): its straight runs, its pulleys (centre,
     radius in m, or ``None`` for a small one drawn at a corner) and the points where it or a
-    pulley hangs from the ceiling (with the direction up, away from the string)."""
+    pulley hangs from the ceiling (with the direction up, away from the string), and the
+    bodies it wraps round (a pulley on each)."""
 
     runs: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
     pulleys: tuple[tuple[tuple[float, float], float | None], ...]
     anchors: tuple[tuple[tuple[float, float], tuple[float, float]], ...]
+    wrapped: tuple[str, ...] = ()
 
     @property
     def reach(self) -> list[tuple[float, float]]:
@@ -592,12 +599,14 @@ def _string(support: SceneSupport, bodies, size: float) -> _String:
         joined = [0] * len(ends)
         wraps = [False] * len(ends)
         fixed = []
+        wrapped = []
         for i in range(len(ends) - 1):
             (p, _, a), (q, _, b) = ends[i], ends[i + 1]
             joined[i] += 1
             joined[i + 1] += 1
             if a == b:
                 wraps[i] = wraps[i + 1] = True
+                wrapped.append(a)
                 pulleys.append((((p[0] + q[0]) / 2, (p[1] + q[1]) / 2), math.dist(p, q) / 2))
             else:
                 c = ((tops[i][0] + tops[i + 1][0]) / 2, (tops[i][1] + tops[i + 1][1]) / 2)
@@ -613,7 +622,7 @@ def _string(support: SceneSupport, bodies, size: float) -> _String:
             roof = (c[0] + (ceiling - level) * u0[0], c[1] + (ceiling - level) * u0[1])
             runs.append((c, roof))
             anchors.append((roof, u0))
-        return _String(tuple(runs), tuple(pulleys + fixed), tuple(anchors))
+        return _String(tuple(runs), tuple(pulleys + fixed), tuple(anchors), tuple(wrapped))
     for p, d, _ in ends:  # a cord to a fixed point
         u = _unit2(d)
         end = (p[0] + 0.3 * size * u[0], p[1] + 0.3 * size * u[1])
@@ -691,7 +700,8 @@ def _springs(sheet: _Sheet, supports, at) -> None:
 def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down) -> None:
     """A body's part by its shape: a rod its full length, a disk or a ring round its centre,
     a block by its sides, a particle that something supports as a block (square to the
-    surface it rests on, else upright), a free one as a dot."""
+    surface it rests on, else upright), a free one as a dot, a body given by its inertia's
+    entries as a rounded box round its centre."""
     x, y = at(*body.centre[:2])
     style = f'fill="{FILL}" stroke="{BODY}" stroke-width="2"'
     cls = f'class="body" data-body="{escape(body.body, quote=True)}"'
@@ -733,6 +743,11 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
             sheet.out.append(f'<path d="M{x:.0f},{y:.0f}L{ex:.0f},{ey:.0f}" stroke="{BODY}" '
                              f'stroke-width="1.2" stroke-dasharray="4 3"/>')
         return
+    if body.kind == OutlineKind.BODY:  # inertia by its entries: a rigid body of no set shape
+        sheet.out.append(f'<rect {cls} x="{x - 2 * BLOCK:.0f}" y="{y - 1.4 * BLOCK:.0f}" '
+                         f'width="{4 * BLOCK:g}" height="{2.8 * BLOCK:g}" rx="{BLOCK:g}" '
+                         f'{style}/>')
+        return
     sheet.out.append(f'<circle {cls} cx="{x:.0f}" cy="{y:.0f}" r="9" {style}/>')
 
 
@@ -741,17 +756,26 @@ def _extent(body: SceneBody) -> list[tuple[float, float]]:
     return outline_extent(body.kind, body.centre, body.sizes, body.axis, body.axes)
 
 
-def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str) -> list:
+def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str,
+            boxes: list[tuple[float, float]] | None = None) -> list:
     """Each frame's unit vectors at its origin; frames sharing an origin and a direction share
-    one arrow and one label ("N.x = B.x")."""
+    one arrow and one label ("N.x = B.x"). A frame whose origin is inside a box drawn for a
+    body (``boxes``: their centres on the page) has them in the sheet's lower right corner
+    instead, where they hide no body."""
     axes: dict[tuple, tuple[tuple[float, float], tuple[float, float], list[str]]] = {}
     sheet.out.append(f'<g stroke="{FRAME}" stroke-width="1.5" marker-end="url(#{ident}-f)">')
     for frame in s.frames:
         if frame.origin is None or frame.x is None or frame.y is None:
             continue
+        origin = at(*frame.origin[:2])
+        crowded = any(math.dist(origin, b) < 1.5 * BLOCK for b in boxes or ())
         for axis, vector in (("x", frame.x), ("y", frame.y)):
-            start = at(*frame.origin[:2])
+            start = origin
             end = at(*_tip(frame.origin, vector, 0.18 * size))
+            if crowded:  # moved whole: the arrows keep their directions and lengths
+                corner = (WIDTH - MARGIN - 0.18 * size * _page_scale(at), HEIGHT - 24.0)
+                start, end = corner, (corner[0] + end[0] - origin[0],
+                                      corner[1] + end[1] - origin[1])
             key = (start, round(end[0]), round(end[1]))
             if key not in axes:
                 _segment(sheet, start, end)
@@ -760,6 +784,17 @@ def _frames(sheet: _Sheet, s: Scene, at, size: float, ident: str) -> list:
             axes[key][2].append(f"{frame.name}.{axis}")
     sheet.out.append("</g>")
     return list(axes.values())
+
+
+def _unwrapped(bodies, wrapped: set[str]) -> list:
+    """The bodies drawn by their own shape: not a particle a string wraps round (the pulley
+    drawn on it is its shape)."""
+    return [b for b in bodies if b.kind != OutlineKind.PARTICLE or b.body not in wrapped]
+
+
+def _page_scale(at) -> float:
+    """Page pixels per metre of ``at``."""
+    return math.dist(at(0.0, 0.0), at(1.0, 0.0))
 
 
 def _frame_labels(sheet: _Sheet, axes) -> None:
