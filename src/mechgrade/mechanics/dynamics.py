@@ -694,6 +694,21 @@ def _body_balances(problem: Problem, model: Model, loads: _Loads, inertias: dict
                          "component)", angular[i]) for i in range(3)]
 
 
+def balance_part(label: str) -> tuple[str, bool] | None:
+    """The body a momentum balance (by its label, as :func:`_body_balances` writes it) is of,
+    and whether it is a moment balance; ``None`` for another equation (a constraint).
+
+    >>> balance_part("body rod: N.x force balance"), balance_part("body rod: moment balance about G (N.z component)")
+    (('rod', False), ('rod', True))
+    >>> balance_part("rolling at P") is None
+    True
+    """
+    if not label.startswith("body ") or ": " not in label:
+        return None
+    body, rest = label[len("body "):].split(": ", 1)
+    return body, " balance about " in rest
+
+
 def _contact_conditions(analysis: Impulse, model: Model, loads: _Loads,
                         before: dict) -> list[Equation]:
     """The restitution and sticking conditions of an impact's contacts."""

@@ -139,7 +139,12 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
     """The extended state (state values, then reactions) with the unknown second rates and
     reactions solved from the momentum balances; raises when they are not determined, the
     equations cannot all hold, or a friction contact contradicts its model (the checks of
-    :func:`~.motion.balances`, with one column)."""
+    :func:`~.motion.balances`, with one column). With ``Dynamics.set_aside`` a given second
+    rate's own balance gives way instead (:func:`~.carried.carried_kinetics`)."""
+    if dynamics_of(problem).set_aside:
+        from .carried import carried_kinetics
+
+        return carried_kinetics(problem, kp, state)
     solved = balances(problem, kp, state.values[:, None], state.given)
     error = solved.errors[0]
     if error is not None:

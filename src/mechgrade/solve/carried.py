@@ -1,0 +1,122 @@
+"""The momentum balances solved with a student's own second rate given (error carried forward,
+``Dynamics.set_aside``): the balance that would determine that acceleration gives way, the
+rest is a linear solve of the remaining unknowns.
+
+The acceleration is held as if by a drive on the coordinate: a couple on the body it turns
+(its moment balance gives way), or for a coordinate that turns no body a force along the
+motion of the mass centre it moves (the force balance along that motion gives way). The
+reactions then follow from the other balances, as a write-up takes a pin force from
+``sum F = m a_G`` with its own ``alpha``. Where the acceleration turns (or moves) more than
+one body, every choice of the body whose balance gives way is solved: they must agree, or the
+remaining balances do not determine the unknowns and the error says so (the tension of an
+Atwood machine with a wrong ``a``: block 1's balance and block 2's give two tensions).
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.solve import solve
+>>> problem = set_aside(load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml"))
+>>> solution = solve(problem, givens={"theta''": 7.882})  # alpha turned round
+>>> [round(c, 2) for c in solution.result("pin_force").value]  # m a_G + m g j, a_G with it
+[0.3, 33.97, 0.0]
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from itertools import product
+
+import numpy as np
+
+from ..errors import SolveError, UnderdeterminedError
+from ..mechanics.dynamics import balance_part
+from ..spec.model import Problem
+from . import rules
+from .columns import call
+from .levels import State
+
+
+def set_aside(problem: Problem) -> Problem:
+    """``problem`` solved with a given second rate's own balance giving way (see above).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> set_aside(load_problem(shipped_dir("problems") / "atwood_machine.yaml")).dynamics.set_aside
+    True
+    """
+    assert problem.dynamics is not None, "only a problem with bodies has balances"
+    return replace(problem, dynamics=replace(problem.dynamics, set_aside=True))
+
+
+def carried_kinetics(problem: Problem, kp, state: State) -> np.ndarray:
+    """The extended state (state values, then reactions) with the unknown second rates and
+    reactions solved, each given second rate held by a drive (the module's docstring); raises
+    when the equations are undefined or the balances left do not determine the unknowns."""
+    size = kp.kp.index.size
+    rows = len(kp.labels)
+    x = np.concatenate([state.values, np.zeros(len(kp.kin.reactions))])
+    known = np.concatenate([state.given, np.zeros(len(kp.kin.reactions), bool)])
+    free = [j for j, i in enumerate(kp.columns) if not known[i]]
+    held = [j for j, i in enumerate(kp.columns) if known[i] and i < size]
+    for j in free:
+        x[kp.columns[j]] = 0.0
+    A = call(kp.jacobian, x[:, None], rows * len(kp.columns)).reshape(rows, len(kp.columns))
+    b = call(kp.residual, x[:, None], rows)[:, 0]
+    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+        bad = int(np.flatnonzero(~(np.isfinite(A).all(axis=1) & np.isfinite(b)))[0])
+        raise SolveError(f"the equations of motion are undefined at this instant (a division "
+                         f"by zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
+    drives = [_drives(kp, A[:, j]) for j in held]
+    solved: list[tuple[tuple[str, ...], np.ndarray]] = []
+    for choice in product(*drives):
+        E = np.array([e for _, e in choice]).reshape(-1, rows).T
+        M = np.hstack([A[:, free], E])
+        sol, *_ = np.linalg.lstsq(M, -b, rcond=None)
+        s = np.linalg.svd(M, compute_uv=False)
+        if rules.rank(s[None, :])[0] < M.shape[1]:
+            continue
+        out = x.copy()
+        out[[kp.columns[j] for j in free]] = sol[:len(free)]
+        r = call(kp.residual, out[:, None], rows)[:, 0] + E @ sol[len(free):]
+        scale = np.abs(call(kp.scale, out[:, None], rows)[:, 0])
+        if rules.satisfied(r, scale, problem.consistency).all():
+            solved.append((tuple(name for name, _ in choice), out))
+    given = ", ".join(kp.name(j) for j in held)
+    unknowns = [kp.columns[j] for j in free]
+    if not solved:
+        raise UnderdeterminedError(
+            f"with the given {given}, the momentum balances left when the one that gives it "
+            f"is set aside do not determine {', '.join(kp.name(j) for j in free)}",
+            where=kp.wheres[0] if kp.wheres else None)
+    first_names, first = solved[0]
+    for names, other in solved[1:]:
+        differ = [j for j, i in zip(free, unknowns)
+                  if not rules.same_value(first[i], other[i])]
+        if differ:
+            i = kp.columns[differ[0]]
+            raise UnderdeterminedError(
+                f"with the given {given}, the momentum balances left do not determine "
+                f"{', '.join(kp.name(j) for j in differ)}: setting aside "
+                f"{' and '.join(first_names)} gives {kp.name(differ[0])} = {first[i]:.4g}, "
+                f"setting aside {' and '.join(names)} gives {other[i]:.4g}",
+                where=kp.wheres[0] if kp.wheres else None)
+    return first
+
+
+def _drives(kp, column: np.ndarray) -> list[tuple[str, np.ndarray]]:
+    """The ways a drive can hold a given second rate whose column in the balances is
+    ``column``: a couple on each body it turns (that body's moment balance), else a force on
+    each body whose mass centre it moves (along the motion, in that body's force balance);
+    ``(what gives way, the drive's column)``. None at all where it enters no balance."""
+    parts = [balance_part(label) for label in kp.labels]
+    size = np.abs(column).max() if len(column) else 0.0
+    if not size > 0:
+        return [("nothing", np.zeros(len(column)))]
+    for moment, kind in ((True, "moment"), (False, "force")):
+        bodies = list(dict.fromkeys(
+            p[0] for p, c in zip(parts, column)
+            if p is not None and p[1] == moment and abs(c) > rules.RANK_TOL * size))
+        if bodies:
+            return [(f"the {kind} balance of {body}",
+                     np.where([p == (body, moment) for p in parts], column, 0.0))
+                    for body in bodies]
+    return [("nothing", np.zeros(len(column)))]
