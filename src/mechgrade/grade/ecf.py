@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Callable, Iterable, Protocol
 from ..errors import InconsistentError, MechgradeError
 from ..expressions.syntax import Name, Prime
 from ..parallel import fork_map
+from ..spec.dynamics import Integration
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .policy import GradingPolicy
 from .results import ECF_DIAGNOSIS, AnswerResult, Verdict
@@ -160,19 +161,17 @@ class CarriedForward:
             return verdict, credit
         answered = sorted(overrides)
         overrides = {**dict(item.givens), **overrides}  # on the student's own variant
+        rates = [k for k in answered if _order(k) == 2]
+        if rates and isinstance(getattr(problem.dynamics, "analysis", None), Integration):
+            feedback.append(f"Error carried forward could not be applied: your "
+                            f"{listing(rates)} is an acceleration at one instant of a motion "
+                            f"integrated from its start, which it does not change.")
+            return verdict, credit
         solution, replaced = self.solve_with(problem, overrides, item.objective.id)
         if isinstance(solution, MechgradeError):
-            rates = [k for k in answered if _order(k) == 2]
-            if problem.dynamics is not None and rates:
-                # the balances fix the accelerations: one given besides them over-determines
-                feedback.append(f"Error carried forward could not be applied: your "
-                                f"{listing(rates)} is an acceleration the equations of motion "
-                                f"fix, and the later answers cannot be recomputed from one "
-                                f"that contradicts them.")
-            else:
-                feedback.append(f"Error carried forward could not be applied: with your "
-                                f"{listing(answered)} the problem cannot be solved "
-                                f"({solution.message}).")
+            feedback.append(f"Error carried forward could not be applied: with your "
+                            f"{listing(answered)} the problem cannot be solved "
+                            f"({solution.message}).")
             return verdict, credit
         try:
             recomputed = solution.result(item.objective.id)
@@ -240,13 +239,19 @@ def _replaced_by_student(problem: Problem, overrides: dict[str, float]
     """The problem to re-solve for ECF, and what the student's values replace in it. A
     work-energy problem's rates come from its energy balance, and a designed parameter from
     its design condition: a student's rate (or parameter) takes that balance's (or
-    condition's) place, and the instant is solved from it as from any other given."""
+    condition's) place, and the instant is solved from it as from any other given. A
+    student's second rate takes the place of the momentum balance that would determine it
+    (:mod:`mechgrade.solve.carried`): the reactions follow from the others."""
     from ..spec.dynamics import WorkEnergy
 
     dynamics = problem.dynamics
     if dynamics is None:
         return problem, ()
     replaced: list[str] = []
+    rates = [k for k in overrides if _order(k) == 2]
+    if rates:
+        replaced.append(f"the balance that gives {listing(sorted(rates))}")
+        dynamics = replace(dynamics, set_aside=True)
     analysis, design = dynamics.analysis, dynamics.design
     if isinstance(analysis, WorkEnergy) and any(_order(k) == 1 for k in overrides):
         replaced.append("the energy balance")
