@@ -35,7 +35,11 @@ def energy_state(problem: Problem, kp, state: State, given_rates: list[str]) -> 
         raise error
     known = state.given.copy()
     known[list(kp.kp.index.rates(1))] = True
-    return State(values[:, 0], known, frozenset())
+    out = values[:, 0]
+    # a given second rate (a student's, error carried forward) keeps its value
+    seconds = [i for i in kp.kp.index.rates(2) if state.given[i]]
+    out[seconds] = state.values[seconds]
+    return State(out, known, frozenset())
 
 
 def energy_rates(problem: Problem, kp, X: np.ndarray) -> tuple[np.ndarray, FirstErrors]:
