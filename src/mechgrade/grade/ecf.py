@@ -18,7 +18,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Callable, Iterable, Protocol
 
 from ..errors import InconsistentError, MechgradeError
-from ..expressions.syntax import Name, Prime
+from ..expressions.syntax import Call, Name, Prime
 from ..parallel import fork_map
 from ..spec.dynamics import Integration
 from ..spec.model import Objective, ObjectiveKind, Problem
@@ -286,14 +286,16 @@ def _order(key: str) -> int:
 
 def given_key_of(objective: Objective) -> str | None:
     """The given key (``"theta'"``) an objective's value can be fed back to the solver as,
-    or ``None`` when the objective is not a plain quantity (a coordinate, its rate, a
-    parameter).
+    or ``None`` when the objective is not a plain quantity (a coordinate, its rates, a
+    parameter; a scalar ``eom(q)`` is ``q''``).
 
     >>> from mechgrade.spec.model import Expr
     >>> from mechgrade.expressions.syntax import parse
-    >>> ob = lambda find, kind="scalar": Objective("o", "", Expr(find, parse(find, functions=["mag", "vel"])), kind, "m/s")
+    >>> ob = lambda find, kind="scalar": Objective("o", "", Expr(find, parse(find, functions=["mag", "vel", "eom"])), kind, "m/s")
     >>> given_key_of(ob("x'")), given_key_of(ob("mag(vel(A, N))")), given_key_of(ob("x", "vector"))
     ("x'", None, None)
+    >>> given_key_of(ob("eom(theta)"))
+    "theta''"
     """
     if objective.kind != ObjectiveKind.SCALAR:
         return None
@@ -302,6 +304,9 @@ def given_key_of(objective: Objective) -> str | None:
         return node.id
     if isinstance(node, Prime):
         return node.id + "'" * node.order
+    if isinstance(node, Call) and node.func == "eom" and len(node.args) == 1 and \
+            isinstance(node.args[0], Name):  # a scalar eom(q) is q'' at the instant
+        return node.args[0].id + "''"
     return None
 
 
