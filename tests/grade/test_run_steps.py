@@ -63,10 +63,12 @@ ANSWERS = {  # xdot -7.666 m/s, V_A_N (5.872, -4.928, 0) m/s, rod_omega_z 73.34 
     "all_right": ("-7.666 m/s", "(5.872, -4.928, 0) m/s", "73.34 rad/s"),
     # xdot wrong; V_A_N and rod_omega_z follow from it
     "carried": ("-1 m/s", "(0.766, -0.643, 0) m/s", "9.567 rad/s"),
-    # xdot right; V_A_N wrong (not a given quantity: nothing is recomputed from it)
+    # xdot right; V_A_N wrong, and no value of the given rate y' gives it
     "second": ("-7.666 m/s", "(5, -4, 0) m/s", "60 rad/s"),
     # xdot wrong, V_A_N not answered: the missing step is not where the error is
     "skipped": ("-1 m/s", None, "9.567 rad/s"),
+    # xdot right; V_A_N half the reference, as y' half the given gives: rod_omega_z follows
+    "halved": ("-7.666 m/s", "(2.936, -2.464, 0) m/s", "36.67 rad/s"),
 }
 
 
@@ -94,7 +96,7 @@ def _answers(report, sid) -> dict[str, AnswerResult]:
 def test_the_steps_are_graded_in_order_before_the_objective_with_their_own_points(graded):
     assert [(o.objective, o.max_points) for o in graded.objectives] == [
         ("xdot", 1.0), ("V_A_N", 2.0), ("rod_omega_z", 2.0)]
-    assert [s.score for s in graded.students] == [5.0, 4.0, 1.0, 2.0]
+    assert [s.score for s in graded.students] == [5.0, 4.0, 3.0, 1.0, 2.0]
 
 
 @pytest.mark.slow  # a grading run with error carried forward's re-solves
@@ -119,11 +121,23 @@ def test_the_first_wrong_step_is_named_on_the_objective_and_on_later_steps_not_r
     second = _answers(graded, "second")
     assert second["rod_omega_z"].first_wrong_step == "V_A_N"
     assert second["rod_omega_z"].feedback.endswith(
-        "Error carried forward could not be applied: 'V_A_N' is not a plain given quantity "
-        "the solver can take from your answer. The first wrong step of your write-up is step "
-        "2, 'V_A_N'.")
+        "Error carried forward could not be applied: your answer to 'V_A_N' is not one the "
+        "model can have with other values of y': none gives it exactly. The first wrong step "
+        "of your write-up is step 2, 'V_A_N'.")
     right = _answers(graded, "all_right")
     assert {a.first_wrong_step for a in right.values()} == {None}
+
+
+@pytest.mark.slow  # a grading run with error carried forward's re-solves
+def test_a_wrong_vector_step_gives_the_rates_that_make_it_exactly_to_the_later_steps(graded):
+    halved = _answers(graded, "halved")
+    assert [halved[k].verdict for k in ("xdot", "V_A_N", "rod_omega_z")] == [
+        "correct", "incorrect", "correct"]
+    assert halved["rod_omega_z"].diagnosis == "error carried forward"
+    assert halved["rod_omega_z"].first_wrong_step == "V_A_N"
+    assert halved["rod_omega_z"].feedback == (
+        "Error carried forward: this answer follows correctly from your answer to V_A_N and "
+        "earns 100% of the points. The first wrong step of your write-up is step 2, 'V_A_N'.")
 
 
 @pytest.mark.slow  # a grading run with error carried forward's re-solves

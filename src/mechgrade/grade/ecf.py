@@ -17,6 +17,8 @@ import math
 from dataclasses import replace
 from typing import TYPE_CHECKING, Callable, Iterable, Protocol
 
+import numpy as np
+
 from ..errors import InconsistentError, MechgradeError
 from ..expressions.syntax import Call, Name, Prime
 from ..parallel import fork_map
@@ -110,8 +112,15 @@ class CarriedForward:
                         earlier: dict[str, AnswerResult]) -> dict[str, float] | str:
         """The givens (SI, by given key) the student's wrong upstream answers stand for, or
         the feedback saying why error carried forward cannot use them."""
+        found = self._upstream(plan, item, submission, earlier)
+        return found if isinstance(found, str) else found[0]
+
+    def _upstream(self, plan: Plan, item: PlannedObjective, submission: Submission,
+                  earlier: dict[str, AnswerResult]) -> tuple[dict[str, float], list[str]] | str:
+        """:meth:`upstream_givens`, and the upstream objectives they come from."""
         problem = item.problem
         overrides: dict[str, float] = {}
+        used: list[str] = []
         for upstream_id in item.objective.depends_on:
             key = f"{problem.id}.{upstream_id}"
             upstream = earlier.get(key)
@@ -136,6 +145,13 @@ class CarriedForward:
             if objective is None:
                 continue
             given_key = given_key_of(objective)
+            if given_key is None and objective.kind == ObjectiveKind.VECTOR:
+                found = self.vector_givens(plan, item, upstream_id, upstream_text)
+                if isinstance(found, str):
+                    return found
+                overrides.update(found)
+                used.append(upstream_id)
+                continue
             if given_key is None:
                 return (f"Error carried forward could not be applied: '{upstream_id}' is not a "
                         f"plain given quantity the solver can take from your answer.")
@@ -144,7 +160,63 @@ class CarriedForward:
                 return (f"Error carried forward could not be applied: your answer to "
                         f"'{upstream_id}' could not be read as a number.")
             overrides[given_key] = value
-        return overrides
+            used.append(upstream_id)
+        return overrides, used
+
+    def vector_givens(self, plan: Plan, item: PlannedObjective, upstream_id: str,
+                      text: str) -> dict[str, float] | str:
+        """The given rates (SI, by given key) a student's vector answer to ``upstream_id``
+        stands for, or the feedback saying why error carried forward cannot use it.
+
+        A velocity (an acceleration) at the instant is affine in the given rates (second
+        rates) of the problem: the vector's change with each is measured by re-solving, and
+        the rates that give the student's vector are found by least squares. They are used
+        only when they give it exactly (within the objective's tolerance) and are the only
+        ones that do; otherwise the vector is not one the model can have with other rates."""
+        problem = item.problem
+        reference = _reference(plan, problem, upstream_id)
+        student = _si_vector(text, reference)
+        refused = f"Error carried forward could not be applied: your answer to '{upstream_id}'"
+        if student is None:
+            return f"{refused} could not be read as a vector in its own frame's unit vectors."
+        base = {**{g.key.text: g.si for g in problem.givens}, **dict(item.givens)}
+        at = self._vector(problem, base, upstream_id)
+        if at is None:
+            return f"{refused} cannot be recomputed at the problem's givens."
+        for order in (2, 1):
+            keys = [g.key.text for g in problem.givens if _order(g.key.text) == order]
+            columns = []
+            for key in keys:
+                moved = self._vector(problem, {**base, key: base[key] + 1.0}, upstream_id)
+                if moved is None:
+                    return f"{refused} cannot be recomputed with another {key}."
+                columns.append(moved - at)
+            if not columns:
+                continue
+            J = np.array(columns).T
+            if not np.abs(J).max() > 0:
+                continue
+            delta, *_ = np.linalg.lstsq(J, student - at, rcond=None)
+            miss = float(np.linalg.norm(J @ delta - (student - at)))
+            size = float(np.linalg.norm(student))
+            if np.linalg.matrix_rank(J) < len(keys):
+                return (f"{refused} does not fix {listing(keys)}: more than one set of them "
+                        f"gives it.")
+            if miss > reference.rel * size + _si_abs(reference) + 1e-12:
+                return (f"{refused} is not one the model can have with other values of "
+                        f"{listing(keys)}: none gives it exactly.")
+            return {key: base[key] + float(d) for key, d in zip(keys, delta)}
+        return f"{refused} does not change with any given rate of the problem."
+
+    def _vector(self, problem: Problem, givens: dict, objective_id: str):
+        solution, _ = self.solve_with(problem, givens, objective_id)
+        if isinstance(solution, MechgradeError):
+            return None
+        try:
+            value = solution.result(objective_id).value
+        except (KeyError, MechgradeError):
+            return None
+        return np.array(value, dtype=float) if value is not None else None
 
     def carry_forward(self, plan: Plan, item: PlannedObjective, text: str,
                       submission: Submission, earlier: dict[str, AnswerResult],
@@ -153,10 +225,11 @@ class CarriedForward:
         """Judge ``text`` again against the reference recomputed from the student's own
         (wrong) upstream answers; keep the better credit (``feedback`` says which)."""
         problem = item.problem
-        overrides = self.upstream_givens(plan, item, submission, earlier)
-        if isinstance(overrides, str):
-            feedback.append(overrides)
+        found = self._upstream(plan, item, submission, earlier)
+        if isinstance(found, str):
+            feedback.append(found)
             return verdict, credit
+        overrides, used = found
         if not overrides:
             return verdict, credit
         answered = sorted(overrides)
@@ -179,8 +252,6 @@ class CarriedForward:
             return verdict, credit
         again = self._judging.assess(text, recomputed)
         ecf_credit = float(again.credit) * self.policy.ecf.credit
-        used = [u for u in item.objective.depends_on
-                if (o := upstream_objective(problem, u)) is not None and given_key_of(o) in answered]
         upstream_names = listing(sorted(used or item.objective.depends_on))
         if again.verdict in (Verdict.CORRECT, Verdict.PARTIAL) and ecf_credit > credit:
             instead = f" (used in place of {listing(replaced)})" if replaced else ""
@@ -333,6 +404,29 @@ def _si_value(text: str, result: ObjectiveResult) -> float | None:
     except MechgradeError:
         return None
     return value if math.isfinite(value) else None
+
+
+def _si_vector(text: str, result: ObjectiveResult):
+    """The student's vector answer in SI components along the objective's frame, or
+    ``None`` (not a vector, or along another frame's unit vectors)."""
+    from ..units import to_si
+    from .answers import VectorAnswer, read_answer
+
+    try:
+        answer = read_answer(text, result)
+        if not isinstance(answer, VectorAnswer) or answer.frame not in (None, result.frame):
+            return None
+        unit = answer.unit if answer.unit is not None else result.unit
+        value = np.array([to_si(c, unit) for c in answer.components], dtype=float)
+    except MechgradeError:
+        return None
+    return value if np.isfinite(value).all() else None
+
+
+def _si_abs(result: ObjectiveResult) -> float:
+    from ..units import to_si
+
+    return to_si(result.abs, result.unit) if result.abs else 0.0
 
 
 def listing(items) -> str:
