@@ -191,11 +191,12 @@ class CarriedForward:
                 if moved is None:
                     return f"{refused} cannot be recomputed with another {key}."
                 columns.append(moved - at)
+            # the rates the vector changes with: it says nothing of the others
+            keys = [k for k, c in zip(keys, columns) if np.abs(c).max() > 0]
+            columns = [c for c in columns if np.abs(c).max() > 0]
             if not columns:
                 continue
             J = np.array(columns).T
-            if not np.abs(J).max() > 0:
-                continue
             delta, *_ = np.linalg.lstsq(J, student - at, rcond=None)
             miss = float(np.linalg.norm(J @ delta - (student - at)))
             size = float(np.linalg.norm(student))
