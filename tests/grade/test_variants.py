@@ -417,3 +417,41 @@ def test_a_dynamics_problem_with_variants_is_checked_and_graded_per_student(tmp_
     assert verdicts["102"] == {o: ("incorrect", OTHER_VARIANT) for o in
                                ("alpha", "pin_force", "pin_force_along_rod")}
     assert mine != book
+
+
+# ---------------------------------------------------------------------------- over processes
+
+
+def _solved_class(students, jobs, monkeypatch):
+    from types import SimpleNamespace
+
+    from mechgrade.grade import variants
+
+    monkeypatch.setattr(variants, "_SOLVED", {})
+    assignment = load_assignment(HW2 / "assignment.yaml")
+    variants.prepare_variants(SimpleNamespace(assignment=assignment,
+                                              problems=(load_problem(PENDULUM),)),
+                              students, jobs)
+    return {key[2]: (variant, solution.results)
+            for key, (variant, solution) in variants._SOLVED.items()}
+
+
+@pytest.mark.slow  # two class solves, a process forked
+def test_a_class_solved_over_two_processes_is_solved_as_in_one(monkeypatch):
+    students = [f"s{n}" for n in range(9)]
+    apart = _solved_class(students, 2, monkeypatch)
+    assert sorted(apart) == sorted(students)
+    assert apart == _solved_class(students, 1, monkeypatch)
+
+
+def test_students_drawing_equal_numbers_are_solved_in_one_group():
+    from mechgrade.grade.variants import _groups
+
+    problem = load_problem(PENDULUM)
+    students = [str(n) for n in range(60)]
+    groups = _groups(problem, "fall", students, 2)
+    assert [s for g in groups for s in g] == students  # in order, none lost
+    drawn = [{draw_variant(problem, "fall", s).overrides for s in g} for g in groups]
+    assert len(groups) == 2 and not drawn[0] & drawn[1]
+    # the grid repeats numbers among 60 students: some group holds two equal draws
+    assert sum(len(g) for g in groups) > sum(len(d) for d in drawn)
