@@ -344,8 +344,8 @@ def _solved_or_left(problem: Problem, seed: str, redraw: bool,
 
 
 def _groups(problem: Problem, seed: str, students: list[str], count: int) -> list[list[str]]:
-    """``students`` in ``count`` groups of about equal size, in their order, those who draw
-    equal numbers in one group (solved once: their solution is one)."""
+    """``students`` in ``count`` groups of about equal size, those who draw equal numbers in
+    one group (solved once: their solution is one)."""
     drawn: dict[tuple, list[str]] = {}
     for student in students:
         try:
