@@ -455,3 +455,16 @@ def test_students_drawing_equal_numbers_are_solved_in_one_group():
     assert len(groups) == 2 and not drawn[0] & drawn[1]
     # the grid repeats numbers among 60 students: some group holds two equal draws
     assert sum(len(g) for g in groups) > sum(len(d) for d in drawn)
+
+
+def test_students_whose_numbers_cannot_be_drawn_are_each_kept_in_a_group():
+    from mechgrade.grade.variants import _groups
+
+    problem = load_problem_text(base_with("""
+variants:
+  draw:
+    L: {from: 1 m, to: 2 m, step: 0.5 m}
+  require: ["L > 5"]
+"""), "p.yaml")
+    groups = _groups(problem, "s", ["a", "b", "c"], 2)
+    assert groups == [["a", "b"], ["c"]]  # none lost: student_variants reports each

@@ -348,6 +348,7 @@ def _groups(problem: Problem, seed: str, students: list[str], count: int) -> lis
     one group (solved once: their solution is one)."""
     drawn: dict[tuple, list[str]] = {}
     for student in students:
+        key: tuple
         try:
             key = tuple(sorted(draw_variant(problem, seed, student).overrides))
         except MechgradeError:
