@@ -99,13 +99,16 @@ def test_a_draw_that_breaks_a_condition_is_replaced_by_the_next_draw_index():
     assert draw_variant(problem, "x", late, start=first.index).index == first.index
 
 
-def test_an_unsatisfiable_condition_says_so():
-    problem = load_problem_text(base_with("""
+UNSATISFIABLE = """
 variants:
   draw:
     L: {from: 1 m, to: 2 m, step: 0.5 m}
   require: ["L > 5"]
-"""), "p.yaml")
+"""
+
+
+def test_an_unsatisfiable_condition_says_so():
+    problem = load_problem_text(base_with(UNSATISFIABLE), "p.yaml")
     with pytest.raises(SolveError, match=r"no draw of problem 'base' meets its conditions "
                                           r"\(L > 5\) in 1000 tries"):
         draw_variant(problem, "s", "a")
@@ -460,11 +463,6 @@ def test_students_drawing_equal_numbers_are_solved_in_one_group():
 def test_students_whose_numbers_cannot_be_drawn_are_each_kept_in_a_group():
     from mechgrade.grade.variants import _groups
 
-    problem = load_problem_text(base_with("""
-variants:
-  draw:
-    L: {from: 1 m, to: 2 m, step: 0.5 m}
-  require: ["L > 5"]
-"""), "p.yaml")
+    problem = load_problem_text(base_with(UNSATISFIABLE), "p.yaml")
     groups = _groups(problem, "s", ["a", "b", "c"], 2)
     assert groups == [["a", "b"], ["c"]]  # none lost: student_variants reports each
