@@ -351,15 +351,19 @@ class DynamicsInterpreter(Interpreter):
                              "accelerations and reactions", where=self.where)
         q, qd = k.q[0], k.qd[0]
         rest = {qd: 0}
-        # A x = b  =>  A dx/ds = db/ds - dA/ds x  (s = q or q'): differentiate the balances,
-        # not a solved (and much larger) expression
-        x = A.LUsolve(b)
+        # q'' by Cramer's rule with division-free (Berkowitz) determinants: an elimination's
+        # pivot that is not zero in symbols may be zero at the instant (a reaction's
+        # coefficient m L/2 sin(theta) at theta = 0), and q'' would be 0/0 there; det(A) is
+        # zero only where the balances do not fix the motion
+        top = A.copy()
+        top[:, 0] = b
+        numerator, denominator = top.det(method="berkowitz"), A.det(method="berkowitz")
 
         def rate(s):
-            dx = A.LUsolve(b.diff(s) - A.diff(s) * x)
-            return dx[0].xreplace(rest)
+            return ((numerator.diff(s) * denominator - numerator * denominator.diff(s))
+                    / denominator ** 2).xreplace(rest)
 
-        equilibrium = x[0].xreplace(rest)
+        equilibrium = (numerator / denominator).xreplace(rest)
         stiffness, damping = _linear_term(-rate(q)), _linear_term(-rate(qd))
         requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
                        "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
