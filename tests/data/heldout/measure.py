@@ -87,7 +87,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
     "spring_energy_difference": (),
-    "spring_term_dropped": (),
+    "spring_term_dropped": ("spring_omitted",),
     "gravity_dropped": ("weight_omitted",),
     "ke_conserved": ("restitution_ignored",),
     "head_on": (),
