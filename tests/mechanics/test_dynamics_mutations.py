@@ -440,3 +440,16 @@ def test_static_friction_as_mu_m_g_is_named():
     result = _solution("cylinder_pulled_rolls").result("friction")
     judged = assess(f"{-0.2 * 20 * 9.81:.4g} N", result)
     assert judged.diagnosis == LABELS["normal_from_weight"]
+
+
+def test_a_contact_is_taken_smooth_only_where_it_rolls():
+    assert "contact_taken_smooth" in _codes("cylinder_pulled_rolls")
+    assert "contact_taken_smooth" not in _codes("block_sliding_down_incline")
+
+
+@pytest.mark.slow
+def test_a_rolling_contact_taken_smooth_names_the_sliding_acceleration():
+    # the cylinder (20 kg) pulled by P = 60 N at its centre slides without friction: a = P/m
+    result = _solution("cylinder_pulled_rolls").result("acceleration")
+    judged = assess(f"{60 / 20:.4g} m/s^2", result)
+    assert judged.diagnosis == LABELS["contact_taken_smooth"]

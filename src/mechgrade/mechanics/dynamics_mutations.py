@@ -957,6 +957,37 @@ def static_friction_as_mu_m_g(problem: Problem, model: Model) -> Iterator[Dynami
                 term_unit="N")
 
 
+def contact_taken_smooth(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A contact that rolls without slip taken as smooth: its static friction left out, and
+    with it the rolling (the body slides, a = P/m for a pulled wheel); the objectives about
+    the friction itself left out (it has none)."""
+    d = dynamics_of(problem)
+    for f in d.friction:
+        if not isinstance(f, StaticFriction):
+            continue
+        # the rolling constraints at the contact: vel(coincident(C, B), N) = ...
+        rolling = [c for c in problem.constraints if c.level == "velocity"
+                   and isinstance(c.lhs.node, Call) and c.lhs.node.func == "vel"
+                   and isinstance(c.lhs.node.args[0], Call)
+                   and c.lhs.node.args[0].func == "coincident"
+                   and c.lhs.node.args[0].args[0] == Name(f.at)]
+        if not rolling:
+            continue
+        smooth = replace(problem, constraints=tuple(c for c in problem.constraints
+                                                    if c not in rolling))
+        mistaken = _mistaken(smooth, replace(d, friction=tuple(
+            x for x in d.friction if x is not f)))
+        objectives = tuple(o for o in mistaken.objectives
+                           if not any(n == Name(f.name) for n in walk(o.find.node)))
+        if objectives:
+            yield DynamicsMutation(
+                "contact_taken_smooth", f"Your value takes the contact at {f.at} as smooth: "
+                f"the friction {f.name} (= {{term}}) keeps {f.on} from slipping there, and "
+                "belongs in its balances with the rolling condition.", LOADS,
+                problem=replace(mistaken, objectives=objectives),
+                term=_expr(f"mag(force({f.name}))"), term_unit="N")
+
+
 def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A kinetic-friction contact between two bodies (a block sliding on a cart) with the
     body it slides on taken as fixed: the friction acts on the slider only, its reaction on
@@ -1146,7 +1177,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
-    static_friction_as_mu_m_g, spring_omitted, load_at_other_point)
+    static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -38,7 +38,7 @@ from .symbols import identically_zero
 LOAD_CODES = {LoadKind.WEIGHT: ("weight_omitted", "mass_for_weight", "weight_for_mass",
                                "load_at_other_point"),
               LoadKind.KINETIC_FRICTION: ("friction_reversed", "surface_taken_fixed"),
-              LoadKind.STATIC_FRICTION: ("friction_reversed",),
+              LoadKind.STATIC_FRICTION: ("friction_reversed", "contact_taken_smooth"),
               LoadKind.SPRING: ("spring_free_length_omitted", "springs_in_series",
                                 "spring_omitted", "load_at_other_point"),
               LoadKind.DAMPER: ("damping_omitted",),
