@@ -865,18 +865,23 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
     """Each spring left out of the free-body diagrams (and of the energy), one at a time."""
     d = dynamics_of(problem)
     for spring in d.springs:
-        mistaken = _mistaken(problem, replace(d, springs=tuple(
-            s for s in d.springs if s is not spring)))
-        # an objective about the spring itself (its force, its energy) has no value without it
-        objectives = tuple(o for o in mistaken.objectives
-                           if not any(n == Name(spring.name) for n in walk(o.find.node)))
-        if objectives:
+        mistaken = _without_load(problem, replace(d, springs=tuple(
+            s for s in d.springs if s is not spring)), spring.name)
+        if mistaken is not None:
             yield DynamicsMutation(
                 "spring_omitted", f"Your value is what the balances give without the spring "
                 f"{spring.name} (k = {{term}}): its force, and its energy in a work-energy "
-                "balance, belong in the equations.", LOADS,
-                problem=replace(mistaken, objectives=objectives),
+                "balance, belong in the equations.", LOADS, problem=mistaken,
                 term=spring.stiffness, term_unit="N/m")
+
+
+def _without_load(problem: Problem, dynamics: Dynamics, load: str) -> Problem | None:
+    """The mistaken copy of a model with ``load`` left out, without the objectives about the
+    load itself (its force, its energy have no value there); ``None`` when none is left."""
+    mistaken = _mistaken(problem, dynamics)
+    objectives = tuple(o for o in mistaken.objectives
+                       if not any(n == Name(load) for n in walk(o.find.node)))
+    return replace(mistaken, objectives=objectives) if objectives else None
 
 
 def load_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -975,17 +980,14 @@ def contact_taken_smooth(problem: Problem, model: Model) -> Iterator[DynamicsMut
             continue
         smooth = replace(problem, constraints=tuple(c for c in problem.constraints
                                                     if c not in rolling))
-        mistaken = _mistaken(smooth, replace(d, friction=tuple(
-            x for x in d.friction if x is not f)))
-        objectives = tuple(o for o in mistaken.objectives
-                           if not any(n == Name(f.name) for n in walk(o.find.node)))
-        if objectives:
+        mistaken = _without_load(smooth, replace(d, friction=tuple(
+            x for x in d.friction if x is not f)), f.name)
+        if mistaken is not None:
             yield DynamicsMutation(
                 "contact_taken_smooth", f"Your value takes the contact at {f.at} as smooth: "
                 f"the friction {f.name} (= {{term}}) keeps {f.on} from slipping there, and "
                 "belongs in its balances with the rolling condition.", LOADS,
-                problem=replace(mistaken, objectives=objectives),
-                term=_expr(f"mag(force({f.name}))"), term_unit="N")
+                problem=mistaken, term=_expr(f"mag(force({f.name}))"), term_unit="N")
 
 
 def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
