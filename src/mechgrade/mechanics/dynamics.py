@@ -27,8 +27,8 @@ from sympy.physics.vector import Dyadic, ReferenceFrame, Vector, dynamicsymbols
 from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
-                             Integration, KineticFriction, Reaction, Restitution, Spring,
-                             StaticFriction, dynamics_of)
+                             Integration, KineticFriction, LoadKind, Reaction, Restitution,
+                             Spring, StaticFriction, dynamics_of)
 from ..spec.model import ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
@@ -351,15 +351,19 @@ class DynamicsInterpreter(Interpreter):
                              "accelerations and reactions", where=self.where)
         q, qd = k.q[0], k.qd[0]
         rest = {qd: 0}
-        # A x = b  =>  A dx/ds = db/ds - dA/ds x  (s = q or q'): differentiate the balances,
-        # not a solved (and much larger) expression
-        x = A.LUsolve(b)
+        # q'' by Cramer's rule with division-free (Berkowitz) determinants: an elimination's
+        # pivot that is not zero in symbols may be zero at the instant (a reaction's
+        # coefficient m L/2 sin(theta) at theta = 0), and q'' would be 0/0 there; det(A) is
+        # zero only where the balances do not fix the motion
+        top = A.copy()
+        top[:, 0] = b
+        numerator, denominator = top.det(method="berkowitz"), A.det(method="berkowitz")
 
         def rate(s):
-            dx = A.LUsolve(b.diff(s) - A.diff(s) * x)
-            return dx[0].xreplace(rest)
+            return ((numerator.diff(s) * denominator - numerator * denominator.diff(s))
+                    / denominator ** 2).xreplace(rest)
 
-        equilibrium = x[0].xreplace(rest)
+        equilibrium = (numerator / denominator).xreplace(rest)
         stiffness, damping = _linear_term(-rate(q)), _linear_term(-rate(qd))
         requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
                        "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
@@ -557,6 +561,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until = _analysis(problem, model, language, k)
+    weights = _weight_potentials(d, model, language, k)
     steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
              ("Momentum balances", tuple(f"{e.label}: {sp.sstr(e.expr)} = 0" for e in balances)),
              ("Unknown reactions", tuple(labels) or ("none",)))
@@ -564,10 +569,12 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     labels=tuple(labels), balances=tuple(balances),
                     objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
                     slips=tuple(slips), steps=steps,
-                    energy=model.plain(_energy(problem, language)),
+                    energy=model.plain(_energy(problem, language)) + sum(
+                        weights.values(), sp.Integer(0)),
                     nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
                                                            *d.friction)
-                                          if not isinstance(x, StaticFriction)),
+                                          if not isinstance(x, StaticFriction)
+                                          and x.name not in weights),
                     workless=_workless(problem, model, language, reactions, labels),
                     start=start, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
@@ -767,6 +774,21 @@ def _energy(problem: Problem, language: DynamicsInterpreter):
     energy = sum((language._fn_ke(Name(b.name), N_node) + language._fn_pe(Name(b.name))
                   for b in d.bodies), sp.Integer(0))
     return energy + sum((language._fn_pe(Name(s.name)) for s in d.springs), sp.Integer(0))
+
+
+def _weight_potentials(d: Dynamics, model: Model, language, k: Kinematics) -> dict:
+    """Each weight written as a force whose vector does not change with the motion -> its
+    potential energy -W·r (a constant force is conservative), for a work-energy balance."""
+    moving = {*k.q, *k.qd, dynamicsymbols._t}
+    out = {}
+    for f in d.forces:
+        if f.kind != LoadKind.WEIGHT:
+            continue
+        weight = language.vector(f.force)
+        if any(model.plain(c).free_symbols & moving for c in weight.to_matrix(model.inertial)):
+            continue
+        out[f.name] = model.plain(-(weight & model.positions[f.at]))
+    return out
 
 
 def _workless(problem: Problem, model: Model, language, reactions: dict, labels: list[str]):

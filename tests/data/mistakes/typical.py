@@ -429,11 +429,9 @@ def damped_pendulum():
             entry("zeta", "weight's moment without g", num(zeta_m, "1"), "mass_for_weight"),
             entry("damped_period", "weight's moment without g",
                   num(2 * math.pi / (wn_m * math.sqrt(1 - zeta_m**2)), "s"), "mass_for_weight"),
-            # the solver's linearisation of the mistaken model is 0/0 at θ = 0: not named
-            # yet; it is exactly twice the answer (I_O = 4 I_G), which is all that is said
             entry("omega_n", "I_G = m L²/12 used about the pin O",
                   num(math.sqrt((m * g * L / 2) / (m * L**2 / 12)), "rad/s"),
-                  "central_inertia_at_pivot", known="generic", generic=("factor_2",))]
+                  "central_inertia_at_pivot")]
 
 
 def ladder_lift_off():
