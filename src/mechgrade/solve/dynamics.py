@@ -95,6 +95,9 @@ def _lambdify(symbols, expr):
 
 def kinetics_plan(problem: Problem) -> KineticsPlan:
     """Derive and lambdify ``problem``'s kinetics once."""
+    dynamics = problem.dynamics
+    if dynamics is not None and dynamics.set_aside:  # the same kinetics, solved otherwise
+        problem = replace(problem, dynamics=replace(dynamics, set_aside=False))
     return _kinetics_plan(problem, locations(problem))
 
 
