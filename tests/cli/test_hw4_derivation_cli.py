@@ -35,6 +35,13 @@ def test_grading_hw4_writes_the_steps_the_loads_and_the_equations(graded):
     pin = next(a for a in carla["answers"] if a["objective"] == "pin_force")
     assert (pin["verdict"], pin["diagnosis"], pin["first_wrong_step"]) == (
         "correct", "error carried forward", "omega")
+    noor = next(s for s in data["students"] if s["id"] == "noor")
+    pin = next(a for a in noor["answers"] if a["objective"] == "pin_force")
+    assert (pin["verdict"], pin["diagnosis"], pin["feedback"]) == (
+        "correct", "error carried forward",
+        "Error carried forward: this answer follows correctly from your answer to alpha (used "
+        "in place of the balance that gives theta'') and earns 100% of the points. The first "
+        "wrong step of your write-up is step 2, 'alpha'.")
     with open(out / "results.csv", newline="", encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
     mia = {(r["problem"], r["objective"]): r for r in rows if r["student"] == "mia"}
