@@ -34,21 +34,19 @@ def graded(tmp_path_factory):
 
 
 @pytest.mark.slow  # a grading run with error carried forward's re-solves
-def test_a_tension_two_blocks_balances_give_differently_is_not_carried_forward(graded):
-    tension = graded["tension"]
-    assert (tension.verdict, tension.diagnosis, tension.first_wrong_step) == (
-        "incorrect", None, "a1")
-    assert ("Error carried forward could not be applied: with your y'' the problem cannot be "
-            "solved (with the given y'', the momentum balances left do not determine T (along "
-            "N.y): setting aside the force balance of block1 gives T (along N.y) = "
-            ) in tension.feedback
-
-
-@pytest.mark.slow  # a grading run with error carried forward's re-solves
-def test_an_acceleration_of_an_integrated_motion_is_not_carried_forward(graded):
-    distance = graded["distance"]
-    assert (distance.verdict, distance.diagnosis, distance.first_wrong_step) == (
-        "incorrect", None, "deceleration")
-    assert ("Error carried forward could not be applied: your x'' is an acceleration at one "
-            "instant of a motion integrated from its start, which it does not change."
-            ) in distance.feedback
+@pytest.mark.parametrize("objective, step, said", [
+    # two blocks: setting aside either one's balance gives its own tension
+    ("tension", "a1", "Error carried forward could not be applied: with your y'' the problem "
+                      "cannot be solved (with the given y'', the momentum balances left do not "
+                      "determine T (along N.y): setting aside the force balance of block1 gives "
+                      "T (along N.y) = "),
+    ("distance", "deceleration", "Error carried forward could not be applied: your x'' is an "
+                                 "acceleration at one instant of a motion integrated from its "
+                                 "start, which it does not change."),
+])
+def test_a_wrong_acceleration_the_later_answers_do_not_follow_from_is_not_carried_forward(
+        graded, objective, step, said):
+    answer = graded[objective]
+    assert (answer.verdict, answer.diagnosis, answer.first_wrong_step) == (
+        "incorrect", None, step)
+    assert said in answer.feedback
