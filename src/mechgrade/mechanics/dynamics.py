@@ -91,6 +91,7 @@ class Kinetics:
     impact: bool = False
     design: sp.Expr | None = None
     physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
+    whens: tuple[tuple[str, sp.Expr], ...] = ()  # objective id -> lhs - rhs of its 'when'
     built: tuple = field(default=(), compare=False, repr=False)  # (model, loads) it came from
 
     @property
@@ -572,6 +573,8 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     start=start, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
                     physical=physical_bounds(problem, model, reactions, impact),
+                    whens=tuple((o.id, _difference(o.when, model, language))
+                                for o in problem.objectives if o.when is not None),
                     built=(model, loads))
 
 

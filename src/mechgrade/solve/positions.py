@@ -1,0 +1,141 @@
+"""Where an objective asked ``when: lhs = rhs`` is read: the first position the motion from the
+work–energy start reaches where the equation holds (a wall's reaction vanishing, a speed
+reached), the rates there from the energy balance.
+
+The equation is written in the position alone: the unknown second rates and reactions solved
+from the momentum balances, the rate from the energy integral (one coordinate without
+constraints, :func:`~.work_energy.energy_rate_symbolic`). The position is found numerically,
+walking from the start the way ``sense`` says until the equation changes sign (or the motion
+turns back), then refined; a symbolic objective gets the closed-form root that is that
+position, when sympy finds one.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.solve.instant import instant_givens
+>>> problem = load_problem(shipped_dir("problems") / "ruina_9_20_ladder_energy.yaml")
+>>> round(float(np.degrees(position_where(problem, "theta_wall_lost",
+...                                         instant_givens(problem, None, {})))), 4)
+41.0364
+>>> position_symbolic(problem, "theta_wall_lost", tuple(instant_givens(problem, None, {}).items()))
+asin(2*sin(theta0)/3)
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import sympy as sp
+
+from ..errors import SolveError
+from ..expressions.syntax import Name, Prime
+from ..mechanics.dynamics import derive_kinetics
+from ..spec.dynamics import WorkEnergy
+from ..spec.model import Problem
+from ..spec.validate import is_angle_unit
+from .analysis import analysis_of
+from .work_energy import energy_rate_symbolic
+
+_STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
+_XTOL = 1e-14
+
+
+def position_where(problem: Problem, objective_id: str, given_map: dict) -> float:
+    """The coordinate's value (SI) at the first position the motion from the start reaches
+    where the objective's ``when`` holds, at the givens ``given_map`` (canonical key ->
+    ``(node, si, Given)``)."""
+    from scipy import optimize
+
+    obj = problem.objective(objective_id)
+    assert obj.when is not None, "only an objective asked 'when' has a position of its own"
+    q, numbers = _numbers(problem, given_map)
+    residual = _residual(problem, objective_id, _without_position(problem, given_map))
+    f = sp.lambdify(q, residual.xreplace(numbers), modules="numpy")
+    start = float(dict(derive_kinetics(problem).start)[q].xreplace(numbers))
+    analysis = analysis_of(problem, WorkEnergy)
+    sign = analysis.sense[0][1].sign if analysis.sense else 1
+    coordinate = problem.coordinates[0]
+    if is_angle_unit(coordinate.unit):
+        steps = np.linspace(0.0, 2 * np.pi, _STEPS + 1)  # one turn
+    else:
+        steps = np.concatenate([[0.0], max(abs(start), 1.0) * np.logspace(-6, 3, _STEPS)])
+    qs = start + sign * steps
+    with np.errstate(all="ignore"):
+        values = np.broadcast_to(np.asarray(f(qs), dtype=float), qs.shape)
+    # beyond the first undefined value the motion has turned back (no energy left to go on)
+    reached = int(np.argmin(np.isfinite(values))) if not np.isfinite(values).all() else len(qs)
+    qs, values = qs[:reached], values[:reached]
+    if values.size and values[0] == 0.0:  # holding at the start: the next crossing
+        qs, values = qs[1:], values[1:]
+    change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
+    left, right = obj.when
+    if not change.size:
+        searched = f"from {start:.6g} to {qs[-1]:.6g}" if qs.size else f"at {start:.6g}"
+        why = "where the motion turns back" if reached < len(steps) else \
+            ("one turn" if is_angle_unit(coordinate.unit) else "a thousand times its size")
+        raise SolveError(
+            f"objective '{objective_id}': '{left.text} = {right.text}' does not hold anywhere "
+            f"the motion from the start reaches (searched {coordinate.name} {searched} SI, "
+            f"{why}); check the equation, 'from' and 'sense'", where=left.where)
+    i = int(change[0])
+    if values[i] == 0.0:
+        return float(qs[i])
+    return float(optimize.brentq(lambda x: float(f(x)), qs[i], qs[i + 1], xtol=_XTOL,
+                                 rtol=4 * np.finfo(float).eps))
+
+
+def position_symbolic(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
+    """The position of :func:`position_where` in closed form (in the parameters), the root of
+    the ``when`` equation that is the numeric one at ``givens`` (items of a given map)."""
+    obj = problem.objective(objective_id)
+    assert obj.when is not None, "only an objective asked 'when' has a position of its own"
+    given_map = dict(givens)
+    q, numbers = _numbers(problem, given_map)
+    value = position_where(problem, objective_id, given_map)
+    residual = _residual(problem, objective_id, _without_position(problem, given_map))
+    for root in _roots(residual, q):
+        at = complex(sp.N(root.xreplace(numbers)))
+        if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
+            return root
+    left, right = obj.when
+    raise SolveError(f"objective '{objective_id}': '{left.text} = {right.text}' holds at "
+                     f"{problem.coordinates[0].name} = {value:.6g} (SI), but sympy finds no "
+                     "closed form for that position; ask for it as a scalar",
+                     where=left.where)
+
+
+@lru_cache(maxsize=64)
+def _roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
+    try:
+        return tuple(sp.solve(sp.factor(sp.simplify(residual)), q))
+    except NotImplementedError:  # an equation sympy cannot solve: no closed form
+        return ()
+
+
+@lru_cache(maxsize=128)
+def _residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
+    """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters."""
+    from .dynamics import kinetics_plan, solved_symbolically
+
+    kin = derive_kinetics(problem)
+    expr = solved_symbolically(problem, objective_id, givens, dict(kin.whens)[objective_id])
+    return sp.simplify(energy_rate_symbolic(problem, kinetics_plan(problem), expr, set()))
+
+
+def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
+    """The coordinate's symbol, and every other given's symbol -> its SI value."""
+    k = derive_kinetics(problem).k
+    q = k.q[0]
+    numbers = {}
+    for node, si, _ in given_map.values():
+        if isinstance(node, (Name, Prime)) and si is not None:
+            symbol = k.quantity(node)
+            if symbol != q:
+                numbers[symbol] = sp.Float(si)
+    return q, numbers
+
+
+def _without_position(problem: Problem, given_map: dict) -> tuple:
+    """The givens without the coordinate (the problem's own instant is not the one asked)."""
+    name = problem.coordinates[0].name
+    return tuple((key, value) for key, value in given_map.items() if key != name)
