@@ -505,13 +505,24 @@ def falling_ladder():
 def ladder_energy():
     th0, th = 80 * D, 45 * D
     drop = math.sin(th0) - math.sin(th)  # g = L = 1
+    lost = math.asin(2 / 3 * math.sin(th0))
+    lost_drop = math.sin(th0) - math.sin(lost)
     return [entry("vG_over_sqrt_gL", "rotational energy ½ I_G θ'² left out",
                   num(math.sqrt(drop), "1"), "rotational_ke_omitted"),
             entry("vG_over_sqrt_gL", "calculator in radian mode: sin 45",
                   num(0.5 * math.sqrt(3 * (math.sin(th0) - math.sin(45.0))), "1"),
                   "given_deg_as_rad"),
             entry("vG_over_sqrt_gL", "L θ' (the top relative to the foot) for v_G",
-                  num(math.sqrt(3 * drop), "1"), "factor_2")]
+                  num(math.sqrt(3 * drop), "1"), "factor_2"),
+            # where the wall lets go: N1 = 0 at sin θ = (2/3) sin θ0
+            entry("theta_wall_lost_deg", "angle left in radians", num(lost, "deg"),
+                  "rad_as_deg"),
+            entry("theta_wall_lost_deg", "angle measured from the wall (90 deg - θ)",
+                  num(90 - lost / D, "deg"), known="none"),
+            entry("vG_wall_lost", "rotational energy ½ I_G θ'² left out (the same angle)",
+                  num(math.sqrt(lost_drop), "1"), "rotational_ke_omitted"),
+            entry("vG_wall_lost", "L θ' (the top relative to the foot) for v_G",
+                  num(math.sqrt(3 * lost_drop), "1"), "factor_2")]
 
 
 def wheel_incline():
