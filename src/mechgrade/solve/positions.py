@@ -34,6 +34,7 @@ from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
 from ..spec.validate import is_angle_unit
 from .analysis import analysis_of
+from ..units import from_si
 from .work_energy import energy_rate_symbolic
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
@@ -70,12 +71,13 @@ def position_where(problem: Problem, objective_id: str, given_map: dict) -> floa
     change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
     left, right = obj.when
     if not change.size:
-        searched = f"from {start:.6g} to {qs[-1]:.6g}" if qs.size else f"at {start:.6g}"
+        searched = f"from {_shown(problem, start)} to {_shown(problem, qs[-1])}" \
+            if qs.size else f"at {_shown(problem, start)}"
         why = "where the motion turns back" if reached < len(steps) else \
             ("one turn" if is_angle_unit(coordinate.unit) else "a thousand times its size")
         raise SolveError(
             f"objective '{objective_id}': '{left.text} = {right.text}' does not hold anywhere "
-            f"the motion from the start reaches (searched {coordinate.name} {searched} SI, "
+            f"the motion from the start reaches (searched {coordinate.name} {searched}, "
             f"{why}); check the equation, 'from' and 'sense'", where=left.where)
     i = int(change[0])
     if values[i] == 0.0:
@@ -99,17 +101,37 @@ def position_symbolic(problem: Problem, objective_id: str, givens: tuple) -> sp.
             return root
     left, right = obj.when
     raise SolveError(f"objective '{objective_id}': '{left.text} = {right.text}' holds at "
-                     f"{problem.coordinates[0].name} = {value:.6g} (SI), but sympy finds no "
+                     f"{problem.coordinates[0].name} = {_shown(problem, value)}, but sympy finds no "
                      "closed form for that position; ask for it as a scalar",
                      where=left.where)
 
 
 @lru_cache(maxsize=64)
 def _roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
-    try:
-        return tuple(sp.solve(sp.factor(sp.simplify(residual)), q))
-    except NotImplementedError:  # an equation sympy cannot solve: no closed form
+    """The roots of the factors of ``residual`` that are polynomials of degree two at most in
+    one of q, sin q, cos q, tan q (each inverse's branches): what closes quickly. Anything
+    else (sin q and cos q together, a square root of q) has none here, since sympy's general
+    solvers can take minutes on it."""
+    u = sp.Dummy("u")
+    inverses = {sp.sin(q): lambda r: (sp.asin(r), sp.pi - sp.asin(r)),
+                sp.cos(q): lambda r: (sp.acos(r), -sp.acos(r)),
+                sp.tan(q): lambda r: (sp.atan(r), sp.atan(r) + sp.pi), q: lambda r: (r,)}
+    numerator = sp.numer(sp.together(residual))
+    if q not in numerator.free_symbols:
         return ()
+    try:
+        factors = [f for f, _ in sp.factor_list(numerator)[1]]
+    except sp.PolynomialError:  # square roots of the parameters: not a polynomial's factors
+        factors = list(sp.Mul.make_args(numerator))
+    out = []
+    for factor in factors:
+        for kernel, inverse in inverses.items():
+            plain = factor.xreplace({kernel: u})
+            if q not in plain.free_symbols and u in plain.free_symbols \
+                    and plain.is_polynomial(u) and sp.degree(plain, u) <= 2:
+                out += [root for r in sp.solve(plain, u) for root in inverse(r)]
+                break
+    return tuple(out)
 
 
 @lru_cache(maxsize=128)
@@ -139,3 +161,9 @@ def _without_position(problem: Problem, given_map: dict) -> tuple:
     """The givens without the coordinate (the problem's own instant is not the one asked)."""
     name = problem.coordinates[0].name
     return tuple((key, value) for key, value in given_map.items() if key != name)
+
+
+def _shown(problem: Problem, value: float) -> str:
+    """A value of the coordinate (SI) in its own unit, for a message."""
+    unit = problem.coordinates[0].unit
+    return f"{from_si(value, unit):.6g} {unit}"
