@@ -9,15 +9,14 @@ walking from the start the way ``sense`` says until the equation changes sign (o
 turns back), then refined; a symbolic objective gets the closed-form root that is that
 position, when sympy finds one.
 
->>> from mechgrade.spec import load_problem
->>> from mechgrade.resources import shipped_dir
->>> from mechgrade.solve.instant import instant_givens
->>> problem = load_problem(shipped_dir("problems") / "ruina_9_20_ladder_energy.yaml")
->>> round(float(np.degrees(position_where(problem, "theta_wall_lost",
-...                                         instant_givens(problem, None, {})))), 4)
-41.0364
->>> position_symbolic(problem, "theta_wall_lost", tuple(instant_givens(problem, None, {}).items()))
-asin(2*sin(theta0)/3)
+The closed forms come from the factors of the equation that are quadratics at most in the
+coordinate or one of its sines, cosines or tangents (:func:`closed_form_roots`); the ladder of
+``problems/ruina_9_20_ladder_energy.yaml`` leaves the wall at ``asin(2*sin(theta0)/3)``
+(tests/solve/test_positions.py).
+
+>>> theta, theta0 = sp.symbols("theta theta0")
+>>> closed_form_roots(sp.cos(theta) * (3 * sp.sin(theta) - 2 * sp.sin(theta0)), theta)
+(pi/2, -pi/2, asin(2*sin(theta0)/3), pi - asin(2*sin(theta0)/3))
 """
 
 from __future__ import annotations
@@ -95,7 +94,7 @@ def position_symbolic(problem: Problem, objective_id: str, givens: tuple) -> sp.
     q, numbers = _numbers(problem, given_map)
     value = position_where(problem, objective_id, given_map)
     residual = _residual(problem, objective_id, _without_position(problem, given_map))
-    for root in _roots(residual, q):
+    for root in closed_form_roots(residual, q):
         at = complex(sp.N(root.xreplace(numbers)))
         if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
             return root
@@ -107,7 +106,7 @@ def position_symbolic(problem: Problem, objective_id: str, givens: tuple) -> sp.
 
 
 @lru_cache(maxsize=64)
-def _roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
+def closed_form_roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
     """The roots of the factors of ``residual`` that are polynomials of degree two at most in
     one of q, sin q, cos q, tan q (each inverse's branches): what closes quickly. Anything
     else (sin q and cos q together, a square root of q) has none here, since sympy's general
