@@ -133,14 +133,21 @@ def closed_form_roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
     return tuple(out)
 
 
-@lru_cache(maxsize=128)
 def _residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
-    """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters."""
+    """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters, worked
+    out once for every objective asked at the same equation."""
+    whens = derive_kinetics(problem).whens
+    equation = dict(whens)[objective_id]
+    return _solved_residual(problem, next(oid for oid, e in whens if e == equation), givens)
+
+
+@lru_cache(maxsize=128)
+def _solved_residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
     from .dynamics import kinetics_plan, solved_symbolically
 
     kin = derive_kinetics(problem)
     expr = solved_symbolically(problem, objective_id, givens, dict(kin.whens)[objective_id])
-    return sp.simplify(energy_rate_symbolic(problem, kinetics_plan(problem), expr, set()))
+    return sp.expand(energy_rate_symbolic(problem, kinetics_plan(problem), expr, set()))
 
 
 def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
@@ -157,9 +164,12 @@ def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
 
 
 def _without_position(problem: Problem, given_map: dict) -> tuple:
-    """The givens without the coordinate (the problem's own instant is not the one asked)."""
+    """The givens the equation's symbolic solution depends on (those that stand in for a
+    symbol, :func:`~.dynamics.solved_symbolically`: zeros and rates), without the coordinate
+    (the problem's own instant is not the one asked): one key for every variant."""
     name = problem.coordinates[0].name
-    return tuple((key, value) for key, value in given_map.items() if key != name)
+    return tuple(sorted((key, (node, si, None)) for key, (node, si, _) in given_map.items()
+                        if key != name and (si == 0 or isinstance(node, Prime))))
 
 
 def _shown(problem: Problem, value: float) -> str:
