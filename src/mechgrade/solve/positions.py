@@ -115,7 +115,7 @@ def closed_form_roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
     inverses = {sp.sin(q): lambda r: (sp.asin(r), sp.pi - sp.asin(r)),
                 sp.cos(q): lambda r: (sp.acos(r), -sp.acos(r)),
                 sp.tan(q): lambda r: (sp.atan(r), sp.atan(r) + sp.pi), q: lambda r: (r,)}
-    numerator = sp.numer(sp.together(residual))
+    numerator = sp.numer(sp.together(sp.simplify(residual)))
     if q not in numerator.free_symbols:
         return ()
     try:
