@@ -86,3 +86,15 @@ def test_a_position_past_a_lost_contact_is_refused_as_the_contact_lost():
     with pytest.raises(SolveError) as info:
         solve(problem, objectives=["theta_wall_lost_deg"])
     assert "contact lost at A: the normal force 'N1' would be -0.008644 N" in str(info.value)
+
+
+@pytest.mark.slow
+def test_the_write_up_says_where_an_objective_asked_when_is_read(ladder):
+    from mechgrade.mechanics.dynamics import kinetics_derivation
+
+    (lines,) = [lines for title, lines in kinetics_derivation(ladder)
+                if title == "Objectives in the model's quantities"]
+    assert "theta_wall_lost_deg: theta = theta, at the first position from the start where " \
+        "dot(force(N1), N.x) = 0 (the rate from the energy balance)" in lines
+    assert lines[0] == "vG_over_sqrt_gL: speed(G, N)/sqrt(g*L) = " \
+        "sqrt(L**2*thetad**2*sin(theta)**2/4 + L**2*thetad**2*cos(theta)**2/4)/(sqrt(L)*sqrt(g))"

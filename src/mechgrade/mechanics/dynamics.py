@@ -881,6 +881,15 @@ def how_the_instant(problem: Problem) -> str:
     return "the givens state the configuration and the rates at the instant"
 
 
+def _where_asked(objective) -> str:
+    """Where an objective asked ``when`` is read, for the write-up."""
+    if objective.when is None:
+        return ""
+    left, right = objective.when
+    return (f", at the first position from the start where {left.text} = {right.text} "
+            "(the rate from the energy balance)")
+
+
 def kinetics_derivation(problem: Problem, dof: int | None = None):
     """The write-up of a dynamics problem: the kinematics, then bodies (with the parallel-axis
     shifts), free-body loads, momentum balances, the unknowns and how they are solved, and
@@ -895,7 +904,7 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
               f"{len(kin.balances)} momentum balances and {len(kin.constraints)} "
               f"{level}-level constraints, linear in the unknowns, solved together "
               "(rank and every equation checked)")
-    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
+    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}{_where_asked(o)}"
                        for o, (_, value) in zip(problem.objectives, kin.objectives))
     return (*kinematics[:-2], *kin.steps, ("Solution", solved),
             ("Objectives in the model's quantities", objectives))
