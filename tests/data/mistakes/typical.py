@@ -929,7 +929,11 @@ SYMBOLIC = {
               "restitution_ignored")],
     "ruina_9_20_ladder_energy": [
         entry("vG_symbolic", "rotational energy left out: ½ m v² = m g (L/2)(sin θ0 - sin θ)",
-              "sqrt(g*L*(sin(theta0) - sin(theta)))", "rotational_ke_omitted")],
+              "sqrt(g*L*(sin(theta0) - sin(theta)))", "rotational_ke_omitted"),
+        entry("theta_wall_lost", "sine and cosine swapped: cos θ = (2/3) sin θ0",
+              "acos(2*sin(theta0)/3)", known="none"),
+        entry("theta_wall_lost", "the factor cos θ set to zero: the ladder upright",
+              "pi/2", known="none")],
     "ruina_9_21_wheel_incline": [
         entry("aG_symbolic", "moments about C with I_G = m r²/2 + M R²",
               "2*g*r^2*(m + 2*M)*sin(theta)/(m*r^2 + 2*M*R^2)", "central_inertia_at_pivot")],
