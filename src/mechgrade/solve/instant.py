@@ -403,21 +403,31 @@ def _store_answer(key: str, answer: ObjectiveResult) -> None:
         cache.store(key, data)
 
 
+@dataclass(frozen=True)
+class BearingGivens:
+    """The disk cache's entry of :func:`_bearing_givens`: the givens a symbolic answer bears
+    on (``None``: it cannot tell, every given may)."""
+
+    bearing: frozenset[str] | None
+
+
 def _bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None:
     """:func:`.symbolic.bearing_givens`, kept in the disk cache under the problem: reading it
-    derives the model with sympy, which a warm solve never imports."""
+    derives the model with sympy, which a warm solve never imports. An entry that is not a
+    :class:`BearingGivens` (spoilt, or of another version) is derived and stored again."""
     problem_key = cache.problem_key(problem)
     key = None if problem_key is None else cache.digest("bearing", problem_key, objective_id)
     data = cache.load(key) if key is not None else None
-    if isinstance(data, dict) and set(data) == {"bearing"} and (
-            data["bearing"] is None or (isinstance(data["bearing"], list) and all(
-                isinstance(name, str) for name in data["bearing"]))):
-        return None if data["bearing"] is None else frozenset(data["bearing"])
+    if data is not None:
+        try:
+            return decode(BearingGivens, data).bearing
+        except ValueError:
+            pass
     from .symbolic import bearing_givens
 
     bearing = bearing_givens(problem, objective_id)
     if key is not None:
-        cache.store(key, {"bearing": None if bearing is None else sorted(bearing)})
+        cache.store(key, encode(BearingGivens(bearing)))
     return bearing
 
 
