@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 from dataclasses import dataclass
-from typing import Callable, Collection, Mapping, Protocol
+from typing import Callable, Collection, Mapping, Protocol, Sequence
 
 import numpy as np
 
@@ -511,12 +511,20 @@ def _shortest(expr) -> str:
 
 
 def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:
+    return numeric_result(obj, _report(si_values, obj), [_report(v, obj) for v in mistakes])
+
+
+def numeric_result(obj: Objective, value, mistakes: Sequence, generated: Sequence = (),
+                   plausible: frozenset[str] | None = None) -> ObjectiveResult:
+    """A numeric objective's result from its value and its declared ``mistakes``' values as
+    :func:`shown` gives them, with its ``generated`` mistakes and ``plausible`` slips: one
+    instant's, or one column's of a class."""
     return ObjectiveResult(
-        id=obj.id, kind=obj.kind, unit=obj.unit, value=_report(si_values, obj),
-        frame=obj.frame,
-        mistakes=tuple(MistakeValue(m.message, m.credit, _report(v, obj))
+        id=obj.id, kind=obj.kind, unit=obj.unit, value=value, frame=obj.frame,
+        mistakes=tuple(MistakeValue(m.message, m.credit, v)
                        for m, v in zip(obj.mistakes, mistakes)),
-        rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
+        rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt,
+        generated_mistakes=generated, plausible=plausible)
 
 
 def degrees_of_freedom(p: KinematicsPlan, state: State | None = None) -> int:
@@ -531,9 +539,26 @@ def _report(si_values: np.ndarray, obj: Objective):
     if not np.isfinite(si_values).all():
         raise SolveError(f"objective '{obj.id}' is undefined at this instant (for example a "
                          "direction of motion when the speed is zero)", where=obj.where)
+    return shown(np.asarray(si_values, dtype=float).reshape(-1, 1), obj)[0]
+
+
+def shown(si: np.ndarray, obj: Objective) -> list:
+    """An objective's SI values at every instant (size x N, one column each) in its unit, as
+    its result gives them: a float each, or a vector's tuple of components.
+
+    >>> from types import SimpleNamespace
+    >>> shown(np.array([[0.5, 2.0]]), SimpleNamespace(unit="cm", kind=ObjectiveKind.SCALAR))
+    [50.0, 200.0]
+    """
+    values = in_unit(si, obj).T.tolist()
     if obj.kind == ObjectiveKind.VECTOR:
-        return tuple(float(from_si(v, obj.unit)) + 0.0 for v in si_values)
-    return float(from_si(si_values[0], obj.unit)) + 0.0
+        return [tuple(v) for v in values]
+    return [v[0] for v in values]
+
+
+def in_unit(si: np.ndarray, obj: Objective) -> np.ndarray:
+    """SI values of an objective in its unit (a zero's sign dropped)."""
+    return si / si_factor(obj.unit) + 0.0
 
 
 def _may_be_negative(problem: Problem, node) -> bool:
