@@ -214,6 +214,7 @@ def test_dynamics_feedback_pages_pass_axe_core_wcag_2_a_and_aa(graded, axe, page
     assert axe(out / page) == []
 
 
+@pytest.mark.slow
 def test_the_class_report_of_hw3_passes_axe_core_and_fits_a_phone(graded, tmp_path, axe, phone):
     _, out, _ = graded
     assert run("report", out / "results.json", "--out", tmp_path / "report.html").exit_code == 0

@@ -45,6 +45,7 @@ def test_export_help_imports_no_exporter_and_no_roster_reader():
     assert heavy_modules_after("export", "--help", heavy=exporters) == []
 
 
+@pytest.mark.slow
 def test_export_and_report_never_import_sympy(tmp_path):
     results = tmp_path / "results.json"
     results.write_text(json.dumps({
@@ -57,6 +58,7 @@ def test_export_and_report_never_import_sympy(tmp_path):
         assert "scipy" not in heavy_modules_after(*args)
 
 
+@pytest.mark.slow
 def test_check_of_a_kinematics_problem_loads_no_solver_of_scipy_and_no_plotting():
     problem = Path(__file__).resolve().parents[2] / "problems" / "bowling_3_15_4_pendulum.yaml"
     # pint imports the top-level scipy package when it is installed; its solvers are the cost

@@ -7,6 +7,7 @@ import json
 import shutil
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from mechgrade.cli import main
@@ -77,6 +78,7 @@ def test_grading_hw2_end_to_end_records_givens_and_flags_the_neighbours_numbers(
     assert "fits another variant&#39;s givens, not yours" in page
 
 
+@pytest.mark.slow
 def test_check_verifies_variants_and_fails_on_a_planted_degenerate_range():
     result = run("check", DATA / "degenerate_range.yaml", "--variants", "30")
     assert result.exit_code == 1

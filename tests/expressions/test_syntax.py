@@ -163,6 +163,7 @@ def _answer_forms() -> list[str]:
 @settings(max_examples=400)
 @given(st.one_of(st.text(alphabet=_SCANNER_ALPHABET, max_size=30),
                  st.lists(st.sampled_from(_PIECES), max_size=12).map("".join)))
+@pytest.mark.slow
 def test_the_compiled_scanner_reads_as_pythons_tokenizer(text):
     from mechgrade.expressions.syntax import python_tokens, tokens
 

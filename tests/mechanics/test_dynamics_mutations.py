@@ -350,6 +350,7 @@ def test_a_power_divided_by_the_efficiency_read_multiplied_by_it():
     assert not _generated("car_climbs_grade_power", "wheel_power", "efficiency_inverted")
 
 
+@pytest.mark.slow
 def test_a_mistaken_model_keeps_static_friction_between_two_bodies_equal_and_opposite():
     # the disk rolling on the pulled plank, with a hoop's inertia: the friction m A/2 still
     # pulls the plank back, A = P/(M + m/2) = 60/13 (not P/M, the friction lost)

@@ -32,6 +32,7 @@ def test_a_point_fixed_in_its_body_has_no_coriolis_or_relative_terms():
         and "drop_relative_acc" not in codes
 
 
+@pytest.mark.slow
 def test_a_frame_turning_in_a_turning_frame_gives_the_relative_angular_velocity_mistake():
     assert "relative_omega" in _codes("ruina_10_11_wheel_on_rotating_rod", "v_P_N")
 
@@ -50,6 +51,7 @@ def test_components_along_the_polar_frame_are_the_other_basis_mistake():
     assert basis[0].value == pytest.approx((-13.6342, 2.48143, 0.0), rel=1e-4)
 
 
+@pytest.mark.slow
 def test_a_position_term_left_out_is_half_the_side_for_half_the_diagonal():
     result = solve(_problem("bowling_P3_17_rocking_block")).result("vG_mag")
     by_value: dict[float, list[str]] = {}

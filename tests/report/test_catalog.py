@@ -90,6 +90,7 @@ def test_an_output_folder_that_cannot_be_made_is_one_error(entries, tmp_path):
     assert str(caught.value).startswith(f"{blocker / 'out'}: cannot create the output folder")
 
 
+@pytest.mark.slow
 def test_the_index_filters_in_headless_chromium_without_console_errors(entries, tmp_path,
                                                                          chromium):
     write_catalog(entries, (), tmp_path)

@@ -92,6 +92,7 @@ def test_html_escapes_student_text_and_embeds_svg_charts(report, tmp_path):
     assert not re.search(r"(src|href)=\"(https?:)?//", html)  # opens offline
 
 
+@pytest.mark.slow
 def test_report_opens_in_headless_chromium_without_console_errors(report, tmp_path, chromium):
     out = tmp_path / "class_report.html"
     write_class_report(report, out)

@@ -201,6 +201,7 @@ def test_unwritable_output_folder_is_an_error(tmp_path):
         write_outputs(REPORT, tmp_path / "file" / "out")
 
 
+@pytest.mark.slow
 def test_feedback_page_renders_in_headless_chromium(tmp_path, chromium):
     write_outputs(REPORT, tmp_path)
     dom, log = chromium(tmp_path / "feedback" / "ana.html")

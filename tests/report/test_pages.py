@@ -55,8 +55,9 @@ def pages(tmp_path_factory):
             "dynamics steps": out / "steps.html"}
 
 
-@pytest.mark.parametrize("name", ["feedback", "unreadable", "class report", "sheet",
-                                  "dynamics steps"])
+@pytest.mark.parametrize("name", [  # `pytest -m slow` checks the pages built like these two
+    "feedback", "dynamics steps", *(pytest.param(name, marks=pytest.mark.slow)
+                                    for name in ("unreadable", "class report", "sheet"))])
 def test_every_page_passes_axe_core_wcag_2_a_and_aa(pages, axe, name):
     assert axe(pages[name]) == []
 
@@ -108,6 +109,7 @@ document.body.append(out);
 </script>"""
 
 
+@pytest.mark.slow
 def test_printing_keeps_a_card_a_figure_a_step_or_a_row_on_one_page(pages, in_browser):
     """Chromium's print stylesheets (page counts before and after are in the branch's note;
     they depend on the paper and are not asserted)."""

@@ -151,6 +151,7 @@ document.body.setAttribute("data-probe", JSON.stringify({
 </body>"""
 
 
+@pytest.mark.slow
 def test_chromium_lays_out_the_mathml_the_picture_and_the_highlight(graded, tmp_path, chromium):
     import html
 

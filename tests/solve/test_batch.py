@@ -216,10 +216,10 @@ def with_drawn_parameters(path: Path, folder: Path):
 
 
 REACHED_IN_THE_FAST_CORE = frozenset({
-    "bar_swings_down_spring_energy", "pendulum_release",  # work-energy
-    "boat_coasting_quadratic_drag", "block_incline_spring_compression",  # integrate to an event
+    "pendulum_release",  # work-energy
+    "boat_coasting_quadratic_drag",  # integrate to an event
     "gyroscope_pivot_precession"})  # design
-"""One or two of each way of reaching the instant; `pytest -m slow` checks every other one
+"""One of each way of reaching the instant; `pytest -m slow` checks every other one
 (the parity of 26 problems took about a minute of the default command's CPU)."""
 
 

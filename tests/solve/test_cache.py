@@ -35,7 +35,8 @@ BASE = (ROOT / "tests" / "data" / "spec" / "base.yaml").read_text()
 # objective with givens of its own, and dynamics problems (whose solution is cached).
 SLOWEST = ("bowling_P3_17_rocking_block.yaml", "bowling_P3_8_planetary_gears.yaml",
            "ruina_10_10_collar_bent_arm.yaml", "ruina_10_5_rod_collar_disk.yaml",
-           "ladder_wall_lift_off.yaml")  # over 4 s each: `pytest -m slow` reads them back
+           "ladder_wall_lift_off.yaml", "atwood_machine.yaml", "yo_yo_unwinding.yaml",
+           "ruina_9_26_billiard_cue.yaml")  # over 2 s each: `pytest -m slow` reads them back
 REPRESENTATIVE = [pytest.param(name, marks=pytest.mark.slow) if name in SLOWEST else name
                   for name in [
     "bowling_3_15_2_cannonball.yaml", "bowling_3_15_3_mass_spring_damper.yaml",
@@ -87,7 +88,8 @@ def test_a_plan_read_back_is_not_derived_until_its_kinematics_are_asked_for(disk
     assert again.index.symbols == first.index.symbols
 
 
-@pytest.mark.parametrize("path", [PENDULUM, COASTING], ids=["kinematics", "dynamics"])
+@pytest.mark.parametrize("path", [pytest.param(PENDULUM, marks=pytest.mark.slow), COASTING],
+                         ids=["kinematics", "dynamics"])
 def test_a_warm_solve_imports_no_sympy(path, twice):
     # solve itself, not check: check's own report cache would answer before any plan is read
     runs = twice("import sys\n"
@@ -183,12 +185,12 @@ def tampered_source(entry: dict) -> dict:
     return entry
 
 
-@pytest.mark.parametrize("spoil", [
-    lambda text: text[:len(text) // 2],  # truncated
+@pytest.mark.parametrize("spoil", [  # the first two read as the third: `pytest -m slow`
+    pytest.param(lambda text: text[:len(text) // 2], marks=pytest.mark.slow),  # truncated
+    pytest.param(lambda text: b"[]", marks=pytest.mark.slow),  # not an entry
     lambda text: b"\x00\xff garbage",  # corrupt
-    lambda text: b"[]",  # not an entry
     lambda text: text.replace(b'"index":[', b'"index":[[],'),  # edited, without the key
-], ids=["truncated", "corrupt", "not-an-entry", "edited"])
+], ids=["truncated", "not-an-entry", "corrupt", "edited"])
 def test_a_spoilt_entry_is_ignored_and_written_again(spoil, disk, tmp_path, monkeypatch, forget):
     monkeypatch.chdir(tmp_path)
     problem = load_problem(PENDULUM)

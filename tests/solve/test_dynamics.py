@@ -163,6 +163,7 @@ def test_an_event_that_never_happens_is_reported():
     assert "does not happen within 0.2 s" in error_of(body)
 
 
+@pytest.mark.slow
 def test_an_integration_that_chatters_past_the_end_of_slip_is_stopped(monkeypatch):
     from mechgrade.solve import events
 
@@ -239,6 +240,7 @@ def test_steps_show_the_parallel_axis_shift_balances_and_unknowns():
     assert "alpha: eom(theta) = thetadd" in sections["Objectives in the model's quantities"]
 
 
+@pytest.mark.slow
 def test_vibration_away_from_an_equilibrium_is_refused():
     body = text("damped_pendulum_vibration").replace("  theta: 0 rad\n", "  theta: 10 deg\n")
     message = error_of(body, objectives=["omega_n"])
@@ -355,6 +357,7 @@ def test_a_known_impulse_adds_to_the_impulsive_reactions():
     assert solution.result("vG_after").value == pytest.approx((0.0, 0.0, 0.0), abs=1e-12)
 
 
+@pytest.mark.slow
 def test_symbolic_answer_of_an_integration_needs_constant_accelerations():
     body = text("ladder_wall_lift_off").replace(
         "    find: theta\n    kind: scalar\n    unit: deg\n    expect: {value: 41.036426}",

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from mechgrade.errors import MechgradeError
 from mechgrade.solve import solve
@@ -16,6 +17,7 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
 
 
+@pytest.mark.slow
 def test_a_class_s_generated_mistakes_are_each_variant_s_alone():
     problem = load_problem(DATA / "variants" / "dynamics" / "pin_pendulum.yaml")
     variants = [{"m": 2.5, "L": 0.8}, {"m": 4.0, "L": 1.6}, {"m": 1.5, "L": 1.1}]

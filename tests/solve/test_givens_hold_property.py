@@ -7,6 +7,7 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -48,6 +49,7 @@ def residuals_hold(prob, solution, overrides) -> None:
             assert abs(r[i] - target) <= prob.consistency * scale[i] + 1e-9, label
 
 
+@pytest.mark.slow
 @settings(max_examples=30)
 @given(data=st.data())
 def test_perturbed_givens_hold_in_the_solution_or_solving_says_why(data):

@@ -55,6 +55,7 @@ def test_an_angle_of_45_degrees_has_no_complement_slip():
     assert _generated(replace(problem, givens=givens), "acc_N", "given_complement") == []
 
 
+@pytest.mark.slow
 def test_a_parameter_rate_in_rpm_used_as_rad_per_second_is_a_mistake():
     # the flywheel's w0 = 300 rpm is a parameter, not a coordinate's rate; the mistaken design
     # (R = 0.2 m) is out of the secant's reach from the author's guess, 0.5 m

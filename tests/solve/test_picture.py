@@ -1,12 +1,18 @@
 """The SVG picture of a mechanism at the instant (``mechgrade solve --plot``)."""
 
+import re
+
+import pytest
 from click.testing import CliRunner
 
 from mechgrade.cli import main
-from mechgrade.solve.picture import picture_svg, scene
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
+from mechgrade.solve.picture import (Scene, SceneBody, ScenePoint, SceneSupport, SupportKind,
+                                     described, picture_svg, scene)
+from mechgrade.solve.result import Solution, StateValue
 from mechgrade.spec import load_problem
+from mechgrade.spec.dynamics import OutlineKind
 
 TUBE = shipped_dir("problems") / "ruina_10_4_10_7_rotating_tube_accel.yaml"
 
@@ -26,6 +32,7 @@ def test_the_picture_labels_points_and_frames_and_is_the_same_each_time():
     assert "velocity (longest 19 ft/s)" in svg and "B.x" in svg  # the problem's units
 
 
+@pytest.mark.slow
 def test_solve_plot_writes_an_svg_that_chromium_renders(tmp_path, chromium):
     out = tmp_path / "tube.svg"
     result = CliRunner().invoke(main, ["solve", str(TUBE), "--plot", str(out)])
@@ -35,15 +42,6 @@ def test_solve_plot_writes_an_svg_that_chromium_renders(tmp_path, chromium):
 
 
 # ---------------------------------------------------------------------------- the mechanism
-
-import re  # noqa: E402
-
-import pytest  # noqa: E402
-
-from mechgrade.solve.picture import (Scene, SceneBody, ScenePoint, SceneSupport,  # noqa: E402
-                                     SupportKind, described)
-from mechgrade.solve.result import Solution, StateValue  # noqa: E402
-from mechgrade.spec.dynamics import OutlineKind  # noqa: E402
 
 
 def _given_scene(name: str) -> Scene:

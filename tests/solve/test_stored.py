@@ -173,6 +173,7 @@ def negated(data):
     return data
 
 
+@pytest.mark.slow
 def test_edited_dynamics_numbers_are_not_trusted(disk, entry_file, rewrite_entry):
     problem = load_problem(HW3 / "pendulum_release.yaml")
     right = solve(problem)
