@@ -12,7 +12,10 @@ rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion i
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
 variants' right-hand sides in one call); a design parameter by Newton's method around the
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
-in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at.
+in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at. An
+objective asked before an integration's event (at a time, coordinate or rate of its own) is
+read at each variant's instant as :func:`~.instant.drive` reaches it alone, beside the others
+solved together.
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -48,7 +51,8 @@ from ..spec.model import Objective, Problem, Root
 from .batch_motion import ROOT_RTOL, ROOT_XTOL, newton
 from .entry import solve
 from .events import event_never_happens
-from .instant import (_instants, _key, _size, _symbolic_answer, collect_results, in_unit,
+from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
+                      collect_results, in_unit,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call, least_squares
@@ -166,6 +170,7 @@ class _Group:
     nullity: tuple[int, ...]  # per level
     after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
     loose: frozenset[int]  # and leaves free
+    alone: bool = False  # an instant before an integration's event: each column reached alone
 
 
 class _Template:
@@ -221,6 +226,9 @@ class _Template:
         for group in self.groups:
             maps = [instant_givens(problem, g, group.overrides) for g in variants]
             objectives = [o for o in group.objectives if o.id in wanted]
+            if group.alone:
+                self._alone(group, maps, objectives, ok, results, lost, base)
+                continue
             values: dict = {}
             mistakes: dict = {}
             generated: dict = {}
@@ -288,6 +296,21 @@ class _Template:
                 lost[i].update(failures)  # as solve_dynamics keeps them
         return [self._solution(results[i], base[i], lost[i], wanted) if ok[i] else None
                 for i in range(n)]
+
+    def _alone(self, group: _Group, maps: list[dict], objectives: list[Objective],
+               ok: np.ndarray, results: list[dict], lost: list[dict], base: list) -> None:
+        """The objectives of ``group`` at every column's instant, each column's reached as
+        :func:`~.instant.drive` reaches it alone: an instant before an integration's event,
+        which the integrator over columns does not stop at (and which, integrated, carries
+        no warning of its own)."""
+        from .dynamics import kinetic_reach
+
+        reach = kinetic_reach(self.problem)
+        for i in np.flatnonzero(ok) if objectives else ():
+            reached = answer_group(self.problem, reach, maps[i], objectives, group.overrides,
+                                   results[i], lost[i])
+            if reached is not None and base[i] is None:
+                base[i] = (reached.state, reached.givens)
 
     def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
                     base: list) -> None:
@@ -722,10 +745,9 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
                     given_map = reach.designed(given_map)
             g = place_givens(kproblem, p, given_map)
             if isinstance(analysis, Integration):
-                if instant_of_objective(problem, overrides) is not None:
-                    return None  # an instant before the event: each variant integrated alone
-                groups.append(_integration_group(p, overrides, objectives, numeric,
-                                                 given_map, g))
+                groups.append(replace(
+                    _integration_group(p, overrides, objectives, numeric, given_map, g),
+                    alone=instant_of_objective(problem, overrides) is not None))
                 continue
             instant = solve_numeric(kproblem, p, given_map,
                                     set() if kinetics is not None else set(numeric))

@@ -233,32 +233,44 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
         chosen = [o for o in group if o.id in wanted]
         if not chosen:
             continue
-        given_map = instant_givens(problem, givens, overrides)
-        numeric = {o.id for o in chosen if _numeric(o)}
-        values: Mapping[str, np.ndarray] = {}
-        mistakes: dict = {}
-        reached = None
-        if numeric:
-            try:
-                reached = reach.instant(given_map, numeric, overrides)
-            except MechgradeError as err:
-                failures.update({oid: err for oid in numeric})
-            else:
-                given_map = reached.givens
-                failures.update(reached.failures)
-                values, mistakes = reached.values, reached.mistakes
-                warned += [w for w in reached.warnings if w not in warned]
-                if not overrides or base is None:
-                    base = (reached.state, given_map)
-        collect_results(problem, chosen, given_map, values, mistakes, results, failures,
-                        symbolic=reach.symbolic())
-        results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
-                                                if o.id in results}, reached, numeric))
+        reached = answer_group(problem, reach, instant_givens(problem, givens, overrides),
+                               chosen, overrides, results, failures)
+        if reached is not None:
+            warned += [w for w in reached.warnings if w not in warned]
+            if not overrides or base is None:
+                base = (reached.state, reached.givens)
     solution = solution_of(problem, reach.problem, reach.plan, results, failures, base,
                            tuple(warned), wanted)
     if isinstance(solution, MechgradeError):
         raise solution
     return solution
+
+
+def answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[Objective],
+                 overrides: dict, results: dict[str, ObjectiveResult],
+                 failures: dict[str, MechgradeError]) -> Reached | None:
+    """One group of objectives ``chosen`` asked at the givens ``given_map`` (``overrides``:
+    their own among them): the instant reached by ``reach``, each objective read there (a
+    symbolic one derived) into ``results``, or its error into ``failures``. Returns the
+    instant reached (``None``: no numeric objective asked, or the instant not reached)."""
+    numeric = {o.id for o in chosen if _numeric(o)}
+    values: Mapping[str, np.ndarray] = {}
+    mistakes: dict = {}
+    reached = None
+    if numeric:
+        try:
+            reached = reach.instant(given_map, numeric, overrides)
+        except MechgradeError as err:
+            failures.update({oid: err for oid in numeric})
+        else:
+            given_map = reached.givens
+            failures.update(reached.failures)
+            values, mistakes = reached.values, reached.mistakes
+    collect_results(problem, chosen, given_map, values, mistakes, results, failures,
+                    symbolic=reach.symbolic())
+    results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
+                                            if o.id in results}, reached, numeric))
+    return reached
 
 
 def solution_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
