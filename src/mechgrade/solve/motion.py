@@ -22,7 +22,7 @@ from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import FirstErrors, call, least_squares_solution, loud_call
-from .events import ATOL, MAX_CALLS, RTOL, event_never_happens
+from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens
 from .plan import KinematicsPlan
 from .rules import satisfied
 
@@ -143,7 +143,8 @@ class Motion:
         held = np.flatnonzero(g == 0)
         if not len(held):
             return direction
-        h = 1e-6 * self.analysis.max_time  # as _next_crossing's moment
+        assert isinstance(self.analysis, Integration)
+        h = LEAVING * self.analysis.max_time
         moment = integrate_to_events(
             lambda c, t, y, m: rhs(held[c], t, y, m), lambda _c, t, _y, _m: t - h,
             y0[:, held], 2 * h, RTOL, ATOL, MAX_CALLS,
