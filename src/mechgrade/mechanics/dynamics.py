@@ -91,6 +91,7 @@ class Kinetics:
     impact: bool = False
     design: sp.Expr | None = None
     physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
+    whens: tuple[tuple[str, sp.Expr], ...] = ()  # objective id -> lhs - rhs of its 'when'
     built: tuple = field(default=(), compare=False, repr=False)  # (model, loads) it came from
 
     @property
@@ -579,6 +580,8 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     start=start, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
                     physical=physical_bounds(problem, model, reactions, impact),
+                    whens=tuple((o.id, _difference(o.when, model, language))
+                                for o in problem.objectives if o.when is not None),
                     built=(model, loads))
 
 
@@ -915,6 +918,15 @@ def how_the_instant(problem: Problem) -> str:
     return "the givens state the configuration and the rates at the instant"
 
 
+def _where_asked(objective) -> str:
+    """Where an objective asked ``when`` is read, for the write-up."""
+    if objective.when is None:
+        return ""
+    left, right = objective.when
+    return (f", at the first position from the start where {left.text} = {right.text} "
+            "(the rate from the energy balance)")
+
+
 def kinetics_derivation(problem: Problem, dof: int | None = None):
     """The write-up of a dynamics problem: the kinematics, then bodies (with the parallel-axis
     shifts), free-body loads, momentum balances, the unknowns and how they are solved, and
@@ -929,7 +941,7 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
               f"{len(kin.balances)} momentum balances and {len(kin.constraints)} "
               f"{level}-level constraints, linear in the unknowns, solved together "
               "(rank and every equation checked)")
-    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
+    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}{_where_asked(o)}"
                        for o, (_, value) in zip(problem.objectives, kin.objectives))
     return (*kinematics[:-2], *kin.steps, ("Solution", solved),
             ("Objectives in the model's quantities", objectives))
