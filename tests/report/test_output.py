@@ -76,7 +76,7 @@ def test_html_feedback_shows_every_objective_and_escapes_student_text(tmp_path):
     assert '<dd class="verdict">Partly correct</dd>' in ana
     assert "<strong>Sign error:</strong>" in ana
     assert '<dt>Expected</dt><dd><span class="math">-L·θ̇² ft/s²</span></dd>' in ana
-    assert '<span class="math">L·thetad²</span>' in ana
+    assert '<span class="math">L·θ̇²</span>' in ana
     assert "read the key &#39;P.acc&#39; as &#39;p.acc&#39;" in ana
     eve = (tmp_path / "feedback" / "eve.html").read_text(encoding="utf-8")
     assert "<script>" not in eve
