@@ -570,7 +570,8 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
 
     diagrams = [figure(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
                 for d in worked.diagrams]
-    steps = [{"anchor": step.anchor, "title": step.title, "lines": step.lines,
+    steps = [{"anchor": step.anchor, "title": Markup(textbook_html(step.title, False)),
+              "lines": [Markup(textbook_html(line)) for line in step.lines],
               "rows": [{"anchor": row.anchor, "text": row.text,
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
@@ -652,9 +653,9 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     hashes = "#" * level
     out = [f"{hashes} {markdown_escape(worked.title)}"]
     for step in worked.steps:
-        out += ["", f"{hashes}# {markdown_escape(step.title)}", ""]
+        out += ["", f"{hashes}# {markdown_escape(textbook(step.title, False))}", ""]
         lines = [line for line in step.lines if line] + [row.text for row in step.rows]
-        out += [f"- {code_span(line)}" for line in lines] or ["(none)"]
+        out += [f"- {code_span(textbook(line))}" for line in lines] or ["(none)"]
     return "\n".join(out) + "\n"
 
 
