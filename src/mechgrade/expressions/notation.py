@@ -27,6 +27,8 @@ _SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 _POWER = re.compile(r"(?:\*\*|\^)\s*(?:\((-?\d+)\)|(-?\d+))")
 # a name (not a frame's unit vector after its dot, not a number's exponent)
 _NAME = re.compile(r"(?<![\w.])([A-Za-z][A-Za-z0-9_]*(?:,[xyz]\b)?)")
+# a number and a space just before a name: the name is its unit
+_NUMBER_BEFORE = re.compile(r"(?<![\w^*.])\d+(?:\.\d*)?(?:[eE][-+]?\d+)?\s$")
 # one letter or a Greek letter's name, a number, a rate's d or dd: the answer syntax's names
 _SYMBOL = re.compile(r"(?P<letter>" + "|".join(sorted(GREEK, key=len, reverse=True))
                      + r"|[A-Za-z])(?P<digits>\d*)(?P<rate>dd?)?")
@@ -57,7 +59,9 @@ def _rewritten(text: str, rates: bool, show) -> str:
     for m in _NAME.finditer(text):
         name = m.group(1)
         after = text[m.end():m.end() + 1]
-        found = None if after == "(" else _symbol(name, rates)
+        # a call's name, or a unit after its number (``0.25 g0``, standard gravity)
+        unit = _NUMBER_BEFORE.search(text, max(0, m.start() - 40), m.start()) is not None
+        found = None if after == "(" or unit else _symbol(name, rates)
         out.append(text[last:m.start()])
         out.append(show(*found) if found else show(name, None))
         last = m.end()
@@ -74,6 +78,8 @@ def textbook(text: str, rates: bool = True) -> str:
     '-g·μₖ·ẋ·cos(β)/|ẋ| + g·sin(β)'
     >>> textbook("L*sqrt(thetadd**2 + thetad**4) kg*m^2 R_O,x N.y")
     'L·sqrt(θ̈² + θ̇⁴) kg·m² R O,x N.y'
+    >>> textbook("2.453 m/s^2 (0.2501 g0)")
+    '2.453 m/s² (0.2501 g0)'
     """
     def show(name, sub):
         return name if sub is None else _plain_sub(name, sub)
