@@ -28,3 +28,7 @@ def test_prose_keeps_its_words():
 
 def test_a_call_keeps_its_name_and_html_is_escaped():
     assert textbook_html("omega_n(k) < 1 & b_1") == "omega_n(k) &lt; 1 &amp; b<sub>1</sub>"
+
+
+def test_a_greek_letter_after_a_number_is_a_symbol_not_a_unit():
+    assert textbook("2 omega x v") == "2 ω x v"

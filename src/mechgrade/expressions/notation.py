@@ -59,8 +59,10 @@ def _rewritten(text: str, rates: bool, show) -> str:
     for m in _NAME.finditer(text):
         name = m.group(1)
         after = text[m.end():m.end() + 1]
-        # a call's name, or a unit after its number (``0.25 g0``, standard gravity)
-        unit = _NUMBER_BEFORE.search(text, max(0, m.start() - 40), m.start()) is not None
+        # a call's name, or a unit after its number (``0.25 g0``, standard gravity; a Greek
+        # letter's name is no unit: ``2 omega x v``)
+        unit = _NUMBER_BEFORE.search(text, max(0, m.start() - 40), m.start()) is not None \
+            and name.partition("_")[0].rstrip("d0123456789") not in GREEK
         found = None if after == "(" or unit else _symbol(name, rates)
         out.append(text[last:m.start()])
         out.append(show(*found) if found else show(name, None))

@@ -531,7 +531,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
-        note = f"Your answer to “{shorten(prompt)}”: {said}"
+        note = textbook(f"Your answer to “{shorten(prompt)}”: {said}", False)
         marked[anchor(answer.problem, place)] = (
             marked[anchor(answer.problem, place)] + "; " + note
             if anchor(answer.problem, place) in marked else note)
@@ -547,12 +547,26 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
 
 
 def anchor(problem: str, step: str) -> str:
-    """The page id of a step or row of ``problem``'s worked solution.
+    """The page id of a step or row of ``problem``'s worked solution: a short tag of the
+    problem (its id is in every step's and row's id: a page carries some 150 of them), then
+    the step.
 
     >>> anchor("bowling 3.15", "acc-P-coriolis")
-    'ws-bowling-3-15-acc-P-coriolis'
+    'wcd9ad-acc-P-coriolis'
     """
-    return re.sub(r"[^A-Za-z0-9_-]", "-", f"ws-{problem}-{step}")
+    import zlib
+
+    tag = f"w{zlib.crc32(problem.encode()) & 0xFFFFF:05x}"
+    return re.sub(r"[^A-Za-z0-9_-]", "-", f"{tag}-{step}")
+
+
+def worked_id(problem: str) -> str:
+    """The page id of ``problem``'s worked solution.
+
+    >>> worked_id("bowling 3.15")
+    'ws-bowling-3-15'
+    """
+    return re.sub(r"[^A-Za-z0-9_-]", "-", f"ws-{problem}")
 
 
 def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
@@ -576,7 +590,8 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
-    context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
+    context = {"w": {"id": worked_id(worked.problem), "tag": anchor(worked.problem, "")[:-1],
+                     "title": worked.title,
                      "picture": figure(worked.picture) if worked.picture else "",
                      "steps": steps}}
     return Markup(_render(_template(env, "worked.html.j2"), context))
