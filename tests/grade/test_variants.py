@@ -99,13 +99,16 @@ def test_a_draw_that_breaks_a_condition_is_replaced_by_the_next_draw_index():
     assert draw_variant(problem, "x", late, start=first.index).index == first.index
 
 
-def test_an_unsatisfiable_condition_says_so():
-    problem = load_problem_text(base_with("""
+UNSATISFIABLE = """
 variants:
   draw:
     L: {from: 1 m, to: 2 m, step: 0.5 m}
   require: ["L > 5"]
-"""), "p.yaml")
+"""
+
+
+def test_an_unsatisfiable_condition_says_so():
+    problem = load_problem_text(base_with(UNSATISFIABLE), "p.yaml")
     with pytest.raises(SolveError, match=r"no draw of problem 'base' meets its conditions "
                                           r"\(L > 5\) in 1000 tries"):
         draw_variant(problem, "s", "a")
@@ -417,3 +420,49 @@ def test_a_dynamics_problem_with_variants_is_checked_and_graded_per_student(tmp_
     assert verdicts["102"] == {o: ("incorrect", OTHER_VARIANT) for o in
                                ("alpha", "pin_force", "pin_force_along_rod")}
     assert mine != book
+
+
+# ---------------------------------------------------------------------------- over processes
+
+
+def _solved_class(students, jobs, monkeypatch):
+    from types import SimpleNamespace
+
+    from mechgrade.grade import variants
+
+    monkeypatch.setattr(variants, "_SOLVED", {})
+    assignment = load_assignment(HW2 / "assignment.yaml")
+    variants.prepare_variants(SimpleNamespace(assignment=assignment,
+                                              problems=(load_problem(PENDULUM),)),
+                              students, jobs)
+    return {key[2]: (variant, solution.results)
+            for key, (variant, solution) in variants._SOLVED.items()}
+
+
+@pytest.mark.slow  # two class solves, a process forked
+def test_a_class_solved_over_two_processes_is_solved_as_in_one(monkeypatch):
+    students = [f"s{n}" for n in range(9)]
+    apart = _solved_class(students, 2, monkeypatch)
+    assert sorted(apart) == sorted(students)
+    assert apart == _solved_class(students, 1, monkeypatch)
+
+
+def test_students_drawing_equal_numbers_are_solved_in_one_group():
+    from mechgrade.grade.variants import _groups
+
+    problem = load_problem(PENDULUM)
+    students = [str(n) for n in range(60)]
+    groups = _groups(problem, "fall", students, 2)
+    assert sorted(s for g in groups for s in g) == sorted(students)  # each once
+    drawn = [{draw_variant(problem, "fall", s).overrides for s in g} for g in groups]
+    assert len(groups) == 2 and not drawn[0] & drawn[1]
+    # the grid repeats numbers among 60 students: some group holds two equal draws
+    assert sum(len(g) for g in groups) > sum(len(d) for d in drawn)
+
+
+def test_students_whose_numbers_cannot_be_drawn_are_each_kept_in_a_group():
+    from mechgrade.grade.variants import _groups
+
+    problem = load_problem_text(base_with(UNSATISFIABLE), "p.yaml")
+    groups = _groups(problem, "s", ["a", "b", "c"], 2)
+    assert groups == [["a", "b"], ["c"]]  # none lost: student_variants reports each

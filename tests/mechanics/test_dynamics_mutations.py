@@ -396,3 +396,51 @@ def test_a_cord_pulling_a_body_through_two_strands_counted_once_in_its_balance()
     # an Atwood machine's cord pulls each block once: nothing to miscount
     assert not [m for m in dynamics_mutations(_problem("atwood_machine"))
                 if m.code == "strands_miscounted"]
+
+
+
+def test_a_spring_left_out_only_where_there_is_a_spring():
+    assert "spring_omitted" in _codes("collar_spring_vertical_rod")
+    assert "spring_omitted" not in _codes("pendulum_pin_reaction")
+
+
+def test_a_load_is_moved_only_on_a_turning_body():
+    assert "load_at_other_point" in _codes("bar_swings_down_spring_energy")
+    assert "load_at_other_point" not in _codes("collar_spring_vertical_rod")
+
+
+def test_static_friction_as_mu_m_g_is_read_only_where_friction_does_not_slip():
+    static = [m for m in dynamics_mutations(_problem("cylinder_pulled_rolls"))
+              if m.code == "normal_from_weight"]
+    assert [oid for m in static for oid, _ in m.readings] == ["friction", "mu_needed"]
+    assert not any(m.readings for m in dynamics_mutations(_problem("block_sliding_down_incline"))
+                   if m.code == "normal_from_weight")
+
+
+def test_a_contact_is_taken_smooth_only_where_it_rolls():
+    assert "contact_taken_smooth" in _codes("cylinder_pulled_rolls")
+    assert "contact_taken_smooth" not in _codes("block_sliding_down_incline")
+
+
+def _bar_with_its_weight_at_the_end():
+    # the bar (5 kg, 1.2 m) swings down a quarter turn about O with its weight taken at the end
+    # A: m g L = 1/2 I_O w^2 + the spring's gain (k = 20 N/m, stretch 1.0 m -> 1.6 m)
+    m, L, g, k = 5.0, 1.2, 9.81, 20.0
+    return ((m * g * L - k * (1.6 ** 2 - 1.0 ** 2) / 2) / (m * L ** 2 / 3 / 2)) ** 0.5
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("problem,objective,answer,code", [
+    # the collar falls h = 0.3 m; without the spring v = sqrt(2 g h)
+    ("collar_spring_vertical_rod", "speed", f"{(2 * 9.81 * 0.3) ** 0.5:.4g} m/s",
+     "spring_omitted"),
+    ("bar_swings_down_spring_energy", "angular_velocity",
+     f"{_bar_with_its_weight_at_the_end():.4g} rad/s", "load_at_other_point"),
+    # the cylinder (20 kg, mu = 0.2) rolls forward; its friction acts backward
+    ("cylinder_pulled_rolls", "friction", f"{-0.2 * 20 * 9.81:.4g} N", "normal_from_weight"),
+    # pulled by P = 60 N at its centre it slides without friction: a = P/m
+    ("cylinder_pulled_rolls", "acceleration", f"{60 / 20:.4g} m/s^2", "contact_taken_smooth"),
+])
+def test_the_new_families_name_their_value(problem, objective, answer, code):
+    judged = assess(answer, _solution(problem).result(objective))
+    assert judged.diagnosis == LABELS[code]

@@ -32,7 +32,7 @@ def test_the_inertia_is_a_matrix_and_the_loads_are_vectors(pendulum):
     loads = rows(pendulum["kinetics-free-body-loads"])
     assert loads["load-rod-R_O"].math.count("<mi>O,x</mi>") == 1
     assert loads["load-rod-gravity"].codes == ("weight_omitted", "mass_for_weight",
-                                               "weight_for_mass")
+                                               "weight_for_mass", "load_at_other_point")
 
 
 def test_the_rates_are_dotted_and_no_reaction_is_numbered(pendulum):

@@ -16,6 +16,9 @@ CHAIN = (ROOT / "problems" / "two_mass_spring_chain.yaml").read_text()
 CART = (ROOT / "problems" / "block_slides_on_cart.yaml").read_text()
 ICE = (ROOT / "problems" / "rod_struck_on_ice.yaml").read_text()
 TURNTABLE = (ROOT / "problems" / "block_on_turntable.yaml").read_text()
+LADDER = (ROOT / "problems" / "ruina_9_20_ladder_energy.yaml").read_text()
+LIFT_OFF = (ROOT / "problems" / "ladder_wall_lift_off.yaml").read_text()
+HOOP = (ROOT / "problems" / "unbalanced_hoop_rolls.yaml").read_text()
 
 
 def error_of(text: str) -> str:
@@ -171,6 +174,35 @@ CASES = [
      "objectives[1].givens.x': a symbolic objective of an integrated motion is answered at "
      "the event, when x' = X' (in closed form), found 'x': 1 m/s'; ask for a scalar or a "
      "vector at that instant"),
+    ("a position asked 'when' under integrate", LIFT_OFF, "    find: theta\n    kind: scalar",
+     "    find: theta\n    when: dot(force(N2), N.y) = m*g\n    kind: scalar",
+     "p.yaml:43:11: objectives[0].when: objective 'theta_wall_contact_lost_deg': 'when: "
+     "dot(force(N2), N.y) = m*g' is the position the motion from a work_energy start reaches; "
+     "expected 'analysis: work_energy', found analysis: integrate: end the motion there with "
+     "'until: dot(force(N2), N.y) = m*g'"),
+    ("a position asked 'when' without an analysis", PENDULUM,
+     "    find: eom(theta)\n    kind: scalar",
+     "    find: eom(theta)\n    when: dot(force(R_O), N.y) = 0\n    kind: scalar",
+     "p.yaml:37:11: objectives[0].when: objective 'alpha': 'when: dot(force(R_O), N.y) = 0' is "
+     "the position the motion from a work_energy start reaches; expected 'analysis: "
+     "work_energy', found no analysis: add 'analysis: work_energy' with the start state "
+     "('from') and 'sense'"),
+    ("a position asked 'when' with constraints", HOOP, "    find: abs(phi')\n",
+     "    find: abs(phi')\n    when: phi = -pi/2\n",
+     "objectives[0].when: objective 'angular_velocity': 'when: phi = -pi/2' needs one "
+     "coordinate without constraints (its rate follows from the energy balance as a function "
+     "of the position), found 2 coordinates and 1 constraints; ask at a given position "
+     "instead (givens: {x: ...})"),
+    ("a position asked 'when' and given", LADDER,
+     "    when: dot(force(N1), N.x) = 0\n    kind: scalar",
+     "    when: dot(force(N1), N.x) = 0\n    givens: {theta: 50 deg}\n    kind: scalar",
+     "objectives[5].givens.theta: objective 'theta_wall_lost_deg': 'when: dot(force(N1), N.x) "
+     "= 0' fixes the position, found also 'theta: 50 deg' among its givens; keep one of them"),
+    ("a position asked 'when' of unlike sides", LADDER,
+     "    when: dot(force(N1), N.x) = 0\n    kind: scalar",
+     "    when: dot(force(N1), N.x) = L\n    kind: scalar",
+     "p.yaml:81:11: objectives[5].when: dimension mismatch in both sides of 'when': expected a "
+     "length ([length]), found a force ([mass] * [length] / [time] ** 2)"),
 ]
 
 

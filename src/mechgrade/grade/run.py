@@ -480,7 +480,8 @@ def grade_plan(plan: Plan, submissions: SubmissionSet, roster=None, *,
     faults: list[str] = [s.internal_error for s in submissions.students if s.internal_error]
     if any(p.variants for p in plan.problems):  # every student's variant solved together
         from .variants import prepare_variants
-        prepare_variants(plan, [person.variant_key or person.id for person, _ in people])
+        prepare_variants(plan, [person.variant_key or person.id for person, _ in people],
+                         jobs)
     own = {person.id: _own_plan(plan, person) for person, _ in people}
     neighbours = None
     if any(variants for _, variants in own.values()):

@@ -21,6 +21,7 @@ from __future__ import annotations
 import hashlib
 import math
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 
@@ -290,26 +291,77 @@ def student_variants(problem: Problem, seed: str, students, redraw: bool
         raise SolveError(f"no verified variant of problem '{problem.id}' for student "
                          f"'{next(iter(pending))}' in {REDRAW_LIMIT} draws; run mechgrade check "
                          f"--variants on the problem")
-    if len(_SOLVED) + len(out) > _SOLVED_LIMIT:
-        _SOLVED.clear()
-    _SOLVED.update({(problem, seed, student, redraw): found for student, found in out.items()})
+    _remember(problem, seed, redraw, out)
     return out
 
 
-def prepare_variants(plan, students) -> None:
+def _remember(problem: Problem, seed: str, redraw: bool,
+              found: dict[str, tuple[Variant, Solution]]) -> None:
+    """Keep the solved variants for :func:`student_variant`."""
+    if len(_SOLVED) + len(found) > _SOLVED_LIMIT:
+        _SOLVED.clear()
+    _SOLVED.update({(problem, seed, student, redraw): pair for student, pair in found.items()})
+
+
+def prepare_variants(plan, students, jobs: int = 1) -> None:
     """Solve every student's variant of every problem of ``plan`` (the assignment's
     :class:`~mechgrade.grade.run.Plan`) together, so that :func:`student_variant` finds each
     solved; ``students`` are the ids variants are drawn for. A problem whose variants cannot
-    all be drawn or solved is left to :func:`student_variant`, which reports it per student."""
+    all be drawn or solved is left to :func:`student_variant`, which reports it per student.
+
+    With ``jobs`` > 1 the class is parted into ``jobs`` groups solved in forked processes,
+    after a first student solved here has made what they share (the derivation, the solver's
+    template): a variant is solved column by column, so its solution does not depend on the
+    others solved with it, and students drawing equal numbers are in the same group."""
     assignment = plan.assignment
     students = list(dict.fromkeys(students))
+    seed, redraw = assignment.variant_seed, assignment.variants.redraw
     for problem in plan.problems:
-        if problem.variants is not None:
-            try:
-                student_variants(problem, assignment.variant_seed, students,
-                                 assignment.variants.redraw)
-            except MechgradeError:
-                continue
+        if problem.variants is None:
+            continue
+        if jobs <= 1 or len(students) <= 2:
+            _solved_or_left(problem, seed, redraw, students)
+            continue
+        from ..parallel import fork_map
+
+        first = _solved_or_left(problem, seed, redraw, students[:1])
+        if not first:  # the first student's variant fails: so will the whole class's
+            _solved_or_left(problem, seed, redraw, students)
+            continue
+        for found in fork_map(partial(_solved_or_left, problem, seed, redraw),
+                              _groups(problem, seed, students[1:], jobs), jobs=jobs):
+            _remember(problem, seed, redraw, found)
+
+
+def _solved_or_left(problem: Problem, seed: str, redraw: bool,
+                    students: list[str]) -> dict[str, tuple[Variant, Solution]]:
+    """:func:`student_variants`, or nothing when they cannot all be drawn or solved (each
+    student is then reported by :func:`student_variant`)."""
+    try:
+        return student_variants(problem, seed, students, redraw)
+    except MechgradeError:
+        return {}
+
+
+def _groups(problem: Problem, seed: str, students: list[str], count: int) -> list[list[str]]:
+    """``students`` in ``count`` groups of about equal size, those who draw equal numbers in
+    one group (solved once: their solution is one)."""
+    drawn: dict[tuple, list[str]] = {}
+    for student in students:
+        key: tuple
+        try:
+            key = tuple(sorted(draw_variant(problem, seed, student).overrides))
+        except MechgradeError:
+            key = ("", student)  # reported by student_variants, as in one group
+        drawn.setdefault(key, []).append(student)
+    groups: list[list[str]] = [[] for _ in range(count)]
+    size = -(-len(students) // count)
+    at = 0
+    for same in drawn.values():
+        while len(groups[at]) >= size and at < count - 1:
+            at += 1
+        groups[at] += same
+    return [g for g in groups if g]
 
 
 def statement(problem: Problem, variant: Variant | None = None) -> str:

@@ -27,8 +27,8 @@ from sympy.physics.vector import Dyadic, ReferenceFrame, Vector, dynamicsymbols
 from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
-                             Integration, KineticFriction, Reaction, Restitution, Spring,
-                             StaticFriction, dynamics_of)
+                             Integration, KineticFriction, LoadKind, Reaction, Restitution,
+                             Spring, StaticFriction, dynamics_of)
 from ..spec.model import ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
@@ -91,6 +91,7 @@ class Kinetics:
     impact: bool = False
     design: sp.Expr | None = None
     physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
+    whens: tuple[tuple[str, sp.Expr], ...] = ()  # objective id -> lhs - rhs of its 'when'
     built: tuple = field(default=(), compare=False, repr=False)  # (model, loads) it came from
 
     @property
@@ -351,15 +352,19 @@ class DynamicsInterpreter(Interpreter):
                              "accelerations and reactions", where=self.where)
         q, qd = k.q[0], k.qd[0]
         rest = {qd: 0}
-        # A x = b  =>  A dx/ds = db/ds - dA/ds x  (s = q or q'): differentiate the balances,
-        # not a solved (and much larger) expression
-        x = A.LUsolve(b)
+        # q'' by Cramer's rule with division-free (Berkowitz) determinants: an elimination's
+        # pivot that is not zero in symbols may be zero at the instant (a reaction's
+        # coefficient m L/2 sin(theta) at theta = 0), and q'' would be 0/0 there; det(A) is
+        # zero only where the balances do not fix the motion
+        top = A.copy()
+        top[:, 0] = b
+        numerator, denominator = top.det(method="berkowitz"), A.det(method="berkowitz")
 
         def rate(s):
-            dx = A.LUsolve(b.diff(s) - A.diff(s) * x)
-            return dx[0].xreplace(rest)
+            return ((numerator.diff(s) * denominator - numerator * denominator.diff(s))
+                    / denominator ** 2).xreplace(rest)
 
-        equilibrium = x[0].xreplace(rest)
+        equilibrium = (numerator / denominator).xreplace(rest)
         stiffness, damping = _linear_term(-rate(q)), _linear_term(-rate(qd))
         requirement = (f"the configuration is not an equilibrium ({coordinate.id}'' is not "
                        "zero at rest there)", equilibrium / (1 + sp.Abs(stiffness)))
@@ -557,6 +562,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until = _analysis(problem, model, language, k)
+    weights = _weight_potentials(d, model, language, k)
     steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
              ("Momentum balances", tuple(f"{e.label}: {sp.sstr(e.expr)} = 0" for e in balances)),
              ("Unknown reactions", tuple(labels) or ("none",)))
@@ -564,14 +570,18 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     labels=tuple(labels), balances=tuple(balances),
                     objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
                     slips=tuple(slips), steps=steps,
-                    energy=model.plain(_energy(problem, language)),
+                    energy=model.plain(_energy(problem, language)) + sum(
+                        weights.values(), sp.Integer(0)),
                     nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
                                                            *d.friction)
-                                          if not isinstance(x, StaticFriction)),
+                                          if not isinstance(x, StaticFriction)
+                                          and x.name not in weights),
                     workless=_workless(problem, model, language, reactions, labels),
                     start=start, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
                     physical=physical_bounds(problem, model, reactions, impact),
+                    whens=tuple((o.id, _difference(o.when, model, language))
+                                for o in problem.objectives if o.when is not None),
                     built=(model, loads))
 
 
@@ -754,6 +764,21 @@ def _energy(problem: Problem, language: DynamicsInterpreter):
     return energy + sum((language._fn_pe(Name(s.name)) for s in d.springs), sp.Integer(0))
 
 
+def _weight_potentials(d: Dynamics, model: Model, language, k: Kinematics) -> dict:
+    """Each weight written as a force whose vector does not change with the motion -> its
+    potential energy -W·r (a constant force is conservative), for a work-energy balance."""
+    moving = {*k.q, *k.qd, dynamicsymbols._t}
+    out = {}
+    for f in d.forces:
+        if f.kind != LoadKind.WEIGHT:
+            continue
+        weight = language.vector(f.force)
+        if any(model.plain(c).free_symbols & moving for c in weight.to_matrix(model.inertial)):
+            continue
+        out[f.name] = model.plain(-(weight & model.positions[f.at]))
+    return out
+
+
 def _workless(problem: Problem, model: Model, language, reactions: dict, labels: list[str]):
     """The power of each reaction component per unit magnitude (zero for a workless one)."""
     out = []
@@ -878,6 +903,15 @@ def how_the_instant(problem: Problem) -> str:
     return "the givens state the configuration and the rates at the instant"
 
 
+def _where_asked(objective) -> str:
+    """Where an objective asked ``when`` is read, for the write-up."""
+    if objective.when is None:
+        return ""
+    left, right = objective.when
+    return (f", at the first position from the start where {left.text} = {right.text} "
+            "(the rate from the energy balance)")
+
+
 def kinetics_derivation(problem: Problem, dof: int | None = None):
     """The write-up of a dynamics problem: the kinematics, then bodies (with the parallel-axis
     shifts), free-body loads, momentum balances, the unknowns and how they are solved, and
@@ -892,7 +926,7 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
               f"{len(kin.balances)} momentum balances and {len(kin.constraints)} "
               f"{level}-level constraints, linear in the unknowns, solved together "
               "(rank and every equation checked)")
-    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
+    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}{_where_asked(o)}"
                        for o, (_, value) in zip(problem.objectives, kin.objectives))
     return (*kinematics[:-2], *kin.steps, ("Solution", solved),
             ("Objectives in the model's quantities", objectives))

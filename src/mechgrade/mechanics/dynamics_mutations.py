@@ -861,6 +861,135 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
             term=spring.length, term_unit="m")
 
 
+def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """Each spring left out of the free-body diagrams (and of the energy), one at a time."""
+    d = dynamics_of(problem)
+    for spring in d.springs:
+        mistaken = _without_load(problem, replace(d, springs=tuple(
+            s for s in d.springs if s is not spring)), spring.name)
+        if mistaken is not None:
+            yield DynamicsMutation(
+                "spring_omitted", f"Your value is what the balances give without the spring "
+                f"{spring.name} (k = {{term}}): its force, and its energy in a work-energy "
+                "balance, belong in the equations.", LOADS, problem=mistaken,
+                term=spring.stiffness, term_unit="N/m")
+
+
+def _without_load(problem: Problem, dynamics: Dynamics, load: str) -> Problem | None:
+    """The mistaken copy of a model with ``load`` left out, without the objectives about the
+    load itself (its force, its energy have no value there); ``None`` when none is left."""
+    mistaken = _mistaken(problem, dynamics)
+    objectives = tuple(o for o in mistaken.objectives
+                       if not any(n == Name(load) for n in walk(o.find.node)))
+    return replace(mistaken, objectives=objectives) if objectives else None
+
+
+def load_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A spring or the weight taken to act at another point of a turning body (a spring taken
+    at the mass centre, the weight at the end where the spring holds it): the point another
+    load acts at, or the mass centre, never a point that does not move (there the load would
+    have no moment). One spring, or one body's weight, at a time."""
+    d = dynamics_of(problem)
+    N = problem.inertial_frame
+    for body in d.bodies:
+        if not _rotating(model, body):
+            continue
+        frame = body.frame
+        assert frame is not None  # a turning body has its frame
+        at = [a.at for r in d.reactions for a in r.acts if a.on == body.name]
+        at += [f.at for f in (*d.forces, *d.friction) if f.on == body.name]
+        at += [s.between[i] for s in d.springs for i in (0, 1) if s.on[i] == body.name]
+        points = [p for p in dict.fromkeys([body.centre, *at])
+                  if not _zero(model, model.language.point_velocity(Name(p), N))
+                  and _zero(model, model.language.point_velocity(Name(p), frame))]
+        for spring in d.springs:
+            for i in (0, 1):
+                if spring.on[i] != body.name:
+                    continue
+                for point in points:
+                    if _zero(model, model.positions[point]
+                             - model.positions[spring.between[i]]):
+                        continue
+                    between = (point, spring.between[1]) if i == 0 else \
+                        (spring.between[0], point)
+                    springs = tuple(replace(s, between=between) if s is spring else s
+                                    for s in d.springs)
+                    yield DynamicsMutation(
+                        "load_at_other_point", f"Your value takes the spring {spring.name} "
+                        f"at {point} of {body.name}: it acts at {spring.between[i]}, "
+                        f"{{term}} from {point}, and its moment depends on where.", LOADS,
+                        problem=_mistaken(problem, replace(d, springs=springs)),
+                        term=_expr(f"mag(pos({spring.between[i]}, {point}))"), term_unit="m")
+        if d.gravity is None:
+            continue
+        for point in points:
+            if point == body.centre or _zero(model, model.positions[point]
+                                             - model.positions[body.centre]):
+                continue
+            # the weights as forces, this body's at the other point
+            weights = tuple(Force(f"weight~{b.name}", b.name,
+                                  point if b.name == body.name else b.centre,
+                                  _expr(f"({_mass(b)})*({d.gravity.text})"), b.where,
+                                  kind=LoadKind.WEIGHT) for b in d.bodies)
+            yield DynamicsMutation(
+                "load_at_other_point", f"Your value takes the weight of {body.name} at "
+                f"{point}: it acts at the mass centre {body.centre}, {{term}} from {point}.",
+                LOADS, problem=_mistaken(problem, replace(d, gravity=None,
+                                                          forces=d.forces + weights)),
+                term=_expr(f"mag(pos({body.centre}, {point}))"), term_unit="m")
+
+
+def static_friction_as_mu_m_g(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The friction at a contact that does not slip read as μ m g (the limiting value, with
+    the weight for the normal force) in the sense it acts: static friction is what the
+    balances need, up to μ N."""
+    d = dynamics_of(problem)
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    for f in d.friction:
+        if not isinstance(f, StaticFriction):
+            continue
+        weight = _weight(d.body(f.on), d.gravity)
+        replacement = parse(f"({f.mu.text})*({weight.text})*force({f.name})"
+                            f"/mag(force({f.name}))", functions=FUNCTIONS)
+        readings = _readings(problem, "force", f.name, replacement)
+        if readings:
+            yield DynamicsMutation(
+                "normal_from_weight", f"Your value takes the friction {f.name} as μ m g = "
+                f"{{term}}: the contact does not slip, so the friction is what the balances "
+                f"need (at most μ N, with N = {f.normal} from its own balance).", BALANCES,
+                readings=readings, term=_expr(f"({f.mu.text})*({weight.text})"),
+                term_unit="N")
+
+
+def contact_taken_smooth(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A contact that rolls without slip taken as smooth: its static friction left out, and
+    with it the rolling (the body slides, a = P/m for a pulled wheel); the objectives about
+    the friction itself left out (it has none)."""
+    d = dynamics_of(problem)
+    for f in d.friction:
+        if not isinstance(f, StaticFriction):
+            continue
+        # the rolling constraints at the contact: vel(coincident(C, B), N) = ...
+        rolling = [c for c in problem.constraints if c.level == "velocity"
+                   and isinstance(c.lhs.node, Call) and c.lhs.node.func == "vel"
+                   and isinstance(c.lhs.node.args[0], Call)
+                   and c.lhs.node.args[0].func == "coincident"
+                   and c.lhs.node.args[0].args[0] == Name(f.at)]
+        if not rolling:
+            continue
+        smooth = replace(problem, constraints=tuple(c for c in problem.constraints
+                                                    if c not in rolling))
+        mistaken = _without_load(smooth, replace(d, friction=tuple(
+            x for x in d.friction if x is not f)), f.name)
+        if mistaken is not None:
+            yield DynamicsMutation(
+                "contact_taken_smooth", f"Your value takes the contact at {f.at} as smooth: "
+                f"the friction {f.name} (= {{term}}) keeps {f.on} from slipping there, and "
+                "belongs in its balances with the rolling condition.", LOADS,
+                problem=mistaken, term=_expr(f"mag(force({f.name}))"), term_unit="N")
+
+
 def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A kinetic-friction contact between two bodies (a block sliding on a cart) with the
     body it slides on taken as fixed: the friction acts on the slider only, its reaction on
@@ -1049,7 +1178,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
-    initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted)
+    initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
+    static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

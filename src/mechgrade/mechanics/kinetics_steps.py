@@ -35,10 +35,12 @@ from .derivation import Row, Step, _Display, compact_math
 from .dynamics import _inertias, derive_kinetics, free_body_loads, how_the_instant
 from .symbols import identically_zero
 
-LOAD_CODES = {LoadKind.WEIGHT: ("weight_omitted", "mass_for_weight", "weight_for_mass"),
+LOAD_CODES = {LoadKind.WEIGHT: ("weight_omitted", "mass_for_weight", "weight_for_mass",
+                               "load_at_other_point"),
               LoadKind.KINETIC_FRICTION: ("friction_reversed", "surface_taken_fixed"),
-              LoadKind.STATIC_FRICTION: ("friction_reversed",),
-              LoadKind.SPRING: ("spring_free_length_omitted", "springs_in_series"),
+              LoadKind.STATIC_FRICTION: ("friction_reversed", "contact_taken_smooth"),
+              LoadKind.SPRING: ("spring_free_length_omitted", "springs_in_series",
+                                "spring_omitted", "load_at_other_point"),
               LoadKind.DAMPER: ("damping_omitted",),
               LoadKind.APPLIED_FORCE: ("force_omitted",)}
 """The mistakes that happen in a load's own row of the free-body loads, by its kind."""

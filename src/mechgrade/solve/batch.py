@@ -702,8 +702,9 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         p = kinetics.kp
     else:
         p = kinematics_plan(problem)
-    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches):
-        return None
+    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or \
+            any(o.when is not None for o in problem.objectives):
+        return None  # each variant solved alone (an objective's own position is searched)
     # An integrated motion's variants are reached from their own givens, each column
     # screened: its reference need not be solved (a mistaken model's event may never happen
     # for the spec's givens, as for every variant). Any other continues from the reference's

@@ -255,6 +255,17 @@ class WorkEnergyInstant(KineticInstant):
                        if isinstance(node, Prime) and node.order == 1]
         return energy_state(self.source, self.kinetics, state, given_rates)
 
+    def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
+        """An objective asked ``when`` is read at the position where its equation first holds
+        (:mod:`.positions`); the objectives of a group share it (``_instants``)."""
+        asked = [o.id for o in self.source.objectives if o.id in numeric and o.when is not None]
+        if asked:
+            from .positions import position_where
+            name = self.source.coordinates[0].name
+            given_map = {**given_map, name: (Name(name), position_where(
+                self.source, asked[0], given_map), None)}
+        return super().instant(given_map, numeric, overrides)
+
 
 @dataclass(frozen=True)
 class IntegratedInstant(KineticInstant):
@@ -422,6 +433,9 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
     if isinstance(analysis, WorkEnergy):
         declared = {kin.k.quantity(node) for node in symbol_meanings(problem, obj).values()}
         expr = energy_rate_symbolic(problem, kinetics_plan(problem), expr, declared)
+        if obj.when is not None:
+            from .positions import position_symbolic
+            expr = expr.xreplace({kin.k.q[0]: position_symbolic(problem, objective_id, givens)})
     k = replace(kin.k, objectives=((objective_id, expr),))
     answer, meanings = symbolic(problem, k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
@@ -430,14 +444,16 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
         symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
 
 
-def solved_symbolically(problem: Problem, objective_id: str, givens: tuple):
-    """The objective with the unknown second rates and reactions replaced by their symbolic
-    solution of the momentum balances (zero givens and given second rates stand in)."""
+def solved_symbolically(problem: Problem, objective_id: str, givens: tuple, expr=None):
+    """The objective (or ``expr`` of it, such as its ``when``, with no symbol declared) with
+    the unknown second rates and reactions replaced by their symbolic solution of the
+    momentum balances (zero givens and given second rates stand in)."""
     kin = derive_kinetics(problem)
-    expr = kin.objective(objective_id)
     k = kin.k
-    declared = {k.quantity(node) for node in
-                symbol_meanings(problem, problem.objective(objective_id)).values()}
+    declared = set() if expr is not None else \
+        {k.quantity(node) for node in
+         symbol_meanings(problem, problem.objective(objective_id)).values()}
+    expr = kin.objective(objective_id) if expr is None else expr
     stand_in = {}
     for _, (node, si, _) in givens:
         if isinstance(node, (Name, Prime)):

@@ -459,13 +459,16 @@ def _declared(problem: Problem, objective: Objective) -> frozenset[str]:
 
 def _instants(problem: Problem):
     """Objectives grouped by the instant they are asked at: the problem's givens, or those
-    plus an objective's own givens."""
+    plus an objective's own givens, or the position its ``when`` fixes (those first: the
+    problem's own instant is the last one without givens of its own)."""
     groups: dict[tuple, tuple[dict, list[Objective]]] = {}
     for obj in problem.objectives:
         overrides = {to_text(g.key.node): g for g in obj.givens}
         key = tuple(sorted((name, g.si) for name, g in overrides.items()))
-        groups.setdefault(key, (overrides, []))[1].append(obj)
-    return sorted(groups.values(), key=lambda group: bool(group[0]))
+        when = None if obj.when is None else tuple(e.text for e in obj.when)
+        groups.setdefault((key, when), (overrides, []))[1].append(obj)
+    return sorted(groups.values(),
+                  key=lambda group: (bool(group[0]), group[1][0].when is None))
 
 
 @lru_cache(maxsize=512)

@@ -47,7 +47,10 @@ _DYNAMICS_STEPS = {"strands_miscounted": "constraints", "body_ke_omitted": "kine
                    "spring_free_length_omitted": "kinetics-free-body-loads",
                    "springs_in_series": "kinetics-free-body-loads",
                    "damping_omitted": "kinetics-free-body-loads",
-                   "force_omitted": "kinetics-free-body-loads"}
+                   "force_omitted": "kinetics-free-body-loads",
+                   "spring_omitted": "kinetics-free-body-loads",
+                   "load_at_other_point": "kinetics-free-body-loads",
+                   "contact_taken_smooth": "kinetics-free-body-loads"}
 """Where a dynamics mistake happens when no row of the steps names it: its step."""
 _ACCELERATION_CALLS = ("acc", "acc_t", "acc_n", "rho", "normal")
 _MOTION_CALLS = _ACCELERATION_CALLS + ("vel", "speed", "tangent")

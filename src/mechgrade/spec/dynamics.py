@@ -730,6 +730,7 @@ def _part(spec: dict, expr, where, *path) -> Part:
 def check_dynamics(problem, checker) -> None:
     """Names, kinds and dimensions of the dynamics sections (``checker`` types expressions)."""
     d = problem.dynamics
+    _objective_positions(problem, checker)
     if d is None:
         return
     c = _Checker(problem, checker)
@@ -975,6 +976,47 @@ def _objective_instants(problem, analysis: Integration) -> None:
                                 f"'{g.key.text}: {g.text}'; ask for a scalar or a vector at "
                                 "that instant", where=g.where)
             instant = g
+
+
+def _objective_positions(problem, checker) -> None:
+    """An objective asked ``when: lhs = rhs`` is read at the first position the motion from
+    the work–energy start reaches where the equation holds: only under ``analysis:
+    work_energy`` of one coordinate without constraints (the rates follow from the position),
+    and without a position of its own among its givens."""
+    d = problem.dynamics
+    analysis = d.analysis if d is not None else None
+    coords = [c.name for c in problem.coordinates]
+    for obj in problem.objectives:
+        if obj.when is None:
+            continue
+        left, right = obj.when
+        text = f"{left.text} = {right.text}"
+        if not isinstance(analysis, WorkEnergy):
+            found = "no analysis" if analysis is None else \
+                f"analysis: {_ANALYSIS_NAMES[type(analysis)]}"
+            fix = f"end the motion there with 'until: {text}'" \
+                if isinstance(analysis, Integration) else \
+                "add 'analysis: work_energy' with the start state ('from') and 'sense'"
+            raise SpecError(f"objective '{obj.id}': 'when: {text}' is the position the motion "
+                            f"from a work_energy start reaches; expected 'analysis: "
+                            f"work_energy', found {found}: {fix}", where=left.where)
+        if len(coords) != 1 or problem.constraints:
+            raise SpecError(f"objective '{obj.id}': 'when: {text}' needs one coordinate "
+                            f"without constraints (its rate follows from the energy balance "
+                            f"as a function of the position), found {len(coords)} coordinates "
+                            f"and {len(problem.constraints)} constraints; ask at a given "
+                            f"position instead (givens: {{{coords[0]}: ...}})",
+                            where=left.where)
+        for g in obj.givens:
+            if _names_an_instant(g.key.node, set(coords)):
+                raise SpecError(f"objective '{obj.id}': 'when: {text}' fixes the position, "
+                                f"found also '{g.key.text}: {g.text}' among its givens; keep "
+                                "one of them", where=g.where)
+        checker._same(checker.type_of(left), checker.type_of(right), left,
+                      "both sides of 'when'")
+
+
+_ANALYSIS_NAMES = {Integration: "integrate", WorkEnergy: "work_energy", Impulse: "impulse"}
 
 
 def _names_an_instant(node: Node, coords: set[str]) -> bool:

@@ -415,6 +415,8 @@ class _Builder:
         unit = part(self.unit, spec["unit"], *path, "unit")
         givens = tuple(part(self.given, k, v, *path, "givens")
                        for k, v in (spec.get("givens") or {}).items())
+        when = part(self.equation, spec["when"], *path, "when") \
+            if "when" in spec else None
         if failed:
             return None
         return Objective(
@@ -423,7 +425,7 @@ class _Builder:
             tolerance=Tolerance(float(tol.get("rel", 0.01)), float(tol.get("abs", 0.0)),
                                 self.where(*path, "tolerance")),
             expect=expect, mistakes=mistakes, depends_on=tuple(spec.get("depends_on") or ()),
-            givens=givens, where=self.where(*path),
+            givens=givens, when=when, where=self.where(*path),
             frame_where=self.where(*path, "frame"),
             depends_where=tuple(self.where(*path, "depends_on", j)
                                 for j in range(len(spec.get("depends_on") or ()))))

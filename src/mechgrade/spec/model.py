@@ -221,7 +221,9 @@ class Objective:
 
     ``kind`` is ``scalar``, ``vector`` (components in ``frame``) or ``symbolic`` (an
     expression in ``symbols``). ``givens`` add to or replace the problem's givens for this
-    objective only (another instant, "if the rate were ...").
+    objective only (another instant, "if the rate were ..."). ``when`` (``lhs = rhs``, under
+    ``analysis: work_energy``) asks at the first position the motion from the start reaches
+    where the equation holds (a contact lost, a speed reached).
     """
 
     id: str
@@ -236,6 +238,7 @@ class Objective:
     mistakes: tuple[Mistake, ...] = ()
     depends_on: tuple[str, ...] = ()
     givens: tuple[Given, ...] = ()
+    when: tuple[Expr, Expr] | None = None
     where: Location = field(default_factory=Location, compare=False)
     frame_where: Location = field(default_factory=Location, compare=False)
     depends_where: tuple[Location, ...] = field(default=(), compare=False)

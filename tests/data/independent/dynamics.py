@@ -131,6 +131,9 @@ def case_ruina_9_19_falling_ladder():
             "thetadot_of_theta": "-" + rate, "omega_z_of_theta": rate,
             "N1_wall": "m*cos(theta)*(3*g*sin(theta) - 2*L*thetad**2)/4",
             "N2_floor": "m*(g + 3*g*sin(theta)**2 - 2*L*thetad**2*sin(theta))/4",
+            # by hand: L thd^2 = 3 g (sin th0 - sin th) put into the two reactions above
+            "N1_wall_of_theta": "3*m*g*cos(theta)*(3*sin(theta) - 2*sin(theta0))/4",
+            "N2_floor_of_theta": "m*g*(1 + 9*sin(theta)**2 - 6*sin(theta)*sin(theta0))/4",
             "thetaddot_now": thdd, "reactions_now": [m * xdd, m * (ydd + g), 0.0]}
 
 
@@ -155,7 +158,22 @@ def case_ruina_9_20_ladder_energy():
             # written with g, L > 0 split out: the comparison samples signed symbols
             "vG_symbolic": "sqrt(3)*sqrt(g)*sqrt(L)*sqrt(sin(theta0) - sin(theta))/2",
             # N1 = m x_G'' with L thd^2 = 3 g (sin th0 - sin th)
-            "N1_wall": "3*m*g*cos(theta)*(3*sin(theta) - 2*sin(theta0))/4"}
+            "N1_wall": "3*m*g*cos(theta)*(3*sin(theta) - 2*sin(theta0))/4",
+            # where the wall lets go: N1 = m x_G'' from the centre's acceleration, with the
+            # rate from energy and theta'' from Lagrange, bisected below the release angle
+            "theta_wall_lost": "asin(2*sin(theta0)/3)",
+            "theta_wall_lost_deg": _wall_lost(th0) / DEG,
+            "vG_wall_lost": 0.5 * np.sqrt(3 * (np.sin(th0) - np.sin(_wall_lost(th0))))}
+
+
+def _wall_lost(th0, g=1.0, L=1.0):
+    """The angle below th0 where the ladder's wall reaction m x_G'' first vanishes."""
+    def wall(th):
+        thd = -np.sqrt(3 * g * (np.sin(th0) - np.sin(th)) / L)
+        thdd = -3 * g * np.cos(th) / (2 * L)
+        return -L / 2 * (np.sin(th) * thdd + np.cos(th) * thd**2)  # x_G'' (m = 1)
+
+    return _bisect(wall, th0 - 1e-9, 0.0)
 
 
 def case_ruina_9_23_ball_impulse_momentum():

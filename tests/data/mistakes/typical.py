@@ -429,11 +429,9 @@ def damped_pendulum():
             entry("zeta", "weight's moment without g", num(zeta_m, "1"), "mass_for_weight"),
             entry("damped_period", "weight's moment without g",
                   num(2 * math.pi / (wn_m * math.sqrt(1 - zeta_m**2)), "s"), "mass_for_weight"),
-            # the solver's linearisation of the mistaken model is 0/0 at θ = 0: not named
-            # yet; it is exactly twice the answer (I_O = 4 I_G), which is all that is said
             entry("omega_n", "I_G = m L²/12 used about the pin O",
                   num(math.sqrt((m * g * L / 2) / (m * L**2 / 12)), "rad/s"),
-                  "central_inertia_at_pivot", known="generic", generic=("factor_2",))]
+                  "central_inertia_at_pivot")]
 
 
 def ladder_lift_off():
@@ -505,13 +503,24 @@ def falling_ladder():
 def ladder_energy():
     th0, th = 80 * D, 45 * D
     drop = math.sin(th0) - math.sin(th)  # g = L = 1
+    lost = math.asin(2 / 3 * math.sin(th0))
+    lost_drop = math.sin(th0) - math.sin(lost)
     return [entry("vG_over_sqrt_gL", "rotational energy ½ I_G θ'² left out",
                   num(math.sqrt(drop), "1"), "rotational_ke_omitted"),
             entry("vG_over_sqrt_gL", "calculator in radian mode: sin 45",
                   num(0.5 * math.sqrt(3 * (math.sin(th0) - math.sin(45.0))), "1"),
                   "given_deg_as_rad"),
             entry("vG_over_sqrt_gL", "L θ' (the top relative to the foot) for v_G",
-                  num(math.sqrt(3 * drop), "1"), "factor_2")]
+                  num(math.sqrt(3 * drop), "1"), "factor_2"),
+            # where the wall lets go: N1 = 0 at sin θ = (2/3) sin θ0
+            entry("theta_wall_lost_deg", "angle left in radians", num(lost, "deg"),
+                  "rad_as_deg"),
+            entry("theta_wall_lost_deg", "angle measured from the wall (90 deg - θ)",
+                  num(90 - lost / D, "deg"), known="none"),
+            entry("vG_wall_lost", "rotational energy ½ I_G θ'² left out (the same angle)",
+                  num(math.sqrt(lost_drop), "1"), "rotational_ke_omitted"),
+            entry("vG_wall_lost", "L θ' (the top relative to the foot) for v_G",
+                  num(math.sqrt(3 * lost_drop), "1"), "factor_2")]
 
 
 def wheel_incline():
@@ -918,7 +927,11 @@ SYMBOLIC = {
               "restitution_ignored")],
     "ruina_9_20_ladder_energy": [
         entry("vG_symbolic", "rotational energy left out: ½ m v² = m g (L/2)(sin θ0 - sin θ)",
-              "sqrt(g*L*(sin(theta0) - sin(theta)))", "rotational_ke_omitted")],
+              "sqrt(g*L*(sin(theta0) - sin(theta)))", "rotational_ke_omitted"),
+        entry("theta_wall_lost", "sine and cosine swapped: cos θ = (2/3) sin θ0",
+              "acos(2*sin(theta0)/3)", known="none"),
+        entry("theta_wall_lost", "the factor cos θ set to zero: the ladder upright",
+              "pi/2", known="none")],
     "ruina_9_21_wheel_incline": [
         entry("aG_symbolic", "moments about C with I_G = m r²/2 + M R²",
               "2*g*r^2*(m + 2*M)*sin(theta)/(m*r^2 + 2*M*R^2)", "central_inertia_at_pivot")],

@@ -1,0 +1,178 @@
+"""Where an objective asked ``when: lhs = rhs`` is read: the first position the motion from the
+work–energy start reaches where the equation holds (a wall's reaction vanishing, a speed
+reached), the rates there from the energy balance.
+
+The equation is written in the position alone: the unknown second rates and reactions solved
+from the momentum balances, the rate from the energy integral (one coordinate without
+constraints, :func:`~.work_energy.energy_rate_symbolic`). The position is found numerically,
+walking from the start the way ``sense`` says until the equation changes sign (or the motion
+turns back), then refined; a symbolic objective gets the closed-form root that is that
+position, when sympy finds one.
+
+The closed forms come from the factors of the equation that are quadratics at most in the
+coordinate or one of its sines, cosines or tangents (:func:`closed_form_roots`); the ladder of
+``problems/ruina_9_20_ladder_energy.yaml`` leaves the wall at ``asin(2*sin(theta0)/3)``
+(tests/solve/test_positions.py).
+
+>>> theta, theta0 = sp.symbols("theta theta0")
+>>> closed_form_roots(sp.cos(theta) * (3 * sp.sin(theta) - 2 * sp.sin(theta0)), theta)
+(pi/2, -pi/2, asin(2*sin(theta0)/3), pi - asin(2*sin(theta0)/3))
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import sympy as sp
+
+from ..errors import SolveError
+from ..expressions.syntax import Name, Prime
+from ..mechanics.dynamics import derive_kinetics
+from ..spec.dynamics import WorkEnergy
+from ..spec.model import Problem
+from ..spec.validate import is_angle_unit
+from .analysis import analysis_of
+from ..units import from_si
+from .work_energy import energy_rate_symbolic
+
+_STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
+_XTOL = 1e-14
+
+
+def position_where(problem: Problem, objective_id: str, given_map: dict) -> float:
+    """The coordinate's value (SI) at the first position the motion from the start reaches
+    where the objective's ``when`` holds, at the givens ``given_map`` (canonical key ->
+    ``(node, si, Given)``)."""
+    from scipy import optimize
+
+    obj = problem.objective(objective_id)
+    assert obj.when is not None, "only an objective asked 'when' has a position of its own"
+    q, numbers = _numbers(problem, given_map)
+    residual = _residual(problem, objective_id, _without_position(problem, given_map))
+    f = sp.lambdify(q, residual.xreplace(numbers), modules="numpy")
+    start = float(dict(derive_kinetics(problem).start)[q].xreplace(numbers))
+    analysis = analysis_of(problem, WorkEnergy)
+    sign = analysis.sense[0][1].sign if analysis.sense else 1
+    coordinate = problem.coordinates[0]
+    if is_angle_unit(coordinate.unit):
+        steps = np.linspace(0.0, 2 * np.pi, _STEPS + 1)  # one turn
+    else:
+        steps = np.concatenate([[0.0], max(abs(start), 1.0) * np.logspace(-6, 3, _STEPS)])
+    qs = start + sign * steps
+    with np.errstate(all="ignore"):
+        values = np.broadcast_to(np.asarray(f(qs), dtype=float), qs.shape)
+    # beyond the first undefined value the motion has turned back (no energy left to go on)
+    reached = int(np.argmin(np.isfinite(values))) if not np.isfinite(values).all() else len(qs)
+    qs, values = qs[:reached], values[:reached]
+    if values.size and values[0] == 0.0:  # holding at the start: the next crossing
+        qs, values = qs[1:], values[1:]
+    change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
+    left, right = obj.when
+    if not change.size:
+        searched = f"from {_shown(problem, start)} to {_shown(problem, qs[-1])}" \
+            if qs.size else f"at {_shown(problem, start)}"
+        why = "where the motion turns back" if reached < len(steps) else \
+            ("one turn" if is_angle_unit(coordinate.unit) else "a thousand times its size")
+        raise SolveError(
+            f"objective '{objective_id}': '{left.text} = {right.text}' does not hold anywhere "
+            f"the motion from the start reaches (searched {coordinate.name} {searched}, "
+            f"{why}); check the equation, 'from' and 'sense'", where=left.where)
+    i = int(change[0])
+    if values[i] == 0.0:
+        return float(qs[i])
+    return float(optimize.brentq(lambda x: float(f(x)), qs[i], qs[i + 1], xtol=_XTOL,
+                                 rtol=4 * np.finfo(float).eps))
+
+
+def position_symbolic(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
+    """The position of :func:`position_where` in closed form (in the parameters), the root of
+    the ``when`` equation that is the numeric one at ``givens`` (items of a given map)."""
+    obj = problem.objective(objective_id)
+    assert obj.when is not None, "only an objective asked 'when' has a position of its own"
+    given_map = dict(givens)
+    q, numbers = _numbers(problem, given_map)
+    value = position_where(problem, objective_id, given_map)
+    residual = _residual(problem, objective_id, _without_position(problem, given_map))
+    for root in closed_form_roots(residual, q):
+        at = complex(sp.N(root.xreplace(numbers)))
+        if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
+            return root
+    left, right = obj.when
+    raise SolveError(f"objective '{objective_id}': '{left.text} = {right.text}' holds at "
+                     f"{problem.coordinates[0].name} = {_shown(problem, value)}, but sympy finds no "
+                     "closed form for that position; ask for it as a scalar",
+                     where=left.where)
+
+
+@lru_cache(maxsize=64)
+def closed_form_roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
+    """The roots of the factors of ``residual`` that are polynomials of degree two at most in
+    one of q, sin q, cos q, tan q (each inverse's branches): what closes quickly. Anything
+    else (sin q and cos q together, a square root of q) has none here, since sympy's general
+    solvers can take minutes on it."""
+    u = sp.Dummy("u")
+    inverses = {sp.sin(q): lambda r: (sp.asin(r), sp.pi - sp.asin(r)),
+                sp.cos(q): lambda r: (sp.acos(r), -sp.acos(r)),
+                sp.tan(q): lambda r: (sp.atan(r), sp.atan(r) + sp.pi), q: lambda r: (r,)}
+    numerator = sp.numer(sp.together(sp.simplify(residual)))
+    if q not in numerator.free_symbols:
+        return ()
+    try:
+        factors = [f for f, _ in sp.factor_list(numerator)[1]]
+    except sp.PolynomialError:  # square roots of the parameters: not a polynomial's factors
+        factors = list(sp.Mul.make_args(numerator))
+    out = []
+    for factor in factors:
+        for kernel, inverse in inverses.items():
+            plain = factor.xreplace({kernel: u})
+            if q not in plain.free_symbols and u in plain.free_symbols \
+                    and plain.is_polynomial(u) and sp.degree(plain, u) <= 2:
+                out += [root for r in sp.solve(plain, u) for root in inverse(r)]
+                break
+    return tuple(out)
+
+
+def _residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
+    """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters, worked
+    out once for every objective asked at the same equation."""
+    whens = derive_kinetics(problem).whens
+    equation = dict(whens)[objective_id]
+    return _solved_residual(problem, next(oid for oid, e in whens if e == equation), givens)
+
+
+@lru_cache(maxsize=128)
+def _solved_residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
+    from .dynamics import kinetics_plan, solved_symbolically
+
+    kin = derive_kinetics(problem)
+    expr = solved_symbolically(problem, objective_id, givens, dict(kin.whens)[objective_id])
+    return sp.expand(energy_rate_symbolic(problem, kinetics_plan(problem), expr, set()))
+
+
+def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
+    """The coordinate's symbol, and every other given's symbol -> its SI value."""
+    k = derive_kinetics(problem).k
+    q = k.q[0]
+    numbers = {}
+    for node, si, _ in given_map.values():
+        if isinstance(node, (Name, Prime)) and si is not None:
+            symbol = k.quantity(node)
+            if symbol != q:
+                numbers[symbol] = sp.Float(si)
+    return q, numbers
+
+
+def _without_position(problem: Problem, given_map: dict) -> tuple:
+    """The givens the equation's symbolic solution depends on (those that stand in for a
+    symbol, :func:`~.dynamics.solved_symbolically`: zeros and rates), without the coordinate
+    (the problem's own instant is not the one asked): one key for every variant."""
+    name = problem.coordinates[0].name
+    return tuple(sorted((key, (node, si, None)) for key, (node, si, _) in given_map.items()
+                        if key != name and (si == 0 or isinstance(node, Prime))))
+
+
+def _shown(problem: Problem, value: float) -> str:
+    """A value of the coordinate (SI) in its own unit, for a message."""
+    unit = problem.coordinates[0].unit
+    return f"{from_si(value, unit):.6g} {unit}"
