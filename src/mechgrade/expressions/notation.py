@@ -27,6 +27,8 @@ _SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 _POWER = re.compile(r"(?:\*\*|\^)\s*(?:\((-?\d+)\)|(-?\d+))")
 # a name (not a frame's unit vector after its dot, not a number's exponent)
 _NAME = re.compile(r"(?<![\w.])([A-Za-z][A-Za-z0-9_]*(?:,[xyz]\b)?)")
+# a point's velocity or acceleration, a body's angular ones, in a frame: ``N_v_P``
+_KINEMATIC = re.compile(r"([A-Z]),(v|a|omega|alpha),([A-Za-z0-9]+)")
 # a number and a space just before a name: the name is its unit
 _NUMBER_BEFORE = re.compile(r"(?<![\w^*.])\d+(?:\.\d*)?(?:[eE][-+]?\d+)?\s$")
 # one letter or a Greek letter's name, a number, a rate's d or dd: the answer syntax's names
@@ -94,10 +96,14 @@ def textbook_html(text: str, rates: bool = True) -> str:
 
     >>> textbook_html("the friction F_P (mu N = 8.5 N) <b>", rates=False)
     'the friction F<sub>P</sub> (μ N = 8.5 N) &lt;b&gt;'
+    >>> textbook_html("N_v_P1 = yd*N.y")
+    '<sup>N</sup>v<sub>P1</sub> = ẏ·N.y'
     """
     def show(name, sub):
-        if sub is None:
-            return name
+        kinematic = _KINEMATIC.fullmatch(f"{name},{sub}")
+        if kinematic:  # a point's velocity in a frame: the frame a left superscript
+            frame, quantity, point = kinematic.groups()
+            return f"<sup>{frame}</sup>{GREEK.get(quantity, quantity)}<sub>{escape(point)}</sub>"
         return f"{name}<sub>{escape(sub)}</sub>" if sub else name
     marked = _rewritten(_operators(text), rates, lambda n, s: f"\x00{n}\x01{s or ''}\x02"
                         if s is not None else n)
