@@ -21,9 +21,10 @@ def test_a_unit_after_its_number_is_no_symbol():
     assert textbook("g0*t") == "g₀·t"
 
 
-def test_prose_keeps_its_words():
+def test_prose_keeps_its_words_and_dots_the_rates_of_its_formulas():
     sentence = "add the odd term to block1's tension and N.y"
     assert textbook(sentence, rates=False) == sentence
+    assert textbook("so m*xdd = m*g: wrong", rates=False) == "so m·ẍ = m·g: wrong"
 
 
 def test_a_call_keeps_its_name_and_html_is_escaped():

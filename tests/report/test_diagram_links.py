@@ -49,4 +49,4 @@ def test_a_wrong_diagram_links_to_the_free_body_diagrams_step(tmp_path):
     assert not re.search(r'href="#w[0-9a-f]{5}-kinetics-momentum-balances"', kai)
     assert not re.search(r"#w[0-9a-f]{5}-kinetics-momentum-balances \{", kai)  # nor highlights them
     assert f'<a href="#{anchor("block_sliding_down_incline", "kinetics-momentum-balances")}">' in mia
-    assert "the kinetic friction F P on block is missing from it" in mia
+    assert "the kinetic friction F<sub>P</sub> on block is missing from it" in mia

@@ -29,6 +29,7 @@ _POWER = re.compile(r"(?:\*\*|\^)\s*(?:\((-?\d+)\)|(-?\d+))")
 _NAME = re.compile(r"(?<![\w.])([A-Za-z][A-Za-z0-9_]*(?:,[xyz]\b)?)")
 # a point's velocity or acceleration, a body's angular ones, in a frame: ``N_v_P``
 _KINEMATIC = re.compile(r"([A-Z]),(v|a|omega|alpha),([A-Za-z0-9]+)")
+_OPERATOR = re.compile(r"[*·/=+^]")
 # a number and a space just before a name: the name is its unit
 _NUMBER_BEFORE = re.compile(r"(?<![\w^*.])\d+(?:\.\d*)?(?:[eE][-+]?\d+)?\s$")
 # one letter or a Greek letter's name, a number, a rate's d or dd: the answer syntax's names
@@ -65,7 +66,10 @@ def _rewritten(text: str, rates: bool, show) -> str:
         # letter's name is no unit: ``2 omega x v``)
         unit = _NUMBER_BEFORE.search(text, max(0, m.start() - 40), m.start()) is not None \
             and name.partition("_")[0].rstrip("d0123456789") not in GREEK
-        found = None if after == "(" or unit else _symbol(name, rates)
+        # in prose a rate is one only inside a formula (``m*xdd = ...``, not "add")
+        formula = rates or bool(_OPERATOR.search(text[max(0, m.start() - 2):m.start()]
+                                                 + text[m.end():m.end() + 2]))
+        found = None if after == "(" or unit else _symbol(name, formula)
         out.append(text[last:m.start()])
         out.append(show(*found) if found else show(name, None))
         last = m.end()
