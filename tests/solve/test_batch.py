@@ -175,8 +175,8 @@ def test_a_variant_whose_givens_conflict_fails_as_when_solved_alone():
 INTEGRATED_ALONE = ("ball_thrown_with_drag_apex_and_landing", "damped_block_positions",
                     "three_cart_chain_vibration")
 """Integrated problems with objectives asked before the event (an objective's own time,
-coordinate or rate): the integrator over columns reads the event only, each variant is
-integrated alone."""
+coordinate or rate): the integrator over columns reads the event only, each variant's
+instant before it is reached alone."""
 POSITIONED_ALONE = ("ruina_9_20_ladder_energy",)
 """Work-energy problems with objectives asked 'when' an equation holds: the position is
 searched for each variant alone."""
@@ -247,9 +247,21 @@ def test_variants_reached_by_energy_integration_or_design_solved_together_are_th
         assert_same(together, one, tolerance, generated=k == 0)
 
 
-@pytest.mark.parametrize("name", [*INTEGRATED_ALONE, *(pytest.param(
-    name, marks=pytest.mark.slow) for name in POSITIONED_ALONE)])
-def test_variants_asked_before_the_event_or_at_a_position_are_solved_alone(name, tmp_path):
+@pytest.mark.parametrize("name", INTEGRATED_ALONE)
+def test_variants_asked_before_the_event_are_reached_alone_there_only(name, tmp_path):
+    problem = with_drawn_parameters(PROBLEMS / f"{name}.yaml", tmp_path)
+    template = _template(problem)
+    assert template is not None and any(group.alone for group in template.groups)
+    variants = [dict(draw_variant(problem, "batch", str(n)).overrides) for n in range(2)]
+    assert all(s is not None for s in template.solve(variants))  # no variant alone whole
+    for together, one in zip(solve_variants(problem, variants), alone(problem, variants)):
+        assert_same(together, one, EXACT, generated=False)
+
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", POSITIONED_ALONE)
+def test_variants_asked_at_a_position_are_solved_alone(name, tmp_path):
     problem = with_drawn_parameters(PROBLEMS / f"{name}.yaml", tmp_path)
     assert _template(problem) is None
     variants = [dict(draw_variant(problem, "batch", str(n)).overrides) for n in range(2)]

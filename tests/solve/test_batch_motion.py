@@ -50,6 +50,26 @@ def test_a_column_whose_event_never_happens_ends_at_the_time_allowed_without_it(
     assert np.isnan(arrival.t[1])
 
 
+def test_an_event_given_a_direction_fires_only_on_a_crossing_that_way_as_solve_ivp_does():
+    # every column starts on its event, x = 0, and waits for it to cross back from the side
+    # it leaves to (as events._next_crossing sets it): moving up, a fall; moving down, a rise
+    y0 = np.array([[0.0, 0.0, 0.0], [1.0, -1.0, 1.0]])
+    direction = np.array([-1.0, 1.0, -1.0])
+    arrival = integrate_to_events(oscillators, crossing(np.zeros(3)), y0, 10.0, 1e-11, 1e-12,
+                                  20_000, direction=direction)
+    assert arrival.status.tolist() == [FIRED] * 3
+    for j in range(3):
+        def event(t, y):
+            return y[0]
+        event.terminal, event.direction = True, direction[j]
+        alone = integrate.solve_ivp(lambda t, y, j=j: oscillators(np.array([j]), t, y[:, None],
+                                                             None)[:, 0],
+                                    (0.0, 10.0), y0[:, j], method="DOP853", rtol=1e-11,
+                                    atol=1e-12, events=event)
+        assert arrival.t[j] == pytest.approx(alone.t_events[0][0], rel=1e-13)
+    assert arrival.t == pytest.approx(np.pi / OMEGA, rel=1e-10)
+
+
 def test_a_column_that_starts_on_its_event_or_runs_out_of_evaluations_is_left_alone():
     level = np.array([1.0, 0.5, -0.9])
     y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])

@@ -2,11 +2,14 @@
 
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from mechgrade.grade.compare import assess
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
+from mechgrade.solve.mutants import attach, kept_mistakes, stacked
+from mechgrade.solve.result import GeneratedMistake, ObjectiveResult
 from mechgrade.spec import load_problem
 
 PENDULUM = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
@@ -134,3 +137,20 @@ def test_a_natural_frequency_makes_the_two_pi_between_rad_per_s_and_hertz_plausi
     # a problem without a frequency or a rate in revolutions: no 2π slip
     assert "rev_rad" not in plausible_slips(load_problem(shipped_dir("problems")
                                                          / "pendulum_pin_reaction.yaml"))
+
+
+def test_a_generated_mistake_is_kept_alike_at_one_instant_and_in_a_class():
+    # one rule (kept_mistakes) read through one stacking of the mistakes: the answer's own
+    # value, a repeat of its family and a value of another shape are dropped, at one instant
+    # (attach) as at each instant of a class
+    mistakes = [GeneratedMistake("sign", "s", 2.0), GeneratedMistake("sign", "s", 2.0),
+                GeneratedMistake("half_factor", "h", 1.0), GeneratedMistake("vector", "v",
+                                                                           (1.0, 2.0, 3.0)),
+                GeneratedMistake("half_factor", "h", 4.0)]
+    result = ObjectiveResult(id="a", kind="scalar", unit="m", value=1.0)
+    (alone,) = attach({"a": result}, [{"a": mistakes}], frozenset()).values()
+    V, exists, other, codes = stacked([mistakes, mistakes[:1], []], 1)
+    keep = kept_mistakes(np.array([[1.0], [1.0], [1.0]]), V, exists, other, codes=codes)
+    assert [m.value for m in alone.generated_mistakes] == [2.0, 4.0]
+    assert [[mistakes[j].value for j in np.flatnonzero(row)] for row in keep] == \
+        [[2.0, 4.0], [2.0], []]

@@ -12,7 +12,10 @@ rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion i
 to its event (:func:`~.batch_motion.integrate_to_events`: each variant's DOP853 steps, all
 variants' right-hand sides in one call); a design parameter by Newton's method around the
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
-in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at.
+in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at. An
+objective asked before an integration's event (at a time, coordinate or rate of its own) is
+read at each variant's instant as :func:`~.instant.drive` reaches it alone, beside the others
+solved together.
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -45,25 +48,24 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..spec.dynamics import Integration, WorkEnergy, instant_of_objective
 from ..spec.model import Objective, Problem, Root
-from ..units import si_factor
-from .batch_motion import newton
+from .batch_motion import ROOT_RTOL, ROOT_XTOL, newton
 from .entry import solve
 from .events import event_never_happens
-from .instant import (_instants, _key, _size, _symbolic_answer, collect_results,
-                      instant_givens, read_objectives, solution_of, symbolic_dependence,
-                      wanted_objectives)
+from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
+                      collect_results, in_unit,
+                      instant_givens, numeric_result, read_objectives, shown, solution_of,
+                      symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
-                      plausible_slips, slips_of)
+                      plausible_slips, slips_of, stacked)
 from .numeric import degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
-from .result import (GeneratedMistake, MistakeValue, ObjectiveResult,
-                     Solution)
+from .result import (GeneratedMistake, Solution)
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
 
@@ -168,6 +170,7 @@ class _Group:
     nullity: tuple[int, ...]  # per level
     after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
     loose: frozenset[int]  # and leaves free
+    alone: bool = False  # an instant before an integration's event: each column reached alone
 
 
 class _Template:
@@ -223,6 +226,9 @@ class _Template:
         for group in self.groups:
             maps = [instant_givens(problem, g, group.overrides) for g in variants]
             objectives = [o for o in group.objectives if o.id in wanted]
+            if group.alone:
+                self._alone(group, maps, objectives, ok, results, lost, base)
+                continue
             values: dict = {}
             mistakes: dict = {}
             generated: dict = {}
@@ -245,8 +251,8 @@ class _Template:
             numeric = [o for o in objectives if o.kind != "symbolic"]
             symbols = [o.id for o in objectives if o.kind == "symbolic"]
             answers: dict = {}  # this problem's symbolic answers, by what they depend on
-            shown = {o.id: _shown(values[o.id], o) for o in numeric}
-            declared = {o.id: [_shown(v, o) for v in mistakes.get(o.id, ())] for o in numeric}
+            value_shown = {o.id: shown(values[o.id], o) for o in numeric}
+            declared = {o.id: [shown(v, o) for v in mistakes.get(o.id, ())] for o in numeric}
             # a dynamics objective undefined at a variant's instant is that objective's
             # failure (as collect_results words it); any other has made the variant not ok
             defined = {o.id: np.isfinite(values[o.id]).all(axis=0)
@@ -266,14 +272,10 @@ class _Template:
                                         {o.id: [m[:, i] for m in mistakes.get(o.id, ())]},
                                         results[i], failures)
                         continue
-                    results[i][o.id] = ObjectiveResult(
-                        id=o.id, kind=o.kind, unit=o.unit, value=shown[o.id][i],
-                        frame=o.frame, mistakes=tuple(
-                            MistakeValue(m.message, m.credit, v[i])
-                            for m, v in zip(o.mistakes, declared[o.id])),
-                        rel=o.tolerance.rel, abs=o.tolerance.abs, prompt=o.prompt,
-                        generated_mistakes=generated[o.id](i) if generated else (),
-                        plausible=self.plausible if self.kinetics is None else None)
+                    results[i][o.id] = numeric_result(
+                        o, value_shown[o.id][i], [v[i] for v in declared[o.id]],
+                        generated[o.id](i) if generated else (),
+                        self.plausible if self.kinetics is None else None)
                 for oid in symbols:
                     depends = symbolic_dependence(problem, maps[i], oid)
                     answer = answers.get((oid, depends))
@@ -294,6 +296,21 @@ class _Template:
                 lost[i].update(failures)  # as solve_dynamics keeps them
         return [self._solution(results[i], base[i], lost[i], wanted) if ok[i] else None
                 for i in range(n)]
+
+    def _alone(self, group: _Group, maps: list[dict], objectives: list[Objective],
+               ok: np.ndarray, results: list[dict], lost: list[dict], base: list) -> None:
+        """The objectives of ``group`` at every column's instant, each column's reached as
+        :func:`~.instant.drive` reaches it alone: an instant before an integration's event,
+        which the integrator over columns does not stop at (and which, integrated, carries
+        no warning of its own)."""
+        from .dynamics import kinetic_reach
+
+        reach = kinetic_reach(self.problem)
+        for i in np.flatnonzero(ok) if objectives else ():
+            reached = answer_group(self.problem, reach, maps[i], objectives, group.overrides,
+                                   results[i], lost[i])
+            if reached is not None and base[i] is None:
+                base[i] = (reached.state, reached.givens)
 
     def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
                     base: list) -> None:
@@ -427,9 +444,10 @@ class _Template:
             warnings.simplefilter("ignore", RuntimeWarning)
             root, converged = newton(residual, np.full(n, guess))
         converged &= np.isfinite(root)
-        # Newton stops once its next iterate is within 1e-13 of the last one evaluated:
-        # that instant is the root's (as closely as the root is known), not reached again
-        kept = converged & (np.abs(last["at"] - root) <= 1e-13 * np.abs(root) + 1e-15)
+        # Newton stops once its next iterate is within its tolerance of the last one
+        # evaluated: that instant is the root's (as closely as the root is known), not
+        # reached again
+        kept = converged & (np.abs(last["at"] - root) <= ROOT_RTOL * np.abs(root) + ROOT_XTOL)
         out, ok = last["X"].copy(), last["ok"] & kept
         redo = np.flatnonzero(~kept)
         if len(redo):
@@ -574,11 +592,11 @@ class _Template:
         solved, found = self._misread_values(group, changed)
         for oid in group.numeric:
             obj = problem.objective(oid)
-            shown = _shown(found[oid], obj) if changed else []
+            mistaken = shown(found[oid], obj) if changed else []
             defined = (solved & np.isfinite(found[oid]).all(axis=0)) if changed else []
             for k in np.flatnonzero(defined):
                 i, code, sentence = owner[k]
-                misreadings[oid][i].append(GeneratedMistake(code, sentence, shown[k]))
+                misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
         out = {}
         for oid in group.numeric:
             obj = problem.objective(oid)
@@ -608,42 +626,25 @@ class _Template:
         return solved, values
 
 
-def _shown(si: np.ndarray, obj: Objective) -> list:
-    """SI values (size x N) in the objective's unit, as :func:`~.instant._report` gives
-    each (a float, or a tuple of components)."""
-    values = (si / si_factor(obj.unit) + 0.0).T.tolist()
-    return [tuple(v) for v in values] if obj.kind == "vector" else [v[0] for v in values]
-
-
 def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
     """The generated mistakes :func:`~.mutants.attach` keeps for every variant at once (the
     model mutations in ``rows_``, then each variant's ``misread`` givens): those that differ
     from the answer and from every one kept before them, and are not a vague zero. Returns
     the mistakes of variant ``i`` as a function of ``i``."""
-    n = si.shape[1]
-    size = si.shape[0]
-    slots = max((len(m) for m in misread), default=0)
-    count = len(rows_) + slots
-    if not count:
+    n, size = si.shape[1], si.shape[0]
+    if not rows_ and not any(misread):
         return lambda _i: ()
-    V = np.full((n, count, size), np.nan)
-    exists = np.zeros((n, count), dtype=bool)
-    other = np.zeros((n, count), dtype=bool)
-    codes = np.full((n, count), "", dtype=object)
+    V = np.full((n, len(rows_), size), np.nan)
+    exists = np.zeros((n, len(rows_)), dtype=bool)
+    other = np.zeros((n, len(rows_)), dtype=bool)
+    codes = np.full((n, len(rows_)), "", dtype=object)
     for j, row in enumerate(rows_):
-        V[:, j] = row[3]
-        exists[:, j] = row[2]
-        other[:, j] = row[0].code in ZERO_NAMES
-        codes[:, j] = row[0].code
-    first = len(rows_)
-    for i, mistakes in enumerate(misread):
-        if mistakes:
-            last = first + len(mistakes)
-            V[i, first:last] = np.array([m.value for m in mistakes], float).reshape(-1, size)
-            exists[i, first:last] = True
-            other[i, first:last] = [m.code in ZERO_NAMES for m in mistakes]
-            codes[i, first:last] = [m.code for m in mistakes]
-    keep = kept_mistakes((si / si_factor(obj.unit) + 0.0).T, V, exists, other, codes=codes)
+        V[:, j], exists[:, j] = row[3], row[2]
+        other[:, j], codes[:, j] = row[0].code in ZERO_NAMES, row[0].code
+    # the model's mutations, then each variant's misread givens
+    V, exists, other, codes = (np.concatenate(parts, axis=1) for parts in
+                               zip((V, exists, other, codes), stacked(misread, size)))
+    keep = kept_mistakes(in_unit(si, obj).T, V, exists, other, codes=codes)
 
     def at(i: int) -> tuple[GeneratedMistake, ...]:
         return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
@@ -745,10 +746,9 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
                     given_map = reach.designed(given_map)
             g = place_givens(kproblem, p, given_map)
             if isinstance(analysis, Integration):
-                if instant_of_objective(problem, overrides) is not None:
-                    return None  # an instant before the event: each variant integrated alone
-                groups.append(_integration_group(p, overrides, objectives, numeric,
-                                                 given_map, g))
+                groups.append(replace(
+                    _integration_group(p, overrides, objectives, numeric, given_map, g),
+                    alone=instant_of_objective(problem, overrides) is not None))
                 continue
             instant = solve_numeric(kproblem, p, given_map,
                                     set() if kinetics is not None else set(numeric))

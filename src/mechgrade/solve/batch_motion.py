@@ -74,11 +74,14 @@ class Arrival:
 
 def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
                         rtol: float, atol: float, max_calls: int, lead: float = rules.BEFORE_EVENT,
-                        mode: Callable | None = None) -> Arrival:
+                        mode: Callable | None = None,
+                        direction: np.ndarray | None = None) -> Arrival:
     """Integrate ``y' = rhs`` from ``y0`` (states x columns) at t = 0 until ``event`` changes
     sign (or becomes zero), per column, as ``solve_ivp(method="DOP853", events=event)`` with
     a terminal event does for each column alone; ``mode(columns, t, y)`` gives the modes
-    (modes x columns) each step keeps (see the module docstring)."""
+    (modes x columns) each step keeps (see the module docstring). ``direction``: each
+    column's event's ``direction``, as scipy reads it (1: only a rise fires it, -1: only a
+    fall, 0: either); a column whose event is zero at the start moves only with one."""
     c = dop853
     m, count = y0.shape
     status = np.full(count, FAILED)
@@ -91,7 +94,8 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
     calls = np.full(count, 2)
     retry = np.zeros(count, dtype=bool)
-    moving = np.isfinite(f).all(axis=0) & np.isfinite(g) & (g != 0)
+    sense = np.zeros(count) if direction is None else direction
+    moving = np.isfinite(f).all(axis=0) & np.isfinite(g) & ((g != 0) | (sense != 0))
     history = _History(count, m, c.N_STAGES + 1, len(modes))
     ends = np.zeros((2, count))  # the event's values at the ends of the step it fired in
     switch = np.full(count, -1)  # the mode that switched before the event
@@ -138,7 +142,8 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         g_new = event(b, t_new[k], y_new[:, k], ma[:, k])
         g_old = g[b]
         t[b], y[:, b], f[:, b], g[b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
-        fired = ((g_old <= 0) & (g_new >= 0)) | ((g_old >= 0) & (g_new <= 0))
+        fired = ((g_old <= 0) & (g_new >= 0) & (sense[b] >= 0)) | \
+            ((g_old >= 0) & (g_new <= 0) & (sense[b] <= 0))
         undefined = ~np.isfinite(g_new)
         switched = np.zeros(len(b), dtype=bool)
         if mode is not None:  # a switch anywhere but at the event: not answered here

@@ -28,6 +28,9 @@ from .levels import State
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
+LEAVING = 1e-6
+"""The moment after the start, as a part of the time allowed, at which the side an event that
+holds at the start is left to is read: far shorter than any motion the time allowed holds."""
 
 
 def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[State, np.ndarray]:
@@ -151,8 +154,7 @@ def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
 
     if event(0.0, y0) != 0.0:
         return
-    # a moment after the start, far shorter than any motion the time allowed holds
-    h = 1e-6 * t_bound
+    h = LEAVING * t_bound
     early = solve_ivp(rhs, (0.0, h), y0, method="DOP853", rtol=RTOL, atol=ATOL)
     side = np.sign(event(h, early.y[:, -1]))
     # a state at rest in the event (an equilibrium) moves only by rounding: it stays there

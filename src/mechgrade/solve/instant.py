@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 from dataclasses import dataclass
-from typing import Callable, Collection, Mapping, Protocol
+from typing import Callable, Collection, Mapping, Protocol, Sequence
 
 import numpy as np
 
@@ -233,32 +233,44 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
         chosen = [o for o in group if o.id in wanted]
         if not chosen:
             continue
-        given_map = instant_givens(problem, givens, overrides)
-        numeric = {o.id for o in chosen if _numeric(o)}
-        values: Mapping[str, np.ndarray] = {}
-        mistakes: dict = {}
-        reached = None
-        if numeric:
-            try:
-                reached = reach.instant(given_map, numeric, overrides)
-            except MechgradeError as err:
-                failures.update({oid: err for oid in numeric})
-            else:
-                given_map = reached.givens
-                failures.update(reached.failures)
-                values, mistakes = reached.values, reached.mistakes
-                warned += [w for w in reached.warnings if w not in warned]
-                if not overrides or base is None:
-                    base = (reached.state, given_map)
-        collect_results(problem, chosen, given_map, values, mistakes, results, failures,
-                        symbolic=reach.symbolic())
-        results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
-                                                if o.id in results}, reached, numeric))
+        reached = answer_group(problem, reach, instant_givens(problem, givens, overrides),
+                               chosen, overrides, results, failures)
+        if reached is not None:
+            warned += [w for w in reached.warnings if w not in warned]
+            if not overrides or base is None:
+                base = (reached.state, reached.givens)
     solution = solution_of(problem, reach.problem, reach.plan, results, failures, base,
                            tuple(warned), wanted)
     if isinstance(solution, MechgradeError):
         raise solution
     return solution
+
+
+def answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[Objective],
+                 overrides: dict, results: dict[str, ObjectiveResult],
+                 failures: dict[str, MechgradeError]) -> Reached | None:
+    """One group of objectives ``chosen`` asked at the givens ``given_map`` (``overrides``:
+    their own among them): the instant reached by ``reach``, each objective read there (a
+    symbolic one derived) into ``results``, or its error into ``failures``. Returns the
+    instant reached (``None``: no numeric objective asked, or the instant not reached)."""
+    numeric = {o.id for o in chosen if _numeric(o)}
+    values: Mapping[str, np.ndarray] = {}
+    mistakes: dict = {}
+    reached = None
+    if numeric:
+        try:
+            reached = reach.instant(given_map, numeric, overrides)
+        except MechgradeError as err:
+            failures.update({oid: err for oid in numeric})
+        else:
+            given_map = reached.givens
+            failures.update(reached.failures)
+            values, mistakes = reached.values, reached.mistakes
+    collect_results(problem, chosen, given_map, values, mistakes, results, failures,
+                    symbolic=reach.symbolic())
+    results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
+                                            if o.id in results}, reached, numeric))
+    return reached
 
 
 def solution_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
@@ -403,21 +415,31 @@ def _store_answer(key: str, answer: ObjectiveResult) -> None:
         cache.store(key, data)
 
 
+@dataclass(frozen=True)
+class BearingGivens:
+    """The disk cache's entry of :func:`_bearing_givens`: the givens a symbolic answer bears
+    on (``None``: it cannot tell, every given may)."""
+
+    bearing: frozenset[str] | None
+
+
 def _bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None:
     """:func:`.symbolic.bearing_givens`, kept in the disk cache under the problem: reading it
-    derives the model with sympy, which a warm solve never imports."""
+    derives the model with sympy, which a warm solve never imports. An entry that is not a
+    :class:`BearingGivens` (spoilt, or of another version) is derived and stored again."""
     problem_key = cache.problem_key(problem)
     key = None if problem_key is None else cache.digest("bearing", problem_key, objective_id)
     data = cache.load(key) if key is not None else None
-    if isinstance(data, dict) and set(data) == {"bearing"} and (
-            data["bearing"] is None or (isinstance(data["bearing"], list) and all(
-                isinstance(name, str) for name in data["bearing"]))):
-        return None if data["bearing"] is None else frozenset(data["bearing"])
+    if data is not None:
+        try:
+            return decode(BearingGivens, data).bearing
+        except ValueError:
+            pass
     from .symbolic import bearing_givens
 
     bearing = bearing_givens(problem, objective_id)
     if key is not None:
-        cache.store(key, {"bearing": None if bearing is None else sorted(bearing)})
+        cache.store(key, encode(BearingGivens(bearing)))
     return bearing
 
 
@@ -504,12 +526,20 @@ def _shortest(expr) -> str:
 
 
 def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:
+    return numeric_result(obj, _report(si_values, obj), [_report(v, obj) for v in mistakes])
+
+
+def numeric_result(obj: Objective, value, mistakes: Sequence, generated: Sequence = (),
+                   plausible: frozenset[str] | None = None) -> ObjectiveResult:
+    """A numeric objective's result from its value and its declared ``mistakes``' values as
+    :func:`shown` gives them, with its ``generated`` mistakes and ``plausible`` slips: one
+    instant's, or one column's of a class."""
     return ObjectiveResult(
-        id=obj.id, kind=obj.kind, unit=obj.unit, value=_report(si_values, obj),
-        frame=obj.frame,
-        mistakes=tuple(MistakeValue(m.message, m.credit, _report(v, obj))
+        id=obj.id, kind=obj.kind, unit=obj.unit, value=value, frame=obj.frame,
+        mistakes=tuple(MistakeValue(m.message, m.credit, v)
                        for m, v in zip(obj.mistakes, mistakes)),
-        rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
+        rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt,
+        generated_mistakes=generated, plausible=plausible)
 
 
 def degrees_of_freedom(p: KinematicsPlan, state: State | None = None) -> int:
@@ -524,9 +554,26 @@ def _report(si_values: np.ndarray, obj: Objective):
     if not np.isfinite(si_values).all():
         raise SolveError(f"objective '{obj.id}' is undefined at this instant (for example a "
                          "direction of motion when the speed is zero)", where=obj.where)
+    return shown(np.asarray(si_values, dtype=float).reshape(-1, 1), obj)[0]
+
+
+def shown(si: np.ndarray, obj: Objective) -> list:
+    """An objective's SI values at every instant (size x N, one column each) in its unit, as
+    its result gives them: a float each, or a vector's tuple of components.
+
+    >>> from types import SimpleNamespace
+    >>> shown(np.array([[0.5, 2.0]]), SimpleNamespace(unit="cm", kind=ObjectiveKind.SCALAR))
+    [50.0, 200.0]
+    """
+    values = in_unit(si, obj).T.tolist()
     if obj.kind == ObjectiveKind.VECTOR:
-        return tuple(float(from_si(v, obj.unit)) + 0.0 for v in si_values)
-    return float(from_si(si_values[0], obj.unit)) + 0.0
+        return [tuple(v) for v in values]
+    return [v[0] for v in values]
+
+
+def in_unit(si: np.ndarray, obj: Objective) -> np.ndarray:
+    """SI values of an objective in its unit (a zero's sign dropped)."""
+    return si / si_factor(obj.unit) + 0.0
 
 
 def _may_be_negative(problem: Problem, node) -> bool:

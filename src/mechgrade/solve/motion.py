@@ -22,7 +22,7 @@ from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import FirstErrors, call, least_squares_solution, loud_call
-from .events import ATOL, MAX_CALLS, RTOL, event_never_happens
+from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens
 from .plan import KinematicsPlan
 from .rules import satisfied
 
@@ -107,8 +107,10 @@ class Motion:
         y0 = np.concatenate([values[:n], values[qd]])
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore")
+            switching = mode if switches else None
             arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
-                                          MAX_CALLS, mode=mode if switches else None)
+                                          MAX_CALLS, mode=switching,
+                                          direction=self._leaving(rhs, event, switching, y0))
         ok = arrival.status == FIRED
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
@@ -125,6 +127,34 @@ class Motion:
                   if (error := solved.errors[int(i)]) is not None}
         stuck = self._stuck(arrival, at, switches) if switches is not None else {}
         return np.vstack([x, before]), ok & fine, arrival.status == NEVER, {**failed, **stuck}
+
+    def _leaving(self, rhs: Callable, event: Callable, mode: Callable | None,
+                 y0: np.ndarray) -> np.ndarray:
+        """Each column's event's direction (see :func:`~.batch_motion.integrate_to_events`):
+        where the event holds at the start, its next crossing, back through zero from the
+        side the motion leaves to a moment later (as :func:`~.events._next_crossing` sets it
+        for one motion); 0 elsewhere, and where that moment is not reached or the motion
+        stays in the event (that column is solved alone, which says why)."""
+        count = y0.shape[1]
+        everyone = np.arange(count)
+        start = np.zeros(count)
+        g = event(everyone, start, y0, mode(everyone, start, y0) if mode else None)
+        direction = np.zeros(count)
+        held = np.flatnonzero(g == 0)
+        if not len(held):
+            return direction
+        assert isinstance(self.analysis, Integration)
+        h = LEAVING * self.analysis.max_time
+        moment = integrate_to_events(
+            lambda c, t, y, m: rhs(held[c], t, y, m), lambda _c, t, _y, _m: t - h,
+            y0[:, held], 2 * h, RTOL, ATOL, MAX_CALLS,
+            mode=(lambda c, t, y: mode(held[c], t, y)) if mode else None)
+        y = moment.y
+        side = np.sign(event(held, moment.t, y, mode(held, moment.t, y) if mode else None))
+        moved = np.abs(y - y0[:, held]).max(axis=0, initial=0.0) > ATOL
+        direction[held] = np.where((moment.status == FIRED) & moved & np.isfinite(side),
+                                   -side, 0.0)
+        return direction
 
     def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching
                ) -> dict[int, MechgradeError]:

@@ -22,7 +22,7 @@ import math
 import re
 from dataclasses import replace
 from functools import lru_cache
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -303,14 +303,34 @@ def _distinct(right, kept: tuple[GeneratedMistake, ...],
     instant (a value of another shape than the answer's is none of its mistakes)."""
     r = np.atleast_1d(np.asarray(right, float))
     mistakes = kept + tuple(new)
-    values = [np.atleast_1d(np.asarray(m.value, float)) for m in mistakes]
-    exists = np.array([[v.shape == r.shape for v in values]])
-    V = np.array([[v if v.shape == r.shape else np.full(r.shape, np.nan) for v in values]])
-    other = np.array([[m.code in ZERO_NAMES for m in mistakes]])
-    codes = np.array([[m.code for m in mistakes]], dtype=object)
-    keep = kept_mistakes(r[None, :], V.reshape(1, len(mistakes), len(r)), exists, other,
-                         len(kept), codes)
+    V, exists, other, codes = stacked([mistakes], len(r))
+    keep = kept_mistakes(r[None, :], V, exists, other, len(kept), codes)
     return tuple(m for m, k in zip(mistakes, keep[0]) if k)
+
+
+def stacked(columns: Sequence[Sequence[GeneratedMistake]], size: int
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The generated mistakes of every instant (a sequence each, values as shown) as
+    :func:`kept_mistakes` reads them: their values (N x count x ``size``), where each exists
+    (not past the end of its instant's, nor a value of another shape than ``size``), which
+    are of :data:`ZERO_NAMES`, and their codes.
+
+    >>> V, exists, other, codes = stacked([[GeneratedMistake("sign", "s", 2.0)], []], 1)
+    >>> V.shape, exists.tolist(), codes.tolist()
+    ((2, 1, 1), [[True], [False]], [['sign'], ['']])
+    """
+    n, count = len(columns), max((len(c) for c in columns), default=0)
+    V = np.full((n, count, size), np.nan)
+    exists = np.zeros((n, count), dtype=bool)
+    other = np.zeros((n, count), dtype=bool)
+    codes = np.full((n, count), "", dtype=object)
+    for i, mistakes in enumerate(columns):
+        for j, m in enumerate(mistakes):
+            value = np.atleast_1d(np.asarray(m.value, float))
+            if value.shape == (size,):
+                V[i, j], exists[i, j] = value, True
+            other[i, j], codes[i, j] = m.code in ZERO_NAMES, m.code
+    return V, exists, other, codes
 
 
 def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: np.ndarray,
