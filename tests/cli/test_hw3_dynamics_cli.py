@@ -167,7 +167,8 @@ def test_a_student_credited_by_ecf_reads_why_on_the_feedback_page(graded):
     _, out, _ = graded
     for page in sorted((out / "feedback").glob("erin_park*")):
         text = page.read_text(encoding="utf-8")
-        assert "Error carried forward: this answer follows correctly from your answer to omega" \
+        # the objective's symbol as a textbook writes it (issue 20), in either page
+        assert "Error carried forward: this answer follows correctly from your answer to ω" \
             in text, page.name
 
 
@@ -229,9 +230,9 @@ def test_a_student_credited_by_ecf_reads_one_sentence_under_its_verdict(graded):
     card = page[page.index("## (d) The rod's kinetic energy"):]
     card = card[:card.index("\n## ")]
     assert card == (
-        "## (d) The rod's kinetic energy at theta = 40 deg. — 2 / 2\n\n"
+        "## (d) The rod's kinetic energy at θ = 40 deg. — 2 / 2\n\n"
         "Answer key `pendulum_release.kinetic_energy`\n\n"
-        "Error carried forward: this answer follows correctly from your answer to omega (used "
+        "Error carried forward: this answer follows correctly from your answer to ω (used "
         "in place of the energy balance) and earns 100% of the points.\n\n"
         "- Verdict: **Correct (error carried forward)**\n"
         "- Your answer: 18.0 J\n"

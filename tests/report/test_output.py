@@ -75,8 +75,8 @@ def test_html_feedback_shows_every_objective_and_escapes_student_text(tmp_path):
     assert '<b>3.5</b> <span>/ 5 points (70%)</span>' in ana
     assert '<dd class="verdict">Partly correct</dd>' in ana
     assert "<strong>Sign error:</strong>" in ana
-    assert '<dt>Expected</dt><dd><span class="math">-L·thetad² ft/s²</span></dd>' in ana
-    assert '<span class="math">L·thetad²</span>' in ana
+    assert '<dt>Expected</dt><dd><span class="math">-L·θ̇² ft/s²</span></dd>' in ana
+    assert '<span class="math">L·θ̇²</span>' in ana
     assert "read the key &#39;P.acc&#39; as &#39;p.acc&#39;" in ana
     eve = (tmp_path / "feedback" / "eve.html").read_text(encoding="utf-8")
     assert "<script>" not in eve
@@ -94,7 +94,7 @@ def test_markdown_feedback_escapes_student_text(tmp_path):
     assert "# Homework \\<1\\>" in ana
     assert "**Score: 3.5 / 5 points (70%)**" in ana
     assert "## Speed in terms of L. — 1.5 / 3\n\nAnswer key `p.sym`\n" in ana
-    assert "- Expected: -L·thetad² ft/s²" in ana
+    assert "- Expected: -L·θ̇² ft/s²" in ana
 
 
 def _answered_in_other_units(in_answer_unit: bool) -> GradeReport:
@@ -272,10 +272,10 @@ def test_a_page_fault_is_recorded_in_student_order_with_any_jobs(tmp_path, small
                                                                    monkeypatch):
     real = output._context
 
-    def fails_for_some(report, student, prompts):
+    def fails_for_some(report, student, prompts, markdown=False):
         if student.id in ("s2", "s7"):
             raise RuntimeError(f"no context for {student.id}")
-        return real(report, student, prompts)
+        return real(report, student, prompts, markdown)
 
     monkeypatch.setattr(output, "_context", fails_for_some)
     reports = [write_outputs(_class_of(9), tmp_path / str(jobs), jobs=jobs).report

@@ -12,11 +12,13 @@ from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.run import grade_submissions
 from mechgrade.grade.worked import feedback_solutions, shown_solutions
 from mechgrade.report.output import write_outputs
+from mechgrade.expressions.notation import textbook
+from mechgrade.report.output import anchor
 from mechgrade.resources import shipped_dir
 
 PROBLEMS = shipped_dir("problems")
 PENDULUM = "bowling_3_15_4_pendulum"
-CENTRIPETAL_ROW = f"ws-{PENDULUM}-acc-A-omega_omega_r"
+CENTRIPETAL_ROW = anchor(PENDULUM, "acc-A-omega_omega_r")
 
 
 def _class(tmp_path, policy: str = "", due: str | None = None):
@@ -54,7 +56,7 @@ def test_every_page_shows_the_worked_solution_and_the_picture_inline(graded):
         # a picture each, and the arrowheads they share defined once for the page
         assert page.count('<article class="ws"') == 2 and page.count('<svg xmlns') == 2
         assert page.count('<svg class="ws-defs"') == 1
-        assert f'id="ws-{PENDULUM}-acc-A-total"' in page and "<math" in page
+        assert f'id="{anchor(PENDULUM, "acc-A-total")}"' in page and "<math" in page
         assert "<script" not in page and "src=" not in page  # offline, nothing to fetch
         markdown = (feedback / f"{name}.md").read_text(encoding="utf-8")
         assert "## Worked solution" in markdown and "### Givens and what is asked" in markdown
@@ -74,7 +76,7 @@ def test_the_step_where_the_students_mistake_happens_is_highlighted_and_linked(g
     markdown = (feedback / "zoe.md").read_text(encoding="utf-8")
     assert "- Where this happens in the worked solution: The acceleration of A in N" in markdown
     # a right answer marks nothing
-    assert "#ws-" not in (feedback / "ana.html").read_text(encoding="utf-8")
+    assert f'href="#{anchor(PENDULUM, "")}' not in (feedback / "ana.html").read_text(encoding="utf-8")
 
 
 def test_an_authors_mistake_with_a_generated_mistakes_value_marks_its_step_too(graded):
@@ -82,7 +84,7 @@ def test_an_authors_mistake_with_a_generated_mistakes_value_marks_its_step_too(g
     max_ = next(s for s in report.students if s.id == "max")
     # the problem's author declared this mistake: their message is the diagnosis
     assert max_.answers[-1].diagnosis == "The Coriolis term 2 omega x v_rel is missing."
-    row = "ws-ruina_10_4_10_7_rotating_tube_accel-acc-P-coriolis"
+    row = anchor("ruina_10_4_10_7_rotating_tube_accel", "acc-P-coriolis")
     page = (feedback / "max.html").read_text(encoding="utf-8")
     assert f"#{row} {{ background" in page and f'<a href="#{row}">' in page
 
@@ -132,7 +134,7 @@ def test_each_variant_is_worked_once_and_each_student_sees_their_own_numbers(tmp
         worked_part = text[text.index("## Worked solution"):]
         for given in student["variant"]["givens"]:
             if given["problem"] == "pendulum_variants":
-                assert f"`{given['name']} = {given['value']:g} " in worked_part
+                assert f"`{textbook(given['name'])} = {given['value']:g} " in worked_part
 
 
 PROBE = """<script>

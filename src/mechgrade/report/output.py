@@ -29,9 +29,12 @@ from html import escape as html_escape
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from markupsafe import Markup
+
 from ..errors import Location, MechgradeError, brief_exception
 from ..files import json_text, safe_file_names, write_json, write_text
 from ..export import EXPORTERS
+from ..expressions.notation import textbook, textbook_html
 from ..outfolder import OutputKind
 from ..parallel import outcome, worker_started
 from ..resources import shipped_dir
@@ -346,7 +349,7 @@ def _render_students(bounds: tuple[int, int]) -> tuple[list[tuple[str, str]], li
 def _feedback_page(report: GradeReport, student: StudentResult, template, suffix: str,
                    faults: list[str], prompts: dict) -> str:
     try:
-        context = _context(report, student, prompts)
+        context = _context(report, student, prompts, markdown=suffix == ".md")
         if suffix == ".md":
             context = _escape_all(context)
         context.update(worked_context(_WORKED[0] if _WORKED else None, student, prompts,
@@ -461,7 +464,7 @@ def feedback_context(report: GradeReport, student: StudentResult, *,
     the worked solutions (see :func:`worked_context`).
     """
     prompts = _prompts(report)
-    context = _context(report, student, prompts)
+    context = _context(report, student, prompts, markdown)
     context = _escape_all(context) if markdown else context
     pages = (_worked_pages(worked, template_environment(templates_dir), templates_dir)
              if worked is not None else None)
@@ -528,7 +531,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
-        note = f"Your answer to “{shorten(prompt)}”: {said}"
+        note = textbook(f"Your answer to “{shorten(prompt)}”: {said}", False)
         marked[anchor(answer.problem, place)] = (
             marked[anchor(answer.problem, place)] + "; " + note
             if anchor(answer.problem, place) in marked else note)
@@ -544,12 +547,26 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
 
 
 def anchor(problem: str, step: str) -> str:
-    """The page id of a step or row of ``problem``'s worked solution.
+    """The page id of a step or row of ``problem``'s worked solution: a short tag of the
+    problem (its id is in every step's and row's id: a page carries some 150 of them), then
+    the step.
 
     >>> anchor("bowling 3.15", "acc-P-coriolis")
-    'ws-bowling-3-15-acc-P-coriolis'
+    'wcd9ad-acc-P-coriolis'
     """
-    return re.sub(r"[^A-Za-z0-9_-]", "-", f"ws-{problem}-{step}")
+    import zlib
+
+    tag = f"w{zlib.crc32(problem.encode()) & 0xFFFFF:05x}"
+    return re.sub(r"[^A-Za-z0-9_-]", "-", f"{tag}-{step}")
+
+
+def worked_id(problem: str) -> str:
+    """The page id of ``problem``'s worked solution.
+
+    >>> worked_id("bowling 3.15")
+    'ws-bowling-3-15'
+    """
+    return re.sub(r"[^A-Za-z0-9_-]", "-", f"ws-{problem}")
 
 
 def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
@@ -567,12 +584,14 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
 
     diagrams = [figure(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
                 for d in worked.diagrams]
-    steps = [{"anchor": step.anchor, "title": step.title, "lines": step.lines,
+    steps = [{"anchor": step.anchor, "title": Markup(textbook_html(step.title, False)),
+              "lines": [Markup(textbook_html(line)) for line in step.lines],
               "rows": [{"anchor": row.anchor, "text": row.text,
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
-    context = {"w": {"id": anchor(worked.problem, "")[:-1], "title": worked.title,
+    context = {"w": {"id": worked_id(worked.problem), "tag": anchor(worked.problem, "")[:-1],
+                     "title": worked.title,
                      "picture": figure(worked.picture) if worked.picture else "",
                      "steps": steps}}
     return Markup(_render(_template(env, "worked.html.j2"), context))
@@ -634,8 +653,11 @@ def spoken_math(math: str, text: str) -> str:
     >>> print(spoken_math('<math display="block"><mover accent="true"><mi>x</mi><mo>∙</mo>'
     ...                   '</mover></math>', "v = x**2*y"))
     <math aria-label="v = x²·y"><mover><mi>x</mi><mo>∙</mo></mover></math>
+    >>> spoken_math("<math></math>", "N_v_P = thetad*N.y").split('"')[1]
+    'N v,P = θ̇·N.y'
+
     """
-    label = html_escape(pretty_math(" ".join(text.split())), quote=True)
+    label = html_escape(textbook(" ".join(text.split())), quote=True)
     return math.replace('<math display="block"', "<math", 1).replace(
         "<math", f'<math aria-label="{label}"', 1).replace('<mover accent="true">', "<mover>")
 
@@ -646,9 +668,9 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     hashes = "#" * level
     out = [f"{hashes} {markdown_escape(worked.title)}"]
     for step in worked.steps:
-        out += ["", f"{hashes}# {markdown_escape(step.title)}", ""]
+        out += ["", f"{hashes}# {markdown_escape(textbook(step.title, False))}", ""]
         lines = [line for line in step.lines if line] + [row.text for row in step.rows]
-        out += [f"- {code_span(line)}" for line in lines] or ["(none)"]
+        out += [f"- {code_span(textbook(line))}" for line in lines] or ["(none)"]
     return "\n".join(out) + "\n"
 
 
@@ -684,26 +706,31 @@ def _prompts(report: GradeReport) -> dict:
     return {(o.problem, o.objective): o.prompt for o in report.objectives}
 
 
-def _context(report: GradeReport, student: StudentResult, prompts: dict) -> dict:
+def _context(report: GradeReport, student: StudentResult, prompts: dict,
+             markdown: bool = False) -> dict:
+    def shown(text: str, rates: bool = True) -> str:
+        # a model's names as a textbook writes them; what the student wrote stays as written
+        return textbook(text, rates) if markdown else Markup(textbook_html(text, rates))
+
     rows = []
     for answer in student.answers:
         rows.append({
             "problem": answer.problem,
             "objective": answer.objective,
             "key": f"{answer.problem}.{answer.objective}",
-            "prompt": prompts.get((answer.problem, answer.objective), ""),
+            "prompt": shown(prompts.get((answer.problem, answer.objective), ""), False),
             "answer": answer.answer if answer.answer is not None else "",
-            "read_back": pretty_math(answer.read_back) if answer.read_back else "",
+            "read_back": shown(answer.read_back or ""),
             "verdict": answer.verdict,
             "verdict_label": verdict_label(answer.verdict, answer.diagnosis),
             "points": format_points(answer.points),
             "max_points": format_points(answer.max_points),
-            "diagnosis": diagnosis_label(answer.diagnosis, answer.feedback),
-            "feedback": answer.feedback or "",
+            "diagnosis": shown(diagnosis_label(answer.diagnosis, answer.feedback), False),
+            "feedback": shown(answer.feedback or "", False),
             # a right answer's "Correct." says nothing the verdict does not
             "explained": bool(answer.feedback or answer.diagnosis)
                          and (answer.verdict != Verdict.CORRECT or bool(answer.diagnosis)),
-            "expected": pretty_math(expected_shown(answer)),
+            "expected": shown(expected_shown(answer)),
             # a free-body diagram's rows, one per load
             "loads": [{"label": load.label if load.load is None or load.label == load.load
                        else f"{load.label} ({load.load})",
@@ -883,38 +910,3 @@ def format_points(value: float) -> str:
     """
     text = f"{value:.2f}".rstrip("0").rstrip(".")
     return "0" if text in ("-0", "") else text
-
-
-_SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
-_POWER = re.compile(r"(?:\*\*|\^)\s*(?:\((-?\d+)\)|(-?\d+))")
-
-
-@lru_cache(maxsize=1 << 16)
-def pretty_math(text: str) -> str:
-    """Answer and unit text made easier to read: powers raised, products as middle dots,
-    absolute values between bars.
-
-    >>> pretty_math("L*sqrt(thetadd**2 + thetad**4) ft/s^2")
-    'L·sqrt(thetadd² + thetad⁴) ft/s²'
-    >>> pretty_math("xd*cos(b)/Abs(xd*(a + b))")
-    'xd·cos(b)/|xd·(a + b)|'
-    """
-    text = _POWER.sub(lambda m: (m.group(1) or m.group(2)).translate(_SUPERSCRIPTS), text)
-    return _bars(text).replace("*", "·")
-
-
-def _bars(text: str) -> str:
-    """``Abs(x)`` written ``|x|`` (its parentheses matched; one left open stays as it is)."""
-    start = text.find("Abs(")
-    while start >= 0:
-        depth, end = 0, None
-        for i in range(start + 3, len(text)):
-            depth += {"(": 1, ")": -1}.get(text[i], 0)
-            if depth == 0:
-                end = i
-                break
-        if end is None:
-            return text
-        text = f"{text[:start]}|{text[start + 4:end]}|{text[end + 1:]}"
-        start = text.find("Abs(", start)
-    return text

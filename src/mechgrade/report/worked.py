@@ -6,10 +6,11 @@ made by :func:`~mechgrade.report.output.worked_html` and
 :func:`~mechgrade.report.output.worked_markdown`.
 
 >>> from mechgrade.solve.worked import Step, WorkedSolution
+>>> from mechgrade.report.output import anchor
 >>> w = WorkedSolution("p", "Pendulum", (Step("givens", "Givens", ("L = 2 m",)),), "<svg/>")
 >>> print(steps_markdown(w).splitlines()[2])
 ## Pendulum
->>> "ws-p-givens" in steps_html(w)
+>>> f'id="{anchor("p", "givens")}"' in steps_html(w)
 True
 """
 

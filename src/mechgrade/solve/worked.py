@@ -25,7 +25,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..expressions.syntax import Call, Name, Node
+from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, to_text
 from ..mechanics.derivation import Row, Step, symbolic_math
 from ..mechanics.writeup import worked_steps
 from ..spec.model import ObjectiveKind, Problem
@@ -140,12 +140,59 @@ def worked_solution(problem: Problem, solution: Solution,
                           else "")
 
 
+_KINEMATIC = {"vel": "v", "acc": "a", "omega": "omega", "alpha": "alpha"}
+
+
+def asked_text(node: Node, inertial: str = "N") -> str:
+    """What an objective's ``find`` asks, as a textbook writes it (in the answer syntax's
+    names, which the pages typeset): ``eom(y)`` is ``ydd``, ``vel(P, N)`` is ``v_P``,
+    ``dot(force(T), N.y)`` is ``T · N.y``; a quantity with no textbook symbol keeps its call.
+
+    >>> from mechgrade.expressions.syntax import parse
+    >>> def asked(text):
+    ...     return asked_text(parse(text, functions={"dot", "vel", "mag", "force", "eom", "speed"}))
+    >>> asked("dot(vel(P, B), N.x)"), asked("mag(force(F_P))")
+    ('v_P in B · N.x', '|F_P|')
+    >>> asked("eom(theta)"), asked("speed(G, N)")
+    ('thetadd', '|v_G|')
+    """
+    def text(n: Node) -> str:
+        if isinstance(n, Call):
+            args = n.args
+            if n.func == "eom" and len(args) == 1 and isinstance(args[0], Name):
+                return f"{args[0].id}dd"
+            if n.func in _KINEMATIC and len(args) == 2 and all(isinstance(a, Name) for a in args):
+                frame = "" if args[1].id == inertial else f" in {args[1].id}"  # type: ignore[union-attr]
+                return f"{_KINEMATIC[n.func]}_{args[0].id}{frame}"  # type: ignore[union-attr]
+            if n.func == "speed" and len(args) == 2:
+                return f"|{text(Call('vel', args))}|"
+            if n.func == "force" and len(args) == 1:
+                return text(args[0])
+            if n.func in ("mag", "abs") and len(args) == 1:
+                return f"|{text(args[0])}|"
+            if n.func in ("dot", "cross") and len(args) == 2:
+                sign = " · " if n.func == "dot" else " × "
+                return f"({text(args[0])}{sign}{text(args[1])})"
+            return f"{n.func}({', '.join(text(a) for a in args)})"
+        if isinstance(n, (Name, Attr, Prime)):
+            return to_text(n)
+        if isinstance(n, Unary):
+            return n.op + text(n.operand)
+        if isinstance(n, Bin):
+            return f"({text(n.left)} {n.op} {text(n.right)})"
+        return to_text(n)
+
+    out = text(node)
+    return out[1:-1] if out.startswith("(") and out.endswith(")") and out.count("(") == 1 \
+        else out
+
+
 def _answer_step(problem: Problem, objective, result: ObjectiveResult,
                  signs: dict[str, int]) -> Step:
     """An objective's answer: what it asks in the model's terms, then its value (a symbolic
     one typeset, in its unit and the names it is in; the sense of a rate it takes through its
     sign alone from ``signs``, the instant's sign of each value by name)."""
-    asked = f"{objective.id} = {objective.find.text}" + (
+    asked = f"{objective.id} = {asked_text(objective.find.node, problem.inertial_frame)}" + (
         f", components along {objective.frame}" if objective.frame else "")
     title = objective.prompt or objective.id
     math = symbolic_math(problem, result.expr, f"<mi>{objective.id}</mi>") \

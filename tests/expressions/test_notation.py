@@ -1,0 +1,35 @@
+"""A model's names as a textbook writes them (issue 20 §2): what a student reads has no code."""
+
+from mechgrade.expressions.notation import textbook, textbook_html
+
+
+def test_rates_are_dotted_and_greek_names_are_letters():
+    assert textbook("thetad*omega + xdd - Abs(y1d)") == "θ̇·ω + ẍ - |ẏ₁|"
+
+
+def test_a_subscript_is_set_as_one_in_html_and_in_unicode_where_it_has_the_characters():
+    assert textbook_html("F_P + mu_k*N_P") == "F<sub>P</sub> + μ<sub>k</sub>·N<sub>P</sub>"
+    assert textbook("mu_k*m1") == "μₖ·m₁"
+
+
+def test_units_are_written_with_middle_dots_and_raised_powers():
+    assert textbook("0.72 kg*m^2", rates=False) == "0.72 kg·m²"
+
+
+def test_a_unit_after_its_number_is_no_symbol():
+    assert textbook("0.25 g0") == "0.25 g0"
+    assert textbook("g0*t") == "g₀·t"
+
+
+def test_prose_keeps_its_words_and_dots_the_rates_of_its_formulas():
+    sentence = "add the odd term to block1's tension and N.y"
+    assert textbook(sentence, rates=False) == sentence
+    assert textbook("so m*xdd = m*g: wrong", rates=False) == "so m·ẍ = m·g: wrong"
+
+
+def test_a_call_keeps_its_name_and_html_is_escaped():
+    assert textbook_html("omega_n(k) < 1 & b_1") == "omega_n(k) &lt; 1 &amp; b<sub>1</sub>"
+
+
+def test_a_greek_letter_after_a_number_is_a_symbol_not_a_unit():
+    assert textbook("2 omega x v") == "2 ω x v"
