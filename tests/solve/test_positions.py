@@ -12,6 +12,7 @@ import pytest
 from mechgrade.errors import SolveError
 from mechgrade.solve import solve
 from mechgrade.solve.instant import _instants, instant_givens
+from mechgrade.solve.dynamics import when_residual
 from mechgrade.solve.positions import position_symbolic, position_where
 from mechgrade.spec import load_problem, load_problem_text
 
@@ -41,11 +42,12 @@ def test_objectives_asked_when_are_grouped_apart_before_the_problems_own_instant
 @pytest.mark.parametrize("release_deg", [60.0, 80.0, 89.0])
 def test_the_wall_lets_go_where_the_closed_form_says_for_any_release(ladder, release_deg):
     givens = instant_givens(ladder, {"theta0": math.radians(release_deg)}, {})
-    found = position_where(ladder, "theta_wall_lost_deg", givens)
+    residual = when_residual(ladder, "theta_wall_lost", givens)
+    found = position_where(ladder, "theta_wall_lost_deg", givens, residual)
     assert found == pytest.approx(math.asin(2 / 3 * math.sin(math.radians(release_deg))),
                                   rel=1e-12)
-    assert str(position_symbolic(ladder, "theta_wall_lost", tuple(givens.items()))) == \
-        "asin(2*sin(theta0)/3)"
+    assert str(position_symbolic(ladder, "theta_wall_lost", tuple(givens.items()),
+                                 residual)) == "asin(2*sin(theta0)/3)"
 
 
 @pytest.mark.slow
@@ -60,7 +62,9 @@ def test_the_solution_keeps_the_problems_own_instant_as_its_state(ladder):
 def test_a_position_the_motion_never_reaches_is_refused_with_the_range_searched():
     problem = _asked(LADDER.read_text(), "dot(force(N1), N.x) = 10*m*g")
     with pytest.raises(SolveError) as info:
-        position_where(problem, "theta_wall_lost_deg", instant_givens(problem, None, {}))
+        givens = instant_givens(problem, None, {})
+        position_where(problem, "theta_wall_lost_deg", givens,
+                       when_residual(problem, "theta_wall_lost_deg", givens))
     assert str(info.value) == (
         "p.yaml:81:11: objectives[5].when: objective 'theta_wall_lost_deg': "
         "'dot(force(N1), N.x) = 10*m*g' does not hold anywhere the motion from the start "

@@ -202,7 +202,7 @@ CASES = [
      "    when: dot(force(N1), N.x) = 0\n    kind: scalar",
      "    when: dot(force(N1), N.x) = L\n    kind: scalar",
      "p.yaml:81:11: objectives[5].when: dimension mismatch in both sides of 'when': expected a "
-     "length ([length]), found a force ([mass] * [length] / [time] ** 2)"),
+     "length ([length]), found a force ([mass]·[length]/[time]²)"),
 ]
 
 

@@ -49,6 +49,7 @@ from .instant import Reached, drive, read_objectives
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
+from .positions import position_symbolic, position_where, without_position
 from .result import ObjectiveResult, Solution
 
 
@@ -268,10 +269,10 @@ class WorkEnergyInstant(KineticInstant):
         (:mod:`.positions`); the objectives of a group share it (``_instants``)."""
         asked = [o.id for o in self.source.objectives if o.id in numeric and o.when is not None]
         if asked:
-            from .positions import position_where
             name = self.source.coordinates[0].name
             given_map = {**given_map, name: (Name(name), position_where(
-                self.source, asked[0], given_map), None)}
+                self.source, asked[0], given_map,
+                when_residual(self.source, asked[0], given_map)), None)}
         return super().instant(given_map, numeric, overrides)
 
 
@@ -442,8 +443,8 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
         declared = {kin.k.quantity(node) for node in symbol_meanings(problem, obj).values()}
         expr = energy_rate_symbolic(problem, kinetics_plan(problem), expr, declared)
         if obj.when is not None:
-            from .positions import position_symbolic
-            expr = expr.xreplace({kin.k.q[0]: position_symbolic(problem, objective_id, givens)})
+            expr = expr.xreplace({kin.k.q[0]: position_symbolic(
+                problem, objective_id, givens, when_residual(problem, objective_id, dict(givens)))})
     k = replace(kin.k, objectives=((objective_id, expr),))
     answer, meanings = symbolic(problem, k, obj, dict(givens))
     units = tuple(_quantity_unit(problem, node) for node in meanings.values())
@@ -488,6 +489,23 @@ def solved_symbolically(problem: Problem, objective_id: str, givens: tuple, expr
             f"do not determine the unknowns {listing} uniquely (or contradict each other)",
             where=problem.objective(objective_id).where)
     return expr.xreplace(stand_in).xreplace(solution)
+
+
+def when_residual(problem: Problem, objective_id: str, given_map: dict) -> sp.Expr:
+    """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters (the
+    rates from the energy integral), worked out once for every objective asked at the same
+    equation and every variant that leaves the same givens to stand in."""
+    whens = derive_kinetics(problem).whens
+    equation = dict(whens)[objective_id]
+    first = next(oid for oid, e in whens if e == equation)
+    return _when_residual(problem, first, without_position(problem, given_map))
+
+
+@lru_cache(maxsize=128)
+def _when_residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
+    kin = derive_kinetics(problem)
+    expr = solved_symbolically(problem, objective_id, givens, dict(kin.whens)[objective_id])
+    return sp.expand(energy_rate_symbolic(problem, kinetics_plan(problem), expr, set()))
 
 
 @lru_cache(maxsize=128)

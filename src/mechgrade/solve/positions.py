@@ -34,22 +34,22 @@ from ..spec.model import Problem
 from ..spec.validate import is_angle_unit
 from .analysis import analysis_of
 from ..units import from_si
-from .work_energy import energy_rate_symbolic
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
 _XTOL = 1e-14
 
 
-def position_where(problem: Problem, objective_id: str, given_map: dict) -> float:
+def position_where(problem: Problem, objective_id: str, given_map: dict,
+                   residual: sp.Expr) -> float:
     """The coordinate's value (SI) at the first position the motion from the start reaches
     where the objective's ``when`` holds, at the givens ``given_map`` (canonical key ->
-    ``(node, si, Given)``)."""
+    ``(node, si, Given)``); ``residual`` is its ``lhs - rhs`` in the coordinate and the
+    parameters (:func:`~.dynamics.when_residual`)."""
     from scipy import optimize
 
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
     q, numbers = _numbers(problem, given_map)
-    residual = _residual(problem, objective_id, _without_position(problem, given_map))
     f = sp.lambdify(q, residual.xreplace(numbers), modules="numpy")
     start = float(dict(derive_kinetics(problem).start)[q].xreplace(numbers))
     analysis = analysis_of(problem, WorkEnergy)
@@ -85,15 +85,16 @@ def position_where(problem: Problem, objective_id: str, given_map: dict) -> floa
                                  rtol=4 * np.finfo(float).eps))
 
 
-def position_symbolic(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
+def position_symbolic(problem: Problem, objective_id: str, givens: tuple,
+                      residual: sp.Expr) -> sp.Expr:
     """The position of :func:`position_where` in closed form (in the parameters), the root of
-    the ``when`` equation that is the numeric one at ``givens`` (items of a given map)."""
+    the ``when`` equation ``residual`` that is the numeric one at ``givens`` (items of a given
+    map)."""
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
     given_map = dict(givens)
     q, numbers = _numbers(problem, given_map)
-    value = position_where(problem, objective_id, given_map)
-    residual = _residual(problem, objective_id, _without_position(problem, given_map))
+    value = position_where(problem, objective_id, given_map, residual)
     for root in closed_form_roots(residual, q):
         at = complex(sp.N(root.xreplace(numbers)))
         if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
@@ -133,23 +134,6 @@ def closed_form_roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
     return tuple(out)
 
 
-def _residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
-    """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters, worked
-    out once for every objective asked at the same equation."""
-    whens = derive_kinetics(problem).whens
-    equation = dict(whens)[objective_id]
-    return _solved_residual(problem, next(oid for oid, e in whens if e == equation), givens)
-
-
-@lru_cache(maxsize=128)
-def _solved_residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Expr:
-    from .dynamics import kinetics_plan, solved_symbolically
-
-    kin = derive_kinetics(problem)
-    expr = solved_symbolically(problem, objective_id, givens, dict(kin.whens)[objective_id])
-    return sp.expand(energy_rate_symbolic(problem, kinetics_plan(problem), expr, set()))
-
-
 def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
     """The coordinate's symbol, and every other given's symbol -> its SI value."""
     k = derive_kinetics(problem).k
@@ -163,7 +147,7 @@ def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
     return q, numbers
 
 
-def _without_position(problem: Problem, given_map: dict) -> tuple:
+def without_position(problem: Problem, given_map: dict) -> tuple:
     """The givens the equation's symbolic solution depends on (those that stand in for a
     symbol, :func:`~.dynamics.solved_symbolically`: zeros and rates), without the coordinate
     (the problem's own instant is not the one asked): one key for every variant."""
