@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import ast
 import shutil
+from functools import lru_cache
 from pathlib import Path
 
 import pytest
@@ -63,7 +64,7 @@ def imports(name: str, path: Path, known: dict[str, Path] = MODULES):
     """The modules ``name`` imports: external ones by their name, mechgrade's own as
     ``mechgrade.<module>``. ``from P import x`` is resolved to the module or package ``P.x``
     when there is one (``from . import files``, ``from mechgrade import roster``)."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    tree = _parsed(path.read_text(encoding="utf-8"))
     package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
     package = [p for p in package if p]
     # Imports under "if TYPE_CHECKING:" never run: they name types for annotations only (its
@@ -94,6 +95,13 @@ def imports(name: str, path: Path, known: dict[str, Path] = MODULES):
                     yield candidate
 
 
+@lru_cache(maxsize=None)
+def _parsed(text: str) -> ast.Module:
+    """A module's tree, parsed once for every check that reads it (a planted copy is other
+    text, so it is parsed afresh)."""
+    return ast.parse(text)
+
+
 def _is_type_checking(test: ast.expr) -> bool:
     return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or \
         (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
@@ -101,7 +109,7 @@ def _is_type_checking(test: ast.expr) -> bool:
 
 def dynamic_imports(path: Path) -> list[int]:
     """The lines where ``path`` imports a module named at run time."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    tree = _parsed(path.read_text(encoding="utf-8"))
     return [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Call) and (
         (isinstance(node.func, ast.Attribute) and node.func.attr == "import_module")
         or (isinstance(node.func, ast.Name) and node.func.id in ("import_module", "__import__")))]

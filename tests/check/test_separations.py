@@ -1,5 +1,7 @@
 """check lists the generated mistakes a tolerance cannot tell from the answer."""
 
+import pytest
+
 from mechgrade.check import check_problem
 from mechgrade.resources import shipped_dir
 
@@ -10,6 +12,7 @@ def test_a_mistake_inside_the_tolerance_is_a_warning_with_the_separating_toleran
     assert "'acc_mag'" in report.separations[0] and "{rel: 0.002}" in report.separations[0]
 
 
+@pytest.mark.slow
 def test_a_mistake_too_close_to_separate_is_said_so():
     report = check_problem(shipped_dir("problems") / "bowling_3_15_5_cylinder.yaml")
     assert any("no tolerance that still accepts four significant figures" in line

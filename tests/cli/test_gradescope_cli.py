@@ -227,6 +227,7 @@ SHIMS = {
 }
 
 
+@pytest.mark.slow
 def test_documented_setup_and_run_autograder_grade_a_zipped_upload(tmp_path):
     root = tmp_path / "autograder"
     source = root / "source"

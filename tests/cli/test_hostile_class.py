@@ -187,6 +187,7 @@ def test_a_regrade_of_two_students_into_the_hostile_outputs_leaves_only_theirs(h
 SLOW_PAGE = "{% for i in range(10 ** 10) %}{% endfor %}{{ student.id }}\n"
 
 
+@pytest.mark.slow
 def test_a_run_killed_while_writing_leaves_no_worker_and_the_previous_outputs(tmp_path,
                                                                               marked_run):
     """``kill -9`` (the OOM killer) of a run whose page helper is busy: no worker outlives it,

@@ -208,6 +208,7 @@ def test_report_and_canvas_export_of_hw3(graded, tmp_path):
         ("hana_kim", "34"), ("ivan_empty", "0"), ("jo_broken", "0")]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("page", ["feedback/dan_wu.html", "feedback/erin_park.html",
                                   "feedback/jo_broken.html"])
 def test_dynamics_feedback_pages_pass_axe_core_wcag_2_a_and_aa(graded, axe, page):

@@ -125,6 +125,7 @@ def test_restitution_replaced_by_one_and_by_zero():
     assert values == pytest.approx([-10.0, -5.0])
 
 
+@pytest.mark.slow
 def test_a_mistake_that_changes_nothing_here_is_no_mistake():
     # g = 1 m/s^2 in the problem: the mass is the weight, so the slip gives the answer
     assert "mass_for_weight" in _codes("ruina_9_20_ladder_energy")
@@ -183,6 +184,7 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
         == ["restitution_ignored", "restitution_ignored"]
 
 
+@pytest.mark.slow
 def test_the_body_slid_on_taken_as_fixed_stops_the_slider_on_it():
     # the cart at rest: the block stops in v0/(μ g) = 5/(0.3 × 9.81) s, all of ½ m v0² lost
     assert [round(m.value, 4) for m in _generated("block_slides_on_cart", "t_slide",
@@ -283,6 +285,7 @@ def test_the_reactions_of_a_shaft_in_two_bearings_taken_as_their_static_values()
     assert not _generated("atwood_machine", "tension", "reaction_as_static")
 
 
+@pytest.mark.slow
 def test_the_weight_written_for_the_mass_in_the_problems_own_units():
     # W = 10 lb used as 10 slug with k = 240 lb/ft: omega_n = sqrt(240/10) rad/s
     (heavy,) = _generated("block_on_spring_us_units", "omega_n", "weight_for_mass")

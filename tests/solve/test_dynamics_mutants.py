@@ -41,6 +41,7 @@ def test_a_variant_whose_event_never_happens_fails_in_the_class_not_alone():
     assert str(error).endswith("does not happen within 60 s")
 
 
+@pytest.mark.slow
 def test_a_solution_sent_to_another_process_carries_its_mistakes_not_the_class_s_work():
     import pickle
 
