@@ -865,14 +865,21 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
     """Each spring left out of the free-body diagrams (and of the energy), one at a time."""
     d = dynamics_of(problem)
     for spring in d.springs:
-        mistaken = _without_load(problem, replace(d, springs=tuple(
-            s for s in d.springs if s is not spring)), spring.name)
-        if mistaken is not None:
-            yield DynamicsMutation(
-                "spring_omitted", f"Your value is what the balances give without the spring "
-                f"{spring.name} (k = {{term}}): its force, and its energy in a work-energy "
-                "balance, belong in the equations.", LOADS, problem=mistaken,
-                term=spring.stiffness, term_unit="N/m")
+        yield from _load_left_out(
+            problem, replace(d, springs=tuple(s for s in d.springs if s is not spring)),
+            spring.name, "spring_omitted", f"Your value is what the balances give without the "
+            f"spring {spring.name} (k = {{term}}): its force, and its energy in a work-energy "
+            "balance, belong in the equations.", spring.stiffness, "N/m")
+
+
+def _load_left_out(problem: Problem, dynamics: Dynamics, load: str, code: str, text: str,
+                   term, term_unit: str) -> Iterator[DynamicsMutation]:
+    """The mistake ``code`` of the model with ``dynamics`` (``load`` left out), when that model
+    still stands (:func:`_without_load`)."""
+    mistaken = _without_load(problem, dynamics, load)
+    if mistaken is not None:
+        yield DynamicsMutation(code, text, LOADS, problem=mistaken, term=term,
+                               term_unit=term_unit)
 
 
 def _without_load(problem: Problem, dynamics: Dynamics, load: str) -> Problem | None:
@@ -980,14 +987,11 @@ def contact_taken_smooth(problem: Problem, model: Model) -> Iterator[DynamicsMut
             continue
         smooth = replace(problem, constraints=tuple(c for c in problem.constraints
                                                     if c not in rolling))
-        mistaken = _without_load(smooth, replace(d, friction=tuple(
-            x for x in d.friction if x is not f)), f.name)
-        if mistaken is not None:
-            yield DynamicsMutation(
-                "contact_taken_smooth", f"Your value takes the contact at {f.at} as smooth: "
-                f"the friction {f.name} (= {{term}}) keeps {f.on} from slipping there, and "
-                "belongs in its balances with the rolling condition.", LOADS,
-                problem=mistaken, term=_expr(f"mag(force({f.name}))"), term_unit="N")
+        yield from _load_left_out(
+            smooth, replace(d, friction=tuple(x for x in d.friction if x is not f)), f.name,
+            "contact_taken_smooth", f"Your value takes the contact at {f.at} as smooth: the "
+            f"friction {f.name} (= {{term}}) keeps {f.on} from slipping there, and belongs in "
+            "its balances with the rolling condition.", _expr(f"mag(force({f.name}))"), "N")
 
 
 def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
