@@ -228,13 +228,12 @@ PUSH = ("force_omitted", "Your value is what the balances give without the push.
         (-106.0, -40.0, 0.0))
 
 
-def test_two_families_of_one_value_are_both_named_in_one_sentence():
+def test_two_families_of_one_value_are_both_named_once_each():
     judged = assess("(-106, -40, 0) ft/s^2", _with_generated(WEIGHT, PUSH))
     assert judged.diagnosis == "weight left out or an applied force left out"
     assert judged.feedback == (
-        "Your value is what weight left out gives, or equally what an applied force left out "
-        "gives: Your value is what the balances give without the weight. Or: Your value is "
-        "what the balances give without the push.")
+        "Either mistake gives your value. Your value is what the balances give without the "
+        "weight. Or: Your value is what the balances give without the push.")
 
 
 def test_two_families_within_the_tolerance_of_each_other_fit_equally():

@@ -231,8 +231,8 @@ def _named(mistake: GeneratedMistake, reference: np.ndarray,
 
 
 def _both(first: Diagnosis, second: Diagnosis) -> Diagnosis | None:
-    """Two families that fit one value equally, named in one sentence, the nearer first;
-    ``None`` when they say the same.
+    """Two families that fit one value equally, named together, the nearer first (the label
+    names both, so the message says it once); ``None`` when they say the same.
 
     >>> a = Diagnosis("weight_omitted", "weight left out", "The weight was left out.")
     >>> b = Diagnosis("force_omitted", "an applied force left out", "The push was left out.")
@@ -240,15 +240,15 @@ def _both(first: Diagnosis, second: Diagnosis) -> Diagnosis | None:
     >>> both.label
     'weight left out or an applied force left out'
     >>> both.message
-    'Your value is what weight left out gives, or equally what an applied force left out gives: The weight was left out. Or: The push was left out.'
+    'Either mistake gives your value. The weight was left out. Or: The push was left out.'
     >>> _both(a, a) is None
     True
     """
     if first.code == second.code or first.label == second.label:
         return None
     return Diagnosis(first.code, f"{first.label} or {second.label}",
-                     f"Your value is what {first.label} gives, or equally what {second.label} "
-                     f"gives: {_sentence(first.message)} Or: {_sentence(second.message)}",
+                     f"Either mistake gives your value. {_sentence(first.message)} Or: "
+                     f"{_sentence(second.message)}",
                      also=second.code)
 
 
