@@ -177,6 +177,7 @@ def test_the_libyaml_reader_reads_as_the_python_reader(text):
     assert public == _tables(yamlio._Loader, text)
 
 
+@pytest.mark.slow
 def test_the_shipped_files_read_the_same_with_libyaml():
     from mechgrade import yamlio
 

@@ -71,6 +71,7 @@ def test_a_report_flipped_to_passed_is_not_trusted(disk, tmp_path, rewrite_entry
     assert check_problem(spec) == failing
 
 
+@pytest.mark.slow
 def test_a_warm_check_loads_no_units_schema_or_sympy(twice):
     runs = twice("import sys\n"
                  "from mechgrade.check import check_problem\n"

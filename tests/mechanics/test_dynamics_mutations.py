@@ -114,6 +114,7 @@ def test_the_weight_left_out_of_the_force_balance_of_a_pin():
                and "out of the force balance that gives R_O" in m.message for m in mistakes)
 
 
+@pytest.mark.slow
 def test_a_reaction_read_as_the_weight_is_read_in_the_right_model():
     (floor,) = _generated("ladder_wall_lift_off", "floor_reaction", "reaction_as_weight")
     assert floor.value == pytest.approx(12 * 9.81)
@@ -138,6 +139,7 @@ def test_a_student_making_the_mistake_is_told_so():
     assert "weight of block2 (m g = 49.05 N)" in judged.feedback
 
 
+@pytest.mark.slow
 def test_a_given_slip_that_is_also_a_factor_names_only_the_factor():
     # m1 = 2 m2: block 2's kinetic energy with the masses exchanged is m2 v2^2, twice it
     result = _solution("two_mass_spring_chain").result("ke2")
@@ -199,6 +201,7 @@ def test_the_body_slid_on_taken_as_fixed_stops_the_slider_on_it():
     assert "cart taken as fixed" in judged.feedback
 
 
+@pytest.mark.slow
 def test_one_body_kinetic_energy_left_out_of_the_system_energy():
     # ½ m v0² - ½ M v² (the block's ½ m v² left out) and ½ m v0² - ½ m v² (the cart's)
     assert sorted(round(m.value, 6) for m in _generated("block_slides_on_cart", "energy_lost",
