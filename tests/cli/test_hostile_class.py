@@ -417,6 +417,7 @@ def test_a_tampered_cache_folder_is_no_warning_and_loses_no_file_of_the_users(ta
         assert (tampered_cache["folder"] / name).read_bytes() == data
 
 
+@pytest.mark.slow
 def test_a_cache_folder_others_may_write_is_one_warning_of_a_grading_run(hostile, tmp_path):
     # the run's workers (two) find the same folder and say nothing: only the command prints
     shared = tmp_path / "shared"

@@ -202,6 +202,7 @@ variants:
     assert {r.givens for r in check_variants(problem, 20)} == {"theta = 80 deg"}
 
 
+@pytest.mark.slow
 def test_redraw_takes_the_next_verified_draw_deterministically():
     problem = load_problem(DATA / "degenerate_range.yaml")
     refused = check_variants(problem, 20)
