@@ -104,9 +104,9 @@ def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int,
 class _ScalarMotion:
     """One motion integrated alone: the start state ``y0`` (coordinates, then rates), the
     state values ``at(t, y)``, the right-hand side and the analysis's event (``until``, an
-    event that holds at t = 0 set to wait for its next crossing)."""
+    event that holds at t = 0 set to wait for its next crossing, unless ``leave`` is false)."""
 
-    def __init__(self, problem: Problem, kp, base: np.ndarray, solve):
+    def __init__(self, problem: Problem, kp, base: np.ndarray, solve, leave: bool = True):
         self.analysis = analysis = analysis_of(problem, Integration)
         ap = analysis_plan(kp)
         self.index = index = kp.kp.index
@@ -143,7 +143,8 @@ class _ScalarMotion:
 
         self.at, self.rhs, self.until = at, rhs, until
         self.y0 = np.concatenate([values[q], values[qd]])
-        _next_crossing(until, rhs, self.y0, analysis.max_time, analysis.where)
+        if leave:  # a later phase of the motion starts where the event does not hold
+            _next_crossing(until, rhs, self.y0, analysis.max_time, analysis.where)
 
 
 def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
