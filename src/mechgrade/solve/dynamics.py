@@ -39,6 +39,7 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of, instant_of_objective
+from .analysis import analysis_of
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
@@ -344,7 +345,8 @@ class IntegratedInstant(KineticInstant):
         """The instant an objective's own time, coordinate or rate fixes."""
         node, si, given = given_map[asked_at]
         kp = self.kinetics.kp
-        where = given.where if given is not None else dynamics_of(self.source).analysis.where
+        where = given.where if given is not None else \
+            analysis_of(self.source, Integration).where
         return Entry(kp.index.symbols.index(kp.k.quantity(node)), si,
                      f"{asked_at}: {given.text}" if given is not None else asked_at, where)
 

@@ -144,7 +144,9 @@ def reach(problem: Problem, base: np.ndarray, target: Target) -> PhaseInstant:
 
     m = _ScalarMotion(problem, kp, base, solve_in(kp))
     aim = _aimed(target, kp, m, solve_in(kp))
-    if aim is not None and not (isinstance(target, Entry) and target.at == kp.kp.index.time):
+    if isinstance(target, When) or (isinstance(target, Entry) and \
+            target.at != kp.kp.index.time):  # t = 0 is the start itself
+        assert aim is not None
         _next_crossing(aim, m.rhs, m.y0, analysis.max_time, target.where)
     grip = gripping(problem)
     events = [m.until] + ([aim] if aim is not None else [])
@@ -156,13 +158,13 @@ def reach(problem: Problem, base: np.ndarray, target: Target) -> PhaseInstant:
 
         events.append(slipping)
     for e in events:
-        e.terminal = True  # type: ignore[attr-defined]
+        e.terminal = True
     result = solve_ivp(m.rhs, (0.0, analysis.max_time), m.y0, method="DOP853", rtol=RTOL,
                        atol=ATOL, events=events, dense_output=True)
     if result.status < 0:
         raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
     first = _first(result, len(events), aim is not None)
-    if first is None or first == 0 and aim is not None:
+    if first is None or (first == 0 and aim is not None):
         raise _missed(analysis, target, result.t_events[0])
     t, y = float(result.t_events[first][0]), result.y_events[first][0]
     if grip is None or first < len(events) - 1:
@@ -204,7 +206,7 @@ def _rolling(problem: Problem, base: np.ndarray, target: Target, start: float,
                          "speed = 0)", where=grip.then.where)
     events = [m.until] + ([aim] if aim is not None else []) + [grips]
     for e in events:
-        e.terminal = True  # type: ignore[attr-defined]
+        e.terminal = True
     result = solve_ivp(m.rhs, (start, analysis.max_time), y0, method="DOP853", rtol=RTOL,
                        atol=ATOL, events=events, dense_output=True)
     if result.status < 0:
@@ -217,7 +219,7 @@ def _rolling(problem: Problem, base: np.ndarray, target: Target, start: float,
                          "needs reaches mu_s N there): a motion that slips again is not "
                          "supported; end the motion before it (until: t = ...)",
                          where=grip.then.where)
-    if first is None or first == 0 and aim is not None:
+    if first is None or (first == 0 and aim is not None):
         raise _missed(analysis, target, result.t_events[0])
     t, y = float(result.t_events[first][0]), result.y_events[first][0]
     return _instant(phase, m, result.sol, solve, t, y, target, start)
