@@ -83,8 +83,8 @@ def test_a_grip_that_needs_more_than_mu_s_n_once_the_slip_ends_is_refused_where_
     # asked while it skids, the objectives are read; in the rolling phase, refused
     assert sorted(failures) == ["friction_at_2s", "t_top", "v_at_2s", "x_at_2s", "x_top"]
     error = failures["x_top"]
-    assert str(error.where) == "p.yaml:42:11" and str(error).startswith(
-        "friction 'F_C': the slip ends at t = 1.41987 s, but the grip then needs more friction "
+    assert str(error).startswith(
+        "p.yaml:40:17: loads.friction.F_C.then: friction 'F_C': the slip ends at t = 1.41987 s, but the grip then needs more friction "
         "than mu_s N (0.721962 N short): the contact slips on")
 
 
@@ -97,7 +97,7 @@ def test_a_grip_that_would_slip_again_is_refused_with_the_instant():
     failures = _failures(pushed)
     assert sorted(failures) == ["t_top", "x_top"]  # pushed up the slope, it never stops
     assert str(failures["t_top"]).startswith(
-        "friction 'F_C' grips once its slip ends at t = 1.81848 s, and would slip again at "
+        "p.yaml:43:17: loads.friction.F_C.then: friction 'F_C' grips once its slip ends at t = 1.81848 s, and would slip again at "
         "t = 6.09564 s (the friction the grip needs reaches mu_s N there)")
 
 
@@ -106,5 +106,14 @@ def test_an_instant_after_the_motion_ends_is_refused_in_the_rolling_phase_too():
     failures = _failures(BALL.replace("givens: {t: 2 s}", "givens: {t: 5 s}", 1))
     assert list(failures) == ["x_at_2s"]
     assert str(failures["x_at_2s"]) == (
-        "'t: 5 s' does not hold before the event ('x' = 0', at t = 3.01029 s), where the "
+        "p.yaml:73:17: objectives[2].givens.t: 't: 5 s' does not hold before the event ('x' = 0', at t = 3.01029 s), where the "
         "integrated motion ends: expected an instant before it")
+
+
+@pytest.mark.slow
+def test_an_objective_asked_when_on_a_motion_without_phases_is_read_where_it_first_holds():
+    throw = (ROOT / "problems" / "ball_thrown_with_drag_apex_and_landing.yaml").read_text()
+    asked = throw.replace("    givens: {y': 0 m/s}\n    expect: {value: 9.940268}",
+                          "    when: y' = 0\n    expect: {value: 9.940268}")
+    solution = solve_dynamics(load_problem_text(asked, "p.yaml"), objectives=["apex_height"])
+    assert solution.result("apex_height").value == pytest.approx(9.940268, rel=1e-6)

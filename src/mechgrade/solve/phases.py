@@ -217,7 +217,7 @@ def _rolling(problem: Problem, base: np.ndarray, target: Target, start: float,
         raise SolveError(f"friction '{grip.name}' grips once its slip ends at t = {start:.6g} "
                          f"s, and would slip again at t = {when:.6g} s (the friction the grip "
                          "needs reaches mu_s N there): a motion that slips again is not "
-                         "supported; end the motion before it (until: t = ...)",
+                         "supported; end the motion before it (until: t = T, T a parameter given in s)",
                          where=grip.then.where)
     if first is None or (first == 0 and aim is not None):
         raise _missed(analysis, target, result.t_events[0])

@@ -842,12 +842,16 @@ def ball_skids_then_rolls():
                   num(rolls_at(m * g)[1], "m/s"), "normal_from_weight"),
             entry("t_rolls", "slip rate from the centre alone: the friction's spin-down left out",
                   num(u0 / (g * (s + mu_k * c)), "s"), "spin_omitted", known="none"),
+            # R read as 10.9 m (or a mass of m g) keeps the ball skidding past 2 s and to the
+            # top: those mistakes give exactly these values, and the grader says so
             entry("friction_at_2s", "kinetic friction μ_k N kept once the ball rolls",
-                  num(-mu_k * m * g * c, "N"), "friction_kept_kinetic", known="none"),
+                  num(-mu_k * m * g * c, "N"), "friction_kept_kinetic", known="generic",
+                  generic=("weight_for_mass", "given_length_unit")),
             entry("friction_at_2s", "rolling friction drawn down the slope",
-                  num(-2 / 7 * m * g * s, "N"), "sign", known="none"),
+                  num(-2 / 7 * m * g * s, "N"), "sign"),
             entry("x_top", "rolling ignored: it skids all the way up",
-                  num(v0**2 / (2 * g * (s + mu_k * c)), "m"), "phase_omitted", known="none")]
+                  num(v0**2 / (2 * g * (s + mu_k * c)), "m"), "phase_omitted", known="generic",
+                  generic=("given_length_unit",))]
 
 
 def momentum_projection():
