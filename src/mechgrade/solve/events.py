@@ -85,14 +85,7 @@ def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int,
     if result.status < 0:
         raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
     if not len(result.t_events[0]):
-        if len(result.t_events[1]):
-            raise SolveError(f"'{given}' does not hold before the event ('{analysis.until[0].text} "
-                             f"= {analysis.until[1].text}', at t = {result.t_events[1][0]:.6g} "
-                             "s), where the integrated motion ends: expected an instant "
-                             "before it", where=where)
-        raise SolveError(f"'{given}' does not hold within {analysis.max_time:g} s of the "
-                         "integrated motion: expected an instant it reaches (or a larger "
-                         "max_time)", where=where)
+        raise instant_missed(analysis, given, where, result.t_events[1])
     end = m.at(float(result.t_events[0][0]), result.y_events[0][0])
     end[at] = value  # where the root was found: the given holds there
     known = np.zeros(len(end), dtype=bool)
@@ -163,6 +156,20 @@ def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
         raise SolveError("the event holds at the start (t = 0) and stays so: expected a "
                          "motion that leaves it", where=where)
     event.direction = -side
+
+
+def instant_missed(analysis: Integration, given: str, where, until_times) -> SolveError:
+    """The error of an objective's own instant (``given`` as written, ``where`` it is) that
+    the motion does not reach before its event (at ``until_times[0]``, if it happened) or
+    within the time allowed."""
+    if len(until_times):
+        return SolveError(f"'{given}' does not hold before the event ('{analysis.until[0].text} "
+                          f"= {analysis.until[1].text}', at t = {until_times[0]:.6g} s), where "
+                          "the integrated motion ends: expected an instant before it",
+                          where=where)
+    return SolveError(f"'{given}' does not hold within {analysis.max_time:g} s of the "
+                      "integrated motion: expected an instant it reaches (or a larger "
+                      "max_time)", where=where)
 
 
 def event_never_happens(analysis: Integration) -> SolveError:

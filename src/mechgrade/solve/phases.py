@@ -26,7 +26,8 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from . import rules
 from .analysis import analysis_of, extended, value_at
-from .events import ATOL, RTOL, _next_crossing, _ScalarMotion, event_never_happens
+from .events import (ATOL, RTOL, _next_crossing, _ScalarMotion, event_never_happens,
+                     instant_missed)
 
 SAME_INSTANT = 1e-9
 """Two events this close (a part of the time, at least 1 s) are one instant: an objective asked
@@ -265,16 +266,9 @@ def _aimed(target: Target, kp, m: _ScalarMotion, solve):
 def _missed(analysis: Integration, target: Target, until_times) -> SolveError:
     if isinstance(target, Until):
         return event_never_happens(analysis)
-    given, where = (target.given, target.where) if isinstance(target, Entry) else \
-        (f"when: {target.text}", target.where)
-    if len(until_times):
-        return SolveError(f"'{given}' does not hold before the event ('{analysis.until[0].text} "
-                          f"= {analysis.until[1].text}', at t = {until_times[0]:.6g} s), where "
-                          "the integrated motion ends: expected an instant before it",
-                          where=where)
-    return SolveError(f"'{given}' does not hold within {analysis.max_time:g} s of the "
-                      "integrated motion: expected an instant it reaches (or a larger "
-                      "max_time)", where=where)
+    if isinstance(target, Entry):
+        return instant_missed(analysis, target.given, target.where, until_times)
+    return instant_missed(analysis, f"when: {target.text}", target.where, until_times)
 
 
 @lru_cache(maxsize=64)
@@ -285,8 +279,10 @@ def _lambdified(kp, expr):
 def _slip(problem: Problem, kp):
     """The slip velocity of the gripping contact along its direction, a function of the
     extended state of ``kp`` (the phases share their state's layout)."""
+    from .dynamics import kinetics_plan
+
     name = grip_constraint(problem)
-    phase = kinetics_plan_of(gripping_phase(problem))
+    phase = kinetics_plan(gripping_phase(problem))
     equation = next(e for e in phase.kin.k.velocity if e.label == name)
     return _lambdified(kp, equation.expr)
 
@@ -299,8 +295,3 @@ def _margin(problem: Problem, kp):
     bound = next(b for b in kp.kin.bounds if b.name == grip.name)
     return _lambdified(kp, bound.mu * bound.normal - sp.sqrt(sum(
         (c ** 2 for c in bound.tangential), sp.Integer(0))))
-
-
-def kinetics_plan_of(problem: Problem):
-    from .dynamics import kinetics_plan
-    return kinetics_plan(problem)
