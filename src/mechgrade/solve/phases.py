@@ -59,7 +59,7 @@ def gripping_phase(problem: Problem) -> Problem:
     >>> from mechgrade.resources import shipped_dir
     >>> p = gripping_phase(load_problem(shipped_dir("problems") / "bowling_ball_skids_then_rolls.yaml"))
     >>> p.constraints[-1].lhs.text, type(p.dynamics.friction[0]).__name__
-    ('dot(vel(coincident(C, B), N), N.x)', 'StaticFriction')
+    ('dot(vel(coincident(C, B), N), A.x)', 'StaticFriction')
     """
     f = gripping(problem)
     assert f is not None and f.then is not None, "only a contact that grips has this phase"
