@@ -328,7 +328,7 @@ class IntegratedInstant(KineticInstant):
         read with the model of the phase it is in."""
         target: Target = Until() if asked_at is None else asked_at \
             if isinstance(asked_at, When) else self.entry(given_map, asked_at)
-        at = reach(self.source, values, target)
+        at = reach(self.source, values, target, kinetics_plan, accelerations)
         kp = kinetics_plan(at.phase)
         size = kp.kp.index.size
         state = State(at.values, after_event(kp.kp), frozenset())

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import Callable
 
 import numpy as np
 import sympy as sp
@@ -128,14 +129,15 @@ def asked_when(problem: Problem, numeric) -> When | None:
     return When(obj.id, f"{left.text} = {right.text}", left.where)
 
 
-def reach(problem: Problem, base: np.ndarray, target: Target) -> PhaseInstant:
+def reach(problem: Problem, base: np.ndarray, target: Target, kinetics_plan: Callable,
+          accelerations: Callable) -> PhaseInstant:
     """Integrate ``problem``'s motion from its start (``base``: the parameters placed in the
     state) to ``target``, through the end of the slip into the gripping phase when the
-    problem has one (:func:`gripping`). Raises, located, when the target is not reached
-    before the event or the time allowed, or the contact would slip again."""
+    problem has one (:func:`gripping`). ``kinetics_plan(problem)`` and
+    ``accelerations(plan, values)`` are :mod:`.dynamics`'s (which imports this module).
+    Raises, located, when the target is not reached before the event or the time allowed,
+    or the contact would slip again."""
     from scipy.integrate import solve_ivp
-
-    from .dynamics import accelerations, kinetics_plan
 
     analysis = analysis_of(problem, Integration)
     kp = kinetics_plan(problem)
@@ -152,7 +154,7 @@ def reach(problem: Problem, base: np.ndarray, target: Target) -> PhaseInstant:
     grip = gripping(problem)
     events = [m.until] + ([aim] if aim is not None else [])
     if grip is not None:
-        slip = _slip(problem, kp)
+        slip = _slip(problem, kp, kinetics_plan(gripping_phase(problem)))
 
         def slipping(t, y):
             return value_at(slip, extended(kp, m.at(t, y)))
@@ -170,19 +172,18 @@ def reach(problem: Problem, base: np.ndarray, target: Target) -> PhaseInstant:
     t, y = float(result.t_events[first][0]), result.y_events[first][0]
     if grip is None or first < len(events) - 1:
         return _instant(problem, m, result.sol, solve_in(kp), t, y, target, 0.0)
-    return _rolling(problem, base, target, t, y, m.until)
+    return _rolling(problem, base, target, t, y, m.until, kinetics_plan(gripping_phase(problem)),
+                    accelerations)
 
 
 def _rolling(problem: Problem, base: np.ndarray, target: Target, start: float,
-             y0: np.ndarray, until) -> PhaseInstant:
-    """The gripping phase from the end of the slip (``start``, state ``y0``) to ``target``."""
+             y0: np.ndarray, until, kp, accelerations: Callable) -> PhaseInstant:
+    """The gripping phase (its kinetics ``kp``) from the end of the slip (``start``, state
+    ``y0``) to ``target``."""
     from scipy.integrate import solve_ivp
-
-    from .dynamics import accelerations, kinetics_plan
 
     analysis = analysis_of(problem, Integration)
     phase = gripping_phase(problem)
-    kp = kinetics_plan(phase)
 
     def solve(values):
         return accelerations(kp, values)
@@ -276,13 +277,11 @@ def _lambdified(kp, expr):
     return sp.lambdify(kp.symbols, expr, modules="numpy", cse=True)
 
 
-def _slip(problem: Problem, kp):
-    """The slip velocity of the gripping contact along its direction, a function of the
-    extended state of ``kp`` (the phases share their state's layout)."""
-    from .dynamics import kinetics_plan
-
+def _slip(problem: Problem, kp, phase):
+    """The slip velocity of the gripping contact along its direction (the constraint of the
+    gripping phase's kinetics ``phase``), a function of the extended state of ``kp`` (the
+    phases share their state's layout)."""
     name = grip_constraint(problem)
-    phase = kinetics_plan(gripping_phase(problem))
     equation = next(e for e in phase.kin.k.velocity if e.label == name)
     return _lambdified(kp, equation.expr)
 
