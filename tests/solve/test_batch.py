@@ -177,9 +177,9 @@ INTEGRATED_ALONE = ("ball_thrown_with_drag_apex_and_landing", "damped_block_posi
 """Integrated problems with objectives asked before the event (an objective's own time,
 coordinate or rate): the integrator over columns reads the event only, each variant's
 instant before it is reached alone."""
-POSITIONED_ALONE = ("ruina_9_20_ladder_energy",)
-"""Work-energy problems with objectives asked 'when' an equation holds: the position is
-searched for each variant alone."""
+POSITIONED_ALONE = ("ruina_9_20_ladder_energy", "bowling_ball_skids_then_rolls")
+"""Problems with objectives asked 'when' an equation holds (or a motion that goes on in
+another phase once a slip ends): the instant is searched for each variant alone."""
 
 
 def _reached_otherwise(path: Path) -> bool:

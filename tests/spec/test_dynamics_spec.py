@@ -174,19 +174,19 @@ CASES = [
      "objectives[1].givens.x': a symbolic objective of an integrated motion is answered at "
      "the event, when x' = X' (in closed form), found 'x': 1 m/s'; ask for a scalar or a "
      "vector at that instant"),
-    ("a position asked 'when' under integrate", LIFT_OFF, "    find: theta\n    kind: scalar",
-     "    find: theta\n    when: dot(force(N2), N.y) = m*g\n    kind: scalar",
-     "p.yaml:43:11: objectives[0].when: objective 'theta_wall_contact_lost_deg': 'when: "
-     "dot(force(N2), N.y) = m*g' is the position the motion from a work_energy start reaches; "
-     "expected 'analysis: work_energy', found analysis: integrate: end the motion there with "
-     "'until: dot(force(N2), N.y) = m*g'"),
+    ("a symbolic objective asked 'when' under integrate", CART,
+     "    expect: {expr: M*v0/(mu*g*(m + M))}\n",
+     "    expect: {expr: M*v0/(mu*g*(m + M))}\n    when: x' = 1 m/s\n",
+     "objectives[1].when: objective 't_slide_symbolic': 'when: x' = 1 m/s' is an instant of "
+     "the motion integrated numerically: expected kind: scalar or vector, found kind: "
+     "symbolic (or end the motion there with 'until: x' = 1 m/s')"),
     ("a position asked 'when' without an analysis", PENDULUM,
      "    find: eom(theta)\n    kind: scalar",
      "    find: eom(theta)\n    when: dot(force(R_O), N.y) = 0\n    kind: scalar",
      "p.yaml:37:11: objectives[0].when: objective 'alpha': 'when: dot(force(R_O), N.y) = 0' is "
-     "the position the motion from a work_energy start reaches; expected 'analysis: "
-     "work_energy', found no analysis: add 'analysis: work_energy' with the start state "
-     "('from') and 'sense'"),
+     "the position the motion from a work_energy start reaches, or the first instant an "
+     "integrated motion reaches where it holds; expected 'analysis: work_energy' or "
+     "'analysis: integrate', found no analysis: add one with the start state ('from')"),
     ("a position asked 'when' with constraints", HOOP, "    find: abs(phi')\n",
      "    find: abs(phi')\n    when: phi = -pi/2\n",
      "objectives[0].when: objective 'angular_velocity': 'when: phi = -pi/2' needs one "

@@ -908,7 +908,11 @@ def how_the_instant(problem: Problem) -> str:
     """How a dynamics problem reaches its instant, in words (its ``analysis``)."""
     analysis = dynamics_of(problem).analysis
     if isinstance(analysis, Integration):
-        return (f"integrated from t = 0 until {analysis.until[0].text} = "
+        grips = [f for f in dynamics_of(problem).friction
+                 if isinstance(f, KineticFriction) and f.then is not None]
+        phases = "".join(f", {f.name} kinetic until its slip ends, then gripping (static "
+                         f"friction, |F| <= {f.then.mu.text} N)" for f in grips if f.then)
+        return (f"integrated from t = 0{phases} until {analysis.until[0].text} = "
                 f"{analysis.until[1].text}; the objectives are read there")
     if isinstance(analysis, Impulse):
         return "an impact: the rates given are those just after it, the reactions are impulses"
@@ -918,11 +922,13 @@ def how_the_instant(problem: Problem) -> str:
     return "the givens state the configuration and the rates at the instant"
 
 
-def _where_asked(objective) -> str:
+def _where_asked(objective, integrated: bool = False) -> str:
     """Where an objective asked ``when`` is read, for the write-up."""
     if objective.when is None:
         return ""
     left, right = objective.when
+    if integrated:
+        return f", at the first instant of the integrated motion where {left.text} = {right.text}"
     return (f", at the first position from the start where {left.text} = {right.text} "
             "(the rate from the energy balance)")
 
@@ -941,7 +947,9 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
               f"{len(kin.balances)} momentum balances and {len(kin.constraints)} "
               f"{level}-level constraints, linear in the unknowns, solved together "
               "(rank and every equation checked)")
-    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}{_where_asked(o)}"
+    integrated = isinstance(dynamics_of(problem).analysis, Integration)
+    objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
+                       f"{_where_asked(o, integrated)}"
                        for o, (_, value) in zip(problem.objectives, kin.objectives))
     return (*kinematics[:-2], *kin.steps, ("Solution", solved),
             ("Objectives in the model's quantities", objectives))

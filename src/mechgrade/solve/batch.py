@@ -62,6 +62,7 @@ from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, mode
 from .numeric import degenerate, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
+from .phases import gripping
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .rules import on_branch, satisfied
@@ -704,8 +705,10 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     else:
         p = kinematics_plan(problem)
     if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or \
-            any(o.when is not None for o in problem.objectives):
-        return None  # each variant solved alone (an objective's own position is searched)
+            any(o.when is not None for o in problem.objectives) or gripping(problem):
+        # each variant solved alone (an objective's own position is searched, or the motion
+        # goes on in another phase once a slip ends)
+        return None
     # An integrated motion's variants are reached from their own givens, each column
     # screened: its reference need not be solved (a mistaken model's event may never happen
     # for the spec's givens, as for every variant). Any other continues from the reference's

@@ -39,6 +39,7 @@ from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of, instant_of_objective
+from .analysis import analysis_of
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
@@ -46,6 +47,7 @@ from .motion import after_event, balances, integrated_alone
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
 from .instant import Reached, drive, read_objectives
+from .phases import Entry, Target, Until, When, asked_when, gripping, reach
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan
@@ -189,12 +191,14 @@ class Arrived:
     """Where a kind of :class:`KineticInstant` reaches an instant: the state there, the
     extended state the objectives are read from (second rates and reactions solved), the
     kinematics' warnings, and for an integration the extended state just before its event
-    (:func:`~.events.at_the_event`), else ``None``."""
+    (:func:`~.events.at_the_event`), else ``None``; ``phase``, the problem whose model holds
+    at the instant when it is not the problem's own (a contact gripping: :mod:`.phases`)."""
 
     state: State
     x: np.ndarray
     warnings: tuple[AuthorWarning, ...] = ()
     before: np.ndarray | None = None
+    phase: Problem | None = None  # the model that holds there, when not the problem's own
 
 
 @dataclass(frozen=True)
@@ -217,13 +221,13 @@ class KineticInstant:
     def warnings(self) -> tuple[AuthorWarning, ...]:
         return tuple(self.plan.k.warnings)
 
-    def arrive(self, given_map: dict, asked_at: str | None) -> tuple[dict, Arrived]:
+    def arrive(self, given_map: dict, asked_at: str | When | None) -> tuple[dict, Arrived]:
         """The givens the instant is reached with (a design parameter's value put in) and
         where it is reached; ``asked_at``: the key of ``given_map`` that fixes an
         integration's instant before its event (``None``: the event)."""
         return given_map, self.reached(given_map, asked_at)
 
-    def reached(self, given_map: dict, asked_at: str | None) -> Arrived:  # noqa: ARG002 - only an integration has instants of its own
+    def reached(self, given_map: dict, asked_at: str | When | None) -> Arrived:  # noqa: ARG002 - only an integration has instants of its own
         """The instant ``given_map`` describes, as this kind reaches it."""
         instant = solve_numeric(self.problem, self.plan, given_map, set())
         state = self.rates(instant.state, given_map)
@@ -236,7 +240,12 @@ class KineticInstant:
 
     def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
         problem, kp = self.source, self.kinetics
-        given_map, arrived = self.arrive(given_map, instant_of_objective(problem, overrides))
+        asked_at: str | When | None = instant_of_objective(problem, overrides)
+        if asked_at is None and isinstance(dynamics_of(problem).analysis, Integration):
+            asked_at = asked_when(problem, numeric)
+        given_map, arrived = self.arrive(given_map, asked_at)
+        if arrived.phase is not None:
+            problem, kp = arrived.phase, kinetics_plan(arrived.phase)
         x, before = arrived.x, arrived.before
         read = read_objectives(problem, kp, x[:, None], numeric, rules.REQUIRED_KINETIC,
                                None if before is None else before[:, None])
@@ -281,12 +290,14 @@ class IntegratedInstant(KineticInstant):
     """The motion integrated from its start state to its event (:mod:`.events`), or to the
     time, coordinate or rate an objective is asked at (:func:`~.events.integrate_to_instant`)."""
 
-    def reached(self, given_map: dict, asked_at: str | None) -> Arrived:
+    def reached(self, given_map: dict, asked_at: str | When | None) -> Arrived:
         problem, kp = self.source, self.kinetics
         analysis = dynamics_of(problem).analysis
         assert isinstance(analysis, Integration)
         g = place_givens(self.problem, kp.kp, given_map)
         size = kp.kp.index.size
+        if gripping(problem) is not None or isinstance(asked_at, When):
+            return self.phased(g.values, given_map, asked_at)
         if asked_at is not None:
             node, si, given = given_map[asked_at]
             state = integrate_to_instant(
@@ -311,6 +322,34 @@ class IntegratedInstant(KineticInstant):
         x[keep] = state.values[keep]
         return Arrived(state, x, before=before)
 
+    def phased(self, values: np.ndarray, given_map: dict, asked_at: str | When | None
+               ) -> Arrived:
+        """The instant on a motion integrated in phases, or asked ``when`` (:mod:`.phases`),
+        read with the model of the phase it is in."""
+        target: Target = Until() if asked_at is None else asked_at \
+            if isinstance(asked_at, When) else self.entry(given_map, asked_at)
+        at = reach(self.source, values, target, kinetics_plan, accelerations)
+        kp = kinetics_plan(at.phase)
+        size = kp.kp.index.size
+        state = State(at.values, after_event(kp.kp), frozenset())
+        if at.before is None:
+            return Arrived(state, solve_kinetics(at.phase, kp, state), phase=at.phase)
+        # the contact checks hold along the way: judge them just before the event
+        solve_kinetics(at.phase, kp, State(at.before[:size], state.given))
+        x = at.before.copy()
+        keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
+        x[keep] = at.values[keep]
+        return Arrived(state, x, before=at.before, phase=at.phase)
+
+    def entry(self, given_map: dict, asked_at: str) -> Entry:
+        """The instant an objective's own time, coordinate or rate fixes."""
+        node, si, given = given_map[asked_at]
+        kp = self.kinetics.kp
+        where = given.where if given is not None else \
+            analysis_of(self.source, Integration).where
+        return Entry(kp.index.symbols.index(kp.k.quantity(node)), si,
+                     f"{asked_at}: {given.text}" if given is not None else asked_at, where)
+
 
 @dataclass(frozen=True)
 class DesignedInstant(KineticInstant):
@@ -321,11 +360,11 @@ class DesignedInstant(KineticInstant):
 
     inner: KineticInstant | None = None
 
-    def arrive(self, given_map: dict, asked_at: str | None) -> tuple[dict, Arrived]:
+    def arrive(self, given_map: dict, asked_at: str | When | None) -> tuple[dict, Arrived]:
         given_map = self.designed(given_map)
         return given_map, self.reached(given_map, asked_at)
 
-    def reached(self, given_map: dict, asked_at: str | None) -> Arrived:
+    def reached(self, given_map: dict, asked_at: str | When | None) -> Arrived:
         assert self.inner is not None, "a design reaches its instant as another kind does"
         return self.inner.reached(given_map, asked_at)
 

@@ -85,14 +85,7 @@ def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int,
     if result.status < 0:
         raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
     if not len(result.t_events[0]):
-        if len(result.t_events[1]):
-            raise SolveError(f"'{given}' does not hold before the event ('{analysis.until[0].text} "
-                             f"= {analysis.until[1].text}', at t = {result.t_events[1][0]:.6g} "
-                             "s), where the integrated motion ends: expected an instant "
-                             "before it", where=where)
-        raise SolveError(f"'{given}' does not hold within {analysis.max_time:g} s of the "
-                         "integrated motion: expected an instant it reaches (or a larger "
-                         "max_time)", where=where)
+        raise instant_missed(analysis, given, where, result.t_events[1])
     end = m.at(float(result.t_events[0][0]), result.y_events[0][0])
     end[at] = value  # where the root was found: the given holds there
     known = np.zeros(len(end), dtype=bool)
@@ -104,9 +97,9 @@ def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int,
 class _ScalarMotion:
     """One motion integrated alone: the start state ``y0`` (coordinates, then rates), the
     state values ``at(t, y)``, the right-hand side and the analysis's event (``until``, an
-    event that holds at t = 0 set to wait for its next crossing)."""
+    event that holds at t = 0 set to wait for its next crossing, unless ``leave`` is false)."""
 
-    def __init__(self, problem: Problem, kp, base: np.ndarray, solve):
+    def __init__(self, problem: Problem, kp, base: np.ndarray, solve, leave: bool = True):
         self.analysis = analysis = analysis_of(problem, Integration)
         ap = analysis_plan(kp)
         self.index = index = kp.kp.index
@@ -143,7 +136,8 @@ class _ScalarMotion:
 
         self.at, self.rhs, self.until = at, rhs, until
         self.y0 = np.concatenate([values[q], values[qd]])
-        _next_crossing(until, rhs, self.y0, analysis.max_time, analysis.where)
+        if leave:  # a later phase of the motion starts where the event does not hold
+            _next_crossing(until, rhs, self.y0, analysis.max_time, analysis.where)
 
 
 def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
@@ -162,6 +156,20 @@ def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
         raise SolveError("the event holds at the start (t = 0) and stays so: expected a "
                          "motion that leaves it", where=where)
     event.direction = -side
+
+
+def instant_missed(analysis: Integration, given: str, where, until_times) -> SolveError:
+    """The error of an objective's own instant (``given`` as written, ``where`` it is) that
+    the motion does not reach before its event (at ``until_times[0]``, if it happened) or
+    within the time allowed."""
+    if len(until_times):
+        return SolveError(f"'{given}' does not hold before the event ('{analysis.until[0].text} "
+                          f"= {analysis.until[1].text}', at t = {until_times[0]:.6g} s), where "
+                          "the integrated motion ends: expected an instant before it",
+                          where=where)
+    return SolveError(f"'{given}' does not hold within {analysis.max_time:g} s of the "
+                      "integrated motion: expected an instant it reaches (or a larger "
+                      "max_time)", where=where)
 
 
 def event_never_happens(analysis: Integration) -> SolveError:

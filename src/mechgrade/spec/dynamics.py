@@ -278,10 +278,23 @@ class Reaction:
 
 
 @dataclass(frozen=True)
+class Grip:
+    """What a kinetic-friction contact becomes once its slip ends (``then: {kind: static}``):
+    it grips the ground (a wheel rolls), its friction an unknown along ``direction`` with
+    |F| <= ``mu`` N."""
+
+    mu: Expr
+    direction: Expr
+    where: Location = field(default_factory=Location, compare=False)
+
+
+@dataclass(frozen=True)
 class KineticFriction:
     """mu N opposing the slip velocity of body ``on`` at ``at`` relative to ``surface`` (the
     ground, a frame whose motion is prescribed, or another body, which then feels the opposite
-    force); ``normal`` is the reaction (one direction) pressing the surfaces together."""
+    force); ``normal`` is the reaction (one direction) pressing the surfaces together;
+    ``then``, what the contact does once an integrated motion's slip ends (``None``: the
+    motion must end first)."""
 
     name: str
     on: str
@@ -290,6 +303,7 @@ class KineticFriction:
     mu: Expr
     surface: str
     where: Location = field(default_factory=Location, compare=False)
+    then: Grip | None = None
 
 
 @dataclass(frozen=True)
@@ -661,8 +675,16 @@ def _friction(name: str, spec: dict, expr, where, reactions=()) -> Friction:
     path = ("loads", "friction", name)
     mu = expr(spec["mu"], *path, "mu")
     if spec["kind"] == "kinetic":
+        then = spec.get("then")
+        grip = None if then is None else Grip(
+            expr(then["mu"], *path, "then", "mu"),
+            expr(then["direction"], *path, "then", "direction"), where(*path, "then"))
         return KineticFriction(name, spec["body"], spec["at"], spec["normal"], mu,
-                               spec.get("surface", GROUND), where(*path))
+                               spec.get("surface", GROUND), where(*path), grip)
+    if "then" in spec:
+        raise SpecError(f"'then' says what a kinetic friction becomes once its slip ends; "
+                        f"'{name}' is static friction already (write kind: kinetic, or leave "
+                        "'then' out)", where=where(*path, "then"))
     if "direction" not in spec and "directions" not in spec:
         normal = next((r for r in reactions if r.name == spec["normal"]), None)
         raise SpecError(f"static friction '{name}' needs the directions of its unknown "
@@ -886,6 +908,8 @@ class _Checker:
                                 f"surfaces together at {f.at} (a reaction with kind: normal)",
                                 where=f.where)
             self.surface(f, normal)
+            if isinstance(f, KineticFriction) and f.then is not None:
+                self.grip(f, f.then)
         for r in d.reactions:  # after friction: a normal force's surface may be its friction's
             self.reaction_form(r)
 
@@ -916,6 +940,30 @@ class _Checker:
         if r.surface not in known:
             raise SpecError(f"unknown surface '{r.surface}' of '{r.name}' (expected ground, a "
                             f"frame or a body: {', '.join(sorted(known))})", where=r.where)
+
+    def grip(self, f: KineticFriction, grip: Grip):
+        """A contact that grips once its slip ends: on the ground, along one direction, in an
+        integrated motion whose objectives are numbers (the phases have no closed form)."""
+        self.typed(grip.mu, "scalar", "", "a friction coefficient")
+        self.typed(grip.direction, "vector", "", "a direction (a vector without units, e.g. N.x)")
+        if f.surface != GROUND:
+            raise SpecError(f"friction '{f.name}': a contact that grips once its slip ends "
+                            f"is supported on the ground only, found surface: {f.surface}; "
+                            "integrate until the slip ends instead (until: its slip speed "
+                            "= 0)", where=grip.where)
+        analysis = self.d.analysis
+        if not isinstance(analysis, Integration):
+            found = "no analysis" if analysis is None else \
+                f"analysis: {_ANALYSIS_NAMES[type(analysis)]}"
+            raise SpecError(f"friction '{f.name}': 'then' says how an integrated motion goes "
+                            f"on once the slip ends; expected 'analysis: integrate', found "
+                            f"{found} (leave 'then' out)", where=grip.where)
+        for obj in self.problem.objectives:
+            if obj.kind == ObjectiveKind.SYMBOLIC:
+                raise SpecError(f"objective '{obj.id}': a motion that slips, then grips "
+                                f"('{f.name}' has 'then') is integrated numerically, so its "
+                                f"objectives are numbers: expected kind: scalar or vector, "
+                                "found kind: symbolic", where=obj.where)
 
     def surface(self, f: Friction, normal: Reaction):
         """The ground, a frame (kinetic friction only) or another body pressed by ``normal``."""
@@ -992,16 +1040,20 @@ def _objective_positions(problem, checker) -> None:
             continue
         left, right = obj.when
         text = f"{left.text} = {right.text}"
-        if not isinstance(analysis, WorkEnergy):
+        if isinstance(analysis, Integration) and obj.kind == ObjectiveKind.SYMBOLIC:
+            raise SpecError(f"objective '{obj.id}': 'when: {text}' is an instant of the motion "
+                            "integrated numerically: expected kind: scalar or vector, found "
+                            f"kind: symbolic (or end the motion there with 'until: {text}')",
+                            where=left.where)
+        if not isinstance(analysis, (WorkEnergy, Integration)):
             found = "no analysis" if analysis is None else \
                 f"analysis: {_ANALYSIS_NAMES[type(analysis)]}"
-            fix = f"end the motion there with 'until: {text}'" \
-                if isinstance(analysis, Integration) else \
-                "add 'analysis: work_energy' with the start state ('from') and 'sense'"
             raise SpecError(f"objective '{obj.id}': 'when: {text}' is the position the motion "
-                            f"from a work_energy start reaches; expected 'analysis: "
-                            f"work_energy', found {found}: {fix}", where=left.where)
-        if len(coords) != 1 or problem.constraints:
+                            f"from a work_energy start reaches, or the first instant an "
+                            f"integrated motion reaches where it holds; expected 'analysis: "
+                            f"work_energy' or 'analysis: integrate', found {found}: add one "
+                            "with the start state ('from')", where=left.where)
+        if isinstance(analysis, WorkEnergy) and (len(coords) != 1 or problem.constraints):
             raise SpecError(f"objective '{obj.id}': 'when: {text}' needs one coordinate "
                             f"without constraints (its rate follows from the energy balance "
                             f"as a function of the position), found {len(coords)} coordinates "

@@ -440,6 +440,27 @@ def case_ball_thrown_with_drag_apex_and_landing():
             "apex_height": y(apex), "position_at_1s": [x(1.0), y(1.0), 0.0]}
 
 
+def case_bowling_ball_skids_then_rolls():
+    m, R, g, beta, mu_k, v0, w0 = 7.2, 0.109, 9.81, 10 * DEG, 0.12, 6.0, 20.0
+    N = m * g * np.cos(beta)
+    # skidding: the contact slips up the slope (v + R w > 0), so kinetic friction mu_k N acts
+    # down it; moments about the centre spin the backspin down: (2/5) m R^2 w' = -mu_k N R
+    a1 = -g * np.sin(beta) - mu_k * N / m
+    alpha1 = -mu_k * N * R / (0.4 * m * R**2)
+    t1 = (v0 + R * w0) / -(a1 + R * alpha1)  # the slip speed falls at a constant rate
+    v1 = v0 + a1 * t1
+    x1 = v0 * t1 + a1 * t1**2 / 2
+    # rolling: moments about the contact point (the normal force and friction pass through
+    # it), (2/5 m R^2 + m R^2) a / R = -m g R sin(beta); friction from the centre's balance
+    a2 = -g * np.sin(beta) / 1.4
+    F2 = m * (a2 + g * np.sin(beta))
+    t = 2.0 - t1
+    t_top = t1 - v1 / a2
+    return {"t_rolls": t1, "v_rolls": v1, "x_at_2s": x1 + v1 * t + a2 * t**2 / 2,
+            "v_at_2s": v1 + a2 * t, "friction_at_2s": F2, "t_top": t_top,
+            "x_top": x1 - v1**2 / (2 * a2)}
+
+
 def case_three_cart_chain_vibration():
     m1, m2, m3, k1, k2, k3, c, v0 = 3.0, 2.0, 1.0, 400.0, 300.0, 200.0, 12.0, 0.6
     # Lagrange with V = k1 x1^2/2 + k2 (x2-x1)^2/2 + k3 (x3-x2)^2/2 and Rayleigh's D = c x1'^2/2

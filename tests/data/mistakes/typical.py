@@ -828,6 +828,32 @@ def marble():
                   num(2 * v0 / (5 * mu * g), "s"), "other_shape_inertia", known="none")]
 
 
+def ball_skids_then_rolls():
+    m, R, g, beta, mu_k, v0, w0 = 7.2, 0.109, 9.81, 10 * D, 0.12, 6.0, 20.0
+    s, c = math.sin(beta), math.cos(beta)
+    u0 = v0 + R * w0  # the slip speed at the throw
+
+    def rolls_at(normal):  # skidding with friction mu_k normal: (time, speed) when it rolls
+        a, alpha = -g * s - mu_k * normal / m, -mu_k * normal * R / (0.4 * m * R**2)
+        t = u0 / -(a + R * alpha)
+        return t, v0 + a * t
+
+    return [entry("v_rolls", "friction μ m g: the normal force taken as the weight",
+                  num(rolls_at(m * g)[1], "m/s"), "normal_from_weight"),
+            entry("t_rolls", "slip rate from the centre alone: the friction's spin-down left out",
+                  num(u0 / (g * (s + mu_k * c)), "s"), "spin_omitted", known="none"),
+            # R read as 10.9 m (or a mass of m g) keeps the ball skidding past 2 s and to the
+            # top: those mistakes give exactly these values, and the grader says so
+            entry("friction_at_2s", "kinetic friction μ_k N kept once the ball rolls",
+                  num(-mu_k * m * g * c, "N"), "friction_kept_kinetic", known="generic",
+                  generic=("weight_for_mass", "given_length_unit")),
+            entry("friction_at_2s", "rolling friction drawn down the slope",
+                  num(-2 / 7 * m * g * s, "N"), "sign"),
+            entry("x_top", "rolling ignored: it skids all the way up",
+                  num(v0**2 / (2 * g * (s + mu_k * c)), "m"), "phase_omitted", known="generic",
+                  generic=("given_length_unit",))]
+
+
 def momentum_projection():
     return []
 
@@ -899,6 +925,7 @@ TABLES = {
     "flywheel_speed_drop": flywheel,
     "rod_struck_on_ice": rod_on_ice,
     "ruina_9_22_marble_bowling_ball": marble,
+    "bowling_ball_skids_then_rolls": ball_skids_then_rolls,
     "ruina_9_24_momentum_projection": momentum_projection,
     "ruina_9_25_units_matrix": units_matrix,
 }
