@@ -10,7 +10,7 @@ coinciding, a singular constraint Jacobian) are warnings.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -18,7 +18,8 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear, solve_nonlinear)
+                     place_givens, rows, solve_linear, solve_nonlinear,
+                     solve_nonlinear_columns)
 from .columns import call
 from .plan import KinematicsPlan
 from . import rules
@@ -79,11 +80,117 @@ def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: se
     Raises when the instant itself cannot be solved; an objective that depends on something
     the givens leave free gets its own error in :attr:`Instant.errors`.
     """
+    g = _placed(problem, p, givens, only)
+    return _instant(problem, p, g, givens, _branches(problem, p, g), only)
+
+
+def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
+                          only: set[str]) -> list[Instant | MechgradeError]:
+    """:func:`solve_numeric` of many instants, one per ``givens``: each one's instant or the
+    error that function raises for it. The non-linear levels of all of them are solved
+    together, every start of every instant at once (:func:`~.levels.solve_nonlinear_columns`);
+    which roots are distinct, which one the spec asks for and what the instant then is are
+    judged as for one instant.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.plan import kinematics_plan
+    >>> from mechgrade.solve.instant import instant_givens
+    >>> problem = load_problem(shipped_dir("problems") / "airplane_crosswind_heading.yaml")
+    >>> p = kinematics_plan(problem)
+    >>> fine, off = solve_numeric_columns(
+    ...     problem, p, [instant_givens(problem, {"w'": w}, {}) for w in (10.0, 100.0)],
+    ...     {"heading"})
+    >>> round(float(np.degrees(fine.values["heading"][0])), 4)  # asin(10 / 66.67)
+    8.6269
+    >>> "the velocity equations were not solved" in str(off)  # 100 m/s > 66.67 m/s
+    True
+    """
+    out: list[Instant | MechgradeError | None] = [None] * len(givens)
+    placed: dict[int, Givens] = {}
+    for i, given in enumerate(givens):
+        try:
+            placed[i] = _placed(problem, p, given, only)
+        except MechgradeError as err:
+            out[i] = err
+    for i, found in _branches_columns(problem, p, placed).items():
+        try:
+            if isinstance(found, MechgradeError):
+                raise found
+            out[i] = _instant(problem, p, placed[i], givens[i], found, only)
+        except MechgradeError as err:
+            out[i] = err
+    return out  # type: ignore[return-value]
+
+
+def _placed(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Givens:
+    """``givens`` placed (:func:`~.levels.place_givens`), refused when a parameter an
+    equation or objective needs has no value."""
     g = place_givens(problem, p, givens)
     missing = missing_values(p, g, only)
     if missing:
         raise _missing_error(problem, p, missing[0])
-    candidates = _branches(problem, p, g)
+    return g
+
+
+def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens]
+                      ) -> dict[int, list[Candidate] | MechgradeError]:
+    """:func:`_branches` of every instant in ``placed`` (or the error it raises: the first
+    met following the roots in order), each level solved for all of them at once."""
+    errors: dict[int, tuple[tuple[int, ...], MechgradeError]] = {}
+
+    def failed(i: int, at: tuple[int, ...], err: MechgradeError) -> None:
+        # the error met first following the roots depth first, as _branches meets it
+        if i not in errors or at < errors[i][0]:
+            errors[i] = (at, err)
+
+    keys = list(placed)
+    gs = [placed[i] for i in keys]
+    # (instant, roots taken, state, nullspaces, unknowns left free, picked by the spec)
+    paths: list[tuple[int, tuple[int, ...], State, tuple, tuple[int, ...], bool]] = []
+    firsts = solve_nonlinear_columns(problem, p, 0, [State(g.values.copy(), g.known)
+                                                     for g in gs], gs)
+    for i, first in zip(keys, firsts):
+        if isinstance(first, MechgradeError):
+            failed(i, (), first)
+            continue
+        paths += [(i, (k,), s, (), first.free, first.picked)
+                  for k, s in enumerate(first.states)]
+    for order in (1, 2):
+        level = p.levels[order]
+        grown = []
+        if level.linear:
+            for i, at, s, nulls, free, picked in paths:
+                try:
+                    s1, null = solve_linear(problem, p, order, s, placed[i])
+                except MechgradeError as err:
+                    failed(i, at, err)
+                    continue
+                grown.append((i, at + (0,), s1, nulls + (null,), free, picked))
+        else:
+            roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
+                                            [placed[path[0]] for path in paths])
+            for (i, at, s, nulls, free, picked), found in zip(paths, roots):
+                if isinstance(found, MechgradeError):
+                    failed(i, at, found)
+                    continue
+                grown += [(i, at + (k,), r, nulls + (None,), free + found.free,
+                           picked and found.picked) for k, r in enumerate(found.states)]
+        paths = grown
+    out: dict[int, list[Candidate] | MechgradeError] = {
+        i: errors[i][1] if i in errors else [] for i in keys}
+    for i, _, s, nulls, free, picked in paths:
+        found = out[i]
+        if not isinstance(found, MechgradeError):
+            found.append(Candidate(s, (nulls[0], nulls[1]), free, picked))
+    return out
+
+
+def _instant(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
+             candidates: list[Candidate], only: set[str]) -> Instant:
+    """The instant from every complete solution of its levels (:func:`_branches`): refused
+    when they give different answers, else the first, its givens checked to hold, the
+    objectives its freedoms move refused, its degeneracies warned of."""
     base = candidates[0]
     values = evaluate(p.objectives, base.state, only)
     distinct = [base]
