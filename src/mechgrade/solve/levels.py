@@ -206,19 +206,24 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
-    setup = _set_up(problem, p, order, state, g, free_values, start)
-    if isinstance(setup, Roots):
-        return setup
-    return _chosen(problem, p, setup, _fits_alone(p.levels[order], setup))
+    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], free_values, start,
+                                       alone=True)
+    if isinstance(roots, MechgradeError):
+        raise roots
+    return roots
 
 
 def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
-                            states: Sequence[State], givens: Sequence[Givens]
+                            states: Sequence[State], givens: Sequence[Givens],
+                            free_values: Mapping[int, float] | None = None,
+                            start: np.ndarray | None = None, *, alone: bool = False
                             ) -> list[Roots | MechgradeError]:
     """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``), each
     column's roots or the error that function raises for it: the same starts, every start of
     every column solved together by Levenberg-Marquardt steps on the stacked Jacobians
-    (:func:`levenberg_marquardt`), the roots then chosen by the same rules.
+    (:func:`levenberg_marquardt`), the roots then chosen by the same rules. ``alone``: each
+    start by scipy's least squares instead, as one instant is solved (its roots exactly as
+    before the columns existed: a degenerate root, zero, is found as exactly zero).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -239,16 +244,17 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     out: list[Roots | MechgradeError | _Setup] = []
     for state, g in zip(states, givens):
         try:
-            out.append(_set_up(problem, p, order, state, g))
+            out.append(_set_up(problem, p, order, state, g, free_values, start))
         except MechgradeError as err:
             out.append(err)
     pending = [i for i, s in enumerate(out) if isinstance(s, _Setup)]
-    setups = [out[i] for i in pending]
-    assert all(isinstance(s, _Setup) for s in setups)
-    fits = _fits_together(p.levels[order], setups)  # type: ignore[arg-type]
+    setups = [s for s in out if isinstance(s, _Setup)]
+    level = p.levels[order]
+    fits = [_fits_alone(level, s) for s in setups] if alone else \
+        _fits_together(level, setups)
     for i, setup, found in zip(pending, setups, fits):
         try:
-            out[i] = _chosen(problem, p, setup, found)  # type: ignore[arg-type]
+            out[i] = _chosen(problem, p, setup, found)
         except MechgradeError as err:
             out[i] = err
     return out  # type: ignore[return-value]

@@ -18,8 +18,7 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear, solve_nonlinear,
-                     solve_nonlinear_columns)
+                     place_givens, rows, solve_linear, solve_nonlinear_columns)
 from .columns import call
 from .plan import KinematicsPlan
 from . import rules
@@ -54,24 +53,11 @@ class Instant:
 def _branches(problem: Problem, p: KinematicsPlan, g: Givens, *, free_values=None,
               shifts=(None, None), start=None) -> list[Candidate]:
     """Every complete solution: each root of each non-linear level followed to the end."""
-    initial = State(g.values.copy(), g.known)
-    out = []
-    first = solve_nonlinear(problem, p, 0, initial, g, free_values, start)
-    for s0 in first.states:
-        for s1, n1, f1, k1 in _rate_level(problem, p, 1, s0, g, free_values, shifts[0], start):
-            for s2, n2, f2, k2 in _rate_level(problem, p, 2, s1, g, free_values, shifts[1],
-                                              start):
-                out.append(Candidate(s2, (n1, n2), first.free + f1 + f2,
-                                  first.picked and k1 and k2))
-    return out
-
-
-def _rate_level(problem, p, order, state, g, free_values, shift, start):
-    if p.levels[order].linear:
-        s, null = solve_linear(problem, p, order, state, g, shift)
-        return [(s, null, (), True)]
-    roots = solve_nonlinear(problem, p, order, state, g, free_values, start)
-    return [(s, None, roots.free, roots.picked) for s in roots.states]
+    (found,) = _branches_columns(problem, p, {0: g}, free_values=free_values, shifts=shifts,
+                                 start=start, alone=True).values()
+    if isinstance(found, MechgradeError):
+        raise found
+    return found
 
 
 def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Instant:
@@ -80,17 +66,21 @@ def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: se
     Raises when the instant itself cannot be solved; an objective that depends on something
     the givens leave free gets its own error in :attr:`Instant.errors`.
     """
-    g = _placed(problem, p, givens, only)
-    return _instant(problem, p, g, givens, _branches(problem, p, g), only)
+    (instant,) = solve_numeric_columns(problem, p, [givens], only, alone=True)
+    if isinstance(instant, MechgradeError):
+        raise instant
+    return instant
 
 
 def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                          only: set[str]) -> list[Instant | MechgradeError]:
+                          only: set[str], *, alone: bool = False
+                          ) -> list[Instant | MechgradeError]:
     """:func:`solve_numeric` of many instants, one per ``givens``: each one's instant or the
     error that function raises for it. The non-linear levels of all of them are solved
     together, every start of every instant at once (:func:`~.levels.solve_nonlinear_columns`);
     which roots are distinct, which one the spec asks for and what the instant then is are
-    judged as for one instant.
+    judged as for one instant. ``alone``: each start solved by scipy's least squares (as
+    :func:`solve_numeric` solves one instant, :func:`~.levels.solve_nonlinear_columns`).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -113,7 +103,7 @@ def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[
             placed[i] = _placed(problem, p, given, only)
         except MechgradeError as err:
             out[i] = err
-    for i, found in _branches_columns(problem, p, placed).items():
+    for i, found in _branches_columns(problem, p, placed, alone=alone).items():
         try:
             if isinstance(found, MechgradeError):
                 raise found
@@ -133,10 +123,13 @@ def _placed(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]
     return g
 
 
-def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens]
+def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens], *,
+                      free_values=None, shifts=(None, None), start=None, alone: bool = False
                       ) -> dict[int, list[Candidate] | MechgradeError]:
-    """:func:`_branches` of every instant in ``placed`` (or the error it raises: the first
-    met following the roots in order), each level solved for all of them at once."""
+    """Every complete solution of each instant in ``placed`` (each root of each non-linear
+    level followed to the end), or the error met first following the roots in order; each
+    level solved for all of them at once. ``free_values``, ``shifts`` (of the rate levels'
+    nullspaces) and ``start``: a probe of one instant's freedoms, re-solved near its root."""
     errors: dict[int, tuple[tuple[int, ...], MechgradeError]] = {}
 
     def failed(i: int, at: tuple[int, ...], err: MechgradeError) -> None:
@@ -149,7 +142,8 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
     # (instant, roots taken, state, nullspaces, unknowns left free, picked by the spec)
     paths: list[tuple[int, tuple[int, ...], State, tuple, tuple[int, ...], bool]] = []
     firsts = solve_nonlinear_columns(problem, p, 0, [State(g.values.copy(), g.known)
-                                                     for g in gs], gs)
+                                                     for g in gs], gs, free_values, start,
+                                     alone=alone)
     for i, first in zip(keys, firsts):
         if isinstance(first, MechgradeError):
             failed(i, (), first)
@@ -162,20 +156,23 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         if level.linear:
             for i, at, s, nulls, free, picked in paths:
                 try:
-                    s1, null = solve_linear(problem, p, order, s, placed[i])
+                    s1, null = solve_linear(problem, p, order, s, placed[i],
+                                            shifts[order - 1])
                 except MechgradeError as err:
                     failed(i, at, err)
                     continue
                 grown.append((i, at + (0,), s1, nulls + (null,), free, picked))
         else:
             roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
-                                            [placed[path[0]] for path in paths])
-            for (i, at, s, nulls, free, picked), found in zip(paths, roots):
-                if isinstance(found, MechgradeError):
-                    failed(i, at, found)
+                                            [placed[path[0]] for path in paths], free_values,
+                                            start, alone=alone)
+            for (i, at, _, nulls, free, picked), level_roots in zip(paths, roots):
+                if isinstance(level_roots, MechgradeError):
+                    failed(i, at, level_roots)
                     continue
-                grown += [(i, at + (k,), r, nulls + (None,), free + found.free,
-                           picked and found.picked) for k, r in enumerate(found.states)]
+                grown += [(i, at + (k,), r, nulls + (None,), free + level_roots.free,
+                           picked and level_roots.picked)
+                          for k, r in enumerate(level_roots.states)]
         paths = grown
     out: dict[int, list[Candidate] | MechgradeError] = {
         i: errors[i][1] if i in errors else [] for i in keys}
