@@ -334,6 +334,13 @@ def _evaluate(full, f, shape):
 Fit = tuple[np.ndarray, float]
 """A start's end: the whole state there, and half the sum of the squared residuals."""
 
+LM_STEPS = 200
+"""Steps a start may take (the residuals evaluated at most this many times, alone)."""
+
+FIT_TOL = 1e-14
+"""A start has converged when its step is below this part of its unknowns, or its cost falls
+by less than this part of itself."""
+
 
 def _fits_alone(level: Level, setup: _Setup) -> list[Fit | None]:
     """Each start of ``setup`` solved by scipy's least squares (``None``: a start where the
@@ -365,8 +372,8 @@ def _fits_alone(level: Level, setup: _Setup) -> list[Fit | None]:
                 # Levenberg-Marquardt from the other starts: it keeps to the root a start is
                 # in the basin of, where a trust region drifts to the nearest one.
                 fit = optimize.least_squares(residual, s, jac=jac, args=(setup.x,),
-                                             xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=200,
-                                             method="trf" if k == 0 else "lm")
+                                             xtol=FIT_TOL, ftol=FIT_TOL, gtol=FIT_TOL,
+                                             max_nfev=LM_STEPS, method="trf" if k == 0 else "lm")
             except ValueError:  # a start where the equations are undefined
                 out.append(None)
                 continue
@@ -399,8 +406,6 @@ def _fits_together(level: Level, setups: Sequence[_Setup]) -> list[list[Fit | No
     return out
 
 
-LM_STEPS = 200
-"""Levenberg-Marquardt steps a start may take (scipy's ``max_nfev`` for the scalar solve)."""
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
@@ -411,7 +416,8 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     Levenberg-Marquardt steps (Marquardt's scaling, the damping divided by 3 after a step
     that lowers the cost and multiplied by 4 after one that does not). Each column stops on
     its own (its root does not depend on the columns solved with it) once its step is below
-    1e-14 of its unknowns, or its cost falls by less than 1e-14 of itself or to zero.
+    :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
+    zero, or after :data:`LM_STEPS` steps.
     Returns the states, half the sum of the squared residuals of each, and which columns
     started where the equations are defined (the others are left as they came).
 
@@ -469,9 +475,9 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
             r_new = residual(moved, T[:, idx])
             cost_new = 0.5 * (r_new ** 2).sum(axis=0)
             better = cost_new < cost[idx]  # NaN is not better
-            small = np.linalg.norm(step, axis=0) <= 1e-14 * (
-                np.linalg.norm(X[determined][:, idx], axis=0) + 1e-14)
-            flat = better & (cost[idx] - cost_new <= 1e-14 * cost[idx])
+            small = np.linalg.norm(step, axis=0) <= FIT_TOL * (
+                np.linalg.norm(X[determined][:, idx], axis=0) + FIT_TOL)
+            flat = better & (cost[idx] - cost_new <= FIT_TOL * cost[idx])
             kept = idx[better]
             if len(kept):
                 X[:, kept] = moved[:, better]
