@@ -26,6 +26,7 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
+from .columns import call, least_squares_solution
 from .plan import Level, KinematicsPlan
 from .rules import first_off, on_branch, satisfied
 
@@ -250,8 +251,8 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     pending = [i for i, s in enumerate(out) if isinstance(s, _Setup)]
     setups = [s for s in out if isinstance(s, _Setup)]
     level = p.levels[order]
-    fits = [_fits_alone(level, s) for s in setups] if alone else \
-        _fits_together(level, setups)
+    fits = [_fits_alone(problem.consistency, level, s) for s in setups] if alone else \
+        _fits_together(problem.consistency, level, setups)
     for i, setup, found in zip(pending, setups, fits):
         try:
             out[i] = _chosen(problem, p, setup, found)
@@ -331,8 +332,9 @@ def _evaluate(full, f, shape):
         return np.asarray(f(*full), dtype=float).reshape(shape)
 
 
-Fit = tuple[np.ndarray, float]
-"""A start's end: the whole state there, and half the sum of the squared residuals."""
+Fit = tuple[np.ndarray, float, bool]
+"""A start's end: the whole state there, half the sum of the squared residuals, and whether
+the level holds there (:func:`~.rules.satisfied`)."""
 
 LM_STEPS = 200
 """Steps a start may take (the residuals evaluated at most this many times, alone)."""
@@ -342,7 +344,7 @@ FIT_TOL = 1e-14
 by less than this part of itself."""
 
 
-def _fits_alone(level: Level, setup: _Setup) -> list[Fit | None]:
+def _fits_alone(consistency: float, level: Level, setup: _Setup) -> list[Fit | None]:
     """Each start of ``setup`` solved by scipy's least squares (``None``: a start where the
     equations are undefined)."""
     from scipy import optimize
@@ -379,11 +381,12 @@ def _fits_alone(level: Level, setup: _Setup) -> list[Fit | None]:
                 continue
         full = setup.x.copy()
         full[determined] = fit.x
-        out.append((full, float(fit.cost)))
+        out.append((full, float(fit.cost), _satisfied(consistency, level, full, active, target)))
     return out
 
 
-def _fits_together(level: Level, setups: Sequence[_Setup]) -> list[list[Fit | None]]:
+def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
+                   ) -> list[list[Fit | None]]:
     """:func:`_fits_alone` of every setup, every start of every one solved at once (those
     determining the same unknowns from the same rows stacked as columns) by
     :func:`levenberg_marquardt`."""
@@ -398,11 +401,13 @@ def _fits_together(level: Level, setups: Sequence[_Setup]) -> list[list[Fit | No
         X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
         T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
         X, cost, started = levenberg_marquardt(level, X, first.determined,
-                                               list(first.columns),
-                                               first.active, T)
+                                               list(first.columns), first.active, T)
+        nrows = len(level.labels)
+        held = np.all(satisfied(call(level.residual, X, nrows)[first.active] - T,
+                                call(level.scale, X, nrows)[first.active], consistency), axis=0)
         for j, (i, k) in enumerate(pairs):
             if started[j]:
-                out[i][k] = (X[:, j].copy(), float(cost[j]))
+                out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
     return out
 
 
@@ -438,8 +443,6 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     >>> np.round(X[p.index.position("b'")] * 3.6, 4).tolist(), bool(cost.max() < 1e-20)
     ([232.379, -232.379], True)
     """
-    from .columns import call, least_squares_solution
-
     nrows, ncols = len(level.labels), len(columns)
     place = [columns.index(i) for i in determined]
 
@@ -504,10 +507,10 @@ def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, fits: Sequence[F
     for fit in fits:
         if fit is None:
             continue
-        full, cost = fit
+        full, cost, held = fit
         if best is None or cost < best[0]:
             best = (cost, full)
-        if _satisfied(problem, level, full, setup.active, setup.target) and \
+        if held and \
                 not any(_same(g, full, other, determined) for other in found):
             found.append(full)
     if not found:
@@ -546,12 +549,12 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
     return out
 
 
-def _satisfied(problem, level, x, active, target) -> bool:
+def _satisfied(consistency: float, level, x, active, target) -> bool:
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
         scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-    return bool(np.all(satisfied(r, scale, problem.consistency)))
+    return bool(np.all(satisfied(r, scale, consistency)))
 
 
 def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
