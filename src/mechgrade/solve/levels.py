@@ -418,7 +418,8 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve ``level``'s ``active`` rows (each must equal its row of ``T``) for the positions
     ``determined`` at every column of ``X`` (the states, each from its own start), by
-    Levenberg-Marquardt steps (Marquardt's scaling, the damping divided by 3 after a step
+    Levenberg-Marquardt steps (Marquardt's scaling by the largest of each unknown's column
+    norms yet, as MINPACK scales; the damping divided by 3 after a step
     that lowers the cost and multiplied by 4 after one that does not). Each column stops on
     its own (its root does not depend on the columns solved with it) once its step is below
     :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
@@ -461,6 +462,9 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
     damping = np.full(X.shape[1], 1e-3)
     k = len(determined)
+    # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
+    # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
+    scales = np.full((k, X.shape[1]), 1e-300)
     eye = np.eye(k)[:, :, None]
     with np.errstate(all="ignore"):
         for _ in range(LM_STEPS):
@@ -470,8 +474,9 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
             Ji, ri = J[:, :, idx], r[:, idx]
             A = np.einsum("aki,ali->kli", Ji, Ji)
             grad = np.einsum("aki,ai->ki", Ji, ri)
-            scaled = np.maximum(np.einsum("kki->ki", A), 1e-300)
-            step = least_squares_solution(A + eye * (damping[idx] * scaled)[:, None, :], -grad)
+            scales[:, idx] = np.maximum(scales[:, idx], np.einsum("kki->ki", A))
+            step = least_squares_solution(A + eye * (damping[idx] * scales[:, idx])[:, None, :],
+                                          -grad)
             step = np.where(np.isfinite(step), step, 0.0)
             moved = X[:, idx].copy()
             moved[determined] += step
