@@ -427,22 +427,15 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     Returns the states, half the sum of the squared residuals of each, and which columns
     started where the equations are defined (the others are left as they came).
 
-    >>> from mechgrade.spec import load_problem
-    >>> from mechgrade.resources import shipped_dir
-    >>> from mechgrade.solve.plan import kinematics_plan
-    >>> from mechgrade.solve.instant import instant_givens
-    >>> problem = load_problem(shipped_dir("problems") / "airplane_crosswind_heading.yaml")
-    >>> p = kinematics_plan(problem)
-    >>> g = place_givens(problem, p, instant_givens(problem, None, {}))
-    >>> level = p.levels[1]
-    >>> X = np.where(np.isnan(g.values), 0.3, g.values)[:, None].repeat(2, axis=1)
-    >>> X[p.index.position("b'")] = [1.0, -1.0]   # two starts: the two roots
-    >>> active, target = rows(level, g)
-    >>> unknown = [p.index.position("a'"), p.index.position("b'")]
-    >>> X, cost, started = levenberg_marquardt(level, X, unknown, list(p.index.unknowns(1)),
-    ...                                        active, target[active][:, None].repeat(2, 1))
-    >>> np.round(X[p.index.position("b'")] * 3.6, 4).tolist(), bool(cost.max() < 1e-20)
-    ([232.379, -232.379], True)
+    A circle x² + y² = 25 with x = 3 (the state: x, y), from y = 1 and from y = -1:
+
+    >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
+    ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]], None, ("c", "x"),
+    ...               (), (), False, (), frozenset())
+    >>> X, cost, started = levenberg_marquardt(level, np.array([[1.0, 1.0], [1.0, -1.0]]),
+    ...                                        [0, 1], [0, 1], np.ones(2, bool), np.zeros((2, 2)))
+    >>> X.round(12).tolist(), bool(cost.max() < 1e-20), started.tolist()
+    ([[3.0, 3.0], [4.0, -4.0]], True, [True, True])
     """
     nrows, ncols = len(level.labels), len(columns)
     place = [columns.index(i) for i in determined]
