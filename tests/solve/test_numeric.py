@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -32,3 +33,93 @@ def test_a_given_that_does_not_hold_in_the_solution_is_named_with_its_place():
     assert str(info.value) == ("p.yaml:16:26: givens.dot(vel(P, N), A.y): the given "
                                "'dot(vel(P, N), A.y) = 8 m/s' does not hold in the solution: "
                                "dot(vel(P, N), A.y) is 6 m / s there")
+
+
+# ---------------------------------------------------------------- many instants at once
+
+
+def _circle_level():
+    """x² + y² = r² (the state: x, y, r), solved for x and y: a level with a root each side."""
+    from mechgrade.errors import Location
+    from mechgrade.solve.plan import Level
+
+    def residual(x, y, r):
+        return [[x ** 2 + y ** 2 - r ** 2], [x - 0.6 * r]]
+
+    def jacobian(x, y, r):
+        return [[2 * x, 2 * y], [1.0 + 0 * x, 0 * y]]
+
+    def scale(x, y, r):
+        return [[x ** 2 + y ** 2 + r ** 2], [abs(x) + 0.6 * abs(r)]]
+
+    return Level(0, "position", residual, jacobian, scale, ("circle", "x given"),
+                 (Location(), Location()), (), False, (frozenset(), frozenset()),
+                 frozenset({0, 1}))
+
+
+def test_every_start_of_every_instant_is_solved_to_its_own_root():
+    import numpy as np
+
+    from mechgrade.solve.levels import levenberg_marquardt
+
+    level = _circle_level()
+    # columns: y started above, below, on a circle too small for x (no root), x undefined
+    X = np.array([[0.1, 0.1, 0.1, np.nan], [2.0, -2.0, 1.0, 1.0], [5.0, 5.0, 5.0, 5.0]])
+    T = np.zeros((2, 4))
+    T[1, 2] = 10.0  # the third column asks x - 0.6 r = 10: x = 13 > r
+    active = np.ones(2, dtype=bool)
+    out, cost, started = levenberg_marquardt(level, X, [0, 1], [0, 1], active, T)
+    assert started.tolist() == [True, True, True, False]
+    assert out[:2, 0] == pytest.approx([3.0, 4.0], rel=1e-14)
+    assert out[:2, 1] == pytest.approx([3.0, -4.0], rel=1e-14)
+    assert cost[:2] == pytest.approx([0.0, 0.0], abs=1e-20) and cost[2] > 1.0
+    assert np.isnan(out[0, 3])  # left as it came
+
+
+def test_an_instant_solved_with_others_gets_the_root_it_gets_alone():
+    import numpy as np
+
+    from mechgrade.solve.levels import levenberg_marquardt
+
+    level = _circle_level()
+    X = np.array([[0.1, 0.2, 0.3], [2.0, -2.0, 0.5], [5.0, 7.0, 1.0]])
+    active = np.ones(2, dtype=bool)
+    together, _, _ = levenberg_marquardt(level, X, [0, 1], [0, 1], active, np.zeros((2, 3)))
+    for j in range(3):
+        alone, _, _ = levenberg_marquardt(level, X[:, [j]], [0, 1], [0, 1], active,
+                                          np.zeros((2, 1)))
+        assert alone[:, 0].tolist() == together[:, j].tolist()
+
+
+AIRPLANE = Path(__file__).resolve().parents[2] / "problems" / "airplane_crosswind_heading.yaml"
+
+
+@pytest.mark.slow
+def test_instants_solved_together_are_each_what_solve_numeric_gives_alone():
+    import numpy as np
+
+    from mechgrade.errors import MechgradeError
+    from mechgrade.solve.instant import instant_givens
+    from mechgrade.solve.numeric import solve_numeric, solve_numeric_columns
+    from mechgrade.spec import load_problem
+
+    problem = load_problem(AIRPLANE)
+    p = kinematics_plan(problem)
+    only = {"heading", "ground_speed"}
+    # crosswinds the airplane can head into, and one faster than the airplane (no real
+    # solution: the message names the residual left where the starts got nearest)
+    overrides = [{"w'": 10.0}, {"w'": 100.0}, {"w'": 30.0}]
+    givens = [instant_givens(problem, o, {}) for o in overrides]
+    together = solve_numeric_columns(problem, p, givens, only)
+    for given, instant in zip(givens, together):
+        try:
+            alone = solve_numeric(problem, p, given, only)
+        except MechgradeError as err:
+            assert isinstance(instant, type(err))
+            assert re.sub(r"-?[\d.]+", "#", str(instant)) == re.sub(r"-?[\d.]+", "#", str(err))
+            continue
+        assert not isinstance(instant, MechgradeError)
+        for oid in only:
+            assert np.allclose(instant.values[oid], alone.values[oid], rtol=1e-12, atol=0)
+    assert [type(i).__name__ for i in together] == ["Instant", "SolveError", "Instant"]
+    assert "the velocity equations were not solved: 'due_north'" in str(together[1])

@@ -59,7 +59,7 @@ from .columns import FirstErrors, call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of, stacked)
-from .numeric import degenerate, solve_numeric
+from .numeric import degenerate, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
 from .phases import gripping
@@ -614,16 +614,16 @@ class _Template:
             return np.zeros(0, dtype=bool), {}
         _, ok, values, _, _, _ = self._instant(group, [c[0] for c in changed], False)
         solved = ok.copy()
-        for i in np.flatnonzero(~ok):  # what the stacked path does not vouch for: alone
-            _, givens, changes = changed[i]
-            try:
-                alone = solve_numeric(self.problem, self.p, misread(givens, changes),
-                                      set(group.numeric)).values
-            except MechgradeError:
+        # what the stacked path does not vouch for: solved as given_mistakes solves it
+        redo = np.flatnonzero(~ok)
+        instants = solve_numeric_columns(self.problem, self.p, [
+            misread(changed[i][1], changed[i][2]) for i in redo], set(group.numeric))
+        for i, instant in zip(redo, instants):
+            if isinstance(instant, MechgradeError):
                 continue
             solved[i] = True
             for oid, v in values.items():
-                v[:, i] = alone[oid]
+                v[:, i] = instant.values[oid]
         return solved, values
 
 

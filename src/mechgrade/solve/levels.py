@@ -14,18 +14,19 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, replace
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 
 # scipy is imported by the functions that use it: it takes longer to import than a whole
 # `mechgrade check` of most problems, which never needs it.
 
-from ..errors import InconsistentError, Location, SolveError
+from ..errors import InconsistentError, Location, MechgradeError, SolveError
 from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
+from .columns import call, least_squares_solution
 from .plan import Level, KinematicsPlan
 from .rules import first_off, on_branch, satisfied
 
@@ -206,6 +207,85 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
+    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], free_values, start,
+                                       alone=True)
+    if isinstance(roots, MechgradeError):
+        raise roots
+    return roots
+
+
+def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
+                            states: Sequence[State], givens: Sequence[Givens],
+                            free_values: Mapping[int, float] | None = None,
+                            start: np.ndarray | None = None, *, alone: bool = False
+                            ) -> list[Roots | MechgradeError]:
+    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``), each
+    column's roots or the error that function raises for it: the same starts, every start of
+    every column solved together by Levenberg-Marquardt steps on the stacked Jacobians
+    (:func:`levenberg_marquardt`), the roots then chosen by the same rules. ``alone``: each
+    start by scipy's least squares instead, as one instant is solved (its roots exactly as
+    before the columns existed: a degenerate root, zero, is found as exactly zero).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.plan import kinematics_plan
+    >>> from mechgrade.solve.instant import instant_givens
+    >>> problem = load_problem(shipped_dir("problems") / "airplane_crosswind_heading.yaml")
+    >>> p = kinematics_plan(problem)
+    >>> places = [place_givens(problem, p, instant_givens(problem, {"w'": w}, {}))
+    ...           for w in (10.0, 100.0)]
+    >>> states = [solve_nonlinear(problem, p, 0, State(g.values.copy(), g.known), g).states[0]
+    ...           for g in places]
+    >>> fine, off = solve_nonlinear_columns(problem, p, 1, states, places)
+    >>> round(float(fine.states[0].values[p.index.position("b'")]), 4)  # sqrt(66.67² - 10²)
+    65.9124
+    >>> type(off).__name__
+    'SolveError'
+    """
+    out: list[Roots | MechgradeError | _Setup] = []
+    for state, g in zip(states, givens):
+        try:
+            out.append(_set_up(problem, p, order, state, g, free_values, start))
+        except MechgradeError as err:
+            out.append(err)
+    pending = [i for i, s in enumerate(out) if isinstance(s, _Setup)]
+    setups = [s for s in out if isinstance(s, _Setup)]
+    level = p.levels[order]
+    fits = [_fits_alone(problem.consistency, level, s) for s in setups] if alone else \
+        _fits_together(problem.consistency, level, setups)
+    for i, setup, found in zip(pending, setups, fits):
+        try:
+            out[i] = _chosen(problem, p, setup, found)
+        except MechgradeError as err:
+            out[i] = err
+    return out  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class _Setup:
+    """One instant's non-linear level ready for its starts: the state (``x``, the free
+    unknowns placed), the unknowns the equations determine and those they leave ``free``,
+    the starts (values of the determined), whether the spec picked the root, the rows that
+    hold and what each must equal."""
+
+    order: int
+    g: Givens
+    state: State
+    x: np.ndarray
+    columns: tuple[int, ...]
+    determined: list[int]
+    free: list[int]
+    starts: list[np.ndarray]
+    picked: bool
+    active: np.ndarray
+    target: np.ndarray
+
+
+def _set_up(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Givens,
+            free_values: Mapping[int, float] | None = None,
+            start: np.ndarray | None = None) -> _Setup | Roots:
+    """The level set up for its starts (:class:`_Setup`), or its roots when there is nothing
+    to solve for (no unknown, or no equation)."""
     level = p.levels[order]
     columns = list(p.index.unknowns(order))
     active, target = rows(level, g)
@@ -224,18 +304,12 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
         if error is not None:
             raise error
         return Roots((result,), tuple(unknown), True)
-
-    def evaluate(full, f, shape):
-        with np.errstate(all="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            return np.asarray(f(*full), dtype=float).reshape(shape)
-
     position = {c: j for j, c in enumerate(columns)}
     # Equal default guesses can make a Jacobian singular (two angles both 0.3): which unknowns
     # the equations determine is read where it is not.
     nearby = x.copy()
     nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
-    jacobians = [evaluate(at, level.jacobian, (len(level.labels), len(columns)))[active][
+    jacobians = [_evaluate(at, level.jacobian, (len(level.labels), len(columns)))[active][
         :, [position[i] for i in unknown]] for at in (x, nearby)]
     determined, free = max((_split_free(J, unknown) for J in jacobians),
                            key=lambda split: len(split[0]))
@@ -243,51 +317,204 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     linear = not (level.jacobian_uses & set(determined))
     for i in free:
         x[i] = (free_values or {}).get(i, x[i])
-    solve_for = [position[i] for i in determined]
-
-    def residual(vals, base):
-        full = base.copy()
-        full[determined] = vals
-        return evaluate(full, level.residual, (-1,))[active] - target[active]
-
-    def jac(vals, base):
-        full = base.copy()
-        full[determined] = vals
-        return evaluate(full, level.jacobian, (len(level.labels), len(columns)))[active][
-            :, solve_for]
-
     picked_by_guess = start is not None or bool(g.guessed[determined].any())
     picked = picked_by_guess or any(i in g.branches for i in determined)
     starts = [x[determined]]
     if not picked_by_guess and not linear:
         starts += _starts(x[determined], g.scales[determined], order)
-    found: list[np.ndarray] = []
-    best = None
-    for k, s in enumerate(starts):
-        if not determined:
-            break
-        from scipy import optimize
+    return _Setup(order, g, state, x, tuple(columns), determined, free, starts, picked,
+                  active, target)
 
+
+def _evaluate(full, f, shape):
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return np.asarray(f(*full), dtype=float).reshape(shape)
+
+
+Fit = tuple[np.ndarray, float, bool]
+"""A start's end: the whole state there, half the sum of the squared residuals, and whether
+the level holds there (:func:`~.rules.satisfied`)."""
+
+LM_STEPS = 200
+"""Steps a start may take (the residuals evaluated at most this many times, alone)."""
+
+FIT_TOL = 1e-14
+"""A start has converged when its step is below this part of its unknowns, or its cost falls
+by less than this part of itself."""
+
+
+def _fits_alone(consistency: float, level: Level, setup: _Setup) -> list[Fit | None]:
+    """Each start of ``setup`` solved by scipy's least squares (``None``: a start where the
+    equations are undefined)."""
+    from scipy import optimize
+
+    columns = list(setup.columns)
+    determined, active, target = setup.determined, setup.active, setup.target
+    if not determined:
+        return []
+    solve_for = [columns.index(i) for i in determined]
+
+    def residual(vals, base):
+        full = base.copy()
+        full[determined] = vals
+        return _evaluate(full, level.residual, (-1,))[active] - target[active]
+
+    def jac(vals, base):
+        full = base.copy()
+        full[determined] = vals
+        return _evaluate(full, level.jacobian, (len(level.labels), len(columns)))[active][
+            :, solve_for]
+
+    out: list[Fit | None] = []
+    for k, s in enumerate(setup.starts):
         with np.errstate(all="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
                 # Levenberg-Marquardt from the other starts: it keeps to the root a start is
                 # in the basin of, where a trust region drifts to the nearest one.
-                fit = optimize.least_squares(residual, s, jac=jac, args=(x,), xtol=1e-14,
-                                             ftol=1e-14, gtol=1e-14, max_nfev=200,
-                                             method="trf" if k == 0 else "lm")
+                fit = optimize.least_squares(residual, s, jac=jac, args=(setup.x,),
+                                             xtol=FIT_TOL, ftol=FIT_TOL, gtol=FIT_TOL,
+                                             max_nfev=LM_STEPS, method="trf" if k == 0 else "lm")
             except ValueError:  # a start where the equations are undefined
+                out.append(None)
                 continue
-        full = x.copy()
+        full = setup.x.copy()
         full[determined] = fit.x
-        if best is None or fit.cost < best[0]:
-            best = (fit.cost, full)
-        if _satisfied(problem, level, full, active, target) and \
+        out.append((full, float(fit.cost), _satisfied(consistency, level, full, active, target)))
+    return out
+
+
+def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
+                   ) -> list[list[Fit | None]]:
+    """:func:`_fits_alone` of every setup, every start of every one solved at once (those
+    determining the same unknowns from the same rows stacked as columns) by
+    :func:`levenberg_marquardt`."""
+    out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
+    groups: dict[tuple, list[tuple[int, int]]] = {}
+    for i, s in enumerate(setups):
+        for k in range(len(s.starts) if s.determined else 0):
+            groups.setdefault((tuple(s.determined), s.active.tobytes()), []).append((i, k))
+    for pairs in groups.values():
+        first = setups[pairs[0][0]]
+        X = np.stack([setups[i].x for i, _ in pairs], axis=1)
+        X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
+        T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
+        X, cost, started = levenberg_marquardt(level, X, first.determined,
+                                               list(first.columns), first.active, T)
+        nrows = len(level.labels)
+        held = np.all(satisfied(call(level.residual, X, nrows)[first.active] - T,
+                                call(level.scale, X, nrows)[first.active], consistency), axis=0)
+        for j, (i, k) in enumerate(pairs):
+            if started[j]:
+                out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
+    return out
+
+
+
+
+def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
+                        active: np.ndarray, T: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Solve ``level``'s ``active`` rows (each must equal its row of ``T``) for the positions
+    ``determined`` at every column of ``X`` (the states, each from its own start), by
+    Levenberg-Marquardt steps (Marquardt's scaling by the largest of each unknown's column
+    norms yet, as MINPACK scales; the damping divided by 3 after a step
+    that lowers the cost and multiplied by 4 after one that does not). Each column stops on
+    its own (its root does not depend on the columns solved with it) once its step is below
+    :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
+    zero, or after :data:`LM_STEPS` steps.
+    Returns the states, half the sum of the squared residuals of each, and which columns
+    started where the equations are defined (the others are left as they came).
+
+    A circle x² + y² = 25 with x = 3 (the state: x, y), from y = 1 and from y = -1:
+
+    >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
+    ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]], None, ("c", "x"),
+    ...               (), (), False, (), frozenset())
+    >>> X, cost, started = levenberg_marquardt(level, np.array([[1.0, 1.0], [1.0, -1.0]]),
+    ...                                        [0, 1], [0, 1], np.ones(2, bool), np.zeros((2, 2)))
+    >>> X.round(12).tolist(), bool(cost.max() < 1e-20), started.tolist()
+    ([[3.0, 3.0], [4.0, -4.0]], True, [True, True])
+    """
+    nrows, ncols = len(level.labels), len(columns)
+    place = [columns.index(i) for i in determined]
+
+    def residual(Xs, Ts):
+        return call(level.residual, Xs, nrows)[active] - Ts
+
+    def jacobian(Xs):
+        return call(level.jacobian, Xs, nrows * ncols).reshape(
+            nrows, ncols, Xs.shape[1])[active][:, place]
+
+    X = X.copy()
+    r, J = residual(X, T), jacobian(X)
+    with np.errstate(all="ignore"):
+        cost = 0.5 * (r ** 2).sum(axis=0)
+    started = np.isfinite(r).all(axis=0)
+    live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
+    damping = np.full(X.shape[1], 1e-3)
+    k = len(determined)
+    # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
+    # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
+    scales = np.full((k, X.shape[1]), 1e-300)
+    eye = np.eye(k)[:, :, None]
+    with np.errstate(all="ignore"):
+        for _ in range(LM_STEPS):
+            idx = np.flatnonzero(live)
+            if not len(idx):
+                break
+            Ji, ri = J[:, :, idx], r[:, idx]
+            A = np.einsum("aki,ali->kli", Ji, Ji)
+            grad = np.einsum("aki,ai->ki", Ji, ri)
+            scales[:, idx] = np.maximum(scales[:, idx], np.einsum("kki->ki", A))
+            step = least_squares_solution(A + eye * (damping[idx] * scales[:, idx])[:, None, :],
+                                          -grad)
+            step = np.where(np.isfinite(step), step, 0.0)
+            moved = X[:, idx].copy()
+            moved[determined] += step
+            r_new = residual(moved, T[:, idx])
+            cost_new = 0.5 * (r_new ** 2).sum(axis=0)
+            better = cost_new < cost[idx]  # NaN is not better
+            small = np.linalg.norm(step, axis=0) <= FIT_TOL * (
+                np.linalg.norm(X[determined][:, idx], axis=0) + FIT_TOL)
+            flat = better & (cost[idx] - cost_new <= FIT_TOL * cost[idx])
+            kept = idx[better]
+            if len(kept):
+                X[:, kept] = moved[:, better]
+                r[:, kept] = r_new[:, better]
+                cost[kept] = cost_new[better]
+                J[:, :, kept] = jacobian(moved[:, better])
+            damping[idx] = np.where(better, damping[idx] / 3, damping[idx] * 4)
+            done = small | flat | (cost[idx] == 0) | (damping[idx] > 1e30) | \
+                ~np.isfinite(J[:, :, idx]).all(axis=(0, 1))
+            live[idx[done]] = False
+    return X, cost, started
+
+
+def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, fits: Sequence[Fit | None]
+            ) -> Roots:
+    """The roots of ``setup``'s level from its starts' ``fits``: the distinct ones that
+    satisfy the level (the first from the first start), on the branch asked for and, for
+    ``first positive``, the smallest; the errors :func:`solve_nonlinear` raises when none
+    is."""
+    level = p.levels[setup.order]
+    g, determined = setup.g, setup.determined
+    found: list[np.ndarray] = []
+    best = None
+    for fit in fits:
+        if fit is None:
+            continue
+        full, cost, held = fit
+        if best is None or cost < best[0]:
+            best = (cost, full)
+        if held and \
                 not any(_same(g, full, other, determined) for other in found):
             found.append(full)
     if not found:
-        full = best[1] if best is not None else x
-        error = _unsolved(problem, level, g, full, active, target, len(determined), len(starts))
+        full = best[1] if best is not None else setup.x
+        error = _unsolved(problem, level, g, full, setup.active, setup.target,
+                          len(determined), len(setup.starts))
         assert error is not None, "no start solved the level, so a residual is left"
         raise error
     roots = [r for r in found if _on_branch(g, r, determined)]
@@ -299,9 +526,9 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
                          f"for ({wanted}); solutions found: {listing}",
                          where=_branch_where(problem))
     roots = _choose_branch(g, roots, determined)
-    states = tuple(replace(state, values=r, given=g.known, free=state.free | frozenset(free))
-                   for r in roots)
-    return Roots(states, tuple(free), picked)
+    states = tuple(replace(setup.state, values=r, given=g.known,
+                           free=setup.state.free | frozenset(setup.free)) for r in roots)
+    return Roots(states, tuple(setup.free), setup.picked)
 
 
 def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray]:
@@ -320,12 +547,12 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
     return out
 
 
-def _satisfied(problem, level, x, active, target) -> bool:
+def _satisfied(consistency: float, level, x, active, target) -> bool:
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore")
         r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
         scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-    return bool(np.all(satisfied(r, scale, problem.consistency)))
+    return bool(np.all(satisfied(r, scale, consistency)))
 
 
 def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:

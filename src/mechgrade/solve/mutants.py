@@ -34,7 +34,7 @@ from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
 from .columns import call
 from .levels import State
-from .numeric import solve_numeric
+from .numeric import solve_numeric_columns
 from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants
 from .result import GeneratedMistake, ObjectiveResult
 
@@ -126,11 +126,12 @@ def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
     """The objectives in ``wanted`` solved again with each given mistaken in one way."""
     out: dict[str, list[GeneratedMistake]] = {}
     parameters = {q.name for q in problem.parameters}
-    for code, changes, sentence in slips_of(givens, parameters):
-        changed = misread(givens, changes)
-        try:
-            instant = solve_numeric(problem, p, changed, wanted)
-        except MechgradeError:
+    slips = list(slips_of(givens, parameters))
+    # every misreading's instant at once; one that cannot be solved is no mistake to name
+    instants = solve_numeric_columns(problem, p, [misread(givens, changes)
+                                                  for _, changes, _ in slips], wanted)
+    for (code, _, sentence), instant in zip(slips, instants):
+        if isinstance(instant, MechgradeError):
             continue
         for oid, values in instant.values.items():
             if oid in wanted and np.all(np.isfinite(values)):

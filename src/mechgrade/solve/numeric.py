@@ -10,7 +10,7 @@ coinciding, a singular constraint Jacobian) are warnings.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -18,7 +18,7 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear, solve_nonlinear)
+                     place_givens, rows, solve_linear, solve_nonlinear_columns)
 from .columns import call
 from .plan import KinematicsPlan
 from . import rules
@@ -53,24 +53,11 @@ class Instant:
 def _branches(problem: Problem, p: KinematicsPlan, g: Givens, *, free_values=None,
               shifts=(None, None), start=None) -> list[Candidate]:
     """Every complete solution: each root of each non-linear level followed to the end."""
-    initial = State(g.values.copy(), g.known)
-    out = []
-    first = solve_nonlinear(problem, p, 0, initial, g, free_values, start)
-    for s0 in first.states:
-        for s1, n1, f1, k1 in _rate_level(problem, p, 1, s0, g, free_values, shifts[0], start):
-            for s2, n2, f2, k2 in _rate_level(problem, p, 2, s1, g, free_values, shifts[1],
-                                              start):
-                out.append(Candidate(s2, (n1, n2), first.free + f1 + f2,
-                                  first.picked and k1 and k2))
-    return out
-
-
-def _rate_level(problem, p, order, state, g, free_values, shift, start):
-    if p.levels[order].linear:
-        s, null = solve_linear(problem, p, order, state, g, shift)
-        return [(s, null, (), True)]
-    roots = solve_nonlinear(problem, p, order, state, g, free_values, start)
-    return [(s, None, roots.free, roots.picked) for s in roots.states]
+    (found,) = _branches_columns(problem, p, {0: g}, free_values=free_values, shifts=shifts,
+                                 start=start, alone=True).values()
+    if isinstance(found, MechgradeError):
+        raise found
+    return found
 
 
 def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Instant:
@@ -79,11 +66,128 @@ def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: se
     Raises when the instant itself cannot be solved; an objective that depends on something
     the givens leave free gets its own error in :attr:`Instant.errors`.
     """
+    (instant,) = solve_numeric_columns(problem, p, [givens], only, alone=True)
+    if isinstance(instant, MechgradeError):
+        raise instant
+    return instant
+
+
+def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
+                          only: set[str], *, alone: bool = False
+                          ) -> list[Instant | MechgradeError]:
+    """:func:`solve_numeric` of many instants, one per ``givens``: each one's instant or the
+    error that function raises for it. The non-linear levels of all of them are solved
+    together, every start of every instant at once (:func:`~.levels.solve_nonlinear_columns`);
+    which roots are distinct, which one the spec asks for and what the instant then is are
+    judged as for one instant. ``alone``: each start solved by scipy's least squares (as
+    :func:`solve_numeric` solves one instant, :func:`~.levels.solve_nonlinear_columns`).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.plan import kinematics_plan
+    >>> from mechgrade.solve.instant import instant_givens
+    >>> problem = load_problem(shipped_dir("problems") / "airplane_crosswind_heading.yaml")
+    >>> p = kinematics_plan(problem)
+    >>> fine, off = solve_numeric_columns(
+    ...     problem, p, [instant_givens(problem, {"w'": w}, {}) for w in (10.0, 100.0)],
+    ...     {"heading"})
+    >>> round(float(np.degrees(fine.values["heading"][0])), 4)  # asin(10 / 66.67)
+    8.6269
+    >>> "the velocity equations were not solved" in str(off)  # 100 m/s > 66.67 m/s
+    True
+    """
+    out: list[Instant | MechgradeError | None] = [None] * len(givens)
+    placed: dict[int, Givens] = {}
+    for i, given in enumerate(givens):
+        try:
+            placed[i] = _placed(problem, p, given, only)
+        except MechgradeError as err:
+            out[i] = err
+    for i, found in _branches_columns(problem, p, placed, alone=alone).items():
+        try:
+            if isinstance(found, MechgradeError):
+                raise found
+            out[i] = _instant(problem, p, placed[i], givens[i], found, only)
+        except MechgradeError as err:
+            out[i] = err
+    return out  # type: ignore[return-value]
+
+
+def _placed(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Givens:
+    """``givens`` placed (:func:`~.levels.place_givens`), refused when a parameter an
+    equation or objective needs has no value."""
     g = place_givens(problem, p, givens)
     missing = missing_values(p, g, only)
     if missing:
         raise _missing_error(problem, p, missing[0])
-    candidates = _branches(problem, p, g)
+    return g
+
+
+def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens], *,
+                      free_values=None, shifts=(None, None), start=None, alone: bool = False
+                      ) -> dict[int, list[Candidate] | MechgradeError]:
+    """Every complete solution of each instant in ``placed`` (each root of each non-linear
+    level followed to the end), or the error met first following the roots in order; each
+    level solved for all of them at once. ``free_values``, ``shifts`` (of the rate levels'
+    nullspaces) and ``start``: a probe of one instant's freedoms, re-solved near its root."""
+    errors: dict[int, tuple[tuple[int, ...], MechgradeError]] = {}
+
+    def failed(i: int, at: tuple[int, ...], err: MechgradeError) -> None:
+        # the error met first following the roots depth first, as _branches meets it
+        if i not in errors or at < errors[i][0]:
+            errors[i] = (at, err)
+
+    keys = list(placed)
+    gs = [placed[i] for i in keys]
+    # (instant, roots taken, state, nullspaces, unknowns left free, picked by the spec)
+    paths: list[tuple[int, tuple[int, ...], State, tuple, tuple[int, ...], bool]] = []
+    firsts = solve_nonlinear_columns(problem, p, 0, [State(g.values.copy(), g.known)
+                                                     for g in gs], gs, free_values, start,
+                                     alone=alone)
+    for i, first in zip(keys, firsts):
+        if isinstance(first, MechgradeError):
+            failed(i, (), first)
+            continue
+        paths += [(i, (k,), s, (), first.free, first.picked)
+                  for k, s in enumerate(first.states)]
+    for order in (1, 2):
+        level = p.levels[order]
+        grown = []
+        if level.linear:
+            for i, at, s, nulls, free, picked in paths:
+                try:
+                    s1, null = solve_linear(problem, p, order, s, placed[i],
+                                            shifts[order - 1])
+                except MechgradeError as err:
+                    failed(i, at, err)
+                    continue
+                grown.append((i, at + (0,), s1, nulls + (null,), free, picked))
+        else:
+            roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
+                                            [placed[path[0]] for path in paths], free_values,
+                                            start, alone=alone)
+            for (i, at, _, nulls, free, picked), level_roots in zip(paths, roots):
+                if isinstance(level_roots, MechgradeError):
+                    failed(i, at, level_roots)
+                    continue
+                grown += [(i, at + (k,), r, nulls + (None,), free + level_roots.free,
+                           picked and level_roots.picked)
+                          for k, r in enumerate(level_roots.states)]
+        paths = grown
+    out: dict[int, list[Candidate] | MechgradeError] = {
+        i: errors[i][1] if i in errors else [] for i in keys}
+    for i, _, s, nulls, free, picked in paths:
+        found = out[i]
+        if not isinstance(found, MechgradeError):
+            found.append(Candidate(s, (nulls[0], nulls[1]), free, picked))
+    return out
+
+
+def _instant(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
+             candidates: list[Candidate], only: set[str]) -> Instant:
+    """The instant from every complete solution of its levels (:func:`_branches`): refused
+    when they give different answers, else the first, its givens checked to hold, the
+    objectives its freedoms move refused, its degeneracies warned of."""
     base = candidates[0]
     values = evaluate(p.objectives, base.state, only)
     distinct = [base]

@@ -182,6 +182,8 @@ def carried(givens: Mapping[str, Given], changed: Mapping[str, float]) -> dict[s
     ...
     mechgrade.errors.SpecError: cannot evaluate 'sqrt(v*t)' with v changed: found ...
     """
+    if all(g.value_expr is None for g in givens.values()):
+        return {}  # nothing stated from another given (and no quantity to build for each)
     ureg = registry()
     done = {key: ureg.Quantity(changed.get(key, g.si), si_unit(g.unit) or "dimensionless")
             for key, g in givens.items()}
