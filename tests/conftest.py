@@ -23,6 +23,8 @@ PROBLEMS = ROOT / "problems"
 DATA = Path(__file__).resolve().parent / "data"
 # The LMS importers re-implemented from their source (tests/lms/), imported by module name
 sys.path.insert(0, str(Path(__file__).resolve().parent / "lms"))
+# Helpers shared by test modules at collection (tests/support/), imported by module name
+sys.path.insert(0, str(Path(__file__).resolve().parent / "support"))
 
 
 @pytest.fixture

@@ -25,12 +25,32 @@ def run(*args):
     return CliRunner().invoke(main, [str(a) for a in args])
 
 
+def grade(out, *options):
+    return run("grade", HW3 / "assignment.yaml", HW3 / "submissions", "--roster",
+               HW3 / "roster.csv", "--out", out, *options)
+
+
 @pytest.fixture(scope="module")
 def graded(tmp_path_factory):
+    # in this process: forked workers would each derive the four problems again (no disk
+    # cache in the tests); the class graded over two workers is checked against it below
     out = tmp_path_factory.mktemp("hw3") / "out"
-    result = run("grade", HW3 / "assignment.yaml", HW3 / "submissions", "--roster",
-                 HW3 / "roster.csv", "--out", out)
+    result = grade(out, "--jobs", "1")
     return result, out, json.loads((out / "results.json").read_text(encoding="utf-8"))
+
+
+@pytest.mark.slow  # the class graded again over two workers, each deriving it cold
+def test_grading_hw3_over_two_workers_writes_the_same_files(graded, tmp_path):
+    result, out, _ = graded
+    parallel = grade(tmp_path / "out", "--jobs", "2")
+    assert parallel.exit_code == 0, parallel.output
+    assert parallel.stdout == result.stdout.replace(out.as_posix(), (tmp_path / "out").as_posix())
+    written = sorted(p.relative_to(out) for p in out.rglob("*") if p.is_file())
+    assert sorted(p.relative_to(tmp_path / "out") for p in (tmp_path / "out").rglob("*")
+                  if p.is_file()) == written
+    for name in written:
+        if name.name != "manifest.json":  # it records the command and its options
+            assert (tmp_path / "out" / name).read_bytes() == (out / name).read_bytes(), name
 
 
 def answers(results, sid):

@@ -19,7 +19,7 @@ from mechgrade.grade.compare import assess
 from mechgrade.grade.policy import GradingPolicy
 from mechgrade.solve import solve
 from mechgrade.solve.mutants import separating_rel
-from mechgrade.spec import load_problem
+from library import library_problem
 
 ROOT = Path(__file__).resolve().parents[2]
 TABLES = ROOT / "tests" / "data" / "mistakes"
@@ -40,7 +40,7 @@ ROWS = [(path.stem, i, row) for path in sorted(TABLES.glob("*.yaml"))
 
 @lru_cache(maxsize=None)
 def _solution(problem: str):
-    return solve(load_problem(ROOT / "problems" / f"{problem}.yaml"))
+    return solve(library_problem(problem))
 
 
 def _result(problem: str, objective: str):
@@ -83,7 +83,7 @@ def test_a_typical_mistake_gets_its_own_diagnosis(problem, index, row):
     assert not judged.feedback.startswith("Not within")
 
 
-NUMERIC = [(p.stem, o.id) for p in PROBLEMS for o in load_problem(p).objectives
+NUMERIC = [(p.stem, o.id) for p in PROBLEMS for o in library_problem(p.stem).objectives
            if o.kind != "symbolic"]
 
 
@@ -95,7 +95,7 @@ def test_a_correct_answer_in_any_notation_gets_no_diagnosis(problem, objective):
         assert (judged.verdict, judged.diagnosis) == ("correct", None), (text, judged)
 
 
-SYMBOLIC = [(p.stem, o.id) for p in PROBLEMS for o in load_problem(p).objectives
+SYMBOLIC = [(p.stem, o.id) for p in PROBLEMS for o in library_problem(p.stem).objectives
             if o.kind == "symbolic"]
 
 

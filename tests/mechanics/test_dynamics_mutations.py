@@ -16,15 +16,11 @@ from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations
 from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.spec import load_problem
 from mechgrade.spec.model import Tolerance
+from library import library_problem as _problem
 
 DYNAMICS = sorted(p.stem for p in shipped_dir("problems").glob("*.yaml")
-                  if load_problem(p).dynamics is not None)
-
-
-def _problem(name):
-    return load_problem(shipped_dir("problems") / f"{name}.yaml")
+                  if _problem(p.stem).dynamics is not None)
 
 
 @lru_cache(maxsize=None)
