@@ -141,7 +141,11 @@ def _derive(problem: Problem, _locations: tuple) -> Kinematics:
     acceleration_all = [(label, sp.diff(expr, t), where) for label, expr, where in velocity_all]
 
     def plain_equations(items):
-        return tuple(Equation(label, model.plain(expr), where) for label, expr, where in items)
+        # d/dt sign(u) = 2 DiracDelta(u) u' (a length's |u| differentiated twice, as in a
+        # massless junction's balance) is zero wherever the direction u/|u| is defined
+        return tuple(Equation(label, model.plain(expr).replace(
+            lambda e: isinstance(e, sp.DiracDelta), lambda e: sp.Integer(0)), where)
+            for label, expr, where in items)
 
     conditions = {}
     for given in problem.givens + tuple(g for o in problem.objectives for g in o.givens):

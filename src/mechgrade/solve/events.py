@@ -111,7 +111,7 @@ class _ScalarMotion:
         ap = analysis_plan(kp)
         self.index = index = kp.kp.index
         q, qd, qdd = list(range(index.n)), list(index.rates(1)), list(index.rates(2))
-        values = start_values(kp, ap, base)
+        values = start_values(problem, kp, ap, base)
         values[index.time] = 0.0
         values[qdd] = 0.0
         calls = [0]
