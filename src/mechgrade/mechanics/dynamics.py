@@ -34,10 +34,10 @@ from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
 from .build import Model, build
 from .interpret import Interpreter
-from .junctions import check_junctions, kinematic_part
+from .junctions import check_junctions, is_junction_balance, kinematic_part
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
 from .loads import AppliedLoad, PhysicalBound, check_loads, diagram, physical_bounds
-from .symbols import identically_zero
+from .symbols import identically_zero, without_deltas
 from .vibration import REASONS, Modal, NaturalMode, modal_entries
 
 
@@ -418,13 +418,18 @@ class DynamicsInterpreter(Interpreter):
 
     def _mode_number(self, number: Node) -> int:
         k = self.kinematics
-        if k.velocity:
+        # a massless junction's balance is the one constraint modes are worked out with:
+        # the motion is restricted to the configurations that keep it
+        held = [e for e in k.position if is_junction_balance(e.label)]
+        if len(k.velocity) != len(held):
             raise SolveError("natural modes need coordinates without constraints",
                              where=self.where)
-        n = len(k.q)
+        n = len(k.q) - len(held)
         value = constant_value(number)
         if value is None or value != int(value) or not 1 <= value <= n:
-            raise SolveError(f"expected a mode number 1 to {n} (the coordinates), found "
+            what = "the coordinates" if not held else \
+                "the coordinates less the junctions' balances"
+            raise SolveError(f"expected a mode number 1 to {n} ({what}), found "
                              f"'{to_text(number)}'", where=self.where)
         return int(value)
 
@@ -459,11 +464,13 @@ class DynamicsInterpreter(Interpreter):
         rest = {qd: 0 for qd in k.qd}
 
         def at_rest(matrix):
-            return matrix.xreplace(rest)
+            return without_deltas(matrix.xreplace(rest))
 
+        held = [e.expr for e in k.position if is_junction_balance(e.label)]
         entries = modal_entries(at_rest(A), at_rest(b),
                                 [at_rest(A.diff(q)) for q in k.q], [at_rest(b.diff(q)) for q in k.q],
-                                [at_rest(A.diff(r)) for r in k.qd], [at_rest(b.diff(r)) for r in k.qd])
+                                [at_rest(A.diff(r)) for r in k.qd], [at_rest(b.diff(r)) for r in k.qd],
+                                sp.Matrix(held).jacobian(k.q) if held else None)
         return len(k.q), A.rows, entries
 
     def _mode(self, value: int):
