@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import MechgradeError, SolveError
 from ..expressions.syntax import to_text
 from ..mechanics.junctions import is_junction_balance
-from ..spec.dynamics import dynamics_of
+from ..spec.dynamics import Integration, dynamics_of, junction_coordinates
 from .levels import DEFAULT_GUESS, _starts, typical_sizes
 
 NEWTON_STEPS = 50
@@ -34,6 +34,9 @@ def settle_junctions(problem, kp, values: np.ndarray
     guesses = {to_text(g.key.node): g.si for g in problem.guesses}
     out = values.copy()
     errors: dict[int, MechgradeError] = {}
+    where = junctions[0].where
+    analysis = dynamics_of(problem).analysis
+    start = analysis.where if isinstance(analysis, Integration) else where
     for order in (0, 1):
         level = kp.kp.levels[order]
         rows = [i for i, label in enumerate(level.labels) if is_junction_balance(label)]
@@ -61,7 +64,7 @@ def settle_junctions(problem, kp, values: np.ndarray
                 out[:, c] = roots[0]
             else:
                 errors[c] = SolveError(_message(problem, kp, order, settled, roots, x, rows),
-                                       where=junctions[0].where)
+                                       where=where if settled else start)
     return out, errors
 
 
@@ -127,8 +130,9 @@ def _message(problem, kp, order: int, settled: list[int], roots: list, x: np.nda
                 f"start for {found} (the springs' pulls on it never add up to 0); check the "
                 "springs' free lengths and where they end, or give guesses: near the solution")
     residual = np.abs(_rows(kp.kp.levels[order].residual, x, rows)).max()
-    what = "positions" if order == 0 else "rates"
+    mark = "" if order == 0 else "'"
+    named = " and ".join(f"{c}{mark}" for c in junction_coordinates(problem))
     return (f"the start state puts the massless junction {junctions} out of its balance: its "
             f"springs' pulls {'' if order == 0 else 'change at a rate that '}add up to "
-            f"{residual:.4g} N{'' if order == 0 else '/s'}, expected 0; leave the junction's "
-            f"{what} out of 'from' (its balance fixes them), or give the values that keep it")
+            f"{residual:.4g} N{'' if order == 0 else '/s'}, expected 0; leave {named} out of "
+            "'from' (the junction's balance fixes it), or give the value that keeps it")
