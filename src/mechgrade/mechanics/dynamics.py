@@ -556,7 +556,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language.before = before
     balances: list[Equation] = []
     steps_loads: list[str] = []
-    junctions = {b.name for b in d.junctions} if not d.mistaken else set()
+    junctions = {b.name for b in d.junctions}
     for b in d.bodies:
         steps_loads.append(_load_line(b, loads, model))
         if b.name in junctions:  # its balance is a constraint of the kinematics

@@ -19,7 +19,7 @@ more components than the junction has coordinates).
 >>> from mechgrade.resources import shipped_dir
 >>> problem = load_problem(shipped_dir("problems") / "block_on_springs_in_series.yaml")
 >>> [(c.name, c.lhs.text) for c in junction_constraints(problem)]
-[('node (massless): sum of forces', 'k1*(mag(pos(O, J)) - L1)*unit(pos(O, J)) + k2*(mag(pos(P, J)) - L2)*unit(pos(P, J))')]
+[('node (massless): sum of forces', 'k1*(mag(pos(O, J))-L1)*unit(pos(O, J))+k2*(mag(pos(P, J))-L2)*unit(pos(P, J))')]
 """
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ def junction_constraints(problem: Problem) -> tuple[Constraint, ...]:
 @lru_cache(maxsize=64)
 def _junction_constraints(problem: Problem) -> tuple[Constraint, ...]:
     d = problem.dynamics
-    if d is None or d.mistaken:
+    if d is None:
         return ()
     out = []
     for b in d.junctions:
