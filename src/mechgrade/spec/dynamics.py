@@ -449,10 +449,12 @@ class Dynamics:
         >>> [b.name for b in p.dynamics.junctions]
         ['node']
         """
-        held = {f.on for f in (*self.forces, *self.couples, *self.friction, *self.impulses)} \
-            | {a.on for r in self.reactions for a in r.acts} \
+        loaded: tuple[Force | Couple | Friction | KnownImpulse, ...] = (
+            *self.forces, *self.couples, *self.friction, *self.impulses)
+        held = {f.on for f in loaded} | {a.on for r in self.reactions for a in r.acts} \
             | {f.surface for f in self.friction}
-        ends = {body for x in (*self.springs, *self.dampers) for body in x.on}
+        ends = {body for x in self.springs for body in x.on} | \
+            {body for x in self.dampers for body in x.on}
         return tuple(b for b in self.bodies
                      if b.frame is None and b.name in ends and b.name not in held
                      and all(constant_value(p.mass.node) == 0 for p in b.parts))
