@@ -28,7 +28,8 @@ from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
                              Integration, KineticFriction, LoadKind, Reaction, Restitution,
-                             Spring, StaticFriction, dynamics_of, junction_coordinates)
+                             Spring, StaticFriction, WorkEnergy, dynamics_of,
+                             junction_coordinates)
 from ..spec.model import ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
@@ -825,9 +826,16 @@ def _difference(equation, model: Model, language) -> sp.Expr:
 
 def _analysis(problem: Problem, model: Model, language, k: Kinematics):
     """The start state (plain symbol -> value; rates not named are 0) and the event."""
-    analysis = dynamics_of(problem).analysis
+    d = dynamics_of(problem)
+    analysis = d.analysis
     if analysis is None or isinstance(analysis, Impulse):
         return (), None, ()
+    if isinstance(analysis, WorkEnergy) and d.junctions:
+        raise SolveError(f"work-energy with a massless junction ({d.junctions[0].name}): its "
+                         "position at the start and at the instant is fixed by its balance, "
+                         "which an energy balance does not solve; expected the motion "
+                         "integrated: analysis: {integrate: {from: ..., until: ...}}",
+                         where=analysis.where)
     values = {}
     for s in analysis.start:
         symbol = k.quantity(s.key.node)
