@@ -1145,7 +1145,9 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
                                 "(the configuration does not change during an impact)",
                                 where=start.where)
         return
-    missing = [c for c in coords if c not in named and c not in junction_coordinates(problem)]
+    missing = [c for c in coords if c not in named]
+    if missing:  # a junction's coordinate is settled by its balance
+        missing = [c for c in missing if c not in junction_coordinates(problem)]
     if missing:
         raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "
                         f"{', '.join(missing)}", where=analysis.where)
