@@ -14,6 +14,7 @@ import sympy as sp
 
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Problem
+from .junctions import settle_junctions
 
 
 @dataclass(frozen=True)
@@ -64,8 +65,6 @@ def extended(kp, values: np.ndarray) -> np.ndarray:
 def start_values(problem: Problem, kp, ap: AnalysisPlan, values: np.ndarray) -> np.ndarray:
     """``values`` with the coordinates and rates of the start state put in (a massless
     junction's settled by its balance: :func:`~.junctions.settle_junctions`)."""
-    from .junctions import settle_junctions
-
     x = extended(kp, values)
     out = values.copy()
     for i, fn in ap.start:

@@ -22,8 +22,8 @@ from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import FirstErrors, call, least_squares_solution, loud_call
-from .junctions import settle_junctions
 from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens
+from .junctions import settle_junctions
 from .plan import KinematicsPlan
 from .rules import satisfied
 

@@ -1145,9 +1145,8 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
                                 "(the configuration does not change during an impact)",
                                 where=start.where)
         return
-    missing = [c for c in coords if c not in named]
-    if missing:  # a junction's coordinate is settled by its balance
-        missing = [c for c in missing if c not in junction_coordinates(problem)]
+    settled = set(junction_coordinates(problem))  # by the junctions' balances
+    missing = [c for c in coords if c not in named and c not in settled]
     if missing:
         raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "
                         f"{', '.join(missing)}", where=analysis.where)
