@@ -632,8 +632,6 @@ def springs_in_series():
             entry("first_spring_tension_at_300ms",
                   "the block's whole displacement on the first spring: k1 (x - L1 - L2)",
                   num(k1 * (block(w, 0.3) - L1 - L2), "N"), known="none"),
-            entry("time_to_stop", "the springs added as in parallel: a quarter of 2 pi/w",
-                  num(math.pi / 2 / wp * 1e3, "ms"), "springs_in_series"),
             entry("farthest", "the amplitude v0/w given for the distance from the wall",
                   num(v0 / w * 1e3, "mm"), known="none")]
 
