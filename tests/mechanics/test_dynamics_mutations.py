@@ -276,6 +276,22 @@ def test_two_springs_holding_a_block_from_either_side_combined_in_series():
     assert series.value == pytest.approx(44.7214, rel=1e-5)
 
 
+def test_two_springs_meeting_at_a_massless_joint_combined_as_if_in_parallel():
+    (parallel,) = [m for m in dynamics_mutations(_problem("block_on_springs_in_series"))
+                   if m.code == "springs_in_series"]
+    assert "as if in parallel (k = k1 + k2)" in parallel.sentence
+    assert parallel.term.text == "(k1) * (k2)/((k1) + (k2))"
+    # stiffened so that in series they act as k1 + k2, the joint's share unchanged
+    assert [s.stiffness.text for s in parallel.problem.dynamics.springs] == [
+        "(k1)*((k1) + (k2))**2/((k1) * (k2))", "(k2)*((k1) + (k2))**2/((k1) * (k2))"]
+
+
+@pytest.mark.slow
+def test_series_springs_combined_in_parallel_give_the_frequency_of_k1_plus_k2():
+    (parallel,) = _generated("block_on_springs_in_series", "omega_n", "springs_in_series")
+    assert parallel.value == pytest.approx(15.0, rel=1e-6)  # sqrt((600 + 300)/4)
+
+
 def test_the_reactions_of_a_shaft_in_two_bearings_taken_as_their_static_values():
     # the weight 39.24 N alone at A (its axial support), without the couple of the tilted disk
     (static,) = _generated("disk_on_bent_shaft", "bearing_A", "reaction_as_static")

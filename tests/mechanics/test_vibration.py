@@ -104,3 +104,19 @@ def test_the_sympy_function_evaluates_numbers_and_lambdifies_to_modal_value():
     assert mode.subs(k, 25) == pytest.approx(5.0)
     f = sp.lambdify([k], mode, modules="numpy", cse=True)
     assert f(np.array([4.0, 9.0])).tolist() == [2.0, 3.0]
+
+
+def test_a_constraint_kept_restricts_the_modes_to_the_motions_that_keep_it():
+    # a block (x, 4 kg) on springs 600 and 300 N/m in series through a massless joint (xj):
+    # the joint's balance -(k1 + k2) xj + k2 x = 0 is held, so the one mode is the block's on
+    # k1 k2/(k1 + k2) = 200 N/m; without it the linearised motion has a spurious zero
+    k1, k2, m = 600.0, 300.0, 4.0
+    share = k2 / (k1 + k2)  # xj'' = share x'' from the balance at the acceleration level
+    K = np.array([[k2 / m, -k2 / m], [share * k2 / m, -share * k2 / m]])  # rows x'', xj''
+    zero = np.zeros((2, 2))
+    entries = modal_entries(np.eye(2), np.zeros(2), [zero] * 2, [-K[:, j] for j in range(2)],
+                            [zero] * 2, [np.zeros(2)] * 2, [[k2, -(k1 + k2)]])
+    assert float(modal_value(Modal.FREQUENCY, 1, 0, 0, 2, 2, *entries)) == \
+        pytest.approx(np.sqrt(k1 * k2 / (k1 + k2) / m), rel=1e-12)
+    assert float(modal_value(Modal.SHAPE, 1, 1, 0, 2, 2, *entries)) == pytest.approx(share)
+    assert float(modal_value(Modal.STABLE, 1, 0, 0, 2, 2, *entries)) == 0.0

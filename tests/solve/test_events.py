@@ -125,3 +125,16 @@ def test_a_symbolic_answer_of_a_motion_integrated_to_a_given_time():
     assert solution.result("t_slide_symbolic").expr == "T*g*m*mu/M"
     assert solution.result("common_speed").value == pytest.approx(0.3 * 2 * 9.81 * 0.5 / 8,
                                                                  rel=1e-9)
+
+
+def test_a_symbolic_answer_of_an_integration_with_a_massless_junction_is_refused():
+    from types import SimpleNamespace
+
+    import sympy as sp
+
+    from mechgrade.errors import Location
+    from mechgrade.solve.events import integrated_symbolically
+
+    kin = SimpleNamespace(k=None, settled=(sp.Symbol("xj"),))  # a junction's start: numbers
+    with pytest.raises(SolveError, match="with a massless junction is out of reach"):
+        integrated_symbolically(kin, sp.Symbol("t"), {}, Location())

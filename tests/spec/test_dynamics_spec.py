@@ -240,3 +240,26 @@ def test_gravity_written_as_its_magnitude_points_down():
     d = load_problem_text(PENDULUM.replace("gravity: -g*N.y", "gravity: g\n  down: -N.y"),
                           "p.yaml").dynamics
     assert (d.gravity.text, d.down.text) == ("(g)*(-N.y)", "-N.y")
+
+
+SERIES = (ROOT / "problems" / "block_on_springs_in_series.yaml").read_text()
+
+
+def test_from_may_leave_out_a_coordinate_that_locates_a_massless_junction_only():
+    from mechgrade.spec.dynamics import junction_coordinates
+    problem = load_problem_text(SERIES, "p.yaml")
+    assert [b.name for b in problem.dynamics.junctions] == ["node"]
+    assert junction_coordinates(problem) == ("xj",)
+
+
+def test_from_needs_a_coordinate_that_also_locates_a_body_with_mass():
+    # the block located from the joint: xj moves a mass, so 'from' must give it
+    body = SERIES.replace("P: {from: O, position: x*N.x}", "P: {from: J, position: (x - xj)*N.x}")
+    assert error_of(body).endswith("'from' needs every coordinate (rates default to 0): "
+                                   "missing xj")
+
+
+def test_from_needs_every_coordinate_of_a_problem_without_junctions():
+    body = SERIES.replace("  node: {mass: 0, centre: J}", "  node: {mass: m, centre: J}")
+    assert error_of(body).endswith("'from' needs every coordinate (rates default to 0): "
+                                   "missing xj")

@@ -319,7 +319,8 @@ LABELS = {
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",
     "force_omitted": "an applied force left out",
-    "springs_in_series": "parallel springs combined in series",
+    "springs_in_series": "springs combined the wrong way (in series for in parallel, or the "
+                         "reverse)",
     "weight_for_mass": "weight used for the mass",
     "strands_miscounted": "a cord's strands miscounted",
     "initial_speed_omitted": "the initial speed left out",

@@ -28,15 +28,17 @@ from ..errors import Location, SolveError
 from ..expressions.syntax import Call, Name, Node, constant_value, to_text
 from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
                              Integration, KineticFriction, LoadKind, Reaction, Restitution,
-                             Spring, StaticFriction, dynamics_of)
+                             Spring, StaticFriction, WorkEnergy, dynamics_of,
+                             junction_coordinates)
 from ..spec.model import ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
 from .build import Model, build
 from .interpret import Interpreter
+from .junctions import check_junctions, is_junction_balance, kinematic_part
 from .kinematics import Equation, Kinematics, _objective_value, derive, locations
 from .loads import AppliedLoad, PhysicalBound, check_loads, diagram, physical_bounds
-from .symbols import identically_zero
+from .symbols import identically_zero, without_deltas
 from .vibration import REASONS, Modal, NaturalMode, modal_entries
 
 
@@ -86,6 +88,7 @@ class Kinetics:
     nonconservative: tuple[str, ...] = ()
     workless: tuple[tuple[str, sp.Expr], ...] = ()
     start: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    settled: tuple[sp.Symbol, ...] = ()  # start coordinates and rates a junction's balance fixes
     until: sp.Expr | None = None
     requirements: tuple[tuple[str, str, sp.Expr], ...] = ()
     impact: bool = False
@@ -416,13 +419,18 @@ class DynamicsInterpreter(Interpreter):
 
     def _mode_number(self, number: Node) -> int:
         k = self.kinematics
-        if k.velocity:
+        # a massless junction's balance is the one constraint modes are worked out with:
+        # the motion is restricted to the configurations that keep it
+        held = [e for e in k.position if is_junction_balance(e.label)]
+        if len(k.velocity) != len(held):
             raise SolveError("natural modes need coordinates without constraints",
                              where=self.where)
-        n = len(k.q)
+        n = len(k.q) - len(held)
         value = constant_value(number)
         if value is None or value != int(value) or not 1 <= value <= n:
-            raise SolveError(f"expected a mode number 1 to {n} (the coordinates), found "
+            what = "the coordinates" if not held else \
+                "the coordinates less the junctions' balances"
+            raise SolveError(f"expected a mode number 1 to {n} ({what}), found "
                              f"'{to_text(number)}'", where=self.where)
         return int(value)
 
@@ -457,11 +465,13 @@ class DynamicsInterpreter(Interpreter):
         rest = {qd: 0 for qd in k.qd}
 
         def at_rest(matrix):
-            return matrix.xreplace(rest)
+            return without_deltas(matrix.xreplace(rest))
 
+        held = [e.expr for e in k.position if is_junction_balance(e.label)]
         entries = modal_entries(at_rest(A), at_rest(b),
                                 [at_rest(A.diff(q)) for q in k.q], [at_rest(b.diff(q)) for q in k.q],
-                                [at_rest(A.diff(r)) for r in k.qd], [at_rest(b.diff(r)) for r in k.qd])
+                                [at_rest(A.diff(r)) for r in k.qd], [at_rest(b.diff(r)) for r in k.qd],
+                                sp.Matrix(held).jacobian(k.q) if held else None)
         return len(k.q), A.rows, entries
 
     def _mode(self, value: int):
@@ -533,7 +543,8 @@ def derive_kinetics(problem: Problem) -> Kinetics:
 @lru_cache(maxsize=64)
 def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     d = dynamics_of(problem)
-    k = derive(replace(problem, objectives=(), dynamics=None))
+    k = derive(kinematic_part(problem))
+    check_junctions(problem, k)
     model = build(problem)
     reactions, labels = _reaction_symbols(d)
     loads = _Loads(problem, model, reactions)
@@ -546,8 +557,11 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language.before = before
     balances: list[Equation] = []
     steps_loads: list[str] = []
+    junctions = {b.name for b in d.junctions}
     for b in d.bodies:
         steps_loads.append(_load_line(b, loads, model))
+        if b.name in junctions:  # its balance is a constraint of the kinematics
+            continue
         for label, expr in _body_balances(problem, model, loads, inertias, b, before, impact):
             plain = sp.expand(model.plain(expr))
             if not identically_zero(plain):
@@ -561,7 +575,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
         balances += _contact_conditions(analysis, model, loads, before)
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
-    start, until = _analysis(problem, model, language, k)
+    start, until, settled = _analysis(problem, model, language, k)
     weights = _weight_potentials(d, model, language, k)
     steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
              ("Momentum balances", tuple(f"{e.label}: {sp.sstr(e.expr)} = 0" for e in balances)),
@@ -577,7 +591,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                                           if not isinstance(x, StaticFriction)
                                           and x.name not in weights),
                     workless=_workless(problem, model, language, reactions, labels),
-                    start=start, until=until, requirements=tuple(requirements), impact=impact,
+                    start=start, settled=settled, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
                     physical=physical_bounds(problem, model, reactions, impact),
                     whens=tuple((o.id, _difference(o.when, model, language))
@@ -812,21 +826,33 @@ def _difference(equation, model: Model, language) -> sp.Expr:
 
 def _analysis(problem: Problem, model: Model, language, k: Kinematics):
     """The start state (plain symbol -> value; rates not named are 0) and the event."""
-    analysis = dynamics_of(problem).analysis
+    d = dynamics_of(problem)
+    analysis = d.analysis
     if analysis is None or isinstance(analysis, Impulse):
-        return (), None
+        return (), None, ()
+    if isinstance(analysis, WorkEnergy) and d.junctions:
+        raise SolveError(f"work-energy with a massless junction ({d.junctions[0].name}): its "
+                         "position at the start and at the instant is fixed by its balance, "
+                         "which an energy balance does not solve; expected the motion "
+                         "integrated: analysis: {integrate: {from: ..., until: ...}}",
+                         where=analysis.where)
     values = {}
     for s in analysis.start:
         symbol = k.quantity(s.key.node)
         values[symbol] = sp.nsimplify(s.si) if s.value is None and s.si == 0 else \
             sp.Float(s.si) if s.value is None else model.plain(language.scalar(s.value))
-    start = tuple((q, values[q]) for q in k.q) + \
-        tuple((qd, values.get(qd, sp.Integer(0))) for qd in k.qd)
+    # a junction's coordinate and rate not named are settled by its balance at the start
+    own = {k.q[k.coordinates.index(c)] for c in junction_coordinates(problem)}
+    own |= {k.qd[k.q.index(q)] for q in own}
+    start = tuple((q, values[q]) for q in k.q if q in values or q not in own) + \
+        tuple((qd, values.get(qd, sp.Integer(0))) for qd in k.qd
+              if qd in values or qd not in own)
+    settled = tuple(s for s in (*k.q, *k.qd) if s in own and s not in values)
     until = None
     if isinstance(analysis, Integration):
         left, right = (model.plain(language.value(e.node)) for e in analysis.until)
         until = left - right
-    return start, until
+    return start, until, settled
 
 
 def _central(shape, m, frame, lang) -> Dyadic | None:
@@ -938,7 +964,7 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
     shifts), free-body loads, momentum balances, the unknowns and how they are solved, and
     each objective in the model's quantities."""
     kin = derive_kinetics(problem)
-    kinematics = kinematics_derivation(replace(problem, objectives=(), dynamics=None), dof)
+    kinematics = kinematics_derivation(kinematic_part(problem), dof)
     mark = "'" if kin.impact else "''"
     unknowns = [f"{c}{mark}" for c in kin.k.coordinates] + list(kin.labels)
     level = "velocity" if kin.impact else "acceleration"

@@ -700,9 +700,11 @@ def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation
 
 
 def springs_in_series(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """Springs that hold one body from the ground along one line (in parallel: their
-    stiffnesses add) combined as if in series, 1/k = 1/k1 + 1/k2."""
+    """Springs combined the wrong way: those that hold one body from the ground along one line
+    (in parallel: their stiffnesses add) combined as if in series, 1/k = 1/k1 + 1/k2, and the
+    two that meet at a massless junction (in series) as if in parallel, k = k1 + k2."""
     d = dynamics_of(problem)
+    yield from _series_as_parallel(problem, d)
     for body in d.bodies:
         held = [x for x in d.springs if set(x.on) == {body.name, GROUND}]
         if len(held) < 2:
@@ -723,6 +725,27 @@ def springs_in_series(problem: Problem, model: Model) -> Iterator[DynamicsMutati
             "parallel and their stiffnesses add: k = {term}.", LOADS,
             problem=_mistaken(problem, replace(d, springs=springs)), term=_expr(total),
             term_unit="N/m")
+
+
+def _series_as_parallel(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
+    """Both springs of a two-spring junction stiffened by (k1 + k2)^2/(k1 k2): in series
+    they then act as k1 + k2, and the junction stays where it was."""
+    for node in d.junctions:
+        pair = [x for x in d.springs if node.name in x.on]
+        if len(pair) != 2:
+            continue
+        total = " + ".join(f"({x.stiffness.text})" for x in pair)
+        product = " * ".join(f"({x.stiffness.text})" for x in pair)
+        springs = tuple(replace(x, stiffness=_expr(f"({x.stiffness.text})*({total})**2/"
+                                                   f"({product})")) if x in pair else x
+                        for x in d.springs)
+        names = " and ".join(x.name for x in pair)
+        yield DynamicsMutation(
+            "springs_in_series", f"Your value combines the springs {names} as if in parallel "
+            f"(k = k1 + k2); they meet at the massless {node.name} at {node.centre}, one after "
+            "the other, so they act in series, 1/k = 1/k1 + 1/k2: k = {term}.", LOADS,
+            problem=_mistaken(problem, replace(d, springs=springs)),
+            term=_expr(f"{product}/({total})"), term_unit="N/m")
 
 
 # each shape: its moment of inertia about its axis (coefficient of m r², as written), and the

@@ -29,7 +29,7 @@ from ..expressions.syntax import Name, Node, Prime, to_text
 from ..spec.model import TIME, Constraint, Expr, Given, Objective, Point, Problem
 from .build import Model, build
 from .material import material_warnings
-from .symbols import TIME_SYMBOL, identically_zero
+from .symbols import TIME_SYMBOL, identically_zero, without_deltas
 
 
 @dataclass(frozen=True)
@@ -141,7 +141,8 @@ def _derive(problem: Problem, _locations: tuple) -> Kinematics:
     acceleration_all = [(label, sp.diff(expr, t), where) for label, expr, where in velocity_all]
 
     def plain_equations(items):
-        return tuple(Equation(label, model.plain(expr), where) for label, expr, where in items)
+        return tuple(Equation(label, without_deltas(model.plain(expr)), where)
+                     for label, expr, where in items)
 
     conditions = {}
     for given in problem.givens + tuple(g for o in problem.objectives for g in o.givens):

@@ -239,10 +239,9 @@ class PhysicalBound:
             text = (f"body '{self.name}' has a mass of {shown} {self.unit} at this instant; "
                     "expected a positive mass")
             if self.joins:
-                return (f"{text}: {self.name} joins {self.joins}, a massless junction whose "
-                        "balance the solver does not solve for its position; replace springs "
-                        "in series by one spring (k1*k2/(k1 + k2) for two), or give the "
-                        "junction a small mass if the book neglects it")
+                return (f"{text}: {self.name} joins {self.joins}, a junction of no mass, "
+                        "which is written so: mass: 0 (its balance, sum of forces = 0, then "
+                        "fixes its position at every instant: springs in series)")
             return (f"{text} (a massless link is no body: its pull is a reaction, a string's "
                     "tension or a pin's force)")
         if self.what == Bounded.FRICTION_COEFFICIENT:
@@ -429,13 +428,12 @@ def _check_massless(problem: Problem, model: Model, rates, balances, constraints
         cause = []
         junctions = [p for p in moved if p not in centres]
         if junctions and ends:
+            first = junctions[0]
             cause.append(f"{', '.join(junctions)} (where {', '.join(ends)} end) moves with "
-                         f"{coordinate.name} but no mass is centred there: a massless "
-                         "junction, whose balance (sum of forces = 0) the solver does not "
-                         "solve for its position; "
-                         "replace springs in series by one spring (k1*k2/(k1 + k2) for two), "
-                         "or give the junction a body with its mass (a small one if the book "
-                         "neglects it)")
+                         f"{coordinate.name} but no body is centred there: a massless "
+                         "junction is a body of no mass, node: {mass: 0, centre: "
+                         f"{first}}}, named at the ends at {first} (bodies: [ground, node]); "
+                         f"its balance (sum of forces = 0) then fixes {first}")
         for frame in turned:
             if frame not in frames:
                 cause.append(f"{coordinate.name} turns frame {frame}, which is no body's frame: "

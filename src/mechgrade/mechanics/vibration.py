@@ -58,10 +58,12 @@ REASONS = {
 """Why a mode does not exist, for each residual :func:`modal_value` checks."""
 
 
-def modal_entries(A, b, dA_dq, db_dq, dA_dqd, db_dqd) -> list:
+def modal_entries(A, b, dA_dq, db_dq, dA_dqd, db_dqd, held=None) -> list:
     """The flat argument list of :func:`modal_value` (after ``what, number, i, j, n, m``):
     ``A`` (m x m) and ``b`` (m) of the balances ``A x = b`` at rest, then for each coordinate
-    ``dA/dq_j`` and ``db/dq_j``, then for each rate ``dA/dq'_j`` and ``db/dq'_j``.
+    ``dA/dq_j`` and ``db/dq_j``, then for each rate ``dA/dq'_j`` and ``db/dq'_j``; then, when
+    the motion keeps position constraints (``held``, p x n: their Jacobian in the
+    coordinates), its p x n entries.
 
     >>> len(modal_entries([[1]], [0], [[[0]]], [[-4]], [[[0]]], [[0]]))
     6
@@ -69,6 +71,8 @@ def modal_entries(A, b, dA_dq, db_dq, dA_dqd, db_dqd) -> list:
     out = [*np.ravel(_rows(A)), *b]
     for dA, db in (*zip(dA_dq, db_dq), *zip(dA_dqd, db_dqd)):
         out += [*np.ravel(_rows(dA)), *db]
+    if held is not None:
+        out += [*np.ravel(_rows(held))]
     return out
 
 
@@ -99,6 +103,7 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
     blocks = [(v[s:s + m * m].reshape(m, m), v[s + m * m:s + size])
               for s in range(0, (2 * n + 1) * size, size)]
     A, b = blocks[0]
+    held = v[(2 * n + 1) * size:].reshape(-1, n)
     try:
         x = np.linalg.solve(A, b)
         K = -np.column_stack([np.linalg.solve(A, db - dA @ x)[:n] for dA, db in blocks[1:n + 1]])
@@ -107,6 +112,16 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
         return np.nan
     if what == Modal.EQUILIBRIUM:
         return float(np.abs(x[:n]).sum() / (1 + np.abs(K).sum()))
+    T = np.eye(n)
+    if len(held):
+        # the motions that keep the position constraints: q = T z, T an orthonormal basis of
+        # the null space of their Jacobian; K and C act within it (a motion across it has no
+        # restoring force, a zero frequency that is no mode)
+        _, sizes, rows = np.linalg.svd(held)
+        rank = int((sizes > 1e-10 * (sizes.max() if sizes.size else 1.0)).sum())
+        T = rows[rank:].T
+        K, C = T.T @ K @ T, T.T @ C @ T
+        n = T.shape[1]
     squares, shapes = np.linalg.eig(K)
     scale = 1e-9 * (np.abs(squares).max() + 1e-300)
     # a zero squared frequency is a mode that moves freely (a rigid-body mode), not unstable
@@ -128,7 +143,7 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
     order = np.argsort(squares.real)
     if what == Modal.FREQUENCY:
         return float(np.sqrt(max(squares.real[order[number - 1]], 0.0)))
-    shape = shapes[:, order[number - 1]].real
+    shape = (T @ shapes[:, order[number - 1]]).real
     moves = abs(shape[j]) > 1e-9 * np.abs(shape).max()
     if what == Modal.COUPLED:
         return 0.0 if moves else 1.0

@@ -8,6 +8,7 @@ from functools import lru_cache
 
 from ..spec.model import Problem
 from .derivation import Step, compact_math, kinematics_derivation, kinematics_steps
+from .junctions import kinematic_part
 from .kinetics_steps import kinetics_steps
 from .dynamics import kinetics_derivation
 
@@ -33,7 +34,7 @@ def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     >>> steps[0].anchor, steps[-1].anchor
     ('frames', 'kinetics-solution')
     """
-    kinematic = replace(problem, objectives=(), dynamics=None)
+    kinematic = kinematic_part(problem)
     steps = kinematics_steps(kinematic, dof)
     if problem.dynamics is not None:
         steps += kinetics_steps(problem)

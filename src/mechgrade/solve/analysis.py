@@ -14,6 +14,7 @@ import sympy as sp
 
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Problem
+from .junctions import settle_junctions
 
 
 @dataclass(frozen=True)
@@ -61,13 +62,17 @@ def extended(kp, values: np.ndarray) -> np.ndarray:
     return np.concatenate([values, np.zeros(len(kp.kin.reactions))])
 
 
-def start_values(kp, ap: AnalysisPlan, values: np.ndarray) -> np.ndarray:
-    """``values`` with the coordinates and rates of the start state put in."""
+def start_values(problem: Problem, kp, ap: AnalysisPlan, values: np.ndarray) -> np.ndarray:
+    """``values`` with the coordinates and rates of the start state put in (a massless
+    junction's settled by its balance: :func:`~.junctions.settle_junctions`)."""
     x = extended(kp, values)
     out = values.copy()
     for i, fn in ap.start:
         out[i] = value_at(fn, x)
-    return out
+    settled, errors = settle_junctions(problem, kp, out[:, None])
+    if errors:
+        raise errors[0]
+    return settled[:, 0]
 
 
 _Kind = TypeVar("_Kind", WorkEnergy, Integration)

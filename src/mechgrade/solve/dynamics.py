@@ -35,6 +35,7 @@ from ..errors import (AuthorWarning, Location, MechgradeError, SolveError,
 from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
 from ..mechanics.loads import PhysicalBound
 from ..expressions.syntax import Name, Prime
+from ..mechanics.junctions import kinematic_part
 from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
@@ -56,8 +57,9 @@ from .result import ObjectiveResult, Solution
 
 
 def kinematic_problem(problem: Problem) -> Problem:
-    """The problem's kinematics alone (its objectives are read by the dynamics language)."""
-    return replace(problem, objectives=(), dynamics=None)
+    """The problem's kinematics alone, its massless junctions' balances among its constraints
+    (its objectives are read by the dynamics language)."""
+    return kinematic_part(problem)
 
 
 @dataclass(frozen=True)

@@ -104,7 +104,7 @@ class _ScalarMotion:
         ap = analysis_plan(kp)
         self.index = index = kp.kp.index
         q, qd, qdd = list(range(index.n)), list(index.rates(1)), list(index.rates(2))
-        values = start_values(kp, ap, base)
+        values = start_values(problem, kp, ap, base)
         values[index.time] = 0.0
         values[qdd] = 0.0
         calls = [0]
@@ -218,6 +218,10 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     2*v0/(7*g*mu)
     """
     k = kin.k
+    if kin.settled:  # its start is solved with numbers
+        raise SolveError("a symbolic answer of an integrated motion with a massless junction "
+                         "is out of reach (the junction's start is solved with numbers): "
+                         "expected 'kind: scalar'", where=where)
     start = {**dict(kin.start), k.time: sp.Integer(0)}
     equations = [_frozen(e.expr, start, where, k.coordinates)
                  for e in (*kin.balances, *kin.constraints)]

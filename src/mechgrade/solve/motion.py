@@ -23,6 +23,7 @@ from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import FirstErrors, call, least_squares_solution, loud_call
 from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens
+from .junctions import settle_junctions
 from .plan import KinematicsPlan
 from .rules import satisfied
 
@@ -67,6 +68,9 @@ class Motion:
         values = X.copy()
         for i, fn in ap.start:
             values[i] = call(fn, extended, 1)[0]
+        values, unsettled = settle_junctions(self.problem, kp, values)
+        for c in unsettled:  # integrated with the others, its error kept
+            values[:, c] = np.nan_to_num(values[:, c])
         values[index.time] = 0.0
         values[qdd] = 0.0
         switches = _switches(kp)
@@ -112,6 +116,7 @@ class Motion:
                                           MAX_CALLS, mode=switching,
                                           direction=self._leaving(rhs, event, switching, y0))
         ok = arrival.status == FIRED
+        ok[list(unsettled)] = False
         everyone = np.arange(count)
         end = at(everyone, arrival.t, arrival.y)
         solved = balances(self.problem, self.kinetics,
@@ -126,7 +131,8 @@ class Motion:
         failed = {int(i): error for i in np.flatnonzero(ok & ~fine)
                   if (error := solved.errors[int(i)]) is not None}
         stuck = self._stuck(arrival, at, switches) if switches is not None else {}
-        return np.vstack([x, before]), ok & fine, arrival.status == NEVER, {**failed, **stuck}
+        return np.vstack([x, before]), ok & fine, arrival.status == NEVER, \
+            {**failed, **stuck, **unsettled}
 
     def _leaving(self, rhs: Callable, event: Callable, mode: Callable | None,
                  y0: np.ndarray) -> np.ndarray:

@@ -25,7 +25,7 @@ from enum import Enum
 from ..errors import Location, SpecError, UnitError
 from ..expressions.functions import Kind, StrEnum
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Prime, Unary,
-                                  to_text, walk)
+                                  constant_value, names, to_text, walk)
 from ..units import dimension, dimensionless, parse_quantity, to_si
 from .model import Expr, ObjectiveKind, Problem
 
@@ -451,6 +451,27 @@ class Dynamics:
 
     def load(self, name: str):
         return {item.name: item for item in self.loads}[name]
+
+    @property
+    def junctions(self) -> tuple[Body, ...]:
+        """The massless junctions: particles written with no mass (``mass: 0``) where only
+        springs and dampers end (a node between springs in series).
+
+        >>> from mechgrade.spec import load_problem
+        >>> from mechgrade.resources import shipped_dir
+        >>> p = load_problem(shipped_dir("problems") / "block_on_springs_in_series.yaml")
+        >>> [b.name for b in p.dynamics.junctions]
+        ['node']
+        """
+        loaded: tuple[Force | Couple | Friction | KnownImpulse, ...] = (
+            *self.forces, *self.couples, *self.friction, *self.impulses)
+        held = {f.on for f in loaded} | {a.on for r in self.reactions for a in r.acts} \
+            | {f.surface for f in self.friction}
+        ends = {body for x in self.springs for body in x.on} | \
+            {body for x in self.dampers for body in x.on}
+        return tuple(b for b in self.bodies
+                     if b.frame is None and b.name in ends and b.name not in held
+                     and all(constant_value(p.mass.node) == 0 for p in b.parts))
 
     def kind(self, name: str) -> LoadKind:
         """The kind of the load named ``name``.
@@ -1096,6 +1117,42 @@ def instant_of_objective(problem, overrides) -> str | None:
                 None)
 
 
+def junction_coordinates(problem: Problem) -> tuple[str, ...]:
+    """The coordinates that locate massless junctions only (:attr:`Dynamics.junctions`):
+    every point whose location uses one is a junction, and no frame turns with it. The
+    junctions' balances fix them at every instant, so an integration's ``from`` may leave
+    them out.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> junction_coordinates(load_problem(shipped_dir("problems") / "block_on_springs_in_series.yaml"))
+    ('xj',)
+    """
+    if problem.dynamics is None:
+        return ()
+    nodes = {b.centre for b in problem.dynamics.junctions}
+    if not nodes:
+        return ()
+    points = {p.name: p for p in problem.points}
+    chains: dict[str, set[str]] = {}
+
+    def chain(name: str) -> set[str]:
+        if name not in chains:
+            chains[name] = set()  # a cycle is refused elsewhere
+            p = points.get(name)
+            if p is not None and p.position is not None:
+                chains[name] = names(p.position.node) | (chain(p.origin) if p.origin else set())
+        return chains[name]
+
+    turning = {n for f in problem.frames for r in f.rotations for n in names(r.angle.node)}
+    out = []
+    for c in problem.coordinates:
+        located = [p for p in points if c.name in chain(p)]
+        if located and set(located) <= nodes and c.name not in turning:
+            out.append(c.name)
+    return tuple(out)
+
+
 def _check_analysis(problem, checker, analysis: Analysis) -> None:
     coords = {c.name: c for c in problem.coordinates}
     named = set()
@@ -1140,7 +1197,8 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
                                 "(the configuration does not change during an impact)",
                                 where=start.where)
         return
-    missing = [c for c in coords if c not in named]
+    settled = set(junction_coordinates(problem))  # by the junctions' balances
+    missing = [c for c in coords if c not in named and c not in settled]
     if missing:
         raise SpecError(f"'from' needs every coordinate (rates default to 0): missing "
                         f"{', '.join(missing)}", where=analysis.where)

@@ -510,6 +510,26 @@ def case_light_pulley_hanger():
     return {"accel_A": aA, "accel_B": -aA / 2, "tension": tension, "hanger_pull": pull}
 
 
+def case_block_on_springs_in_series():
+    m, k1, k2, L1, L2, v0 = 4.0, 600.0, 300.0, 0.25, 0.2, 0.5
+    # the joint condensed out of the stiffness matrix of (x, xj) by hand (static condensation:
+    # the joint has no mass, so its row of K q = 0 holds at every instant), then the free
+    # response of the one block on what is left, from equilibrium (both springs free) at v0
+    K = np.array([[k2, -k2], [-k2, k1 + k2]])
+    k = K[0, 0] - K[0, 1] * K[1, 0] / K[1, 1]
+    w = np.sqrt(k / m)
+
+    def x(t):  # the block's distance from the wall
+        return L1 + L2 + v0 / w * np.sin(w * t)
+
+    def xj(t):  # the joint, from its row of K (u_j = -K_jb u_b / K_jj, u from equilibrium)
+        return L1 - K[1, 0] * (x(t) - L1 - L2) / K[1, 1]
+
+    stop = np.pi / (2 * w)
+    return {"omega_n": w, "block_at_300ms": x(0.3) * 1e3, "joint_at_300ms": xj(0.3) * 1e3,
+            "first_spring_tension_at_300ms": k1 * (xj(0.3) - L1), "farthest": x(stop) * 1e3}
+
+
 CASES = {name[len("case_"):]: f for name, f in sorted(globals().items())
          if name.startswith("case_")}
 

@@ -610,6 +610,32 @@ def cart_pendulum():
                   num(math.sqrt(g / L), "rad/s"), known="none")]
 
 
+def springs_in_series():
+    m, k1, k2, L1, L2, v0 = 4.0, 600.0, 300.0, 0.25, 0.2, 0.5
+    w = math.sqrt(k1 * k2 / (k1 + k2) / m)
+    wp = math.sqrt((k1 + k2) / m)  # the springs added as if side by side
+
+    def block(w_, t):  # distance from the wall, struck at rest with both springs free
+        return L1 + L2 + v0 / w_ * math.sin(w_ * t)
+
+    def joint(x):  # the joint's balance k1 (xj - L1) = k2 (x - xj - L2)
+        return (k1 * L1 + k2 * (x - L2)) / (k1 + k2)
+
+    return [entry("omega_n", "the springs added as in parallel: sqrt((k1 + k2)/m)",
+                  num(wp, "rad/s"), "springs_in_series"),
+            entry("omega_n", "frequency in Hz (w/2 pi) given in rad/s",
+                  num(w / (2 * math.pi), "rad/s"), "rev_rad"),
+            entry("block_at_300ms", "the springs added as in parallel",
+                  num(block(wp, 0.3) * 1e3, "mm"), "springs_in_series"),
+            entry("joint_at_300ms", "the springs added as in parallel",
+                  num(joint(block(wp, 0.3)) * 1e3, "mm"), "springs_in_series"),
+            entry("first_spring_tension_at_300ms",
+                  "the block's whole displacement on the first spring: k1 (x - L1 - L2)",
+                  num(k1 * (block(w, 0.3) - L1 - L2), "N"), known="none"),
+            entry("farthest", "the amplitude v0/w given for the distance from the wall",
+                  num(v0 / w * 1e3, "mm"), known="none")]
+
+
 def three_cart_chain():
     m = np.array([3.0, 2.0, 1.0])
     k1, k2, k3, c, v0 = 400.0, 300.0, 200.0, 12.0, 0.6
@@ -916,6 +942,7 @@ TABLES = {
     "cart_pendulum_spring_modes": cart_pendulum,
     "damped_block_positions": damped_block_positions,
     "three_cart_chain_vibration": three_cart_chain,
+    "block_on_springs_in_series": springs_in_series,
     "light_pulley_hanger": light_pulley_hanger,
     "ballistic_pendulum_energy_lost": ballistic_pendulum,
     "ball_thrown_with_drag_apex_and_landing": ball_with_drag,
