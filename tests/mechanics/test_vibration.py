@@ -120,3 +120,24 @@ def test_a_constraint_kept_restricts_the_modes_to_the_motions_that_keep_it():
         pytest.approx(np.sqrt(k1 * k2 / (k1 + k2) / m), rel=1e-12)
     assert float(modal_value(Modal.SHAPE, 1, 1, 0, 2, 2, *entries)) == pytest.approx(share)
     assert float(modal_value(Modal.STABLE, 1, 0, 0, 2, 2, *entries)) == 0.0
+
+
+@pytest.mark.parametrize("what", [Modal.FREQUENCY, Modal.DAMPING_RATIO, Modal.SHAPE,
+                                  Modal.EQUILIBRIUM, Modal.STABLE])
+def test_one_state_gives_what_its_column_among_others_gives(what):
+    # one state (numbers, or arrays of one) is read without broadcasting: the same value, in
+    # the shape the entries broadcast to, as when it is one column of several
+    entries = _entries(M3, K3, np.diag([0.6, 0.4, 0.2]), residual=[0.3, 0.0, 0.0])
+    alone = modal_value(what, 2, 1, 0, 3, 3, *entries)
+    as_arrays = modal_value(what, 2, 1, 0, 3, 3, *(np.array([e]) for e in entries))
+    mixed = [np.array([e]) if k % 2 else e for k, e in enumerate(entries)]
+    among = modal_value(what, 2, 1, 0, 3, 3, *(np.array([e, 2 * e]) for e in entries))
+    assert alone.shape == () and as_arrays.shape == (1,)
+    assert modal_value(what, 2, 1, 0, 3, 3, *mixed).shape == (1,)
+    assert float(alone) == as_arrays[0] == among[0]
+
+
+def test_a_state_asked_again_gives_its_own_values():
+    # the linearised modes are kept per state: a second state gets its own, the first again
+    first, second = (_entries(np.eye(1), [[k]], [[0.0]]) for k in (4.0, 9.0))
+    assert [_value(Modal.FREQUENCY, 1, e) for e in (first, second, first)] == [2.0, 3.0, 2.0]

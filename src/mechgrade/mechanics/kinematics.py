@@ -101,9 +101,23 @@ class Kinematics:
         raise KeyError(node)
 
 
+_LOCATIONS: dict[int, tuple[Problem, tuple]] = {}
+
+
 def locations(problem: Problem) -> tuple:
     """Where the problem's parts are written. Problems compare equal whatever their
-    locations, so caches that keep locations (in equations and warnings) key on these too."""
+    locations, so caches that keep locations (in equations and warnings) key on these too.
+    Kept for the problem object itself (not an equal one): each solve asks for them."""
+    held = _LOCATIONS.get(id(problem))
+    if held is not None and held[0] is problem:
+        return held[1]
+    if len(_LOCATIONS) >= 256:
+        del _LOCATIONS[next(iter(_LOCATIONS))]
+    found = _LOCATIONS[id(problem)] = (problem, _locations(problem))
+    return found[1]
+
+
+def _locations(problem: Problem) -> tuple:
     parts: tuple[Point | Constraint | Given | Objective | Expr, ...] = (
         *problem.points, *problem.constraints, *problem.givens, *problem.objectives,
         *(g for o in problem.objectives for g in o.givens),

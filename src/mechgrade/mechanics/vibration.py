@@ -24,6 +24,7 @@ complex, and a modal damping ratio of the undamped modes would be an approximati
 from __future__ import annotations
 
 from enum import IntEnum
+from functools import lru_cache
 
 import numpy as np
 import sympy as sp
@@ -90,39 +91,94 @@ def modal_value(what, number, i, j, n, m, *entries):
     >>> [round(float(modal_value(w, 1, 0, 0, 1, 1, *entries)), 6) for w in (0, 1, 3, 4, 5)]
     [2.0, 0.1, 0.0, 0.0, 0.0]
     """
+    args = (Modal(int(what)), int(number), int(i), int(j), int(n), int(m))
+    one, shape = _one_state(entries)
+    if one is not None:  # a solve alone: hundreds of entries not broadcast one by one
+        return np.array(_one(*args, one)).reshape(shape)
     arrays = np.broadcast_arrays(*(np.asarray(e, dtype=float) for e in entries))
     shape = arrays[0].shape
     flat = np.stack([a.reshape(-1) for a in arrays])
-    out = np.array([_one(Modal(int(what)), int(number), int(i), int(j), int(n), int(m),
-                         flat[:, c]) for c in range(flat.shape[1])])
+    out = np.array([_one(*args, flat[:, c]) for c in range(flat.shape[1])])
     return out.reshape(shape)
 
 
-def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray) -> float:
+def _one_state(entries) -> tuple[np.ndarray | None, tuple[int, ...]]:
+    """The entries as one vector and the shape they broadcast to, when each is one number
+    (``None`` when some entry holds several states)."""
+    values = []
+    shape: tuple[int, ...] = ()
+    for e in entries:
+        if type(e) is np.ndarray:
+            if e.size != 1:
+                return None, ()
+            shape = e.shape if e.ndim > len(shape) else shape
+            values.append(e.item())
+        else:
+            values.append(e)
+    return np.array(values, dtype=float), shape
+
+
+@lru_cache(maxsize=256)
+def _linearised(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...] | None:
+    """``x``, ``K`` and ``C`` of the entries ``v`` (their bytes), ``None`` where ``A`` is
+    singular: worked out once for the several values and residuals asked of the same state (a
+    frequency, its mode shape, the checks that it exists)."""
+    entries = np.frombuffer(v)
     size = m * m + m
-    blocks = [(v[s:s + m * m].reshape(m, m), v[s + m * m:s + size])
+    blocks = [(entries[s:s + m * m].reshape(m, m), entries[s + m * m:s + size])
               for s in range(0, (2 * n + 1) * size, size)]
     A, b = blocks[0]
-    held = v[(2 * n + 1) * size:].reshape(-1, n)
     try:
         x = np.linalg.solve(A, b)
         K = -np.column_stack([np.linalg.solve(A, db - dA @ x)[:n] for dA, db in blocks[1:n + 1]])
         C = -np.column_stack([np.linalg.solve(A, db - dA @ x)[:n] for dA, db in blocks[n + 1:]])
     except np.linalg.LinAlgError:
+        return None
+    return _shared(x, K, C)
+
+
+@lru_cache(maxsize=256)
+def _kept(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...]:
+    """``T``, ``K`` and ``C`` of the motions that keep the position constraints (the entries'
+    tail, their Jacobian in the coordinates): ``q = T z``, ``T`` an orthonormal basis of its
+    null space; ``T`` is the identity when nothing is held."""
+    linearised = _linearised(n, m, v)
+    assert linearised is not None  # asked only of a state whose A is regular
+    _, K, C = linearised
+    held = np.frombuffer(v)[(2 * n + 1) * (m * m + m):].reshape(-1, n)
+    if not len(held):
+        return _shared(np.eye(n), K, C)
+    # K and C act within the null space: a motion across it has no restoring force, a zero
+    # frequency that is no mode
+    _, sizes, rows = np.linalg.svd(held)
+    rank = int((sizes > 1e-10 * (sizes.max() if sizes.size else 1.0)).sum())
+    T = rows[rank:].T
+    return _shared(T, T.T @ K @ T, T.T @ C @ T)
+
+
+@lru_cache(maxsize=256)
+def _eigen(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...]:
+    """The eigenvalues and eigenvectors of :func:`_kept`'s ``K``."""
+    return _shared(*np.linalg.eig(_kept(n, m, v)[1]))
+
+
+def _shared(*arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    for array in arrays:
+        array.setflags(write=False)  # cached: every caller of the same state reads them
+    return arrays
+
+
+def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray) -> float:
+    key = np.ascontiguousarray(v, dtype=float).tobytes()
+    linearised = _linearised(n, m, key)
+    if linearised is None:
         return np.nan
+    x, K, _ = linearised
     if what == Modal.EQUILIBRIUM:
         return float(np.abs(x[:n]).sum() / (1 + np.abs(K).sum()))
-    T = np.eye(n)
-    if len(held):
-        # the motions that keep the position constraints: q = T z, T an orthonormal basis of
-        # the null space of their Jacobian; K and C act within it (a motion across it has no
-        # restoring force, a zero frequency that is no mode)
-        _, sizes, rows = np.linalg.svd(held)
-        rank = int((sizes > 1e-10 * (sizes.max() if sizes.size else 1.0)).sum())
-        T = rows[rank:].T
-        K, C = T.T @ K @ T, T.T @ C @ T
-        n = T.shape[1]
-    squares, shapes = np.linalg.eig(K)
+    squares, shapes = _eigen(n, m, key)
+    T, K, C = _kept(n, m, key)
+    n = T.shape[1]
     scale = 1e-9 * (np.abs(squares).max() + 1e-300)
     # a zero squared frequency is a mode that moves freely (a rigid-body mode), not unstable
     stable = bool((np.abs(squares.imag) <= scale).all() and (squares.real >= -scale).all())

@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import types
 import warnings
+from contextlib import contextmanager
+from contextvars import ContextVar
 from functools import lru_cache, partial
-from typing import Callable
+from typing import Callable, Iterator
 
 import numpy as np
 
@@ -83,17 +85,44 @@ class FirstErrors:
         return None if pending is None else pending()
 
 
-def call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
-    """``f`` at every column of ``X`` (the states, one per column): ``size`` values each, as
-    a ``(size, N)`` array."""
+_QUIET: ContextVar[bool] = ContextVar("mechgrade_quiet", default=False)
+
+
+@contextmanager
+def quiet() -> Iterator[None]:
+    """numpy's floating-point warnings and Python's warnings silenced for a whole stage (a
+    state where a function is undefined is judged by its NaN, not by a warning): a
+    :func:`call` inside, or a nested ``quiet()``, then costs nothing more (a single solve
+    makes dozens, an integration thousands).
+
+    >>> import numpy as np
+    >>> with quiet():
+    ...     np.log(np.array([-1.0])).tolist()
+    [nan]
+    """
+    if _QUIET.get():
+        yield
+        return
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore")
+        token = _QUIET.set(True)
+        try:
+            yield
+        finally:
+            _QUIET.reset(token)
+
+
+def call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
+    """``f`` at every column of ``X`` (the states, one per column): ``size`` values each, as
+    a ``(size, N)`` array, :func:`quiet`."""
+    if _QUIET.get():
+        return loud_call(f, X, size)
+    with quiet():
         return loud_call(f, X, size)
 
 
 def loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
-    """:func:`call` for a caller that has silenced numpy's warnings already (an
-    integration evaluates its right-hand side thousands of times)."""
+    """:func:`call` for a caller that has silenced numpy's warnings already."""
     n = X.shape[1]
     out = np.asarray(_batched(f)(*X), dtype=float)
     if out.size == size * n:

@@ -29,7 +29,7 @@ from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
 from ..units import from_si, si_factor, si_unit
 from . import rules
-from .columns import call
+from .columns import call, quiet
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
@@ -259,7 +259,8 @@ def answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[O
     reached = None
     if numeric:
         try:
-            reached = reach.instant(given_map, numeric, overrides)
+            with quiet():  # once for the whole instant, not at each function it calls
+                reached = reach.instant(given_map, numeric, overrides)
         except MechgradeError as err:
             failures.update({oid: err for oid in numeric})
         else:

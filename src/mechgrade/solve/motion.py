@@ -7,7 +7,6 @@ variants (:mod:`.batch`) and an instant solved alone (:mod:`.dynamics`) are solv
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 from functools import lru_cache, partial
 from typing import Callable
@@ -21,7 +20,7 @@ from ..spec.model import Problem
 from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
-from .columns import FirstErrors, call, least_squares_solution, loud_call
+from .columns import FirstErrors, call, least_squares_solution, loud_call, quiet
 from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens
 from .junctions import settle_junctions
 from .plan import KinematicsPlan
@@ -109,8 +108,7 @@ class Motion:
             return np.sign(loud_call(switches.speeds, x, switches.count))
 
         y0 = np.concatenate([values[:n], values[qd]])
-        with np.errstate(all="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore")
+        with quiet():
             switching = mode if switches else None
             arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
                                           MAX_CALLS, mode=switching,

@@ -19,7 +19,7 @@ from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
                      place_givens, rows, solve_linear, solve_nonlinear_columns)
-from .columns import call
+from .columns import call, quiet
 from .plan import KinematicsPlan
 from . import rules
 from .rules import satisfied, unchanged
@@ -96,6 +96,12 @@ def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[
     >>> "the velocity equations were not solved" in str(off)  # 100 m/s > 66.67 m/s
     True
     """
+    with quiet():  # once, not at each of its dozens of function calls
+        return _solved_columns(problem, p, givens, only, alone)
+
+
+def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
+                    only: set[str], alone: bool) -> list[Instant | MechgradeError]:
     out: list[Instant | MechgradeError | None] = [None] * len(givens)
     placed: dict[int, Givens] = {}
     for i, given in enumerate(givens):
@@ -353,11 +359,13 @@ def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
         there = call(p.point_positions, other, 3 * count).reshape(3, count, n)
         finite = np.where(np.isfinite(here), np.abs(here), 0.0)
         scale = SAME_ROOT * np.maximum(finite.max(axis=(0, 1)), 1e-12)
-        for a in range(count):
-            for b in range(a):
-                close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
-                always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
-                pairs.append((a, b, close & ~always))
+        # every pair's distances at once (pairs x N): numpy calls per pair of points were
+        # most of the time of a small solve
+        a, b = np.tril_indices(count, -1)
+        close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
+        always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
+        flagged = close & ~always
+        pairs = [(int(a[k]), int(b[k]), flagged[k]) for k in range(len(a))]
     singular = np.zeros(n, dtype=bool)
     if p.levels[0].constraint_rows and p.constraint_rank:
         singular = _weakest(p, X[:size]) < SINGULAR * _weakest(p, other)
