@@ -200,7 +200,7 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
 class _System:
     """The equations' values at the samples, as ``A u + b`` in the unknowns ``u`` of the
     student's own (refused unless each is linear in them and in the accelerations), and their
-    slopes along the accelerations at the first state."""
+    slopes along the accelerations at each state (``slopes``: at the first)."""
 
     def __init__(self, equations: tuple[StudentEquation, ...], samples: MotionSamples):
         self.equations, self.samples = equations, samples
@@ -214,10 +214,11 @@ class _System:
         n_eq, n_u, n_s = len(equations), len(self.unknowns), len(samples.states)
         self.b = np.zeros((n_s, n_eq))
         self.a = np.zeros((n_s, n_eq, n_u))
-        self.slopes = np.zeros((n_eq, len(self.accelerations)))
+        self.slopes_at = np.zeros((n_s, n_eq, len(self.accelerations)))
         self.scale = np.zeros((n_s, n_eq))
         for i, e in enumerate(equations):
             self._linear(i, e, samples)
+        self.slopes = self.slopes_at[0]
         # an equation free of accelerations whose unknowns appear in no other one only
         # names them: it says nothing about the motion, unless it gives a reaction
         # (N = m g cos β); without unknowns either, it is an identity
@@ -265,7 +266,7 @@ class _System:
         if not ok:
             raise AnswerError(f"expected an equation linear in the accelerations and in "
                               f"each unknown of your own, found {excerpt(e.text)}")
-        self.slopes[i] = slope[0]
+        self.slopes_at[:, i] = slope
         self.b[:, i] = f[:, 0]
         self.scale[:, i] = _term_sizes(e.residual, env, n_m)
 
@@ -315,7 +316,8 @@ class _System:
     def _misfits(self, i: int, right: list[int]) -> list[tuple[float, float, dict]] | None:
         """Equation ``i``'s misfit at each state with the unknowns the ``right`` equations
         give, the misfit it may have, and the values it was taken at; ``None`` when the
-        unknowns are not all given, or it holds at some state."""
+        unknowns are not all given, or it holds at every state (it may at some: a spring's
+        force is nought where the spring has its free length)."""
         e = self.equations[i]
         out = []
         for k in range(len(self.b)):
@@ -327,12 +329,10 @@ class _System:
                 u = np.linalg.lstsq(a, -self.b[k][right], rcond=None)[0]
             misfit = float(self.a[k][i] @ u + self.b[k][i])
             tol = REL * max(self.scale[k][i], float(np.abs(self.a[k][i]) @ np.abs(u))) + 1e-12
-            if abs(misfit) <= tol:
-                return None
             env = {name: np.array([value]) for name, value in self.samples.state(k).items()}
             env.update({name: np.array([value]) for name, value in zip(self.unknowns, u)})
             out.append((misfit, tol, env))
-        return out
+        return None if all(abs(m) <= tol for m, tol, _ in out) else out
 
     def reversed_term(self, i: int, right: list[int]) -> str | None:
         """The one term of equation ``i`` that, with its sign changed, makes it hold with
@@ -368,7 +368,7 @@ class _System:
                  for _, t in _signed_terms(self.equations[i].residual)]
         if len(fitting) > 1:
             read = {k: v for k, v in fitting.items()
-                    if self._multiple(i, v[0], misfits[0][0]) is not None}
+                    if self._multiple(i, v[0], misfits) is not None}
             fitting = read if len(read) == 1 else fitting
         if len(fitting) > 1:
             # a moment about another point can be a multiple too (I_G θ'' = M_G of the pin
@@ -385,7 +385,7 @@ class _System:
         ((load, ratios),) = fitting.values()
         if self.reversed_term(i, right) is not None:
             return load, "turned round", True
-        multiple = self._multiple(i, load, misfits[0][0])
+        multiple = self._multiple(i, load, misfits)
         if multiple is not None:
             return load, {-1: "missing", 1: "doubled", -2: "turned round"}[multiple], True
         scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
@@ -394,23 +394,26 @@ class _System:
         times = [n for r in ratios if (n := _plain(r / scale)) is not None]
         return load, "turned round" if times and times[0] == 2 else "missing", False
 
-    def _multiple(self, i: int, load: SampledLoad, misfit: float) -> int | None:
-        """How many times over equation ``i`` has ``load`` at the first state: -1 (left out),
-        1 (twice), -2 (turned round), read off the balances of the load's body its
-        accelerations are a multiple of; ``None`` when none or several readings say so."""
-        slope = self.slopes[i]
+    def _multiple(self, i: int, load: SampledLoad, misfits: list) -> int | None:
+        """How many times over equation ``i`` has ``load``: -1 (left out), 1 (twice), -2
+        (turned round), read off the balances of the load's body its accelerations are a
+        multiple of, at the state ``misfits`` (:meth:`_misfits`) tell most by; ``None`` when
+        none or several readings say so."""
+        k = max(range(len(misfits)), key=lambda n: abs(misfits[n][0]) / misfits[n][1])
+        misfit = misfits[k][0]
+        slope = self.slopes_at[k, i]
         if not slope.any():
             return None
         found: set[int] = set()
         for balance in self.samples.balances:
-            along = np.array(balance.slope)
+            along = np.array(balance.slope[k])
             if balance.body != load.body or not along.any() or \
                     (balance.axis, balance.about) not in load.along:
                 continue
             times = float(slope @ along / (along @ along))
             if np.abs(slope - times * along).max() > 1e-6 * np.abs(slope).max():
                 continue
-            component = load.components[load.along.index((balance.axis, balance.about))][0]
+            component = load.components[load.along.index((balance.axis, balance.about))][k]
             if not abs(component) > 1e-9 * abs(misfit):
                 continue
             # the equation is ``times`` (m a - loads): a load's error enters with -times
@@ -434,7 +437,7 @@ class _System:
         balances = self.samples.balances
         found: set[str] = set()
         for motion in balances:
-            along = np.array(motion.slope)
+            along = np.array(motion.slope[0])
             if not along.any():
                 continue
             times = float(slope @ along / (along @ along))
@@ -511,6 +514,7 @@ class _System:
             moving = accelerations[:, np.abs(accelerations).max(axis=0, initial=0)
                                    > 1e-9 * size]
             reading = np.zeros((n_u, n_r))
+            of: dict[int, str] = {}  # the reaction each unknown is
             noughts = 0
             for j in range(n_u):
                 values = fitted[at, j]
@@ -519,13 +523,15 @@ class _System:
                 if np.abs(values).max() <= 1e-9 * size:
                     noughts += 1
                     continue
-                found = [row for group in groups.values()
+                found = [(row, name) for name, group in groups.items()
                          if (row := _one_reaction(values, reactions, group, nought)) is not None]
                 if found:  # reactions alike at every state (R_A, -R_B): the fewest turned round
-                    reading[j] = min(found, key=lambda row: int(np.sum(row < 0)))
+                    reading[j], of[j] = min(found, key=lambda pair: int(np.sum(pair[0] < 0)))
                 elif not (moving.size and _fits(values, moving) is not None):
                     return None
-            if noughts > int(np.sum(nought)):
+            if noughts > int(np.sum(nought)) or not all(
+                    _whole(reading[[j for j in range(n_u) if of.get(j) == name]][:, group],
+                           reactions[:, group]) for name, group in groups.items()):
                 return None
             out.append(reading)
         return np.array(out)
@@ -574,11 +580,32 @@ def _fits(values: np.ndarray, basis: np.ndarray) -> np.ndarray | None:
     return coefficients if misfit <= FIT * np.abs(values).max() else None
 
 
+def _whole(rows: np.ndarray, basis: np.ndarray) -> bool:
+    """Whether unknowns that are one reaction's components (their coefficients ``rows`` on
+    every reaction, read on ``basis``: the reaction's components at each state), as many as
+    the components that are not alike at every state (one nought, two in a fixed ratio), are
+    its components along unit vectors at right angles, as any axes' are: with more, which
+    coefficients each has is not seen (axes turned about a nought component's).
+
+    >>> basis = np.array([[0.0, 3.0], [0.0, 5.0], [0.0, 2.0]])  # the first nought
+    >>> _whole(np.array([[0.0, 1.0]]), basis), _whole(np.array([[0.0, 0.6]]), basis)
+    (True, False)
+    >>> _whole(np.array([[0.0, 0.6], [0.0, 0.8]]), basis)
+    True
+    """
+    sizes = np.linalg.svd(basis, compute_uv=False)
+    rank = int(np.sum(sizes > 1e-9 * max(sizes.max(initial=0), 1e-300)))
+    if len(rows) != rank or rank == basis.shape[1]:
+        return True
+    return bool(np.all(np.abs(rows @ rows.T - np.eye(rank)) <= REL))
+
+
 def _one_reaction(values: np.ndarray, reactions: np.ndarray, group: list[int],
                   nought: np.ndarray) -> np.ndarray | None:
     """The coefficients on every reaction (a row) when ``values`` are one reaction's by
     another name, sign or axis: a fixed combination of its components ``group`` (columns of
-    ``reactions``) of size 1, or at most 1 where one of them is ``nought``; else ``None``.
+    ``reactions``) of size 1, or at most 1 where some are ``nought`` or alike at every state
+    (then one of size 1 fits too); else ``None``.
 
     >>> reactions = np.array([[3.0, 4.0], [1.0, -2.0], [2.0, 5.0]])
     >>> _one_reaction(np.array([-4.0, 2.0, -5.0]), reactions, [0, 1], np.zeros(2, bool))
@@ -589,11 +616,16 @@ def _one_reaction(values: np.ndarray, reactions: np.ndarray, group: list[int],
     columns = [r for r in group if not nought[r]]
     if not columns:
         return None
-    coefficients = _fits(values, reactions[:, columns])
+    basis = reactions[:, columns]
+    coefficients = _fits(values, basis)
     if coefficients is None:
         return None
+    # components alike at every state (one nought, two in a fixed ratio) leave some
+    # coefficients free: then the least of size 1 or under will do (one of size 1 fits too)
     length = float(np.linalg.norm(coefficients))
-    if not (length <= 1 + REL if len(columns) < len(group) else abs(length - 1) <= REL):
+    sizes = np.linalg.svd(basis, compute_uv=False)
+    alike = len(columns) < len(group) or np.sum(sizes > 1e-9 * sizes.max()) < len(columns)
+    if not (length <= 1 + REL if alike else abs(length - 1) <= REL):
         return None
     row = np.zeros(reactions.shape[1])
     row[columns] = coefficients
@@ -608,13 +640,16 @@ def _ratios(values: np.ndarray, load: SampledLoad) -> list[float]:
     mass = np.array(load.mass) if load.mass else np.ones(len(values))
     for row in load.components:
         component = np.array(row)
-        if not np.all(np.isfinite(component)) or np.any(
-                np.abs(component) <= 1e-9 * (np.abs(component).max() + 1e-300)):
+        # where it is nought (a spring at its free length), the values must be too
+        seen = np.abs(component) > 1e-9 * (np.abs(component).max() + 1e-300)
+        if not np.all(np.isfinite(component)) or not seen.any():
             continue
         # the equation as written, or divided by the body's mass (x'' = g sin β - μ g cos β)
-        for ratio in (values / component, values * mass / component):
+        for scaled in (values, values * mass):
+            ratio = scaled[seen] / component[seen]
             if np.all(np.isfinite(ratio)) and ratio[0] != 0 and \
-                    np.all(np.abs(ratio - ratio[0]) <= REL * abs(ratio[0])):
+                    np.all(np.abs(ratio - ratio[0]) <= REL * abs(ratio[0])) and \
+                    np.all(np.abs(scaled[~seen]) <= REL * np.abs(scaled).max()):
                 out.append(float(ratio[0]))
                 break
     return out

@@ -161,13 +161,13 @@ class SampledBalance:
     loads' side at each sampled state (their resultant, or their moment about ``about``, along
     ``axis``), which the model's motion there matches; ``slope`` how the motion's side (m a,
     or the rate of angular momentum about ``about``, along ``axis``) changes with each
-    acceleration at the first state."""
+    acceleration, at each state."""
 
     body: str
     axis: str
     about: str | None
     loads: tuple[float, ...]
-    slope: tuple[float, ...]
+    slope: tuple[tuple[float, ...], ...]
 
 
 @dataclass(frozen=True)
@@ -439,8 +439,7 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
     plan = _diagram_plan(problem, locations(problem))
     frames = _frame_plan(problem)
     n = len(list(kp.kp.index.rates(2)))
-    x0 = states[0]
-    jacobian = np.asarray(kp.jacobian(*x0), dtype=float)[:, :n]
+    jacobians = np.array([np.asarray(kp.jacobian(*x), dtype=float)[:, :n] for x in states])
     nan3 = np.full(3, np.nan)
     points = {name: [np.array(_vector(f, x) or nan3) for x in states]
               for name, f in plan.points.items()}
@@ -451,12 +450,12 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
     for body in dynamics_of(problem).bodies:
         # the motion's side (m a; the rate of angular momentum about the centre) is the
         # balance's part in the accelerations, turned round
-        ma, spin = np.zeros((3, n)), np.zeros((3, n))
+        ma, spin = np.zeros((len(states), 3, n)), np.zeros((len(states), 3, n))
         for row, label in enumerate(kp.labels):
             for pattern, slopes in ((_FORCE_LABEL, ma), (_MOMENT_LABEL, spin)):
                 found = pattern.fullmatch(label)
                 if found and found.group(1) == body.name:
-                    slopes[AXES.index(found.group(2))] = -jacobian[row]
+                    slopes[:, AXES.index(found.group(2))] = -jacobians[:, row]
         forces = [(applied, force, couple) for applied, force, couple, *_ in plan.loads
                   if applied.body == body.name]
         resultant = [sum((np.array(_vector(force, x) or nan3) for a, force, _ in forces
@@ -464,7 +463,7 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
         for axis, e in axes:
             out.append(SampledBalance(body.name, axis, None,
                                       tuple(float(r @ u) for r, u in zip(resultant, e)),
-                                      tuple(float(v) for v in e[0] @ ma)))
+                                      _per_state(e, ma)))
         if body.frame is None:
             continue  # a particle: no moment balance
         for about, where in points.items():
@@ -474,9 +473,16 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
                            for a, force, couple in forces), np.zeros(3))
                       for k, x in enumerate(states)]
             # about another point, the rate of angular momentum gains the moment of m a
-            rate = spin + np.cross(points[body.centre][0] - where[0], ma.T).T
+            rate = spin + np.array([np.cross(points[body.centre][k] - where[k], ma[k].T).T
+                                    for k in range(len(states))])
             for axis, e in axes:
                 out.append(SampledBalance(body.name, axis, about,
                                           tuple(float(m @ u) for m, u in zip(moment, e)),
-                                          tuple(float(v) for v in e[0] @ rate)))
+                                          _per_state(e, rate)))
     return tuple(out)
+
+
+def _per_state(axis: list[np.ndarray], slopes: np.ndarray) -> tuple[tuple[float, ...], ...]:
+    """How a balance's motion side along ``axis`` (its unit vector at each state) changes
+    with each acceleration at each state, from ``slopes`` (state, component, acceleration)."""
+    return tuple(tuple(float(v) for v in e @ slope) for e, slope in zip(axis, slopes))
