@@ -295,7 +295,7 @@ def _along_motion(problem: Problem, kp, x: np.ndarray, given: np.ndarray) -> lis
 
     index = kp.kp.index
     n = index.n
-    q, qd, qdd = np.arange(n), np.array(index.rates(1)), np.array(index.rates(2))
+    qd, qdd = np.array(index.rates(1)), np.array(index.rates(2))
     v, a = x[qd], x[qdd]
     size = MOVE * typical_sizes(problem, kp.kp, x[:index.size, None], given)[:n, 0]
     # the time in which each coordinate moves its share: |v| t + |a| t^2 / 2 = size
@@ -312,7 +312,7 @@ def _along_motion(problem: Problem, kp, x: np.ndarray, given: np.ndarray) -> lis
         # leave the others where they are): its rate is all that sets it
         dt = sign * float(times.max())
         for _ in range(8):
-            moved = _on_constraints(problem, kp, x, dt)
+            moved = _on_constraints(kp, x, dt)
             # a rate turned round, or set going against its acceleration (before a start
             # from rest), would turn a slip's friction round
             if moved is not None and not _turned(moved[qd], v, a):
@@ -341,7 +341,7 @@ def _turned(rates: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
     return bool(np.any((rates * along < 0) & real(rates) & real(along)))
 
 
-def _on_constraints(problem: Problem, kp, x: np.ndarray, dt: float) -> np.ndarray | None:
+def _on_constraints(kp, x: np.ndarray, dt: float) -> np.ndarray | None:
     """The state ``x`` a time ``dt`` on (``x + v dt + a dt^2 / 2``), the coordinates put back
     on the position constraints (Gauss-Newton) and the rates on the velocity constraints
     (least squares); ``None`` where the coordinates cannot be."""
