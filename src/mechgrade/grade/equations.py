@@ -225,7 +225,7 @@ class _System:
         shared = [{u for u in e.unknowns
                    if any(u in other.unknowns for other in equations if other is not e)}
                   for e in equations]
-        self.trivial = [not self.slopes[i].any() and not shared[i]
+        self.trivial = [not self.slopes_at[:, i].any() and not shared[i]
                         and (not e.unknowns or self._flips([i]) is None)
                         for i, e in enumerate(equations)]
 
