@@ -227,6 +227,17 @@ def test_a_moment_balance_about_the_pin_with_the_inertia_about_g_is_the_wrong_po
     assert (row.load, row.reversed_term) == (None, None)
 
 
+@pytest.mark.parametrize("text, verdict", [
+    ("m1 y'' = -T - m1 g; m2 y'' = m2 g + T", "correct"),  # the tension's sign the student's
+    ("m1 a = T - m1 g; m2 a = m2 g - T; a = y''", "correct"),  # an acceleration's own name
+    # both tensions doubled hold with T half the rope's: an unknown is a reaction at its size
+    ("m1 y'' = 2 T - m1 g; m2 y'' = m2 g - 2 T", "incorrect"),
+])
+def test_an_unknown_is_a_reaction_by_another_name_or_sign_not_another_size(atwood, text,
+                                                                             verdict):
+    assert judge_equations(text, atwood).verdict == verdict
+
+
 @pytest.mark.parametrize("text", [
     "m1 y'' = T - m1 g; m2 y'' = m2 g - T",  # right: nothing to name
     "m1 y'' = T; m2 y'' = m2 g - T",  # a load left out is no other body's balance
