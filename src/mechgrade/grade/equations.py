@@ -45,6 +45,11 @@ MAX_UNKNOWNS = 12
 REL = 1e-3
 """An equation holds when its two sides differ by at most this share of their size (the
 values are the model's own, so only rounding is forgiven: 9.81 for g, 0.866 for cos 30°)."""
+FIT = 1e-6
+"""How closely an unknown's values over a configuration's states must follow a fixed
+combination of the model's reactions or accelerations: both are exact where the equations
+hold exactly, and a share of the reactions that is wrong follows none but by a chance far
+larger than this."""
 
 
 _SAID = {"missing": "is missing from", "doubled": "is counted twice in",
@@ -195,7 +200,7 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
 class _System:
     """The equations' values at the samples, as ``A u + b`` in the unknowns ``u`` of the
     student's own (refused unless each is linear in them and in the accelerations), and their
-    slopes along the accelerations at the first state."""
+    slopes along the accelerations at each state (``slopes``: at the first)."""
 
     def __init__(self, equations: tuple[StudentEquation, ...], samples: MotionSamples):
         self.equations, self.samples = equations, samples
@@ -209,17 +214,18 @@ class _System:
         n_eq, n_u, n_s = len(equations), len(self.unknowns), len(samples.states)
         self.b = np.zeros((n_s, n_eq))
         self.a = np.zeros((n_s, n_eq, n_u))
-        self.slopes = np.zeros((n_eq, len(self.accelerations)))
+        self.slopes_at = np.zeros((n_s, n_eq, len(self.accelerations)))
         self.scale = np.zeros((n_s, n_eq))
         for i, e in enumerate(equations):
             self._linear(i, e, samples)
+        self.slopes = self.slopes_at[0]
         # an equation free of accelerations whose unknowns appear in no other one only
         # names them: it says nothing about the motion, unless it gives a reaction
         # (N = m g cos β); without unknowns either, it is an identity
         shared = [{u for u in e.unknowns
                    if any(u in other.unknowns for other in equations if other is not e)}
                   for e in equations]
-        self.trivial = [not self.slopes[i].any() and not shared[i]
+        self.trivial = [not self.slopes_at[:, i].any() and not shared[i]
                         and (not e.unknowns or self._flips([i]) is None)
                         for i, e in enumerate(equations)]
 
@@ -231,39 +237,38 @@ class _System:
         moves += [{a: 1.0} for a in self.accelerations]
         moves += [{a: 1.7} for a in self.accelerations]
         n, m = len(self.unknowns), len(self.accelerations)
-        for k in range(len(samples.states)):
-            state = samples.state(k)
-            env = {name: np.array([state[name] + move.get(name, 0.0) for move in moves])
-                   for name in samples.symbols + samples.accelerations}
-            for u in self.unknowns:
-                env[u] = np.array([move.get(u, 0.0) for move in moves])
-            f = evaluate(e.residual, env)
-            if not np.all(np.isfinite(f)):
-                raise AnswerError(f"expected equations defined at the problem's states, found "
-                                  f"{excerpt(e.text)} undefined (a division by zero?)")
-            size = max(float(np.max(np.abs(f))), 1e-300)
+        n_s, n_m = len(samples.states), len(moves)
+        states = np.array(samples.states)
+        # every state with every move, in one evaluation: state k's moves are row k
+        env = {name: np.add.outer(states[:, c], [move.get(name, 0.0) for move in moves]).ravel()
+               for c, name in enumerate(samples.symbols + samples.accelerations)}
+        for u in self.unknowns:
+            env[u] = np.tile([move.get(u, 0.0) for move in moves], n_s)
+        f = evaluate(e.residual, env).reshape(n_s, n_m)
+        if not np.all(np.isfinite(f)):
+            raise AnswerError(f"expected equations defined at the problem's states, found "
+                              f"{excerpt(e.text)} undefined (a division by zero?)")
+        size = np.maximum(np.abs(f).max(axis=1), 1e-300)[:, None]
 
-            def same(x: float, y: float, size: float = size) -> bool:
-                return abs(x - y) <= 1e-9 * size
+        def same(x: np.ndarray, y: np.ndarray) -> bool:
+            return bool(np.all(np.abs(x - y) <= 1e-9 * (size if x.ndim == 2 else size[:, 0])))
 
-            ok = True
-            for j in range(n):
-                self.a[k, i, j] = f[1 + j] - f[0]
-                ok = ok and same(f[1 + n + j] - f[0], 1.7 * self.a[k, i, j])
-            for p, (u, v) in enumerate(pairs):
-                ok = ok and same(f[1 + 2 * n + p] - f[0], self.a[k, i, self.unknowns.index(u)]
-                                 + self.a[k, i, self.unknowns.index(v)])
-            start = 1 + 2 * n + len(pairs)
-            for j in range(m):
-                slope = f[start + j] - f[0]
-                ok = ok and same(f[start + m + j] - f[0], 1.7 * slope)
-                if k == 0:
-                    self.slopes[i, j] = slope
-            if not ok:
-                raise AnswerError(f"expected an equation linear in the accelerations and in "
-                                  f"each unknown of your own, found {excerpt(e.text)}")
-            self.b[k, i] = f[0]
-            self.scale[k, i] = _term_size(e.residual, env)
+        base = f[:, :1]
+        self.a[:, i, :] = f[:, 1:1 + n] - base
+        ok = same(f[:, 1 + n:1 + 2 * n] - base, 1.7 * self.a[:, i, :])
+        for p, (u, v) in enumerate(pairs):
+            ok = ok and same(f[:, 1 + 2 * n + p] - base[:, 0],
+                             self.a[:, i, self.unknowns.index(u)]
+                             + self.a[:, i, self.unknowns.index(v)])
+        start = 1 + 2 * n + len(pairs)
+        slope = f[:, start:start + m] - base
+        ok = ok and same(f[:, start + m:start + 2 * m] - base, 1.7 * slope)
+        if not ok:
+            raise AnswerError(f"expected an equation linear in the accelerations and in "
+                              f"each unknown of your own, found {excerpt(e.text)}")
+        self.slopes_at[:, i] = slope
+        self.b[:, i] = f[:, 0]
+        self.scale[:, i] = _term_sizes(e.residual, env, n_m)
 
     def _holds(self, rows: list[int]) -> np.ndarray:
         """Whether each of ``rows`` holds at every sample with the unknowns fitted to them."""
@@ -311,7 +316,8 @@ class _System:
     def _misfits(self, i: int, right: list[int]) -> list[tuple[float, float, dict]] | None:
         """Equation ``i``'s misfit at each state with the unknowns the ``right`` equations
         give, the misfit it may have, and the values it was taken at; ``None`` when the
-        unknowns are not all given, or it holds at some state."""
+        unknowns are not all given, or it holds at every state (it may at some: a spring's
+        force is nought where the spring has its free length)."""
         e = self.equations[i]
         out = []
         for k in range(len(self.b)):
@@ -323,12 +329,10 @@ class _System:
                 u = np.linalg.lstsq(a, -self.b[k][right], rcond=None)[0]
             misfit = float(self.a[k][i] @ u + self.b[k][i])
             tol = REL * max(self.scale[k][i], float(np.abs(self.a[k][i]) @ np.abs(u))) + 1e-12
-            if abs(misfit) <= tol:
-                return None
             env = {name: np.array([value]) for name, value in self.samples.state(k).items()}
             env.update({name: np.array([value]) for name, value in zip(self.unknowns, u)})
             out.append((misfit, tol, env))
-        return out
+        return None if all(abs(m) <= tol for m, tol, _ in out) else out
 
     def reversed_term(self, i: int, right: list[int]) -> str | None:
         """The one term of equation ``i`` that, with its sign changed, makes it hold with
@@ -364,7 +368,7 @@ class _System:
                  for _, t in _signed_terms(self.equations[i].residual)]
         if len(fitting) > 1:
             read = {k: v for k, v in fitting.items()
-                    if self._multiple(i, v[0], misfits[0][0]) is not None}
+                    if self._multiple(i, v[0], misfits) is not None}
             fitting = read if len(read) == 1 else fitting
         if len(fitting) > 1:
             # a moment about another point can be a multiple too (I_G θ'' = M_G of the pin
@@ -381,7 +385,7 @@ class _System:
         ((load, ratios),) = fitting.values()
         if self.reversed_term(i, right) is not None:
             return load, "turned round", True
-        multiple = self._multiple(i, load, misfits[0][0])
+        multiple = self._multiple(i, load, misfits)
         if multiple is not None:
             return load, {-1: "missing", 1: "doubled", -2: "turned round"}[multiple], True
         scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
@@ -390,23 +394,26 @@ class _System:
         times = [n for r in ratios if (n := _plain(r / scale)) is not None]
         return load, "turned round" if times and times[0] == 2 else "missing", False
 
-    def _multiple(self, i: int, load: SampledLoad, misfit: float) -> int | None:
-        """How many times over equation ``i`` has ``load`` at the first state: -1 (left out),
-        1 (twice), -2 (turned round), read off the balances of the load's body its
-        accelerations are a multiple of; ``None`` when none or several readings say so."""
-        slope = self.slopes[i]
+    def _multiple(self, i: int, load: SampledLoad, misfits: list) -> int | None:
+        """How many times over equation ``i`` has ``load``: -1 (left out), 1 (twice), -2
+        (turned round), read off the balances of the load's body its accelerations are a
+        multiple of, at the state ``misfits`` (:meth:`_misfits`) tell most by; ``None`` when
+        none or several readings say so."""
+        k = max(range(len(misfits)), key=lambda n: abs(misfits[n][0]) / misfits[n][1])
+        misfit = misfits[k][0]
+        slope = self.slopes_at[k, i]
         if not slope.any():
             return None
         found: set[int] = set()
         for balance in self.samples.balances:
-            along = np.array(balance.slope)
+            along = np.array(balance.slope[k])
             if balance.body != load.body or not along.any() or \
                     (balance.axis, balance.about) not in load.along:
                 continue
             times = float(slope @ along / (along @ along))
             if np.abs(slope - times * along).max() > 1e-6 * np.abs(slope).max():
                 continue
-            component = load.components[load.along.index((balance.axis, balance.about))][0]
+            component = load.components[load.along.index((balance.axis, balance.about))][k]
             if not abs(component) > 1e-9 * abs(misfit):
                 continue
             # the equation is ``times`` (m a - loads): a load's error enters with -times
@@ -430,7 +437,7 @@ class _System:
         balances = self.samples.balances
         found: set[str] = set()
         for motion in balances:
-            along = np.array(motion.slope)
+            along = np.array(motion.slope[0])
             if not along.any():
                 continue
             times = float(slope @ along / (along @ along))
@@ -459,39 +466,87 @@ class _System:
                          for k in range(len(self.b))])
 
     def _accounted(self, rows: list[int]) -> bool:
-        """Whether the unknowns fitted to ``rows`` are, over the samples, fixed combinations
-        of the model's reactions and accelerations (a reaction by another name, sign or axis,
-        ``a`` for ``y''``); nought at every state only as many as the model's reactions are
-        (a pendulum hanging at rest has no sideways reaction: an unknown nought besides it
-        took up what is wrong in its own equation)."""
-        if not self.unknowns:
-            return True
-        basis = np.hstack([self.reactions, self.accelerations_sampled])
-        fitted = self._fitted(rows)
-        size = np.abs(fitted).max() + np.abs(basis).max()
-        nought = int(np.sum(np.abs(fitted).max(axis=0) <= 1e-9 * size))
-        if nought > int(np.sum(np.abs(self.reactions).max(axis=0) <= 1e-9 * size)):
-            return False
-        combination = np.linalg.lstsq(basis, fitted, rcond=None)[0]
-        misfit = np.abs(basis @ combination - fitted)
-        return bool(np.all(misfit <= REL * size))
+        """Whether the unknowns fitted to ``rows`` are the model's reactions and accelerations
+        by names of the student's (:meth:`_readings`)."""
+        return self._readings(rows) is not None
 
     def _flips(self, rows: list[int]) -> int | None:
         """How many reactions the unknowns fitted to ``rows`` take the other way round, when
-        they are, over the samples, fixed non-zero combinations of the model's reactions (a
-        reaction by another name, sign or axis); ``None`` when they are not."""
+        each is one of the model's reactions by another name, sign or axis (in the solved
+        configuration); ``None`` when one is not."""
         if not self.unknowns:
             return 0
-        if self.reactions.shape[1] == 0:
+        readings = self._readings(rows)
+        if readings is None or not np.all(np.abs(readings[0]).max(axis=1, initial=0) > 0):
             return None
+        return int(np.sum(readings[0] < 0))
+
+    def _readings(self, rows: list[int]) -> np.ndarray | None:
+        """What each unknown fitted to ``rows`` is in each configuration of the samples, as
+        its coefficients on the model's reactions (one row an unknown); ``None`` when one is
+        not what a student's name may stand for. An unknown may be a reaction by another name,
+        sign or axis: a fixed combination, over the configuration's states, of one reaction's
+        components along unit vectors (coefficients of size 1, or less where a component is
+        nought at each state); or an acceleration by a name of the student's (a fixed
+        combination of the accelerations; its row is nought). An unknown the equations leave
+        free, or nought at each state, has a nought row too: nought at every state only as
+        many as the model's reactions are (a pendulum hanging at rest has no sideways
+        reaction: an unknown nought besides it took up what is wrong in its own equation).
+        A fit that only shares the reactions otherwise among the unknowns (a reaction left out
+        of one balance, another's share taking it up) is no fixed combination of one
+        reaction's, or not of size 1."""
         fitted = self._fitted(rows)
-        combination = np.linalg.lstsq(self.reactions, fitted, rcond=None)[0]
-        misfit = np.abs(self.reactions @ combination - fitted)
-        if not np.all(misfit <= REL * (np.abs(fitted).max(axis=0) + 1e-12)):
-            return None
-        if not np.all(np.abs(combination).max(axis=0) > 1e-9):
-            return None
-        return int(np.sum(combination < -1e-9))
+        free = self._free(rows)
+        n_u, n_r = len(self.unknowns), self.reactions.shape[1]
+        size = np.abs(fitted).max(initial=0) + max(np.abs(self.reactions).max(initial=0),
+                                                   np.abs(self.accelerations_sampled).max(
+                                                       initial=0))
+        groups: dict[str, list[int]] = {}
+        for r in range(n_r):
+            groups.setdefault(self.samples.reaction_load(r), []).append(r)
+        configurations = [self.samples.configuration(k) for k in range(len(self.b))]
+        out = []
+        for c in dict.fromkeys(configurations):
+            at = [k for k, of in enumerate(configurations) if of == c]
+            reactions = self.reactions[at]
+            nought = np.abs(reactions).max(axis=0, initial=0) <= 1e-9 * size
+            accelerations = self.accelerations_sampled[at]
+            moving = accelerations[:, np.abs(accelerations).max(axis=0, initial=0)
+                                   > 1e-9 * size]
+            reading = np.zeros((n_u, n_r))
+            of: dict[int, str] = {}  # the reaction each unknown is
+            noughts = 0
+            for j in range(n_u):
+                values = fitted[at, j]
+                if free[at, j].any():
+                    continue
+                if np.abs(values).max() <= 1e-9 * size:
+                    noughts += 1
+                    continue
+                found = [(row, name) for name, group in groups.items()
+                         if (row := _one_reaction(values, reactions, group, nought)) is not None]
+                if found:  # reactions alike at every state (R_A, -R_B): the fewest turned round
+                    reading[j], of[j] = min(found, key=lambda pair: int(np.sum(pair[0] < 0)))
+                elif not (moving.size and _fits(values, moving) is not None):
+                    return None
+            if noughts > int(np.sum(nought)) or not all(
+                    _whole(reading[[j for j in range(n_u) if of.get(j) == name]][:, group],
+                           reactions[:, group]) for name, group in groups.items()):
+                return None
+            out.append(reading)
+        return np.array(out)
+
+    def _free(self, rows: list[int]) -> np.ndarray:
+        """Which unknowns the equations ``rows`` leave free at each state."""
+        out = np.zeros((len(self.b), len(self.unknowns)), dtype=bool)
+        for k in range(len(self.b)):
+            a = self.a[k][rows]
+            if not a.size:
+                continue
+            _, sizes, vt = np.linalg.svd(a)
+            rank = int(np.sum(sizes > 1e-9 * max(sizes.max(initial=0), 1e-300)))
+            out[k] = np.abs(vt[rank:]).max(axis=0, initial=0) > 1e-6
+        return out
 
     def _determined(self) -> int:
         a = self.a[0]
@@ -509,6 +564,74 @@ class _System:
         return ", ".join(a[:-2] + "''" for a in self.accelerations)
 
 
+def _fits(values: np.ndarray, basis: np.ndarray) -> np.ndarray | None:
+    """The fixed coefficients ``values`` (one per state) are of the columns of ``basis`` (a row
+    per state), to within :data:`FIT`; ``None`` when none are.
+
+    >>> _fits(np.array([2.0, 4.0, 7.0]), np.array([[1.0], [2.0], [3.5]]))
+    array([2.])
+    >>> _fits(np.array([2.0, 4.0, 7.0]), np.array([[1.0], [2.0], [3.0]])) is None
+    True
+    """
+    coefficients = np.linalg.lstsq(basis, values, rcond=None)[0]
+    misfit = np.abs(basis @ coefficients - values).max()
+    # a coefficient of rounding's size is none (nor is it a sign)
+    coefficients[np.abs(coefficients) <= 1e-9 * np.abs(coefficients).max()] = 0.0
+    return coefficients if misfit <= FIT * np.abs(values).max() else None
+
+
+def _whole(rows: np.ndarray, basis: np.ndarray) -> bool:
+    """Whether unknowns that are one reaction's components (their coefficients ``rows`` on
+    every reaction, read on ``basis``: the reaction's components at each state), as many as
+    the components that are not alike at every state (one nought, two in a fixed ratio), are
+    its components along unit vectors at right angles, as any axes' are: with more, which
+    coefficients each has is not seen (axes turned about a nought component's).
+
+    >>> basis = np.array([[0.0, 3.0], [0.0, 5.0], [0.0, 2.0]])  # the first nought
+    >>> _whole(np.array([[0.0, 1.0]]), basis), _whole(np.array([[0.0, 0.6]]), basis)
+    (True, False)
+    >>> _whole(np.array([[0.0, 0.6], [0.0, 0.8]]), basis)
+    True
+    """
+    sizes = np.linalg.svd(basis, compute_uv=False)
+    rank = int(np.sum(sizes > 1e-9 * max(sizes.max(initial=0), 1e-300)))
+    if len(rows) != rank or rank == basis.shape[1]:
+        return True
+    return bool(np.all(np.abs(rows @ rows.T - np.eye(rank)) <= REL))
+
+
+def _one_reaction(values: np.ndarray, reactions: np.ndarray, group: list[int],
+                  nought: np.ndarray) -> np.ndarray | None:
+    """The coefficients on every reaction (a row) when ``values`` are one reaction's by
+    another name, sign or axis: a fixed combination of its components ``group`` (columns of
+    ``reactions``) of size 1, or at most 1 where some are ``nought`` or alike at every state
+    (then one of size 1 fits too); else ``None``.
+
+    >>> reactions = np.array([[3.0, 4.0], [1.0, -2.0], [2.0, 5.0]])
+    >>> _one_reaction(np.array([-4.0, 2.0, -5.0]), reactions, [0, 1], np.zeros(2, bool))
+    array([ 0., -1.])
+    >>> _one_reaction(np.array([8.0, -4.0, 10.0]), reactions, [0, 1], np.zeros(2, bool)) is None
+    True
+    """
+    columns = [r for r in group if not nought[r]]
+    if not columns:
+        return None
+    basis = reactions[:, columns]
+    coefficients = _fits(values, basis)
+    if coefficients is None:
+        return None
+    # components alike at every state (one nought, two in a fixed ratio) leave some
+    # coefficients free: then the least of size 1 or under will do (one of size 1 fits too)
+    length = float(np.linalg.norm(coefficients))
+    sizes = np.linalg.svd(basis, compute_uv=False)
+    alike = len(columns) < len(group) or np.sum(sizes > 1e-9 * sizes.max()) < len(columns)
+    if not (length <= 1 + REL if alike else abs(length - 1) <= REL):
+        return None
+    row = np.zeros(reactions.shape[1])
+    row[columns] = coefficients
+    return row
+
+
 def _ratios(values: np.ndarray, load: SampledLoad) -> list[float]:
     """The fixed non-zero multiples ``values`` (one per state) are of a component of ``load``
     at the same states: the parameters change from state to state, so loads of other sizes
@@ -517,13 +640,16 @@ def _ratios(values: np.ndarray, load: SampledLoad) -> list[float]:
     mass = np.array(load.mass) if load.mass else np.ones(len(values))
     for row in load.components:
         component = np.array(row)
-        if not np.all(np.isfinite(component)) or np.any(
-                np.abs(component) <= 1e-9 * (np.abs(component).max() + 1e-300)):
+        # where it is nought (a spring at its free length), the values must be too
+        seen = np.abs(component) > 1e-9 * (np.abs(component).max() + 1e-300)
+        if not np.all(np.isfinite(component)) or not seen.any():
             continue
         # the equation as written, or divided by the body's mass (x'' = g sin β - μ g cos β)
-        for ratio in (values / component, values * mass / component):
+        for scaled in (values, values * mass):
+            ratio = scaled[seen] / component[seen]
             if np.all(np.isfinite(ratio)) and ratio[0] != 0 and \
-                    np.all(np.abs(ratio - ratio[0]) <= REL * abs(ratio[0])):
+                    np.all(np.abs(ratio - ratio[0]) <= REL * abs(ratio[0])) and \
+                    np.all(np.abs(scaled[~seen]) <= REL * np.abs(scaled).max()):
                 out.append(float(ratio[0]))
                 break
     return out
@@ -562,9 +688,10 @@ def _naming(load: SampledLoad) -> str:
     return f"the {load.kind} {load.name} on {load.body}"
 
 
-def _term_size(node: Node, env: dict) -> float:
-    """The size of the largest term of either side at the first move (nothing changed), so
-    that a right equation whose sides cancel is judged against its terms."""
+def _term_sizes(node: Node, env: dict, moves: int) -> np.ndarray:
+    """The size of the largest term of either side at each state's first move (nothing
+    changed; ``env`` has ``moves`` values a state), so that a right equation whose sides
+    cancel is judged against its terms."""
     terms: list[Node] = []
 
     def split(n: Node) -> None:
@@ -575,4 +702,4 @@ def _term_size(node: Node, env: dict) -> float:
             terms.append(n)
 
     split(node)
-    return max(float(abs(evaluate(t, env)[0])) for t in terms)
+    return np.max([np.abs(evaluate(t, env)[::moves]) for t in terms], axis=0)

@@ -129,7 +129,12 @@ def _frame_plan(problem: Problem) -> dict:
 
 
 SAMPLES = 5
-"""How many states equations of motion are judged at (the instant's and others)."""
+"""How many states equations of motion are judged at in each configuration (more where the
+model has more accelerations: a fixed combination of them must be told from a chance fit)."""
+
+MOVE = 0.15
+"""How far along the motion the other configurations are: the coordinate that moves most
+moves this share of its typical size (angles: of pi), before and after the solved instant."""
 
 
 @dataclass(frozen=True)
@@ -156,13 +161,13 @@ class SampledBalance:
     loads' side at each sampled state (their resultant, or their moment about ``about``, along
     ``axis``), which the model's motion there matches; ``slope`` how the motion's side (m a,
     or the rate of angular momentum about ``about``, along ``axis``) changes with each
-    acceleration at the first state."""
+    acceleration, at each state."""
 
     body: str
     axis: str
     about: str | None
     loads: tuple[float, ...]
-    slope: tuple[float, ...]
+    slope: tuple[tuple[float, ...], ...]
 
 
 @dataclass(frozen=True)
@@ -170,7 +175,9 @@ class MotionSamples:
     """The model's motion at a few states: ``symbols`` a student may write (coordinates,
     parameters, rates as ``xd``), ``accelerations`` (``xdd``), ``reactions`` (the model's
     names, ``R_O_1``), and per state the value of each, in that order; ``loads`` each load
-    at those states."""
+    at those states. ``configurations`` says which configuration (where the bodies are) each
+    state is in, ``reaction_loads`` which reaction each reaction's name is a component of
+    (``R_O`` for ``R_O_1``); empty, one configuration and a reaction of its own each."""
 
     symbols: tuple[str, ...]
     accelerations: tuple[str, ...]
@@ -178,6 +185,8 @@ class MotionSamples:
     states: tuple[tuple[float, ...], ...]
     loads: tuple[SampledLoad, ...] = ()
     balances: tuple[SampledBalance, ...] = ()
+    configurations: tuple[int, ...] = ()
+    reaction_loads: tuple[str, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -187,14 +196,23 @@ class MotionSamples:
         """The ``k``-th state by name."""
         return dict(zip(self.names, self.states[k]))
 
+    def configuration(self, k: int) -> int:
+        """Which configuration the ``k``-th state is in."""
+        return self.configurations[k] if self.configurations else 0
+
+    def reaction_load(self, r: int) -> str:
+        """The reaction the ``r``-th reaction's name is a component of."""
+        return self.reaction_loads[r] if self.reaction_loads else self.reactions[r]
+
 
 def motion_samples(problem: Problem, solution: Solution, count: int = SAMPLES,
                    seed: int = 0) -> MotionSamples | None:
-    """The model's motion at the solved instant and at states near it: every parameter and
-    rate scaled by a seeded factor in 0.8 to 1.25 (the coordinates kept, so that constraints
-    on them hold; the parameters alone where scaling the rates breaks a constraint on them),
-    with the accelerations and reactions the model solves there. A state the model cannot
-    solve is left out; ``None`` without a solved state.
+    """The model's motion in a few configurations along it — the solved instant's and, where
+    the bodies move, a moment before and after it (:data:`MOVE`) — and in each, at ``count``
+    states or more: every parameter and rate scaled by a seeded factor in 0.8 to 1.25 (the
+    parameters alone where scaling the rates breaks a constraint on them), with the
+    accelerations and reactions the model solves there. A state the model cannot solve is
+    left out; ``None`` without a solved state.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -202,12 +220,14 @@ def motion_samples(problem: Problem, solution: Solution, count: int = SAMPLES,
     >>> problem = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
     >>> samples = motion_samples(problem, solve(problem))
     >>> samples.accelerations, samples.reactions, len(samples.states)
-    (('xdd',), ('N_P',), 5)
+    (('xdd',), ('N_P',), 15)
     >>> s = samples.state(0)
     >>> round(s["xdd"], 4), round(s["N_P"], 4)
     (2.7811, 33.9828)
+    >>> sorted({round(samples.state(k)["x"], 4) for k in range(15)})
+    [0.8642, 1.0, 1.15]
     >>> all(abs(s["xdd"] - s["g"] * (np.sin(s["beta"]) - s["mu_k"] * np.cos(s["beta"])))
-    ...     < 1e-9 for s in map(samples.state, range(5)))
+    ...     < 1e-9 for s in map(samples.state, range(15)))
     True
     """
     if problem.dynamics is None:
@@ -232,29 +252,131 @@ def motion_samples(problem: Problem, solution: Solution, count: int = SAMPLES,
     except MechgradeError:
         pass
     rng = np.random.default_rng(seed)
-    found = [x]
-    for _ in range(count - 1):
-        factors = rng.uniform(0.8, 1.25, index.size)
-        for scaled in (parameters + rates, parameters):
-            values = x[:index.size].copy()
-            values[scaled] *= factors[scaled]
-            try:
-                found.append(solve_kinetics(problem, kp, State(values, given)))
-                break
-            except MechgradeError:
-                continue
+    per = max(count, len(index.rates(2)) + 3)
+    found, configurations = [], []
+    for c, base in enumerate([x, *_along_motion(problem, kp, x, given)]):
+        found.append(base)
+        configurations.append(c)
+        for _ in range(per - 1):
+            factors = rng.uniform(0.8, 1.25, index.size)
+            for scaled in (parameters + rates, parameters):
+                values = base[:index.size].copy()
+                values[scaled] *= factors[scaled]
+                try:
+                    found.append(solve_kinetics(problem, kp, State(values, given)))
+                    configurations.append(c)
+                    break
+                except MechgradeError:
+                    continue
     symbols = [i for i in list(index.config) + rates if i != index.time]
     accelerations = list(index.rates(2))
     reactions = list(range(index.size, len(kp.symbols)))
     order = symbols + accelerations + reactions
-    kept = [v for v in found if np.all(np.isfinite(v[order]))]
+    finite = [k for k, v in enumerate(found) if np.all(np.isfinite(v[order]))]
+    kept = [found[k] for k in finite]
     states = tuple(tuple(float(v[i]) for i in order) for v in kept)
     if not states:
         return None
     return MotionSamples(tuple(rate_name(index.names[i]) for i in symbols),
                          tuple(rate_name(index.names[i]) for i in accelerations),
                          tuple(str(kp.symbols[i]) for i in reactions), states,
-                         _sampled_loads(problem, kept), _sampled_balances(problem, kept))
+                         _sampled_loads(problem, kept), _sampled_balances(problem, kept),
+                         tuple(configurations[k] for k in finite),
+                         tuple(label.split(" (along ")[0] for label in kp.kin.labels))
+
+
+def _along_motion(problem: Problem, kp, x: np.ndarray, given: np.ndarray) -> list[np.ndarray]:
+    """The solved state ``x`` moved a moment back and a moment on along its motion (each
+    coordinate by its rate and acceleration, then put back on the constraints), with the
+    accelerations and reactions solved there; a move is halved while it turns a rate round
+    (a slip would change its direction) or the model cannot solve it, and left out after a
+    few; none when nothing moves."""
+    from .levels import typical_sizes
+
+    index = kp.kp.index
+    n = index.n
+    qd, qdd = np.array(index.rates(1)), np.array(index.rates(2))
+    v, a = x[qd], x[qdd]
+    size = MOVE * typical_sizes(problem, kp.kp, x[:index.size, None], given)[:n, 0]
+    # the time in which each coordinate moves its share: |v| t + |a| t^2 / 2 = size
+    with np.errstate(all="ignore"):  # the root without cancelling (a ≈ 0 beside v)
+        times = 2 * size / (np.abs(v) + np.sqrt(v ** 2 + 2 * np.abs(a) * size))
+    times = times[np.isfinite(times) & (times > 0)]
+    if not times.size:
+        return []
+    # a coordinate a thousand times slower than the fastest is still (its rate a rounding)
+    times = times[times <= 1e3 * times.min()]
+    out = []
+    for sign in (-1.0, 1.0):
+        # the slowest coordinate moves its share (a fast spin about a symmetry axis would
+        # leave the others where they are): its rate is all that sets it
+        dt = sign * float(times.max())
+        for _ in range(8):
+            moved = _on_constraints(kp, x, dt)
+            # a rate turned round, or set going against its acceleration (before a start
+            # from rest), would turn a slip's friction round
+            if moved is not None and not _turned(moved[qd], v, a):
+                try:
+                    out.append(solve_kinetics(problem, kp, State(moved, given)))
+                    break
+                except MechgradeError:
+                    pass
+            dt /= 2
+    return out
+
+
+def _turned(rates: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
+    """Whether one of ``rates`` goes against ``v`` (where that is still, against ``a``),
+    roundings aside.
+
+    >>> _turned(np.array([1.0, -0.5]), np.array([2.0, 0.0]), np.array([0.0, 1.0]))
+    True
+    >>> _turned(np.array([1.0, -1e-17]), np.array([2.0, 0.0]), np.array([0.0, 1e-17]))
+    False
+    """
+    def real(u: np.ndarray) -> np.ndarray:
+        return np.abs(u) > 1e-9 * max(float(np.abs(u).max(initial=0.0)), 1e-300)
+
+    along = np.where(real(v), v, a)
+    return bool(np.any((rates * along < 0) & real(rates) & real(along)))
+
+
+def _on_constraints(kp, x: np.ndarray, dt: float) -> np.ndarray | None:
+    """The state ``x`` a time ``dt`` on (``x + v dt + a dt^2 / 2``), the coordinates put back
+    on the position constraints (Gauss-Newton) and the rates on the velocity constraints
+    (least squares); ``None`` where the coordinates cannot be."""
+    index = kp.kp.index
+    n = index.n
+    qd, qdd = list(index.rates(1)), list(index.rates(2))
+    values = x[:index.size].copy()
+    values[:n] += dt * x[qd] + dt * dt / 2 * x[qdd]
+    values[qd] += dt * x[qdd]
+    values[index.time] += dt
+    values[qdd] = 0.0
+    position, velocity = kp.kp.levels[0], kp.kp.levels[1]
+    with np.errstate(all="ignore"):
+        for _ in range(30):
+            m = position.constraint_rows
+            r = np.asarray(position.residual(*values), dtype=float).ravel()[:m]
+            scale = np.abs(np.asarray(position.scale(*values), dtype=float).ravel()[:m])
+            if not np.all(np.isfinite(r)):
+                return None
+            if np.all(np.abs(r) <= 1e-12 * (scale + 1.0)):
+                break
+            jacobian = np.asarray(position.jacobian(*values), dtype=float).reshape(
+                len(position.labels), -1)[:m, :n]
+            values[:n] -= np.linalg.lstsq(jacobian, r, rcond=None)[0]
+        else:
+            return None
+        m = velocity.constraint_rows
+        if m:
+            jacobian = np.asarray(velocity.jacobian(*values), dtype=float).reshape(
+                len(velocity.labels), n)[:m]
+            r = np.asarray(velocity.residual(*values), dtype=float).ravel()[:m]
+            if not (np.all(np.isfinite(jacobian)) and np.all(np.isfinite(r))):
+                return None
+            values[qd] -= np.linalg.lstsq(jacobian, r, rcond=None)[0]
+    return values
 
 
 def _sampled_loads(problem: Problem, states: list[np.ndarray]) -> tuple[SampledLoad, ...]:
@@ -317,8 +439,7 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
     plan = _diagram_plan(problem, locations(problem))
     frames = _frame_plan(problem)
     n = len(list(kp.kp.index.rates(2)))
-    x0 = states[0]
-    jacobian = np.asarray(kp.jacobian(*x0), dtype=float)[:, :n]
+    jacobians = np.array([np.asarray(kp.jacobian(*x), dtype=float)[:, :n] for x in states])
     nan3 = np.full(3, np.nan)
     points = {name: [np.array(_vector(f, x) or nan3) for x in states]
               for name, f in plan.points.items()}
@@ -329,12 +450,12 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
     for body in dynamics_of(problem).bodies:
         # the motion's side (m a; the rate of angular momentum about the centre) is the
         # balance's part in the accelerations, turned round
-        ma, spin = np.zeros((3, n)), np.zeros((3, n))
+        ma, spin = np.zeros((len(states), 3, n)), np.zeros((len(states), 3, n))
         for row, label in enumerate(kp.labels):
             for pattern, slopes in ((_FORCE_LABEL, ma), (_MOMENT_LABEL, spin)):
                 found = pattern.fullmatch(label)
                 if found and found.group(1) == body.name:
-                    slopes[AXES.index(found.group(2))] = -jacobian[row]
+                    slopes[:, AXES.index(found.group(2))] = -jacobians[:, row]
         forces = [(applied, force, couple) for applied, force, couple, *_ in plan.loads
                   if applied.body == body.name]
         resultant = [sum((np.array(_vector(force, x) or nan3) for a, force, _ in forces
@@ -342,7 +463,7 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
         for axis, e in axes:
             out.append(SampledBalance(body.name, axis, None,
                                       tuple(float(r @ u) for r, u in zip(resultant, e)),
-                                      tuple(float(v) for v in e[0] @ ma)))
+                                      _per_state(e, ma)))
         if body.frame is None:
             continue  # a particle: no moment balance
         for about, where in points.items():
@@ -352,9 +473,16 @@ def _sampled_balances(problem: Problem, states: list[np.ndarray]) -> tuple[Sampl
                            for a, force, couple in forces), np.zeros(3))
                       for k, x in enumerate(states)]
             # about another point, the rate of angular momentum gains the moment of m a
-            rate = spin + np.cross(points[body.centre][0] - where[0], ma.T).T
+            rate = spin + np.array([np.cross(points[body.centre][k] - where[k], ma[k].T).T
+                                    for k in range(len(states))])
             for axis, e in axes:
                 out.append(SampledBalance(body.name, axis, about,
                                           tuple(float(m @ u) for m, u in zip(moment, e)),
-                                          tuple(float(v) for v in e[0] @ rate)))
+                                          _per_state(e, rate)))
     return tuple(out)
+
+
+def _per_state(axis: list[np.ndarray], slopes: np.ndarray) -> tuple[tuple[float, ...], ...]:
+    """How a balance's motion side along ``axis`` (its unit vector at each state) changes
+    with each acceleration at each state, from ``slopes`` (state, component, acceleration)."""
+    return tuple(tuple(float(v) for v in e @ slope) for e, slope in zip(axis, slopes))
