@@ -93,12 +93,15 @@ class Row:
     """One equation of a worked step: ``math`` its presentation MathML (generated from the
     model, never from student text), ``text`` the same in plain text, ``anchor`` its id on a
     page, ``codes`` the generated-mistake families (:data:`~mechgrade.spec.mistake_codes.MODEL_CODES`) that leave
-    this very term out, so a feedback page can point at it."""
+    this very term out, so a feedback page can point at it; ``caption`` what the equation is
+    of, in words (``rod: N.x force balance``), shown before it (``text`` is the equation's
+    alone)."""
 
     anchor: str
     math: str
     text: str
     codes: tuple[str, ...] = ()
+    caption: str = ""
 
 
 @dataclass(frozen=True)

@@ -587,6 +587,7 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
     steps = [{"anchor": step.anchor, "title": Markup(textbook_html(step.title, False)),
               "lines": [Markup(textbook_html(line)) for line in step.lines],
               "rows": [{"anchor": row.anchor, "text": row.text,
+                        "caption": Markup(textbook_html(row.caption, False)),
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
@@ -669,7 +670,8 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     out = [f"{hashes} {markdown_escape(worked.title)}"]
     for step in worked.steps:
         out += ["", f"{hashes}# {markdown_escape(textbook(step.title, False))}", ""]
-        lines = [line for line in step.lines if line] + [row.text for row in step.rows]
+        lines = [line for line in step.lines if line] + [
+            f"{row.caption}: {row.text}" if row.caption else row.text for row in step.rows]
         out += [f"- {code_span(textbook(line))}" for line in lines] or ["(none)"]
     return "\n".join(out) + "\n"
 
