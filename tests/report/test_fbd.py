@@ -54,7 +54,7 @@ const out = {
     id: a.id,
     diagrams: [...a.querySelectorAll("svg.fbd")].map(s => [...s.querySelectorAll("g.load")]
       .map(g => g.querySelectorAll(".arrow").length)),
-    kinetics: [...a.querySelectorAll(".ws-step")].filter(s => s.id.includes("-kinetics-"))
+    kinetics: [...a.querySelectorAll(".ws-steps > li")].filter(s => s.id.includes("-kinetics-"))
       .map(s => [s.id, s.querySelectorAll("math").length]),
     text: a.innerText.replace(/\\s+/g, " ")})),
   expected: [...document.querySelectorAll(".objective dt")].filter(t => t.innerText === "Expected")

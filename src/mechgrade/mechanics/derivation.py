@@ -359,6 +359,14 @@ def _compact(element: ET.Element) -> None:
         i += 1
 
 
+def _hat(letter: str) -> str:
+    """A frame's unit vector's letter, bold with a hat: one letter as the bold character with
+    a combining circumflex (its hat sits on it, and in a third of the bytes of an accent)."""
+    if len(letter) == 1 and "a" <= letter <= "z":
+        return f"<mi>{chr(0x1D41A + ord(letter) - 97)}\u0302</mi>"
+    return f'<mover accent="true"><mi mathvariant="bold">{letter}</mi><mo>^</mo></mover>'
+
+
 class _Display:
     """MathML of a model's expressions, with rates as dots over their coordinate
     (``thetad`` -> θ̇)."""
@@ -403,8 +411,7 @@ class _Display:
                 negative = not isinstance(coefficient, sp.Add) \
                     and coefficient.could_extract_minus_sign()
                 shown = -coefficient if negative else coefficient
-                unit = (f"<msub><mover accent=\"true\"><mi mathvariant=\"bold\">"
-                        f"{frame.name.lower()}</mi><mo>^</mo></mover><mi>{axis}</mi></msub>")
+                unit = f"<msub>{_hat(frame.name.lower())}<mi>{axis}</mi></msub>"
                 if shown == 1:
                     term = unit
                 elif isinstance(shown, sp.Add):

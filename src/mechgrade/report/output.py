@@ -580,6 +580,8 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
     from .fbd import fbd_svg
 
     def figure(svg: str) -> Markup:
+        # inline in HTML an svg element is SVG's without its namespace said
+        svg = svg.replace(' xmlns="http://www.w3.org/2000/svg"', "", 1)
         return Markup(svg if markers is None else shared_markers(svg, markers))
 
     diagrams = [figure(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
@@ -595,7 +597,11 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
                      "title": worked.title,
                      "picture": figure(worked.picture) if worked.picture else "",
                      "steps": steps}}
-    return Markup(_render(_template(env, "worked.html.j2"), context))
+    # an apostrophe needs no escape in text or in an attribute in double quotes (the only
+    # kind the shipped template writes): every student's page carries some seventy of them
+    html = _render(_template(env, "worked.html.j2"), context)
+    return Markup(html if templates_dir is not None
+                  else html.replace("&#39;", "'").replace("&#x27;", "'"))
 
 
 _MARKER = re.compile(r'<marker id="([^"]+)"([^>]*)>(.*?)</marker>\n?', re.S)

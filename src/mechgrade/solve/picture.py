@@ -325,7 +325,9 @@ BLOCK = 14.0
 HALO = 'paint-order="stroke" stroke="#fff" stroke-width="3" stroke-linejoin="round"'
 """Labels stay readable where they cross a line."""
 _CANDIDATES = ((7, -7, "start"), (7, 18, "start"), (-7, -7, "end"), (-7, 18, "end"),
-               (0, -12, "middle"), (0, 24, "middle"), (12, 5, "start"), (-12, 5, "end"))
+               (0, -12, "middle"), (0, 24, "middle"), (12, 5, "start"), (-12, 5, "end"),
+               # clear of a block drawn on the point (BLOCK px each way, turned any angle)
+               (24, 5, "start"), (-24, 5, "end"), (0, -24, "middle"), (0, 36, "middle"))
 """Where a point's label may go, relative to the point (px) and how it is anchored: the first
 that overlaps no label and crosses no line drawn is taken."""
 
@@ -381,12 +383,11 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
 
     sheet = _Sheet([f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {WIDTH:g} {HEIGHT:g}" '
                     f'width="{WIDTH:g}" height="{HEIGHT:g}" role="img" '
-                    f'aria-labelledby="{ident}-title" aria-describedby="{ident}-desc" '
                     f'class="mechanism" font-family="system-ui, sans-serif" font-size="13">',
-                    f'<title id="{ident}-title">{escape(s.title or s.problem)}: the mechanism at '
-                    f'the instant, its {"bodies, supports, " if s.bodies else ""}points and '
-                    f'frames{motion}</title>',
-                    f'<desc id="{ident}-desc">{escape(described(s, legend))}</desc>', "<defs>"],
+                    # an image's first title and desc are its name and description
+                    f'<title>{escape(s.title or s.problem)}: the mechanism at '
+                    f'the instant</title>',
+                    f'<desc>{escape(described(s, legend))}</desc>', "<defs>"],
                    [], [], [])
     for name, colour in (("v", VELOCITY), ("a", ACCELERATION), ("f", FRAME)):
         sheet.out.append(f'<marker id="{ident}-{name}" viewBox="0 0 10 10" refX="9" refY="5" '
@@ -711,6 +712,8 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
         else:
             n = (-down[0], -down[1])
         angle = math.degrees(math.atan2(n[0], -n[1]))
+        reach = BLOCK * (abs(n[0]) + abs(n[1]))  # half the turned square's width
+        sheet.boxes.append((x - reach, y - reach, x + reach, y + reach))  # no label on it
         sheet.out.append(f'<rect {cls} x="{x - BLOCK:.0f}" y="{y - BLOCK:.0f}" '
                          f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" {style} '
                          f'transform="rotate({angle:.0f} {x:.0f} {y:.0f})"/>')
