@@ -162,8 +162,8 @@ def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ..
                        for i, e in enumerate(k.position + k.velocity)]
     steps = [Step("frames", "Frames and their angular velocities", text["Frames"],
                   tuple(frame_rows)),
-             Step("points", "Where the points are", text["Points"]
-                  + text.get("Definitions", ())),
+             Step("points", "Where the points are", text.get("Definitions", ()),
+                  tuple(_position_rows(problem, model, show))),
              Step("constraints", "Constraints and degrees of freedom",
                   text["Constraints"] + text["Degrees of freedom"], tuple(constraint_rows))]
     for kind in ("vel", "acc"):
@@ -171,6 +171,19 @@ def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ..
             if p.origin is not None:
                 steps.append(_motion_step(problem, model, show, p.name, kind))
     return tuple(steps)
+
+
+def _position_rows(problem: Problem, model, show: "_Display"):
+    """Each located point's position from its origin, as a textbook writes it (r with the
+    subscript P/O, along the frames' unit vectors)."""
+    for p in problem.points:
+        if p.origin is None or p.position is None:
+            continue
+        r = model.plain(model.positions[p.name] - model.positions[p.origin])
+        label = (f'<msub><mi mathvariant="bold">r</mi><mrow><mi>{p.name}</mi><mo>/</mo>'
+                 f"<mi>{p.origin}</mi></mrow></msub>")
+        yield Row(f"pos-{p.name}", show.equation(label, r),
+                  f"r_{p.name}/{p.origin} = {_vector_text(r)}")
 
 
 def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: str) -> Step:

@@ -588,7 +588,8 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
                 for d in worked.diagrams]
     steps = [{"anchor": step.anchor, "title": Markup(textbook_html(step.title, False)),
               "lines": [Markup(textbook_html(line)) for line in step.lines],
-              "rows": [{"anchor": row.anchor, "text": row.text,
+              # a row is a link's target only when a mistake happens in it (its codes)
+              "rows": [{"anchor": row.anchor if row.codes else "", "text": row.text,
                         "caption": Markup(textbook_html(row.caption, False)),
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
