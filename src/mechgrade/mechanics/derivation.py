@@ -380,6 +380,30 @@ def _hat(letter: str) -> str:
     return f'<mover accent="true"><mi mathvariant="bold">{letter}</mi><mo>^</mo></mover>'
 
 
+_SHORT = re.compile(r"<mi>([acegm-su-z\u03b1\u03b3\u03b5\u03b7\u03b9\u03ba\u03bc\u03bd"
+                    r"\u03c0\u03c1\u03c3-\u03c5\u03c7\u03c9])</mi>")
+
+
+def _dotted(base: str, combining: str) -> str | None:
+    """A rate's letter with its dots as combining marks (ẋ: a fifth of the bytes of the dots
+    set over it), for a small letter with no ascender in a coordinate ``x`` or ``x_1``: the
+    letter in math italic (an ``<mi>`` of two characters is set upright), the dots on it, the
+    subscript beside; ``None`` for any other letter (Chromium sets the dots of θ̇ on the θ).
+
+    >>> _dotted("<msub><mi>x</mi><mi>1</mi></msub>", "\u0307") == "<msub><mi>\U0001d465\u0307</mi><mi>1</mi></msub>"
+    True
+    >>> _dotted("<mi>θ</mi>", "\u0307") is None
+    True
+    """
+    m = re.fullmatch(r"(<msub>)?" + _SHORT.pattern + r"(.*</msub>)?", base)
+    if m is None or bool(m.group(1)) != bool(m.group(3)):
+        return None
+    letter = m.group(2)
+    italic = chr(0x1D44E + ord(letter) - 97) if letter.isascii() \
+        else chr(0x1D6FC + ord(letter) - 0x3B1)
+    return f"{m.group(1) or ''}<mi>{italic}{combining}</mi>{m.group(3) or ''}"
+
+
 class _Display:
     """MathML of a model's expressions, with rates as dots over their coordinate
     (``thetad`` -> θ̇)."""
@@ -391,10 +415,11 @@ class _Display:
         for i, (q, qd, qdd) in enumerate(zip(symbols.q, symbols.qd, symbols.qdd)):
             base = sp.printing.mathml(q, printer="presentation")
             # the bullet operator: the dot above (U+02D9) is a pixel at text size in Chromium
-            for symbol, mark, name in ((qd, "&#8729;", f"zzrate{i}x"),
-                                       (qdd, "&#8729;&#8729;", f"zzrate{i}xx")):
+            for symbol, mark, name, combining in ((qd, "&#8729;", f"zzrate{i}x", "\u0307"),
+                                                  (qdd, "&#8729;&#8729;", f"zzrate{i}xx",
+                                                   "\u0308")):
                 self.swap[symbol] = sp.Symbol(name, real=True)
-                self.marks[f"<mi>{name}</mi>"] = \
+                self.marks[f"<mi>{name}</mi>"] = _dotted(base, combining) or \
                     f'<mover accent="true">{base}<mo>{mark}</mo></mover>'
 
     def _inner(self, expr) -> str:

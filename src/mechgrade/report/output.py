@@ -536,11 +536,15 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
             marked[anchor(answer.problem, place)] + "; " + note
             if anchor(answer.problem, place) in marked else note)
     fragments = pages.markdown if markdown else pages.html
-    highlight = "".join(
-        f"#{ident} {{ background: #fff4e5; outline: 2px solid #f0b429; }}\n"
-        f"#{ident}::before {{ content: {_css_string(note)}; display: block; color: #8d6b00; "
-        f"font-weight: 600; font-size: .85rem; font-family: system-ui, sans-serif; }}\n"
-        for ident, note in marked.items())
+    # the marked steps share their look (said once), each its own note
+    highlight = "" if not marked else (
+        ",".join(f"#{ident}" for ident in marked)
+        + "{background:#fff4e5;outline:2px solid #f0b429}\n"
+        + ",".join(f"#{ident}::before" for ident in marked)
+        + "{display:block;color:#8d6b00;font-weight:600;font-size:.85rem;"
+          "font-family:system-ui,sans-serif}\n"
+        + "".join(f"#{ident}::before{{content:{_css_string(note)}}}\n"
+                  for ident, note in marked.items()))
     return {"worked": [{"problem": w.problem, "fragment": fragments[id(w)]} for w in mine],
             "highlight": "" if markdown else Markup(highlight), "mistake_steps": steps,
             "markers": "" if markdown else Markup(pages.markers)}
@@ -701,13 +705,13 @@ def shorten(text: str, limit: int = 60) -> str:
 
 
 def _css_string(text: str) -> str:
-    """``text`` as a CSS string: every character but letters, digits and spaces escaped, so
-    no text can end the string or the style element.
+    """``text`` as a CSS string: what could end the string or the style element escaped (a
+    quote, a backslash, ``<`` and ``>``, a character that does not print), the rest as it is.
 
-    >>> print(_css_string('a "b" </style>'))
-    "a \\22 b\\22  \\3c \\2f style\\3e "
+    >>> print(_css_string('a "b" </style> θ̇’s'))
+    "a \\22 b\\22  \\3c /style\\3e  θ̇’s"
     """
-    return '"' + "".join(c if c.isascii() and (c.isalnum() or c == " ") else f"\\{ord(c):x} "
+    return '"' + "".join(f"\\{ord(c):x} " if c in '"\\<>' or not c.isprintable() else c
                          for c in text) + '"'
 
 
