@@ -584,8 +584,6 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
     from .fbd import fbd_svg
 
     def figure(svg: str) -> Markup:
-        # inline in HTML an svg element is SVG's without its namespace said
-        svg = svg.replace(' xmlns="http://www.w3.org/2000/svg"', "", 1)
         return Markup(svg if markers is None else shared_markers(svg, markers))
 
     diagrams = [figure(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))

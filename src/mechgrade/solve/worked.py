@@ -134,7 +134,7 @@ def worked_solution(problem: Problem, solution: Solution,
                      for g in _same_value(m, results[o.id].generated_mistakes))
     diagrams = free_body_diagrams(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
-                          picture_svg(drawing) if drawable(drawing) else "", places, declared,
+                          picture_svg(drawing, inline=True) if drawable(drawing) else "", places, declared,
                           diagrams, DIAGRAM_STEP if diagrams else "",
                           EQUATIONS_STEP if any(s.anchor == EQUATIONS_STEP for s in steps)
                           else "")
