@@ -383,20 +383,21 @@ def template_environment(templates_dir: str | Path | None = None):
 
 
 _CSS_COMMENT = re.compile(r"/\*.*?\*/", re.S)
-_CSS_PUNCTUATION = re.compile(r" ?([{};,]) ?|(:) ")
+_CSS_PUNCTUATION = re.compile(r" ?([{};,>]) ?|(:) ")
 
 
 @lru_cache(maxsize=8)  # a page's sheet is the same for every student: made once
 def compact_css(text: str) -> str:
     """A template's style sheet in fewer bytes (every student's page carries it): comments
-    left out, white space one space, none around braces, semicolons and commas or after a
-    colon. Only for the templates' own style sheets: a space in a CSS string stays one.
+    left out, white space one space, none around braces, semicolons, commas and child
+    combinators or after a colon, no semicolon before a closing brace. Only for the
+    templates' own style sheets: a space in a CSS string stays one.
 
-    >>> compact_css("  .a b { color: #000;  /* why */\\n  margin: 0 1px; }\\n  a, p { }")
-    '.a b{color:#000;margin:0 1px;}a,p{}'
+    >>> compact_css("  .a > b { color: #000;  /* why */\\n  margin: 0 1px; }\\n  a, p { }")
+    '.a>b{color:#000;margin:0 1px}a,p{}'
     """
     text = " ".join(_CSS_COMMENT.sub("", text).split())
-    return _CSS_PUNCTUATION.sub(lambda m: m.group(1) or m.group(2), text)
+    return _CSS_PUNCTUATION.sub(lambda m: m.group(1) or m.group(2), text).replace(";}", "}")
 
 
 @lru_cache(maxsize=None)
@@ -506,7 +507,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
 
     mine = pages.worked.for_student(student)
     by_problem = {w.problem: w for w in mine}
-    marked: dict[str, str] = {}
+    marked: dict[str, dict[str, list[str]]] = {}  # step: mistake: the answers
     steps: dict[str, dict] = {}
     for answer in student.answers:
         worked = by_problem.get(answer.problem)
@@ -531,10 +532,12 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
-        note = textbook(f"Your answer to “{shorten(prompt)}”: {said}", False)
-        marked[anchor(answer.problem, place)] = (
-            marked[anchor(answer.problem, place)] + "; " + note
-            if anchor(answer.problem, place) in marked else note)
+        # a step's note names each mistake once, with the answers it is in
+        marked.setdefault(anchor(answer.problem, place), {}).setdefault(
+            said[:1].upper() + said[1:], []).append(f"“{shorten(prompt, 40)}”")
+    notes = {ident: textbook("; ".join(
+        f"{said}: your answer{'s' if len(asked) > 1 else ''} to {', '.join(asked)}"
+        for said, asked in mistakes.items()), False) for ident, mistakes in marked.items()}
     fragments = pages.markdown if markdown else pages.html
     # the marked steps share their look (said once), each its own note
     highlight = "" if not marked else (
@@ -544,7 +547,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         + "{display:block;color:#8d6b00;font-weight:600;font-size:.85rem;"
           "font-family:system-ui,sans-serif}\n"
         + "".join(f"#{ident}::before{{content:{_css_string(note)}}}\n"
-                  for ident, note in marked.items()))
+                  for ident, note in notes.items()))
     return {"worked": [{"problem": w.problem, "fragment": fragments[id(w)]} for w in mine],
             "highlight": "" if markdown else Markup(highlight), "mistake_steps": steps,
             "markers": "" if markdown else Markup(pages.markers)}
