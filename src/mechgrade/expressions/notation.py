@@ -71,7 +71,7 @@ def _rewritten(text: str, rates: bool, show) -> str:
         primes = _PRIMES.match(text, m.end())
         rate = None if primes is None or text[m.start() - 1:m.start()] == "'" \
             else _symbol(name + "d" * len(primes.group(0)), True)
-        if rate is not None:  # x' is ẋ, in prose too
+        if rate is not None and primes is not None:  # x' is ẋ, in prose too
             out += [text[last:m.start()], show(*rate)]
             last = primes.end()
             continue

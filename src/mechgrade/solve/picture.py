@@ -466,11 +466,14 @@ def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> 
         sheet.out.append(f'<text x="42" y="{y:g}" fill="{colour}" font-size="12">'
                          f'{escape(text)}</text>')
     sheet.out.append("</svg>")
-    if not inline:
-        return "\n".join(sheet.out) + "\n"
-    return "".join(sheet.out).replace(HALO, 'class="halo"').replace(_OWN_STYLE[0], "").replace(
-        _OWN_STYLE[1], "").replace(
-        _GROUND.format(w=WIDTH, h=HEIGHT), "")
+    return _inlined(sheet.out) if inline else "\n".join(sheet.out) + "\n"
+
+
+def _inlined(out: list[str]) -> str:
+    """A picture's elements for a page that styles every picture (``.mechanism``): what it
+    would say again left out, no line breaks."""
+    return "".join(out).replace(HALO, 'class="halo"').replace(_OWN_STYLE[0], "").replace(
+        _OWN_STYLE[1], "").replace(_GROUND.format(w=WIDTH, h=HEIGHT), "")
 
 
 def _legend(s: Scene, shown) -> list[tuple[str, str, str, str, float]]:
