@@ -31,8 +31,8 @@ def test_the_html_solution_composes_the_acceleration_term_by_term_offline():
 
 def test_rates_are_written_with_dots_and_vectors_with_their_frames():
     text = _solve("--steps", "--format", "html")
-    dot_q = '<mover><mi>q</mi><mo>∙</mo></mover>'
-    ddot_q = '<mover><mi>q</mi><mo>∙∙</mo></mover>'
+    # q: a small letter with no ascender, in math italic with combining dots
+    dot_q, ddot_q = '<mi>\U0001d45e\u0307</mi>', '<mi>\U0001d45e\u0308</mi>'
     assert dot_q in text and ddot_q in text and "<mi>qd</mi>" not in text
     # the Coriolis term 2 ^N omega^B x ^B v^P = -2 q' y' b_x
     assert ("<mn>2</mn><mmultiscripts><mi mathvariant=\"bold\">ω</mi><none/><mi>B</mi>"
