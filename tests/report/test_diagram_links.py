@@ -42,7 +42,7 @@ def test_a_wrong_diagram_links_to_the_free_body_diagrams_step(tmp_path):
     assert balances in page
     # her incline equations leave N open: the balances show the one missing
     assert f'<a href="#{anchor("block_sliding_down_incline", "kinetics-momentum-balances")}">' in page
-    assert "The equations do not determine x" in page
+    assert "The equations do not determine \u1e8d" in page  # ẍ, as the note writes it
     mia = (tmp_path / "out" / "feedback" / "mia.html").read_text(encoding="utf-8")
     # kai's equations are right: nothing links to the balances
     kai = (tmp_path / "out" / "feedback" / "kai.html").read_text(encoding="utf-8")

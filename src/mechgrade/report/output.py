@@ -534,7 +534,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
             "title": markdown_escape(title) if markdown else title}
         # a step's note names each mistake once, with the answers it is in
         marked.setdefault(anchor(answer.problem, place), {}).setdefault(
-            said[:1].upper() + said[1:], []).append(f"“{shorten(prompt, 40)}”")
+            said.rstrip(". "), []).append(f"“{shorten(prompt, 40)}”")
     notes = {ident: textbook("; ".join(
         f"{said}: your answer{'s' if len(asked) > 1 else ''} to {', '.join(asked)}"
         for said, asked in mistakes.items()), False) for ident, mistakes in marked.items()}
