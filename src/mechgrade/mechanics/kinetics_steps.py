@@ -198,7 +198,7 @@ def _loads(problem: Problem, matrix_math, text) -> Step:
                         f"{symbol if symbol == 'W' else symbol + '_' + load.name} = "
                         f"{text(value)}", codes, words))
     return Step("kinetics-free-body-loads", "Free-body loads",
-                ("Each body cut free, with every load on it (the diagrams below).",),
+                ("Each body cut free, with every load on it.",),
                 tuple(rows))
 
 
