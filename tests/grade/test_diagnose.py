@@ -232,8 +232,8 @@ def test_two_families_of_one_value_are_both_named_once_each():
     judged = assess("(-106, -40, 0) ft/s^2", _with_generated(WEIGHT, PUSH))
     assert judged.diagnosis == "weight left out or an applied force left out"
     assert judged.feedback == (
-        "Either mistake gives your value. Your value is what the balances give without the "
-        "weight. Or: Your value is what the balances give without the push.")
+        "Your value is what the balances give without the weight. It is also what the "
+        "balances give without the push.")
 
 
 def test_two_families_within_the_tolerance_of_each_other_fit_equally():

@@ -17,20 +17,22 @@ def _solve(*args):
 
 def test_the_html_solution_composes_the_acceleration_term_by_term_offline():
     text = _solve("--steps", "--format", "html")
-    # omega and alpha of B; velocity: 2 terms and the sum; acceleration: 4 terms and the sum
-    # each row lays its math out inline (the page's style): no display attribute to carry
-    assert text.count('<math ') == 2 + 3 + 5 and 'display="block"' not in text
+    # omega and alpha of B; P's position; velocity: 2 terms and the sum; acceleration: 4 terms
+    # and the sum; each row lays its math out inline (the page's style): no display attribute
+    assert text.count('<math ') == 2 + 1 + 3 + 5 and 'display="block"' not in text
     for anchor in ("acc-P-alpha_r", "acc-P-omega_omega_r", "acc-P-coriolis", "acc-P-relative",
-                   "acc-P-total", "answer-a_P_N", "givens"):
+                   "acc-P", "answer-a_P_N", "givens"):
         assert f'id="{row_id("ruina_10_4_10_7_rotating_tube_accel", anchor)}"' in text
+    # a row no mistake happens in is no link's target: it carries no id (every page has it)
+    assert f'id="{row_id("ruina_10_4_10_7_rotating_tube_accel", "acc-P-total")}"' not in text
     assert "<svg" in text and "<script" not in text
     assert "http" not in text.replace("http://www.w3.org/2000/svg", "")  # offline: no CDN
 
 
 def test_rates_are_written_with_dots_and_vectors_with_their_frames():
     text = _solve("--steps", "--format", "html")
-    dot_q = '<mover><mi>q</mi><mo>∙</mo></mover>'
-    ddot_q = '<mover><mi>q</mi><mo>∙∙</mo></mover>'
+    # q: a small letter with no ascender, in math italic with combining dots
+    dot_q, ddot_q = '<mi>\U0001d45e\u0307</mi>', '<mi>\U0001d45e\u0308</mi>'
     assert dot_q in text and ddot_q in text and "<mi>qd</mi>" not in text
     # the Coriolis term 2 ^N omega^B x ^B v^P = -2 q' y' b_x
     assert ("<mn>2</mn><mmultiscripts><mi mathvariant=\"bold\">ω</mi><none/><mi>B</mi>"
@@ -45,7 +47,7 @@ def test_the_markdown_solution_lists_every_step_and_the_answers():
     # the model's names as a textbook writes them, no code (issue 20)
     assert "- `2 ω x B v,P = - 2·q\u0307·\u1e8f·B.x`" in text
     assert "- `= (-66, -40, 0) ft/s² in frame N`" in text
-    assert "- `q'' = 3 rad/s²`" in text
+    assert "- `q\u0308 = 3 rad/s²`" in text  # the given q'' as a textbook writes it
 
 
 def test_author_text_with_backticks_stays_literal_in_the_markdown():

@@ -172,3 +172,22 @@ def test_a_body_given_by_its_inertia_entries_is_a_box_not_a_dot():
     svg = picture_svg(s)
     assert re.search(r'<rect class="body" data-body="drum" [^>]*rx="14"', svg)
     assert '<circle class="body"' not in svg
+
+
+def test_a_points_label_keeps_off_the_block_drawn_on_it():
+    # the Atwood machine's O and P1 coincide at block 1: their label "O, P1" sat on the block
+    svg = picture_svg(_given_scene("atwood_machine"))
+    blocks = [tuple(int(v) for v in m) for m in re.findall(
+        r'data-body="block\d" x="(-?\d+)" y="(-?\d+)" width="(\d+)" height="(\d+)"', svg)]
+    (x, y), = [tuple(int(v) for v in m) for m in re.findall(r'<text x="(\d+)" y="(\d+)"[^>]*>O, P1<', svg)]
+    width = 8.6 * len("O, P1")  # as the picture reckons a label's width
+    for bx, by, bw, bh in blocks:
+        assert x + width <= bx or x >= bx + bw or y <= by or y - 12 >= by + bh, (x, y, bx, by)
+
+
+def test_a_picture_inline_leaves_its_style_to_the_page_and_on_its_own_keeps_it():
+    s = _given_scene("atwood_machine")
+    alone, inline = picture_svg(s), picture_svg(s, inline=True)
+    assert alone.startswith('<svg xmlns="http://www.w3.org/2000/svg"') and "paint-order" in alone
+    assert 'xmlns' not in inline and "paint-order" not in inline and "\n" not in inline
+    assert inline.count('class="halo"') == alone.count('paint-order="stroke"')

@@ -57,10 +57,24 @@ def _plain_sub(letter: str, sub: str) -> str:
     return f"{letter} {textbook(sub)}" if sub else letter
 
 
+# a given's rate as the answer syntax writes it (x', theta''): a prime or two after a name,
+# not closing a quotation ('x') nor an apostrophe's (block's)
+_PRIMES = re.compile(r"'{1,2}(?![\w'])")
+
+
 def _rewritten(text: str, rates: bool, show) -> str:
     out, last = [], 0
     for m in _NAME.finditer(text):
+        if m.start() < last:
+            continue  # inside a name's primes already written
         name = m.group(1)
+        primes = _PRIMES.match(text, m.end())
+        rate = None if primes is None or text[m.start() - 1:m.start()] == "'" \
+            else _symbol(name + "d" * len(primes.group(0)), True)
+        if rate is not None and primes is not None:  # x' is ẋ, in prose too
+            out += [text[last:m.start()], show(*rate)]
+            last = primes.end()
+            continue
         after = text[m.end():m.end() + 1]
         # a call's name, or a unit after its number (``0.25 g0``, standard gravity; a Greek
         # letter's name is no unit: ``2 omega x v``)
@@ -88,6 +102,8 @@ def textbook(text: str, rates: bool = True) -> str:
     'L·sqrt(θ̈² + θ̇⁴) kg·m² R O,x N.y'
     >>> textbook("2.453 m/s^2 (0.2501 g0)")
     '2.453 m/s² (0.2501 g0)'
+    >>> textbook("check x' and theta'' (the key 'x', block's)", rates=False)
+    "check ẋ and θ̈ (the key 'x', block's)"
     """
     def show(name, sub):
         return name if sub is None else _plain_sub(name, sub)

@@ -240,16 +240,22 @@ def _both(first: Diagnosis, second: Diagnosis) -> Diagnosis | None:
     >>> both.label
     'weight left out or an applied force left out'
     >>> both.message
-    'Either mistake gives your value. The weight was left out. Or: The push was left out.'
+    'The weight was left out. Or: The push was left out.'
+    >>> c = Diagnosis("given_sign", "given rate's sign flipped",
+    ...               "Your value is what x' with the opposite sign gives: check x'.")
+    >>> _both(a, c).message
+    "The weight was left out. It is also what x' with the opposite sign gives: check x'."
     >>> _both(a, a) is None
     True
     """
     if first.code == second.code or first.label == second.label:
         return None
+    # one sentence a reading: the second says "also" rather than the first's opening again
+    lead = "Your value is what "
+    other = _sentence(second.message)
+    other = "It is also what " + other[len(lead):] if other.startswith(lead) else "Or: " + other
     return Diagnosis(first.code, f"{first.label} or {second.label}",
-                     f"Either mistake gives your value. {_sentence(first.message)} Or: "
-                     f"{_sentence(second.message)}",
-                     also=second.code)
+                     f"{_sentence(first.message)} {other}", also=second.code)
 
 
 def _sentence(message: str) -> str:

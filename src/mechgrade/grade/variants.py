@@ -453,7 +453,7 @@ def handout_sheets(plan, students) -> tuple[Sheet, ...]:
 
     def drawn(problem, solution) -> str:
         picture = scene(problem, solution)
-        return picture_svg(geometry(picture)) if drawable(picture) else ""
+        return picture_svg(geometry(picture), inline=True) if drawable(picture) else ""
 
     assignment = plan.assignment
     seed = assignment.variant_seed

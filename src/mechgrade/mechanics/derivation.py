@@ -93,12 +93,15 @@ class Row:
     """One equation of a worked step: ``math`` its presentation MathML (generated from the
     model, never from student text), ``text`` the same in plain text, ``anchor`` its id on a
     page, ``codes`` the generated-mistake families (:data:`~mechgrade.spec.mistake_codes.MODEL_CODES`) that leave
-    this very term out, so a feedback page can point at it."""
+    this very term out, so a feedback page can point at it; ``caption`` what the equation is
+    of, in words (``rod: N.x force balance``), shown before it (``text`` is the equation's
+    alone)."""
 
     anchor: str
     math: str
     text: str
     codes: tuple[str, ...] = ()
+    caption: str = ""
 
 
 @dataclass(frozen=True)
@@ -159,8 +162,8 @@ def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ..
                        for i, e in enumerate(k.position + k.velocity)]
     steps = [Step("frames", "Frames and their angular velocities", text["Frames"],
                   tuple(frame_rows)),
-             Step("points", "Where the points are", text["Points"]
-                  + text.get("Definitions", ())),
+             Step("points", "Where the points are", text.get("Definitions", ()),
+                  tuple(_position_rows(problem, model, show))),
              Step("constraints", "Constraints and degrees of freedom",
                   text["Constraints"] + text["Degrees of freedom"], tuple(constraint_rows))]
     for kind in ("vel", "acc"):
@@ -168,6 +171,19 @@ def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ..
             if p.origin is not None:
                 steps.append(_motion_step(problem, model, show, p.name, kind))
     return tuple(steps)
+
+
+def _position_rows(problem: Problem, model, show: "_Display"):
+    """Each located point's position from its origin, as a textbook writes it (r with the
+    subscript P/O, along the frames' unit vectors)."""
+    for p in problem.points:
+        if p.origin is None or p.position is None:
+            continue
+        r = model.plain(model.positions[p.name] - model.positions[p.origin])
+        label = (f'<msub><mi mathvariant="bold">r</mi><mrow><mi>{p.name}</mi><mo>/</mo>'
+                 f"<mi>{p.origin}</mi></mrow></msub>")
+        yield Row(f"pos-{p.name}", show.equation(label, r),
+                  f"r_{p.name}/{p.origin} = {_vector_text(r)}")
 
 
 def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: str) -> Step:
@@ -356,6 +372,38 @@ def _compact(element: ET.Element) -> None:
         i += 1
 
 
+def _hat(letter: str) -> str:
+    """A frame's unit vector's letter, bold with a hat: one letter as the bold character with
+    a combining circumflex (its hat sits on it, and in a third of the bytes of an accent)."""
+    if len(letter) == 1 and "a" <= letter <= "z":
+        return f"<mi>{chr(0x1D41A + ord(letter) - 97)}\u0302</mi>"
+    return f'<mover accent="true"><mi mathvariant="bold">{letter}</mi><mo>^</mo></mover>'
+
+
+_SHORT = re.compile(r"<mi>([acegm-su-z\u03b1\u03b3\u03b5\u03b7\u03b9\u03ba\u03bc\u03bd"
+                    r"\u03c0\u03c1\u03c3-\u03c5\u03c7\u03c9])</mi>")
+
+
+def _dotted(base: str, combining: str) -> str | None:
+    """A rate's letter with its dots as combining marks (ẋ: a fifth of the bytes of the dots
+    set over it), for a small letter with no ascender in a coordinate ``x`` or ``x_1``: the
+    letter in math italic (an ``<mi>`` of two characters is set upright), the dots on it, the
+    subscript beside; ``None`` for any other letter (Chromium sets the dots of θ̇ on the θ).
+
+    >>> _dotted("<msub><mi>x</mi><mi>1</mi></msub>", "\u0307") == "<msub><mi>\U0001d465\u0307</mi><mi>1</mi></msub>"
+    True
+    >>> _dotted("<mi>θ</mi>", "\u0307") is None
+    True
+    """
+    m = re.fullmatch(r"(<msub>)?" + _SHORT.pattern + r"(.*</msub>)?", base)
+    if m is None or bool(m.group(1)) != bool(m.group(3)):
+        return None
+    letter = m.group(2)
+    italic = chr(0x1D44E + ord(letter) - 97) if letter.isascii() \
+        else chr(0x1D6FC + ord(letter) - 0x3B1)
+    return f"{m.group(1) or ''}<mi>{italic}{combining}</mi>{m.group(3) or ''}"
+
+
 class _Display:
     """MathML of a model's expressions, with rates as dots over their coordinate
     (``thetad`` -> θ̇)."""
@@ -367,10 +415,11 @@ class _Display:
         for i, (q, qd, qdd) in enumerate(zip(symbols.q, symbols.qd, symbols.qdd)):
             base = sp.printing.mathml(q, printer="presentation")
             # the bullet operator: the dot above (U+02D9) is a pixel at text size in Chromium
-            for symbol, mark, name in ((qd, "&#8729;", f"zzrate{i}x"),
-                                       (qdd, "&#8729;&#8729;", f"zzrate{i}xx")):
+            for symbol, mark, name, combining in ((qd, "&#8729;", f"zzrate{i}x", "\u0307"),
+                                                  (qdd, "&#8729;&#8729;", f"zzrate{i}xx",
+                                                   "\u0308")):
                 self.swap[symbol] = sp.Symbol(name, real=True)
-                self.marks[f"<mi>{name}</mi>"] = \
+                self.marks[f"<mi>{name}</mi>"] = _dotted(base, combining) or \
                     f'<mover accent="true">{base}<mo>{mark}</mo></mover>'
 
     def _inner(self, expr) -> str:
@@ -400,8 +449,7 @@ class _Display:
                 negative = not isinstance(coefficient, sp.Add) \
                     and coefficient.could_extract_minus_sign()
                 shown = -coefficient if negative else coefficient
-                unit = (f"<msub><mover accent=\"true\"><mi mathvariant=\"bold\">"
-                        f"{frame.name.lower()}</mi><mo>^</mo></mover><mi>{axis}</mi></msub>")
+                unit = f"<msub>{_hat(frame.name.lower())}<mi>{axis}</mi></msub>"
                 if shown == 1:
                     term = unit
                 elif isinstance(shown, sp.Add):

@@ -116,28 +116,10 @@ def _text(expr) -> str:
     return sp.sstr(expr)
 
 
-def _label(words: str, math: str) -> str:
-    return compact_math(f'<math display="block"><mrow>{_caption(words)}{math}</mrow></math>')
-
-
-def _caption(words: str) -> str:
-    """A row's caption before its equation, a load's name set as a textbook sets it (``N_P``:
-    N with the subscript P), not as the file spells it.
-
-    >>> print(_caption("rod, pin reaction R_O at O"))
-    <mtext>rod, pin reaction&#160;</mtext><msub><mi>R</mi><mi>O</mi></msub><mtext>&#160;at O:&#160;</mtext>
-    """
-    parts = re.split(r"\b([A-Za-z]+)_([A-Za-z0-9]+)\b", words + ":\u00a0")
-    out = []
-    for i in range(0, len(parts), 3):
-        # a token's own spaces at its ends are not drawn: the no-break space is
-        text = re.sub(r"^ | $", "\u00a0", parts[i])
-        if text:
-            out.append(f"<mtext>{escape(text)}</mtext>".replace("\u00a0", "&#160;"))
-        if i + 2 < len(parts):
-            out.append(f"<msub><mi>{escape(parts[i + 1])}</mi><mi>{escape(parts[i + 2])}</mi>"
-                       "</msub>")
-    return "".join(out)
+def _block(math: str) -> str:
+    """A row's equation as display MathML; its caption (what it is of) is the row's own
+    text (:attr:`Row.caption`), set by the page in words before it."""
+    return compact_math(f'<math display="block">{math}</math>')
 
 
 def _bodies(problem: Problem, model, expr_math) -> Step:
@@ -150,14 +132,14 @@ def _bodies(problem: Problem, model, expr_math) -> Step:
         mass_math = expr_math(model.plain(mass))
         if b.frame is None:
             lines.append(f"{b.name}: a particle at {b.centre}")
-            rows.append(Row(f"body-{b.name}", _label(f"{b.name}, mass", mass_math),
-                            f"{b.name}: m = {sp.sstr(model.plain(mass))}"))
+            rows.append(Row(f"body-{b.name}", _block(mass_math),
+                            f"m = {sp.sstr(model.plain(mass))}", caption=f"{b.name}, mass"))
             continue
         frame = model.frames[b.frame]
         lines.append(f"{b.name}: a rigid body turning with frame {b.frame}, its momentum "
                      f"balances about {b.centre}")
-        rows.append(Row(f"body-{b.name}", _label(f"{b.name}, mass", mass_math),
-                        f"{b.name}: m = {sp.sstr(model.plain(mass))}"))
+        rows.append(Row(f"body-{b.name}", _block(mass_math),
+                        f"m = {sp.sstr(model.plain(mass))}", caption=f"{b.name}, mass"))
         total = Dyadic(0)
         for m, at, central in parts:
             offset = model.positions[at] - model.positions[b.centre]
@@ -165,18 +147,18 @@ def _bodies(problem: Problem, model, expr_math) -> Step:
                                    frame)
             if len(parts) > 1 or at != b.centre:
                 own = central.to_matrix(frame) if central is not None else sp.zeros(3, 3)
-                rows.append(Row(f"body-{b.name}-{at}", _label(
-                    f"part of mass {sp.sstr(model.plain(m))} at {at}, about {at}",
+                rows.append(Row(f"body-{b.name}-{at}", _block(
                     _inertia(at, expr_math(model.plain(own)))),
-                    f"I_{at} = {_text(model.plain(own))}"))
+                    f"I_{at} = {_text(model.plain(own))}",
+                    caption=f"part of mass {sp.sstr(model.plain(m))} at {at}, about {at}"))
         matrix = sp.simplify(model.plain(total.to_matrix(frame))) if total != Dyadic(0) \
             else sp.zeros(3, 3)
         shifted = " (parts shifted by the parallel-axis theorem)" if len(parts) > 1 \
             or any(at != b.centre for _, at, _ in parts) else ""
-        rows.append(Row(f"inertia-{b.name}", _label(
-            f"{b.name}, inertia about {b.centre} in {b.frame} axes{shifted}",
-            _inertia(b.centre, expr_math(matrix))),
-            f"I_{b.centre} = {_text(matrix)}", ("other_shape_inertia", "inertia_omitted")))
+        rows.append(Row(f"inertia-{b.name}", _block(_inertia(b.centre, expr_math(matrix))),
+                        f"I_{b.centre} = {_text(matrix)}",
+                        ("other_shape_inertia", "inertia_omitted"),
+                        f"{b.name}, inertia about {b.centre} in {b.frame} axes{shifted}"))
     return Step("kinetics-bodies", "Bodies", tuple(lines), tuple(rows))
 
 
@@ -210,13 +192,13 @@ def _loads(problem: Problem, matrix_math, text) -> Step:
         letter = _vector_name(symbol, load.name)
         if load.kind == LoadKind.WEIGHT:
             symbol, letter = "W", "<mi mathvariant=\"bold\">W</mi>"
-        math = _label(words, f"<mrow>{letter}<mo>=</mo>{matrix_math(value)}</mrow>")
+        math = _block(f"<mrow>{letter}<mo>=</mo>{matrix_math(value)}</mrow>")
         codes = LOAD_CODES.get(load.kind, ())
         rows.append(Row(f"load-{load.body}-{load.name}", math,
-                        f"{words}: {symbol if symbol == 'W' else symbol + '_' + load.name} = "
-                        f"{text(value)}", codes))
+                        f"{symbol if symbol == 'W' else symbol + '_' + load.name} = "
+                        f"{text(value)}", codes, words))
     return Step("kinetics-free-body-loads", "Free-body loads",
-                ("Each body cut free, with every load on it (the diagrams below).",),
+                ("Each body cut free, with every load on it.",),
                 tuple(rows))
 
 
@@ -247,16 +229,15 @@ def _work_energy(kin, expr_math, text) -> Step:
                f"<mo>=</mo>{sub.format('T', 2)}<mo>+</mo>{sub.format('V', 2)}</mrow>")
     rows = [Row("energy-balance", f'<math display="block">{balance}</math>',
                 "T1 + V1 + U12 = T2 + V2"),
-            Row("energy-start", _label("at the start", f"<mrow>{sub.format('T', 1)}<mo>=</mo>"
+            Row("energy-start", _block(f"<mrow>{sub.format('T', 1)}<mo>=</mo>"
                                        f"{expr_math(T1)}<mo>,</mo><mspace width=\"1em\"/>"
                                        f"{sub.format('V', 1)}<mo>=</mo>{expr_math(V1)}</mrow>"),
-                f"T1 = {text(T1)}, V1 = {text(V1)}"),
-            Row("energy-T2", _label("kinetic energy at the instant",
-                                    f"<mrow>{sub.format('T', 2)}<mo>=</mo>{expr_math(T2)}</mrow>"),
-                f"T2 = {text(T2)}", ENERGY_CODES),
-            Row("energy-V2", _label("potential energy at the instant",
-                                    f"<mrow>{sub.format('V', 2)}<mo>=</mo>{expr_math(V2)}</mrow>"),
-                f"V2 = {text(V2)}", ("spring_free_length_omitted",))]
+                f"T1 = {text(T1)}, V1 = {text(V1)}", caption="at the start"),
+            Row("energy-T2", _block(f"<mrow>{sub.format('T', 2)}<mo>=</mo>{expr_math(T2)}</mrow>"),
+                f"T2 = {text(T2)}", ENERGY_CODES, "kinetic energy at the instant"),
+            Row("energy-V2", _block(f"<mrow>{sub.format('V', 2)}<mo>=</mo>{expr_math(V2)}</mrow>"),
+                f"V2 = {text(V2)}", ("spring_free_length_omitted",),
+                "potential energy at the instant")]
     if kin.nonconservative:
         work = f"the work of {', '.join(kin.nonconservative)} from the start to the instant"
     else:
@@ -290,9 +271,9 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
             if carried:
                 first_force.update(a.name for a in carried)
                 codes = FORCE_CODES
-        rows.append(Row(f"balance-{i}", _label(words, f"<mrow>{expr_math(e.expr)}<mo>=</mo>"
-                                                      "<mn>0</mn></mrow>"),
-                        f"{words}: {text(e.expr)} = 0", codes))
+        rows.append(Row(f"balance-{i}", _block(f"<mrow>{expr_math(e.expr)}<mo>=</mo>"
+                                               "<mn>0</mn></mrow>"),
+                        f"{text(e.expr)} = 0", codes, words))
     # about a fixed pivot: the moment balance a textbook writes there, free of its reaction
     model = kin.built[0]
     for b in d.bodies:
@@ -310,9 +291,9 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
                       for a in "xy")
             about = sp.expand(sp.simplify(moment + r[0] * fy - r[1] * fx))
             words = f"{b.name}: moment balance about the fixed pivot {pivot} ({N}.z component)"
-            rows.insert(0, Row(f"balance-pivot-{b.name}-{pivot}", _label(
-                words, f"<mrow>{expr_math(about)}<mo>=</mo><mn>0</mn></mrow>"),
-                f"{words}: {text(about)} = 0", MOMENT_CODES))
+            rows.insert(0, Row(f"balance-pivot-{b.name}-{pivot}", _block(
+                f"<mrow>{expr_math(about)}<mo>=</mo><mn>0</mn></mrow>"),
+                f"{text(about)} = 0", MOMENT_CODES, words))
             break
     # the balance along each contact's normal: the one that gives a normal force
     kind = "impulse-momentum" if impact else "force"
@@ -331,12 +312,12 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
             name, t = tangent
             along_t = sp.simplify(sum((p * c for p, c in zip(parts, t)), sp.Integer(0)))
             words_t = f"{load.body}: along the surface of {load.name} ({name})"
-            rows.insert(0, Row(f"balance-surface-{load.body}-{load.name}", _label(
-                words_t, f"<mrow>{expr_math(along_t)}<mo>=</mo><mn>0</mn></mrow>"),
-                f"{words_t}: {text(along_t)} = 0"))
-        rows.insert(0, Row(f"balance-normal-{load.body}-{load.name}", _label(
-            words, f"<mrow>{expr_math(along)}<mo>=</mo><mn>0</mn></mrow>"),
-            f"{words}: {text(along)} = 0", NORMAL_CODES))
+            rows.insert(0, Row(f"balance-surface-{load.body}-{load.name}", _block(
+                f"<mrow>{expr_math(along_t)}<mo>=</mo><mn>0</mn></mrow>"),
+                f"{text(along_t)} = 0", caption=words_t))
+        rows.insert(0, Row(f"balance-normal-{load.body}-{load.name}", _block(
+            f"<mrow>{expr_math(along)}<mo>=</mo><mn>0</mn></mrow>"),
+            f"{text(along)} = 0", NORMAL_CODES, words))
     lines: tuple[str, ...] = ("Newton-Euler for each body: the sum of the loads equals the rate of change of "
              "its momentum (an impact: the impulses equal its change), in "
              f"{N}'s components; the moments about each rigid body's reference point.",)
@@ -375,6 +356,6 @@ def _solution(problem: Problem, kin, shown: dict, expr_math) -> Step:
              f"{len(kin.balances)} momentum balances and {len(kin.constraints)} {level}-level "
              "constraints, linear in the unknowns, solved together (rank and every equation "
              "checked).")
-    row = Row("unknowns", _label("unknowns", f"<mrow>{listing}</mrow>"),
-              "unknowns: " + ", ".join(str(n) for n in names))
+    row = Row("unknowns", _block(f"<mrow>{listing}</mrow>"),
+              ", ".join(str(n) for n in names), caption="unknowns")
     return Step("kinetics-solution", "Solution", lines, (row,))

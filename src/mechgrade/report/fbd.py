@@ -18,8 +18,8 @@ loads' at the instant, their lengths all the same, so none hides another.
 >>> d = FreeBodyDiagram("rod", "B", "G", (("G", (0.0, -0.6, 0.0)), ("O", (0.0, 0.0, 0.0))),
 ...                     (weight, pin), (0.0, -1.0, 0.0), "N", (rod,))
 >>> svg = fbd_svg(d, "p-rod")
->>> svg.count('class="load"'), svg.count("<line class=\\"arrow"), svg.count('stroke-dasharray')
-(2, 3, 2)
+>>> svg.count('class="load '), svg.count("<line class=\\"arrow"), svg.count('class="load u"')
+(2, 3, 1)
 >>> print(fbd_description(d))
 Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; the pin reaction R O at O, unknown (drawn dashed, marked ?), as its components along N's x axis and N's y axis.
 """
@@ -47,7 +47,8 @@ PARTICLE = 13.0
 BLOCK = 20.0
 """Half the side of a particle resting on a surface, drawn as a block (px)."""
 KNOWN, UNKNOWN, OUTLINE = "#a61b1b", "#1849a9", "#3e4c59"
-"""Colours (WCAG AA on white) of a known load, an unknown one and the body."""
+"""Colours (WCAG AA on white) of a known load, an unknown one and the body: the arrowheads'
+here, the lines' and labels' in the page's style sheet (``.fbd`` in worked.css.j2)."""
 PUSHES = (LoadKind.NORMAL, LoadKind.CONTACT)
 """Loads drawn pushing on the body (the arrow's head at the point, its tail outside)."""
 _KIND_WORDS = {LoadKind.WEIGHT: "the weight", LoadKind.NORMAL: "the normal force",
@@ -62,6 +63,17 @@ _GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "theta": "�
           "tau": "τ", "phi": "φ", "omega": "ω", "lambda": "λ", "sigma": "σ"}
 
 Point2 = tuple[float, float]
+
+
+def _n(value: float) -> str:
+    """A page coordinate in whole pixels (finer says nothing on a diagram this size), never
+    ``-0``.
+
+    >>> _n(-0.2), _n(12.6)
+    ('0', '13')
+    """
+    text = f"{value:.0f}"
+    return "0" if text == "-0" else text
 
 
 def as_shown(diagram: FreeBodyDiagram) -> FreeBodyDiagram:
@@ -97,18 +109,17 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
     shapes, radius, surface = _outline(diagram, positions, to_screen)
     extents = [to_screen(e) for o in diagram.outline if o.at in positions
                for e in _extent(o, positions[o.at])]
-    out = ['<svg xmlns="http://www.w3.org/2000/svg" viewBox="{view}" '
-           'width="{width}" height="{height}" role="img" class="fbd" '
-           f'aria-labelledby="{ident}-title" aria-describedby="{ident}-desc" '
-           'font-family="system-ui, sans-serif" font-size="14" font-weight="600">',
-           f'<title id="{ident}-title">Free-body diagram of {escape(diagram.body)}</title>',
-           f'<desc id="{ident}-desc">{escape(fbd_description(diagram))}</desc>', "<defs>"]
+    # the page styles it (worked.css.j2: the font, the colours of the body, a known and an
+    # unknown load): each diagram would say them again; its title and desc are its name and
+    # description (role="img")
+    out = ['<svg viewBox="{view}" width="{width}" height="{height}" role="img" class="fbd">',
+           f'<title>Free-body diagram of {escape(diagram.body)}</title>',
+           f'<desc>{escape(fbd_description(diagram))}</desc>', "<defs>"]
     for name, colour in (("k", KNOWN), ("u", UNKNOWN)):
         out.append(f'<marker id="{ident}-{name}" viewBox="0 0 10 10" refX="9" refY="5" '
                    'markerWidth="6" markerHeight="6" orient="auto">'
                    f'<path d="M0,0 10,5 0,10z" fill="{colour}"/></marker>')
-    out += ["</defs>", '<rect x="{x0}" y="{y0}" width="{width}" height="{height}" '
-            'fill="#fff"/>', *shapes]
+    out += ["</defs>", *shapes]
     arrows = []  # (load, tail, head, label text parts, unknown)
     couples = []
     for load in diagram.loads:
@@ -124,7 +135,7 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
     every = [(t, h) for _, parts in arrows for t, h, _ in parts if t != h]
     for load, parts in arrows:
         colour, marker = (UNKNOWN, "u") if load.unknown else (KNOWN, "k")
-        group = [f'<g class="load" data-load="{escape(load.name, quote=True)}">']
+        group = [f'<g class="load {marker}" data-load="{escape(load.name, quote=True)}">']
         for tail, head, label in parts:
             if tail == head:  # along the page's normal: a dot (out of it) or a cross (into it)
                 sign = "out-of-page" if label[3] > 0 else "into-page"
@@ -135,40 +146,37 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
                 group += [f'<g class="arrow {sign}"><circle cx="{tail[0]:.0f}" '
                           f'cy="{tail[1]:.0f}" r="8" fill="none" stroke="{colour}" '
                           f'stroke-width="1.6"/>{mark}</g>',
-                          _label((tail[0] + 12, tail[1] - 12), tail, label[:3], colour, labels,
+                          _label((tail[0] + 12, tail[1] - 12), tail, label[:3], labels,
                                  avoid=every)]
                 continue
             tail, head = apart(tail, head, placed)
             placed.append((tail, head))
-            dash = ' stroke-dasharray="6 4"' if load.unknown else ""
-            group.append(f'<line class="arrow" x1="{tail[0]:.0f}" y1="{tail[1]:.0f}" '
-                         f'x2="{head[0]:.0f}" y2="{head[1]:.0f}" stroke="{colour}" '
-                         f'stroke-width="2.2"{dash} marker-end="url(#{ident}-{marker})"/>')
+            group.append(f'<line class="arrow" x1="{_n(tail[0])}" y1="{_n(tail[1])}" '
+                         f'x2="{_n(head[0])}" y2="{_n(head[1])}" '
+                         f'marker-end="url(#{ident}-{marker})"/>')
             far = head if load.kind not in PUSHES else tail
             near = tail if load.kind not in PUSHES else head
-            group.append(_label(far, near, label[:3], colour, labels, avoid=every))
+            group.append(_label(far, near, label[:3], labels, avoid=every))
         out += group + ["</g>"]
     for load, at in couples:
-        colour, marker = (UNKNOWN, "u") if load.unknown else (KNOWN, "k")
+        marker = "u" if load.unknown else "k"
         z = load.vector[2] if load.vector is not None else 1.0
         sweep = 0 if z >= 0 else 1  # counter-clockwise on the page (y down) for +z
         r = radius + 20
         start = (at[0] + r, at[1])
         end = (at[0], at[1] - r) if z >= 0 else (at[0], at[1] + r)
-        dash = ' stroke-dasharray="6 4"' if load.unknown else ""
-        out += [f'<g class="load" data-load="{escape(load.name, quote=True)}">',
-                f'<path class="arrow couple" d="M{start[0]:.0f},{start[1]:.0f} A{r:.0f},'
-                f'{r:.0f} 0 1 {sweep} {end[0]:.0f},{end[1]:.0f}" fill="none" '
-                f'stroke="{colour}" stroke-width="2.2"{dash} '
+        out += [f'<g class="load {marker}" data-load="{escape(load.name, quote=True)}">',
+                f'<path class="arrow couple" d="M{_n(start[0])},{_n(start[1])} A{r:.0f},'
+                f'{r:.0f} 0 1 {sweep} {_n(end[0])},{_n(end[1])}" '
                 f'marker-end="url(#{ident}-{marker})"/>',
-                _label((at[0] + r * 0.8, at[1] - r * 0.8), at, _text_of(load, 0), colour,
-                       labels), "</g>"]
+                _label((at[0] + r * 0.8, at[1] - r * 0.8), at, _text_of(load, 0), labels),
+                "</g>"]
     seen = [to_screen(p) for p in positions.values()]
     for x, y in seen:
-        out.append(f'<circle cx="{x:.0f}" cy="{y:.0f}" r="2.5" fill="{OUTLINE}"/>')
+        out.append(f'<circle class="pt" cx="{_n(x)}" cy="{_n(y)}" r="2.5"/>')
     for name, p in positions.items():
         x, y = to_screen(p)
-        out.append(_label((x - 1, y + 1), (x, y), (name, "", ""), OUTLINE, labels, 12))
+        out.append(_label((x - 1, y + 1), (x, y), (name, "", ""), labels, 12))
     # the view: everything drawn, with a margin
     xs = [c for t, h in placed for c in (t[0], h[0])] + [b[i] for b in labels for i in (0, 2)]
     ys = [c for t, h in placed for c in (t[1], h[1])] + [b[i] for b in labels for i in (1, 3)]
@@ -183,8 +191,7 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
     box = {"x0": f"{x0:.0f}", "y0": f"{y0:.0f}", "width": f"{width:.0f}",
            "height": f"{height:.0f}"}
     out[0] = out[0].format(view=f"{x0:.0f} {y0:.0f} {width:.0f} {height:.0f}", **box)
-    out[out.index("</defs>") + 1] = out[out.index("</defs>") + 1].format(**box)
-    return "\n".join(out + ["</svg>"])
+    return "".join(out + ["</svg>"])
 
 
 def fbd_description(diagram: FreeBodyDiagram) -> str:
@@ -253,7 +260,6 @@ def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
     if surface is not None:
         size = math.hypot(surface[0], surface[1])
         page_normal = (surface[0] / size, -surface[1] / size) if size > 1e-12 else None
-    style = f'fill="#e4e7eb" stroke="{OUTLINE}" stroke-width="2"'
     for o in diagram.outline:
         at = positions.get(o.at)
         if at is None:
@@ -263,37 +269,35 @@ def _outline(diagram: FreeBodyDiagram, positions: dict, to_screen):
             radius = BLOCK
             angle = math.degrees(math.atan2(page_normal[0], -page_normal[1]))
             shapes.append(f'<rect class="body" x="{x - BLOCK:.0f}" y="{y - BLOCK:.0f}" '
-                          f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" {style} '
-                          f'transform="rotate({angle:.0f} {x:.0f} {y:.0f})"/>')
+                          f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" '
+                          f'transform="rotate({_n(angle)} {x:.0f} {y:.0f})"/>')
             shapes.append(_surface(x, y, page_normal))
         elif o.kind == OutlineKind.BODY:  # inertia by its entries: a body of no set shape
             radius = BLOCK
             shapes.append(f'<rect class="body" x="{x - BLOCK:.0f}" y="{y - 0.7 * BLOCK:.0f}" '
                           f'width="{2 * BLOCK:g}" height="{1.4 * BLOCK:g}" '
-                          f'rx="{0.5 * BLOCK:g}" {style}/>')
+                          f'rx="{0.5 * BLOCK:g}"/>')
         elif o.kind == OutlineKind.PARTICLE:
             radius = PARTICLE
-            shapes.append(f'<circle class="body" cx="{x:.0f}" cy="{y:.0f}" r="{PARTICLE:g}" '
-                          f'{style}/>')
+            shapes.append(f'<circle class="body" cx="{_n(x)}" cy="{_n(y)}" r="{PARTICLE:g}"/>')
         elif o.kind == OutlineKind.ROD:
             ends = [to_screen(e) for e in _extent(o, at)]
             if len(ends) == 2:
-                shapes.append(f'<line class="body" x1="{ends[0][0]:.0f}" y1="{ends[0][1]:.0f}" '
-                              f'x2="{ends[1][0]:.0f}" y2="{ends[1][1]:.0f}" stroke="#9aa5b1" '
-                              'stroke-width="10" stroke-linecap="round"/>')
+                shapes.append(f'<line class="body rod" x1="{_n(ends[0][0])}" '
+                              f'y1="{_n(ends[0][1])}" x2="{_n(ends[1][0])}" '
+                              f'y2="{_n(ends[1][1])}"/>')
         elif o.kind == OutlineKind.BLOCK:
             corners = [to_screen(c) for c in _extent(o, at)]
             if len(corners) == 4:
                 shapes.append('<polygon class="body" points="'
-                              + " ".join(f"{cx:.0f},{cy:.0f}" for cx, cy in corners)
-                              + f'" {style}/>')
+                              + " ".join(f"{_n(cx)},{_n(cy)}" for cx, cy in corners)
+                              + '"/>')
         else:
             lo, hi = (to_screen(e) for e in _extent(o, at))
             r = max(abs(hi[0] - lo[0]) / 2, 4.0)
-            fill = 'fill="none"' if o.kind in (OutlineKind.RING, OutlineKind.SHELL) \
-                else 'fill="#e4e7eb"'
-            shapes.append(f'<circle class="body" cx="{x:.0f}" cy="{y:.0f}" r="{r:.0f}" '
-                          f'{fill} stroke="{OUTLINE}" stroke-width="2"/>')
+            hollow = " hollow" if o.kind in (OutlineKind.RING, OutlineKind.SHELL) else ""
+            shapes.append(f'<circle class="body{hollow}" cx="{_n(x)}" cy="{_n(y)}" '
+                          f'r="{r:.0f}"/>')
     return shapes, radius, page_normal
 
 
@@ -309,7 +313,7 @@ def _surface(x: float, y: float, normal: Point2) -> str:
         px, py = bx + k * reach / 5.5 * tx, by + k * reach / 5.5 * ty
         path.append(f"M{px:.0f},{py:.0f} l{-7 * normal[0] - 5 * tx:.0f},"
                     f"{-7 * normal[1] - 5 * ty:.0f}")
-    return f'<path class="surface" d="{" ".join(path)}" stroke="#9aa5b1" fill="none"/>'
+    return f'<path class="surface" d="{" ".join(path)}"/>'
 
 
 def _arrows(load: DiagramLoad, at: Point2, radius: float, surface):
@@ -345,8 +349,8 @@ def _arrows(load: DiagramLoad, at: Point2, radius: float, surface):
     return out
 
 
-def _label(far: Point2, near: Point2, parts: tuple[str, str, str], colour: str,
-           taken: list, size_px: int = 14, avoid: tuple | list = ()) -> str:
+def _label(far: Point2, near: Point2, parts: tuple[str, str, str], taken: list,
+           size_px: int = 14, avoid: tuple | list = ()) -> str:
     """A label past the ``far`` end of an arrow, moved along it until it overlaps no other."""
     dx, dy = far[0] - near[0], far[1] - near[1]
     size = math.hypot(dx, dy) or 1.0
@@ -364,9 +368,9 @@ def _label(far: Point2, near: Point2, parts: tuple[str, str, str], colour: str,
     base, sub, rest = parts
     text = escape(base) + (f'<tspan font-size="11" dy="4">{escape(sub)}</tspan>'
                            f'<tspan dy="-4">{escape(rest)}</tspan>' if sub else escape(rest))
-    weight = "" if size_px == 14 else f' font-size="{size_px}" font-weight="400"'
-    return f'<text x="{box[0]:.0f}" y="{box[1] + size_px - 1:.0f}" fill="{colour}"{weight}>' \
-        f'{text}</text>'
+    # a load's label takes its group's colour; a point's is set smaller (class pt)
+    point = "" if size_px == 14 else ' class="pt"'
+    return f'<text{point} x="{_n(box[0])}" y="{_n(box[1] + size_px - 1)}">{text}</text>'
 
 
 # ---------------------------------------------------------------------------- words

@@ -383,20 +383,21 @@ def template_environment(templates_dir: str | Path | None = None):
 
 
 _CSS_COMMENT = re.compile(r"/\*.*?\*/", re.S)
-_CSS_PUNCTUATION = re.compile(r" ?([{};,]) ?|(:) ")
+_CSS_PUNCTUATION = re.compile(r" ?([{};,>]) ?|(:) ")
 
 
 @lru_cache(maxsize=8)  # a page's sheet is the same for every student: made once
 def compact_css(text: str) -> str:
     """A template's style sheet in fewer bytes (every student's page carries it): comments
-    left out, white space one space, none around braces, semicolons and commas or after a
-    colon. Only for the templates' own style sheets: a space in a CSS string stays one.
+    left out, white space one space, none around braces, semicolons, commas and child
+    combinators or after a colon, no semicolon before a closing brace. Only for the
+    templates' own style sheets: a space in a CSS string stays one.
 
-    >>> compact_css("  .a b { color: #000;  /* why */\\n  margin: 0 1px; }\\n  a, p { }")
-    '.a b{color:#000;margin:0 1px;}a,p{}'
+    >>> compact_css("  .a > b { color: #000;  /* why */\\n  margin: 0 1px; }\\n  a, p { }")
+    '.a>b{color:#000;margin:0 1px}a,p{}'
     """
     text = " ".join(_CSS_COMMENT.sub("", text).split())
-    return _CSS_PUNCTUATION.sub(lambda m: m.group(1) or m.group(2), text)
+    return _CSS_PUNCTUATION.sub(lambda m: m.group(1) or m.group(2), text).replace(";}", "}")
 
 
 @lru_cache(maxsize=None)
@@ -506,7 +507,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
 
     mine = pages.worked.for_student(student)
     by_problem = {w.problem: w for w in mine}
-    marked: dict[str, str] = {}
+    marked: dict[str, dict[str, list[str]]] = {}  # step: mistake: the answers
     steps: dict[str, dict] = {}
     for answer in student.answers:
         worked = by_problem.get(answer.problem)
@@ -531,16 +532,22 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
-        note = textbook(f"Your answer to “{shorten(prompt)}”: {said}", False)
-        marked[anchor(answer.problem, place)] = (
-            marked[anchor(answer.problem, place)] + "; " + note
-            if anchor(answer.problem, place) in marked else note)
+        # a step's note names each mistake once, with the answers it is in
+        marked.setdefault(anchor(answer.problem, place), {}).setdefault(
+            said.rstrip(". "), []).append(f"“{shorten(prompt, 40)}”")
+    notes = {ident: textbook("; ".join(
+        f"{said}: your answer{'s' if len(asked) > 1 else ''} to {', '.join(asked)}"
+        for said, asked in mistakes.items()), False) for ident, mistakes in marked.items()}
     fragments = pages.markdown if markdown else pages.html
-    highlight = "".join(
-        f"#{ident} {{ background: #fff4e5; outline: 2px solid #f0b429; }}\n"
-        f"#{ident}::before {{ content: {_css_string(note)}; display: block; color: #8d6b00; "
-        f"font-weight: 600; font-size: .85rem; font-family: system-ui, sans-serif; }}\n"
-        for ident, note in marked.items())
+    # the marked steps share their look (said once), each its own note
+    highlight = "" if not marked else (
+        ",".join(f"#{ident}" for ident in marked)
+        + "{background:#fff4e5;outline:2px solid #f0b429}\n"
+        + ",".join(f"#{ident}::before" for ident in marked)
+        + "{display:block;color:#8d6b00;font-weight:600;font-size:.85rem;"
+          "font-family:system-ui,sans-serif}\n"
+        + "".join(f"#{ident}::before{{content:{_css_string(note)}}}\n"
+                  for ident, note in notes.items()))
     return {"worked": [{"problem": w.problem, "fragment": fragments[id(w)]} for w in mine],
             "highlight": "" if markdown else Markup(highlight), "mistake_steps": steps,
             "markers": "" if markdown else Markup(pages.markers)}
@@ -586,7 +593,9 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
                 for d in worked.diagrams]
     steps = [{"anchor": step.anchor, "title": Markup(textbook_html(step.title, False)),
               "lines": [Markup(textbook_html(line)) for line in step.lines],
-              "rows": [{"anchor": row.anchor, "text": row.text,
+              # a row is a link's target only when a mistake happens in it (its codes)
+              "rows": [{"anchor": row.anchor if row.codes else "", "text": row.text,
+                        "caption": Markup(textbook_html(row.caption, False)),
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
@@ -594,7 +603,11 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
                      "title": worked.title,
                      "picture": figure(worked.picture) if worked.picture else "",
                      "steps": steps}}
-    return Markup(_render(_template(env, "worked.html.j2"), context))
+    # an apostrophe needs no escape in text or in an attribute in double quotes (the only
+    # kind the shipped template writes): every student's page carries some seventy of them
+    html = _render(_template(env, "worked.html.j2"), context)
+    return Markup(html if templates_dir is not None
+                  else html.replace("&#39;", "'").replace("&#x27;", "'"))
 
 
 _MARKER = re.compile(r'<marker id="([^"]+)"([^>]*)>(.*?)</marker>\n?', re.S)
@@ -669,7 +682,8 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     out = [f"{hashes} {markdown_escape(worked.title)}"]
     for step in worked.steps:
         out += ["", f"{hashes}# {markdown_escape(textbook(step.title, False))}", ""]
-        lines = [line for line in step.lines if line] + [row.text for row in step.rows]
+        lines = [line for line in step.lines if line] + [
+            f"{row.caption}: {row.text}" if row.caption else row.text for row in step.rows]
         out += [f"- {code_span(textbook(line))}" for line in lines] or ["(none)"]
     return "\n".join(out) + "\n"
 
@@ -692,13 +706,13 @@ def shorten(text: str, limit: int = 60) -> str:
 
 
 def _css_string(text: str) -> str:
-    """``text`` as a CSS string: every character but letters, digits and spaces escaped, so
-    no text can end the string or the style element.
+    """``text`` as a CSS string: what could end the string or the style element escaped (a
+    quote, a backslash, ``<`` and ``>``, a character that does not print), the rest as it is.
 
-    >>> print(_css_string('a "b" </style>'))
-    "a \\22 b\\22  \\3c \\2f style\\3e "
+    >>> print(_css_string('a "b" </style> θ̇’s'))
+    "a \\22 b\\22  \\3c /style\\3e  θ̇’s"
     """
-    return '"' + "".join(c if c.isascii() and (c.isalnum() or c == " ") else f"\\{ord(c):x} "
+    return '"' + "".join(f"\\{ord(c):x} " if c in '"\\<>' or not c.isprintable() else c
                          for c in text) + '"'
 
 

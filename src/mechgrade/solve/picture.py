@@ -324,8 +324,13 @@ BLOCK = 14.0
 """Half the side of a block drawn for a particle that rests on a surface or hangs (px)."""
 HALO = 'paint-order="stroke" stroke="#fff" stroke-width="3" stroke-linejoin="round"'
 """Labels stay readable where they cross a line."""
+_OWN_STYLE = ' xmlns="http://www.w3.org/2000/svg"', ' font-family="system-ui, sans-serif" font-size="13"'
+_GROUND = '<rect width="{w:g}" height="{h:g}" fill="#fff"/>'
+"""What a picture on its own says and a page's style sheet gives every picture inline."""
 _CANDIDATES = ((7, -7, "start"), (7, 18, "start"), (-7, -7, "end"), (-7, 18, "end"),
-               (0, -12, "middle"), (0, 24, "middle"), (12, 5, "start"), (-12, 5, "end"))
+               (0, -12, "middle"), (0, 24, "middle"), (12, 5, "start"), (-12, 5, "end"),
+               # clear of a block drawn on the point (BLOCK px each way, turned any angle)
+               (24, 5, "start"), (-24, 5, "end"), (0, -24, "middle"), (0, 36, "middle"))
 """Where a point's label may go, relative to the point (px) and how it is anchored: the first
 that overlaps no label and crosses no line drawn is taken."""
 
@@ -343,10 +348,12 @@ class _Sheet:
     arrows: list
 
 
-def picture_svg(s: Scene, ident: str | None = None) -> str:
+def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> str:
     """The picture as a small, self-contained SVG (text, no script, no external reference;
     the same bytes each time). ``ident`` prefixes its element ids (default: the problem id),
-    so several pictures can sit inline in one page.
+    so several pictures can sit inline in one page. ``inline``: for a page whose style sheet
+    gives what every picture would say again (``.mechanism`` in worked.css.j2: its font, its
+    white ground, the labels' halo), without them, its namespace or its line breaks.
 
     >>> s = Scene("p", (ScenePoint("O", (0, 0, 0), (0, 0, 0), (0, 0, 0), None),
     ...                 ScenePoint("A", (1, 1, 0), (-7, 7, 0), (-50, -40, 0), "O")),
@@ -379,20 +386,19 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
     def at(x: float, y: float) -> tuple[float, float]:  # y up
         return WIDTH / 2 + scale * (x - cx), (HEIGHT - bottom + MARGIN) / 2 - scale * (y - cy)
 
-    sheet = _Sheet([f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {WIDTH:g} {HEIGHT:g}" '
+    sheet = _Sheet([f'<svg{_OWN_STYLE[0]} viewBox="0 0 {WIDTH:g} {HEIGHT:g}" '
                     f'width="{WIDTH:g}" height="{HEIGHT:g}" role="img" '
-                    f'aria-labelledby="{ident}-title" aria-describedby="{ident}-desc" '
-                    f'class="mechanism" font-family="system-ui, sans-serif" font-size="13">',
-                    f'<title id="{ident}-title">{escape(s.title or s.problem)}: the mechanism at '
-                    f'the instant, its {"bodies, supports, " if s.bodies else ""}points and '
-                    f'frames{motion}</title>',
-                    f'<desc id="{ident}-desc">{escape(described(s, legend))}</desc>', "<defs>"],
+                    f'class="mechanism"{_OWN_STYLE[1]}>',
+                    # an image's first title and desc are its name and description
+                    f'<title>{escape(s.title or s.problem)}: the mechanism at '
+                    f'the instant</title>',
+                    f'<desc>{escape(described(s, legend))}</desc>', "<defs>"],
                    [], [], [])
     for name, colour in (("v", VELOCITY), ("a", ACCELERATION), ("f", FRAME)):
         sheet.out.append(f'<marker id="{ident}-{name}" viewBox="0 0 10 10" refX="9" refY="5" '
                          f'markerWidth="7" markerHeight="7" orient="auto">'
                          f'<path d="M0,0 10,5 0,10z" fill="{colour}"/></marker>')
-    sheet.out += ["</defs>", f'<rect width="{WIDTH:g}" height="{HEIGHT:g}" fill="#fff"/>']
+    sheet.out += ["</defs>", _GROUND.format(w=WIDTH, h=HEIGHT)]
     down = _page(s.down) if s.down is not None else (0.0, 1.0)
     if not s.bodies:  # a kinematics problem: its points joined as they are described
         by_name = {p.name: p for p in shown}
@@ -460,7 +466,14 @@ def picture_svg(s: Scene, ident: str | None = None) -> str:
         sheet.out.append(f'<text x="42" y="{y:g}" fill="{colour}" font-size="12">'
                          f'{escape(text)}</text>')
     sheet.out.append("</svg>")
-    return "\n".join(sheet.out) + "\n"
+    return _inlined(sheet.out) if inline else "\n".join(sheet.out) + "\n"
+
+
+def _inlined(out: list[str]) -> str:
+    """A picture's elements for a page that styles every picture (``.mechanism``): what it
+    would say again left out, no line breaks."""
+    return "".join(out).replace(HALO, 'class="halo"').replace(_OWN_STYLE[0], "").replace(
+        _OWN_STYLE[1], "").replace(_GROUND.format(w=WIDTH, h=HEIGHT), "")
 
 
 def _legend(s: Scene, shown) -> list[tuple[str, str, str, str, float]]:
@@ -711,6 +724,8 @@ def _body(sheet: _Sheet, body: SceneBody, at, scale: float, resting, held, down)
         else:
             n = (-down[0], -down[1])
         angle = math.degrees(math.atan2(n[0], -n[1]))
+        reach = BLOCK * (abs(n[0]) + abs(n[1]))  # half the turned square's width
+        sheet.boxes.append((x - reach, y - reach, x + reach, y + reach))  # no label on it
         sheet.out.append(f'<rect {cls} x="{x - BLOCK:.0f}" y="{y - BLOCK:.0f}" '
                          f'width="{2 * BLOCK:g}" height="{2 * BLOCK:g}" {style} '
                          f'transform="rotate({angle:.0f} {x:.0f} {y:.0f})"/>')

@@ -114,8 +114,8 @@ def worked_solution(problem: Problem, solution: Solution,
     givens = tuple(_state_text(s) for s in solution.state if s.given and s.name in stated)
     solved = tuple(_state_text(s) for s in solution.state
                    if not (s.given and s.name in stated))
-    asked = tuple(f"{o.id}: {o.prompt or o.find.text}" + (f" [{o.unit}]" if o.unit else "")
-                  for o in chosen)
+    # what each objective asks, in words and as a textbook writes it (not its answer key)
+    asked = tuple(_asked_line(o, problem.inertial_frame) for o in chosen)
     results = {r.id: r for r in solution.results}
     signs = {v.name: int(np.sign(v.si)) for v in solution.state}
     answers = tuple(_answer_step(problem, o, results[o.id], signs) for o in chosen
@@ -134,13 +134,15 @@ def worked_solution(problem: Problem, solution: Solution,
                      for g in _same_value(m, results[o.id].generated_mistakes))
     diagrams = free_body_diagrams(problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
-                          picture_svg(drawing) if drawable(drawing) else "", places, declared,
+                          picture_svg(drawing, inline=True) if drawable(drawing) else "", places, declared,
                           diagrams, DIAGRAM_STEP if diagrams else "",
                           EQUATIONS_STEP if any(s.anchor == EQUATIONS_STEP for s in steps)
                           else "")
 
 
 _KINEMATIC = {"vel": "v", "acc": "a", "omega": "omega", "alpha": "alpha"}
+_ACROSS = {"before": "⁻", "after": "⁺"}
+"""An impact's just before and just after, as a textbook marks them (v⁻, v⁺)."""
 
 
 def asked_text(node: Node, inertial: str = "N") -> str:
@@ -150,11 +152,14 @@ def asked_text(node: Node, inertial: str = "N") -> str:
 
     >>> from mechgrade.expressions.syntax import parse
     >>> def asked(text):
-    ...     return asked_text(parse(text, functions={"dot", "vel", "mag", "force", "eom", "speed"}))
+    ...     return asked_text(parse(text, functions={"dot", "vel", "mag", "force", "eom", "speed",
+    ...                                              "before", "after"}))
     >>> asked("dot(vel(P, B), N.x)"), asked("mag(force(F_P))")
     ('v_P in B · N.x', '|F_P|')
     >>> asked("eom(theta)"), asked("speed(G, N)")
     ('thetadd', '|v_G|')
+    >>> asked("after(speed(G, N))"), asked("before(dot(vel(G, N), N.x))")
+    ('|v_G|⁺', '(v_G · N.x)⁻')
     """
     def text(n: Node) -> str:
         if isinstance(n, Call):
@@ -170,6 +175,10 @@ def asked_text(node: Node, inertial: str = "N") -> str:
                 return text(args[0])
             if n.func in ("mag", "abs") and len(args) == 1:
                 return f"|{text(args[0])}|"
+            if n.func in _ACROSS and len(args) == 1:  # an impact's v⁻ and v⁺
+                inner = text(args[0])
+                inner = inner if inner.startswith("(") or " " not in inner else f"({inner})"
+                return f"{inner}{_ACROSS[n.func]}"
             if n.func in ("dot", "cross") and len(args) == 2:
                 sign = " · " if n.func == "dot" else " × "
                 return f"({text(args[0])}{sign}{text(args[1])})"
@@ -187,15 +196,25 @@ def asked_text(node: Node, inertial: str = "N") -> str:
         else out
 
 
+def _asked_line(objective, inertial: str) -> str:
+    """An objective in the list of what is asked: its prompt, what it finds as a textbook
+    writes it, its unit (``The string tension: |T| [N]``); its answer key is the page's
+    business, not the worked solution's."""
+    said = asked_text(objective.find.node, inertial)
+    unit = f" [{objective.unit}]" if objective.unit else ""
+    prompt = (objective.prompt or "").strip().rstrip(".")
+    return f"{prompt}: {said}{unit}" if prompt else f"{said}{unit}"
+
+
 def _answer_step(problem: Problem, objective, result: ObjectiveResult,
                  signs: dict[str, int]) -> Step:
     """An objective's answer: what it asks in the model's terms, then its value (a symbolic
     one typeset, in its unit and the names it is in; the sense of a rate it takes through its
     sign alone from ``signs``, the instant's sign of each value by name)."""
-    asked = f"{objective.id} = {asked_text(objective.find.node, problem.inertial_frame)}" + (
+    asked = asked_text(objective.find.node, problem.inertial_frame) + (
         f", components along {objective.frame}" if objective.frame else "")
     title = objective.prompt or objective.id
-    math = symbolic_math(problem, result.expr, f"<mi>{objective.id}</mi>") \
+    math = symbolic_math(problem, result.expr) \
         if result.kind == ObjectiveKind.SYMBOLIC and result.expr else None
     if math is None:
         return Step(f"answer-{objective.id}", title, (asked, f"= {answer_text(result)}"))
