@@ -299,6 +299,7 @@ LABELS = {
     "acc_for_acc_t": "whole acceleration for its tangential part",
     "acc_for_acc_n": "whole acceleration for its normal part",
     "rho_formula": "radius of curvature from |a|",
+    "rho_without_slope": "radius of curvature without the slope term",
     "component_for_speed": "a velocity component for the speed",
     "given_deg_as_rad": "given angle's degrees used as radians",
     "given_complement": "given angle read as its complement (sin and cos exchanged)",

@@ -78,7 +78,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "coriolis_halved": ("coriolis_half",),
     "centripetal_dropped": ("drop_centripetal", "acc_t_for_acc"),
     "tangential_dropped": ("drop_tangential", "acc_n_for_acc"),
-    "curvature_without_slope": (),
+    "curvature_without_slope": ("rho_without_slope",),
     "velocity_component_wrong": ("component_for_speed", "drop_relative_vel", "drop_transport_vel"),
     "kinematic_factor": ("other_point", "drop_omega_r", "drop_transport_vel",
                          "drop_transport_acc", "relative_omega", "surface_taken_fixed",
