@@ -450,3 +450,13 @@ def _bar_with_its_weight_at_the_end():
 def test_the_new_families_name_their_value(problem, objective, answer, code):
     judged = assess(answer, _solution(problem).result(objective))
     assert judged.diagnosis == LABELS[code]
+
+
+def test_a_frequency_in_hertz_and_a_period_read_the_other_way_up():
+    # f = omega_n/(2 pi) = 4.424 Hz answered 2 pi/omega_n = 0.2260 s, and the reverse
+    problem = _problem("block_on_spring_us_units")
+    readings = {m.readings[0][0]: m.readings[0][1].text for m in dynamics_mutations(problem)
+                if m.code == "period_for_frequency"}
+    assert readings == {"frequency": "2*pi/omega_n(y)", "period": "omega_n(y)/(2*pi)"}
+    # an objective without 2 pi in it (omega_n itself) is not read so
+    assert "omega_n" not in readings

@@ -337,6 +337,7 @@ LABELS = {
     "spring_omitted": "a spring left out",
     "load_at_other_point": "a load taken at another point of its body",
     "contact_taken_smooth": "a rolling contact taken as smooth",
+    "period_for_frequency": "period and frequency confused",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -1174,6 +1174,33 @@ def efficiency_inverted(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 term=Expr(eta.id, eta))
 
 
+def _two_pi(node: Node) -> bool:
+    return isinstance(node, Bin) and node.op == "*" and {to_text(node.left),
+                                                         to_text(node.right)} == {"2", "pi"}
+
+
+def period_for_frequency(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A frequency in hertz, f = ω/(2π), answered with the period 2π/ω, or the period
+    answered with the frequency: the objective read with 2π and the circular frequency the
+    other way up."""
+    for obj in problem.objectives:
+        node = obj.find.node
+        if obj.kind == "symbolic" or not (isinstance(node, Bin) and node.op == "/"):
+            continue
+        if _two_pi(node.right):
+            new, said = Bin("/", node.right, node.left), ("the period", "frequency f")
+        elif _two_pi(node.left):
+            new, said = Bin("/", node.right, node.left), ("the frequency", "period τ")
+        else:
+            continue
+        omega = node.left if _two_pi(node.right) else node.right
+        yield DynamicsMutation(
+            "period_for_frequency", f"Your value is {said[0]} where the {said[1]} was asked: "
+            "with ω = {term}, f = ω/(2π) in hertz and τ = 2π/ω = 1/f.",
+            OBJECTIVES, readings=((obj.id, Expr(to_text(new), new)),),
+            term=Expr(to_text(omega), omega), term_unit="rad/s")
+
+
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
@@ -1183,7 +1210,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
-    static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth)
+    static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
+    period_for_frequency)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

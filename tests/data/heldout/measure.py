@@ -69,7 +69,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "unit_slip": ("given_rate_unit", "given_length_unit", "given_unit", "rpm_rad", "rev_rad", "cm_m", "mm_m",
                   "ft_m", "in_ft"),
     "hz_for_rad_s": ("rev_rad",),
-    "period_for_frequency": (),
+    "period_for_frequency": ("period_for_frequency",),
     "series_parallel": ("springs_in_series",),
     "inertia_about_wrong_point": ("central_inertia_at_pivot",),
     "inertia_wrong_shape": ("other_shape_inertia",),
