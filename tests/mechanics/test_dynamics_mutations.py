@@ -460,3 +460,23 @@ def test_a_frequency_in_hertz_and_a_period_read_the_other_way_up():
     assert readings == {"frequency": "2*pi/omega_n(y)", "period": "omega_n(y)/(2*pi)"}
     # an objective without 2 pi in it (omega_n itself) is not read so
     assert "omega_n" not in readings
+
+
+def test_a_springs_energy_taken_from_the_change_of_its_stretch_in_a_work_energy_balance():
+    # the spring DA is counted from its length at the start, |DA| = sqrt(H^2 + L^2) at
+    # theta = 0, instead of its free length L0; its force (the pin's) keeps the free length
+    (changed,) = [m for m in dynamics_mutations(_problem("bar_swings_down_spring_energy"))
+                  if m.code == "spring_energy_from_change"]
+    assert changed.problem.dynamics.springs[0].length.text == "sqrt(H**2 + L**2)"
+    assert [o.id for o in changed.problem.objectives] == ["angular_velocity", "spring_energy"]
+
+
+@pytest.mark.slow
+def test_a_springs_energy_from_the_change_of_its_stretch_gives_the_students_speed():
+    # (1/2) k (s2 - s1)^2 = 3.6 J for the 25.6 J - 10 J of the right balance: 4.640 rad/s
+    (changed,) = _generated("bar_swings_down_spring_energy", "angular_velocity",
+                            "spring_energy_from_change")
+    assert changed.value == pytest.approx(4.639504, rel=1e-5)
+    assert "the stretch s1 = 1 m at the start" in changed.message
+    # an integrated motion (the launcher) is no work-energy balance
+    assert "spring_energy_from_change" not in _codes("spring_launcher_a_of_x")

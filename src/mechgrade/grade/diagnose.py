@@ -338,6 +338,7 @@ LABELS = {
     "load_at_other_point": "a load taken at another point of its body",
     "contact_taken_smooth": "a rolling contact taken as smooth",
     "period_for_frequency": "period and frequency confused",
+    "spring_energy_from_change": "spring energy from the change of stretch",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -861,6 +861,39 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
             term=spring.length, term_unit="m")
 
 
+def spring_energy_from_change(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In a work-energy balance, a spring's energy change taken as ½ k (s2 - s1)², the square
+    of the change of its stretch, instead of ½ k s2² - ½ k s1²: the spring's energy counted
+    from its length at the start (its free length replaced by that length)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, WorkEnergy):
+        return
+    at_start = {}
+    for start in d.analysis.start:
+        if isinstance(start.key.node, Name):
+            at_start[model.language.value(start.key.node)] = (
+                model.language.value(start.value.node) if start.value is not None
+                else start.si)
+    for spring in d.springs:
+        length = (model.positions[spring.between[0]]
+                  - model.positions[spring.between[1]]).magnitude().subs(at_start)
+        stretch = model.plain(length - model.language.scalar(spring.length))
+        if any(length.has(model.language.value(Name(c.name))) for c in problem.coordinates) \
+                or identically_zero(stretch):
+            continue  # the start does not fix the length, or the spring is not stretched
+        start_length = _expr(str(model.plain(length)))
+        springs = tuple(replace(x, length=start_length) if x is spring else x
+                        for x in d.springs)
+        yield DynamicsMutation(
+            "spring_energy_from_change", f"Your value takes the energy of spring "
+            f"{spring.name} as ½ k (s2 - s1)², from the change of its stretch: its energy is "
+            f"½ k s² at each end of the motion, and the change is ½ k s2² - ½ k s1², with the "
+            "stretch s1 = {term} at the start.", LOADS,
+            # the forces keep the stretch from the free length (an energy mistake)
+            problem=_mistaken(problem, replace(d, springs=springs), without=("force",)),
+            term=Expr(str(stretch), parse(str(stretch), functions=FUNCTIONS)), term_unit="m")
+
+
 def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """Each spring left out of the free-body diagrams (and of the energy), one at a time."""
     d = dynamics_of(problem)
@@ -1211,7 +1244,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
-    period_for_frequency)
+    period_for_frequency, spring_energy_from_change)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

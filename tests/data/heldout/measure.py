@@ -87,7 +87,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "angular_rate_equal": (),
     "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
-    "spring_energy_difference": (),
+    "spring_energy_difference": ("spring_energy_from_change",),
     "spring_term_dropped": ("spring_omitted",),
     "gravity_dropped": ("weight_omitted",),
     "ke_conserved": ("restitution_ignored",),
