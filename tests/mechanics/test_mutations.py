@@ -158,3 +158,15 @@ def test_a_path_not_given_as_y_of_x_has_no_slope_term_mistake():
     # a polar path (r and theta): no constraint gives one coordinate as a function of another
     assert not [m for m in mutations(_problem("ruina_10_3_spiral_bug"))
                 if m.code == "rho_without_slope"]
+
+
+@pytest.mark.slow
+def test_an_angle_rate_fixed_by_the_constraints_read_as_the_drivers_given_rate():
+    # the slotted arm's theta' answered with the crank's phi' = 4 rad/s
+    problem = _problem("slotted_arm_crank_coriolis")
+    found = [m for m in mutations(problem, "arm_angular_velocity") if m.code == "driver_rate"]
+    assert [float(m.value) for m in found] == [4.0]
+    assert found[0].sentence.startswith("Your value is phi' = 4 rad/s, the given rate of phi")
+    # phi'' = 0 is given: no driver's rate to take for theta''; s' is no angle's rate
+    assert not [m for o in ("arm_angular_acceleration", "sliding_rate")
+                for m in mutations(problem, o) if m.code == "driver_rate"]

@@ -292,6 +292,7 @@ LABELS = {
     "mag_as_sum": "components or magnitudes added for a magnitude",
     "position_term": "a term of the position left out",
     "zero_for_constant_rate": "acceleration taken as zero at a constant rate",
+    "driver_rate": "the driver's angular rate for a connected body's",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",

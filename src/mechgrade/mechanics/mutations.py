@@ -162,6 +162,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _magnitudes_combined(r)
     _other_bases(r)
     _zero_for_constant_rate(r)
+    _driver_rate(r)
     return r.out
 
 
@@ -572,6 +573,23 @@ def _zero_for_constant_rate(r: _Reading) -> None:
     r.append("zero_for_constant_rate", zero, f"Your value is zero, as if the constant rate "
              f"({rates}) meant no acceleration: a steady rate makes its own second derivative "
              "zero, not the other accelerations (their centripetal and coupled terms).")
+
+
+def _driver_rate(r: _Reading) -> None:
+    """An angle's rate that the constraints fix (a slotted arm's θ', a coupler's) answered
+    with the given rate of another angle (the crank's φ'): the connected body taken to turn
+    with the driver."""
+    node = r.node
+    angles = {c.name for c in r.model.problem.coordinates if c.unit in ("rad", "deg")}
+    if not (isinstance(node, Prime) and node.id in angles):
+        return
+    for g in r.model.problem.givens:
+        key = g.key.node
+        if isinstance(key, Prime) and key.order == node.order and key.id in angles \
+                and key.id != node.id and g.si != 0:
+            r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
+                     f"{g.text}, the given rate of {key.id}, as if {node.id} turned with it: "
+                     f"{to_text(node)} follows from the constraints that connect them.")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:
