@@ -480,3 +480,22 @@ def test_a_springs_energy_from_the_change_of_its_stretch_gives_the_students_spee
     assert "the stretch s1 = 1 m at the start" in changed.message
     # an integrated motion (the launcher) is no work-energy balance
     assert "spring_energy_from_change" not in _codes("spring_launcher_a_of_x")
+
+
+def test_a_push_on_a_lever_taken_at_the_pad_or_exchanged_with_it():
+    # the push P at C and the pad's N_B at B on the lever: P taken at B (N = P), or the two
+    # exchanged (N = P b/(b + c)); the pin A, with two directions, is never taken
+    moved = [m for m in dynamics_mutations(_problem("flywheel_lever_brake"))
+             if m.code == "load_at_other_point"]
+    assert [m.problem.dynamics.forces[0].at for m in moved] == ["B", "B"]
+    pad = [[a.at for a in r.acts if a.on == "lever"] for m in moved
+           for r in m.problem.dynamics.reactions if r.name == "N_B"]
+    assert pad == [["B"], ["C"]]
+    assert moved[0].sentence.startswith("Your value takes the force push on lever at B")
+
+
+@pytest.mark.slow
+def test_a_push_on_a_lever_taken_at_the_pad_gives_the_normal_force_p():
+    values = sorted(m.value for m in _generated("flywheel_lever_brake", "normal_force",
+                                                "load_at_other_point"))
+    assert values == pytest.approx([40.0, 100.0])

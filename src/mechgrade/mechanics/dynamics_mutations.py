@@ -979,6 +979,39 @@ def load_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 term=_expr(f"mag(pos({body.centre}, {point}))"), term_unit="m")
 
 
+def force_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An applied force on a body that another single-direction reaction also acts on (a
+    lever's push and its pad) taken at that reaction's point, the lever's advantage ignored;
+    or the two exchanged, each at the other's point (the lever arms inverted). A pin's point
+    (a reaction along two directions) is not taken: there the force would have no moment."""
+    d = dynamics_of(problem)
+    for force in d.forces:
+        if force.kind != LoadKind.APPLIED_FORCE:
+            continue
+        for r in d.reactions:
+            acts = [a for a in r.acts if a.on == force.on]
+            if len(r.directions) != 1 or len(acts) != 1 or _zero(
+                    model, model.positions[acts[0].at] - model.positions[force.at]):
+                continue
+            at = acts[0].at
+            moved = replace(d, forces=tuple(replace(f, at=at) if f is force else f
+                                            for f in d.forces))
+            term = _expr(f"mag(pos({force.at}, {at}))")
+            yield DynamicsMutation(
+                "load_at_other_point", f"Your value takes the force {force.name} on "
+                f"{force.on} at {at}, where {r.name} acts: it acts at {force.at}, {{term}} "
+                f"from {at}, and its moment depends on where.", LOADS,
+                problem=_mistaken(problem, moved), term=term, term_unit="m")
+            acts_moved = tuple(replace(a, at=force.at) if a is acts[0] else a for a in r.acts)
+            exchanged = replace(moved, reactions=tuple(replace(x, acts=acts_moved) if x is r
+                                                       else x for x in d.reactions))
+            yield DynamicsMutation(
+                "load_at_other_point", f"Your value exchanges the points of {force.name} and "
+                f"{r.name} on {force.on}: {force.name} acts at {force.at} and {r.name} at {at}, "
+                "{term} apart, and their moments depend on where.", LOADS,
+                problem=_mistaken(problem, exchanged), term=term, term_unit="m")
+
+
 def static_friction_as_mu_m_g(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The friction at a contact that does not slip read as μ m g (the limiting value, with
     the weight for the normal force) in the sense it acts: static friction is what the
@@ -1244,7 +1277,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
-    period_for_frequency, spring_energy_from_change)
+    period_for_frequency, spring_energy_from_change, force_at_other_point)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
