@@ -499,3 +499,22 @@ def test_a_push_on_a_lever_taken_at_the_pad_gives_the_normal_force_p():
     values = sorted(m.value for m in _generated("flywheel_lever_brake", "normal_force",
                                                 "load_at_other_point"))
     assert values == pytest.approx([40.0, 100.0])
+
+
+def test_an_oblique_impact_of_two_pucks_taken_head_on():
+    # A at 6 m/s and B at 4 m/s, each oblique to the line of centres N.x: their whole speeds
+    # taken along it, in the sense of their components there, nothing across it
+    (head_on,) = [m for m in dynamics_mutations(_problem("pucks_oblique_impact"))
+                  if m.code == "impact_taken_head_on"]
+    starts = {s.key.text: s.value.text for s in head_on.problem.dynamics.analysis.start}
+    assert starts["yA'"] == starts["yB'"] == "0"
+    assert starts["xB'"] == ("(-vB*cos(pi/3))/abs(-vB*cos(pi/3))*sqrt((-vB*sin(pi/3))^2 + "
+                             "(-vB*cos(pi/3))^2)")
+
+
+@pytest.mark.slow
+def test_an_oblique_impact_taken_head_on_gives_the_whole_speeds_exchange():
+    (head_on,) = _generated("pucks_oblique_impact", "velocity_A", "impact_taken_head_on")
+    assert head_on.value == pytest.approx((-4.8, 0.0, 0.0), abs=1e-9)
+    # a rod struck at a point turns: no particle impact to take head-on
+    assert "impact_taken_head_on" not in _codes("rod_strikes_ledge")

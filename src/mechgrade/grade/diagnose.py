@@ -340,6 +340,7 @@ LABELS = {
     "contact_taken_smooth": "a rolling contact taken as smooth",
     "period_for_frequency": "period and frequency confused",
     "spring_energy_from_change": "spring energy from the change of stretch",
+    "impact_taken_head_on": "an oblique impact taken as head-on",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

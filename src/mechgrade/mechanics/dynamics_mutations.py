@@ -573,6 +573,77 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
+def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An oblique impact of particles treated as head-on: each particle's whole speed just
+    before taken along the line of impact (in the sense of its component there), its
+    component across the line left out. Only particles whose coordinates move them along
+    fixed perpendicular axes, one of them the line of impact."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    before = {to_text(s.key.node): s for s in d.analysis.start}
+    for c in d.analysis.contacts:
+        if not isinstance(c, Restitution):
+            continue
+        line = model.language.vector(c.direction)
+        rates: dict[str, str] = {}
+        for name in c.bodies:
+            body = next((b for b in d.bodies if b.name == name), None)
+            if body is None or body.frame is not None:
+                break
+            along = _axes(problem, model, body.centre, line)
+            if along is None:
+                break
+            # each coordinate's rate just before, as written (0 where left out)
+            text = {q: (before[f"{q}'"].value.text if before[f"{q}'"].value is not None
+                        else repr(before[f"{q}'"].si)) if f"{q}'" in before else "0"
+                    for q in along[1] + (along[0],)}
+            speed = "sqrt(" + " + ".join(f"({t})^2" for t in text.values()) + ")"
+            first = text[along[0]]
+            if identically_zero(model.plain(model.language.value(parse(
+                    f"({speed})^2 - ({first})^2", functions=FUNCTIONS)))):
+                break  # already along the line: head-on is right for this body
+            rates[f"{along[0]}'"] = f"({first})/abs({first})*{speed}"
+            rates.update({f"{q}'": "0" for q in along[1]})
+        else:
+            if not rates:
+                continue
+            starts = tuple(replace(s, value=_expr(rates[to_text(s.key.node)]), si=None)
+                           if to_text(s.key.node) in rates else s for s in d.analysis.start)
+            yield DynamicsMutation(
+                "impact_taken_head_on", f"Your value treats the impact at {c.at} as head-on, "
+                f"with the whole speeds along the line of impact {c.direction.text}: only the "
+                "velocity components along that line change in the impact (restitution and "
+                "momentum along it); the components across it are kept.", BALANCES,
+                problem=_mistaken(problem, replace(d, analysis=replace(d.analysis,
+                                                                       start=starts))))
+
+
+def _axes(problem: Problem, model: Model, point: str, line: Vector
+          ) -> tuple[str, tuple[str, ...]] | None:
+    """The coordinate that moves ``point`` along ``line`` and those that move it across, when
+    each coordinate moves it along a fixed unit vector (its rectangular coordinates)."""
+    N = model.inertial
+    along, across = None, []
+    coordinates = [model.language.value(Name(c.name)) for c in problem.coordinates]
+    for coordinate in problem.coordinates:
+        q = model.language.value(Name(coordinate.name))
+        e = model.positions[point].diff(q, N)
+        if _zero(model, e):
+            continue
+        if not identically_zero(model.plain((e & e) - 1)) or any(
+                not identically_zero(model.plain(part.diff(x)))
+                for part in e.to_matrix(N) for x in coordinates):
+            return None
+        if _zero(model, e ^ line) and identically_zero(model.plain((e & line) - 1)):
+            along = coordinate.name
+        elif identically_zero(model.plain(e & line)):
+            across.append(coordinate.name)
+        else:
+            return None
+    return (along, tuple(across)) if along is not None else None
+
+
 def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A smooth impact (its impulse along the line of impact only) with the coefficient of
     restitution applied to the tangential component too: scaling it, or reversing it."""
@@ -1277,7 +1348,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
-    period_for_frequency, spring_energy_from_change, force_at_other_point)
+    period_for_frequency, spring_energy_from_change, force_at_other_point,
+    impact_taken_head_on)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -91,7 +91,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "spring_term_dropped": ("spring_omitted",),
     "gravity_dropped": ("weight_omitted",),
     "ke_conserved": ("restitution_ignored",),
-    "head_on": (),
+    "head_on": ("impact_taken_head_on",),
     "restitution_wrong_component": ("restitution_component",),
     "restitution_ignored": ("restitution_ignored",),
     "momentum_with_pin": (),
