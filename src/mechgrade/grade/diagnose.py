@@ -126,11 +126,27 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
     found = _generated(student, reference, close, generated, plausible, exact)
+    factor = _factor(student, reference, close if exact is None else exact, plausible)
     if found is not None:
+        # a family that only comes near the answer is no better explanation than a factor
+        # the answer has exactly (2π: revolutions for radians)
+        if factor is not None and exact is not None and _generated(
+                student, reference, exact, generated, plausible, exact) is None:
+            return factor
         return found
+    if factor is not None:
+        return factor
+    if kind == "vector":
+        return _vector(student, reference, close)
+    return None
+
+
+def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
+            plausible: frozenset[str] | None) -> Diagnosis | None:
+    """The first whole-answer factor (a sign, a factor, a unit slip) ``student`` has
+    exactly, among those the model makes plausible."""
     if not (reference != 0).any():
         return None
-    exact = close if exact is None else exact
     # every factor times the reference at once (row by row the same products)
     scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
     for code, label, message, factors in _FACTORS:
@@ -140,8 +156,6 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         for row in rows:
             if exact(student, row):
                 return Diagnosis(code, label, message)
-    if kind == "vector":
-        return _vector(student, reference, close)
     return None
 
 
