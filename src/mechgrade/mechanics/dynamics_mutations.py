@@ -35,7 +35,8 @@ from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              LoadKind,
                              Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
-                             Ring, Shape, Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
+                             Ring, Shape, Shell, Sphere, Start, StaticFriction, WorkEnergy,
+                             dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from ..spec.solving import given_unit
@@ -595,9 +596,7 @@ def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMut
             if along is None:
                 break
             # each coordinate's rate just before, as written (0 where left out)
-            text = {q: (before[f"{q}'"].value.text if before[f"{q}'"].value is not None
-                        else repr(before[f"{q}'"].si)) if f"{q}'" in before else "0"
-                    for q in along[1] + (along[0],)}
+            text = {q: _start_text(before.get(f"{q}'")) for q in along[1] + (along[0],)}
             speed = "sqrt(" + " + ".join(f"({t})^2" for t in text.values()) + ")"
             first = text[along[0]]
             if identically_zero(model.plain(model.language.value(parse(
@@ -617,6 +616,13 @@ def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMut
                 "momentum along it); the components across it are kept.", BALANCES,
                 problem=_mistaken(problem, replace(d, analysis=replace(d.analysis,
                                                                        start=starts))))
+
+
+def _start_text(start: Start | None) -> str:
+    """A rate at the start as written (its SI value where given as a quantity; 0 left out)."""
+    if start is None:
+        return "0"
+    return start.value.text if start.value is not None else repr(start.si)
 
 
 def _axes(problem: Problem, model: Model, point: str, line: Vector
