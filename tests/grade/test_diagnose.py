@@ -309,3 +309,9 @@ def test_a_factor_the_answer_has_exactly_wins_over_a_family_only_near_it():
     on = [(GeneratedMistake("period_for_frequency", "...", 0.39789), np.array([0.39789]))]
     assert diagnose(student, reference, close, generated=on,
                     exact=exact).code == "period_for_frequency"
+    # a factor only four times nearer than the family is no better explanation: 1.6 for
+    # 3.2062 is within the share of 2, and 0.8 % from the speed at the start 1.6125
+    start = [(GeneratedMistake("value_at_start", "...", 1.6125), np.array([1.6125]))]
+    loose = lambda s, t: bool(np.all(np.abs(s - t) <= 0.0025 * np.abs(t)))  # noqa: E731
+    assert diagnose(np.array([1.6]), np.array([3.2062]), close, generated=start,
+                    exact=loose).code == "value_at_start"

@@ -128,23 +128,27 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     found = _generated(student, reference, close, generated, plausible, exact)
     factor = _factor(student, reference, close if exact is None else exact, plausible)
     if found is not None:
-        # a family that only comes near the answer is no better explanation than a factor
-        # the answer has exactly (2π: revolutions for radians)
+        # a family that only comes near the answer explains it worse than a factor the
+        # answer has ten times more nearly (2π: revolutions for radians)
         if factor is not None and exact is not None and _generated(
                 student, reference, exact, generated, plausible, exact) is None:
-            return factor
+            near = min(float(np.linalg.norm(student - np.asarray(v, dtype=float)))
+                       for _, v in generated if v is not None
+                       and np.shape(v) == reference.shape and close(student, np.asarray(v)))
+            if factor[1] <= 0.1 * near:
+                return factor[0]
         return found
     if factor is not None:
-        return factor
+        return factor[0]
     if kind == "vector":
         return _vector(student, reference, close)
     return None
 
 
 def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
-            plausible: frozenset[str] | None) -> Diagnosis | None:
+            plausible: frozenset[str] | None) -> tuple[Diagnosis, float] | None:
     """The first whole-answer factor (a sign, a factor, a unit slip) ``student`` has
-    exactly, among those the model makes plausible."""
+    exactly, among those the model makes plausible, and the distance from it."""
     if not (reference != 0).any():
         return None
     # every factor times the reference at once (row by row the same products)
@@ -155,7 +159,7 @@ def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
             continue
         for row in rows:
             if exact(student, row):
-                return Diagnosis(code, label, message)
+                return Diagnosis(code, label, message), float(np.linalg.norm(student - row))
     return None
 
 
