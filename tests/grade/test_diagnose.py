@@ -294,3 +294,24 @@ def test_of_families_one_but_for_round_off_the_first_is_named_first():
     origin = ("drop_transport_vel", "Without the hub's velocity.", (-106.0 + 1e-13, -40.0, 0.0))
     assert assess("(-106, -40, 0) ft/s^2", _with_generated(origin, WEIGHT)).diagnosis == \
         "frame origin's velocity left out or weight left out"
+
+
+def test_a_factor_the_answer_has_exactly_wins_over_a_family_only_near_it():
+    # 2 pi/Omega = 2.5 s answered 1/Omega = 0.3979 s: the frequency Omega/(2 pi) = 0.3979 *
+    # 1.004 is within 1 % but not within the coincidence share; the 2 pi is exact
+    from mechgrade.solve.result import GeneratedMistake
+    close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))  # noqa: E731
+    exact = lambda s, t: bool(np.all(np.abs(s - t) <= 0.001 * np.abs(t)))  # noqa: E731
+    near = [(GeneratedMistake("period_for_frequency", "...", 0.3995), np.array([0.3995]))]
+    student, reference = np.array([2.5 / (2 * math.pi)]), np.array([2.5])
+    assert diagnose(student, reference, close, generated=near, exact=exact).code == "rev_rad"
+    # the family that fits exactly too is named
+    on = [(GeneratedMistake("period_for_frequency", "...", 0.39789), np.array([0.39789]))]
+    assert diagnose(student, reference, close, generated=on,
+                    exact=exact).code == "period_for_frequency"
+    # a factor only four times nearer than the family is no better explanation: 1.6 for
+    # 3.2062 is within the share of 2, and 0.8 % from the speed at the start 1.6125
+    start = [(GeneratedMistake("value_at_start", "...", 1.6125), np.array([1.6125]))]
+    loose = lambda s, t: bool(np.all(np.abs(s - t) <= 0.0025 * np.abs(t)))  # noqa: E731
+    assert diagnose(np.array([1.6]), np.array([3.2062]), close, generated=start,
+                    exact=loose).code == "value_at_start"

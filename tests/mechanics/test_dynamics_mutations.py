@@ -462,3 +462,71 @@ def _bar_with_its_weight_at_the_end():
 def test_the_new_families_name_their_value(problem, objective, answer, code):
     judged = assess(answer, _solution(problem).result(objective))
     assert judged.diagnosis == LABELS[code]
+
+
+def test_a_frequency_in_hertz_and_a_period_read_the_other_way_up():
+    # f = omega_n/(2 pi) = 4.424 Hz answered 2 pi/omega_n = 0.2260 s, and the reverse
+    problem = _problem("block_on_spring_us_units")
+    readings = {m.readings[0][0]: m.readings[0][1].text for m in dynamics_mutations(problem)
+                if m.code == "period_for_frequency"}
+    assert readings == {"frequency": "2*pi/omega_n(y)", "period": "omega_n(y)/(2*pi)"}
+    # an objective without 2 pi in it (omega_n itself) is not read so
+    assert "omega_n" not in readings
+
+
+def test_a_springs_energy_taken_from_the_change_of_its_stretch_in_a_work_energy_balance():
+    # the spring DA is counted from its length at the start, |DA| = sqrt(H^2 + L^2) at
+    # theta = 0, instead of its free length L0; its force (the pin's) keeps the free length
+    (changed,) = [m for m in dynamics_mutations(_problem("bar_swings_down_spring_energy"))
+                  if m.code == "spring_energy_from_change"]
+    assert changed.problem.dynamics.springs[0].length.text == "sqrt(H**2 + L**2)"
+    assert [o.id for o in changed.problem.objectives] == ["angular_velocity", "spring_energy"]
+
+
+@pytest.mark.slow
+def test_a_springs_energy_from_the_change_of_its_stretch_gives_the_students_speed():
+    # (1/2) k (s2 - s1)^2 = 3.6 J for the 25.6 J - 10 J of the right balance: 4.640 rad/s
+    (changed,) = _generated("bar_swings_down_spring_energy", "angular_velocity",
+                            "spring_energy_from_change")
+    assert changed.value == pytest.approx(4.639504, rel=1e-5)
+    assert "the stretch s1 = 1 m at the start" in changed.message
+    # an integrated motion (the launcher) is no work-energy balance
+    assert "spring_energy_from_change" not in _codes("spring_launcher_a_of_x")
+
+
+def test_a_push_on_a_lever_taken_at_the_pad_or_exchanged_with_it():
+    # the push P at C and the pad's N_B at B on the lever: P taken at B (N = P), or the two
+    # exchanged (N = P b/(b + c)); the pin A, with two directions, is never taken
+    moved = [m for m in dynamics_mutations(_problem("flywheel_lever_brake"))
+             if m.code == "load_at_other_point"]
+    assert [m.problem.dynamics.forces[0].at for m in moved] == ["B", "B"]
+    pad = [[a.at for a in r.acts if a.on == "lever"] for m in moved
+           for r in m.problem.dynamics.reactions if r.name == "N_B"]
+    assert pad == [["B"], ["C"]]
+    assert moved[0].sentence.startswith("Your value takes the force push on lever at B")
+
+
+@pytest.mark.slow
+def test_a_push_on_a_lever_taken_at_the_pad_gives_the_normal_force_p():
+    values = sorted(m.value for m in _generated("flywheel_lever_brake", "normal_force",
+                                                "load_at_other_point"))
+    assert values == pytest.approx([40.0, 100.0])
+
+
+def test_an_oblique_impact_of_two_pucks_taken_head_on():
+    # A at 6 m/s and B at 4 m/s, each oblique to the line of centres N.x: their whole speeds
+    # taken along it, in the sense of their components there, nothing across it
+    (head_on,) = [m for m in dynamics_mutations(_problem("pucks_oblique_impact"))
+                  if m.code == "impact_taken_head_on"]
+    starts = {s.key.text: s.value.text for s in head_on.problem.dynamics.analysis.start}
+    assert starts["yA'"] == starts["yB'"] == "0"
+    assert starts["xB'"] == ("(-vB*cos(pi/3))/abs(-vB*cos(pi/3))*sqrt((-vB*sin(pi/3))^2 + "
+                             "(-vB*cos(pi/3))^2)")
+
+
+@pytest.mark.slow
+def test_an_oblique_impact_taken_head_on_gives_the_whole_speeds_exchange():
+    (head_on,) = _generated("pucks_oblique_impact", "velocity_A", "impact_taken_head_on")
+    assert head_on.value == pytest.approx((-4.8, 0.0, 0.0), abs=1e-9)
+    # a rod struck at a point turns: no particle impact to take head-on
+    assert "impact_taken_head_on" not in _codes("rod_strikes_ledge")

@@ -136,3 +136,38 @@ def test_a_bodys_material_point_is_read_with_a_term_of_its_rigid_body_formula_le
     assert by_code["drop_tangential"] == pytest.approx((1.5, 22.5, 0.0), abs=1e-9)
     assert "material point of W at C" in next(
         m.message for m in result.generated_mistakes if m.code == "drop_tangential")
+
+
+@pytest.mark.slow
+def test_a_radius_of_curvature_of_a_path_y_of_x_taken_without_its_slope_term():
+    # y = x^2/b, b = 200 m, at x = 40 m: 1/y'' = 100 m and sqrt(1 + y'^2)/y'' = 107.7 m for
+    # the 124.9 m of (1 + y'^2)^(3/2)/y''; the normal acceleration v^2/rho with them
+    solution = solve(_problem("car_on_parabolic_road"))
+    for objective, expected in (("radius_of_curvature", (100.0, 107.7033)),
+                                ("normal_acceleration", (2.25, 2.089073))):
+        found = [m for m in solution.result(objective).generated_mistakes
+                 if m.code == "rho_without_slope"]
+        assert [m.value for m in found] == pytest.approx(expected, rel=1e-6)
+    assert "as 1/|y''|, without the slope term" in found[0].message
+    # |a| is not read from the path's formula
+    assert not _codes("car_on_parabolic_road", "acceleration_magnitude").count(
+        "rho_without_slope")
+
+
+@pytest.mark.slow
+def test_a_path_not_given_as_y_of_x_has_no_slope_term_mistake():
+    # a polar path (r and theta): no constraint gives one coordinate as a function of another
+    assert not [m for m in mutations(_problem("ruina_10_3_spiral_bug"))
+                if m.code == "rho_without_slope"]
+
+
+@pytest.mark.slow
+def test_an_angle_rate_fixed_by_the_constraints_read_as_the_drivers_given_rate():
+    # the slotted arm's theta' answered with the crank's phi' = 4 rad/s
+    problem = _problem("slotted_arm_crank_coriolis")
+    found = [m for m in mutations(problem, "arm_angular_velocity") if m.code == "driver_rate"]
+    assert [float(m.value) for m in found] == [4.0]
+    assert found[0].sentence.startswith("Your value is phi' = 4 rad/s, the given rate of phi")
+    # phi'' = 0 is given: no driver's rate to take for theta''; s' is no angle's rate
+    assert not [m for o in ("arm_angular_acceleration", "sliding_rate")
+                for m in mutations(problem, o) if m.code == "driver_rate"]

@@ -126,11 +126,31 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
     found = _generated(student, reference, close, generated, plausible, exact)
+    factor = _factor(student, reference, close if exact is None else exact, plausible)
     if found is not None:
+        # a family that only comes near the answer explains it worse than a factor the
+        # answer has ten times more nearly (2π: revolutions for radians)
+        if factor is not None and exact is not None and _generated(
+                student, reference, exact, generated, plausible, exact) is None:
+            near = min(float(np.linalg.norm(student - np.asarray(v, dtype=float)))
+                       for _, v in generated if v is not None
+                       and np.shape(v) == reference.shape and close(student, np.asarray(v)))
+            if factor[1] <= 0.1 * near:
+                return factor[0]
         return found
+    if factor is not None:
+        return factor[0]
+    if kind == "vector":
+        return _vector(student, reference, close)
+    return None
+
+
+def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
+            plausible: frozenset[str] | None) -> tuple[Diagnosis, float] | None:
+    """The first whole-answer factor (a sign, a factor, a unit slip) ``student`` has
+    exactly, among those the model makes plausible, and the distance from it."""
     if not (reference != 0).any():
         return None
-    exact = close if exact is None else exact
     # every factor times the reference at once (row by row the same products)
     scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
     for code, label, message, factors in _FACTORS:
@@ -139,9 +159,7 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
             continue
         for row in rows:
             if exact(student, row):
-                return Diagnosis(code, label, message)
-    if kind == "vector":
-        return _vector(student, reference, close)
+                return Diagnosis(code, label, message), float(np.linalg.norm(student - row))
     return None
 
 
@@ -298,6 +316,7 @@ LABELS = {
     "mag_as_sum": "components or magnitudes added for a magnitude",
     "position_term": "a term of the position left out",
     "zero_for_constant_rate": "acceleration taken as zero at a constant rate",
+    "driver_rate": "the driver's angular rate for a connected body's",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",
@@ -305,6 +324,7 @@ LABELS = {
     "acc_for_acc_t": "whole acceleration for its tangential part",
     "acc_for_acc_n": "whole acceleration for its normal part",
     "rho_formula": "radius of curvature from |a|",
+    "rho_without_slope": "radius of curvature without the slope term",
     "component_for_speed": "a velocity component for the speed",
     "given_deg_as_rad": "given angle's degrees used as radians",
     "given_complement": "given angle read as its complement (sin and cos exchanged)",
@@ -343,6 +363,9 @@ LABELS = {
     "spring_omitted": "a spring left out",
     "load_at_other_point": "a load taken at another point of its body",
     "contact_taken_smooth": "a rolling contact taken as smooth",
+    "period_for_frequency": "period and frequency confused",
+    "spring_energy_from_change": "spring energy from the change of stretch",
+    "impact_taken_head_on": "an oblique impact taken as head-on",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

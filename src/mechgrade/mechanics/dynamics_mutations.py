@@ -35,7 +35,8 @@ from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              LoadKind,
                              Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
-                             Ring, Shape, Shell, Sphere, StaticFriction, WorkEnergy, dynamics_of)
+                             Ring, Shape, Shell, Sphere, Start, StaticFriction, WorkEnergy,
+                             dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from ..spec.solving import given_unit
@@ -573,6 +574,82 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
+def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An oblique impact of particles treated as head-on: each particle's whole speed just
+    before taken along the line of impact (in the sense of its component there), its
+    component across the line left out. Only particles whose coordinates move them along
+    fixed perpendicular axes, one of them the line of impact."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    before = {to_text(s.key.node): s for s in d.analysis.start}
+    for c in d.analysis.contacts:
+        if not isinstance(c, Restitution):
+            continue
+        line = model.language.vector(c.direction)
+        rates: dict[str, str] = {}
+        for name in c.bodies:
+            body = next((b for b in d.bodies if b.name == name), None)
+            if body is None or body.frame is not None:
+                break
+            along = _axes(problem, model, body.centre, line)
+            if along is None:
+                break
+            # each coordinate's rate just before, as written (0 where left out)
+            text = {q: _start_text(before.get(f"{q}'")) for q in along[1] + (along[0],)}
+            speed = "sqrt(" + " + ".join(f"({t})^2" for t in text.values()) + ")"
+            first = text[along[0]]
+            if identically_zero(model.plain(model.language.value(parse(
+                    f"({speed})^2 - ({first})^2", functions=FUNCTIONS)))):
+                break  # already along the line: head-on is right for this body
+            rates[f"{along[0]}'"] = f"({first})/abs({first})*{speed}"
+            rates.update({f"{q}'": "0" for q in along[1]})
+        else:
+            if not rates:
+                continue
+            starts = tuple(replace(s, value=_expr(rates[to_text(s.key.node)]), si=None)
+                           if to_text(s.key.node) in rates else s for s in d.analysis.start)
+            yield DynamicsMutation(
+                "impact_taken_head_on", f"Your value treats the impact at {c.at} as head-on, "
+                f"with the whole speeds along the line of impact {c.direction.text}: only the "
+                "velocity components along that line change in the impact (restitution and "
+                "momentum along it); the components across it are kept.", BALANCES,
+                problem=_mistaken(problem, replace(d, analysis=replace(d.analysis,
+                                                                       start=starts))))
+
+
+def _start_text(start: Start | None) -> str:
+    """A rate at the start as written (its SI value where given as a quantity; 0 left out)."""
+    if start is None:
+        return "0"
+    return start.value.text if start.value is not None else repr(start.si)
+
+
+def _axes(problem: Problem, model: Model, point: str, line: Vector
+          ) -> tuple[str, tuple[str, ...]] | None:
+    """The coordinate that moves ``point`` along ``line`` and those that move it across, when
+    each coordinate moves it along a fixed unit vector (its rectangular coordinates)."""
+    N = model.inertial
+    along, across = None, []
+    coordinates = [model.language.value(Name(c.name)) for c in problem.coordinates]
+    for coordinate in problem.coordinates:
+        q = model.language.value(Name(coordinate.name))
+        e = model.positions[point].diff(q, N)
+        if _zero(model, e):
+            continue
+        if not identically_zero(model.plain((e & e) - 1)) or any(
+                not identically_zero(model.plain(part.diff(x)))
+                for part in e.to_matrix(N) for x in coordinates):
+            return None
+        if _zero(model, e ^ line) and identically_zero(model.plain((e & line) - 1)):
+            along = coordinate.name
+        elif identically_zero(model.plain(e & line)):
+            across.append(coordinate.name)
+        else:
+            return None
+    return (along, tuple(across)) if along is not None else None
+
+
 def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A smooth impact (its impulse along the line of impact only) with the coefficient of
     restitution applied to the tangential component too: scaling it, or reversing it."""
@@ -884,6 +961,39 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
             term=spring.length, term_unit="m")
 
 
+def spring_energy_from_change(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In a work-energy balance, a spring's energy change taken as ½ k (s2 - s1)², the square
+    of the change of its stretch, instead of ½ k s2² - ½ k s1²: the spring's energy counted
+    from its length at the start (its free length replaced by that length)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, WorkEnergy):
+        return
+    at_start = {}
+    for start in d.analysis.start:
+        if isinstance(start.key.node, Name):
+            at_start[model.language.value(start.key.node)] = (
+                model.language.value(start.value.node) if start.value is not None
+                else start.si)
+    for spring in d.springs:
+        length = (model.positions[spring.between[0]]
+                  - model.positions[spring.between[1]]).magnitude().subs(at_start)
+        stretch = model.plain(length - model.language.scalar(spring.length))
+        if any(length.has(model.language.value(Name(c.name))) for c in problem.coordinates) \
+                or identically_zero(stretch):
+            continue  # the start does not fix the length, or the spring is not stretched
+        start_length = _expr(str(model.plain(length)))
+        springs = tuple(replace(x, length=start_length) if x is spring else x
+                        for x in d.springs)
+        yield DynamicsMutation(
+            "spring_energy_from_change", f"Your value takes the energy of spring "
+            f"{spring.name} as ½ k (s2 - s1)², from the change of its stretch: its energy is "
+            f"½ k s² at each end of the motion, and the change is ½ k s2² - ½ k s1², with the "
+            "stretch s1 = {term} at the start.", LOADS,
+            # the forces keep the stretch from the free length (an energy mistake)
+            problem=_mistaken(problem, replace(d, springs=springs), without=("force",)),
+            term=Expr(str(stretch), parse(str(stretch), functions=FUNCTIONS)), term_unit="m")
+
+
 def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """Each spring left out of the free-body diagrams (and of the energy), one at a time."""
     d = dynamics_of(problem)
@@ -967,6 +1077,39 @@ def load_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 LOADS, problem=_mistaken(problem, replace(d, gravity=None,
                                                           forces=d.forces + weights)),
                 term=_expr(f"mag(pos({body.centre}, {point}))"), term_unit="m")
+
+
+def force_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An applied force on a body that another single-direction reaction also acts on (a
+    lever's push and its pad) taken at that reaction's point, the lever's advantage ignored;
+    or the two exchanged, each at the other's point (the lever arms inverted). A pin's point
+    (a reaction along two directions) is not taken: there the force would have no moment."""
+    d = dynamics_of(problem)
+    for force in d.forces:
+        if force.kind != LoadKind.APPLIED_FORCE:
+            continue
+        for r in d.reactions:
+            acts = [a for a in r.acts if a.on == force.on]
+            if len(r.directions) != 1 or len(acts) != 1 or _zero(
+                    model, model.positions[acts[0].at] - model.positions[force.at]):
+                continue
+            at = acts[0].at
+            moved = replace(d, forces=tuple(replace(f, at=at) if f is force else f
+                                            for f in d.forces))
+            term = _expr(f"mag(pos({force.at}, {at}))")
+            yield DynamicsMutation(
+                "load_at_other_point", f"Your value takes the force {force.name} on "
+                f"{force.on} at {at}, where {r.name} acts: it acts at {force.at}, {{term}} "
+                f"from {at}, and its moment depends on where.", LOADS,
+                problem=_mistaken(problem, moved), term=term, term_unit="m")
+            acts_moved = tuple(replace(a, at=force.at) if a is acts[0] else a for a in r.acts)
+            exchanged = replace(moved, reactions=tuple(replace(x, acts=acts_moved) if x is r
+                                                       else x for x in d.reactions))
+            yield DynamicsMutation(
+                "load_at_other_point", f"Your value exchanges the points of {force.name} and "
+                f"{r.name} on {force.on}: {force.name} acts at {force.at} and {r.name} at {at}, "
+                "{term} apart, and their moments depend on where.", LOADS,
+                problem=_mistaken(problem, exchanged), term=term, term_unit="m")
 
 
 def static_friction_as_mu_m_g(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1197,6 +1340,33 @@ def efficiency_inverted(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 term=Expr(eta.id, eta))
 
 
+def _two_pi(node: Node) -> bool:
+    return isinstance(node, Bin) and node.op == "*" and {to_text(node.left),
+                                                         to_text(node.right)} == {"2", "pi"}
+
+
+def period_for_frequency(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A frequency in hertz, f = ω/(2π), answered with the period 2π/ω, or the period
+    answered with the frequency: the objective read with 2π and the circular frequency the
+    other way up."""
+    for obj in problem.objectives:
+        node = obj.find.node
+        if obj.kind == "symbolic" or not (isinstance(node, Bin) and node.op == "/"):
+            continue
+        if _two_pi(node.right):
+            new, said = Bin("/", node.right, node.left), ("the period", "frequency f")
+        elif _two_pi(node.left):
+            new, said = Bin("/", node.right, node.left), ("the frequency", "period τ")
+        else:
+            continue
+        omega = node.left if _two_pi(node.right) else node.right
+        yield DynamicsMutation(
+            "period_for_frequency", f"Your value is {said[0]} where the {said[1]} was asked: "
+            "with ω = {term}, f = ω/(2π) in hertz and τ = 2π/ω = 1/f.",
+            OBJECTIVES, readings=((obj.id, Expr(to_text(new), new)),),
+            term=Expr(to_text(omega), omega), term_unit="rad/s")
+
+
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
@@ -1206,7 +1376,9 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
-    static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth)
+    static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
+    period_for_frequency, spring_energy_from_change, force_at_other_point,
+    impact_taken_head_on)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

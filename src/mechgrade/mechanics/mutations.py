@@ -162,6 +162,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _magnitudes_combined(r)
     _other_bases(r)
     _zero_for_constant_rate(r)
+    _driver_rate(r)
     return r.out
 
 
@@ -422,6 +423,52 @@ def _path_quantities(r: _Reading) -> None:
             r.append("rho_formula", (v & v) / a.magnitude(), "Your value is v²/|a|; the "
                      "radius of curvature is v²/a_n, with the normal part a_n of the "
                      "acceleration only.")
+    if top in ("rho", "acc_n"):
+        _curvature_without_slope(r, node)
+
+
+def _curvature_without_slope(r: _Reading, node: Call) -> None:
+    """On a path given as ``y = f(x)`` (a position constraint: one coordinate equal to an
+    expression of one other), the radius of curvature ρ = (1 + y′²)^(3/2)/|y″| taken as
+    1/|y″| (the slope term left out) or with the exponent 1/2: in ρ itself, and in the
+    normal acceleration v²/ρ."""
+    coordinates = {c.name for c in r.model.problem.coordinates}
+    for c in r.model.problem.constraints:
+        if c.level != "position" or not isinstance(c.lhs.node, Name) \
+                or c.lhs.node.id not in coordinates:
+            continue
+        along = {n.id for n in walk(c.rhs.node) if isinstance(n, Name)} & coordinates
+        if len(along) != 1 or c.lhs.node.id in along:
+            continue
+        (x,) = along
+        y, x_of_t = c.lhs.node.id, r.base.value(Name(x))
+        if not _cartesian(r, node.args[0], x_of_t, r.base.value(c.lhs.node)):
+            continue  # a polar path r = f(θ) has another formula
+        f = r.base.value(c.rhs.node)
+        slope, bend = sp.diff(f, x_of_t), sp.diff(f, x_of_t, 2)
+        if identically_zero(r.model.plain(slope)) or identically_zero(r.model.plain(bend)):
+            continue  # a straight path, or one whose slope is zero here: no slope term
+        v = r.base.point_velocity(node.args[0], name_of(node.args[1]))
+        for rho, how in ((1 / sp.Abs(bend), f"1/|{y}''|, without the slope term"),
+                         (sp.sqrt(1 + slope ** 2) / sp.Abs(bend),
+                          f"(1 + {y}'²)^(1/2)/|{y}''|, with the exponent 1/2")):
+            value = rho if node.func == "rho" else (v & v) / rho
+            r.append("rho_without_slope", value, f"Your value takes the radius of curvature "
+                     f"of the path {c.lhs.text} = {c.rhs.text} as {how}: ρ = (1 + "
+                     f"{y}'²)^(3/2)/|{y}''|, where {y}' = d{y}/d{x}.")
+
+
+def _cartesian(r: _Reading, point: Node, x, y) -> bool:
+    """Whether ``point``'s position moves along two fixed perpendicular unit vectors as the
+    coordinates ``x`` and ``y`` change (its rectangular coordinates)."""
+    if not isinstance(point, Name) or point.id not in r.model.positions:
+        return False
+    position, N = r.model.positions[point.id], r.model.inertial
+    ex, ey = (position.diff(q, N) for q in (x, y))
+    return all(identically_zero(r.model.plain(value)) for value in (
+        (ex & ex) - 1, (ey & ey) - 1, ex & ey)) and all(
+        identically_zero(r.model.plain(sp.diff(part, q)))
+        for e in (ex, ey) for part in e.to_matrix(N) for q in (x, y))
 
 
 def _speed_readings(r: _Reading) -> None:
@@ -526,6 +573,23 @@ def _zero_for_constant_rate(r: _Reading) -> None:
     r.append("zero_for_constant_rate", zero, f"Your value is zero, as if the constant rate "
              f"({rates}) meant no acceleration: a steady rate makes its own second derivative "
              "zero, not the other accelerations (their centripetal and coupled terms).")
+
+
+def _driver_rate(r: _Reading) -> None:
+    """An angle's rate that the constraints fix (a slotted arm's θ', a coupler's) answered
+    with the given rate of another angle (the crank's φ'): the connected body taken to turn
+    with the driver."""
+    node = r.node
+    angles = {c.name for c in r.model.problem.coordinates if c.unit in ("rad", "deg")}
+    if not (isinstance(node, Prime) and node.id in angles):
+        return
+    for g in r.model.problem.givens:
+        key = g.key.node
+        if isinstance(key, Prime) and key.order == node.order and key.id in angles \
+                and key.id != node.id and g.si != 0:
+            r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
+                     f"{g.text}, the given rate of {key.id}, as if {node.id} turned with it: "
+                     f"{to_text(node)} follows from the constraints that connect them.")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:

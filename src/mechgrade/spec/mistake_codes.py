@@ -20,8 +20,9 @@ VELOCITY_CODES = ("drop_transport_vel", "drop_omega_r", "drop_relative_vel")
 
 MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "relative_omega", "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc",
-    "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "component_for_speed", "mag_as_sum",
-    "position_term", "zero_for_constant_rate")
+    "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "rho_without_slope",
+    "component_for_speed", "mag_as_sum",
+    "position_term", "zero_for_constant_rate", "driver_rate")
 """Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
 
 DYNAMICS_CODES = (
@@ -33,7 +34,8 @@ DYNAMICS_CODES = (
     "restitution_component", "damping_omitted", "force_omitted", "springs_in_series",
     "weight_for_mass", "strands_miscounted", "initial_speed_omitted",
     "value_at_start", "force_taken_constant", "efficiency_inverted", "spring_omitted",
-    "load_at_other_point", "contact_taken_smooth")
+    "load_at_other_point", "contact_taken_smooth", "period_for_frequency",
+    "spring_energy_from_change", "impact_taken_head_on")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
