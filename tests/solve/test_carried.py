@@ -6,8 +6,10 @@ from __future__ import annotations
 
 import pytest
 
-from mechgrade.errors import UnderdeterminedError
+import mechgrade.solve.carried as carried_module
+from mechgrade.errors import MechgradeError, UnderdeterminedError
 from mechgrade.resources import shipped_dir
+from mechgrade.solve import solve
 from mechgrade.solve.carried import solve_carried
 from mechgrade.spec import load_problem
 
@@ -48,3 +50,28 @@ def test_a_work_energy_instant_keeps_the_students_angular_acceleration():
     problem = load_problem(shipped_dir("examples") / "hw3_dynamics" / "pendulum_release.yaml")
     force = solve_carried(problem, givens={"theta''": -31.53}, objectives=("pin_force",))
     assert force.result("pin_force").value == pytest.approx((-43.475, 12.570, 0.0), abs=2e-3)
+
+
+@pytest.mark.slow  # cold derivations of the problem and of each mistaken model: seconds
+def test_a_carried_solve_and_its_mistakes_are_kept_in_the_disk_cache_apart_from_the_problems(
+        disk, forget, monkeypatch):
+    problem = load_problem(PROBLEMS / "block_sliding_down_incline.yaml")
+    carried = solve_carried(problem, givens={"x''": 1.0}, objectives=("normal",))
+    with pytest.raises(MechgradeError):  # solved as given, x'' contradicts the balances
+        solve(problem, givens={"x''": 1.0}, objectives=("normal",))
+    forget()
+    monkeypatch.setattr(carried_module, "held_dynamics", _not_solved)
+    again = solve_carried(problem, givens={"x''": 1.0}, objectives=("normal",))
+    assert again.result("normal").value == carried.result("normal").value == \
+        pytest.approx(33.983, abs=1e-3)
+    # each mistaken model solved with x'' held too (solved as given, none would hold):
+    # N = m cos 30 = 3.464 (g left out), m g = 39.24, m g cos(30 rad) = 6.053, m g cos 60
+    mistakes = [(m.code, round(m.value, 3)) for m in again.result("normal").generated_mistakes]
+    assert mistakes == [("mass_for_weight", 3.464), ("reaction_as_weight", 39.24),
+                        ("given_deg_as_rad", 6.053), ("given_complement", 19.62)]
+    assert mistakes == [(m.code, round(m.value, 3))
+                        for m in carried.result("normal").generated_mistakes]
+
+
+def _not_solved(*args, **kwargs):
+    raise AssertionError("solved again: expected to be read from the cache")
