@@ -180,7 +180,7 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
     return drive(problem, kinetic_reach(problem), givens, objectives)
 
 
-BalancesSolver = Callable[[Problem, "KineticsPlan", State], np.ndarray]
+BalancesSolver = Callable[[Problem, KineticsPlan, State], np.ndarray]
 """How the momentum balances are solved at a state: :func:`solve_kinetics`, or with each
 given second rate held by a drive (:func:`~.carried.carried_kinetics`)."""
 
