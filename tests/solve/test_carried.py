@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import pytest
 
-from mechgrade.errors import UnderdeterminedError
+import mechgrade.solve.carried as carried_module
+from mechgrade.errors import MechgradeError, UnderdeterminedError
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.solve.carried import set_aside
+from mechgrade.solve.carried import solve_carried
 from mechgrade.spec import load_problem
 
 PROBLEMS = shipped_dir("problems")
@@ -20,22 +21,22 @@ def test_a_pin_force_follows_from_the_students_angular_acceleration():
     # with alpha = -31.53 rad/s^2: a_G = alpha k x r_G - w^2 r_G
     # = (-14.4920, -12.1602) + (-3.4711, 4.1366) = (-17.9631, -8.0236);
     # R_O = m a_G + m g j = (-35.926, -16.047 + 19.62) = (-35.926, 3.573) N
-    problem = set_aside(load_problem(PROBLEMS / "pendulum_pin_reaction.yaml"))
-    force = solve(problem, givens={"theta''": -31.53}, objectives=("pin_force",))
+    problem = load_problem(PROBLEMS / "pendulum_pin_reaction.yaml")
+    force = solve_carried(problem, givens={"theta''": -31.53}, objectives=("pin_force",))
     assert force.result("pin_force").value == pytest.approx((-35.926, 3.573, 0.0), abs=2e-3)
 
 
 def test_a_wrong_acceleration_down_an_incline_leaves_the_normal_force_as_it_is():
     # the balance along the slope gives way: N = m g cos 30 = 4 (9.81) 0.866025 = 33.983 N
-    problem = set_aside(load_problem(PROBLEMS / "block_sliding_down_incline.yaml"))
-    solution = solve(problem, givens={"x''": 1.0}, objectives=("normal",))
+    problem = load_problem(PROBLEMS / "block_sliding_down_incline.yaml")
+    solution = solve_carried(problem, givens={"x''": 1.0}, objectives=("normal",))
     assert solution.result("normal").value == pytest.approx(33.983, abs=1e-3)
 
 
 def test_a_wrong_acceleration_of_two_blocks_does_not_determine_the_rope_tension():
-    problem = set_aside(load_problem(PROBLEMS / "atwood_machine.yaml"))
+    problem = load_problem(PROBLEMS / "atwood_machine.yaml")
     with pytest.raises(UnderdeterminedError) as caught:
-        solve(problem, givens={"y''": 1.0}, objectives=("tension",))
+        solve_carried(problem, givens={"y''": 1.0}, objectives=("tension",))
     message = caught.value.message
     assert message.startswith("with the given y'', the momentum balances left do not "
                                "determine T (along N.y): setting aside the force balance of "
@@ -46,7 +47,31 @@ def test_a_wrong_acceleration_of_two_blocks_does_not_determine_the_rope_tension(
 def test_a_work_energy_instant_keeps_the_students_angular_acceleration():
     # w^2 = 3 g cos 40/L = 18.7872 from the energy balance; alpha = -31.53 rad/s^2:
     # R_O = m (alpha k x r_G - w^2 r_G) + m g j = (-43.475, 12.570) N
-    problem = set_aside(load_problem(shipped_dir("examples") / "hw3_dynamics"
-                                     / "pendulum_release.yaml"))
-    force = solve(problem, givens={"theta''": -31.53}, objectives=("pin_force",))
+    problem = load_problem(shipped_dir("examples") / "hw3_dynamics" / "pendulum_release.yaml")
+    force = solve_carried(problem, givens={"theta''": -31.53}, objectives=("pin_force",))
     assert force.result("pin_force").value == pytest.approx((-43.475, 12.570, 0.0), abs=2e-3)
+
+
+@pytest.mark.slow  # cold derivations of the problem and of each mistaken model: seconds
+def test_a_carried_solve_and_its_mistakes_are_kept_in_the_disk_cache_apart_from_the_problems(
+        disk, forget, monkeypatch):
+    problem = load_problem(PROBLEMS / "block_sliding_down_incline.yaml")
+    carried = solve_carried(problem, givens={"x''": 1.0}, objectives=("normal",))
+    with pytest.raises(MechgradeError):  # solved as given, x'' contradicts the balances
+        solve(problem, givens={"x''": 1.0}, objectives=("normal",))
+    forget()
+    monkeypatch.setattr(carried_module, "held_dynamics", _not_solved)
+    again = solve_carried(problem, givens={"x''": 1.0}, objectives=("normal",))
+    assert again.result("normal").value == carried.result("normal").value == \
+        pytest.approx(33.983, abs=1e-3)
+    # each mistaken model solved with x'' held too (solved as given, none would hold):
+    # N = m cos 30 = 3.464 (g left out), m g = 39.24, m g cos(30 rad) = 6.053, m g cos 60
+    mistakes = [(m.code, round(m.value, 3)) for m in again.result("normal").generated_mistakes]
+    assert mistakes == [("mass_for_weight", 3.464), ("reaction_as_weight", 39.24),
+                        ("given_deg_as_rad", 6.053), ("given_complement", 19.62)]
+    assert mistakes == [(m.code, round(m.value, 3))
+                        for m in carried.result("normal").generated_mistakes]
+
+
+def _not_solved(*args, **kwargs):
+    raise AssertionError("solved again: expected to be read from the cache")

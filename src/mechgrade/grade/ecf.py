@@ -48,7 +48,8 @@ class Judging(Protocol):
 
 class CarriedForward:
     """ECF for one grading run: ``resolve(problem, givens)`` recomputes a solution (default
-    :func:`mechgrade.solve.solve`); re-solves are kept, and prefetched over ``jobs``."""
+    :func:`mechgrade.solve.solve`, or :func:`mechgrade.solve.carried.solve_carried` where a
+    student's second rate is given); re-solves are kept, and prefetched over ``jobs``."""
 
     def __init__(self, policy: GradingPolicy, judging: Judging,
                  resolve: Resolver | None = None, jobs: int = 1) -> None:
@@ -275,29 +276,34 @@ class CarriedForward:
         key = _key(problem, overrides, objective_id)
         if key in self._solutions:
             return self._solutions[key]
-        problem, instead = _replaced_by_student(problem, overrides)
-        outcome = self._attempt(problem, dict(overrides), objective_id), instead
+        problem, instead, held = _replaced_by_student(problem, overrides)
+        outcome = self._attempt(problem, dict(overrides), objective_id, held), instead
         if isinstance(outcome[0], InconsistentError):
             orders = {_order(k) for k in overrides}
             for given in problem.givens:
                 name = given.key.text
                 if name in overrides or _order(name) not in orders:
                     continue
-                attempt = self._attempt(problem, {**overrides, name: None}, objective_id)
+                attempt = self._attempt(problem, {**overrides, name: None}, objective_id, held)
                 if not isinstance(attempt, MechgradeError):
                     outcome = attempt, (f"the given {name}",)
                     break
         self._solutions[key] = outcome
         return outcome
 
-    def _attempt(self, problem: Problem, givens: dict, objective_id: str):
+    def _attempt(self, problem: Problem, givens: dict, objective_id: str, held: bool):
+        """The problem solved with ``givens``, by the run's ``resolve`` when it has one,
+        else by :func:`~mechgrade.solve.solve`, or with ``held`` by
+        :func:`~mechgrade.solve.carried.solve_carried` (a student's second rate held)."""
         try:
             if self._resolve is not None:
                 return self._resolve(problem, givens)
             from ..solve import solve
+            from ..solve.carried import solve_carried
 
             # Only the objective being re-checked: another one may not exist with these values.
-            return solve(problem, givens=givens, objectives=(objective_id,))
+            return (solve_carried if held else solve)(problem, givens=givens,
+                                                      objectives=(objective_id,))
         except MechgradeError as err:
             return err
 
@@ -307,23 +313,23 @@ def _reference(plan: Plan, problem: Problem, objective_id: str) -> ObjectiveResu
 
 
 def _replaced_by_student(problem: Problem, overrides: dict[str, float]
-                        ) -> tuple[Problem, tuple[str, ...]]:
-    """The problem to re-solve for ECF, and what the student's values replace in it. A
-    work-energy problem's rates come from its energy balance, and a designed parameter from
-    its design condition: a student's rate (or parameter) takes that balance's (or
-    condition's) place, and the instant is solved from it as from any other given. A
-    student's second rate takes the place of the momentum balance that would determine it
-    (:mod:`mechgrade.solve.carried`): the reactions follow from the others."""
+                        ) -> tuple[Problem, tuple[str, ...], bool]:
+    """The problem to re-solve for ECF, what the student's values replace in it, and whether
+    a student's second rate is held. A work-energy problem's rates come from its energy
+    balance, and a designed parameter from its design condition: a student's rate (or
+    parameter) takes that balance's (or condition's) place, and the instant is solved from it
+    as from any other given. A student's second rate takes the place of the momentum balance
+    that would determine it (:func:`mechgrade.solve.carried.solve_carried`): the reactions
+    follow from the others."""
     from ..spec.dynamics import WorkEnergy
 
     dynamics = problem.dynamics
     if dynamics is None:
-        return problem, ()
+        return problem, (), False
     replaced: list[str] = []
     rates = [k for k in overrides if _order(k) == 2]
     if rates:
         replaced.append(f"the balance that gives {listing(sorted(rates))}")
-        dynamics = replace(dynamics, set_aside=True)
     analysis, design = dynamics.analysis, dynamics.design
     if isinstance(analysis, WorkEnergy) and any(_order(k) == 1 for k in overrides):
         replaced.append("the energy balance")
@@ -332,9 +338,9 @@ def _replaced_by_student(problem: Problem, overrides: dict[str, float]
         replaced.append("the design condition")
         design = None
     if not replaced:
-        return problem, ()
+        return problem, (), False
     return (replace(problem, dynamics=replace(dynamics, analysis=analysis, design=design)),
-            tuple(replaced))
+            tuple(replaced), bool(rates))
 
 
 _CARRYING: list = []

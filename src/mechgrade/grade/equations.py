@@ -682,9 +682,16 @@ def _naming(load: SampledLoad) -> str:
     'the kinetic friction F_P on block'
     >>> _naming(SampledLoad("gravity", "weight", "block1", ()))
     'the weight of block1'
+    >>> _naming(SampledLoad("spring", "spring", "puck", ()))
+    'the spring on puck'
+    >>> _naming(SampledLoad("friction", "kinetic friction", "block", ()))
+    'the kinetic friction on block'
     """
     if load.kind == "weight":
         return f"the weight of {load.body}"
+    # a load named by its kind ("spring", "friction") is named once
+    if load.name.replace("_", " ").lower() in (load.kind, load.kind.split()[-1]):
+        return f"the {load.kind} on {load.body}"
     return f"the {load.kind} {load.name} on {load.body}"
 
 

@@ -1,6 +1,7 @@
-"""The momentum balances solved with a student's own second rate given (error carried forward,
-``Dynamics.set_aside``): the balance that would determine that acceleration gives way, the
-rest is a linear solve of the remaining unknowns.
+"""The momentum balances solved with a student's own second rate given (error carried
+forward): the balance that would determine that acceleration gives way, the rest is a linear
+solve of the remaining unknowns. :func:`solve_carried` is the entry point (the grader's
+:mod:`mechgrade.grade.ecf` calls it), as :func:`mechgrade.solve.solve` is the problem's own.
 
 The acceleration is held as if by a drive on the coordinate: a couple on the body it turns
 (its moment balance gives way), or for a coordinate that turns no body a force along the
@@ -13,17 +14,16 @@ Atwood machine with a wrong ``a``: block 1's balance and block 2's give two tens
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
->>> from mechgrade.solve import solve
->>> problem = set_aside(load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml"))
->>> solution = solve(problem, givens={"theta''": 7.882})  # alpha turned round
+>>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+>>> solution = solve_carried(problem, givens={"theta''": 7.882})  # alpha turned round
 >>> [round(c, 2) for c in solution.result("pin_force").value]  # m a_G + m g j, a_G with it
 [0.3, 33.97, 0.0]
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
 from itertools import product
+from typing import Collection, Mapping
 
 import numpy as np
 
@@ -32,19 +32,48 @@ from ..mechanics.dynamics import balance_part
 from ..spec.model import Problem
 from . import rules
 from .columns import call
+from .dynamics import kinetic_reach
+from .dynamics_mutants import with_generated_mistakes
+from .instant import drive
 from .levels import State
+from .result import Solution
+from .stored import carried_key, kept
 
 
-def set_aside(problem: Problem) -> Problem:
-    """``problem`` solved with a given second rate's own balance giving way (see above).
+def solve_carried(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
+                  objectives: Collection[str] | None = None) -> Solution:
+    """Like :func:`mechgrade.solve.solve`, for a problem with bodies and loads, with each
+    given second rate held by a drive and the balance that would determine it set aside (see
+    above); kept in the disk cache as a solution is (:func:`~.stored.carried_key`), its
+    generated mistakes each mistaken model solved so too.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
-    >>> set_aside(load_problem(shipped_dir("problems") / "atwood_machine.yaml")).dynamics.set_aside
-    True
+    >>> incline = load_problem(shipped_dir("problems") / "block_sliding_down_incline.yaml")
+    >>> round(solve_carried(incline, givens={"x''": 1.0}).result("normal").value, 3)
+    33.983
     """
     assert problem.dynamics is not None, "only a problem with bodies has balances"
-    return replace(problem, dynamics=replace(problem.dynamics, set_aside=True))
+    return kept(carried_key(problem, givens, objectives), lambda: with_generated_mistakes(
+        problem, held_dynamics(problem, givens=givens, objectives=objectives), givens,
+        held_dynamics))
+
+
+def held_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
+                  objectives: Collection[str] | None = None) -> Solution:
+    """:func:`solve_carried` without the disk cache and the generated mistakes (what
+    :func:`~.dynamics.solve_dynamics` is to :func:`mechgrade.solve.solve`): each instant
+    reached as the problem's analysis reaches it, its balances solved by
+    :func:`carried_kinetics`.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> pendulum = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> force = held_dynamics(pendulum, givens={"theta''": -31.53}, objectives=("pin_force",))
+    >>> [round(c, 2) for c in force.result("pin_force").value]
+    [-35.93, 3.57, 0.0]
+    """
+    return drive(problem, kinetic_reach(problem, carried_kinetics), givens, objectives)
 
 
 def carried_kinetics(problem: Problem, kp, state: State) -> np.ndarray:

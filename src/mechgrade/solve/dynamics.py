@@ -100,9 +100,6 @@ def _lambdify(symbols, expr):
 
 def kinetics_plan(problem: Problem) -> KineticsPlan:
     """Derive and lambdify ``problem``'s kinetics once."""
-    dynamics = problem.dynamics
-    if dynamics is not None and dynamics.set_aside:  # the same kinetics, solved otherwise
-        problem = replace(problem, dynamics=replace(dynamics, set_aside=False))
     return _kinetics_plan(problem, locations(problem))
 
 
@@ -147,12 +144,7 @@ def solve_kinetics(problem: Problem, kp: KineticsPlan, state: State) -> np.ndarr
     """The extended state (state values, then reactions) with the unknown second rates and
     reactions solved from the momentum balances; raises when they are not determined, the
     equations cannot all hold, or a friction contact contradicts its model (the checks of
-    :func:`~.motion.balances`, with one column). With ``Dynamics.set_aside`` a given second
-    rate's own balance gives way instead (:func:`~.carried.carried_kinetics`)."""
-    if dynamics_of(problem).set_aside:
-        from .carried import carried_kinetics
-
-        return carried_kinetics(problem, kp, state)
+    :func:`~.motion.balances`, with one column)."""
     solved = balances(problem, kp, state.values[:, None], state.given)
     error = solved.errors[0]
     if error is not None:
@@ -188,6 +180,11 @@ def solve_dynamics(problem: Problem, *, givens: Mapping[str, float | None] | Non
     return drive(problem, kinetic_reach(problem), givens, objectives)
 
 
+BalancesSolver = Callable[[Problem, KineticsPlan, State], np.ndarray]
+"""How the momentum balances are solved at a state: :func:`solve_kinetics`, or with each
+given second rate held by a drive (:func:`~.carried.carried_kinetics`)."""
+
+
 @dataclass(frozen=True)
 class Arrived:
     """Where a kind of :class:`KineticInstant` reaches an instant: the state there, the
@@ -209,11 +206,13 @@ class KineticInstant:
     kinematics at the givens, then the momentum balances. The other kinds of reaching an
     instant are its subclasses (:class:`WorkEnergyInstant`, :class:`IntegratedInstant`,
     :class:`DesignedInstant`), :func:`kinetic_reach` picks one; its generated mistakes are
-    worked out once for the whole solution (:mod:`.dynamics_mutants`)."""
+    worked out once for the whole solution (:mod:`.dynamics_mutants`). Each kind solves the
+    momentum balances where it reaches a state with ``balances`` (:data:`BalancesSolver`)."""
 
     source: Problem
     problem: Problem  # its kinematics (kinematic_problem)
     kinetics: KineticsPlan
+    balances: BalancesSolver = solve_kinetics
 
     @property
     def plan(self) -> KinematicsPlan:
@@ -233,7 +232,7 @@ class KineticInstant:
         """The instant ``given_map`` describes, as this kind reaches it."""
         instant = solve_numeric(self.problem, self.plan, given_map, set())
         state = self.rates(instant.state, given_map)
-        return Arrived(state, solve_kinetics(self.source, self.kinetics, state),
+        return Arrived(state, self.balances(self.source, self.kinetics, state),
                        tuple(instant.warnings))
 
     def rates(self, state: State, given_map: dict) -> State:  # noqa: ARG002 - the givens fix them here
@@ -307,7 +306,7 @@ class IntegratedInstant(KineticInstant):
                 kp.kp.index.symbols.index(kp.kp.k.quantity(node)), si,
                 f"{asked_at}: {given.text}" if given is not None else asked_at,
                 given.where if given is not None else analysis.where)
-            return Arrived(state, solve_kinetics(problem, kp, state))
+            return Arrived(state, self.balances(problem, kp, state))
         together = integrated_alone(problem, kp, g.values)
         if together is not None:  # as the variants of a class are integrated
             x, before = together
@@ -318,7 +317,7 @@ class IntegratedInstant(KineticInstant):
         state, before = integrate_to_event(problem, kp, g.values,
                                            lambda values: accelerations(kp, values))
         # the contact checks hold along the way: judge them just before the event
-        solve_kinetics(problem, kp, State(before[:size], state.given))
+        self.balances(problem, kp, State(before[:size], state.given))
         x = before.copy()
         keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
         x[keep] = state.values[keep]
@@ -335,9 +334,9 @@ class IntegratedInstant(KineticInstant):
         size = kp.kp.index.size
         state = State(at.values, after_event(kp.kp), frozenset())
         if at.before is None:
-            return Arrived(state, solve_kinetics(at.phase, kp, state), phase=at.phase)
+            return Arrived(state, self.balances(at.phase, kp, state), phase=at.phase)
         # the contact checks hold along the way: judge them just before the event
-        solve_kinetics(at.phase, kp, State(at.before[:size], state.given))
+        self.balances(at.phase, kp, State(at.before[:size], state.given))
         x = at.before.copy()
         keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
         x[keep] = at.values[keep]
@@ -412,16 +411,18 @@ class DesignedInstant(KineticInstant):
         return with_value(result.root)
 
 
-def kinetic_reach(problem: Problem) -> KineticInstant:
+def kinetic_reach(problem: Problem, balances: BalancesSolver = solve_kinetics
+                  ) -> KineticInstant:
     """How ``problem``'s instants are reached: the kind its analysis names (rates given, by
-    the energy balance, integrated), inside a design when it has one."""
+    the energy balance, integrated), inside a design when it has one; the momentum balances
+    solved at each state with ``balances``."""
     kproblem, kp = kinematic_problem(problem), kinetics_plan(problem)
     dynamics = dynamics_of(problem)
     kind = _KINDS.get(type(dynamics.analysis), KineticInstant)
-    reach = kind(problem, kproblem, kp)
+    reach = kind(problem, kproblem, kp, balances)
     if dynamics.design is None or kp.design is None:  # both, or neither: see derive_kinetics
         return reach
-    return DesignedInstant(problem, kproblem, kp, reach)
+    return DesignedInstant(problem, kproblem, kp, balances, inner=reach)
 
 
 _KINDS: dict[type, type[KineticInstant]] = {WorkEnergy: WorkEnergyInstant,

@@ -51,15 +51,21 @@ from .result import GeneratedMistake, ObjectiveResult, Solution, StateValue
 _UNSOLVABLE = (MechgradeError, ArithmeticError, ValueError, TypeError, KeyError)
 
 
+Solver = Callable[..., Solution]
+"""How a problem is solved: ``solver(problem, givens=..., objectives=...)``
+(:func:`~.dynamics.solve_dynamics`, or :func:`~.carried.held_dynamics`)."""
+
+
 def with_generated_mistakes(problem: Problem, solution: Solution,
-                            givens: Mapping[str, float | None] | None = None) -> Solution:
-    """``solution`` (of a problem with bodies and loads) with the generated mistakes of its
-    objectives attached (worked out when first looked at: values for the numeric ones,
-    expressions for the symbolic ones), and the whole-answer slips its model makes
-    plausible."""
+                            givens: Mapping[str, float | None] | None = None,
+                            solver: Solver = solve_dynamics) -> Solution:
+    """``solution`` (of a problem with bodies and loads, solved by ``solver``) with the
+    generated mistakes of its objectives attached (worked out when first looked at: values
+    for the numeric ones, expressions for the symbolic ones; each mistaken model solved by
+    ``solver`` too), and the whole-answer slips its model makes plausible."""
     plausible = plausible_slips(problem)
     pending = _Pending(problem, tuple(sorted((givens or {}).items())), solution.results,
-                       solution.state)
+                       solution.state, solver)
     # each result as replace() would give it, at two thirds of the cost (a class's results
     # are made by the thousand)
     return replace(solution, results=tuple(
@@ -72,22 +78,24 @@ class _Pending:
     """The generated mistakes of one solve, worked out once when first asked for."""
 
     def __init__(self, problem: Problem, givens: tuple, results: tuple,
-                 state: tuple[StateValue, ...]):
+                 state: tuple[StateValue, ...], solver: Solver):
         self.problem, self.givens, self.results, self.state = problem, givens, results, state
+        self.solver = solver
         self.found: dict | None = None
 
     def get(self) -> dict:
         if self.found is None:
-            self.found = _generated(self.problem, self.givens, self.results, self.state)
+            self.found = _generated(self.problem, self.givens, self.results, self.state,
+                                    self.solver)
         return self.found
 
 
 @lru_cache(maxsize=256)
 def _generated(problem: Problem, givens: tuple, results: tuple,
-               state: tuple[StateValue, ...] = ()) -> dict:
+               state: tuple[StateValue, ...], solver: Solver) -> dict:
     """Objective id -> its generated mistakes (those equal to the answer, or to an earlier
     one, or a zero, dropped); ``state`` is the solved instant the kinematic readings are read
-    at."""
+    at, ``solver`` what solves the mistaken models."""
     overrides = dict(givens)
     numeric = {r.id: r for r in results if r.value is not None}
     mutations = dynamics_mutations(problem)
@@ -95,11 +103,11 @@ def _generated(problem: Problem, givens: tuple, results: tuple,
     # nobody's to fix
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        found = [_model_mistakes(problem, mutations, overrides, set(numeric)),
-                 given_mistakes(problem, overrides, set(numeric)),
+        found = [_model_mistakes(problem, mutations, overrides, set(numeric), solver),
+                 given_mistakes(problem, overrides, set(numeric), solver),
                  kinematic_mistakes(problem, state, set(numeric))] if numeric else []
         symbolic = _symbolic_mistakes(mutations, overrides,
-                                      [r for r in results if r.expr is not None])
+                                      [r for r in results if r.expr is not None], solver)
     attached = attach(numeric, found, frozenset())  # only the mistakes are kept from these
     out: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in results}
     out.update({oid: r.generated_mistakes for oid, r in attached.items()})
@@ -107,8 +115,8 @@ def _generated(problem: Problem, givens: tuple, results: tuple,
     return out
 
 
-def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results: list
-                       ) -> dict[str, tuple[GeneratedMistake, ...]]:
+def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results: list,
+                       solver: Solver) -> dict[str, tuple[GeneratedMistake, ...]]:
     """Each mistaken model's symbolic answers, in the objectives' own symbols (those
     equivalent to the answer or to an earlier one dropped)."""
     if not results:
@@ -121,8 +129,8 @@ def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results:
                 or not ids & {o.id for o in mistaken.objectives}:
             continue
         try:
-            solved = solve_dynamics(mistaken, givens=givens,
-                                    objectives=ids & {o.id for o in mistaken.objectives})
+            solved = solver(mistaken, givens=givens,
+                            objectives=ids & {o.id for o in mistaken.objectives})
         except _UNSOLVABLE:
             continue
         answers.append((i, _texts(solved.results)))
@@ -223,10 +231,11 @@ class LazyMistakes(Sequence):
 
 
 def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], givens,
-                    numeric: set[str]) -> dict[str, list[GeneratedMistake]]:
-    """Each mistaken model solved again, and each mistaken reading read in the right model."""
+                    numeric: set[str], solver: Solver) -> dict[str, list[GeneratedMistake]]:
+    """Each mistaken model solved again (by ``solver``), and each mistaken reading read in
+    the right model."""
     out: dict[str, list[GeneratedMistake]] = {}
-    readings, terms = _read(problem, mutations, givens, numeric)
+    readings, terms = _read(problem, mutations, givens, numeric, solver)
     for i, m in enumerate(mutations):
         sentence = m.sentence.replace("{term}", terms[i]) if i in terms else \
             m.sentence.replace(" = {term}", "")
@@ -237,7 +246,7 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
             if not ids or not _derivable(m.problem):
                 continue
             try:
-                solved = solve_dynamics(m.problem, givens=givens, objectives=ids)
+                solved = solver(m.problem, givens=givens, objectives=ids)
             except _UNSOLVABLE:
                 continue
             values = {r.id: r.value for r in solved.results}
@@ -248,13 +257,13 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
     return out
 
 
-def _read(problem: Problem, mutations, givens, numeric: set[str]):
+def _read(problem: Problem, mutations, givens, numeric: set[str], solver: Solver):
     """The mistaken readings (mutation index -> objective id -> value) and each mutation's
     named term as text with its unit (mutation index -> text), read together in the right
     model: one more solve of the problem."""
     reading = _reading(problem, mutations, numeric)
     try:
-        results = solve_dynamics(reading, givens=givens).results if reading else ()
+        results = solver(reading, givens=givens).results if reading else ()
     except _UNSOLVABLE:
         results = ()
     return _readings(results)
@@ -297,15 +306,15 @@ def _readings(results) -> tuple[dict[int, dict], dict[int, str]]:
     return readings, terms
 
 
-def given_mistakes(problem: Problem, givens, numeric: set[str]
-                   ) -> dict[str, list[GeneratedMistake]]:
-    """The numeric objectives solved again with each given mistaken in one way (the slips of
-    :func:`mechgrade.solve.mutants.given_mistakes`), anchored to the worked solution's
-    parameters or coordinates."""
+def given_mistakes(problem: Problem, givens, numeric: set[str],
+                   solver: Solver) -> dict[str, list[GeneratedMistake]]:
+    """The numeric objectives solved again (by ``solver``) with each given mistaken in one
+    way (the slips of :func:`mechgrade.solve.mutants.given_mistakes`), anchored to the worked
+    solution's parameters or coordinates."""
     out: dict[str, list[GeneratedMistake]] = {}
     for code, sentence, step, changed in _slips(problem, givens):
         try:
-            solved = solve_dynamics(problem, givens=changed, objectives=numeric)
+            solved = solver(problem, givens=changed, objectives=numeric)
         except _UNSOLVABLE:
             continue
         for result in solved.results:

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from typing import Collection, Mapping
 
-from ..errors import MechgradeError
 from ..spec.model import Problem
 from .instant import solve_kinematics
 from .result import Solution
@@ -44,19 +43,7 @@ def _solve_dynamics(problem: Problem, givens, objectives) -> Solution:
 def _stored_dynamics(problem: Problem, givens, objectives) -> Solution:
     """A dynamics problem solved: read from the disk cache, or solved and (its generated
     mistakes worked out, or the error it raised) written there."""
-    from .stored import load_outcome, solution_key, store_outcome
+    from .stored import kept, solution_key
 
-    key = solution_key(problem, givens, objectives)
-    if key is None:
-        return _solve_dynamics(problem, givens, objectives)
-    found = load_outcome(key)
-    if found is None:
-        try:
-            found = _solve_dynamics(problem, givens, objectives)
-        except MechgradeError as err:
-            store_outcome(key, err)
-            raise
-        store_outcome(key, found)
-    if isinstance(found, MechgradeError):
-        raise found
-    return found
+    return kept(solution_key(problem, givens, objectives),
+                lambda: _solve_dynamics(problem, givens, objectives))

@@ -3,8 +3,9 @@
 A problem with bodies and loads is derived with sympy in more places than its plan (its
 kinetics, its events, each mistaken model its generated mistakes come from); what it is solved
 to is plain data, so that is what is kept for it: one entry per problem, givens overrides and
-objectives asked (:func:`solution_key`), holding the solution (its generated mistakes worked
-out) or the error solving raised. ``check`` of an unchanged problem, a second grading run (its
+objectives asked (:func:`solution_key`; :func:`carried_key` for an answer's error carried
+forward), holding the solution (its generated mistakes worked out) or the error solving
+raised. ``check`` of an unchanged problem, a second grading run (its
 objectives, each answer carried forward) and each student's variant
 (:func:`mechgrade.solve.batch.solve_variants`, :func:`variant_keys`) read them back without
 sympy. An entry is kept only when reading it back gives exactly what was solved.
@@ -20,7 +21,7 @@ sympy. An entry is kept only when reading it back gives exactly what was solved.
 
 from __future__ import annotations
 
-from typing import Any, Collection, Mapping, Sequence
+from typing import Any, Callable, Collection, Mapping, Sequence
 
 from ..codec import decode, encode
 from ..errors import MechgradeError
@@ -53,6 +54,44 @@ def solution_key(problem, givens: Mapping[str, float | None] | None,
     (True, False, None)
     """
     return _key("solution", _problem_key(problem), givens, objectives)
+
+
+def carried_key(problem, givens: Mapping[str, float | None] | None,
+                objectives: Collection[str] | None) -> str | None:
+    """The entry of :func:`~mechgrade.solve.carried.solve_carried` (apart from
+    :func:`solution_key`'s: the same givens solved otherwise), or ``None`` when it is not kept.
+
+    >>> from unittest import mock
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "atwood_machine.yaml")
+    >>> with mock.patch.dict("os.environ", MECHGRADE_NO_CACHE="0"):
+    ...     carried_key(p, {"y''": 1.0}, None) == solution_key(p, {"y''": 1.0}, None)
+    False
+    """
+    return _key("carried", _problem_key(problem), givens, objectives)
+
+
+def kept(key: str | None, solving: Callable[[], Solution]) -> Solution:
+    """What ``solving()`` gives, read from the entry ``key`` (``None``: not kept), else solved
+    and kept there: the solution, or the error it raised (raised again when read).
+
+    >>> kept(None, lambda: "solved")
+    'solved'
+    """
+    if key is None:
+        return solving()
+    found = load_outcome(key)
+    if found is None:
+        try:
+            found = solving()
+        except MechgradeError as err:
+            store_outcome(key, err)
+            raise
+        store_outcome(key, found)
+    if isinstance(found, MechgradeError):
+        raise found
+    return found
 
 
 def variant_keys(problem, variants: Sequence[Mapping[str, float | None]]

@@ -438,7 +438,6 @@ class Dynamics:
     impulses: tuple[KnownImpulse, ...] = ()
     down: Expr | None = None  # the problem's "down" (loads.down), a direction
     mistaken: bool = False  # a student's mistaken model: its loads are not checked
-    set_aside: bool = False  # error carried forward: a given second rate's balance gives way
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]
