@@ -591,10 +591,14 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
 
     diagrams = [figure(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
                 for d in worked.diagrams]
-    steps = [{"anchor": step.anchor, "title": Markup(textbook_html(step.title, False)),
+    # a step or a row has an id only when a link may point to it (a mistake's place, the
+    # diagrams, the equations): a page carries each id once a problem
+    targets = {place for _, _, place in worked.places + worked.declared} | {
+        worked.diagram_step, worked.equations_step}
+    steps = [{"anchor": step.anchor, "target": step.anchor in targets,
+              "title": Markup(textbook_html(step.title, False)),
               "lines": [Markup(textbook_html(line)) for line in step.lines],
-              # a row is a link's target only when a mistake happens in it (its codes)
-              "rows": [{"anchor": row.anchor if row.codes else "", "text": row.text,
+              "rows": [{"anchor": row.anchor if row.anchor in targets else "", "text": row.text,
                         "caption": Markup(textbook_html(row.caption, False)),
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
@@ -611,6 +615,7 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
 
 
 _MARKER = re.compile(r'<marker id="([^"]+)"([^>]*)>(.*?)</marker>\n?', re.S)
+_EMPTY_DEFS = re.compile(r"<defs>\s*</defs>\n?")
 
 
 def shared_markers(svg: str, markers: dict[str, str]) -> str:
@@ -636,7 +641,7 @@ def shared_markers(svg: str, markers: dict[str, str]) -> str:
         return ""
 
     renamed: dict[str, str] = {}
-    out = _MARKER.sub(take, svg).replace("<defs>\n</defs>\n", "")
+    out = _EMPTY_DEFS.sub("", _MARKER.sub(take, svg))
     for old, new in renamed.items():
         out = out.replace(f"url(#{old})", f"url(#{new})")
     return out
