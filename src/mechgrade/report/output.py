@@ -24,7 +24,7 @@ import multiprocessing
 import re
 import signal
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from html import escape as html_escape
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -483,6 +483,23 @@ class WorkedPages:
     markdown: dict
     markers: str = ""  # the arrowheads every fragment's figures share (:func:`marker_defs`)
 
+    @cached_property
+    def places(self) -> dict[int, tuple[dict, dict, dict]]:
+        """By the solution's ``id()``: where each ``(objective, code)`` and each
+        ``(objective, message)`` happens (as ``place`` and ``declared_place`` find them,
+        the first of each) and the title of the step of each step's or row's anchor;
+        looked up for every answer of every page."""
+        out = {}
+        for w in [*self.worked.solutions, *(w for _, _, w in self.worked.variants)]:
+            titles: dict[str, str] = {}
+            for step in w.steps:
+                titles.setdefault(step.anchor, step.title)
+                for row in step.rows:
+                    titles.setdefault(row.anchor, step.title)
+            out[id(w)] = ({(o, c): a for o, c, a in reversed(w.places)},
+                          {(o, m): a for o, m, a in reversed(w.declared)}, titles)
+        return out
+
 
 def _worked_pages(worked: FeedbackSolutions, env, templates_dir) -> WorkedPages:
     if templates_dir is not None and not (Path(templates_dir) / "worked.html.j2").is_file():
@@ -512,9 +529,10 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
     for answer in student.answers:
         worked = by_problem.get(answer.problem)
         code = pages.worked.code(answer.diagnosis)
+        places, declared, titles = pages.places[id(worked)] if worked is not None else ({}, {}, {})
         place = None if worked is None or not answer.diagnosis else (
-            worked.place(answer.objective, code) if code
-            else worked.declared_place(answer.objective, answer.diagnosis))
+            places.get((answer.objective, code)) if code
+            else declared.get((answer.objective, answer.diagnosis)))
         wrong_loads = [f"{row.label} {', '.join(row.mistakes)}" for row in answer.loads
                        if row.mistakes]
         if place is None and worked is not None and wrong_loads and worked.diagram_step:
@@ -528,7 +546,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         if place is None:
             continue
         prompt = prompts.get((answer.problem, answer.objective)) or answer.objective
-        title = _step_title(worked, place)
+        title = titles.get(place, place)
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
@@ -553,6 +571,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
             "markers": "" if markdown else Markup(pages.markers)}
 
 
+@lru_cache(maxsize=4096)  # every answer's place on every page
 def anchor(problem: str, step: str) -> str:
     """The page id of a step or row of ``problem``'s worked solution: a short tag of the
     problem (its id is in every step's and row's id: a page carries some 150 of them), then
@@ -693,13 +712,6 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     return "\n".join(out) + "\n"
 
 
-def _step_title(worked, place: str) -> str:
-    for step in worked.steps:
-        if step.anchor == place or any(row.anchor == place for row in step.rows):
-            return step.title
-    return place
-
-
 def shorten(text: str, limit: int = 60) -> str:
     """``text`` on one line, cut with an ellipsis past ``limit`` characters.
 
@@ -717,8 +729,13 @@ def _css_string(text: str) -> str:
     >>> print(_css_string('a "b" </style> θ̇’s'))
     "a \\22 b\\22  \\3c /style\\3e  θ̇’s"
     """
+    if text.isprintable():  # the common case: four characters to escape, by a table
+        return '"' + text.translate(_CSS_ESCAPES) + '"'
     return '"' + "".join(f"\\{ord(c):x} " if c in '"\\<>' or not c.isprintable() else c
                          for c in text) + '"'
+
+
+_CSS_ESCAPES = {ord(c): f"\\{ord(c):x} " for c in '"\\<>'}
 
 
 def _prompts(report: GradeReport) -> dict:
