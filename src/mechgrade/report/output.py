@@ -742,11 +742,16 @@ def _prompts(report: GradeReport) -> dict:
     return {(o.problem, o.objective): o.prompt for o in report.objectives}
 
 
+@lru_cache(maxsize=1 << 14)  # five a card, the same for many students
+def _textbook_markup(text: str, rates: bool) -> Markup:
+    return Markup(textbook_html(text, rates))
+
+
 def _context(report: GradeReport, student: StudentResult, prompts: dict,
              markdown: bool = False) -> dict:
     def shown(text: str, rates: bool = True) -> str:
         # a model's names as a textbook writes them; what the student wrote stays as written
-        return textbook(text, rates) if markdown else Markup(textbook_html(text, rates))
+        return textbook(text, rates) if markdown else _textbook_markup(text, rates)
 
     rows = []
     for answer in student.answers:
