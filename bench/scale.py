@@ -31,7 +31,11 @@ run costs once solving is cached).
 (``examples/hw3_dynamics``) graded in this process with its worked solution shown (the
 assignment's ``policy.worked_solution: always``), then every student's HTML page rendered
 ``--repeat`` times; it prints each page's size in bytes and its median render time. Pair it
-with another checkout (``PYTHONPATH=<checkout>/src python bench/scale.py --pages``), run in turn.
+with another checkout (``PYTHONPATH=<checkout>/src python bench/scale.py --pages``), run in turn,
+or let ``--against <checkout>`` do it: both sides run in turn ``--rounds`` times (fresh
+processes, this script with the other checkout's ``src`` first on the path), and each page's
+size, its size against the other's and the median over the rounds of its render time's ratio
+are printed.
 """
 
 from __future__ import annotations
@@ -247,7 +251,13 @@ def main() -> None:
                         help="time the steps of one run in this process (see the docstring)")
     parser.add_argument("--pages", action="store_true",
                         help="size and render time of hw3's feedback pages (see the docstring)")
+    parser.add_argument("--against", type=Path, default=None, metavar="CHECKOUT",
+                        help="with --pages: against another checkout's pages, in turn")
+    parser.add_argument("--rounds", type=int, default=3, help="with --against: turns of each")
     args = parser.parse_args()
+    if args.pages and args.against is not None:
+        compare_pages(args.against, args.repeat, args.rounds)
+        return
     if args.pages:
         pages(args.repeat)
         return
@@ -337,6 +347,7 @@ def phases(size: int, jobs: int | None) -> None:
 def pages(repeat: int) -> None:
     """Print the size and the median render time of each hw3 feedback page, worked solution
     shown."""
+    import inspect
     import statistics
 
     import mechgrade
@@ -368,6 +379,8 @@ def pages(repeat: int) -> None:
     worked = _worked_pages(feedback_solutions(spec, report), env, None)
     template = _template(env, "feedback.html.j2")
     prompts = _prompts(report)
+    # a checkout from before the render took no templates folder
+    folder = (None,) * (len(inspect.signature(_render).parameters) - 2)
     print(f"mechgrade from {Path(mechgrade.__file__).parents[2]}")
     print(f"  {'student':<14} {'bytes':>7} {'render ms':>10}")
     for name, student in zip(feedback_names(report), report.students):
@@ -376,10 +389,35 @@ def pages(repeat: int) -> None:
             start = time.perf_counter()
             context = _context(report, student, prompts)
             context.update(worked_context(worked, student, prompts))
-            html = _render(template, context)
+            html = _render(template, context, *folder)
             times.append(time.perf_counter() - start)
         print(f"  {name:<14} {len(html.encode()):>7} {statistics.median(times) * 1e3:>10.2f}",
               flush=True)
+
+
+def compare_pages(other: Path, repeat: int, rounds: int) -> None:
+    """Print each hw3 page's size here and in the ``other`` checkout, and the median over
+    ``rounds`` of the ratio of its render times (here / there), the two run in turn."""
+    import statistics
+
+    def measured(src: Path | None) -> dict[str, tuple[int, float]]:
+        env = dict(os.environ)
+        if src is not None:
+            env["PYTHONPATH"] = str(src)
+        done = subprocess.run([sys.executable, __file__, "--pages", "--repeat", str(repeat)],
+                              capture_output=True, text=True, env=env, check=True)
+        rows = [line.split() for line in done.stdout.splitlines()]
+        return {r[0]: (int(r[1]), float(r[2])) for r in rows if len(r) == 3 and r[1].isdigit()}
+
+    turns = [(measured(other.resolve() / "src"), measured(None)) for _ in range(rounds)]
+    there, here = turns[0]
+    print(f"this checkout against {other} ({rounds} rounds in turn, {repeat} renders each)")
+    print(f"  {'student':<14} {'bytes':>7} {'there':>7} {'size':>7} {'render':>7}")
+    for name, (size, _) in here.items():
+        ratios = [h[name][1] / t[name][1] for t, h in turns]
+        print(f"  {name:<14} {size:>7} {there[name][0]:>7} "
+              f"{100 * (size / there[name][0] - 1):>+6.1f}% "
+              f"{statistics.median(ratios):>6.2f}x", flush=True)
 
 
 if __name__ == "__main__":

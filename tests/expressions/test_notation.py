@@ -33,3 +33,13 @@ def test_a_call_keeps_its_name_and_html_is_escaped():
 
 def test_a_greek_letter_after_a_number_is_a_symbol_not_a_unit():
     assert textbook("2 omega x v") == "2 ω x v"
+
+
+def test_a_page_writes_a_frames_unit_vector_as_its_equations_do():
+    # the bold lower-case letter with a hat, the axis its subscript (mechanics.derivation's)
+    assert textbook_html("rod: N.x force balance", False) == "rod: 𝐧̂<sub>x</sub> force balance"
+    assert textbook_html("T*A.y") == "T·𝐚̂<sub>y</sub>"
+    # not a unit, an abbreviation, a lower-case name or a longer one; plain text keeps N.y
+    for kept in ("0.5 N.m", "e.g. x.y", "block1.y", "NN.y"):
+        assert textbook_html(kept, False) == kept
+    assert textbook("T*N.y") == "T·N.y"

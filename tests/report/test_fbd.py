@@ -36,14 +36,19 @@ names of rates and subscripted symbols, the spec's calls."""
 @pytest.fixture(scope="module")
 def hw3(tmp_path_factory):
     """examples/hw3_dynamics graded with every problem's worked solution shown:
-    ``(feedback folder, results, {problem: [loads per body]})``."""
+    ``(feedback folder, results, {problem: [loads per body]}, {problem: [the places of its
+    kinetics steps among its steps]})``."""
     out = tmp_path_factory.mktemp("hw3fbd")
     assignment = load_assignment(HW3 / "assignment.yaml")
     report = grade_submissions(assignment, HW3 / "submissions", read_roster(HW3 / "roster.csv"))
     worked = feedback_solutions(assignment, report)
     write_outputs(report, out, worked=worked)
     loads = {w.problem: [len(d.loads) for d in w.diagrams] for w in worked.solutions}
-    return out / "feedback", json.loads((out / "results.json").read_text("utf-8")), loads
+    # a step has an id only when a link may target it: the kinetics steps by their places
+    kinetics = {w.problem: [i for i, s in enumerate(w.steps) if s.anchor.startswith("kinetics-")]
+                for w in worked.solutions}
+    return (out / "feedback", json.loads((out / "results.json").read_text("utf-8")), loads,
+            kinetics)
 
 
 PROBE = """<script>
@@ -54,8 +59,7 @@ const out = {
     id: a.id,
     diagrams: [...a.querySelectorAll("svg.fbd")].map(s => [...s.querySelectorAll("g.load")]
       .map(g => g.querySelectorAll(".arrow").length)),
-    kinetics: [...a.querySelectorAll(".ws-steps > li")].filter(s => s.id.includes("-kinetics-"))
-      .map(s => [s.id, s.querySelectorAll("math").length]),
+    steps: [...a.querySelectorAll(".ws-steps > li")].map(s => s.querySelectorAll("math").length),
     text: a.innerText.replace(/\\s+/g, " ")})),
   expected: [...document.querySelectorAll(".objective dt")].filter(t => t.innerText === "Expected")
     .map(t => t.nextElementSibling.innerText),
@@ -85,7 +89,7 @@ document.body.append(pre);
 @pytest.mark.parametrize("student", ["carla_diaz", "dan_wu", "femi_adeyemi"])
 def test_a_dynamics_page_shows_diagrams_math_and_linked_kinetic_diagnoses(hw3, in_browser,
                                                                           axe, student):
-    feedback, results, loads = hw3
+    feedback, results, loads, kinetics = hw3
     page = feedback / f"{student}.html"
     found = json.loads(in_browser(page, PROBE, "fbd"))
     assert [p["id"] for p in found["problems"]] == [f"ws-{name}" for name in loads]
@@ -94,7 +98,8 @@ def test_a_dynamics_page_shows_diagrams_math_and_linked_kinetic_diagnoses(hw3, i
         # one diagram per body, one group of arrows per load, each with an arrow
         assert [len(d) for d in problem["diagrams"]] == loads[name]
         assert all(n >= 1 for d in problem["diagrams"] for n in d)
-        assert problem["kinetics"] and all(n > 0 for _, n in problem["kinetics"]), problem
+        assert kinetics[name] and len(problem["steps"]) > max(kinetics[name]), problem
+        assert all(problem["steps"][i] > 0 for i in kinetics[name]), problem
         assert not CODE.findall(problem["text"]), name
     assert found["expected"] and not any(CODE.search(e) for e in found["expected"])
     assert not CODE.findall(found["visible"])

@@ -21,10 +21,12 @@ def test_the_html_solution_composes_the_acceleration_term_by_term_offline():
     # and the sum; each row lays its math out inline (the page's style): no display attribute
     assert text.count('<math ') == 2 + 1 + 3 + 5 and 'display="block"' not in text
     for anchor in ("acc-P-alpha_r", "acc-P-omega_omega_r", "acc-P-coriolis", "acc-P-relative",
-                   "acc-P", "answer-a_P_N", "givens"):
+                   "answer-a_P_N", "givens"):
         assert f'id="{row_id("ruina_10_4_10_7_rotating_tube_accel", anchor)}"' in text
-    # a row no mistake happens in is no link's target: it carries no id (every page has it)
-    assert f'id="{row_id("ruina_10_4_10_7_rotating_tube_accel", "acc-P-total")}"' not in text
+    # a step or a row no mistake happens in is no link's target: it carries no id (every
+    # page has it)
+    for anchor in ("acc-P-total", "acc-P"):
+        assert f'id="{row_id("ruina_10_4_10_7_rotating_tube_accel", anchor)}"' not in text
     assert "<svg" in text and "<script" not in text
     assert "http" not in text.replace("http://www.w3.org/2000/svg", "")  # offline: no CDN
 

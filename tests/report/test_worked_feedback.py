@@ -56,7 +56,9 @@ def test_every_page_shows_the_worked_solution_and_the_picture_inline(graded):
         # a picture each, and the arrowheads they share defined once for the page
         assert page.count('<article class="ws"') == 2 and page.count('class="mechanism"') == 2
         assert page.count('<svg class="ws-defs"') == 1
-        assert f'id="{anchor(PENDULUM, "acc-A")}"' in page and "<math" in page
+        assert f'id="{CENTRIPETAL_ROW}"' in page and "<math" in page
+        # an id only where a link may point: the step around that row is no mistake's place
+        assert f'id="{anchor(PENDULUM, "acc-A")}"' not in page
         assert "<script" not in page and "src=" not in page  # offline, nothing to fetch
         markdown = (feedback / f"{name}.md").read_text(encoding="utf-8")
         assert "## Worked solution" in markdown and "### Givens and what is asked" in markdown

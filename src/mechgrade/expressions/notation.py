@@ -117,7 +117,7 @@ def textbook_html(text: str, rates: bool = True) -> str:
     >>> textbook_html("the friction F_P (mu N = 8.5 N) <b>", rates=False)
     'the friction F<sub>P</sub> (μ N = 8.5 N) &lt;b&gt;'
     >>> textbook_html("N_v_P1 = yd*N.y")
-    '<sup>N</sup>v<sub>P1</sub> = ẏ·N.y'
+    '<sup>N</sup>v<sub>P1</sub> = ẏ·𝐧̂<sub>y</sub>'
     """
     def show(name, sub):
         kinematic = _KINEMATIC.fullmatch(f"{name},{sub}")
@@ -127,8 +127,17 @@ def textbook_html(text: str, rates: bool = True) -> str:
         return f"{name}<sub>{escape(sub)}</sub>" if sub else name
     marked = _rewritten(_operators(text), rates, lambda n, s: f"\x00{n}\x01{s or ''}\x02"
                         if s is not None else n)
-    return unicodedata.normalize("NFC", re.sub("\x00(.*?)\x01(.*?)\x02",
-                                               lambda m: show(m[1], m[2]), escape(marked)))
+    shown = re.sub("\x00(.*?)\x01(.*?)\x02", lambda m: show(m[1], m[2]), escape(marked))
+    return unicodedata.normalize("NFC", _UNIT_VECTOR.sub(_unit_vector_html, shown))
+
+
+# a frame's unit vector (N.y) on a page: as its equations write it (mechanics.derivation's
+# hat), the frame's letter bold and lower case with a hat, the axis its subscript
+_UNIT_VECTOR = re.compile(r"(?<![\w.])([A-Z])\.([xyz])(?!\w)")
+
+
+def _unit_vector_html(match: re.Match) -> str:
+    return f"{chr(0x1D41A + ord(match[1].lower()) - 97)}\u0302<sub>{match[2]}</sub>"
 
 
 def _operators(text: str) -> str:

@@ -50,6 +50,10 @@ class FeedbackSolutions:
     def _by_variant(self) -> dict:
         return {(problem, givens): w for problem, givens, w in self.variants}
 
+    @cached_property
+    def _codes(self) -> dict[str, str]:  # asked for every answer of every page
+        return dict(self.labels)
+
     def code(self, label: str | None) -> str | None:
         """The code of a generated mistake's diagnosis label (``None`` for any other); of a
         label naming two families that fit equally ("X or Y"), the first's (the nearer).
@@ -58,7 +62,7 @@ class FeedbackSolutions:
         ...     ("a term or another left out", "other"))).code("weight left out or a term or another left out")
         'weight_omitted'
         """
-        codes = dict(self.labels)
+        codes = self._codes
         if label is None or label in codes:
             return None if label is None else codes[label]
         parts = label.split(" or ")

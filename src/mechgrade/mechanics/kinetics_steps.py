@@ -318,9 +318,14 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
         rows.insert(0, Row(f"balance-normal-{load.body}-{load.name}", _block(
             f"<mrow>{expr_math(along)}<mo>=</mo><mn>0</mn></mrow>"),
             f"{text(along)} = 0", NORMAL_CODES, words))
-    lines: tuple[str, ...] = ("Newton-Euler for each body: the sum of the loads equals the rate of change of "
-             "its momentum (an impact: the impulses equal its change), in "
-             f"{N}'s components; the moments about each rigid body's reference point.",)
+    # what this problem's balances are: an impact's or the motion's, moments only for a
+    # rigid body
+    lines: tuple[str, ...] = ((
+        "Impulse and momentum for each body: the impulses equal the change of its momentum"
+        if impact else "Newton-Euler for each body: the sum of the loads equals the rate of "
+        "change of its momentum") + f", in {N}'s components" + (
+        "; the moments about each rigid body's reference point." if any(
+            b.frame is not None for b in d.bodies) else "."),)
     if d.analysis is not None and isinstance(d.analysis, Impulse):
         lines += ("Each contact's condition: the restitution (or sticking) condition on the "
                   "velocities just after the impact.",)

@@ -135,7 +135,7 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
     every = [(t, h) for _, parts in arrows for t, h, _ in parts if t != h]
     for load, parts in arrows:
         colour, marker = (UNKNOWN, "u") if load.unknown else (KNOWN, "k")
-        group = [f'<g class="load {marker}" data-load="{escape(load.name, quote=True)}">']
+        group = [f'<g class="load {marker}">']
         for tail, head, label in parts:
             if tail == head:  # along the page's normal: a dot (out of it) or a cross (into it)
                 sign = "out-of-page" if label[3] > 0 else "into-page"
@@ -165,7 +165,7 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
         r = radius + 20
         start = (at[0] + r, at[1])
         end = (at[0], at[1] - r) if z >= 0 else (at[0], at[1] + r)
-        out += [f'<g class="load {marker}" data-load="{escape(load.name, quote=True)}">',
+        out += [f'<g class="load {marker}">',
                 f'<path class="arrow couple" d="M{_n(start[0])},{_n(start[1])} A{r:.0f},'
                 f'{r:.0f} 0 1 {sweep} {_n(end[0])},{_n(end[1])}" '
                 f'marker-end="url(#{ident}-{marker})"/>',

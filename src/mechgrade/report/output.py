@@ -24,7 +24,7 @@ import multiprocessing
 import re
 import signal
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from html import escape as html_escape
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -483,6 +483,23 @@ class WorkedPages:
     markdown: dict
     markers: str = ""  # the arrowheads every fragment's figures share (:func:`marker_defs`)
 
+    @cached_property
+    def places(self) -> dict[int, tuple[dict, dict, dict]]:
+        """By the solution's ``id()``: where each ``(objective, code)`` and each
+        ``(objective, message)`` happens (as ``place`` and ``declared_place`` find them,
+        the first of each) and the title of the step of each step's or row's anchor;
+        looked up for every answer of every page."""
+        out = {}
+        for w in [*self.worked.solutions, *(w for _, _, w in self.worked.variants)]:
+            titles: dict[str, str] = {}
+            for step in w.steps:
+                titles.setdefault(step.anchor, step.title)
+                for row in step.rows:
+                    titles.setdefault(row.anchor, step.title)
+            out[id(w)] = ({(o, c): a for o, c, a in reversed(w.places)},
+                          {(o, m): a for o, m, a in reversed(w.declared)}, titles)
+        return out
+
 
 def _worked_pages(worked: FeedbackSolutions, env, templates_dir) -> WorkedPages:
     if templates_dir is not None and not (Path(templates_dir) / "worked.html.j2").is_file():
@@ -512,9 +529,10 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
     for answer in student.answers:
         worked = by_problem.get(answer.problem)
         code = pages.worked.code(answer.diagnosis)
+        places, declared, titles = pages.places[id(worked)] if worked is not None else ({}, {}, {})
         place = None if worked is None or not answer.diagnosis else (
-            worked.place(answer.objective, code) if code
-            else worked.declared_place(answer.objective, answer.diagnosis))
+            places.get((answer.objective, code)) if code
+            else declared.get((answer.objective, answer.diagnosis)))
         wrong_loads = [f"{row.label} {', '.join(row.mistakes)}" for row in answer.loads
                        if row.mistakes]
         if place is None and worked is not None and wrong_loads and worked.diagram_step:
@@ -528,7 +546,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
         if place is None:
             continue
         prompt = prompts.get((answer.problem, answer.objective)) or answer.objective
-        title = _step_title(worked, place)
+        title = titles.get(place, place)
         steps[f"{answer.problem}.{answer.objective}"] = {
             "href": "#" + anchor(answer.problem, place),
             "title": markdown_escape(title) if markdown else title}
@@ -553,6 +571,7 @@ def worked_context(pages: WorkedPages | None, student: StudentResult, prompts: d
             "markers": "" if markdown else Markup(pages.markers)}
 
 
+@lru_cache(maxsize=4096)  # every answer's place on every page
 def anchor(problem: str, step: str) -> str:
     """The page id of a step or row of ``problem``'s worked solution: a short tag of the
     problem (its id is in every step's and row's id: a page carries some 150 of them), then
@@ -591,10 +610,14 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
 
     diagrams = [figure(fbd_svg(d, anchor(worked.problem, f"fbd-{d.body}")))
                 for d in worked.diagrams]
-    steps = [{"anchor": step.anchor, "title": Markup(textbook_html(step.title, False)),
+    # a step or a row has an id only when a link may point to it (a mistake's place, the
+    # diagrams, the equations): a page carries each id once a problem
+    targets = {place for _, _, place in worked.places + worked.declared} | {
+        worked.diagram_step, worked.equations_step}
+    steps = [{"anchor": step.anchor, "target": step.anchor in targets,
+              "title": Markup(textbook_html(step.title, False)),
               "lines": [Markup(textbook_html(line)) for line in step.lines],
-              # a row is a link's target only when a mistake happens in it (its codes)
-              "rows": [{"anchor": row.anchor if row.codes else "", "text": row.text,
+              "rows": [{"anchor": row.anchor if row.anchor in targets else "", "text": row.text,
                         "caption": Markup(textbook_html(row.caption, False)),
                         "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
@@ -611,6 +634,7 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
 
 
 _MARKER = re.compile(r'<marker id="([^"]+)"([^>]*)>(.*?)</marker>\n?', re.S)
+_EMPTY_DEFS = re.compile(r"<defs>\s*</defs>\n?")
 
 
 def shared_markers(svg: str, markers: dict[str, str]) -> str:
@@ -636,7 +660,7 @@ def shared_markers(svg: str, markers: dict[str, str]) -> str:
         return ""
 
     renamed: dict[str, str] = {}
-    out = _MARKER.sub(take, svg).replace("<defs>\n</defs>\n", "")
+    out = _EMPTY_DEFS.sub("", _MARKER.sub(take, svg))
     for old, new in renamed.items():
         out = out.replace(f"url(#{old})", f"url(#{new})")
     return out
@@ -688,13 +712,6 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     return "\n".join(out) + "\n"
 
 
-def _step_title(worked, place: str) -> str:
-    for step in worked.steps:
-        if step.anchor == place or any(row.anchor == place for row in step.rows):
-            return step.title
-    return place
-
-
 def shorten(text: str, limit: int = 60) -> str:
     """``text`` on one line, cut with an ellipsis past ``limit`` characters.
 
@@ -712,19 +729,29 @@ def _css_string(text: str) -> str:
     >>> print(_css_string('a "b" </style> θ̇’s'))
     "a \\22 b\\22  \\3c /style\\3e  θ̇’s"
     """
+    if text.isprintable():  # the common case: four characters to escape, by a table
+        return '"' + text.translate(_CSS_ESCAPES) + '"'
     return '"' + "".join(f"\\{ord(c):x} " if c in '"\\<>' or not c.isprintable() else c
                          for c in text) + '"'
+
+
+_CSS_ESCAPES = {ord(c): f"\\{ord(c):x} " for c in '"\\<>'}
 
 
 def _prompts(report: GradeReport) -> dict:
     return {(o.problem, o.objective): o.prompt for o in report.objectives}
 
 
+@lru_cache(maxsize=1 << 14)  # five a card, the same for many students
+def _textbook_markup(text: str, rates: bool) -> Markup:
+    return Markup(textbook_html(text, rates))
+
+
 def _context(report: GradeReport, student: StudentResult, prompts: dict,
              markdown: bool = False) -> dict:
     def shown(text: str, rates: bool = True) -> str:
         # a model's names as a textbook writes them; what the student wrote stays as written
-        return textbook(text, rates) if markdown else Markup(textbook_html(text, rates))
+        return textbook(text, rates) if markdown else _textbook_markup(text, rates)
 
     rows = []
     for answer in student.answers:

@@ -7,7 +7,8 @@ made by :func:`~mechgrade.report.output.worked_html` and
 
 >>> from mechgrade.solve.worked import Step, WorkedSolution
 >>> from mechgrade.report.output import anchor
->>> w = WorkedSolution("p", "Pendulum", (Step("givens", "Givens", ("L = 2 m",)),), "<svg/>")
+>>> w = WorkedSolution("p", "Pendulum", (Step("givens", "Givens", ("L = 2 m",)),), "<svg/>",
+...                     places=(("L", "given_sign", "givens"),))
 >>> print(steps_markdown(w).splitlines()[2])
 ## Pendulum
 >>> f'id="{anchor("p", "givens")}"' in steps_html(w)
