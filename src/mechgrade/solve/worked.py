@@ -141,6 +141,12 @@ def worked_solution(problem: Problem, solution: Solution,
 
 
 _KINEMATIC = {"vel": "v", "acc": "a", "omega": "omega", "alpha": "alpha"}
+_OF_BODY = {"ke": "E_K", "momentum": "L", "angmom": "H"}
+"""A body's energy and momenta as Ruina and Pratap write them (E_K, L, H), of the body named."""
+
+_OF_ONE = {"pe": "E_P", "power": "P"}
+"""A body's or spring's potential energy and a load's power, of the one named."""
+
 _ACROSS = {"before": "⁻", "after": "⁺"}
 """An impact's just before and just after, as a textbook marks them (v⁻, v⁺)."""
 
@@ -153,13 +159,18 @@ def asked_text(node: Node, inertial: str = "N") -> str:
     >>> from mechgrade.expressions.syntax import parse
     >>> def asked(text):
     ...     return asked_text(parse(text, functions={"dot", "vel", "mag", "force", "eom", "speed",
-    ...                                              "before", "after"}))
+    ...                                              "before", "after", "ke", "pe",
+    ...                                              "power", "angmom"}))
     >>> asked("dot(vel(P, B), N.x)"), asked("mag(force(F_P))")
     ('v_P in B · N.x', '|F_P|')
     >>> asked("eom(theta)"), asked("speed(G, N)")
     ('thetadd', '|v_G|')
     >>> asked("after(speed(G, N))"), asked("before(dot(vel(G, N), N.x))")
     ('|v_G|⁺', '(v_G · N.x)⁻')
+    >>> asked("before(ke(rod, N))"), asked("pe(s1)"), asked("power(d, B)")
+    ('(E_K of rod)⁻', 'E_P of s1', 'P of d')
+    >>> asked("dot(angmom(disk, G, B), B.z)")
+    'H of disk about G in B · B.z'
     """
     def text(n: Node) -> str:
         if isinstance(n, Call):
@@ -173,6 +184,13 @@ def asked_text(node: Node, inertial: str = "N") -> str:
                 return f"|{text(Call('vel', args))}|"
             if n.func == "force" and len(args) == 1:
                 return text(args[0])
+            if n.func in _OF_BODY and all(isinstance(a, Name) for a in args):
+                *about, frame = (a.id for a in args)  # type: ignore[union-attr]
+                said = f"{_OF_BODY[n.func]} of {about[0]}"
+                said += "".join(f" about {p}" for p in about[1:])
+                return said + ("" if frame == inertial else f" in {frame}")
+            if n.func in _OF_ONE and args and isinstance(args[0], Name):
+                return f"{_OF_ONE[n.func]} of {args[0].id}"
             if n.func in ("mag", "abs") and len(args) == 1:
                 return f"|{text(args[0])}|"
             if n.func in _ACROSS and len(args) == 1:  # an impact's v⁻ and v⁺
