@@ -92,7 +92,7 @@ NOT_PLAINLY_RIGHT = {
     ("ben_okafor", "block_sliding_down_incline.friction"): ("incorrect", 0.0, "wrong frame"),
     ("carla_diaz", "atwood_machine.a1"): ("incorrect", 0.0, None),
     ("carla_diaz", "atwood_machine.tension"): (
-        "incorrect", 0.0, "tension taken equal to a weight or reaction taken equal to the weight"),
+        "incorrect", 0.0, "tension taken equal to a weight"),  # a tension is a reaction: one reading
     ("carla_diaz", "atwood_machine.tension_symbolic"): ("partial", 0.75,
                                                      "mass used for the weight"),
     ("carla_diaz", "block_sliding_down_incline.accel"): ("incorrect", 0.0, None),

@@ -248,9 +248,15 @@ def _named(mistake: GeneratedMistake, reference: np.ndarray,
     return Diagnosis(mistake.code, LABELS.get(mistake.code, mistake.code), mistake.message)
 
 
+_SPECIAL_CASE = {"tension_as_weight": "reaction_as_weight"}
+"""A family that is a special case of another (a string's tension is a reaction): when both
+fit one value they are one reading, which the special one says alone."""
+
+
 def _both(first: Diagnosis, second: Diagnosis) -> Diagnosis | None:
     """Two families that fit one value equally, named together, the nearer first (the label
-    names both, so the message says it once); ``None`` when they say the same.
+    names both, so the message says it once); ``None`` when they say the same; the special
+    one alone when one is a special case of the other (:data:`_SPECIAL_CASE`).
 
     >>> a = Diagnosis("weight_omitted", "weight left out", "The weight was left out.")
     >>> b = Diagnosis("force_omitted", "an applied force left out", "The push was left out.")
@@ -265,9 +271,16 @@ def _both(first: Diagnosis, second: Diagnosis) -> Diagnosis | None:
     "The weight was left out. It is also what x' with the opposite sign gives: check x'."
     >>> _both(a, a) is None
     True
+    >>> t = Diagnosis("tension_as_weight", "tension taken equal to a weight", "T = m g.")
+    >>> r = Diagnosis("reaction_as_weight", "reaction taken equal to the weight", "R = m g.")
+    >>> _both(r, t).label
+    'tension taken equal to a weight'
     """
     if first.code == second.code or first.label == second.label:
         return None
+    for one, other in ((first, second), (second, first)):
+        if _SPECIAL_CASE.get(one.code) == other.code:
+            return one
     # one sentence a reading: the second says "also" rather than the first's opening again
     lead = "Your value is what "
     other = _sentence(second.message)
