@@ -278,9 +278,9 @@ def _both(first: Diagnosis, second: Diagnosis) -> Diagnosis | None:
     """
     if first.code == second.code or first.label == second.label:
         return None
-    for one, other in ((first, second), (second, first)):
-        if _SPECIAL_CASE.get(one.code) == other.code:
-            return one
+    for special, general in ((first, second), (second, first)):
+        if _SPECIAL_CASE.get(special.code) == general.code:
+            return special
     # one sentence a reading: the second says "also" rather than the first's opening again
     lead = "Your value is what "
     other = _sentence(second.message)
