@@ -147,6 +147,12 @@ _OF_BODY = {"ke": "E_K", "momentum": "L", "angmom": "H"}
 _OF_ONE = {"pe": "E_P", "power": "P"}
 """A body's or spring's potential energy and a load's power, of the one named."""
 
+_OF_MODE = {"mode_frequency": "omega", "mode_damping": "zeta"}
+"""Mode n's natural frequency and damping ratio, as ω and ζ with the mode's number."""
+
+_OF_MOTION = {"omega_n": "omega_n", "zeta": "zeta"}
+"""The natural frequency and damping ratio of a one-coordinate vibration."""
+
 _ACROSS = {"before": "⁻", "after": "⁺"}
 """An impact's just before and just after, as a textbook marks them (v⁻, v⁺)."""
 
@@ -160,7 +166,8 @@ def asked_text(node: Node, inertial: str = "N") -> str:
     >>> def asked(text):
     ...     return asked_text(parse(text, functions={"dot", "vel", "mag", "force", "eom", "speed",
     ...                                              "before", "after", "ke", "pe",
-    ...                                              "power", "angmom"}))
+    ...                                              "power", "angmom", "mode_frequency",
+    ...                                              "mode_damping", "omega_n"}))
     >>> asked("dot(vel(P, B), N.x)"), asked("mag(force(F_P))")
     ('v_P in B · N.x', '|F_P|')
     >>> asked("eom(theta)"), asked("speed(G, N)")
@@ -171,6 +178,8 @@ def asked_text(node: Node, inertial: str = "N") -> str:
     ('(E_K of rod)⁻', 'E_P of s1', 'P of d')
     >>> asked("dot(angmom(disk, G, B), B.z)")
     'H of disk about G in B · B.z'
+    >>> asked("mode_frequency(1)"), asked("mode_damping(2)"), asked("omega_n(x)")
+    ('omega_1', 'zeta_2', 'omega_n')
     """
     def text(n: Node) -> str:
         if isinstance(n, Call):
@@ -191,6 +200,10 @@ def asked_text(node: Node, inertial: str = "N") -> str:
                 return said + ("" if frame == inertial else f" in {frame}")
             if n.func in _OF_ONE and args and isinstance(args[0], Name):
                 return f"{_OF_ONE[n.func]} of {args[0].id}"
+            if n.func in _OF_MODE and len(args) == 1:
+                return f"{_OF_MODE[n.func]}_{to_text(args[0])}"
+            if n.func in _OF_MOTION and len(args) == 1:
+                return _OF_MOTION[n.func]
             if n.func in ("mag", "abs") and len(args) == 1:
                 return f"|{text(args[0])}|"
             if n.func in _ACROSS and len(args) == 1:  # an impact's v⁻ and v⁺
