@@ -10,7 +10,7 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from mechgrade.grade.equations import judge_equations, read_equations
+from mechgrade.grade.equations import _naming, judge_equations, read_equations
 from mechgrade.mechanics.dynamics import derive_kinetics, free_body_loads
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -314,11 +314,6 @@ def _nought(term, samples) -> bool:
                for k, v in enumerate(values))
 
 
-def _named(load) -> str:
-    return (f"the weight of {load.body}" if load.kind == "weight"
-            else f"the {load.kind} {load.name} on {load.body}")
-
-
 def own_equations_failures(problem, samples, draw, seeded=None) -> list[str]:
     """The model's own equations of ``problem`` rewritten in conventions ``draw`` picks
     (order, axes flipped, scaled, rearranged, two combined, the reactions by names and signs of
@@ -407,7 +402,7 @@ def own_equations_failures(problem, samples, draw, seeded=None) -> list[str]:
         elif not (inertia.free_symbols | terms[t][1].free_symbols) & set(reactions) and not any(
                 u.free_symbols & set(reactions) for _, u in terms):
             rows = [(row.right, row.load, row.load_mistake) for row in judgement.rows]
-            if rows != [(n != e, _named(load) if n == e else None,
+            if rows != [(n != e, _naming(load) if n == e else None,
                          named if n == e else None) for n in range(len(wrong))]:
                 failures.append(f"not named: {said}")
     return failures
