@@ -12,6 +12,8 @@ Run (the disk cache off, as the tests):
     MECHGRADE_NO_CACHE=1 .venv/bin/python bench/parity.py record /tmp/before.json
     MECHGRADE_NO_CACHE=1 .venv/bin/python bench/parity.py compare /tmp/before.json
     .venv/bin/python bench/parity.py diff /tmp/before.json /tmp/after.json   # two records
+    PYTHONPATH=/other/checkout/src .venv/bin/python bench/parity.py record /tmp/other.json
+    # this script and problems, another checkout's solver; --no-mistakes: solutions only
 
 ``diff`` compares two records (say, one of main and one of a branch, each recorded from its
 own checkout while the other is worked on) without solving anything.
@@ -62,10 +64,16 @@ def _mistakes(solution) -> dict:
             for r in solution.results}
 
 
+MISTAKES = True  # --no-mistakes: the solutions alone (a dynamics problem's mistakes are slow)
+
+
 def _outcome(problem, outcome) -> dict:
     if isinstance(outcome, MechgradeError):
         return {"error": f"{type(outcome).__name__}: {outcome}"}
-    return {"solution": solution_json(problem, outcome), "generated": _mistakes(outcome)}
+    entry = {"solution": solution_json(problem, outcome)}
+    if MISTAKES:
+        entry["generated"] = _mistakes(outcome)
+    return entry
 
 
 def dump(path: Path, count: int, alone: int) -> dict:
@@ -152,8 +160,12 @@ def main() -> None:
     parser.add_argument("--variants", type=int, default=24)
     parser.add_argument("--alone", type=int, default=3)
     parser.add_argument("--rel", type=float, default=1e-9)
+    parser.add_argument("--no-mistakes", action="store_true",
+                        help="record or compare the solutions without their generated mistakes")
     parser.add_argument("paths", nargs="*", type=Path)
     args = parser.parse_args()
+    global MISTAKES
+    MISTAKES = not args.no_mistakes
     if args.action == "diff":
         sys.exit(diff(args.file, args.paths, args.rel))
     paths = args.paths or PATHS
