@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 from mechgrade.grade.compare import assess
-from mechgrade.mechanics.mutations import mutations
+from mechgrade.mechanics.build import build
+from mechgrade.mechanics.mutations import _gyration_for_radius, _Reading, mutations
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -171,3 +174,26 @@ def test_an_angle_rate_fixed_by_the_constraints_read_as_the_drivers_given_rate()
     # phi'' = 0 is given: no driver's rate to take for theta''; s' is no angle's rate
     assert not [m for o in ("arm_angular_acceleration", "sliding_rate")
                 for m in mutations(problem, o) if m.code == "driver_rate"]
+
+
+
+def _gyration(problem, objective):
+    """The radius-of-gyration readings of one objective (that family alone: fast)."""
+    model, obj = build(problem), problem.objective(objective)
+    reading = _Reading(model, obj, model.language.value(obj.find.node))
+    _gyration_for_radius(reading)
+    return reading.out
+
+
+def test_a_drums_rate_read_with_its_radius_of_gyration_for_its_radius():
+    # y = r phi links the block to the drum; k is only in the drum's inertia: w = v/k
+    found = _gyration(_problem("drum_block_energy_us"), "drum_angular_velocity")
+    assert [(m.code, str(m.value)) for m in found] == [("gyration_for_radius", "r*Abs(phid)/k")]
+    assert "radius of gyration k of drum for the length r" in found[0].sentence
+
+
+def test_no_radius_of_gyration_mistake_for_a_speed_or_a_rate_no_length_links():
+    problem = _problem("drum_block_energy_us")
+    assert _gyration(problem, "block_speed") == []
+    # the cord's y = r phi taken away: no length links the drum's rate to the block
+    assert _gyration(replace(problem, constraints=()), "drum_angular_velocity") == []

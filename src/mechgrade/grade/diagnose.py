@@ -330,6 +330,7 @@ LABELS = {
     "position_term": "a term of the position left out",
     "zero_for_constant_rate": "acceleration taken as zero at a constant rate",
     "driver_rate": "the driver's angular rate for a connected body's",
+    "gyration_for_radius": "a radius of gyration read for a radius",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",

@@ -26,8 +26,11 @@ from typing import Iterator
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Prime, Unary, name_of, to_text, walk
+from ..expressions.syntax import (Bin, Call, Name, Node, Prime, Unary, name_of, names, to_text,
+                                  walk)
+from ..spec.dynamics import Explicit, dynamics_of
 from ..spec.model import Expr, Objective, Problem
+from ..units import same_dimension
 from .build import Model, build
 from .interpret import Interpreter
 from .kinematics import locations
@@ -163,6 +166,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _other_bases(r)
     _zero_for_constant_rate(r)
     _driver_rate(r)
+    _gyration_for_radius(r)
     return r.out
 
 
@@ -590,6 +594,40 @@ def _driver_rate(r: _Reading) -> None:
             r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
                      f"{g.text}, the given rate of {key.id}, as if {node.id} turned with it: "
                      f"{to_text(node)} follows from the constraints that connect them.")
+
+
+def _gyration_for_radius(r: _Reading) -> None:
+    """A body's angular rate ω = v/r answered as v/k: the radius of gyration k (a length of the
+    body's inertia only) read for the length r that links its angle to a point's motion in a
+    constraint (a drum's radius under its cord, a wheel's rolling radius)."""
+    problem, node = r.model.problem, r.node
+    inner = node.args[0] if isinstance(node, Call) and node.func == "abs" else node
+    inner = inner.operand if isinstance(inner, Unary) else inner
+    if problem.dynamics is None or not isinstance(inner, Prime):
+        return
+    lengths = {q.name for q in problem.parameters if same_dimension(q.unit, "m")}
+    linked: set[str] = set()  # lengths that multiply this angle in a constraint
+    for c in problem.constraints:
+        found = {n for side in (c.lhs.node, c.rhs.node) for n in names(side)}
+        if inner.id in found:
+            linked |= found & lengths
+    frames = {f.name: f for f in problem.frames}
+    for body in dynamics_of(problem).bodies:
+        spec = frames.get(body.frame or "")
+        if spec is None or not any(names(rot.angle.node) == {inner.id}
+                                   for rot in spec.rotations):
+            continue
+        for part in body.parts:
+            if not isinstance(part.shape, Explicit):
+                continue
+            inertia = {n for _, e in part.shape.entries for n in names(e.node)} & lengths
+            for k in sorted(inertia - linked):
+                for length in sorted(linked - inertia):
+                    ratio = r.model.symbols.params[length] / r.model.symbols.params[k]
+                    r.append("gyration_for_radius", r.right * ratio, f"Your value takes "
+                             f"{to_text(inner)} with the radius of gyration {k} of {body.name} "
+                             f"for the length {length} that links it to the motion: {k} only "
+                             f"gives the moment of inertia I = m {k}^2.")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:
