@@ -374,6 +374,7 @@ LABELS = {
     "surface_taken_fixed": "the body slid on taken as fixed",
     "body_ke_omitted": "a body's kinetic energy left out",
     "impulse_moment_omitted": "the blow's moment left out",
+    "moment_arm_omitted": "the momentum m v for its moment r × m v",
     "spring_omitted": "a spring left out",
     "load_at_other_point": "a load taken at another point of its body",
     "contact_taken_smooth": "a rolling contact taken as smooth",
