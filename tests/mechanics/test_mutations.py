@@ -7,8 +7,10 @@ from dataclasses import replace
 import pytest
 
 from mechgrade.grade.compare import assess
+from mechgrade.expressions.syntax import parse
 from mechgrade.mechanics.build import build
-from mechgrade.mechanics.mutations import _gyration_for_radius, _Reading, mutations
+from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius, _Reading,
+                                           mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -177,12 +179,16 @@ def test_an_angle_rate_fixed_by_the_constraints_read_as_the_drivers_given_rate()
 
 
 
-def _gyration(problem, objective):
-    """The radius-of-gyration readings of one objective (that family alone: fast)."""
+def _family(family, problem, objective):
+    """One family's readings of one objective (that family alone: fast)."""
     model, obj = build(problem), problem.objective(objective)
     reading = _Reading(model, obj, model.language.value(obj.find.node))
-    _gyration_for_radius(reading)
+    family(reading)
     return reading.out
+
+
+def _gyration(problem, objective):
+    return _family(_gyration_for_radius, problem, objective)
 
 
 def test_a_drums_rate_read_with_its_radius_of_gyration_for_its_radius():
@@ -197,3 +203,20 @@ def test_no_radius_of_gyration_mistake_for_a_speed_or_a_rate_no_length_links():
     assert _gyration(problem, "block_speed") == []
     # the cord's y = r phi taken away: no length links the drum's rate to the block
     assert _gyration(replace(problem, constraints=()), "drum_angular_velocity") == []
+
+
+def test_a_sliders_speed_read_as_the_drivers_given_speed_in_its_own_sense():
+    # a' = -2 m/s given at A; B's s' along its slot answered 2 m/s: the rod moved as a whole
+    found = _family(_driver_speed, _problem("rod_in_two_slots_ic"), "velocity_B")
+    assert [(m.code, str(m.value)) for m in found] == [("driver_speed", "2.0*sign(sd)")]
+    assert found[0].sentence.startswith("Your value is s' = 2 m/s in size, the given rate of a")
+
+
+def test_no_drivers_speed_for_an_angles_rate_or_the_drivers_own():
+    problem = _problem("rod_in_two_slots_ic")
+    assert _family(_driver_speed, problem, "angular_velocity") == []
+    # asked for a' itself: the only given length rate is its own
+    own = replace(problem.objective("velocity_B"), id="velocity_A",
+                  find=replace(problem.objective("velocity_B").find, text="a'",
+                               node=parse("a'")))
+    assert _family(_driver_speed, replace(problem, objectives=(own,)), "velocity_A") == []

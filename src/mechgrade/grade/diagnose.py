@@ -331,6 +331,7 @@ LABELS = {
     "zero_for_constant_rate": "acceleration taken as zero at a constant rate",
     "driver_rate": "the driver's angular rate for a connected body's",
     "gyration_for_radius": "a radius of gyration read for a radius",
+    "driver_speed": "the driver's speed for a connected point's",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",

@@ -167,6 +167,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _zero_for_constant_rate(r)
     _driver_rate(r)
     _gyration_for_radius(r)
+    _driver_speed(r)
     return r.out
 
 
@@ -594,6 +595,24 @@ def _driver_rate(r: _Reading) -> None:
             r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
                      f"{g.text}, the given rate of {key.id}, as if {node.id} turned with it: "
                      f"{to_text(node)} follows from the constraints that connect them.")
+
+
+def _driver_speed(r: _Reading) -> None:
+    """A length's rate that the constraints fix (a slider's s' at the far end of a rod, a
+    crate's y' on a rope) answered with the given speed of another length (the driver's a'),
+    in the objective's sense: the mechanism taken to move as a whole with its driver."""
+    node = r.node
+    lengths = {c.name for c in r.model.problem.coordinates if same_dimension(c.unit, "m")}
+    if not (isinstance(node, Prime) and node.id in lengths):
+        return
+    for g in r.model.problem.givens:
+        key = g.key.node
+        if isinstance(key, Prime) and key.order == node.order and key.id in lengths \
+                and key.id != node.id and g.si != 0:
+            r.append("driver_speed", sp.Float(abs(g.si)) * sp.sign(r.right),
+                     f"Your value is {to_text(node)} = {g.text.lstrip('-')} in size, the given "
+                     f"rate of {key.id}, as if the mechanism moved as a whole: {to_text(node)} "
+                     "follows from the constraints that connect them.")
 
 
 def _gyration_for_radius(r: _Reading) -> None:

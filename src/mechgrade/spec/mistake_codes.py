@@ -22,7 +22,8 @@ MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "relative_omega", "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc",
     "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "rho_without_slope",
     "component_for_speed", "mag_as_sum",
-    "position_term", "zero_for_constant_rate", "driver_rate", "gyration_for_radius")
+    "position_term", "zero_for_constant_rate", "driver_rate", "gyration_for_radius",
+    "driver_speed")
 """Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
 
 DYNAMICS_CODES = (

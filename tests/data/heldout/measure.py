@@ -84,7 +84,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
                          "drop_transport_acc", "relative_omega", "surface_taken_fixed",
                          "position_term", "strands_miscounted", "load_at_other_point",
                          "contact_taken_smooth", "gyration_for_radius",
-                         "moment_arm_omitted"),
+                         "moment_arm_omitted", "driver_speed"),
     "angular_rate_equal": ("driver_rate",),
     "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
