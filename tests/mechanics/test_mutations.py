@@ -9,8 +9,8 @@ import pytest
 from mechgrade.grade.compare import assess
 from mechgrade.expressions.syntax import parse
 from mechgrade.mechanics.build import build
-from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius, _Reading,
-                                           mutations)
+from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius,
+                                           _rate_relation_inverted, _Reading, mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -220,3 +220,20 @@ def test_no_drivers_speed_for_an_angles_rate_or_the_drivers_own():
                   find=replace(problem.objective("velocity_B").find, text="a'",
                                node=parse("a'")))
     assert _family(_driver_speed, replace(problem, objectives=(own,)), "velocity_A") == []
+
+
+def test_an_angular_acceleration_from_a_cords_read_as_a_r_for_a_over_r():
+    found = _family(_rate_relation_inverted, _problem("drum_hoist_falling_block"),
+                    "angular_acceleration")
+    assert [(m.code, str(m.value)) for m in found] == [("rate_relation_inverted",
+                                                        "1.0*phidd*r**2")]
+    assert found[0].sentence.startswith("Your value multiplies by r = 0.25 m where")
+
+
+def test_a_relation_inverted_multiplies_the_length_in_its_given_unit_and_only_for_an_angle():
+    problem = _problem("drum_block_energy_us")  # r = 1 ft: the student's v r is v in ft/s
+    (inverted,) = _family(_rate_relation_inverted, problem, "drum_angular_velocity")
+    values = {s.name: s for s in inverted.value.free_symbols}
+    assert float(inverted.value.subs({values["r"]: 0.3048, values["phid"]: 1.0})) \
+        == pytest.approx(1.0)
+    assert _family(_rate_relation_inverted, problem, "block_speed") == []

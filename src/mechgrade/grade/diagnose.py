@@ -332,6 +332,7 @@ LABELS = {
     "driver_rate": "the driver's angular rate for a connected body's",
     "gyration_for_radius": "a radius of gyration read for a radius",
     "driver_speed": "the driver's speed for a connected point's",
+    "rate_relation_inverted": "v = r ω used as ω = v r",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",

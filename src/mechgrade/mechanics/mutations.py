@@ -168,6 +168,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _driver_rate(r)
     _gyration_for_radius(r)
     _driver_speed(r)
+    _rate_relation_inverted(r)
     return r.out
 
 
@@ -615,21 +616,32 @@ def _driver_speed(r: _Reading) -> None:
                      "follows from the constraints that connect them.")
 
 
+def _angle_rate(r: _Reading) -> Prime | None:
+    """The rate of an angle the objective asks for (θ', |θ'|, -θ''), if that is all it asks."""
+    node = r.node
+    inner = node.args[0] if isinstance(node, Call) and node.func == "abs" else node
+    inner = inner.operand if isinstance(inner, Unary) else inner
+    angles = {c.name for c in r.model.problem.coordinates if c.unit in ("rad", "deg")}
+    return inner if isinstance(inner, Prime) and inner.id in angles else None
+
+
+def _linking_lengths(problem: Problem, angle: str) -> set[str]:
+    """The length parameters written with ``angle`` in a constraint (r in y = r φ)."""
+    lengths = {q.name for q in problem.parameters if same_dimension(q.unit, "m")}
+    return {n for c in problem.constraints
+            for n in (names(c.lhs.node) | names(c.rhs.node)) if angle in names(c.lhs.node)
+            | names(c.rhs.node)} & lengths
+
+
 def _gyration_for_radius(r: _Reading) -> None:
     """A body's angular rate ω = v/r answered as v/k: the radius of gyration k (a length of the
     body's inertia only) read for the length r that links its angle to a point's motion in a
     constraint (a drum's radius under its cord, a wheel's rolling radius)."""
-    problem, node = r.model.problem, r.node
-    inner = node.args[0] if isinstance(node, Call) and node.func == "abs" else node
-    inner = inner.operand if isinstance(inner, Unary) else inner
-    if problem.dynamics is None or not isinstance(inner, Prime):
+    problem, inner = r.model.problem, _angle_rate(r)
+    if problem.dynamics is None or inner is None:
         return
     lengths = {q.name for q in problem.parameters if same_dimension(q.unit, "m")}
-    linked: set[str] = set()  # lengths that multiply this angle in a constraint
-    for c in problem.constraints:
-        found = {n for side in (c.lhs.node, c.rhs.node) for n in names(side)}
-        if inner.id in found:
-            linked |= found & lengths
+    linked = _linking_lengths(problem, inner.id)
     frames = {f.name: f for f in problem.frames}
     for body in dynamics_of(problem).bodies:
         spec = frames.get(body.frame or "")
@@ -647,6 +659,23 @@ def _gyration_for_radius(r: _Reading) -> None:
                              f"{to_text(inner)} with the radius of gyration {k} of {body.name} "
                              f"for the length {length} that links it to the motion: {k} only "
                              f"gives the moment of inertia I = m {k}^2.")
+
+
+def _rate_relation_inverted(r: _Reading) -> None:
+    """An angle's rate from a point's, ω = v/r, answered as v r (α = a r): the length that
+    links them in a constraint multiplies where it divides. The student multiplies the numbers
+    as given, so r is taken in its given unit."""
+    inner = _angle_rate(r)
+    if inner is None:
+        return
+    givens = {g.key.node.id: g for g in r.model.problem.givens
+              if isinstance(g.key.node, Name) and g.value != 0}
+    for length in sorted(_linking_lengths(r.model.problem, inner.id) & set(givens)):
+        g = givens[length]
+        symbol = r.model.symbols.params[length]
+        r.append("rate_relation_inverted", r.right * symbol**2 * sp.Float(g.value / g.si)**2,
+                 f"Your value multiplies by {length} = {g.text} where the relation divides: "
+                 f"{to_text(inner)} is the point's rate divided by {length}, not times it.")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:
