@@ -10,7 +10,8 @@ from mechgrade.grade.compare import assess
 from mechgrade.expressions.syntax import parse
 from mechgrade.mechanics.build import build
 from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius,
-                                           _rate_relation_inverted, _Reading, mutations)
+                                           _rate_relation_inverted, _Reading,
+                                           _start_term_left_out, mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -237,3 +238,26 @@ def test_a_relation_inverted_multiplies_the_length_in_its_given_unit_and_only_fo
     assert float(inverted.value.subs({values["r"]: 0.3048, values["phid"]: 1.0})) \
         == pytest.approx(1.0)
     assert _family(_rate_relation_inverted, problem, "block_speed") == []
+
+
+def test_a_distance_answered_without_a_term_of_its_start():
+    # r starts at R + h: the apogee's altitude r - R (or r - h) for its distance from O
+    found = _family(_start_term_left_out, _problem("satellite_apogee_speed"), "apogee_distance")
+    assert [(m.code, str(m.value)) for m in found] == [("position_term", "-R + r"),
+                                                       ("position_term", "-h + r")]
+    assert found[0].sentence.startswith("Your value is r without R, a term of its start r = R + h")
+
+
+def _asking(problem, find):
+    """``problem`` with its first objective asking for ``find`` instead."""
+    first = problem.objectives[0]
+    asked = replace(first, find=replace(first.find, text=find, node=parse(find)))
+    return replace(problem, objectives=(asked,) + problem.objectives[1:])
+
+
+def test_no_start_term_to_leave_out_of_a_speed_an_angle_or_a_start_of_one_term():
+    satellite = _problem("satellite_apogee_speed")
+    assert _family(_start_term_left_out, satellite, "apogee_speed") == []
+    assert _family(_start_term_left_out, _asking(satellite, "theta"), "apogee_distance") == []
+    puck = _problem("puck_string_through_hole")  # r starts at r0 alone
+    assert _family(_start_term_left_out, _asking(puck, "r"), "angular_velocity") == []

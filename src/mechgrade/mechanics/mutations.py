@@ -169,6 +169,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _gyration_for_radius(r)
     _driver_speed(r)
     _rate_relation_inverted(r)
+    _start_term_left_out(r)
     return r.out
 
 
@@ -676,6 +677,26 @@ def _rate_relation_inverted(r: _Reading) -> None:
         r.append("rate_relation_inverted", r.right * symbol**2 * sp.Float(g.value / g.si)**2,
                  f"Your value multiplies by {length} = {g.text} where the relation divides: "
                  f"{to_text(inner)} is the point's rate divided by {length}, not times it.")
+
+
+def _start_term_left_out(r: _Reading) -> None:
+    """A length coordinate the motion reaches, answered without a term of its value at the
+    start (r = R + h: the height h above the surface for the distance r from the centre)."""
+    problem, node = r.model.problem, r.node
+    if problem.dynamics is None or not isinstance(node, Name):
+        return
+    lengths = {c.name for c in problem.coordinates if same_dimension(c.unit, "m")}
+    starts = getattr(dynamics_of(problem).analysis, "start", ())
+    for start in starts:
+        if node.id not in lengths or start.value is None or start.key.node != node:
+            continue
+        terms = additive_terms(start.value.node)
+        for sign, term in terms if len(terms) > 1 else ():
+            if isinstance(term, Name) and term.id in r.model.symbols.params:
+                r.append("position_term", r.right - sign * r.model.symbols.params[term.id],
+                         f"Your value is {node.id} without {term.id}, a term of its start "
+                         f"{node.id} = {start.value.text}: {node.id} is measured from the "
+                         f"origin, so {term.id} stays in it.")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:
