@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Iterator
+from typing import Any, Iterator
 
 import sympy as sp
 from sympy.physics.vector import Vector
@@ -582,39 +582,40 @@ def _zero_for_constant_rate(r: _Reading) -> None:
              "zero, not the other accelerations (their centripetal and coupled terms).")
 
 
+def _other_given_rates(r: _Reading, coordinates: set[str]) -> Iterator[tuple[Prime, Prime, Any]]:
+    """``(asked, key, given)`` for each nonzero given rate ``key`` of another of
+    ``coordinates``, of the order of the rate ``asked`` of one of them that the objective is."""
+    node = r.node
+    if not (isinstance(node, Prime) and node.id in coordinates):
+        return
+    for g in r.model.problem.givens:
+        key = g.key.node
+        if isinstance(key, Prime) and key.order == node.order and key.id in coordinates \
+                and key.id != node.id and g.si != 0:
+            yield node, key, g
+
+
 def _driver_rate(r: _Reading) -> None:
     """An angle's rate that the constraints fix (a slotted arm's θ', a coupler's) answered
     with the given rate of another angle (the crank's φ'): the connected body taken to turn
     with the driver."""
-    node = r.node
     angles = {c.name for c in r.model.problem.coordinates if c.unit in ("rad", "deg")}
-    if not (isinstance(node, Prime) and node.id in angles):
-        return
-    for g in r.model.problem.givens:
-        key = g.key.node
-        if isinstance(key, Prime) and key.order == node.order and key.id in angles \
-                and key.id != node.id and g.si != 0:
-            r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
-                     f"{g.text}, the given rate of {key.id}, as if {node.id} turned with it: "
-                     f"{to_text(node)} follows from the constraints that connect them.")
+    for node, key, g in _other_given_rates(r, angles):
+        r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
+                 f"{g.text}, the given rate of {key.id}, as if {node.id} turned "
+                 f"with it: {to_text(node)} follows from the constraints that connect them.")
 
 
 def _driver_speed(r: _Reading) -> None:
     """A length's rate that the constraints fix (a slider's s' at the far end of a rod, a
     crate's y' on a rope) answered with the given speed of another length (the driver's a'),
     in the objective's sense: the mechanism taken to move as a whole with its driver."""
-    node = r.node
     lengths = {c.name for c in r.model.problem.coordinates if same_dimension(c.unit, "m")}
-    if not (isinstance(node, Prime) and node.id in lengths):
-        return
-    for g in r.model.problem.givens:
-        key = g.key.node
-        if isinstance(key, Prime) and key.order == node.order and key.id in lengths \
-                and key.id != node.id and g.si != 0:
-            r.append("driver_speed", sp.Float(abs(g.si)) * sp.sign(r.right),
-                     f"Your value is {to_text(node)} = {g.text.lstrip('-')} in size, the given "
-                     f"rate of {key.id}, as if the mechanism moved as a whole: {to_text(node)} "
-                     "follows from the constraints that connect them.")
+    for node, key, g in _other_given_rates(r, lengths):
+        r.append("driver_speed", sp.Float(abs(g.si)) * sp.sign(r.right),
+                 f"Your value is {to_text(node)} = {g.text.lstrip('-')} in size, the given "
+                 f"rate of {key.id}, as if the mechanism moved as a whole: {to_text(node)} "
+                 "follows from the constraints that connect them.")
 
 
 def _angle_rate(r: _Reading) -> Prime | None:
