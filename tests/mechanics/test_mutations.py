@@ -213,7 +213,7 @@ def test_a_sliders_speed_read_as_the_drivers_given_speed_in_its_own_sense():
     assert found[0].sentence.startswith("Your value is s' = 2 m/s in size, the given rate of a")
 
 
-def test_no_drivers_speed_for_an_angles_rate_or_the_drivers_own():
+def test_no_drivers_speed_for_an_angles_rate_the_drivers_own_or_its_own_point_located_again():
     problem = _problem("rod_in_two_slots_ic")
     assert _family(_driver_speed, problem, "angular_velocity") == []
     # asked for a' itself: the only given length rate is its own
@@ -221,6 +221,9 @@ def test_no_drivers_speed_for_an_angles_rate_or_the_drivers_own():
                   find=replace(problem.objective("velocity_B").find, text="a'",
                                node=parse("a'")))
     assert _family(_driver_speed, replace(problem, objectives=(own,)), "velocity_A") == []
+    # the airplane located two ways, x N.x + h N.y = r E.x: r' = x' is the whole speed for a
+    # component (velocity_component_wrong), not a mechanism moving with its driver
+    assert _family(_driver_speed, _problem("radar_tracks_airplane_polar"), "r_dot") == []
 
 
 def test_an_angular_acceleration_from_a_cords_read_as_a_r_for_a_over_r():

@@ -26,7 +26,7 @@ from typing import Any, Iterator
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import (Bin, Call, Name, Node, Prime, Unary, name_of, names, to_text,
+from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Prime, Unary, name_of, names, to_text,
                                   walk)
 from ..spec.dynamics import Explicit, dynamics_of
 from ..spec.model import Expr, Objective, Problem
@@ -610,12 +610,38 @@ def _driver_speed(r: _Reading) -> None:
     """A length's rate that the constraints fix (a slider's s' at the far end of a rod, a
     crate's y' on a rope) answered with the given speed of another length (the driver's a'),
     in the objective's sense: the mechanism taken to move as a whole with its driver."""
-    lengths = {c.name for c in r.model.problem.coordinates if same_dimension(c.unit, "m")}
+    problem = r.model.problem
+    lengths = {c.name for c in problem.coordinates if same_dimension(c.unit, "m")}
     for node, key, g in _other_given_rates(r, lengths):
+        if _same_point(problem, node.id, key.id):
+            continue  # the whole speed for a component: another family's reading
         r.append("driver_speed", sp.Float(abs(g.si)) * sp.sign(r.right),
                  f"Your value is {to_text(node)} = {g.text.lstrip('-')} in size, the given "
                  f"rate of {key.id}, as if the mechanism moved as a whole: {to_text(node)} "
                  "follows from the constraints that connect them.")
+
+
+def _same_point(problem: Problem, asked: str, driver: str) -> bool:
+    """Whether a constraint locates one point two ways, one side by ``driver`` alone among
+    the coordinates, the other with ``asked`` (x N.x + h N.y = r E.x: r' is a component of the
+    driver's own velocity there, not the rate of another part of a mechanism)."""
+    coordinates = {c.name for c in problem.coordinates}
+    frames = {f.name: f for f in problem.frames}
+
+    def turning(frame: str | None) -> set[str]:  # the angles a frame turns by, from N
+        spec = frames.get(frame or "")
+        return set() if spec is None else turning(spec.parent).union(
+            *(names(rot.angle.node) for rot in spec.rotations))
+
+    def located_by(node: Node) -> set[str]:
+        axes = {n.base for n in walk(node) if isinstance(n, Attr)}
+        return (names(node) | set().union(*map(turning, axes))) & coordinates
+
+    for c in problem.constraints:
+        sides = (located_by(c.lhs.node), located_by(c.rhs.node))
+        if any(one == {driver} and asked in other for one, other in (sides, sides[::-1])):
+            return True
+    return False
 
 
 def _angle_rate(r: _Reading) -> Prime | None:
