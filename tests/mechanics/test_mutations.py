@@ -264,3 +264,20 @@ def test_no_start_term_to_leave_out_of_a_speed_an_angle_or_a_start_of_one_term()
     assert _family(_start_term_left_out, _asking(satellite, "theta"), "apogee_distance") == []
     puck = _problem("puck_string_through_hole")  # r starts at r0 alone
     assert _family(_start_term_left_out, _asking(puck, "r"), "angular_velocity") == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("problem, objective, answer, label", [
+    ("drum_block_energy_us", "drum_angular_velocity", "15.24 rad/s",
+     "a radius of gyration read for a radius"),
+    ("drum_hoist_falling_block", "angular_acceleration", "-1.251 rad/s^2",
+     "v = r ω used as ω = v r"),
+    ("rod_in_two_slots_ic", "velocity_B", "2 m/s", "the driver's speed for a connected point's"),
+    ("satellite_apogee_speed", "apogee_distance", "2103 km", "a term of the position left out"),
+    ("puck_string_through_hole", "angular_momentum", "1.6 kg*m^2/s",
+     "the momentum m v for its moment r × m v"),
+])
+def test_a_students_kinematic_factor_slip_is_named_when_graded(problem, objective, answer,
+                                                               label):
+    judged = assess(answer, solve(_problem(problem)).result(objective))
+    assert (judged.verdict, judged.diagnosis) == ("incorrect", label)
