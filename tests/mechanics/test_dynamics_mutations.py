@@ -12,11 +12,14 @@ from mechgrade.check import separation_findings
 from mechgrade.grade.compare import assess
 from mechgrade.grade.diagnose import GENERATED_CODES, LABELS
 from mechgrade.mechanics.dynamics import kinetics_derivation
-from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations
+from mechgrade.mechanics.build import build
+from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations, moment_arm_omitted
 from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
+from mechgrade.spec.language import FUNCTIONS
 from mechgrade.spec.model import Tolerance
+from mechgrade.expressions.syntax import parse
 from library import library_problem as _problem
 
 DYNAMICS = sorted(p.stem for p in shipped_dir("problems").glob("*.yaml")
@@ -530,3 +533,24 @@ def test_an_oblique_impact_taken_head_on_gives_the_whole_speeds_exchange():
     assert head_on.value == pytest.approx((-4.8, 0.0, 0.0), abs=1e-9)
     # a rod struck at a point turns: no particle impact to take head-on
     assert "impact_taken_head_on" not in _codes("rod_strikes_ledge")
+
+
+def test_a_particles_angular_momentum_read_without_its_arm():
+    # H_O = m r^2 theta' of the puck on its cord answered m r theta' = m v across OP
+    problem = _problem("puck_string_through_hole")
+    (arm,) = moment_arm_omitted(problem, build(problem))
+    assert [(oid, find.text) for oid, find in arm.readings] == [
+        ("angular_momentum", "dot(cross(unit(pos(P, O)), momentum(puck, N)), N.z)")]
+    assert (arm.code, arm.term.text, arm.term_unit) == ("moment_arm_omitted", "mag(pos(P, O))", "m")
+
+
+def test_no_arm_to_drop_from_a_rigid_bodys_spin_or_a_particle_at_the_point():
+    disk = _problem("disk_on_bent_shaft")  # I omega of a disk: no single arm
+    assert list(moment_arm_omitted(disk, build(disk))) == []
+    puck = _problem("puck_string_through_hole")
+    objectives = tuple(replace(o, find=replace(o.find, text="dot(angmom(puck, P, N), N.z)",
+                                                node=parse("dot(angmom(puck, P, N), N.z)",
+                                                           functions=FUNCTIONS)))
+                       if o.id == "angular_momentum" else o for o in puck.objectives)
+    about_itself = replace(puck, objectives=objectives)  # about the puck's own place: no arm
+    assert list(moment_arm_omitted(about_itself, build(about_itself))) == []

@@ -1198,6 +1198,31 @@ def body_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation
                 term_unit="J")
 
 
+def moment_arm_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A particle's angular momentum r × m v about a point read without the length of r:
+    m v across the line to the point (m r θ' for m r² θ'), the moment arm dropped."""
+    for body in dynamics_of(problem).bodies:
+        if any(p.shape is not None or p.at != body.centre for p in body.parts):
+            continue  # a rigid body's own spin I ω has no single arm to drop
+        for call in {c for o in problem.objectives for c in _calls(o.find.node, "angmom")
+                     if c.args[0] == Name(body.name)}:
+            about, frame = (name_of(a) for a in call.args[1:])
+            arm = f"pos({body.centre}, {about})"
+            if identically_zero(model.plain(model.language.value(parse(
+                    f"mag({arm})", functions=FUNCTIONS)))):
+                continue
+            replacement = parse(f"cross(unit({arm}), momentum({body.name}, {frame}))",
+                                functions=FUNCTIONS)
+            readings = tuple(r for r in _readings(problem, "angmom", body.name, replacement)
+                             if r[1].node != problem.objective(r[0]).find.node)
+            if readings:
+                yield DynamicsMutation(
+                    "moment_arm_omitted", f"Your value is the momentum m v of {body.name} "
+                    f"across the line from {about}, without its arm r = {{term}}: the angular "
+                    f"momentum about {about} is r × m v (m r² θ' in polar coordinates).",
+                    OBJECTIVES, readings=readings, term=_expr(f"mag({arm})"), term_unit="m")
+
+
 def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A known blow on a turning body away from its mass centre taken to act at the centre:
     its moment, which sets the body spinning, left out of the angular momentum balance."""
@@ -1375,6 +1400,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
+    moment_arm_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
