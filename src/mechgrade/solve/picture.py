@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, replace
+from decimal import Decimal
 from functools import lru_cache
 from itertools import pairwise
 from html import escape
@@ -488,9 +489,19 @@ def _legend(s: Scene, shown) -> list[tuple[str, str, str, str, float]]:
         if largest <= 1e-9:
             continue
         shown_unit = unit.replace("**", "^").replace("^2", "²").replace("^3", "³")
-        legend.append((colour, f"{kind} (longest {largest / si_factor(unit):.2g} {shown_unit})",
+        legend.append((colour, f"{kind} (longest {plain_number(largest / si_factor(unit))} "
+                               f"{shown_unit})",
                        mark, kind, largest))
     return legend
+
+
+def plain_number(x: float, digits: int = 2) -> str:
+    """``x`` to ``digits`` significant digits as a student reads a number: no exponent.
+
+    >>> plain_number(499.7), plain_number(0.01234), plain_number(3.21), plain_number(1.2e-7)
+    ('500', '0.012', '3.2', '0.00000012')
+    """
+    return format(Decimal(f"{x:.{digits}g}"), "f")
 
 
 def _page(v: Triple) -> tuple[float, float]:
