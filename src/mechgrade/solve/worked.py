@@ -25,6 +25,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..expressions.notation import coordinate_names
 from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, to_text
 from ..mechanics.derivation import Row, Step, symbolic_math
 from ..mechanics.writeup import worked_steps
@@ -63,7 +64,8 @@ class WorkedSolution:
     ``(objective, code, anchor)``: the step or row (by anchor) where the generated mistake
     ``code`` of an objective happens; ``diagrams`` each body's free-body diagram (plain
     data), shown in the step anchored ``diagram_step``; ``equations_step`` the step that
-    writes its equations of motion (``""``: none)."""
+    writes its equations of motion (``""``: none); ``names`` how a textbook spells the
+    coordinates the answer syntax does not (:func:`~mechgrade.expressions.notation.coordinate_names`)."""
 
     problem: str
     title: str
@@ -74,6 +76,7 @@ class WorkedSolution:
     diagrams: tuple[FreeBodyDiagram, ...] = ()
     diagram_step: str = ""
     equations_step: str = ""
+    names: tuple[tuple[str, str], ...] = ()
 
     def place(self, objective: str, code: str) -> str | None:
         """The anchor of the step or row where ``code``'s mistake happens for ``objective``."""
@@ -137,7 +140,13 @@ def worked_solution(problem: Problem, solution: Solution,
                           picture_svg(drawing, inline=True) if drawable(drawing) else "", places, declared,
                           diagrams, DIAGRAM_STEP if diagrams else "",
                           EQUATIONS_STEP if any(s.anchor == EQUATIONS_STEP for s in steps)
-                          else "")
+                          else "", problem_names(problem))
+
+
+def problem_names(problem: Problem) -> tuple[tuple[str, str], ...]:
+    """How a textbook spells ``problem``'s coordinates (``xj`` is x_J): for every text of it a
+    student reads."""
+    return coordinate_names([c.name for c in problem.coordinates], [p.name for p in problem.points])
 
 
 _KINEMATIC = {"vel": "v", "acc": "a", "omega": "omega", "alpha": "alpha"}
