@@ -1,8 +1,9 @@
 """A model's names and expressions as a textbook writes them, for anything a student reads:
 θ̇ for ``thetad``, μ with the subscript k for ``mu_k``, F with the subscript P for ``F_P``,
 ``kg·m²`` for ``kg*m^2``, ``|ẋ|`` for ``Abs(xd)``. Plain text (a spoken label, an
-``aria-label``) sets a subscript in Unicode's subscript characters where it has them; HTML
-sets it with ``<sub>``. Pure text: no sympy, so every layer may use it."""
+``aria-label``) sets a subscript in Unicode's subscript characters where it has them and a
+frame's unit vector ``N.y`` in words, "n-hat y"; HTML sets a subscript with ``<sub>`` and
+the unit vector as 𝐧̂ with the subscript y. Pure text: no sympy, so every layer may use it."""
 
 from __future__ import annotations
 
@@ -133,7 +134,7 @@ def textbook(text: str, rates: bool = True, names: tuple[tuple[str, str], ...] =
     >>> textbook("-g*mu_k*xd*cos(beta)/Abs(xd) + g*sin(beta)")
     '-g·μₖ·ẋ·cos(β)/|ẋ| + g·sin(β)'
     >>> textbook("L*sqrt(thetadd**2 + thetad**4) kg*m^2 R_O,x N.y")
-    'L·sqrt(θ̈² + θ̇⁴) kg·m² R O,x N.y'
+    'L·sqrt(θ̈² + θ̇⁴) kg·m² R O,x n-hat y'
     >>> textbook("2.453 m/s^2 (0.2501 g0)")
     '2.453 m/s² (0.2501 g0)'
     >>> textbook("check x' and theta'' (the key 'x', block's)", rates=False)
@@ -143,7 +144,9 @@ def textbook(text: str, rates: bool = True, names: tuple[tuple[str, str], ...] =
     """
     def show(name, sub):
         return name if sub is None else _plain_sub(name, sub)
-    return unicodedata.normalize("NFC", _operators(_rewritten(text, rates, show, names)))
+    # a frame's unit vector in words, as it is read out (a plain text has no hat to set)
+    return unicodedata.normalize("NFC", _UNIT_VECTOR.sub(
+        lambda m: f"{m[1].lower()}-hat {m[2]}", _operators(_rewritten(text, rates, show, names))))
 
 
 @lru_cache(maxsize=1 << 14)

@@ -360,7 +360,7 @@ def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> 
     ...                 ScenePoint("A", (1, 1, 0), (-7, 7, 0), (-50, -40, 0), "O")),
     ...           (SceneFrame("N", (0, 0, 0), (1, 0, 0), (0, 1, 0)),))
     >>> svg = picture_svg(s)
-    >>> svg.startswith("<svg") and "velocity (longest 9.9 m/s)" in svg and "N.x" in svg
+    >>> svg.startswith("<svg") and "velocity (longest 9.9 m/s)" in svg and "𝐧̂<tspan" in svg
     True
     """
     ident = _ident(ident or s.problem)
@@ -827,15 +827,33 @@ def _frame_labels(sheet: _Sheet, axes) -> None:
     """The frames' axis labels, placed once every line is drawn."""
     labels = [f'<g fill="{FRAME}" font-size="11" {HALO}>']
     for start, end, names in axes:
-        text = " = ".join(names)
-        labels.append(_placed_label(sheet, end, text, 6.2 * len(text), start))
+        shown = " = ".join(unit_vector_svg(name) for name in names)
+        # a label's width: the letters and signs, a subscript set smaller
+        labels.append(_placed_label(sheet, end, shown, 6.2 * (4 * len(names) - 3), start,
+                                    markup=True))
     if len(labels) > 1:
         sheet.out += labels + ["</g>"]
 
 
-def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None) -> str:
+def unit_vector_svg(name: str) -> str:
+    """A frame's unit vector (``N.x``) as an SVG label writes it, as the page's equations do:
+    the frame's letter bold and lower case with a hat, the axis its subscript.
+
+    >>> unit_vector_svg("N.x")
+    '𝐧̂<tspan baseline-shift="sub" font-size="8">x</tspan>'
+    """
+    frame, _, axis = name.partition(".")
+    letter = frame.lower()
+    hat = f"{chr(0x1D41A + ord(letter) - 97)}\u0302" if len(letter) == 1 and "a" <= letter <= "z" \
+        else f"{escape(letter)}\u0302"
+    return f'{hat}<tspan baseline-shift="sub" font-size="8">{escape(axis)}</tspan>'
+
+
+def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None,
+                  markup: bool = False) -> str:
     """A label near ``p`` (beyond it, away from ``from_`` when given) where it overlaps no
-    label and crosses no line (the first place tried when every one does)."""
+    label and crosses no line (the first place tried when every one does); ``text`` is
+    escaped unless it is ``markup`` already."""
     if from_ is not None:
         d = math.dist(from_, p) or 1.0
         u = ((p[0] - from_[0]) / d, (p[1] - from_[1]) / d)
@@ -856,7 +874,7 @@ def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None) -> str:
         x, y, anchor, box = first  # type: ignore[misc]
     sheet.boxes.append(box)
     middle = {"start": "", "end": ' text-anchor="end"', "middle": ' text-anchor="middle"'}
-    return f'<text x="{x:.0f}" y="{y:.0f}"{middle[anchor]}>{escape(text)}</text>'
+    return f'<text x="{x:.0f}" y="{y:.0f}"{middle[anchor]}>{text if markup else escape(text)}</text>'
 
 
 def described(s: Scene, legend=()) -> str:
