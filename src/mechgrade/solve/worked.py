@@ -293,7 +293,7 @@ def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple
             if point is not None else None
         if value is not None:
             unit = asked.get((kind, name), units[kind])
-            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in value)
+            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in _without_round_off(value))
             letter = "v" if kind == "vel" else "a"
             step = replace(step, lines=step.lines + (
                 f"At the instant: {problem.inertial_frame}_{letter}_{name} = ({shown}) "
@@ -314,10 +314,32 @@ def _same_value(mistake: MistakeValue, generated) -> tuple[GeneratedMistake, ...
     return ()
 
 
+ROUND_OFF = 1e-12
+"""A value of the instant this small (SI) is zero but for the solver's round-off: a student is
+shown 0, not -3.45e-31 m/s²."""
+
+
+def _without_round_off(vector) -> tuple[float, ...]:
+    """A vector (SI) with its round-off components zero: those below :data:`ROUND_OFF` or a
+    billionth of its largest.
+
+    >>> _without_round_off((0.5, -6.3e-17, 1e-3))
+    (0.5, 0.0, 0.001)
+    """
+    largest = max((abs(c) for c in vector), default=0.0)
+    return tuple(0.0 if abs(c) < max(ROUND_OFF, 1e-9 * largest) else float(c) for c in vector)
+
+
 def _state_text(value: StateValue) -> str:
-    """``q'' = 3 rad/s^2``: a value of the instant, its unit as a student writes it."""
+    """``q'' = 3 rad/s^2``: a value of the instant, its unit as a student writes it (0 for
+    round-off).
+
+    >>> _state_text(StateValue("x''", -3.45e-31, "m / s ** 2", False, -3.45e-31))
+    "x'' = 0 m/s^2"
+    """
     unit = value.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
-    return f"{value.name} = {value.value:.6g} {unit}".rstrip()
+    shown = 0.0 if abs(value.si) < ROUND_OFF else value.value
+    return f"{value.name} = {shown:.6g} {unit}".rstrip()
 
 
 def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> str:
