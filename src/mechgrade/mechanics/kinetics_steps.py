@@ -216,6 +216,9 @@ def _vector_name(letter: str, name: str) -> str:
     base, _, sub = name.partition("_")
     if not _is_symbol(name):  # a word (gravity, pull): F with it as a subscript
         return f'<msub><mi mathvariant="bold">{letter}</mi><mi>{escape(name)}</mi></msub>'
+    letters = base.rstrip("0123456789")
+    if letters and letters != base:  # a number is a subscript: s₁ for s1
+        base, sub = letters, base[len(letters):] + ("_" + sub if sub else "")
     shown = f'<mi mathvariant="bold">{escape(base)}</mi>'
     return f"<msub>{shown}<mi>{escape(sub.replace('_', ','))}</mi></msub>" if sub else shown
 

@@ -26,13 +26,15 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..expressions.notation import coordinate_names
-from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, to_text
+from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, parse, to_text
 from ..mechanics.derivation import Row, Step, symbolic_math
 from ..mechanics.writeup import worked_steps
-from ..spec.model import ObjectiveKind, Problem
+from ..spec.model import Expr, Objective, ObjectiveKind, Problem
 from ..units import from_si, same_dimension
 from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
+from .entry import solve
 from .fbd import FreeBodyDiagram, free_body_diagrams
+from .phases import grip_constraint, gripping, gripping_phase
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
                      in_frame)
@@ -124,8 +126,15 @@ def worked_solution(problem: Problem, solution: Solution,
     answers = tuple(_answer_step(problem, o, results[o.id], signs) for o in chosen
                     if o.id in results)
     drawing = scene(problem, solution)
+    slip_ends = slip_end_time(problem)
+    instant = next((v.si for v in solution.state if v.name == "t"), None)
+    rolling = slip_ends is not None and instant is not None and instant > slip_ends
+    if slip_ends is not None:  # each answer says the phase it is read in
+        answers = tuple(_read_in(step, o, slip_ends, instant)
+                        for step, o in zip(answers, (o for o in chosen if o.id in results)))
     steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
-             *_at_the_instant(problem, worked_steps(problem, solution.dof), drawing),
+             *_phased(problem, slip_ends,
+                      _at_the_instant(problem, worked_steps(problem, solution.dof), drawing)),
              *((Step("state", "The instant, solved", solved),) if solved else ()),
              *answers)
     codes = MODEL_CODES + GIVEN_CODES + (DYNAMICS_CODES if problem.dynamics else ())
@@ -135,10 +144,12 @@ def worked_solution(problem: Problem, solution: Solution,
                      for o in chosen if o.id in results
                      for m in results[o.id].mistakes
                      for g in _same_value(m, results[o.id].generated_mistakes))
-    diagrams = free_body_diagrams(problem, solution)
+    # the diagrams at the instant, with the loads of the phase it is in
+    diagrams = free_body_diagrams(gripping_phase(problem) if rolling else problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
                           picture_svg(drawing, inline=True) if drawable(drawing) else "", places, declared,
-                          diagrams, DIAGRAM_STEP if diagrams else "",
+                          diagrams, (f"rolling-{DIAGRAM_STEP}" if rolling else DIAGRAM_STEP)
+                          if diagrams else "",
                           EQUATIONS_STEP if any(s.anchor == EQUATIONS_STEP for s in steps)
                           else "", problem_names(problem))
 
@@ -147,6 +158,68 @@ def problem_names(problem: Problem) -> tuple[tuple[str, str], ...]:
     """How a textbook spells ``problem``'s coordinates (``xj`` is x_J): for every text of it a
     student reads."""
     return coordinate_names([c.name for c in problem.coordinates], [p.name for p in problem.points])
+
+
+def slip_end_time(problem: Problem) -> float | None:
+    """When the slip of a contact that grips once its slip ends (a ball skids, then rolls)
+    ends, in s; ``None`` for a motion in one phase.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> round(slip_end_time(load_problem(shipped_dir("problems") / "bowling_ball_skids_then_rolls.yaml")), 4)
+    1.4199
+    """
+    if gripping(problem) is None:
+        return None
+    grip = gripping_phase(problem).constraints[-1]  # its contact's slip speed = 0
+    asked = Objective("slip_ends", "", Expr("t", parse("t"), grip.where), ObjectiveKind.SCALAR,
+                      "s", when=(grip.lhs, grip.rhs))
+    found = solve(replace(problem, objectives=(asked,), givens=tuple(
+        g for g in problem.givens if g.key.text != "t")))
+    return float(found.results[0].value) if found.results else None  # type: ignore[arg-type]
+
+
+def _phased(problem: Problem, slip_ends: float | None,
+            steps: tuple[Step, ...]) -> tuple[Step, ...]:
+    """``steps`` with, for a motion that slips then grips, the kinetics of each phase: those of
+    the slip until ``slip_ends``, then the gripping phase's (its no-slip constraint, loads
+    and balances) from then on."""
+    if slip_ends is None:
+        return steps
+    grip = gripping(problem)
+    assert grip is not None
+    until, since = f"while {grip.name} slips, until t = {slip_ends:.3g} s", \
+        f"rolling from t = {slip_ends:.3g} s ({grip.name} grips: static friction)"
+    kinetics = [i for i, s in enumerate(steps) if s.anchor.startswith("kinetics-")]
+    if not kinetics:
+        return steps
+    # the grip's constraint in words, not in the spec's language the solver wrote it in
+    name = grip_constraint(problem)
+    said = f"{grip.at} does not slip: its velocity along the surface is zero"
+    later = tuple(replace(s, anchor=f"rolling-{s.anchor}", title=f"{s.title}, {since}",
+                          lines=tuple(said if line.startswith(f"{name} (") else line
+                                      for line in s.lines),
+                          rows=tuple(replace(r, anchor=f"rolling-{r.anchor}",
+                                             caption=r.caption.replace(name, said))
+                                     for r in s.rows))
+                  for s in worked_steps(gripping_phase(problem))  # its own degrees of freedom
+                  # the bodies are those of the slip
+                  if s.anchor.startswith("kinetics-") and s.anchor != "kinetics-bodies"
+                  or s.anchor == "constraints")
+    earlier = tuple(replace(s, title=f"{s.title}, {until}") if i in kinetics else s
+                    for i, s in enumerate(steps))
+    return earlier[:kinetics[-1] + 1] + later + earlier[kinetics[-1] + 1:]
+
+
+def _read_in(step: Step, objective, slip_ends: float, instant: float | None) -> Step:
+    """An answer's step saying the phase its value is read in (by the time it is read at:
+    its own ``t`` given, else the instant's)."""
+    own = next((g.si for g in objective.givens if g.key.text == "t"), None)
+    at = own if own is not None else instant if objective.when is None else None
+    if at is None:
+        return step
+    phase = "read while rolling" if at > slip_ends * (1 + 1e-9) else "read while slipping"
+    return replace(step, lines=(*step.lines, f"{phase} (the slip ends at t = {slip_ends:.3g} s)"))
 
 
 _KINEMATIC = {"vel": "v", "acc": "a", "omega": "omega", "alpha": "alpha"}
