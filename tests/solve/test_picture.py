@@ -9,7 +9,7 @@ from mechgrade.cli import main
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.picture import (Scene, SceneBody, ScenePoint, SceneSupport, SupportKind,
-                                     described, picture_svg, scene)
+                                     described, picture_svg, scene, unit_vector_svg)
 from mechgrade.solve.result import Solution, StateValue
 from mechgrade.spec import load_problem
 from mechgrade.spec.dynamics import OutlineKind
