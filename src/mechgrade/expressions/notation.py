@@ -63,7 +63,7 @@ def coordinate_names(coordinates, points=()) -> tuple[tuple[str, str], ...]:
     out = []
     for name in coordinates:
         m = _SYMBOL.fullmatch(name)
-        if m is not None and not m["rate"] or "_" in name:
+        if (m is not None and not m["rate"]) or "_" in name:
             continue  # the answer syntax's own spelling says it already
         for letter in sorted(GREEK, key=len, reverse=True) + list(name[:1]):
             rest = name[len(letter):]

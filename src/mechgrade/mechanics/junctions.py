@@ -98,8 +98,10 @@ def junction_balances_said(problem: Problem) -> dict[str, str]:
     {'node (massless): sum of forces': 'The joint J is massless, so the pulls of the springs s1 and s2 on it are in balance: s1 + s2 = 0.'}
     """
     d = problem.dynamics
+    if d is None:
+        return {}
     out = {}
-    for b in d.junctions if d is not None else ():
+    for b in d.junctions:
         springs = [s.name for s in d.springs if b.name in s.on]
         out[f"{b.name} {BALANCE}"] = (
             f"The joint {b.centre} is massless, so the pulls of the springs "

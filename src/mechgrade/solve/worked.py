@@ -204,7 +204,7 @@ def _phased(problem: Problem, slip_ends: float | None,
                                      for r in s.rows))
                   for s in worked_steps(gripping_phase(problem))  # its own degrees of freedom
                   # the bodies are those of the slip
-                  if s.anchor.startswith("kinetics-") and s.anchor != "kinetics-bodies"
+                  if (s.anchor.startswith("kinetics-") and s.anchor != "kinetics-bodies")
                   or s.anchor == "constraints")
     earlier = tuple(replace(s, title=f"{s.title}, {until}") if i in kinetics else s
                     for i, s in enumerate(steps))
