@@ -1,5 +1,9 @@
 """A model's names as a textbook writes them (issue 20 §2): what a student reads has no code."""
 
+import unicodedata
+
+import pytest
+
 from mechgrade.expressions.notation import coordinate_names, textbook, textbook_html
 
 
@@ -61,3 +65,21 @@ def test_a_coordinate_named_by_a_letter_and_a_point_reads_as_the_points_subscrip
     assert textbook_html("xjd") == "xjd"
     # in prose a name stays a word unless it is one of the coordinates
     assert textbook("first stop", False, names) == "first stop"
+
+
+@pytest.mark.slow
+def test_every_coordinate_of_the_library_and_its_rates_read_with_dots():
+    # a rate left undotted (xjd) is the model's name showing through: none in any problem
+    from mechgrade.resources import shipped_dir
+    from mechgrade.solve.worked import problem_names
+    from mechgrade.spec import load_problem
+
+    for path in sorted(shipped_dir("problems").glob("*.yaml")):
+        problem = load_problem(path)
+        names = problem_names(problem)
+        for c in problem.coordinates:
+            for rate, mark in (("d", "\u0307"), ("dd", "\u0308")):
+                for shown in (textbook_html(c.name + rate, True, names),
+                              textbook(c.name + rate, True, names)):
+                    assert mark in unicodedata.normalize("NFD", shown), (path.name, c.name, shown)
+                    assert c.name not in shown or len(c.name) == 1, (path.name, shown)
