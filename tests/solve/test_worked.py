@@ -112,7 +112,10 @@ def test_a_junction_is_said_in_words_and_its_coordinate_as_a_textbook_writes_it(
 
 @pytest.mark.slow
 def test_a_motion_that_slips_then_rolls_is_written_up_phase_by_phase():
+    from mechgrade.solve.worked import slip_end_time
+
     problem = load_problem(PROBLEMS / "bowling_ball_skids_then_rolls.yaml")
+    assert slip_end_time(problem) == pytest.approx(1.419869, rel=1e-6)  # the author's t_rolls
     worked = worked_solution(problem, solve(problem))
     titles = [s.title for s in worked.steps]
     assert "Free-body loads, while F_C slips, until t = 1.42 s" in titles

@@ -166,8 +166,8 @@ def slip_end_time(problem: Problem) -> float | None:
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
-    >>> round(slip_end_time(load_problem(shipped_dir("problems") / "bowling_ball_skids_then_rolls.yaml")), 4)
-    1.4199
+    >>> slip_end_time(load_problem(shipped_dir("problems") / "atwood_machine.yaml")) is None
+    True
     """
     if gripping(problem) is None:
         return None
