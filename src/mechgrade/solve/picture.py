@@ -325,6 +325,8 @@ BLOCK = 14.0
 """Half the side of a block drawn for a particle that rests on a surface or hangs (px)."""
 HALO = 'paint-order="stroke" stroke="#fff" stroke-width="3" stroke-linejoin="round"'
 """Labels stay readable where they cross a line."""
+SUBSCRIPT = 'baseline-shift="sub" font-size="8"'
+"""A label's subscript (an axis of a unit vector)."""
 _OWN_STYLE = ' xmlns="http://www.w3.org/2000/svg"', ' font-family="system-ui, sans-serif" font-size="13"'
 _GROUND = '<rect width="{w:g}" height="{h:g}" fill="#fff"/>'
 """What a picture on its own says and a page's style sheet gives every picture inline."""
@@ -473,7 +475,8 @@ def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> 
 def _inlined(out: list[str]) -> str:
     """A picture's elements for a page that styles every picture (``.mechanism``): what it
     would say again left out, no line breaks."""
-    return "".join(out).replace(HALO, 'class="halo"').replace(_OWN_STYLE[0], "").replace(
+    return "".join(out).replace(HALO, 'class="halo"').replace(SUBSCRIPT, 'class="sb"').replace(
+        _OWN_STYLE[0], "").replace(
         _OWN_STYLE[1], "").replace(_GROUND.format(w=WIDTH, h=HEIGHT), "")
 
 
@@ -846,7 +849,7 @@ def unit_vector_svg(name: str) -> str:
     letter = frame.lower()
     hat = f"{chr(0x1D41A + ord(letter) - 97)}\u0302" if len(letter) == 1 and "a" <= letter <= "z" \
         else f"{escape(letter)}\u0302"
-    return f'{hat}<tspan baseline-shift="sub" font-size="8">{escape(axis)}</tspan>'
+    return f'{hat}<tspan {SUBSCRIPT}>{escape(axis)}</tspan>'
 
 
 def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None,
