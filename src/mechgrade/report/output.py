@@ -694,7 +694,7 @@ def spoken_math(math: str, text: str, names: tuple[tuple[str, str], ...] = ()) -
     ...                   '</mover></math>', "v = x**2*y"))
     <math aria-label="v = x²·y"><mover><mi>x</mi><mo>∙</mo></mover></math>
     >>> spoken_math("<math></math>", "N_v_P = thetad*N.y").split('"')[1]
-    'N v,P = θ̇·N.y'
+    'N v,P = θ̇·n-hat y'
 
     """
     label = html_escape(textbook(" ".join(text.split()), True, names), quote=True)
