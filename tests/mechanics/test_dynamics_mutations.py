@@ -530,3 +530,22 @@ def test_an_oblique_impact_taken_head_on_gives_the_whole_speeds_exchange():
     assert head_on.value == pytest.approx((-4.8, 0.0, 0.0), abs=1e-9)
     # a rod struck at a point turns: no particle impact to take head-on
     assert "impact_taken_head_on" not in _codes("rod_strikes_ledge")
+
+
+def test_a_pin_left_out_reads_its_force_zero_and_the_mass_centre_falling_freely():
+    # the disk released on its rim pin: R_O = 0 and a_G = g (the free fall), read in the right
+    # model; a body a spring also loads (the bar) does not fall freely without its pin
+    (free,) = [m for m in dynamics_mutations(_problem("disk_pinned_at_rim_released"))
+               if m.code == "reaction_omitted"]
+    assert dict((oid, e.text) for oid, e in free.readings) == {
+        "pin_force": "0*(-g*N.y)", "centre_acceleration": "-g*N.y"}
+    assert "R_O = 0" in free.sentence
+    assert "reaction_omitted" not in _codes("bar_swings_down_spring_energy")
+
+
+@pytest.mark.slow
+def test_a_disk_falling_freely_is_named_with_the_particle_that_gives_the_same_value():
+    judged = assess("(0, -9.81, 0) m/s^2", _solution("disk_pinned_at_rim_released")
+                    .result("centre_acceleration"))
+    assert judged.diagnosis == (f"{LABELS['reaction_omitted']} or "
+                                f"{LABELS['other_shape_inertia']}")

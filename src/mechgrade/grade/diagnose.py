@@ -379,6 +379,7 @@ LABELS = {
     "period_for_frequency": "period and frequency confused",
     "spring_energy_from_change": "spring energy from the change of stretch",
     "impact_taken_head_on": "an oblique impact taken as head-on",
+    "reaction_omitted": "a support's force left out (free fall)",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

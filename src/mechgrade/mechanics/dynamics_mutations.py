@@ -245,6 +245,38 @@ def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutat
             term=term, term_unit="N")
 
 
+def reaction_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The only support of a body that its weight alone loads (a pin that holds a released
+    disk) left out: the body taken to fall freely, read in the right model as the support's
+    force zero and the mass centre's acceleration g. Not for a body whose mass centre the
+    support holds still (a drum on its axle cannot fall)."""
+    d = dynamics_of(problem)
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    N = problem.inertial_frame
+    for r, body in _only_reactions(d):
+        if any(body.name in _bodies_of(x) for x in (*d.forces, *d.couples, *d.springs,
+                                                     *d.dampers)) \
+                or _zero(model, model.language.point_velocity(Name(body.centre), N)):
+            continue
+        falls = {"force": (r.name, parse(f"0*({d.gravity.text})", functions=FUNCTIONS)),
+                 "acc": (body.centre, d.gravity.node)}
+        readings = tuple(
+            reading for func, (name, replacement) in falls.items()
+            for reading in _readings(problem, func, name, replacement, r.acts[0].at
+                                     if func == "force" else None)
+            if func == "force" or all(c.args[1] == Name(N) for c in _calls(
+                next(o.find.node for o in problem.objectives if o.id == reading[0]), "acc")
+                if c.args[0] == Name(body.centre)))
+        if readings:
+            yield DynamicsMutation(
+                "reaction_omitted", f"Your value leaves {r.name} out, as if {body.name} fell "
+                f"freely (a_G = g, {r.name} = 0): {r.name} holds {body.name} at "
+                f"{r.acts[0].at} and belongs in its free-body diagram, with the momentum "
+                f"balances giving it and the angular acceleration together.", LOADS,
+                readings=readings, term=_weight(body, d.gravity), term_unit="N")
+
+
 def _bodies_of(load) -> tuple[str, ...]:
     """The bodies a force, couple, spring or damper acts on."""
     return tuple(load.on) if isinstance(load.on, tuple) else (load.on,)
@@ -1369,6 +1401,7 @@ def period_for_frequency(problem: Problem, model: Model) -> Iterator[DynamicsMut
 
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
+    reaction_omitted,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
