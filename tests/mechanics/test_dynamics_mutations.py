@@ -498,7 +498,7 @@ def test_a_push_on_a_lever_taken_at_the_pad_or_exchanged_with_it():
     # the push P at C and the pad's N_B at B on the lever: P taken at B (N = P), or the two
     # exchanged (N = P b/(b + c)); the pin A, with two directions, is never taken
     moved = [m for m in dynamics_mutations(_problem("flywheel_lever_brake"))
-             if m.code == "load_at_other_point"]
+             if m.code == "load_at_other_point"][:2]
     assert [m.problem.dynamics.forces[0].at for m in moved] == ["B", "B"]
     pad = [[a.at for a in r.acts if a.on == "lever"] for m in moved
            for r in m.problem.dynamics.reactions if r.name == "N_B"]
@@ -510,7 +510,7 @@ def test_a_push_on_a_lever_taken_at_the_pad_or_exchanged_with_it():
 def test_a_push_on_a_lever_taken_at_the_pad_gives_the_normal_force_p():
     values = sorted(m.value for m in _generated("flywheel_lever_brake", "normal_force",
                                                 "load_at_other_point"))
-    assert values == pytest.approx([40.0, 100.0])
+    assert values == pytest.approx([40.0, 100.0, 150.0])
 
 
 def test_an_oblique_impact_of_two_pucks_taken_head_on():
@@ -549,3 +549,23 @@ def test_a_disk_falling_freely_is_named_with_the_particle_that_gives_the_same_va
                     .result("centre_acceleration"))
     assert judged.diagnosis == (f"{LABELS['reaction_omitted']} or "
                                 f"{LABELS['other_shape_inertia']}")
+
+
+def test_a_push_given_beyond_the_pad_taken_that_far_from_the_pin():
+    # C is given c beyond the pad B: the push taken c from the pin A (N b = P c, 150 N)
+    (arm,) = [m for m in dynamics_mutations(_problem("flywheel_lever_brake"))
+              if m.code == "load_at_other_point" and m.step == "Momentum balances"]
+    moved = arm.problem.dynamics.forces[0].at
+    point = next(p for p in arm.problem.points if p.name == moved)
+    assert (moved, point.origin, point.position.text) == ("C_from_A", "A", "c*N.x")
+    assert arm.sentence.startswith("Your value measures the arm of push about the pin A from B")
+    # a push given from the pin itself has no pad to measure from (the pendulum's has no pad)
+    assert not [m for m in dynamics_mutations(_problem("disk_pinned_at_rim_released"))
+                if m.code == "load_at_other_point" and m.step == "Momentum balances"]
+
+
+@pytest.mark.slow
+def test_a_push_given_beyond_the_pad_taken_that_far_from_the_pin_gives_p_c_over_b():
+    # N b = P c: 150 N, which R and c exchanged give too: both are said
+    judged = assess("150 N", _solution("flywheel_lever_brake").result("normal_force"))
+    assert judged.diagnosis == f"{LABELS['load_at_other_point']} or {LABELS['given_swap']}"

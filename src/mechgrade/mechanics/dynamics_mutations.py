@@ -1142,6 +1142,35 @@ def force_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMut
                 f"{r.name} on {force.on}: {force.name} acts at {force.at} and {r.name} at {at}, "
                 "{term} apart, and their moments depend on where.", LOADS,
                 problem=_mistaken(problem, exchanged), term=term, term_unit="m")
+            yield from _arm_from_pin(problem, model, d, force, at)
+
+
+def _arm_from_pin(problem: Problem, model: Model, d: Dynamics, force: Force, pad: str
+                  ) -> Iterator[DynamicsMutation]:
+    """A force whose point is given from a reaction's point (a lever's push c beyond the pad)
+    taken that far from the body's pin instead: its arm about the pin measured from the pad
+    (N b = P c for N b = P (b + c))."""
+    point = next(x for x in problem.points if x.name == force.at)
+    if point.origin != pad or point.position is None:
+        return
+    pins = [a.at for r in d.reactions if len(r.directions) > 1 for a in r.acts
+            if a.on == force.on and _zero(model, model.language.point_velocity(
+                Name(a.at), problem.inertial_frame))]
+    names = {x.name for x in problem.points}
+    for pin in dict.fromkeys(pins):
+        moved = f"{force.at}_from_{pin}"
+        if moved in names:
+            continue
+        mistaken = replace(problem, points=problem.points + (replace(point, name=moved,
+                                                                     origin=pin),))
+        changed = replace(d, forces=tuple(replace(f, at=moved) if f is force else f
+                                          for f in d.forces))
+        yield DynamicsMutation(
+            "load_at_other_point", f"Your value measures the arm of {force.name} about the "
+            f"pin {pin} from {pad}, the point {force.at} is given from: about {pin} the arm is "
+            f"measured from {pin}, {{term}}.", BALANCES,
+            problem=_mistaken(mistaken, changed),
+            term=_expr(f"mag(pos({force.at}, {pin}))"), term_unit="m")
 
 
 def static_friction_as_mu_m_g(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
