@@ -569,3 +569,25 @@ def test_a_push_given_beyond_the_pad_taken_that_far_from_the_pin_gives_p_c_over_
     # N b = P c: 150 N, which R and c exchanged give too: both are said
     judged = assess("150 N", _solution("flywheel_lever_brake").result("normal_force"))
     assert judged.diagnosis == f"{LABELS['load_at_other_point']} or {LABELS['given_swap']}"
+
+
+def test_an_impact_on_a_pinned_rod_with_linear_momentum_conserved_through_the_pin():
+    # the ball strikes the rod hanging on its pin O: R_O left out with the rod's angular
+    # impulse-momentum balance (m v0 = m v + M (L/2) w), and the pin's impulse read as zero
+    model, zero = [m for m in dynamics_mutations(_problem("ball_strikes_hanging_rod"))
+                   if m.code == "pin_impulse_omitted"]
+    d = model.problem.dynamics
+    assert [r.name for r in d.reactions] == ["J"] and d.unbalanced == ("rod",)
+    assert [o.id for o in model.problem.objectives] == ["omega_after", "ball_velocity_after"]
+    assert dict((oid, e.text) for oid, e in zero.readings) == {"pin_impulse": "0*N.x"}
+    # no pin in the impact (a rod on ice struck by a blow): nothing to conserve through it
+    assert "pin_impulse_omitted" not in _codes("rod_struck_on_ice")
+
+
+@pytest.mark.slow
+def test_linear_momentum_conserved_through_the_pin_gives_the_rods_spin():
+    # m v0 = m v + M (L/2) w with v - 0.9 w = -e v0: w = 7.8/(2.4 + 0.45) = 2.7368 rad/s
+    (through,) = _generated("ball_strikes_hanging_rod", "omega_after", "pin_impulse_omitted")
+    m, M, L, d, v0, e = 0.5, 4.0, 1.2, 0.9, 8.0, 0.6
+    assert through.value == pytest.approx((m * v0 + m * e * v0) / (m * d + M * L / 2))
+    assert "as if the pin O gave no impulse" in through.message

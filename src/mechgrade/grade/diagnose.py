@@ -380,6 +380,7 @@ LABELS = {
     "spring_energy_from_change": "spring energy from the change of stretch",
     "impact_taken_head_on": "an oblique impact taken as head-on",
     "reaction_omitted": "a support's force left out (free fall)",
+    "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -650,6 +650,41 @@ def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMut
                                                                        start=starts))))
 
 
+def pin_impulse_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact on a body turning about a fixed pin solved with the linear momentum of the
+    bodies conserved, as if the pin gave no impulse, where the angular momentum about the pin
+    is: the pin's impulse left out and the body's angular impulse-momentum balance with it
+    (its impulse read as zero)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    struck = {b for c in d.analysis.contacts for b in c.bodies}
+    N = problem.inertial_frame
+    for r in d.reactions:
+        if len(r.directions) < 2 or len(r.acts) != 1:
+            continue
+        body = d.body(r.acts[0].on) if r.acts[0].on != GROUND else None
+        if body is None or body.name not in struck or not _rotating(model, body) \
+                or not _zero(model, model.language.point_velocity(Name(r.acts[0].at), N)):
+            continue
+        changed = replace(d, reactions=tuple(x for x in d.reactions if x is not r),
+                          unbalanced=d.unbalanced + (body.name,))
+        sentence = (f"Your value takes the linear momentum as conserved through the impact, as "
+                    f"if the pin {r.acts[0].at} gave no impulse: {r.name} acts on {body.name} "
+                    f"during the impact (its impulse is {{term}}); the angular momentum about "
+                    f"{r.acts[0].at} is what is conserved.")
+        term = _expr(f"mag(impulse({r.name}))")
+        mistaken = _without_load(problem, changed, r.name)
+        if mistaken is not None:
+            yield DynamicsMutation("pin_impulse_omitted", sentence, BALANCES, problem=mistaken,
+                                   term=term, term_unit="N*s")
+        readings = _readings(problem, "impulse", r.name,
+                             parse(f"0*{N}.x", functions=FUNCTIONS))
+        if readings:
+            yield DynamicsMutation("pin_impulse_omitted", sentence, BALANCES, readings=readings,
+                                   term=term, term_unit="N*s")
+
+
 def _start_text(start: Start | None) -> str:
     """A rate at the start as written (its SI value where given as a quantity; 0 left out)."""
     if start is None:
@@ -1440,7 +1475,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
-    impact_taken_head_on)
+    impact_taken_head_on, pin_impulse_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -96,7 +96,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "head_on": ("impact_taken_head_on",),
     "restitution_wrong_component": ("restitution_component",),
     "restitution_ignored": ("restitution_ignored",),
-    "momentum_with_pin": (),
+    "momentum_with_pin": ("pin_impulse_omitted",),
     "efficiency_inverted": ("efficiency_inverted",),
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
