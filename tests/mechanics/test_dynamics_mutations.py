@@ -591,3 +591,26 @@ def test_linear_momentum_conserved_through_the_pin_gives_the_rods_spin():
     m, M, L, d, v0, e = 0.5, 4.0, 1.2, 0.9, 8.0, 0.6
     assert through.value == pytest.approx((m * v0 + m * e * v0) / (m * d + M * L / 2))
     assert "as if the pin O gave no impulse" in through.message
+
+
+def test_a_rolling_hoops_kinetic_energy_taken_as_its_parts_spins_alone():
+    # the hoop (M, a ring of R) with a small mass m at its rim rolls: its parts massless, the
+    # ring keeping its spin M R^2 about z, the small mass nothing; the weights kept as forces
+    (spin,) = [m for m in dynamics_mutations(_problem("unbalanced_hoop_rolls"))
+               if m.code == "translational_ke_omitted"]
+    d = spin.problem.dynamics
+    ring, small = d.bodies[0].parts
+    assert (ring.mass.text, ring.shape.entries[0][0], ring.shape.entries[0][1].text) == (
+        "0", "zz", "(1)*(M)*(R)^2")
+    assert small.mass.text == "0" and small.shape is None
+    assert d.gravity is None and [(f.at, f.force.text) for f in d.forces] == [
+        ("G", "(M)*(-g*N.y)"), ("Q", "(m)*(-g*N.y)")]
+    # a bar swinging on a fixed pin: its ½ I_G ω² is the parallel-axis mistake, not this one
+    assert "translational_ke_omitted" not in _codes("bar_swings_down_spring_energy")
+
+
+@pytest.mark.slow
+def test_a_rolling_hoops_spin_alone_gives_the_students_speed():
+    # m g (2 R) = ½ M R² ω²: ω = sqrt(2 · 9.81 · 1.0 / (4 · 0.25)) = 4.429 rad/s
+    (spin,) = _generated("unbalanced_hoop_rolls", "angular_velocity", "translational_ke_omitted")
+    assert spin.value == pytest.approx((2 * 1.0 * 9.81 * 1.0 / (4.0 * 0.25)) ** 0.5)

@@ -381,6 +381,7 @@ LABELS = {
     "impact_taken_head_on": "an oblique impact taken as head-on",
     "reaction_omitted": "a support's force left out (free fall)",
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",
+    "translational_ke_omitted": "translational kinetic energy left out",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

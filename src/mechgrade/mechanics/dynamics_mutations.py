@@ -586,6 +586,60 @@ def rotational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMu
                                    term=term, term_unit="J")
 
 
+def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In a work-energy balance, a body that turns while its mass centre moves and that no
+    fixed pin holds (a wheel that rolls) given the kinetic energy of its parts' spins alone,
+    ½ I ω² each: every ½ m v² left out (a point mass's whole energy). Modelled by massless
+    parts that keep their spins' inertia, the weights kept as forces at the parts."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, WorkEnergy) or d.gravity is None:
+        return
+    N = problem.inertial_frame
+    pinned = {a.on for r in d.reactions if len(r.directions) > 1 for a in r.acts
+              if _zero(model, model.language.point_velocity(Name(a.at), N))}
+    for body in d.bodies:
+        if not _rotating(model, body) or body.name in pinned or _zero(
+                model, model.language.point_velocity(Name(body.centre), N)):
+            continue
+        parts = tuple(spin for p in body.parts if (spin := _spin_only(p)) is not None)
+        if len(parts) != len(body.parts):
+            continue
+        weights = tuple(Force(f"weight~{b.name}~{i}", b.name, p.at,
+                              _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
+                              kind=LoadKind.WEIGHT)
+                        for b in d.bodies for i, p in enumerate(b.parts))
+        bodies = tuple(replace(b, parts=parts) if b.name == body.name else b
+                       for b in d.bodies)
+        translational = f"dot(momentum({body.name}, {N}), vel({body.centre}, {N}))/2"
+        yield DynamicsMutation(
+            "translational_ke_omitted", f"Your value gives {body.name} the kinetic energy of "
+            f"its spin alone, ½ I ω²: it also moves along with its mass centre "
+            f"{body.centre}, and ½ m v² of each of its parts (½ m v_G² = {{term}} of the "
+            f"whole) belongs in its kinetic energy.", BODIES,
+            problem=_mistaken(problem, replace(d, bodies=bodies, gravity=None,
+                                               forces=d.forces + weights),
+                              without=("ke", "momentum", "angmom")),
+            term=_expr(translational), term_unit="J")
+
+
+def _spin_only(part: Part) -> Part | None:
+    """A massless copy of ``part`` with the inertia of its spin about the body's z axis (a
+    point mass: none); ``None`` for a shape whose spin this cannot write."""
+    shape = part.shape
+    if shape is None:
+        return replace(part, mass=_expr("0"))
+    if isinstance(shape, (Disk, Ring)) and shape.axis != "z":
+        return None
+    if type(shape) in _SHAPES:
+        coefficient = _SHAPES[type(shape)][1]
+        zz = _expr(f"({coefficient})*({part.mass.text})*({_radius(shape)})^2")
+    elif isinstance(shape, Explicit) and "zz" in dict(shape.entries):
+        zz = dict(shape.entries)["zz"]
+    else:
+        return None
+    return replace(part, mass=_expr("0"), shape=Explicit((("zz", zz),)))
+
+
 def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """An impact with the coefficient of restitution replaced by 1 (perfectly elastic) or 0
     (the bodies stay together)."""
@@ -1475,7 +1529,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
-    impact_taken_head_on, pin_impulse_omitted)
+    impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -104,7 +104,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "half_factor": ("factor_2",),
     "rolling_assumed": (),
     "damping_ignored": ("damping_omitted",),
-    "translation_ke_dropped": (),
+    "translation_ke_dropped": ("translational_ke_omitted",),
     "wrong_root": (),
     "magnitudes_added": ("mag_as_sum",),
 }.items()}
