@@ -614,3 +614,26 @@ def test_a_rolling_hoops_spin_alone_gives_the_students_speed():
     # m g (2 R) = ½ M R² ω²: ω = sqrt(2 · 9.81 · 1.0 / (4 · 0.25)) = 4.429 rad/s
     (spin,) = _generated("unbalanced_hoop_rolls", "angular_velocity", "translational_ke_omitted")
     assert spin.value == pytest.approx((2 * 1.0 * 9.81 * 1.0 / (4.0 * 0.25)) ** 0.5)
+
+
+def test_a_slipping_hoop_taken_to_roll_and_its_angular_acceleration_read_as_a_over_r():
+    # the hoop slides down the incline (kinetic friction F_C): taken to roll, F_C becomes an
+    # unknown along the incline with the rolling condition, phi' left to it; and -phi'' is
+    # read from the centre's acceleration by the rolling relation (alpha = a/r)
+    reading, model = [m for m in dynamics_mutations(_problem("hoop_slips_down_incline"))
+                      if m.code == "rolling_assumed"]
+    assert dict((oid, e.text) for oid, e in reading.readings) == {
+        "angular_acceleration": "-(-dot(acc(G, N), cross(N.z, pos(C, G)))/dot(pos(C, G), pos(C, G)))"}
+    p = model.problem
+    assert p.constraints[-1].lhs.text == "vel(coincident(C, W), N)"
+    assert "phi'" not in {g.key.text for g in p.givens} and not p.dynamics.friction
+    assert [r.name for r in p.dynamics.reactions] == ["N_C", "F_C"]
+    # a cylinder that rolls already (static friction) is not taken to roll
+    assert "rolling_assumed" not in _codes("cylinder_pulled_rolls")
+
+
+@pytest.mark.slow
+def test_a_slipping_hoop_taken_to_roll_accelerates_at_half_g_sin_beta():
+    import math
+    (rolls,) = _generated("hoop_slips_down_incline", "acceleration", "rolling_assumed")
+    assert rolls.value == pytest.approx(9.81 * math.sin(math.radians(40)) / 2)

@@ -382,6 +382,7 @@ LABELS = {
     "reaction_omitted": "a support's force left out (free fall)",
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",
     "translational_ke_omitted": "translational kinetic energy left out",
+    "rolling_assumed": "rolling without slip assumed where the body slips",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

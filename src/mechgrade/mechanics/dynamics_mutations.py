@@ -1310,6 +1310,57 @@ def contact_taken_smooth(problem: Problem, model: Model) -> Iterator[DynamicsMut
             "its balances with the rolling condition.", _expr(f"mag(force({f.name}))"), "N")
 
 
+def rolling_assumed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A body turning about z that slips on the ground (a kinetic-friction contact) taken to
+    roll without slip: the model with the rolling condition at the contact and the friction an
+    unknown along the ground, its spin's given rate left to the rolling condition; and the
+    angular acceleration read from the mass centre's by the rolling relation
+    (α = -a_G·(k × r_CG)/|r_CG|², a/r), the slipping acceleration kept."""
+    d = dynamics_of(problem)
+    N = problem.inertial_frame
+    for f in d.friction:
+        if not isinstance(f, KineticFriction) or f.surface not in (GROUND, N):
+            continue
+        body = d.body(f.on)
+        if not _rotating(model, body) or f.at == body.centre:
+            continue
+        assert body.frame is not None  # a turning body has its frame
+        frame = next(x for x in problem.frames if x.name == body.frame)
+        angle = frame.rotations[0].angle.node if len(frame.rotations) == 1 else None
+        if not isinstance(angle, Name):
+            continue
+        radius = f"pos({f.at}, {body.centre})"
+        slip_alpha = parse(f"-dot(acc({body.centre}, {N}), cross({N}.z, {radius}))"
+                           f"/dot({radius}, {radius})", functions=FUNCTIONS)
+        second = Prime(angle.id, 2)
+        readings = []
+        for obj in problem.objectives:
+            if obj.kind != "symbolic" and second in walk(obj.find.node):
+                new = _rewrite(obj.find.node,
+                               lambda n, a=slip_alpha, q=second: a if n == q else None)
+                readings.append((obj.id, Expr(to_text(new), new)))
+        sentence = (f"Your value takes {body.name} to roll without slipping at {f.at}: it "
+                    f"slips there (the friction {f.name} is μ N = {{term}}), so a_G and α are "
+                    "not tied by a = α r; each comes from its own momentum balance.")
+        term = _expr(f"mag(force({f.name}))")
+        if readings:
+            yield DynamicsMutation("rolling_assumed", sentence, OBJECTIVES,
+                                   readings=tuple(readings), term=term, term_unit="N")
+        normal = next(r for r in d.reactions if r.name == f.normal)
+        grip = Reaction(f.name, (_expr(f"cross({normal.directions[0].text}, {N}.z)"),),
+                        (Act(f.on, f.at),), f.where, surface=GROUND)
+        rolls = Constraint(f"rolling~{f.at}", "velocity",
+                           _expr(f"vel(coincident({f.at}, {body.frame}), {N})"),
+                           _expr(f"vel(coincident({f.at}, {N}), {N})"), f.where)
+        spin = f"{angle.id}'"
+        rolling = replace(problem, constraints=problem.constraints + (rolls,),
+                          givens=tuple(g for g in problem.givens if g.key.text != spin))
+        changed = replace(d, friction=tuple(x for x in d.friction if x is not f),
+                          reactions=d.reactions + (grip,))
+        yield DynamicsMutation("rolling_assumed", sentence, BALANCES,
+                               problem=_mistaken(rolling, changed), term=term, term_unit="N")
+
+
 def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A kinetic-friction contact between two bodies (a block sliding on a cart) with the
     body it slides on taken as fixed: the friction acts on the slider only, its reaction on
@@ -1529,7 +1580,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
-    impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted)
+    impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

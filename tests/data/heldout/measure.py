@@ -102,7 +102,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
                                   "reaction_as_static"),
     "speed_conserved": ("value_at_start",),
     "half_factor": ("factor_2",),
-    "rolling_assumed": (),
+    "rolling_assumed": ("rolling_assumed",),
     "damping_ignored": ("damping_omitted",),
     "translation_ke_dropped": ("translational_ke_omitted",),
     "wrong_root": (),
