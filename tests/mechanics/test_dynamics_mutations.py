@@ -637,3 +637,24 @@ def test_a_slipping_hoop_taken_to_roll_accelerates_at_half_g_sin_beta():
     import math
     (rolls,) = _generated("hoop_slips_down_incline", "acceleration", "rolling_assumed")
     assert rolls.value == pytest.approx(9.81 * math.sin(math.radians(40)) / 2)
+
+
+def test_a_vibration_started_from_zero_instead_of_its_initial_displacement():
+    # the block between two springs starts at x0 = 20 mm with v0: started from x = 0 instead
+    (zero,) = [m for m in dynamics_mutations(_problem("block_between_two_springs"))
+               if m.code == "initial_displacement_omitted"]
+    starts = {s.key.text: s.value.text for s in zero.problem.dynamics.analysis.start}
+    assert starts == {"x": "0", "x'": "v0"} and zero.term.text == "x0"
+    # no spring (a satellite's orbit from r = R + h): no vibration to start elsewhere
+    assert "initial_displacement_omitted" not in _codes("satellite_apogee_speed")
+
+
+@pytest.mark.slow
+def test_a_vibration_started_from_zero_reaches_v0_over_omega_n_a_quarter_period_on():
+    import math
+    wn = math.sqrt(8000 / 12)
+    (amplitude,) = _generated("block_between_two_springs", "amplitude",
+                              "initial_displacement_omitted")
+    (stop,) = _generated("block_between_two_springs", "first_stop", "initial_displacement_omitted")
+    assert (amplitude.value, stop.value) == pytest.approx((0.5 / wn * 1000, math.pi / 2 / wn),
+                                                          rel=1e-5)

@@ -383,6 +383,7 @@ LABELS = {
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",
     "translational_ke_omitted": "translational kinetic energy left out",
     "rolling_assumed": "rolling without slip assumed where the body slips",
+    "initial_displacement_omitted": "the initial displacement left out",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

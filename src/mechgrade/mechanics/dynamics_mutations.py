@@ -1454,6 +1454,37 @@ def initial_speed_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMu
             term=term, term_unit=given_unit(key, problem.coordinates, problem.parameters) or "1")
 
 
+def initial_displacement_omitted(problem: Problem, model: Model
+                                 ) -> Iterator[DynamicsMutation]:
+    """A vibration (a motion integrated from a start, held by springs) started from a
+    coordinate's value that is not zero, worked out from zero instead: the initial
+    displacement left out (an amplitude v0/ω_n, a first stop a quarter period on)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration) or not d.springs:
+        return
+    for i, start in enumerate(d.analysis.start):
+        if not isinstance(start.key.node, Name):
+            continue
+        if start.value is not None:
+            if identically_zero(model.plain(model.language.value(start.value.node))):
+                continue
+            term = start.value
+        elif start.si:
+            term = _expr(f"{start.si!r}")
+        else:
+            continue
+        at_zero = replace(start, value=_expr("0"), si=0.0)
+        starts = d.analysis.start[:i] + (at_zero,) + d.analysis.start[i + 1:]
+        unit = given_unit(start.key.node, problem.coordinates, problem.parameters) or "1"
+        yield DynamicsMutation(
+            "initial_displacement_omitted", f"Your value is what the motion started from "
+            f"{start.key.text} = 0 gives: at the start {start.key.text} = {{term}}; the "
+            "initial displacement changes the amplitude and when the motion turns back.",
+            BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))),
+            term=term, term_unit=unit)
+
+
 def value_at_start(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated to an event with the objectives read at its start instead: a force,
     rate or acceleration that varies along the motion (a drag at the initial speed, a drive
@@ -1580,7 +1611,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
-    impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed)
+    impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
+    initial_displacement_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -85,7 +85,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "kinematic_factor": ("other_point", "drop_omega_r", "drop_transport_vel",
                          "drop_transport_acc", "relative_omega", "surface_taken_fixed",
                          "position_term", "strands_miscounted", "load_at_other_point",
-                         "contact_taken_smooth"),
+                         "contact_taken_smooth", "initial_displacement_omitted"),
     "angular_rate_equal": ("driver_rate",),
     "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
