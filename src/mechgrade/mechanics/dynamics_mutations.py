@@ -133,6 +133,11 @@ def _rewrite(node: Node, change: Callable[[Node], Node | None]) -> Node:
     return node
 
 
+def _replacing(old: Node, new: Node) -> Callable[[Node], Node | None]:
+    """The change for :func:`_rewrite` that puts ``new`` for each ``old``."""
+    return lambda n: new if n == old else None
+
+
 def _calls(node: Node, func: str) -> Iterator[Call]:
     if isinstance(node, Call):
         if node.func == func:
@@ -1336,8 +1341,7 @@ def rolling_assumed(problem: Problem, model: Model) -> Iterator[DynamicsMutation
         readings = []
         for obj in problem.objectives:
             if obj.kind != "symbolic" and second in walk(obj.find.node):
-                new = _rewrite(obj.find.node,
-                               lambda n, a=slip_alpha, q=second: a if n == q else None)
+                new = _rewrite(obj.find.node, _replacing(second, slip_alpha))
                 readings.append((obj.id, Expr(to_text(new), new)))
         sentence = (f"Your value takes {body.name} to roll without slipping at {f.at}: it "
                     f"slips there (the friction {f.name} is μ N = {{term}}), so a_G and α are "
