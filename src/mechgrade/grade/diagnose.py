@@ -383,6 +383,11 @@ LABELS = {
     "period_for_frequency": "period and frequency confused",
     "spring_energy_from_change": "spring energy from the change of stretch",
     "impact_taken_head_on": "an oblique impact taken as head-on",
+    "reaction_omitted": "a support's force left out (free fall)",
+    "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",
+    "translational_ke_omitted": "translational kinetic energy left out",
+    "rolling_assumed": "rolling without slip assumed where the body slips",
+    "initial_displacement_omitted": "the initial displacement left out",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

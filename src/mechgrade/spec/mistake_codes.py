@@ -36,7 +36,9 @@ DYNAMICS_CODES = (
     "weight_for_mass", "strands_miscounted", "initial_speed_omitted",
     "value_at_start", "force_taken_constant", "efficiency_inverted", "spring_omitted",
     "load_at_other_point", "contact_taken_smooth", "period_for_frequency",
-    "spring_energy_from_change", "impact_taken_head_on")
+    "spring_energy_from_change", "impact_taken_head_on", "reaction_omitted",
+    "pin_impulse_omitted", "translational_ke_omitted", "rolling_assumed",
+    "initial_displacement_omitted")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
