@@ -628,6 +628,24 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
         if confirmed is True:
             return Assessment(Verdict.CORRECT, 1.0, None, "Correct.", read_back)
         return not_evaluated("the reference is undefined at the sample points", read_back)
+    kept = sampled.judged.get(id(answer))
+    if kept is not None and kept[0] is answer:  # the same text again (read once: the same answer)
+        return kept[1]
+    judged = _judge_sampled(answer, result, policy, sampled)
+    if len(sampled.judged) >= MAX_JUDGED:
+        sampled.judged.clear()
+    sampled.judged[id(answer)] = (answer, judged)
+    return judged
+
+
+MAX_JUDGED = 4096
+"""Most answers kept judged per objective (the answer kept with its judgement, so its
+identity is not reused while kept)."""
+
+
+def _judge_sampled(answer: ExpressionAnswer, result: ObjectiveResult, policy: GradingPolicy,
+                   sampled: _Sampled) -> Assessment:
+    read_back = answer.read_back()
     env, reference = sampled.env, sampled.reference
     student = evaluate(answer.node, env)
     if sampled.close(student, reference):
@@ -649,7 +667,8 @@ class _Sampled:
     points, the reference's values there, the equivalence test (``close``), the looser test
     of diagnoses (``loose``: they allow typed constants such as 9.81 for g, 1 %, unlike the
     equivalence test itself) and, once an answer is wrong, each mistake's values there. Worked
-    out once per objective (:func:`_objective`): a class's answers go to few objectives."""
+    out once per objective (:func:`_objective`): a class's answers go to few objectives.
+    ``judged`` keeps each answer's judgement: a class writes the same answer many times."""
 
     def __init__(self, result: ObjectiveResult, policy: GradingPolicy,
                  env: dict[str, np.ndarray], reference: np.ndarray):
@@ -657,6 +676,7 @@ class _Sampled:
         self.env, self.reference = env, reference
         self.close = agree_at_points(policy.symbolic_rel, reference)
         self.loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
+        self.judged: dict[int, tuple[ExpressionAnswer, Assessment]] = {}
 
     @cached_property
     def mistakes(self) -> list[tuple[MistakeValue, np.ndarray | None]]:
