@@ -48,9 +48,16 @@ def heavy_problem_names() -> frozenset[str]:
     return heavy_problems()
 
 
+FORGETTING = frozenset({"forget", "disk"})
+"""Fixtures that forget every derivation the process kept (:func:`_forget`)."""
+
+
 def pytest_collection_modifyitems(items):
     """A test parametrized by a heavy problem (its path, or its name as the tables give it)
-    is marked ``slow``: one list decides it for every library-wide test."""
+    is marked ``slow``: one list decides it for every library-wide test.
+
+    The tests that forget every derivation kept in memory run last: run among the others,
+    each would make the tests after it in its worker derive their problems again, cold."""
     heavy = heavy_problems()
     for item in items:
         callspec = getattr(item, "callspec", None)
@@ -58,6 +65,7 @@ def pytest_collection_modifyitems(items):
                 (value.stem if isinstance(value, Path) else value) in heavy
                 for value in callspec.params.values() if isinstance(value, (Path, str))):
             item.add_marker(pytest.mark.slow)
+    items.sort(key=lambda item: not FORGETTING.isdisjoint(getattr(item, "fixturenames", ())))
 
 
 @pytest.fixture
