@@ -51,15 +51,16 @@ from .instant import Reached, drive, read_objectives
 from .phases import Entry, Target, Until, When, asked_when, gripping, reach
 from .levels import State, place_givens
 from .numeric import solve_numeric
-from .plan import KinematicsPlan, kinematics_plan
+from .plan import KinematicsPlan, kinematics_plan, per_problem
 from .positions import position_symbolic, position_where, without_position
 from .result import ObjectiveResult, Solution
 
 
 def kinematic_problem(problem: Problem) -> Problem:
     """The problem's kinematics alone, its massless junctions' balances among its constraints
-    (its objectives are read by the dynamics language)."""
-    return kinematic_part(problem)
+    (its objectives are read by the dynamics language); the same object for the same problem,
+    so that what is kept per problem (:func:`~.plan.per_problem`) is found by every solve."""
+    return per_problem(kinematic_part, problem)
 
 
 @dataclass(frozen=True)

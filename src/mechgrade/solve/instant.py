@@ -33,6 +33,7 @@ from .columns import call, quiet
 from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
+from .plan import per_problem as _per_problem
 from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
                       symbolic_mistakes)
 from . import cache
@@ -54,22 +55,6 @@ def _key(text: str):
     same few keys again and again."""
     node = parse(text, functions=FUNCTIONS)
     return node, to_text(node)
-
-
-_BY_PROBLEM: dict = {}
-
-
-def _per_problem(make, *args):
-    """``make(*args)``, kept per identity of ``args`` (a problem and its plan): hashing a
-    problem walks all of it, and re-solves ask for the same few again and again. The entry
-    holds ``args``, so an identity is not reused while it is kept."""
-    key = (make, *map(id, args))
-    entry = _BY_PROBLEM.get(key)
-    if entry is None or any(a is not b for a, b in zip(entry[0], args)):
-        if len(_BY_PROBLEM) >= 1024:
-            _BY_PROBLEM.clear()
-        entry = _BY_PROBLEM[key] = (args, make(*args))
-    return entry[1]
 
 
 def _spec_givens(problem: Problem) -> dict:

@@ -26,7 +26,7 @@ from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
 from .columns import call, least_squares_solution, quiet
-from .plan import Level, KinematicsPlan
+from .plan import Level, KinematicsPlan, per_problem
 from .rules import first_off, on_branch, satisfied
 
 DEFAULT_GUESS = 0.3
@@ -92,6 +92,15 @@ def place_givens(problem: Problem, p: KinematicsPlan, givens: Mapping) -> Givens
                 raise SolveError(f"cannot give '{key}': it is not a given of this problem "
                                  "(expression givens must appear in the spec)")
             conditions[levels[0]][key] = si
+    solvable, guess, guessed, branches = per_problem(_layout, problem, p)
+    return Givens(values, known, solvable, conditions, texts, wheres, guess, guessed, branches,
+                  _scales(problem, p, values, known))
+
+
+def _layout(problem: Problem, p: KinematicsPlan) -> tuple:
+    """What of :class:`Givens` the spec fixes whatever the givens: which positions may be
+    solved for, each one's guess and whether the spec guessed it, the branches asked for."""
+    index = p.index
     unknown = {u.text.strip() for u in problem.unknowns}
     solvable = np.array([not (index.is_parameter(i) or i == index.time)
                          or index.names[i] in unknown for i in range(index.size)])
@@ -99,8 +108,9 @@ def place_givens(problem: Problem, p: KinematicsPlan, givens: Mapping) -> Givens
     guessed = np.array([index.names[i] in guesses for i in range(index.size)])
     guess = np.array([guesses.get(index.names[i], DEFAULT_GUESS) for i in range(index.size)])
     branches = {index.position(to_text(b.key.node)): b.root for b in problem.branches}
-    return Givens(values, known, solvable, conditions, texts, wheres, guess, guessed, branches,
-                  _scales(problem, p, values, known))
+    for shared in (solvable, guess, guessed):  # every solve of the problem reads these
+        shared.setflags(write=False)
+    return solvable, guess, guessed, branches
 
 
 def _scales(problem: Problem, p: KinematicsPlan, values, known) -> np.ndarray:
@@ -115,10 +125,8 @@ def typical_sizes(problem: Problem, p: KinematicsPlan, values: np.ndarray, known
     """:func:`_scales` of every column of ``values`` (size x N): the median of the nonzero
     givens of each unit, in each column."""
     index = p.index
-    units = {c.name: c.unit for c in problem.coordinates}
-    units.update({q.name: q.unit for q in problem.parameters})
     by_unit: dict[str, list[int]] = {}
-    of = [_unit_of(index, units, i) for i in range(index.size)]
+    of = per_problem(_units, problem, p)
     for i in range(index.size):
         if known[i]:
             by_unit.setdefault(of[i], []).append(i)
@@ -152,6 +160,13 @@ def _median(values: np.ndarray) -> np.ndarray:
     upper = ordered[np.minimum(middle, len(ordered) - 1), columns]
     lower = ordered[np.maximum(middle - 1, 0), columns]
     return np.where(count == 0, 1.0, np.where(count % 2 == 1, upper, (lower + upper) / 2))
+
+
+def _units(problem: Problem, p: KinematicsPlan) -> list[str]:
+    """The unit of each position of ``p``'s layout (SI text, ``rad/s^2`` for a rate)."""
+    units = {c.name: c.unit for c in problem.coordinates}
+    units.update({q.name: q.unit for q in problem.parameters})
+    return [_unit_of(p.index, units, i) for i in range(p.index.size)]
 
 
 def _unit_of(index, units, i) -> str:

@@ -287,6 +287,8 @@ def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: M
 def _undetermined(problem: Problem, p: KinematicsPlan, g: Givens, base: Candidate, values: Mapping,
                   only: set[str]) -> dict[str, MechgradeError]:
     """Probe each freedom the givens leave: an objective that changes depends on it."""
+    if not values:  # no objective asked for here (an instant of a dynamics solve): none can
+        return {}
     state = base.state
     depends: dict[str, list[str]] = {}
     keep = {i: state.values[i] for i in base.free}

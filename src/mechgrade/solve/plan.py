@@ -124,6 +124,22 @@ class KinematicsPlan:
         raise KeyError(node)
 
 
+_BY_PROBLEM: dict = {}
+
+
+def per_problem(make, *args):
+    """``make(*args)``, kept per identity of ``args`` (a problem and its plan): hashing a
+    problem walks all of it, and re-solves ask for the same few again and again. The entry
+    holds ``args``, so an identity is not reused while it is kept."""
+    key = (make, *map(id, args))
+    entry = _BY_PROBLEM.get(key)
+    if entry is None or any(a is not b for a, b in zip(entry[0], args)):
+        if len(_BY_PROBLEM) >= 1024:
+            _BY_PROBLEM.clear()
+        entry = _BY_PROBLEM[key] = (args, make(*args))
+    return entry[1]
+
+
 def _lambdify(symbols, expr):
     import sympy as sp
 
