@@ -508,7 +508,8 @@ class _Template:
         if not changed:
             return np.zeros(0, dtype=bool), {}
         instants = solve_numeric_columns(self.problem, self.p, [
-            misread(givens, changes) for _, givens, changes in changed], set(group.numeric))
+            misread(givens, changes) for _, givens, changes in changed], set(group.numeric),
+            probe=False)
         solved = np.array([not isinstance(i, MechgradeError) for i in instants], dtype=bool)
         values = {oid: np.full((_size(self.problem, oid), len(changed)), np.nan)
                   for oid in group.numeric}

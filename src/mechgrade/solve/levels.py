@@ -219,8 +219,8 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
-    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], free_values, start,
-                                       alone=True)
+    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], [free_values],
+                                       [start], alone=True)
     if isinstance(roots, MechgradeError):
         raise roots
     return roots
@@ -228,10 +228,11 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
 
 def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
                             states: Sequence[State], givens: Sequence[Givens],
-                            free_values: Mapping[int, float] | None = None,
-                            start: np.ndarray | None = None, *, alone: bool = False
-                            ) -> list[Roots | MechgradeError]:
-    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``), each
+                            free_values: Sequence[Mapping[int, float] | None] | None = None,
+                            start: Sequence[np.ndarray | None] | None = None, *,
+                            alone: bool = False) -> list[Roots | MechgradeError]:
+    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``, and
+    ``free_values[i]``, ``start[i]`` when given), each
     column's roots or the error that function raises for it: the same starts, every start of
     every column solved together by Levenberg-Marquardt steps on the stacked Jacobians
     (:func:`levenberg_marquardt`), the roots then chosen by the same rules. ``alone``: each
@@ -255,9 +256,11 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     'SolveError'
     """
     out: list[Roots | MechgradeError | _Setup] = []
-    for state, g in zip(states, givens):
+    frees = free_values if free_values is not None else [None] * len(states)
+    starts = start if start is not None else [None] * len(states)
+    for state, g, free, begin in zip(states, givens, frees, starts):
         try:
-            out.append(_set_up(problem, p, order, state, g, free_values, start))
+            out.append(_set_up(problem, p, order, state, g, free, begin))
         except MechgradeError as err:
             out.append(err)
     pending = [i for i, s in enumerate(out) if isinstance(s, _Setup)]
