@@ -389,7 +389,8 @@ class _Template:
         ok = np.zeros(n, dtype=bool)
         warned = np.zeros(n, dtype=bool)
         only = set(group.numeric) if self.kinetics is None else set()
-        for i, instant in enumerate(solve_numeric_columns(self.kproblem, self.p, maps, only)):
+        for i, instant in enumerate(solve_numeric_columns(self.kproblem, self.p, maps, only,
+                                                          near=group.state)):
             if isinstance(instant, MechgradeError) or instant.errors or \
                     instant.state.free != group.free:
                 continue

@@ -115,10 +115,8 @@ def typical_sizes(problem: Problem, p: KinematicsPlan, values: np.ndarray, known
     """:func:`_scales` of every column of ``values`` (size x N): the median of the nonzero
     givens of each unit, in each column."""
     index = p.index
-    units = {c.name: c.unit for c in problem.coordinates}
-    units.update({q.name: q.unit for q in problem.parameters})
     by_unit: dict[str, list[int]] = {}
-    of = [_unit_of(index, units, i) for i in range(index.size)]
+    of = _units_of(problem, p)
     for i in range(index.size):
         if known[i]:
             by_unit.setdefault(of[i], []).append(i)
@@ -152,6 +150,23 @@ def _median(values: np.ndarray) -> np.ndarray:
     upper = ordered[np.minimum(middle, len(ordered) - 1), columns]
     lower = ordered[np.maximum(middle - 1, 0), columns]
     return np.where(count == 0, 1.0, np.where(count % 2 == 1, upper, (lower + upper) / 2))
+
+
+_UNITS: dict[tuple[int, int], tuple[Problem, KinematicsPlan, list[str]]] = {}
+
+
+def _units_of(problem: Problem, p: KinematicsPlan) -> list[str]:
+    """Each position's unit (:func:`_unit_of`), kept per problem and plan: every instant of a
+    class asks again."""
+    entry = _UNITS.get((id(problem), id(p)))
+    if entry is None or entry[0] is not problem or entry[1] is not p:
+        units = {c.name: c.unit for c in problem.coordinates}
+        units.update({q.name: q.unit for q in problem.parameters})
+        if len(_UNITS) >= 256:
+            _UNITS.clear()
+        entry = _UNITS[id(problem), id(p)] = (
+            problem, p, [_unit_of(p.index, units, i) for i in range(p.index.size)])
+    return entry[2]
 
 
 def _unit_of(index, units, i) -> str:

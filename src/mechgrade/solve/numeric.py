@@ -56,7 +56,7 @@ class _Probe:
     the values the free unknowns keep (one of them moved), and the shifts along the rate
     levels' null spaces."""
 
-    free_values: Mapping[int, float]
+    free_values: Mapping[int, float] | None
     shifts: tuple[np.ndarray | None, np.ndarray | None]
     start: np.ndarray
 
@@ -74,8 +74,8 @@ def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: se
 
 
 def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                          only: set[str], *, alone: bool = False, probe: bool = True
-                          ) -> list[Instant | MechgradeError]:
+                          only: set[str], *, alone: bool = False, probe: bool = True,
+                          near: np.ndarray | None = None) -> list[Instant | MechgradeError]:
     """:func:`solve_numeric` of many instants, one per ``givens``: each one's instant or the
     error that function raises for it. The non-linear levels of all of them are solved
     together, every start of every instant at once (:func:`~.levels.solve_nonlinear_columns`);
@@ -83,7 +83,9 @@ def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[
     judged as for one instant. ``alone``: each start solved by scipy's least squares (as
     :func:`solve_numeric` solves one instant, :func:`~.levels.solve_nonlinear_columns`).
     Without ``probe``, the objectives the givens leave undetermined are not looked for
-    (:attr:`Instant.errors` is empty: values wanted whatever they depend on).
+    (:attr:`Instant.errors` is empty: values wanted whatever they depend on). ``near``: each
+    instant's non-linear levels solved from this state alone (a root a class of variants
+    continues from), not from the spread of starts.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -100,11 +102,12 @@ def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[
     True
     """
     with quiet():  # once, not at each of its dozens of function calls
-        return _solved_columns(problem, p, givens, only, alone, probe)
+        return _solved_columns(problem, p, givens, only, alone, probe, near)
 
 
 def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                    only: set[str], alone: bool, probe: bool) -> list[Instant | MechgradeError]:
+                    only: set[str], alone: bool, probe: bool, near: np.ndarray | None
+                    ) -> list[Instant | MechgradeError]:
     out: list[Instant | MechgradeError | None] = [None] * len(givens)
     placed: dict[int, Givens] = {}
     for i, given in enumerate(givens):
@@ -113,7 +116,8 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
         except MechgradeError as err:
             out[i] = err
     chosen: dict[int, tuple[Givens, Candidate, dict]] = {}
-    for i, found in _branches_columns(problem, p, placed, alone=alone).items():
+    starts = None if near is None else dict.fromkeys(placed, _Probe(None, (None, None), near))
+    for i, found in _branches_columns(problem, p, placed, probes=starts, alone=alone).items():
         try:
             if isinstance(found, MechgradeError):
                 raise found
@@ -121,14 +125,15 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
         except MechgradeError as err:
             out[i] = err
     errors = _undetermined(problem, p, chosen, only, alone) if probe else {}
-    for i, (g, base, values) in chosen.items():
+    warned = _degenerate(problem, p, {i: base for i, (_, base, _) in chosen.items()},
+                         {i: [k for k in p.index.config if not g.known[k] and k not in base.free]
+                          for i, (g, base, _) in chosen.items()})
+    for i, (_, base, values) in chosen.items():
         found_errors = errors.get(i, {})
         if isinstance(found_errors, MechgradeError):
             out[i] = found_errors
             continue
-        solved = [k for k in p.index.config if not g.known[k] and k not in base.free]
-        out[i] = Instant(base.state, values, found_errors,
-                         _degenerate(problem, p, base.state, solved))
+        out[i] = Instant(base.state, values, found_errors, warned[i])
     return out  # type: ignore[return-value]
 
 
@@ -354,21 +359,30 @@ def _probes(p: KinematicsPlan, g: Givens, base: Candidate):
                    _Probe(keep, shifts, state.values))
 
 
-def _degenerate(problem: Problem, p: KinematicsPlan, state: State,
-                solved: list[int]) -> tuple[AuthorWarning, ...]:
-    """Warnings for a degenerate configuration the position solve landed on
-    (:func:`degenerate` at this one instant)."""
-    pairs, singular = degenerate(p, state.values[:, None], solved)
+def _degenerate(problem: Problem, p: KinematicsPlan, bases: Mapping[int, Candidate],
+                solved: Mapping[int, list[int]]) -> dict[int, tuple[AuthorWarning, ...]]:
+    """Warnings for a degenerate configuration the position solve landed on, at each
+    instant (:func:`degenerate` of those that solved the same positions, together)."""
+    together: dict[tuple[int, ...], list[int]] = {}
+    for i in bases:
+        together.setdefault(tuple(solved[i]), []).append(i)
     wheres = {q.name: q.where for q in problem.points}
-    out = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
-                         "coincide in the solution", wheres.get(p.points[a], Location()))
-           for a, b, flagged in pairs if flagged[0]]
-    if singular[0]:
-        out.append(AuthorWarning(
-            "degenerate configuration: the position constraints are singular in the "
-            "solution (their Jacobian loses rank: a dead point or a folded linkage)",
-            p.levels[0].wheres[0]))
-    return tuple(out)
+    out: dict[int, tuple[AuthorWarning, ...]] = {}
+    for positions, keys in together.items():
+        X = np.stack([bases[i].state.values for i in keys], axis=1)
+        pairs, singular = degenerate(p, X, list(positions))
+        for j, i in enumerate(keys):
+            warned = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and "
+                                    f"{p.points[a]} coincide in the solution",
+                                    wheres.get(p.points[a], Location()))
+                      for a, b, flagged in pairs if flagged[j]]
+            if singular[j]:
+                warned.append(AuthorWarning(
+                    "degenerate configuration: the position constraints are singular in the "
+                    "solution (their Jacobian loses rank: a dead point or a folded linkage)",
+                    p.levels[0].wheres[0]))
+            out[i] = tuple(warned)
+    return out
 
 
 def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
