@@ -18,7 +18,8 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear, solve_nonlinear_columns)
+                     place_givens, rows, solve_linear_columns,
+                     solve_nonlinear_columns)
 from .columns import call, quiet
 from .plan import KinematicsPlan
 from . import rules
@@ -124,7 +125,8 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
             chosen[i] = (placed[i], *_chosen(problem, p, placed[i], givens[i], found, only))
         except MechgradeError as err:
             out[i] = err
-    errors = _undetermined(problem, p, chosen, only, alone) if probe else {}
+    # with no objective to read, no freedom can move one
+    errors = _undetermined(problem, p, chosen, only, alone) if probe and only else {}
     warned = _degenerate(problem, p, {i: base for i, (_, base, _) in chosen.items()},
                          {i: [k for k in p.index.config if not g.known[k] and k not in base.free]
                           for i, (g, base, _) in chosen.items()})
@@ -181,14 +183,15 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         level = p.levels[order]
         grown = []
         if level.linear:
-            for i, at, s, nulls, free, picked in paths:
-                try:
-                    s1, null = solve_linear(problem, p, order, s, placed[i],
-                                            probes[i].shifts[order - 1] if probes else None)
-                except MechgradeError as err:
-                    failed(i, at, err)
+            solved = solve_linear_columns(
+                problem, p, order, [path[2] for path in paths],
+                [placed[path[0]] for path in paths],
+                [probes[path[0]].shifts[order - 1] if probes else None for path in paths])
+            for (i, at, _, nulls, free, picked), linear in zip(paths, solved):
+                if isinstance(linear, MechgradeError):
+                    failed(i, at, linear)
                     continue
-                grown.append((i, at + (0,), s1, nulls + (null,), free, picked))
+                grown.append((i, at + (0,), linear[0], nulls + (linear[1],), free, picked))
         else:
             roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
                                             [placed[path[0]] for path in paths],
