@@ -1,11 +1,14 @@
 """Many variants of one problem solved together: every student's givens at once.
 
-The lambdified functions of a problem's plan take arrays as well as numbers, so the levels of
-many instants are solved in one pass: each level by Newton steps from the reference's root (the
-solution with the spec's own givens), every step a stacked least-squares solve. That is the root
-a variant continues from the configuration the author checked, and for a level with one root
-(every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
-finds.
+The lambdified functions of a problem's plan take arrays as well as numbers, so the instants
+of many variants are solved in one pass, one column each, by the stages a single solve runs
+(:func:`~.numeric.solve_numeric_columns`: the levels, the roots, the freedoms probed, the
+givens checked to hold, the degenerate configurations), each non-linear level from the
+reference's root (the solution with the spec's own givens): the root a variant continues
+from the configuration the author checked, and for a level with one root (every linear
+level, every level the spec picks a root of) the root :func:`~.entry.solve` finds.
+Misread givens are solved as :func:`~.mutants.given_mistakes` solves them, every
+misreading of every variant together.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
 rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
