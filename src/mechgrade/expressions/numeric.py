@@ -47,8 +47,7 @@ def _eval(node: Node, env: dict[str, np.ndarray]):
     """:func:`evaluate`'s walk: :func:`~mechgrade.expressions.syntax.fold`'s, with its leaves,
     calls and numpy's division and powers (inf or nan where Python would raise or go complex)
     written in, as judging an answer is mostly this walk."""
-    kind = type(node)
-    if kind is Bin:
+    if isinstance(node, Bin):
         a, b = _eval(node.left, env), _eval(node.right, env)
         op = node.op
         if op == "**":
@@ -56,16 +55,16 @@ def _eval(node: Node, env: dict[str, np.ndarray]):
         if op == "/":
             return np.divide(np.asarray(a, dtype=float), b)
         return syntax.PYTHON_OPERATORS[op](a, b)
-    if kind is Num:
+    if isinstance(node, Num):
         return float(node.text)
-    if kind is Name:
+    if isinstance(node, Name):
         if node.id == "pi":
             return math.pi
         if node.id in env:
             return env[node.id]
-    elif kind is Unary:
+    elif isinstance(node, Unary):
         return -_eval(node.operand, env)
-    elif kind is Call:
+    elif isinstance(node, Call):
         return numpy_functions()[node.func](*(np.asarray(_eval(a, env), dtype=float)
                                               for a in node.args))
     raise ExpressionError(f"expected an expression in the problem's symbols, found "
