@@ -14,6 +14,7 @@ import subprocess
 import sys
 import time
 import uuid
+from functools import lru_cache
 from pathlib import Path
 
 import pytest
@@ -52,13 +53,20 @@ FORGETTING = frozenset({"forget", "disk"})
 """Fixtures that forget every derivation the process kept (:func:`_forget`)."""
 
 
+@lru_cache(maxsize=1)
+def _shipped_names() -> frozenset[str]:
+    """The shipped problems' names (a parameter may be any string: a file name test's is
+    longer than a path may be)."""
+    return frozenset(path.stem for path in PROBLEMS.glob("*.yaml"))
+
+
 def _library_problem(item) -> str | None:
     """The shipped problem a test is parametrized by (its path, or its name), if any."""
     callspec = getattr(item, "callspec", None)
     for value in callspec.params.values() if callspec is not None else ():
         if isinstance(value, Path) and value.parent == PROBLEMS:
             return value.stem
-        if isinstance(value, str) and (PROBLEMS / f"{value}.yaml").is_file():
+        if isinstance(value, str) and value in _shipped_names():
             return value
     return None
 
