@@ -17,7 +17,7 @@ The families are registered in :data:`FAMILIES`, one function each.
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
 >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
->>> [(m.code, m.step) for m in dynamics_mutations(problem)][3:6]
+>>> [(m.code, m.step) for m in dynamics_mutations(problem)][4:7]
 [('mass_for_weight', 'Free-body loads'), ('weight_for_mass', 'Bodies'), ('central_inertia_at_pivot', 'Bodies')]
 """
 
