@@ -179,7 +179,7 @@ def test_a_points_label_keeps_off_the_block_drawn_on_it():
     svg = picture_svg(_given_scene("atwood_machine"))
     blocks = [tuple(int(v) for v in m) for m in re.findall(
         r'data-body="block\d" x="(-?\d+)" y="(-?\d+)" width="(\d+)" height="(\d+)"', svg)]
-    (x, y), = [tuple(int(v) for v in m) for m in re.findall(r'<text x="(\d+)" y="(\d+)"[^>]*>O, P1<', svg)]
+    (x, y), = [tuple(int(v) for v in m) for m in re.findall(r'<text x="(\d+)" y="(\d+)"[^>]*>O, P<tspan baseline-shift="sub" font-size="8">1</tspan><', svg)]
     width = 8.6 * len("O, P1")  # as the picture reckons a label's width
     for bx, by, bw, bh in blocks:
         assert x + width <= bx or x >= bx + bw or y <= by or y - 12 >= by + bh, (x, y, bx, by)

@@ -461,7 +461,8 @@ def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> 
               f'{HALO}>']
     for (x, y), names in places.items():
         text = ", ".join(names)
-        labels.append(_placed_label(sheet, (x, y), text, 8.6 * len(text)))
+        labels.append(_placed_label(sheet, (x, y), ", ".join(point_svg(n) for n in names),
+                                    8.6 * len(text), markup=True))
     sheet.out += labels + ["</g>"]
     for i, (colour, text, *_) in enumerate(legend):
         y = HEIGHT - 14 - 18 * (len(legend) - 1 - i)
@@ -836,6 +837,19 @@ def _frame_labels(sheet: _Sheet, axes) -> None:
                                     markup=True))
     if len(labels) > 1:
         sheet.out += labels + ["</g>"]
+
+
+def point_svg(name: str) -> str:
+    """A point's name as an SVG label writes it, as the page's equations do: trailing digits
+    a subscript (P₁).
+
+    >>> point_svg("P1"), point_svg("G")
+    ('P<tspan baseline-shift="sub" font-size="8">1</tspan>', 'G')
+    """
+    stem = name.rstrip("0123456789")
+    if not stem or stem == name:
+        return escape(name)
+    return f'{escape(stem)}<tspan {SUBSCRIPT}>{name[len(stem):]}</tspan>'
 
 
 def unit_vector_svg(name: str) -> str:
