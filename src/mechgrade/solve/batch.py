@@ -1,14 +1,11 @@
 """Many variants of one problem solved together: every student's givens at once.
 
-The lambdified functions of a problem's plan take arrays as well as numbers, so the instants
-of many variants are solved in one pass, one column each, by the stages a single solve runs
-(:func:`~.numeric.solve_numeric_columns`: the levels, the roots, the freedoms probed, the
-givens checked to hold, the degenerate configurations), each non-linear level from the
-reference's root (the solution with the spec's own givens): the root a variant continues
-from the configuration the author checked, and for a level with one root (every linear
-level, every level the spec picks a root of) the root :func:`~.entry.solve` finds.
-Misread givens are solved as :func:`~.mutants.given_mistakes` solves them, every
-misreading of every variant together.
+The lambdified functions of a problem's plan take arrays as well as numbers, so the levels of
+many instants are solved in one pass: each level by Newton steps from the reference's root (the
+solution with the spec's own givens), every step a stacked least-squares solve. That is the root
+a variant continues from the configuration the author checked, and for a level with one root
+(every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
+finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
 rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
@@ -58,19 +55,23 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       collect_results, in_unit,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
-from .columns import FirstErrors, call
-from .levels import State, place_givens
+from .columns import FirstErrors, call, least_squares
+from .levels import State, place_givens, rows, typical_sizes
 from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
                       plausible_slips, slips_of, stacked)
-from .numeric import solve_numeric, solve_numeric_columns
+from .numeric import degenerate, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
 from .phases import gripping
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
+from .rules import on_branch, satisfied
 from .result import (GeneratedMistake, Solution)
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
+
+NEWTON_STEPS = 30
+"""Newton steps a non-linear level may take from the reference's root."""
 
 def solve_variants(problem: Problem, variants: Sequence[Mapping[str, float | None] | None],
                    objectives: Collection[str] | None = None) -> list[Outcome]:
@@ -152,16 +153,22 @@ def _solved_together(problem: Problem, given: list[dict],
 @dataclass(frozen=True)
 class _Group:
     """One instant of the problem (objectives asked with the same givens) as the reference
-    solved it: its givens, its root (or, for an integration, its givens placed), where each
-    given sits in the state and the unknowns its givens leave free."""
+    solved it: its givens, root and the unknowns of each level."""
 
     overrides: dict
     objectives: tuple[Objective, ...]
     numeric: frozenset[str]
     givens: dict
     state: np.ndarray
-    positions: Mapping[str, int]
+    known: np.ndarray
+    unknown: tuple[tuple[int, ...], ...]
+    active: tuple[np.ndarray, ...]
+    target: tuple[np.ndarray, ...]
+    conditions: Mapping[str, tuple[int, int]]
+    solved: tuple[int, ...]
     free: frozenset[int]
+    positions: Mapping[str, int]
+    nullity: tuple[int, ...]  # per level
     after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
     loose: frozenset[int]  # and leaves free
     alone: bool = False  # an instant before an integration's event: each column reached alone
@@ -230,7 +237,8 @@ class _Template:
             unreached: dict[int, MechgradeError] = {}
             missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
             if group.numeric & wanted:
-                X, fine, values, mistakes, unreached, missing = self._instant(group, maps)
+                X, fine, values, mistakes, unreached, missing = self._instant(group, maps,
+                                                                              True)
                 for ms in mistakes.values():
                     for m in ms:  # an undefined declared mistake fails its objective
                         fine &= np.isfinite(m).all(axis=0)
@@ -329,26 +337,36 @@ class _Template:
         return solution_of(self.problem, self.kproblem, self.p, results, failures, base,
                            tuple(self.p.k.warnings), wanted)
 
-    def _instant(self, group: _Group, maps: list[dict]):
+    def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
-        instant, which instants passed every screen, those not reached with the error the
-        scalar solver gives them (an integration's event that never happens, a balance that
-        fails at an instant otherwise reached), and per column the objectives that
+        instant, which instants passed every screen (with ``degenerate``, also the one for a
+        degenerate configuration), those not reached with the error the scalar solver
+        gives them (an integration's event that never happens, a balance that fails at an
+        instant otherwise reached), and per column the objectives that
         do not exist there with their errors (in dynamics each objective's failure, as
         :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails)."""
         p = self.p
+        n = len(maps)
+        X = np.repeat(group.state[:, None], n, axis=1)
+        targets = [np.repeat(t[:, None], n, axis=1) for t in group.target]
+        for key in maps[0]:
+            column = np.array([m[key][1] for m in maps], dtype=float)
+            if key in group.positions:
+                X[group.positions[key]] = column
+            elif key in group.conditions:
+                level, row = group.conditions[key]
+                targets[level][row] = column
         unreached: dict[int, MechgradeError] = {}
         if self.design is not None and self.design.find not in group.overrides:
-            X, ok = self._designed(group, maps)
+            X, ok = self._designed(group, X, targets, degenerate)
         elif isinstance(self.analysis, Integration):
-            X, ok, never, stuck = self._motion().integrated(self._placed(group, maps))
+            X, ok, never, stuck = self._motion().integrated(X)
             assert isinstance(self.analysis, Integration)
             unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
                                       event_never_happens(self.analysis))
             unreached.update(stuck)
         else:
-            X, ok, warned = self._reached(group, maps, unreached)
-            ok &= ~warned
+            X, ok = self._reached(group, X, targets, degenerate, unreached)
         X, before = self._at_event(X)
         read = read_objectives(self.problem, self.kinetics or p, X, group.numeric,
                                rules.REQUIRED if self.kinetics is None
@@ -362,83 +380,63 @@ class _Template:
             ok &= np.array([not m for m in missing], dtype=bool)
         return X, ok, values, declared, unreached, missing
 
-    def _placed(self, group: _Group, maps: list[dict]) -> np.ndarray:
-        """The givens of every variant placed in the state layout, one column each (what an
-        integration starts from)."""
-        X = np.repeat(group.state[:, None], len(maps), axis=1)
-        for key, at in group.positions.items():
-            X[at] = [m[key][1] for m in maps]
-        return X
-
-    def _reached(self, group: _Group, maps: list[dict],
+    def _reached(self, group: _Group, X: np.ndarray, targets: list, degenerate: bool,
                  raised: dict[int, MechgradeError] | None = None
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The instants the givens ``maps`` describe, one column each (the state extended by
-        the reactions for a dynamics problem), which passed the screens, and which the
-        scalar solver would warn of (a degenerate configuration). Each column's levels are
-        solved as :func:`~.entry.solve` solves them, all at once
-        (:func:`~.numeric.solve_numeric_columns`); a column that solve refuses, or that
-        leaves an objective undetermined or other unknowns free than the reference, fails
-        the screens (solved alone, it gets that solve's own message). Into ``raised``: the
+                 ) -> tuple[np.ndarray, np.ndarray]:
+        """The instants (each column of ``X`` the givens placed, the state extended by the
+        reactions for a dynamics problem) and which passed the screens. Into ``raised``: the
         columns that passed every screen of the configuration but whose energy balance or
         momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
         them (it would reach the instant the same way and stop there)."""
         if isinstance(self.analysis, Integration):
-            X, ok, _, _ = self._motion().integrated(self._placed(group, maps))
-            return X, ok, np.zeros(len(maps), dtype=bool)
-        n = len(maps)
-        # a column not solved keeps the reference's root: every later stage stays defined
-        X = np.repeat(group.state[:, None], n, axis=1)
-        ok = np.zeros(n, dtype=bool)
-        warned = np.zeros(n, dtype=bool)
-        only = set(group.numeric) if self.kinetics is None else set()
-        for i, instant in enumerate(solve_numeric_columns(self.kproblem, self.p, maps, only,
-                                                          near=group.state)):
-            if isinstance(instant, MechgradeError) or instant.errors or \
-                    instant.state.free != group.free:
-                continue
-            X[:, i] = instant.state.values
-            ok[i] = True
-            warned[i] = bool(instant.warnings)
+            X, ok, _, _ = self._motion().integrated(X)
+            return X, ok
+        n = X.shape[1]
+        ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
+            np.ones(n, dtype=bool)
+        nulls = self._levels(group, X, targets, 0, ok)
+        if self.kinetics is None and (group.free or any(k for k in group.nullity)):
+            ok &= self._determined(group, X, targets, nulls, ok)
+        ok &= self._on_branch(group, X)
+        if degenerate:
+            ok &= ~self._degenerate(group, X)
         if self.kinetics is None:
-            return X, ok, warned
-        first = FirstErrors(n)
+            return X, ok
+        first = FirstErrors(X.shape[1])
         if isinstance(self.analysis, WorkEnergy):
             X, first = energy_rates(self.problem, self.kinetics, X)
         solved = balances(self.problem, self.kinetics, X, group.after)
         fine = first.ok & solved.ok
         if raised is not None:
-            for k in np.flatnonzero(ok & ~fine & ~warned).tolist():  # warned: alone
-                error = first[k] or solved.errors[k]
+            for i in np.flatnonzero(ok & ~fine):
+                error = first[int(i)] or solved.errors[int(i)]
                 assert error is not None  # a column not fine has its error
-                raised[k] = error
-        return solved.x, ok & fine, warned
+                raised[int(i)] = error
+        return solved.x, ok & fine
 
-    def _designed(self, group: _Group, maps: list[dict]) -> tuple[np.ndarray, np.ndarray]:
+    def _designed(self, group: _Group, X: np.ndarray, targets: list,
+                  degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`_reached` with the design parameter solved at every column by Newton's
         method from the guess (:func:`~.batch_motion.newton`, as
         :class:`~.dynamics.DesignedInstant` solves one instant); a column it does not
         converge for is solved alone, where the bracketing search may find its root."""
         assert self.design is not None and self.kinetics is not None
-        find = self.design.find
-        node = Name(find)
+        at = self.p.index.position(self.design.find)
         equation = self.kinetics.design
-        n = len(maps)
+        n = X.shape[1]
         last: dict[str, np.ndarray] = {}  # each column's instant at its latest iterate
-
-        def valued(cols, values) -> list[dict]:
-            return [{**maps[i], find: (node, float(v), None)} for i, v in zip(cols, values)]
 
         def residual(cols: np.ndarray, values: np.ndarray) -> np.ndarray:
             both = np.concatenate([cols, cols])  # the iterates, then the points beside them
-            reached, fine, warned = self._reached(group, valued(both, values.ravel()))
+            moved = X[:, both]
+            moved[at] = values.ravel()
+            reached, fine = self._reached(group, moved, [t[:, both] for t in targets], False)
             if not last:
                 last.update(X=np.full((reached.shape[0], n), np.nan),
-                            ok=np.zeros(n, dtype=bool), warned=np.zeros(n, dtype=bool),
-                            at=np.full(n, np.nan))
+                            ok=np.zeros(n, dtype=bool), at=np.full(n, np.nan))
             k = len(cols)
-            last["X"][:, cols], last["ok"][cols], last["warned"][cols], last["at"][cols] = \
-                reached[:, :k], fine[:k], warned[:k], values[0]
+            last["X"][:, cols], last["ok"][cols], last["at"][cols] = \
+                reached[:, :k], fine[:k], values[0]
             r = np.where(fine, call(equation, self._at_event(reached)[0], 1)[0], np.nan)
             return r.reshape(2, k)
 
@@ -454,11 +452,13 @@ class _Template:
         out, ok = last["X"].copy(), last["ok"] & kept
         redo = np.flatnonzero(~kept)
         if len(redo):
-            out[:, redo], ok[redo], warned = self._reached(group, valued(
-                redo, np.where(converged[redo], root[redo], guess)))
-            ok[redo] &= ~warned
-        if not isinstance(self.analysis, Integration):  # of the configuration only
-            ok[kept] &= ~last["warned"][kept]
+            moved = X[:, redo].copy()
+            moved[at] = np.where(converged[redo], root[redo], guess)
+            out[:, redo], ok[redo] = self._reached(group, moved,
+                                                   [t[:, redo] for t in targets], degenerate)
+        again = np.flatnonzero(kept)
+        if degenerate and len(again) and not isinstance(self.analysis, Integration):
+            ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
         return out, ok & converged
 
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
@@ -469,6 +469,106 @@ class _Template:
             return X, None
         half = X.shape[0] // 2
         return X[:half], X[half:]
+
+    def _levels(self, group: _Group, X: np.ndarray, targets, first: int,
+                ok: np.ndarray) -> dict[int, np.ndarray | None]:
+        """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
+        ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
+        linear rate levels (N x unknowns x nullity)."""
+        p = self.p
+        nulls: dict[int, np.ndarray | None] = {}
+        for level in p.levels[first:]:
+            order = level.order
+            unknown = list(group.unknown[order])
+            active, target = group.active[order], targets[order]
+            nrows = len(level.labels)
+            columns = list(p.index.unknowns(order))
+            linear = level.linear and order > 0
+            # a linear rate level: the minimum-norm solution, as least squares gives it;
+            # any other: Newton steps for the unknowns it determines, the others kept
+            solve_for = unknown if linear else [i for i in unknown if i not in group.free]
+            if linear:
+                X[unknown] = 0.0
+            if linear and solve_for and not active.any():  # nothing fixes them: all free
+                nulls[order] = np.broadcast_to(np.eye(len(solve_for)),
+                                               (X.shape[1], len(solve_for), len(solve_for)))
+                continue
+            # a column stops once its own step is that small: its root does not depend on
+            # the other variants solved with it
+            moving = np.ones(X.shape[1], dtype=bool)
+            for _ in range(1 if linear else NEWTON_STEPS if solve_for else 0):
+                place = [columns.index(i) for i in solve_for]
+                r = call(level.residual, X, nrows)[active] - target[active]
+                J = call(level.jacobian, X, nrows * len(columns)).reshape(
+                    nrows, len(columns), X.shape[1])[active][:, place]
+                good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
+                ok &= good
+                step, rank, Vt = least_squares(J, r, good)
+                ok &= rank == len(solve_for) - group.nullity[order]
+                step[:, ~ok | ~moving] = 0.0
+                X[solve_for] += step
+                if linear:
+                    nulls[order] = Vt[:, rank.max(initial=0):, :].transpose(0, 2, 1) \
+                        if group.nullity[order] else None
+                    break
+                moving &= ~np.all(np.abs(step) <= 1e-12 * np.maximum(np.abs(X[solve_for]), 1.0),
+                                  axis=0)
+                if not moving.any():
+                    break
+            if active.any():
+                r = call(level.residual, X, nrows)[active] - target[active]
+                scale = np.abs(call(level.scale, X, nrows))[active]
+                ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
+        return nulls
+
+    def _determined(self, group: _Group, X: np.ndarray, targets, nulls,
+                    ok: np.ndarray) -> np.ndarray:
+        """Whether every numeric objective stays the same when what the givens leave free
+        moves (each free unknown, each direction of a nullspace), as the scalar solver
+        probes: where one changes, that solver names the objective not determined."""
+        p = self.p
+        same = ok.copy()
+        before = {oid: call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
+                  if oid in group.numeric}
+        probes: list[tuple[int, int | None, int | None]] = [
+            (p.index.level_of(i), i, None) for i in sorted(group.free)
+            if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
+        probes += [(order, None, j) for order, null in nulls.items() if null is not None
+                   for j in range(null.shape[2])]
+        for order, i, j in probes:
+            moved = X.copy()
+            if i is not None:
+                moved[i] += 0.37
+                first = order
+            else:
+                moved[list(group.unknown[order])] += 0.73 * nulls[order][:, :, j].T
+                first = order + 1
+            self._levels(group, moved, targets, first, same)
+            for oid, value in before.items():
+                after = call(dict(p.objectives)[oid], moved, value.shape[0])
+                same &= rules.unchanged(value, after)
+        return same
+
+    def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:
+        """Which columns have every root the spec picks a branch of on it (as
+        :func:`~.rules.on_branch` judges it for a quantity of the size the column's own
+        givens give it)."""
+        ok = np.ones(X.shape[1], dtype=bool)
+        index = self.p.index
+        picked = [(i, root) for i, root in self.branches.items()
+                  if i in group.unknown[index.level_of(i)]]
+        if picked:
+            scales = typical_sizes(self.kproblem, self.p, X[:index.size], group.known)
+            for i, root in picked:
+                ok &= on_branch(X[i], scales[i], root)
+        return ok
+
+    def _degenerate(self, group: _Group, X: np.ndarray) -> np.ndarray:
+        """Instants where the scalar solver would warn of a degenerate configuration."""
+        pairs, singular = degenerate(self.p, X, list(group.solved))
+        for _, _, flagged in pairs:
+            singular = singular | flagged
+        return singular
 
     # -- generated mistakes
 
@@ -507,21 +607,23 @@ class _Template:
 
     def _misread_values(self, group: _Group, changed: list) -> tuple[np.ndarray, dict]:
         """The numeric objectives at each misread instant (``changed`` holds ``(values,
-        givens, changes)``): which solved, and each objective's SI values (size x count),
-        all solved together as :func:`~.mutants.given_mistakes` solves one variant's."""
+        givens, changes)``): which solved, and each objective's SI values (size x count). A
+        degenerate configuration is no reason to drop a mistake
+        (:func:`~.mutants.given_mistakes`)."""
         if not changed:
             return np.zeros(0, dtype=bool), {}
+        _, ok, values, _, _, _ = self._instant(group, [c[0] for c in changed], False)
+        solved = ok.copy()
+        # what the stacked path does not vouch for: solved as given_mistakes solves it
+        redo = np.flatnonzero(~ok)
         instants = solve_numeric_columns(self.problem, self.p, [
-            misread(givens, changes) for _, givens, changes in changed], set(group.numeric),
-            probe=False)
-        solved = np.array([not isinstance(i, MechgradeError) for i in instants], dtype=bool)
-        values = {oid: np.full((_size(self.problem, oid), len(changed)), np.nan)
-                  for oid in group.numeric}
-        for k in np.flatnonzero(solved):
-            instant = instants[k]
-            assert not isinstance(instant, MechgradeError)
+            misread(changed[i][1], changed[i][2]) for i in redo], set(group.numeric))
+        for i, instant in zip(redo, instants):
+            if isinstance(instant, MechgradeError):
+                continue
+            solved[i] = True
             for oid, v in values.items():
-                v[:, k] = instant.values[oid]
+                v[:, i] = instant.values[oid]
         return solved, values
 
 
@@ -551,6 +653,22 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
     return at
 
 
+def _nullity(p: KinematicsPlan, level, values: np.ndarray, active: np.ndarray,
+             unknown: list) -> int:
+    """How many directions of the linear ``level``'s unknowns its equations leave free at the
+    reference's instant."""
+    if not unknown:
+        return 0
+    if not active.any():
+        return len(unknown)
+    columns = list(p.index.unknowns(level.order))
+    J = call(level.jacobian, values[:, None], len(level.labels) * len(columns)).reshape(
+        len(level.labels), len(columns), 1)[active][:, [columns.index(i) for i in unknown]]
+    _, rank, _ = least_squares(J, np.zeros((int(active.sum()), 1)),
+                                np.isfinite(J).all(axis=(0, 1)))
+    return len(unknown) - int(rank[0])
+
+
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
     """Where each given of a coordinate, rate, parameter or ``t`` sits in the state."""
     return {key: p.index.symbols.index(p.k.quantity(node))
@@ -563,7 +681,8 @@ def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: 
     state and the motion come from them), and the state at the event has its coordinates,
     rates, parameters and time known (as :func:`~.events.integrate_to_event` marks them)."""
     return _Group(overrides, tuple(objectives), numeric, given_map, g.values.copy(),
-                  _positions(p, given_map), frozenset(), after_event(p), frozenset())
+                  g.known.copy(), ((), (), ()), (), (), {}, (), frozenset(),
+                  _positions(p, given_map), (0, 0, 0), after_event(p), frozenset())
 
 
 def _template(problem: Problem) -> _Template | None:
@@ -618,7 +737,9 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         if not numeric:  # symbolic objectives only: no instant to solve
             empty = np.zeros(p.index.size)
             groups.append(_Group(overrides, tuple(objectives), numeric, given_map, empty,
-                                 {}, frozenset(), empty.astype(bool), frozenset()))
+                                 empty.astype(bool), ((), (), ()), (), (), {}, (),
+                                 frozenset(), {}, (0, 0, 0), empty.astype(bool),
+                                 frozenset()))
             continue
         try:
             if kinetics is not None:
@@ -639,13 +760,28 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         free = instant.state.free
         if instant.errors or instant.warnings:
             return None
+        unknown, active, target, conditions = [], [], [], {}
+        nullity: list[int] = []
+        for level in p.levels:
+            on, goal = rows(level, g)
+            mine = [i for i in p.index.unknowns(level.order)
+                    if not g.known[i] and g.solvable[i]]
+            unknown.append(tuple(mine))
+            active.append(on)
+            target.append(goal)
+            nullity.append(_nullity(p, level, instant.state.values, on, mine)
+                           if level.linear and level.order > 0 else 0)
+            for j, key in enumerate(level.conditions):
+                conditions[key] = (level.order, level.constraint_rows + j)
+        solved = tuple(i for i in p.index.config if not g.known[i] and i not in free)
         after, loose = g.known.copy(), free
         if isinstance(analysis, WorkEnergy):  # the energy balance fixes the rates
             after[list(p.index.rates(1))] = True
             loose = frozenset()
         groups.append(_Group(overrides, tuple(objectives), numeric, given_map,
-                             instant.state.values.copy(), _positions(p, given_map), free,
-                             after, loose))
+                             instant.state.values.copy(), g.known.copy(), tuple(unknown),
+                             tuple(active), tuple(target), conditions, solved, free,
+                             _positions(p, given_map), tuple(nullity), after, loose))
     if not groups:
         return None
     return _Template(problem, kproblem, p, kinetics, tuple(groups))

@@ -234,8 +234,8 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
-    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], [free_values],
-                                       [start], alone=True)
+    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], free_values, start,
+                                       alone=True)
     if isinstance(roots, MechgradeError):
         raise roots
     return roots
@@ -243,11 +243,10 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
 
 def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
                             states: Sequence[State], givens: Sequence[Givens],
-                            free_values: Sequence[Mapping[int, float] | None] | None = None,
-                            start: Sequence[np.ndarray | None] | None = None, *,
-                            alone: bool = False) -> list[Roots | MechgradeError]:
-    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``, and
-    ``free_values[i]``, ``start[i]`` when given), each
+                            free_values: Mapping[int, float] | None = None,
+                            start: np.ndarray | None = None, *, alone: bool = False
+                            ) -> list[Roots | MechgradeError]:
+    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``), each
     column's roots or the error that function raises for it: the same starts, every start of
     every column solved together by Levenberg-Marquardt steps on the stacked Jacobians
     (:func:`levenberg_marquardt`), the roots then chosen by the same rules. ``alone``: each
@@ -271,11 +270,9 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     'SolveError'
     """
     out: list[Roots | MechgradeError | _Setup] = []
-    frees = free_values if free_values is not None else [None] * len(states)
-    starts = start if start is not None else [None] * len(states)
-    for state, g, free, begin in zip(states, givens, frees, starts):
+    for state, g in zip(states, givens):
         try:
-            out.append(_set_up(problem, p, order, state, g, free, begin))
+            out.append(_set_up(problem, p, order, state, g, free_values, start))
         except MechgradeError as err:
             out.append(err)
     pending = [i for i, s in enumerate(out) if isinstance(s, _Setup)]
@@ -676,77 +673,59 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
 # ---------------------------------------------------------------------------- linear
 
 
-def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int,
-                         states: Sequence[State], givens: Sequence[Givens],
-                         shifts: Sequence[np.ndarray | None]
-                         ) -> list[tuple[State, np.ndarray] | MechgradeError]:
-    """A level linear in its rates (``order`` 1 or 2) at many instants (``states[i]`` with
-    ``givens[i]``): each one's least-squares solution (moved by ``null @ shifts[i]`` when
-    given) and the nullspace basis of its unknown rates, or its error. The level's
-    equations are evaluated at all of them at once, each least squares solved on its own."""
-    if not states:
-        return []
+def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Givens,
+                 shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
+    """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
+    ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
     level = p.levels[order]
     cols = list(p.index.rates(order))
-    n, nrows = len(cols), len(level.labels)
-    X = np.stack([s.values for s in states], axis=1)
-    X[cols] = np.stack([np.where(g.known[cols], g.values[cols], 0.0) for g in givens], axis=1)
+    n = len(cols)
+    active, target = rows(level, g)
+    x = state.values.copy()
+    x[cols] = np.where(g.known[cols], g.values[cols], 0.0)
     with np.errstate(all="ignore"):
-        jacobians = call(level.jacobian, X, nrows * n).reshape(nrows, n, len(states))
-        residuals = call(level.residual, X, nrows)
-    out: list[tuple[State, np.ndarray] | MechgradeError] = []
-    checks: list[tuple[int, np.ndarray, np.ndarray, list]] = []
-    for k, (state, g, shift) in enumerate(zip(states, givens, shifts)):
-        active, target = rows(level, g)
-        A, b = jacobians[:, :, k][active], (residuals[:, k] - target)[active]
-        wheres = [w for w, on in zip(level.wheres, active) if on]
-        if not (np.isfinite(A).all() and np.isfinite(b).all()):
-            bad = next(j for j in range(len(b)) if not (np.isfinite(A[j]).all()
-                                                         and np.isfinite(b[j])))
-            out.append(SolveError(
-                f"the {level.name} equations are undefined at this instant (a division by "
-                f"zero in '{np.array(level.labels)[active][bad]}')", where=wheres[bad]))
-            continue
-        unknown = [j for j in range(n) if not g.known[cols[j]]]
-        rhs = -b  # the unknown rates are 0 in x, so b is the residual of the known part
-        null = np.zeros((len(unknown), 0))
-        free = set(state.free)
-        if unknown:
-            A_u = A[:, unknown]
-            if len(b):
-                from scipy import linalg
-
-                sol, *_ = linalg.lstsq(A_u, rhs, cond=rules.cutoff(*A_u.shape))
-                null = rules.null_space(A_u)
-            else:
-                sol = np.zeros(len(unknown))
-                null = np.eye(len(unknown))
-            if shift is not None and null.shape[1]:
-                sol = sol + null @ shift
-            for j, value in zip(unknown, sol):
-                X[cols[j], k] = value
-            free |= {cols[unknown[i]] for i in range(len(unknown))
-                     if null.shape[1] and np.abs(null[i]).max() > rules.OPEN}
-        out.append((State(X[:, k].copy(), g.known, frozenset(free)), null))
+        A = np.asarray(level.jacobian(*x), dtype=float).reshape(len(level.labels), n)
+        b = np.asarray(level.residual(*x), dtype=float).ravel() - target
+    A, b = A[active], b[active]
+    wheres = [w for w, on in zip(level.wheres, active) if on]
+    if not (np.isfinite(A).all() and np.isfinite(b).all()):
+        bad = next(j for j in range(len(b)) if not (np.isfinite(A[j]).all()
+                                                     and np.isfinite(b[j])))
+        raise SolveError(f"the {level.name} equations are undefined at this instant (a "
+                         f"division by zero in '{np.array(level.labels)[active][bad]}')",
+                         where=wheres[bad])
+    unknown = [j for j in range(n) if not g.known[cols[j]]]
+    rhs = -b  # the unknown rates are 0 in x, so b is the residual of the known part
+    null = np.zeros((len(unknown), 0))
+    free = set(state.free)
+    if unknown:
+        A_u = A[:, unknown]
         if len(b):
-            checks.append((k, active, target, wheres))
-    if checks:  # every solution's equations at once: do they hold?
-        at = [k for k, _, _, _ in checks]
+            from scipy import linalg
+
+            sol, *_ = linalg.lstsq(A_u, rhs, cond=rules.cutoff(*A_u.shape))
+            null = rules.null_space(A_u)
+        else:
+            sol = np.zeros(len(unknown))
+            null = np.eye(len(unknown))
+        if shift is not None and null.shape[1]:
+            sol = sol + null @ shift
+        for j, value in zip(unknown, sol):
+            x[cols[j]] = value
+        free |= {cols[unknown[i]] for i in range(len(unknown))
+                 if null.shape[1] and np.abs(null[i]).max() > rules.OPEN}
+    if len(b):
         with np.errstate(all="ignore"):
-            values = call(level.residual, X[:, at], nrows)
-            scales = np.abs(call(level.scale, X[:, at], nrows))
-        for j, (k, active, target, wheres) in enumerate(checks):
-            r, scale = values[:, j][active] - target[active], scales[:, j][active]
-            i = first_off(r, scale, problem.consistency)
-            if i is not None:
-                labels = np.array(level.labels)[active]
-                g = givens[k]
-                out[k] = InconsistentError(
-                    f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
-                    f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); "
-                    f"givens involved: {'; '.join(g.texts.values()) or 'none'}",
-                    where=wheres[i])
-    return out
+            r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
+            scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
+        labels = np.array(level.labels)[active]
+        i = first_off(r, scale, problem.consistency)
+        if i is not None:
+            raise InconsistentError(
+                f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
+                f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
+                f"involved: {'; '.join(g.texts.values()) or 'none'}", where=wheres[i])
+    return State(x, g.known, frozenset(free)), null
 
 
 def constraint_rank(p: KinematicsPlan, state: State) -> int:

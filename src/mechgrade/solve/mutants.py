@@ -129,8 +129,7 @@ def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
     slips = list(slips_of(givens, parameters))
     # every misreading's instant at once; one that cannot be solved is no mistake to name
     instants = solve_numeric_columns(problem, p, [misread(givens, changes)
-                                                  for _, changes, _ in slips], wanted,
-                                     probe=False)
+                                                  for _, changes, _ in slips], wanted)
     for (code, _, sentence), instant in zip(slips, instants):
         if isinstance(instant, MechgradeError):
             continue

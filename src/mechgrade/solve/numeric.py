@@ -18,8 +18,7 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear_columns,
-                     solve_nonlinear_columns)
+                     place_givens, rows, solve_linear, solve_nonlinear_columns)
 from .columns import call, quiet
 from .plan import KinematicsPlan
 from . import rules
@@ -51,15 +50,14 @@ class Instant:
     warnings: tuple[AuthorWarning, ...]
 
 
-@dataclass(frozen=True)
-class _Probe:
-    """One freedom of a solved instant moved, to be solved again near its root (``start``):
-    the values the free unknowns keep (one of them moved), and the shifts along the rate
-    levels' null spaces."""
-
-    free_values: Mapping[int, float] | None
-    shifts: tuple[np.ndarray | None, np.ndarray | None]
-    start: np.ndarray
+def _branches(problem: Problem, p: KinematicsPlan, g: Givens, *, free_values=None,
+              shifts=(None, None), start=None) -> list[Candidate]:
+    """Every complete solution: each root of each non-linear level followed to the end."""
+    (found,) = _branches_columns(problem, p, {0: g}, free_values=free_values, shifts=shifts,
+                                 start=start, alone=True).values()
+    if isinstance(found, MechgradeError):
+        raise found
+    return found
 
 
 def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Instant:
@@ -75,18 +73,14 @@ def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: se
 
 
 def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                          only: set[str], *, alone: bool = False, probe: bool = True,
-                          near: np.ndarray | None = None) -> list[Instant | MechgradeError]:
+                          only: set[str], *, alone: bool = False
+                          ) -> list[Instant | MechgradeError]:
     """:func:`solve_numeric` of many instants, one per ``givens``: each one's instant or the
     error that function raises for it. The non-linear levels of all of them are solved
     together, every start of every instant at once (:func:`~.levels.solve_nonlinear_columns`);
     which roots are distinct, which one the spec asks for and what the instant then is are
     judged as for one instant. ``alone``: each start solved by scipy's least squares (as
     :func:`solve_numeric` solves one instant, :func:`~.levels.solve_nonlinear_columns`).
-    Without ``probe``, the objectives the givens leave undetermined are not looked for
-    (:attr:`Instant.errors` is empty: values wanted whatever they depend on). ``near``: each
-    instant's non-linear levels solved from this state alone (a root a class of variants
-    continues from), not from the spread of starts.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -103,12 +97,11 @@ def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[
     True
     """
     with quiet():  # once, not at each of its dozens of function calls
-        return _solved_columns(problem, p, givens, only, alone, probe, near)
+        return _solved_columns(problem, p, givens, only, alone)
 
 
 def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                    only: set[str], alone: bool, probe: bool, near: np.ndarray | None
-                    ) -> list[Instant | MechgradeError]:
+                    only: set[str], alone: bool) -> list[Instant | MechgradeError]:
     out: list[Instant | MechgradeError | None] = [None] * len(givens)
     placed: dict[int, Givens] = {}
     for i, given in enumerate(givens):
@@ -116,26 +109,13 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
             placed[i] = _placed(problem, p, given, only)
         except MechgradeError as err:
             out[i] = err
-    chosen: dict[int, tuple[Givens, Candidate, dict]] = {}
-    starts = None if near is None else dict.fromkeys(placed, _Probe(None, (None, None), near))
-    for i, found in _branches_columns(problem, p, placed, probes=starts, alone=alone).items():
+    for i, found in _branches_columns(problem, p, placed, alone=alone).items():
         try:
             if isinstance(found, MechgradeError):
                 raise found
-            chosen[i] = (placed[i], *_chosen(problem, p, placed[i], givens[i], found, only))
+            out[i] = _instant(problem, p, placed[i], givens[i], found, only)
         except MechgradeError as err:
             out[i] = err
-    # with no objective to read, no freedom can move one
-    errors = _undetermined(problem, p, chosen, only, alone) if probe and only else {}
-    warned = _degenerate(problem, p, {i: base for i, (_, base, _) in chosen.items()},
-                         {i: [k for k in p.index.config if not g.known[k] and k not in base.free]
-                          for i, (g, base, _) in chosen.items()})
-    for i, (_, base, values) in chosen.items():
-        found_errors = errors.get(i, {})
-        if isinstance(found_errors, MechgradeError):
-            out[i] = found_errors
-            continue
-        out[i] = Instant(base.state, values, found_errors, warned[i])
     return out  # type: ignore[return-value]
 
 
@@ -150,12 +130,12 @@ def _placed(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]
 
 
 def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens], *,
-                      probes: Mapping[int, _Probe] | None = None, alone: bool = False
+                      free_values=None, shifts=(None, None), start=None, alone: bool = False
                       ) -> dict[int, list[Candidate] | MechgradeError]:
     """Every complete solution of each instant in ``placed`` (each root of each non-linear
     level followed to the end), or the error met first following the roots in order; each
-    level solved for all of them at once. ``probes``: each instant a probe of the freedoms
-    of one solved before (:class:`_Probe`), re-solved near its root."""
+    level solved for all of them at once. ``free_values``, ``shifts`` (of the rate levels'
+    nullspaces) and ``start``: a probe of one instant's freedoms, re-solved near its root."""
     errors: dict[int, tuple[tuple[int, ...], MechgradeError]] = {}
 
     def failed(i: int, at: tuple[int, ...], err: MechgradeError) -> None:
@@ -167,11 +147,8 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
     gs = [placed[i] for i in keys]
     # (instant, roots taken, state, nullspaces, unknowns left free, picked by the spec)
     paths: list[tuple[int, tuple[int, ...], State, tuple, tuple[int, ...], bool]] = []
-    free_values = {i: probes[i].free_values if probes else None for i in keys}
-    start = {i: probes[i].start if probes else None for i in keys}
     firsts = solve_nonlinear_columns(problem, p, 0, [State(g.values.copy(), g.known)
-                                                     for g in gs], gs,
-                                     [free_values[i] for i in keys], [start[i] for i in keys],
+                                                     for g in gs], gs, free_values, start,
                                      alone=alone)
     for i, first in zip(keys, firsts):
         if isinstance(first, MechgradeError):
@@ -183,20 +160,18 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         level = p.levels[order]
         grown = []
         if level.linear:
-            solved = solve_linear_columns(
-                problem, p, order, [path[2] for path in paths],
-                [placed[path[0]] for path in paths],
-                [probes[path[0]].shifts[order - 1] if probes else None for path in paths])
-            for (i, at, _, nulls, free, picked), linear in zip(paths, solved):
-                if isinstance(linear, MechgradeError):
-                    failed(i, at, linear)
+            for i, at, s, nulls, free, picked in paths:
+                try:
+                    s1, null = solve_linear(problem, p, order, s, placed[i],
+                                            shifts[order - 1])
+                except MechgradeError as err:
+                    failed(i, at, err)
                     continue
-                grown.append((i, at + (0,), linear[0], nulls + (linear[1],), free, picked))
+                grown.append((i, at + (0,), s1, nulls + (null,), free, picked))
         else:
             roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
-                                            [placed[path[0]] for path in paths],
-                                            [free_values[path[0]] for path in paths],
-                                            [start[path[0]] for path in paths], alone=alone)
+                                            [placed[path[0]] for path in paths], free_values,
+                                            start, alone=alone)
             for (i, at, _, nulls, free, picked), level_roots in zip(paths, roots):
                 if isinstance(level_roots, MechgradeError):
                     failed(i, at, level_roots)
@@ -214,11 +189,11 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
     return out
 
 
-def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
-            candidates: list[Candidate], only: set[str]) -> tuple[Candidate, dict]:
-    """The instant from every complete solution of its levels (:func:`_branches_columns`),
-    and the objectives ``only`` there: refused when they give different answers, else the
-    first, its givens checked to hold."""
+def _instant(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
+             candidates: list[Candidate], only: set[str]) -> Instant:
+    """The instant from every complete solution of its levels (:func:`_branches`): refused
+    when they give different answers, else the first, its givens checked to hold, the
+    objectives its freedoms move refused, its degeneracies warned of."""
     base = candidates[0]
     values = evaluate(p.objectives, base.state, only)
     distinct = [base]
@@ -230,7 +205,9 @@ def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
     if len(distinct) > 1:
         raise _ambiguous(problem, p, g, distinct)
     _check_givens_hold(problem, p, g, givens, base.state)
-    return base, values
+    errors = _undetermined(problem, p, g, base, values, only)
+    solved = [i for i in p.index.config if not g.known[i] and i not in base.free]
+    return Instant(base.state, values, errors, _degenerate(problem, p, base.state, solved))
 
 
 def _same_answers(p: KinematicsPlan, a: Candidate, b: Candidate, only) -> bool:
@@ -307,87 +284,61 @@ def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: M
                              where=level.wheres[i])
 
 
-def _undetermined(problem: Problem, p: KinematicsPlan,
-                  chosen: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str],
-                  alone: bool) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
-    """Probe each freedom the givens leave each instant in ``chosen`` (its givens, solution
-    and objectives' values), every probe of every instant solved at once: an objective that
-    changes depends on it. An instant whose probe cannot be solved gets that error."""
-    owner: list[tuple[int, str]] = []  # each probe's instant and what it moves
-    placed: dict[int, Givens] = {}
-    moved: dict[int, _Probe] = {}
-    for i, (g, base, values) in chosen.items():
-        if not values:  # no objective asked for here (an instant of a dynamics solve): none
-            continue    # can depend on a freedom
-        for missing, probe in _probes(p, g, base):
-            placed[len(owner)], moved[len(owner)] = g, probe
-            owner.append((i, missing))
-    trials = _branches_columns(problem, p, placed, probes=moved, alone=alone) if owner else {}
-    found: dict[int, dict[str, list[str]] | MechgradeError] = {i: {} for i in chosen}
-    for k, (i, missing) in enumerate(owner):
-        depends, trial = found[i], trials[k]
-        if isinstance(depends, MechgradeError):
-            continue  # the first probe that fails is the instant's error
-        if isinstance(trial, MechgradeError):
-            found[i] = trial
-            continue
-        changed = evaluate(p.objectives, trial[0].state, only)
-        for oid, value in chosen[i][2].items():
-            if not _close(value, changed[oid]):
-                depends.setdefault(oid, []).append(missing)
-    return {i: depends if isinstance(depends, MechgradeError) else {
-        oid: UnderdeterminedError(
-            f"objective '{oid}' is not determined by the givens: give a value for "
-            f"{' or '.join(missing)}", where=problem.objective(oid).where)
-        for oid, missing in depends.items()} for i, depends in found.items()}
-
-
-def _probes(p: KinematicsPlan, g: Givens, base: Candidate):
-    """``(what it moves, probe)`` for each freedom of the solution ``base``: each free
-    unknown moved, then each direction of the velocity and acceleration null spaces."""
+def _undetermined(problem: Problem, p: KinematicsPlan, g: Givens, base: Candidate, values: Mapping,
+                  only: set[str]) -> dict[str, MechgradeError]:
+    """Probe each freedom the givens leave: an objective that changes depends on it."""
+    if not values:  # no objective asked for here (an instant of a dynamics solve): none can
+        return {}
     state = base.state
+    depends: dict[str, list[str]] = {}
     keep = {i: state.values[i] for i in base.free}
-    for which in base.free:
-        level = p.levels[p.index.level_of(which)].name
-        yield (f"{p.index.spelling(which)} ({level} level)",
-               _Probe({**keep, which: keep[which] + 0.37}, (None, None), state.values))
     null_v, null_a = base.nulls
-    for order, kind, null in ((1, "velocity", null_v), (2, "acceleration", null_a)):
-        for which in range(null.shape[1] if null is not None else 0):
-            assert null is not None
+    probes = [("free", i) for i in base.free]
+    probes += [("velocity", j) for j in range(null_v.shape[1] if null_v is not None else 0)]
+    probes += [("acceleration", j) for j in range(null_a.shape[1] if null_a is not None else 0)]
+    for kind, which in probes:
+        if kind == "free":
+            trial = _branches(problem, p, g, free_values={**keep, which: keep[which] + 0.37},
+                              start=state.values)[0].state
+            level = p.levels[p.index.level_of(which)].name
+            missing = f"{p.index.spelling(which)} ({level} level)"
+        else:
+            order = 1 if kind == "velocity" else 2
+            null = null_v if order == 1 else null_a
+            assert null is not None  # a probe of this level exists only with its null space
             z = np.zeros(null.shape[1])
             z[which] = 0.73
             zero_v = np.zeros(null_v.shape[1]) if null_v is not None else None
             shifts = (z, None) if order == 1 else (zero_v, z)
+            trial = _branches(problem, p, g, free_values=keep, shifts=shifts,
+                              start=state.values)[0].state
             unknown = [i for i in p.index.rates(order) if not g.known[i]]
-            yield (f"{_rate_names(p, unknown, null[:, which])} ({kind} level)",
-                   _Probe(keep, shifts, state.values))
+            missing = f"{_rate_names(p, unknown, null[:, which])} ({kind} level)"
+        changed = evaluate(p.objectives, trial, only)
+        for oid, value in values.items():
+            if not _close(value, changed[oid]):
+                depends.setdefault(oid, []).append(missing)
+    return {oid: UnderdeterminedError(
+        f"objective '{oid}' is not determined by the givens: give a value for "
+        f"{' or '.join(missing)}", where=problem.objective(oid).where)
+        for oid, missing in depends.items()}
 
 
-def _degenerate(problem: Problem, p: KinematicsPlan, bases: Mapping[int, Candidate],
-                solved: Mapping[int, list[int]]) -> dict[int, tuple[AuthorWarning, ...]]:
-    """Warnings for a degenerate configuration the position solve landed on, at each
-    instant (:func:`degenerate` of those that solved the same positions, together)."""
-    together: dict[tuple[int, ...], list[int]] = {}
-    for i in bases:
-        together.setdefault(tuple(solved[i]), []).append(i)
+def _degenerate(problem: Problem, p: KinematicsPlan, state: State,
+                solved: list[int]) -> tuple[AuthorWarning, ...]:
+    """Warnings for a degenerate configuration the position solve landed on
+    (:func:`degenerate` at this one instant)."""
+    pairs, singular = degenerate(p, state.values[:, None], solved)
     wheres = {q.name: q.where for q in problem.points}
-    out: dict[int, tuple[AuthorWarning, ...]] = {}
-    for positions, keys in together.items():
-        X = np.stack([bases[i].state.values for i in keys], axis=1)
-        pairs, singular = degenerate(p, X, list(positions))
-        for j, i in enumerate(keys):
-            warned = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and "
-                                    f"{p.points[a]} coincide in the solution",
-                                    wheres.get(p.points[a], Location()))
-                      for a, b, flagged in pairs if flagged[j]]
-            if singular[j]:
-                warned.append(AuthorWarning(
-                    "degenerate configuration: the position constraints are singular in the "
-                    "solution (their Jacobian loses rank: a dead point or a folded linkage)",
-                    p.levels[0].wheres[0]))
-            out[i] = tuple(warned)
-    return out
+    out = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
+                         "coincide in the solution", wheres.get(p.points[a], Location()))
+           for a, b, flagged in pairs if flagged[0]]
+    if singular[0]:
+        out.append(AuthorWarning(
+            "degenerate configuration: the position constraints are singular in the "
+            "solution (their Jacobian loses rank: a dead point or a folded linkage)",
+            p.levels[0].wheres[0]))
+    return tuple(out)
 
 
 def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
