@@ -14,6 +14,7 @@ import subprocess
 import sys
 import time
 import uuid
+from functools import lru_cache
 from pathlib import Path
 
 import pytest
@@ -48,9 +49,38 @@ def heavy_problem_names() -> frozenset[str]:
     return heavy_problems()
 
 
+FORGETTING = frozenset({"forget", "disk"})
+"""Fixtures that forget every derivation the process kept (:func:`_forget`)."""
+
+
+@lru_cache(maxsize=1)
+def _shipped_names() -> frozenset[str]:
+    """The shipped problems' names (a parameter may be any string: a file name test's is
+    longer than a path may be)."""
+    return frozenset(path.stem for path in PROBLEMS.glob("*.yaml"))
+
+
+def _library_problem(item) -> str | None:
+    """The shipped problem a test is parametrized by (its path, or its name), if any."""
+    callspec = getattr(item, "callspec", None)
+    for value in callspec.params.values() if callspec is not None else ():
+        if isinstance(value, Path) and value.parent == PROBLEMS:
+            return value.stem
+        if isinstance(value, str) and value in _shipped_names():
+            return value
+    return None
+
+
 def pytest_collection_modifyitems(items):
     """A test parametrized by a heavy problem (its path, or its name as the tables give it)
-    is marked ``slow``: one list decides it for every library-wide test."""
+    is marked ``slow``: one list decides it for every library-wide test.
+
+    The order is chosen so that a problem is derived in as few xdist workers as may be (each
+    worker derives what its own tests need; pytest-xdist's ``worksteal`` hands each worker a
+    half of the list, then moves tests from the end of one to the other): the tests of every
+    other shipped problem come first, those of the rest just before the end, and the tests
+    that forget every derivation kept in memory last (among the others, each would make the
+    tests after it in its worker derive their problems again, cold)."""
     heavy = heavy_problems()
     for item in items:
         callspec = getattr(item, "callspec", None)
@@ -58,6 +88,14 @@ def pytest_collection_modifyitems(items):
                 (value.stem if isinstance(value, Path) else value) in heavy
                 for value in callspec.params.values() if isinstance(value, (Path, str))):
             item.add_marker(pytest.mark.slow)
+    halves = {path.stem: index % 2 for index, path in enumerate(sorted(PROBLEMS.glob("*.yaml")))}
+
+    def place(item) -> int:
+        if not FORGETTING.isdisjoint(getattr(item, "fixturenames", ())):
+            return 3
+        problem = _library_problem(item)
+        return 1 if problem is None else 2 * halves[problem]
+    items.sort(key=place)
 
 
 @pytest.fixture

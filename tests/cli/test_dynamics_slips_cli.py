@@ -66,6 +66,6 @@ def test_grade_prints_it_too(path, tmp_path):
     (tmp_path / "subs").mkdir()
     (tmp_path / "subs" / "ann.txt").write_text(f"{path.stem}.none = 1\n")
     code, output = run("grade", tmp_path / "hw.yaml", tmp_path / "subs", "--out",
-                       tmp_path / "out")
+                       tmp_path / "out", "--jobs", "1")
     assert any(line.strip().endswith(message) for line in output.splitlines()), output
     assert code == (2 if outcome == "refused" else 0)

@@ -15,8 +15,13 @@ EXAMPLE = shipped_dir("examples") / "hw1"
 PENDULUM = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
 
 
-def run(*args):
-    return CliRunner().invoke(main, ["grade", *map(str, args)])
+def run(*args, jobs="1"):
+    """``mechgrade grade`` with ``--jobs 1`` unless the test says otherwise: forked workers
+    would each derive the problems again, cold (``jobs=None``: the command's default)."""
+    args = [*map(str, args)]
+    if jobs is not None and not {"--jobs", "-j"} & set(args):
+        args += ["--jobs", jobs]
+    return CliRunner().invoke(main, ["grade", *args])
 
 
 def small_class(tmp_path):
@@ -102,7 +107,7 @@ def test_templates_option_overrides_feedback(tmp_path):
 def test_readme_command_on_the_example_class(tmp_path):
     out = tmp_path / "out"
     result = run(EXAMPLE / "assignment.yaml", EXAMPLE / "submissions", "--roster",
-                 EXAMPLE / "roster.csv", "--out", out)
+                 EXAMPLE / "roster.csv", "--out", out, jobs=None)
     assert result.exit_code == 0, result.output
     assert result.stdout == (f"Graded 7 students (6 unreadable answers, 1 unreadable "
                              f"submission, 2 missing submissions, 1 skipped entry); wrote "

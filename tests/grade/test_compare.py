@@ -321,6 +321,39 @@ def test_expression_equivalence_is_reproducible():
     assert sample_points(SYM, 5)["L"].tolist() == sample_points(SYM, 5)["L"].tolist()
 
 
+def test_an_answer_kept_judged_is_judged_again_under_another_policy():
+    # "1.000001 L" is right within 1e-5 and wrong within 1e-8, whichever policy comes first
+    loose, tight = GradingPolicy(symbolic_rel=1e-5), GradingPolicy(symbolic_rel=1e-8)
+    text = "1.000001*L*sqrt(thetad**4 + thetadd**2)"
+    assert [verdict(text, SYM, p) for p in (loose, tight, loose, tight)] == [
+        "correct", "incorrect", "correct", "incorrect"]
+
+
+def test_equal_objectives_of_other_references_are_not_confused():
+    # two results alike but for their reference: each answer judged against its own
+    double = ObjectiveResult(SYM.id, "symbolic", SYM.unit, expr=f"2*{SYM.expr}",
+                             symbols=SYM.symbols, symbol_units=SYM.symbol_units)
+    text = "L sqrt(thetad^4 + thetadd^2)"
+    assert [verdict(text, r) for r in (SYM, double, SYM, double)] == [
+        "correct", "incorrect", "correct", "incorrect"]
+    assert assess(text, double).diagnosis == "factor of 2"
+
+
+def test_answers_judged_past_the_kept_number_are_judged_anew(monkeypatch):
+    from mechgrade.grade import compare
+    monkeypatch.setattr(compare, "MAX_JUDGED", 2)
+    monkeypatch.setattr(compare, "MAX_OBJECTIVES", 1)
+    texts = ["L*sqrt(thetad**4 + thetadd**2)", "L*thetad**2", "-L*sqrt(thetad^4+thetadd^2)"]
+    first = [assess(t, SYM) for t in texts]
+    other = ObjectiveResult("v", "symbolic", "m/s", expr="L*thetad", symbols=("L", "thetad"),
+                            symbol_units=("m", "rad/s"))
+    assert verdict("L thetad", other) == "correct"
+    assert [assess(t, SYM) for t in texts * 2] == first * 2
+    assert [(a.verdict, a.diagnosis) for a in first] == [
+        ("correct", None), ("incorrect", None),
+        ("incorrect", "sign error")]
+
+
 def test_reference_undefined_everywhere_is_not_evaluated():
     odd = ObjectiveResult("x", "symbolic", "m", expr="sqrt(-L)", symbols=("L",),
                           symbol_units=("m",))

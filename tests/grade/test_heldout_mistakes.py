@@ -94,3 +94,20 @@ def test_the_measurement_prints_figures_per_problem_per_topic_and_overall(tmp_pa
     assert sum(counts["*"][k] for k in (*MEASURE.CLASSES, "inside")) == \
         sum(len(TABLES[p]) for p in chosen)
     assert counts["puck_string_through_hole"]["inside"] == 2
+
+
+def test_an_applied_force_left_out_names_a_row_that_leaves_out_a_load_other_than_the_weight():
+    # the vocabulary writes "resistance left out" as gravity_dropped: the force left out names it
+    row = {"mistake": "resistance left out", "kind": "gravity_dropped"}
+    assert MEASURE.load_left_out("force_omitted", row)
+    assert not MEASURE.load_left_out("force_omitted", {**row, "mistake": "gravity left out"})
+    assert not MEASURE.load_left_out("force_omitted", {**row, "kind": "sign"})
+    assert not MEASURE.load_left_out("weight_omitted", row)
+
+
+@pytest.mark.slow  # solves the car's mistaken models
+def test_the_car_whose_resistance_is_left_out_is_named():
+    row = next(r for r in TABLES["car_climbs_grade_power"] if r["mistake"] == "resistance left out")
+    result = MEASURE.solution("car_climbs_grade_power").result(row["objective"])
+    kind, judged = MEASURE.classify(row, result)
+    assert (kind, judged.diagnosis) == ("named", "an applied force left out")

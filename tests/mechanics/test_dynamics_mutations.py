@@ -12,11 +12,14 @@ from mechgrade.check import separation_findings
 from mechgrade.grade.compare import assess
 from mechgrade.grade.diagnose import GENERATED_CODES, LABELS
 from mechgrade.mechanics.dynamics import kinetics_derivation
-from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations
+from mechgrade.mechanics.build import build
+from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations, moment_arm_omitted
 from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
+from mechgrade.spec.language import FUNCTIONS
 from mechgrade.spec.model import Tolerance
+from mechgrade.expressions.syntax import parse
 from library import library_problem as _problem
 
 DYNAMICS = sorted(p.stem for p in shipped_dir("problems").glob("*.yaml")
@@ -498,7 +501,7 @@ def test_a_push_on_a_lever_taken_at_the_pad_or_exchanged_with_it():
     # the push P at C and the pad's N_B at B on the lever: P taken at B (N = P), or the two
     # exchanged (N = P b/(b + c)); the pin A, with two directions, is never taken
     moved = [m for m in dynamics_mutations(_problem("flywheel_lever_brake"))
-             if m.code == "load_at_other_point"]
+             if m.code == "load_at_other_point"][:2]
     assert [m.problem.dynamics.forces[0].at for m in moved] == ["B", "B"]
     pad = [[a.at for a in r.acts if a.on == "lever"] for m in moved
            for r in m.problem.dynamics.reactions if r.name == "N_B"]
@@ -510,7 +513,7 @@ def test_a_push_on_a_lever_taken_at_the_pad_or_exchanged_with_it():
 def test_a_push_on_a_lever_taken_at_the_pad_gives_the_normal_force_p():
     values = sorted(m.value for m in _generated("flywheel_lever_brake", "normal_force",
                                                 "load_at_other_point"))
-    assert values == pytest.approx([40.0, 100.0])
+    assert values == pytest.approx([40.0, 100.0, 150.0])
 
 
 def test_an_oblique_impact_of_two_pucks_taken_head_on():
@@ -530,3 +533,152 @@ def test_an_oblique_impact_taken_head_on_gives_the_whole_speeds_exchange():
     assert head_on.value == pytest.approx((-4.8, 0.0, 0.0), abs=1e-9)
     # a rod struck at a point turns: no particle impact to take head-on
     assert "impact_taken_head_on" not in _codes("rod_strikes_ledge")
+
+
+def test_a_particles_angular_momentum_read_without_its_arm():
+    # H_O = m r^2 theta' of the puck on its cord answered m r theta' = m v across OP
+    problem = _problem("puck_string_through_hole")
+    (arm,) = moment_arm_omitted(problem, build(problem))
+    assert [(oid, find.text) for oid, find in arm.readings] == [
+        ("angular_momentum", "dot(cross(unit(pos(P, O)), momentum(puck, N)), N.z)")]
+    assert (arm.code, arm.term.text, arm.term_unit) == ("moment_arm_omitted", "mag(pos(P, O))", "m")
+
+
+def test_no_arm_to_drop_from_a_rigid_bodys_spin_or_a_particle_at_the_point():
+    disk = _problem("disk_on_bent_shaft")  # I omega of a disk: no single arm
+    assert list(moment_arm_omitted(disk, build(disk))) == []
+    puck = _problem("puck_string_through_hole")
+    objectives = tuple(replace(o, find=replace(o.find, text="dot(angmom(puck, P, N), N.z)",
+                                                node=parse("dot(angmom(puck, P, N), N.z)",
+                                                           functions=FUNCTIONS)))
+                       if o.id == "angular_momentum" else o for o in puck.objectives)
+    about_itself = replace(puck, objectives=objectives)  # about the puck's own place: no arm
+    assert list(moment_arm_omitted(about_itself, build(about_itself))) == []
+
+
+def test_a_pin_left_out_reads_its_force_zero_and_the_mass_centre_falling_freely():
+    # the disk released on its rim pin: R_O = 0 and a_G = g (the free fall), read in the right
+    # model; a body a spring also loads (the bar) does not fall freely without its pin
+    (free,) = [m for m in dynamics_mutations(_problem("disk_pinned_at_rim_released"))
+               if m.code == "reaction_omitted"]
+    assert dict((oid, e.text) for oid, e in free.readings) == {
+        "pin_force": "0*(-g*N.y)", "centre_acceleration": "-g*N.y"}
+    assert "R_O = 0" in free.sentence
+    assert "reaction_omitted" not in _codes("bar_swings_down_spring_energy")
+
+
+@pytest.mark.slow
+def test_a_disk_falling_freely_is_named_with_the_particle_that_gives_the_same_value():
+    judged = assess("(0, -9.81, 0) m/s^2", _solution("disk_pinned_at_rim_released")
+                    .result("centre_acceleration"))
+    assert judged.diagnosis == (f"{LABELS['reaction_omitted']} or "
+                                f"{LABELS['other_shape_inertia']}")
+
+
+def test_a_push_given_beyond_the_pad_taken_that_far_from_the_pin():
+    # C is given c beyond the pad B: the push taken c from the pin A (N b = P c, 150 N)
+    (arm,) = [m for m in dynamics_mutations(_problem("flywheel_lever_brake"))
+              if m.code == "load_at_other_point" and m.step == "Momentum balances"]
+    moved = arm.problem.dynamics.forces[0].at
+    point = next(p for p in arm.problem.points if p.name == moved)
+    assert (moved, point.origin, point.position.text) == ("C_from_A", "A", "c*N.x")
+    assert arm.sentence.startswith("Your value measures the arm of push about the pin A from B")
+    # a push given from the pin itself has no pad to measure from (the pendulum's has no pad)
+    assert not [m for m in dynamics_mutations(_problem("disk_pinned_at_rim_released"))
+                if m.code == "load_at_other_point" and m.step == "Momentum balances"]
+
+
+@pytest.mark.slow
+def test_a_push_given_beyond_the_pad_taken_that_far_from_the_pin_gives_p_c_over_b():
+    # N b = P c: 150 N, which R and c exchanged give too: both are said
+    judged = assess("150 N", _solution("flywheel_lever_brake").result("normal_force"))
+    assert judged.diagnosis == f"{LABELS['load_at_other_point']} or {LABELS['given_swap']}"
+
+
+def test_an_impact_on_a_pinned_rod_with_linear_momentum_conserved_through_the_pin():
+    # the ball strikes the rod hanging on its pin O: R_O left out with the rod's angular
+    # impulse-momentum balance (m v0 = m v + M (L/2) w), and the pin's impulse read as zero
+    model, zero = [m for m in dynamics_mutations(_problem("ball_strikes_hanging_rod"))
+                   if m.code == "pin_impulse_omitted"]
+    d = model.problem.dynamics
+    assert [r.name for r in d.reactions] == ["J"] and d.unbalanced == ("rod",)
+    assert [o.id for o in model.problem.objectives] == ["omega_after", "ball_velocity_after"]
+    assert dict((oid, e.text) for oid, e in zero.readings) == {"pin_impulse": "0*N.x"}
+    # no pin in the impact (a rod on ice struck by a blow): nothing to conserve through it
+    assert "pin_impulse_omitted" not in _codes("rod_struck_on_ice")
+
+
+@pytest.mark.slow
+def test_linear_momentum_conserved_through_the_pin_gives_the_rods_spin():
+    # m v0 = m v + M (L/2) w with v - 0.9 w = -e v0: w = 7.8/(2.4 + 0.45) = 2.7368 rad/s
+    (through,) = _generated("ball_strikes_hanging_rod", "omega_after", "pin_impulse_omitted")
+    m, M, L, d, v0, e = 0.5, 4.0, 1.2, 0.9, 8.0, 0.6
+    assert through.value == pytest.approx((m * v0 + m * e * v0) / (m * d + M * L / 2))
+    assert "as if the pin O gave no impulse" in through.message
+
+
+def test_a_rolling_hoops_kinetic_energy_taken_as_its_parts_spins_alone():
+    # the hoop (M, a ring of R) with a small mass m at its rim rolls: its parts massless, the
+    # ring keeping its spin M R^2 about z, the small mass nothing; the weights kept as forces
+    (spin,) = [m for m in dynamics_mutations(_problem("unbalanced_hoop_rolls"))
+               if m.code == "translational_ke_omitted"]
+    d = spin.problem.dynamics
+    ring, small = d.bodies[0].parts
+    assert (ring.mass.text, ring.shape.entries[0][0], ring.shape.entries[0][1].text) == (
+        "0", "zz", "(1)*(M)*(R)^2")
+    assert small.mass.text == "0" and small.shape is None
+    assert d.gravity is None and [(f.at, f.force.text) for f in d.forces] == [
+        ("G", "(M)*(-g*N.y)"), ("Q", "(m)*(-g*N.y)")]
+    # a bar swinging on a fixed pin: its ½ I_G ω² is the parallel-axis mistake, not this one
+    assert "translational_ke_omitted" not in _codes("bar_swings_down_spring_energy")
+
+
+@pytest.mark.slow
+def test_a_rolling_hoops_spin_alone_gives_the_students_speed():
+    # m g (2 R) = ½ M R² ω²: ω = sqrt(2 · 9.81 · 1.0 / (4 · 0.25)) = 4.429 rad/s
+    (spin,) = _generated("unbalanced_hoop_rolls", "angular_velocity", "translational_ke_omitted")
+    assert spin.value == pytest.approx((2 * 1.0 * 9.81 * 1.0 / (4.0 * 0.25)) ** 0.5)
+
+
+def test_a_slipping_hoop_taken_to_roll_and_its_angular_acceleration_read_as_a_over_r():
+    # the hoop slides down the incline (kinetic friction F_C): taken to roll, F_C becomes an
+    # unknown along the incline with the rolling condition, phi' left to it; and -phi'' is
+    # read from the centre's acceleration by the rolling relation (alpha = a/r)
+    reading, model = [m for m in dynamics_mutations(_problem("hoop_slips_down_incline"))
+                      if m.code == "rolling_assumed"]
+    assert dict((oid, e.text) for oid, e in reading.readings) == {
+        "angular_acceleration": "-(-dot(acc(G, N), cross(N.z, pos(C, G)))/dot(pos(C, G), pos(C, G)))"}
+    p = model.problem
+    assert p.constraints[-1].lhs.text == "vel(coincident(C, W), N)"
+    assert "phi'" not in {g.key.text for g in p.givens} and not p.dynamics.friction
+    assert [r.name for r in p.dynamics.reactions] == ["N_C", "F_C"]
+    # a cylinder that rolls already (static friction) is not taken to roll
+    assert "rolling_assumed" not in _codes("cylinder_pulled_rolls")
+
+
+@pytest.mark.slow
+def test_a_slipping_hoop_taken_to_roll_accelerates_at_half_g_sin_beta():
+    import math
+    (rolls,) = _generated("hoop_slips_down_incline", "acceleration", "rolling_assumed")
+    assert rolls.value == pytest.approx(9.81 * math.sin(math.radians(40)) / 2)
+
+
+def test_a_vibration_started_from_zero_instead_of_its_initial_displacement():
+    # the block between two springs starts at x0 = 20 mm with v0: started from x = 0 instead
+    (zero,) = [m for m in dynamics_mutations(_problem("block_between_two_springs"))
+               if m.code == "initial_displacement_omitted"]
+    starts = {s.key.text: s.value.text for s in zero.problem.dynamics.analysis.start}
+    assert starts == {"x": "0", "x'": "v0"} and zero.term.text == "x0"
+    # no spring (a satellite's orbit from r = R + h): no vibration to start elsewhere
+    assert "initial_displacement_omitted" not in _codes("satellite_apogee_speed")
+
+
+@pytest.mark.slow
+def test_a_vibration_started_from_zero_reaches_v0_over_omega_n_a_quarter_period_on():
+    import math
+    wn = math.sqrt(8000 / 12)
+    (amplitude,) = _generated("block_between_two_springs", "amplitude",
+                              "initial_displacement_omitted")
+    (stop,) = _generated("block_between_two_springs", "first_stop", "initial_displacement_omitted")
+    assert (amplitude.value, stop.value) == pytest.approx((0.5 / wn * 1000, math.pi / 2 / wn),
+                                                          rel=1e-5)

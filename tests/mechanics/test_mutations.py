@@ -2,10 +2,16 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 from mechgrade.grade.compare import assess
-from mechgrade.mechanics.mutations import mutations
+from mechgrade.expressions.syntax import parse
+from mechgrade.mechanics.build import build
+from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius,
+                                           _rate_relation_inverted, _Reading,
+                                           _start_term_left_out, mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -171,3 +177,107 @@ def test_an_angle_rate_fixed_by_the_constraints_read_as_the_drivers_given_rate()
     # phi'' = 0 is given: no driver's rate to take for theta''; s' is no angle's rate
     assert not [m for o in ("arm_angular_acceleration", "sliding_rate")
                 for m in mutations(problem, o) if m.code == "driver_rate"]
+
+
+
+def _family(family, problem, objective):
+    """One family's readings of one objective (that family alone: fast)."""
+    model, obj = build(problem), problem.objective(objective)
+    reading = _Reading(model, obj, model.language.value(obj.find.node))
+    family(reading)
+    return reading.out
+
+
+def _gyration(problem, objective):
+    return _family(_gyration_for_radius, problem, objective)
+
+
+def test_a_drums_rate_read_with_its_radius_of_gyration_for_its_radius():
+    # y = r phi links the block to the drum; k is only in the drum's inertia: w = v/k
+    found = _gyration(_problem("drum_block_energy_us"), "drum_angular_velocity")
+    assert [(m.code, str(m.value)) for m in found] == [("gyration_for_radius", "r*Abs(phid)/k")]
+    assert "radius of gyration k of drum for the length r" in found[0].sentence
+
+
+def test_no_radius_of_gyration_mistake_for_a_speed_or_a_rate_no_length_links():
+    problem = _problem("drum_block_energy_us")
+    assert _gyration(problem, "block_speed") == []
+    # the cord's y = r phi taken away: no length links the drum's rate to the block
+    assert _gyration(replace(problem, constraints=()), "drum_angular_velocity") == []
+
+
+def test_a_sliders_speed_read_as_the_drivers_given_speed_in_its_own_sense():
+    # a' = -2 m/s given at A; B's s' along its slot answered 2 m/s: the rod moved as a whole
+    found = _family(_driver_speed, _problem("rod_in_two_slots_ic"), "velocity_B")
+    assert [(m.code, str(m.value)) for m in found] == [("driver_speed", "2.0*sign(sd)")]
+    assert found[0].sentence.startswith("Your value is s' = 2 m/s in size, the given rate of a")
+
+
+def test_no_drivers_speed_for_an_angles_rate_the_drivers_own_or_its_own_point_located_again():
+    problem = _problem("rod_in_two_slots_ic")
+    assert _family(_driver_speed, problem, "angular_velocity") == []
+    # asked for a' itself: the only given length rate is its own
+    own = replace(problem.objective("velocity_B"), id="velocity_A",
+                  find=replace(problem.objective("velocity_B").find, text="a'",
+                               node=parse("a'")))
+    assert _family(_driver_speed, replace(problem, objectives=(own,)), "velocity_A") == []
+    # the airplane located two ways, x N.x + h N.y = r E.x: r' = x' is the whole speed for a
+    # component (velocity_component_wrong), not a mechanism moving with its driver
+    assert _family(_driver_speed, _problem("radar_tracks_airplane_polar"), "r_dot") == []
+
+
+def test_an_angular_acceleration_from_a_cords_read_as_a_r_for_a_over_r():
+    found = _family(_rate_relation_inverted, _problem("drum_hoist_falling_block"),
+                    "angular_acceleration")
+    assert [(m.code, str(m.value)) for m in found] == [("rate_relation_inverted",
+                                                        "1.0*phidd*r**2")]
+    assert found[0].sentence.startswith("Your value multiplies by r = 0.25 m where")
+
+
+def test_a_relation_inverted_multiplies_the_length_in_its_given_unit_and_only_for_an_angle():
+    problem = _problem("drum_block_energy_us")  # r = 1 ft: the student's v r is v in ft/s
+    (inverted,) = _family(_rate_relation_inverted, problem, "drum_angular_velocity")
+    values = {s.name: s for s in inverted.value.free_symbols}
+    assert float(inverted.value.subs({values["r"]: 0.3048, values["phid"]: 1.0})) \
+        == pytest.approx(1.0)
+    assert _family(_rate_relation_inverted, problem, "block_speed") == []
+
+
+def test_a_distance_answered_without_a_term_of_its_start():
+    # r starts at R + h: the apogee's altitude r - R (or r - h) for its distance from O
+    found = _family(_start_term_left_out, _problem("satellite_apogee_speed"), "apogee_distance")
+    assert [(m.code, str(m.value)) for m in found] == [("position_term", "-R + r"),
+                                                       ("position_term", "-h + r")]
+    assert found[0].sentence.startswith("Your value is r without R, a term of its start r = R + h")
+
+
+def _asking(problem, find):
+    """``problem`` with its first objective asking for ``find`` instead."""
+    first = problem.objectives[0]
+    asked = replace(first, find=replace(first.find, text=find, node=parse(find)))
+    return replace(problem, objectives=(asked,) + problem.objectives[1:])
+
+
+def test_no_start_term_to_leave_out_of_a_speed_an_angle_or_a_start_of_one_term():
+    satellite = _problem("satellite_apogee_speed")
+    assert _family(_start_term_left_out, satellite, "apogee_speed") == []
+    assert _family(_start_term_left_out, _asking(satellite, "theta"), "apogee_distance") == []
+    puck = _problem("puck_string_through_hole")  # r starts at r0 alone
+    assert _family(_start_term_left_out, _asking(puck, "r"), "angular_velocity") == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("problem, objective, answer, label", [
+    ("drum_block_energy_us", "drum_angular_velocity", "15.24 rad/s",
+     "a radius of gyration read for a radius"),
+    ("drum_hoist_falling_block", "angular_acceleration", "-1.251 rad/s^2",
+     "v = r ω used as ω = v r"),
+    ("rod_in_two_slots_ic", "velocity_B", "2 m/s", "the driver's speed for a connected point's"),
+    ("satellite_apogee_speed", "apogee_distance", "2103 km", "a term of the position left out"),
+    ("puck_string_through_hole", "angular_momentum", "1.6 kg*m^2/s",
+     "the momentum m v for its moment r × m v"),
+])
+def test_a_students_kinematic_factor_slip_is_named_when_graded(problem, objective, answer,
+                                                               label):
+    judged = assess(answer, solve(_problem(problem)).result(objective))
+    assert (judged.verdict, judged.diagnosis) == ("incorrect", label)

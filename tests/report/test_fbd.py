@@ -127,7 +127,7 @@ def test_the_diagram_of_the_pendulum_draws_the_rod_and_a_labelled_arrow_per_load
     assert fbd_description(rod) == (
         "Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; the "
         "pin reaction R O at O, unknown (drawn dashed, marked ?), as its components along "
-        "N's x axis and N's y axis.")
+        "n-hat x and n-hat y.")
 
 
 def _load(name, kind, vector, unknown=False, point="P"):

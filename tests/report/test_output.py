@@ -272,10 +272,10 @@ def test_a_page_fault_is_recorded_in_student_order_with_any_jobs(tmp_path, small
                                                                    monkeypatch):
     real = output._context
 
-    def fails_for_some(report, student, prompts, markdown=False):
+    def fails_for_some(report, student, prompts, markdown=False, names=None):
         if student.id in ("s2", "s7"):
             raise RuntimeError(f"no context for {student.id}")
-        return real(report, student, prompts, markdown)
+        return real(report, student, prompts, markdown, names)
 
     monkeypatch.setattr(output, "_context", fails_for_some)
     reports = [write_outputs(_class_of(9), tmp_path / str(jobs), jobs=jobs).report
@@ -315,3 +315,20 @@ def test_without_shared_memory_every_page_is_done_here(tmp_path, small_pieces, m
     monkeypatch.setattr(multiprocessing.context.BaseContext, "Value", no_shared_memory)
     write_outputs(_class_of(5), tmp_path / "here", jobs=3)
     assert _files(tmp_path / "alone") == _files(tmp_path / "here")
+
+
+def test_a_page_spells_a_problems_coordinates_as_its_worked_solution_does():
+    from mechgrade.grade.worked import FeedbackSolutions
+    from mechgrade.solve.worked import WorkedSolution
+
+    report = GradeReport(AssignmentInfo("hw", "Hw"), (ObjectiveInfo("p", "v", "Speed of J.", 1.0),),
+                         (StudentResult("ana", "Ana", "graded", 0.0, 1.0, (
+                             AnswerResult("p", "v", "2", "incorrect", 0.0, 1.0, None, "",
+                                          "2", "k1*xjd m/s"),)),))
+    ana = report.students[0]
+    worked = FeedbackSolutions((WorkedSolution("p", "P", (), "", names=(("xj", "x_J"),)),))
+    for markdown, shown in ((False, "k<sub>1</sub>·ẋ<sub>J</sub> m/s"), (True, "k₁·ẋ J m/s")):
+        assert feedback_context(report, ana, markdown=markdown, worked=worked)[
+            "rows"][0]["expected"] == shown
+    # another problem's page knows nothing of it
+    assert feedback_context(report, ana)["rows"][0]["expected"] == "k<sub>1</sub>·xjd m/s"

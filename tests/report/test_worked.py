@@ -47,7 +47,7 @@ def test_the_markdown_solution_lists_every_step_and_the_answers():
                     "### The acceleration of P in N (composed in frame B, from O)"):
         assert heading in text
     # the model's names as a textbook writes them, no code (issue 20)
-    assert "- `2 ω x B v,P = - 2·q\u0307·\u1e8f·B.x`" in text
+    assert "- `2 ω x B v,P = - 2·q\u0307·\u1e8f·b-hat x`" in text
     assert "- `= (-66, -40, 0) ft/s² in frame N`" in text
     assert "- `q\u0308 = 3 rad/s²`" in text  # the given q'' as a textbook writes it
 

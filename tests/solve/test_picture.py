@@ -9,7 +9,7 @@ from mechgrade.cli import main
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.picture import (Scene, SceneBody, ScenePoint, SceneSupport, SupportKind,
-                                     described, picture_svg, scene)
+                                     described, picture_svg, scene, unit_vector_svg)
 from mechgrade.solve.result import Solution, StateValue
 from mechgrade.spec import load_problem
 from mechgrade.spec.dynamics import OutlineKind
@@ -29,7 +29,7 @@ def test_the_picture_labels_points_and_frames_and_is_the_same_each_time():
     problem = load_problem(TUBE)
     svg = picture_svg(scene(problem, solve(problem)))
     assert svg == picture_svg(scene(problem, solve(problem)))
-    assert "velocity (longest 19 ft/s)" in svg and "B.x" in svg  # the problem's units
+    assert "velocity (longest 19 ft/s)" in svg and unit_vector_svg("B.x") in svg  # the problem's units
 
 
 @pytest.mark.slow
@@ -179,7 +179,7 @@ def test_a_points_label_keeps_off_the_block_drawn_on_it():
     svg = picture_svg(_given_scene("atwood_machine"))
     blocks = [tuple(int(v) for v in m) for m in re.findall(
         r'data-body="block\d" x="(-?\d+)" y="(-?\d+)" width="(\d+)" height="(\d+)"', svg)]
-    (x, y), = [tuple(int(v) for v in m) for m in re.findall(r'<text x="(\d+)" y="(\d+)"[^>]*>O, P1<', svg)]
+    (x, y), = [tuple(int(v) for v in m) for m in re.findall(r'<text x="(\d+)" y="(\d+)"[^>]*>O, P<tspan baseline-shift="sub" font-size="8">1</tspan><', svg)]
     width = 8.6 * len("O, P1")  # as the picture reckons a label's width
     for bx, by, bw, bh in blocks:
         assert x + width <= bx or x >= bx + bw or y <= by or y - 12 >= by + bh, (x, y, bx, by)

@@ -93,3 +93,38 @@ def test_other_numbers_change_the_numbers_not_the_symbolic_steps():
     # the numbers at the instant, in the unit the objective asks (|v| = L theta' = 6 ft/s)
     velocity = next(s for s in other.steps if s.anchor == "vel-A")
     assert velocity.lines[-1] == "At the instant: N_v_A = (-3, 5.196, 0) ft/s along N"
+
+
+@pytest.mark.slow
+def test_a_junction_is_said_in_words_and_its_coordinate_as_a_textbook_writes_it():
+    from mechgrade.report.worked import steps_html
+
+    problem = load_problem(PROBLEMS / "block_on_springs_in_series.yaml")
+    worked = worked_solution(problem, solve(problem))
+    constraints = next(s for s in worked.steps if s.anchor == "constraints")
+    assert constraints.lines[0] == ("The joint J is massless, so the pulls of the springs s1 "
+                                    "and s2 on it are in balance: s1 + s2 = 0.")
+    page = steps_html(worked)
+    for code in ("mag(", "pos(", "unit(", "xjd", "xj'", "e+0", "e-1"):
+        assert code not in page
+    assert "ẋ<sub>J</sub>" in page and "<msub><mi>𝑥̇</mi><mi>J</mi></msub>" in page
+
+
+@pytest.mark.slow
+def test_a_motion_that_slips_then_rolls_is_written_up_phase_by_phase():
+    from mechgrade.solve.worked import slip_end_time
+
+    problem = load_problem(PROBLEMS / "bowling_ball_skids_then_rolls.yaml")
+    assert slip_end_time(problem) == pytest.approx(1.419869, rel=1e-6)  # the author's t_rolls
+    worked = worked_solution(problem, solve(problem))
+    titles = [s.title for s in worked.steps]
+    assert "Free-body loads, while F_C slips, until t = 1.42 s" in titles
+    rolling = "rolling from t = 1.42 s (F_C grips: static friction)"
+    assert f"Momentum balances, {rolling}" in titles
+    loads = next(s for s in worked.steps if s.anchor == "rolling-kinetics-free-body-loads")
+    assert [r.caption for r in loads.rows][-1] == "ball, static friction F_C at C (unknown)"
+    # the diagram is drawn where the instant's phase is written up, with its static friction
+    assert worked.diagram_step == "rolling-kinetics-free-body-loads"
+    assert "read while rolling (the slip ends at t = 1.42 s)" in next(
+        s for s in worked.steps if s.anchor == "answer-friction_at_2s").lines
+    assert not any("coincident(" in line for s in worked.steps for line in s.lines)

@@ -77,6 +77,7 @@ CASES = [
     ("equation dimensions", BASE.replace("givens:", "constraints:\n  - {name: c, position: L = theta}\ngivens:"), "constraints[0].position: dimension mismatch in both sides of the equation: expected a pure number (or an angle), found a length ([length])"),
     # givens
     ("given vector", mutated("  L: 2 m", "  L: 2 m\n  A.x: 1"), "givens.A.x: expected a scalar quantity as a given's name, found a vector ('A.x')"),
+    ("a value with its unit", mutated("position: L*A.x", "position: 2 m*A.x"), "p.yaml:8:26: points.P.position: expected names in an expression, found '2 m', a value with its unit: declare a parameter (say T: m), give its value under givens (T: 2 m) and write T here"),
     ("given unknown", mutated("  L: 2 m", "  L: 2 m\n  M: 1 kg"), "givens.M: unknown name 'M' (expected a coordinate, parameter, t or pi; known: L, theta)"),
     ("given third derivative", mutated("  L: 2 m", "  L: 2 m\n  theta''': 1 rad/s^3"), "p.yaml:16:13: givens.theta''': expected a prime (') only right after a name, as in theta'"),
     ("given twice", mutated("  L: 2 m", "  L: 2 m\n  L : 3 m"), "expected each key once"),

@@ -1,8 +1,9 @@
 """A model's names and expressions as a textbook writes them, for anything a student reads:
 θ̇ for ``thetad``, μ with the subscript k for ``mu_k``, F with the subscript P for ``F_P``,
 ``kg·m²`` for ``kg*m^2``, ``|ẋ|`` for ``Abs(xd)``. Plain text (a spoken label, an
-``aria-label``) sets a subscript in Unicode's subscript characters where it has them; HTML
-sets it with ``<sub>``. Pure text: no sympy, so every layer may use it."""
+``aria-label``) sets a subscript in Unicode's subscript characters where it has them and a
+frame's unit vector ``N.y`` in words, "n-hat y"; HTML sets a subscript with ``<sub>`` and
+the unit vector as 𝐧̂ with the subscript y. Pure text: no sympy, so every layer may use it."""
 
 from __future__ import annotations
 
@@ -49,6 +50,39 @@ def _symbol(name: str, rates: bool) -> tuple[str, str] | None:
     return letter, ",".join(s for s in (m["digits"], sub) if s)
 
 
+def coordinate_names(coordinates, points=()) -> tuple[tuple[str, str], ...]:
+    """How a textbook spells each of a problem's ``coordinates`` that the answer syntax's names
+    do not (a letter and a word: ``xj``, ``yA``, ``st``): the letter with the rest as its
+    subscript, a point's own name when the rest names one of ``points`` (``xj`` is x_J, the
+    joint J's position). Pass the result to :func:`textbook` and :func:`textbook_html`.
+
+    >>> coordinate_names(["x", "theta", "xj", "yA", "st", "x1"], ["O", "J"])
+    (('xj', 'x_J'), ('yA', 'y_A'), ('st', 's_t'))
+    """
+    named = {p.upper(): p for p in points}
+    out = []
+    for name in coordinates:
+        m = _SYMBOL.fullmatch(name)
+        if (m is not None and not m["rate"]) or "_" in name:
+            continue  # the answer syntax's own spelling says it already
+        for letter in sorted(GREEK, key=len, reverse=True) + list(name[:1]):
+            rest = name[len(letter):]
+            if name.startswith(letter) and rest.isalnum():
+                out.append((name, f"{letter}_{named.get(rest.upper(), rest)}"))
+                break
+    return tuple(out)
+
+
+def _spelled(name: str, names: tuple[tuple[str, str], ...]) -> str:
+    """``name`` (a coordinate or its rate, ``xjd``) in the spelling :func:`coordinate_names`
+    gives (``xd_J``), as :func:`_symbol` reads it."""
+    for coordinate, spelled in names:
+        if name.startswith(coordinate) and name[len(coordinate):] in ("", "d", "dd"):
+            letter, _, sub = spelled.partition("_")
+            return f"{letter}{name[len(coordinate):]}_{sub}"
+    return name
+
+
 def _plain_sub(letter: str, sub: str) -> str:
     if sub and all(c in _SUBSCRIPTS for c in sub):
         return letter + "".join(_SUBSCRIPTS[c] for c in sub)
@@ -62,15 +96,15 @@ def _plain_sub(letter: str, sub: str) -> str:
 _PRIMES = re.compile(r"'{1,2}(?![\w'])")
 
 
-def _rewritten(text: str, rates: bool, show) -> str:
+def _rewritten(text: str, rates: bool, show, names: tuple[tuple[str, str], ...] = ()) -> str:
     out, last = [], 0
     for m in _NAME.finditer(text):
         if m.start() < last:
             continue  # inside a name's primes already written
-        name = m.group(1)
+        name = _spelled(m.group(1), names)
         primes = _PRIMES.match(text, m.end())
         rate = None if primes is None or text[m.start() - 1:m.start()] == "'" \
-            else _symbol(name + "d" * len(primes.group(0)), True)
+            else _symbol(_spelled(m.group(1) + "d" * len(primes.group(0)), names), True)
         if rate is not None and primes is not None:  # x' is ẋ, in prose too
             out += [text[last:m.start()], show(*rate)]
             last = primes.end()
@@ -92,32 +126,39 @@ def _rewritten(text: str, rates: bool, show) -> str:
 
 
 @lru_cache(maxsize=1 << 14)
-def textbook(text: str, rates: bool = True) -> str:
+def textbook(text: str, rates: bool = True, names: tuple[tuple[str, str], ...] = ()) -> str:
     """``text`` (an expression, a unit, a sentence naming symbols) as a textbook writes it,
-    in plain text; ``rates=False`` for prose, where a word ending in d is no rate.
+    in plain text; ``rates=False`` for prose, where a word ending in d is no rate; ``names``
+    the problem's coordinates the answer syntax does not spell (:func:`coordinate_names`).
 
     >>> textbook("-g*mu_k*xd*cos(beta)/Abs(xd) + g*sin(beta)")
     '-g·μₖ·ẋ·cos(β)/|ẋ| + g·sin(β)'
     >>> textbook("L*sqrt(thetadd**2 + thetad**4) kg*m^2 R_O,x N.y")
-    'L·sqrt(θ̈² + θ̇⁴) kg·m² R O,x N.y'
+    'L·sqrt(θ̈² + θ̇⁴) kg·m² R O,x n-hat y'
     >>> textbook("2.453 m/s^2 (0.2501 g0)")
     '2.453 m/s² (0.2501 g0)'
     >>> textbook("check x' and theta'' (the key 'x', block's)", rates=False)
     "check ẋ and θ̈ (the key 'x', block's)"
+    >>> textbook("k1*xjd + xj'' - xj", names=(("xj", "x_J"),))
+    'k₁·ẋ J + ẍ J - x J'
     """
     def show(name, sub):
         return name if sub is None else _plain_sub(name, sub)
-    return unicodedata.normalize("NFC", _operators(_rewritten(text, rates, show)))
+    # a frame's unit vector in words, as it is read out (a plain text has no hat to set)
+    return unicodedata.normalize("NFC", _UNIT_VECTOR.sub(
+        lambda m: f"{m[1].lower()}-hat {m[2]}", _operators(_rewritten(text, rates, show, names))))
 
 
 @lru_cache(maxsize=1 << 14)
-def textbook_html(text: str, rates: bool = True) -> str:
+def textbook_html(text: str, rates: bool = True, names: tuple[tuple[str, str], ...] = ()) -> str:
     """``text`` as :func:`textbook` writes it, as escaped HTML with subscripts as ``<sub>``.
 
     >>> textbook_html("the friction F_P (mu N = 8.5 N) <b>", rates=False)
     'the friction F<sub>P</sub> (μ N = 8.5 N) &lt;b&gt;'
     >>> textbook_html("N_v_P1 = yd*N.y")
     '<sup>N</sup>v<sub>P1</sub> = ẏ·𝐧̂<sub>y</sub>'
+    >>> textbook_html("xjd", names=(("xj", "x_J"),))
+    'ẋ<sub>J</sub>'
     """
     def show(name, sub):
         kinematic = _KINEMATIC.fullmatch(f"{name},{sub}")
@@ -126,7 +167,7 @@ def textbook_html(text: str, rates: bool = True) -> str:
             return f"<sup>{frame}</sup>{GREEK.get(quantity, quantity)}<sub>{escape(point)}</sub>"
         return f"{name}<sub>{escape(sub)}</sub>" if sub else name
     marked = _rewritten(_operators(text), rates, lambda n, s: f"\x00{n}\x01{s or ''}\x02"
-                        if s is not None else n)
+                        if s is not None else n, names)
     shown = re.sub("\x00(.*?)\x01(.*?)\x02", lambda m: show(m[1], m[2]), escape(marked))
     return unicodedata.normalize("NFC", _UNIT_VECTOR.sub(_unit_vector_html, shown))
 

@@ -16,7 +16,7 @@ from ..errors import ExpressionError
 from . import syntax
 from .excerpt import excerpt
 from .functions import numpy_functions
-from .syntax import Name, Node
+from .syntax import Bin, Call, Name, Node, Num, Unary
 
 def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
     """Values of a checked tree at sample points (NaN where undefined); never calls sympy.
@@ -44,21 +44,31 @@ def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
 
 
 def _eval(node: Node, env: dict[str, np.ndarray]):
-    def leaf(n: Node):
-        if isinstance(n, Name) and n.id == "pi":
+    """:func:`evaluate`'s walk: :func:`~mechgrade.expressions.syntax.fold`'s, with its leaves,
+    calls and numpy's division and powers (inf or nan where Python would raise or go complex)
+    written in, as judging an answer is mostly this walk."""
+    if isinstance(node, Bin):
+        a, b = _eval(node.left, env), _eval(node.right, env)
+        op = node.op
+        if op == "**":
+            return np.power(np.asarray(a, dtype=float), b)
+        if op == "/":
+            return np.divide(np.asarray(a, dtype=float), b)
+        return syntax.PYTHON_OPERATORS[op](a, b)
+    if isinstance(node, Num):
+        return float(node.text)
+    if isinstance(node, Name):
+        if node.id == "pi":
             return math.pi
-        if isinstance(n, Name) and n.id in env:
-            return env[n.id]
-        raise ExpressionError(f"expected an expression in the problem's symbols, found "
-                              f"{excerpt(syntax.to_text(n))}")
-
-    def function(func: str, args: tuple):
-        return numpy_functions()[func](*(np.asarray(_eval(a, env), dtype=float) for a in args))
-
-    # numpy division and powers: inf or nan where Python would raise or go complex
-    return syntax.fold(node, number=lambda n: float(n.text), resolve=leaf, call=function,
-                       power=lambda a, b: np.power(np.asarray(a, dtype=float), b),
-                       divide=lambda a, b: np.divide(np.asarray(a, dtype=float), b))
+        if node.id in env:
+            return env[node.id]
+    elif isinstance(node, Unary):
+        return -_eval(node.operand, env)
+    elif isinstance(node, Call):
+        return numpy_functions()[node.func](*(np.asarray(_eval(a, env), dtype=float)
+                                              for a in node.args))
+    raise ExpressionError(f"expected an expression in the problem's symbols, found "
+                          f"{excerpt(syntax.to_text(node))}")
 
 
 @lru_cache(maxsize=256)

@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import Sequence, TypeVar
 
 import numpy as np
@@ -621,33 +621,93 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
     read_back = answer.read_back()
     if not result.expr:
         return not_evaluated("the reference expression is not available", read_back)
-    sampled = _sampled(result, policy.symbolic_points, policy.seed)
+    sampled = _objective(result, policy)
     if sampled is None:
         reference_node = _reference_tree(result.expr, tuple(result.symbols))
         confirmed = _sympy_equivalent(answer.node, reference_node, result)
         if confirmed is True:
             return Assessment(Verdict.CORRECT, 1.0, None, "Correct.", read_back)
         return not_evaluated("the reference is undefined at the sample points", read_back)
-    env, reference = sampled
+    kept = sampled.judged.get(id(answer))
+    if kept is not None and kept[0] is answer:  # the same text again (read once: the same answer)
+        return kept[1]
+    judged = _judge_sampled(answer, result, policy, sampled)
+    if len(sampled.judged) >= MAX_JUDGED:
+        sampled.judged.clear()
+    sampled.judged[id(answer)] = (answer, judged)
+    return judged
+
+
+MAX_JUDGED = 4096
+"""Most answers kept judged per objective (the answer kept with its judgement, so its
+identity is not reused while kept)."""
+
+
+def _judge_sampled(answer: ExpressionAnswer, result: ObjectiveResult, policy: GradingPolicy,
+                   sampled: _Sampled) -> Assessment:
+    read_back = answer.read_back()
+    env, reference = sampled.env, sampled.reference
     student = evaluate(answer.node, env)
-    close = agree_at_points(policy.symbolic_rel, reference)
-    if close(student, reference):
+    if sampled.close(student, reference):
         return Assessment(Verdict.CORRECT, 1.0, None, "Correct.", read_back)
-    mistakes = [(m, _sampled_mistake(m.expr, result, policy)) for m in result.mistakes]
-    # Diagnoses are hints about an answer already judged wrong, so they allow typed constants
-    # such as 9.81 for g (1%), unlike the equivalence test itself.
-    loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
-    generated = [(g, _sampled_mistake(g.expr, result, policy))
-                 for g in result.generated_mistakes]
-    found = diagnose(student, reference, loose, kind=ObjectiveKind.SYMBOLIC, mistakes=mistakes,
-                     generated=generated, plausible=result.plausible)
+    found = diagnose(student, reference, sampled.loose, kind=ObjectiveKind.SYMBOLIC,
+                     mistakes=sampled.mistakes, generated=sampled.generated,
+                     plausible=result.plausible)
     if found is None:
         reference_node = _reference_tree(result.expr, tuple(result.symbols))
-        found = _number_for_g(answer.node, reference_node, result, env, student, loose)
+        found = _number_for_g(answer.node, reference_node, result, env, student, sampled.loose)
     if found is None:
         found = _dimension_diagnosis(answer.node, result)
     return _wrong(found, policy, _Units(result.unit),
                   "Not equivalent to the expected expression.", read_back)
+
+
+class _Sampled:
+    """What judging any answer to one symbolic objective under one policy needs: the sample
+    points, the reference's values there, the equivalence test (``close``), the looser test
+    of diagnoses (``loose``: they allow typed constants such as 9.81 for g, 1 %, unlike the
+    equivalence test itself) and, once an answer is wrong, each mistake's values there. Worked
+    out once per objective (:func:`_objective`): a class's answers go to few objectives.
+    ``judged`` keeps each answer's judgement: a class writes the same answer many times."""
+
+    def __init__(self, result: ObjectiveResult, policy: GradingPolicy,
+                 env: dict[str, np.ndarray], reference: np.ndarray):
+        self._result, self._policy = result, policy
+        self.env, self.reference = env, reference
+        self.close = agree_at_points(policy.symbolic_rel, reference)
+        self.loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
+        self.judged: dict[int, tuple[ExpressionAnswer, Assessment]] = {}
+
+    @cached_property
+    def mistakes(self) -> list[tuple[MistakeValue, np.ndarray | None]]:
+        return [(m, _sampled_mistake(m.expr, self._result, self._policy))
+                for m in self._result.mistakes]
+
+    @cached_property
+    def generated(self) -> list[tuple[GeneratedMistake, np.ndarray | None]]:
+        return [(g, _sampled_mistake(g.expr, self._result, self._policy))
+                for g in self._result.generated_mistakes]
+
+
+_OBJECTIVES: dict[tuple[int, int], tuple[ObjectiveResult, GradingPolicy, _Sampled | None]] = {}
+MAX_OBJECTIVES = 256
+
+
+def _objective(result: ObjectiveResult, policy: GradingPolicy) -> _Sampled | None:
+    """The :class:`_Sampled` of ``result`` under ``policy`` (``None`` when fewer than
+    :data:`MIN_VALID_POINTS` sample points are defined). Found by the objects' identity (the
+    same objects judge every answer of a class; hashing a result costs more than judging a
+    right answer), the objects kept with it so an identity is never reused while kept."""
+    key = (id(result), id(policy))
+    kept = _OBJECTIVES.get(key)
+    if kept is not None and kept[0] is result and kept[1] is policy:
+        return kept[2]
+    sampled = _sampled(result, policy.symbolic_points, policy.seed)
+    out = None if sampled is None else _Sampled(result, policy, *sampled)
+    if len(_OBJECTIVES) >= MAX_OBJECTIVES:
+        _OBJECTIVES.clear()
+    _OBJECTIVES[key] = (result, policy, out)
+    return out
 
 
 def _number_for_g(node: Node, reference_node: Node, result: ObjectiveResult, env,

@@ -330,6 +330,9 @@ LABELS = {
     "position_term": "a term of the position left out",
     "zero_for_constant_rate": "acceleration taken as zero at a constant rate",
     "driver_rate": "the driver's angular rate for a connected body's",
+    "gyration_for_radius": "a radius of gyration read for a radius",
+    "driver_speed": "the driver's speed for a connected point's",
+    "rate_relation_inverted": "v = r ω used as ω = v r",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",
@@ -373,12 +376,18 @@ LABELS = {
     "surface_taken_fixed": "the body slid on taken as fixed",
     "body_ke_omitted": "a body's kinetic energy left out",
     "impulse_moment_omitted": "the blow's moment left out",
+    "moment_arm_omitted": "the momentum m v for its moment r × m v",
     "spring_omitted": "a spring left out",
     "load_at_other_point": "a load taken at another point of its body",
     "contact_taken_smooth": "a rolling contact taken as smooth",
     "period_for_frequency": "period and frequency confused",
     "spring_energy_from_change": "spring energy from the change of stretch",
     "impact_taken_head_on": "an oblique impact taken as head-on",
+    "reaction_omitted": "a support's force left out (free fall)",
+    "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",
+    "translational_ke_omitted": "translational kinetic energy left out",
+    "rolling_assumed": "rolling without slip assumed where the body slips",
+    "initial_displacement_omitted": "the initial displacement left out",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

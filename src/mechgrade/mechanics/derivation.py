@@ -14,6 +14,7 @@ from sympy.physics.vector import Vector
 
 from ..errors import ExpressionError
 from ..expressions.build import to_sympy
+from ..expressions.notation import coordinate_names
 from ..expressions.syntax import Attr, Name, parse
 from ..spec.model import Problem
 from .build import build
@@ -124,11 +125,13 @@ mistake that leaves each out (``coriolis_half`` halves the Coriolis row)."""
 
 
 @lru_cache(maxsize=64)
-def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
+def kinematics_steps(problem: Problem, dof: int | None = None,
+                     said: tuple[tuple[str, str], ...] = ()) -> tuple[Step, ...]:
     """The kinematic steps of the worked solution, in the write-up order: frames with their
     angular velocities, where the points are, constraints and degrees of freedom, then the
     velocity and acceleration of every point in the inertial frame, each composed term by
-    term (transport theorem) in the moving frame its position is written in.
+    term (transport theorem) in the moving frame its position is written in. ``said``: a
+    constraint (by name) the write-up says in words.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -157,15 +160,19 @@ def kinematics_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ..
                 f"{_vector_text(model.plain(value))}",
                 ("relative_omega",) if symbol == "ω" else ()))
     k = derive(problem)
-    constraint_rows = [Row(f"constraint-{i}", show.math(sp.Eq(e.expr, 0)),
-                           f"{e.label}: {sp.sstr(e.expr)} = 0")
+    constraint_rows = [Row(f"constraint-{i}", show.math(sp.Eq(e.expr, 0)), f"{sp.sstr(e.expr)} = 0",
+                           caption=e.label + (", rate form" if i >= len(k.position) else ""))
                        for i, e in enumerate(k.position + k.velocity)]
+    # the author's constraints as written, those ``said`` in words (a junction's balance: its
+    # spec form is the solver's), each component typeset in the rows
+    constraints = tuple(dict(said).get(c.name) or f"{c.name} ({c.level}): {c.lhs.text} = "
+                        f"{c.rhs.text}" for c in problem.constraints)
     steps = [Step("frames", "Frames and their angular velocities", text["Frames"],
                   tuple(frame_rows)),
              Step("points", "Where the points are", text.get("Definitions", ()),
                   tuple(_position_rows(problem, model, show))),
              Step("constraints", "Constraints and degrees of freedom",
-                  text["Constraints"] + text["Degrees of freedom"], tuple(constraint_rows))]
+                  constraints + text["Degrees of freedom"], tuple(constraint_rows))]
     for kind in ("vel", "acc"):
         for p in problem.points:
             if p.origin is not None:
@@ -412,8 +419,14 @@ class _Display:
         symbols = model.symbols
         self.swap = {}
         self.marks = {}
+        spelled = dict(coordinate_names([str(q) for q in symbols.q],
+                                        [p.name for p in model.problem.points]))
         for i, (q, qd, qdd) in enumerate(zip(symbols.q, symbols.qd, symbols.qdd)):
-            base = sp.printing.mathml(q, printer="presentation")
+            base = sp.printing.mathml(sp.Symbol(spelled.get(str(q), str(q))),
+                                      printer="presentation")
+            if str(q) in spelled:  # x_J, not the spec's xj
+                self.swap[q] = sp.Symbol(f"zzcoordinate{i}q", real=True)
+                self.marks[f"<mi>zzcoordinate{i}q</mi>"] = base
             # the bullet operator: the dot above (U+02D9) is a pixel at text size in Chromium
             for symbol, mark, name, combining in ((qd, "&#8729;", f"zzrate{i}x", "\u0307"),
                                                   (qdd, "&#8729;&#8729;", f"zzrate{i}xx",

@@ -563,6 +563,8 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
         if b.name in junctions:  # its balance is a constraint of the kinematics
             continue
         for label, expr in _body_balances(problem, model, loads, inertias, b, before, impact):
+            if b.name in d.unbalanced and " balance about " in label:
+                continue
             plain = sp.expand(model.plain(expr))
             if not identically_zero(plain):
                 balances.append(Equation(label, plain, b.where))

@@ -17,7 +17,7 @@ The families are registered in :data:`FAMILIES`, one function each.
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
 >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
->>> [(m.code, m.step) for m in dynamics_mutations(problem)][3:6]
+>>> [(m.code, m.step) for m in dynamics_mutations(problem)][4:7]
 [('mass_for_weight', 'Free-body loads'), ('weight_for_mass', 'Bodies'), ('central_inertia_at_pivot', 'Bodies')]
 """
 
@@ -133,6 +133,11 @@ def _rewrite(node: Node, change: Callable[[Node], Node | None]) -> Node:
     return node
 
 
+def _replacing(old: Node, new: Node) -> Callable[[Node], Node | None]:
+    """The change for :func:`_rewrite` that puts ``new`` for each ``old``."""
+    return lambda n: new if n == old else None
+
+
 def _calls(node: Node, func: str) -> Iterator[Call]:
     if isinstance(node, Call):
         if node.func == func:
@@ -243,6 +248,38 @@ def reaction_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutat
             f"accelerate (its static value): m a_G = {{term}} belongs in the force "
             f"balance that gives {r.name}.", BALANCES, readings=readings,
             term=term, term_unit="N")
+
+
+def reaction_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The only support of a body that its weight alone loads (a pin that holds a released
+    disk) left out: the body taken to fall freely, read in the right model as the support's
+    force zero and the mass centre's acceleration g. Not for a body whose mass centre the
+    support holds still (a drum on its axle cannot fall)."""
+    d = dynamics_of(problem)
+    if d.gravity is None or isinstance(d.analysis, Impulse):
+        return
+    N = problem.inertial_frame
+    for r, body in _only_reactions(d):
+        if any(body.name in _bodies_of(x) for x in (*d.forces, *d.couples, *d.springs,
+                                                     *d.dampers)) \
+                or _zero(model, model.language.point_velocity(Name(body.centre), N)):
+            continue
+        falls = {"force": (r.name, parse(f"0*({d.gravity.text})", functions=FUNCTIONS)),
+                 "acc": (body.centre, d.gravity.node)}
+        readings = tuple(
+            reading for func, (name, replacement) in falls.items()
+            for reading in _readings(problem, func, name, replacement, r.acts[0].at
+                                     if func == "force" else None)
+            if func == "force" or all(c.args[1] == Name(N) for c in _calls(
+                next(o.find.node for o in problem.objectives if o.id == reading[0]), "acc")
+                if c.args[0] == Name(body.centre)))
+        if readings:
+            yield DynamicsMutation(
+                "reaction_omitted", f"Your value leaves {r.name} out, as if {body.name} fell "
+                f"freely (a_G = g, {r.name} = 0): {r.name} holds {body.name} at "
+                f"{r.acts[0].at} and belongs in its free-body diagram, with the momentum "
+                f"balances giving it and the angular acceleration together.", LOADS,
+                readings=readings, term=_weight(body, d.gravity), term_unit="N")
 
 
 def _bodies_of(load) -> tuple[str, ...]:
@@ -554,6 +591,60 @@ def rotational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMu
                                    term=term, term_unit="J")
 
 
+def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In a work-energy balance, a body that turns while its mass centre moves and that no
+    fixed pin holds (a wheel that rolls) given the kinetic energy of its parts' spins alone,
+    ½ I ω² each: every ½ m v² left out (a point mass's whole energy). Modelled by massless
+    parts that keep their spins' inertia, the weights kept as forces at the parts."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, WorkEnergy) or d.gravity is None:
+        return
+    N = problem.inertial_frame
+    pinned = {a.on for r in d.reactions if len(r.directions) > 1 for a in r.acts
+              if _zero(model, model.language.point_velocity(Name(a.at), N))}
+    for body in d.bodies:
+        if not _rotating(model, body) or body.name in pinned or _zero(
+                model, model.language.point_velocity(Name(body.centre), N)):
+            continue
+        parts = tuple(spin for p in body.parts if (spin := _spin_only(p)) is not None)
+        if len(parts) != len(body.parts):
+            continue
+        weights = tuple(Force(f"weight~{b.name}~{i}", b.name, p.at,
+                              _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
+                              kind=LoadKind.WEIGHT)
+                        for b in d.bodies for i, p in enumerate(b.parts))
+        bodies = tuple(replace(b, parts=parts) if b.name == body.name else b
+                       for b in d.bodies)
+        translational = f"dot(momentum({body.name}, {N}), vel({body.centre}, {N}))/2"
+        yield DynamicsMutation(
+            "translational_ke_omitted", f"Your value gives {body.name} the kinetic energy of "
+            f"its spin alone, ½ I ω²: it also moves along with its mass centre "
+            f"{body.centre}, and ½ m v² of each of its parts (½ m v_G² = {{term}} of the "
+            f"whole) belongs in its kinetic energy.", BODIES,
+            problem=_mistaken(problem, replace(d, bodies=bodies, gravity=None,
+                                               forces=d.forces + weights),
+                              without=("ke", "momentum", "angmom")),
+            term=_expr(translational), term_unit="J")
+
+
+def _spin_only(part: Part) -> Part | None:
+    """A massless copy of ``part`` with the inertia of its spin about the body's z axis (a
+    point mass: none); ``None`` for a shape whose spin this cannot write."""
+    shape = part.shape
+    if shape is None:
+        return replace(part, mass=_expr("0"))
+    if isinstance(shape, (Disk, Ring)) and shape.axis != "z":
+        return None
+    if type(shape) in _SHAPES:
+        coefficient = _SHAPES[type(shape)][1]
+        zz = _expr(f"({coefficient})*({part.mass.text})*({_radius(shape)})^2")
+    elif isinstance(shape, Explicit) and "zz" in dict(shape.entries):
+        zz = dict(shape.entries)["zz"]
+    else:
+        return None
+    return replace(part, mass=_expr("0"), shape=Explicit((("zz", zz),)))
+
+
 def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """An impact with the coefficient of restitution replaced by 1 (perfectly elastic) or 0
     (the bodies stay together)."""
@@ -616,6 +707,41 @@ def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMut
                 "momentum along it); the components across it are kept.", BALANCES,
                 problem=_mistaken(problem, replace(d, analysis=replace(d.analysis,
                                                                        start=starts))))
+
+
+def pin_impulse_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact on a body turning about a fixed pin solved with the linear momentum of the
+    bodies conserved, as if the pin gave no impulse, where the angular momentum about the pin
+    is: the pin's impulse left out and the body's angular impulse-momentum balance with it
+    (its impulse read as zero)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    struck = {b for c in d.analysis.contacts for b in c.bodies}
+    N = problem.inertial_frame
+    for r in d.reactions:
+        if len(r.directions) < 2 or len(r.acts) != 1:
+            continue
+        body = d.body(r.acts[0].on) if r.acts[0].on != GROUND else None
+        if body is None or body.name not in struck or not _rotating(model, body) \
+                or not _zero(model, model.language.point_velocity(Name(r.acts[0].at), N)):
+            continue
+        changed = replace(d, reactions=tuple(x for x in d.reactions if x is not r),
+                          unbalanced=d.unbalanced + (body.name,))
+        sentence = (f"Your value takes the linear momentum as conserved through the impact, as "
+                    f"if the pin {r.acts[0].at} gave no impulse: {r.name} acts on {body.name} "
+                    f"during the impact (its impulse is {{term}}); the angular momentum about "
+                    f"{r.acts[0].at} is what is conserved.")
+        term = _expr(f"mag(impulse({r.name}))")
+        mistaken = _without_load(problem, changed, r.name)
+        if mistaken is not None:
+            yield DynamicsMutation("pin_impulse_omitted", sentence, BALANCES, problem=mistaken,
+                                   term=term, term_unit="N*s")
+        readings = _readings(problem, "impulse", r.name,
+                             parse(f"0*{N}.x", functions=FUNCTIONS))
+        if readings:
+            yield DynamicsMutation("pin_impulse_omitted", sentence, BALANCES, readings=readings,
+                                   term=term, term_unit="N*s")
 
 
 def _start_text(start: Start | None) -> str:
@@ -1110,6 +1236,35 @@ def force_at_other_point(problem: Problem, model: Model) -> Iterator[DynamicsMut
                 f"{r.name} on {force.on}: {force.name} acts at {force.at} and {r.name} at {at}, "
                 "{term} apart, and their moments depend on where.", LOADS,
                 problem=_mistaken(problem, exchanged), term=term, term_unit="m")
+            yield from _arm_from_pin(problem, model, d, force, at)
+
+
+def _arm_from_pin(problem: Problem, model: Model, d: Dynamics, force: Force, pad: str
+                  ) -> Iterator[DynamicsMutation]:
+    """A force whose point is given from a reaction's point (a lever's push c beyond the pad)
+    taken that far from the body's pin instead: its arm about the pin measured from the pad
+    (N b = P c for N b = P (b + c))."""
+    point = next(x for x in problem.points if x.name == force.at)
+    if point.origin != pad or point.position is None:
+        return
+    pins = [a.at for r in d.reactions if len(r.directions) > 1 for a in r.acts
+            if a.on == force.on and _zero(model, model.language.point_velocity(
+                Name(a.at), problem.inertial_frame))]
+    names = {x.name for x in problem.points}
+    for pin in dict.fromkeys(pins):
+        moved = f"{force.at}_from_{pin}"
+        if moved in names:
+            continue
+        mistaken = replace(problem, points=problem.points + (replace(point, name=moved,
+                                                                     origin=pin),))
+        changed = replace(d, forces=tuple(replace(f, at=moved) if f is force else f
+                                          for f in d.forces))
+        yield DynamicsMutation(
+            "load_at_other_point", f"Your value measures the arm of {force.name} about the "
+            f"pin {pin} from {pad}, the point {force.at} is given from: about {pin} the arm is "
+            f"measured from {pin}, {{term}}.", BALANCES,
+            problem=_mistaken(mistaken, changed),
+            term=_expr(f"mag(pos({force.at}, {pin}))"), term_unit="m")
 
 
 def static_friction_as_mu_m_g(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1160,6 +1315,56 @@ def contact_taken_smooth(problem: Problem, model: Model) -> Iterator[DynamicsMut
             "its balances with the rolling condition.", _expr(f"mag(force({f.name}))"), "N")
 
 
+def rolling_assumed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A body turning about z that slips on the ground (a kinetic-friction contact) taken to
+    roll without slip: the model with the rolling condition at the contact and the friction an
+    unknown along the ground, its spin's given rate left to the rolling condition; and the
+    angular acceleration read from the mass centre's by the rolling relation
+    (α = -a_G·(k × r_CG)/|r_CG|², a/r), the slipping acceleration kept."""
+    d = dynamics_of(problem)
+    N = problem.inertial_frame
+    for f in d.friction:
+        if not isinstance(f, KineticFriction) or f.surface not in (GROUND, N):
+            continue
+        body = d.body(f.on)
+        if not _rotating(model, body) or f.at == body.centre:
+            continue
+        assert body.frame is not None  # a turning body has its frame
+        frame = next(x for x in problem.frames if x.name == body.frame)
+        angle = frame.rotations[0].angle.node if len(frame.rotations) == 1 else None
+        if not isinstance(angle, Name):
+            continue
+        radius = f"pos({f.at}, {body.centre})"
+        slip_alpha = parse(f"-dot(acc({body.centre}, {N}), cross({N}.z, {radius}))"
+                           f"/dot({radius}, {radius})", functions=FUNCTIONS)
+        second = Prime(angle.id, 2)
+        readings = []
+        for obj in problem.objectives:
+            if obj.kind != "symbolic" and second in walk(obj.find.node):
+                new = _rewrite(obj.find.node, _replacing(second, slip_alpha))
+                readings.append((obj.id, Expr(to_text(new), new)))
+        sentence = (f"Your value takes {body.name} to roll without slipping at {f.at}: it "
+                    f"slips there (the friction {f.name} is μ N = {{term}}), so a_G and α are "
+                    "not tied by a = α r; each comes from its own momentum balance.")
+        term = _expr(f"mag(force({f.name}))")
+        if readings:
+            yield DynamicsMutation("rolling_assumed", sentence, OBJECTIVES,
+                                   readings=tuple(readings), term=term, term_unit="N")
+        normal = next(r for r in d.reactions if r.name == f.normal)
+        grip = Reaction(f.name, (_expr(f"cross({normal.directions[0].text}, {N}.z)"),),
+                        (Act(f.on, f.at),), f.where, surface=GROUND)
+        rolls = Constraint(f"rolling~{f.at}", "velocity",
+                           _expr(f"vel(coincident({f.at}, {body.frame}), {N})"),
+                           _expr(f"vel(coincident({f.at}, {N}), {N})"), f.where)
+        spin = f"{angle.id}'"
+        rolling = replace(problem, constraints=problem.constraints + (rolls,),
+                          givens=tuple(g for g in problem.givens if g.key.text != spin))
+        changed = replace(d, friction=tuple(x for x in d.friction if x is not f),
+                          reactions=d.reactions + (grip,))
+        yield DynamicsMutation("rolling_assumed", sentence, BALANCES,
+                               problem=_mistaken(rolling, changed), term=term, term_unit="N")
+
+
 def surface_taken_fixed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A kinetic-friction contact between two bodies (a block sliding on a cart) with the
     body it slides on taken as fixed: the friction acts on the slider only, its reaction on
@@ -1196,6 +1401,31 @@ def body_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation
                 "(= {term}): the system's kinetic energy adds those of all its bodies.",
                 OBJECTIVES, readings=readings, term=_expr(f"ke({body.name}, {N})"),
                 term_unit="J")
+
+
+def moment_arm_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A particle's angular momentum r × m v about a point read without the length of r:
+    m v across the line to the point (m r θ' for m r² θ'), the moment arm dropped."""
+    for body in dynamics_of(problem).bodies:
+        if any(p.shape is not None or p.at != body.centre for p in body.parts):
+            continue  # a rigid body's own spin I ω has no single arm to drop
+        for call in {c for o in problem.objectives for c in _calls(o.find.node, "angmom")
+                     if c.args[0] == Name(body.name)}:
+            about, frame = (name_of(a) for a in call.args[1:])
+            arm = f"pos({body.centre}, {about})"
+            if identically_zero(model.plain(model.language.value(parse(
+                    f"mag({arm})", functions=FUNCTIONS)))):
+                continue
+            replacement = parse(f"cross(unit({arm}), momentum({body.name}, {frame}))",
+                                functions=FUNCTIONS)
+            readings = tuple(r for r in _readings(problem, "angmom", body.name, replacement)
+                             if r[1].node != problem.objective(r[0]).find.node)
+            if readings:
+                yield DynamicsMutation(
+                    "moment_arm_omitted", f"Your value is the momentum m v of {body.name} "
+                    f"across the line from {about}, without its arm r = {{term}}: the angular "
+                    f"momentum about {about} is r × m v (m r² θ' in polar coordinates).",
+                    OBJECTIVES, readings=readings, term=_expr(f"mag({arm})"), term_unit="m")
 
 
 def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1251,6 +1481,37 @@ def initial_speed_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMu
             "keep the initial speed.", BALANCES,
             problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))),
             term=term, term_unit=given_unit(key, problem.coordinates, problem.parameters) or "1")
+
+
+def initial_displacement_omitted(problem: Problem, model: Model
+                                 ) -> Iterator[DynamicsMutation]:
+    """A vibration (a motion integrated from a start, held by springs) started from a
+    coordinate's value that is not zero, worked out from zero instead: the initial
+    displacement left out (an amplitude v0/ω_n, a first stop a quarter period on)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration) or not d.springs:
+        return
+    for i, start in enumerate(d.analysis.start):
+        if not isinstance(start.key.node, Name):
+            continue
+        if start.value is not None:
+            if identically_zero(model.plain(model.language.value(start.value.node))):
+                continue
+            term = start.value
+        elif start.si:
+            term = _expr(f"{start.si!r}")
+        else:
+            continue
+        at_zero = replace(start, value=_expr("0"), si=0.0)
+        starts = d.analysis.start[:i] + (at_zero,) + d.analysis.start[i + 1:]
+        unit = given_unit(start.key.node, problem.coordinates, problem.parameters) or "1"
+        yield DynamicsMutation(
+            "initial_displacement_omitted", f"Your value is what the motion started from "
+            f"{start.key.text} = 0 gives: at the start {start.key.text} = {{term}}; the "
+            "initial displacement changes the amplitude and when the motion turns back.",
+            BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))),
+            term=term, term_unit=unit)
 
 
 def value_at_start(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1369,16 +1630,19 @@ def period_for_frequency(problem: Problem, model: Model) -> Iterator[DynamicsMut
 
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
+    reaction_omitted,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
+    moment_arm_omitted,
     initial_speed_omitted, value_at_start, force_taken_constant, efficiency_inverted,
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
-    impact_taken_head_on)
+    impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
+    initial_displacement_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -88,6 +88,28 @@ def _junction_constraints(problem: Problem) -> tuple[Constraint, ...]:
     return tuple(out)
 
 
+def junction_balances_said(problem: Problem) -> dict[str, str]:
+    """Each junction's balance (by its constraint's name) as a worked solution says it: in
+    words and the springs' names, not in the spec's language.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> junction_balances_said(load_problem(shipped_dir("problems") / "block_on_springs_in_series.yaml"))
+    {'node (massless): sum of forces': 'The joint J is massless, so the pulls of the springs s1 and s2 on it are in balance: s1 + s2 = 0.'}
+    """
+    d = problem.dynamics
+    if d is None:
+        return {}
+    out = {}
+    for b in d.junctions:
+        springs = [s.name for s in d.springs if b.name in s.on]
+        out[f"{b.name} {BALANCE}"] = (
+            f"The joint {b.centre} is massless, so the pulls of the springs "
+            f"{', '.join(springs[:-1])} and {springs[-1]} on it are in balance: "
+            f"{' + '.join(springs)} = 0.")
+    return out
+
+
 def with_junctions(problem: Problem) -> Problem:
     """``problem`` with its junctions' balances among its constraints.
 

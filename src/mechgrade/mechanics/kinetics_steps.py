@@ -194,20 +194,31 @@ def _loads(problem: Problem, matrix_math, text) -> Step:
             symbol, letter = "W", "<mi mathvariant=\"bold\">W</mi>"
         math = _block(f"<mrow>{letter}<mo>=</mo>{matrix_math(value)}</mrow>")
         codes = LOAD_CODES.get(load.kind, ())
-        rows.append(Row(f"load-{load.body}-{load.name}", math,
-                        f"{symbol if symbol == 'W' else symbol + '_' + load.name} = "
-                        f"{text(value)}", codes, words))
+        # the text says what the math shows: the load's own symbol when it is one (N_P)
+        said = symbol if symbol == "W" else load.name if _is_symbol(load.name) \
+            else f"{symbol}_{load.name}"
+        rows.append(Row(f"load-{load.body}-{load.name}", math, f"{said} = {text(value)}",
+                        codes, words))
     return Step("kinetics-free-body-loads", "Free-body loads",
                 ("Each body cut free, with every load on it.",),
                 tuple(rows))
+
+
+def _is_symbol(name: str) -> bool:
+    """Whether a load's name is a symbol (``N_P``, ``T``, ``s1``), not a word (``gravity``)."""
+    base, _, sub = name.partition("_")
+    return len(base) <= 2 or bool(sub)
 
 
 def _vector_name(letter: str, name: str) -> str:
     """A load's vector as a textbook names it: its own name in bold when it is a symbol
     (``N_P``: bold N, subscript P; ``T``), else ``letter`` with the name as a subscript."""
     base, _, sub = name.partition("_")
-    if len(base) > 2 and not sub:  # a word (gravity, pull): F with it as a subscript
+    if not _is_symbol(name):  # a word (gravity, pull): F with it as a subscript
         return f'<msub><mi mathvariant="bold">{letter}</mi><mi>{escape(name)}</mi></msub>'
+    letters = base.rstrip("0123456789")
+    if letters and letters != base:  # a number is a subscript: s₁ for s1
+        base, sub = letters, base[len(letters):] + ("_" + sub if sub else "")
     shown = f'<mi mathvariant="bold">{escape(base)}</mi>'
     return f"<msub>{shown}<mi>{escape(sub.replace('_', ','))}</mi></msub>" if sub else shown
 

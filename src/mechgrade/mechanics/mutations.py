@@ -21,13 +21,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Iterator
+from typing import Any, Iterator
 
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import Bin, Call, Name, Node, Prime, Unary, name_of, to_text, walk
+from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Prime, Unary, name_of, names, to_text,
+                                  walk)
+from ..spec.dynamics import Explicit, dynamics_of
 from ..spec.model import Expr, Objective, Problem
+from ..units import same_dimension
 from .build import Model, build
 from .interpret import Interpreter
 from .kinematics import locations
@@ -163,6 +166,10 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _other_bases(r)
     _zero_for_constant_rate(r)
     _driver_rate(r)
+    _gyration_for_radius(r)
+    _driver_speed(r)
+    _rate_relation_inverted(r)
+    _start_term_left_out(r)
     return r.out
 
 
@@ -575,21 +582,148 @@ def _zero_for_constant_rate(r: _Reading) -> None:
              "zero, not the other accelerations (their centripetal and coupled terms).")
 
 
+def _other_given_rates(r: _Reading, coordinates: set[str]) -> Iterator[tuple[Prime, Prime, Any]]:
+    """``(asked, key, given)`` for each nonzero given rate ``key`` of another of
+    ``coordinates``, of the order of the rate ``asked`` of one of them that the objective is."""
+    node = r.node
+    if not (isinstance(node, Prime) and node.id in coordinates):
+        return
+    for g in r.model.problem.givens:
+        key = g.key.node
+        if isinstance(key, Prime) and key.order == node.order and key.id in coordinates \
+                and key.id != node.id and g.si != 0:
+            yield node, key, g
+
+
 def _driver_rate(r: _Reading) -> None:
     """An angle's rate that the constraints fix (a slotted arm's θ', a coupler's) answered
     with the given rate of another angle (the crank's φ'): the connected body taken to turn
     with the driver."""
-    node = r.node
     angles = {c.name for c in r.model.problem.coordinates if c.unit in ("rad", "deg")}
-    if not (isinstance(node, Prime) and node.id in angles):
+    for node, key, g in _other_given_rates(r, angles):
+        r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
+                 f"{g.text}, the given rate of {key.id}, as if {node.id} turned "
+                 f"with it: {to_text(node)} follows from the constraints that connect them.")
+
+
+def _driver_speed(r: _Reading) -> None:
+    """A length's rate that the constraints fix (a slider's s' at the far end of a rod, a
+    crate's y' on a rope) answered with the given speed of another length (the driver's a'),
+    in the objective's sense: the mechanism taken to move as a whole with its driver."""
+    problem = r.model.problem
+    lengths = {c.name for c in problem.coordinates if same_dimension(c.unit, "m")}
+    for node, key, g in _other_given_rates(r, lengths):
+        if _same_point(problem, node.id, key.id):
+            continue  # the whole speed for a component: another family's reading
+        r.append("driver_speed", sp.Float(abs(g.si)) * sp.sign(r.right),
+                 f"Your value is {to_text(node)} = {g.text.lstrip('-')} in size, the given "
+                 f"rate of {key.id}, as if the mechanism moved as a whole: {to_text(node)} "
+                 "follows from the constraints that connect them.")
+
+
+def _same_point(problem: Problem, asked: str, driver: str) -> bool:
+    """Whether a constraint locates one point two ways, one side by ``driver`` alone among
+    the coordinates, the other with ``asked`` (x N.x + h N.y = r E.x: r' is a component of the
+    driver's own velocity there, not the rate of another part of a mechanism)."""
+    coordinates = {c.name for c in problem.coordinates}
+    frames = {f.name: f for f in problem.frames}
+
+    def turning(frame: str | None) -> set[str]:  # the angles a frame turns by, from N
+        spec = frames.get(frame or "")
+        return set() if spec is None else turning(spec.parent).union(
+            *(names(rot.angle.node) for rot in spec.rotations))
+
+    def located_by(node: Node) -> set[str]:
+        axes = {n.base for n in walk(node) if isinstance(n, Attr)}
+        return (names(node) | set().union(*map(turning, axes))) & coordinates
+
+    for c in problem.constraints:
+        sides = (located_by(c.lhs.node), located_by(c.rhs.node))
+        if any(one == {driver} and asked in other for one, other in (sides, sides[::-1])):
+            return True
+    return False
+
+
+def _angle_rate(r: _Reading) -> Prime | None:
+    """The rate of an angle the objective asks for (θ', |θ'|, -θ''), if that is all it asks."""
+    node = r.node
+    inner = node.args[0] if isinstance(node, Call) and node.func == "abs" else node
+    inner = inner.operand if isinstance(inner, Unary) else inner
+    angles = {c.name for c in r.model.problem.coordinates if c.unit in ("rad", "deg")}
+    return inner if isinstance(inner, Prime) and inner.id in angles else None
+
+
+def _linking_lengths(problem: Problem, angle: str) -> set[str]:
+    """The length parameters written with ``angle`` in a constraint (r in y = r φ)."""
+    lengths = {q.name for q in problem.parameters if same_dimension(q.unit, "m")}
+    return {n for c in problem.constraints
+            for n in (names(c.lhs.node) | names(c.rhs.node)) if angle in names(c.lhs.node)
+            | names(c.rhs.node)} & lengths
+
+
+def _gyration_for_radius(r: _Reading) -> None:
+    """A body's angular rate ω = v/r answered as v/k: the radius of gyration k (a length of the
+    body's inertia only) read for the length r that links its angle to a point's motion in a
+    constraint (a drum's radius under its cord, a wheel's rolling radius)."""
+    problem, inner = r.model.problem, _angle_rate(r)
+    if problem.dynamics is None or inner is None:
         return
-    for g in r.model.problem.givens:
-        key = g.key.node
-        if isinstance(key, Prime) and key.order == node.order and key.id in angles \
-                and key.id != node.id and g.si != 0:
-            r.append("driver_rate", sp.Float(g.si), f"Your value is {to_text(key)} = "
-                     f"{g.text}, the given rate of {key.id}, as if {node.id} turned with it: "
-                     f"{to_text(node)} follows from the constraints that connect them.")
+    lengths = {q.name for q in problem.parameters if same_dimension(q.unit, "m")}
+    linked = _linking_lengths(problem, inner.id)
+    frames = {f.name: f for f in problem.frames}
+    for body in dynamics_of(problem).bodies:
+        spec = frames.get(body.frame or "")
+        if spec is None or not any(names(rot.angle.node) == {inner.id}
+                                   for rot in spec.rotations):
+            continue
+        for part in body.parts:
+            if not isinstance(part.shape, Explicit):
+                continue
+            inertia = {n for _, e in part.shape.entries for n in names(e.node)} & lengths
+            for k in sorted(inertia - linked):
+                for length in sorted(linked - inertia):
+                    ratio = r.model.symbols.params[length] / r.model.symbols.params[k]
+                    r.append("gyration_for_radius", r.right * ratio, f"Your value takes "
+                             f"{to_text(inner)} with the radius of gyration {k} of {body.name} "
+                             f"for the length {length} that links it to the motion: {k} only "
+                             f"gives the moment of inertia I = m {k}^2.")
+
+
+def _rate_relation_inverted(r: _Reading) -> None:
+    """An angle's rate from a point's, ω = v/r, answered as v r (α = a r): the length that
+    links them in a constraint multiplies where it divides. The student multiplies the numbers
+    as given, so r is taken in its given unit."""
+    inner = _angle_rate(r)
+    if inner is None:
+        return
+    givens = {g.key.node.id: g for g in r.model.problem.givens
+              if isinstance(g.key.node, Name) and g.value != 0}
+    for length in sorted(_linking_lengths(r.model.problem, inner.id) & set(givens)):
+        g = givens[length]
+        symbol = r.model.symbols.params[length]
+        r.append("rate_relation_inverted", r.right * symbol**2 * sp.Float(g.value / g.si)**2,
+                 f"Your value multiplies by {length} = {g.text} where the relation divides: "
+                 f"{to_text(inner)} is the point's rate divided by {length}, not times it.")
+
+
+def _start_term_left_out(r: _Reading) -> None:
+    """A length coordinate the motion reaches, answered without a term of its value at the
+    start (r = R + h: the height h above the surface for the distance r from the centre)."""
+    problem, node = r.model.problem, r.node
+    if problem.dynamics is None or not isinstance(node, Name):
+        return
+    lengths = {c.name for c in problem.coordinates if same_dimension(c.unit, "m")}
+    starts = getattr(dynamics_of(problem).analysis, "start", ())
+    for start in starts:
+        if node.id not in lengths or start.value is None or start.key.node != node:
+            continue
+        terms = additive_terms(start.value.node)
+        for sign, term in terms if len(terms) > 1 else ():
+            if isinstance(term, Name) and term.id in r.model.symbols.params:
+                r.append("position_term", r.right - sign * r.model.symbols.params[term.id],
+                         f"Your value is {node.id} without {term.id}, a term of its start "
+                         f"{node.id} = {start.value.text}: {node.id} is measured from the "
+                         f"origin, so {term.id} stays in it.")
 
 
 def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[Mutation]:

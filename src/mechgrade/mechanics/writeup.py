@@ -8,7 +8,7 @@ from functools import lru_cache
 
 from ..spec.model import Problem
 from .derivation import Step, compact_math, kinematics_derivation, kinematics_steps
-from .junctions import kinematic_part
+from .junctions import junction_balances_said, kinematic_part
 from .kinetics_steps import kinetics_steps
 from .dynamics import kinetics_derivation
 
@@ -35,7 +35,7 @@ def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
     ('frames', 'kinetics-solution')
     """
     kinematic = kinematic_part(problem)
-    steps = kinematics_steps(kinematic, dof)
+    steps = kinematics_steps(kinematic, dof, tuple(junction_balances_said(problem).items()))
     if problem.dynamics is not None:
         steps += kinetics_steps(problem)
     return tuple(replace(step, rows=tuple(replace(row, math=compact_math(row.math))

@@ -21,7 +21,7 @@ loads' at the instant, their lengths all the same, so none hides another.
 >>> svg.count('class="load '), svg.count("<line class=\\"arrow"), svg.count('class="load u"')
 (2, 3, 1)
 >>> print(fbd_description(d))
-Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; the pin reaction R O at O, unknown (drawn dashed, marked ?), as its components along N's x axis and N's y axis.
+Body rod, a rod 1.2 m long, with 2 loads: the weight W = 19.6 N at G, downward; the pin reaction R O at O, unknown (drawn dashed, marked ?), as its components along n-hat x and n-hat y.
 """
 
 from __future__ import annotations
@@ -377,8 +377,17 @@ def _label(far: Point2, near: Point2, parts: tuple[str, str, str], taken: list,
 
 
 def _symbol(name: str) -> tuple[str, str]:
-    """A load's name as a textbook letter and subscript: ``N_P`` -> (N, P), ``mu_k`` -> (μ, k)."""
+    """A load's name as a textbook letter and subscript: ``N_P`` -> (N, P), ``mu_k`` -> (μ, k),
+    ``s1`` -> (s, 1).
+
+    >>> _symbol("N_P"), _symbol("mu_k"), _symbol("s1"), _symbol("k12_a"), _symbol("rope")
+    (('N', 'P'), ('μ', 'k'), ('s', '1'), ('k', '12,a'), ('rope', ''))
+    """
     base, _, sub = name.partition("_")
+    letters = base.rstrip("0123456789")
+    if letters != base and (len(letters) == 1 or letters in _GREEK):
+        sub = base[len(letters):] + ("_" + sub if sub else "")
+        base = letters
     return _GREEK.get(base, base), sub.replace("_", ",")
 
 
@@ -416,13 +425,14 @@ _UNIT_VECTOR = re.compile(r"(-?)([A-Za-z]\w*)\.([xyz])")
 
 
 def _spoken_direction(text: str) -> str:
-    """A direction as the file wrote it, in words: a frame's unit vector by its axis.
+    """A direction as the file wrote it, in words: a frame's unit vector as it is read out
+    (as :func:`~mechgrade.expressions.notation.textbook` says it).
 
     >>> _spoken_direction("N.x"), _spoken_direction("-A.y"), _spoken_direction("B.x + B.y")
-    ("N's x axis", "minus A's y axis", "B's x axis + B's y axis")
+    ('n-hat x', 'minus a-hat y', 'b-hat x + b-hat y')
     """
     return _UNIT_VECTOR.sub(lambda m: ("minus " if m.group(1) else "")
-                            + f"{m.group(2)}'s {m.group(3)} axis", text)
+                            + f"{m.group(2).lower()}-hat {m.group(3)}", text)
 
 
 def _shape_words(o) -> str:

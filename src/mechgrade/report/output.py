@@ -349,7 +349,8 @@ def _render_students(bounds: tuple[int, int]) -> tuple[list[tuple[str, str]], li
 def _feedback_page(report: GradeReport, student: StudentResult, template, suffix: str,
                    faults: list[str], prompts: dict) -> str:
     try:
-        context = _context(report, student, prompts, markdown=suffix == ".md")
+        context = _context(report, student, prompts, markdown=suffix == ".md",
+                           names=_names(_WORKED[0].worked if _WORKED else None))
         if suffix == ".md":
             context = _escape_all(context)
         context.update(worked_context(_WORKED[0] if _WORKED else None, student, prompts,
@@ -465,7 +466,7 @@ def feedback_context(report: GradeReport, student: StudentResult, *,
     the worked solutions (see :func:`worked_context`).
     """
     prompts = _prompts(report)
-    context = _context(report, student, prompts, markdown)
+    context = _context(report, student, prompts, markdown, _names(worked))
     context = _escape_all(context) if markdown else context
     pages = (_worked_pages(worked, template_environment(templates_dir), templates_dir)
              if worked is not None else None)
@@ -614,12 +615,14 @@ def worked_html(worked: WorkedSolution, templates_dir=None, env=None,
     # diagrams, the equations): a page carries each id once a problem
     targets = {place for _, _, place in worked.places + worked.declared} | {
         worked.diagram_step, worked.equations_step}
+    names = worked.names
     steps = [{"anchor": step.anchor, "target": step.anchor in targets,
-              "title": Markup(textbook_html(step.title, False)),
-              "lines": [Markup(textbook_html(line)) for line in step.lines],
+              "title": Markup(textbook_html(step.title, False, names)),
+              "lines": [Markup(textbook_html(line, True, names)) for line in step.lines],
               "rows": [{"anchor": row.anchor if row.anchor in targets else "", "text": row.text,
-                        "caption": Markup(textbook_html(row.caption, False)),
-                        "math": Markup(spoken_math(row.math, row.text))} for row in step.rows],
+                        "caption": Markup(textbook_html(row.caption, False, names)),
+                        "math": Markup(spoken_math(row.math, row.text, names))}
+                       for row in step.rows],
               "diagrams": diagrams if step.anchor == worked.diagram_step else []}
              for step in worked.steps]
     context = {"w": {"id": worked_id(worked.problem), "tag": anchor(worked.problem, "")[:-1],
@@ -680,7 +683,7 @@ def marker_defs(markers: dict[str, str]) -> str:
             + "".join(markers[k] for k in sorted(markers)) + "</defs></svg>")
 
 
-def spoken_math(math: str, text: str) -> str:
+def spoken_math(math: str, text: str, names: tuple[tuple[str, str], ...] = ()) -> str:
     """MathML labelled with its plain-text reading (``aria-label``), which a screen reader
     says for it: the dots of a rate are drawn as operators it would read as "bullet". A row
     lays its math out itself (the page's style), so ``display`` is left out; a dot or a hat
@@ -691,10 +694,10 @@ def spoken_math(math: str, text: str) -> str:
     ...                   '</mover></math>', "v = x**2*y"))
     <math aria-label="v = x²·y"><mover><mi>x</mi><mo>∙</mo></mover></math>
     >>> spoken_math("<math></math>", "N_v_P = thetad*N.y").split('"')[1]
-    'N v,P = θ̇·N.y'
+    'N v,P = θ̇·n-hat y'
 
     """
-    label = html_escape(textbook(" ".join(text.split())), quote=True)
+    label = html_escape(textbook(" ".join(text.split()), True, names), quote=True)
     return math.replace('<math display="block"', "<math", 1).replace(
         "<math", f'<math aria-label="{label}"', 1).replace('<mover accent="true">', "<mover>")
 
@@ -705,10 +708,11 @@ def worked_markdown(worked: WorkedSolution, level: int = 3) -> str:
     hashes = "#" * level
     out = [f"{hashes} {markdown_escape(worked.title)}"]
     for step in worked.steps:
-        out += ["", f"{hashes}# {markdown_escape(textbook(step.title, False))}", ""]
+        out += ["", f"{hashes}# {markdown_escape(textbook(step.title, False, worked.names))}", ""]
         lines = [line for line in step.lines if line] + [
             f"{row.caption}: {row.text}" if row.caption else row.text for row in step.rows]
-        out += [f"- {code_span(textbook(line))}" for line in lines] or ["(none)"]
+        out += [f"- {code_span(textbook(line, True, worked.names))}" for line in lines] \
+            or ["(none)"]
     return "\n".join(out) + "\n"
 
 
@@ -743,18 +747,27 @@ def _prompts(report: GradeReport) -> dict:
 
 
 @lru_cache(maxsize=1 << 14)  # five a card, the same for many students
-def _textbook_markup(text: str, rates: bool) -> Markup:
-    return Markup(textbook_html(text, rates))
+def _textbook_markup(text: str, rates: bool, names: tuple[tuple[str, str], ...]) -> Markup:
+    return Markup(textbook_html(text, rates, names))
+
+
+def _names(worked: FeedbackSolutions | None) -> dict[str, tuple[tuple[str, str], ...]]:
+    """By problem, how a textbook spells its coordinates (known from its worked solution)."""
+    return {w.problem: w.names for w in worked.solutions} if worked is not None else {}
 
 
 def _context(report: GradeReport, student: StudentResult, prompts: dict,
-             markdown: bool = False) -> dict:
+             markdown: bool = False, names: dict | None = None) -> dict:
+    spelled: tuple[tuple[str, str], ...] = ()
+
     def shown(text: str, rates: bool = True) -> str:
         # a model's names as a textbook writes them; what the student wrote stays as written
-        return textbook(text, rates) if markdown else _textbook_markup(text, rates)
+        return textbook(text, rates, spelled) if markdown \
+            else _textbook_markup(text, rates, spelled)
 
     rows = []
     for answer in student.answers:
+        spelled = (names or {}).get(answer.problem, ())
         rows.append({
             "problem": answer.problem,
             "objective": answer.objective,

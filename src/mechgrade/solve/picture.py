@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass, replace
+from decimal import Decimal
 from functools import lru_cache
 from itertools import pairwise
 from html import escape
@@ -324,6 +325,8 @@ BLOCK = 14.0
 """Half the side of a block drawn for a particle that rests on a surface or hangs (px)."""
 HALO = 'paint-order="stroke" stroke="#fff" stroke-width="3" stroke-linejoin="round"'
 """Labels stay readable where they cross a line."""
+SUBSCRIPT = 'baseline-shift="sub" font-size="8"'
+"""A label's subscript (an axis of a unit vector)."""
 _OWN_STYLE = ' xmlns="http://www.w3.org/2000/svg"', ' font-family="system-ui, sans-serif" font-size="13"'
 _GROUND = '<rect width="{w:g}" height="{h:g}" fill="#fff"/>'
 """What a picture on its own says and a page's style sheet gives every picture inline."""
@@ -359,7 +362,7 @@ def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> 
     ...                 ScenePoint("A", (1, 1, 0), (-7, 7, 0), (-50, -40, 0), "O")),
     ...           (SceneFrame("N", (0, 0, 0), (1, 0, 0), (0, 1, 0)),))
     >>> svg = picture_svg(s)
-    >>> svg.startswith("<svg") and "velocity (longest 9.9 m/s)" in svg and "N.x" in svg
+    >>> svg.startswith("<svg") and "velocity (longest 9.9 m/s)" in svg and "𝐧̂<tspan" in svg
     True
     """
     ident = _ident(ident or s.problem)
@@ -458,7 +461,8 @@ def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> 
               f'{HALO}>']
     for (x, y), names in places.items():
         text = ", ".join(names)
-        labels.append(_placed_label(sheet, (x, y), text, 8.6 * len(text)))
+        labels.append(_placed_label(sheet, (x, y), ", ".join(point_svg(n) for n in names),
+                                    8.6 * len(text), markup=True))
     sheet.out += labels + ["</g>"]
     for i, (colour, text, *_) in enumerate(legend):
         y = HEIGHT - 14 - 18 * (len(legend) - 1 - i)
@@ -472,7 +476,8 @@ def picture_svg(s: Scene, ident: str | None = None, *, inline: bool = False) -> 
 def _inlined(out: list[str]) -> str:
     """A picture's elements for a page that styles every picture (``.mechanism``): what it
     would say again left out, no line breaks."""
-    return "".join(out).replace(HALO, 'class="halo"').replace(_OWN_STYLE[0], "").replace(
+    return "".join(out).replace(HALO, 'class="halo"').replace(SUBSCRIPT, 'class="sb"').replace(
+        _OWN_STYLE[0], "").replace(
         _OWN_STYLE[1], "").replace(_GROUND.format(w=WIDTH, h=HEIGHT), "")
 
 
@@ -488,9 +493,19 @@ def _legend(s: Scene, shown) -> list[tuple[str, str, str, str, float]]:
         if largest <= 1e-9:
             continue
         shown_unit = unit.replace("**", "^").replace("^2", "²").replace("^3", "³")
-        legend.append((colour, f"{kind} (longest {largest / si_factor(unit):.2g} {shown_unit})",
+        legend.append((colour, f"{kind} (longest {plain_number(largest / si_factor(unit))} "
+                               f"{shown_unit})",
                        mark, kind, largest))
     return legend
+
+
+def plain_number(x: float, digits: int = 2) -> str:
+    """``x`` to ``digits`` significant digits as a student reads a number: no exponent.
+
+    >>> plain_number(499.7), plain_number(0.01234), plain_number(3.21), plain_number(1.2e-7)
+    ('500', '0.012', '3.2', '0.00000012')
+    """
+    return format(Decimal(f"{x:.{digits}g}"), "f")
 
 
 def _page(v: Triple) -> tuple[float, float]:
@@ -816,15 +831,46 @@ def _frame_labels(sheet: _Sheet, axes) -> None:
     """The frames' axis labels, placed once every line is drawn."""
     labels = [f'<g fill="{FRAME}" font-size="11" {HALO}>']
     for start, end, names in axes:
-        text = " = ".join(names)
-        labels.append(_placed_label(sheet, end, text, 6.2 * len(text), start))
+        shown = " = ".join(unit_vector_svg(name) for name in names)
+        # a label's width: the letters and signs, a subscript set smaller
+        labels.append(_placed_label(sheet, end, shown, 6.2 * (4 * len(names) - 3), start,
+                                    markup=True))
     if len(labels) > 1:
         sheet.out += labels + ["</g>"]
 
 
-def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None) -> str:
+def point_svg(name: str) -> str:
+    """A point's name as an SVG label writes it, as the page's equations do: trailing digits
+    a subscript (P₁).
+
+    >>> point_svg("P1"), point_svg("G")
+    ('P<tspan baseline-shift="sub" font-size="8">1</tspan>', 'G')
+    """
+    stem = name.rstrip("0123456789")
+    if not stem or stem == name:
+        return escape(name)
+    return f'{escape(stem)}<tspan {SUBSCRIPT}>{name[len(stem):]}</tspan>'
+
+
+def unit_vector_svg(name: str) -> str:
+    """A frame's unit vector (``N.x``) as an SVG label writes it, as the page's equations do:
+    the frame's letter bold and lower case with a hat, the axis its subscript.
+
+    >>> unit_vector_svg("N.x")
+    '𝐧̂<tspan baseline-shift="sub" font-size="8">x</tspan>'
+    """
+    frame, _, axis = name.partition(".")
+    letter = frame.lower()
+    hat = f"{chr(0x1D41A + ord(letter) - 97)}\u0302" if len(letter) == 1 and "a" <= letter <= "z" \
+        else f"{escape(letter)}\u0302"
+    return f'{hat}<tspan {SUBSCRIPT}>{escape(axis)}</tspan>'
+
+
+def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None,
+                  markup: bool = False) -> str:
     """A label near ``p`` (beyond it, away from ``from_`` when given) where it overlaps no
-    label and crosses no line (the first place tried when every one does)."""
+    label and crosses no line (the first place tried when every one does); ``text`` is
+    escaped unless it is ``markup`` already."""
     if from_ is not None:
         d = math.dist(from_, p) or 1.0
         u = ((p[0] - from_[0]) / d, (p[1] - from_[1]) / d)
@@ -845,7 +891,7 @@ def _placed_label(sheet: _Sheet, p, text: str, width: float, from_=None) -> str:
         x, y, anchor, box = first  # type: ignore[misc]
     sheet.boxes.append(box)
     middle = {"start": "", "end": ' text-anchor="end"', "middle": ' text-anchor="middle"'}
-    return f'<text x="{x:.0f}" y="{y:.0f}"{middle[anchor]}>{escape(text)}</text>'
+    return f'<text x="{x:.0f}" y="{y:.0f}"{middle[anchor]}>{text if markup else escape(text)}</text>'
 
 
 def described(s: Scene, legend=()) -> str:

@@ -25,13 +25,16 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, to_text
+from ..expressions.notation import coordinate_names
+from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, parse, to_text
 from ..mechanics.derivation import Row, Step, symbolic_math
 from ..mechanics.writeup import worked_steps
-from ..spec.model import ObjectiveKind, Problem
+from ..spec.model import Expr, Objective, ObjectiveKind, Problem
 from ..units import from_si, same_dimension
 from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
+from .entry import solve
 from .fbd import FreeBodyDiagram, free_body_diagrams
+from .phases import grip_constraint, gripping, gripping_phase
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
                      in_frame)
@@ -63,7 +66,8 @@ class WorkedSolution:
     ``(objective, code, anchor)``: the step or row (by anchor) where the generated mistake
     ``code`` of an objective happens; ``diagrams`` each body's free-body diagram (plain
     data), shown in the step anchored ``diagram_step``; ``equations_step`` the step that
-    writes its equations of motion (``""``: none)."""
+    writes its equations of motion (``""``: none); ``names`` how a textbook spells the
+    coordinates the answer syntax does not (:func:`~mechgrade.expressions.notation.coordinate_names`)."""
 
     problem: str
     title: str
@@ -74,6 +78,7 @@ class WorkedSolution:
     diagrams: tuple[FreeBodyDiagram, ...] = ()
     diagram_step: str = ""
     equations_step: str = ""
+    names: tuple[tuple[str, str], ...] = ()
 
     def place(self, objective: str, code: str) -> str | None:
         """The anchor of the step or row where ``code``'s mistake happens for ``objective``."""
@@ -121,8 +126,15 @@ def worked_solution(problem: Problem, solution: Solution,
     answers = tuple(_answer_step(problem, o, results[o.id], signs) for o in chosen
                     if o.id in results)
     drawing = scene(problem, solution)
+    slip_ends = slip_end_time(problem)
+    instant = next((v.si for v in solution.state if v.name == "t"), None)
+    rolling = slip_ends is not None and instant is not None and instant > slip_ends
+    if slip_ends is not None:  # each answer says the phase it is read in
+        answers = tuple(_read_in(step, o, slip_ends, instant)
+                        for step, o in zip(answers, (o for o in chosen if o.id in results)))
     steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
-             *_at_the_instant(problem, worked_steps(problem, solution.dof), drawing),
+             *_phased(problem, slip_ends,
+                      _at_the_instant(problem, worked_steps(problem, solution.dof), drawing)),
              *((Step("state", "The instant, solved", solved),) if solved else ()),
              *answers)
     codes = MODEL_CODES + GIVEN_CODES + (DYNAMICS_CODES if problem.dynamics else ())
@@ -132,12 +144,82 @@ def worked_solution(problem: Problem, solution: Solution,
                      for o in chosen if o.id in results
                      for m in results[o.id].mistakes
                      for g in _same_value(m, results[o.id].generated_mistakes))
-    diagrams = free_body_diagrams(problem, solution)
+    # the diagrams at the instant, with the loads of the phase it is in
+    diagrams = free_body_diagrams(gripping_phase(problem) if rolling else problem, solution)
     return WorkedSolution(problem.id, problem.title, steps,
                           picture_svg(drawing, inline=True) if drawable(drawing) else "", places, declared,
-                          diagrams, DIAGRAM_STEP if diagrams else "",
+                          diagrams, (f"rolling-{DIAGRAM_STEP}" if rolling else DIAGRAM_STEP)
+                          if diagrams else "",
                           EQUATIONS_STEP if any(s.anchor == EQUATIONS_STEP for s in steps)
-                          else "")
+                          else "", problem_names(problem))
+
+
+def problem_names(problem: Problem) -> tuple[tuple[str, str], ...]:
+    """How a textbook spells ``problem``'s coordinates (``xj`` is x_J): for every text of it a
+    student reads."""
+    return coordinate_names([c.name for c in problem.coordinates], [p.name for p in problem.points])
+
+
+def slip_end_time(problem: Problem) -> float | None:
+    """When the slip of a contact that grips once its slip ends (a ball skids, then rolls)
+    ends, in s; ``None`` for a motion in one phase.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> slip_end_time(load_problem(shipped_dir("problems") / "atwood_machine.yaml")) is None
+    True
+    """
+    if gripping(problem) is None:
+        return None
+    grip = gripping_phase(problem).constraints[-1]  # its contact's slip speed = 0
+    asked = Objective("slip_ends", "", Expr("t", parse("t"), grip.where), ObjectiveKind.SCALAR,
+                      "s", when=(grip.lhs, grip.rhs))
+    found = solve(replace(problem, objectives=(asked,), givens=tuple(
+        g for g in problem.givens if g.key.text != "t")))
+    return float(found.results[0].value) if found.results else None  # type: ignore[arg-type]
+
+
+def _phased(problem: Problem, slip_ends: float | None,
+            steps: tuple[Step, ...]) -> tuple[Step, ...]:
+    """``steps`` with, for a motion that slips then grips, the kinetics of each phase: those of
+    the slip until ``slip_ends``, then the gripping phase's (its no-slip constraint, loads
+    and balances) from then on."""
+    if slip_ends is None:
+        return steps
+    grip = gripping(problem)
+    assert grip is not None
+    until, since = f"while {grip.name} slips, until t = {slip_ends:.3g} s", \
+        f"rolling from t = {slip_ends:.3g} s ({grip.name} grips: static friction)"
+    kinetics = [i for i, s in enumerate(steps) if s.anchor.startswith("kinetics-")]
+    if not kinetics:
+        return steps
+    # the grip's constraint in words, not in the spec's language the solver wrote it in
+    name = grip_constraint(problem)
+    said = f"{grip.at} does not slip: its velocity along the surface is zero"
+    later = tuple(replace(s, anchor=f"rolling-{s.anchor}", title=f"{s.title}, {since}",
+                          lines=tuple(said if line.startswith(f"{name} (") else line
+                                      for line in s.lines),
+                          rows=tuple(replace(r, anchor=f"rolling-{r.anchor}",
+                                             caption=r.caption.replace(name, said))
+                                     for r in s.rows))
+                  for s in worked_steps(gripping_phase(problem))  # its own degrees of freedom
+                  # the bodies are those of the slip
+                  if (s.anchor.startswith("kinetics-") and s.anchor != "kinetics-bodies")
+                  or s.anchor == "constraints")
+    earlier = tuple(replace(s, title=f"{s.title}, {until}") if i in kinetics else s
+                    for i, s in enumerate(steps))
+    return earlier[:kinetics[-1] + 1] + later + earlier[kinetics[-1] + 1:]
+
+
+def _read_in(step: Step, objective, slip_ends: float, instant: float | None) -> Step:
+    """An answer's step saying the phase its value is read in (by the time it is read at:
+    its own ``t`` given, else the instant's)."""
+    own = next((g.si for g in objective.givens if g.key.text == "t"), None)
+    at = own if own is not None else instant if objective.when is None else None
+    if at is None:
+        return step
+    phase = "read while rolling" if at > slip_ends * (1 + 1e-9) else "read while slipping"
+    return replace(step, lines=(*step.lines, f"{phase} (the slip ends at t = {slip_ends:.3g} s)"))
 
 
 _KINEMATIC = {"vel": "v", "acc": "a", "omega": "omega", "alpha": "alpha"}
@@ -284,7 +366,7 @@ def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple
             if point is not None else None
         if value is not None:
             unit = asked.get((kind, name), units[kind])
-            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in value)
+            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in _without_round_off(value))
             letter = "v" if kind == "vel" else "a"
             step = replace(step, lines=step.lines + (
                 f"At the instant: {problem.inertial_frame}_{letter}_{name} = ({shown}) "
@@ -305,10 +387,32 @@ def _same_value(mistake: MistakeValue, generated) -> tuple[GeneratedMistake, ...
     return ()
 
 
+ROUND_OFF = 1e-12
+"""A value of the instant this small (SI) is zero but for the solver's round-off: a student is
+shown 0, not -3.45e-31 m/s²."""
+
+
+def _without_round_off(vector) -> tuple[float, ...]:
+    """A vector (SI) with its round-off components zero: those below :data:`ROUND_OFF` or a
+    billionth of its largest.
+
+    >>> _without_round_off((0.5, -6.3e-17, 1e-3))
+    (0.5, 0.0, 0.001)
+    """
+    largest = max((abs(c) for c in vector), default=0.0)
+    return tuple(0.0 if abs(c) < max(ROUND_OFF, 1e-9 * largest) else float(c) for c in vector)
+
+
 def _state_text(value: StateValue) -> str:
-    """``q'' = 3 rad/s^2``: a value of the instant, its unit as a student writes it."""
+    """``q'' = 3 rad/s^2``: a value of the instant, its unit as a student writes it (0 for
+    round-off).
+
+    >>> _state_text(StateValue("x''", -3.45e-31, "m / s ** 2", False, -3.45e-31))
+    "x'' = 0 m/s^2"
+    """
     unit = value.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
-    return f"{value.name} = {value.value:.6g} {unit}".rstrip()
+    shown = 0.0 if abs(value.si) < ROUND_OFF else value.value
+    return f"{value.name} = {shown:.6g} {unit}".rstrip()
 
 
 def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> str:

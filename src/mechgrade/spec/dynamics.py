@@ -438,6 +438,8 @@ class Dynamics:
     impulses: tuple[KnownImpulse, ...] = ()
     down: Expr | None = None  # the problem's "down" (loads.down), a direction
     mistaken: bool = False  # a student's mistaken model: its loads are not checked
+    # a student's mistaken model: the bodies whose moment balance the student left out
+    unbalanced: tuple[str, ...] = ()
 
     def body(self, name: str) -> Body:
         return {b.name: b for b in self.bodies}[name]

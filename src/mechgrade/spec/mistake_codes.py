@@ -22,7 +22,8 @@ MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "relative_omega", "other_point", "other_basis", "acc_t_for_acc", "acc_n_for_acc",
     "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "rho_without_slope",
     "component_for_speed", "mag_as_sum",
-    "position_term", "zero_for_constant_rate", "driver_rate")
+    "position_term", "zero_for_constant_rate", "driver_rate", "gyration_for_radius",
+    "driver_speed", "rate_relation_inverted")
 """Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
 
 DYNAMICS_CODES = (
@@ -30,12 +31,14 @@ DYNAMICS_CODES = (
     "normal_from_weight", "weight_transfer_ignored", "tension_as_weight", "reaction_as_weight",
     "rotational_ke_omitted", "restitution_ignored", "other_shape_inertia",
     "spring_free_length_omitted", "surface_taken_fixed", "body_ke_omitted",
-    "impulse_moment_omitted", "reaction_as_static", "inertia_omitted",
+    "impulse_moment_omitted", "moment_arm_omitted", "reaction_as_static", "inertia_omitted",
     "restitution_component", "damping_omitted", "force_omitted", "springs_in_series",
     "weight_for_mass", "strands_miscounted", "initial_speed_omitted",
     "value_at_start", "force_taken_constant", "efficiency_inverted", "spring_omitted",
     "load_at_other_point", "contact_taken_smooth", "period_for_frequency",
-    "spring_energy_from_change", "impact_taken_head_on")
+    "spring_energy_from_change", "impact_taken_head_on", "reaction_omitted",
+    "pin_impulse_omitted", "translational_ke_omitted", "rolling_assumed",
+    "initial_displacement_omitted")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",

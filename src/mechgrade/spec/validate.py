@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from contextlib import contextmanager
 from enum import Enum
 
-from ..errors import ExpressionError, Location, SpecError
+from ..errors import ExpressionError, Location, SpecError, UnitError
 from ..expressions.dimensions import DimensionError, Kind, Type, infer
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Call, Name, Node, Num, Prime, parse,
                                   to_text)
@@ -26,6 +27,10 @@ from .model import TIME, Expect, Expr, Given, Objective, ObjectiveKind, Problem
 
 DYNAMICS_KINDS = (Kind.BODY, Kind.LOAD, Kind.BODY_OR_SPRING, Kind.COORDINATE)
 RESERVED = {TIME, "pi"} | set(MATH_FUNCTIONS) | set(FUNCTIONS)
+
+
+_NUMBER_THEN_NAME = re.compile(r"(?<![\w.])(\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)\s*([A-Za-z_]\w*)(?![\w(])")
+"""A number followed by a name (``4 s``, ``0.2m``): a quantity, if the name is a unit."""
 
 
 class _Quiet(SpecError):
@@ -385,6 +390,7 @@ class _Checker:
             self._dims_match(t.dim, want.dim, expr.where, f"'{expr.text}'")
 
     def type_of(self, expr: Expr) -> Type:
+        self._no_quantity(expr)
         try:
             return self._type(expr.node)
         except SpecError as err:
@@ -500,6 +506,24 @@ class _Checker:
                             f"give the frame an 'origin'")
 
     # ------------------------------------------------------------------ helpers
+
+    def _no_quantity(self, expr: Expr) -> None:
+        """Refuse a number written with a unit (``until: t = 4 s``): expressions hold names,
+        and a value with its unit belongs under ``givens:``."""
+        names = {n.id for n in _walk_names(expr.node)}
+        for match in _NUMBER_THEN_NAME.finditer(expr.text):
+            name = match.group(2)
+            if name not in names or name in self.coords or name in self.params or \
+                    name == TIME:
+                continue  # an angle's '30 deg' is read as its value already
+            try:
+                normalize_unit(name)
+            except UnitError:
+                continue
+            raise SpecError(f"expected names in an expression, found '{match.group(0)}', a "
+                            f"value with its unit: declare a parameter (say T: {name}), give "
+                            f"its value under givens (T: {match.group(0)}) and write T here",
+                            where=expr.where)
 
     def _name_hint(self, name: str, known) -> str:
         """"did you mean" for an unknown name; a rate written ``thetad`` gets ``theta'``."""

@@ -8,7 +8,8 @@ this file says which of mechgrade's diagnosis codes name each kind (EQUIVALENT, 
 tables were frozen, from the codes' labels and messages). A row is
 
 - ``named``: the diagnosis is one of the codes equivalent to its kind (a unit slip only when the
-  code's units are the ones the row's mistake mixes, or a given's unit not converted);
+  code's units are the ones the row's mistake mixes, or a given's unit not converted; an
+  applied force left out when the row's words name that load, not the weight: LOAD_LEFT_OUT);
 - ``generic``: some feedback that is true of the answer but does not name the mistake (a vector
   that is right in direction or magnitude only, components swapped, or a numeric factor that the
   answer has exactly but that is not the mistake's);
@@ -64,7 +65,8 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "friction_as_mu_m_g": ("normal_from_weight",),
     "friction_reversed": ("friction_reversed",),
     "tension_as_weight": ("tension_as_weight", "reaction_as_weight"),
-    "reaction_as_static": ("reaction_as_weight", "tension_as_weight", "reaction_as_static"),
+    "reaction_as_static": ("reaction_as_weight", "tension_as_weight", "reaction_as_static",
+                           "reaction_omitted"),
     "weight_for_mass": ("g", "mass_for_weight", "weight_for_mass"),
     "unit_slip": ("given_rate_unit", "given_length_unit", "given_unit", "rpm_rad", "rev_rad", "cm_m", "mm_m",
                   "ft_m", "in_ft"),
@@ -83,7 +85,10 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "kinematic_factor": ("other_point", "drop_omega_r", "drop_transport_vel",
                          "drop_transport_acc", "relative_omega", "surface_taken_fixed",
                          "position_term", "strands_miscounted", "load_at_other_point",
-                         "contact_taken_smooth"),
+                         "contact_taken_smooth", "gyration_for_radius",
+                         "moment_arm_omitted", "driver_speed",
+                         "rate_relation_inverted",
+                         "initial_displacement_omitted"),
     "angular_rate_equal": ("driver_rate",),
     "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
@@ -94,15 +99,15 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "head_on": ("impact_taken_head_on",),
     "restitution_wrong_component": ("restitution_component",),
     "restitution_ignored": ("restitution_ignored",),
-    "momentum_with_pin": (),
+    "momentum_with_pin": ("pin_impulse_omitted",),
     "efficiency_inverted": ("efficiency_inverted",),
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
     "speed_conserved": ("value_at_start",),
     "half_factor": ("factor_2",),
-    "rolling_assumed": (),
+    "rolling_assumed": ("rolling_assumed",),
     "damping_ignored": ("damping_omitted",),
-    "translation_ke_dropped": (),
+    "translation_ke_dropped": ("translational_ke_omitted",),
     "wrong_root": (),
     "magnitudes_added": ("mag_as_sum",),
 }.items()}
@@ -110,6 +115,20 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
 # a unit-slip code names the row's slip when the row's words mention one of its units
 UNIT_WORDS = {"rpm_rad": ("rpm",), "rev_rad": ("rev", "hertz", "Hz"), "cm_m": ("cm",),
               "mm_m": ("mm",), "ft_m": ("ft",), "in_ft": ("lb/in", " in ")}
+# typical.py's vocabulary has no kind for an applied force (a drag, a push) left out: its rows
+# write it as gravity_dropped. An applied force left out names such a row when the row's words
+# name the load it leaves out and it is not the weight ("resistance left out").
+LOAD_LEFT_OUT = {"gravity_dropped": ("force_omitted",)}
+GRAVITY_WORDS = ("gravity", "weight", "g sin", "m g")
+
+
+def load_left_out(code: str, row: dict) -> bool:
+    """Whether ``code`` names the row as a load other than the weight left out
+    (:data:`LOAD_LEFT_OUT`)."""
+    return code in LOAD_LEFT_OUT.get(row["kind"], ()) and "left out" in row["mistake"] \
+        and not any(w in row["mistake"] for w in GRAVITY_WORDS)
+
+
 # whole-answer diagnoses that are true of an answer without naming its mistake
 SHAPE_CODES = frozenset({"direction", "magnitude", "swapped", "dimension", "shape",
                          "missing_unit", "sig_figs", "frame"})
@@ -174,6 +193,8 @@ def classify(row: dict, result) -> tuple[str, object]:
             if row["kind"] == "unit_slip" and words is not None \
                     and not any(w in row["mistake"] for w in words):
                 continue
+            return "named", judged
+        if load_left_out(code, row):
             return "named", judged
     if all(c in SHAPE_CODES or (c in FACTOR_CODES and _exact_factor(c, row["answer"], result))
            for c in codes):
