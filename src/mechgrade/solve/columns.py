@@ -143,7 +143,16 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
             return solved
     else:
         solved = np.full((k, count), np.nan)
-    if rows_ == k and 1 < k <= 3:
+    if rows_ == k and 1 < k <= 3 and count == 1:
+        # one column (a single solve's integration): the same products on Python floats,
+        # bit for bit, without numpy's cost per operation on one-element arrays
+        M, v = A[:, :, 0].tolist(), b[:, 0].tolist()
+        det = _determinant(M)
+        if det != 0:
+            for j in range(k):
+                solved[j, 0] = _determinant([[v[i] if c == j else x for c, x in enumerate(row)]
+                                             for i, row in enumerate(M)]) / det
+    elif rows_ == k and 1 < k <= 3:
         det = _determinant(A)
         with np.errstate(all="ignore"):
             for j in range(k):
@@ -164,16 +173,21 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     return solved
 
 
-def _determinant(A: np.ndarray) -> np.ndarray:
-    """The determinant of every column's square matrix of up to three rows."""
-    k = A.shape[0]
+def _determinant(A):
+    """The determinant of a square matrix of up to three rows: of every column's (``A``: rows
+    x rows x N), or of one given as nested lists of floats.
+
+    >>> _determinant([[2.0, 1.0], [1.0, 3.0]]), float(_determinant(np.eye(3)[:, :, None])[0])
+    (5.0, 1.0)
+    """
+    k = len(A)
     if k == 1:
-        return A[0, 0]
+        return A[0][0]
     if k == 2:
-        return A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]
-    return (A[0, 0] * (A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1])
-            - A[0, 1] * (A[1, 0] * A[2, 2] - A[1, 2] * A[2, 0])
-            + A[0, 2] * (A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]))
+        return A[0][0] * A[1][1] - A[0][1] * A[1][0]
+    return (A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
+            - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0])
+            + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]))
 
 
 def least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
