@@ -22,6 +22,7 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -160,9 +161,11 @@ def problem_names(problem: Problem) -> tuple[tuple[str, str], ...]:
     return coordinate_names([c.name for c in problem.coordinates], [p.name for p in problem.points])
 
 
+@lru_cache(maxsize=64)
 def slip_end_time(problem: Problem) -> float | None:
     """When the slip of a contact that grips once its slip ends (a ball skids, then rolls)
-    ends, in s; ``None`` for a motion in one phase.
+    ends, in s; ``None`` for a motion in one phase. Kept per problem: a class's pages ask
+    again for each student.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
