@@ -1,6 +1,6 @@
 """Grade every hand-computed mistake of the held-out problems and say how mechgrade diagnosed it.
 
-Run: python tests/data/heldout/measure.py [-v]   (with the mechgrade to measure importable)
+Run: python tests/data/heldout/measure.py [-v] [PROBLEM ...]   (with the mechgrade to measure importable)
 
 The tables beside this file were computed by hand (typical.py) before mechgrade's mistake
 families were read, and are frozen. Each row's ``kind`` is a name of typical.py's own vocabulary;
@@ -290,4 +290,8 @@ def rate(counted: Counter) -> str:
 
 
 if __name__ == "__main__":
-    measure("-v" in sys.argv)
+    named = [a for a in sys.argv[1:] if not a.startswith("-")]
+    unknown = sorted(set(named) - set(tables()))
+    if unknown:
+        sys.exit(f"measure.py: no held-out table for {', '.join(unknown)}")
+    measure("-v" in sys.argv, problems=set(named) or None)
