@@ -9,7 +9,7 @@ import pytest
 
 from mechgrade.errors import SolveError, SpecError
 from mechgrade.solve.dynamics import solve_dynamics
-from mechgrade.solve.phases import gripping, gripping_phase
+from mechgrade.solve.phases import gripping, gripping_phase, gripping_word
 from mechgrade.spec import load_problem_text
 from mechgrade.spec.dynamics import StaticFriction
 
@@ -35,6 +35,12 @@ def test_the_gripping_phase_holds_the_contact_still_along_the_slope_with_static_
     grip = phase.constraints[-1]
     assert (grip.name, grip.level, grip.lhs.text) == \
         ("F_C_grips", "velocity", "dot(vel(coincident(C, B), N), A.x)")
+
+
+def test_a_round_body_that_grips_rolls_and_a_block_sticks():
+    assert gripping_word(load_problem_text(BALL, "p.yaml")) == "rolling"
+    block = BALL.replace("inertia: {sphere: {radius: R}}", "inertia: {block: {sides: [2*R, 2*R, 2*R]}}")
+    assert gripping_word(load_problem_text(block, "p.yaml")) == "sticking"
 
 
 @pytest.mark.parametrize("case,text,message", [

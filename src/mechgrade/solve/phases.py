@@ -21,8 +21,8 @@ import sympy as sp
 
 from ..errors import Location, SolveError
 from ..expressions.syntax import parse, to_text
-from ..spec.dynamics import (GROUND, Integration, KineticFriction, StaticFriction,
-                             dynamics_of)
+from ..spec.dynamics import (GROUND, Cylinder, Disk, Integration, KineticFriction, Ring,
+                             Shell, Sphere, StaticFriction, dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from . import rules
@@ -42,6 +42,25 @@ def gripping(problem: Problem) -> KineticFriction | None:
         return None
     return next((f for f in d.friction if isinstance(f, KineticFriction) and f.then is not None),
                 None)
+
+
+def gripping_word(problem: Problem) -> str:
+    """What a textbook calls the phase once the slip ends: a round body (disk, ring, cylinder,
+    sphere, shell) at its contact "rolling", anything else (a block on a belt) "sticking".
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> gripping_word(load_problem(shipped_dir("problems") / "bowling_ball_skids_then_rolls.yaml"))
+    'rolling'
+    """
+    f = gripping(problem)
+    assert f is not None, "only a contact that grips has a gripping phase"
+    d = problem.dynamics
+    assert d is not None
+    body = next(b for b in d.bodies if b.name == f.on)
+    round_ = (Ring, Disk, Cylinder, Sphere, Shell)
+    return "rolling" if any(isinstance(part.shape, round_) for part in body.parts) \
+        else "sticking"
 
 
 def grip_constraint(problem: Problem) -> str:

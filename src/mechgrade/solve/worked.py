@@ -35,7 +35,7 @@ from ..units import from_si, same_dimension
 from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from .entry import solve
 from .fbd import FreeBodyDiagram, free_body_diagrams
-from .phases import grip_constraint, gripping, gripping_phase
+from .phases import grip_constraint, gripping, gripping_phase, gripping_word
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
                      in_frame)
@@ -131,7 +131,7 @@ def worked_solution(problem: Problem, solution: Solution,
     instant = next((v.si for v in solution.state if v.name == "t"), None)
     rolling = slip_ends is not None and instant is not None and instant > slip_ends
     if slip_ends is not None:  # each answer says the phase it is read in
-        answers = tuple(_read_in(step, o, slip_ends, instant)
+        answers = tuple(_read_in(problem, step, o, slip_ends, instant)
                         for step, o in zip(answers, (o for o in chosen if o.id in results)))
     steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
              *_phased(problem, slip_ends,
@@ -192,7 +192,7 @@ def _phased(problem: Problem, slip_ends: float | None,
     grip = gripping(problem)
     assert grip is not None
     until, since = f"while {grip.name} slips, until t = {slip_ends:.3g} s", \
-        f"rolling from t = {slip_ends:.3g} s ({grip.name} grips: static friction)"
+        f"{gripping_word(problem)} from t = {slip_ends:.3g} s ({grip.name} grips: static friction)"
     kinetics = [i for i, s in enumerate(steps) if s.anchor.startswith("kinetics-")]
     if not kinetics:
         return steps
@@ -214,14 +214,16 @@ def _phased(problem: Problem, slip_ends: float | None,
     return earlier[:kinetics[-1] + 1] + later + earlier[kinetics[-1] + 1:]
 
 
-def _read_in(step: Step, objective, slip_ends: float, instant: float | None) -> Step:
+def _read_in(problem: Problem, step: Step, objective, slip_ends: float,
+             instant: float | None) -> Step:
     """An answer's step saying the phase its value is read in (by the time it is read at:
     its own ``t`` given, else the instant's)."""
     own = next((g.si for g in objective.givens if g.key.text == "t"), None)
     at = own if own is not None else instant if objective.when is None else None
     if at is None:
         return step
-    phase = "read while rolling" if at > slip_ends * (1 + 1e-9) else "read while slipping"
+    phase = f"read while {gripping_word(problem)}" if at > slip_ends * (1 + 1e-9) \
+        else "read while slipping"
     return replace(step, lines=(*step.lines, f"{phase} (the slip ends at t = {slip_ends:.3g} s)"))
 
 
