@@ -645,6 +645,25 @@ def author_units(problem: Problem, p: KinematicsPlan) -> list[str]:
     return out
 
 
+def givens_conflict(level: str, label: str, residual: float, scale: float, g: Givens,
+                    where) -> InconsistentError:
+    """The refusal of givens that over-determine a level: the equation they leave unsatisfied,
+    the givens involved, and the fix.
+
+    >>> from types import SimpleNamespace
+    >>> str(givens_conflict("velocity", "loop", 1.0, 6.0, SimpleNamespace(texts={"x": "x = 1 m"}),
+    ...                     None))  # doctest: +NORMALIZE_WHITESPACE
+    "the givens conflict at the velocity level: 'loop' is not satisfied (residual 1 against
+    terms of size 6); givens involved: x = 1 m; leave out the one that follows from the others
+    or correct its value"
+    """
+    return InconsistentError(
+        f"the givens conflict at the {level} level: '{label}' is not satisfied (residual "
+        f"{residual:.4g} against terms of size {scale:.4g}); givens involved: "
+        f"{'; '.join(g.texts.values()) or 'none'}; leave out the one that follows from the "
+        f"others or correct its value", where=where)
+
+
 def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError | None:
     """The error of a level not satisfied at ``x`` (``None`` if it is): a conflict when the
     givens over-determine it (more equations than the ``rank`` of their Jacobian), else a
@@ -657,10 +676,8 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
         return None
     i = bad[0]
     if int(active.sum()) > rank:
-        return InconsistentError(
-            f"the givens conflict at the {level.name} level: '{level.labels[i]}' is not "
-            f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
-            f"involved: {'; '.join(g.texts.values()) or 'none'}", where=level.wheres[i])
+        return givens_conflict(level.name, level.labels[i], r[i], scale[i], g,
+                               level.wheres[i])
     guesses = "give guesses: near the configuration meant" if level.order == 0 else \
         "give a branch: for the rate's sign or check the givens"
     return SolveError(
@@ -721,10 +738,7 @@ def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, 
         labels = np.array(level.labels)[active]
         i = first_off(r, scale, problem.consistency)
         if i is not None:
-            raise InconsistentError(
-                f"the givens conflict at the {level.name} level: '{labels[i]}' is not "
-                f"satisfied (residual {r[i]:.4g} against terms of size {scale[i]:.4g}); givens "
-                f"involved: {'; '.join(g.texts.values()) or 'none'}", where=wheres[i])
+            raise givens_conflict(level.name, labels[i], r[i], scale[i], g, wheres[i])
     return State(x, g.known, frozenset(free)), null
 
 
