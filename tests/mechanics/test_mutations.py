@@ -281,3 +281,16 @@ def test_a_students_kinematic_factor_slip_is_named_when_graded(problem, objectiv
                                                                label):
     judged = assess(answer, solve(_problem(problem)).result(objective))
     assert (judged.verdict, judged.diagnosis) == ("incorrect", label)
+
+
+def test_a_second_derivative_from_a_force_balance_is_read_without_the_centripetal_term():
+    # the smooth rod pushes nothing along itself: r'' - r θ'² = 0, so r'' = 0 without ω × (ω × r)
+    problem = _problem("collar_slides_on_spinning_rod")
+    found = [m for m in mutations(problem, "sliding_acceleration") if "force balance" in m.sentence]
+    assert [m.code for m in found] == ["drop_centripetal"]  # the Coriolis term is across the rod
+    values = {"rdd": 7.5, "r": 0.3, "thetad": 5.0}
+    value = found[0].value.subs({s: values[s.name] for s in found[0].value.free_symbols})
+    assert float(value) == pytest.approx(0.0)
+    # a coordinate no force balance gives (a problem without bodies) has no such reading
+    assert not any("force balance" in m.sentence
+                   for m in mutations(_problem("radar_tracks_airplane_polar"), "r_ddot"))

@@ -165,6 +165,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _magnitudes_combined(r)
     _other_bases(r)
     _zero_for_constant_rate(r)
+    _balance_without_term(r)
     _driver_rate(r)
     _gyration_for_radius(r)
     _driver_speed(r)
@@ -580,6 +581,48 @@ def _zero_for_constant_rate(r: _Reading) -> None:
     r.append("zero_for_constant_rate", zero, f"Your value is zero, as if the constant rate "
              f"({rates}) meant no acceleration: a steady rate makes its own second derivative "
              "zero, not the other accelerations (their centripetal and coupled terms).")
+
+
+def _balance_without_term(r: _Reading) -> None:
+    """A coordinate's second derivative ``q''`` that a body's force balance gives, read
+    from that balance with a term of the body's acceleration relative to a turning frame left
+    out (the centripetal ω × (ω × r), the Coriolis 2 ω × v_rel or half of it): along the
+    direction in which ``q`` moves the body, ``q''`` is then off by that term's share."""
+    node, model = r.node, r.model
+    problem = model.problem
+    if problem.dynamics is None or not (isinstance(node, Prime) and node.order == 2) \
+            or node.id not in {c.name for c in problem.coordinates}:
+        return
+    q = model.language.value(Name(node.id))
+    N = model.inertial
+    for body in dynamics_of(problem).bodies:
+        for B, origin in _moving_frames(model, body.centre, problem.inertial_frame):
+            frame = model.frames[B]
+            rel = model.positions[body.centre] - model.positions[origin]
+            along = rel.diff(q, frame)  # the direction q moves the centre in B
+            size = along & along
+            if identically_zero(model.plain(size)):
+                continue
+            omega = frame.ang_vel_in(N)
+            v_rel = rel.dt(frame)
+            where = f"(ω of frame {B}, r from {origin} to {body.centre})"
+            for code, term, name in (
+                    ("drop_centripetal", omega ^ (omega ^ rel),
+                     f"the centripetal term ω × (ω × r) {where}"),
+                    ("drop_coriolis", 2 * (omega ^ v_rel),
+                     f"the Coriolis term 2 ω × v_rel {where}"),
+                    ("coriolis_half", omega ^ v_rel,
+                     "the factor 2 of the Coriolis term 2 ω × v_rel")):
+                share = (term & along) / size
+                if identically_zero(model.plain(share)):
+                    continue
+                # the balance fixes the acceleration along the motion: q'' (its relative
+                # part) takes up the term left out
+                r.append(code, r.right + share,
+                         f"Your value is {to_text(node)} from the force balance of "
+                         f"{body.name} with {name} left out of its acceleration: along "
+                         f"{B}'s direction of {node.id} the balance fixes the whole "
+                         "acceleration, that term included.")
 
 
 def _other_given_rates(r: _Reading, coordinates: set[str]) -> Iterator[tuple[Prime, Prime, Any]]:
