@@ -156,7 +156,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             continue
         in_frame = name_of(call.args[1])
         _relative_motion(r, call, point, in_frame)
-        for B, origin in _moving_frames(model, point.id, in_frame):
+        for B, origin in moving_frames(model, point.id, in_frame):
             _composition(r, call, point, in_frame, B, origin)
         _other_points(r, call, point, in_frame)
     _other_positions(r)
@@ -596,7 +596,7 @@ def _balance_without_term(r: _Reading) -> None:
     q = model.language.value(Name(node.id))
     N = model.inertial
     for body in dynamics_of(problem).bodies:
-        for B, origin in _moving_frames(model, body.centre, problem.inertial_frame):
+        for B, origin in moving_frames(model, body.centre, problem.inertial_frame):
             frame = model.frames[B]
             rel = model.positions[body.centre] - model.positions[origin]
             along = rel.diff(q, frame)  # the direction q moves the centre in B
@@ -826,7 +826,7 @@ def _relabel(vector: Vector, source, target) -> Vector:
     return x * target.x + y * target.y + z * target.z
 
 
-def _moving_frames(model: Model, point: str, frame: str):
+def moving_frames(model: Model, point: str, frame: str):
     """Frames (other than ``frame``) with an origin and an angular velocity in ``frame``, or
     an origin moving in it (the air carried by the wind), in which ``point`` is described: a
     composition of motion applies."""
