@@ -166,6 +166,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _other_bases(r)
     _zero_for_constant_rate(r)
     _balance_without_term(r)
+    _constraint_without_term(r)
     _driver_rate(r)
     _gyration_for_radius(r)
     _driver_speed(r)
@@ -623,6 +624,83 @@ def _balance_without_term(r: _Reading) -> None:
                          f"{body.name} with {name} left out of its acceleration: along "
                          f"{B}'s direction of {node.id} the balance fixes the whole "
                          "acceleration, that term included.")
+
+
+def _turning_terms(omega, rel, v_rel, where: str) -> tuple[tuple[str, Any, str], ...]:
+    """``(code, term, name)`` of the terms of a point's acceleration in a turning frame that
+    a mistake leaves out of it: ω × (ω × r), 2 ω × v_rel, and ω × v_rel (the 2 forgotten)."""
+    return (("drop_centripetal", omega ^ (omega ^ rel),
+             f"the centripetal term ω × (ω × r) {where}"),
+            ("drop_coriolis", 2 * (omega ^ v_rel), f"the Coriolis term 2 ω × v_rel {where}"),
+            ("coriolis_half", omega ^ v_rel, "the factor 2 of the Coriolis term 2 ω × v_rel"))
+
+
+def _constraint_without_term(r: _Reading) -> None:
+    """A coordinate's second derivative solved from the position constraints differentiated
+    twice (a slotted arm's θ'', a tracked airplane's θ'') with the centripetal or Coriolis
+    term left out of the acceleration of a side described in a turning frame (``s S.x``):
+    ``J Δ = T`` gives each unknown second derivative's change ``Δ``, ``J`` the constraints'
+    partial derivatives in the unknown coordinates."""
+    node, model = r.node, r.model
+    problem = model.problem
+    if problem.dynamics is not None or not (isinstance(node, Prime) and node.order == 2):
+        return
+    given = {to_text(g.key.node) for g in problem.givens}
+    unknown = [c.name for c in problem.coordinates if f"{c.name}''" not in given]
+    if node.id not in unknown:
+        return
+    lang, N = model.language, model.inertial
+    qs = [lang.value(Name(c)) for c in unknown]
+    rows: list[list] = []
+    sides: list[tuple[str, int, Vector, list[int]]] = []
+    for c in problem.constraints:
+        if c.level != "position":
+            continue
+        try:
+            left, right = lang.value(c.lhs.node), lang.value(c.rhs.node)
+        except Exception:  # a side the kinematic language cannot read alone
+            return
+        vector = isinstance(left, Vector) or isinstance(right, Vector)
+        difference = (left - right).to_matrix(N) if vector else [left - right]
+        at = []
+        for component in difference:
+            row = [model.plain(sp.diff(component, q)) for q in qs]
+            if any(not identically_zero(x) for x in row):
+                at.append(len(rows))
+                rows.append(row)
+            else:
+                at.append(-1)
+        if vector:
+            sides += [(c.name, sign, side, at) for sign, side in ((1, left), (-1, right))
+                      if isinstance(side, Vector)]
+    if len(rows) != len(qs):
+        return
+    J = sp.Matrix(rows)
+    for name, sign, side, at in sides:
+        for B, origin in moving_frames(model, "", problem.inertial_frame):
+            if all(frame != model.frames[B] for _, frame in side.args):
+                continue
+            frame = model.frames[B]
+            rel = side - model.positions[origin]
+            for code, term, words in _turning_terms(
+                    frame.ang_vel_in(N), rel, rel.dt(frame),
+                    f"(ω of frame {B}, r from {origin})"):
+                b = sp.zeros(len(rows), 1)
+                for i, component in zip(at, term.to_matrix(N)):
+                    if i >= 0:
+                        b[i] = sign * model.plain(component)
+                if all(identically_zero(x) for x in b):
+                    continue
+                try:
+                    change = J.LUsolve(b)[unknown.index(node.id)]
+                except (ValueError, ZeroDivisionError):  # a singular J: no unique reading
+                    return
+                if identically_zero(sp.simplify(change)):
+                    continue
+                r.append(code, r.right + change,
+                         f"Your value is {to_text(node)} solved from the constraint {name} "
+                         f"with {words} left out of the acceleration of its side described in "
+                         f"frame {B}: include it.")
 
 
 def _other_given_rates(r: _Reading, coordinates: set[str]) -> Iterator[tuple[Prime, Prime, Any]]:
