@@ -607,13 +607,7 @@ def _balance_without_term(r: _Reading) -> None:
             omega = frame.ang_vel_in(N)
             v_rel = rel.dt(frame)
             where = f"(ω of frame {B}, r from {origin} to {body.centre})"
-            for code, term, name in (
-                    ("drop_centripetal", omega ^ (omega ^ rel),
-                     f"the centripetal term ω × (ω × r) {where}"),
-                    ("drop_coriolis", 2 * (omega ^ v_rel),
-                     f"the Coriolis term 2 ω × v_rel {where}"),
-                    ("coriolis_half", omega ^ v_rel,
-                     "the factor 2 of the Coriolis term 2 ω × v_rel")):
+            for code, term, name in _turning_terms(omega, rel, v_rel, where):
                 share = (term & along) / size
                 if identically_zero(model.plain(share)):
                     continue
