@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
+import sympy as sp
 
 from mechgrade.grade.compare import assess
 from mechgrade.expressions.syntax import parse
@@ -281,3 +282,30 @@ def test_a_students_kinematic_factor_slip_is_named_when_graded(problem, objectiv
                                                                label):
     judged = assess(answer, solve(_problem(problem)).result(objective))
     assert (judged.verdict, judged.diagnosis) == ("incorrect", label)
+
+
+def test_a_second_derivative_from_a_force_balance_is_read_without_the_centripetal_term():
+    # the smooth rod pushes nothing along itself: r'' - r θ'² = 0, so r'' = 0 without ω × (ω × r)
+    problem = _problem("collar_slides_on_spinning_rod")
+    found = [m for m in mutations(problem, "sliding_acceleration") if "force balance" in m.sentence]
+    assert [m.code for m in found] == ["drop_centripetal"]  # the Coriolis term is across the rod
+    values = {"rdd": 7.5, "r": 0.3, "thetad": 5.0}
+    value = found[0].value.subs({s: values[s.name] for s in found[0].value.free_symbols})
+    assert float(value) == pytest.approx(0.0)
+    # a coordinate no force balance gives (a problem without bodies) has no such reading
+    assert not any("force balance" in m.sentence
+                   for m in mutations(_problem("radar_tracks_airplane_polar"), "r_ddot"))
+
+
+def test_a_second_derivative_solved_from_a_constraint_without_a_coriolis_term_or_its_2():
+    # h N.y + r C.x = s S.x twice differentiated: along S.y, s θ'' + 2 s' θ' is fixed by the crank
+    found = {m.code: m.value for m in mutations(_problem("slotted_arm_crank_coriolis"),
+                                                "arm_angular_acceleration")
+             if "solved from the constraint" in m.sentence and "frame S" in m.sentence}
+    symbols = {s.name: s for s in found["drop_coriolis"].free_symbols}
+    thetadd, sd, thetad, s = (symbols[n] for n in ("thetadd", "sd", "thetad", "s"))
+    assert sp.simplify(found["drop_coriolis"] - (thetadd + 2 * sd * thetad / s)) == 0
+    assert sp.simplify(found["coriolis_half"] - (thetadd + sd * thetad / s)) == 0
+    # a rate (not a second derivative) has no such reading
+    assert not any("solved from the constraint" in m.sentence for m in mutations(
+        _problem("slotted_arm_crank_coriolis"), "arm_angular_velocity"))

@@ -42,7 +42,7 @@ from ..spec.model import Constraint, Expr, Problem
 from ..spec.solving import given_unit
 from .bodies import SHAPES
 from .build import Model, build
-from .mutations import additive_terms, sum_of_terms
+from .mutations import moving_frames, additive_terms, sum_of_terms
 from .symbols import identically_zero
 
 LOADS, BODIES, BALANCES, OBJECTIVES = ("Free-body loads", "Bodies", "Momentum balances",
@@ -564,6 +564,94 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                     "its direction, where the other forces and the acceleration count too.",
                     BALANCES, readings=readings,
                     term=weight, term_unit="N")
+
+
+def reaction_without_coriolis(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A one-direction reaction on a particle moving in a turning frame (a collar on a spinning
+    rod) read from the balance along its direction with the Coriolis term 2 ω × v_rel of the
+    particle's acceleration left out, or with ω × v_rel (the 2 forgotten): the reaction less
+    m times that term's component along it. Only where no other unknown of the particle acts
+    along the reaction and no coordinate moves it that way (the balance along it fixes it
+    alone)."""
+    d = dynamics_of(problem)
+    if isinstance(d.analysis, Impulse):
+        return
+    lang, N = model.language, problem.inertial_frame
+    for r in d.reactions:
+        if len(r.directions) != 1:
+            continue
+        direction = r.directions[0]
+        along = lang.vector(direction)
+        for act in r.acts:
+            if act.on == GROUND:
+                continue
+            body = d.body(act.on)
+            if body.frame is not None or _pushed_otherwise(model, d, r, body, along):
+                continue
+            for B, origin in moving_frames(model, body.centre, N):
+                rel = f"pos({body.centre}, {origin})"
+                term = parse(f"2*cross(angvel({B}, {N}), dt({rel}, {B}))", functions=FUNCTIONS)
+                if identically_zero(model.plain(lang.value(term) & along)):
+                    continue
+                for code, share, name in (("drop_coriolis", "", "the Coriolis term 2 ω × v_rel"),
+                                          ("coriolis_half", "/2",
+                                           "half the Coriolis term (ω × v_rel, the 2 forgotten)")):
+                    unit = f"unit({direction.text})"
+                    replacement = parse(
+                        f"force({r.name}) - ({_mass(body)})*dot({to_text(term)}{share}, {unit})"
+                        f"*{unit}", functions=FUNCTIONS)
+                    readings = _force_readings(problem, r.name, act.at, replacement)
+                    if readings:
+                        yield DynamicsMutation(
+                            code, f"Your value is {r.name} from the balance of {body.name} "
+                            f"along it with {name} of frame {B} left out of the acceleration: "
+                            f"the sliding along {B} while it turns needs m × 2 ω × v_rel = "
+                            "{term} across.", BALANCES, readings=readings,
+                            term=_expr(f"({_mass(body)})*dot({to_text(term)}, {unit})"),
+                            term_unit="N")
+
+
+def _pushed_otherwise(model: Model, d: Dynamics, reaction: Reaction, body: Body,
+                      along: Vector) -> bool:
+    """Whether another unknown of ``body`` (another reaction's direction, a coordinate that
+    is not driven moving its centre) acts or moves along ``along``."""
+    lang = model.language
+    for other in d.reactions:
+        if other.name == reaction.name or not any(a.on == body.name for a in other.acts):
+            continue
+        if any(not identically_zero(model.plain(lang.vector(e) & along))
+               for e in other.directions):
+            return True
+    # a driven coordinate (its second derivative given) is no unknown of the balance
+    given = {to_text(g.key.node) for g in model.problem.givens}
+    position = model.positions[body.centre]
+    return any(not identically_zero(model.plain(
+        position.diff(lang.value(Name(c.name)), model.inertial) & along))
+        for c in model.problem.coordinates if f"{c.name}''" not in given)
+
+
+def _force_readings(problem: Problem, name: str, at: str, replacement: Node
+                    ) -> tuple[tuple[str, Expr], ...]:
+    """Each numeric objective that asks for the force ``name`` or its moment, read with
+    ``replacement`` for the force (acting at ``at``)."""
+    def change(n: Node) -> Node | None:
+        if not (isinstance(n, Call) and n.args and n.args[0] == Name(name)):
+            return None
+        if n.func == "force":
+            return replacement
+        if n.func == "moment":
+            return Call("cross", (Call("pos", (Name(at), n.args[1])), replacement))
+        return None
+
+    out = []
+    for obj in problem.objectives:
+        node = obj.find.node
+        if obj.kind == "symbolic" or not any(c.args[0] == Name(name) for f in ("force", "moment")
+                                             for c in _calls(node, f)):
+            continue
+        new = _rewrite(node, change)
+        out.append((obj.id, Expr(to_text(new), new)))
+    return tuple(out)
 
 
 def rotational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1631,6 +1719,7 @@ def period_for_frequency(problem: Problem, model: Model) -> Iterator[DynamicsMut
 FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     weight_omitted, weight_omitted_from_reaction, reaction_as_static, reactions_as_static,
     reaction_omitted,
+    reaction_without_coriolis,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
     reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,

@@ -156,7 +156,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             continue
         in_frame = name_of(call.args[1])
         _relative_motion(r, call, point, in_frame)
-        for B, origin in _moving_frames(model, point.id, in_frame):
+        for B, origin in moving_frames(model, point.id, in_frame):
             _composition(r, call, point, in_frame, B, origin)
         _other_points(r, call, point, in_frame)
     _other_positions(r)
@@ -165,6 +165,8 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _magnitudes_combined(r)
     _other_bases(r)
     _zero_for_constant_rate(r)
+    _balance_without_term(r)
+    _constraint_without_term(r)
     _driver_rate(r)
     _gyration_for_radius(r)
     _driver_speed(r)
@@ -582,6 +584,119 @@ def _zero_for_constant_rate(r: _Reading) -> None:
              "zero, not the other accelerations (their centripetal and coupled terms).")
 
 
+def _balance_without_term(r: _Reading) -> None:
+    """A coordinate's second derivative ``q''`` that a body's force balance gives, read
+    from that balance with a term of the body's acceleration relative to a turning frame left
+    out (the centripetal ω × (ω × r), the Coriolis 2 ω × v_rel or half of it): along the
+    direction in which ``q`` moves the body, ``q''`` is then off by that term's share."""
+    node, model = r.node, r.model
+    problem = model.problem
+    if problem.dynamics is None or not (isinstance(node, Prime) and node.order == 2) \
+            or node.id not in {c.name for c in problem.coordinates}:
+        return
+    q = model.language.value(Name(node.id))
+    N = model.inertial
+    for body in dynamics_of(problem).bodies:
+        for B, origin in moving_frames(model, body.centre, problem.inertial_frame):
+            frame = model.frames[B]
+            rel = model.positions[body.centre] - model.positions[origin]
+            along = rel.diff(q, frame)  # the direction q moves the centre in B
+            size = along & along
+            if identically_zero(model.plain(size)):
+                continue
+            omega = frame.ang_vel_in(N)
+            v_rel = rel.dt(frame)
+            where = f"(ω of frame {B}, r from {origin} to {body.centre})"
+            for code, term, name in _turning_terms(omega, rel, v_rel, where):
+                share = (term & along) / size
+                if identically_zero(model.plain(share)):
+                    continue
+                # the balance fixes the acceleration along the motion: q'' (its relative
+                # part) takes up the term left out
+                r.append(code, r.right + share,
+                         f"Your value is {to_text(node)} from the force balance of "
+                         f"{body.name} with {name} left out of its acceleration: along "
+                         f"{B}'s direction of {node.id} the balance fixes the whole "
+                         "acceleration, that term included.")
+
+
+def _turning_terms(omega, rel, v_rel, where: str) -> tuple[tuple[str, Any, str], ...]:
+    """``(code, term, name)`` of the terms of a point's acceleration in a turning frame that
+    a mistake leaves out of it: ω × (ω × r), 2 ω × v_rel, and ω × v_rel (the 2 forgotten)."""
+    return (("drop_centripetal", omega ^ (omega ^ rel),
+             f"the centripetal term ω × (ω × r) {where}"),
+            ("drop_coriolis", 2 * (omega ^ v_rel), f"the Coriolis term 2 ω × v_rel {where}"),
+            ("coriolis_half", omega ^ v_rel, "the factor 2 of the Coriolis term 2 ω × v_rel"))
+
+
+def _constraint_without_term(r: _Reading) -> None:
+    """A coordinate's second derivative solved from the position constraints differentiated
+    twice (a slotted arm's θ'', a tracked airplane's θ'') with the centripetal or Coriolis
+    term left out of the acceleration of a side described in a turning frame (``s S.x``):
+    ``J Δ = T`` gives each unknown second derivative's change ``Δ``, ``J`` the constraints'
+    partial derivatives in the unknown coordinates."""
+    node, model = r.node, r.model
+    problem = model.problem
+    if problem.dynamics is not None or not (isinstance(node, Prime) and node.order == 2):
+        return
+    given = {to_text(g.key.node) for g in problem.givens}
+    unknown = [c.name for c in problem.coordinates if f"{c.name}''" not in given]
+    if node.id not in unknown:
+        return
+    lang, N = model.language, model.inertial
+    qs = [lang.value(Name(c)) for c in unknown]
+    rows: list[list] = []
+    sides: list[tuple[str, int, Vector, list[int]]] = []
+    for c in problem.constraints:
+        if c.level != "position":
+            continue
+        try:
+            left, right = lang.value(c.lhs.node), lang.value(c.rhs.node)
+        except Exception:  # a side the kinematic language cannot read alone
+            return
+        vector = isinstance(left, Vector) or isinstance(right, Vector)
+        difference = (left - right).to_matrix(N) if vector else [left - right]
+        at = []
+        for component in difference:
+            row = [model.plain(sp.diff(component, q)) for q in qs]
+            if any(not identically_zero(x) for x in row):
+                at.append(len(rows))
+                rows.append(row)
+            else:
+                at.append(-1)
+        if vector:
+            sides += [(c.name, sign, side, at) for sign, side in ((1, left), (-1, right))
+                      if isinstance(side, Vector)]
+    if len(rows) != len(qs):
+        return
+    J = sp.Matrix(rows)
+    for name, sign, side, at in sides:
+        for B, origin in moving_frames(model, "", problem.inertial_frame):
+            if all(frame != model.frames[B] for _, frame in side.args):
+                continue
+            frame = model.frames[B]
+            rel = side - model.positions[origin]
+            for code, term, words in _turning_terms(
+                    frame.ang_vel_in(N), rel, rel.dt(frame),
+                    f"(ω of frame {B}, r from {origin})"):
+                b = sp.zeros(len(rows), 1)
+                for i, component in zip(at, term.to_matrix(N)):
+                    if i >= 0:
+                        b[i] = sign * model.plain(component)
+                if all(identically_zero(x) for x in b):
+                    continue
+                try:
+                    change = J.LUsolve(b)[unknown.index(node.id)]
+                except (ValueError, ZeroDivisionError):  # a singular J: no unique reading
+                    return
+                if identically_zero(sp.simplify(change)):
+                    continue
+                r.append(code, r.right + change,
+                         f"Your value is {to_text(node)} solved from the constraint {name} "
+                         f"with {words} left out of the acceleration of its side described in "
+                         f"frame {B}: include it.")
+
+
 def _other_given_rates(r: _Reading, coordinates: set[str]) -> Iterator[tuple[Prime, Prime, Any]]:
     """``(asked, key, given)`` for each nonzero given rate ``key`` of another of
     ``coordinates``, of the order of the rate ``asked`` of one of them that the objective is."""
@@ -783,7 +898,7 @@ def _relabel(vector: Vector, source, target) -> Vector:
     return x * target.x + y * target.y + z * target.z
 
 
-def _moving_frames(model: Model, point: str, frame: str):
+def moving_frames(model: Model, point: str, frame: str):
     """Frames (other than ``frame``) with an origin and an angular velocity in ``frame``, or
     an origin moving in it (the air carried by the wind), in which ``point`` is described: a
     composition of motion applies."""
