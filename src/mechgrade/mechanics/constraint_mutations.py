@@ -1,0 +1,74 @@
+"""Mistaken constraints: a problem copy with one of its constraints written the way a student
+writes it wrongly, for the solver to solve again (kinematic problems as well as those with
+bodies: a cord's strands miscounted changes every objective the cord's length fixes).
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> problem = load_problem(shipped_dir("problems") / "truck_hoists_crate_pulley.yaml")
+>>> [(m.code, m.problem.constraints[0].lhs.text) for m in constraint_mutations(problem)]
+[('strands_miscounted', 'sqrt(x**2+h**2)+(h-y)')]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Iterator
+
+from ..expressions.syntax import Bin, Node, Num, names, to_text
+from ..spec.model import Expr, Problem
+from .mutations import additive_terms, sum_of_terms
+
+
+@dataclass(frozen=True)
+class ConstraintMutation:
+    """One mistaken constraint: ``problem`` the copy to solve again (its author's answers and
+    mistakes dropped), ``sentence`` the diagnosis."""
+
+    code: str
+    sentence: str
+    problem: Problem
+
+
+def constraint_mutations(problem: Problem) -> tuple[ConstraintMutation, ...]:
+    """Every mistaken-constraint copy of ``problem``, family by family."""
+    return tuple(strands_once(problem))
+
+
+def strands_once(problem: Problem) -> Iterator[ConstraintMutation]:
+    """A cord's length written with a strand count of one: in a position constraint that
+    fixes a length (one side free of the coordinates), a term counted n times (the strands
+    of a movable pulley, 2 y_B) taken once."""
+    coordinates = {c.name for c in problem.coordinates}
+    for i, c in enumerate(problem.constraints):
+        if c.level != "position":
+            continue
+        sides = [c.lhs.node, c.rhs.node]
+        moving = [bool(names(side) & coordinates) for side in sides]
+        if sum(moving) != 1:
+            continue
+        side = sides[moving.index(True)]
+        terms = additive_terms(side)
+        for j, term in enumerate(terms):
+            count = _strands(term[1])
+            if count is None or len(terms) < 2 or not names(term[1]) & coordinates:
+                continue
+            once = sum_of_terms(terms[:j] + [(term[0], count[1])] + terms[j + 1:])
+            written = Expr(to_text(once), once)
+            new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
+            constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
+            objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives)
+            yield ConstraintMutation(
+                "strands_miscounted", f"Your value counts {to_text(count[1])} once in the "
+                f"length of {c.name} ({c.lhs.text} = {c.rhs.text}): it is there "
+                f"{count[0]} times (the strands that hold it).",
+                replace(problem, constraints=constraints, objectives=objectives, warnings=()))
+
+
+def _strands(node: Node) -> tuple[int, Node] | None:
+    """``(n, X)`` of a term ``n*X`` (or ``X*n``) with a whole number n of 2 or more."""
+    if not (isinstance(node, Bin) and node.op == "*"):
+        return None
+    for count, rest in ((node.left, node.right), (node.right, node.left)):
+        if isinstance(count, Num) and count.text.isdigit() and int(count.text) >= 2:
+            return int(count.text), rest
+    return None
