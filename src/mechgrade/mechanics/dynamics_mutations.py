@@ -38,10 +38,10 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              Ring, Shape, Shell, Sphere, Start, StaticFriction, WorkEnergy,
                              dynamics_of)
 from ..spec.language import FUNCTIONS
+from ..spec.constraint_mutations import strands_once
 from ..spec.model import Constraint, Expr, Problem
 from ..spec.solving import given_unit
 from .bodies import SHAPES
-from .constraint_mutations import strands_once
 from .build import Model, build
 from .symbols import identically_zero
 

@@ -28,6 +28,7 @@ import numpy as np
 
 from ..errors import MechgradeError
 from ..expressions.syntax import Call, Name, Prime, to_text, walk
+from ..spec.constraint_mutations import constraint_mutations
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
 from ..tolerance import within
@@ -143,9 +144,7 @@ def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
 def constraint_mistakes(problem: Problem, givens: Mapping,
                         wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
     """The objectives in ``wanted`` solved again with one constraint mistaken
-    (:mod:`mechgrade.mechanics.constraint_mutations`: a cord's strands counted once)."""
-    from ..mechanics.constraint_mutations import constraint_mutations
-
+    (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once)."""
     out: dict[str, list[GeneratedMistake]] = {}
     for m in constraint_mutations(problem):
         try:

@@ -1,6 +1,8 @@
 """Mistaken constraints: a problem copy with one of its constraints written the way a student
 writes it wrongly, for the solver to solve again (kinematic problems as well as those with
-bodies: a cord's strands miscounted changes every objective the cord's length fixes).
+bodies: a cord's strands miscounted changes every objective the cord's length fixes). A
+rewrite of the spec only, without sympy: a warm solve reads its mistaken copies' plans from the
+disk cache.
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
@@ -14,9 +16,8 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Iterator
 
-from ..expressions.syntax import Bin, Node, Num, names, to_text
-from ..spec.model import Expr, Problem
-from .mutations import additive_terms, sum_of_terms
+from ..expressions.syntax import Bin, Node, Num, additive_terms, names, sum_of_terms, to_text
+from .model import Expr, Problem
 
 
 @dataclass(frozen=True)
