@@ -13,9 +13,11 @@ disk cache.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 from typing import Iterator
 
+from ..expressions.notation import textbook
 from ..expressions.syntax import Bin, Node, Num, additive_terms, names, sum_of_terms, to_text
 from .model import Expr, Problem
 
@@ -58,11 +60,18 @@ def strands_once(problem: Problem) -> Iterator[ConstraintMutation]:
             new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
             constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
             objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives)
+            term = _spaced(count[1])
             yield ConstraintMutation(
-                "strands_miscounted", f"Your value counts {to_text(count[1])} once in the "
-                f"length of {c.name} ({c.lhs.text} = {c.rhs.text}): it is there "
-                f"{count[0]} times (the strands that hold it).",
+                "strands_miscounted", f"Your value counts {term} once in the length of "
+                f"{c.name} ({textbook(c.lhs.text)} = {textbook(c.rhs.text)}): it is there "
+                f"{count[0]} times, once for each strand that holds it.",
                 replace(problem, constraints=constraints, objectives=objectives, warnings=()))
+
+
+def _spaced(node: Node) -> str:
+    """``node`` as a textbook writes a term, a sum in parentheses with spaced signs."""
+    text = textbook(re.sub(r"(?<=[\w)])([+-])", r" \1 ", to_text(node)))
+    return f"({text})" if len(additive_terms(node)) > 1 else text
 
 
 def _strands(node: Node) -> tuple[int, Node] | None:
