@@ -18,7 +18,8 @@ from dataclasses import dataclass, replace
 from typing import Iterator
 
 from ..expressions.notation import textbook
-from ..expressions.syntax import Bin, Node, Num, additive_terms, names, sum_of_terms, to_text
+from ..expressions.syntax import (Bin, Call, Name, Node, Num, additive_terms, name_of, names,
+                                  sum_of_terms, to_text)
 from .model import Expr, Problem
 
 
@@ -34,7 +35,7 @@ class ConstraintMutation:
 
 def constraint_mutations(problem: Problem) -> tuple[ConstraintMutation, ...]:
     """Every mistaken-constraint copy of ``problem``, family by family."""
-    return tuple(strands_once(problem))
+    return (*strands_once(problem), *surface_taken_fixed(problem))
 
 
 def strands_once(problem: Problem) -> Iterator[ConstraintMutation]:
@@ -59,13 +60,51 @@ def strands_once(problem: Problem) -> Iterator[ConstraintMutation]:
             written = Expr(to_text(once), once)
             new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
             constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
-            objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives)
             term = _spaced(count[1])
             yield ConstraintMutation(
                 "strands_miscounted", f"Your value counts {term} once in the length of "
                 f"{c.name} ({textbook(c.lhs.text)} = {textbook(c.rhs.text)}): it is there "
                 f"{count[0]} times, once for each strand that holds it.",
-                replace(problem, constraints=constraints, objectives=objectives, warnings=()))
+                _copy(problem, constraints))
+
+
+def surface_taken_fixed(problem: Problem) -> Iterator[ConstraintMutation]:
+    """A body rolling on a moving surface (a rack, a plank) written as rolling on a fixed one:
+    the contact point's velocity ``vel(coincident(P, S), N)`` taken as zero (S's point at P
+    taken at rest)."""
+    for i, c in enumerate(problem.constraints):
+        # a rolling contact as the loader writes it: the body's point = the surface's point
+        body, contact = _surface_point(c.lhs.node), _surface_point(c.rhs.node)
+        if c.level != "velocity" or body is None or contact is None or body[0] != contact[0]:
+            continue
+        point, surface, frame = contact
+        text = f"vel(coincident({point}, {frame}), {frame})"
+        rest = Expr(text, Call("vel", (Call("coincident", (Name(point), Name(frame))),
+                                       Name(frame))))
+        new = replace(c, rhs=rest)
+        yield ConstraintMutation(
+            "surface_taken_fixed", f"Your value takes {surface} as fixed where {body[1]} "
+            f"rolls on it at {point} ({c.name}): {surface} moves, so without slip the point "
+            f"{point} of {body[1]} moves with {surface}'s point there, not at zero speed.",
+            _copy(problem, problem.constraints[:i] + (new,) + problem.constraints[i + 1:]))
+
+
+def _surface_point(node: Node) -> tuple[str, str, str] | None:
+    """``(P, S, F)`` of ``vel(coincident(P, S), F)`` with S not F: a moving surface's point."""
+    if not (isinstance(node, Call) and node.func == "vel" and len(node.args) == 2):
+        return None
+    inner, frame = node.args
+    if not (isinstance(inner, Call) and inner.func == "coincident" and len(inner.args) == 2
+            and all(isinstance(a, Name) for a in (*inner.args, frame))):
+        return None
+    point, surface = (name_of(a) for a in inner.args)
+    return None if surface == name_of(frame) else (point, surface, name_of(frame))
+
+
+def _copy(problem: Problem, constraints: tuple) -> Problem:
+    """``problem`` with ``constraints``, its author's answers and mistakes dropped."""
+    objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives)
+    return replace(problem, constraints=constraints, objectives=objectives, warnings=())
 
 
 def _spaced(node: Node) -> str:
