@@ -172,3 +172,14 @@ def test_a_cords_strands_counted_once_is_named_in_a_problem_without_bodies():
         assert assess(other, result.result(objective)).diagnosis != "a cord's strands miscounted"
     # y = 0 is where the one-strand cord puts the crate: a zero names no mistake
     assert "strands_miscounted" not in {m.code for m in result.result("height").generated_mistakes}
+
+
+@pytest.mark.slow  # derives the problem and its two mistaken copies (4 s)
+def test_a_rack_taken_at_rest_moves_the_instant_centre_to_its_mesh_point():
+    result = solve(load_problem(shipped_dir("problems") / "gear_between_two_racks.yaml"))
+    ic = result.result("instant_centre")
+    assert sorted(m.value[1] for m in ic.generated_mistakes
+                  if m.code == "surface_taken_fixed") == [pytest.approx(-150), pytest.approx(150)]
+    assert assess("(0, -150, 0) mm", ic).diagnosis == "the body slid on taken as fixed"
+    assert assess("(0, -50, 0) mm", ic).verdict == "correct"
+    assert assess("(0, 50, 0) mm", ic).diagnosis == "sign error"  # above the centre: not a rack
