@@ -60,9 +60,9 @@ def strands_once(problem: Problem) -> Iterator[ConstraintMutation]:
             written = Expr(to_text(once), once)
             new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
             constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
-            term = _spaced(count[1])
+            shown = _spaced(count[1])
             yield ConstraintMutation(
-                "strands_miscounted", f"Your value counts {term} once in the length of "
+                "strands_miscounted", f"Your value counts {shown} once in the length of "
                 f"{c.name} ({textbook(c.lhs.text)} = {textbook(c.rhs.text)}): it is there "
                 f"{count[0]} times, once for each strand that holds it.",
                 _copy(problem, constraints))
