@@ -363,3 +363,15 @@ def test_a_variant_whose_slip_ends_and_sticks_before_its_event_fails_in_the_batc
     assert "slip ends at t = 1.32" in str(one[0]) and "sticks" in str(one[0])
     for a, b in zip(together, one):
         assert_same(a, b, INTEGRATED, generated=False)
+
+
+@pytest.mark.slow  # derives the problem and its mistaken copy (3 s)
+def test_each_variant_gets_its_own_mistaken_constraint_as_solve_gives_it():
+    problem = load_problem(shipped_dir("problems") / "truck_hoists_crate_pulley.yaml")
+    together = solve_variants(problem, [{"x": 4.0}, {"x": 3.0}])
+    for outcome, x in zip(together, (4.0, 3.0)):
+        alone = solve(problem, givens={"x": x}).result("velocity").generated_mistakes
+        mine = outcome.result("velocity").generated_mistakes
+        assert [(m.code, m.value) for m in mine if m.code == "strands_miscounted"] == [
+            (m.code, pytest.approx(m.value)) for m in alone if m.code == "strands_miscounted"]
+        assert len([m for m in mine if m.code == "strands_miscounted"]) == 1

@@ -154,3 +154,32 @@ def test_a_generated_mistake_is_kept_alike_at_one_instant_and_in_a_class():
     assert [m.value for m in alone.generated_mistakes] == [2.0, 4.0]
     assert [[mistakes[j].value for j in np.flatnonzero(row)] for row in keep] == \
         [[2.0, 4.0], [2.0], []]
+
+
+@pytest.mark.slow  # derives the problem and its mistaken copy (3 s)
+def test_a_cords_strands_counted_once_is_named_in_a_problem_without_bodies():
+    # sqrt(x^2 + h^2) + (h - y) = L: the crate moves at the hitch's rate along the cord, 1.6 m/s
+    result = solve(load_problem(shipped_dir("problems") / "truck_hoists_crate_pulley.yaml"))
+    for objective, mistaken, right, other in (("velocity", "1.6 m/s", "0.8 m/s", "1 m/s"),
+                                              ("acceleration", "0.288 m/s^2", "0.144 m/s^2",
+                                               "0.2 m/s^2")):
+        (once,) = [m for m in result.result(objective).generated_mistakes
+                   if m.code == "strands_miscounted"]
+        assert once.value == pytest.approx(2 * result.result(objective).value, rel=1e-9)
+        assert assess(mistaken, result.result(objective)).diagnosis \
+            == "a cord's strands miscounted"
+        assert assess(right, result.result(objective)).verdict == "correct"
+        assert assess(other, result.result(objective)).diagnosis != "a cord's strands miscounted"
+    # y = 0 is where the one-strand cord puts the crate: a zero names no mistake
+    assert "strands_miscounted" not in {m.code for m in result.result("height").generated_mistakes}
+
+
+@pytest.mark.slow  # derives the problem and its two mistaken copies (4 s)
+def test_a_rack_taken_at_rest_moves_the_instant_centre_to_its_mesh_point():
+    result = solve(load_problem(shipped_dir("problems") / "gear_between_two_racks.yaml"))
+    ic = result.result("instant_centre")
+    assert sorted(m.value[1] for m in ic.generated_mistakes
+                  if m.code == "surface_taken_fixed") == [pytest.approx(-150), pytest.approx(150)]
+    assert assess("(0, -150, 0) mm", ic).diagnosis == "the body slid on taken as fixed"
+    assert assess("(0, -50, 0) mm", ic).verdict == "correct"
+    assert assess("(0, 50, 0) mm", ic).diagnosis == "sign error"  # above the centre: not a rack

@@ -1075,3 +1075,26 @@ def fold(node: Node, *, number, resolve, call, power=operator.pow, divide=operat
         return call(n.func, n.args)
 
     return walk_(node)
+
+
+def additive_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
+    """The additive terms of ``node`` with their signs.
+
+    >>> [(s, to_text(t)) for s, t in additive_terms(parse("a + 2*b - c"))]
+    [(1, 'a'), (1, '2*b'), (-1, 'c')]
+    """
+    if isinstance(node, Bin) and node.op in "+-":
+        return additive_terms(node.left, sign) + additive_terms(node.right,
+                                                     sign if node.op == "+" else -sign)
+    if isinstance(node, Unary) and node.op == "-":
+        return additive_terms(node.operand, -sign)
+    return [(sign, node)]
+
+
+def sum_of_terms(terms: list[tuple[int, Node]]) -> Node:
+    """The sum of signed terms (:func:`additive_terms`' inverse)."""
+    sign, node = terms[0]
+    total = node if sign > 0 else Unary("-", node)
+    for sign, node in terms[1:]:
+        total = Bin("+" if sign > 0 else "-", total, node)
+    return total

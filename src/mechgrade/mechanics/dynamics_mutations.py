@@ -30,7 +30,7 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name_of, names,
+from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name_of,
                                   parse, to_text, walk)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              LoadKind,
@@ -38,11 +38,12 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              Ring, Shape, Shell, Sphere, Start, StaticFriction, WorkEnergy,
                              dynamics_of)
 from ..spec.language import FUNCTIONS
+from ..spec.constraint_mutations import strands_once
 from ..spec.model import Constraint, Expr, Problem
 from ..spec.solving import given_unit
 from .bodies import SHAPES
 from .build import Model, build
-from .mutations import moving_frames, additive_terms, sum_of_terms
+from .mutations import moving_frames
 from .symbols import identically_zero
 
 LOADS, BODIES, BALANCES, OBJECTIVES = ("Free-body loads", "Bodies", "Momentum balances",
@@ -900,33 +901,11 @@ def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMu
 
 
 def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """A cord's length written with a strand count of one: in a position constraint that
-    fixes a length (one side free of the coordinates), a term counted n times (the strands
-    of a movable pulley, 2 y_B) taken once."""
-    coordinates = {c.name for c in problem.coordinates}
-    for i, c in enumerate(problem.constraints):
-        if c.level != "position":
-            continue
-        sides = [c.lhs.node, c.rhs.node]
-        moving = [bool(names(side) & coordinates) for side in sides]
-        if sum(moving) != 1:
-            continue
-        side = sides[moving.index(True)]
-        terms = additive_terms(side)
-        for j, term in enumerate(terms):
-            count = _strands(term)
-            if count is None or len(terms) < 2 or not names(term[1]) & coordinates:
-                continue
-            once = sum_of_terms(terms[:j] + [(term[0], count[1])] + terms[j + 1:])
-            written = Expr(to_text(once), once)
-            new = replace(c, lhs=written) if moving[0] else replace(c, rhs=written)
-            constraints = problem.constraints[:i] + (new,) + problem.constraints[i + 1:]
-            mistaken = replace(problem, constraints=constraints)
-            yield DynamicsMutation(
-                "strands_miscounted", f"Your value counts {to_text(count[1])} once in the "
-                f"length of {c.name} ({c.lhs.text} = {c.rhs.text}): it is there "
-                f"{count[0]} times (the strands that hold it).", BALANCES,
-                problem=_mistaken(mistaken, dynamics_of(mistaken)))
+    """A cord's length written with a strand count of one
+    (:func:`~.constraint_mutations.strands_once`), the bodies' motion solved again."""
+    for m in strands_once(problem):
+        yield DynamicsMutation(m.code, m.sentence, BALANCES,
+                               problem=_mistaken(m.problem, dynamics_of(m.problem)))
 
 
 def strands_pulling_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -948,17 +927,6 @@ def strands_pulling_miscounted(problem: Problem, model: Model) -> Iterator[Dynam
                 "strands_miscounted", f"Your value counts the pull of {r.name} on {body} "
                 f"once: {count} strands hold {body}, so the cord pulls it with {count} "
                 f"{r.name}.", LOADS, problem=_mistaken(problem, replace(d, reactions=reactions)))
-
-
-def _strands(term: tuple[int, Node]) -> tuple[int, Node] | None:
-    """``(n, X)`` of a term ``n*X`` (or ``X*n``) with a whole number n of 2 or more."""
-    node = term[1]
-    if not (isinstance(node, Bin) and node.op == "*"):
-        return None
-    for count, rest in ((node.left, node.right), (node.right, node.left)):
-        if isinstance(count, Num) and count.text.isdigit() and int(count.text) >= 2:
-            return int(count.text), rest
-    return None
 
 
 def force_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:

@@ -26,8 +26,8 @@ from typing import Any, Iterator
 import sympy as sp
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Prime, Unary, name_of, names, to_text,
-                                  walk)
+from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Prime, Unary, additive_terms,
+                                  name_of, names, sum_of_terms, to_text, walk)
 from ..spec.dynamics import Explicit, dynamics_of
 from ..spec.model import Expr, Objective, Problem
 from ..units import same_dimension
@@ -866,30 +866,6 @@ def _position_mutations(problem: Problem, model: Model, obj: Objective) -> list[
                                 f"its position: check the distance from {spec.origin} to "
                                 f"{spec.name}."))
     return out
-
-
-def additive_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
-    """The additive terms of ``node`` with their signs.
-
-    >>> from ..expressions.syntax import parse
-    >>> [(s, to_text(t)) for s, t in additive_terms(parse("a + 2*b - c"))]
-    [(1, 'a'), (1, '2*b'), (-1, 'c')]
-    """
-    if isinstance(node, Bin) and node.op in "+-":
-        return additive_terms(node.left, sign) + additive_terms(node.right,
-                                                     sign if node.op == "+" else -sign)
-    if isinstance(node, Unary) and node.op == "-":
-        return additive_terms(node.operand, -sign)
-    return [(sign, node)]
-
-
-def sum_of_terms(terms: list[tuple[int, Node]]) -> Node:
-    """The sum of signed terms (:func:`additive_terms`' inverse)."""
-    sign, node = terms[0]
-    total = node if sign > 0 else Unary("-", node)
-    for sign, node in terms[1:]:
-        total = Bin("+" if sign > 0 else "-", total, node)
-    return total
 
 
 def _relabel(vector: Vector, source, target) -> Vector:

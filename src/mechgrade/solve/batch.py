@@ -57,8 +57,8 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call, least_squares
 from .levels import State, place_givens, rows, typical_sizes
-from .mutants import (ZERO_NAMES, kept_mistakes, misread, model_mistake_at, model_mistake_table,
-                      plausible_slips, slips_of, stacked)
+from .mutants import (ZERO_NAMES, constraint_mistakes, kept_mistakes, misread, model_mistake_at,
+                      model_mistake_table, plausible_slips, slips_of, stacked)
 from .numeric import degenerate, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
@@ -598,6 +598,9 @@ class _Template:
             for k in np.flatnonzero(defined):
                 i, code, sentence = owner[k]
                 misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
+        for i in np.flatnonzero(ok):  # a constraint mistaken: its own model, solved apart
+            for oid, found_ in constraint_mistakes(problem, maps[i], set(group.numeric)).items():
+                misreadings[oid][i].extend(found_)
         out = {}
         for oid in group.numeric:
             obj = problem.objective(oid)

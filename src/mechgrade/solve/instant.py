@@ -34,8 +34,8 @@ from .levels import State, author_units, constraint_rank, evaluate
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
 from .plan import per_problem as _per_problem
-from .mutants import (attach, given_mistakes, model_mistakes, plausible_slips,
-                      symbolic_mistakes)
+from .mutants import (attach, constraint_mistakes, given_mistakes, model_mistakes,
+                      plausible_slips, symbolic_mistakes)
 from . import cache
 from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 
@@ -308,7 +308,8 @@ class GivenInstant:
                  reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
         generated = [] if reached is None else [
             model_mistakes(problem, self.plan, reached.state, numeric),
-            given_mistakes(problem, self.plan, reached.givens, numeric)]
+            given_mistakes(problem, self.plan, reached.givens, numeric),
+            constraint_mistakes(problem, reached.givens, numeric)]
         return attach(results, generated, plausible_slips(problem))
 
 

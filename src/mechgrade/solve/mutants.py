@@ -28,13 +28,14 @@ import numpy as np
 
 from ..errors import MechgradeError
 from ..expressions.syntax import Call, Name, Prime, to_text, walk
+from ..spec.constraint_mutations import constraint_mutations
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
 from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
 from .columns import call
 from .levels import State
-from .numeric import solve_numeric_columns
+from .numeric import solve_numeric, solve_numeric_columns
 from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants
 from .result import GeneratedMistake, ObjectiveResult
 
@@ -137,6 +138,23 @@ def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
             if oid in wanted and np.all(np.isfinite(values)):
                 out.setdefault(oid, []).append(GeneratedMistake(
                     code, sentence, _in_unit(values, problem.objective(oid))))
+    return out
+
+
+def constraint_mistakes(problem: Problem, givens: Mapping,
+                        wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
+    """The objectives in ``wanted`` solved again with one constraint mistaken
+    (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once)."""
+    out: dict[str, list[GeneratedMistake]] = {}
+    for m in constraint_mutations(problem):
+        try:
+            instant = solve_numeric(m.problem, kinematics_plan(m.problem), givens, wanted)
+        except MechgradeError:  # a mistaken length no configuration reaches is no mistake
+            continue
+        for oid, values in instant.values.items():
+            if oid in wanted and np.all(np.isfinite(values)):
+                out.setdefault(oid, []).append(GeneratedMistake(
+                    m.code, m.sentence, _in_unit(values, problem.objective(oid))))
     return out
 
 
