@@ -253,17 +253,32 @@ def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radiu
 
 def test_restitution_applied_to_the_tangential_component_of_a_smooth_impact():
     # 20 m/s at 30 deg onto a smooth floor, e = 0.7: (17.32, 7) after; e on both components
-    # gives (0.7 x 17.32, 7), kept in sense or reversed
+    # gives (0.7 x 17.32, 7), kept in sense or reversed; e on the tangential component
+    # instead, the normal one reversed unscaled, (0.7 x 17.32, 10)
     values = [m.value for m in _generated("ball_bounces_oblique_floor", "velocity_after",
                                           "restitution_component")]
     assert sorted(values) == [pytest.approx((-12.1244, 7.0, 0.0), rel=1e-4),
-                              pytest.approx((12.1244, 7.0, 0.0), rel=1e-4)]
+                              pytest.approx((12.1244, 7.0, 0.0), rel=1e-4),
+                              pytest.approx((12.1244, 10.0, 0.0), rel=1e-4)]
+    result = _solution("ball_bounces_oblique_floor").result("velocity_after")
+    assert assess("(12.12, 10, 0) m/s", result).diagnosis == LABELS["restitution_component"]
+    # the right answer, and the normal component left unreversed, are not this family
+    assert assess("(17.32, 7, 0) m/s", result).diagnosis is None
+    assert assess("(17.32, -7, 0) m/s", result).diagnosis != LABELS["restitution_component"]
 
 
 def test_no_energy_lost_names_the_perfectly_elastic_impact():
     # a zero of e = 1 is kept: it is what "kinetic energy conserved" gives
     judged = assess("0 J", _solution("pucks_oblique_impact").result("energy_lost"))
     assert judged.diagnosis == LABELS["restitution_ignored"]
+
+
+def test_restitution_applied_to_each_particles_own_tangential_velocity():
+    # B's tangential (N.y) velocity -3.464 m/s reversed and scaled, as off a wall: +2.771
+    result = _solution("pucks_oblique_impact").result("velocity_B")
+    assert assess("(3.181, 2.771, 0) m/s", result).diagnosis == LABELS["restitution_component"]
+    assert assess("(3.181, -3.464, 0) m/s", result).diagnosis is None
+    assert assess("(3.181, 3.464, 0) m/s", result).diagnosis != LABELS["restitution_component"]
 
 
 def test_the_damper_left_out_gives_the_undamped_response():

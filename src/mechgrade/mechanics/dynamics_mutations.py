@@ -809,6 +809,48 @@ def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMu
                 "along the line of impact only; the smooth contact leaves the tangential "
                 "velocity unchanged.",
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
+        yield from _restitution_on_tangent(problem, d, i, c, smooth[0], tangent)
+        yield from _restitution_on_each_tangent(problem, d, c, tangent)
+
+
+def _restitution_on_tangent(problem: Problem, d: Dynamics, i: int, c: Restitution,
+                            smooth: Reaction, tangent: Expr) -> Iterator[DynamicsMutation]:
+    """e put on the wrong component: the tangential velocity scaled by e, the normal one
+    reversed unscaled (as if e = 1 along the line of impact)."""
+    assert isinstance(d.analysis, Impulse)
+    reactions = tuple(replace(r, directions=r.directions + (tangent,)) if r is smooth else r
+                      for r in d.reactions)
+    contacts = d.analysis.contacts[:i] + (
+        replace(c, e=_expr("1")), replace(c, direction=tangent, e=_expr(f"-({c.e.text})"))
+    ) + d.analysis.contacts[i + 1:]
+    changed = replace(d, reactions=reactions, analysis=replace(d.analysis, contacts=contacts))
+    yield DynamicsMutation(
+        "restitution_component", f"Your value scales the tangential velocity at {c.at} by the "
+        "coefficient of restitution e = {term} and reverses the normal one unscaled: e "
+        "belongs to the normal component (along the line of impact); the smooth contact "
+        "leaves the tangential velocity unchanged.",
+        BALANCES, problem=_mistaken(problem, changed), term=c.e)
+
+
+def _restitution_on_each_tangent(problem: Problem, d: Dynamics, c: Restitution,
+                                 tangent: Expr) -> Iterator[DynamicsMutation]:
+    """Two particles colliding, each one's own tangential velocity reversed and scaled by e
+    (as a ball's off a wall), where the smooth contact leaves both unchanged."""
+    assert isinstance(d.analysis, Impulse)
+    bodies = [d.body(name) for name in c.bodies if name != GROUND]
+    if len(bodies) != 2 or any(b.frame is not None for b in bodies):
+        return
+    reactions = d.reactions + tuple(
+        Reaction(f"{b.name}_tangential", (tangent,), (Act(b.name, b.centre),)) for b in bodies)
+    contacts = d.analysis.contacts + tuple(
+        Restitution(b.centre, (b.name, GROUND), tangent, c.e) for b in bodies)
+    changed = replace(d, reactions=reactions, analysis=replace(d.analysis, contacts=contacts))
+    yield DynamicsMutation(
+        "restitution_component", f"Your value reverses each body's tangential velocity at "
+        f"{c.at} with the coefficient of restitution e = {{term}} too: e relates the "
+        "velocities along the line of impact only; the smooth contact leaves each body's "
+        "tangential velocity unchanged.",
+        BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
 def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
