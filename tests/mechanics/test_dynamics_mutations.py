@@ -283,9 +283,21 @@ def test_restitution_applied_to_each_particles_own_tangential_velocity():
 
 def test_the_damper_left_out_gives_the_undamped_response():
     # the first peak of the undamped block: v0/omega_n = 50 mm a quarter period pi/(2 omega_n)
-    (undamped,) = _generated("damped_block_first_peak", "peak_displacement", "damping_omitted")
+    undamped, decay = _generated("damped_block_first_peak", "peak_displacement",
+                                 "damping_omitted")
     assert undamped.value == pytest.approx(50.0, rel=1e-6)
     assert "c = 40 N*s/m" in undamped.message
+    # at the damped frequency without the decay: v0/omega_d = 51.03 mm, pi/(2 omega_d)
+    assert decay.value == pytest.approx(1000 / (400 - 16) ** 0.5, rel=1e-6)
+    assert "ω_d = 19.6 rad/s" in decay.message
+    result = _solution("damped_block_first_peak").result("time_to_peak")
+    assert assess("0.08016 s", result).diagnosis == LABELS["damping_omitted"]
+    # the right answer, and a spring left out (4.18 s), are not this family
+    assert assess("0.06988 s", result).diagnosis is None
+    assert assess("4.18 s", result).diagnosis != LABELS["damping_omitted"]
+    # the spring's own force has no value in the softer spring's model
+    forces = _generated("damped_block_first_peak", "spring_force", "damping_omitted")
+    assert [m.value for m in forces] == [pytest.approx(100.0, rel=1e-6)]
 
 
 def test_two_springs_holding_a_block_from_either_side_combined_in_series():

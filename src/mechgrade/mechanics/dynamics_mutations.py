@@ -942,6 +942,30 @@ def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation
         "equation of motion.", LOADS,
         problem=_mistaken(problem, replace(d, dampers=())), term=d.dampers[0].coefficient,
         term_unit="N*s/m")
+    yield from _decay_omitted(problem, d)
+
+
+def _decay_omitted(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
+    """A particle on one spring and one damper side by side, its response written at the
+    damped frequency ω_d without the decay e^(−ζ ω_n t): the undamped motion of a spring
+    k − c²/(4 m), whose ω_n is the damped ω_d. The spring's own force is left out (the
+    mistaken spring's is no answer)."""
+    if len(d.dampers) != 1 or len(d.springs) != 1:
+        return
+    damper, spring = d.dampers[0], d.springs[0]
+    moving = [b for b in set(spring.on) if b != GROUND]
+    if set(damper.between) != set(spring.between) or set(damper.on) != set(spring.on) \
+            or len(moving) != 1 or d.body(moving[0]).frame is not None:
+        return
+    m, k, c = _mass(d.body(moving[0])), spring.stiffness.text, damper.coefficient.text
+    softer = replace(spring, stiffness=_expr(f"({k}) - ({c})^2/(4*({m}))"))
+    changed = replace(d, dampers=(), springs=(softer,))
+    yield from _load_left_out(
+        problem, changed, spring.name, "damping_omitted",
+        f"Your value is the response at the damped frequency ω_d = {{term}} without its "
+        f"decay: the motion is x = (v₀/ω_d) e^(−ζ ω_n t) sin(ω_d t), and {damper.name} "
+        "makes it decay; keep the factor e^(−ζ ω_n t).",
+        _expr(f"sqrt(({k})/({m}) - (({c})/(2*({m})))^2)"), "rad/s")
 
 
 def springs_in_series(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
