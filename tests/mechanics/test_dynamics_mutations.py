@@ -488,6 +488,9 @@ def _bar_with_its_weight_at_the_end():
     ("cylinder_pulled_rolls", "friction", f"{-0.2 * 20 * 9.81:.4g} N", "normal_from_weight"),
     # pulled by P = 60 N at its centre it slides without friction: a = P/m
     ("cylinder_pulled_rolls", "acceleration", f"{60 / 20:.4g} m/s^2", "contact_taken_smooth"),
+    # the spring's energy from its whole length 0.5 m: (1/2) 200 0.5^2 (its model, the
+    # energy more than the collar's fall gives, has no motion)
+    ("collar_spring_vertical_rod", "spring_energy", "25 J", "spring_free_length_omitted"),
 ])
 def test_the_new_families_name_their_value(problem, objective, answer, code):
     judged = assess(answer, _solution(problem).result(objective))
@@ -502,6 +505,16 @@ def test_a_frequency_in_hertz_and_a_period_read_the_other_way_up():
     assert readings == {"frequency": "2*pi/omega_n(y)", "period": "omega_n(y)/(2*pi)"}
     # an objective without 2 pi in it (omega_n itself) is not read so
     assert "omega_n" not in readings
+
+
+def test_a_springs_energy_from_its_whole_length_is_read_in_the_right_model():
+    (read,) = [m for m in dynamics_mutations(_problem("bar_swings_down_spring_energy"))
+               if m.code == "spring_free_length_omitted" and m.readings]
+    assert [(oid, e.text) for oid, e in read.readings] == [
+        ("spring_energy", "k*mag(pos(D, A))**2/2")]
+    # no objective reads the spring's energy: no reading
+    assert not [m for m in dynamics_mutations(_problem("damped_block_first_peak"))
+                if m.code == "spring_free_length_omitted" and m.readings]
 
 
 def test_a_springs_energy_taken_from_the_change_of_its_stretch_in_a_work_energy_balance():

@@ -1145,12 +1145,22 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
         if identically_zero(model.plain(model.language.scalar(spring.length))):
             continue
         springs = tuple(replace(s, length=_expr("0")) if s is spring else s for s in d.springs)
+        sentence = (f"Your value takes the force of spring {spring.name} from its whole length "
+                    f"instead of its stretch: subtract the free length {spring.length.text} "
+                    "= {term}.")
         yield DynamicsMutation(
-            "spring_free_length_omitted", f"Your value takes the force of spring {spring.name} "
-            f"from its whole length instead of its stretch: subtract the free length "
-            f"{spring.length.text} = {{term}}.", LOADS,
+            "spring_free_length_omitted", sentence, LOADS,
             problem=_mistaken(problem, replace(d, springs=springs)),
             term=spring.length, term_unit="m")
+        # its energy ½ k l², read in the right model: the mistaken model may have no motion
+        # at all (the whole-length energy more than the work done)
+        whole = parse(f"({spring.stiffness.text})*mag(pos({spring.between[0]}, "
+                      f"{spring.between[1]}))^2/2", functions=FUNCTIONS)
+        readings = _readings(problem, "pe", spring.name, whole)
+        if readings:
+            yield DynamicsMutation("spring_free_length_omitted", sentence.replace(
+                "force", "energy"), LOADS, readings=readings, term=spring.length,
+                term_unit="m")
 
 
 def spring_energy_from_change(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
