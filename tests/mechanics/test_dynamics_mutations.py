@@ -465,6 +465,16 @@ def test_static_friction_as_mu_m_g_is_read_only_where_friction_does_not_slip():
                    if m.code == "normal_from_weight")
 
 
+def test_a_static_friction_is_read_in_the_other_sense_only_where_an_objective_reads_it():
+    (reversed_,) = [m for m in dynamics_mutations(_problem("cylinder_pulled_rolls"))
+                    if m.code == "friction_reversed"]
+    assert [(oid, e.text) for oid, e in reversed_.readings] == [
+        ("friction", "dot(-force(F_C), N.x)"), ("mu_needed", "mag(-force(F_C))/mag(force(N_C))")]
+    # kinetic friction is turned round in the model, not read
+    assert not any(m.readings for m in dynamics_mutations(_problem("block_sliding_down_incline"))
+                   if m.code == "friction_reversed")
+
+
 def test_a_contact_is_taken_smooth_only_where_it_rolls():
     assert "contact_taken_smooth" in _codes("cylinder_pulled_rolls")
     assert "contact_taken_smooth" not in _codes("block_sliding_down_incline")
@@ -491,6 +501,8 @@ def _bar_with_its_weight_at_the_end():
     # the spring's energy from its whole length 0.5 m: (1/2) 200 0.5^2 (its model, the
     # energy more than the collar's fall gives, has no motion)
     ("collar_spring_vertical_rod", "spring_energy", "25 J", "spring_free_length_omitted"),
+    # the floor's friction (-20 N, backward) drawn forward
+    ("cylinder_pulled_rolls", "friction", "20 N", "friction_reversed"),
 ])
 def test_the_new_families_name_their_value(problem, objective, answer, code):
     judged = assess(answer, _solution(problem).result(objective))

@@ -443,9 +443,11 @@ def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[Dynamic
 
 
 def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """Every kinetic-friction force turned round (along the slip instead of against it)."""
+    """Every kinetic-friction force turned round (along the slip instead of against it); a
+    static friction read in the other sense."""
     d = dynamics_of(problem)
     kinetic = [f for f in d.friction if isinstance(f, KineticFriction)]
+    yield from _static_friction_reversed(problem, d)
     if not kinetic:
         return
     friction = tuple(replace(f, mu=_expr(f"-({f.mu.text})"))
@@ -456,6 +458,23 @@ def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutati
         "friction_reversed", f"Your value is what the friction {names} (μ N = {{term}}) "
         "pointing the wrong way gives: kinetic friction opposes the slip velocity.", LOADS,
         problem=_mistaken(problem, replace(d, friction=friction)), term=term, term_unit="N")
+
+
+def _static_friction_reversed(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
+    """The friction at a contact that does not slip read in the other sense (drawn against
+    the motion, or with it, by habit, where the balances need the other)."""
+    for f in d.friction:
+        if not isinstance(f, StaticFriction):
+            continue
+        readings = _readings(problem, "force", f.name,
+                             parse(f"-force({f.name})", functions=FUNCTIONS))
+        if readings:
+            yield DynamicsMutation(
+                "friction_reversed", f"Your value has the friction {f.name} (= {{term}}) "
+                "pointing the wrong way: at a contact that does not slip, the friction acts "
+                "in the sense the balances need, which the free-body diagram's solution "
+                "gives.", LOADS, readings=readings, term=_expr(f"mag(force({f.name}))"),
+                term_unit="N")
 
 
 def normal_from_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
