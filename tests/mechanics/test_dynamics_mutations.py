@@ -751,3 +751,41 @@ def test_a_gyroscopes_rotor_taken_as_a_ring_halves_its_precession_rate():
     result = _solution("gyroscope_steady_precession").result("precession_rate")
     assert assess("1.249 rad/s", result).diagnosis == LABELS["other_shape_inertia"]
     assert assess("2.498 rad/s", result).diagnosis is None
+
+
+def test_a_springs_energy_without_its_half_is_a_spring_twice_as_stiff_in_the_energies():
+    (half,) = [m for m in dynamics_mutations(_problem("spring_launcher_a_of_x"))
+               if m.code == "spring_energy_half_omitted"]
+    assert half.problem.dynamics.springs[0].stiffness.text == "2*(k)"
+    # the speed and energy an energy balance gives; not the time of the push
+    assert [o.id for o in half.problem.objectives] == ["speed", "kinetic_energy"]
+    # the rod's force keeps k s: not read
+    (collar,) = [m for m in dynamics_mutations(_problem("collar_spring_vertical_rod"))
+                 if m.code == "spring_energy_half_omitted"]
+    assert [o.id for o in collar.problem.objectives] == ["speed", "spring_energy"]
+
+
+def test_a_spring_taken_constant_at_its_starting_force_only_in_an_integrated_motion():
+    (constant,) = [m for m in dynamics_mutations(_problem("spring_launcher_a_of_x"))
+                   if m.code == "force_taken_constant"]
+    d = constant.problem.dynamics
+    # k delta (its length L0 - delta at the start) pushing the puck along N.x, the whole
+    # stroke long
+    (force,) = d.forces
+    assert not d.springs and (force.on, force.at) == ("puck", "P")
+    assert force.force.text.endswith("*N.x") and "Abs(L0 - delta)" in force.force.text
+    assert [o.id for o in constant.problem.objectives] == ["speed", "time"]
+    # a work-energy balance has no stroke to integrate
+    assert "force_taken_constant" not in _codes("collar_spring_vertical_rod")
+
+
+@pytest.mark.slow
+def test_a_spring_taken_constant_and_its_energy_without_the_half_name_the_launchers_answers():
+    # constant k d/m over d: t = sqrt(2 m/k) = 0.03536 s; k d^2 = m v^2/2: v = 5.657 m/s,
+    # which both readings give
+    solution = _solution("spring_launcher_a_of_x")
+    assert assess("0.03536 s", solution.result("time")).diagnosis == \
+        LABELS["force_taken_constant"]
+    assert assess("5.657 m/s", solution.result("speed")).diagnosis == \
+        f"{LABELS['spring_energy_half_omitted']} or {LABELS['force_taken_constant']}"
+    assert assess("0.03927 s", solution.result("time")).diagnosis is None

@@ -1225,6 +1225,29 @@ def spring_energy_from_change(problem: Problem, model: Model) -> Iterator[Dynami
             term=Expr(str(stretch), parse(str(stretch), functions=FUNCTIONS)), term_unit="m")
 
 
+def spring_energy_half_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A spring's energy written k s² without its ½: in an energy balance, the same as a spring
+    twice as stiff. Read for the energies and the speeds an energy balance gives (not the
+    forces, which keep k s, nor the times)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, (WorkEnergy, Integration)):
+        return
+    for spring in d.springs:
+        springs = tuple(replace(x, stiffness=_expr(f"2*({x.stiffness.text})"))
+                        if x is spring else x for x in d.springs)
+        mistaken = _mistaken(problem, replace(d, springs=springs), without=("force",))
+        energetic = ("ke", "pe", "speed")
+        objectives = tuple(o for o in mistaken.objectives if (
+            isinstance(o.find.node, Prime) and o.find.node.order == 1) or any(
+                next(_calls(o.find.node, f), None) for f in energetic))
+        if objectives:
+            yield DynamicsMutation(
+                "spring_energy_half_omitted", f"Your value takes the energy of spring "
+                f"{spring.name} as k s², without its ½: a spring's energy is ½ k s² "
+                "(k = {term}).", LOADS, problem=replace(mistaken, objectives=objectives),
+                term=spring.stiffness, term_unit="N/m")
+
+
 def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """Each spring left out of the free-body diagrams (and of the energy), one at a time."""
     d = dynamics_of(problem)
@@ -1683,6 +1706,54 @@ def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMut
         problem=replace(mistaken, objectives=reached))
 
 
+def spring_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated from a start, with each spring's force taken constant at its value
+    at the start (k δ over the whole stroke: the acceleration taken constant). Read for where
+    the motion gets to (the coordinates, their rates, the time), as
+    :func:`force_taken_constant`; only where the start fixes each spring's length."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration) or not d.springs:
+        return
+    at_start = {model.language.value(s.key.node): (
+        model.language.value(s.value.node) if s.value is not None else s.si)
+        for s in d.analysis.start if isinstance(s.key.node, Name)}
+    coordinates = [model.language.value(Name(c.name)) for c in problem.coordinates]
+    N = model.inertial
+    forces = []
+    for spring in d.springs:
+        a, b = spring.between
+        line = model.positions[b] - model.positions[a]  # from a to b
+        length = line.magnitude()
+        tension = model.language.scalar(spring.stiffness) * (
+            length - model.language.scalar(spring.length))
+        pull = (tension / length * line).to_matrix(N).subs(at_start)  # on a, toward b
+        if any(c.has(q) for c in pull for q in coordinates):
+            return  # the start does not fix the spring's length
+        for body, point, sign in ((spring.on[0], a, 1), (spring.on[1], b, -1)):
+            if body == GROUND:
+                continue
+            text = " + ".join(f"({model.plain(sign * c)})*{N}.{axis}"
+                              for c, axis in zip(pull, "xyz") if not identically_zero(c))
+            forces.append(Force(f"{spring.name}_at_start_{body}", body, point,
+                                _expr(text or f"0*{N}.x")))
+    mistaken = _mistaken(problem, replace(d, springs=(), forces=d.forces + tuple(forces)))
+    reached = tuple(o for o in mistaken.objectives if isinstance(o.find.node, Name)
+                    or (isinstance(o.find.node, Prime) and o.find.node.order == 1))
+    if not reached or any(not _calls_free(o, d.springs) for o in reached):
+        return
+    names = ", ".join(x.name for x in d.springs)
+    yield DynamicsMutation(
+        "force_taken_constant", f"Your value takes the force of {names} constant at its value "
+        "at the start of the motion (k δ): it changes as the spring extends, so the "
+        "acceleration is not constant; integrate a = F/m along the motion (v dv = a dx), or "
+        "use the spring's energy ½ k δ².", BALANCES, problem=replace(mistaken, objectives=reached))
+
+
+def _calls_free(objective, loads) -> bool:
+    """Whether ``objective`` names none of ``loads``."""
+    return not any(n == Name(x.name) for x in loads for n in walk(objective.find.node))
+
+
 def efficiency_inverted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A power divided by an efficiency (a pure-number parameter: the input a machine needs)
     multiplied by it instead, or multiplied (the output it delivers) divided instead."""
@@ -1747,7 +1818,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
-    initial_displacement_omitted)
+    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
