@@ -475,6 +475,16 @@ def test_a_static_friction_is_read_in_the_other_sense_only_where_an_objective_re
                    if m.code == "friction_reversed")
 
 
+def test_a_springs_force_read_as_the_weight_of_the_body_it_holds():
+    (held,) = [m for m in dynamics_mutations(_problem("bar_on_spring_vibration"))
+               if m.code == "reaction_as_weight" and "spring" in m.sentence]
+    assert [(oid, e.text) for oid, e in held.readings] == [
+        ("spring_force", "dot(m*mag(-g*N.y)*force(spring)/mag(force(spring)), N.y)")]
+    # no objective reads the spring's force: no reading
+    assert not [m for m in dynamics_mutations(_problem("spring_launcher_a_of_x"))
+                if m.code == "reaction_as_weight"]
+
+
 def test_a_contact_is_taken_smooth_only_where_it_rolls():
     assert "contact_taken_smooth" in _codes("cylinder_pulled_rolls")
     assert "contact_taken_smooth" not in _codes("block_sliding_down_incline")
@@ -501,6 +511,8 @@ def _bar_with_its_weight_at_the_end():
     # the spring's energy from its whole length 0.5 m: (1/2) 200 0.5^2 (its model, the
     # energy more than the collar's fall gives, has no motion)
     ("collar_spring_vertical_rod", "spring_energy", "25 J", "spring_free_length_omitted"),
+    # the spring holding the bar level (44.15 N, with the pin) taken to carry its weight
+    ("bar_on_spring_vibration", "spring_force", "58.86 N", "reaction_as_weight"),
     # the floor's friction (-20 N, backward) drawn forward
     ("cylinder_pulled_rolls", "friction", "20 N", "friction_reversed"),
 ])

@@ -592,6 +592,29 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                     "its direction, where the other forces and the acceleration count too.",
                     BALANCES, readings=readings,
                     term=weight, term_unit="N")
+    yield from _spring_as_weight(problem, d)
+
+
+def _spring_as_weight(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
+    """A spring's force on a body read as that body's whole weight m g (along the spring's
+    force), as if the spring alone carried it (a pin or another support shares it)."""
+    assert d.gravity is not None
+    for spring in d.springs:
+        for name, point in zip(spring.on, spring.between):
+            if name == GROUND:
+                continue
+            weight = _weight(d.body(name), d.gravity)
+            # m g along the spring's own force (a spring pushes or pulls along its line)
+            replacement = parse(f"({weight.text})*force({spring.name})"
+                                f"/mag(force({spring.name}))", functions=FUNCTIONS)
+            readings = _readings(problem, "force", spring.name, replacement, point)
+            if readings:
+                yield DynamicsMutation(
+                    "reaction_as_weight", f"Your value takes the force of spring {spring.name} "
+                    f"equal to the weight of {name}, m g = {{term}}: the spring shares the "
+                    "load with the other supports; its force comes from the balances (the "
+                    "moments about a pin, the momentum balance along it).", BALANCES,
+                    readings=readings, term=weight, term_unit="N")
 
 
 def rotational_ke_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
