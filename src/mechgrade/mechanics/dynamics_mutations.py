@@ -847,40 +847,28 @@ def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMu
         reactions = tuple(replace(r, directions=r.directions + (tangent,)) if r is smooth[0]
                           else r for r in d.reactions)
         # the tangential velocity scaled by e (kept in sense), or reversed with it as the
-        # normal one is
-        for e_tangent, how in ((_expr(f"-({c.e.text})"), "scales"),
-                               (c.e, "reverses and scales")):
+        # normal one is; or e on the tangential component instead, the normal one reversed
+        # unscaled (as if e = 1 along the line of impact)
+        unchanged = ("e relates the velocities along the line of impact only; the smooth "
+                     "contact leaves the tangential velocity unchanged.")
+        for e_normal, e_tangent, how in (
+                (c.e, _expr(f"-({c.e.text})"), f"scales the tangential velocity at {c.at} "
+                 f"with the coefficient of restitution e = {{term}} too: {unchanged}"),
+                (c.e, c.e, f"reverses and scales the tangential velocity at {c.at} with the "
+                 f"coefficient of restitution e = {{term}} too: {unchanged}"),
+                (_expr("1"), _expr(f"-({c.e.text})"), f"scales the tangential velocity at "
+                 f"{c.at} by the coefficient of restitution e = {{term}} and reverses the "
+                 "normal one unscaled: e belongs to the normal component (along the line of "
+                 "impact); the smooth contact leaves the tangential velocity unchanged.")):
             contacts = d.analysis.contacts[:i] + (
-                c, replace(c, direction=tangent, e=e_tangent)) + d.analysis.contacts[i + 1:]
+                replace(c, e=e_normal), replace(c, direction=tangent, e=e_tangent)
+            ) + d.analysis.contacts[i + 1:]
             changed = replace(d, reactions=reactions,
                               analysis=replace(d.analysis, contacts=contacts))
             yield DynamicsMutation(
-                "restitution_component", f"Your value {how} the tangential velocity at {c.at} "
-                "with the coefficient of restitution e = {term} too: e relates the velocities "
-                "along the line of impact only; the smooth contact leaves the tangential "
-                "velocity unchanged.",
-                BALANCES, problem=_mistaken(problem, changed), term=c.e)
-        yield from _restitution_on_tangent(problem, d, i, c, smooth[0], tangent)
+                "restitution_component", f"Your value {how}", BALANCES,
+                problem=_mistaken(problem, changed), term=c.e)
         yield from _restitution_on_each_tangent(problem, d, c, tangent)
-
-
-def _restitution_on_tangent(problem: Problem, d: Dynamics, i: int, c: Restitution,
-                            smooth: Reaction, tangent: Expr) -> Iterator[DynamicsMutation]:
-    """e put on the wrong component: the tangential velocity scaled by e, the normal one
-    reversed unscaled (as if e = 1 along the line of impact)."""
-    assert isinstance(d.analysis, Impulse)
-    reactions = tuple(replace(r, directions=r.directions + (tangent,)) if r is smooth else r
-                      for r in d.reactions)
-    contacts = d.analysis.contacts[:i] + (
-        replace(c, e=_expr("1")), replace(c, direction=tangent, e=_expr(f"-({c.e.text})"))
-    ) + d.analysis.contacts[i + 1:]
-    changed = replace(d, reactions=reactions, analysis=replace(d.analysis, contacts=contacts))
-    yield DynamicsMutation(
-        "restitution_component", f"Your value scales the tangential velocity at {c.at} by the "
-        "coefficient of restitution e = {term} and reverses the normal one unscaled: e "
-        "belongs to the normal component (along the line of impact); the smooth contact "
-        "leaves the tangential velocity unchanged.",
-        BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
 def _restitution_on_each_tangent(problem: Problem, d: Dynamics, c: Restitution,
