@@ -750,23 +750,6 @@ def test_a_vibration_started_from_zero_reaches_v0_over_omega_n_a_quarter_period_
                                                           rel=1e-5)
 
 
-def test_another_shapes_inertia_also_for_a_body_turning_in_space():
-    # the gyroscope's rotor, a disk precessing and spinning, taken as a ring of its radius
-    (ring,) = [m for m in dynamics_mutations(_problem("gyroscope_steady_precession"))
-               if m.code == "other_shape_inertia"]
-    assert type(ring.problem.dynamics.bodies[0].parts[0].shape).__name__ == "Ring"
-    # a particle has no shape to mistake
-    assert not [m for m in dynamics_mutations(_problem("car_constant_power_acceleration"))
-                if m.code == "other_shape_inertia"]
-
-
-@pytest.mark.slow
-def test_a_gyroscopes_rotor_taken_as_a_ring_halves_its_precession_rate():
-    result = _solution("gyroscope_steady_precession").result("precession_rate")
-    assert assess("1.249 rad/s", result).diagnosis == LABELS["other_shape_inertia"]
-    assert assess("2.498 rad/s", result).diagnosis is None
-
-
 def test_a_springs_energy_without_its_half_is_a_spring_twice_as_stiff_in_the_energies():
     (half,) = [m for m in dynamics_mutations(_problem("spring_launcher_a_of_x"))
                if m.code == "spring_energy_half_omitted"]

@@ -184,15 +184,6 @@ def _rotating(model: Model, body: Body) -> bool:
     return identically_zero(x) and identically_zero(y) and not identically_zero(z)
 
 
-def _turning(model: Model, body: Body) -> bool:
-    """A rigid body that turns at all (in plane or in space)."""
-    if body.frame is None:
-        return False
-    omega = model.frames[body.frame].ang_vel_in(model.inertial)
-    return not all(identically_zero(model.plain(c))
-                   for c in omega.to_matrix(model.frames[body.frame]))
-
-
 # ---------------------------------------------------------------------------- families
 
 
@@ -1064,11 +1055,10 @@ _SHAPES = {kind: (SHAPES[kind].name, SHAPES[kind].axial or "") for kind in _CONF
 
 def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A rigid body's moment of inertia taken from another shape's formula: a solid sphere's
-    from a shell's or a disk's, a disk's from a ring's (every part of that shape and size);
-    in plane or in space (a gyroscope's rotor)."""
+    from a shell's or a disk's, a disk's from a ring's (every part of that shape and size)."""
     d = dynamics_of(problem)
     for body in d.bodies:
-        if not _turning(model, body):
+        if not _rotating(model, body):
             continue
         kinds = dict.fromkeys((type(p.shape), _radius(p.shape)) for p in body.parts
                               if type(p.shape) in _SHAPES)
