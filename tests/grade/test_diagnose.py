@@ -315,3 +315,28 @@ def test_a_factor_the_answer_has_exactly_wins_over_a_family_only_near_it():
     loose = lambda s, t: bool(np.all(np.abs(s - t) <= 0.0025 * np.abs(t)))  # noqa: E731
     assert diagnose(np.array([1.6]), np.array([3.2062]), close, generated=start,
                     exact=loose).code == "value_at_start"
+
+
+def test_a_rate_in_hertz_written_as_rpm_is_a_slip_of_60_where_the_model_has_both():
+    # 1207.9 rpm answered with the hertz value 20.13: per minute for per second
+    result = ObjectiveResult("n", "scalar", "rpm", 1207.90,
+                             plausible=frozenset({"rpm_rad", "rev_rad", "min_s"}))
+    assert assess("20.13 rpm", result).diagnosis == "unit slip (per minute vs per second)"
+    # the right answer in revolutions per second is right; 2.013 is no slip of 60
+    assert (assess("20.13 rev/s", result).verdict, assess("20.13 rev/s", result).diagnosis) \
+        == ("correct", None)
+    assert assess("2.013 rpm", result).diagnosis is None
+    # a model without a rate in rpm and one per second: 60 is no slip to name
+    alone = ObjectiveResult("n", "scalar", "rpm", 1207.90, plausible=frozenset({"rpm_rad"}))
+    assert assess("20.13 rpm", alone).diagnosis is None
+
+
+def test_a_horsepower_taken_as_746_ft_lbf_per_s_where_the_model_is_in_feet_and_pounds():
+    # T v = 42,000 ft lbf/s is 76.36 hp, and 56.30 "hp" divided by 746
+    result = ObjectiveResult("P", "scalar", "hp", 42000 / 550,
+                             plausible=frozenset({"g", "hp_746"}))
+    assert assess("56.30 hp", result).diagnosis == "unit slip (1 hp taken as 746 ft·lbf/s)"
+    assert assess("76.36 hp", result).diagnosis is None
+    assert assess("60.00 hp", result).diagnosis is None
+    si = ObjectiveResult("P", "scalar", "hp", 42000 / 550, plausible=frozenset({"g"}))
+    assert assess("56.30 hp", si).diagnosis is None

@@ -182,8 +182,10 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
     solution = solve(_problem("rod_strikes_ledge"))
     copy = pickle.loads(pickle.dumps(solution))
     assert copy == solution
+    # e = 1, e = 0, and e on the tangential component instead (the normal one reversed
+    # unscaled: e = 1's value again, the rod having no tangential velocity)
     assert [m.code for m in copy.result("vG_after").generated_mistakes] \
-        == ["restitution_ignored", "restitution_ignored"]
+        == ["restitution_ignored", "restitution_ignored", "restitution_component"]
 
 
 @pytest.mark.slow
@@ -254,11 +256,18 @@ def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radiu
 
 def test_restitution_applied_to_the_tangential_component_of_a_smooth_impact():
     # 20 m/s at 30 deg onto a smooth floor, e = 0.7: (17.32, 7) after; e on both components
-    # gives (0.7 x 17.32, 7), kept in sense or reversed
+    # gives (0.7 x 17.32, 7), kept in sense or reversed; e on the tangential component
+    # instead, the normal one reversed unscaled, (0.7 x 17.32, 10)
     values = [m.value for m in _generated("ball_bounces_oblique_floor", "velocity_after",
                                           "restitution_component")]
     assert sorted(values) == [pytest.approx((-12.1244, 7.0, 0.0), rel=1e-4),
-                              pytest.approx((12.1244, 7.0, 0.0), rel=1e-4)]
+                              pytest.approx((12.1244, 7.0, 0.0), rel=1e-4),
+                              pytest.approx((12.1244, 10.0, 0.0), rel=1e-4)]
+    result = _solution("ball_bounces_oblique_floor").result("velocity_after")
+    assert assess("(12.12, 10, 0) m/s", result).diagnosis == LABELS["restitution_component"]
+    # the right answer, and the normal component left unreversed, are not this family
+    assert assess("(17.32, 7, 0) m/s", result).diagnosis is None
+    assert assess("(17.32, -7, 0) m/s", result).diagnosis != LABELS["restitution_component"]
 
 
 def test_no_energy_lost_names_the_perfectly_elastic_impact():
@@ -267,11 +276,31 @@ def test_no_energy_lost_names_the_perfectly_elastic_impact():
     assert judged.diagnosis == LABELS["restitution_ignored"]
 
 
+def test_restitution_applied_to_each_particles_own_tangential_velocity():
+    # B's tangential (N.y) velocity -3.464 m/s reversed and scaled, as off a wall: +2.771
+    result = _solution("pucks_oblique_impact").result("velocity_B")
+    assert assess("(3.181, 2.771, 0) m/s", result).diagnosis == LABELS["restitution_component"]
+    assert assess("(3.181, -3.464, 0) m/s", result).diagnosis is None
+    assert assess("(3.181, 3.464, 0) m/s", result).diagnosis != LABELS["restitution_component"]
+
+
 def test_the_damper_left_out_gives_the_undamped_response():
     # the first peak of the undamped block: v0/omega_n = 50 mm a quarter period pi/(2 omega_n)
-    (undamped,) = _generated("damped_block_first_peak", "peak_displacement", "damping_omitted")
+    undamped, decay = _generated("damped_block_first_peak", "peak_displacement",
+                                 "damping_omitted")
     assert undamped.value == pytest.approx(50.0, rel=1e-6)
     assert "c = 40 N*s/m" in undamped.message
+    # at the damped frequency without the decay: v0/omega_d = 51.03 mm, pi/(2 omega_d)
+    assert decay.value == pytest.approx(1000 / (400 - 16) ** 0.5, rel=1e-6)
+    assert "ω_d = 19.6 rad/s" in decay.message
+    result = _solution("damped_block_first_peak").result("time_to_peak")
+    assert assess("0.08016 s", result).diagnosis == LABELS["damping_omitted"]
+    # the right answer, and a spring left out (4.18 s), are not this family
+    assert assess("0.06988 s", result).diagnosis is None
+    assert assess("4.18 s", result).diagnosis != LABELS["damping_omitted"]
+    # the spring's own force has no value in the softer spring's model
+    forces = _generated("damped_block_first_peak", "spring_force", "damping_omitted")
+    assert [m.value for m in forces] == [pytest.approx(100.0, rel=1e-6)]
 
 
 def test_two_springs_holding_a_block_from_either_side_combined_in_series():
@@ -439,6 +468,26 @@ def test_static_friction_as_mu_m_g_is_read_only_where_friction_does_not_slip():
                    if m.code == "normal_from_weight")
 
 
+def test_a_static_friction_is_read_in_the_other_sense_only_where_an_objective_reads_it():
+    (reversed_,) = [m for m in dynamics_mutations(_problem("cylinder_pulled_rolls"))
+                    if m.code == "friction_reversed"]
+    assert [(oid, e.text) for oid, e in reversed_.readings] == [
+        ("friction", "dot(-force(F_C), N.x)"), ("mu_needed", "mag(-force(F_C))/mag(force(N_C))")]
+    # kinetic friction is turned round in the model, not read
+    assert not any(m.readings for m in dynamics_mutations(_problem("block_sliding_down_incline"))
+                   if m.code == "friction_reversed")
+
+
+def test_a_springs_force_read_as_the_weight_of_the_body_it_holds():
+    (held,) = [m for m in dynamics_mutations(_problem("bar_on_spring_vibration"))
+               if m.code == "reaction_as_weight" and "spring" in m.sentence]
+    assert [(oid, e.text) for oid, e in held.readings] == [
+        ("spring_force", "dot(m*mag(-g*N.y)*force(spring)/mag(force(spring)), N.y)")]
+    # no objective reads the spring's force: no reading
+    assert not [m for m in dynamics_mutations(_problem("spring_launcher_a_of_x"))
+                if m.code == "reaction_as_weight"]
+
+
 def test_a_contact_is_taken_smooth_only_where_it_rolls():
     assert "contact_taken_smooth" in _codes("cylinder_pulled_rolls")
     assert "contact_taken_smooth" not in _codes("block_sliding_down_incline")
@@ -462,6 +511,13 @@ def _bar_with_its_weight_at_the_end():
     ("cylinder_pulled_rolls", "friction", f"{-0.2 * 20 * 9.81:.4g} N", "normal_from_weight"),
     # pulled by P = 60 N at its centre it slides without friction: a = P/m
     ("cylinder_pulled_rolls", "acceleration", f"{60 / 20:.4g} m/s^2", "contact_taken_smooth"),
+    # the spring's energy from its whole length 0.5 m: (1/2) 200 0.5^2 (its model, the
+    # energy more than the collar's fall gives, has no motion)
+    ("collar_spring_vertical_rod", "spring_energy", "25 J", "spring_free_length_omitted"),
+    # the spring holding the bar level (44.15 N, with the pin) taken to carry its weight
+    ("bar_on_spring_vibration", "spring_force", "58.86 N", "reaction_as_weight"),
+    # the floor's friction (-20 N, backward) drawn forward
+    ("cylinder_pulled_rolls", "friction", "20 N", "friction_reversed"),
 ])
 def test_the_new_families_name_their_value(problem, objective, answer, code):
     judged = assess(answer, _solution(problem).result(objective))
@@ -476,6 +532,16 @@ def test_a_frequency_in_hertz_and_a_period_read_the_other_way_up():
     assert readings == {"frequency": "2*pi/omega_n(y)", "period": "omega_n(y)/(2*pi)"}
     # an objective without 2 pi in it (omega_n itself) is not read so
     assert "omega_n" not in readings
+
+
+def test_a_springs_energy_from_its_whole_length_is_read_in_the_right_model():
+    (read,) = [m for m in dynamics_mutations(_problem("bar_swings_down_spring_energy"))
+               if m.code == "spring_free_length_omitted" and m.readings]
+    assert [(oid, e.text) for oid, e in read.readings] == [
+        ("spring_energy", "k*mag(pos(D, A))**2/2")]
+    # no objective reads the spring's energy: no reading
+    assert not [m for m in dynamics_mutations(_problem("damped_block_first_peak"))
+                if m.code == "spring_free_length_omitted" and m.readings]
 
 
 def test_a_springs_energy_taken_from_the_change_of_its_stretch_in_a_work_energy_balance():
@@ -709,3 +775,40 @@ def test_a_reaction_across_a_turning_rod_read_without_the_coriolis_term_or_its_2
     # the force along the rod's axis (N_up, with the weight) has no Coriolis part
     assert not [m for m in dynamics_mutations(_problem("collar_slides_on_spinning_rod"))
                 if "oriolis" in m.code and "N_up" in m.sentence]
+
+def test_a_springs_energy_without_its_half_is_a_spring_twice_as_stiff_in_the_energies():
+    (half,) = [m for m in dynamics_mutations(_problem("spring_launcher_a_of_x"))
+               if m.code == "spring_energy_half_omitted"]
+    assert half.problem.dynamics.springs[0].stiffness.text == "2*(k)"
+    # the speed and energy an energy balance gives; not the time of the push
+    assert [o.id for o in half.problem.objectives] == ["speed", "kinetic_energy"]
+    # the rod's force keeps k s: not read
+    (collar,) = [m for m in dynamics_mutations(_problem("collar_spring_vertical_rod"))
+                 if m.code == "spring_energy_half_omitted"]
+    assert [o.id for o in collar.problem.objectives] == ["speed", "spring_energy"]
+
+
+def test_a_spring_taken_constant_at_its_starting_force_only_in_an_integrated_motion():
+    (constant,) = [m for m in dynamics_mutations(_problem("spring_launcher_a_of_x"))
+                   if m.code == "force_taken_constant"]
+    d = constant.problem.dynamics
+    # k delta (its length L0 - delta at the start) pushing the puck along N.x, the whole
+    # stroke long
+    (force,) = d.forces
+    assert not d.springs and (force.on, force.at) == ("puck", "P")
+    assert force.force.text.endswith("*N.x") and "Abs(L0 - delta)" in force.force.text
+    assert [o.id for o in constant.problem.objectives] == ["speed", "time"]
+    # a work-energy balance has no stroke to integrate
+    assert "force_taken_constant" not in _codes("collar_spring_vertical_rod")
+
+
+@pytest.mark.slow
+def test_a_spring_taken_constant_and_its_energy_without_the_half_name_the_launchers_answers():
+    # constant k d/m over d: t = sqrt(2 m/k) = 0.03536 s; k d^2 = m v^2/2: v = 5.657 m/s,
+    # which both readings give
+    solution = _solution("spring_launcher_a_of_x")
+    assert assess("0.03536 s", solution.result("time")).diagnosis == \
+        LABELS["force_taken_constant"]
+    assert assess("5.657 m/s", solution.result("speed")).diagnosis == \
+        f"{LABELS['spring_energy_half_omitted']} or {LABELS['force_taken_constant']}"
+    assert assess("0.03927 s", solution.result("time")).diagnosis is None

@@ -137,6 +137,14 @@ def test_a_natural_frequency_makes_the_two_pi_between_rad_per_s_and_hertz_plausi
     # a problem without a frequency or a rate in revolutions: no 2π slip
     assert "rev_rad" not in plausible_slips(load_problem(shipped_dir("problems")
                                                          / "pendulum_pin_reaction.yaml"))
+    # rpm beside Hz: per minute for per second; hp in a problem in feet and pounds: 746
+    motor = plausible_slips(load_problem(shipped_dir("problems") / "motor_on_beam_resonance.yaml"))
+    elevator = plausible_slips(load_problem(shipped_dir("problems")
+                                            / "elevator_motor_power.yaml"))
+    assert "min_s" in motor and "hp_746" not in motor
+    assert "hp_746" in elevator and "min_s" not in elevator
+    assert not {"min_s", "hp_746"} & plausible_slips(load_problem(
+        shipped_dir("problems") / "car_climbs_grade_power.yaml"))
 
 
 def test_a_generated_mistake_is_kept_alike_at_one_instant_and_in_a_class():

@@ -80,6 +80,13 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
      "Your answer is off by a factor of 3.28: feet mixed with metres?", (1 / 0.3048, 0.3048)),
     ("in_ft", "unit slip (in vs ft)",
      "Your answer is off by a factor of 12: inches mixed with feet?", (12.0, 1 / 12)),
+    ("min_s", "unit slip (per minute vs per second)",
+     "Your answer is off by a factor of 60: rpm (per minute) mixed with Hz or rev/s (per "
+     "second)?", (60.0, 1 / 60)),
+    # 1 hp is 550 ft·lbf/s; 746 is its value in watts
+    ("hp_746", "unit slip (1 hp taken as 746 ft·lbf/s)",
+     "Your answer is off by 746/550: 1 hp is 746 W but 550 ft·lbf/s; divide ft·lbf/s by 550.",
+     (550 / 746, 746 / 550)),
 )
 
 _ALL_FACTORS = np.array([factor for *_, factors in _FACTORS for factor in factors])
@@ -180,7 +187,7 @@ def trig_in_radians(call: str, plausible: frozenset[str] | None) -> Diagnosis | 
                      f"{call[:call.index('(')]}({inside} deg).")
 
 
-MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad")
+MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad", "min_s", "hp_746")
 """Whole-answer slips that are only plausible when the model has what they name."""
 
 
@@ -382,6 +389,7 @@ LABELS = {
     "contact_taken_smooth": "a rolling contact taken as smooth",
     "period_for_frequency": "period and frequency confused",
     "spring_energy_from_change": "spring energy from the change of stretch",
+    "spring_energy_half_omitted": "spring energy without its ½",
     "impact_taken_head_on": "an oblique impact taken as head-on",
     "reaction_omitted": "a support's force left out (free fall)",
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",

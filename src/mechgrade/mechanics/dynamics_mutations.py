@@ -435,9 +435,11 @@ def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[Dynamic
 
 
 def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """Every kinetic-friction force turned round (along the slip instead of against it)."""
+    """Every kinetic-friction force turned round (along the slip instead of against it); a
+    static friction read in the other sense."""
     d = dynamics_of(problem)
     kinetic = [f for f in d.friction if isinstance(f, KineticFriction)]
+    yield from _static_friction_reversed(problem, d)
     if not kinetic:
         return
     friction = tuple(replace(f, mu=_expr(f"-({f.mu.text})"))
@@ -448,6 +450,23 @@ def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutati
         "friction_reversed", f"Your value is what the friction {names} (μ N = {{term}}) "
         "pointing the wrong way gives: kinetic friction opposes the slip velocity.", LOADS,
         problem=_mistaken(problem, replace(d, friction=friction)), term=term, term_unit="N")
+
+
+def _static_friction_reversed(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
+    """The friction at a contact that does not slip read in the other sense (drawn against
+    the motion, or with it, by habit, where the balances need the other)."""
+    for f in d.friction:
+        if not isinstance(f, StaticFriction):
+            continue
+        readings = _readings(problem, "force", f.name,
+                             parse(f"-force({f.name})", functions=FUNCTIONS))
+        if readings:
+            yield DynamicsMutation(
+                "friction_reversed", f"Your value has the friction {f.name} (= {{term}}) "
+                "pointing the wrong way: at a contact that does not slip, the friction acts "
+                "in the sense the balances need, which the free-body diagram's solution "
+                "gives.", LOADS, readings=readings, term=_expr(f"mag(force({f.name}))"),
+                term_unit="N")
 
 
 def normal_from_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -565,6 +584,29 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                     "its direction, where the other forces and the acceleration count too.",
                     BALANCES, readings=readings,
                     term=weight, term_unit="N")
+    yield from _spring_as_weight(problem, d)
+
+
+def _spring_as_weight(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
+    """A spring's force on a body read as that body's whole weight m g (along the spring's
+    force), as if the spring alone carried it (a pin or another support shares it)."""
+    assert d.gravity is not None
+    for spring in d.springs:
+        for name, point in zip(spring.on, spring.between):
+            if name == GROUND:
+                continue
+            weight = _weight(d.body(name), d.gravity)
+            # m g along the spring's own force (a spring pushes or pulls along its line)
+            replacement = parse(f"({weight.text})*force({spring.name})"
+                                f"/mag(force({spring.name}))", functions=FUNCTIONS)
+            readings = _readings(problem, "force", spring.name, replacement, point)
+            if readings:
+                yield DynamicsMutation(
+                    "reaction_as_weight", f"Your value takes the force of spring {spring.name} "
+                    f"equal to the weight of {name}, m g = {{term}}: the spring shares the "
+                    "load with the other supports; its force comes from the balances (the "
+                    "moments about a pin, the momentum balance along it).", BALANCES,
+                    readings=readings, term=weight, term_unit="N")
 
 
 def reaction_without_coriolis(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -885,19 +927,49 @@ def restitution_component(problem: Problem, model: Model) -> Iterator[DynamicsMu
         reactions = tuple(replace(r, directions=r.directions + (tangent,)) if r is smooth[0]
                           else r for r in d.reactions)
         # the tangential velocity scaled by e (kept in sense), or reversed with it as the
-        # normal one is
-        for e_tangent, how in ((_expr(f"-({c.e.text})"), "scales"),
-                               (c.e, "reverses and scales")):
+        # normal one is; or e on the tangential component instead, the normal one reversed
+        # unscaled (as if e = 1 along the line of impact)
+        unchanged = ("e relates the velocities along the line of impact only; the smooth "
+                     "contact leaves the tangential velocity unchanged.")
+        for e_normal, e_tangent, how in (
+                (c.e, _expr(f"-({c.e.text})"), f"scales the tangential velocity at {c.at} "
+                 f"with the coefficient of restitution e = {{term}} too: {unchanged}"),
+                (c.e, c.e, f"reverses and scales the tangential velocity at {c.at} with the "
+                 f"coefficient of restitution e = {{term}} too: {unchanged}"),
+                (_expr("1"), _expr(f"-({c.e.text})"), f"scales the tangential velocity at "
+                 f"{c.at} by the coefficient of restitution e = {{term}} and reverses the "
+                 "normal one unscaled: e belongs to the normal component (along the line of "
+                 "impact); the smooth contact leaves the tangential velocity unchanged.")):
             contacts = d.analysis.contacts[:i] + (
-                c, replace(c, direction=tangent, e=e_tangent)) + d.analysis.contacts[i + 1:]
+                replace(c, e=e_normal), replace(c, direction=tangent, e=e_tangent)
+            ) + d.analysis.contacts[i + 1:]
             changed = replace(d, reactions=reactions,
                               analysis=replace(d.analysis, contacts=contacts))
             yield DynamicsMutation(
-                "restitution_component", f"Your value {how} the tangential velocity at {c.at} "
-                "with the coefficient of restitution e = {term} too: e relates the velocities "
-                "along the line of impact only; the smooth contact leaves the tangential "
-                "velocity unchanged.",
-                BALANCES, problem=_mistaken(problem, changed), term=c.e)
+                "restitution_component", f"Your value {how}", BALANCES,
+                problem=_mistaken(problem, changed), term=c.e)
+        yield from _restitution_on_each_tangent(problem, d, c, tangent)
+
+
+def _restitution_on_each_tangent(problem: Problem, d: Dynamics, c: Restitution,
+                                 tangent: Expr) -> Iterator[DynamicsMutation]:
+    """Two particles colliding, each one's own tangential velocity reversed and scaled by e
+    (as a ball's off a wall), where the smooth contact leaves both unchanged."""
+    assert isinstance(d.analysis, Impulse)
+    bodies = [d.body(name) for name in c.bodies if name != GROUND]
+    if len(bodies) != 2 or any(b.frame is not None for b in bodies):
+        return
+    reactions = d.reactions + tuple(
+        Reaction(f"{b.name}_tangential", (tangent,), (Act(b.name, b.centre),)) for b in bodies)
+    contacts = d.analysis.contacts + tuple(
+        Restitution(b.centre, (b.name, GROUND), tangent, c.e) for b in bodies)
+    changed = replace(d, reactions=reactions, analysis=replace(d.analysis, contacts=contacts))
+    yield DynamicsMutation(
+        "restitution_component", f"Your value reverses each body's tangential velocity at "
+        f"{c.at} with the coefficient of restitution e = {{term}} too: e relates the "
+        "velocities along the line of impact only; the smooth contact leaves each body's "
+        "tangential velocity unchanged.",
+        BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
 def strands_miscounted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -956,6 +1028,30 @@ def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation
         "equation of motion.", LOADS,
         problem=_mistaken(problem, replace(d, dampers=())), term=d.dampers[0].coefficient,
         term_unit="N*s/m")
+    yield from _decay_omitted(problem, d)
+
+
+def _decay_omitted(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
+    """A particle on one spring and one damper side by side, its response written at the
+    damped frequency ω_d without the decay e^(−ζ ω_n t): the undamped motion of a spring
+    k − c²/(4 m), whose ω_n is the damped ω_d. The spring's own force is left out (the
+    mistaken spring's is no answer)."""
+    if len(d.dampers) != 1 or len(d.springs) != 1:
+        return
+    damper, spring = d.dampers[0], d.springs[0]
+    moving = [b for b in set(spring.on) if b != GROUND]
+    if set(damper.between) != set(spring.between) or set(damper.on) != set(spring.on) \
+            or len(moving) != 1 or d.body(moving[0]).frame is not None:
+        return
+    m, k, c = _mass(d.body(moving[0])), spring.stiffness.text, damper.coefficient.text
+    softer = replace(spring, stiffness=_expr(f"({k}) - ({c})^2/(4*({m}))"))
+    changed = replace(d, dampers=(), springs=(softer,))
+    yield from _load_left_out(
+        problem, changed, spring.name, "damping_omitted",
+        f"Your value is the response at the damped frequency ω_d = {{term}} without its "
+        f"decay: the motion is x = (v₀/ω_d) e^(−ζ ω_n t) sin(ω_d t), and {damper.name} "
+        "makes it decay; keep the factor e^(−ζ ω_n t).",
+        _expr(f"sqrt(({k})/({m}) - (({c})/(2*({m})))^2)"), "rad/s")
 
 
 def springs_in_series(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1135,12 +1231,22 @@ def spring_free_length_omitted(problem: Problem, model: Model) -> Iterator[Dynam
         if identically_zero(model.plain(model.language.scalar(spring.length))):
             continue
         springs = tuple(replace(s, length=_expr("0")) if s is spring else s for s in d.springs)
+        sentence = (f"Your value takes the force of spring {spring.name} from its whole length "
+                    f"instead of its stretch: subtract the free length {spring.length.text} "
+                    "= {term}.")
         yield DynamicsMutation(
-            "spring_free_length_omitted", f"Your value takes the force of spring {spring.name} "
-            f"from its whole length instead of its stretch: subtract the free length "
-            f"{spring.length.text} = {{term}}.", LOADS,
+            "spring_free_length_omitted", sentence, LOADS,
             problem=_mistaken(problem, replace(d, springs=springs)),
             term=spring.length, term_unit="m")
+        # its energy ½ k l², read in the right model: the mistaken model may have no motion
+        # at all (the whole-length energy more than the work done)
+        whole = parse(f"({spring.stiffness.text})*mag(pos({spring.between[0]}, "
+                      f"{spring.between[1]}))^2/2", functions=FUNCTIONS)
+        readings = _readings(problem, "pe", spring.name, whole)
+        if readings:
+            yield DynamicsMutation("spring_free_length_omitted", sentence.replace(
+                "force", "energy"), LOADS, readings=readings, term=spring.length,
+                term_unit="m")
 
 
 def spring_energy_from_change(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1174,6 +1280,29 @@ def spring_energy_from_change(problem: Problem, model: Model) -> Iterator[Dynami
             # the forces keep the stretch from the free length (an energy mistake)
             problem=_mistaken(problem, replace(d, springs=springs), without=("force",)),
             term=Expr(str(stretch), parse(str(stretch), functions=FUNCTIONS)), term_unit="m")
+
+
+def spring_energy_half_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A spring's energy written k s² without its ½: in an energy balance, the same as a spring
+    twice as stiff. Read for the energies and the speeds an energy balance gives (not the
+    forces, which keep k s, nor the times)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, (WorkEnergy, Integration)):
+        return
+    for spring in d.springs:
+        springs = tuple(replace(x, stiffness=_expr(f"2*({x.stiffness.text})"))
+                        if x is spring else x for x in d.springs)
+        mistaken = _mistaken(problem, replace(d, springs=springs), without=("force",))
+        energetic = ("ke", "pe", "speed")
+        objectives = tuple(o for o in mistaken.objectives if (
+            isinstance(o.find.node, Prime) and o.find.node.order == 1) or any(
+                next(_calls(o.find.node, f), None) for f in energetic))
+        if objectives:
+            yield DynamicsMutation(
+                "spring_energy_half_omitted", f"Your value takes the energy of spring "
+                f"{spring.name} as k s², without its ½: a spring's energy is ½ k s² "
+                "(k = {term}).", LOADS, problem=replace(mistaken, objectives=objectives),
+                term=spring.stiffness, term_unit="N/m")
 
 
 def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1634,6 +1763,54 @@ def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMut
         problem=replace(mistaken, objectives=reached))
 
 
+def spring_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated from a start, with each spring's force taken constant at its value
+    at the start (k δ over the whole stroke: the acceleration taken constant). Read for where
+    the motion gets to (the coordinates, their rates, the time), as
+    :func:`force_taken_constant`; only where the start fixes each spring's length."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration) or not d.springs:
+        return
+    at_start = {model.language.value(s.key.node): (
+        model.language.value(s.value.node) if s.value is not None else s.si)
+        for s in d.analysis.start if isinstance(s.key.node, Name)}
+    coordinates = [model.language.value(Name(c.name)) for c in problem.coordinates]
+    N = model.inertial
+    forces = []
+    for spring in d.springs:
+        a, b = spring.between
+        line = model.positions[b] - model.positions[a]  # from a to b
+        length = line.magnitude()
+        tension = model.language.scalar(spring.stiffness) * (
+            length - model.language.scalar(spring.length))
+        pull = (tension / length * line).to_matrix(N).subs(at_start)  # on a, toward b
+        if any(c.has(q) for c in pull for q in coordinates):
+            return  # the start does not fix the spring's length
+        for body, point, sign in ((spring.on[0], a, 1), (spring.on[1], b, -1)):
+            if body == GROUND:
+                continue
+            text = " + ".join(f"({model.plain(sign * c)})*{N}.{axis}"
+                              for c, axis in zip(pull, "xyz") if not identically_zero(c))
+            forces.append(Force(f"{spring.name}_at_start_{body}", body, point,
+                                _expr(text or f"0*{N}.x")))
+    mistaken = _mistaken(problem, replace(d, springs=(), forces=d.forces + tuple(forces)))
+    reached = tuple(o for o in mistaken.objectives if isinstance(o.find.node, Name)
+                    or (isinstance(o.find.node, Prime) and o.find.node.order == 1))
+    if not reached or any(not _calls_free(o, d.springs) for o in reached):
+        return
+    names = ", ".join(x.name for x in d.springs)
+    yield DynamicsMutation(
+        "force_taken_constant", f"Your value takes the force of {names} constant at its value "
+        "at the start of the motion (k δ): it changes as the spring extends, so the "
+        "acceleration is not constant; integrate a = F/m along the motion (v dv = a dx), or "
+        "use the spring's energy ½ k δ².", BALANCES, problem=replace(mistaken, objectives=reached))
+
+
+def _calls_free(objective, loads) -> bool:
+    """Whether ``objective`` names none of ``loads``."""
+    return not any(n == Name(x.name) for x in loads for n in walk(objective.find.node))
+
+
 def efficiency_inverted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A power divided by an efficiency (a pure-number parameter: the input a machine needs)
     multiplied by it instead, or multiplied (the output it delivers) divided instead."""
@@ -1699,7 +1876,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
-    initial_displacement_omitted)
+    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

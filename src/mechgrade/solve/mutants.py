@@ -276,7 +276,8 @@ def _rate_order(unit: str) -> int | None:
 def plausible_slips(problem: Problem) -> frozenset[str]:
     """The whole-answer slips of :mod:`mechgrade.grade.diagnose` that need something in the
     model to be plausible: a factor of g needs a ``g``; degrees for radians an angle in
-    degrees; rpm or revolutions a rate in them. Slips of the answer's own unit always are.
+    degrees; rpm or revolutions a rate in them; 60 a rate in rpm beside one per second; 746
+    for 550 hp in a problem in feet and pounds. Slips of the answer's own unit always are.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -294,6 +295,12 @@ def plausible_slips(problem: Problem) -> frozenset[str]:
         out |= {"deg_as_rad", "rad_as_deg"}
     if any(u in units for u in ("rpm", "rev", "Hz")):
         out |= {"rpm_rad", "rev_rad"}
+    # per minute for per second: a rate in rpm beside one in Hz or per second
+    if "rpm" in units and any(u in units for u in ("Hz", "rev/s", "rad/s")):
+        out.add("min_s")
+    # hp in the units of a problem in feet and pounds
+    if re.search(r"\bhp\b", units) and re.search(r"\b(ft|lbf?|slug)\b", units):
+        out.add("hp_746")
     # a natural frequency: the 2π between ω_n in rad/s and f in Hz (a period taken as 1/ω_n)
     if any(isinstance(n, Call) and n.func in ("omega_n", "mode_frequency")
            for o in problem.objectives for n in walk(o.find.node)):

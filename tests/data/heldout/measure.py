@@ -69,7 +69,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
                            "reaction_omitted"),
     "weight_for_mass": ("g", "mass_for_weight", "weight_for_mass"),
     "unit_slip": ("given_rate_unit", "given_length_unit", "given_unit", "rpm_rad", "rev_rad", "cm_m", "mm_m",
-                  "ft_m", "in_ft"),
+                  "ft_m", "in_ft", "min_s", "hp_746"),
     "hz_for_rad_s": ("rev_rad",),
     "period_for_frequency": ("period_for_frequency",),
     "series_parallel": ("springs_in_series",),
@@ -104,7 +104,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
     "speed_conserved": ("value_at_start",),
-    "half_factor": ("factor_2",),
+    "half_factor": ("factor_2", "spring_energy_half_omitted"),
     "rolling_assumed": ("rolling_assumed",),
     "damping_ignored": ("damping_omitted",),
     "translation_ke_dropped": ("translational_ke_omitted",),
@@ -114,7 +114,8 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
 
 # a unit-slip code names the row's slip when the row's words mention one of its units
 UNIT_WORDS = {"rpm_rad": ("rpm",), "rev_rad": ("rev", "hertz", "Hz"), "cm_m": ("cm",),
-              "mm_m": ("mm",), "ft_m": ("ft",), "in_ft": ("lb/in", " in ")}
+              "mm_m": ("mm",), "ft_m": ("ft",), "in_ft": ("lb/in", " in "),
+              "min_s": ("rpm", "Hz", "hertz", "minute"), "hp_746": ("hp",)}
 # typical.py's vocabulary has no kind for an applied force (a drag, a push) left out: its rows
 # write it as gravity_dropped. An applied force left out names such a row when the row's words
 # name the load it leaves out and it is not the weight ("resistance left out").
@@ -136,7 +137,8 @@ FACTORS = {"sign": (-1.0,), "factor_2": (2.0, 0.5), "deg_as_rad": (180 / np.pi,)
            "rad_as_deg": (np.pi / 180,), "pi": (np.pi, 1 / np.pi),
            "rev_rad": (2 * np.pi, 1 / (2 * np.pi)), "rpm_rad": (60 / (2 * np.pi), 2 * np.pi / 60),
            "g": (9.80665, 32.174, 1 / 9.80665, 1 / 32.174), "cm_m": (100.0, 0.01),
-           "mm_m": (1000.0, 0.001), "ft_m": (1 / 0.3048, 0.3048), "in_ft": (12.0, 1 / 12)}
+           "mm_m": (1000.0, 0.001), "ft_m": (1 / 0.3048, 0.3048), "in_ft": (12.0, 1 / 12),
+           "min_s": (60.0, 1 / 60), "hp_746": (550 / 746, 746 / 550)}
 
 
 @lru_cache(maxsize=None)

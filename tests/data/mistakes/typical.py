@@ -386,7 +386,7 @@ def block_on_turntable():
             entry("mu_needed", "|F| divided by m instead of m g",
                   num(np.linalg.norm(F) / m, "1"), "mass_for_weight"),
             entry("friction_B", "friction drawn outward, against the centripetal direction",
-                  vec(-F, "N"), "sign"),
+                  vec(-F, "N"), "sign", "friction_reversed"),
             entry("friction_B", "turntable taken to slow down (φ'' negative)",
                   vec(m * V(-r * w**2, -r * al), "N"), "given_sign")]
 
