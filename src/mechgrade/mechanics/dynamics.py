@@ -72,7 +72,7 @@ class Kinetics:
 
     ``balances`` are the momentum balances (``expr = 0``); ``reactions`` the unknown force
     magnitudes, one per direction of each reaction (``labels`` says which); ``objectives`` and
-    ``mistakes`` are in these symbols too; the write-up text is :func:`kinetics_steps`'s
+    ``mistakes`` are in these symbols too; the write-up text is :func:`_kinetics_lines`'s
     (written only when asked: a mistaken model is solved, never written up).
     """
 
@@ -646,7 +646,7 @@ def _inertias(d: Dynamics, model: Model) -> dict[str, list]:
     return inertias
 
 
-def kinetics_steps(problem: Problem, kin: Kinetics) -> tuple[tuple[str, tuple[str, ...]], ...]:
+def _kinetics_lines(problem: Problem, kin: Kinetics) -> tuple[tuple[str, tuple[str, ...]], ...]:
     """The write-up of ``kin`` (``problem``'s kinetics): the bodies (the parallel-axis shift
     of every part to the body's reference point), free-body loads, momentum balances and
     unknown reactions."""
@@ -992,7 +992,7 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
     objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
                        f"{_where_asked(o, integrated)}"
                        for o, (_, value) in zip(problem.objectives, kin.objectives))
-    return (*kinematics[:-2], *kinetics_steps(problem, kin), ("Solution", solved),
+    return (*kinematics[:-2], *_kinetics_lines(problem, kin), ("Solution", solved),
             ("Objectives in the model's quantities", objectives))
 
 
