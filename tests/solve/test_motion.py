@@ -11,7 +11,7 @@ from mechgrade.errors import SolveError
 from mechgrade.solve import solve
 from mechgrade.solve.dynamics import kinematic_problem, kinetics_plan
 from mechgrade.solve.instant import instant_givens
-from mechgrade.solve.motion import balances
+from mechgrade.solve.motion import Motion, balances
 from mechgrade.solve.numeric import solve_numeric
 from mechgrade.spec import load_problem
 
@@ -38,3 +38,21 @@ def test_a_column_that_slips_gets_the_error_the_instant_alone_raises_and_the_oth
                 raise failure.error
         assert str(solved.errors[column]) == str(alone.value)
     assert "slips at P: sticking needs mu >= " in str(solved.errors[1])
+
+
+@pytest.mark.slow  # a cold derivation (2 s); test_events' refusal of the same is in the fast core
+def test_a_column_at_rest_in_an_event_that_holds_at_the_start_is_refused_by_the_columns():
+    """The integrator over columns gives the error the scalar one raises (the event stays),
+    without leaving that column to be integrated alone; the other column reaches its event."""
+    problem = load_problem(Path(__file__).resolve().parents[2] / "problems"
+                           / "damped_block_positions.yaml")
+    kp = kinetics_plan(problem)
+    state = solve_numeric(kinematic_problem(problem), kp.kp,
+                          instant_givens(problem, None, {}), set()).state
+    X = np.repeat(state.values[:, None], 2, axis=1)
+    X[kp.kp.index.position("v0"), 1] = 0.0
+    _, ok, never, errors = Motion(problem, kp).integrated(X)
+    assert ok.tolist() == [True, False] and never.tolist() == [False, False]
+    assert list(errors) == [1]
+    assert "the event holds at the start (t = 0) and stays so: expected a motion that " \
+        "leaves it" in str(errors[1])

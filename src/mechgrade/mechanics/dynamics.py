@@ -72,7 +72,8 @@ class Kinetics:
 
     ``balances`` are the momentum balances (``expr = 0``); ``reactions`` the unknown force
     magnitudes, one per direction of each reaction (``labels`` says which); ``objectives`` and
-    ``mistakes`` are in these symbols too; ``steps`` is the write-up text.
+    ``mistakes`` are in these symbols too; the write-up text is :func:`_kinetics_lines`'s
+    (written only when asked: a mistaken model is solved, never written up).
     """
 
     k: Kinematics
@@ -83,7 +84,6 @@ class Kinetics:
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
     bounds: tuple[Bound, ...]
     slips: tuple[Slip, ...]
-    steps: tuple[tuple[str, tuple[str, ...]], ...]
     energy: sp.Expr = sp.Integer(0)
     nonconservative: tuple[str, ...] = ()
     workless: tuple[tuple[str, sp.Expr], ...] = ()
@@ -549,17 +549,15 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     reactions, labels = _reaction_symbols(d)
     loads = _Loads(problem, model, reactions)
     loads.build()
-    inertias, steps_bodies = _inertias(d, model)
+    inertias = _inertias(d, model)
     language = DynamicsInterpreter(problem, model, loads, inertias)
     analysis = d.analysis
     impact = isinstance(analysis, Impulse)
     before = _rates_before(analysis, model, k) if isinstance(analysis, Impulse) else {}
     language.before = before
     balances: list[Equation] = []
-    steps_loads: list[str] = []
     junctions = {b.name for b in d.junctions}
     for b in d.bodies:
-        steps_loads.append(_load_line(b, loads, model))
         if b.name in junctions:  # its balance is a constraint of the kinematics
             continue
         for label, expr in _body_balances(problem, model, loads, inertias, b, before, impact):
@@ -579,13 +577,10 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until, settled = _analysis(problem, model, language, k)
     weights = _weight_potentials(d, model, language, k)
-    steps = (("Bodies", tuple(steps_bodies)), ("Free-body loads", tuple(steps_loads)),
-             ("Momentum balances", tuple(f"{e.label}: {sp.sstr(e.expr)} = 0" for e in balances)),
-             ("Unknown reactions", tuple(labels) or ("none",)))
     return Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
                     labels=tuple(labels), balances=tuple(balances),
                     objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
-                    slips=tuple(slips), steps=steps,
+                    slips=tuple(slips),
                     energy=model.plain(_energy(problem, language)) + sum(
                         weights.values(), sp.Integer(0)),
                     nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
@@ -634,28 +629,46 @@ def _reaction_symbols(d: Dynamics) -> tuple[dict[str, tuple[sp.Symbol, ...]], li
     return reactions, labels
 
 
-def _inertias(d: Dynamics, model: Model) -> tuple[dict[str, list], list[str]]:
-    """Each body's parts ``(mass, centre, central inertia or None)`` and the write-up lines
-    (the parallel-axis shift of every part to the body's reference point)."""
+def _inertias(d: Dynamics, model: Model) -> dict[str, list]:
+    """Each body's parts ``(mass, centre, central inertia or None)``."""
     lang = model.language
     inertias: dict[str, list] = {}
-    lines: list[str] = []
     for b in d.bodies:
         parts = []
         frame = model.frames[b.frame] if b.frame else None
-        total = Dyadic(0)
         for part in b.parts:
             m = lang.scalar(part.mass)
             central = _central(part.shape, m, frame, lang) if frame is not None else None
             if frame is not None:
                 _check_fixed(model, part.at, b, frame, part.where)
-                offset = model.positions[part.at] - model.positions[b.centre]
-                total += parallel_axis(central if central is not None else Dyadic(0), m,
-                                       offset, frame)
             parts.append((m, part.at, central))
         inertias[b.name] = parts
-        lines += _body_lines(b, parts, total, model)
-    return inertias, lines
+    return inertias
+
+
+def _kinetics_lines(problem: Problem, kin: Kinetics) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """The write-up of ``kin`` (``problem``'s kinetics): the bodies (the parallel-axis shift
+    of every part to the body's reference point), free-body loads, momentum balances and
+    unknown reactions."""
+    d = dynamics_of(problem)
+    model, loads = kin.built
+    inertias = _inertias(d, model)
+    bodies: list[str] = []
+    for b in d.bodies:
+        parts = inertias[b.name]
+        total = Dyadic(0)
+        if b.frame:
+            frame = model.frames[b.frame]
+            for m, at, central in parts:
+                offset = model.positions[at] - model.positions[b.centre]
+                total += parallel_axis(central if central is not None else Dyadic(0), m,
+                                       offset, frame)
+        bodies += _body_lines(b, parts, total, model)
+    return (("Bodies", tuple(bodies)),
+            ("Free-body loads", tuple(_load_line(b, loads, model) for b in d.bodies)),
+            ("Momentum balances", tuple(f"{e.label}: {sp.sstr(e.expr)} = 0"
+                                        for e in kin.balances)),
+            ("Unknown reactions", tuple(kin.labels) or ("none",)))
 
 
 def _rates_before(analysis: Impulse, model: Model, k: Kinematics) -> dict:
@@ -979,7 +992,7 @@ def kinetics_derivation(problem: Problem, dof: int | None = None):
     objectives = tuple(f"{o.id}: {o.find.text} = {_matrix_text(value)}"
                        f"{_where_asked(o, integrated)}"
                        for o, (_, value) in zip(problem.objectives, kin.objectives))
-    return (*kinematics[:-2], *kin.steps, ("Solution", solved),
+    return (*kinematics[:-2], *_kinetics_lines(problem, kin), ("Solution", solved),
             ("Objectives in the model's quantities", objectives))
 
 

@@ -124,7 +124,7 @@ def _block(math: str) -> str:
 
 def _bodies(problem: Problem, model, expr_math) -> Step:
     d = dynamics_of(problem)
-    inertias, _ = _inertias(d, model)
+    inertias = _inertias(d, model)
     lines, rows = [], []
     for b in d.bodies:
         parts = inertias[b.name]

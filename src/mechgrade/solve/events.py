@@ -153,9 +153,15 @@ def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
     side = np.sign(event(h, early.y[:, -1]))
     # a state at rest in the event (an equilibrium) moves only by rounding: it stays there
     if not side or np.abs(early.y[:, -1] - y0).max() <= ATOL:
-        raise SolveError("the event holds at the start (t = 0) and stays so: expected a "
-                         "motion that leaves it", where=where)
+        raise event_stays(where)
     event.direction = -side
+
+
+def event_stays(where) -> SolveError:
+    """The error of an event that holds at t = 0 and that the motion does not leave (a state
+    at rest in it), found by one motion's integrator or by the one over columns."""
+    return SolveError("the event holds at the start (t = 0) and stays so: expected a motion "
+                      "that leaves it", where=where)
 
 
 def instant_missed(analysis: Integration, given: str, where, until_times) -> SolveError:

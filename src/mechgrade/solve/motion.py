@@ -21,7 +21,7 @@ from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import FirstErrors, call, least_squares_solution, loud_call, quiet
-from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens
+from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens, event_stays
 from .junctions import settle_junctions
 from .plan import KinematicsPlan
 from .rules import satisfied
@@ -110,9 +110,9 @@ class Motion:
         y0 = np.concatenate([values[:n], values[qd]])
         with quiet():
             switching = mode if switches else None
+            direction, stays = self._leaving(rhs, event, switching, y0)
             arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
-                                          MAX_CALLS, mode=switching,
-                                          direction=self._leaving(rhs, event, switching, y0))
+                                          MAX_CALLS, mode=switching, direction=direction)
         ok = arrival.status == FIRED
         ok[list(unsettled)] = False
         everyone = np.arange(count)
@@ -129,16 +129,19 @@ class Motion:
         failed = {int(i): error for i in np.flatnonzero(ok & ~fine)
                   if (error := solved.errors[int(i)]) is not None}
         stuck = self._stuck(arrival, at, switches) if switches is not None else {}
-        return np.vstack([x, before]), ok & fine, arrival.status == NEVER, \
-            {**failed, **stuck, **unsettled}
+        never = arrival.status == NEVER
+        ok[list(stays)] = never[list(stays)] = False
+        return np.vstack([x, before]), ok & fine, never, {**failed, **stuck, **stays, **unsettled}
 
     def _leaving(self, rhs: Callable, event: Callable, mode: Callable | None,
-                 y0: np.ndarray) -> np.ndarray:
+                 y0: np.ndarray) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's event's direction (see :func:`~.batch_motion.integrate_to_events`):
         where the event holds at the start, its next crossing, back through zero from the
         side the motion leaves to a moment later (as :func:`~.events._next_crossing` sets it
-        for one motion); 0 elsewhere, and where that moment is not reached or the motion
-        stays in the event (that column is solved alone, which says why)."""
+        for one motion); 0 elsewhere, and where that moment is not reached (that column is
+        solved alone, which says why). With it, the error of each column whose motion reaches
+        that moment and stays in the event (:func:`~.events.event_stays`, as the scalar
+        integrator judges it: without solving that column again step by step)."""
         count = y0.shape[1]
         everyone = np.arange(count)
         start = np.zeros(count)
@@ -146,7 +149,7 @@ class Motion:
         direction = np.zeros(count)
         held = np.flatnonzero(g == 0)
         if not len(held):
-            return direction
+            return direction, {}
         assert isinstance(self.analysis, Integration)
         h = LEAVING * self.analysis.max_time
         moment = integrate_to_events(
@@ -156,9 +159,11 @@ class Motion:
         y = moment.y
         side = np.sign(event(held, moment.t, y, mode(held, moment.t, y) if mode else None))
         moved = np.abs(y - y0[:, held]).max(axis=0, initial=0.0) > ATOL
-        direction[held] = np.where((moment.status == FIRED) & moved & np.isfinite(side),
-                                   -side, 0.0)
-        return direction
+        reached = moment.status == FIRED
+        direction[held] = np.where(reached & moved & np.isfinite(side), -side, 0.0)
+        where = self.analysis.where
+        return direction, {int(i): event_stays(where)
+                           for i in held[reached & ((side == 0) | ~moved)]}
 
     def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching
                ) -> dict[int, MechgradeError]:
