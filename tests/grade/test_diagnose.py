@@ -8,8 +8,9 @@ import pytest
 from mechgrade.grade.compare import assess
 
 from mechgrade.grade.policy import GradingPolicy
-from mechgrade.grade.diagnose import CODES, diagnose
+from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, _factor, diagnose
 from mechgrade.solve.result import MistakeValue, ObjectiveResult
+from mechgrade.tolerance import agree_at_points
 
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
 VEC = ObjectiveResult("a_P", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N")
@@ -315,3 +316,16 @@ def test_a_factor_the_answer_has_exactly_wins_over_a_family_only_near_it():
     loose = lambda s, t: bool(np.all(np.abs(s - t) <= 0.0025 * np.abs(t)))  # noqa: E731
     assert diagnose(np.array([1.6]), np.array([3.2062]), close, generated=start,
                     exact=loose).code == "value_at_start"
+
+
+@pytest.mark.parametrize("plausible", [None, frozenset(), frozenset({"g", "rpm_rad"})])
+def test_factors_tested_at_once_name_what_the_test_one_by_one_names(plausible):
+    reference = np.array([1.5, -2.0, 3.25, 0.5])
+    test = agree_at_points(0.01, reference)
+    one_by_one = lambda s, t: test(s, t)  # noqa: E731 - a plain callable: no vectorised path
+    for factor in [*_ALL_FACTORS, 1.3, 0.0]:
+        student = factor * reference
+        assert _factor(student, reference, test, plausible) == \
+            _factor(student, reference, one_by_one, plausible)
+    assert _factor(-reference, reference, test, plausible)[0].code == "sign"
+    assert _factor(1.3 * reference, reference, test, plausible) is None
