@@ -36,11 +36,10 @@ def within(student, reference, rel: float, abs_: float, scale=None) -> bool:
         # The same arithmetic on Python floats: for a number, a vector or the values at a few
         # sample points numpy's set-up costs more than the test, which stops at the first
         # value that fails (judging one answer tries it against every diagnosis).
-        # _fits written out: a call per value costs as much as the test itself
         fixed = None if scale is None else abs(float(scale))
         for a, b in zip(s.ravel().tolist(), t.ravel().tolist()):
             size = abs(b) if fixed is None else fixed
-            if not abs(a - b) <= max(rel * size, abs_) * _GROW + _FLOOR * size:
+            if not _fits(abs(a - b), max(rel * size, abs_), size):
                 return False
         return True
     return bool(_elementwise(s, t, rel, abs_, None if scale is None else abs(float(scale)))
@@ -69,11 +68,7 @@ def _elementwise(s: np.ndarray, t: np.ndarray, rel: float, abs_: float, scale) -
 
 def _fits(difference, limit, size):
     """The rule itself, for floats and arrays alike (a NaN never fits)."""
-    return difference <= limit * _GROW + _FLOOR * size
-
-
-_GROW = 1 + FLOAT_SLACK
-_FLOOR = 1e-3 * FLOAT_SLACK
+    return difference <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size
 
 
 _NUMBERS = (float, int)
