@@ -97,7 +97,7 @@ class AgreeAtPoints:
     :meth:`each`, with one set against many candidates in one numpy pass (naming a mistake
     tries an answer against a score of candidates)."""
 
-    __slots__ = ("rel", "floor")
+    __slots__ = ("floor", "rel")
 
     def __init__(self, rel: float, floor: float):
         self.rel, self.floor = rel, floor
@@ -119,4 +119,5 @@ class AgreeAtPoints:
         if rows.shape[1:] != s.shape:
             return np.zeros(len(rows), dtype=bool)
         flat = rows.reshape(len(rows), -1)
-        return _elementwise(s.reshape(1, -1), flat, self.rel, self.floor, None).all(axis=1)
+        fits = _elementwise(s.reshape(1, -1), flat, self.rel, self.floor, None)
+        return np.all(fits, axis=1, keepdims=False).reshape(-1)
