@@ -68,7 +68,7 @@ def test_each_column_is_judged_as_within_judges_it_alone(rows, rel, abs_, scale)
                                                           max_size=len(ref)), min_size=1,
                                                  max_size=6))),
        st.sampled_from([1e-6, 0.01]))
-@settings(max_examples=40)
+@settings(max_examples=20)
 def test_agreement_with_many_candidates_at_once_is_the_test_row_by_row(case, rel):
     reference, candidates = case
     test = agree_at_points(rel, np.array(reference))
