@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import given, strategies as st
+from hypothesis import given, settings, strategies as st
 
-from mechgrade.tolerance import FLOAT_SLACK, PYTHON_SIZE, within, within_each
+from mechgrade.tolerance import (FLOAT_SLACK, PYTHON_SIZE, AgreeAtPoints, agree_at_points,
+                                 within, within_each)
 
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
 finite = st.floats(min_value=-1e6, max_value=1e6)
@@ -60,3 +61,28 @@ def test_each_column_is_judged_as_within_judges_it_alone(rows, rel, abs_, scale)
     verdicts = within_each(student, reference, rel, abs_, scales)
     assert verdicts.tolist() == [within(student[:, j], reference[:, j], rel, abs_, scales[j])
                                  for j in range(2)]
+
+
+@given(st.lists(finite, min_size=1, max_size=12).flatmap(
+    lambda ref: st.tuples(st.just(ref), st.lists(st.lists(floats, min_size=len(ref),
+                                                          max_size=len(ref)), min_size=1,
+                                                 max_size=6))),
+       st.sampled_from([1e-6, 0.01]))
+@settings(max_examples=20)
+def test_agreement_with_many_candidates_at_once_is_the_test_row_by_row(case, rel):
+    reference, candidates = case
+    test = agree_at_points(rel, np.array(reference))
+    student = np.array(reference) * 1.005
+    rows = np.array(candidates)
+    assert test.each(student, rows).tolist() == [test(student, row) for row in rows]
+    # the boundary itself, a candidate as the answer
+    with np.errstate(all="ignore"):
+        edge = rows[0] * (1 + rel)
+    assert test.each(rows[0], np.array([rows[0], edge])).tolist() == \
+        [test(rows[0], rows[0]), test(rows[0], edge)]
+
+
+def test_candidates_of_another_shape_never_agree():
+    test = AgreeAtPoints(0.01, 1e-12)
+    assert test.each(np.array([1.0, 2.0]), np.array([[1.0, 2.0, 3.0]])).tolist() == [False]
+    assert not test(np.array([1.0, 2.0]), np.array([1.0, 2.0, 3.0]))

@@ -77,7 +77,7 @@ PYTHON_SIZE = 32
 arithmetic as numpy's, without its set-up)."""
 
 
-def agree_at_points(rel: float, reference: np.ndarray):
+def agree_at_points(rel: float, reference: np.ndarray) -> "AgreeAtPoints":
     """The one "equal at the sample points" test: every value within ``rel`` of the
     reference's (:func:`within`, with a small floor near zero); a value undefined where the
     reference is defined disagrees.
@@ -89,8 +89,35 @@ def agree_at_points(rel: float, reference: np.ndarray):
     # the mean size, as np.mean sums it (np.mean itself costs more than judging an answer)
     scale = float(np.add.reduce(np.abs(reference), axis=None, dtype=float)) / reference.size \
         if reference.size else 0.0
-    floor = max(rel * scale * 1e-3, 1e-12)
+    return AgreeAtPoints(rel, max(rel * scale * 1e-3, 1e-12))
 
-    def close(s: np.ndarray, t: np.ndarray) -> bool:
-        return s.shape == t.shape and within(s, t, rel, floor)
-    return close
+
+class AgreeAtPoints:
+    """:func:`agree_at_points`' test: called with two sets of values, or, through
+    :meth:`each`, with one set against many candidates in one numpy pass (naming a mistake
+    tries an answer against a score of candidates)."""
+
+    __slots__ = ("floor", "rel")
+
+    def __init__(self, rel: float, floor: float):
+        self.rel, self.floor = rel, floor
+
+    def __call__(self, s: np.ndarray, t: np.ndarray) -> bool:
+        return s.shape == t.shape and within(s, t, self.rel, self.floor)
+
+    def each(self, s: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """Whether ``s`` agrees with each of ``rows`` (candidates stacked along the first
+        axis, each of ``s``'s shape): the same answer as calling the test row by row.
+
+        >>> test = AgreeAtPoints(0.01, 1e-12)
+        >>> test.each(np.array([2.0, 4.0]), np.array([[2.0, 4.0], [2.0, 4.1], [1.0, 2.0]])).tolist()
+        [True, False, False]
+        >>> test.each(np.array([2.0, 4.0]), np.ones((3, 3))).tolist()
+        [False, False, False]
+        """
+        s, rows = np.asarray(s, dtype=float), np.asarray(rows, dtype=float)
+        if rows.shape[1:] != s.shape:
+            return np.zeros(len(rows), dtype=bool)
+        flat = rows.reshape(len(rows), -1)
+        fits = _elementwise(s.reshape(1, -1), flat, self.rel, self.floor, None)
+        return np.all(fits, axis=1, keepdims=False).reshape(-1)

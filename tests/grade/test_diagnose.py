@@ -8,8 +8,9 @@ import pytest
 from mechgrade.grade.compare import assess
 
 from mechgrade.grade.policy import GradingPolicy
-from mechgrade.grade.diagnose import CODES, diagnose
+from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, _factor, diagnose
 from mechgrade.solve.result import MistakeValue, ObjectiveResult
+from mechgrade.tolerance import agree_at_points
 
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
 VEC = ObjectiveResult("a_P", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N")
@@ -340,3 +341,16 @@ def test_a_horsepower_taken_as_746_ft_lbf_per_s_where_the_model_is_in_feet_and_p
     assert assess("60.00 hp", result).diagnosis is None
     si = ObjectiveResult("P", "scalar", "hp", 42000 / 550, plausible=frozenset({"g"}))
     assert assess("56.30 hp", si).diagnosis is None
+
+
+@pytest.mark.parametrize("plausible", [None, frozenset(), frozenset({"g", "rpm_rad"})])
+def test_factors_tested_at_once_name_what_the_test_one_by_one_names(plausible):
+    reference = np.array([1.5, -2.0, 3.25, 0.5])
+    test = agree_at_points(0.01, reference)
+    one_by_one = lambda s, t: test(s, t)  # noqa: E731 - a plain callable: no vectorised path
+    for factor in [*_ALL_FACTORS, 1.3, 0.0]:
+        student = factor * reference
+        assert _factor(student, reference, test, plausible) == \
+            _factor(student, reference, one_by_one, plausible)
+    assert _factor(-reference, reference, test, plausible)[0].code == "sign"
+    assert _factor(1.3 * reference, reference, test, plausible) is None

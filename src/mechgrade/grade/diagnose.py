@@ -30,6 +30,7 @@ import numpy as np
 
 from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from ..solve.result import GeneratedMistake, MistakeValue
+from ..tolerance import AgreeAtPoints
 
 Close = Callable[[np.ndarray, np.ndarray], bool]
 
@@ -158,15 +159,19 @@ def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
     exactly, among those the model makes plausible, and the distance from it."""
     if not (reference != 0).any():
         return None
-    # every factor times the reference at once (row by row the same products)
-    scaled = iter(np.multiply.outer(_ALL_FACTORS, reference))
+    # every factor times the reference at once (row by row the same products), and tested
+    # at once when the test can be (a score of tests one by one cost most of a diagnosis)
+    scaled = np.multiply.outer(_ALL_FACTORS, reference)
+    fits = exact.each(student, scaled) if isinstance(exact, AgreeAtPoints) else None
+    end = 0
     for code, label, message, factors in _FACTORS:
-        rows = [next(scaled) for _ in factors]
+        start, end = end, end + len(factors)
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
             continue
-        for row in rows:
-            if exact(student, row):
-                return Diagnosis(code, label, message), float(np.linalg.norm(student - row))
+        for at in range(start, end):
+            if fits[at] if fits is not None else exact(student, scaled[at]):
+                return (Diagnosis(code, label, message),
+                        float(np.linalg.norm(student - scaled[at])))
     return None
 
 
