@@ -75,10 +75,12 @@ def test_a_physical_family_outranks_a_coincidence_and_another_kinds_diagnosis_is
 
 
 def test_an_exact_factor_that_is_not_the_mistake_is_counted_generic():
-    row = {"objective": "side_force", "mistake": "m r' w (no factor 2)", "kind": "coriolis_halved",
-           "answer": "3 N"}
-    result = MEASURE.solution("collar_slides_on_spinning_rod").result("side_force")
-    assert MEASURE.classify(row, result)[0] == "generic"
+    # v/r is twice the right rate here, and no family reads the whole speed across the sight line
+    row = {"objective": "theta_dot", "mistake": "theta' = v/r (the whole speed across the line "
+           "of sight)", "kind": "velocity_component_wrong", "answer": "-0.03333 rad/s"}
+    result = MEASURE.solution("radar_tracks_airplane_polar").result("theta_dot")
+    kind, judged = MEASURE.classify(row, result)
+    assert (kind, judged.diagnosis) == ("generic", "factor of 2")
 
 
 @pytest.mark.slow  # the only table with rows inside the tolerance is a heavy problem's
