@@ -36,7 +36,7 @@ from ..units import dimension, from_si, si_factor, to_si
 from .columns import call
 from .levels import State
 from .numeric import solve_numeric, solve_numeric_columns
-from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants
+from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants, per_problem
 from .result import GeneratedMistake, ObjectiveResult
 
 # sympy and the mechanics are imported by the functions that derive: a plan read from the disk
@@ -146,7 +146,8 @@ def constraint_mistakes(problem: Problem, givens: Mapping,
     """The objectives in ``wanted`` solved again with one constraint mistaken
     (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once)."""
     out: dict[str, list[GeneratedMistake]] = {}
-    for m in constraint_mutations(problem):
+    # the same copies for every solve of the problem, so their plans are found by identity
+    for m in per_problem(constraint_mutations, problem):
         try:
             instant = solve_numeric(m.problem, kinematics_plan(m.problem), givens, wanted)
         except MechgradeError:  # a mistaken length no configuration reaches is no mistake
