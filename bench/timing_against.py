@@ -53,9 +53,14 @@ def main() -> None:
           + "   (other ms -> this ms, ratio: median of rounds)")
     for problem in problems:
         problem = problem.resolve()
-        rounds = []
-        for _ in range(args.rounds):
-            rounds.append((figures(args.other, problem), figures(ROOT, problem)))
+        try:
+            rounds = [(figures(args.other, problem), figures(ROOT, problem))
+                      for _ in range(args.rounds)]
+        except subprocess.CalledProcessError as failed:
+            # one side's bench cannot time this problem (an older tree's bench, or a problem it
+            # cannot solve): say so and time the others
+            print(f"{problem.stem:34s} not timed: the bench of {Path(failed.cmd[3]).parents[1]} failed", flush=True)
+            continue
         cells = []
         for c in COLUMNS:
             pairs = [(o[c], t[c]) for o, t in rounds if c in o and c in t and o[c] > 0]
