@@ -445,8 +445,6 @@ def _bracketed(residual: Callable[[float], float], guess: float):
     64 times either way, the guess's sign kept, the nearest first), found by bisection once
     the sign changes there; ``None`` when it does not. For a design Newton's method
     overshoots from the guess (a residual like 1/R²)."""
-    from scipy import optimize
-
     from .batch_motion import ROOT_ITERATIONS, ROOT_RTOL, ROOT_XTOL
 
     if guess == 0:
@@ -462,6 +460,10 @@ def _bracketed(residual: Callable[[float], float], guess: float):
         for a, b in ((n - 1, n), (-n, 1 - n)):
             fa, fb = at(a), at(b)
             if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
+                # imported only here: a design with no sign change (a mistaken model's, most
+                # often) is refused without scipy.optimize's ~0.15 s import
+                from scipy import optimize
+
                 return optimize.root_scalar(residual, bracket=(guess * 2.0 ** a,
                                                                guess * 2.0 ** b),
                                             method="brentq", xtol=ROOT_XTOL,
