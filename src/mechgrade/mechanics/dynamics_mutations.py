@@ -108,6 +108,19 @@ def _mistaken(problem: Problem, dynamics: Dynamics, without: tuple[str, ...] = (
                                     mistaken=True))
 
 
+def unchanged_copy(problem: Problem) -> Problem:
+    """The mistaken copy of ``problem`` with nothing mistaken (what every family changes one
+    thing of): the model a mistake that changes only numbers is solved in
+    (:mod:`.revalue`)."""
+    return _unchanged(problem)
+
+
+@lru_cache(maxsize=64)
+def _unchanged(problem: Problem) -> Problem:
+    # one object per problem: the solver's caches find its plan by identity
+    return _mistaken(problem, dynamics_of(problem))
+
+
 def _mass(body: Body) -> str:
     return " + ".join(f"({p.mass.text})" for p in body.parts)
 

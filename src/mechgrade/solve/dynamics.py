@@ -101,7 +101,30 @@ def _lambdify(symbols, expr):
 
 def kinetics_plan(problem: Problem) -> KineticsPlan:
     """Derive and lambdify ``problem``'s kinetics once."""
+    shared = _SHARED.get(id(problem))
+    if shared is not None and shared[0] is problem:
+        return shared[1]
     return _kinetics_plan(problem, locations(problem))
+
+
+_SHARED: dict[int, tuple[Problem, KineticsPlan]] = {}
+
+
+def share_kinetics(copy: Problem, source: Problem) -> bool:
+    """Let ``copy``, ``source`` as a student's mistaken model of it (its loads unchecked, its
+    author's answers and mistakes dropped, nothing else changed), be solved with ``source``'s
+    derivation and functions, without its physical bounds and author's mistakes (what the
+    unchecked derivation leaves out); whether it is such a copy."""
+    d = copy.dynamics
+    if d is None or source.dynamics is None or not d.mistaken or replace(
+            copy, objectives=(), dynamics=replace(d, mistaken=False)) != replace(
+            source, objectives=()) or copy.objectives != tuple(
+            replace(o, expect=None, mistakes=()) for o in source.objectives):
+        return False
+    if len(_SHARED) >= 256:
+        _SHARED.clear()
+    _SHARED[id(copy)] = (copy, replace(kinetics_plan(source), physical=(), mistakes=()))
+    return True
 
 
 @lru_cache(maxsize=64)

@@ -36,10 +36,12 @@ import sympy as sp
 
 from ..errors import MechgradeError
 from ..expressions.syntax import Name
-from ..mechanics.dynamics_mutations import DynamicsMutation, dynamics_mutations
+from ..mechanics.dynamics_mutations import (DynamicsMutation, dynamics_mutations,
+                                            unchanged_copy)
+from ..mechanics.revalue import revaluation
 from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, ObjectiveKind, Problem
-from .dynamics import kinetics_plan, solve_dynamics
+from .dynamics import kinetics_plan, share_kinetics, solve_dynamics
 from .instant import _instants, instant_givens
 from .levels import State
 from .mutants import (attach, model_mistake_at, model_mistake_table, model_mistakes,
@@ -243,10 +245,13 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
         if m.problem is not None:
             # a mistaken model may leave out the objectives asked (those it cannot read)
             ids = numeric & {o.id for o in m.problem.objectives}
-            if not ids or not _derivable(m.problem):
+            revalued = _revalued(problem, m.problem, [givens]) \
+                if solver is solve_dynamics else None
+            mistaken, asked = (revalued[0], revalued[1][0]) if revalued else (m.problem, givens)
+            if not ids or not _derivable(mistaken):
                 continue
             try:
-                solved = solver(m.problem, givens=givens, objectives=ids)
+                solved = solver(mistaken, givens=asked, objectives=ids)
             except _UNSOLVABLE:
                 continue
             values = {r.id: r.value for r in solved.results}
@@ -255,6 +260,43 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
                 out.setdefault(oid, []).append(GeneratedMistake(m.code, sentence, value,
                                                                 step=m.step))
     return out
+
+
+def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
+              ) -> tuple[Problem, list[dict]] | None:
+    """A mistaken model that changes only numbers (:mod:`~mechgrade.mechanics.revalue`) as
+    the unchanged copy of ``problem`` (:func:`_shared_copy`), and each of
+    ``givens`` with the parameters' mistaken values; ``None`` for any other model, or where
+    a mistaken value is not one its parameter may take (a positive one made negative)."""
+    base = _shared_copy(problem)
+    changes = revaluation(base, mistaken)
+    if changes is None:
+        return None
+    positive = {q.name for q in problem.parameters if q.positive}
+    out = []
+    for overrides in givens:
+        given_map = instant_givens(problem, overrides, {})
+        at = {}
+        for name, value in changes:
+            symbols = {str(x): x for x in value.free_symbols}
+            if any(given_map.get(x, (None, None))[1] is None for x in symbols):
+                return None
+            si = float(value.subs({x: given_map[n][1] for n, x in symbols.items()}))
+            if not np.isfinite(si) or (name in positive and si <= 0):
+                return None
+            at[name] = si
+        out.append({**overrides, **at})
+    return base, out
+
+
+@lru_cache(maxsize=64)
+def _shared_copy(problem: Problem) -> Problem:
+    """The unchanged mistaken copy of ``problem``: solved with ``problem``'s own derivation,
+    unless the copy changes the model (a static friction made an unknown force), then derived
+    once for all the mistakes that change only numbers."""
+    base = unchanged_copy(problem)
+    share_kinetics(base, problem)
+    return base
 
 
 def _read(problem: Problem, mutations, givens, numeric: set[str], solver: Solver):
@@ -474,7 +516,8 @@ def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple
             ids = union & {o.id for o in m.problem.objectives}
             if not ids:
                 continue
-            solved = _answers(together, m.problem, givens, ids)
+            revalued = _revalued(problem, m.problem, givens)
+            solved = _answers(together, *(revalued or (m.problem, givens)), ids)
         for k in range(len(givens)):
             sentence = m.sentence.replace("{term}", terms[k][i]) if i in terms[k] else \
                 m.sentence.replace(" = {term}", "")

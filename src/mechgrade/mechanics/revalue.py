@@ -1,0 +1,128 @@
+"""A mistaken model that changes only numbers, as other values of the right model's parameters.
+
+A mistaken copy of a problem (:mod:`.dynamics_mutations`) that differs from ``base`` only in
+some expressions, each the base's expression of one parameter ``s`` (``m``, ``-g*N.y``, linear
+in it) times a constant factor (``(m)*mag(-g*N.y)``, ``(-g*N.y)/mag(-g*N.y)``), where ``s``
+appears nowhere else in the problem, is ``base`` with ``s`` worth ``s`` times that factor: its
+balances are the base's, solved with other givens, not derived and lambdified again. Decided
+by the structure of the two problems, whichever family made the copy.
+
+>>> from mechgrade.spec import load_problem
+>>> from mechgrade.resources import shipped_dir
+>>> from mechgrade.mechanics.dynamics_mutations import dynamics_mutations, unchanged_copy
+>>> problem = load_problem(shipped_dir("problems") / "ladder_wall_lift_off.yaml")
+>>> copies = {m.code: m.problem for m in dynamics_mutations(problem) if m.problem}
+>>> revaluation(unchanged_copy(problem), copies["weight_for_mass"])
+(('g', 1), ('m', g*m))
+>>> revaluation(unchanged_copy(problem), copies["weight_omitted"]) is None
+True
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from functools import lru_cache
+
+import sympy as sp
+
+from ..expressions.syntax import Name, walk
+from ..spec.model import Expr, Given, ObjectiveKind, Problem
+from .build import build
+
+
+@lru_cache(maxsize=256)
+def revaluation(base: Problem, mistaken: Problem) -> tuple[tuple[str, sp.Expr], ...] | None:
+    """``(parameter, its value in the base's parameters)`` for each parameter that takes
+    another value in ``mistaken`` (the base's numeric objectives it keeps, read with these
+    values, give its answers); ``None`` when ``mistaken`` is not ``base`` with numbers
+    changed."""
+    if not set(mistaken.objectives) <= set(base.objectives) \
+            or base.parameters != mistaken.parameters:
+        return None
+    changed: list[tuple[Expr, Expr]] = []
+    elsewhere: set[str] = set()
+    if not _alike(dataclasses.replace(base, objectives=(), parameters=()),
+                  dataclasses.replace(mistaken, objectives=(), parameters=()), changed,
+                  elsewhere):
+        return None
+    for objective in mistaken.objectives:
+        if objective.kind != ObjectiveKind.SYMBOLIC:  # a symbolic answer keeps its symbols
+            _alike(objective, objective, changed, elsewhere)
+    parameters = {q.name for q in base.parameters}
+    if not changed or _changed_names(changed) & elsewhere:
+        return None
+    model = build(base)
+    known = {model.language.value(Name(q)) for q in parameters}
+    values: dict[str, sp.Expr] = {}
+    for old, new in changed:
+        names = {n.id for n in walk(old.node) if isinstance(n, Name)}
+        if len(names) != 1 or not names <= parameters:
+            return None
+        name = names.pop()
+        factor = _factor(model, old, new, model.language.value(Name(name)))
+        if factor is None or not factor.free_symbols <= known \
+                or values.get(name, factor) != factor:
+            return None
+        values[name] = factor
+    return tuple(sorted((name, sp.simplify(model.language.value(Name(name)) * factor))
+                        for name, factor in values.items()))
+
+
+def _changed_names(changed: list[tuple[Expr, Expr]]) -> set[str]:
+    return {n.id for old, _ in changed for n in walk(old.node) if isinstance(n, Name)}
+
+
+def _alike(a, b, changed: list, elsewhere: set[str]) -> bool:
+    """Whether ``a`` and ``b`` differ in expressions only (each pair that differs appended to
+    ``changed``; the names of the others, and every other text, put in ``elsewhere``)."""
+    if isinstance(a, Expr) and isinstance(b, Expr):
+        if a.node == b.node:
+            elsewhere.update(n.id for n in walk(a.node) if isinstance(n, Name))
+        else:
+            changed.append((a, b))
+        return True
+    if isinstance(a, Given) and a == b and a.value_expr is None and isinstance(a.key.node, Name):
+        return True  # a plain given: the value the mistaken model replaces
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, (tuple, list)):
+        return len(a) == len(b) and all(_alike(x, y, changed, elsewhere) for x, y in zip(a, b))
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(_alike(a[k], b[k], changed, elsewhere) for k in a)
+    if dataclasses.is_dataclass(a):
+        # a unit ("m") names no parameter
+        return all(_alike(getattr(a, f.name), getattr(b, f.name), changed,
+                          elsewhere if f.name != "unit" else set())
+                   for f in dataclasses.fields(a) if f.compare)
+    if isinstance(a, str):
+        elsewhere.add(a)
+    return a == b
+
+
+def _factor(model, old: Expr, new: Expr, symbol: sp.Symbol) -> sp.Expr | None:
+    """The constant by which ``new`` is ``old`` (scalars, or parallel vectors), ``old``
+    linear in ``symbol``; ``None`` when there is none."""
+    a, b = (_components(model, e) for e in (old, new))
+    if a is None or b is None or len(a) != len(b):
+        return None
+    factors = set()
+    for x, y in zip(a, b):
+        if x == 0:
+            if y != 0:
+                return None
+            continue
+        if sp.simplify(x.subs(symbol, 2 * symbol) - 2 * x) != 0:
+            return None
+        factors.add(sp.simplify(y / x))
+    if len(factors) != 1:
+        return None
+    factor = factors.pop()
+    return None if factor == 0 or factor.has(sp.zoo, sp.nan, sp.oo) else factor
+
+
+def _components(model, e: Expr) -> list | None:
+    value = model.language.value(e.node)
+    if isinstance(value, sp.Basic):
+        return [model.plain(value)]
+    to_matrix = getattr(value, "to_matrix", None)
+    return None if to_matrix is None else [model.plain(c) for c in to_matrix(model.inertial)]
