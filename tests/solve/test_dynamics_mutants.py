@@ -10,7 +10,10 @@ import pytest
 
 from mechgrade.errors import MechgradeError
 from mechgrade.solve import solve
+from mechgrade.mechanics.dynamics_mutations import dynamics_mutations
 from mechgrade.solve.batch import _template, solve_variants
+from mechgrade.solve.dynamics import solve_dynamics
+from mechgrade.solve.dynamics_mutants import _revalued
 from mechgrade.spec import load_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -51,3 +54,27 @@ def test_a_solution_sent_to_another_process_carries_its_mistakes_not_the_class_s
     sent = pickle.loads(pickle.dumps(result))
     assert type(sent.generated_mistakes) is tuple
     assert list(sent.generated_mistakes) == list(result.generated_mistakes)
+
+
+@pytest.mark.parametrize("name", ["atwood_machine", "block_on_turntable"])
+def test_a_mistake_that_changes_only_numbers_has_its_own_model_s_values(name):
+    # the Atwood machine's unchanged copy shares the reference's plan; the turntable's (its
+    # static friction an unknown force) is derived once for both numbers-only mistakes
+    problem = load_problem(PROBLEMS / f"{name}.yaml")
+    for m in dynamics_mutations(problem):
+        if m.code not in ("mass_for_weight", "weight_for_mass"):
+            continue
+        revalued = _revalued(problem, m.problem, [{}])
+        assert revalued is not None, m.code
+        ids = {o.id for o in m.problem.objectives if o.kind != "symbolic"}
+        own = solve_dynamics(m.problem, objectives=ids)
+        shared = solve_dynamics(revalued[0], givens=revalued[1][0], objectives=ids)
+        for a, b in zip(own.results, shared.results):
+            assert np.allclose(a.value, b.value, rtol=1e-9), (m.code, a.id)
+
+
+def test_a_positive_parameter_made_negative_is_solved_as_its_own_model():
+    problem = load_problem(PROBLEMS / "block_sliding_down_incline.yaml")
+    reversed_ = next(m for m in dynamics_mutations(problem) if m.code == "friction_reversed")
+    assert reversed_.problem is not None
+    assert _revalued(problem, reversed_.problem, [{}]) is None  # mu_k -> -mu_k

@@ -1,0 +1,56 @@
+"""A mistaken model that changes only numbers is the right model with other parameter values;
+any other change, or a parameter the change cannot be confined to, is no revaluation."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import sympy as sp
+
+from mechgrade.expressions.syntax import parse
+from mechgrade.mechanics.dynamics_mutations import dynamics_mutations, unchanged_copy
+from mechgrade.mechanics.revalue import revaluation
+from mechgrade.spec.language import FUNCTIONS
+from mechgrade.spec.model import Expr
+from library import library_problem
+
+
+def _expr(text: str) -> Expr:
+    return Expr(text, parse(text, functions=FUNCTIONS))
+
+
+def _copies(name: str):
+    problem = library_problem(name)
+    return unchanged_copy(problem), {m.code: m.problem for m in dynamics_mutations(problem)
+                                     if m.problem is not None}
+
+
+def test_the_mass_written_for_the_weight_is_the_model_with_g_worth_one():
+    base, copies = _copies("ladder_wall_lift_off")
+    assert revaluation(base, copies["mass_for_weight"]) == (("g", 1),)
+    g, m = sp.symbols("g m", positive=True)
+    assert revaluation(base, copies["weight_for_mass"]) == (("g", 1), ("m", g * m))
+
+
+def test_a_load_left_out_changes_the_model_not_its_numbers():
+    base, copies = _copies("ladder_wall_lift_off")
+    assert revaluation(base, copies["weight_omitted"]) is None  # gravity: none at all
+    assert revaluation(base, copies["load_at_other_point"]) is None  # a point, not a number
+
+
+def test_a_parameter_read_by_a_numeric_objective_is_not_revalued():
+    base, copies = _copies("ladder_wall_lift_off")
+    weight = replace(base.objectives[0], id="weight", find=_expr("m*g"), unit="N",
+                     kind=base.objectives[2].kind)
+    reads_g = replace(base, objectives=base.objectives + (weight,))
+    mistaken = copies["mass_for_weight"]
+    assert revaluation(reads_g, replace(mistaken, objectives=mistaken.objectives + (weight,))
+                       ) is None
+
+
+def test_a_factor_that_varies_with_the_motion_is_no_revaluation():
+    base, _ = _copies("ladder_wall_lift_off")
+    d = base.dynamics
+    assert d is not None and d.gravity is not None
+    varying = replace(base, dynamics=replace(d, gravity=_expr(f"theta*({d.gravity.text})")))
+    assert revaluation(base, varying) is None
