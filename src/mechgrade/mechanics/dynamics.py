@@ -95,7 +95,7 @@ class Kinetics:
     design: sp.Expr | None = None
     physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
     whens: tuple[tuple[str, sp.Expr], ...] = ()  # objective id -> lhs - rhs of its 'when'
-    built: tuple = field(default=(), compare=False, repr=False)  # (model, loads) it came from
+    built: tuple = field(default=(), compare=False, repr=False)  # (model, loads, language)
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -537,7 +537,30 @@ class DynamicsInterpreter(Interpreter):
 
 def derive_kinetics(problem: Problem) -> Kinetics:
     """The momentum balances, reactions, friction checks and objectives of ``problem``."""
+    read = _READ.get(id(problem))
+    if read is not None and read[0] is problem:
+        return read[1]
     return _derive_kinetics(problem, locations(problem))
+
+
+_READ: dict[int, tuple[Problem, Kinetics]] = {}
+
+
+def read_kinetics(problem: Problem, source: Problem) -> Kinetics | None:
+    """The kinetics of ``problem``, ``source`` with other objectives (the same model): the
+    source's balances, only the objectives read in its model (what :func:`derive_kinetics`
+    gives ``problem`` from now on); ``None`` when the two differ in more than objectives."""
+    if replace(problem, objectives=()) != replace(source, objectives=()):
+        return None
+    kin = derive_kinetics(source)
+    model, _, language = kin.built
+    objectives, mistakes, requirements = _objective_values(problem, model, language)
+    read = replace(kin, objectives=tuple(objectives), mistakes=tuple(mistakes),
+                   requirements=tuple(requirements), whens=_whens(problem, model, language))
+    if len(_READ) >= 256:
+        _READ.clear()
+    _READ[id(problem)] = (problem, read)
+    return read
 
 
 @lru_cache(maxsize=64)
@@ -591,9 +614,13 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     start=start, settled=settled, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
                     physical=physical_bounds(problem, model, reactions, impact),
-                    whens=tuple((o.id, _difference(o.when, model, language))
-                                for o in problem.objectives if o.when is not None),
-                    built=(model, loads))
+                    whens=_whens(problem, model, language), built=(model, loads, language))
+
+
+def _whens(problem: Problem, model: Model, language: DynamicsInterpreter
+           ) -> tuple[tuple[str, sp.Expr], ...]:
+    return tuple((o.id, _difference(o.when, model, language))
+                 for o in problem.objectives if o.when is not None)
 
 
 def free_body_loads(problem: Problem) -> tuple[AppliedLoad, ...]:
@@ -611,7 +638,7 @@ def free_body_loads(problem: Problem) -> tuple[AppliedLoad, ...]:
 
 @lru_cache(maxsize=64)
 def _free_body_loads(problem: Problem, _locations: tuple) -> tuple[AppliedLoad, ...]:
-    model, loads = derive_kinetics(problem).built
+    model, loads, _ = derive_kinetics(problem).built
     return diagram(problem, model, loads)
 
 
@@ -651,7 +678,7 @@ def _kinetics_lines(problem: Problem, kin: Kinetics) -> tuple[tuple[str, tuple[s
     of every part to the body's reference point), free-body loads, momentum balances and
     unknown reactions."""
     d = dynamics_of(problem)
-    model, loads = kin.built
+    model, loads, _ = kin.built
     inertias = _inertias(d, model)
     bodies: list[str] = []
     for b in d.bodies:

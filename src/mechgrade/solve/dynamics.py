@@ -32,7 +32,7 @@ import sympy as sp
 
 from ..errors import (AuthorWarning, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
-from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics
+from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics, read_kinetics
 from ..mechanics.loads import PhysicalBound
 from ..expressions.syntax import Name, Prime
 from ..mechanics.junctions import kinematic_part
@@ -121,10 +121,25 @@ def share_kinetics(copy: Problem, source: Problem) -> bool:
             source, objectives=()) or copy.objectives != tuple(
             replace(o, expect=None, mistakes=()) for o in source.objectives):
         return False
+    _share(copy, replace(kinetics_plan(source), physical=(), mistakes=()))
+    return True
+
+
+def read_in(problem: Problem, source: Problem) -> None:
+    """Let ``problem``, ``source`` with other objectives, be solved with ``source``'s
+    balances and functions: only its objectives derived and lambdified
+    (:func:`~mechgrade.mechanics.dynamics.read_kinetics`)."""
+    kin = read_kinetics(problem, source)
+    if kin is not None:
+        plan = kinetics_plan(source)
+        _share(problem, replace(plan, kin=kin, **_objective_functions(problem, kin,
+                                                                       plan.symbols)))
+
+
+def _share(problem: Problem, plan: KineticsPlan) -> None:
     if len(_SHARED) >= 256:
         _SHARED.clear()
-    _SHARED[id(copy)] = (copy, replace(kinetics_plan(source), physical=(), mistakes=()))
-    return True
+    _SHARED[id(problem)] = (problem, plan)
 
 
 @lru_cache(maxsize=64)
@@ -139,24 +154,31 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     unknowns = [symbols[i] for i in columns]
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
-    numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
     return KineticsPlan(
         kin=kin, kp=kp, symbols=symbols, columns=columns,
         residual=_lambdify(symbols, exprs), jacobian=_lambdify(symbols, exprs.jacobian(unknowns)),
         scale=_lambdify(symbols, scale), labels=tuple(e.label for e in equations),
         wheres=tuple(e.where for e in equations),
-        objectives=tuple((oid, _lambdify(symbols, e)) for oid, e in kin.objectives
-                         if oid in numeric),
-        mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs_))
-                       for oid, exprs_ in kin.mistakes if oid in numeric),
         bounds=tuple((b, _lambdify(symbols, b.tangential), _lambdify(symbols, b.normal),
                       _lambdify(symbols, b.mu)) for b in kin.bounds),
         slips=tuple((s, _lambdify(symbols, s.speed), _lambdify(symbols, s.normal))
                     for s in kin.slips),
-        requirements=tuple((oid, reason, _lambdify(symbols, expr))
-                           for oid, reason, expr in kin.requirements),
         design=_lambdify(symbols, kin.design) if kin.design is not None else None,
-        physical=tuple((b, _lambdify(symbols, b.expr)) for b in kin.physical))
+        physical=tuple((b, _lambdify(symbols, b.expr)) for b in kin.physical),
+        **_objective_functions(problem, kin, symbols))
+
+
+def _objective_functions(problem: Problem, kin: Kinetics, symbols) -> dict:
+    """The plan's functions of ``problem``'s numeric objectives (their values, author's
+    mistakes and requirements) in ``kin``."""
+    numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
+    return dict(
+        objectives=tuple((oid, _lambdify(symbols, e)) for oid, e in kin.objectives
+                         if oid in numeric),
+        mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs_))
+                       for oid, exprs_ in kin.mistakes if oid in numeric),
+        requirements=tuple((oid, reason, _lambdify(symbols, expr))
+                           for oid, reason, expr in kin.requirements))
 
 
 def _call(f: Callable, x: np.ndarray) -> np.ndarray:

@@ -41,7 +41,7 @@ from ..mechanics.dynamics_mutations import (DynamicsMutation, dynamics_mutations
 from ..mechanics.revalue import revaluation
 from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, ObjectiveKind, Problem
-from .dynamics import kinetics_plan, share_kinetics, solve_dynamics
+from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
 from .instant import _instants, instant_givens
 from .levels import State
 from .mutants import (attach, model_mistake_at, model_mistake_table, model_mistakes,
@@ -303,7 +303,7 @@ def _read(problem: Problem, mutations, givens, numeric: set[str], solver: Solver
     """The mistaken readings (mutation index -> objective id -> value) and each mutation's
     named term as text with its unit (mutation index -> text), read together in the right
     model: one more solve of the problem."""
-    reading = _reading(problem, mutations, numeric)
+    reading = _reading(problem, mutations, frozenset(numeric))
     try:
         results = solver(reading, givens=givens).results if reading else ()
     except _UNSOLVABLE:
@@ -311,15 +311,21 @@ def _read(problem: Problem, mutations, givens, numeric: set[str], solver: Solver
     return _readings(results)
 
 
-def _reading(problem: Problem, mutations, numeric: set[str]) -> Problem | None:
+@lru_cache(maxsize=256)
+def _reading(problem: Problem, mutations, numeric: frozenset[str]) -> Problem | None:
     """The right model asked for each mistaken reading of the objectives in ``numeric`` and
-    each mutation's named term (``None``: nothing to read)."""
+    each mutation's named term (``None``: nothing to read); one object for the same
+    arguments, solved with the problem's own balances."""
     objectives = [replace(problem.objective(oid), id=f"{oid}~{i}", find=find, expect=None,
                           mistakes=())
                   for i, m in enumerate(mutations) for oid, find in m.readings if oid in numeric]
     objectives += [Objective(f"~{i}", "", m.term, ObjectiveKind.SCALAR, m.term_unit)
                    for i, m in enumerate(mutations) if m.term is not None]
-    return replace(problem, objectives=tuple(objectives), warnings=()) if objectives else None
+    if not objectives:
+        return None
+    reading = replace(problem, objectives=tuple(objectives), warnings=())
+    read_in(reading, problem)  # the right model: its balances are the problem's
+    return reading
 
 
 def _readings(results) -> tuple[dict[int, dict], dict[int, str]]:
@@ -537,7 +543,7 @@ def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple
 
 def _class_read(together: Callable, problem: Problem, mutations, givens: list[dict], numeric: set[str]):
     """:func:`_read` of every variant, read together."""
-    reading = _reading(problem, mutations, numeric)
+    reading = _reading(problem, mutations, frozenset(numeric))
     if reading is None:
         return [{} for _ in givens], [{} for _ in givens]
     solved = [_readings(s.results if s is not None else ())
