@@ -32,10 +32,22 @@ def test_the_mass_written_for_the_weight_is_the_model_with_g_worth_one():
     assert revaluation(base, copies["weight_for_mass"]) == (("g", 1), ("m", g * m))
 
 
-def test_a_load_left_out_changes_the_model_not_its_numbers():
+def test_the_weight_left_out_is_the_model_with_g_worth_zero():
     base, copies = _copies("ladder_wall_lift_off")
-    assert revaluation(base, copies["weight_omitted"]) is None  # gravity: none at all
+    assert revaluation(base, copies["weight_omitted"]) == (("g", 0),)
+
+
+def test_a_load_moved_changes_the_model_not_its_numbers():
+    base, copies = _copies("ladder_wall_lift_off")
     assert revaluation(base, copies["load_at_other_point"]) is None  # a point, not a number
+
+
+def test_a_load_written_times_zero_is_no_revaluation():
+    base, _ = _copies("ladder_wall_lift_off")
+    d = base.dynamics
+    assert d is not None and d.gravity is not None
+    zero = replace(base, dynamics=replace(d, gravity=_expr(f"0*({d.gravity.text})")))
+    assert revaluation(base, zero) is None
 
 
 def test_a_parameter_read_by_a_numeric_objective_is_not_revalued():

@@ -2,10 +2,11 @@
 
 A mistaken copy of a problem (:mod:`.dynamics_mutations`) that differs from ``base`` only in
 some expressions, each the base's expression of one parameter ``s`` (``m``, ``-g*N.y``, linear
-in it) times a constant factor (``(m)*mag(-g*N.y)``, ``(-g*N.y)/mag(-g*N.y)``), where ``s``
-appears nowhere else in the problem, is ``base`` with ``s`` worth ``s`` times that factor: its
-balances are the base's, solved with other givens, not derived and lambdified again. Decided
-by the structure of the two problems, whichever family made the copy.
+in it) times a constant factor (``(m)*mag(-g*N.y)``, ``(-g*N.y)/mag(-g*N.y)``; zero where an
+optional one is left out: the weight), where ``s`` appears nowhere else in the problem, is
+``base`` with ``s`` worth ``s`` times that factor: its balances are the base's, solved with
+other givens, not derived and lambdified again. Decided by the structure of the two problems,
+whichever family made the copy.
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
@@ -14,7 +15,9 @@ by the structure of the two problems, whichever family made the copy.
 >>> copies = {m.code: m.problem for m in dynamics_mutations(problem) if m.problem}
 >>> revaluation(unchanged_copy(problem), copies["weight_for_mass"])
 (('g', 1), ('m', g*m))
->>> revaluation(unchanged_copy(problem), copies["weight_omitted"]) is None
+>>> revaluation(unchanged_copy(problem), copies["weight_omitted"])
+(('g', 0),)
+>>> revaluation(unchanged_copy(problem), copies["value_at_start"]) is None
 True
 """
 
@@ -39,7 +42,7 @@ def revaluation(base: Problem, mistaken: Problem) -> tuple[tuple[str, sp.Expr], 
     if not set(mistaken.objectives) <= set(base.objectives) \
             or base.parameters != mistaken.parameters:
         return None
-    changed: list[tuple[Expr, Expr]] = []
+    changed: list[tuple[Expr, Expr | None]] = []
     elsewhere: set[str] = set()
     if not _alike(dataclasses.replace(base, objectives=(), parameters=()),
                   dataclasses.replace(mistaken, objectives=(), parameters=()), changed,
@@ -68,18 +71,18 @@ def revaluation(base: Problem, mistaken: Problem) -> tuple[tuple[str, sp.Expr], 
                         for name, factor in values.items()))
 
 
-def _changed_names(changed: list[tuple[Expr, Expr]]) -> set[str]:
+def _changed_names(changed: list[tuple[Expr, Expr | None]]) -> set[str]:
     return {n.id for old, _ in changed for n in walk(old.node) if isinstance(n, Name)}
 
 
 def _alike(a, b, changed: list, elsewhere: set[str]) -> bool:
     """Whether ``a`` and ``b`` differ in expressions only (each pair that differs appended to
     ``changed``; the names of the others, and every other text, put in ``elsewhere``)."""
-    if isinstance(a, Expr) and isinstance(b, Expr):
-        if a.node == b.node:
+    if isinstance(a, Expr) and isinstance(b, (Expr, type(None))):
+        if isinstance(b, Expr) and a.node == b.node:
             elsewhere.update(n.id for n in walk(a.node) if isinstance(n, Name))
         else:
-            changed.append((a, b))
+            changed.append((a, b))  # an optional one left out (gravity) is worth zero
         return True
     if isinstance(a, Given) and a == b and a.value_expr is None and isinstance(a.key.node, Name):
         return True  # a plain given: the value the mistaken model replaces
@@ -99,10 +102,11 @@ def _alike(a, b, changed: list, elsewhere: set[str]) -> bool:
     return a == b
 
 
-def _factor(model, old: Expr, new: Expr, symbol: sp.Symbol) -> sp.Expr | None:
-    """The constant by which ``new`` is ``old`` (scalars, or parallel vectors), ``old``
-    linear in ``symbol``; ``None`` when there is none."""
-    a, b = (_components(model, e) for e in (old, new))
+def _factor(model, old: Expr, new: Expr | None, symbol: sp.Symbol) -> sp.Expr | None:
+    """The constant by which ``new`` is ``old`` (scalars, or parallel vectors; zero where
+    ``new`` is left out), ``old`` linear in ``symbol``; ``None`` when there is none."""
+    a = _components(model, old)
+    b = [sp.Integer(0)] * len(a or ()) if new is None else _components(model, new)
     if a is None or b is None or len(a) != len(b):
         return None
     factors = set()
@@ -117,7 +121,9 @@ def _factor(model, old: Expr, new: Expr, symbol: sp.Symbol) -> sp.Expr | None:
     if len(factors) != 1:
         return None
     factor = factors.pop()
-    return None if factor == 0 or factor.has(sp.zoo, sp.nan, sp.oo) else factor
+    # zero only where the expression is left out: a load written times zero is the author's
+    return None if (factor == 0) != (new is None) or factor.has(sp.zoo, sp.nan, sp.oo) \
+        else factor
 
 
 def _components(model, e: Expr) -> list | None:

@@ -282,7 +282,8 @@ def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
             if any(given_map.get(x, (None, None))[1] is None for x in symbols):
                 return None
             si = float(value.subs({x: given_map[n][1] for n, x in symbols.items()}))
-            if not np.isfinite(si) or (name in positive and si <= 0):
+            # zero: a load left out (the weight) of a positive parameter (g)
+            if not np.isfinite(si) or (name in positive and si < 0):
                 return None
             at[name] = si
         out.append({**overrides, **at})
