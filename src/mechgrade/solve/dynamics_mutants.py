@@ -325,7 +325,10 @@ def _reading(problem: Problem, mutations, numeric: frozenset[str]) -> Problem | 
     if not objectives:
         return None
     reading = replace(problem, objectives=tuple(objectives), warnings=())
-    read_in(reading, problem)  # the right model: its balances are the problem's
+    try:
+        read_in(reading, problem)  # the right model: its balances are the problem's
+    except _UNSOLVABLE:
+        pass  # one that cannot be lambdified (a zoo) is derived in full, and fails, when solved
     return reading
 
 
