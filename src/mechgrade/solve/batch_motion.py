@@ -354,6 +354,22 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
     return root, converged
 
 
+def root_between(f: Callable[[float], float], a: float, b: float, fa: float, fb: float
+                 ) -> tuple[float, bool]:
+    """A root of ``f`` between ``a`` and ``b``, where it changes sign (``fa``, ``fb`` its
+    values there), found as an event's time is (:func:`_event_time`); and whether it
+    converged.
+
+    >>> root, ok = root_between(lambda x: x * x - 2.0, 1.0, 2.0, -1.0, 2.0)
+    >>> round(root, 12), ok
+    (1.414213562373, True)
+    """
+    roots, converged = _event_time(
+        lambda _, x, __: np.array([f(float(v)) for v in x]), lambda *_: None,
+        np.array([a]), np.array([b]), np.array([fa]), np.array([fb]))
+    return float(roots[0]), bool(converged[0])
+
+
 ROUNDING_FLOOR = 1e-9
 """A Newton step this small relative to the iterate, that no longer shrinks, is rounding
 noise of the residual: the iterate is the root as closely as the residual can tell."""
@@ -361,7 +377,8 @@ noise of the residual: the iterate is the root as closely as the residual can te
 
 ROOT_XTOL, ROOT_RTOL, ROOT_ITERATIONS = 1e-15, 1e-13, 100
 """How closely a design parameter's root is found (``xtol + rtol * |x|``) and in how many
-iterations at most: by :func:`newton`, and by the bracketing search a design falls back on."""
+iterations at most by :func:`newton` (the bracketing search a design falls back on finds it
+to a few units in the last place: :func:`root_between`)."""
 
 
 def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndarray,

@@ -449,12 +449,12 @@ class DesignedInstant(KineticInstant):
             return with_value(roots[0])
         result = _bracketed(residual, guess)
         left, right = design.so_that
-        if result is None or not result.converged or not np.isfinite(result.root):
+        if result is None or not result[1] or not np.isfinite(result[0]):
             raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
                              f"{left.text} = {right.text} (Newton's method from it does not "
                              "converge, and no sign change is found within 64 times it)",
                              where=design.where)
-        return with_value(result.root)
+        return with_value(result[0])
 
 
 def kinetic_reach(problem: Problem, balances: BalancesSolver = solve_kinetics
@@ -485,12 +485,13 @@ def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
     return State(x[:size].copy(), state.given, frozenset(state.free - solved))
 
 
-def _bracketed(residual: Callable[[float], float], guess: float):
+def _bracketed(residual: Callable[[float], float], guess: float) -> tuple[float, bool] | None:
     """A root of ``residual`` between two neighbours of the guess scaled by powers of 2 (up to
-    64 times either way, the guess's sign kept, the nearest first), found by bisection once
-    the sign changes there; ``None`` when it does not. For a design Newton's method
-    overshoots from the guess (a residual like 1/R²)."""
-    from .batch_motion import ROOT_ITERATIONS, ROOT_RTOL, ROOT_XTOL
+    64 times either way, the guess's sign kept, the nearest first), found once the sign
+    changes there (:func:`~.batch_motion.root_between`), and whether it converged; ``None``
+    when the sign does not change. For a design Newton's method overshoots from the guess (a
+    residual like 1/R²)."""
+    from .batch_motion import root_between
 
     if guess == 0:
         return None
@@ -505,14 +506,9 @@ def _bracketed(residual: Callable[[float], float], guess: float):
         for a, b in ((n - 1, n), (-n, 1 - n)):
             fa, fb = at(a), at(b)
             if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
-                # imported only here: a design with no sign change (a mistaken model's, most
-                # often) is refused without scipy.optimize's ~0.15 s import
-                from scipy import optimize
-
-                return optimize.root_scalar(residual, bracket=(guess * 2.0 ** a,
-                                                               guess * 2.0 ** b),
-                                            method="brentq", xtol=ROOT_XTOL,
-                                            rtol=ROOT_RTOL, maxiter=ROOT_ITERATIONS)
+                # scipy.optimize's brentq finds it as closely, but importing it costs more
+                # (~0.15 s) than most solves that come here
+                return root_between(residual, guess * 2.0 ** a, guess * 2.0 ** b, fa, fb)
     return None
 
 
