@@ -121,9 +121,7 @@ def _factor(model, old: Expr, new: Expr | None, symbol: sp.Symbol) -> sp.Expr | 
     if len(factors) != 1:
         return None
     factor = factors.pop()
-    # zero only where the expression is left out: a load written times zero is the author's
-    return None if (factor == 0) != (new is None) or factor.has(sp.zoo, sp.nan, sp.oo) \
-        else factor
+    return None if factor.has(sp.zoo, sp.nan, sp.oo) else factor
 
 
 def _components(model, e: Expr) -> list | None:
