@@ -9,6 +9,11 @@ wrong unit), for which the problem is solved again with the given changed; and t
 mutations of :mod:`mechgrade.mechanics.mutations` (another point's velocity, ω × r left out,
 another frame's unit vectors), read at the solved instant.
 
+A mistaken model that changes only numbers (the mass written for the weight, the weight left
+out, e read as 1) is the problem's unchanged copy solved with its parameters' mistaken values
+(:mod:`mechgrade.mechanics.revalue`), and the readings are read in the problem's own balances:
+neither is derived and lambdified again.
+
 Solving the mistaken models costs from tens of milliseconds to seconds (an integration to an
 event, an inverse design), and most answers are right: a solution's generated mistakes are
 worked out, for all its objectives at once, the first time one of them is looked at
