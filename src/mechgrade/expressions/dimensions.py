@@ -80,7 +80,7 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:
             return a
         if a.kind != b.kind:
             raise DimensionError(f"cannot add a {a.kind} and a {b.kind} in '{text()}'")
-        if a.dim != b.dim:
+        if a.dim is not b.dim and a.dim != b.dim:  # pint's == is slow; most are one object
             verb, joint = ("adds", "to") if node.op == "+" else ("subtracts", "and")
             raise DimensionError(f"cannot add {described(a.dim)} and "
                                  f"{described(b.dim)} in '{text()}'",
@@ -92,27 +92,58 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:
             raise DimensionError(f"cannot multiply two vectors in '{text()}'; expected "
                                  "dot(u, v) or cross(u, v)")
         if Kind.ZERO in (a.kind, b.kind):
-            return Type(Kind.ZERO, a.dim * b.dim)
+            return Type(Kind.ZERO, _arithmetic("*", a.dim, b.dim))
         kind = Kind.VECTOR if Kind.VECTOR in (a.kind, b.kind) else Kind.SCALAR
-        return Type(kind, a.dim * b.dim)
+        return Type(kind, _arithmetic("*", a.dim, b.dim))
     if node.op == "/":
         if b.kind != Kind.SCALAR:
             raise DimensionError(f"expected a nonzero scalar divisor in '{text()}'",
                                  "divides by zero" if b.kind == Kind.ZERO else None)
-        return Type(a.kind, a.dim / b.dim)
+        return Type(a.kind, _arithmetic("/", a.dim, b.dim))
     # power
     if a.kind == Kind.VECTOR or b.kind == Kind.VECTOR:
         raise DimensionError(f"cannot raise a vector to a power in '{text()}'")
     variable = "raises a quantity with units to a variable power"
-    if b.dim != dimensionless():
+    pure = dimensionless()
+    if b.dim is not pure and b.dim != pure:
         raise DimensionError(f"expected a pure-number exponent in '{text()}'", variable)
-    if a.dim == dimensionless():
+    if a.dim is pure or a.dim == pure:
         return Type(a.kind if a.kind != Kind.ZERO else Kind.SCALAR, a.dim)
     exponent = constant_value(node.right)
     if exponent is None:
         raise DimensionError(f"a quantity with units needs a constant exponent in '{text()}'",
                              variable)
-    return Type(Kind.SCALAR, a.dim ** exponent)
+    return Type(Kind.SCALAR, _arithmetic("**", a.dim, exponent))
+
+
+_ARITHMETIC: dict[tuple, tuple] = {}
+MAX_ARITHMETIC = 4096
+
+
+def _arithmetic(op: str, a, b):
+    """``a op b`` of dimensionalities (``b`` of ``**``: an exponent), as pint works it out,
+    kept by the operands' identity (an exponent by its value and type: 2 is not 2.0 in
+    messages). The leaves' dimensionalities are the same objects from one answer to the next
+    (:func:`mechgrade.units.dimension` keeps them), so the parts' are too, and pint's
+    arithmetic costs more than the rest of typing a wrong answer. Each result is kept with its
+    operands, so an identity is never reused while kept.
+
+    >>> from mechgrade.units import dimension
+    >>> length = dimension("m")
+    >>> _arithmetic("*", length, length) is _arithmetic("*", length, length)
+    True
+    >>> str(_arithmetic("**", length, 2.0)), str(_arithmetic("/", length, length))
+    ('[length] ** 2', 'dimensionless')
+    """
+    key = (op, id(a), b, type(b)) if op == "**" else (op, id(a), id(b))
+    kept = _ARITHMETIC.get(key)
+    if kept is not None and kept[0] is a and (op == "**" or kept[1] is b):
+        return kept[2]
+    out = a * b if op == "*" else a / b if op == "/" else a ** b
+    if len(_ARITHMETIC) >= MAX_ARITHMETIC:
+        _ARITHMETIC.clear()
+    _ARITHMETIC[key] = (a, b, out)
+    return out
 
 
 def _math(node: Call, args: list[Type]) -> Type:

@@ -345,8 +345,10 @@ Token = tuple[int, str, int, int]
 column."""
 
 _SIMPLE = re.compile(r"[A-Za-z0-9_ +\-*/().,]*")
-_SCAN = re.compile(r" *(?:(?P<number>" + tokenize.Number + r")"
-                   r"|(?P<op>\*\*|\*|//|/|\.\.\.|\.|[-+(),])|(?P<name>[A-Za-z_][A-Za-z0-9_]*))")
+# names first (most tokens are), then operators (a "." before a digit starts a number), and
+# tokenize's own number pattern, whose many alternatives are the slowest to try, last
+_SCAN = re.compile(r" *(?:(?P<name>[A-Za-z_][A-Za-z0-9_]*)|(?P<op>\*\*|\*|//|/|\.\.\.|\.(?![0-9])"
+                   r"|[-+(),])|(?P<number>" + tokenize.Number + r"))")
 _TOKEN_TYPES = {"number": tokenize.NUMBER, "op": tokenize.OP, "name": tokenize.NAME}
 
 
@@ -374,20 +376,19 @@ def _scan(text: str) -> list[Token] | None:
     its parentheses do not balance (tokenize then says how)."""
     out: list[Token] = []
     depth = 0
-    pos = 0
-    match = _SCAN.match
-    while (found := match(text, pos)) is not None:
+    # every character of _SIMPLE starts a token or is a space before one: the matches are
+    # consecutive (only trailing spaces are left over)
+    for found in _SCAN.finditer(text):
         group = found.lastgroup
         assert group is not None  # every alternative of _SCAN is named
-        string = found.group(group)
-        start, pos = found.start(group), found.end()
+        string = found[group]
         if string == "(":
             depth += 1
         elif string == ")":
             depth -= 1
             if depth < 0:
                 return None
-        out.append((_TOKEN_TYPES[group], string, start, pos))
+        out.append((_TOKEN_TYPES[group], string, *found.span(group)))
     return out if depth == 0 else None
 
 
