@@ -823,7 +823,10 @@ _E_NOTATION = re.compile(r"(?<![\w.])\d+(?:\.\d*)?(?P<e>[eE])[+-]?\d")
 def _spaced(node: Node) -> str:
     """Canonical text with spaces around binary ``+`` and ``-``, for reading back."""
     text = syntax.to_text(node)
-    return _BINARY_SIGN.sub(lambda m: m.group(0) if _EXPONENT_END.search(text, 0, m.start())
+    # a sign after an "e" may be a number's exponent (1e-5): only then is the text before it
+    # searched
+    return _BINARY_SIGN.sub(lambda m: m.group(0) if text[m.start() - 1] == "e"
+                            and _EXPONENT_END.search(text, 0, m.start())
                             else f" {m.group(1)} ", text)
 
 
