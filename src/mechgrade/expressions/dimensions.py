@@ -116,34 +116,44 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:
     return Type(Kind.SCALAR, _arithmetic("**", a.dim, exponent))
 
 
-_ARITHMETIC: dict[tuple, tuple] = {}
-MAX_ARITHMETIC = 4096
+_KEPT: dict[tuple, tuple] = {}
+MAX_KEPT = 4096
 
 
-def _arithmetic(op: str, a, b):
-    """``a op b`` of dimensionalities (``b`` of ``**``: an exponent), as pint works it out,
-    kept by the operands' identity (an exponent by its value and type: 2 is not 2.0 in
-    messages). The leaves' dimensionalities are the same objects from one answer to the next
-    (:func:`mechgrade.units.dimension` keeps them), so the parts' are too, and pint's
-    arithmetic costs more than the rest of typing a wrong answer. Each result is kept with its
-    operands, so an identity is never reused while kept.
+def _kept(objects: tuple, extra: tuple, compute: Callable[[], Any]) -> Any:
+    """``compute()``, kept by the identity of ``objects`` (dimensionalities) and the value of
+    ``extra``. The leaves' dimensionalities are the same objects from one answer to the next
+    (:func:`mechgrade.units.dimension` keeps them), so the parts' are too (kept here), and
+    pint's arithmetic and text cost more than the rest of typing a wrong answer. ``objects``
+    are kept with the result, so an identity is never reused while kept.
 
     >>> from mechgrade.units import dimension
     >>> length = dimension("m")
-    >>> _arithmetic("*", length, length) is _arithmetic("*", length, length)
+    >>> _kept((length,), ("square",), lambda: length ** 2) is _kept((length,), ("square",), None)
     True
-    >>> str(_arithmetic("**", length, 2.0)), str(_arithmetic("/", length, length))
+    """
+    key = (*map(id, objects), *extra)
+    kept = _KEPT.get(key)
+    if kept is not None and all(a is b for a, b in zip(kept[0], objects)):
+        return kept[1]
+    out = compute()
+    if len(_KEPT) >= MAX_KEPT:
+        _KEPT.clear()
+    _KEPT[key] = (objects, out)
+    return out
+
+
+def _arithmetic(op: str, a, b):
+    """``a op b`` of dimensionalities (``b`` of ``**``: an exponent, kept by its value and
+    type: 2 is not 2.0 in messages), as pint works it out (:func:`_kept`).
+
+    >>> from mechgrade.units import dimension
+    >>> str(_arithmetic("**", dimension("m"), 2.0)), str(_arithmetic("/", dimension("m"), dimension("m")))
     ('[length] ** 2', 'dimensionless')
     """
-    key = (op, id(a), b, type(b)) if op == "**" else (op, id(a), id(b))
-    kept = _ARITHMETIC.get(key)
-    if kept is not None and kept[0] is a and (op == "**" or kept[1] is b):
-        return kept[2]
-    out = a * b if op == "*" else a / b if op == "/" else a ** b
-    if len(_ARITHMETIC) >= MAX_ARITHMETIC:
-        _ARITHMETIC.clear()
-    _ARITHMETIC[key] = (a, b, out)
-    return out
+    if op == "**":
+        return _kept((a,), (op, b, type(b)), lambda: a ** b)
+    return _kept((a, b), (op,), lambda: a * b if op == "*" else a / b)
 
 
 def _math(node: Call, args: list[Type]) -> Type:
@@ -152,7 +162,8 @@ def _math(node: Call, args: list[Type]) -> Type:
             raise DimensionError(f"{node.func}(...) takes a scalar, found a vector "
                                  "(use mag(v) or dot(u, v))")
     entry = MATH_FUNCTIONS[node.func]
-    return Type(Kind.SCALAR, entry.dimension(node.func, tuple(t.dim for t in args)))
+    dims = tuple(t.dim for t in args)
+    return Type(Kind.SCALAR, _kept(dims, (node.func,), lambda: entry.dimension(node.func, dims)))
 
 
 _DESCRIBED: dict[tuple, str] = {}
@@ -167,6 +178,10 @@ def described(dim) -> str:
     >>> described(dimension("m/s"))
     'a velocity ([length]/[time])'
     """
+    return _kept((dim,), ("described",), lambda: _described(dim))
+
+
+def _described(dim) -> str:
     key = tuple((base, repr(power)) for base, power in dict(dim).items())  # 2 is not 2.0
     if key not in _DESCRIBED:
         if len(_DESCRIBED) > 1024:
