@@ -345,11 +345,11 @@ Token = tuple[int, str, int, int]
 column."""
 
 _SIMPLE = re.compile(r"[A-Za-z0-9_ +\-*/().,]*")
-# names first (most tokens are), then operators (a "." before a digit starts a number), and
-# tokenize's own number pattern, whose many alternatives are the slowest to try, last
-_SCAN = re.compile(r" *(?:(?P<name>[A-Za-z_][A-Za-z0-9_]*)|(?P<op>\*\*|\*|//|/|\.\.\.|\.(?![0-9])"
-                   r"|[-+(),])|(?P<number>" + tokenize.Number + r"))")
-_TOKEN_TYPES = {"number": tokenize.NUMBER, "op": tokenize.OP, "name": tokenize.NAME}
+# The spaces before a token, then the token: a name (most tokens are), an operator (a "."
+# before a digit starts a number) or a number, by tokenize's own pattern (its groups made
+# non-capturing, so findall gives these four), whose many alternatives are the slowest to try.
+_SCAN = re.compile(r"( *)(?:([A-Za-z_][A-Za-z0-9_]*)|(\*\*|\*|//|/|\.\.\.|\.(?![0-9])|[-+(),])"
+                   r"|(" + re.sub(r"\((?!\?)", "(?:", tokenize.Number) + r"))")
 
 
 def tokens(text: str) -> list[Token]:
@@ -373,22 +373,28 @@ def tokens(text: str) -> list[Token]:
 
 def _scan(text: str) -> list[Token] | None:
     """``text`` (only characters of :data:`_SIMPLE`) read with :data:`_SCAN`; ``None`` when
-    its parentheses do not balance (tokenize then says how)."""
+    its parentheses do not balance (tokenize then says how). Every character of
+    :data:`_SIMPLE` starts a token or is a space before one, so the matches follow one another
+    (only trailing spaces are left over) and each token starts where the last one ended, after
+    its spaces."""
     out: list[Token] = []
     depth = 0
-    # every character of _SIMPLE starts a token or is a space before one: the matches are
-    # consecutive (only trailing spaces are left over)
-    for found in _SCAN.finditer(text):
-        group = found.lastgroup
-        assert group is not None  # every alternative of _SCAN is named
-        string = found[group]
-        if string == "(":
+    end = 0
+    for spaces, name, op, number in _SCAN.findall(text):
+        start = end + len(spaces)
+        if name:
+            end = start + len(name)
+            out.append((tokenize.NAME, name, start, end))
+            continue
+        if op == "(":
             depth += 1
-        elif string == ")":
+        elif op == ")":
             depth -= 1
             if depth < 0:
                 return None
-        out.append((_TOKEN_TYPES[group], string, *found.span(group)))
+        string = op or number
+        end = start + len(string)
+        out.append((tokenize.OP if op else tokenize.NUMBER, string, start, end))
     return out if depth == 0 else None
 
 
