@@ -455,7 +455,9 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]
                 if divisors:
                     divisors.product(index)
                 pieces.append(_TIMES)
-            glued = _glued_call(string, found[index + 1:index + 2], end, functions)
+            # only a bracket right after a name can make it a name and a call
+            glued = _glued_call(string, found[index + 1:index + 2], end, functions) \
+                if index + 1 < len(found) and found[index + 1][1] == "(" else None
             if glued:  # "pisqrt(L/g)", "Lcos(theta)": a name, then a call
                 pieces += [(kind, string[:-len(glued)]), _TIMES]
                 string = glued
@@ -728,10 +730,13 @@ class _Reader:
     def atom(self) -> _Read:
         kind, string = self.take()
         if kind == tokenize.NUMBER:
-            if not _PLAIN_NUMBER.fullmatch(string):
+            if string.isascii() and string.isdigit() and (string[0] != "0" or len(string) == 1):
+                number = self.builder._number(int(string))  # most numbers: plain integers
+            elif not _PLAIN_NUMBER.fullmatch(string):
                 raise _Unread  # 0x1f, 1_000, 007: Python's own literals
-            number = self.builder._number(float(string) if _FLOAT.search(string)
-                                          else int(string))
+            else:
+                number = self.builder._number(float(string) if _FLOAT.search(string)
+                                              else int(string))
             self.count += 1
             return number, number.value, 0
         if kind == tokenize.NAME:
@@ -750,8 +755,8 @@ class _Reader:
                         or self.pieces[self.at][1] in (".", "("):
                     raise _Unread
                 return Attr(base.id, attr[1]), None, 0
-            leaf = self.builder._name(string)
-            return leaf, math.pi if leaf == _PI else None, 0
+            leaf = self.builder._name(string)  # a Name of string, or a refusal
+            return leaf, math.pi if string == "pi" else None, 0
         if string == "(":
             self.nest()
             inner = self.sum()
