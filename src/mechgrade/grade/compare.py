@@ -680,13 +680,23 @@ class _Sampled:
 
     @cached_property
     def mistakes(self) -> list[tuple[MistakeValue, np.ndarray | None]]:
-        return [(m, _sampled_mistake(m.expr, self._result, self._policy))
-                for m in self._result.mistakes]
+        return self._usable(self._result.mistakes)
 
     @cached_property
     def generated(self) -> list[tuple[GeneratedMistake, np.ndarray | None]]:
-        return [(g, _sampled_mistake(g.expr, self._result, self._policy))
-                for g in self._result.generated_mistakes]
+        return self._usable(self._result.generated_mistakes)
+
+    def _usable(self, mistakes):
+        """Each mistake with its values, only those defined and finite at every sample point:
+        :func:`~.diagnose.diagnose` passes over any other, so they are left out once here
+        rather than looked at for every wrong answer."""
+        out = []
+        for mistake in mistakes:
+            values = _sampled_mistake(mistake.expr, self._result, self._policy)
+            if values is not None and values.shape == self.reference.shape \
+                    and np.isfinite(values).all():
+                out.append((mistake, values))
+        return out
 
 
 _OBJECTIVES: dict[tuple[int, int], tuple[ObjectiveResult, GradingPolicy, _Sampled | None]] = {}
