@@ -763,7 +763,7 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     return _read_expression(text, tuple(symbols))
 
 
-@lru_cache(maxsize=4096)
+@lru_cache(maxsize=1024)  # few, as compare.MAX_JUDGED says why
 def _read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     exponent = _E_NOTATION.search(text)
     if exponent and exponent.group("e") in symbols:
