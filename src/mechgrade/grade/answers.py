@@ -184,11 +184,11 @@ def clean(text: str) -> str:
     if "#" in text:
         raise AnswerError(f"expected an answer without '#' (nothing after it would be read), "
                           f"found {excerpt(text, text.index('#'))}")
-    text = unicodedata.normalize("NFC", text).translate(_DASHES)
-    text = text.replace("k\u0302", "k").replace("i\u0302", "i").replace("j\u0302", "j")
-    text = _SUPERSCRIPT_RUN.sub(
-        lambda m: "^" + ("-" if m.group(1) == "⁻" else "") + m.group(2).translate(_SUPER_DIGITS),
-        text)
+    if not plain:  # printable ASCII is its own NFC form, without dashes, hats or superscripts
+        text = unicodedata.normalize("NFC", text).translate(_DASHES)
+        text = text.replace("k\u0302", "k").replace("i\u0302", "i").replace("j\u0302", "j")
+        text = _SUPERSCRIPT_RUN.sub(lambda m: "^" + ("-" if m.group(1) == "⁻" else "")
+                                    + m.group(2).translate(_SUPER_DIGITS), text)
     return " ".join(text.split())
 
 
