@@ -120,4 +120,4 @@ class AgreeAtPoints:
             return np.zeros(len(rows), dtype=bool)
         flat = rows.reshape(len(rows), -1)
         fits = _elementwise(s.reshape(1, -1), flat, self.rel, self.floor, None)
-        return np.all(fits, axis=1, keepdims=False).reshape(-1)
+        return np.logical_and.reduce(fits, axis=1)  # np.all, without its Python wrapper

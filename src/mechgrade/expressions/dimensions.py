@@ -80,7 +80,7 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:
             return a
         if a.kind != b.kind:
             raise DimensionError(f"cannot add a {a.kind} and a {b.kind} in '{text()}'")
-        if a.dim != b.dim:
+        if a.dim is not b.dim and a.dim != b.dim:  # pint's == is slow; most are one object
             verb, joint = ("adds", "to") if node.op == "+" else ("subtracts", "and")
             raise DimensionError(f"cannot add {described(a.dim)} and "
                                  f"{described(b.dim)} in '{text()}'",
@@ -92,27 +92,68 @@ def _binary(node: Bin, a: Type, b: Type) -> Type:
             raise DimensionError(f"cannot multiply two vectors in '{text()}'; expected "
                                  "dot(u, v) or cross(u, v)")
         if Kind.ZERO in (a.kind, b.kind):
-            return Type(Kind.ZERO, a.dim * b.dim)
+            return Type(Kind.ZERO, _arithmetic("*", a.dim, b.dim))
         kind = Kind.VECTOR if Kind.VECTOR in (a.kind, b.kind) else Kind.SCALAR
-        return Type(kind, a.dim * b.dim)
+        return Type(kind, _arithmetic("*", a.dim, b.dim))
     if node.op == "/":
         if b.kind != Kind.SCALAR:
             raise DimensionError(f"expected a nonzero scalar divisor in '{text()}'",
                                  "divides by zero" if b.kind == Kind.ZERO else None)
-        return Type(a.kind, a.dim / b.dim)
+        return Type(a.kind, _arithmetic("/", a.dim, b.dim))
     # power
     if a.kind == Kind.VECTOR or b.kind == Kind.VECTOR:
         raise DimensionError(f"cannot raise a vector to a power in '{text()}'")
     variable = "raises a quantity with units to a variable power"
-    if b.dim != dimensionless():
+    pure = dimensionless()
+    if b.dim is not pure and b.dim != pure:
         raise DimensionError(f"expected a pure-number exponent in '{text()}'", variable)
-    if a.dim == dimensionless():
+    if a.dim is pure or a.dim == pure:
         return Type(a.kind if a.kind != Kind.ZERO else Kind.SCALAR, a.dim)
     exponent = constant_value(node.right)
     if exponent is None:
         raise DimensionError(f"a quantity with units needs a constant exponent in '{text()}'",
                              variable)
-    return Type(Kind.SCALAR, a.dim ** exponent)
+    return Type(Kind.SCALAR, _arithmetic("**", a.dim, exponent))
+
+
+_KEPT: dict[tuple, tuple] = {}
+MAX_KEPT = 4096
+
+
+def _kept(objects: tuple, extra: tuple, compute: Callable[[], Any]) -> Any:
+    """``compute()``, kept by the identity of ``objects`` (dimensionalities) and the value of
+    ``extra``. The leaves' dimensionalities are the same objects from one answer to the next
+    (:func:`mechgrade.units.dimension` keeps them), so the parts' are too (kept here), and
+    pint's arithmetic and text cost more than the rest of typing a wrong answer. ``objects``
+    are kept with the result, so an identity is never reused while kept.
+
+    >>> from mechgrade.units import dimension
+    >>> length = dimension("m")
+    >>> _kept((length,), ("square",), lambda: length ** 2) is _kept((length,), ("square",), None)
+    True
+    """
+    key = (*map(id, objects), *extra)
+    kept = _KEPT.get(key)
+    if kept is not None and all(a is b for a, b in zip(kept[0], objects)):
+        return kept[1]
+    out = compute()
+    if len(_KEPT) >= MAX_KEPT:
+        _KEPT.clear()
+    _KEPT[key] = (objects, out)
+    return out
+
+
+def _arithmetic(op: str, a, b):
+    """``a op b`` of dimensionalities (``b`` of ``**``: an exponent, kept by its value and
+    type: 2 is not 2.0 in messages), as pint works it out (:func:`_kept`).
+
+    >>> from mechgrade.units import dimension
+    >>> str(_arithmetic("**", dimension("m"), 2.0)), str(_arithmetic("/", dimension("m"), dimension("m")))
+    ('[length] ** 2', 'dimensionless')
+    """
+    if op == "**":
+        return _kept((a,), (op, b, type(b)), lambda: a ** b)
+    return _kept((a, b), (op,), lambda: a * b if op == "*" else a / b)
 
 
 def _math(node: Call, args: list[Type]) -> Type:
@@ -121,7 +162,8 @@ def _math(node: Call, args: list[Type]) -> Type:
             raise DimensionError(f"{node.func}(...) takes a scalar, found a vector "
                                  "(use mag(v) or dot(u, v))")
     entry = MATH_FUNCTIONS[node.func]
-    return Type(Kind.SCALAR, entry.dimension(node.func, tuple(t.dim for t in args)))
+    dims = tuple(t.dim for t in args)
+    return Type(Kind.SCALAR, _kept(dims, (node.func,), lambda: entry.dimension(node.func, dims)))
 
 
 _DESCRIBED: dict[tuple, str] = {}
@@ -136,6 +178,10 @@ def described(dim) -> str:
     >>> described(dimension("m/s"))
     'a velocity ([length]/[time])'
     """
+    return _kept((dim,), ("described",), lambda: _described(dim))
+
+
+def _described(dim) -> str:
     key = tuple((base, repr(power)) for base, power in dict(dim).items())  # 2 is not 2.0
     if key not in _DESCRIBED:
         if len(_DESCRIBED) > 1024:

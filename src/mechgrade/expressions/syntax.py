@@ -345,9 +345,11 @@ Token = tuple[int, str, int, int]
 column."""
 
 _SIMPLE = re.compile(r"[A-Za-z0-9_ +\-*/().,]*")
-_SCAN = re.compile(r" *(?:(?P<number>" + tokenize.Number + r")"
-                   r"|(?P<op>\*\*|\*|//|/|\.\.\.|\.|[-+(),])|(?P<name>[A-Za-z_][A-Za-z0-9_]*))")
-_TOKEN_TYPES = {"number": tokenize.NUMBER, "op": tokenize.OP, "name": tokenize.NAME}
+# The spaces before a token, then the token: a name (most tokens are), an operator (a "."
+# before a digit starts a number) or a number, by tokenize's own pattern (its groups made
+# non-capturing, so findall gives these four), whose many alternatives are the slowest to try.
+_SCAN = re.compile(r"( *)(?:([A-Za-z_][A-Za-z0-9_]*)|(\*\*|\*|//|/|\.\.\.|\.(?![0-9])|[-+(),])"
+                   r"|(" + re.sub(r"\((?!\?)", "(?:", tokenize.Number) + r"))")
 
 
 def tokens(text: str) -> list[Token]:
@@ -371,23 +373,28 @@ def tokens(text: str) -> list[Token]:
 
 def _scan(text: str) -> list[Token] | None:
     """``text`` (only characters of :data:`_SIMPLE`) read with :data:`_SCAN`; ``None`` when
-    its parentheses do not balance (tokenize then says how)."""
+    its parentheses do not balance (tokenize then says how). Every character of
+    :data:`_SIMPLE` starts a token or is a space before one, so the matches follow one another
+    (only trailing spaces are left over) and each token starts where the last one ended, after
+    its spaces."""
     out: list[Token] = []
     depth = 0
-    pos = 0
-    match = _SCAN.match
-    while (found := match(text, pos)) is not None:
-        group = found.lastgroup
-        assert group is not None  # every alternative of _SCAN is named
-        string = found.group(group)
-        start, pos = found.start(group), found.end()
-        if string == "(":
+    end = 0
+    for spaces, name, op, number in _SCAN.findall(text):
+        start = end + len(spaces)
+        if name:
+            end = start + len(name)
+            out.append((tokenize.NAME, name, start, end))
+            continue
+        if op == "(":
             depth += 1
-        elif string == ")":
+        elif op == ")":
             depth -= 1
             if depth < 0:
                 return None
-        out.append((_TOKEN_TYPES[group], string, start, pos))
+        string = op or number
+        end = start + len(string)
+        out.append((tokenize.OP if op else tokenize.NUMBER, string, start, end))
     return out if depth == 0 else None
 
 
@@ -448,7 +455,9 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]
                 if divisors:
                     divisors.product(index)
                 pieces.append(_TIMES)
-            glued = _glued_call(string, found[index + 1:index + 2], end, functions)
+            # only a bracket right after a name can make it a name and a call
+            glued = _glued_call(string, found[index + 1:index + 2], end, functions) \
+                if index + 1 < len(found) and found[index + 1][1] == "(" else None
             if glued:  # "pisqrt(L/g)", "Lcos(theta)": a name, then a call
                 pieces += [(kind, string[:-len(glued)]), _TIMES]
                 string = glued
@@ -699,9 +708,7 @@ class _Reader:
             return Unary("-", operand), None if value is None else -value, height + 1
         if string == "+":
             raise _Unread  # ast keeps a node for it, and so counts it
-        return self.power()
-
-    def power(self) -> _Read:
+        # the power, read here: every operand passes this way (one call fewer each)
         base = self.atom()
         if self.pieces[self.at][1] == "**":
             self.take()
@@ -723,10 +730,13 @@ class _Reader:
     def atom(self) -> _Read:
         kind, string = self.take()
         if kind == tokenize.NUMBER:
-            if not _PLAIN_NUMBER.fullmatch(string):
+            if string.isascii() and string.isdigit() and (string[0] != "0" or len(string) == 1):
+                number = self.builder._number(int(string))  # most numbers: plain integers
+            elif not _PLAIN_NUMBER.fullmatch(string):
                 raise _Unread  # 0x1f, 1_000, 007: Python's own literals
-            number = self.builder._number(float(string) if _FLOAT.search(string)
-                                          else int(string))
+            else:
+                number = self.builder._number(float(string) if _FLOAT.search(string)
+                                              else int(string))
             self.count += 1
             return number, number.value, 0
         if kind == tokenize.NAME:
@@ -745,8 +755,8 @@ class _Reader:
                         or self.pieces[self.at][1] in (".", "("):
                     raise _Unread
                 return Attr(base.id, attr[1]), None, 0
-            leaf = self.builder._name(string)
-            return leaf, math.pi if leaf == _PI else None, 0
+            leaf = self.builder._name(string)  # a Name of string, or a refusal
+            return leaf, math.pi if string == "pi" else None, 0
         if string == "(":
             self.nest()
             inner = self.sum()
@@ -852,10 +862,10 @@ class _Builder:
         return Num(text)
 
     def _name(self, name: str) -> Node:
-        match = _RATE_NAME.fullmatch(name)
-        if match:
-            return Prime(match.group(2), int(match.group(1)))
-        if name.startswith("_"):
+        if name.startswith("_"):  # a rate's reading (__d1__x), or refused
+            match = _RATE_NAME.fullmatch(name)
+            if match:
+                return Prime(match.group(2), int(match.group(1)))
             raise ExpressionError(f"expected names, numbers, operators and functions, "
                                   f"found '{name}' (names may not start with '_')")
         if name in self.functions:

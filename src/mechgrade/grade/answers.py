@@ -184,11 +184,11 @@ def clean(text: str) -> str:
     if "#" in text:
         raise AnswerError(f"expected an answer without '#' (nothing after it would be read), "
                           f"found {excerpt(text, text.index('#'))}")
-    text = unicodedata.normalize("NFC", text).translate(_DASHES)
-    text = text.replace("k\u0302", "k").replace("i\u0302", "i").replace("j\u0302", "j")
-    text = _SUPERSCRIPT_RUN.sub(
-        lambda m: "^" + ("-" if m.group(1) == "⁻" else "") + m.group(2).translate(_SUPER_DIGITS),
-        text)
+    if not plain:  # printable ASCII is its own NFC form, without dashes, hats or superscripts
+        text = unicodedata.normalize("NFC", text).translate(_DASHES)
+        text = text.replace("k\u0302", "k").replace("i\u0302", "i").replace("j\u0302", "j")
+        text = _SUPERSCRIPT_RUN.sub(lambda m: "^" + ("-" if m.group(1) == "⁻" else "")
+                                    + m.group(2).translate(_SUPER_DIGITS), text)
     return " ".join(text.split())
 
 
@@ -763,7 +763,7 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     return _read_expression(text, tuple(symbols))
 
 
-@lru_cache(maxsize=4096)
+@lru_cache(maxsize=1024)  # few, as compare.MAX_JUDGED says why
 def _read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     exponent = _E_NOTATION.search(text)
     if exponent and exponent.group("e") in symbols:
@@ -823,7 +823,10 @@ _E_NOTATION = re.compile(r"(?<![\w.])\d+(?:\.\d*)?(?P<e>[eE])[+-]?\d")
 def _spaced(node: Node) -> str:
     """Canonical text with spaces around binary ``+`` and ``-``, for reading back."""
     text = syntax.to_text(node)
-    return _BINARY_SIGN.sub(lambda m: m.group(0) if _EXPONENT_END.search(text, 0, m.start())
+    # a sign after an "e" may be a number's exponent (1e-5): only then is the text before it
+    # searched
+    return _BINARY_SIGN.sub(lambda m: m.group(0) if text[m.start() - 1] == "e"
+                            and _EXPONENT_END.search(text, 0, m.start())
                             else f" {m.group(1)} ", text)
 
 

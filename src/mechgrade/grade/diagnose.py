@@ -163,6 +163,8 @@ def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
     # at once when the test can be (a score of tests one by one cost most of a diagnosis)
     scaled = np.multiply.outer(_ALL_FACTORS, reference)
     fits = exact.each(student, scaled) if isinstance(exact, AgreeAtPoints) else None
+    if fits is not None and not fits.any():
+        return None
     end = 0
     for code, label, message, factors in _FACTORS:
         start, end = end, end + len(factors)
