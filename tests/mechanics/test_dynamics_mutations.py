@@ -17,6 +17,7 @@ from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations,
 from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES, MODEL_CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
+from mechgrade.spec import load_problem
 from mechgrade.spec.language import FUNCTIONS
 from mechgrade.spec.model import Tolerance
 from mechgrade.expressions.syntax import parse
@@ -812,3 +813,26 @@ def test_a_spring_taken_constant_and_its_energy_without_the_half_name_the_launch
     assert assess("5.657 m/s", solution.result("speed")).diagnosis == \
         f"{LABELS['spring_energy_half_omitted']} or {LABELS['force_taken_constant']}"
     assert assess("0.03927 s", solution.result("time")).diagnosis is None
+
+
+def test_a_tilted_disks_angular_momentum_taken_along_its_angular_velocity_or_its_axis():
+    # I_axis = m r^2/2 = 0.045 kg m^2 at 60 rad/s: 2.7 along the shaft (the tilt 0 deg), or
+    # along the disk's axis, tilted 10 deg
+    solution = _solution("disk_on_bent_shaft")
+    label = LABELS["angmom_along_axis"]
+    for answer in ("(0, 0, 2.7) kg*m^2/s", "(0, -0.4689, 2.659) kg*m^2/s"):
+        assert assess(answer, solution.result("angular_momentum")).diagnosis == label
+    for answer in ("0 deg", "10 deg"):
+        assert assess(answer, solution.result("tilt_of_angular_momentum")).diagnosis == label
+    (along_omega, _) = _generated("disk_on_bent_shaft", "angular_momentum", "angmom_along_axis")
+    assert "I = 0.045 kg*m^2" in along_omega.message
+
+
+def test_a_disk_spinning_about_its_own_axis_has_no_angular_momentum_to_tilt(tmp_path):
+    text = (shipped_dir("problems") / "disk_on_bent_shaft.yaml").read_text(encoding="utf-8")
+    untilted = tmp_path / "disk_on_straight_shaft.yaml"
+    untilted.write_text(text.replace("{axis: x, angle: beta}", "{axis: x, angle: 0}"),
+                        encoding="utf-8")
+    assert "angmom_along_axis" in _codes("disk_on_bent_shaft")
+    assert "angmom_along_axis" not in {m.code for m in dynamics_mutations(
+        load_problem(untilted))}

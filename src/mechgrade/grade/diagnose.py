@@ -401,6 +401,7 @@ LABELS = {
     "translational_ke_omitted": "translational kinetic energy left out",
     "rolling_assumed": "rolling without slip assumed where the body slips",
     "initial_displacement_omitted": "the initial displacement left out",
+    "angmom_along_axis": "angular momentum taken as I ω along one axis",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

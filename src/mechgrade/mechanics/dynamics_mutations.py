@@ -1613,6 +1613,43 @@ def moment_arm_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                     OBJECTIVES, readings=readings, term=_expr(f"mag({arm})"), term_unit="m")
 
 
+def angmom_along_axis(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The angular momentum about its mass centre of a disk or ring whose angular velocity
+    is tilted from its axis read as I_axis ω, the axial moment of inertia times the
+    angular velocity: along ω (the tilt ignored) or along the body's axis (H taken parallel
+    to the axis of symmetry). A planar body, ω along or across its axis, has none."""
+    for body in dynamics_of(problem).bodies:
+        shapes = [p.shape for p in body.parts]
+        if body.frame is None or len(body.parts) != 1 or body.parts[0].at != body.centre \
+                or not isinstance(shapes[0], (Disk, Ring)):
+            continue
+        shape, mass = shapes[0], body.parts[0].mass.text
+        frame = model.frames[body.frame]
+        omega, axis = frame.ang_vel_in(model.inertial), getattr(frame, shape.axis)
+        if _zero(model, omega.cross(axis)) or identically_zero(model.plain(omega & axis)):
+            continue
+        inertia = _expr(f"({SHAPES[type(shape)].axial})*({mass})*({shape.radius.text})^2")
+        for call in {c for o in problem.objectives for c in _calls(o.find.node, "angmom")
+                     if c.args[0] == Name(body.name)}:
+            about, within = (name_of(a) for a in call.args[1:])
+            if not _zero(model, model.positions[about] - model.positions[body.centre]):
+                continue  # about another point r × m v_G belongs too: another mistake
+            spin = f"angvel({body.frame}, {within})"
+            for replacement, where in (
+                    (f"({inertia.text})*{spin}", "along the angular velocity ω"),
+                    (f"({inertia.text})*mag({spin})*{body.frame}.{shape.axis}",
+                     f"along the axis {body.frame}.{shape.axis} of {body.name}")):
+                readings = _readings(problem, "angmom", body.name,
+                                     parse(replacement, functions=FUNCTIONS))
+                if readings:
+                    yield DynamicsMutation(
+                        "angmom_along_axis", f"Your value takes the angular momentum of "
+                        f"{body.name} as I ω {where}, with I = {{term}} about its axis: ω "
+                        f"is tilted from that axis, and H = I_G·ω adds the parts of ω along "
+                        f"and across the axis, each times its own moment of inertia.",
+                        OBJECTIVES, readings=readings, term=inertia, term_unit="kg*m^2")
+
+
 def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A known blow on a turning body away from its mass centre taken to act at the centre:
     its moment, which sets the body spinning, left out of the angular momentum balance."""
@@ -1876,7 +1913,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
-    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
+    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
+    angmom_along_axis)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -88,7 +88,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
                          "contact_taken_smooth", "gyration_for_radius",
                          "moment_arm_omitted", "driver_speed",
                          "rate_relation_inverted",
-                         "initial_displacement_omitted"),
+                         "initial_displacement_omitted", "angmom_along_axis"),
     "angular_rate_equal": ("driver_rate",),
     "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
