@@ -836,3 +836,14 @@ def test_a_disk_spinning_about_its_own_axis_has_no_angular_momentum_to_tilt(tmp_
     assert "angmom_along_axis" in _codes("disk_on_bent_shaft")
     assert "angmom_along_axis" not in {m.code for m in dynamics_mutations(
         load_problem(untilted))}
+
+
+def test_one_springs_force_read_as_the_force_of_both_springs_holding_the_block():
+    # (k1 + k2) A = 8000 N/m x 27.84 mm, toward the middle
+    result = _solution("block_between_two_springs").result("right_spring_force")
+    assert assess("-222.7 N", result).diagnosis == LABELS["spring_force_as_resultant"]
+    (mistake,) = _generated("block_between_two_springs", "right_spring_force",
+                            "spring_force_as_resultant")
+    assert "springs left and right together on block (222.7 N)" in mistake.message
+    # one spring on the bar: no other spring to add
+    assert "spring_force_as_resultant" not in _codes("bar_on_spring_vibration")

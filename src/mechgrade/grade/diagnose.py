@@ -402,6 +402,7 @@ LABELS = {
     "rolling_assumed": "rolling without slip assumed where the body slips",
     "initial_displacement_omitted": "the initial displacement left out",
     "angmom_along_axis": "angular momentum taken as I ω along one axis",
+    "spring_force_as_resultant": "one spring's force taken as all the springs' together",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

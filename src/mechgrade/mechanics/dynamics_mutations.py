@@ -1316,6 +1316,27 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
             "balance, belong in the equations.", spring.stiffness, "N/m")
 
 
+def spring_force_as_resultant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """One spring's force on a body that two or more springs hold read as all their forces
+    together, (k1 + k2) x for k2 x: the resultant of the springs for the one asked."""
+    springs = dynamics_of(problem).springs
+    on = {s.name: next((b for b in s.on if b != GROUND), None) for s in springs}
+    for spring in springs:
+        together = [s.name for s in springs if on[s.name] == on[spring.name]]
+        if on[spring.name] is None or len(together) < 2:
+            continue
+        resultant = " + ".join(f"force({name})" for name in together)
+        listed = f"{', '.join(together[:-1])} and {together[-1]}"
+        readings = _readings(problem, "force", spring.name,
+                             parse(f"({resultant})", functions=FUNCTIONS))
+        if readings:
+            yield DynamicsMutation(
+                "spring_force_as_resultant", f"Your value is the force of the springs "
+                f"{listed} together on {on[spring.name]} ({{term}}): the force "
+                f"of {spring.name} alone is its own stiffness times its own stretch.",
+                OBJECTIVES, readings=readings, term=_expr(f"mag({resultant})"), term_unit="N")
+
+
 def _load_left_out(problem: Problem, dynamics: Dynamics, load: str, code: str, text: str,
                    term, term_unit: str) -> Iterator[DynamicsMutation]:
     """The mistake ``code`` of the model with ``dynamics`` (``load`` left out), when that model
@@ -1914,7 +1935,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    angmom_along_axis)
+    angmom_along_axis, spring_force_as_resultant)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
