@@ -845,5 +845,20 @@ def test_one_springs_force_read_as_the_force_of_both_springs_holding_the_block()
     (mistake,) = _generated("block_between_two_springs", "right_spring_force",
                             "spring_force_as_resultant")
     assert "springs left and right together on block (222.7 N)" in mistake.message
-    # one spring on the bar: no other spring to add
+    # one spring on the bar: no other spring to add; a spring between two blocks is not in
+    # parallel with the wall's
     assert "spring_force_as_resultant" not in _codes("bar_on_spring_vibration")
+    assert "spring_force_as_resultant" not in _codes("two_mass_spring_chain")
+
+
+def test_a_small_mass_on_a_rolling_hoop_taken_to_move_with_the_hoops_centre():
+    # 2 m g R = (M + M + m) v^2/2 with v = R w: w = 2.953 rad/s
+    result = _solution("unbalanced_hoop_rolls").result("angular_velocity")
+    assert assess("2.953 rad/s", result).diagnosis == LABELS["part_moving_with_centre"]
+    (mistake,) = _generated("unbalanced_hoop_rolls", "angular_velocity",
+                            "part_moving_with_centre")
+    assert "the mass at Q as moving with the centre G of wheel" in mistake.message \
+        and "0.5 m from G" in mistake.message
+    # a one-part body, or parts all at the centre (a wheel and its hubs): none to move there
+    assert "part_moving_with_centre" not in _codes("disk_rolls_on_pulled_plank")
+    assert "part_moving_with_centre" not in _codes("ruina_9_21_wheel_incline")

@@ -758,6 +758,39 @@ def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[Dynamic
             term=_expr(translational), term_unit="J")
 
 
+def part_moving_with_centre(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A point mass fixed to a turning body away from its centre (a small mass on a hoop's
+    rim) taken to move with the body's centre, which moves: its m v² and its moment of
+    inertia m d² those of a mass at the centre, its weight kept at its own point (the
+    heights it falls through are right)."""
+    d = dynamics_of(problem)
+    N = problem.inertial_frame
+    for body in d.bodies:
+        if not _rotating(model, body) or len(body.parts) < 2 or _zero(
+                model, model.language.point_velocity(Name(body.centre), N)):
+            continue
+        for part in body.parts:
+            if part.shape is not None or _zero(
+                    model, model.positions[part.at] - model.positions[body.centre]):
+                continue
+            moved = replace(body, parts=tuple(replace(p, at=body.centre) if p is part else p
+                                              for p in body.parts))
+            bodies = tuple(moved if b is body else b for b in d.bodies)
+            changed = replace(d, bodies=bodies)
+            if d.gravity is not None:  # every part's weight at its own point, as forces
+                changed = replace(changed, gravity=None, forces=d.forces + tuple(
+                    Force(f"weight~{b.name}~{i}", b.name, p.at,
+                          _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
+                          kind=LoadKind.WEIGHT)
+                    for b in d.bodies for i, p in enumerate(b.parts)))
+            yield DynamicsMutation(
+                "part_moving_with_centre", f"Your value takes the mass at {part.at} as moving "
+                f"with the centre {body.centre} of {body.name}: it turns with {body.name} "
+                f"{{term}} from {body.centre}, so its speed is that of the point {part.at}, "
+                f"not of {body.centre}.", BODIES, problem=_mistaken(problem, changed),
+                term=_expr(f"mag(pos({part.at}, {body.centre}))"), term_unit="m")
+
+
 def _spin_only(part: Part) -> Part | None:
     """A massless copy of ``part`` with the inertia of its spin about the body's z axis (a
     point mass: none); ``None`` for a shape whose spin this cannot write."""
@@ -1317,9 +1350,11 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
 
 
 def spring_force_as_resultant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """One spring's force on a body that two or more springs hold read as all their forces
-    together, (k1 + k2) x for k2 x: the resultant of the springs for the one asked."""
-    springs = dynamics_of(problem).springs
+    """One spring's force on a body that two or more springs hold from fixed points read as
+    all their forces together, (k1 + k2) x for k2 x: the equivalent spring's force (the
+    springs in parallel, as ω_n combines them) for the one asked. A spring between two
+    moving bodies is no part of such a pair."""
+    springs = [s for s in dynamics_of(problem).springs if GROUND in s.on]
     on = {s.name: next((b for b in s.on if b != GROUND), None) for s in springs}
     for spring in springs:
         together = [s.name for s in springs if on[s.name] == on[spring.name]]
@@ -1935,7 +1970,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    angmom_along_axis, spring_force_as_resultant)
+    angmom_along_axis, spring_force_as_resultant, part_moving_with_centre)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -89,7 +89,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
                          "moment_arm_omitted", "driver_speed",
                          "rate_relation_inverted",
                          "initial_displacement_omitted", "angmom_along_axis",
-                         "spring_force_as_resultant"),
+                         "spring_force_as_resultant", "part_moving_with_centre"),
     "angular_rate_equal": ("driver_rate",),
     "acceleration_zero_constant_speed": ("zero_for_constant_rate",),
     "spring_energy_total_length": ("spring_free_length_omitted",),
