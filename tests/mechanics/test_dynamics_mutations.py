@@ -862,3 +862,16 @@ def test_a_small_mass_on_a_rolling_hoop_taken_to_move_with_the_hoops_centre():
     # a one-part body, or parts all at the centre (a wheel and its hubs): none to move there
     assert "part_moving_with_centre" not in _codes("disk_rolls_on_pulled_plank")
     assert "part_moving_with_centre" not in _codes("ruina_9_21_wheel_incline")
+
+
+def test_the_striking_car_taken_to_stop_passes_its_whole_momentum_on():
+    # m1 v0 = m2 v2: v2 = 20 Mg x 1.5 m/s / 30 Mg = 1 m/s, the impulse m1 v0 = 30 kN s
+    solution = _solution("freight_cars_couple")
+    label = LABELS["striker_stops"]
+    assert assess("1 m/s", solution.result("velocity_after")).diagnosis == label
+    assert assess("(30, 0, 0) kN*s", solution.result("impulse_on_second")).diagnosis == label
+    (mistake,) = _generated("freight_cars_couple", "velocity_after", "striker_stops")
+    assert "takes car1 to stop in the impact at C" in mistake.message
+    # two moving pucks, and an impact on the ground: no particle at rest to be struck
+    assert "striker_stops" not in _codes("pucks_oblique_impact")
+    assert "striker_stops" not in _codes("rod_strikes_ledge")

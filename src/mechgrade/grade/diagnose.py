@@ -404,6 +404,7 @@ LABELS = {
     "angmom_along_axis": "angular momentum taken as I ω along one axis",
     "spring_force_as_resultant": "one spring's force taken as all the springs' together",
     "part_moving_with_centre": "a point mass taken to move with its body's centre",
+    "striker_stops": "the striking body taken to stop in the impact",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -873,6 +873,44 @@ def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMut
                                                                        start=starts))))
 
 
+def striker_stops(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact of a moving particle on one at rest along the line of impact with the
+    striker taken to stop there, its whole momentum along the line passed on (as when equal
+    masses meet elastically): m1 v0 = m2 v2. Along the line, momentum and a restitution
+    e = m1/m2 give exactly that, so the contact's e is replaced by it."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    before = {to_text(s.key.node): s for s in d.analysis.start}
+    bodies = {b.name: b for b in d.bodies if b.frame is None}
+    for i, c in enumerate(d.analysis.contacts):
+        if not isinstance(c, Restitution) or not all(b in bodies for b in c.bodies):
+            continue
+        line = model.language.vector(c.direction)
+        rates = []  # each body's rate along the line just before, as written
+        for name in c.bodies:
+            along = _axes(problem, model, bodies[name].centre, line)
+            rates.append(None if along is None else _start_text(before.get(f"{along[0]}'")))
+        if None in rates:
+            continue
+        still = [identically_zero(model.plain(model.language.value(parse(
+            str(rate), functions=FUNCTIONS)))) for rate in rates]
+        for striker, struck in ((0, 1), (1, 0)):
+            if still[striker] or not still[struck]:
+                continue
+            first, second = (bodies[c.bodies[j]] for j in (striker, struck))
+            e = _expr(f"({_mass(first)})/({_mass(second)})")
+            contacts = tuple(replace(c, e=e) if j == i else x
+                             for j, x in enumerate(d.analysis.contacts))
+            yield DynamicsMutation(
+                "striker_stops", f"Your value takes {first.name} to stop in the impact at "
+                f"{c.at}, its whole momentum passed on to {second.name} (as when equal masses "
+                f"meet elastically): with e = {{term}}, {first.name} keeps moving after the "
+                "impact; momentum and restitution together give both velocities after.",
+                BALANCES, problem=_mistaken(problem, replace(
+                    d, analysis=replace(d.analysis, contacts=contacts))), term=c.e)
+
+
 def pin_impulse_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """An impact on a body turning about a fixed pin solved with the linear momentum of the
     bodies conserved, as if the pin gave no impulse, where the angular momentum about the pin
@@ -1970,7 +2008,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    angmom_along_axis, spring_force_as_resultant, part_moving_with_centre)
+    angmom_along_axis, spring_force_as_resultant, part_moving_with_centre, striker_stops)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 
