@@ -1400,14 +1400,21 @@ def spring_force_as_resultant(problem: Problem, model: Model) -> Iterator[Dynami
             continue
         resultant = " + ".join(f"force({name})" for name in together)
         listed = f"{', '.join(together[:-1])} and {together[-1]}"
-        readings = _readings(problem, "force", spring.name,
-                             parse(f"({resultant})", functions=FUNCTIONS))
-        if readings:
-            yield DynamicsMutation(
+        yield from _read_as(
+            problem, "force", spring.name, f"({resultant})", DynamicsMutation(
                 "spring_force_as_resultant", f"Your value is the force of the springs "
                 f"{listed} together on {on[spring.name]} ({{term}}): the force "
                 f"of {spring.name} alone is its own stiffness times its own stretch.",
-                OBJECTIVES, readings=readings, term=_expr(f"mag({resultant})"), term_unit="N")
+                OBJECTIVES, term=_expr(f"mag({resultant})"), term_unit="N"))
+
+
+def _read_as(problem: Problem, func: str, name: str, replacement: str,
+             mistake: DynamicsMutation) -> Iterator[DynamicsMutation]:
+    """``mistake`` with its readings, ``func(name, ...)`` read as ``replacement`` in each
+    objective that calls it (:func:`_readings`); nothing when none does."""
+    readings = _readings(problem, func, name, parse(replacement, functions=FUNCTIONS))
+    if readings:
+        yield replace(mistake, readings=readings)
 
 
 def _load_left_out(problem: Problem, dynamics: Dynamics, load: str, code: str, text: str,
@@ -1733,15 +1740,12 @@ def angmom_along_axis(problem: Problem, model: Model) -> Iterator[DynamicsMutati
                     (f"({inertia.text})*{spin}", "along the angular velocity ω"),
                     (f"({inertia.text})*mag({spin})*{body.frame}.{shape.axis}",
                      f"along the axis {body.frame}.{shape.axis} of {body.name}")):
-                readings = _readings(problem, "angmom", body.name,
-                                     parse(replacement, functions=FUNCTIONS))
-                if readings:
-                    yield DynamicsMutation(
-                        "angmom_along_axis", f"Your value takes the angular momentum of "
-                        f"{body.name} as I ω {where}, with I = {{term}} about its axis: ω "
-                        f"is tilted from that axis, and H = I_G·ω adds the parts of ω along "
-                        f"and across the axis, each times its own moment of inertia.",
-                        OBJECTIVES, readings=readings, term=inertia, term_unit="kg*m^2")
+                yield from _read_as(problem, "angmom", body.name, replacement, DynamicsMutation(
+                    "angmom_along_axis", f"Your value takes the angular momentum of "
+                    f"{body.name} as I ω {where}, with I = {{term}} about its axis: ω "
+                    f"is tilted from that axis, and H = I_G·ω adds the parts of ω along "
+                    f"and across the axis, each times its own moment of inertia.",
+                    OBJECTIVES, term=inertia, term_unit="kg*m^2"))
 
 
 def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
