@@ -17,6 +17,7 @@ from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations,
 from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES, MODEL_CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
+from mechgrade.spec import load_problem
 from mechgrade.spec.language import FUNCTIONS
 from mechgrade.spec.model import Tolerance
 from mechgrade.expressions.syntax import parse
@@ -812,3 +813,65 @@ def test_a_spring_taken_constant_and_its_energy_without_the_half_name_the_launch
     assert assess("5.657 m/s", solution.result("speed")).diagnosis == \
         f"{LABELS['spring_energy_half_omitted']} or {LABELS['force_taken_constant']}"
     assert assess("0.03927 s", solution.result("time")).diagnosis is None
+
+
+def test_a_tilted_disks_angular_momentum_taken_along_its_angular_velocity_or_its_axis():
+    # I_axis = m r^2/2 = 0.045 kg m^2 at 60 rad/s: 2.7 along the shaft (the tilt 0 deg), or
+    # along the disk's axis, tilted 10 deg
+    solution = _solution("disk_on_bent_shaft")
+    label = LABELS["angmom_along_axis"]
+    for answer in ("(0, 0, 2.7) kg*m^2/s", "(0, -0.4689, 2.659) kg*m^2/s"):
+        assert assess(answer, solution.result("angular_momentum")).diagnosis == label
+    for answer in ("0 deg", "10 deg"):
+        assert assess(answer, solution.result("tilt_of_angular_momentum")).diagnosis == label
+    (along_omega, _) = _generated("disk_on_bent_shaft", "angular_momentum", "angmom_along_axis")
+    assert "I = 0.045 kg*m^2" in along_omega.message
+
+
+def test_a_disk_spinning_about_its_own_axis_has_no_angular_momentum_to_tilt(tmp_path):
+    text = (shipped_dir("problems") / "disk_on_bent_shaft.yaml").read_text(encoding="utf-8")
+    untilted = tmp_path / "disk_on_straight_shaft.yaml"
+    untilted.write_text(text.replace("{axis: x, angle: beta}", "{axis: x, angle: 0}"),
+                        encoding="utf-8")
+    assert "angmom_along_axis" in _codes("disk_on_bent_shaft")
+    assert "angmom_along_axis" not in {m.code for m in dynamics_mutations(
+        load_problem(untilted))}
+
+
+def test_one_springs_force_read_as_the_force_of_both_springs_holding_the_block():
+    # (k1 + k2) A = 8000 N/m x 27.84 mm, toward the middle
+    result = _solution("block_between_two_springs").result("right_spring_force")
+    assert assess("-222.7 N", result).diagnosis == LABELS["spring_force_as_resultant"]
+    (mistake,) = _generated("block_between_two_springs", "right_spring_force",
+                            "spring_force_as_resultant")
+    assert "springs left and right together on block (222.7 N)" in mistake.message
+    # one spring on the bar: no other spring to add; a spring between two blocks is not in
+    # parallel with the wall's
+    assert "spring_force_as_resultant" not in _codes("bar_on_spring_vibration")
+    assert "spring_force_as_resultant" not in _codes("two_mass_spring_chain")
+
+
+def test_a_small_mass_on_a_rolling_hoop_taken_to_move_with_the_hoops_centre():
+    # 2 m g R = (M + M + m) v^2/2 with v = R w: w = 2.953 rad/s
+    result = _solution("unbalanced_hoop_rolls").result("angular_velocity")
+    assert assess("2.953 rad/s", result).diagnosis == LABELS["part_moving_with_centre"]
+    (mistake,) = _generated("unbalanced_hoop_rolls", "angular_velocity",
+                            "part_moving_with_centre")
+    assert "the mass at Q as moving with the centre G of wheel" in mistake.message \
+        and "0.5 m from G" in mistake.message
+    # a one-part body, or parts all at the centre (a wheel and its hubs): none to move there
+    assert "part_moving_with_centre" not in _codes("disk_rolls_on_pulled_plank")
+    assert "part_moving_with_centre" not in _codes("ruina_9_21_wheel_incline")
+
+
+def test_the_striking_car_taken_to_stop_passes_its_whole_momentum_on():
+    # m1 v0 = m2 v2: v2 = 20 Mg x 1.5 m/s / 30 Mg = 1 m/s, the impulse m1 v0 = 30 kN s
+    solution = _solution("freight_cars_couple")
+    label = LABELS["striker_stops"]
+    assert assess("1 m/s", solution.result("velocity_after")).diagnosis == label
+    assert assess("(30, 0, 0) kN*s", solution.result("impulse_on_second")).diagnosis == label
+    (mistake,) = _generated("freight_cars_couple", "velocity_after", "striker_stops")
+    assert "takes car1 to stop in the impact at C" in mistake.message
+    # two moving pucks, and an impact on the ground: no particle at rest to be struck
+    assert "striker_stops" not in _codes("pucks_oblique_impact")
+    assert "striker_stops" not in _codes("rod_strikes_ledge")

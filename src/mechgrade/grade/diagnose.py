@@ -403,6 +403,10 @@ LABELS = {
     "translational_ke_omitted": "translational kinetic energy left out",
     "rolling_assumed": "rolling without slip assumed where the body slips",
     "initial_displacement_omitted": "the initial displacement left out",
+    "angmom_along_axis": "angular momentum taken as I ω along one axis",
+    "spring_force_as_resultant": "one spring's force taken as all the springs' together",
+    "part_moving_with_centre": "a point mass taken to move with its body's centre",
+    "striker_stops": "the striking body taken to stop in the impact",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

@@ -771,6 +771,39 @@ def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[Dynamic
             term=_expr(translational), term_unit="J")
 
 
+def part_moving_with_centre(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A point mass fixed to a turning body away from its centre (a small mass on a hoop's
+    rim) taken to move with the body's centre, which moves: its m v² and its moment of
+    inertia m d² those of a mass at the centre, its weight kept at its own point (the
+    heights it falls through are right)."""
+    d = dynamics_of(problem)
+    N = problem.inertial_frame
+    for body in d.bodies:
+        if not _rotating(model, body) or len(body.parts) < 2 or _zero(
+                model, model.language.point_velocity(Name(body.centre), N)):
+            continue
+        for part in body.parts:
+            if part.shape is not None or _zero(
+                    model, model.positions[part.at] - model.positions[body.centre]):
+                continue
+            moved = replace(body, parts=tuple(replace(p, at=body.centre) if p is part else p
+                                              for p in body.parts))
+            bodies = tuple(moved if b is body else b for b in d.bodies)
+            changed = replace(d, bodies=bodies)
+            if d.gravity is not None:  # every part's weight at its own point, as forces
+                changed = replace(changed, gravity=None, forces=d.forces + tuple(
+                    Force(f"weight~{b.name}~{i}", b.name, p.at,
+                          _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
+                          kind=LoadKind.WEIGHT)
+                    for b in d.bodies for i, p in enumerate(b.parts)))
+            yield DynamicsMutation(
+                "part_moving_with_centre", f"Your value takes the mass at {part.at} as moving "
+                f"with the centre {body.centre} of {body.name}: it turns with {body.name} "
+                f"{{term}} from {body.centre}, so its speed is that of the point {part.at}, "
+                f"not of {body.centre}.", BODIES, problem=_mistaken(problem, changed),
+                term=_expr(f"mag(pos({part.at}, {body.centre}))"), term_unit="m")
+
+
 def _spin_only(part: Part) -> Part | None:
     """A massless copy of ``part`` with the inertia of its spin about the body's z axis (a
     point mass: none); ``None`` for a shape whose spin this cannot write."""
@@ -851,6 +884,44 @@ def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMut
                 "momentum along it); the components across it are kept.", BALANCES,
                 problem=_mistaken(problem, replace(d, analysis=replace(d.analysis,
                                                                        start=starts))))
+
+
+def striker_stops(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact of a moving particle on one at rest along the line of impact with the
+    striker taken to stop there, its whole momentum along the line passed on (as when equal
+    masses meet elastically): m1 v0 = m2 v2. Along the line, momentum and a restitution
+    e = m1/m2 give exactly that, so the contact's e is replaced by it."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    before = {to_text(s.key.node): s for s in d.analysis.start}
+    bodies = {b.name: b for b in d.bodies if b.frame is None}
+    for i, c in enumerate(d.analysis.contacts):
+        if not isinstance(c, Restitution) or not all(b in bodies for b in c.bodies):
+            continue
+        line = model.language.vector(c.direction)
+        rates = []  # each body's rate along the line just before, as written
+        for name in c.bodies:
+            along = _axes(problem, model, bodies[name].centre, line)
+            rates.append(None if along is None else _start_text(before.get(f"{along[0]}'")))
+        if None in rates:
+            continue
+        still = [identically_zero(model.plain(model.language.value(parse(
+            str(rate), functions=FUNCTIONS)))) for rate in rates]
+        for striker, struck in ((0, 1), (1, 0)):
+            if still[striker] or not still[struck]:
+                continue
+            first, second = (bodies[c.bodies[j]] for j in (striker, struck))
+            e = _expr(f"({_mass(first)})/({_mass(second)})")
+            contacts = tuple(replace(c, e=e) if j == i else x
+                             for j, x in enumerate(d.analysis.contacts))
+            yield DynamicsMutation(
+                "striker_stops", f"Your value takes {first.name} to stop in the impact at "
+                f"{c.at}, its whole momentum passed on to {second.name} (as when equal masses "
+                f"meet elastically): with e = {{term}}, {first.name} keeps moving after the "
+                "impact; momentum and restitution together give both velocities after.",
+                BALANCES, problem=_mistaken(problem, replace(
+                    d, analysis=replace(d.analysis, contacts=contacts))), term=c.e)
 
 
 def pin_impulse_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1329,6 +1400,36 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
             "balance, belong in the equations.", spring.stiffness, "N/m")
 
 
+def spring_force_as_resultant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """One spring's force on a body that two or more springs hold from fixed points read as
+    all their forces together, (k1 + k2) x for k2 x: the equivalent spring's force (the
+    springs in parallel, as ω_n combines them) for the one asked. A spring between two
+    moving bodies is no part of such a pair."""
+    springs = [s for s in dynamics_of(problem).springs if GROUND in s.on]
+    on = {s.name: next((b for b in s.on if b != GROUND), None) for s in springs}
+    for spring in springs:
+        together = [s.name for s in springs if on[s.name] == on[spring.name]]
+        if on[spring.name] is None or len(together) < 2:
+            continue
+        resultant = " + ".join(f"force({name})" for name in together)
+        listed = f"{', '.join(together[:-1])} and {together[-1]}"
+        yield from _read_as(
+            problem, "force", spring.name, f"({resultant})", DynamicsMutation(
+                "spring_force_as_resultant", f"Your value is the force of the springs "
+                f"{listed} together on {on[spring.name]} ({{term}}): the force "
+                f"of {spring.name} alone is its own stiffness times its own stretch.",
+                OBJECTIVES, term=_expr(f"mag({resultant})"), term_unit="N"))
+
+
+def _read_as(problem: Problem, func: str, name: str, replacement: str,
+             mistake: DynamicsMutation) -> Iterator[DynamicsMutation]:
+    """``mistake`` with its readings, ``func(name, ...)`` read as ``replacement`` in each
+    objective that calls it (:func:`_readings`); nothing when none does."""
+    readings = _readings(problem, func, name, parse(replacement, functions=FUNCTIONS))
+    if readings:
+        yield replace(mistake, readings=readings)
+
+
 def _load_left_out(problem: Problem, dynamics: Dynamics, load: str, code: str, text: str,
                    term, term_unit: str) -> Iterator[DynamicsMutation]:
     """The mistake ``code`` of the model with ``dynamics`` (``load`` left out), when that model
@@ -1626,6 +1727,40 @@ def moment_arm_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutat
                     OBJECTIVES, readings=readings, term=_expr(f"mag({arm})"), term_unit="m")
 
 
+def angmom_along_axis(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The angular momentum about its mass centre of a disk or ring whose angular velocity
+    is tilted from its axis read as I_axis ω, the axial moment of inertia times the
+    angular velocity: along ω (the tilt ignored) or along the body's axis (H taken parallel
+    to the axis of symmetry). A planar body, ω along or across its axis, has none."""
+    for body in dynamics_of(problem).bodies:
+        shapes = [p.shape for p in body.parts]
+        if body.frame is None or len(body.parts) != 1 or body.parts[0].at != body.centre \
+                or not isinstance(shapes[0], (Disk, Ring)):
+            continue
+        shape, mass = shapes[0], body.parts[0].mass.text
+        frame = model.frames[body.frame]
+        omega, axis = frame.ang_vel_in(model.inertial), getattr(frame, shape.axis)
+        if _zero(model, omega.cross(axis)) or identically_zero(model.plain(omega & axis)):
+            continue
+        inertia = _expr(f"({SHAPES[type(shape)].axial})*({mass})*({shape.radius.text})^2")
+        for call in {c for o in problem.objectives for c in _calls(o.find.node, "angmom")
+                     if c.args[0] == Name(body.name)}:
+            about, within = (name_of(a) for a in call.args[1:])
+            if not _zero(model, model.positions[about] - model.positions[body.centre]):
+                continue  # about another point r × m v_G belongs too: another mistake
+            spin = f"angvel({body.frame}, {within})"
+            for replacement, where in (
+                    (f"({inertia.text})*{spin}", "along the angular velocity ω"),
+                    (f"({inertia.text})*mag({spin})*{body.frame}.{shape.axis}",
+                     f"along the axis {body.frame}.{shape.axis} of {body.name}")):
+                yield from _read_as(problem, "angmom", body.name, replacement, DynamicsMutation(
+                    "angmom_along_axis", f"Your value takes the angular momentum of "
+                    f"{body.name} as I ω {where}, with I = {{term}} about its axis: ω "
+                    f"is tilted from that axis, and H = I_G·ω adds the parts of ω along "
+                    f"and across the axis, each times its own moment of inertia.",
+                    OBJECTIVES, term=inertia, term_unit="kg*m^2"))
+
+
 def impulse_moment_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A known blow on a turning body away from its mass centre taken to act at the centre:
     its moment, which sets the body spinning, left out of the angular momentum balance."""
@@ -1889,7 +2024,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
-    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
+    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
+    angmom_along_axis, spring_force_as_resultant, part_moving_with_centre, striker_stops)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

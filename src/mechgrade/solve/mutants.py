@@ -400,10 +400,13 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
 
 ZERO_NAMES = frozenset({"other_point", "reaction_as_static", "reaction_as_weight",
                         "restitution_ignored", "zero_for_constant_rate", "reaction_omitted",
-                        "pin_impulse_omitted", "drop_centripetal", "drop_coriolis"})
+                        "pin_impulse_omitted", "drop_centripetal", "drop_coriolis",
+                        "angmom_along_axis", "strands_miscounted"})
 """Families whose zero value names the mistake (a contact point at rest, a support that holds
 no sideways force at rest, a support left out, a pin's impulse left out, no energy lost in a
-perfectly elastic impact, no acceleration at a steady rate): their zeros are kept, every other
+perfectly elastic impact, no acceleration at a steady rate, no tilt of an angular momentum
+taken along ω, a load hoisted to the height the strands counted once give: a configuration of
+the mistaken constraint solved again, not a term dropped): their zeros are kept, every other
 family's dropped."""
 
 
