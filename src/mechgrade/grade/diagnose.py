@@ -369,6 +369,7 @@ LABELS = {
     "tension_as_weight": "tension taken equal to a weight",
     "reaction_as_weight": "reaction taken equal to the weight",
     "reaction_as_static": "reaction taken as its static value",
+    "acceleration_reversed": "the acceleration taken in the opposite sense in the balance",
     "inertia_omitted": "a body's moment of inertia left out",
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",

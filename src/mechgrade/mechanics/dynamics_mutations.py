@@ -587,6 +587,35 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
     yield from _spring_as_weight(problem, d)
 
 
+def acceleration_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A one-direction reaction on a moving body (a cord holding a falling block) read from
+    the body's momentum balance along it with m a_G in the opposite sense (T = m (g + a) for a
+    block that falls): the reaction less twice m a_G's component along it, read in the right
+    model. Where a_G has no component along the reaction the value is the answer (dropped)."""
+    d = dynamics_of(problem)
+    if isinstance(d.analysis, Impulse):
+        return
+    N = problem.inertial_frame
+    for r in d.reactions:
+        act = r.acts[0]
+        if len(r.directions) != 1 or act.on == GROUND:
+            continue
+        body = d.body(act.on)
+        if _zero(model, model.language.point_velocity(Name(body.centre), N)):
+            continue  # held in place (a drum on its axle): no m a_G to reverse
+        unit = f"unit({r.directions[0].text})"
+        part = f"({_mass(body)})*dot(acc({body.centre}, {N}), {unit})"
+        replacement = parse(f"force({r.name}) - 2*{part}*{unit}", functions=FUNCTIONS)
+        readings = _readings(problem, "force", r.name, replacement, act.at)
+        if readings:
+            yield DynamicsMutation(
+                "acceleration_reversed", f"Your value is {r.name} from the balance of "
+                f"{body.name} along it with m a_G = {{term}} taken in the opposite sense (as "
+                f"if {body.name} accelerated the other way): keep the sign the motion gives "
+                "the acceleration.", BALANCES, readings=readings, term=_expr(part),
+                term_unit="N")
+
+
 def _spring_as_weight(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
     """A spring's force on a body read as that body's whole weight m g (along the spring's
     force), as if the spring alone carried it (a pin or another support shares it)."""
@@ -1867,7 +1896,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     reaction_without_coriolis,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
-    reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
+    reaction_as_weight, acceleration_reversed, rotational_ke_omitted, restitution_ignored,
+    other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
