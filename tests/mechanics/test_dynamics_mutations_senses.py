@@ -36,3 +36,32 @@ def test_no_acceleration_reversed_where_nothing_accelerates_along_the_reaction()
     # a drum on its axle does not move: no reading of its bearing's force
     assert all(m.code != "acceleration_reversed" or "drum along" not in m.sentence
                for m in dynamics_mutations(_problem("drum_hoist_falling_block")))
+
+
+def test_the_incoming_velocitys_sense_ignored_gives_m_v2_minus_m_v1_along_the_axis():
+    # the ball comes in at -40 m/s along x: taken as +40, the impulse is m (43.30 - 40) along x
+    (value,) = _values("baseball_bat_impulse", "impulse", "start_sense_reversed")
+    assert abs(value[0] - 0.145 * (50 * 3 ** 0.5 / 2 - 40)) < 1e-9
+    judged = assess("(0.4787, 3.625, 0) N*s", _solution("baseball_bat_impulse").result("impulse"))
+    assert judged.diagnosis == LABELS["start_sense_reversed"]
+
+
+def test_no_sense_reversed_for_a_rate_at_rest_before_the_impact():
+    # the ball's y' is 0 before the bat: one mistaken model, for x' only
+    mutations = [m for m in dynamics_mutations(_problem("baseball_bat_impulse"))
+                 if m.code == "start_sense_reversed"]
+    assert len(mutations) == 1 and mutations[0].sentence.startswith("Your value is what x'")
+
+
+def test_an_impulse_from_the_speeds_added_or_subtracted_as_numbers():
+    # m (50 + 40) and m (50 - 40), in the magnitude and in the average force it gives
+    assert [round(v, 6) for v in sorted(_values("baseball_bat_impulse", "impulse_magnitude",
+                                                "mag_as_sum"))] == [1.45, 13.05]
+    assert [round(v, 6) for v in sorted(_values("baseball_bat_impulse", "average_force",
+                                                "mag_as_sum"))] == [966.666667, 8700.0]
+
+
+def test_no_impulse_from_speeds_for_a_body_in_a_contact():
+    # the pucks' impact is a contact between two bodies: its impulse is not one body's alone
+    assert all(m.code != "mag_as_sum" or "momenta" not in m.sentence
+               for m in dynamics_mutations(_problem("pucks_oblique_impact")))

@@ -370,6 +370,7 @@ LABELS = {
     "reaction_as_weight": "reaction taken equal to the weight",
     "reaction_as_static": "reaction taken as its static value",
     "acceleration_reversed": "the acceleration taken in the opposite sense in the balance",
+    "start_sense_reversed": "a velocity just before the impact taken in the opposite sense",
     "inertia_omitted": "a body's moment of inertia left out",
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",

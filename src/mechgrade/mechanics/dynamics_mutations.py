@@ -904,6 +904,64 @@ def pin_impulse_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                                    term=term, term_unit="N*s")
 
 
+def start_sense_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact solved with one rate just before it taken in the opposite sense (a ball
+    coming in at -v1 taken at +v1: its sense against the axis ignored)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    for i, s in enumerate(d.analysis.start):
+        text = _start_text(s)
+        if not s.si if s.value is None else identically_zero(
+                model.plain(model.language.value(s.value.node))):
+            continue
+        starts = tuple(replace(x, value=_expr(f"-({text})"), si=None) if j == i else x
+                       for j, x in enumerate(d.analysis.start))
+        yield DynamicsMutation(
+            "start_sense_reversed", f"Your value is what {to_text(s.key.node)} just before "
+            f"the impact gives with the opposite sign (it is {text}): a velocity against an "
+            "axis has a negative component along it.", BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))))
+
+
+def impulse_from_speeds(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The magnitude of the only impulse on a particle taken as the sum, or the difference,
+    of its momenta's magnitudes m |v| after and before (speeds added or subtracted as numbers,
+    the velocities' directions ignored): read in the right model. Only particles that move
+    along fixed perpendicular axes (their speed before from the rates written)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    struck = {b for c in d.analysis.contacts for b in c.bodies}
+    before = {to_text(s.key.node): s for s in d.analysis.start}
+    N = problem.inertial_frame
+    for r, body in _only_reactions(d):
+        if body.frame is not None or body.name in struck:
+            continue
+        moving = [e for c in problem.coordinates if not _zero(model, e := model.positions[
+            body.centre].diff(model.language.value(Name(c.name)), model.inertial))]
+        axes = _axes(problem, model, body.centre, moving[0]) if moving else None
+        if axes is None:
+            continue
+        rates = (before.get(f"{q}'") for q in (axes[0],) + axes[1])
+        speed = "sqrt(" + " + ".join(f"({_start_text(s)})^2" for s in rates) + ")"
+        target = Call("mag", (Call("impulse", (Name(r.name),)),))
+        for verb, combined in (("adds", f"speed({body.centre}, {N}) + {speed}"),
+                               ("subtracts", f"abs(speed({body.centre}, {N}) - {speed})")):
+            replacement = parse(f"({_mass(body)})*({combined})", functions=FUNCTIONS)
+            readings = tuple((o.id, Expr(to_text(new), new)) for o in problem.objectives
+                             if o.kind != "symbolic" and any(n == target
+                                                             for n in walk(o.find.node))
+                             for new in (_rewrite(o.find.node, _replacing(target,
+                                                                          replacement)),))
+            if readings:
+                yield DynamicsMutation(
+                    "mag_as_sum", f"Your value {verb} the magnitudes of {body.name}'s momenta "
+                    f"m v after and before the impact: the impulse of {r.name} is the change "
+                    "of the momentum as a vector, m v₂ - m v₁, then its magnitude.", BALANCES,
+                    readings=readings)
+
+
 def _start_text(start: Start | None) -> str:
     """A rate at the start as written (its SI value where given as a quantity; 0 left out)."""
     if start is None:
@@ -1906,6 +1964,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
+    start_sense_reversed, impulse_from_speeds,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
