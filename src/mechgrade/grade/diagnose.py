@@ -345,6 +345,8 @@ LABELS = {
     "gyration_for_radius": "a radius of gyration read for a radius",
     "driver_speed": "the driver's speed for a connected point's",
     "rate_relation_inverted": "v = r ω used as ω = v r",
+    "omega_reversed": "ω × r taken in the opposite sense",
+    "angle_complement": "angle measured from the other axis (sin and cos exchanged)",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",
