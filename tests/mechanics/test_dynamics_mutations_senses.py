@@ -65,3 +65,15 @@ def test_no_impulse_from_speeds_for_a_body_in_a_contact():
     # the pucks' impact is a contact between two bodies: its impulse is not one body's alone
     assert all(m.code != "mag_as_sum" or "momenta" not in m.sentence
                for m in dynamics_mutations(_problem("pucks_oblique_impact")))
+
+
+def test_a_springs_work_counted_as_helping_the_fall():
+    # ½ m v² = m g h - 3 J (the spring stretches from 0.1 m to 0.2 m); + 3 J: 2.981 m/s
+    (value,) = _values("collar_spring_vertical_rod", "speed", "spring_work_reversed")
+    assert abs(value - (2 * 9.81 * 0.3 + 3.0) ** 0.5) < 1e-6
+    # a force is not read from the energy: the rod's push is no spring work mistake
+    assert not _values("collar_spring_vertical_rod", "rod_force", "spring_work_reversed")
+
+
+def test_no_spring_work_reversed_outside_a_work_energy_balance():
+    assert not _values("block_between_two_springs", "amplitude", "spring_work_reversed")

@@ -373,6 +373,7 @@ LABELS = {
     "reaction_as_static": "reaction taken as its static value",
     "acceleration_reversed": "the acceleration taken in the opposite sense in the balance",
     "start_sense_reversed": "a velocity just before the impact taken in the opposite sense",
+    "spring_work_reversed": "a spring's work taken with the wrong sign",
     "inertia_omitted": "a body's moment of inertia left out",
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",

@@ -1403,6 +1403,32 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
             "balance, belong in the equations.", spring.stiffness, "N/m")
 
 
+def spring_work_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In a work-energy balance, each spring's work taken with the wrong sign (its energy
+    change counted as helping the motion where it resists it, or the reverse): the spring's
+    stiffness negated, one spring at a time. Only the objectives of the motion: the spring's
+    own energy and the forces (which the negated spring would push the other way) left out."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, WorkEnergy):
+        return
+    for spring in d.springs:
+        springs = tuple(replace(s, stiffness=_expr(f"-({s.stiffness.text})"))
+                        if s is spring else s for s in d.springs)
+        mistaken = _without_load(problem, replace(d, springs=springs), spring.name)
+        if mistaken is None:
+            continue
+        objectives = tuple(o for o in mistaken.objectives if not any(
+            next(_calls(o.find.node, f), None) for f in ("force", "moment", "power")))
+        if objectives:
+            yield DynamicsMutation(
+                "spring_work_reversed", f"Your value counts the work of the spring "
+                f"{spring.name} (k = {{term}}) with the wrong sign: a spring that stretches "
+                "further takes energy from the motion, one that relaxes gives it back; its "
+                "work is minus the change of ½ k s².", LOADS,
+                problem=replace(mistaken, objectives=objectives), term=spring.stiffness,
+                term_unit="N/m")
+
+
 def _load_left_out(problem: Problem, dynamics: Dynamics, load: str, code: str, text: str,
                    term, term_unit: str) -> Iterator[DynamicsMutation]:
     """The mistake ``code`` of the model with ``dynamics`` (``load`` left out), when that model
@@ -1964,7 +1990,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
-    start_sense_reversed, impulse_from_speeds,
+    start_sense_reversed, impulse_from_speeds, spring_work_reversed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
