@@ -77,3 +77,10 @@ def test_a_springs_work_counted_as_helping_the_fall():
 
 def test_no_spring_work_reversed_outside_a_work_energy_balance():
     assert not _values("block_between_two_springs", "amplitude", "spring_work_reversed")
+
+
+def test_an_incoming_rate_reversed_that_flips_the_whole_answer_is_said_as_a_sign_error():
+    # the ball's rebound is linear in its speed before: reversed, the whole answer flips
+    result = _solution("ball_strikes_hanging_rod").result("ball_velocity_after")
+    judged = assess(f"{-result.value:.4g} {result.unit}", result)
+    assert judged.diagnosis == "sign error"

@@ -251,10 +251,15 @@ def _coincidence(found: Diagnosis) -> bool:
     return found.code in FACTOR_CODES
 
 
+_SIGN_FLIPS = ("given_sign", "start_sense_reversed")
+"""Misread data whose sign is flipped (a given rate, a rate just before an impact): where the
+answer is linear in it, the whole answer flips, and the sign error is said with its sentence."""
+
+
 def _named(mistake: GeneratedMistake, reference: np.ndarray,
            plausible: frozenset[str] | None) -> Diagnosis:
     """One generated mistake's diagnosis."""
-    if mistake.code in GIVEN_CODES and mistake.value is not None:
+    if (mistake.code in GIVEN_CODES or mistake.code in _SIGN_FLIPS) and mistake.value is not None:
         return _given_as_transform(mistake, reference, plausible) or Diagnosis(
             mistake.code, LABELS.get(mistake.code, mistake.code), mistake.message)
     return Diagnosis(mistake.code, LABELS.get(mistake.code, mistake.code), mistake.message)
@@ -320,7 +325,7 @@ def _given_as_transform(mistake: GeneratedMistake, reference: np.ndarray,
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
             continue
         if any(np.allclose(value, f * reference, rtol=1e-9, atol=0) for f in factors):
-            if code == "sign" and mistake.code == "given_sign":
+            if code == "sign" and mistake.code in _SIGN_FLIPS:
                 return Diagnosis("sign", label, mistake.message)
             return Diagnosis(code, label, message)
     return None
