@@ -84,3 +84,11 @@ def test_an_incoming_rate_reversed_that_flips_the_whole_answer_is_said_as_a_sign
     result = _solution("ball_strikes_hanging_rod").result("ball_velocity_after")
     judged = assess(f"{-result.value:.4g} {result.unit}", result)
     assert judged.diagnosis == "sign error"
+
+
+def test_sines_and_cosines_exchanged_in_the_velocities_before_an_impact():
+    # every velocity's components written from the other axis: (-3.981, -5.196) for A
+    values = _values("pucks_oblique_impact", "velocity_A", "angle_complement")
+    assert any(abs(v[0] + 3.981230) < 1e-5 and abs(v[1] + 5.196152) < 1e-5 for v in values)
+    # the bat's ball comes in along x: no angle in its rates before, none exchanged
+    assert not _values("baseball_bat_impulse", "impulse", "angle_complement")

@@ -924,6 +924,36 @@ def start_sense_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMut
             problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))))
 
 
+def start_trig_exchanged(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact solved with the sine and cosine of one angle exchanged in the rates just
+    before it (a velocity's components written from the other axis), in every rate the angle
+    enters at once."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    trig = [c for s in d.analysis.start if s.value is not None
+            for f in ("sin", "cos") for c in _calls(s.value.node, f)]
+    angles = list(dict.fromkeys(c.args[0] for c in trig if len(c.args) == 1))
+    # one angle's, or every angle's at once (each velocity written from the other axis)
+    for chosen in [(a,) for a in angles] + ([tuple(angles)] if len(angles) > 1 else []):
+        starts = tuple(s if s.value is None else replace(s, value=Expr(
+            to_text(new := _rewrite(s.value.node, _trig_exchanged(chosen))), new), si=None)
+            for s in d.analysis.start)
+        which = " and ".join(to_text(a) for a in chosen)
+        yield DynamicsMutation(
+            "angle_complement", f"Your value is what the velocities just before the impact "
+            f"give with the sine and cosine of {which} exchanged: check which axis each angle "
+            "is measured from, and which component each function gives.", BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))))
+
+
+def _trig_exchanged(angles: tuple[Node, ...]) -> Callable[[Node], Node | None]:
+    """The change for :func:`_rewrite` that puts cos for sin, and sin for cos, of ``angles``."""
+    other = {"sin": "cos", "cos": "sin"}
+    return lambda n: Call(other[n.func], n.args) if isinstance(n, Call) \
+        and n.func in other and len(n.args) == 1 and n.args[0] in angles else None
+
+
 def impulse_from_speeds(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The magnitude of the only impulse on a particle taken as the sum, or the difference,
     of its momenta's magnitudes m |v| after and before (speeds added or subtracted as numbers,
@@ -1990,7 +2020,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
-    start_sense_reversed, impulse_from_speeds, spring_work_reversed,
+    start_sense_reversed, start_trig_exchanged, impulse_from_speeds, spring_work_reversed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
