@@ -51,3 +51,12 @@ def test_the_winds_and_the_airspeed_added_as_if_at_right_angles():
     # √(240² + 60²) = 247.4 km/h; the ground speed is √(240² - 60²) = 232.4 km/h
     assert any(v == pytest.approx((240 ** 2 + 60 ** 2) ** 0.5)
                for v in _values("airplane_crosswind_heading", "ground_speed", "mag_as_sum"))
+
+
+def test_a_midpoints_speed_taken_as_the_mean_of_the_end_speeds():
+    # the rod's ends move at 2 and 1.793 m/s: their mean 1.897 m/s, G's speed 1.753 m/s
+    values = _values("rod_in_two_slots_ic", "speed_G", "mag_as_sum")
+    assert any(v == pytest.approx((2 + 1.793150944) / 2) for v in values)
+    # the airplane is the midpoint of no two points: no mean of speeds
+    assert not any("mean of the speeds" in m.sentence for m in mutations(
+        _problem("airplane_crosswind_heading")))

@@ -522,6 +522,24 @@ def _speed_readings(r: _Reading) -> None:
                      f"Your value adds the sizes of the velocity's components along {G} (as "
                      "|r'| + |r θ'|); the speed is the square root of the sum of their squares.")
     _terms_added(r, args[0], name_of(args[1]))
+    _midpoint_speeds(r, args[0], name_of(args[1]))
+
+
+def _midpoint_speeds(r: _Reading, point: Node, in_frame: str) -> None:
+    """The speed of the midpoint of two points (a rod's centre) taken as the mean of their
+    speeds: their velocities' mean, as vectors, is its velocity."""
+    model, P = r.model, name_of(point)
+    others = [Q for Q in model.positions if Q not in (P, model.problem.inertial_point)]
+    for i, A in enumerate(others):
+        for B in others[i + 1:]:
+            if not _zero(model, 2 * model.positions[P] - model.positions[A]
+                         - model.positions[B]):
+                continue
+            speeds = [r.base.point_velocity(Name(Q), in_frame).magnitude() for Q in (A, B)]
+            r.append("mag_as_sum", (speeds[0] + speeds[1]) / 2,
+                     f"Your value is the mean of the speeds of {A} and {B}; the velocity of "
+                     f"their midpoint {P} is the mean of their velocities as vectors, then "
+                     "its magnitude.")
 
 
 def _terms_added(r: _Reading, point: Node, in_frame: str) -> None:
