@@ -92,3 +92,17 @@ def test_sines_and_cosines_exchanged_in_the_velocities_before_an_impact():
     assert any(abs(v[0] + 3.981230) < 1e-5 and abs(v[1] + 5.196152) < 1e-5 for v in values)
     # the bat's ball comes in along x: no angle in its rates before, none exchanged
     assert not _values("baseball_bat_impulse", "impulse", "angle_complement")
+
+
+def test_a_slanted_pushs_downward_part_taken_upward():
+    # N = m g - P sin 30° = 340.5 N: less friction, 14.61 m/s after 4 s
+    assert 340.5 in [round(v, 6) for v in _values("crate_pushed_impulse_momentum", "normal",
+                                                  "force_component_reversed")]
+    assert any(abs(v - 14.6126) < 1e-3 for v in _values(
+        "crate_pushed_impulse_momentum", "speed", "force_component_reversed"))
+
+
+def test_no_force_component_reversed_for_a_force_along_one_axis():
+    # the drum's block hangs from a cord: no applied force with two parts
+    assert not any(m.code == "force_component_reversed"
+                   for m in dynamics_mutations(_problem("drum_hoist_falling_block")))

@@ -379,6 +379,7 @@ LABELS = {
     "acceleration_reversed": "the acceleration taken in the opposite sense in the balance",
     "start_sense_reversed": "a velocity just before the impact taken in the opposite sense",
     "spring_work_reversed": "a spring's work taken with the wrong sign",
+    "force_component_reversed": "a force's component taken the other way",
     "inertia_omitted": "a body's moment of inertia left out",
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",

@@ -1433,6 +1433,30 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
             "balance, belong in the equations.", spring.stiffness, "N/m")
 
 
+def force_component_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An applied force with parts along two or more of the inertial axes (a push slanted down)
+    taken with one part the other way (its downward part taken upward), the rest kept."""
+    d = dynamics_of(problem)
+    N = problem.inertial_frame
+    for force in d.forces:
+        if force.kind != LoadKind.APPLIED_FORCE:
+            continue
+        vector = model.language.vector(force.force)
+        axes = [a for a in "xyz" if not identically_zero(model.plain(
+            vector & getattr(model.inertial, a)))]
+        if len(axes) < 2:
+            continue  # along one axis: the whole force reversed is another mistake
+        for a in axes:
+            text = f"({force.force.text}) - 2*dot({force.force.text}, {N}.{a})*{N}.{a}"
+            forces = tuple(replace(f, force=_expr(text)) if f is force else f
+                           for f in d.forces)
+            yield DynamicsMutation(
+                "force_component_reversed", f"Your value is what the balances give with the "
+                f"{N}.{a} part of {force.name} taken the other way: check which way each "
+                f"component of {force.name} points.", LOADS,
+                problem=_mistaken(problem, replace(d, forces=forces)))
+
+
 def spring_work_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """In a work-energy balance, each spring's work taken with the wrong sign (its energy
     change counted as helping the motion where it resists it, or the reverse): the spring's
@@ -2021,6 +2045,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     start_sense_reversed, start_trig_exchanged, impulse_from_speeds, spring_work_reversed,
+    force_component_reversed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
