@@ -251,8 +251,8 @@ def _coincidence(found: Diagnosis) -> bool:
     return found.code in FACTOR_CODES
 
 
-_SIGN_FLIPS = ("given_sign", "start_sense_reversed")
-"""Misread data whose sign is flipped (a given rate, a rate just before an impact): where the
+_SIGN_FLIPS = ("given_sign", "given_angle_sign", "start_sense_reversed")
+"""Misread data whose sign is flipped (a given rate or angle, a rate before an impact): where the
 answer is linear in it, the whole answer flips, and the sign error is said with its sentence."""
 
 
@@ -367,6 +367,7 @@ LABELS = {
     "given_length_unit": "given length's unit not converted",
     "given_unit": "given's unit not converted",
     "given_sign": "given rate's sign flipped",
+    "given_angle_sign": "given angle measured to the other side",
     "weight_omitted": "weight left out",
     "mass_for_weight": "mass used for the weight",
     "central_inertia_at_pivot": "inertia about the mass centre used at the pivot",

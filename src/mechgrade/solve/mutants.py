@@ -209,6 +209,12 @@ def _given_slips(node, si: float, given):
                f"Your value is what {name} = {90 - value:g} deg gives, the complement of "
                f"{given.text} (sin and cos exchanged): check which side of the angle each "
                "component lies on.")
+    if unit in ("deg", "degree", "degrees", "°") and value != 0:
+        # a tilt or a slope measured to the other side of its reference line
+        yield ("given_angle_sign", -si,
+               f"Your value is what {name} = {-value:g} deg gives, {given.text} measured to "
+               "the other side: check which way the angle turns from the line it is "
+               "measured from.")
     order = _rate_order(unit)
     if order and any(u in unit for u in ("rpm", "rev", "deg", "Hz")) \
             and value != 0 and not math.isclose(value, si):
