@@ -51,7 +51,8 @@ def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     # no gravity load: no weight mistakes; no friction: no friction mistakes
     assert not _codes("rod_strikes_ledge") & {"weight_omitted", "mass_for_weight",
                                               "friction_reversed"}
-    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "restitution_component"}
+    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "restitution_component",
+                                           "start_sense_reversed"}
     # a pin: the parallel-axis term; no pin, no rolling contact (a sliding ladder): none
     assert "central_inertia_at_pivot" in _codes("pendulum_pin_reaction")
     assert "central_inertia_at_pivot" not in _codes("ruina_9_19_falling_ladder")
@@ -183,9 +184,11 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
     copy = pickle.loads(pickle.dumps(solution))
     assert copy == solution
     # e = 1, e = 0, and e on the tangential component instead (the normal one reversed
-    # unscaled: e = 1's value again, the rod having no tangential velocity)
+    # unscaled: e = 1's value again, the rod having no tangential velocity), and the rod's
+    # rate before the impact reversed
     assert [m.code for m in copy.result("vG_after").generated_mistakes] \
-        == ["restitution_ignored", "restitution_ignored", "restitution_component"]
+        == ["restitution_ignored", "restitution_ignored", "restitution_component",
+            "start_sense_reversed"]
 
 
 @pytest.mark.slow
