@@ -25,3 +25,10 @@ def test_a_disks_tilt_measured_to_the_other_side_turns_h_across_the_shaft():
 def test_no_angle_sign_for_a_problem_without_an_angle_in_degrees():
     result = _result("drum_hoist_falling_block", "tension")
     assert not [m for m in result.generated_mistakes if m.code == "given_angle_sign"]
+
+
+def test_no_angle_sign_for_a_coordinates_angle_at_the_instant():
+    # the crank's phi = 30 deg sets the configuration: phi = -30 deg puts the pin's velocity
+    # along the slot (r ω, a velocity component mistake's value): not read as a misread angle
+    result = _result("slotted_arm_crank_coriolis", "sliding_rate")
+    assert not [m for m in result.generated_mistakes if m.code == "given_angle_sign"]
