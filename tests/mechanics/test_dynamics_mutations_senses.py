@@ -40,16 +40,17 @@ def test_no_acceleration_reversed_where_nothing_accelerates_along_the_reaction()
 
 def test_the_incoming_velocitys_sense_ignored_gives_m_v2_minus_m_v1_along_the_axis():
     # the ball comes in at -40 m/s along x: taken as +40, the impulse is m (43.30 - 40) along x
-    (value,) = _values("baseball_bat_impulse", "impulse", "start_sense_reversed")
+    (value,) = [m.value for m in _solution("baseball_bat_impulse").result("impulse")
+                .generated_mistakes if "just before the impact" in m.message]
     assert abs(value[0] - 0.145 * (50 * 3 ** 0.5 / 2 - 40)) < 1e-9
     judged = assess("(0.4787, 3.625, 0) N*s", _solution("baseball_bat_impulse").result("impulse"))
-    assert judged.diagnosis == LABELS["start_sense_reversed"]
+    assert judged.diagnosis == LABELS["given_sign"] and "just before the impact" in judged.feedback
 
 
 def test_no_sense_reversed_for_a_rate_at_rest_before_the_impact():
     # the ball's y' is 0 before the bat: one mistaken model, for x' only
     mutations = [m for m in dynamics_mutations(_problem("baseball_bat_impulse"))
-                 if m.code == "start_sense_reversed"]
+                 if m.code == "given_sign"]
     assert len(mutations) == 1 and mutations[0].sentence.startswith("Your value is what x'")
 
 

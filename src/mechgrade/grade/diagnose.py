@@ -251,15 +251,15 @@ def _coincidence(found: Diagnosis) -> bool:
     return found.code in FACTOR_CODES
 
 
-_SIGN_FLIPS = ("given_sign", "given_angle_sign", "start_sense_reversed")
-"""Misread data whose sign is flipped (a given rate or angle, a rate before an impact): where the
-answer is linear in it, the whole answer flips, and the sign error is said with its sentence."""
+_SIGN_FLIPS = ("given_sign", "given_angle_sign")
+"""Misread givens whose sign is flipped (a rate, an angle): where the answer is linear in one,
+the whole answer flips, and the sign error is said with its sentence."""
 
 
 def _named(mistake: GeneratedMistake, reference: np.ndarray,
            plausible: frozenset[str] | None) -> Diagnosis:
     """One generated mistake's diagnosis."""
-    if (mistake.code in GIVEN_CODES or mistake.code in _SIGN_FLIPS) and mistake.value is not None:
+    if mistake.code in GIVEN_CODES and mistake.value is not None:
         return _given_as_transform(mistake, reference, plausible) or Diagnosis(
             mistake.code, LABELS.get(mistake.code, mistake.code), mistake.message)
     return Diagnosis(mistake.code, LABELS.get(mistake.code, mistake.code), mistake.message)
@@ -378,7 +378,6 @@ LABELS = {
     "reaction_as_weight": "reaction taken equal to the weight",
     "reaction_as_static": "reaction taken as its static value",
     "acceleration_reversed": "the acceleration taken in the opposite sense in the balance",
-    "start_sense_reversed": "a velocity just before the impact taken in the opposite sense",
     "spring_work_reversed": "a spring's work taken with the wrong sign",
     "force_component_reversed": "a force's component taken the other way",
     "inertia_omitted": "a body's moment of inertia left out",

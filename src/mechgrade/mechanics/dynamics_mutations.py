@@ -906,7 +906,8 @@ def pin_impulse_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMuta
 
 def start_sense_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """An impact solved with one rate just before it taken in the opposite sense (a ball
-    coming in at -v1 taken at +v1: its sense against the axis ignored)."""
+    coming in at -v1 taken at +v1: its sense against the axis ignored): a stated rate's sign
+    flipped, as a given's (``given_sign``)."""
     d = dynamics_of(problem)
     if not isinstance(d.analysis, Impulse):
         return
@@ -918,7 +919,7 @@ def start_sense_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMut
         starts = tuple(replace(x, value=_expr(f"-({text})"), si=None) if j == i else x
                        for j, x in enumerate(d.analysis.start))
         yield DynamicsMutation(
-            "start_sense_reversed", f"Your value is what {to_text(s.key.node)} just before "
+            "given_sign", f"Your value is what {to_text(s.key.node)} just before "
             f"the impact gives with the opposite sign (it is {text}): a velocity against an "
             "axis has a negative component along it.", BALANCES,
             problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))))

@@ -33,7 +33,7 @@ DYNAMICS_CODES = (
     "rotational_ke_omitted", "restitution_ignored", "other_shape_inertia",
     "spring_free_length_omitted", "surface_taken_fixed", "body_ke_omitted",
     "impulse_moment_omitted", "moment_arm_omitted", "reaction_as_static", "inertia_omitted",
-    "acceleration_reversed", "start_sense_reversed", "spring_work_reversed",
+    "acceleration_reversed", "spring_work_reversed",
     "force_component_reversed",
     "restitution_component", "damping_omitted", "force_omitted", "springs_in_series",
     "weight_for_mass", "strands_miscounted", "initial_speed_omitted",

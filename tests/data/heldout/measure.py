@@ -59,7 +59,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "constant_acceleration": ("force_taken_constant",),
     "initial_speed_forgotten": ("initial_speed_omitted", "value_at_start"),
     "sign": ("sign", "given_sign", "direction", "acceleration_reversed",
-             "start_sense_reversed", "omega_reversed", "spring_work_reversed",
+             "omega_reversed", "spring_work_reversed",
              "force_component_reversed", "given_angle_sign"),
     "sin_cos_swap": ("given_complement", "angle_complement"),
     "deg_as_rad": ("given_deg_as_rad", "deg_as_rad", "rad_as_deg"),
