@@ -103,7 +103,7 @@ def test_a_slanted_pushs_downward_part_taken_upward():
         "crate_pushed_impulse_momentum", "speed", "force_component_reversed"))
 
 
-def test_no_force_component_reversed_for_a_force_along_one_axis():
-    # the drum's block hangs from a cord: no applied force with two parts
+def test_no_force_component_reversed_without_an_applied_force_slanted_to_a_reaction():
+    # the drum's block hangs from a cord: no applied force at all
     assert not any(m.code == "force_component_reversed"
                    for m in dynamics_mutations(_problem("drum_hoist_falling_block")))

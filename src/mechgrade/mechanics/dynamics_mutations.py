@@ -1435,26 +1435,29 @@ def spring_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
 
 
 def force_component_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """An applied force with parts along two or more of the inertial axes (a push slanted down)
-    taken with one part the other way (its downward part taken upward), the rest kept."""
+    """An applied force slanted to a one-direction reaction on its body (a push slanted down
+    onto a floor) taken with its part along the reaction the other way (the downward part
+    taken upward: the body pressed less), its part across kept."""
     d = dynamics_of(problem)
-    N = problem.inertial_frame
     for force in d.forces:
         if force.kind != LoadKind.APPLIED_FORCE:
             continue
         vector = model.language.vector(force.force)
-        axes = [a for a in "xyz" if not identically_zero(model.plain(
-            vector & getattr(model.inertial, a)))]
-        if len(axes) < 2:
-            continue  # along one axis: the whole force reversed is another mistake
-        for a in axes:
-            text = f"({force.force.text}) - 2*dot({force.force.text}, {N}.{a})*{N}.{a}"
+        for r in d.reactions:
+            if len(r.directions) != 1 or not any(a.on == force.on for a in r.acts):
+                continue
+            direction = r.directions[0]
+            along = model.language.vector(direction)
+            if _zero(model, (vector & along) * along) or _zero(model, vector ^ along):
+                continue  # no part along the reaction, or none across: not slanted to it
+            unit = f"unit({direction.text})"
+            text = f"({force.force.text}) - 2*dot({force.force.text}, {unit})*{unit}"
             forces = tuple(replace(f, force=_expr(text)) if f is force else f
                            for f in d.forces)
             yield DynamicsMutation(
                 "force_component_reversed", f"Your value is what the balances give with the "
-                f"{N}.{a} part of {force.name} taken the other way: check which way each "
-                f"component of {force.name} points.", LOADS,
+                f"part of {force.name} along {r.name} taken the other way: check which way "
+                f"each component of {force.name} points.", LOADS,
                 problem=_mistaken(problem, replace(d, forces=forces)))
 
 
