@@ -104,6 +104,6 @@ def test_a_slanted_pushs_downward_part_taken_upward():
 
 
 def test_no_force_component_reversed_without_an_applied_force_slanted_to_a_reaction():
-    # the drum's block hangs from a cord: no applied force at all
+    # the cylinder's pull is along the floor, across its normal force: nothing to reverse
     assert not any(m.code == "force_component_reversed"
-                   for m in dynamics_mutations(_problem("drum_hoist_falling_block")))
+                   for m in dynamics_mutations(_problem("cylinder_pulled_rolls")))
