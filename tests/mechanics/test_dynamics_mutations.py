@@ -44,15 +44,17 @@ def test_every_family_is_registered_once_and_every_code_has_a_label():
     assert len(set(FAMILIES)) == len(FAMILIES) and len(set(CODES)) == len(CODES)
     assert set(CODES) <= set(GENERATED_CODES) and set(CODES) <= set(LABELS)
     found = {m.code for name in DYNAMICS for m in dynamics_mutations(_problem(name))}
-    # a kinematic term left out of a balance (the Coriolis term) keeps its kinematic code
-    assert set(CODES) <= found <= set(CODES) | set(MODEL_CODES)
+    # a kinematic term left out of a balance (the Coriolis term) keeps its kinematic code, a
+    # rate before an impact misread a given's
+    assert set(CODES) <= found <= set(CODES) | set(MODEL_CODES) | {"given_sign"}
 
 
 def test_a_family_is_generated_only_where_the_model_has_its_ingredient():
     # no gravity load: no weight mistakes; no friction: no friction mistakes
     assert not _codes("rod_strikes_ledge") & {"weight_omitted", "mass_for_weight",
                                               "friction_reversed"}
-    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "restitution_component"}
+    assert _codes("rod_strikes_ledge") == {"restitution_ignored", "restitution_component",
+                                           "given_sign"}
     # a pin: the parallel-axis term; no pin, no rolling contact (a sliding ladder): none
     assert "central_inertia_at_pivot" in _codes("pendulum_pin_reaction")
     assert "central_inertia_at_pivot" not in _codes("ruina_9_19_falling_ladder")
@@ -184,9 +186,11 @@ def test_a_solution_with_its_mistakes_still_to_work_out_pickles():
     copy = pickle.loads(pickle.dumps(solution))
     assert copy == solution
     # e = 1, e = 0, and e on the tangential component instead (the normal one reversed
-    # unscaled: e = 1's value again, the rod having no tangential velocity)
+    # unscaled: e = 1's value again, the rod having no tangential velocity), and the rod's
+    # rate before the impact reversed
     assert [m.code for m in copy.result("vG_after").generated_mistakes] \
-        == ["restitution_ignored", "restitution_ignored", "restitution_component"]
+        == ["restitution_ignored", "restitution_ignored", "restitution_component",
+            "given_sign"]
 
 
 @pytest.mark.slow

@@ -253,6 +253,11 @@ def _coincidence(found: Diagnosis) -> bool:
     return found.code in FACTOR_CODES
 
 
+_SIGN_FLIPS = ("given_sign", "given_angle_sign")
+"""Misread givens whose sign is flipped (a rate, an angle): where the answer is linear in one,
+the whole answer flips, and the sign error is said with its sentence."""
+
+
 def _named(mistake: GeneratedMistake, reference: np.ndarray,
            plausible: frozenset[str] | None) -> Diagnosis:
     """One generated mistake's diagnosis."""
@@ -322,7 +327,7 @@ def _given_as_transform(mistake: GeneratedMistake, reference: np.ndarray,
         if plausible is not None and code in MODEL_SLIPS and code not in plausible:
             continue
         if any(np.allclose(value, f * reference, rtol=1e-9, atol=0) for f in factors):
-            if code == "sign" and mistake.code == "given_sign":
+            if code == "sign" and mistake.code in _SIGN_FLIPS:
                 return Diagnosis("sign", label, mistake.message)
             return Diagnosis(code, label, message)
     return None
@@ -347,6 +352,8 @@ LABELS = {
     "gyration_for_radius": "a radius of gyration read for a radius",
     "driver_speed": "the driver's speed for a connected point's",
     "rate_relation_inverted": "v = r ω used as ω = v r",
+    "omega_reversed": "ω × r taken in the opposite sense",
+    "angle_complement": "angle measured from the other axis (sin and cos exchanged)",
     "given_swap": "two givens exchanged",
     "other_basis": "components along another frame",
     "acc_t_for_acc": "tangential acceleration for the whole",
@@ -362,6 +369,7 @@ LABELS = {
     "given_length_unit": "given length's unit not converted",
     "given_unit": "given's unit not converted",
     "given_sign": "given rate's sign flipped",
+    "given_angle_sign": "given angle measured to the other side",
     "weight_omitted": "weight left out",
     "mass_for_weight": "mass used for the weight",
     "central_inertia_at_pivot": "inertia about the mass centre used at the pivot",
@@ -371,6 +379,9 @@ LABELS = {
     "tension_as_weight": "tension taken equal to a weight",
     "reaction_as_weight": "reaction taken equal to the weight",
     "reaction_as_static": "reaction taken as its static value",
+    "acceleration_reversed": "the acceleration taken in the opposite sense in the balance",
+    "spring_work_reversed": "a spring's work taken with the wrong sign",
+    "force_component_reversed": "a force's component taken the other way",
     "inertia_omitted": "a body's moment of inertia left out",
     "restitution_component": "restitution applied to the wrong component",
     "damping_omitted": "damping left out",

@@ -600,6 +600,35 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
     yield from _spring_as_weight(problem, d)
 
 
+def acceleration_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A one-direction reaction on a moving body (a cord holding a falling block) read from
+    the body's momentum balance along it with m a_G in the opposite sense (T = m (g + a) for a
+    block that falls): the reaction less twice m a_G's component along it, read in the right
+    model. Where a_G has no component along the reaction the value is the answer (dropped)."""
+    d = dynamics_of(problem)
+    if isinstance(d.analysis, Impulse):
+        return
+    N = problem.inertial_frame
+    for r in d.reactions:
+        act = r.acts[0]
+        if len(r.directions) != 1 or act.on == GROUND:
+            continue
+        body = d.body(act.on)
+        if _zero(model, model.language.point_velocity(Name(body.centre), N)):
+            continue  # held in place (a drum on its axle): no m a_G to reverse
+        unit = f"unit({r.directions[0].text})"
+        part = f"({_mass(body)})*dot(acc({body.centre}, {N}), {unit})"
+        replacement = parse(f"force({r.name}) - 2*{part}*{unit}", functions=FUNCTIONS)
+        readings = _readings(problem, "force", r.name, replacement, act.at)
+        if readings:
+            yield DynamicsMutation(
+                "acceleration_reversed", f"Your value is {r.name} from the balance of "
+                f"{body.name} along it with m a_G = {{term}} taken in the opposite sense (as "
+                f"if {body.name} accelerated the other way): keep the sign the motion gives "
+                "the acceleration.", BALANCES, readings=readings, term=_expr(part),
+                term_unit="N")
+
+
 def _spring_as_weight(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
     """A spring's force on a body read as that body's whole weight m g (along the spring's
     force), as if the spring alone carried it (a pin or another support shares it)."""
@@ -957,6 +986,95 @@ def pin_impulse_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMuta
         if readings:
             yield DynamicsMutation("pin_impulse_omitted", sentence, BALANCES, readings=readings,
                                    term=term, term_unit="N*s")
+
+
+def start_sense_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact solved with one rate just before it taken in the opposite sense (a ball
+    coming in at -v1 taken at +v1: its sense against the axis ignored): a stated rate's sign
+    flipped, as a given's (``given_sign``)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    for i, s in enumerate(d.analysis.start):
+        text = _start_text(s)
+        if not s.si if s.value is None else identically_zero(
+                model.plain(model.language.value(s.value.node))):
+            continue
+        starts = tuple(replace(x, value=_expr(f"-({text})"), si=None) if j == i else x
+                       for j, x in enumerate(d.analysis.start))
+        yield DynamicsMutation(
+            "given_sign", f"Your value is what {to_text(s.key.node)} just before "
+            f"the impact gives with the opposite sign (it is {text}): a velocity against an "
+            "axis has a negative component along it.", BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))))
+
+
+def start_trig_exchanged(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An impact solved with the sine and cosine of one angle exchanged in the rates just
+    before it (a velocity's components written from the other axis), in every rate the angle
+    enters at once."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    trig = [c for s in d.analysis.start if s.value is not None
+            for f in ("sin", "cos") for c in _calls(s.value.node, f)]
+    angles = list(dict.fromkeys(c.args[0] for c in trig if len(c.args) == 1))
+    # one angle's, or every angle's at once (each velocity written from the other axis)
+    for chosen in [(a,) for a in angles] + ([tuple(angles)] if len(angles) > 1 else []):
+        starts = tuple(s if s.value is None else replace(s, value=Expr(
+            to_text(new := _rewrite(s.value.node, _trig_exchanged(chosen))), new), si=None)
+            for s in d.analysis.start)
+        which = " and ".join(to_text(a) for a in chosen)
+        yield DynamicsMutation(
+            "angle_complement", f"Your value is what the velocities just before the impact "
+            f"give with the sine and cosine of {which} exchanged: check which axis each angle "
+            "is measured from, and which component each function gives.", BALANCES,
+            problem=_mistaken(problem, replace(d, analysis=replace(d.analysis, start=starts))))
+
+
+def _trig_exchanged(angles: tuple[Node, ...]) -> Callable[[Node], Node | None]:
+    """The change for :func:`_rewrite` that puts cos for sin, and sin for cos, of ``angles``."""
+    other = {"sin": "cos", "cos": "sin"}
+    return lambda n: Call(other[n.func], n.args) if isinstance(n, Call) \
+        and n.func in other and len(n.args) == 1 and n.args[0] in angles else None
+
+
+def impulse_from_speeds(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The magnitude of the only impulse on a particle taken as the sum, or the difference,
+    of its momenta's magnitudes m |v| after and before (speeds added or subtracted as numbers,
+    the velocities' directions ignored): read in the right model. Only particles that move
+    along fixed perpendicular axes (their speed before from the rates written)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse):
+        return
+    struck = {b for c in d.analysis.contacts for b in c.bodies}
+    before = {to_text(s.key.node): s for s in d.analysis.start}
+    N = problem.inertial_frame
+    for r, body in _only_reactions(d):
+        if body.frame is not None or body.name in struck:
+            continue
+        moving = [e for c in problem.coordinates if not _zero(model, e := model.positions[
+            body.centre].diff(model.language.value(Name(c.name)), model.inertial))]
+        axes = _axes(problem, model, body.centre, moving[0]) if moving else None
+        if axes is None:
+            continue
+        rates = (before.get(f"{q}'") for q in (axes[0],) + axes[1])
+        speed = "sqrt(" + " + ".join(f"({_start_text(s)})^2" for s in rates) + ")"
+        target = Call("mag", (Call("impulse", (Name(r.name),)),))
+        for verb, combined in (("adds", f"speed({body.centre}, {N}) + {speed}"),
+                               ("subtracts", f"abs(speed({body.centre}, {N}) - {speed})")):
+            replacement = parse(f"({_mass(body)})*({combined})", functions=FUNCTIONS)
+            readings = tuple((o.id, Expr(to_text(new), new)) for o in problem.objectives
+                             if o.kind != "symbolic" and any(n == target
+                                                             for n in walk(o.find.node))
+                             for new in (_rewrite(o.find.node, _replacing(target,
+                                                                          replacement)),))
+            if readings:
+                yield DynamicsMutation(
+                    "mag_as_sum", f"Your value {verb} the magnitudes of {body.name}'s momenta "
+                    f"m v after and before the impact: the impulse of {r.name} is the change "
+                    "of the momentum as a vector, m v₂ - m v₁, then its magnitude.", BALANCES,
+                    readings=readings)
 
 
 def _start_text(start: Start | None) -> str:
@@ -1428,6 +1546,59 @@ def _read_as(problem: Problem, func: str, name: str, replacement: str,
     readings = _readings(problem, func, name, parse(replacement, functions=FUNCTIONS))
     if readings:
         yield replace(mistake, readings=readings)
+
+
+def force_component_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """An applied force slanted to a one-direction reaction on its body (a push slanted down
+    onto a floor) taken with its part along the reaction the other way (the downward part
+    taken upward: the body pressed less), its part across kept."""
+    d = dynamics_of(problem)
+    for force in d.forces:
+        if force.kind != LoadKind.APPLIED_FORCE:
+            continue
+        vector = model.language.vector(force.force)
+        for r in d.reactions:
+            if len(r.directions) != 1 or not any(a.on == force.on for a in r.acts):
+                continue
+            direction = r.directions[0]
+            along = model.language.vector(direction)
+            if _zero(model, (vector & along) * along) or _zero(model, vector ^ along):
+                continue  # no part along the reaction, or none across: not slanted to it
+            unit = f"unit({direction.text})"
+            text = f"({force.force.text}) - 2*dot({force.force.text}, {unit})*{unit}"
+            forces = tuple(replace(f, force=_expr(text)) if f is force else f
+                           for f in d.forces)
+            yield DynamicsMutation(
+                "force_component_reversed", f"Your value is what the balances give with the "
+                f"part of {force.name} along {r.name} taken the other way: check which way "
+                f"each component of {force.name} points.", LOADS,
+                problem=_mistaken(problem, replace(d, forces=forces)))
+
+
+def spring_work_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In a work-energy balance, each spring's work taken with the wrong sign (its energy
+    change counted as helping the motion where it resists it, or the reverse): the spring's
+    stiffness negated, one spring at a time. Only the objectives of the motion: the spring's
+    own energy and the forces (which the negated spring would push the other way) left out."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, WorkEnergy):
+        return
+    for spring in d.springs:
+        springs = tuple(replace(s, stiffness=_expr(f"-({s.stiffness.text})"))
+                        if s is spring else s for s in d.springs)
+        mistaken = _without_load(problem, replace(d, springs=springs), spring.name)
+        if mistaken is None:
+            continue
+        objectives = tuple(o for o in mistaken.objectives if not any(
+            next(_calls(o.find.node, f), None) for f in ("force", "moment", "power")))
+        if objectives:
+            yield DynamicsMutation(
+                "spring_work_reversed", f"Your value counts the work of the spring "
+                f"{spring.name} (k = {{term}}) with the wrong sign: a spring that stretches "
+                "further takes energy from the motion, one that relaxes gives it back; its "
+                "work is minus the change of ½ k s².", LOADS,
+                problem=replace(mistaken, objectives=objectives), term=spring.stiffness,
+                term_unit="N/m")
 
 
 def _load_left_out(problem: Problem, dynamics: Dynamics, load: str, code: str, text: str,
@@ -2015,7 +2186,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     reaction_without_coriolis,
     mass_for_weight, weight_for_mass, central_inertia_at_pivot,
     friction_reversed, normal_from_weight, weight_transfer_ignored, tension_as_weight,
-    reaction_as_weight, rotational_ke_omitted, restitution_ignored, other_shape_inertia,
+    reaction_as_weight, acceleration_reversed, rotational_ke_omitted, restitution_ignored,
+    other_shape_inertia,
     particle_inertia, disk_for_gyration, restitution_component, damping_omitted, force_omitted,
     springs_in_series, strands_miscounted, strands_pulling_miscounted,
     spring_free_length_omitted, surface_taken_fixed, body_ke_omitted, impulse_moment_omitted,
@@ -2025,6 +2197,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
+    start_sense_reversed, start_trig_exchanged, impulse_from_speeds, spring_work_reversed,
+    force_component_reversed,
     angmom_along_axis, spring_force_as_resultant, part_moving_with_centre, striker_stops)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""

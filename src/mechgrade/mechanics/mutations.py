@@ -163,6 +163,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _path_quantities(r)
     _speed_readings(r)
     _magnitudes_combined(r)
+    _angle_from_other_axis(r)
     _other_bases(r)
     _zero_for_constant_rate(r)
     _balance_without_term(r)
@@ -215,6 +216,19 @@ def _velocity_terms(r: _Reading, point: Name, in_frame: str, B: str, origin: str
         r.add(code, _Mistaken(base, P, in_frame, velocity=v_true - term),
               f"Your value matches the velocity of {P} computed without {name} = "
               "{term} along " + r.basis + ": include it.", term)
+    _omega_r_reversed(r, point, in_frame, omega ^ rel, where)
+
+
+def _omega_r_reversed(r: _Reading, point: Name, in_frame: str, term, where: str) -> None:
+    """The velocity of the point with the transport term ω × r taken in the opposite sense
+    (the body's rotation read the other way round)."""
+    if _zero(r.model, term):
+        return
+    v_true = r.base.point_velocity(point, in_frame)
+    r.add("omega_reversed", _Mistaken(r.base, point.id, in_frame, velocity=v_true - 2 * term),
+          f"Your value matches the velocity of {point.id} with the transport term ω × r "
+          f"{where} = {{term}} along {r.basis} taken in the opposite sense: check which way "
+          "the body turns.", term)
 
 
 def _relative_omega(r: _Reading, point: Name, in_frame: str, B: str, parent: str, rel,
@@ -508,6 +522,24 @@ def _speed_readings(r: _Reading) -> None:
                      f"Your value adds the sizes of the velocity's components along {G} (as "
                      "|r'| + |r θ'|); the speed is the square root of the sum of their squares.")
     _terms_added(r, args[0], name_of(args[1]))
+    _midpoint_speeds(r, args[0], name_of(args[1]))
+
+
+def _midpoint_speeds(r: _Reading, point: Node, in_frame: str) -> None:
+    """The speed of the midpoint of two points (a rod's centre) taken as the mean of their
+    speeds: their velocities' mean, as vectors, is its velocity."""
+    model, P = r.model, name_of(point)
+    others = [Q for Q in model.positions if Q not in (P, model.problem.inertial_point)]
+    for i, A in enumerate(others):
+        for B in others[i + 1:]:
+            if not _zero(model, 2 * model.positions[P] - model.positions[A]
+                         - model.positions[B]):
+                continue
+            speeds = [r.base.point_velocity(Name(Q), in_frame).magnitude() for Q in (A, B)]
+            r.append("mag_as_sum", (speeds[0] + speeds[1]) / 2,
+                     f"Your value is the mean of the speeds of {A} and {B}; the velocity of "
+                     f"their midpoint {P} is the mean of their velocities as vectors, then "
+                     "its magnitude.")
 
 
 def _terms_added(r: _Reading, point: Node, in_frame: str) -> None:
@@ -529,6 +561,11 @@ def _terms_added(r: _Reading, point: Node, in_frame: str) -> None:
                      f"from frame {spec.name} (the velocity of its origin {spec.origin}, ω × r, "
                      "the relative velocity) as numbers; they are vectors along different "
                      "lines: add them as vectors.")
+            # two terms at right angles add by Pythagoras; at any other angle they do not
+            r.append("mag_as_sum", sp.sqrt(sum(t & t for t in terms)),
+                     f"Your value adds the speeds of the terms of the velocity of {P} seen "
+                     f"from frame {spec.name} as if they were at right angles (√(a² + b²)); "
+                     "they are not here: add them as vectors.")
 
 
 def _magnitudes_combined(r: _Reading) -> None:
@@ -549,6 +586,17 @@ def _magnitudes_combined(r: _Reading) -> None:
                 "(the vectors are not along one line).")
     r.append("mag_as_sum", a + b, sentence.format(verb="adds"))
     r.append("mag_as_sum", sp.Abs(a - b), sentence.format(verb="subtracts"))
+
+
+def _angle_from_other_axis(r: _Reading) -> None:
+    """An angle asked as ``atan2(a, b)`` read from the other leg, ``atan2(b, a)``: sin and cos
+    exchanged (the complement of the angle in its quadrant)."""
+    node = r.node
+    if isinstance(node, Call) and node.func == "atan2" and len(node.args) == 2:
+        r.add("angle_complement", None, "Your value measures the angle from the other axis "
+              "(sin and cos exchanged, its complement): check which leg of the triangle lies "
+              "along the side the angle is measured from.",
+              value_node=Call("atan2", (node.args[1], node.args[0])))
 
 
 def _other_bases(r: _Reading) -> None:

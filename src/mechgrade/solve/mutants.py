@@ -174,7 +174,8 @@ def slips_of(givens: Mapping, parameters: set[str]):
     named = [(key, node, si, given) for key, (node, si, given) in givens.items()
              if given is not None]
     for key, node, si, given in named:
-        for code, mistaken_si, sentence in _given_slips(node, si, given):
+        fixed = isinstance(node, Name) and node.id in parameters
+        for code, mistaken_si, sentence in _given_slips(node, si, given, fixed):
             yield code, _carried_into(givens, ((key, mistaken_si),)), sentence
     swappable = [(key, si, given) for key, node, si, given in named
                  if isinstance(node, Name) and node.id in parameters]
@@ -196,8 +197,9 @@ def _carried_into(givens: Mapping, changes: tuple) -> tuple:
         return changes
 
 
-def _given_slips(node, si: float, given):
-    """``(code, mistaken SI value, sentence)`` for each way ``given`` is typically misread."""
+def _given_slips(node, si: float, given, fixed: bool):
+    """``(code, mistaken SI value, sentence)`` for each way ``given`` is typically misread
+    (``fixed``: a parameter, not a coordinate's value at the instant)."""
     name, unit, value = to_text(node), given.unit.strip(), given.value
     if unit in ("deg", "degree", "degrees", "°") and value != 0:
         yield ("given_deg_as_rad", value,
@@ -209,6 +211,13 @@ def _given_slips(node, si: float, given):
                f"Your value is what {name} = {90 - value:g} deg gives, the complement of "
                f"{given.text} (sin and cos exchanged): check which side of the angle each "
                "component lies on.")
+    if fixed and unit in ("deg", "degree", "degrees", "°") and value != 0:
+        # a fixed tilt or slope measured to the other side of its reference line (a
+        # coordinate's angle sets the configuration the figure shows: not misread so)
+        yield ("given_angle_sign", -si,
+               f"Your value is what {name} = {-value:g} deg gives, {given.text} measured to "
+               "the other side: check which way the angle turns from the line it is "
+               "measured from.")
     order = _rate_order(unit)
     if order and any(u in unit for u in ("rpm", "rev", "deg", "Hz")) \
             and value != 0 and not math.isclose(value, si):

@@ -23,7 +23,8 @@ MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "rho_without_slope",
     "component_for_speed", "mag_as_sum",
     "position_term", "zero_for_constant_rate", "driver_rate", "gyration_for_radius",
-    "driver_speed", "rate_relation_inverted")
+    "driver_speed", "rate_relation_inverted",
+    "omega_reversed", "angle_complement")
 """Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
 
 DYNAMICS_CODES = (
@@ -32,6 +33,8 @@ DYNAMICS_CODES = (
     "rotational_ke_omitted", "restitution_ignored", "other_shape_inertia",
     "spring_free_length_omitted", "surface_taken_fixed", "body_ke_omitted",
     "impulse_moment_omitted", "moment_arm_omitted", "reaction_as_static", "inertia_omitted",
+    "acceleration_reversed", "spring_work_reversed",
+    "force_component_reversed",
     "restitution_component", "damping_omitted", "force_omitted", "springs_in_series",
     "weight_for_mass", "strands_miscounted", "initial_speed_omitted",
     "value_at_start", "force_taken_constant", "efficiency_inverted", "spring_omitted",
@@ -44,5 +47,5 @@ DYNAMICS_CODES = (
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
-               "given_sign", "given_swap", "given_unit")
+               "given_sign", "given_swap", "given_unit", "given_angle_sign")
 """Family codes of mistaken givens (:mod:`mechgrade.solve.mutants`)."""

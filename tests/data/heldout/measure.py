@@ -58,8 +58,10 @@ LIBRARY = _module(HERE.parent / "mistakes" / "measure.py", "mistakes_measure")
 EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "constant_acceleration": ("force_taken_constant",),
     "initial_speed_forgotten": ("initial_speed_omitted", "value_at_start"),
-    "sign": ("sign", "given_sign", "direction"),
-    "sin_cos_swap": ("given_complement",),
+    "sign": ("sign", "given_sign", "direction", "acceleration_reversed",
+             "omega_reversed", "spring_work_reversed",
+             "force_component_reversed", "given_angle_sign"),
+    "sin_cos_swap": ("given_complement", "angle_complement"),
     "deg_as_rad": ("given_deg_as_rad", "deg_as_rad", "rad_as_deg"),
     "normal_as_weight": ("normal_from_weight", "reaction_as_weight"),
     "friction_as_mu_m_g": ("normal_from_weight",),

@@ -1032,7 +1032,7 @@ SYMBOLIC = {
         entry("en_equation_residual", "the block's momentum left out (it moves along i only)",
               "-m2*v0*cos(theta) - m2*v2n", "drop_body", known="none"),
         entry("et_equation_residual", "the ball's velocity before taken upward (+v0 j)",
-              "m2*v0*sin(theta) - (m1*v1p*cos(theta) + m2*v2t)", "given_sign", known="none")],
+              "m2*v0*sin(theta) - (m1*v1p*cos(theta) + m2*v2t)", "given_sign")],
 }
 
 
