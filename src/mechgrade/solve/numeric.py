@@ -18,7 +18,8 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear, solve_nonlinear_columns)
+                     place_givens, rows, solve_linear_columns,
+                     solve_nonlinear_columns)
 from .columns import call, quiet
 from .plan import KinematicsPlan
 from . import rules
@@ -160,13 +161,14 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         level = p.levels[order]
         grown = []
         if level.linear:
-            for i, at, s, nulls, free, picked in paths:
-                try:
-                    s1, null = solve_linear(problem, p, order, s, placed[i],
-                                            shifts[order - 1])
-                except MechgradeError as err:
-                    failed(i, at, err)
+            for k, solved in _linear(problem, p, order, [(path[2], placed[path[0]])
+                                                         for path in paths],
+                                     shifts[order - 1]).items():
+                i, at, _, nulls, free, picked = paths[k]
+                if isinstance(solved, MechgradeError):
+                    failed(i, at, solved)
                     continue
+                s1, null = solved
                 grown.append((i, at + (0,), s1, nulls + (null,), free, picked))
         else:
             roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
@@ -187,6 +189,33 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         if not isinstance(found, MechgradeError):
             found.append(Candidate(s, (nulls[0], nulls[1]), free, picked))
     return out
+
+
+def _linear(problem: Problem, p: KinematicsPlan, order: int, paths: list[tuple[State, Givens]],
+            shift: np.ndarray | None) -> dict[int, tuple[State, np.ndarray] | MechgradeError]:
+    """The linear rate level ``order`` at each ``(state, givens)`` of ``paths``: the solved
+    state and the nullspace basis of its unknown rates, or the error; those with the same
+    givens known and rows active solved together (:func:`~.levels.solve_linear_columns`),
+    with a ``shift`` (of one instant's nullspace) one by one."""
+    cols = list(p.index.rates(order))
+    together: dict[object, list[int]] = {}
+    for k, (_, g) in enumerate(paths):
+        key = k if shift is not None else (g.known.tobytes(), rows(p.levels[order], g)[0].tobytes())
+        together.setdefault(key, []).append(k)
+    out: dict[int, tuple[State, np.ndarray] | MechgradeError] = {}
+    for members in together.values():
+        X = np.stack([paths[k][0].values for k in members], axis=1)
+        gs = [paths[k][1] for k in members]
+        X[cols] = np.stack([np.where(g.known[cols], g.values[cols], 0.0) for g in gs], axis=1)
+        active, _ = rows(p.levels[order], gs[0])
+        targets = np.stack([rows(p.levels[order], g)[1] for g in gs], axis=1)
+        solved = solve_linear_columns(problem, p, order, X, gs[0].known, active, targets,
+                                      gs.__getitem__, shift)
+        for j, k in enumerate(members):
+            error = solved.errors[j]
+            out[k] = error if error is not None else (solved.state(j, paths[k][0], gs[j]),
+                                                      solved.null(j))
+    return dict(sorted(out.items()))
 
 
 def _instant(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
