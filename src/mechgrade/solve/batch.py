@@ -57,7 +57,7 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call, least_squares
 from .levels import Givens, State, place_givens, rows, solve_linear_columns, typical_sizes
-from .mutants import (ZERO_NAMES, constraint_mistakes, kept_mistakes, misread, model_mistake_at,
+from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
                       model_mistake_table, plausible_slips, slips_of, stacked)
 from .numeric import degenerate, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
@@ -604,9 +604,11 @@ class _Template:
             for k in np.flatnonzero(defined):
                 i, code, sentence = owner[k]
                 misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
-        for i in np.flatnonzero(ok):  # a constraint mistaken: its own model, solved apart
-            for oid, found_ in constraint_mistakes(problem, maps[i], set(group.numeric)).items():
-                misreadings[oid][i].extend(found_)
+        solved = np.flatnonzero(ok)  # a constraint mistaken: its own model, solved together
+        for i, found_ in zip(solved, constraint_mistakes_columns(
+                problem, [maps[i] for i in solved], set(group.numeric))):
+            for oid, mistakes in found_.items():
+                misreadings[oid][i].extend(mistakes)
         out = {}
         for oid in group.numeric:
             obj = problem.objective(oid)

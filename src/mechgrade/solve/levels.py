@@ -749,8 +749,9 @@ def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.
     nrows, n = len(level.labels), X.shape[1]
     on = np.flatnonzero(active)
     unknown = [j for j, i in enumerate(cols) if not known[i]]
+    solved = [cols[j] for j in unknown]
     X = X.copy()
-    X[[cols[j] for j in unknown]] = 0.0
+    X[solved] = 0.0
     errors = FirstErrors(n)
     with quiet():
         A = call(level.jacobian, X, nrows * len(cols)).reshape(nrows, len(cols), n)[on]
@@ -767,7 +768,7 @@ def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.
             Vt = np.broadcast_to(np.eye(k), (n, k, k))
         if shift is not None:  # one column's
             step[:, 0] += Vt[0, int(rank[0]):, :].T @ shift
-        X[[cols[j] for j in unknown]] = step
+        X[solved] = step
         if len(on):
             r = call(level.residual, X, nrows)[on] - targets[on]
             scale = np.abs(call(level.scale, X, nrows))[on]

@@ -197,18 +197,20 @@ def _linear(problem: Problem, p: KinematicsPlan, order: int, paths: list[tuple[S
     state and the nullspace basis of its unknown rates, or the error; those with the same
     givens known and rows active solved together (:func:`~.levels.solve_linear_columns`),
     with a ``shift`` (of one instant's nullspace) one by one."""
-    cols = list(p.index.rates(order))
+    placed = [rows(p.levels[order], g) for _, g in paths]  # (active, target) of each
     together: dict[object, list[int]] = {}
     for k, (_, g) in enumerate(paths):
-        key = k if shift is not None else (g.known.tobytes(), rows(p.levels[order], g)[0].tobytes())
+        key = k if shift is not None else (g.known.tobytes(), placed[k][0].tobytes())
         together.setdefault(key, []).append(k)
     out: dict[int, tuple[State, np.ndarray] | MechgradeError] = {}
     for members in together.values():
-        X = np.stack([paths[k][0].values for k in members], axis=1)
         gs = [paths[k][1] for k in members]
-        X[cols] = np.stack([np.where(g.known[cols], g.values[cols], 0.0) for g in gs], axis=1)
-        active, _ = rows(p.levels[order], gs[0])
-        targets = np.stack([rows(p.levels[order], g)[1] for g in gs], axis=1)
+        # the states hold their givens (every level writes only its unknowns)
+        X, targets = (paths[members[0]][0].values[:, None], placed[members[0]][1][:, None]) \
+            if len(members) == 1 else \
+            (np.stack([paths[k][0].values for k in members], axis=1),
+             np.stack([placed[k][1] for k in members], axis=1))
+        active = placed[members[0]][0]
         solved = solve_linear_columns(problem, p, order, X, gs[0].known, active, targets,
                                       gs.__getitem__, shift)
         for j, k in enumerate(members):
