@@ -726,15 +726,15 @@ def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.
     each column's ``active`` rows (each must equal its row of ``targets``), moved by
     ``null @ shift`` when ``shift`` is given (one column); a column whose equations are
     undefined, or that the givens over-determine (a row not :func:`~.rules.satisfied`),
-    gets its error (its givens ``placed(i)``, worded when read). The same stacked solve for one instant and for a class of variants.
+    gets its error (its givens ``placed(i)``, worded when read). The same stacked solve for
+    one instant and for a class of variants.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
-    >>> from mechgrade.solve.plan import kinematics_plan
-    >>> from mechgrade.solve.instant import instant_givens
+    >>> from mechgrade.solve import instant, plan
     >>> problem = load_problem(shipped_dir("problems") / "gear_between_two_racks.yaml")
-    >>> p = kinematics_plan(problem)
-    >>> g = place_givens(problem, p, instant_givens(problem, None, {}))
+    >>> p = plan.kinematics_plan(problem)
+    >>> g = place_givens(problem, p, instant.instant_givens(problem, None, {}))
     >>> X = np.stack([g.values, g.values], axis=1)
     >>> X[[p.index.position("xr'"), p.index.position("xl'")], 1] *= 2  # racks twice as fast
     >>> active, target = rows(p.levels[1], g)
