@@ -234,8 +234,8 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
-    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], free_values, start,
-                                       alone=True)
+    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g],
+                                       [(free_values, start)], alone=True)
     if isinstance(roots, MechgradeError):
         raise roots
     return roots
@@ -243,11 +243,11 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
 
 def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
                             states: Sequence[State], givens: Sequence[Givens],
-                            free_values: Mapping[int, float] | None = None,
-                            start: np.ndarray | None = None, *, alone: bool = False
+                            near: Sequence[Near] | None = None, *, alone: bool = False
                             ) -> list[Roots | MechgradeError]:
-    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``), each
-    column's roots or the error that function raises for it: the same starts, every start of
+    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``, and
+    ``near[i]`` its ``(free_values, start)`` when re-solved near a root), each column's roots
+    or the error that function raises for it: the same starts, every start of
     every column solved together by Levenberg-Marquardt steps on the stacked Jacobians
     (:func:`levenberg_marquardt`), the roots then chosen by the same rules. ``alone``: each
     start by scipy's least squares instead, as one instant is solved (its roots exactly as
@@ -270,7 +270,8 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     'SolveError'
     """
     out: list[Roots | MechgradeError | _Setup] = []
-    for state, g in zip(states, givens):
+    for state, g, (free_values, start) in zip(states, givens,
+                                              near or [(None, None)] * len(states)):
         try:
             out.append(_set_up(problem, p, order, state, g, free_values, start))
         except MechgradeError as err:
@@ -286,6 +287,11 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
         except MechgradeError as err:
             out[i] = err
     return out  # type: ignore[return-value]
+
+
+Near = tuple[Mapping[int, float] | None, np.ndarray | None]
+"""An instant re-solved near a root already chosen: the values of the unknowns its equations
+leave free, and the whole state its starts are replaced by (:func:`solve_nonlinear`)."""
 
 
 @dataclass(frozen=True)
@@ -719,15 +725,15 @@ class LinearColumns:
 
 def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.ndarray,
                          known: np.ndarray, active: np.ndarray, targets: np.ndarray,
-                         placed: Callable[[int], Givens], shift: np.ndarray | None = None
-                         ) -> LinearColumns:
+                         placed: Callable[[int], Givens],
+                         shifts: Sequence[np.ndarray | None] | None = None) -> LinearColumns:
     """The linear rate level ``order`` at every column of ``X`` (the states, the rates
     ``known`` placed, the others solved for): the minimum-norm least-squares solution of
     each column's ``active`` rows (each must equal its row of ``targets``), moved by
-    ``null @ shift`` when ``shift`` is given (one column); a column whose equations are
-    undefined, or that the givens over-determine (a row not :func:`~.rules.satisfied`),
-    gets its error (its givens ``placed(i)``, worded when read). The same stacked solve for
-    one instant and for a class of variants.
+    ``null @ shifts[i]`` where one is given (a probe of column ``i``'s freedoms); a column
+    whose equations are undefined, or that the givens over-determine (a row not
+    :func:`~.rules.satisfied`), gets its error (its givens ``placed(i)``, worded when read).
+    The same stacked solve for one instant and for a class of variants.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -766,8 +772,9 @@ def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.
         else:  # nothing fixes them: all free
             step, rank = np.zeros((k, n)), np.zeros(n, dtype=int)
             Vt = np.broadcast_to(np.eye(k), (n, k, k))
-        if shift is not None:  # one column's
-            step[:, 0] += Vt[0, int(rank[0]):, :].T @ shift
+        for i, shift in enumerate(shifts or ()):
+            if shift is not None and rank[i] < k:
+                step[:, i] += Vt[i, int(rank[i]):, :].T @ shift
         X[solved] = step
         if len(on):
             r = call(level.residual, X, nrows)[on] - targets[on]
