@@ -664,22 +664,6 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
     return at
 
 
-def _nullity(p: KinematicsPlan, level, values: np.ndarray, active: np.ndarray,
-             unknown: list) -> int:
-    """How many directions of the linear ``level``'s unknowns its equations leave free at the
-    reference's instant."""
-    if not unknown:
-        return 0
-    if not active.any():
-        return len(unknown)
-    columns = list(p.index.unknowns(level.order))
-    J = call(level.jacobian, values[:, None], len(level.labels) * len(columns)).reshape(
-        len(level.labels), len(columns), 1)[active][:, [columns.index(i) for i in unknown]]
-    _, rank, _ = least_squares(J, np.zeros((int(active.sum()), 1)),
-                                np.isfinite(J).all(axis=(0, 1)))
-    return len(unknown) - int(rank[0])
-
-
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
     """Where each given of a coordinate, rate, parameter or ``t`` sits in the state."""
     return {key: p.index.symbols.index(p.k.quantity(node))
@@ -780,8 +764,12 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             unknown.append(tuple(mine))
             active.append(on)
             target.append(goal)
-            nullity.append(_nullity(p, level, instant.state.values, on, mine)
-                           if level.linear and level.order > 0 else 0)
+            # how many directions of a linear rate level's unknowns its equations leave free
+            # at the reference's instant
+            nullity.append(len(mine) - int(solve_linear_columns(
+                kproblem, p, level.order, instant.state.values[:, None], g.known, on,
+                goal[:, None], (g,).__getitem__).rank[0]) if level.linear and level.order > 0
+                else 0)
             for j, key in enumerate(level.conditions):
                 conditions[key] = (level.order, level.constraint_rows + j)
         solved = tuple(i for i in p.index.config if not g.known[i] and i not in free)
