@@ -1,8 +1,10 @@
 """Many variants of one problem solved together: every student's givens at once.
 
 The lambdified functions of a problem's plan take arrays as well as numbers, so the levels of
-many instants are solved in one pass: each level by Newton steps from the reference's root (the
-solution with the spec's own givens), every step a stacked least-squares solve. That is the root
+many instants are solved in one pass: a linear rate level as a single solve solves it
+(:func:`~.levels.solve_linear_columns`, every column at once), any other by Newton steps from the
+reference's root (the solution with the spec's own givens), every step a stacked least-squares
+solve. That is the root
 a variant continues from the configuration the author checked, and for a level with one root
 (every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
 finds.
