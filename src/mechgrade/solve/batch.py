@@ -4,10 +4,9 @@ The lambdified functions of a problem's plan take arrays as well as numbers, so 
 many instants are solved in one pass: a linear rate level as a single solve solves it
 (:func:`~.levels.solve_linear_columns`, every column at once), any other by Newton steps from the
 reference's root (the solution with the spec's own givens), every step a stacked least-squares
-solve. That is the root
-a variant continues from the configuration the author checked, and for a level with one root
-(every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
-finds.
+solve. That is the root a variant continues from the configuration the author checked, and for
+a level with one root (every linear level, every level the spec picks a root of) it is the root
+:func:`~.entry.solve` finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
 rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
