@@ -7,11 +7,12 @@ from pathlib import Path
 
 import pytest
 
-from mechgrade.errors import SolveError
+from mechgrade.errors import InconsistentError, SolveError
 from mechgrade.solve import kinematics_plan
-from mechgrade.solve.instant import _givens
+from mechgrade.solve.instant import _givens, instant_givens
 from mechgrade.solve.levels import State, place_givens
-from mechgrade.solve.numeric import _check_givens_hold
+from mechgrade.solve.numeric import (Instant, _check_givens_hold, solve_numeric,
+                                     solve_numeric_columns)
 from mechgrade.spec import load_problem_text
 
 BASE = (Path(__file__).resolve().parents[1] / "data" / "spec" / "base.yaml").read_text()
@@ -123,3 +124,29 @@ def test_instants_solved_together_are_each_what_solve_numeric_gives_alone():
             assert np.allclose(instant.values[oid], alone.values[oid], rtol=1e-12, atol=0)
     assert [type(i).__name__ for i in together] == ["Instant", "SolveError", "Instant"]
     assert "the velocity equations were not solved: 'due_north'" in str(together[1])
+
+
+def test_instants_solved_together_are_refused_each_as_alone():
+    # the tip's speed along A.y given beside theta': the velocity level over-determined,
+    # held for theta' = 3 rad/s only
+    problem = load_problem_text(BASE.replace(
+        "  L: 2 m\n", "  L: 2 m\n  \"dot(vel(P, N), A.y)\": 6 m/s\n"), "p.yaml")
+    p = kinematics_plan(problem)
+    instants = [instant_givens(problem, {"theta'": w}, {}) for w in (3.0, 5.0)]
+    fine, off = solve_numeric_columns(problem, p, instants, {"speed"})
+    assert fine.values["speed"][0] == pytest.approx(6.0)
+    with pytest.raises(InconsistentError) as alone:
+        solve_numeric(problem, p, instants[1], {"speed"})
+    assert isinstance(off, InconsistentError) and str(off) == str(alone.value)
+    assert "the givens conflict at the velocity level" in str(off)
+
+
+def test_the_freedoms_of_instants_solved_together_are_probed_each_as_alone():
+    problem = load_problem_text(BASE.replace("  theta': 3 rad/s\n", ""), "p.yaml")
+    p = kinematics_plan(problem)
+    instants = [instant_givens(problem, {"theta": t}, {}) for t in (0.3, 0.6)]
+    together = solve_numeric_columns(problem, p, instants, {"speed"})
+    alone = [solve_numeric(problem, p, g, {"speed"}) for g in instants]
+    assert [str(i.errors["speed"]) for i in together if isinstance(i, Instant)] == \
+        [str(i.errors["speed"]) for i in alone]
+    assert "give a value for theta' (velocity level)" in str(alone[1].errors["speed"])

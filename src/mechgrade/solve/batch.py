@@ -1,11 +1,12 @@
 """Many variants of one problem solved together: every student's givens at once.
 
 The lambdified functions of a problem's plan take arrays as well as numbers, so the levels of
-many instants are solved in one pass: each level by Newton steps from the reference's root (the
-solution with the spec's own givens), every step a stacked least-squares solve. That is the root
-a variant continues from the configuration the author checked, and for a level with one root
-(every linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve`
-finds.
+many instants are solved in one pass: a linear rate level as a single solve solves it
+(:func:`~.levels.solve_linear_columns`, every column at once), any other by Newton steps from the
+reference's root (the solution with the spec's own givens), every step a stacked least-squares
+solve. That is the root a variant continues from the configuration the author checked, and for
+a level with one root (every linear level, every level the spec picks a root of) it is the root
+:func:`~.entry.solve` finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
 rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
@@ -56,8 +57,8 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call, least_squares
-from .levels import State, place_givens, rows, typical_sizes
-from .mutants import (ZERO_NAMES, constraint_mistakes, kept_mistakes, misread, model_mistake_at,
+from .levels import Givens, State, place_givens, rows, solve_linear_columns, typical_sizes
+from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
                       model_mistake_table, plausible_slips, slips_of, stacked)
 from .numeric import degenerate, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
@@ -357,8 +358,12 @@ class _Template:
                 level, row = group.conditions[key]
                 targets[level][row] = column
         unreached: dict[int, MechgradeError] = {}
+
+        def placed(i: int) -> Givens:  # column i's givens, for the error a stage words
+            return place_givens(self.kproblem, p, maps[i])
+
         if self.design is not None and self.design.find not in group.overrides:
-            X, ok = self._designed(group, X, targets, degenerate)
+            X, ok = self._designed(group, X, targets, placed, degenerate)
         elif isinstance(self.analysis, Integration):
             X, ok, never, stuck = self._motion().integrated(X)
             assert isinstance(self.analysis, Integration)
@@ -366,7 +371,7 @@ class _Template:
                                       event_never_happens(self.analysis))
             unreached.update(stuck)
         else:
-            X, ok = self._reached(group, X, targets, degenerate, unreached)
+            X, ok = self._reached(group, X, targets, placed, degenerate, unreached)
         X, before = self._at_event(X)
         read = read_objectives(self.problem, self.kinetics or p, X, group.numeric,
                                rules.REQUIRED if self.kinetics is None
@@ -380,11 +385,13 @@ class _Template:
             ok &= np.array([not m for m in missing], dtype=bool)
         return X, ok, values, declared, unreached, missing
 
-    def _reached(self, group: _Group, X: np.ndarray, targets: list, degenerate: bool,
+    def _reached(self, group: _Group, X: np.ndarray, targets: list,
+                 placed: Callable[[int], Givens], degenerate: bool,
                  raised: dict[int, MechgradeError] | None = None
                  ) -> tuple[np.ndarray, np.ndarray]:
-        """The instants (each column of ``X`` the givens placed, the state extended by the
-        reactions for a dynamics problem) and which passed the screens. Into ``raised``: the
+        """The instants (each column of ``X`` the givens placed, ``placed(i)`` column ``i``'s,
+        the state extended by the reactions for a dynamics problem) and which passed the
+        screens. Into ``raised``: the
         columns that passed every screen of the configuration but whose energy balance or
         momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
         them (it would reach the instant the same way and stop there)."""
@@ -394,9 +401,9 @@ class _Template:
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
             np.ones(n, dtype=bool)
-        nulls = self._levels(group, X, targets, 0, ok)
+        nulls = self._levels(group, X, targets, placed, 0, ok)
         if self.kinetics is None and (group.free or any(k for k in group.nullity)):
-            ok &= self._determined(group, X, targets, nulls, ok)
+            ok &= self._determined(group, X, targets, placed, nulls, ok)
         ok &= self._on_branch(group, X)
         if degenerate:
             ok &= ~self._degenerate(group, X)
@@ -415,7 +422,8 @@ class _Template:
         return solved.x, ok & fine
 
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
-                  degenerate: bool) -> tuple[np.ndarray, np.ndarray]:
+                  placed: Callable[[int], Givens], degenerate: bool
+                  ) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`_reached` with the design parameter solved at every column by Newton's
         method from the guess (:func:`~.batch_motion.newton`, as
         :class:`~.dynamics.DesignedInstant` solves one instant); a column it does not
@@ -430,7 +438,8 @@ class _Template:
             both = np.concatenate([cols, cols])  # the iterates, then the points beside them
             moved = X[:, both]
             moved[at] = values.ravel()
-            reached, fine = self._reached(group, moved, [t[:, both] for t in targets], False)
+            reached, fine = self._reached(group, moved, [t[:, both] for t in targets],
+                                          lambda j: placed(int(both[j])), False)
             if not last:
                 last.update(X=np.full((reached.shape[0], n), np.nan),
                             ok=np.zeros(n, dtype=bool), at=np.full(n, np.nan))
@@ -455,7 +464,8 @@ class _Template:
             moved = X[:, redo].copy()
             moved[at] = np.where(converged[redo], root[redo], guess)
             out[:, redo], ok[redo] = self._reached(group, moved,
-                                                   [t[:, redo] for t in targets], degenerate)
+                                                   [t[:, redo] for t in targets],
+                                                   lambda j: placed(int(redo[j])), degenerate)
         again = np.flatnonzero(kept)
         if degenerate and len(again) and not isinstance(self.analysis, Integration):
             ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
@@ -470,11 +480,12 @@ class _Template:
         half = X.shape[0] // 2
         return X[:half], X[half:]
 
-    def _levels(self, group: _Group, X: np.ndarray, targets, first: int,
-                ok: np.ndarray) -> dict[int, np.ndarray | None]:
+    def _levels(self, group: _Group, X: np.ndarray, targets, placed: Callable[[int], Givens],
+                first: int, ok: np.ndarray) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
-        linear rate levels (N x unknowns x nullity)."""
+        linear rate levels (N x unknowns x nullity). A linear rate level is solved as the
+        single solve solves it (:func:`~.levels.solve_linear_columns`)."""
         p = self.p
         nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
@@ -483,34 +494,30 @@ class _Template:
             active, target = group.active[order], targets[order]
             nrows = len(level.labels)
             columns = list(p.index.unknowns(order))
-            linear = level.linear and order > 0
-            # a linear rate level: the minimum-norm solution, as least squares gives it;
-            # any other: Newton steps for the unknowns it determines, the others kept
-            solve_for = unknown if linear else [i for i in unknown if i not in group.free]
-            if linear:
-                X[unknown] = 0.0
-            if linear and solve_for and not active.any():  # nothing fixes them: all free
-                nulls[order] = np.broadcast_to(np.eye(len(solve_for)),
-                                               (X.shape[1], len(solve_for), len(solve_for)))
+            if level.linear and order > 0:
+                solved = solve_linear_columns(self.kproblem, p, order, X, group.known, active,
+                                              target, placed)
+                X[:] = solved.X
+                ok &= solved.errors.ok & (solved.rank == len(unknown) - group.nullity[order])
+                nulls[order] = solved.Vt[:, solved.rank.max(initial=0):, :].transpose(
+                    0, 2, 1) if group.nullity[order] else None
                 continue
+            # Newton steps for the unknowns the level determines, the others kept
+            solve_for = [i for i in unknown if i not in group.free]
             # a column stops once its own step is that small: its root does not depend on
             # the other variants solved with it
             moving = np.ones(X.shape[1], dtype=bool)
-            for _ in range(1 if linear else NEWTON_STEPS if solve_for else 0):
+            for _ in range(NEWTON_STEPS if solve_for else 0):
                 place = [columns.index(i) for i in solve_for]
                 r = call(level.residual, X, nrows)[active] - target[active]
                 J = call(level.jacobian, X, nrows * len(columns)).reshape(
                     nrows, len(columns), X.shape[1])[active][:, place]
                 good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
                 ok &= good
-                step, rank, Vt = least_squares(J, r, good)
+                step, rank, _ = least_squares(J, r, good)
                 ok &= rank == len(solve_for) - group.nullity[order]
                 step[:, ~ok | ~moving] = 0.0
                 X[solve_for] += step
-                if linear:
-                    nulls[order] = Vt[:, rank.max(initial=0):, :].transpose(0, 2, 1) \
-                        if group.nullity[order] else None
-                    break
                 moving &= ~np.all(np.abs(step) <= 1e-12 * np.maximum(np.abs(X[solve_for]), 1.0),
                                   axis=0)
                 if not moving.any():
@@ -521,8 +528,8 @@ class _Template:
                 ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
         return nulls
 
-    def _determined(self, group: _Group, X: np.ndarray, targets, nulls,
-                    ok: np.ndarray) -> np.ndarray:
+    def _determined(self, group: _Group, X: np.ndarray, targets,
+                    placed: Callable[[int], Givens], nulls, ok: np.ndarray) -> np.ndarray:
         """Whether every numeric objective stays the same when what the givens leave free
         moves (each free unknown, each direction of a nullspace), as the scalar solver
         probes: where one changes, that solver names the objective not determined."""
@@ -543,7 +550,7 @@ class _Template:
             else:
                 moved[list(group.unknown[order])] += 0.73 * nulls[order][:, :, j].T
                 first = order + 1
-            self._levels(group, moved, targets, first, same)
+            self._levels(group, moved, targets, placed, first, same)
             for oid, value in before.items():
                 after = call(dict(p.objectives)[oid], moved, value.shape[0])
                 same &= rules.unchanged(value, after)
@@ -598,9 +605,11 @@ class _Template:
             for k in np.flatnonzero(defined):
                 i, code, sentence = owner[k]
                 misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
-        for i in np.flatnonzero(ok):  # a constraint mistaken: its own model, solved apart
-            for oid, found_ in constraint_mistakes(problem, maps[i], set(group.numeric)).items():
-                misreadings[oid][i].extend(found_)
+        solved = np.flatnonzero(ok)  # a constraint mistaken: its own model, solved together
+        for i, found_ in zip(solved, constraint_mistakes_columns(
+                problem, [maps[i] for i in solved], set(group.numeric))):
+            for oid, mistakes in found_.items():
+                misreadings[oid][i].extend(mistakes)
         out = {}
         for oid in group.numeric:
             obj = problem.objective(oid)
@@ -654,22 +663,6 @@ def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
         return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
                      else misread[i][j - len(rows_)] for j in np.flatnonzero(keep[i]))
     return at
-
-
-def _nullity(p: KinematicsPlan, level, values: np.ndarray, active: np.ndarray,
-             unknown: list) -> int:
-    """How many directions of the linear ``level``'s unknowns its equations leave free at the
-    reference's instant."""
-    if not unknown:
-        return 0
-    if not active.any():
-        return len(unknown)
-    columns = list(p.index.unknowns(level.order))
-    J = call(level.jacobian, values[:, None], len(level.labels) * len(columns)).reshape(
-        len(level.labels), len(columns), 1)[active][:, [columns.index(i) for i in unknown]]
-    _, rank, _ = least_squares(J, np.zeros((int(active.sum()), 1)),
-                                np.isfinite(J).all(axis=(0, 1)))
-    return len(unknown) - int(rank[0])
 
 
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
@@ -772,8 +765,12 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             unknown.append(tuple(mine))
             active.append(on)
             target.append(goal)
-            nullity.append(_nullity(p, level, instant.state.values, on, mine)
-                           if level.linear and level.order > 0 else 0)
+            # how many directions of a linear rate level's unknowns its equations leave free
+            # at the reference's instant
+            nullity.append(len(mine) - int(solve_linear_columns(
+                kproblem, p, level.order, instant.state.values[:, None], g.known, on,
+                goal[:, None], (g,).__getitem__).rank[0]) if level.linear and level.order > 0
+                else 0)
             for j, key in enumerate(level.conditions):
                 conditions[key] = (level.order, level.constraint_rows + j)
         solved = tuple(i for i in p.index.config if not g.known[i] and i not in free)

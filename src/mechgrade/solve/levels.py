@@ -13,7 +13,7 @@ leave free.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -25,7 +25,7 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
-from .columns import call, least_squares_solution, quiet
+from .columns import FirstErrors, call, least_squares, least_squares_solution, quiet
 from .plan import Level, KinematicsPlan, per_problem
 from .rules import first_off, on_branch, satisfied
 
@@ -234,8 +234,8 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
-    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], free_values, start,
-                                       alone=True)
+    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g],
+                                       [(free_values, start)], alone=True)
     if isinstance(roots, MechgradeError):
         raise roots
     return roots
@@ -243,11 +243,11 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
 
 def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
                             states: Sequence[State], givens: Sequence[Givens],
-                            free_values: Mapping[int, float] | None = None,
-                            start: np.ndarray | None = None, *, alone: bool = False
+                            near: Sequence[Near] | None = None, *, alone: bool = False
                             ) -> list[Roots | MechgradeError]:
-    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``), each
-    column's roots or the error that function raises for it: the same starts, every start of
+    """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``, and
+    ``near[i]`` its ``(free_values, start)`` when re-solved near a root), each column's roots
+    or the error that function raises for it: the same starts, every start of
     every column solved together by Levenberg-Marquardt steps on the stacked Jacobians
     (:func:`levenberg_marquardt`), the roots then chosen by the same rules. ``alone``: each
     start by scipy's least squares instead, as one instant is solved (its roots exactly as
@@ -270,7 +270,8 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     'SolveError'
     """
     out: list[Roots | MechgradeError | _Setup] = []
-    for state, g in zip(states, givens):
+    for state, g, (free_values, start) in zip(states, givens,
+                                              near or [(None, None)] * len(states)):
         try:
             out.append(_set_up(problem, p, order, state, g, free_values, start))
         except MechgradeError as err:
@@ -286,6 +287,11 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
         except MechgradeError as err:
             out[i] = err
     return out  # type: ignore[return-value]
+
+
+Near = tuple[Mapping[int, float] | None, np.ndarray | None]
+"""An instant re-solved near a root already chosen: the values of the unknowns its equations
+leave free, and the whole state its starts are replaced by (:func:`solve_nonlinear`)."""
 
 
 @dataclass(frozen=True)
@@ -690,56 +696,110 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
 # ---------------------------------------------------------------------------- linear
 
 
-def solve_linear(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Givens,
-                 shift: np.ndarray | None = None) -> tuple[State, np.ndarray]:
-    """A level linear in its rates (``order`` 1 or 2): the least-squares solution (moved by
-    ``null @ shift`` when given), and the nullspace basis of the unknown rates."""
+@dataclass(frozen=True)
+class LinearColumns:
+    """A linear rate level solved at every column (:func:`solve_linear_columns`): the states
+    ``X``, the rank of each column's Jacobian in the unknown rates, each one's right singular
+    vectors ``Vt`` (N x unknowns x unknowns: the rows after the rank span the nullspace),
+    each column's first error, and the positions of the level's ``rates``."""
+
+    X: np.ndarray
+    rank: np.ndarray
+    Vt: np.ndarray
+    errors: FirstErrors
+    rates: range
+
+    def null(self, i: int) -> np.ndarray:
+        """Column ``i``'s nullspace basis (unknowns x nullity)."""
+        return self.Vt[i, int(self.rank[i]):, :].T
+
+    def state(self, i: int, before: State, g: Givens) -> State:
+        """Column ``i``'s solved state (``before`` it, the level's givens ``g``): the unknown
+        rates with a part in its nullspace are free."""
+        null = self.null(i)
+        unknown = [j for j in self.rates if not g.known[j]]
+        free = set(before.free) | {j for j, row in zip(unknown, null)
+                                   if null.shape[1] and np.abs(row).max() > rules.OPEN}
+        return State(self.X[:, i].copy(), g.known, frozenset(free))
+
+
+def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.ndarray,
+                         known: np.ndarray, active: np.ndarray, targets: np.ndarray,
+                         placed: Callable[[int], Givens],
+                         shifts: Sequence[np.ndarray | None] | None = None) -> LinearColumns:
+    """The linear rate level ``order`` at every column of ``X`` (the states, the rates
+    ``known`` placed, the others solved for): the minimum-norm least-squares solution of
+    each column's ``active`` rows (each must equal its row of ``targets``), moved by
+    ``null @ shifts[i]`` where one is given (a probe of column ``i``'s freedoms); a column
+    whose equations are undefined, or that the givens over-determine (a row not
+    :func:`~.rules.satisfied`), gets its error (its givens ``placed(i)``, worded when read).
+    The same stacked solve for one instant and for a class of variants.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve import instant, plan
+    >>> problem = load_problem(shipped_dir("problems") / "gear_between_two_racks.yaml")
+    >>> p = plan.kinematics_plan(problem)
+    >>> g = place_givens(problem, p, instant.instant_givens(problem, None, {}))
+    >>> X = np.stack([g.values, g.values], axis=1)
+    >>> X[[p.index.position("xr'"), p.index.position("xl'")], 1] *= 2  # racks twice as fast
+    >>> active, target = rows(p.levels[1], g)
+    >>> solved = solve_linear_columns(problem, p, 1, X, g.known, active,
+    ...                               np.stack([target, target], axis=1), lambda _i: g)
+    >>> x_rate = solved.X[p.index.position("x'")]
+    >>> solved.errors.ok.tolist(), round(float(x_rate[1] / x_rate[0]), 12)
+    ([True, True], 2.0)
+    """
     level = p.levels[order]
     cols = list(p.index.rates(order))
-    n = len(cols)
-    active, target = rows(level, g)
-    x = state.values.copy()
-    x[cols] = np.where(g.known[cols], g.values[cols], 0.0)
-    with np.errstate(all="ignore"):
-        A = np.asarray(level.jacobian(*x), dtype=float).reshape(len(level.labels), n)
-        b = np.asarray(level.residual(*x), dtype=float).ravel() - target
-    A, b = A[active], b[active]
-    wheres = [w for w, on in zip(level.wheres, active) if on]
-    if not (np.isfinite(A).all() and np.isfinite(b).all()):
-        bad = next(j for j in range(len(b)) if not (np.isfinite(A[j]).all()
-                                                     and np.isfinite(b[j])))
-        raise SolveError(f"the {level.name} equations are undefined at this instant (a "
-                         f"division by zero in '{np.array(level.labels)[active][bad]}')",
-                         where=wheres[bad])
-    unknown = [j for j in range(n) if not g.known[cols[j]]]
-    rhs = -b  # the unknown rates are 0 in x, so b is the residual of the known part
-    null = np.zeros((len(unknown), 0))
-    free = set(state.free)
-    if unknown:
-        A_u = A[:, unknown]
-        if len(b):
-            from scipy import linalg
+    nrows, n = len(level.labels), X.shape[1]
+    on = np.flatnonzero(active)
+    unknown = [j for j, i in enumerate(cols) if not known[i]]
+    solved = [cols[j] for j in unknown]
+    X = X.copy()
+    X[solved] = 0.0
+    errors = FirstErrors(n)
+    with quiet():
+        A = call(level.jacobian, X, nrows * len(cols)).reshape(nrows, len(cols), n)[on]
+        b = call(level.residual, X, nrows)[on] - targets[on]
+        defined = np.isfinite(A).all(axis=1) & np.isfinite(b)  # rows x N
+        errors.add(~defined.all(axis=0), lambda i: _undefined(level, on, defined[:, i]))
+        good = errors.ok
+        k = len(unknown)
+        if len(on):
+            # the unknown rates are 0 in X, so b is the residual of the known part
+            step, rank, Vt = least_squares(A[:, unknown], b, good)
+        else:  # nothing fixes them: all free
+            step, rank = np.zeros((k, n)), np.zeros(n, dtype=int)
+            Vt = np.broadcast_to(np.eye(k), (n, k, k))
+        for i, shift in enumerate(shifts or ()):
+            if shift is not None and rank[i] < k:
+                step[:, i] += Vt[i, int(rank[i]):, :].T @ shift
+        X[solved] = step
+        if len(on):
+            r = call(level.residual, X, nrows)[on] - targets[on]
+            scale = np.abs(call(level.scale, X, nrows))[on]
+            held = satisfied(r, scale, problem.consistency)
+            errors.add(~held.all(axis=0), lambda i: _conflict(
+                problem, level, on, r[:, i], scale[:, i], placed(i)))
+    return LinearColumns(X, rank, Vt, errors, p.index.rates(order))
 
-            sol, *_ = linalg.lstsq(A_u, rhs, cond=rules.cutoff(*A_u.shape))
-            null = rules.null_space(A_u)
-        else:
-            sol = np.zeros(len(unknown))
-            null = np.eye(len(unknown))
-        if shift is not None and null.shape[1]:
-            sol = sol + null @ shift
-        for j, value in zip(unknown, sol):
-            x[cols[j]] = value
-        free |= {cols[unknown[i]] for i in range(len(unknown))
-                 if null.shape[1] and np.abs(null[i]).max() > rules.OPEN}
-    if len(b):
-        with np.errstate(all="ignore"):
-            r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
-            scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-        labels = np.array(level.labels)[active]
-        i = first_off(r, scale, problem.consistency)
-        if i is not None:
-            raise givens_conflict(level.name, labels[i], r[i], scale[i], g, wheres[i])
-    return State(x, g.known, frozenset(free)), null
+
+def _undefined(level: Level, on: np.ndarray, defined: np.ndarray) -> SolveError:
+    """The refusal of a linear level undefined at an instant (``defined``: each active row
+    ``on``)."""
+    row = on[np.flatnonzero(~defined)[0]]
+    return SolveError(f"the {level.name} equations are undefined at this instant (a "
+                      f"division by zero in '{level.labels[row]}')", where=level.wheres[row])
+
+
+def _conflict(problem: Problem, level: Level, on: np.ndarray, r: np.ndarray,
+              scale: np.ndarray, g: Givens) -> InconsistentError:
+    """:func:`givens_conflict` at the first active row (``on``) not satisfied."""
+    j = first_off(r, scale, problem.consistency)
+    assert j is not None, "a column not satisfied has a row that is not"
+    return givens_conflict(level.name, level.labels[on[j]], r[j], scale[j], g,
+                           level.wheres[on[j]])
 
 
 def constraint_rank(p: KinematicsPlan, state: State) -> int:

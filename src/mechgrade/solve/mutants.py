@@ -35,7 +35,7 @@ from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
 from .columns import call
 from .levels import State
-from .numeric import solve_numeric, solve_numeric_columns
+from .numeric import solve_numeric_columns
 from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants, per_problem
 from .result import GeneratedMistake, ObjectiveResult
 
@@ -144,18 +144,29 @@ def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
 def constraint_mistakes(problem: Problem, givens: Mapping,
                         wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
     """The objectives in ``wanted`` solved again with one constraint mistaken
-    (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once)."""
-    out: dict[str, list[GeneratedMistake]] = {}
+    (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once): the
+    :func:`constraint_mistakes_columns` of one instant."""
+    (out,) = constraint_mistakes_columns(problem, [givens], wanted)
+    return out
+
+
+def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wanted: set[str]
+                                ) -> list[dict[str, list[GeneratedMistake]]]:
+    """:func:`constraint_mistakes` at each instant of ``givens`` (a class of variants), each
+    mistaken model's instants solved together (:func:`~.numeric.solve_numeric_columns`; one
+    instant as :func:`~.numeric.solve_numeric` solves it)."""
+    out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
     # the same copies for every solve of the problem, so their plans are found by identity
     for m in per_problem(constraint_mutations, problem):
-        try:
-            instant = solve_numeric(m.problem, kinematics_plan(m.problem), givens, wanted)
-        except MechgradeError:  # a mistaken length no configuration reaches is no mistake
-            continue
-        for oid, values in instant.values.items():
-            if oid in wanted and np.all(np.isfinite(values)):
-                out.setdefault(oid, []).append(GeneratedMistake(
-                    m.code, m.sentence, _in_unit(values, problem.objective(oid))))
+        instants = solve_numeric_columns(m.problem, kinematics_plan(m.problem), givens, wanted,
+                                         alone=len(givens) == 1)
+        for found, instant in zip(out, instants):
+            if isinstance(instant, MechgradeError):
+                continue  # a mistaken length no configuration reaches is no mistake
+            for oid, values in instant.values.items():
+                if oid in wanted and np.all(np.isfinite(values)):
+                    found.setdefault(oid, []).append(GeneratedMistake(
+                        m.code, m.sentence, _in_unit(values, problem.objective(oid))))
     return out
 
 

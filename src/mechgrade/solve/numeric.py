@@ -17,8 +17,9 @@ import numpy as np
 from ..errors import AuthorWarning, Location, MechgradeError, SolveError, UnderdeterminedError
 from ..spec.model import Problem
 from ..units import from_si
-from .levels import (SAME_ROOT, Givens, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear, solve_nonlinear_columns)
+from .levels import (SAME_ROOT, Givens, Near, State, configurations, evaluate, missing_values,
+                     place_givens, rows, solve_linear_columns,
+                     solve_nonlinear_columns)
 from .columns import call, quiet
 from .plan import KinematicsPlan
 from . import rules
@@ -48,16 +49,6 @@ class Instant:
     values: Mapping[str, np.ndarray]
     errors: Mapping[str, MechgradeError]
     warnings: tuple[AuthorWarning, ...]
-
-
-def _branches(problem: Problem, p: KinematicsPlan, g: Givens, *, free_values=None,
-              shifts=(None, None), start=None) -> list[Candidate]:
-    """Every complete solution: each root of each non-linear level followed to the end."""
-    (found,) = _branches_columns(problem, p, {0: g}, free_values=free_values, shifts=shifts,
-                                 start=start, alone=True).values()
-    if isinstance(found, MechgradeError):
-        raise found
-    return found
 
 
 def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Instant:
@@ -109,13 +100,24 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
             placed[i] = _placed(problem, p, given, only)
         except MechgradeError as err:
             out[i] = err
+    chosen: dict[int, tuple[Candidate, dict]] = {}
     for i, found in _branches_columns(problem, p, placed, alone=alone).items():
         try:
             if isinstance(found, MechgradeError):
                 raise found
-            out[i] = _instant(problem, p, placed[i], givens[i], found, only)
+            chosen[i] = _chosen(problem, p, placed[i], givens[i], found, only)
         except MechgradeError as err:
             out[i] = err
+    probed = _undetermined(problem, p, {i: (placed[i], *c) for i, c in chosen.items()}, only,
+                           alone)
+    for i, (base, values) in chosen.items():
+        errors = probed[i]
+        if isinstance(errors, MechgradeError):  # a probe of its freedoms not solved
+            out[i] = errors
+            continue
+        solved = [j for j in p.index.config if not placed[i].known[j] and j not in base.free]
+        out[i] = Instant(base.state, values, errors,
+                         _degenerate(problem, p, base.state, solved))
     return out  # type: ignore[return-value]
 
 
@@ -129,17 +131,24 @@ def _placed(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]
     return g
 
 
-def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens], *,
-                      free_values=None, shifts=(None, None), start=None, alone: bool = False
+Probe = tuple[Mapping[int, float] | None, tuple[np.ndarray | None, np.ndarray | None],
+              np.ndarray | None]
+"""A probe of an instant's freedoms, re-solved near its root: the values of the unknowns the
+non-linear levels leave free, the shifts along the rate levels' nullspaces, and the state the
+starts are replaced by."""
+
+
+def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens],
+                      probes: Mapping[int, Probe] | None = None, *, alone: bool = False
                       ) -> dict[int, list[Candidate] | MechgradeError]:
     """Every complete solution of each instant in ``placed`` (each root of each non-linear
     level followed to the end), or the error met first following the roots in order; each
-    level solved for all of them at once. ``free_values``, ``shifts`` (of the rate levels'
-    nullspaces) and ``start``: a probe of one instant's freedoms, re-solved near its root."""
+    level solved for all of them at once. ``probes[i]``: instant ``i`` is a probe of its
+    freedoms."""
     errors: dict[int, tuple[tuple[int, ...], MechgradeError]] = {}
 
     def failed(i: int, at: tuple[int, ...], err: MechgradeError) -> None:
-        # the error met first following the roots depth first, as _branches meets it
+        # the error met first following the roots depth first (one root after another)
         if i not in errors or at < errors[i][0]:
             errors[i] = (at, err)
 
@@ -147,9 +156,13 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
     gs = [placed[i] for i in keys]
     # (instant, roots taken, state, nullspaces, unknowns left free, picked by the spec)
     paths: list[tuple[int, tuple[int, ...], State, tuple, tuple[int, ...], bool]] = []
+
+    def near(i: int) -> Near:
+        return (probes[i][0], probes[i][2]) if probes else (None, None)
+
     firsts = solve_nonlinear_columns(problem, p, 0, [State(g.values.copy(), g.known)
-                                                     for g in gs], gs, free_values, start,
-                                     alone=alone)
+                                                     for g in gs], gs,
+                                     [near(i) for i in keys], alone=alone)
     for i, first in zip(keys, firsts):
         if isinstance(first, MechgradeError):
             failed(i, (), first)
@@ -160,18 +173,20 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         level = p.levels[order]
         grown = []
         if level.linear:
-            for i, at, s, nulls, free, picked in paths:
-                try:
-                    s1, null = solve_linear(problem, p, order, s, placed[i],
-                                            shifts[order - 1])
-                except MechgradeError as err:
-                    failed(i, at, err)
+            for k, solved in _linear(problem, p, order, [(path[2], placed[path[0]])
+                                                         for path in paths],
+                                     [probes[path[0]][1][order - 1] if probes else None
+                                      for path in paths]).items():
+                i, at, _, nulls, free, picked = paths[k]
+                if isinstance(solved, MechgradeError):
+                    failed(i, at, solved)
                     continue
+                s1, null = solved
                 grown.append((i, at + (0,), s1, nulls + (null,), free, picked))
         else:
             roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
-                                            [placed[path[0]] for path in paths], free_values,
-                                            start, alone=alone)
+                                            [placed[path[0]] for path in paths],
+                                            [near(path[0]) for path in paths], alone=alone)
             for (i, at, _, nulls, free, picked), level_roots in zip(paths, roots):
                 if isinstance(level_roots, MechgradeError):
                     failed(i, at, level_roots)
@@ -189,11 +204,41 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
     return out
 
 
-def _instant(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
-             candidates: list[Candidate], only: set[str]) -> Instant:
-    """The instant from every complete solution of its levels (:func:`_branches`): refused
-    when they give different answers, else the first, its givens checked to hold, the
-    objectives its freedoms move refused, its degeneracies warned of."""
+def _linear(problem: Problem, p: KinematicsPlan, order: int, paths: list[tuple[State, Givens]],
+            shifts: list[np.ndarray | None]
+            ) -> dict[int, tuple[State, np.ndarray] | MechgradeError]:
+    """The linear rate level ``order`` at each ``(state, givens)`` of ``paths`` (moved by its
+    ``shifts`` along the nullspace, where a probe gives one): the solved state and the
+    nullspace basis of its unknown rates, or the error; those with the same givens known and
+    rows active solved together (:func:`~.levels.solve_linear_columns`)."""
+    placed = [rows(p.levels[order], g) for _, g in paths]  # (active, target) of each
+    together: dict[object, list[int]] = {}
+    for k, (_, g) in enumerate(paths):
+        key = (g.known.tobytes(), placed[k][0].tobytes())
+        together.setdefault(key, []).append(k)
+    out: dict[int, tuple[State, np.ndarray] | MechgradeError] = {}
+    for members in together.values():
+        gs = [paths[k][1] for k in members]
+        # the states hold their givens (every level writes only its unknowns)
+        X, targets = (paths[members[0]][0].values[:, None], placed[members[0]][1][:, None]) \
+            if len(members) == 1 else \
+            (np.stack([paths[k][0].values for k in members], axis=1),
+             np.stack([placed[k][1] for k in members], axis=1))
+        active = placed[members[0]][0]
+        solved = solve_linear_columns(problem, p, order, X, gs[0].known, active, targets,
+                                      gs.__getitem__, [shifts[k] for k in members])
+        for j, k in enumerate(members):
+            error = solved.errors[j]
+            out[k] = error if error is not None else (solved.state(j, paths[k][0], gs[j]),
+                                                      solved.null(j))
+    return dict(sorted(out.items()))
+
+
+def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
+            candidates: list[Candidate], only: set[str]) -> tuple[Candidate, dict]:
+    """The solution of the instant among every complete solution of its levels
+    (:func:`_branches_columns`) and its objectives' values: refused when they give different
+    answers, else the first, its givens checked to hold."""
     base = candidates[0]
     values = evaluate(p.objectives, base.state, only)
     distinct = [base]
@@ -205,9 +250,7 @@ def _instant(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
     if len(distinct) > 1:
         raise _ambiguous(problem, p, g, distinct)
     _check_givens_hold(problem, p, g, givens, base.state)
-    errors = _undetermined(problem, p, g, base, values, only)
-    solved = [i for i in p.index.config if not g.known[i] and i not in base.free]
-    return Instant(base.state, values, errors, _degenerate(problem, p, base.state, solved))
+    return base, values
 
 
 def _same_answers(p: KinematicsPlan, a: Candidate, b: Candidate, only) -> bool:
@@ -284,44 +327,60 @@ def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: M
                              where=level.wheres[i])
 
 
-def _undetermined(problem: Problem, p: KinematicsPlan, g: Givens, base: Candidate, values: Mapping,
-                  only: set[str]) -> dict[str, MechgradeError]:
-    """Probe each freedom the givens leave: an objective that changes depends on it."""
-    if not values:  # no objective asked for here (an instant of a dynamics solve): none can
-        return {}
+def _undetermined(problem: Problem, p: KinematicsPlan,
+                  instants: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str],
+                  alone: bool) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
+    """Probe each freedom the givens leave at each instant (``(givens, solution, objectives'
+    values)``): an objective that changes depends on it. The k-th probes of all the instants
+    are solved together (:func:`_branches_columns`); an instant whose probe is not solved
+    gets that error."""
+    out: dict[int, dict[str, MechgradeError] | MechgradeError] = {}
+    probes = {i: _probes(p, g, base) if values else [] for i, (g, base, values) in
+              instants.items()}  # no objective asked here (a dynamics instant): none moves
+    depends: dict[int, dict[str, list[str]]] = {i: {} for i in instants}
+    for k in range(max(map(len, probes.values()), default=0)):
+        at = {i: probe[k] for i, probe in probes.items() if k < len(probe) and i not in out}
+        trials = _branches_columns(problem, p, {i: instants[i][0] for i in at},
+                                   {i: probe for i, (probe, _) in at.items()}, alone=alone)
+        for i, found in trials.items():
+            if isinstance(found, MechgradeError):
+                out[i] = found
+                continue
+            changed = evaluate(p.objectives, found[0].state, only)
+            for oid, value in instants[i][2].items():
+                if not _close(value, changed[oid]):
+                    depends[i].setdefault(oid, []).append(at[i][1])
+    for i in instants:
+        out.setdefault(i, {oid: UnderdeterminedError(
+            f"objective '{oid}' is not determined by the givens: give a value for "
+            f"{' or '.join(missing)}", where=problem.objective(oid).where)
+            for oid, missing in depends[i].items()})
+    return out
+
+
+def _probes(p: KinematicsPlan, g: Givens, base: Candidate) -> list[tuple[Probe, str]]:
+    """Each probe of the freedoms of the instant ``base`` (:data:`Probe`), with the freedom
+    it moves as a message names it: each unknown the non-linear levels leave free, then
+    each direction of the velocity and acceleration levels' nullspaces."""
     state = base.state
-    depends: dict[str, list[str]] = {}
     keep = {i: state.values[i] for i in base.free}
     null_v, null_a = base.nulls
-    probes = [("free", i) for i in base.free]
-    probes += [("velocity", j) for j in range(null_v.shape[1] if null_v is not None else 0)]
-    probes += [("acceleration", j) for j in range(null_a.shape[1] if null_a is not None else 0)]
-    for kind, which in probes:
-        if kind == "free":
-            trial = _branches(problem, p, g, free_values={**keep, which: keep[which] + 0.37},
-                              start=state.values)[0].state
-            level = p.levels[p.index.level_of(which)].name
-            missing = f"{p.index.spelling(which)} ({level} level)"
-        else:
-            order = 1 if kind == "velocity" else 2
-            null = null_v if order == 1 else null_a
+    out: list[tuple[Probe, str]] = []
+    for i in base.free:
+        level = p.levels[p.index.level_of(i)].name
+        out.append((({**keep, i: keep[i] + 0.37}, (None, None), state.values),
+                    f"{p.index.spelling(i)} ({level} level)"))
+    for kind, order, null in (("velocity", 1, null_v), ("acceleration", 2, null_a)):
+        for j in range(null.shape[1] if null is not None else 0):
             assert null is not None  # a probe of this level exists only with its null space
             z = np.zeros(null.shape[1])
-            z[which] = 0.73
+            z[j] = 0.73
             zero_v = np.zeros(null_v.shape[1]) if null_v is not None else None
             shifts = (z, None) if order == 1 else (zero_v, z)
-            trial = _branches(problem, p, g, free_values=keep, shifts=shifts,
-                              start=state.values)[0].state
             unknown = [i for i in p.index.rates(order) if not g.known[i]]
-            missing = f"{_rate_names(p, unknown, null[:, which])} ({kind} level)"
-        changed = evaluate(p.objectives, trial, only)
-        for oid, value in values.items():
-            if not _close(value, changed[oid]):
-                depends.setdefault(oid, []).append(missing)
-    return {oid: UnderdeterminedError(
-        f"objective '{oid}' is not determined by the givens: give a value for "
-        f"{' or '.join(missing)}", where=problem.objective(oid).where)
-        for oid, missing in depends.items()}
+            out.append(((keep, shifts, state.values),
+                        f"{_rate_names(p, unknown, null[:, j])} ({kind} level)"))
+    return out
 
 
 def _degenerate(problem: Problem, p: KinematicsPlan, state: State,

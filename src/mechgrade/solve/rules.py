@@ -114,8 +114,7 @@ def inverted(values, rows: int, columns: int) -> np.ndarray:
     """
     s = np.asarray(values, dtype=float)
     kept = s > cutoff(rows, columns) * s.max(axis=-1, initial=0.0, keepdims=True)
-    with np.errstate(all="ignore"):
-        return np.where(kept, 1.0 / np.where(kept, s, 1.0), 0.0)
+    return np.divide(1.0, s, out=np.zeros(s.shape), where=kept)
 
 
 def significant(magnitudes) -> np.ndarray:
