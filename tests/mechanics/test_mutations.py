@@ -8,11 +8,12 @@ import pytest
 import sympy as sp
 
 from mechgrade.grade.compare import assess
-from mechgrade.expressions.syntax import parse
+from mechgrade.expressions.syntax import parse, to_text
 from mechgrade.mechanics.build import build
 from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius,
                                            _rate_relation_inverted, _Reading,
-                                           _start_term_left_out, mutations)
+                                           _start_term_left_out, _whole_speed_for_rate,
+                                           mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -225,6 +226,37 @@ def test_no_drivers_speed_for_an_angles_rate_the_drivers_own_or_its_own_point_lo
     # the airplane located two ways, x N.x + h N.y = r E.x: r' = x' is the whole speed for a
     # component (velocity_component_wrong), not a mechanism moving with its driver
     assert _family(_driver_speed, _problem("radar_tracks_airplane_polar"), "r_dot") == []
+
+
+def test_a_polar_rate_read_with_the_points_whole_speed_along_its_direction():
+    # x N.x + h N.y = r E.x with x' given: r' = v and theta' = v/r, in the answer's sense
+    radar = _problem("radar_tracks_airplane_polar")
+    (r_dot,) = _family(_whole_speed_for_rate, radar, "r_dot")
+    (theta_dot,) = _family(_whole_speed_for_rate, radar, "theta_dot")
+    assert (r_dot.code, str(r_dot.value)) == ("speed_for_component", "Abs(xd)*sign(rd)")
+    assert theta_dot.code == "speed_for_component"
+    assert theta_dot.sentence.startswith("Your value is θ̇ with the whole speed of the point "
+                                         "that line_of_sight places")
+    # solved: 200 m/s / 6000 m, the angle falling; and the pin of a crank in a turning slot,
+    # s' = r phi' and theta' = r phi'/s
+    for problem, objective, value in (("radar_tracks_airplane_polar", "theta_dot", -0.03333),
+                                      ("slotted_arm_crank_coriolis", "sliding_rate", 0.8),
+                                      ("slotted_arm_crank_coriolis", "arm_angular_velocity",
+                                       1.512)):
+        found = [m for m in solve(_problem(problem)).result(objective).generated_mistakes
+                 if m.code == "speed_for_component"]
+        assert [m.value for m in found] == [pytest.approx(value, rel=2e-4)]
+
+
+def test_no_whole_speed_reading_where_the_other_side_moves_by_an_unknown_or_for_a_length():
+    # B's slot: the rod's side moves with theta, whose rate is unknown (B's velocity is not
+    # known before s' is)
+    assert _family(_whole_speed_for_rate, _problem("rod_in_two_slots_ic"), "velocity_B") == []
+    radar = _problem("radar_tracks_airplane_polar")
+    assert _family(_whole_speed_for_rate, radar, "distance") == []
+    # the airplane's rate x' no longer given: its velocity is not known
+    unknown = replace(radar, givens=tuple(g for g in radar.givens if to_text(g.key.node) != "x'"))
+    assert _family(_whole_speed_for_rate, unknown, "r_dot") == []
 
 
 def test_an_angular_acceleration_from_a_cords_read_as_a_r_for_a_over_r():

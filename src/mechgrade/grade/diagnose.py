@@ -354,6 +354,7 @@ LABELS = {
     "rho_formula": "radius of curvature from |a|",
     "rho_without_slope": "radius of curvature without the slope term",
     "component_for_speed": "a velocity component for the speed",
+    "speed_for_component": "the whole speed for a velocity component",
     "given_deg_as_rad": "given angle's degrees used as radians",
     "given_complement": "given angle read as its complement (sin and cos exchanged)",
     "given_rate_unit": "given rate's unit not converted to rad/s",

@@ -26,6 +26,7 @@ from typing import Any, Iterator
 import sympy as sp
 from sympy.physics.vector import Vector
 
+from ..expressions.notation import textbook
 from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Prime, Unary, additive_terms,
                                   name_of, names, sum_of_terms, to_text, walk)
 from ..spec.dynamics import Explicit, dynamics_of
@@ -170,6 +171,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _driver_rate(r)
     _gyration_for_radius(r)
     _driver_speed(r)
+    _whole_speed_for_rate(r)
     _rate_relation_inverted(r)
     _start_term_left_out(r)
     return r.out
@@ -734,6 +736,49 @@ def _driver_speed(r: _Reading) -> None:
                  f"Your value is {to_text(node)} = {g.text.lstrip('-')} in size, the given "
                  f"rate of {key.id}, as if the mechanism moved as a whole: {to_text(node)} "
                  "follows from the constraints that connect them.")
+
+
+def _whole_speed_for_rate(r: _Reading) -> None:
+    """A coordinate's rate that a position constraint fixes where one side locates a point
+    by coordinates of given rates (its velocity known) and the other by this coordinate among
+    others (x N.x + h N.y = r E.x, a pin in a turning slot): the point's whole speed taken
+    along the direction this coordinate moves it (ṙ = v, θ̇ = v/r) where only the velocity's
+    component along it counts. In the answer's sense; only where the other coordinates move
+    the point at right angles to it, as polar ones do."""
+    node, model = r.node, r.model
+    problem = model.problem
+    coordinates = {c.name for c in problem.coordinates}
+    if not (isinstance(node, Prime) and node.order == 1 and node.id in coordinates):
+        return
+    rated = {g.key.node.id for g in problem.givens
+             if isinstance(g.key.node, Prime) and g.key.node.order == 1}
+    lang, N = model.language, model.inertial
+    symbols = {c: lang.value(Name(c)) for c in coordinates}
+    rate, name = textbook(to_text(node)), textbook(node.id)
+    for c in problem.constraints:
+        if c.level != "position":
+            continue
+        try:
+            sides = [lang.value(c.lhs.node), lang.value(c.rhs.node)]
+        except Exception:  # a side the kinematic language cannot read alone
+            continue
+        if not all(isinstance(side, Vector) for side in sides):
+            continue
+        moved = [{q for q, s in symbols.items() if not _zero(model, side.diff(s, N))}
+                 for side in sides]
+        for i in (0, 1):
+            side, own, known, by = sides[i], moved[i], sides[1 - i], moved[1 - i]
+            if node.id not in own or not by or not by <= rated - own:
+                continue
+            along = side.diff(symbols[node.id], N)
+            if any(not _zero(model, along & side.diff(symbols[q], N)) for q in own - {node.id}):
+                continue
+            r.append("speed_for_component", known.dt(N).magnitude() / along.magnitude()
+                     * sp.sign(model.plain(r.right)),
+                     f"Your value is {rate} with the whole speed of the point that "
+                     f"{c.name} places taken along the direction in which {name} moves it; "
+                     f"only the part of its velocity along that direction gives {rate}, the "
+                     "rest is across it.")
 
 
 def _same_point(problem: Problem, asked: str, driver: str) -> bool:

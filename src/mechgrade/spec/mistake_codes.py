@@ -23,7 +23,7 @@ MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "acc_for_acc_t", "acc_for_acc_n", "rho_formula", "rho_without_slope",
     "component_for_speed", "mag_as_sum",
     "position_term", "zero_for_constant_rate", "driver_rate", "gyration_for_radius",
-    "driver_speed", "rate_relation_inverted")
+    "driver_speed", "rate_relation_inverted", "speed_for_component")
 """Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
 
 DYNAMICS_CODES = (
