@@ -756,6 +756,12 @@ def test_a_reaction_across_a_turning_rod_is_read_without_the_coriolis_term():
     found = {(m.code, m.readings[0][0]) for m in dynamics_mutations(
         _problem("collar_slides_on_spinning_rod")) if "oriolis" in m.code}
     assert found == {("drop_coriolis", "side_force"), ("coriolis_half", "side_force")}
+    # said in plain words, the 2 forgotten said as such
+    half = next(m for m in dynamics_mutations(_problem("collar_slides_on_spinning_rod"))
+                if m.code == "coriolis_half")
+    assert half.sentence.startswith("Your value takes N_side from the balance of collar along "
+                                    "N_side's direction with the Coriolis term taken as "
+                                    "ω × v_rel, without its 2: sliding along frame E")
     # a pendulum turns with no frame sliding on it: no relative velocity, no Coriolis term
     assert not [m for m in dynamics_mutations(_problem("pendulum_pin_reaction"))
                 if "oriolis" in m.code]

@@ -324,6 +324,8 @@ def test_a_second_derivative_from_a_force_balance_is_read_without_the_centripeta
     values = {"rdd": 7.5, "r": 0.3, "thetad": 5.0}
     value = found[0].value.subs({s: values[s.name] for s in found[0].value.free_symbols})
     assert float(value) == pytest.approx(0.0)
+    # the rate typeset as the other messages print it, not in the answer syntax (r'')
+    assert found[0].sentence.startswith("Your value is r̈ from the force balance of collar")
     # a coordinate no force balance gives (a problem without bodies) has no such reading
     assert not any("force balance" in m.sentence
                    for m in mutations(_problem("radar_tracks_airplane_polar"), "r_ddot"))
@@ -338,6 +340,10 @@ def test_a_second_derivative_solved_from_a_constraint_without_a_coriolis_term_or
     thetadd, sd, thetad, s = (symbols[n] for n in ("thetadd", "sd", "thetad", "s"))
     assert sp.simplify(found["drop_coriolis"] - (thetadd + 2 * sd * thetad / s)) == 0
     assert sp.simplify(found["coriolis_half"] - (thetadd + sd * thetad / s)) == 0
+    assert all(m.sentence.startswith("Your value is θ̈ solved from the constraint pin_in_slot")
+               for m in mutations(_problem("slotted_arm_crank_coriolis"),
+                                  "arm_angular_acceleration")
+               if "solved from the constraint" in m.sentence)
     # a rate (not a second derivative) has no such reading
     assert not any("solved from the constraint" in m.sentence for m in mutations(
         _problem("slotted_arm_crank_coriolis"), "arm_angular_velocity"))

@@ -636,9 +636,11 @@ def reaction_without_coriolis(problem: Problem, model: Model) -> Iterator[Dynami
                 term = parse(f"2*cross(angvel({B}, {N}), dt({rel}, {B}))", functions=FUNCTIONS)
                 if identically_zero(model.plain(lang.value(term) & along)):
                     continue
-                for code, share, name in (("drop_coriolis", "", "the Coriolis term 2 ω × v_rel"),
-                                          ("coriolis_half", "/2",
-                                           "half the Coriolis term (ω × v_rel, the 2 forgotten)")):
+                for code, share, name in (
+                        ("drop_coriolis", "", "with the Coriolis term 2 ω × v_rel left out of "
+                         "its acceleration"),
+                        ("coriolis_half", "/2", "with the Coriolis term taken as ω × v_rel, "
+                         "without its 2")):
                     unit = f"unit({direction.text})"
                     replacement = parse(
                         f"force({r.name}) - ({_mass(body)})*dot({to_text(term)}{share}, {unit})"
@@ -646,10 +648,10 @@ def reaction_without_coriolis(problem: Problem, model: Model) -> Iterator[Dynami
                     readings = _force_readings(problem, r.name, act.at, replacement)
                     if readings:
                         yield DynamicsMutation(
-                            code, f"Your value is {r.name} from the balance of {body.name} "
-                            f"along it with {name} of frame {B} left out of the acceleration: "
-                            f"the sliding along {B} while it turns needs m × 2 ω × v_rel = "
-                            "{term} across.", BALANCES, readings=readings,
+                            code, f"Your value takes {r.name} from the balance of {body.name} "
+                            f"along {r.name}'s direction {name}: sliding along frame {B} "
+                            f"while {B} turns, {body.name} needs a force m × 2 ω × v_rel = "
+                            "{term} along it.", BALANCES, readings=readings,
                             term=_expr(f"({_mass(body)})*dot({to_text(term)}, {unit})"),
                             term_unit="N")
 

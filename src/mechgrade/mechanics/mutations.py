@@ -616,10 +616,10 @@ def _balance_without_term(r: _Reading) -> None:
                 # the balance fixes the acceleration along the motion: q'' (its relative
                 # part) takes up the term left out
                 r.append(code, r.right + share,
-                         f"Your value is {to_text(node)} from the force balance of "
-                         f"{body.name} with {name} left out of its acceleration: along "
-                         f"{B}'s direction of {node.id} the balance fixes the whole "
-                         "acceleration, that term included.")
+                         f"Your value is {textbook(to_text(node))} from the force balance "
+                         f"of {body.name} with {name} left out of its acceleration: along the "
+                         f"direction in which {textbook(node.id)} moves it in frame {B}, the "
+                         "balance fixes the whole acceleration, that term included.")
 
 
 def _turning_terms(omega, rel, v_rel, where: str) -> tuple[tuple[str, Any, str], ...]:
@@ -694,9 +694,9 @@ def _constraint_without_term(r: _Reading) -> None:
                 if identically_zero(sp.simplify(change)):
                     continue
                 r.append(code, r.right + change,
-                         f"Your value is {to_text(node)} solved from the constraint {name} "
-                         f"with {words} left out of the acceleration of its side described in "
-                         f"frame {B}: include it.")
+                         f"Your value is {textbook(to_text(node))} solved from the constraint "
+                         f"{name} with {words} left out of the acceleration of its side "
+                         f"described in frame {B}: include it.")
 
 
 def _other_given_rates(r: _Reading, coordinates: set[str]) -> Iterator[tuple[Prime, Prime, Any]]:
