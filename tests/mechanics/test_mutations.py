@@ -13,7 +13,7 @@ from mechgrade.mechanics.build import build
 from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius,
                                            _rate_relation_inverted, _Reading,
                                            _start_term_left_out, _whole_speed_for_rate,
-                                           mutations)
+                                           described_from, mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -51,6 +51,27 @@ def test_dropped_terms_are_named_with_their_value_in_the_objectives_unit():
     assert coriolis[0].value == pytest.approx((-106.0, -40.0, 0.0))
     assert "Coriolis term 2 ω × v_rel" in coriolis[0].message \
         and "= (40, 0) ft/s^2" in coriolis[0].message
+
+
+def test_a_point_on_a_circle_about_another_point_has_its_turning_terms_dropped():
+    # B on the ramp: R F.x from the centre Q, F with no origin of its own
+    problem = _problem("two_cars_relative_motion")
+    model = build(problem)
+    assert described_from(model, "B", "N") == [("F", "Q")]
+    result = solve(problem).result("relative_acceleration")
+    dropped = {m.code: m.value for m in result.generated_mistakes
+               if m.code in ("drop_centripetal", "drop_tangential")}
+    assert dropped["drop_centripetal"] == pytest.approx((1.732, -2.5, 0.0), abs=1e-3)
+    assert dropped["drop_tangential"] == pytest.approx((-1.125, -3.449, 0.0), abs=1e-3)
+
+
+def test_no_turning_frame_about_a_point_for_one_on_a_fixed_line_or_in_a_frame_with_an_origin():
+    model = build(_problem("two_cars_relative_motion"))
+    assert described_from(model, "A", "N") == []  # y N.y: along the fixed frame
+    assert described_from(model, "B", "F") == []  # at rest in its own frame
+    # the tube's frame has its own origin: moving_frames composes it already
+    tube = build(_problem("ruina_10_4_10_7_rotating_tube_accel"))
+    assert all(described_from(tube, p.name, "N") == [] for p in tube.problem.points)
 
 
 def test_components_along_the_polar_frame_are_the_other_basis_mistake():

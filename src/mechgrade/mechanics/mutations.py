@@ -157,7 +157,8 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             continue
         in_frame = name_of(call.args[1])
         _relative_motion(r, call, point, in_frame)
-        for B, origin in moving_frames(model, point.id, in_frame):
+        for B, origin in [*moving_frames(model, point.id, in_frame),
+                          *described_from(model, point.id, in_frame)]:
             _composition(r, call, point, in_frame, B, origin)
         _other_points(r, call, point, in_frame)
     _other_positions(r)
@@ -930,6 +931,25 @@ def moving_frames(model: Model, point: str, frame: str):
                 model, model.language.point_velocity(Name(spec.origin), frame)):
             continue
         yield spec.name, spec.origin
+
+
+def described_from(model: Model, point: str, frame: str) -> list[tuple[str, str]]:
+    """``(G, Q)`` where ``point`` is located from the point ``Q`` along the unit vectors of
+    one frame ``G`` that has no origin of its own and turns in ``frame`` (a car on a ramp,
+    R F.x from the ramp's centre): its motion is composed in ``G`` about ``Q`` as in a
+    frame with that origin (:func:`moving_frames`)."""
+    spec = next((p for p in model.problem.points if p.name == point), None)
+    if spec is None or spec.origin is None or spec.position is None:
+        return []
+    axes = {n.base for n in walk(spec.position.node) if isinstance(n, Attr)}
+    frames = {f.name: f for f in model.problem.frames}
+    if len(axes) != 1 or next(iter(axes)) not in frames:
+        return []
+    G = next(iter(axes))
+    if G == frame or frames[G].origin is not None \
+            or _zero(model, model.frames[G].ang_vel_in(model.frames[frame])):
+        return []
+    return [(G, spec.origin)]
 
 
 def _calls(node: Node, names: tuple[str, ...]) -> Iterator[Call]:
