@@ -13,7 +13,8 @@ from mechgrade.mechanics.build import build
 from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius,
                                            _rate_relation_inverted, _Reading,
                                            _start_term_left_out, _whole_speed_for_rate,
-                                           described_from, mutations)
+                                           _distance_rate_as_speed, described_from,
+                                           mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -278,6 +279,26 @@ def test_no_whole_speed_reading_where_the_other_side_moves_by_an_unknown_or_for_
     # the airplane's rate x' no longer given: its velocity is not known
     unknown = replace(radar, givens=tuple(g for g in radar.givens if to_text(g.key.node) != "x'"))
     assert _family(_whole_speed_for_rate, unknown, "r_dot") == []
+
+
+def test_a_ropes_slant_rate_read_as_the_whole_speed_of_its_moving_end():
+    # sqrt(x^2 + h^2) + 2 (h - y) = L: the slant's rate taken as x' gives y' = x'/2 = 1 m/s
+    truck = _problem("truck_hoists_crate_pulley")
+    (found,) = _family(_distance_rate_as_speed, truck, "velocity")
+    assert found.code == "speed_for_component"
+    assert found.sentence.startswith("Your value is ẏ with the rate of the distance sqrt(x²+h²)")
+    values = {"x": 4.0, "h": 3.0, "xd": 2.0, "yd": 0.8}
+    assert float(found.value.subs({s: values[s.name] for s in found.value.free_symbols})) \
+        == pytest.approx(1.0)
+
+
+def test_no_slant_reading_for_a_position_a_second_rate_or_an_end_of_unknown_speed():
+    truck = _problem("truck_hoists_crate_pulley")
+    assert _family(_distance_rate_as_speed, truck, "height") == []
+    assert _family(_distance_rate_as_speed, truck, "acceleration") == []
+    unknown = replace(truck, givens=tuple(g for g in truck.givens
+                                          if to_text(g.key.node) not in ("x'", "x''")))
+    assert _family(_distance_rate_as_speed, unknown, "velocity") == []
 
 
 def test_an_angular_acceleration_from_a_cords_read_as_a_r_for_a_over_r():

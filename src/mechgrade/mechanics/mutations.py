@@ -24,11 +24,11 @@ from functools import lru_cache
 from typing import Any, Iterator
 
 import sympy as sp
-from sympy.physics.vector import Vector
+from sympy.physics.vector import Vector, dynamicsymbols
 
 from ..expressions.notation import textbook
-from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Prime, Unary, additive_terms,
-                                  name_of, names, sum_of_terms, to_text, walk)
+from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Num, Prime, Unary,
+                                  additive_terms, name_of, names, sum_of_terms, to_text, walk)
 from ..spec.dynamics import Explicit, dynamics_of
 from ..spec.model import Expr, Objective, Problem
 from ..units import same_dimension
@@ -173,6 +173,7 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _gyration_for_radius(r)
     _driver_speed(r)
     _whole_speed_for_rate(r)
+    _distance_rate_as_speed(r)
     _rate_relation_inverted(r)
     _start_term_left_out(r)
     return r.out
@@ -780,6 +781,60 @@ def _whole_speed_for_rate(r: _Reading) -> None:
                      f"{c.name} places taken along the direction in which {name} moves it; "
                      f"only the part of its velocity along that direction gives {rate}, the "
                      "rest is across it.")
+
+
+def _distance_rate_as_speed(r: _Reading) -> None:
+    """A rate that scalar position constraints fix where one writes a distance as
+    sqrt(u² + v² ...) of coordinates of given rates (a rope's slant sqrt(x² + h²) from a pulley
+    to a truck's hitch): the distance's rate taken as the whole speed of its moving end,
+    sqrt(u̇² + v̇² ...), in its own sense, as if the end moved along the distance (the slant
+    ignored). ``J Δ = b`` gives each unknown rate's change, ``J`` the constraints' partial
+    derivatives in the unknown coordinates."""
+    node, model = r.node, r.model
+    problem = model.problem
+    given = {to_text(g.key.node) for g in problem.givens}
+    unknown = [c.name for c in problem.coordinates if f"{c.name}'" not in given]
+    if not (isinstance(node, Prime) and node.order == 1 and node.id in unknown):
+        return
+    lang = model.language
+    symbols = {c.name: lang.value(Name(c.name)) for c in problem.coordinates}
+    t = dynamicsymbols._t
+    rows, changes = [], []
+    for c in (c for c in problem.constraints if c.level == "position"):
+        try:
+            f = lang.value(c.lhs.node) - lang.value(c.rhs.node)
+        except Exception:  # a vector constraint, or a side the language cannot read alone
+            return
+        if isinstance(f, Vector):
+            return
+        rows.append([model.plain(sp.diff(f, symbols[q])) for q in unknown])
+        for call in (n for side in (c.lhs, c.rhs) for n in _calls(side.node, ("sqrt",))):
+            legs = [lang.value(leg.left) for _, leg in additive_terms(call.args[0])
+                    if isinstance(leg, Bin) and leg.op in ("**", "^") and leg.right == Num("2")]
+            moved = names(call) & set(symbols)
+            if len(legs) != len(additive_terms(call.args[0])) or not moved \
+                    or any(f"{q}'" not in given for q in moved):
+                continue
+            distance, held = lang.value(call), sp.Dummy()
+            rate = sp.diff(distance, t)
+            speed = sp.sqrt(sum(sp.diff(leg, t) ** 2 for leg in legs))
+            weight = sp.diff(f.subs(distance, held), held)
+            changes.append((len(rows) - 1, model.plain(weight * (sp.sign(rate) * speed - rate)),
+                            to_text(call)))
+    if len(rows) != len(unknown):
+        return
+    J, rate = sp.Matrix(rows), textbook(to_text(node))
+    for at, change, text in changes:
+        b = sp.zeros(len(rows), 1)
+        b[at] = -change
+        try:
+            delta = J.LUsolve(b)[unknown.index(node.id)]
+        except (ValueError, ZeroDivisionError):  # a singular J: no unique reading
+            return
+        r.append("speed_for_component", r.right + delta,
+                 f"Your value is {rate} with the rate of the distance {textbook(text)} taken "
+                 "as the whole speed of its moving end, as if the end moved along that line; "
+                 "only the part of the end's velocity along the line changes the distance.")
 
 
 def _same_point(problem: Problem, asked: str, driver: str) -> bool:
