@@ -17,6 +17,7 @@ from mechgrade.mechanics.dynamics_mutations import FAMILIES, dynamics_mutations,
 from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES, MODEL_CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
+from mechgrade.spec import load_problem
 from mechgrade.spec.language import FUNCTIONS
 from mechgrade.spec.model import Tolerance
 from mechgrade.expressions.syntax import parse
@@ -244,6 +245,24 @@ def test_a_turning_body_taken_as_a_particle_at_its_mass_centre():
     particle = [m for m in _generated("pendulum_pin_reaction", "alpha", "other_shape_inertia")
                 if "as a particle" in m.message]
     assert [m.value for m in particle] == [pytest.approx(right * 4 / 3)]
+
+
+def test_a_rotor_turning_in_space_has_its_disk_read_as_a_ring():
+    # a gyroscope's disk (m r^2/2 about its axle) as a hoop, m r^2: the precession rate halved
+    right = _solution("gyroscope_steady_precession").result("precession_rate").value
+    (ring,) = _generated("gyroscope_steady_precession", "precession_rate", "other_shape_inertia")
+    assert ring.value == pytest.approx(right / 2, rel=1e-6)
+    assert "thin ring (m r²) for a uniform disk of radius r" in ring.message
+
+
+def test_no_other_shape_for_a_disk_that_does_not_turn(tmp_path):
+    # the gyroscope's rotor held in a frame that keeps its orientation: no inertia read
+    text = (shipped_dir("problems") / "gyroscope_steady_precession.yaml").read_text("utf-8")
+    text = text.replace("origin: G}", "origin: G}\n  F: {parent: N, rotation: {axis: z, "
+                        "angle: 0}}").replace("frame: D,", "frame: F,")
+    (tmp_path / "held.yaml").write_text(text, encoding="utf-8")
+    assert "other_shape_inertia" not in {m.code for m in dynamics_mutations(
+        load_problem(tmp_path / "held.yaml"))}
 
 
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():

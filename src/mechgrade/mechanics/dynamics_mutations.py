@@ -1113,10 +1113,12 @@ _SHAPES = {kind: (SHAPES[kind].name, SHAPES[kind].axial or "") for kind in _CONF
 
 def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A rigid body's moment of inertia taken from another shape's formula: a solid sphere's
-    from a shell's or a disk's, a disk's from a ring's (every part of that shape and size)."""
+    from a shell's or a disk's, a disk's from a ring's (every part of that shape and size),
+    whether the body turns in a plane or in space (a gyroscope's rotor)."""
     d = dynamics_of(problem)
     for body in d.bodies:
-        if not _rotating(model, body):
+        if body.frame is None \
+                or _zero(model, model.frames[body.frame].ang_vel_in(model.inertial)):
             continue
         kinds = dict.fromkeys((type(p.shape), _radius(p.shape)) for p in body.parts
                               if type(p.shape) in _SHAPES)
