@@ -70,9 +70,10 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
     ("g", "factor of g",
      "Your answer is g times too large: weight used for mass, or g applied twice?",
      (G_SI, G_FT)),
-    # a force g times too small is the usual dynamics slip: m written for the weight m g
-    ("g", "factor of g", "Your answer is g times too small: mass used for weight (g left out)?",
-     (1 / G_SI, 1 / G_FT)),
+    # g times too small: m written for the weight m g (a force), or a force divided by the
+    # weight m g for the mass (an acceleration)
+    ("g", "factor of g", "Your answer is g times too small: mass used for weight (g left out), "
+     "or weight used for mass?", (1 / G_SI, 1 / G_FT)),
     ("cm_m", "unit slip (cm vs m)", "Your answer is off by a factor of 100: cm mixed with m?",
      (100.0, 0.01)),
     ("mm_m", "unit slip (mm vs m)", "Your answer is off by a factor of 1000: mm mixed with m?",
