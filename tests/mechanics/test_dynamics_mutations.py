@@ -265,6 +265,18 @@ def test_no_other_shape_for_a_disk_that_does_not_turn(tmp_path):
         load_problem(tmp_path / "held.yaml"))}
 
 
+def test_kinetic_energies_without_their_half_in_a_work_energy_balance():
+    # m v^2 + I w^2 = W h: the speed 1/sqrt(2) of the right one, the drum's rate alike
+    right = _solution("drum_block_energy_us").result("block_speed").value
+    (half,) = _generated("drum_block_energy_us", "block_speed", "ke_half_omitted")
+    assert half.value == pytest.approx(right / 2 ** 0.5, rel=1e-6)
+    assert half.message.startswith("Your value writes the kinetic energies as m v² (and I ω²)")
+    assert _generated("drum_block_energy_us", "drum_angular_velocity", "ke_half_omitted")
+    # the cord's tension is no rate an energy balance gives; a pendulum's balance is no energy
+    assert not _generated("drum_block_energy_us", "tension", "ke_half_omitted")
+    assert "ke_half_omitted" not in _codes("pendulum_pin_reaction")
+
+
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
     # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
     (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")

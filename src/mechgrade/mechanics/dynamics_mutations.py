@@ -742,10 +742,6 @@ def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[Dynamic
         parts = tuple(spin for p in body.parts if (spin := _spin_only(p)) is not None)
         if len(parts) != len(body.parts):
             continue
-        weights = tuple(Force(f"weight~{b.name}~{i}", b.name, p.at,
-                              _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
-                              kind=LoadKind.WEIGHT)
-                        for b in d.bodies for i, p in enumerate(b.parts))
         bodies = tuple(replace(b, parts=parts) if b.name == body.name else b
                        for b in d.bodies)
         translational = f"dot(momentum({body.name}, {N}), vel({body.centre}, {N}))/2"
@@ -754,10 +750,50 @@ def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[Dynamic
             f"its spin alone, ½ I ω²: it also moves along with its mass centre "
             f"{body.centre}, and ½ m v² of each of its parts (½ m v_G² = {{term}} of the "
             f"whole) belongs in its kinetic energy.", BODIES,
-            problem=_mistaken(problem, replace(d, bodies=bodies, gravity=None,
-                                               forces=d.forces + weights),
+            problem=_mistaken(problem, _weights_kept(d, bodies),
                               without=("ke", "momentum", "angmom")),
             term=_expr(translational), term_unit="J")
+
+
+def _weights_kept(d: Dynamics, bodies: tuple[Body, ...]) -> Dynamics:
+    """``d`` with ``bodies`` (their masses or inertias mistaken) and the weights of its own
+    bodies' parts kept as forces at the parts: a mistake in the kinetic energy only."""
+    assert d.gravity is not None
+    weights = tuple(Force(f"weight~{b.name}~{i}", b.name, p.at,
+                          _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
+                          kind=LoadKind.WEIGHT)
+                    for b in d.bodies for i, p in enumerate(b.parts))
+    return replace(d, bodies=bodies, gravity=None, forces=d.forces + weights)
+
+
+def ke_half_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """In a work-energy balance, every kinetic energy written m v² (and I ω²) without its ½:
+    the same as every mass and inertia doubled with the weights kept. Read for the speeds and
+    rates the balance gives (not the forces, nor the times)."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, WorkEnergy) or d.gravity is None:
+        return
+    bodies = tuple(replace(b, parts=tuple(replace(
+        p, mass=_expr(f"2*({p.mass.text})"), shape=Explicit(tuple(
+            (key, _expr(f"2*({e.text})")) for key, e in p.shape.entries))
+        if isinstance(p.shape, Explicit) else p.shape) for p in b.parts)) for b in d.bodies)
+    mistaken = _mistaken(problem, _weights_kept(d, bodies), without=("force",))
+    objectives = tuple(o for o in mistaken.objectives if _rate_or_speed(o.find.node))
+    if objectives:
+        yield DynamicsMutation(
+            "ke_half_omitted", "Your value writes the kinetic energies as m v² (and I ω²), "
+            "without their ½: a kinetic energy is ½ m v² + ½ I ω².", BODIES,
+            problem=replace(mistaken, objectives=objectives))
+
+
+def _rate_or_speed(node: Node) -> bool:
+    """Whether an objective asks for a speed or a first rate (|φ̇|, ẏ) and nothing of a
+    higher order: what an energy balance gives."""
+    nodes = list(walk(node))
+    rates = [n.order for n in nodes if isinstance(n, Prime)]
+    calls = {n.func for n in nodes if isinstance(n, Call)}
+    return (1 in rates or "speed" in calls) and max(rates, default=1) == 1 \
+        and calls <= {"speed", "abs", "mag", "vel"}
 
 
 def _spin_only(part: Part) -> Part | None:
@@ -1880,7 +1916,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     static_friction_as_mu_m_g, spring_omitted, load_at_other_point, contact_taken_smooth,
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
-    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant)
+    initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
+    ke_half_omitted)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

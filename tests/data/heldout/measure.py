@@ -105,7 +105,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
     "speed_conserved": ("value_at_start",),
-    "half_factor": ("factor_2", "spring_energy_half_omitted"),
+    "half_factor": ("factor_2", "spring_energy_half_omitted", "ke_half_omitted"),
     "rolling_assumed": ("rolling_assumed",),
     "damping_ignored": ("damping_omitted",),
     "translation_ke_dropped": ("translational_ke_omitted",),
