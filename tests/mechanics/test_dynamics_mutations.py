@@ -277,6 +277,20 @@ def test_kinetic_energies_without_their_half_in_a_work_energy_balance():
     assert "ke_half_omitted" not in _codes("pendulum_pin_reaction")
 
 
+def test_a_motion_at_constant_power_read_as_uniformly_accelerated_between_its_ends():
+    # 10 to 25 m/s in 5.25 s: the mean 17.5 m/s times 5.25 s, and 97.5 m over 17.5 m/s
+    (distance,) = _generated("car_constant_power_acceleration", "distance", "mean_of_end_rates")
+    (time,) = _generated("car_constant_power_acceleration", "time", "mean_of_end_rates")
+    assert (distance.value, time.value) == (pytest.approx(91.875), pytest.approx(97.5 / 17.5))
+    assert distance.message.startswith("Your value takes the motion as uniformly accelerated")
+
+
+def test_no_mean_of_end_rates_without_a_stated_starting_rate_or_along_two_coordinates():
+    # the launcher starts from a deflection alone; the satellite moves along r and theta
+    assert "mean_of_end_rates" not in _codes("spring_launcher_a_of_x")
+    assert "mean_of_end_rates" not in _codes("satellite_apogee_speed")
+
+
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
     # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
     (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")

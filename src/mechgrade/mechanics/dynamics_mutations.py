@@ -1803,6 +1803,33 @@ def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMut
         problem=replace(mistaken, objectives=reached))
 
 
+def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion along one coordinate integrated from a start whose rate is stated, read as
+    uniformly accelerated between its ends: the distance as the mean of the start and end
+    rates times the time, the time as the distance over that mean (a car at constant power,
+    a boat slowed by drag). The right end rate and time, the mistake in between."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration) or len(problem.coordinates) != 1:
+        return
+    q = problem.coordinates[0].name
+    at_start = {to_text(s.key.node): s.value.text if s.value is not None else repr(s.si)
+                for s in d.analysis.start}
+    if q not in at_start or f"{q}'" not in at_start:
+        return
+    x0, v0 = at_start[q], at_start[f"{q}'"]
+    mean = f"(({v0}) + {q}')/2"
+    instead = {q: f"({x0}) + {mean}*t", "t": f"({q} - ({x0}))/({mean})"}
+    readings = tuple((o.id, _expr(instead[to_text(o.find.node)])) for o in problem.objectives
+                     if isinstance(o.find.node, Name) and o.find.node.id in instead)
+    if readings:
+        yield DynamicsMutation(
+            "mean_of_end_rates", "Your value takes the motion as uniformly accelerated, with "
+            "the mean of the starting and final speeds: the acceleration changes along the "
+            "motion, so the distance is the integral of the speed over the time, not the mean "
+            "speed times the time.", OBJECTIVES,
+            readings=readings)
+
+
 def spring_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated from a start, with each spring's force taken constant at its value
     at the start (k δ over the whole stroke: the acceleration taken constant). Read for where
@@ -1917,7 +1944,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    ke_half_omitted)
+    ke_half_omitted, mean_of_end_rates)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -56,7 +56,7 @@ LIBRARY = _module(HERE.parent / "mistakes" / "measure.py", "mistakes_measure")
 
 # which of mechgrade's codes name each kind of typical.py (an empty set: no family names it)
 EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
-    "constant_acceleration": ("force_taken_constant",),
+    "constant_acceleration": ("force_taken_constant", "mean_of_end_rates"),
     "initial_speed_forgotten": ("initial_speed_omitted", "value_at_start"),
     "sign": ("sign", "given_sign", "direction"),
     "sin_cos_swap": ("given_complement",),
