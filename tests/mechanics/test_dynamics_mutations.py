@@ -291,6 +291,16 @@ def test_no_mean_of_end_rates_without_a_stated_starting_rate_or_along_two_coordi
     assert "mean_of_end_rates" not in _codes("satellite_apogee_speed")
 
 
+def test_a_side_force_read_as_the_weight_another_reaction_of_the_body_carries():
+    # the collar's N_side (across the rod) taken as m g, which N_up carries
+    (side,) = _generated("collar_slides_on_spinning_rod", "side_force", "reaction_as_weight")
+    assert side.value == pytest.approx(4.905)
+    assert "the weight goes to N_up, along the vertical" in side.message
+    # a collar on a vertical rod: its one reaction is across the weight, and nothing else of
+    # the collar carries the weight (the spring and the motion do)
+    assert not _generated("collar_spring_vertical_rod", "rod_force", "reaction_as_weight")
+
+
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
     # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
     (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")

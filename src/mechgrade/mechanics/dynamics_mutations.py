@@ -555,19 +555,26 @@ def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutati
 
 def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A reaction along the vertical (a string, a floor) or pressing a friction contact read as
-    the weight m g of a body it acts on, as if the body did not accelerate."""
+    the weight m g of a body it acts on, as if the body did not accelerate; and a reaction
+    across the vertical read as the weight that another reaction of its body carries (a
+    collar's side force for the rod's vertical one)."""
     d = dynamics_of(problem)
     if d.gravity is None or isinstance(d.analysis, Impulse):
         return
     g = model.language.vector(d.gravity)
     normals = {f.normal for f in d.friction}
+    vertical = {r.name: _zero(model, g ^ model.language.vector(r.directions[0]))
+                for r in d.reactions if len(r.directions) == 1}
     for r in d.reactions:
         if len(r.directions) != 1:
             continue
         direction = r.directions[0]
-        if r.name not in normals and not _zero(model, g ^ model.language.vector(direction)):
-            continue
+        across = r.name not in normals and not vertical[r.name]
         for name in dict.fromkeys(a.on for a in r.acts if a.on != GROUND):
+            carrier = next((o.name for o in d.reactions if vertical.get(o.name)
+                            and any(a.on == name for a in o.acts)), None)
+            if across and carrier is None:
+                continue
             # a body held in place (a drum on its axle) has no weight the reaction could
             # be taken for: its weight goes to its bearing
             if _zero(model, model.language.point_velocity(Name(d.body(name).centre),
@@ -578,11 +585,13 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
             at = next(a.at for a in r.acts if a.on == name)
             readings = _readings(problem, "force", r.name, replacement, at)
             if readings:
+                why = (f"the weight goes to {carrier}, along the vertical, and {r.name} comes "
+                       "from the momentum balance across it") if across else (
+                       f"{r.name} comes from the momentum balance along its direction, where the "
+                       "other forces and the acceleration count too")
                 yield DynamicsMutation(
                     "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
-                    f"{name}, m g = {{term}}; {r.name} comes from the momentum balance along "
-                    "its direction, where the other forces and the acceleration count too.",
-                    BALANCES, readings=readings,
+                    f"{name}, m g = {{term}}; {why}.", BALANCES, readings=readings,
                     term=weight, term_unit="N")
     yield from _spring_as_weight(problem, d)
 
