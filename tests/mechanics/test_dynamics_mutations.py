@@ -255,7 +255,7 @@ def test_a_rotor_turning_in_space_has_its_disk_read_as_a_ring():
     assert "thin ring (m r²) for a uniform disk of radius r" in ring.message
 
 
-def test_no_other_shape_for_a_disk_that_does_not_turn(tmp_path):
+def test_no_other_shape_for_a_disk_that_does_not_turn_or_spin_in_its_mount(tmp_path):
     # the gyroscope's rotor held in a frame that keeps its orientation: no inertia read
     text = (shipped_dir("problems") / "gyroscope_steady_precession.yaml").read_text("utf-8")
     text = text.replace("origin: G}", "origin: G}\n  F: {parent: N, rotation: {axis: z, "
@@ -263,6 +263,9 @@ def test_no_other_shape_for_a_disk_that_does_not_turn(tmp_path):
     (tmp_path / "held.yaml").write_text(text, encoding="utf-8")
     assert "other_shape_inertia" not in {m.code for m in dynamics_mutations(
         load_problem(tmp_path / "held.yaml"))}
+    # a disk fixed askew on a turning shaft does not spin in its mount: a ring's inertia there
+    # gives exactly what the couple over b for 2 b gives, and is not read
+    assert "other_shape_inertia" not in _codes("disk_on_bent_shaft")
 
 
 def test_kinetic_energies_without_their_half_in_a_work_energy_balance():

@@ -1159,11 +1159,13 @@ _SHAPES = {kind: (SHAPES[kind].name, SHAPES[kind].axial or "") for kind in _CONF
 def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A rigid body's moment of inertia taken from another shape's formula: a solid sphere's
     from a shell's or a disk's, a disk's from a ring's (every part of that shape and size),
-    whether the body turns in a plane or in space (a gyroscope's rotor)."""
+    for a body turning in a plane, or spinning in a turning mount (a gyroscope's rotor)."""
     d = dynamics_of(problem)
+    parents = {f.name: f.parent for f in problem.frames}
     for body in d.bodies:
-        if body.frame is None \
-                or _zero(model, model.frames[body.frame].ang_vel_in(model.inertial)):
+        mount = parents.get(body.frame or "")
+        if not _rotating(model, body) and (body.frame is None or mount is None or _zero(
+                model, model.frames[body.frame].ang_vel_in(model.frames[mount]))):
             continue
         kinds = dict.fromkeys((type(p.shape), _radius(p.shape)) for p in body.parts
                               if type(p.shape) in _SHAPES)
