@@ -304,6 +304,16 @@ def test_a_side_force_read_as_the_weight_another_reaction_of_the_body_carries():
     assert not _generated("collar_spring_vertical_rod", "rod_force", "reaction_as_weight")
 
 
+def test_a_pucks_transverse_speed_kept_instead_of_its_angular_momentum():
+    # r0 w0 / r = 0.8 x 2 / 0.4 = 4 rad/s (the answer, r0^2 w0 / r^2, is 8)
+    (kept,) = _generated("puck_string_through_hole", "angular_velocity", "transverse_speed_kept")
+    assert kept.value == pytest.approx(4.0)
+    assert kept.message.startswith("Your value keeps the transverse speed r θ̇ of P from the start")
+    # asked for no angle's rate (the satellite), or not integrated from a start: no reading
+    assert "transverse_speed_kept" not in _codes("satellite_apogee_speed")
+    assert "transverse_speed_kept" not in _codes("collar_slides_on_spinning_rod")
+
+
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
     # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
     (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")

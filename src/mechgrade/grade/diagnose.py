@@ -399,6 +399,7 @@ LABELS = {
     "spring_energy_half_omitted": "spring energy without its ½",
     "ke_half_omitted": "kinetic energy without its ½",
     "mean_of_end_rates": "uniform acceleration assumed (the mean of the end speeds)",
+    "transverse_speed_kept": "the transverse speed r θ̇ kept instead of the angular momentum",
     "impact_taken_head_on": "an oblique impact taken as head-on",
     "reaction_omitted": "a support's force left out (free fall)",
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",

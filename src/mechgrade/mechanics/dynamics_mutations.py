@@ -30,7 +30,8 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name_of,
+from ..expressions.notation import textbook
+from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Num, Prime, Unary, name_of,
                                   parse, to_text, walk)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              LoadKind,
@@ -1771,6 +1772,41 @@ def value_at_start(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
         problem=replace(mistaken, objectives=objectives))
 
 
+def transverse_speed_kept(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated from a start along polar coordinates (a point at r E.x, frame E
+    turning by θ) with the transverse speed r θ̇ taken as conserved instead of r² θ̇ (the
+    angular momentum): θ̇ read as r₀ θ̇₀ / r, with the start's values."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration):
+        return
+    at_start = {to_text(s.key.node): s.value.text if s.value is not None else repr(s.si)
+                for s in d.analysis.start}
+    coordinates = {c.name for c in problem.coordinates}
+    for frame in problem.frames:
+        angle = frame.rotations[0].angle.node if len(frame.rotations) == 1 else None
+        if not (isinstance(angle, Name) and angle.id in coordinates and frame.origin):
+            continue
+        for point in problem.points:
+            node = point.position.node if point.position is not None else None
+            if point.origin != frame.origin or not (
+                    isinstance(node, Bin) and node.op == "*" and isinstance(node.left, Name)
+                    and node.left.id in coordinates and node.right == Attr(frame.name, "x")):
+                continue
+            r, rate = node.left.id, f"{angle.id}'"
+            if r not in at_start or rate not in at_start:
+                continue
+            kept = _expr(f"({at_start[r]})*({at_start[rate]})/{r}")
+            readings = tuple((o.id, kept) for o in problem.objectives
+                             if to_text(o.find.node) == rate)
+            if readings:
+                yield DynamicsMutation(
+                    "transverse_speed_kept", f"Your value keeps the transverse speed "
+                    f"{textbook(r)} {textbook(rate)} of {point.name} from the start: the speed "
+                    "is not what the motion conserves; with no moment about "
+                    f"{frame.origin}, the angular momentum m {textbook(r)}² {textbook(rate)} "
+                    "is.", OBJECTIVES, readings=readings)
+
+
 def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated from a start, with each applied force that depends on the state (a
     drag c v², a drive P/v) taken constant at its value at the start: the acceleration taken
@@ -1955,7 +1991,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    ke_half_omitted, mean_of_end_rates)
+    ke_half_omitted, mean_of_end_rates, transverse_speed_kept)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -104,7 +104,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "efficiency_inverted": ("efficiency_inverted",),
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
-    "speed_conserved": ("value_at_start",),
+    "speed_conserved": ("value_at_start", "transverse_speed_kept"),
     "half_factor": ("factor_2", "spring_energy_half_omitted", "ke_half_omitted"),
     "rolling_assumed": ("rolling_assumed",),
     "damping_ignored": ("damping_omitted",),
