@@ -314,6 +314,14 @@ def test_a_pucks_transverse_speed_kept_instead_of_its_angular_momentum():
     assert "transverse_speed_kept" not in _codes("collar_slides_on_spinning_rod")
 
 
+def test_a_coupling_read_with_the_kinetic_energy_kept():
+    # 20 Mg at 1.5 m/s couples to 30 Mg at rest: sqrt(20 x 1.5^2 / 50) m/s, not 0.6
+    (kept,) = _generated("freight_cars_couple", "velocity_after", "energy_kept_in_coupling")
+    assert kept.value == pytest.approx(0.9 ** 0.5)
+    # an impact with restitution (the pucks bounce apart) is no coupling
+    assert "energy_kept_in_coupling" not in _codes("pucks_oblique_impact")
+
+
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
     # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
     (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")

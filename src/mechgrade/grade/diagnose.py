@@ -400,6 +400,7 @@ LABELS = {
     "ke_half_omitted": "kinetic energy without its ½",
     "mean_of_end_rates": "uniform acceleration assumed (the mean of the end speeds)",
     "transverse_speed_kept": "the transverse speed r θ̇ kept instead of the angular momentum",
+    "energy_kept_in_coupling": "kinetic energy taken as conserved in a coupling",
     "impact_taken_head_on": "an oblique impact taken as head-on",
     "reaction_omitted": "a support's force left out (free fall)",
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",

@@ -844,6 +844,45 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
 
 
+def energy_kept_in_coupling(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A coupling (every contact of an impact with e = 0, particles moving along one line)
+    read with the kinetic energy kept instead of the momentum: the common velocity after
+    sqrt(Σ m v₀² / Σ m), in the sense of the right one."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse) or not d.analysis.contacts or any(
+            not isinstance(c, Restitution) or not identically_zero(
+                model.plain(model.language.scalar(c.e))) for c in d.analysis.contacts):
+        return
+    before = {to_text(s.key.node): s.value.text if s.value is not None else repr(s.si)
+              for s in d.analysis.start}
+    positions = {p.name: p.position.node for p in problem.points if p.position is not None}
+    first = d.analysis.contacts[0]
+    assert isinstance(first, Restitution)
+    rates: list[str] = []
+    terms: list[tuple[str, str]] = []
+    for body in d.bodies:
+        node, line = positions.get(body.centre), first.direction.node
+        if body.frame is not None or not (isinstance(node, Bin) and node.op == "*"
+                                          and isinstance(node.left, Name)
+                                          and node.right == line):
+            return
+        rate = f"{node.left.id}'"
+        rates.append(rate)
+        terms.append((_mass(body), before.get(rate, "0")))
+    if len(terms) < 2:
+        return
+    energy = " + ".join(f"({m})*({v})^2" for m, v in terms)
+    mass = " + ".join(f"({m})" for m, _ in terms)
+    readings = tuple((o.id, _expr(f"sign({rate})*sqrt(({energy})/({mass}))"))
+                     for o in problem.objectives for rate in rates
+                     if to_text(o.find.node) == rate)
+    if readings:
+        yield DynamicsMutation(
+            "energy_kept_in_coupling", "Your value keeps the kinetic energy through the "
+            "coupling: the bodies that move on together lose energy in it; the momentum is "
+            "what the impact conserves.", BALANCES, readings=readings)
+
+
 def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """An oblique impact of particles treated as head-on: each particle's whole speed just
     before taken along the line of impact (in the sense of its component there), its
@@ -1991,7 +2030,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    ke_half_omitted, mean_of_end_rates, transverse_speed_kept)
+    ke_half_omitted, mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

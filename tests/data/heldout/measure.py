@@ -96,7 +96,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "spring_energy_difference": ("spring_energy_from_change",),
     "spring_term_dropped": ("spring_omitted",),
     "gravity_dropped": ("weight_omitted",),
-    "ke_conserved": ("restitution_ignored",),
+    "ke_conserved": ("restitution_ignored", "energy_kept_in_coupling"),
     "head_on": ("impact_taken_head_on",),
     "restitution_wrong_component": ("restitution_component",),
     "restitution_ignored": ("restitution_ignored",),
