@@ -322,6 +322,16 @@ def test_a_coupling_read_with_the_kinetic_energy_kept():
     assert "energy_kept_in_coupling" not in _codes("pucks_oblique_impact")
 
 
+def test_a_disks_parallel_axis_term_written_with_its_radius_for_the_pins_distance():
+    # hung 100 mm from its centre: I_G + m r^2 for I_G + m d^2 (r = 200 mm)
+    (radius,) = _generated("disk_pendulum_period", "omega_n", "parallel_axis_with_radius")
+    assert radius.value == pytest.approx(4.0435, rel=1e-4)
+    assert "the term is m d², d the distance from G to O" in radius.message
+    # pinned at its rim the radius is the pin's distance; a rod has no radius
+    assert "parallel_axis_with_radius" not in _codes("disk_pinned_at_rim_released")
+    assert "parallel_axis_with_radius" not in _codes("pendulum_pin_reaction")
+
+
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
     # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
     (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")

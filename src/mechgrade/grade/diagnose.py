@@ -401,6 +401,8 @@ LABELS = {
     "mean_of_end_rates": "uniform acceleration assumed (the mean of the end speeds)",
     "transverse_speed_kept": "the transverse speed r θ̇ kept instead of the angular momentum",
     "energy_kept_in_coupling": "kinetic energy taken as conserved in a coupling",
+    "parallel_axis_with_radius": "the parallel-axis term with the radius for the pivot's "
+                                 "distance",
     "impact_taken_head_on": "an oblique impact taken as head-on",
     "reaction_omitted": "a support's force left out (free fall)",
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",

@@ -435,6 +435,36 @@ def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[Dynamic
                 term=term, term_unit="kg*m^2")
 
 
+def parallel_axis_with_radius(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The moment of inertia about a pivot away from the mass centre (a disk hung from a hole)
+    with the parallel-axis term written with the body's radius r for the pivot's distance d:
+    I_G + m r² for I_G + m d². Modelled, as :func:`central_inertia_at_pivot`, by a massless
+    part carrying m (r² - d²) about the body's z axis."""
+    d = dynamics_of(problem)
+    for body in d.bodies:
+        if not _rotating(model, body) or len(body.parts) != 1 \
+                or type(body.parts[0].shape) not in _SHAPES:
+            continue
+        radius = _radius(body.parts[0].shape)
+        for pivot in _pivots(problem, model, body):
+            offset = f"pos({pivot}, {body.centre})"
+            if identically_zero(model.plain(model.language.scalar(
+                    _expr(f"dot({offset}, {offset}) - ({radius})^2")))):
+                continue  # the pivot on the rim: r is its distance
+            term = _expr(f"({_mass(body)})*({radius})^2")
+            extra = _expr(f"({_mass(body)})*(({radius})^2 - dot({offset}, {offset}))")
+            part = Part(_expr("0"), body.centre, Explicit((("zz", extra),)), body.where)
+            bodies = tuple(replace(b, parts=b.parts + (part,)) if b.name == body.name else b
+                           for b in d.bodies)
+            yield DynamicsMutation(
+                "parallel_axis_with_radius", f"Your value takes the parallel-axis term about "
+                f"{pivot} as m {radius}² = {{term}}, with the radius {radius} of {body.name}: "
+                f"the term is m d², d the distance from {body.centre} to {pivot}.", BODIES,
+                problem=_mistaken(problem, replace(d, bodies=bodies),
+                                  without=("ke", "angmom")),
+                term=term, term_unit="kg*m^2")
+
+
 def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """Every kinetic-friction force turned round (along the slip instead of against it); a
     static friction read in the other sense."""
@@ -2030,7 +2060,8 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    ke_half_omitted, mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling)
+    ke_half_omitted, mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling,
+    parallel_axis_with_radius)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -73,7 +73,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "hz_for_rad_s": ("rev_rad",),
     "period_for_frequency": ("period_for_frequency",),
     "series_parallel": ("springs_in_series",),
-    "inertia_about_wrong_point": ("central_inertia_at_pivot",),
+    "inertia_about_wrong_point": ("central_inertia_at_pivot", "parallel_axis_with_radius"),
     "inertia_wrong_shape": ("other_shape_inertia",),
     "massless_rotor": ("rotational_ke_omitted", "body_ke_omitted", "inertia_omitted"),
     "coriolis_dropped": ("drop_coriolis",),
