@@ -809,9 +809,13 @@ def _weights_kept(d: Dynamics, bodies: tuple[Body, ...]) -> Dynamics:
 def ke_half_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """In a work-energy balance, every kinetic energy written m v² (and I ω²) without its ½:
     the same as every mass and inertia doubled with the weights kept. Read for the speeds and
-    rates the balance gives (not the forces, nor the times)."""
+    rates the balance gives (not the forces, nor the times), and only from a start that moves:
+    from rest it makes every speed 1/√2 of the right one, as any slip that halves the energy
+    (half the drop) does, and would name a mistake it cannot tell from those."""
     d = dynamics_of(problem)
-    if not isinstance(d.analysis, WorkEnergy) or d.gravity is None:
+    if not isinstance(d.analysis, WorkEnergy) or d.gravity is None or not any(
+            isinstance(s.key.node, Prime) and (s.value is not None or s.si)
+            for s in d.analysis.start):
         return
     bodies = tuple(replace(b, parts=tuple(replace(
         p, mass=_expr(f"2*({p.mass.text})"), shape=Explicit(tuple(
