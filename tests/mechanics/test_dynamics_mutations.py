@@ -268,31 +268,6 @@ def test_no_other_shape_for_a_disk_that_does_not_turn_or_spin_in_its_mount(tmp_p
     assert "other_shape_inertia" not in _codes("disk_on_bent_shaft")
 
 
-def test_kinetic_energies_without_their_half_in_a_work_energy_balance(tmp_path):
-    # the drum's block starting down at 4 ft/s: m (v^2 - v0^2) + I (w^2 - w0^2) = W h
-    text = (shipped_dir("problems") / "drum_block_energy_us.yaml").read_text("utf-8")
-    moving = tmp_path / "drum_moving.yaml"
-    moving.write_text(text.replace("from: {phi: 0 rad, y: 0 ft}",
-                                   "from: {phi: 0 rad, y: 0 ft, y': -4 ft/s, phi': -4 rad/s}"),
-                      encoding="utf-8")
-    solution = solve(load_problem(moving))
-    right = solution.result("block_speed").value
-    (half,) = [m for m in solution.result("block_speed").generated_mistakes
-               if m.code == "ke_half_omitted"]
-    # v^2 = v0^2 + (right^2 - v0^2)/2
-    assert half.value == pytest.approx((16 + (right ** 2 - 16) / 2) ** 0.5, rel=1e-6)
-    assert half.message.startswith("Your value writes the kinetic energies as m v² (and I ω²)")
-    # the cord's tension is no rate an energy balance gives
-    assert not [m for m in solution.result("tension").generated_mistakes
-                if m.code == "ke_half_omitted"]
-
-
-def test_no_kinetic_energy_without_its_half_from_rest_or_without_an_energy_balance():
-    # from rest it is 1/sqrt(2) of every speed, as half the drop is: not told apart
-    assert "ke_half_omitted" not in _codes("drum_block_energy_us")
-    assert "ke_half_omitted" not in _codes("pendulum_pin_reaction")
-
-
 def test_a_motion_at_constant_power_read_as_uniformly_accelerated_between_its_ends():
     # 10 to 25 m/s in 5.25 s: the mean 17.5 m/s times 5.25 s, and 97.5 m over 17.5 m/s
     (distance,) = _generated("car_constant_power_acceleration", "distance", "mean_of_end_rates")
@@ -301,10 +276,17 @@ def test_a_motion_at_constant_power_read_as_uniformly_accelerated_between_its_en
     assert distance.message.startswith("Your value takes the motion as uniformly accelerated")
 
 
+def test_a_launch_read_at_its_final_speed_throughout():
+    # 0.1 m over the 4 m/s the puck leaves with: 0.025 s (the answer is a quarter period)
+    (end,) = _generated("spring_launcher_a_of_x", "time", "end_speed_throughout")
+    assert end.value == pytest.approx(0.025)
+    assert end.message.startswith("Your value takes the motion at its final speed throughout")
+
+
 def test_no_mean_of_end_rates_without_a_stated_starting_rate_or_along_two_coordinates():
     # the launcher starts from a deflection alone; the satellite moves along r and theta
     assert "mean_of_end_rates" not in _codes("spring_launcher_a_of_x")
-    assert "mean_of_end_rates" not in _codes("satellite_apogee_speed")
+    assert not {"mean_of_end_rates", "end_speed_throughout"} & _codes("satellite_apogee_speed")
 
 
 def test_a_side_force_read_as_the_weight_another_reaction_of_the_body_carries():

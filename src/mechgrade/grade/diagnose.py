@@ -397,8 +397,8 @@ LABELS = {
     "period_for_frequency": "period and frequency confused",
     "spring_energy_from_change": "spring energy from the change of stretch",
     "spring_energy_half_omitted": "spring energy without its ½",
-    "ke_half_omitted": "kinetic energy without its ½",
     "mean_of_end_rates": "uniform acceleration assumed (the mean of the end speeds)",
+    "end_speed_throughout": "the final speed taken as constant throughout",
     "transverse_speed_kept": "the transverse speed r θ̇ kept instead of the angular momentum",
     "energy_kept_in_coupling": "kinetic energy taken as conserved in a coupling",
     "parallel_axis_with_radius": "the parallel-axis term with the radius for the pivot's "

@@ -782,6 +782,10 @@ def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[Dynamic
         parts = tuple(spin for p in body.parts if (spin := _spin_only(p)) is not None)
         if len(parts) != len(body.parts):
             continue
+        weights = tuple(Force(f"weight~{b.name}~{i}", b.name, p.at,
+                              _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
+                              kind=LoadKind.WEIGHT)
+                        for b in d.bodies for i, p in enumerate(b.parts))
         bodies = tuple(replace(b, parts=parts) if b.name == body.name else b
                        for b in d.bodies)
         translational = f"dot(momentum({body.name}, {N}), vel({body.centre}, {N}))/2"
@@ -790,54 +794,11 @@ def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[Dynamic
             f"its spin alone, ½ I ω²: it also moves along with its mass centre "
             f"{body.centre}, and ½ m v² of each of its parts (½ m v_G² = {{term}} of the "
             f"whole) belongs in its kinetic energy.", BODIES,
-            problem=_mistaken(problem, _weights_kept(d, bodies),
+            problem=_mistaken(problem, replace(d, bodies=bodies, gravity=None,
+                                               forces=d.forces + weights),
                               without=("ke", "momentum", "angmom")),
             term=_expr(translational), term_unit="J")
 
-
-def _weights_kept(d: Dynamics, bodies: tuple[Body, ...]) -> Dynamics:
-    """``d`` with ``bodies`` (their masses or inertias mistaken) and the weights of its own
-    bodies' parts kept as forces at the parts: a mistake in the kinetic energy only."""
-    assert d.gravity is not None
-    weights = tuple(Force(f"weight~{b.name}~{i}", b.name, p.at,
-                          _expr(f"({p.mass.text})*({d.gravity.text})"), b.where,
-                          kind=LoadKind.WEIGHT)
-                    for b in d.bodies for i, p in enumerate(b.parts))
-    return replace(d, bodies=bodies, gravity=None, forces=d.forces + weights)
-
-
-def ke_half_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """In a work-energy balance, every kinetic energy written m v² (and I ω²) without its ½:
-    the same as every mass and inertia doubled with the weights kept. Read for the speeds and
-    rates the balance gives (not the forces, nor the times), and only from a start that moves:
-    from rest it makes every speed 1/√2 of the right one, as any slip that halves the energy
-    (half the drop) does, and would name a mistake it cannot tell from those."""
-    d = dynamics_of(problem)
-    if not isinstance(d.analysis, WorkEnergy) or d.gravity is None or not any(
-            isinstance(s.key.node, Prime) and (s.value is not None or s.si)
-            for s in d.analysis.start):
-        return
-    bodies = tuple(replace(b, parts=tuple(replace(
-        p, mass=_expr(f"2*({p.mass.text})"), shape=Explicit(tuple(
-            (key, _expr(f"2*({e.text})")) for key, e in p.shape.entries))
-        if isinstance(p.shape, Explicit) else p.shape) for p in b.parts)) for b in d.bodies)
-    mistaken = _mistaken(problem, _weights_kept(d, bodies), without=("force",))
-    objectives = tuple(o for o in mistaken.objectives if _rate_or_speed(o.find.node))
-    if objectives:
-        yield DynamicsMutation(
-            "ke_half_omitted", "Your value writes the kinetic energies as m v² (and I ω²), "
-            "without their ½: a kinetic energy is ½ m v² + ½ I ω².", BODIES,
-            problem=replace(mistaken, objectives=objectives))
-
-
-def _rate_or_speed(node: Node) -> bool:
-    """Whether an objective asks for a speed or a first rate (|φ̇|, ẏ) and nothing of a
-    higher order: what an energy balance gives."""
-    nodes = list(walk(node))
-    rates = [n.order for n in nodes if isinstance(n, Prime)]
-    calls = {n.func for n in nodes if isinstance(n, Call)}
-    return (1 in rates or "speed" in calls) and max(rates, default=1) == 1 \
-        and calls <= {"speed", "abs", "mag", "vel"}
 
 
 def _spin_only(part: Part) -> Part | None:
@@ -1924,31 +1885,37 @@ def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMut
 
 
 def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
-    """A motion along one coordinate integrated from a start whose rate is stated, read as
-    uniformly accelerated between its ends: the distance as the mean of the start and end
-    rates times the time, the time as the distance over that mean (a car at constant power,
-    a boat slowed by drag). The right end rate and time, the mistake in between."""
+    """A motion along one coordinate integrated from a stated start, read as uniformly
+    accelerated between its ends: the distance as the mean of the start and end rates times
+    the time, the time as the distance over that mean (a car at constant power, a boat slowed
+    by drag); where the start's rate is stated. And read at its final speed throughout: the
+    time as the distance over the final speed (a puck leaving a spring), the distance as that
+    speed times the time. The right end rate and time, the mistake in between."""
     d = dynamics_of(problem)
     if not isinstance(d.analysis, Integration) or len(problem.coordinates) != 1:
         return
     q = problem.coordinates[0].name
     at_start = {to_text(s.key.node): s.value.text if s.value is not None else repr(s.si)
                 for s in d.analysis.start}
-    if q not in at_start or f"{q}'" not in at_start:
+    if q not in at_start:
         return
-    x0, v0 = at_start[q], at_start[f"{q}'"]
-    mean = f"(({v0}) + {q}')/2"
-    instead = {q: f"({x0}) + {mean}*t", "t": f"({q} - ({x0}))/({mean})"}
-    readings = tuple((o.id, _expr(instead[to_text(o.find.node)])) for o in problem.objectives
-                     if isinstance(o.find.node, Name) and o.find.node.id in instead)
-    if readings:
-        yield DynamicsMutation(
-            "mean_of_end_rates", "Your value takes the motion as uniformly accelerated, with "
-            "the mean of the starting and final speeds: the acceleration changes along the "
-            "motion, so the distance is the integral of the speed over the time, not the mean "
-            "speed times the time.", OBJECTIVES,
-            readings=readings)
-
+    x0 = at_start[q]
+    speeds = [("end_speed_throughout", f"{q}'", "at its final speed throughout: the speed "
+               "changes along the motion")]
+    v0 = at_start.get(f"{q}'")
+    if v0 is not None:
+        speeds.insert(0, ("mean_of_end_rates", f"(({v0}) + {q}')/2",
+                          "as uniformly accelerated, with the mean of the starting and final "
+                          "speeds: the acceleration changes along the motion"))
+    for code, speed, how in speeds:
+        instead = {q: f"({x0}) + ({speed})*t", "t": f"({q} - ({x0}))/({speed})"}
+        readings = tuple((o.id, _expr(instead[o.find.node.id])) for o in problem.objectives
+                         if isinstance(o.find.node, Name) and o.find.node.id in instead)
+        if readings:
+            yield DynamicsMutation(
+                code, f"Your value takes the motion {how}, so the distance is the integral "
+                "of the speed over the time, not one speed times the time.", OBJECTIVES,
+                readings=readings)
 
 def spring_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated from a start, with each spring's force taken constant at its value
@@ -2064,7 +2031,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     period_for_frequency, spring_energy_from_change, force_at_other_point,
     impact_taken_head_on, pin_impulse_omitted, translational_ke_omitted, rolling_assumed,
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
-    ke_half_omitted, mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling,
+    mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling,
     parallel_axis_with_radius)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""

@@ -38,8 +38,8 @@ DYNAMICS_CODES = (
     "load_at_other_point", "contact_taken_smooth", "period_for_frequency",
     "spring_energy_from_change", "impact_taken_head_on", "reaction_omitted",
     "pin_impulse_omitted", "translational_ke_omitted", "rolling_assumed",
-    "initial_displacement_omitted", "spring_energy_half_omitted", "ke_half_omitted",
-    "mean_of_end_rates", "transverse_speed_kept", "energy_kept_in_coupling",
+    "initial_displacement_omitted", "spring_energy_half_omitted", "mean_of_end_rates",
+    "end_speed_throughout", "transverse_speed_kept", "energy_kept_in_coupling",
     "parallel_axis_with_radius")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 

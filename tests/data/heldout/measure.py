@@ -56,7 +56,8 @@ LIBRARY = _module(HERE.parent / "mistakes" / "measure.py", "mistakes_measure")
 
 # which of mechgrade's codes name each kind of typical.py (an empty set: no family names it)
 EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
-    "constant_acceleration": ("force_taken_constant", "mean_of_end_rates"),
+    "constant_acceleration": ("force_taken_constant", "mean_of_end_rates",
+                              "end_speed_throughout"),
     "initial_speed_forgotten": ("initial_speed_omitted", "value_at_start"),
     "sign": ("sign", "given_sign", "direction"),
     "sin_cos_swap": ("given_complement",),
@@ -105,7 +106,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
                                   "reaction_as_static"),
     "speed_conserved": ("value_at_start", "transverse_speed_kept"),
-    "half_factor": ("factor_2", "spring_energy_half_omitted", "ke_half_omitted"),
+    "half_factor": ("factor_2", "spring_energy_half_omitted"),
     "rolling_assumed": ("rolling_assumed",),
     "damping_ignored": ("damping_omitted",),
     "translation_ke_dropped": ("translational_ke_omitted",),
