@@ -422,17 +422,21 @@ def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[Dynamic
         for pivot in _pivots(problem, model, body):
             offset = f"pos({pivot}, {body.centre})"
             term = _expr(f"({_mass(body)})*dot({offset}, {offset})")
-            part = Part(_expr("0"), body.centre, Explicit((("zz", _expr(f"-({term.text})")),)),
-                        body.where)
-            bodies = tuple(replace(b, parts=b.parts + (part,)) if b.name == body.name else b
-                           for b in d.bodies)
             yield DynamicsMutation(
                 "central_inertia_at_pivot", f"Your value uses the moment of inertia of "
                 f"{body.name} about its mass centre {body.centre} for the rotation about "
                 f"{pivot}; about {pivot} it needs the parallel-axis term m d² = {{term}}.",
-                BODIES, problem=_mistaken(problem, replace(d, bodies=bodies),
-                                          without=("ke", "angmom")),
+                BODIES, problem=_inertia_added(problem, d, body, f"-({term.text})"),
                 term=term, term_unit="kg*m^2")
+
+
+def _inertia_added(problem: Problem, d: Dynamics, body: Body, zz: str) -> Problem:
+    """The mistaken model with a massless part of ``body`` carrying ``zz`` about its z axis
+    (its moment of inertia about a pivot mistaken by that much)."""
+    part = Part(_expr("0"), body.centre, Explicit((("zz", _expr(zz)),)), body.where)
+    bodies = tuple(replace(b, parts=b.parts + (part,)) if b.name == body.name else b
+                   for b in d.bodies)
+    return _mistaken(problem, replace(d, bodies=bodies), without=("ke", "angmom"))
 
 
 def parallel_axis_with_radius(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -451,18 +455,13 @@ def parallel_axis_with_radius(problem: Problem, model: Model) -> Iterator[Dynami
             if identically_zero(model.plain(model.language.scalar(
                     _expr(f"dot({offset}, {offset}) - ({radius})^2")))):
                 continue  # the pivot on the rim: r is its distance
-            term = _expr(f"({_mass(body)})*({radius})^2")
-            extra = _expr(f"({_mass(body)})*(({radius})^2 - dot({offset}, {offset}))")
-            part = Part(_expr("0"), body.centre, Explicit((("zz", extra),)), body.where)
-            bodies = tuple(replace(b, parts=b.parts + (part,)) if b.name == body.name else b
-                           for b in d.bodies)
+            extra = f"({_mass(body)})*(({radius})^2 - dot({offset}, {offset}))"
             yield DynamicsMutation(
                 "parallel_axis_with_radius", f"Your value takes the parallel-axis term about "
                 f"{pivot} as m {radius}² = {{term}}, with the radius {radius} of {body.name}: "
                 f"the term is m d², d the distance from {body.centre} to {pivot}.", BODIES,
-                problem=_mistaken(problem, replace(d, bodies=bodies),
-                                  without=("ke", "angmom")),
-                term=term, term_unit="kg*m^2")
+                problem=_inertia_added(problem, d, body, extra),
+                term=_expr(f"({_mass(body)})*({radius})^2"), term_unit="kg*m^2")
 
 
 def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
