@@ -404,6 +404,42 @@ def si_unit(unit: str) -> str:
     return normalize_unit(text) if text else ""
 
 
+@lru_cache(maxsize=1024)
+def judged_in(answer_unit: str | None, objective_unit: str) -> str:
+    """``answer_unit`` as it is read for an objective in ``objective_unit`` (no unit written:
+    the objective's). pint's hertz is
+    1/s, so 2 Hz would read as 2 rad/s; beside an angular rate (rad/s, deg/s, rpm) a hertz
+    is read as a cycle per second, as an rpm is a revolution per minute, and an angular
+    rate written for a frequency in hertz is read in cycles likewise. Any other unit, and a
+    hertz beside a unit that names no angle (1/s), reads as pint reads it.
+
+    >>> round(to_si(2, judged_in("Hz", "rad/s")), 4)  # 2 cycles per second
+    12.5664
+    >>> round(from_si(to_si(12.566, judged_in("rad/s", "Hz")), "Hz"), 3)
+    2.0
+    >>> judged_in("Hz", "1/s"), judged_in("rad/s", "rpm"), judged_in("Hz", "kHz")
+    ('Hz', 'rad/s', 'Hz')
+    """
+    if answer_unit is None:
+        return objective_unit
+    answer, objective = _angle_or_hertz(answer_unit), _angle_or_hertz(objective_unit)
+    if answer == "hertz" and objective == "angle":
+        return f"({answer_unit}) * rev"
+    if answer == "angle" and objective == "hertz":
+        return f"({answer_unit}) / rev"
+    return answer_unit
+
+
+def _angle_or_hertz(unit: str) -> str | None:
+    """``"angle"`` for a unit that names an angle (rad/s, rpm), ``"hertz"`` for one in hertz
+    that names none, else ``None``."""
+    ureg = registry()
+    parsed = _pint_unit(normalize_unit(unit))
+    if "radian" in ureg.Quantity(1.0, parsed).to_root_units().units._units:
+        return "angle"
+    return "hertz" if any(name.endswith("hertz") for name in parsed._units) else None
+
+
 def same_dimension(unit_a: str, unit_b: str) -> bool:
     return dimension(unit_a) == dimension(unit_b)
 

@@ -194,6 +194,22 @@ def test_rpm_converts_to_rad_per_second():
     assert verdict("1.257 rad/s", spin) == "correct"
 
 
+def test_hertz_beside_an_angular_rate_are_cycles_per_second_as_rpm_are_revolutions():
+    spin = ObjectiveResult("w", "scalar", "rad/s", 2 * 2 * math.pi)  # 2 cycles per second
+    assert verdict("2 Hz", spin) == "correct"
+    assert verdict("120 rpm", spin) == "correct"
+    # the rate in rad/s written with Hz: 2π times too large, named as the 2π slip
+    judged = assess("12.57 Hz", spin)
+    assert (judged.verdict, judged.diagnosis) == ("incorrect",
+                                                  "unit slip (revolutions vs radians)")
+    frequency = ObjectiveResult("f", "scalar", "Hz", 2.0)
+    assert verdict("12.57 rad/s", frequency) == "correct"
+    assert verdict("120 rpm", frequency) == "correct"
+    # beside a unit that names no angle a hertz stays pint's 1/s
+    assert verdict("2 s^-1", frequency) == "correct"
+    assert verdict("12.57 rad/s", ObjectiveResult("n", "scalar", "1/s", 2.0)) == "incorrect"
+
+
 def test_feedback_never_reveals_the_reference_value():
     for text in ("50 ft/s^2", "-98.5 ft/s^2", "30 m/s", "98.5"):
         assert "98.51" not in assess(text, ACC).feedback

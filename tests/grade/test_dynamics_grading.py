@@ -40,7 +40,8 @@ def test_a_wrong_dimension_names_forces_energies_and_powers(text, result, feedba
 def test_a_force_g_times_too_small_is_read_as_mass_used_for_weight():
     small, large = assess("3.751 N", TENSION), assess("360.8 N", TENSION)
     assert small.diagnosis == large.diagnosis == "factor of g"
-    assert small.feedback == "Your answer is g times too small: mass used for weight (g left out)?"
+    assert small.feedback == "Your answer is g times too small: mass used for weight (g left " \
+                             "out), or weight used for mass?"
     assert large.feedback == "Your answer is g times too large: weight used for mass, or g " \
                              "applied twice?"
     assert assess("3.751 N", TENSION, GradingPolicy(partial_credit=(("g", 0.25),))).credit == 0.25

@@ -75,12 +75,12 @@ def test_a_physical_family_outranks_a_coincidence_and_another_kinds_diagnosis_is
 
 
 def test_an_exact_factor_that_is_not_the_mistake_is_counted_generic():
-    # v/r is twice the right rate here, and no family reads the whole speed across the sight line
-    row = {"objective": "theta_dot", "mistake": "theta' = v/r (the whole speed across the line "
-           "of sight)", "kind": "velocity_component_wrong", "answer": "-0.03333 rad/s"}
-    result = MEASURE.solution("radar_tracks_airplane_polar").result("theta_dot")
+    # 60 W for 60 kW makes the force exactly 1000 times too small, but no millimetre is in it
+    row = {"objective": "force_at_25", "mistake": "kW not converted: P = 60 W",
+           "kind": "unit_slip", "answer": "2.4 N"}
+    result = MEASURE.solution("car_constant_power_acceleration").result("force_at_25")
     kind, judged = MEASURE.classify(row, result)
-    assert (kind, judged.diagnosis) == ("generic", "factor of 2")
+    assert (kind, judged.diagnosis) == ("generic", "unit slip (mm vs m)")
 
 
 @pytest.mark.slow  # the only table with rows inside the tolerance is a heavy problem's

@@ -251,6 +251,86 @@ def test_a_turning_body_taken_as_a_particle_at_its_mass_centre():
     assert [m.value for m in particle] == [pytest.approx(right * 4 / 3)]
 
 
+def test_a_rotor_turning_in_space_has_its_disk_read_as_a_ring():
+    # a gyroscope's disk (m r^2/2 about its axle) as a hoop, m r^2: the precession rate halved
+    right = _solution("gyroscope_steady_precession").result("precession_rate").value
+    (ring,) = _generated("gyroscope_steady_precession", "precession_rate", "other_shape_inertia")
+    assert ring.value == pytest.approx(right / 2, rel=1e-6)
+    assert "thin ring (m r²) for a uniform disk of radius r" in ring.message
+
+
+def test_no_other_shape_for_a_disk_that_does_not_turn_or_spin_in_its_mount(tmp_path):
+    # the gyroscope's rotor held in a frame that keeps its orientation: no inertia read
+    text = (shipped_dir("problems") / "gyroscope_steady_precession.yaml").read_text("utf-8")
+    text = text.replace("origin: G}", "origin: G}\n  F: {parent: N, rotation: {axis: z, "
+                        "angle: 0}}").replace("frame: D,", "frame: F,")
+    (tmp_path / "held.yaml").write_text(text, encoding="utf-8")
+    assert "other_shape_inertia" not in {m.code for m in dynamics_mutations(
+        load_problem(tmp_path / "held.yaml"))}
+    # a disk fixed askew on a turning shaft does not spin in its mount: a ring's inertia there
+    # gives exactly what the couple over b for 2 b gives, and is not read
+    assert "other_shape_inertia" not in _codes("disk_on_bent_shaft")
+
+
+def test_a_motion_at_constant_power_read_as_uniformly_accelerated_between_its_ends():
+    # 10 to 25 m/s in 5.25 s: the mean 17.5 m/s times 5.25 s, and 97.5 m over 17.5 m/s
+    (distance,) = _generated("car_constant_power_acceleration", "distance", "mean_of_end_rates")
+    (time,) = _generated("car_constant_power_acceleration", "time", "mean_of_end_rates")
+    assert (distance.value, time.value) == (pytest.approx(91.875), pytest.approx(97.5 / 17.5))
+    assert distance.message.startswith("Your value takes the motion as uniformly accelerated")
+
+
+def test_a_launch_read_at_its_final_speed_throughout():
+    # 0.1 m over the 4 m/s the puck leaves with: 0.025 s (the answer is a quarter period)
+    (end,) = _generated("spring_launcher_a_of_x", "time", "end_speed_throughout")
+    assert end.value == pytest.approx(0.025)
+    assert end.message.startswith("Your value takes the motion at its final speed throughout")
+
+
+def test_no_mean_of_end_rates_without_a_stated_starting_rate_or_along_two_coordinates():
+    # the launcher starts from a deflection alone; the satellite moves along r and theta
+    assert "mean_of_end_rates" not in _codes("spring_launcher_a_of_x")
+    assert not {"mean_of_end_rates", "end_speed_throughout"} & _codes("satellite_apogee_speed")
+
+
+def test_a_side_force_read_as_the_weight_another_reaction_of_the_body_carries():
+    # the collar's N_side (across the rod) taken as m g, which N_up carries
+    (side,) = _generated("collar_slides_on_spinning_rod", "side_force", "reaction_as_weight")
+    assert side.value == pytest.approx(4.905)
+    assert "the weight goes to N_up, along the vertical" in side.message
+    # a collar on a vertical rod: its one reaction is across the weight, and nothing else of
+    # the collar carries the weight (the spring and the motion do)
+    assert not _generated("collar_spring_vertical_rod", "rod_force", "reaction_as_weight")
+
+
+def test_a_pucks_transverse_speed_kept_instead_of_its_angular_momentum():
+    # r0 w0 / r = 0.8 x 2 / 0.4 = 4 rad/s (the answer, r0^2 w0 / r^2, is 8)
+    (kept,) = _generated("puck_string_through_hole", "angular_velocity", "transverse_speed_kept")
+    assert kept.value == pytest.approx(4.0)
+    assert kept.message.startswith("Your value keeps the transverse speed r θ̇ of P from the start")
+    # asked for no angle's rate (the satellite), or not integrated from a start: no reading
+    assert "transverse_speed_kept" not in _codes("satellite_apogee_speed")
+    assert "transverse_speed_kept" not in _codes("collar_slides_on_spinning_rod")
+
+
+def test_a_coupling_read_with_the_kinetic_energy_kept():
+    # 20 Mg at 1.5 m/s couples to 30 Mg at rest: sqrt(20 x 1.5^2 / 50) m/s, not 0.6
+    (kept,) = _generated("freight_cars_couple", "velocity_after", "energy_kept_in_coupling")
+    assert kept.value == pytest.approx(0.9 ** 0.5)
+    # an impact with restitution (the pucks bounce apart) is no coupling
+    assert "energy_kept_in_coupling" not in _codes("pucks_oblique_impact")
+
+
+def test_a_disks_parallel_axis_term_written_with_its_radius_for_the_pins_distance():
+    # hung 100 mm from its centre: I_G + m r^2 for I_G + m d^2 (r = 200 mm)
+    (radius,) = _generated("disk_pendulum_period", "omega_n", "parallel_axis_with_radius")
+    assert radius.value == pytest.approx(4.0435, rel=1e-4)
+    assert "the term is m d², d the distance from G to O" in radius.message
+    # pinned at its rim the radius is the pin's distance; a rod has no radius
+    assert "parallel_axis_with_radius" not in _codes("disk_pinned_at_rim_released")
+    assert "parallel_axis_with_radius" not in _codes("pendulum_pin_reaction")
+
+
 def test_a_given_radius_of_gyration_taken_as_a_uniform_disk_of_the_strings_radius():
     # the yo-yo's m k^2 (k = 3 r) taken as m r^2/2: a = g r^2/(r^2/2 + r^2) = 2 g/3
     (disk,) = [m for m in _generated("yo_yo_unwinding", "accel", "other_shape_inertia")
@@ -761,6 +841,12 @@ def test_a_reaction_across_a_turning_rod_is_read_without_the_coriolis_term():
     found = {(m.code, m.readings[0][0]) for m in dynamics_mutations(
         _problem("collar_slides_on_spinning_rod")) if "oriolis" in m.code}
     assert found == {("drop_coriolis", "side_force"), ("coriolis_half", "side_force")}
+    # said in plain words, the 2 forgotten said as such
+    half = next(m for m in dynamics_mutations(_problem("collar_slides_on_spinning_rod"))
+                if m.code == "coriolis_half")
+    assert half.sentence.startswith("Your value takes N_side from the balance of collar along "
+                                    "N_side's direction with the Coriolis term taken as "
+                                    "ω × v_rel, without its 2: sliding along frame E")
     # a pendulum turns with no frame sliding on it: no relative velocity, no Coriolis term
     assert not [m for m in dynamics_mutations(_problem("pendulum_pin_reaction"))
                 if "oriolis" in m.code]

@@ -8,11 +8,13 @@ import pytest
 import sympy as sp
 
 from mechgrade.grade.compare import assess
-from mechgrade.expressions.syntax import parse
+from mechgrade.expressions.syntax import parse, to_text
 from mechgrade.mechanics.build import build
 from mechgrade.mechanics.mutations import (_driver_speed, _gyration_for_radius,
                                            _rate_relation_inverted, _Reading,
-                                           _start_term_left_out, mutations)
+                                           _start_term_left_out, _whole_speed_for_rate,
+                                           _distance_rate_as_speed, described_from,
+                                           mutations)
 from mechgrade.spec.mistake_codes import MODEL_CODES as CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -50,6 +52,27 @@ def test_dropped_terms_are_named_with_their_value_in_the_objectives_unit():
     assert coriolis[0].value == pytest.approx((-106.0, -40.0, 0.0))
     assert "Coriolis term 2 ω × v_rel" in coriolis[0].message \
         and "= (40, 0) ft/s^2" in coriolis[0].message
+
+
+def test_a_point_on_a_circle_about_another_point_has_its_turning_terms_dropped():
+    # B on the ramp: R F.x from the centre Q, F with no origin of its own
+    problem = _problem("two_cars_relative_motion")
+    model = build(problem)
+    assert described_from(model, "B", "N") == [("F", "Q")]
+    result = solve(problem).result("relative_acceleration")
+    dropped = {m.code: m.value for m in result.generated_mistakes
+               if m.code in ("drop_centripetal", "drop_tangential")}
+    assert dropped["drop_centripetal"] == pytest.approx((1.732, -2.5, 0.0), abs=1e-3)
+    assert dropped["drop_tangential"] == pytest.approx((-1.125, -3.449, 0.0), abs=1e-3)
+
+
+def test_no_turning_frame_about_a_point_for_one_on_a_fixed_line_or_in_a_frame_with_an_origin():
+    model = build(_problem("two_cars_relative_motion"))
+    assert described_from(model, "A", "N") == []  # y N.y: along the fixed frame
+    assert described_from(model, "B", "F") == []  # at rest in its own frame
+    # the tube's frame has its own origin: moving_frames composes it already
+    tube = build(_problem("ruina_10_4_10_7_rotating_tube_accel"))
+    assert all(described_from(tube, p.name, "N") == [] for p in tube.problem.points)
 
 
 def test_components_along_the_polar_frame_are_the_other_basis_mistake():
@@ -227,6 +250,57 @@ def test_no_drivers_speed_for_an_angles_rate_the_drivers_own_or_its_own_point_lo
     assert _family(_driver_speed, _problem("radar_tracks_airplane_polar"), "r_dot") == []
 
 
+def test_a_polar_rate_read_with_the_points_whole_speed_along_its_direction():
+    # x N.x + h N.y = r E.x with x' given: r' = v and theta' = v/r, in the answer's sense
+    radar = _problem("radar_tracks_airplane_polar")
+    (r_dot,) = _family(_whole_speed_for_rate, radar, "r_dot")
+    (theta_dot,) = _family(_whole_speed_for_rate, radar, "theta_dot")
+    assert (r_dot.code, str(r_dot.value)) == ("speed_for_component", "Abs(xd)*sign(rd)")
+    assert theta_dot.code == "speed_for_component"
+    assert theta_dot.sentence.startswith("Your value is θ̇ with the whole speed of the point "
+                                         "that line_of_sight places")
+    # solved: 200 m/s / 6000 m, the angle falling; and the pin of a crank in a turning slot,
+    # s' = r phi' and theta' = r phi'/s
+    for problem, objective, value in (("radar_tracks_airplane_polar", "theta_dot", -0.03333),
+                                      ("slotted_arm_crank_coriolis", "sliding_rate", 0.8),
+                                      ("slotted_arm_crank_coriolis", "arm_angular_velocity",
+                                       1.512)):
+        found = [m for m in solve(_problem(problem)).result(objective).generated_mistakes
+                 if m.code == "speed_for_component"]
+        assert [m.value for m in found] == [pytest.approx(value, rel=2e-4)]
+
+
+def test_no_whole_speed_reading_where_the_other_side_moves_by_an_unknown_or_for_a_length():
+    # B's slot: the rod's side moves with theta, whose rate is unknown (B's velocity is not
+    # known before s' is)
+    assert _family(_whole_speed_for_rate, _problem("rod_in_two_slots_ic"), "velocity_B") == []
+    radar = _problem("radar_tracks_airplane_polar")
+    assert _family(_whole_speed_for_rate, radar, "distance") == []
+    # the airplane's rate x' no longer given: its velocity is not known
+    unknown = replace(radar, givens=tuple(g for g in radar.givens if to_text(g.key.node) != "x'"))
+    assert _family(_whole_speed_for_rate, unknown, "r_dot") == []
+
+
+def test_a_ropes_slant_rate_read_as_the_whole_speed_of_its_moving_end():
+    # sqrt(x^2 + h^2) + 2 (h - y) = L: the slant's rate taken as x' gives y' = x'/2 = 1 m/s
+    truck = _problem("truck_hoists_crate_pulley")
+    (found,) = _family(_distance_rate_as_speed, truck, "velocity")
+    assert found.code == "speed_for_component"
+    assert found.sentence.startswith("Your value is ẏ with the rate of the distance sqrt(x²+h²)")
+    values = {"x": 4.0, "h": 3.0, "xd": 2.0, "yd": 0.8}
+    assert float(found.value.subs({s: values[s.name] for s in found.value.free_symbols})) \
+        == pytest.approx(1.0)
+
+
+def test_no_slant_reading_for_a_position_a_second_rate_or_an_end_of_unknown_speed():
+    truck = _problem("truck_hoists_crate_pulley")
+    assert _family(_distance_rate_as_speed, truck, "height") == []
+    assert _family(_distance_rate_as_speed, truck, "acceleration") == []
+    unknown = replace(truck, givens=tuple(g for g in truck.givens
+                                          if to_text(g.key.node) not in ("x'", "x''")))
+    assert _family(_distance_rate_as_speed, unknown, "velocity") == []
+
+
 def test_an_angular_acceleration_from_a_cords_read_as_a_r_for_a_over_r():
     found = _family(_rate_relation_inverted, _problem("drum_hoist_falling_block"),
                     "angular_acceleration")
@@ -292,6 +366,8 @@ def test_a_second_derivative_from_a_force_balance_is_read_without_the_centripeta
     values = {"rdd": 7.5, "r": 0.3, "thetad": 5.0}
     value = found[0].value.subs({s: values[s.name] for s in found[0].value.free_symbols})
     assert float(value) == pytest.approx(0.0)
+    # the rate typeset as the other messages print it, not in the answer syntax (r'')
+    assert found[0].sentence.startswith("Your value is r̈ from the force balance of collar")
     # a coordinate no force balance gives (a problem without bodies) has no such reading
     assert not any("force balance" in m.sentence
                    for m in mutations(_problem("radar_tracks_airplane_polar"), "r_ddot"))
@@ -306,6 +382,10 @@ def test_a_second_derivative_solved_from_a_constraint_without_a_coriolis_term_or
     thetadd, sd, thetad, s = (symbols[n] for n in ("thetadd", "sd", "thetad", "s"))
     assert sp.simplify(found["drop_coriolis"] - (thetadd + 2 * sd * thetad / s)) == 0
     assert sp.simplify(found["coriolis_half"] - (thetadd + sd * thetad / s)) == 0
+    assert all(m.sentence.startswith("Your value is θ̈ solved from the constraint pin_in_slot")
+               for m in mutations(_problem("slotted_arm_crank_coriolis"),
+                                  "arm_angular_acceleration")
+               if "solved from the constraint" in m.sentence)
     # a rate (not a second derivative) has no such reading
     assert not any("solved from the constraint" in m.sentence for m in mutations(
         _problem("slotted_arm_crank_coriolis"), "arm_angular_velocity"))

@@ -147,6 +147,16 @@ def test_a_natural_frequency_makes_the_two_pi_between_rad_per_s_and_hertz_plausi
         shipped_dir("problems") / "car_climbs_grade_power.yaml"))
 
 
+def test_a_body_makes_a_factor_of_g_plausible_without_a_g_in_the_model():
+    from mechgrade.solve.mutants import plausible_slips
+    # a boat slowed by drag alone: its weight m g is still what a student may divide by
+    assert "g" in plausible_slips(load_problem(shipped_dir("problems")
+                                               / "boat_coasting_quadratic_drag.yaml"))
+    # kinematics alone (a radar tracking an airplane): no weight, no g
+    assert "g" not in plausible_slips(load_problem(shipped_dir("problems")
+                                                   / "radar_tracks_airplane_polar.yaml"))
+
+
 def test_a_generated_mistake_is_kept_alike_at_one_instant_and_in_a_class():
     # one rule (kept_mistakes) read through one stacking of the mistakes: the answer's own
     # value, a repeat of its family and a value of another shape are dropped, at one instant

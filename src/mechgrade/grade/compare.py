@@ -33,7 +33,7 @@ from ..solve.mutants import separating_rel
 from ..solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from ..spec.model import ObjectiveKind
 from ..tolerance import REFERENCE_ACCURACY, agree_at_points, within
-from ..units import describe_dimension, dimension, from_si, to_si
+from ..units import describe_dimension, dimension, from_si, judged_in, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
 from .diagnose import G_FT, G_SI, Diagnosis, diagnose, trig_in_radians
@@ -234,7 +234,7 @@ def _resolve_unit(answer_unit: str | None, result: ObjectiveResult, policy: Grad
         return Assessment(Verdict.INCORRECT, policy.credit_for("dimension"), "wrong dimension",
                           f"You gave {describe_dimension(given)}; "
                           f"{describe_dimension(wanted)} was asked.", read_back)
-    return _Units(answer_unit)
+    return _Units(judged_in(answer_unit, result.unit))
 
 
 def _example_unit(unit: str) -> str:

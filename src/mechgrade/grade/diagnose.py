@@ -70,9 +70,10 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
     ("g", "factor of g",
      "Your answer is g times too large: weight used for mass, or g applied twice?",
      (G_SI, G_FT)),
-    # a force g times too small is the usual dynamics slip: m written for the weight m g
-    ("g", "factor of g", "Your answer is g times too small: mass used for weight (g left out)?",
-     (1 / G_SI, 1 / G_FT)),
+    # g times too small: m written for the weight m g (a force), or a force divided by the
+    # weight m g for the mass (an acceleration)
+    ("g", "factor of g", "Your answer is g times too small: mass used for weight (g left out), "
+     "or weight used for mass?", (1 / G_SI, 1 / G_FT)),
     ("cm_m", "unit slip (cm vs m)", "Your answer is off by a factor of 100: cm mixed with m?",
      (100.0, 0.01)),
     ("mm_m", "unit slip (mm vs m)", "Your answer is off by a factor of 1000: mm mixed with m?",
@@ -363,6 +364,7 @@ LABELS = {
     "rho_formula": "radius of curvature from |a|",
     "rho_without_slope": "radius of curvature without the slope term",
     "component_for_speed": "a velocity component for the speed",
+    "speed_for_component": "the whole speed for a velocity component",
     "given_deg_as_rad": "given angle's degrees used as radians",
     "given_complement": "given angle read as its complement (sin and cos exchanged)",
     "given_rate_unit": "given rate's unit not converted to rad/s",
@@ -408,6 +410,12 @@ LABELS = {
     "period_for_frequency": "period and frequency confused",
     "spring_energy_from_change": "spring energy from the change of stretch",
     "spring_energy_half_omitted": "spring energy without its ½",
+    "mean_of_end_rates": "uniform acceleration assumed (the mean of the end speeds)",
+    "end_speed_throughout": "the final speed taken as constant throughout",
+    "transverse_speed_kept": "the transverse speed r θ̇ kept instead of the angular momentum",
+    "energy_kept_in_coupling": "kinetic energy taken as conserved in a coupling",
+    "parallel_axis_with_radius": "the parallel-axis term with the radius for the pivot's "
+                                 "distance",
     "impact_taken_head_on": "an oblique impact taken as head-on",
     "reaction_omitted": "a support's force left out (free fall)",
     "pin_impulse_omitted": "linear momentum taken as conserved through a pin's impulse",

@@ -399,15 +399,14 @@ def upstream_objective(problem: Problem, objective_id: str) -> Objective | None:
 
 def _si_value(text: str, result: ObjectiveResult) -> float | None:
     """The student's scalar answer in SI, read as the objective's unit when none is written."""
-    from ..units import to_si
+    from ..units import judged_in, to_si
     from .answers import NumberAnswer, read_answer
 
     try:
         answer = read_answer(text, result)
         if not isinstance(answer, NumberAnswer):
             return None
-        unit = answer.unit if answer.unit is not None else result.unit
-        value = to_si(answer.value, unit)
+        value = to_si(answer.value, judged_in(answer.unit, result.unit))
     except MechgradeError:
         return None
     return value if math.isfinite(value) else None
@@ -416,14 +415,14 @@ def _si_value(text: str, result: ObjectiveResult) -> float | None:
 def _si_vector(text: str, result: ObjectiveResult):
     """The student's vector answer in SI components along the objective's frame, or
     ``None`` (not a vector, or along another frame's unit vectors)."""
-    from ..units import to_si
+    from ..units import judged_in, to_si
     from .answers import VectorAnswer, read_answer
 
     try:
         answer = read_answer(text, result)
         if not isinstance(answer, VectorAnswer) or answer.frame not in (None, result.frame):
             return None
-        unit = answer.unit if answer.unit is not None else result.unit
+        unit = judged_in(answer.unit, result.unit)
         value = np.array([to_si(c, unit) for c in answer.components], dtype=float)
     except MechgradeError:
         return None

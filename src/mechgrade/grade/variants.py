@@ -35,7 +35,7 @@ from ..spec.model import ObjectiveKind, Problem
 from ..spec.solving import resolve_given_values
 from ..spec.variants import PLACEHOLDER, Choices, Draw, Integers, SteppedRange
 from ..tolerance import within
-from ..units import from_si, to_si
+from ..units import from_si, judged_in, to_si
 from .results import StudentResult, StudentVariant, VariantGiven, Verdict, unit_text
 from .sheets import Question, Sheet, SheetProblem
 
@@ -588,11 +588,10 @@ def answer_si(text: str, reference: ObjectiveResult):
     try:
         answer = read_answer(text, reference)
         if isinstance(answer, NumberAnswer) and reference.kind == ObjectiveKind.SCALAR:
-            return to_si(answer.value, answer.unit if answer.unit is not None
-                         else reference.unit)
+            return to_si(answer.value, judged_in(answer.unit, reference.unit))
         if isinstance(answer, VectorAnswer) and reference.kind == ObjectiveKind.VECTOR \
                 and answer.frame in (None, reference.frame):
-            unit = answer.unit if answer.unit is not None else reference.unit
+            unit = judged_in(answer.unit, reference.unit)
             return tuple(to_si(c, unit) for c in answer.components)
     except MechgradeError:
         return None

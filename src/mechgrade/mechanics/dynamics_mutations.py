@@ -30,7 +30,8 @@ from typing import Callable, Iterator
 
 from sympy.physics.vector import Vector
 
-from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, Unary, name_of,
+from ..expressions.notation import textbook
+from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Num, Prime, Unary, name_of,
                                   parse, to_text, walk)
 from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force, Friction,
                              LoadKind,
@@ -434,17 +435,46 @@ def central_inertia_at_pivot(problem: Problem, model: Model) -> Iterator[Dynamic
         for pivot in _pivots(problem, model, body):
             offset = f"pos({pivot}, {body.centre})"
             term = _expr(f"({_mass(body)})*dot({offset}, {offset})")
-            part = Part(_expr("0"), body.centre, Explicit((("zz", _expr(f"-({term.text})")),)),
-                        body.where)
-            bodies = tuple(replace(b, parts=b.parts + (part,)) if b.name == body.name else b
-                           for b in d.bodies)
             yield DynamicsMutation(
                 "central_inertia_at_pivot", f"Your value uses the moment of inertia of "
                 f"{body.name} about its mass centre {body.centre} for the rotation about "
                 f"{pivot}; about {pivot} it needs the parallel-axis term m d² = {{term}}.",
-                BODIES, problem=_mistaken(problem, replace(d, bodies=bodies),
-                                          without=("ke", "angmom")),
+                BODIES, problem=_inertia_added(problem, d, body, f"-({term.text})"),
                 term=term, term_unit="kg*m^2")
+
+
+def _inertia_added(problem: Problem, d: Dynamics, body: Body, zz: str) -> Problem:
+    """The mistaken model with a massless part of ``body`` carrying ``zz`` about its z axis
+    (its moment of inertia about a pivot mistaken by that much)."""
+    part = Part(_expr("0"), body.centre, Explicit((("zz", _expr(zz)),)), body.where)
+    bodies = tuple(replace(b, parts=b.parts + (part,)) if b.name == body.name else b
+                   for b in d.bodies)
+    return _mistaken(problem, replace(d, bodies=bodies), without=("ke", "angmom"))
+
+
+def parallel_axis_with_radius(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """The moment of inertia about a pivot away from the mass centre (a disk hung from a hole)
+    with the parallel-axis term written with the body's radius r for the pivot's distance d:
+    I_G + m r² for I_G + m d². Modelled, as :func:`central_inertia_at_pivot`, by a massless
+    part carrying m (r² - d²) about the body's z axis."""
+    d = dynamics_of(problem)
+    for body in d.bodies:
+        if not _rotating(model, body) or len(body.parts) != 1 \
+                or type(body.parts[0].shape) not in _SHAPES:
+            continue
+        radius = _radius(body.parts[0].shape)
+        for pivot in _pivots(problem, model, body):
+            offset = f"pos({pivot}, {body.centre})"
+            if identically_zero(model.plain(model.language.scalar(
+                    _expr(f"dot({offset}, {offset}) - ({radius})^2")))):
+                continue  # the pivot on the rim: r is its distance
+            extra = f"({_mass(body)})*(({radius})^2 - dot({offset}, {offset}))"
+            yield DynamicsMutation(
+                "parallel_axis_with_radius", f"Your value takes the parallel-axis term about "
+                f"{pivot} as m {radius}² = {{term}}, with the radius {radius} of {body.name}: "
+                f"the term is m d², d the distance from {body.centre} to {pivot}.", BODIES,
+                problem=_inertia_added(problem, d, body, extra),
+                term=_expr(f"({_mass(body)})*({radius})^2"), term_unit="kg*m^2")
 
 
 def friction_reversed(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -568,19 +598,26 @@ def tension_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutati
 
 def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A reaction along the vertical (a string, a floor) or pressing a friction contact read as
-    the weight m g of a body it acts on, as if the body did not accelerate."""
+    the weight m g of a body it acts on, as if the body did not accelerate; and a reaction
+    across the vertical read as the weight that another reaction of its body carries (a
+    collar's side force for the rod's vertical one)."""
     d = dynamics_of(problem)
     if d.gravity is None or isinstance(d.analysis, Impulse):
         return
     g = model.language.vector(d.gravity)
     normals = {f.normal for f in d.friction}
+    vertical = {r.name: _zero(model, g ^ model.language.vector(r.directions[0]))
+                for r in d.reactions if len(r.directions) == 1}
     for r in d.reactions:
         if len(r.directions) != 1:
             continue
         direction = r.directions[0]
-        if r.name not in normals and not _zero(model, g ^ model.language.vector(direction)):
-            continue
+        across = r.name not in normals and not vertical[r.name]
         for name in dict.fromkeys(a.on for a in r.acts if a.on != GROUND):
+            carrier = next((o.name for o in d.reactions if vertical.get(o.name)
+                            and any(a.on == name for a in o.acts)), None)
+            if across and carrier is None:
+                continue
             # a body held in place (a drum on its axle) has no weight the reaction could
             # be taken for: its weight goes to its bearing
             if _zero(model, model.language.point_velocity(Name(d.body(name).centre),
@@ -591,11 +628,13 @@ def reaction_as_weight(problem: Problem, model: Model) -> Iterator[DynamicsMutat
             at = next(a.at for a in r.acts if a.on == name)
             readings = _readings(problem, "force", r.name, replacement, at)
             if readings:
+                why = (f"the weight goes to {carrier}, along the vertical, and {r.name} comes "
+                       "from the momentum balance across it") if across else (
+                       f"{r.name} comes from the momentum balance along its direction, where the "
+                       "other forces and the acceleration count too")
                 yield DynamicsMutation(
                     "reaction_as_weight", f"Your value takes {r.name} equal to the weight of "
-                    f"{name}, m g = {{term}}; {r.name} comes from the momentum balance along "
-                    "its direction, where the other forces and the acceleration count too.",
-                    BALANCES, readings=readings,
+                    f"{name}, m g = {{term}}; {why}.", BALANCES, readings=readings,
                     term=weight, term_unit="N")
     yield from _spring_as_weight(problem, d)
 
@@ -678,9 +717,11 @@ def reaction_without_coriolis(problem: Problem, model: Model) -> Iterator[Dynami
                 term = parse(f"2*cross(angvel({B}, {N}), dt({rel}, {B}))", functions=FUNCTIONS)
                 if identically_zero(model.plain(lang.value(term) & along)):
                     continue
-                for code, share, name in (("drop_coriolis", "", "the Coriolis term 2 ω × v_rel"),
-                                          ("coriolis_half", "/2",
-                                           "half the Coriolis term (ω × v_rel, the 2 forgotten)")):
+                for code, share, name in (
+                        ("drop_coriolis", "", "with the Coriolis term 2 ω × v_rel left out of "
+                         "its acceleration"),
+                        ("coriolis_half", "/2", "with the Coriolis term taken as ω × v_rel, "
+                         "without its 2")):
                     unit = f"unit({direction.text})"
                     replacement = parse(
                         f"force({r.name}) - ({_mass(body)})*dot({to_text(term)}{share}, {unit})"
@@ -688,10 +729,10 @@ def reaction_without_coriolis(problem: Problem, model: Model) -> Iterator[Dynami
                     readings = _force_readings(problem, r.name, act.at, replacement)
                     if readings:
                         yield DynamicsMutation(
-                            code, f"Your value is {r.name} from the balance of {body.name} "
-                            f"along it with {name} of frame {B} left out of the acceleration: "
-                            f"the sliding along {B} while it turns needs m × 2 ω × v_rel = "
-                            "{term} across.", BALANCES, readings=readings,
+                            code, f"Your value takes {r.name} from the balance of {body.name} "
+                            f"along {r.name}'s direction {name}: sliding along frame {B} "
+                            f"while {B} turns, {body.name} needs a force m × 2 ω × v_rel = "
+                            "{term} along it.", BALANCES, readings=readings,
                             term=_expr(f"({_mass(body)})*dot({to_text(term)}, {unit})"),
                             term_unit="N")
 
@@ -869,6 +910,45 @@ def restitution_ignored(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                 "restitution_ignored", f"Your value is what {kind} at {c.at} gives; the "
                 f"coefficient of restitution is e = {{term}}: use it in the contact condition.",
                 BALANCES, problem=_mistaken(problem, changed), term=c.e)
+
+
+def energy_kept_in_coupling(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A coupling (every contact of an impact with e = 0, particles moving along one line)
+    read with the kinetic energy kept instead of the momentum: the common velocity after
+    sqrt(Σ m v₀² / Σ m), in the sense of the right one."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Impulse) or not d.analysis.contacts or any(
+            not isinstance(c, Restitution) or not identically_zero(
+                model.plain(model.language.scalar(c.e))) for c in d.analysis.contacts):
+        return
+    before = {to_text(s.key.node): s.value.text if s.value is not None else repr(s.si)
+              for s in d.analysis.start}
+    positions = {p.name: p.position.node for p in problem.points if p.position is not None}
+    first = d.analysis.contacts[0]
+    assert isinstance(first, Restitution)
+    rates: list[str] = []
+    terms: list[tuple[str, str]] = []
+    for body in d.bodies:
+        node, line = positions.get(body.centre), first.direction.node
+        if body.frame is not None or not (isinstance(node, Bin) and node.op == "*"
+                                          and isinstance(node.left, Name)
+                                          and node.right == line):
+            return
+        rate = f"{node.left.id}'"
+        rates.append(rate)
+        terms.append((_mass(body), before.get(rate, "0")))
+    if len(terms) < 2:
+        return
+    energy = " + ".join(f"({m})*({v})^2" for m, v in terms)
+    mass = " + ".join(f"({m})" for m, _ in terms)
+    readings = tuple((o.id, _expr(f"sign({rate})*sqrt(({energy})/({mass}))"))
+                     for o in problem.objectives for rate in rates
+                     if to_text(o.find.node) == rate)
+    if readings:
+        yield DynamicsMutation(
+            "energy_kept_in_coupling", "Your value keeps the kinetic energy through the "
+            "coupling: the bodies that move on together lose energy in it; the momentum is "
+            "what the impact conserves.", BALANCES, readings=readings)
 
 
 def impact_taken_head_on(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
@@ -1313,10 +1393,14 @@ _SHAPES = {kind: (SHAPES[kind].name, SHAPES[kind].axial or "") for kind in _CONF
 
 def other_shape_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A rigid body's moment of inertia taken from another shape's formula: a solid sphere's
-    from a shell's or a disk's, a disk's from a ring's (every part of that shape and size)."""
+    from a shell's or a disk's, a disk's from a ring's (every part of that shape and size),
+    for a body turning in a plane, or spinning in a turning mount (a gyroscope's rotor)."""
     d = dynamics_of(problem)
+    parents = {f.name: f.parent for f in problem.frames}
     for body in d.bodies:
-        if not _rotating(model, body):
+        mount = parents.get(body.frame or "")
+        if not _rotating(model, body) and (body.frame is None or mount is None or _zero(
+                model, model.frames[body.frame].ang_vel_in(model.frames[mount]))):
             continue
         kinds = dict.fromkeys((type(p.shape), _radius(p.shape)) for p in body.parts
                               if type(p.shape) in _SHAPES)
@@ -2039,6 +2123,41 @@ def value_at_start(problem: Problem, model: Model) -> Iterator[DynamicsMutation]
         problem=replace(mistaken, objectives=objectives))
 
 
+def transverse_speed_kept(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion integrated from a start along polar coordinates (a point at r E.x, frame E
+    turning by θ) with the transverse speed r θ̇ taken as conserved instead of r² θ̇ (the
+    angular momentum): θ̇ read as r₀ θ̇₀ / r, with the start's values."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration):
+        return
+    at_start = {to_text(s.key.node): s.value.text if s.value is not None else repr(s.si)
+                for s in d.analysis.start}
+    coordinates = {c.name for c in problem.coordinates}
+    for frame in problem.frames:
+        angle = frame.rotations[0].angle.node if len(frame.rotations) == 1 else None
+        if not (isinstance(angle, Name) and angle.id in coordinates and frame.origin):
+            continue
+        for point in problem.points:
+            node = point.position.node if point.position is not None else None
+            if point.origin != frame.origin or not (
+                    isinstance(node, Bin) and node.op == "*" and isinstance(node.left, Name)
+                    and node.left.id in coordinates and node.right == Attr(frame.name, "x")):
+                continue
+            r, rate = node.left.id, f"{angle.id}'"
+            if r not in at_start or rate not in at_start:
+                continue
+            kept = _expr(f"({at_start[r]})*({at_start[rate]})/{r}")
+            readings = tuple((o.id, kept) for o in problem.objectives
+                             if to_text(o.find.node) == rate)
+            if readings:
+                yield DynamicsMutation(
+                    "transverse_speed_kept", f"Your value keeps the transverse speed "
+                    f"{textbook(r)} {textbook(rate)} of {point.name} from the start: the speed "
+                    "is not what the motion conserves; with no moment about "
+                    f"{frame.origin}, the angular momentum m {textbook(r)}² {textbook(rate)} "
+                    "is.", OBJECTIVES, readings=readings)
+
+
 def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated from a start, with each applied force that depends on the state (a
     drag c v², a drive P/v) taken constant at its value at the start: the acceleration taken
@@ -2081,6 +2200,39 @@ def force_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMut
         "a = F/m along the motion (v dv = a dx, dv/dt = a).", BALANCES,
         problem=replace(mistaken, objectives=reached))
 
+
+def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """A motion along one coordinate integrated from a stated start, read as uniformly
+    accelerated between its ends: the distance as the mean of the start and end rates times
+    the time, the time as the distance over that mean (a car at constant power, a boat slowed
+    by drag); where the start's rate is stated. And read at its final speed throughout: the
+    time as the distance over the final speed (a puck leaving a spring), the distance as that
+    speed times the time. The right end rate and time, the mistake in between."""
+    d = dynamics_of(problem)
+    if not isinstance(d.analysis, Integration) or len(problem.coordinates) != 1:
+        return
+    q = problem.coordinates[0].name
+    at_start = {to_text(s.key.node): s.value.text if s.value is not None else repr(s.si)
+                for s in d.analysis.start}
+    if q not in at_start:
+        return
+    x0 = at_start[q]
+    speeds = [("end_speed_throughout", f"{q}'", "at its final speed throughout: the speed "
+               "changes along the motion")]
+    v0 = at_start.get(f"{q}'")
+    if v0 is not None:
+        speeds.insert(0, ("mean_of_end_rates", f"(({v0}) + {q}')/2",
+                          "as uniformly accelerated, with the mean of the starting and final "
+                          "speeds: the acceleration changes along the motion"))
+    for code, speed, how in speeds:
+        instead = {q: f"({x0}) + ({speed})*t", "t": f"({q} - ({x0}))/({speed})"}
+        readings = tuple((o.id, _expr(instead[o.find.node.id])) for o in problem.objectives
+                         if isinstance(o.find.node, Name) and o.find.node.id in instead)
+        if readings:
+            yield DynamicsMutation(
+                code, f"Your value takes the motion {how}, so the distance is the integral "
+                "of the speed over the time, not one speed times the time.", OBJECTIVES,
+                readings=readings)
 
 def spring_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated from a start, with each spring's force taken constant at its value
@@ -2199,7 +2351,9 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     initial_displacement_omitted, spring_energy_half_omitted, spring_taken_constant,
     start_sense_reversed, start_trig_exchanged, impulse_from_speeds, spring_work_reversed,
     force_component_reversed,
-    angmom_along_axis, spring_force_as_resultant, part_moving_with_centre, striker_stops)
+    angmom_along_axis, spring_force_as_resultant, part_moving_with_centre, striker_stops,
+    mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling,
+    parallel_axis_with_radius)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
 equal values names it)."""
 

@@ -24,10 +24,11 @@ from functools import lru_cache
 from typing import Any, Iterator
 
 import sympy as sp
-from sympy.physics.vector import Vector
+from sympy.physics.vector import Vector, dynamicsymbols
 
-from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Prime, Unary, additive_terms,
-                                  name_of, names, sum_of_terms, to_text, walk)
+from ..expressions.notation import textbook
+from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Num, Prime, Unary,
+                                  additive_terms, name_of, names, sum_of_terms, to_text, walk)
 from ..spec.dynamics import Explicit, dynamics_of
 from ..spec.model import Expr, Objective, Problem
 from ..units import same_dimension
@@ -156,7 +157,8 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
             continue
         in_frame = name_of(call.args[1])
         _relative_motion(r, call, point, in_frame)
-        for B, origin in moving_frames(model, point.id, in_frame):
+        for B, origin in [*moving_frames(model, point.id, in_frame),
+                          *described_from(model, point.id, in_frame)]:
             _composition(r, call, point, in_frame, B, origin)
         _other_points(r, call, point, in_frame)
     _other_positions(r)
@@ -171,6 +173,8 @@ def _objective_mutations(model: Model, obj: Objective) -> list[Mutation]:
     _driver_rate(r)
     _gyration_for_radius(r)
     _driver_speed(r)
+    _whole_speed_for_rate(r)
+    _distance_rate_as_speed(r)
     _rate_relation_inverted(r)
     _start_term_left_out(r)
     return r.out
@@ -662,10 +666,10 @@ def _balance_without_term(r: _Reading) -> None:
                 # the balance fixes the acceleration along the motion: q'' (its relative
                 # part) takes up the term left out
                 r.append(code, r.right + share,
-                         f"Your value is {to_text(node)} from the force balance of "
-                         f"{body.name} with {name} left out of its acceleration: along "
-                         f"{B}'s direction of {node.id} the balance fixes the whole "
-                         "acceleration, that term included.")
+                         f"Your value is {textbook(to_text(node))} from the force balance "
+                         f"of {body.name} with {name} left out of its acceleration: along the "
+                         f"direction in which {textbook(node.id)} moves it in frame {B}, the "
+                         "balance fixes the whole acceleration, that term included.")
 
 
 def _turning_terms(omega, rel, v_rel, where: str) -> tuple[tuple[str, Any, str], ...]:
@@ -740,9 +744,9 @@ def _constraint_without_term(r: _Reading) -> None:
                 if identically_zero(sp.simplify(change)):
                     continue
                 r.append(code, r.right + change,
-                         f"Your value is {to_text(node)} solved from the constraint {name} "
-                         f"with {words} left out of the acceleration of its side described in "
-                         f"frame {B}: include it.")
+                         f"Your value is {textbook(to_text(node))} solved from the constraint "
+                         f"{name} with {words} left out of the acceleration of its side "
+                         f"described in frame {B}: include it.")
 
 
 def _other_given_rates(r: _Reading, coordinates: set[str]) -> Iterator[tuple[Prime, Prime, Any]]:
@@ -782,6 +786,103 @@ def _driver_speed(r: _Reading) -> None:
                  f"Your value is {to_text(node)} = {g.text.lstrip('-')} in size, the given "
                  f"rate of {key.id}, as if the mechanism moved as a whole: {to_text(node)} "
                  "follows from the constraints that connect them.")
+
+
+def _whole_speed_for_rate(r: _Reading) -> None:
+    """A coordinate's rate that a position constraint fixes where one side locates a point
+    by coordinates of given rates (its velocity known) and the other by this coordinate among
+    others (x N.x + h N.y = r E.x, a pin in a turning slot): the point's whole speed taken
+    along the direction this coordinate moves it (ṙ = v, θ̇ = v/r) where only the velocity's
+    component along it counts. In the answer's sense; only where the other coordinates move
+    the point at right angles to it, as polar ones do."""
+    node, model = r.node, r.model
+    problem = model.problem
+    coordinates = {c.name for c in problem.coordinates}
+    if not (isinstance(node, Prime) and node.order == 1 and node.id in coordinates):
+        return
+    rated = {g.key.node.id for g in problem.givens
+             if isinstance(g.key.node, Prime) and g.key.node.order == 1}
+    lang, N = model.language, model.inertial
+    symbols = {c: lang.value(Name(c)) for c in coordinates}
+    rate, name = textbook(to_text(node)), textbook(node.id)
+    for c in problem.constraints:
+        if c.level != "position":
+            continue
+        try:
+            sides = [lang.value(c.lhs.node), lang.value(c.rhs.node)]
+        except Exception:  # a side the kinematic language cannot read alone
+            continue
+        if not all(isinstance(side, Vector) for side in sides):
+            continue
+        moved = [{q for q, s in symbols.items() if not _zero(model, side.diff(s, N))}
+                 for side in sides]
+        for i in (0, 1):
+            side, own, known, by = sides[i], moved[i], sides[1 - i], moved[1 - i]
+            if node.id not in own or not by or not by <= rated - own:
+                continue
+            along = side.diff(symbols[node.id], N)
+            if any(not _zero(model, along & side.diff(symbols[q], N)) for q in own - {node.id}):
+                continue
+            r.append("speed_for_component", known.dt(N).magnitude() / along.magnitude()
+                     * sp.sign(model.plain(r.right)),
+                     f"Your value is {rate} with the whole speed of the point that "
+                     f"{c.name} places taken along the direction in which {name} moves it; "
+                     f"only the part of its velocity along that direction gives {rate}, the "
+                     "rest is across it.")
+
+
+def _distance_rate_as_speed(r: _Reading) -> None:
+    """A rate that scalar position constraints fix where one writes a distance as
+    sqrt(u² + v² ...) of coordinates of given rates (a rope's slant sqrt(x² + h²) from a pulley
+    to a truck's hitch): the distance's rate taken as the whole speed of its moving end,
+    sqrt(u̇² + v̇² ...), in its own sense, as if the end moved along the distance (the slant
+    ignored). ``J Δ = b`` gives each unknown rate's change, ``J`` the constraints' partial
+    derivatives in the unknown coordinates."""
+    node, model = r.node, r.model
+    problem = model.problem
+    given = {to_text(g.key.node) for g in problem.givens}
+    unknown = [c.name for c in problem.coordinates if f"{c.name}'" not in given]
+    if not (isinstance(node, Prime) and node.order == 1 and node.id in unknown):
+        return
+    lang = model.language
+    symbols = {c.name: lang.value(Name(c.name)) for c in problem.coordinates}
+    t = dynamicsymbols._t
+    rows, changes = [], []
+    for c in (c for c in problem.constraints if c.level == "position"):
+        try:
+            f = lang.value(c.lhs.node) - lang.value(c.rhs.node)
+        except Exception:  # a vector constraint, or a side the language cannot read alone
+            return
+        if isinstance(f, Vector):
+            return
+        rows.append([model.plain(sp.diff(f, symbols[q])) for q in unknown])
+        for call in (n for side in (c.lhs, c.rhs) for n in _calls(side.node, ("sqrt",))):
+            legs = [lang.value(leg.left) for _, leg in additive_terms(call.args[0])
+                    if isinstance(leg, Bin) and leg.op in ("**", "^") and leg.right == Num("2")]
+            moved = names(call) & set(symbols)
+            if len(legs) != len(additive_terms(call.args[0])) or not moved \
+                    or any(f"{q}'" not in given for q in moved):
+                continue
+            distance, held = lang.value(call), sp.Dummy()
+            rate = sp.diff(distance, t)
+            speed = sp.sqrt(sum(sp.diff(leg, t) ** 2 for leg in legs))
+            weight = sp.diff(f.subs(distance, held), held)
+            changes.append((len(rows) - 1, model.plain(weight * (sp.sign(rate) * speed - rate)),
+                            to_text(call)))
+    if len(rows) != len(unknown):
+        return
+    J, rate = sp.Matrix(rows), textbook(to_text(node))
+    for at, change, text in changes:
+        b = sp.zeros(len(rows), 1)
+        b[at] = -change
+        try:
+            delta = J.LUsolve(b)[unknown.index(node.id)]
+        except (ValueError, ZeroDivisionError):  # a singular J: no unique reading
+            return
+        r.append("speed_for_component", r.right + delta,
+                 f"Your value is {rate} with the rate of the distance {textbook(text)} taken "
+                 "as the whole speed of its moving end, as if the end moved along that line; "
+                 "only the part of the end's velocity along the line changes the distance.")
 
 
 def _same_point(problem: Problem, asked: str, driver: str) -> bool:
@@ -933,6 +1034,25 @@ def moving_frames(model: Model, point: str, frame: str):
                 model, model.language.point_velocity(Name(spec.origin), frame)):
             continue
         yield spec.name, spec.origin
+
+
+def described_from(model: Model, point: str, frame: str) -> list[tuple[str, str]]:
+    """``(G, Q)`` where ``point`` is located from the point ``Q`` along the unit vectors of
+    one frame ``G`` that has no origin of its own and turns in ``frame`` (a car on a ramp,
+    R F.x from the ramp's centre): its motion is composed in ``G`` about ``Q`` as in a
+    frame with that origin (:func:`moving_frames`)."""
+    spec = next((p for p in model.problem.points if p.name == point), None)
+    if spec is None or spec.origin is None or spec.position is None:
+        return []
+    axes = {n.base for n in walk(spec.position.node) if isinstance(n, Attr)}
+    frames = {f.name: f for f in model.problem.frames}
+    if len(axes) != 1 or next(iter(axes)) not in frames:
+        return []
+    G = next(iter(axes))
+    if G == frame or frames[G].origin is not None \
+            or _zero(model, model.frames[G].ang_vel_in(model.frames[frame])):
+        return []
+    return [(G, spec.origin)]
 
 
 def _calls(node: Node, names: tuple[str, ...]) -> Iterator[Call]:

@@ -296,9 +296,10 @@ def _rate_order(unit: str) -> int | None:
 @lru_cache(maxsize=256)
 def plausible_slips(problem: Problem) -> frozenset[str]:
     """The whole-answer slips of :mod:`mechgrade.grade.diagnose` that need something in the
-    model to be plausible: a factor of g needs a ``g``; degrees for radians an angle in
-    degrees; rpm or revolutions a rate in them; 60 a rate in rpm beside one per second; 746
-    for 550 hp in a problem in feet and pounds. Slips of the answer's own unit always are.
+    model to be plausible: a factor of g needs a ``g`` or a body (its weight); degrees for
+    radians an angle in degrees; rpm or revolutions a rate in them; 60 a rate in rpm beside
+    one per second; 746 for 550 hp in a problem in feet and pounds. Slips of the answer's own
+    unit always are.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -310,7 +311,8 @@ def plausible_slips(problem: Problem) -> frozenset[str]:
                      + [g.unit for o in problem.objectives for g in o.givens]
                      + [o.unit for o in problem.objectives])
     out = set()
-    if any(p.name in ("g", "g0") for p in problem.parameters):
+    # a g, or a body whose weight m g a student may divide by for its mass (a boat's drag)
+    if any(p.name in ("g", "g0") for p in problem.parameters) or problem.dynamics is not None:
         out.add("g")
     if "deg" in units or "°" in units:
         out |= {"deg_as_rad", "rad_as_deg"}

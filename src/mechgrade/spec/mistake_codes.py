@@ -24,7 +24,7 @@ MODEL_CODES = ACCELERATION_CODES + VELOCITY_CODES + (
     "component_for_speed", "mag_as_sum",
     "position_term", "zero_for_constant_rate", "driver_rate", "gyration_for_radius",
     "driver_speed", "rate_relation_inverted",
-    "omega_reversed", "angle_complement")
+    "omega_reversed", "angle_complement", "speed_for_component")
 """Family codes of the kinematic model mutations (:mod:`mechgrade.mechanics.mutations`)."""
 
 DYNAMICS_CODES = (
@@ -43,7 +43,9 @@ DYNAMICS_CODES = (
     "pin_impulse_omitted", "translational_ke_omitted", "rolling_assumed",
     "initial_displacement_omitted", "spring_energy_half_omitted", "angmom_along_axis",
     "spring_force_as_resultant", "part_moving_with_centre",
-    "striker_stops")
+    "striker_stops", "mean_of_end_rates",
+    "end_speed_throughout", "transverse_speed_kept", "energy_kept_in_coupling",
+    "parallel_axis_with_radius")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
