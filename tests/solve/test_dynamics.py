@@ -163,14 +163,26 @@ def test_an_event_that_never_happens_is_reported():
     assert "does not happen within 0.2 s" in error_of(body)
 
 
-@pytest.mark.slow
+def _rolls_on_past_its_slip() -> str:
+    """The bowling ball asked to stop translating: its slip ends (t = 1.21 s) long before."""
+    return text("ruina_9_23_ball_impulse_momentum").replace(
+        "until: x' + r*phi' = 0", "until: x' = 0")
+
+
+def test_a_slip_that_ends_and_sticks_before_the_event_is_refused_with_the_fix():
+    error = error_of(_rolls_on_past_its_slip())
+    assert "a kinetic-friction slip ends at t = 1.21477 s, before the event" in error
+    assert "or the end of the slip as the event" in error
+
+
 def test_an_integration_that_chatters_past_the_end_of_slip_is_stopped(monkeypatch):
-    from mechgrade.solve import events
+    """Where the sticking is not recognised (a chatter of another cause), the one-by-one
+    integrator's own limit stops it, with its own message."""
+    from mechgrade.solve import events, motion
 
     monkeypatch.setattr(events, "MAX_CALLS", 4000)
-    body = text("ruina_9_23_ball_impulse_momentum").replace(
-        "until: x' + r*phi' = 0", "until: x' = 0")
-    assert "the integration stalls near t = 1.2" in error_of(body)
+    monkeypatch.setattr(motion.Motion, "_stuck", lambda self, *args: {})
+    assert "the integration stalls near t = 1.2" in error_of(_rolls_on_past_its_slip())
 
 
 def test_symbolic_objective_of_an_integrated_motion_is_in_closed_form():
