@@ -354,3 +354,13 @@ def test_factors_tested_at_once_name_what_the_test_one_by_one_names(plausible):
             _factor(student, reference, one_by_one, plausible)
     assert _factor(-reference, reference, test, plausible)[0].code == "sign"
     assert _factor(1.3 * reference, reference, test, plausible) is None
+
+
+def test_the_grading_docs_list_every_generated_mistake_code():
+    from pathlib import Path
+
+    from mechgrade.grade.diagnose import GENERATED_CODES
+
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "grading.md").read_text(
+        encoding="utf-8")
+    assert [code for code in GENERATED_CODES if f"`{code}`" not in docs] == []

@@ -965,3 +965,16 @@ def test_the_striking_car_taken_to_stop_passes_its_whole_momentum_on():
     # two moving pucks, and an impact on the ground: no particle at rest to be struck
     assert "striker_stops" not in _codes("pucks_oblique_impact")
     assert "striker_stops" not in _codes("rod_strikes_ledge")
+
+
+def test_the_weight_along_the_slope_left_out_keeps_the_friction():
+    # friction alone decelerates the block: a = -mu_k g cos(30 deg) = -0.25 x 9.81 x 0.866
+    solution = _solution("block_sliding_down_incline")
+    assert assess("-2.124 m/s^2", solution.result("accel")).diagnosis == \
+        LABELS["weight_along_surface_omitted"]
+    (mistake,) = _generated("block_sliding_down_incline", "accel",
+                            "weight_along_surface_omitted")
+    assert "weight of block kept only across the surface it rubs on" in mistake.message
+    # friction on a level surface (the weight all across it), and no friction: no slope
+    assert "weight_along_surface_omitted" not in _codes("block_on_turntable")
+    assert "weight_along_surface_omitted" not in _codes("pendulum_pin_reaction")

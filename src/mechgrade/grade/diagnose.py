@@ -426,6 +426,7 @@ LABELS = {
     "spring_force_as_resultant": "one spring's force taken as all the springs' together",
     "part_moving_with_centre": "a point mass taken to move with its body's centre",
     "striker_stops": "the striking body taken to stop in the impact",
+    "weight_along_surface_omitted": "the weight's component along the slope left out",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

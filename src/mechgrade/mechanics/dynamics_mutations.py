@@ -841,6 +841,38 @@ def translational_ke_omitted(problem: Problem, model: Model) -> Iterator[Dynamic
             term=_expr(translational), term_unit="J")
 
 
+def weight_along_surface_omitted(problem: Problem, model: Model
+                                 ) -> Iterator[DynamicsMutation]:
+    """On a slope, the weight's component along the surface a body rubs on left out while its
+    part pressing on the surface (and so the friction) is kept: the weight of the body with
+    friction replaced by its part along the normal reaction's one direction, every other
+    body's weight as it is."""
+    d = dynamics_of(problem)
+    if d.gravity is None:
+        return
+    gravity = model.language.vector(d.gravity)
+    for f in d.friction:
+        r = next((r for r in d.reactions if r.name == f.normal), None)
+        if r is None or len(r.directions) != 1:
+            continue
+        along = model.language.vector(r.directions[0])
+        if _zero(model, (gravity & along) * along) or _zero(model, gravity ^ along):
+            continue  # the weight all along the surface, or all across it: no slope
+        unit = f"unit({r.directions[0].text})"
+        pressing = f"dot({d.gravity.text}, {unit})*{unit}"
+        weights = tuple(
+            Force(f"weight~{b.name}~{i}", b.name, part.at, _expr(
+                f"({part.mass.text})*({pressing if b.name == f.on else d.gravity.text})"),
+                b.where, kind=LoadKind.WEIGHT)
+            for b in d.bodies for i, part in enumerate(b.parts))
+        yield DynamicsMutation(
+            "weight_along_surface_omitted", f"Your value is what the balances give with the "
+            f"weight of {f.on} kept only across the surface it rubs on (pressing on it, so "
+            f"{f.name} is right) and its component along the surface left out: the weight "
+            "acts along the slope too.", LOADS,
+            problem=_mistaken(problem, replace(d, gravity=None, forces=d.forces + weights)))
+
+
 def part_moving_with_centre(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A point mass fixed to a turning body away from its centre (a small mass on a hoop's
     rim) taken to move with the body's centre, which moves: its m v² and its moment of
@@ -2352,6 +2384,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     start_sense_reversed, start_trig_exchanged, impulse_from_speeds, spring_work_reversed,
     force_component_reversed,
     angmom_along_axis, spring_force_as_resultant, part_moving_with_centre, striker_stops,
+    weight_along_surface_omitted,
     mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling,
     parallel_axis_with_radius)
 """The dynamics mistake families, in the order their mutants are tried (the first of two
