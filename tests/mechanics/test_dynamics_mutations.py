@@ -18,6 +18,7 @@ from mechgrade.spec.mistake_codes import DYNAMICS_CODES as CODES, MODEL_CODES
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem
+from mechgrade.spec.load import load_problem_text
 from mechgrade.spec.language import FUNCTIONS
 from mechgrade.spec.model import Tolerance
 from mechgrade.expressions.syntax import parse
@@ -978,3 +979,18 @@ def test_the_weight_along_the_slope_left_out_keeps_the_friction():
     # friction on a level surface (the weight all across it), and no friction: no slope
     assert "weight_along_surface_omitted" not in _codes("block_on_turntable")
     assert "weight_along_surface_omitted" not in _codes("pendulum_pin_reaction")
+
+
+def test_the_damped_frequency_given_for_the_natural_one_is_named_where_it_differs():
+    # a dashpot 10 times stronger: zeta = 1.399 would not oscillate; 5 times: zeta = 0.6995,
+    # omega_d = 4.2888 x sqrt(1 - 0.6995^2) = 3.065 rad/s
+    body = (shipped_dir("problems") / "damped_pendulum_vibration.yaml").read_text(
+        encoding="utf-8").replace("c: 0.6 N*s/m", "c: 3 N*s/m")
+    problem = load_problem_text(body)
+    result = solve(problem).result("omega_n")
+    assert assess("3.065 rad/s", result).diagnosis == LABELS["damped_for_natural"]
+    # a weak dashpot: omega_d = 4.247 rad/s is within the tolerance of omega_n, a right answer
+    judged = assess("4.247 rad/s", _solution("damped_pendulum_vibration").result("omega_n"))
+    assert judged.diagnosis is None and judged.credit == 1
+    assert "damped_for_natural" in _codes("damped_pendulum_vibration")
+    assert "damped_for_natural" not in _codes("bar_on_spring_vibration")

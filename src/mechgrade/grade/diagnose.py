@@ -427,6 +427,7 @@ LABELS = {
     "part_moving_with_centre": "a point mass taken to move with its body's centre",
     "striker_stops": "the striking body taken to stop in the impact",
     "weight_along_surface_omitted": "the weight's component along the slope left out",
+    "damped_for_natural": "the damped frequency ω_d for the natural frequency ω_n",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

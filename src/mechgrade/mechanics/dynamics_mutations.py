@@ -1345,6 +1345,20 @@ def damping_omitted(problem: Problem, model: Model) -> Iterator[DynamicsMutation
     yield from _decay_omitted(problem, d)
 
 
+def damped_for_natural(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
+    """With a damper, the natural frequency ω_n asked read as the damped one,
+    ω_d = ω_n √(1 − ζ²), the frequency the motion is seen to oscillate at."""
+    if not dynamics_of(problem).dampers:
+        return
+    for q in problem.coordinates:
+        yield from _read_as(
+            problem, "omega_n", q.name, f"omega_n({q.name})*sqrt(1 - zeta({q.name})^2)",
+            DynamicsMutation(
+                "damped_for_natural", "Your value is the damped frequency ω_d = ω_n √(1 − ζ²), "
+                "the one the damped motion oscillates at: the natural frequency ω_n is that of "
+                "the motion without its damping.", OBJECTIVES))
+
+
 def _decay_omitted(problem: Problem, d: Dynamics) -> Iterator[DynamicsMutation]:
     """A particle on one spring and one damper side by side, its response written at the
     damped frequency ω_d without the decay e^(−ζ ω_n t): the undamped motion of a spring
@@ -2384,7 +2398,7 @@ FAMILIES: tuple[Callable[[Problem, Model], Iterator[DynamicsMutation]], ...] = (
     start_sense_reversed, start_trig_exchanged, impulse_from_speeds, spring_work_reversed,
     force_component_reversed,
     angmom_along_axis, spring_force_as_resultant, part_moving_with_centre, striker_stops,
-    weight_along_surface_omitted,
+    weight_along_surface_omitted, damped_for_natural,
     mean_of_end_rates, transverse_speed_kept, energy_kept_in_coupling,
     parallel_axis_with_radius)
 """The dynamics mistake families, in the order their mutants are tried (the first of two

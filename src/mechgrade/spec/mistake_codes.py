@@ -45,7 +45,8 @@ DYNAMICS_CODES = (
     "spring_force_as_resultant", "part_moving_with_centre",
     "striker_stops", "mean_of_end_rates",
     "end_speed_throughout", "transverse_speed_kept", "energy_kept_in_coupling",
-    "parallel_axis_with_radius", "weight_along_surface_omitted")
+    "parallel_axis_with_radius", "weight_along_surface_omitted",
+    "damped_for_natural")
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
