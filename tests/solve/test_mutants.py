@@ -1,6 +1,7 @@
 """Mistaken givens: the instant solved again with a given misread."""
 
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -202,3 +203,28 @@ def test_a_rack_taken_at_rest_moves_the_instant_centre_to_its_mesh_point():
     assert assess("(0, -150, 0) mm", ic).diagnosis == "the body slid on taken as fixed"
     assert assess("(0, -50, 0) mm", ic).verdict == "correct"
     assert assess("(0, 50, 0) mm", ic).diagnosis == "sign error"  # above the centre: not a rack
+
+
+BRANCHES = Path(__file__).parents[1] / "data" / "branches"
+
+
+@pytest.mark.slow  # derives the four-bar and its copy without guesses (3 s)
+def test_the_other_assembly_branch_of_a_four_bar_is_named():
+    # the guesses pick the open assembly (psi' = 2.1744 rad/s); the crossed one, solved by
+    # hand from the loop closure, turns the rocker at -3.6029 rad/s
+    result = solve(load_problem(BRANCHES / "fourbar_with_guesses.yaml")).result("omega_rocker")
+    (other,) = [m for m in result.generated_mistakes if m.code == "other_assembly_branch"]
+    assert result.value == pytest.approx(2.174365, rel=1e-6)
+    assert other.value == pytest.approx(-3.602937, rel=1e-6)
+    assert assess("-3.603 rad/s", result).diagnosis \
+        == "the other assembly branch (the mechanism's mirror configuration)"
+    assert assess("2.174 rad/s", result).verdict == "correct"
+
+
+@pytest.mark.slow  # derives the problem and its copy without guesses (3 s)
+def test_a_coordinate_read_another_way_is_no_other_assembly_branch():
+    # the slotted arm at theta + half a turn with s reversed puts every point at the same
+    # place: the same configuration, no other branch (its rates only change sign)
+    result = solve(load_problem(shipped_dir("problems") / "slotted_arm_crank_coriolis.yaml"))
+    assert not [m for r in result.results for m in r.generated_mistakes
+                if m.code == "other_assembly_branch"]

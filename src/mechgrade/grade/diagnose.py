@@ -28,7 +28,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
+from ..spec.mistake_codes import BRANCH_CODES, DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from ..solve.result import GeneratedMistake, MistakeValue
 from ..tolerance import AgreeAtPoints
 
@@ -94,7 +94,7 @@ _FACTORS: tuple[tuple[str, str, str, tuple[float, ...]], ...] = (
 _ALL_FACTORS = np.array([factor for *_, factors in _FACTORS for factor in factors])
 FACTOR_CODES = tuple(dict.fromkeys(code for code, *_ in _FACTORS))
 VECTOR_CODES = ("swapped", "direction", "magnitude")
-GENERATED_CODES = MODEL_CODES + DYNAMICS_CODES + GIVEN_CODES
+GENERATED_CODES = MODEL_CODES + DYNAMICS_CODES + GIVEN_CODES + BRANCH_CODES
 CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (
     "dimension", "g_number", "frame", "missing_unit", "sig_figs", "shape", "trig_radians")
 """Every diagnosis code (keys for :attr:`mechgrade.grade.policy.GradingPolicy.partial_credit`)."""
@@ -428,6 +428,7 @@ LABELS = {
     "striker_stops": "the striking body taken to stop in the impact",
     "weight_along_surface_omitted": "the weight's component along the slope left out",
     "damped_for_natural": "the damped frequency ω_d for the natural frequency ω_n",
+    "other_assembly_branch": "the other assembly branch (the mechanism's mirror configuration)",
 }
 """Short labels of the generated mistakes, by code (the result files' diagnosis column)."""
 

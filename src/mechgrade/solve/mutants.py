@@ -28,14 +28,14 @@ import numpy as np
 
 from ..errors import MechgradeError
 from ..expressions.syntax import Call, Name, Prime, to_text, walk
-from ..spec.constraint_mutations import constraint_mutations
+from ..spec.constraint_mutations import constraint_mutations, position_unchosen
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
 from ..tolerance import within
 from ..units import dimension, from_si, si_factor, to_si
 from .columns import call
 from .levels import State
-from .numeric import solve_numeric_columns
+from .numeric import every_branch_columns, solve_numeric_columns
 from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants, per_problem
 from .result import GeneratedMistake, ObjectiveResult
 
@@ -167,6 +167,36 @@ def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wan
                 if oid in wanted and np.all(np.isfinite(values)):
                     found.setdefault(oid, []).append(GeneratedMistake(
                         m.code, m.sentence, _in_unit(values, problem.objective(oid))))
+    for found, branches in zip(out, _other_branches(problem, givens, wanted)):
+        for oid, mistakes in branches.items():
+            found.setdefault(oid, []).extend(mistakes)
+    return out
+
+
+OTHER_BRANCH = ("the other assembly branch: the mechanism solved in its mirror configuration "
+                "(the other solution of the position equations), not the one drawn")
+
+
+def _other_branches(problem: Problem, givens: Sequence[Mapping], wanted: set[str]
+                    ) -> list[dict[str, list[GeneratedMistake]]]:
+    """Each objective of ``wanted`` on every assembly branch of the position level other than
+    the spec's (its guesses and branches dropped, :func:`~.numeric.every_branch_columns`);
+    the spec's own root, the answer, is dropped as the answer's value later
+    (:func:`kept_mistakes`)."""
+    out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
+    free = per_problem(position_unchosen, problem)
+    if free is None:
+        return out
+    for found, branches in zip(out, every_branch_columns(free, kinematics_plan(free), givens,
+                                                         wanted)):
+        if len(branches) < 2:
+            continue  # one configuration only: no other branch
+        for values in branches:
+            for oid, v in values.items():
+                if oid in wanted and np.all(np.isfinite(v)):
+                    found.setdefault(oid, []).append(GeneratedMistake(
+                        "other_assembly_branch", OTHER_BRANCH,
+                        _in_unit(v, problem.objective(oid))))
     return out
 
 

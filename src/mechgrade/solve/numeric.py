@@ -121,6 +121,49 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
     return out  # type: ignore[return-value]
 
 
+def every_branch_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
+                         only: set[str]) -> list[list[dict]]:
+    """The objectives in ``only`` on every distinct solution of the levels of each instant of
+    ``givens`` (its values as :func:`solve_numeric` gives them, one dict each; none where
+    the instant is not solved): where the spec's choice of root is dropped
+    (:func:`~mechgrade.spec.constraint_mutations.position_unchosen`), each assembly branch,
+    the givens checked to hold on it."""
+    out: list[list[dict]] = [[] for _ in givens]
+    placed: dict[int, Givens] = {}
+    with quiet():
+        for i, given in enumerate(givens):
+            try:
+                placed[i] = _placed(problem, p, given, only)
+            except MechgradeError:
+                continue
+        for i, found in _branches_columns(problem, p, placed).items():
+            if isinstance(found, MechgradeError):
+                continue
+            kept: list[Candidate] = []
+            for c in found:
+                try:
+                    _check_givens_hold(problem, p, placed[i], givens[i], c.state)
+                except MechgradeError:
+                    continue  # a root the screens refuse is no configuration
+                if not any(_same_answers(p, k, c, only) or _same_configuration(p, k, c)
+                           for k in kept):
+                    kept.append(c)
+            out[i] = [evaluate(p.objectives, c.state, only) for c in kept]
+    return out
+
+
+def _same_configuration(p: KinematicsPlan, a: Candidate, b: Candidate) -> bool:
+    """Whether every point is at the same place in both (coordinates read another way, an
+    angle half a turn on and a length reversed along it: no other assembly)."""
+    count = len(p.points)
+    if not count:
+        return False
+    here, there = (call(p.point_positions, c.state.values[:, None], 3 * count).ravel()
+                   for c in (a, b))
+    scale = SAME_ROOT * max(float(np.nanmax(np.abs(here), initial=0.0)), 1e-12)
+    return bool(np.all(np.abs(here - there) <= scale))
+
+
 def _placed(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Givens:
     """``givens`` placed (:func:`~.levels.place_givens`), refused when a parameter an
     equation or objective needs has no value."""

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 from typing import Iterator
 
 from ..expressions.notation import textbook
-from ..expressions.syntax import (Bin, Call, Name, Node, Num, additive_terms, name_of, names,
+from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, additive_terms, name_of, names,
                                   sum_of_terms, to_text)
 from .model import Expr, Problem
 
@@ -121,3 +121,21 @@ def _strands(node: Node) -> tuple[int, Node] | None:
         if isinstance(count, Num) and count.text.isdigit() and int(count.text) >= 2:
             return int(count.text), rest
     return None
+
+
+def position_unchosen(problem: Problem) -> Problem | None:
+    """``problem`` with the choices of its position-level root (``guesses:`` and ``branch:``
+    entries of quantities, not of rates) dropped, for every assembly branch to be found
+    again; ``None`` when the spec makes no such choice.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "slotted_arm_crank_coriolis.yaml")
+    >>> position_unchosen(problem).guesses
+    ()
+    """
+    guesses = tuple(g for g in problem.guesses if isinstance(g.key.node, Prime))
+    branches = tuple(b for b in problem.branches if isinstance(b.key.node, Prime))
+    if (guesses, branches) == (problem.guesses, problem.branches):
+        return None
+    return replace(problem, guesses=guesses, branches=branches)

@@ -52,3 +52,7 @@ DYNAMICS_CODES = (
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
                "given_sign", "given_swap", "given_unit", "given_angle_sign")
 """Family codes of mistaken givens (:mod:`mechgrade.solve.mutants`)."""
+
+BRANCH_CODES = ("other_assembly_branch",)
+"""Family codes of another root of the position level than the spec's
+(:mod:`mechgrade.solve.mutants`)."""
