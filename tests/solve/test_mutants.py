@@ -202,3 +202,18 @@ def test_a_rack_taken_at_rest_moves_the_instant_centre_to_its_mesh_point():
     assert assess("(0, -150, 0) mm", ic).diagnosis == "the body slid on taken as fixed"
     assert assess("(0, -50, 0) mm", ic).verdict == "correct"
     assert assess("(0, 50, 0) mm", ic).diagnosis == "sign error"  # above the centre: not a rack
+
+
+def test_a_given_nonzero_angular_acceleration_taken_as_zero_is_a_mistake():
+    # theta'' = 5 rad/s^2 dropped: only the centripetal part -L theta'^2 = -98 is left
+    (slip,) = _generated(load_problem(PENDULUM), "acc_A", "given_acceleration_zero")
+    assert slip.value == pytest.approx((-98.0, 0.0, 0.0))
+    assert "angular acceleration" in slip.message and "5 rad/s^2" in slip.message
+
+
+def test_a_given_first_rate_or_zero_second_rate_is_not_taken_as_zero():
+    problem = load_problem(PENDULUM)
+    givens = tuple(replace(g, value=0.0, si=0.0, text="0 rad/s^2") if g.key.text == "theta''" else g
+                   for g in problem.givens)
+    # theta' = 7 rad/s is a first rate: never dropped by this family; theta'' = 0 already is
+    assert _generated(replace(problem, givens=givens), "acc_A", "given_acceleration_zero") == []
