@@ -78,3 +78,12 @@ def test_a_positive_parameter_made_negative_is_solved_as_its_own_model():
     reversed_ = next(m for m in dynamics_mutations(problem) if m.code == "friction_reversed")
     assert reversed_.problem is not None
     assert _revalued(problem, reversed_.problem, [{}]) is None  # mu_k -> -mu_k
+
+
+def test_a_given_linear_acceleration_taken_as_zero_leaves_the_static_force():
+    # the cab speeding up at y'' = 2 ft/s^2: with it taken as zero the cable holds the weight
+    problem = load_problem(PROBLEMS / "elevator_motor_power.yaml")
+    (slip,) = [m for m in solve(problem).result("tension").generated_mistakes
+               if m.code == "given_acceleration_zero"]
+    assert float(np.ravel(slip.value)[0]) == pytest.approx(3000.0)  # lbf
+    assert "given acceleration of y" in slip.message and "2 ft/s^2" in slip.message

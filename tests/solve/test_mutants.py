@@ -228,3 +228,18 @@ def test_a_coordinate_read_another_way_is_no_other_assembly_branch():
     result = solve(load_problem(shipped_dir("problems") / "slotted_arm_crank_coriolis.yaml"))
     assert not [m for r in result.results for m in r.generated_mistakes
                 if m.code == "other_assembly_branch"]
+
+
+def test_a_given_nonzero_angular_acceleration_taken_as_zero_is_a_mistake():
+    # theta'' = 5 rad/s^2 dropped: only the centripetal part -L theta'^2 = -98 is left
+    (slip,) = _generated(load_problem(PENDULUM), "acc_A", "given_acceleration_zero")
+    assert slip.value == pytest.approx((-98.0, 0.0, 0.0))
+    assert "angular acceleration" in slip.message and "5 rad/s^2" in slip.message
+
+
+def test_a_given_first_rate_or_zero_second_rate_is_not_taken_as_zero():
+    problem = load_problem(PENDULUM)
+    givens = tuple(replace(g, value=0.0, si=0.0, text="0 rad/s^2") if g.key.text == "theta''" else g
+                   for g in problem.givens)
+    # theta' = 7 rad/s is a first rate: never dropped by this family; theta'' = 0 already is
+    assert _generated(replace(problem, givens=givens), "acc_A", "given_acceleration_zero") == []

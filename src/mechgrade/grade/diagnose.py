@@ -372,6 +372,7 @@ LABELS = {
     "given_unit": "given's unit not converted",
     "given_sign": "given rate's sign flipped",
     "given_angle_sign": "given angle measured to the other side",
+    "given_acceleration_zero": "the given acceleration left out (taken as zero)",
     "weight_omitted": "weight left out",
     "mass_for_weight": "mass used for the weight",
     "central_inertia_at_pivot": "inertia about the mass centre used at the pivot",

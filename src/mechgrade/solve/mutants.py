@@ -282,6 +282,14 @@ def _given_slips(node, si: float, given, fixed: bool):
                f"Your value is what {name} with the opposite sign gives: check the "
                f"direction of {name} ({given.text}) against the positive sense of "
                f"{node.id}.")
+    if isinstance(node, Prime) and node.order == 2 and si != 0:
+        # the instant read as one of steady motion: a driver's acceleration dropped, its
+        # rate kept (the velocity level is unchanged, every acceleration answer is not)
+        kind = "angular acceleration" if _rate_order(unit) == 2 else "acceleration"
+        yield ("given_acceleration_zero", 0.0,
+               f"Your value is what the given {kind} of {node.id} ({name} = {given.text}) "
+               "taken as zero gives: at this instant the motion is speeding up or slowing "
+               "down, so keep that acceleration in every acceleration term.")
 
 
 # units of the US customary system, and the one of its base units each is read as

@@ -50,7 +50,8 @@ DYNAMICS_CODES = (
 """Family codes of the dynamics mutations (:mod:`mechgrade.mechanics.dynamics_mutations`)."""
 
 GIVEN_CODES = ("given_deg_as_rad", "given_complement", "given_rate_unit", "given_length_unit",
-               "given_sign", "given_swap", "given_unit", "given_angle_sign")
+               "given_sign", "given_swap", "given_unit", "given_angle_sign",
+               "given_acceleration_zero")
 """Family codes of mistaken givens (:mod:`mechgrade.solve.mutants`)."""
 
 BRANCH_CODES = ("other_assembly_branch",)

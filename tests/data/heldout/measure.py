@@ -108,7 +108,7 @@ EQUIVALENT: dict[str, frozenset[str]] = {k: frozenset(v) for k, v in {
     "momentum_with_pin": ("pin_impulse_omitted",),
     "efficiency_inverted": ("efficiency_inverted",),
     "acceleration_term_dropped": ("reaction_as_weight", "tension_as_weight",
-                                  "reaction_as_static"),
+                                  "reaction_as_static", "given_acceleration_zero"),
     "speed_conserved": ("value_at_start", "transverse_speed_kept"),
     "half_factor": ("factor_2", "spring_energy_half_omitted"),
     "rolling_assumed": ("rolling_assumed",),
