@@ -846,9 +846,11 @@ def weight_along_surface_omitted(problem: Problem, model: Model
     """On a slope, the weight's component along the surface a body rubs on left out while its
     part pressing on the surface (and so the friction) is kept: the weight of the body with
     friction replaced by its part along the normal reaction's one direction, every other
-    body's weight as it is."""
+    body's weight as it is. At an instant only: along an integrated motion the mistaken
+    model's slip lasts otherwise (a ball that would have rolled still skids), and its value
+    is another mistake's (kinetic friction kept once the ball rolls)."""
     d = dynamics_of(problem)
-    if d.gravity is None:
+    if d.gravity is None or isinstance(d.analysis, Integration):
         return
     gravity = model.language.vector(d.gravity)
     for f in d.friction:
