@@ -929,30 +929,29 @@ def test_a_disk_spinning_about_its_own_axis_has_no_angular_momentum_to_tilt(tmp_
         load_problem(untilted))}
 
 
-def test_one_springs_force_read_as_the_force_of_both_springs_holding_the_block():
-    # (k1 + k2) A = 8000 N/m x 27.84 mm, toward the middle
-    result = _solution("block_between_two_springs").result("right_spring_force")
-    assert assess("-222.7 N", result).diagnosis == LABELS["spring_force_as_resultant"]
-    (mistake,) = _generated("block_between_two_springs", "right_spring_force",
-                            "spring_force_as_resultant")
-    assert "springs left and right together on block (222.7 N)" in mistake.message
-    # one spring on the bar: no other spring to add; a spring between two blocks is not in
-    # parallel with the wall's
-    assert "spring_force_as_resultant" not in _codes("bar_on_spring_vibration")
-    assert "spring_force_as_resultant" not in _codes("two_mass_spring_chain")
-
-
-def test_a_small_mass_on_a_rolling_hoop_taken_to_move_with_the_hoops_centre():
-    # 2 m g R = (M + M + m) v^2/2 with v = R w: w = 2.953 rad/s
-    result = _solution("unbalanced_hoop_rolls").result("angular_velocity")
-    assert assess("2.953 rad/s", result).diagnosis == LABELS["part_moving_with_centre"]
-    (mistake,) = _generated("unbalanced_hoop_rolls", "angular_velocity",
-                            "part_moving_with_centre")
-    assert "the mass at Q as moving with the centre G of wheel" in mistake.message \
-        and "0.5 m from G" in mistake.message
-    # a one-part body, or parts all at the centre (a wheel and its hubs): none to move there
-    assert "part_moving_with_centre" not in _codes("disk_rolls_on_pulled_plank")
-    assert "part_moving_with_centre" not in _codes("ruina_9_21_wheel_incline")
+@pytest.mark.parametrize("name, objective, answer, code, words, elsewhere", [
+    # (k1 + k2) A = 8000 N/m x 27.84 mm, toward the middle; one spring on the bar: no other
+    # spring to add; a spring between two blocks is not in parallel with the wall's
+    ("block_between_two_springs", "right_spring_force", "-222.7 N", "spring_force_as_resultant",
+     ("springs left and right together on block (222.7 N)",),
+     ("bar_on_spring_vibration", "two_mass_spring_chain")),
+    # 2 m g R = (M + M + m) v^2/2 with v = R w: w = 2.953 rad/s; a one-part body, or parts all
+    # at the centre (a wheel and its hubs): none to move there
+    ("unbalanced_hoop_rolls", "angular_velocity", "2.953 rad/s", "part_moving_with_centre",
+     ("the mass at Q as moving with the centre G of wheel", "0.5 m from G"),
+     ("disk_rolls_on_pulled_plank", "ruina_9_21_wheel_incline")),
+    # friction alone decelerates the block: a = -mu_k g cos(30 deg) = -0.25 x 9.81 x 0.866;
+    # friction on a level surface (the weight all across it), and no friction: no slope
+    ("block_sliding_down_incline", "accel", "-2.124 m/s^2", "weight_along_surface_omitted",
+     ("weight of block kept only across the surface it rubs on",),
+     ("block_on_turntable", "pendulum_pin_reaction")),
+])
+def test_a_family_names_its_mistake_and_stays_out_of_problems_without_its_ingredient(
+        name, objective, answer, code, words, elsewhere):
+    assert assess(answer, _solution(name).result(objective)).diagnosis == LABELS[code]
+    (mistake,) = _generated(name, objective, code)
+    assert all(w in mistake.message for w in words)
+    assert not any(code in _codes(other) for other in elsewhere)
 
 
 def test_the_striking_car_taken_to_stop_passes_its_whole_momentum_on():
@@ -966,19 +965,6 @@ def test_the_striking_car_taken_to_stop_passes_its_whole_momentum_on():
     # two moving pucks, and an impact on the ground: no particle at rest to be struck
     assert "striker_stops" not in _codes("pucks_oblique_impact")
     assert "striker_stops" not in _codes("rod_strikes_ledge")
-
-
-def test_the_weight_along_the_slope_left_out_keeps_the_friction():
-    # friction alone decelerates the block: a = -mu_k g cos(30 deg) = -0.25 x 9.81 x 0.866
-    solution = _solution("block_sliding_down_incline")
-    assert assess("-2.124 m/s^2", solution.result("accel")).diagnosis == \
-        LABELS["weight_along_surface_omitted"]
-    (mistake,) = _generated("block_sliding_down_incline", "accel",
-                            "weight_along_surface_omitted")
-    assert "weight of block kept only across the surface it rubs on" in mistake.message
-    # friction on a level surface (the weight all across it), and no friction: no slope
-    assert "weight_along_surface_omitted" not in _codes("block_on_turntable")
-    assert "weight_along_surface_omitted" not in _codes("pendulum_pin_reaction")
 
 
 def test_the_damped_frequency_given_for_the_natural_one_is_named_where_it_differs():
