@@ -163,7 +163,7 @@ def main() -> None:
     parser.add_argument("--no-mistakes", action="store_true",
                         help="record or compare the solutions without their generated mistakes")
     parser.add_argument("paths", nargs="*", type=Path)
-    args = parser.parse_args()
+    args = parser.parse_intermixed_args()
     global MISTAKES
     MISTAKES = not args.no_mistakes
     if args.action == "diff":
