@@ -335,6 +335,18 @@ def problem_key(problem) -> str | None:
     return digest(*code_key(), text)
 
 
+def used_problem_key(problem) -> str | None:
+    """:func:`problem_key` where the cache is on, else ``None``: a key no entry is read or
+    stored under is not worked out (it hashes the whole problem).
+
+    >>> from unittest import mock
+    >>> with mock.patch.dict("os.environ", MECHGRADE_NO_CACHE="1"):
+    ...     used_problem_key(object()) is None
+    True
+    """
+    return problem_key(problem) if enabled() else None
+
+
 def code_key(*libraries: str) -> tuple[Any, ...]:
     """What an entry's key names of the code that made it: :data:`FORMAT`, mechgrade's
     version and source files, sympy's version, and each of ``libraries``' (import names)."""

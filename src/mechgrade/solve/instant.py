@@ -414,7 +414,7 @@ def _bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | Non
     """:func:`.symbolic.bearing_givens`, kept in the disk cache under the problem: reading it
     derives the model with sympy, which a warm solve never imports. An entry that is not a
     :class:`BearingGivens` (spoilt, or of another version) is derived and stored again."""
-    problem_key = cache.problem_key(problem)
+    problem_key = cache.used_problem_key(problem)
     key = None if problem_key is None else cache.digest("bearing", problem_key, objective_id)
     data = cache.load(key) if key is not None else None
     if data is not None:

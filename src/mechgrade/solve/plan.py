@@ -206,7 +206,7 @@ def kinematics_plan(problem: Problem) -> KinematicsPlan:
     known = _BY_IDENTITY.get(id(problem))
     if known is not None and known[0] is problem:
         return known[1]
-    key = cache.problem_key(problem) if cache.enabled() else None
+    key = cache.used_problem_key(problem)
     memory = key if key is not None else repr(problem)
     p = _BY_TEXT.get(memory)
     if p is None:

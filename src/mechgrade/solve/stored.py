@@ -53,7 +53,7 @@ def solution_key(problem, givens: Mapping[str, float | None] | None,
     >>> alike, apart, solution_key(p, None, None)  # the last with the cache off
     (True, False, None)
     """
-    return _key("solution", _problem_key(problem), givens, objectives)
+    return _key("solution", cache.used_problem_key(problem), givens, objectives)
 
 
 def carried_key(problem, givens: Mapping[str, float | None] | None,
@@ -69,7 +69,7 @@ def carried_key(problem, givens: Mapping[str, float | None] | None,
     ...     carried_key(p, {"y''": 1.0}, None) == solution_key(p, {"y''": 1.0}, None)
     False
     """
-    return _key("carried", _problem_key(problem), givens, objectives)
+    return _key("carried", cache.used_problem_key(problem), givens, objectives)
 
 
 def kept(key: str | None, solving: Callable[[], Solution]) -> Solution:
@@ -99,12 +99,8 @@ def variant_keys(problem, variants: Sequence[Mapping[str, float | None]]
     """The entries of ``variants`` (givens overrides) of ``problem`` as
     :func:`~mechgrade.solve.batch.solve_variants` solves them together (apart from
     :func:`solution_key`'s: the two may differ in the last digits)."""
-    problem_key = _problem_key(problem)
+    problem_key = cache.used_problem_key(problem)
     return [_key("variant", problem_key, givens, None) for givens in variants]
-
-
-def _problem_key(problem) -> str | None:
-    return cache.problem_key(problem) if cache.enabled() else None
 
 
 def _key(what: str, problem_key: str | None, givens, objectives) -> str | None:
