@@ -57,8 +57,8 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call, least_squares
 from .levels import Givens, State, place_givens, rows, solve_linear_columns, typical_sizes
-from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
-                      model_mistake_table, plausible_slips, slips_of, stacked)
+from .mutants import (constraint_mistakes_columns, kept_columns, misread, model_mistake_table,
+                      plausible_slips, slips_of)
 from .numeric import degenerate, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
@@ -607,7 +607,7 @@ class _Template:
         for oid in group.numeric:
             obj = problem.objective(oid)
             rows_ = [row for row in table if row[0].objective == oid]
-            out[oid] = _kept(obj, values[oid], rows_, misreadings[oid])
+            out[oid] = kept_columns(in_unit(values[oid], obj).T, rows_, misreadings[oid])
         return out
 
     def _misread_values(self, group: _Group, changed: list) -> tuple[np.ndarray, dict]:
@@ -630,32 +630,6 @@ class _Template:
             for oid, v in values.items():
                 v[:, i] = instant.values[oid]
         return solved, values
-
-
-def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
-    """The generated mistakes :func:`~.mutants.attach` keeps for every variant at once (the
-    model mutations in ``rows_``, then each variant's ``misread`` givens): those that differ
-    from the answer and from every one kept before them, and are not a vague zero. Returns
-    the mistakes of variant ``i`` as a function of ``i``."""
-    n, size = si.shape[1], si.shape[0]
-    if not rows_ and not any(misread):
-        return lambda _i: ()
-    V = np.full((n, len(rows_), size), np.nan)
-    exists = np.zeros((n, len(rows_)), dtype=bool)
-    other = np.zeros((n, len(rows_)), dtype=bool)
-    codes = np.full((n, len(rows_)), "", dtype=object)
-    for j, row in enumerate(rows_):
-        V[:, j], exists[:, j] = row[3], row[2]
-        other[:, j], codes[:, j] = row[0].code in ZERO_NAMES, row[0].code
-    # the model's mutations, then each variant's misread givens
-    V, exists, other, codes = (np.concatenate(parts, axis=1) for parts in
-                               zip((V, exists, other, codes), stacked(misread, size)))
-    keep = kept_mistakes(in_unit(si, obj).T, V, exists, other, codes=codes)
-
-    def at(i: int) -> tuple[GeneratedMistake, ...]:
-        return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
-                     else misread[i][j - len(rows_)] for j in np.flatnonzero(keep[i]))
-    return at
 
 
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
