@@ -98,7 +98,6 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
     import sympy as sp
 
     from ..mechanics.mutations import mutations
-    from ..mechanics.symbols import identically_zero
     from .symbolic import symbolic
 
     k = kinematics_plan(problem).k
@@ -111,15 +110,41 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
             expr, _ = symbolic(problem, k, obj, givens, expr=m.value)
         except MechgradeError:
             continue
-        # the answer, or one of this family already: no news (another family's is: both named)
-        if expr.has(sp.zoo, sp.nan, sp.oo) \
-                or any(identically_zero(expr - e) for c, e in kept if c in (None, m.code)) \
-                or (m.code != "other_point" and identically_zero(expr)):
+        if not symbolic_kept(kept, m.code, expr, KINEMATIC_ZEROS):
             continue
-        kept.append((m.code, expr))
         sentence = re.sub(r" = \{term\} along \w+", "", m.sentence)
         out.append(GeneratedMistake(m.code, sentence, None, sp.sstr(expr)))
     return tuple(out)
+
+
+KINEMATIC_ZEROS = frozenset({"other_point"})
+"""The families whose zero a symbolic answer of the kinematics keeps (a contact point at rest);
+a mistaken dynamics model's zero is kept for none."""
+
+
+def symbolic_kept(kept: list, code: str, expr, zeros: frozenset[str] = frozenset()) -> bool:
+    """Whether a mistaken model's symbolic answer ``expr`` (of the family ``code``) is a
+    mistake to keep after those ``kept`` (``(family, expression)``, the answer's family
+    ``None``), as :func:`kept_mistakes` keeps a value: defined, not the answer nor one of its
+    family already (another family's is: the grader names both), and not zero unless its
+    family is one of ``zeros`` (a zero is what many mistakes give). A kept one is appended.
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> kept = [(None, 2 * x)]
+    >>> [symbolic_kept(kept, c, e) for c, e in (("a", x), ("a", x), ("b", x), ("c", 0 * x),
+    ...                                          ("d", 2 * x), ("e", 1 / (x - x)))]
+    [True, False, True, False, False, False]
+    """
+    import sympy as sp
+
+    from ..mechanics.symbols import identically_zero
+
+    if expr.has(sp.zoo, sp.nan, sp.oo) or (code not in zeros and identically_zero(expr)) \
+            or any(identically_zero(expr - e) for c, e in kept if c in (None, code)):
+        return False
+    kept.append((code, expr))
+    return True
 
 
 def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
