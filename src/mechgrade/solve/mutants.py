@@ -494,13 +494,14 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: n
     [[True, True, False, True]]
     """
     n, count = exists.shape
-    other = np.isin(codes, list(ZERO_NAMES)) if codes.size else np.zeros((n, count), bool)
     with np.errstate(invalid="ignore"):
         norms = np.linalg.norm(V, axis=2)
         scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
         answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
             SAME * np.maximum(norms, scale[:, None]) + 1e-12
-        vague = ~other & ~(np.abs(V) > 1e-12).any(axis=2)
+        vague = exists & ~(np.abs(V) > 1e-12).any(axis=2)
+        at = np.nonzero(vague)  # the few zeros: their families looked up one by one
+        vague[at] = [code not in ZERO_NAMES for code in codes[at].tolist()]
         keep = np.zeros((n, count), dtype=bool)
         keep[:, :first] = True
         for j in range(first, count):
