@@ -375,3 +375,23 @@ def test_each_variant_gets_its_own_mistaken_constraint_as_solve_gives_it():
         assert [(m.code, m.value) for m in mine if m.code == "strands_miscounted"] == [
             (m.code, pytest.approx(m.value)) for m in alone if m.code == "strands_miscounted"]
         assert len([m for m in mine if m.code == "strands_miscounted"]) == 1
+
+
+def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():
+    # down a 10 deg incline the wheel's centre stays below 0.2 g for every R: the design stage
+    # over the class does not converge for that variant, whose objectives at the instant fail
+    # with the located error they get alone
+    path = PROBLEMS / "ruina_9_21_wheel_incline.yaml"
+    problem = load_problem(path)
+    variants = [{"theta": np.radians(30.0)}, {"theta": np.radians(10.0)}]
+    (fine, refused), (fine_alone, refused_alone) = solve_variants(problem, variants), \
+        alone(problem, variants)
+    assert fine.result("R_min").value == pytest.approx(fine_alone.result("R_min").value,
+                                                       rel=1e-9)
+    with pytest.raises(MechgradeError) as together:
+        refused.result("R_min")
+    with pytest.raises(MechgradeError) as one:
+        refused_alone.result("R_min")
+    assert str(together.value) == str(one.value)
+    assert str(one.value).startswith(f"{path}:") and \
+        "design: no value of R near 0.15 (SI)" in str(one.value)

@@ -37,7 +37,6 @@ variant's failure, as :func:`~.dynamics.solve_dynamics` reports it.)
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Callable, Collection, Mapping, Sequence
@@ -49,7 +48,7 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..spec.dynamics import Integration, WorkEnergy, instant_of_objective
 from ..spec.model import Objective, Problem, Root
-from .batch_motion import ROOT_RTOL, ROOT_XTOL, newton
+from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
 from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
@@ -58,8 +57,8 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call, least_squares
 from .levels import Givens, State, place_givens, rows, solve_linear_columns, typical_sizes
-from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
-                      model_mistake_table, plausible_slips, slips_of, stacked)
+from .mutants import (constraint_mistakes_columns, kept_columns, misread, model_mistake_table,
+                      plausible_slips, slips_of)
 from .numeric import degenerate, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
@@ -424,36 +423,30 @@ class _Template:
     def _designed(self, group: _Group, X: np.ndarray, targets: list,
                   placed: Callable[[int], Givens], degenerate: bool
                   ) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`_reached` with the design parameter solved at every column by Newton's
-        method from the guess (:func:`~.batch_motion.newton`, as
-        :class:`~.dynamics.DesignedInstant` solves one instant); a column it does not
-        converge for is solved alone, where the bracketing search may find its root."""
+        """:meth:`_reached` with the design parameter solved at every column by the design
+        stage (:func:`~.batch_motion.design_roots`, as :class:`~.dynamics.DesignedInstant`
+        solves one instant); a column it does not converge for is solved alone, where the
+        bracketing search may find its root."""
         assert self.design is not None and self.kinetics is not None
         at = self.p.index.position(self.design.find)
-        equation = self.kinetics.design
         n = X.shape[1]
         last: dict[str, np.ndarray] = {}  # each column's instant at its latest iterate
 
-        def residual(cols: np.ndarray, values: np.ndarray) -> np.ndarray:
-            both = np.concatenate([cols, cols])  # the iterates, then the points beside them
-            moved = X[:, both]
-            moved[at] = values.ravel()
-            reached, fine = self._reached(group, moved, [t[:, both] for t in targets],
-                                          lambda j: placed(int(both[j])), False)
+        def reach(cols: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            moved = X[:, cols]
+            moved[at] = values
+            reached, fine = self._reached(group, moved, [t[:, cols] for t in targets],
+                                          lambda j: placed(int(cols[j])), False)
             if not last:
                 last.update(X=np.full((reached.shape[0], n), np.nan),
                             ok=np.zeros(n, dtype=bool), at=np.full(n, np.nan))
-            k = len(cols)
-            last["X"][:, cols], last["ok"][cols], last["at"][cols] = \
-                reached[:, :k], fine[:k], values[0]
-            r = np.where(fine, call(equation, self._at_event(reached)[0], 1)[0], np.nan)
-            return r.reshape(2, k)
+            k = len(cols) // 2  # the iterates, then the points beside them
+            last["X"][:, cols[:k]], last["ok"][cols[:k]], last["at"][cols[:k]] = \
+                reached[:, :k], fine[:k], values[:k]
+            return self._at_event(reached)[0], fine
 
         guess = self.design.guess
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            root, converged = newton(residual, np.full(n, guess))
-        converged &= np.isfinite(root)
+        root, converged = design_roots(reach, self.kinetics.design, guess, n)
         # Newton stops once its next iterate is within its tolerance of the last one
         # evaluated: that instant is the root's (as closely as the root is known), not
         # reached again
@@ -614,7 +607,7 @@ class _Template:
         for oid in group.numeric:
             obj = problem.objective(oid)
             rows_ = [row for row in table if row[0].objective == oid]
-            out[oid] = _kept(obj, values[oid], rows_, misreadings[oid])
+            out[oid] = kept_columns(in_unit(values[oid], obj).T, rows_, misreadings[oid])
         return out
 
     def _misread_values(self, group: _Group, changed: list) -> tuple[np.ndarray, dict]:
@@ -637,32 +630,6 @@ class _Template:
             for oid, v in values.items():
                 v[:, i] = instant.values[oid]
         return solved, values
-
-
-def _kept(obj: Objective, si: np.ndarray, rows_: list, misread: list[list]):
-    """The generated mistakes :func:`~.mutants.attach` keeps for every variant at once (the
-    model mutations in ``rows_``, then each variant's ``misread`` givens): those that differ
-    from the answer and from every one kept before them, and are not a vague zero. Returns
-    the mistakes of variant ``i`` as a function of ``i``."""
-    n, size = si.shape[1], si.shape[0]
-    if not rows_ and not any(misread):
-        return lambda _i: ()
-    V = np.full((n, len(rows_), size), np.nan)
-    exists = np.zeros((n, len(rows_)), dtype=bool)
-    other = np.zeros((n, len(rows_)), dtype=bool)
-    codes = np.full((n, len(rows_)), "", dtype=object)
-    for j, row in enumerate(rows_):
-        V[:, j], exists[:, j] = row[3], row[2]
-        other[:, j], codes[:, j] = row[0].code in ZERO_NAMES, row[0].code
-    # the model's mutations, then each variant's misread givens
-    V, exists, other, codes = (np.concatenate(parts, axis=1) for parts in
-                               zip((V, exists, other, codes), stacked(misread, size)))
-    keep = kept_mistakes(in_unit(si, obj).T, V, exists, other, codes=codes)
-
-    def at(i: int) -> tuple[GeneratedMistake, ...]:
-        return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
-                     else misread[i][j - len(rows_)] for j in np.flatnonzero(keep[i]))
-    return at
 
 
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:

@@ -26,12 +26,14 @@ column that switches anywhere but at its event is not answered here.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
 from . import dop853, rules
+from .columns import call
 
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # as scipy's Runge-Kutta step control
 EPS = np.finfo(float).eps
@@ -352,6 +354,36 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
         converged[i[done]] = True
         todo[i[done]] = False
     return root, converged
+
+
+def design_roots(reach: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
+                 equation: Callable, guess: float, count: int
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """The design stage over columns: per column, the design parameter's value that makes the
+    design ``equation`` (lambdified in an instant's extended state) zero, by :func:`newton`
+    from ``guess``. ``reach(columns, values)`` gives the instant reached with each value (one
+    state per column of its result) and which were reached: the equation is undefined at the
+    others. Returns the roots and which converged to a finite one. One instant is a design
+    of one column (:meth:`~.dynamics.DesignedInstant.designed`), a class of variants one
+    column each (the batch's ``_designed``).
+
+    >>> roots, ok = design_roots(lambda cols, v: (v[None, :], v > 0), lambda x: x * x - 2.0,
+    ...                          1.0, 2)
+    >>> np.round(roots, 12).tolist(), ok.tolist()
+    ([1.414213562373, 1.414213562373], [True, True])
+    """
+    def residual(cols: np.ndarray, values: np.ndarray) -> np.ndarray:
+        # the iterates (row 0), then the points beside them (row 1): one reach for both
+        states, fine = reach(np.concatenate([cols, cols]), values.ravel())
+        r = np.full(fine.shape, np.nan)
+        if fine.any():
+            r = np.where(fine, call(equation, states, 1)[0], np.nan)
+        return r.reshape(2, len(cols))
+
+    with warnings.catch_warnings():  # an iteration that wanders off is not converged
+        warnings.simplefilter("ignore", RuntimeWarning)
+        root, converged = newton(residual, np.full(count, float(guess)))
+    return root, converged & np.isfinite(root)
 
 
 def root_between(f: Callable[[float], float], a: float, b: float, fa: float, fb: float

@@ -402,8 +402,8 @@ class IntegratedInstant(KineticInstant):
 class DesignedInstant(KineticInstant):
     """A design parameter solved so that the design equation holds at the instant ``inner``
     reaches (the event, for an integration): Newton's method on the whole instant from the
-    guess (:func:`~.batch_motion.newton`, as the variants of a class are solved), else a
-    bracketing search around it."""
+    guess (:func:`~.batch_motion.design_roots`, the design stage of a class of variants with
+    one column), else a bracketing search around it."""
 
     inner: KineticInstant | None = None
 
@@ -418,7 +418,7 @@ class DesignedInstant(KineticInstant):
     def designed(self, given_map: dict) -> dict:
         """``given_map`` with the design parameter's value that makes the design equation
         hold (an objective's own value of it is the value to use)."""
-        from .batch_motion import newton
+        from .batch_motion import design_roots
 
         design = dynamics_of(self.source).design
         equation = self.kinetics.design
@@ -432,20 +432,26 @@ class DesignedInstant(KineticInstant):
             out[design.find] = (node, float(value), None)
             return out
 
-        def residual(value: float) -> float:
+        def state_at(value: float) -> np.ndarray | None:
             try:
-                x = self.reached(with_value(value), None).x
+                return self.reached(with_value(value), None).x
             except MechgradeError:  # the iteration wandered where the model fails: no root
-                return np.nan
-            return float(_call(equation, x)[0])
+                return None
+
+        def reach(_cols: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            found = [state_at(value) for value in values]
+            size = max((len(x) for x in found if x is not None), default=1)
+            return (np.stack([np.full(size, np.nan) if x is None else x for x in found],
+                             axis=1), np.array([x is not None for x in found]))
+
+        def residual(value: float) -> float:
+            x = state_at(value)
+            return np.nan if x is None else float(_call(equation, x)[0])
 
         guess = design.guess
-        with warnings.catch_warnings():  # an iteration that wanders off is bracketed instead
-            warnings.simplefilter("ignore", RuntimeWarning)
-            roots, converged = newton(
-                lambda _, values: np.vectorize(residual, otypes=[float])(values),
-                np.array([guess]))
-        if converged[0] and np.isfinite(roots[0]):
+        # one instant, a design of one column; where Newton does not converge, a bracket
+        roots, converged = design_roots(reach, equation, guess, 1)
+        if converged[0]:
             return with_value(roots[0])
         result = _bracketed(residual, guess)
         left, right = design.so_that

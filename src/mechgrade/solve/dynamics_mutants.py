@@ -44,13 +44,12 @@ from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import (DynamicsMutation, dynamics_mutations,
                                             unchanged_copy)
 from ..mechanics.revalue import revaluation
-from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
 from .instant import _instants, instant_givens
 from .levels import State
 from .mutants import (attach, model_mistake_at, model_mistake_table, model_mistakes,
-                      plausible_slips, slips_of)
+                      plausible_slips, slips_of, symbolic_kept)
 from .result import GeneratedMistake, ObjectiveResult, Solution, StateValue
 
 # a mistaken model is no mistake where it cannot be solved (no motion, an event that never
@@ -162,13 +161,9 @@ def _symbolic_kept(mutations: tuple[DynamicsMutation, ...], results: tuple,
         m = mutations[i]
         for oid, text, symbols in solved:
             expr = _expression(text, symbols) if text else None
-            # a zero is what many mistakes give (the weight left out of a fall): no name; the
-            # answer, or one of this family already, is no news (another family's is)
-            if expr is None or expr.has(sp.zoo, sp.nan, sp.oo) or identically_zero(expr) \
-                    or any(identically_zero(expr - k) for c, k in kept[oid]
-                           if c in (None, m.code)):
+            # a zero is what many mistakes give (the weight left out of a fall): no name
+            if expr is None or not symbolic_kept(kept[oid], m.code, expr):
                 continue
-            kept[oid].append((m.code, expr))
             out[oid].append(GeneratedMistake(m.code, m.sentence.replace(" = {term}", ""),
                                              None, text, step=m.step))
     return {oid: tuple(found) for oid, found in out.items()}

@@ -22,7 +22,7 @@ import math
 import re
 from dataclasses import replace
 from functools import lru_cache
-from typing import Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -98,7 +98,6 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
     import sympy as sp
 
     from ..mechanics.mutations import mutations
-    from ..mechanics.symbols import identically_zero
     from .symbolic import symbolic
 
     k = kinematics_plan(problem).k
@@ -111,15 +110,41 @@ def symbolic_mistakes(problem: Problem, obj: Objective, right,
             expr, _ = symbolic(problem, k, obj, givens, expr=m.value)
         except MechgradeError:
             continue
-        # the answer, or one of this family already: no news (another family's is: both named)
-        if expr.has(sp.zoo, sp.nan, sp.oo) \
-                or any(identically_zero(expr - e) for c, e in kept if c in (None, m.code)) \
-                or (m.code != "other_point" and identically_zero(expr)):
+        if not symbolic_kept(kept, m.code, expr, KINEMATIC_ZEROS):
             continue
-        kept.append((m.code, expr))
         sentence = re.sub(r" = \{term\} along \w+", "", m.sentence)
         out.append(GeneratedMistake(m.code, sentence, None, sp.sstr(expr)))
     return tuple(out)
+
+
+KINEMATIC_ZEROS = frozenset({"other_point"})
+"""The families whose zero a symbolic answer of the kinematics keeps (a contact point at rest);
+a mistaken dynamics model's zero is kept for none."""
+
+
+def symbolic_kept(kept: list, code: str, expr, zeros: frozenset[str] = frozenset()) -> bool:
+    """Whether a mistaken model's symbolic answer ``expr`` (of the family ``code``) is a
+    mistake to keep after those ``kept`` (``(family, expression)``, the answer's family
+    ``None``), as :func:`kept_mistakes` keeps a value: defined, not the answer nor one of its
+    family already (another family's is: the grader names both), and not zero unless its
+    family is one of ``zeros`` (a zero is what many mistakes give). A kept one is appended.
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> kept = [(None, 2 * x)]
+    >>> [symbolic_kept(kept, c, e) for c, e in (("a", x), ("a", x), ("b", x), ("c", 0 * x),
+    ...                                          ("d", 2 * x), ("e", 1 / (x - x)))]
+    [True, False, True, False, False, False]
+    """
+    import sympy as sp
+
+    from ..mechanics.symbols import identically_zero
+
+    if expr.has(sp.zoo, sp.nan, sp.oo) or (code not in zeros and identically_zero(expr)) \
+            or any(identically_zero(expr - e) for c, e in kept if c in (None, code)):
+        return False
+    kept.append((code, expr))
+    return True
 
 
 def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
@@ -390,53 +415,83 @@ def _distinct(right, kept: tuple[GeneratedMistake, ...],
     instant (a value of another shape than the answer's is none of its mistakes)."""
     r = np.atleast_1d(np.asarray(right, float))
     mistakes = kept + tuple(new)
-    V, exists, other, codes = stacked([mistakes], len(r))
-    keep = kept_mistakes(r[None, :], V, exists, other, len(kept), codes)
+    V, exists, codes = _stacked([mistakes], len(r))
+    keep = kept_mistakes(r[None, :], V, exists, codes, len(kept))
     return tuple(m for m, k in zip(mistakes, keep[0]) if k)
 
 
-def stacked(columns: Sequence[Sequence[GeneratedMistake]], size: int
-            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def kept_columns(right: np.ndarray, rows_: Sequence, misread: Sequence[Sequence[GeneratedMistake]]
+                 ) -> Callable[[int], tuple[GeneratedMistake, ...]]:
+    """The generated mistakes :func:`attach` keeps, at every instant of a class at once
+    (``right``: the answer at each, N x size, in the objective's unit): the model mutations in
+    ``rows_`` (:func:`model_mistake_table`'s rows of one objective), then each instant's
+    ``misread`` givens, kept by :func:`kept_mistakes`. Returns instant ``i``'s as a function
+    of ``i``.
+
+    >>> keep = kept_columns(np.array([[1.0], [2.0]]), [], [
+    ...     [GeneratedMistake("a", "s", 2.0)], [GeneratedMistake("a", "s", 2.0)]])
+    >>> [[m.code for m in keep(i)] for i in (0, 1)]  # at the second, 2.0 is the answer
+    [['a'], []]
+    """
+    n, size = right.shape
+    if not rows_ and not any(misread):
+        return lambda _i: ()
+    V = np.stack([row[3] for row in rows_], axis=1) if rows_ else np.zeros((n, 0, size))
+    exists = np.array([row[2] for row in rows_], dtype=bool).reshape(len(rows_), n).T
+    codes = np.array([[row[0].code for row in rows_]] * n, dtype=object).reshape(n, len(rows_))
+    # the model's mutations, then each instant's misread givens
+    V, exists, codes = (np.concatenate(parts, axis=1) for parts in
+                        zip((V, exists, codes), _stacked(misread, size)))
+    keep = kept_mistakes(right, V, exists, codes)
+
+    def at(i: int) -> tuple[GeneratedMistake, ...]:
+        return tuple(model_mistake_at(rows_[j], i) if j < len(rows_)
+                     else misread[i][j - len(rows_)] for j in np.flatnonzero(keep[i]).tolist())
+    return at
+
+
+def _stacked(columns: Sequence[Sequence[GeneratedMistake]], size: int
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The generated mistakes of every instant (a sequence each, values as shown) as
     :func:`kept_mistakes` reads them: their values (N x count x ``size``), where each exists
-    (not past the end of its instant's, nor a value of another shape than ``size``), which
-    are of :data:`ZERO_NAMES`, and their codes.
+    (not past the end of its instant's, nor a value of another shape than ``size``), and
+    their codes.
 
-    >>> V, exists, other, codes = stacked([[GeneratedMistake("sign", "s", 2.0)], []], 1)
+    >>> V, exists, codes = _stacked([[GeneratedMistake("sign", "s", 2.0)], []], 1)
     >>> V.shape, exists.tolist(), codes.tolist()
     ((2, 1, 1), [[True], [False]], [['sign'], ['']])
     """
     n, count = len(columns), max((len(c) for c in columns), default=0)
     V = np.full((n, count, size), np.nan)
     exists = np.zeros((n, count), dtype=bool)
-    other = np.zeros((n, count), dtype=bool)
     codes = np.full((n, count), "", dtype=object)
     for i, mistakes in enumerate(columns):
         for j, m in enumerate(mistakes):
             value = np.atleast_1d(np.asarray(m.value, float))
             if value.shape == (size,):
                 V[i, j], exists[i, j] = value, True
-            other[i, j], codes[i, j] = m.code in ZERO_NAMES, m.code
-    return V, exists, other, codes
+            codes[i, j] = m.code
+    return V, exists, codes
 
 
-def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: np.ndarray,
-                  first: int = 0, codes: np.ndarray | None = None) -> np.ndarray:
+def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: np.ndarray,
+                  first: int = 0) -> np.ndarray:
     """Which generated mistakes are kept, at every instant at once (``right``: the answer at
     each, N x size; ``V``: the mistakes' values in order, N x count x size; ``exists``: where
-    each is defined; ``other``: which are of :data:`ZERO_NAMES`; ``codes``: each one's
-    family, N x count, or ``None``): each that differs from the answer (the same value as the
-    answer at this instant: no mistake here) and from every one of its family kept before it
-    (:data:`SAME`; without ``codes``, every one), and is not a zero other than theirs (a zero
-    is what many mistakes give). Two families of one value are both kept: the grader names
-    both. The ``first`` are kept whatever they are.
+    each is defined; ``codes``: each one's family, N x count): each that differs from the
+    answer (the same value as the answer at this instant: no mistake here) and from every one
+    of its family kept before it (:data:`SAME`), and is not a zero other than those of
+    :data:`ZERO_NAMES` (a zero is what many mistakes give). Two families of one value are
+    both kept: the grader names both. The ``first`` are kept whatever they are. The one rule
+    for an instant (:func:`attach`) and a class (:func:`kept_columns`).
 
     >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0 + 1e-9], [1.0], [0.0]]]),
-    ...               np.ones((1, 4), bool), np.zeros((1, 4), bool)).tolist()
+    ...               np.ones((1, 4), bool), np.array([["a"] * 4])).tolist()
     [[True, False, False, False]]
-    >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0], [2.0]]]), np.ones((1, 3), bool),
-    ...               np.zeros((1, 3), bool), codes=np.array([["a", "b", "a"]])).tolist()
-    [[True, True, False]]
+    >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0], [2.0], [0.0]]]),
+    ...               np.ones((1, 4), bool),
+    ...               np.array([["a", "b", "a", "drop_coriolis"]])).tolist()
+    [[True, True, False, True]]
     """
     n, count = exists.shape
     with np.errstate(invalid="ignore"):
@@ -444,15 +499,16 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, other: n
         scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
         answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
             SAME * np.maximum(norms, scale[:, None]) + 1e-12
-        vague = ~other & ~(np.abs(V) > 1e-12).any(axis=2)
+        vague = exists & ~(np.abs(V) > 1e-12).any(axis=2)
+        at = np.nonzero(vague)  # the few zeros: their families looked up one by one
+        vague[at] = [code not in ZERO_NAMES for code in codes[at].tolist()]
         keep = np.zeros((n, count), dtype=bool)
         keep[:, :first] = True
         for j in range(first, count):
             apart = np.linalg.norm(V[:, :j] - V[:, j:j + 1], axis=2)
             same = apart <= SAME * np.maximum(np.maximum(norms[:, :j], norms[:, j:j + 1]),
                                               1e-12) + 1e-12
-            if codes is not None:
-                same &= codes[:, :j] == codes[:, j:j + 1]
+            same &= codes[:, :j] == codes[:, j:j + 1]
             keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
                 & ~vague[:, j]
     return keep
