@@ -3,6 +3,7 @@ each variant worked out alone."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -12,8 +13,8 @@ from mechgrade.errors import MechgradeError
 from mechgrade.solve import solve
 from mechgrade.mechanics.dynamics_mutations import dynamics_mutations
 from mechgrade.solve.batch import _template, solve_variants
-from mechgrade.solve.dynamics import solve_dynamics
-from mechgrade.solve.dynamics_mutants import _revalued
+from mechgrade.solve.dynamics import kinetics_plan, solve_dynamics
+from mechgrade.solve.dynamics_mutants import _read_in_copy, _revalued
 from mechgrade.spec import load_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -71,6 +72,24 @@ def test_a_mistake_that_changes_only_numbers_has_its_own_model_s_values(name):
         shared = solve_dynamics(revalued[0], givens=revalued[1][0], objectives=ids)
         for a, b in zip(own.results, shared.results):
             assert np.allclose(a.value, b.value, rtol=1e-9), (m.code, a.id)
+
+
+def test_a_value_read_at_another_instant_of_the_motion_shares_the_reference_s_balances():
+    # the ladder's values at the start (a moment after t = 0), not at its event: only the
+    # event differs, the balances are the reference's and the values those of a derivation
+    problem = load_problem(PROBLEMS / "ladder_wall_lift_off.yaml")
+    copies = {m.code: m.problem for m in dynamics_mutations(problem) if m.problem}
+    ids = {o.id for o in copies["value_at_start"].objectives}
+    own = solve_dynamics(replace(copies["value_at_start"]), objectives=ids)  # derived
+    start = _read_in_copy(problem, copies["value_at_start"])
+    assert kinetics_plan(start).kin.balances is kinetics_plan(problem).kin.balances
+    assert kinetics_plan(start).kin.until != kinetics_plan(problem).kin.until
+    shared = solve_dynamics(start, objectives=ids)
+    for a, b in zip(own.results, shared.results):
+        assert np.allclose(a.value, b.value, rtol=1e-9), a.id
+    # the weight moved to another point is another model: derived
+    moved = _read_in_copy(problem, copies["load_at_other_point"])
+    assert kinetics_plan(moved).kin.balances != kinetics_plan(problem).kin.balances
 
 
 def test_a_positive_parameter_made_negative_is_solved_as_its_own_model():

@@ -305,9 +305,11 @@ def _bodies_of(load) -> tuple[str, ...]:
 def reactions_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The reactions on a body held by several supports (a shaft in two bearings) taken as
     their static values: the balances written without m a_G and the rate of the angular
-    momentum, the weights kept (solvable where the motion is prescribed)."""
+    momentum, the weights kept (solvable where the motion is prescribed: at an instant whose
+    rates are given; an impact, an integrated motion or an energy balance finds the motion
+    from the masses this model takes as zero, and has none)."""
     d = dynamics_of(problem)
-    if d.gravity is None or isinstance(d.analysis, Impulse):
+    if d.gravity is None or d.analysis is not None:
         return
     single = {r.name for r, _ in _only_reactions(d)}
     shared = [r.name for r in d.reactions if r.name not in single]

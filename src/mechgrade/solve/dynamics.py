@@ -129,9 +129,9 @@ def read_in(problem: Problem, source: Problem) -> None:
     """Let ``problem``, ``source`` with other objectives, be solved with ``source``'s
     balances and functions: only its objectives derived and lambdified
     (:func:`~mechgrade.mechanics.dynamics.read_kinetics`)."""
-    kin = read_kinetics(problem, source)
+    plan = kinetics_plan(source)
+    kin = read_kinetics(problem, source, plan.kin)
     if kin is not None:
-        plan = kinetics_plan(source)
         _share(problem, replace(plan, kin=kin, **_objective_functions(problem, kin,
                                                                        plan.symbols)))
 

@@ -252,7 +252,8 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
             ids = numeric & {o.id for o in m.problem.objectives}
             revalued = _revalued(problem, m.problem, [givens]) \
                 if solver is solve_dynamics else None
-            mistaken, asked = (revalued[0], revalued[1][0]) if revalued else (m.problem, givens)
+            mistaken, asked = (revalued[0], revalued[1][0]) if revalued else \
+                (_read_in_copy(problem, m.problem), givens)
             if not ids or not _derivable(mistaken):
                 continue
             try:
@@ -303,6 +304,18 @@ def _shared_copy(problem: Problem) -> Problem:
     base = unchanged_copy(problem)
     share_kinetics(base, problem)
     return base
+
+
+@lru_cache(maxsize=256)
+def _read_in_copy(problem: Problem, mistaken: Problem) -> Problem:
+    """``mistaken``, solved with the balances of ``problem``'s unchanged copy
+    (:func:`_shared_copy`) where it differs from it only in its objectives or its event (a
+    value read at another instant of the motion: :func:`~.dynamics.read_in`)."""
+    try:
+        read_in(mistaken, _shared_copy(problem))
+    except _UNSOLVABLE:
+        pass  # one that cannot be lambdified (a zoo) is derived in full, and fails, when solved
+    return mistaken
 
 
 def _read(problem: Problem, mutations, givens, numeric: set[str], solver: Solver):
@@ -532,7 +545,8 @@ def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple
             if not ids:
                 continue
             revalued = _revalued(problem, m.problem, givens)
-            solved = _answers(together, *(revalued or (m.problem, givens)), ids)
+            solved = _answers(together, *(revalued or (_read_in_copy(problem, m.problem),
+                                                       givens)), ids)
         for k in range(len(givens)):
             sentence = m.sentence.replace("{term}", terms[k][i]) if i in terms[k] else \
                 m.sentence.replace(" = {term}", "")
