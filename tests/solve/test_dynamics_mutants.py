@@ -11,9 +11,9 @@ import pytest
 
 from mechgrade.errors import MechgradeError
 from mechgrade.solve import solve
-from mechgrade.mechanics.dynamics_mutations import dynamics_mutations
+from mechgrade.mechanics.dynamics_mutations import dynamics_mutations, unchanged_copy
 from mechgrade.solve.batch import _template, solve_variants
-from mechgrade.solve.dynamics import kinetics_plan, solve_dynamics
+from mechgrade.solve.dynamics import kinetics_plan, share_kinetics, solve_dynamics
 from mechgrade.solve.dynamics_mutants import _read_in_copy, _revalued
 from mechgrade.spec import load_problem
 
@@ -59,8 +59,8 @@ def test_a_solution_sent_to_another_process_carries_its_mistakes_not_the_class_s
 
 @pytest.mark.parametrize("name", ["atwood_machine", "block_on_turntable"])
 def test_a_mistake_that_changes_only_numbers_has_its_own_model_s_values(name):
-    # the Atwood machine's unchanged copy shares the reference's plan; the turntable's (its
-    # static friction an unknown force) is derived once for both numbers-only mistakes
+    # the unchanged copy shares the reference's plan: the turntable's too, its static
+    # friction an unknown force without its bound
     problem = load_problem(PROBLEMS / f"{name}.yaml")
     for m in dynamics_mutations(problem):
         if m.code not in ("mass_for_weight", "weight_for_mass"):
@@ -72,6 +72,19 @@ def test_a_mistake_that_changes_only_numbers_has_its_own_model_s_values(name):
         shared = solve_dynamics(revalued[0], givens=revalued[1][0], objectives=ids)
         for a, b in zip(own.results, shared.results):
             assert np.allclose(a.value, b.value, rtol=1e-9), (m.code, a.id)
+
+
+def test_a_static_friction_taken_as_an_unknown_force_shares_the_reference_s_balances():
+    problem = load_problem(PROBLEMS / "block_on_turntable.yaml")
+    copy = unchanged_copy(problem)
+    assert share_kinetics(copy, problem)
+    plan = kinetics_plan(copy)
+    assert plan.kin.balances is kinetics_plan(problem).kin.balances
+    assert kinetics_plan(problem).bounds and not plan.bounds and not plan.kin.bounds
+    # a copy with its weight left out is another model: not shared
+    omitted = next(m.problem for m in dynamics_mutations(problem)
+                   if m.code == "weight_omitted")
+    assert not share_kinetics(omitted, problem)
 
 
 def test_a_value_read_at_another_instant_of_the_motion_shares_the_reference_s_balances():

@@ -298,9 +298,8 @@ def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
 
 @lru_cache(maxsize=64)
 def _shared_copy(problem: Problem) -> Problem:
-    """The unchanged mistaken copy of ``problem``: solved with ``problem``'s own derivation,
-    unless the copy changes the model (a static friction made an unknown force), then derived
-    once for all the mistakes that change only numbers."""
+    """The unchanged mistaken copy of ``problem``: solved with ``problem``'s own derivation
+    (:func:`~.dynamics.share_kinetics`), a static friction's bound left out."""
     base = unchanged_copy(problem)
     share_kinetics(base, problem)
     return base
