@@ -9,7 +9,7 @@ import sympy as sp
 
 from mechgrade.expressions.syntax import parse
 from mechgrade.mechanics.dynamics_mutations import dynamics_mutations, unchanged_copy
-from mechgrade.mechanics.revalue import revaluation
+from mechgrade.mechanics.revalue import common_models, revaluation
 from mechgrade.spec.language import FUNCTIONS
 from mechgrade.spec.model import Expr
 from library import library_problem
@@ -65,3 +65,36 @@ def test_a_factor_that_varies_with_the_motion_is_no_revaluation():
     assert d is not None and d.gravity is not None
     varying = replace(base, dynamics=replace(d, gravity=_expr(f"theta*({d.gravity.text})")))
     assert revaluation(base, varying) is None
+
+
+def test_copies_that_differ_only_in_numbers_share_one_model():
+    problem = library_problem("rod_strikes_ledge")
+    copies = tuple(m.problem for m in dynamics_mutations(problem)
+                   if m.code == "restitution_component")
+    shared = common_models(problem, copies)
+    assert all(s is not None and s[0] is shared[0][0] for s in shared)
+    common = shared[0][0]
+    # each contact's coefficient a parameter of its own, of either sign
+    assert [(q.name, q.positive) for q in common.parameters[-2:]] == [
+        ("mistaken_0", False), ("mistaken_1", False)]
+
+
+def test_copies_that_differ_in_a_point_or_a_vector_are_each_their_own_model():
+    problem = library_problem("ladder_wall_lift_off")
+    moved = tuple(m.problem for m in dynamics_mutations(problem)
+                  if m.code == "load_at_other_point")
+    assert len(moved) == 2 and common_models(problem, moved) == (None, None)
+    base = unchanged_copy(problem)
+    d = base.dynamics
+    sideways = replace(base, dynamics=replace(d, gravity=_expr("g*N.x")))
+    assert common_models(problem, (base, sideways)) == (None, None)
+
+
+def test_the_names_of_a_shared_model_s_numbers_are_nobody_else_s():
+    problem = library_problem("rod_strikes_ledge")
+    taken = replace(problem, parameters=problem.parameters + (
+        replace(problem.parameters[0], name="mistaken_0"),))
+    copies = tuple(m.problem for m in dynamics_mutations(problem)
+                   if m.code == "restitution_component")
+    ((_, values), *_) = common_models(taken, copies)
+    assert [name for name, _ in values] == ["mistaken__0", "mistaken__1"]

@@ -105,6 +105,22 @@ def test_a_value_read_at_another_instant_of_the_motion_shares_the_reference_s_ba
     assert kinetics_plan(moved).kin.balances != kinetics_plan(problem).kin.balances
 
 
+def test_mistakes_that_differ_only_in_numbers_have_their_own_models_values_in_one_model():
+    # the rod's three ways of putting e on the tangential component: one derivation
+    problem = load_problem(PROBLEMS / "rod_strikes_ledge.yaml")
+    variants = [{}, {"e": 0.8, "v0": 3.0}]
+    for m in dynamics_mutations(problem):
+        if m.code != "restitution_component":
+            continue
+        common, givens = _revalued(problem, m.problem, variants)
+        ids = {o.id for o in m.problem.objectives if o.kind != "symbolic"}
+        for variant, shared_givens in zip(variants, givens):
+            own = solve_dynamics(m.problem, givens=variant, objectives=ids)
+            shared = solve_dynamics(common, givens=shared_givens, objectives=ids)
+            for a, b in zip(own.results, shared.results):
+                assert np.allclose(a.value, b.value, rtol=1e-9, atol=1e-12), (m.code, a.id)
+
+
 def test_a_positive_parameter_made_negative_is_solved_as_its_own_model():
     problem = load_problem(PROBLEMS / "block_sliding_down_incline.yaml")
     reversed_ = next(m for m in dynamics_mutations(problem) if m.code == "friction_reversed")

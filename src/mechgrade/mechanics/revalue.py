@@ -24,12 +24,14 @@ True
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import replace
 from functools import lru_cache
 
 import sympy as sp
 
+from ..errors import MechgradeError
 from ..expressions.syntax import Name, walk
-from ..spec.model import Expr, Given, ObjectiveKind, Problem
+from ..spec.model import Expr, Given, ObjectiveKind, Parameter, Problem
 from .build import build
 
 
@@ -69,6 +71,114 @@ def revaluation(base: Problem, mistaken: Problem) -> tuple[tuple[str, sp.Expr], 
         values[name] = factor
     return tuple(sorted((name, sp.simplify(model.language.value(Name(name)) * factor))
                         for name, factor in values.items()))
+
+
+@lru_cache(maxsize=64)
+def common_models(base: Problem, copies: tuple[Problem, ...]
+                  ) -> tuple[tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None, ...]:
+    """For each of ``copies`` (mistaken copies of ``base``), the one model it shares with the
+    others that differ from it only in expressions of ``base``'s parameters (the coefficient
+    of restitution of each contact: e and -e, e and e, 1 and -e), each such expression a
+    parameter of its own, and its values in ``base``'s parameters; ``None`` for a copy that
+    differs from every other in more. Their balances are derived and lambdified once.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.mechanics.dynamics_mutations import dynamics_mutations
+    >>> problem = load_problem(shipped_dir("problems") / "rod_strikes_ledge.yaml")
+    >>> copies = tuple(m.problem for m in dynamics_mutations(problem)
+    ...                if m.code == "restitution_component")
+    >>> [values for _, values in common_models(problem, copies)]
+    [(('mistaken_0', e), ('mistaken_1', -e)), (('mistaken_0', e), ('mistaken_1', e)), \
+(('mistaken_0', 1), ('mistaken_1', -e))]
+    """
+    groups: list[list[int]] = []
+    for i, copy in enumerate(copies):
+        group = next((g for g in groups if _common(copies[g[0]], (copy,)) is not None), None)
+        if group is None:
+            groups.append([i])
+        else:
+            group.append(i)
+    out: list[tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None] = [None] * len(copies)
+    model = build(base)
+    parameters = {model.language.value(Name(q.name)) for q in base.parameters}
+    prefix = _prefix(base)
+    for group in groups:
+        members = tuple(copies[i] for i in group)
+        slots: list[tuple[Expr, ...]] = []
+        common = _common(members[0], members[1:], slots, prefix) if len(group) > 1 else None
+        if common is None:
+            continue
+        try:
+            values = [[model.language.value(e.node) for e in slot] for slot in slots]
+        except MechgradeError:
+            continue  # a slot the kinematics cannot read (a force): not a number
+        if any(not isinstance(v, sp.Basic) or not model.plain(v).free_symbols <= parameters
+               for slot in values for v in slot):
+            continue  # a slot that is not a number of the parameters (a vector, a rate)
+        names = [f"{prefix}{k}" for k in range(len(slots))]
+        common = replace(common, parameters=common.parameters + tuple(
+            Parameter(name, "1", positive=False) for name in names),
+            givens=common.givens + tuple(
+                Given(Expr(name, Name(name)), 0.0, "1", 0.0, "0") for name in names))
+        for k, i in enumerate(group):
+            out[i] = (common, tuple((name, model.plain(values[j][k]))
+                                    for j, name in enumerate(names)))
+    return tuple(out)
+
+
+def _prefix(base: Problem) -> str:
+    """A start of names that none of ``base``'s starts with (``mistaken_``, then
+    ``mistaken__``...)."""
+    used: set[str] = set()
+    _alike(base, base, [], used)
+    prefix = "mistaken_"
+    while any(name.startswith(prefix) for name in used):
+        prefix += "_"
+    return prefix
+
+
+def _common(first: Problem, others: tuple[Problem, ...],
+            slots: list[tuple[Expr, ...]] | None = None, prefix: str = "") -> Problem | None:
+    """``first`` with each expression in which one of ``others`` differs from it a name of its
+    own (``prefix`` and ``k``, ``slots[k]`` its expressions in each); ``None`` where they
+    differ in more than expressions, or in their objectives."""
+    if any(o.objectives != first.objectives for o in others):
+        return None
+    try:
+        return _held(first, others, slots if slots is not None else [], prefix)
+    except _Differs:
+        return None
+
+
+class _Differs(Exception):
+    """Two copies differ in more than expressions."""
+
+
+def _held(a, others: tuple, slots: list, prefix: str):
+    if isinstance(a, Expr):
+        if any(not isinstance(o, Expr) for o in others):
+            raise _Differs
+        if all(o.node == a.node for o in others):
+            return a
+        slots.append((a, *others))
+        name = f"{prefix}{len(slots) - 1}"
+        return Expr(name, Name(name), a.where)
+    if any(type(o) is not type(a) for o in others):
+        raise _Differs
+    if isinstance(a, tuple):
+        if any(len(o) != len(a) for o in others):
+            raise _Differs
+        return tuple(_held(x, tuple(o[i] for o in others), slots, prefix)
+                     for i, x in enumerate(a))
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return dataclasses.replace(a, **{
+            f.name: _held(getattr(a, f.name), tuple(getattr(o, f.name) for o in others), slots,
+                          prefix)
+            for f in dataclasses.fields(a) if f.compare and f.init})
+    if any(o != a for o in others):
+        raise _Differs
+    return a
 
 
 def _changed_names(changed: list[tuple[Expr, Expr | None]]) -> set[str]:

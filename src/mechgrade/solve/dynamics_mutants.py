@@ -43,7 +43,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import (DynamicsMutation, dynamics_mutations,
                                             unchanged_copy)
-from ..mechanics.revalue import revaluation
+from ..mechanics.revalue import common_models, revaluation
 from ..mechanics.symbols import identically_zero
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
@@ -277,7 +277,10 @@ def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
     base = _shared_copy(problem)
     changes = revaluation(base, mistaken)
     if changes is None:
-        return None
+        common = _common_model(problem, mistaken)
+        if common is None:
+            return None
+        base, changes = common
     positive = {q.name for q in problem.parameters if q.positive}
     out = []
     for overrides in givens:
@@ -294,6 +297,19 @@ def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
             at[name] = si
         out.append({**overrides, **at})
     return base, out
+
+
+def _common_model(problem: Problem, mistaken: Problem
+                  ) -> tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None:
+    """The model ``mistaken`` shares with the other mistaken copies of ``problem`` that
+    differ from it only in numbers (:func:`~mechgrade.mechanics.revalue.common_models`; those
+    that are the unchanged copy with other numbers left out), and its values there."""
+    base = _shared_copy(problem)
+    copies = tuple(m.problem for m in dynamics_mutations(problem)
+                   if m.problem is not None and revaluation(base, m.problem) is None)
+    if mistaken not in copies:
+        return None
+    return common_models(problem, copies)[copies.index(mistaken)]
 
 
 @lru_cache(maxsize=64)
