@@ -7,11 +7,11 @@ from dataclasses import replace
 
 import sympy as sp
 
-from mechgrade.expressions.syntax import parse
+from mechgrade.expressions.syntax import Call, Name, parse
 from mechgrade.mechanics.dynamics_mutations import dynamics_mutations, unchanged_copy
 from mechgrade.mechanics.revalue import common_models, revaluation
 from mechgrade.spec.language import FUNCTIONS
-from mechgrade.spec.model import Expr
+from mechgrade.spec.model import Expr, ObjectiveKind
 from library import library_problem
 
 
@@ -79,11 +79,31 @@ def test_copies_that_differ_only_in_numbers_share_one_model():
         ("mistaken_0", False), ("mistaken_1", False)]
 
 
-def test_copies_that_differ_in_a_point_or_a_vector_are_each_their_own_model():
+def test_a_force_taken_at_two_other_points_is_one_model_with_both_versions():
+    # the ladder's weight at A, or at B: each version times its own factor, 1 or 0
     problem = library_problem("ladder_wall_lift_off")
     moved = tuple(m.problem for m in dynamics_mutations(problem)
                   if m.code == "load_at_other_point")
-    assert len(moved) == 2 and common_models(problem, moved) == (None, None)
+    (common, at_a), (same, at_b) = common_models(problem, moved)
+    assert common is same
+    assert [(f.name, f.at, f.force.text) for f in common.dynamics.forces] == [
+        ("mistaken_weight~ladder~0", "A", "mistaken_0*(((m))*(-g*N.y))"),
+        ("mistaken_weight~ladder~1", "B", "mistaken_1*(((m))*(-g*N.y))")]
+    assert at_a == (("mistaken_0", 1), ("mistaken_1", 0))
+    assert at_b == (("mistaken_0", 0), ("mistaken_1", 1))
+
+
+def test_copies_that_differ_in_a_vector_or_a_named_force_s_point_are_each_their_own_model():
+    problem = library_problem("ladder_wall_lift_off")
+    moved = tuple(m.problem for m in dynamics_mutations(problem)
+                  if m.code == "load_at_other_point")
+    # a force an objective reads by its name is not split in two
+    name = moved[0].dynamics.forces[0].name
+    reads = replace(moved[0].objectives[0], id="weight",
+                    find=Expr(f"force({name})", Call("force", (Name(name),))),
+                    kind=ObjectiveKind.VECTOR, frame="N", unit="N")
+    reading = tuple(replace(m, objectives=m.objectives + (reads,)) for m in moved)
+    assert common_models(problem, reading) == (None, None)
     base = unchanged_copy(problem)
     d = base.dynamics
     sideways = replace(base, dynamics=replace(d, gravity=_expr("g*N.x")))

@@ -24,13 +24,14 @@ True
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import sympy as sp
 
 from ..errors import MechgradeError
-from ..expressions.syntax import Name, walk
+from ..expressions.syntax import Bin, Name, Num, walk
+from ..spec.dynamics import Force
 from ..spec.model import Expr, Given, ObjectiveKind, Parameter, Problem
 from .build import build
 
@@ -100,13 +101,16 @@ def common_models(base: Problem, copies: tuple[Problem, ...]
         else:
             group.append(i)
     out: list[tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None] = [None] * len(copies)
+    groups = [g for g in groups if len(g) > 1]
+    if not groups:
+        return tuple(out)
     model = build(base)
     parameters = {model.language.value(Name(q.name)) for q in base.parameters}
     prefix = _prefix(base)
     for group in groups:
         members = tuple(copies[i] for i in group)
         slots: list[tuple[Expr, ...]] = []
-        common = _common(members[0], members[1:], slots, prefix) if len(group) > 1 else None
+        common = _common(members[0], members[1:], slots, prefix)
         if common is None:
             continue
         try:
@@ -141,44 +145,90 @@ def _prefix(base: Problem) -> str:
 def _common(first: Problem, others: tuple[Problem, ...],
             slots: list[tuple[Expr, ...]] | None = None, prefix: str = "") -> Problem | None:
     """``first`` with each expression in which one of ``others`` differs from it a name of its
-    own (``prefix`` and ``k``, ``slots[k]`` its expressions in each); ``None`` where they
-    differ in more than expressions, or in their objectives."""
+    own (``prefix`` and ``k``, ``slots[k]`` its expressions in each), and each force in which
+    they differ in more (its point) there in each one's version, each version times a name of
+    its own (1 where a copy has it, else 0); ``None`` where they differ in more, or in their
+    objectives."""
     if any(o.objectives != first.objectives for o in others):
         return None
     try:
-        return _held(first, others, slots if slots is not None else [], prefix)
+        return _held(first, others, _Held(slots if slots is not None else [], prefix,
+                                          first.objectives))
     except _Differs:
         return None
 
 
 class _Differs(Exception):
-    """Two copies differ in more than expressions."""
+    """Two copies differ in more than expressions and forces."""
 
 
-def _held(a, others: tuple, slots: list, prefix: str):
+@dataclass
+class _Held:
+    slots: list[tuple[Expr, ...]]
+    prefix: str
+    objectives: tuple
+
+    def name(self, exprs: tuple[Expr, ...]) -> str:
+        self.slots.append(exprs)
+        return f"{self.prefix}{len(self.slots) - 1}"
+
+    def named(self) -> set[str]:
+        """The names the objectives read (a force they name is not split in versions)."""
+        out: set[str] = set()
+        _alike(self.objectives, self.objectives, [], out)
+        return out
+
+
+_ONE, _ZERO = Expr("1", Num("1")), Expr("0", Num("0"))
+
+
+def _held(a, others: tuple, held: _Held):
+    if all(o == a for o in others):  # most of two copies is the same objects
+        return a
     if isinstance(a, Expr):
         if any(not isinstance(o, Expr) for o in others):
             raise _Differs
         if all(o.node == a.node for o in others):
             return a
-        slots.append((a, *others))
-        name = f"{prefix}{len(slots) - 1}"
+        name = held.name((a, *others))
         return Expr(name, Name(name), a.where)
     if any(type(o) is not type(a) for o in others):
         raise _Differs
     if isinstance(a, tuple):
         if any(len(o) != len(a) for o in others):
             raise _Differs
-        return tuple(_held(x, tuple(o[i] for o in others), slots, prefix)
-                     for i, x in enumerate(a))
+        out: list = []
+        for i, x in enumerate(a):
+            count = len(held.slots)
+            try:
+                out.append(_held(x, tuple(o[i] for o in others), held))
+            except _Differs:
+                del held.slots[count:]
+                out += _versions(x, tuple(o[i] for o in others), held)
+        return tuple(out)
     if dataclasses.is_dataclass(a) and not isinstance(a, type):
         return dataclasses.replace(a, **{
-            f.name: _held(getattr(a, f.name), tuple(getattr(o, f.name) for o in others), slots,
-                          prefix)
+            f.name: _held(getattr(a, f.name), tuple(getattr(o, f.name) for o in others), held)
             for f in dataclasses.fields(a) if f.compare and f.init})
     if any(o != a for o in others):
         raise _Differs
     return a
+
+
+def _versions(a, others: tuple, held: _Held) -> list[Force]:
+    """Each version of a force (``a`` in the first copy, ``others`` in the rest) times a name
+    of its own, worth 1 in the copies that have it and 0 in the others."""
+    if not isinstance(a, Force) or a.name in held.named():
+        raise _Differs
+    each = (a, *others)
+    out = []
+    for version in dict.fromkeys(each):
+        factor = held.name(tuple(_ONE if f == version else _ZERO for f in each))
+        out.append(replace(version, name=f"{held.prefix}{version.name}~{len(out)}",
+                           force=Expr(f"{factor}*({version.force.text})",
+                                      Bin("*", Name(factor), version.force.node),
+                                      version.force.where)))
+    return out
 
 
 def _changed_names(changed: list[tuple[Expr, Expr | None]]) -> set[str]:
