@@ -221,7 +221,7 @@ def _versions(a, others: tuple, held: _Held) -> list[Force]:
     if not isinstance(a, Force) or a.name in held.named():
         raise _Differs
     each = (a, *others)
-    out = []
+    out: list[Force] = []
     for version in dict.fromkeys(each):
         factor = held.name(tuple(_ONE if f == version else _ZERO for f in each))
         out.append(replace(version, name=f"{held.prefix}{version.name}~{len(out)}",
