@@ -296,11 +296,13 @@ def reactions_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMuta
     """The reactions on a body held by several supports (a shaft in two bearings) taken as
     their static values: the balances written without m a_G and the rate of the angular
     momentum, the weights kept (solvable where the motion is prescribed: at an instant whose
-    rates are given; an impact, an integrated motion or an energy balance finds the motion
-    from the masses this model takes as zero, and has none)."""
+    rates and a second rate are given; an impact, an integrated motion or an energy balance
+    finds the motion from the masses this model takes as zero, and has none)."""
     d = dynamics_of(problem)
-    if d.gravity is None or d.analysis is not None:
-        return
+    if d.gravity is None or d.analysis is not None or not any(
+            isinstance(g.key.node, Prime) and g.key.node.order == 2
+            for g in (*problem.givens, *(g for o in problem.objectives for g in o.givens))):
+        return  # no second rate given: the motion is not prescribed
     single = {r.name for r, _ in _only_reactions(d)}
     shared = [r.name for r in d.reactions if r.name not in single]
     asked = [o for o in problem.objectives if o.kind != "symbolic"
