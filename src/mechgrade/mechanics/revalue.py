@@ -33,7 +33,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Bin, Name, Num, walk
 from ..spec.dynamics import Force
 from ..spec.model import Expr, Given, ObjectiveKind, Parameter, Problem
-from .build import build
+from .build import Model, build
 
 
 @lru_cache(maxsize=256)
@@ -57,7 +57,7 @@ def revaluation(base: Problem, mistaken: Problem) -> tuple[tuple[str, sp.Expr], 
     parameters = {q.name for q in base.parameters}
     if not changed or _changed_names(changed) & elsewhere:
         return None
-    model = build(base)
+    model = _model(base)
     known = {model.language.value(Name(q)) for q in parameters}
     values: dict[str, sp.Expr] = {}
     for old, new in changed:
@@ -104,7 +104,7 @@ def common_models(base: Problem, copies: tuple[Problem, ...]
     groups = [g for g in groups if len(g) > 1]
     if not groups:
         return tuple(out)
-    model = build(base)
+    model = _model(base)
     parameters = {model.language.value(Name(q.name)) for q in base.parameters}
     prefix = _prefix(base)
     for group in groups:
@@ -229,6 +229,12 @@ def _versions(a, others: tuple, held: _Held) -> list[Force]:
                                       Bin("*", Name(factor), version.force.node),
                                       version.force.where)))
     return out
+
+
+@lru_cache(maxsize=64)
+def _model(base: Problem) -> Model:
+    """``base``'s model, built once for every copy compared with it."""
+    return build(base)
 
 
 def _changed_names(changed: list[tuple[Expr, Expr | None]]) -> set[str]:
