@@ -3,6 +3,7 @@ each variant worked out alone."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -10,10 +11,10 @@ import pytest
 
 from mechgrade.errors import MechgradeError
 from mechgrade.solve import solve
-from mechgrade.mechanics.dynamics_mutations import dynamics_mutations
+from mechgrade.mechanics.dynamics_mutations import dynamics_mutations, unchanged_copy
 from mechgrade.solve.batch import _template, solve_variants
-from mechgrade.solve.dynamics import solve_dynamics
-from mechgrade.solve.dynamics_mutants import _revalued
+from mechgrade.solve.dynamics import kinetics_plan, share_kinetics, solve_dynamics
+from mechgrade.solve.dynamics_mutants import _read_in_copy, _revalued
 from mechgrade.spec import load_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -58,8 +59,8 @@ def test_a_solution_sent_to_another_process_carries_its_mistakes_not_the_class_s
 
 @pytest.mark.parametrize("name", ["atwood_machine", "block_on_turntable"])
 def test_a_mistake_that_changes_only_numbers_has_its_own_model_s_values(name):
-    # the Atwood machine's unchanged copy shares the reference's plan; the turntable's (its
-    # static friction an unknown force) is derived once for both numbers-only mistakes
+    # the unchanged copy shares the reference's plan: the turntable's too, its static
+    # friction an unknown force without its bound
     problem = load_problem(PROBLEMS / f"{name}.yaml")
     for m in dynamics_mutations(problem):
         if m.code not in ("mass_for_weight", "weight_for_mass"):
@@ -71,6 +72,53 @@ def test_a_mistake_that_changes_only_numbers_has_its_own_model_s_values(name):
         shared = solve_dynamics(revalued[0], givens=revalued[1][0], objectives=ids)
         for a, b in zip(own.results, shared.results):
             assert np.allclose(a.value, b.value, rtol=1e-9), (m.code, a.id)
+
+
+def test_a_static_friction_taken_as_an_unknown_force_shares_the_reference_s_balances():
+    problem = load_problem(PROBLEMS / "block_on_turntable.yaml")
+    copy = unchanged_copy(problem)
+    assert share_kinetics(copy, problem)
+    plan = kinetics_plan(copy)
+    assert plan.kin.balances is kinetics_plan(problem).kin.balances
+    assert kinetics_plan(problem).bounds and not plan.bounds and not plan.kin.bounds
+    # a copy with its weight left out is another model: not shared
+    omitted = next(m.problem for m in dynamics_mutations(problem)
+                   if m.code == "weight_omitted")
+    assert not share_kinetics(omitted, problem)
+
+
+def test_a_value_read_at_another_instant_of_the_motion_shares_the_reference_s_balances():
+    # the ladder's values at the start (a moment after t = 0), not at its event: only the
+    # event differs, the balances are the reference's and the values those of a derivation
+    problem = load_problem(PROBLEMS / "ladder_wall_lift_off.yaml")
+    copies = {m.code: m.problem for m in dynamics_mutations(problem) if m.problem}
+    ids = {o.id for o in copies["value_at_start"].objectives}
+    own = solve_dynamics(replace(copies["value_at_start"]), objectives=ids)  # derived
+    start = _read_in_copy(problem, copies["value_at_start"])
+    assert kinetics_plan(start).kin.balances is kinetics_plan(problem).kin.balances
+    assert kinetics_plan(start).kin.until != kinetics_plan(problem).kin.until
+    shared = solve_dynamics(start, objectives=ids)
+    for a, b in zip(own.results, shared.results):
+        assert np.allclose(a.value, b.value, rtol=1e-9), a.id
+    # the weight moved to another point is another model: derived
+    moved = _read_in_copy(problem, copies["load_at_other_point"])
+    assert kinetics_plan(moved).kin.balances != kinetics_plan(problem).kin.balances
+
+
+def test_mistakes_that_differ_only_in_numbers_have_their_own_models_values_in_one_model():
+    # the rod's three ways of putting e on the tangential component: one derivation
+    problem = load_problem(PROBLEMS / "rod_strikes_ledge.yaml")
+    variants = [{}, {"e": 0.8, "v0": 3.0}]
+    for m in dynamics_mutations(problem):
+        if m.code != "restitution_component":
+            continue
+        common, givens = _revalued(problem, m.problem, variants)
+        ids = {o.id for o in m.problem.objectives if o.kind != "symbolic"}
+        for variant, shared_givens in zip(variants, givens):
+            own = solve_dynamics(m.problem, givens=variant, objectives=ids)
+            shared = solve_dynamics(common, givens=shared_givens, objectives=ids)
+            for a, b in zip(own.results, shared.results):
+                assert np.allclose(a.value, b.value, rtol=1e-9, atol=1e-12), (m.code, a.id)
 
 
 def test_a_positive_parameter_made_negative_is_solved_as_its_own_model():

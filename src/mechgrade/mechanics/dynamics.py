@@ -546,21 +546,34 @@ def derive_kinetics(problem: Problem) -> Kinetics:
 _READ: dict[int, tuple[Problem, Kinetics]] = {}
 
 
-def read_kinetics(problem: Problem, source: Problem) -> Kinetics | None:
-    """The kinetics of ``problem``, ``source`` with other objectives (the same model): the
-    source's balances, only the objectives read in its model (what :func:`derive_kinetics`
-    gives ``problem`` from now on); ``None`` when the two differ in more than objectives."""
-    if replace(problem, objectives=()) != replace(source, objectives=()):
+def read_kinetics(problem: Problem, source: Problem, kin: Kinetics) -> Kinetics | None:
+    """The kinetics of ``problem``, ``source`` (whose kinetics is ``kin``) with other
+    objectives, or another event to integrate to (the same model): the source's balances,
+    only the objectives and the event read in its model (what :func:`derive_kinetics` gives
+    ``problem`` from now on); ``None`` when the two differ in more."""
+    if replace(problem, objectives=()) != replace(_with_event_of(problem, source),
+                                                  objectives=()):
         return None
-    kin = derive_kinetics(source)
     model, _, language = kin.built
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     read = replace(kin, objectives=tuple(objectives), mistakes=tuple(mistakes),
-                   requirements=tuple(requirements), whens=_whens(problem, model, language))
+                   requirements=tuple(requirements), whens=_whens(problem, model, language),
+                   until=kin.until if problem.dynamics == source.dynamics
+                   else _analysis(problem, model, language, kin.k)[1])
     if len(_READ) >= 256:
         _READ.clear()
     _READ[id(problem)] = (problem, read)
     return read
+
+
+def _with_event_of(problem: Problem, source: Problem) -> Problem:
+    """``source`` integrated to ``problem``'s event, where both are integrated (a motion
+    read at another instant is the same model)."""
+    a, b = (p.dynamics.analysis if p.dynamics else None for p in (problem, source))
+    if not (isinstance(a, Integration) and isinstance(b, Integration)) or a.until == b.until:
+        return source
+    d = dynamics_of(source)
+    return replace(source, dynamics=replace(d, analysis=replace(b, until=a.until)))
 
 
 @lru_cache(maxsize=64)

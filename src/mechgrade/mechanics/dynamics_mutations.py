@@ -37,7 +37,7 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              LoadKind,
                              Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
                              Ring, Shape, Shell, Sphere, Start, StaticFriction, WorkEnergy,
-                             dynamics_of)
+                             dynamics_of, unchecked)
 from ..spec.language import FUNCTIONS
 from ..spec.constraint_mutations import strands_once
 from ..spec.model import Constraint, Expr, Problem
@@ -94,19 +94,9 @@ def _mistaken(problem: Problem, dynamics: Dynamics, without: tuple[str, ...] = (
     force without its bound and the loads unchecked (a student with a mistaken model checks
     neither: mechanics.loads), and the
     objectives that call a function in ``without`` left out (the mistake is not theirs)."""
-    bodies = {b.name for b in dynamics.bodies}
-    # between two free bodies the friction is equal and opposite on the other (third law)
-    reactions = dynamics.reactions + tuple(
-        Reaction(f.name, f.directions, (Act(f.on, f.at),) + (
-            (Act(f.surface, f.at, -1),) if f.surface in bodies else ()), f.where,
-            surface=f.surface)
-        for f in dynamics.friction if isinstance(f, StaticFriction))
-    friction = tuple(f for f in dynamics.friction if not isinstance(f, StaticFriction))
     objectives = tuple(replace(o, expect=None, mistakes=()) for o in problem.objectives
                        if not any(next(_calls(o.find.node, f), None) for f in without))
-    return replace(problem, objectives=objectives, warnings=(),
-                   dynamics=replace(dynamics, reactions=reactions, friction=friction,
-                                    mistaken=True))
+    return replace(problem, objectives=objectives, warnings=(), dynamics=unchecked(dynamics))
 
 
 def unchanged_copy(problem: Problem) -> Problem:
@@ -305,10 +295,14 @@ def _bodies_of(load) -> tuple[str, ...]:
 def reactions_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """The reactions on a body held by several supports (a shaft in two bearings) taken as
     their static values: the balances written without m a_G and the rate of the angular
-    momentum, the weights kept (solvable where the motion is prescribed)."""
+    momentum, the weights kept (solvable where the motion is prescribed: at an instant whose
+    rates and a second rate are given; an impact, an integrated motion or an energy balance
+    finds the motion from the masses this model takes as zero, and has none)."""
     d = dynamics_of(problem)
-    if d.gravity is None or isinstance(d.analysis, Impulse):
-        return
+    if d.gravity is None or d.analysis is not None or not any(
+            isinstance(g.key.node, Prime) and g.key.node.order == 2
+            for g in (*problem.givens, *(g for o in problem.objectives for g in o.givens))):
+        return  # no second rate given: the motion is not prescribed
     single = {r.name for r, _ in _only_reactions(d)}
     shared = [r.name for r in d.reactions if r.name not in single]
     asked = [o for o in problem.objectives if o.kind != "symbolic"

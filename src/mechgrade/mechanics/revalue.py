@@ -24,13 +24,16 @@ True
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import sympy as sp
 
-from ..expressions.syntax import Name, walk
-from ..spec.model import Expr, Given, ObjectiveKind, Problem
-from .build import build
+from ..errors import MechgradeError
+from ..expressions.syntax import Bin, Name, Num, walk
+from ..spec.dynamics import Force
+from ..spec.model import Expr, Given, ObjectiveKind, Parameter, Problem
+from .build import Model, build
 
 
 @lru_cache(maxsize=256)
@@ -54,7 +57,7 @@ def revaluation(base: Problem, mistaken: Problem) -> tuple[tuple[str, sp.Expr], 
     parameters = {q.name for q in base.parameters}
     if not changed or _changed_names(changed) & elsewhere:
         return None
-    model = build(base)
+    model = _model(base)
     known = {model.language.value(Name(q)) for q in parameters}
     values: dict[str, sp.Expr] = {}
     for old, new in changed:
@@ -69,6 +72,169 @@ def revaluation(base: Problem, mistaken: Problem) -> tuple[tuple[str, sp.Expr], 
         values[name] = factor
     return tuple(sorted((name, sp.simplify(model.language.value(Name(name)) * factor))
                         for name, factor in values.items()))
+
+
+@lru_cache(maxsize=64)
+def common_models(base: Problem, copies: tuple[Problem, ...]
+                  ) -> tuple[tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None, ...]:
+    """For each of ``copies`` (mistaken copies of ``base``), the one model it shares with the
+    others that differ from it only in expressions of ``base``'s parameters (the coefficient
+    of restitution of each contact: e and -e, e and e, 1 and -e), each such expression a
+    parameter of its own, and its values in ``base``'s parameters; ``None`` for a copy that
+    differs from every other in more. Their balances are derived and lambdified once.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.mechanics.dynamics_mutations import dynamics_mutations
+    >>> problem = load_problem(shipped_dir("problems") / "rod_strikes_ledge.yaml")
+    >>> copies = tuple(m.problem for m in dynamics_mutations(problem)
+    ...                if m.code == "restitution_component")
+    >>> [values for _, values in common_models(problem, copies)]
+    [(('mistaken_0', e), ('mistaken_1', -e)), (('mistaken_0', e), ('mistaken_1', e)), \
+(('mistaken_0', 1), ('mistaken_1', -e))]
+    """
+    groups: list[list[int]] = []
+    for i, copy in enumerate(copies):
+        group = next((g for g in groups if _common(copies[g[0]], (copy,)) is not None), None)
+        if group is None:
+            groups.append([i])
+        else:
+            group.append(i)
+    out: list[tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None] = [None] * len(copies)
+    groups = [g for g in groups if len(g) > 1]
+    if not groups:
+        return tuple(out)
+    model = _model(base)
+    parameters = {model.language.value(Name(q.name)) for q in base.parameters}
+    prefix = _prefix(base)
+    for group in groups:
+        members = tuple(copies[i] for i in group)
+        slots: list[tuple[Expr, ...]] = []
+        common = _common(members[0], members[1:], slots, prefix)
+        if common is None:
+            continue
+        try:
+            values = [[model.language.value(e.node) for e in slot] for slot in slots]
+        except MechgradeError:
+            continue  # a slot the kinematics cannot read (a force): not a number
+        if any(not isinstance(v, sp.Basic) or not model.plain(v).free_symbols <= parameters
+               for slot in values for v in slot):
+            continue  # a slot that is not a number of the parameters (a vector, a rate)
+        names = [f"{prefix}{k}" for k in range(len(slots))]
+        common = replace(common, parameters=common.parameters + tuple(
+            Parameter(name, "1", positive=False) for name in names),
+            givens=common.givens + tuple(
+                Given(Expr(name, Name(name)), 0.0, "1", 0.0, "0") for name in names))
+        for k, i in enumerate(group):
+            out[i] = (common, tuple((name, model.plain(values[j][k]))
+                                    for j, name in enumerate(names)))
+    return tuple(out)
+
+
+def _prefix(base: Problem) -> str:
+    """A start of names that none of ``base``'s starts with (``mistaken_``, then
+    ``mistaken__``...)."""
+    used: set[str] = set()
+    _alike(base, base, [], used)
+    prefix = "mistaken_"
+    while any(name.startswith(prefix) for name in used):
+        prefix += "_"
+    return prefix
+
+
+def _common(first: Problem, others: tuple[Problem, ...],
+            slots: list[tuple[Expr, ...]] | None = None, prefix: str = "") -> Problem | None:
+    """``first`` with each expression in which one of ``others`` differs from it a name of its
+    own (``prefix`` and ``k``, ``slots[k]`` its expressions in each), and each force in which
+    they differ in more (its point) there in each one's version, each version times a name of
+    its own (1 where a copy has it, else 0); ``None`` where they differ in more, or in their
+    objectives."""
+    if any(o.objectives != first.objectives for o in others):
+        return None
+    try:
+        return _held(first, others, _Held(slots if slots is not None else [], prefix,
+                                          first.objectives))
+    except _Differs:
+        return None
+
+
+class _Differs(Exception):
+    """Two copies differ in more than expressions and forces."""
+
+
+@dataclass
+class _Held:
+    slots: list[tuple[Expr, ...]]
+    prefix: str
+    objectives: tuple
+
+    def name(self, exprs: tuple[Expr, ...]) -> str:
+        self.slots.append(exprs)
+        return f"{self.prefix}{len(self.slots) - 1}"
+
+    def named(self) -> set[str]:
+        """The names the objectives read (a force they name is not split in versions)."""
+        out: set[str] = set()
+        _alike(self.objectives, self.objectives, [], out)
+        return out
+
+
+_ONE, _ZERO = Expr("1", Num("1")), Expr("0", Num("0"))
+
+
+def _held(a, others: tuple, held: _Held):
+    if all(o == a for o in others):  # most of two copies is the same objects
+        return a
+    if isinstance(a, Expr):
+        if any(not isinstance(o, Expr) for o in others):
+            raise _Differs
+        if all(o.node == a.node for o in others):
+            return a
+        name = held.name((a, *others))
+        return Expr(name, Name(name), a.where)
+    if any(type(o) is not type(a) for o in others):
+        raise _Differs
+    if isinstance(a, tuple):
+        if any(len(o) != len(a) for o in others):
+            raise _Differs
+        out: list = []
+        for i, x in enumerate(a):
+            count = len(held.slots)
+            try:
+                out.append(_held(x, tuple(o[i] for o in others), held))
+            except _Differs:
+                del held.slots[count:]
+                out += _versions(x, tuple(o[i] for o in others), held)
+        return tuple(out)
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return dataclasses.replace(a, **{
+            f.name: _held(getattr(a, f.name), tuple(getattr(o, f.name) for o in others), held)
+            for f in dataclasses.fields(a) if f.compare and f.init})
+    if any(o != a for o in others):
+        raise _Differs
+    return a
+
+
+def _versions(a, others: tuple, held: _Held) -> list[Force]:
+    """Each version of a force (``a`` in the first copy, ``others`` in the rest) times a name
+    of its own, worth 1 in the copies that have it and 0 in the others."""
+    if not isinstance(a, Force) or a.name in held.named():
+        raise _Differs
+    each = (a, *others)
+    out: list[Force] = []
+    for version in dict.fromkeys(each):
+        factor = held.name(tuple(_ONE if f == version else _ZERO for f in each))
+        out.append(replace(version, name=f"{held.prefix}{version.name}~{len(out)}",
+                           force=Expr(f"{factor}*({version.force.text})",
+                                      Bin("*", Name(factor), version.force.node),
+                                      version.force.where)))
+    return out
+
+
+@lru_cache(maxsize=64)
+def _model(base: Problem) -> Model:
+    """``base``'s model, built once for every copy compared with it."""
+    return build(base)
 
 
 def _changed_names(changed: list[tuple[Expr, Expr | None]]) -> set[str]:

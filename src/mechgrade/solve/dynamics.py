@@ -39,7 +39,8 @@ from ..mechanics.junctions import kinematic_part
 from ..mechanics.kinematics import locations
 from ..spec.model import ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..spec.dynamics import Integration, WorkEnergy, dynamics_of, instant_of_objective
+from ..spec.dynamics import (Integration, WorkEnergy, dynamics_of, instant_of_objective,
+                             unchecked)
 from .analysis import analysis_of
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
@@ -111,17 +112,21 @@ _SHARED: dict[int, tuple[Problem, KineticsPlan]] = {}
 
 
 def share_kinetics(copy: Problem, source: Problem) -> bool:
-    """Let ``copy``, ``source`` as a student's mistaken model of it (its loads unchecked, its
+    """Let ``copy``, ``source`` as a student's mistaken model of it (its loads unchecked, a
+    static friction an unknown force: :func:`~mechgrade.spec.dynamics.unchecked`; its
     author's answers and mistakes dropped, nothing else changed), be solved with ``source``'s
-    derivation and functions, without its physical bounds and author's mistakes (what the
-    unchecked derivation leaves out); whether it is such a copy."""
-    d = copy.dynamics
-    if d is None or source.dynamics is None or not d.mistaken or replace(
-            copy, objectives=(), dynamics=replace(d, mistaken=False)) != replace(
-            source, objectives=()) or copy.objectives != tuple(
-            replace(o, expect=None, mistakes=()) for o in source.objectives):
+    derivation and functions, without its physical bounds, friction bounds and author's
+    mistakes (what the unchecked derivation leaves out: the same unknowns and balances);
+    whether it is such a copy."""
+    if copy.dynamics is None or source.dynamics is None or replace(
+            copy, objectives=()) != replace(source, objectives=(),
+                                            dynamics=unchecked(source.dynamics)) \
+            or copy.objectives != tuple(replace(o, expect=None, mistakes=())
+                                        for o in source.objectives):
         return False
-    _share(copy, replace(kinetics_plan(source), physical=(), mistakes=()))
+    plan = kinetics_plan(source)
+    _share(copy, replace(plan, kin=replace(plan.kin, bounds=(), physical=()), bounds=(),
+                         physical=(), mistakes=()))
     return True
 
 
@@ -129,9 +134,9 @@ def read_in(problem: Problem, source: Problem) -> None:
     """Let ``problem``, ``source`` with other objectives, be solved with ``source``'s
     balances and functions: only its objectives derived and lambdified
     (:func:`~mechgrade.mechanics.dynamics.read_kinetics`)."""
-    kin = read_kinetics(problem, source)
+    plan = kinetics_plan(source)
+    kin = read_kinetics(problem, source, plan.kin)
     if kin is not None:
-        plan = kinetics_plan(source)
         _share(problem, replace(plan, kin=kin, **_objective_functions(problem, kin,
                                                                        plan.symbols)))
 

@@ -11,8 +11,11 @@ another frame's unit vectors), read at the solved instant.
 
 A mistaken model that changes only numbers (the mass written for the weight, the weight left
 out, e read as 1) is the problem's unchanged copy solved with its parameters' mistaken values
-(:mod:`mechgrade.mechanics.revalue`), and the readings are read in the problem's own balances:
-neither is derived and lambdified again.
+(:mod:`mechgrade.mechanics.revalue`); one that changes only the instant of the motion (a value
+read at its start) is read in the unchanged copy's balances, as the readings are in the
+problem's own: none is derived and lambdified again. Mistaken models that differ among
+themselves only in numbers (e on either component of an impact, a weight at one point or
+another) are derived once, together, each number a parameter of its own.
 
 Solving the mistaken models costs from tens of milliseconds to seconds (an integration to an
 event, an inverse design), and most answers are right: a solution's generated mistakes are
@@ -43,7 +46,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import (DynamicsMutation, dynamics_mutations,
                                             unchanged_copy)
-from ..mechanics.revalue import revaluation
+from ..mechanics.revalue import common_models, revaluation
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
 from .instant import _instants, instant_givens
@@ -247,7 +250,8 @@ def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], g
             ids = numeric & {o.id for o in m.problem.objectives}
             revalued = _revalued(problem, m.problem, [givens]) \
                 if solver is solve_dynamics else None
-            mistaken, asked = (revalued[0], revalued[1][0]) if revalued else (m.problem, givens)
+            mistaken, asked = (revalued[0], revalued[1][0]) if revalued else \
+                (_read_in_copy(problem, m.problem), givens)
             if not ids or not _derivable(mistaken):
                 continue
             try:
@@ -271,7 +275,10 @@ def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
     base = _shared_copy(problem)
     changes = revaluation(base, mistaken)
     if changes is None:
-        return None
+        common = _common_model(problem, mistaken)
+        if common is None:
+            return None
+        base, changes = common
     positive = {q.name for q in problem.parameters if q.positive}
     out = []
     for overrides in givens:
@@ -290,14 +297,38 @@ def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
     return base, out
 
 
+def _common_model(problem: Problem, mistaken: Problem
+                  ) -> tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None:
+    """The model ``mistaken`` shares with the other mistaken copies of ``problem`` that
+    differ from it only in numbers (:func:`~mechgrade.mechanics.revalue.common_models`; those
+    that are the unchanged copy with other numbers left out), and its values there."""
+    base = _shared_copy(problem)
+    copies = tuple(m.problem for m in dynamics_mutations(problem)
+                   if m.problem is not None and revaluation(base, m.problem) is None)
+    if mistaken not in copies:
+        return None
+    return common_models(problem, copies)[copies.index(mistaken)]
+
+
 @lru_cache(maxsize=64)
 def _shared_copy(problem: Problem) -> Problem:
-    """The unchanged mistaken copy of ``problem``: solved with ``problem``'s own derivation,
-    unless the copy changes the model (a static friction made an unknown force), then derived
-    once for all the mistakes that change only numbers."""
+    """The unchanged mistaken copy of ``problem``: solved with ``problem``'s own derivation
+    (:func:`~.dynamics.share_kinetics`), a static friction's bound left out."""
     base = unchanged_copy(problem)
     share_kinetics(base, problem)
     return base
+
+
+@lru_cache(maxsize=256)
+def _read_in_copy(problem: Problem, mistaken: Problem) -> Problem:
+    """``mistaken``, solved with the balances of ``problem``'s unchanged copy
+    (:func:`_shared_copy`) where it differs from it only in its objectives or its event (a
+    value read at another instant of the motion: :func:`~.dynamics.read_in`)."""
+    try:
+        read_in(mistaken, _shared_copy(problem))
+    except _UNSOLVABLE:
+        pass  # one that cannot be lambdified (a zoo) is derived in full, and fails, when solved
+    return mistaken
 
 
 def _read(problem: Problem, mutations, givens, numeric: set[str], solver: Solver):
@@ -527,7 +558,8 @@ def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple
             if not ids:
                 continue
             revalued = _revalued(problem, m.problem, givens)
-            solved = _answers(together, *(revalued or (m.problem, givens)), ids)
+            solved = _answers(together, *(revalued or (_read_in_copy(problem, m.problem),
+                                                       givens)), ids)
         for k in range(len(givens)):
             sentence = m.sentence.replace("{term}", terms[k][i]) if i in terms[k] else \
                 m.sentence.replace(" = {term}", "")

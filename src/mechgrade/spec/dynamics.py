@@ -492,6 +492,26 @@ class Dynamics:
                 KnownImpulse: LoadKind.IMPULSE}[type(item)]
 
 
+def unchecked(dynamics: Dynamics) -> Dynamics:
+    """``dynamics`` as a student's mistaken model of it takes them: its loads unchecked
+    (``mistaken``), each static friction an unknown force without its bound, equal and
+    opposite on its surface where that is a body (third law).
+
+    >>> grip = StaticFriction("F", "block", "P", "N", mu=None, directions=())
+    >>> student = unchecked(Dynamics(bodies=(), friction=(grip,)))
+    >>> [(r.name, r.acts) for r in student.reactions], student.friction, student.mistaken
+    ([('F', (Act(on='block', at='P', sign=1, direction=None),))], (), True)
+    """
+    bodies = {b.name for b in dynamics.bodies}
+    reactions = dynamics.reactions + tuple(
+        Reaction(f.name, f.directions, (Act(f.on, f.at),) + (
+            (Act(f.surface, f.at, -1),) if f.surface in bodies else ()), f.where,
+            surface=f.surface)
+        for f in dynamics.friction if isinstance(f, StaticFriction))
+    friction = tuple(f for f in dynamics.friction if not isinstance(f, StaticFriction))
+    return replace(dynamics, reactions=reactions, friction=friction, mistaken=True)
+
+
 # ---------------------------------------------------------------------------- reading
 
 
