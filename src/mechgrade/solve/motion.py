@@ -433,22 +433,19 @@ def _motion(problem: Problem, kinetics) -> Motion:
     return Motion(problem, kinetics)
 
 
-def integrated_alone(problem: Problem, kinetics,
-                     values: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """One instant of an integrated motion (``values``: its givens placed in the state) by the
-    integrator over columns, as a class's variants are integrated: the extended state at the
-    event (the accelerations and reactions their limits just before it) and just before it;
-    ``None`` where that integrator does not vouch for it (the scalar one then says why).
-    Raises when the event never happens."""
+def integrated_columns(problem: Problem, kinetics, X: np.ndarray
+                       ) -> list[tuple[np.ndarray, np.ndarray] | MechgradeError | None] | None:
+    """Instants of an integrated motion (each column of ``X``: one's givens placed in the
+    state) by the integrator over columns, as a class's variants are integrated: for each,
+    the extended state at the event (the accelerations and reactions their limits just
+    before it) and just before it; or the error it raises (the event never happens, a slip
+    sticks before it); or ``None`` where that integrator does not vouch for it (the scalar
+    one then says why). ``None`` for a motion that is not integrated."""
     motion = _motion(problem, kinetics)
     if not isinstance(motion.analysis, Integration):
         return None
-    X, ok, never, stuck = motion.integrated(values[:, None].copy())
-    if never[0]:
-        raise event_never_happens(motion.analysis)
-    if stuck:
-        raise stuck[0]
-    if not ok[0]:
-        return None
-    half = X.shape[0] // 2  # the states at the event, and those just before it under them
-    return X[:half, 0], X[half:, 0]
+    out, ok, never, stuck = motion.integrated(X.copy())
+    half = out.shape[0] // 2  # the states at the event, and those just before it under them
+    return [event_never_happens(motion.analysis) if never[c] else stuck[c] if c in stuck
+            else (out[:half, c], out[half:, c]) if ok[c] else None
+            for c in range(X.shape[1])]
