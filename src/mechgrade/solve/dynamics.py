@@ -531,8 +531,8 @@ def _bracketed(residuals: Callable[[np.ndarray], np.ndarray],
     64 times either way, the guess's sign kept, the nearest first), found once the sign
     changes there (:func:`~.batch_motion.root_between`), and whether it converged; ``None``
     when the sign does not change. For a design Newton's method overshoots from the guess (a
-    residual like 1/R²). ``residuals``: ``residual`` at several values at once (the two
-    neighbours a step further out evaluated together).
+    residual like 1/R²). ``residuals``: ``residual`` at several values at once (the guess
+    and its nearest neighbours, then, where they do not bracket a root, all the others).
 
     >>> root, ok = _bracketed(lambda v: 1 / v ** 2 - 0.25, lambda v: 1 / v ** 2 - 0.25, 0.5)
     >>> round(root, 12), ok
@@ -543,20 +543,15 @@ def _bracketed(residuals: Callable[[np.ndarray], np.ndarray],
     if guess == 0:
         return None
     values: dict[int, float] = {}
-
-    def scan(ks: list[int]) -> None:
-        new = [k for k in ks if k not in values]
-        if new:
-            values.update(zip(new, residuals(np.array([guess * 2.0 ** k for k in new]))))
-
-    for n in range(1, 7):
-        scan([n - 1, n, -n, 1 - n])
-        for a, b in ((n - 1, n), (-n, 1 - n)):
-            fa, fb = values[a], values[b]
-            if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
-                # scipy.optimize's brentq finds it as closely, but importing it costs more
-                # (~0.15 s) than most solves that come here
-                return root_between(residual, guess * 2.0 ** a, guess * 2.0 ** b, fa, fb)
+    for ring in ([0, 1, -1], [k for n in range(2, 7) for k in (n, -n)]):
+        values.update(zip(ring, residuals(np.array([guess * 2.0 ** k for k in ring]))))
+        for n in range(1, 7):
+            for a, b in ((n - 1, n), (-n, 1 - n)):
+                fa, fb = values.get(a, np.nan), values.get(b, np.nan)
+                if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
+                    # scipy.optimize's brentq finds it as closely, but importing it costs
+                    # more (~0.15 s) than most solves that come here
+                    return root_between(residual, guess * 2.0 ** a, guess * 2.0 ** b, fa, fb)
     return None
 
 
