@@ -97,6 +97,25 @@ def test_a_column_that_switches_before_its_event_is_located_at_its_switch():
     assert arrival.switch[1] == 0 and arrival.modes[0, 1] == 1.0
 
 
+def test_a_mode_that_switches_in_the_step_of_an_event_that_ends_another_is_located():
+    """Two slips whose speeds fall linearly (steps far longer than the motion's switches):
+    the event is slip 1's end, and slip 0 ends before it in the same step; the column is
+    located at slip 0's end, not left failed (the step across both kept both modes)."""
+    def rhs(cols, t, y, modes):
+        return -modes * np.array([[1.0], [0.5]])
+
+    def mode(cols, t, y):
+        return np.sign(y)
+
+    y0 = np.array([[0.3], [0.25]])  # slip 0 ends at t = 0.3, slip 1 (the event) at 0.5
+    arrival = integrate_to_events(rhs, lambda cols, t, y, modes: y[1], y0, 10.0, 1e-11,
+                                  1e-12, 20_000, mode=mode)
+    assert arrival.status.tolist() == [SWITCHED]
+    assert arrival.t.tolist() == pytest.approx([0.3], rel=1e-12)
+    assert arrival.switch is not None and arrival.modes is not None
+    assert arrival.switch[0] == 0 and arrival.modes[:, 0].tolist() == [1.0, 1.0]
+
+
 def test_newton_finds_each_column_root_the_secant_finds_from_the_same_guess():
     targets = np.array([2.0, 9.0, -1.0, 1e-6])
     calls = []

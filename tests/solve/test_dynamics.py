@@ -540,6 +540,28 @@ def test_a_design_newton_overshoots_is_bracketed_from_the_guess():
     assert solution.result("R_needed").value == pytest.approx(0.618039, rel=1e-6)
 
 
+def test_a_designs_trial_values_reached_together_are_each_as_alone():
+    """Newton's and the bracketing scan's values of the design parameter are the columns of
+    one integration: each the state at the event its integration alone gives, or its error
+    (R = 0: no inertia)."""
+    from mechgrade.expressions.syntax import Name
+    from mechgrade.solve.dynamics import kinetic_reach
+    from mechgrade.solve.instant import instant_givens
+
+    problem = load_problem(ROOT / "problems" / "flywheel_speed_drop.yaml")
+    inner = kinetic_reach(problem).inner
+    assert inner is not None
+    given_map = instant_givens(problem, None, {})
+    maps = [{**given_map, "R": (Name("R"), r, None)} for r in (0.3, 1.2, 0.0)]
+    together = inner.at_events(maps)
+    for given, x in zip(maps[:2], together):
+        assert isinstance(x, np.ndarray)
+        np.testing.assert_allclose(x, inner.reached(given, None).x, rtol=1e-12)
+    with pytest.raises(UnderdeterminedError) as alone:
+        inner.reached(maps[2], None)
+    assert str(together[2]) == str(alone.value)
+
+
 @pytest.mark.parametrize("mu, v0", [(0.2, 4.0), (0.25, 5.0), (0.3, 3.0), (0.3, 4.0),
                                     (0.35, 6.5)])
 def test_friction_whose_slip_ends_at_the_event_is_its_limit_just_before(mu, v0):

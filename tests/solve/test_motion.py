@@ -56,3 +56,26 @@ def test_a_column_at_rest_in_an_event_that_holds_at_the_start_is_refused_by_the_
     assert list(errors) == [1]
     assert "the event holds at the start (t = 0) and stays so: expected a motion that " \
         "leaves it" in str(errors[1])
+
+
+def test_a_slip_direction_written_as_a_sum_is_defined_where_the_slip_ends():
+    """9.22's friction on the bowling ball, N mu (R psi' + xb')/|R psi' + xb'| expanded into
+    two terms, read with its mode at the end of its slip: at the very end (R psi' + xb' = 0,
+    where the integrator over columns locates a switch) the kept motion has the force of the
+    slip before it, not 0/0, so that whether the ball then sticks can be judged there."""
+    from mechgrade.solve.columns import call
+    from mechgrade.solve.motion import _switches
+
+    problem = load_problem(TURNTABLE.parent / "ruina_9_22_marble_bowling_ball.yaml")
+    kp = kinetics_plan(problem)
+    switches = _switches(kp, at_end=True)
+    assert switches is not None and switches.count == 2
+    names = [str(s) for s in kp.symbols]
+    x = np.ones((len(names) + 2, 1))
+    x[names.index("R")], x[names.index("psid")], x[names.index("xbd")] = 0.5, -4.0, 2.0
+    N, mu, M = (x[names.index(n), 0] for n in ("N_D", "mu", "M"))
+    assert call(switches.speeds, x[:len(names)], 2)[:, 0].tolist() == [2.0, 0.0]
+    residual = call(switches.residual, x, len(kp.labels))[:, 0]
+    row = kp.labels.index("body bowling_ball: N.x force balance")
+    assert np.isfinite(residual).all()
+    assert residual[row] == pytest.approx(-M * x[names.index("xbdd"), 0] - N * mu)

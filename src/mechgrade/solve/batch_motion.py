@@ -168,7 +168,7 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         status[b[switched & (calls[b] <= max_calls)]] = SWITCHED
         ends[:, b[fired]] = g_old[fired], g_new[fired]
         moving[b[fired | undefined | ended]] = False
-    arrival = _arrivals(rhs, event, mode, history, status, ends, lead, c, switch)
+    arrival = _arrivals(rhs, event, mode, history, status, ends, lead, c, switch, flips, modes)
     return _switches(rhs, mode, history, arrival, switch, flips, c)
 
 
@@ -198,11 +198,14 @@ def _switches(rhs, mode, history: "_History", arrival: Arrival, switch, flips, c
 
 
 def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c,
-              switch) -> Arrival:
+              switch, flips, modes) -> Arrival:
     """Each fired column's event located on the dense output of the step it fired in, and
     its state a moment before (on the dense output of the step that holds that moment); one
     whose mode (``switch``) switched in that step before that moment has
-    :data:`SWITCHED`."""
+    :data:`SWITCHED`, as has one where a single mode had switched by that moment beside
+    those that switch at the event (an event that ends a slip ends its mode too): that
+    mode's ``switch`` and ``flips`` (its signs at the step's ends) are set here, ``modes``
+    those at the step's end."""
     m, count = history.y_old.shape[1:]
     t_event = np.full(count, np.nan)
     y_event = np.full((m, count), np.nan)
@@ -227,7 +230,14 @@ def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c,
         before[:, e[back]] = dense_back(earlier[back], np.arange(len(back)))
     kept_moment = held.copy()
     if mode is not None:  # the motion just before the event is the one integrated to it
-        held &= (mode(e, earlier, before[:, e]) == kept).all(axis=0)
+        differs = mode(e, earlier, before[:, e]) != kept
+        held &= ~differs.any(axis=0)
+        one = np.flatnonzero((differs.sum(axis=0) == 1) & (switch[e] < 0))
+        j = differs[:, one].argmax(axis=0)
+        turned = modes[j, e[one]] == -kept[j, one]  # its sign changes across the step
+        one, j = one[turned], j[turned]
+        switch[e[one]] = j
+        flips[:, e[one]] = kept[j, one], modes[j, e[one]]
     status[e[~(found & held)]] = FAILED  # an event not located, or a moment not kept
     status[e[found & kept_moment & ~held & (switch[e] >= 0) & (slot == last)]] = SWITCHED
     return Arrival(status, t_event, y_event, before)

@@ -45,7 +45,7 @@ from .analysis import analysis_of
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
-from .motion import after_event, balances, integrated_alone
+from .motion import after_event, balances, integrated_columns
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
 from .instant import Reached, drive, read_objectives
@@ -286,6 +286,12 @@ class KineticInstant:
         return Arrived(state, self.balances(self.source, self.kinetics, state),
                        tuple(instant.warnings))
 
+    def at_events(self, given_maps: list[dict]) -> list[np.ndarray | MechgradeError | None]:
+        """The extended state each of ``given_maps`` reaches (no instant asked), those this
+        kind reaches together; ``None`` for each to be reached alone (:meth:`reached`),
+        here all of them."""
+        return [None] * len(given_maps)
+
     def rates(self, state: State, given_map: dict) -> State:  # noqa: ARG002 - the givens fix them here
         """The state's rates, where this kind does not take them from the givens."""
         return state
@@ -358,7 +364,10 @@ class IntegratedInstant(KineticInstant):
                 f"{asked_at}: {given.text}" if given is not None else asked_at,
                 given.where if given is not None else analysis.where)
             return Arrived(state, self.balances(problem, kp, state))
-        together = integrated_alone(problem, kp, g.values)
+        columns = integrated_columns(problem, kp, g.values[:, None])
+        together = None if columns is None else columns[0]
+        if isinstance(together, MechgradeError):
+            raise together
         if together is not None:  # as the variants of a class are integrated
             x, before = together
             return Arrived(State(x[:size].copy(), after_event(kp.kp), frozenset()), x,
@@ -373,6 +382,28 @@ class IntegratedInstant(KineticInstant):
         keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
         x[keep] = state.values[keep]
         return Arrived(state, x, before=before)
+
+    def at_events(self, given_maps: list[dict]) -> list[np.ndarray | MechgradeError | None]:
+        """The extended states at the event, integrated together as columns (a motion in
+        phases: each alone)."""
+        if gripping(self.source) is not None:
+            return super().at_events(given_maps)
+        out: list[np.ndarray | MechgradeError | None] = [None] * len(given_maps)
+        placed: dict[int, np.ndarray] = {}
+        for i, given_map in enumerate(given_maps):
+            try:
+                placed[i] = place_givens(self.problem, self.kinetics.kp, given_map).values
+            except MechgradeError as error:
+                out[i] = error
+        if not placed:
+            return out
+        good = list(placed)
+        together = integrated_columns(self.source, self.kinetics,
+                                      np.stack([placed[i] for i in good], axis=1))
+        assert together is not None, "an integrated instant's motion is integrated"
+        for i, each in zip(good, together):
+            out[i] = each if not isinstance(each, tuple) else each[0]
+        return out
 
     def phased(self, values: np.ndarray, given_map: dict, asked_at: str | When | None
                ) -> Arrived:
@@ -443,8 +474,16 @@ class DesignedInstant(KineticInstant):
             except MechgradeError:  # the iteration wandered where the model fails: no root
                 return None
 
+        def states_at(values: np.ndarray) -> list[np.ndarray | None]:
+            # the values' instants reached together where the inner kind can (the columns
+            # of one integration), each other alone
+            assert self.inner is not None
+            reached = self.inner.at_events([with_value(v) for v in values])
+            return [state_at(v) if x is None else None if isinstance(x, MechgradeError) else x
+                    for v, x in zip(values, reached)]
+
         def reach(_cols: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            found = [state_at(value) for value in values]
+            found = states_at(values)
             size = max((len(x) for x in found if x is not None), default=1)
             return (np.stack([np.full(size, np.nan) if x is None else x for x in found],
                              axis=1), np.array([x is not None for x in found]))
@@ -453,12 +492,16 @@ class DesignedInstant(KineticInstant):
             x = state_at(value)
             return np.nan if x is None else float(_call(equation, x)[0])
 
+        def residuals(values: np.ndarray) -> np.ndarray:
+            return np.array([np.nan if x is None else float(_call(equation, x)[0])
+                             for x in states_at(values)])
+
         guess = design.guess
         # one instant, a design of one column; where Newton does not converge, a bracket
         roots, converged = design_roots(reach, equation, guess, 1)
         if converged[0]:
             return with_value(roots[0])
-        result = _bracketed(residual, guess)
+        result = _bracketed(residuals, residual, guess)
         left, right = design.so_that
         if result is None or not result[1] or not np.isfinite(result[0]):
             raise SolveError(f"design: no value of {design.find} near {guess:g} (SI) makes "
@@ -496,30 +539,33 @@ def _with_kinetics(kp: KineticsPlan, state: State, x: np.ndarray) -> State:
     return State(x[:size].copy(), state.given, frozenset(state.free - solved))
 
 
-def _bracketed(residual: Callable[[float], float], guess: float) -> tuple[float, bool] | None:
+def _bracketed(residuals: Callable[[np.ndarray], np.ndarray],
+               residual: Callable[[float], float], guess: float) -> tuple[float, bool] | None:
     """A root of ``residual`` between two neighbours of the guess scaled by powers of 2 (up to
     64 times either way, the guess's sign kept, the nearest first), found once the sign
     changes there (:func:`~.batch_motion.root_between`), and whether it converged; ``None``
     when the sign does not change. For a design Newton's method overshoots from the guess (a
-    residual like 1/R²)."""
+    residual like 1/R²). ``residuals``: ``residual`` at several values at once (the guess
+    and its nearest neighbours, then, where they do not bracket a root, all the others).
+
+    >>> root, ok = _bracketed(lambda v: 1 / v ** 2 - 0.25, lambda v: 1 / v ** 2 - 0.25, 0.5)
+    >>> round(root, 12), ok
+    (2.0, True)
+    """
     from .batch_motion import root_between
 
     if guess == 0:
         return None
     values: dict[int, float] = {}
-
-    def at(k: int) -> float:
-        if k not in values:
-            values[k] = residual(guess * 2.0 ** k)
-        return values[k]
-
-    for n in range(1, 7):
-        for a, b in ((n - 1, n), (-n, 1 - n)):
-            fa, fb = at(a), at(b)
-            if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
-                # scipy.optimize's brentq finds it as closely, but importing it costs more
-                # (~0.15 s) than most solves that come here
-                return root_between(residual, guess * 2.0 ** a, guess * 2.0 ** b, fa, fb)
+    for ring in ([0, 1, -1], [k for n in range(2, 7) for k in (n, -n)]):
+        values.update(zip(ring, residuals(np.array([guess * 2.0 ** k for k in ring]))))
+        for n in range(1, 7):
+            for a, b in ((n - 1, n), (-n, 1 - n)):
+                fa, fb = values.get(a, np.nan), values.get(b, np.nan)
+                if np.isfinite(fa) and np.isfinite(fb) and fa * fb <= 0:
+                    # scipy.optimize's brentq finds it as closely, but importing it costs
+                    # more (~0.15 s) than most solves that come here
+                    return root_between(residual, guess * 2.0 ** a, guess * 2.0 ** b, fa, fb)
     return None
 
 

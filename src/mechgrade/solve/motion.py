@@ -189,6 +189,11 @@ class Motion:
             modes[j, np.arange(len(w))] = side
             with np.errstate(all="ignore"):
                 a = self.accelerations(at(w, t, y, modes), switches)[qdd]
+                undefined = ~np.isfinite(a).all(axis=0)
+                if undefined.any():  # 0/0 at the end of the slip: the direction's limit
+                    a[:, undefined] = self.accelerations(
+                        at(w[undefined], t[undefined], y[:, undefined], modes[:, undefined]),
+                        _switches(self.kinetics, at_end=True))[qdd]
                 moved = y + h * np.concatenate([y[n:], a])
                 u = loud_call(switches.speeds, at(w, t + h, moved)[:kinetic],
                               switches.count)[j, np.arange(len(w))]
@@ -382,9 +387,13 @@ class _Switching:
 
 
 @lru_cache(maxsize=64)
-def _switches(kp) -> _Switching | None:
+def _switches(kp, at_end: bool = False) -> _Switching | None:
     """The kinetics of ``kp`` with their switches read as :class:`_Switching` says; ``None``
-    when nothing switches."""
+    when nothing switches. ``at_end``: with the terms over each ``|u|`` gathered and divided
+    by ``u`` first, so that a direction ``u/|u|`` written as a sum (``N mu (R psi' +
+    xb')/|u|`` expanded) is defined where its slip ends, ``u = 0`` (where a switch is
+    located); the integration keeps the terms as the balances write them (its values are
+    those of the model's own equations)."""
     import sympy as sp
 
     exprs = [e.expr for e in (*kp.kin.balances, *kp.kin.constraints)]
@@ -399,6 +408,11 @@ def _switches(kp) -> _Switching | None:
     table = dict(zip(speeds, modes))
 
     def kept(e):
+        for u, mode in table.items() if at_end else ():
+            parts = sp.collect(e, 1 / sp.Abs(u), evaluate=False) if e.is_Add else {}
+            over = parts.pop(1 / sp.Abs(u), None)
+            if over is not None:
+                e = sp.Add(*(k * v for k, v in parts.items())) + sp.cancel(over / u) / mode
         e = e.replace(lambda a: isinstance(a, sp.Abs) and a.args[0] in table,
                       lambda a: table[a.args[0]] * a.args[0])
         return e.replace(lambda a: isinstance(a, sp.sign) and a.args[0] in table,
@@ -419,22 +433,19 @@ def _motion(problem: Problem, kinetics) -> Motion:
     return Motion(problem, kinetics)
 
 
-def integrated_alone(problem: Problem, kinetics,
-                     values: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """One instant of an integrated motion (``values``: its givens placed in the state) by the
-    integrator over columns, as a class's variants are integrated: the extended state at the
-    event (the accelerations and reactions their limits just before it) and just before it;
-    ``None`` where that integrator does not vouch for it (the scalar one then says why).
-    Raises when the event never happens."""
+def integrated_columns(problem: Problem, kinetics, X: np.ndarray
+                       ) -> list[tuple[np.ndarray, np.ndarray] | MechgradeError | None] | None:
+    """Instants of an integrated motion (each column of ``X``: one's givens placed in the
+    state) by the integrator over columns, as a class's variants are integrated: for each,
+    the extended state at the event (the accelerations and reactions their limits just
+    before it) and just before it; or the error it raises (the event never happens, a slip
+    sticks before it); or ``None`` where that integrator does not vouch for it (the scalar
+    one then says why). ``None`` for a motion that is not integrated."""
     motion = _motion(problem, kinetics)
     if not isinstance(motion.analysis, Integration):
         return None
-    X, ok, never, stuck = motion.integrated(values[:, None].copy())
-    if never[0]:
-        raise event_never_happens(motion.analysis)
-    if stuck:
-        raise stuck[0]
-    if not ok[0]:
-        return None
-    half = X.shape[0] // 2  # the states at the event, and those just before it under them
-    return X[:half, 0], X[half:, 0]
+    out, ok, never, stuck = motion.integrated(X.copy())
+    half = out.shape[0] // 2  # the states at the event, and those just before it under them
+    return [event_never_happens(motion.analysis) if never[c] else stuck[c] if c in stuck
+            else (out[:half, c], out[half:, c]) if ok[c] else None
+            for c in range(X.shape[1])]
