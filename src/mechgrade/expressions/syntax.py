@@ -240,9 +240,10 @@ def _prepared(text: str) -> str:
     if "deg" in text:
         text = _DEGREES.sub(_in_degrees, text)
     text = text.replace("^", "**")
-    text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
-    if "'" in text:
-        raise ExpressionError("expected a prime (') only right after a name, as in theta'")
+    if "'" in text:  # only then can there be a rate to rewrite
+        text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
+        if "'" in text:
+            raise ExpressionError("expected a prime (') only right after a name, as in theta'")
     return text
 
 
@@ -353,9 +354,12 @@ column."""
 _SIMPLE = re.compile(r"[A-Za-z0-9_ +\-*/().,]*")
 # The spaces before a token, then the token: a name (most tokens are), an operator (a "."
 # before a digit starts a number) or a number, by tokenize's own pattern (its groups made
-# non-capturing, so findall gives these four), whose many alternatives are the slowest to try.
+# non-capturing, so findall gives these four), whose many alternatives are the slowest to try:
+# a whole number that nothing of a longer literal follows (most numbers) is taken first, as
+# that pattern would take it.
 _SCAN = re.compile(r"( *)(?:([A-Za-z_][A-Za-z0-9_]*)|(\*\*|\*|//|/|\.\.\.|\.(?![0-9])|[-+(),])"
-                   r"|(" + re.sub(r"\((?!\?)", "(?:", tokenize.Number) + r"))")
+                   r"|((?:[1-9][0-9]*|0)(?![0-9_.eEjJxXoObB])|"
+                   + re.sub(r"\((?!\?)", "(?:", tokenize.Number) + r"))")
 
 
 def tokens(text: str) -> list[Token]:
