@@ -8,8 +8,8 @@ import pytest
 from mechgrade.grade.compare import assess
 
 from mechgrade.grade.policy import GradingPolicy
-from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, _factor, diagnose
-from mechgrade.solve.result import MistakeValue, ObjectiveResult
+from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, Candidates, _factor, diagnose
+from mechgrade.solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from mechgrade.tolerance import agree_at_points
 
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
@@ -364,3 +364,19 @@ def test_the_grading_docs_list_every_generated_mistake_code():
     docs = (Path(__file__).resolve().parents[2] / "docs" / "grading.md").read_text(
         encoding="utf-8")
     assert [code for code in GENERATED_CODES if f"`{code}`" not in docs] == []
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_candidates_tried_at_once_match_as_tried_one_by_one(seed):
+    rng = np.random.default_rng(seed)
+    reference = rng.normal(size=6)
+    test = agree_at_points(0.01, reference)
+    mistake = GeneratedMistake("weight_omitted", "The weight was left out.", "x")
+    # values near the answer, near zero (matched on the reference's scale), and far
+    values = [reference * 1.3, reference * 0.005, rng.normal(size=6), reference * 1.3 + 1e-4]
+    candidates = Candidates([(mistake, v) for v in values], reference.shape)
+    for student in (reference * 1.3, reference * 1.3005, reference * 0.0052, rng.normal(size=6)):
+        at_once = candidates.fitting(student, reference, test, test)
+        one_by_one = candidates.fitting(student, reference, lambda s, t: test(s, t),
+                                        lambda s, t: test(s, t))
+        assert [bool(f) for f in at_once] == one_by_one

@@ -24,7 +24,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Callable, Sequence
+from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
@@ -104,7 +104,7 @@ _AXES = "xyz"
 
 def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: str = "scalar",
              mistakes: Sequence[tuple[MistakeValue, np.ndarray | None]] = (),
-             generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]] = (),
+             generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]] | Candidates = (),
              plausible: frozenset[str] | None = None,
              exact: Close | None = None) -> Diagnosis | None:
     """The first diagnosis that explains ``student`` (already known not to match ``reference``).
@@ -113,7 +113,8 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     factor, a unit slip) must meet to be named (``None``: ``close``), since a ratio that is
     only near a factor names a mistake the student did not make; ``mistakes`` pairs each author-declared mistake with its
     values in the same form as ``reference`` (``None`` when it cannot be evaluated), and
-    ``generated`` each generated mistake likewise; ``plausible`` names the model-dependent
+    ``generated`` each generated mistake likewise (or their :class:`Candidates`, kept by a
+    caller that tries many answers against one reference); ``plausible`` names the model-dependent
     slips (:data:`MODEL_SLIPS`) the model makes plausible (``None``: all of them).
 
     >>> import numpy as np
@@ -134,13 +135,15 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         if values.shape == reference.shape and np.isfinite(values).all() \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
-    found = _generated(student, reference, close, generated, plausible, exact)
+    candidates = generated if isinstance(generated, Candidates) \
+        else Candidates(generated, reference.shape)
+    found = _generated(student, reference, close, candidates, plausible, exact)
     factor = _factor(student, reference, close if exact is None else exact, plausible)
     if found is not None:
         # a family that only comes near the answer explains it worse than a factor the
         # answer has ten times more nearly (2π: revolutions for radians)
         if factor is not None and exact is not None and _generated(
-                student, reference, exact, generated, plausible, exact) is None:
+                student, reference, exact, candidates, plausible, exact) is None:
             near = min(float(np.linalg.norm(student - np.asarray(v, dtype=float)))
                        for _, v in generated if v is not None
                        and np.shape(v) == reference.shape and close(student, np.asarray(v)))
@@ -199,9 +202,51 @@ MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad", "min_s", "
 """Whole-answer slips that are only plausible when the model has what they name."""
 
 
+class Candidates:
+    """The generated mistakes that can be tried against answers to one reference: each with
+    its values (finite, of the reference's shape), and those values stacked (one row each),
+    so that an :class:`~mechgrade.tolerance.AgreeAtPoints` test tries an answer against them
+    all at once (one by one, the tests cost most of naming a wrong expression's mistake).
+
+    >>> m = GeneratedMistake("weight_omitted", "The weight was left out.", "x")
+    >>> [v.tolist() for _, v in Candidates([(m, np.array([1.0])), (m, None), (m, [np.inf])], (1,))]
+    [[1.0]]
+    """
+
+    __slots__ = ("pairs", "rows")
+
+    def __init__(self, generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]],
+                 shape: tuple[int, ...]):
+        pairs = []
+        for mistake, values in generated:
+            if values is None:
+                continue
+            values = np.asarray(values, dtype=float)
+            if values.shape == shape and np.isfinite(values).all():
+                pairs.append((mistake, values))
+        self.pairs: tuple[tuple[GeneratedMistake, np.ndarray], ...] = tuple(pairs)
+        self.rows = np.stack([values for _, values in pairs]) if pairs else None
+
+    def __iter__(self) -> Iterator[tuple[GeneratedMistake, np.ndarray]]:
+        return iter(self.pairs)
+
+    def fitting(self, student: np.ndarray, reference: np.ndarray, close: Close,
+                exact: Close) -> Sequence[bool]:
+        """Whether ``student`` matches each candidate: within ``close`` of its values, or of
+        the reference shifted by them when they are a zero there (within ``exact``)."""
+        rows = self.rows
+        if rows is not None and isinstance(close, AgreeAtPoints) \
+                and isinstance(exact, AgreeAtPoints):
+            return close.each(student, rows) | (exact.each_of(rows + reference, reference)
+                                                & close.each_of(student - rows + reference,
+                                                                reference))
+        return [close(student, values) or (exact(values + reference, reference)
+                                           and close(student - values + reference, reference))
+                for _, values in self.pairs]
+
+
 def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
-               generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]],
-               plausible: frozenset[str] | None = None,
+               generated: Candidates, plausible: frozenset[str] | None = None,
                exact: Close | None = None) -> Diagnosis | None:
     """The generated mistake nearest ``student`` among those it matches and is nearer to than
     to ``reference``: a value that merely lies between two candidates names neither. A
@@ -211,16 +256,11 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
     exact = close if exact is None else exact
     own = float(np.linalg.norm(student - reference))
     matched: list[tuple[float, GeneratedMistake, np.ndarray]] = []
-    for mistake, values in generated:
-        if values is None:
-            continue
-        values = np.asarray(values, dtype=float)
-        if values.shape != reference.shape or not np.isfinite(values).all():
-            continue
-        # a mistaken value near zero (a contact point's velocity) is matched on the scale of
-        # the reference, as a zero answer would be; any other only on its own scale
-        if not (close(student, values) or (exact(values + reference, reference)
-                                           and close(student - values + reference, reference))):
+    # a mistaken value near zero (a contact point's velocity) is matched on the scale of the
+    # reference, as a zero answer would be; any other only on its own scale
+    for (mistake, values), fits in zip(generated.pairs,
+                                       generated.fitting(student, reference, close, exact)):
+        if not fits:
             continue
         distance = float(np.linalg.norm(student - values))
         if distance < own:
