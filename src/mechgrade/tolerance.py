@@ -121,20 +121,3 @@ class AgreeAtPoints:
         flat = rows.reshape(len(rows), -1)
         fits = _elementwise(s.reshape(1, -1), flat, self.rel, self.floor, None)
         return np.logical_and.reduce(fits, axis=1)  # np.all, without its Python wrapper
-
-    def each_of(self, rows: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """Whether each of ``rows`` (stacked along the first axis, each of ``t``'s shape)
-        agrees with ``t``: the same answer as calling the test row by row.
-
-        >>> test = AgreeAtPoints(0.01, 1e-12)
-        >>> test.each_of(np.array([[2.0, 4.0], [2.0, 4.1]]), np.array([2.0, 4.04])).tolist()
-        [True, False]
-        >>> test.each_of(np.ones((2, 3)), np.ones(2)).tolist()
-        [False, False]
-        """
-        rows, t = np.asarray(rows, dtype=float), np.asarray(t, dtype=float)
-        if rows.shape[1:] != t.shape:
-            return np.zeros(len(rows), dtype=bool)
-        fits = _elementwise(rows.reshape(len(rows), -1), t.reshape(1, -1), self.rel,
-                            self.floor, None)
-        return np.logical_and.reduce(fits, axis=1)

@@ -367,16 +367,19 @@ def test_the_grading_docs_list_every_generated_mistake_code():
 
 
 @pytest.mark.parametrize("seed", range(20))
-def test_candidates_tried_at_once_match_as_tried_one_by_one(seed):
+def test_candidates_kept_for_many_answers_name_what_the_list_names(seed):
     rng = np.random.default_rng(seed)
     reference = rng.normal(size=6)
-    test = agree_at_points(0.01, reference)
-    mistake = GeneratedMistake("weight_omitted", "The weight was left out.", "x")
-    # values near the answer, near zero (matched on the reference's scale), and far
+    test, exact = agree_at_points(0.01, reference), agree_at_points(1e-6, reference)
+    codes = ("weight_omitted", "friction_reversed", "force_omitted", "spring_omitted")
+    # values away from the answer, a zero on the reference's scale, and far
     values = [reference * 1.3, reference * 0.005, rng.normal(size=6), reference * 1.3 + 1e-4]
-    candidates = Candidates([(mistake, v) for v in values], reference.shape)
-    for student in (reference * 1.3, reference * 1.3005, reference * 0.0052, rng.normal(size=6)):
-        at_once = candidates.fitting(student, reference, test, test)
-        one_by_one = candidates.fitting(student, reference, lambda s, t: test(s, t),
-                                        lambda s, t: test(s, t))
-        assert [bool(f) for f in at_once] == one_by_one
+    generated = [(GeneratedMistake(code, code, "x"), v) for code, v in zip(codes, values)]
+    kept = Candidates(generated, reference, test)
+    for student in (reference * 1.3, reference * 1.3005, reference * 0.0052, -reference,
+                    rng.normal(size=6)):
+        assert diagnose(student, reference, test, generated=kept) == \
+            diagnose(student, reference, test, generated=generated)
+        # kept for another exact test: worked out again for this one
+        assert diagnose(student, reference, test, generated=kept, exact=exact) == \
+            diagnose(student, reference, test, generated=generated, exact=exact)

@@ -687,7 +687,9 @@ class _Sampled:
 
     @cached_property
     def generated(self) -> Candidates:
-        return Candidates(self._usable(self._result.generated_mistakes), self.reference.shape)
+        # diagnose's exact test is its close one, self.loose
+        return Candidates(self._usable(self._result.generated_mistakes), self.reference,
+                          self.loose)
 
     def _usable(self, mistakes):
         """Each mistake with its values, only those defined and finite at every sample point:

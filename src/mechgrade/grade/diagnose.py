@@ -24,7 +24,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Callable, Iterator, Sequence
+from typing import Callable, Iterable, Iterator, Sequence
 
 import numpy as np
 
@@ -113,8 +113,8 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     factor, a unit slip) must meet to be named (``None``: ``close``), since a ratio that is
     only near a factor names a mistake the student did not make; ``mistakes`` pairs each author-declared mistake with its
     values in the same form as ``reference`` (``None`` when it cannot be evaluated), and
-    ``generated`` each generated mistake likewise (or their :class:`Candidates`, kept by a
-    caller that tries many answers against one reference); ``plausible`` names the model-dependent
+    ``generated`` each generated mistake likewise (or their :class:`Candidates` for the
+    exact test, kept by a caller that tries many answers against one reference); ``plausible`` names the model-dependent
     slips (:data:`MODEL_SLIPS`) the model makes plausible (``None``: all of them).
 
     >>> import numpy as np
@@ -135,15 +135,18 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         if values.shape == reference.shape and np.isfinite(values).all() \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
-    candidates = generated if isinstance(generated, Candidates) \
-        else Candidates(generated, reference.shape)
-    found = _generated(student, reference, close, candidates, plausible, exact)
+    # a mistaken value is matched on the reference's scale when it is a zero there (within
+    # the exact test)
+    zero = close if exact is None else exact
+    candidates = generated if isinstance(generated, Candidates) and generated.zero is zero \
+        else Candidates(generated, reference, zero)
+    found = _generated(student, reference, close, candidates, plausible)
     factor = _factor(student, reference, close if exact is None else exact, plausible)
     if found is not None:
         # a family that only comes near the answer explains it worse than a factor the
         # answer has ten times more nearly (2π: revolutions for radians)
         if factor is not None and exact is not None and _generated(
-                student, reference, exact, candidates, plausible, exact) is None:
+                student, reference, exact, candidates, plausible) is None:
             near = min(float(np.linalg.norm(student - np.asarray(v, dtype=float)))
                        for _, v in generated if v is not None
                        and np.shape(v) == reference.shape and close(student, np.asarray(v)))
@@ -204,64 +207,59 @@ MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad", "min_s", "
 
 class Candidates:
     """The generated mistakes that can be tried against answers to one reference: each with
-    its values (finite, of the reference's shape), and those values stacked (one row each),
-    so that an :class:`~mechgrade.tolerance.AgreeAtPoints` test tries an answer against them
-    all at once (one by one, the tests cost most of naming a wrong expression's mistake).
+    its values (finite, of the reference's shape) and whether those values are a zero on the
+    reference's scale (within the ``zero`` test), which no answer changes: worked out once by
+    a caller that judges many answers to one reference (one by one, these tests cost most of
+    naming a wrong expression's mistake).
 
     >>> m = GeneratedMistake("weight_omitted", "The weight was left out.", "x")
-    >>> [v.tolist() for _, v in Candidates([(m, np.array([1.0])), (m, None), (m, [np.inf])], (1,))]
-    [[1.0]]
+    >>> close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))
+    >>> found = Candidates([(m, np.array([1e-3])), (m, None), (m, [np.inf]), (m, [2.0])],
+    ...                    np.array([1.0]), close)
+    >>> [v.tolist() for _, v in found], found.zeros
+    ([[0.001], [2.0]], (True, False))
     """
 
-    __slots__ = ("pairs", "rows")
+    __slots__ = ("pairs", "zero", "zeros")
 
-    def __init__(self, generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]],
-                 shape: tuple[int, ...]):
+    def __init__(self, generated: Iterable[tuple[GeneratedMistake, np.ndarray | None]],
+                 reference: np.ndarray, zero: Close):
         pairs = []
         for mistake, values in generated:
             if values is None:
                 continue
             values = np.asarray(values, dtype=float)
-            if values.shape == shape and np.isfinite(values).all():
+            if values.shape == reference.shape and np.isfinite(values).all():
                 pairs.append((mistake, values))
         self.pairs: tuple[tuple[GeneratedMistake, np.ndarray], ...] = tuple(pairs)
-        self.rows = np.stack([values for _, values in pairs]) if pairs else None
+        self.zero = zero
+        self.zeros = tuple(zero(values + reference, reference) for _, values in pairs)
 
     def __iter__(self) -> Iterator[tuple[GeneratedMistake, np.ndarray]]:
         return iter(self.pairs)
 
-    def fitting(self, student: np.ndarray, reference: np.ndarray, close: Close,
-                exact: Close) -> Sequence[bool]:
-        """Whether ``student`` matches each candidate: within ``close`` of its values, or of
-        the reference shifted by them when they are a zero there (within ``exact``)."""
-        rows = self.rows
-        if rows is not None and isinstance(close, AgreeAtPoints) \
-                and isinstance(exact, AgreeAtPoints):
-            return close.each(student, rows) | (exact.each_of(rows + reference, reference)
-                                                & close.each_of(student - rows + reference,
-                                                                reference))
-        return [close(student, values) or (exact(values + reference, reference)
-                                           and close(student - values + reference, reference))
-                for _, values in self.pairs]
+    def fitting(self, student: np.ndarray, reference: np.ndarray,
+                close: Close) -> Iterator[tuple[GeneratedMistake, np.ndarray]]:
+        """The candidates ``student`` matches: within ``close`` of their values, or, for
+        values that are a zero on the reference's scale (a contact point's velocity), of the
+        reference shifted by them, as a zero answer would be matched."""
+        for (mistake, values), is_zero in zip(self.pairs, self.zeros):
+            if close(student, values) or (is_zero and close(student - values + reference,
+                                                            reference)):
+                yield mistake, values
 
 
 def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
-               generated: Candidates, plausible: frozenset[str] | None = None,
-               exact: Close | None = None) -> Diagnosis | None:
-    """The generated mistake nearest ``student`` among those it matches and is nearer to than
-    to ``reference``: a value that merely lies between two candidates names neither. A
-    mistaken value is matched on the reference's scale only when it is a zero there (within
-    ``exact``). When a mistake of another family matches too and its value is the nearest's
-    within ``close``, the two fit equally and both are named (:func:`_both`)."""
-    exact = close if exact is None else exact
+               generated: Candidates,
+               plausible: frozenset[str] | None = None) -> Diagnosis | None:
+    """The generated mistake nearest ``student`` among those it matches
+    (:meth:`Candidates.fitting`) and is nearer to than to ``reference``: a value that merely
+    lies between two candidates names neither. When a mistake of another family matches too
+    and its value is the nearest's within ``close``, the two fit equally and both are named
+    (:func:`_both`)."""
     own = float(np.linalg.norm(student - reference))
     matched: list[tuple[float, GeneratedMistake, np.ndarray]] = []
-    # a mistaken value near zero (a contact point's velocity) is matched on the scale of the
-    # reference, as a zero answer would be; any other only on its own scale
-    for (mistake, values), fits in zip(generated.pairs,
-                                       generated.fitting(student, reference, close, exact)):
-        if not fits:
-            continue
+    for mistake, values in generated.fitting(student, reference, close):
         distance = float(np.linalg.norm(student - values))
         if distance < own:
             matched.append((distance, mistake, values))
