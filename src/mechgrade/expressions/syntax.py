@@ -153,19 +153,22 @@ def name_of(node: Node) -> str:
     return node.id
 
 
-def to_text(node: Node) -> str:
-    """Canonical text for a tree (fully parenthesised where needed; parses back to the same tree).
+def to_text(node: Node, *, spaced: bool = False) -> str:
+    """Canonical text for a tree (fully parenthesised where needed; parses back to the same
+    tree); ``spaced``: with spaces around binary ``+`` and ``-``, as an answer is read back.
 
     >>> to_text(parse("2 L θ̇^2"))
     "2*L*theta'**2"
+    >>> to_text(parse("a-(-b)+1e-5*c"), spaced=True)
+    'a - -b + 1e-05*c'
     """
-    return _text(node, 0)
+    return _text(node, 0, " " if spaced else "")
 
 
 _PRECEDENCE = {"+": 1, "-": 1, "*": 2, "/": 2, "u": 3, "**": 4}
 
 
-def _text(node: Node, parent: int) -> str:
+def _text(node: Node, parent: int, space: str) -> str:
     if isinstance(node, Num):
         return node.text
     if isinstance(node, Name):
@@ -175,15 +178,16 @@ def _text(node: Node, parent: int) -> str:
     if isinstance(node, Attr):
         return f"{node.base}.{node.attr}"
     if isinstance(node, Call):
-        return f"{node.func}({', '.join(_text(a, 0) for a in node.args)})"
+        return f"{node.func}({', '.join(_text(a, 0, space) for a in node.args)})"
     if isinstance(node, Unary):
-        out = node.op + _text(node.operand, _PRECEDENCE["u"])
+        out = node.op + _text(node.operand, _PRECEDENCE["u"], space)
         return f"({out})" if parent > _PRECEDENCE["u"] else out
     prec = _PRECEDENCE[node.op]
     if node.op == "**":
-        out = f"{_text(node.left, prec + 1)}**{_text(node.right, prec)}"
+        out = f"{_text(node.left, prec + 1, space)}**{_text(node.right, prec, space)}"
     else:
-        out = f"{_text(node.left, prec)}{node.op}{_text(node.right, prec + 1)}"
+        op = f"{space}{node.op}{space}" if prec == 1 else node.op
+        out = f"{_text(node.left, prec, space)}{op}{_text(node.right, prec + 1, space)}"
     return f"({out})" if parent > prec else out
 
 
