@@ -141,11 +141,13 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     candidates = generated if isinstance(generated, Candidates) and generated.zero is zero \
         else Candidates(generated, reference, zero)
     found = _generated(student, reference, close, candidates, plausible)
-    factor = _factor(student, reference, close if exact is None else exact, plausible)
     if found is not None:
+        if exact is None:
+            return found  # a factor outweighs a generated mistake only under an exact test
         # a family that only comes near the answer explains it worse than a factor the
         # answer has ten times more nearly (2π: revolutions for radians)
-        if factor is not None and exact is not None and _generated(
+        factor = _factor(student, reference, exact, plausible)
+        if factor is not None and _generated(
                 student, reference, exact, candidates, plausible) is None:
             near = min(float(np.linalg.norm(student - np.asarray(v, dtype=float)))
                        for _, v in generated if v is not None
@@ -153,6 +155,7 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
             if factor[1] <= 0.1 * near:
                 return factor[0]
         return found
+    factor = _factor(student, reference, zero, plausible)
     if factor is not None:
         return factor[0]
     if kind == "vector":
