@@ -909,6 +909,10 @@ class _Builder:
         return _applied(func, [self.build(a, depth + 1) for a in node.args])
 
     def _number(self, value) -> Num:
+        if type(value) is int:  # most literals: a whole number's digits are its text
+            text = str(value)
+            if len(text) <= MAX_LITERAL_DIGITS:  # so below 1e30, within MAX_MAGNITUDE
+                return Num(text)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ExpressionError(f"expected a number, found {_describe_constant(value)}")
         text = repr(value) if isinstance(value, float) else str(value)
