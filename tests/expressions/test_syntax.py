@@ -247,7 +247,8 @@ def test_ambiguous_products_and_roots_are_refused_with_both_readings(text, messa
 
 _READER_PIECES = ("1", "0", "2.5", "1e3", "007", "0x1f", "1_0", "x", "L", "N.x", "N.y.z", "True",
                   "theta'", "sqrt(", "atan2(", "sin(", "vel(", "(", ")", ",", "+", "-", "*", "/",
-                  "**", "//", "%", "==", "9**9", "2**-1", "-", "pi", "lambda", ".", "_x", "e")
+                  "**", "//", "%", "==", "9**9", "2**-1", "-", "pi", "lambda", ".", "_x", "e", "3j",
+                  "Lcos(", "2L")
 
 
 def _outcome(read):
@@ -279,11 +280,15 @@ def test_the_fast_reader_reads_as_ast(text):
 
 @pytest.mark.parametrize("text", ["2 L thetad**2", "-(x + r*thetad*sin(theta))/17",
                                   "sqrt(xd**2 + yd**2)", "-x**2 + 2**-1", "3 N.x - atan2(1, 2)",
-                                  "L*sqrt(thetad**4 + thetadd**2)", "theta'' + 2.5e-3"])
-def test_plain_answers_are_read_without_ast(text, monkeypatch):
+                                  "L*sqrt(thetad**4 + thetadd**2)", "theta'' + 2.5e-3",
+                                  "1/2 m v^2", "-3 g sin(theta)/(2 L)", "g/L sin(theta)(2)"])
+def test_plain_answers_are_read_in_one_pass(text, monkeypatch):
     from mechgrade.expressions import syntax
 
     expected = parse(text)
+    for name in ("_implicit_products", "python_tokens"):
+        monkeypatch.setattr(syntax, name, lambda *a, name=name: (_ for _ in ()).throw(
+            AssertionError(f"read by {name}")))
     monkeypatch.setattr(syntax.ast, "parse", lambda *a, **k: (_ for _ in ()).throw(
         AssertionError("read by ast")))
     assert parse(text) == expected

@@ -8,8 +8,8 @@ import pytest
 from mechgrade.grade.compare import assess
 
 from mechgrade.grade.policy import GradingPolicy
-from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, _factor, diagnose
-from mechgrade.solve.result import MistakeValue, ObjectiveResult
+from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, Candidates, _factor, diagnose
+from mechgrade.solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from mechgrade.tolerance import agree_at_points
 
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
@@ -364,3 +364,22 @@ def test_the_grading_docs_list_every_generated_mistake_code():
     docs = (Path(__file__).resolve().parents[2] / "docs" / "grading.md").read_text(
         encoding="utf-8")
     assert [code for code in GENERATED_CODES if f"`{code}`" not in docs] == []
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_candidates_kept_for_many_answers_name_what_the_list_names(seed):
+    rng = np.random.default_rng(seed)
+    reference = rng.normal(size=6)
+    test, exact = agree_at_points(0.01, reference), agree_at_points(1e-6, reference)
+    codes = ("weight_omitted", "friction_reversed", "force_omitted", "spring_omitted")
+    # values away from the answer, a zero on the reference's scale, and far
+    values = [reference * 1.3, reference * 0.005, rng.normal(size=6), reference * 1.3 + 1e-4]
+    generated = [(GeneratedMistake(code, code, "x"), v) for code, v in zip(codes, values)]
+    kept = Candidates(generated, reference, test)
+    for student in (reference * 1.3, reference * 1.3005, reference * 0.0052, -reference,
+                    rng.normal(size=6)):
+        assert diagnose(student, reference, test, generated=kept) == \
+            diagnose(student, reference, test, generated=generated)
+        # kept for another exact test: worked out again for this one
+        assert diagnose(student, reference, test, generated=kept, exact=exact) == \
+            diagnose(student, reference, test, generated=generated, exact=exact)

@@ -153,19 +153,22 @@ def name_of(node: Node) -> str:
     return node.id
 
 
-def to_text(node: Node) -> str:
-    """Canonical text for a tree (fully parenthesised where needed; parses back to the same tree).
+def to_text(node: Node, *, spaced: bool = False) -> str:
+    """Canonical text for a tree (fully parenthesised where needed; parses back to the same
+    tree); ``spaced``: with spaces around binary ``+`` and ``-``, as an answer is read back.
 
     >>> to_text(parse("2 L θ̇^2"))
     "2*L*theta'**2"
+    >>> to_text(parse("a-(-b)+1e-5*c"), spaced=True)
+    'a - -b + 1e-05*c'
     """
-    return _text(node, 0)
+    return _text(node, 0, " " if spaced else "")
 
 
 _PRECEDENCE = {"+": 1, "-": 1, "*": 2, "/": 2, "u": 3, "**": 4}
 
 
-def _text(node: Node, parent: int) -> str:
+def _text(node: Node, parent: int, space: str) -> str:
     if isinstance(node, Num):
         return node.text
     if isinstance(node, Name):
@@ -175,15 +178,16 @@ def _text(node: Node, parent: int) -> str:
     if isinstance(node, Attr):
         return f"{node.base}.{node.attr}"
     if isinstance(node, Call):
-        return f"{node.func}({', '.join(_text(a, 0) for a in node.args)})"
+        return f"{node.func}({', '.join(_text(a, 0, space) for a in node.args)})"
     if isinstance(node, Unary):
-        out = node.op + _text(node.operand, _PRECEDENCE["u"])
+        out = node.op + _text(node.operand, _PRECEDENCE["u"], space)
         return f"({out})" if parent > _PRECEDENCE["u"] else out
     prec = _PRECEDENCE[node.op]
     if node.op == "**":
-        out = f"{_text(node.left, prec + 1)}**{_text(node.right, prec)}"
+        out = f"{_text(node.left, prec + 1, space)}**{_text(node.right, prec, space)}"
     else:
-        out = f"{_text(node.left, prec)}{node.op}{_text(node.right, prec + 1)}"
+        op = f"{space}{node.op}{space}" if prec == 1 else node.op
+        out = f"{_text(node.left, prec, space)}{op}{_text(node.right, prec + 1, space)}"
     return f"({out})" if parent > prec else out
 
 
@@ -222,6 +226,12 @@ def _pieces(text: str, functions: frozenset[str] | set[str]
             ) -> tuple[list[Piece], ExpressionError | None]:
     """The normalised tokens of ``text``, implicit products written out, and the refusal
     of an ambiguous product (see :func:`_implicit_products`)."""
+    return _implicit_products(_prepared(text), functions)
+
+
+def _prepared(text: str) -> str:
+    """``text`` checked (type, length, no ``#``) and rewritten as far as it can be before
+    it is read: Unicode, degrees, ``^`` and primes."""
     if not isinstance(text, str):
         raise ExpressionError(f"expected text, found {type(text).__name__}")
     if len(text) > MAX_LENGTH:
@@ -234,10 +244,11 @@ def _pieces(text: str, functions: frozenset[str] | set[str]
     if "deg" in text:
         text = _DEGREES.sub(_in_degrees, text)
     text = text.replace("^", "**")
-    text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
-    if "'" in text:
-        raise ExpressionError("expected a prime (') only right after a name, as in theta'")
-    return _implicit_products(text, functions)
+    if "'" in text:  # only then can there be a rate to rewrite
+        text = _PRIME.sub(lambda m: f" __d{len(m.group(2))}__{m.group(1)}", text)
+        if "'" in text:
+            raise ExpressionError("expected a prime (') only right after a name, as in theta'")
+    return text
 
 
 def _rewrite_unicode(text: str) -> str:
@@ -347,9 +358,12 @@ column."""
 _SIMPLE = re.compile(r"[A-Za-z0-9_ +\-*/().,]*")
 # The spaces before a token, then the token: a name (most tokens are), an operator (a "."
 # before a digit starts a number) or a number, by tokenize's own pattern (its groups made
-# non-capturing, so findall gives these four), whose many alternatives are the slowest to try.
+# non-capturing, so findall gives these four), whose many alternatives are the slowest to try:
+# a whole number that nothing of a longer literal follows (most numbers) is taken first, as
+# that pattern would take it.
 _SCAN = re.compile(r"( *)(?:([A-Za-z_][A-Za-z0-9_]*)|(\*\*|\*|//|/|\.\.\.|\.(?![0-9])|[-+(),])"
-                   r"|(" + re.sub(r"\((?!\?)", "(?:", tokenize.Number) + r"))")
+                   r"|((?:[1-9][0-9]*|0)(?![0-9_.eEjJxXoObB])|"
+                   + re.sub(r"\((?!\?)", "(?:", tokenize.Number) + r"))")
 
 
 def tokens(text: str) -> list[Token]:
@@ -456,8 +470,8 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]
                     divisors.product(index)
                 pieces.append(_TIMES)
             # only a bracket right after a name can make it a name and a call
-            glued = _glued_call(string, found[index + 1:index + 2], end, functions) \
-                if index + 1 < len(found) and found[index + 1][1] == "(" else None
+            glued = _glued_call(string, functions) if index + 1 < len(found) \
+                and found[index + 1][1] == "(" and found[index + 1][2] == end else None
             if glued:  # "pisqrt(L/g)", "Lcos(theta)": a name, then a call
                 pieces += [(kind, string[:-len(glued)]), _TIMES]
                 string = glued
@@ -481,11 +495,10 @@ def _implicit_products(text: str, functions: frozenset[str] | set[str]
 _TIMES: Piece = (tokenize.OP, "*")
 
 
-def _glued_call(name: str, following: list[Token], end: int,
-                functions: frozenset[str] | set[str]) -> str | None:
-    """The function a name not itself a function ends with, when a bracket follows it
+def _glued_call(name: str, functions: frozenset[str] | set[str]) -> str | None:
+    """The function a name not itself a function ends with, for a name a bracket follows
     directly (``pisqrt(`` is ``pi*sqrt(``); the longest such name."""
-    if name in functions or not following or following[0][1] != "(" or following[0][2] != end:
+    if name in functions:
         return None
     ends_with = [f for f in functions if name.endswith(f) and len(f) < len(name)]
     if not ends_with:
@@ -602,12 +615,13 @@ def parse(text: str, *, functions: Iterable[str] = (), attributes: bool = True) 
     Call(func='sqrt', args=(Bin(op='+', left=Bin(op='**', left=Name(id='xd'), right=Num(text='2')), right=Bin(op='**', left=Name(id='yd'), right=Num(text='2'))),))
     """
     names = _function_names(functions)
-    pieces, ambiguous = _pieces(text, names)
-    read = _Reader(pieces, names, attributes).read()
+    prepared = _prepared(text)
+    read = _Reader(prepared, names, attributes).read() if _SIMPLE.fullmatch(prepared) else None
     if read is None:
+        pieces, ambiguous = _implicit_products(prepared, names)
         read = _read_by_ast(text, pieces, names, attributes)
-    if ambiguous is not None:
-        raise ambiguous
+        if ambiguous is not None:
+            raise ambiguous
     return read
 
 
@@ -639,78 +653,106 @@ class _Unread(Exception):
 
 
 class _Reader:
-    """The tree :class:`_Builder` makes of ``ast.parse``'s, read straight from the pieces.
+    """The tree :class:`_Builder` makes of ``ast.parse``'s, read in one pass over the
+    prepared text (:func:`_prepared`): its tokens, the products written by juxtaposition and
+    the tree together.
 
-    Python's grammar restricted to what answers are made of: numbers written plainly, names,
-    ``N.x``, calls of known functions, brackets, unary minus and ``+ - * / **`` with Python's
-    precedence (``-x**2`` is ``-(x**2)``; ``**`` binds to the right and takes a sign on its
-    right). The same checks on every part (:class:`_Builder`'s own), and the same bounds on
-    size and nesting, counted as it counts them. Anything else, and every refusal, is left to
-    ``ast`` (:meth:`read` returns ``None``), so a reason is worded once. The tests prove both
-    readings agree; this one only saves ``ast``'s cost (most of reading an answer).
+    Text made of :data:`_SIMPLE`'s characters only, in Python's grammar restricted to what
+    answers are made of: numbers written plainly, names, ``N.x``, calls of known functions,
+    brackets, unary minus, ``+ - * / **`` with Python's precedence (``-x**2`` is ``-(x**2)``;
+    ``**`` binds to the right and takes a sign on its right) and a product written by
+    juxtaposition wherever :func:`_implicit_products` writes one out (before a number, a name
+    or a bracket that follows an operand). The same checks on every part (:class:`_Builder`'s
+    own), and the same bounds on size and nesting, counted as it counts them. Anything else,
+    every refusal and every text :func:`_implicit_products` would refuse or find ambiguous (a
+    product glued to a divisor, a name glued to a call, two numbers in a row) is left to
+    :func:`_implicit_products` and ``ast`` (:meth:`read` returns ``None``), so a reason is
+    worded once. The tests prove both readings agree; this one only saves their cost (most
+    of reading an answer).
 
     Each part is read as ``(node, constant value, height)``: the height is how deep
     :class:`_Builder` would find the part's deepest node below it (a flat chain ``a + b + c``
-    is one level, as it counts).
+    is one level, as it counts). A token is :data:`_SCAN`'s: spaces before it, then its text
+    as a name, an operator or a number (the other two empty).
     """
 
-    MAX_PIECES = 160
+    MAX_TOKENS = 160
     """Longer texts are left to ``ast`` (bounds are then checked as the text is built)."""
 
-    def __init__(self, pieces: list[Piece], functions: frozenset[str] | set[str],
-                 attributes: bool):
-        self.pieces = [p for p in pieces if p[0] != tokenize.ERRORTOKEN] + [_END]
+    def __init__(self, text: str, functions: frozenset[str] | set[str], attributes: bool):
+        self.tokens: list[tuple[str, str, str, str]] = _SCAN.findall(text)
+        self.tokens.append(_END)
         self.at = 0
         self.builder = _Builder(functions, attributes)
         self.nesting = 0
         self.count = 0
+        # the brackets' depth, and the depths where a divisor is being read: a product glued
+        # to it is ambiguous (see :class:`_Divisors`); None when the text divides nowhere
+        self.depth = 0
+        self.divisors: set[int] | None = set() if "/" in text else None
 
     def read(self) -> Node | None:
-        if len(self.pieces) == 1 or len(self.pieces) > self.MAX_PIECES:
+        if len(self.tokens) == 1 or len(self.tokens) > self.MAX_TOKENS:
             return None
         try:
             node, _, height = self.sum()
         except (_Unread, ExpressionError):
             return None
-        if self.at != len(self.pieces) - 1 or self.count > MAX_NODES or height > MAX_DEPTH:
+        if self.at != len(self.tokens) - 1 or self.count > MAX_NODES or height > MAX_DEPTH:
             return None
         return node
 
-    def take(self) -> Piece:
-        piece = self.pieces[self.at]
-        if piece is _END:
+    def take(self) -> tuple[str, str, str, str]:
+        token = self.tokens[self.at]
+        if token is _END:
             raise _Unread
         self.at += 1
-        return piece
+        return token
 
     def sum(self) -> _Read:
         left = self.product()
-        while self.pieces[self.at][1] in ("+", "-"):
-            op = self.take()[1]
+        while (op := self.tokens[self.at][2]) in ("+", "-"):
+            self.at += 1
+            self.term_ends()
             left = self.binary(op, left, self.product())
         return left
 
     def product(self) -> _Read:
         left = self.signed()
-        while self.pieces[self.at][1] in ("*", "/"):
-            op = self.take()[1]
+        while True:
+            spaces, name, op, number = self.tokens[self.at]
+            if op == "*" or op == "/":
+                self.at += 1
+                if op == "*":
+                    self.term_ends()
+                elif self.divisors is not None:
+                    self.divisors.add(self.depth)
+            elif name or number or op == "(":  # a product written by juxtaposition
+                if number and self.tokens[self.at - 1][3]:
+                    raise _Unread  # two numbers: refused by _implicit_products
+                if self.divisors is not None and self.depth in self.divisors:
+                    self.divisors.discard(self.depth)
+                    if not spaces:
+                        raise _Unread  # glued to a divisor: ambiguous
+                op = "*"
+            else:
+                return left
             left = self.binary(op, left, self.signed())
-        return left
 
     def signed(self) -> _Read:
-        string = self.pieces[self.at][1]
-        if string == "-":
+        op = self.tokens[self.at][2]
+        if op == "-":
             self.take()
             self.nest()
             operand, value, height = self.signed()
             self.nesting -= 1
             self.count += 1
             return Unary("-", operand), None if value is None else -value, height + 1
-        if string == "+":
+        if op == "+":
             raise _Unread  # ast keeps a node for it, and so counts it
         # the power, read here: every operand passes this way (one call fewer each)
         base = self.atom()
-        if self.pieces[self.at][1] == "**":
+        if self.tokens[self.at][2] == "**":
             self.take()
             return self.binary("**", base, self.signed())
         return base
@@ -727,64 +769,80 @@ class _Reader:
         if self.nesting > MAX_DEPTH:
             raise _Unread
 
+    def term_ends(self) -> None:
+        """An operator that ends the divisor being read at this depth (``*``, ``,``, a
+        binary sign)."""
+        if self.divisors is not None:
+            self.divisors.discard(self.depth)
+
+    def opened(self) -> None:
+        self.nest()
+        self.depth += 1
+        if self.divisors is not None:
+            self.divisors.discard(self.depth)
+
+    def closed(self) -> None:
+        if self.take()[2] != ")":
+            raise _Unread
+        self.term_ends()
+        self.depth -= 1
+        self.nesting -= 1
+
     def atom(self) -> _Read:
-        kind, string = self.take()
-        if kind == tokenize.NUMBER:
-            if string.isascii() and string.isdigit() and (string[0] != "0" or len(string) == 1):
-                number = self.builder._number(int(string))  # most numbers: plain integers
-            elif not _PLAIN_NUMBER.fullmatch(string):
-                raise _Unread  # 0x1f, 1_000, 007: Python's own literals
+        _, name, op, number = self.take()
+        if number:
+            if number.isascii() and number.isdigit() and (number[0] != "0" or len(number) == 1):
+                built = self.builder._number(int(number))  # most numbers: plain integers
+            elif not _PLAIN_NUMBER.fullmatch(number):
+                raise _Unread  # 0x1f, 1_000, 007, 3j: Python's own literals
             else:
-                number = self.builder._number(float(string) if _FLOAT.search(string)
-                                              else int(string))
+                built = self.builder._number(float(number) if _FLOAT.search(number)
+                                             else int(number))
             self.count += 1
-            return number, number.value, 0
-        if kind == tokenize.NAME:
-            if keyword.iskeyword(string):  # True, None, lambda...: Python's, not names
+            return built, built.value, 0
+        if name:
+            if keyword.iskeyword(name):  # True, None, lambda...: Python's, not names
                 raise _Unread
-            after = self.pieces[self.at][1]
+            spaces, _, after, _ = self.tokens[self.at]
             if after == "(":
-                return self.call(string)
+                if name in self.builder.functions:
+                    return self.call(name)
+                if not spaces and _glued_call(name, self.builder.functions):
+                    raise _Unread  # "Lcos(theta)": a name, then a call
             self.count += 1
             if after == ".":
                 self.take()
-                attr = self.take()
-                base = self.builder._name(string)
-                if not self.builder.attributes or attr[0] != tokenize.NAME or \
-                        not isinstance(base, Name) or attr[1] not in ("x", "y", "z") \
-                        or self.pieces[self.at][1] in (".", "("):
+                attr = self.take()[1]
+                base = self.builder._name(name)
+                if not self.builder.attributes or not isinstance(base, Name) \
+                        or attr not in ("x", "y", "z") or self.tokens[self.at][2] in (".", "("):
                     raise _Unread
-                return Attr(base.id, attr[1]), None, 0
-            leaf = self.builder._name(string)  # a Name of string, or a refusal
-            return leaf, math.pi if string == "pi" else None, 0
-        if string == "(":
-            self.nest()
+                return Attr(base.id, attr), None, 0
+            leaf = self.builder._name(name)  # a Name of name, or a refusal
+            return leaf, math.pi if name == "pi" else None, 0
+        if op == "(":
+            self.opened()
             inner = self.sum()
-            if self.take()[1] != ")":
-                raise _Unread
-            self.nesting -= 1
+            self.closed()
             return inner
         raise _Unread
 
     def call(self, func: str) -> _Read:
-        if func not in self.builder.functions:
-            raise _Unread
         self.take()
-        self.nest()
+        self.opened()
         built = [self.sum()]
-        while self.pieces[self.at][1] == ",":
+        while self.tokens[self.at][2] == ",":
             self.take()
+            self.term_ends()
             built.append(self.sum())
-        if self.take()[1] != ")":
-            raise _Unread
-        self.nesting -= 1
+        self.closed()
         self.count += 1
         node, value = _applied(func, [(arg, value) for arg, value, _ in built])
         return node, value, 1 + max(height for _, _, height in built)
 
 
 _Read = tuple[Node, Union[float, None], int]
-_END: Piece = (tokenize.ENDMARKER, "")
+_END = ("", "", "", "")
 _PLAIN_NUMBER = re.compile(r"(?:0|[1-9]\d*)|(?:\d+\.\d*|\.\d+)(?:[eE][+-]?\d+)?|\d+[eE][+-]?\d+")
 _FLOAT = re.compile(r"[.eE]")
 
@@ -851,6 +909,10 @@ class _Builder:
         return _applied(func, [self.build(a, depth + 1) for a in node.args])
 
     def _number(self, value) -> Num:
+        if type(value) is int:  # most literals: a whole number's digits are its text
+            text = str(value)
+            if len(text) <= MAX_LITERAL_DIGITS:  # so below 1e30, within MAX_MAGNITUDE
+                return Num(text)
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ExpressionError(f"expected a number, found {_describe_constant(value)}")
         text = repr(value) if isinstance(value, float) else str(value)

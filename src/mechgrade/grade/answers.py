@@ -782,7 +782,7 @@ def _read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
         raise AnswerError(f"expected an expression in {_names(symbols) or 'numbers only'}, "
                           f"found the unknown name {excerpt(unknown[0])}"
                           f"{_glued_function(unknown[0], aliases)}")
-    return ExpressionAnswer(mapped, _spaced(mapped))
+    return ExpressionAnswer(mapped, syntax.to_text(mapped, spaced=True))
 
 
 def rename_to_symbols(node: Node, symbols: tuple[str, ...]) -> tuple[Node, tuple[str, ...]]:
@@ -818,20 +818,6 @@ def _names(symbols: tuple[str, ...], most: int = 60) -> str:
 
 
 _E_NOTATION = re.compile(r"(?<![\w.])\d+(?:\.\d*)?(?P<e>[eE])[+-]?\d")
-
-
-def _spaced(node: Node) -> str:
-    """Canonical text with spaces around binary ``+`` and ``-``, for reading back."""
-    text = syntax.to_text(node)
-    # a sign after an "e" may be a number's exponent (1e-5): only then is the text before it
-    # searched
-    return _BINARY_SIGN.sub(lambda m: m.group(0) if text[m.start() - 1] == "e"
-                            and _EXPONENT_END.search(text, 0, m.start())
-                            else f" {m.group(1)} ", text)
-
-
-_BINARY_SIGN = re.compile(r"(?<=[\w)])([+-])")
-_EXPONENT_END = re.compile(r"(?<![A-Za-z_\d.])\d+(?:\.\d*)?e$")
 
 
 MAX_SPLIT = 24

@@ -36,7 +36,7 @@ from ..tolerance import REFERENCE_ACCURACY, agree_at_points, within
 from ..units import describe_dimension, dimension, from_si, judged_in, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
-from .diagnose import G_FT, G_SI, Diagnosis, diagnose, trig_in_radians
+from .diagnose import G_FT, G_SI, Candidates, Diagnosis, diagnose, trig_in_radians
 from .policy import GradingPolicy
 from .results import Verdict
 
@@ -686,8 +686,10 @@ class _Sampled:
         return self._usable(self._result.mistakes)
 
     @cached_property
-    def generated(self) -> list[tuple[GeneratedMistake, np.ndarray | None]]:
-        return self._usable(self._result.generated_mistakes)
+    def generated(self) -> Candidates:
+        # diagnose's exact test is its close one, self.loose
+        return Candidates(self._usable(self._result.generated_mistakes), self.reference,
+                          self.loose)
 
     def _usable(self, mistakes):
         """Each mistake with its values, only those defined and finite at every sample point:

@@ -24,7 +24,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Callable, Sequence
+from typing import Callable, Iterable, Iterator, Sequence
 
 import numpy as np
 
@@ -104,7 +104,7 @@ _AXES = "xyz"
 
 def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: str = "scalar",
              mistakes: Sequence[tuple[MistakeValue, np.ndarray | None]] = (),
-             generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]] = (),
+             generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]] | Candidates = (),
              plausible: frozenset[str] | None = None,
              exact: Close | None = None) -> Diagnosis | None:
     """The first diagnosis that explains ``student`` (already known not to match ``reference``).
@@ -113,7 +113,8 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     factor, a unit slip) must meet to be named (``None``: ``close``), since a ratio that is
     only near a factor names a mistake the student did not make; ``mistakes`` pairs each author-declared mistake with its
     values in the same form as ``reference`` (``None`` when it cannot be evaluated), and
-    ``generated`` each generated mistake likewise; ``plausible`` names the model-dependent
+    ``generated`` each generated mistake likewise (or their :class:`Candidates` for the
+    exact test, kept by a caller that tries many answers against one reference); ``plausible`` names the model-dependent
     slips (:data:`MODEL_SLIPS`) the model makes plausible (``None``: all of them).
 
     >>> import numpy as np
@@ -134,19 +135,27 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
         if values.shape == reference.shape and np.isfinite(values).all() \
                 and close(student, values):
             return Diagnosis("mistake", mistake.message, mistake.message, mistake.credit)
-    found = _generated(student, reference, close, generated, plausible, exact)
-    factor = _factor(student, reference, close if exact is None else exact, plausible)
+    # a mistaken value is matched on the reference's scale when it is a zero there (within
+    # the exact test)
+    zero = close if exact is None else exact
+    candidates = generated if isinstance(generated, Candidates) and generated.zero is zero \
+        else Candidates(generated, reference, zero)
+    found = _generated(student, reference, close, candidates, plausible)
     if found is not None:
+        if exact is None:
+            return found  # a factor outweighs a generated mistake only under an exact test
         # a family that only comes near the answer explains it worse than a factor the
         # answer has ten times more nearly (2π: revolutions for radians)
-        if factor is not None and exact is not None and _generated(
-                student, reference, exact, generated, plausible, exact) is None:
+        factor = _factor(student, reference, exact, plausible)
+        if factor is not None and _generated(
+                student, reference, exact, candidates, plausible) is None:
             near = min(float(np.linalg.norm(student - np.asarray(v, dtype=float)))
                        for _, v in generated if v is not None
                        and np.shape(v) == reference.shape and close(student, np.asarray(v)))
             if factor[1] <= 0.1 * near:
                 return factor[0]
         return found
+    factor = _factor(student, reference, zero, plausible)
     if factor is not None:
         return factor[0]
     if kind == "vector":
@@ -199,29 +208,61 @@ MODEL_SLIPS = ("g", "deg_as_rad", "rad_as_deg", "rpm_rad", "rev_rad", "min_s", "
 """Whole-answer slips that are only plausible when the model has what they name."""
 
 
+class Candidates:
+    """The generated mistakes that can be tried against answers to one reference: each with
+    its values (finite, of the reference's shape) and whether those values are a zero on the
+    reference's scale (within the ``zero`` test), which no answer changes: worked out once by
+    a caller that judges many answers to one reference (one by one, these tests cost most of
+    naming a wrong expression's mistake).
+
+    >>> m = GeneratedMistake("weight_omitted", "The weight was left out.", "x")
+    >>> close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))
+    >>> found = Candidates([(m, np.array([1e-3])), (m, None), (m, [np.inf]), (m, [2.0])],
+    ...                    np.array([1.0]), close)
+    >>> [v.tolist() for _, v in found], found.zeros
+    ([[0.001], [2.0]], (True, False))
+    """
+
+    __slots__ = ("pairs", "zero", "zeros")
+
+    def __init__(self, generated: Iterable[tuple[GeneratedMistake, np.ndarray | None]],
+                 reference: np.ndarray, zero: Close):
+        pairs = []
+        for mistake, values in generated:
+            if values is None:
+                continue
+            values = np.asarray(values, dtype=float)
+            if values.shape == reference.shape and np.isfinite(values).all():
+                pairs.append((mistake, values))
+        self.pairs: tuple[tuple[GeneratedMistake, np.ndarray], ...] = tuple(pairs)
+        self.zero = zero
+        self.zeros = tuple(zero(values + reference, reference) for _, values in pairs)
+
+    def __iter__(self) -> Iterator[tuple[GeneratedMistake, np.ndarray]]:
+        return iter(self.pairs)
+
+    def fitting(self, student: np.ndarray, reference: np.ndarray,
+                close: Close) -> Iterator[tuple[GeneratedMistake, np.ndarray]]:
+        """The candidates ``student`` matches: within ``close`` of their values, or, for
+        values that are a zero on the reference's scale (a contact point's velocity), of the
+        reference shifted by them, as a zero answer would be matched."""
+        for (mistake, values), is_zero in zip(self.pairs, self.zeros):
+            if close(student, values) or (is_zero and close(student - values + reference,
+                                                            reference)):
+                yield mistake, values
+
+
 def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
-               generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]],
-               plausible: frozenset[str] | None = None,
-               exact: Close | None = None) -> Diagnosis | None:
-    """The generated mistake nearest ``student`` among those it matches and is nearer to than
-    to ``reference``: a value that merely lies between two candidates names neither. A
-    mistaken value is matched on the reference's scale only when it is a zero there (within
-    ``exact``). When a mistake of another family matches too and its value is the nearest's
-    within ``close``, the two fit equally and both are named (:func:`_both`)."""
-    exact = close if exact is None else exact
+               generated: Candidates,
+               plausible: frozenset[str] | None = None) -> Diagnosis | None:
+    """The generated mistake nearest ``student`` among those it matches
+    (:meth:`Candidates.fitting`) and is nearer to than to ``reference``: a value that merely
+    lies between two candidates names neither. When a mistake of another family matches too
+    and its value is the nearest's within ``close``, the two fit equally and both are named
+    (:func:`_both`)."""
     own = float(np.linalg.norm(student - reference))
     matched: list[tuple[float, GeneratedMistake, np.ndarray]] = []
-    for mistake, values in generated:
-        if values is None:
-            continue
-        values = np.asarray(values, dtype=float)
-        if values.shape != reference.shape or not np.isfinite(values).all():
-            continue
-        # a mistaken value near zero (a contact point's velocity) is matched on the scale of
-        # the reference, as a zero answer would be; any other only on its own scale
-        if not (close(student, values) or (exact(values + reference, reference)
-                                           and close(student - values + reference, reference))):
-            continue
+    for mistake, values in generated.fitting(student, reference, close):
         distance = float(np.linalg.norm(student - values))
         if distance < own:
             matched.append((distance, mistake, values))
