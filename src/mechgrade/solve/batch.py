@@ -56,8 +56,9 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       collect_results, in_unit,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
-from .columns import FirstErrors, call, least_squares
-from .levels import Givens, State, place_givens, rows, solve_linear_columns, typical_sizes
+from .columns import FirstErrors, call
+from .levels import (Givens, State, holds, place_givens, rows, solve_level_columns,
+                     solve_linear_columns, typical_sizes)
 from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
                       model_mistake_table, plausible_slips, slips_of, stacked)
 from .numeric import degenerate, solve_numeric, solve_numeric_columns
@@ -66,13 +67,10 @@ from .motion import Motion, after_event, balances
 from .phases import gripping
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
-from .rules import on_branch, satisfied
+from .rules import on_branch
 from .result import (GeneratedMistake, Solution)
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
-
-NEWTON_STEPS = 30
-"""Newton steps a non-linear level may take from the reference's root."""
 
 def solve_variants(problem: Problem, variants: Sequence[Mapping[str, float | None] | None],
                    objectives: Collection[str] | None = None) -> list[Outcome]:
@@ -492,8 +490,6 @@ class _Template:
             order = level.order
             unknown = list(group.unknown[order])
             active, target = group.active[order], targets[order]
-            nrows = len(level.labels)
-            columns = list(p.index.unknowns(order))
             if level.linear and order > 0:
                 solved = solve_linear_columns(self.kproblem, p, order, X, group.known, active,
                                               target, placed)
@@ -502,30 +498,17 @@ class _Template:
                 nulls[order] = solved.Vt[:, solved.rank.max(initial=0):, :].transpose(
                     0, 2, 1) if group.nullity[order] else None
                 continue
-            # Newton steps for the unknowns the level determines, the others kept
+            # the unknowns the level determines, each column from the reference's root (its
+            # root does not depend on the other variants solved with it), the others kept
             solve_for = [i for i in unknown if i not in group.free]
-            # a column stops once its own step is that small: its root does not depend on
-            # the other variants solved with it
-            moving = np.ones(X.shape[1], dtype=bool)
-            for _ in range(NEWTON_STEPS if solve_for else 0):
-                place = [columns.index(i) for i in solve_for]
-                r = call(level.residual, X, nrows)[active] - target[active]
-                J = call(level.jacobian, X, nrows * len(columns)).reshape(
-                    nrows, len(columns), X.shape[1])[active][:, place]
-                good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
-                ok &= good
-                step, rank, _ = least_squares(J, r, good)
-                ok &= rank == len(solve_for) - group.nullity[order]
-                step[:, ~ok | ~moving] = 0.0
-                X[solve_for] += step
-                moving &= ~np.all(np.abs(step) <= 1e-12 * np.maximum(np.abs(X[solve_for]), 1.0),
-                                  axis=0)
-                if not moving.any():
-                    break
-            if active.any():
-                r = call(level.residual, X, nrows)[active] - target[active]
-                scale = np.abs(call(level.scale, X, nrows))[active]
-                ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
+            if solve_for:
+                fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
+                                           list(p.index.unknowns(order)), active,
+                                           target[active])
+                X[:] = fits.X
+                ok &= fits.started & fits.held & (fits.rank == len(solve_for))
+            elif active.any():
+                ok &= holds(self.problem.consistency, level, X, active, target[active])
         return nulls
 
     def _determined(self, group: _Group, X: np.ndarray, targets,

@@ -412,7 +412,8 @@ def _fits_alone(consistency: float, level: Level, setup: _Setup) -> list[Fit | N
                 continue
         full = setup.x.copy()
         full[determined] = fit.x
-        out.append((full, float(fit.cost), _satisfied(consistency, level, full, active, target)))
+        out.append((full, float(fit.cost), bool(holds(consistency, level, full[:, None], active,
+                                                      target[active, None])[0])))
     return out
 
 
@@ -420,7 +421,7 @@ def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
                    ) -> list[list[Fit | None]]:
     """:func:`_fits_alone` of every setup, every start of every one solved at once (those
     determining the same unknowns from the same rows stacked as columns) by
-    :func:`levenberg_marquardt`."""
+    :func:`solve_level_columns`."""
     out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
@@ -431,17 +432,61 @@ def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
         X = np.stack([setups[i].x for i, _ in pairs], axis=1)
         X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
         T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
-        X, cost, started = levenberg_marquardt(level, X, first.determined,
-                                               list(first.columns), first.active, T)
-        nrows = len(level.labels)
-        held = np.all(satisfied(call(level.residual, X, nrows)[first.active] - T,
-                                call(level.scale, X, nrows)[first.active], consistency), axis=0)
+        fits = solve_level_columns(consistency, level, X, first.determined,
+                                   list(first.columns), first.active, T)
         for j, (i, k) in enumerate(pairs):
-            if started[j]:
-                out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
+            if fits.started[j]:
+                out[i][k] = (fits.X[:, j].copy(), float(fits.cost[j]), bool(fits.held[j]))
     return out
 
 
+@dataclass(frozen=True)
+class LevelColumns:
+    """A non-linear level solved at every column (:func:`solve_level_columns`): the states
+    ``X``, half the sum of the squared residuals of each, which columns started where the
+    equations are defined, which hold the level (:func:`~.rules.satisfied`) and the rank of
+    each one's Jacobian in the unknowns solved for there."""
+
+    X: np.ndarray
+    cost: np.ndarray
+    started: np.ndarray
+    held: np.ndarray
+    rank: np.ndarray
+
+
+def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
+                        determined: list[int], columns: list[int], active: np.ndarray,
+                        T: np.ndarray) -> LevelColumns:
+    """The non-linear level's ``active`` rows (each must equal its row of ``T``) solved for
+    the positions ``determined`` at every column of ``X``, each from its own start (its
+    column: a single solve's starts, a class's reference root) by
+    :func:`levenberg_marquardt`, and judged there: the one non-linear solver of an instant
+    and of a class of variants.
+
+    >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
+    ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]],
+    ...               lambda x, y: [[x**2 + y**2 + 25], [x + 3]], ("c", "x"),
+    ...               (), (), False, (), frozenset())
+    >>> fits = solve_level_columns(1e-9, level, np.array([[1.0, 1.0], [1.0, -1.0]]),
+    ...                            [0, 1], [0, 1], np.ones(2, bool), np.zeros((2, 2)))
+    >>> fits.X[1].round(12).tolist(), fits.held.tolist(), fits.rank.tolist()
+    ([4.0, -4.0], [True, True], [2, 2])
+    """
+    X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T)
+    held = holds(consistency, level, X, active, T)
+    J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined], active)
+    finite = np.isfinite(J).all(axis=(0, 1))
+    s = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1), compute_uv=False)
+    return LevelColumns(X, cost, started, held, np.where(finite, rules.rank(s), 0))
+
+
+def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
+               active: np.ndarray) -> np.ndarray:
+    """The Jacobian of ``level``'s ``active`` rows (in its ``ncols`` unknowns) in those at
+    ``place``, at every column of ``X`` (rows x unknowns x N)."""
+    nrows = len(level.labels)
+    return call(level.jacobian, X, nrows * ncols).reshape(nrows, ncols, X.shape[1])[active][
+        :, place]
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
@@ -475,8 +520,7 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         return call(level.residual, Xs, nrows)[active] - Ts
 
     def jacobian(Xs):
-        return call(level.jacobian, Xs, nrows * ncols).reshape(
-            nrows, ncols, Xs.shape[1])[active][:, place]
+        return _jacobians(level, Xs, ncols, place, active)
 
     X = X.copy()
     r, J = residual(X, T), jacobian(X)
@@ -578,11 +622,13 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
     return out
 
 
-def _satisfied(consistency: float, level, x, active, target) -> bool:
-    with quiet():
-        r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
-        scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-    return bool(np.all(satisfied(r, scale, consistency)))
+def holds(consistency: float, level: Level, X: np.ndarray, active: np.ndarray,
+          T: np.ndarray) -> np.ndarray:
+    """Whether ``level``'s ``active`` rows hold (each equals its row of ``T``, as
+    :func:`~.rules.satisfied` judges it) at each column of ``X``."""
+    nrows = len(level.labels)
+    return np.all(satisfied(call(level.residual, X, nrows)[active] - T,
+                            call(level.scale, X, nrows)[active], consistency), axis=0)
 
 
 def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
