@@ -61,7 +61,7 @@ from .levels import (Givens, State, holds, place_givens, rows, solve_level_colum
                      solve_linear_columns, typical_sizes)
 from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
                       model_mistake_table, plausible_slips, slips_of, stacked)
-from .numeric import degenerate, solve_numeric, solve_numeric_columns
+from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
 from .phases import gripping
@@ -520,20 +520,15 @@ class _Template:
         same = ok.copy()
         before = {oid: call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
                   if oid in group.numeric}
-        probes: list[tuple[int, int | None, int | None]] = [
-            (p.index.level_of(i), i, None) for i in sorted(group.free)
-            if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
-        probes += [(order, None, j) for order, null in nulls.items() if null is not None
-                   for j in range(null.shape[2])]
-        for order, i, j in probes:
+        nullity = {order: null.shape[2] for order, null in nulls.items() if null is not None}
+        for freedom in freedoms(p, sorted(group.free), nullity):
             moved = X.copy()
-            if i is not None:
-                moved[i] += 0.37
-                first = order
+            if freedom.position is not None:
+                moved[freedom.position] += FREE_PROBE
             else:
-                moved[list(group.unknown[order])] += 0.73 * nulls[order][:, :, j].T
-                first = order + 1
-            self._levels(group, moved, targets, placed, first, same)
+                moved[list(group.unknown[freedom.order])] += (
+                    nulls[freedom.order] @ freedom.shift(nullity[freedom.order])).T
+            self._levels(group, moved, targets, placed, freedom.first, same)
             for oid, value in before.items():
                 after = call(dict(p.objectives)[oid], moved, value.shape[0])
                 same &= rules.unchanged(value, after)
