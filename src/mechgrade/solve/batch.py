@@ -57,8 +57,8 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call
-from .levels import (Givens, State, holds, place_givens, rows, solve_level_columns,
-                     solve_linear_columns, typical_sizes)
+from .levels import (Givens, State, branches_asked, holds, on_branches, place_givens, rows,
+                     solve_level_columns, solve_linear_columns, typical_sizes)
 from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
                       model_mistake_table, plausible_slips, slips_of, stacked)
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric, solve_numeric_columns
@@ -67,7 +67,6 @@ from .motion import Motion, after_event, balances
 from .phases import gripping
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
-from .rules import on_branch
 from .result import (GeneratedMistake, Solution)
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
@@ -180,8 +179,7 @@ class _Template:
         self.problem, self.kproblem, self.p, self.kinetics = problem, kproblem, p, kinetics
         self.groups: tuple[_Group, ...] = groups
         self.keys = frozenset(to_text(g.key.node) for g in problem.givens)
-        self.branches = {p.index.position(to_text(b.key.node)): b.root
-                         for b in problem.branches}
+        self.branches = branches_asked(problem, p)
         self.parameters = {q.name for q in problem.parameters}
         self.plausible = plausible_slips(problem)
         dynamics = problem.dynamics
@@ -535,18 +533,14 @@ class _Template:
         return same
 
     def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:
-        """Which columns have every root the spec picks a branch of on it (as
-        :func:`~.rules.on_branch` judges it for a quantity of the size the column's own
-        givens give it)."""
-        ok = np.ones(X.shape[1], dtype=bool)
+        """Which columns have every root the spec picks a branch of on it
+        (:func:`~.levels.on_branches`, each column's typical sizes from its own givens)."""
         index = self.p.index
-        picked = [(i, root) for i, root in self.branches.items()
-                  if i in group.unknown[index.level_of(i)]]
-        if picked:
-            scales = typical_sizes(self.kproblem, self.p, X[:index.size], group.known)
-            for i, root in picked:
-                ok &= on_branch(X[i], scales[i], root)
-        return ok
+        picked = [i for i in self.branches if i in group.unknown[index.level_of(i)]]
+        if not picked:
+            return np.ones(X.shape[1], dtype=bool)
+        return on_branches(self.branches, X, typical_sizes(self.kproblem, self.p,
+                                                           X[:index.size], group.known), picked)
 
     def _degenerate(self, group: _Group, X: np.ndarray) -> np.ndarray:
         """Instants where the scalar solver would warn of a degenerate configuration."""

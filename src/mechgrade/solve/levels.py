@@ -644,7 +644,29 @@ def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
 
 
 def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
-    return all(on_branch(x[i], g.scales[i], g.branches.get(i)) for i in positions)
+    return bool(on_branches(g.branches, x[:, None], g.scales[:, None], positions)[0])
+
+
+def on_branches(branches: Mapping[int, Root], X: np.ndarray, scales: np.ndarray,
+                positions) -> np.ndarray:
+    """Which columns of ``X`` (states, each with its typical sizes in ``scales``) have the
+    root of every position in ``positions`` on the branch ``branches`` asks for it
+    (:func:`~.rules.on_branch`): the branch screen of an instant and of a class.
+
+    >>> on_branches({0: Root.POSITIVE}, np.array([[2.0, -2.0], [1.0, 1.0]]), np.ones((2, 2)),
+    ...             [0, 1]).tolist()
+    [True, False]
+    """
+    ok = np.ones(X.shape[1], dtype=bool)
+    for i in positions:
+        if i in branches:
+            ok &= on_branch(X[i], scales[i], branches[i])
+    return ok
+
+
+def branches_asked(problem: Problem, p: KinematicsPlan) -> Mapping[int, Root]:
+    """The root each position's ``branch:`` asks for, by position in ``p``'s layout."""
+    return per_problem(_layout, problem, p)[3]
 
 
 def _choose_branch(g: Givens, roots: list, positions) -> list:
