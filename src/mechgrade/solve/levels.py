@@ -622,13 +622,20 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
     return out
 
 
+def residuals(level: Level, X: np.ndarray, active, T: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """The residual of each of ``level``'s ``active`` rows (less what it must equal, its row
+    of ``T``) and the size of its terms, at every column of ``X`` (rows x N each)."""
+    nrows = len(level.labels)
+    return (call(level.residual, X, nrows)[active] - T,
+            np.abs(call(level.scale, X, nrows))[active])
+
+
 def holds(consistency: float, level: Level, X: np.ndarray, active: np.ndarray,
           T: np.ndarray) -> np.ndarray:
     """Whether ``level``'s ``active`` rows hold (each equals its row of ``T``, as
     :func:`~.rules.satisfied` judges it) at each column of ``X``."""
-    nrows = len(level.labels)
-    return np.all(satisfied(call(level.residual, X, nrows)[active] - T,
-                            call(level.scale, X, nrows)[active], consistency), axis=0)
+    return np.all(satisfied(*residuals(level, X, active, T), consistency), axis=0)
 
 
 def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
@@ -742,9 +749,7 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
     """The error of a level not satisfied at ``x`` (``None`` if it is): a conflict when the
     givens over-determine it (more equations than the ``rank`` of their Jacobian), else a
     solve that found no root (no real solution, or starts too far from it)."""
-    with quiet():
-        r = np.asarray(level.residual(*x), dtype=float).ravel() - target
-        scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())
+    r, scale = (v[:, 0] for v in residuals(level, x[:, None], slice(None), target[:, None]))
     bad = np.flatnonzero(active & ~satisfied(r, scale, problem.consistency))
     if not len(bad):
         return None
@@ -845,8 +850,7 @@ def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.
                 step[:, i] += Vt[i, int(rank[i]):, :].T @ shift
         X[solved] = step
         if len(on):
-            r = call(level.residual, X, nrows)[on] - targets[on]
-            scale = np.abs(call(level.scale, X, nrows))[on]
+            r, scale = residuals(level, X, on, targets[on])
             held = satisfied(r, scale, problem.consistency)
             errors.add(~held.all(axis=0), lambda i: _conflict(
                 problem, level, on, r[:, i], scale[:, i], placed(i)))

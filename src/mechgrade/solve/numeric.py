@@ -18,7 +18,7 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, Near, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear_columns,
+                     place_givens, residuals, rows, solve_linear_columns,
                      solve_nonlinear_columns)
 from .columns import call, quiet
 from .plan import KinematicsPlan
@@ -349,9 +349,8 @@ def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: M
         active, target = rows(level, g)
         if not active.any():
             continue
-        with np.errstate(all="ignore"):
-            value = np.asarray(level.residual(*state.values), dtype=float).ravel()
-            scale = np.abs(np.asarray(level.scale(*state.values), dtype=float).ravel())
+        value, scale = (v[:, 0] for v in residuals(level, state.values[:, None], slice(None),
+                                                   np.zeros((1, 1))))
         for i in np.flatnonzero(active):
             r = value[i] - target[i]
             if np.isfinite(value[i]) and satisfied(r, scale[i], problem.consistency):
