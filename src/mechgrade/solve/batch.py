@@ -57,8 +57,9 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call
-from .levels import (Givens, State, branches_asked, holds, on_branches, place_givens, rows,
-                     solve_level_columns, solve_linear_columns, typical_sizes)
+from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
+                     level_rank, place_givens, rows, solve_level_columns,
+                     solve_linear_columns, typical_sizes)
 from .mutants import (ZERO_NAMES, constraint_mistakes_columns, kept_mistakes, misread, model_mistake_at,
                       model_mistake_table, plausible_slips, slips_of, stacked)
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric, solve_numeric_columns
@@ -500,11 +501,12 @@ class _Template:
             # root does not depend on the other variants solved with it), the others kept
             solve_for = [i for i in unknown if i not in group.free]
             if solve_for:
+                columns = list(p.index.unknowns(order))
                 fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
-                                           list(p.index.unknowns(order)), active,
-                                           target[active])
+                                           columns, active, target[active], NEAR_DAMPING)
                 X[:] = fits.X
-                ok &= fits.started & fits.held & (fits.rank == len(solve_for))
+                ok &= fits.started & fits.held & (
+                    level_rank(level, X, solve_for, columns, active) == len(solve_for))
             elif active.any():
                 ok &= holds(self.problem.consistency, level, X, active, target[active])
         return nulls

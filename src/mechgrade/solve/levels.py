@@ -375,6 +375,14 @@ FIT_TOL = 1e-14
 """A start has converged when its step is below this part of its unknowns, or its cost falls
 by less than this part of itself."""
 
+DAMPING = 1e-3
+"""Levenberg-Marquardt's first damping (a part of each unknown's scale) from a start spread
+around a guess: short steps first, which keep to the root the start is in the basin of."""
+
+NEAR_DAMPING = 1e-12
+""":data:`DAMPING` from a root already found for nearby values (a class's reference root):
+nearly Newton's steps, which reach the root that root continues to in a few."""
+
 
 def _fits_alone(consistency: float, level: Level, setup: _Setup) -> list[Fit | None]:
     """Each start of ``setup`` solved by scipy's least squares (``None``: a start where the
@@ -444,24 +452,24 @@ def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
 class LevelColumns:
     """A non-linear level solved at every column (:func:`solve_level_columns`): the states
     ``X``, half the sum of the squared residuals of each, which columns started where the
-    equations are defined, which hold the level (:func:`~.rules.satisfied`) and the rank of
-    each one's Jacobian in the unknowns solved for there."""
+    equations are defined and which hold the level (:func:`~.rules.satisfied`)."""
 
     X: np.ndarray
     cost: np.ndarray
     started: np.ndarray
     held: np.ndarray
-    rank: np.ndarray
 
 
 def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
                         determined: list[int], columns: list[int], active: np.ndarray,
-                        T: np.ndarray) -> LevelColumns:
+                        T: np.ndarray, first_damping: float = DAMPING) -> LevelColumns:
     """The non-linear level's ``active`` rows (each must equal its row of ``T``) solved for
     the positions ``determined`` at every column of ``X``, each from its own start (its
     column: a single solve's starts, a class's reference root) by
-    :func:`levenberg_marquardt`, and judged there: the one non-linear solver of an instant
-    and of a class of variants.
+    :func:`levenberg_marquardt` (by one least-squares step where the equations are linear
+    in them: their Jacobian does not depend on them), and judged there: the one non-linear
+    solver of an instant and of a class of variants. ``first_damping``: :data:`DAMPING`
+    from starts spread around a guess, :data:`NEAR_DAMPING` from a root already found.
 
     >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
     ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]],
@@ -469,15 +477,36 @@ def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
     ...               (), (), False, (), frozenset())
     >>> fits = solve_level_columns(1e-9, level, np.array([[1.0, 1.0], [1.0, -1.0]]),
     ...                            [0, 1], [0, 1], np.ones(2, bool), np.zeros((2, 2)))
-    >>> fits.X[1].round(12).tolist(), fits.held.tolist(), fits.rank.tolist()
-    ([4.0, -4.0], [True, True], [2, 2])
+    >>> fits.X[1].round(12).tolist(), fits.held.tolist()
+    ([4.0, -4.0], [True, True])
+    >>> level_rank(level, fits.X, [0, 1], [0, 1], np.ones(2, bool)).tolist()
+    [2, 2]
     """
-    X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T)
-    held = holds(consistency, level, X, active, T)
+    if level.jacobian_uses & set(determined):
+        X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T,
+                                               first_damping)
+    else:  # linear in the unknowns at hand: one least-squares step solves it
+        X = X.copy()
+        r, _ = residuals(level, X, active, T)
+        J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined], active)
+        started = np.isfinite(r).all(axis=0)
+        good = started & np.isfinite(J).all(axis=(0, 1))
+        step, _, _ = least_squares(J, r, good)
+        X[determined] += np.where(good, step, 0.0)
+        with np.errstate(all="ignore"):
+            cost = 0.5 * (residuals(level, X, active, T)[0] ** 2).sum(axis=0)
+    return LevelColumns(X, cost, started, holds(consistency, level, X, active, T))
+
+
+def level_rank(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
+               active: np.ndarray) -> np.ndarray:
+    """The rank of the Jacobian of ``level``'s ``active`` rows in the positions
+    ``determined`` (of its unknowns ``columns``) at every column of ``X`` (0 where it is
+    undefined): whether a root found determines them all."""
     J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined], active)
     finite = np.isfinite(J).all(axis=(0, 1))
     s = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1), compute_uv=False)
-    return LevelColumns(X, cost, started, held, np.where(finite, rules.rank(s), 0))
+    return np.where(finite, rules.rank(s), 0)
 
 
 def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
@@ -490,13 +519,13 @@ def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
-                        active: np.ndarray, T: np.ndarray
+                        active: np.ndarray, T: np.ndarray, first_damping: float = DAMPING
                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve ``level``'s ``active`` rows (each must equal its row of ``T``) for the positions
     ``determined`` at every column of ``X`` (the states, each from its own start), by
     Levenberg-Marquardt steps (Marquardt's scaling by the largest of each unknown's column
-    norms yet, as MINPACK scales; the damping divided by 3 after a step
-    that lowers the cost and multiplied by 4 after one that does not). Each column stops on
+    norms yet, as MINPACK scales; the damping ``first_damping`` at first, divided by 3 after
+    a step that lowers the cost and multiplied by 4 after one that does not). Each column stops on
     its own (its root does not depend on the columns solved with it) once its step is below
     :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
     zero, or after :data:`LM_STEPS` steps.
@@ -528,7 +557,7 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         cost = 0.5 * (r ** 2).sum(axis=0)
     started = np.isfinite(r).all(axis=0)
     live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
-    damping = np.full(X.shape[1], 1e-3)
+    damping = np.full(X.shape[1], first_damping)
     k = len(determined)
     # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
     # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
