@@ -474,7 +474,7 @@ def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
     >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
     ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]],
     ...               lambda x, y: [[x**2 + y**2 + 25], [x + 3]], ("c", "x"),
-    ...               (), (), False, (), frozenset())
+    ...               (), (), False, (), frozenset({0, 1}))
     >>> fits = solve_level_columns(1e-9, level, np.array([[1.0, 1.0], [1.0, -1.0]]),
     ...                            [0, 1], [0, 1], np.ones(2, bool), np.zeros((2, 2)))
     >>> fits.X[1].round(12).tolist(), fits.held.tolist()
