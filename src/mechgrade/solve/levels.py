@@ -655,6 +655,11 @@ def residuals(level: Level, X: np.ndarray, active, T: np.ndarray
               ) -> tuple[np.ndarray, np.ndarray]:
     """The residual of each of ``level``'s ``active`` rows (less what it must equal, its row
     of ``T``) and the size of its terms, at every column of ``X`` (rows x N each)."""
+    if X.shape[1] == 1:  # one state: the functions at its numbers (call's arrays cost more)
+        with quiet():
+            r, scale = (np.asarray(f(*X[:, 0]), dtype=float).reshape(-1, 1)
+                        for f in (level.residual, level.scale))
+        return r[active] - T, np.abs(scale)[active]
     nrows = len(level.labels)
     return (call(level.residual, X, nrows)[active] - T,
             np.abs(call(level.scale, X, nrows))[active])
