@@ -913,11 +913,9 @@ def constraint_rank(p: KinematicsPlan, state: State) -> int:
     level = p.levels[1]
     if not level.constraint_rows:
         return 0
-    with np.errstate(all="ignore"):
-        A = np.asarray(level.jacobian(*state.values), dtype=float).reshape(len(level.labels),
-                                                                           p.index.n)
-    A = A[:level.constraint_rows]
-    return int(rules.rank(np.linalg.svd(A, compute_uv=False))) if np.isfinite(A).all() else 0
+    rates = list(p.index.unknowns(1))
+    constraints = np.arange(len(level.labels)) < level.constraint_rows
+    return int(level_rank(level, state.values[:, None], rates, rates, constraints)[0])
 
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:
