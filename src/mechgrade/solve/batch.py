@@ -2,11 +2,11 @@
 
 The lambdified functions of a problem's plan take arrays as well as numbers, so the levels of
 many instants are solved in one pass: a linear rate level as a single solve solves it
-(:func:`~.levels.solve_linear_columns`, every column at once), any other by Newton steps from the
-reference's root (the solution with the spec's own givens), every step a stacked least-squares
-solve. That is the root a variant continues from the configuration the author checked, and for
-a level with one root (every linear level, every level the spec picks a root of) it is the root
-:func:`~.entry.solve` finds.
+(:func:`~.levels.solve_linear_columns`, every column at once), any other by the single solve's
+non-linear solver (:func:`~.levels.solve_level_columns`) started at every column from the
+reference's root (the solution with the spec's own givens). That is the root a variant
+continues from the configuration the author checked, and for a level with one root (every
+linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve` finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
 rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
@@ -481,8 +481,9 @@ class _Template:
                 first: int, ok: np.ndarray) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
-        linear rate levels (N x unknowns x nullity). A linear rate level is solved as the
-        single solve solves it (:func:`~.levels.solve_linear_columns`)."""
+        linear rate levels (N x unknowns x nullity). Every level is solved as the single
+        solve solves it (:func:`~.levels.solve_linear_columns`,
+        :func:`~.levels.solve_level_columns` from the reference's root)."""
         p = self.p
         nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
