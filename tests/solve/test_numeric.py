@@ -92,6 +92,44 @@ def test_an_instant_solved_with_others_gets_the_root_it_gets_alone():
         assert alone[:, 0].tolist() == together[:, j].tolist()
 
 
+def _line_level():
+    """x + 2 y = r, x - y = 0 (the state: x, y, r), solved for x and y: linear in them."""
+    from mechgrade.errors import Location
+    from mechgrade.solve.plan import Level
+
+    return Level(0, "position", lambda x, y, r: [[x + 2 * y - r], [x - y]],
+                 lambda x, y, r: [[1.0 + 0 * x, 2.0 + 0 * x], [1.0 + 0 * x, -1.0 + 0 * x]],
+                 lambda x, y, r: [[abs(x) + 2 * abs(y) + abs(r)], [abs(x) + abs(y)]],
+                 ("sum", "equal"), (Location(), Location()), (), False,
+                 (frozenset({0, 1, 2}), frozenset({0, 1})), frozenset())
+
+
+def test_a_level_linear_in_its_unknowns_reaches_the_root_levenberg_marquardt_reaches():
+    import numpy as np
+
+    from mechgrade.solve.levels import levenberg_marquardt, solve_level_columns
+
+    level = _line_level()
+    X = np.array([[0.1, 5.0], [0.2, -5.0], [3.0, 6.0]])
+    active = np.ones(2, dtype=bool)
+    fits = solve_level_columns(1e-9, level, X, [0, 1], [0, 1], active, np.zeros((2, 2)))
+    stepped, _, _ = levenberg_marquardt(level, X, [0, 1], [0, 1], active, np.zeros((2, 2)))
+    assert fits.X[:2] == pytest.approx(np.array([[1.0, 2.0], [1.0, 2.0]]), rel=1e-14)
+    assert fits.X[:2] == pytest.approx(stepped[:2], rel=1e-12)
+    assert fits.held.tolist() == [True, True] and fits.started.tolist() == [True, True]
+
+
+def test_a_root_whose_jacobian_loses_rank_has_the_rank_it_keeps():
+    import numpy as np
+
+    from mechgrade.solve.levels import level_rank
+
+    level = _circle_level()
+    # x = 0, y = 0: the circle's row vanishes; x undefined: no rank at all
+    X = np.array([[3.0, 0.0, np.nan], [4.0, 0.0, 1.0], [5.0, 5.0, 5.0]])
+    assert level_rank(level, X, [0, 1], [0, 1], np.ones(2, dtype=bool)).tolist() == [2, 1, 0]
+
+
 AIRPLANE = Path(__file__).resolve().parents[2] / "problems" / "airplane_crosswind_heading.yaml"
 
 

@@ -2,11 +2,11 @@
 
 The lambdified functions of a problem's plan take arrays as well as numbers, so the levels of
 many instants are solved in one pass: a linear rate level as a single solve solves it
-(:func:`~.levels.solve_linear_columns`, every column at once), any other by Newton steps from the
-reference's root (the solution with the spec's own givens), every step a stacked least-squares
-solve. That is the root a variant continues from the configuration the author checked, and for
-a level with one root (every linear level, every level the spec picks a root of) it is the root
-:func:`~.entry.solve` finds.
+(:func:`~.levels.solve_linear_columns`, every column at once), any other by the single solve's
+non-linear solver (:func:`~.levels.solve_level_columns`) started at every column from the
+reference's root (the solution with the spec's own givens). That is the root a variant
+continues from the configuration the author checked, and for a level with one root (every
+linear level, every level the spec picks a root of) it is the root :func:`~.entry.solve` finds.
 
 A dynamics instant reached otherwise is reached the same way for every variant at once: the
 rates from the energy balance (:func:`~.work_energy.energy_rates`); the motion integrated
@@ -55,23 +55,21 @@ from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
                       collect_results, in_unit,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
-from .columns import FirstErrors, call, least_squares
-from .levels import Givens, State, place_givens, rows, solve_linear_columns, typical_sizes
+from .columns import FirstErrors, call
+from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
+                     level_rank, place_givens, rows, solve_level_columns,
+                     solve_linear_columns, typical_sizes)
 from .mutants import (constraint_mistakes_columns, kept_columns, misread, model_mistake_table,
                       plausible_slips, slips_of)
-from .numeric import degenerate, solve_numeric, solve_numeric_columns
+from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
 from .phases import gripping
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
-from .rules import on_branch, satisfied
 from .result import (GeneratedMistake, Solution)
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
-
-NEWTON_STEPS = 30
-"""Newton steps a non-linear level may take from the reference's root."""
 
 def solve_variants(problem: Problem, variants: Sequence[Mapping[str, float | None] | None],
                    objectives: Collection[str] | None = None) -> list[Outcome]:
@@ -181,8 +179,7 @@ class _Template:
         self.problem, self.kproblem, self.p, self.kinetics = problem, kproblem, p, kinetics
         self.groups: tuple[_Group, ...] = groups
         self.keys = frozenset(to_text(g.key.node) for g in problem.givens)
-        self.branches = {p.index.position(to_text(b.key.node)): b.root
-                         for b in problem.branches}
+        self.branches = branches_asked(problem, p)
         self.parameters = {q.name for q in problem.parameters}
         self.plausible = plausible_slips(problem)
         dynamics = problem.dynamics
@@ -477,16 +474,15 @@ class _Template:
                 first: int, ok: np.ndarray) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
-        linear rate levels (N x unknowns x nullity). A linear rate level is solved as the
-        single solve solves it (:func:`~.levels.solve_linear_columns`)."""
+        linear rate levels (N x unknowns x nullity). Every level is solved as the single
+        solve solves it (:func:`~.levels.solve_linear_columns`,
+        :func:`~.levels.solve_level_columns` from the reference's root)."""
         p = self.p
         nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
             order = level.order
             unknown = list(group.unknown[order])
             active, target = group.active[order], targets[order]
-            nrows = len(level.labels)
-            columns = list(p.index.unknowns(order))
             if level.linear and order > 0:
                 solved = solve_linear_columns(self.kproblem, p, order, X, group.known, active,
                                               target, placed)
@@ -495,30 +491,18 @@ class _Template:
                 nulls[order] = solved.Vt[:, solved.rank.max(initial=0):, :].transpose(
                     0, 2, 1) if group.nullity[order] else None
                 continue
-            # Newton steps for the unknowns the level determines, the others kept
+            # the unknowns the level determines, each column from the reference's root (its
+            # root does not depend on the other variants solved with it), the others kept
             solve_for = [i for i in unknown if i not in group.free]
-            # a column stops once its own step is that small: its root does not depend on
-            # the other variants solved with it
-            moving = np.ones(X.shape[1], dtype=bool)
-            for _ in range(NEWTON_STEPS if solve_for else 0):
-                place = [columns.index(i) for i in solve_for]
-                r = call(level.residual, X, nrows)[active] - target[active]
-                J = call(level.jacobian, X, nrows * len(columns)).reshape(
-                    nrows, len(columns), X.shape[1])[active][:, place]
-                good = np.isfinite(r).all(axis=0) & np.isfinite(J).all(axis=(0, 1))
-                ok &= good
-                step, rank, _ = least_squares(J, r, good)
-                ok &= rank == len(solve_for) - group.nullity[order]
-                step[:, ~ok | ~moving] = 0.0
-                X[solve_for] += step
-                moving &= ~np.all(np.abs(step) <= 1e-12 * np.maximum(np.abs(X[solve_for]), 1.0),
-                                  axis=0)
-                if not moving.any():
-                    break
-            if active.any():
-                r = call(level.residual, X, nrows)[active] - target[active]
-                scale = np.abs(call(level.scale, X, nrows))[active]
-                ok &= np.all(satisfied(r, scale, self.problem.consistency), axis=0)
+            if solve_for:
+                columns = list(p.index.unknowns(order))
+                fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
+                                           columns, active, target[active], NEAR_DAMPING)
+                X[:] = fits.X
+                ok &= fits.started & fits.held & (
+                    level_rank(level, X, solve_for, columns, active) == len(solve_for))
+            elif active.any():
+                ok &= holds(self.problem.consistency, level, X, active, target[active])
         return nulls
 
     def _determined(self, group: _Group, X: np.ndarray, targets,
@@ -530,38 +514,29 @@ class _Template:
         same = ok.copy()
         before = {oid: call(f, X, _size(self.problem, oid)) for oid, f in p.objectives
                   if oid in group.numeric}
-        probes: list[tuple[int, int | None, int | None]] = [
-            (p.index.level_of(i), i, None) for i in sorted(group.free)
-            if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
-        probes += [(order, None, j) for order, null in nulls.items() if null is not None
-                   for j in range(null.shape[2])]
-        for order, i, j in probes:
+        nullity = {order: null.shape[2] for order, null in nulls.items() if null is not None}
+        for freedom in freedoms(p, sorted(group.free), nullity):
             moved = X.copy()
-            if i is not None:
-                moved[i] += 0.37
-                first = order
+            if freedom.position is not None:
+                moved[freedom.position] += FREE_PROBE
             else:
-                moved[list(group.unknown[order])] += 0.73 * nulls[order][:, :, j].T
-                first = order + 1
-            self._levels(group, moved, targets, placed, first, same)
+                moved[list(group.unknown[freedom.order])] += (
+                    nulls[freedom.order] @ freedom.shift(nullity[freedom.order])).T
+            self._levels(group, moved, targets, placed, freedom.first, same)
             for oid, value in before.items():
                 after = call(dict(p.objectives)[oid], moved, value.shape[0])
                 same &= rules.unchanged(value, after)
         return same
 
     def _on_branch(self, group: _Group, X: np.ndarray) -> np.ndarray:
-        """Which columns have every root the spec picks a branch of on it (as
-        :func:`~.rules.on_branch` judges it for a quantity of the size the column's own
-        givens give it)."""
-        ok = np.ones(X.shape[1], dtype=bool)
+        """Which columns have every root the spec picks a branch of on it
+        (:func:`~.levels.on_branches`, each column's typical sizes from its own givens)."""
         index = self.p.index
-        picked = [(i, root) for i, root in self.branches.items()
-                  if i in group.unknown[index.level_of(i)]]
-        if picked:
-            scales = typical_sizes(self.kproblem, self.p, X[:index.size], group.known)
-            for i, root in picked:
-                ok &= on_branch(X[i], scales[i], root)
-        return ok
+        picked = [i for i in self.branches if i in group.unknown[index.level_of(i)]]
+        if not picked:
+            return np.ones(X.shape[1], dtype=bool)
+        return on_branches(self.branches, X, typical_sizes(self.kproblem, self.p,
+                                                           X[:index.size], group.known), picked)
 
     def _degenerate(self, group: _Group, X: np.ndarray) -> np.ndarray:
         """Instants where the scalar solver would warn of a degenerate configuration."""

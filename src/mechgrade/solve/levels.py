@@ -375,6 +375,14 @@ FIT_TOL = 1e-14
 """A start has converged when its step is below this part of its unknowns, or its cost falls
 by less than this part of itself."""
 
+DAMPING = 1e-3
+"""Levenberg-Marquardt's first damping (a part of each unknown's scale) from a start spread
+around a guess: short steps first, which keep to the root the start is in the basin of."""
+
+NEAR_DAMPING = 1e-12
+""":data:`DAMPING` from a root already found for nearby values (a class's reference root):
+nearly Newton's steps, which reach the root that root continues to in a few."""
+
 
 def _fits_alone(consistency: float, level: Level, setup: _Setup) -> list[Fit | None]:
     """Each start of ``setup`` solved by scipy's least squares (``None``: a start where the
@@ -412,7 +420,8 @@ def _fits_alone(consistency: float, level: Level, setup: _Setup) -> list[Fit | N
                 continue
         full = setup.x.copy()
         full[determined] = fit.x
-        out.append((full, float(fit.cost), _satisfied(consistency, level, full, active, target)))
+        out.append((full, float(fit.cost), bool(holds(consistency, level, full[:, None], active,
+                                                      target[active, None])[0])))
     return out
 
 
@@ -420,7 +429,7 @@ def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
                    ) -> list[list[Fit | None]]:
     """:func:`_fits_alone` of every setup, every start of every one solved at once (those
     determining the same unknowns from the same rows stacked as columns) by
-    :func:`levenberg_marquardt`."""
+    :func:`solve_level_columns`."""
     out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
@@ -431,27 +440,92 @@ def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
         X = np.stack([setups[i].x for i, _ in pairs], axis=1)
         X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
         T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
-        X, cost, started = levenberg_marquardt(level, X, first.determined,
-                                               list(first.columns), first.active, T)
-        nrows = len(level.labels)
-        held = np.all(satisfied(call(level.residual, X, nrows)[first.active] - T,
-                                call(level.scale, X, nrows)[first.active], consistency), axis=0)
+        fits = solve_level_columns(consistency, level, X, first.determined,
+                                   list(first.columns), first.active, T)
         for j, (i, k) in enumerate(pairs):
-            if started[j]:
-                out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
+            if fits.started[j]:
+                out[i][k] = (fits.X[:, j].copy(), float(fits.cost[j]), bool(fits.held[j]))
     return out
 
 
+@dataclass(frozen=True)
+class LevelColumns:
+    """A non-linear level solved at every column (:func:`solve_level_columns`): the states
+    ``X``, half the sum of the squared residuals of each, which columns started where the
+    equations are defined and which hold the level (:func:`~.rules.satisfied`)."""
+
+    X: np.ndarray
+    cost: np.ndarray
+    started: np.ndarray
+    held: np.ndarray
+
+
+def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
+                        determined: list[int], columns: list[int], active: np.ndarray,
+                        T: np.ndarray, first_damping: float = DAMPING) -> LevelColumns:
+    """The non-linear level's ``active`` rows (each must equal its row of ``T``) solved for
+    the positions ``determined`` at every column of ``X``, each from its own start (its
+    column: a single solve's starts, a class's reference root) by
+    :func:`levenberg_marquardt` (by one least-squares step where the equations are linear
+    in them: their Jacobian does not depend on them), and judged there: the one non-linear
+    solver of an instant and of a class of variants. ``first_damping``: :data:`DAMPING`
+    from starts spread around a guess, :data:`NEAR_DAMPING` from a root already found.
+
+    >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
+    ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]],
+    ...               lambda x, y: [[x**2 + y**2 + 25], [x + 3]], ("c", "x"),
+    ...               (), (), False, (), frozenset({0, 1}))
+    >>> fits = solve_level_columns(1e-9, level, np.array([[1.0, 1.0], [1.0, -1.0]]),
+    ...                            [0, 1], [0, 1], np.ones(2, bool), np.zeros((2, 2)))
+    >>> fits.X[1].round(12).tolist(), fits.held.tolist()
+    ([4.0, -4.0], [True, True])
+    >>> level_rank(level, fits.X, [0, 1], [0, 1], np.ones(2, bool)).tolist()
+    [2, 2]
+    """
+    if level.jacobian_uses & set(determined):
+        X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T,
+                                               first_damping)
+    else:  # linear in the unknowns at hand: one least-squares step solves it
+        X = X.copy()
+        r, _ = residuals(level, X, active, T)
+        J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined], active)
+        started = np.isfinite(r).all(axis=0)
+        good = started & np.isfinite(J).all(axis=(0, 1))
+        step, _, _ = least_squares(J, r, good)
+        X[determined] += np.where(good, step, 0.0)
+        with np.errstate(all="ignore"):
+            cost = 0.5 * (residuals(level, X, active, T)[0] ** 2).sum(axis=0)
+    return LevelColumns(X, cost, started, holds(consistency, level, X, active, T))
+
+
+def level_rank(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
+               active: np.ndarray) -> np.ndarray:
+    """The rank of the Jacobian of ``level``'s ``active`` rows in the positions
+    ``determined`` (of its unknowns ``columns``) at every column of ``X`` (0 where it is
+    undefined): whether a root found determines them all."""
+    J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined], active)
+    finite = np.isfinite(J).all(axis=(0, 1))
+    s = np.linalg.svd(np.where(finite, J, 0.0).transpose(2, 0, 1), compute_uv=False)
+    return np.where(finite, rules.rank(s), 0)
+
+
+def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
+               active: np.ndarray) -> np.ndarray:
+    """The Jacobian of ``level``'s ``active`` rows (in its ``ncols`` unknowns) in those at
+    ``place``, at every column of ``X`` (rows x unknowns x N)."""
+    nrows = len(level.labels)
+    return call(level.jacobian, X, nrows * ncols).reshape(nrows, ncols, X.shape[1])[active][
+        :, place]
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
-                        active: np.ndarray, T: np.ndarray
+                        active: np.ndarray, T: np.ndarray, first_damping: float = DAMPING
                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve ``level``'s ``active`` rows (each must equal its row of ``T``) for the positions
     ``determined`` at every column of ``X`` (the states, each from its own start), by
     Levenberg-Marquardt steps (Marquardt's scaling by the largest of each unknown's column
-    norms yet, as MINPACK scales; the damping divided by 3 after a step
-    that lowers the cost and multiplied by 4 after one that does not). Each column stops on
+    norms yet, as MINPACK scales; the damping ``first_damping`` at first, divided by 3 after
+    a step that lowers the cost and multiplied by 4 after one that does not). Each column stops on
     its own (its root does not depend on the columns solved with it) once its step is below
     :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
     zero, or after :data:`LM_STEPS` steps.
@@ -475,8 +549,7 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         return call(level.residual, Xs, nrows)[active] - Ts
 
     def jacobian(Xs):
-        return call(level.jacobian, Xs, nrows * ncols).reshape(
-            nrows, ncols, Xs.shape[1])[active][:, place]
+        return _jacobians(level, Xs, ncols, place, active)
 
     X = X.copy()
     r, J = residual(X, T), jacobian(X)
@@ -484,7 +557,7 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         cost = 0.5 * (r ** 2).sum(axis=0)
     started = np.isfinite(r).all(axis=0)
     live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
-    damping = np.full(X.shape[1], 1e-3)
+    damping = np.full(X.shape[1], first_damping)
     k = len(determined)
     # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
     # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
@@ -578,11 +651,25 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
     return out
 
 
-def _satisfied(consistency: float, level, x, active, target) -> bool:
-    with quiet():
-        r = np.asarray(level.residual(*x), dtype=float).ravel()[active] - target[active]
-        scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())[active]
-    return bool(np.all(satisfied(r, scale, consistency)))
+def residuals(level: Level, X: np.ndarray, active, T: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """The residual of each of ``level``'s ``active`` rows (less what it must equal, its row
+    of ``T``) and the size of its terms, at every column of ``X`` (rows x N each)."""
+    if X.shape[1] == 1:  # one state: the functions at its numbers (call's arrays cost more)
+        with quiet():
+            r, scale = (np.asarray(f(*X[:, 0]), dtype=float).reshape(-1, 1)
+                        for f in (level.residual, level.scale))
+        return r[active] - T, np.abs(scale)[active]
+    nrows = len(level.labels)
+    return (call(level.residual, X, nrows)[active] - T,
+            np.abs(call(level.scale, X, nrows))[active])
+
+
+def holds(consistency: float, level: Level, X: np.ndarray, active: np.ndarray,
+          T: np.ndarray) -> np.ndarray:
+    """Whether ``level``'s ``active`` rows hold (each equals its row of ``T``, as
+    :func:`~.rules.satisfied` judges it) at each column of ``X``."""
+    return np.all(satisfied(*residuals(level, X, active, T), consistency), axis=0)
 
 
 def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
@@ -598,7 +685,29 @@ def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
 
 
 def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
-    return all(on_branch(x[i], g.scales[i], g.branches.get(i)) for i in positions)
+    return bool(on_branches(g.branches, x[:, None], g.scales[:, None], positions)[0])
+
+
+def on_branches(branches: Mapping[int, Root], X: np.ndarray, scales: np.ndarray,
+                positions) -> np.ndarray:
+    """Which columns of ``X`` (states, each with its typical sizes in ``scales``) have the
+    root of every position in ``positions`` on the branch ``branches`` asks for it
+    (:func:`~.rules.on_branch`): the branch screen of an instant and of a class.
+
+    >>> on_branches({0: Root.POSITIVE}, np.array([[2.0, -2.0], [1.0, 1.0]]), np.ones((2, 2)),
+    ...             [0, 1]).tolist()
+    [True, False]
+    """
+    ok = np.ones(X.shape[1], dtype=bool)
+    for i in positions:
+        if i in branches:
+            ok &= on_branch(X[i], scales[i], branches[i])
+    return ok
+
+
+def branches_asked(problem: Problem, p: KinematicsPlan) -> Mapping[int, Root]:
+    """The root each position's ``branch:`` asks for, by position in ``p``'s layout."""
+    return per_problem(_layout, problem, p)[3]
 
 
 def _choose_branch(g: Givens, roots: list, positions) -> list:
@@ -674,9 +783,7 @@ def _unsolved(problem, level, g, x, active, target, rank, starts) -> SolveError 
     """The error of a level not satisfied at ``x`` (``None`` if it is): a conflict when the
     givens over-determine it (more equations than the ``rank`` of their Jacobian), else a
     solve that found no root (no real solution, or starts too far from it)."""
-    with quiet():
-        r = np.asarray(level.residual(*x), dtype=float).ravel() - target
-        scale = np.abs(np.asarray(level.scale(*x), dtype=float).ravel())
+    r, scale = (v[:, 0] for v in residuals(level, x[:, None], slice(None), target[:, None]))
     bad = np.flatnonzero(active & ~satisfied(r, scale, problem.consistency))
     if not len(bad):
         return None
@@ -777,8 +884,7 @@ def solve_linear_columns(problem: Problem, p: KinematicsPlan, order: int, X: np.
                 step[:, i] += Vt[i, int(rank[i]):, :].T @ shift
         X[solved] = step
         if len(on):
-            r = call(level.residual, X, nrows)[on] - targets[on]
-            scale = np.abs(call(level.scale, X, nrows))[on]
+            r, scale = residuals(level, X, on, targets[on])
             held = satisfied(r, scale, problem.consistency)
             errors.add(~held.all(axis=0), lambda i: _conflict(
                 problem, level, on, r[:, i], scale[:, i], placed(i)))
@@ -807,11 +913,9 @@ def constraint_rank(p: KinematicsPlan, state: State) -> int:
     level = p.levels[1]
     if not level.constraint_rows:
         return 0
-    with np.errstate(all="ignore"):
-        A = np.asarray(level.jacobian(*state.values), dtype=float).reshape(len(level.labels),
-                                                                           p.index.n)
-    A = A[:level.constraint_rows]
-    return int(rules.rank(np.linalg.svd(A, compute_uv=False))) if np.isfinite(A).all() else 0
+    rates = list(p.index.unknowns(1))
+    constraints = np.arange(len(level.labels)) < level.constraint_rows
+    return int(level_rank(level, state.values[:, None], rates, rates, constraints)[0])
 
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:

@@ -18,7 +18,7 @@ from ..errors import AuthorWarning, Location, MechgradeError, SolveError, Underd
 from ..spec.model import Problem
 from ..units import from_si
 from .levels import (SAME_ROOT, Givens, Near, State, configurations, evaluate, missing_values,
-                     place_givens, rows, solve_linear_columns,
+                     place_givens, residuals, rows, solve_linear_columns,
                      solve_nonlinear_columns)
 from .columns import call, quiet
 from .plan import KinematicsPlan
@@ -349,9 +349,8 @@ def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: M
         active, target = rows(level, g)
         if not active.any():
             continue
-        with np.errstate(all="ignore"):
-            value = np.asarray(level.residual(*state.values), dtype=float).ravel()
-            scale = np.abs(np.asarray(level.scale(*state.values), dtype=float).ravel())
+        value, scale = (v[:, 0] for v in residuals(level, state.values[:, None], slice(None),
+                                                   np.zeros((1, 1))))
         for i in np.flatnonzero(active):
             r = value[i] - target[i]
             if np.isfinite(value[i]) and satisfied(r, scale[i], problem.consistency):
@@ -401,28 +400,77 @@ def _undetermined(problem: Problem, p: KinematicsPlan,
     return out
 
 
+FREE_PROBE = 0.37
+"""How far a probe moves an unknown a non-linear level leaves free (SI)."""
+
+NULL_PROBE = 0.73
+"""How far a probe moves the unknown rates along a direction of their null space (the basis
+is orthonormal)."""
+
+
+@dataclass(frozen=True)
+class Freedom:
+    """One freedom the givens leave at an instant, as a probe moves it: an unknown a
+    non-linear level leaves free (``position``), or a ``direction`` of the null space of the
+    linear rate level ``order``. A probe re-solves the levels from :attr:`first` on."""
+
+    order: int
+    position: int | None = None
+    direction: int | None = None
+
+    @property
+    def first(self) -> int:
+        return self.order if self.position is not None else self.order + 1
+
+    def shift(self, nullity: int) -> np.ndarray:
+        """The probe's move in the null space's coordinates (``nullity`` directions)."""
+        z = np.zeros(nullity)
+        z[self.direction] = NULL_PROBE
+        return z
+
+
+def freedoms(p: KinematicsPlan, free, nullity: Mapping[int, int]) -> list[Freedom]:
+    """What the probes of an instant move, in order: each unknown in ``free`` a non-linear
+    level leaves free, then each direction of the velocity and acceleration levels' null
+    spaces (``nullity[order]`` of them): the one probe rule of an instant and of a class.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.plan import kinematics_plan
+    >>> p = kinematics_plan(load_problem(shipped_dir("problems") / "gear_between_two_racks.yaml"))
+    >>> freedoms(p, [], {1: 1, 2: 0})
+    [Freedom(order=1, position=None, direction=0)]
+    """
+    out = [Freedom(p.index.level_of(i), position=i) for i in free
+           if not (p.levels[p.index.level_of(i)].linear and p.index.level_of(i) > 0)]
+    return out + [Freedom(order, direction=j) for order in (1, 2)
+                  for j in range(nullity.get(order, 0))]
+
+
 def _probes(p: KinematicsPlan, g: Givens, base: Candidate) -> list[tuple[Probe, str]]:
-    """Each probe of the freedoms of the instant ``base`` (:data:`Probe`), with the freedom
-    it moves as a message names it: each unknown the non-linear levels leave free, then
-    each direction of the velocity and acceleration levels' nullspaces."""
+    """Each probe of the freedoms of the instant ``base`` (:data:`Probe`, :func:`freedoms`),
+    with the freedom it moves as a message names it."""
     state = base.state
     keep = {i: state.values[i] for i in base.free}
-    null_v, null_a = base.nulls
+    nulls = dict(zip((1, 2), base.nulls))
+    nullity = {order: null.shape[1] for order, null in nulls.items() if null is not None}
     out: list[tuple[Probe, str]] = []
-    for i in base.free:
-        level = p.levels[p.index.level_of(i)].name
-        out.append((({**keep, i: keep[i] + 0.37}, (None, None), state.values),
-                    f"{p.index.spelling(i)} ({level} level)"))
-    for kind, order, null in (("velocity", 1, null_v), ("acceleration", 2, null_a)):
-        for j in range(null.shape[1] if null is not None else 0):
-            assert null is not None  # a probe of this level exists only with its null space
-            z = np.zeros(null.shape[1])
-            z[j] = 0.73
-            zero_v = np.zeros(null_v.shape[1]) if null_v is not None else None
-            shifts = (z, None) if order == 1 else (zero_v, z)
-            unknown = [i for i in p.index.rates(order) if not g.known[i]]
-            out.append(((keep, shifts, state.values),
-                        f"{_rate_names(p, unknown, null[:, j])} ({kind} level)"))
+    for freedom in freedoms(p, base.free, nullity):
+        i, order = freedom.position, freedom.order
+        if i is not None:
+            level = p.levels[order].name
+            out.append((({**keep, i: keep[i] + FREE_PROBE}, (None, None), state.values),
+                        f"{p.index.spelling(i)} ({level} level)"))
+            continue
+        null = nulls[order]
+        assert null is not None  # a probe of this level exists only with its null space
+        z = freedom.shift(null.shape[1])
+        zero_v = np.zeros(nullity[1]) if 1 in nullity else None
+        shifts = (z, None) if order == 1 else (zero_v, z)
+        unknown = [k for k in p.index.rates(order) if not g.known[k]]
+        out.append(((keep, shifts, state.values),
+                    f"{_rate_names(p, unknown, null[:, freedom.direction])} "
+                    f"({p.levels[order].name} level)"))
     return out
 
 
