@@ -33,6 +33,11 @@ def test_a_length_term_counted_twice_is_taken_once_and_the_copy_keeps_no_author_
     assert all(o.expect is None and not o.mistakes for o in once.problem.objectives)
 
 
+def test_a_strand_term_with_a_number_in_exponent_form_is_named_whole(problem):
+    (once,) = constraint_mutations(_with_length(problem, "sqrt(x^2 + h^2) + 2*(h - 1e-5*y)"))
+    assert once.sentence.startswith("Your value counts (h - 1e-05·y) once")
+
+
 def test_a_cord_with_one_strand_each_or_a_factor_without_a_coordinate_has_nothing_to_miscount(
         problem):
     assert constraint_mutations(_with_length(problem, "sqrt(x^2 + h^2) + (h - y)")) == ()

@@ -13,7 +13,6 @@ disk cache.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, replace
 from typing import Iterator
 
@@ -109,7 +108,7 @@ def _copy(problem: Problem, constraints: tuple) -> Problem:
 
 def _spaced(node: Node) -> str:
     """``node`` as a textbook writes a term, a sum in parentheses with spaced signs."""
-    text = textbook(re.sub(r"(?<=[\w)])([+-])", r" \1 ", to_text(node)))
+    text = textbook(to_text(node, spaced=True))
     return f"({text})" if len(additive_terms(node)) > 1 else text
 
 
