@@ -52,7 +52,7 @@ from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
 from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
-                      collect_results, in_unit,
+                      collect_results, degrees_of_freedom, in_unit,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
 from .columns import FirstErrors, call
@@ -292,7 +292,8 @@ class _Template:
                 if failures and self.kinetics is None:
                     ok[i] = False
                 lost[i].update(failures)  # as solve_dynamics keeps them
-        return [self._solution(results[i], base[i], lost[i], wanted) if ok[i] else None
+        dofs = degrees_of_freedom(self.p, [b[0] if b else None for b in base])
+        return [self._solution(results[i], base[i], dofs[i], lost[i], wanted) if ok[i] else None
                 for i in range(n)]
 
     def _alone(self, group: _Group, maps: list[dict], objectives: list[Objective],
@@ -329,9 +330,9 @@ class _Template:
                     state = _with_kinetics(self.kinetics, state, X[:, i])
                 base[i] = (state, maps[i])
 
-    def _solution(self, results: dict, base, failures: dict,
+    def _solution(self, results: dict, base, dof: int, failures: dict,
                   wanted: set[str]) -> Solution | MechgradeError:
-        return solution_of(self.problem, self.kproblem, self.p, results, failures, base,
+        return solution_of(self.problem, self.kproblem, self.p, results, failures, base, dof,
                            tuple(self.p.k.warnings), wanted)
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):

@@ -30,7 +30,7 @@ from ..spec.validate import symbol_meanings
 from ..units import from_si, si_factor, si_unit
 from . import rules
 from .columns import call, quiet
-from .levels import State, author_units, constraint_rank, evaluate
+from .levels import State, author_units, constraint_ranks, evaluate
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
 from .plan import per_problem as _per_problem
@@ -224,7 +224,8 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
             warned += [w for w in reached.warnings if w not in warned]
             if not overrides or base is None:
                 base = (reached.state, reached.givens)
-    solution = solution_of(problem, reach.problem, reach.plan, results, failures, base,
+    (dof,) = degrees_of_freedom(reach.plan, [base[0] if base else None])
+    solution = solution_of(problem, reach.problem, reach.plan, results, failures, base, dof,
                            tuple(warned), wanted)
     if isinstance(solution, MechgradeError):
         raise solution
@@ -261,19 +262,19 @@ def answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[O
 
 def solution_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
                 results: Mapping[str, ObjectiveResult], failures: Mapping[str, MechgradeError],
-                base: tuple[State, dict] | None, warnings: tuple[AuthorWarning, ...],
+                base: tuple[State, dict] | None, dof: int, warnings: tuple[AuthorWarning, ...],
                 wanted: Collection[str]) -> Solution | MechgradeError:
     """The solution of the objectives ``wanted`` (in the problem's order) from their
     ``results`` and ``failures``, its state ``base`` (the state and givens of the problem's
-    own instant) reported in the units of ``kinematics``; the first objective's error when
-    none of them is solved."""
+    own instant) reported in the units of ``kinematics`` and its degrees of freedom ``dof``
+    (:func:`degrees_of_freedom`); the first objective's error when none of them is solved."""
     order = [o.id for o in problem.objectives if o.id in wanted]
     if not results and order:  # nothing solved of what was asked
         return failures[order[0]]
     return Solution(problem=problem.id,
                     results=tuple(results[oid] for oid in order if oid in results),
                     state=_state(kinematics, p, base),
-                    dof=degrees_of_freedom(p, base[0] if base else None),
+                    dof=dof,
                     failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
                                    if oid in failures),
                     warnings=warnings)
@@ -529,12 +530,30 @@ def numeric_result(obj: Objective, value, mistakes: Sequence, generated: Sequenc
         generated_mistakes=generated, plausible=plausible)
 
 
-def degrees_of_freedom(p: KinematicsPlan, state: State | None = None) -> int:
-    """Coordinates minus independent constraint equations (rank of the velocity-level
-    constraints in the rates, at the instant when it is solved)."""
-    if state is not None:
-        return p.index.n - constraint_rank(p, state)
-    return p.generic_dof if p.generic_dof is not None else generic_dof(p.k)
+def degrees_of_freedom(p: KinematicsPlan, states: Sequence[State | None]) -> list[int]:
+    """Coordinates minus independent constraint equations at each of ``states`` (rank of the
+    velocity-level constraints in the rates, at the instant when it is solved; the generic
+    count where it is not, ``None``); the states of one length are ranked together.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.numeric import solve_numeric
+    >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_8_connected_blocks.yaml")
+    >>> p = kinematics_plan(problem)
+    >>> state = solve_numeric(problem, p, instant_givens(problem, None, {}), set()).state
+    >>> p.index.n, degrees_of_freedom(p, [state, None, state])
+    (3, [1, 1, 1])
+    """
+    out = [p.generic_dof if p.generic_dof is not None else generic_dof(p.k)] * len(states)
+    by_size: dict[int, list[tuple[int, np.ndarray]]] = {}
+    for i, state in enumerate(states):
+        if state is not None:
+            by_size.setdefault(len(state.values), []).append((i, state.values))
+    for solved in by_size.values():
+        ranks = constraint_ranks(p, np.stack([values for _, values in solved], axis=1))
+        for (i, _), rank in zip(solved, ranks):
+            out[i] = p.index.n - int(rank)
+    return out
 
 
 def _report(si_values: np.ndarray, obj: Objective):

@@ -908,14 +908,15 @@ def _conflict(problem: Problem, level: Level, on: np.ndarray, r: np.ndarray,
                            level.wheres[on[j]])
 
 
-def constraint_rank(p: KinematicsPlan, state: State) -> int:
-    """Rank of the velocity-level constraints in the rates at the solved configuration."""
+def constraint_ranks(p: KinematicsPlan, X: np.ndarray) -> np.ndarray:
+    """Rank of the velocity-level constraints in the rates at every solved configuration
+    (a column of ``X`` each)."""
     level = p.levels[1]
     if not level.constraint_rows:
-        return 0
+        return np.zeros(X.shape[1], dtype=int)
     rates = list(p.index.unknowns(1))
     constraints = np.arange(len(level.labels)) < level.constraint_rows
-    return int(level_rank(level, state.values[:, None], rates, rates, constraints)[0])
+    return level_rank(level, X, rates, rates, constraints)
 
 
 def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]]:
