@@ -57,3 +57,29 @@ def test_a_given_made_zero_gives_its_own_answer(derivations):
     for rate in (3.0, 5.0):
         with pytest.raises(SolveError, match="depends on thetad"):
             solve(problem, givens={"theta'": rate}).result("vx")
+
+
+def test_an_angle_that_does_not_reach_an_answer_is_not_simplified_again(monkeypatch):
+    # the falling ladder's work-energy analysis makes every given bear on its answers (a new
+    # theta0 is a new key), but theta0 never reaches the path radius L/2: that answer's
+    # expressions are the same, and simplifying them is not done again
+    import sympy as sp
+
+    import mechgrade.solve.symbolic as symbolic
+    from mechgrade.resources import shipped_dir
+    from mechgrade.spec import load_problem
+
+    problem = load_problem(shipped_dir("problems") / "ruina_9_19_falling_ladder.yaml")
+    simplified = []
+    simplify = sp.simplify
+
+    def counted(expr, *args, **kwargs):
+        simplified.append(expr)
+        return simplify(expr, *args, **kwargs)
+    monkeypatch.setattr(sp, "simplify", counted)
+    first = solve(problem, givens={"theta0": math.radians(70.0)}, objectives=["G_path_radius"])
+    before = len(simplified)
+    second = solve(problem, givens={"theta0": math.radians(80.0)}, objectives=["G_path_radius"])
+    assert first.result("G_path_radius").expr == second.result("G_path_radius").expr == "L/2"
+    assert before > 0 and len(simplified) == before
+    assert symbolic._simplify.cache_info().hits > 0

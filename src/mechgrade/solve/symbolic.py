@@ -4,6 +4,7 @@ objective declares (givens that are pure numbers may stand in; givens with units
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import sympy as sp
 
@@ -105,7 +106,10 @@ def bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None
     return frozenset(name for sym, name in names.items() if sym in free)
 
 
+@lru_cache(maxsize=1024)
 def _simplify(expr):
+    # kept: the variants of a class often meet the same expression again (a given's value
+    # that does not reach the answer changes nothing in it), and simplify is the slow step
     if sp.count_ops(expr) > 300:
         return expr
     simple = sp.simplify(expr)
