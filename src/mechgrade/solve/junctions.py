@@ -1,12 +1,10 @@
 """The start of an integration with massless junctions (:mod:`mechgrade.mechanics.junctions`):
 the junctions' coordinates and rates the ``from`` state leaves out are solved from their
-balances (position level by Newton's method, velocity level in one linear step), and the ones it
-names must keep those balances.
+balances (:func:`~.levels.solve_level_columns`, every column and start at once), and the ones
+it names must keep those balances (:func:`~.levels.holds`, the problem's ``consistency``).
 """
 
 from __future__ import annotations
-
-import warnings
 
 import numpy as np
 
@@ -14,10 +12,7 @@ from ..errors import MechgradeError, SolveError
 from ..expressions.syntax import to_text
 from ..mechanics.junctions import is_junction_balance
 from ..spec.dynamics import Integration, dynamics_of, junction_coordinates
-from .levels import DEFAULT_GUESS, _starts, typical_sizes
-
-NEWTON_STEPS = 50
-TOLERANCE = 1e-10  # of a balance's row, relative to the size of its terms
+from .levels import DEFAULT_GUESS, _starts, holds, residuals, solve_level_columns, typical_sizes
 
 
 def settle_junctions(problem, kp, values: np.ndarray
@@ -39,57 +34,50 @@ def settle_junctions(problem, kp, values: np.ndarray
     start = analysis.where if isinstance(analysis, Integration) else where
     for order in (0, 1):
         level = kp.kp.levels[order]
-        rows = [i for i, label in enumerate(level.labels) if is_junction_balance(label)]
-        columns = list(index.unknowns(order))
+        active = np.array([is_junction_balance(label) for label in level.labels])
         settled = [names[s] for s in kp.kin.settled if index.level_of(names[s]) == order]
-        solve_for = [columns.index(i) for i in settled]
         guessed = order == 0 and all(index.spelling(i) in guesses for i in settled)
         guess = np.array([guesses.get(index.spelling(i), DEFAULT_GUESS) for i in settled])
-        for c in range(out.shape[1]):
-            if c in errors:
-                continue
-            x = out[:, c]
-            if not settled:
-                roots = [x.copy()] if _holds(level, x, rows) else []
+        todo = [c for c in range(out.shape[1]) if c not in errors]
+        if not todo:
+            break
+        roots = _roots(problem, kp, level, out[:, todo], active, settled,
+                       [guess] if guessed or order == 1 or not settled else None, guess)
+        for c, found in zip(todo, roots):
+            if len(found) == 1:
+                out[:, c] = found[0]
             else:
-                origins = [guess] if guessed or order == 1 else \
-                    [guess, *_starts(guess, _scale(problem, kp, x, settled), 0)]
-                roots = []
-                for origin in origins:
-                    root = _newton(level, x, rows, settled, solve_for, len(columns), origin)
-                    if root is not None and not any(_same(root[settled], r[settled])
-                                                    for r in roots):
-                        roots.append(root)
-            if len(roots) == 1:
-                out[:, c] = roots[0]
-            else:
-                errors[c] = SolveError(_message(problem, kp, order, settled, roots, x, rows),
-                                       where=where if settled else start)
+                errors[c] = SolveError(
+                    _message(problem, kp, order, settled, found, out[:, c], active),
+                    where=where if settled else start)
     return out, errors
 
 
-def _newton(level, x: np.ndarray, rows: list[int], settled: list[int], solve_for: list[int],
-            width: int, origin: np.ndarray) -> np.ndarray | None:
-    """The state with ``settled`` solved from ``rows`` of ``level`` by Newton's method from
-    ``origin``, or ``None`` where it does not converge."""
-    x = x.copy()
-    x[settled] = origin
-    for _ in range(NEWTON_STEPS):
-        r = _rows(level.residual, x, rows)
-        J = _rows(level.jacobian, x, rows, width)[:, solve_for]
-        if not (np.isfinite(J).all() and np.isfinite(r).all()):
-            return None
-        step = np.linalg.lstsq(J, -r, rcond=None)[0]
-        x[settled] += step
-        if np.abs(step).max() <= 1e-13 * (1 + np.abs(x[settled]).max()):
-            break
-    return x if _holds(level, x, rows) else None
-
-
-def _holds(level, x: np.ndarray, rows: list[int]) -> bool:
-    residual = _rows(level.residual, x, rows)
-    scale = 1 + _rows(level.scale, x, rows)
-    return bool(np.isfinite(residual).all() and (np.abs(residual) <= TOLERANCE * scale).all())
+def _roots(problem, kp, level, X: np.ndarray, active: np.ndarray, settled: list[int],
+           origins: list[np.ndarray] | None, guess: np.ndarray) -> list[list[np.ndarray]]:
+    """Each column's distinct states (in the order of the starts that found them) where the
+    ``active`` rows of ``level`` hold, ``settled`` solved for from each of ``origins`` (by
+    default the guess and the starts spread around it by the column's typical sizes); with
+    nothing to solve for, the column itself if they hold there."""
+    T = np.zeros((int(active.sum()), X.shape[1]))
+    if not settled:
+        held = holds(problem.consistency, level, X, active, T)
+        return [[X[:, c].copy()] if held[c] else [] for c in range(X.shape[1])]
+    starts = [origins if origins is not None else
+              [guess, *_starts(guess, _scale(problem, kp, X[:, c], settled), 0)]
+              for c in range(X.shape[1])]
+    pairs = [(c, s) for c, each in enumerate(starts) for s in each]
+    Y = X[:, [c for c, _ in pairs]].copy()
+    Y[settled] = np.stack([s for _, s in pairs], axis=1)
+    fits = solve_level_columns(problem.consistency, level, Y, settled,
+                               list(kp.kp.index.unknowns(level.order)), active,
+                               np.zeros((T.shape[0], Y.shape[1])))
+    out: list[list[np.ndarray]] = [[] for _ in range(X.shape[1])]
+    for j, (c, _) in enumerate(pairs):
+        root = fits.X[:, j]
+        if fits.held[j] and not any(_same(root[settled], r[settled]) for r in out[c]):
+            out[c].append(root.copy())
+    return out
 
 
 def _scale(problem, kp, x: np.ndarray, settled: list[int]) -> np.ndarray:
@@ -102,16 +90,8 @@ def _same(a: np.ndarray, b: np.ndarray) -> bool:
     return bool(np.allclose(a, b, rtol=1e-6, atol=1e-9))
 
 
-def _rows(f, x: np.ndarray, rows: list[int], width: int | None = None) -> np.ndarray:
-    with np.errstate(all="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        value = np.asarray(f(*x), dtype=float)
-    value = value.reshape(-1, width) if width is not None else value.ravel()
-    return value[rows]
-
-
 def _message(problem, kp, order: int, settled: list[int], roots: list, x: np.ndarray,
-             rows: list[int]) -> str:
+             active: np.ndarray) -> str:
     index = kp.kp.index
     junctions = ", ".join(b.name for b in dynamics_of(problem).junctions)
     found = ", ".join(index.spelling(i) for i in settled)
@@ -129,7 +109,8 @@ def _message(problem, kp, order: int, settled: list[int], roots: list, x: np.nda
         return (f"the balance of the massless junction {junctions} has no solution at the "
                 f"start for {found} (the springs' pulls on it never add up to 0); check the "
                 "springs' free lengths and where they end, or give guesses: near the solution")
-    residual = np.abs(_rows(kp.kp.levels[order].residual, x, rows)).max()
+    r, _ = residuals(kp.kp.levels[order], x[:, None], active, np.zeros((int(active.sum()), 1)))
+    residual = np.abs(r).max()
     mark = "" if order == 0 else "'"
     named = " and ".join(f"{c}{mark}" for c in junction_coordinates(problem))
     return (f"the start state puts the massless junction {junctions} out of its balance: its "
