@@ -188,11 +188,10 @@ def test_a_variant_whose_givens_conflict_fails_as_when_solved_alone():
 # ---------------------------------------------------------------------------- analyses
 
 
-INTEGRATED_ALONE = ("ball_thrown_with_drag_apex_and_landing", "damped_block_positions",
+ASKED_BEFORE_THE_EVENT = ("ball_thrown_with_drag_apex_and_landing", "damped_block_positions",
                     "three_cart_chain_vibration")
 """Integrated problems with objectives asked before the event (an objective's own time,
-coordinate or rate): the integrator over columns reads the event only, each variant's
-instant before it is reached alone."""
+coordinate or rate): the integrator over columns stops each variant at that instant too."""
 POSITIONED_ALONE = ("ruina_9_20_ladder_energy", "bowling_ball_skids_then_rolls")
 """Problems with objectives asked 'when' an equation holds (or a motion that goes on in
 another phase once a slip ends): the instant is searched for each variant alone."""
@@ -201,7 +200,7 @@ another phase once a slip ends): the instant is searched for each variant alone.
 def _reached_otherwise(path: Path) -> bool:
     """Whether the spec's instant is reached by work-energy, by integrating the motion or
     with a design parameter solved for (read from the text, so collecting stays fast)."""
-    return path.stem not in INTEGRATED_ALONE + POSITIONED_ALONE and \
+    return path.stem not in ASKED_BEFORE_THE_EVENT + POSITIONED_ALONE and \
         bool(re.search(r"^\s+(work_energy|integrate|design):", path.read_text(), re.M))
 
 
@@ -263,11 +262,11 @@ def test_variants_reached_by_energy_integration_or_design_solved_together_are_th
         assert_same(together, one, tolerance, generated=k == 0)
 
 
-@pytest.mark.parametrize("name", INTEGRATED_ALONE)
-def test_variants_asked_before_the_event_are_reached_alone_there_only(name, tmp_path):
+@pytest.mark.parametrize("name", ASKED_BEFORE_THE_EVENT)
+def test_variants_asked_before_the_event_are_reached_together_there_as_alone(name, tmp_path):
     problem = with_drawn_parameters(PROBLEMS / f"{name}.yaml", tmp_path)
     template = _template(problem)
-    assert template is not None and any(group.alone for group in template.groups)
+    assert template is not None and any(group.instant is not None for group in template.groups)
     variants = [dict(draw_variant(problem, "batch", str(n)).overrides) for n in range(2)]
     assert all(s is not None for s in template.solve(variants))  # no variant alone whole
     for together, one in zip(solve_variants(problem, variants), alone(problem, variants)):

@@ -15,8 +15,7 @@ variants' right-hand sides in one call); a design parameter by Newton's method a
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
 in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at. An
 objective asked before an integration's event (at a time, coordinate or rate of its own) is
-read at each variant's instant as :func:`~.instant.drive` reaches it alone, beside the others
-solved together.
+read where each variant's motion, integrated the same way, first takes that value.
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -51,7 +50,7 @@ from ..spec.model import Objective, Problem, Root
 from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
-from .instant import (_instants, _key, _size, _symbolic_answer, answer_group,
+from .instant import (_instants, _key, _size, _symbolic_answer,
                       collect_results, degrees_of_freedom, in_unit,
                       instant_givens, numeric_result, read_objectives, shown, solution_of,
                       symbolic_dependence, wanted_objectives)
@@ -169,7 +168,8 @@ class _Group:
     nullity: tuple[int, ...]  # per level
     after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
     loose: frozenset[int]  # and leaves free
-    alone: bool = False  # an instant before an integration's event: each column reached alone
+    instant: int | None = None  # the time, coordinate or rate fixing an instant before an
+    # integration's event: its position in the state (None: the event)
 
 
 class _Template:
@@ -224,9 +224,6 @@ class _Template:
         for group in self.groups:
             maps = [instant_givens(problem, g, group.overrides) for g in variants]
             objectives = [o for o in group.objectives if o.id in wanted]
-            if group.alone:
-                self._alone(group, maps, objectives, ok, results, lost, base)
-                continue
             values: dict = {}
             mistakes: dict = {}
             generated: dict = {}
@@ -296,21 +293,6 @@ class _Template:
         return [self._solution(results[i], base[i], dofs[i], lost[i], wanted) if ok[i] else None
                 for i in range(n)]
 
-    def _alone(self, group: _Group, maps: list[dict], objectives: list[Objective],
-               ok: np.ndarray, results: list[dict], lost: list[dict], base: list) -> None:
-        """The objectives of ``group`` at every column's instant, each column's reached as
-        :func:`~.instant.drive` reaches it alone: an instant before an integration's event,
-        which the integrator over columns does not stop at (and which, integrated, carries
-        no warning of its own)."""
-        from .dynamics import kinetic_reach
-
-        reach = kinetic_reach(self.problem)
-        for i in np.flatnonzero(ok) if objectives else ():
-            reached = answer_group(self.problem, reach, maps[i], objectives, group.overrides,
-                                   results[i], lost[i])
-            if reached is not None and base[i] is None:
-                base[i] = (reached.state, reached.givens)
-
     def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
                     base: list) -> None:
         """Each variant's solved state and givens (a design parameter's value among them) as
@@ -362,7 +344,7 @@ class _Template:
         if self.design is not None and self.design.find not in group.overrides:
             X, ok = self._designed(group, X, targets, placed, degenerate)
         elif isinstance(self.analysis, Integration):
-            X, ok, never, stuck = self._motion().integrated(X)
+            X, ok, never, stuck = self._motion().integrated(X, group.instant)
             assert isinstance(self.analysis, Integration)
             unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
                                       event_never_happens(self.analysis))
@@ -688,9 +670,10 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
                     given_map = reach.designed(given_map)
             g = place_givens(kproblem, p, given_map)
             if isinstance(analysis, Integration):
-                groups.append(replace(
-                    _integration_group(p, overrides, objectives, numeric, given_map, g),
-                    alone=instant_of_objective(problem, overrides) is not None))
+                group = _integration_group(p, overrides, objectives, numeric, given_map, g)
+                asked = instant_of_objective(problem, overrides)
+                groups.append(group if asked is None else
+                              replace(group, instant=group.positions[asked]))
                 continue
             instant = solve_numeric(kproblem, p, given_map,
                                     set() if kinetics is not None else set(numeric))

@@ -43,7 +43,7 @@ class Motion:
         self.problem, self.kinetics, self.p = problem, kinetics, kinetics.kp
         self.analysis = dynamics_of(problem).analysis
 
-    def integrated(self, X: np.ndarray
+    def integrated(self, X: np.ndarray, instant: int | None = None
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
         """Every column's motion integrated from its start state to its event (together:
         :func:`~.batch_motion.integrate_to_events`, the steps
@@ -53,12 +53,17 @@ class Motion:
         columns passed the screens, which ended without their event
         (:data:`~.batch_motion.NEVER`), and the error of each that failed the checks of
         :func:`balances` just before its event, or whose slip ended before its event and
-        sticks there (:meth:`_stuck`)."""
+        sticks there (:meth:`_stuck`).
+
+        With ``instant`` (the position of the time, coordinate or rate an objective is asked
+        at, its value in each column of ``X``): the state where that value is first taken
+        before the event instead (:meth:`_to_instant`)."""
         kp = self.kinetics
         assert kp is not None and isinstance(self.analysis, Integration)
         ap = analysis_plan(kp)
         index = self.p.index
         n, size, count = index.n, index.size, X.shape[1]
+        asked = None if instant is None else X[instant].copy()
         rates, seconds = index.rates(1), index.rates(2)
         # slices: the right-hand side is evaluated thousands of times
         qd, qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
@@ -108,6 +113,9 @@ class Motion:
             return np.sign(loud_call(switches.speeds, x, switches.count))
 
         y0 = np.concatenate([values[:n], values[qd]])
+        if instant is not None and asked is not None:
+            return self._to_instant(instant, asked, at, rhs, event, mode if switches else None,
+                                    y0, unsettled)
         with quiet():
             switching = mode if switches else None
             direction, stays = self._leaving(rhs, event, switching, y0)
@@ -132,6 +140,59 @@ class Motion:
         never = arrival.status == NEVER
         ok[list(stays)] = never[list(stays)] = False
         return np.vstack([x, before]), ok & fine, never, {**failed, **stuck, **stays, **unsettled}
+
+    def _to_instant(self, instant: int, asked: np.ndarray, at: Callable, rhs: Callable,
+                    until: Callable, mode: Callable | None, y0: np.ndarray,
+                    unsettled: dict[int, MechgradeError]
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
+        """:meth:`integrated` to the instant where entry ``instant`` of the state first takes
+        each column's ``asked`` value before the event (the steps
+        :func:`~.events.integrate_to_instant` takes for each alone): the motion is stopped
+        where the product of the instant's and the event's equations changes sign (an event
+        that holds at the start waits for its next crossing, :meth:`_leaving`), and a column
+        is answered where the instant's equation is then zero and the event's still on the
+        side it started on (:data:`~.rules.EVENT_AWAY`): the state there (stacked twice: it
+        is no event's limit), which columns passed the screens, none judged without its
+        event, and the error of each that fails :func:`balances` there or whose event stays
+        at the start. A column whose instant holds at the start (t = 0 itself is the start
+        state), that meets its event first, or that never meets either, is not answered
+        here: alone, it says why."""
+        assert isinstance(self.analysis, Integration)
+        size, count = self.p.index.size, y0.shape[1]
+        everyone = np.arange(count)
+        start = np.zeros(count)
+
+        def reached(cols, t, y, m):
+            return at(cols, t, y, m)[instant] - asked[cols]
+
+        def either(cols, t, y, m):
+            return reached(cols, t, y, m) * until(cols, t, y, m)
+
+        with quiet():
+            modes = mode(everyone, start, y0) if mode is not None else None
+            g0 = until(everyone, start, y0, modes)
+            r0 = reached(everyone, start, y0, modes)
+            leaving, stays = self._leaving(rhs, until, mode, y0)
+            side = np.where(g0 != 0, np.sign(g0), -leaving)
+            now = (r0 == 0) & (instant == self.p.index.time)
+            arrival = integrate_to_events(rhs, either, y0, self.analysis.max_time, RTOL, ATOL,
+                                          MAX_CALLS, mode=mode, direction=np.sign(r0) * leaving)
+            t = np.where(now, 0.0, arrival.t)
+            y = np.where(now, y0, arrival.y)
+            moved = mode(everyone, t, y) if mode is not None else None
+            r, g = reached(everyone, t, y, moved), until(everyone, t, y, moved)
+        first = (arrival.status == FIRED) & (np.abs(r) <= rules.EVENT_AWAY * np.abs(r0)) & \
+            (np.sign(g) == side) & (side != 0)
+        ok = now | first
+        ok[list(unsettled) + list(stays)] = False
+        end = at(everyone, t, y)
+        end[instant] = np.where(ok, asked, end[instant])  # where the root was found
+        solved = balances(self.problem, self.kinetics, end[:size], after_event(self.p))
+        x, fine = solved.x, solved.ok
+        failed = {int(i): error for i in np.flatnonzero(ok & ~fine)
+                  if (error := solved.errors[int(i)]) is not None}
+        return (np.vstack([x, x]), ok & fine, np.zeros(count, dtype=bool),
+                {**failed, **stays, **unsettled})
 
     def _leaving(self, rhs: Callable, event: Callable, mode: Callable | None,
                  y0: np.ndarray) -> tuple[np.ndarray, dict[int, MechgradeError]]:

@@ -46,6 +46,12 @@ BEFORE_EVENT = 1e-9
 """The moment just before an event (its time times one minus this) at which the limits of
 the second rates and reactions are read."""
 
+EVENT_AWAY = 1e-6
+"""Where a motion stopped at the first of an instant and its event, the instant came first
+when its own equation there is within this part of its value at the start of zero (and the
+event's is not zero): else the event may hold there too, which the one-by-one integrator
+judges."""
+
 ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical
 size away from zero: nearer, it is zero to the rounding of the solve."""
