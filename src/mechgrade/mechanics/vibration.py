@@ -162,6 +162,17 @@ def _eigen(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...]:
     return _shared(*np.linalg.eig(_kept(n, m, v)[1]))
 
 
+@lru_cache(maxsize=256)
+def _pairs(n: int, m: int, v: bytes) -> np.ndarray:
+    """The eigenvalues of the state-space matrix ``[[0, I], [-K, -C]]`` of :func:`_kept`'s
+    ``K`` and ``C`` with a positive imaginary part (one of each oscillating mode's pair):
+    every damping ratio and the check that each mode oscillates read them."""
+    T, K, C = _kept(n, m, v)
+    k = T.shape[1]
+    roots = np.linalg.eigvals(np.block([[np.zeros((k, k)), np.eye(k)], [-K, -C]]))
+    return _shared(roots[roots.imag > 1e-9 * np.abs(roots).max()])[0]
+
+
 def _shared(*arrays: np.ndarray) -> tuple[np.ndarray, ...]:
     for array in arrays:
         array.setflags(write=False)  # cached: every caller of the same state reads them
@@ -177,20 +188,18 @@ def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray
     if what == Modal.EQUILIBRIUM:
         return float(np.abs(x[:n]).sum() / (1 + np.abs(K).sum()))
     squares, shapes = _eigen(n, m, key)
-    T, K, C = _kept(n, m, key)
-    n = T.shape[1]
+    T = _kept(n, m, key)[0]
+    kept = T.shape[1]  # the coordinates' motions that keep the constraints
     scale = 1e-9 * (np.abs(squares).max() + 1e-300)
     # a zero squared frequency is a mode that moves freely (a rigid-body mode), not unstable
     stable = bool((np.abs(squares.imag) <= scale).all() and (squares.real >= -scale).all())
     if what == Modal.STABLE:
         return 0.0 if stable else 1.0
     if what in (Modal.DAMPING_RATIO, Modal.UNDERDAMPED):
-        state = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])
-        roots = np.linalg.eigvals(state)
-        pairs = roots[roots.imag > 1e-9 * np.abs(roots).max()]
+        pairs = _pairs(n, m, key)
         if what == Modal.UNDERDAMPED:
-            return 0.0 if len(pairs) == n else 1.0
-        if len(pairs) != n:
+            return 0.0 if len(pairs) == kept else 1.0
+        if len(pairs) != kept:
             return np.nan
         pair = pairs[np.argsort(np.abs(pairs))][number - 1]
         return float(-pair.real / abs(pair))
