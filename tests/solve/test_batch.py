@@ -308,6 +308,19 @@ def test_a_variant_that_fails_on_the_way_to_its_event_fails_in_the_class_as_alon
         assert_same(a, b, INTEGRATED, generated=False)
 
 
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 2 s)
+def test_a_variant_whose_event_comes_before_its_instant_fails_in_the_class_as_alone():
+    problem = load_problem(PROBLEMS / "three_cart_chain_vibration.yaml")
+    variants = [{"T": 0.2}, {"T": 1.4}]  # the record ends before, after 250 ms
+    together = solve_variants(problem, variants)
+    one = alone(problem, variants)
+    failed = {f.id: str(f.error) for f in one[0].failures}
+    assert "does not hold before the event" in failed["x1_at_250ms"]
+    assert not one[1].failures
+    for a, b in zip(together, one):
+        assert_same(a, b, EXACT, generated=False)
+
+
 @pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_variant_that_cannot_reach_its_instant_fails_as_when_solved_alone():
     problem = load_problem(PROBLEMS / "ruina_9_19_falling_ladder.yaml")
