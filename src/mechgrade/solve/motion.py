@@ -148,15 +148,15 @@ class Motion:
         """:meth:`integrated` to the instant where entry ``instant`` of the state first takes
         each column's ``asked`` value before the event (the steps
         :func:`~.events.integrate_to_instant` takes for each alone): the motion is stopped
-        where the product of the instant's and the event's equations changes sign (an event
-        that holds at the start waits for its next crossing, :meth:`_leaving`), and a column
-        is answered where the instant's equation is then zero and the event's still on the
-        side it started on (:data:`~.rules.EVENT_AWAY`): the state there (stacked twice: it
-        is no event's limit), which columns passed the screens, none judged without its
-        event, and the error of each that fails :func:`balances` there or whose event stays
-        at the start. A column whose instant holds at the start (t = 0 itself is the start
-        state), that meets its event first, or that never meets either, is not answered
-        here: alone, it says why."""
+        where the product of the instant's and the event's equations changes sign (either
+        one that holds at the start waits for its next crossing, :meth:`_leaving`; t = 0 is
+        the start itself), and a column is answered where the event's equation is then still
+        away from zero on the side it started on (:data:`~.rules.EVENT_AWAY`): the state
+        there (stacked twice: it is no event's limit), which columns passed the screens, none
+        judged without its event, and the error of each that fails :func:`balances` there or
+        whose instant or event stays at the start. A column where both hold at the start,
+        that meets its event first, or that never meets either, is not answered here: alone,
+        it says why."""
         assert isinstance(self.analysis, Integration)
         size, count = self.p.index.size, y0.shape[1]
         everyone = np.arange(count)
@@ -173,18 +173,23 @@ class Motion:
             g0 = until(everyone, start, y0, modes)
             r0 = reached(everyone, start, y0, modes)
             leaving, stays = self._leaving(rhs, until, mode, y0)
-            side = np.where(g0 != 0, np.sign(g0), -leaving)
             now = (r0 == 0) & (instant == self.p.index.time)
-            arrival = integrate_to_events(rhs, either, y0, self.analysis.max_time, RTOL, ATOL,
-                                          MAX_CALLS, mode=mode, direction=np.sign(r0) * leaving)
+            # a coordinate or rate taken at the start: its next crossing (t = 0 is the start)
+            crossing, held = (np.zeros(count), {}) if instant == self.p.index.time else \
+                self._leaving(rhs, reached, mode, y0)
+            side = np.where(g0 != 0, np.sign(g0), -leaving)
+            arrival = integrate_to_events(
+                rhs, either, y0, self.analysis.max_time, RTOL, ATOL, MAX_CALLS, mode=mode,
+                direction=np.where(g0 != 0, np.sign(g0) * crossing, np.sign(r0) * leaving))
             t = np.where(now, 0.0, arrival.t)
             y = np.where(now, y0, arrival.y)
             moved = mode(everyone, t, y) if mode is not None else None
             r, g = reached(everyone, t, y, moved), until(everyone, t, y, moved)
-        first = (arrival.status == FIRED) & (np.abs(r) <= rules.EVENT_AWAY * np.abs(r0)) & \
-            (np.sign(g) == side) & (side != 0)
+        away = np.where(g0 != 0, np.abs(g) > rules.EVENT_AWAY * np.abs(g0),
+                        np.abs(r) <= rules.EVENT_AWAY * np.abs(r0))
+        first = (arrival.status == FIRED) & away & (np.sign(g) == side) & (side != 0)
         ok = now | first
-        ok[list(unsettled) + list(stays)] = False
+        ok[list(unsettled) + list(stays) + list(held)] = False
         end = at(everyone, t, y)
         end[instant] = np.where(ok, asked, end[instant])  # where the root was found
         solved = balances(self.problem, self.kinetics, end[:size], after_event(self.p))
@@ -192,7 +197,7 @@ class Motion:
         failed = {int(i): error for i in np.flatnonzero(ok & ~fine)
                   if (error := solved.errors[int(i)]) is not None}
         return (np.vstack([x, x]), ok & fine, np.zeros(count, dtype=bool),
-                {**failed, **stays, **unsettled})
+                {**failed, **held, **stays, **unsettled})
 
     def _leaving(self, rhs: Callable, event: Callable, mode: Callable | None,
                  y0: np.ndarray) -> tuple[np.ndarray, dict[int, MechgradeError]]:

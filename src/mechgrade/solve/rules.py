@@ -48,9 +48,10 @@ the second rates and reactions are read."""
 
 EVENT_AWAY = 1e-6
 """Where a motion stopped at the first of an instant and its event, the instant came first
-when its own equation there is within this part of its value at the start of zero (and the
-event's is not zero): else the event may hold there too, which the one-by-one integrator
-judges."""
+when the event's equation there is more than this part of its value at the start away from
+zero (an event that holds at the start: when the instant's equation there is within this
+part of its own value at the start of zero); else the event may hold there too, which the
+one-by-one integrator judges."""
 
 ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical
