@@ -321,6 +321,21 @@ def test_a_variant_whose_event_comes_before_its_instant_fails_in_the_class_as_al
         assert_same(a, b, EXACT, generated=False)
 
 
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 2 s)
+def test_a_variant_at_rest_in_an_objectives_own_rate_waits_for_its_next_crossing_in_the_class():
+    problem = load_problem(PROBLEMS / "three_cart_chain_vibration.yaml")
+    variants = [{"v0": 0.0}, {"v0": 0.3}]  # at rest, x3' = 0 holds at the start and stays
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # neither went alone
+    together = solve_variants(problem, variants)
+    one = alone(problem, variants)
+    failed = {f.id: str(f.error) for f in one[0].failures}
+    assert "the event holds at the start (t = 0) and stays so" in failed["time_cart3_stops"]
+    for a, b in zip(together, one):
+        assert_same(a, b, EXACT, generated=False)
+
+
 @pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_variant_that_cannot_reach_its_instant_fails_as_when_solved_alone():
     problem = load_problem(PROBLEMS / "ruina_9_19_falling_ladder.yaml")
