@@ -285,7 +285,7 @@ def reached_alone(problem: Problem, reach: Reach) -> Step:
              columns: Columns) -> None:
         for i in np.flatnonzero(columns.ok).tolist():
             reached = _answer_group(problem, reach, maps[i], chosen, overrides,
-                                   columns.results[i], columns.failures[i])
+                                    columns.results[i], columns.failures[i])
             if reached is not None:
                 warned = columns.warned[i]
                 warned += [w for w in reached.warnings if w not in warned]
@@ -306,8 +306,8 @@ def reports_state(base: tuple[State, dict] | None, overrides: dict) -> bool:
 
 
 def _answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[Objective],
-                 overrides: dict, results: dict[str, ObjectiveResult],
-                 failures: dict[str, MechgradeError]) -> Reached | None:
+                  overrides: dict, results: dict[str, ObjectiveResult],
+                  failures: dict[str, MechgradeError]) -> Reached | None:
     """One group of objectives ``chosen`` asked at the givens ``given_map`` (``overrides``:
     their own among them): the instant reached by ``reach``, each objective read there (a
     symbolic one derived) into ``results``, or its error into ``failures``. Returns the
