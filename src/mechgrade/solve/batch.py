@@ -256,7 +256,7 @@ class _Template:
         # failure (a kinematics one has made the variant not ok)
         failed = [dict.fromkeys(numeric, unreached[i]) if i in unreached else missing[i]
                   for i in range(n)]
-        answered = np.flatnonzero(ok).tolist()
+        answered = columns.answered()
         for i, (solved, failures) in zip(answered, group_results(
                 problem, objectives, maps, values, mistakes, failed, answered, symbolic,
                 generated, self.plausible if self.kinetics is None else None)):

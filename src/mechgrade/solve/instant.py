@@ -233,6 +233,10 @@ class Columns:
         self.warned: list[list[AuthorWarning]] = [list(warnings) for _ in range(n)]
         self.ok = np.ones(n, dtype=bool)
 
+    def answered(self) -> list[int]:
+        """The columns still answered here (``ok``), in order."""
+        return [i for i, keep in enumerate(self.ok.tolist()) if keep]
+
 
 Step = Callable[[list[dict], list[Objective], dict, Columns], None]
 """How one group of objectives is answered at every column still ``ok``: ``(maps, chosen,
@@ -270,7 +274,7 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
             step([instant_givens(problem, g, overrides) for g in variants], chosen,
                  overrides, columns)
     out: list[Solution | MechgradeError | None] = [None] * len(variants)
-    answered = np.flatnonzero(columns.ok).tolist()
+    answered = columns.answered()
     for i, solution in zip(answered, solutions_of(
             problem, kinematics, p, columns.results, columns.failures, columns.base,
             [tuple(w) for w in columns.warned], wanted, answered)):
@@ -283,7 +287,7 @@ def reached_alone(problem: Problem, reach: Reach) -> Step:
 
     def step(maps: list[dict], chosen: list[Objective], overrides: dict,
              columns: Columns) -> None:
-        for i in np.flatnonzero(columns.ok).tolist():
+        for i in columns.answered():
             reached = _answer_group(problem, reach, maps[i], chosen, overrides,
                                     columns.results[i], columns.failures[i])
             if reached is not None:
@@ -364,15 +368,21 @@ def group_results(problem: Problem, objectives: Sequence[Objective], maps: Seque
     >>> round(right["acc_mag"].value, 9), right["acc_mag_symbolic"].expr, list(lost)
     (2.0, 'L*sqrt(thetad**4 + thetadd**2)', ['acc_mag'])
     """
-    numeric = [o for o in objectives if _numeric(o)]
-    symbols = [o.id for o in objectives if not _numeric(o)]
-    solved = [o for o in numeric if o.id in values]
-    value_shown = {o.id: shown(values[o.id], o) for o in solved}
-    declared = {o.id: [shown(v, o) for v in mistakes.get(o.id, ())] for o in solved}
-    defined = {o.id: np.isfinite(values[o.id]).all(axis=0)
-               & np.all([np.isfinite(v).all(axis=0) for v in mistakes.get(o.id, ())]
-                        + [np.ones(values[o.id].shape[1], dtype=bool)], axis=0)
-               for o in solved}
+    numeric: list[Objective] = []
+    symbols: list[str] = []
+    for o in objectives:
+        if _numeric(o):
+            numeric.append(o)
+        else:
+            symbols.append(o.id)
+    value_shown, declared, defined = {}, {}, {}
+    for o in numeric:
+        if o.id in values:
+            value_shown[o.id] = shown(values[o.id], o)
+            declared[o.id] = [shown(v, o) for v in mistakes.get(o.id, ())]
+            defined[o.id] = np.isfinite(values[o.id]).all(axis=0)
+            for v in mistakes.get(o.id, ()):
+                defined[o.id] = defined[o.id] & np.isfinite(v).all(axis=0)
     answers: dict = {}  # the symbolic answers, by what they depend on
     out = []
     for i in columns:
@@ -392,7 +402,7 @@ def group_results(problem: Problem, objectives: Sequence[Objective], maps: Seque
             answer = answers.get((oid, depends))
             if answer is None:
                 try:
-                    answer = _symbolic_answer(symbolic, problem, oid, maps[i])
+                    answer = _symbolic_answer(symbolic, problem, oid, maps[i], depends)
                     if plausible is not None:
                         answer = replace(answer, plausible=plausible)
                 except MechgradeError as err:
@@ -495,15 +505,15 @@ _SYMBOLIC_ANSWERS: dict = {}
 _SYMBOLIC_LIMIT = 4096
 
 
-def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: dict):
+def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: dict,
+                     dependence: tuple):
     """A symbolic objective's answer (by ``symbolic``, by default the kinematic one), solved
-    once per problem and :func:`symbolic_dependence`
-    of the givens: a variant that changes only givens with units (not to or from zero) reuses
-    the answer of the first, without sympy. The kinematic answers are kept in the disk cache
-    too (:mod:`.cache`), under the problem's plan and that dependence."""
+    once per problem and ``dependence`` (:func:`symbolic_dependence` of the givens): a
+    variant that changes only givens with units (not to or from zero) reuses the answer of
+    the first, without sympy. The kinematic answers are kept in the disk cache too
+    (:mod:`.cache`), under the problem's plan and that dependence."""
     kinematic = symbolic is None
     symbolic = symbolic or _symbolic_result
-    dependence = symbolic_dependence(problem, given_map, objective_id)
     key = (symbolic, problem, objective_id, dependence)
     answer = _SYMBOLIC_ANSWERS.get(key)
     if answer is None:
