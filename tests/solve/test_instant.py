@@ -283,3 +283,66 @@ def test_asking_for_no_objective_solves_nothing_and_fails_nothing(name):
 
     solution = solve(load_problem(shipped_dir("problems") / f"{name}.yaml"), objectives=())
     assert solution.results == () and solution.failures == ()
+
+
+def _pendulum():
+    from mechgrade.resources import shipped_dir
+    from mechgrade.spec import load_problem
+
+    return load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+
+
+def test_one_loop_answers_every_column_a_step_keeps_and_leaves_the_others_alone():
+    from mechgrade.solve.instant import (GivenInstant, _instants, drive_columns,
+                                         kinematics_plan, reached_alone)
+
+    problem = _pendulum()
+    reach = GivenInstant(problem, kinematics_plan(problem))
+    alone = reached_alone(problem, reach)
+
+    def drops_the_second(maps, chosen, overrides, columns):
+        columns.ok[1] = False  # as a class's screen leaves a variant to be solved alone
+        alone(maps, chosen, overrides, columns)
+
+    variants = [{"L": 0.5}, {"L": 1.0}, {"L": 2.0}]
+    steps = [(overrides, group, drops_the_second) for overrides, group in _instants(problem)]
+    a, b, c = drive_columns(problem, problem, reach.plan, (), steps, variants, {"acc_mag"})
+    assert b is None
+    assert c.result("acc_mag").value == solve(problem, givens=variants[2]).result(
+        "acc_mag").value
+    assert c.result("acc_mag").value == pytest.approx(4 * a.result("acc_mag").value)
+
+
+def test_a_column_whose_value_is_undefined_fails_that_objective_alone():
+    import numpy as np
+
+    from mechgrade.solve.instant import group_results, instant_givens
+
+    problem = _pendulum()
+    asked = [problem.objective("acc_mag")]
+    givens = instant_givens(problem, None, {})
+    (right, fine), (none, lost) = group_results(
+        problem, asked, [givens] * 2, {"acc_mag": np.array([[1.0, np.inf]])}, {},
+        [{}, {}], [0, 1])
+    assert list(right) == ["acc_mag"] and not fine
+    assert not none
+    assert "objective 'acc_mag' is undefined at this instant" in str(lost["acc_mag"])
+
+
+def test_a_class_derives_a_symbolic_answer_once_per_what_it_depends_on():
+    from mechgrade.solve.instant import group_results, instant_givens, symbolic_dependence
+
+    problem = _pendulum()
+    oid = "acc_mag_symbolic"
+    derived = []
+
+    def symbolic(problem_, objective_id, givens):
+        derived.append(givens)
+        return solve(problem_, objectives=[objective_id]).result(objective_id)
+
+    maps = [instant_givens(problem, {"L": L}, {}) for L in (0.5, 1.0, 2.0)]
+    assert len({symbolic_dependence(problem, m, oid) for m in maps}) == 1
+    out = group_results(problem, [problem.objective(oid)], maps, {}, {}, [{}] * 3,
+                        [0, 1, 2], symbolic)
+    assert len(derived) == 1
+    assert {results[oid].expr for results, _ in out} == {"L*sqrt(thetad**4 + thetadd**2)"}

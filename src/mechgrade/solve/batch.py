@@ -15,7 +15,8 @@ variants' right-hand sides in one call); a design parameter by Newton's method a
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
 in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at. An
 objective asked before an integration's event (at a time, coordinate or rate of its own) is
-read where each variant's motion, integrated the same way, first takes that value.
+read where each variant's motion, integrated the same way, first takes that value. The loop
+over the groups of objectives is the single solve's (:func:`~.instant.drive_columns`).
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -37,7 +38,7 @@ variant's failure, as :func:`~.dynamics.solve_dynamics` reports it.)
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
@@ -50,10 +51,9 @@ from ..spec.model import Objective, Problem, Root
 from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
-from .instant import (_instants, _key, _size, _symbolic_answer,
-                      collect_results, degrees_of_freedom, in_unit,
-                      instant_givens, numeric_result, read_objectives, shown, solution_of,
-                      symbolic_dependence, wanted_objectives)
+from .instant import (Columns, Step, _instants, _key, _size, drive_columns, group_results,
+                      in_unit, instant_givens, read_objectives, reports_state,
+                      shown, wanted_objectives)
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
@@ -208,90 +208,57 @@ class _Template:
         """Each variant's solution (or, for a dynamics problem, the error
         :func:`~.dynamics.solve_dynamics` raises when no objective is solved), or ``None``
         where it must be solved one by one; only the objectives ``asked`` (all by default)."""
-        n = len(variants)
-        if not n:
+        if not variants:
             return []
         problem = self.problem
-        wanted = wanted_objectives(problem, asked)
+        steps: list[tuple[dict, tuple[Objective, ...], Step]] = []
+        for group in self.groups:
+            step: Step = partial(self._together, group)
+            steps.append((group.overrides, group.objectives, step))
+        return drive_columns(problem, self.kproblem, self.p, tuple(self.p.k.warnings), steps,
+                             variants, wanted_objectives(problem, asked))
+
+    def _together(self, group: _Group, maps: list[dict], objectives: list[Objective],
+                  overrides: dict, columns: Columns) -> None:  # noqa: ARG002 - in group
+        """The :data:`~.instant.Step` of ``group`` reached together: every column still
+        ``ok`` at once (:meth:`_instant`), one that fails a screen (or, in kinematics, an
+        objective) left to be solved alone."""
+        problem, ok, n = self.problem, columns.ok, len(maps)
         symbolic: Callable | None = None
         if self.kinetics is not None:
             from .dynamics import _symbolic_result
             symbolic = _symbolic_result
-        results: list[dict] = [{} for _ in range(n)]
-        lost: list[dict] = [{} for _ in range(n)]
-        ok = np.ones(n, dtype=bool)
-        base: list = [None] * n
-        for group in self.groups:
-            maps = [instant_givens(problem, g, group.overrides) for g in variants]
-            objectives = [o for o in group.objectives if o.id in wanted]
-            values: dict = {}
-            mistakes: dict = {}
-            generated: dict = {}
-            # the columns whose instant is not reached, for a reason solve() gives too
-            unreached: dict[int, MechgradeError] = {}
-            missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
-            if group.numeric & wanted:
-                X, fine, values, mistakes, unreached, missing = self._instant(group, maps,
-                                                                              True)
-                for ms in mistakes.values():
-                    for m in ms:  # an undefined declared mistake fails its objective
-                        fine &= np.isfinite(m).all(axis=0)
-                unreached = {i: err for i, err in unreached.items() if ok[i] and not fine[i]}
-                never = np.zeros(n, dtype=bool)
-                never[list(unreached)] = True
-                ok &= fine | never
-                self._keep_state(group, X, ok & ~never, maps, base)
-                if self.kinetics is None:
-                    generated = self._generated(group, maps, X, ok, values)
-            numeric = [o for o in objectives if o.kind != "symbolic"]
-            symbols = [o.id for o in objectives if o.kind == "symbolic"]
-            answers: dict = {}  # this problem's symbolic answers, by what they depend on
-            value_shown = {o.id: shown(values[o.id], o) for o in numeric}
-            declared = {o.id: [shown(v, o) for v in mistakes.get(o.id, ())] for o in numeric}
-            # a dynamics objective undefined at a variant's instant is that objective's
-            # failure (as collect_results words it); any other has made the variant not ok
-            defined = {o.id: np.isfinite(values[o.id]).all(axis=0)
-                       & np.all([np.isfinite(v).all(axis=0) for v in mistakes.get(o.id, ())]
-                                + [np.ones(n, dtype=bool)], axis=0) for o in numeric}
-            for i in np.flatnonzero(ok):
-                failures: dict = {}
-                for o in numeric:
-                    if int(i) in unreached:  # as solve_dynamics keeps it
-                        failures[o.id] = unreached[int(i)]
-                        continue
-                    if o.id in missing[i]:
-                        failures[o.id] = missing[i][o.id]
-                        continue
-                    if not defined[o.id][i]:
-                        collect_results(problem, [o], maps[i], {o.id: values[o.id][:, i]},
-                                        {o.id: [m[:, i] for m in mistakes.get(o.id, ())]},
-                                        results[i], failures)
-                        continue
-                    results[i][o.id] = numeric_result(
-                        o, value_shown[o.id][i], [v[i] for v in declared[o.id]],
-                        generated[o.id](i) if generated else (),
-                        self.plausible if self.kinetics is None else None)
-                for oid in symbols:
-                    depends = symbolic_dependence(problem, maps[i], oid)
-                    answer = answers.get((oid, depends))
-                    if answer is None:
-                        try:
-                            answer = _symbolic_answer(symbolic, problem, oid, maps[i])
-                            if self.kinetics is None:  # as attach() leaves it
-                                answer = replace(answer, plausible=self.plausible)
-                        except MechgradeError as err:
-                            answer = err
-                        answers[oid, depends] = answer
-                    if isinstance(answer, MechgradeError):
-                        failures[oid] = answer
-                    else:
-                        results[i][oid] = answer
-                if failures and self.kinetics is None:
-                    ok[i] = False
-                lost[i].update(failures)  # as solve_dynamics keeps them
-        dofs = degrees_of_freedom(self.p, [b[0] if b else None for b in base])
-        return [self._solution(results[i], base[i], dofs[i], lost[i], wanted) if ok[i] else None
-                for i in range(n)]
+        values: dict = {}
+        mistakes: dict = {}
+        generated: dict = {}
+        # the columns whose instant is not reached, for a reason solve() gives too
+        unreached: dict[int, MechgradeError] = {}
+        missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
+        numeric = frozenset(o.id for o in objectives) & group.numeric
+        if numeric:
+            X, fine, values, mistakes, unreached, missing = self._instant(group, maps, True)
+            for ms in mistakes.values():
+                for m in ms:  # an undefined declared mistake fails its objective
+                    fine &= np.isfinite(m).all(axis=0)
+            unreached = {i: err for i, err in unreached.items() if ok[i] and not fine[i]}
+            never = np.zeros(n, dtype=bool)
+            never[list(unreached)] = True
+            ok &= fine | never
+            self._keep_state(group, X, ok & ~never, maps, columns.base)
+            if self.kinetics is None:
+                generated = self._generated(group, maps, X, ok, values)
+        # an objective undefined at a dynamics variant's instant is that objective's
+        # failure (a kinematics one has made the variant not ok)
+        failed = [dict.fromkeys(numeric, unreached[i]) if i in unreached else missing[i]
+                  for i in range(n)]
+        answered = columns.answered()
+        for i, (solved, failures) in zip(answered, group_results(
+                problem, objectives, maps, values, mistakes, failed, answered, symbolic,
+                generated, self.plausible if self.kinetics is None else None)):
+            columns.results[i].update(solved)
+            if failures and self.kinetics is None:
+                ok[i] = False
+            columns.failures[i].update(failures)  # as solve_dynamics keeps them
 
     def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
                     base: list) -> None:
@@ -306,16 +273,11 @@ class _Template:
         if self.kinetics is not None:  # the rates the balances solved
             from .dynamics import _with_kinetics
         for i in np.flatnonzero(ok):
-            if not group.overrides or base[i] is None:
+            if reports_state(base[i], group.overrides):
                 state = State(X[:size, i], group.after, group.loose)
                 if self.kinetics is not None:
                     state = _with_kinetics(self.kinetics, state, X[:, i])
                 base[i] = (state, maps[i])
-
-    def _solution(self, results: dict, base, dof: int, failures: dict,
-                  wanted: set[str]) -> Solution | MechgradeError:
-        return solution_of(self.problem, self.kproblem, self.p, results, failures, base, dof,
-                           tuple(self.p.k.warnings), wanted)
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
         """The numeric objectives and declared mistakes of ``group`` at every variant's

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable, Collection, Mapping, Protocol, Sequence
 
 import numpy as np
@@ -195,7 +195,7 @@ class Reach(Protocol):
         of them fail."""
 
     def symbolic(self) -> Callable | None:
-        """What :func:`collect_results` derives a symbolic answer with (``None``: the
+        """What :func:`group_results` derives a symbolic answer with (``None``: the
         kinematic one)."""
 
     def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
@@ -206,78 +206,242 @@ class Reach(Protocol):
 
 def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | None,
           objectives: Collection[str] | None) -> Solution:
-    """The one solver loop: every group of objectives asked at the same givens reached by
-    ``reach``, its objectives read there (a symbolic one derived), the solution of all of
-    them; raises the first error when none of them is solved."""
-    results: dict[str, ObjectiveResult] = {}
-    failures: dict[str, MechgradeError] = {}
-    warned: list[AuthorWarning] = list(reach.warnings)
-    base = None
-    wanted = wanted_objectives(problem, objectives)
-    for overrides, group in _instants(problem):
-        chosen = [o for o in group if o.id in wanted]
-        if not chosen:
-            continue
-        reached = answer_group(problem, reach, instant_givens(problem, givens, overrides),
-                               chosen, overrides, results, failures)
-        if reached is not None:
-            warned += [w for w in reached.warnings if w not in warned]
-            if not overrides or base is None:
-                base = (reached.state, reached.givens)
-    (dof,) = degrees_of_freedom(reach.plan, [base[0] if base else None])
-    solution = solution_of(problem, reach.problem, reach.plan, results, failures, base, dof,
-                           tuple(warned), wanted)
+    """One solve: :func:`drive_columns` with one column, each group's instant reached by
+    ``reach`` (:func:`reached_alone`); raises the first error when no objective is solved."""
+    step = reached_alone(problem, reach)
+    (solution,) = drive_columns(problem, reach.problem, reach.plan, reach.warnings,
+                                [(overrides, group, step) for overrides, group
+                                 in _instants(problem)],
+                                [givens], wanted_objectives(problem, objectives))
+    assert solution is not None, "a column reached alone is answered"
     if isinstance(solution, MechgradeError):
         raise solution
     return solution
 
 
-def answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[Objective],
-                 overrides: dict, results: dict[str, ObjectiveResult],
-                 failures: dict[str, MechgradeError]) -> Reached | None:
+class Columns:
+    """What :func:`drive_columns` has found so far for each column (one solve's one, or a
+    class's variants): its results and failures, the state and givens its solution reports
+    (:func:`reports_state`), its warnings, and whether it is still answered here (``ok``;
+    else the caller solves it alone). Filled group after group by the steps, hence
+    mutable."""
+
+    def __init__(self, n: int, warnings: tuple[AuthorWarning, ...]):
+        self.results: list[dict[str, ObjectiveResult]] = [{} for _ in range(n)]
+        self.failures: list[dict[str, MechgradeError]] = [{} for _ in range(n)]
+        self.base: list[tuple[State, dict] | None] = [None] * n
+        self.warned: list[list[AuthorWarning]] = [list(warnings) for _ in range(n)]
+        self.ok = np.ones(n, dtype=bool)
+
+    def answered(self) -> list[int]:
+        """The columns still answered here (``ok``), in order."""
+        return [i for i, keep in enumerate(self.ok.tolist()) if keep]
+
+
+Step = Callable[[list[dict], list[Objective], dict, Columns], None]
+"""How one group of objectives is answered at every column still ``ok``: ``(maps, chosen,
+overrides, columns)``, each column's givens at the group's instant, the objectives asked,
+their own givens, and what the columns have found (filled in)."""
+
+
+def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
+                  warnings: tuple[AuthorWarning, ...],
+                  groups: Sequence[tuple[dict, Sequence[Objective], Step]],
+                  variants: Sequence[Mapping[str, float | None] | None],
+                  wanted: Collection[str]) -> list[Solution | MechgradeError | None]:
+    """The one solver loop, over columns (one per variant of the givens): every group of
+    objectives asked at the same givens (``groups``: their own givens, the objectives, the
+    :data:`Step` that answers them), then each column's solution (:func:`solutions_of`:
+    the objectives ``wanted``, the kinematics ``kinematics`` and its plan ``p``, the
+    ``warnings`` before any instant's) or its error; ``None`` for a column a step left to
+    be solved alone.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> reach = GivenInstant(problem, kinematics_plan(problem))
+    >>> step = reached_alone(problem, reach)
+    >>> a, b = drive_columns(problem, problem, reach.plan, (), [
+    ...     (overrides, group, step) for overrides, group in _instants(problem)],
+    ...     [{"L": 0.5}, {"L": 1.0}], {"acc_mag"})
+    >>> round(b.result("acc_mag").value / a.result("acc_mag").value, 6)
+    2.0
+    """
+    columns = Columns(len(variants), warnings)
+    for overrides, objectives, step in groups:
+        chosen = [o for o in objectives if o.id in wanted]
+        if chosen:
+            step([instant_givens(problem, g, overrides) for g in variants], chosen,
+                 overrides, columns)
+    out: list[Solution | MechgradeError | None] = [None] * len(variants)
+    answered = columns.answered()
+    for i, solution in zip(answered, solutions_of(
+            problem, kinematics, p, columns.results, columns.failures, columns.base,
+            [tuple(w) for w in columns.warned], wanted, answered)):
+        out[i] = solution
+    return out
+
+
+def reached_alone(problem: Problem, reach: Reach) -> Step:
+    """The :data:`Step` that reaches each column's instant alone (:func:`_answer_group`)."""
+
+    def step(maps: list[dict], chosen: list[Objective], overrides: dict,
+             columns: Columns) -> None:
+        for i in columns.answered():
+            reached = _answer_group(problem, reach, maps[i], chosen, overrides,
+                                    columns.results[i], columns.failures[i])
+            if reached is not None:
+                warned = columns.warned[i]
+                warned += [w for w in reached.warnings if w not in warned]
+                if reports_state(columns.base[i], overrides):
+                    columns.base[i] = (reached.state, reached.givens)
+    return step
+
+
+def reports_state(base: tuple[State, dict] | None, overrides: dict) -> bool:
+    """Whether an instant reached for a group of objectives with givens of their own
+    ``overrides`` gives the state a solution reports, ``base`` the one so far: the
+    problem's own instant (a group without givens of its own) does, else the first reached.
+
+    >>> reports_state(None, {"t": 1.0}), reports_state(("s", {}), {"t": 1.0})
+    (True, False)
+    """
+    return not overrides or base is None
+
+
+def _answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[Objective],
+                  overrides: dict, results: dict[str, ObjectiveResult],
+                  failures: dict[str, MechgradeError]) -> Reached | None:
     """One group of objectives ``chosen`` asked at the givens ``given_map`` (``overrides``:
     their own among them): the instant reached by ``reach``, each objective read there (a
     symbolic one derived) into ``results``, or its error into ``failures``. Returns the
     instant reached (``None``: no numeric objective asked, or the instant not reached)."""
     numeric = {o.id for o in chosen if _numeric(o)}
     values: Mapping[str, np.ndarray] = {}
-    mistakes: dict = {}
+    mistakes: Mapping[str, list[np.ndarray]] = {}
+    failed: Mapping[str, MechgradeError] = {}
     reached = None
     if numeric:
         try:
             with quiet():  # once for the whole instant, not at each function it calls
                 reached = reach.instant(given_map, numeric, overrides)
         except MechgradeError as err:
-            failures.update({oid: err for oid in numeric})
+            failed = dict.fromkeys(numeric, err)
         else:
-            given_map = reached.givens
-            failures.update(reached.failures)
-            values, mistakes = reached.values, reached.mistakes
-    collect_results(problem, chosen, given_map, values, mistakes, results, failures,
-                    symbolic=reach.symbolic())
-    results.update(reach.attached(problem, {o.id: results[o.id] for o in chosen
-                                            if o.id in results}, reached, numeric))
+            given_map, failed = reached.givens, reached.failures
+            values = {oid: _column(v) for oid, v in reached.values.items()}
+            mistakes = {oid: [_column(v) for v in vs] for oid, vs in reached.mistakes.items()}
+    ((solved, lost),) = group_results(problem, chosen, [given_map], values, mistakes, [failed],
+                                      [0], reach.symbolic())
+    failures.update(lost)
+    results.update(reach.attached(problem, solved, reached, numeric))
     return reached
 
 
-def solution_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
-                results: Mapping[str, ObjectiveResult], failures: Mapping[str, MechgradeError],
-                base: tuple[State, dict] | None, dof: int, warnings: tuple[AuthorWarning, ...],
-                wanted: Collection[str]) -> Solution | MechgradeError:
-    """The solution of the objectives ``wanted`` (in the problem's order) from their
-    ``results`` and ``failures``, its state ``base`` (the state and givens of the problem's
-    own instant) reported in the units of ``kinematics`` and its degrees of freedom ``dof``
-    (:func:`degrees_of_freedom`); the first objective's error when none of them is solved."""
+def _column(si_values) -> np.ndarray:
+    """One instant's SI values as the one column of :func:`group_results`."""
+    return np.asarray(si_values, dtype=float).reshape(-1, 1)
+
+
+def group_results(problem: Problem, objectives: Sequence[Objective], maps: Sequence[dict],
+                  values: Mapping[str, np.ndarray], mistakes: Mapping[str, list[np.ndarray]],
+                  failed: Sequence[Mapping[str, MechgradeError]], columns: Collection[int],
+                  symbolic: Callable | None = None,
+                  generated: Mapping[str, Callable[[int], tuple]] | None = None,
+                  plausible: frozenset[str] | None = None
+                  ) -> list[tuple[dict[str, ObjectiveResult], dict[str, MechgradeError]]]:
+    """Each of ``columns``' results and failures of one group of ``objectives`` (one
+    instant of one solve, or a class's): a numeric objective's from its SI values at the
+    column (``values``: size x N, ``mistakes`` its declared mistakes' values, ``generated``
+    its generated mistakes as a function of the column), its error where ``failed`` (per
+    column) has one or where it is undefined; a symbolic one's derived by ``symbolic`` (by
+    default the kinematic one) at the column's givens ``maps``, once per
+    :func:`symbolic_dependence`. ``plausible``: the model's slips put in each result.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> asked = [problem.objective("acc_mag"), problem.objective("acc_mag_symbolic")]
+    >>> givens = instant_givens(problem, None, {})
+    >>> (right, _), (_, lost) = group_results(problem, asked, [givens] * 2, {
+    ...     "acc_mag": np.array([[0.6096, np.nan]])}, {}, [{}, {}], [0, 1])
+    >>> round(right["acc_mag"].value, 9), right["acc_mag_symbolic"].expr, list(lost)
+    (2.0, 'L*sqrt(thetad**4 + thetadd**2)', ['acc_mag'])
+    """
+    numeric: list[Objective] = []
+    symbols: list[str] = []
+    for o in objectives:
+        if _numeric(o):
+            numeric.append(o)
+        else:
+            symbols.append(o.id)
+    value_shown, declared, defined = {}, {}, {}
+    for o in numeric:
+        if o.id in values:
+            value_shown[o.id] = shown(values[o.id], o)
+            declared[o.id] = [shown(v, o) for v in mistakes.get(o.id, ())]
+            defined[o.id] = np.isfinite(values[o.id]).all(axis=0)
+            for v in mistakes.get(o.id, ()):
+                defined[o.id] = defined[o.id] & np.isfinite(v).all(axis=0)
+    answers: dict = {}  # the symbolic answers, by what they depend on
+    out = []
+    for i in columns:
+        results: dict[str, ObjectiveResult] = {}
+        failures: dict[str, MechgradeError] = {}
+        for o in numeric:
+            if o.id in failed[i]:
+                failures[o.id] = failed[i][o.id]
+            elif not defined[o.id][i]:
+                failures[o.id] = _undefined(o)
+            else:
+                results[o.id] = numeric_result(
+                    o, value_shown[o.id][i], [v[i] for v in declared[o.id]],
+                    generated[o.id](i) if generated else (), plausible)
+        for oid in symbols:
+            depends = symbolic_dependence(problem, maps[i], oid)
+            answer = answers.get((oid, depends))
+            if answer is None:
+                try:
+                    answer = _symbolic_answer(symbolic, problem, oid, maps[i], depends)
+                    if plausible is not None:
+                        answer = replace(answer, plausible=plausible)
+                except MechgradeError as err:
+                    answer = err
+                answers[oid, depends] = answer
+            if isinstance(answer, MechgradeError):
+                failures[oid] = answer
+            else:
+                results[oid] = answer
+        out.append((results, failures))
+    return out
+
+
+def solutions_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
+                 results: Sequence[Mapping[str, ObjectiveResult]],
+                 failures: Sequence[Mapping[str, MechgradeError]],
+                 bases: Sequence[tuple[State, dict] | None],
+                 warnings: Sequence[tuple[AuthorWarning, ...]], wanted: Collection[str],
+                 columns: Collection[int]) -> list[Solution | MechgradeError]:
+    """Each of ``columns``' solution of the objectives ``wanted`` (in the problem's order)
+    from its ``results`` and ``failures``, its state ``bases`` (the state and givens of the
+    problem's own instant, :func:`reports_state`) reported in the units of ``kinematics``, its
+    degrees of freedom (:func:`degrees_of_freedom`, every column's ranked together) and its
+    ``warnings``; the first objective's error when none of them is solved."""
+    dofs = degrees_of_freedom(p, [b[0] if b else None for b in bases])
     order = [o.id for o in problem.objectives if o.id in wanted]
-    if not results and order:  # nothing solved of what was asked
-        return failures[order[0]]
-    return Solution(problem=problem.id,
-                    results=tuple(results[oid] for oid in order if oid in results),
-                    state=_state(kinematics, p, base),
-                    dof=dof,
-                    failures=tuple(ObjectiveFailure(oid, failures[oid]) for oid in order
-                                   if oid in failures),
-                    warnings=warnings)
+    out: list[Solution | MechgradeError] = []
+    for i in columns:
+        if not results[i] and order:  # nothing solved of what was asked
+            out.append(failures[i][order[0]])
+            continue
+        out.append(Solution(
+            problem=problem.id,
+            results=tuple(results[i][oid] for oid in order if oid in results[i]),
+            state=_state(kinematics, p, bases[i]), dof=dofs[i],
+            failures=tuple(ObjectiveFailure(oid, failures[i][oid]) for oid in order
+                           if oid in failures[i]),
+            warnings=warnings[i]))
+    return out
 
 
 @dataclass(frozen=True)
@@ -337,36 +501,19 @@ def instant_givens(problem: Problem, givens, overrides: dict) -> dict:
     return given_map
 
 
-def collect_results(problem: Problem, objectives, given_map: dict, values: Mapping, mistakes: dict,
-                    results: dict, failures: dict, symbolic=None) -> None:
-    """Each objective's result at one instant into ``results`` (numeric ones from ``values``,
-    symbolic ones from ``symbolic(problem, id, givens)``, by default the kinematic one), or its
-    error into ``failures``; objectives that failed already are left alone."""
-    for obj in objectives:
-        if obj.id in failures:
-            continue
-        try:
-            if obj.kind == ObjectiveKind.SYMBOLIC:
-                results[obj.id] = _symbolic_answer(symbolic, problem, obj.id, given_map)
-            else:
-                results[obj.id] = _numeric_result(obj, values[obj.id], mistakes.get(obj.id, ()))
-        except MechgradeError as err:
-            failures[obj.id] = err
-
-
 _SYMBOLIC_ANSWERS: dict = {}
 _SYMBOLIC_LIMIT = 4096
 
 
-def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: dict):
+def _symbolic_answer(symbolic, problem: Problem, objective_id: str, given_map: dict,
+                     dependence: tuple):
     """A symbolic objective's answer (by ``symbolic``, by default the kinematic one), solved
-    once per problem and :func:`symbolic_dependence`
-    of the givens: a variant that changes only givens with units (not to or from zero) reuses
-    the answer of the first, without sympy. The kinematic answers are kept in the disk cache
-    too (:mod:`.cache`), under the problem's plan and that dependence."""
+    once per problem and ``dependence`` (:func:`symbolic_dependence` of the givens): a
+    variant that changes only givens with units (not to or from zero) reuses the answer of
+    the first, without sympy. The kinematic answers are kept in the disk cache too
+    (:mod:`.cache`), under the problem's plan and that dependence."""
     kinematic = symbolic is None
     symbolic = symbolic or _symbolic_result
-    dependence = symbolic_dependence(problem, given_map, objective_id)
     key = (symbolic, problem, objective_id, dependence)
     answer = _SYMBOLIC_ANSWERS.get(key)
     if answer is None:
@@ -513,10 +660,6 @@ def _shortest(expr) -> str:
     return min((sp.sstr(f) for f in forms), key=lambda text: (len(text), text))
 
 
-def _numeric_result(obj: Objective, si_values: np.ndarray, mistakes) -> ObjectiveResult:
-    return numeric_result(obj, _report(si_values, obj), [_report(v, obj) for v in mistakes])
-
-
 def numeric_result(obj: Objective, value, mistakes: Sequence, generated: Sequence = (),
                    plausible: frozenset[str] | None = None) -> ObjectiveResult:
     """A numeric objective's result from its value and its declared ``mistakes``' values as
@@ -556,11 +699,11 @@ def degrees_of_freedom(p: KinematicsPlan, states: Sequence[State | None]) -> lis
     return out
 
 
-def _report(si_values: np.ndarray, obj: Objective):
-    if not np.isfinite(si_values).all():
-        raise SolveError(f"objective '{obj.id}' is undefined at this instant (for example a "
-                         "direction of motion when the speed is zero)", where=obj.where)
-    return shown(np.asarray(si_values, dtype=float).reshape(-1, 1), obj)[0]
+def _undefined(obj: Objective) -> SolveError:
+    """The error of a numeric objective whose value (or a declared mistake's) is not finite
+    at its instant."""
+    return SolveError(f"objective '{obj.id}' is undefined at this instant (for example a "
+                      "direction of motion when the speed is zero)", where=obj.where)
 
 
 def shown(si: np.ndarray, obj: Objective) -> list:
