@@ -18,6 +18,7 @@ the unknown second rates and reactions.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
@@ -25,12 +26,12 @@ import sympy as sp
 from sympy.physics.vector import Dyadic, ReferenceFrame, Vector, dynamicsymbols
 
 from ..errors import Location, SolveError
-from ..expressions.syntax import Call, Name, Node, constant_value, to_text
-from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
+from ..expressions.syntax import Call, Name, Node, constant_value, to_text, walk
+from ..spec.dynamics import (GROUND, Analysis, Body, Damper, Dynamics, Impulse,
                              Integration, KineticFriction, LoadKind, Reaction, Restitution,
                              Spring, StaticFriction, WorkEnergy, dynamics_of,
                              junction_coordinates)
-from ..spec.model import ObjectiveKind, Problem
+from ..spec.model import Expr, ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
 from .build import Model, build
@@ -67,6 +68,34 @@ class Slip:
 
 
 @dataclass(frozen=True)
+class RatesBefore:
+    """An impact's rates just before it as inputs of its balances: ``balances`` are the
+    momentum balances and contact conditions with ``symbols`` standing for those rates, worth
+    ``values`` (in the parameters and coordinates). A model that differs only in these values
+    is the same balances with other inputs (:func:`read_kinetics`), not derived again.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> kin = derive_kinetics(load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml"))
+    >>> kin.before.values
+    (0, -v0*sin(theta), -v0*cos(theta))
+    >>> kin.before.shown(kin.before.balances) == kin.balances
+    True
+    """
+
+    symbols: tuple[sp.Symbol, ...]
+    values: tuple[sp.Expr, ...]
+    balances: tuple[Equation, ...]
+
+    def shown(self, equations) -> tuple[Equation, ...]:
+        """``equations`` (in :attr:`symbols`) with the rates' values put in, as written up."""
+        if not self.symbols:
+            return tuple(equations)
+        values = dict(zip(self.symbols, self.values))
+        return tuple(replace(e, expr=sp.expand(e.expr.xreplace(values))) for e in equations)
+
+
+@dataclass(frozen=True)
 class Kinetics:
     """A problem's kinetics in plain symbols.
 
@@ -95,6 +124,7 @@ class Kinetics:
     design: sp.Expr | None = None
     physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
     whens: tuple[tuple[str, sp.Expr], ...] = ()  # objective id -> lhs - rhs of its 'when'
+    before: RatesBefore | None = None  # an impact's balances with its rates before as inputs
     built: tuple = field(default=(), compare=False, repr=False)  # (model, loads, language)
 
     @property
@@ -230,6 +260,20 @@ class DynamicsInterpreter(Interpreter):
         self.where = Location()
         self.before: dict = {}  # the rates just before an impact
         self.symbolic = False  # whether the objective read is a symbolic one
+        # (find, frame, symbolic) -> its value and the requirements reading it adds
+        self.readings: dict[tuple, tuple[object, tuple]] = {}
+
+    def reading(self, model: Model, find: Expr, frame: str | None) -> tuple[object, tuple]:
+        """An objective's (or mistake's) ``find`` read in ``model`` (with this language), and
+        the requirements it adds at the instant: read once for every copy of the model that
+        asks it (a mistaken one, the same objectives)."""
+        key = (find.node, frame, self.symbolic)
+        found = self.readings.get(key)
+        if found is None:
+            self.requirements.clear()
+            value = _objective_value(model, find, frame)
+            found = self.readings[key] = (value, tuple(self.requirements))
+        return found
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -248,6 +292,15 @@ class DynamicsInterpreter(Interpreter):
             raise SolveError(f"during an impact {load.id} is an impulse: ask for "
                              f"impulse({load.id})", where=self.where)
         return self._load_force(load)
+
+    def with_rates_before(self, before: dict) -> DynamicsInterpreter:
+        """This language with other rates just before the impact (``before(...)`` reads)."""
+        other = copy.copy(self)
+        other.before, other.requirements = before, []
+        other.readings = {key: found for key, found in self.readings.items()
+                          if not any(isinstance(n, Call) and n.func == "before"
+                                     for n in walk(key[0]))}
+        return other
 
     def _fn_before(self, quantity: Node):
         return self._across_the_impact("before", quantity).subs(self.before)
@@ -548,32 +601,70 @@ _READ: dict[int, tuple[Problem, Kinetics]] = {}
 
 def read_kinetics(problem: Problem, source: Problem, kin: Kinetics) -> Kinetics | None:
     """The kinetics of ``problem``, ``source`` (whose kinetics is ``kin``) with other
-    objectives, or another event to integrate to (the same model): the source's balances,
+    objectives, another event to integrate to, or other rates just before its impact (the
+    same model): the source's balances (their rates before put in: :class:`RatesBefore`),
     only the objectives and the event read in its model (what :func:`derive_kinetics` gives
     ``problem`` from now on); ``None`` when the two differ in more."""
-    if replace(problem, objectives=()) != replace(_with_event_of(problem, source),
-                                                  objectives=()):
+    struck = _struck_otherwise(problem, source)
+    # a design's condition is read in the source's rates before
+    if not readable_in(problem, source) or (struck and kin.design is not None):
         return None
-    model, _, language = kin.built
+    model, loads, language = kin.built
+    before, balances = kin.before, kin.balances
+    if struck and before is not None:
+        analysis = dynamics_of(problem).analysis
+        assert isinstance(analysis, Impulse)
+        rates = _rates_before(analysis, model, kin.k)
+        language = language.with_rates_before(rates)
+        before = replace(before, values=tuple(rates.values()))
+        balances = before.shown(before.balances)
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     read = replace(kin, objectives=tuple(objectives), mistakes=tuple(mistakes),
                    requirements=tuple(requirements), whens=_whens(problem, model, language),
                    until=kin.until if problem.dynamics == source.dynamics
-                   else _analysis(problem, model, language, kin.k)[1])
+                   else _analysis(problem, model, language, kin.k)[1],
+                   before=before, balances=balances, built=(model, loads, language))
     if len(_READ) >= 256:
         _READ.clear()
     _READ[id(problem)] = (problem, read)
     return read
 
 
-def _with_event_of(problem: Problem, source: Problem) -> Problem:
-    """``source`` integrated to ``problem``'s event, where both are integrated (a motion
-    read at another instant is the same model)."""
+def readable_in(problem: Problem, source: Problem) -> bool:
+    """Whether ``problem`` is ``source`` with other objectives, another event to integrate
+    to, or other rates just before its impact: its kinetics read in the source's balances
+    (:func:`read_kinetics`), not derived again.
+
+    >>> from dataclasses import replace
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml")
+    >>> impact = p.dynamics.analysis
+    >>> struck = replace(p, dynamics=replace(p.dynamics, analysis=replace(
+    ...     impact, start=impact.start[:1])))
+    >>> readable_in(struck, p), readable_in(replace(struck, parameters=()), p)
+    (True, False)
+    """
+    return replace(problem, objectives=()) == replace(_as_read(problem, source), objectives=())
+
+
+def _as_read(problem: Problem, source: Problem) -> Problem:
+    """``source`` integrated to ``problem``'s event where both are integrated, or struck with
+    ``problem``'s rates just before where both are impacts (the same model read otherwise)."""
     a, b = (p.dynamics.analysis if p.dynamics else None for p in (problem, source))
-    if not (isinstance(a, Integration) and isinstance(b, Integration)) or a.until == b.until:
+    if isinstance(a, Integration) and isinstance(b, Integration) and a.until != b.until:
+        changed: Analysis = replace(b, until=a.until)
+    elif isinstance(a, Impulse) and isinstance(b, Impulse) and a.start != b.start:
+        changed = replace(b, start=a.start)
+    else:
         return source
-    d = dynamics_of(source)
-    return replace(source, dynamics=replace(d, analysis=replace(b, until=a.until)))
+    return replace(source, dynamics=replace(dynamics_of(source), analysis=changed))
+
+
+def _struck_otherwise(problem: Problem, source: Problem) -> bool:
+    """Whether ``problem`` and ``source`` are impacts with other rates just before."""
+    a, b = (p.dynamics.analysis if p.dynamics else None for p in (problem, source))
+    return isinstance(a, Impulse) and isinstance(b, Impulse) and a.start != b.start
 
 
 @lru_cache(maxsize=64)
@@ -591,24 +682,30 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     impact = isinstance(analysis, Impulse)
     before = _rates_before(analysis, model, k) if isinstance(analysis, Impulse) else {}
     language.before = before
-    balances: list[Equation] = []
+    # the rates before stand in the balances as inputs of their own (RatesBefore)
+    inputs = RatesBefore(tuple(sp.Dummy("before") for _ in before), tuple(before.values()), ())
+    stand = dict(zip(before, inputs.symbols))
+    written: list[Equation] = []
     junctions = {b.name for b in d.junctions}
     for b in d.bodies:
         if b.name in junctions:  # its balance is a constraint of the kinematics
             continue
-        for label, expr in _body_balances(problem, model, loads, inertias, b, before, impact):
+        for label, expr in _body_balances(problem, model, loads, inertias, b, stand, impact):
             if b.name in d.unbalanced and " balance about " in label:
                 continue
-            plain = sp.expand(model.plain(expr))
-            if not identically_zero(plain):
-                balances.append(Equation(label, plain, b.where))
+            written.append(Equation(label, sp.expand(model.plain(expr)), b.where))
+    kept = [(e, shown) for e, shown in zip(written, inputs.shown(written))
+            if not identically_zero(shown.expr)]
+    balances = [shown for _, shown in kept]
     check_loads(problem, model, loads, k.qd if impact else k.qdd, balances,
                 k.velocity if impact else k.acceleration, impact)
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
     if isinstance(analysis, Impulse):
-        balances += _contact_conditions(analysis, model, loads, before)
+        contacts = _contact_conditions(analysis, model, loads, stand)
+        balances += inputs.shown(contacts)
+        inputs = replace(inputs, balances=tuple(e for e, _ in kept) + contacts)
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until, settled = _analysis(problem, model, language, k)
@@ -627,7 +724,8 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
                     start=start, settled=settled, until=until, requirements=tuple(requirements), impact=impact,
                     design=_difference(d.design.so_that, model, language) if d.design else None,
                     physical=physical_bounds(problem, model, reactions, impact),
-                    whens=_whens(problem, model, language), built=(model, loads, language))
+                    whens=_whens(problem, model, language),
+                    before=inputs if impact else None, built=(model, loads, language))
 
 
 def _whens(problem: Problem, model: Model, language: DynamicsInterpreter
@@ -789,7 +887,7 @@ def balance_part(label: str) -> tuple[str, bool] | None:
 
 
 def _contact_conditions(analysis: Impulse, model: Model, loads: _Loads,
-                        before: dict) -> list[Equation]:
+                        before: dict) -> tuple[Equation, ...]:
     """The restitution and sticking conditions of an impact's contacts."""
     lang = model.language
     out = []
@@ -803,7 +901,7 @@ def _contact_conditions(analysis: Impulse, model: Model, loads: _Loads,
             rows = [(f"contact {i + 1} at {c.at}: sticking along {e.text}",
                      relative & lang.vector(e)) for e in c.directions]
         out += [Equation(label, sp.expand(model.plain(expr)), c.where) for label, expr in rows]
-    return out
+    return tuple(out)
 
 
 def _objective_values(problem: Problem, model: Model, language: DynamicsInterpreter):
@@ -812,14 +910,14 @@ def _objective_values(problem: Problem, model: Model, language: DynamicsInterpre
     objectives, mistakes, requirements = [], [], []
     view = replace(model, language=language)
     for obj in problem.objectives:
-        language.requirements.clear()
         language.where = obj.where
         language.symbolic = obj.kind == ObjectiveKind.SYMBOLIC
-        objectives.append((obj.id, _objective_value(view, obj.find, obj.frame)))
-        mistakes.append((obj.id, tuple(_objective_value(view, m.find, obj.frame)
-                                       for m in obj.mistakes)))
+        read = [language.reading(view, find, obj.frame)
+                for find in (obj.find, *(m.find for m in obj.mistakes))]
+        objectives.append((obj.id, read[0][0]))
+        mistakes.append((obj.id, tuple(value for value, _ in read[1:])))
         requirements += [(obj.id, reason, model.plain(expr))
-                         for reason, expr in language.requirements]
+                         for _, needs in read for reason, expr in needs]
     return objectives, mistakes, requirements
 
 

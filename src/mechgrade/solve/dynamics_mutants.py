@@ -46,6 +46,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import (DynamicsMutation, dynamics_mutations,
                                             unchanged_copy)
+from ..mechanics.dynamics import readable_in
 from ..mechanics.revalue import common_models, revaluation
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
@@ -301,10 +302,12 @@ def _common_model(problem: Problem, mistaken: Problem
                   ) -> tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None:
     """The model ``mistaken`` shares with the other mistaken copies of ``problem`` that
     differ from it only in numbers (:func:`~mechgrade.mechanics.revalue.common_models`; those
-    that are the unchanged copy with other numbers left out), and its values there."""
+    that are the unchanged copy with other numbers, or read in its balances, left out), and
+    its values there."""
     base = _shared_copy(problem)
     copies = tuple(m.problem for m in dynamics_mutations(problem)
-                   if m.problem is not None and revaluation(base, m.problem) is None)
+                   if m.problem is not None and revaluation(base, m.problem) is None
+                   and not readable_in(m.problem, base))
     if mistaken not in copies:
         return None
     return common_models(problem, copies)[copies.index(mistaken)]
@@ -322,8 +325,9 @@ def _shared_copy(problem: Problem) -> Problem:
 @lru_cache(maxsize=256)
 def _read_in_copy(problem: Problem, mistaken: Problem) -> Problem:
     """``mistaken``, solved with the balances of ``problem``'s unchanged copy
-    (:func:`_shared_copy`) where it differs from it only in its objectives or its event (a
-    value read at another instant of the motion: :func:`~.dynamics.read_in`)."""
+    (:func:`_shared_copy`) where it differs from it only in its objectives, its event (a
+    value read at another instant of the motion) or its rates before an impact
+    (:func:`~.dynamics.read_in`)."""
     try:
         read_in(mistaken, _shared_copy(problem))
     except _UNSOLVABLE:
