@@ -42,6 +42,7 @@ from ..spec.validate import symbol_meanings
 from ..spec.dynamics import (Integration, WorkEnergy, dynamics_of, instant_of_objective,
                              unchecked)
 from .analysis import analysis_of
+from .columns import WithInputs
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
@@ -100,23 +101,10 @@ def _lambdify(symbols, expr):
     return sp.lambdify(symbols, expr, modules="numpy", cse=True)
 
 
-@dataclass(frozen=True)
-class _Struck:
-    """A function of the extended state and an impact's rates just before it
-    (:class:`~mechgrade.mechanics.dynamics.RatesBefore`), called with the extended state:
-    ``before`` gives those rates from it. Another model's rates before are another
-    ``before`` for the same ``f``."""
-
-    f: Callable
-    before: Callable
-
-    def __call__(self, *x):
-        return self.f(*x, *self.before(*x))
-
-
 def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
     """The plan's ``residual``, ``jacobian`` and ``scale`` of ``kin``'s balances and
-    constraints; an impact's in its rates before (:class:`_Struck`)."""
+    constraints; an impact's of its rates before too, worked out from the state
+    (:class:`~.columns.WithInputs`: a model with other rates before is another ``inputs``)."""
     before = kin.before.symbols if kin.before is not None else ()
     balances = kin.before.balances if kin.before is not None else kin.balances
     exprs = sp.Matrix([e.expr for e in balances + kin.constraints])
@@ -127,7 +115,7 @@ def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
     if kin.before is None:
         return out
     rates = _lambdify(symbols, kin.before.values)
-    return {name: _Struck(f, rates) for name, f in out.items()}
+    return {name: WithInputs(f, rates) for name, f in out.items()}
 
 
 _BALANCE_FUNCTIONS = ("residual", "jacobian", "scale")
@@ -174,7 +162,7 @@ def read_in(problem: Problem, source: Problem) -> None:
     if kin.before is not None and kin.before != plan.kin.before:
         # other rates before the impact: the same balances, other inputs
         rates = _lambdify(plan.symbols, kin.before.values)
-        plan = replace(plan, **{name: replace(getattr(plan, name), before=rates)
+        plan = replace(plan, **{name: replace(getattr(plan, name), inputs=rates)
                                 for name in _BALANCE_FUNCTIONS})
     _share(problem, replace(plan, kin=kin, **_objective_functions(problem, kin, plan.symbols,
                                                                    plan)))
