@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import copy
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import sympy as sp
 from sympy.physics.vector import Dyadic, ReferenceFrame, Vector, dynamicsymbols
@@ -69,23 +69,22 @@ class Slip:
 
 @dataclass(frozen=True)
 class RatesBefore:
-    """An impact's rates just before it as inputs of its balances: ``balances`` are the
-    momentum balances and contact conditions with ``symbols`` standing for those rates, worth
-    ``values`` (in the parameters and coordinates). A model that differs only in these values
-    is the same balances with other inputs (:func:`read_kinetics`), not derived again.
+    """An impact's rates just before it as inputs of its balances: ``symbols`` stand for them
+    in the balances as derived (:attr:`Kinetics.written`), worth ``values`` (in the parameters
+    and coordinates). A model that differs only in these values is the same balances with
+    other inputs (:func:`read_kinetics`), not derived again.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
     >>> kin = derive_kinetics(load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml"))
     >>> kin.before.values
     (0, -v0*sin(theta), -v0*cos(theta))
-    >>> kin.before.shown(kin.before.balances) == kin.balances
+    >>> kin.before.shown(kin.written) == kin.balances
     True
     """
 
     symbols: tuple[sp.Symbol, ...]
     values: tuple[sp.Expr, ...]
-    balances: tuple[Equation, ...]
 
     def shown(self, equations) -> tuple[Equation, ...]:
         """``equations`` (in :attr:`symbols`) with the rates' values put in, as written up."""
@@ -99,7 +98,8 @@ class RatesBefore:
 class Kinetics:
     """A problem's kinetics in plain symbols.
 
-    ``balances`` are the momentum balances (``expr = 0``); ``reactions`` the unknown force
+    ``written`` are the momentum balances (``expr = 0``) as derived, an impact's in its rates
+    before (``before``), and :attr:`balances` as written up; ``reactions`` the unknown force
     magnitudes, one per direction of each reaction (``labels`` says which); ``objectives`` and
     ``mistakes`` are in these symbols too; the write-up text is :func:`_kinetics_lines`'s
     (written only when asked: a mistaken model is solved, never written up).
@@ -108,7 +108,7 @@ class Kinetics:
     k: Kinematics
     reactions: tuple[sp.Symbol, ...]
     labels: tuple[str, ...]
-    balances: tuple[Equation, ...]
+    written: tuple[Equation, ...]
     objectives: tuple[tuple[str, object], ...]
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
     bounds: tuple[Bound, ...]
@@ -126,6 +126,13 @@ class Kinetics:
     whens: tuple[tuple[str, sp.Expr], ...] = ()  # objective id -> lhs - rhs of its 'when'
     before: RatesBefore | None = None  # an impact's balances with its rates before as inputs
     built: tuple = field(default=(), compare=False, repr=False)  # (model, loads, language)
+
+    @cached_property
+    def balances(self) -> tuple[Equation, ...]:
+        """The momentum balances (and an impact's contact conditions) as written up: an
+        impact's rates before put in (worked out when first asked: a mistaken model's only
+        for its symbolic answers)."""
+        return self.before.shown(self.written) if self.before is not None else self.written
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -610,20 +617,19 @@ def read_kinetics(problem: Problem, source: Problem, kin: Kinetics) -> Kinetics 
     if not readable_in(problem, source) or (struck and kin.design is not None):
         return None
     model, loads, language = kin.built
-    before, balances = kin.before, kin.balances
+    before = kin.before
     if struck and before is not None:
         analysis = dynamics_of(problem).analysis
         assert isinstance(analysis, Impulse)
-        rates = _rates_before(analysis, model, kin.k)
-        language = language.with_rates_before(rates)
-        before = replace(before, values=tuple(rates.values()))
-        balances = before.shown(before.balances)
+        values = _values_before(analysis, model, kin.k)
+        language = language.with_rates_before(dict(zip(language.before, values)))
+        before = replace(before, values=values)
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     read = replace(kin, objectives=tuple(objectives), mistakes=tuple(mistakes),
                    requirements=tuple(requirements), whens=_whens(problem, model, language),
                    until=kin.until if problem.dynamics == source.dynamics
                    else _analysis(problem, model, language, kin.k)[1],
-                   before=before, balances=balances, built=(model, loads, language))
+                   before=before, built=(model, loads, language))
     if len(_READ) >= 256:
         _READ.clear()
     _READ[id(problem)] = (problem, read)
@@ -680,11 +686,12 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language = DynamicsInterpreter(problem, model, loads, inertias)
     analysis = d.analysis
     impact = isinstance(analysis, Impulse)
-    before = _rates_before(analysis, model, k) if isinstance(analysis, Impulse) else {}
-    language.before = before
+    values = _values_before(analysis, model, k) if isinstance(analysis, Impulse) else ()
+    language.before = dict(zip((model.symbols.dyn[c].diff(dynamicsymbols._t)
+                                for c in k.coordinates), values))
     # the rates before stand in the balances as inputs of their own (RatesBefore)
-    inputs = RatesBefore(tuple(sp.Dummy("before") for _ in before), tuple(before.values()), ())
-    stand = dict(zip(before, inputs.symbols))
+    inputs = RatesBefore(tuple(sp.Dummy("before") for _ in values), values)
+    stand = dict(zip(language.before, inputs.symbols))
     written: list[Equation] = []
     junctions = {b.name for b in d.junctions}
     for b in d.bodies:
@@ -702,30 +709,35 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
+    written = [e for e, _ in kept]
     if isinstance(analysis, Impulse):
         contacts = _contact_conditions(analysis, model, loads, stand)
         balances += inputs.shown(contacts)
-        inputs = replace(inputs, balances=tuple(e for e, _ in kept) + contacts)
+        written += contacts
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until, settled = _analysis(problem, model, language, k)
     weights = _weight_potentials(d, model, language, k)
-    return Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
-                    labels=tuple(labels), balances=tuple(balances),
-                    objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
-                    slips=tuple(slips),
-                    energy=model.plain(_energy(problem, language)) + sum(
-                        weights.values(), sp.Integer(0)),
-                    nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
-                                                           *d.friction)
-                                          if not isinstance(x, StaticFriction)
-                                          and x.name not in weights),
-                    workless=_workless(problem, model, language, reactions, labels),
-                    start=start, settled=settled, until=until, requirements=tuple(requirements), impact=impact,
-                    design=_difference(d.design.so_that, model, language) if d.design else None,
-                    physical=physical_bounds(problem, model, reactions, impact),
-                    whens=_whens(problem, model, language),
-                    before=inputs if impact else None, built=(model, loads, language))
+    kin = Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
+                   labels=tuple(labels), written=tuple(written),
+                   objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
+                   slips=tuple(slips),
+                   energy=model.plain(_energy(problem, language)) + sum(
+                       weights.values(), sp.Integer(0)),
+                   nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
+                                                          *d.friction)
+                                         if not isinstance(x, StaticFriction)
+                                         and x.name not in weights),
+                   workless=_workless(problem, model, language, reactions, labels),
+                   start=start, settled=settled, until=until, requirements=tuple(requirements),
+                   impact=impact,
+                   design=_difference(d.design.so_that, model, language) if d.design else None,
+                   physical=physical_bounds(problem, model, reactions, impact),
+                   whens=_whens(problem, model, language),
+                   before=inputs if impact else None, built=(model, loads, language))
+    if impact:  # the rates before put in already, for the checks above
+        kin.__dict__["balances"] = tuple(balances)
+    return kin
 
 
 def _whens(problem: Problem, model: Model, language: DynamicsInterpreter
@@ -809,15 +821,14 @@ def _kinetics_lines(problem: Problem, kin: Kinetics) -> tuple[tuple[str, tuple[s
             ("Unknown reactions", tuple(kin.labels) or ("none",)))
 
 
-def _rates_before(analysis: Impulse, model: Model, k: Kinematics) -> dict:
-    """The rates just before an impact (those not named in ``before:`` are 0), keyed by the
-    model's rate functions."""
+def _values_before(analysis: Impulse, model: Model, k: Kinematics) -> tuple[sp.Expr, ...]:
+    """The rates just before an impact (those not named in ``before:`` are 0), in the order
+    of the coordinates."""
     lang = model.language
     values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
               if s.value is None else model.plain(lang.scalar(s.value))
               for s in analysis.start}
-    return {model.symbols.dyn[c].diff(dynamicsymbols._t): values.get(qd, sp.Integer(0))
-            for c, qd in zip(k.coordinates, k.qd)}
+    return tuple(values.get(qd, sp.Integer(0)) for qd in k.qd)
 
 
 def _load_line(body: Body, loads: _Loads, model: Model) -> str:

@@ -106,8 +106,7 @@ def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
     constraints; an impact's of its rates before too, worked out from the state
     (:class:`~.columns.WithInputs`: a model with other rates before is another ``inputs``)."""
     before = kin.before.symbols if kin.before is not None else ()
-    balances = kin.before.balances if kin.before is not None else kin.balances
-    exprs = sp.Matrix([e.expr for e in balances + kin.constraints])
+    exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints])
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
     out = {name: _lambdify(symbols + before, f) for name, f in zip(
@@ -159,7 +158,7 @@ def read_in(problem: Problem, source: Problem) -> None:
     kin = read_kinetics(problem, source, plan.kin)
     if kin is None:
         return
-    if kin.before is not None and kin.before != plan.kin.before:
+    if kin.before is not None and kin.before is not plan.kin.before:
         # other rates before the impact: the same balances, other inputs
         rates = _lambdify(plan.symbols, kin.before.values)
         plan = replace(plan, **{name: replace(getattr(plan, name), inputs=rates)
@@ -181,7 +180,7 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     symbols = kp.index.symbols + kin.reactions
     level = 1 if kin.impact else 2
     columns = tuple(kp.index.rates(level)) + tuple(range(kp.index.size, len(symbols)))
-    equations = kin.balances + kin.constraints
+    equations = kin.written + kin.constraints
     unknowns = [symbols[i] for i in columns]
     return KineticsPlan(
         kin=kin, kp=kp, symbols=symbols, columns=columns,
