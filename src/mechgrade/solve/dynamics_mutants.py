@@ -12,8 +12,9 @@ another frame's unit vectors), read at the solved instant.
 A mistaken model that changes only numbers (the mass written for the weight, the weight left
 out, e read as 1) is the problem's unchanged copy solved with its parameters' mistaken values
 (:mod:`mechgrade.mechanics.revalue`); one that changes only the instant of the motion (a value
-read at its start) is read in the unchanged copy's balances, as the readings are in the
-problem's own: none is derived and lambdified again. Mistaken models that differ among
+read at its start), or the rates just before an impact (a sign flipped, sine and cosine
+exchanged: inputs of its balances), is read in the unchanged copy's balances, as the readings
+are in the problem's own: none is derived and lambdified again. Mistaken models that differ among
 themselves only in numbers (e on either component of an impact, a weight at one point or
 another) are derived once, together, each number a parameter of its own.
 
