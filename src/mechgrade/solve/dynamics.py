@@ -98,7 +98,7 @@ class KineticsPlan:
 
 
 def _lambdify(symbols, expr):
-    return sp.lambdify(symbols, expr, modules="numpy", cse=True)
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
 
 
 def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
