@@ -373,25 +373,31 @@ def _undetermined(problem: Problem, p: KinematicsPlan,
                   instants: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str],
                   alone: bool) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
     """Probe each freedom the givens leave at each instant (``(givens, solution, objectives'
-    values)``): an objective that changes depends on it. The k-th probes of all the instants
-    are solved together (:func:`_branches_columns`); an instant whose probe is not solved
-    gets that error."""
+    values)``): an objective that changes depends on it. Every probe of every instant is
+    solved together, each a column (:func:`_branches_columns`); an instant whose probe is not
+    solved gets the error of its first such probe."""
     out: dict[int, dict[str, MechgradeError] | MechgradeError] = {}
     probes = {i: _probes(p, g, base) if values else [] for i, (g, base, values) in
               instants.items()}  # no objective asked here (a dynamics instant): none moves
     depends: dict[int, dict[str, list[str]]] = {i: {} for i in instants}
-    for k in range(max(map(len, probes.values()), default=0)):
-        at = {i: probe[k] for i, probe in probes.items() if k < len(probe) and i not in out}
-        trials = _branches_columns(problem, p, {i: instants[i][0] for i in at},
-                                   {i: probe for i, (probe, _) in at.items()}, alone=alone)
-        for i, found in trials.items():
-            if isinstance(found, MechgradeError):
-                out[i] = found
-                continue
-            moved = _differing(instants[i][2], evaluate(p.objectives, found[0].state, only))
-            for oid in instants[i][2]:
-                if oid in moved:
-                    depends[i].setdefault(oid, []).append(at[i][1])
+    # (instant, probe) of each column, the k-th probes of all the instants before the k+1-th
+    columns = [(i, k) for k in range(max(map(len, probes.values()), default=0))
+               for i, probe in probes.items() if k < len(probe)]
+    trials = _branches_columns(problem, p, {m: instants[i][0] for m, (i, _) in
+                                            enumerate(columns)},
+                               {m: probes[i][k][0] for m, (i, k) in enumerate(columns)},
+                               alone=alone) if columns else {}
+    for m, (i, k) in enumerate(columns):
+        found = trials[m]
+        if i in out:
+            continue
+        if isinstance(found, MechgradeError):
+            out[i] = found
+            continue
+        moved = _differing(instants[i][2], evaluate(p.objectives, found[0].state, only))
+        for oid in instants[i][2]:
+            if oid in moved:
+                depends[i].setdefault(oid, []).append(probes[i][k][1])
     for i in instants:
         out.setdefault(i, {oid: UnderdeterminedError(
             f"objective '{oid}' is not determined by the givens: give a value for "
