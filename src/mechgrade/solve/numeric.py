@@ -10,6 +10,7 @@ coinciding, a singular constraint Jacobian) are warnings.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -519,7 +520,7 @@ def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
         scale = SAME_ROOT * np.maximum(finite.max(axis=(0, 1)), 1e-12)
         # every pair's distances at once (pairs x N): numpy calls per pair of points were
         # most of the time of a small solve
-        a, b = np.tril_indices(count, -1)
+        a, b = _pairs(count)
         close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
         always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
         flagged = close & ~always
@@ -528,6 +529,13 @@ def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
     if p.levels[0].constraint_rows and p.constraint_rank:
         singular = _weakest(p, X[:size]) < SINGULAR * _weakest(p, other)
     return pairs, singular
+
+
+@lru_cache(maxsize=64)
+def _pairs(count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Every pair ``(a, b)``, ``a > b``, of ``count`` points (made once per count: a small
+    solve's pairs took as long as their distances)."""
+    return np.tril_indices(count, -1)
 
 
 def _weakest(p: KinematicsPlan, X: np.ndarray) -> np.ndarray:
