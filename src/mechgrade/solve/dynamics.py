@@ -105,8 +105,17 @@ def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
     """The plan's ``residual``, ``jacobian`` and ``scale`` of ``kin``'s balances and
     constraints; an impact's of its rates before too, worked out from the state
     (:class:`~.columns.WithInputs`: a model with other rates before is another ``inputs``)."""
-    before = kin.before.symbols if kin.before is not None else ()
-    exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints])
+    # the rates before named apart from the state's symbols: a Dummy argument would make
+    # lambdify rename every argument in every expression
+    taken = {str(s) for s in symbols}
+    named = {}
+    for i, dummy in enumerate(kin.before.symbols if kin.before is not None else ()):
+        name = f"before_{i}"
+        while name in taken:
+            name = f"_{name}"
+        named[dummy] = sp.Symbol(name)
+    before = tuple(named.values())
+    exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints]).xreplace(named)
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
     out = {name: _lambdify(symbols + before, f) for name, f in zip(
