@@ -69,20 +69,21 @@ class Slip:
 
 @dataclass(frozen=True)
 class RatesBefore:
-    """An impact's rates just before it as inputs of its balances: ``symbols`` stand for them
-    in the balances as derived (:attr:`Kinetics.written`), worth ``values`` (in the parameters
-    and coordinates). A model that differs only in these values is the same balances with
-    other inputs (:func:`read_kinetics`), not derived again.
+    """An impact's rates just before it as inputs of its balances: ``symbols`` stand for the
+    ``rates`` that are not zero in the balances as derived (:attr:`Kinetics.written`), worth
+    ``values`` (in the parameters and coordinates). A model that differs only in these values
+    is the same balances with other inputs (:func:`read_kinetics`), not derived again.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
     >>> kin = derive_kinetics(load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml"))
-    >>> kin.before.values
-    (0, -v0*sin(theta), -v0*cos(theta))
+    >>> kin.before.rates, kin.before.values
+    ((std, snd), (-v0*sin(theta), -v0*cos(theta)))
     >>> kin.before.shown(kin.written) == kin.balances
     True
     """
 
+    rates: tuple[sp.Symbol, ...]
     symbols: tuple[sp.Symbol, ...]
     values: tuple[sp.Expr, ...]
 
@@ -622,8 +623,10 @@ def read_kinetics(problem: Problem, source: Problem, kin: Kinetics) -> Kinetics 
         analysis = dynamics_of(problem).analysis
         assert isinstance(analysis, Impulse)
         values = _values_before(analysis, model, kin.k)
-        language = language.with_rates_before(dict(zip(language.before, values)))
-        before = replace(before, values=values)
+        if any(not v.is_zero for qd, v in values.items() if qd not in before.rates):
+            return None  # a rate the source's balances take as zero
+        language = language.with_rates_before(dict(zip(language.before, values.values())))
+        before = replace(before, values=tuple(values[qd] for qd in before.rates))
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     read = replace(kin, objectives=tuple(objectives), mistakes=tuple(mistakes),
                    requirements=tuple(requirements), whens=_whens(problem, model, language),
@@ -686,12 +689,16 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language = DynamicsInterpreter(problem, model, loads, inertias)
     analysis = d.analysis
     impact = isinstance(analysis, Impulse)
-    values = _values_before(analysis, model, k) if isinstance(analysis, Impulse) else ()
-    language.before = dict(zip((model.symbols.dyn[c].diff(dynamicsymbols._t)
-                                for c in k.coordinates), values))
-    # the rates before stand in the balances as inputs of their own (RatesBefore)
-    inputs = RatesBefore(tuple(sp.Dummy("before") for _ in values), values)
-    stand = dict(zip(language.before, inputs.symbols))
+    values = _values_before(analysis, model, k) if isinstance(analysis, Impulse) else {}
+    functions = {qd: model.symbols.dyn[c].diff(dynamicsymbols._t)
+                 for c, qd in zip(k.coordinates, k.qd)}
+    language.before = {functions[qd]: v for qd, v in values.items()}
+    # the rates before that are not zero stand in the balances as inputs (RatesBefore)
+    rates = tuple(qd for qd, v in values.items() if not v.is_zero)
+    inputs = RatesBefore(rates, tuple(sp.Dummy("before") for _ in rates),
+                         tuple(values[qd] for qd in rates))
+    stand = {functions[qd]: inputs.symbols[rates.index(qd)] if qd in rates else v
+             for qd, v in values.items()}
     written: list[Equation] = []
     junctions = {b.name for b in d.junctions}
     for b in d.bodies:
@@ -821,14 +828,14 @@ def _kinetics_lines(problem: Problem, kin: Kinetics) -> tuple[tuple[str, tuple[s
             ("Unknown reactions", tuple(kin.labels) or ("none",)))
 
 
-def _values_before(analysis: Impulse, model: Model, k: Kinematics) -> tuple[sp.Expr, ...]:
-    """The rates just before an impact (those not named in ``before:`` are 0), in the order
-    of the coordinates."""
+def _values_before(analysis: Impulse, model: Model, k: Kinematics) -> dict:
+    """The rates just before an impact (those not named in ``before:`` are 0), keyed by the
+    rates' symbols in the order of the coordinates."""
     lang = model.language
     values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
               if s.value is None else model.plain(lang.scalar(s.value))
               for s in analysis.start}
-    return tuple(values.get(qd, sp.Integer(0)) for qd in k.qd)
+    return {qd: values.get(qd, sp.Integer(0)) for qd in k.qd}
 
 
 def _load_line(body: Body, loads: _Loads, model: Model) -> str:
