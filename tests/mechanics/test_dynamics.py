@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pytest
 
+from mechgrade.mechanics.dynamics import derive_kinetics, read_kinetics
 from mechgrade.mechanics.dynamics_mutations import dynamics_mutations
 from mechgrade.resources import shipped_dir
 from mechgrade.solve.dynamics import solve_dynamics
@@ -28,10 +30,6 @@ def test_omega_n_is_found_where_an_elimination_pivot_is_zero_at_the_instant():
 def test_an_impact_copy_whose_zero_rate_before_is_not_zero_is_derived_in_full():
     # 9.25's block is at rest before (x1' = 0): its balances take that rate as zero, so a
     # copy moving it is another model; one with the ball's rates otherwise is read in them
-    from dataclasses import replace
-
-    from mechgrade.mechanics.dynamics import derive_kinetics, read_kinetics
-
     problem = load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml")
     kin = derive_kinetics(problem)
     impact = problem.dynamics.analysis
