@@ -105,6 +105,28 @@ def test_a_value_read_at_another_instant_of_the_motion_shares_the_reference_s_ba
     assert kinetics_plan(moved).kin.balances != kinetics_plan(problem).kin.balances
 
 
+@pytest.mark.parametrize("name", ["ruina_9_24_momentum_projection", "pucks_oblique_impact"])
+def test_rates_before_an_impact_mistaken_are_read_in_the_reference_s_balances(name):
+    # a sign flipped, sin and cos exchanged, the impact taken head-on: the reference's
+    # balances with other rates before (9.24's objectives read before(momentum) in them),
+    # with the values of the copy's own derivation
+    problem = load_problem(PROBLEMS / f"{name}.yaml")
+    struck = [m.problem for m in dynamics_mutations(problem) if m.code in (
+        "given_sign", "angle_complement", "impact_taken_head_on")]
+    assert struck
+    for copy in struck:
+        ids = {o.id for o in copy.objectives if o.kind != "symbolic"}
+        own = solve_dynamics(replace(copy), objectives=ids)  # derived
+        read = kinetics_plan(_read_in_copy(problem, copy)).kin
+        assert read.written is kinetics_plan(problem).kin.written
+        derived = kinetics_plan(replace(copy)).kin
+        assert read.balances == derived.balances  # as written up
+        assert read.objectives == derived.objectives
+        shared = solve_dynamics(copy, objectives=ids)
+        for a, b in zip(own.results, shared.results):
+            assert np.allclose(a.value, b.value, rtol=1e-9, atol=1e-12), a.id
+
+
 def test_mistakes_that_differ_only_in_numbers_have_their_own_models_values_in_one_model():
     # the rod's three ways of putting e on the tangential component: one derivation
     problem = load_problem(PROBLEMS / "rod_strikes_ledge.yaml")

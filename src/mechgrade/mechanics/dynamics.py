@@ -18,19 +18,20 @@ the unknown second rates and reactions.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import sympy as sp
 from sympy.physics.vector import Dyadic, ReferenceFrame, Vector, dynamicsymbols
 
 from ..errors import Location, SolveError
-from ..expressions.syntax import Call, Name, Node, constant_value, to_text
-from ..spec.dynamics import (GROUND, Body, Damper, Dynamics, Impulse,
+from ..expressions.syntax import Call, Name, Node, constant_value, to_text, walk
+from ..spec.dynamics import (GROUND, Analysis, Body, Damper, Dynamics, Impulse,
                              Integration, KineticFriction, LoadKind, Reaction, Restitution,
                              Spring, StaticFriction, WorkEnergy, dynamics_of,
                              junction_coordinates)
-from ..spec.model import ObjectiveKind, Problem
+from ..spec.model import Expr, ObjectiveKind, Problem
 from .derivation import kinematics_derivation
 from .bodies import central_inertia, parallel_axis
 from .build import Model, build
@@ -67,10 +68,39 @@ class Slip:
 
 
 @dataclass(frozen=True)
+class RatesBefore:
+    """An impact's rates just before it as inputs of its balances: ``symbols`` stand for the
+    ``rates`` that are not zero in the balances as derived (:attr:`Kinetics.written`), worth
+    ``values`` (in the parameters and coordinates). A model that differs only in these values
+    is the same balances with other inputs (:func:`read_kinetics`), not derived again.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> kin = derive_kinetics(load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml"))
+    >>> kin.before.rates, kin.before.values
+    ((std, snd), (-v0*sin(theta), -v0*cos(theta)))
+    >>> kin.before.shown(kin.written) == kin.balances
+    True
+    """
+
+    rates: tuple[sp.Symbol, ...]
+    symbols: tuple[sp.Symbol, ...]
+    values: tuple[sp.Expr, ...]
+
+    def shown(self, equations) -> tuple[Equation, ...]:
+        """``equations`` (in :attr:`symbols`) with the rates' values put in, as written up."""
+        if not self.symbols:
+            return tuple(equations)
+        values = dict(zip(self.symbols, self.values))
+        return tuple(replace(e, expr=sp.expand(e.expr.xreplace(values))) for e in equations)
+
+
+@dataclass(frozen=True)
 class Kinetics:
     """A problem's kinetics in plain symbols.
 
-    ``balances`` are the momentum balances (``expr = 0``); ``reactions`` the unknown force
+    ``written`` are the momentum balances (``expr = 0``) as derived, an impact's in its rates
+    before (``before``), and :attr:`balances` as written up; ``reactions`` the unknown force
     magnitudes, one per direction of each reaction (``labels`` says which); ``objectives`` and
     ``mistakes`` are in these symbols too; the write-up text is :func:`_kinetics_lines`'s
     (written only when asked: a mistaken model is solved, never written up).
@@ -79,7 +109,7 @@ class Kinetics:
     k: Kinematics
     reactions: tuple[sp.Symbol, ...]
     labels: tuple[str, ...]
-    balances: tuple[Equation, ...]
+    written: tuple[Equation, ...]
     objectives: tuple[tuple[str, object], ...]
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
     bounds: tuple[Bound, ...]
@@ -95,7 +125,15 @@ class Kinetics:
     design: sp.Expr | None = None
     physical: tuple[PhysicalBound, ...] = ()  # what the instant must keep (mechanics.loads)
     whens: tuple[tuple[str, sp.Expr], ...] = ()  # objective id -> lhs - rhs of its 'when'
+    before: RatesBefore | None = None  # an impact's balances with its rates before as inputs
     built: tuple = field(default=(), compare=False, repr=False)  # (model, loads, language)
+
+    @cached_property
+    def balances(self) -> tuple[Equation, ...]:
+        """The momentum balances (and an impact's contact conditions) as written up: an
+        impact's rates before put in (worked out when first asked: a mistaken model's only
+        for its symbolic answers)."""
+        return self.before.shown(self.written) if self.before is not None else self.written
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -230,6 +268,20 @@ class DynamicsInterpreter(Interpreter):
         self.where = Location()
         self.before: dict = {}  # the rates just before an impact
         self.symbolic = False  # whether the objective read is a symbolic one
+        # (find, frame, symbolic) -> its value and the requirements reading it adds
+        self.readings: dict[tuple, tuple[object, tuple]] = {}
+
+    def reading(self, model: Model, find: Expr, frame: str | None) -> tuple[object, tuple]:
+        """An objective's (or mistake's) ``find`` read in ``model`` (with this language), and
+        the requirements it adds at the instant: read once for every copy of the model that
+        asks it (a mistaken one, the same objectives)."""
+        key = (find.node, frame, self.symbolic)
+        found = self.readings.get(key)
+        if found is None:
+            self.requirements.clear()
+            value = _objective_value(model, find, frame)
+            found = self.readings[key] = (value, tuple(self.requirements))
+        return found
 
     def _omega(self, body: Body, frame: str) -> Vector:
         if body.frame is None:
@@ -248,6 +300,15 @@ class DynamicsInterpreter(Interpreter):
             raise SolveError(f"during an impact {load.id} is an impulse: ask for "
                              f"impulse({load.id})", where=self.where)
         return self._load_force(load)
+
+    def with_rates_before(self, before: dict) -> DynamicsInterpreter:
+        """This language with other rates just before the impact (``before(...)`` reads)."""
+        other = copy.copy(self)
+        other.before, other.requirements = before, []
+        other.readings = {key: found for key, found in self.readings.items()
+                          if not any(isinstance(n, Call) and n.func == "before"
+                                     for n in walk(key[0]))}
+        return other
 
     def _fn_before(self, quantity: Node):
         return self._across_the_impact("before", quantity).subs(self.before)
@@ -548,32 +609,71 @@ _READ: dict[int, tuple[Problem, Kinetics]] = {}
 
 def read_kinetics(problem: Problem, source: Problem, kin: Kinetics) -> Kinetics | None:
     """The kinetics of ``problem``, ``source`` (whose kinetics is ``kin``) with other
-    objectives, or another event to integrate to (the same model): the source's balances,
+    objectives, another event to integrate to, or other rates just before its impact (the
+    same model): the source's balances (their rates before put in: :class:`RatesBefore`),
     only the objectives and the event read in its model (what :func:`derive_kinetics` gives
     ``problem`` from now on); ``None`` when the two differ in more."""
-    if replace(problem, objectives=()) != replace(_with_event_of(problem, source),
-                                                  objectives=()):
+    struck = _struck_otherwise(problem, source)
+    # a design's condition is read in the source's rates before
+    if not readable_in(problem, source) or (struck and kin.design is not None):
         return None
-    model, _, language = kin.built
+    model, loads, language = kin.built
+    before = kin.before
+    if struck and before is not None:
+        analysis = dynamics_of(problem).analysis
+        assert isinstance(analysis, Impulse)
+        values = _values_before(analysis, model, kin.k)
+        if any(not v.is_zero for qd, v in values.items() if qd not in before.rates):
+            return None  # a rate the source's balances take as zero
+        language = language.with_rates_before(dict(zip(language.before, values.values())))
+        before = replace(before, values=tuple(values[qd] for qd in before.rates))
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     read = replace(kin, objectives=tuple(objectives), mistakes=tuple(mistakes),
                    requirements=tuple(requirements), whens=_whens(problem, model, language),
                    until=kin.until if problem.dynamics == source.dynamics
-                   else _analysis(problem, model, language, kin.k)[1])
+                   else _analysis(problem, model, language, kin.k)[1],
+                   before=before, built=(model, loads, language))
     if len(_READ) >= 256:
         _READ.clear()
     _READ[id(problem)] = (problem, read)
     return read
 
 
-def _with_event_of(problem: Problem, source: Problem) -> Problem:
-    """``source`` integrated to ``problem``'s event, where both are integrated (a motion
-    read at another instant is the same model)."""
+def readable_in(problem: Problem, source: Problem) -> bool:
+    """Whether ``problem`` is ``source`` with other objectives, another event to integrate
+    to, or other rates just before its impact: its kinetics read in the source's balances
+    (:func:`read_kinetics`), not derived again.
+
+    >>> from dataclasses import replace
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> p = load_problem(shipped_dir("problems") / "ruina_9_25_units_matrix.yaml")
+    >>> impact = p.dynamics.analysis
+    >>> struck = replace(p, dynamics=replace(p.dynamics, analysis=replace(
+    ...     impact, start=impact.start[:1])))
+    >>> readable_in(struck, p), readable_in(replace(struck, parameters=()), p)
+    (True, False)
+    """
+    return replace(problem, objectives=()) == replace(_as_read(problem, source), objectives=())
+
+
+def _as_read(problem: Problem, source: Problem) -> Problem:
+    """``source`` integrated to ``problem``'s event where both are integrated, or struck with
+    ``problem``'s rates just before where both are impacts (the same model read otherwise)."""
     a, b = (p.dynamics.analysis if p.dynamics else None for p in (problem, source))
-    if not (isinstance(a, Integration) and isinstance(b, Integration)) or a.until == b.until:
+    if isinstance(a, Integration) and isinstance(b, Integration) and a.until != b.until:
+        changed: Analysis = replace(b, until=a.until)
+    elif isinstance(a, Impulse) and isinstance(b, Impulse) and a.start != b.start:
+        changed = replace(b, start=a.start)
+    else:
         return source
-    d = dynamics_of(source)
-    return replace(source, dynamics=replace(d, analysis=replace(b, until=a.until)))
+    return replace(source, dynamics=replace(dynamics_of(source), analysis=changed))
+
+
+def _struck_otherwise(problem: Problem, source: Problem) -> bool:
+    """Whether ``problem`` and ``source`` are impacts with other rates just before."""
+    a, b = (p.dynamics.analysis if p.dynamics else None for p in (problem, source))
+    return isinstance(a, Impulse) and isinstance(b, Impulse) and a.start != b.start
 
 
 @lru_cache(maxsize=64)
@@ -589,45 +689,62 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     language = DynamicsInterpreter(problem, model, loads, inertias)
     analysis = d.analysis
     impact = isinstance(analysis, Impulse)
-    before = _rates_before(analysis, model, k) if isinstance(analysis, Impulse) else {}
-    language.before = before
-    balances: list[Equation] = []
+    values = _values_before(analysis, model, k) if isinstance(analysis, Impulse) else {}
+    functions = {qd: model.symbols.dyn[c].diff(dynamicsymbols._t)
+                 for c, qd in zip(k.coordinates, k.qd)}
+    language.before = {functions[qd]: v for qd, v in values.items()}
+    # the rates before that are not zero stand in the balances as inputs (RatesBefore)
+    rates = tuple(qd for qd, v in values.items() if not v.is_zero)
+    inputs = RatesBefore(rates, tuple(sp.Dummy("before") for _ in rates),
+                         tuple(values[qd] for qd in rates))
+    stand = {functions[qd]: inputs.symbols[rates.index(qd)] if qd in rates else v
+             for qd, v in values.items()}
+    written: list[Equation] = []
     junctions = {b.name for b in d.junctions}
     for b in d.bodies:
         if b.name in junctions:  # its balance is a constraint of the kinematics
             continue
-        for label, expr in _body_balances(problem, model, loads, inertias, b, before, impact):
+        for label, expr in _body_balances(problem, model, loads, inertias, b, stand, impact):
             if b.name in d.unbalanced and " balance about " in label:
                 continue
-            plain = sp.expand(model.plain(expr))
-            if not identically_zero(plain):
-                balances.append(Equation(label, plain, b.where))
+            written.append(Equation(label, sp.expand(model.plain(expr)), b.where))
+    kept = [(e, shown) for e, shown in zip(written, inputs.shown(written))
+            if not identically_zero(shown.expr)]
+    balances = [shown for _, shown in kept]
     check_loads(problem, model, loads, k.qd if impact else k.qdd, balances,
                 k.velocity if impact else k.acceleration, impact)
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
+    written = [e for e, _ in kept]
     if isinstance(analysis, Impulse):
-        balances += _contact_conditions(analysis, model, loads, before)
+        contacts = _contact_conditions(analysis, model, loads, stand)
+        balances += inputs.shown(contacts)
+        written += contacts
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until, settled = _analysis(problem, model, language, k)
     weights = _weight_potentials(d, model, language, k)
-    return Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
-                    labels=tuple(labels), balances=tuple(balances),
-                    objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
-                    slips=tuple(slips),
-                    energy=model.plain(_energy(problem, language)) + sum(
-                        weights.values(), sp.Integer(0)),
-                    nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
-                                                           *d.friction)
-                                          if not isinstance(x, StaticFriction)
-                                          and x.name not in weights),
-                    workless=_workless(problem, model, language, reactions, labels),
-                    start=start, settled=settled, until=until, requirements=tuple(requirements), impact=impact,
-                    design=_difference(d.design.so_that, model, language) if d.design else None,
-                    physical=physical_bounds(problem, model, reactions, impact),
-                    whens=_whens(problem, model, language), built=(model, loads, language))
+    kin = Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
+                   labels=tuple(labels), written=tuple(written),
+                   objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
+                   slips=tuple(slips),
+                   energy=model.plain(_energy(problem, language)) + sum(
+                       weights.values(), sp.Integer(0)),
+                   nonconservative=tuple(x.name for x in (*d.forces, *d.couples, *d.dampers,
+                                                          *d.friction)
+                                         if not isinstance(x, StaticFriction)
+                                         and x.name not in weights),
+                   workless=_workless(problem, model, language, reactions, labels),
+                   start=start, settled=settled, until=until, requirements=tuple(requirements),
+                   impact=impact,
+                   design=_difference(d.design.so_that, model, language) if d.design else None,
+                   physical=physical_bounds(problem, model, reactions, impact),
+                   whens=_whens(problem, model, language),
+                   before=inputs if impact else None, built=(model, loads, language))
+    if impact:  # the rates before put in already, for the checks above
+        kin.__dict__["balances"] = tuple(balances)
+    return kin
 
 
 def _whens(problem: Problem, model: Model, language: DynamicsInterpreter
@@ -711,15 +828,14 @@ def _kinetics_lines(problem: Problem, kin: Kinetics) -> tuple[tuple[str, tuple[s
             ("Unknown reactions", tuple(kin.labels) or ("none",)))
 
 
-def _rates_before(analysis: Impulse, model: Model, k: Kinematics) -> dict:
+def _values_before(analysis: Impulse, model: Model, k: Kinematics) -> dict:
     """The rates just before an impact (those not named in ``before:`` are 0), keyed by the
-    model's rate functions."""
+    rates' symbols in the order of the coordinates."""
     lang = model.language
     values = {k.quantity(s.key.node): (sp.nsimplify(s.si) if s.si == 0 else sp.Float(s.si))
               if s.value is None else model.plain(lang.scalar(s.value))
               for s in analysis.start}
-    return {model.symbols.dyn[c].diff(dynamicsymbols._t): values.get(qd, sp.Integer(0))
-            for c, qd in zip(k.coordinates, k.qd)}
+    return {qd: values.get(qd, sp.Integer(0)) for qd in k.qd}
 
 
 def _load_line(body: Body, loads: _Loads, model: Model) -> str:
@@ -789,7 +905,7 @@ def balance_part(label: str) -> tuple[str, bool] | None:
 
 
 def _contact_conditions(analysis: Impulse, model: Model, loads: _Loads,
-                        before: dict) -> list[Equation]:
+                        before: dict) -> tuple[Equation, ...]:
     """The restitution and sticking conditions of an impact's contacts."""
     lang = model.language
     out = []
@@ -803,7 +919,7 @@ def _contact_conditions(analysis: Impulse, model: Model, loads: _Loads,
             rows = [(f"contact {i + 1} at {c.at}: sticking along {e.text}",
                      relative & lang.vector(e)) for e in c.directions]
         out += [Equation(label, sp.expand(model.plain(expr)), c.where) for label, expr in rows]
-    return out
+    return tuple(out)
 
 
 def _objective_values(problem: Problem, model: Model, language: DynamicsInterpreter):
@@ -812,14 +928,14 @@ def _objective_values(problem: Problem, model: Model, language: DynamicsInterpre
     objectives, mistakes, requirements = [], [], []
     view = replace(model, language=language)
     for obj in problem.objectives:
-        language.requirements.clear()
         language.where = obj.where
         language.symbolic = obj.kind == ObjectiveKind.SYMBOLIC
-        objectives.append((obj.id, _objective_value(view, obj.find, obj.frame)))
-        mistakes.append((obj.id, tuple(_objective_value(view, m.find, obj.frame)
-                                       for m in obj.mistakes)))
+        read = [language.reading(view, find, obj.frame)
+                for find in (obj.find, *(m.find for m in obj.mistakes))]
+        objectives.append((obj.id, read[0][0]))
+        mistakes.append((obj.id, tuple(value for value, _ in read[1:])))
         requirements += [(obj.id, reason, model.plain(expr))
-                         for reason, expr in language.requirements]
+                         for _, needs in read for reason, expr in needs]
     return objectives, mistakes, requirements
 
 

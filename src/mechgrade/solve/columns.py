@@ -13,6 +13,7 @@ import types
 import warnings
 from contextlib import contextmanager
 from contextvars import ContextVar
+from dataclasses import dataclass
 from functools import lru_cache, partial
 from typing import Callable, Iterator
 
@@ -23,10 +24,28 @@ from .plan import _OnFirstCall
 from .rules import cutoff, inverted, significant
 
 
+@dataclass(frozen=True)
+class WithInputs:
+    """A function ``f`` of the state and of inputs worked out from it (``inputs``, of the
+    state), called with the state: an impact's balances, of its rates just before it.
+
+    >>> WithInputs(lambda x, y, before: x + y - before, lambda x, y: (2 * x,))(1.0, 5.0)
+    4.0
+    """
+
+    f: Callable
+    inputs: Callable
+
+    def __call__(self, *x):
+        return self.f(*x, *self.inputs(*x))
+
+
 @lru_cache(maxsize=4096)
 def _batched(f: Callable) -> Callable:
     """``f`` (made by ``sympy.lambdify``) with its matrices built from entries that may be
     arrays of different shapes (a constant beside a column of values)."""
+    if isinstance(f, WithInputs):
+        return WithInputs(_batched(f.f), _batched(f.inputs))
     if isinstance(f, _OnFirstCall):
         f = f.function
     namespace = dict(f.__globals__)

@@ -42,6 +42,7 @@ from ..spec.validate import symbol_meanings
 from ..spec.dynamics import (Integration, WorkEnergy, dynamics_of, instant_of_objective,
                              unchecked)
 from .analysis import analysis_of
+from .columns import WithInputs
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
@@ -97,7 +98,35 @@ class KineticsPlan:
 
 
 def _lambdify(symbols, expr):
-    return sp.lambdify(symbols, expr, modules="numpy", cse=True)
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
+
+
+def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
+    """The plan's ``residual``, ``jacobian`` and ``scale`` of ``kin``'s balances and
+    constraints; an impact's of its rates before too, worked out from the state
+    (:class:`~.columns.WithInputs`: a model with other rates before is another ``inputs``)."""
+    # the rates before named apart from the state's symbols: a Dummy argument would make
+    # lambdify rename every argument in every expression
+    taken = {str(s) for s in symbols}
+    named = {}
+    for i, dummy in enumerate(kin.before.symbols if kin.before is not None else ()):
+        name = f"before_{i}"
+        while name in taken:
+            name = f"_{name}"
+        named[dummy] = sp.Symbol(name)
+    before = tuple(named.values())
+    exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints]).xreplace(named)
+    scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
+                       for e in exprs])
+    out = {name: _lambdify(symbols + before, f) for name, f in zip(
+        _BALANCE_FUNCTIONS, (exprs, exprs.jacobian(unknowns), scale))}
+    if kin.before is None:
+        return out
+    rates = _lambdify(symbols, kin.before.values)
+    return {name: WithInputs(f, rates) for name, f in out.items()}
+
+
+_BALANCE_FUNCTIONS = ("residual", "jacobian", "scale")
 
 
 def kinetics_plan(problem: Problem) -> KineticsPlan:
@@ -131,14 +160,20 @@ def share_kinetics(copy: Problem, source: Problem) -> bool:
 
 
 def read_in(problem: Problem, source: Problem) -> None:
-    """Let ``problem``, ``source`` with other objectives, be solved with ``source``'s
-    balances and functions: only its objectives derived and lambdified
-    (:func:`~mechgrade.mechanics.dynamics.read_kinetics`)."""
+    """Let ``problem``, ``source`` with other objectives (or event, or rates before its
+    impact), be solved with ``source``'s balances and functions: only its objectives derived
+    and lambdified (:func:`~mechgrade.mechanics.dynamics.read_kinetics`)."""
     plan = kinetics_plan(source)
     kin = read_kinetics(problem, source, plan.kin)
-    if kin is not None:
-        _share(problem, replace(plan, kin=kin, **_objective_functions(problem, kin,
-                                                                       plan.symbols)))
+    if kin is None:
+        return
+    if kin.before is not None and kin.before is not plan.kin.before:
+        # other rates before the impact: the same balances, other inputs
+        rates = _lambdify(plan.symbols, kin.before.values)
+        plan = replace(plan, **{name: replace(getattr(plan, name), inputs=rates)
+                                for name in _BALANCE_FUNCTIONS})
+    _share(problem, replace(plan, kin=kin, **_objective_functions(problem, kin, plan.symbols,
+                                                                   plan)))
 
 
 def _share(problem: Problem, plan: KineticsPlan) -> None:
@@ -154,15 +189,11 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     symbols = kp.index.symbols + kin.reactions
     level = 1 if kin.impact else 2
     columns = tuple(kp.index.rates(level)) + tuple(range(kp.index.size, len(symbols)))
-    equations = kin.balances + kin.constraints
-    exprs = sp.Matrix([e.expr for e in equations])
+    equations = kin.written + kin.constraints
     unknowns = [symbols[i] for i in columns]
-    scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
-                       for e in exprs])
     return KineticsPlan(
         kin=kin, kp=kp, symbols=symbols, columns=columns,
-        residual=_lambdify(symbols, exprs), jacobian=_lambdify(symbols, exprs.jacobian(unknowns)),
-        scale=_lambdify(symbols, scale), labels=tuple(e.label for e in equations),
+        **_balance_functions(kin, symbols, unknowns), labels=tuple(e.label for e in equations),
         wheres=tuple(e.where for e in equations),
         bounds=tuple((b, _lambdify(symbols, b.tangential), _lambdify(symbols, b.normal),
                       _lambdify(symbols, b.mu)) for b in kin.bounds),
@@ -173,16 +204,30 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
         **_objective_functions(problem, kin, symbols))
 
 
-def _objective_functions(problem: Problem, kin: Kinetics, symbols) -> dict:
+def _objective_functions(problem: Problem, kin: Kinetics, symbols,
+                         source: KineticsPlan | None = None) -> dict:
     """The plan's functions of ``problem``'s numeric objectives (their values, author's
-    mistakes and requirements) in ``kin``."""
+    mistakes and requirements) in ``kin``: those of ``source`` (a plan of the same balances)
+    where it has one of the same expression."""
     numeric = {o.id for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC}
+    known: list[tuple[object, Callable]] = []
+    if source is not None:
+        done = dict(source.objectives)
+        known = [(e, done[oid]) for oid, e in source.kin.objectives if oid in done]
+        known += [(e, f) for (oid, exprs_), (_, fs) in zip(source.kin.mistakes, source.mistakes)
+                  for e, f in zip(exprs_, fs)]
+        known += [(e, f) for (_, _, e), (_, _, f) in zip(source.kin.requirements,
+                                                          source.requirements)]
+
+    def function(expr) -> Callable:
+        return next((f for e, f in known if e is expr or e == expr), None) \
+            or _lambdify(symbols, expr)
+
     return dict(
-        objectives=tuple((oid, _lambdify(symbols, e)) for oid, e in kin.objectives
-                         if oid in numeric),
-        mistakes=tuple((oid, tuple(_lambdify(symbols, e) for e in exprs_))
+        objectives=tuple((oid, function(e)) for oid, e in kin.objectives if oid in numeric),
+        mistakes=tuple((oid, tuple(function(e) for e in exprs_))
                        for oid, exprs_ in kin.mistakes if oid in numeric),
-        requirements=tuple((oid, reason, _lambdify(symbols, expr))
+        requirements=tuple((oid, reason, function(expr))
                            for oid, reason, expr in kin.requirements))
 
 

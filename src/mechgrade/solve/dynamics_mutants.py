@@ -12,8 +12,9 @@ another frame's unit vectors), read at the solved instant.
 A mistaken model that changes only numbers (the mass written for the weight, the weight left
 out, e read as 1) is the problem's unchanged copy solved with its parameters' mistaken values
 (:mod:`mechgrade.mechanics.revalue`); one that changes only the instant of the motion (a value
-read at its start) is read in the unchanged copy's balances, as the readings are in the
-problem's own: none is derived and lambdified again. Mistaken models that differ among
+read at its start), or the rates just before an impact (a sign flipped, sine and cosine
+exchanged: inputs of its balances), is read in the unchanged copy's balances, as the readings
+are in the problem's own: none is derived and lambdified again. Mistaken models that differ among
 themselves only in numbers (e on either component of an impact, a weight at one point or
 another) are derived once, together, each number a parameter of its own.
 
@@ -46,6 +47,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name
 from ..mechanics.dynamics_mutations import (DynamicsMutation, dynamics_mutations,
                                             unchanged_copy)
+from ..mechanics.dynamics import readable_in
 from ..mechanics.revalue import common_models, revaluation
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
@@ -301,10 +303,12 @@ def _common_model(problem: Problem, mistaken: Problem
                   ) -> tuple[Problem, tuple[tuple[str, sp.Expr], ...]] | None:
     """The model ``mistaken`` shares with the other mistaken copies of ``problem`` that
     differ from it only in numbers (:func:`~mechgrade.mechanics.revalue.common_models`; those
-    that are the unchanged copy with other numbers left out), and its values there."""
+    that are the unchanged copy with other numbers, or read in its balances, left out), and
+    its values there."""
     base = _shared_copy(problem)
     copies = tuple(m.problem for m in dynamics_mutations(problem)
-                   if m.problem is not None and revaluation(base, m.problem) is None)
+                   if m.problem is not None and revaluation(base, m.problem) is None
+                   and not readable_in(m.problem, base))
     if mistaken not in copies:
         return None
     return common_models(problem, copies)[copies.index(mistaken)]
@@ -322,8 +326,9 @@ def _shared_copy(problem: Problem) -> Problem:
 @lru_cache(maxsize=256)
 def _read_in_copy(problem: Problem, mistaken: Problem) -> Problem:
     """``mistaken``, solved with the balances of ``problem``'s unchanged copy
-    (:func:`_shared_copy`) where it differs from it only in its objectives or its event (a
-    value read at another instant of the motion: :func:`~.dynamics.read_in`)."""
+    (:func:`_shared_copy`) where it differs from it only in its objectives, its event (a
+    value read at another instant of the motion) or its rates before an impact
+    (:func:`~.dynamics.read_in`)."""
     try:
         read_in(mistaken, _shared_copy(problem))
     except _UNSOLVABLE:

@@ -10,6 +10,7 @@ coinciding, a singular constraint Jacobian) are warnings.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -287,7 +288,7 @@ def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
     distinct = [base]
     for c in candidates[1:]:
         other = evaluate(p.objectives, c.state, only)
-        if any(not _close(values[o], other[o]) for o in values) and \
+        if _differing(values, other) and \
                 not any(_same_answers(p, d, c, only) for d in distinct[1:]):
             distinct.append(c)
     if len(distinct) > 1:
@@ -298,7 +299,7 @@ def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
 
 def _same_answers(p: KinematicsPlan, a: Candidate, b: Candidate, only) -> bool:
     va, vb = evaluate(p.objectives, a.state, only), evaluate(p.objectives, b.state, only)
-    return all(_close(va[o], vb[o]) for o in va)
+    return not _differing(va, vb)
 
 
 def _ambiguous(problem: Problem, p: KinematicsPlan, g: Givens,
@@ -373,25 +374,31 @@ def _undetermined(problem: Problem, p: KinematicsPlan,
                   instants: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str],
                   alone: bool) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
     """Probe each freedom the givens leave at each instant (``(givens, solution, objectives'
-    values)``): an objective that changes depends on it. The k-th probes of all the instants
-    are solved together (:func:`_branches_columns`); an instant whose probe is not solved
-    gets that error."""
+    values)``): an objective that changes depends on it. Every probe of every instant is
+    solved together, each a column (:func:`_branches_columns`); an instant whose probe is not
+    solved gets the error of its first such probe."""
     out: dict[int, dict[str, MechgradeError] | MechgradeError] = {}
     probes = {i: _probes(p, g, base) if values else [] for i, (g, base, values) in
               instants.items()}  # no objective asked here (a dynamics instant): none moves
     depends: dict[int, dict[str, list[str]]] = {i: {} for i in instants}
-    for k in range(max(map(len, probes.values()), default=0)):
-        at = {i: probe[k] for i, probe in probes.items() if k < len(probe) and i not in out}
-        trials = _branches_columns(problem, p, {i: instants[i][0] for i in at},
-                                   {i: probe for i, (probe, _) in at.items()}, alone=alone)
-        for i, found in trials.items():
-            if isinstance(found, MechgradeError):
-                out[i] = found
-                continue
-            changed = evaluate(p.objectives, found[0].state, only)
-            for oid, value in instants[i][2].items():
-                if not _close(value, changed[oid]):
-                    depends[i].setdefault(oid, []).append(at[i][1])
+    # (instant, probe) of each column, the k-th probes of all the instants before the k+1-th
+    columns = [(i, k) for k in range(max(map(len, probes.values()), default=0))
+               for i, probe in probes.items() if k < len(probe)]
+    trials = _branches_columns(problem, p, {m: instants[i][0] for m, (i, _) in
+                                            enumerate(columns)},
+                               {m: probes[i][k][0] for m, (i, k) in enumerate(columns)},
+                               alone=alone) if columns else {}
+    for m, (i, k) in enumerate(columns):
+        found = trials[m]
+        if i in out:
+            continue
+        if isinstance(found, MechgradeError):
+            out[i] = found
+            continue
+        moved = _differing(instants[i][2], evaluate(p.objectives, found[0].state, only))
+        for oid in instants[i][2]:
+            if oid in moved:
+                depends[i].setdefault(oid, []).append(probes[i][k][1])
     for i in instants:
         out.setdefault(i, {oid: UnderdeterminedError(
             f"objective '{oid}' is not determined by the givens: give a value for "
@@ -513,7 +520,7 @@ def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
         scale = SAME_ROOT * np.maximum(finite.max(axis=(0, 1)), 1e-12)
         # every pair's distances at once (pairs x N): numpy calls per pair of points were
         # most of the time of a small solve
-        a, b = np.tril_indices(count, -1)
+        a, b = _pairs(count)
         close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
         always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
         flagged = close & ~always
@@ -522,6 +529,13 @@ def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
     if p.levels[0].constraint_rows and p.constraint_rank:
         singular = _weakest(p, X[:size]) < SINGULAR * _weakest(p, other)
     return pairs, singular
+
+
+@lru_cache(maxsize=64)
+def _pairs(count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Every pair ``(a, b)``, ``a > b``, of ``count`` points (made once per count: a small
+    solve's pairs took as long as their distances)."""
+    return np.tril_indices(count, -1)
 
 
 def _weakest(p: KinematicsPlan, X: np.ndarray) -> np.ndarray:
@@ -544,5 +558,21 @@ def _rate_names(p: KinematicsPlan, unknown: list[int], direction: np.ndarray) ->
     return " or ".join(names) if names else "a rate"
 
 
-def _close(a: np.ndarray, b: np.ndarray) -> bool:
-    return a.shape == b.shape and bool(unchanged(a[:, None], b[:, None])[0])
+def _differing(before: Mapping[str, np.ndarray], after: Mapping[str, np.ndarray]) -> set[str]:
+    """The objectives whose value in ``after`` is not the one in ``before``
+    (:func:`~.rules.unchanged`), compared at once: each objective's values a column, padded
+    with zeros (a single solve compares a few values a few dozen times).
+
+    >>> sorted(_differing({"a": np.array([1.0]), "b": np.array([0.0, 2.0, np.nan])},
+    ...                   {"a": np.array([1.1]), "b": np.array([0.0, 2.0, np.nan])}))
+    ['a']
+    """
+    out = {o for o in before if before[o].shape != after[o].shape}
+    ids = [o for o in before if o not in out]
+    if ids:
+        size = max(before[o].size for o in ids)
+        a, b = np.zeros((size, len(ids))), np.zeros((size, len(ids)))
+        for j, o in enumerate(ids):
+            a[:before[o].size, j], b[:after[o].size, j] = before[o], after[o]
+        out.update(o for o, same in zip(ids, unchanged(a, b)) if not same)
+    return out

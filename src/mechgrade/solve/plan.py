@@ -143,7 +143,7 @@ def per_problem(make, *args):
 def _lambdify(symbols, expr):
     import sympy as sp
 
-    return sp.lambdify(symbols, expr, modules="numpy", cse=True)
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
 
 
 class _OnFirstCall:
