@@ -21,6 +21,8 @@ coordinate or one of its sines, cosines or tangents (:func:`closed_form_roots`);
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -50,8 +52,13 @@ def position_where(problem: Problem, objective_id: str, given_map: dict,
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
     q, numbers = _numbers(problem, given_map)
-    f = sp.lambdify(q, residual.xreplace(numbers), modules="numpy")
-    start = float(dict(derive_kinetics(problem).start)[q].xreplace(numbers))
+    equation, start_at = _functions(residual, dict(derive_kinetics(problem).start)[q], q)
+    parameters = [float(numbers[s]) for s in equation.parameters]
+
+    def f(x):
+        return equation.function(x, *parameters)
+
+    start = float(start_at.function(*(float(numbers[s]) for s in start_at.parameters)))
     analysis = analysis_of(problem, WorkEnergy)
     sign = analysis.sense[0][1].sign if analysis.sense else 1
     coordinate = problem.coordinates[0]
@@ -132,6 +139,28 @@ def closed_form_roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
                 out += [root for r in sp.solve(plain, u) for root in inverse(r)]
                 break
     return tuple(out)
+
+
+@dataclass(frozen=True)
+class _Function:
+    """An expression made a numpy function once, of its parameters (sorted by name) after
+    the arguments it was made with."""
+
+    parameters: tuple[sp.Symbol, ...]
+    function: Callable
+
+
+@lru_cache(maxsize=64)
+def _functions(residual: sp.Expr, start: sp.Expr, q: sp.Symbol) -> tuple[_Function, _Function]:
+    """The ``when`` equation's residual as a function of (q, *its parameters) and the start
+    position's as one of its parameters: made once per equation, each variant only puts its
+    values in."""
+    made = []
+    for expr, first in ((residual, (q,)), (start, ())):
+        parameters = tuple(sorted(expr.free_symbols - {q}, key=str))
+        made.append(_Function(parameters, sp.lambdify((*first, *parameters), expr,
+                                                      modules="numpy")))
+    return made[0], made[1]
 
 
 def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
