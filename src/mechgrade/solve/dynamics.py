@@ -634,6 +634,44 @@ def solved_symbolically(problem: Problem, objective_id: str, givens: tuple, expr
     return expr.xreplace(stand_in).xreplace(solution)
 
 
+def energy_equations(problem: Problem, objective_id: str) -> tuple:
+    """What of a work–energy analysis a symbolic objective's answer can be read from: the
+    energy integral and its start (and the objective's ``when`` equation), where the rate the
+    integral gives reaches the answer: the objective is asked ``when``, or an undeclared rate
+    is left in it once solved from the momentum balances with nothing standing in (a zero
+    given only removes terms from that solution, or leaves it to all the unknowns: both are
+    looked at). Empty where it does not reach it: the eom, a reaction in the declared rate.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> ladder = load_problem(shipped_dir("problems") / "ruina_9_19_falling_ladder.yaml")
+    >>> energy_equations(ladder, "eom_thetaddot"), len(energy_equations(ladder, "N1_wall_of_theta"))
+    ((), 2)
+    """
+    kin = derive_kinetics(problem)
+    whens = dict(kin.whens)
+    energy = (kin.energy, *(value for _, value in kin.start))
+    if objective_id in whens:
+        return (*energy, whens[objective_id])
+    declared = {kin.k.quantity(node) for node in
+                symbol_meanings(problem, problem.objective(objective_id)).values()}
+    try:
+        solved = [solved_symbolically(problem, objective_id, ())]
+    except UnderdeterminedError:
+        return energy
+    objective = kin.objective(objective_id)
+    equations = tuple(e.expr for e in (*kin.balances, *kin.constraints))
+    everything = _linear_solve(equations, tuple((*kin.rates, *kin.reactions))) \
+        if equations else None
+    if everything is not None:
+        solved.append(objective.xreplace(everything))
+    free: set = set()
+    for expr in solved:
+        free |= set().union(*(e.free_symbols for e in expr)) \
+            if isinstance(expr, sp.MatrixBase) else expr.free_symbols
+    return energy if free & (set(kin.k.qd) - declared) else ()
+
+
 def when_residual(problem: Problem, objective_id: str, given_map: dict) -> sp.Expr:
     """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters (the
     rates from the energy integral), worked out once for every objective asked at the same

@@ -11,6 +11,7 @@ import sympy as sp
 from ..errors import SolveError, UnderdeterminedError
 from ..expressions.syntax import Name, Prime
 from ..mechanics import Kinematics
+from ..spec.dynamics import WorkEnergy
 from ..spec.model import Objective, Problem
 from ..spec.validate import symbol_meanings
 from ..units import si_unit
@@ -71,9 +72,11 @@ def symbolic(problem: Problem, k: Kinematics, objective: Objective, givens: dict
 def bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None:
     """The quantities (as givens name them: ``mu_s``, ``phi'``) a symbolic objective's answer
     can be read from: those in the objective, the constraints it is solved with (and, in
-    dynamics, the momentum balances). A given of any other quantity cannot change the
-    answer, whatever its value. ``None`` where an analysis reaches the instant by equations
-    of its own (work-energy, an integration, a design): every given may bear on it then.
+    dynamics, the momentum balances; under work-energy, the energy integral and its start
+    where its rate reaches the answer, :func:`~.dynamics.energy_equations`). A given of any
+    other quantity cannot change the answer, whatever its value. ``None`` where an
+    analysis reaches the instant by other equations of its own (an integration, an impulse,
+    a design): every given may bear on it then.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -85,14 +88,18 @@ def bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | None
 
     equations: list = []
     if problem.dynamics is not None:
-        if problem.dynamics.analysis is not None or problem.dynamics.design is not None:
+        analysis = problem.dynamics.analysis
+        if not isinstance(analysis, WorkEnergy | None) or problem.dynamics.design is not None:
             return None
         from ..mechanics.dynamics import derive_kinetics
+        from .dynamics import energy_equations
 
         kin = derive_kinetics(problem)
         k = kin.k
         equations += [kin.objective(objective_id),
                       *(e.expr for e in (*kin.balances, *kin.constraints))]
+        if analysis is not None:
+            equations += energy_equations(problem, objective_id)
     else:
         k = derive(problem)
         equations.append(k.objective(objective_id))
