@@ -159,7 +159,7 @@ def _functions(residual: sp.Expr, start: sp.Expr, q: sp.Symbol) -> tuple[_Functi
     for expr, first in ((residual, (q,)), (start, ())):
         parameters = tuple(sorted(expr.free_symbols - {q}, key=str))
         made.append(_Function(parameters, sp.lambdify((*first, *parameters), expr,
-                                                      modules="numpy")))
+                                                      modules="numpy", cse=True)))
     return made[0], made[1]
 
 
