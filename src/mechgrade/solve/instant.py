@@ -452,16 +452,19 @@ def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) ->
     objective = problem.objective(objective_id)
     declared = _per_problem(_declared, problem, objective)
     bearing = _per_problem(_bearing_givens, problem, objective_id)
-    position = problem.coordinates[0].name if dynamics and objective.when is not None else None
+    position, root = None, None
+    if dynamics and objective.when is not None:
+        from .positions import when_root  # a dynamics solve's: only it imports that module
+
+        position, root = problem.coordinates[0].name, when_root(problem, objective_id,
+                                                                 given_map)
     out = []
     for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
+        token: object
         if key in declared or (bearing is not None and key not in bearing):
             token = None
-        elif key == position:
-            from .positions import when_root
-
-            root = when_root(problem, objective_id, given_map)
-            token = (si == 0, root) if root is not None else (si, None)
+        elif key == position and root is not None:
+            token = (si == 0, root)
         elif given is None or si_unit(given.unit) in ("", "rad") or \
                 (dynamics and isinstance(node, Prime)):
             token = (si, None if given is None else (given.value, given.unit))
