@@ -436,9 +436,7 @@ def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) ->
     are zero (a zero stands in for its symbol in every unit), and the values of those that may
     stand in for their symbols (pure numbers and angles; in dynamics also given rates, which
     enter the momentum balances). A given with a unit is never substituted, nor is one of the
-    objective's own symbols, so their values are left out. An objective asked ``when`` reads
-    the coordinate only through the closed-form root put in for it: which one
-    (:func:`~.positions.when_root`), not the position's value.
+    objective's own symbols, so their values are left out.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -449,22 +447,12 @@ def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) ->
     True
     """
     dynamics = problem.dynamics is not None
-    objective = problem.objective(objective_id)
-    declared = _per_problem(_declared, problem, objective)
+    declared = _per_problem(_declared, problem, problem.objective(objective_id))
     bearing = _per_problem(_bearing_givens, problem, objective_id)
-    position, root = None, None
-    if dynamics and objective.when is not None:
-        from .positions import when_root  # a dynamics solve's: only it imports that module
-
-        position, root = problem.coordinates[0].name, when_root(problem, objective_id,
-                                                                 given_map)
     out = []
     for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
-        token: object
         if key in declared or (bearing is not None and key not in bearing):
             token = None
-        elif key == position and root is not None:
-            token = (si == 0, root)
         elif given is None or si_unit(given.unit) in ("", "rad") or \
                 (dynamics and isinstance(node, Prime)):
             token = (si, None if given is None else (given.value, given.unit))

@@ -136,18 +136,6 @@ def which_root(problem: Problem, objective_id: str, given_map: dict,
                      where=left.where)
 
 
-def when_root(problem: Problem, objective_id: str, given_map: dict) -> int | None:
-    """:func:`which_root` of the objective's ``when`` equation at ``given_map`` (``None``: no
-    position, or none in closed form: the answer is an error, worded with the values)."""
-    from .dynamics import when_residual
-
-    try:
-        return which_root(problem, objective_id, given_map,
-                          when_residual(problem, objective_id, given_map))
-    except SolveError:
-        return None
-
-
 @lru_cache(maxsize=64)
 def _root_functions(residual: sp.Expr, q: sp.Symbol) -> tuple[_Function, ...]:
     """Each of :func:`closed_form_roots` as a function of its parameters (complex: a root
@@ -221,7 +209,7 @@ def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
 
 def without_position(problem: Problem, given_map: dict) -> tuple:
     """The givens the equation's symbolic solution depends on (those that stand in for a
-    symbol, :func:`~.dynamics.solved_symbolically`: zeros and rates), without the coordinate
+    symbol, :func:`~.symbolic.solved_symbolically`: zeros and rates), without the coordinate
     (the problem's own instant is not the one asked): one key for every variant."""
     name = problem.coordinates[0].name
     return tuple(sorted((key, (node, si, None)) for key, (node, si, _) in given_map.items()
