@@ -51,10 +51,10 @@ def position_where(problem: Problem, objective_id: str, given_map: dict,
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
     q, numbers = _numbers(problem, given_map)
     equation, start_at = _functions(residual, dict(derive_kinetics(problem).start)[q], q)
-    start = float(start_at.function(*(float(numbers[s]) for s in start_at.parameters)))
+    start = float(start_at.function(*(numbers[s] for s in start_at.parameters)))
     analysis = analysis_of(problem, WorkEnergy)
     coordinate = problem.coordinates[0]
-    found = _walked(equation, tuple(float(numbers[s]) for s in equation.parameters), start,
+    found = _walked(equation, tuple(numbers[s] for s in equation.parameters), start,
                     analysis.sense[0][1].sign if analysis.sense else 1,
                     is_angle_unit(coordinate.unit))
     if isinstance(found, float):
@@ -194,7 +194,7 @@ def _function(expr: sp.Expr, first: tuple) -> _Function:
                                              cse=True))
 
 
-def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
+def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict[sp.Symbol, float]]:
     """The coordinate's symbol, and every other given's symbol -> its SI value."""
     k = derive_kinetics(problem).k
     q = k.q[0]
@@ -203,7 +203,7 @@ def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
         if isinstance(node, (Name, Prime)) and si is not None:
             symbol = k.quantity(node)
             if symbol != q:
-                numbers[symbol] = sp.Float(si)
+                numbers[symbol] = float(si)
     return q, numbers
 
 
