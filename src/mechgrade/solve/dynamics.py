@@ -573,10 +573,10 @@ _AT_ROOTS: dict = {}
 
 
 def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
-    """A symbolic objective's answer (:func:`_derived`). One asked ``when`` reads its
-    position's value only through the closed-form root that is that position
-    (:func:`~.positions.which_root`): it is derived once per root and what else it depends on
-    (:func:`~.instant.symbolic_dependence`), not again for each value."""
+    """A symbolic objective's answer (:func:`_derived`). One asked ``when`` is derived once
+    per closed-form root that is its position (:func:`~.positions.which_root`) and what else
+    it depends on (:func:`~.instant.symbolic_dependence` with that root), not again for each
+    value that finds the same root."""
     if problem.objective(objective_id).when is None:
         return _derived(problem, objective_id, givens)
     given_map = dict(givens)
@@ -585,10 +585,7 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
                           when_residual(problem, objective_id, given_map))
     except SolveError:  # fails as it always did, the first error first
         return _derived(problem, objective_id, givens)
-    name = problem.coordinates[0].name
-    key = (problem, objective_id, root, given_map.get(name, (None, None, None))[1] == 0,
-           tuple(item for item in symbolic_dependence(problem, given_map, objective_id)
-                 if item[0] != name))
+    key = (problem, objective_id, symbolic_dependence(problem, given_map, objective_id, root))
     answer = _AT_ROOTS.get(key)
     if answer is None:
         if len(_AT_ROOTS) >= 1024:
