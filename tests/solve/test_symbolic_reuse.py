@@ -20,19 +20,24 @@ VX = ("  - {id: vx, prompt: x-velocity of the tip., find: \"dot(vel(P, N), N.x)\
       "kind: symbolic, unit: m/s, symbols: [L, thetad]}\n")
 
 
-@pytest.fixture
-def derivations(monkeypatch):
-    """How many times the symbolic answer is derived with sympy."""
+def _counted(monkeypatch, module) -> list[str]:
+    """The objectives ``module._symbolic_result`` derives with sympy, one entry a call."""
     calls = []
-    derive = instant._symbolic_result
+    derive = module._symbolic_result
 
     def counted(*args):
         calls.append(args[1])
         return derive(*args)
     instant._symbolic_answer.cache_clear()
     derive.cache_clear()
-    monkeypatch.setattr(instant, "_symbolic_result", counted)
+    monkeypatch.setattr(module, "_symbolic_result", counted)
     return calls
+
+
+@pytest.fixture
+def derivations(monkeypatch):
+    """How many times the symbolic answer is derived with sympy."""
+    return _counted(monkeypatch, instant)
 
 
 def test_a_given_with_a_unit_changed_reuses_the_answer(derivations):
@@ -92,16 +97,7 @@ def kinetic_derivations(monkeypatch):
     """How many times a dynamics problem's symbolic answer is derived with sympy."""
     import mechgrade.solve.dynamics as dynamics
 
-    calls = []
-    derive = dynamics._symbolic_result
-
-    def counted(*args):
-        calls.append(args[1])
-        return derive(*args)
-    instant._SYMBOLIC_ANSWERS.clear()
-    derive.cache_clear()
-    monkeypatch.setattr(dynamics, "_symbolic_result", counted)
-    return calls
+    return _counted(monkeypatch, dynamics)
 
 
 def test_a_release_angle_the_energy_integral_does_not_bring_in_reuses_the_answer(
