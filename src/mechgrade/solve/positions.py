@@ -39,6 +39,7 @@ from ..units import from_si
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
 _XTOL = 1e-14
+_FIRST = 256  # points of the walk's first stretch
 
 
 def position_where(problem: Problem, objective_id: str, given_map: dict,
@@ -87,17 +88,25 @@ def _walked(equation: _Function, parameters: tuple[float, ...], start: float, si
         steps = np.linspace(0.0, 2 * np.pi, _STEPS + 1)  # one turn
     else:
         steps = np.concatenate([[0.0], max(abs(start), 1.0) * np.logspace(-6, 3, _STEPS)])
-    qs = start + sign * steps
-    with np.errstate(all="ignore"):
-        values = np.broadcast_to(np.asarray(f(qs), dtype=float), qs.shape)
-    # beyond the first undefined value the motion has turned back (no energy left to go on)
-    reached = int(np.argmin(np.isfinite(values))) if not np.isfinite(values).all() else len(qs)
-    qs, values = qs[:reached], values[:reached]
-    if values.size and values[0] == 0.0:  # holding at the start: the next crossing
-        qs, values = qs[1:], values[1:]
-    change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
+    grid = start + sign * steps
+    walked = np.empty(0)
+    while True:  # in stretches twice as long each time: the first crossing is often near
+        end = min(len(grid), max(2 * len(walked), _FIRST))
+        with np.errstate(all="ignore"):
+            stretch = f(grid[len(walked):end])
+        walked = np.concatenate([walked, np.broadcast_to(np.asarray(stretch, dtype=float),
+                                                         (end - len(walked),))])
+        finite = np.isfinite(walked)
+        # beyond the first undefined value the motion has turned back (no energy left to go on)
+        reached = int(np.argmin(finite)) if not finite.all() else end
+        qs, values = grid[:reached], walked[:reached]
+        if values.size and values[0] == 0.0:  # holding at the start: the next crossing
+            qs, values = qs[1:], values[1:]
+        change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
+        if change.size or reached < end or end == len(grid):
+            break
     if not change.size:
-        return (float(qs[-1]) if qs.size else None), reached < len(steps)
+        return (float(qs[-1]) if qs.size else None), reached < len(grid)
     i = int(change[0])
     if values[i] == 0.0:
         return float(qs[i])
