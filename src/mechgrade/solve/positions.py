@@ -135,7 +135,8 @@ def which_root(problem: Problem, objective_id: str, given_map: dict,
     q, numbers = _numbers(problem, given_map)
     value = position_where(problem, objective_id, given_map, residual)
     for i, root in enumerate(_root_functions(residual, q)):
-        at = complex(root.function(*(complex(numbers[s]) for s in root.parameters)))
+        with np.errstate(all="ignore"):  # a root undefined here is not the position
+            at = complex(root.function(*(complex(numbers[s]) for s in root.parameters)))
         if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
             return i
     left, right = obj.when
