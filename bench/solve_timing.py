@@ -21,11 +21,11 @@ from mechgrade.mechanics import derive
 from mechgrade.solve import kinematics_plan
 from mechgrade.solve.instant import _givens, _instants, _symbolic_answer
 from mechgrade.solve.numeric import solve_numeric
-from mechgrade.solve.symbolic import _simplify
+from mechgrade.solve.symbolic import _linear_solve, _simplify
 from mechgrade.solve.symbolic import symbolic as solve_symbolic
 from mechgrade.mechanics.dynamics import derive_kinetics
-from mechgrade.solve.dynamics import (_kinetics_plan, _linear_solve, _symbolic_result,
-                                      kinetics_plan, solve_dynamics)
+from mechgrade.solve.dynamics import (_kinetics_plan, _symbolic_result, kinetics_plan,
+                                      solve_dynamics)
 from mechgrade.solve.analysis import _analysis_plan
 from mechgrade.spec import load_problem
 from mechgrade.solve import solve

@@ -102,3 +102,21 @@ def test_the_write_up_says_where_an_objective_asked_when_is_read(ladder):
         "dot(force(N1), N.x) = 0 (the rate from the energy balance)" in lines
     assert lines[0] == "vG_over_sqrt_gL: speed(G, N)/sqrt(g*L) = " \
         "sqrt(L**2*thetad**2*sin(theta)**2/4 + L**2*thetad**2*cos(theta)**2/4)/(sqrt(L)*sqrt(g))"
+
+
+@pytest.mark.slow
+def test_a_release_past_the_vertical_leaves_the_wall_at_its_own_root_in_a_class(ladder,
+                                                                                forget):
+    # from 80 deg the wall lets go at asin(2 sin(theta0)/3); from 95 deg the ladder first
+    # passes the vertical, where cos(theta) = 0: a root of its own, mistakes and all
+    from mechgrade.solve.batch import solve_variants
+
+    past = {"theta0": math.radians(95.0)}
+    forget()  # nothing kept from earlier tests: the class as a fresh process solves it
+    together = solve_variants(ladder, [{"theta0": math.radians(80.0)}, past])
+    answers = [s.result("theta_wall_lost") for s in together]
+    assert [a.expr for a in answers] == ["asin(2*sin(theta0)/3)", "pi/2"]
+    assert answers[0].generated_mistakes is not None  # worked out in the class's order
+    forget()  # alone, as a fresh process solves it
+    alone = solve(ladder, givens=past).result("theta_wall_lost")
+    assert answers[1].generated_mistakes == alone.generated_mistakes

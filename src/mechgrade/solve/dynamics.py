@@ -30,8 +30,7 @@ import sympy as sp
 # scipy is imported by the functions that use it: it takes longer to import than a whole
 # `mechgrade check` of most problems, which never needs it.
 
-from ..errors import (AuthorWarning, Location, MechgradeError, SolveError,
-                      UnderdeterminedError)
+from ..errors import AuthorWarning, Location, MechgradeError, SolveError
 from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics, read_kinetics
 from ..mechanics.loads import PhysicalBound
 from ..expressions.syntax import Name, Prime
@@ -49,13 +48,14 @@ from .motion import accelerations as columns_accelerations
 from .motion import after_event, balances, integrated_columns
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
-from .instant import Reached, drive, read_objectives
+from .instant import Reached, drive, read_objectives, symbolic_dependence
 from .phases import Entry, Target, Until, When, asked_when, gripping, reach
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan, per_problem
-from .positions import position_symbolic, position_where, without_position
+from .positions import position_symbolic, position_where, which_root, without_position
 from .result import ObjectiveResult, Solution
+from .symbolic import solved_symbolically, symbolic
 
 
 def kinematic_problem(problem: Problem) -> Problem:
@@ -614,11 +614,42 @@ def _bracketed(residuals: Callable[[np.ndarray], np.ndarray],
     return None
 
 
-@lru_cache(maxsize=512)
-def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
-    from .instant import _quantity_unit
-    from .symbolic import symbolic
+_AT_ROOTS: dict = {}
 
+
+def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
+    """A symbolic objective's answer (:func:`_derived`). One asked ``when`` is derived once
+    per closed-form root that is its position (:func:`~.positions.which_root`) and what else
+    it depends on (:func:`~.instant.symbolic_dependence` with that root), not again for each
+    value that finds the same root."""
+    if problem.objective(objective_id).when is None:
+        return _derived(problem, objective_id, givens)
+    given_map = dict(givens)
+    try:
+        root = which_root(problem, objective_id, given_map,
+                          when_residual(problem, objective_id, given_map))
+    except SolveError:  # fails as it always did, the first error first
+        return _derived(problem, objective_id, givens)
+    key = (problem, objective_id, symbolic_dependence(problem, given_map, objective_id, root))
+    answer = _AT_ROOTS.get(key)
+    if answer is None:
+        if len(_AT_ROOTS) >= 1024:
+            _AT_ROOTS.clear()
+        answer = _AT_ROOTS[key] = _derived(problem, objective_id, givens)
+    return answer
+
+
+def _forget_symbolic() -> None:
+    _derived.cache_clear()
+    _AT_ROOTS.clear()
+
+
+_symbolic_result.cache_clear = _forget_symbolic  # type: ignore[attr-defined]
+
+
+@lru_cache(maxsize=512)
+def _derived(problem: Problem, objective_id: str, givens: tuple) -> ObjectiveResult:
+    from .instant import _quantity_unit
     obj = problem.objective(objective_id)
     kin = derive_kinetics(problem)
     expr = solved_symbolically(problem, objective_id, givens)
@@ -641,44 +672,6 @@ def _symbolic_result(problem: Problem, objective_id: str, givens: tuple) -> Obje
         symbol_units=units, rel=obj.tolerance.rel, abs=obj.tolerance.abs, prompt=obj.prompt)
 
 
-def solved_symbolically(problem: Problem, objective_id: str, givens: tuple, expr=None):
-    """The objective (or ``expr`` of it, such as its ``when``, with no symbol declared) with
-    the unknown second rates and reactions replaced by their symbolic solution of the
-    momentum balances (zero givens and given second rates stand in)."""
-    kin = derive_kinetics(problem)
-    k = kin.k
-    declared = set() if expr is not None else \
-        {k.quantity(node) for node in
-         symbol_meanings(problem, problem.objective(objective_id)).values()}
-    expr = kin.objective(objective_id) if expr is None else expr
-    stand_in = {}
-    for _, (node, si, _) in givens:
-        if isinstance(node, (Name, Prime)):
-            symbol = k.quantity(node)
-            if symbol in declared:
-                continue
-            if si == 0 or symbol in kin.rates:
-                stand_in[symbol] = sp.nsimplify(si) if si == 0 else sp.Float(si)
-    unknowns = [s for s in (*kin.rates, *kin.reactions) if s not in stand_in]
-    # declared rates stay symbols (the velocities after an impact in a projected balance)
-    if not (expr.free_symbols if not isinstance(expr, sp.MatrixBase)
-            else set().union(*(e.free_symbols for e in expr))) & (set(unknowns) - declared):
-        return expr
-    equations = tuple(e.expr.xreplace(stand_in) for e in (*kin.balances, *kin.constraints))
-    # a declared second rate (phidd of a driven turntable) is known, unless the balances
-    # determine it
-    solution = _linear_solve(equations, tuple(u for u in unknowns if u not in declared)) or \
-        _linear_solve(equations, tuple(unknowns))
-    if solution is None:
-        names = {s: label for s, label in zip(kin.reactions, kin.labels)}
-        listing = ", ".join(names.get(u, str(u)) for u in unknowns)
-        raise UnderdeterminedError(
-            f"objective '{objective_id}' cannot be solved symbolically: the momentum balances "
-            f"do not determine the unknowns {listing} uniquely (or contradict each other)",
-            where=problem.objective(objective_id).where)
-    return expr.xreplace(stand_in).xreplace(solution)
-
-
 def when_residual(problem: Problem, objective_id: str, given_map: dict) -> sp.Expr:
     """``lhs - rhs`` of the objective's ``when`` in the coordinate and the parameters (the
     rates from the energy integral), worked out once for every objective asked at the same
@@ -694,15 +687,3 @@ def _when_residual(problem: Problem, objective_id: str, givens: tuple) -> sp.Exp
     kin = derive_kinetics(problem)
     expr = solved_symbolically(problem, objective_id, givens, dict(kin.whens)[objective_id])
     return sp.expand(energy_rate_symbolic(problem, kinetics_plan(problem), expr, set()))
-
-
-@lru_cache(maxsize=128)
-def _linear_solve(equations: tuple, unknowns: tuple):
-    A, b = sp.linear_eq_to_matrix(list(equations), list(unknowns))
-    solutions = sp.linsolve((A, b), list(unknowns))
-    if not solutions:
-        return None
-    (values,) = solutions
-    if any(v.free_symbols & set(unknowns) for v in values):
-        return None
-    return dict(zip(unknowns, values))

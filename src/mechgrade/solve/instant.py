@@ -578,12 +578,18 @@ def _bearing_givens(problem: Problem, objective_id: str) -> frozenset[str] | Non
     return bearing
 
 
-def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) -> tuple:
+def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str,
+                        root: int | None = None) -> tuple:
     """What a symbolic objective's answer can depend on in the givens: which are given, which
     are zero (a zero stands in for its symbol in every unit), and the values of those that may
     stand in for their symbols (pure numbers and angles; in dynamics also given rates, which
     enter the momentum balances). A given with a unit is never substituted, nor is one of the
     objective's own symbols, so their values are left out.
+
+    An objective asked ``when`` reads the coordinate only through the closed-form root put in
+    for it (whether it is zero aside), and that root is the one found at the values of every
+    given its equation reads: those values, unless ``root`` says which root it is
+    (:func:`~.positions.which_root`).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -594,11 +600,20 @@ def symbolic_dependence(problem: Problem, given_map: dict, objective_id: str) ->
     True
     """
     dynamics = problem.dynamics is not None
-    declared = _per_problem(_declared, problem, problem.objective(objective_id))
+    objective = problem.objective(objective_id)
+    declared = _per_problem(_declared, problem, objective)
     bearing = _per_problem(_bearing_givens, problem, objective_id)
-    out = []
+    position = problem.coordinates[0].name if objective.when is not None else None
+    out: list[tuple[str, object]] = [("root", root)] if position is not None else []
     for key, (node, si, given) in sorted(given_map.items(), key=lambda item: item[0]):
-        if key in declared or (bearing is not None and key not in bearing):
+        token: object
+        if bearing is not None and key not in bearing:
+            token = None
+        elif key == position:
+            token = si == 0
+        elif position is not None and root is None:  # each value may choose another root
+            token = (si, None if given is None else (given.value, given.unit))
+        elif key in declared:
             token = None
         elif given is None or si_unit(given.unit) in ("", "rad") or \
                 (dynamics and isinstance(node, Prime)):

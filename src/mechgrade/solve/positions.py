@@ -21,6 +21,8 @@ coordinate or one of its sines, cosines or tangents (:func:`closed_form_roots`);
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -37,6 +39,7 @@ from ..units import from_si
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
 _XTOL = 1e-14
+_FIRST = 256  # points of the walk's first stretch
 
 
 def position_where(problem: Problem, objective_id: str, given_map: dict,
@@ -45,39 +48,65 @@ def position_where(problem: Problem, objective_id: str, given_map: dict,
     where the objective's ``when`` holds, at the givens ``given_map`` (canonical key ->
     ``(node, si, Given)``); ``residual`` is its ``lhs - rhs`` in the coordinate and the
     parameters (:func:`~.dynamics.when_residual`)."""
-    from scipy import optimize
-
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
     q, numbers = _numbers(problem, given_map)
-    f = sp.lambdify(q, residual.xreplace(numbers), modules="numpy")
-    start = float(dict(derive_kinetics(problem).start)[q].xreplace(numbers))
+    equation, start_at = _functions(residual, dict(derive_kinetics(problem).start)[q], q)
+    start = float(start_at.function(*(numbers[s] for s in start_at.parameters)))
     analysis = analysis_of(problem, WorkEnergy)
-    sign = analysis.sense[0][1].sign if analysis.sense else 1
     coordinate = problem.coordinates[0]
-    if is_angle_unit(coordinate.unit):
+    found = _walked(equation, tuple(numbers[s] for s in equation.parameters), start,
+                    analysis.sense[0][1].sign if analysis.sense else 1,
+                    is_angle_unit(coordinate.unit))
+    if isinstance(found, float):
+        return found
+    last, turned_back = found
+    left, right = obj.when
+    searched = f"from {_shown(problem, start)} to {_shown(problem, last)}" \
+        if last is not None else f"at {_shown(problem, start)}"
+    why = "where the motion turns back" if turned_back else \
+        ("one turn" if is_angle_unit(coordinate.unit) else "a thousand times its size")
+    raise SolveError(
+        f"objective '{objective_id}': '{left.text} = {right.text}' does not hold anywhere "
+        f"the motion from the start reaches (searched {coordinate.name} {searched}, "
+        f"{why}); check the equation, 'from' and 'sense'", where=left.where)
+
+
+@lru_cache(maxsize=256)
+def _walked(equation: _Function, parameters: tuple[float, ...], start: float, sign: int,
+            angle: bool) -> float | tuple[float | None, bool]:
+    """The first root of ``equation`` at ``parameters`` walking from ``start`` the way
+    ``sign`` says (one turn of an angle), or, when there is none, the last position searched
+    (``None``: only the start) and whether the motion turned back: kept per variant, whose
+    symbolic answer looks for the same position again (:func:`position_symbolic`)."""
+    from scipy import optimize
+
+    def f(x):
+        return equation.function(x, *parameters)
+
+    if angle:
         steps = np.linspace(0.0, 2 * np.pi, _STEPS + 1)  # one turn
     else:
         steps = np.concatenate([[0.0], max(abs(start), 1.0) * np.logspace(-6, 3, _STEPS)])
-    qs = start + sign * steps
-    with np.errstate(all="ignore"):
-        values = np.broadcast_to(np.asarray(f(qs), dtype=float), qs.shape)
-    # beyond the first undefined value the motion has turned back (no energy left to go on)
-    reached = int(np.argmin(np.isfinite(values))) if not np.isfinite(values).all() else len(qs)
-    qs, values = qs[:reached], values[:reached]
-    if values.size and values[0] == 0.0:  # holding at the start: the next crossing
-        qs, values = qs[1:], values[1:]
-    change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
-    left, right = obj.when
+    grid = start + sign * steps
+    walked = np.empty(0)
+    while True:  # in stretches twice as long each time: the first crossing is often near
+        end = min(len(grid), max(2 * len(walked), _FIRST))
+        with np.errstate(all="ignore"):
+            stretch = f(grid[len(walked):end])
+        walked = np.concatenate([walked, np.broadcast_to(np.asarray(stretch, dtype=float),
+                                                         (end - len(walked),))])
+        finite = np.isfinite(walked)
+        # beyond the first undefined value the motion has turned back (no energy left to go on)
+        reached = int(np.argmin(finite)) if not finite.all() else end
+        qs, values = grid[:reached], walked[:reached]
+        if values.size and values[0] == 0.0:  # holding at the start: the next crossing
+            qs, values = qs[1:], values[1:]
+        change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
+        if change.size or reached < end or end == len(grid):
+            break
     if not change.size:
-        searched = f"from {_shown(problem, start)} to {_shown(problem, qs[-1])}" \
-            if qs.size else f"at {_shown(problem, start)}"
-        why = "where the motion turns back" if reached < len(steps) else \
-            ("one turn" if is_angle_unit(coordinate.unit) else "a thousand times its size")
-        raise SolveError(
-            f"objective '{objective_id}': '{left.text} = {right.text}' does not hold anywhere "
-            f"the motion from the start reaches (searched {coordinate.name} {searched}, "
-            f"{why}); check the equation, 'from' and 'sense'", where=left.where)
+        return (float(qs[-1]) if qs.size else None), reached < len(grid)
     i = int(change[0])
     if values[i] == 0.0:
         return float(qs[i])
@@ -89,21 +118,39 @@ def position_symbolic(problem: Problem, objective_id: str, givens: tuple,
                       residual: sp.Expr) -> sp.Expr:
     """The position of :func:`position_where` in closed form (in the parameters), the root of
     the ``when`` equation ``residual`` that is the numeric one at ``givens`` (items of a given
-    map)."""
+    map): the one of :func:`closed_form_roots` that :func:`which_root` picks."""
+    q = derive_kinetics(problem).k.q[0]
+    return closed_form_roots(residual, q)[which_root(problem, objective_id, dict(givens),
+                                                     residual)]
+
+
+def which_root(problem: Problem, objective_id: str, given_map: dict,
+               residual: sp.Expr) -> int:
+    """Which of :func:`closed_form_roots` of ``residual`` is the position of
+    :func:`position_where` at the givens ``given_map`` (the first real one there): with the
+    givens its terms solve with, what fixes a symbolic answer asked ``when``. Without sympy:
+    each root is evaluated as a function made once."""
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
-    given_map = dict(givens)
     q, numbers = _numbers(problem, given_map)
     value = position_where(problem, objective_id, given_map, residual)
-    for root in closed_form_roots(residual, q):
-        at = complex(sp.N(root.xreplace(numbers)))
+    for i, root in enumerate(_root_functions(residual, q)):
+        with np.errstate(all="ignore"):  # a root undefined here is not the position
+            at = complex(root.function(*(complex(numbers[s]) for s in root.parameters)))
         if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
-            return root
+            return i
     left, right = obj.when
     raise SolveError(f"objective '{objective_id}': '{left.text} = {right.text}' holds at "
                      f"{problem.coordinates[0].name} = {_shown(problem, value)}, but sympy finds no "
                      "closed form for that position; ask for it as a scalar",
                      where=left.where)
+
+
+@lru_cache(maxsize=64)
+def _root_functions(residual: sp.Expr, q: sp.Symbol) -> tuple[_Function, ...]:
+    """Each of :func:`closed_form_roots` as a function of its parameters (complex: a root
+    may be complex at some givens)."""
+    return tuple(_function(root, ()) for root in closed_form_roots(residual, q))
 
 
 @lru_cache(maxsize=64)
@@ -134,7 +181,30 @@ def closed_form_roots(residual: sp.Expr, q: sp.Symbol) -> tuple:
     return tuple(out)
 
 
-def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
+@dataclass(frozen=True)
+class _Function:
+    """An expression made a numpy function once, of its parameters (sorted by name) after
+    the arguments it was made with."""
+
+    parameters: tuple[sp.Symbol, ...]
+    function: Callable
+
+
+@lru_cache(maxsize=64)
+def _functions(residual: sp.Expr, start: sp.Expr, q: sp.Symbol) -> tuple[_Function, _Function]:
+    """The ``when`` equation's residual as a function of (q, *its parameters) and the start
+    position's as one of its parameters: made once per equation, each variant only puts its
+    values in."""
+    return _function(residual, (q,)), _function(start, ())
+
+
+def _function(expr: sp.Expr, first: tuple) -> _Function:
+    parameters = tuple(sorted(expr.free_symbols - set(first), key=str))
+    return _Function(parameters, sp.lambdify((*first, *parameters), expr, modules="numpy",
+                                             cse=True))
+
+
+def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict[sp.Symbol, float]]:
     """The coordinate's symbol, and every other given's symbol -> its SI value."""
     k = derive_kinetics(problem).k
     q = k.q[0]
@@ -143,13 +213,13 @@ def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict]:
         if isinstance(node, (Name, Prime)) and si is not None:
             symbol = k.quantity(node)
             if symbol != q:
-                numbers[symbol] = sp.Float(si)
+                numbers[symbol] = float(si)
     return q, numbers
 
 
 def without_position(problem: Problem, given_map: dict) -> tuple:
     """The givens the equation's symbolic solution depends on (those that stand in for a
-    symbol, :func:`~.dynamics.solved_symbolically`: zeros and rates), without the coordinate
+    symbol, :func:`~.symbolic.solved_symbolically`: zeros and rates), without the coordinate
     (the problem's own instant is not the one asked): one key for every variant."""
     name = problem.coordinates[0].name
     return tuple(sorted((key, (node, si, None)) for key, (node, si, _) in given_map.items()

@@ -13,6 +13,7 @@ import math
 import re
 from contextlib import contextmanager
 from enum import Enum
+from functools import lru_cache
 
 from ..errors import ExpressionError, Location, SpecError, UnitError
 from ..expressions.dimensions import DimensionError, Kind, Type, infer
@@ -48,8 +49,10 @@ def unknown_name(what: str, name: str, known, context: str = "") -> str:
             f"{', '.join(known) or 'none'})")
 
 
+@lru_cache(maxsize=256)
 def is_angle_unit(unit: str) -> bool:
-    """Whether ``unit`` measures an angle (rad, deg, turn ...), not a pure number.
+    """Whether ``unit`` measures an angle (rad, deg, turn ...), not a pure number (kept per
+    unit: each variant of a position asked ``when`` asks it of its coordinate again).
 
     >>> is_angle_unit("deg"), is_angle_unit("rad"), is_angle_unit(""), is_angle_unit("rad/s")
     (True, True, False, False)
