@@ -57,21 +57,19 @@ def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: se
     Raises when the instant itself cannot be solved; an objective that depends on something
     the givens leave free gets its own error in :attr:`Instant.errors`.
     """
-    (instant,) = solve_numeric_columns(problem, p, [givens], only, alone=True)
+    (instant,) = solve_numeric_columns(problem, p, [givens], only)
     if isinstance(instant, MechgradeError):
         raise instant
     return instant
 
 
 def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                          only: set[str], *, alone: bool = False
-                          ) -> list[Instant | MechgradeError]:
+                          only: set[str]) -> list[Instant | MechgradeError]:
     """:func:`solve_numeric` of many instants, one per ``givens``: each one's instant or the
     error that function raises for it. The non-linear levels of all of them are solved
     together, every start of every instant at once (:func:`~.levels.solve_nonlinear_columns`);
     which roots are distinct, which one the spec asks for and what the instant then is are
-    judged as for one instant. ``alone``: each start solved by scipy's least squares (as
-    :func:`solve_numeric` solves one instant, :func:`~.levels.solve_nonlinear_columns`).
+    judged as for one instant.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -88,11 +86,11 @@ def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[
     True
     """
     with quiet():  # once, not at each of its dozens of function calls
-        return _solved_columns(problem, p, givens, only, alone)
+        return _solved_columns(problem, p, givens, only)
 
 
 def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                    only: set[str], alone: bool) -> list[Instant | MechgradeError]:
+                    only: set[str]) -> list[Instant | MechgradeError]:
     out: list[Instant | MechgradeError | None] = [None] * len(givens)
     placed: dict[int, Givens] = {}
     for i, given in enumerate(givens):
@@ -101,15 +99,14 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
         except MechgradeError as err:
             out[i] = err
     chosen: dict[int, tuple[Candidate, dict]] = {}
-    for i, found in _branches_columns(problem, p, placed, alone=alone).items():
+    for i, found in _branches_columns(problem, p, placed).items():
         try:
             if isinstance(found, MechgradeError):
                 raise found
             chosen[i] = _chosen(problem, p, placed[i], givens[i], found, only)
         except MechgradeError as err:
             out[i] = err
-    probed = _undetermined(problem, p, {i: (placed[i], *c) for i, c in chosen.items()}, only,
-                           alone)
+    probed = _undetermined(problem, p, {i: (placed[i], *c) for i, c in chosen.items()}, only)
     for i, (base, values) in chosen.items():
         errors = probed[i]
         if isinstance(errors, MechgradeError):  # a probe of its freedoms not solved
@@ -182,7 +179,7 @@ starts are replaced by."""
 
 
 def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens],
-                      probes: Mapping[int, Probe] | None = None, *, alone: bool = False
+                      probes: Mapping[int, Probe] | None = None
                       ) -> dict[int, list[Candidate] | MechgradeError]:
     """Every complete solution of each instant in ``placed`` (each root of each non-linear
     level followed to the end), or the error met first following the roots in order; each
@@ -205,7 +202,7 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
 
     firsts = solve_nonlinear_columns(problem, p, 0, [State(g.values.copy(), g.known)
                                                      for g in gs], gs,
-                                     [near(i) for i in keys], alone=alone)
+                                     [near(i) for i in keys])
     for i, first in zip(keys, firsts):
         if isinstance(first, MechgradeError):
             failed(i, (), first)
@@ -229,7 +226,7 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         else:
             roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
                                             [placed[path[0]] for path in paths],
-                                            [near(path[0]) for path in paths], alone=alone)
+                                            [near(path[0]) for path in paths])
             for (i, at, _, nulls, free, picked), level_roots in zip(paths, roots):
                 if isinstance(level_roots, MechgradeError):
                     failed(i, at, level_roots)
@@ -370,8 +367,8 @@ def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: M
 
 
 def _undetermined(problem: Problem, p: KinematicsPlan,
-                  instants: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str],
-                  alone: bool) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
+                  instants: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str]
+                  ) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
     """Probe each freedom the givens leave at each instant (``(givens, solution, objectives'
     values)``): an objective that changes depends on it. The k-th probes of all the instants
     are solved together (:func:`_branches_columns`); an instant whose probe is not solved
@@ -383,7 +380,7 @@ def _undetermined(problem: Problem, p: KinematicsPlan,
     for k in range(max(map(len, probes.values()), default=0)):
         at = {i: probe[k] for i, probe in probes.items() if k < len(probe) and i not in out}
         trials = _branches_columns(problem, p, {i: instants[i][0] for i in at},
-                                   {i: probe for i, (probe, _) in at.items()}, alone=alone)
+                                   {i: probe for i, (probe, _) in at.items()})
         for i, found in trials.items():
             if isinstance(found, MechgradeError):
                 out[i] = found
