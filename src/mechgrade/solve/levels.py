@@ -396,8 +396,11 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
         X = np.stack([setups[i].x for i, _ in pairs], axis=1)
         X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
         T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
+        # the first start (the guess) by Gauss-Newton's steps, as a trust region takes them
+        # inside it; the others spread around it kept to their basins by short steps first
+        first_damping = np.array([NEAR_DAMPING if k == 0 else DAMPING for _, k in pairs])
         fits = solve_level_columns(consistency, level, X, first.determined,
-                                   list(first.columns), first.active, T)
+                                   list(first.columns), first.active, T, first_damping)
         X, cost = fits.X.copy(), fits.cost
         sizes = np.stack([setups[i].g.scales[first.determined] for i, _ in pairs], axis=1)
         zeroed = X[first.determined]
@@ -429,14 +432,16 @@ class LevelColumns:
 
 def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
                         determined: list[int], columns: list[int], active: np.ndarray,
-                        T: np.ndarray, first_damping: float = DAMPING) -> LevelColumns:
+                        T: np.ndarray, first_damping: float | np.ndarray = DAMPING
+                        ) -> LevelColumns:
     """The non-linear level's ``active`` rows (each must equal its row of ``T``) solved for
     the positions ``determined`` at every column of ``X``, each from its own start (its
     column: a single solve's starts, a class's reference root) by
     :func:`levenberg_marquardt` (by one least-squares step where the equations are linear
     in them: their Jacobian does not depend on them), and judged there: the one non-linear
-    solver of an instant and of a class of variants. ``first_damping``: :data:`DAMPING`
-    from starts spread around a guess, :data:`NEAR_DAMPING` from a root already found.
+    solver of an instant and of a class of variants. ``first_damping`` (one, or one per
+    column): :data:`DAMPING` from starts spread around a guess, :data:`NEAR_DAMPING` from a
+    root already found or from the guess itself.
 
     >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
     ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]],
@@ -486,7 +491,8 @@ def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
-                        active: np.ndarray, T: np.ndarray, first_damping: float = DAMPING
+                        active: np.ndarray, T: np.ndarray,
+                        first_damping: float | np.ndarray = DAMPING
                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve ``level``'s ``active`` rows (each must equal its row of ``T``) for the positions
     ``determined`` at every column of ``X`` (the states, each from its own start), by
@@ -524,7 +530,7 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         cost = 0.5 * (r ** 2).sum(axis=0)
     started = np.isfinite(r).all(axis=0)
     live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
-    damping = np.full(X.shape[1], first_damping)
+    damping = np.broadcast_to(np.asarray(first_damping, dtype=float), X.shape[1:]).copy()
     k = len(determined)
     # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
     # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
