@@ -501,7 +501,8 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     a step that lowers the cost and multiplied by 4 after one that does not). Each column stops on
     its own (its root does not depend on the columns solved with it) once its step is below
     :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
-    zero, or after :data:`LM_STEPS` steps.
+    zero, or its gradient below :data:`FIT_TOL` (a stationary point: a double root is known no
+    better), or after :data:`LM_STEPS` steps.
     Returns the states, half the sum of the squared residuals of each, and which columns
     started where the equations are defined (the others are left as they came).
 
