@@ -103,18 +103,26 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
         try:
             if isinstance(found, MechgradeError):
                 raise found
-            chosen[i] = _chosen(problem, p, placed[i], givens[i], found, only)
+            chosen[i] = _chosen(problem, p, placed[i], found, only)
         except MechgradeError as err:
             out[i] = err
+    keys = list(chosen)
+    for i, error in zip(keys, _givens_not_holding(problem, p, [
+            (placed[i], givens[i], chosen[i][0].state) for i in keys])):
+        if error is not None:
+            out[i] = error
+            del chosen[i]
     probed = _undetermined(problem, p, {i: (placed[i], *c) for i, c in chosen.items()}, only)
+    solved = {i: tuple(j for j in p.index.config if not placed[i].known[j]
+                       and j not in base.free)
+              for i, (base, _) in chosen.items() if not isinstance(probed[i], MechgradeError)}
+    warned = _degenerate(problem, p, {i: (chosen[i][0].state, solved[i]) for i in solved})
     for i, (base, values) in chosen.items():
         errors = probed[i]
         if isinstance(errors, MechgradeError):  # a probe of its freedoms not solved
             out[i] = errors
             continue
-        solved = [j for j in p.index.config if not placed[i].known[j] and j not in base.free]
-        out[i] = Instant(base.state, values, errors,
-                         _degenerate(problem, p, base.state, solved))
+        out[i] = Instant(base.state, values, errors, warned[i])
     return out  # type: ignore[return-value]
 
 
@@ -274,11 +282,11 @@ def _linear(problem: Problem, p: KinematicsPlan, order: int, paths: list[tuple[S
     return dict(sorted(out.items()))
 
 
-def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
-            candidates: list[Candidate], only: set[str]) -> tuple[Candidate, dict]:
+def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, candidates: list[Candidate],
+            only: set[str]) -> tuple[Candidate, dict]:
     """The solution of the instant among every complete solution of its levels
     (:func:`_branches_columns`) and its objectives' values: refused when they give different
-    answers, else the first, its givens checked to hold."""
+    answers, else the first (its givens then checked to hold, :func:`_givens_not_holding`)."""
     base = candidates[0]
     values = evaluate(p.objectives, base.state, only)
     distinct = [base]
@@ -289,7 +297,6 @@ def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
             distinct.append(c)
     if len(distinct) > 1:
         raise _ambiguous(problem, p, g, distinct)
-    _check_givens_hold(problem, p, g, givens, base.state)
     return base, values
 
 
@@ -342,28 +349,49 @@ def _missing_error(problem: Problem, p: KinematicsPlan, i: int) -> SolveError:
 def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
                        state: State) -> None:
     """Every constraint and expression given, at every level, holds in ``state``."""
+    (error,) = _givens_not_holding(problem, p, [(g, givens, state)])
+    if error is not None:
+        raise error
+
+
+def _givens_not_holding(problem: Problem, p: KinematicsPlan,
+                        instants: Sequence[tuple[Givens, Mapping, State]]
+                        ) -> list[SolveError | None]:
+    """:func:`_check_givens_hold` at each instant (placed givens, givens, state): the error
+    it raises, or ``None``; each level's residuals evaluated at every instant at once."""
+    out: list[SolveError | None] = [None] * len(instants)
     for level in p.levels:
-        active, target = rows(level, g)
-        if not active.any():
+        placed = [rows(level, g) for g, _, _ in instants]
+        todo = [k for k, (active, _) in enumerate(placed) if active.any() and out[k] is None]
+        if not todo:
             continue
-        value, scale = (v[:, 0] for v in residuals(level, state.values[:, None], slice(None),
-                                                   np.zeros((1, 1))))
-        for i in np.flatnonzero(active):
-            r = value[i] - target[i]
-            if np.isfinite(value[i]) and satisfied(r, scale[i], problem.consistency):
-                continue
-            j = i - level.constraint_rows
-            if j < 0:
-                raise SolveError(f"the constraint '{level.labels[i]}' does not hold in the "
-                                 f"solution (residual {r:.4g} against terms of size "
-                                 f"{scale[i]:.4g})", where=level.wheres[i])
-            key = level.conditions[j]
-            _, _si, given = givens[key]
-            unit = given.unit if given is not None else ""
-            found = from_si(value[i], unit) if unit else value[i]
-            raise SolveError(f"the given '{g.texts[key]}' does not hold in the solution: "
-                             f"{key} is {found:.6g}{' ' + unit if unit else ''} there",
-                             where=level.wheres[i])
+        values, scales = residuals(level, np.stack([instants[k][2].values for k in todo], axis=1),
+                                   slice(None), np.zeros((1, 1)))
+        for column, k in enumerate(todo):
+            active, target = placed[k]
+            value, scale = values[:, column], scales[:, column]
+            r = value - target
+            held = np.isfinite(value) & satisfied(r, scale, problem.consistency)
+            wrong = np.flatnonzero(active & ~held)
+            if len(wrong):
+                out[k] = _not_holding(level, instants[k][0], instants[k][1], int(wrong[0]),
+                                      value, r, scale)
+    return out
+
+
+def _not_holding(level, g: Givens, givens: Mapping, i: int, value, r, scale) -> SolveError:
+    j = i - level.constraint_rows
+    if j < 0:
+        return SolveError(f"the constraint '{level.labels[i]}' does not hold in the "
+                          f"solution (residual {r[i]:.4g} against terms of size "
+                          f"{scale[i]:.4g})", where=level.wheres[i])
+    key = level.conditions[j]
+    _, _si, given = givens[key]
+    unit = given.unit if given is not None else ""
+    found = from_si(value[i], unit) if unit else value[i]
+    return SolveError(f"the given '{g.texts[key]}' does not hold in the solution: "
+                      f"{key} is {found:.6g}{' ' + unit if unit else ''} there",
+                      where=level.wheres[i])
 
 
 def _undetermined(problem: Problem, p: KinematicsPlan,
@@ -471,21 +499,32 @@ def _probes(p: KinematicsPlan, g: Givens, base: Candidate) -> list[tuple[Probe, 
     return out
 
 
-def _degenerate(problem: Problem, p: KinematicsPlan, state: State,
-                solved: list[int]) -> tuple[AuthorWarning, ...]:
-    """Warnings for a degenerate configuration the position solve landed on
-    (:func:`degenerate` at this one instant)."""
-    pairs, singular = degenerate(p, state.values[:, None], solved)
+def _degenerate(problem: Problem, p: KinematicsPlan,
+                instants: Mapping[int, tuple[State, tuple[int, ...]]]
+                ) -> dict[int, tuple[AuthorWarning, ...]]:
+    """Warnings for a degenerate configuration the position solve landed on at each instant
+    (its state, the positions solved for): :func:`degenerate` over the instants that solved
+    for the same positions at once."""
     wheres = {q.name: q.where for q in problem.points}
-    out = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
-                         "coincide in the solution", wheres.get(p.points[a], Location()))
-           for a, b, flagged in pairs if flagged[0]]
-    if singular[0]:
-        out.append(AuthorWarning(
-            "degenerate configuration: the position constraints are singular in the "
-            "solution (their Jacobian loses rank: a dead point or a folded linkage)",
-            p.levels[0].wheres[0]))
-    return tuple(out)
+    groups: dict[tuple[int, ...], list[int]] = {}
+    for i, (_, solved) in instants.items():
+        groups.setdefault(solved, []).append(i)
+    out: dict[int, tuple[AuthorWarning, ...]] = {}
+    for solved, keys in groups.items():
+        X = np.stack([instants[i][0].values for i in keys], axis=1)
+        pairs, singular = degenerate(p, X, list(solved))
+        for j, i in enumerate(keys):
+            found = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and "
+                                   f"{p.points[a]} coincide in the solution",
+                                   wheres.get(p.points[a], Location()))
+                     for a, b, flagged in pairs if flagged[j]]
+            if singular[j]:
+                found.append(AuthorWarning(
+                    "degenerate configuration: the position constraints are singular in the "
+                    "solution (their Jacobian loses rank: a dead point or a folded linkage)",
+                    p.levels[0].wheres[0]))
+            out[i] = tuple(found)
+    return out
 
 
 def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
