@@ -409,13 +409,23 @@ def _undetermined(problem: Problem, p: KinematicsPlan,
         at = {i: probe[k] for i, probe in probes.items() if k < len(probe) and i not in out}
         trials = _branches_columns(problem, p, {i: instants[i][0] for i in at},
                                    {i: probe for i, (probe, _) in at.items()})
+        states = {}
         for i, found in trials.items():
             if isinstance(found, MechgradeError):
                 out[i] = found
+            else:
+                states[i] = found[0].state.values
+        moved = list(states)
+        if not moved:
+            continue
+        # every probed instant's objectives at once (their values compared as _close does)
+        X = np.stack(list(states.values()), axis=1)
+        for oid, f in p.objectives:
+            if oid not in only:
                 continue
-            changed = evaluate(p.objectives, found[0].state, only)
-            for oid, value in instants[i][2].items():
-                if not _close(value, changed[oid]):
+            before = np.stack([instants[i][2][oid] for i in moved], axis=1)
+            for i, same in zip(moved, unchanged(before, call(f, X, len(before)))):
+                if not same:
                     depends[i].setdefault(oid, []).append(at[i][1])
     for i in instants:
         out.setdefault(i, {oid: UnderdeterminedError(
