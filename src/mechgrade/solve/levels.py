@@ -401,17 +401,19 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
         first_damping = np.array([NEAR_DAMPING if k == 0 else DAMPING for _, k in pairs])
         fits = solve_level_columns(consistency, level, X, first.determined,
                                    list(first.columns), first.active, T, first_damping)
-        X, cost = fits.X.copy(), fits.cost
+        X, cost, held = fits.X, fits.cost, fits.held
         sizes = np.stack([setups[i].g.scales[first.determined] for i, _ in pairs], axis=1)
-        zeroed = X[first.determined]
-        zeroed[np.abs(zeroed) <= rules.ON_BRANCH * sizes] = 0.0
-        X[first.determined] = zeroed
-        with np.errstate(all="ignore"):
-            at_zero = 0.5 * (residuals(level, X, first.active, T)[0] ** 2).sum(axis=0)
-        better = at_zero <= cost
-        X = np.where(better, X, fits.X)
-        cost = np.where(better, at_zero, cost)
-        held = holds(consistency, level, X, first.active, T)
+        near = X[first.determined]
+        near = (near != 0) & (np.abs(near) <= rules.ON_BRANCH * sizes)
+        if near.any():
+            X = X.copy()
+            X[first.determined] = np.where(near, 0.0, X[first.determined])
+            with np.errstate(all="ignore"):
+                at_zero = 0.5 * (residuals(level, X, first.active, T)[0] ** 2).sum(axis=0)
+            better = at_zero <= cost
+            X = np.where(better, X, fits.X)
+            cost = np.where(better, at_zero, cost)
+            held = holds(consistency, level, X, first.active, T)
         for j, (i, k) in enumerate(pairs):
             if fits.started[j]:
                 out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
@@ -544,9 +546,10 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
             grad = np.einsum("aki,ai->ki", Ji, ri)
             # a stationary point (scipy's gtol): a double root is found no better
             flat_here = np.abs(grad).max(axis=0, initial=0.0) <= FIT_TOL
-            live[idx[flat_here]] = False
-            idx, Ji, ri, grad = idx[~flat_here], Ji[:, :, ~flat_here], ri[:, ~flat_here], \
-                grad[:, ~flat_here]
+            if flat_here.any():
+                live[idx[flat_here]] = False
+                idx, Ji, ri, grad = idx[~flat_here], Ji[:, :, ~flat_here], ri[:, ~flat_here], \
+                    grad[:, ~flat_here]
             if not len(idx):
                 break
             A = np.einsum("aki,ali->kli", Ji, Ji)
