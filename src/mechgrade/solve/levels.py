@@ -336,12 +336,16 @@ def _set_up(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Gi
     position = {c: j for j, c in enumerate(columns)}
     # Equal default guesses can make a Jacobian singular (two angles both 0.3): which unknowns
     # the equations determine is read where it is not.
-    nearby = x.copy()
-    nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
-    jacobians = [_evaluate(at, level.jacobian, (len(level.labels), len(columns)))[active][
-        :, [position[i] for i in unknown]] for at in (x, nearby)]
-    determined, free = max((_split_free(J, unknown) for J in jacobians),
-                           key=lambda split: len(split[0]))
+    place = [position[i] for i in unknown]
+    determined, free = _split_free(_evaluate(x, level.jacobian, (
+        len(level.labels), len(columns)))[active][:, place], unknown)
+    if free:  # else none is left free: the nearby read cannot determine more
+        nearby = x.copy()
+        nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
+        there = _split_free(_evaluate(nearby, level.jacobian, (
+            len(level.labels), len(columns)))[active][:, place], unknown)
+        if len(there[0]) > len(determined):
+            determined, free = there
     # equations linear in the unknowns at hand (the rest given) have one root: one start
     linear = not (level.jacobian_uses & set(determined))
     for i in free:
