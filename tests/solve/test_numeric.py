@@ -92,6 +92,22 @@ def test_an_instant_solved_with_others_gets_the_root_it_gets_alone():
         assert alone[:, 0].tolist() == together[:, j].tolist()
 
 
+def test_a_double_root_is_left_where_the_gradient_vanishes():
+    """x² = 0 from x = 0.3 by Gauss-Newton's halvings: the root is only known to where the
+    gradient 2x³ falls below the tolerance (a trust region stops there too), not to 1e-100."""
+    import numpy as np
+
+    from mechgrade.solve.levels import FIT_TOL, NEAR_DAMPING, Level, levenberg_marquardt
+
+    level = Level(0, "position", lambda x: [[x ** 2]], lambda x: [[2 * x]], None, ("c",),
+                  (), (), False, (), frozenset({0}))
+    X, _, _ = levenberg_marquardt(level, np.array([[0.3]]), [0], [0], np.ones(1, bool),
+                                  np.zeros((1, 1)), NEAR_DAMPING)
+    x = float(X[0, 0])
+    assert 2 * x ** 3 <= FIT_TOL < 2 * (2 * x) ** 3
+    assert x > 1e-6
+
+
 def _line_level():
     """x + 2 y = r, x - y = 0 (the state: x, y, r), solved for x and y: linear in them."""
     from mechgrade.errors import Location

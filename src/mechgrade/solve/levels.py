@@ -234,8 +234,7 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
     around them; the others keep their guess (or ``free_values``) and are free. ``start`` (a
     whole state) replaces the starts: re-solving near a root already chosen.
     """
-    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g],
-                                       [(free_values, start)], alone=True)
+    (roots,) = solve_nonlinear_columns(problem, p, order, [state], [g], [(free_values, start)])
     if isinstance(roots, MechgradeError):
         raise roots
     return roots
@@ -243,15 +242,13 @@ def solve_nonlinear(problem: Problem, p: KinematicsPlan, order: int, state: Stat
 
 def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
                             states: Sequence[State], givens: Sequence[Givens],
-                            near: Sequence[Near] | None = None, *, alone: bool = False
+                            near: Sequence[Near] | None = None
                             ) -> list[Roots | MechgradeError]:
     """:func:`solve_nonlinear` of many instants (``states[i]`` with ``givens[i]``, and
     ``near[i]`` its ``(free_values, start)`` when re-solved near a root), each column's roots
     or the error that function raises for it: the same starts, every start of
     every column solved together by Levenberg-Marquardt steps on the stacked Jacobians
-    (:func:`levenberg_marquardt`), the roots then chosen by the same rules. ``alone``: each
-    start by scipy's least squares instead, as one instant is solved (its roots exactly as
-    before the columns existed: a degenerate root, zero, is found as exactly zero).
+    (:func:`levenberg_marquardt`), the roots then chosen by the same rules.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -279,8 +276,7 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     pending = [i for i, s in enumerate(out) if isinstance(s, _Setup)]
     setups = [s for s in out if isinstance(s, _Setup)]
     level = p.levels[order]
-    fits = [_fits_alone(problem.consistency, level, s) for s in setups] if alone else \
-        _fits_together(problem.consistency, level, setups)
+    fits = _fits(problem.consistency, level, setups)
     for i, setup, found in zip(pending, setups, fits):
         try:
             out[i] = _chosen(problem, p, setup, found)
@@ -340,12 +336,16 @@ def _set_up(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Gi
     position = {c: j for j, c in enumerate(columns)}
     # Equal default guesses can make a Jacobian singular (two angles both 0.3): which unknowns
     # the equations determine is read where it is not.
-    nearby = x.copy()
-    nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
-    jacobians = [_evaluate(at, level.jacobian, (len(level.labels), len(columns)))[active][
-        :, [position[i] for i in unknown]] for at in (x, nearby)]
-    determined, free = max((_split_free(J, unknown) for J in jacobians),
-                           key=lambda split: len(split[0]))
+    place = [position[i] for i in unknown]
+    determined, free = _split_free(_evaluate(x, level.jacobian, (
+        len(level.labels), len(columns)))[active][:, place], unknown)
+    if free:  # else none is left free: the nearby read cannot determine more
+        nearby = x.copy()
+        nearby[unknown] += 0.1 * (1 + np.arange(len(unknown))) * g.scales[unknown]
+        there = _split_free(_evaluate(nearby, level.jacobian, (
+            len(level.labels), len(columns)))[active][:, place], unknown)
+        if len(there[0]) > len(determined):
+            determined, free = there
     # equations linear in the unknowns at hand (the rest given) have one root: one start
     linear = not (level.jacobian_uses & set(determined))
     for i in free:
@@ -369,7 +369,7 @@ Fit = tuple[np.ndarray, float, bool]
 the level holds there (:func:`~.rules.satisfied`)."""
 
 LM_STEPS = 200
-"""Steps a start may take (the residuals evaluated at most this many times, alone)."""
+"""Steps a start may take (the residuals evaluated at most this many times)."""
 
 FIT_TOL = 1e-14
 """A start has converged when its step is below this part of its unknowns, or its cost falls
@@ -384,52 +384,12 @@ NEAR_DAMPING = 1e-12
 nearly Newton's steps, which reach the root that root continues to in a few."""
 
 
-def _fits_alone(consistency: float, level: Level, setup: _Setup) -> list[Fit | None]:
-    """Each start of ``setup`` solved by scipy's least squares (``None``: a start where the
-    equations are undefined)."""
-    from scipy import optimize
-
-    columns = list(setup.columns)
-    determined, active, target = setup.determined, setup.active, setup.target
-    if not determined:
-        return []
-    solve_for = [columns.index(i) for i in determined]
-
-    def residual(vals, base):
-        full = base.copy()
-        full[determined] = vals
-        return _evaluate(full, level.residual, (-1,))[active] - target[active]
-
-    def jac(vals, base):
-        full = base.copy()
-        full[determined] = vals
-        return _evaluate(full, level.jacobian, (len(level.labels), len(columns)))[active][
-            :, solve_for]
-
-    out: list[Fit | None] = []
-    for k, s in enumerate(setup.starts):
-        with quiet():
-            try:
-                # Levenberg-Marquardt from the other starts: it keeps to the root a start is
-                # in the basin of, where a trust region drifts to the nearest one.
-                fit = optimize.least_squares(residual, s, jac=jac, args=(setup.x,),
-                                             xtol=FIT_TOL, ftol=FIT_TOL, gtol=FIT_TOL,
-                                             max_nfev=LM_STEPS, method="trf" if k == 0 else "lm")
-            except ValueError:  # a start where the equations are undefined
-                out.append(None)
-                continue
-        full = setup.x.copy()
-        full[determined] = fit.x
-        out.append((full, float(fit.cost), bool(holds(consistency, level, full[:, None], active,
-                                                      target[active, None])[0])))
-    return out
-
-
-def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
-                   ) -> list[list[Fit | None]]:
-    """:func:`_fits_alone` of every setup, every start of every one solved at once (those
-    determining the same unknowns from the same rows stacked as columns) by
-    :func:`solve_level_columns`."""
+def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[list[Fit | None]]:
+    """Each start of each setup solved (``None``: a start where the equations are
+    undefined), every start of every one at once (those determining the same unknowns from
+    the same rows stacked as columns) by :func:`solve_level_columns`; an unknown a root puts
+    within :data:`~.rules.ON_BRANCH` of its typical size of zero is zero where the level
+    holds no worse there (a root at zero is found as zero, not as a rounding of it)."""
     out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
@@ -440,11 +400,27 @@ def _fits_together(consistency: float, level: Level, setups: Sequence[_Setup]
         X = np.stack([setups[i].x for i, _ in pairs], axis=1)
         X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
         T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
+        # the first start (the guess) by Gauss-Newton's steps, as a trust region takes them
+        # inside it; the others spread around it kept to their basins by short steps first
+        first_damping = np.array([NEAR_DAMPING if k == 0 else DAMPING for _, k in pairs])
         fits = solve_level_columns(consistency, level, X, first.determined,
-                                   list(first.columns), first.active, T)
+                                   list(first.columns), first.active, T, first_damping)
+        X, cost, held = fits.X, fits.cost, fits.held
+        sizes = np.stack([setups[i].g.scales[first.determined] for i, _ in pairs], axis=1)
+        near = X[first.determined]
+        near = (near != 0) & (np.abs(near) <= rules.ON_BRANCH * sizes)
+        if near.any():
+            X = X.copy()
+            X[first.determined] = np.where(near, 0.0, X[first.determined])
+            with np.errstate(all="ignore"):
+                at_zero = 0.5 * (residuals(level, X, first.active, T)[0] ** 2).sum(axis=0)
+            better = at_zero <= cost
+            X = np.where(better, X, fits.X)
+            cost = np.where(better, at_zero, cost)
+            held = holds(consistency, level, X, first.active, T)
         for j, (i, k) in enumerate(pairs):
             if fits.started[j]:
-                out[i][k] = (fits.X[:, j].copy(), float(fits.cost[j]), bool(fits.held[j]))
+                out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
     return out
 
 
@@ -462,14 +438,16 @@ class LevelColumns:
 
 def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
                         determined: list[int], columns: list[int], active: np.ndarray,
-                        T: np.ndarray, first_damping: float = DAMPING) -> LevelColumns:
+                        T: np.ndarray, first_damping: float | np.ndarray = DAMPING
+                        ) -> LevelColumns:
     """The non-linear level's ``active`` rows (each must equal its row of ``T``) solved for
     the positions ``determined`` at every column of ``X``, each from its own start (its
     column: a single solve's starts, a class's reference root) by
     :func:`levenberg_marquardt` (by one least-squares step where the equations are linear
     in them: their Jacobian does not depend on them), and judged there: the one non-linear
-    solver of an instant and of a class of variants. ``first_damping``: :data:`DAMPING`
-    from starts spread around a guess, :data:`NEAR_DAMPING` from a root already found.
+    solver of an instant and of a class of variants. ``first_damping`` (one, or one per
+    column): :data:`DAMPING` from starts spread around a guess, :data:`NEAR_DAMPING` from a
+    root already found or from the guess itself.
 
     >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
     ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]],
@@ -519,7 +497,8 @@ def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
-                        active: np.ndarray, T: np.ndarray, first_damping: float = DAMPING
+                        active: np.ndarray, T: np.ndarray,
+                        first_damping: float | np.ndarray = DAMPING
                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve ``level``'s ``active`` rows (each must equal its row of ``T``) for the positions
     ``determined`` at every column of ``X`` (the states, each from its own start), by
@@ -528,7 +507,8 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     a step that lowers the cost and multiplied by 4 after one that does not). Each column stops on
     its own (its root does not depend on the columns solved with it) once its step is below
     :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
-    zero, or after :data:`LM_STEPS` steps.
+    zero, or its gradient below :data:`FIT_TOL` (a stationary point: a double root is known no
+    better), or after :data:`LM_STEPS` steps.
     Returns the states, half the sum of the squared residuals of each, and which columns
     started where the equations are defined (the others are left as they came).
 
@@ -557,7 +537,7 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         cost = 0.5 * (r ** 2).sum(axis=0)
     started = np.isfinite(r).all(axis=0)
     live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
-    damping = np.full(X.shape[1], first_damping)
+    damping = np.broadcast_to(np.asarray(first_damping, dtype=float), X.shape[1:]).copy()
     k = len(determined)
     # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
     # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
@@ -566,11 +546,17 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     with np.errstate(all="ignore"):
         for _ in range(LM_STEPS):
             idx = np.flatnonzero(live)
+            Ji, ri = J[:, :, idx], r[:, idx]
+            grad = np.einsum("aki,ai->ki", Ji, ri)
+            # a stationary point (scipy's gtol): a double root is found no better
+            flat_here = np.abs(grad).max(axis=0, initial=0.0) <= FIT_TOL
+            if flat_here.any():
+                live[idx[flat_here]] = False
+                idx, Ji, ri, grad = idx[~flat_here], Ji[:, :, ~flat_here], ri[:, ~flat_here], \
+                    grad[:, ~flat_here]
             if not len(idx):
                 break
-            Ji, ri = J[:, :, idx], r[:, idx]
             A = np.einsum("aki,ali->kli", Ji, Ji)
-            grad = np.einsum("aki,ai->ki", Ji, ri)
             scales[:, idx] = np.maximum(scales[:, idx], np.einsum("kki->ki", A))
             step = least_squares_solution(A + eye * (damping[idx] * scales[:, idx])[:, None, :],
                                           -grad)

@@ -183,8 +183,7 @@ def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wan
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
     # the same copies for every solve of the problem, so their plans are found by identity
     for m in per_problem(constraint_mutations, problem):
-        instants = solve_numeric_columns(m.problem, kinematics_plan(m.problem), givens, wanted,
-                                         alone=len(givens) == 1)
+        instants = solve_numeric_columns(m.problem, kinematics_plan(m.problem), givens, wanted)
         for found, instant in zip(out, instants):
             if isinstance(instant, MechgradeError):
                 continue  # a mistaken length no configuration reaches is no mistake

@@ -58,21 +58,19 @@ def solve_numeric(problem: Problem, p: KinematicsPlan, givens: Mapping, only: se
     Raises when the instant itself cannot be solved; an objective that depends on something
     the givens leave free gets its own error in :attr:`Instant.errors`.
     """
-    (instant,) = solve_numeric_columns(problem, p, [givens], only, alone=True)
+    (instant,) = solve_numeric_columns(problem, p, [givens], only)
     if isinstance(instant, MechgradeError):
         raise instant
     return instant
 
 
 def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                          only: set[str], *, alone: bool = False
-                          ) -> list[Instant | MechgradeError]:
+                          only: set[str]) -> list[Instant | MechgradeError]:
     """:func:`solve_numeric` of many instants, one per ``givens``: each one's instant or the
     error that function raises for it. The non-linear levels of all of them are solved
     together, every start of every instant at once (:func:`~.levels.solve_nonlinear_columns`);
     which roots are distinct, which one the spec asks for and what the instant then is are
-    judged as for one instant. ``alone``: each start solved by scipy's least squares (as
-    :func:`solve_numeric` solves one instant, :func:`~.levels.solve_nonlinear_columns`).
+    judged as for one instant.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -89,11 +87,11 @@ def solve_numeric_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[
     True
     """
     with quiet():  # once, not at each of its dozens of function calls
-        return _solved_columns(problem, p, givens, only, alone)
+        return _solved_columns(problem, p, givens, only)
 
 
 def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mapping],
-                    only: set[str], alone: bool) -> list[Instant | MechgradeError]:
+                    only: set[str]) -> list[Instant | MechgradeError]:
     out: list[Instant | MechgradeError | None] = [None] * len(givens)
     placed: dict[int, Givens] = {}
     for i, given in enumerate(givens):
@@ -102,23 +100,30 @@ def _solved_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[Mappin
         except MechgradeError as err:
             out[i] = err
     chosen: dict[int, tuple[Candidate, dict]] = {}
-    for i, found in _branches_columns(problem, p, placed, alone=alone).items():
+    for i, found in _branches_columns(problem, p, placed).items():
         try:
             if isinstance(found, MechgradeError):
                 raise found
-            chosen[i] = _chosen(problem, p, placed[i], givens[i], found, only)
+            chosen[i] = _chosen(problem, p, placed[i], found, only)
         except MechgradeError as err:
             out[i] = err
-    probed = _undetermined(problem, p, {i: (placed[i], *c) for i, c in chosen.items()}, only,
-                           alone)
+    keys = list(chosen)
+    for i, error in zip(keys, _givens_not_holding(problem, p, [
+            (placed[i], givens[i], chosen[i][0].state) for i in keys])):
+        if error is not None:
+            out[i] = error
+            del chosen[i]
+    probed = _undetermined(problem, p, {i: (placed[i], *c) for i, c in chosen.items()}, only)
+    solved = {i: tuple(j for j in p.index.config if not placed[i].known[j]
+                       and j not in base.free)
+              for i, (base, _) in chosen.items() if not isinstance(probed[i], MechgradeError)}
+    warned = _degenerate(problem, p, {i: (chosen[i][0].state, solved[i]) for i in solved})
     for i, (base, values) in chosen.items():
         errors = probed[i]
         if isinstance(errors, MechgradeError):  # a probe of its freedoms not solved
             out[i] = errors
             continue
-        solved = [j for j in p.index.config if not placed[i].known[j] and j not in base.free]
-        out[i] = Instant(base.state, values, errors,
-                         _degenerate(problem, p, base.state, solved))
+        out[i] = Instant(base.state, values, errors, warned[i])
     return out  # type: ignore[return-value]
 
 
@@ -183,7 +188,7 @@ starts are replaced by."""
 
 
 def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, Givens],
-                      probes: Mapping[int, Probe] | None = None, *, alone: bool = False
+                      probes: Mapping[int, Probe] | None = None
                       ) -> dict[int, list[Candidate] | MechgradeError]:
     """Every complete solution of each instant in ``placed`` (each root of each non-linear
     level followed to the end), or the error met first following the roots in order; each
@@ -206,7 +211,7 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
 
     firsts = solve_nonlinear_columns(problem, p, 0, [State(g.values.copy(), g.known)
                                                      for g in gs], gs,
-                                     [near(i) for i in keys], alone=alone)
+                                     [near(i) for i in keys])
     for i, first in zip(keys, firsts):
         if isinstance(first, MechgradeError):
             failed(i, (), first)
@@ -230,7 +235,7 @@ def _branches_columns(problem: Problem, p: KinematicsPlan, placed: Mapping[int, 
         else:
             roots = solve_nonlinear_columns(problem, p, order, [path[2] for path in paths],
                                             [placed[path[0]] for path in paths],
-                                            [near(path[0]) for path in paths], alone=alone)
+                                            [near(path[0]) for path in paths])
             for (i, at, _, nulls, free, picked), level_roots in zip(paths, roots):
                 if isinstance(level_roots, MechgradeError):
                     failed(i, at, level_roots)
@@ -278,11 +283,11 @@ def _linear(problem: Problem, p: KinematicsPlan, order: int, paths: list[tuple[S
     return dict(sorted(out.items()))
 
 
-def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
-            candidates: list[Candidate], only: set[str]) -> tuple[Candidate, dict]:
+def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, candidates: list[Candidate],
+            only: set[str]) -> tuple[Candidate, dict]:
     """The solution of the instant among every complete solution of its levels
     (:func:`_branches_columns`) and its objectives' values: refused when they give different
-    answers, else the first, its givens checked to hold."""
+    answers, else the first (its givens then checked to hold, :func:`_givens_not_holding`)."""
     base = candidates[0]
     values = evaluate(p.objectives, base.state, only)
     distinct = [base]
@@ -293,7 +298,6 @@ def _chosen(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
             distinct.append(c)
     if len(distinct) > 1:
         raise _ambiguous(problem, p, g, distinct)
-    _check_givens_hold(problem, p, g, givens, base.state)
     return base, values
 
 
@@ -346,33 +350,54 @@ def _missing_error(problem: Problem, p: KinematicsPlan, i: int) -> SolveError:
 def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
                        state: State) -> None:
     """Every constraint and expression given, at every level, holds in ``state``."""
+    (error,) = _givens_not_holding(problem, p, [(g, givens, state)])
+    if error is not None:
+        raise error
+
+
+def _givens_not_holding(problem: Problem, p: KinematicsPlan,
+                        instants: Sequence[tuple[Givens, Mapping, State]]
+                        ) -> list[SolveError | None]:
+    """:func:`_check_givens_hold` at each instant (placed givens, givens, state): the error
+    it raises, or ``None``; each level's residuals evaluated at every instant at once."""
+    out: list[SolveError | None] = [None] * len(instants)
     for level in p.levels:
-        active, target = rows(level, g)
-        if not active.any():
+        placed = [rows(level, g) for g, _, _ in instants]
+        todo = [k for k, (active, _) in enumerate(placed) if active.any() and out[k] is None]
+        if not todo:
             continue
-        value, scale = (v[:, 0] for v in residuals(level, state.values[:, None], slice(None),
-                                                   np.zeros((1, 1))))
-        for i in np.flatnonzero(active):
-            r = value[i] - target[i]
-            if np.isfinite(value[i]) and satisfied(r, scale[i], problem.consistency):
-                continue
-            j = i - level.constraint_rows
-            if j < 0:
-                raise SolveError(f"the constraint '{level.labels[i]}' does not hold in the "
-                                 f"solution (residual {r:.4g} against terms of size "
-                                 f"{scale[i]:.4g})", where=level.wheres[i])
-            key = level.conditions[j]
-            _, _si, given = givens[key]
-            unit = given.unit if given is not None else ""
-            found = from_si(value[i], unit) if unit else value[i]
-            raise SolveError(f"the given '{g.texts[key]}' does not hold in the solution: "
-                             f"{key} is {found:.6g}{' ' + unit if unit else ''} there",
-                             where=level.wheres[i])
+        values, scales = residuals(level, np.stack([instants[k][2].values for k in todo], axis=1),
+                                   slice(None), np.zeros((1, 1)))
+        for column, k in enumerate(todo):
+            active, target = placed[k]
+            value, scale = values[:, column], scales[:, column]
+            r = value - target
+            held = np.isfinite(value) & satisfied(r, scale, problem.consistency)
+            wrong = np.flatnonzero(active & ~held)
+            if len(wrong):
+                out[k] = _not_holding(level, instants[k][0], instants[k][1], int(wrong[0]),
+                                      value, r, scale)
+    return out
+
+
+def _not_holding(level, g: Givens, givens: Mapping, i: int, value, r, scale) -> SolveError:
+    j = i - level.constraint_rows
+    if j < 0:
+        return SolveError(f"the constraint '{level.labels[i]}' does not hold in the "
+                          f"solution (residual {r[i]:.4g} against terms of size "
+                          f"{scale[i]:.4g})", where=level.wheres[i])
+    key = level.conditions[j]
+    _, _si, given = givens[key]
+    unit = given.unit if given is not None else ""
+    found = from_si(value[i], unit) if unit else value[i]
+    return SolveError(f"the given '{g.texts[key]}' does not hold in the solution: "
+                      f"{key} is {found:.6g}{' ' + unit if unit else ''} there",
+                      where=level.wheres[i])
 
 
 def _undetermined(problem: Problem, p: KinematicsPlan,
-                  instants: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str],
-                  alone: bool) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
+                  instants: Mapping[int, tuple[Givens, Candidate, dict]], only: set[str]
+                  ) -> dict[int, dict[str, MechgradeError] | MechgradeError]:
     """Probe each freedom the givens leave at each instant (``(givens, solution, objectives'
     values)``): an objective that changes depends on it. Every probe of every instant is
     solved together, each a column (:func:`_branches_columns`); an instant whose probe is not
@@ -386,19 +411,27 @@ def _undetermined(problem: Problem, p: KinematicsPlan,
                for i, probe in probes.items() if k < len(probe)]
     trials = _branches_columns(problem, p, {m: instants[i][0] for m, (i, _) in
                                             enumerate(columns)},
-                               {m: probes[i][k][0] for m, (i, k) in enumerate(columns)},
-                               alone=alone) if columns else {}
-    for m, (i, k) in enumerate(columns):
+                               {m: probes[i][k][0] for m, (i, k) in enumerate(columns)}
+                               ) if columns else {}
+    solved: list[tuple[int, np.ndarray]] = []  # (column, its state) of each probe solved
+    for m, (i, _) in enumerate(columns):
         found = trials[m]
         if i in out:
             continue
         if isinstance(found, MechgradeError):
             out[i] = found
-            continue
-        moved = _differing(instants[i][2], evaluate(p.objectives, found[0].state, only))
-        for oid in instants[i][2]:
-            if oid in moved:
-                depends[i].setdefault(oid, []).append(probes[i][k][1])
+        else:
+            solved.append((m, found[0].state.values))
+    if solved:  # every probed instant's objectives at once (compared as _close does)
+        X = np.stack([values for _, values in solved], axis=1)
+        for oid, f in p.objectives:
+            if oid not in only:
+                continue
+            before = np.stack([instants[columns[m][0]][2][oid] for m, _ in solved], axis=1)
+            for (m, _), same in zip(solved, unchanged(before, call(f, X, len(before)))):
+                if not same:
+                    i, k = columns[m]
+                    depends[i].setdefault(oid, []).append(probes[i][k][1])
     for i in instants:
         out.setdefault(i, {oid: UnderdeterminedError(
             f"objective '{oid}' is not determined by the givens: give a value for "
@@ -481,21 +514,32 @@ def _probes(p: KinematicsPlan, g: Givens, base: Candidate) -> list[tuple[Probe, 
     return out
 
 
-def _degenerate(problem: Problem, p: KinematicsPlan, state: State,
-                solved: list[int]) -> tuple[AuthorWarning, ...]:
-    """Warnings for a degenerate configuration the position solve landed on
-    (:func:`degenerate` at this one instant)."""
-    pairs, singular = degenerate(p, state.values[:, None], solved)
+def _degenerate(problem: Problem, p: KinematicsPlan,
+                instants: Mapping[int, tuple[State, tuple[int, ...]]]
+                ) -> dict[int, tuple[AuthorWarning, ...]]:
+    """Warnings for a degenerate configuration the position solve landed on at each instant
+    (its state, the positions solved for): :func:`degenerate` over the instants that solved
+    for the same positions at once."""
     wheres = {q.name: q.where for q in problem.points}
-    out = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and {p.points[a]} "
-                         "coincide in the solution", wheres.get(p.points[a], Location()))
-           for a, b, flagged in pairs if flagged[0]]
-    if singular[0]:
-        out.append(AuthorWarning(
-            "degenerate configuration: the position constraints are singular in the "
-            "solution (their Jacobian loses rank: a dead point or a folded linkage)",
-            p.levels[0].wheres[0]))
-    return tuple(out)
+    groups: dict[tuple[int, ...], list[int]] = {}
+    for i, (_, solved) in instants.items():
+        groups.setdefault(solved, []).append(i)
+    out: dict[int, tuple[AuthorWarning, ...]] = {}
+    for solved, keys in groups.items():
+        X = np.stack([instants[i][0].values for i in keys], axis=1)
+        pairs, singular = degenerate(p, X, list(solved))
+        for j, i in enumerate(keys):
+            found = [AuthorWarning(f"degenerate configuration: points {p.points[b]} and "
+                                   f"{p.points[a]} coincide in the solution",
+                                   wheres.get(p.points[a], Location()))
+                     for a, b, flagged in pairs if flagged[j]]
+            if singular[j]:
+                found.append(AuthorWarning(
+                    "degenerate configuration: the position constraints are singular in the "
+                    "solution (their Jacobian loses rank: a dead point or a folded linkage)",
+                    p.levels[0].wheres[0]))
+            out[i] = tuple(found)
+    return out
 
 
 def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
