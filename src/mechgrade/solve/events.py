@@ -101,8 +101,8 @@ def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start:
 
     >>> run = integrate(lambda t, y: np.array([y[1], -y[0]]), [lambda t, y: y[0]], [0.0],
     ...                 np.array([1.0, 0.0]), 0.0, 10.0, None)
-    >>> run.which, round(run.t, 12)
-    (0, 1.570796326795)
+    >>> run.which, round(run.t, 9)  # x = cos t: pi/2, within the tolerances
+    (0, 1.570796327)
     """
     at_start = [i for i, (e, sense) in enumerate(zip(events, directions))
                 if sense == 0 and e(start, y0) == 0]
