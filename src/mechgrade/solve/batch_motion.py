@@ -80,7 +80,8 @@ class Arrival:
 def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
                         rtol: float, atol: float, max_calls: int, lead: float = rules.BEFORE_EVENT,
                         mode: Callable | None = None,
-                        direction: np.ndarray | None = None, t0: float = 0.0) -> Arrival:
+                        direction: np.ndarray | None = None, t0: float = 0.0,
+                        keep: int = 12) -> Arrival:
     """Integrate ``y' = rhs`` from ``y0`` (states x columns) at ``t0`` until ``event``
     changes sign (or becomes zero), per column, as ``solve_ivp(method="DOP853",
     events=event)`` with a terminal event does for each column alone; ``mode(columns, t,
@@ -89,7 +90,9 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     fires it, -1: only a fall, 0: either); a column whose event is zero at the start moves
     only with one. ``event`` may give several events (events x columns, ``direction`` alike):
     a column stops in the step where one fires, at the earliest root of those that fired
-    there (the lowest index of equal ones), as ``solve_ivp`` records terminal events."""
+    there (the lowest index of equal ones), as ``solve_ivp`` records terminal events.
+    ``keep``: the last steps kept per column, where the moment before the event is read (one
+    column alone may keep all it can take, as ``solve_ivp``'s dense output does)."""
     c = dop853
     m, count = y0.shape
     status = np.full(count, FAILED)
@@ -105,7 +108,7 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     sense = np.broadcast_to(0.0 if direction is None else direction, g.shape)
     moving = np.isfinite(f).all(axis=0) & np.isfinite(g).all(axis=0) & \
         ((g != 0) | (sense != 0)).all(axis=0)
-    history = _History(count, m, c.N_STAGES + 1, len(modes), t0)
+    history = _History(count, m, c.N_STAGES + 1, len(modes), t0, keep)
     ends = np.zeros((2,) + g.shape)  # the events' values at the ends of the step one fired in
     hit = np.zeros(g.shape, dtype=bool)  # which events fired there
     switch = np.full(count, -1)  # the mode that switched before the event
@@ -134,9 +137,12 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
                             np.abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * m))
             grow = np.where(norm == 0, MAX_FACTOR,
                             np.minimum(MAX_FACTOR, SAFETY * norm ** exponent))
-            shrink = np.maximum(MIN_FACTOR, SAFETY * norm ** exponent)
+            # an undefined error (a stage through a singularity) rejects the step, as
+            # scipy's max(MIN_FACTOR, nan) does: a shorter one may pass it
+            shrink = np.where(np.isnan(norm), MIN_FACTOR,
+                              np.maximum(MIN_FACTOR, SAFETY * norm ** exponent))
         spent = calls[a] > max_calls
-        broken = small | ~np.isfinite(norm) | ~np.isfinite(y_new).all(axis=0) | spent
+        broken = small | (np.isfinite(norm) & ~np.isfinite(y_new).all(axis=0)) | spent
         accepted = (norm < 1) & ~broken
         h_abs[a] = np.abs(h) * np.where(
             accepted, np.where(retry[a], np.minimum(1.0, grow), grow), shrink)
@@ -285,10 +291,10 @@ class _History:
     """The last accepted steps of every column (the step's ends and stages), enough to
     build the dense output of any of them."""
 
-    size = 12  # steps kept per column: the moment before the event is in the last few
-
-    def __init__(self, count: int, m: int, stages: int, modes: int, start: float):
-        L = self.size
+    def __init__(self, count: int, m: int, stages: int, modes: int, start: float, size: int):
+        # steps kept per column: the moment before the event is in the last few, unless the
+        # steps shorten a great deal before it (a singularity passed)
+        self.size = L = size
         self.start = start
         self.modes = np.empty((L, modes, count))
         self.t_old = np.full((L, count), np.nan)

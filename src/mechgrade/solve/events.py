@@ -23,7 +23,7 @@ from ..spec.model import Objective, Problem
 from ..tolerance import within_each
 from ..units import si_factor
 from .analysis import analysis_of, analysis_plan, extended, start_values, value_at
-from . import rules
+from . import dop853, rules
 from .batch_motion import FIRED, NEVER, STALLED, integrate_to_events
 from .levels import State
 
@@ -112,7 +112,8 @@ def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start:
         lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None],
         lambda _c, t, y, _m: np.array([[e(float(t[0]), y[:, 0])] for e in events]),
         y0[:, None], t_bound, RTOL, ATOL, MAX_CALLS,
-        direction=np.array(directions, dtype=float)[:, None], t0=start)
+        direction=np.array(directions, dtype=float)[:, None], t0=start,
+        keep=MAX_CALLS // dop853.N_STAGES + 1)  # every step it may take
     status, t = int(arrival.status[0]), float(arrival.t[0])
     if status == STALLED:
         raise SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
