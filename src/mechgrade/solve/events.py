@@ -13,6 +13,7 @@ holds at t = 0 is its next crossing.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import sympy as sp
@@ -247,7 +248,9 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     """``expr`` at the event in closed form, for a motion whose accelerations stay constant
     until it: q = q0 + q0' t + a t^2 / 2, with each kinetic-friction slip keeping the direction
     it has at the start (``|u|`` read as ``sign(u0) u``). The event time is the smallest root
-    that is positive at the givens (``numbers``: plain symbol -> SI value).
+    that is positive at the givens (``numbers``: plain symbol -> SI value): the numbers only
+    choose the root, so a class of variants derives the motion once (:func:`_closed_form`)
+    and each expression once per root (:func:`_at_event`).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -257,11 +260,32 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     >>> integrated_symbolically(kin, kin.k.time, {s: 1.0 for _, s in kin.k.parameters})
     2*v0/(7*g*mu)
     """
-    k = kin.k
     if kin.settled:  # its start is solved with numbers
         raise SolveError("a symbolic answer of an integrated motion with a massless junction "
                          "is out of reach (the junction's start is solved with numbers): "
                          "expected 'kind: scalar'", where=where)
+    at_time, times = _closed_form(kin, where)
+    roots = []
+    for root in times:
+        # sympify: a root that is one given symbol (until: t = T) becomes its float
+        value = complex(sp.sympify(root.xreplace(numbers)).evalf())
+        if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
+            roots.append((value.real, root))
+    if not roots:
+        raise SolveError("the event of the integrated motion has no closed-form time: ask for "
+                         "a scalar", where=where)
+    t_event = min(roots, key=lambda pair: pair[0])[1]
+    if isinstance(expr, sp.MatrixBase):  # kept by value: the immutable one
+        return sp.Matrix(_at_event(sp.ImmutableMatrix(expr), at_time, t_event))
+    return _at_event(expr, at_time, t_event)
+
+
+@lru_cache(maxsize=64)
+def _closed_form(kin, where) -> tuple[tuple, tuple]:
+    """The state at the event time ``t_event`` (symbol -> expression, as sorted pairs) of
+    the motion of ``kin`` with constant accelerations, and the event's roots in
+    ``t_event``; raises, located at ``where``, where that closed form is out of reach."""
+    k = kin.k
     start = {**dict(kin.start), k.time: sp.Integer(0)}
     equations = [_frozen(e.expr, start, where, k.coordinates)
                  for e in (*kin.balances, *kin.constraints)]
@@ -276,23 +300,21 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
         raise SolveError("a symbolic answer of an integrated motion needs accelerations that "
                          "stay constant until the event (they change with the state here): "
                          "ask for a scalar", where=where)
-    T = sp.Symbol("t_event", positive=True)
-    at_time = {**solved, k.time: T}
+    at_time = {**solved, k.time: _T}
     for q, qd, qdd in zip(k.q, k.qd, k.qdd):
-        at_time[q] = start[q] + start[qd] * T + solved[qdd] * T ** 2 / 2
-        at_time[qd] = start[qd] + solved[qdd] * T
+        at_time[q] = start[q] + start[qd] * _T + solved[qdd] * _T ** 2 / 2
+        at_time[qd] = start[qd] + solved[qdd] * _T
     event = sp.simplify(kin.until.xreplace(at_time))
-    roots = []
-    for root in sp.solve(event, T):
-        # sympify: a root that is one given symbol (until: t = T) becomes its float
-        value = complex(sp.sympify(root.xreplace(numbers)).evalf())
-        if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
-            roots.append((value.real, root))
-    if not roots:
-        raise SolveError("the event of the integrated motion has no closed-form time: ask for "
-                         "a scalar", where=where)
-    t_event = min(roots, key=lambda pair: pair[0])[1]
-    result = expr.xreplace(at_time).xreplace({T: t_event})
+    return tuple(at_time.items()), tuple(sp.solve(event, _T))
+
+
+_T = sp.Symbol("t_event", positive=True)
+
+
+@lru_cache(maxsize=256)
+def _at_event(expr, at_time: tuple, t_event):
+    """``expr`` with the state at the event (``at_time``) and the event's time put in."""
+    result = expr.xreplace(dict(at_time)).xreplace({_T: t_event})
     return result.applyfunc(sp.simplify) if isinstance(result, sp.MatrixBase) \
         else sp.simplify(result)
 
