@@ -77,7 +77,7 @@ class Arrival:
     which: np.ndarray | None = None
 
 
-def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
+def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, t_bound: float,
                         rtol: float, atol: float, max_calls: int, lead: float = rules.BEFORE_EVENT,
                         mode: Callable | None = None,
                         direction: np.ndarray | None = None, t0: float = 0.0,
@@ -88,9 +88,10 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     y)`` gives the modes (modes x columns) each step keeps (see the module docstring).
     ``direction``: each column's event's ``direction``, as scipy reads it (1: only a rise
     fires it, -1: only a fall, 0: either); a column whose event is zero at the start moves
-    only with one. ``event`` may give several events (events x columns, ``direction`` alike):
+    only with one. ``event`` may be a list of several (``direction`` then events x columns):
     a column stops in the step where one fires, at the earliest root of those that fired
-    there (the lowest index of equal ones), as ``solve_ivp`` records terminal events.
+    there (the lowest index of equal ones), as ``solve_ivp`` records terminal events; each
+    root is found evaluating its own event alone.
     ``keep``: the last steps kept per column, where the moment before the event is read (one
     column alone may keep all it can take, as ``solve_ivp``'s dense output does)."""
     c = dop853
@@ -101,7 +102,12 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
     y = y0.astype(float).copy()
     modes = mode(cols, t, y) if mode is not None else np.zeros((0, count))
     f = rhs(cols, t, y, modes)
-    g = np.atleast_2d(event(cols, t, y, modes))
+    events = event if isinstance(event, list) else [event]
+
+    def every(cols: np.ndarray, t: np.ndarray, y: np.ndarray, modes: np.ndarray) -> np.ndarray:
+        return np.array([e(cols, t, y, modes) for e in events], dtype=float)
+
+    g = every(cols, t, y, modes)
     h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
     calls = np.full(count, 2)
     retry = np.zeros(count, dtype=bool)
@@ -157,7 +163,7 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         # as solve_ivp counts them: it builds every accepted step's dense output
         calls[b] += c.N_STAGES_EXTENDED - c.N_STAGES - 1
         history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k], ma[:, k])
-        g_new = np.atleast_2d(event(b, t_new[k], y_new[:, k], ma[:, k]))
+        g_new = every(b, t_new[k], y_new[:, k], ma[:, k])
         g_old = g[:, b]
         t[b], y[:, b], f[:, b], g[:, b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
         each = ((g_old <= 0) & (g_new >= 0) & (sense[:, b] >= 0)) | \
@@ -188,7 +194,7 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         ends[:, :, b[fired]] = g_old[:, fired], g_new[:, fired]
         hit[:, b[fired]] = each[:, fired]
         moving[b[fired | undefined | ended]] = False
-    arrival = _arrivals(rhs, event, mode, history, status, ends, hit, lead, c, switch, flips,
+    arrival = _arrivals(rhs, events, mode, history, status, ends, hit, lead, c, switch, flips,
                         modes)
     stopped = (status == STALLED) | ((status == FAILED) & np.isnan(arrival.t))
     arrival.t[stopped] = t[stopped]  # where it stopped
@@ -226,7 +232,7 @@ def _switches(rhs, mode, history: "_History", arrival: Arrival, switch, flips, c
     return Arrival(status, t, y, arrival.before, switch, modes, arrival.which)
 
 
-def _arrivals(rhs, event, mode, history: "_History", status, ends, hit, lead, c,
+def _arrivals(rhs, events: list, mode, history: "_History", status, ends, hit, lead, c,
               switch, flips, modes) -> Arrival:
     """Each fired column's event located on the dense output of the step it fired in (of
     several events, the earliest of those that fired there: :func:`_earliest`), and its state a
@@ -253,7 +259,7 @@ def _arrivals(rhs, event, mode, history: "_History", status, ends, hit, lead, c,
         if not len(f):
             continue
         root_j, found_j = _event_time(
-            lambda i, t, y, j=j, f=f: np.atleast_2d(event(e[f[i]], t, y, kept[:, f[i]]))[j],
+            lambda i, t, y, j=j, f=f: events[j](e[f[i]], t, y, kept[:, f[i]]),
             lambda t, i, f=f: dense(t, f[i]), t_old[f], t_new[f], ends[0, j, e[f]],
             ends[1, j, e[f]])
         times[j, f] = root_j

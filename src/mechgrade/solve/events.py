@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Callable
 
 import numpy as np
 import sympy as sp
@@ -109,9 +110,11 @@ def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start:
                 if sense == 0 and e(start, y0) == 0]
     if at_start:  # it fires at once, as solve_ivp's first step finds it (from either side)
         return Run(at_start[0], start, y0, start, y0)
+    def column(event) -> Callable:
+        return lambda _c, t, y, _m: np.array([event(float(t[0]), y[:, 0])])
+
     arrival = integrate_to_events(
-        lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None],
-        lambda _c, t, y, _m: np.array([[e(float(t[0]), y[:, 0])] for e in events]),
+        lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None], [column(e) for e in events],
         y0[:, None], t_bound, RTOL, ATOL, MAX_CALLS,
         direction=np.array(directions, dtype=float)[:, None], t0=start,
         keep=MAX_CALLS // dop853.N_STAGES + 1)  # every step it may take

@@ -239,10 +239,14 @@ def _aimed(target: Target, kp, m: _ScalarMotion, solve):
         def reached(t, y):
             return m.at(t, y)[target.at] - target.value
         return reached
-    equation = _lambdified(kp, dict(kp.kin.whens)[target.objective])
+    expr = dict(kp.kin.whens)[target.objective]
+    equation = _lambdified(kp, expr)
+    kinetic = bool(expr.free_symbols & {*kp.kin.k.qdd, *kp.kin.reactions})
 
     def holds(t, y):
-        return value_at(equation, solve(m.at(t, y)))
+        # an equation of the state alone is read without the balances, as the motion's own
+        # event is (they are undefined where a slip speed is exactly zero: at its root)
+        return value_at(equation, solve(m.at(t, y)) if kinetic else extended(kp, m.at(t, y)))
     return holds
 
 
