@@ -146,3 +146,15 @@ def test_a_column_whose_residual_is_undefined_or_flat_does_not_converge():
 def test_a_column_that_never_settles_stops_after_maxiter():
     roots, converged = newton(lambda cols, x: np.cbrt(x), np.array([1.0]), 1e-15, 1e-13, 30)
     assert not converged[0] and np.isnan(roots[0])  # Newton doubles |x| on cbrt each step
+
+
+def test_of_several_events_the_earliest_fired_is_the_instant_from_the_start_time_given():
+    """x = cos(omega (t - 0.5)) from t0 = 0.5: x = 0.9 (the second event) comes before
+    x = 0 (the first) on every column."""
+    y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
+    arrival = integrate_to_events(oscillators, [crossing(np.zeros(3)), crossing(np.full(3, 0.9))],
+                                  y0, 10.0, 1e-11, 1e-12, 20_000, t0=0.5)
+    assert arrival.status.tolist() == [FIRED] * 3
+    assert arrival.which is not None and arrival.which.tolist() == [1, 1, 1]
+    assert arrival.t == pytest.approx(0.5 + np.arccos(0.9) / OMEGA, rel=1e-10)
+    assert np.all(arrival.before[0] > 0.9)  # a moment before, on the same motion
