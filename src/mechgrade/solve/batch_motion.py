@@ -62,7 +62,8 @@ def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
 @dataclass(frozen=True)
 class Arrival:
     """Where each column's integration ended: ``status`` (:data:`FIRED`, :data:`NEVER`,
-    :data:`FAILED` or :data:`STALLED`), the time ``t`` and state ``y`` of the event, ``which``
+    :data:`FAILED` or :data:`STALLED`), the time ``t`` and state ``y`` of the event (or of
+    the end of the time allowed), ``which``
     event it is (of several, see :func:`integrate_to_events`), and ``before``: the state a
     moment earlier (``t * (1 - lead)``, not before the start), read on the same dense output.
     Where a mode switched (:data:`SWITCHED`): ``switch``, which mode (else -1), and
@@ -105,7 +106,8 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     events = event if isinstance(event, list) else [event]
 
     def every(cols: np.ndarray, t: np.ndarray, y: np.ndarray, modes: np.ndarray) -> np.ndarray:
-        return np.array([e(cols, t, y, modes) for e in events], dtype=float)
+        return np.array([e(cols, t, y, modes) for e in events], dtype=float).reshape(
+            len(events), len(cols))
 
     g = every(cols, t, y, modes)
     h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
@@ -198,6 +200,8 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
                         modes)
     stopped = (status == STALLED) | ((status == FAILED) & np.isnan(arrival.t))
     arrival.t[stopped] = t[stopped]  # where it stopped
+    never = status == NEVER
+    arrival.t[never], arrival.y[:, never] = t[never], y[:, never]  # at the time allowed
     return _switches(rhs, mode, history, arrival, switch, flips, c)
 
 

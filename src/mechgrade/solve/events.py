@@ -187,7 +187,7 @@ def next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> float:
     if event(0.0, y0) != 0.0:
         return 0.0
     h = LEAVING * t_bound
-    moment = integrate(rhs, [lambda t, _y: t - h], [0.0], y0, 0.0, 2 * h, where)
+    moment = integrate(rhs, [], [], y0, 0.0, h, where)  # the state at h
     side = np.sign(event(h, moment.y))
     # a state at rest in the event (an equilibrium) moves only by rounding: it stays there
     if not side or np.abs(moment.y - y0).max() <= ATOL:
