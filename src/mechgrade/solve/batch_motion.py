@@ -113,7 +113,9 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
     calls = np.full(count, 2)
     retry = np.zeros(count, dtype=bool)
-    sense = np.broadcast_to(0.0 if direction is None else direction, g.shape)
+    sense = np.zeros(g.shape)
+    if direction is not None:
+        sense[:] = direction
     moving = np.isfinite(f).all(axis=0) & np.isfinite(g).all(axis=0) & \
         ((g != 0) | (sense != 0)).all(axis=0)
     history = _History(count, m, c.N_STAGES + 1, len(modes), t0, keep)
