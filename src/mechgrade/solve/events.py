@@ -267,11 +267,10 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
         raise SolveError("a symbolic answer of an integrated motion with a massless junction "
                          "is out of reach (the junction's start is solved with numbers): "
                          "expected 'kind: scalar'", where=where)
-    at_time, times = _closed_form(kin, where)
+    at_time, times, symbols, values = _closed_form(kin, where)
     roots = []
-    for root in times:
-        # sympify: a root that is one given symbol (until: t = T) becomes its float
-        value = complex(sp.sympify(root.xreplace(numbers)).evalf())
+    for root, value in zip(times, values(*(complex(numbers[x]) for x in symbols))):
+        value = complex(value)
         if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
             roots.append((value.real, root))
     if not roots:
@@ -284,10 +283,11 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
 
 
 @lru_cache(maxsize=64)
-def _closed_form(kin, where) -> tuple[tuple, tuple]:
-    """The state at the event time ``t_event`` (symbol -> expression, as sorted pairs) of
-    the motion of ``kin`` with constant accelerations, and the event's roots in
-    ``t_event``; raises, located at ``where``, where that closed form is out of reach."""
+def _closed_form(kin, where) -> tuple[tuple, tuple, tuple, Callable]:
+    """The state at the event time ``t_event`` (symbol -> expression, as pairs) of the
+    motion of ``kin`` with constant accelerations, the event's roots in ``t_event``, and
+    their (complex) values as a function of the symbols they hold; raises, located at
+    ``where``, where that closed form is out of reach."""
     k = kin.k
     start = {**dict(kin.start), k.time: sp.Integer(0)}
     equations = [_frozen(e.expr, start, where, k.coordinates)
@@ -308,7 +308,10 @@ def _closed_form(kin, where) -> tuple[tuple, tuple]:
         at_time[q] = start[q] + start[qd] * _T + solved[qdd] * _T ** 2 / 2
         at_time[qd] = start[qd] + solved[qdd] * _T
     event = sp.simplify(kin.until.xreplace(at_time))
-    return tuple(at_time.items()), tuple(sp.solve(event, _T))
+    roots = tuple(sp.solve(event, _T))
+    symbols = tuple(sorted(set().union(*(r.free_symbols for r in roots)), key=str))
+    return tuple(at_time.items()), roots, symbols, \
+        sp.lambdify(symbols, roots, modules="numpy")
 
 
 _T = sp.Symbol("t_event", positive=True)
