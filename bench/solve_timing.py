@@ -27,6 +27,7 @@ from mechgrade.mechanics.dynamics import derive_kinetics
 from mechgrade.solve.dynamics import (_kinetics_plan, _symbolic_result, kinetics_plan,
                                       solve_dynamics)
 from mechgrade.solve.analysis import _analysis_plan
+from mechgrade.solve.events import _at_event, _closed_form
 from mechgrade.spec import load_problem
 from mechgrade.solve import solve
 from mechgrade.mechanics.dynamics_mutations import _mutations as _dynamics_mutations
@@ -114,6 +115,8 @@ def measure_dynamics(problem, start: float):
     _symbolic_result.cache_clear()
     _symbolic_answer.cache_clear()
     _simplify.cache_clear()
+    _closed_form.cache_clear()
+    _at_event.cache_clear()
     begin = time.perf_counter()
     if symbolic:
         solve_dynamics(problem, objectives=symbolic)

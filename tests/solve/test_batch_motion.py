@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy import integrate, optimize
 
-from mechgrade.solve.batch_motion import (FAILED, FIRED, NEVER, SWITCHED, integrate_to_events,
-                                          newton)
+from mechgrade.solve.batch_motion import (FAILED, FIRED, NEVER, STALLED, SWITCHED,
+                                          integrate_to_events, newton)
 
 OMEGA = np.array([1.0, 2.0, 3.0])
 
@@ -47,12 +47,12 @@ def test_a_column_whose_event_never_happens_ends_at_the_time_allowed_without_it(
     y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
     arrival = integrate_to_events(oscillators, crossing(level), y0, 3.0, 1e-11, 1e-12, 20_000)
     assert arrival.status.tolist() == [FIRED, NEVER, FIRED]
-    assert np.isnan(arrival.t[1])
+    assert arrival.t[1] == 3.0 and abs(arrival.y[0, 1] - np.cos(6.0)) < 1e-9  # where it ended
 
 
 def test_an_event_given_a_direction_fires_only_on_a_crossing_that_way_as_solve_ivp_does():
     # every column starts on its event, x = 0, and waits for it to cross back from the side
-    # it leaves to (as events._next_crossing sets it): moving up, a fall; moving down, a rise
+    # it leaves to (as events.next_crossing sets it): moving up, a fall; moving down, a rise
     y0 = np.array([[0.0, 0.0, 0.0], [1.0, -1.0, 1.0]])
     direction = np.array([-1.0, 1.0, -1.0])
     arrival = integrate_to_events(oscillators, crossing(np.zeros(3)), y0, 10.0, 1e-11, 1e-12,
@@ -75,7 +75,8 @@ def test_a_column_that_starts_on_its_event_or_runs_out_of_evaluations_is_left_al
     y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
     arrival = integrate_to_events(oscillators, crossing(level), y0, 10.0, 1e-11, 1e-12, 100)
     assert arrival.status[0] == FAILED  # on its event at t = 0
-    assert arrival.status[2] == FAILED  # too many evaluations before it
+    assert arrival.status[2] == STALLED  # too many evaluations before it, stopped at a time
+    assert 0 < arrival.t[2] < np.arccos(-0.9)
 
 
 def test_a_column_that_switches_before_its_event_is_located_at_its_switch():
@@ -145,3 +146,15 @@ def test_a_column_whose_residual_is_undefined_or_flat_does_not_converge():
 def test_a_column_that_never_settles_stops_after_maxiter():
     roots, converged = newton(lambda cols, x: np.cbrt(x), np.array([1.0]), 1e-15, 1e-13, 30)
     assert not converged[0] and np.isnan(roots[0])  # Newton doubles |x| on cbrt each step
+
+
+def test_of_several_events_the_earliest_fired_is_the_instant_from_the_start_time_given():
+    """x = cos(omega (t - 0.5)) from t0 = 0.5: x = 0.9 (the second event) comes before
+    x = 0 (the first) on every column."""
+    y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])
+    arrival = integrate_to_events(oscillators, [crossing(np.zeros(3)), crossing(np.full(3, 0.9))],
+                                  y0, 10.0, 1e-11, 1e-12, 20_000, t0=0.5)
+    assert arrival.status.tolist() == [FIRED] * 3
+    assert arrival.which is not None and arrival.which.tolist() == [1, 1, 1]
+    assert arrival.t == pytest.approx(0.5 + np.arccos(0.9) / OMEGA, rel=1e-10)
+    assert np.all(arrival.before[0] > 0.9)  # a moment before, on the same motion

@@ -38,12 +38,13 @@ from .columns import call
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # as scipy's Runge-Kutta step control
 EPS = np.finfo(float).eps
 
-FIRED, NEVER, FAILED, SWITCHED = 1, 0, -1, -2
+FIRED, NEVER, FAILED, SWITCHED, STALLED = 1, 0, -1, -2, -3
 """How a column's integration ended: at its event, at the end of the time allowed without
-it, or without an answer this path vouches for (a step too small, more evaluations of the
-right-hand side than allowed, counted as ``solve_ivp`` with its dense output counts them, an
-undefined value): that column is solved alone; or where one of its modes switched before its
-event (:attr:`Arrival.switch` says which, ``t`` and ``y`` where its speed crossed zero)."""
+it, or without an answer this path vouches for (a step too small, an undefined value), or
+after more evaluations of the right-hand side than allowed (counted as ``solve_ivp`` with its
+dense output counts them; ``t``: the step it stopped at); or where one of its modes switched
+before its event (:attr:`Arrival.switch` says which, ``t`` and ``y`` where its speed crossed
+zero)."""
 
 Field = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 """``f(columns, t, y, modes)``: a value per column of ``y`` (``columns``: which variants they
@@ -60,11 +61,13 @@ def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Arrival:
-    """Where each column's integration ended: ``status`` (:data:`FIRED`, :data:`NEVER` or
-    :data:`FAILED`), the time ``t`` and state ``y`` of the event, and ``before``: the state a
-    moment earlier (``t * (1 - lead)``), read on the same dense output. Where a mode switched
-    (:data:`SWITCHED`): ``switch``, which mode (else -1), and ``modes``, those the step kept
-    (modes x columns)."""
+    """Where each column's integration ended: ``status`` (:data:`FIRED`, :data:`NEVER`,
+    :data:`FAILED` or :data:`STALLED`), the time ``t`` and state ``y`` of the event (or of
+    the end of the time allowed), ``which``
+    event it is (of several, see :func:`integrate_to_events`), and ``before``: the state a
+    moment earlier (``t * (1 - lead)``, not before the start), read on the same dense output.
+    Where a mode switched (:data:`SWITCHED`): ``switch``, which mode (else -1), and
+    ``modes``, those the step kept (modes x columns)."""
 
     status: np.ndarray
     t: np.ndarray
@@ -72,34 +75,52 @@ class Arrival:
     before: np.ndarray
     switch: np.ndarray | None = None
     modes: np.ndarray | None = None
+    which: np.ndarray | None = None
 
 
-def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float,
+def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, t_bound: float,
                         rtol: float, atol: float, max_calls: int, lead: float = rules.BEFORE_EVENT,
                         mode: Callable | None = None,
-                        direction: np.ndarray | None = None) -> Arrival:
-    """Integrate ``y' = rhs`` from ``y0`` (states x columns) at t = 0 until ``event`` changes
-    sign (or becomes zero), per column, as ``solve_ivp(method="DOP853", events=event)`` with
-    a terminal event does for each column alone; ``mode(columns, t, y)`` gives the modes
-    (modes x columns) each step keeps (see the module docstring). ``direction``: each
-    column's event's ``direction``, as scipy reads it (1: only a rise fires it, -1: only a
-    fall, 0: either); a column whose event is zero at the start moves only with one."""
+                        direction: np.ndarray | None = None, t0: float = 0.0,
+                        keep: int = 12) -> Arrival:
+    """Integrate ``y' = rhs`` from ``y0`` (states x columns) at ``t0`` until ``event``
+    changes sign (or becomes zero), per column, as ``solve_ivp(method="DOP853",
+    events=event)`` with a terminal event does for each column alone; ``mode(columns, t,
+    y)`` gives the modes (modes x columns) each step keeps (see the module docstring).
+    ``direction``: each column's event's ``direction``, as scipy reads it (1: only a rise
+    fires it, -1: only a fall, 0: either); a column whose event is zero at the start moves
+    only with one. ``event`` may be a list of several (``direction`` then events x columns):
+    a column stops in the step where one fires, at the earliest root of those that fired
+    there (the lowest index of equal ones), as ``solve_ivp`` records terminal events; each
+    root is found evaluating its own event alone.
+    ``keep``: the last steps kept per column, where the moment before the event is read (one
+    column alone may keep all it can take, as ``solve_ivp``'s dense output does)."""
     c = dop853
     m, count = y0.shape
     status = np.full(count, FAILED)
     cols = np.arange(count)
-    t = np.zeros(count)
+    t = np.full(count, float(t0))
     y = y0.astype(float).copy()
     modes = mode(cols, t, y) if mode is not None else np.zeros((0, count))
     f = rhs(cols, t, y, modes)
-    g = event(cols, t, y, modes)
+    events = event if isinstance(event, list) else [event]
+
+    def every(cols: np.ndarray, t: np.ndarray, y: np.ndarray, modes: np.ndarray) -> np.ndarray:
+        return np.array([e(cols, t, y, modes) for e in events], dtype=float).reshape(
+            len(events), len(cols))
+
+    g = every(cols, t, y, modes)
     h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
     calls = np.full(count, 2)
     retry = np.zeros(count, dtype=bool)
-    sense = np.zeros(count) if direction is None else direction
-    moving = np.isfinite(f).all(axis=0) & np.isfinite(g) & ((g != 0) | (sense != 0))
-    history = _History(count, m, c.N_STAGES + 1, len(modes))
-    ends = np.zeros((2, count))  # the event's values at the ends of the step it fired in
+    sense = np.zeros(g.shape)
+    if direction is not None:
+        sense[:] = direction
+    moving = np.isfinite(f).all(axis=0) & np.isfinite(g).all(axis=0) & \
+        ((g != 0) | (sense != 0)).all(axis=0)
+    history = _History(count, m, c.N_STAGES + 1, len(modes), t0, keep)
+    ends = np.zeros((2,) + g.shape)  # the events' values at the ends of the step one fired in
+    hit = np.zeros(g.shape, dtype=bool)  # which events fired there
     switch = np.full(count, -1)  # the mode that switched before the event
     flips = np.zeros((2, count))  # its signs at the ends of the step it switched in
     exponent = -1.0 / 8.0  # the error estimator's order, 7, plus one
@@ -126,14 +147,19 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
                             np.abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * m))
             grow = np.where(norm == 0, MAX_FACTOR,
                             np.minimum(MAX_FACTOR, SAFETY * norm ** exponent))
-            shrink = np.maximum(MIN_FACTOR, SAFETY * norm ** exponent)
-        broken = small | ~np.isfinite(norm) | ~np.isfinite(y_new).all(axis=0) | \
-            (calls[a] > max_calls)
+            # an undefined error (a stage through a singularity) rejects the step, as
+            # scipy's max(MIN_FACTOR, nan) does: a shorter one may pass it
+            shrink = np.where(np.isnan(norm), MIN_FACTOR,
+                              np.maximum(MIN_FACTOR, SAFETY * norm ** exponent))
+        spent = calls[a] > max_calls
+        broken = small | (np.isfinite(norm) & ~np.isfinite(y_new).all(axis=0)) | spent
         accepted = (norm < 1) & ~broken
         h_abs[a] = np.abs(h) * np.where(
             accepted, np.where(retry[a], np.minimum(1.0, grow), grow), shrink)
         retry[a] = ~accepted
         moving[a[broken]] = False
+        status[a[spent]] = STALLED
+        t[a[spent]] = ta[spent]
         if not accepted.any():
             continue
         k = np.flatnonzero(accepted)
@@ -141,12 +167,13 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
         # as solve_ivp counts them: it builds every accepted step's dense output
         calls[b] += c.N_STAGES_EXTENDED - c.N_STAGES - 1
         history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k], ma[:, k])
-        g_new = event(b, t_new[k], y_new[:, k], ma[:, k])
-        g_old = g[b]
-        t[b], y[:, b], f[:, b], g[b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
-        fired = ((g_old <= 0) & (g_new >= 0) & (sense[b] >= 0)) | \
-            ((g_old >= 0) & (g_new <= 0) & (sense[b] <= 0))
-        undefined = ~np.isfinite(g_new)
+        g_new = every(b, t_new[k], y_new[:, k], ma[:, k])
+        g_old = g[:, b]
+        t[b], y[:, b], f[:, b], g[:, b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
+        each = ((g_old <= 0) & (g_new >= 0) & (sense[:, b] >= 0)) | \
+            ((g_old >= 0) & (g_new <= 0) & (sense[:, b] <= 0))
+        fired = each.any(axis=0)
+        undefined = ~np.isfinite(g_new).all(axis=0)
         switched = np.zeros(len(b), dtype=bool)
         if mode is not None:  # a switch anywhere but at the event: not answered here
             modes[:, b] = mode(b, t_new[k], y_new[:, k])
@@ -159,17 +186,31 @@ def integrate_to_events(rhs: Field, event: Field, y0: np.ndarray, t_bound: float
                 modes[switch[b[switched]], b[switched]]
             switched &= ~fired  # a switch in the step of the event: see _arrivals
         # solve_ivp would have stopped on an evaluation past the most allowed
-        undefined |= calls[b] > max_calls
+        spent = calls[b] > max_calls
+        status[b[spent]] = STALLED
+        undefined |= spent
         fired &= ~undefined
         ended = ~fired & ~undefined & (t_new[k] >= t_bound)
         status[b[ended]] = NEVER
         status[b[fired]] = FIRED  # provisionally: until its event is located
         # one mode switched (and the step is otherwise sound): located like an event
-        status[b[switched & (calls[b] <= max_calls)]] = SWITCHED
-        ends[:, b[fired]] = g_old[fired], g_new[fired]
+        status[b[switched & ~spent]] = SWITCHED
+        ends[:, :, b[fired]] = g_old[:, fired], g_new[:, fired]
+        hit[:, b[fired]] = each[:, fired]
         moving[b[fired | undefined | ended]] = False
-    arrival = _arrivals(rhs, event, mode, history, status, ends, lead, c, switch, flips, modes)
+    arrival = _arrivals(rhs, events, mode, history, status, ends, hit, lead, c, switch, flips,
+                        modes)
+    stopped = (status == STALLED) | ((status == FAILED) & np.isnan(arrival.t))
+    arrival.t[stopped] = t[stopped]  # where it stopped
+    never = status == NEVER
+    arrival.t[never], arrival.y[:, never] = t[never], y[:, never]  # at the time allowed
     return _switches(rhs, mode, history, arrival, switch, flips, c)
+
+
+def _earliest(times: np.ndarray) -> np.ndarray:
+    """The event each column's instant is (``times``: events x columns, NaN where one did not
+    fire): the earliest root, the lowest index of equal ones."""
+    return np.where(np.isnan(times), np.inf, times).argmin(axis=0)
 
 
 def _switches(rhs, mode, history: "_History", arrival: Arrival, switch, flips, c) -> Arrival:
@@ -194,13 +235,14 @@ def _switches(rhs, mode, history: "_History", arrival: Arrival, switch, flips, c
     y[:, w] = dense(root, np.arange(len(w)))
     modes = np.full((kept.shape[0], len(status)), np.nan)
     modes[:, w] = kept
-    return Arrival(status, t, y, arrival.before, switch, modes)
+    return Arrival(status, t, y, arrival.before, switch, modes, arrival.which)
 
 
-def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c,
+def _arrivals(rhs, events: list, mode, history: "_History", status, ends, hit, lead, c,
               switch, flips, modes) -> Arrival:
-    """Each fired column's event located on the dense output of the step it fired in, and
-    its state a moment before (on the dense output of the step that holds that moment); one
+    """Each fired column's event located on the dense output of the step it fired in (of
+    several events, the earliest of those that fired there: :func:`_earliest`), and its state a
+    moment before (on the dense output of the step that holds that moment); one
     whose mode (``switch``) switched in that step before that moment has
     :data:`SWITCHED`, as has one where a single mode had switched by that moment beside
     those that switch at the event (an event that ends a slip ends its mode too): that
@@ -216,12 +258,24 @@ def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c,
     last = (history.pushed[e] - 1) % history.size
     dense, t_old, t_new = history.dense(rhs, e, last, c)
     kept = history.modes[last, :, e].T
-    root, found = _event_time(lambda i, t, y: event(e[i], t, y, kept[:, i]), dense, t_old,
-                              t_new, ends[0, e], ends[1, e])
+    times = np.full((len(hit), len(e)), np.nan)
+    found = np.ones(len(e), dtype=bool)
+    for j in range(len(hit)):
+        f = np.flatnonzero(hit[j, e])
+        if not len(f):
+            continue
+        root_j, found_j = _event_time(
+            lambda i, t, y, j=j, f=f: events[j](e[f[i]], t, y, kept[:, f[i]]),
+            lambda t, i, f=f: dense(t, f[i]), t_old[f], t_new[f], ends[0, j, e[f]],
+            ends[1, j, e[f]])
+        times[j, f] = root_j
+        found[f] &= found_j  # an event not located: the instant is not known
+    which = _earliest(times)
     everyone = np.arange(len(e))
+    root = times[which, everyone]
     t_event[e] = root
     y_event[:, e] = dense(root, everyone)
-    earlier = root * (1 - lead)
+    earlier = np.maximum(root * (1 - lead), history.start)
     before[:, e] = dense(np.clip(earlier, t_old, t_new), everyone)
     slot, held = history.holding(e, earlier)
     back = np.flatnonzero(held & (slot != last))
@@ -240,17 +294,20 @@ def _arrivals(rhs, event, mode, history: "_History", status, ends, lead, c,
         flips[:, e[one]] = kept[j, one], modes[j, e[one]]
     status[e[~(found & held)]] = FAILED  # an event not located, or a moment not kept
     status[e[found & kept_moment & ~held & (switch[e] >= 0) & (slot == last)]] = SWITCHED
-    return Arrival(status, t_event, y_event, before)
+    chosen = np.full(count, -1)
+    chosen[e] = which
+    return Arrival(status, t_event, y_event, before, which=chosen)
 
 
 class _History:
     """The last accepted steps of every column (the step's ends and stages), enough to
     build the dense output of any of them."""
 
-    size = 12  # steps kept per column: the moment before the event is in the last few
-
-    def __init__(self, count: int, m: int, stages: int, modes: int):
-        L = self.size
+    def __init__(self, count: int, m: int, stages: int, modes: int, start: float, size: int):
+        # steps kept per column: the moment before the event is in the last few, unless the
+        # steps shorten a great deal before it (a singularity passed)
+        self.size = L = size
+        self.start = start
         self.modes = np.empty((L, modes, count))
         self.t_old = np.full((L, count), np.nan)
         self.t_new = np.full((L, count), np.nan)
@@ -271,8 +328,10 @@ class _History:
 
     def holding(self, cols, t) -> tuple[np.ndarray, np.ndarray]:
         """The slot of the step of each column that holds its time ``t`` (``t_old < t <=
-        t_new``, as ``OdeSolution`` picks the step), and whether one is kept."""
-        inside = (self.t_old[:, cols] < t) & (t <= self.t_new[:, cols])
+        t_new``, as ``OdeSolution`` picks the step; the first step holds its start too), and
+        whether one is kept."""
+        t_old = self.t_old[:, cols]
+        inside = ((t_old < t) | (t_old == self.start)) & (t <= self.t_new[:, cols])
         return inside.argmax(axis=0), inside.any(axis=0)
 
     def dense(self, rhs, cols, slots, c):
@@ -287,19 +346,20 @@ class _History:
 
 
 def _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol) -> np.ndarray:
-    """scipy's ``select_initial_step`` for every column."""
+    """scipy's ``select_initial_step`` for every column (each at its time ``t``)."""
     m = y.shape[0]
+    interval = t_bound - t
     scale = atol + np.abs(y) * rtol
     with np.errstate(all="ignore"):
         d0 = np.sqrt((((y / scale) ** 2).sum(axis=0)) / m)
         d1 = np.sqrt((((f / scale) ** 2).sum(axis=0)) / m)
         h0 = np.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / d1)
-        h0 = np.minimum(h0, t_bound)
+        h0 = np.minimum(h0, interval)
         f1 = rhs(cols, t + h0, y + h0 * f, modes)
         d2 = np.sqrt(((((f1 - f) / scale) ** 2).sum(axis=0)) / m) / h0
         h1 = np.where((d1 <= 1e-15) & (d2 <= 1e-15), np.maximum(1e-6, h0 * 1e-3),
                       (0.01 / np.maximum(d1, d2)) ** (1 / 8))
-    return np.minimum(np.minimum(100 * h0, h1), t_bound)
+    return np.minimum(np.minimum(100 * h0, h1), interval)
 
 
 def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):

@@ -1,7 +1,8 @@
 """The instant of a dynamics problem reached by integrating the motion to an event.
 
-The coordinates and rates from ``from:`` at t = 0, integrated with ``scipy.integrate.solve_ivp``
-(DOP853, rtol 1e-11) until the event equation first holds (root refined on the dense output);
+The coordinates and rates from ``from:`` at t = 0, integrated as one column of the integrator
+over columns (:mod:`.batch_motion`: DOP853, rtol 1e-11, the steps ``scipy.integrate.solve_ivp``
+takes) until the event equation first holds (root refined on the dense output);
 the objectives are read at the event, with ``t`` its time. The accelerations and reactions
 there are the limits just before the event (a kinetic-friction force has no direction once the
 slip has ended). An objective asked at its own time, coordinate or rate is read where that
@@ -11,11 +12,12 @@ holds at t = 0 is its next crossing.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Callable
+
 import numpy as np
 import sympy as sp
-
-# scipy is imported by the functions that use it: it takes longer to import than a whole
-# `mechgrade check` of most problems, which never needs it.
 
 from ..errors import SolveError
 from ..spec.dynamics import Integration
@@ -23,7 +25,8 @@ from ..spec.model import Objective, Problem
 from ..tolerance import within_each
 from ..units import si_factor
 from .analysis import analysis_of, analysis_plan, extended, start_values, value_at
-from . import rules
+from . import dop853, rules
+from .batch_motion import FIRED, NEVER, STALLED, integrate_to_events
 from .levels import State
 
 RTOL, ATOL = 1e-11, 1e-12
@@ -38,26 +41,12 @@ def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[S
     reactions as limits). ``base`` holds the parameters; ``solve(values)`` returns the
     extended state with the second rates and reactions solved. An event that already holds
     at t = 0 is the next crossing (a projectile launched from the ground lands)."""
-    from scipy.integrate import solve_ivp
-
     m = _ScalarMotion(problem, kp, base, solve)
-    analysis, index = m.analysis, m.index
-    m.until.terminal = True  # type: ignore[attr-defined]
-    result = solve_ivp(m.rhs, (0.0, analysis.max_time), m.y0, method="DOP853", rtol=RTOL,
-                       atol=ATOL, events=m.until, dense_output=True)
-    if result.status < 0:
-        raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
-    if not len(result.t_events[0]):
-        raise event_never_happens(analysis)
-    t_event = float(result.t_events[0][0])
-    y_event = result.y_events[0][0]
-    end = m.at(t_event, y_event)
-    earlier = t_event * (1 - rules.BEFORE_EVENT)
-    before = solve(m.at(earlier, result.sol(earlier)))
-    known = np.zeros(len(end), dtype=bool)
-    known[index.config] = True
-    known[list(index.rates(1))] = True
-    return State(end, known, frozenset()), before
+    run = m.run([m.until], [m.direction])
+    if run.which is None:
+        raise event_never_happens(m.analysis)
+    return State(m.at(run.t, run.y), _known(m.index), frozenset()), \
+        solve(m.at(run.earlier, run.before))
 
 
 def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int, value: float,
@@ -68,36 +57,85 @@ def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int,
     Raises when the event, or the time allowed, comes first. Arguments as
     :func:`integrate_to_event`; a coordinate or rate that holds at t = 0 is its next
     crossing (t = 0 is the start)."""
-    from scipy.integrate import solve_ivp
-
     m = _ScalarMotion(problem, kp, base, solve)
-    analysis, index = m.analysis, m.index
 
     def reached(t, y):
         return m.at(t, y)[at] - value
 
-    reached.terminal = True  # type: ignore[attr-defined]
-    m.until.terminal = True  # type: ignore[attr-defined]
-    if at != index.time:  # t = 0 is the start itself
-        _next_crossing(reached, m.rhs, m.y0, analysis.max_time, analysis.where)
-    result = solve_ivp(m.rhs, (0.0, analysis.max_time), m.y0, method="DOP853", rtol=RTOL,
-                       atol=ATOL, events=[reached, m.until])
-    if result.status < 0:
-        raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
-    if not len(result.t_events[0]):
-        raise instant_missed(analysis, given, where, result.t_events[1])
-    end = m.at(float(result.t_events[0][0]), result.y_events[0][0])
+    sense = 0.0 if at == m.index.time else \
+        next_crossing(reached, m.rhs, m.y0, m.analysis.max_time, m.analysis.where)
+    run = m.run([reached, m.until], [sense, m.direction])
+    if run.which != 0:
+        raise instant_missed(m.analysis, given, where, [run.t] if run.which == 1 else [])
+    end = m.at(run.t, run.y)
     end[at] = value  # where the root was found: the given holds there
-    known = np.zeros(len(end), dtype=bool)
+    return State(end, _known(m.index), frozenset())
+
+
+def _known(index) -> np.ndarray:
+    """What an integrated state knows: its coordinates and rates (and the givens)."""
+    known = np.zeros(index.size, dtype=bool)
     known[index.config] = True
     known[list(index.rates(1))] = True
-    return State(end, known, frozenset())
+    return known
+
+
+@dataclass(frozen=True)
+class Run:
+    """One motion integrated to the first of its events: ``which`` fired (``None``: none
+    within the time allowed), its time ``t`` and state ``y`` (coordinates, then rates), and
+    the state ``before`` at ``earlier``, a moment before it (not before the start)."""
+
+    which: int | None
+    t: float
+    y: np.ndarray
+    earlier: float
+    before: np.ndarray
+
+
+def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start: float,
+              t_bound: float, where) -> Run:
+    """``y' = rhs(t, y)`` integrated from ``y0`` at ``start`` until one of ``events`` (each
+    ``event(t, y)``, with its ``direction`` as scipy reads it) changes sign: one column of
+    the integrator over columns (:func:`~.batch_motion.integrate_to_events`), with the
+    steps, tolerances and evaluations allowed of every integration. Raises, located at
+    ``where``, when it stalls or fails.
+
+    >>> run = integrate(lambda t, y: np.array([y[1], -y[0]]), [lambda t, y: y[0]], [0.0],
+    ...                 np.array([1.0, 0.0]), 0.0, 10.0, None)
+    >>> run.which, round(run.t, 9)  # x = cos t: pi/2, within the tolerances
+    (0, 1.570796327)
+    """
+    at_start = [i for i, (e, sense) in enumerate(zip(events, directions))
+                if sense == 0 and e(start, y0) == 0]
+    if at_start:  # it fires at once, as solve_ivp's first step finds it (from either side)
+        return Run(at_start[0], start, y0, start, y0)
+    def column(event) -> Callable:
+        return lambda _c, t, y, _m: np.array([event(float(t[0]), y[:, 0])])
+
+    arrival = integrate_to_events(
+        lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None], [column(e) for e in events],
+        y0[:, None], t_bound, RTOL, ATOL, MAX_CALLS,
+        direction=np.array(directions, dtype=float)[:, None], t0=start,
+        keep=MAX_CALLS // dop853.N_STAGES + 1)  # every step it may take
+    status, t = int(arrival.status[0]), float(arrival.t[0])
+    if status == STALLED:
+        raise SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
+                         "motion may switch there, e.g. friction reversing once the slip "
+                         "ends)", where=where)
+    if status not in (FIRED, NEVER):
+        raise SolveError(f"the integration failed near t = {t:.6g} s: its step fell below the "
+                         "spacing of numbers there, or the motion is undefined", where=where)
+    which = None if status == NEVER or arrival.which is None else int(arrival.which[0])
+    return Run(which, t, arrival.y[:, 0], max(start, t * (1 - rules.BEFORE_EVENT)),
+               arrival.before[:, 0])
 
 
 class _ScalarMotion:
     """One motion integrated alone: the start state ``y0`` (coordinates, then rates), the
-    state values ``at(t, y)``, the right-hand side and the analysis's event (``until``, an
-    event that holds at t = 0 set to wait for its next crossing, unless ``leave`` is false)."""
+    state values ``at(t, y)``, the right-hand side and the analysis's event (``until``, with
+    its ``direction``: an event that holds at t = 0 waits for its next crossing, unless
+    ``leave`` is false)."""
 
     def __init__(self, problem: Problem, kp, base: np.ndarray, solve, leave: bool = True):
         self.analysis = analysis = analysis_of(problem, Integration)
@@ -107,7 +145,6 @@ class _ScalarMotion:
         values = start_values(problem, kp, ap, base)
         values[index.time] = 0.0
         values[qdd] = 0.0
-        calls = [0]
 
         def at(t, y):
             v = values.copy()
@@ -117,11 +154,6 @@ class _ScalarMotion:
             return v
 
         def rhs(t, y):
-            calls[0] += 1
-            if calls[0] > MAX_CALLS:
-                raise SolveError(f"the integration stalls near t = {t:.6g} s before the event "
-                                 "(the motion may switch there, e.g. friction reversing once "
-                                 "the slip ends)", where=analysis.where)
             x = solve(at(t, y))
             return np.concatenate([y[index.n:], x[qdd]])
 
@@ -136,25 +168,31 @@ class _ScalarMotion:
 
         self.at, self.rhs, self.until = at, rhs, until
         self.y0 = np.concatenate([values[q], values[qd]])
-        if leave:  # a later phase of the motion starts where the event does not hold
-            _next_crossing(until, rhs, self.y0, analysis.max_time, analysis.where)
+        # a later phase of the motion starts where the event does not hold
+        self.direction = next_crossing(until, rhs, self.y0, analysis.max_time,
+                                       analysis.where) if leave else 0.0
+
+    def run(self, events: list, directions: list[float], start: float = 0.0,
+            y0: np.ndarray | None = None) -> Run:
+        """This motion integrated to the first of ``events`` (:func:`integrate`), from its
+        start or from ``y0`` at ``start``."""
+        return integrate(self.rhs, events, directions, self.y0 if y0 is None else y0, start,
+                         self.analysis.max_time, self.analysis.where)
 
 
-def _next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> None:
-    """An event that holds at t = 0 (a projectile launched from the ground, ``until: y = 0``)
-    waits for its next crossing: the one back through zero from the side it leaves to.
-    scipy reads the event's ``direction`` attribute (mypy models none, python/mypy#2087)."""
-    from scipy.integrate import solve_ivp
-
+def next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> float:
+    """The ``direction`` (as scipy reads it) of an event that holds at t = 0 (a projectile
+    launched from the ground, ``until: y = 0``): its next crossing, back through zero from
+    the side the motion leaves to a moment later; 0 (either way) for any other event."""
     if event(0.0, y0) != 0.0:
-        return
+        return 0.0
     h = LEAVING * t_bound
-    early = solve_ivp(rhs, (0.0, h), y0, method="DOP853", rtol=RTOL, atol=ATOL)
-    side = np.sign(event(h, early.y[:, -1]))
+    moment = integrate(rhs, [], [], y0, 0.0, h, where)  # the state at h
+    side = np.sign(event(h, moment.y))
     # a state at rest in the event (an equilibrium) moves only by rounding: it stays there
-    if not side or np.abs(early.y[:, -1] - y0).max() <= ATOL:
+    if not side or np.abs(moment.y - y0).max() <= ATOL:
         raise event_stays(where)
-    event.direction = -side
+    return float(-side)
 
 
 def event_stays(where) -> SolveError:
@@ -213,7 +251,9 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     """``expr`` at the event in closed form, for a motion whose accelerations stay constant
     until it: q = q0 + q0' t + a t^2 / 2, with each kinetic-friction slip keeping the direction
     it has at the start (``|u|`` read as ``sign(u0) u``). The event time is the smallest root
-    that is positive at the givens (``numbers``: plain symbol -> SI value).
+    that is positive at the givens (``numbers``: plain symbol -> SI value): the numbers only
+    choose the root, so a class of variants derives the motion once (:func:`_closed_form`)
+    and each expression once per root (:func:`_at_event`).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -223,11 +263,32 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     >>> integrated_symbolically(kin, kin.k.time, {s: 1.0 for _, s in kin.k.parameters})
     2*v0/(7*g*mu)
     """
-    k = kin.k
     if kin.settled:  # its start is solved with numbers
         raise SolveError("a symbolic answer of an integrated motion with a massless junction "
                          "is out of reach (the junction's start is solved with numbers): "
                          "expected 'kind: scalar'", where=where)
+    at_time, times, symbols, values = _closed_form(kin, where)
+    roots = []
+    for root, value in zip(times, values(*(complex(numbers[x]) for x in symbols))):
+        value = complex(value)
+        if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
+            roots.append((value.real, root))
+    if not roots:
+        raise SolveError("the event of the integrated motion has no closed-form time: ask for "
+                         "a scalar", where=where)
+    t_event = min(roots, key=lambda pair: pair[0])[1]
+    if isinstance(expr, sp.MatrixBase):  # kept by value: the immutable one
+        return sp.Matrix(_at_event(sp.ImmutableMatrix(expr), at_time, t_event))
+    return _at_event(expr, at_time, t_event)
+
+
+@lru_cache(maxsize=64)
+def _closed_form(kin, where) -> tuple[tuple, tuple, tuple, Callable]:
+    """The state at the event time ``t_event`` (symbol -> expression, as pairs) of the
+    motion of ``kin`` with constant accelerations, the event's roots in ``t_event``, and
+    their (complex) values as a function of the symbols they hold; raises, located at
+    ``where``, where that closed form is out of reach."""
+    k = kin.k
     start = {**dict(kin.start), k.time: sp.Integer(0)}
     equations = [_frozen(e.expr, start, where, k.coordinates)
                  for e in (*kin.balances, *kin.constraints)]
@@ -242,23 +303,24 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
         raise SolveError("a symbolic answer of an integrated motion needs accelerations that "
                          "stay constant until the event (they change with the state here): "
                          "ask for a scalar", where=where)
-    T = sp.Symbol("t_event", positive=True)
-    at_time = {**solved, k.time: T}
+    at_time = {**solved, k.time: _T}
     for q, qd, qdd in zip(k.q, k.qd, k.qdd):
-        at_time[q] = start[q] + start[qd] * T + solved[qdd] * T ** 2 / 2
-        at_time[qd] = start[qd] + solved[qdd] * T
+        at_time[q] = start[q] + start[qd] * _T + solved[qdd] * _T ** 2 / 2
+        at_time[qd] = start[qd] + solved[qdd] * _T
     event = sp.simplify(kin.until.xreplace(at_time))
-    roots = []
-    for root in sp.solve(event, T):
-        # sympify: a root that is one given symbol (until: t = T) becomes its float
-        value = complex(sp.sympify(root.xreplace(numbers)).evalf())
-        if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
-            roots.append((value.real, root))
-    if not roots:
-        raise SolveError("the event of the integrated motion has no closed-form time: ask for "
-                         "a scalar", where=where)
-    t_event = min(roots, key=lambda pair: pair[0])[1]
-    result = expr.xreplace(at_time).xreplace({T: t_event})
+    roots = tuple(sp.solve(event, _T))
+    symbols = tuple(sorted(set().union(*(r.free_symbols for r in roots)), key=str))
+    return tuple(at_time.items()), roots, symbols, \
+        sp.lambdify(symbols, roots, modules="numpy")
+
+
+_T = sp.Symbol("t_event", positive=True)
+
+
+@lru_cache(maxsize=256)
+def _at_event(expr, at_time: tuple, t_event):
+    """``expr`` with the state at the event (``at_time``) and the event's time put in."""
+    result = expr.xreplace(dict(at_time)).xreplace({_T: t_event})
     return result.applyfunc(sp.simplify) if isinstance(result, sp.MatrixBase) \
         else sp.simplify(result)
 

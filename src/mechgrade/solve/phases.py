@@ -7,7 +7,7 @@ direction and the contact's velocity along it held at zero (a velocity constrain
 momentum balances then give the friction the grip needs, which must stay within mu_s N for the
 rest of the motion (a contact that would slip again is refused, where it would). Every phase
 is integrated as :mod:`.events` integrates one motion (DOP853, rtol 1e-11, its roots refined
-on the dense output).
+on the dense output); of events that happen in the same step, the earliest is the instant.
 """
 
 from __future__ import annotations
@@ -25,15 +25,8 @@ from ..spec.dynamics import (GROUND, Cylinder, Disk, Integration, KineticFrictio
                              Shell, Sphere, StaticFriction, dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
-from . import rules
 from .analysis import analysis_of, extended, value_at
-from .events import (ATOL, RTOL, _next_crossing, _ScalarMotion, event_never_happens,
-                     instant_missed)
-
-SAME_INSTANT = 1e-9
-"""Two events this close (a part of the time, at least 1 s) are one instant: an objective asked
-``when`` the slip ends is read at the end of the slipping phase."""
-
+from .events import Run, _ScalarMotion, event_never_happens, instant_missed, next_crossing
 
 def gripping(problem: Problem) -> KineticFriction | None:
     """The kinetic friction that grips once its slip ends (``then:``), if any."""
@@ -156,8 +149,6 @@ def reach(problem: Problem, base: np.ndarray, target: Target, kinetics_plan: Cal
     ``accelerations(plan, values)`` are :mod:`.dynamics`'s (which imports this module).
     Raises, located, when the target is not reached before the event or the time allowed,
     or the contact would slip again."""
-    from scipy.integrate import solve_ivp
-
     analysis = analysis_of(problem, Integration)
     kp = kinetics_plan(problem)
 
@@ -166,12 +157,14 @@ def reach(problem: Problem, base: np.ndarray, target: Target, kinetics_plan: Cal
 
     m = _ScalarMotion(problem, kp, base, solve_in(kp))
     aim = _aimed(target, kp, m, solve_in(kp))
-    if isinstance(target, When) or (isinstance(target, Entry) and \
-            target.at != kp.kp.index.time):  # t = 0 is the start itself
-        assert aim is not None
-        _next_crossing(aim, m.rhs, m.y0, analysis.max_time, target.where)
+    events, directions = [m.until], [m.direction]
+    if aim is not None:
+        assert not isinstance(target, Until), "the motion's own event is aimed at as until"
+        events.append(aim)
+        directions.append(0.0 if isinstance(target, Entry) and target.at == kp.kp.index.time
+                          else next_crossing(aim, m.rhs, m.y0, analysis.max_time,
+                                             target.where))  # t = 0 is the start itself
     grip = gripping(problem)
-    events = [m.until] + ([aim] if aim is not None else [])
     if grip is not None:
         slip = _slip(problem, kp, kinetics_plan(gripping_phase(problem)))
 
@@ -179,37 +172,28 @@ def reach(problem: Problem, base: np.ndarray, target: Target, kinetics_plan: Cal
             return value_at(slip, extended(kp, m.at(t, y)))
 
         events.append(slipping)
-    for e in events:
-        e.terminal = True
-    result = solve_ivp(m.rhs, (0.0, analysis.max_time), m.y0, method="DOP853", rtol=RTOL,
-                       atol=ATOL, events=events, dense_output=True)
-    if result.status < 0:
-        raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
-    first = _first(result, len(events), aim is not None)
-    if first is None or (first == 0 and aim is not None):
-        raise _missed(analysis, target, result.t_events[0])
-    t, y = float(result.t_events[first][0]), result.y_events[first][0]
-    if grip is None or first < len(events) - 1:
-        return _instant(problem, m, result.sol, solve_in(kp), t, y, target, 0.0)
-    return _rolling(problem, base, target, t, y, m.until, kinetics_plan(gripping_phase(problem)),
-                    accelerations)
+        directions.append(0.0)
+    run = m.run(events, directions)
+    if run.which is None or (run.which == 0 and aim is not None):
+        raise _missed(analysis, target, [run.t] if run.which == 0 else [])
+    if grip is None or run.which < len(events) - 1:
+        return _instant(problem, m, solve_in(kp), run, target)
+    return _rolling(problem, base, target, run, m.direction,
+                    kinetics_plan(gripping_phase(problem)), accelerations)
 
 
-def _rolling(problem: Problem, base: np.ndarray, target: Target, start: float,
-             y0: np.ndarray, until, kp, accelerations: Callable) -> PhaseInstant:
-    """The gripping phase (its kinetics ``kp``) from the end of the slip (``start``, state
-    ``y0``) to ``target``."""
-    from scipy.integrate import solve_ivp
-
+def _rolling(problem: Problem, base: np.ndarray, target: Target, slipped: Run,
+             direction: float, kp, accelerations: Callable) -> PhaseInstant:
+    """The gripping phase (its kinetics ``kp``) from the end of the slip (``slipped``) to
+    ``target``; ``direction``: that of the motion's event (see :func:`.events.next_crossing`)."""
     analysis = analysis_of(problem, Integration)
     phase = gripping_phase(problem)
+    start = slipped.t
 
     def solve(values):
         return accelerations(kp, values)
 
     m = _ScalarMotion(phase, kp, base, solve, leave=False)
-    if hasattr(until, "direction"):  # the event held at t = 0: its next crossing
-        m.until.direction = until.direction  # type: ignore[attr-defined]
     aim = _aimed(target, kp, m, solve)
     margin = _margin(problem, kp)
 
@@ -218,7 +202,7 @@ def _rolling(problem: Problem, base: np.ndarray, target: Target, start: float,
 
     grip = gripping(problem)
     assert grip is not None and grip.then is not None
-    held = grips(start, y0)
+    held = grips(start, slipped.y)
     if not held >= 0:
         raise SolveError(f"friction '{grip.name}': the slip ends at t = {start:.6g} s, but the "
                          f"grip then needs more friction than mu_s N ({-held:.6g} N short): the "
@@ -226,46 +210,25 @@ def _rolling(problem: Problem, base: np.ndarray, target: Target, start: float,
                          "larger mu_s, or end the motion where the slip ends: until: its slip "
                          "speed = 0)", where=grip.then.where)
     events = [m.until] + ([aim] if aim is not None else []) + [grips]
-    for e in events:
-        e.terminal = True
-    result = solve_ivp(m.rhs, (start, analysis.max_time), y0, method="DOP853", rtol=RTOL,
-                       atol=ATOL, events=events, dense_output=True)
-    if result.status < 0:
-        raise SolveError(f"the integration failed: {result.message}", where=analysis.where)
-    first = _first(result, len(events), aim is not None)
-    if first == len(events) - 1:
-        when = float(result.t_events[first][0])
+    run = m.run(events, [direction] + [0.0] * (len(events) - 1), start, slipped.y)
+    if run.which == len(events) - 1:
         raise SolveError(f"friction '{grip.name}' grips once its slip ends at t = {start:.6g} "
-                         f"s, and would slip again at t = {when:.6g} s (the friction the grip "
+                         f"s, and would slip again at t = {run.t:.6g} s (the friction the grip "
                          "needs reaches mu_s N there): a motion that slips again is not "
                          "supported; end the motion before it (until: t = T, T a parameter given in s)",
                          where=grip.then.where)
-    if first is None or (first == 0 and aim is not None):
-        raise _missed(analysis, target, result.t_events[0])
-    t, y = float(result.t_events[first][0]), result.y_events[first][0]
-    return _instant(phase, m, result.sol, solve, t, y, target, start)
+    if run.which is None or (run.which == 0 and aim is not None):
+        raise _missed(analysis, target, [run.t] if run.which == 0 else [])
+    return _instant(phase, m, solve, run, target)
 
 
-def _instant(problem: Problem, m: _ScalarMotion, sol, solve, t: float, y: np.ndarray,
-             target: Target, start: float) -> PhaseInstant:
-    values = m.at(t, y)
+def _instant(problem: Problem, m: _ScalarMotion, solve, run: Run, target: Target
+             ) -> PhaseInstant:
+    values = m.at(run.t, run.y)
     if isinstance(target, Entry):
         values[target.at] = target.value  # where the root was found: the given holds there
         return PhaseInstant(problem, values, None)
-    earlier = max(start, t * (1 - rules.BEFORE_EVENT))
-    return PhaseInstant(problem, values, solve(m.at(earlier, sol(earlier))))
-
-
-def _first(result, count: int, aimed: bool) -> int | None:
-    """The event that happened first (``None``: none did); the target before the others at
-    the same instant, then the motion's event."""
-    times = [(float(ts[0]), i) for i, ts in enumerate(result.t_events) if len(ts)]
-    if not times:
-        return None
-    t0 = min(t for t, _ in times)
-    close = [i for t, i in times if t - t0 <= SAME_INSTANT * max(1.0, abs(t0))]
-    order = ([1] if aimed else []) + [0] + list(range(2 if aimed else 1, count))
-    return next(i for i in order if i in close)
+    return PhaseInstant(problem, values, solve(m.at(run.earlier, run.before)))
 
 
 def _aimed(target: Target, kp, m: _ScalarMotion, solve):
@@ -276,10 +239,14 @@ def _aimed(target: Target, kp, m: _ScalarMotion, solve):
         def reached(t, y):
             return m.at(t, y)[target.at] - target.value
         return reached
-    equation = _lambdified(kp, dict(kp.kin.whens)[target.objective])
+    expr = dict(kp.kin.whens)[target.objective]
+    equation = _lambdified(kp, expr)
+    kinetic = bool(expr.free_symbols & {*kp.kin.k.qdd, *kp.kin.reactions})
 
     def holds(t, y):
-        return value_at(equation, solve(m.at(t, y)))
+        # an equation of the state alone is read without the balances, as the motion's own
+        # event is (they are undefined where a slip speed is exactly zero: at its root)
+        return value_at(equation, solve(m.at(t, y)) if kinetic else extended(kp, m.at(t, y)))
     return holds
 
 
