@@ -359,7 +359,7 @@ def graded_result(solution: Solution, objective_id: str) -> ObjectiveResult:
     (1, -1)
     """
     result = solution.result(objective_id)
-    if result.kind != "symbolic" or not solution.state:
+    if result.kind != ObjectiveKind.SYMBOLIC or not solution.state:
         return result
     from .answers import symbol_aliases
 

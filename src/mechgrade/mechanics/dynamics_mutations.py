@@ -40,7 +40,7 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              dynamics_of, unchecked)
 from ..spec.language import FUNCTIONS
 from ..spec.constraint_mutations import strands_once
-from ..spec.model import Constraint, Expr, Problem
+from ..spec.model import Constraint, Expr, ObjectiveKind, Problem
 from ..spec.solving import given_unit
 from .bodies import SHAPES
 from .build import Model, build
@@ -172,7 +172,7 @@ def _readings(problem: Problem, func: str, name: str, replacement: Node, at: str
     out = []
     for obj in problem.objectives:
         node = obj.find.node
-        if obj.kind == "symbolic" or not any(c.args[0] == Name(name) for f in funcs
+        if obj.kind == ObjectiveKind.SYMBOLIC or not any(c.args[0] == Name(name) for f in funcs
                                              for c in _calls(node, f)):
             continue
         new = _rewrite(node, change)
@@ -305,7 +305,7 @@ def reactions_as_static(problem: Problem, model: Model) -> Iterator[DynamicsMuta
         return  # no second rate given: the motion is not prescribed
     single = {r.name for r, _ in _only_reactions(d)}
     shared = [r.name for r in d.reactions if r.name not in single]
-    asked = [o for o in problem.objectives if o.kind != "symbolic"
+    asked = [o for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC
              and any(next((c for c in _calls(o.find.node, "force") if c.args[0] == Name(r)),
                           None) for r in shared)]
     if not asked:
@@ -766,7 +766,7 @@ def _force_readings(problem: Problem, name: str, at: str, replacement: Node
     out = []
     for obj in problem.objectives:
         node = obj.find.node
-        if obj.kind == "symbolic" or not any(c.args[0] == Name(name) for f in ("force", "moment")
+        if obj.kind == ObjectiveKind.SYMBOLIC or not any(c.args[0] == Name(name) for f in ("force", "moment")
                                              for c in _calls(node, f)):
             continue
         new = _rewrite(node, change)
@@ -1173,7 +1173,7 @@ def impulse_from_speeds(problem: Problem, model: Model) -> Iterator[DynamicsMuta
                                ("subtracts", f"abs(speed({body.centre}, {N}) - {speed})")):
             replacement = parse(f"({_mass(body)})*({combined})", functions=FUNCTIONS)
             readings = tuple((o.id, Expr(to_text(new), new)) for o in problem.objectives
-                             if o.kind != "symbolic" and any(n == target
+                             if o.kind != ObjectiveKind.SYMBOLIC and any(n == target
                                                              for n in walk(o.find.node))
                              for new in (_rewrite(o.find.node, _replacing(target,
                                                                           replacement)),))
@@ -1936,7 +1936,7 @@ def rolling_assumed(problem: Problem, model: Model) -> Iterator[DynamicsMutation
         second = Prime(angle.id, 2)
         readings = []
         for obj in problem.objectives:
-            if obj.kind != "symbolic" and second in walk(obj.find.node):
+            if obj.kind != ObjectiveKind.SYMBOLIC and second in walk(obj.find.node):
                 new = _rewrite(obj.find.node, _replacing(second, slip_alpha))
                 readings.append((obj.id, Expr(to_text(new), new)))
         sentence = (f"Your value takes {body.name} to roll without slipping at {f.at}: it "
@@ -2330,7 +2330,7 @@ def efficiency_inverted(problem: Problem, model: Model) -> Iterator[DynamicsMuta
     pure = {q.name for q in problem.parameters if q.unit in ("", "1")}
     for obj in problem.objectives:
         node = obj.find.node
-        if obj.kind == "symbolic" or not isinstance(node, Bin) or node.op not in "*/":
+        if obj.kind == ObjectiveKind.SYMBOLIC or not isinstance(node, Bin) or node.op not in "*/":
             continue
         for power, eta in ((node.left, node.right), (node.right, node.left)):
             if not (isinstance(eta, Name) and eta.id in pure
@@ -2358,7 +2358,7 @@ def period_for_frequency(problem: Problem, model: Model) -> Iterator[DynamicsMut
     other way up."""
     for obj in problem.objectives:
         node = obj.find.node
-        if obj.kind == "symbolic" or not (isinstance(node, Bin) and node.op == "/"):
+        if obj.kind == ObjectiveKind.SYMBOLIC or not (isinstance(node, Bin) and node.op == "/"):
             continue
         if _two_pi(node.right):
             new, said = Bin("/", node.right, node.left), ("the period", "frequency f")

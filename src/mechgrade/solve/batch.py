@@ -47,7 +47,7 @@ from ..errors import MechgradeError
 from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..spec.dynamics import Integration, WorkEnergy, instant_of_objective
-from ..spec.model import Objective, Problem, Root
+from ..spec.model import Objective, ObjectiveKind, Problem, Root
 from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
@@ -616,7 +616,7 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
     groups = []
     for overrides, objectives in _instants(problem):
         given_map = instant_givens(problem, None, overrides)
-        numeric = frozenset(o.id for o in objectives if o.kind != "symbolic")
+        numeric = frozenset(o.id for o in objectives if o.kind != ObjectiveKind.SYMBOLIC)
         if not numeric:  # symbolic objectives only: no instant to solve
             empty = np.zeros(p.index.size)
             groups.append(_Group(overrides, tuple(objectives), numeric, given_map, empty,

@@ -203,7 +203,7 @@ class Motion:
                  y0: np.ndarray) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's event's direction (see :func:`~.batch_motion.integrate_to_events`):
         where the event holds at the start, its next crossing, back through zero from the
-        side the motion leaves to a moment later (as :func:`~.events.next_crossing` sets it
+        side the motion leaves to a moment later (as :func:`~.events.next_crossing` gives it
         for one motion); 0 elsewhere, and where that moment is not reached (that column is
         solved alone, which says why). With it, the error of each column whose motion reaches
         that moment and stays in the event (:func:`~.events.event_stays`, as the scalar
