@@ -211,10 +211,9 @@ class _Template:
         if not variants:
             return []
         problem = self.problem
-        steps: list[tuple[dict, tuple[Objective, ...], Step]] = []
-        for group in self.groups:
-            step: Step = partial(self._together, group)
-            steps.append((group.overrides, group.objectives, step))
+        steps: list[tuple[dict, tuple[Objective, ...], Step]] = [
+            (group.overrides, group.objectives, partial(self._together, group))
+            for group in self.groups]
         return drive_columns(problem, self.kproblem, self.p, tuple(self.p.k.warnings), steps,
                              variants, wanted_objectives(problem, asked))
 

@@ -422,7 +422,7 @@ def _undetermined(problem: Problem, p: KinematicsPlan,
             out[i] = found
         else:
             solved.append((m, found[0].state.values))
-    if solved:  # every probed instant's objectives at once (compared as _close does)
+    if solved:  # every probed instant's objectives at once (compared by rules.unchanged)
         X = np.stack([values for _, values in solved], axis=1)
         for oid, f in p.objectives:
             if oid not in only:
