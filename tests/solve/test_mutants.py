@@ -9,8 +9,8 @@ import pytest
 from mechgrade.grade.compare import assess
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.solve.mutants import attach, kept_columns
-from mechgrade.solve.result import GeneratedMistake, ObjectiveResult
+from mechgrade.solve.mutants import kept_at, kept_columns
+from mechgrade.solve.result import GeneratedMistake
 from mechgrade.spec import load_problem
 
 PENDULUM = shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"
@@ -161,15 +161,14 @@ def test_a_body_makes_a_factor_of_g_plausible_without_a_g_in_the_model():
 def test_a_generated_mistake_is_kept_alike_at_one_instant_and_in_a_class():
     # one rule (kept_mistakes) read through one stacking of the mistakes: the answer's own
     # value, a repeat of its family and a value of another shape are dropped, at one instant
-    # (attach) as at each instant of a class
+    # (kept_at) as at each instant of a class
     mistakes = [GeneratedMistake("sign", "s", 2.0), GeneratedMistake("sign", "s", 2.0),
                 GeneratedMistake("half_factor", "h", 1.0), GeneratedMistake("vector", "v",
                                                                            (1.0, 2.0, 3.0)),
                 GeneratedMistake("half_factor", "h", 4.0)]
-    result = ObjectiveResult(id="a", kind="scalar", unit="m", value=1.0)
-    (alone,) = attach({"a": result}, [{"a": mistakes}], frozenset()).values()
+    alone = kept_at(1.0, mistakes)
     keep = kept_columns(np.array([[1.0], [1.0], [1.0]]), [], [mistakes, mistakes[:1], []])
-    assert [m.value for m in alone.generated_mistakes] == [2.0, 4.0]
+    assert [m.value for m in alone] == [2.0, 4.0]
     assert [[m.value for m in keep(i)] for i in range(3)] == [[2.0, 4.0], [2.0], []]
 
 

@@ -52,21 +52,19 @@ from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
 from .instant import (Columns, Step, _instants, _key, _size, drive_columns, group_results,
-                      in_unit, instant_givens, read_objectives, reports_state,
-                      shown, wanted_objectives)
+                      instant_givens, read_objectives, reports_state, wanted_objectives)
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
                      solve_linear_columns, typical_sizes)
-from .mutants import (constraint_mistakes_columns, kept_columns, misread, model_mistake_table,
-                      plausible_slips, slips_of)
-from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric, solve_numeric_columns
+from .mutants import GeneratedColumns, generated_columns, plausible_slips
+from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
 from .phases import gripping
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
-from .result import (GeneratedMistake, Solution)
+from .result import Solution
 from .work_energy import energy_rates
 from .stored import Outcome, load_variant, store_variant, variant_keys
 
@@ -229,7 +227,7 @@ class _Template:
             symbolic = _symbolic_result
         values: dict = {}
         mistakes: dict = {}
-        generated: dict = {}
+        generated: GeneratedColumns = {}
         # the columns whose instant is not reached, for a reason solve() gives too
         unreached: dict[int, MechgradeError] = {}
         missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
@@ -245,7 +243,8 @@ class _Template:
             ok &= fine | never
             self._keep_state(group, X, ok & ~never, maps, columns.base)
             if self.kinetics is None:
-                generated = self._generated(group, maps, X, ok, values)
+                generated = generated_columns(problem, self.p, maps, X, ok, values,
+                                              group.numeric, partial(self._misread, group))
         # an objective undefined at a dynamics variant's instant is that objective's
         # failure (a kinematics one has made the variant not ok)
         failed = [dict.fromkeys(numeric, unreached[i]) if i in unreached else missing[i]
@@ -491,64 +490,12 @@ class _Template:
 
     # -- generated mistakes
 
-    def _generated(self, group: _Group, maps: list[dict], X: np.ndarray, ok: np.ndarray,
-                   values: dict) -> dict:
-        """Each numeric objective's generated mistakes at every variant's instant, as a
-        function of the variant: the model mutations there, then its givens misread (those
-        instants solved together too); kept as :func:`~.mutants.attach` keeps them."""
-        problem, p = self.problem, self.p
-        n = len(maps)
-        table = model_mistake_table(problem, p, X[:p.index.size], group.numeric)
-        changed, owner = [], []
-        for i in np.flatnonzero(ok):
-            for code, changes, sentence in slips_of(maps[i], self.parameters):
-                moved = dict(maps[i])  # only the values are read by the stacked solve
-                for key, mistaken_si in changes:
-                    moved[key] = (None, mistaken_si, None)
-                changed.append((moved, maps[i], changes))
-                owner.append((i, code, sentence))
-        misreadings: dict[str, list[list]] = {oid: [[] for _ in range(n)]
-                                              for oid in group.numeric}
-        solved, found = self._misread_values(group, changed)
-        for oid in group.numeric:
-            obj = problem.objective(oid)
-            mistaken = shown(found[oid], obj) if changed else []
-            defined = (solved & np.isfinite(found[oid]).all(axis=0)) if changed else []
-            for k in np.flatnonzero(defined):
-                i, code, sentence = owner[k]
-                misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
-        solved = np.flatnonzero(ok)  # a constraint mistaken: its own model, solved together
-        for i, found_ in zip(solved, constraint_mistakes_columns(
-                problem, [maps[i] for i in solved], set(group.numeric))):
-            for oid, mistakes in found_.items():
-                misreadings[oid][i].extend(mistakes)
-        out = {}
-        for oid in group.numeric:
-            obj = problem.objective(oid)
-            rows_ = [row for row in table if row[0].objective == oid]
-            out[oid] = kept_columns(in_unit(values[oid], obj).T, rows_, misreadings[oid])
-        return out
-
-    def _misread_values(self, group: _Group, changed: list) -> tuple[np.ndarray, dict]:
-        """The numeric objectives at each misread instant (``changed`` holds ``(values,
-        givens, changes)``): which solved, and each objective's SI values (size x count). A
-        degenerate configuration is no reason to drop a mistake
-        (:func:`~.mutants.given_mistakes`)."""
-        if not changed:
-            return np.zeros(0, dtype=bool), {}
-        _, ok, values, _, _, _ = self._instant(group, [c[0] for c in changed], False)
-        solved = ok.copy()
-        # what the stacked path does not vouch for: solved as given_mistakes solves it
-        redo = np.flatnonzero(~ok)
-        instants = solve_numeric_columns(self.problem, self.p, [
-            misread(changed[i][1], changed[i][2]) for i in redo], set(group.numeric))
-        for i, instant in zip(redo, instants):
-            if isinstance(instant, MechgradeError):
-                continue
-            solved[i] = True
-            for oid, v in values.items():
-                v[:, i] = instant.values[oid]
-        return solved, values
+    def _misread(self, group: _Group, maps: list[dict]) -> tuple[np.ndarray, dict]:
+        """The :data:`~.mutants.Misreadings` of ``group``: the instants of misread givens
+        reached together, as the variants' (a degenerate configuration no reason to drop a
+        mistake)."""
+        _, ok, values, _, _, _ = self._instant(group, maps, False)
+        return ok, values
 
 
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:

@@ -360,10 +360,14 @@ class KineticInstant:
     def symbolic(self) -> Callable | None:
         return _symbolic_result
 
-    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],  # noqa: ARG002
-                 reached: Reached | None,  # noqa: ARG002 - the Reach protocol's signature
-                 numeric: set[str]) -> dict[str, ObjectiveResult]:  # noqa: ARG002
-        return results  # a dynamics solve attaches nothing: its results are whole
+    def generated(self, reached: Reached,  # noqa: ARG002 - the Reach protocol's signature
+                  values: Mapping[str, np.ndarray],  # noqa: ARG002
+                  numeric: set[str]) -> None:  # noqa: ARG002
+        return None  # worked out once for the whole solution (dynamics_mutants)
+
+    @property
+    def plausible(self) -> None:
+        return None  # put in with the generated mistakes
 
 
 @dataclass(frozen=True)

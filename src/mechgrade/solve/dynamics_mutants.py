@@ -53,7 +53,7 @@ from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
 from .instant import _instants, instant_givens
 from .levels import State
-from .mutants import (attach, model_mistake_at, model_mistake_table, model_mistakes,
+from .mutants import (kept_at, model_mistake_at, model_mistake_table, model_mistakes,
                       plausible_slips, slips_of, symbolic_kept)
 from .result import GeneratedMistake, ObjectiveResult, Solution, StateValue
 
@@ -119,9 +119,9 @@ def _generated(problem: Problem, givens: tuple, results: tuple,
                  kinematic_mistakes(problem, state, set(numeric))] if numeric else []
         symbolic = _symbolic_mistakes(mutations, overrides,
                                       [r for r in results if r.expr is not None], solver)
-    attached = attach(numeric, found, frozenset())  # only the mistakes are kept from these
     out: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in results}
-    out.update({oid: r.generated_mistakes for oid, r in attached.items()})
+    out.update({oid: kept_at(r.value, [m for source in found for m in source.get(oid, ())])
+                for oid, r in numeric.items()})
     out.update(symbolic)
     return out
 
@@ -511,9 +511,9 @@ def _generated_class(problem: Problem, givens: list[dict], results: list[tuple],
     out = []
     for k, rs in enumerate(results):
         found = [models[k], slips[k], readings[k]] if numeric[k] else []
-        attached = attach(numeric[k], found, frozenset())
         mine: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in rs}
-        mine.update({oid: r.generated_mistakes for oid, r in attached.items()})
+        mine.update({oid: kept_at(r.value, [m for source in found for m in source.get(oid, ())])
+                     for oid, r in numeric[k].items()})
         mine.update(symbolic[k])
         out.append(mine)
     return out

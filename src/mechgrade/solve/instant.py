@@ -34,8 +34,8 @@ from .levels import State, author_units, constraint_ranks, evaluate
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, generic_dof, kinematics_plan
 from .plan import per_problem as _per_problem
-from .mutants import (attach, constraint_mistakes, given_mistakes, model_mistakes,
-                      plausible_slips, symbolic_mistakes)
+from .mutants import (GeneratedColumns, generated_columns, plausible_slips, shown,
+                      symbolic_mistakes)
 from . import cache
 from .result import MistakeValue, ObjectiveFailure, ObjectiveResult, Solution, StateValue
 
@@ -198,10 +198,15 @@ class Reach(Protocol):
         """What :func:`group_results` derives a symbolic answer with (``None``: the
         kinematic one)."""
 
-    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
-                 reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
-        """The results of one instant with their generated mistakes (those this kind works
-        out at each instant)."""
+    def generated(self, reached: Reached, values: Mapping[str, np.ndarray],
+                  numeric: set[str]) -> GeneratedColumns | None:
+        """The generated mistakes of the objectives ``numeric`` at the instant ``reached``
+        (``values``: their SI values there, one column), those this kind works out at each
+        instant (``None``: none), as :func:`group_results` reads them."""
+
+    @property
+    def plausible(self) -> frozenset[str] | None:
+        """The model's whole-answer slips put in each result (``None``: none put in)."""
 
 
 def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | None,
@@ -331,10 +336,11 @@ def _answer_group(problem: Problem, reach: Reach, given_map: dict, chosen: list[
             given_map, failed = reached.givens, reached.failures
             values = {oid: _column(v) for oid, v in reached.values.items()}
             mistakes = {oid: [_column(v) for v in vs] for oid, vs in reached.mistakes.items()}
+    generated = None if reached is None else reach.generated(reached, values, numeric)
     ((solved, lost),) = group_results(problem, chosen, [given_map], values, mistakes, [failed],
-                                      [0], reach.symbolic())
+                                      [0], reach.symbolic(), generated, reach.plausible)
     failures.update(lost)
-    results.update(reach.attached(problem, solved, reached, numeric))
+    results.update(solved)
     return reached
 
 
@@ -347,7 +353,7 @@ def group_results(problem: Problem, objectives: Sequence[Objective], maps: Seque
                   values: Mapping[str, np.ndarray], mistakes: Mapping[str, list[np.ndarray]],
                   failed: Sequence[Mapping[str, MechgradeError]], columns: Collection[int],
                   symbolic: Callable | None = None,
-                  generated: Mapping[str, Callable[[int], tuple]] | None = None,
+                  generated: GeneratedColumns | None = None,
                   plausible: frozenset[str] | None = None
                   ) -> list[tuple[dict[str, ObjectiveResult], dict[str, MechgradeError]]]:
     """Each of ``columns``' results and failures of one group of ``objectives`` (one
@@ -469,13 +475,15 @@ class GivenInstant:
     def symbolic(self) -> Callable | None:
         return None
 
-    def attached(self, problem: Problem, results: dict[str, ObjectiveResult],
-                 reached: Reached | None, numeric: set[str]) -> dict[str, ObjectiveResult]:
-        generated = [] if reached is None else [
-            model_mistakes(problem, self.plan, reached.state, numeric),
-            given_mistakes(problem, self.plan, reached.givens, numeric),
-            constraint_mistakes(problem, reached.givens, numeric)]
-        return attach(results, generated, plausible_slips(problem))
+    def generated(self, reached: Reached, values: Mapping[str, np.ndarray],
+                  numeric: set[str]) -> GeneratedColumns:
+        return generated_columns(self.problem, self.plan, [reached.givens],
+                                 reached.state.values[:, None], np.ones(1, dtype=bool),
+                                 values, numeric)
+
+    @property
+    def plausible(self) -> frozenset[str]:
+        return plausible_slips(self.problem)
 
 
 def solve_kinematics(problem: Problem, *, givens: Mapping[str, float | None] | None = None,
@@ -719,25 +727,6 @@ def _undefined(obj: Objective) -> SolveError:
     at its instant."""
     return SolveError(f"objective '{obj.id}' is undefined at this instant (for example a "
                       "direction of motion when the speed is zero)", where=obj.where)
-
-
-def shown(si: np.ndarray, obj: Objective) -> list:
-    """An objective's SI values at every instant (size x N, one column each) in its unit, as
-    its result gives them: a float each, or a vector's tuple of components.
-
-    >>> from types import SimpleNamespace
-    >>> shown(np.array([[0.5, 2.0]]), SimpleNamespace(unit="cm", kind=ObjectiveKind.SCALAR))
-    [50.0, 200.0]
-    """
-    values = in_unit(si, obj).T.tolist()
-    if obj.kind == ObjectiveKind.VECTOR:
-        return [tuple(v) for v in values]
-    return [v[0] for v in values]
-
-
-def in_unit(si: np.ndarray, obj: Objective) -> np.ndarray:
-    """SI values of an objective in its unit (a zero's sign dropped)."""
-    return si / si_factor(obj.unit) + 0.0
 
 
 def _may_be_negative(problem: Problem, node) -> bool:

@@ -22,7 +22,7 @@ import math
 import re
 from dataclasses import replace
 from functools import lru_cache
-from typing import Callable, Mapping, Sequence
+from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
 
@@ -32,7 +32,7 @@ from ..spec.constraint_mutations import constraint_mutations, position_unchosen
 from ..spec.model import Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
 from ..tolerance import within
-from ..units import dimension, from_si, si_factor, to_si
+from ..units import dimension, si_factor, to_si
 from .columns import call
 from .levels import State
 from .numeric import every_branch_columns, solve_numeric_columns
@@ -76,7 +76,7 @@ def model_mistake_table(problem: Problem, p: KinematicsPlan, states: np.ndarray,
               for item in _lambdified(problem, p, o.id)):
         obj = problem.objective(m.objective)
         si = call(m.value, states, m.size)
-        shown = (si / si_factor(obj.unit) + 0.0).T  # as _in_unit, every column at once
+        shown = (si / si_factor(obj.unit) + 0.0).T  # as in_unit, every column at once
         table.append((m, obj, np.isfinite(si).all(axis=0), shown,
                       None if m.term is None else call(m.term, states, 3).T))
     return table
@@ -147,37 +147,11 @@ def symbolic_kept(kept: list, code: str, expr, zeros: frozenset[str] = frozenset
     return True
 
 
-def given_mistakes(problem: Problem, p: KinematicsPlan, givens: Mapping,
-                   wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
-    """The objectives in ``wanted`` solved again with each given mistaken in one way."""
-    out: dict[str, list[GeneratedMistake]] = {}
-    parameters = {q.name for q in problem.parameters}
-    slips = list(slips_of(givens, parameters))
-    # every misreading's instant at once; one that cannot be solved is no mistake to name
-    instants = solve_numeric_columns(problem, p, [misread(givens, changes)
-                                                  for _, changes, _ in slips], wanted)
-    for (code, _, sentence), instant in zip(slips, instants):
-        if isinstance(instant, MechgradeError):
-            continue
-        for oid, values in instant.values.items():
-            if oid in wanted and np.all(np.isfinite(values)):
-                out.setdefault(oid, []).append(GeneratedMistake(
-                    code, sentence, _in_unit(values, problem.objective(oid))))
-    return out
-
-
-def constraint_mistakes(problem: Problem, givens: Mapping,
-                        wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
-    """The objectives in ``wanted`` solved again with one constraint mistaken
-    (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once): the
-    :func:`constraint_mistakes_columns` of one instant."""
-    (out,) = constraint_mistakes_columns(problem, [givens], wanted)
-    return out
-
-
 def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wanted: set[str]
                                 ) -> list[dict[str, list[GeneratedMistake]]]:
-    """:func:`constraint_mistakes` at each instant of ``givens`` (a class of variants), each
+    """The objectives in ``wanted`` solved again with one constraint mistaken
+    (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once) at each
+    instant of ``givens`` (one solve's, or a class's), each
     mistaken model's instants solved together (:func:`~.numeric.solve_numeric_columns`; one
     instant as :func:`~.numeric.solve_numeric` solves it)."""
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
@@ -190,7 +164,7 @@ def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wan
             for oid, values in instant.values.items():
                 if oid in wanted and np.all(np.isfinite(values)):
                     found.setdefault(oid, []).append(GeneratedMistake(
-                        m.code, m.sentence, _in_unit(values, problem.objective(oid))))
+                        m.code, m.sentence, _one(values, problem.objective(oid))))
     for found, branches in zip(out, _other_branches(problem, givens, wanted)):
         for oid, mistakes in branches.items():
             found.setdefault(oid, []).extend(mistakes)
@@ -220,7 +194,7 @@ def _other_branches(problem: Problem, givens: Sequence[Mapping], wanted: set[str
                 if oid in wanted and np.all(np.isfinite(v)):
                     found.setdefault(oid, []).append(GeneratedMistake(
                         "other_assembly_branch", OTHER_BRANCH,
-                        _in_unit(v, problem.objective(oid))))
+                        _one(v, problem.objective(oid))))
     return out
 
 
@@ -393,35 +367,119 @@ def plausible_slips(problem: Problem) -> frozenset[str]:
     return frozenset(out)
 
 
-def attach(results: Mapping[str, ObjectiveResult],
-           found: list[dict[str, list[GeneratedMistake]]],
-           plausible: frozenset[str]) -> dict[str, ObjectiveResult]:
-    """``results`` with the generated mistakes in ``found`` (duplicates, the same value as an
-    earlier one, dropped) and the model's ``plausible`` slips."""
-    out = dict(results)
-    for oid, result in results.items():
-        kept = tuple(result.generated_mistakes)
-        new = [mistake for source in found for mistake in source.get(oid, ())]
-        if new:
-            kept = _distinct(result.value, kept, new)
-        out[oid] = replace(result, generated_mistakes=kept, plausible=plausible)
+GeneratedColumns = Mapping[str, Callable[[int], tuple[GeneratedMistake, ...]]]
+"""Each objective's generated mistakes at every column, as a function of the column."""
+
+Misreadings = Callable[[list[dict]], tuple[np.ndarray, dict[str, np.ndarray]]]
+"""How a class reaches the instants of misread givens together (each a map of givens, only
+its values read): which it vouches for, and each objective's SI values there (size x
+count); :func:`generated_columns` solves the others one by one."""
+
+
+def generated_columns(problem: Problem, p: KinematicsPlan, maps: Sequence[dict], X: np.ndarray,
+                      ok: np.ndarray, values: Mapping[str, np.ndarray], numeric: Collection[str],
+                      together: Misreadings | None = None) -> GeneratedColumns:
+    """Each objective of ``numeric``'s generated mistakes at every column ``ok`` (``maps``:
+    its givens, ``X``: its state, ``values``: each objective's SI answers, size x N), as a
+    function of the column: the model mutations there, each given misread (:func:`slips_of`;
+    its instant reached by ``together`` where that vouches for it, else solved as
+    :func:`~.numeric.solve_numeric_columns` solves it; one that cannot be solved is no
+    mistake), each constraint mistaken (:func:`constraint_mistakes_columns`), kept by
+    :func:`kept_columns`. The one way for one solve (a column of one) and a class.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.instant import instant_givens
+    >>> from mechgrade.solve.numeric import solve_numeric
+    >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> p, givens = kinematics_plan(problem), instant_givens(problem, None, {})
+    >>> instant = solve_numeric(problem, p, givens, {"acc_mag"})
+    >>> at = generated_columns(problem, p, [givens], instant.state.values[:, None],
+    ...                        np.ones(1, bool), {"acc_mag": instant.values["acc_mag"][:, None]},
+    ...                        {"acc_mag"})["acc_mag"]
+    >>> [(m.code, round(m.value, 1)) for m in at(0)][:2]
+    [('drop_tangential', 98.0), ('drop_centripetal', 10.0)]
+    """
+    n = len(maps)
+    parameters = {q.name for q in problem.parameters}
+    table = model_mistake_table(problem, p, X[:p.index.size], numeric)
+    changed, owner = [], []
+    for i in np.flatnonzero(ok).tolist():
+        for code, changes, sentence in slips_of(maps[i], parameters):
+            changed.append((maps[i], changes))
+            owner.append((i, code, sentence))
+    found: list[list[dict[str, list[GeneratedMistake]]]] = [[] for _ in range(n)]
+    solved, misread_values = _misread_instants(problem, p, changed, set(numeric), together)
+    for k, (i, code, sentence) in enumerate(owner):
+        mine: dict[str, list[GeneratedMistake]] = {}
+        for oid, v in misread_values.items():
+            if solved[k] and np.isfinite(v[:, k]).all():
+                mine[oid] = [GeneratedMistake(code, sentence,
+                                              _one(v[:, k], problem.objective(oid)))]
+        found[i].append(mine)
+    chosen = np.flatnonzero(ok).tolist()
+    for i, mistaken in zip(chosen, constraint_mistakes_columns(
+            problem, [maps[i] for i in chosen], set(numeric))):
+        found[i].append(mistaken)
+    out = {}
+    for oid in values:
+        if oid not in numeric:
+            continue
+        obj = problem.objective(oid)
+        rows_ = [row for row in table if row[0].objective == oid]
+        out[oid] = kept_columns(in_unit(values[oid], obj).T, rows_, [
+            [m for source in sources for m in source.get(oid, ())] for sources in found])
     return out
 
 
-def _distinct(right, kept: tuple[GeneratedMistake, ...],
-              new: list[GeneratedMistake]) -> tuple[GeneratedMistake, ...]:
-    """``kept`` and the mistakes of ``new`` that :func:`kept_mistakes` keeps at this one
-    instant (a value of another shape than the answer's is none of its mistakes)."""
-    r = np.atleast_1d(np.asarray(right, float))
-    mistakes = kept + tuple(new)
-    V, exists, codes = _stacked([mistakes], len(r))
-    keep = kept_mistakes(r[None, :], V, exists, codes, len(kept))
-    return tuple(m for m, k in zip(mistakes, keep[0]) if k)
+def _misread_instants(problem: Problem, p: KinematicsPlan, changed: list[tuple[dict, tuple]],
+                      numeric: set[str], together: Misreadings | None
+                      ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """The objectives ``numeric`` at each instant of misread givens (``changed``: the givens
+    and their ``(key, mistaken SI value)`` changes): which were solved, and each objective's
+    SI values (size x count). ``together`` reaches those it vouches for (a degenerate
+    configuration is no reason to drop a mistake); the others are solved one by one."""
+    if not changed:
+        return np.zeros(0, dtype=bool), {}
+    if together is not None:
+        moved = []
+        for givens, changes in changed:
+            values = dict(givens)  # only the values are read by the stacked solve
+            for key, mistaken_si in changes:
+                values[key] = (None, mistaken_si, None)
+            moved.append(values)
+        solved, found = together(moved)
+        solved, found = solved.copy(), dict(found)
+    else:
+        solved, found = np.zeros(len(changed), dtype=bool), {}
+    redo = np.flatnonzero(~solved)
+    instants = solve_numeric_columns(problem, p, [misread(*changed[i]) for i in redo], numeric)
+    for i, instant in zip(redo.tolist(), instants):
+        if isinstance(instant, MechgradeError):
+            continue
+        solved[i] = True
+        for oid, v in instant.values.items():
+            if oid in numeric:
+                if oid not in found:
+                    found[oid] = np.full((np.size(v), len(changed)), np.nan)
+                found[oid][:, i] = v
+    return solved, found
+
+
+def kept_at(right, mistakes: Sequence[GeneratedMistake]) -> tuple[GeneratedMistake, ...]:
+    """The ``mistakes`` :func:`kept_columns` keeps at one instant whose answer is ``right``
+    (a value as a result shows it).
+
+    >>> [m.value for m in kept_at(1.0, [GeneratedMistake("a", "s", 2.0),
+    ...                                 GeneratedMistake("a", "s", 1.0)])]
+    [2.0]
+    """
+    return kept_columns(np.atleast_1d(np.asarray(right, float))[None, :], [], [mistakes])(0)
 
 
 def kept_columns(right: np.ndarray, rows_: Sequence, misread: Sequence[Sequence[GeneratedMistake]]
                  ) -> Callable[[int], tuple[GeneratedMistake, ...]]:
-    """The generated mistakes :func:`attach` keeps, at every instant of a class at once
+    """The generated mistakes kept at every instant of a class at once
     (``right``: the answer at each, N x size, in the objective's unit): the model mutations in
     ``rows_`` (:func:`model_mistake_table`'s rows of one objective), then each instant's
     ``misread`` givens, kept by :func:`kept_mistakes`. Returns instant ``i``'s as a function
@@ -482,7 +540,7 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: n
     of its family kept before it (:data:`SAME`), and is not a zero other than those of
     :data:`ZERO_NAMES` (a zero is what many mistakes give). Two families of one value are
     both kept: the grader names both. The ``first`` are kept whatever they are. The one rule
-    for an instant (:func:`attach`) and a class (:func:`kept_columns`).
+    for one solve and a class (:func:`kept_columns`).
 
     >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0 + 1e-9], [1.0], [0.0]]]),
     ...               np.ones((1, 4), bool), np.array([["a"] * 4])).tolist()
@@ -531,10 +589,28 @@ value): values read at an integration's event (limits just before it) carry erro
 1e-8, and no tolerance a student can meet tells apart values closer than that."""
 
 
-def _in_unit(si_values: np.ndarray, obj: Objective):
+def shown(si: np.ndarray, obj: Objective) -> list:
+    """An objective's SI values at every instant (size x N, one column each) in its unit, as
+    its result gives them: a float each, or a vector's tuple of components.
+
+    >>> from types import SimpleNamespace
+    >>> shown(np.array([[0.5, 2.0]]), SimpleNamespace(unit="cm", kind=ObjectiveKind.SCALAR))
+    [50.0, 200.0]
+    """
+    values = in_unit(si, obj).T.tolist()
     if obj.kind == ObjectiveKind.VECTOR:
-        return tuple(float(from_si(v, obj.unit)) + 0.0 for v in si_values)
-    return float(from_si(si_values[0], obj.unit)) + 0.0
+        return [tuple(v) for v in values]
+    return [v[0] for v in values]
+
+
+def in_unit(si: np.ndarray, obj: Objective) -> np.ndarray:
+    """SI values of an objective in its unit (a zero's sign dropped)."""
+    return si / si_factor(obj.unit) + 0.0
+
+
+def _one(si_values: np.ndarray, obj: Objective):
+    """One instant's SI values of an objective as its result shows them (:func:`shown`)."""
+    return shown(np.asarray(si_values, dtype=float).reshape(-1, 1), obj)[0]
 
 
 @lru_cache(maxsize=256)
