@@ -12,7 +12,8 @@ from ..errors import MechgradeError, SolveError
 from ..expressions.syntax import to_text
 from ..mechanics.junctions import is_junction_balance
 from ..spec.dynamics import Integration, dynamics_of, junction_coordinates
-from .levels import DEFAULT_GUESS, _starts, holds, residuals, solve_level_columns, typical_sizes
+from .levels import (DEFAULT_GUESS, _starts, holds, residuals, same_root, solve_level_columns,
+                     typical_sizes)
 
 
 def settle_junctions(problem, kp, values: np.ndarray
@@ -64,7 +65,7 @@ def _roots(problem, kp, level, X: np.ndarray, active: np.ndarray, settled: list[
         held = holds(problem.consistency, level, X, active, T)
         return [[X[:, c].copy()] if held[c] else [] for c in range(X.shape[1])]
     starts = [origins if origins is not None else
-              [guess, *_starts(guess, _scale(problem, kp, X[:, c], settled), 0)]
+              [guess, *_starts(guess, _sizes(problem, kp, X[:, c], settled)[settled], 0)]
               for c in range(X.shape[1])]
     pairs = [(c, s) for c, each in enumerate(starts) for s in each]
     Y = X[:, [c for c, _ in pairs]].copy()
@@ -73,21 +74,26 @@ def _roots(problem, kp, level, X: np.ndarray, active: np.ndarray, settled: list[
                                list(kp.kp.index.unknowns(level.order)), active,
                                np.zeros((T.shape[0], Y.shape[1])))
     out: list[list[np.ndarray]] = [[] for _ in range(X.shape[1])]
+    sizes: dict[int, np.ndarray] = {}  # a column's, once it has a root to tell apart
     for j, (c, _) in enumerate(pairs):
         root = fits.X[:, j]
-        if fits.held[j] and not any(_same(root[settled], r[settled]) for r in out[c]):
-            out[c].append(root.copy())
+        if not fits.held[j]:
+            continue
+        if out[c]:
+            if c not in sizes:
+                sizes[c] = _sizes(problem, kp, X[:, c], settled)
+            if any(same_root(sizes[c], root, r, settled) for r in out[c]):
+                continue
+        out[c].append(root.copy())
     return out
 
 
-def _scale(problem, kp, x: np.ndarray, settled: list[int]) -> np.ndarray:
+def _sizes(problem, kp, x: np.ndarray, settled: list[int]) -> np.ndarray:
+    """The typical size of each quantity of the state ``x`` (:func:`~.levels.typical_sizes`
+    of what it knows beside the ``settled`` ones)."""
     known = np.isfinite(x)
     known[settled] = False
-    return typical_sizes(problem, kp.kp, np.nan_to_num(x)[:, None], known)[settled, 0]
-
-
-def _same(a: np.ndarray, b: np.ndarray) -> bool:
-    return bool(np.allclose(a, b, rtol=1e-6, atol=1e-9))
+    return typical_sizes(problem, kp.kp, np.nan_to_num(x)[:, None], known)[:, 0]
 
 
 def _message(problem, kp, order: int, settled: list[int], roots: list, x: np.ndarray,

@@ -599,7 +599,7 @@ def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, fits: Sequence[F
         if best is None or cost < best[0]:
             best = (cost, full)
         if held and \
-                not any(_same(g, full, other, determined) for other in found):
+                not any(same_root(g.scales, full, other, determined) for other in found):
             found.append(full)
     if not found:
         full = best[1] if best is not None else setup.x
@@ -658,14 +658,22 @@ def holds(consistency: float, level: Level, X: np.ndarray, active: np.ndarray,
     return np.all(satisfied(*residuals(level, X, active, T), consistency), axis=0)
 
 
-def _same(g: Givens, a: np.ndarray, b: np.ndarray, positions) -> bool:
-    """Whether two roots are the same configuration (angles compared modulo a turn), within
-    a small part of the quantity's typical size: a double root is only found that well."""
+def same_root(scales: np.ndarray, a: np.ndarray, b: np.ndarray, positions) -> bool:
+    """Whether two roots (states) are the same at ``positions`` (angles compared modulo a
+    turn), each within :data:`SAME_ROOT` of the larger of its typical size (``scales``,
+    :func:`typical_sizes`) and its values: a double root is only found that well.
+
+    >>> scales = np.array([1.0, np.pi])
+    >>> same_root(scales, np.array([0.5, 0.0]), np.array([0.50001, 2 * np.pi]), [0, 1])
+    True
+    >>> same_root(scales, np.array([0.5, 0.0]), np.array([0.501, 0.0]), [0, 1])
+    False
+    """
     for i in positions:
         d = a[i] - b[i]
-        if g.scales[i] == np.pi:
+        if scales[i] == np.pi:
             d = (d + np.pi) % (2 * np.pi) - np.pi
-        if abs(d) > SAME_ROOT * max(g.scales[i], abs(a[i]), abs(b[i])):
+        if abs(d) > SAME_ROOT * max(scales[i], abs(a[i]), abs(b[i])):
             return False
     return True
 
