@@ -15,6 +15,7 @@ from mechgrade.grade.variants import draw_variant
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.batch import _solved_together, _template, solve_variants
+from mechgrade.solve.instant import answer_alone
 from mechgrade.spec import load_problem
 from mechgrade.spec.dynamics import Integration, WorkEnergy
 
@@ -158,11 +159,23 @@ def test_a_degenerate_variant_warns_as_when_solved_alone():
         assert_same(a, b)
 
 
-def test_only_the_variant_that_fails_a_screen_together_is_solved_alone():
+def test_only_the_variant_that_fails_a_screen_together_is_answered_by_the_one_column_step(
+        monkeypatch):
+    from mechgrade.solve import batch
+
     problem = load_problem(ROOT / "tests" / "data" / "variants" / "degenerate_range.yaml")
     variants = [{"theta": np.pi / 6}, {"theta": np.pi / 2}, {"theta": np.pi / 6, "a": 0.25}]
+    left: list[list[int]] = []  # the columns each group answers alone
+
+    def spied(problem, reach, maps, chosen, overrides, columns, which):
+        left.append(list(which))
+        return answer_alone(problem, reach, maps, chosen, overrides, columns, which)
+
+    monkeypatch.setattr(batch, "answer_alone", spied)
     solved = _solved_together(problem, variants)
-    assert [together for _, together in solved] == [True, False, True]
+    # the degenerate one (the collar on the pivot) inside the loop, none by solve()
+    assert [together for _, together in solved] == [True, True, True]
+    assert [w for w in left if w] == [[1]]
     for (a, _), b in zip(solved, alone(problem, variants)):
         assert_same(a, b)
 

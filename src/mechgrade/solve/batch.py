@@ -22,8 +22,9 @@ Every instant solved this way is screened for what the scalar solver would repor
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
 undefined or not existing there, a contact that slips or lets go, an energy the instant needs
 more of than the start has, an event that does not happen, a design that does not converge. A
-variant that fails a screen, and any problem or variant this path does not cover (givens the
-reference does not have), is solved by :func:`~.entry.solve`, so the answers and messages are
+variant that fails a screen has that instant reached alone, by the single solve's step
+(:func:`~.instant.answer_alone`); any problem or variant this path does not cover (givens the
+reference does not have) is solved by :func:`~.entry.solve`; so the answers and messages are
 the same either way. (An objective of a dynamics problem undefined at its instant is that
 variant's failure, as :func:`~.dynamics.solve_dynamics` reports it.)
 
@@ -51,8 +52,9 @@ from ..spec.model import Objective, ObjectiveKind, Problem, Root
 from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
-from .instant import (Columns, Step, _instants, _key, _size, drive_columns, group_results,
-                      instant_givens, read_objectives, reports_state, wanted_objectives)
+from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
+                      answer_alone, drive_columns, group_results, instant_givens,
+                      read_objectives, reports_state, wanted_objectives)
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
@@ -110,7 +112,7 @@ def _solved_together(problem: Problem, given: list[dict],
                      objectives: Collection[str] | None = None,
                      mistakes: bool = True) -> list[tuple[Outcome, bool]]:
     """Each variant's outcome, and whether it was solved with the others (else by
-    :func:`~.entry.solve`). A dynamics solution carries its model's generated mistakes, as
+    :func:`~.entry.solve`: a problem or givens the template does not cover). A dynamics solution carries its model's generated mistakes, as
     :func:`~.entry.solve` gives them: those solved together are worked out together, for all
     of them at once, when one is first looked at (without ``mistakes``: none, and a variant
     solved alone by :func:`~.dynamics.solve_dynamics`)."""
@@ -131,14 +133,14 @@ def _solved_together(problem: Problem, given: list[dict],
     if not mistakes:
         from .dynamics import solve_dynamics as alone
     out: list[tuple[Outcome, bool]] = []
-    for givens, solution in zip(given, found):
-        if solution is None:
+    for givens, outcome in zip(given, found):
+        if outcome is None:
             try:
                 out.append((alone(problem, givens=givens, objectives=objectives), False))
             except MechgradeError as err:
                 out.append((err, False))
         else:
-            out.append((solution, True))
+            out.append((outcome, True))
     return out
 
 
@@ -185,6 +187,7 @@ class _Template:
         # the motion over columns (a problem without bodies and loads has none)
         self.motion = Motion(problem, kinetics) if kinetics is not None else None
         self.design = dynamics.design if dynamics is not None else None
+        self.reach: Reach | None = None  # made when a column is first answered alone
 
     def _motion(self) -> Motion:
         assert self.motion is not None, "a problem with bodies and loads"
@@ -202,10 +205,9 @@ class _Template:
     # -- solving
 
     def solve(self, variants: list[dict], asked: Collection[str] | None = None
-              ) -> list[Solution | MechgradeError | None]:
-        """Each variant's solution (or, for a dynamics problem, the error
-        :func:`~.dynamics.solve_dynamics` raises when no objective is solved), or ``None``
-        where it must be solved one by one; only the objectives ``asked`` (all by default)."""
+              ) -> list[Solution | MechgradeError]:
+        """Each variant's solution, or the error :func:`~.entry.solve` raises for it when
+        no objective is solved; only the objectives ``asked`` (all by default)."""
         if not variants:
             return []
         problem = self.problem
@@ -216,11 +218,12 @@ class _Template:
                              variants, wanted_objectives(problem, asked))
 
     def _together(self, group: _Group, maps: list[dict], objectives: list[Objective],
-                  overrides: dict, columns: Columns) -> None:  # noqa: ARG002 - in group
-        """The :data:`~.instant.Step` of ``group`` reached together: every column still
-        ``ok`` at once (:meth:`_instant`), one that fails a screen (or, in kinematics, an
-        objective) left to be solved alone."""
-        problem, ok, n = self.problem, columns.ok, len(maps)
+                  overrides: dict, columns: Columns) -> None:
+        """The :data:`~.instant.Step` of ``group`` reached together: every column at once
+        (:meth:`_instant`); one that fails a screen (or, in kinematics, an objective) is
+        answered alone (:func:`~.instant.answer_alone`, the single solve's step)."""
+        problem, n = self.problem, len(maps)
+        ok = np.ones(n, dtype=bool)
         symbolic: Callable | None = None
         if self.kinetics is not None:
             from .dynamics import _symbolic_result
@@ -237,11 +240,12 @@ class _Template:
             for ms in mistakes.values():
                 for m in ms:  # an undefined declared mistake fails its objective
                     fine &= np.isfinite(m).all(axis=0)
-            unreached = {i: err for i, err in unreached.items() if ok[i] and not fine[i]}
+            unreached = {i: err for i, err in unreached.items() if not fine[i]}
             never = np.zeros(n, dtype=bool)
             never[list(unreached)] = True
-            ok &= fine | never
-            self._keep_state(group, X, ok & ~never, maps, columns.base)
+            ok = fine | never
+            reached = ok & ~never
+            self._designed_given(X, reached, maps)
             if self.kinetics is None:
                 generated = generated_columns(problem, self.p, maps, X, ok, values,
                                               group.numeric, partial(self._misread, group))
@@ -249,24 +253,44 @@ class _Template:
         # failure (a kinematics one has made the variant not ok)
         failed = [dict.fromkeys(numeric, unreached[i]) if i in unreached else missing[i]
                   for i in range(n)]
-        answered = columns.answered()
+        answered = np.flatnonzero(ok).tolist()
         for i, (solved, failures) in zip(answered, group_results(
                 problem, objectives, maps, values, mistakes, failed, answered, symbolic,
                 generated, self.plausible if self.kinetics is None else None)):
-            columns.results[i].update(solved)
             if failures and self.kinetics is None:
                 ok[i] = False
+                continue
+            columns.results[i].update(solved)
             columns.failures[i].update(failures)  # as solve_dynamics keeps them
+        if numeric:
+            self._keep_state(group, X, ok & reached, maps, columns.base)
+        answer_alone(problem, self._reach(), maps, objectives, overrides, columns,
+                     np.flatnonzero(~ok).tolist())
 
-    def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
-                    base: list) -> None:
-        """Each variant's solved state and givens (a design parameter's value among them) as
-        the solution reports them: those of the problem's own instant, else the first
-        solved."""
-        if self.design is not None:  # the value solved for is given at the instant
+    def _reach(self) -> Reach:
+        """How the single solve reaches an instant of the problem: the one column's step
+        (:func:`~.instant.answer_alone`) a column failing together is answered by."""
+        if self.reach is None:
+            if self.kinetics is None:
+                self.reach = GivenInstant(self.problem, self.p)
+            else:
+                from .dynamics import kinetic_reach
+                self.reach = kinetic_reach(self.problem)
+        return self.reach
+
+    def _designed_given(self, X: np.ndarray, ok: np.ndarray, maps: list[dict]) -> None:
+        """The design parameter's value solved at each column ``ok`` put in its givens (it
+        is given at the instant)."""
+        if self.design is not None:
             at = self.p.index.position(self.design.find)
             for i in np.flatnonzero(ok):
                 maps[i][self.design.find] = (Name(self.design.find), float(X[at, i]), None)
+
+    def _keep_state(self, group: _Group, X: np.ndarray, ok: np.ndarray, maps: list[dict],
+                    base: list) -> None:
+        """Each variant's solved state and givens (a design parameter's value among them,
+        :meth:`_designed_given`) as the solution reports them: those of the problem's own
+        instant, else the first solved."""
         size = self.p.index.size
         if self.kinetics is not None:  # the rates the balances solved
             from .dynamics import _with_kinetics

@@ -218,7 +218,6 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
                                 [(overrides, group, step) for overrides, group
                                  in _instants(problem)],
                                 [givens], wanted_objectives(problem, objectives))
-    assert solution is not None, "a column reached alone is answered"
     if isinstance(solution, MechgradeError):
         raise solution
     return solution
@@ -227,8 +226,7 @@ def drive(problem: Problem, reach: Reach, givens: Mapping[str, float | None] | N
 class Columns:
     """What :func:`drive_columns` has found so far for each column (one solve's one, or a
     class's variants): its results and failures, the state and givens its solution reports
-    (:func:`reports_state`), its warnings, and whether it is still answered here (``ok``;
-    else the caller solves it alone). Filled group after group by the steps, hence
+    (:func:`reports_state`) and its warnings. Filled group after group by the steps, hence
     mutable."""
 
     def __init__(self, n: int, warnings: tuple[AuthorWarning, ...]):
@@ -236,15 +234,10 @@ class Columns:
         self.failures: list[dict[str, MechgradeError]] = [{} for _ in range(n)]
         self.base: list[tuple[State, dict] | None] = [None] * n
         self.warned: list[list[AuthorWarning]] = [list(warnings) for _ in range(n)]
-        self.ok = np.ones(n, dtype=bool)
-
-    def answered(self) -> list[int]:
-        """The columns still answered here (``ok``), in order."""
-        return [i for i, keep in enumerate(self.ok.tolist()) if keep]
 
 
 Step = Callable[[list[dict], list[Objective], dict, Columns], None]
-"""How one group of objectives is answered at every column still ``ok``: ``(maps, chosen,
+"""How one group of objectives is answered at every column: ``(maps, chosen,
 overrides, columns)``, each column's givens at the group's instant, the objectives asked,
 their own givens, and what the columns have found (filled in)."""
 
@@ -253,13 +246,12 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
                   warnings: tuple[AuthorWarning, ...],
                   groups: Sequence[tuple[dict, Sequence[Objective], Step]],
                   variants: Sequence[Mapping[str, float | None] | None],
-                  wanted: Collection[str]) -> list[Solution | MechgradeError | None]:
+                  wanted: Collection[str]) -> list[Solution | MechgradeError]:
     """The one solver loop, over columns (one per variant of the givens): every group of
     objectives asked at the same givens (``groups``: their own givens, the objectives, the
     :data:`Step` that answers them), then each column's solution (:func:`solutions_of`:
     the objectives ``wanted``, the kinematics ``kinematics`` and its plan ``p``, the
-    ``warnings`` before any instant's) or its error; ``None`` for a column a step left to
-    be solved alone.
+    ``warnings`` before any instant's) or its error.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -278,29 +270,33 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
         if chosen:
             step([instant_givens(problem, g, overrides) for g in variants], chosen,
                  overrides, columns)
-    out: list[Solution | MechgradeError | None] = [None] * len(variants)
-    answered = columns.answered()
-    for i, solution in zip(answered, solutions_of(
-            problem, kinematics, p, columns.results, columns.failures, columns.base,
-            [tuple(w) for w in columns.warned], wanted, answered)):
-        out[i] = solution
-    return out
+    return solutions_of(problem, kinematics, p, columns.results, columns.failures,
+                        columns.base, [tuple(w) for w in columns.warned], wanted,
+                        range(len(variants)))
 
 
 def reached_alone(problem: Problem, reach: Reach) -> Step:
-    """The :data:`Step` that reaches each column's instant alone (:func:`_answer_group`)."""
+    """The :data:`Step` that reaches each column's instant alone (:func:`answer_alone`)."""
 
     def step(maps: list[dict], chosen: list[Objective], overrides: dict,
              columns: Columns) -> None:
-        for i in columns.answered():
-            reached = _answer_group(problem, reach, maps[i], chosen, overrides,
-                                    columns.results[i], columns.failures[i])
-            if reached is not None:
-                warned = columns.warned[i]
-                warned += [w for w in reached.warnings if w not in warned]
-                if reports_state(columns.base[i], overrides):
-                    columns.base[i] = (reached.state, reached.givens)
+        answer_alone(problem, reach, maps, chosen, overrides, columns, range(len(maps)))
     return step
+
+
+def answer_alone(problem: Problem, reach: Reach, maps: list[dict], chosen: list[Objective],
+                 overrides: dict, columns: Columns, which: Collection[int]) -> None:
+    """The :data:`Step`'s work for the columns ``which`` alone: each one's instant reached
+    by ``reach`` and its objectives read there (:func:`_answer_group`), into ``columns``; a
+    class's step leaves it the columns it does not answer together."""
+    for i in which:
+        reached = _answer_group(problem, reach, maps[i], chosen, overrides,
+                                columns.results[i], columns.failures[i])
+        if reached is not None:
+            warned = columns.warned[i]
+            warned += [w for w in reached.warnings if w not in warned]
+            if reports_state(columns.base[i], overrides):
+                columns.base[i] = (reached.state, reached.givens)
 
 
 def reports_state(base: tuple[State, dict] | None, overrides: dict) -> bool:
