@@ -410,13 +410,11 @@ def generated_columns(problem: Problem, p: KinematicsPlan, maps: Sequence[dict],
             owner.append((i, code, sentence))
     found: list[list[dict[str, list[GeneratedMistake]]]] = [[] for _ in range(n)]
     solved, misread_values = _misread_instants(problem, p, changed, set(numeric), together)
+    defined = {oid: solved & np.isfinite(v).all(axis=0) for oid, v in misread_values.items()}
+    mistaken = {oid: shown(v, problem.objective(oid)) for oid, v in misread_values.items()}
     for k, (i, code, sentence) in enumerate(owner):
-        mine: dict[str, list[GeneratedMistake]] = {}
-        for oid, v in misread_values.items():
-            if solved[k] and np.isfinite(v[:, k]).all():
-                mine[oid] = [GeneratedMistake(code, sentence,
-                                              _one(v[:, k], problem.objective(oid)))]
-        found[i].append(mine)
+        found[i].append({oid: [GeneratedMistake(code, sentence, mistaken[oid][k])]
+                         for oid in misread_values if defined[oid][k]})
     chosen = np.flatnonzero(ok).tolist()
     for i, mistaken in zip(chosen, constraint_mistakes_columns(
             problem, [maps[i] for i in chosen], set(numeric))):
