@@ -408,25 +408,28 @@ def generated_columns(problem: Problem, p: KinematicsPlan, maps: Sequence[dict],
         for code, changes, sentence in slips_of(maps[i], parameters):
             changed.append((maps[i], changes))
             owner.append((i, code, sentence))
-    found: list[list[dict[str, list[GeneratedMistake]]]] = [[] for _ in range(n)]
+    asked = [oid for oid in values if oid in numeric]
+    misreadings: dict[str, list[list[GeneratedMistake]]] = {oid: [[] for _ in range(n)]
+                                                            for oid in asked}
     solved, misread_values = _misread_instants(problem, p, changed, set(numeric), together)
-    defined = {oid: solved & np.isfinite(v).all(axis=0) for oid, v in misread_values.items()}
-    mistaken = {oid: shown(v, problem.objective(oid)) for oid, v in misread_values.items()}
-    for k, (i, code, sentence) in enumerate(owner):
-        found[i].append({oid: [GeneratedMistake(code, sentence, mistaken[oid][k])]
-                         for oid in misread_values if defined[oid][k]})
-    chosen = np.flatnonzero(ok).tolist()
-    for i, mistaken in zip(chosen, constraint_mistakes_columns(
-            problem, [maps[i] for i in chosen], set(numeric))):
-        found[i].append(mistaken)
-    out = {}
-    for oid in values:
-        if oid not in numeric:
+    for oid, v in misread_values.items():
+        if oid not in misreadings:
             continue
+        mistaken = shown(v, problem.objective(oid))
+        for k in np.flatnonzero(solved & np.isfinite(v).all(axis=0)).tolist():
+            i, code, sentence = owner[k]
+            misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
+    chosen = np.flatnonzero(ok).tolist()
+    for i, found in zip(chosen, constraint_mistakes_columns(
+            problem, [maps[i] for i in chosen], set(numeric))):
+        for oid, mistakes in found.items():
+            if oid in misreadings:
+                misreadings[oid][i].extend(mistakes)
+    out = {}
+    for oid in asked:
         obj = problem.objective(oid)
         rows_ = [row for row in table if row[0].objective == oid]
-        out[oid] = kept_columns(in_unit(values[oid], obj).T, rows_, [
-            [m for source in sources for m in source.get(oid, ())] for sources in found])
+        out[oid] = kept_columns(in_unit(values[oid], obj).T, rows_, misreadings[oid])
     return out
 
 
