@@ -112,10 +112,11 @@ def _solved_together(problem: Problem, given: list[dict],
                      objectives: Collection[str] | None = None,
                      mistakes: bool = True) -> list[tuple[Outcome, bool]]:
     """Each variant's outcome, and whether it was solved with the others (else by
-    :func:`~.entry.solve`: a problem or givens the template does not cover). A dynamics solution carries its model's generated mistakes, as
-    :func:`~.entry.solve` gives them: those solved together are worked out together, for all
-    of them at once, when one is first looked at (without ``mistakes``: none, and a variant
-    solved alone by :func:`~.dynamics.solve_dynamics`)."""
+    :func:`~.entry.solve`: a problem or givens the template does not cover). A dynamics
+    solution carries its model's generated mistakes, as :func:`~.entry.solve` gives them:
+    those solved together are worked out together, for all of them at once, when one is
+    first looked at (without ``mistakes``: none, and a variant solved alone by
+    :func:`~.dynamics.solve_dynamics`)."""
     found: list[Outcome | None] = [None] * len(given)
     template = _template(problem) if given else None
     if template is not None:
