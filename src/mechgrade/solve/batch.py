@@ -59,7 +59,7 @@ from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_bran
                      level_rank, place_givens, rows, solve_level_columns,
                      solve_linear_columns, typical_sizes)
 from .mutants import (constraint_mistakes_columns, kept_columns, misread, model_mistake_table,
-                      plausible_slips, slips_of)
+                      plausible_slips, slips_of, values_alone)
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
@@ -519,7 +519,8 @@ class _Template:
                 misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
         solved = np.flatnonzero(ok)  # a constraint mistaken: its own model, solved together
         for i, found_ in zip(solved, constraint_mistakes_columns(
-                problem, [maps[i] for i in solved], set(group.numeric))):
+                problem, [maps[i] for i in solved], set(group.numeric),
+                partial(_mutant_values, group))):
             for oid, mistakes in found_.items():
                 misreadings[oid][i].extend(mistakes)
         out = {}
@@ -531,17 +532,26 @@ class _Template:
 
     def _misread_values(self, group: _Group, changed: list) -> tuple[np.ndarray, dict]:
         """The numeric objectives at each misread instant (``changed`` holds ``(values,
-        givens, changes)``): which solved, and each objective's SI values (size x count). A
-        degenerate configuration is no reason to drop a mistake
-        (:func:`~.mutants.given_mistakes`)."""
+        givens, changes)``): which solved, and each objective's SI values (size x count)
+        (:meth:`values_of`)."""
         if not changed:
             return np.zeros(0, dtype=bool), {}
-        _, ok, values, _, _, _ = self._instant(group, [c[0] for c in changed], False)
+        return self.values_of(group, [c[0] for c in changed],
+                              lambda i: misread(changed[i][1], changed[i][2]))
+
+    def values_of(self, group: _Group, maps: list[dict], alone: Callable[[int], dict]
+                  ) -> tuple[np.ndarray, dict]:
+        """The numeric objectives of ``group`` at each instant of ``maps`` (a generated
+        mistake's: a given misread, the model mistaken): which solved, and each objective's
+        SI values (size x count). An instant the stacked path does not vouch for is solved
+        as alone (:func:`~.numeric.solve_numeric_columns`, its givens ``alone(i)``); a
+        degenerate configuration is no reason to drop a mistake
+        (:func:`~.mutants.given_mistakes`)."""
+        _, ok, values, _, _, _ = self._instant(group, maps, False)
         solved = ok.copy()
-        # what the stacked path does not vouch for: solved as given_mistakes solves it
-        redo = np.flatnonzero(~ok)
-        instants = solve_numeric_columns(self.problem, self.p, [
-            misread(changed[i][1], changed[i][2]) for i in redo], set(group.numeric))
+        redo = np.flatnonzero(~ok).tolist()
+        instants = solve_numeric_columns(self.problem, self.p, [alone(i) for i in redo],
+                                         set(group.numeric))
         for i, instant in zip(redo, instants):
             if isinstance(instant, MechgradeError):
                 continue
@@ -549,6 +559,22 @@ class _Template:
             for oid, v in values.items():
                 v[:, i] = instant.values[oid]
         return solved, values
+
+
+def _mutant_values(group: _Group, mutant: Problem, maps: Sequence[dict], wanted: set[str]
+                   ) -> list[Mapping[str, np.ndarray] | None]:
+    """:data:`~.mutants.MutantValues` of a class (``maps``: each variant's givens of
+    ``group``): the mistaken model's instants solved together by its own template, from its
+    own reference's root, as the class's variants are (:meth:`_Template.values_of`); alone
+    where it has none (:func:`~.mutants.values_alone`)."""
+    template = _template(mutant, warned=False)
+    same = [g for g in template.groups if g.overrides == group.overrides
+            and g.numeric == group.numeric] if template is not None else []
+    if template is None or not maps or not same or frozenset(wanted) != group.numeric:
+        return values_alone(mutant, maps, wanted)
+    solved, values = template.values_of(same[0], list(maps), list(maps).__getitem__)
+    return [{oid: v[:, k] for oid, v in values.items()} if solved[k] else None
+            for k in range(len(maps))]
 
 
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
@@ -567,15 +593,16 @@ def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: 
                   _positions(p, given_map), (0, 0, 0), after_event(p), frozenset())
 
 
-def _template(problem: Problem) -> _Template | None:
-    return _template_cached(problem, locations(problem))
+def _template(problem: Problem, warned: bool = True) -> _Template | None:
+    return _template_cached(problem, locations(problem), warned)
 
 
 @lru_cache(maxsize=64)
-def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
+def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Template | None:
     """The reference solve of ``problem`` kept for its variants; ``None`` when this path does
     not cover the problem, or the reference itself needs the scalar solver's care (a failed
-    objective, a freedom, a warning)."""
+    objective, a freedom, a warning). Without ``warned`` (the template of a mistaken model,
+    whose values alone are read), a warning of the reference is no reason."""
     kinetics = None
     kproblem = problem
     analysis = problem.dynamics.analysis if problem.dynamics is not None else None
@@ -610,7 +637,7 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             reference = solve(problem) if kinetics is None else solve_dynamics(problem)
         except MechgradeError:
             return None
-        if reference.failures or tuple(reference.warnings) != tuple(p.k.warnings):
+        if reference.failures or (warned and tuple(reference.warnings) != tuple(p.k.warnings)):
             return None
     groups = []
     for overrides, objectives in _instants(problem):
@@ -641,7 +668,7 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         except MechgradeError:
             return None
         free = instant.state.free
-        if instant.errors or instant.warnings:
+        if instant.errors or (warned and instant.warnings):
             return None
         unknown, active, target, conditions = [], [], [], {}
         nullity: list[int] = []

@@ -175,19 +175,34 @@ def constraint_mistakes(problem: Problem, givens: Mapping,
     return out
 
 
-def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wanted: set[str]
+MutantValues = Callable[[Problem, Sequence[Mapping], set[str]],
+                        Sequence[Mapping[str, np.ndarray] | None]]
+"""The objectives asked (a set) of a mistaken model (a problem) at each instant of a
+class's givens: their values, or ``None`` where that instant is not solved."""
+
+
+def values_alone(problem: Problem, givens: Sequence[Mapping], wanted: set[str]
+                 ) -> list[Mapping[str, np.ndarray] | None]:
+    """The :data:`MutantValues` of :func:`~.numeric.solve_numeric_columns` (one instant as
+    :func:`~.numeric.solve_numeric` solves it)."""
+    return [None if isinstance(instant, MechgradeError) else instant.values
+            for instant in solve_numeric_columns(problem, kinematics_plan(problem), givens,
+                                                 wanted)]
+
+
+def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wanted: set[str],
+                                solved: MutantValues = values_alone
                                 ) -> list[dict[str, list[GeneratedMistake]]]:
     """:func:`constraint_mistakes` at each instant of ``givens`` (a class of variants), each
-    mistaken model's instants solved together (:func:`~.numeric.solve_numeric_columns`; one
-    instant as :func:`~.numeric.solve_numeric` solves it)."""
+    mistaken model's instants solved together by ``solved`` (a class's: those the
+    mistaken model's own class solve vouches for, the others alone)."""
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
     # the same copies for every solve of the problem, so their plans are found by identity
     for m in per_problem(constraint_mutations, problem):
-        instants = solve_numeric_columns(m.problem, kinematics_plan(m.problem), givens, wanted)
-        for found, instant in zip(out, instants):
-            if isinstance(instant, MechgradeError):
+        for found, instant in zip(out, solved(m.problem, givens, wanted)):
+            if instant is None:
                 continue  # a mistaken length no configuration reaches is no mistake
-            for oid, values in instant.values.items():
+            for oid, values in instant.items():
                 if oid in wanted and np.all(np.isfinite(values)):
                     found.setdefault(oid, []).append(GeneratedMistake(
                         m.code, m.sentence, _in_unit(values, problem.objective(oid))))
