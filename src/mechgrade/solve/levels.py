@@ -13,6 +13,7 @@ leave free.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
@@ -631,10 +632,19 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
             s = guess.copy()
             s[j] += step * (scale[j] / 2 if scale[j] == np.pi else scale[j])
             out.append(s)
-    rng = np.random.default_rng(11 + order)
-    for spread in JOINT_SPREADS:
-        out.append(guess + spread * scale * rng.standard_normal(len(guess)))
+    for spread, draw in zip(JOINT_SPREADS, _joint_draws(order, len(guess))):
+        out.append(guess + spread * scale * draw)
     return out
+
+
+@lru_cache(maxsize=None)
+def _joint_draws(order: int, count: int) -> np.ndarray:
+    """The fixed random moves of :func:`_starts` (one row per spread), drawn once: every
+    solve of a level of ``count`` unknowns gets the same ones."""
+    rng = np.random.default_rng(11 + order)
+    draws = np.array([rng.standard_normal(count) for _ in JOINT_SPREADS])
+    draws.setflags(write=False)
+    return draws
 
 
 def residuals(level: Level, X: np.ndarray, active, T: np.ndarray
