@@ -125,20 +125,26 @@ def _scales(problem: Problem, p: KinematicsPlan, values, known) -> np.ndarray:
 def typical_sizes(problem: Problem, p: KinematicsPlan, values: np.ndarray, known) -> np.ndarray:
     """:func:`_scales` of every column of ``values`` (size x N): the median of the nonzero
     givens of each unit, in each column."""
-    index = p.index
-    by_unit: dict[str, list[int]] = {}
-    of = per_problem(_units, problem, p)
-    for i in range(index.size):
-        if known[i]:
-            by_unit.setdefault(of[i], []).append(i)
-    out = np.ones((index.size, values.shape[1]))
-    medians = {unit: _median(np.abs(values[rows_])) for unit, rows_ in by_unit.items()}
-    for i in range(index.size):
-        if of[i] in ("rad", "deg", "degree", "radian"):
-            out[i] = np.pi
-        elif of[i] in medians:
-            out[i] = medians[of[i]]
+    groups, angles = per_problem(_unit_groups, problem, p)
+    out = np.ones((p.index.size, values.shape[1]))
+    for positions in groups:
+        given = positions[known[positions]]
+        if len(given):
+            out[positions] = _median(np.abs(values[given]))
+    out[angles] = np.pi
     return out
+
+
+def _unit_groups(problem: Problem, p: KinematicsPlan) -> tuple[list[np.ndarray], np.ndarray]:
+    """The positions of ``p``'s layout grouped by unit (:func:`_units`), angles apart: the
+    groups :func:`typical_sizes` takes a median of, and the angles (a typical size of pi)."""
+    of = _units(problem, p)
+    angles = np.array([unit in ("rad", "deg", "degree", "radian") for unit in of], dtype=bool)
+    groups: dict[str, list[int]] = {}
+    for i, unit in enumerate(of):
+        if not angles[i]:
+            groups.setdefault(unit, []).append(i)
+    return [np.array(positions) for positions in groups.values()], angles
 
 
 def _median(values: np.ndarray) -> np.ndarray:
@@ -924,7 +930,7 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
     if not np.isfinite(J).all():
         return list(unknown), []
     with np.errstate(all="ignore"):
-        _, R, piv = linalg.qr(J, pivoting=True, mode="economic")
+        _, R, piv = linalg.qr(J, pivoting=True, mode="economic", check_finite=False)
     rank = int(rules.rank(np.diag(R))) if R.size else 0
     determined = sorted(unknown[j] for j in piv[:rank])
     free = sorted(unknown[j] for j in piv[rank:])

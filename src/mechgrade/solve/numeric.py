@@ -361,15 +361,14 @@ def _givens_not_holding(problem: Problem, p: KinematicsPlan,
             continue
         values, scales = residuals(level, np.stack([instants[k][2].values for k in todo], axis=1),
                                    slice(None), np.zeros((1, 1)))
-        for column, k in enumerate(todo):
-            active, target = placed[k]
-            value, scale = values[:, column], scales[:, column]
-            r = value - target
-            held = np.isfinite(value) & satisfied(r, scale, problem.consistency)
-            wrong = np.flatnonzero(active & ~held)
-            if len(wrong):
-                out[k] = _not_holding(level, instants[k][0], instants[k][1], int(wrong[0]),
-                                      value, r, scale)
+        r = values - np.stack([placed[k][1] for k in todo], axis=1)
+        wrong = np.stack([placed[k][0] for k in todo], axis=1) & ~(
+            np.isfinite(values) & satisfied(r, scales, problem.consistency))
+        for column in np.flatnonzero(wrong.any(axis=0)):
+            k = todo[column]
+            out[k] = _not_holding(level, instants[k][0], instants[k][1],
+                                  int(np.flatnonzero(wrong[:, column])[0]), values[:, column],
+                                  r[:, column], scales[:, column])
     return out
 
 
