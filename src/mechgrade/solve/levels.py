@@ -400,8 +400,9 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
     out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
-        for k in range(len(s.starts) if s.determined else 0):
-            groups.setdefault((tuple(s.determined), s.active.tobytes()), []).append((i, k))
+        if s.determined:
+            groups.setdefault((tuple(s.determined), s.active.tobytes()), []).extend(
+                (i, k) for k in range(len(s.starts)))
     for pairs in groups.values():
         first = setups[pairs[0][0]]
         X = np.stack([setups[i].x for i, _ in pairs], axis=1)
@@ -425,9 +426,11 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
             X = np.where(better, X, fits.X)
             cost = np.where(better, at_zero, cost)
             held = holds(consistency, level, X, first.active, T)
-        for j, (i, k) in enumerate(pairs):
-            if fits.started[j]:
-                out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
+        states = X.T.copy()  # each start's state a row of its own
+        for (i, k), started, x, c, h in zip(pairs, fits.started.tolist(), states,
+                                             cost.tolist(), held.tolist()):
+            if started:
+                out[i][k] = (x, c, h)
     return out
 
 
