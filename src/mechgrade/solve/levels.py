@@ -470,20 +470,21 @@ def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
     >>> level_rank(level, fits.X, [0, 1], [0, 1], np.ones(2, bool)).tolist()
     [2, 2]
     """
-    if level.jacobian_uses & set(determined):
-        X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T,
-                                               first_damping)
-    else:  # linear in the unknowns at hand: one least-squares step solves it
-        X = X.copy()
-        r, _ = residuals(level, X, active, T)
-        J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined], active)
-        started = np.isfinite(r).all(axis=0)
-        good = started & np.isfinite(J).all(axis=(0, 1))
-        step, _, _ = least_squares(J, r, good)
-        X[determined] += np.where(good, step, 0.0)
-        with np.errstate(all="ignore"):
+    with quiet():  # once, not at each of the steps' function calls
+        if level.jacobian_uses & set(determined):
+            X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T,
+                                                   first_damping)
+        else:  # linear in the unknowns at hand: one least-squares step solves it
+            X = X.copy()
+            r, _ = residuals(level, X, active, T)
+            J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined],
+                           active)
+            started = np.isfinite(r).all(axis=0)
+            good = started & np.isfinite(J).all(axis=(0, 1))
+            step, _, _ = least_squares(J, r, good)
+            X[determined] += np.where(good, step, 0.0)
             cost = 0.5 * (residuals(level, X, active, T)[0] ** 2).sum(axis=0)
-    return LevelColumns(X, cost, started, holds(consistency, level, X, active, T))
+        return LevelColumns(X, cost, started, holds(consistency, level, X, active, T))
 
 
 def level_rank(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
