@@ -568,8 +568,10 @@ def _mutant_values(group: _Group, mutant: Problem, maps: Sequence[dict], wanted:
     own reference's root, as the class's variants are (:meth:`_Template.values_of`); alone
     where it has none (:func:`~.mutants.values_alone`)."""
     template = _template(mutant, warned=False)
+    # the same instant, each given placed where the class's own places it
     same = [g for g in template.groups if g.overrides == group.overrides
-            and g.numeric == group.numeric] if template is not None else []
+            and g.numeric == group.numeric and g.positions.keys() == group.positions.keys()
+            and g.conditions.keys() == group.conditions.keys()] if template is not None else []
     if template is None or not maps or not same or frozenset(wanted) != group.numeric:
         return values_alone(mutant, maps, wanted)
     solved, values = template.values_of(same[0], list(maps), list(maps).__getitem__)
