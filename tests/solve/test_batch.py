@@ -417,6 +417,27 @@ def test_each_variant_gets_its_own_mistaken_constraint_as_solve_gives_it():
         assert len([m for m in mine if m.code == "strands_miscounted"]) == 1
 
 
+@pytest.mark.slow  # derives the problem and its mistaken copy (3 s)
+def test_a_mistaken_constraint_is_solved_over_the_class_by_its_own_template(monkeypatch):
+    # the mistaken model's reference is degenerate (O and B coincide): no reason to solve
+    # its instants one by one, whose values alone are read
+    problem = load_problem(shipped_dir("problems") / "truck_hoists_crate_pulley.yaml")
+    variants = [{"x": x} for x in (4.0, 3.0, 3.5)]
+    alone = [solve(problem, givens=g).result("velocity").generated_mistakes for g in variants]
+    import mechgrade.solve.batch as batch
+
+    def refused(*args, **kwargs):
+        raise AssertionError("a mistaken model's instant solved alone")
+
+    monkeypatch.setattr(batch, "values_alone", refused)
+    for outcome, mistakes in zip(solve_variants(problem, variants), alone):
+        mine = [(m.code, m.value) for m in outcome.result("velocity").generated_mistakes
+                if m.code == "strands_miscounted"]
+        assert mine == [(m.code, pytest.approx(m.value, rel=1e-9)) for m in mistakes
+                        if m.code == "strands_miscounted"]
+        assert len(mine) == 1
+
+
 def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():
     # down a 10 deg incline the wheel's centre stays below 0.2 g for every R: the design stage
     # over the class does not converge for that variant, whose objectives at the instant fail

@@ -59,7 +59,7 @@ from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
                      solve_linear_columns, typical_sizes)
-from .mutants import GeneratedColumns, generated_columns, plausible_slips
+from .mutants import GeneratedColumns, generated_columns, plausible_slips, values_alone
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
@@ -249,7 +249,8 @@ class _Template:
             self._designed_given(X, reached, maps)
             if self.kinetics is None:
                 generated = generated_columns(problem, self.p, maps, X, ok, values,
-                                              group.numeric, partial(self._misread, group))
+                                              group.numeric, partial(self._misread, group),
+                                              partial(_mutant_values, group))
         # an objective undefined at a dynamics variant's instant is that objective's
         # failure (a kinematics one has made the variant not ok)
         failed = [dict.fromkeys(numeric, unreached[i]) if i in unreached else missing[i]
@@ -523,6 +524,26 @@ class _Template:
         return ok, values
 
 
+def _mutant_values(group: _Group, mutant: Problem, maps: Sequence[dict], wanted: set[str]
+                   ) -> list[Mapping[str, np.ndarray] | None]:
+    """:data:`~.mutants.MutantValues` of a class (``maps``: each variant's givens of
+    ``group``): the mistaken model's instants solved together by its own template, from its
+    own reference's root, as the class's variants are (:meth:`_Template._misread`); alone
+    where it has none (:func:`~.mutants.values_alone`)."""
+    template = _template(mutant, warned=False)
+    # the same instant, each given placed where the class's own places it
+    same = [g for g in template.groups if g.overrides == group.overrides
+            and g.numeric == group.numeric and g.positions.keys() == group.positions.keys()
+            and g.conditions.keys() == group.conditions.keys()] if template is not None else []
+    if template is None or not maps or not same or frozenset(wanted) != group.numeric:
+        return values_alone(mutant, maps, wanted)
+    ok, values = template._misread(same[0], list(maps))
+    alone = np.flatnonzero(~ok).tolist()
+    redone = dict(zip(alone, values_alone(mutant, [maps[k] for k in alone], wanted)))
+    return [redone[k] if k in redone else {oid: v[:, k] for oid, v in values.items()}
+            for k in range(len(maps))]
+
+
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:
     """Where each given of a coordinate, rate, parameter or ``t`` sits in the state."""
     return {key: p.index.symbols.index(p.k.quantity(node))
@@ -539,15 +560,16 @@ def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: 
                   _positions(p, given_map), (0, 0, 0), after_event(p), frozenset())
 
 
-def _template(problem: Problem) -> _Template | None:
-    return _template_cached(problem, locations(problem))
+def _template(problem: Problem, warned: bool = True) -> _Template | None:
+    return _template_cached(problem, locations(problem), warned)
 
 
 @lru_cache(maxsize=64)
-def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
+def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Template | None:
     """The reference solve of ``problem`` kept for its variants; ``None`` when this path does
     not cover the problem, or the reference itself needs the scalar solver's care (a failed
-    objective, a freedom, a warning)."""
+    objective, a freedom, a warning). Without ``warned`` (the template of a mistaken model,
+    whose values alone are read), a warning of the reference is no reason."""
     kinetics = None
     kproblem = problem
     analysis = problem.dynamics.analysis if problem.dynamics is not None else None
@@ -582,7 +604,7 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
             reference = solve(problem) if kinetics is None else solve_dynamics(problem)
         except MechgradeError:
             return None
-        if reference.failures or tuple(reference.warnings) != tuple(p.k.warnings):
+        if reference.failures or (warned and tuple(reference.warnings) != tuple(p.k.warnings)):
             return None
     groups = []
     for overrides, objectives in _instants(problem):
@@ -613,7 +635,7 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         except MechgradeError:
             return None
         free = instant.state.free
-        if instant.errors or instant.warnings:
+        if instant.errors or (warned and instant.warnings):
             return None
         unknown, active, target, conditions = [], [], [], {}
         nullity: list[int] = []

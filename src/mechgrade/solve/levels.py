@@ -13,6 +13,7 @@ leave free.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Callable, Mapping, Sequence
 
 import numpy as np
@@ -124,20 +125,26 @@ def _scales(problem: Problem, p: KinematicsPlan, values, known) -> np.ndarray:
 def typical_sizes(problem: Problem, p: KinematicsPlan, values: np.ndarray, known) -> np.ndarray:
     """:func:`_scales` of every column of ``values`` (size x N): the median of the nonzero
     givens of each unit, in each column."""
-    index = p.index
-    by_unit: dict[str, list[int]] = {}
-    of = per_problem(_units, problem, p)
-    for i in range(index.size):
-        if known[i]:
-            by_unit.setdefault(of[i], []).append(i)
-    out = np.ones((index.size, values.shape[1]))
-    medians = {unit: _median(np.abs(values[rows_])) for unit, rows_ in by_unit.items()}
-    for i in range(index.size):
-        if of[i] in ("rad", "deg", "degree", "radian"):
-            out[i] = np.pi
-        elif of[i] in medians:
-            out[i] = medians[of[i]]
+    groups, angles = per_problem(_unit_groups, problem, p)
+    out = np.ones((p.index.size, values.shape[1]))
+    for positions in groups:
+        given = positions[known[positions]]
+        if len(given):
+            out[positions] = _median(np.abs(values[given]))
+    out[angles] = np.pi
     return out
+
+
+def _unit_groups(problem: Problem, p: KinematicsPlan) -> tuple[list[np.ndarray], np.ndarray]:
+    """The positions of ``p``'s layout grouped by unit (:func:`_units`), angles apart: the
+    groups :func:`typical_sizes` takes a median of, and the angles (a typical size of pi)."""
+    of = _units(problem, p)
+    angles = np.array([unit in ("rad", "deg", "degree", "radian") for unit in of], dtype=bool)
+    groups: dict[str, list[int]] = {}
+    for i, unit in enumerate(of):
+        if not angles[i]:
+            groups.setdefault(unit, []).append(i)
+    return [np.array(positions) for positions in groups.values()], angles
 
 
 def _median(values: np.ndarray) -> np.ndarray:
@@ -393,8 +400,9 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
     out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
-        for k in range(len(s.starts) if s.determined else 0):
-            groups.setdefault((tuple(s.determined), s.active.tobytes()), []).append((i, k))
+        if s.determined:
+            groups.setdefault((tuple(s.determined), s.active.tobytes()), []).extend(
+                (i, k) for k in range(len(s.starts)))
     for pairs in groups.values():
         first = setups[pairs[0][0]]
         X = np.stack([setups[i].x for i, _ in pairs], axis=1)
@@ -418,9 +426,11 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
             X = np.where(better, X, fits.X)
             cost = np.where(better, at_zero, cost)
             held = holds(consistency, level, X, first.active, T)
-        for j, (i, k) in enumerate(pairs):
-            if fits.started[j]:
-                out[i][k] = (X[:, j].copy(), float(cost[j]), bool(held[j]))
+        states = X.T.copy()  # each start's state a row of its own
+        for (i, k), started, x, c, h in zip(pairs, fits.started.tolist(), states,
+                                             cost.tolist(), held.tolist()):
+            if started:
+                out[i][k] = (x, c, h)
     return out
 
 
@@ -460,20 +470,21 @@ def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
     >>> level_rank(level, fits.X, [0, 1], [0, 1], np.ones(2, bool)).tolist()
     [2, 2]
     """
-    if level.jacobian_uses & set(determined):
-        X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T,
-                                               first_damping)
-    else:  # linear in the unknowns at hand: one least-squares step solves it
-        X = X.copy()
-        r, _ = residuals(level, X, active, T)
-        J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined], active)
-        started = np.isfinite(r).all(axis=0)
-        good = started & np.isfinite(J).all(axis=(0, 1))
-        step, _, _ = least_squares(J, r, good)
-        X[determined] += np.where(good, step, 0.0)
-        with np.errstate(all="ignore"):
+    with quiet():  # once, not at each of the steps' function calls
+        if level.jacobian_uses & set(determined):
+            X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T,
+                                                   first_damping)
+        else:  # linear in the unknowns at hand: one least-squares step solves it
+            X = X.copy()
+            r, _ = residuals(level, X, active, T)
+            J = _jacobians(level, X, len(columns), [columns.index(i) for i in determined],
+                           active)
+            started = np.isfinite(r).all(axis=0)
+            good = started & np.isfinite(J).all(axis=(0, 1))
+            step, _, _ = least_squares(J, r, good)
+            X[determined] += np.where(good, step, 0.0)
             cost = 0.5 * (residuals(level, X, active, T)[0] ** 2).sum(axis=0)
-    return LevelColumns(X, cost, started, holds(consistency, level, X, active, T))
+        return LevelColumns(X, cost, started, holds(consistency, level, X, active, T))
 
 
 def level_rank(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
@@ -631,10 +642,19 @@ def _starts(guess: np.ndarray, scale: np.ndarray, order: int) -> list[np.ndarray
             s = guess.copy()
             s[j] += step * (scale[j] / 2 if scale[j] == np.pi else scale[j])
             out.append(s)
-    rng = np.random.default_rng(11 + order)
-    for spread in JOINT_SPREADS:
-        out.append(guess + spread * scale * rng.standard_normal(len(guess)))
+    for spread, draw in zip(JOINT_SPREADS, _joint_draws(order, len(guess))):
+        out.append(guess + spread * scale * draw)
     return out
+
+
+@lru_cache(maxsize=None)
+def _joint_draws(order: int, count: int) -> np.ndarray:
+    """The fixed random moves of :func:`_starts` (one row per spread), drawn once: every
+    solve of a level of ``count`` unknowns gets the same ones."""
+    rng = np.random.default_rng(11 + order)
+    draws = np.array([rng.standard_normal(count) for _ in JOINT_SPREADS])
+    draws.setflags(write=False)
+    return draws
 
 
 def residuals(level: Level, X: np.ndarray, active, T: np.ndarray
@@ -922,7 +942,7 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
     if not np.isfinite(J).all():
         return list(unknown), []
     with np.errstate(all="ignore"):
-        _, R, piv = linalg.qr(J, pivoting=True, mode="economic")
+        _, R, piv = linalg.qr(J, pivoting=True, mode="economic", check_finite=False)
     rank = int(rules.rank(np.diag(R))) if R.size else 0
     determined = sorted(unknown[j] for j in piv[:rank])
     free = sorted(unknown[j] for j in piv[rank:])

@@ -147,21 +147,36 @@ def symbolic_kept(kept: list, code: str, expr, zeros: frozenset[str] = frozenset
     return True
 
 
-def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wanted: set[str]
+MutantValues = Callable[[Problem, Sequence[Mapping], set[str]],
+                        Sequence[Mapping[str, np.ndarray] | None]]
+"""The objectives asked (a set) of a mistaken model (a problem) at each instant of a
+class's givens: their values, or ``None`` where that instant is not solved."""
+
+
+def values_alone(problem: Problem, givens: Sequence[Mapping], wanted: set[str]
+                 ) -> list[Mapping[str, np.ndarray] | None]:
+    """The :data:`MutantValues` of :func:`~.numeric.solve_numeric_columns` (one instant as
+    :func:`~.numeric.solve_numeric` solves it)."""
+    return [None if isinstance(instant, MechgradeError) else instant.values
+            for instant in solve_numeric_columns(problem, kinematics_plan(problem), givens,
+                                                 wanted)]
+
+
+def constraint_mistakes_columns(problem: Problem, givens: Sequence[Mapping], wanted: set[str],
+                                solved: MutantValues = values_alone
                                 ) -> list[dict[str, list[GeneratedMistake]]]:
     """The objectives in ``wanted`` solved again with one constraint mistaken
     (:mod:`mechgrade.spec.constraint_mutations`: a cord's strands counted once) at each
-    instant of ``givens`` (one solve's, or a class's), each
-    mistaken model's instants solved together (:func:`~.numeric.solve_numeric_columns`; one
-    instant as :func:`~.numeric.solve_numeric` solves it)."""
+    instant of ``givens`` (one solve's, or a class's), each mistaken model's instants solved
+    together by ``solved`` (a class's: those the mistaken model's own class solve vouches
+    for, the others alone)."""
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
     # the same copies for every solve of the problem, so their plans are found by identity
     for m in per_problem(constraint_mutations, problem):
-        instants = solve_numeric_columns(m.problem, kinematics_plan(m.problem), givens, wanted)
-        for found, instant in zip(out, instants):
-            if isinstance(instant, MechgradeError):
+        for found, instant in zip(out, solved(m.problem, givens, wanted)):
+            if instant is None:
                 continue  # a mistaken length no configuration reaches is no mistake
-            for oid, values in instant.values.items():
+            for oid, values in instant.items():
                 if oid in wanted and np.all(np.isfinite(values)):
                     found.setdefault(oid, []).append(GeneratedMistake(
                         m.code, m.sentence, _one(values, problem.objective(oid))))
@@ -378,13 +393,15 @@ count); :func:`generated_columns` solves the others one by one."""
 
 def generated_columns(problem: Problem, p: KinematicsPlan, maps: Sequence[dict], X: np.ndarray,
                       ok: np.ndarray, values: Mapping[str, np.ndarray], numeric: Collection[str],
-                      together: Misreadings | None = None) -> GeneratedColumns:
+                      together: Misreadings | None = None,
+                      mistaken_model: MutantValues = values_alone) -> GeneratedColumns:
     """Each objective of ``numeric``'s generated mistakes at every column ``ok`` (``maps``:
     its givens, ``X``: its state, ``values``: each objective's SI answers, size x N), as a
     function of the column: the model mutations there, each given misread (:func:`slips_of`;
     its instant reached by ``together`` where that vouches for it, else solved as
     :func:`~.numeric.solve_numeric_columns` solves it; one that cannot be solved is no
-    mistake), each constraint mistaken (:func:`constraint_mistakes_columns`), kept by
+    mistake), each constraint mistaken (:func:`constraint_mistakes_columns`, its model's
+    instants solved by ``mistaken_model``), kept by
     :func:`kept_columns`. The one way for one solve (a column of one) and a class.
 
     >>> from mechgrade.spec import load_problem
@@ -421,7 +438,7 @@ def generated_columns(problem: Problem, p: KinematicsPlan, maps: Sequence[dict],
             misreadings[oid][i].append(GeneratedMistake(code, sentence, mistaken[k]))
     chosen = np.flatnonzero(ok).tolist()
     for i, found in zip(chosen, constraint_mistakes_columns(
-            problem, [maps[i] for i in chosen], set(numeric))):
+            problem, [maps[i] for i in chosen], set(numeric), mistaken_model)):
         for oid, mistakes in found.items():
             if oid in misreadings:
                 misreadings[oid][i].extend(mistakes)

@@ -142,19 +142,19 @@ def every_branch_columns(problem: Problem, p: KinematicsPlan, givens: Sequence[M
                 placed[i] = _placed(problem, p, given, only)
             except MechgradeError:
                 continue
-        for i, found in _branches_columns(problem, p, placed).items():
-            if isinstance(found, MechgradeError):
-                continue
-            kept: list[Candidate] = []
-            for c in found:
-                try:
-                    _check_givens_hold(problem, p, placed[i], givens[i], c.state)
-                except MechgradeError:
-                    continue  # a root the screens refuse is no configuration
-                if not any(_same_answers(p, k, c, only) or _same_configuration(p, k, c)
-                           for k in kept):
-                    kept.append(c)
-            out[i] = [evaluate(p.objectives, c.state, only) for c in kept]
+        found = [(i, c) for i, roots in _branches_columns(problem, p, placed).items()
+                 if not isinstance(roots, MechgradeError) for c in roots]
+        # a root the screens refuse is no configuration: every root judged at once
+        holding = [(i, c) for (i, c), error in zip(found, _givens_not_holding(
+            problem, p, [(placed[i], givens[i], c.state) for i, c in found])) if error is None]
+        kept: dict[int, list[Candidate]] = {}
+        for i, c in holding:
+            mine = kept.setdefault(i, [])
+            if not any(_same_answers(p, k, c, only) or _same_configuration(p, k, c)
+                       for k in mine):
+                mine.append(c)
+        for i, mine in kept.items():
+            out[i] = [evaluate(p.objectives, c.state, only) for c in mine]
     return out
 
 
@@ -347,19 +347,12 @@ def _missing_error(problem: Problem, p: KinematicsPlan, i: int) -> SolveError:
                       where=where)
 
 
-def _check_givens_hold(problem: Problem, p: KinematicsPlan, g: Givens, givens: Mapping,
-                       state: State) -> None:
-    """Every constraint and expression given, at every level, holds in ``state``."""
-    (error,) = _givens_not_holding(problem, p, [(g, givens, state)])
-    if error is not None:
-        raise error
-
-
 def _givens_not_holding(problem: Problem, p: KinematicsPlan,
                         instants: Sequence[tuple[Givens, Mapping, State]]
                         ) -> list[SolveError | None]:
-    """:func:`_check_givens_hold` at each instant (placed givens, givens, state): the error
-    it raises, or ``None``; each level's residuals evaluated at every instant at once."""
+    """Whether every constraint and expression given, at every level, holds at each instant
+    (placed givens, givens, state): the error naming the first that does not, or ``None``;
+    each level's residuals evaluated at every instant at once."""
     out: list[SolveError | None] = [None] * len(instants)
     for level in p.levels:
         placed = [rows(level, g) for g, _, _ in instants]
@@ -368,15 +361,14 @@ def _givens_not_holding(problem: Problem, p: KinematicsPlan,
             continue
         values, scales = residuals(level, np.stack([instants[k][2].values for k in todo], axis=1),
                                    slice(None), np.zeros((1, 1)))
-        for column, k in enumerate(todo):
-            active, target = placed[k]
-            value, scale = values[:, column], scales[:, column]
-            r = value - target
-            held = np.isfinite(value) & satisfied(r, scale, problem.consistency)
-            wrong = np.flatnonzero(active & ~held)
-            if len(wrong):
-                out[k] = _not_holding(level, instants[k][0], instants[k][1], int(wrong[0]),
-                                      value, r, scale)
+        r = values - np.stack([placed[k][1] for k in todo], axis=1)
+        wrong = np.stack([placed[k][0] for k in todo], axis=1) & ~(
+            np.isfinite(values) & satisfied(r, scales, problem.consistency))
+        for column in np.flatnonzero(wrong.any(axis=0)):
+            k = todo[column]
+            out[k] = _not_holding(level, instants[k][0], instants[k][1],
+                                  int(np.flatnonzero(wrong[:, column])[0]), values[:, column],
+                                  r[:, column], scales[:, column])
     return out
 
 
