@@ -539,7 +539,8 @@ def _mutant_values(group: _Group, mutant: Problem, maps: Sequence[dict], wanted:
         return values_alone(mutant, maps, wanted)
     ok, values = template._misread(same[0], list(maps))
     alone = np.flatnonzero(~ok).tolist()
-    redone = dict(zip(alone, values_alone(mutant, [maps[k] for k in alone], wanted)))
+    redone = dict(zip(alone, values_alone(mutant, [maps[k] for k in alone], wanted)
+                             if alone else ()))
     return [redone[k] if k in redone else {oid: v[:, k] for oid, v in values.items()}
             for k in range(len(maps))]
 
