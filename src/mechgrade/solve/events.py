@@ -226,6 +226,7 @@ def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, 
         ATOL, MAX_CALLS, mode=(lambda c, t, y: mode(held[c], t, y)) if mode else None)
     y = moment.y
     side = np.sign(event(held, moment.t, y, mode(held, moment.t, y) if mode else None))
+    # a state at rest in the event (an equilibrium) moves only by rounding: it stays there
     moved = np.abs(y - y0[:, held]).max(axis=0, initial=0.0) > ATOL
     reached = moment.status == NEVER  # at the moment: the end of the time it was given
     direction[held] = np.where(reached & moved & np.isfinite(side), -side, 0.0)
@@ -241,8 +242,9 @@ def next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> float:
     of :func:`leaving`, whose errors it raises."""
     direction, stays, unfinished = leaving(_rhs_column(rhs), _event_column(event), None,
                                            y0[:, None], t_bound, where)
-    for error in (*stays.values(), *unfinished.values()):
-        raise error
+    errors = [*stays.values(), *unfinished.values()]
+    if errors:
+        raise errors[0]
     return float(direction[0])
 
 
