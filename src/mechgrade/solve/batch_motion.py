@@ -393,10 +393,11 @@ def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):
 
     def at(t: np.ndarray, which: np.ndarray) -> np.ndarray:
         x = (t - t_old[which]) / h[which]
+        factors = (x, 1 - x)
         y = np.zeros((y_old.shape[0], len(which)))
         for i, term in enumerate(F[::-1, :, which]):
             y += term
-            y *= x if i % 2 == 0 else 1 - x
+            y *= factors[i % 2]
         return y + y_old[:, which]
     return at
 
@@ -424,17 +425,15 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
         undefined = ~np.isfinite(fx)
         same_a = np.sign(fx) == np.sign(fai)
         # Illinois: the end that stays twice in a row has its value halved
-        fbi = np.where(same_a & (li == -1), fbi / 2, fbi)
-        fai = np.where(~same_a & (li == 1), fai / 2, fai)
-        ai, fai = np.where(same_a, x, ai), np.where(same_a, fx, fai)
-        bi, fbi = np.where(same_a, bi, x), np.where(same_a, fbi, fx)
+        ai, fai = np.where(same_a, x, ai), np.where(same_a, fx, np.where(li == 1, fai / 2, fai))
+        bi, fbi = np.where(same_a, bi, x), np.where(same_a, np.where(li == -1, fbi / 2, fbi), fx)
         a[i], fa[i], b[i], fb[i] = ai, fai, bi, fbi
         last[i] = np.where(same_a, -1, 1)
         # two iterates a few units in the last place apart: the root is that well known
-        settled = (step > 0) & ~stalled & (np.abs(x - root[i]) <= 4 * EPS * np.abs(x))
+        close = 4 * EPS * np.abs(x)
+        settled = (step > 0) & ~stalled & (np.abs(x - root[i]) <= close)
         root[i] = x
-        done = (fx == 0) | settled | (np.abs(bi - ai) <= 4 * EPS + 4 * EPS * np.abs(x))
-        done &= ~undefined
+        done = ((fx == 0) | settled | (np.abs(bi - ai) <= 4 * EPS + close)) & ~undefined
         converged[i[done]] = True
         todo[i[done | undefined]] = False
     return root, converged
