@@ -10,6 +10,7 @@ import pytest
 
 from mechgrade.errors import SolveError
 from mechgrade.solve import solve
+from mechgrade.solve.events import leaving, next_crossing
 from mechgrade.spec import load_problem, load_problem_text
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -92,6 +93,29 @@ def test_an_event_that_holds_at_the_start_and_stays_is_refused():
     problem = swing("  v0: 1 m/s\n", "  v0: 0 m/s\n")
     assert "the event holds at the start (t = 0) and stays so: expected a motion that " \
         "leaves it" in failure_of(problem, "time_back")
+
+
+def test_an_event_undefined_as_the_motion_leaves_it_is_refused_not_fired_at_once():
+    """An event that holds at t = 0 and has no value a moment later has no next crossing."""
+    with pytest.raises(SolveError, match="the motion is undefined"):
+        next_crossing(lambda t, y: 0.0 if t == 0 else float("nan"),
+                      lambda t, y: np.array([y[1], -1.0]), np.array([0.0, 2.0]), 10.0, None)
+
+
+def test_one_motion_and_a_column_of_many_leave_an_event_alike():
+    """next_crossing is one column of leaving: the same direction, the same refusal."""
+    def rhs(t, y):
+        return np.array([y[1], -1.0])
+
+    def event(t, y):
+        return y[0]
+
+    starts = np.array([[0.0, 0.0, 0.0], [2.0, -2.0, 0.0]])  # up, down, at rest (no force: 0)
+    columns, stays, _ = leaving(lambda c, t, y, m: np.stack([y[1], np.where(y[1] != 0.0, -1.0, 0.0)]),
+                                lambda c, t, y, m: y[0], None, starts, 10.0, None)
+    assert columns.tolist()[:2] == [next_crossing(event, rhs, starts[:, i], 10.0, None)
+                                    for i in range(2)] == [-1.0, 1.0]
+    assert list(stays) == [2]
 
 
 def test_a_design_parameter_an_objective_gives_is_the_value_used():

@@ -52,11 +52,15 @@ are, ``t``: each one's time, ``modes``: each one's modes, see :func:`integrate_t
 
 
 
-def _combine(weights: np.ndarray, K: np.ndarray) -> np.ndarray:
-    """``sum_k weights[..., k] * K[k]`` (``K``: stages x states x columns), as
+def _combine(weights: np.ndarray, flat: np.ndarray, shape: tuple) -> np.ndarray:
+    """``sum_k weights[..., k] * K[k]``, ``K`` given ``flat`` (stages x everything else,
+    a view of stages x states x columns of ``shape`` states x columns), as
     ``numpy.tensordot(weights, K, 1)`` without its overhead."""
-    k = weights.shape[-1]
-    return (weights @ K[:k].reshape(k, -1)).reshape(weights.shape[:-1] + K.shape[1:])
+    return (weights @ flat[:weights.shape[-1]]).reshape(weights.shape[:-1] + shape)
+
+
+_ROWS = tuple(dop853.A[s, :s] for s in range(dop853.N_STAGES_EXTENDED))
+"""Each stage's weights of the stages before it (the rows of ``A``, sliced once)."""
 
 
 @dataclass(frozen=True)
@@ -124,62 +128,70 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     switch = np.full(count, -1)  # the mode that switched before the event
     flips = np.zeros((2, count))  # its signs at the ends of the step it switched in
     exponent = -1.0 / 8.0  # the error estimator's order, 7, plus one
+    # the few operations of a step on few columns cost more than its arithmetic: each value
+    # is gathered once, and what ends a column is bookkept only in a step where one ends
     while moving.any():
         a = np.flatnonzero(moving)
         ta, ya, fa, ma = t[a], y[:, a], f[:, a], modes[:, a]
+        ra, hv = retry[a], h_abs[a]
         min_step = 10 * np.abs(np.nextafter(ta, np.inf) - ta)
-        ha = np.where(~retry[a] & (h_abs[a] < min_step), min_step, h_abs[a])
-        small = retry[a] & (ha < min_step)
+        ha = np.where(~ra & (hv < min_step), min_step, hv)
+        small = ra & (ha < min_step)
         t_new = np.minimum(ta + ha, t_bound)
         h = t_new - ta
+        times = ta + c.C[:c.N_STAGES, None] * h  # each stage's time, as ta + C[s] * h
         K = np.empty((c.N_STAGES + 1, m, len(a)))
+        flat, shape = K.reshape(c.N_STAGES + 1, -1), ya.shape  # (a view)
         K[0] = fa
         for s in range(1, c.N_STAGES):
-            K[s] = rhs(a, ta + c.C[s] * h, ya + _combine(c.A[s, :s], K[:s]) * h, ma)
-        y_new = ya + h * _combine(c.B, K[:c.N_STAGES])
+            K[s] = rhs(a, times[s], ya + _combine(_ROWS[s], flat, shape) * h, ma)
+        y_new = ya + h * _combine(c.B, flat, shape)
         K[c.N_STAGES] = rhs(a, t_new, y_new, ma)
         calls[a] += c.N_STAGES
         scale = atol + np.maximum(np.abs(ya), np.abs(y_new)) * rtol
         with np.errstate(all="ignore"):
-            e5 = ((_combine(c.E5, K) / scale) ** 2).sum(axis=0)
-            e3 = ((_combine(c.E3, K) / scale) ** 2).sum(axis=0)
+            e5 = ((_combine(c.E5, flat, shape) / scale) ** 2).sum(axis=0)
+            e3 = ((_combine(c.E3, flat, shape) / scale) ** 2).sum(axis=0)
             norm = np.where((e5 == 0) & (e3 == 0), 0.0,
                             np.abs(h) * e5 / np.sqrt((e5 + 0.01 * e3) * m))
-            grow = np.where(norm == 0, MAX_FACTOR,
-                            np.minimum(MAX_FACTOR, SAFETY * norm ** exponent))
+            factor = SAFETY * norm ** exponent
+            grow = np.where(norm == 0, MAX_FACTOR, np.minimum(MAX_FACTOR, factor))
             # an undefined error (a stage through a singularity) rejects the step, as
             # scipy's max(MIN_FACTOR, nan) does: a shorter one may pass it
-            shrink = np.where(np.isnan(norm), MIN_FACTOR,
-                              np.maximum(MIN_FACTOR, SAFETY * norm ** exponent))
+            shrink = np.where(np.isnan(norm), MIN_FACTOR, np.maximum(MIN_FACTOR, factor))
         spent = calls[a] > max_calls
         broken = small | (np.isfinite(norm) & ~np.isfinite(y_new).all(axis=0)) | spent
         accepted = (norm < 1) & ~broken
         h_abs[a] = np.abs(h) * np.where(
-            accepted, np.where(retry[a], np.minimum(1.0, grow), grow), shrink)
+            accepted, np.where(ra, np.minimum(1.0, grow), grow), shrink)
         retry[a] = ~accepted
-        moving[a[broken]] = False
-        status[a[spent]] = STALLED
-        t[a[spent]] = ta[spent]
+        if broken.any():
+            moving[a[broken]] = False
+            status[a[spent]] = STALLED
+            t[a[spent]] = ta[spent]
         if not accepted.any():
             continue
         k = np.flatnonzero(accepted)
         b = a[k]
+        tk, yk, mk = t_new[k], y_new[:, k], ma[:, k]
         # as solve_ivp counts them: it builds every accepted step's dense output
         calls[b] += c.N_STAGES_EXTENDED - c.N_STAGES - 1
-        history.push(b, ta[k], t_new[k], ya[:, k], y_new[:, k], K[:, :, k], ma[:, k])
-        g_new = every(b, t_new[k], y_new[:, k], ma[:, k])
+        history.push(b, ta[k], tk, ya[:, k], yk, K[:, :, k], mk)
+        g_new = every(b, tk, yk, mk)
         g_old = g[:, b]
-        t[b], y[:, b], f[:, b], g[:, b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k], g_new
-        each = ((g_old <= 0) & (g_new >= 0) & (sense[:, b] >= 0)) | \
-            ((g_old >= 0) & (g_new <= 0) & (sense[:, b] <= 0))
+        t[b], y[:, b], f[:, b], g[:, b] = tk, yk, K[c.N_STAGES][:, k], g_new
+        sb = sense[:, b]
+        each = ((g_old <= 0) & (g_new >= 0) & (sb >= 0)) | \
+            ((g_old >= 0) & (g_new <= 0) & (sb <= 0))
         fired = each.any(axis=0)
         undefined = ~np.isfinite(g_new).all(axis=0)
         switched = np.zeros(len(b), dtype=bool)
         if mode is not None:  # a switch anywhere but at the event: not answered here
-            modes[:, b] = mode(b, t_new[k], y_new[:, k])
-            changed = modes[:, b] != ma[:, k]
+            modes[:, b] = mode(b, tk, yk)
+            now = modes[:, b]
+            changed = now != mk
             switched = ~undefined & (changed.sum(axis=0) == 1) & \
-                np.isfinite(modes[:, b]).all(axis=0) & (modes[:, b] != 0).all(axis=0)
+                np.isfinite(now).all(axis=0) & (now != 0).all(axis=0)
             undefined |= ~fired & changed.any(axis=0)
             switch[b[switched]] = changed[:, switched].argmax(axis=0)
             flips[:, b[switched]] = ma[switch[b[switched]], k[switched]], \
@@ -187,17 +199,20 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
             switched &= ~fired  # a switch in the step of the event: see _arrivals
         # solve_ivp would have stopped on an evaluation past the most allowed
         spent = calls[b] > max_calls
-        status[b[spent]] = STALLED
         undefined |= spent
         fired &= ~undefined
-        ended = ~fired & ~undefined & (t_new[k] >= t_bound)
+        ended = ~fired & ~undefined & (tk >= t_bound)
+        stops = fired | undefined | ended  # (a switch is undefined, unless at the event)
+        if not stops.any():
+            continue
+        status[b[spent]] = STALLED
         status[b[ended]] = NEVER
         status[b[fired]] = FIRED  # provisionally: until its event is located
         # one mode switched (and the step is otherwise sound): located like an event
         status[b[switched & ~spent]] = SWITCHED
         ends[:, :, b[fired]] = g_old[:, fired], g_new[:, fired]
         hit[:, b[fired]] = each[:, fired]
-        moving[b[fired | undefined | ended]] = False
+        moving[b[stops]] = False
     arrival = _arrivals(rhs, events, mode, history, status, ends, hit, lead, c, switch, flips,
                         modes)
     stopped = (status == STALLED) | ((status == FAILED) & np.isnan(arrival.t))
@@ -365,22 +380,24 @@ def _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol) -> np.ndarray:
 def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):
     """The DOP853 dense output of each column's last step (its three extra stages
     evaluated): ``at(t, which)`` the states of the columns ``which``, each at its time."""
+    flat = K.reshape(len(K), -1)  # (a view)
     for s in range(c.N_STAGES + 1, c.N_STAGES_EXTENDED):
-        K[s] = rhs(cols, t_old + c.C[s] * h, y_old + _combine(c.A[s, :s], K[:s]) * h,
+        K[s] = rhs(cols, t_old + c.C[s] * h, y_old + _combine(_ROWS[s], flat, y_old.shape) * h,
                    modes)
     delta = y_new - y_old
     F = np.empty((c.INTERPOLATOR_POWER,) + y_old.shape)
     F[0] = delta
     F[1] = h * K[0] - delta
     F[2] = 2 * delta - h * (K[c.N_STAGES] + K[0])
-    F[3:] = h * _combine(c.D, K)
+    F[3:] = h * _combine(c.D, flat, y_old.shape)
 
     def at(t: np.ndarray, which: np.ndarray) -> np.ndarray:
         x = (t - t_old[which]) / h[which]
+        factors = (x, 1 - x)
         y = np.zeros((y_old.shape[0], len(which)))
         for i, term in enumerate(F[::-1, :, which]):
             y += term
-            y *= x if i % 2 == 0 else 1 - x
+            y *= factors[i % 2]
         return y + y_old[:, which]
     return at
 
@@ -399,30 +416,26 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
         if not todo.any():
             break
         i = np.flatnonzero(todo)
+        ai, bi, fai, fbi, li = a[i], b[i], fa[i], fb[i], last[i]  # each gathered once
         with np.errstate(all="ignore"):
-            x = (a[i] * fb[i] - b[i] * fa[i]) / (fb[i] - fa[i])
-        lo, hi = np.minimum(a[i], b[i]), np.maximum(a[i], b[i])
-        stalled = ~((x > lo) & (x < hi)) | (step % 4 == 3)
-        x = np.where(stalled, 0.5 * (a[i] + b[i]), x)
+            x = (ai * fbi - bi * fai) / (fbi - fai)
+        stalled = ~((x > np.minimum(ai, bi)) & (x < np.maximum(ai, bi))) | (step % 4 == 3)
+        x = np.where(stalled, 0.5 * (ai + bi), x)
         fx = event(i, x, dense(x, i))
         undefined = ~np.isfinite(fx)
-        todo[i[undefined]] = False
-        same_a = np.sign(fx) == np.sign(fa[i])
+        same_a = np.sign(fx) == np.sign(fai)
         # Illinois: the end that stays twice in a row has its value halved
-        fb[i] = np.where(same_a & (last[i] == -1), fb[i] / 2, fb[i])
-        fa[i] = np.where(~same_a & (last[i] == 1), fa[i] / 2, fa[i])
-        a[i] = np.where(same_a, x, a[i])
-        fa[i] = np.where(same_a, fx, fa[i])
-        b[i] = np.where(same_a, b[i], x)
-        fb[i] = np.where(same_a, fb[i], fx)
+        ai, fai = np.where(same_a, x, ai), np.where(same_a, fx, np.where(li == 1, fai / 2, fai))
+        bi, fbi = np.where(same_a, bi, x), np.where(same_a, np.where(li == -1, fbi / 2, fbi), fx)
+        a[i], fa[i], b[i], fb[i] = ai, fai, bi, fbi
         last[i] = np.where(same_a, -1, 1)
         # two iterates a few units in the last place apart: the root is that well known
-        settled = (step > 0) & ~stalled & (np.abs(x - root[i]) <= 4 * EPS * np.abs(x))
+        close = 4 * EPS * np.abs(x)
+        settled = (step > 0) & ~stalled & (np.abs(x - root[i]) <= close)
         root[i] = x
-        done = (fx == 0) | settled | (np.abs(b[i] - a[i]) <= 4 * EPS + 4 * EPS * np.abs(x))
-        done &= ~undefined
+        done = ((fx == 0) | settled | (np.abs(bi - ai) <= 4 * EPS + close)) & ~undefined
         converged[i[done]] = True
-        todo[i[done]] = False
+        todo[i[done | undefined]] = False
     return root, converged
 
 

@@ -26,7 +26,7 @@ from ..tolerance import within_each
 from ..units import si_factor
 from .analysis import analysis_of, analysis_plan, extended, start_values, value_at
 from . import dop853, rules
-from .batch_motion import FIRED, NEVER, STALLED, integrate_to_events
+from .batch_motion import FIRED, NEVER, STALLED, Field, integrate_to_events
 from .levels import State
 
 RTOL, ATOL = 1e-11, 1e-12
@@ -110,22 +110,13 @@ def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start:
                 if sense == 0 and e(start, y0) == 0]
     if at_start:  # it fires at once, as solve_ivp's first step finds it (from either side)
         return Run(at_start[0], start, y0, start, y0)
-    def column(event) -> Callable:
-        return lambda _c, t, y, _m: np.array([event(float(t[0]), y[:, 0])])
-
     arrival = integrate_to_events(
-        lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None], [column(e) for e in events],
-        y0[:, None], t_bound, RTOL, ATOL, MAX_CALLS,
-        direction=np.array(directions, dtype=float)[:, None], t0=start,
+        _rhs_column(rhs), [_event_column(e) for e in events], y0[:, None], t_bound, RTOL, ATOL,
+        MAX_CALLS, direction=np.array(directions, dtype=float)[:, None], t0=start,
         keep=MAX_CALLS // dop853.N_STAGES + 1)  # every step it may take
     status, t = int(arrival.status[0]), float(arrival.t[0])
-    if status == STALLED:
-        raise SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
-                         "motion may switch there, e.g. friction reversing once the slip "
-                         "ends)", where=where)
     if status not in (FIRED, NEVER):
-        raise SolveError(f"the integration failed near t = {t:.6g} s: its step fell below the "
-                         "spacing of numbers there, or the motion is undefined", where=where)
+        raise _unfinished(status, t, where)
     which = None if status == NEVER or arrival.which is None else int(arrival.which[0])
     return Run(which, t, arrival.y[:, 0], max(start, t * (1 - rules.BEFORE_EVENT)),
                arrival.before[:, 0])
@@ -180,19 +171,81 @@ class _ScalarMotion:
                          self.analysis.max_time, self.analysis.where)
 
 
-def next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> float:
-    """The ``direction`` (as scipy reads it) of an event that holds at t = 0 (a projectile
-    launched from the ground, ``until: y = 0``): its next crossing, back through zero from
-    the side the motion leaves to a moment later; 0 (either way) for any other event."""
-    if event(0.0, y0) != 0.0:
-        return 0.0
-    h = LEAVING * t_bound
-    moment = integrate(rhs, [], [], y0, 0.0, h, where)  # the state at h
-    side = np.sign(event(h, moment.y))
+def _rhs_column(rhs: Callable) -> Field:
+    """One motion's ``rhs(t, y)`` as the right-hand side of one column."""
+    return lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None]
+
+
+def _event_column(event: Callable) -> Field:
+    """One motion's ``event(t, y)`` as the event of one column."""
+    return lambda _c, t, y, _m: np.array([event(float(t[0]), y[:, 0])])
+
+
+def _unfinished(status: int, t: float, where) -> SolveError:
+    """The error of an integration that stalled (:data:`~.batch_motion.STALLED`) or failed
+    near ``t`` before its end."""
+    if status == STALLED:
+        return SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
+                          "motion may switch there, e.g. friction reversing once the slip "
+                          "ends)", where=where)
+    return SolveError(f"the integration failed near t = {t:.6g} s: its step fell below the "
+                      "spacing of numbers there, or the motion is undefined", where=where)
+
+
+def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, t_bound: float,
+            where) -> tuple[np.ndarray, dict[int, SolveError], dict[int, SolveError]]:
+    """Each column's event's ``direction`` (as scipy reads it, see
+    :func:`~.batch_motion.integrate_to_events`; ``y0``: the start states, one per column):
+    where the event holds at t = 0 (a projectile launched from the ground, ``until: y = 0``),
+    its next crossing, back through zero from the side the motion leaves to a moment later
+    (:data:`LEAVING` of the time allowed, ``t_bound``); 0 (either way) elsewhere. With it,
+    the error of each column whose motion stays in the event (a state at rest in it:
+    :func:`event_stays`), and of each whose moment later is not reached or where the event
+    is undefined (direction 0: a class solves that column alone, which says why). One
+    motion alone is one column (:func:`next_crossing`).
+
+    >>> up = lambda c, t, y, m: np.stack([y[1], -np.ones(len(c))])  # thrown up, or at rest
+    >>> rest = lambda c, t, y, m: np.stack([y[1], np.zeros(len(c))])
+    >>> direction, stays, _ = leaving(up, lambda c, t, y, m: y[0], None,
+    ...                               np.array([[0.0, 0.0, 1.0], [2.0, -2.0, 0.0]]), 10.0, None)
+    >>> direction.tolist(), stays
+    ([-1.0, 1.0, 0.0], {})
+    >>> sorted(leaving(rest, lambda c, t, y, m: y[0], None, np.zeros((2, 1)), 10.0, None)[1])
+    [0]
+    """
+    count = y0.shape[1]
+    everyone = np.arange(count)
+    start = np.zeros(count)
+    g = event(everyone, start, y0, mode(everyone, start, y0) if mode else None)
+    direction = np.zeros(count)
+    held = np.flatnonzero(g == 0)
+    if not len(held):
+        return direction, {}, {}
+    moment = integrate_to_events(
+        lambda c, t, y, m: rhs(held[c], t, y, m), [], y0[:, held], LEAVING * t_bound, RTOL,
+        ATOL, MAX_CALLS, mode=(lambda c, t, y: mode(held[c], t, y)) if mode else None)
+    y = moment.y
+    side = np.sign(event(held, moment.t, y, mode(held, moment.t, y) if mode else None))
     # a state at rest in the event (an equilibrium) moves only by rounding: it stays there
-    if not side or np.abs(moment.y - y0).max() <= ATOL:
-        raise event_stays(where)
-    return float(-side)
+    moved = np.abs(y - y0[:, held]).max(axis=0, initial=0.0) > ATOL
+    reached = moment.status == NEVER  # at the moment: the end of the time it was given
+    direction[held] = np.where(reached & moved & np.isfinite(side), -side, 0.0)
+    stays = {int(i): event_stays(where) for i in held[reached & ((side == 0) | ~moved)]}
+    left = ~reached | (moved & ~np.isfinite(side))
+    return direction, stays, {int(i): _unfinished(int(status), float(t), where)
+                              for i, status, t in zip(held[left], moment.status[left],
+                                                      moment.t[left])}
+
+
+def next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> float:
+    """The ``direction`` of one motion's event (``event(t, y)``, ``rhs(t, y)``): one column
+    of :func:`leaving`, whose errors it raises."""
+    direction, stays, unfinished = leaving(_rhs_column(rhs), _event_column(event), None,
+                                           y0[:, None], t_bound, where)
+    errors = [*stays.values(), *unfinished.values()]
+    if errors:
+        raise errors[0]
+    return float(direction[0])
 
 
 def event_stays(where) -> SolveError:

@@ -265,11 +265,12 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
     2.0
     """
     columns = Columns(len(variants), warnings)
+    # each column's givens worked out once for all its groups (a class pays them per student)
+    given_maps = [_givens(problem, g) for g in variants]
     for overrides, objectives, step in groups:
         chosen = [o for o in objectives if o.id in wanted]
         if chosen:
-            step([instant_givens(problem, g, overrides) for g in variants], chosen,
-                 overrides, columns)
+            step([on_top(g, overrides) for g in given_maps], chosen, overrides, columns)
     return solutions_of(problem, kinematics, p, columns.results, columns.failures,
                         columns.base, [tuple(w) for w in columns.warned], wanted,
                         range(len(variants)))
@@ -500,7 +501,17 @@ def wanted_objectives(problem: Problem, objectives: Collection[str] | None) -> s
 def instant_givens(problem: Problem, givens, overrides: dict) -> dict:
     """The givens at one instant: the problem's (with the caller's ``givens`` overrides),
     then the objective group's own givens on top."""
-    given_map = _givens(problem, givens)
+    return on_top(_givens(problem, givens), overrides)
+
+
+def on_top(given_map: dict, overrides: dict) -> dict:
+    """A copy of ``given_map`` (the givens of :func:`_givens`) with an objective group's own
+    givens (``overrides``) on top.
+
+    >>> on_top({"t": "spec's"}, {}) == {"t": "spec's"}
+    True
+    """
+    given_map = dict(given_map)
     given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
     return given_map
 

@@ -21,7 +21,7 @@ from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import FirstErrors, call, least_squares_solution, loud_call, quiet
-from .events import ATOL, LEAVING, MAX_CALLS, RTOL, event_never_happens, event_stays
+from .events import ATOL, MAX_CALLS, RTOL, event_never_happens, leaving
 from .junctions import settle_junctions
 from .plan import KinematicsPlan
 from .rules import satisfied
@@ -118,7 +118,8 @@ class Motion:
                                     y0, unsettled)
         with quiet():
             switching = mode if switches else None
-            direction, stays = self._leaving(rhs, event, switching, y0)
+            direction, stays, _ = leaving(rhs, event, switching, y0, self.analysis.max_time,
+                                          self.analysis.where)
             arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
                                           MAX_CALLS, mode=switching, direction=direction)
         ok = arrival.status == FIRED
@@ -149,7 +150,7 @@ class Motion:
         each column's ``asked`` value before the event (the steps
         :func:`~.events.integrate_to_instant` takes for each alone): the motion is stopped
         where the product of the instant's and the event's equations changes sign (either
-        one that holds at the start waits for its next crossing, :meth:`_leaving`; t = 0 is
+        one that holds at the start waits for its next crossing, :func:`~.events.leaving`; t = 0 is
         the start itself), and a column is answered where the event's equation is then still
         away from zero on the side it started on (:data:`~.rules.EVENT_AWAY`): the state
         there (stacked twice: it is no event's limit), which columns passed the screens, none
@@ -172,15 +173,16 @@ class Motion:
             modes = mode(everyone, start, y0) if mode is not None else None
             g0 = until(everyone, start, y0, modes)
             r0 = reached(everyone, start, y0, modes)
-            leaving, stays = self._leaving(rhs, until, mode, y0)
+            away_from, stays, _ = leaving(rhs, until, mode, y0, self.analysis.max_time,
+                                          self.analysis.where)
             now = (r0 == 0) & (instant == self.p.index.time)
             # a coordinate or rate taken at the start: its next crossing (t = 0 is the start)
-            crossing, held = (np.zeros(count), {}) if instant == self.p.index.time else \
-                self._leaving(rhs, reached, mode, y0)
-            side = np.where(g0 != 0, np.sign(g0), -leaving)
+            crossing, held, _ = (np.zeros(count), {}, {}) if instant == self.p.index.time \
+                else leaving(rhs, reached, mode, y0, self.analysis.max_time, self.analysis.where)
+            side = np.where(g0 != 0, np.sign(g0), -away_from)
             arrival = integrate_to_events(
                 rhs, either, y0, self.analysis.max_time, RTOL, ATOL, MAX_CALLS, mode=mode,
-                direction=np.where(g0 != 0, np.sign(g0) * crossing, np.sign(r0) * leaving))
+                direction=np.where(g0 != 0, np.sign(g0) * crossing, np.sign(r0) * away_from))
             t = np.where(now, 0.0, arrival.t)
             y = np.where(now, y0, arrival.y)
             moved = mode(everyone, t, y) if mode is not None else None
@@ -198,38 +200,6 @@ class Motion:
                   if (error := solved.errors[int(i)]) is not None}
         return (np.vstack([x, x]), ok & fine, np.zeros(count, dtype=bool),
                 {**failed, **held, **stays, **unsettled})
-
-    def _leaving(self, rhs: Callable, event: Callable, mode: Callable | None,
-                 y0: np.ndarray) -> tuple[np.ndarray, dict[int, MechgradeError]]:
-        """Each column's event's direction (see :func:`~.batch_motion.integrate_to_events`):
-        where the event holds at the start, its next crossing, back through zero from the
-        side the motion leaves to a moment later (as :func:`~.events.next_crossing` gives it
-        for one motion); 0 elsewhere, and where that moment is not reached (that column is
-        solved alone, which says why). With it, the error of each column whose motion reaches
-        that moment and stays in the event (:func:`~.events.event_stays`, as the scalar
-        integrator judges it: without solving that column again step by step)."""
-        count = y0.shape[1]
-        everyone = np.arange(count)
-        start = np.zeros(count)
-        g = event(everyone, start, y0, mode(everyone, start, y0) if mode else None)
-        direction = np.zeros(count)
-        held = np.flatnonzero(g == 0)
-        if not len(held):
-            return direction, {}
-        assert isinstance(self.analysis, Integration)
-        h = LEAVING * self.analysis.max_time
-        moment = integrate_to_events(
-            lambda c, t, y, m: rhs(held[c], t, y, m), lambda _c, t, _y, _m: t - h,
-            y0[:, held], 2 * h, RTOL, ATOL, MAX_CALLS,
-            mode=(lambda c, t, y: mode(held[c], t, y)) if mode else None)
-        y = moment.y
-        side = np.sign(event(held, moment.t, y, mode(held, moment.t, y) if mode else None))
-        moved = np.abs(y - y0[:, held]).max(axis=0, initial=0.0) > ATOL
-        reached = moment.status == FIRED
-        direction[held] = np.where(reached & moved & np.isfinite(side), -side, 0.0)
-        where = self.analysis.where
-        return direction, {int(i): event_stays(where)
-                           for i in held[reached & ((side == 0) | ~moved)]}
 
     def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching
                ) -> dict[int, MechgradeError]:
