@@ -268,11 +268,11 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
     2.0
     """
     columns = Columns(len(variants), warnings)
+    given = [_givens(problem, g) for g in variants]  # once, whatever the groups
     for overrides, objectives, step in groups:
         chosen = [o for o in objectives if o.id in wanted]
         if chosen:
-            step([instant_givens(problem, g, overrides) for g in variants], chosen,
-                 overrides, columns)
+            step([with_own(g, overrides) for g in given], chosen, overrides, columns)
     out: list[Solution | MechgradeError | None] = [None] * len(variants)
     answered = columns.answered()
     for i, solution in zip(answered, solutions_of(
@@ -496,9 +496,17 @@ def wanted_objectives(problem: Problem, objectives: Collection[str] | None) -> s
 def instant_givens(problem: Problem, givens, overrides: dict) -> dict:
     """The givens at one instant: the problem's (with the caller's ``givens`` overrides),
     then the objective group's own givens on top."""
-    given_map = _givens(problem, givens)
-    given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
-    return given_map
+    return with_own(_givens(problem, givens), overrides)
+
+
+def with_own(given_map: dict, overrides: dict) -> dict:
+    """``given_map`` (an instant's givens, kept as it is) with an objective group's own
+    givens ``overrides`` on top.
+
+    >>> with_own({"a": (None, 1.0, None)}, {})
+    {'a': (None, 1.0, None)}
+    """
+    return {**given_map, **{key: (g.key.node, g.si, g) for key, g in overrides.items()}}
 
 
 _SYMBOLIC_ANSWERS: dict = {}
