@@ -212,13 +212,14 @@ class _Template:
             return []
         problem = self.problem
         wanted = wanted_objectives(problem, asked)
-        integrated = self._integrated(variants, wanted)
+        given = [instant_givens(problem, g, {}) for g in variants]
+        integrated = self._integrated(given, wanted)
         steps: list[tuple[dict, tuple[Objective, ...], Step]] = [
             (group.overrides, group.objectives,
              partial(self._together, group, integrated.get(k)))
             for k, group in enumerate(self.groups)]
         return drive_columns(problem, self.kproblem, self.p, tuple(self.p.k.warnings), steps,
-                             variants, wanted)
+                             variants, wanted, given)
 
     def _integrates(self, group: _Group) -> bool:
         """Whether ``group``'s instant is reached by integrating the motion from the givens
@@ -229,9 +230,9 @@ class _Template:
         """Whether ``group``'s instant is reached by solving for the design parameter."""
         return self.design is not None and self.design.find not in group.overrides
 
-    def _integrated(self, variants: list[dict], wanted: Collection[str]) -> dict[int, tuple]:
+    def _integrated(self, given: list[dict], wanted: Collection[str]) -> dict[int, tuple]:
         """Every integrated group's instant (those with a numeric objective ``wanted``) at
-        every variant, reached in one pass: each group's columns side by side, each column
+        every variant (``given``: each one's givens), reached in one pass: each group's columns side by side, each column
         integrated to its group's own instant or to the event
         (:meth:`~.motion.Motion.integrated`), so a class integrates its motion once however
         many instants it is asked at. By the group's index, what :meth:`_instant` reads: the
@@ -240,8 +241,7 @@ class _Template:
                   and any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
         if not chosen:
             return {}
-        n = len(variants)
-        given = [instant_givens(self.problem, g, {}) for g in variants]
+        n = len(given)
         X = np.hstack([self._placed(self.groups[k], [with_own(g, self.groups[k].overrides)
                                                      for g in given])[0] for k in chosen])
         instants = np.repeat([-1 if self.groups[k].instant is None else self.groups[k].instant

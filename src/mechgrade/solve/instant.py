@@ -248,13 +248,15 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
                   warnings: tuple[AuthorWarning, ...],
                   groups: Sequence[tuple[dict, Sequence[Objective], Step]],
                   variants: Sequence[Mapping[str, float | None] | None],
-                  wanted: Collection[str]) -> list[Solution | MechgradeError | None]:
+                  wanted: Collection[str], given: Sequence[dict] | None = None
+                  ) -> list[Solution | MechgradeError | None]:
     """The one solver loop, over columns (one per variant of the givens): every group of
     objectives asked at the same givens (``groups``: their own givens, the objectives, the
     :data:`Step` that answers them), then each column's solution (:func:`solutions_of`:
     the objectives ``wanted``, the kinematics ``kinematics`` and its plan ``p``, the
     ``warnings`` before any instant's) or its error; ``None`` for a column a step left to
-    be solved alone.
+    be solved alone. ``given``: each variant's givens without a group's own
+    (``instant_givens(problem, variant, {})``), where the caller has read them already.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -268,7 +270,8 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
     2.0
     """
     columns = Columns(len(variants), warnings)
-    given = [_givens(problem, g) for g in variants]  # once, whatever the groups
+    if given is None:  # once, whatever the groups
+        given = [_givens(problem, g) for g in variants]
     for overrides, objectives, step in groups:
         chosen = [o for o in objectives if o.id in wanted]
         if chosen:
