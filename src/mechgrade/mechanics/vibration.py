@@ -150,10 +150,10 @@ class _States:
 
 
 def _solved(A: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``A^-1 b`` of every state (``A``: states x m x m, ``b``: states x m); NaN where ``A``
-    is singular."""
+    """``A^-1 b`` of every state (``A``: states x m x m, ``b``: states x m x right-hand
+    sides); NaN where ``A`` is singular."""
     try:
-        return np.linalg.solve(A, b[:, :, None])[:, :, 0]
+        return np.linalg.solve(A, b)
     except np.linalg.LinAlgError:  # some state's A is singular: each one alone
         out = np.full(b.shape, np.nan)
         for c in range(len(A)):
@@ -173,14 +173,14 @@ def _modes(n: int, m: int, count: int, v: bytes) -> _States:
     mode."""
     entries = np.frombuffer(v).reshape(-1, count).T
     size = m * m + m
-    blocks = [(entries[:, s:s + m * m].reshape(count, m, m), entries[:, s + m * m:s + size])
-              for s in range(0, (2 * n + 1) * size, size)]
-    A, b = blocks[0]
-    x = _solved(A, b)
-    derivatives = [-_solved(A, db - (dA @ x[:, :, None])[:, :, 0])[:, :n]
-                   for dA, db in blocks[1:]]
-    K = np.stack(derivatives[:n], axis=2)
-    C = np.stack(derivatives[n:], axis=2)
+    # per state: A and b, then dA/ds and db/ds of every coordinate and rate s
+    blocks = entries[:, :(2 * n + 1) * size].reshape(count, 2 * n + 1, size)
+    A, b = blocks[:, 0, :m * m].reshape(count, m, m), blocks[:, 0, m * m:]
+    dA, db = blocks[:, 1:, :m * m].reshape(count, 2 * n, m, m), blocks[:, 1:, m * m:]
+    x = _solved(A, b[:, :, None])[:, :, 0]
+    # every derivative's right-hand side a column of one solve
+    derivatives = -_solved(A, (db - (dA @ x[:, None, :, None])[:, :, :, 0]).transpose(0, 2, 1))
+    K, C = derivatives[:, :n, :n], derivatives[:, :n, n:]
     regular = np.isfinite(x).all(axis=1) & np.isfinite(K).all(axis=(1, 2)) & \
         np.isfinite(C).all(axis=(1, 2))
     held = entries[:, (2 * n + 1) * size:].reshape(count, -1, n)
@@ -190,7 +190,7 @@ def _modes(n: int, m: int, count: int, v: bytes) -> _States:
     else:
         rows, ranks = None, np.zeros(count, dtype=int)
     kept = []
-    for rank in np.unique(ranks[regular]):
+    for rank in np.unique(ranks[regular]) if rows is not None else [0] * bool(regular.any()):
         c = np.flatnonzero(regular & (ranks == rank))
         if rows is None:
             T, Kk, Ck = np.broadcast_to(np.eye(n), (len(c), n, n)), K[c], C[c]
