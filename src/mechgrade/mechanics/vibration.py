@@ -173,14 +173,16 @@ def _modes(n: int, m: int, count: int, v: bytes) -> _States:
     mode."""
     entries = np.frombuffer(v).reshape(-1, count).T
     size = m * m + m
-    # per state: A and b, then dA/ds and db/ds of every coordinate and rate s
-    blocks = entries[:, :(2 * n + 1) * size].reshape(count, 2 * n + 1, size)
-    A, b = blocks[:, 0, :m * m].reshape(count, m, m), blocks[:, 0, m * m:]
-    dA, db = blocks[:, 1:, :m * m].reshape(count, 2 * n, m, m), blocks[:, 1:, m * m:]
+    blocks = [(entries[:, s:s + m * m].reshape(count, m, m), entries[:, s + m * m:s + size])
+              for s in range(0, (2 * n + 1) * size, size)]
+    A, b = blocks[0]
     x = _solved(A, b[:, :, None])[:, :, 0]
-    # every derivative's right-hand side a column of one solve
-    derivatives = -_solved(A, (db - (dA @ x[:, None, :, None])[:, :, :, 0]).transpose(0, 2, 1))
-    K, C = derivatives[:, :n, :n], derivatives[:, :n, n:]
+    # each derivative solved on its own, as one state's always was: a mode that rounding
+    # alone sets (a rigid-body mode's frequency) keeps its digits
+    derivatives = [-_solved(A, db[:, :, None] - dA @ x[:, :, None])[:, :n, 0]
+                   for dA, db in blocks[1:]]
+    K = np.stack(derivatives[:n], axis=2)
+    C = np.stack(derivatives[n:], axis=2)
     regular = np.isfinite(x).all(axis=1) & np.isfinite(K).all(axis=(1, 2)) & \
         np.isfinite(C).all(axis=(1, 2))
     held = entries[:, (2 * n + 1) * size:].reshape(count, -1, n)
