@@ -141,3 +141,21 @@ def test_a_state_asked_again_gives_its_own_values():
     # the linearised modes are kept per state: a second state gets its own, the first again
     first, second = (_entries(np.eye(1), [[k]], [[0.0]]) for k in (4.0, 9.0))
     assert [_value(Modal.FREQUENCY, 1, e) for e in (first, second, first)] == [2.0, 3.0, 2.0]
+
+
+def test_states_side_by_side_each_get_the_modes_they_get_alone():
+    """A class's states worked out together (each entry a column of states) give each state
+    what it gives alone, a state whose balances are singular or whose equilibrium is unstable
+    among them (NaN, or the check that fails, at that state only)."""
+    states = [_entries(M3, K3, 0.004 * K3), _entries(M3, -K3, np.zeros((3, 3))),
+              _entries(np.zeros((3, 3)), K3, np.zeros((3, 3))),
+              _entries(M3, K3, np.diag([12.0, 0.0, 0.0]))]
+    columns = [np.array(entry, dtype=float) for entry in zip(*states)]
+    for what in Modal:
+        for number in (1, 3):
+            together = modal_value(what, number, 2, 0, 3, 3, *columns)
+            alone = [float(modal_value(what, number, 2, 0, 3, 3, *entries))
+                     for entries in states]
+            np.testing.assert_allclose(together, alone, rtol=1e-12, atol=0)
+    frequency = modal_value(Modal.FREQUENCY, 1, 0, 0, 3, 3, *columns)
+    assert np.isfinite(frequency).tolist() == [True, False, False, True]

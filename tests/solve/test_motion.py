@@ -79,3 +79,28 @@ def test_a_slip_direction_written_as_a_sum_is_defined_where_the_slip_ends():
     row = kp.labels.index("body bowling_ball: N.x force balance")
     assert np.isfinite(residual).all()
     assert residual[row] == pytest.approx(-M * x[names.index("xbdd"), 0] - N * mu)
+
+
+@pytest.mark.slow  # a cold derivation (2 s); the class's parity tests go this way in the fast core
+def test_columns_asked_at_their_own_instants_beside_the_event_are_integrated_as_apart():
+    """One pass over columns, each to its own instant (a time, a coordinate, a rate) or to
+    the event (-1), gives each column what a pass of its own gives: a class integrates its
+    motion once however many instants it is asked at."""
+    problem = load_problem(Path(__file__).resolve().parents[2] / "problems"
+                           / "damped_block_positions.yaml")
+    kp = kinetics_plan(problem)
+    index = kp.kp.index
+    state = solve_numeric(kinematic_problem(problem), kp.kp,
+                          instant_givens(problem, None, {}), set()).state
+    X = np.repeat(state.values[:, None], 4, axis=1)
+    instants = np.array([-1, index.time, index.position("x"), index.rates(1).start])
+    X[instants[1:], [1, 2, 3]] = 0.03, 0.02, 0.0  # t = 30 ms, x = 20 mm, x' = 0 (the peak)
+    motion = Motion(problem, kp)
+    together, ok, never, errors = motion.integrated(X, instants)
+    assert ok.all() and not never.any() and not errors
+    for c in range(len(instants)):  # the same steps, to the last digits the sums round
+        apart, alone_ok, _, _ = motion.integrated(X[:, [c]], instants[[c]])
+        assert alone_ok[0]
+        np.testing.assert_allclose(together[:, c], apart[:, 0], rtol=1e-10, atol=1e-13)
+    assert together[index.time, 0] == pytest.approx(0.1603187, rel=1e-6)  # back at x = 0
+    assert together[index.position("x"), 1] == pytest.approx(0.0251013, rel=1e-5)

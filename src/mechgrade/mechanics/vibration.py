@@ -23,6 +23,7 @@ complex, and a modal damping ratio of the undamped modes would be an approximati
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from enum import IntEnum
 from functools import lru_cache
 
@@ -91,15 +92,17 @@ def modal_value(what, number, i, j, n, m, *entries):
     >>> [round(float(modal_value(w, 1, 0, 0, 1, 1, *entries)), 6) for w in (0, 1, 3, 4, 5)]
     [2.0, 0.1, 0.0, 0.0, 0.0]
     """
-    args = (Modal(int(what)), int(number), int(i), int(j), int(n), int(m))
     one, shape = _one_state(entries)
     if one is not None:  # a solve alone: hundreds of entries not broadcast one by one
-        return np.array(_one(*args, one)).reshape(shape)
-    arrays = np.broadcast_arrays(*(np.asarray(e, dtype=float) for e in entries))
-    shape = arrays[0].shape
-    flat = np.stack([a.reshape(-1) for a in arrays])
-    out = np.array([_one(*args, flat[:, c]) for c in range(flat.shape[1])])
-    return out.reshape(shape)
+        flat = one[:, None]
+    else:
+        arrays = np.broadcast_arrays(*(np.asarray(e, dtype=float) for e in entries))
+        shape = arrays[0].shape
+        flat = np.stack([a.reshape(-1) for a in arrays])
+    # the states' modes worked out once for the several values and residuals asked of them (a
+    # frequency, its mode shape, the checks that it exists)
+    modes = _modes(int(n), int(m), flat.shape[1], np.ascontiguousarray(flat).tobytes())
+    return _value(modes, Modal(int(what)), int(number), int(i), int(j)).reshape(shape)
 
 
 def _one_state(entries) -> tuple[np.ndarray | None, tuple[int, ...]]:
@@ -118,101 +121,137 @@ def _one_state(entries) -> tuple[np.ndarray | None, tuple[int, ...]]:
     return np.array(values, dtype=float), shape
 
 
+@dataclass(frozen=True)
+class _Modes:
+    """The modes of every state (one per column of the entries) of one kept dimension
+    ``kept`` (the coordinates' motions that keep the position constraints): which states
+    they are (``columns``), ``T`` (states x coordinates x kept, ``q = T z``), the squared
+    frequencies and their eigenvectors (of ``K`` within the kept motions), and the
+    state-space eigenvalues with a positive imaginary part (``pairs``, by magnitude first,
+    ``count`` of them per state)."""
+
+    columns: np.ndarray
+    T: np.ndarray
+    squares: np.ndarray
+    shapes: np.ndarray
+    pairs: np.ndarray
+    count: np.ndarray
+
+
+@dataclass(frozen=True)
+class _States:
+    """``x``, ``K`` and ``C`` of every state whose ``A`` is regular (``regular``; NaN at the
+    others), and their :class:`_Modes`, one for each dimension kept."""
+
+    regular: np.ndarray
+    x: np.ndarray
+    K: np.ndarray
+    kept: tuple[_Modes, ...]
+
+
+def _solved(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``A^-1 b`` of every state (``A``: states x m x m, ``b``: states x m x right-hand
+    sides); NaN where ``A`` is singular."""
+    try:
+        return np.linalg.solve(A, b)
+    except np.linalg.LinAlgError:  # some state's A is singular: each one alone
+        out = np.full(b.shape, np.nan)
+        for c in range(len(A)):
+            try:
+                out[c] = np.linalg.solve(A[c], b[c])
+            except np.linalg.LinAlgError:
+                pass
+        return out
+
+
 @lru_cache(maxsize=256)
-def _linearised(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...] | None:
-    """``x``, ``K`` and ``C`` of the entries ``v`` (their bytes), ``None`` where ``A`` is
-    singular: worked out once for the several values and residuals asked of the same state (a
-    frequency, its mode shape, the checks that it exists)."""
-    entries = np.frombuffer(v)
+def _modes(n: int, m: int, count: int, v: bytes) -> _States:
+    """:class:`_States` of the entries ``v`` (their bytes: entries x ``count`` states).
+    ``K = -d q''/d q`` and ``C = -d q''/d q'`` are ``A^-1 (db/ds - dA/ds x)``; a position
+    constraint kept (the entries' tail, its Jacobian in the coordinates) restricts them to
+    its null space: a motion across it has no restoring force, a zero frequency that is no
+    mode."""
+    entries = np.frombuffer(v).reshape(-1, count).T
     size = m * m + m
-    blocks = [(entries[s:s + m * m].reshape(m, m), entries[s + m * m:s + size])
+    blocks = [(entries[:, s:s + m * m].reshape(count, m, m), entries[:, s + m * m:s + size])
               for s in range(0, (2 * n + 1) * size, size)]
     A, b = blocks[0]
-    try:
-        x = np.linalg.solve(A, b)
-        K = -np.column_stack([np.linalg.solve(A, db - dA @ x)[:n] for dA, db in blocks[1:n + 1]])
-        C = -np.column_stack([np.linalg.solve(A, db - dA @ x)[:n] for dA, db in blocks[n + 1:]])
-    except np.linalg.LinAlgError:
-        return None
-    return _shared(x, K, C)
+    x = _solved(A, b[:, :, None])[:, :, 0]
+    # each derivative solved on its own, as one state's always was: a mode that rounding
+    # alone sets (a rigid-body mode's frequency) keeps its digits
+    derivatives = [-_solved(A, db[:, :, None] - dA @ x[:, :, None])[:, :n, 0]
+                   for dA, db in blocks[1:]]
+    K = np.stack(derivatives[:n], axis=2)
+    C = np.stack(derivatives[n:], axis=2)
+    regular = np.isfinite(x).all(axis=1) & np.isfinite(K).all(axis=(1, 2)) & \
+        np.isfinite(C).all(axis=(1, 2))
+    held = entries[:, (2 * n + 1) * size:].reshape(count, -1, n)
+    if held.shape[1]:
+        _, sizes, rows = np.linalg.svd(np.where(regular[:, None, None], held, 0.0))
+        ranks = (sizes > 1e-10 * sizes.max(axis=1, keepdims=True)).sum(axis=1)
+    else:
+        rows, ranks = None, np.zeros(count, dtype=int)
+    kept = []
+    for rank in np.unique(ranks[regular]) if rows is not None else [0] * bool(regular.any()):
+        c = np.flatnonzero(regular & (ranks == rank))
+        if rows is None:
+            T, Kk, Ck = np.broadcast_to(np.eye(n), (len(c), n, n)), K[c], C[c]
+        else:
+            T = rows[c, rank:].transpose(0, 2, 1)
+            Kk, Ck = T.transpose(0, 2, 1) @ K[c] @ T, T.transpose(0, 2, 1) @ C[c] @ T
+        squares, shapes = np.linalg.eig(Kk)
+        k = n - rank
+        space = np.zeros((len(c), 2 * k, 2 * k))
+        space[:, :k, k:] = np.eye(k)
+        space[:, k:, :k], space[:, k:, k:] = -Kk, -Ck
+        roots = np.linalg.eigvals(space)
+        upper = roots.imag > 1e-9 * np.abs(roots).max(axis=1, keepdims=True)
+        order = np.argsort(np.where(upper, np.abs(roots), np.inf), axis=1, kind="stable")
+        kept.append(_Modes(c, T, squares, shapes, np.take_along_axis(roots, order, axis=1),
+                           upper.sum(axis=1)))
+    return _States(regular, x, K, tuple(kept))
 
 
-@lru_cache(maxsize=256)
-def _kept(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...]:
-    """``T``, ``K`` and ``C`` of the motions that keep the position constraints (the entries'
-    tail, their Jacobian in the coordinates): ``q = T z``, ``T`` an orthonormal basis of its
-    null space; ``T`` is the identity when nothing is held."""
-    linearised = _linearised(n, m, v)
-    assert linearised is not None  # asked only of a state whose A is regular
-    _, K, C = linearised
-    held = np.frombuffer(v)[(2 * n + 1) * (m * m + m):].reshape(-1, n)
-    if not len(held):
-        return _shared(np.eye(n), K, C)
-    # K and C act within the null space: a motion across it has no restoring force, a zero
-    # frequency that is no mode
-    _, sizes, rows = np.linalg.svd(held)
-    rank = int((sizes > 1e-10 * (sizes.max() if sizes.size else 1.0)).sum())
-    T = rows[rank:].T
-    return _shared(T, T.T @ K @ T, T.T @ C @ T)
-
-
-@lru_cache(maxsize=256)
-def _eigen(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...]:
-    """The eigenvalues and eigenvectors of :func:`_kept`'s ``K``."""
-    return _shared(*np.linalg.eig(_kept(n, m, v)[1]))
-
-
-@lru_cache(maxsize=256)
-def _pairs(n: int, m: int, v: bytes) -> np.ndarray:
-    """The eigenvalues of the state-space matrix ``[[0, I], [-K, -C]]`` of :func:`_kept`'s
-    ``K`` and ``C`` with a positive imaginary part (one of each oscillating mode's pair):
-    every damping ratio and the check that each mode oscillates read them."""
-    T, K, C = _kept(n, m, v)
-    k = T.shape[1]
-    roots = np.linalg.eigvals(np.block([[np.zeros((k, k)), np.eye(k)], [-K, -C]]))
-    return _shared(roots[roots.imag > 1e-9 * np.abs(roots).max()])[0]
-
-
-def _shared(*arrays: np.ndarray) -> tuple[np.ndarray, ...]:
-    for array in arrays:
-        array.setflags(write=False)  # cached: every caller of the same state reads them
-    return arrays
-
-
-def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray) -> float:
-    key = np.ascontiguousarray(v, dtype=float).tobytes()
-    linearised = _linearised(n, m, key)
-    if linearised is None:
-        return np.nan
-    x, K, _ = linearised
+def _value(states: _States, what: Modal, number: int, i: int, j: int) -> np.ndarray:
+    """The value ``what`` of mode ``number`` at every state of ``states`` (NaN where ``A`` is
+    singular or it is undefined), as :func:`modal_value` says."""
+    out = np.full(len(states.regular), np.nan)
+    n = states.K.shape[1]
     if what == Modal.EQUILIBRIUM:
-        return float(np.abs(x[:n]).sum() / (1 + np.abs(K).sum()))
-    squares, shapes = _eigen(n, m, key)
-    T = _kept(n, m, key)[0]
-    kept = T.shape[1]  # the coordinates' motions that keep the constraints
-    scale = 1e-9 * (np.abs(squares).max() + 1e-300)
-    # a zero squared frequency is a mode that moves freely (a rigid-body mode), not unstable
-    stable = bool((np.abs(squares.imag) <= scale).all() and (squares.real >= -scale).all())
-    if what == Modal.STABLE:
-        return 0.0 if stable else 1.0
-    if what in (Modal.DAMPING_RATIO, Modal.UNDERDAMPED):
-        pairs = _pairs(n, m, key)
-        if what == Modal.UNDERDAMPED:
-            return 0.0 if len(pairs) == kept else 1.0
-        if len(pairs) != kept:
-            return np.nan
-        pair = pairs[np.argsort(np.abs(pairs))][number - 1]
-        return float(-pair.real / abs(pair))
-    if not stable:
-        return np.nan
-    order = np.argsort(squares.real)
-    if what == Modal.FREQUENCY:
-        return float(np.sqrt(max(squares.real[order[number - 1]], 0.0)))
-    shape = (T @ shapes[:, order[number - 1]]).real
-    moves = abs(shape[j]) > 1e-9 * np.abs(shape).max()
-    if what == Modal.COUPLED:
-        return 0.0 if moves else 1.0
-    return float(shape[i] / shape[j]) if moves else np.nan
+        r = states.regular
+        out[r] = np.abs(states.x[r, :n]).sum(axis=1) / (1 + np.abs(states.K[r]).sum(axis=(1, 2)))
+        return out
+    for modes in states.kept:
+        c = modes.columns
+        kept = modes.T.shape[2]
+        squares = modes.squares
+        magnitude = np.abs(squares)
+        scale = 1e-9 * (magnitude.max(axis=1) + 1e-300)[:, None]
+        # a zero squared frequency is a mode that moves freely (a rigid-body mode), not
+        # unstable
+        stable = (np.abs(squares.imag) <= scale).all(axis=1) & \
+            (squares.real >= -scale).all(axis=1)
+        oscillate = modes.count == kept
+        if what == Modal.STABLE:
+            out[c] = np.where(stable, 0.0, 1.0)
+        elif what == Modal.UNDERDAMPED:
+            out[c] = np.where(oscillate, 0.0, 1.0)
+        elif what == Modal.DAMPING_RATIO:
+            pair = modes.pairs[:, number - 1]
+            out[c] = np.where(oscillate, -pair.real / np.abs(pair), np.nan)
+        else:
+            order = np.argsort(squares.real, axis=1)[:, number - 1]
+            every = np.arange(len(c))
+            if what == Modal.FREQUENCY:
+                value = np.sqrt(np.maximum(squares.real[every, order], 0.0))
+            else:
+                shape = (modes.T @ modes.shapes[every, :, order][:, :, None])[:, :, 0].real
+                moves = np.abs(shape[:, j]) > 1e-9 * np.abs(shape).max(axis=1)
+                with np.errstate(all="ignore"):
+                    value = np.where(moves, 0.0, 1.0) if what == Modal.COUPLED else \
+                        np.where(moves, shape[:, i] / shape[:, j], np.nan)
+            out[c] = np.where(stable, value, np.nan)
+    return out
 
 
 class NaturalMode(sp.Function):

@@ -54,7 +54,7 @@ from .entry import solve
 from .events import event_never_happens
 from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
                       answer_alone, drive_columns, group_results, instant_givens,
-                      read_objectives, reports_state, wanted_objectives)
+                      read_objectives, reports_state, wanted_objectives, with_own)
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
@@ -212,16 +212,52 @@ class _Template:
         if not variants:
             return []
         problem = self.problem
+        wanted = wanted_objectives(problem, asked)
+        given = [instant_givens(problem, g, {}) for g in variants]
+        integrated = self._integrated(given, wanted)
         steps: list[tuple[dict, tuple[Objective, ...], Step]] = [
-            (group.overrides, group.objectives, partial(self._together, group))
-            for group in self.groups]
+            (group.overrides, group.objectives,
+             partial(self._together, group, integrated.get(k)))
+            for k, group in enumerate(self.groups)]
         return drive_columns(problem, self.kproblem, self.p, tuple(self.p.k.warnings), steps,
-                             variants, wanted_objectives(problem, asked))
+                             variants, wanted, given)
 
-    def _together(self, group: _Group, maps: list[dict], objectives: list[Objective],
-                  overrides: dict, columns: Columns) -> None:
+    def _integrates(self, group: _Group) -> bool:
+        """Whether ``group``'s instant is reached by integrating the motion from the givens
+        (not by a design stage around it)."""
+        return isinstance(self.analysis, Integration) and not self._designs(group)
+
+    def _designs(self, group: _Group) -> bool:
+        """Whether ``group``'s instant is reached by solving for the design parameter."""
+        return self.design is not None and self.design.find not in group.overrides
+
+    def _integrated(self, given: list[dict], wanted: Collection[str]) -> dict[int, tuple]:
+        """Every integrated group's instant (those with a numeric objective ``wanted``) at
+        every variant (``given``: each one's givens), reached in one pass: each group's
+        columns side by side, each column integrated to its group's own instant or to the event
+        (:meth:`~.motion.Motion.integrated`), so a class integrates its motion once however
+        many instants it is asked at. By the group's index, what :meth:`_instant` reads: the
+        states, which passed the screens, which ended without their event, and the errors."""
+        chosen = [k for k, group in enumerate(self.groups) if self._integrates(group)
+                  and any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
+        if not chosen:
+            return {}
+        n = len(given)
+        X = np.hstack([self._placed(self.groups[k], [with_own(g, self.groups[k].overrides)
+                                                     for g in given])[0] for k in chosen])
+        instants = np.repeat([-1 if self.groups[k].instant is None else self.groups[k].instant
+                              for k in chosen], n)
+        out, ok, never, errors = self._motion().integrated(X, instants)
+        return {k: (out[:, j * n:(j + 1) * n], ok[j * n:(j + 1) * n],
+                    never[j * n:(j + 1) * n],
+                    {i - j * n: error for i, error in errors.items() if j * n <= i < (j + 1) * n})
+                for j, k in enumerate(chosen)}
+
+    def _together(self, group: _Group, integrated: tuple | None, maps: list[dict],
+                  objectives: list[Objective], overrides: dict, columns: Columns) -> None:
         """The :data:`~.instant.Step` of ``group`` reached together: every column at once
-        (:meth:`_instant`); one that fails a screen (or, in kinematics, an objective) is
+        (:meth:`_instant`; an integrated group's instants ``integrated`` with the class's
+        others, :meth:`_integrated`); one that fails a screen (or, in kinematics, an objective) is
         answered alone (:func:`~.instant.answer_alone`, the single solve's step)."""
         problem, n = self.problem, len(maps)
         ok = np.ones(n, dtype=bool)
@@ -237,7 +273,8 @@ class _Template:
         missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
         numeric = frozenset(o.id for o in objectives) & group.numeric
         if numeric:
-            X, fine, values, mistakes, unreached, missing = self._instant(group, maps, True)
+            X, fine, values, mistakes, unreached, missing = self._instant(group, maps, True,
+                                                                          integrated)
             for ms in mistakes.values():
                 for m in ms:  # an undefined declared mistake fails its objective
                     fine &= np.isfinite(m).all(axis=0)
@@ -303,40 +340,34 @@ class _Template:
                     state = _with_kinetics(self.kinetics, state, X[:, i])
                 base[i] = (state, maps[i])
 
-    def _instant(self, group: _Group, maps: list[dict], degenerate: bool):
+    def _instant(self, group: _Group, maps: list[dict], degenerate: bool,
+                 integrated: tuple | None = None):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
         instant, which instants passed every screen (with ``degenerate``, also the one for a
         degenerate configuration), those not reached with the error the scalar solver
         gives them (an integration's event that never happens, a balance that fails at an
         instant otherwise reached), and per column the objectives that
         do not exist there with their errors (in dynamics each objective's failure, as
-        :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails)."""
+        :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails).
+        An integrated group's instants are ``integrated`` already (:meth:`_integrated`)."""
         p = self.p
-        n = len(maps)
-        X = np.repeat(group.state[:, None], n, axis=1)
-        targets = [np.repeat(t[:, None], n, axis=1) for t in group.target]
-        for key in maps[0]:
-            column = np.array([m[key][1] for m in maps], dtype=float)
-            if key in group.positions:
-                X[group.positions[key]] = column
-            elif key in group.conditions:
-                level, row = group.conditions[key]
-                targets[level][row] = column
         unreached: dict[int, MechgradeError] = {}
-
-        def placed(i: int) -> Givens:  # column i's givens, for the error a stage words
-            return place_givens(self.kproblem, p, maps[i])
-
-        if self.design is not None and self.design.find not in group.overrides:
-            X, ok = self._designed(group, X, targets, placed, degenerate)
-        elif isinstance(self.analysis, Integration):
-            X, ok, never, stuck = self._motion().integrated(X, group.instant)
-            assert isinstance(self.analysis, Integration)
+        if self._integrates(group):
+            assert integrated is not None and isinstance(self.analysis, Integration)
+            X, ok, never, stuck = integrated
             unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
                                       event_never_happens(self.analysis))
             unreached.update(stuck)
         else:
-            X, ok = self._reached(group, X, targets, placed, degenerate, unreached)
+            X, targets = self._placed(group, maps)
+
+            def placed(i: int) -> Givens:  # column i's givens, for the error a stage words
+                return place_givens(self.kproblem, p, maps[i])
+
+            if self._designs(group):
+                X, ok = self._designed(group, X, targets, placed, degenerate)
+            else:
+                X, ok = self._reached(group, X, targets, placed, degenerate, unreached)
         X, before = self._at_event(X)
         read = read_objectives(self.problem, self.kinetics or p, X, group.numeric,
                                rules.REQUIRED if self.kinetics is None
@@ -349,6 +380,21 @@ class _Template:
         if self.kinetics is None:
             ok &= np.array([not m for m in missing], dtype=bool)
         return X, ok, values, declared, unreached, missing
+
+    def _placed(self, group: _Group, maps: list[dict]) -> tuple[np.ndarray, list[np.ndarray]]:
+        """``group``'s reference state and level targets at every column, each variant's
+        givens (``maps``) placed in them."""
+        n = len(maps)
+        X = np.repeat(group.state[:, None], n, axis=1)
+        targets = [np.repeat(t[:, None], n, axis=1) for t in group.target]
+        for key in maps[0]:
+            column = np.array([m[key][1] for m in maps], dtype=float)
+            if key in group.positions:
+                X[group.positions[key]] = column
+            elif key in group.conditions:
+                level, row = group.conditions[key]
+                targets[level][row] = column
+        return X, targets
 
     def _reached(self, group: _Group, X: np.ndarray, targets: list,
                  placed: Callable[[int], Givens], degenerate: bool,

@@ -246,12 +246,15 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
                   warnings: tuple[AuthorWarning, ...],
                   groups: Sequence[tuple[dict, Sequence[Objective], Step]],
                   variants: Sequence[Mapping[str, float | None] | None],
-                  wanted: Collection[str]) -> list[Solution | MechgradeError]:
+                  wanted: Collection[str], given: Sequence[dict] | None = None
+                  ) -> list[Solution | MechgradeError]:
     """The one solver loop, over columns (one per variant of the givens): every group of
     objectives asked at the same givens (``groups``: their own givens, the objectives, the
     :data:`Step` that answers them), then each column's solution (:func:`solutions_of`:
     the objectives ``wanted``, the kinematics ``kinematics`` and its plan ``p``, the
-    ``warnings`` before any instant's) or its error.
+    ``warnings`` before any instant's) or its error. ``given``: each variant's givens
+    without a group's own (``instant_givens(problem, variant, {})``), where the caller has
+    read them already.
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -265,12 +268,12 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
     2.0
     """
     columns = Columns(len(variants), warnings)
-    # each column's givens worked out once for all its groups (a class pays them per student)
-    given_maps = [_givens(problem, g) for g in variants]
+    if given is None:  # once for all its groups (a class pays them per student)
+        given = [_givens(problem, g) for g in variants]
     for overrides, objectives, step in groups:
         chosen = [o for o in objectives if o.id in wanted]
         if chosen:
-            step([on_top(g, overrides) for g in given_maps], chosen, overrides, columns)
+            step([with_own(g, overrides) for g in given], chosen, overrides, columns)
     return solutions_of(problem, kinematics, p, columns.results, columns.failures,
                         columns.base, [tuple(w) for w in columns.warned], wanted,
                         range(len(variants)))
@@ -501,19 +504,17 @@ def wanted_objectives(problem: Problem, objectives: Collection[str] | None) -> s
 def instant_givens(problem: Problem, givens, overrides: dict) -> dict:
     """The givens at one instant: the problem's (with the caller's ``givens`` overrides),
     then the objective group's own givens on top."""
-    return on_top(_givens(problem, givens), overrides)
+    return with_own(_givens(problem, givens), overrides)
 
 
-def on_top(given_map: dict, overrides: dict) -> dict:
-    """A copy of ``given_map`` (the givens of :func:`_givens`) with an objective group's own
-    givens (``overrides``) on top.
+def with_own(given_map: dict, overrides: dict) -> dict:
+    """``given_map`` (an instant's givens, kept as it is) with an objective group's own
+    givens ``overrides`` on top.
 
-    >>> on_top({"t": "spec's"}, {}) == {"t": "spec's"}
-    True
+    >>> with_own({"a": (None, 1.0, None)}, {})
+    {'a': (None, 1.0, None)}
     """
-    given_map = dict(given_map)
-    given_map.update({key: (g.key.node, g.si, g) for key, g in overrides.items()})
-    return given_map
+    return {**given_map, **{key: (g.key.node, g.si, g) for key, g in overrides.items()}}
 
 
 _SYMBOLIC_ANSWERS: dict = {}

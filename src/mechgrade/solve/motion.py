@@ -43,7 +43,7 @@ class Motion:
         self.problem, self.kinetics, self.p = problem, kinetics, kinetics.kp
         self.analysis = dynamics_of(problem).analysis
 
-    def integrated(self, X: np.ndarray, instant: int | None = None
+    def integrated(self, X: np.ndarray, instants: np.ndarray | None = None
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
         """Every column's motion integrated from its start state to its event (together:
         :func:`~.batch_motion.integrate_to_events`, the steps
@@ -55,15 +55,20 @@ class Motion:
         :func:`balances` just before its event, or whose slip ended before its event and
         sticks there (:meth:`_stuck`).
 
-        With ``instant`` (the position of the time, coordinate or rate an objective is asked
-        at, its value in each column of ``X``): the state where that value is first taken
-        before the event instead (:meth:`_to_instant`)."""
+        With ``instants`` (per column the position of the time, coordinate or rate an
+        objective is asked at, its value in that column of ``X``; -1: the event): those
+        columns' states where that value is first taken before the event instead
+        (:meth:`_at_instant`), in the same pass as the others (a class's instants of every
+        group side by side: one integration)."""
         kp = self.kinetics
         assert kp is not None and isinstance(self.analysis, Integration)
         ap = analysis_plan(kp)
         index = self.p.index
         n, size, count = index.n, index.size, X.shape[1]
-        asked = None if instant is None else X[instant].copy()
+        everyone = np.arange(count)
+        instant = np.full(count, -1) if instants is None else np.asarray(instants, dtype=int)
+        waits = instant >= 0  # the columns asked at an instant of their own
+        asked = X[instant, everyone]  # (the event's columns: a value never read)
         rates, seconds = index.rates(1), index.rates(2)
         # slices: the right-hand side is evaluated thousands of times
         qd, qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
@@ -100,7 +105,7 @@ class Motion:
                                                               switches)[qdd]])
 
         def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-                  modes: np.ndarray) -> np.ndarray:
+                  modes: np.ndarray | None) -> np.ndarray:
             x = at(cols, t, y, modes)
             if ap.until_kinetic:
                 x = self.accelerations(x, switches)
@@ -112,96 +117,117 @@ class Motion:
             x = at(cols, t, y)[:kinetic]
             return np.sign(loud_call(switches.speeds, x, switches.count))
 
+        def reached(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                    modes: np.ndarray | None) -> np.ndarray:
+            return at(cols, t, y, modes)[instant[cols], np.arange(len(cols))] - asked[cols]
+
+        def either(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
+                   modes: np.ndarray) -> np.ndarray:
+            # an instant's column stops where its instant's or its event's equation holds
+            g = event(cols, t, y, modes)
+            return np.where(waits[cols], reached(cols, t, y, modes) * g, g)
+
         y0 = np.concatenate([values[:n], values[qd]])
-        if instant is not None and asked is not None:
-            return self._to_instant(instant, asked, at, rhs, event, mode if switches else None,
-                                    y0, unsettled)
-        with quiet():
-            switching = mode if switches else None
-            direction, stays, _ = leaving(rhs, event, switching, y0, self.analysis.max_time,
-                                          self.analysis.where)
-            arrival = integrate_to_events(rhs, event, y0, self.analysis.max_time, RTOL, ATOL,
-                                          MAX_CALLS, mode=switching, direction=direction)
-        ok = arrival.status == FIRED
-        ok[list(unsettled)] = False
-        everyone = np.arange(count)
-        end = at(everyone, arrival.t, arrival.y)
-        solved = balances(self.problem, self.kinetics,
-                          at(everyone, arrival.t * (1 - rules.BEFORE_EVENT), arrival.before)[:size],
-                          after_event(self.p))
-        x, fine = solved.x, solved.ok
-        before = x.copy()
-        keep = [i for i in range(size) if i not in seconds]
-        x[keep] = end[keep]
-        # an event reached whose contact checks fail just before it: the error the scalar
-        # solver raises there, without integrating that column again step by step
-        failed = {int(i): error for i in np.flatnonzero(ok & ~fine)
-                  if (error := solved.errors[int(i)]) is not None}
-        stuck = self._stuck(arrival, at, switches) if switches is not None else {}
-        never = arrival.status == NEVER
-        ok[list(stays)] = never[list(stays)] = False
-        return np.vstack([x, before]), ok & fine, never, {**failed, **stuck, **stays, **unsettled}
-
-    def _to_instant(self, instant: int, asked: np.ndarray, at: Callable, rhs: Callable,
-                    until: Callable, mode: Callable | None, y0: np.ndarray,
-                    unsettled: dict[int, MechgradeError]
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
-        """:meth:`integrated` to the instant where entry ``instant`` of the state first takes
-        each column's ``asked`` value before the event (the steps
-        :func:`~.events.integrate_to_instant` takes for each alone): the motion is stopped
-        where the product of the instant's and the event's equations changes sign (either
-        one that holds at the start waits for its next crossing, :func:`~.events.leaving`; t = 0 is
-        the start itself), and a column is answered where the event's equation is then still
-        away from zero on the side it started on (:data:`~.rules.EVENT_AWAY`): the state
-        there (stacked twice: it is no event's limit), which columns passed the screens, none
-        judged without its event, and the error of each that fails :func:`balances` there or
-        whose instant or event stays at the start. A column where both hold at the start,
-        that meets its event first, or that never meets either, is not answered here: alone,
-        it says why."""
-        assert isinstance(self.analysis, Integration)
-        size, count = self.p.index.size, y0.shape[1]
-        everyone = np.arange(count)
+        switching = mode if switches else None
         start = np.zeros(count)
-
-        def reached(cols, t, y, m):
-            return at(cols, t, y, m)[instant] - asked[cols]
-
-        def either(cols, t, y, m):
-            return reached(cols, t, y, m) * until(cols, t, y, m)
-
+        g0 = r0 = start  # the instants' equations at the start
+        held: dict[int, SolveError] = {}
         with quiet():
-            modes = mode(everyone, start, y0) if mode is not None else None
-            g0 = until(everyone, start, y0, modes)
-            r0 = reached(everyone, start, y0, modes)
-            away_from, stays, _ = leaving(rhs, until, mode, y0, self.analysis.max_time,
+            away_from, stays, _ = leaving(rhs, event, switching, y0, self.analysis.max_time,
                                           self.analysis.where)
-            now = (r0 == 0) & (instant == self.p.index.time)
-            # a coordinate or rate taken at the start: its next crossing (t = 0 is the start)
-            crossing, held, _ = (np.zeros(count), {}, {}) if instant == self.p.index.time \
-                else leaving(rhs, reached, mode, y0, self.analysis.max_time, self.analysis.where)
-            side = np.where(g0 != 0, np.sign(g0), -away_from)
-            arrival = integrate_to_events(
-                rhs, either, y0, self.analysis.max_time, RTOL, ATOL, MAX_CALLS, mode=mode,
-                direction=np.where(g0 != 0, np.sign(g0) * crossing, np.sign(r0) * away_from))
-            t = np.where(now, 0.0, arrival.t)
-            y = np.where(now, y0, arrival.y)
-            moved = mode(everyone, t, y) if mode is not None else None
-            r, g = reached(everyone, t, y, moved), until(everyone, t, y, moved)
+            direction = away_from
+            if waits.any():
+                modes = mode(everyone, start, y0) if switching else None
+                g0 = event(everyone, start, y0, modes)
+                r0 = reached(everyone, start, y0, modes)
+                timed = waits & (instant == index.time)
+                # a coordinate or rate taken at the start: its next crossing (t = 0 is the
+                # start); a time, or the event, waits for none
+                crossing, held, _ = leaving(
+                    rhs, lambda c, t, y, m: np.where(waits[c] & ~timed[c],
+                                                     reached(c, t, y, m), 1.0),
+                    switching, y0, self.analysis.max_time, self.analysis.where)
+                direction = np.where(waits, np.where(g0 != 0, np.sign(g0) * crossing,
+                                                     np.sign(r0) * away_from), away_from)
+            arrival = integrate_to_events(rhs, either if waits.any() else event, y0,
+                                          self.analysis.max_time, RTOL, ATOL, MAX_CALLS,
+                                          mode=switching, direction=direction)
+        out = np.full((2 * kinetic, count), np.nan)
+        ok = np.zeros(count, dtype=bool)
+        never = np.zeros(count, dtype=bool)
+        errors: dict[int, MechgradeError] = {}
+        e = np.flatnonzero(~waits)
+        if len(e):  # those reaching the event
+            ok_e = arrival.status[e] == FIRED
+            end = at(e, arrival.t[e], arrival.y[:, e])
+            solved = balances(self.problem, self.kinetics,
+                              at(e, arrival.t[e] * (1 - rules.BEFORE_EVENT),
+                                 arrival.before[:, e])[:size], after_event(self.p))
+            x, fine = solved.x, solved.ok
+            before = x.copy()
+            keep = [i for i in range(size) if i not in seconds]
+            x[keep] = end[keep]
+            out[:, e] = np.vstack([x, before])
+            ok[e] = ok_e & fine
+            never[e] = arrival.status[e] == NEVER
+            # an event reached whose contact checks fail just before it: the error the
+            # scalar solver raises there, without integrating that column again step by step
+            errors.update({int(e[i]): error for i in np.flatnonzero(ok_e & ~fine)
+                           if (error := solved.errors[int(i)]) is not None})
+            if switches is not None:
+                errors.update(self._stuck(arrival, at, switches, ~waits))
+        a = np.flatnonzero(waits)
+        if len(a):
+            barred = np.isin(a, list(unsettled) + list(stays) + list(held))
+            out[:, a], ok[a], failed = self._at_instant(
+                a, instant[a], asked[a], arrival, at, event, reached, switching, y0[:, a],
+                (g0[a], r0[a], away_from[a]), barred)
+            errors.update({**failed, **held})
+        ok[list(unsettled)] = ok[list(stays)] = never[list(stays)] = False
+        return out, ok, never, {**errors, **stays, **unsettled}
+
+    def _at_instant(self, cols: np.ndarray, instant: np.ndarray, asked: np.ndarray,
+                    arrival: Arrival, at: Callable, until: Callable, reached: Callable,
+                    mode: Callable | None, y0: np.ndarray,
+                    started: tuple[np.ndarray, np.ndarray, np.ndarray], barred: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, dict[int, MechgradeError]]:
+        """The columns ``cols`` of :meth:`integrated` asked at an instant of their own: where
+        entry ``instant`` of the state first takes each column's ``asked`` value before the
+        event (the steps :func:`~.events.integrate_to_instant` takes for each alone). Their
+        motion stopped where the product of the instant's and the event's equations changed
+        sign (``arrival``; either one that holds at the start waits for its next crossing,
+        :func:`~.events.leaving`; t = 0 is the start); ``started``: the event's and the instant's
+        equations at the start and the event's direction. A column is answered where the
+        event's equation is then still away from zero on the side it started on
+        (:data:`~.rules.EVENT_AWAY`), unless ``barred`` (its error found at the start): the
+        state there (stacked twice: it is no event's limit), which columns passed the
+        screens, and the error of each that fails :func:`balances` there. A column where both
+        hold at the start, that meets its event first, or that never meets either, is not
+        answered here: alone, it says why."""
+        size = self.p.index.size
+        g0, r0, away_from = started
+        now = (r0 == 0) & (instant == self.p.index.time)
+        t = np.where(now, 0.0, arrival.t[cols])
+        y = np.where(now, y0, arrival.y[:, cols])
+        with quiet():
+            moved = mode(cols, t, y) if mode is not None else None
+            r, g = reached(cols, t, y, moved), until(cols, t, y, moved)
         away = np.where(g0 != 0, np.abs(g) > rules.EVENT_AWAY * np.abs(g0),
                         np.abs(r) <= rules.EVENT_AWAY * np.abs(r0))
-        first = (arrival.status == FIRED) & away & (np.sign(g) == side) & (side != 0)
-        ok = now | first
-        ok[list(unsettled) + list(stays) + list(held)] = False
-        end = at(everyone, t, y)
-        end[instant] = np.where(ok, asked, end[instant])  # where the root was found
+        side = np.where(g0 != 0, np.sign(g0), -away_from)
+        ok = (now | ((arrival.status[cols] == FIRED) & away & (np.sign(g) == side)
+                     & (side != 0))) & ~barred
+        end = at(cols, t, y)
+        everyone = np.arange(len(cols))
+        # where the root was found: the given holds there
+        end[instant, everyone] = np.where(ok, asked, end[instant, everyone])
         solved = balances(self.problem, self.kinetics, end[:size], after_event(self.p))
         x, fine = solved.x, solved.ok
-        failed = {int(i): error for i in np.flatnonzero(ok & ~fine)
+        failed = {int(cols[i]): error for i in np.flatnonzero(ok & ~fine)
                   if (error := solved.errors[int(i)]) is not None}
-        return (np.vstack([x, x]), ok & fine, np.zeros(count, dtype=bool),
-                {**failed, **held, **stays, **unsettled})
+        return np.vstack([x, x]), ok & fine, failed
 
-    def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching
+    def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching, among: np.ndarray
                ) -> dict[int, MechgradeError]:
         """The columns whose one slip ended before their event (:data:`~.batch_motion.SWITCHED`)
         and where kinetic friction then holds the contact whichever way it is read: slipping
@@ -209,7 +235,7 @@ class Motion:
         too. That motion sticks, which an integration of these equations cannot follow (the
         one-by-one integrator shrinks its steps against the chatter until it gives up). A
         slip that turns round and goes on is not judged here: that column is solved alone."""
-        w = np.flatnonzero(arrival.status == SWITCHED)
+        w = np.flatnonzero((arrival.status == SWITCHED) & among)
         if not len(w) or arrival.switch is None or arrival.modes is None:
             return {}
         index = self.p.index
