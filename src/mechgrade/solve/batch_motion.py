@@ -466,26 +466,10 @@ def root_between(f: Callable[[float], float], a: float, b: float, fa: float, fb:
     >>> round(root, 12), ok
     (1.414213562373, True)
     """
-    roots, converged = roots_between(lambda _, x: np.array([f(float(v)) for v in x]),
-                                     np.array([a]), np.array([b]), np.array([fa]),
-                                     np.array([fb]))
+    roots, converged = _event_time(
+        lambda _, x, __: np.array([f(float(v)) for v in x]), lambda *_: None,
+        np.array([a]), np.array([b]), np.array([fa]), np.array([fb]))
     return float(roots[0]), bool(converged[0])
-
-
-def roots_between(f: Callable[[np.ndarray, np.ndarray], np.ndarray], a: np.ndarray,
-                  b: np.ndarray, fa: np.ndarray, fb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per column, a root of ``f`` between ``a`` and ``b`` (where it changes sign, ``fa``
-    and ``fb`` its values there), found as an event's time is (:func:`_event_time`), and
-    which converged; ``f(columns, x)`` gives the columns' values at ``x``, one call per
-    iteration for all of them.
-
-    >>> c = np.array([2.0, 9.0])
-    >>> roots, ok = roots_between(lambda cols, x: x * x - c[cols], np.ones(2),
-    ...                           np.full(2, 4.0), 1 - c, 16 - c)
-    >>> np.round(roots, 12).tolist(), ok.tolist()
-    ([1.414213562373, 3.0], [True, True])
-    """
-    return _event_time(lambda cols, x, _: f(cols, x), lambda *_: None, a, b, fa, fb)
 
 
 ROUNDING_FLOOR = 1e-9

@@ -38,6 +38,7 @@ from .analysis import analysis_of
 from ..units import from_si
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
+_XTOL = 1e-14
 _FIRST = 256  # points of the walk's first stretch
 
 
@@ -136,9 +137,8 @@ def _walked_together(equation: _Function, parameters: np.ndarray, start: np.ndar
     column's grid at once, in stretches twice as long each time (the first crossing is
     often near) until each column has a sign change, an undefined value (beyond it the
     motion has turned back: no energy left to go on) or its grid's end; each root refined
-    between the two points that bracket it (:func:`~.batch_motion.roots_between`)."""
-    from .batch_motion import roots_between
-
+    between the two points that bracket it by scipy's ``brentq`` (a few evaluations, each
+    cheaper on a number than an iteration over arrays of columns is)."""
     n = len(start)
     if angle:
         steps = np.broadcast_to(np.linspace(0.0, 2 * np.pi, _STEPS + 1), (n, _STEPS + 1))
@@ -149,15 +149,14 @@ def _walked_together(equation: _Function, parameters: np.ndarray, start: np.ndar
     size = grid.shape[1]
     walked = np.full(grid.shape, np.nan)
     out: list[Walk] = [(None, False)] * n
-    bracket: list[tuple[int, int]] = []  # (column, index of the stretch's first point)
+    bracket: list[tuple[int, int]] = []  # (column, index of the point before its root)
     todo, length = np.arange(n), 0
     while todo.size:
         end = min(size, max(2 * length, _FIRST))
         with np.errstate(all="ignore"):
-            stretch = equation.function(grid[todo, length:end],
-                                        *(p[:, None] for p in parameters[todo].T))
-        walked[todo, length:end] = np.broadcast_to(np.asarray(stretch, dtype=float),
-                                                   (len(todo), end - length))
+            # (a number where the equation does not hold the coordinate: broadcast)
+            walked[todo, length:end] = equation.function(
+                grid[todo, length:end], *(p[:, None] for p in parameters[todo].T))
         length = end
         values = walked[todo, :end]
         finite = np.isfinite(values)
@@ -183,14 +182,13 @@ def _walked_together(equation: _Function, parameters: np.ndarray, start: np.ndar
                                bool(reached[k] < size))
         todo = todo[~stop]
     if bracket:
-        cols, at = (np.array(v) for v in zip(*bracket))
-        fa, fb = walked[cols, at], walked[cols, at + 1]
-        chosen = parameters[cols]
-        roots, _ = roots_between(lambda k, x: np.broadcast_to(np.asarray(
-            equation.function(x, *chosen[k].T), dtype=float), x.shape),
-            grid[cols, at], grid[cols, at + 1], fa, fb)
-        for column, root in zip(cols.tolist(), roots.tolist()):
-            out[column] = root
+        from scipy import optimize
+
+        for column, i in bracket:  # each column's root between its two points
+            row = parameters[column].tolist()
+            out[column] = float(optimize.brentq(
+                lambda x, row=row: float(equation.function(x, *row)), grid[column, i],
+                grid[column, i + 1], xtol=_XTOL, rtol=4 * np.finfo(float).eps))
     return out
 
 
