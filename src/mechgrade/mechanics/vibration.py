@@ -23,6 +23,7 @@ complex, and a modal damping ratio of the undamped modes would be an approximati
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from enum import IntEnum
 from functools import lru_cache
 
@@ -85,21 +86,24 @@ def modal_value(what, number, i, j, n, m, *entries):
     """One value of mode ``number`` (1 the lowest) for every column of ``entries`` (numbers or
     equal-length arrays, as :func:`modal_entries` lays them out): the natural frequency, the
     damping ratio, the amplitude ratio of coordinate ``i`` to ``j`` (0-based), or a residual
-    (:class:`Modal`). Undefined values are NaN.
+    (:class:`Modal`). Undefined values are NaN. A solve alone is a class of one column.
 
     >>> entries = modal_entries([[1]], [0], [[[0]]], [[-4]], [[[0]]], [[-0.4]])
     >>> [round(float(modal_value(w, 1, 0, 0, 1, 1, *entries)), 6) for w in (0, 1, 3, 4, 5)]
     [2.0, 0.1, 0.0, 0.0, 0.0]
     """
-    args = (Modal(int(what)), int(number), int(i), int(j), int(n), int(m))
-    one, shape = _one_state(entries)
-    if one is not None:  # a solve alone: hundreds of entries not broadcast one by one
-        return np.array(_one(*args, one)).reshape(shape)
-    arrays = np.broadcast_arrays(*(np.asarray(e, dtype=float) for e in entries))
-    shape = arrays[0].shape
-    flat = np.stack([a.reshape(-1) for a in arrays])
-    out = np.array([_one(*args, flat[:, c]) for c in range(flat.shape[1])])
-    return out.reshape(shape)
+    flat, shape = _one_state(entries)
+    if flat is None:  # each entry put in its row (a number in every column)
+        shape = np.broadcast_shapes(*(np.shape(e) for e in entries))
+        flat = np.empty((len(entries), *shape))
+        for row, e in zip(flat, entries):
+            row[...] = e
+        flat = flat.reshape(len(entries), -1)
+    else:  # a solve alone: hundreds of entries not broadcast one by one
+        flat = flat[:, None]
+    n, m = int(n), int(m)
+    modes = _modes(n, m, flat.shape[1], np.ascontiguousarray(flat).tobytes())
+    return _value(Modal(int(what)), int(number), int(i), int(j), modes).reshape(shape)
 
 
 def _one_state(entries) -> tuple[np.ndarray | None, tuple[int, ...]]:
@@ -118,101 +122,139 @@ def _one_state(entries) -> tuple[np.ndarray | None, tuple[int, ...]]:
     return np.array(values, dtype=float), shape
 
 
-@lru_cache(maxsize=256)
-def _linearised(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...] | None:
-    """``x``, ``K`` and ``C`` of the entries ``v`` (their bytes), ``None`` where ``A`` is
-    singular: worked out once for the several values and residuals asked of the same state (a
-    frequency, its mode shape, the checks that it exists)."""
-    entries = np.frombuffer(v)
+@dataclass(frozen=True)
+class _Modes:
+    """Every column's modes (N columns, n coordinates), worked out once for the several
+    values and residuals asked of the same states (a frequency, its mode shape, the checks
+    that it exists), each stage stacked over the columns; NaN where undefined. ``defined``:
+    the columns whose balances' ``A`` is regular; ``equilibrium``, ``stable`` and
+    ``oscillating`` the residuals of :data:`REASONS`; per mode (the lowest first),
+    ``frequencies`` and ``damping`` (N x n) and ``shapes`` (N x n coordinates x n modes)."""
+
+    defined: np.ndarray
+    equilibrium: np.ndarray
+    stable: np.ndarray
+    oscillating: np.ndarray
+    frequencies: np.ndarray
+    damping: np.ndarray
+    shapes: np.ndarray
+
+
+@lru_cache(maxsize=16)
+def _modes(n: int, m: int, columns: int, v: bytes) -> _Modes:
+    """:class:`_Modes` of the entries ``v`` (their bytes: entries x ``columns``)."""
+    entries = np.frombuffer(v).reshape(-1, columns)
     size = m * m + m
-    blocks = [(entries[s:s + m * m].reshape(m, m), entries[s + m * m:s + size])
+    blocks = [(entries[s:s + m * m].T.reshape(columns, m, m), entries[s + m * m:s + size].T)
               for s in range(0, (2 * n + 1) * size, size)]
+    held = entries[(2 * n + 1) * size:].T.reshape(columns, -1, n)
     A, b = blocks[0]
+    defined = np.asarray(np.isfinite(entries).all(axis=0))
+    defined[defined] = ~_singular(A[defined])  # no linearised motion where A is singular
+    equilibrium = np.full(columns, np.nan)
+    stable, oscillating = np.zeros(columns, dtype=bool), np.zeros(columns, dtype=bool)
+    frequencies, damping = np.full((columns, n), np.nan), np.full((columns, n), np.nan)
+    shapes = np.full((columns, n, n), np.nan)
+    on = np.flatnonzero(defined)
+    if not len(on):
+        return _Modes(defined, equilibrium, stable, oscillating, frequencies, damping, shapes)
+    A = A[on]
+    x = _solved(A, b[on])
+    K, C = np.empty((len(on), n, n)), np.empty((len(on), n, n))
+    for j, (dA, db) in enumerate(blocks[1:]):
+        (K if j < n else C)[:, :, j % n] = -_solved(A, db[on] - _solved_product(dA[on], x))[:, :n]
+    equilibrium[on] = np.abs(x[:, :n]).sum(axis=1) / (1 + np.abs(K).sum(axis=(1, 2)))
+    # the motions that keep the position constraints: q = T z, T an orthonormal basis of
+    # their null space (K and C act within it: a motion across it has no restoring force, a
+    # zero frequency that is no mode)
+    bases = [_basis(held[c], n) for c in on]
+    for k in sorted({T.shape[1] for T in bases}):
+        group = [g for g, T in enumerate(bases) if T.shape[1] == k]
+        cols = on[group]
+        T = np.stack([bases[g] for g in group])
+        Kk, Ck = K[group], C[group]
+        if held.shape[1]:
+            Tt = T.transpose(0, 2, 1)
+            Kk, Ck = Tt @ Kk @ T, Tt @ Ck @ T
+        squares, vectors = np.linalg.eig(Kk)
+        scale = 1e-9 * (np.abs(squares).max(axis=1, keepdims=True) + 1e-300)
+        # a zero squared frequency is a mode that moves freely (a rigid-body mode), not
+        # unstable
+        stable[cols] = ((np.abs(squares.imag) <= scale) & (squares.real >= -scale)).all(axis=1)
+        order = np.argsort(squares.real, axis=1, kind="stable")
+        frequencies[cols, :k] = np.sqrt(np.maximum(np.take_along_axis(squares.real, order, 1),
+                                                   0.0))
+        shapes[cols, :, :k] = (T @ np.take_along_axis(vectors, order[:, None, :], 2)).real
+        # the state-space matrix [[0, I], [-K, -C]]: one root of each oscillating pair, sorted
+        # by size
+        M = np.zeros((len(cols), 2 * k, 2 * k))
+        M[:, :k, k:] = np.eye(k)
+        M[:, k:, :k], M[:, k:, k:] = -Kk, -Ck
+        roots = np.linalg.eigvals(M)
+        up = roots.imag > 1e-9 * np.abs(roots).max(axis=1, keepdims=True)
+        oscillating[cols] = up.sum(axis=1) == k
+        pairs = np.take_along_axis(roots, np.argsort(np.where(up, np.abs(roots), np.inf),
+                                                     axis=1, kind="stable"), 1)[:, :k]
+        with np.errstate(all="ignore"):  # read only where every mode oscillates
+            damping[cols, :k] = np.where(oscillating[cols, None],
+                                         -pairs.real / np.abs(pairs), np.nan)
+    frequencies[~stable] = np.nan
+    return _Modes(defined, equilibrium, stable, oscillating, frequencies, damping, shapes)
+
+
+def _singular(A: np.ndarray) -> np.ndarray:
+    """Which of the matrices ``A`` (N x m x m) LAPACK's LU finds singular (an exactly zero
+    pivot), where ``np.linalg.solve`` refuses."""
+    out = np.zeros(len(A), dtype=bool)
     try:
-        x = np.linalg.solve(A, b)
-        K = -np.column_stack([np.linalg.solve(A, db - dA @ x)[:n] for dA, db in blocks[1:n + 1]])
-        C = -np.column_stack([np.linalg.solve(A, db - dA @ x)[:n] for dA, db in blocks[n + 1:]])
-    except np.linalg.LinAlgError:
-        return None
-    return _shared(x, K, C)
+        np.linalg.solve(A, np.zeros((*A.shape[:2], 1)))
+    except np.linalg.LinAlgError:  # which of them: one at a time
+        for c, matrix in enumerate(A):
+            try:
+                np.linalg.solve(matrix, np.zeros(len(matrix)))
+            except np.linalg.LinAlgError:
+                out[c] = True
+    return out
 
 
-@lru_cache(maxsize=256)
-def _kept(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...]:
-    """``T``, ``K`` and ``C`` of the motions that keep the position constraints (the entries'
-    tail, their Jacobian in the coordinates): ``q = T z``, ``T`` an orthonormal basis of its
-    null space; ``T`` is the identity when nothing is held."""
-    linearised = _linearised(n, m, v)
-    assert linearised is not None  # asked only of a state whose A is regular
-    _, K, C = linearised
-    held = np.frombuffer(v)[(2 * n + 1) * (m * m + m):].reshape(-1, n)
+def _solved(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Each ``A x = b`` (N x m x m, N x m) solved: N x m."""
+    return np.linalg.solve(A, b[..., None])[..., 0]
+
+
+def _solved_product(A: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Each ``A x`` (N x m x m, N x m): N x m."""
+    return (A @ x[..., None])[..., 0]
+
+
+def _basis(held: np.ndarray, n: int) -> np.ndarray:
+    """An orthonormal basis (n x kept) of the coordinates' motions that keep the position
+    constraints whose Jacobian is ``held`` (p x n): the identity when nothing is held."""
     if not len(held):
-        return _shared(np.eye(n), K, C)
-    # K and C act within the null space: a motion across it has no restoring force, a zero
-    # frequency that is no mode
+        return np.eye(n)
     _, sizes, rows = np.linalg.svd(held)
     rank = int((sizes > 1e-10 * (sizes.max() if sizes.size else 1.0)).sum())
-    T = rows[rank:].T
-    return _shared(T, T.T @ K @ T, T.T @ C @ T)
+    return rows[rank:].T
 
 
-@lru_cache(maxsize=256)
-def _eigen(n: int, m: int, v: bytes) -> tuple[np.ndarray, ...]:
-    """The eigenvalues and eigenvectors of :func:`_kept`'s ``K``."""
-    return _shared(*np.linalg.eig(_kept(n, m, v)[1]))
-
-
-@lru_cache(maxsize=256)
-def _pairs(n: int, m: int, v: bytes) -> np.ndarray:
-    """The eigenvalues of the state-space matrix ``[[0, I], [-K, -C]]`` of :func:`_kept`'s
-    ``K`` and ``C`` with a positive imaginary part (one of each oscillating mode's pair):
-    every damping ratio and the check that each mode oscillates read them."""
-    T, K, C = _kept(n, m, v)
-    k = T.shape[1]
-    roots = np.linalg.eigvals(np.block([[np.zeros((k, k)), np.eye(k)], [-K, -C]]))
-    return _shared(roots[roots.imag > 1e-9 * np.abs(roots).max()])[0]
-
-
-def _shared(*arrays: np.ndarray) -> tuple[np.ndarray, ...]:
-    for array in arrays:
-        array.setflags(write=False)  # cached: every caller of the same state reads them
-    return arrays
-
-
-def _one(what: Modal, number: int, i: int, j: int, n: int, m: int, v: np.ndarray) -> float:
-    key = np.ascontiguousarray(v, dtype=float).tobytes()
-    linearised = _linearised(n, m, key)
-    if linearised is None:
-        return np.nan
-    x, K, _ = linearised
+def _value(what: Modal, number: int, i: int, j: int, modes: _Modes) -> np.ndarray:
+    """:func:`modal_value` of every column of ``modes`` (NaN where undefined)."""
+    on = modes.defined
     if what == Modal.EQUILIBRIUM:
-        return float(np.abs(x[:n]).sum() / (1 + np.abs(K).sum()))
-    squares, shapes = _eigen(n, m, key)
-    T = _kept(n, m, key)[0]
-    kept = T.shape[1]  # the coordinates' motions that keep the constraints
-    scale = 1e-9 * (np.abs(squares).max() + 1e-300)
-    # a zero squared frequency is a mode that moves freely (a rigid-body mode), not unstable
-    stable = bool((np.abs(squares.imag) <= scale).all() and (squares.real >= -scale).all())
-    if what == Modal.STABLE:
-        return 0.0 if stable else 1.0
-    if what in (Modal.DAMPING_RATIO, Modal.UNDERDAMPED):
-        pairs = _pairs(n, m, key)
-        if what == Modal.UNDERDAMPED:
-            return 0.0 if len(pairs) == kept else 1.0
-        if len(pairs) != kept:
-            return np.nan
-        pair = pairs[np.argsort(np.abs(pairs))][number - 1]
-        return float(-pair.real / abs(pair))
-    if not stable:
-        return np.nan
-    order = np.argsort(squares.real)
+        return modes.equilibrium.copy()
     if what == Modal.FREQUENCY:
-        return float(np.sqrt(max(squares.real[order[number - 1]], 0.0)))
-    shape = (T @ shapes[:, order[number - 1]]).real
-    moves = abs(shape[j]) > 1e-9 * np.abs(shape).max()
-    if what == Modal.COUPLED:
-        return 0.0 if moves else 1.0
-    return float(shape[i] / shape[j]) if moves else np.nan
+        return modes.frequencies[:, number - 1].copy()
+    if what == Modal.DAMPING_RATIO:
+        return modes.damping[:, number - 1].copy()
+    if what in (Modal.STABLE, Modal.UNDERDAMPED):
+        holds = modes.stable if what == Modal.STABLE else modes.oscillating
+        return np.where(on, np.where(holds, 0.0, 1.0), np.nan)
+    shape = modes.shapes[:, :, number - 1]
+    with np.errstate(all="ignore"):  # read only where the reference coordinate moves
+        moves = np.abs(shape[:, j]) > 1e-9 * np.abs(shape).max(axis=1)
+        if what == Modal.COUPLED:
+            return np.where(on & modes.stable, np.where(moves, 0.0, 1.0), np.nan)
+        return np.where(on & modes.stable & moves, shape[:, i] / shape[:, j], np.nan)
 
 
 class NaturalMode(sp.Function):
