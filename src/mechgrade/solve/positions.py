@@ -34,7 +34,7 @@ from ..mechanics.dynamics import derive_kinetics
 from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
 from ..spec.validate import is_angle_unit
-from .analysis import analysis_of
+from .analysis import analysis_of, closed_forms
 from ..units import from_si
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
@@ -207,14 +207,13 @@ def which_root(problem: Problem, objective_id: str, given_map: dict,
     """Which of :func:`closed_form_roots` of ``residual`` is the position of
     :func:`position_where` at the givens ``given_map`` (the first real one there): with the
     givens its terms solve with, what fixes a symbolic answer asked ``when``. Without sympy:
-    each root is evaluated as a function made once."""
+    the roots are evaluated by one function made once (:func:`~.analysis.closed_forms`)."""
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
     q, numbers = _numbers(problem, given_map)
     value = position_where(problem, objective_id, given_map, residual)
-    for i, root in enumerate(_root_functions(residual, q)):
-        with np.errstate(all="ignore"):  # a root undefined here is not the position
-            at = complex(root.function(*(complex(numbers[s]) for s in root.parameters)))
+    # a root complex or undefined here is not the position
+    for i, at in enumerate(closed_forms(closed_form_roots(residual, q)).at(numbers)):
         if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
             return i
     left, right = obj.when
@@ -222,13 +221,6 @@ def which_root(problem: Problem, objective_id: str, given_map: dict,
                      f"{problem.coordinates[0].name} = {_shown(problem, value)}, but sympy finds no "
                      "closed form for that position; ask for it as a scalar",
                      where=left.where)
-
-
-@lru_cache(maxsize=64)
-def _root_functions(residual: sp.Expr, q: sp.Symbol) -> tuple[_Function, ...]:
-    """Each of :func:`closed_form_roots` as a function of its parameters (complex: a root
-    may be complex at some givens)."""
-    return tuple(_function(root, ()) for root in closed_form_roots(residual, q))
 
 
 @lru_cache(maxsize=64)
