@@ -141,3 +141,22 @@ def test_a_state_asked_again_gives_its_own_values():
     # the linearised modes are kept per state: a second state gets its own, the first again
     first, second = (_entries(np.eye(1), [[k]], [[0.0]]) for k in (4.0, 9.0))
     assert [_value(Modal.FREQUENCY, 1, e) for e in (first, second, first)] == [2.0, 3.0, 2.0]
+
+
+def test_a_class_of_states_gives_each_state_s_modes_alone_a_singular_one_undefined():
+    # four chains of two blocks worked out together: a regular one, one whose mass matrix is
+    # singular (no linearised motion), an unstable one and an overdamped one
+    M = [np.diag([2.0, 1.0]), np.diag([0.0, 1.0]), np.diag([2.0, 1.0]), np.diag([2.0, 1.0])]
+    K = [[[150.0, -50.0], [-50.0, 50.0]], [[150.0, -50.0], [-50.0, 50.0]],
+         [[-150.0, 50.0], [50.0, 50.0]], [[150.0, -50.0], [-50.0, 50.0]]]
+    C = [[[4.0, -4.0], [-4.0, 4.0]]] * 3 + [[[300.0, 0.0], [0.0, 200.0]]]
+    alone = [_entries(*each) for each in zip(M, K, C)]
+    together = [np.array(column) for column in zip(*alone)]
+    for what in Modal:
+        for number in (1, 2):
+            values = modal_value(what, number, 1, 0, 2, 2, *together)
+            each = [float(modal_value(what, number, 1, 0, 2, 2, *e)) for e in alone]
+            assert values.tolist() == pytest.approx(each, rel=1e-12, nan_ok=True), what
+            assert np.isnan(values[1])  # the singular one
+    assert modal_value(Modal.STABLE, 1, 0, 0, 2, 2, *together).tolist()[2:] == [1.0, 0.0]
+    assert modal_value(Modal.UNDERDAMPED, 1, 0, 0, 2, 2, *together).tolist()[::3] == [0.0, 1.0]
