@@ -131,6 +131,9 @@ def _walked(equation: _Function, parameters: np.ndarray, start: np.ndarray, sign
     return [_WALKS[key] for key in keys]
 
 
+_walked.cache_clear = _WALKS.clear  # type: ignore[attr-defined]
+
+
 def _walked_together(equation: _Function, parameters: np.ndarray, start: np.ndarray,
                      sign: int, angle: bool) -> list[Walk]:
     """:func:`_walked` of columns not walked before: the equation evaluated on every
