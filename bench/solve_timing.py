@@ -26,7 +26,7 @@ from mechgrade.solve.symbolic import symbolic as solve_symbolic
 from mechgrade.mechanics.dynamics import derive_kinetics
 from mechgrade.solve.dynamics import (_kinetics_plan, _symbolic_result, kinetics_plan,
                                       solve_dynamics)
-from mechgrade.solve.analysis import _analysis_plan
+from mechgrade.solve.analysis import _analysis_plan, closed_forms
 from mechgrade.solve.events import _at_event, _closed_form
 from mechgrade.spec import load_problem
 from mechgrade.solve import solve
@@ -116,6 +116,7 @@ def measure_dynamics(problem, start: float):
     _symbolic_answer.cache_clear()
     _simplify.cache_clear()
     _closed_form.cache_clear()
+    closed_forms.cache_clear()
     _at_event.cache_clear()
     begin = time.perf_counter()
     if symbolic:

@@ -16,7 +16,7 @@ from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.batch import _solved_together, _template, solve_variants
 from mechgrade.solve.instant import answer_alone
-from mechgrade.spec import load_problem
+from mechgrade.spec import load_problem, load_problem_text
 from mechgrade.spec.dynamics import Integration, WorkEnergy
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -205,9 +205,9 @@ ASKED_BEFORE_THE_EVENT = ("ball_thrown_with_drag_apex_and_landing", "damped_bloc
                     "three_cart_chain_vibration")
 """Integrated problems with objectives asked before the event (an objective's own time,
 coordinate or rate): the integrator over columns stops each variant at that instant too."""
-POSITIONED_ALONE = ("ruina_9_20_ladder_energy", "bowling_ball_skids_then_rolls")
-"""Problems with objectives asked 'when' an equation holds (or a motion that goes on in
-another phase once a slip ends): the instant is searched for each variant alone."""
+POSITIONED_ALONE = ("bowling_ball_skids_then_rolls",)
+"""Problems whose motion goes on in another phase once a slip ends (an objective asked 'when'
+in a phase): the instant is searched for each variant alone."""
 
 
 def _reached_otherwise(path: Path) -> bool:
@@ -297,7 +297,43 @@ def test_variants_asked_at_a_position_are_solved_alone(name, tmp_path):
         assert_same(together, one, EXACT, generated=False)
 
 
-REACHED_OTHERWISE_COUNT = 26  # 25 problems (two gyroscopes by design) and examples/hw3's pendulum
+REACHED_OTHERWISE_COUNT = 27  # 26 problems (two gyroscopes by design) and examples/hw3's pendulum
+
+
+ASKED_AT_A_SPEED = """  - id: drop_at_speed
+    prompt: How far the collar has dropped when its speed is 3 sqrt(g d) / 4.
+    find: -y
+    when: speed(C, N) = 3*sqrt(g*d)/4
+    kind: scalar
+    unit: m
+  - id: spring_energy_at_speed
+    prompt: The energy in the spring then.
+    find: pe(spring)
+    when: speed(C, N) = 3*sqrt(g*d)/4
+    kind: scalar
+    unit: J
+"""
+
+
+def test_variants_asked_when_are_walked_together_and_one_that_never_gets_there_fails_as_alone():
+    # a stiffer spring stops the collar before it is that fast (k = 300 N/m: it turns back
+    # at y = -0.36 m): those objectives fail with the range searched, the others are answered
+    problem = load_problem_text((PROBLEMS / "collar_spring_vertical_rod.yaml").read_text()
+                                + ASKED_AT_A_SPEED, "p.yaml")
+    variants = [{"k": 150.0}, {"k": 300.0}, {"k": 250.0}, {"k": 350.0}]
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # none went alone
+    together = solve_variants(problem, variants)
+    assert [sorted(f.id for f in s.failures) for s in together] == \
+        [[], ["drop_at_speed", "spring_energy_at_speed"], [], ["drop_at_speed",
+                                                               "spring_energy_at_speed"]]
+    assert "where the motion turns back" in str(together[1].failures[0].error)
+    for mine, one in zip(together, alone(problem, variants)):
+        assert_same(mine, one, EXACT, generated=False)
+        assert [(f.id, str(f.error)) for f in mine.failures] == \
+            [(f.id, str(f.error)) for f in one.failures]
+        assert mine.state == one.state
 
 
 def test_every_shipped_problem_reached_otherwise_is_covered():

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Callable, TypeVar
+from typing import Callable, Mapping, TypeVar
 
 import numpy as np
 import sympy as sp
@@ -49,6 +49,34 @@ def _analysis_plan(kp) -> AnalysisPlan:
         workless=tuple((label, f(expr)) for label, expr in kin.workless),
         until_kinetic=kin.until is not None and bool(
             kin.until.free_symbols & {*kin.k.qdd, *kin.reactions}))
+
+
+@dataclass(frozen=True)
+class ClosedForms:
+    """Closed-form roots (an event's times, a ``when``'s positions) as one numpy function of
+    the symbols they hold (sorted by name), evaluated in complex numbers: a root may be
+    complex, or undefined, at some values, and the values only choose among the roots."""
+
+    symbols: tuple[sp.Symbol, ...]
+    function: Callable
+
+    def at(self, numbers: Mapping[sp.Symbol, float]) -> list[complex]:
+        """Each root's value where the symbols have ``numbers``.
+
+        >>> a, b = sp.symbols("a b")
+        >>> closed_forms((sp.sqrt(a), -b / a, sp.pi)).at({a: -4.0, b: 2.0})
+        [2j, (0.5+0j), (3.141592653589793+0j)]
+        """
+        with np.errstate(all="ignore"):
+            return [complex(v) for v in self.function(*(complex(numbers[s])
+                                                        for s in self.symbols))]
+
+
+@lru_cache(maxsize=128)
+def closed_forms(roots: tuple) -> ClosedForms:
+    """:class:`ClosedForms` of ``roots`` (sympy expressions), made once per tuple of roots."""
+    symbols = tuple(sorted(set().union(*(sp.sympify(r).free_symbols for r in roots)), key=str))
+    return ClosedForms(symbols, sp.lambdify(symbols, list(roots), modules="numpy", cse=True))
 
 
 def value_at(fn: Callable, x: np.ndarray) -> float:

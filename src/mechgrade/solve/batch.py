@@ -273,12 +273,16 @@ class _Template:
         missing: list[dict] = [{} for _ in range(n)]  # objectives not existing there
         numeric = frozenset(o.id for o in objectives) & group.numeric
         if numeric:
-            X, fine, values, mistakes, unreached, missing = self._instant(group, maps, True,
+            placed, lost = self._at_positions(maps, numeric)
+            X, fine, values, mistakes, unreached, missing = self._instant(group, placed, True,
                                                                           integrated)
+            unreached.update(lost)
             for ms in mistakes.values():
                 for m in ms:  # an undefined declared mistake fails its objective
                     fine &= np.isfinite(m).all(axis=0)
             unreached = {i: err for i, err in unreached.items() if not fine[i]}
+            # the givens of an instant reached, its position among them (as a single solve's)
+            maps = [m if i in unreached else placed[i] for i, m in enumerate(maps)]
             never = np.zeros(n, dtype=bool)
             never[list(unreached)] = True
             ok = fine | never
@@ -316,6 +320,25 @@ class _Template:
                 from .dynamics import kinetic_reach
                 self.reach = kinetic_reach(self.problem)
         return self.reach
+
+    def _at_positions(self, maps: list[dict], numeric: Collection[str]
+                      ) -> tuple[list[dict], dict[int, MechgradeError]]:
+        """Each column's givens with the position an objective asked ``when`` fixes
+        (:func:`~.dynamics.at_positions`, every column at once), and the columns that have
+        none with its error (their position undefined: not reached)."""
+        if self.kinetics is None:
+            return maps, {}
+        from .dynamics import at_positions
+
+        placed: list[dict] = []
+        lost: dict[int, MechgradeError] = {}
+        name = self.problem.coordinates[0].name
+        for i, (m, at) in enumerate(zip(maps, at_positions(self.problem, numeric, maps))):
+            if isinstance(at, MechgradeError):
+                lost[i] = at
+                at = {**m, name: (Name(name), np.nan, None)}
+            placed.append(at)
+        return placed, lost
 
     def _designed_given(self, X: np.ndarray, ok: np.ndarray, maps: list[dict]) -> None:
         """The design parameter's value solved at each column ``ok`` put in its givens (it
@@ -627,10 +650,11 @@ def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Temp
         p = kinetics.kp
     else:
         p = kinematics_plan(problem)
-    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or \
-            any(o.when is not None for o in problem.objectives) or gripping(problem):
-        # each variant solved alone (an objective's own position is searched, or the motion
-        # goes on in another phase once a slip ends)
+    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or gripping(problem) or \
+            (any(o.when is not None for o in problem.objectives)
+             and not isinstance(analysis, WorkEnergy)):
+        # each variant solved alone (a root searched for, or the motion goes on in another
+        # phase, once a slip ends or where an objective asks it)
         return None
     # An integrated motion's variants are reached from their own givens, each column
     # screened: its reference need not be solved (a mistaken model's event may never happen
@@ -666,7 +690,11 @@ def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Temp
             continue
         try:
             if kinetics is not None:
-                from .dynamics import DesignedInstant, kinetic_reach
+                from .dynamics import DesignedInstant, at_positions, kinetic_reach
+                (at,) = at_positions(problem, numeric, [given_map])
+                if isinstance(at, MechgradeError):
+                    return None
+                given_map = at
                 reach = kinetic_reach(problem)
                 if isinstance(reach, DesignedInstant):
                     given_map = reach.designed(given_map)

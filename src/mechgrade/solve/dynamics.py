@@ -22,7 +22,7 @@ import warnings
 
 from dataclasses import dataclass, replace
 from functools import lru_cache
-from typing import Callable, Collection, Mapping
+from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
@@ -53,7 +53,7 @@ from .phases import Entry, Target, Until, When, asked_when, gripping, reach
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .plan import KinematicsPlan, kinematics_plan, per_problem
-from .positions import position_symbolic, position_where, which_root, without_position
+from .positions import position_symbolic, positions_where, which_root, without_position
 from .result import ObjectiveResult, Solution
 from .symbolic import solved_symbolically, symbolic
 
@@ -383,13 +383,26 @@ class WorkEnergyInstant(KineticInstant):
     def instant(self, given_map: dict, numeric: set[str], overrides: dict) -> Reached:
         """An objective asked ``when`` is read at the position where its equation first holds
         (:mod:`.positions`); the objectives of a group share it (``_instants``)."""
-        asked = [o.id for o in self.source.objectives if o.id in numeric and o.when is not None]
-        if asked:
-            name = self.source.coordinates[0].name
-            given_map = {**given_map, name: (Name(name), position_where(
-                self.source, asked[0], given_map,
-                when_residual(self.source, asked[0], given_map)), None)}
-        return super().instant(given_map, numeric, overrides)
+        (at,) = at_positions(self.source, numeric, [given_map])
+        if isinstance(at, SolveError):
+            raise at
+        return super().instant(at, numeric, overrides)
+
+
+def at_positions(problem: Problem, numeric: Collection[str], given_maps: Sequence[dict]
+                 ) -> list[dict | SolveError]:
+    """Each of ``given_maps`` with the coordinate put where the ``when`` of the first of the
+    objectives ``numeric`` asked ``when`` holds (every column walked together,
+    :func:`~.positions.positions_where`), or the error that says where it was looked for;
+    each map as it is where none is asked ``when``."""
+    asked = [o.id for o in problem.objectives if o.id in numeric and o.when is not None]
+    if not asked:
+        return list(given_maps)
+    name = problem.coordinates[0].name
+    found = positions_where(problem, asked[0], given_maps,
+                            [when_residual(problem, asked[0], m) for m in given_maps])
+    return [at if isinstance(at, SolveError) else {**m, name: (Name(name), at, None)}
+            for m, at in zip(given_maps, found)]
 
 
 @dataclass(frozen=True)

@@ -465,8 +465,10 @@ def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
                             together)
     return [replace(solution, results=tuple(
         ObjectiveResult(**{**vars(r), "plausible": plausible,
-                           "generated_mistakes": LazyMistakes(_Member(pending, k), r.id)})
-        for r in solution.results)) for k, solution in enumerate(solutions)]
+                           "generated_mistakes": LazyMistakes(member, r.id)})
+        for r in solution.results))
+        for member, solution in zip((_Member(pending, k) for k in range(len(solutions))),
+                                    solutions)]
 
 
 class _ClassPending:

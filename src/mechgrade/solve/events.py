@@ -24,7 +24,8 @@ from ..spec.dynamics import Integration
 from ..spec.model import Objective, Problem
 from ..tolerance import within_each
 from ..units import si_factor
-from .analysis import analysis_of, analysis_plan, extended, start_values, value_at
+from .analysis import (analysis_of, analysis_plan, closed_forms, extended, start_values,
+                       value_at)
 from . import dop853, rules
 from .batch_motion import FIRED, NEVER, STALLED, Field, integrate_to_events
 from .levels import State
@@ -320,10 +321,9 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
         raise SolveError("a symbolic answer of an integrated motion with a massless junction "
                          "is out of reach (the junction's start is solved with numbers): "
                          "expected 'kind: scalar'", where=where)
-    at_time, times, symbols, values = _closed_form(kin, where)
+    at_time, times = _closed_form(kin, where)
     roots = []
-    for root, value in zip(times, values(*(complex(numbers[x]) for x in symbols))):
-        value = complex(value)
+    for root, value in zip(times, closed_forms(times).at(numbers)):
         if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
             roots.append((value.real, root))
     if not roots:
@@ -336,11 +336,11 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
 
 
 @lru_cache(maxsize=64)
-def _closed_form(kin, where) -> tuple[tuple, tuple, tuple, Callable]:
+def _closed_form(kin, where) -> tuple[tuple, tuple]:
     """The state at the event time ``t_event`` (symbol -> expression, as pairs) of the
-    motion of ``kin`` with constant accelerations, the event's roots in ``t_event``, and
-    their (complex) values as a function of the symbols they hold; raises, located at
-    ``where``, where that closed form is out of reach."""
+    motion of ``kin`` with constant accelerations and the event's roots in ``t_event``
+    (their values: :func:`~.analysis.closed_forms`); raises, located at ``where``, where
+    that closed form is out of reach."""
     k = kin.k
     start = {**dict(kin.start), k.time: sp.Integer(0)}
     equations = [_frozen(e.expr, start, where, k.coordinates)
@@ -361,10 +361,7 @@ def _closed_form(kin, where) -> tuple[tuple, tuple, tuple, Callable]:
         at_time[q] = start[q] + start[qd] * _T + solved[qdd] * _T ** 2 / 2
         at_time[qd] = start[qd] + solved[qdd] * _T
     event = sp.simplify(kin.until.xreplace(at_time))
-    roots = tuple(sp.solve(event, _T))
-    symbols = tuple(sorted(set().union(*(r.free_symbols for r in roots)), key=str))
-    return tuple(at_time.items()), roots, symbols, \
-        sp.lambdify(symbols, roots, modules="numpy")
+    return tuple(at_time.items()), tuple(sp.solve(event, _T))
 
 
 _T = sp.Symbol("t_event", positive=True)

@@ -21,7 +21,7 @@ coordinate or one of its sines, cosines or tangents (:func:`closed_form_roots`);
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -34,7 +34,7 @@ from ..mechanics.dynamics import derive_kinetics
 from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
 from ..spec.validate import is_angle_unit
-from .analysis import analysis_of
+from .analysis import analysis_of, closed_forms
 from ..units import from_si
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
@@ -47,71 +47,152 @@ def position_where(problem: Problem, objective_id: str, given_map: dict,
     """The coordinate's value (SI) at the first position the motion from the start reaches
     where the objective's ``when`` holds, at the givens ``given_map`` (canonical key ->
     ``(node, si, Given)``); ``residual`` is its ``lhs - rhs`` in the coordinate and the
-    parameters (:func:`~.dynamics.when_residual`)."""
+    parameters (:func:`~.dynamics.when_residual`): :func:`positions_where` of one column,
+    its error raised."""
+    (found,) = positions_where(problem, objective_id, [given_map], [residual])
+    if isinstance(found, SolveError):
+        raise found
+    return found
+
+
+def positions_where(problem: Problem, objective_id: str, given_maps: Sequence[dict],
+                    residuals: Sequence[sp.Expr]) -> list[float | SolveError]:
+    """:func:`position_where` at every column's givens (``given_maps``, each with its
+    ``residuals``), walked together: each column's position, or the error that says where
+    its equation was looked for."""
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
-    q, numbers = _numbers(problem, given_map)
-    equation, start_at = _functions(residual, dict(derive_kinetics(problem).start)[q], q)
-    start = float(start_at.function(*(numbers[s] for s in start_at.parameters)))
+    q = derive_kinetics(problem).k.q[0]
+    start_expr = dict(derive_kinetics(problem).start)[q]
     analysis = analysis_of(problem, WorkEnergy)
+    sign = analysis.sense[0][1].sign if analysis.sense else 1
     coordinate = problem.coordinates[0]
-    found = _walked(equation, tuple(numbers[s] for s in equation.parameters), start,
-                    analysis.sense[0][1].sign if analysis.sense else 1,
-                    is_angle_unit(coordinate.unit))
-    if isinstance(found, float):
-        return found
-    last, turned_back = found
-    left, right = obj.when
+    angle = is_angle_unit(coordinate.unit)
+    numbers = [_numbers(problem, given_map)[1] for given_map in given_maps]
+    out: list[float | SolveError] = [0.0] * len(given_maps)
+    by_residual: dict[sp.Expr, list[int]] = {}
+    for i, residual in enumerate(residuals):
+        by_residual.setdefault(residual, []).append(i)
+    for residual, columns in by_residual.items():
+        equation, start_at = _functions(residual, start_expr, q)
+        starts = np.broadcast_to(np.asarray(start_at.function(*(
+            np.array([numbers[i][s] for i in columns]) for s in start_at.parameters)),
+            dtype=float), (len(columns),))
+        walks = _walked(equation, np.array([[numbers[i][s] for s in equation.parameters]
+                                            for i in columns]).reshape(len(columns), -1),
+                        starts, sign, angle)
+        for i, start, found in zip(columns, starts.tolist(), walks):
+            out[i] = found if isinstance(found, float) else \
+                _nowhere(problem, objective_id, start, *found)
+    return out
+
+
+def _nowhere(problem: Problem, objective_id: str, start: float, last: float | None,
+             turned_back: bool) -> SolveError:
+    """The error of a ``when`` that holds nowhere the walk from ``start`` reached (up to
+    ``last``; ``None``: only the start), where the motion turned back or not."""
+    when = problem.objective(objective_id).when
+    assert when is not None, "only an objective asked 'when' has a position of its own"
+    left, right = when
+    coordinate = problem.coordinates[0]
     searched = f"from {_shown(problem, start)} to {_shown(problem, last)}" \
         if last is not None else f"at {_shown(problem, start)}"
     why = "where the motion turns back" if turned_back else \
         ("one turn" if is_angle_unit(coordinate.unit) else "a thousand times its size")
-    raise SolveError(
+    return SolveError(
         f"objective '{objective_id}': '{left.text} = {right.text}' does not hold anywhere "
         f"the motion from the start reaches (searched {coordinate.name} {searched}, "
         f"{why}); check the equation, 'from' and 'sense'", where=left.where)
 
 
-@lru_cache(maxsize=256)
-def _walked(equation: _Function, parameters: tuple[float, ...], start: float, sign: int,
-            angle: bool) -> float | tuple[float | None, bool]:
-    """The first root of ``equation`` at ``parameters`` walking from ``start`` the way
-    ``sign`` says (one turn of an angle), or, when there is none, the last position searched
-    (``None``: only the start) and whether the motion turned back: kept per variant, whose
-    symbolic answer looks for the same position again (:func:`position_symbolic`)."""
-    from scipy import optimize
+Walk = float | tuple[float | None, bool]
+"""Where a walk ends: the root found, or the last position searched (``None``: only the
+start) and whether the motion turned back there."""
 
-    def f(x):
-        return equation.function(x, *parameters)
+_WALKS: dict[tuple, Walk] = {}
+_WALKS_LIMIT = 4096
 
+
+def _walked(equation: _Function, parameters: np.ndarray, start: np.ndarray, sign: int,
+            angle: bool) -> list[Walk]:
+    """Per column (``parameters``: one row each, ``start``), the first root of ``equation``
+    walking from its start the way ``sign`` says (one turn of an angle), or where the walk
+    gave up: kept per column, whose symbolic answer looks for the same position again
+    (:func:`position_symbolic`). The columns walk together, stretch by stretch."""
+    keys = [(equation, tuple(row), x, sign, angle)
+            for row, x in zip(parameters.tolist(), start.tolist())]
+    todo = [k for k, key in enumerate(keys) if key not in _WALKS]
+    if todo:
+        if len(_WALKS) + len(todo) > _WALKS_LIMIT:
+            _WALKS.clear()
+        _WALKS.update(zip([keys[k] for k in todo],
+                          _walked_together(equation, parameters[todo], start[todo], sign,
+                                           angle)))
+    return [_WALKS[key] for key in keys]
+
+
+_walked.cache_clear = _WALKS.clear  # type: ignore[attr-defined]
+
+
+def _walked_together(equation: _Function, parameters: np.ndarray, start: np.ndarray,
+                     sign: int, angle: bool) -> list[Walk]:
+    """:func:`_walked` of columns not walked before: the equation evaluated on every
+    column's grid at once, in stretches twice as long each time (the first crossing is
+    often near) until each column has a sign change, an undefined value (beyond it the
+    motion has turned back: no energy left to go on) or its grid's end; each root refined
+    between the two points that bracket it by scipy's ``brentq`` (a few evaluations, each
+    cheaper on a number than an iteration over arrays of columns is)."""
+    n = len(start)
     if angle:
-        steps = np.linspace(0.0, 2 * np.pi, _STEPS + 1)  # one turn
+        steps = np.broadcast_to(np.linspace(0.0, 2 * np.pi, _STEPS + 1), (n, _STEPS + 1))
     else:
-        steps = np.concatenate([[0.0], max(abs(start), 1.0) * np.logspace(-6, 3, _STEPS)])
-    grid = start + sign * steps
-    walked = np.empty(0)
-    while True:  # in stretches twice as long each time: the first crossing is often near
-        end = min(len(grid), max(2 * len(walked), _FIRST))
+        steps = np.maximum(np.abs(start), 1.0)[:, None] * np.concatenate(
+            [[0.0], np.logspace(-6, 3, _STEPS)])
+    grid = start[:, None] + sign * steps
+    size = grid.shape[1]
+    walked = np.full(grid.shape, np.nan)
+    out: list[Walk] = [(None, False)] * n
+    bracket: list[tuple[int, int]] = []  # (column, index of the point before its root)
+    todo, length = np.arange(n), 0
+    while todo.size:
+        end = min(size, max(2 * length, _FIRST))
         with np.errstate(all="ignore"):
-            stretch = f(grid[len(walked):end])
-        walked = np.concatenate([walked, np.broadcast_to(np.asarray(stretch, dtype=float),
-                                                         (end - len(walked),))])
-        finite = np.isfinite(walked)
-        # beyond the first undefined value the motion has turned back (no energy left to go on)
-        reached = int(np.argmin(finite)) if not finite.all() else end
-        qs, values = grid[:reached], walked[:reached]
-        if values.size and values[0] == 0.0:  # holding at the start: the next crossing
-            qs, values = qs[1:], values[1:]
-        change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) <= 0)
-        if change.size or reached < end or end == len(grid):
-            break
-    if not change.size:
-        return (float(qs[-1]) if qs.size else None), reached < len(grid)
-    i = int(change[0])
-    if values[i] == 0.0:
-        return float(qs[i])
-    return float(optimize.brentq(lambda x: float(f(x)), qs[i], qs[i + 1], xtol=_XTOL,
-                                 rtol=4 * np.finfo(float).eps))
+            # (a number where the equation does not hold the coordinate: broadcast)
+            walked[todo, length:end] = equation.function(
+                grid[todo, length:end], *(p[:, None] for p in parameters[todo].T))
+        length = end
+        values = walked[todo, :end]
+        finite = np.isfinite(values)
+        reached = np.where(finite.all(axis=1), end, np.argmin(finite, axis=1))
+        # holding at the start: the next crossing
+        skip = ((reached > 0) & (values[:, 0] == 0.0)).astype(int)
+        signs = np.sign(values)
+        pair = np.arange(end - 1)
+        change = (signs[:, :-1] * signs[:, 1:] <= 0) & (pair >= skip[:, None]) \
+            & (pair + 1 < reached[:, None])
+        found = change.any(axis=1)
+        first = np.argmax(change, axis=1)
+        stop = found | (reached < end) | (end == size)
+        for k in np.flatnonzero(stop).tolist():
+            column = int(todo[k])
+            if found[k] and values[k, first[k]] == 0.0:
+                out[column] = float(grid[column, first[k]])
+            elif found[k]:
+                bracket.append((column, int(first[k])))
+            else:
+                last = int(reached[k]) - 1
+                out[column] = (float(grid[column, last]) if last >= skip[k] else None,
+                               bool(reached[k] < size))
+        todo = todo[~stop]
+    if bracket:
+        from scipy import optimize
+
+        for column, i in bracket:  # each column's root between its two points
+            row = parameters[column].tolist()
+            out[column] = float(optimize.brentq(
+                lambda x, row=row: float(equation.function(x, *row)), grid[column, i],
+                grid[column, i + 1], xtol=_XTOL, rtol=4 * np.finfo(float).eps))
+    return out
 
 
 def position_symbolic(problem: Problem, objective_id: str, givens: tuple,
@@ -129,14 +210,13 @@ def which_root(problem: Problem, objective_id: str, given_map: dict,
     """Which of :func:`closed_form_roots` of ``residual`` is the position of
     :func:`position_where` at the givens ``given_map`` (the first real one there): with the
     givens its terms solve with, what fixes a symbolic answer asked ``when``. Without sympy:
-    each root is evaluated as a function made once."""
+    the roots are evaluated by one function made once (:func:`~.analysis.closed_forms`)."""
     obj = problem.objective(objective_id)
     assert obj.when is not None, "only an objective asked 'when' has a position of its own"
     q, numbers = _numbers(problem, given_map)
     value = position_where(problem, objective_id, given_map, residual)
-    for i, root in enumerate(_root_functions(residual, q)):
-        with np.errstate(all="ignore"):  # a root undefined here is not the position
-            at = complex(root.function(*(complex(numbers[s]) for s in root.parameters)))
+    # a root complex or undefined here is not the position
+    for i, at in enumerate(closed_forms(closed_form_roots(residual, q)).at(numbers)):
         if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
             return i
     left, right = obj.when
@@ -144,13 +224,6 @@ def which_root(problem: Problem, objective_id: str, given_map: dict,
                      f"{problem.coordinates[0].name} = {_shown(problem, value)}, but sympy finds no "
                      "closed form for that position; ask for it as a scalar",
                      where=left.where)
-
-
-@lru_cache(maxsize=64)
-def _root_functions(residual: sp.Expr, q: sp.Symbol) -> tuple[_Function, ...]:
-    """Each of :func:`closed_form_roots` as a function of its parameters (complex: a root
-    may be complex at some givens)."""
-    return tuple(_function(root, ()) for root in closed_form_roots(residual, q))
 
 
 @lru_cache(maxsize=64)
