@@ -19,14 +19,20 @@ from typing import Callable
 import numpy as np
 import sympy as sp
 
-from ..errors import Location, SolveError
+from ..errors import Location, MechgradeError, SolveError
 from ..expressions.syntax import parse, to_text
 from ..spec.dynamics import (GROUND, Cylinder, Disk, Integration, KineticFriction, Ring,
                              Shell, Sphere, StaticFriction, dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
-from .analysis import analysis_of, extended, value_at
-from .events import Run, _ScalarMotion, event_never_happens, instant_missed, next_crossing
+from . import rules
+from .analysis import analysis_of, analysis_plan, extended, start_columns, value_at
+from .batch_motion import FIRED, NEVER, integrate_to_events
+from .columns import loud_call, quiet
+from .events import (ATOL, MAX_CALLS, RTOL, Run, _ScalarMotion, event_never_happens,
+                     instant_missed, next_crossing)
+from .motion import _motion
+from .motion import accelerations as columns_accelerations
 
 def gripping(problem: Problem) -> KineticFriction | None:
     """The kinetic friction that grips once its slip ends (``then:``), if any."""
@@ -204,22 +210,35 @@ def _rolling(problem: Problem, base: np.ndarray, target: Target, slipped: Run,
     assert grip is not None and grip.then is not None
     held = grips(start, slipped.y)
     if not held >= 0:
-        raise SolveError(f"friction '{grip.name}': the slip ends at t = {start:.6g} s, but the "
-                         f"grip then needs more friction than mu_s N ({-held:.6g} N short): the "
-                         "contact slips on, which this integration does not follow (a "
-                         "larger mu_s, or end the motion where the slip ends: until: its slip "
-                         "speed = 0)", where=grip.then.where)
+        raise _slips_on(grip, start, held)
     events = [m.until] + ([aim] if aim is not None else []) + [grips]
     run = m.run(events, [direction] + [0.0] * (len(events) - 1), start, slipped.y)
     if run.which == len(events) - 1:
-        raise SolveError(f"friction '{grip.name}' grips once its slip ends at t = {start:.6g} "
-                         f"s, and would slip again at t = {run.t:.6g} s (the friction the grip "
-                         "needs reaches mu_s N there): a motion that slips again is not "
-                         "supported; end the motion before it (until: t = T, T a parameter given in s)",
-                         where=grip.then.where)
+        raise _slips_again(grip, start, run.t)
     if run.which is None or (run.which == 0 and aim is not None):
         raise _missed(analysis, target, [run.t] if run.which == 0 else [])
     return _instant(phase, m, solve, run, target)
+
+
+def _slips_on(grip: KineticFriction, start: float, held: float) -> SolveError:
+    """The error of a grip that needs more than mu_s N where the slip ends (``held``: mu_s
+    N - |F| there)."""
+    assert grip.then is not None
+    return SolveError(f"friction '{grip.name}': the slip ends at t = {start:.6g} s, but the "
+                      f"grip then needs more friction than mu_s N ({-held:.6g} N short): the "
+                      "contact slips on, which this integration does not follow (a "
+                      "larger mu_s, or end the motion where the slip ends: until: its slip "
+                      "speed = 0)", where=grip.then.where)
+
+
+def _slips_again(grip: KineticFriction, start: float, t: float) -> SolveError:
+    """The error of a grip that would slip again at ``t``."""
+    assert grip.then is not None
+    return SolveError(f"friction '{grip.name}' grips once its slip ends at t = {start:.6g} "
+                      f"s, and would slip again at t = {t:.6g} s (the friction the grip "
+                      "needs reaches mu_s N there): a motion that slips again is not "
+                      "supported; end the motion before it (until: t = T, T a parameter given in s)",
+                      where=grip.then.where)
 
 
 def _instant(problem: Problem, m: _ScalarMotion, solve, run: Run, target: Target
@@ -239,15 +258,20 @@ def _aimed(target: Target, kp, m: _ScalarMotion, solve):
         def reached(t, y):
             return m.at(t, y)[target.at] - target.value
         return reached
-    expr = dict(kp.kin.whens)[target.objective]
-    equation = _lambdified(kp, expr)
-    kinetic = bool(expr.free_symbols & {*kp.kin.k.qdd, *kp.kin.reactions})
+    equation, kinetic = _when(kp, target.objective)
 
     def holds(t, y):
         # an equation of the state alone is read without the balances, as the motion's own
         # event is (they are undefined where a slip speed is exactly zero: at its root)
         return value_at(equation, solve(m.at(t, y)) if kinetic else extended(kp, m.at(t, y)))
     return holds
+
+
+def _when(kp, objective: str) -> tuple[Callable, bool]:
+    """The ``when:`` equation of ``objective`` as a function of the extended state, and
+    whether it reads second rates or reactions (else it is read without the balances)."""
+    expr = dict(kp.kin.whens)[objective]
+    return _lambdified(kp, expr), bool(expr.free_symbols & {*kp.kin.k.qdd, *kp.kin.reactions})
 
 
 def _missed(analysis: Integration, target: Target, until_times) -> SolveError:
@@ -280,3 +304,203 @@ def _margin(problem: Problem, kp):
     bound = next(b for b in kp.kin.bounds if b.name == grip.name)
     return _lambdified(kp, bound.mu * bound.normal - sp.sqrt(sum(
         (c ** 2 for c in bound.tangential), sp.Integer(0))))
+
+
+# ---------------------------------------------------------------------------- over columns
+
+
+@dataclass(frozen=True)
+class PhaseColumns:
+    """The columns of a class (``columns``) whose instant lies in ``phase`` (the source, or
+    its gripping phase): their state values there (size x k) and extended states a moment
+    before (``None`` at an objective's own time, coordinate or rate)."""
+
+    phase: Problem
+    columns: np.ndarray
+    values: np.ndarray
+    before: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class Reaches:
+    """Where each column's phased motion reaches its target (:func:`reach_columns`): the
+    columns of each phase, and the error of each column whose target is not reached, as
+    :func:`reach` raises it. A column in neither is not vouched for here (alone, it says
+    why)."""
+
+    phases: tuple[PhaseColumns, ...]
+    errors: dict[int, MechgradeError]
+
+
+class _Columns:
+    """One phase's motion over columns (:class:`_ScalarMotion`'s, each column its own):
+    ``values`` the start values (size x columns), ``at(cols, t, y)`` the state values of
+    columns ``cols``, the right-hand side, and event functions of the extended state."""
+
+    def __init__(self, kp, values: np.ndarray):
+        index = kp.kp.index
+        self.kp, self.values = kp, values
+        self.n, self.time = index.n, index.time
+        rates, seconds = index.rates(1), index.rates(2)
+        self.qd, self.qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
+        self.reactions = len(kp.kin.reactions)
+
+    def at(self, cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+        x = self.values[:, cols]
+        x[:self.n] = y[:self.n]
+        x[self.qd] = y[self.n:]
+        x[self.time] = t
+        return x
+
+    def extended(self, x: np.ndarray) -> np.ndarray:
+        return np.concatenate([x, np.zeros((self.reactions, x.shape[1]))])
+
+    def solve(self, x: np.ndarray) -> np.ndarray:
+        """The extended states with the second rates and reactions solved (as
+        :func:`~.dynamics.accelerations` for each column; NaN where undefined)."""
+        e = self.extended(x)
+        e[list(self.kp.columns)] = 0.0
+        return columns_accelerations(self.kp, e)
+
+    def rhs(self, cols, t, y, _modes=None) -> np.ndarray:
+        return np.concatenate([y[self.n:], self.solve(self.at(cols, t, y))[self.qdd]])
+
+    def reading(self, fn: Callable, kinetic: bool) -> Callable:
+        """The event ``fn`` (of the extended state; ``kinetic``: read with the balances)."""
+        def event(cols, t, y, _modes=None) -> np.ndarray:
+            x = self.at(cols, t, y)
+            return loud_call(fn, self.solve(x) if kinetic else self.extended(x), 1)[0]
+        return event
+
+    def aimed(self, target: Target, asked: np.ndarray) -> Callable | None:
+        """The event of ``target`` (:func:`_aimed`; ``asked``: each column's value of an
+        :class:`Entry`)."""
+        if isinstance(target, Until):
+            return None
+        if isinstance(target, Entry):
+            at = target.at
+
+            def reached(cols, t, y, _modes=None) -> np.ndarray:
+                return self.at(cols, t, y)[at] - asked[cols]
+            return reached
+        return self.reading(*_when(self.kp, target.objective))
+
+
+def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
+                  kinetics_plan: Callable) -> Reaches:
+    """:func:`reach` for every column of ``X`` (each the parameters placed in the state) to
+    its target (``targets``: one per column, all of one kind, an :class:`Entry` at the same
+    entry), the phases integrated together (:func:`~.batch_motion.integrate_to_events`),
+    each column switching phase at its own end of the slip; each column's instant is that
+    :func:`reach` finds for it alone, or its error (see :class:`Reaches`)."""
+    analysis = analysis_of(problem, Integration)
+    kp = kinetics_plan(problem)
+    count = X.shape[1]
+    target = targets[0]
+    asked = np.array([t.value if isinstance(t, Entry) else np.nan for t in targets])
+    errors: dict[int, MechgradeError] = {}
+    phases: list[PhaseColumns] = []
+    with quiet():
+        values, unsettled = start_columns(problem, kp, analysis_plan(kp), X)
+        values[kp.kp.index.time] = 0.0
+        values[list(kp.kp.index.rates(2))] = 0.0
+        errors.update(unsettled)
+        todo = np.array([c for c in range(count) if c not in unsettled], dtype=int)
+        one = _Columns(kp, values[:, todo])
+        y0 = np.concatenate([one.values[:one.n], one.values[one.qd]])
+        everyone = np.arange(len(todo))
+        ap = analysis_plan(kp)
+        assert ap.until is not None, "an integration always has its event"
+        until = one.reading(ap.until, ap.until_kinetic)
+        direction, stays = _motion(problem, kp)._leaving(one.rhs, until, None, y0)
+        errors.update({int(todo[c]): e for c, e in stays.items()})
+        aim = one.aimed(target, asked[todo])
+        events, senses = [until], [direction]
+        if aim is not None:
+            # an aim that holds at the start: alone (its next crossing, or its error there)
+            fine = aim(everyone, np.zeros(len(todo)), y0) != 0
+            events.append(aim)
+            senses.append(np.zeros(len(todo)))
+        else:
+            fine = np.ones(len(todo), dtype=bool)
+        grip = gripping(problem)
+        if grip is not None:
+            phase = gripping_phase(problem)
+            kp2 = kinetics_plan(phase)
+            events.append(one.reading(_slip(problem, kp, kp2), False))
+            senses.append(np.zeros(len(todo)))
+        fine &= ~np.isin(todo, list(errors))
+        run = integrate_to_events(one.rhs, events, y0, analysis.max_time, RTOL, ATOL,
+                                  MAX_CALLS, direction=np.array(senses))
+        which = np.where(run.status == FIRED, run.which if run.which is not None else -1, -1)
+        ended = (run.status == NEVER) | ((which == 0) & (aim is not None))
+        for c in np.flatnonzero(fine & ended):
+            errors[int(todo[c])] = _missed(analysis, targets[todo[c]],
+                                           [run.t[c]] if which[c] == 0 else [])
+        slipped = fine & ~ended & (which == len(events) - 1) & (grip is not None)
+        here = fine & ~ended & (run.status == FIRED) & ~slipped
+        phases.append(_arrived(problem, one, run, todo, np.flatnonzero(here), target,
+                               asked))
+        s = np.flatnonzero(slipped)
+        if len(s):
+            assert grip is not None
+            phases.append(_gripped(problem, X[:, todo[s]], todo[s], run, s, direction[s],
+                                   targets, asked, kinetics_plan, errors))
+    return Reaches(tuple(p for p in phases if len(p.columns)), errors)
+
+
+def _arrived(problem: Problem, motion: _Columns, run, todo: np.ndarray, k: np.ndarray,
+             target: Target, asked: np.ndarray) -> PhaseColumns:
+    """The instants of the columns ``k`` of ``run`` (``todo[k]`` in the class) on ``problem``'s
+    motion (:func:`_instant` for each)."""
+    values = motion.at(k, run.t[k], run.y[:, k])
+    if isinstance(target, Entry):
+        values[target.at] = asked[todo[k]]  # where the root was found: the given holds there
+        return PhaseColumns(problem, todo[k], values, None)
+    earlier = np.maximum(motion.values[motion.time, k], run.t[k] * (1 - rules.BEFORE_EVENT))
+    return PhaseColumns(problem, todo[k], values,
+                        motion.solve(motion.at(k, earlier, run.before[:, k])))
+
+
+def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped, s: np.ndarray,
+             direction: np.ndarray, targets: list[Target], asked: np.ndarray,
+             kinetics_plan: Callable, errors: dict[int, MechgradeError]) -> PhaseColumns:
+    """:func:`_rolling` for the columns ``columns`` of the class (``X``: their parameters
+    placed), whose slip ended as run ``slipped`` found it (at its columns ``s``): their
+    errors into ``errors``, the instants of the others reached."""
+    phase = gripping_phase(problem)
+    kp = kinetics_plan(phase)
+    grip = gripping(problem)
+    assert grip is not None
+    values, _ = start_columns(phase, kp, analysis_plan(kp), X)
+    values[kp.kp.index.time] = 0.0
+    values[list(kp.kp.index.rates(2))] = 0.0
+    two = _Columns(kp, values)
+    everyone = np.arange(len(s))
+    start, y0 = slipped.t[s], slipped.y[:, s]
+    grips = two.reading(_margin(problem, kp), True)
+    held = grips(everyone, start, y0)
+    fine = held >= 0
+    for c in np.flatnonzero(~fine):
+        errors[int(columns[c])] = _slips_on(grip, float(start[c]), float(held[c]))
+    ap = analysis_plan(kp)
+    assert ap.until is not None
+    target = targets[columns[0]]
+    aim = two.aimed(target, asked[columns])
+    events = [two.reading(ap.until, ap.until_kinetic)] + ([aim] if aim is not None else []) \
+        + [grips]
+    senses = [direction] + [np.zeros(len(s))] * (len(events) - 1)
+    analysis = analysis_of(problem, Integration)
+    run = integrate_to_events(two.rhs, events, y0, analysis.max_time, RTOL, ATOL, MAX_CALLS,
+                              direction=np.array(senses), t0=start)
+    which = np.where(run.status == FIRED, run.which if run.which is not None else -1, -1)
+    again = fine & (which == len(events) - 1)
+    for c in np.flatnonzero(again):
+        errors[int(columns[c])] = _slips_again(grip, float(start[c]), float(run.t[c]))
+    ended = fine & ~again & ((run.status == NEVER) | ((which == 0) & (aim is not None)))
+    for c in np.flatnonzero(ended):
+        errors[int(columns[c])] = _missed(analysis, targets[columns[c]],
+                                          [run.t[c]] if which[c] == 0 else [])
+    here = fine & ~again & ~ended & (run.status == FIRED)
+    two.values[two.time] = start  # each column's own start: a moment before it is not before
+    return _arrived(phase, two, run, columns, np.flatnonzero(here), target, asked)
