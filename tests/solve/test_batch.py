@@ -192,15 +192,18 @@ ASKED_BEFORE_THE_EVENT = ("ball_thrown_with_drag_apex_and_landing", "damped_bloc
                     "three_cart_chain_vibration")
 """Integrated problems with objectives asked before the event (an objective's own time,
 coordinate or rate): the integrator over columns stops each variant at that instant too."""
-POSITIONED_ALONE = ("ruina_9_20_ladder_energy", "bowling_ball_skids_then_rolls")
-"""Problems with objectives asked 'when' an equation holds (or a motion that goes on in
-another phase once a slip ends): the instant is searched for each variant alone."""
+POSITIONED_ALONE = ("ruina_9_20_ladder_energy",)
+"""Problems with objectives asked 'when' an equation holds on a work-energy motion: the
+instant is searched for each variant alone."""
+IN_PHASES = ("bowling_ball_skids_then_rolls",)
+"""Integrated problems whose motion goes on in another phase once a slip ends, with
+objectives asked 'when' an equation holds: each variant switches phase at its own instant."""
 
 
 def _reached_otherwise(path: Path) -> bool:
     """Whether the spec's instant is reached by work-energy, by integrating the motion or
     with a design parameter solved for (read from the text, so collecting stays fast)."""
-    return path.stem not in ASKED_BEFORE_THE_EVENT + POSITIONED_ALONE and \
+    return path.stem not in ASKED_BEFORE_THE_EVENT + POSITIONED_ALONE + IN_PHASES and \
         bool(re.search(r"^\s+(work_energy|integrate|design):", path.read_text(), re.M))
 
 
@@ -272,6 +275,36 @@ def test_variants_asked_before_the_event_are_reached_together_there_as_alone(nam
     for together, one in zip(solve_variants(problem, variants), alone(problem, variants)):
         assert_same(together, one, EXACT, generated=False)
 
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation of both phases, over 2 s)
+@pytest.mark.parametrize("name", IN_PHASES)
+def test_variants_of_a_motion_in_phases_are_reached_together_as_alone(name, tmp_path):
+    problem = with_drawn_parameters(PROBLEMS / f"{name}.yaml", tmp_path)
+    template = _template(problem)
+    assert template is not None
+    variants = [dict(draw_variant(problem, "batch", str(n)).overrides) for n in range(3)]
+    assert all(s is not None for s in template.solve(variants))  # none went alone
+    for k, (together, one) in enumerate(zip(solve_variants(problem, variants),
+                                            alone(problem, variants))):
+        assert_same(together, one, EXACT, generated=k == 0)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation of both phases, over 2 s)
+def test_a_variant_whose_grip_fails_or_whose_motion_ends_first_fails_in_the_class_as_alone():
+    problem = load_problem(PROBLEMS / "bowling_ball_skids_then_rolls.yaml")
+    # the grip needs more than mu_s N; the ball stops before it rolls and before 2 s
+    variants = [{"mu_s": 0.04}, {"v0": 2.0}, {"v0": 6.0}]
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # not re-solved alone
+    together = solve_variants(problem, variants)
+    one = alone(problem, variants)
+    assert "grip then needs more friction than mu_s N" in str(one[0].failures[0].error)
+    assert "does not hold before the event" in str(one[1].failures[0].error)
+    assert not one[2].failures
+    for a, b in zip(together, one):
+        assert_same(a, b, EXACT, generated=False)
 
 
 @pytest.mark.slow

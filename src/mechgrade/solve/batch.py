@@ -63,7 +63,7 @@ from .mutants import (constraint_mistakes_columns, kept_columns, misread, model_
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric, solve_numeric_columns
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
-from .phases import gripping
+from .phases import Target, Until, asked_when, gripping, reach_columns
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .result import (GeneratedMistake, Solution)
@@ -304,6 +304,8 @@ class _Template:
 
         if self.design is not None and self.design.find not in group.overrides:
             X, ok = self._designed(group, X, targets, placed, degenerate)
+        elif self._phased(group):
+            return self._in_phases(group, X, maps)
         elif isinstance(self.analysis, Integration):
             X, ok, never, stuck = self._motion().integrated(X, group.instant)
             assert isinstance(self.analysis, Integration)
@@ -324,6 +326,63 @@ class _Template:
         if self.kinetics is None:
             ok &= np.array([not m for m in missing], dtype=bool)
         return X, ok, values, declared, unreached, missing
+
+    def _phased(self, group: _Group) -> bool:
+        """Whether ``group``'s instant is reached on a motion in phases, or asked ``when``
+        (:mod:`.phases`)."""
+        return isinstance(self.analysis, Integration) and (
+            gripping(self.problem) is not None
+            or asked_when(self.problem, group.numeric) is not None)
+
+    def _in_phases(self, group: _Group, X: np.ndarray, maps: list[dict]):
+        """:meth:`_instant` of a group on a motion in phases (:func:`~.phases.reach_columns`,
+        as :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant): each column's
+        objectives read with the model of the phase its instant is in. The states returned
+        are the state values (the extended states differ between phases)."""
+        from .dynamics import IntegratedInstant, kinetic_reach, kinetics_plan
+
+        problem, n, size = self.problem, len(maps), self.p.index.size
+        reach = kinetic_reach(problem)
+        assert isinstance(reach, IntegratedInstant)
+        asked = instant_of_objective(problem, group.overrides)
+        when = asked_when(problem, group.numeric)
+        targets: list[Target] = [Until() if asked is None and when is None else when
+                                 if asked is None else reach.entry(m, asked) for m in maps]
+        found = reach_columns(problem, X, targets, kinetics_plan)
+        unreached: dict[int, MechgradeError] = dict(found.errors)
+        ok = np.zeros(n, dtype=bool)
+        out = np.full((size, n), np.nan)
+        values = {oid: np.full((_size(problem, oid), n), np.nan) for oid in group.numeric}
+        declared: dict[str, list[np.ndarray]] = {}
+        missing: list[dict] = [{} for _ in range(n)]
+        for at in found.phases:
+            kp = kinetics_plan(at.phase)
+            cols = at.columns
+            if at.before is None:
+                solved = balances(at.phase, kp, at.values, after_event(kp.kp))
+                x, before = solved.x, None
+            else:  # the contact checks hold along the way: judged just before the event
+                solved = balances(at.phase, kp, at.before[:size], after_event(kp.kp))
+                x, before = at.before.copy(), at.before
+                keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
+                x[keep] = at.values[keep]
+            for j in np.flatnonzero(~solved.ok):
+                error = solved.errors[int(j)]
+                assert error is not None  # a column not solved has its error
+                unreached[int(cols[j])] = error
+            ok[cols] = solved.ok
+            out[:, cols] = x[:size]
+            read = read_objectives(at.phase, kp, x, group.numeric, rules.REQUIRED_KINETIC,
+                                   before)
+            for oid, v in read.values.items():
+                values[oid][:, cols] = v
+            for oid, vs in read.mistakes.items():
+                into = declared.setdefault(oid, [np.full((len(v), n), np.nan) for v in vs])
+                for whole, v in zip(into, vs):
+                    whole[:, cols] = v
+            for j, lost in zip(cols, read.missing):
+                missing[int(j)] = lost
+        return out, ok, values, declared, unreached, missing
 
     def _reached(self, group: _Group, X: np.ndarray, targets: list,
                  placed: Callable[[int], Givens], degenerate: bool,
@@ -586,10 +645,12 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         p = kinetics.kp
     else:
         p = kinematics_plan(problem)
-    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or \
-            any(o.when is not None for o in problem.objectives) or gripping(problem):
-        # each variant solved alone (an objective's own position is searched, or the motion
-        # goes on in another phase once a slip ends)
+    phased = isinstance(analysis, Integration) and problem.dynamics is not None \
+        and problem.dynamics.design is None
+    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or not phased and (
+            any(o.when is not None for o in problem.objectives) or gripping(problem)):
+        # each variant solved alone (an objective's own position is searched, or a motion
+        # designed goes on in another phase once a slip ends)
         return None
     # An integrated motion's variants are reached from their own givens, each column
     # screened: its reference need not be solved (a mistaken model's event may never happen
