@@ -346,8 +346,8 @@ class _Template:
         assert isinstance(reach, IntegratedInstant)
         asked = instant_of_objective(problem, group.overrides)
         when = asked_when(problem, group.numeric)
-        targets: list[Target] = [Until() if asked is None and when is None else when
-                                 if asked is None else reach.entry(m, asked) for m in maps]
+        targets: list[Target] = [reach.entry(m, asked) if asked is not None else
+                                 when if when is not None else Until() for m in maps]
         found = reach_columns(problem, X, targets, kinetics_plan)
         unreached: dict[int, MechgradeError] = dict(found.errors)
         ok = np.zeros(n, dtype=bool)
@@ -645,19 +645,17 @@ def _template_cached(problem: Problem, _locations: tuple) -> _Template | None:
         p = kinetics.kp
     else:
         p = kinematics_plan(problem)
-    phased = isinstance(analysis, Integration) and problem.dynamics is not None \
-        and problem.dynamics.design is None
-    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or not phased and (
-            any(o.when is not None for o in problem.objectives) or gripping(problem)):
-        # each variant solved alone (an objective's own position is searched, or a motion
-        # designed goes on in another phase once a slip ends)
-        return None
     # An integrated motion's variants are reached from their own givens, each column
     # screened: its reference need not be solved (a mistaken model's event may never happen
     # for the spec's givens, as for every variant). Any other continues from the reference's
     # root, which must be one the scalar solver finds without care.
     integrated = isinstance(analysis, Integration) and problem.dynamics is not None \
         and problem.dynamics.design is None
+    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or (not integrated and (
+            any(o.when is not None for o in problem.objectives) or gripping(problem))):
+        # each variant solved alone (an objective's own position is searched, or a motion
+        # designed goes on in another phase once a slip ends)
+        return None
     if integrated:
         # solved all the same, first: a symbolic answer, kept for the givens it depends on,
         # is the one the spec's givens give, as when the reference must be solved
