@@ -31,6 +31,9 @@ from .levels import State
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
+EVERY_STEP = MAX_CALLS // dop853.N_STAGES + 1
+"""The steps one motion integrated alone keeps (every step it may take), where the moment
+before its event is read, as ``solve_ivp``'s dense output keeps them."""
 LEAVING = 1e-6
 """The moment after the start, as a part of the time allowed, at which the side an event that
 holds at the start is left to is read: far shorter than any motion the time allowed holds."""
@@ -117,18 +120,24 @@ def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start:
         lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None], [column(e) for e in events],
         y0[:, None], t_bound, RTOL, ATOL, MAX_CALLS,
         direction=np.array(directions, dtype=float)[:, None], t0=start,
-        keep=MAX_CALLS // dop853.N_STAGES + 1)  # every step it may take
+        keep=EVERY_STEP)
     status, t = int(arrival.status[0]), float(arrival.t[0])
-    if status == STALLED:
-        raise SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
-                         "motion may switch there, e.g. friction reversing once the slip "
-                         "ends)", where=where)
     if status not in (FIRED, NEVER):
-        raise SolveError(f"the integration failed near t = {t:.6g} s: its step fell below the "
-                         "spacing of numbers there, or the motion is undefined", where=where)
+        raise not_integrated(status, t, where)
     which = None if status == NEVER or arrival.which is None else int(arrival.which[0])
     return Run(which, t, arrival.y[:, 0], max(start, t * (1 - rules.BEFORE_EVENT)),
                arrival.before[:, 0])
+
+
+def not_integrated(status: int, t: float, where) -> SolveError:
+    """The error of one motion's integration that ended at ``t`` without an answer
+    (``status``: :data:`~.batch_motion.STALLED`, or failed)."""
+    if status == STALLED:
+        return SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
+                          "motion may switch there, e.g. friction reversing once the slip "
+                          "ends)", where=where)
+    return SolveError(f"the integration failed near t = {t:.6g} s: its step fell below the "
+                      "spacing of numbers there, or the motion is undefined", where=where)
 
 
 class _ScalarMotion:
