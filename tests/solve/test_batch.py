@@ -15,7 +15,7 @@ from mechgrade.grade.variants import draw_variant
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.batch import _solved_together, _template, solve_variants
-from mechgrade.spec import load_problem
+from mechgrade.spec import load_problem, load_problem_text
 from mechgrade.spec.dynamics import Integration, WorkEnergy
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -288,6 +288,20 @@ def test_variants_of_a_motion_in_phases_are_reached_together_as_alone(name, tmp_
     for k, (together, one) in enumerate(zip(solve_variants(problem, variants),
                                             alone(problem, variants))):
         assert_same(together, one, EXACT, generated=k == 0)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 2 s)
+def test_variants_asked_when_on_a_motion_without_phases_are_reached_together_as_alone():
+    throw = (PROBLEMS / "ball_thrown_with_drag_apex_and_landing.yaml").read_text()
+    problem = load_problem_text(throw.replace(
+        "    givens: {y': 0 m/s}\n    expect: {value: 9.940268}",
+        "    when: y' = 0\n    expect: {value: 9.940268}"), "p.yaml")
+    variants = [{"m": 30.0}, {"m": 35.0}]
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants, ["apex_height"]))
+    for together, one in zip(solve_variants(problem, variants), alone(problem, variants)):
+        assert_same(together, one, EXACT, generated=False)
 
 
 @pytest.mark.slow  # a slow end-to-end check (a cold derivation of both phases, over 2 s)

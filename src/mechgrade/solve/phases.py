@@ -8,6 +8,10 @@ momentum balances then give the friction the grip needs, which must stay within 
 rest of the motion (a contact that would slip again is refused, where it would). Every phase
 is integrated as :mod:`.events` integrates one motion (DOP853, rtol 1e-11, its roots refined
 on the dense output); of events that happen in the same step, the earliest is the instant.
+
+A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
+integration over columns, each column switching phase at its own end of the slip. One solve
+is one such column solved alone (:func:`reach`).
 """
 
 from __future__ import annotations
