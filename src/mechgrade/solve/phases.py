@@ -31,11 +31,11 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from . import rules
 from .analysis import analysis_of, analysis_plan, start_columns
-from .batch_motion import FIRED, NEVER, integrate_to_events
+from .batch_motion import FIRED, NEVER, Arrival, integrate_to_events
 from .columns import loud_call, quiet
 from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, instant_missed,
                      next_crossing, not_integrated)
-from .motion import _motion
+from .motion import _motion, _switches
 from .motion import accelerations as columns_accelerations
 
 def gripping(problem: Problem) -> KineticFriction | None:
@@ -268,7 +268,13 @@ class _Columns:
     time and second rates 0), ``at(cols, t, y)`` the state values of columns ``cols``, the
     right-hand side, and event functions of the extended state. ``strict``: one column's
     balances solved as one motion alone solves them (raising where they are undefined),
-    else every column's (NaN where undefined)."""
+    else every column's (NaN where undefined).
+
+    A phase whose balances hold a slip's ``|u|`` is integrated with its modes
+    (:mod:`.batch_motion`: each step keeps the slip's direction it starts with), as
+    :class:`~.motion.Motion` integrates such a motion: the step across the end of the slip,
+    the phase's event, continues the motion before it smoothly instead of shrinking against
+    the jump in the friction."""
 
     def __init__(self, problem: Problem, kp, values: np.ndarray,
                  strict: Callable[[np.ndarray], np.ndarray] | None):
@@ -279,6 +285,9 @@ class _Columns:
         rates, seconds = index.rates(1), index.rates(2)
         self.qd, self.qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
         self.reactions = len(kp.kin.reactions)
+        self.unknowns = list(kp.columns)
+        self.switches = _switches(kp)
+        self.careful = strict is not None  # (off while the modes' integration runs)
         values[self.time] = 0.0
         values[self.qdd] = 0.0
         self.y0 = np.concatenate([values[:self.n], values[self.qd]])
@@ -293,16 +302,28 @@ class _Columns:
     def extended(self, x: np.ndarray) -> np.ndarray:
         return np.concatenate([x, np.zeros((self.reactions, x.shape[1]))])
 
-    def solve(self, x: np.ndarray) -> np.ndarray:
-        """The extended states with the second rates and reactions solved."""
-        if self.strict is not None:
+    def solve(self, x: np.ndarray, modes: np.ndarray | None = None) -> np.ndarray:
+        """The extended states with the second rates and reactions solved (with each
+        slip's direction ``modes``: :class:`~.motion._Switching`)."""
+        if self.strict is not None and self.careful:
             return self.strict(x)
         e = self.extended(x)
-        e[list(self.kp.columns)] = 0.0
-        return columns_accelerations(self.kp, e)
+        if modes is None or self.switches is None:
+            e[self.unknowns] = 0.0
+            return columns_accelerations(self.kp, e)
+        e = np.concatenate([e, modes])
+        e[self.unknowns] = 0.0
+        return columns_accelerations(self.kp, e, self.switches)
 
-    def rhs(self, cols, t, y, _modes=None) -> np.ndarray:
-        return np.concatenate([y[self.n:], self.solve(self.at(cols, t, y))[self.qdd]])
+    def rhs(self, cols, t, y, modes=None) -> np.ndarray:
+        return np.concatenate([y[self.n:], self.solve(
+            self.at(cols, t, y), modes if modes is not None and len(modes) else None)[self.qdd]])
+
+    def mode(self, cols, t, y) -> np.ndarray:
+        """Each slip's direction."""
+        assert self.switches is not None
+        return np.sign(loud_call(self.switches.speeds, self.extended(self.at(cols, t, y)),
+                                 self.switches.count))
 
     def reading(self, fn: Callable, kinetic: bool) -> Callable:
         """The event ``fn`` (of the extended state; ``kinetic``: read with the balances,
@@ -344,6 +365,18 @@ class _Columns:
             lambda t, y: self.rhs(one, np.array([t]), y[:, None])[:, 0], self.y0[:, 0],
             self.analysis.max_time, where)]), {}
 
+    def _integrated(self, events: list[Callable], direction: np.ndarray, y0: np.ndarray,
+                    t0: np.ndarray, modes: bool) -> Arrival:
+        careful = self.careful
+        self.careful = careful and not modes
+        try:
+            return integrate_to_events(self.rhs, events, y0, self.analysis.max_time, RTOL,
+                                       ATOL, MAX_CALLS, direction=direction, t0=t0,
+                                       mode=self.mode if modes else None,
+                                       keep=EVERY_STEP if self.strict is not None else 12)
+        finally:
+            self.careful = careful
+
     def run(self, events: list[Callable], senses: list[np.ndarray], y0: np.ndarray,
             t0: np.ndarray) -> _Run:
         """Every column integrated from ``y0`` at ``t0`` to the first of ``events`` (each with
@@ -354,9 +387,12 @@ class _Columns:
         direction = np.array(senses, dtype=float).reshape(len(events), count)
         g = np.array([e(np.arange(count), t0, y0) for e in events]).reshape(len(events), count)
         now = ((direction == 0) & (g == 0)).any(axis=0)
-        arrival = integrate_to_events(self.rhs, events, y0, self.analysis.max_time, RTOL, ATOL,
-                                      MAX_CALLS, direction=direction, t0=t0,
-                                      keep=EVERY_STEP if self.strict is not None else 12)
+        arrival = self._integrated(events, direction, y0, t0, self.switches is not None)
+        if self.strict is not None and self.switches is not None and \
+                arrival.status[0] not in (FIRED, NEVER):
+            # alone, a motion its modes do not take to an event: without them, step by
+            # step, which says why
+            arrival = self._integrated(events, direction, y0, t0, False)
         which = np.full(count, -1) if arrival.which is None else arrival.which.copy()
         status, t, y = arrival.status.copy(), arrival.t.copy(), arrival.y.copy()
         before = arrival.before.copy()
