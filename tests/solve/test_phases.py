@@ -15,12 +15,13 @@ from mechgrade.solve.instant import instant_givens
 from mechgrade.solve.levels import place_givens
 from mechgrade.solve.phases import (gripping, gripping_phase, gripping_word, reach,
                                     reach_columns)
-from mechgrade.spec import load_problem_text
+from mechgrade.spec import load_problem, load_problem_text
 from mechgrade.spec.dynamics import StaticFriction
 
 ROOT = Path(__file__).resolve().parents[2]
 BALL = (ROOT / "problems" / "bowling_ball_skids_then_rolls.yaml").read_text()
 INCLINE = (ROOT / "problems" / "block_sliding_down_incline.yaml").read_text()
+SLIDES_ON = ROOT / "tests" / "data" / "phases" / "ball_slides_on_past_its_slip.yaml"
 GRIPS = "kind: kinetic,\n          then: {kind: static, mu: mu_s, direction: A.x}}"
 
 
@@ -149,3 +150,11 @@ def test_each_column_of_a_class_switches_phase_at_its_own_end_of_the_slip():
         one = reach(problem, X[:, c], targets[c], kinetics_plan, accelerations)
         assert one.phase is p.phase and one.before is None is p.before
         assert np.array_equal(one.values, p.values[:, 0])  # the steps it takes alone
+
+
+
+@pytest.mark.slow  # a cold derivation (over 1 s)
+def test_a_slip_that_ends_before_the_instant_asked_when_stalls_there_as_step_by_step():
+    problem = load_problem(SLIDES_ON)
+    with pytest.raises(SolveError, match=r"the integration stalls near t = 1\.41987 s"):
+        solve_dynamics(problem, objectives=["v_rolls"])

@@ -393,9 +393,11 @@ class _Columns:
             # alone, a motion its modes do not take to an event: without them, step by
             # step, which says why
             arrival = self._integrated(events, direction, y0, t0, False)
-        which = np.full(count, -1) if arrival.which is None else arrival.which.copy()
         status, t, y = arrival.status.copy(), arrival.t.copy(), arrival.y.copy()
         before = arrival.before.copy()
+        which = np.full(count, -1)
+        if arrival.which is not None:  # (a column that switched has no event)
+            which = np.where(status == FIRED, arrival.which, -1)
         which[now] = ((direction == 0) & (g == 0)).argmax(axis=0)[now]
         status[now], t[now], y[:, now], before[:, now] = FIRED, t0[now], y0[:, now], y0[:, now]
         if self.strict is not None and status[0] not in (FIRED, NEVER):
