@@ -33,6 +33,15 @@ def alone(problem, variants):
     return out
 
 
+def together_and_alone(problem, variants):
+    """The ``variants`` solved together, none of them left to be solved alone, and each
+    solved alone."""
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants))  # none went alone
+    return solve_variants(problem, variants), alone(problem, variants)
+
+
 EXACT = (1e-8, 1e-10)
 """Batched and alone agree to this (relative, absolute) where both take the same steps."""
 
@@ -205,15 +214,15 @@ ASKED_BEFORE_THE_EVENT = ("ball_thrown_with_drag_apex_and_landing", "damped_bloc
                     "three_cart_chain_vibration")
 """Integrated problems with objectives asked before the event (an objective's own time,
 coordinate or rate): the integrator over columns stops each variant at that instant too."""
-POSITIONED_ALONE = ("bowling_ball_skids_then_rolls",)
-"""Problems whose motion goes on in another phase once a slip ends (an objective asked 'when'
-in a phase): the instant is searched for each variant alone."""
+IN_PHASES = ("bowling_ball_skids_then_rolls",)
+"""Integrated problems whose motion goes on in another phase once a slip ends, with
+objectives asked 'when' an equation holds: each variant switches phase at its own instant."""
 
 
 def _reached_otherwise(path: Path) -> bool:
     """Whether the spec's instant is reached by work-energy, by integrating the motion or
     with a design parameter solved for (read from the text, so collecting stays fast)."""
-    return path.stem not in ASKED_BEFORE_THE_EVENT + POSITIONED_ALONE and \
+    return path.stem not in ASKED_BEFORE_THE_EVENT + IN_PHASES and \
         bool(re.search(r"^\s+(work_energy|integrate|design):", path.read_text(), re.M))
 
 
@@ -287,14 +296,55 @@ def test_variants_asked_before_the_event_are_reached_together_there_as_alone(nam
 
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name", POSITIONED_ALONE)
-def test_variants_asked_at_a_position_are_solved_alone(name, tmp_path):
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation of both phases, over 2 s)
+@pytest.mark.parametrize("name", IN_PHASES)
+def test_variants_of_a_motion_in_phases_are_reached_together_as_alone(name, tmp_path):
     problem = with_drawn_parameters(PROBLEMS / f"{name}.yaml", tmp_path)
-    assert _template(problem) is None
-    variants = [dict(draw_variant(problem, "batch", str(n)).overrides) for n in range(2)]
+    template = _template(problem)
+    assert template is not None
+    variants = [dict(draw_variant(problem, "batch", str(n)).overrides) for n in range(3)]
+    assert all(s is not None for s in template.solve(variants))  # none went alone
+    for k, (together, one) in enumerate(zip(solve_variants(problem, variants),
+                                            alone(problem, variants))):
+        assert_same(together, one, EXACT, generated=k == 0)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 2 s)
+def test_variants_asked_when_on_a_motion_without_phases_are_reached_together_as_alone():
+    throw = (PROBLEMS / "ball_thrown_with_drag_apex_and_landing.yaml").read_text()
+    problem = load_problem_text(throw.replace(
+        "    givens: {y': 0 m/s}\n    expect: {value: 9.940268}",
+        "    when: y' = 0\n    expect: {value: 9.940268}"), "p.yaml")
+    variants = [{"m": 30.0}, {"m": 35.0}]
+    template = _template(problem)
+    assert template is not None
+    assert all(s is not None for s in template.solve(variants, ["apex_height"]))
     for together, one in zip(solve_variants(problem, variants), alone(problem, variants)):
         assert_same(together, one, EXACT, generated=False)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation of both phases, over 2 s)
+def test_a_variant_whose_grip_fails_or_whose_motion_ends_first_fails_in_the_class_as_alone():
+    problem = load_problem(PROBLEMS / "bowling_ball_skids_then_rolls.yaml")
+    # the grip needs more than mu_s N; the ball stops before it rolls and before 2 s
+    variants = [{"mu_s": 0.04}, {"v0": 2.0}, {"v0": 6.0}]
+    said = ["grip then needs more friction than mu_s N", "does not hold before the event", None]
+    for a, b, words in zip(*together_and_alone(problem, variants), said):
+        assert words in str(b.failures[0].error) if words else not b.failures
+        assert_same(a, b, EXACT, generated=False)
+
+
+@pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 1 s)
+def test_a_variant_whose_slip_ends_before_its_instant_asked_when_is_solved_alone():
+    problem = load_problem(ROOT / "tests/data/phases/ball_slides_on_past_its_slip.yaml")
+    variants = [{"mu_k": 0.01}, {"mu_k": 0.12}]  # slides on to 60 radii; stops slipping first
+    template = _template(problem)
+    assert template is not None
+    assert [s is not None for s in template.solve(variants, ["v_rolls"])] == [True, False]
+    together = solve_variants(problem, variants, ["v_rolls"])
+    assert_same(together[0], solve(problem, givens=variants[0], objectives=["v_rolls"]), EXACT,
+                generated=False)
+    assert "the integration stalls near t = 1.41987 s" in str(together[1])
 
 
 REACHED_OTHERWISE_COUNT = 27  # 26 problems (two gyroscopes by design) and examples/hw3's pendulum
@@ -374,11 +424,7 @@ def test_a_variant_whose_event_comes_before_its_instant_fails_in_the_class_as_al
 def test_a_variant_at_rest_in_an_objectives_own_rate_waits_for_its_next_crossing_in_the_class():
     problem = load_problem(PROBLEMS / "three_cart_chain_vibration.yaml")
     variants = [{"v0": 0.0}, {"v0": 0.3}]  # at rest, x3' = 0 holds at the start and stays
-    template = _template(problem)
-    assert template is not None
-    assert all(s is not None for s in template.solve(variants))  # neither went alone
-    together = solve_variants(problem, variants)
-    one = alone(problem, variants)
+    together, one = together_and_alone(problem, variants)
     failed = {f.id: str(f.error) for f in one[0].failures}
     assert "the event holds at the start (t = 0) and stays so" in failed["time_cart3_stops"]
     for a, b in zip(together, one):

@@ -5,17 +5,23 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from mechgrade.errors import SolveError, SpecError
-from mechgrade.solve.dynamics import solve_dynamics
-from mechgrade.solve.phases import gripping, gripping_phase, gripping_word
-from mechgrade.spec import load_problem_text
+from mechgrade.solve.dynamics import (accelerations, kinematic_problem, kinetic_reach,
+                                     kinetics_plan, solve_dynamics)
+from mechgrade.solve.instant import instant_givens
+from mechgrade.solve.levels import place_givens
+from mechgrade.solve.phases import (gripping, gripping_phase, gripping_word, reach,
+                                    reach_columns)
+from mechgrade.spec import load_problem, load_problem_text
 from mechgrade.spec.dynamics import StaticFriction
 
 ROOT = Path(__file__).resolve().parents[2]
 BALL = (ROOT / "problems" / "bowling_ball_skids_then_rolls.yaml").read_text()
 INCLINE = (ROOT / "problems" / "block_sliding_down_incline.yaml").read_text()
+SLIDES_ON = ROOT / "tests" / "data" / "phases" / "ball_slides_on_past_its_slip.yaml"
 GRIPS = "kind: kinetic,\n          then: {kind: static, mu: mu_s, direction: A.x}}"
 
 
@@ -123,3 +129,32 @@ def test_an_objective_asked_when_on_a_motion_without_phases_is_read_where_it_fir
                           "    when: y' = 0\n    expect: {value: 9.940268}")
     solution = solve_dynamics(load_problem_text(asked, "p.yaml"), objectives=["apex_height"])
     assert solution.result("apex_height").value == pytest.approx(9.940268, rel=1e-6)
+
+
+@pytest.mark.slow  # derives both phases (over 2 s)
+def test_each_column_of_a_class_switches_phase_at_its_own_end_of_the_slip():
+    problem = load_problem_text(BALL, "p.yaml")
+    kp = kinetics_plan(problem)
+    overrides = {"t": problem.objective("x_at_2s").givens[0]}
+    # rolls from t = 1.42 s; with less friction it still skids at t = 2 s
+    maps = [instant_givens(problem, g, overrides) for g in ({}, {"mu_k": 0.05})]
+    X = np.stack([place_givens(kinematic_problem(problem), kp.kp, m).values for m in maps],
+                 axis=1)
+    targets = [kinetic_reach(problem).entry(m, "t") for m in maps]
+    found = reach_columns(problem, X, targets, kinetics_plan)
+    assert not found.errors
+    assert [(p.phase is problem, p.columns.tolist()) for p in found.phases] == \
+        [(True, [1]), (False, [0])]
+    for p in found.phases:
+        (c,) = p.columns
+        one = reach(problem, X[:, c], targets[c], kinetics_plan, accelerations)
+        assert one.phase is p.phase and one.before is None is p.before
+        assert np.array_equal(one.values, p.values[:, 0])  # the steps it takes alone
+
+
+
+@pytest.mark.slow  # a cold derivation (over 1 s)
+def test_a_slip_that_ends_before_the_instant_asked_when_stalls_there_as_step_by_step():
+    problem = load_problem(SLIDES_ON)
+    with pytest.raises(SolveError, match=r"the integration stalls near t = 1\.41987 s"):
+        solve_dynamics(problem, objectives=["v_rolls"])

@@ -14,6 +14,8 @@ import sympy as sp
 
 from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Problem
+from ..errors import MechgradeError
+from .columns import call
 from .junctions import settle_junctions
 
 
@@ -91,16 +93,25 @@ def extended(kp, values: np.ndarray) -> np.ndarray:
 
 
 def start_values(problem: Problem, kp, ap: AnalysisPlan, values: np.ndarray) -> np.ndarray:
-    """``values`` with the coordinates and rates of the start state put in (a massless
-    junction's settled by its balance: :func:`~.junctions.settle_junctions`)."""
-    x = extended(kp, values)
-    out = values.copy()
-    for i, fn in ap.start:
-        out[i] = value_at(fn, x)
-    settled, errors = settle_junctions(problem, kp, out[:, None])
+    """``values`` with the coordinates and rates of the start state put in: one column of
+    :func:`start_columns`, raising its error."""
+    settled, errors = start_columns(problem, kp, ap, values[:, None])
     if errors:
         raise errors[0]
     return settled[:, 0]
+
+
+def start_columns(problem: Problem, kp, ap: AnalysisPlan, X: np.ndarray
+                  ) -> tuple[np.ndarray, dict[int, MechgradeError]]:
+    """``X`` (state values, one column each) with the coordinates and rates of the start
+    state put in (a massless junction's settled by its balance:
+    :func:`~.junctions.settle_junctions`), and the error of each column whose junction does
+    not settle."""
+    x = np.concatenate([X, np.zeros((len(kp.kin.reactions), X.shape[1]))])
+    out = X.copy()
+    for i, fn in ap.start:
+        out[i] = call(fn, x, 1)[0]
+    return settle_junctions(problem, kp, out)
 
 
 _Kind = TypeVar("_Kind", WorkEnergy, Integration)

@@ -15,8 +15,11 @@ variants' right-hand sides in one call); a design parameter by Newton's method a
 whole instant (:func:`~.batch_motion.newton`: every variant's iterate and a point beside it
 in one call), from the guess :meth:`~.dynamics.DesignedInstant.designed` starts at. An
 objective asked before an integration's event (at a time, coordinate or rate of its own) is
-read where each variant's motion, integrated the same way, first takes that value. The loop
-over the groups of objectives is the single solve's (:func:`~.instant.drive_columns`).
+read where each variant's motion, integrated the same way, first takes that value; a motion
+in phases (a slip that ends, then a grip) or an objective asked ``when:`` on an integrated
+motion, where :func:`~.phases.reach_columns` reaches it (each variant switching phase at its
+own end of the slip). The loop over the groups of objectives is the single solve's
+(:func:`~.instant.drive_columns`).
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -63,7 +66,7 @@ from .mutants import GeneratedColumns, generated_columns, plausible_slips, value
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, balances
-from .phases import gripping
+from .phases import Target, Until, asked_when, gripping, reach_columns
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .result import Solution
@@ -223,9 +226,11 @@ class _Template:
                              variants, wanted, given)
 
     def _integrates(self, group: _Group) -> bool:
-        """Whether ``group``'s instant is reached by integrating the motion from the givens
-        (not by a design stage around it)."""
-        return isinstance(self.analysis, Integration) and not self._designs(group)
+        """Whether ``group``'s instant is reached by integrating the motion from the givens in
+        one pass with the class's other instants (not by a design stage around it, nor in
+        phases, :meth:`_phased`)."""
+        return isinstance(self.analysis, Integration) and not self._designs(group) \
+            and not self._phased(group)
 
     def _designs(self, group: _Group) -> bool:
         """Whether ``group``'s instant is reached by solving for the design parameter."""
@@ -325,8 +330,9 @@ class _Template:
                       ) -> tuple[list[dict], dict[int, MechgradeError]]:
         """Each column's givens with the position an objective asked ``when`` fixes
         (:func:`~.dynamics.at_positions`, every column at once), and the columns that have
-        none with its error (their position undefined: not reached)."""
-        if self.kinetics is None:
+        none with its error (their position undefined: not reached). A motion integrated
+        finds its own (:meth:`_in_phases`)."""
+        if self.kinetics is None or not isinstance(self.analysis, WorkEnergy):
             return maps, {}
         from .dynamics import at_positions
 
@@ -375,6 +381,8 @@ class _Template:
         An integrated group's instants are ``integrated`` already (:meth:`_integrated`)."""
         p = self.p
         unreached: dict[int, MechgradeError] = {}
+        if self._phased(group):
+            return self._in_phases(group, self._placed(group, maps)[0], maps)
         if self._integrates(group):
             assert integrated is not None and isinstance(self.analysis, Integration)
             X, ok, never, stuck = integrated
@@ -418,6 +426,63 @@ class _Template:
                 level, row = group.conditions[key]
                 targets[level][row] = column
         return X, targets
+
+    def _phased(self, group: _Group) -> bool:
+        """Whether ``group``'s instant is reached on a motion in phases, or asked ``when``
+        (:mod:`.phases`)."""
+        return isinstance(self.analysis, Integration) and (
+            gripping(self.problem) is not None
+            or asked_when(self.problem, group.numeric) is not None)
+
+    def _in_phases(self, group: _Group, X: np.ndarray, maps: list[dict]):
+        """:meth:`_instant` of a group on a motion in phases (:func:`~.phases.reach_columns`,
+        as :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant): each column's
+        objectives read with the model of the phase its instant is in. The states returned
+        are the state values (the extended states differ between phases)."""
+        from .dynamics import IntegratedInstant, kinetic_reach, kinetics_plan
+
+        problem, n, size = self.problem, len(maps), self.p.index.size
+        reach = kinetic_reach(problem)
+        assert isinstance(reach, IntegratedInstant)
+        asked = instant_of_objective(problem, group.overrides)
+        when = asked_when(problem, group.numeric)
+        targets: list[Target] = [reach.entry(m, asked) if asked is not None else
+                                 when if when is not None else Until() for m in maps]
+        found = reach_columns(problem, X, targets, kinetics_plan)
+        unreached: dict[int, MechgradeError] = dict(found.errors)
+        ok = np.zeros(n, dtype=bool)
+        out = np.full((size, n), np.nan)
+        values = {oid: np.full((_size(problem, oid), n), np.nan) for oid in group.numeric}
+        declared: dict[str, list[np.ndarray]] = {}
+        missing: list[dict] = [{} for _ in range(n)]
+        for at in found.phases:
+            kp = kinetics_plan(at.phase)
+            cols = at.columns
+            if at.before is None:
+                solved = balances(at.phase, kp, at.values, after_event(kp.kp))
+                x, before = solved.x, None
+            else:  # the contact checks hold along the way: judged just before the event
+                solved = balances(at.phase, kp, at.before[:size], after_event(kp.kp))
+                x, before = at.before.copy(), at.before
+                keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
+                x[keep] = at.values[keep]
+            for j in np.flatnonzero(~solved.ok):
+                error = solved.errors[int(j)]
+                assert error is not None  # a column not solved has its error
+                unreached[int(cols[j])] = error
+            ok[cols] = solved.ok
+            out[:, cols] = x[:size]
+            read = read_objectives(at.phase, kp, x, group.numeric, rules.REQUIRED_KINETIC,
+                                   before)
+            for oid, v in read.values.items():
+                values[oid][:, cols] = v
+            for oid, vs in read.mistakes.items():
+                into = declared.setdefault(oid, [np.full((len(v), n), np.nan) for v in vs])
+                for whole, v in zip(into, vs):
+                    whole[:, cols] = v
+            for j, lost in zip(cols, read.missing):
+                missing[int(j)] = lost
+        return out, ok, values, declared, unreached, missing
 
     def _reached(self, group: _Group, X: np.ndarray, targets: list,
                  placed: Callable[[int], Givens], degenerate: bool,
@@ -650,18 +715,18 @@ def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Temp
         p = kinetics.kp
     else:
         p = kinematics_plan(problem)
-    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or gripping(problem) or \
-            (any(o.when is not None for o in problem.objectives)
-             and not isinstance(analysis, WorkEnergy)):
-        # each variant solved alone (a root searched for, or the motion goes on in another
-        # phase, once a slip ends or where an objective asks it)
-        return None
     # An integrated motion's variants are reached from their own givens, each column
     # screened: its reference need not be solved (a mistaken model's event may never happen
     # for the spec's givens, as for every variant). Any other continues from the reference's
     # root, which must be one the scalar solver finds without care.
     integrated = isinstance(analysis, Integration) and problem.dynamics is not None \
         and problem.dynamics.design is None
+    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or (not integrated and (
+            gripping(problem) or (any(o.when is not None for o in problem.objectives)
+                                  and not isinstance(analysis, WorkEnergy)))):
+        # each variant solved alone (a root searched for, or a motion designed goes on in
+        # another phase once a slip ends or where an objective asks it)
+        return None
     if integrated:
         # solved all the same, first: a symbolic answer, kept for the givens it depends on,
         # is the one the spec's givens give, as when the reference must be solved

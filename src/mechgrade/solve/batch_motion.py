@@ -85,7 +85,7 @@ class Arrival:
 def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, t_bound: float,
                         rtol: float, atol: float, max_calls: int, lead: float = rules.BEFORE_EVENT,
                         mode: Callable | None = None,
-                        direction: np.ndarray | None = None, t0: float = 0.0,
+                        direction: np.ndarray | None = None, t0: float | np.ndarray = 0.0,
                         keep: int = 12) -> Arrival:
     """Integrate ``y' = rhs`` from ``y0`` (states x columns) at ``t0`` until ``event``
     changes sign (or becomes zero), per column, as ``solve_ivp(method="DOP853",
@@ -96,14 +96,14 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     only with one. ``event`` may be a list of several (``direction`` then events x columns):
     a column stops in the step where one fires, at the earliest root of those that fired
     there (the lowest index of equal ones), as ``solve_ivp`` records terminal events; each
-    root is found evaluating its own event alone.
+    root is found evaluating its own event alone. ``t0``: the start, or each column's.
     ``keep``: the last steps kept per column, where the moment before the event is read (one
     column alone may keep all it can take, as ``solve_ivp``'s dense output does)."""
     c = dop853
     m, count = y0.shape
     status = np.full(count, FAILED)
     cols = np.arange(count)
-    t = np.full(count, float(t0))
+    t = np.broadcast_to(np.asarray(t0, dtype=float), (count,)).copy()
     y = y0.astype(float).copy()
     modes = mode(cols, t, y) if mode is not None else np.zeros((0, count))
     f = rhs(cols, t, y, modes)
@@ -122,7 +122,7 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
         sense[:] = direction
     moving = np.isfinite(f).all(axis=0) & np.isfinite(g).all(axis=0) & \
         ((g != 0) | (sense != 0)).all(axis=0)
-    history = _History(count, m, c.N_STAGES + 1, len(modes), t0, keep)
+    history = _History(count, m, c.N_STAGES + 1, len(modes), t.copy(), keep)
     ends = np.zeros((2,) + g.shape)  # the events' values at the ends of the step one fired in
     hit = np.zeros(g.shape, dtype=bool)  # which events fired there
     switch = np.full(count, -1)  # the mode that switched before the event
@@ -290,7 +290,7 @@ def _arrivals(rhs, events: list, mode, history: "_History", status, ends, hit, l
     root = times[which, everyone]
     t_event[e] = root
     y_event[:, e] = dense(root, everyone)
-    earlier = np.maximum(root * (1 - lead), history.start)
+    earlier = np.maximum(root * (1 - lead), history.start[e])
     before[:, e] = dense(np.clip(earlier, t_old, t_new), everyone)
     slot, held = history.holding(e, earlier)
     back = np.flatnonzero(held & (slot != last))
@@ -318,11 +318,12 @@ class _History:
     """The last accepted steps of every column (the step's ends and stages), enough to
     build the dense output of any of them."""
 
-    def __init__(self, count: int, m: int, stages: int, modes: int, start: float, size: int):
+    def __init__(self, count: int, m: int, stages: int, modes: int, start: np.ndarray,
+                 size: int):
         # steps kept per column: the moment before the event is in the last few, unless the
         # steps shorten a great deal before it (a singularity passed)
         self.size = L = size
-        self.start = start
+        self.start = start  # each column's
         self.modes = np.empty((L, modes, count))
         self.t_old = np.full((L, count), np.nan)
         self.t_new = np.full((L, count), np.nan)
@@ -346,7 +347,7 @@ class _History:
         t_new``, as ``OdeSolution`` picks the step; the first step holds its start too), and
         whether one is kept."""
         t_old = self.t_old[:, cols]
-        inside = ((t_old < t) | (t_old == self.start)) & (t <= self.t_new[:, cols])
+        inside = ((t_old < t) | (t_old == self.start[cols])) & (t <= self.t_new[:, cols])
         return inside.argmax(axis=0), inside.any(axis=0)
 
     def dense(self, rhs, cols, slots, c):

@@ -32,6 +32,9 @@ from .levels import State
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
+EVERY_STEP = MAX_CALLS // dop853.N_STAGES + 1
+"""The steps one motion integrated alone keeps (every step it may take), where the moment
+before its event is read, as ``solve_ivp``'s dense output keeps them."""
 LEAVING = 1e-6
 """The moment after the start, as a part of the time allowed, at which the side an event that
 holds at the start is left to is read: far shorter than any motion the time allowed holds."""
@@ -114,13 +117,24 @@ def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start:
     arrival = integrate_to_events(
         _rhs_column(rhs), [_event_column(e) for e in events], y0[:, None], t_bound, RTOL, ATOL,
         MAX_CALLS, direction=np.array(directions, dtype=float)[:, None], t0=start,
-        keep=MAX_CALLS // dop853.N_STAGES + 1)  # every step it may take
+        keep=EVERY_STEP)
     status, t = int(arrival.status[0]), float(arrival.t[0])
     if status not in (FIRED, NEVER):
-        raise _unfinished(status, t, where)
+        raise not_integrated(status, t, where)
     which = None if status == NEVER or arrival.which is None else int(arrival.which[0])
     return Run(which, t, arrival.y[:, 0], max(start, t * (1 - rules.BEFORE_EVENT)),
                arrival.before[:, 0])
+
+
+def not_integrated(status: int, t: float, where) -> SolveError:
+    """The error of an integration that ended at ``t`` without an answer
+    (``status``: :data:`~.batch_motion.STALLED`, or failed)."""
+    if status == STALLED:
+        return SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
+                          "motion may switch there, e.g. friction reversing once the slip "
+                          "ends)", where=where)
+    return SolveError(f"the integration failed near t = {t:.6g} s: its step fell below the "
+                      "spacing of numbers there, or the motion is undefined", where=where)
 
 
 class _ScalarMotion:
@@ -182,17 +196,6 @@ def _event_column(event: Callable) -> Field:
     return lambda _c, t, y, _m: np.array([event(float(t[0]), y[:, 0])])
 
 
-def _unfinished(status: int, t: float, where) -> SolveError:
-    """The error of an integration that stalled (:data:`~.batch_motion.STALLED`) or failed
-    near ``t`` before its end."""
-    if status == STALLED:
-        return SolveError(f"the integration stalls near t = {t:.6g} s before the event (the "
-                          "motion may switch there, e.g. friction reversing once the slip "
-                          "ends)", where=where)
-    return SolveError(f"the integration failed near t = {t:.6g} s: its step fell below the "
-                      "spacing of numbers there, or the motion is undefined", where=where)
-
-
 def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, t_bound: float,
             where) -> tuple[np.ndarray, dict[int, SolveError], dict[int, SolveError]]:
     """Each column's event's ``direction`` (as scipy reads it, see
@@ -233,7 +236,7 @@ def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, 
     direction[held] = np.where(reached & moved & np.isfinite(side), -side, 0.0)
     stays = {int(i): event_stays(where) for i in held[reached & ((side == 0) | ~moved)]}
     left = ~reached | (moved & ~np.isfinite(side))
-    return direction, stays, {int(i): _unfinished(int(status), float(t), where)
+    return direction, stays, {int(i): not_integrated(int(status), float(t), where)
                               for i, status, t in zip(held[left], moment.status[left],
                                                       moment.t[left])}
 

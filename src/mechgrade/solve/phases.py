@@ -8,6 +8,10 @@ momentum balances then give the friction the grip needs, which must stay within 
 rest of the motion (a contact that would slip again is refused, where it would). Every phase
 is integrated as :mod:`.events` integrates one motion (DOP853, rtol 1e-11, its roots refined
 on the dense output); of events that happen in the same step, the earliest is the instant.
+
+A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
+integration over columns, each column switching phase at its own end of the slip. One solve
+is one such column solved alone (:func:`reach`).
 """
 
 from __future__ import annotations
@@ -19,14 +23,20 @@ from typing import Callable
 import numpy as np
 import sympy as sp
 
-from ..errors import Location, SolveError
+from ..errors import Location, MechgradeError, SolveError
 from ..expressions.syntax import parse, to_text
 from ..spec.dynamics import (GROUND, Cylinder, Disk, Integration, KineticFriction, Ring,
                              Shell, Sphere, StaticFriction, dynamics_of)
 from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
-from .analysis import analysis_of, extended, value_at
-from .events import Run, _ScalarMotion, event_never_happens, instant_missed, next_crossing
+from . import rules
+from .analysis import analysis_of, analysis_plan, start_columns
+from .batch_motion import FIRED, NEVER, Arrival, integrate_to_events
+from .columns import loud_call, quiet
+from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, instant_missed,
+                     next_crossing, not_integrated)
+from .motion import _motion, _switches
+from .motion import accelerations as columns_accelerations
 
 def gripping(problem: Problem) -> KineticFriction | None:
     """The kinetic friction that grips once its slip ends (``then:``), if any."""
@@ -145,109 +155,42 @@ def reach(problem: Problem, base: np.ndarray, target: Target, kinetics_plan: Cal
           accelerations: Callable) -> PhaseInstant:
     """Integrate ``problem``'s motion from its start (``base``: the parameters placed in the
     state) to ``target``, through the end of the slip into the gripping phase when the
-    problem has one (:func:`gripping`). ``kinetics_plan(problem)`` and
-    ``accelerations(plan, values)`` are :mod:`.dynamics`'s (which imports this module).
-    Raises, located, when the target is not reached before the event or the time allowed,
-    or the contact would slip again."""
-    analysis = analysis_of(problem, Integration)
-    kp = kinetics_plan(problem)
-
-    def solve_in(plan):
-        return lambda values: accelerations(plan, values)
-
-    m = _ScalarMotion(problem, kp, base, solve_in(kp))
-    aim = _aimed(target, kp, m, solve_in(kp))
-    events, directions = [m.until], [m.direction]
-    if aim is not None:
-        assert not isinstance(target, Until), "the motion's own event is aimed at as until"
-        events.append(aim)
-        directions.append(0.0 if isinstance(target, Entry) and target.at == kp.kp.index.time
-                          else next_crossing(aim, m.rhs, m.y0, analysis.max_time,
-                                             target.where))  # t = 0 is the start itself
-    grip = gripping(problem)
-    if grip is not None:
-        slip = _slip(problem, kp, kinetics_plan(gripping_phase(problem)))
-
-        def slipping(t, y):
-            return value_at(slip, extended(kp, m.at(t, y)))
-
-        events.append(slipping)
-        directions.append(0.0)
-    run = m.run(events, directions)
-    if run.which is None or (run.which == 0 and aim is not None):
-        raise _missed(analysis, target, [run.t] if run.which == 0 else [])
-    if grip is None or run.which < len(events) - 1:
-        return _instant(problem, m, solve_in(kp), run, target)
-    return _rolling(problem, base, target, run, m.direction,
-                    kinetics_plan(gripping_phase(problem)), accelerations)
+    problem has one (:func:`gripping`): one column of :func:`reach_columns`, solved alone
+    (``kinetics_plan(problem)`` and ``accelerations(plan, values)`` are :mod:`.dynamics`'s,
+    which imports this module). Raises, located, when the target is not reached before the
+    event or the time allowed, or the contact would slip again."""
+    found = reach_columns(problem, base[:, None], [target], kinetics_plan,
+                          lambda kp: lambda x: accelerations(kp, x[:, 0])[:, None])
+    (at,) = found.phases  # alone, every error is raised
+    return PhaseInstant(at.phase, at.values[:, 0], None if at.before is None else at.before[:, 0])
 
 
-def _rolling(problem: Problem, base: np.ndarray, target: Target, slipped: Run,
-             direction: float, kp, accelerations: Callable) -> PhaseInstant:
-    """The gripping phase (its kinetics ``kp``) from the end of the slip (``slipped``) to
-    ``target``; ``direction``: that of the motion's event (see :func:`.events.next_crossing`)."""
-    analysis = analysis_of(problem, Integration)
-    phase = gripping_phase(problem)
-    start = slipped.t
-
-    def solve(values):
-        return accelerations(kp, values)
-
-    m = _ScalarMotion(phase, kp, base, solve, leave=False)
-    aim = _aimed(target, kp, m, solve)
-    margin = _margin(problem, kp)
-
-    def grips(t, y):
-        return value_at(margin, solve(m.at(t, y)))
-
-    grip = gripping(problem)
-    assert grip is not None and grip.then is not None
-    held = grips(start, slipped.y)
-    if not held >= 0:
-        raise SolveError(f"friction '{grip.name}': the slip ends at t = {start:.6g} s, but the "
-                         f"grip then needs more friction than mu_s N ({-held:.6g} N short): the "
-                         "contact slips on, which this integration does not follow (a "
-                         "larger mu_s, or end the motion where the slip ends: until: its slip "
-                         "speed = 0)", where=grip.then.where)
-    events = [m.until] + ([aim] if aim is not None else []) + [grips]
-    run = m.run(events, [direction] + [0.0] * (len(events) - 1), start, slipped.y)
-    if run.which == len(events) - 1:
-        raise SolveError(f"friction '{grip.name}' grips once its slip ends at t = {start:.6g} "
-                         f"s, and would slip again at t = {run.t:.6g} s (the friction the grip "
-                         "needs reaches mu_s N there): a motion that slips again is not "
-                         "supported; end the motion before it (until: t = T, T a parameter given in s)",
-                         where=grip.then.where)
-    if run.which is None or (run.which == 0 and aim is not None):
-        raise _missed(analysis, target, [run.t] if run.which == 0 else [])
-    return _instant(phase, m, solve, run, target)
+def _slips_on(grip: KineticFriction, start: float, held: float) -> SolveError:
+    """The error of a grip that needs more than mu_s N where the slip ends (``held``: mu_s
+    N - |F| there)."""
+    assert grip.then is not None
+    return SolveError(f"friction '{grip.name}': the slip ends at t = {start:.6g} s, but the "
+                      f"grip then needs more friction than mu_s N ({-held:.6g} N short): the "
+                      "contact slips on, which this integration does not follow (a "
+                      "larger mu_s, or end the motion where the slip ends: until: its slip "
+                      "speed = 0)", where=grip.then.where)
 
 
-def _instant(problem: Problem, m: _ScalarMotion, solve, run: Run, target: Target
-             ) -> PhaseInstant:
-    values = m.at(run.t, run.y)
-    if isinstance(target, Entry):
-        values[target.at] = target.value  # where the root was found: the given holds there
-        return PhaseInstant(problem, values, None)
-    return PhaseInstant(problem, values, solve(m.at(run.earlier, run.before)))
+def _slips_again(grip: KineticFriction, start: float, t: float) -> SolveError:
+    """The error of a grip that would slip again at ``t``."""
+    assert grip.then is not None
+    return SolveError(f"friction '{grip.name}' grips once its slip ends at t = {start:.6g} "
+                      f"s, and would slip again at t = {t:.6g} s (the friction the grip "
+                      "needs reaches mu_s N there): a motion that slips again is not "
+                      "supported; end the motion before it (until: t = T, T a parameter given in s)",
+                      where=grip.then.where)
 
 
-def _aimed(target: Target, kp, m: _ScalarMotion, solve):
-    """The event function of ``target`` on the motion ``m`` (``None``: the motion's own)."""
-    if isinstance(target, Until):
-        return None
-    if isinstance(target, Entry):
-        def reached(t, y):
-            return m.at(t, y)[target.at] - target.value
-        return reached
-    expr = dict(kp.kin.whens)[target.objective]
-    equation = _lambdified(kp, expr)
-    kinetic = bool(expr.free_symbols & {*kp.kin.k.qdd, *kp.kin.reactions})
-
-    def holds(t, y):
-        # an equation of the state alone is read without the balances, as the motion's own
-        # event is (they are undefined where a slip speed is exactly zero: at its root)
-        return value_at(equation, solve(m.at(t, y)) if kinetic else extended(kp, m.at(t, y)))
-    return holds
+def _when(kp, objective: str) -> tuple[Callable, bool]:
+    """The ``when:`` equation of ``objective`` as a function of the extended state, and
+    whether it reads second rates or reactions (else it is read without the balances)."""
+    expr = dict(kp.kin.whens)[objective]
+    return _lambdified(kp, expr), bool(expr.free_symbols & {*kp.kin.k.qdd, *kp.kin.reactions})
 
 
 def _missed(analysis: Integration, target: Target, until_times) -> SolveError:
@@ -280,3 +223,309 @@ def _margin(problem: Problem, kp):
     bound = next(b for b in kp.kin.bounds if b.name == grip.name)
     return _lambdified(kp, bound.mu * bound.normal - sp.sqrt(sum(
         (c ** 2 for c in bound.tangential), sp.Integer(0))))
+
+
+# ---------------------------------------------------------------------------- over columns
+
+
+@dataclass(frozen=True)
+class PhaseColumns:
+    """The columns of a class (``columns``) whose instant lies in ``phase`` (the source, or
+    its gripping phase): their state values there (size x k) and extended states a moment
+    before (``None`` at an objective's own time, coordinate or rate)."""
+
+    phase: Problem
+    columns: np.ndarray
+    values: np.ndarray
+    before: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class Reaches:
+    """Where each column's phased motion reaches its target (:func:`reach_columns`): the
+    columns of each phase, and the error of each column whose target is not reached, as
+    :func:`reach` raises it. A column in neither is not vouched for here (alone, it says
+    why)."""
+
+    phases: tuple[PhaseColumns, ...]
+    errors: dict[int, MechgradeError]
+
+
+@dataclass(frozen=True)
+class _Run:
+    """Where each column's integration ended (:class:`~.batch_motion.Arrival`'s, ``which``
+    -1 where no event fired)."""
+
+    status: np.ndarray
+    t: np.ndarray
+    y: np.ndarray
+    before: np.ndarray
+    which: np.ndarray
+
+
+class _Columns:
+    """One phase's motion over columns: ``values`` the start values (size x columns; the
+    time and second rates 0), ``at(cols, t, y)`` the state values of columns ``cols``, the
+    right-hand side, and event functions of the extended state. ``strict``: one column's
+    balances solved as one motion alone solves them (raising where they are undefined),
+    else every column's (NaN where undefined).
+
+    A phase whose balances hold a slip's ``|u|`` is integrated with its modes
+    (:mod:`.batch_motion`: each step keeps the slip's direction it starts with), as
+    :class:`~.motion.Motion` integrates such a motion: the step across the end of the slip,
+    the phase's event, continues the motion before it smoothly instead of shrinking against
+    the jump in the friction."""
+
+    def __init__(self, problem: Problem, kp, values: np.ndarray,
+                 strict: Callable[[np.ndarray], np.ndarray] | None):
+        index = kp.kp.index
+        self.problem, self.kp, self.values, self.strict = problem, kp, values, strict
+        self.analysis = analysis_of(problem, Integration)
+        self.n, self.time = index.n, index.time
+        rates, seconds = index.rates(1), index.rates(2)
+        self.qd, self.qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
+        self.reactions = len(kp.kin.reactions)
+        self.unknowns = list(kp.columns)
+        self.switches = _switches(kp)
+        self.careful = strict is not None  # (off while the modes' integration runs)
+        values[self.time] = 0.0
+        values[self.qdd] = 0.0
+        self.y0 = np.concatenate([values[:self.n], values[self.qd]])
+
+    def at(self, cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+        x = self.values[:, cols]
+        x[:self.n] = y[:self.n]
+        x[self.qd] = y[self.n:]
+        x[self.time] = t
+        return x
+
+    def extended(self, x: np.ndarray) -> np.ndarray:
+        return np.concatenate([x, np.zeros((self.reactions, x.shape[1]))])
+
+    def solve(self, x: np.ndarray, modes: np.ndarray | None = None) -> np.ndarray:
+        """The extended states with the second rates and reactions solved (with each
+        slip's direction ``modes``: :class:`~.motion._Switching`)."""
+        if self.strict is not None and self.careful:
+            return self.strict(x)
+        e = self.extended(x)
+        if modes is None or self.switches is None:
+            e[self.unknowns] = 0.0
+            return columns_accelerations(self.kp, e)
+        e = np.concatenate([e, modes])
+        e[self.unknowns] = 0.0
+        return columns_accelerations(self.kp, e, self.switches)
+
+    def rhs(self, cols, t, y, modes=None) -> np.ndarray:
+        return np.concatenate([y[self.n:], self.solve(
+            self.at(cols, t, y), modes if modes is not None and len(modes) else None)[self.qdd]])
+
+    def mode(self, cols, t, y) -> np.ndarray:
+        """Each slip's direction."""
+        assert self.switches is not None
+        return np.sign(loud_call(self.switches.speeds, self.extended(self.at(cols, t, y)),
+                                 self.switches.count))
+
+    def reading(self, fn: Callable, kinetic: bool) -> Callable:
+        """The event ``fn`` (of the extended state; ``kinetic``: read with the balances,
+        else without them, which are undefined where a slip speed is exactly zero)."""
+        def event(cols, t, y, _modes=None) -> np.ndarray:
+            x = self.at(cols, t, y)
+            return loud_call(fn, self.solve(x) if kinetic else self.extended(x), 1)[0]
+        return event
+
+    def until(self) -> Callable:
+        """The motion's own event."""
+        ap = analysis_plan(self.kp)
+        assert ap.until is not None, "an integration always has its event"
+        return self.reading(ap.until, ap.until_kinetic)
+
+    def aimed(self, target: Target, asked: np.ndarray) -> Callable | None:
+        """The event of ``target`` (``None``: the motion's own; ``asked``: each column's value
+        of an :class:`Entry`)."""
+        if isinstance(target, Until):
+            return None
+        if isinstance(target, Entry):
+            at = target.at
+
+            def reached(cols, t, y, _modes=None) -> np.ndarray:
+                return self.at(cols, t, y)[at] - asked[cols]
+            return reached
+        return self.reading(*_when(self.kp, target.objective))
+
+    def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
+        """Each column's ``direction`` of ``event`` from the start (its next crossing where
+        it holds there): one motion's :func:`~.events.next_crossing` alone (raising, located
+        at ``where``), else :meth:`~.motion.Motion._leaving` with the error of each column
+        that stays in it (one whose moment is not reached has none: it does not move)."""
+        if self.strict is None:
+            return _motion(self.problem, self.kp)._leaving(self.rhs, event, None, self.y0)
+        one = np.zeros(1, dtype=int)
+        return np.array([next_crossing(
+            lambda t, y: float(event(one, np.array([t]), y[:, None])[0]),
+            lambda t, y: self.rhs(one, np.array([t]), y[:, None])[:, 0], self.y0[:, 0],
+            self.analysis.max_time, where)]), {}
+
+    def _integrated(self, events: list[Callable], direction: np.ndarray, y0: np.ndarray,
+                    t0: np.ndarray, modes: bool) -> Arrival:
+        careful = self.careful
+        self.careful = careful and not modes
+        try:
+            return integrate_to_events(self.rhs, events, y0, self.analysis.max_time, RTOL,
+                                       ATOL, MAX_CALLS, direction=direction, t0=t0,
+                                       mode=self.mode if modes else None,
+                                       keep=EVERY_STEP if self.strict is not None else 12)
+        finally:
+            self.careful = careful
+
+    def run(self, events: list[Callable], senses: list[np.ndarray], y0: np.ndarray,
+            t0: np.ndarray) -> _Run:
+        """Every column integrated from ``y0`` at ``t0`` to the first of ``events`` (each with
+        its ``direction`` per column), as :func:`~.events.integrate` integrates one motion:
+        an event with no direction that holds at the start fires at once, as ``solve_ivp``'s
+        first step finds it. Alone, every step is kept and a stall or failure raises."""
+        count = y0.shape[1]
+        direction = np.array(senses, dtype=float).reshape(len(events), count)
+        g = np.array([e(np.arange(count), t0, y0) for e in events]).reshape(len(events), count)
+        now = ((direction == 0) & (g == 0)).any(axis=0)
+        arrival = self._integrated(events, direction, y0, t0, self.switches is not None)
+        if self.strict is not None and self.switches is not None and \
+                arrival.status[0] not in (FIRED, NEVER):
+            # alone, a motion its modes do not take to an event: without them, step by
+            # step, which says why
+            arrival = self._integrated(events, direction, y0, t0, False)
+        status, t, y = arrival.status.copy(), arrival.t.copy(), arrival.y.copy()
+        before = arrival.before.copy()
+        which = np.full(count, -1)
+        if arrival.which is not None:  # (a column that switched has no event)
+            which = np.where(status == FIRED, arrival.which, -1)
+        which[now] = ((direction == 0) & (g == 0)).argmax(axis=0)[now]
+        status[now], t[now], y[:, now], before[:, now] = FIRED, t0[now], y0[:, now], y0[:, now]
+        if self.strict is not None and status[0] not in (FIRED, NEVER):
+            raise not_integrated(int(status[0]), float(t[0]), self.analysis.where)
+        return _Run(status, t, y, before, which)
+
+
+def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
+                  kinetics_plan: Callable, alone: Callable | None = None) -> Reaches:
+    """Every column of ``X`` (each the parameters placed in the state) integrated from its
+    start to its target (``targets``: one per column, all of one kind, an :class:`Entry` at
+    the same entry), through the end of its slip into the gripping phase when the problem has
+    one (:func:`gripping`): the phases integrated together
+    (:func:`~.batch_motion.integrate_to_events`), each column switching phase at its own end
+    of the slip, and each column's instant read with the model of its phase (see
+    :class:`Reaches`). ``alone(kp)``: one column solved alone, its balances solved by it,
+    every error raised (:func:`reach`); a class leaves a column whose integration stalls or
+    fails, or whose target holds at the start, to be solved so."""
+    analysis = analysis_of(problem, Integration)
+    kp = kinetics_plan(problem)
+    target = targets[0]
+    asked = np.array([t.value if isinstance(t, Entry) else np.nan for t in targets])
+    errors: dict[int, MechgradeError] = {}
+
+    def failed(c: int, error: MechgradeError) -> None:
+        if alone is not None:
+            raise error
+        errors.setdefault(c, error)
+
+    with quiet():
+        values, unsettled = start_columns(problem, kp, analysis_plan(kp), X)
+        for column, error in unsettled.items():
+            failed(column, error)
+        todo = np.array([c for c in range(X.shape[1]) if c not in unsettled], dtype=int)
+        one = _Columns(problem, kp, values[:, todo], alone(kp) if alone else None)
+        count = len(todo)
+        until = one.until()
+        direction, stays = one.crossing(until, analysis.where)
+        for k, error in stays.items():
+            failed(int(todo[k]), error)
+        fine = np.ones(count, dtype=bool)
+        events, senses = [until], [direction]
+        aim = one.aimed(target, asked[todo])
+        if aim is not None:
+            events.append(aim)
+            if isinstance(target, Entry) and target.at == kp.kp.index.time:
+                senses.append(np.zeros(count))  # t = 0 is the start itself
+            elif alone is not None:
+                assert not isinstance(target, Until), "the motion's own event is until"
+                senses.append(one.crossing(aim, target.where)[0])
+            else:  # a class leaves one that holds at the start alone (its next crossing)
+                fine &= aim(np.arange(count), np.zeros(count), one.y0) != 0
+                senses.append(np.zeros(count))
+        grip = gripping(problem)
+        if grip is not None:
+            events.append(one.reading(_slip(problem, kp, kinetics_plan(gripping_phase(problem))),
+                                      False))
+            senses.append(np.zeros(count))
+        fine &= ~np.isin(todo, list(errors))
+        run = one.run(events, senses, one.y0, np.zeros(count))
+        ended = (run.status == NEVER) | ((run.which == 0) & (aim is not None))
+        for c in np.flatnonzero(fine & ended):
+            failed(int(todo[c]), _missed(analysis, targets[todo[c]],
+                                         [run.t[c]] if run.which[c] == 0 else []))
+        fired = fine & ~ended & (run.status == FIRED)
+        slipped = fired & (run.which == len(events) - 1) & (grip is not None)
+        phases = [_arrived(problem, one, run, todo, np.flatnonzero(fired & ~slipped), target,
+                           asked)]
+        s = np.flatnonzero(slipped)
+        if len(s):
+            phases.append(_gripped(problem, X[:, todo[s]], todo[s], run, s, direction[s],
+                                   targets, asked, kinetics_plan, alone, failed))
+    return Reaches(tuple(p for p in phases if len(p.columns)), errors)
+
+
+def _arrived(problem: Problem, motion: _Columns, run: _Run, todo: np.ndarray, k: np.ndarray,
+             target: Target, asked: np.ndarray) -> PhaseColumns:
+    """The instants of the columns ``k`` of ``run`` (``todo[k]`` in the class) on ``problem``'s
+    motion: the state values there (an :class:`Entry`'s given where its root was found),
+    else with the extended states a moment before."""
+    values = motion.at(k, run.t[k], run.y[:, k])
+    if not len(k):
+        return PhaseColumns(problem, todo[k], values, None)
+    if isinstance(target, Entry):
+        values[target.at] = asked[todo[k]]  # where the root was found: the given holds there
+        return PhaseColumns(problem, todo[k], values, None)
+    return PhaseColumns(problem, todo[k], values,
+                        motion.solve(motion.at(k, np.maximum(
+                            motion.values[motion.time, k],
+                            run.t[k] * (1 - rules.BEFORE_EVENT)), run.before[:, k])))
+
+
+def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped: _Run,
+             s: np.ndarray, direction: np.ndarray, targets: list[Target], asked: np.ndarray,
+             kinetics_plan: Callable, alone: Callable | None,
+             failed: Callable[[int, MechgradeError], None]) -> PhaseColumns:
+    """The gripping phase of the columns ``columns`` of the class (``X``: their parameters
+    placed), from the end of their slip (``slipped``, at its columns ``s``) to their target;
+    ``direction``: that of the motion's event (see :func:`.events.next_crossing`). A grip
+    that needs more than mu_s N where the slip ends, or that would slip again, fails."""
+    phase = gripping_phase(problem)
+    kp = kinetics_plan(phase)
+    grip = gripping(problem)
+    assert grip is not None
+    values, unsettled = start_columns(phase, kp, analysis_plan(kp), X)
+    for k, error in unsettled.items():
+        failed(int(columns[k]), error)
+    two = _Columns(phase, kp, values, alone(kp) if alone else None)
+    everyone = np.arange(len(s))
+    start, y0 = slipped.t[s], slipped.y[:, s]
+    grips = two.reading(_margin(problem, kp), True)
+    held = grips(everyone, start, y0)
+    fine = held >= 0
+    for c in np.flatnonzero(~fine):
+        failed(int(columns[c]), _slips_on(grip, float(start[c]), float(held[c])))
+    fine &= ~np.isin(everyone, list(unsettled))
+    target = targets[columns[0]]
+    aim = two.aimed(target, asked[columns])
+    events = [two.until()] + ([aim] if aim is not None else []) + [grips]
+    run = two.run(events, [direction] + [np.zeros(len(s))] * (len(events) - 1), y0, start)
+    again = fine & (run.status == FIRED) & (run.which == len(events) - 1)
+    for c in np.flatnonzero(again):
+        failed(int(columns[c]), _slips_again(grip, float(start[c]), float(run.t[c])))
+    ended = fine & ~again & ((run.status == NEVER) | ((run.which == 0) & (aim is not None)))
+    for c in np.flatnonzero(ended):
+        failed(int(columns[c]), _missed(analysis_of(problem, Integration), targets[columns[c]],
+                                        [run.t[c]] if run.which[c] == 0 else []))
+    two.values[two.time] = start  # each column's start: a moment before is not before it
+    return _arrived(phase, two, run, columns,
+                    np.flatnonzero(fine & ~again & ~ended & (run.status == FIRED)), target,
+                    asked)
