@@ -330,9 +330,8 @@ class _Template:
                       ) -> tuple[list[dict], dict[int, MechgradeError]]:
         """Each column's givens with the position an objective asked ``when`` fixes
         (:func:`~.dynamics.at_positions`, every column at once), and the columns that have
-        none with its error (their position undefined: not reached). A motion integrated
-        finds its own (:meth:`_in_phases`)."""
-        if self.kinetics is None or not isinstance(self.analysis, WorkEnergy):
+        none with its error (their position undefined: not reached)."""
+        if self.kinetics is None:
             return maps, {}
         from .dynamics import at_positions
 

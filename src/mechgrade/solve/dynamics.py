@@ -394,9 +394,10 @@ def at_positions(problem: Problem, numeric: Collection[str], given_maps: Sequenc
     """Each of ``given_maps`` with the coordinate put where the ``when`` of the first of the
     objectives ``numeric`` asked ``when`` holds (every column walked together,
     :func:`~.positions.positions_where`), or the error that says where it was looked for;
-    each map as it is where none is asked ``when``."""
+    each map as it is where none is asked ``when``, or the motion is integrated (its phases
+    find that instant, :mod:`.phases`)."""
     asked = [o.id for o in problem.objectives if o.id in numeric and o.when is not None]
-    if not asked:
+    if not asked or not isinstance(dynamics_of(problem).analysis, WorkEnergy):
         return list(given_maps)
     name = problem.coordinates[0].name
     found = positions_where(problem, asked[0], given_maps,

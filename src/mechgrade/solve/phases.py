@@ -34,8 +34,8 @@ from .analysis import analysis_of, analysis_plan, start_columns
 from .batch_motion import FIRED, NEVER, Arrival, integrate_to_events
 from .columns import loud_call, quiet
 from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, instant_missed,
-                     next_crossing, not_integrated)
-from .motion import _motion, _switches
+                     leaving, next_crossing, not_integrated)
+from .motion import _switches
 from .motion import accelerations as columns_accelerations
 
 def gripping(problem: Problem) -> KineticFriction | None:
@@ -355,10 +355,12 @@ class _Columns:
     def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's ``direction`` of ``event`` from the start (its next crossing where
         it holds there): one motion's :func:`~.events.next_crossing` alone (raising, located
-        at ``where``), else :meth:`~.motion.Motion._leaving` with the error of each column
+        at ``where``), else :func:`~.events.leaving` with the error of each column
         that stays in it (one whose moment is not reached has none: it does not move)."""
         if self.strict is None:
-            return _motion(self.problem, self.kp)._leaving(self.rhs, event, None, self.y0)
+            direction, stays, _ = leaving(self.rhs, event, None, self.y0,
+                                          self.analysis.max_time, self.analysis.where)
+            return direction, dict(stays)
         one = np.zeros(1, dtype=int)
         return np.array([next_crossing(
             lambda t, y: float(event(one, np.array([t]), y[:, None])[0]),
