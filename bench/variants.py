@@ -15,7 +15,11 @@ nothing is answered from memory that a real class would not find there.
 
 Problems with a ``variants:`` section draw their variants (distinct draws only); for the
 others a variant scales each parameter given (or, without any, each rate given) by a factor
-in 0.8..1.2, all different: the same re-solve path. Only variants that solve every objective
+in 0.8..1.2, all different: the same re-solve path. A given whose change alone makes an
+objective fail that the spec's own givens solve is held (two_mass_spring_chain's spring
+lengths: an objective's own givens place the chain at its equilibrium for those lengths), so
+a class times students who are answered, not failures; where every one is, all are scaled
+(``n`` then says how few were answered). Only variants that solve every objective
 count (``n``, of the last class); ``fast`` is how many of them the class's loop answered (a
 group that fails a screen for one is answered alone inside it; the rest went through
 ``solve`` one by one).
@@ -69,11 +73,24 @@ def variant_stream(problem):
     scalable = ([g for g in plain if isinstance(g.key.node, Name)
                  and g.key.node.id in parameters]
                 or [g for g in plain if isinstance(g.key.node, Prime)])
+    spec = _failing(problem, {})
+    if spec is not None:  # scaled alone (by 1.1), a given must fail nothing the spec solves
+        scalable = [g for g in scalable
+                    if (scaled := _failing(problem, {to_text(g.key.node): g.si * 1.1}))
+                    is not None and scaled <= spec] or scalable
     if not scalable:
         return
     for n in itertools.count(1):
         yield {to_text(g.key.node): g.si * (0.8 + 0.4 * ((n * GOLDEN + i * 0.37) % 1.0))
                for i, g in enumerate(scalable)}
+
+
+def _failing(problem, givens: dict) -> set[str] | None:
+    """The objectives that fail with ``givens`` (``None``: the solve itself fails)."""
+    try:
+        return {f.id for f in solve(problem, givens=givens).failures}
+    except MechgradeError:
+        return None
 
 
 def timed(call):
