@@ -65,7 +65,7 @@ from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_bran
 from .mutants import GeneratedColumns, generated_columns, plausible_slips, values_alone
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import with_class_mistakes
-from .motion import Motion, after_event, balances
+from .motion import Motion, after_event, at_event, balances
 from .phases import Target, Until, asked_when, gripping, reach_columns
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
@@ -462,9 +462,7 @@ class _Template:
                 x, before = solved.x, None
             else:  # the contact checks hold along the way: judged just before the event
                 solved = balances(at.phase, kp, at.before[:size], after_event(kp.kp))
-                x, before = at.before.copy(), at.before
-                keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
-                x[keep] = at.values[keep]
+                x, before = at_event(at.before, at.values, kp.kp), at.before
             for j in np.flatnonzero(~solved.ok):
                 error = solved.errors[int(j)]
                 assert error is not None  # a column not solved has its error

@@ -45,7 +45,7 @@ from .columns import WithInputs
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
-from .motion import after_event, balances, integrated_columns
+from .motion import after_event, at_event, balances, integrated_columns
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
 from .instant import Reached, drive, read_objectives, symbolic_dependence
@@ -441,10 +441,7 @@ class IntegratedInstant(KineticInstant):
                                            lambda values: accelerations(kp, values))
         # the contact checks hold along the way: judge them just before the event
         self.balances(problem, kp, State(before[:size], state.given))
-        x = before.copy()
-        keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
-        x[keep] = state.values[keep]
-        return Arrived(state, x, before=before)
+        return Arrived(state, at_event(before, state.values, kp.kp), before=before)
 
     def at_events(self, given_maps: list[dict]) -> list[np.ndarray | MechgradeError | None]:
         """The extended states at the event, integrated together as columns (a motion in
@@ -482,10 +479,8 @@ class IntegratedInstant(KineticInstant):
             return Arrived(state, self.balances(at.phase, kp, state), phase=at.phase)
         # the contact checks hold along the way: judge them just before the event
         self.balances(at.phase, kp, State(at.before[:size], state.given))
-        x = at.before.copy()
-        keep = [i for i in range(size) if i not in kp.kp.index.rates(2)]
-        x[keep] = at.values[keep]
-        return Arrived(state, x, before=at.before, phase=at.phase)
+        return Arrived(state, at_event(at.before, at.values, kp.kp), before=at.before,
+                       phase=at.phase)
 
     def entry(self, given_map: dict, asked_at: str) -> Entry:
         """The instant an objective's own time, coordinate or rate fixes."""

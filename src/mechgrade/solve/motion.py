@@ -36,6 +36,26 @@ def after_event(p: KinematicsPlan) -> np.ndarray:
     return after
 
 
+def at_event(before: np.ndarray, end: np.ndarray, p: KinematicsPlan) -> np.ndarray:
+    """The extended state(s) an event's objectives are read in: everything of ``end`` (the
+    state at the event) but its second rates, and those and the reactions of ``before``
+    (the balances solved just before it, where the contact checks hold along the way).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.plan import kinematics_plan
+    >>> p = kinematics_plan(load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml"))
+    >>> x = at_event(np.zeros(p.index.size + 1), np.ones(p.index.size), p)
+    >>> x[list(p.index.rates(2))].tolist(), float(x[-1])
+    ([0.0], 0.0)
+    """
+    x = before.copy()
+    seconds = p.index.rates(2)
+    keep = [i for i in range(p.index.size) if i not in seconds]
+    x[keep] = end[keep]
+    return x
+
+
 class Motion:
     """The kinetics of ``problem`` (its :class:`~.dynamics.KineticsPlan`) over columns."""
 
@@ -163,11 +183,8 @@ class Motion:
             solved = balances(self.problem, self.kinetics,
                               at(e, arrival.t[e] * (1 - rules.BEFORE_EVENT),
                                  arrival.before[:, e])[:size], after_event(self.p))
-            x, fine = solved.x, solved.ok
-            before = x.copy()
-            keep = [i for i in range(size) if i not in seconds]
-            x[keep] = end[keep]
-            out[:, e] = np.vstack([x, before])
+            before, fine = solved.x, solved.ok
+            out[:, e] = np.vstack([at_event(before, end, self.p), before])
             ok[e] = ok_e & fine
             never[e] = arrival.status[e] == NEVER
             # an event reached whose contact checks fail just before it: the error the
