@@ -438,10 +438,10 @@ class _Template:
         as :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant): each column's
         objectives read with the model of the phase its instant is in. The states returned
         are the state values (the extended states differ between phases)."""
-        from .dynamics import IntegratedInstant, kinetic_reach, kinetics_plan
+        from .dynamics import IntegratedInstant, kinetics_plan
 
         problem, n, size = self.problem, len(maps), self.p.index.size
-        reach = kinetic_reach(problem)
+        reach = self._reach()  # the single solve's, kept by the template
         assert isinstance(reach, IntegratedInstant)
         asked = instant_of_objective(problem, group.overrides)
         when = asked_when(problem, group.numeric)

@@ -34,7 +34,7 @@ from .analysis import analysis_of, analysis_plan, start_columns
 from .batch_motion import FIRED, NEVER, Arrival, integrate_to_events
 from .columns import loud_call, quiet
 from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, instant_missed,
-                     leaving, next_crossing, not_integrated)
+                     leaving, not_integrated)
 from .motion import _switches
 from .motion import accelerations as columns_accelerations
 
@@ -354,18 +354,19 @@ class _Columns:
 
     def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's ``direction`` of ``event`` from the start (its next crossing where
-        it holds there): one motion's :func:`~.events.next_crossing` alone (raising, located
-        at ``where``), else :func:`~.events.leaving` with the error of each column
-        that stays in it (one whose moment is not reached has none: it does not move)."""
+        it holds there, :func:`~.events.leaving`): one motion alone raises its first error,
+        located at ``where`` (as :func:`~.events.next_crossing`); a class keeps the error of
+        each column that stays in it (one whose moment is not reached has none: it does not
+        move)."""
+        direction, stays, unfinished = leaving(
+            self.rhs, event, None, self.y0, self.analysis.max_time,
+            self.analysis.where if self.strict is None else where)
         if self.strict is None:
-            direction, stays, _ = leaving(self.rhs, event, None, self.y0,
-                                          self.analysis.max_time, self.analysis.where)
             return direction, dict(stays)
-        one = np.zeros(1, dtype=int)
-        return np.array([next_crossing(
-            lambda t, y: float(event(one, np.array([t]), y[:, None])[0]),
-            lambda t, y: self.rhs(one, np.array([t]), y[:, None])[:, 0], self.y0[:, 0],
-            self.analysis.max_time, where)]), {}
+        errors = [*stays.values(), *unfinished.values()]
+        if errors:
+            raise errors[0]
+        return direction, {}
 
     def _integrated(self, events: list[Callable], direction: np.ndarray, y0: np.ndarray,
                     t0: np.ndarray, modes: bool) -> Arrival:
