@@ -15,10 +15,13 @@ nothing is answered from memory that a real class would not find there.
 
 Problems with a ``variants:`` section draw their variants (distinct draws only); for the
 others a variant scales each parameter given (or, without any, each rate given) by a factor
-in 0.8..1.2, all different: the same re-solve path. A given whose change alone makes an
+in 0.8..1.2, all different: the same re-solve path (givens written as expressions of
+them follow, as a drawn variant's do). A given whose change alone makes an
 objective fail that the spec's own givens solve is held (two_mass_spring_chain's spring
 lengths: an objective's own givens place the chain at its equilibrium for those lengths), so
-a class times students who are answered, not failures; where every one is, all are scaled
+a class times students who are answered, not failures; where every parameter is, the rates
+given are scaled (a linkage's lengths fix the configuration given); where every one is, all are
+scaled
 (``n`` then says how few were answered). Only variants that solve every objective
 count (``n``, of the last class); ``fast`` is how many of them the class's loop answered (a
 group that fails a screen for one is answered alone inside it; the rest went through
@@ -45,6 +48,7 @@ from mechgrade.grade.variants import draw_variant
 from mechgrade.solve import solve
 from mechgrade.solve.batch import _template, solve_variants
 from mechgrade.spec import load_problem
+from mechgrade.spec.solving import carried
 
 # Cold is a true derivation: the solver's disk cache is off here and in the cold process.
 os.environ["MECHGRADE_NO_CACHE"] = "1"
@@ -70,19 +74,29 @@ def variant_stream(problem):
                 return  # the draws are exhausted
     parameters = {p.name for p in problem.parameters}
     plain = [g for g in problem.givens if g.value_expr is None and g.si]
-    scalable = ([g for g in plain if isinstance(g.key.node, Name)
-                 and g.key.node.id in parameters]
-                or [g for g in plain if isinstance(g.key.node, Prime)])
+    kinds = [kind for kind in ([g for g in plain if isinstance(g.key.node, Name)
+                                and g.key.node.id in parameters],
+                               [g for g in plain if isinstance(g.key.node, Prime)]) if kind]
     spec = _failing(problem, {})
-    if spec is not None:  # scaled alone (by 1.1), a given must fail nothing the spec solves
-        scalable = [g for g in scalable
-                    if (scaled := _failing(problem, {to_text(g.key.node): g.si * 1.1}))
-                    is not None and scaled <= spec] or scalable
+    # scaled alone (by 1.1), a given must fail nothing the spec solves: the parameters that
+    # do not, else the rates that do not (a linkage's lengths fix its given configuration)
+    held = [[g for g in kind
+             if (scaled := _failing(problem, _with_derived(
+                 problem, {to_text(g.key.node): g.si * 1.1}))) is not None and scaled <= spec]
+            for kind in kinds] if spec is not None else []
+    scalable = next((kind for kind in held if kind), kinds[0] if kinds else [])
     if not scalable:
         return
     for n in itertools.count(1):
-        yield {to_text(g.key.node): g.si * (0.8 + 0.4 * ((n * GOLDEN + i * 0.37) % 1.0))
-               for i, g in enumerate(scalable)}
+        yield _with_derived(problem, {
+            to_text(g.key.node): g.si * (0.8 + 0.4 * ((n * GOLDEN + i * 0.37) % 1.0))
+            for i, g in enumerate(scalable)})
+
+
+def _with_derived(problem, scaled: dict) -> dict:
+    """``scaled`` and the givens written as expressions of them worked out again (a spring's
+    free length stated to hold the bar level follows its mass), as a drawn variant's are."""
+    return scaled | carried({to_text(g.key.node): g for g in problem.givens}, scaled)
 
 
 def _failing(problem, givens: dict) -> set[str] | None:
