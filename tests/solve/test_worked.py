@@ -128,3 +128,12 @@ def test_a_motion_that_slips_then_rolls_is_written_up_phase_by_phase():
     assert "read while rolling (the slip ends at t = 1.42 s)" in next(
         s for s in worked.steps if s.anchor == "answer-friction_at_2s").lines
     assert not any("coincident(" in line for s in worked.steps for line in s.lines)
+
+
+def test_an_answer_zero_up_to_round_off_is_written_as_zero():
+    """9.25: the striking ball stops (v1p is -1.3e-15 ft/s as solved) and the struck ball's
+    velocity is along -Y_N (its x component 1.2e-14): a student reads 0, not the round-off."""
+    steps = {s.anchor: s for s in _worked("ruina_9_25_units_matrix").steps}
+    assert "= 0 ft/s" in steps["answer-v1p"].lines
+    assert steps["answer-v2_N"].lines[-1] == "= (0, -20, 0) ft/s in frame N"
+    assert "x1' = 0 ft/s" in steps["state"].lines

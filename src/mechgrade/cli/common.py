@@ -6,6 +6,7 @@ from __future__ import annotations
 import functools
 import importlib
 import os
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -18,6 +19,10 @@ from ..files import visible_text
 if TYPE_CHECKING:
     from ..outfolder import Committed
 
+
+CLOSED_PIPE_EXIT = 141
+"""The reader of the output went away (``mechgrade solve ... | head``): the exit status a
+shell gives a command that SIGPIPE stopped (128 + 13), without a message: it is not a fault."""
 
 INTERNAL_ERROR_EXIT = 3
 """The run finished and wrote its outputs, but mechgrade itself failed on some students or
@@ -64,6 +69,9 @@ def reports_errors(command):
         except (click.ClickException, click.exceptions.Exit, click.Abort, SystemExit,
                 KeyboardInterrupt):
             raise
+        except BrokenPipeError:
+            _drop_stdout()
+            raise SystemExit(CLOSED_PIPE_EXIT) from None
         except Exception as exc:  # noqa: BLE001 - the last boundary before the user
             if os.environ.get("MECHGRADE_DEBUG"):
                 raise
@@ -72,6 +80,18 @@ def reports_errors(command):
                                   f"MECHGRADE_DEBUG=1 for the traceback)") from None
 
     return wrapper
+
+
+def _drop_stdout() -> None:
+    """Point the standard output at the null device, so that the interpreter's flush at exit
+    does not fail on the closed pipe again (as Python's signal documentation advises)."""
+    try:
+        descriptor = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # a test's captured output: nothing to drop
+        return
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, descriptor)
+    os.close(null)
 
 
 MAX_LISTED = 50

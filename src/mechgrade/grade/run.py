@@ -957,10 +957,9 @@ def expected_in_unit(result: ObjectiveResult, unit: str) -> str | None:
 
 
 def _number(value: float) -> str:
-    if abs(value) < 1e-12:
-        return "0"
-    text = f"{value:.4g}"
-    return text
+    from ..solve.result import without_round_off
+
+    return f"{without_round_off(value):.4g}"
 
 
 def _round(value: float) -> float:

@@ -15,6 +15,25 @@ from ..spec.model import ObjectiveKind
 Value = Union[float, tuple[float, float, float], None]
 
 
+ROUND_OFF = 1e-12
+"""A value this small is zero but for the solver's round-off: a student is shown 0, not
+-1.27e-15 ft/s (a speed that is zero after an impact) or -3.45e-31 m/s²."""
+
+
+def without_round_off(value):
+    """A value as it is shown: a number below :data:`ROUND_OFF` is 0, and so is a vector's
+    component below that or a billionth of its largest (a direction's leftover ``1e-14``).
+
+    >>> without_round_off(-1.27486e-15), without_round_off((0.5, -6.3e-17, 1e-3))
+    (0.0, (0.5, 0.0, 0.001))
+    """
+    if isinstance(value, tuple):
+        largest = max((abs(c) for c in value), default=0.0)
+        return tuple(0.0 if abs(c) < max(ROUND_OFF, 1e-9 * largest) else float(c)
+                     for c in value)
+    return 0.0 if abs(value) < ROUND_OFF else value
+
+
 def in_frame(frame: str | None) -> str:
     """What follows a vector's components and unit to name the frame they are along ("N in
     N" read a frame's bare name as one more unit).
@@ -110,7 +129,8 @@ class StateValue:
         'R = 0.25 m   (solved)'
         """
         unit = f" {self.unit}" if self.unit else ""
-        return f"{self.name} = {self.value:.6g}{unit}{'' if self.given else '   (solved)'}"
+        return (f"{self.name} = {without_round_off(self.value):.6g}{unit}"
+                f"{'' if self.given else '   (solved)'}")
 
 
 @dataclass(frozen=True)

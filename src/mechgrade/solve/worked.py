@@ -38,7 +38,7 @@ from .fbd import FreeBodyDiagram, free_body_diagrams
 from .phases import grip_constraint, gripping, gripping_phase, gripping_word
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
-                     in_frame)
+                     in_frame, without_round_off)
 
 __all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
 
@@ -97,17 +97,19 @@ class WorkedSolution:
 
 
 def answer_text(result: ObjectiveResult) -> str:
-    """One objective's answer as the write-up (and ``mechgrade solve``) prints it.
+    """One objective's answer as the write-up (and ``mechgrade solve``) prints it, round-off
+    shown as 0.
 
-    >>> answer_text(ObjectiveResult("v", "vector", "m/s", (1.0, 2.5, 0.0), "N"))
+    >>> answer_text(ObjectiveResult("v", "vector", "m/s", (1.0, 2.5, 1e-14), "N"))
     '(1, 2.5, 0) m/s in frame N'
     """
     if result.kind == ObjectiveKind.SYMBOLIC:
         return f"{result.expr}   [{result.unit or '1'}; in {', '.join(result.symbols)}]"
-    if isinstance(result.value, tuple):
-        inner = ", ".join(f"{v:.6g}" for v in result.value)
+    shown = without_round_off(result.value)
+    if isinstance(shown, tuple):
+        inner = ", ".join(f"{v:.6g}" for v in shown)
         return f"({inner}) {result.unit}{in_frame(result.frame)}"
-    return f"{result.value:.6g} {result.unit}".rstrip()
+    return f"{shown:.6g} {result.unit}".rstrip()
 
 
 def worked_solution(problem: Problem, solution: Solution,
@@ -371,7 +373,7 @@ def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple
             if point is not None else None
         if value is not None:
             unit = asked.get((kind, name), units[kind])
-            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in _without_round_off(value))
+            shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in without_round_off(tuple(value)))
             letter = "v" if kind == "vel" else "a"
             step = replace(step, lines=step.lines + (
                 f"At the instant: {problem.inertial_frame}_{letter}_{name} = ({shown}) "
@@ -392,22 +394,6 @@ def _same_value(mistake: MistakeValue, generated) -> tuple[GeneratedMistake, ...
     return ()
 
 
-ROUND_OFF = 1e-12
-"""A value of the instant this small (SI) is zero but for the solver's round-off: a student is
-shown 0, not -3.45e-31 m/s²."""
-
-
-def _without_round_off(vector) -> tuple[float, ...]:
-    """A vector (SI) with its round-off components zero: those below :data:`ROUND_OFF` or a
-    billionth of its largest.
-
-    >>> _without_round_off((0.5, -6.3e-17, 1e-3))
-    (0.5, 0.0, 0.001)
-    """
-    largest = max((abs(c) for c in vector), default=0.0)
-    return tuple(0.0 if abs(c) < max(ROUND_OFF, 1e-9 * largest) else float(c) for c in vector)
-
-
 def _state_text(value: StateValue) -> str:
     """``q'' = 3 rad/s^2``: a value of the instant, its unit as a student writes it (0 for
     round-off).
@@ -416,8 +402,7 @@ def _state_text(value: StateValue) -> str:
     "x'' = 0 m/s^2"
     """
     unit = value.unit.replace(" ** ", "^").replace(" * ", "*").replace(" / ", "/")
-    shown = 0.0 if abs(value.si) < ROUND_OFF else value.value
-    return f"{value.name} = {shown:.6g} {unit}".rstrip()
+    return f"{value.name} = {without_round_off(value.value):.6g} {unit}".rstrip()
 
 
 def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> str:
