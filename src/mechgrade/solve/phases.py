@@ -252,7 +252,13 @@ class Reaches:
 
     def part(self, start: int, stop: int) -> Reaches:
         """Those of the columns ``start`` to ``stop``, numbered from 0 there (one group's, of
-        a class's groups reached side by side)."""
+        a class's groups reached side by side).
+
+        >>> at = PhaseColumns(None, np.array([0, 2, 3]), np.array([[1.0, 2.0, 3.0]]), None)
+        >>> part = Reaches((at,), {1: SolveError("stalls")}).part(2, 4)
+        >>> part.phases[0].columns.tolist(), part.phases[0].values.tolist(), part.errors
+        ([0, 1], [[2.0, 3.0]], {})
+        """
         phases = []
         for p in self.phases:
             mine = (p.columns >= start) & (p.columns < stop)
