@@ -249,16 +249,18 @@ class _Template:
         reached in one pass of each phase, :meth:`_reaches`)."""
         asked = [k for k, group in enumerate(self.groups)
                  if any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
+
+        def own(k: int) -> list[dict]:  # each variant's givens of group k
+            return [with_own(g, self.groups[k].overrides) for g in given]
+
         phased = [k for k in asked if self._phased(self.groups[k])]
         found: dict[int, tuple | Reaches] = dict(zip(phased, self._reaches(
-            [(self.groups[k], [with_own(g, self.groups[k].overrides) for g in given])
-             for k in phased])))
+            [(self.groups[k], own(k)) for k in phased])))
         chosen = [k for k in asked if self._integrates(self.groups[k])]
         if not chosen:
             return found
         n = len(given)
-        X = np.hstack([self._placed(self.groups[k], [with_own(g, self.groups[k].overrides)
-                                                     for g in given])[0] for k in chosen])
+        X = np.hstack([self._placed(self.groups[k], own(k))[0] for k in chosen])
         instants = np.repeat([-1 if self.groups[k].instant is None else self.groups[k].instant
                               for k in chosen], n)
         out, ok, never, errors = self._motion().integrated(X, instants)
@@ -389,13 +391,12 @@ class _Template:
         do not exist there with their errors (in dynamics each objective's failure, as
         :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails).
         An integrated group's instants are ``integrated`` already (:meth:`_integrated`), as
-        are a phased group's unless its givens are misread (:meth:`_misread`)."""
+        are a phased group's (its :class:`~.phases.Reaches`)."""
         p = self.p
         unreached: dict[int, MechgradeError] = {}
         if self._phased(group):
-            found = integrated if integrated is not None else self._reaches([(group, maps)])[0]
-            assert isinstance(found, Reaches)
-            return self._in_phases(group, found, len(maps))
+            assert isinstance(integrated, Reaches)
+            return self._in_phases(group, integrated, len(maps))
         if self._integrates(group):
             assert isinstance(integrated, tuple) and isinstance(self.analysis, Integration)
             X, ok, never, stuck = integrated
