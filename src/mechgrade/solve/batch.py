@@ -18,8 +18,8 @@ objective asked before an integration's event (at a time, coordinate or rate of 
 read where each variant's motion, integrated the same way, first takes that value; a motion
 in phases (a slip that ends, then a grip) or an objective asked ``when:`` on an integrated
 motion, where :func:`~.phases.reach_columns` reaches it (each variant switching phase at its
-own end of the slip). The loop over the groups of objectives is the single solve's
-(:func:`~.instant.drive_columns`).
+own end of the slip; every group's instants in one pass of each phase). The loop over the
+groups of objectives is the single solve's (:func:`~.instant.drive_columns`).
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective

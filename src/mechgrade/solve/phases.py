@@ -10,8 +10,9 @@ is integrated as :mod:`.events` integrates one motion (DOP853, rtol 1e-11, its r
 on the dense output); of events that happen in the same step, the earliest is the instant.
 
 A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
-integration over columns, each column switching phase at its own end of the slip. One solve
-is one such column solved alone (:func:`reach`).
+integration over columns, each column switching phase at its own end of the slip and stopping
+at its own instant (a class's groups of objectives side by side: one pass of each phase). One
+solve is one such column solved alone (:func:`reach`).
 """
 
 from __future__ import annotations
