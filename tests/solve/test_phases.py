@@ -13,8 +13,8 @@ from mechgrade.solve.dynamics import (accelerations, kinematic_problem, kinetic_
                                      kinetics_plan, solve_dynamics)
 from mechgrade.solve.instant import instant_givens
 from mechgrade.solve.levels import place_givens
-from mechgrade.solve.phases import (gripping, gripping_phase, gripping_word, reach,
-                                    reach_columns)
+from mechgrade.solve.phases import (Until, asked_when, gripping, gripping_phase,
+                                    gripping_word, reach, reach_columns)
 from mechgrade.spec import load_problem, load_problem_text
 from mechgrade.spec.dynamics import StaticFriction
 
@@ -151,6 +151,30 @@ def test_each_column_of_a_class_switches_phase_at_its_own_end_of_the_slip():
         assert one.phase is p.phase and one.before is None is p.before
         assert np.array_equal(one.values, p.values[:, 0])  # the steps it takes alone
 
+
+
+@pytest.mark.slow  # derives both phases (over 2 s)
+def test_columns_aiming_at_different_instants_each_reach_their_own_in_one_pass_as_alone():
+    problem = load_problem_text(BALL, "p.yaml")
+    kp = kinetics_plan(problem)
+    overrides = {"t": problem.objective("x_at_2s").givens[0]}
+    # a class's three groups side by side: the event, t = 2 s (rolling by then; with less
+    # friction still skidding) and the end of the slip, asked when
+    maps = [instant_givens(problem, g, overrides) for g in ({}, {}, {"mu_k": 0.05}, {})]
+    X = np.stack([place_givens(kinematic_problem(problem), kp.kp, m).values for m in maps],
+                 axis=1)
+    entry = kinetic_reach(problem).entry
+    targets = [Until(), entry(maps[1], "t"), entry(maps[2], "t"),
+               asked_when(problem, {"t_rolls"})]
+    found = reach_columns(problem, X, targets, kinetics_plan)
+    assert not found.errors
+    assert sorted((p.phase is problem, c) for p in found.phases for c in p.columns) == \
+        [(False, 0), (False, 1), (True, 2), (True, 3)]
+    for p in found.phases:
+        for k, c in enumerate(p.columns):
+            one = reach(problem, X[:, c], targets[c], kinetics_plan, accelerations)
+            assert one.phase is p.phase and (one.before is None) is (p.before is None)
+            assert np.array_equal(one.values, p.values[:, k])
 
 
 @pytest.mark.slow  # a cold derivation (over 1 s)

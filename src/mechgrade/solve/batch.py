@@ -18,8 +18,8 @@ objective asked before an integration's event (at a time, coordinate or rate of 
 read where each variant's motion, integrated the same way, first takes that value; a motion
 in phases (a slip that ends, then a grip) or an objective asked ``when:`` on an integrated
 motion, where :func:`~.phases.reach_columns` reaches it (each variant switching phase at its
-own end of the slip). The loop over the groups of objectives is the single solve's
-(:func:`~.instant.drive_columns`).
+own end of the slip; every group's instants in one pass of each phase). The loop over the
+groups of objectives is the single solve's (:func:`~.instant.drive_columns`).
 
 Every instant solved this way is screened for what the scalar solver would report: a level
 not satisfied or losing rank, a root off its branch, a degenerate configuration, an objective
@@ -43,6 +43,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 from functools import lru_cache, partial
+from itertools import pairwise
 from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
@@ -66,7 +67,7 @@ from .mutants import GeneratedColumns, generated_columns, plausible_slips, value
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import with_class_mistakes
 from .motion import Motion, after_event, at_event, balances
-from .phases import Target, Until, asked_when, gripping, reach_columns
+from .phases import Reaches, Target, Until, asked_when, gripping, reach_columns
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .result import Solution
@@ -236,29 +237,41 @@ class _Template:
         """Whether ``group``'s instant is reached by solving for the design parameter."""
         return self.design is not None and self.design.find not in group.overrides
 
-    def _integrated(self, given: list[dict], wanted: Collection[str]) -> dict[int, tuple]:
+    def _integrated(self, given: list[dict], wanted: Collection[str]
+                    ) -> dict[int, tuple | Reaches]:
         """Every integrated group's instant (those with a numeric objective ``wanted``) at
         every variant (``given``: each one's givens), reached in one pass: each group's
         columns side by side, each column integrated to its group's own instant or to the event
         (:meth:`~.motion.Motion.integrated`), so a class integrates its motion once however
         many instants it is asked at. By the group's index, what :meth:`_instant` reads: the
-        states, which passed the screens, which ended without their event, and the errors."""
-        chosen = [k for k, group in enumerate(self.groups) if self._integrates(group)
-                  and any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
+        states, which passed the screens, which ended without their event, and the errors;
+        for a group on a motion in phases, its :class:`~.phases.Reaches` (every such group's
+        reached in one pass of each phase, :meth:`_reaches`)."""
+        asked = [k for k, group in enumerate(self.groups)
+                 if any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
+
+        def own(k: int) -> list[dict]:  # each variant's givens of group k
+            return [with_own(g, self.groups[k].overrides) for g in given]
+
+        phased = [k for k in asked if self._phased(self.groups[k])]
+        found: dict[int, tuple | Reaches] = dict(zip(phased, self._reaches(
+            [(self.groups[k], own(k)) for k in phased])))
+        chosen = [k for k in asked if self._integrates(self.groups[k])]
         if not chosen:
-            return {}
+            return found
         n = len(given)
-        X = np.hstack([self._placed(self.groups[k], [with_own(g, self.groups[k].overrides)
-                                                     for g in given])[0] for k in chosen])
+        X = np.hstack([self._placed(self.groups[k], own(k))[0] for k in chosen])
         instants = np.repeat([-1 if self.groups[k].instant is None else self.groups[k].instant
                               for k in chosen], n)
         out, ok, never, errors = self._motion().integrated(X, instants)
-        return {k: (out[:, j * n:(j + 1) * n], ok[j * n:(j + 1) * n],
-                    never[j * n:(j + 1) * n],
-                    {i - j * n: error for i, error in errors.items() if j * n <= i < (j + 1) * n})
-                for j, k in enumerate(chosen)}
+        found.update({k: (out[:, j * n:(j + 1) * n], ok[j * n:(j + 1) * n],
+                          never[j * n:(j + 1) * n],
+                          {i - j * n: error for i, error in errors.items()
+                           if j * n <= i < (j + 1) * n})
+                      for j, k in enumerate(chosen)})
+        return found
 
-    def _together(self, group: _Group, integrated: tuple | None, maps: list[dict],
+    def _together(self, group: _Group, integrated: tuple | Reaches | None, maps: list[dict],
                   objectives: list[Objective], overrides: dict, columns: Columns) -> None:
         """The :data:`~.instant.Step` of ``group`` reached together: every column at once
         (:meth:`_instant`; an integrated group's instants ``integrated`` with the class's
@@ -369,7 +382,7 @@ class _Template:
                 base[i] = (state, maps[i])
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool,
-                 integrated: tuple | None = None):
+                 integrated: tuple | Reaches | None = None):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
         instant, which instants passed every screen (with ``degenerate``, also the one for a
         degenerate configuration), those not reached with the error the scalar solver
@@ -377,13 +390,15 @@ class _Template:
         instant otherwise reached), and per column the objectives that
         do not exist there with their errors (in dynamics each objective's failure, as
         :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails).
-        An integrated group's instants are ``integrated`` already (:meth:`_integrated`)."""
+        An integrated group's instants are ``integrated`` already (:meth:`_integrated`), as
+        are a phased group's (its :class:`~.phases.Reaches`)."""
         p = self.p
         unreached: dict[int, MechgradeError] = {}
         if self._phased(group):
-            return self._in_phases(group, self._placed(group, maps)[0], maps)
+            assert isinstance(integrated, Reaches)
+            return self._in_phases(group, integrated, len(maps))
         if self._integrates(group):
-            assert integrated is not None and isinstance(self.analysis, Integration)
+            assert isinstance(integrated, tuple) and isinstance(self.analysis, Integration)
             X, ok, never, stuck = integrated
             unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
                                       event_never_happens(self.analysis))
@@ -433,21 +448,38 @@ class _Template:
             gripping(self.problem) is not None
             or asked_when(self.problem, group.numeric) is not None)
 
-    def _in_phases(self, group: _Group, X: np.ndarray, maps: list[dict]):
-        """:meth:`_instant` of a group on a motion in phases (:func:`~.phases.reach_columns`,
-        as :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant): each column's
-        objectives read with the model of the phase its instant is in. The states returned
-        are the state values (the extended states differ between phases)."""
+    def _reaches(self, groups: list[tuple[_Group, list[dict]]]) -> list[Reaches]:
+        """Where each column of ``groups`` (each a group on a motion in phases, with its
+        columns' givens) reaches the group's instant: every group's columns side by side,
+        reached in one pass of each phase (:func:`~.phases.reach_columns`, as
+        :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant); each group's part."""
+        if not groups:
+            return []
         from .dynamics import IntegratedInstant, kinetics_plan
 
-        problem, n, size = self.problem, len(maps), self.p.index.size
+        problem = self.problem
         reach = self._reach()  # the single solve's, kept by the template
         assert isinstance(reach, IntegratedInstant)
-        asked = instant_of_objective(problem, group.overrides)
-        when = asked_when(problem, group.numeric)
-        targets: list[Target] = [reach.entry(m, asked) if asked is not None else
-                                 when if when is not None else Until() for m in maps]
-        found = reach_columns(problem, X, targets, kinetics_plan)
+        targets: list[Target] = []
+        for group, maps in groups:
+            asked = instant_of_objective(problem, group.overrides)
+            when = asked_when(problem, group.numeric)
+            targets += [reach.entry(m, asked) if asked is not None else
+                        when if when is not None else Until() for m in maps]
+        found = reach_columns(problem, np.hstack([self._placed(group, maps)[0]
+                                                  for group, maps in groups]),
+                              targets, kinetics_plan)
+        starts = np.cumsum([0] + [len(maps) for _, maps in groups])
+        return [found.part(int(a), int(b)) for a, b in pairwise(starts)]
+
+    def _in_phases(self, group: _Group, found: Reaches, n: int):
+        """:meth:`_instant` of a group on a motion in phases at its ``n`` columns, each
+        reached (``found``: :meth:`_reaches`): each column's objectives read with the model of
+        the phase its instant is in. The states returned are the state values (the extended
+        states differ between phases)."""
+        from .dynamics import kinetics_plan
+
+        problem, size = self.problem, self.p.index.size
         unreached: dict[int, MechgradeError] = dict(found.errors)
         ok = np.zeros(n, dtype=bool)
         out = np.full((size, n), np.nan)

@@ -10,8 +10,9 @@ is integrated as :mod:`.events` integrates one motion (DOP853, rtol 1e-11, its r
 on the dense output); of events that happen in the same step, the earliest is the instant.
 
 A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
-integration over columns, each column switching phase at its own end of the slip. One solve
-is one such column solved alone (:func:`reach`).
+integration over columns, each column switching phase at its own end of the slip and stopping
+at its own instant (a class's groups of objectives side by side: one pass of each phase). One
+solve is one such column solved alone (:func:`reach`).
 """
 
 from __future__ import annotations
@@ -250,6 +251,24 @@ class Reaches:
     phases: tuple[PhaseColumns, ...]
     errors: dict[int, MechgradeError]
 
+    def part(self, start: int, stop: int) -> Reaches:
+        """Those of the columns ``start`` to ``stop``, numbered from 0 there (one group's, of
+        a class's groups reached side by side).
+
+        >>> at = PhaseColumns(None, np.array([0, 2, 3]), np.array([[1.0, 2.0, 3.0]]), None)
+        >>> part = Reaches((at,), {1: SolveError("stalls")}).part(2, 4)
+        >>> part.phases[0].columns.tolist(), part.phases[0].values.tolist(), part.errors
+        ([0, 1], [[2.0, 3.0]], {})
+        """
+        phases = []
+        for p in self.phases:
+            mine = (p.columns >= start) & (p.columns < stop)
+            if mine.any():
+                phases.append(PhaseColumns(p.phase, p.columns[mine] - start, p.values[:, mine],
+                                           None if p.before is None else p.before[:, mine]))
+        return Reaches(tuple(phases), {c - start: error for c, error in self.errors.items()
+                                       if start <= c < stop})
+
 
 @dataclass(frozen=True)
 class _Run:
@@ -339,11 +358,26 @@ class _Columns:
         assert ap.until is not None, "an integration always has its event"
         return self.reading(ap.until, ap.until_kinetic)
 
-    def aimed(self, target: Target, asked: np.ndarray) -> Callable | None:
-        """The event of ``target`` (``None``: the motion's own; ``asked``: each column's value
-        of an :class:`Entry`)."""
-        if isinstance(target, Until):
-            return None
+    def aims(self, targets: list[Target], asked: np.ndarray
+             ) -> list[tuple[Callable, Entry | When]]:
+        """The events of the columns' ``targets`` (``asked``: each column's value of an
+        :class:`Entry`), one per instant they aim at (an entry of the state, an objective's
+        ``when:``; the motion's own event, :class:`Until`, has none), each with the first
+        target that aims at it: a column aiming elsewhere reads 1 there, never zero, so that
+        event does not fire for it (a class's groups in one pass)."""
+        keys = [(type(t), t.at if isinstance(t, Entry) else t.objective)
+                if not isinstance(t, Until) else None for t in targets]
+        found = []
+        for key in dict.fromkeys(k for k in keys if k is not None):
+            mine = np.array([k == key for k in keys])
+            target = targets[keys.index(key)]
+            assert not isinstance(target, Until)
+            event = self.aimed(target, asked)
+            found.append((event if mine.all() else _only(event, mine), target))
+        return found
+
+    def aimed(self, target: Entry | When, asked: np.ndarray) -> Callable:
+        """The event of ``target`` (``asked``: each column's value of an :class:`Entry`)."""
         if isinstance(target, Entry):
             at = target.at
 
@@ -408,20 +442,30 @@ class _Columns:
         return _Run(status, t, y, before, which)
 
 
+def _only(event: Callable, mine: np.ndarray) -> Callable:
+    """``event`` at the columns ``mine``, 1 (never zero) at the others."""
+    def only(cols, t, y, _modes=None) -> np.ndarray:
+        g = np.ones(len(cols))
+        m = mine[cols]
+        if m.any():
+            g[m] = event(cols[m], np.broadcast_to(t, cols.shape)[m], y[:, m])
+        return g
+    return only
+
+
 def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
                   kinetics_plan: Callable, alone: Callable | None = None) -> Reaches:
     """Every column of ``X`` (each the parameters placed in the state) integrated from its
-    start to its target (``targets``: one per column, all of one kind, an :class:`Entry` at
-    the same entry), through the end of its slip into the gripping phase when the problem has
-    one (:func:`gripping`): the phases integrated together
+    start to its target (``targets``: one per column, of any kind: a class's groups side by
+    side), through the end of its slip into the gripping phase when the problem has one
+    (:func:`gripping`): each phase integrated once for every column
     (:func:`~.batch_motion.integrate_to_events`), each column switching phase at its own end
-    of the slip, and each column's instant read with the model of its phase (see
-    :class:`Reaches`). ``alone(kp)``: one column solved alone, its balances solved by it,
-    every error raised (:func:`reach`); a class leaves a column whose integration stalls or
-    fails, or whose target holds at the start, to be solved so."""
+    of the slip and stopping at its own target, and each column's instant read with the
+    model of its phase (see :class:`Reaches`). ``alone(kp)``: one column solved alone, its
+    balances solved by it, every error raised (:func:`reach`); a class leaves a column whose
+    integration stalls or fails, or whose target holds at the start, to be solved so."""
     analysis = analysis_of(problem, Integration)
     kp = kinetics_plan(problem)
-    target = targets[0]
     asked = np.array([t.value if isinstance(t, Entry) else np.nan for t in targets])
     errors: dict[int, MechgradeError] = {}
 
@@ -443,13 +487,11 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             failed(int(todo[k]), error)
         fine = np.ones(count, dtype=bool)
         events, senses = [until], [direction]
-        aim = one.aimed(target, asked[todo])
-        if aim is not None:
+        for aim, target in one.aims([targets[c] for c in todo], asked[todo]):
             events.append(aim)
             if isinstance(target, Entry) and target.at == kp.kp.index.time:
                 senses.append(np.zeros(count))  # t = 0 is the start itself
             elif alone is not None:
-                assert not isinstance(target, Until), "the motion's own event is until"
                 senses.append(one.crossing(aim, target.where)[0])
             else:  # a class leaves one that holds at the start alone (its next crossing)
                 fine &= aim(np.arange(count), np.zeros(count), one.y0) != 0
@@ -461,42 +503,52 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             senses.append(np.zeros(count))
         fine &= ~np.isin(todo, list(errors))
         run = one.run(events, senses, one.y0, np.zeros(count))
-        ended = (run.status == NEVER) | ((run.which == 0) & (aim is not None))
+        ended = (run.status == NEVER) | ((run.which == 0) & _aiming(targets, todo))
         for c in np.flatnonzero(fine & ended):
             failed(int(todo[c]), _missed(analysis, targets[todo[c]],
                                          [run.t[c]] if run.which[c] == 0 else []))
         fired = fine & ~ended & (run.status == FIRED)
         slipped = fired & (run.which == len(events) - 1) & (grip is not None)
-        phases = [_arrived(problem, one, run, todo, np.flatnonzero(fired & ~slipped), target,
-                           asked)]
+        phases = _arrived(problem, one, run, todo, np.flatnonzero(fired & ~slipped), targets,
+                          asked)
         s = np.flatnonzero(slipped)
         if len(s):
-            phases.append(_gripped(problem, X[:, todo[s]], todo[s], run, s, direction[s],
-                                   targets, asked, kinetics_plan, alone, failed))
-    return Reaches(tuple(p for p in phases if len(p.columns)), errors)
+            phases += _gripped(problem, X[:, todo[s]], todo[s], run, s, direction[s], targets,
+                               asked, kinetics_plan, alone, failed)
+    return Reaches(tuple(phases), errors)
+
+
+def _aiming(targets: list[Target], columns: np.ndarray) -> np.ndarray:
+    """Which of ``columns`` aim at an instant before the motion's own event."""
+    return np.array([not isinstance(targets[c], Until) for c in columns], dtype=bool)
 
 
 def _arrived(problem: Problem, motion: _Columns, run: _Run, todo: np.ndarray, k: np.ndarray,
-             target: Target, asked: np.ndarray) -> PhaseColumns:
+             targets: list[Target], asked: np.ndarray) -> list[PhaseColumns]:
     """The instants of the columns ``k`` of ``run`` (``todo[k]`` in the class) on ``problem``'s
     motion: the state values there (an :class:`Entry`'s given where its root was found),
-    else with the extended states a moment before."""
+    else with the extended states a moment before (those are a second part)."""
     values = motion.at(k, run.t[k], run.y[:, k])
-    if not len(k):
-        return PhaseColumns(problem, todo[k], values, None)
-    if isinstance(target, Entry):
-        values[target.at] = asked[todo[k]]  # where the root was found: the given holds there
-        return PhaseColumns(problem, todo[k], values, None)
-    return PhaseColumns(problem, todo[k], values,
-                        motion.solve(motion.at(k, np.maximum(
-                            motion.values[motion.time, k],
-                            run.t[k] * (1 - rules.BEFORE_EVENT)), run.before[:, k])))
+    entries = np.array([isinstance(targets[c], Entry) for c in todo[k]], dtype=bool)
+    found = []
+    e = np.flatnonzero(entries)
+    if len(e):  # where the root was found: the given holds there
+        at = [t.at for t in (targets[c] for c in todo[k[e]]) if isinstance(t, Entry)]
+        values[at, e] = asked[todo[k[e]]]
+        found.append(PhaseColumns(problem, todo[k[e]], values[:, e], None))
+    o = k[~entries]
+    if len(o):
+        found.append(PhaseColumns(problem, todo[o], values[:, ~entries],
+                                  motion.solve(motion.at(o, np.maximum(
+                                      motion.values[motion.time, o],
+                                      run.t[o] * (1 - rules.BEFORE_EVENT)), run.before[:, o]))))
+    return found
 
 
 def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped: _Run,
              s: np.ndarray, direction: np.ndarray, targets: list[Target], asked: np.ndarray,
              kinetics_plan: Callable, alone: Callable | None,
-             failed: Callable[[int, MechgradeError], None]) -> PhaseColumns:
+             failed: Callable[[int, MechgradeError], None]) -> list[PhaseColumns]:
     """The gripping phase of the columns ``columns`` of the class (``X``: their parameters
     placed), from the end of their slip (``slipped``, at its columns ``s``) to their target;
     ``direction``: that of the motion's event (see :func:`.events.next_crossing`). A grip
@@ -517,18 +569,18 @@ def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped: _Run
     for c in np.flatnonzero(~fine):
         failed(int(columns[c]), _slips_on(grip, float(start[c]), float(held[c])))
     fine &= ~np.isin(everyone, list(unsettled))
-    target = targets[columns[0]]
-    aim = two.aimed(target, asked[columns])
-    events = [two.until()] + ([aim] if aim is not None else []) + [grips]
+    aims = [aim for aim, _ in two.aims([targets[c] for c in columns], asked[columns])]
+    events = [two.until(), *aims, grips]
     run = two.run(events, [direction] + [np.zeros(len(s))] * (len(events) - 1), y0, start)
     again = fine & (run.status == FIRED) & (run.which == len(events) - 1)
     for c in np.flatnonzero(again):
         failed(int(columns[c]), _slips_again(grip, float(start[c]), float(run.t[c])))
-    ended = fine & ~again & ((run.status == NEVER) | ((run.which == 0) & (aim is not None)))
+    ended = fine & ~again & ((run.status == NEVER) |
+                             ((run.which == 0) & _aiming(targets, columns)))
     for c in np.flatnonzero(ended):
         failed(int(columns[c]), _missed(analysis_of(problem, Integration), targets[columns[c]],
                                         [run.t[c]] if run.which[c] == 0 else []))
     two.values[two.time] = start  # each column's start: a moment before is not before it
     return _arrived(phase, two, run, columns,
-                    np.flatnonzero(fine & ~again & ~ended & (run.status == FIRED)), target,
+                    np.flatnonzero(fine & ~again & ~ended & (run.status == FIRED)), targets,
                     asked)
