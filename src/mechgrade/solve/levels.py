@@ -26,7 +26,8 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
-from .columns import FirstErrors, call, least_squares, least_squares_solution, quiet
+from .columns import (FirstErrors, call, determinant, least_squares,
+                      least_squares_solution, quiet)
 from .plan import Level, KinematicsPlan, per_problem
 from .rules import first_off, on_branch, satisfied
 
@@ -941,12 +942,43 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
         return [], list(unknown)
     if not np.isfinite(J).all():
         return list(unknown), []
+    if clearly_independent(J):  # the QR's rank would be full: it determines them all
+        return sorted(unknown), []
     with np.errstate(all="ignore"):
         _, R, piv = linalg.qr(J, pivoting=True, mode="economic", check_finite=False)
     rank = int(rules.rank(np.diag(R))) if R.size else 0
     determined = sorted(unknown[j] for j in piv[:rank])
     free = sorted(unknown[j] for j in piv[rank:])
     return determined, free
+
+
+FULL_RANK_MARGIN = (1e3 * rules.RANK_TOL) ** 2
+"""The part of its trace (and of 1) the smallest eigenvalue of a Jacobian's Gram matrix
+exceeds where :func:`clearly_independent` vouches for it: singular values a thousand times
+:data:`~.rules.RANK_TOL` apart at worst, far beyond any rounding of the QR or of the Gram."""
+
+
+def clearly_independent(J: np.ndarray) -> bool:
+    """Whether the columns of ``J`` (rows x at most three) are independent by a wide margin:
+    the smallest eigenvalue of its Gram matrix, at least its determinant over its trace to
+    the power one less than its size, is above :data:`FULL_RANK_MARGIN` of the trace (and of
+    1). Each diagonal entry of a pivoted QR's R is at least the smallest singular value and
+    the largest at most the largest one, so the rank that QR gives (:func:`~.rules.rank`)
+    is then full: the same answer without LAPACK's cost per call. ``False`` says nothing
+    (the QR decides).
+
+    >>> clearly_independent(np.array([[1.0, 0.0], [0.5, 2.0]]))
+    True
+    >>> clearly_independent(np.array([[1.0, 2.0], [2.0, 4.0 + 1e-9]]))
+    False
+    """
+    rows_, size = J.shape
+    if size > 3 or rows_ < size:
+        return False
+    columns = J.T.tolist()
+    gram = [[sum(a * b for a, b in zip(u, v)) for v in columns] for u in columns]
+    trace = sum(gram[i][i] for i in range(size))
+    return bool(determinant(gram) > FULL_RANK_MARGIN * trace ** (size - 1) * max(trace, 1.0))
 
 
 def evaluate(functions, state: State, only: set[str]) -> dict:
