@@ -178,10 +178,9 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     elif rows_ == k and 1 < k <= 3:
         det = determinant(A)
         with np.errstate(all="ignore"):
-            for j in range(k):
-                replaced = A.copy()
-                replaced[:, j] = b
-                solved[j] = determinant(replaced) / det
+            for j in range(k):  # column j replaced by b: its rows as views, not a copy
+                solved[j] = determinant([[b[i] if c == j else A[i, c] for c in range(k)]
+                                         for i in range(k)]) / det
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
         Ab = A[:, :, left].transpose(2, 0, 1)

@@ -555,7 +555,9 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
     scales = np.full((k, X.shape[1]), 1e-300)
     eye = np.eye(k)[:, :, None]
+    diagonal = (np.arange(k), np.arange(k))
     with np.errstate(all="ignore"):
+        size = _norms(X[determined])  # of each column's unknowns, kept with them
         for _ in range(LM_STEPS):
             idx = np.flatnonzero(live)
             Ji, ri = J[:, :, idx], r[:, idx]
@@ -569,29 +571,39 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
             if not len(idx):
                 break
             A = np.einsum("aki,ali->kli", Ji, Ji)
-            scales[:, idx] = np.maximum(scales[:, idx], np.einsum("kki->ki", A))
-            step = least_squares_solution(A + eye * (damping[idx] * scales[:, idx])[:, None, :],
-                                          -grad)
+            scale = np.maximum(scales[:, idx], A[diagonal])
+            scales[:, idx] = scale
+            damped = damping[idx]
+            step = least_squares_solution(A + eye * (damped * scale)[:, None, :], -grad)
             step = np.where(np.isfinite(step), step, 0.0)
-            moved = X[:, idx].copy()
+            moved = X[:, idx]
             moved[determined] += step
             r_new = residual(moved, T[:, idx])
             cost_new = 0.5 * (r_new ** 2).sum(axis=0)
-            better = cost_new < cost[idx]  # NaN is not better
-            small = np.linalg.norm(step, axis=0) <= FIT_TOL * (
-                np.linalg.norm(X[determined][:, idx], axis=0) + FIT_TOL)
-            flat = better & (cost[idx] - cost_new <= FIT_TOL * cost[idx])
-            kept = idx[better]
-            if len(kept):
-                X[:, kept] = moved[:, better]
+            before = cost[idx]
+            better = cost_new < before  # NaN is not better
+            small = _norms(step) <= FIT_TOL * (size[idx] + FIT_TOL)
+            flat = better & (before - cost_new <= FIT_TOL * before)
+            damped = np.where(better, damped / 3, damped * 4)
+            damping[idx] = damped
+            done = small | flat | (damped > 1e30)
+            if better.any():
+                kept, there = idx[better], moved[:, better]
+                X[:, kept] = there
                 r[:, kept] = r_new[:, better]
                 cost[kept] = cost_new[better]
-                J[:, :, kept] = jacobian(moved[:, better])
-            damping[idx] = np.where(better, damping[idx] / 3, damping[idx] * 4)
-            done = small | flat | (cost[idx] == 0) | (damping[idx] > 1e30) | \
-                ~np.isfinite(J[:, :, idx]).all(axis=(0, 1))
+                J[:, :, kept] = fresh = jacobian(there)
+                size[kept] = _norms(there[determined])
+                # only a step taken changes a cost (to zero) or a Jacobian (to undefined)
+                done[better] |= (cost_new[better] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
             live[idx[done]] = False
     return X, cost, started
+
+
+def _norms(V: np.ndarray) -> np.ndarray:
+    """The Euclidean norm of each column of ``V`` (as ``numpy.linalg.norm(V, axis=0)``
+    works it out, without its checks of the arguments)."""
+    return np.sqrt(np.add.reduce(V * V, axis=0))
 
 
 def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, fits: Sequence[Fit | None]
