@@ -12,7 +12,7 @@ leave free.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Callable, Mapping, Sequence
 
@@ -58,6 +58,10 @@ class Givens:
     guessed: np.ndarray
     branches: Mapping[int, Root]
     scales: np.ndarray
+    # each level's rows (:func:`rows`) by its order, worked out when first asked: a solve
+    # asks for them at every stage (the starts, the screens, the probes)
+    rows: dict[int, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict,
+                                                           compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -188,15 +192,21 @@ def _unit_of(index, units, i) -> str:
 
 def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     """Which rows are active (constraints, and the conditions given in this solve), and the
-    value each row must equal (0 for constraints)."""
+    value each row must equal (0 for constraints); read-only, kept with ``g``."""
+    kept = g.rows.get(level.order)
+    if kept is not None:
+        return kept
     n = level.constraint_rows
     active = np.ones(n + len(level.conditions), dtype=bool)
     target = np.zeros(n + len(level.conditions))
-    if level.conditions:  # most levels have none: a solve asks a dozen times
+    if level.conditions:  # most levels have none
         values = np.array([g.conditions[level.order].get(key, np.nan)
                            for key in level.conditions])
         active[n:] = ~np.isnan(values)
         target[n:] = values if np.isfinite(values).all() else np.nan_to_num(values)
+    for shared in (active, target):  # every stage of the solve reads these
+        shared.setflags(write=False)
+    g.rows[level.order] = (active, target)
     return active, target
 
 
@@ -852,8 +862,10 @@ class LinearColumns:
         rates with a part in its nullspace are free."""
         null = self.null(i)
         unknown = [j for j in self.rates if not g.known[j]]
-        free = set(before.free) | {j for j, row in zip(unknown, null)
-                                   if null.shape[1] and np.abs(row).max() > rules.OPEN}
+        free = set(before.free)
+        if null.shape[1]:  # the unknowns with a part in the nullspace
+            free.update(j for j, part in zip(unknown, np.abs(null).max(axis=1).tolist())
+                        if part > rules.OPEN)
         return State(self.X[:, i].copy(), g.known, frozenset(free))
 
 
