@@ -213,7 +213,7 @@ def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
 def missing_values(p: KinematicsPlan, g: Givens, only: set[str]) -> list[int]:
     """Parameters and ``t`` that have no value and may not be solved for, yet are needed by an
     equation or by an objective in ``only``."""
-    missing = {i for i in range(p.index.size) if not g.known[i] and not g.solvable[i]}
+    missing = set(np.flatnonzero(~(g.known | g.solvable)).tolist())
     if not missing:
         return []
     needed: set[int] = set()
@@ -337,12 +337,11 @@ def _set_up(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Gi
     columns = list(p.index.unknowns(order))
     active, target = rows(level, g)
     x = state.values.copy()
-    unknown = [i for i in columns if not g.known[i] and g.solvable[i]]
+    known, solvable = g.known[columns].tolist(), g.solvable[columns].tolist()
+    unknown = [i for i, k, s in zip(columns, known, solvable) if not k and s]
     origin = g.guess if start is None else start
     x[unknown] = origin[unknown]
-    for i in columns:
-        if not g.known[i] and not g.solvable[i]:
-            x[i] = np.nan
+    x[[i for i, k, s in zip(columns, known, solvable) if not k and not s]] = np.nan
     if not unknown or not active.any():
         for i in unknown:
             x[i] = (free_values or {}).get(i, x[i])

@@ -542,9 +542,12 @@ def _stacked(columns: Sequence[Sequence[GeneratedMistake]], size: int
     codes = np.full((n, count), "", dtype=object)
     for i, mistakes in enumerate(columns):
         for j, m in enumerate(mistakes):
-            value = np.atleast_1d(np.asarray(m.value, float))
-            if value.shape == (size,):
-                V[i, j], exists[i, j] = value, True
+            if size == 1 and isinstance(m.value, float):  # a scalar, as most are: no array
+                V[i, j, 0], exists[i, j] = m.value, True
+            else:
+                value = np.atleast_1d(np.asarray(m.value, float))
+                if value.shape == (size,):
+                    V[i, j], exists[i, j] = value, True
             codes[i, j] = m.code
     return V, exists, codes
 
