@@ -721,6 +721,8 @@ def same_root(scales: np.ndarray, a: np.ndarray, b: np.ndarray, positions) -> bo
 
 
 def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
+    if not any(i in g.branches for i in positions):  # no branch asked of these: all are
+        return True
     return bool(on_branches(g.branches, x[:, None], g.scales[:, None], positions)[0])
 
 
