@@ -6,6 +6,8 @@ import re
 from pathlib import Path
 
 import pytest
+from hypothesis import given as examples, settings
+from hypothesis import strategies as st
 
 from mechgrade.errors import InconsistentError, SolveError
 from mechgrade.solve import kinematics_plan
@@ -144,6 +146,38 @@ def test_a_root_whose_jacobian_loses_rank_has_the_rank_it_keeps():
     # x = 0, y = 0: the circle's row vanishes; x undefined: no rank at all
     X = np.array([[3.0, 0.0, np.nan], [4.0, 0.0, 1.0], [5.0, 5.0, 5.0]])
     assert level_rank(level, X, [0, 1], [0, 1], np.ones(2, dtype=bool)).tolist() == [2, 1, 0]
+
+
+@settings(max_examples=300, deadline=None)
+@examples(st.integers(1, 3).flatmap(lambda size: st.lists(
+    st.lists(st.floats(-1e3, 1e3), min_size=size, max_size=size), min_size=1, max_size=4)),
+    st.sampled_from([1.0, 1e-4, 1e-8, 1e-11]))
+def test_a_jacobian_vouched_independent_is_the_one_the_pivoted_qr_gives_full_rank(rows, lean):
+    import numpy as np
+    from scipy import linalg
+
+    from mechgrade.solve import rules
+    from mechgrade.solve.levels import _split_free, clearly_independent
+
+    J = np.array(rows)
+    J[:, -1] = lean * J[:, -1] + J[:, 0]  # nearly dependent columns as well as independent
+    if not clearly_independent(J):
+        return
+    _, R, _ = linalg.qr(J, pivoting=True, mode="economic")
+    assert int(rules.rank(np.diag(R))) == J.shape[1]
+    unknown = [7, 3, 5][:J.shape[1]]
+    assert _split_free(J, unknown) == (sorted(unknown), [])
+
+
+def test_a_jacobian_with_dependent_columns_is_left_to_the_pivoted_qr():
+    import numpy as np
+
+    from mechgrade.solve.levels import _split_free, clearly_independent
+
+    J = np.array([[1.0, 2.0], [2.0, 4.0 + 1e-12]])
+    assert not clearly_independent(J)
+    assert not clearly_independent(np.array([[1.0, 2.0]]))  # fewer rows than unknowns
+    assert _split_free(J, [4, 9]) == ([9], [4])  # the QR's rank 1, its pivot the longer column
 
 
 AIRPLANE = Path(__file__).resolve().parents[2] / "problems" / "airplane_crosswind_heading.yaml"

@@ -170,18 +170,17 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
         # one column (a single solve's integration): the same products on Python floats,
         # bit for bit, without numpy's cost per operation on one-element arrays
         M, v = A[:, :, 0].tolist(), b[:, 0].tolist()
-        det = _determinant(M)
+        det = determinant(M)
         if det != 0:
             for j in range(k):
-                solved[j, 0] = _determinant([[v[i] if c == j else x for c, x in enumerate(row)]
+                solved[j, 0] = determinant([[v[i] if c == j else x for c, x in enumerate(row)]
                                              for i, row in enumerate(M)]) / det
     elif rows_ == k and 1 < k <= 3:
-        det = _determinant(A)
+        det = determinant(A)
         with np.errstate(all="ignore"):
-            for j in range(k):
-                replaced = A.copy()
-                replaced[:, j] = b
-                solved[j] = _determinant(replaced) / det
+            for j in range(k):  # column j replaced by b: its rows as views, not a copy
+                solved[j] = determinant([[b[i] if c == j else A[i, c] for c in range(k)]
+                                         for i in range(k)]) / det
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
         Ab = A[:, :, left].transpose(2, 0, 1)
@@ -196,11 +195,11 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     return solved
 
 
-def _determinant(A):
+def determinant(A):
     """The determinant of a square matrix of up to three rows: of every column's (``A``: rows
     x rows x N), or of one given as nested lists of floats.
 
-    >>> _determinant([[2.0, 1.0], [1.0, 3.0]]), float(_determinant(np.eye(3)[:, :, None])[0])
+    >>> determinant([[2.0, 1.0], [1.0, 3.0]]), float(determinant(np.eye(3)[:, :, None])[0])
     (5.0, 1.0)
     """
     k = len(A)

@@ -12,7 +12,7 @@ leave free.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Callable, Mapping, Sequence
 
@@ -26,7 +26,8 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..spec.model import Problem, Root
 from ..units import from_si
 from . import rules
-from .columns import FirstErrors, call, least_squares, least_squares_solution, quiet
+from .columns import (FirstErrors, call, determinant, least_squares,
+                      least_squares_solution, quiet)
 from .plan import Level, KinematicsPlan, per_problem
 from .rules import first_off, on_branch, satisfied
 
@@ -57,6 +58,10 @@ class Givens:
     guessed: np.ndarray
     branches: Mapping[int, Root]
     scales: np.ndarray
+    # each level's rows (:func:`rows`) by its order, worked out when first asked: a solve
+    # asks for them at every stage (the starts, the screens, the probes)
+    rows: dict[int, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict,
+                                                           compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -187,22 +192,28 @@ def _unit_of(index, units, i) -> str:
 
 def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     """Which rows are active (constraints, and the conditions given in this solve), and the
-    value each row must equal (0 for constraints)."""
+    value each row must equal (0 for constraints); read-only, kept with ``g``."""
+    kept = g.rows.get(level.order)
+    if kept is not None:
+        return kept
     n = level.constraint_rows
     active = np.ones(n + len(level.conditions), dtype=bool)
     target = np.zeros(n + len(level.conditions))
-    if level.conditions:  # most levels have none: a solve asks a dozen times
+    if level.conditions:  # most levels have none
         values = np.array([g.conditions[level.order].get(key, np.nan)
                            for key in level.conditions])
         active[n:] = ~np.isnan(values)
         target[n:] = values if np.isfinite(values).all() else np.nan_to_num(values)
+    for shared in (active, target):  # every stage of the solve reads these
+        shared.setflags(write=False)
+    g.rows[level.order] = (active, target)
     return active, target
 
 
 def missing_values(p: KinematicsPlan, g: Givens, only: set[str]) -> list[int]:
     """Parameters and ``t`` that have no value and may not be solved for, yet are needed by an
     equation or by an objective in ``only``."""
-    missing = {i for i in range(p.index.size) if not g.known[i] and not g.solvable[i]}
+    missing = set(np.flatnonzero(~(g.known | g.solvable)).tolist())
     if not missing:
         return []
     needed: set[int] = set()
@@ -326,12 +337,11 @@ def _set_up(problem: Problem, p: KinematicsPlan, order: int, state: State, g: Gi
     columns = list(p.index.unknowns(order))
     active, target = rows(level, g)
     x = state.values.copy()
-    unknown = [i for i in columns if not g.known[i] and g.solvable[i]]
+    known, solvable = g.known[columns].tolist(), g.solvable[columns].tolist()
+    unknown = [i for i, k, s in zip(columns, known, solvable) if not k and s]
     origin = g.guess if start is None else start
     x[unknown] = origin[unknown]
-    for i in columns:
-        if not g.known[i] and not g.solvable[i]:
-            x[i] = np.nan
+    x[[i for i, k, s in zip(columns, known, solvable) if not k and not s]] = np.nan
     if not unknown or not active.any():
         for i in unknown:
             x[i] = (free_values or {}).get(i, x[i])
@@ -554,7 +564,9 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
     scales = np.full((k, X.shape[1]), 1e-300)
     eye = np.eye(k)[:, :, None]
+    diagonal = (np.arange(k), np.arange(k))
     with np.errstate(all="ignore"):
+        size = _norms(X[determined])  # of each column's unknowns, kept with them
         for _ in range(LM_STEPS):
             idx = np.flatnonzero(live)
             Ji, ri = J[:, :, idx], r[:, idx]
@@ -568,29 +580,39 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
             if not len(idx):
                 break
             A = np.einsum("aki,ali->kli", Ji, Ji)
-            scales[:, idx] = np.maximum(scales[:, idx], np.einsum("kki->ki", A))
-            step = least_squares_solution(A + eye * (damping[idx] * scales[:, idx])[:, None, :],
-                                          -grad)
+            scale = np.maximum(scales[:, idx], A[diagonal])
+            scales[:, idx] = scale
+            damped = damping[idx]
+            step = least_squares_solution(A + eye * (damped * scale)[:, None, :], -grad)
             step = np.where(np.isfinite(step), step, 0.0)
-            moved = X[:, idx].copy()
+            moved = X[:, idx]
             moved[determined] += step
             r_new = residual(moved, T[:, idx])
             cost_new = 0.5 * (r_new ** 2).sum(axis=0)
-            better = cost_new < cost[idx]  # NaN is not better
-            small = np.linalg.norm(step, axis=0) <= FIT_TOL * (
-                np.linalg.norm(X[determined][:, idx], axis=0) + FIT_TOL)
-            flat = better & (cost[idx] - cost_new <= FIT_TOL * cost[idx])
-            kept = idx[better]
-            if len(kept):
-                X[:, kept] = moved[:, better]
+            before = cost[idx]
+            better = cost_new < before  # NaN is not better
+            small = _norms(step) <= FIT_TOL * (size[idx] + FIT_TOL)
+            flat = better & (before - cost_new <= FIT_TOL * before)
+            damped = np.where(better, damped / 3, damped * 4)
+            damping[idx] = damped
+            done = small | flat | (damped > 1e30)
+            if better.any():
+                kept, there = idx[better], moved[:, better]
+                X[:, kept] = there
                 r[:, kept] = r_new[:, better]
                 cost[kept] = cost_new[better]
-                J[:, :, kept] = jacobian(moved[:, better])
-            damping[idx] = np.where(better, damping[idx] / 3, damping[idx] * 4)
-            done = small | flat | (cost[idx] == 0) | (damping[idx] > 1e30) | \
-                ~np.isfinite(J[:, :, idx]).all(axis=(0, 1))
+                J[:, :, kept] = fresh = jacobian(there)
+                size[kept] = _norms(there[determined])
+                # only a step taken changes a cost (to zero) or a Jacobian (to undefined)
+                done[better] |= (cost_new[better] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
             live[idx[done]] = False
     return X, cost, started
+
+
+def _norms(V: np.ndarray) -> np.ndarray:
+    """The Euclidean norm of each column of ``V`` (as ``numpy.linalg.norm(V, axis=0)``
+    works it out, without its checks of the arguments)."""
+    return np.sqrt(np.add.reduce(V * V, axis=0))
 
 
 def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, fits: Sequence[Fit | None]
@@ -699,6 +721,8 @@ def same_root(scales: np.ndarray, a: np.ndarray, b: np.ndarray, positions) -> bo
 
 
 def _on_branch(g: Givens, x: np.ndarray, positions) -> bool:
+    if not any(i in g.branches for i in positions):  # no branch asked of these: all are
+        return True
     return bool(on_branches(g.branches, x[:, None], g.scales[:, None], positions)[0])
 
 
@@ -839,8 +863,10 @@ class LinearColumns:
         rates with a part in its nullspace are free."""
         null = self.null(i)
         unknown = [j for j in self.rates if not g.known[j]]
-        free = set(before.free) | {j for j, row in zip(unknown, null)
-                                   if null.shape[1] and np.abs(row).max() > rules.OPEN}
+        free = set(before.free)
+        if null.shape[1]:  # the unknowns with a part in the nullspace
+            free.update(j for j, part in zip(unknown, np.abs(null).max(axis=1).tolist())
+                        if part > rules.OPEN)
         return State(self.X[:, i].copy(), g.known, frozenset(free))
 
 
@@ -941,12 +967,43 @@ def _split_free(J: np.ndarray, unknown: list[int]) -> tuple[list[int], list[int]
         return [], list(unknown)
     if not np.isfinite(J).all():
         return list(unknown), []
+    if clearly_independent(J):  # the QR's rank would be full: it determines them all
+        return sorted(unknown), []
     with np.errstate(all="ignore"):
         _, R, piv = linalg.qr(J, pivoting=True, mode="economic", check_finite=False)
     rank = int(rules.rank(np.diag(R))) if R.size else 0
     determined = sorted(unknown[j] for j in piv[:rank])
     free = sorted(unknown[j] for j in piv[rank:])
     return determined, free
+
+
+FULL_RANK_MARGIN = (1e3 * rules.RANK_TOL) ** 2
+"""The part of its trace (and of 1) the smallest eigenvalue of a Jacobian's Gram matrix
+exceeds where :func:`clearly_independent` vouches for it: singular values a thousand times
+:data:`~.rules.RANK_TOL` apart at worst, far beyond any rounding of the QR or of the Gram."""
+
+
+def clearly_independent(J: np.ndarray) -> bool:
+    """Whether the columns of ``J`` (rows x at most three) are independent by a wide margin:
+    the smallest eigenvalue of its Gram matrix, at least its determinant over its trace to
+    the power one less than its size, is above :data:`FULL_RANK_MARGIN` of the trace (and of
+    1). Each diagonal entry of a pivoted QR's R is at least the smallest singular value and
+    the largest at most the largest one, so the rank that QR gives (:func:`~.rules.rank`)
+    is then full: the same answer without LAPACK's cost per call. ``False`` says nothing
+    (the QR decides).
+
+    >>> clearly_independent(np.array([[1.0, 0.0], [0.5, 2.0]]))
+    True
+    >>> clearly_independent(np.array([[1.0, 2.0], [2.0, 4.0 + 1e-9]]))
+    False
+    """
+    rows_, size = J.shape
+    if size > 3 or rows_ < size:
+        return False
+    columns = J.T.tolist()
+    gram = [[sum(a * b for a, b in zip(u, v)) for v in columns] for u in columns]
+    trace = sum(gram[i][i] for i in range(size))
+    return bool(determinant(gram) > FULL_RANK_MARGIN * trace ** (size - 1) * max(trace, 1.0))
 
 
 def evaluate(functions, state: State, only: set[str]) -> dict:

@@ -29,7 +29,7 @@ import numpy as np
 from ..errors import MechgradeError
 from ..expressions.syntax import Call, Name, Prime, to_text, walk
 from ..spec.constraint_mutations import constraint_mutations, position_unchosen
-from ..spec.model import Objective, ObjectiveKind, Problem
+from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
 from ..tolerance import within
 from ..units import dimension, si_factor, to_si
@@ -227,24 +227,25 @@ def slips_of(givens: Mapping, parameters: set[str]):
     one given, or two parameters of the same unit exchanged (a tooth ratio inverted)."""
     named = [(key, node, si, given) for key, (node, si, given) in givens.items()
              if given is not None]
+    stated = {key: given for key, _, _, given in named}
     for key, node, si, given in named:
         fixed = isinstance(node, Name) and node.id in parameters
         for code, mistaken_si, sentence in _given_slips(node, si, given, fixed):
-            yield code, _carried_into(givens, ((key, mistaken_si),)), sentence
+            yield code, _carried_into(stated, ((key, mistaken_si),)), sentence
     swappable = [(key, si, given) for key, node, si, given in named
                  if isinstance(node, Name) and node.id in parameters]
     for i, (key, si, given) in enumerate(swappable):
         for other, other_si, other_given in swappable[i + 1:]:
             if given.unit == other_given.unit and si != other_si and si and other_si:
-                yield ("given_swap", _carried_into(givens, ((key, other_si), (other, si))),
+                yield ("given_swap", _carried_into(stated, ((key, other_si), (other, si))),
                        f"Your value is what {key} and {other} exchanged gives ({key} = "
                        f"{other_given.text}, {other} = {given.text}): check which is which.")
 
 
-def _carried_into(givens: Mapping, changes: tuple) -> tuple:
+def _carried_into(stated: Mapping[str, Given], changes: tuple) -> tuple:
     """``changes`` and, after them, the givens stated as expressions of the misread ones
-    (``x': v2*cos(beta)``) worked out again: the slip carried into each given it feeds."""
-    stated = {key: given for key, (_, _, given) in givens.items() if given is not None}
+    (``x': v2*cos(beta)``) worked out again (``stated``: the givens as written, by key): the
+    slip carried into each given it feeds."""
     try:
         return changes + tuple(carried(stated, dict(changes)).items())
     except MechgradeError:  # a dependent given undefined when misread (a root of a negative)
@@ -542,9 +543,12 @@ def _stacked(columns: Sequence[Sequence[GeneratedMistake]], size: int
     codes = np.full((n, count), "", dtype=object)
     for i, mistakes in enumerate(columns):
         for j, m in enumerate(mistakes):
-            value = np.atleast_1d(np.asarray(m.value, float))
-            if value.shape == (size,):
-                V[i, j], exists[i, j] = value, True
+            if size == 1 and isinstance(m.value, float):  # a scalar, as most are: no array
+                V[i, j, 0], exists[i, j] = m.value, True
+            else:
+                value = np.atleast_1d(np.asarray(m.value, float))
+                if value.shape == (size,):
+                    V[i, j], exists[i, j] = value, True
             codes[i, j] = m.code
     return V, exists, codes
 

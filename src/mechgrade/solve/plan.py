@@ -15,6 +15,7 @@ kinematics (:attr:`KinematicsPlan.k`) are derived again only if something asks f
 
 from __future__ import annotations
 
+import operator
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any, Callable, Mapping
@@ -133,7 +134,7 @@ def per_problem(make, *args):
     holds ``args``, so an identity is not reused while it is kept."""
     key = (make, *map(id, args))
     entry = _BY_PROBLEM.get(key)
-    if entry is None or any(a is not b for a, b in zip(entry[0], args)):
+    if entry is None or not all(map(operator.is_, entry[0], args)):
         if len(_BY_PROBLEM) >= 1024:
             _BY_PROBLEM.clear()
         entry = _BY_PROBLEM[key] = (args, make(*args))
