@@ -144,6 +144,32 @@ def test_misread_givens_without_a_solution_name_no_mistake_together_as_alone():
     assert any(named) and not all(named)
 
 
+def test_misread_givens_that_break_the_positions_they_fix_are_refused_together_as_alone(
+        monkeypatch):
+    # x, y and alpha fix the linkage, so an angle or length misread breaks its loop: one solve
+    # refuses that instant (the givens conflict), and the class refuses it by the same rule
+    # instead of solving it again alone
+    from mechgrade.solve import mutants
+
+    problem = load_problem(PROBLEMS / "bowling_3_15_8_connected_blocks.yaml")
+    variants = scaled(problem, ["y'"])
+    one_by_one = alone(problem, variants)
+    solve_variants(problem, scaled(problem, ["y'"], count=1))  # the class's template built
+    again = []
+    real = mutants.solve_numeric_columns
+
+    def counted(problem, p, givens, only):
+        again.extend(givens)
+        return real(problem, p, givens, only)
+
+    monkeypatch.setattr(mutants, "solve_numeric_columns", counted)
+    together = solve_variants(problem, variants)
+    assert again == []
+    for a, one in zip(together, one_by_one):
+        assert_same(a, one)
+    assert any(m.code == "given_sign" for m in together[0].result("xdot").generated_mistakes)
+
+
 @pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_problem_with_symbolic_objectives_only_is_solved_together():
     problem = load_problem(PROBLEMS / "ruina_sec10_bug_on_tire.yaml")

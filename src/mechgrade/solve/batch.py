@@ -679,12 +679,28 @@ class _Template:
 
     # -- generated mistakes
 
-    def _misread(self, group: _Group, maps: list[dict]) -> tuple[np.ndarray, dict]:
+    def _misread(self, group: _Group, maps: list[dict]) -> tuple[np.ndarray, dict, np.ndarray]:
         """The :data:`~.mutants.Misreadings` of ``group``: the instants of misread givens
         reached together, as the variants' (a degenerate configuration no reason to drop a
-        mistake)."""
+        mistake), and those whose givens break the positions (:meth:`_conflicting`)."""
         _, ok, values, _, _, _ = self._instant(group, maps, False)
-        return ok, values
+        return ok, values, ~ok & self._conflicting(group, maps)
+
+    def _conflicting(self, group: _Group, maps: list[dict]) -> np.ndarray:
+        """The columns whose givens fix every position the position level reads but break it
+        (a linkage's angle misread as radians): one solve refuses them by the same residual
+        rule before it solves anything (:func:`~.levels.givens_conflict`), so no column's
+        refusal depends on a root found or a start taken."""
+        refused = np.zeros(len(maps), dtype=bool)
+        if group.unknown[0] or not group.active[0].any() or self._designs(group) \
+                or self._integrates(group) or self._phased(group):
+            return refused
+        X, targets = self._placed(group, maps)
+        for level in self.p.levels:
+            if level.order == 0:
+                refused |= ~holds(self.problem.consistency, level, X, group.active[0],
+                                  targets[0][group.active[0]])
+        return refused
 
 
 def _mutant_values(group: _Group, mutant: Problem, maps: Sequence[dict], wanted: set[str]
@@ -700,12 +716,12 @@ def _mutant_values(group: _Group, mutant: Problem, maps: Sequence[dict], wanted:
             and g.conditions.keys() == group.conditions.keys()] if template is not None else []
     if template is None or not maps or not same or frozenset(wanted) != group.numeric:
         return values_alone(mutant, maps, wanted)
-    ok, values = template._misread(same[0], list(maps))
-    alone = np.flatnonzero(~ok).tolist()
+    ok, values, refused = template._misread(same[0], list(maps))
+    alone = np.flatnonzero(~ok & ~refused).tolist()
     redone = dict(zip(alone, values_alone(mutant, [maps[k] for k in alone], wanted)
                              if alone else ()))
-    return [redone[k] if k in redone else {oid: v[:, k] for oid, v in values.items()}
-            for k in range(len(maps))]
+    return [None if refused[k] else redone[k] if k in redone
+            else {oid: v[:, k] for oid, v in values.items()} for k in range(len(maps))]
 
 
 def _positions(p: KinematicsPlan, given_map: dict) -> dict[str, int]:

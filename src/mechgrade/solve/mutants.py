@@ -386,10 +386,11 @@ def plausible_slips(problem: Problem) -> frozenset[str]:
 GeneratedColumns = Mapping[str, Callable[[int], tuple[GeneratedMistake, ...]]]
 """Each objective's generated mistakes at every column, as a function of the column."""
 
-Misreadings = Callable[[list[dict]], tuple[np.ndarray, dict[str, np.ndarray]]]
+Misreadings = Callable[[list[dict]], tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]]
 """How a class reaches the instants of misread givens together (each a map of givens, only
-its values read): which it vouches for, and each objective's SI values there (size x
-count); :func:`generated_columns` solves the others one by one."""
+its values read): which it vouches for, each objective's SI values there (size x count),
+and which it refuses as one solve refuses them (givens that break the positions they fix);
+:func:`generated_columns` solves the others one by one."""
 
 
 def generated_columns(problem: Problem, p: KinematicsPlan, maps: Sequence[dict], X: np.ndarray,
@@ -457,7 +458,8 @@ def _misread_instants(problem: Problem, p: KinematicsPlan, changed: list[tuple[d
     """The objectives ``numeric`` at each instant of misread givens (``changed``: the givens
     and their ``(key, mistaken SI value)`` changes): which were solved, and each objective's
     SI values (size x count). ``together`` reaches those it vouches for (a degenerate
-    configuration is no reason to drop a mistake); the others are solved one by one."""
+    configuration is no reason to drop a mistake) and refuses those one solve refuses; the
+    others are solved one by one."""
     if not changed:
         return np.zeros(0, dtype=bool), {}
     if together is not None:
@@ -467,11 +469,12 @@ def _misread_instants(problem: Problem, p: KinematicsPlan, changed: list[tuple[d
             for key, mistaken_si in changes:
                 values[key] = (None, mistaken_si, None)
             moved.append(values)
-        solved, found = together(moved)
+        solved, found, refused = together(moved)
         solved, found = solved.copy(), dict(found)
     else:
         solved, found = np.zeros(len(changed), dtype=bool), {}
-    redo = np.flatnonzero(~solved)
+        refused = solved
+    redo = np.flatnonzero(~solved & ~refused)
     instants = solve_numeric_columns(problem, p, [misread(*changed[i]) for i in redo], numeric)
     for i, instant in zip(redo.tolist(), instants):
         if isinstance(instant, MechgradeError):
