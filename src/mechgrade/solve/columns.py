@@ -153,11 +153,13 @@ def loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
 
 
-def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+def least_squares_solution(A: np.ndarray, b: np.ndarray, det: np.ndarray | None = None
+                           ) -> np.ndarray:
     """The least-squares solution of ``A x = b`` at every column (``A``: rows x unknowns x N,
     ``b``: rows x N), the minimum-norm one where ``A`` is singular, as ``scipy.linalg.lstsq``
     gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
-    cost is most of the time of so small a solve)."""
+    cost is most of the time of so small a solve), ``det``: its determinants where known
+    (:func:`determinants`)."""
     rows_, k, count = A.shape
     if rows_ == k == 1:
         with np.errstate(all="ignore"):
@@ -170,18 +172,18 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
         # one column (a single solve's integration): the same products on Python floats,
         # bit for bit, without numpy's cost per operation on one-element arrays
         M, v = A[:, :, 0].tolist(), b[:, 0].tolist()
-        det = _determinant(M)
-        if det != 0:
+        det_ = _determinant(M)
+        if det_ != 0:
             for j in range(k):
                 solved[j, 0] = _determinant([[v[i] if c == j else x for c, x in enumerate(row)]
-                                             for i, row in enumerate(M)]) / det
+                                             for i, row in enumerate(M)]) / det_
     elif rows_ == k and 1 < k <= 3:
-        det = _determinant(A)
+        M = [list(row) for row in A]  # (views: the entries' rows of values)
         with np.errstate(all="ignore"):
+            det = _determinant(M) if det is None else det
             for j in range(k):
-                replaced = A.copy()
-                replaced[:, j] = b
-                solved[j] = _determinant(replaced) / det
+                solved[j] = _determinant([[b[i] if c == j else x for c, x in enumerate(row)]
+                                          for i, row in enumerate(M)]) / det
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
         Ab = A[:, :, left].transpose(2, 0, 1)
@@ -194,6 +196,20 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
             part = np.linalg.pinv(Ab, rtol=cutoff(rows_, k)) @ bb
         solved[:, left] = part[:, :, 0].T
     return solved
+
+
+def determinants(A: np.ndarray) -> np.ndarray | None:
+    """The determinants :func:`least_squares_solution` solves ``A`` with (``None`` where it
+    solves without), for a matrix that several right-hand sides share.
+
+    >>> determinants(np.array([[[2.0], [1.0]], [[1.0], [3.0]]])).tolist()
+    [5.0]
+    """
+    rows_, k = A.shape[:2]
+    if not (rows_ == k and 1 < k <= 3):
+        return None
+    with np.errstate(all="ignore"):
+        return _determinant([list(row) for row in A])
 
 
 def _determinant(A):
