@@ -111,10 +111,19 @@ class Motion:
         # a matrix that reads parameters only is the same all along: worked out once
         constant = constant_matrix(kp, full, switches)
 
+        # the stages of a step share its columns: their states and matrix gathered once
+        last: list = [np.arange(count), full, constant]
+
+        def among(cols: np.ndarray) -> list:
+            if cols is not last[0]:  # (cols is sorted: all of them is all in order)
+                every = len(cols) == count
+                last[:] = cols, full if every else full[:, cols], \
+                    constant and constant.of(cols)
+            return last
+
         def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                modes: np.ndarray | None = None) -> np.ndarray:
-            # a copy (every column: cols is sorted, so all of them is all in order)
-            x = full.copy() if len(cols) == count else full[:, cols]
+            x = among(cols)[1].copy()
             x[:n] = y[:n]
             x[qd] = y[n:]
             x[index.time] = t
@@ -123,7 +132,7 @@ class Motion:
             return x
 
         def accelerated(cols: np.ndarray, x: np.ndarray) -> np.ndarray:
-            return self.accelerations(x, switches, constant and constant.of(cols))
+            return self.accelerations(x, switches, among(cols)[2])
 
         def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                 modes: np.ndarray) -> np.ndarray:
