@@ -178,12 +178,14 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray, det: np.ndarray | None 
                 solved[j, 0] = _determinant([[v[i] if c == j else x for c, x in enumerate(row)]
                                              for i, row in enumerate(M)]) / det_
     elif rows_ == k and 1 < k <= 3:
-        M = [list(row) for row in A]  # (views: the entries' rows of values)
         with np.errstate(all="ignore"):
-            det = _determinant(M) if det is None else det
-            for j in range(k):
-                solved[j] = _determinant([[b[i] if c == j else x for c, x in enumerate(row)]
-                                          for i, row in enumerate(M)]) / det
+            det = _determinant(A) if det is None else det
+            # A with its column j replaced by b, for every j at once (rows x unknowns x j x
+            # N): one determinant of arrays k times as long, each entry the same products
+            replaced = np.repeat(A[:, :, None], k, axis=2)
+            every = np.arange(k)
+            replaced[:, every, every] = b[:, None]
+            solved = _determinant(replaced) / det
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
         Ab = A[:, :, left].transpose(2, 0, 1)
@@ -209,7 +211,7 @@ def determinants(A: np.ndarray) -> np.ndarray | None:
     if not (rows_ == k and 1 < k <= 3):
         return None
     with np.errstate(all="ignore"):
-        return _determinant([list(row) for row in A])
+        return _determinant(A)
 
 
 def _determinant(A):
@@ -223,10 +225,10 @@ def _determinant(A):
     if k == 1:
         return A[0][0]
     if k == 2:
-        return A[0][0] * A[1][1] - A[0][1] * A[1][0]
-    return (A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
-            - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0])
-            + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]))
+        (a, b), (c, d) = A  # (each entry read once: a view of an array's is made once)
+        return a * d - b * c
+    (a, b, c), (d, e, f), (g, h, i) = A
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
 
 
 def least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):
