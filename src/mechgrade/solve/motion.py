@@ -112,7 +112,7 @@ class Motion:
         constant = constant_matrix(kp, full, switches)
 
         # the stages of a step share its columns: their states and matrix gathered once
-        last: list = [np.arange(count), full, constant]
+        last: list = [None, full, constant]
 
         def among(cols: np.ndarray) -> list:
             if cols is not last[0]:  # (cols is sorted: all of them is all in order)
