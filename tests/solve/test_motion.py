@@ -104,3 +104,34 @@ def test_columns_asked_at_their_own_instants_beside_the_event_are_integrated_as_
         np.testing.assert_allclose(together[:, c], apart[:, 0], rtol=1e-10, atol=1e-13)
     assert together[index.time, 0] == pytest.approx(0.1603187, rel=1e-6)  # back at x = 0
     assert together[index.position("x"), 1] == pytest.approx(0.0251013, rel=1e-5)
+
+
+def test_a_mass_matrix_of_parameters_only_is_worked_out_once_and_integrates_the_same_bits(
+        monkeypatch):
+    """Three carts on springs: the balances' matrix reads the masses only, so a class's
+    integration evaluates it (and its determinants) once instead of at every right-hand
+    side, and every column reaches its instants with the same numbers as evaluating it at
+    every step."""
+    from mechgrade.solve import motion as module
+    from mechgrade.solve.motion import _switches
+
+    problem = load_problem(TURNTABLE.parent / "three_cart_chain_vibration.yaml")
+    kp = kinetics_plan(problem)
+    switches = _switches(kp)  # (each spring's length |a + x| read with its sign kept)
+    assert kp.constant_jacobian and switches is not None and switches.constant_jacobian
+    index = kp.kp.index
+    state = solve_numeric(kinematic_problem(problem), kp.kp,
+                          instant_givens(problem, None, {}), set()).state
+    X = np.repeat(state.values[:, None], 3, axis=1)
+    X[index.position("m2"), 1] = 2.5
+    X[index.position("k3"), 2] = 150.0
+    instants = np.array([-1, index.time, index.rates(1).start + 2])
+    X[index.time, 1] = 0.25  # t = 250 ms; column 2: x3' = 0, cart 3 stops
+    X[index.rates(1).start + 2, 2] = 0.0
+    once = Motion(problem, kp).integrated(X, instants)
+    monkeypatch.setattr(module, "constant_matrix", lambda *args: None)
+    every_step = Motion(problem, kp).integrated(X, instants)
+    assert once[1].all() and not once[3]
+    for a, b in zip(once[:3], every_step[:3]):
+        assert np.array_equal(a, b, equal_nan=True)
+    assert once[0][index.position("x3"), 0] == pytest.approx(-0.0141080, rel=1e-5)

@@ -95,10 +95,12 @@ def modal_value(what, number, i, j, n, m, *entries):
     one, shape = _one_state(entries)
     if one is not None:  # a solve alone: hundreds of entries not broadcast one by one
         flat = one[:, None]
-    else:
-        arrays = np.broadcast_arrays(*(np.asarray(e, dtype=float) for e in entries))
-        shape = arrays[0].shape
-        flat = np.stack([a.reshape(-1) for a in arrays])
+    else:  # each entry written into its row (a number spread along it): one step apiece
+        shape = np.broadcast_shapes(*(np.shape(e) for e in entries))
+        flat = np.empty((len(entries),) + shape)
+        for row, e in zip(flat, entries):
+            row[...] = e
+        flat = flat.reshape(len(entries), -1)
     # the states' modes worked out once for the several values and residuals asked of them (a
     # frequency, its mode shape, the checks that it exists)
     modes = _modes(int(n), int(m), flat.shape[1], np.ascontiguousarray(flat).tobytes())

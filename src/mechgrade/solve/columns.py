@@ -153,11 +153,13 @@ def loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
 
 
-def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+def least_squares_solution(A: np.ndarray, b: np.ndarray, det: np.ndarray | None = None
+                           ) -> np.ndarray:
     """The least-squares solution of ``A x = b`` at every column (``A``: rows x unknowns x N,
     ``b``: rows x N), the minimum-norm one where ``A`` is singular, as ``scipy.linalg.lstsq``
     gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
-    cost is most of the time of so small a solve)."""
+    cost is most of the time of so small a solve), ``det``: its determinants where known
+    (:func:`determinants`)."""
     rows_, k, count = A.shape
     if rows_ == k == 1:
         with np.errstate(all="ignore"):
@@ -170,17 +172,20 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
         # one column (a single solve's integration): the same products on Python floats,
         # bit for bit, without numpy's cost per operation on one-element arrays
         M, v = A[:, :, 0].tolist(), b[:, 0].tolist()
-        det = determinant(M)
-        if det != 0:
+        det_ = determinant(M)
+        if det_ != 0:
             for j in range(k):
                 solved[j, 0] = determinant([[v[i] if c == j else x for c, x in enumerate(row)]
-                                             for i, row in enumerate(M)]) / det
+                                             for i, row in enumerate(M)]) / det_
     elif rows_ == k and 1 < k <= 3:
-        det = determinant(A)
         with np.errstate(all="ignore"):
-            for j in range(k):  # column j replaced by b: its rows as views, not a copy
-                solved[j] = determinant([[b[i] if c == j else A[i, c] for c in range(k)]
-                                         for i in range(k)]) / det
+            det = determinant(A) if det is None else det
+            # A with its column j replaced by b, for every j at once (rows x unknowns x j x
+            # N): one determinant of arrays k times as long, each entry the same products
+            replaced = np.repeat(A[:, :, None], k, axis=2)
+            every = np.arange(k)
+            replaced[:, every, every] = b[:, None]
+            solved = determinant(replaced) / det
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
         Ab = A[:, :, left].transpose(2, 0, 1)
@@ -195,6 +200,20 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     return solved
 
 
+def determinants(A: np.ndarray) -> np.ndarray | None:
+    """The determinants :func:`least_squares_solution` solves ``A`` with (``None`` where it
+    solves without), for a matrix that several right-hand sides share.
+
+    >>> determinants(np.array([[[2.0], [1.0]], [[1.0], [3.0]]])).tolist()
+    [5.0]
+    """
+    rows_, k = A.shape[:2]
+    if not (rows_ == k and 1 < k <= 3):
+        return None
+    with np.errstate(all="ignore"):
+        return determinant(A)
+
+
 def determinant(A):
     """The determinant of a square matrix of up to three rows: of every column's (``A``: rows
     x rows x N), or of one given as nested lists of floats.
@@ -206,10 +225,10 @@ def determinant(A):
     if k == 1:
         return A[0][0]
     if k == 2:
-        return A[0][0] * A[1][1] - A[0][1] * A[1][0]
-    return (A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1])
-            - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0])
-            + A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]))
+        (a, b), (c, d) = A  # (each entry read once: a view of an array's is made once)
+        return a * d - b * c
+    (a, b, c), (d, e, f), (g, h, i) = A
+    return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
 
 
 def least_squares(J: np.ndarray, r: np.ndarray, good: np.ndarray):

@@ -45,13 +45,15 @@ from .columns import WithInputs
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
-from .motion import after_event, at_event, balances, integrated_columns
+from .motion import (after_event, at_event, balances, integrated_columns,
+                     reads_parameters_only)
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
 from .instant import Reached, drive, read_objectives, symbolic_dependence
 from .phases import Entry, Target, Until, When, asked_when, gripping, reach
 from .levels import State, place_givens
 from .numeric import solve_numeric
+from .index import SymbolIndex
 from .plan import KinematicsPlan, kinematics_plan, per_problem
 from .positions import position_symbolic, positions_where, which_root, without_position
 from .result import ObjectiveResult, Solution
@@ -87,6 +89,7 @@ class KineticsPlan:
     requirements: tuple[tuple[str, str, Callable], ...] = ()
     design: Callable | None = None
     physical: tuple[tuple[PhysicalBound, Callable], ...] = ()
+    constant_jacobian: bool = False  # it reads parameters only: constant along a motion
 
     def name(self, column: int) -> str:
         """How an unknown is named in messages."""
@@ -101,9 +104,10 @@ def _lambdify(symbols, expr):
     return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
 
 
-def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
+def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> dict:
     """The plan's ``residual``, ``jacobian`` and ``scale`` of ``kin``'s balances and
-    constraints; an impact's of its rates before too, worked out from the state
+    constraints, and whether the Jacobian reads parameters only (``index`` lays out
+    ``symbols``); an impact's of its rates before too, worked out from the state
     (:class:`~.columns.WithInputs`: a model with other rates before is another ``inputs``)."""
     # the rates before named apart from the state's symbols: a Dummy argument would make
     # lambdify rename every argument in every expression
@@ -118,10 +122,11 @@ def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
     exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints]).xreplace(named)
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
+    jacobian = exprs.jacobian(unknowns)
     out = {name: _lambdify(symbols + before, f) for name, f in zip(
-        _BALANCE_FUNCTIONS, (exprs, exprs.jacobian(unknowns), scale))}
+        _BALANCE_FUNCTIONS, (exprs, jacobian, scale))}
     if kin.before is None:
-        return out
+        return {**out, "constant_jacobian": reads_parameters_only(jacobian, symbols, index)}
     rates = _lambdify(symbols, kin.before.values)
     return {name: WithInputs(f, rates) for name, f in out.items()}
 
@@ -193,8 +198,8 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
     unknowns = [symbols[i] for i in columns]
     return KineticsPlan(
         kin=kin, kp=kp, symbols=symbols, columns=columns,
-        **_balance_functions(kin, symbols, unknowns), labels=tuple(e.label for e in equations),
-        wheres=tuple(e.where for e in equations),
+        **_balance_functions(kin, symbols, unknowns, kp.index),
+        labels=tuple(e.label for e in equations), wheres=tuple(e.where for e in equations),
         bounds=tuple((b, _lambdify(symbols, b.tangential), _lambdify(symbols, b.normal),
                       _lambdify(symbols, b.mu)) for b in kin.bounds),
         slips=tuple((s, _lambdify(symbols, s.speed), _lambdify(symbols, s.normal))

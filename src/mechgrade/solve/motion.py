@@ -20,7 +20,8 @@ from ..spec.model import Problem
 from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
-from .columns import FirstErrors, call, least_squares_solution, loud_call, quiet
+from .columns import (FirstErrors, call, determinants, least_squares_solution, loud_call,
+                      quiet)
 from .events import ATOL, MAX_CALLS, RTOL, event_never_happens, leaving
 from .junctions import settle_junctions
 from .plan import KinematicsPlan
@@ -107,11 +108,22 @@ class Motion:
         # the balances), then its modes
         full = np.zeros((kinetic + (switches.count if switches else 0), count))
         full[:size] = values
+        # a matrix that reads parameters only is the same all along: worked out once
+        constant = constant_matrix(kp, full, switches)
+
+        # the stages of a step share its columns: their states and matrix gathered once
+        last: list = [None, full, constant]
+
+        def among(cols: np.ndarray) -> list:
+            if cols is not last[0]:  # (cols is sorted: all of them is all in order)
+                every = len(cols) == count
+                last[:] = cols, full if every else full[:, cols], \
+                    constant and constant.of(cols)
+            return last
 
         def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                modes: np.ndarray | None = None) -> np.ndarray:
-            # a copy (every column: cols is sorted, so all of them is all in order)
-            x = full.copy() if len(cols) == count else full[:, cols]
+            x = among(cols)[1].copy()
             x[:n] = y[:n]
             x[qd] = y[n:]
             x[index.time] = t
@@ -119,16 +131,18 @@ class Motion:
                 x[kinetic:] = modes
             return x
 
+        def accelerated(cols: np.ndarray, x: np.ndarray) -> np.ndarray:
+            return self.accelerations(x, switches, among(cols)[2])
+
         def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                 modes: np.ndarray) -> np.ndarray:
-            return np.concatenate([y[n:], self.accelerations(at(cols, t, y, modes),
-                                                              switches)[qdd]])
+            return np.concatenate([y[n:], accelerated(cols, at(cols, t, y, modes))[qdd]])
 
         def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
                   modes: np.ndarray | None) -> np.ndarray:
             x = at(cols, t, y, modes)
             if ap.until_kinetic:
-                x = self.accelerations(x, switches)
+                x = accelerated(cols, x)
             assert ap.until is not None  # an integration has its event
             return loud_call(ap.until, x[:kinetic], 1)[0]
 
@@ -286,16 +300,19 @@ class Motion:
             "slips until its event, or the end of the slip as the event", where=where)
             for i, when in zip(w[sticks], t[sticks])}
 
-    def accelerations(self, x: np.ndarray, switches: _Switching | None) -> np.ndarray:
+    def accelerations(self, x: np.ndarray, switches: _Switching | None,
+                      constant: ConstantMatrix | None = None) -> np.ndarray:
         """:func:`accelerations` of this motion."""
-        return accelerations(self.kinetics, x, switches)
+        return accelerations(self.kinetics, x, switches, constant)
 
 
-def accelerations(kp, x: np.ndarray, switches: _Switching | None = None) -> np.ndarray:
+def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
+                  constant: ConstantMatrix | None = None) -> np.ndarray:
     """``x`` (extended states, the unknowns 0, then with ``switches`` each slip's direction)
     with every second rate and reaction solved by least squares, without the checks of
     :func:`balances` (the right-hand side of an integration), in place; NaN where the
-    equations are undefined. Called with numpy's warnings silenced."""
+    equations are undefined. ``constant``: the balances' matrix of these columns, where it
+    reads parameters only (:func:`constant_matrix`). Called with numpy's warnings silenced."""
     count = x.shape[1]
     cols = list(kp.columns)
     rows_ = len(kp.labels)
@@ -304,15 +321,80 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None) -> np.n
     else:
         jacobian, residual = kp.jacobian, kp.residual
         args = x[:len(kp.symbols)]
-    A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+    if constant is None:
+        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
     b = loud_call(residual, args, rows_)
-    if np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
+    if constant is not None:
+        A = constant.A
+        if constant.everywhere and np.isfinite(b.sum()):
+            x[cols] = least_squares_solution(A, -b, constant.det)
+            return x
+    elif np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
         x[cols] = least_squares_solution(A, -b)
         return x
     good = np.isfinite(A).all(axis=(0, 1)) & np.isfinite(b).all(axis=0)
     x[cols] = least_squares_solution(np.where(good, A, 0.0), np.where(good, -b, 0.0))
     x[:, ~good] = np.nan
     return x
+
+
+@dataclass(frozen=True)
+class ConstantMatrix:
+    """The balances' matrix ``A`` (rows x unknowns x columns) of a motion where it reads
+    parameters only (a mass matrix: :attr:`~.dynamics.KineticsPlan.constant_jacobian`),
+    evaluated once for every right-hand side of its integration, and what solves with it once
+    (``det``: :func:`~.columns.determinants`); ``everywhere``: ``A`` is finite at every
+    column.
+
+    >>> m = ConstantMatrix.of_matrix(np.array([[[2.0, 4.0]]]))
+    >>> m.everywhere, m.of(np.array([1])).A.tolist()
+    (True, [[[4.0]]])
+    """
+
+    A: np.ndarray
+    det: np.ndarray | None
+    everywhere: bool
+
+    @classmethod
+    def of_matrix(cls, A: np.ndarray) -> ConstantMatrix:
+        return cls(A, determinants(A), bool(np.isfinite(A).all()))
+
+    def of(self, cols: np.ndarray) -> ConstantMatrix:
+        """The columns ``cols`` (sorted) only."""
+        if len(cols) == self.A.shape[2]:
+            return self
+        A = self.A[:, :, cols]
+        return ConstantMatrix(A, None if self.det is None else self.det[cols],
+                              self.everywhere or bool(np.isfinite(A).all()))
+
+
+def constant_matrix(kp, x: np.ndarray, switches: _Switching | None = None
+                    ) -> ConstantMatrix | None:
+    """The balances' matrix (with ``switches``, theirs) at every column of ``x`` (extended
+    states, as :func:`accelerations` reads them) where it reads parameters only (``None``
+    where it does not): the same all along a motion."""
+    if not (switches or kp).constant_jacobian:
+        return None
+    jacobian, args = (switches.jacobian, x) if switches else (kp.jacobian, x[:len(kp.symbols)])
+    rows_, k = len(kp.labels), len(kp.columns)
+    return ConstantMatrix.of_matrix(
+        loud_call(jacobian, args, rows_ * k).reshape(rows_, k, x.shape[1]))
+
+
+def reads_parameters_only(matrix, symbols: tuple, index) -> bool:
+    """Whether ``matrix`` (sympy) reads no entry of the extended state (``symbols``, laid out
+    by ``index``) but its parameters: a balances' Jacobian that is the same all along a motion
+    (a mass matrix).
+
+    >>> import sympy as sp
+    >>> from mechgrade.solve.index import SymbolIndex
+    >>> x, m, t, v, a = sp.symbols("x m t v a")
+    >>> index = SymbolIndex(("x", "m", "t", "x'", "x''"), ("x",), ("m",), source=None)
+    >>> [reads_parameters_only(sp.Matrix([e]), (x, m, t, v, a), index) for e in (-m, -m * x)]
+    [True, False]
+    """
+    parameters = {s for i, s in enumerate(symbols[:index.size]) if index.is_parameter(i)}
+    return matrix.free_symbols <= parameters
 
 
 @dataclass(frozen=True)
@@ -463,6 +545,7 @@ class _Switching:
     residual: Callable
     jacobian: Callable
     count: int
+    constant_jacobian: bool  # it reads parameters only (no mode): the same all along
 
 
 @lru_cache(maxsize=64)
@@ -500,11 +583,13 @@ def _switches(kp, at_end: bool = False) -> _Switching | None:
     matrix = sp.Matrix([kept(e) for e in exprs])
     unknowns = [kp.symbols[i] for i in kp.columns]
     symbols = (*kp.symbols, *modes)
+    jacobian = matrix.jacobian(unknowns)
     return _Switching(
         speeds=sp.lambdify(kp.symbols, speeds, modules="numpy", cse=True),
         residual=sp.lambdify(symbols, matrix, modules="numpy", cse=True),
-        jacobian=sp.lambdify(symbols, matrix.jacobian(unknowns), modules="numpy", cse=True),
-        count=len(speeds))
+        jacobian=sp.lambdify(symbols, jacobian, modules="numpy", cse=True),
+        count=len(speeds),
+        constant_jacobian=reads_parameters_only(jacobian, kp.symbols, kp.kp.index))
 
 
 @lru_cache(maxsize=64)
