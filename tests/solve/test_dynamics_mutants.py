@@ -157,3 +157,19 @@ def test_a_given_linear_acceleration_taken_as_zero_leaves_the_static_force():
                if m.code == "given_acceleration_zero"]
     assert float(np.ravel(slip.value)[0]) == pytest.approx(3000.0)  # lbf
     assert "given acceleration of y" in slip.message and "2 ft/s^2" in slip.message
+
+
+def test_a_class_asked_only_symbolic_answers_reads_no_mistaken_reading_or_term():
+    from mechgrade.solve.dynamics_mutants import _one_by_one, with_class_mistakes
+
+    problem = load_problem(PROBLEMS / "atwood_machine.yaml")
+    solution = solve_dynamics(problem, objectives={"a1_symbolic"})
+    asked = []
+
+    def together(mistaken, givens, objectives):
+        asked.append(set(objectives))
+        return _one_by_one(solve_dynamics)(mistaken, givens, objectives)
+
+    first, _ = with_class_mistakes(problem, [solution, solution], [{}, {}], together)
+    assert first.result("a1_symbolic").generated_mistakes  # the mistaken models' answers
+    assert asked and not any("~" in oid for ids in asked for oid in ids)

@@ -21,7 +21,10 @@ another) are derived once, together, each number a parameter of its own.
 Solving the mistaken models costs from tens of milliseconds to seconds (an integration to an
 event, an inverse design), and most answers are right: a solution's generated mistakes are
 worked out, for all its objectives at once, the first time one of them is looked at
-(:class:`LazyMistakes`), and kept for the same problem and givens.
+(:class:`LazyMistakes`), and kept for the same problem and givens. Each step is written for
+a class of variants (each mistaken model solved for all of them at once,
+:func:`with_class_mistakes`); a single solve is a class of one whose mistaken models its own
+solver solves (:func:`with_generated_mistakes`).
 
 >>> from mechgrade.spec import load_problem
 >>> from mechgrade.resources import shipped_dir
@@ -52,9 +55,8 @@ from ..mechanics.revalue import common_models, revaluation
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .dynamics import kinetics_plan, read_in, share_kinetics, solve_dynamics
 from .instant import _instants, instant_givens
-from .levels import State
-from .mutants import (kept_at, model_mistake_at, model_mistake_table, model_mistakes,
-                      plausible_slips, slips_of, symbolic_kept)
+from .mutants import (kept_at, model_mistake_at, model_mistake_table, plausible_slips,
+                      slips_of, symbolic_kept)
 from .result import GeneratedMistake, ObjectiveResult, Solution, StateValue
 
 # a mistaken model is no mistake where it cannot be solved (no motion, an event that never
@@ -66,6 +68,11 @@ Solver = Callable[..., Solution]
 """How a problem is solved: ``solver(problem, givens=..., objectives=...)``
 (:func:`~.dynamics.solve_dynamics`, or :func:`~.carried.held_dynamics`)."""
 
+Together = Callable[[Problem, list[dict], set[str]], list]
+"""How a problem is solved for many variants at once: ``together(problem, givens,
+objectives)``, each variant's solution or error (:func:`~.batch.answers_together`, or a
+:data:`Solver` one variant after the other: :func:`_one_by_one`)."""
+
 
 def with_generated_mistakes(problem: Problem, solution: Solution,
                             givens: Mapping[str, float | None] | None = None,
@@ -73,79 +80,117 @@ def with_generated_mistakes(problem: Problem, solution: Solution,
     """``solution`` (of a problem with bodies and loads, solved by ``solver``) with the
     generated mistakes of its objectives attached (worked out when first looked at: values
     for the numeric ones, expressions for the symbolic ones; each mistaken model solved by
-    ``solver`` too), and the whole-answer slips its model makes plausible."""
+    ``solver`` too), and the whole-answer slips its model makes plausible: a class of one
+    (:func:`with_class_mistakes`), kept for the same problem and givens."""
+    key = tuple(sorted((givens or {}).items()))
+    (attached,) = _attached(problem, [solution], _Pending(lambda: [_generated(
+        problem, key, solution.results, solution.state, solver)]))
+    return attached
+
+
+def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
+                        givens: Sequence[Mapping[str, float | None]],
+                        together: Together) -> list[Solution]:
+    """:func:`with_generated_mistakes` for each of ``solutions`` (the variant ``givens`` of
+    ``problem``, solved together): the mistakes of all of them are worked out together, when
+    one is first looked at, each mistaken model solved for every variant at once by
+    ``together`` (:func:`~mechgrade.solve.batch.answers_together`)."""
+    given = [dict(g or {}) for g in givens]
+    results = [s.results for s in solutions]
+    states = [s.state for s in solutions]
+    return _attached(problem, solutions, _Pending(
+        lambda: _generated_class(problem, given, results, states, together)))
+
+
+def _attached(problem: Problem, solutions: Sequence[Solution], pending: _Pending
+              ) -> list[Solution]:
+    """``solutions`` with their generated mistakes still to work out (``pending``) and the
+    plausible whole-answer slips attached."""
     plausible = plausible_slips(problem)
-    pending = _Pending(problem, tuple(sorted((givens or {}).items())), solution.results,
-                       solution.state, solver)
     # each result as replace() would give it, at two thirds of the cost (a class's results
     # are made by the thousand)
-    return replace(solution, results=tuple(
+    return [replace(solution, results=tuple(
         ObjectiveResult(**{**vars(r), "plausible": plausible,
-                           "generated_mistakes": LazyMistakes(pending, r.id)})
-        for r in solution.results))
+                           "generated_mistakes": LazyMistakes(pending, k, r.id)})
+        for r in solution.results)) for k, solution in enumerate(solutions)]
 
 
 class _Pending:
-    """The generated mistakes of one solve, worked out once when first asked for."""
+    """The generated mistakes of a class of variants (one solve's: a class of one), each
+    variant's objective id -> its mistakes, worked out once when first asked for."""
 
-    def __init__(self, problem: Problem, givens: tuple, results: tuple,
-                 state: tuple[StateValue, ...], solver: Solver):
-        self.problem, self.givens, self.results, self.state = problem, givens, results, state
-        self.solver = solver
-        self.found: dict | None = None
+    def __init__(self, work: Callable[[], list[dict]]):
+        self.work: Callable[[], list[dict]] | None = work
+        self.found: list[dict] | None = None
 
-    def get(self) -> dict:
+    def get(self, k: int) -> dict:
         if self.found is None:
-            self.found = _generated(self.problem, self.givens, self.results, self.state,
-                                    self.solver)
-        return self.found
+            assert self.work is not None
+            self.found, self.work = self.work(), None  # what it held is no longer needed
+        return self.found[k]
 
 
 @lru_cache(maxsize=256)
 def _generated(problem: Problem, givens: tuple, results: tuple,
                state: tuple[StateValue, ...], solver: Solver) -> dict:
-    """Objective id -> its generated mistakes (those equal to the answer, or to an earlier
-    one, or a zero, dropped); ``state`` is the solved instant the kinematic readings are read
-    at, ``solver`` what solves the mistaken models."""
-    overrides = dict(givens)
-    numeric = {r.id: r for r in results if r.value is not None}
+    """:func:`_generated_class` of one solve (``givens`` its overrides as sorted items), each
+    mistaken model solved by ``solver`` (a mistaken model that changes only numbers solved as
+    the unchanged copy with them only by :func:`~.dynamics.solve_dynamics`)."""
+    return _generated_class(problem, [dict(givens)], [results], [state], _one_by_one(solver),
+                            revalue=solver is solve_dynamics)[0]
+
+
+def _one_by_one(solver: Solver) -> Together:
+    """``solver`` as a :data:`Together`: each variant solved alone, its error in its place.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> pendulum = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> [round(s.result("alpha").value, 2) for s in _one_by_one(solve_dynamics)(
+    ...     pendulum, [{}, {"theta": 0.0}], {"alpha"})]
+    [-7.88, 0.0]
+    >>> type(_one_by_one(solve_dynamics)(pendulum, [{}], {"nothing"})[0]).__name__
+    'SolveError'
+    """
+    def together(problem: Problem, givens: list[dict], objectives: set[str]) -> list:
+        outcomes: list = []
+        for g in givens:
+            try:
+                outcomes.append(solver(problem, givens=g, objectives=objectives))
+            except _UNSOLVABLE as err:
+                outcomes.append(err)
+        return outcomes
+    return together
+
+
+def _generated_class(problem: Problem, givens: list[dict], results: list[tuple],
+                     states: list[tuple[StateValue, ...]], together: Together,
+                     revalue: bool = True) -> list[dict]:
+    """Each variant's objective id -> its generated mistakes (those equal to the answer, or
+    to an earlier one, or a zero, dropped), each source of mistakes solved for all of them at
+    once by ``together``; ``states`` are the solved instants the kinematic readings are read
+    at; without ``revalue``, a mistaken model that changes only numbers is solved as itself
+    (:func:`_revalued`)."""
+    numeric = [{r.id: r for r in rs if r.value is not None} for rs in results]
+    asked = [set(n) for n in numeric]
     mutations = dynamics_mutations(problem)
     # a mistaken model's numerical troubles (an inverse design that does not converge) are
     # nobody's to fix
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        found = [_model_mistakes(problem, mutations, overrides, set(numeric), solver),
-                 given_mistakes(problem, overrides, set(numeric), solver),
-                 kinematic_mistakes(problem, state, set(numeric))] if numeric else []
-        symbolic = _symbolic_mistakes(mutations, overrides,
-                                      [r for r in results if r.expr is not None], solver)
-    out: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in results}
-    out.update({oid: kept_at(r.value, [m for source in found for m in source.get(oid, ())])
-                for oid, r in numeric.items()})
-    out.update(symbolic)
+        models = _model_mistakes(together, problem, mutations, givens, asked, revalue)
+        slips = _given_mistakes(together, problem, givens, asked)
+        readings = _kinematic_mistakes(problem, states, asked)
+        symbolic = _symbolic_mistakes(together, mutations, givens, results)
+    out = []
+    for k, rs in enumerate(results):
+        found = [models[k], slips[k], readings[k]] if numeric[k] else []
+        mine: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in rs}
+        mine.update({oid: kept_at(r.value, [m for source in found for m in source.get(oid, ())])
+                     for oid, r in numeric[k].items()})
+        mine.update(symbolic[k])
+        out.append(mine)
     return out
-
-
-def _symbolic_mistakes(mutations: tuple[DynamicsMutation, ...], givens, results: list,
-                       solver: Solver) -> dict[str, tuple[GeneratedMistake, ...]]:
-    """Each mistaken model's symbolic answers, in the objectives' own symbols (those
-    equivalent to the answer or to an earlier one dropped)."""
-    if not results:
-        return {}
-    ids = {r.id for r in results}
-    answers = []
-    for i, m in enumerate(mutations):
-        mistaken = m.problem
-        if mistaken is None or not _derivable(mistaken) \
-                or not ids & {o.id for o in mistaken.objectives}:
-            continue
-        try:
-            solved = solver(mistaken, givens=givens,
-                            objectives=ids & {o.id for o in mistaken.objectives})
-        except _UNSOLVABLE:
-            continue
-        answers.append((i, _texts(solved.results)))
-    return _symbolic_kept(mutations, _texts(results), tuple(answers))
 
 
 def _texts(results) -> tuple[tuple[str, str | None, tuple[str, ...]], ...]:
@@ -174,10 +219,11 @@ def _symbolic_kept(mutations: tuple[DynamicsMutation, ...], results: tuple,
     return {oid: tuple(found) for oid, found in out.items()}
 
 
-def _class_symbolic_mistakes(together: Callable, mutations: tuple[DynamicsMutation, ...], givens: list[dict],
-                             results: list[tuple]) -> list[dict]:
-    """:func:`_symbolic_mistakes` of every variant: each mistaken model's symbolic answers
-    solved for all of them at once."""
+def _symbolic_mistakes(together: Together, mutations: tuple[DynamicsMutation, ...],
+                       givens: list[dict], results: list[tuple]) -> list[dict]:
+    """Each variant's symbolic mistakes: each mistaken model's symbolic answers, in the
+    objectives' own symbols, solved for all the variants at once (those equivalent to the
+    answer or to an earlier one dropped)."""
     symbolic = [[r for r in rs if r.expr is not None] for rs in results]
     ids = {r.id for rs in symbolic for r in rs}
     answers: list[list] = [[] for _ in givens]
@@ -205,13 +251,13 @@ class LazyMistakes(Sequence):
     """One objective's generated mistakes (a sequence of
     :class:`~mechgrade.solve.result.GeneratedMistake`), worked out on first use."""
 
-    __slots__ = ("_id", "_pending")
+    __slots__ = ("_id", "_k", "_pending")
 
-    def __init__(self, pending: _Pending | _Member, objective_id: str):
-        self._pending, self._id = pending, objective_id
+    def __init__(self, pending: _Pending, k: int, objective_id: str):
+        self._pending, self._k, self._id = pending, k, objective_id
 
     def _items(self) -> tuple:
-        return self._pending.get()[self._id]
+        return self._pending.get(self._k)[self._id]
 
     def __getitem__(self, index):
         return self._items()[index]
@@ -235,37 +281,6 @@ class LazyMistakes(Sequence):
         # sent to another process (a grading worker) as the mistakes themselves: not the
         # pending work, which for a class holds every variant's
         return tuple, (tuple(self._items()),)
-
-
-def _model_mistakes(problem: Problem, mutations: tuple[DynamicsMutation, ...], givens,
-                    numeric: set[str], solver: Solver) -> dict[str, list[GeneratedMistake]]:
-    """Each mistaken model solved again (by ``solver``), and each mistaken reading read in
-    the right model."""
-    out: dict[str, list[GeneratedMistake]] = {}
-    readings, terms = _read(problem, mutations, givens, numeric, solver)
-    for i, m in enumerate(mutations):
-        sentence = m.sentence.replace("{term}", terms[i]) if i in terms else \
-            m.sentence.replace(" = {term}", "")
-        values = readings.get(i, {})
-        if m.problem is not None:
-            # a mistaken model may leave out the objectives asked (those it cannot read)
-            ids = numeric & {o.id for o in m.problem.objectives}
-            revalued = _revalued(problem, m.problem, [givens]) \
-                if solver is solve_dynamics else None
-            mistaken, asked = (revalued[0], revalued[1][0]) if revalued else \
-                (_read_in_copy(problem, m.problem), givens)
-            if not ids or not _derivable(mistaken):
-                continue
-            try:
-                solved = solver(mistaken, givens=asked, objectives=ids)
-            except _UNSOLVABLE:
-                continue
-            values = {r.id: r.value for r in solved.results}
-        for oid, value in values.items():
-            if oid in numeric and value is not None and np.all(np.isfinite(value)):
-                out.setdefault(oid, []).append(GeneratedMistake(m.code, sentence, value,
-                                                                step=m.step))
-    return out
 
 
 def _revalued(problem: Problem, mistaken: Problem, givens: Sequence[Mapping]
@@ -336,18 +351,6 @@ def _read_in_copy(problem: Problem, mistaken: Problem) -> Problem:
     return mistaken
 
 
-def _read(problem: Problem, mutations, givens, numeric: set[str], solver: Solver):
-    """The mistaken readings (mutation index -> objective id -> value) and each mutation's
-    named term as text with its unit (mutation index -> text), read together in the right
-    model: one more solve of the problem."""
-    reading = _reading(problem, mutations, frozenset(numeric))
-    try:
-        results = solver(reading, givens=givens).results if reading else ()
-    except _UNSOLVABLE:
-        results = ()
-    return _readings(results)
-
-
 @lru_cache(maxsize=256)
 def _reading(problem: Problem, mutations, numeric: frozenset[str]) -> Problem | None:
     """The right model asked for each mistaken reading of the objectives in ``numeric`` and
@@ -394,24 +397,6 @@ def _readings(results) -> tuple[dict[int, dict], dict[int, str]]:
     return readings, terms
 
 
-def given_mistakes(problem: Problem, givens, numeric: set[str],
-                   solver: Solver) -> dict[str, list[GeneratedMistake]]:
-    """The numeric objectives solved again (by ``solver``) with each given mistaken in one
-    way (the slips of :func:`mechgrade.solve.mutants.given_mistakes`), anchored to the worked
-    solution's parameters or coordinates."""
-    out: dict[str, list[GeneratedMistake]] = {}
-    for code, sentence, step, changed in _slips(problem, givens):
-        try:
-            solved = solver(problem, givens=changed, objectives=numeric)
-        except _UNSOLVABLE:
-            continue
-        for result in solved.results:
-            if result.value is not None and np.all(np.isfinite(result.value)):
-                out.setdefault(result.id, []).append(GeneratedMistake(
-                    code, sentence, result.value, step=step))
-    return out
-
-
 def _slips(problem: Problem, givens):
     """``(code, sentence, step, the givens misread)`` for each typical misreading of the
     givens (:func:`~mechgrade.solve.mutants.slips_of`), ``step`` the section of the worked
@@ -427,100 +412,6 @@ def _slips(problem: Problem, givens):
         yield code, sentence, step, changed
 
 
-def kinematic_mistakes(problem: Problem, state: tuple[StateValue, ...], numeric: set[str]
-                       ) -> dict[str, list[GeneratedMistake]]:
-    """The kinematic mistakes (:func:`mechgrade.solve.mutants.model_mistakes`: another point's
-    velocity, ω × r left out, another frame's unit vectors...) of the numeric objectives asked
-    at the problem's own instant, read at its solved ``state``: the balances right, the
-    reading of the motion they give mistaken."""
-    wanted = {o.id for overrides, group in _instants(problem) if not overrides
-              for o in group} & numeric
-    if not wanted or not state:
-        return {}
-    p = kinetics_plan(problem).kp
-    values = np.full(p.index.size, np.nan)
-    for value in state:
-        if value.name in p.index.names:
-            values[p.index.position(value.name)] = value.si
-    try:
-        return model_mistakes(problem, p, State(values, np.isfinite(values)), wanted)
-    except _UNSOLVABLE:
-        return {}
-
-
-# ---------------------------------------------------------------------------- a class at once
-
-
-def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
-                        givens: Sequence[Mapping[str, float | None]],
-                        together: Callable) -> list[Solution]:
-    """:func:`with_generated_mistakes` for each of ``solutions`` (the variant ``givens`` of
-    ``problem``, solved together): the mistakes of all of them are worked out together, when
-    one is first looked at, each mistaken model solved for every variant at once by
-    ``together(problem, givens, objectives)`` (:func:`~mechgrade.solve.batch.answers_together`:
-    a list of solutions or errors)."""
-    plausible = plausible_slips(problem)
-    pending = _ClassPending(problem, [dict(g or {}) for g in givens],
-                            [s.results for s in solutions], [s.state for s in solutions],
-                            together)
-    return [replace(solution, results=tuple(
-        ObjectiveResult(**{**vars(r), "plausible": plausible,
-                           "generated_mistakes": LazyMistakes(member, r.id)})
-        for r in solution.results))
-        for member, solution in zip((_Member(pending, k) for k in range(len(solutions))),
-                                    solutions)]
-
-
-class _ClassPending:
-    """The generated mistakes of a class of variants, worked out once when first asked for."""
-
-    def __init__(self, problem: Problem, givens: list[dict], results: list[tuple],
-                 states: list[tuple[StateValue, ...]], together: Callable):
-        self.problem, self.givens, self.results, self.states = problem, givens, results, states
-        self.together = together
-        self.found: list[dict] | None = None
-
-    def get(self, k: int) -> dict:
-        if self.found is None:
-            self.found = _generated_class(self.problem, self.givens, self.results, self.states,
-                                          self.together)
-        return self.found[k]
-
-
-class _Member:
-    """Variant ``k`` of a :class:`_ClassPending`, as a :class:`_Pending` is read."""
-
-    def __init__(self, pending: _ClassPending, k: int):
-        self.pending, self.k = pending, k
-
-    def get(self) -> dict:
-        return self.pending.get(self.k)
-
-
-def _generated_class(problem: Problem, givens: list[dict], results: list[tuple],
-                     states: list[tuple[StateValue, ...]], together: Callable) -> list[dict]:
-    """:func:`_generated` of every variant, each source of mistakes solved for all of them at
-    once."""
-    numeric = [{r.id: r for r in rs if r.value is not None} for rs in results]
-    asked = [set(n) for n in numeric]
-    mutations = dynamics_mutations(problem)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        models = _class_model_mistakes(together, problem, mutations, givens, asked)
-        slips = _class_given_mistakes(together, problem, givens, asked)
-        readings = _class_kinematic_mistakes(problem, states, asked)
-        symbolic = _class_symbolic_mistakes(together, mutations, givens, results)
-    out = []
-    for k, rs in enumerate(results):
-        found = [models[k], slips[k], readings[k]] if numeric[k] else []
-        mine: dict[str, Sequence[GeneratedMistake]] = {r.id: () for r in rs}
-        mine.update({oid: kept_at(r.value, [m for source in found for m in source.get(oid, ())])
-                     for oid, r in numeric[k].items()})
-        mine.update(symbolic[k])
-        out.append(mine)
-    return out
-
-
 @lru_cache(maxsize=256)
 def _derivable(problem: Problem) -> bool:
     """Whether a (mistaken) model's kinetics can be derived: one that cannot is solved for no
@@ -532,41 +423,42 @@ def _derivable(problem: Problem) -> bool:
     return True
 
 
-def _answers(together: Callable, problem: Problem, givens: list[dict],
+def _answers(together: Together, problem: Problem, givens: list[dict],
              objectives: set[str]) -> list:
-    """Each variant's solution of ``problem`` (or ``None`` where it has none), solved together
-    (:func:`~mechgrade.solve.batch.answers_together`), else one by one where that fails."""
+    """Each variant's solution of ``problem`` (or ``None`` where it has none), solved by
+    ``together``, else one by one (:func:`~.dynamics.solve_dynamics`) where that fails."""
     if not _derivable(problem):
         return [None] * len(givens)
-    outcomes: list = []
     try:
         outcomes = together(problem, givens, objectives)
     except _UNSOLVABLE:
-        outcomes = []
-        for g in givens:
-            try:
-                outcomes.append(solve_dynamics(problem, givens=g, objectives=objectives))
-            except _UNSOLVABLE as err:
-                outcomes.append(err)
+        outcomes = _one_by_one(solve_dynamics)(problem, givens, objectives)
     return [o if isinstance(o, Solution) else None for o in outcomes]
 
 
-def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple[DynamicsMutation, ...],
-                          givens: list[dict], numeric: list[set[str]]) -> list[dict]:
-    """:func:`_model_mistakes` of every variant: each mistaken model solved for all of them
-    at once, the mistaken readings read in the right model for all of them at once."""
+def _model_mistakes(together: Together, problem: Problem,
+                    mutations: tuple[DynamicsMutation, ...], givens: list[dict],
+                    numeric: list[set[str]], revalue: bool) -> list[dict]:
+    """Each variant's mistakes of the mistaken models (each solved again for all the variants
+    at once; with ``revalue``, one that changes only numbers as the unchanged copy:
+    :func:`_revalued`) and of the mistaken readings (read in the right model for all of them
+    at once), of its numeric objectives ``numeric``."""
     union = set().union(*numeric)
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
-    readings, terms = _class_read(together, problem, mutations, givens, union)
+    if not union:
+        return out  # nothing to read: not even the terms named in the sentences
+    readings, terms = _read(together, problem, mutations, givens, union)
     for i, m in enumerate(mutations):
         solved = None
         if m.problem is not None:
+            revalued = _revalued(problem, m.problem, givens) if revalue else None
+            # read in the unchanged copy's balances even when nothing numeric is asked of it:
+            # its symbolic answers are then read there too, whichever comes first
+            mistaken, asked = revalued or (_read_in_copy(problem, m.problem), givens)
             ids = union & {o.id for o in m.problem.objectives}
             if not ids:
                 continue
-            revalued = _revalued(problem, m.problem, givens)
-            solved = _answers(together, *(revalued or (_read_in_copy(problem, m.problem),
-                                                       givens)), ids)
+            solved = _answers(together, mistaken, asked, ids)
         for k in range(len(givens)):
             sentence = m.sentence.replace("{term}", terms[k][i]) if i in terms[k] else \
                 m.sentence.replace(" = {term}", "")
@@ -584,8 +476,11 @@ def _class_model_mistakes(together: Callable, problem: Problem, mutations: tuple
     return out
 
 
-def _class_read(together: Callable, problem: Problem, mutations, givens: list[dict], numeric: set[str]):
-    """:func:`_read` of every variant, read together."""
+def _read(together: Together, problem: Problem, mutations, givens: list[dict],
+          numeric: set[str]) -> tuple[list[dict[int, dict]], list[dict[int, str]]]:
+    """Each variant's mistaken readings of the objectives in ``numeric`` (mutation index ->
+    objective id -> value) and each mutation's named term as text with its unit (mutation
+    index -> text), read together in the right model: one more solve of the problem."""
     reading = _reading(problem, mutations, frozenset(numeric))
     if reading is None:
         return [{} for _ in givens], [{} for _ in givens]
@@ -594,10 +489,10 @@ def _class_read(together: Callable, problem: Problem, mutations, givens: list[di
     return [r for r, _ in solved], [t for _, t in solved]
 
 
-def _class_given_mistakes(together: Callable, problem: Problem, givens: list[dict], numeric: list[set[str]]
-                          ) -> list[dict]:
-    """:func:`given_mistakes` of every variant: every variant's misread givens solved
-    together."""
+def _given_mistakes(together: Together, problem: Problem, givens: list[dict],
+                    numeric: list[set[str]]) -> list[dict]:
+    """Each variant's numeric objectives ``numeric`` solved again with each given mistaken
+    in one way (:func:`_slips`), every variant's misread givens solved together."""
     slips = [(k, *slip) for k, overrides in enumerate(givens) if numeric[k]
              for slip in _slips(problem, overrides)]  # (variant, code, sentence, step, givens)
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in givens]
@@ -613,9 +508,12 @@ def _class_given_mistakes(together: Callable, problem: Problem, givens: list[dic
     return out
 
 
-def _class_kinematic_mistakes(problem: Problem, states: list[tuple[StateValue, ...]],
-                              numeric: list[set[str]]) -> list[dict]:
-    """:func:`kinematic_mistakes` of every variant, read at all their states at once."""
+def _kinematic_mistakes(problem: Problem, states: list[tuple[StateValue, ...]],
+                        numeric: list[set[str]]) -> list[dict]:
+    """Each variant's kinematic mistakes (:func:`mechgrade.solve.mutants.model_mistake_table`:
+    another point's velocity, ω × r left out, another frame's unit vectors...) of its numeric
+    objectives asked at the problem's own instant, read at its solved state (the balances
+    right, the reading of the motion they give mistaken): all the states at once."""
     out: list[dict[str, list[GeneratedMistake]]] = [{} for _ in states]
     own = {o.id for overrides, group in _instants(problem) if not overrides for o in group}
     wanted = own & set().union(*numeric)

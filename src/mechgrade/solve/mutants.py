@@ -34,7 +34,6 @@ from ..spec.solving import carried
 from ..tolerance import within
 from ..units import dimension, si_factor, to_si
 from .columns import call
-from .levels import State
 from .numeric import every_branch_columns, solve_numeric_columns
 from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants, per_problem
 from .result import GeneratedMistake, ObjectiveResult
@@ -52,17 +51,6 @@ def _lambdified(problem: Problem, p: KinematicsPlan, objective: str) -> tuple[Mu
     if p.mutants is not None:
         return p.mutants.get(objective, ())
     return lambdified_mutants(problem, p, objective)
-
-
-def model_mistakes(problem: Problem, p: KinematicsPlan, state: State,
-                   wanted: set[str]) -> dict[str, list[GeneratedMistake]]:
-    """The model mutations of the objectives in ``wanted``, at ``state`` (those undefined
-    there left out): :func:`model_mistake_table` at one instant."""
-    out: dict[str, list[GeneratedMistake]] = {}
-    for row in model_mistake_table(problem, p, state.values[:, None], wanted):
-        if row[2][0]:
-            out.setdefault(row[0].objective, []).append(model_mistake_at(row, 0))
-    return out
 
 
 def model_mistake_table(problem: Problem, p: KinematicsPlan, states: np.ndarray, wanted) -> list:
