@@ -442,9 +442,9 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
         for k, error in stays.items():
             failed(int(todo[k]), error)
         fine = np.ones(count, dtype=bool)
-        events, senses = [until], [direction]
+        events, senses = [], []
         aim = one.aimed(target, asked[todo])
-        if aim is not None:
+        if aim is not None:  # first: where it and the event fire together, it is reached
             events.append(aim)
             if isinstance(target, Entry) and target.at == kp.kp.index.time:
                 senses.append(np.zeros(count))  # t = 0 is the start itself
@@ -454,6 +454,8 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             else:  # a class leaves one that holds at the start alone (its next crossing)
                 fine &= aim(np.arange(count), np.zeros(count), one.y0) != 0
                 senses.append(np.zeros(count))
+        events.append(until)
+        senses.append(direction)
         grip = gripping(problem)
         if grip is not None:
             events.append(one.reading(_slip(problem, kp, kinetics_plan(gripping_phase(problem))),
@@ -461,10 +463,11 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             senses.append(np.zeros(count))
         fine &= ~np.isin(todo, list(errors))
         run = one.run(events, senses, one.y0, np.zeros(count))
-        ended = (run.status == NEVER) | ((run.which == 0) & (aim is not None))
+        at_until = run.which == events.index(until)
+        ended = (run.status == NEVER) | (at_until & (aim is not None))
         for c in np.flatnonzero(fine & ended):
             failed(int(todo[c]), _missed(analysis, targets[todo[c]],
-                                         [run.t[c]] if run.which[c] == 0 else []))
+                                         [run.t[c]] if at_until[c] else []))
         fired = fine & ~ended & (run.status == FIRED)
         slipped = fired & (run.which == len(events) - 1) & (grip is not None)
         phases = [_arrived(problem, one, run, todo, np.flatnonzero(fired & ~slipped), target,
@@ -519,15 +522,18 @@ def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped: _Run
     fine &= ~np.isin(everyone, list(unsettled))
     target = targets[columns[0]]
     aim = two.aimed(target, asked[columns])
-    events = [two.until()] + ([aim] if aim is not None else []) + [grips]
-    run = two.run(events, [direction] + [np.zeros(len(s))] * (len(events) - 1), y0, start)
+    aims = [aim] if aim is not None else []  # first, as in the slipping phase
+    events = [*aims, two.until(), grips]
+    senses = [np.zeros(len(s))] * len(aims) + [direction, np.zeros(len(s))]
+    run = two.run(events, senses, y0, start)
     again = fine & (run.status == FIRED) & (run.which == len(events) - 1)
     for c in np.flatnonzero(again):
         failed(int(columns[c]), _slips_again(grip, float(start[c]), float(run.t[c])))
-    ended = fine & ~again & ((run.status == NEVER) | ((run.which == 0) & (aim is not None)))
+    at_until = run.which == len(aims)
+    ended = fine & ~again & ((run.status == NEVER) | (at_until & (aim is not None)))
     for c in np.flatnonzero(ended):
         failed(int(columns[c]), _missed(analysis_of(problem, Integration), targets[columns[c]],
-                                        [run.t[c]] if run.which[c] == 0 else []))
+                                        [run.t[c]] if at_until[c] else []))
     two.values[two.time] = start  # each column's start: a moment before is not before it
     return _arrived(phase, two, run, columns,
                     np.flatnonzero(fine & ~again & ~ended & (run.status == FIRED)), target,
