@@ -29,7 +29,7 @@ from .rules import satisfied
 
 def after_event(p: KinematicsPlan) -> np.ndarray:
     """What the state at an integration's event has known: its coordinates, rates, parameters
-    and time (as :func:`~.events.integrate_to_event` marks them)."""
+    and time."""
     after = np.zeros(p.index.size, dtype=bool)
     after[list(p.index.config)] = True
     after[list(p.index.rates(1))] = True
@@ -66,10 +66,9 @@ class Motion:
     def integrated(self, X: np.ndarray, instants: np.ndarray | None = None
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
         """Every column's motion integrated from its start state to its event (together:
-        :func:`~.batch_motion.integrate_to_events`, the steps
-        :func:`~.events.integrate_to_event` takes for each alone): the extended state at
-        the event, the accelerations and reactions the limits just before it, with the
-        extended states just before the event stacked under them (:meth:`_at_event`); which
+        :func:`~.batch_motion.integrate_to_events`, the steps each takes alone): the
+        extended state at the event, the accelerations and reactions the limits just before
+        it, with the extended states just before the event stacked under them; which
         columns passed the screens, which ended without their event
         (:data:`~.batch_motion.NEVER`), and the error of each that failed the checks of
         :func:`balances` just before its event, or whose slip ended before its event and
@@ -188,7 +187,7 @@ class Motion:
             ok[e] = ok_e & fine
             never[e] = arrival.status[e] == NEVER
             # an event reached whose contact checks fail just before it: the error the
-            # scalar solver raises there, without integrating that column again step by step
+            # single solve raises there, without integrating that column again step by step
             errors.update({int(e[i]): error for i in np.flatnonzero(ok_e & ~fine)
                            if (error := solved.errors[int(i)]) is not None})
             if switches is not None:
@@ -210,7 +209,7 @@ class Motion:
                     ) -> tuple[np.ndarray, np.ndarray, dict[int, MechgradeError]]:
         """The columns ``cols`` of :meth:`integrated` asked at an instant of their own: where
         entry ``instant`` of the state first takes each column's ``asked`` value before the
-        event (the steps :func:`~.events.integrate_to_instant` takes for each alone). Their
+        event (the steps each takes alone, :func:`~.phases.reach`). Their
         motion stopped where the product of the instant's and the event's equations changed
         sign (``arrival``; either one that holds at the start waits for its next crossing,
         :func:`~.events.leaving`; t = 0 is the start); ``started``: the event's and the instant's
@@ -518,8 +517,8 @@ def integrated_columns(problem: Problem, kinetics, X: np.ndarray
     state) by the integrator over columns, as a class's variants are integrated: for each,
     the extended state at the event (the accelerations and reactions their limits just
     before it) and just before it; or the error it raises (the event never happens, a slip
-    sticks before it); or ``None`` where that integrator does not vouch for it (the scalar
-    one then says why). ``None`` for a motion that is not integrated."""
+    sticks before it); or ``None`` where that integrator does not vouch for it (one column
+    integrated alone, :func:`~.phases.reach`, then says why). ``None`` for a motion that is not integrated."""
     motion = _motion(problem, kinetics)
     if not isinstance(motion.analysis, Integration):
         return None

@@ -6,12 +6,13 @@ The gripping phase is the same problem with that friction static along its ``the
 direction and the contact's velocity along it held at zero (a velocity constraint): the
 momentum balances then give the friction the grip needs, which must stay within mu_s N for the
 rest of the motion (a contact that would slip again is refused, where it would). Every phase
-is integrated as :mod:`.events` integrates one motion (DOP853, rtol 1e-11, its roots refined
-on the dense output); of events that happen in the same step, the earliest is the instant.
+is integrated over columns (:mod:`.batch_motion`: DOP853, rtol 1e-11, its roots refined on
+the dense output); of events that happen in the same step, the earliest is the instant.
 
 A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
 integration over columns, each column switching phase at its own end of the slip. One solve
-is one such column solved alone (:func:`reach`).
+is one such column solved alone (:func:`reach`), a motion without phases too (its one phase:
+an objective's own instant, or an event the class's integrator does not vouch for).
 """
 
 from __future__ import annotations
@@ -355,7 +356,7 @@ class _Columns:
     def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's ``direction`` of ``event`` from the start (its next crossing where
         it holds there, :func:`~.events.leaving`): one motion alone raises its first error,
-        located at ``where`` (as :func:`~.events.next_crossing`); a class keeps the error of
+        located at ``where``; a class keeps the error of
         each column that stays in it (one whose moment is not reached has none: it does not
         move)."""
         direction, stays, unfinished = leaving(
@@ -383,9 +384,9 @@ class _Columns:
     def run(self, events: list[Callable], senses: list[np.ndarray], y0: np.ndarray,
             t0: np.ndarray) -> _Run:
         """Every column integrated from ``y0`` at ``t0`` to the first of ``events`` (each with
-        its ``direction`` per column), as :func:`~.events.integrate` integrates one motion:
-        an event with no direction that holds at the start fires at once, as ``solve_ivp``'s
-        first step finds it. Alone, every step is kept and a stall or failure raises."""
+        its ``direction`` per column): an event with no direction that holds at the start
+        fires at once, as ``solve_ivp``'s first step finds it. Alone, every step is kept and
+        a stall or failure raises."""
         count = y0.shape[1]
         direction = np.array(senses, dtype=float).reshape(len(events), count)
         g = np.array([e(np.arange(count), t0, y0) for e in events]).reshape(len(events), count)
@@ -502,7 +503,7 @@ def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped: _Run
              failed: Callable[[int, MechgradeError], None]) -> PhaseColumns:
     """The gripping phase of the columns ``columns`` of the class (``X``: their parameters
     placed), from the end of their slip (``slipped``, at its columns ``s``) to their target;
-    ``direction``: that of the motion's event (see :func:`.events.next_crossing`). A grip
+    ``direction``: that of the motion's event (see :func:`.events.leaving`). A grip
     that needs more than mu_s N where the slip ends, or that would slip again, fails."""
     phase = gripping_phase(problem)
     kp = kinetics_plan(phase)
