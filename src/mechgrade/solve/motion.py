@@ -352,12 +352,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
     b = call(kp.residual, x, rows_)
     defined = np.isfinite(A).all(axis=1) & np.isfinite(b)  # rows x columns
 
-    def undefined(i: int) -> MechgradeError:
-        bad = int(np.flatnonzero(~defined[:, i])[0])
-        return SolveError(f"the equations of motion are undefined at this instant (a division "
-                          f"by zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
-
-    errors.add(~defined.all(axis=0), undefined)
+    errors.add(~defined.all(axis=0), lambda i: undefined_balances(kp, defined[:, i]))
     ok = errors.ok
     Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
     U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
@@ -409,6 +404,20 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
             errors.add(~rules.pushes(nn), partial(_lost, bound, nn))
             errors.add(~rules.sticks(f, nn, m), partial(_slips, bound, f, nn, m))
     return Balanced(x, errors)
+
+
+def undefined_balances(kp, defined: np.ndarray) -> SolveError:
+    """The error of momentum balances undefined at an instant (``defined``: which of the rows
+    of ``kp``'s are), naming the first that is not.
+
+    >>> from types import SimpleNamespace
+    >>> kp = SimpleNamespace(labels=["body B: x", "body B: y"], wheres=[None, None])
+    >>> print(undefined_balances(kp, np.array([True, False])))
+    the equations of motion are undefined at this instant (a division by zero in 'body B: y')
+    """
+    bad = int(np.flatnonzero(~defined)[0])
+    return SolveError(f"the equations of motion are undefined at this instant (a division by "
+                      f"zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
 
 
 def _no_slip(slip, _: int) -> SolveError:
