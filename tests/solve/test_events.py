@@ -95,6 +95,17 @@ def test_an_event_that_holds_at_the_start_and_stays_is_refused():
         "leaves it" in failure_of(problem, "time_back")
 
 
+def test_an_instant_that_holds_at_the_start_and_stays_is_refused_at_its_given():
+    """At rest at x = 0, an objective asked at x: 0 mm has no next crossing: its given says
+    so (the event, x = a, is not at the start)."""
+    problem = load_problem_text(SWING.replace("until: x = 0 ", "until: x = a ")
+                                .replace("  v0: 1 m/s\n", "  v0: 0 m/s\n")
+                                .replace("givens: {x: 20 mm}", "givens: {x: 0 mm}", 1), "p.yaml")
+    assert failure_of(problem, "time_to_20mm") == (
+        "p.yaml:61:17: objectives[2].givens.x: the event holds at the start (t = 0) and stays "
+        "so: expected a motion that leaves it")
+
+
 def test_an_event_undefined_as_the_motion_leaves_it_is_refused_not_fired_at_once():
     """An event that holds at t = 0 and has no value a moment later has no next crossing."""
     direction, stays, undefined = leaving(
