@@ -161,7 +161,8 @@ class Motion:
                 r0 = reached(everyone, start, y0, modes)
                 timed = waits & (instant == index.time)
                 # a coordinate or rate taken at the start: its next crossing (t = 0 is the
-                # start); a time, or the event, waits for none
+                # start); a time, or the event, waits for none. One that stays there is not
+                # answered: alone, its error is located at the objective's given
                 crossing, held, _ = leaving(
                     rhs, lambda c, t, y, m: np.where(waits[c] & ~timed[c],
                                                      reached(c, t, y, m), 1.0),
@@ -198,7 +199,7 @@ class Motion:
             out[:, a], ok[a], failed = self._at_instant(
                 a, instant[a], asked[a], arrival, at, event, reached, switching, y0[:, a],
                 (g0[a], r0[a], away_from[a]), barred)
-            errors.update({**failed, **held})
+            errors.update(failed)
         ok[list(unsettled)] = ok[list(stays)] = never[list(stays)] = False
         return out, ok, never, {**errors, **stays, **unsettled}
 
