@@ -52,7 +52,7 @@ def test_a_column_whose_event_never_happens_ends_at_the_time_allowed_without_it(
 
 def test_an_event_given_a_direction_fires_only_on_a_crossing_that_way_as_solve_ivp_does():
     # every column starts on its event, x = 0, and waits for it to cross back from the side
-    # it leaves to (as events.next_crossing sets it): moving up, a fall; moving down, a rise
+    # it leaves to (as events.leaving sets it): moving up, a fall; moving down, a rise
     y0 = np.array([[0.0, 0.0, 0.0], [1.0, -1.0, 1.0]])
     direction = np.array([-1.0, 1.0, -1.0])
     arrival = integrate_to_events(oscillators, crossing(np.zeros(3)), y0, 10.0, 1e-11, 1e-12,

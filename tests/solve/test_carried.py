@@ -7,11 +7,11 @@ from __future__ import annotations
 import pytest
 
 import mechgrade.solve.carried as carried_module
-from mechgrade.errors import MechgradeError, UnderdeterminedError
+from mechgrade.errors import MechgradeError, SolveError, UnderdeterminedError
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.carried import solve_carried
-from mechgrade.spec import load_problem
+from mechgrade.spec import load_problem, load_problem_text
 
 PROBLEMS = shipped_dir("problems")
 
@@ -31,6 +31,21 @@ def test_a_wrong_acceleration_down_an_incline_leaves_the_normal_force_as_it_is()
     problem = load_problem(PROBLEMS / "block_sliding_down_incline.yaml")
     solution = solve_carried(problem, givens={"x''": 1.0}, objectives=("normal",))
     assert solution.result("normal").value == pytest.approx(33.983, abs=1e-3)
+
+
+def test_balances_undefined_at_the_instant_are_refused_alike_with_a_given_second_rate():
+    """Gravity written over tan(beta), with beta = 0: the force balance divides by zero; with
+    the student's x'' held, the balances left say so as the problem's own solve does."""
+    text = (PROBLEMS / "block_sliding_down_incline.yaml").read_text()
+    problem = load_problem_text(text.replace("gravity: -g*N.y\n", "gravity: -g/tan(beta)*N.y\n")
+                                .replace("beta: 30 deg", "beta: 0 deg"), "p.yaml")
+    expected = ("p.yaml:22:10: bodies.block: the equations of motion are undefined at this "
+                "instant (a division by zero in 'body block: N.y force balance')")
+    with pytest.raises(SolveError) as own:
+        solve(problem, objectives=("normal",))
+    with pytest.raises(SolveError) as carried:
+        solve_carried(problem, givens={"x''": 1.0}, objectives=("normal",))
+    assert str(own.value) == str(carried.value) == expected
 
 
 def test_a_wrong_acceleration_of_two_blocks_does_not_determine_the_rope_tension():

@@ -10,7 +10,7 @@ import pytest
 
 from mechgrade.errors import SolveError
 from mechgrade.solve import solve
-from mechgrade.solve.events import leaving, next_crossing
+from mechgrade.solve.events import leaving
 from mechgrade.spec import load_problem, load_problem_text
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -95,27 +95,42 @@ def test_an_event_that_holds_at_the_start_and_stays_is_refused():
         "leaves it" in failure_of(problem, "time_back")
 
 
+def test_an_instant_that_holds_at_the_start_and_stays_is_refused_at_its_given():
+    """At rest at x = 0, an objective asked at x: 0 mm has no next crossing: its given says
+    so (the event, x = a, is not at the start)."""
+    problem = load_problem_text(SWING.replace("until: x = 0 ", "until: x = a ")
+                                .replace("  v0: 1 m/s\n", "  v0: 0 m/s\n")
+                                .replace("givens: {x: 20 mm}", "givens: {x: 0 mm}", 1), "p.yaml")
+    assert failure_of(problem, "time_to_20mm") == (
+        "p.yaml:61:17: objectives[2].givens.x: the event holds at the start (t = 0) and stays "
+        "so: expected a motion that leaves it")
+
+
 def test_an_event_undefined_as_the_motion_leaves_it_is_refused_not_fired_at_once():
     """An event that holds at t = 0 and has no value a moment later has no next crossing."""
-    with pytest.raises(SolveError, match="the motion is undefined"):
-        next_crossing(lambda t, y: 0.0 if t == 0 else float("nan"),
-                      lambda t, y: np.array([y[1], -1.0]), np.array([0.0, 2.0]), 10.0, None)
+    direction, stays, undefined = leaving(
+        lambda c, t, y, m: np.stack([y[1], -np.ones(len(c))]),
+        lambda c, t, y, m: np.where(t == 0, 0.0, np.nan), None, np.array([[0.0], [2.0]]),
+        10.0, None)
+    assert direction.tolist() == [0.0] and stays == {}
+    assert "the motion is undefined" in str(undefined[0])
 
 
 def test_one_motion_and_a_column_of_many_leave_an_event_alike():
-    """next_crossing is one column of leaving: the same direction, the same refusal."""
-    def rhs(t, y):
-        return np.array([y[1], -1.0])
+    """A motion alone is one column of leaving: the same direction, the same refusal."""
+    def rhs(c, t, y, m):
+        return np.stack([y[1], np.where(y[1] != 0.0, -1.0, 0.0)])
 
-    def event(t, y):
+    def event(c, t, y, m):
         return y[0]
 
     starts = np.array([[0.0, 0.0, 0.0], [2.0, -2.0, 0.0]])  # up, down, at rest (no force: 0)
-    columns, stays, _ = leaving(lambda c, t, y, m: np.stack([y[1], np.where(y[1] != 0.0, -1.0, 0.0)]),
-                                lambda c, t, y, m: y[0], None, starts, 10.0, None)
-    assert columns.tolist()[:2] == [next_crossing(event, rhs, starts[:, i], 10.0, None)
-                                    for i in range(2)] == [-1.0, 1.0]
-    assert list(stays) == [2]
+    columns, stays, _ = leaving(rhs, event, None, starts, 10.0, None)
+    assert columns.tolist() == [-1.0, 1.0, 0.0] and list(stays) == [2]
+    for i in range(3):
+        alone, stays_alone, _ = leaving(rhs, event, None, starts[:, [i]], 10.0, None)
+        assert alone.tolist() == [columns[i]]
+        assert list(stays_alone) == ([0] if i == 2 else [])
 
 
 def test_a_design_parameter_an_objective_gives_is_the_value_used():

@@ -42,7 +42,7 @@ def test_a_column_that_slips_gets_the_error_the_instant_alone_raises_and_the_oth
 
 @pytest.mark.slow  # a cold derivation (2 s); test_events' refusal of the same is in the fast core
 def test_a_column_at_rest_in_an_event_that_holds_at_the_start_is_refused_by_the_columns():
-    """The integrator over columns gives the error the scalar one raises (the event stays),
+    """The integrator over columns gives the error one motion alone raises (the event stays),
     without leaving that column to be integrated alone; the other column reaches its event."""
     problem = load_problem(Path(__file__).resolve().parents[2] / "problems"
                            / "damped_block_positions.yaml")

@@ -1,6 +1,7 @@
 """The lambdified pieces of a dynamics problem's analysis (how its instant is reached when
 its rates are not given): the energy, the start state, the event, the powers of the reactions.
-Work–energy (:mod:`.work_energy`) and integration to an event (:mod:`.events`) read them.
+Work–energy (:mod:`.work_energy`) and integration to an event (:mod:`.motion`, :mod:`.phases`)
+read them.
 """
 
 from __future__ import annotations
@@ -79,26 +80,6 @@ def closed_forms(roots: tuple) -> ClosedForms:
     """:class:`ClosedForms` of ``roots`` (sympy expressions), made once per tuple of roots."""
     symbols = tuple(sorted(set().union(*(sp.sympify(r).free_symbols for r in roots)), key=str))
     return ClosedForms(symbols, sp.lambdify(symbols, list(roots), modules="numpy", cse=True))
-
-
-def value_at(fn: Callable, x: np.ndarray) -> float:
-    """A lambdified function's first value at the extended state ``x``."""
-    with np.errstate(all="ignore"):
-        return float(np.asarray(fn(*x), dtype=float).ravel()[0])
-
-
-def extended(kp, values: np.ndarray) -> np.ndarray:
-    """The state values with every reaction 0 after them."""
-    return np.concatenate([values, np.zeros(len(kp.kin.reactions))])
-
-
-def start_values(problem: Problem, kp, ap: AnalysisPlan, values: np.ndarray) -> np.ndarray:
-    """``values`` with the coordinates and rates of the start state put in: one column of
-    :func:`start_columns`, raising its error."""
-    settled, errors = start_columns(problem, kp, ap, values[:, None])
-    if errors:
-        raise errors[0]
-    return settled[:, 0]
 
 
 def start_columns(problem: Problem, kp, ap: AnalysisPlan, X: np.ndarray

@@ -734,7 +734,7 @@ def _integration_group(p: KinematicsPlan, overrides: dict, objectives, numeric: 
                        given_map: dict, g) -> _Group:
     """An instant reached by integrating the motion: only the givens are placed (the start
     state and the motion come from them), and the state at the event has its coordinates,
-    rates, parameters and time known (as :func:`~.events.integrate_to_event` marks them)."""
+    rates, parameters and time known (:func:`~.motion.after_event`)."""
     return _Group(overrides, tuple(objectives), numeric, given_map, g.values.copy(),
                   g.known.copy(), ((), (), ()), (), (), {}, (), frozenset(),
                   _positions(p, given_map), (0, 0, 0), after_event(p), frozenset())

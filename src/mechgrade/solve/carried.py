@@ -27,7 +27,7 @@ from typing import Collection, Mapping
 
 import numpy as np
 
-from ..errors import SolveError, UnderdeterminedError
+from ..errors import UnderdeterminedError
 from ..mechanics.dynamics import balance_part
 from ..spec.model import Problem
 from . import rules
@@ -36,6 +36,7 @@ from .dynamics import kinetic_reach
 from .dynamics_mutants import with_generated_mistakes
 from .instant import drive
 from .levels import State
+from .motion import undefined_balances
 from .result import Solution
 from .stored import carried_key, kept
 
@@ -90,10 +91,9 @@ def carried_kinetics(problem: Problem, kp, state: State) -> np.ndarray:
         x[kp.columns[j]] = 0.0
     A = call(kp.jacobian, x[:, None], rows * len(kp.columns)).reshape(rows, len(kp.columns))
     b = call(kp.residual, x[:, None], rows)[:, 0]
-    if not (np.isfinite(A).all() and np.isfinite(b).all()):
-        bad = int(np.flatnonzero(~(np.isfinite(A).all(axis=1) & np.isfinite(b)))[0])
-        raise SolveError(f"the equations of motion are undefined at this instant (a division "
-                         f"by zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
+    defined = np.isfinite(A).all(axis=1) & np.isfinite(b)
+    if not defined.all():
+        raise undefined_balances(kp, defined)
     drives = [_drives(kp, A[:, j]) for j in held]
     solved: list[tuple[tuple[str, ...], np.ndarray]] = []
     for choice in product(*drives):

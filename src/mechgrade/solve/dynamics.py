@@ -42,8 +42,7 @@ from ..spec.dynamics import (Integration, WorkEnergy, dynamics_of, instant_of_ob
                              unchecked)
 from .analysis import analysis_of
 from .columns import WithInputs
-from .events import (integrate_to_event, integrate_to_instant,
-                     integrated_symbolically)
+from .events import integrated_symbolically
 from .motion import accelerations as columns_accelerations
 from .motion import (after_event, at_event, balances, integrated_columns,
                      reads_parameters_only)
@@ -413,40 +412,25 @@ def at_positions(problem: Problem, numeric: Collection[str], given_maps: Sequenc
 
 @dataclass(frozen=True)
 class IntegratedInstant(KineticInstant):
-    """The motion integrated from its start state to its event (:mod:`.events`), or to the
-    time, coordinate or rate an objective is asked at (:func:`~.events.integrate_to_instant`)."""
+    """The motion integrated from its start state to its event, or to the time, coordinate or
+    rate an objective is asked at (:mod:`.events`)."""
 
     def reached(self, given_map: dict, asked_at: str | When | None) -> Arrived:
-        problem, kp = self.source, self.kinetics
-        analysis = dynamics_of(problem).analysis
-        assert isinstance(analysis, Integration)
+        kp = self.kinetics
         g = place_givens(self.problem, kp.kp, given_map)
-        size = kp.kp.index.size
-        if gripping(problem) is not None or isinstance(asked_at, When):
-            return self.phased(g.values, given_map, asked_at)
-        if asked_at is not None:
-            node, si, given = given_map[asked_at]
-            state = integrate_to_instant(
-                problem, kp, g.values, lambda values: accelerations(kp, values),
-                kp.kp.index.symbols.index(kp.kp.k.quantity(node)), si,
-                f"{asked_at}: {given.text}" if given is not None else asked_at,
-                given.where if given is not None else analysis.where)
-            return Arrived(state, self.balances(problem, kp, state))
-        columns = integrated_columns(problem, kp, g.values[:, None])
-        together = None if columns is None else columns[0]
-        if isinstance(together, MechgradeError):
-            raise together
-        if together is not None:  # as the variants of a class are integrated
-            x, before = together
-            return Arrived(State(x[:size].copy(), after_event(kp.kp), frozenset()), x,
-                           before=before)
-        # what the integrator over columns does not vouch for: each step alone, which says
-        # why it fails where it does
-        state, before = integrate_to_event(problem, kp, g.values,
-                                           lambda values: accelerations(kp, values))
-        # the contact checks hold along the way: judge them just before the event
-        self.balances(problem, kp, State(before[:size], state.given))
-        return Arrived(state, at_event(before, state.values, kp.kp), before=before)
+        if asked_at is None and gripping(self.source) is None:
+            columns = integrated_columns(self.source, kp, g.values[:, None])
+            assert columns is not None, "an integrated instant's motion is integrated"
+            (together,) = columns
+            if isinstance(together, MechgradeError):
+                raise together
+            if together is not None:  # as the variants of a class are integrated
+                x, before = together
+                return Arrived(State(x[:kp.kp.index.size].copy(), after_event(kp.kp),
+                                     frozenset()), x, before=before)
+        # an objective's own instant, a motion in phases, or what the integrator over columns
+        # does not vouch for: one column integrated alone, which says why it fails where it does
+        return self.phased(g.values, given_map, asked_at)
 
     def at_events(self, given_maps: list[dict]) -> list[np.ndarray | MechgradeError | None]:
         """The extended states at the event, integrated together as columns (a motion in
@@ -472,8 +456,9 @@ class IntegratedInstant(KineticInstant):
 
     def phased(self, values: np.ndarray, given_map: dict, asked_at: str | When | None
                ) -> Arrived:
-        """The instant on a motion integrated in phases, or asked ``when`` (:mod:`.phases`),
-        read with the model of the phase it is in."""
+        """The instant of the motion integrated alone (one column, :func:`~.phases.reach`:
+        through its phases, to its event, an objective's own instant or ``when``), read with
+        the model of the phase it is in."""
         target: Target = Until() if asked_at is None else asked_at \
             if isinstance(asked_at, When) else self.entry(given_map, asked_at)
         at = reach(self.source, values, target, kinetics_plan, accelerations)

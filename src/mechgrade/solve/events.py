@@ -1,18 +1,21 @@
-"""The instant of a dynamics problem reached by integrating the motion to an event.
+"""The rules of a motion integrated to an event: the tolerances and steps allowed, the direction
+its event is waited for in when it holds at the start (:func:`leaving`), the errors an
+integration ends with, an objective read at the event (:func:`at_the_event`), and the motion
+in closed form where its accelerations stay constant (:func:`integrated_symbolically`).
 
-The coordinates and rates from ``from:`` at t = 0, integrated as one column of the integrator
-over columns (:mod:`.batch_motion`: DOP853, rtol 1e-11, the steps ``scipy.integrate.solve_ivp``
-takes) until the event equation first holds (root refined on the dense output);
-the objectives are read at the event, with ``t`` its time. The accelerations and reactions
-there are the limits just before the event (a kinetic-friction force has no direction once the
-slip has ended). An objective asked at its own time, coordinate or rate is read where that
-first holds, before the event (:func:`integrate_to_instant`); an event, or such a given, that
-holds at t = 0 is its next crossing.
+The coordinates and rates from ``from:`` at t = 0 are integrated over columns
+(:mod:`.batch_motion`: DOP853, rtol 1e-11, the steps ``scipy.integrate.solve_ivp`` takes) until
+the event equation first holds (root refined on the dense output): a class's variants by
+:class:`~.motion.Motion`, one motion solved alone as one column of
+:func:`~.phases.reach_columns` (:func:`~.phases.reach`). The objectives are read at the event,
+with ``t`` its time; the accelerations and reactions there are the limits just before the
+event (a kinetic-friction force has no direction once the slip has ended). An objective asked
+at its own time, coordinate or rate is read where that first holds, before the event; an
+event, or such a given, that holds at t = 0 is its next crossing.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import lru_cache
 from typing import Callable
 
@@ -21,14 +24,12 @@ import sympy as sp
 
 from ..errors import SolveError
 from ..spec.dynamics import Integration
-from ..spec.model import Objective, Problem
+from ..spec.model import Objective
 from ..tolerance import within_each
 from ..units import si_factor
-from .analysis import (analysis_of, analysis_plan, closed_forms, extended, start_values,
-                       value_at)
-from . import dop853, rules
-from .batch_motion import FIRED, NEVER, STALLED, Field, integrate_to_events
-from .levels import State
+from .analysis import closed_forms
+from . import dop853
+from .batch_motion import NEVER, STALLED, Field, integrate_to_events
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
@@ -38,92 +39,6 @@ before its event is read, as ``solve_ivp``'s dense output keeps them."""
 LEAVING = 1e-6
 """The moment after the start, as a part of the time allowed, at which the side an event that
 holds at the start is left to is read: far shorter than any motion the time allowed holds."""
-
-
-def integrate_to_event(problem: Problem, kp, base: np.ndarray, solve) -> tuple[State, np.ndarray]:
-    """The state at the event and the extended state just before it (accelerations and
-    reactions as limits). ``base`` holds the parameters; ``solve(values)`` returns the
-    extended state with the second rates and reactions solved. An event that already holds
-    at t = 0 is the next crossing (a projectile launched from the ground lands)."""
-    m = _ScalarMotion(problem, kp, base, solve)
-    run = m.run([m.until], [m.direction])
-    if run.which is None:
-        raise event_never_happens(m.analysis)
-    return State(m.at(run.t, run.y), _known(m.index), frozenset()), \
-        solve(m.at(run.earlier, run.before))
-
-
-def integrate_to_instant(problem: Problem, kp, base: np.ndarray, solve, at: int, value: float,
-                         given: str, where) -> State:
-    """The state where entry ``at`` of the state (the time, a coordinate or a rate) first
-    takes ``value`` (SI) on the integrated motion, before its event: an objective asked at
-    another instant than the event (``given`` says it as written, ``where`` locates it).
-    Raises when the event, or the time allowed, comes first. Arguments as
-    :func:`integrate_to_event`; a coordinate or rate that holds at t = 0 is its next
-    crossing (t = 0 is the start)."""
-    m = _ScalarMotion(problem, kp, base, solve)
-
-    def reached(t, y):
-        return m.at(t, y)[at] - value
-
-    sense = 0.0 if at == m.index.time else \
-        next_crossing(reached, m.rhs, m.y0, m.analysis.max_time, m.analysis.where)
-    run = m.run([reached, m.until], [sense, m.direction])
-    if run.which != 0:
-        raise instant_missed(m.analysis, given, where, [run.t] if run.which == 1 else [])
-    end = m.at(run.t, run.y)
-    end[at] = value  # where the root was found: the given holds there
-    return State(end, _known(m.index), frozenset())
-
-
-def _known(index) -> np.ndarray:
-    """What an integrated state knows: its coordinates and rates (and the givens)."""
-    known = np.zeros(index.size, dtype=bool)
-    known[index.config] = True
-    known[list(index.rates(1))] = True
-    return known
-
-
-@dataclass(frozen=True)
-class Run:
-    """One motion integrated to the first of its events: ``which`` fired (``None``: none
-    within the time allowed), its time ``t`` and state ``y`` (coordinates, then rates), and
-    the state ``before`` at ``earlier``, a moment before it (not before the start)."""
-
-    which: int | None
-    t: float
-    y: np.ndarray
-    earlier: float
-    before: np.ndarray
-
-
-def integrate(rhs, events: list, directions: list[float], y0: np.ndarray, start: float,
-              t_bound: float, where) -> Run:
-    """``y' = rhs(t, y)`` integrated from ``y0`` at ``start`` until one of ``events`` (each
-    ``event(t, y)``, with its ``direction`` as scipy reads it) changes sign: one column of
-    the integrator over columns (:func:`~.batch_motion.integrate_to_events`), with the
-    steps, tolerances and evaluations allowed of every integration. Raises, located at
-    ``where``, when it stalls or fails.
-
-    >>> run = integrate(lambda t, y: np.array([y[1], -y[0]]), [lambda t, y: y[0]], [0.0],
-    ...                 np.array([1.0, 0.0]), 0.0, 10.0, None)
-    >>> run.which, round(run.t, 9)  # x = cos t: pi/2, within the tolerances
-    (0, 1.570796327)
-    """
-    at_start = [i for i, (e, sense) in enumerate(zip(events, directions))
-                if sense == 0 and e(start, y0) == 0]
-    if at_start:  # it fires at once, as solve_ivp's first step finds it (from either side)
-        return Run(at_start[0], start, y0, start, y0)
-    arrival = integrate_to_events(
-        _rhs_column(rhs), [_event_column(e) for e in events], y0[:, None], t_bound, RTOL, ATOL,
-        MAX_CALLS, direction=np.array(directions, dtype=float)[:, None], t0=start,
-        keep=EVERY_STEP)
-    status, t = int(arrival.status[0]), float(arrival.t[0])
-    if status not in (FIRED, NEVER):
-        raise not_integrated(status, t, where)
-    which = None if status == NEVER or arrival.which is None else int(arrival.which[0])
-    return Run(which, t, arrival.y[:, 0], max(start, t * (1 - rules.BEFORE_EVENT)),
-               arrival.before[:, 0])
 
 
 def not_integrated(status: int, t: float, where) -> SolveError:
@@ -137,65 +52,6 @@ def not_integrated(status: int, t: float, where) -> SolveError:
                       "spacing of numbers there, or the motion is undefined", where=where)
 
 
-class _ScalarMotion:
-    """One motion integrated alone: the start state ``y0`` (coordinates, then rates), the
-    state values ``at(t, y)``, the right-hand side and the analysis's event (``until``, with
-    its ``direction``: an event that holds at t = 0 waits for its next crossing, unless
-    ``leave`` is false)."""
-
-    def __init__(self, problem: Problem, kp, base: np.ndarray, solve, leave: bool = True):
-        self.analysis = analysis = analysis_of(problem, Integration)
-        ap = analysis_plan(kp)
-        self.index = index = kp.kp.index
-        q, qd, qdd = list(range(index.n)), list(index.rates(1)), list(index.rates(2))
-        values = start_values(problem, kp, ap, base)
-        values[index.time] = 0.0
-        values[qdd] = 0.0
-
-        def at(t, y):
-            v = values.copy()
-            v[q] = y[:index.n]
-            v[qd] = y[index.n:]
-            v[index.time] = t
-            return v
-
-        def rhs(t, y):
-            x = solve(at(t, y))
-            return np.concatenate([y[index.n:], x[qdd]])
-
-        event = ap.until
-        assert event is not None, "an integration always has its event (Integration.until)"
-
-        def until(t, y):
-            # an event of the state alone is read without the balances (which are undefined
-            # where a slip speed is exactly zero)
-            x = solve(at(t, y)) if ap.until_kinetic else extended(kp, at(t, y))
-            return value_at(event, x)
-
-        self.at, self.rhs, self.until = at, rhs, until
-        self.y0 = np.concatenate([values[q], values[qd]])
-        # a later phase of the motion starts where the event does not hold
-        self.direction = next_crossing(until, rhs, self.y0, analysis.max_time,
-                                       analysis.where) if leave else 0.0
-
-    def run(self, events: list, directions: list[float], start: float = 0.0,
-            y0: np.ndarray | None = None) -> Run:
-        """This motion integrated to the first of ``events`` (:func:`integrate`), from its
-        start or from ``y0`` at ``start``."""
-        return integrate(self.rhs, events, directions, self.y0 if y0 is None else y0, start,
-                         self.analysis.max_time, self.analysis.where)
-
-
-def _rhs_column(rhs: Callable) -> Field:
-    """One motion's ``rhs(t, y)`` as the right-hand side of one column."""
-    return lambda _c, t, y, _m: rhs(float(t[0]), y[:, 0])[:, None]
-
-
-def _event_column(event: Callable) -> Field:
-    """One motion's ``event(t, y)`` as the event of one column."""
-    return lambda _c, t, y, _m: np.array([event(float(t[0]), y[:, 0])])
-
-
 def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, t_bound: float,
             where) -> tuple[np.ndarray, dict[int, SolveError], dict[int, SolveError]]:
     """Each column's event's ``direction`` (as scipy reads it, see
@@ -206,7 +62,7 @@ def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, 
     the error of each column whose motion stays in the event (a state at rest in it:
     :func:`event_stays`), and of each whose moment later is not reached or where the event
     is undefined (direction 0: a class solves that column alone, which says why). One
-    motion alone is one column (:func:`next_crossing`).
+    motion alone is one column, which raises its first error (:mod:`.phases`).
 
     >>> up = lambda c, t, y, m: np.stack([y[1], -np.ones(len(c))])  # thrown up, or at rest
     >>> rest = lambda c, t, y, m: np.stack([y[1], np.zeros(len(c))])
@@ -241,20 +97,9 @@ def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, 
                                                       moment.t[left])}
 
 
-def next_crossing(event, rhs, y0: np.ndarray, t_bound: float, where) -> float:
-    """The ``direction`` of one motion's event (``event(t, y)``, ``rhs(t, y)``): one column
-    of :func:`leaving`, whose errors it raises."""
-    direction, stays, unfinished = leaving(_rhs_column(rhs), _event_column(event), None,
-                                           y0[:, None], t_bound, where)
-    errors = [*stays.values(), *unfinished.values()]
-    if errors:
-        raise errors[0]
-    return float(direction[0])
-
-
 def event_stays(where) -> SolveError:
     """The error of an event that holds at t = 0 and that the motion does not leave (a state
-    at rest in it), found by one motion's integrator or by the one over columns."""
+    at rest in it), found by :func:`leaving`."""
     return SolveError("the event holds at the start (t = 0) and stays so: expected a motion "
                       "that leaves it", where=where)
 

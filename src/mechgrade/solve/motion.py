@@ -30,7 +30,7 @@ from .rules import satisfied
 
 def after_event(p: KinematicsPlan) -> np.ndarray:
     """What the state at an integration's event has known: its coordinates, rates, parameters
-    and time (as :func:`~.events.integrate_to_event` marks them)."""
+    and time."""
     after = np.zeros(p.index.size, dtype=bool)
     after[list(p.index.config)] = True
     after[list(p.index.rates(1))] = True
@@ -67,10 +67,9 @@ class Motion:
     def integrated(self, X: np.ndarray, instants: np.ndarray | None = None
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
         """Every column's motion integrated from its start state to its event (together:
-        :func:`~.batch_motion.integrate_to_events`, the steps
-        :func:`~.events.integrate_to_event` takes for each alone): the extended state at
-        the event, the accelerations and reactions the limits just before it, with the
-        extended states just before the event stacked under them (:meth:`_at_event`); which
+        :func:`~.batch_motion.integrate_to_events`, the steps each takes alone): the
+        extended state at the event, the accelerations and reactions the limits just before
+        it, with the extended states just before the event stacked under them; which
         columns passed the screens, which ended without their event
         (:data:`~.batch_motion.NEVER`), and the error of each that failed the checks of
         :func:`balances` just before its event, or whose slip ended before its event and
@@ -176,7 +175,8 @@ class Motion:
                 r0 = reached(everyone, start, y0, modes)
                 timed = waits & (instant == index.time)
                 # a coordinate or rate taken at the start: its next crossing (t = 0 is the
-                # start); a time, or the event, waits for none
+                # start); a time, or the event, waits for none. One that stays there is not
+                # answered: alone, its error is located at the objective's given
                 crossing, held, _ = leaving(
                     rhs, lambda c, t, y, m: np.where(waits[c] & ~timed[c],
                                                      reached(c, t, y, m), 1.0),
@@ -202,7 +202,7 @@ class Motion:
             ok[e] = ok_e & fine
             never[e] = arrival.status[e] == NEVER
             # an event reached whose contact checks fail just before it: the error the
-            # scalar solver raises there, without integrating that column again step by step
+            # single solve raises there, without integrating that column again step by step
             errors.update({int(e[i]): error for i in np.flatnonzero(ok_e & ~fine)
                            if (error := solved.errors[int(i)]) is not None})
             if switches is not None:
@@ -213,7 +213,7 @@ class Motion:
             out[:, a], ok[a], failed = self._at_instant(
                 a, instant[a], asked[a], arrival, at, event, reached, switching, y0[:, a],
                 (g0[a], r0[a], away_from[a]), barred)
-            errors.update({**failed, **held})
+            errors.update(failed)
         ok[list(unsettled)] = ok[list(stays)] = never[list(stays)] = False
         return out, ok, never, {**errors, **stays, **unsettled}
 
@@ -224,7 +224,7 @@ class Motion:
                     ) -> tuple[np.ndarray, np.ndarray, dict[int, MechgradeError]]:
         """The columns ``cols`` of :meth:`integrated` asked at an instant of their own: where
         entry ``instant`` of the state first takes each column's ``asked`` value before the
-        event (the steps :func:`~.events.integrate_to_instant` takes for each alone). Their
+        event (the steps each takes alone, :func:`~.phases.reach`). Their
         motion stopped where the product of the instant's and the event's equations changed
         sign (``arrival``; either one that holds at the start waits for its next crossing,
         :func:`~.events.leaving`; t = 0 is the start); ``started``: the event's and the instant's
@@ -435,12 +435,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
     b = call(kp.residual, x, rows_)
     defined = np.isfinite(A).all(axis=1) & np.isfinite(b)  # rows x columns
 
-    def undefined(i: int) -> MechgradeError:
-        bad = int(np.flatnonzero(~defined[:, i])[0])
-        return SolveError(f"the equations of motion are undefined at this instant (a division "
-                          f"by zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
-
-    errors.add(~defined.all(axis=0), undefined)
+    errors.add(~defined.all(axis=0), lambda i: undefined_balances(kp, defined[:, i]))
     ok = errors.ok
     Ab = np.where(ok, A, 0.0).transpose(2, 0, 1)
     U, s, Vt = np.linalg.svd(Ab, full_matrices=False)
@@ -492,6 +487,20 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
             errors.add(~rules.pushes(nn), partial(_lost, bound, nn))
             errors.add(~rules.sticks(f, nn, m), partial(_slips, bound, f, nn, m))
     return Balanced(x, errors)
+
+
+def undefined_balances(kp, defined: np.ndarray) -> SolveError:
+    """The error of momentum balances undefined at an instant (``defined``: which of the rows
+    of ``kp``'s are), naming the first that is not.
+
+    >>> from types import SimpleNamespace
+    >>> kp = SimpleNamespace(labels=["body B: x", "body B: y"], wheres=[None, None])
+    >>> print(undefined_balances(kp, np.array([True, False])))
+    the equations of motion are undefined at this instant (a division by zero in 'body B: y')
+    """
+    bad = int(np.flatnonzero(~defined)[0])
+    return SolveError(f"the equations of motion are undefined at this instant (a division by "
+                      f"zero in '{kp.labels[bad]}')", where=kp.wheres[bad])
 
 
 def _no_slip(slip, _: int) -> SolveError:
@@ -603,8 +612,8 @@ def integrated_columns(problem: Problem, kinetics, X: np.ndarray
     state) by the integrator over columns, as a class's variants are integrated: for each,
     the extended state at the event (the accelerations and reactions their limits just
     before it) and just before it; or the error it raises (the event never happens, a slip
-    sticks before it); or ``None`` where that integrator does not vouch for it (the scalar
-    one then says why). ``None`` for a motion that is not integrated."""
+    sticks before it); or ``None`` where that integrator does not vouch for it (one column
+    integrated alone, :func:`~.phases.reach`, then says why). ``None`` for a motion that is not integrated."""
     motion = _motion(problem, kinetics)
     if not isinstance(motion.analysis, Integration):
         return None

@@ -6,13 +6,14 @@ The gripping phase is the same problem with that friction static along its ``the
 direction and the contact's velocity along it held at zero (a velocity constraint): the
 momentum balances then give the friction the grip needs, which must stay within mu_s N for the
 rest of the motion (a contact that would slip again is refused, where it would). Every phase
-is integrated as :mod:`.events` integrates one motion (DOP853, rtol 1e-11, its roots refined
-on the dense output); of events that happen in the same step, the earliest is the instant.
+is integrated over columns (:mod:`.batch_motion`: DOP853, rtol 1e-11, its roots refined on
+the dense output); of events that happen in the same step, the earliest is the instant.
 
 A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
 integration over columns, each column switching phase at its own end of the slip and stopping
 at its own instant (a class's groups of objectives side by side: one pass of each phase). One
-solve is one such column solved alone (:func:`reach`).
+solve is one such column solved alone (:func:`reach`), a motion without phases too (its one
+phase: an objective's own instant, or an event the class's integrator does not vouch for).
 """
 
 from __future__ import annotations
@@ -389,7 +390,7 @@ class _Columns:
     def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's ``direction`` of ``event`` from the start (its next crossing where
         it holds there, :func:`~.events.leaving`): one motion alone raises its first error,
-        located at ``where`` (as :func:`~.events.next_crossing`); a class keeps the error of
+        located at ``where``; a class keeps the error of
         each column that stays in it (one whose moment is not reached has none: it does not
         move)."""
         direction, stays, unfinished = leaving(
@@ -417,9 +418,9 @@ class _Columns:
     def run(self, events: list[Callable], senses: list[np.ndarray], y0: np.ndarray,
             t0: np.ndarray) -> _Run:
         """Every column integrated from ``y0`` at ``t0`` to the first of ``events`` (each with
-        its ``direction`` per column), as :func:`~.events.integrate` integrates one motion:
-        an event with no direction that holds at the start fires at once, as ``solve_ivp``'s
-        first step finds it. Alone, every step is kept and a stall or failure raises."""
+        its ``direction`` per column): an event with no direction that holds at the start
+        fires at once, as ``solve_ivp``'s first step finds it. Alone, every step is kept and
+        a stall or failure raises."""
         count = y0.shape[1]
         direction = np.array(senses, dtype=float).reshape(len(events), count)
         g = np.array([e(np.arange(count), t0, y0) for e in events]).reshape(len(events), count)
@@ -486,7 +487,8 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
         for k, error in stays.items():
             failed(int(todo[k]), error)
         fine = np.ones(count, dtype=bool)
-        events, senses = [until], [direction]
+        events, senses = [], []
+        # the instants first: where one and the event fire together, it is reached
         for aim, target in one.aims([targets[c] for c in todo], asked[todo]):
             events.append(aim)
             if isinstance(target, Entry) and target.at == kp.kp.index.time:
@@ -496,6 +498,8 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             else:  # a class leaves one that holds at the start alone (its next crossing)
                 fine &= aim(np.arange(count), np.zeros(count), one.y0) != 0
                 senses.append(np.zeros(count))
+        events.append(until)
+        senses.append(direction)
         grip = gripping(problem)
         if grip is not None:
             events.append(one.reading(_slip(problem, kp, kinetics_plan(gripping_phase(problem))),
@@ -503,10 +507,11 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             senses.append(np.zeros(count))
         fine &= ~np.isin(todo, list(errors))
         run = one.run(events, senses, one.y0, np.zeros(count))
-        ended = (run.status == NEVER) | ((run.which == 0) & _aiming(targets, todo))
+        at_until = run.which == events.index(until)
+        ended = (run.status == NEVER) | (at_until & _aiming(targets, todo))
         for c in np.flatnonzero(fine & ended):
             failed(int(todo[c]), _missed(analysis, targets[todo[c]],
-                                         [run.t[c]] if run.which[c] == 0 else []))
+                                         [run.t[c]] if at_until[c] else []))
         fired = fine & ~ended & (run.status == FIRED)
         slipped = fired & (run.which == len(events) - 1) & (grip is not None)
         phases = _arrived(problem, one, run, todo, np.flatnonzero(fired & ~slipped), targets,
@@ -551,7 +556,7 @@ def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped: _Run
              failed: Callable[[int, MechgradeError], None]) -> list[PhaseColumns]:
     """The gripping phase of the columns ``columns`` of the class (``X``: their parameters
     placed), from the end of their slip (``slipped``, at its columns ``s``) to their target;
-    ``direction``: that of the motion's event (see :func:`.events.next_crossing`). A grip
+    ``direction``: that of the motion's event (see :func:`.events.leaving`). A grip
     that needs more than mu_s N where the slip ends, or that would slip again, fails."""
     phase = gripping_phase(problem)
     kp = kinetics_plan(phase)
@@ -570,16 +575,17 @@ def _gripped(problem: Problem, X: np.ndarray, columns: np.ndarray, slipped: _Run
         failed(int(columns[c]), _slips_on(grip, float(start[c]), float(held[c])))
     fine &= ~np.isin(everyone, list(unsettled))
     aims = [aim for aim, _ in two.aims([targets[c] for c in columns], asked[columns])]
-    events = [two.until(), *aims, grips]
-    run = two.run(events, [direction] + [np.zeros(len(s))] * (len(events) - 1), y0, start)
+    events = [*aims, two.until(), grips]  # the instants first, as in the slipping phase
+    senses = [np.zeros(len(s))] * len(aims) + [direction, np.zeros(len(s))]
+    run = two.run(events, senses, y0, start)
     again = fine & (run.status == FIRED) & (run.which == len(events) - 1)
     for c in np.flatnonzero(again):
         failed(int(columns[c]), _slips_again(grip, float(start[c]), float(run.t[c])))
-    ended = fine & ~again & ((run.status == NEVER) |
-                             ((run.which == 0) & _aiming(targets, columns)))
+    at_until = run.which == len(aims)
+    ended = fine & ~again & ((run.status == NEVER) | (at_until & _aiming(targets, columns)))
     for c in np.flatnonzero(ended):
         failed(int(columns[c]), _missed(analysis_of(problem, Integration), targets[columns[c]],
-                                        [run.t[c]] if run.which[c] == 0 else []))
+                                        [run.t[c]] if at_until[c] else []))
     two.values[two.time] = start  # each column's start: a moment before is not before it
     return _arrived(phase, two, run, columns,
                     np.flatnonzero(fine & ~again & ~ended & (run.status == FIRED)), targets,

@@ -22,8 +22,8 @@ from ..units import normalize_unit, parse_quantity, to_si
 from ..yamlio import Document, read_yaml, read_yaml_text
 from .dynamics import read_dynamics
 from .language import FUNCTIONS
-from .model import (Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake, Objective,
-                    Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
+from .model import (CONSISTENCY, Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake,
+                    Objective, Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
 from .solving import (check_solving, expand, given_expression, read_branches, read_definitions,
                       read_unknowns, resolve_given_values)
 from .physics import given_value_hint, plausibility_warnings, tolerance_errors
@@ -264,7 +264,8 @@ class _Builder:
             constraints=tuple(c for c in constraints if c is not None),
             givens=tuple(g for g in givens if g is not None),
             guesses=tuple(g for g in guesses if g is not None), objectives=tuple(objectives),
-            consistency=float(d.get("consistency", 5e-3)) if self.usable("consistency") else 5e-3,
+            consistency=float(d.get("consistency", CONSISTENCY)) if self.usable("consistency")
+            else CONSISTENCY,
             path=self.doc.file, unknowns=unknowns, branches=branches,
             definitions=self.definition_items, warnings=self.warnings(problem_id),
             variants=variants, dynamics=self.dynamics(),

@@ -247,6 +247,11 @@ class Objective:
         object.__setattr__(self, "kind", ObjectiveKind(self.kind))  # text from a file
 
 
+CONSISTENCY = 5e-3
+"""The part of its terms' size an equation may be off by and still hold, where a spec does
+not say (``consistency:``; the schema's default says the same)."""
+
+
 @dataclass(frozen=True)
 class Problem:
     """A whole problem file; ``warnings`` are legal oddities found while loading it."""
@@ -265,7 +270,7 @@ class Problem:
     givens: tuple[Given, ...]
     guesses: tuple[Given, ...]
     objectives: tuple[Objective, ...]
-    consistency: float = 5e-3
+    consistency: float = CONSISTENCY
     path: str | None = field(default=None, compare=False)
     unknowns: tuple[Expr, ...] = ()
     branches: tuple[Branch, ...] = ()
