@@ -8,7 +8,7 @@ import pytest
 from scipy import integrate, optimize
 
 from mechgrade.solve.batch_motion import (FAILED, FIRED, NEVER, STALLED, SWITCHED,
-                                          integrate_to_events, newton)
+                                          integrate_to_events, newton, root_between)
 
 OMEGA = np.array([1.0, 2.0, 3.0])
 
@@ -158,3 +158,19 @@ def test_of_several_events_the_earliest_fired_is_the_instant_from_the_start_time
     assert arrival.which is not None and arrival.which.tolist() == [1, 1, 1]
     assert arrival.t == pytest.approx(0.5 + np.arccos(0.9) / OMEGA, rel=1e-10)
     assert np.all(arrival.before[0] > 0.9)  # a moment before, on the same motion
+
+
+def test_a_root_an_ulp_inside_an_end_of_its_bracket_takes_a_few_evaluations_not_a_bisection():
+    """flywheel_speed_drop's t = T event: the first iterate lands an ulp past the root, every
+    later one on that end again; bisecting down to it took 48 evaluations."""
+    root_at = np.nextafter(0.16991083119804903, 0.0)
+    evaluations = []
+
+    def event(x):
+        evaluations.append(x)
+        return x - root_at
+
+    a, b = 0.07244069888227622, 0.29080549678745565
+    root, converged = root_between(event, a, b, a - root_at, b - root_at)
+    assert converged and abs(root - root_at) <= 4 * np.finfo(float).eps * root_at
+    assert len(evaluations) <= 4
