@@ -45,8 +45,7 @@ from .columns import WithInputs
 from .events import (integrate_to_event, integrate_to_instant,
                      integrated_symbolically)
 from .motion import accelerations as columns_accelerations
-from .motion import after_event, at_event, balances, gathered, integrated_columns, \
-    switched_speeds
+from .motion import after_event, at_event, balances, gathered, integrated_columns
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
 from .instant import Reached, drive, read_objectives, symbolic_dependence
@@ -119,10 +118,12 @@ def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
     exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints]).xreplace(named)
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
-    # a friction's direction u/|u| evaluated as one quotient: as the balances write it
-    # (expanded, mu N xd/|xd - Xd| - mu N Xd/|xd - Xd|) it loses the digits of a slip small
-    # beside the speeds, where an event's accelerations are read (just before the slip ends)
-    exprs = exprs.applyfunc(partial(_directions_whole, switched_speeds(exprs)))
+    # a kinetic friction's direction u/|u| evaluated as one quotient: as the balances write
+    # it (expanded, mu N xd/|xd - Xd| - mu N Xd/|xd - Xd|) it loses the digits of a slip
+    # small beside the speeds, where an event's accelerations are read (just before the slip
+    # ends)
+    slips = [s.speed.args[0] for s in kin.slips if isinstance(s.speed, sp.Abs)]
+    exprs = exprs.applyfunc(partial(_directions_whole, slips))
     out = {name: _lambdify(symbols + before, f) for name, f in zip(
         _BALANCE_FUNCTIONS, (exprs, exprs.jacobian(unknowns), scale))}
     if kin.before is None:
@@ -132,8 +133,8 @@ def _balance_functions(kin: Kinetics, symbols, unknowns) -> dict:
 
 
 def _directions_whole(speeds: list, e: sp.Expr) -> sp.Expr:
-    """``e`` with its terms over each ``|u|`` of ``speeds`` written ``over * u/|u|``
-    (:func:`~.motion.gathered`)."""
+    """``e`` with its terms over each ``|u|`` of ``speeds`` (kinetic frictions' slips) written
+    ``over * u/|u|`` (:func:`~.motion.gathered`)."""
     for u in speeds:
         rest, over = gathered(e, u)
         if over is not None:

@@ -465,25 +465,6 @@ class _Switching:
     count: int
 
 
-def switched_speeds(exprs) -> list:
-    """Every ``u`` of a ``|u|`` or ``sign(u)`` in ``exprs`` (sympy expressions), in the order
-    they are met: the speeds whose sign switches the motion (a kinetic friction's slip).
-
-    >>> import sympy as sp
-    >>> a, b = sp.symbols("a b")
-    >>> switched_speeds([a / sp.Abs(a - b) + sp.sign(b), sp.Abs(b - a)])
-    [a - b, b]
-    """
-    import sympy as sp
-
-    speeds: list = []
-    for e in exprs:
-        for node in sp.preorder_traversal(e):
-            if isinstance(node, (sp.Abs, sp.sign)) and node.args[0] not in speeds:
-                speeds.append(node.args[0])
-    return speeds
-
-
 def gathered(e, u):
     """``e`` (a sympy expression) as ``rest + over * u/|u|``: its terms over ``|u|`` (a kinetic
     friction's direction ``u/|u|``, which the balances write expanded) summed and divided by
@@ -515,7 +496,11 @@ def _switches(kp, at_end: bool = False) -> _Switching | None:
     import sympy as sp
 
     exprs = [e.expr for e in (*kp.kin.balances, *kp.kin.constraints)]
-    speeds = switched_speeds(exprs)
+    speeds: list = []
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, (sp.Abs, sp.sign)) and node.args[0] not in speeds:
+                speeds.append(node.args[0])
     if not speeds:
         return None
     modes = sp.symbols(f"_mode0:{len(speeds)}")
