@@ -2259,15 +2259,20 @@ def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutati
     if q not in at_start:
         return
     x0 = at_start[q]
-    speeds = [("end_speed_throughout", f"{q}'", "at its final speed throughout: the speed "
-               "changes along the motion")]
+    # the event may fix the final speed at 0 (a stop) or the coordinate at its start (a
+    # return): a reading over that zero has no value, only the rounding of the event's state
+    stops, returns = (_event_at(problem, model, node, value) for node, value in (
+        (Prime(q, 1), Num("0")), (Name(q), _start_value(d.analysis, q))))
+    speeds = [] if stops else [("end_speed_throughout", f"{q}'", "at its final speed "
+                                "throughout: the speed changes along the motion")]
     v0 = at_start.get(f"{q}'")
     if v0 is not None:
         speeds.insert(0, ("mean_of_end_rates", f"(({v0}) + {q}')/2",
                           "as uniformly accelerated, with the mean of the starting and final "
                           "speeds: the acceleration changes along the motion"))
     for code, speed, how in speeds:
-        instead = {q: f"({x0}) + ({speed})*t", "t": f"({q} - ({x0}))/({speed})"}
+        instead = {q: f"({x0}) + ({speed})*t"} if returns else \
+            {q: f"({x0}) + ({speed})*t", "t": f"({q} - ({x0}))/({speed})"}
         readings = tuple((o.id, _expr(instead[o.find.node.id])) for o in problem.objectives
                          if isinstance(o.find.node, Name) and o.find.node.id in instead)
         if readings:
@@ -2275,6 +2280,23 @@ def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutati
                 code, f"Your value takes the motion {how}, so the distance is the integral "
                 "of the speed over the time, not one speed times the time.", OBJECTIVES,
                 readings=readings)
+
+def _start_value(analysis: Integration, q: str) -> Node:
+    """The value ``q`` starts at (``analysis`` states it)."""
+    (start,) = (s for s in analysis.start if to_text(s.key.node) == q)
+    return start.value.node if start.value is not None else Num(repr(start.si))
+
+
+def _event_at(problem: Problem, model: Model, node: Node, value: Node) -> bool:
+    """Whether ``problem``'s integration event holds where ``node`` (a coordinate or its rate)
+    takes ``value``: its two sides equal there, whatever else."""
+    d = dynamics_of(problem)
+    assert isinstance(d.analysis, Integration)
+    lhs, rhs = (model.plain(model.language.value(e.node)) for e in d.analysis.until)
+    at = model.plain(model.language.value(node))
+    return (lhs - rhs).has(at) and identically_zero(
+        (lhs - rhs).subs(at, model.plain(model.language.value(value))))
+
 
 def spring_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated from a start, with each spring's force taken constant at its value
