@@ -37,7 +37,7 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              LoadKind,
                              Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
                              Ring, Shape, Shell, Sphere, Start, StaticFriction, WorkEnergy,
-                             dynamics_of, unchecked)
+                             dynamics_of, instant_of_objective, unchecked)
 from ..spec.language import FUNCTIONS
 from ..spec.constraint_mutations import strands_once
 from ..spec.model import Constraint, Expr, ObjectiveKind, Problem
@@ -2260,21 +2260,23 @@ def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutati
         return
     x0 = at_start[q]
     # the event may fix the final speed at 0 (a stop) or the coordinate at its start (a
-    # return): a reading over that zero has no value, only the rounding of the event's state
+    # return): a reading there over that zero has no value, only the rounding of its state
     stops, returns = (_event_at(problem, model, node, value) for node, value in (
         (Prime(q, 1), Num("0")), (Name(q), _start_value(d.analysis, q))))
-    speeds = [] if stops else [("end_speed_throughout", f"{q}'", "at its final speed "
-                                "throughout: the speed changes along the motion")]
+    speeds = [("end_speed_throughout", f"{q}'", "at its final speed throughout: the speed "
+               "changes along the motion")]
     v0 = at_start.get(f"{q}'")
     if v0 is not None:
         speeds.insert(0, ("mean_of_end_rates", f"(({v0}) + {q}')/2",
                           "as uniformly accelerated, with the mean of the starting and final "
                           "speeds: the acceleration changes along the motion"))
     for code, speed, how in speeds:
-        instead = {q: f"({x0}) + ({speed})*t"} if returns else \
-            {q: f"({x0}) + ({speed})*t", "t": f"({q} - ({x0}))/({speed})"}
+        instead = {q: f"({x0}) + ({speed})*t", "t": f"({q} - ({x0}))/({speed})"}
+        undefined = {q, "t"} if stops and code == "end_speed_throughout" else \
+            {"t"} if returns else set()
         readings = tuple((o.id, _expr(instead[o.find.node.id])) for o in problem.objectives
-                         if isinstance(o.find.node, Name) and o.find.node.id in instead)
+                         if isinstance(o.find.node, Name) and o.find.node.id in instead
+                         and not (o.find.node.id in undefined and _at_the_event(problem, o)))
         if readings:
             yield DynamicsMutation(
                 code, f"Your value takes the motion {how}, so the distance is the integral "
@@ -2285,6 +2287,13 @@ def _start_value(analysis: Integration, q: str) -> Node:
     """The value ``q`` starts at (``analysis`` states it)."""
     (start,) = (s for s in analysis.start if to_text(s.key.node) == q)
     return start.value.node if start.value is not None else Num(repr(start.si))
+
+
+def _at_the_event(problem: Problem, objective) -> bool:
+    """Whether ``objective`` is read at the integration's event (not at an instant or a
+    ``when`` of its own)."""
+    return objective.when is None and instant_of_objective(
+        problem, {g.key.text: g for g in objective.givens}) is None
 
 
 def _event_at(problem: Problem, model: Model, node: Node, value: Node) -> bool:
