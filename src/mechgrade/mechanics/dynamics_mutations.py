@@ -2301,6 +2301,9 @@ def _event_at(problem: Problem, model: Model, node: Node, value: Node) -> bool:
     takes ``value``: its two sides equal there, whatever else."""
     d = dynamics_of(problem)
     assert isinstance(d.analysis, Integration)
+    if any(isinstance(n, Call) and n.func not in model.language.functions
+           for e in d.analysis.until for n in walk(e.node)):
+        return False  # an event on a force or an energy: not a coordinate's or rate's value
     lhs, rhs = (model.plain(model.language.value(e.node)) for e in d.analysis.until)
     at = model.plain(model.language.value(node))
     return (lhs - rhs).has(at) and identically_zero(
