@@ -288,6 +288,16 @@ def test_a_launch_read_at_its_final_speed_throughout():
     assert end.message.startswith("Your value takes the motion at its final speed throughout")
 
 
+def test_no_reading_over_a_zero_the_event_fixes():
+    # a block that stops (x' = 0) read at its final speed throughout: the time over 0 (it was
+    # the rounding of the event's state, 1.6e7 s); one back where it started (x = 0 from 0):
+    # the time as no distance over a speed (it was 2e-7 s)
+    assert not _generated("block_between_two_springs", "first_stop", "end_speed_throughout")
+    assert not _generated("block_between_two_springs", "amplitude", "end_speed_throughout")
+    for code in ("mean_of_end_rates", "end_speed_throughout"):
+        assert not _generated("damped_block_positions", "time_back", code)
+
+
 def test_no_mean_of_end_rates_without_a_stated_starting_rate_or_along_two_coordinates():
     # the launcher starts from a deflection alone; the satellite moves along r and theta
     assert "mean_of_end_rates" not in _codes("spring_launcher_a_of_x")

@@ -638,3 +638,12 @@ def test_natural_modes_in_symbols_too_large_to_finish_are_refused(monkeypatch):
         "p.yaml:95:5: objectives[7]: natural modes in symbols are out of reach for this model "
         "(an entry of its stiffness matrix has 34 operations, more than 0): expected "
         "'kind: scalar' (worked out with numbers), found 'kind: symbolic'")
+
+
+def test_an_acceleration_read_as_a_slip_ends_keeps_the_digits_of_its_friction_direction():
+    """The cart's acceleration is read just before the block stops slipping on it, where the
+    slip (5e-9 m/s) is small beside the speeds (1 m/s): the balances' u/|u| written as one
+    sum per speed lost 1e-8 of it (0.7357499927)."""
+    solution = solve(load_problem_text(text("block_slides_on_cart"), "p.yaml"))
+    value = {r.id: r.value for r in solution.results}["cart_acceleration"]
+    assert value == pytest.approx(0.3 * 2.0 * 9.81 / 8.0, rel=1e-13)

@@ -37,7 +37,7 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              LoadKind,
                              Impulse, Integration, KineticFriction, Part, Reaction, Restitution,
                              Ring, Shape, Shell, Sphere, Start, StaticFriction, WorkEnergy,
-                             dynamics_of, unchecked)
+                             dynamics_of, instant_of_objective, unchecked)
 from ..spec.language import FUNCTIONS
 from ..spec.constraint_mutations import strands_once
 from ..spec.model import Constraint, Expr, ObjectiveKind, Problem
@@ -2259,6 +2259,10 @@ def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutati
     if q not in at_start:
         return
     x0 = at_start[q]
+    # the event may fix the final speed at 0 (a stop) or the coordinate at its start (a
+    # return): a reading there over that zero has no value, only the rounding of its state
+    stops, returns = (_event_at(problem, model, node, value) for node, value in (
+        (Prime(q, 1), Num("0")), (Name(q), _start_value(d.analysis, q))))
     speeds = [("end_speed_throughout", f"{q}'", "at its final speed throughout: the speed "
                "changes along the motion")]
     v0 = at_start.get(f"{q}'")
@@ -2268,13 +2272,43 @@ def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutati
                           "speeds: the acceleration changes along the motion"))
     for code, speed, how in speeds:
         instead = {q: f"({x0}) + ({speed})*t", "t": f"({q} - ({x0}))/({speed})"}
+        undefined = {q, "t"} if stops and code == "end_speed_throughout" else \
+            {"t"} if returns else set()
         readings = tuple((o.id, _expr(instead[o.find.node.id])) for o in problem.objectives
-                         if isinstance(o.find.node, Name) and o.find.node.id in instead)
+                         if isinstance(o.find.node, Name) and o.find.node.id in instead
+                         and not (o.find.node.id in undefined and _at_the_event(problem, o)))
         if readings:
             yield DynamicsMutation(
                 code, f"Your value takes the motion {how}, so the distance is the integral "
                 "of the speed over the time, not one speed times the time.", OBJECTIVES,
                 readings=readings)
+
+def _start_value(analysis: Integration, q: str) -> Node:
+    """The value ``q`` starts at (``analysis`` states it)."""
+    (start,) = (s for s in analysis.start if to_text(s.key.node) == q)
+    return start.value.node if start.value is not None else Num(repr(start.si))
+
+
+def _at_the_event(problem: Problem, objective) -> bool:
+    """Whether ``objective`` is read at the integration's event (not at an instant or a
+    ``when`` of its own)."""
+    return objective.when is None and instant_of_objective(
+        problem, {g.key.text: g for g in objective.givens}) is None
+
+
+def _event_at(problem: Problem, model: Model, node: Node, value: Node) -> bool:
+    """Whether ``problem``'s integration event holds where ``node`` (a coordinate or its rate)
+    takes ``value``: its two sides equal there, whatever else."""
+    d = dynamics_of(problem)
+    assert isinstance(d.analysis, Integration)
+    if any(isinstance(n, Call) and n.func not in model.language.functions
+           for e in d.analysis.until for n in walk(e.node)):
+        return False  # an event on a force or an energy: not a coordinate's or rate's value
+    lhs, rhs = (model.plain(model.language.value(e.node)) for e in d.analysis.until)
+    at = model.plain(model.language.value(node))
+    return (lhs - rhs).has(at) and identically_zero(
+        (lhs - rhs).subs(at, model.plain(model.language.value(value))))
+
 
 def spring_taken_constant(problem: Problem, model: Model) -> Iterator[DynamicsMutation]:
     """A motion integrated from a start, with each spring's force taken constant at its value

@@ -420,7 +420,11 @@ def _event_time(event, dense, a, b, fa, fb) -> tuple[np.ndarray, np.ndarray]:
         ai, bi, fai, fbi, li = a[i], b[i], fa[i], fb[i], last[i]  # each gathered once
         with np.errstate(all="ignore"):
             x = (ai * fbi - bi * fai) / (fbi - fai)
-        stalled = ~((x > np.minimum(ai, bi)) & (x < np.maximum(ai, bi))) | (step % 4 == 3)
+        lo, hi = np.minimum(ai, bi), np.maximum(ai, bi)
+        # at an end (whose value is rounding beside the other's): the next number inside it
+        # brackets a root there at once (as brentq's least step), where bisecting crawls
+        x = np.where(x >= hi, np.nextafter(hi, lo), np.where(x <= lo, np.nextafter(lo, hi), x))
+        stalled = ~((x > lo) & (x < hi)) | (step % 4 == 3)
         x = np.where(stalled, 0.5 * (ai + bi), x)
         fx = event(i, x, dense(x, i))
         undefined = ~np.isfinite(fx)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import warnings
 
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import lru_cache, partial
 from typing import Callable, Collection, Mapping, Sequence
 
 import numpy as np
@@ -44,7 +44,7 @@ from .analysis import analysis_of
 from .columns import WithInputs
 from .events import integrated_symbolically
 from .motion import accelerations as columns_accelerations
-from .motion import (after_event, at_event, balances, integrated_columns,
+from .motion import (after_event, at_event, balances, gathered, integrated_columns,
                      reads_parameters_only)
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
@@ -121,6 +121,12 @@ def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> 
     exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints]).xreplace(named)
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
+    # a kinetic friction's direction u/|u| evaluated as one quotient: as the balances write
+    # it (expanded, mu N xd/|xd - Xd| - mu N Xd/|xd - Xd|) it loses the digits of a slip
+    # small beside the speeds, where an event's accelerations are read (just before the slip
+    # ends)
+    slips = [s.speed.args[0] for s in kin.slips if isinstance(s.speed, sp.Abs)]
+    exprs = exprs.applyfunc(partial(_directions_whole, slips))
     jacobian = exprs.jacobian(unknowns)
     out = {name: _lambdify(symbols + before, f) for name, f in zip(
         _BALANCE_FUNCTIONS, (exprs, jacobian, scale))}
@@ -128,6 +134,16 @@ def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> 
         return {**out, "constant_jacobian": reads_parameters_only(jacobian, symbols, index)}
     rates = _lambdify(symbols, kin.before.values)
     return {name: WithInputs(f, rates) for name, f in out.items()}
+
+
+def _directions_whole(speeds: list, e: sp.Expr) -> sp.Expr:
+    """``e`` with its terms over each ``|u|`` of ``speeds`` (kinetic frictions' slips) written
+    ``over * u/|u|`` (:func:`~.motion.gathered`)."""
+    for u in speeds:
+        rest, over = gathered(e, u)
+        if over is not None:
+            e = rest + over * u / sp.Abs(u)
+    return e
 
 
 _BALANCE_FUNCTIONS = ("residual", "jacobian", "scale")

@@ -557,6 +557,26 @@ class _Switching:
     constant_jacobian: bool  # it reads parameters only (no mode): the same all along
 
 
+def gathered(e, u):
+    """``e`` (a sympy expression) as ``rest + over * u/|u|``: its terms over ``|u|`` (a kinetic
+    friction's direction ``u/|u|``, which the balances write expanded) summed and divided by
+    ``u``; ``over`` is ``None`` where no term is over ``|u|``. Written so, the direction keeps
+    its digits where the slip ``u`` is small beside the speeds it is the difference of.
+
+    >>> import sympy as sp
+    >>> a, b, N = sp.symbols("a b N")
+    >>> gathered(N*a/sp.Abs(a - b) - N*b/sp.Abs(a - b) + 1, a - b)
+    (1, N)
+    """
+    import sympy as sp
+
+    parts = sp.collect(e, 1 / sp.Abs(u), evaluate=False) if e.is_Add else {}
+    over = parts.pop(1 / sp.Abs(u), None)
+    if over is None:
+        return e, None
+    return sp.Add(*(k * v for k, v in parts.items())), sp.cancel(over / u)
+
+
 @lru_cache(maxsize=64)
 def _switches(kp, at_end: bool = False) -> _Switching | None:
     """The kinetics of ``kp`` with their switches read as :class:`_Switching` says; ``None``
@@ -580,10 +600,9 @@ def _switches(kp, at_end: bool = False) -> _Switching | None:
 
     def kept(e):
         for u, mode in table.items() if at_end else ():
-            parts = sp.collect(e, 1 / sp.Abs(u), evaluate=False) if e.is_Add else {}
-            over = parts.pop(1 / sp.Abs(u), None)
+            rest, over = gathered(e, u)
             if over is not None:
-                e = sp.Add(*(k * v for k, v in parts.items())) + sp.cancel(over / u) / mode
+                e = rest + over / mode
         e = e.replace(lambda a: isinstance(a, sp.Abs) and a.args[0] in table,
                       lambda a: table[a.args[0]] * a.args[0])
         return e.replace(lambda a: isinstance(a, sp.sign) and a.args[0] in table,
