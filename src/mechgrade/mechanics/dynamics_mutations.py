@@ -2283,6 +2283,7 @@ def mean_of_end_rates(problem: Problem, model: Model) -> Iterator[DynamicsMutati
                 "of the speed over the time, not one speed times the time.", OBJECTIVES,
                 readings=readings)
 
+
 def _start_value(analysis: Integration, q: str) -> Node:
     """The value ``q`` starts at (``analysis`` states it)."""
     (start,) = (s for s in analysis.start if to_text(s.key.node) == q)
