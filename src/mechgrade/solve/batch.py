@@ -684,23 +684,24 @@ class _Template:
         reached together, as the variants' (a degenerate configuration no reason to drop a
         mistake), and those whose givens break the positions (:meth:`_conflicting`)."""
         _, ok, values, _, _, _ = self._instant(group, maps, False)
-        return ok, values, ~ok & self._conflicting(group, maps)
+        refused = np.zeros(len(maps), dtype=bool)
+        failed = np.flatnonzero(~ok)
+        if len(failed):  # (most classes vouch for every one)
+            refused[failed] = self._conflicting(group, [maps[i] for i in failed])
+        return ok, values, refused
 
     def _conflicting(self, group: _Group, maps: list[dict]) -> np.ndarray:
-        """The columns whose givens fix every position the position level reads but break it
+        """Which columns' givens fix every position the position level reads but break it
         (a linkage's angle misread as radians): one solve refuses them by the same residual
         rule before it solves anything (:func:`~.levels.givens_conflict`), so no column's
         refusal depends on a root found or a start taken."""
-        refused = np.zeros(len(maps), dtype=bool)
-        if group.unknown[0] or not group.active[0].any() or self._designs(group) \
+        active = group.active[0]
+        if group.unknown[0] or not active.any() or self._designs(group) \
                 or self._integrates(group) or self._phased(group):
-            return refused
+            return np.zeros(len(maps), dtype=bool)
         X, targets = self._placed(group, maps)
-        for level in self.p.levels:
-            if level.order == 0:
-                refused |= ~holds(self.problem.consistency, level, X, group.active[0],
-                                  targets[0][group.active[0]])
-        return refused
+        return ~holds(self.problem.consistency, self.p.levels[0], X, active,
+                      targets[0][active])
 
 
 def _mutant_values(group: _Group, mutant: Problem, maps: Sequence[dict], wanted: set[str]
