@@ -173,3 +173,22 @@ def test_a_class_asked_only_symbolic_answers_reads_no_mistaken_reading_or_term()
     first, _ = with_class_mistakes(problem, [solution, solution], [{}, {}], together)
     assert first.result("a1_symbolic").generated_mistakes  # the mistaken models' answers
     assert asked and not any("~" in oid for ids in asked for oid in ids)
+
+
+def test_a_shared_plan_lasts_as_long_as_its_copy_not_as_long_as_256_other_shares():
+    # a mistaken copy kept by a cache must not be derived in full again after many others
+    import copy
+    import gc
+
+    from mechgrade.solve import dynamics
+
+    problem = load_problem(PROBLEMS / "block_on_turntable.yaml")
+    kept = copy.copy(unchanged_copy(problem))
+    assert share_kinetics(kept, problem)
+    others = [copy.copy(kept) for _ in range(300)]
+    assert all(share_kinetics(other, problem) for other in others)
+    assert kinetics_plan(kept).kin.balances is kinetics_plan(problem).kin.balances
+    before = len(dynamics._SHARED)
+    del others
+    gc.collect()
+    assert len(dynamics._SHARED) == before - 300  # a copy's death frees its plan

@@ -19,6 +19,7 @@ large mu would have to be.
 from __future__ import annotations
 
 import warnings
+import weakref
 
 from dataclasses import dataclass, replace
 from functools import lru_cache, partial
@@ -152,12 +153,14 @@ _BALANCE_FUNCTIONS = ("residual", "jacobian", "scale")
 def kinetics_plan(problem: Problem) -> KineticsPlan:
     """Derive and lambdify ``problem``'s kinetics once."""
     shared = _SHARED.get(id(problem))
-    if shared is not None and shared[0] is problem:
+    if shared is not None and shared[0]() is problem:
         return shared[1]
     return _kinetics_plan(problem, locations(problem))
 
 
-_SHARED: dict[int, tuple[Problem, KineticsPlan]] = {}
+# A plan shared with a copy lives as long as the copy: the caches that keep a copy (its
+# mistaken models' lru_caches) never find it forgotten, and a copy's death frees its plan.
+_SHARED: dict[int, tuple[weakref.ref[Problem], KineticsPlan]] = {}
 
 
 def share_kinetics(copy: Problem, source: Problem) -> bool:
@@ -197,9 +200,8 @@ def read_in(problem: Problem, source: Problem) -> None:
 
 
 def _share(problem: Problem, plan: KineticsPlan) -> None:
-    if len(_SHARED) >= 256:
-        _SHARED.clear()
-    _SHARED[id(problem)] = (problem, plan)
+    key = id(problem)
+    _SHARED[key] = (weakref.ref(problem, lambda _: _SHARED.pop(key, None)), plan)
 
 
 @lru_cache(maxsize=64)

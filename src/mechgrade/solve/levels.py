@@ -44,8 +44,8 @@ class Givens:
     for (coordinates, rates, and the parameters or ``t`` listed under ``unknown:``);
     ``conditions[level][key]`` the expression givens (SI); ``texts``/``wheres`` each given as
     written and where, for messages; ``guess`` start values (``guessed`` where the spec gave
-    them); ``branches`` the root each position wants; ``units`` the author's unit of each
-    position (for listing configurations).
+    them); ``branches`` the root each position wants; ``scales`` a typical size of each
+    position (the givens of its unit: :func:`_scales`), which roots are told apart by.
     """
 
     values: np.ndarray
