@@ -136,6 +136,19 @@ def rank(magnitudes) -> np.ndarray:
     return significant(magnitudes).sum(axis=-1)
 
 
+def matrix_rank(A) -> int:
+    """The rank of the matrix ``A`` by its singular values (:func:`rank`): the solver's
+    matrices and a student's equations alike, in whatever unit they are written (rounding
+    grows with the entries, so an absolute tolerance counts it as rank in N and not in kN).
+
+    >>> A = np.array([[1e4, 2e4], [3e4, 6e4 + 1e-8]])
+    >>> matrix_rank(A), matrix_rank(A / 1e3), matrix_rank(np.zeros((0, 2)))
+    (1, 1, 0)
+    """
+    a = np.asarray(A)
+    return int(rank(np.linalg.svd(a, compute_uv=False))) if a.size else 0
+
+
 def null_space(A: np.ndarray) -> np.ndarray:
     """An orthonormal basis of the null space of ``A`` (columns), by its singular values.
 
