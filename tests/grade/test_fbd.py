@@ -291,4 +291,4 @@ def test_directions_given_twice_still_span_every_direction_given(columns):
     # a direction repeated before another one: the span holds the other one too
     directions = np.array(columns, dtype=float).T
     assert _inside(directions, directions)
-    assert not _inside(np.array([[1.0, 1.0, 1.0]]).T, directions)
+    assert not _inside(np.array([[1.0, -1.0, 0.0]]).T, directions)

@@ -1,6 +1,7 @@
 """The rules the numeric solver judges by, each written once: whether an equation holds, the
-rank of a matrix, whether a root is on the branch the spec asks for. Each takes arrays, so one
-instant and a class of variants (one column each) are judged alike.
+rank of a matrix (the grader's too: a student's equations, directions, rates), whether a root
+is on the branch the spec asks for. Each takes arrays, so one instant and a class of variants
+(one column each) are judged alike.
 
 >>> import numpy as np
 >>> satisfied(np.array([1e-12, 1e-3]), np.array([1.0, 1.0]), 1e-6).tolist()
