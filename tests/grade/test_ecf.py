@@ -66,3 +66,13 @@ def test_a_vector_the_model_cannot_recompute_is_not_carried_forward():
     assert ecf.vector_givens(plan, item, "v", "(4, 0, 0) m/s") == (
         "Error carried forward could not be applied: your answer to 'v' cannot be recomputed "
         "at the problem's givens.")
+
+
+def test_two_rates_that_move_the_vector_alike_but_for_a_re_solves_rounding_are_not_fixed():
+    # x1' and x2' move v along one direction; the 1e-12 term is the rounding a numeric
+    # re-solve leaves, no second direction: any split of the rates gives the vector
+    ecf, plan, item = _carried(lambda g: (0.8 * (g["x1'"] + g["x2'"]) + 1e-12 * g["x2'"] ** 2,
+                                          0.6 * (g["x1'"] + g["x2'"]), 0.0))
+    assert ecf.vector_givens(plan, item, "v", "(4, 3, 0) m/s") == (
+        "Error carried forward could not be applied: your answer to 'v' does not fix x1', x2': "
+        "more than one set of them gives it.")

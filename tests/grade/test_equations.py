@@ -14,7 +14,7 @@ from mechgrade.grade.equations import _naming, judge_equations, read_equations
 from mechgrade.mechanics.dynamics import derive_kinetics, free_body_loads
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
-from mechgrade.solve.derivation import motion_samples
+from mechgrade.solve.derivation import MotionSamples, motion_samples
 from mechgrade.spec import load_problem
 
 DYNAMICS = [path for path in sorted(shipped_dir("problems").glob("*.yaml"))
@@ -449,3 +449,16 @@ def test_every_dynamics_problems_own_equations_are_right_and_seeded_errors_named
     rng = random.Random(path.stem)
     assert own_equations_failures(problem, samples,
                                   lambda options: rng.choice(list(options))) == []
+
+
+@pytest.mark.parametrize("unit", [1.0, 1e-3])  # in N, or divided by 1000 (in kN)
+def test_equations_that_repeat_one_balance_leave_an_acceleration_undetermined_in_any_unit(unit):
+    # a 20,000 t ship and its barge pushed together: the second equation is the first tripled,
+    # so x'' and y'' are not both fixed; in N their slopes (~1e7) round by more than 1e-9
+    ship = MotionSamples(("m", "g"), ("xdd", "ydd"), (),
+                         ((2e7, 9.81, -3.27, -6.54), (2.2e7, 9.81, -3.27, -6.54)))
+    text = (f"{unit} m x'' + {unit} m y'' = -{unit} m g; "
+            f"{3 * unit} m x'' + {3 * unit} m y'' = -{3 * unit} m g")
+    judged = judge_equations(text, ship)
+    assert not judged.complete
+    assert "do not determine x'', y''" in judged.assessment.feedback

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from mechgrade.grade.fbd import LoadMistake, judge_diagram, read_diagram
+from mechgrade.grade.fbd import LoadMistake, _inside, judge_diagram, read_diagram
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.derivation import derivation_instant
@@ -282,3 +282,13 @@ def test_a_problem_symbol_without_a_value_is_refused_not_taken_for_an_unknown(in
     with pytest.raises(Exception, match=r"found 'm' .* which the problem leaves without one"):
         read_diagram("weight: m g j; normal: N A.y; friction: -mu_k N A.x", unvalued, "block")
     assert incline.unvalued == ()
+
+
+@pytest.mark.parametrize("columns", [[(0, 0, 1), (0, 0, 1), (1, 0, 0)],
+                                     [(0, 1, 0), (0, 2, 0), (0, 0, 1)],
+                                     [(1, 1, 0), (1, 1, 0), (0, 0, 1)]])
+def test_directions_given_twice_still_span_every_direction_given(columns):
+    # a direction repeated before another one: the span holds the other one too
+    directions = np.array(columns, dtype=float).T
+    assert _inside(directions, directions)
+    assert not _inside(np.array([[1.0, -1.0, 0.0]]).T, directions)

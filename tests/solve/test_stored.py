@@ -222,3 +222,16 @@ def test_a_second_grading_run_derives_nothing_and_writes_the_same_results(twice,
     off = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                          env=dict(os.environ, MECHGRADE_NO_CACHE="1"), check=True)
     assert cold[1] == warm[1] == off.stdout.splitlines()[-1].rsplit(" ", 1)[1]
+
+
+def test_a_dynamics_problems_kinematic_mistakes_are_generated_with_the_cache_on_as_off(
+        disk, forget, monkeypatch):
+    # the plan of its kinematic part, read from the cache, compiled the mutations of that
+    # part's objectives (none): ω × r left out, another point's velocity... were lost
+    problem = load_problem(ROOT / "problems" / "rod_struck_on_ice.yaml")
+    on = solve(problem).result("vB_after").generated_mistakes
+    forget()
+    monkeypatch.setenv("MECHGRADE_NO_CACHE", "1")
+    off = solve(problem).result("vB_after").generated_mistakes
+    assert {"other_point", "drop_omega_r"} <= {m.code for m in off}
+    assert list(on) == list(off)

@@ -174,6 +174,8 @@ class CarriedForward:
         the rates that give the student's vector are found by least squares. They are used
         only when they give it exactly (within the objective's tolerance) and are the only
         ones that do; otherwise the vector is not one the model can have with other rates."""
+        from ..solve import rules  # the solver's rank rule, loaded only when solving
+
         problem = item.problem
         reference = _reference(plan, problem, upstream_id)
         student = _si_vector(text, reference)
@@ -201,7 +203,7 @@ class CarriedForward:
             delta, *_ = np.linalg.lstsq(J, student - at, rcond=None)
             miss = float(np.linalg.norm(J @ delta - (student - at)))
             size = float(np.linalg.norm(student))
-            if np.linalg.matrix_rank(J) < len(keys):
+            if rules.matrix_rank(J) < len(keys):
                 return (f"{refused} does not fix {listing(keys)}: more than one set of them "
                         f"gives it.")
             if miss > reference.rel * size + _si_abs(reference) + 1e-12:

@@ -35,6 +35,7 @@ from ..expressions import syntax
 from ..expressions.excerpt import excerpt
 from ..expressions.numeric import evaluate
 from ..expressions.syntax import Bin, Node, Unary
+from ..solve import rules
 from ..solve.derivation import MotionSamples, SampledLoad
 from .answers import rename_to_symbols
 from .compare import Assessment, Judged, not_evaluated, unreadable
@@ -324,7 +325,7 @@ class _System:
             u = np.zeros(len(self.unknowns))
             if e.unknowns:  # their values from the right equations, when those fix them
                 a = self.a[k][right]
-                if not right or np.linalg.matrix_rank(a, tol=1e-9) < len(self.unknowns):
+                if not right or rules.matrix_rank(a) < len(self.unknowns):
                     return None
                 u = np.linalg.lstsq(a, -self.b[k][right], rcond=None)[0]
             misfit = float(self.a[k][i] @ u + self.b[k][i])
@@ -543,16 +544,13 @@ class _System:
             a = self.a[k][rows]
             if not a.size:
                 continue
-            _, sizes, vt = np.linalg.svd(a)
-            rank = int(np.sum(sizes > 1e-9 * max(sizes.max(initial=0), 1e-300)))
-            out[k] = np.abs(vt[rank:]).max(axis=0, initial=0) > 1e-6
+            out[k] = np.abs(rules.null_space(a)).max(axis=1, initial=0) > 1e-6
         return out
 
     def _determined(self) -> int:
         a = self.a[0]
         full = np.hstack([self.slopes, a]) if a.size else self.slopes
-        return int(np.linalg.matrix_rank(full, tol=1e-9)
-                   - (np.linalg.matrix_rank(a, tol=1e-9) if a.size else 0))
+        return rules.matrix_rank(full) - rules.matrix_rank(a)
 
     def complete(self) -> bool:
         return self._determined() >= len(self.accelerations)
@@ -593,8 +591,7 @@ def _whole(rows: np.ndarray, basis: np.ndarray) -> bool:
     >>> _whole(np.array([[0.0, 0.6], [0.0, 0.8]]), basis)
     True
     """
-    sizes = np.linalg.svd(basis, compute_uv=False)
-    rank = int(np.sum(sizes > 1e-9 * max(sizes.max(initial=0), 1e-300)))
+    rank = rules.matrix_rank(basis)
     if len(rows) != rank or rank == basis.shape[1]:
         return True
     return bool(np.all(np.abs(rows @ rows.T - np.eye(rank)) <= REL))
@@ -623,8 +620,7 @@ def _one_reaction(values: np.ndarray, reactions: np.ndarray, group: list[int],
     # components alike at every state (one nought, two in a fixed ratio) leave some
     # coefficients free: then the least of size 1 or under will do (one of size 1 fits too)
     length = float(np.linalg.norm(coefficients))
-    sizes = np.linalg.svd(basis, compute_uv=False)
-    alike = len(columns) < len(group) or np.sum(sizes > 1e-9 * sizes.max()) < len(columns)
+    alike = len(columns) < len(group) or rules.matrix_rank(basis) < len(columns)
     if not (length <= 1 + REL if alike else abs(length - 1) <= REL):
         return None
     row = np.zeros(reactions.shape[1])

@@ -38,6 +38,7 @@ from ..expressions import syntax
 from ..expressions.excerpt import excerpt
 from ..expressions.numeric import evaluate
 from ..expressions.syntax import Attr, Bin, Call, Name, Node, Num, Prime, Unary
+from ..solve import rules
 from ..solve.derivation import AXES, DerivationInstant
 from ..solve.fbd import DiagramLoad, FreeBodyDiagram
 from ..spec.dynamics import LoadKind
@@ -584,21 +585,22 @@ def _same_span(a: np.ndarray, m: DiagramLoad) -> bool:
 
 
 def _inside(x: np.ndarray, y: np.ndarray) -> bool:
-    """Whether every column of ``x`` (normalised) lies in the span of ``y``'s columns."""
-    q = np.linalg.qr(y)[0][:, :np.linalg.matrix_rank(y, tol=1e-9)]
+    """Whether every column of ``x`` (normalised) lies in the span of ``y``'s columns: its
+    part at right angles to them (along the null space of ``y``'s rows) is within
+    :data:`DIRECTION_SLACK`."""
+    across = rules.null_space(y.T)
     for column in x.T:
         size = np.linalg.norm(column)
         if size == 0:
             continue
-        c = column / size
-        if np.linalg.norm(c - q @ (q.T @ c)) > DIRECTION_SLACK:
+        if np.linalg.norm(across.T @ (column / size)) > DIRECTION_SLACK:
             return False
     return True
 
 
 def _span_note(a: np.ndarray, m: DiagramLoad) -> str:
     want = sum(d is not None for d in m.directions)
-    have = np.linalg.matrix_rank(a, tol=1e-9)
+    have = rules.matrix_rank(a)
     if have > want:
         return f"the {m.kind} has {want} unknown direction{'s' * (want > 1)}, you gave {have}"
     if have < want:

@@ -47,9 +47,11 @@ _LENGTH_SLIPS = {"mm": "m", "cm": "m", "km": "m", "in": "ft", "inch": "ft", "yd"
 
 
 def _lambdified(problem: Problem, p: KinematicsPlan, objective: str) -> tuple[Mutant, ...]:
-    """The model mutations of a numeric objective, compiled with the plan or lambdified now."""
-    if p.mutants is not None:
-        return p.mutants.get(objective, ())
+    """The model mutations of a numeric objective, compiled with the plan or lambdified now:
+    a plan compiles those of its own problem's objectives (a dynamics problem's kinematic
+    part has none: its plan's are not the dynamics objectives')."""
+    if p.mutants is not None and objective in p.mutants:
+        return p.mutants[objective]
     return lambdified_mutants(problem, p, objective)
 
 

@@ -29,7 +29,7 @@ from ..spec.model import ObjectiveKind, Problem
 from . import cache
 from .generated import UnsafeSource, numpy_function, same_namespace
 from .index import SymbolIndex
-from .rules import rank
+from .rules import matrix_rank
 
 if TYPE_CHECKING:
     from ..mechanics import Kinematics
@@ -318,7 +318,7 @@ def _generic_rank(index: SymbolIndex, k: Kinematics) -> int:
         value = np.array(jac.xreplace(point).evalf(), dtype=complex)
     if not np.isfinite(value).all():
         return len(k.q)
-    return int(rank(np.linalg.svd(value, compute_uv=False)))
+    return matrix_rank(value)
 
 
 @lru_cache(maxsize=64)

@@ -1,6 +1,7 @@
 """The rules the numeric solver judges by, each written once: whether an equation holds, the
-rank of a matrix, whether a root is on the branch the spec asks for. Each takes arrays, so one
-instant and a class of variants (one column each) are judged alike.
+rank of a matrix (the grader's too: a student's equations, directions, rates), whether a root
+is on the branch the spec asks for. Each takes arrays, so one instant and a class of variants
+(one column each) are judged alike.
 
 >>> import numpy as np
 >>> satisfied(np.array([1e-12, 1e-3]), np.array([1.0, 1.0]), 1e-6).tolist()
@@ -134,6 +135,19 @@ def significant(magnitudes) -> np.ndarray:
 def rank(magnitudes) -> np.ndarray:
     """The rank that singular values (or pivots) along the last axis give."""
     return significant(magnitudes).sum(axis=-1)
+
+
+def matrix_rank(A) -> int:
+    """The rank of the matrix ``A`` by its singular values (:func:`rank`): the solver's
+    matrices and a student's equations alike, in whatever unit they are written (rounding
+    grows with the entries, so an absolute tolerance counts it as rank in N and not in kN).
+
+    >>> A = np.array([[1e4, 2e4], [3e4, 6e4 + 1e-8]])
+    >>> matrix_rank(A), matrix_rank(A / 1e3), matrix_rank(np.zeros((0, 2)))
+    (1, 1, 0)
+    """
+    a = np.asarray(A)
+    return int(rank(np.linalg.svd(a, compute_uv=False))) if a.size else 0
 
 
 def null_space(A: np.ndarray) -> np.ndarray:
