@@ -33,11 +33,11 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from . import rules
 from .analysis import analysis_of, analysis_plan, start_columns
-from .batch_motion import FIRED, NEVER, Arrival, integrate_to_events
+from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import loud_call, quiet
 from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, instant_missed,
                      leaving, not_integrated)
-from .motion import _switches
+from .motion import Balanced, _switches, after_event, at_event, balances, constant_matrix
 from .motion import accelerations as columns_accelerations
 
 def gripping(problem: Problem) -> KineticFriction | None:
@@ -281,6 +281,8 @@ class _Run:
     y: np.ndarray
     before: np.ndarray
     which: np.ndarray
+    switch: np.ndarray | None = None
+    modes: np.ndarray | None = None
 
 
 class _Columns:
@@ -311,6 +313,11 @@ class _Columns:
         values[self.time] = 0.0
         values[self.qdd] = 0.0
         self.y0 = np.concatenate([values[:self.n], values[self.qd]])
+        # a matrix that reads parameters only is the same all along: worked out once (for
+        # the right-hand side: with the modes where the balances have them)
+        modes = np.zeros((self.switches.count if self.switches else 0, values.shape[1]))
+        self.constant = None if strict is not None else constant_matrix(
+            kp, np.concatenate([self.extended(values), modes]), self.switches)
 
     def at(self, cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
         x = self.values[:, cols]
@@ -322,22 +329,27 @@ class _Columns:
     def extended(self, x: np.ndarray) -> np.ndarray:
         return np.concatenate([x, np.zeros((self.reactions, x.shape[1]))])
 
-    def solve(self, x: np.ndarray, modes: np.ndarray | None = None) -> np.ndarray:
+    def solve(self, x: np.ndarray, modes: np.ndarray | None = None,
+              cols: np.ndarray | None = None) -> np.ndarray:
         """The extended states with the second rates and reactions solved (with each
-        slip's direction ``modes``: :class:`~.motion._Switching`)."""
+        slip's direction ``modes``: :class:`~.motion._Switching`); ``cols``: which columns
+        they are, where the balances' matrix is worked out once (:attr:`constant`)."""
         if self.strict is not None and self.careful:
             return self.strict(x)
         e = self.extended(x)
+        constant = None if self.constant is None or cols is None else self.constant.of(cols)
         if modes is None or self.switches is None:
             e[self.unknowns] = 0.0
-            return columns_accelerations(self.kp, e)
+            return columns_accelerations(self.kp, e, None,
+                                         constant if self.switches is None else None)
         e = np.concatenate([e, modes])
         e[self.unknowns] = 0.0
-        return columns_accelerations(self.kp, e, self.switches)
+        return columns_accelerations(self.kp, e, self.switches, constant)
 
     def rhs(self, cols, t, y, modes=None) -> np.ndarray:
         return np.concatenate([y[self.n:], self.solve(
-            self.at(cols, t, y), modes if modes is not None and len(modes) else None)[self.qdd]])
+            self.at(cols, t, y), modes if modes is not None and len(modes) else None,
+            cols)[self.qdd]])
 
     def mode(self, cols, t, y) -> np.ndarray:
         """Each slip's direction."""
@@ -440,7 +452,49 @@ class _Columns:
         status[now], t[now], y[:, now], before[:, now] = FIRED, t0[now], y0[:, now], y0[:, now]
         if self.strict is not None and status[0] not in (FIRED, NEVER):
             raise not_integrated(int(status[0]), float(t[0]), self.analysis.where)
-        return _Run(status, t, y, before, which)
+        return _Run(status, t, y, before, which, arrival.switch, arrival.modes)
+
+    def stuck(self, run: _Run, among: np.ndarray) -> dict[int, MechgradeError]:
+        """The columns ``among`` whose one slip ended before their instant
+        (:data:`~.batch_motion.SWITCHED`) and where kinetic friction then holds the contact
+        whichever way it is read: slipping on, friction drives the slip speed back across
+        zero, turned round it drives it back too. That motion sticks, which an integration
+        of these equations cannot follow (one motion alone shrinks its steps against the
+        chatter until it gives up). A slip that turns round and goes on is not judged here:
+        that column is solved alone."""
+        switches = self.switches
+        w = np.flatnonzero((run.status == SWITCHED) & among)
+        if not len(w) or switches is None or run.switch is None or run.modes is None:
+            return {}
+        t, y, j = run.t[w], run.y[:, w], run.switch[w]
+        kept = run.modes[:, w]
+        old = kept[j, np.arange(len(w))]
+        h = 1e-7 * np.maximum(t, 1.0)  # a moment on: the slip speed's sign there
+        drift = []
+        for side in (old, -old):
+            modes = kept.copy()
+            modes[j, np.arange(len(w))] = side
+            with np.errstate(all="ignore"):
+                a = self.solve(self.at(w, t, y), modes)[self.qdd]
+                undefined = ~np.isfinite(a).all(axis=0)
+                if undefined.any():  # 0/0 at the end of the slip: the direction's limit
+                    u = np.flatnonzero(undefined)
+                    e = np.concatenate([self.extended(self.at(w[u], t[u], y[:, u])),
+                                        modes[:, u]])
+                    e[self.unknowns] = 0.0
+                    a[:, u] = columns_accelerations(self.kp, e,
+                                                    _switches(self.kp, at_end=True))[self.qdd]
+                moved = y + h * np.concatenate([y[self.n:], a])
+                speed = loud_call(switches.speeds, self.extended(self.at(w, t + h, moved)),
+                                  switches.count)[j, np.arange(len(w))]
+            drift.append(np.sign(speed))
+        sticks = (drift[0] == -old) & (drift[1] == old)
+        return {int(i): SolveError(
+            f"a kinetic-friction slip ends at t = {when:.6g} s, before the event, and friction "
+            "then holds the contact whichever way it slips (it sticks): expected a motion that "
+            "slips until its event, or the end of the slip as the event",
+            where=self.analysis.where)
+            for i, when in zip(w[sticks], t[sticks])}
 
 
 def _only(event: Callable, mine: np.ndarray) -> Callable:
@@ -512,6 +566,9 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
         for c in np.flatnonzero(fine & ended):
             failed(int(todo[c]), _missed(analysis, targets[todo[c]],
                                          [run.t[c]] if at_until[c] else []))
+        if alone is None:  # a slip that ends before the event and sticks there
+            for k, error in one.stuck(run, fine & ~_aiming(targets, todo)).items():
+                failed(int(todo[k]), error)
         fired = fine & ~ended & (run.status == FIRED)
         slipped = fired & (run.which == len(events) - 1) & (grip is not None)
         phases = _arrived(problem, one, run, todo, np.flatnonzero(fired & ~slipped), targets,
@@ -521,6 +578,57 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             phases += _gripped(problem, X[:, todo[s]], todo[s], run, s, direction[s], targets,
                                asked, kinetics_plan, alone, failed)
     return Reaches(tuple(phases), errors)
+
+
+def checked(at: PhaseColumns, kp) -> tuple[np.ndarray, np.ndarray | None, Balanced]:
+    """The extended states of ``at``'s columns the objectives are read from (``kp``: its
+    phase's kinetics) and those a moment before (``None`` at an objective's own instant),
+    with the momentum balances solved and checked (:func:`~.motion.balances`): at the
+    instant, or for an event just before it (the contact checks hold along the way; the
+    second rates and reactions at the event are their limits there, :func:`~.motion.at_event`)."""
+    known = after_event(kp.kp)
+    if at.before is None:
+        solved = balances(at.phase, kp, at.values, known)
+        return solved.x, None, solved
+    solved = balances(at.phase, kp, at.before[:kp.kp.index.size], known)
+    return at_event(solved.x, at.values, kp.kp), solved.x, solved
+
+
+def stacked(problem: Problem, found: Reaches, kinetics_plan: Callable, count: int
+            ) -> tuple[np.ndarray, np.ndarray, dict[int, MechgradeError]]:
+    """The ``count`` columns of ``found`` on a motion without phases, :func:`checked`: each
+    one's extended state at its instant with the one a moment before stacked under it (the
+    same twice at an objective's own instant), which are answered, and the error of each
+    whose instant is not reached or fails the checks (a column in neither is not vouched
+    for: alone, it says why).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.dynamics import kinematic_problem, kinetics_plan
+    >>> from mechgrade.solve.instant import instant_givens
+    >>> from mechgrade.solve.numeric import solve_numeric
+    >>> problem = load_problem(shipped_dir("problems") / "damped_block_first_peak.yaml")
+    >>> kp = kinetics_plan(problem)
+    >>> X = solve_numeric(kinematic_problem(problem), kp.kp, instant_givens(problem, None, {}),
+    ...                   set()).state.values[:, None]
+    >>> out, ok, errors = stacked(problem, reach_columns(problem, X, [Until()], kinetics_plan),
+    ...                           kinetics_plan, 1)
+    >>> ok.tolist(), errors, out.shape[0] == 2 * (kp.kp.index.size + len(kp.kin.reactions))
+    ([True], {}, True)
+    """
+    kp = kinetics_plan(problem)
+    kinetic = kp.kp.index.size + len(kp.kin.reactions)
+    out = np.full((2 * kinetic, count), np.nan)
+    ok = np.zeros(count, dtype=bool)
+    errors = dict(found.errors)
+    for at in found.phases:
+        assert at.phase is problem, "a motion without phases"
+        x, before, solved = checked(at, kp)
+        out[:, at.columns] = np.vstack([x, x if before is None else before])
+        ok[at.columns] = solved.ok
+        errors.update({int(at.columns[j]): error for j in np.flatnonzero(~solved.ok)
+                       if (error := solved.errors[int(j)]) is not None})
+    return out, ok, errors
 
 
 def _aiming(targets: list[Target], columns: np.ndarray) -> np.ndarray:
