@@ -41,7 +41,7 @@ variant's failure, as :func:`~.dynamics.solve_dynamics` reports it.)
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache, partial
 from itertools import pairwise
 from typing import Callable, Collection, Mapping, Sequence
@@ -420,8 +420,11 @@ class _Template:
         for group, maps in groups:
             asked = instant_of_objective(problem, group.overrides)
             when = asked_when(problem, group.numeric)
-            targets += [asked_entry(problem, self.kinetics, m, asked) if asked is not None else
-                        when if when is not None else Until() for m in maps]
+            if asked is not None:  # the group's entry, each column's value of it
+                entry = asked_entry(problem, self.kinetics, maps[0], asked)
+                targets += [replace(entry, value=m[asked][1]) for m in maps]
+            else:
+                targets += [when if when is not None else Until()] * len(maps)
         found = reach_columns(problem, np.hstack([self._placed(group, maps)[0]
                                                   for group, maps in groups]),
                               targets, kinetics_plan)

@@ -313,11 +313,24 @@ class _Columns:
         values[self.time] = 0.0
         values[self.qdd] = 0.0
         self.y0 = np.concatenate([values[:self.n], values[self.qd]])
-        # a matrix that reads parameters only is the same all along: worked out once (for
-        # the right-hand side: with the modes where the balances have them)
+        # the right-hand side's extended states (the unknowns 0, then each slip's mode),
+        # and its balances' matrix where it reads parameters only (the same all along),
+        # worked out once: only the state changes from one call to the next
         modes = np.zeros((self.switches.count if self.switches else 0, values.shape[1]))
-        self.constant = None if strict is not None else constant_matrix(
-            kp, np.concatenate([self.extended(values), modes]), self.switches)
+        self.full = np.concatenate([self.extended(values), modes])
+        self.constant = None if strict is not None else constant_matrix(kp, self.full,
+                                                                          self.switches)
+        self.last: tuple = (None, self.full, self.constant)
+
+    def among(self, cols: np.ndarray) -> tuple:
+        """The right-hand side's extended states of the columns ``cols`` and their
+        :attr:`constant`, gathered once for the stages of a step (they share its columns)."""
+        if cols is not self.last[0]:  # (cols is sorted: all of them is all in order)
+            every = len(cols) == self.full.shape[1]
+            self.last = (cols, self.full if every else self.full[:, cols],
+                         self.constant if every or self.constant is None
+                         else self.constant.of(cols))
+        return self.last
 
     def at(self, cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
         x = self.values[:, cols]
@@ -329,27 +342,39 @@ class _Columns:
     def extended(self, x: np.ndarray) -> np.ndarray:
         return np.concatenate([x, np.zeros((self.reactions, x.shape[1]))])
 
-    def solve(self, x: np.ndarray, modes: np.ndarray | None = None,
-              cols: np.ndarray | None = None) -> np.ndarray:
+    def solve(self, x: np.ndarray, modes: np.ndarray | None = None) -> np.ndarray:
         """The extended states with the second rates and reactions solved (with each
-        slip's direction ``modes``: :class:`~.motion._Switching`); ``cols``: which columns
-        they are, where the balances' matrix is worked out once (:attr:`constant`)."""
+        slip's direction ``modes``: :class:`~.motion._Switching`)."""
         if self.strict is not None and self.careful:
             return self.strict(x)
         e = self.extended(x)
-        constant = None if self.constant is None or cols is None else self.constant.of(cols)
-        if modes is None or self.switches is None:
-            e[self.unknowns] = 0.0
-            return columns_accelerations(self.kp, e, None,
-                                         constant if self.switches is None else None)
-        e = np.concatenate([e, modes])
+        if modes is not None:
+            e = np.concatenate([e, modes])
         e[self.unknowns] = 0.0
-        return columns_accelerations(self.kp, e, self.switches, constant)
+        return self._solved(e, modes is not None)
+
+    def _solved(self, e: np.ndarray, moded: bool, constant=None) -> np.ndarray:
+        """:func:`~.motion.accelerations` of the extended states ``e`` (``moded``: each
+        slip's mode under them); ``constant``: their matrix, where it reads parameters only."""
+        if moded and self.switches is not None:
+            return columns_accelerations(self.kp, e, self.switches, constant)
+        return columns_accelerations(self.kp, e, None,
+                                     constant if self.switches is None else None)
 
     def rhs(self, cols, t, y, modes=None) -> np.ndarray:
-        return np.concatenate([y[self.n:], self.solve(
-            self.at(cols, t, y), modes if modes is not None and len(modes) else None,
-            cols)[self.qdd]])
+        moded = modes is not None and len(modes) > 0
+        if self.strict is not None and self.careful:
+            a = self.strict(self.at(cols, t, y))
+        else:
+            _, full, constant = self.among(cols)
+            x = full.copy()
+            x[:self.n] = y[:self.n]
+            x[self.qd] = y[self.n:]
+            x[self.time] = t
+            if moded:
+                x[self.values.shape[0] + self.reactions:] = modes
+            a = self._solved(x, moded, constant)
+        return np.concatenate([y[self.n:], a[self.qdd]])
 
     def mode(self, cols, t, y) -> np.ndarray:
         """Each slip's direction."""
@@ -374,30 +399,31 @@ class _Columns:
     def aims(self, targets: list[Target], asked: np.ndarray
              ) -> list[tuple[Callable, Entry | When]]:
         """The events of the columns' ``targets`` (``asked``: each column's value of an
-        :class:`Entry`), one per instant they aim at (an entry of the state, an objective's
-        ``when:``; the motion's own event, :class:`Until`, has none), each with the first
-        target that aims at it: a column aiming elsewhere reads 1 there, never zero, so that
-        event does not fire for it (a class's groups in one pass)."""
-        keys = [(type(t), t.at if isinstance(t, Entry) else t.objective)
-                if not isinstance(t, Until) else None for t in targets]
+        :class:`Entry`): one for every column's :class:`Entry` (each its own entry of the
+        state and value), one per objective's ``when:`` (the motion's own event,
+        :class:`Until`, has none), each with the first target that aims at it: a column
+        aiming elsewhere reads 1 there, never zero, so that event does not fire for it (a
+        class's groups in one pass)."""
+        keys = [Entry if isinstance(t, Entry) else (When, t.objective)
+                if isinstance(t, When) else None for t in targets]
         found = []
         for key in dict.fromkeys(k for k in keys if k is not None):
             mine = np.array([k == key for k in keys])
             target = targets[keys.index(key)]
             assert not isinstance(target, Until)
-            event = self.aimed(target, asked)
+            event = self.entered(targets, asked) if isinstance(target, Entry) else \
+                self.reading(*_when(self.kp, target.objective))
             found.append((event if mine.all() else _only(event, mine), target))
         return found
 
-    def aimed(self, target: Entry | When, asked: np.ndarray) -> Callable:
-        """The event of ``target`` (``asked``: each column's value of an :class:`Entry`)."""
-        if isinstance(target, Entry):
-            at = target.at
+    def entered(self, targets: list[Target], asked: np.ndarray) -> Callable:
+        """The event of the columns' :class:`Entry` targets: each column's entry of the
+        state less its value ``asked``."""
+        at = np.array([t.at if isinstance(t, Entry) else 0 for t in targets])
 
-            def reached(cols, t, y, _modes=None) -> np.ndarray:
-                return self.at(cols, t, y)[at] - asked[cols]
-            return reached
-        return self.reading(*_when(self.kp, target.objective))
+        def reached(cols, t, y, _modes=None) -> np.ndarray:
+            return self.at(cols, t, y)[at[cols], np.arange(len(cols))] - asked[cols]
+        return reached
 
     def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's ``direction`` of ``event`` from the start (its next crossing where
@@ -543,14 +569,16 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
         fine = np.ones(count, dtype=bool)
         events, senses = [], []
         # the instants first: where one and the event fire together, it is reached
-        for aim, target in one.aims([targets[c] for c in todo], asked[todo]):
+        mine = [targets[c] for c in todo]
+        timed = np.array([isinstance(t, Entry) and t.at == kp.kp.index.time for t in mine],
+                         dtype=bool)  # t = 0 is the start itself
+        for aim, target in one.aims(mine, asked[todo]):
             events.append(aim)
-            if isinstance(target, Entry) and target.at == kp.kp.index.time:
-                senses.append(np.zeros(count))  # t = 0 is the start itself
-            elif alone is not None:
+            if alone is not None and not timed[0]:
                 senses.append(one.crossing(aim, target.where)[0])
             else:  # a class leaves one that holds at the start alone (its next crossing)
-                fine &= aim(np.arange(count), np.zeros(count), one.y0) != 0
+                if alone is None:
+                    fine &= timed | (aim(np.arange(count), np.zeros(count), one.y0) != 0)
                 senses.append(np.zeros(count))
         events.append(until)
         senses.append(direction)
