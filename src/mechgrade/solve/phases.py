@@ -11,9 +11,10 @@ the dense output); of events that happen in the same step, the earliest is the i
 
 A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
 integration over columns, each column switching phase at its own end of the slip and stopping
-at its own instant (a class's groups of objectives side by side: one pass of each phase). One
-solve is one such column solved alone (:func:`reach`), a motion without phases too (its one
-phase: an objective's own instant, or an event the class's integrator does not vouch for).
+at its own instant (a class's groups of objectives side by side: one pass of each phase), a
+motion without phases too (its one phase). One solve's event is a class of one; one solve's
+own instant, ``when:`` or phased motion, and a column a class does not vouch for, is one
+column solved alone (:func:`reach`), which raises where it fails.
 """
 
 from __future__ import annotations
@@ -293,10 +294,10 @@ class _Columns:
     else every column's (NaN where undefined).
 
     A phase whose balances hold a slip's ``|u|`` is integrated with its modes
-    (:mod:`.batch_motion`: each step keeps the slip's direction it starts with), as
-    :class:`~.motion.Motion` integrates such a motion: the step across the end of the slip,
-    the phase's event, continues the motion before it smoothly instead of shrinking against
-    the jump in the friction."""
+    (:mod:`.batch_motion`: each step keeps the slip's direction it starts with): the step
+    across the end of the slip, the phase's event, continues the motion before it smoothly
+    instead of shrinking against the jump in the friction; a slip that ends before the
+    event and sticks there is refused (:meth:`stuck`)."""
 
     def __init__(self, problem: Problem, kp, values: np.ndarray,
                  strict: Callable[[np.ndarray], np.ndarray] | None):
