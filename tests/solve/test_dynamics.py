@@ -178,10 +178,10 @@ def test_a_slip_that_ends_and_sticks_before_the_event_is_refused_with_the_fix():
 def test_an_integration_that_chatters_past_the_end_of_slip_is_stopped(monkeypatch):
     """Where the sticking is not recognised (a chatter of another cause), the one-by-one
     integrator's own limit stops it, with its own message."""
-    from mechgrade.solve import events, motion
+    from mechgrade.solve import events, phases
 
     monkeypatch.setattr(events, "MAX_CALLS", 4000)
-    monkeypatch.setattr(motion.Motion, "_stuck", lambda self, *args: {})
+    monkeypatch.setattr(phases._Columns, "stuck", lambda self, *args: {})
     assert "the integration stalls near t = 1.2" in error_of(_rolls_on_past_its_slip())
 
 

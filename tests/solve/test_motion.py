@@ -11,8 +11,9 @@ from mechgrade.errors import SolveError
 from mechgrade.solve import solve
 from mechgrade.solve.dynamics import kinematic_problem, kinetics_plan
 from mechgrade.solve.instant import instant_givens
-from mechgrade.solve.motion import Motion, balances
+from mechgrade.solve.motion import balances
 from mechgrade.solve.numeric import solve_numeric
+from mechgrade.solve.phases import Entry, Until, reach_columns, stacked
 from mechgrade.spec import load_problem
 
 TURNTABLE = Path(__file__).resolve().parents[2] / "problems" / "block_on_turntable.yaml"
@@ -51,8 +52,9 @@ def test_a_column_at_rest_in_an_event_that_holds_at_the_start_is_refused_by_the_
                           instant_givens(problem, None, {}), set()).state
     X = np.repeat(state.values[:, None], 2, axis=1)
     X[kp.kp.index.position("v0"), 1] = 0.0
-    _, ok, never, errors = Motion(problem, kp).integrated(X)
-    assert ok.tolist() == [True, False] and never.tolist() == [False, False]
+    found = reach_columns(problem, X, [Until(), Until()], kinetics_plan)
+    _, ok, errors = stacked(problem, found, kinetics_plan, 2)
+    assert ok.tolist() == [True, False]
     assert list(errors) == [1]
     assert "the event holds at the start (t = 0) and stays so: expected a motion that " \
         "leaves it" in str(errors[1])
@@ -93,13 +95,16 @@ def test_columns_asked_at_their_own_instants_beside_the_event_are_integrated_as_
     state = solve_numeric(kinematic_problem(problem), kp.kp,
                           instant_givens(problem, None, {}), set()).state
     X = np.repeat(state.values[:, None], 4, axis=1)
-    instants = np.array([-1, index.time, index.position("x"), index.rates(1).start])
-    X[instants[1:], [1, 2, 3]] = 0.03, 0.02, 0.0  # t = 30 ms, x = 20 mm, x' = 0 (the peak)
-    motion = Motion(problem, kp)
-    together, ok, never, errors = motion.integrated(X, instants)
-    assert ok.all() and not never.any() and not errors
-    for c in range(len(instants)):  # the same steps, to the last digits the sums round
-        apart, alone_ok, _, _ = motion.integrated(X[:, [c]], instants[[c]])
+    instants = [index.time, index.position("x"), index.rates(1).start]
+    values = (0.03, 0.02, 0.0)  # t = 30 ms, x = 20 mm, x' = 0 (the peak)
+    X[instants, [1, 2, 3]] = values
+    targets = [Until(), *(Entry(at, value, "given", None) for at, value in zip(instants, values))]
+    together, ok, errors = stacked(problem, reach_columns(problem, X, targets, kinetics_plan),
+                                   kinetics_plan, 4)
+    assert ok.all() and not errors
+    for c in range(len(targets)):  # the same steps, to the last digits the sums round
+        apart, alone_ok, _ = stacked(problem, reach_columns(problem, X[:, [c]], [targets[c]],
+                                                            kinetics_plan), kinetics_plan, 1)
         assert alone_ok[0]
         np.testing.assert_allclose(together[:, c], apart[:, 0], rtol=1e-10, atol=1e-13)
     assert together[index.time, 0] == pytest.approx(0.1603187, rel=1e-6)  # back at x = 0
@@ -112,7 +117,7 @@ def test_a_mass_matrix_of_parameters_only_is_worked_out_once_and_integrates_the_
     integration evaluates it (and its determinants) once instead of at every right-hand
     side, and every column reaches its instants with the same numbers as evaluating it at
     every step."""
-    from mechgrade.solve import motion as module
+    from mechgrade.solve import phases
     from mechgrade.solve.motion import _switches
 
     problem = load_problem(TURNTABLE.parent / "three_cart_chain_vibration.yaml")
@@ -125,13 +130,17 @@ def test_a_mass_matrix_of_parameters_only_is_worked_out_once_and_integrates_the_
     X = np.repeat(state.values[:, None], 3, axis=1)
     X[index.position("m2"), 1] = 2.5
     X[index.position("k3"), 2] = 150.0
-    instants = np.array([-1, index.time, index.rates(1).start + 2])
-    X[index.time, 1] = 0.25  # t = 250 ms; column 2: x3' = 0, cart 3 stops
-    X[index.rates(1).start + 2, 2] = 0.0
-    once = Motion(problem, kp).integrated(X, instants)
-    monkeypatch.setattr(module, "constant_matrix", lambda *args: None)
-    every_step = Motion(problem, kp).integrated(X, instants)
-    assert once[1].all() and not once[3]
-    for a, b in zip(once[:3], every_step[:3]):
+    x3d = index.rates(1).start + 2  # column 1: t = 250 ms; column 2: x3' = 0, cart 3 stops
+    targets = [Until(), Entry(index.time, 0.25, "t", None), Entry(x3d, 0.0, "x3'", None)]
+
+    def reached():
+        return stacked(problem, reach_columns(problem, X.copy(), targets, kinetics_plan),
+                       kinetics_plan, 3)
+
+    once = reached()
+    monkeypatch.setattr(phases, "constant_matrix", lambda *args: None)
+    every_step = reached()
+    assert once[1].all() and not once[2]
+    for a, b in zip(once[:2], every_step[:2]):
         assert np.array_equal(a, b, equal_nan=True)
     assert once[0][index.position("x3"), 0] == pytest.approx(-0.0141080, rel=1e-5)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from mechgrade.errors import SolveError, SpecError
-from mechgrade.solve.dynamics import (accelerations, kinematic_problem, kinetic_reach,
+from mechgrade.solve.dynamics import (accelerations, asked_entry, kinematic_problem,
                                      kinetics_plan, solve_dynamics)
 from mechgrade.solve.instant import instant_givens
 from mechgrade.solve.levels import place_givens
@@ -140,7 +140,7 @@ def test_each_column_of_a_class_switches_phase_at_its_own_end_of_the_slip():
     maps = [instant_givens(problem, g, overrides) for g in ({}, {"mu_k": 0.05})]
     X = np.stack([place_givens(kinematic_problem(problem), kp.kp, m).values for m in maps],
                  axis=1)
-    targets = [kinetic_reach(problem).entry(m, "t") for m in maps]
+    targets = [asked_entry(problem, kp, m, "t") for m in maps]
     found = reach_columns(problem, X, targets, kinetics_plan)
     assert not found.errors
     assert [(p.phase is problem, p.columns.tolist()) for p in found.phases] == \
@@ -163,8 +163,8 @@ def test_columns_aiming_at_different_instants_each_reach_their_own_in_one_pass_a
     maps = [instant_givens(problem, g, overrides) for g in ({}, {}, {"mu_k": 0.05}, {})]
     X = np.stack([place_givens(kinematic_problem(problem), kp.kp, m).values for m in maps],
                  axis=1)
-    entry = kinetic_reach(problem).entry
-    targets = [Until(), entry(maps[1], "t"), entry(maps[2], "t"),
+    targets = [Until(), asked_entry(problem, kp, maps[1], "t"),
+               asked_entry(problem, kp, maps[2], "t"),
                asked_when(problem, {"t_rolls"})]
     found = reach_columns(problem, X, targets, kinetics_plan)
     assert not found.errors

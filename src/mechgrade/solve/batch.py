@@ -55,7 +55,6 @@ from ..spec.dynamics import Integration, WorkEnergy, instant_of_objective
 from ..spec.model import Objective, ObjectiveKind, Problem, Root
 from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
-from .events import event_never_happens
 from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
                       answer_alone, drive_columns, group_results, instant_givens,
                       read_objectives, reports_state, wanted_objectives, with_own)
@@ -66,8 +65,9 @@ from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_bran
 from .mutants import GeneratedColumns, generated_columns, plausible_slips, values_alone
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import with_class_mistakes
-from .motion import Motion, after_event, at_event, balances
-from .phases import Reaches, Target, Until, asked_when, gripping, reach_columns
+from .motion import after_event, balances
+from .phases import (Reaches, Target, Until, asked_when, checked, gripping, reach_columns,
+                     stacked)
 from .plan import KinematicsPlan, kinematics_plan
 from . import rules
 from .result import Solution
@@ -173,8 +173,6 @@ class _Group:
     nullity: tuple[int, ...]  # per level
     after: np.ndarray  # what the reached state marks given (the analysis fixes the rates)
     loose: frozenset[int]  # and leaves free
-    instant: int | None = None  # the time, coordinate or rate fixing an instant before an
-    # integration's event: its position in the state (None: the event)
 
 
 class _Template:
@@ -189,14 +187,8 @@ class _Template:
         self.plausible = plausible_slips(problem)
         dynamics = problem.dynamics
         self.analysis = dynamics.analysis if dynamics is not None else None
-        # the motion over columns (a problem without bodies and loads has none)
-        self.motion = Motion(problem, kinetics) if kinetics is not None else None
         self.design = dynamics.design if dynamics is not None else None
         self.reach: Reach | None = None  # made when a column is first answered alone
-
-    def _motion(self) -> Motion:
-        assert self.motion is not None, "a problem with bodies and loads"
-        return self.motion
 
     def covers(self, givens: dict) -> bool:
         """Whether ``givens`` only change values the reference has (no new given, none
@@ -228,50 +220,29 @@ class _Template:
 
     def _integrates(self, group: _Group) -> bool:
         """Whether ``group``'s instant is reached by integrating the motion from the givens in
-        one pass with the class's other instants (not by a design stage around it, nor in
-        phases, :meth:`_phased`)."""
-        return isinstance(self.analysis, Integration) and not self._designs(group) \
-            and not self._phased(group)
+        one pass with the class's other instants (:meth:`_reaches`; not by a design stage
+        around it)."""
+        return isinstance(self.analysis, Integration) and not self._designs(group)
 
     def _designs(self, group: _Group) -> bool:
         """Whether ``group``'s instant is reached by solving for the design parameter."""
         return self.design is not None and self.design.find not in group.overrides
 
     def _integrated(self, given: list[dict], wanted: Collection[str]
-                    ) -> dict[int, tuple | Reaches]:
+                    ) -> dict[int, Reaches]:
         """Every integrated group's instant (those with a numeric objective ``wanted``) at
-        every variant (``given``: each one's givens), reached in one pass: each group's
-        columns side by side, each column integrated to its group's own instant or to the event
-        (:meth:`~.motion.Motion.integrated`), so a class integrates its motion once however
-        many instants it is asked at. By the group's index, what :meth:`_instant` reads: the
-        states, which passed the screens, which ended without their event, and the errors;
-        for a group on a motion in phases, its :class:`~.phases.Reaches` (every such group's
-        reached in one pass of each phase, :meth:`_reaches`)."""
-        asked = [k for k, group in enumerate(self.groups)
-                 if any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
+        every variant (``given``: each one's givens), reached in one pass of each phase:
+        each group's columns side by side, each column integrated to its group's own instant
+        or to the event (:meth:`_reaches`), so a class integrates its motion once however
+        many instants it is asked at. By the group's index, its :class:`~.phases.Reaches`,
+        what :meth:`_instant` reads."""
+        chosen = [k for k, group in enumerate(self.groups) if self._integrates(group)
+                  and any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
+        return dict(zip(chosen, self._reaches(
+            [(self.groups[k], [with_own(g, self.groups[k].overrides) for g in given])
+             for k in chosen])))
 
-        def own(k: int) -> list[dict]:  # each variant's givens of group k
-            return [with_own(g, self.groups[k].overrides) for g in given]
-
-        phased = [k for k in asked if self._phased(self.groups[k])]
-        found: dict[int, tuple | Reaches] = dict(zip(phased, self._reaches(
-            [(self.groups[k], own(k)) for k in phased])))
-        chosen = [k for k in asked if self._integrates(self.groups[k])]
-        if not chosen:
-            return found
-        n = len(given)
-        X = np.hstack([self._placed(self.groups[k], own(k))[0] for k in chosen])
-        instants = np.repeat([-1 if self.groups[k].instant is None else self.groups[k].instant
-                              for k in chosen], n)
-        out, ok, never, errors = self._motion().integrated(X, instants)
-        found.update({k: (out[:, j * n:(j + 1) * n], ok[j * n:(j + 1) * n],
-                          never[j * n:(j + 1) * n],
-                          {i - j * n: error for i, error in errors.items()
-                           if j * n <= i < (j + 1) * n})
-                      for j, k in enumerate(chosen)})
-        return found
-
-    def _together(self, group: _Group, integrated: tuple | Reaches | None, maps: list[dict],
+    def _together(self, group: _Group, integrated: Reaches | None, maps: list[dict],
                   objectives: list[Objective], overrides: dict, columns: Columns) -> None:
         """The :data:`~.instant.Step` of ``group`` reached together: every column at once
         (:meth:`_instant`; an integrated group's instants ``integrated`` with the class's
@@ -382,7 +353,7 @@ class _Template:
                 base[i] = (state, maps[i])
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool,
-                 integrated: tuple | Reaches | None = None):
+                 integrated: Reaches | None = None):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
         instant, which instants passed every screen (with ``degenerate``, also the one for a
         degenerate configuration), those not reached with the error the scalar solver
@@ -390,29 +361,22 @@ class _Template:
         instant otherwise reached), and per column the objectives that
         do not exist there with their errors (in dynamics each objective's failure, as
         :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails).
-        An integrated group's instants are ``integrated`` already (:meth:`_integrated`), as
-        are a phased group's (its :class:`~.phases.Reaches`)."""
+        An integrated group's instants are ``integrated`` already (its
+        :class:`~.phases.Reaches`, :meth:`_integrated`)."""
         p = self.p
         unreached: dict[int, MechgradeError] = {}
-        if self._phased(group):
+        if self._integrates(group):
             assert isinstance(integrated, Reaches)
             return self._in_phases(group, integrated, len(maps))
-        if self._integrates(group):
-            assert isinstance(integrated, tuple) and isinstance(self.analysis, Integration)
-            X, ok, never, stuck = integrated
-            unreached = dict.fromkeys(np.flatnonzero(never).tolist(),
-                                      event_never_happens(self.analysis))
-            unreached.update(stuck)
+        X, targets = self._placed(group, maps)
+
+        def placed(i: int) -> Givens:  # column i's givens, for the error a stage words
+            return place_givens(self.kproblem, p, maps[i])
+
+        if self._designs(group):
+            X, ok = self._designed(group, X, targets, placed, degenerate)
         else:
-            X, targets = self._placed(group, maps)
-
-            def placed(i: int) -> Givens:  # column i's givens, for the error a stage words
-                return place_givens(self.kproblem, p, maps[i])
-
-            if self._designs(group):
-                X, ok = self._designed(group, X, targets, placed, degenerate)
-            else:
-                X, ok = self._reached(group, X, targets, placed, degenerate, unreached)
+            X, ok = self._reached(group, X, targets, placed, degenerate, unreached)
         X, before = self._at_event(X)
         read = read_objectives(self.problem, self.kinetics or p, X, group.numeric,
                                rules.REQUIRED if self.kinetics is None
@@ -441,31 +405,26 @@ class _Template:
                 targets[level][row] = column
         return X, targets
 
-    def _phased(self, group: _Group) -> bool:
-        """Whether ``group``'s instant is reached on a motion in phases, or asked ``when``
-        (:mod:`.phases`)."""
-        return isinstance(self.analysis, Integration) and (
-            gripping(self.problem) is not None
-            or asked_when(self.problem, group.numeric) is not None)
-
     def _reaches(self, groups: list[tuple[_Group, list[dict]]]) -> list[Reaches]:
-        """Where each column of ``groups`` (each a group on a motion in phases, with its
-        columns' givens) reaches the group's instant: every group's columns side by side,
-        reached in one pass of each phase (:func:`~.phases.reach_columns`, as
+        """Where each column of ``groups`` (each an integrated group, with its columns'
+        givens) reaches the group's instant (the event, an objective's own time, coordinate
+        or rate, or its ``when:``): every group's columns side by side, reached in one pass
+        of each phase (:func:`~.phases.reach_columns`, as
         :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant); each group's part."""
         if not groups:
             return []
-        from .dynamics import IntegratedInstant, kinetics_plan
+        from .dynamics import asked_entry, kinetics_plan
 
         problem = self.problem
-        reach = self._reach()  # the single solve's, kept by the template
-        assert isinstance(reach, IntegratedInstant)
         targets: list[Target] = []
         for group, maps in groups:
             asked = instant_of_objective(problem, group.overrides)
             when = asked_when(problem, group.numeric)
-            targets += [reach.entry(m, asked) if asked is not None else
-                        when if when is not None else Until() for m in maps]
+            if asked is not None:  # the group's entry, each column's value of it
+                entry = asked_entry(problem, self.kinetics, maps[0], asked)
+                targets += [replace(entry, value=m[asked][1]) for m in maps]
+            else:
+                targets += [when if when is not None else Until()] * len(maps)
         found = reach_columns(problem, np.hstack([self._placed(group, maps)[0]
                                                   for group, maps in groups]),
                               targets, kinetics_plan)
@@ -473,10 +432,10 @@ class _Template:
         return [found.part(int(a), int(b)) for a, b in pairwise(starts)]
 
     def _in_phases(self, group: _Group, found: Reaches, n: int):
-        """:meth:`_instant` of a group on a motion in phases at its ``n`` columns, each
-        reached (``found``: :meth:`_reaches`): each column's objectives read with the model of
-        the phase its instant is in. The states returned are the state values (the extended
-        states differ between phases)."""
+        """:meth:`_instant` of an integrated group at its ``n`` columns, each reached
+        (``found``: :meth:`_reaches`): each column's objectives read with the model of the
+        phase its instant is in (:func:`~.phases.checked`). The states returned are the state
+        values (the extended states differ between phases)."""
         from .dynamics import kinetics_plan
 
         problem, size = self.problem, self.p.index.size
@@ -489,12 +448,7 @@ class _Template:
         for at in found.phases:
             kp = kinetics_plan(at.phase)
             cols = at.columns
-            if at.before is None:
-                solved = balances(at.phase, kp, at.values, after_event(kp.kp))
-                x, before = solved.x, None
-            else:  # the contact checks hold along the way: judged just before the event
-                solved = balances(at.phase, kp, at.before[:size], after_event(kp.kp))
-                x, before = at_event(at.before, at.values, kp.kp), at.before
+            x, before, solved = checked(at, kp)
             for j in np.flatnonzero(~solved.ok):
                 error = solved.errors[int(j)]
                 assert error is not None  # a column not solved has its error
@@ -524,7 +478,10 @@ class _Template:
         momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
         them (it would reach the instant the same way and stop there)."""
         if isinstance(self.analysis, Integration):
-            X, ok, _, _ = self._motion().integrated(X)
+            from .dynamics import kinetics_plan
+
+            X, ok, _ = stacked(self.problem, reach_columns(self.problem, X, [Until()] * X.shape[1],
+                                                          kinetics_plan), kinetics_plan, X.shape[1])
             return X, ok
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
@@ -596,7 +553,7 @@ class _Template:
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
         read from, and for an integration the states just before the event stacked under
-        them by :meth:`integrated` (else ``None``)."""
+        them (:func:`~.phases.stacked`; else ``None``)."""
         if not isinstance(self.analysis, Integration):
             return X, None
         half = X.shape[0] // 2
@@ -697,7 +654,7 @@ class _Template:
         refusal depends on a root found or a start taken."""
         active = group.active[0]
         if group.unknown[0] or not active.any() or self._designs(group) \
-                or self._integrates(group) or self._phased(group):
+                or self._integrates(group):
             return np.zeros(len(maps), dtype=bool)
         X, targets = self._placed(group, maps)
         return ~holds(self.problem.consistency, self.p.levels[0], X, active,
@@ -811,10 +768,7 @@ def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Temp
                     given_map = reach.designed(given_map)
             g = place_givens(kproblem, p, given_map)
             if isinstance(analysis, Integration):
-                group = _integration_group(p, overrides, objectives, numeric, given_map, g)
-                asked = instant_of_objective(problem, overrides)
-                groups.append(group if asked is None else
-                              replace(group, instant=group.positions[asked]))
+                groups.append(_integration_group(p, overrides, objectives, numeric, given_map, g))
                 continue
             instant = solve_numeric(kproblem, p, given_map,
                                     set() if kinetics is not None else set(numeric))

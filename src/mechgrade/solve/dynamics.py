@@ -45,12 +45,12 @@ from .analysis import analysis_of
 from .columns import WithInputs
 from .events import integrated_symbolically
 from .motion import accelerations as columns_accelerations
-from .motion import (after_event, at_event, balances, gathered, integrated_columns,
-                     reads_parameters_only)
+from .motion import after_event, at_event, balances, gathered, reads_parameters_only
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
 from .instant import Reached, drive, read_objectives, symbolic_dependence
-from .phases import Entry, Target, Until, When, asked_when, gripping, reach
+from .phases import (Entry, Target, Until, When, asked_when, gripping, reach, reach_columns,
+                     stacked)
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .index import SymbolIndex
@@ -428,6 +428,17 @@ def at_positions(problem: Problem, numeric: Collection[str], given_maps: Sequenc
             for m, at in zip(given_maps, found)]
 
 
+def asked_entry(problem: Problem, kinetics: KineticsPlan, given_map: dict, asked_at: str
+                ) -> Entry:
+    """The instant an objective's own time, coordinate or rate ``asked_at`` fixes on
+    ``problem``'s integrated motion (``given_map``: the givens, its value among them)."""
+    node, si, given = given_map[asked_at]
+    kp = kinetics.kp
+    where = given.where if given is not None else analysis_of(problem, Integration).where
+    return Entry(kp.index.symbols.index(kp.k.quantity(node)), si,
+                 f"{asked_at}: {given.text}" if given is not None else asked_at, where)
+
+
 @dataclass(frozen=True)
 class IntegratedInstant(KineticInstant):
     """The motion integrated from its start state to its event, or to the time, coordinate or
@@ -437,9 +448,7 @@ class IntegratedInstant(KineticInstant):
         kp = self.kinetics
         g = place_givens(self.problem, kp.kp, given_map)
         if asked_at is None and gripping(self.source) is None:
-            columns = integrated_columns(self.source, kp, g.values[:, None])
-            assert columns is not None, "an integrated instant's motion is integrated"
-            (together,) = columns
+            (together,) = self._together([g.values])
             if isinstance(together, MechgradeError):
                 raise together
             if together is not None:  # as the variants of a class are integrated
@@ -465,12 +474,23 @@ class IntegratedInstant(KineticInstant):
         if not placed:
             return out
         good = list(placed)
-        together = integrated_columns(self.source, self.kinetics,
-                                      np.stack([placed[i] for i in good], axis=1))
-        assert together is not None, "an integrated instant's motion is integrated"
-        for i, each in zip(good, together):
+        for i, each in zip(good, self._together([placed[i] for i in good])):
             out[i] = each if not isinstance(each, tuple) else each[0]
         return out
+
+    def _together(self, values: list[np.ndarray]
+                  ) -> list[tuple[np.ndarray, np.ndarray] | MechgradeError | None]:
+        """Each of ``values`` (one's givens placed in the state) integrated to the event as
+        a class's variants are, its columns side by side (:func:`~.phases.reach_columns`):
+        the extended state at the event and the one just before it, or the error it gives;
+        ``None`` where that integration does not vouch for it (alone, it says why)."""
+        count = len(values)
+        out, ok, errors = stacked(self.source, reach_columns(
+            self.source, np.stack(values, axis=1), [Until()] * count, kinetics_plan),
+            kinetics_plan, count)
+        half = out.shape[0] // 2  # the states at the event, and those just before it under them
+        return [errors.get(c) or ((out[:half, c], out[half:, c]) if ok[c] else None)
+                for c in range(count)]
 
     def phased(self, values: np.ndarray, given_map: dict, asked_at: str | When | None
                ) -> Arrived:
@@ -478,7 +498,8 @@ class IntegratedInstant(KineticInstant):
         through its phases, to its event, an objective's own instant or ``when``), read with
         the model of the phase it is in."""
         target: Target = Until() if asked_at is None else asked_at \
-            if isinstance(asked_at, When) else self.entry(given_map, asked_at)
+            if isinstance(asked_at, When) else asked_entry(self.source, self.kinetics,
+                                                           given_map, asked_at)
         at = reach(self.source, values, target, kinetics_plan, accelerations)
         kp = kinetics_plan(at.phase)
         size = kp.kp.index.size
@@ -490,14 +511,6 @@ class IntegratedInstant(KineticInstant):
         return Arrived(state, at_event(at.before, at.values, kp.kp), before=at.before,
                        phase=at.phase)
 
-    def entry(self, given_map: dict, asked_at: str) -> Entry:
-        """The instant an objective's own time, coordinate or rate fixes."""
-        node, si, given = given_map[asked_at]
-        kp = self.kinetics.kp
-        where = given.where if given is not None else \
-            analysis_of(self.source, Integration).where
-        return Entry(kp.index.symbols.index(kp.k.quantity(node)), si,
-                     f"{asked_at}: {given.text}" if given is not None else asked_at, where)
 
 
 @dataclass(frozen=True)

@@ -6,8 +6,8 @@ in closed form where its accelerations stay constant (:func:`integrated_symbolic
 The coordinates and rates from ``from:`` at t = 0 are integrated over columns
 (:mod:`.batch_motion`: DOP853, rtol 1e-11, the steps ``scipy.integrate.solve_ivp`` takes) until
 the event equation first holds (root refined on the dense output): a class's variants by
-:class:`~.motion.Motion`, one motion solved alone as one column of
-:func:`~.phases.reach_columns` (:func:`~.phases.reach`). The objectives are read at the event,
+:func:`~.phases.reach_columns`, one motion as a class of one, or where that does not vouch
+for it as one column solved alone (:func:`~.phases.reach`). The objectives are read at the event,
 with ``t`` its time; the accelerations and reactions there are the limits just before the
 event (a kinetic-friction force has no direction once the slip has ended). An objective asked
 at its own time, coordinate or rate is read where that first holds, before the event; an

@@ -1,8 +1,9 @@
 """The motion of a dynamics problem at many states at once, each a column: the second rates and
 reactions from the momentum balances, each column checked and given the error it alone would
 raise (:func:`balances`, which :func:`~.dynamics.solve_kinetics` calls with one column), and
-the motion integrated to its event (:func:`~.batch_motion.integrate_to_events`). A class of
-variants (:mod:`.batch`) and an instant solved alone (:mod:`.dynamics`) are solved here alike.
+solved without the checks for an integration's right-hand side (:func:`accelerations`, which
+:mod:`.phases` integrates to every instant). A class of variants (:mod:`.batch`) and an instant
+solved alone (:mod:`.dynamics`) are solved here alike.
 """
 
 from __future__ import annotations
@@ -15,15 +16,10 @@ import numpy as np
 
 from ..errors import (InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
-from ..spec.dynamics import Integration, dynamics_of
+from ..spec.dynamics import dynamics_of
 from ..spec.model import Problem
 from . import rules
-from .analysis import analysis_plan
-from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
-from .columns import (FirstErrors, call, determinants, least_squares_solution, loud_call,
-                      quiet)
-from .events import ATOL, MAX_CALLS, RTOL, event_never_happens, leaving
-from .junctions import settle_junctions
+from .columns import (FirstErrors, call, determinants, least_squares_solution, loud_call)
 from .plan import KinematicsPlan
 from .rules import satisfied
 
@@ -55,255 +51,6 @@ def at_event(before: np.ndarray, end: np.ndarray, p: KinematicsPlan) -> np.ndarr
     keep = [i for i in range(p.index.size) if i not in seconds]
     x[keep] = end[keep]
     return x
-
-
-class Motion:
-    """The kinetics of ``problem`` (its :class:`~.dynamics.KineticsPlan`) over columns."""
-
-    def __init__(self, problem: Problem, kinetics):
-        self.problem, self.kinetics, self.p = problem, kinetics, kinetics.kp
-        self.analysis = dynamics_of(problem).analysis
-
-    def integrated(self, X: np.ndarray, instants: np.ndarray | None = None
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict[int, MechgradeError]]:
-        """Every column's motion integrated from its start state to its event (together:
-        :func:`~.batch_motion.integrate_to_events`, the steps each takes alone): the
-        extended state at the event, the accelerations and reactions the limits just before
-        it, with the extended states just before the event stacked under them; which
-        columns passed the screens, which ended without their event
-        (:data:`~.batch_motion.NEVER`), and the error of each that failed the checks of
-        :func:`balances` just before its event, or whose slip ended before its event and
-        sticks there (:meth:`_stuck`).
-
-        With ``instants`` (per column the position of the time, coordinate or rate an
-        objective is asked at, its value in that column of ``X``; -1: the event): those
-        columns' states where that value is first taken before the event instead
-        (:meth:`_at_instant`), in the same pass as the others (a class's instants of every
-        group side by side: one integration)."""
-        kp = self.kinetics
-        assert kp is not None and isinstance(self.analysis, Integration)
-        ap = analysis_plan(kp)
-        index = self.p.index
-        n, size, count = index.n, index.size, X.shape[1]
-        everyone = np.arange(count)
-        instant = np.full(count, -1) if instants is None else np.asarray(instants, dtype=int)
-        waits = instant >= 0  # the columns asked at an instant of their own
-        asked = X[instant, everyone]  # (the event's columns: a value never read)
-        rates, seconds = index.rates(1), index.rates(2)
-        # slices: the right-hand side is evaluated thousands of times
-        qd, qdd = slice(rates.start, rates.stop), slice(seconds.start, seconds.stop)
-        kinetic = size + len(kp.kin.reactions)
-        extended = np.concatenate([X, np.zeros((kinetic - size, count))])
-        values = X.copy()
-        for i, fn in ap.start:
-            values[i] = call(fn, extended, 1)[0]
-        values, unsettled = settle_junctions(self.problem, kp, values)
-        for c in unsettled:  # integrated with the others, its error kept
-            values[:, c] = np.nan_to_num(values[:, c])
-        values[index.time] = 0.0
-        values[qdd] = 0.0
-        switches = _switches(kp)
-        # every column's extended state (second rates and reactions 0, as the unknowns of
-        # the balances), then its modes
-        full = np.zeros((kinetic + (switches.count if switches else 0), count))
-        full[:size] = values
-        # a matrix that reads parameters only is the same all along: worked out once
-        constant = constant_matrix(kp, full, switches)
-
-        # the stages of a step share its columns: their states and matrix gathered once
-        last: list = [None, full, constant]
-
-        def among(cols: np.ndarray) -> list:
-            if cols is not last[0]:  # (cols is sorted: all of them is all in order)
-                every = len(cols) == count
-                last[:] = cols, full if every else full[:, cols], \
-                    constant and constant.of(cols)
-            return last
-
-        def at(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-               modes: np.ndarray | None = None) -> np.ndarray:
-            x = among(cols)[1].copy()
-            x[:n] = y[:n]
-            x[qd] = y[n:]
-            x[index.time] = t
-            if modes is not None and switches is not None:
-                x[kinetic:] = modes
-            return x
-
-        def accelerated(cols: np.ndarray, x: np.ndarray) -> np.ndarray:
-            return self.accelerations(x, switches, among(cols)[2])
-
-        def rhs(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-                modes: np.ndarray) -> np.ndarray:
-            return np.concatenate([y[n:], accelerated(cols, at(cols, t, y, modes))[qdd]])
-
-        def event(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-                  modes: np.ndarray | None) -> np.ndarray:
-            x = at(cols, t, y, modes)
-            if ap.until_kinetic:
-                x = accelerated(cols, x)
-            assert ap.until is not None  # an integration has its event
-            return loud_call(ap.until, x[:kinetic], 1)[0]
-
-        def mode(cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
-            assert switches is not None
-            x = at(cols, t, y)[:kinetic]
-            return np.sign(loud_call(switches.speeds, x, switches.count))
-
-        def reached(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-                    modes: np.ndarray | None) -> np.ndarray:
-            return at(cols, t, y, modes)[instant[cols], np.arange(len(cols))] - asked[cols]
-
-        def either(cols: np.ndarray, t: np.ndarray, y: np.ndarray,
-                   modes: np.ndarray) -> np.ndarray:
-            # an instant's column stops where its instant's or its event's equation holds
-            g = event(cols, t, y, modes)
-            return np.where(waits[cols], reached(cols, t, y, modes) * g, g)
-
-        y0 = np.concatenate([values[:n], values[qd]])
-        switching = mode if switches else None
-        start = np.zeros(count)
-        g0 = r0 = start  # the instants' equations at the start
-        held: dict[int, SolveError] = {}
-        with quiet():
-            away_from, stays, _ = leaving(rhs, event, switching, y0, self.analysis.max_time,
-                                          self.analysis.where)
-            direction = away_from
-            if waits.any():
-                modes = mode(everyone, start, y0) if switching else None
-                g0 = event(everyone, start, y0, modes)
-                r0 = reached(everyone, start, y0, modes)
-                timed = waits & (instant == index.time)
-                # a coordinate or rate taken at the start: its next crossing (t = 0 is the
-                # start); a time, or the event, waits for none. One that stays there is not
-                # answered: alone, its error is located at the objective's given
-                crossing, held, _ = leaving(
-                    rhs, lambda c, t, y, m: np.where(waits[c] & ~timed[c],
-                                                     reached(c, t, y, m), 1.0),
-                    switching, y0, self.analysis.max_time, self.analysis.where)
-                direction = np.where(waits, np.where(g0 != 0, np.sign(g0) * crossing,
-                                                     np.sign(r0) * away_from), away_from)
-            arrival = integrate_to_events(rhs, either if waits.any() else event, y0,
-                                          self.analysis.max_time, RTOL, ATOL, MAX_CALLS,
-                                          mode=switching, direction=direction)
-        out = np.full((2 * kinetic, count), np.nan)
-        ok = np.zeros(count, dtype=bool)
-        never = np.zeros(count, dtype=bool)
-        errors: dict[int, MechgradeError] = {}
-        e = np.flatnonzero(~waits)
-        if len(e):  # those reaching the event
-            ok_e = arrival.status[e] == FIRED
-            end = at(e, arrival.t[e], arrival.y[:, e])
-            solved = balances(self.problem, self.kinetics,
-                              at(e, arrival.t[e] * (1 - rules.BEFORE_EVENT),
-                                 arrival.before[:, e])[:size], after_event(self.p))
-            before, fine = solved.x, solved.ok
-            out[:, e] = np.vstack([at_event(before, end, self.p), before])
-            ok[e] = ok_e & fine
-            never[e] = arrival.status[e] == NEVER
-            # an event reached whose contact checks fail just before it: the error the
-            # single solve raises there, without integrating that column again step by step
-            errors.update({int(e[i]): error for i in np.flatnonzero(ok_e & ~fine)
-                           if (error := solved.errors[int(i)]) is not None})
-            if switches is not None:
-                errors.update(self._stuck(arrival, at, switches, ~waits))
-        a = np.flatnonzero(waits)
-        if len(a):
-            barred = np.isin(a, list(unsettled) + list(stays) + list(held))
-            out[:, a], ok[a], failed = self._at_instant(
-                a, instant[a], asked[a], arrival, at, event, reached, switching, y0[:, a],
-                (g0[a], r0[a], away_from[a]), barred)
-            errors.update(failed)
-        ok[list(unsettled)] = ok[list(stays)] = never[list(stays)] = False
-        return out, ok, never, {**errors, **stays, **unsettled}
-
-    def _at_instant(self, cols: np.ndarray, instant: np.ndarray, asked: np.ndarray,
-                    arrival: Arrival, at: Callable, until: Callable, reached: Callable,
-                    mode: Callable | None, y0: np.ndarray,
-                    started: tuple[np.ndarray, np.ndarray, np.ndarray], barred: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray, dict[int, MechgradeError]]:
-        """The columns ``cols`` of :meth:`integrated` asked at an instant of their own: where
-        entry ``instant`` of the state first takes each column's ``asked`` value before the
-        event (the steps each takes alone, :func:`~.phases.reach`). Their
-        motion stopped where the product of the instant's and the event's equations changed
-        sign (``arrival``; either one that holds at the start waits for its next crossing,
-        :func:`~.events.leaving`; t = 0 is the start); ``started``: the event's and the instant's
-        equations at the start and the event's direction. A column is answered where the
-        event's equation is then still away from zero on the side it started on
-        (:data:`~.rules.EVENT_AWAY`), unless ``barred`` (its error found at the start): the
-        state there (stacked twice: it is no event's limit), which columns passed the
-        screens, and the error of each that fails :func:`balances` there. A column where both
-        hold at the start, that meets its event first, or that never meets either, is not
-        answered here: alone, it says why."""
-        size = self.p.index.size
-        g0, r0, away_from = started
-        now = (r0 == 0) & (instant == self.p.index.time)
-        t = np.where(now, 0.0, arrival.t[cols])
-        y = np.where(now, y0, arrival.y[:, cols])
-        with quiet():
-            moved = mode(cols, t, y) if mode is not None else None
-            r, g = reached(cols, t, y, moved), until(cols, t, y, moved)
-        away = np.where(g0 != 0, np.abs(g) > rules.EVENT_AWAY * np.abs(g0),
-                        np.abs(r) <= rules.EVENT_AWAY * np.abs(r0))
-        side = np.where(g0 != 0, np.sign(g0), -away_from)
-        ok = (now | ((arrival.status[cols] == FIRED) & away & (np.sign(g) == side)
-                     & (side != 0))) & ~barred
-        end = at(cols, t, y)
-        everyone = np.arange(len(cols))
-        # where the root was found: the given holds there
-        end[instant, everyone] = np.where(ok, asked, end[instant, everyone])
-        solved = balances(self.problem, self.kinetics, end[:size], after_event(self.p))
-        x, fine = solved.x, solved.ok
-        failed = {int(cols[i]): error for i in np.flatnonzero(ok & ~fine)
-                  if (error := solved.errors[int(i)]) is not None}
-        return np.vstack([x, x]), ok & fine, failed
-
-    def _stuck(self, arrival: Arrival, at: Callable, switches: _Switching, among: np.ndarray
-               ) -> dict[int, MechgradeError]:
-        """The columns whose one slip ended before their event (:data:`~.batch_motion.SWITCHED`)
-        and where kinetic friction then holds the contact whichever way it is read: slipping
-        on, friction drives the slip speed back across zero, turned round it drives it back
-        too. That motion sticks, which an integration of these equations cannot follow (the
-        one-by-one integrator shrinks its steps against the chatter until it gives up). A
-        slip that turns round and goes on is not judged here: that column is solved alone."""
-        w = np.flatnonzero((arrival.status == SWITCHED) & among)
-        if not len(w) or arrival.switch is None or arrival.modes is None:
-            return {}
-        index = self.p.index
-        n, kinetic = index.n, self.p.index.size + len(self.kinetics.kin.reactions)
-        qdd = slice(index.rates(2).start, index.rates(2).stop)
-        t, y, j = arrival.t[w], arrival.y[:, w], arrival.switch[w]
-        kept = arrival.modes[:, w]
-        old = kept[j, np.arange(len(w))]
-        h = 1e-7 * np.maximum(t, 1.0)  # a moment on: the slip speed's sign there
-        drift = []
-        for side in (old, -old):
-            modes = kept.copy()
-            modes[j, np.arange(len(w))] = side
-            with np.errstate(all="ignore"):
-                a = self.accelerations(at(w, t, y, modes), switches)[qdd]
-                undefined = ~np.isfinite(a).all(axis=0)
-                if undefined.any():  # 0/0 at the end of the slip: the direction's limit
-                    a[:, undefined] = self.accelerations(
-                        at(w[undefined], t[undefined], y[:, undefined], modes[:, undefined]),
-                        _switches(self.kinetics, at_end=True))[qdd]
-                moved = y + h * np.concatenate([y[n:], a])
-                u = loud_call(switches.speeds, at(w, t + h, moved)[:kinetic],
-                              switches.count)[j, np.arange(len(w))]
-            drift.append(np.sign(u))
-        sticks = (drift[0] == -old) & (drift[1] == old)
-        assert isinstance(self.analysis, Integration)
-        where = self.analysis.where
-        return {int(i): SolveError(
-            f"a kinetic-friction slip ends at t = {when:.6g} s, before the event, and friction "
-            "then holds the contact whichever way it slips (it sticks): expected a motion that "
-            "slips until its event, or the end of the slip as the event", where=where)
-            for i, when in zip(w[sticks], t[sticks])}
-
-    def accelerations(self, x: np.ndarray, switches: _Switching | None,
-                      constant: ConstantMatrix | None = None) -> np.ndarray:
-        """:func:`accelerations` of this motion."""
-        return accelerations(self.kinetics, x, switches, constant)
 
 
 def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
@@ -618,26 +365,3 @@ def _switches(kp, at_end: bool = False) -> _Switching | None:
         jacobian=sp.lambdify(symbols, jacobian, modules="numpy", cse=True),
         count=len(speeds),
         constant_jacobian=reads_parameters_only(jacobian, kp.symbols, kp.kp.index))
-
-
-@lru_cache(maxsize=64)
-def _motion(problem: Problem, kinetics) -> Motion:
-    return Motion(problem, kinetics)
-
-
-def integrated_columns(problem: Problem, kinetics, X: np.ndarray
-                       ) -> list[tuple[np.ndarray, np.ndarray] | MechgradeError | None] | None:
-    """Instants of an integrated motion (each column of ``X``: one's givens placed in the
-    state) by the integrator over columns, as a class's variants are integrated: for each,
-    the extended state at the event (the accelerations and reactions their limits just
-    before it) and just before it; or the error it raises (the event never happens, a slip
-    sticks before it); or ``None`` where that integrator does not vouch for it (one column
-    integrated alone, :func:`~.phases.reach`, then says why). ``None`` for a motion that is not integrated."""
-    motion = _motion(problem, kinetics)
-    if not isinstance(motion.analysis, Integration):
-        return None
-    out, ok, never, stuck = motion.integrated(X.copy())
-    half = out.shape[0] // 2  # the states at the event, and those just before it under them
-    return [event_never_happens(motion.analysis) if never[c] else stuck[c] if c in stuck
-            else (out[:half, c], out[half:, c]) if ok[c] else None
-            for c in range(X.shape[1])]

@@ -11,9 +11,10 @@ the dense output); of events that happen in the same step, the earliest is the i
 
 A class of variants is reached together (:func:`reach_columns`): each phase's columns in one
 integration over columns, each column switching phase at its own end of the slip and stopping
-at its own instant (a class's groups of objectives side by side: one pass of each phase). One
-solve is one such column solved alone (:func:`reach`), a motion without phases too (its one
-phase: an objective's own instant, or an event the class's integrator does not vouch for).
+at its own instant (a class's groups of objectives side by side: one pass of each phase), a
+motion without phases too (its one phase). One solve's event is a class of one; one solve's
+own instant, ``when:`` or phased motion, and a column a class does not vouch for, is one
+column solved alone (:func:`reach`), which raises where it fails.
 """
 
 from __future__ import annotations
@@ -33,11 +34,11 @@ from ..spec.language import FUNCTIONS
 from ..spec.model import Constraint, Expr, Problem
 from . import rules
 from .analysis import analysis_of, analysis_plan, start_columns
-from .batch_motion import FIRED, NEVER, Arrival, integrate_to_events
+from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import loud_call, quiet
 from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, instant_missed,
                      leaving, not_integrated)
-from .motion import _switches
+from .motion import Balanced, _switches, after_event, at_event, balances, constant_matrix
 from .motion import accelerations as columns_accelerations
 
 def gripping(problem: Problem) -> KineticFriction | None:
@@ -281,6 +282,8 @@ class _Run:
     y: np.ndarray
     before: np.ndarray
     which: np.ndarray
+    switch: np.ndarray | None = None
+    modes: np.ndarray | None = None
 
 
 class _Columns:
@@ -291,10 +294,10 @@ class _Columns:
     else every column's (NaN where undefined).
 
     A phase whose balances hold a slip's ``|u|`` is integrated with its modes
-    (:mod:`.batch_motion`: each step keeps the slip's direction it starts with), as
-    :class:`~.motion.Motion` integrates such a motion: the step across the end of the slip,
-    the phase's event, continues the motion before it smoothly instead of shrinking against
-    the jump in the friction."""
+    (:mod:`.batch_motion`: each step keeps the slip's direction it starts with): the step
+    across the end of the slip, the phase's event, continues the motion before it smoothly
+    instead of shrinking against the jump in the friction; a slip that ends before the
+    event and sticks there is refused (:meth:`stuck`)."""
 
     def __init__(self, problem: Problem, kp, values: np.ndarray,
                  strict: Callable[[np.ndarray], np.ndarray] | None):
@@ -311,6 +314,24 @@ class _Columns:
         values[self.time] = 0.0
         values[self.qdd] = 0.0
         self.y0 = np.concatenate([values[:self.n], values[self.qd]])
+        # the right-hand side's extended states (the unknowns 0, then each slip's mode),
+        # and its balances' matrix where it reads parameters only (the same all along),
+        # worked out once: only the state changes from one call to the next
+        modes = np.zeros((self.switches.count if self.switches else 0, values.shape[1]))
+        self.full = np.concatenate([self.extended(values), modes])
+        self.constant = None if strict is not None else constant_matrix(kp, self.full,
+                                                                          self.switches)
+        self.last: tuple = (None, self.full, self.constant)
+
+    def among(self, cols: np.ndarray) -> tuple:
+        """The right-hand side's extended states of the columns ``cols`` and their
+        :attr:`constant`, gathered once for the stages of a step (they share its columns)."""
+        if cols is not self.last[0]:  # (cols is sorted: all of them is all in order)
+            every = len(cols) == self.full.shape[1]
+            self.last = (cols, self.full if every else self.full[:, cols],
+                         self.constant if every or self.constant is None
+                         else self.constant.of(cols))
+        return self.last
 
     def at(self, cols: np.ndarray, t: np.ndarray, y: np.ndarray) -> np.ndarray:
         x = self.values[:, cols]
@@ -328,16 +349,33 @@ class _Columns:
         if self.strict is not None and self.careful:
             return self.strict(x)
         e = self.extended(x)
-        if modes is None or self.switches is None:
-            e[self.unknowns] = 0.0
-            return columns_accelerations(self.kp, e)
-        e = np.concatenate([e, modes])
+        if modes is not None:
+            e = np.concatenate([e, modes])
         e[self.unknowns] = 0.0
-        return columns_accelerations(self.kp, e, self.switches)
+        return self._solved(e, modes is not None)
+
+    def _solved(self, e: np.ndarray, moded: bool, constant=None) -> np.ndarray:
+        """:func:`~.motion.accelerations` of the extended states ``e`` (``moded``: each
+        slip's mode under them); ``constant``: their matrix, where it reads parameters only."""
+        if moded and self.switches is not None:
+            return columns_accelerations(self.kp, e, self.switches, constant)
+        return columns_accelerations(self.kp, e, None,
+                                     constant if self.switches is None else None)
 
     def rhs(self, cols, t, y, modes=None) -> np.ndarray:
-        return np.concatenate([y[self.n:], self.solve(
-            self.at(cols, t, y), modes if modes is not None and len(modes) else None)[self.qdd]])
+        moded = modes is not None and len(modes) > 0
+        if self.strict is not None and self.careful:
+            a = self.strict(self.at(cols, t, y))
+        else:
+            _, full, constant = self.among(cols)
+            x = full.copy()
+            x[:self.n] = y[:self.n]
+            x[self.qd] = y[self.n:]
+            x[self.time] = t
+            if moded:
+                x[self.values.shape[0] + self.reactions:] = modes
+            a = self._solved(x, moded, constant)
+        return np.concatenate([y[self.n:], a[self.qdd]])
 
     def mode(self, cols, t, y) -> np.ndarray:
         """Each slip's direction."""
@@ -362,30 +400,31 @@ class _Columns:
     def aims(self, targets: list[Target], asked: np.ndarray
              ) -> list[tuple[Callable, Entry | When]]:
         """The events of the columns' ``targets`` (``asked``: each column's value of an
-        :class:`Entry`), one per instant they aim at (an entry of the state, an objective's
-        ``when:``; the motion's own event, :class:`Until`, has none), each with the first
-        target that aims at it: a column aiming elsewhere reads 1 there, never zero, so that
-        event does not fire for it (a class's groups in one pass)."""
-        keys = [(type(t), t.at if isinstance(t, Entry) else t.objective)
-                if not isinstance(t, Until) else None for t in targets]
+        :class:`Entry`): one for every column's :class:`Entry` (each its own entry of the
+        state and value), one per objective's ``when:`` (the motion's own event,
+        :class:`Until`, has none), each with the first target that aims at it: a column
+        aiming elsewhere reads 1 there, never zero, so that event does not fire for it (a
+        class's groups in one pass)."""
+        keys = [Entry if isinstance(t, Entry) else (When, t.objective)
+                if isinstance(t, When) else None for t in targets]
         found = []
         for key in dict.fromkeys(k for k in keys if k is not None):
             mine = np.array([k == key for k in keys])
             target = targets[keys.index(key)]
             assert not isinstance(target, Until)
-            event = self.aimed(target, asked)
+            event = self.entered(targets, asked) if isinstance(target, Entry) else \
+                self.reading(*_when(self.kp, target.objective))
             found.append((event if mine.all() else _only(event, mine), target))
         return found
 
-    def aimed(self, target: Entry | When, asked: np.ndarray) -> Callable:
-        """The event of ``target`` (``asked``: each column's value of an :class:`Entry`)."""
-        if isinstance(target, Entry):
-            at = target.at
+    def entered(self, targets: list[Target], asked: np.ndarray) -> Callable:
+        """The event of the columns' :class:`Entry` targets: each column's entry of the
+        state less its value ``asked``."""
+        at = np.array([t.at if isinstance(t, Entry) else 0 for t in targets])
 
-            def reached(cols, t, y, _modes=None) -> np.ndarray:
-                return self.at(cols, t, y)[at] - asked[cols]
-            return reached
-        return self.reading(*_when(self.kp, target.objective))
+        def reached(cols, t, y, _modes=None) -> np.ndarray:
+            return self.at(cols, t, y)[at[cols], np.arange(len(cols))] - asked[cols]
+        return reached
 
     def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
         """Each column's ``direction`` of ``event`` from the start (its next crossing where
@@ -440,7 +479,49 @@ class _Columns:
         status[now], t[now], y[:, now], before[:, now] = FIRED, t0[now], y0[:, now], y0[:, now]
         if self.strict is not None and status[0] not in (FIRED, NEVER):
             raise not_integrated(int(status[0]), float(t[0]), self.analysis.where)
-        return _Run(status, t, y, before, which)
+        return _Run(status, t, y, before, which, arrival.switch, arrival.modes)
+
+    def stuck(self, run: _Run, among: np.ndarray) -> dict[int, MechgradeError]:
+        """The columns ``among`` whose one slip ended before their instant
+        (:data:`~.batch_motion.SWITCHED`) and where kinetic friction then holds the contact
+        whichever way it is read: slipping on, friction drives the slip speed back across
+        zero, turned round it drives it back too. That motion sticks, which an integration
+        of these equations cannot follow (one motion alone shrinks its steps against the
+        chatter until it gives up). A slip that turns round and goes on is not judged here:
+        that column is solved alone."""
+        switches = self.switches
+        w = np.flatnonzero((run.status == SWITCHED) & among)
+        if not len(w) or switches is None or run.switch is None or run.modes is None:
+            return {}
+        t, y, j = run.t[w], run.y[:, w], run.switch[w]
+        kept = run.modes[:, w]
+        old = kept[j, np.arange(len(w))]
+        h = 1e-7 * np.maximum(t, 1.0)  # a moment on: the slip speed's sign there
+        drift = []
+        for side in (old, -old):
+            modes = kept.copy()
+            modes[j, np.arange(len(w))] = side
+            with np.errstate(all="ignore"):
+                a = self.solve(self.at(w, t, y), modes)[self.qdd]
+                undefined = ~np.isfinite(a).all(axis=0)
+                if undefined.any():  # 0/0 at the end of the slip: the direction's limit
+                    u = np.flatnonzero(undefined)
+                    e = np.concatenate([self.extended(self.at(w[u], t[u], y[:, u])),
+                                        modes[:, u]])
+                    e[self.unknowns] = 0.0
+                    a[:, u] = columns_accelerations(self.kp, e,
+                                                    _switches(self.kp, at_end=True))[self.qdd]
+                moved = y + h * np.concatenate([y[self.n:], a])
+                speed = loud_call(switches.speeds, self.extended(self.at(w, t + h, moved)),
+                                  switches.count)[j, np.arange(len(w))]
+            drift.append(np.sign(speed))
+        sticks = (drift[0] == -old) & (drift[1] == old)
+        return {int(i): SolveError(
+            f"a kinetic-friction slip ends at t = {when:.6g} s, before the event, and friction "
+            "then holds the contact whichever way it slips (it sticks): expected a motion that "
+            "slips until its event, or the end of the slip as the event",
+            where=self.analysis.where)
+            for i, when in zip(w[sticks], t[sticks])}
 
 
 def _only(event: Callable, mine: np.ndarray) -> Callable:
@@ -489,14 +570,16 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
         fine = np.ones(count, dtype=bool)
         events, senses = [], []
         # the instants first: where one and the event fire together, it is reached
-        for aim, target in one.aims([targets[c] for c in todo], asked[todo]):
+        mine = [targets[c] for c in todo]
+        timed = np.array([isinstance(t, Entry) and t.at == kp.kp.index.time for t in mine],
+                         dtype=bool)  # t = 0 is the start itself
+        for aim, target in one.aims(mine, asked[todo]):
             events.append(aim)
-            if isinstance(target, Entry) and target.at == kp.kp.index.time:
-                senses.append(np.zeros(count))  # t = 0 is the start itself
-            elif alone is not None:
+            if alone is not None and not timed[0]:
                 senses.append(one.crossing(aim, target.where)[0])
             else:  # a class leaves one that holds at the start alone (its next crossing)
-                fine &= aim(np.arange(count), np.zeros(count), one.y0) != 0
+                if alone is None:
+                    fine &= timed | (aim(np.arange(count), np.zeros(count), one.y0) != 0)
                 senses.append(np.zeros(count))
         events.append(until)
         senses.append(direction)
@@ -512,6 +595,9 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
         for c in np.flatnonzero(fine & ended):
             failed(int(todo[c]), _missed(analysis, targets[todo[c]],
                                          [run.t[c]] if at_until[c] else []))
+        if alone is None:  # a slip that ends before the event and sticks there
+            for k, error in one.stuck(run, fine & ~_aiming(targets, todo)).items():
+                failed(int(todo[k]), error)
         fired = fine & ~ended & (run.status == FIRED)
         slipped = fired & (run.which == len(events) - 1) & (grip is not None)
         phases = _arrived(problem, one, run, todo, np.flatnonzero(fired & ~slipped), targets,
@@ -521,6 +607,57 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             phases += _gripped(problem, X[:, todo[s]], todo[s], run, s, direction[s], targets,
                                asked, kinetics_plan, alone, failed)
     return Reaches(tuple(phases), errors)
+
+
+def checked(at: PhaseColumns, kp) -> tuple[np.ndarray, np.ndarray | None, Balanced]:
+    """The extended states of ``at``'s columns the objectives are read from (``kp``: its
+    phase's kinetics) and those a moment before (``None`` at an objective's own instant),
+    with the momentum balances solved and checked (:func:`~.motion.balances`): at the
+    instant, or for an event just before it (the contact checks hold along the way; the
+    second rates and reactions at the event are their limits there, :func:`~.motion.at_event`)."""
+    known = after_event(kp.kp)
+    if at.before is None:
+        solved = balances(at.phase, kp, at.values, known)
+        return solved.x, None, solved
+    solved = balances(at.phase, kp, at.before[:kp.kp.index.size], known)
+    return at_event(solved.x, at.values, kp.kp), solved.x, solved
+
+
+def stacked(problem: Problem, found: Reaches, kinetics_plan: Callable, count: int
+            ) -> tuple[np.ndarray, np.ndarray, dict[int, MechgradeError]]:
+    """The ``count`` columns of ``found`` on a motion without phases, :func:`checked`: each
+    one's extended state at its instant with the one a moment before stacked under it (the
+    same twice at an objective's own instant), which are answered, and the error of each
+    whose instant is not reached or fails the checks (a column in neither is not vouched
+    for: alone, it says why).
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> from mechgrade.solve.dynamics import kinematic_problem, kinetics_plan
+    >>> from mechgrade.solve.instant import instant_givens
+    >>> from mechgrade.solve.numeric import solve_numeric
+    >>> problem = load_problem(shipped_dir("problems") / "damped_block_first_peak.yaml")
+    >>> kp = kinetics_plan(problem)
+    >>> X = solve_numeric(kinematic_problem(problem), kp.kp, instant_givens(problem, None, {}),
+    ...                   set()).state.values[:, None]
+    >>> out, ok, errors = stacked(problem, reach_columns(problem, X, [Until()], kinetics_plan),
+    ...                           kinetics_plan, 1)
+    >>> ok.tolist(), errors, out.shape[0] == 2 * (kp.kp.index.size + len(kp.kin.reactions))
+    ([True], {}, True)
+    """
+    kp = kinetics_plan(problem)
+    kinetic = kp.kp.index.size + len(kp.kin.reactions)
+    out = np.full((2 * kinetic, count), np.nan)
+    ok = np.zeros(count, dtype=bool)
+    errors = dict(found.errors)
+    for at in found.phases:
+        assert at.phase is problem, "a motion without phases"
+        x, before, solved = checked(at, kp)
+        out[:, at.columns] = np.vstack([x, x if before is None else before])
+        ok[at.columns] = solved.ok
+        errors.update({int(at.columns[j]): error for j in np.flatnonzero(~solved.ok)
+                       if (error := solved.errors[int(j)]) is not None})
+    return out, ok, errors
 
 
 def _aiming(targets: list[Target], columns: np.ndarray) -> np.ndarray:
