@@ -57,7 +57,7 @@ from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .events import event_never_happens
 from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
-                      answer_alone, drive_columns, group_results, instant_givens,
+                      answer_alone, class_givens, drive_columns, group_results, instant_givens,
                       read_objectives, reports_state, wanted_objectives, with_own)
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
@@ -217,7 +217,7 @@ class _Template:
             return []
         problem = self.problem
         wanted = wanted_objectives(problem, asked)
-        given = [instant_givens(problem, g, {}) for g in variants]
+        given = class_givens(problem, variants)
         integrated = self._integrated(given, wanted)
         steps: list[tuple[dict, tuple[Objective, ...], Step]] = [
             (group.overrides, group.objectives,

@@ -107,12 +107,12 @@ def _attached(problem: Problem, solutions: Sequence[Solution], pending: _Pending
     """``solutions`` with their generated mistakes still to work out (``pending``) and the
     plausible whole-answer slips attached."""
     plausible = plausible_slips(problem)
-    # each result as replace() would give it, at two thirds of the cost (a class's results
-    # are made by the thousand)
-    return [replace(solution, results=tuple(
+    # each result and solution as replace() would give it, at a fraction of the cost (a
+    # class's results are made by the thousand)
+    return [Solution(**{**vars(solution), "results": tuple(
         ObjectiveResult(**{**vars(r), "plausible": plausible,
                            "generated_mistakes": LazyMistakes(pending, k, r.id)})
-        for r in solution.results)) for k, solution in enumerate(solutions)]
+        for r in solution.results)}) for k, solution in enumerate(solutions)]
 
 
 class _Pending:
