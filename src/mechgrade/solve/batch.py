@@ -250,8 +250,9 @@ class _Template:
         asked = [k for k, group in enumerate(self.groups)
                  if any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
 
-        def own(k: int) -> list[dict]:  # each variant's givens of group k
-            return [with_own(g, self.groups[k].overrides) for g in given]
+        def own(k: int) -> list[dict]:  # each variant's givens of group k (read only here)
+            overrides = self.groups[k].overrides
+            return [with_own(g, overrides) for g in given] if overrides else given
 
         phased = [k for k in asked if self._phased(self.groups[k])]
         found: dict[int, tuple | Reaches] = dict(zip(phased, self._reaches(
