@@ -173,3 +173,24 @@ def test_a_class_asked_only_symbolic_answers_reads_no_mistaken_reading_or_term()
     first, _ = with_class_mistakes(problem, [solution, solution], [{}, {}], together)
     assert first.result("a1_symbolic").generated_mistakes  # the mistaken models' answers
     assert asked and not any("~" in oid for ids in asked for oid in ids)
+
+
+def test_a_class_keeps_the_results_made_with_its_mistakes_and_attaches_them_to_the_others():
+    from mechgrade.solve.dynamics_mutants import ClassMistakes, _one_by_one
+    from mechgrade.solve.result import ObjectiveResult, Solution
+
+    problem = load_problem(PROBLEMS / "pendulum_pin_reaction.yaml")
+    solution = solve_dynamics(problem, objectives={"alpha"})
+    mistakes = ClassMistakes(problem, [{}, {}, {}], _one_by_one(solve_dynamics))
+    made = Solution(**{**vars(solution), "results": tuple(
+        ObjectiveResult(**{**vars(r), "plausible": mistakes.plausible,
+                           "generated_mistakes": mistakes.of(0, r.id)})
+        for r in solution.results)})
+    error = MechgradeError("not solved")
+    kept, missed, attached = mistakes.attached([made, error, solution])
+    assert kept is made and missed is error  # made once, with them
+    assert attached.result("alpha").plausible == mistakes.plausible
+    mine = [(m.code, m.value) for m in attached.result("alpha").generated_mistakes]
+    assert mine == [(m.code, m.value) for m in kept.result("alpha").generated_mistakes]
+    assert ("mass_for_weight", pytest.approx(-0.8, abs=0.01)) in [
+        (code, round(value, 2)) for code, value in mine]
