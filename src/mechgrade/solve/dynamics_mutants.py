@@ -102,7 +102,16 @@ class ClassMistakes:
     """The generated mistakes of a class of variants solved together (``givens``: each
     column's overrides; ``together`` solves each mistaken model for all of them at once),
     worked out for every column when one is first looked at: a result made for a column
-    (:meth:`of`) carries them from the start, :meth:`attached` puts them in the others."""
+    (:meth:`of`) carries them from the start, :meth:`attached` puts them in the others.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> mistakes = ClassMistakes(problem, [{}, {}], _one_by_one(solve_dynamics))
+    >>> error = MechgradeError("not solved")
+    >>> mistakes.attached([error])[0] is error, type(mistakes.of(0, "alpha")).__name__
+    (True, 'LazyMistakes')
+    """
 
     def __init__(self, problem: Problem, givens: Sequence[Mapping[str, float | None] | None],
                  together: Together):
