@@ -192,3 +192,24 @@ def test_a_shared_plan_lasts_as_long_as_its_copy_not_as_long_as_256_other_shares
     del others
     gc.collect()
     assert len(dynamics._SHARED) == before - 300  # a copy's death frees its plan
+
+
+def test_a_class_keeps_the_results_made_with_its_mistakes_and_attaches_them_to_the_others():
+    from mechgrade.solve.dynamics_mutants import ClassMistakes, _one_by_one
+    from mechgrade.solve.result import ObjectiveResult, Solution
+
+    problem = load_problem(PROBLEMS / "pendulum_pin_reaction.yaml")
+    solution = solve_dynamics(problem, objectives={"alpha"})
+    mistakes = ClassMistakes(problem, [{}, {}, {}], _one_by_one(solve_dynamics))
+    made = Solution(**{**vars(solution), "results": tuple(
+        ObjectiveResult(**{**vars(r), "plausible": mistakes.plausible,
+                           "generated_mistakes": mistakes.of(0, r.id)})
+        for r in solution.results)})
+    error = MechgradeError("not solved")
+    kept, missed, attached = mistakes.attached([made, error, solution])
+    assert kept is made and missed is error  # made once, with them
+    assert attached.result("alpha").plausible == mistakes.plausible
+    mine = [(m.code, m.value) for m in attached.result("alpha").generated_mistakes]
+    assert mine == [(m.code, m.value) for m in kept.result("alpha").generated_mistakes]
+    assert ("mass_for_weight", pytest.approx(-0.8, abs=0.01)) in [
+        (code, round(value, 2)) for code, value in mine]

@@ -112,6 +112,21 @@ def test_givens_can_be_overridden_per_call():
         solve(problem, givens={"theta'": None})
 
 
+def test_a_class_reads_each_variants_givens_as_it_alone_would():
+    from mechgrade.solve.instant import class_givens
+
+    problem = load(SLIDER)
+    variants = [{"theta": math.pi / 3, "r": 0.1}, {"theta": None}, {"theta ": math.pi / 3},
+                {"theta": math.pi / 3, "theta ": math.pi / 2}, None]
+    together = class_givens(problem, variants)
+    assert together == [class_givens(problem, [v])[0] for v in variants]
+    replaced, removed, spelt, twice, spec = together
+    assert replaced["theta"][2].text == "60 deg" and replaced["theta"][2].unit == "deg"
+    assert replaced["r"][2] is spec["r"][2]  # a value the spec gives keeps its given
+    assert "theta" not in removed and spelt["theta"] == replaced["theta"]
+    assert twice["theta"][1] == math.pi / 2 and twice["theta"][2].text == "90 deg"
+
+
 def test_prescribed_motion_in_time():
     text = """
 id: cycloid

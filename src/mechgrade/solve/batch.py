@@ -56,7 +56,7 @@ from ..spec.model import Objective, ObjectiveKind, Problem, Root
 from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
 from .entry import solve
 from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
-                      answer_alone, drive_columns, group_results, instant_givens,
+                      answer_alone, class_givens, drive_columns, group_results, instant_givens,
                       read_objectives, reports_state, wanted_objectives, with_own)
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
@@ -64,7 +64,7 @@ from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_bran
                      solve_linear_columns, typical_sizes)
 from .mutants import GeneratedColumns, generated_columns, plausible_slips, values_alone
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
-from .dynamics_mutants import with_class_mistakes
+from .dynamics_mutants import ClassMistakes
 from .motion import after_event, balances
 from .phases import (Reaches, Target, Until, asked_when, checked, gripping, reach_columns,
                      stacked)
@@ -125,15 +125,13 @@ def _solved_together(problem: Problem, given: list[dict],
     template = _template(problem) if given else None
     if template is not None:
         chosen = [i for i, g in enumerate(given) if template.covers(g)]
-        for i, solution in zip(chosen, template.solve([given[i] for i in chosen],
-                                                      objectives)):
+        # a dynamics result made together carries its class's generated mistakes from the
+        # start; the others (a column answered alone) have them attached
+        attach = ClassMistakes(problem, [given[i] for i in chosen], answers_together) \
+            if problem.dynamics is not None and mistakes else None
+        solved = template.solve([given[i] for i in chosen], objectives, attach)
+        for i, solution in zip(chosen, solved if attach is None else attach.attached(solved)):
             found[i] = solution
-        if problem.dynamics is not None and mistakes:
-            together = [i for i in chosen if isinstance(found[i], Solution)]
-            solved = [s for s in found if isinstance(s, Solution)]
-            for i, solution in zip(together, with_class_mistakes(
-                    problem, solved, [given[i] for i in together], answers_together)):
-                found[i] = solution
     alone = solve
     if not mistakes:
         from .dynamics import solve_dynamics as alone
@@ -201,19 +199,20 @@ class _Template:
 
     # -- solving
 
-    def solve(self, variants: list[dict], asked: Collection[str] | None = None
-              ) -> list[Solution | MechgradeError]:
+    def solve(self, variants: list[dict], asked: Collection[str] | None = None,
+              mistakes: ClassMistakes | None = None) -> list[Solution | MechgradeError]:
         """Each variant's solution, or the error :func:`~.entry.solve` raises for it when
-        no objective is solved; only the objectives ``asked`` (all by default)."""
+        no objective is solved; only the objectives ``asked`` (all by default). With
+        ``mistakes`` (a dynamics class's), each result answered together carries them."""
         if not variants:
             return []
         problem = self.problem
         wanted = wanted_objectives(problem, asked)
-        given = [instant_givens(problem, g, {}) for g in variants]
+        given = class_givens(problem, variants)
         integrated = self._integrated(given, wanted)
         steps: list[tuple[dict, tuple[Objective, ...], Step]] = [
             (group.overrides, group.objectives,
-             partial(self._together, group, integrated.get(k)))
+             partial(self._together, group, integrated.get(k), mistakes))
             for k, group in enumerate(self.groups)]
         return drive_columns(problem, self.kproblem, self.p, tuple(self.p.k.warnings), steps,
                              variants, wanted, given)
@@ -238,16 +237,22 @@ class _Template:
         what :meth:`_instant` reads."""
         chosen = [k for k, group in enumerate(self.groups) if self._integrates(group)
                   and any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
-        return dict(zip(chosen, self._reaches(
-            [(self.groups[k], [with_own(g, self.groups[k].overrides) for g in given])
-             for k in chosen])))
 
-    def _together(self, group: _Group, integrated: Reaches | None, maps: list[dict],
+        def own(k: int) -> list[dict]:  # each variant's givens of group k (read only there)
+            overrides = self.groups[k].overrides
+            return [with_own(g, overrides) for g in given] if overrides else given
+
+        return dict(zip(chosen, self._reaches([(self.groups[k], own(k)) for k in chosen])))
+
+    def _together(self, group: _Group, integrated: Reaches | None,
+                  attach: ClassMistakes | None, maps: list[dict],
                   objectives: list[Objective], overrides: dict, columns: Columns) -> None:
         """The :data:`~.instant.Step` of ``group`` reached together: every column at once
         (:meth:`_instant`; an integrated group's instants ``integrated`` with the class's
         others, :meth:`_integrated`); one that fails a screen (or, in kinematics, an objective) is
-        answered alone (:func:`~.instant.answer_alone`, the single solve's step)."""
+        answered alone (:func:`~.instant.answer_alone`, the single solve's step). A dynamics
+        result made here carries the class's generated mistakes ``attach`` (``None``: none).
+        """
         problem, n = self.problem, len(maps)
         ok = np.ones(n, dtype=bool)
         symbolic: Callable | None = None
@@ -281,6 +286,8 @@ class _Template:
                 generated = generated_columns(problem, self.p, maps, X, ok, values,
                                               group.numeric, partial(self._misread, group),
                                               partial(_mutant_values, group))
+            elif attach is not None:
+                generated = {oid: partial(attach.of, objective_id=oid) for oid in group.numeric}
         # an objective undefined at a dynamics variant's instant is that objective's
         # failure (a kinematics one has made the variant not ok)
         failed = [dict.fromkeys(numeric, unreached[i]) if i in unreached else missing[i]
@@ -288,7 +295,8 @@ class _Template:
         answered = np.flatnonzero(ok).tolist()
         for i, (solved, failures) in zip(answered, group_results(
                 problem, objectives, maps, values, mistakes, failed, answered, symbolic,
-                generated, self.plausible if self.kinetics is None else None)):
+                generated, self.plausible if self.kinetics is None
+                else None if attach is None else attach.plausible)):
             if failures and self.kinetics is None:
                 ok[i] = False
                 continue

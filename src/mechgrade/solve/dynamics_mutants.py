@@ -37,6 +37,7 @@ solver solves (:func:`with_generated_mistakes`).
 
 from __future__ import annotations
 
+import operator
 import warnings
 from collections.abc import Sequence
 from dataclasses import replace
@@ -83,9 +84,8 @@ def with_generated_mistakes(problem: Problem, solution: Solution,
     ``solver`` too), and the whole-answer slips its model makes plausible: a class of one
     (:func:`with_class_mistakes`), kept for the same problem and givens."""
     key = tuple(sorted((givens or {}).items()))
-    (attached,) = _attached(problem, [solution], _Pending(lambda: [_generated(
-        problem, key, solution.results, solution.state, solver)]))
-    return attached
+    return _attached(solution, plausible_slips(problem), _Pending(lambda: [_generated(
+        problem, key, solution.results, solution.state, solver)]), 0)
 
 
 def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
@@ -95,24 +95,70 @@ def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
     ``problem``, solved together): the mistakes of all of them are worked out together, when
     one is first looked at, each mistaken model solved for every variant at once by
     ``together`` (:func:`~mechgrade.solve.batch.answers_together`)."""
-    given = [dict(g or {}) for g in givens]
-    results = [s.results for s in solutions]
-    states = [s.state for s in solutions]
-    return _attached(problem, solutions, _Pending(
-        lambda: _generated_class(problem, given, results, states, together)))
+    return ClassMistakes(problem, givens, together).attached(solutions)
 
 
-def _attached(problem: Problem, solutions: Sequence[Solution], pending: _Pending
-              ) -> list[Solution]:
-    """``solutions`` with their generated mistakes still to work out (``pending``) and the
-    plausible whole-answer slips attached."""
-    plausible = plausible_slips(problem)
-    # each result as replace() would give it, at two thirds of the cost (a class's results
-    # are made by the thousand)
-    return [replace(solution, results=tuple(
-        ObjectiveResult(**{**vars(r), "plausible": plausible,
-                           "generated_mistakes": LazyMistakes(pending, k, r.id)})
-        for r in solution.results)) for k, solution in enumerate(solutions)]
+class ClassMistakes:
+    """The generated mistakes of a class of variants solved together (``givens``: each
+    column's overrides; ``together`` solves each mistaken model for all of them at once),
+    worked out for every column when one is first looked at: a result made for a column
+    (:meth:`of`) carries them from the start, :meth:`attached` puts them in the others.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "pendulum_pin_reaction.yaml")
+    >>> mistakes = ClassMistakes(problem, [{}, {}], _one_by_one(solve_dynamics))
+    >>> error = MechgradeError("not solved")
+    >>> mistakes.attached([error])[0] is error, type(mistakes.of(0, "alpha")).__name__
+    (True, 'LazyMistakes')
+    """
+
+    def __init__(self, problem: Problem, givens: Sequence[Mapping[str, float | None] | None],
+                 together: Together):
+        self.problem, self.together = problem, together
+        self.givens = [dict(g or {}) for g in givens]
+        self.plausible = plausible_slips(problem)
+        self.pending = _Pending(self._work)
+        self.outcomes: list = []  # each column's solution or error, once solved
+
+    def of(self, column: int, objective_id: str) -> LazyMistakes:
+        """The generated mistakes of one objective of one column."""
+        return LazyMistakes(self.pending, column, objective_id)
+
+    def attached(self, outcomes: Sequence) -> list:
+        """``outcomes`` (each column's solution or error) with every result of a solution
+        carrying its generated mistakes and the plausible whole-answer slips (a result made
+        with them, :meth:`of`, is kept as it is)."""
+        self.outcomes = list(outcomes)
+        return [_attached(solution, self.plausible, self.pending, k)
+                if isinstance(solution, Solution) else solution
+                for k, solution in enumerate(self.outcomes)]
+
+    def _work(self) -> list[dict]:  # (a column without a solution has none)
+        solved = [k for k, s in enumerate(self.outcomes) if isinstance(s, Solution)]
+        found = _generated_class(self.problem, [self.givens[k] for k in solved],
+                                 [self.outcomes[k].results for k in solved],
+                                 [self.outcomes[k].state for k in solved], self.together)
+        out: list[dict] = [{} for _ in self.outcomes]
+        for k, mine in zip(solved, found):
+            out[k] = mine
+        return out
+
+
+def _attached(solution: Solution, plausible: frozenset[str], pending: _Pending, k: int
+              ) -> Solution:
+    """``solution`` (column ``k`` of ``pending``) with its generated mistakes still to work
+    out and the plausible whole-answer slips attached to every result that has not got them."""
+    # each result and solution as replace() would give it, at a fraction of the cost (a
+    # class's results are made by the thousand)
+    results = tuple(r if isinstance(r.generated_mistakes, LazyMistakes)
+                    and r.generated_mistakes.pending is pending and r.plausible is plausible
+                    else ObjectiveResult(**{**vars(r), "plausible": plausible,
+                                            "generated_mistakes": LazyMistakes(pending, k, r.id)})
+                    for r in solution.results)
+    if all(map(operator.is_, results, solution.results)):
+        return solution
+    return Solution(**{**vars(solution), "results": results})
 
 
 class _Pending:
@@ -251,13 +297,13 @@ class LazyMistakes(Sequence):
     """One objective's generated mistakes (a sequence of
     :class:`~mechgrade.solve.result.GeneratedMistake`), worked out on first use."""
 
-    __slots__ = ("_id", "_k", "_pending")
+    __slots__ = ("_id", "_k", "pending")
 
     def __init__(self, pending: _Pending, k: int, objective_id: str):
-        self._pending, self._k, self._id = pending, k, objective_id
+        self.pending, self._k, self._id = pending, k, objective_id
 
     def _items(self) -> tuple:
-        return self._pending.get(self._k)[self._id]
+        return self.pending.get(self._k)[self._id]
 
     def __getitem__(self, index):
         return self._items()[index]

@@ -14,7 +14,6 @@ failure beside the others' answers; the solved state is reported in the author's
 
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 from dataclasses import dataclass, replace
 from typing import Callable, Collection, Mapping, Protocol, Sequence
@@ -27,7 +26,7 @@ from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
 from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..units import from_si, si_factor, si_unit
+from ..units import si_factor, si_unit
 from . import rules
 from .columns import call, quiet
 from .levels import State, author_units, constraint_ranks, evaluate
@@ -68,20 +67,50 @@ def _keyed_givens(problem: Problem) -> dict:
 
 def _givens(problem: Problem, overrides: Mapping[str, float | None] | None):
     """Given values keyed by canonical key text -> (key node, SI value, Given or None)."""
-    out = dict(_spec_givens(problem))
-    for key, value in (overrides or {}).items():
-        node, canonical = _key(key)
-        if value is None:
-            out.pop(canonical, None)
-            continue
-        given = out.get(canonical, (None, None, None))[2]
-        if given is not None and given.si != float(value):
-            # the value replaced, in the spec's unit, so messages show what was solved with
-            number = from_si(float(value), given.unit) + 0.0
-            # as replace() gives it, at two thirds of the cost (givens of a whole class)
-            given = Given(**{**vars(given), "value": number, "si": float(value),
-                             "text": f"{number:.6g} {given.unit}".strip()})
-        out[canonical] = (node, float(value), given)
+    return class_givens(problem, [overrides])[0]
+
+
+def class_givens(problem: Problem, variants: Sequence[Mapping[str, float | None] | None]
+                 ) -> list[dict]:
+    """Each variant's givens (:func:`_givens`: the spec's, with its overrides): each key a
+    class writes is read once (its tree, canonical text and the spec's given), not once per
+    variant.
+
+    >>> from mechgrade.spec import load_problem
+    >>> from mechgrade.resources import shipped_dir
+    >>> problem = load_problem(shipped_dir("problems") / "bowling_3_15_4_pendulum.yaml")
+    >>> a, b = class_givens(problem, [{"L": 0.5}, {"L": 1.0}])
+    >>> a["L"][1], b["L"][2].text
+    (0.5, '3.28084 ft')
+    """
+    spec = _spec_givens(problem)
+    read: dict[str, tuple] = {}  # a key as written -> its tree, canonical text, spec's given
+    out = []
+    for overrides in variants:
+        given_map = dict(spec)
+        for key, value in (overrides or {}).items():
+            known = read.get(key)
+            if known is None:
+                node, canonical = _key(key)
+                given = spec.get(canonical, (None, None, None))[2]
+                known = read[key] = (node, canonical, None if given is None else (
+                    si_factor(given.unit), {k: v for k, v in vars(given).items()
+                                            if k not in ("value", "si", "text")}))
+            node, canonical, replaced = known
+            if value is None:
+                given_map.pop(canonical, None)
+                continue
+            si = float(value)
+            given = given_map.get(canonical, (None, None, None))[2]
+            if given is not None and given.si != si:
+                factor, rest = replaced
+                # the value replaced, in the spec's unit, so messages show what was solved
+                # with (as replace() gives it, at a fraction of the cost)
+                number = si / factor + 0.0  # (as from_si gives it)
+                given = Given(**rest, value=number, si=si,
+                              text=f"{number:.6g} {given.unit}".strip())
+            given_map[canonical] = (node, si, given)
+        out.append(given_map)
     return out
 
 
@@ -269,7 +298,7 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
     """
     columns = Columns(len(variants), warnings)
     if given is None:  # once for all its groups (a class pays them per student)
-        given = [_givens(problem, g) for g in variants]
+        given = class_givens(problem, variants)
     for overrides, objectives, step in groups:
         chosen = [o for o in objectives if o.id in wanted]
         if chosen:
@@ -435,6 +464,7 @@ def solutions_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
     ``warnings``; the first objective's error when none of them is solved."""
     dofs = degrees_of_freedom(p, [b[0] if b else None for b in bases])
     order = [o.id for o in problem.objectives if o.id in wanted]
+    states = _states(kinematics, p, bases)
     out: list[Solution | MechgradeError] = []
     for i in columns:
         if not results[i] and order:  # nothing solved of what was asked
@@ -443,7 +473,7 @@ def solutions_of(problem: Problem, kinematics: Problem, p: KinematicsPlan,
         out.append(Solution(
             problem=problem.id,
             results=tuple(results[i][oid] for oid in order if oid in results[i]),
-            state=_state(kinematics, p, bases[i]), dof=dofs[i],
+            state=states[i], dof=dofs[i],
             failures=tuple(ObjectiveFailure(oid, failures[i][oid]) for oid in order
                            if oid in failures[i]),
             warnings=warnings[i]))
@@ -771,24 +801,35 @@ def _positions_reported(problem: Problem, p: KinematicsPlan) -> list[tuple[int, 
             for i in range(p.index.size)]
 
 
-def _state(problem: Problem, p: KinematicsPlan, base) -> tuple[StateValue, ...]:
-    """The solved coordinates, rates, parameters and time, in the author's units."""
-    if base is None:
-        return ()
-    state, givens = base
-    values = state.values.tolist()
-    given = state.given.tolist()
-    out = []
-    for i, name, unit, factor in _reported(problem, p):
-        value = values[i]
-        if not math.isfinite(value) or i in state.free:
-            continue
-        shown = value / factor + 0.0 if unit else value  # as from_si reports it
-        entry = givens.get(name) if given[i] else None
-        if entry is not None and entry[2] is not None and entry[1] == value:
-            shown, unit = entry[2].value, entry[2].unit
-        out.append(StateValue(name, shown, unit, bool(given[i]), value))
-    return tuple(out)
+def _states(problem: Problem, p: KinematicsPlan, bases: Sequence[tuple[State, dict] | None]
+            ) -> list[tuple[StateValue, ...]]:
+    """Each of ``bases``' solved coordinates, rates, parameters and time (``()`` for none),
+    in the author's units: every column's values put in those units at once."""
+    out: list[tuple[StateValue, ...]] = [()] * len(bases)
+    solved = [(i, base) for i, base in enumerate(bases) if base is not None]
+    if not solved:
+        return out
+    reported = _reported(problem, p)
+    values = np.stack([state.values[:len(reported)] for _, (state, _) in solved], axis=1)
+    united = np.array([bool(unit) for _, _, unit, _ in reported])[:, None]
+    factors = np.array([factor for *_, factor in reported])[:, None]
+    with np.errstate(all="ignore"):  # as from_si reports it
+        shown = np.where(united, values / factors + 0.0, values)
+    finite = np.isfinite(values)
+    for j, (i, (state, givens)) in enumerate(solved):
+        value, number, kept = values[:, j].tolist(), shown[:, j].tolist(), finite[:, j].tolist()
+        given = state.given.tolist()
+        column = []
+        for k, name, unit, _ in reported:
+            if not kept[k] or k in state.free:
+                continue
+            entry = givens.get(name) if given[k] else None
+            if entry is not None and entry[2] is not None and entry[1] == value[k]:
+                column.append(StateValue(name, entry[2].value, entry[2].unit, True, value[k]))
+            else:
+                column.append(StateValue(name, number[k], unit, bool(given[k]), value[k]))
+        out[i] = tuple(column)
+    return out
 
 
 _symbolic_answer.cache_clear = _SYMBOLIC_ANSWERS.clear  # type: ignore[attr-defined]

@@ -373,7 +373,7 @@ def plausible_slips(problem: Problem) -> frozenset[str]:
     return frozenset(out)
 
 
-GeneratedColumns = Mapping[str, Callable[[int], tuple[GeneratedMistake, ...]]]
+GeneratedColumns = Mapping[str, Callable[[int], Sequence[GeneratedMistake]]]
 """Each objective's generated mistakes at every column, as a function of the column."""
 
 Misreadings = Callable[[list[dict]], tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]]
