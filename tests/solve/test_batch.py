@@ -170,6 +170,30 @@ def test_misread_givens_that_break_the_positions_they_fix_are_refused_together_a
     assert any(m.code == "given_sign" for m in together[0].result("xdot").generated_mistakes)
 
 
+def test_variants_asking_for_the_first_positive_root_are_solved_together_as_alone(monkeypatch):
+    # y = 3 m is passed twice (up, then down): the first positive root is the earlier one,
+    # which the reference's root (the landing, 2.04 s) does not continue to; y = -3 m has
+    # one positive root and one negative
+    from mechgrade.solve import batch
+
+    problem = load_problem(ROOT / "tests" / "data" / "authoring_mistakes"
+                           / "solve_t_first_positive.yaml")
+    variants = [{"y": 3.0}, {"y": -3.0}, {"v0": 25.0, "beta": 0.6}]
+    left: list[int] = []  # the columns answered alone inside the class
+
+    def spied(problem, reach, maps, chosen, overrides, columns, which):
+        left.extend(which)
+        return answer_alone(problem, reach, maps, chosen, overrides, columns, which)
+
+    monkeypatch.setattr(batch, "answer_alone", spied)
+    solved = _solved_together(problem, variants)
+    assert [together for _, together in solved] == [True, True, True] and left == []
+    for (a, _), b in zip(solved, alone(problem, variants)):
+        assert_same(a, b)
+    t = next(s.si for s in solved[0][0].state if s.name == "t")
+    assert t == pytest.approx((20 * 0.5 - (20**2 * 0.25 - 2 * 9.81 * 3) ** 0.5) / 9.81)
+
+
 @pytest.mark.slow  # a slow end-to-end check (over 5 s)
 def test_a_problem_with_symbolic_objectives_only_is_solved_together():
     problem = load_problem(PROBLEMS / "ruina_sec10_bug_on_tire.yaml")

@@ -62,7 +62,7 @@ from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
-                     solve_linear_columns, typical_sizes)
+                     solve_linear_columns, solve_nonlinear_columns, typical_sizes)
 from .mutants import GeneratedColumns, generated_columns, plausible_slips, values_alone
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import with_class_mistakes
@@ -529,7 +529,7 @@ class _Template:
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
             np.ones(n, dtype=bool)
-        nulls = self._levels(group, X, targets, placed, 0, ok)
+        nulls = self._levels(group, X, targets, placed, 0, ok, searched=True)
         if self.kinetics is None and (group.free or any(k for k in group.nullity)):
             ok &= self._determined(group, X, targets, placed, nulls, ok)
         ok &= self._on_branch(group, X)
@@ -603,12 +603,15 @@ class _Template:
         return X[:half], X[half:]
 
     def _levels(self, group: _Group, X: np.ndarray, targets, placed: Callable[[int], Givens],
-                first: int, ok: np.ndarray) -> dict[int, np.ndarray | None]:
+                first: int, ok: np.ndarray, searched: bool = False
+                ) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
         linear rate levels (N x unknowns x nullity). Every level is solved as the single
         solve solves it (:func:`~.levels.solve_linear_columns`,
-        :func:`~.levels.solve_level_columns` from the reference's root)."""
+        :func:`~.levels.solve_level_columns` from the reference's root); with ``searched``
+        (the instant itself, not a probe of its freedoms near it), a level whose branch asks
+        for the first positive root is searched at every column (:meth:`_first_positive`)."""
         p = self.p
         nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
@@ -628,14 +631,42 @@ class _Template:
             solve_for = [i for i in unknown if i not in group.free]
             if solve_for:
                 columns = list(p.index.unknowns(order))
-                fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
-                                           columns, active, target[active], NEAR_DAMPING)
-                X[:] = fits.X
-                ok &= fits.started & fits.held & (
-                    level_rank(level, X, solve_for, columns, active) == len(solve_for))
+                if searched and any(self.branches.get(i) is Root.FIRST_POSITIVE
+                                    for i in solve_for):
+                    ok &= self._first_positive(group, order, X, placed, ok)
+                else:
+                    fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
+                                               columns, active, target[active], NEAR_DAMPING)
+                    X[:] = fits.X
+                    ok &= fits.started & fits.held
+                ok &= level_rank(level, X, solve_for, columns, active) == len(solve_for)
             elif active.any():
                 ok &= holds(self.problem.consistency, level, X, active, target[active])
         return nulls
+
+    def _first_positive(self, group: _Group, order: int, X: np.ndarray,
+                        placed: Callable[[int], Givens], ok: np.ndarray) -> np.ndarray:
+        """Level ``order`` at the columns ``ok`` of ``X`` (in place) as the single solve
+        solves it (:func:`~.levels.solve_nonlinear_columns`: the same starts, every column's
+        at once, and the first positive root chosen by the same rule), not continued from the
+        reference's root: another variant's first positive root may be another root. Which
+        columns have one root there, leaving free what the reference's leaves free (another
+        is answered alone, where that solve follows each root or says why there is none)."""
+        columns = list(self.p.index.unknowns(order))
+        free = group.free & set(columns)
+        found = np.zeros(X.shape[1], dtype=bool)
+        chosen = np.flatnonzero(ok).tolist()
+        gs = [placed(i) for i in chosen]
+        size = self.p.index.size
+        for i, roots in zip(chosen, solve_nonlinear_columns(
+                self.kproblem, self.p, order, [State(X[:size, i].copy(), g.known) for i, g in zip(chosen, gs)],
+                gs)):
+            if isinstance(roots, MechgradeError) or len(roots.states) != 1 \
+                    or set(roots.free) != free:
+                continue
+            X[columns, i] = roots.states[0].values[columns]
+            found[i] = True
+        return found
 
     def _determined(self, group: _Group, X: np.ndarray, targets,
                     placed: Callable[[int], Givens], nulls, ok: np.ndarray) -> np.ndarray:
@@ -767,11 +798,11 @@ def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Temp
     # root, which must be one the scalar solver finds without care.
     integrated = isinstance(analysis, Integration) and problem.dynamics is not None \
         and problem.dynamics.design is None
-    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or (not integrated and (
-            gripping(problem) or (any(o.when is not None for o in problem.objectives)
-                                  and not isinstance(analysis, WorkEnergy)))):
-        # each variant solved alone (a root searched for, or a motion designed goes on in
-        # another phase once a slip ends or where an objective asks it)
+    if not integrated and (gripping(problem) or (any(o.when is not None
+                                                     for o in problem.objectives)
+                                                 and not isinstance(analysis, WorkEnergy))):
+        # each variant solved alone (a motion designed goes on in another phase once a slip
+        # ends or where an objective asks it)
         return None
     if integrated:
         # solved all the same, first: a symbolic answer, kept for the givens it depends on,
