@@ -173,12 +173,13 @@ def test_misread_givens_that_break_the_positions_they_fix_are_refused_together_a
 def test_variants_asking_for_the_first_positive_root_are_solved_together_as_alone(monkeypatch):
     # y = 3 m is passed twice (up, then down): the first positive root is the earlier one,
     # which the reference's root (the landing, 2.04 s) does not continue to; y = -3 m has
-    # one positive root and one negative
-    from mechgrade.solve import batch
+    # one positive root and one negative. A misread given with no positive root (beta read
+    # as radians, -0.57 rad) is refused together, as one solve refuses it
+    from mechgrade.solve import batch, mutants
 
     problem = load_problem(ROOT / "tests" / "data" / "authoring_mistakes"
                            / "solve_t_first_positive.yaml")
-    variants = [{"y": 3.0}, {"y": -3.0}, {"v0": 25.0, "beta": 0.6}]
+    variants = [{"y": 3.0}, {"y": -3.0}, {"v0": 25.0, "beta": np.radians(33.0)}]
     left: list[int] = []  # the columns answered alone inside the class
 
     def spied(problem, reach, maps, chosen, overrides, columns, which):
@@ -186,8 +187,18 @@ def test_variants_asking_for_the_first_positive_root_are_solved_together_as_alon
         return answer_alone(problem, reach, maps, chosen, overrides, columns, which)
 
     monkeypatch.setattr(batch, "answer_alone", spied)
+    _solved_together(problem, [{"y": 1.0}])  # the class's template built
+    again: list[dict] = []  # the misread instants solved alone
+    real = mutants.solve_numeric_columns
+
+    def counted(problem, p, givens, only):
+        again.extend(givens)
+        return real(problem, p, givens, only)
+
+    monkeypatch.setattr(mutants, "solve_numeric_columns", counted)
     solved = _solved_together(problem, variants)
     assert [together for _, together in solved] == [True, True, True] and left == []
+    assert again == []
     for (a, _), b in zip(solved, alone(problem, variants)):
         assert_same(a, b)
     t = next(s.si for s in solved[0][0].state if s.name == "t")

@@ -303,7 +303,8 @@ class _Template:
             maps = [m if i in unreached else placed[i] for i, m in enumerate(maps)]
             never = np.zeros(n, dtype=bool)
             never[list(unreached)] = True
-            ok = fine | never
+            # (a kinematics instant not reached is no solution: answered alone, which raises)
+            ok = fine | never if self.kinetics is not None else fine
             reached = ok & ~never
             self._designed_given(X, reached, maps)
             if self.kinetics is None:
@@ -522,20 +523,25 @@ class _Template:
         screens. Into ``raised``: the
         columns that passed every screen of the configuration but whose energy balance or
         momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
-        them (it would reach the instant the same way and stop there)."""
+        them (it would reach the instant the same way and stop there); in kinematics, those
+        whose first positive root is not found (:meth:`_first_positive`), with the error
+        :func:`~.entry.solve` raises at that level."""
         if isinstance(self.analysis, Integration):
             X, ok, _, _ = self._motion().integrated(X)
             return X, ok
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
             np.ones(n, dtype=bool)
-        nulls = self._levels(group, X, targets, placed, 0, ok, searched=True)
+        searched: dict[int, MechgradeError] = {}
+        nulls = self._levels(group, X, targets, placed, 0, ok, searched)
         if self.kinetics is None and (group.free or any(k for k in group.nullity)):
             ok &= self._determined(group, X, targets, placed, nulls, ok)
         ok &= self._on_branch(group, X)
         if degenerate:
             ok &= ~self._degenerate(group, X)
         if self.kinetics is None:
+            if raised is not None:
+                raised.update(searched)
             return X, ok
         first = FirstErrors(X.shape[1])
         if isinstance(self.analysis, WorkEnergy):
@@ -603,7 +609,8 @@ class _Template:
         return X[:half], X[half:]
 
     def _levels(self, group: _Group, X: np.ndarray, targets, placed: Callable[[int], Givens],
-                first: int, ok: np.ndarray, searched: bool = False
+                first: int, ok: np.ndarray,
+                searched: dict[int, MechgradeError] | None = None
                 ) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
@@ -611,7 +618,8 @@ class _Template:
         solve solves it (:func:`~.levels.solve_linear_columns`,
         :func:`~.levels.solve_level_columns` from the reference's root); with ``searched``
         (the instant itself, not a probe of its freedoms near it), a level whose branch asks
-        for the first positive root is searched at every column (:meth:`_first_positive`)."""
+        for the first positive root is searched at every column (:meth:`_first_positive`),
+        the position level's error at each column without one put in ``searched``."""
         p = self.p
         nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
@@ -631,9 +639,10 @@ class _Template:
             solve_for = [i for i in unknown if i not in group.free]
             if solve_for:
                 columns = list(p.index.unknowns(order))
-                if searched and any(self.branches.get(i) is Root.FIRST_POSITIVE
-                                    for i in solve_for):
-                    ok &= self._first_positive(group, order, X, placed, ok)
+                if searched is not None and any(self.branches.get(i) is Root.FIRST_POSITIVE
+                                                for i in solve_for):
+                    ok &= self._first_positive(group, order, X, placed, ok,
+                                               searched if order == 0 else {})
                 else:
                     fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
                                                columns, active, target[active], NEAR_DAMPING)
@@ -645,13 +654,15 @@ class _Template:
         return nulls
 
     def _first_positive(self, group: _Group, order: int, X: np.ndarray,
-                        placed: Callable[[int], Givens], ok: np.ndarray) -> np.ndarray:
+                        placed: Callable[[int], Givens], ok: np.ndarray,
+                        errors: dict[int, MechgradeError]) -> np.ndarray:
         """Level ``order`` at the columns ``ok`` of ``X`` (in place) as the single solve
         solves it (:func:`~.levels.solve_nonlinear_columns`: the same starts, every column's
         at once, and the first positive root chosen by the same rule), not continued from the
         reference's root: another variant's first positive root may be another root. Which
         columns have one root there, leaving free what the reference's leaves free (another
-        is answered alone, where that solve follows each root or says why there is none)."""
+        is answered alone, where that solve follows each root); into ``errors``, each column
+        without a root with the error that solve meets there."""
         columns = list(self.p.index.unknowns(order))
         free = group.free & set(columns)
         found = np.zeros(X.shape[1], dtype=bool)
@@ -661,8 +672,10 @@ class _Template:
         for i, roots in zip(chosen, solve_nonlinear_columns(
                 self.kproblem, self.p, order, [State(X[:size, i].copy(), g.known) for i, g in zip(chosen, gs)],
                 gs)):
-            if isinstance(roots, MechgradeError) or len(roots.states) != 1 \
-                    or set(roots.free) != free:
+            if isinstance(roots, MechgradeError):
+                errors[i] = roots
+                continue
+            if len(roots.states) != 1 or set(roots.free) != free:
                 continue
             X[columns, i] = roots.states[0].values[columns]
             found[i] = True
@@ -713,10 +726,13 @@ class _Template:
     def _misread(self, group: _Group, maps: list[dict]) -> tuple[np.ndarray, dict, np.ndarray]:
         """The :data:`~.mutants.Misreadings` of ``group``: the instants of misread givens
         reached together, as the variants' (a degenerate configuration no reason to drop a
-        mistake), and those whose givens break the positions (:meth:`_conflicting`)."""
-        _, ok, values, _, _, _ = self._instant(group, maps, False)
+        mistake), and those one solve refuses: their position level without the root asked
+        for (:meth:`_first_positive`), or their givens breaking the positions
+        (:meth:`_conflicting`)."""
+        _, ok, values, _, unreached, _ = self._instant(group, maps, False)
         refused = np.zeros(len(maps), dtype=bool)
-        failed = np.flatnonzero(~ok)
+        refused[list(unreached)] = True  # one solve stops there, with the same error
+        failed = np.flatnonzero(~ok & ~refused)
         if len(failed):  # (most classes vouch for every one)
             refused[failed] = self._conflicting(group, [maps[i] for i in failed])
         return ok, values, refused
