@@ -589,6 +589,28 @@ def test_a_mistaken_constraint_is_solved_over_the_class_by_its_own_template(monk
         assert len(mine) == 1
 
 
+MID_STROKE = """  - id: speed_mid
+    prompt: The speed halfway through the stroke.
+    find: phi'
+    givens: {t: 0.1 s}
+    kind: scalar
+    unit: rpm
+"""
+
+
+def test_a_design_asked_at_an_objectives_own_instant_is_read_there_in_a_class_as_alone():
+    # the design (R) holds at the end of the stroke, t = T; speed_mid is asked at t = 0.1 s,
+    # where one solve reads it with the variant's R (the speed drops linearly: 285 rpm when
+    # T = 0.2 s); a class read it at the end of the stroke (270 rpm)
+    text = (PROBLEMS / "flywheel_speed_drop.yaml").read_text()
+    problem = load_problem_text(text.replace("tags:", MID_STROKE + "tags:"), "flywheel.yaml")
+    variants = [{"M": 1400.0}, {"M": 1600.0, "T": 0.4}]
+    together, one = together_and_alone(problem, variants)
+    for a, b in zip(together, one):
+        assert_same(a, b, INTEGRATED, generated=False)
+    assert [s.result("speed_mid").value for s in together] == pytest.approx([285.0, 292.5])
+
+
 def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():
     # down a 10 deg incline the wheel's centre stays below 0.2 g for every R: the design stage
     # over the class does not converge for that variant, whose objectives at the instant fail

@@ -597,7 +597,15 @@ class _Template:
         again = np.flatnonzero(kept)
         if degenerate and len(again) and not isinstance(self.analysis, Integration):
             ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
-        return out, ok & converged
+        ok &= converged
+        if group.instant is not None:
+            # the design holds at the event; the objective is asked at an instant of its
+            # own, reached with each column's design value (as one solve reaches it)
+            moved = X.copy()
+            moved[at] = np.where(ok, root, guess)
+            out, reached, _, _ = self._motion().integrated(moved, np.full(n, group.instant))
+            ok &= reached
+        return out, ok
 
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
