@@ -611,6 +611,29 @@ def test_a_design_asked_at_an_objectives_own_instant_is_read_there_in_a_class_as
     assert [s.result("speed_mid").value for s in together] == pytest.approx([285.0, 292.5])
 
 
+HALF_DROP = """  - id: t_half_drop
+    prompt: The moment the speed has dropped by 5 %.
+    find: t
+    when: phi' = 0.95*w0
+    kind: scalar
+    unit: s
+"""
+
+
+def test_a_design_asked_when_is_solved_together_as_alone():
+    # each variant's R solved at the end of the stroke first, then its motion integrated to
+    # where the speed has dropped by 5 % (half the stroke: the drop is linear); without a
+    # punch (M = 0) no R makes the speed drop, refused as alone
+    text = (PROBLEMS / "flywheel_speed_drop.yaml").read_text()
+    problem = load_problem_text(text.replace("tags:", HALF_DROP + "tags:"), "flywheel.yaml")
+    variants = [{"M": 1400.0}, {"M": 1500.0, "T": 0.3}, {"M": 0.0}]
+    together, one = together_and_alone(problem, variants)
+    for a, b in zip(together, one):
+        assert_same(a, b, INTEGRATED, generated=False)
+    assert [s.result("t_half_drop").value for s in together[:2]] == pytest.approx([0.1, 0.15])
+    assert "design: no value of R" in str(together[2])
+
+
 def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():
     # down a 10 deg incline the wheel's centre stays below 0.2 g for every R: the design stage
     # over the class does not converge for that variant, whose objectives at the instant fail

@@ -253,7 +253,8 @@ class _Template:
         def own(k: int) -> list[dict]:  # each variant's givens of group k
             return [with_own(g, self.groups[k].overrides) for g in given]
 
-        phased = [k for k in asked if self._phased(self.groups[k])]
+        phased = [k for k in asked if self._phased(self.groups[k])
+                  and not self._designs(self.groups[k])]  # (designed first: _designed_when)
         found: dict[int, tuple | Reaches] = dict(zip(phased, self._reaches(
             [(self.groups[k], own(k)) for k in phased])))
         chosen = [k for k in asked if self._integrates(self.groups[k])]
@@ -396,6 +397,8 @@ class _Template:
         p = self.p
         unreached: dict[int, MechgradeError] = {}
         if self._phased(group):
+            if self._designs(group):
+                integrated = self._designed_when(group, maps)
             assert isinstance(integrated, Reaches)
             return self._in_phases(group, integrated, len(maps))
         if self._integrates(group):
@@ -456,10 +459,12 @@ class _Template:
         :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant); each group's part."""
         if not groups:
             return []
-        from .dynamics import IntegratedInstant, kinetics_plan
+        from .dynamics import DesignedInstant, IntegratedInstant, kinetics_plan
 
         problem = self.problem
-        reach = self._reach()  # the single solve's, kept by the template
+        single = self._reach()  # the single solve's, kept by the template
+        # (a designed motion's: the design value is among the givens here)
+        reach = single.inner if isinstance(single, DesignedInstant) else single
         assert isinstance(reach, IntegratedInstant)
         targets: list[Target] = []
         for group, maps in groups:
@@ -606,6 +611,28 @@ class _Template:
             out, reached, _, _ = self._motion().integrated(moved, np.full(n, group.instant))
             ok &= reached
         return out, ok
+
+    def _designed_when(self, group: _Group, maps: list[dict]) -> Reaches:
+        """Where each column of a group asked ``when`` on a designed motion reaches its
+        instant (:meth:`_reaches`), with its design value solved at the event first
+        (:meth:`_designed`), as one solve designs the motion, then reaches the instant. A
+        column whose design does not converge is in neither part of the result: answered
+        alone, where the bracketing search may find its root."""
+        assert self.design is not None
+        find = self.design.find
+        X, targets = self._placed(group, maps)
+        designed, ok = self._designed(group, X, targets,
+                                      lambda i: place_givens(self.kproblem, self.p, maps[i]),
+                                      False)
+        good = np.flatnonzero(ok)
+        if not len(good):
+            return Reaches((), {})
+        at = self.p.index.position(find)
+        (found,) = self._reaches([(group, [{**maps[i], find: (Name(find), float(designed[at, i]),
+                                                              None)} for i in good])])
+        return Reaches(tuple(replace(phase, columns=good[phase.columns])
+                             for phase in found.phases),
+                       {int(good[c]): error for c, error in found.errors.items()})
 
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
@@ -822,11 +849,9 @@ def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Temp
     # root, which must be one the scalar solver finds without care.
     integrated = isinstance(analysis, Integration) and problem.dynamics is not None \
         and problem.dynamics.design is None
-    if not integrated and (gripping(problem) or (any(o.when is not None
-                                                     for o in problem.objectives)
-                                                 and not isinstance(analysis, WorkEnergy))):
+    if not integrated and gripping(problem) is not None:
         # each variant solved alone (a motion designed goes on in another phase once a slip
-        # ends or where an objective asks it)
+        # ends: the design holds at an event reached through the phases)
         return None
     if integrated:
         # solved all the same, first: a symbolic answer, kept for the givens it depends on,
