@@ -128,6 +128,21 @@ def test_variants_solved_together_are_the_variants_solved_alone(name, keys):
         assert_same(together, one)
 
 
+def misread_alone(monkeypatch) -> list[dict]:
+    """The givens of each misread instant solved alone from now on (one solve's way)."""
+    from mechgrade.solve import mutants
+
+    again: list[dict] = []
+    real = mutants.solve_numeric_columns
+
+    def counted(problem, p, givens, only):
+        again.extend(givens)
+        return real(problem, p, givens, only)
+
+    monkeypatch.setattr(mutants, "solve_numeric_columns", counted)
+    return again
+
+
 @pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 1 s)
 def test_misread_givens_without_a_solution_name_no_mistake_together_as_alone():
     # w' read in m/s: 48 to 72 m/s, against an airspeed of 66.67 m/s. The misreadings
@@ -149,20 +164,11 @@ def test_misread_givens_that_break_the_positions_they_fix_are_refused_together_a
     # x, y and alpha fix the linkage, so an angle or length misread breaks its loop: one solve
     # refuses that instant (the givens conflict), and the class refuses it by the same rule
     # instead of solving it again alone
-    from mechgrade.solve import mutants
-
     problem = load_problem(PROBLEMS / "bowling_3_15_8_connected_blocks.yaml")
     variants = scaled(problem, ["y'"])
     one_by_one = alone(problem, variants)
     solve_variants(problem, scaled(problem, ["y'"], count=1))  # the class's template built
-    again = []
-    real = mutants.solve_numeric_columns
-
-    def counted(problem, p, givens, only):
-        again.extend(givens)
-        return real(problem, p, givens, only)
-
-    monkeypatch.setattr(mutants, "solve_numeric_columns", counted)
+    again = misread_alone(monkeypatch)
     together = solve_variants(problem, variants)
     assert again == []
     for a, one in zip(together, one_by_one):
@@ -175,7 +181,7 @@ def test_variants_asking_for_the_first_positive_root_are_solved_together_as_alon
     # which the reference's root (the landing, 2.04 s) does not continue to; y = -3 m has
     # one positive root and one negative. A misread given with no positive root (beta read
     # as radians, -0.57 rad) is refused together, as one solve refuses it
-    from mechgrade.solve import batch, mutants
+    from mechgrade.solve import batch
 
     problem = load_problem(ROOT / "tests" / "data" / "authoring_mistakes"
                            / "solve_t_first_positive.yaml")
@@ -188,14 +194,7 @@ def test_variants_asking_for_the_first_positive_root_are_solved_together_as_alon
 
     monkeypatch.setattr(batch, "answer_alone", spied)
     _solved_together(problem, [{"y": 1.0}])  # the class's template built
-    again: list[dict] = []  # the misread instants solved alone
-    real = mutants.solve_numeric_columns
-
-    def counted(problem, p, givens, only):
-        again.extend(givens)
-        return real(problem, p, givens, only)
-
-    monkeypatch.setattr(mutants, "solve_numeric_columns", counted)
+    again = misread_alone(monkeypatch)
     solved = _solved_together(problem, variants)
     assert [together for _, together in solved] == [True, True, True] and left == []
     assert again == []
