@@ -128,6 +128,21 @@ def test_variants_solved_together_are_the_variants_solved_alone(name, keys):
         assert_same(together, one)
 
 
+def misread_alone(monkeypatch) -> list[dict]:
+    """The givens of each misread instant solved alone from now on (one solve's way)."""
+    from mechgrade.solve import mutants
+
+    again: list[dict] = []
+    real = mutants.solve_numeric_columns
+
+    def counted(problem, p, givens, only):
+        again.extend(givens)
+        return real(problem, p, givens, only)
+
+    monkeypatch.setattr(mutants, "solve_numeric_columns", counted)
+    return again
+
+
 @pytest.mark.slow  # a slow end-to-end check (a cold derivation, over 1 s)
 def test_misread_givens_without_a_solution_name_no_mistake_together_as_alone():
     # w' read in m/s: 48 to 72 m/s, against an airspeed of 66.67 m/s. The misreadings
@@ -149,25 +164,44 @@ def test_misread_givens_that_break_the_positions_they_fix_are_refused_together_a
     # x, y and alpha fix the linkage, so an angle or length misread breaks its loop: one solve
     # refuses that instant (the givens conflict), and the class refuses it by the same rule
     # instead of solving it again alone
-    from mechgrade.solve import mutants
-
     problem = load_problem(PROBLEMS / "bowling_3_15_8_connected_blocks.yaml")
     variants = scaled(problem, ["y'"])
     one_by_one = alone(problem, variants)
     solve_variants(problem, scaled(problem, ["y'"], count=1))  # the class's template built
-    again = []
-    real = mutants.solve_numeric_columns
-
-    def counted(problem, p, givens, only):
-        again.extend(givens)
-        return real(problem, p, givens, only)
-
-    monkeypatch.setattr(mutants, "solve_numeric_columns", counted)
+    again = misread_alone(monkeypatch)
     together = solve_variants(problem, variants)
     assert again == []
     for a, one in zip(together, one_by_one):
         assert_same(a, one)
     assert any(m.code == "given_sign" for m in together[0].result("xdot").generated_mistakes)
+
+
+def test_variants_asking_for_the_first_positive_root_are_solved_together_as_alone(monkeypatch):
+    # y = 3 m is passed twice (up, then down): the first positive root is the earlier one,
+    # which the reference's root (the landing, 2.04 s) does not continue to; y = -3 m has
+    # one positive root and one negative. A misread given with no positive root (beta read
+    # as radians, -0.57 rad) is refused together, as one solve refuses it
+    from mechgrade.solve import batch
+
+    problem = load_problem(ROOT / "tests" / "data" / "authoring_mistakes"
+                           / "solve_t_first_positive.yaml")
+    variants = [{"y": 3.0}, {"y": -3.0}, {"v0": 25.0, "beta": np.radians(33.0)}]
+    left: list[int] = []  # the columns answered alone inside the class
+
+    def spied(problem, reach, maps, chosen, overrides, columns, which):
+        left.extend(which)
+        return answer_alone(problem, reach, maps, chosen, overrides, columns, which)
+
+    monkeypatch.setattr(batch, "answer_alone", spied)
+    _solved_together(problem, [{"y": 1.0}])  # the class's template built
+    again = misread_alone(monkeypatch)
+    solved = _solved_together(problem, variants)
+    assert [together for _, together in solved] == [True, True, True] and left == []
+    assert again == []
+    for (a, _), b in zip(solved, alone(problem, variants)):
+        assert_same(a, b)
+    t = next(s.si for s in solved[0][0].state if s.name == "t")
+    assert t == pytest.approx((20 * 0.5 - (20**2 * 0.25 - 2 * 9.81 * 3) ** 0.5) / 9.81)
 
 
 @pytest.mark.slow  # a slow end-to-end check (over 5 s)
@@ -553,6 +587,51 @@ def test_a_mistaken_constraint_is_solved_over_the_class_by_its_own_template(monk
         assert mine == [(m.code, pytest.approx(m.value, rel=1e-9)) for m in mistakes
                         if m.code == "strands_miscounted"]
         assert len(mine) == 1
+
+
+MID_STROKE = """  - id: speed_mid
+    prompt: The speed halfway through the stroke.
+    find: phi'
+    givens: {t: 0.1 s}
+    kind: scalar
+    unit: rpm
+"""
+
+
+def test_a_design_asked_at_an_objectives_own_instant_is_read_there_in_a_class_as_alone():
+    # the design (R) holds at the end of the stroke, t = T; speed_mid is asked at t = 0.1 s,
+    # where one solve reads it with the variant's R (the speed drops linearly: 285 rpm when
+    # T = 0.2 s); a class read it at the end of the stroke (270 rpm)
+    text = (PROBLEMS / "flywheel_speed_drop.yaml").read_text()
+    problem = load_problem_text(text.replace("tags:", MID_STROKE + "tags:"), "flywheel.yaml")
+    variants = [{"M": 1400.0}, {"M": 1600.0, "T": 0.4}]
+    together, one = together_and_alone(problem, variants)
+    for a, b in zip(together, one):
+        assert_same(a, b, INTEGRATED, generated=False)
+    assert [s.result("speed_mid").value for s in together] == pytest.approx([285.0, 292.5])
+
+
+HALF_DROP = """  - id: t_half_drop
+    prompt: The moment the speed has dropped by 5 %.
+    find: t
+    when: phi' = 0.95*w0
+    kind: scalar
+    unit: s
+"""
+
+
+def test_a_design_asked_when_is_solved_together_as_alone():
+    # each variant's R solved at the end of the stroke first, then its motion integrated to
+    # where the speed has dropped by 5 % (half the stroke: the drop is linear); without a
+    # punch (M = 0) no R makes the speed drop, refused as alone
+    text = (PROBLEMS / "flywheel_speed_drop.yaml").read_text()
+    problem = load_problem_text(text.replace("tags:", HALF_DROP + "tags:"), "flywheel.yaml")
+    variants = [{"M": 1400.0}, {"M": 1500.0, "T": 0.3}, {"M": 0.0}]
+    together, one = together_and_alone(problem, variants)
+    for a, b in zip(together, one):
+        assert_same(a, b, INTEGRATED, generated=False)
+    assert [s.result("t_half_drop").value for s in together[:2]] == pytest.approx([0.1, 0.15])
+    assert "design: no value of R" in str(together[2])
 
 
 def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():

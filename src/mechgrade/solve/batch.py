@@ -61,7 +61,7 @@ from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size
 from .columns import FirstErrors, call
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
-                     solve_linear_columns, typical_sizes)
+                     solve_linear_columns, solve_nonlinear_columns, typical_sizes)
 from .mutants import GeneratedColumns, generated_columns, plausible_slips, values_alone
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import ClassMistakes
@@ -279,7 +279,8 @@ class _Template:
             maps = [m if i in unreached else placed[i] for i, m in enumerate(maps)]
             never = np.zeros(n, dtype=bool)
             never[list(unreached)] = True
-            ok = fine | never
+            # (a kinematics instant not reached is no solution: answered alone, which raises)
+            ok = fine | never if self.kinetics is not None else fine
             reached = ok & ~never
             self._designed_given(X, reached, maps)
             if self.kinetics is None:
@@ -373,7 +374,9 @@ class _Template:
         :class:`~.phases.Reaches`, :meth:`_integrated`)."""
         p = self.p
         unreached: dict[int, MechgradeError] = {}
-        if self._integrates(group):
+        if self._designs(group) and self._reached_after_design(group):
+            integrated = self._designed_when(group, maps)
+        if integrated is not None:
             assert isinstance(integrated, Reaches)
             return self._in_phases(group, integrated, len(maps))
         X, targets = self._placed(group, maps)
@@ -484,7 +487,9 @@ class _Template:
         screens. Into ``raised``: the
         columns that passed every screen of the configuration but whose energy balance or
         momentum balances fail, with the error :func:`~.dynamics.solve_dynamics` raises for
-        them (it would reach the instant the same way and stop there)."""
+        them (it would reach the instant the same way and stop there); in kinematics, those
+        whose first positive root is not found (:meth:`_first_positive`), with the error
+        :func:`~.entry.solve` raises at that level."""
         if isinstance(self.analysis, Integration):
             from .dynamics import kinetics_plan
 
@@ -494,13 +499,16 @@ class _Template:
         n = X.shape[1]
         ok = np.all(np.isfinite(X[group.known]), axis=0) if group.known.any() else \
             np.ones(n, dtype=bool)
-        nulls = self._levels(group, X, targets, placed, 0, ok)
+        searched: dict[int, MechgradeError] = {}
+        nulls = self._levels(group, X, targets, placed, 0, ok, searched)
         if self.kinetics is None and (group.free or any(k for k in group.nullity)):
             ok &= self._determined(group, X, targets, placed, nulls, ok)
         ok &= self._on_branch(group, X)
         if degenerate:
             ok &= ~self._degenerate(group, X)
         if self.kinetics is None:
+            if raised is not None:
+                raised.update(searched)
             return X, ok
         first = FirstErrors(X.shape[1])
         if isinstance(self.analysis, WorkEnergy):
@@ -558,6 +566,35 @@ class _Template:
             ok[again] &= ~self._degenerate(group, out[:, again])  # of the configuration only
         return out, ok & converged
 
+    def _reached_after_design(self, group: _Group) -> bool:
+        """Whether ``group`` on a designed motion is asked at an instant other than the event
+        the design holds at: an objective's own instant, or ``when:``."""
+        return instant_of_objective(self.problem, group.overrides) is not None or \
+            asked_when(self.problem, group.numeric) is not None
+
+    def _designed_when(self, group: _Group, maps: list[dict]) -> Reaches:
+        """Where each column of a group asked at its own instant or ``when`` on a designed
+        motion (:meth:`_reached_after_design`) reaches it (:meth:`_reaches`), with its design
+        value solved at the event first (:meth:`_designed`), as one solve designs the motion,
+        then reaches the instant. A
+        column whose design does not converge is in neither part of the result: answered
+        alone, where the bracketing search may find its root."""
+        assert self.design is not None
+        find = self.design.find
+        X, targets = self._placed(group, maps)
+        designed, ok = self._designed(group, X, targets,
+                                      lambda i: place_givens(self.kproblem, self.p, maps[i]),
+                                      False)
+        good = np.flatnonzero(ok)
+        if not len(good):
+            return Reaches((), {})
+        at = self.p.index.position(find)
+        (found,) = self._reaches([(group, [{**maps[i], find: (Name(find), float(designed[at, i]),
+                                                              None)} for i in good])])
+        return Reaches(tuple(replace(phase, columns=good[phase.columns])
+                             for phase in found.phases),
+                       {int(good[c]): error for c, error in found.errors.items()})
+
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are
         read from, and for an integration the states just before the event stacked under
@@ -568,12 +605,17 @@ class _Template:
         return X[:half], X[half:]
 
     def _levels(self, group: _Group, X: np.ndarray, targets, placed: Callable[[int], Givens],
-                first: int, ok: np.ndarray) -> dict[int, np.ndarray | None]:
+                first: int, ok: np.ndarray,
+                searched: dict[int, MechgradeError] | None = None
+                ) -> dict[int, np.ndarray | None]:
         """Solve the levels from ``first`` on at every column of ``X`` (in place), clearing
         ``ok`` where a level is not solved as the reference's was; the nullspace bases of the
         linear rate levels (N x unknowns x nullity). Every level is solved as the single
         solve solves it (:func:`~.levels.solve_linear_columns`,
-        :func:`~.levels.solve_level_columns` from the reference's root)."""
+        :func:`~.levels.solve_level_columns` from the reference's root); with ``searched``
+        (the instant itself, not a probe of its freedoms near it), a level whose branch asks
+        for the first positive root is searched at every column (:meth:`_first_positive`),
+        the position level's error at each column without one put in ``searched``."""
         p = self.p
         nulls: dict[int, np.ndarray | None] = {}
         for level in p.levels[first:]:
@@ -593,14 +635,47 @@ class _Template:
             solve_for = [i for i in unknown if i not in group.free]
             if solve_for:
                 columns = list(p.index.unknowns(order))
-                fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
-                                           columns, active, target[active], NEAR_DAMPING)
-                X[:] = fits.X
-                ok &= fits.started & fits.held & (
-                    level_rank(level, X, solve_for, columns, active) == len(solve_for))
+                if searched is not None and any(self.branches.get(i) is Root.FIRST_POSITIVE
+                                                for i in solve_for):
+                    ok &= self._first_positive(group, order, X, placed, ok,
+                                               searched if order == 0 else {})
+                else:
+                    fits = solve_level_columns(self.problem.consistency, level, X, solve_for,
+                                               columns, active, target[active], NEAR_DAMPING)
+                    X[:] = fits.X
+                    ok &= fits.started & fits.held
+                ok &= level_rank(level, X, solve_for, columns, active) == len(solve_for)
             elif active.any():
                 ok &= holds(self.problem.consistency, level, X, active, target[active])
         return nulls
+
+    def _first_positive(self, group: _Group, order: int, X: np.ndarray,
+                        placed: Callable[[int], Givens], ok: np.ndarray,
+                        errors: dict[int, MechgradeError]) -> np.ndarray:
+        """Level ``order`` at the columns ``ok`` of ``X`` (in place) as the single solve
+        solves it (:func:`~.levels.solve_nonlinear_columns`: the same starts, every column's
+        at once, and the first positive root chosen by the same rule), not continued from the
+        reference's root: another variant's first positive root may be another root. Which
+        columns have one root there, leaving free what the reference's leaves free (another
+        is answered alone, where that solve follows each root); into ``errors``, each column
+        without a root with the error that solve meets there."""
+        columns = list(self.p.index.unknowns(order))
+        free = group.free & set(columns)
+        found = np.zeros(X.shape[1], dtype=bool)
+        chosen = np.flatnonzero(ok).tolist()
+        gs = [placed(i) for i in chosen]
+        size = self.p.index.size
+        for i, roots in zip(chosen, solve_nonlinear_columns(
+                self.kproblem, self.p, order, [State(X[:size, i].copy(), g.known) for i, g in zip(chosen, gs)],
+                gs)):
+            if isinstance(roots, MechgradeError):
+                errors[i] = roots
+                continue
+            if len(roots.states) != 1 or set(roots.free) != free:
+                continue
+            X[columns, i] = roots.states[0].values[columns]
+            found[i] = True
+        return found
 
     def _determined(self, group: _Group, X: np.ndarray, targets,
                     placed: Callable[[int], Givens], nulls, ok: np.ndarray) -> np.ndarray:
@@ -647,10 +722,13 @@ class _Template:
     def _misread(self, group: _Group, maps: list[dict]) -> tuple[np.ndarray, dict, np.ndarray]:
         """The :data:`~.mutants.Misreadings` of ``group``: the instants of misread givens
         reached together, as the variants' (a degenerate configuration no reason to drop a
-        mistake), and those whose givens break the positions (:meth:`_conflicting`)."""
-        _, ok, values, _, _, _ = self._instant(group, maps, False)
+        mistake), and those one solve refuses: their position level without the root asked
+        for (:meth:`_first_positive`), or their givens breaking the positions
+        (:meth:`_conflicting`)."""
+        _, ok, values, _, unreached, _ = self._instant(group, maps, False)
         refused = np.zeros(len(maps), dtype=bool)
-        failed = np.flatnonzero(~ok)
+        refused[list(unreached)] = True  # one solve stops there, with the same error
+        failed = np.flatnonzero(~ok & ~refused)
         if len(failed):  # (most classes vouch for every one)
             refused[failed] = self._conflicting(group, [maps[i] for i in failed])
         return ok, values, refused
@@ -732,11 +810,9 @@ def _template_cached(problem: Problem, _locations: tuple, warned: bool) -> _Temp
     # root, which must be one the scalar solver finds without care.
     integrated = isinstance(analysis, Integration) and problem.dynamics is not None \
         and problem.dynamics.design is None
-    if any(b.root is Root.FIRST_POSITIVE for b in problem.branches) or (not integrated and (
-            gripping(problem) or (any(o.when is not None for o in problem.objectives)
-                                  and not isinstance(analysis, WorkEnergy)))):
-        # each variant solved alone (a root searched for, or a motion designed goes on in
-        # another phase once a slip ends or where an objective asks it)
+    if not integrated and gripping(problem) is not None:
+        # each variant solved alone (a motion designed goes on in another phase once a slip
+        # ends: the design holds at an event reached through the phases)
         return None
     if integrated:
         # solved all the same, first: a symbolic answer, kept for the givens it depends on,

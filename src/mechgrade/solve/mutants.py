@@ -455,9 +455,9 @@ def _misread_instants(problem: Problem, p: KinematicsPlan, changed: list[tuple[d
     if together is not None:
         moved = []
         for givens, changes in changed:
-            values = dict(givens)  # only the values are read by the stacked solve
+            values = dict(givens)  # the stacked solve reads the keys and values only
             for key, mistaken_si in changes:
-                values[key] = (None, mistaken_si, None)
+                values[key] = (givens[key][0], mistaken_si, None)
             moved.append(values)
         solved, found, refused = together(moved)
         solved, found = solved.copy(), dict(found)
