@@ -20,8 +20,7 @@ from ..spec.model import Problem
 from . import rules
 from .analysis import analysis_plan
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
-from .columns import (FirstErrors, call, determinants, least_squares_solution, loud_call,
-                      quiet)
+from .columns import Cramer, FirstErrors, call, least_squares_solution, loud_call, quiet
 from .events import ATOL, MAX_CALLS, RTOL, event_never_happens, leaving
 from .junctions import settle_junctions
 from .plan import KinematicsPlan
@@ -327,7 +326,7 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
     if constant is not None:
         A = constant.A
         if constant.everywhere and np.isfinite(b.sum()):
-            x[cols] = least_squares_solution(A, -b, constant.det)
+            x[cols] = constant.solver.solve(-b)
             return x
     elif np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
         x[cols] = least_squares_solution(A, -b)
@@ -342,9 +341,9 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
 class ConstantMatrix:
     """The balances' matrix ``A`` (rows x unknowns x columns) of a motion where it reads
     parameters only (a mass matrix: :attr:`~.dynamics.KineticsPlan.constant_jacobian`),
-    evaluated once for every right-hand side of its integration, and what solves with it once
-    (``det``: :func:`~.columns.determinants`); ``everywhere``: ``A`` is finite at every
-    column.
+    evaluated once for every right-hand side of its integration, and what solves with it
+    (:class:`~.columns.Cramer`, its products of ``A`` alone made once); ``everywhere``: ``A``
+    is finite at every column.
 
     >>> m = ConstantMatrix.of_matrix(np.array([[[2.0, 4.0]]]))
     >>> m.everywhere, m.of(np.array([1])).A.tolist()
@@ -352,19 +351,19 @@ class ConstantMatrix:
     """
 
     A: np.ndarray
-    det: np.ndarray | None
+    solver: Cramer
     everywhere: bool
 
     @classmethod
     def of_matrix(cls, A: np.ndarray) -> ConstantMatrix:
-        return cls(A, determinants(A), bool(np.isfinite(A).all()))
+        return cls(A, Cramer(A), bool(np.isfinite(A).all()))
 
     def of(self, cols: np.ndarray) -> ConstantMatrix:
         """The columns ``cols`` (sorted) only."""
         if len(cols) == self.A.shape[2]:
             return self
         A = self.A[:, :, cols]
-        return ConstantMatrix(A, None if self.det is None else self.det[cols],
+        return ConstantMatrix(A, self.solver.of(cols),
                               self.everywhere or bool(np.isfinite(A).all()))
 
 
