@@ -195,6 +195,8 @@ def _replaced(M: list, j: int, v: list) -> list:
 def _where_singular(A: np.ndarray, b: np.ndarray, solved: np.ndarray) -> np.ndarray:
     """``solved`` with each column Cramer's rule left undefined (a singular ``A``) solved by
     LAPACK: its solution, else its minimum-norm least-squares one."""
+    if np.isfinite(solved.sum()):  # (the common case, checked at the cost of one sum)
+        return solved
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
         rows_, k = A.shape[:2]

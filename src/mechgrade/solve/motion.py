@@ -313,7 +313,10 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
     equations are undefined. ``constant``: the balances' matrix of these columns, where it
     reads parameters only (:func:`constant_matrix`). Called with numpy's warnings silenced."""
     count = x.shape[1]
-    cols = list(kp.columns)
+    unknowns, k = kp.columns, len(kp.columns)
+    # (a slice where they are side by side, as they are laid out: no index array made)
+    cols = slice(unknowns[0], unknowns[0] + k) if k and unknowns[-1] - unknowns[0] == k - 1 \
+        else list(unknowns)
     rows_ = len(kp.labels)
     if switches is not None:
         jacobian, residual, args = switches.jacobian, switches.residual, x
@@ -321,7 +324,7 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
         jacobian, residual = kp.jacobian, kp.residual
         args = x[:len(kp.symbols)]
     if constant is None:
-        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+        A = loud_call(jacobian, args, rows_ * k).reshape(rows_, k, count)
     b = loud_call(residual, args, rows_)
     if constant is not None:
         A = constant.A
