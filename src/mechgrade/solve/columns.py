@@ -195,7 +195,7 @@ def _replaced(M: list, j: int, v: list) -> list:
 def _where_singular(A: np.ndarray, b: np.ndarray, solved: np.ndarray) -> np.ndarray:
     """``solved`` with each column Cramer's rule left undefined (a singular ``A``) solved by
     LAPACK: its solution, else its minimum-norm least-squares one."""
-    if np.isfinite(solved.sum()):  # (the common case, checked at the cost of one sum)
+    if np.isfinite(solved).all():  # (the common case, checked in two operations)
         return solved
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
@@ -278,6 +278,8 @@ class _Graph:
     entries; each made once (keyed by its operation and operands)."""
 
     def __init__(self) -> None:
+        # (keyed by the operands' ids: each lives here, or among the entries and rows of
+        # the determinants being built, until the graph is compiled; no id is reused)
         self.made: dict[tuple, _Term] = {}
 
     def constant(self, value: np.ndarray) -> _Term:
@@ -288,7 +290,7 @@ class _Graph:
         if key not in self.made:
             if left.value is not None and (right is None or right.value is not None):
                 value = f(left.value) if right is None else f(left.value, right.value)
-                self.made[key] = _Term(self, value=value, of=(left, right))
+                self.made[key] = _Term(self, value=value)
             else:
                 self.made[key] = _Term(self, step=(f, left, right))
         return self.made[key]
@@ -328,10 +330,8 @@ class _Term:
     subtracted as :func:`determinant` does it, a term with a zero is left out."""
 
     def __init__(self, graph: _Graph, *, row: int | None = None,
-                 value: np.ndarray | None = None, step: tuple | None = None,
-                 of: tuple | None = None) -> None:
+                 value: np.ndarray | None = None, step: tuple | None = None) -> None:
         self.graph, self.row, self.value, self.step = graph, row, value, step
-        self.of = of  # (the operands a constant was made of, kept: its key's ids stay theirs)
         self.zero = value is not None and not value.any()
 
     def __mul__(self, other: _Term) -> _Term:
