@@ -237,7 +237,7 @@ def _switches(rhs, mode, history: "_History", arrival: Arrival, switch, flips, c
         return arrival
     last = (history.pushed[w] - 1) % history.size
     dense, t_old, t_new = history.dense(rhs, w, last, c)
-    kept = history.modes[last, :, w].T
+    kept = history.modes[w, last].T
     j = switch[w]
 
     def sign(i, t, y):
@@ -263,7 +263,7 @@ def _arrivals(rhs, events: list, mode, history: "_History", status, ends, hit, l
     those that switch at the event (an event that ends a slip ends its mode too): that
     mode's ``switch`` and ``flips`` (its signs at the step's ends) are set here, ``modes``
     those at the step's end."""
-    m, count = history.y_old.shape[1:]
+    count, _, m = history.y_old.shape
     t_event = np.full(count, np.nan)
     y_event = np.full((m, count), np.nan)
     before = np.full((m, count), np.nan)
@@ -272,7 +272,7 @@ def _arrivals(rhs, events: list, mode, history: "_History", status, ends, hit, l
         return Arrival(status, t_event, y_event, before)
     last = (history.pushed[e] - 1) % history.size
     dense, t_old, t_new = history.dense(rhs, e, last, c)
-    kept = history.modes[last, :, e].T
+    kept = history.modes[e, last].T
     times = np.full((len(hit), len(e)), np.nan)
     found = np.ones(len(e), dtype=bool)
     for j in range(len(hit)):
@@ -324,22 +324,24 @@ class _History:
         # steps shorten a great deal before it (a singularity passed)
         self.size = L = size
         self.start = start  # each column's
-        self.modes = np.empty((L, modes, count))
+        # a column's steps side by side (column, step, ...): a step pushed or read is one
+        # block of memory per column
+        self.modes = np.empty((count, L, modes))
         self.t_old = np.full((L, count), np.nan)
         self.t_new = np.full((L, count), np.nan)
-        self.y_old = np.empty((L, m, count))  # read only where a step was pushed
-        self.y_new = np.empty((L, m, count))
-        self.K = np.empty((L, stages, m, count))
+        self.y_old = np.empty((count, L, m))  # read only where a step was pushed
+        self.y_new = np.empty((count, L, m))
+        self.K = np.empty((count, L, stages, m))
         self.pushed = np.zeros(count, dtype=int)
 
     def push(self, cols, t_old, t_new, y_old, y_new, K, modes) -> None:
         slot = self.pushed[cols] % self.size
-        self.modes[slot, :, cols] = modes.T
+        self.modes[cols, slot] = modes.T
         self.t_old[slot, cols] = t_old
         self.t_new[slot, cols] = t_new
-        self.y_old[slot, :, cols] = y_old.T
-        self.y_new[slot, :, cols] = y_new.T
-        self.K[slot, :, :, cols] = K.transpose(2, 0, 1)
+        self.y_old[cols, slot] = y_old.T
+        self.y_new[cols, slot] = y_new.T
+        self.K[cols, slot] = K.transpose(2, 0, 1)
         self.pushed[cols] += 1
 
     def holding(self, cols, t) -> tuple[np.ndarray, np.ndarray]:
@@ -352,12 +354,12 @@ class _History:
 
     def dense(self, rhs, cols, slots, c):
         """The dense output of each column's step in ``slots``, and the steps' ends."""
-        stages = self.K.shape[1]
-        K = np.empty((c.N_STAGES_EXTENDED,) + self.y_old.shape[1:2] + (len(cols),))
-        K[:stages] = self.K[slots, :, :, cols].transpose(1, 2, 0)
+        stages = self.K.shape[2]
+        K = np.empty((c.N_STAGES_EXTENDED,) + self.y_old.shape[2:] + (len(cols),))
+        K[:stages] = self.K[cols, slots].transpose(1, 2, 0)
         t_old, t_new = self.t_old[slots, cols], self.t_new[slots, cols]
-        return (_dense(rhs, cols, t_old, t_new - t_old, self.y_old[slots, :, cols].T,
-                       self.y_new[slots, :, cols].T, K, self.modes[slots, :, cols].T, c),
+        return (_dense(rhs, cols, t_old, t_new - t_old, self.y_old[cols, slots].T,
+                       self.y_new[cols, slots].T, K, self.modes[cols, slots].T, c),
                 t_old, t_new)
 
 

@@ -153,13 +153,12 @@ def loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
 
 
-def least_squares_solution(A: np.ndarray, b: np.ndarray, det: np.ndarray | None = None
-                           ) -> np.ndarray:
+def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     """The least-squares solution of ``A x = b`` at every column (``A``: rows x unknowns x N,
     ``b``: rows x N), the minimum-norm one where ``A`` is singular, as ``scipy.linalg.lstsq``
     gives it; a square system of up to three unknowns by Cramer's rule (LAPACK's per-matrix
-    cost is most of the time of so small a solve), ``det``: its determinants where known
-    (:func:`determinants`)."""
+    cost is most of the time of so small a solve; :class:`Cramer` for a matrix that many
+    right-hand sides share)."""
     rows_, k, count = A.shape
     if rows_ == k == 1:
         with np.errstate(all="ignore"):
@@ -168,26 +167,39 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray, det: np.ndarray | None 
             return solved
     else:
         solved = np.full((k, count), np.nan)
-    if rows_ == k and 1 < k <= 3 and count == 1:
+    if by_cramer(rows_, k) and count == 1:
         # one column (a single solve's integration): the same products on Python floats,
         # bit for bit, without numpy's cost per operation on one-element arrays
         M, v = A[:, :, 0].tolist(), b[:, 0].tolist()
         det_ = determinant(M)
         if det_ != 0:
             for j in range(k):
-                solved[j, 0] = determinant([[v[i] if c == j else x for c, x in enumerate(row)]
-                                             for i, row in enumerate(M)]) / det_
-    elif rows_ == k and 1 < k <= 3:
+                solved[j, 0] = determinant(_replaced(M, j, v)) / det_
+    elif by_cramer(rows_, k):
         with np.errstate(all="ignore"):
-            det = determinant(A) if det is None else det
+            det = determinant(A)
             # A with its column j replaced by b, for every j at once (rows x unknowns x j x
             # N): one determinant of arrays k times as long, each entry the same products
             replaced = np.repeat(A[:, :, None], k, axis=2)
             every = np.arange(k)
             replaced[:, every, every] = b[:, None]
             solved = determinant(replaced) / det
+    return _where_singular(A, b, solved)
+
+
+def _replaced(M: list, j: int, v: list) -> list:
+    """The square matrix ``M`` (nested lists) with its column ``j`` replaced by ``v``."""
+    return [[v[i] if c == j else x for c, x in enumerate(row)] for i, row in enumerate(M)]
+
+
+def _where_singular(A: np.ndarray, b: np.ndarray, solved: np.ndarray) -> np.ndarray:
+    """``solved`` with each column Cramer's rule left undefined (a singular ``A``) solved by
+    LAPACK: its solution, else its minimum-norm least-squares one."""
+    if np.isfinite(solved).all():  # (the common case, checked in two operations)
+        return solved
     left = ~np.isfinite(solved).all(axis=0)
     if left.any():
+        rows_, k = A.shape[:2]
         Ab = A[:, :, left].transpose(2, 0, 1)
         bb = b[:, left].T[:, :, None]
         try:
@@ -200,18 +212,144 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray, det: np.ndarray | None 
     return solved
 
 
-def determinants(A: np.ndarray) -> np.ndarray | None:
-    """The determinants :func:`least_squares_solution` solves ``A`` with (``None`` where it
-    solves without), for a matrix that several right-hand sides share.
+class Cramer:
+    """:func:`least_squares_solution` of a matrix ``A`` (rows x unknowns x N) that many
+    right-hand sides share (a mass matrix along an integration). Where Cramer's rule solves
+    it (square, up to three unknowns: :func:`by_cramer`) its products are worked out once:
+    those of ``A``'s entries alone are evaluated here, those by an entry 0 at every column
+    left out (with ``A`` and ``b`` finite they add a zero, or make one: no digit of the
+    solution), and a product two determinants share is made once. A solve then makes the
+    products that read ``b``, each as Cramer's rule makes it: the same bits.
 
-    >>> determinants(np.array([[[2.0], [1.0]], [[1.0], [3.0]]])).tolist()
-    [5.0]
+    >>> A = np.array([[[2.0, 4.0], [0.0, 0.0]], [[0.0, 0.0], [5.0, 8.0]]])
+    >>> b = np.array([[1.0, 2.0], [3.0, 4.0]])
+    >>> solver = Cramer(A)
+    >>> len(solver.steps), solver.solve(b).tolist() == least_squares_solution(A, b).tolist()
+    (2, True)
     """
-    rows_, k = A.shape[:2]
-    if not (rows_ == k and 1 < k <= 3):
-        return None
-    with np.errstate(all="ignore"):
-        return determinant(A)
+
+    def __init__(self, A: np.ndarray, *, _from: tuple | None = None) -> None:
+        self.A = A
+        self.steps: tuple = ()
+        self.numerators: tuple | None = None
+        if _from is not None:  # (a subset of another's columns: see of)
+            self.det, self.constants, self.steps, self.numerators = _from
+            return
+        rows_, k = A.shape[:2]
+        if not by_cramer(rows_, k):
+            return
+        graph = _Graph()
+        entries = [[graph.constant(A[r, c]) for c in range(k)] for r in range(k)]
+        b = [_Term(graph, row=i) for i in range(k)]
+        with np.errstate(all="ignore"):
+            self.det = determinant(A)
+            numerators = [determinant(_replaced(entries, j, b)) for j in range(k)]
+        self.constants, self.steps, self.numerators = graph.compiled(numerators, k)
+
+    def of(self, cols: np.ndarray) -> Cramer:
+        """The columns ``cols`` only."""
+        if self.numerators is None:
+            return Cramer(self.A[:, :, cols])
+        return Cramer(self.A[:, :, cols], _from=(
+            self.det[cols], [c[cols] for c in self.constants], self.steps, self.numerators))
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """The solution at every column of ``b`` (rows x N, finite, as ``A``), numpy's
+        warnings silenced by the caller (:func:`quiet`)."""
+        if self.numerators is None:
+            return least_squares_solution(self.A, b)
+        values = [*b, *self.constants]
+        for f, i, j in self.steps:
+            values.append(f(values[i]) if j < 0 else f(values[i], values[j]))
+        solved = np.empty(b.shape)
+        for row, n in zip(solved, self.numerators):
+            np.divide(values[n], self.det, out=row)
+        return _where_singular(self.A, b, solved)
+
+
+def by_cramer(rows_: int, k: int) -> bool:
+    """Whether :func:`least_squares_solution` solves a system of ``rows_`` equations in
+    ``k`` unknowns by Cramer's rule (square, two or three unknowns)."""
+    return rows_ == k and 1 < k <= 3
+
+
+class _Graph:
+    """The products :class:`Cramer` makes, built by :func:`determinant` on :class:`_Term`
+    entries; each made once (keyed by its operation and operands)."""
+
+    def __init__(self) -> None:
+        # (keyed by the operands' ids: each lives here, or among the entries and rows of
+        # the determinants being built, until the graph is compiled; no id is reused)
+        self.made: dict[tuple, _Term] = {}
+
+    def constant(self, value: np.ndarray) -> _Term:
+        return _Term(self, value=value)
+
+    def made_of(self, f, left: _Term, right: _Term | None = None) -> _Term:
+        key = (f, id(left), id(right))
+        if key not in self.made:
+            if left.value is not None and (right is None or right.value is not None):
+                value = f(left.value) if right is None else f(left.value, right.value)
+                self.made[key] = _Term(self, value=value)
+            else:
+                self.made[key] = _Term(self, step=(f, left, right))
+        return self.made[key]
+
+    def compiled(self, results: list[_Term], rows: int) -> tuple[list, tuple, tuple]:
+        """The constants, steps and result slots a solve evaluates: slot ``i < rows`` is
+        ``b``'s row ``i``, then the constants, then each step's value, in order."""
+        order: list[_Term] = []
+        seen: set[int] = set()
+
+        def visit(term: _Term) -> None:
+            if id(term) in seen:
+                return
+            seen.add(id(term))
+            for operand in term.step[1:] if term.step else ():
+                if operand is not None:
+                    visit(operand)
+            order.append(term)
+
+        for term in results:
+            visit(term)
+        constants = [t for t in order if t.value is not None]
+        steps = [(t, t.step) for t in order if t.step is not None]
+        slot = {id(t): t.row for t in order if t.row is not None}
+        slot.update({id(t): rows + i for i, t in enumerate(constants)})
+        slot.update({id(t): rows + len(constants) + i for i, (t, _) in enumerate(steps)})
+        return ([t.value for t in constants],
+                tuple((f, slot[id(x)], -1 if y is None else slot[id(y)])
+                      for _, (f, x, y) in steps),
+                tuple(slot[id(t)] for t in results))
+
+
+class _Term:
+    """An entry of a determinant :class:`Cramer` works out: a row of ``b`` (``row``), an
+    array of ``A``'s entries alone (``value``; ``zero``: 0 at every column) or a product
+    that reads ``b`` (``step``: its operation and operands). Multiplied, added or
+    subtracted as :func:`determinant` does it, a term with a zero is left out."""
+
+    def __init__(self, graph: _Graph, *, row: int | None = None,
+                 value: np.ndarray | None = None, step: tuple | None = None) -> None:
+        self.graph, self.row, self.value, self.step = graph, row, value, step
+        self.zero = value is not None and not value.any()
+
+    def __mul__(self, other: _Term) -> _Term:
+        if self.zero or other.zero:
+            return self if self.zero else other
+        return self.graph.made_of(np.multiply, self, other)
+
+    def __add__(self, other: _Term) -> _Term:
+        if self.zero or other.zero:
+            return other if self.zero else self
+        return self.graph.made_of(np.add, self, other)
+
+    def __sub__(self, other: _Term) -> _Term:
+        if other.zero:
+            return self
+        if self.zero:
+            return self.graph.made_of(np.negative, other)
+        return self.graph.made_of(np.subtract, self, other)
 
 
 def determinant(A):

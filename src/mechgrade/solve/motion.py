@@ -19,7 +19,7 @@ from ..errors import (InconsistentError, Location, MechgradeError, SolveError,
 from ..spec.dynamics import dynamics_of
 from ..spec.model import Problem
 from . import rules
-from .columns import (FirstErrors, call, determinants, least_squares_solution, loud_call)
+from .columns import Cramer, FirstErrors, call, least_squares_solution, loud_call
 from .plan import KinematicsPlan
 from .rules import satisfied
 
@@ -61,7 +61,10 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
     equations are undefined. ``constant``: the balances' matrix of these columns, where it
     reads parameters only (:func:`constant_matrix`). Called with numpy's warnings silenced."""
     count = x.shape[1]
-    cols = list(kp.columns)
+    unknowns, k = kp.columns, len(kp.columns)
+    # (a slice where they are side by side, as they are laid out: no index array made)
+    cols = slice(unknowns[0], unknowns[0] + k) if k and unknowns[-1] - unknowns[0] == k - 1 \
+        else list(unknowns)
     rows_ = len(kp.labels)
     if switches is not None:
         jacobian, residual, args = switches.jacobian, switches.residual, x
@@ -69,12 +72,12 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
         jacobian, residual = kp.jacobian, kp.residual
         args = x[:len(kp.symbols)]
     if constant is None:
-        A = loud_call(jacobian, args, rows_ * len(cols)).reshape(rows_, len(cols), count)
+        A = loud_call(jacobian, args, rows_ * k).reshape(rows_, k, count)
     b = loud_call(residual, args, rows_)
     if constant is not None:
         A = constant.A
         if constant.everywhere and np.isfinite(b.sum()):
-            x[cols] = least_squares_solution(A, -b, constant.det)
+            x[cols] = constant.solver.solve(-b)
             return x
     elif np.isfinite(A.sum() + b.sum()):  # (an overflow takes the careful way below)
         x[cols] = least_squares_solution(A, -b)
@@ -89,9 +92,9 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
 class ConstantMatrix:
     """The balances' matrix ``A`` (rows x unknowns x columns) of a motion where it reads
     parameters only (a mass matrix: :attr:`~.dynamics.KineticsPlan.constant_jacobian`),
-    evaluated once for every right-hand side of its integration, and what solves with it once
-    (``det``: :func:`~.columns.determinants`); ``everywhere``: ``A`` is finite at every
-    column.
+    evaluated once for every right-hand side of its integration, and what solves with it
+    (:class:`~.columns.Cramer`, its products of ``A`` alone made once); ``everywhere``: ``A``
+    is finite at every column.
 
     >>> m = ConstantMatrix.of_matrix(np.array([[[2.0, 4.0]]]))
     >>> m.everywhere, m.of(np.array([1])).A.tolist()
@@ -99,19 +102,19 @@ class ConstantMatrix:
     """
 
     A: np.ndarray
-    det: np.ndarray | None
+    solver: Cramer
     everywhere: bool
 
     @classmethod
     def of_matrix(cls, A: np.ndarray) -> ConstantMatrix:
-        return cls(A, determinants(A), bool(np.isfinite(A).all()))
+        return cls(A, Cramer(A), bool(np.isfinite(A).all()))
 
     def of(self, cols: np.ndarray) -> ConstantMatrix:
         """The columns ``cols`` (sorted) only."""
         if len(cols) == self.A.shape[2]:
             return self
         A = self.A[:, :, cols]
-        return ConstantMatrix(A, None if self.det is None else self.det[cols],
+        return ConstantMatrix(A, self.solver.of(cols),
                               self.everywhere or bool(np.isfinite(A).all()))
 
 
