@@ -165,6 +165,23 @@ def test_a_start_stopped_by_the_step_cap_is_no_root_though_its_residual_is_small
     assert fits.started.tolist() == [True] and fits.held.tolist() == [False]
 
 
+def test_one_solve_takes_no_start_the_step_cap_stopped_as_a_second_solution():
+    """The wind misread 0.75 % above the airspeed: no root; the starts that settle end where
+    the residual is least (b' = 0, within the default consistency), and one start still
+    zigzagging at the cap is no second solution (main: 'the velocity equations have 2
+    solutions that give different answers')."""
+    import numpy as np
+
+    from mechgrade.resources import shipped_dir
+    from mechgrade.spec import load_problem
+
+    problem = load_problem(shipped_dir("problems") / "airplane_crosswind_heading.yaml")
+    p = kinematics_plan(problem)
+    instant = solve_numeric(problem, p, instant_givens(problem, {"w'": 67.16769383594512}, {}),
+                            {"heading"})
+    assert float(np.degrees(instant.values["heading"][0])) == pytest.approx(90.0, abs=1e-5)
+
+
 def test_a_root_whose_jacobian_loses_rank_has_the_rank_it_keeps():
     import numpy as np
 
