@@ -414,13 +414,17 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
                 (i, k) for k in range(len(s.starts)))
     for pairs in groups.values():
         first = setups[pairs[0][0]]
-        X = np.stack([setups[i].x for i, _ in pairs], axis=1)
-        X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
-        T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
+        # each setup's state, targets and sizes stacked once, then repeated for its starts
+        members = {i: j for j, i in enumerate(dict.fromkeys(i for i, _ in pairs))}
+        owner = np.array([members[i] for i, _ in pairs])
+        X = np.stack([setups[i].x for i in members], axis=1)[:, owner]
+        X[first.determined] = np.array([setups[i].starts[k] for i, k in pairs]).T
+        T = np.stack([setups[i].target for i in members], axis=1)[first.active][:, owner]
         # the first start (the guess) by Gauss-Newton's steps, as a trust region takes them
         # inside it; the others spread around it kept to their basins by short steps first
         first_damping = np.array([NEAR_DAMPING if k == 0 else DAMPING for _, k in pairs])
-        sizes = np.stack([setups[i].g.scales[first.determined] for i, _ in pairs], axis=1)
+        sizes = np.stack([setups[i].g.scales for i in members], axis=1)[first.determined][
+            :, owner]
         fits = solve_level_columns(consistency, level, X, first.determined,
                                    list(first.columns), first.active, T, first_damping, sizes)
         X, cost, held = fits.X, fits.cost, fits.held
