@@ -71,7 +71,7 @@ def test_every_start_of_every_instant_is_solved_to_its_own_root():
     T = np.zeros((2, 4))
     T[1, 2] = 10.0  # the third column asks x - 0.6 r = 10: x = 13 > r
     active = np.ones(2, dtype=bool)
-    out, cost, started = levenberg_marquardt(level, X, [0, 1], [0, 1], active, T)
+    out, cost, started, _ = levenberg_marquardt(level, X, [0, 1], [0, 1], active, T)
     assert started.tolist() == [True, True, True, False]
     assert out[:2, 0] == pytest.approx([3.0, 4.0], rel=1e-14)
     assert out[:2, 1] == pytest.approx([3.0, -4.0], rel=1e-14)
@@ -87,9 +87,9 @@ def test_an_instant_solved_with_others_gets_the_root_it_gets_alone():
     level = _circle_level()
     X = np.array([[0.1, 0.2, 0.3], [2.0, -2.0, 0.5], [5.0, 7.0, 1.0]])
     active = np.ones(2, dtype=bool)
-    together, _, _ = levenberg_marquardt(level, X, [0, 1], [0, 1], active, np.zeros((2, 3)))
+    together, _, _, _ = levenberg_marquardt(level, X, [0, 1], [0, 1], active, np.zeros((2, 3)))
     for j in range(3):
-        alone, _, _ = levenberg_marquardt(level, X[:, [j]], [0, 1], [0, 1], active,
+        alone, _, _, _ = levenberg_marquardt(level, X[:, [j]], [0, 1], [0, 1], active,
                                           np.zeros((2, 1)))
         assert alone[:, 0].tolist() == together[:, j].tolist()
 
@@ -103,7 +103,7 @@ def test_a_double_root_is_left_where_the_gradient_vanishes():
 
     level = Level(0, "position", lambda x: [[x ** 2]], lambda x: [[2 * x]], None, ("c",),
                   (), (), False, (), frozenset({0}))
-    X, _, _ = levenberg_marquardt(level, np.array([[0.3]]), [0], [0], np.ones(1, bool),
+    X, _, _, _ = levenberg_marquardt(level, np.array([[0.3]]), [0], [0], np.ones(1, bool),
                                   np.zeros((1, 1)), NEAR_DAMPING)
     x = float(X[0, 0])
     assert 2 * x ** 3 <= FIT_TOL < 2 * (2 * x) ** 3
@@ -131,10 +131,55 @@ def test_a_level_linear_in_its_unknowns_reaches_the_root_levenberg_marquardt_rea
     X = np.array([[0.1, 5.0], [0.2, -5.0], [3.0, 6.0]])
     active = np.ones(2, dtype=bool)
     fits = solve_level_columns(1e-9, level, X, [0, 1], [0, 1], active, np.zeros((2, 2)))
-    stepped, _, _ = levenberg_marquardt(level, X, [0, 1], [0, 1], active, np.zeros((2, 2)))
+    stepped, _, _, _ = levenberg_marquardt(level, X, [0, 1], [0, 1], active, np.zeros((2, 2)))
     assert fits.X[:2] == pytest.approx(np.array([[1.0, 2.0], [1.0, 2.0]]), rel=1e-14)
     assert fits.X[:2] == pytest.approx(stepped[:2], rel=1e-12)
     assert fits.held.tolist() == [True, True] and fits.started.tolist() == [True, True]
+
+
+def _crosswind_level():
+    """a² + b² = v², a + w = 0 (the state: a, b, w, v), solved for a and b: with the wind w
+    above the airspeed v there is no root, and b zigzags about 0 where the cost is least."""
+    from mechgrade.errors import Location
+    from mechgrade.solve.plan import Level
+
+    return Level(1, "velocity", lambda a, b, w, v: [[a ** 2 + b ** 2 - v ** 2], [a + w]],
+                 lambda a, b, w, v: [[2 * a, 2 * b], [1.0 + 0 * a, 0 * a]],
+                 lambda a, b, w, v: [[a ** 2 + b ** 2 + v ** 2], [abs(a) + abs(w)]],
+                 ("speed", "north"), (Location(), Location()), (), False,
+                 (frozenset({0, 1, 3}), frozenset({0, 2})), frozenset({0, 1}))
+
+
+def test_a_start_stopped_by_the_step_cap_is_no_root_though_its_residual_is_small():
+    import numpy as np
+
+    from mechgrade.solve.levels import holds, levenberg_marquardt, solve_level_columns
+
+    level = _crosswind_level()
+    X = np.array([[-60.0], [1.0], [66.7], [66.6667]])  # the wind 0.05 % above the airspeed
+    active, T = np.ones(2, dtype=bool), np.zeros((2, 1))
+    stepped, _, _, stopped = levenberg_marquardt(level, X, [0, 1], [0, 1], active, T)
+    assert stopped.tolist() == [False]  # still zigzagging at the cap
+    assert holds(5e-3, level, stepped, active, T).tolist() == [True]
+    fits = solve_level_columns(5e-3, level, X, [0, 1], [0, 1], active, T)
+    assert fits.started.tolist() == [True] and fits.held.tolist() == [False]
+
+
+def test_one_solve_takes_no_start_the_step_cap_stopped_as_a_second_solution():
+    """The wind misread 0.75 % above the airspeed: no root; the starts that settle end where
+    the residual is least (b' = 0, within the default consistency), and one start still
+    zigzagging at the cap is no second solution (main: 'the velocity equations have 2
+    solutions that give different answers')."""
+    import numpy as np
+
+    from mechgrade.resources import shipped_dir
+    from mechgrade.spec import load_problem
+
+    problem = load_problem(shipped_dir("problems") / "airplane_crosswind_heading.yaml")
+    p = kinematics_plan(problem)
+    instant = solve_numeric(problem, p, instant_givens(problem, {"w'": 67.16769383594512}, {}),
+                            {"heading"})
+    assert float(np.degrees(instant.values["heading"][0])) == pytest.approx(90.0, abs=1e-5)
 
 
 def test_a_root_whose_jacobian_loses_rank_has_the_rank_it_keeps():

@@ -404,9 +404,8 @@ nearly Newton's steps, which reach the root that root continues to in a few."""
 def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[list[Fit | None]]:
     """Each start of each setup solved (``None``: a start where the equations are
     undefined), every start of every one at once (those determining the same unknowns from
-    the same rows stacked as columns) by :func:`solve_level_columns`; an unknown a root puts
-    within :data:`~.rules.ON_BRANCH` of its typical size of zero is zero where the level
-    holds no worse there (a root at zero is found as zero, not as a rounding of it)."""
+    the same rows stacked as columns) by :func:`solve_level_columns`, an unknown near zero
+    judged against its typical size."""
     out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
@@ -415,27 +414,20 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
                 (i, k) for k in range(len(s.starts)))
     for pairs in groups.values():
         first = setups[pairs[0][0]]
-        X = np.stack([setups[i].x for i, _ in pairs], axis=1)
-        X[first.determined] = np.stack([setups[i].starts[k] for i, k in pairs], axis=1)
-        T = np.stack([setups[i].target[first.active] for i, _ in pairs], axis=1)
+        # each setup's state, targets and sizes stacked once, then repeated for its starts
+        members = {i: j for j, i in enumerate(dict.fromkeys(i for i, _ in pairs))}
+        owner = np.array([members[i] for i, _ in pairs])
+        X = np.stack([setups[i].x for i in members], axis=1)[:, owner]
+        X[first.determined] = np.array([setups[i].starts[k] for i, k in pairs]).T
+        T = np.stack([setups[i].target for i in members], axis=1)[first.active][:, owner]
         # the first start (the guess) by Gauss-Newton's steps, as a trust region takes them
         # inside it; the others spread around it kept to their basins by short steps first
         first_damping = np.array([NEAR_DAMPING if k == 0 else DAMPING for _, k in pairs])
+        sizes = np.stack([setups[i].g.scales for i in members], axis=1)[first.determined][
+            :, owner]
         fits = solve_level_columns(consistency, level, X, first.determined,
-                                   list(first.columns), first.active, T, first_damping)
+                                   list(first.columns), first.active, T, first_damping, sizes)
         X, cost, held = fits.X, fits.cost, fits.held
-        sizes = np.stack([setups[i].g.scales[first.determined] for i, _ in pairs], axis=1)
-        near = X[first.determined]
-        near = (near != 0) & (np.abs(near) <= rules.ON_BRANCH * sizes)
-        if near.any():
-            X = X.copy()
-            X[first.determined] = np.where(near, 0.0, X[first.determined])
-            with np.errstate(all="ignore"):
-                at_zero = 0.5 * (residuals(level, X, first.active, T)[0] ** 2).sum(axis=0)
-            better = at_zero <= cost
-            X = np.where(better, X, fits.X)
-            cost = np.where(better, at_zero, cost)
-            held = holds(consistency, level, X, first.active, T)
         states = X.T.copy()  # each start's state a row of its own
         for (i, k), started, x, c, h in zip(pairs, fits.started.tolist(), states,
                                              cost.tolist(), held.tolist()):
@@ -448,7 +440,8 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
 class LevelColumns:
     """A non-linear level solved at every column (:func:`solve_level_columns`): the states
     ``X``, half the sum of the squared residuals of each, which columns started where the
-    equations are defined and which hold the level (:func:`~.rules.satisfied`)."""
+    equations are defined and which hold the level (:func:`~.rules.satisfied`, and stopped
+    before the step cap)."""
 
     X: np.ndarray
     cost: np.ndarray
@@ -458,16 +451,21 @@ class LevelColumns:
 
 def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
                         determined: list[int], columns: list[int], active: np.ndarray,
-                        T: np.ndarray, first_damping: float | np.ndarray = DAMPING
-                        ) -> LevelColumns:
+                        T: np.ndarray, first_damping: float | np.ndarray = DAMPING,
+                        sizes: np.ndarray | None = None) -> LevelColumns:
     """The non-linear level's ``active`` rows (each must equal its row of ``T``) solved for
     the positions ``determined`` at every column of ``X``, each from its own start (its
     column: a single solve's starts, a class's reference root) by
     :func:`levenberg_marquardt` (by one least-squares step where the equations are linear
     in them: their Jacobian does not depend on them), and judged there: the one non-linear
-    solver of an instant and of a class of variants. ``first_damping`` (one, or one per
+    solver of an instant and of a class of variants. A column whose steps reach
+    :data:`LM_STEPS` without meeting a test to stop does not hold the level, whatever its
+    residual: where the cap stopped it is no root. ``first_damping`` (one, or one per
     column): :data:`DAMPING` from starts spread around a guess, :data:`NEAR_DAMPING` from a
-    root already found or from the guess itself.
+    root already found or from the guess itself. ``sizes`` (the typical size of each
+    unknown ``determined``, one column each): an unknown a root puts within
+    :data:`~.rules.ON_BRANCH` of its size of zero is zero where the level holds no worse
+    there (a root at zero is found as zero, not as a rounding of it).
 
     >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
     ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]],
@@ -482,8 +480,8 @@ def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
     """
     with quiet():  # once, not at each of the steps' function calls
         if level.jacobian_uses & set(determined):
-            X, cost, started = levenberg_marquardt(level, X, determined, columns, active, T,
-                                                   first_damping)
+            X, cost, started, stopped = levenberg_marquardt(level, X, determined, columns,
+                                                            active, T, first_damping)
         else:  # linear in the unknowns at hand: one least-squares step solves it
             X = X.copy()
             r, _ = residuals(level, X, active, T)
@@ -494,7 +492,29 @@ def solve_level_columns(consistency: float, level: Level, X: np.ndarray,
             step, _, _ = least_squares(J, r, good)
             X[determined] += np.where(good, step, 0.0)
             cost = 0.5 * (residuals(level, X, active, T)[0] ** 2).sum(axis=0)
-        return LevelColumns(X, cost, started, holds(consistency, level, X, active, T))
+            stopped = np.ones(X.shape[1], dtype=bool)
+        if sizes is not None:
+            X, cost = _zeros_kept(level, X, cost, determined, active, T, sizes)
+        return LevelColumns(X, cost, started,
+                            stopped & holds(consistency, level, X, active, T))
+
+
+def _zeros_kept(level: Level, X: np.ndarray, cost: np.ndarray, determined: list[int],
+                active: np.ndarray, T: np.ndarray, sizes: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """``X`` and ``cost`` with each unknown ``determined`` within :data:`~.rules.ON_BRANCH`
+    of its typical size (``sizes``) of zero put at zero, in each column whose cost is no
+    higher there."""
+    near = X[determined]
+    near = (near != 0) & (np.abs(near) <= rules.ON_BRANCH * sizes)
+    if not near.any():
+        return X, cost
+    zeroed = X.copy()
+    zeroed[determined] = np.where(near, 0.0, X[determined])
+    with np.errstate(all="ignore"):
+        at_zero = 0.5 * (residuals(level, zeroed, active, T)[0] ** 2).sum(axis=0)
+    better = at_zero <= cost
+    return np.where(better, zeroed, X), np.where(better, at_zero, cost)
 
 
 def level_rank(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
@@ -520,7 +540,7 @@ def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
                         active: np.ndarray, T: np.ndarray,
                         first_damping: float | np.ndarray = DAMPING
-                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Solve ``level``'s ``active`` rows (each must equal its row of ``T``) for the positions
     ``determined`` at every column of ``X`` (the states, each from its own start), by
     Levenberg-Marquardt steps (Marquardt's scaling by the largest of each unknown's column
@@ -530,18 +550,20 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     :data:`FIT_TOL` of its unknowns, or its cost falls by less than that part of itself or to
     zero, or its gradient below :data:`FIT_TOL` (a stationary point: a double root is known no
     better), or after :data:`LM_STEPS` steps.
-    Returns the states, half the sum of the squared residuals of each, and which columns
-    started where the equations are defined (the others are left as they came).
+    Returns the states, half the sum of the squared residuals of each, which columns
+    started where the equations are defined (the others are left as they came), and which
+    stopped before the step cap (a test above met, or never started).
 
     A circle x² + y² = 25 with x = 3 (the state: x, y), from y = 1 and from y = -1:
 
     >>> level = Level(0, "position", lambda x, y: [[x**2 + y**2 - 25], [x - 3]],
     ...               lambda x, y: [[2 * x, 2 * y], [1 + 0 * x, 0 * y]], None, ("c", "x"),
     ...               (), (), False, (), frozenset())
-    >>> X, cost, started = levenberg_marquardt(level, np.array([[1.0, 1.0], [1.0, -1.0]]),
-    ...                                        [0, 1], [0, 1], np.ones(2, bool), np.zeros((2, 2)))
-    >>> X.round(12).tolist(), bool(cost.max() < 1e-20), started.tolist()
-    ([[3.0, 3.0], [4.0, -4.0]], True, [True, True])
+    >>> X, cost, started, stopped = levenberg_marquardt(
+    ...     level, np.array([[1.0, 1.0], [1.0, -1.0]]), [0, 1], [0, 1], np.ones(2, bool),
+    ...     np.zeros((2, 2)))
+    >>> X.round(12).tolist(), bool(cost.max() < 1e-20), started.tolist(), stopped.tolist()
+    ([[3.0, 3.0], [4.0, -4.0]], True, [True, True], [True, True])
     """
     nrows, ncols = len(level.labels), len(columns)
     place = [columns.index(i) for i in determined]
@@ -606,7 +628,7 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
                 # only a step taken changes a cost (to zero) or a Jacobian (to undefined)
                 done[better] |= (cost_new[better] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
             live[idx[done]] = False
-    return X, cost, started
+    return X, cost, started, ~live
 
 
 def _norms(V: np.ndarray) -> np.ndarray:
