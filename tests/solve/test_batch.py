@@ -495,7 +495,35 @@ def test_a_variant_at_rest_in_an_objectives_own_rate_waits_for_its_next_crossing
     variants = [{"v0": 0.0}, {"v0": 0.3}]  # at rest, x3' = 0 holds at the start and stays
     together, one = together_and_alone(problem, variants)
     failed = {f.id: str(f.error) for f in one[0].failures}
-    assert "the event holds at the start (t = 0) and stays so" in failed["time_cart3_stops"]
+    assert "'x3': 0 m/s' holds at the start (t = 0) and stays so" in failed["time_cart3_stops"]
+    for a, b in zip(together, one):
+        assert_same(a, b, EXACT, generated=False)
+
+
+def test_a_class_reaches_an_own_instant_that_holds_at_the_start_at_its_next_crossing(
+        monkeypatch):
+    # x = 0 mm holds at the start: the block's return, as alone; at rest it stays there,
+    # refused together at its given as alone (the event, x = a, is not at the start)
+    from mechgrade.solve import batch
+
+    swing = (PROBLEMS / "damped_block_positions.yaml").read_text()
+    problem = load_problem_text(swing.replace("until: x = 0 ", "until: x = a ")
+                                .replace("givens: {x: 20 mm}", "givens: {x: 0 mm}", 1), "p.yaml")
+    variants = [{"v0": 1.0}, {"v0": 0.25}, {"v0": 0.0}]
+    left: list[int] = []  # the columns answered alone inside the class
+
+    def spied(problem, reach, maps, chosen, overrides, columns, which):
+        left.extend(which)
+        return answer_alone(problem, reach, maps, chosen, overrides, columns, which)
+
+    monkeypatch.setattr(batch, "answer_alone", spied)
+    together, one = together_and_alone(problem, variants)
+    assert left == []
+    assert together[0].result("time_to_20mm").value > 0
+    failed = {f.id: str(f.error) for f in together[2].failures}
+    assert failed["time_to_20mm"] == (
+        "p.yaml:61:17: objectives[2].givens.x: 'x: 0 mm' holds at the start (t = 0) and stays "
+        "so: expected a motion that leaves it")
     for a, b in zip(together, one):
         assert_same(a, b, EXACT, generated=False)
 

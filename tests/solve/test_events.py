@@ -102,7 +102,7 @@ def test_an_instant_that_holds_at_the_start_and_stays_is_refused_at_its_given():
                                 .replace("  v0: 1 m/s\n", "  v0: 0 m/s\n")
                                 .replace("givens: {x: 20 mm}", "givens: {x: 0 mm}", 1), "p.yaml")
     assert failure_of(problem, "time_to_20mm") == (
-        "p.yaml:61:17: objectives[2].givens.x: the event holds at the start (t = 0) and stays "
+        "p.yaml:61:17: objectives[2].givens.x: 'x: 0 mm' holds at the start (t = 0) and stays "
         "so: expected a motion that leaves it")
 
 

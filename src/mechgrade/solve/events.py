@@ -53,14 +53,16 @@ def not_integrated(status: int, t: float, where) -> SolveError:
 
 
 def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, t_bound: float,
-            where) -> tuple[np.ndarray, dict[int, SolveError], dict[int, SolveError]]:
+            where, what: str = "the event"
+            ) -> tuple[np.ndarray, dict[int, SolveError], dict[int, SolveError]]:
     """Each column's event's ``direction`` (as scipy reads it, see
     :func:`~.batch_motion.integrate_to_events`; ``y0``: the start states, one per column):
     where the event holds at t = 0 (a projectile launched from the ground, ``until: y = 0``),
     its next crossing, back through zero from the side the motion leaves to a moment later
     (:data:`LEAVING` of the time allowed, ``t_bound``); 0 (either way) elsewhere. With it,
     the error of each column whose motion stays in the event (a state at rest in it:
-    :func:`event_stays`), and of each whose moment later is not reached or where the event
+    :func:`event_stays`, naming it ``what``), and of each whose moment later is not reached
+    or where the event
     is undefined (direction 0: a class solves that column alone, which says why). One
     motion alone is one column, which raises its first error (:mod:`.phases`).
 
@@ -90,17 +92,22 @@ def leaving(rhs: Field, event: Callable, mode: Callable | None, y0: np.ndarray, 
     moved = np.abs(y - y0[:, held]).max(axis=0, initial=0.0) > ATOL
     reached = moment.status == NEVER  # at the moment: the end of the time it was given
     direction[held] = np.where(reached & moved & np.isfinite(side), -side, 0.0)
-    stays = {int(i): event_stays(where) for i in held[reached & ((side == 0) | ~moved)]}
+    stays = {int(i): event_stays(where, what) for i in held[reached & ((side == 0) | ~moved)]}
     left = ~reached | (moved & ~np.isfinite(side))
     return direction, stays, {int(i): not_integrated(int(status), float(t), where)
                               for i, status, t in zip(held[left], moment.status[left],
                                                       moment.t[left])}
 
 
-def event_stays(where) -> SolveError:
-    """The error of an event that holds at t = 0 and that the motion does not leave (a state
-    at rest in it), found by :func:`leaving`."""
-    return SolveError("the event holds at the start (t = 0) and stays so: expected a motion "
+def event_stays(where, what: str = "the event") -> SolveError:
+    """The error of an event (or an objective's own instant, ``what`` names it) that holds at
+    t = 0 and that the motion does not leave (a state at rest in it), found by
+    :func:`leaving`.
+
+    >>> str(event_stays(None, "'x: 0 mm'"))
+    "'x: 0 mm' holds at the start (t = 0) and stays so: expected a motion that leaves it"
+    """
+    return SolveError(f"{what} holds at the start (t = 0) and stays so: expected a motion "
                       "that leaves it", where=where)
 
 

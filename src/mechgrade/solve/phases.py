@@ -36,8 +36,8 @@ from . import rules
 from .analysis import analysis_of, analysis_plan, start_columns
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import loud_call, quiet
-from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, instant_missed,
-                     leaving, not_integrated)
+from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, event_stays,
+                     instant_missed, leaving, not_integrated)
 from .motion import Balanced, _switches, after_event, at_event, balances, constant_matrix
 from .motion import accelerations as columns_accelerations
 
@@ -196,12 +196,15 @@ def _when(kp, objective: str) -> tuple[Callable, bool]:
     return _lambdified(kp, expr), bool(expr.free_symbols & {*kp.kin.k.qdd, *kp.kin.reactions})
 
 
+def _said(target: Entry | When) -> str:
+    """An objective's own instant as its messages quote it: its given, or its ``when:``."""
+    return target.given if isinstance(target, Entry) else f"when: {target.text}"
+
+
 def _missed(analysis: Integration, target: Target, until_times) -> SolveError:
     if isinstance(target, Until):
         return event_never_happens(analysis)
-    if isinstance(target, Entry):
-        return instant_missed(analysis, target.given, target.where, until_times)
-    return instant_missed(analysis, f"when: {target.text}", target.where, until_times)
+    return instant_missed(analysis, _said(target), target.where, until_times)
 
 
 @lru_cache(maxsize=64)
@@ -426,15 +429,14 @@ class _Columns:
             return self.at(cols, t, y)[at[cols], np.arange(len(cols))] - asked[cols]
         return reached
 
-    def crossing(self, event: Callable, where) -> tuple[np.ndarray, dict[int, MechgradeError]]:
-        """Each column's ``direction`` of ``event`` from the start (its next crossing where
-        it holds there, :func:`~.events.leaving`): one motion alone raises its first error,
-        located at ``where``; a class keeps the error of
-        each column that stays in it (one whose moment is not reached has none: it does not
-        move)."""
+    def crossing(self, event: Callable, where, what: str = "the event"
+                 ) -> tuple[np.ndarray, dict[int, MechgradeError]]:
+        """Each column's ``direction`` of ``event`` (``what`` names it) from the start (its
+        next crossing where it holds there, :func:`~.events.leaving`): one motion alone
+        raises its first error, located at ``where``; a class keeps the error of each column
+        that stays in it (one whose moment is not reached has none: it does not move)."""
         direction, stays, unfinished = leaving(
-            self.rhs, event, None, self.y0, self.analysis.max_time,
-            self.analysis.where if self.strict is None else where)
+            self.rhs, event, None, self.y0, self.analysis.max_time, where, what)
         if self.strict is None:
             return direction, dict(stays)
         errors = [*stays.values(), *unfinished.values()]
@@ -575,12 +577,21 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
                          dtype=bool)  # t = 0 is the start itself
         for aim, target in one.aims(mine, asked[todo]):
             events.append(aim)
-            if alone is not None and not timed[0]:
-                senses.append(one.crossing(aim, target.where)[0])
-            else:  # a class leaves one that holds at the start alone (its next crossing)
-                if alone is None:
-                    fine &= timed | (aim(np.arange(count), np.zeros(count), one.y0) != 0)
-                senses.append(np.zeros(count))
+            if alone is not None:
+                senses.append(np.zeros(count) if timed[0] else
+                              one.crossing(aim, target.where, f"'{_said(target)}'")[0])
+                continue
+            # a column whose instant holds at the start waits for its next crossing, as
+            # alone; one that stays there is refused at its own given, as alone; one whose
+            # moment later is not reached is left to be solved alone, which says why
+            held = ~timed & (aim(np.arange(count), np.zeros(count), one.y0) == 0)
+            sense, stays = one.crossing(aim, target.where) if held.any() else \
+                (np.zeros(count), {})
+            for k in stays:
+                if held[k]:
+                    failed(int(todo[k]), event_stays(mine[k].where, f"'{_said(mine[k])}'"))
+            fine &= ~held | (sense != 0)
+            senses.append(np.where(held, sense, 0.0))
         events.append(until)
         senses.append(direction)
         grip = gripping(problem)
