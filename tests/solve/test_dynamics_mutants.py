@@ -160,7 +160,7 @@ def test_a_given_linear_acceleration_taken_as_zero_leaves_the_static_force():
 
 
 def test_a_class_asked_only_symbolic_answers_reads_no_mistaken_reading_or_term():
-    from mechgrade.solve.dynamics_mutants import _one_by_one, with_class_mistakes
+    from mechgrade.solve.dynamics_mutants import ClassMistakes, _one_by_one
 
     problem = load_problem(PROBLEMS / "atwood_machine.yaml")
     solution = solve_dynamics(problem, objectives={"a1_symbolic"})
@@ -170,7 +170,7 @@ def test_a_class_asked_only_symbolic_answers_reads_no_mistaken_reading_or_term()
         asked.append(set(objectives))
         return _one_by_one(solve_dynamics)(mistaken, givens, objectives)
 
-    first, _ = with_class_mistakes(problem, [solution, solution], [{}, {}], together)
+    first, _ = ClassMistakes(problem, [{}, {}], together).attached([solution, solution])
     assert first.result("a1_symbolic").generated_mistakes  # the mistaken models' answers
     assert asked and not any("~" in oid for ids in asked for oid in ids)
 

@@ -23,7 +23,7 @@ event, an inverse design), and most answers are right: a solution's generated mi
 worked out, for all its objectives at once, the first time one of them is looked at
 (:class:`LazyMistakes`), and kept for the same problem and givens. Each step is written for
 a class of variants (each mistaken model solved for all of them at once,
-:func:`with_class_mistakes`); a single solve is a class of one whose mistaken models its own
+:class:`ClassMistakes`); a single solve is a class of one whose mistaken models its own
 solver solves (:func:`with_generated_mistakes`).
 
 >>> from mechgrade.spec import load_problem
@@ -82,20 +82,10 @@ def with_generated_mistakes(problem: Problem, solution: Solution,
     generated mistakes of its objectives attached (worked out when first looked at: values
     for the numeric ones, expressions for the symbolic ones; each mistaken model solved by
     ``solver`` too), and the whole-answer slips its model makes plausible: a class of one
-    (:func:`with_class_mistakes`), kept for the same problem and givens."""
+    (:class:`ClassMistakes`), kept for the same problem and givens."""
     key = tuple(sorted((givens or {}).items()))
     return _attached(solution, plausible_slips(problem), _Pending(lambda: [_generated(
         problem, key, solution.results, solution.state, solver)]), 0)
-
-
-def with_class_mistakes(problem: Problem, solutions: Sequence[Solution],
-                        givens: Sequence[Mapping[str, float | None]],
-                        together: Together) -> list[Solution]:
-    """:func:`with_generated_mistakes` for each of ``solutions`` (the variant ``givens`` of
-    ``problem``, solved together): the mistakes of all of them are worked out together, when
-    one is first looked at, each mistaken model solved for every variant at once by
-    ``together`` (:func:`~mechgrade.solve.batch.answers_together`)."""
-    return ClassMistakes(problem, givens, together).attached(solutions)
 
 
 class ClassMistakes:
