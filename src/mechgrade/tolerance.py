@@ -1,7 +1,10 @@
-"""The one tolerance rule of mechgrade, used to grade students and to check authors' tests.
+"""The one tolerance rule of mechgrade, used to grade students and to check authors' tests,
+and the one rank rule every matrix is judged by (the model's, the solver's, a student's).
 
 A value is right when it is within ``max(rel * scale, abs)`` of the reference, boundary
-included; sampled expressions are equal when every sample agrees that way.
+included; sampled expressions are equal when every sample agrees that way. A singular value
+counts for the rank when it is more than :data:`RANK_TOL` of the largest (and of 1); here,
+below ``mechanics``, so the mechanics' ranks and :mod:`mechgrade.solve.rules` share it.
 """
 
 from __future__ import annotations
@@ -121,3 +124,46 @@ class AgreeAtPoints:
         flat = rows.reshape(len(rows), -1)
         fits = _elementwise(s.reshape(1, -1), flat, self.rel, self.floor, None)
         return np.logical_and.reduce(fits, axis=1)  # np.all, without its Python wrapper
+
+
+RANK_TOL = 1e-9
+"""A singular value (or a pivot) smaller than this part of the largest (at least 1) is zero."""
+
+
+def significant(magnitudes) -> np.ndarray:
+    """Which of the singular values (or pivots) along the last axis count for the rank."""
+    m = np.abs(np.asarray(magnitudes, dtype=float))
+    largest = m.max(axis=-1, initial=0.0, keepdims=True)
+    return m > RANK_TOL * np.maximum(largest, 1.0)
+
+
+def rank(magnitudes) -> np.ndarray:
+    """The rank that singular values (or pivots) along the last axis give."""
+    return significant(magnitudes).sum(axis=-1)
+
+
+def matrix_rank(A) -> int:
+    """The rank of the matrix ``A`` by its singular values (:func:`rank`): the solver's
+    matrices and a student's equations alike, in whatever unit they are written (rounding
+    grows with the entries, so an absolute tolerance counts it as rank in N and not in kN).
+
+    >>> A = np.array([[1e4, 2e4], [3e4, 6e4 + 1e-8]])
+    >>> matrix_rank(A), matrix_rank(A / 1e3), matrix_rank(np.zeros((0, 2)))
+    (1, 1, 0)
+    """
+    a = np.asarray(A)
+    return int(rank(np.linalg.svd(a, compute_uv=False))) if a.size else 0
+
+
+def null_space(A: np.ndarray) -> np.ndarray:
+    """An orthonormal basis of the null space of ``A`` (columns), by its singular values.
+
+    >>> null_space(np.array([[1.0, 1.0]])).shape
+    (2, 1)
+    """
+    if A.shape[0] == 0:
+        return np.eye(A.shape[1])
+    # numpy's SVD (LAPACK gesdd, as scipy's): importing scipy.linalg costs more (~0.15 s) than
+    # most solves that end in this message
+    _, s, vt = np.linalg.svd(A)
+    return vt[int(rank(s)):].T

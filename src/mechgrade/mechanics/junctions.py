@@ -28,12 +28,14 @@ import random
 from dataclasses import replace
 from functools import lru_cache
 
+import numpy as np
 import sympy as sp
 
 from ..errors import SolveError
 from ..expressions.syntax import Bin, Call, Name, Node, Num, to_text
 from ..spec.dynamics import junction_coordinates
 from ..spec.model import Constraint, Expr, Problem
+from ..tolerance import matrix_rank
 
 BALANCE = "(massless): sum of forces"
 """How a junction's balance is named among the constraints (after the body's name)."""
@@ -160,7 +162,7 @@ def check_junctions(problem: Problem, k) -> None:
     rng = random.Random(7)
     symbols = sorted(J.free_symbols, key=str)
     generic = J.xreplace({s: sp.Float(rng.uniform(0.4, 1.3)) for s in symbols})
-    rank = generic.rank(iszerofunc=lambda e: abs(complex(e)) < 1e-9)
+    rank = matrix_rank(np.array(generic.tolist(), dtype=complex))
     listed = ", ".join(names)
     if rank < len(q):
         raise SolveError(

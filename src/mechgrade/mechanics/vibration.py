@@ -30,6 +30,8 @@ from functools import lru_cache
 import numpy as np
 import sympy as sp
 
+from .. import tolerance
+
 
 class Modal(IntEnum):
     """What :func:`modal_value` returns: a mode's value, or a residual that must be zero for
@@ -190,7 +192,7 @@ def _modes(n: int, m: int, count: int, v: bytes) -> _States:
     held = entries[:, (2 * n + 1) * size:].reshape(count, -1, n)
     if held.shape[1]:
         _, sizes, rows = np.linalg.svd(np.where(regular[:, None, None], held, 0.0))
-        ranks = (sizes > 1e-10 * sizes.max(axis=1, keepdims=True)).sum(axis=1)
+        ranks = tolerance.rank(sizes)
     else:
         rows, ranks = None, np.zeros(count, dtype=int)
     kept = []

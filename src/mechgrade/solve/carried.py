@@ -100,8 +100,7 @@ def carried_kinetics(problem: Problem, kp, state: State) -> np.ndarray:
         E = np.array([e for _, e in choice]).reshape(-1, rows).T
         M = np.hstack([A[:, free], E])
         sol, *_ = np.linalg.lstsq(M, -b, rcond=None)
-        s = np.linalg.svd(M, compute_uv=False)
-        if rules.rank(s[None, :])[0] < M.shape[1]:
+        if rules.matrix_rank(M) < M.shape[1]:
             continue
         out = x.copy()
         out[[kp.columns[j] for j in free]] = sol[:len(free)]

@@ -1,7 +1,8 @@
 """The rules the numeric solver judges by, each written once: whether an equation holds, the
 rank of a matrix (the grader's too: a student's equations, directions, rates), whether a root
 is on the branch the spec asks for. Each takes arrays, so one instant and a class of variants
-(one column each) are judged alike.
+(one column each) are judged alike. The rank rule lives in :mod:`mechgrade.tolerance` (the
+mechanics, which cannot import the solver, judge ranks by it too); it is named here as well.
 
 >>> import numpy as np
 >>> satisfied(np.array([1e-12, 1e-3]), np.array([1.0, 1.0]), 1e-6).tolist()
@@ -15,9 +16,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..spec.model import Root
-
-RANK_TOL = 1e-9
-"""A singular value (or a pivot) smaller than this part of the largest (at least 1) is zero."""
+from ..tolerance import RANK_TOL as RANK_TOL
+from ..tolerance import matrix_rank as matrix_rank
+from ..tolerance import null_space as null_space
+from ..tolerance import rank as rank
+from ..tolerance import significant as significant
 
 RESIDUAL_FLOOR = 1e-10
 """What a residual may keep beside the problem's ``consistency`` times its terms' size: an
@@ -123,45 +126,6 @@ def inverted(values, rows: int, columns: int) -> np.ndarray:
     s = np.asarray(values, dtype=float)
     kept = s > cutoff(rows, columns) * s.max(axis=-1, initial=0.0, keepdims=True)
     return np.divide(1.0, s, out=np.zeros(s.shape), where=kept)
-
-
-def significant(magnitudes) -> np.ndarray:
-    """Which of the singular values (or pivots) along the last axis count for the rank."""
-    m = np.abs(np.asarray(magnitudes, dtype=float))
-    largest = m.max(axis=-1, initial=0.0, keepdims=True)
-    return m > RANK_TOL * np.maximum(largest, 1.0)
-
-
-def rank(magnitudes) -> np.ndarray:
-    """The rank that singular values (or pivots) along the last axis give."""
-    return significant(magnitudes).sum(axis=-1)
-
-
-def matrix_rank(A) -> int:
-    """The rank of the matrix ``A`` by its singular values (:func:`rank`): the solver's
-    matrices and a student's equations alike, in whatever unit they are written (rounding
-    grows with the entries, so an absolute tolerance counts it as rank in N and not in kN).
-
-    >>> A = np.array([[1e4, 2e4], [3e4, 6e4 + 1e-8]])
-    >>> matrix_rank(A), matrix_rank(A / 1e3), matrix_rank(np.zeros((0, 2)))
-    (1, 1, 0)
-    """
-    a = np.asarray(A)
-    return int(rank(np.linalg.svd(a, compute_uv=False))) if a.size else 0
-
-
-def null_space(A: np.ndarray) -> np.ndarray:
-    """An orthonormal basis of the null space of ``A`` (columns), by its singular values.
-
-    >>> null_space(np.array([[1.0, 1.0]])).shape
-    (2, 1)
-    """
-    if A.shape[0] == 0:
-        return np.eye(A.shape[1])
-    # numpy's SVD (LAPACK gesdd, as scipy's): importing scipy.linalg costs more (~0.15 s) than
-    # most solves that end in this message
-    _, s, vt = np.linalg.svd(A)
-    return vt[int(rank(s)):].T
 
 
 def same_value(a, b) -> bool:
