@@ -1,4 +1,5 @@
-"""The tolerance rule gives the same verdict on numbers, vectors and short arrays as on long arrays."""
+"""The tolerance rule gives the same verdict on numbers, vectors and short arrays as on long
+arrays; the rank and round-off rules judge relative to the largest value, in any unit."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ import numpy as np
 from hypothesis import given, settings, strategies as st
 
 from mechgrade.tolerance import (FLOAT_SLACK, PYTHON_SIZE, AgreeAtPoints, agree_at_points,
-                                 within, within_each)
+                                 matrix_rank, null_space, parts, rank, within, within_each)
 
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
 finite = st.floats(min_value=-1e6, max_value=1e6)
@@ -86,3 +87,34 @@ def test_candidates_of_another_shape_never_agree():
     test = AgreeAtPoints(0.01, 1e-12)
     assert test.each(np.array([1.0, 2.0]), np.array([[1.0, 2.0, 3.0]])).tolist() == [False]
     assert not test(np.array([1.0, 2.0]), np.array([1.0, 2.0, 3.0]))
+
+
+def test_the_rank_counts_singular_values_against_the_largest_or_one():
+    singular = np.array([[10.0, 1e-7, 1e-9], [1e-10, 1e-10, 0.0], [5.0, 4.0, 3.0]])
+    assert rank(singular).tolist() == [2, 0, 3]
+
+
+@given(scale=st.sampled_from([1e-3, 1.0, 1e4, 1e8]), seed=st.integers(0, 50))
+def test_a_matrix_has_the_same_rank_in_any_unit_with_its_rounding(scale, seed):
+    # a dependent row, then the rounding of its entries' size: relative, not absolute
+    rng = np.random.default_rng(seed)
+    rows = rng.uniform(-1.0, 1.0, (2, 3))
+    A = np.vstack([rows, rows[0] - 2.0 * rows[1]]) * scale
+    noisy = A * (1.0 + 4e-16 * rng.standard_normal(A.shape))
+    assert matrix_rank(A) == matrix_rank(noisy) == 2
+
+
+def test_the_null_space_of_a_matrix_with_a_free_direction_is_that_direction():
+    basis = null_space(np.array([[1.0, -1.0, 0.0], [0.0, 0.0, 1.0]]))
+    assert basis.shape == (3, 1)
+    assert np.allclose(np.abs(basis[:, 0]), [2 ** -0.5, 2 ** -0.5, 0.0])
+
+
+@given(scale=st.sampled_from([1e-6, 1.0, 1e6]))
+def test_a_component_within_a_billionth_of_the_largest_is_round_off_in_any_unit(scale):
+    values = np.array([[2.0, -1e-10, 3e-9], [0.0, 0.0, 0.0]]) * scale
+    assert parts(values, axis=1).tolist() == [[True, False, True], [False, False, False]]
+
+
+def test_an_undefined_value_is_no_round_off():
+    assert parts(np.array([np.nan, 1e-12, 1.0]), 1.0).tolist() == [True, False, True]

@@ -167,3 +167,26 @@ def null_space(A: np.ndarray) -> np.ndarray:
     # most solves that end in this message
     _, s, vt = np.linalg.svd(A)
     return vt[int(rank(s)):].T
+
+
+PART = 1e-9
+"""A value smaller than this part of the largest of its kind (a vector's component, a fit's
+coefficient, a mode's amplitude) is round-off, not a part."""
+
+
+def parts(values, largest=None, axis: int = -1) -> np.ndarray:
+    """Which of ``values`` are parts, not round-off (at most :data:`PART` of ``largest`` in
+    size, by default the largest size along ``axis``): an undefined value is no round-off.
+
+    >>> parts(np.array([1.0, -1e-12, np.nan]), 1.0).tolist(), parts(np.zeros(2)).tolist()
+    ([True, False, True], [False, False])
+    >>> parts(np.array([[3.0, 1e-10], [1e-10, 1e-10]]), axis=1).tolist()
+    [[True, False], [True, True]]
+    >>> bool(parts(2e-9, 1.0)), bool(parts(2e-9, 10.0))
+    (True, False)
+    """
+    m = np.abs(np.asarray(values))
+    if largest is None:
+        largest = m.max(axis=axis, initial=0.0, keepdims=True)
+    with np.errstate(invalid="ignore"):
+        return ~(m <= PART * np.abs(largest))

@@ -37,6 +37,7 @@ from ..expressions.numeric import evaluate
 from ..expressions.syntax import Bin, Node, Unary
 from ..solve import rules
 from ..solve.derivation import MotionSamples, SampledLoad
+from ..tolerance import parts
 from .answers import rename_to_symbols
 from .compare import Assessment, Judged, not_evaluated, unreadable
 from .results import Verdict
@@ -415,7 +416,7 @@ class _System:
             if np.abs(slope - times * along).max() > 1e-6 * np.abs(slope).max():
                 continue
             component = load.components[load.along.index((balance.axis, balance.about))][k]
-            if not abs(component) > 1e-9 * abs(misfit):
+            if not parts(component, misfit):
                 continue
             # the equation is ``times`` (m a - loads): a load's error enters with -times
             found.update(n for n in (-1, 1, -2)
@@ -510,10 +511,9 @@ class _System:
         for c in dict.fromkeys(configurations):
             at = [k for k, of in enumerate(configurations) if of == c]
             reactions = self.reactions[at]
-            nought = np.abs(reactions).max(axis=0, initial=0) <= 1e-9 * size
+            nought = ~parts(np.abs(reactions).max(axis=0, initial=0), size)
             accelerations = self.accelerations_sampled[at]
-            moving = accelerations[:, np.abs(accelerations).max(axis=0, initial=0)
-                                   > 1e-9 * size]
+            moving = accelerations[:, parts(np.abs(accelerations).max(axis=0, initial=0), size)]
             reading = np.zeros((n_u, n_r))
             of: dict[int, str] = {}  # the reaction each unknown is
             noughts = 0
@@ -521,7 +521,7 @@ class _System:
                 values = fitted[at, j]
                 if free[at, j].any():
                     continue
-                if np.abs(values).max() <= 1e-9 * size:
+                if not parts(np.abs(values).max(), size):
                     noughts += 1
                     continue
                 found = [(row, name) for name, group in groups.items()
@@ -544,7 +544,7 @@ class _System:
             a = self.a[k][rows]
             if not a.size:
                 continue
-            out[k] = np.abs(rules.null_space(a)).max(axis=1, initial=0) > 1e-6
+            out[k] = rules.left_open(rules.null_space(a))
         return out
 
     def _determined(self) -> int:
@@ -574,7 +574,7 @@ def _fits(values: np.ndarray, basis: np.ndarray) -> np.ndarray | None:
     coefficients = np.linalg.lstsq(basis, values, rcond=None)[0]
     misfit = np.abs(basis @ coefficients - values).max()
     # a coefficient of rounding's size is none (nor is it a sign)
-    coefficients[np.abs(coefficients) <= 1e-9 * np.abs(coefficients).max()] = 0.0
+    coefficients[~parts(coefficients)] = 0.0
     return coefficients if misfit <= FIT * np.abs(values).max() else None
 
 
@@ -637,7 +637,7 @@ def _ratios(values: np.ndarray, load: SampledLoad) -> list[float]:
     for row in load.components:
         component = np.array(row)
         # where it is nought (a spring at its free length), the values must be too
-        seen = np.abs(component) > 1e-9 * (np.abs(component).max() + 1e-300)
+        seen = parts(component)
         if not np.all(np.isfinite(component)) or not seen.any():
             continue
         # the equation as written, or divided by the body's mass (x'' = g sin β - μ g cos β)

@@ -250,7 +250,7 @@ def _value(states: _States, what: Modal, number: int, i: int, j: int) -> np.ndar
                 value = np.sqrt(np.maximum(squares.real[every, order], 0.0))
             else:
                 shape = (modes.T @ modes.shapes[every, :, order][:, :, None])[:, :, 0].real
-                moves = np.abs(shape[:, j]) > 1e-9 * np.abs(shape).max(axis=1)
+                moves = tolerance.parts(shape[:, j], np.abs(shape).max(axis=1))
                 with np.errstate(all="ignore"):
                     value = np.where(moves, 0.0, 1.0) if what == Modal.COUPLED else \
                         np.where(moves, shape[:, i] / shape[:, j], np.nan)

@@ -29,6 +29,7 @@ from ..errors import MechgradeError
 from ..mechanics.kinematics import locations
 from ..spec.dynamics import dynamics_of
 from ..spec.model import Problem
+from ..tolerance import parts
 from .dynamics import kinetics_plan, solve_kinetics
 from .levels import State
 from .fbd import (FreeBodyDiagram, Vec3, _diagram_plan, _extended_state, _scalar, _vector,
@@ -334,11 +335,8 @@ def _turned(rates: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
     >>> _turned(np.array([1.0, -1e-17]), np.array([2.0, 0.0]), np.array([0.0, 1e-17]))
     False
     """
-    def real(u: np.ndarray) -> np.ndarray:
-        return np.abs(u) > 1e-9 * max(float(np.abs(u).max(initial=0.0)), 1e-300)
-
-    along = np.where(real(v), v, a)
-    return bool(np.any((rates * along < 0) & real(rates) & real(along)))
+    along = np.where(parts(v), v, a)
+    return bool(np.any((rates * along < 0) & parts(rates) & parts(along)))
 
 
 def _on_constraints(kp, x: np.ndarray, dt: float) -> np.ndarray | None:

@@ -887,8 +887,8 @@ class LinearColumns:
         unknown = [j for j in self.rates if not g.known[j]]
         free = set(before.free)
         if null.shape[1]:  # the unknowns with a part in the nullspace
-            free.update(j for j, part in zip(unknown, np.abs(null).max(axis=1).tolist())
-                        if part > rules.OPEN)
+            free.update(j for j, is_open in zip(unknown, rules.left_open(null).tolist())
+                        if is_open)
         return State(self.X[:, i].copy(), g.known, frozenset(free))
 
 

@@ -194,7 +194,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
     def underdetermined(i: int) -> MechgradeError:
         a = A[:, :, i]
         null = rules.null_space(a)
-        open_ = [cols[j] for j in range(len(cols)) if np.abs(null[j]).max() > rules.OPEN]
+        open_ = [cols[j] for j, is_open in enumerate(rules.left_open(null).tolist()) if is_open]
         names = [kp.name(j) for j in open_]
         involved = sorted({label.split(":")[0] for r, label in enumerate(kp.labels)
                            if any(abs(a[r, cols.index(j)]) > 1e-12 for j in open_)})

@@ -31,7 +31,7 @@ from ..expressions.syntax import Call, Name, Prime, to_text, walk
 from ..spec.constraint_mutations import constraint_mutations, position_unchosen
 from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
-from ..tolerance import within
+from ..tolerance import parts, within
 from ..units import dimension, si_factor, to_si
 from .columns import call
 from .numeric import every_branch_columns, solve_numeric_columns
@@ -645,10 +645,9 @@ def _term_text(si_values: np.ndarray, obj: Objective, velocity: bool) -> str:
     unit = _term_unit(obj.unit, velocity)
     factor = si_factor(unit)
     shown = [float(v) / factor + 0.0 for v in si_values]  # from_si, as floats
-    size = max(abs(v) for v in shown)
-    shown = [0.0 if abs(v) <= 1e-9 * size else v for v in shown]  # round-off, not a part
-    parts = shown[:2] if shown[2] == 0 else shown
-    return "(" + ", ".join(f"{v:.4g}" for v in parts) + f") {unit}"
+    shown = [v if part else 0.0 for v, part in zip(shown, parts(shown).tolist())]
+    written = shown[:2] if shown[2] == 0 else shown
+    return "(" + ", ".join(f"{v:.4g}" for v in written) + f") {unit}"
 
 
 def inside_tolerance(result: ObjectiveResult, rel: float | None = None,

@@ -590,7 +590,8 @@ def _weakest(p: KinematicsPlan, X: np.ndarray) -> np.ndarray:
 
 
 def _rate_names(p: KinematicsPlan, unknown: list[int], direction: np.ndarray) -> str:
-    names = [p.index.spelling(i) for i, w in zip(unknown, direction) if abs(w) > 1e-6]
+    names = [p.index.spelling(i) for i, is_open in zip(unknown, rules.left_open(direction).tolist())
+             if is_open]
     return " or ".join(names) if names else "a rate"
 
 

@@ -11,6 +11,7 @@ from typing import Sequence, Union
 
 from ..errors import AuthorWarning, MechgradeError
 from ..spec.model import ObjectiveKind
+from ..tolerance import parts
 
 Value = Union[float, tuple[float, float, float], None]
 
@@ -22,15 +23,15 @@ ROUND_OFF = 1e-12
 
 def without_round_off(value):
     """A value as it is shown: a number below :data:`ROUND_OFF` is 0, and so is a vector's
-    component below that or a billionth of its largest (a direction's leftover ``1e-14``).
+    component below that or not a part of it (:func:`~mechgrade.tolerance.parts`: a
+    direction's leftover ``1e-14``).
 
     >>> without_round_off(-1.27486e-15), without_round_off((0.5, -6.3e-17, 1e-3))
     (0.0, (0.5, 0.0, 0.001))
     """
     if isinstance(value, tuple):
-        largest = max((abs(c) for c in value), default=0.0)
-        return tuple(0.0 if abs(c) < max(ROUND_OFF, 1e-9 * largest) else float(c)
-                     for c in value)
+        return tuple(float(c) if part and not abs(c) < ROUND_OFF else 0.0
+                     for c, part in zip(value, parts(value).tolist()))
     return 0.0 if abs(value) < ROUND_OFF else value
 
 

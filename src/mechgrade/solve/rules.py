@@ -128,6 +128,20 @@ def inverted(values, rows: int, columns: int) -> np.ndarray:
     return np.divide(1.0, s, out=np.zeros(s.shape), where=kept)
 
 
+def left_open(basis) -> np.ndarray:
+    """Which unknowns (rows) the null space ``basis`` (orthonormal columns, or one direction)
+    leaves open: those with a component more than :data:`OPEN` along one of its directions.
+    The one rule for the solver's free rates and reactions and a student's free unknowns.
+
+    >>> left_open(np.array([[0.8, 0.0], [1e-12, 0.0], [0.6, 1.0]])).tolist()
+    [True, False, True]
+    >>> left_open(np.array([0.0, 1.0])).tolist(), left_open(np.zeros((2, 0))).tolist()
+    ([False, True], [False, False])
+    """
+    b = np.abs(np.asarray(basis, dtype=float))
+    return b.reshape(len(b), -1).max(axis=1, initial=0.0) > OPEN
+
+
 def same_value(a, b) -> bool:
     """Whether the values ``a`` and ``b`` of a quantity at two roots are the same
     (:data:`SAME_VALUE`).
