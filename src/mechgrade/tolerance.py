@@ -188,5 +188,4 @@ def parts(values, largest=None, axis: int = -1) -> np.ndarray:
     m = np.abs(np.asarray(values))
     if largest is None:
         largest = m.max(axis=axis, initial=0.0, keepdims=True)
-    with np.errstate(invalid="ignore"):
-        return ~(m <= PART * np.abs(largest))
+    return ~(m <= PART * np.abs(largest))

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechgrade.solve.rules import left_open, on_branch, same_value, satisfied, unchanged
+from mechgrade.solve.rules import (left_open, near_zero, on_branch, same_value, satisfied,
+                                   unchanged)
 from mechgrade.spec.model import Root
 
 
@@ -29,6 +30,12 @@ def test_a_root_is_on_a_branch_when_it_is_clear_of_zero_for_the_size_of_its_quan
     assert on_branch(values, scales, Root.POSITIVE).tolist() == [False, True, False]
     assert on_branch(values, scales, Root.NEGATIVE).tolist() == [False, False, True]
     assert on_branch(values, scales, None).all()
+
+
+def test_a_root_within_a_billionth_of_its_typical_size_of_zero_is_zero_in_any_unit():
+    # one root in m and in mm: the same verdict (an absolute 1e-12 m judged them apart)
+    assert near_zero(np.array([5e-10, 5e-7]), np.array([1.0, 1e3])).tolist() == [True, True]
+    assert near_zero(np.array([5e-9, 5e-6]), np.array([1.0, 1e3])).tolist() == [False, False]
 
 
 def test_a_value_is_unchanged_within_the_probe_tolerance_of_its_size_column_by_column():

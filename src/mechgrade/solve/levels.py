@@ -506,7 +506,7 @@ def _zeros_kept(level: Level, X: np.ndarray, cost: np.ndarray, determined: list[
     of its typical size (``sizes``) of zero put at zero, in each column whose cost is no
     higher there."""
     near = X[determined]
-    near = (near != 0) & (np.abs(near) <= rules.ON_BRANCH * sizes)
+    near = (near != 0) & rules.near_zero(near, sizes)
     if not near.any():
         return X, cost
     zeroed = X.copy()
@@ -792,7 +792,7 @@ def configurations(problem: Problem, p: KinematicsPlan, g: Givens, states, posit
         for i in positions:
             unit = units[i]
             value = from_si(x[i], unit) if unit else x[i]
-            value = 0.0 if abs(x[i]) < 1e-12 * g.scales[i] else value + 0.0
+            value = 0.0 if rules.near_zero(x[i], g.scales[i]) else value + 0.0
             parts.append(f"{p.index.spelling(i)} = {value:.6g}{' ' + unit if unit else ''}")
         out.append("(" + ", ".join(parts) + ")")
     return "; ".join(out)

@@ -18,6 +18,7 @@ from ..errors import (InconsistentError, Location, MechgradeError, SolveError,
                       UnderdeterminedError)
 from ..spec.dynamics import dynamics_of
 from ..spec.model import Problem
+from ..tolerance import parts
 from . import rules
 from .columns import Cramer, FirstErrors, call, least_squares_solution, loud_call
 from .plan import KinematicsPlan
@@ -196,8 +197,9 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
         null = rules.null_space(a)
         open_ = [cols[j] for j, is_open in enumerate(rules.left_open(null).tolist()) if is_open]
         names = [kp.name(j) for j in open_]
-        involved = sorted({label.split(":")[0] for r, label in enumerate(kp.labels)
-                           if any(abs(a[r, cols.index(j)]) > 1e-12 for j in open_)})
+        held = set(np.flatnonzero(parts(a[:, [cols.index(j) for j in open_]],
+                                        np.abs(a).max(initial=0.0)).any(axis=1)).tolist())
+        involved = sorted({label.split(":")[0] for r, label in enumerate(kp.labels) if r in held})
         kind = "statically indeterminate" if any(kp.columns[j] >= kp.kp.index.size
                                                  for j in open_) else "under-constrained"
         return UnderdeterminedError(

@@ -36,7 +36,7 @@ from ..units import dimension, si_factor, to_si
 from .columns import call
 from .numeric import every_branch_columns, solve_numeric_columns
 from .plan import KinematicsPlan, Mutant, kinematics_plan, lambdified_mutants, per_problem
-from .result import GeneratedMistake, ObjectiveResult
+from .result import ROUND_OFF, GeneratedMistake, ObjectiveResult
 
 # sympy and the mechanics are imported by the functions that derive: a plan read from the disk
 # cache carries its mutations compiled, and a warm check never imports them.
@@ -571,7 +571,7 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: n
         scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
         answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
             SAME * np.maximum(norms, scale[:, None]) + 1e-12
-        vague = exists & ~(np.abs(V) > 1e-12).any(axis=2)
+        vague = exists & ~(np.abs(V) > ROUND_OFF).any(axis=2)
         at = np.nonzero(vague)  # the few zeros: their families looked up one by one
         vague[at] = [code not in ZERO_NAMES for code in codes[at].tolist()]
         keep = np.zeros((n, count), dtype=bool)

@@ -152,6 +152,16 @@ def same_value(a, b) -> bool:
     return bool(abs(a - b) <= SAME_VALUE * (1 + abs(a)))
 
 
+def near_zero(values, scales) -> np.ndarray:
+    """Whether each root ``values`` (of a quantity of typical size ``scales``) is zero to the
+    rounding of the solve (:data:`ON_BRANCH`): put at zero, and shown as 0.
+
+    >>> near_zero(np.array([1e-12, 1e-6, -1e-10]), np.array([1.0, 1.0, 0.01])).tolist()
+    [True, False, False]
+    """
+    return np.abs(values) <= ON_BRANCH * np.asarray(scales)
+
+
 def on_branch(values, scales, root: Root | None) -> np.ndarray:
     """Whether each root ``values`` (of a quantity of typical size ``scales``) is on the
     ``root`` a branch asks for (any root is on no branch).

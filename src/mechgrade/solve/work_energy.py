@@ -16,6 +16,7 @@ import sympy as sp
 from ..errors import SolveError
 from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
+from ..tolerance import parts
 from . import rules
 from .analysis import analysis_of, analysis_plan
 from .columns import FirstErrors, call
@@ -90,7 +91,7 @@ def energy_rates(problem: Problem, kp, X: np.ndarray) -> tuple[np.ndarray, First
     with np.errstate(all="ignore"):
         t_unit = call(ap.energy, np.concatenate([moving, reactions]), 1)[0] - v
         square = (e0 - v) / t_unit
-        errors.add(square < -1e-9 * (np.abs(e0) + np.abs(v) + 1e-300) / t_unit,
+        errors.add((square < 0) & parts(e0 - v, np.abs(e0) + np.abs(v)),
                    lambda i: SolveError(
                        f"the instant cannot be reached from the start state: it needs "
                        f"{v[i] - e0[i]:.4g} J more energy than the start state has",
