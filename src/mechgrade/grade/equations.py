@@ -253,7 +253,7 @@ class _System:
         size = np.maximum(np.abs(f).max(axis=1), 1e-300)[:, None]
 
         def same(x: np.ndarray, y: np.ndarray) -> bool:
-            return bool(np.all(np.abs(x - y) <= 1e-9 * (size if x.ndim == 2 else size[:, 0])))
+            return not parts(x - y, size if x.ndim == 2 else size[:, 0]).any()
 
         base = f[:, :1]
         self.a[:, i, :] = f[:, 1:1 + n] - base
@@ -413,7 +413,7 @@ class _System:
                     (balance.axis, balance.about) not in load.along:
                 continue
             times = float(slope @ along / (along @ along))
-            if np.abs(slope - times * along).max() > 1e-6 * np.abs(slope).max():
+            if np.abs(slope - times * along).max() > FIT * np.abs(slope).max():
                 continue
             component = load.components[load.along.index((balance.axis, balance.about))][k]
             if not parts(component, misfit):
@@ -443,7 +443,7 @@ class _System:
             if not along.any():
                 continue
             times = float(slope @ along / (along @ along))
-            if np.abs(slope - times * along).max() > 1e-6 * np.abs(slope).max():
+            if np.abs(slope - times * along).max() > FIT * np.abs(slope).max():
                 continue  # the equation's accelerations are not this balance's
             for loads in balances:
                 if loads.axis != motion.axis or (

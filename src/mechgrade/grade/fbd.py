@@ -42,7 +42,7 @@ from ..solve import rules
 from ..solve.derivation import AXES, DerivationInstant
 from ..solve.fbd import DiagramLoad, FreeBodyDiagram
 from ..spec.dynamics import LoadKind
-from ..tolerance import within
+from ..tolerance import parts, within
 from .answers import rename_to_symbols
 from .compare import Assessment, Judged, not_evaluated, unreadable
 from .results import Verdict
@@ -563,7 +563,7 @@ def _vector_mistakes(s: np.ndarray, t: np.ndarray, scale: float) -> list[LoadMis
     tol = REL * size_t + 1e-9 * scale
     if float(np.linalg.norm(s + t)) <= tol:
         return [LoadMistake.REVERSED]
-    if size_s <= 1e-9 * scale or size_t <= 1e-9 * scale:
+    if not parts(size_s, scale) or not parts(size_t, scale):
         return [LoadMistake.WRONG_MAGNITUDE]
     cosine = float(s @ t) / (size_s * size_t)
     if cosine >= 1 - REL ** 2 / 2:

@@ -209,7 +209,8 @@ def _modes(n: int, m: int, count: int, v: bytes) -> _States:
         space[:, :k, k:] = np.eye(k)
         space[:, k:, :k], space[:, k:, k:] = -Kk, -Ck
         roots = np.linalg.eigvals(space)
-        upper = roots.imag > 1e-9 * np.abs(roots).max(axis=1, keepdims=True)
+        upper = (roots.imag > 0) & tolerance.parts(roots.imag,
+                                                   np.abs(roots).max(axis=1, keepdims=True))
         order = np.argsort(np.where(upper, np.abs(roots), np.inf), axis=1, kind="stable")
         kept.append(_Modes(c, T, squares, shapes, np.take_along_axis(roots, order, axis=1),
                            upper.sum(axis=1)))
@@ -229,12 +230,11 @@ def _value(states: _States, what: Modal, number: int, i: int, j: int) -> np.ndar
         c = modes.columns
         kept = modes.T.shape[2]
         squares = modes.squares
-        magnitude = np.abs(squares)
-        scale = 1e-9 * (magnitude.max(axis=1) + 1e-300)[:, None]
+        largest = np.abs(squares).max(axis=1, keepdims=True)
         # a zero squared frequency is a mode that moves freely (a rigid-body mode), not
         # unstable
-        stable = (np.abs(squares.imag) <= scale).all(axis=1) & \
-            (squares.real >= -scale).all(axis=1)
+        stable = (~tolerance.parts(squares.imag, largest)).all(axis=1) & \
+            ((squares.real >= 0) | ~tolerance.parts(squares.real, largest)).all(axis=1)
         oscillate = modes.count == kept
         if what == Modal.STABLE:
             out[c] = np.where(stable, 0.0, 1.0)
