@@ -166,8 +166,17 @@ def _same_configuration(p: KinematicsPlan, a: Candidate, b: Candidate) -> bool:
         return False
     here, there = (call(p.point_positions, c.state.values[:, None], 3 * count).ravel()
                    for c in (a, b))
-    scale = SAME_ROOT * max(float(np.nanmax(np.abs(here), initial=0.0)), 1e-12)
-    return bool(np.all(np.abs(here - there) <= scale))
+    return bool(np.all(_coincide(np.abs(here - there), np.nanmax(np.abs(here), initial=0.0))))
+
+
+def _coincide(gap, largest) -> np.ndarray:
+    """Whether places ``gap`` apart (each coordinate) are one place: within
+    :data:`~.levels.SAME_ROOT` of the ``largest`` coordinate there (and of 1e-12 m).
+
+    >>> _coincide(np.array([1e-5, 1e-3]), 1.0).tolist()
+    [True, False]
+    """
+    return gap <= SAME_ROOT * np.maximum(largest, 1e-12)
 
 
 def _placed(problem: Problem, p: KinematicsPlan, givens: Mapping, only: set[str]) -> Givens:
@@ -553,12 +562,12 @@ def degenerate(p: KinematicsPlan, X: np.ndarray, solved: list[int]
         here = call(p.point_positions, X[:size], 3 * count).reshape(3, count, n)
         there = call(p.point_positions, other, 3 * count).reshape(3, count, n)
         finite = np.where(np.isfinite(here), np.abs(here), 0.0)
-        scale = SAME_ROOT * np.maximum(finite.max(axis=(0, 1)), 1e-12)
+        largest = finite.max(axis=(0, 1))
         # every pair's distances at once (pairs x N): numpy calls per pair of points were
         # most of the time of a small solve
         a, b = _pairs(count)
-        close = np.abs(here[:, a] - here[:, b]).max(axis=0) <= scale
-        always = np.abs(there[:, a] - there[:, b]).max(axis=0) <= scale
+        close = _coincide(np.abs(here[:, a] - here[:, b]).max(axis=0), largest)
+        always = _coincide(np.abs(there[:, a] - there[:, b]).max(axis=0), largest)
         flagged = close & ~always
         pairs = [(int(a[k]), int(b[k]), flagged[k]) for k in range(len(a))]
     singular = np.zeros(n, dtype=bool)
