@@ -580,54 +580,70 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         cost = 0.5 * (r ** 2).sum(axis=0)
     started = np.isfinite(r).all(axis=0)
     live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
-    damping = np.broadcast_to(np.asarray(first_damping, dtype=float), X.shape[1:]).copy()
     k = len(determined)
-    # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
-    # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
-    scales = np.full((k, X.shape[1]), 1e-300)
     eye = np.eye(k)[:, :, None]
     diagonal = (np.arange(k), np.arange(k))
+    # the live columns only, each quantity a column per live column (``at``: where in X),
+    # gathered once and narrowed when columns stop, not gathered and scattered at each step
+    at = np.flatnonzero(live)
+    Xw, Tw, r, J, cost_w = X[:, at], T[:, at], r[:, at], J[:, :, at], cost[at]
+    damping = np.broadcast_to(np.asarray(first_damping, dtype=float), X.shape[1:])[at]
+    # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
+    # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
+    scales = np.full((k, len(at)), 1e-300)
+
+    def stop(stopping: np.ndarray) -> None:
+        """The columns ``stopping`` (of the live ones) kept in ``X`` and ``cost``, and
+        dropped from the live ones."""
+        nonlocal at, Xw, Tw, r, J, cost_w, damping, scales, size
+        gone = at[stopping]
+        X[:, gone], cost[gone], live[gone] = Xw[:, stopping], cost_w[stopping], False
+        going = ~stopping
+        at, Xw, Tw, r, J, cost_w, damping, scales, size = (
+            v[..., going] for v in (at, Xw, Tw, r, J, cost_w, damping, scales, size))
+
     with np.errstate(all="ignore"):
-        size = _norms(X[determined])  # of each column's unknowns, kept with them
+        size = _norms(Xw[determined])  # of each column's unknowns, kept with them
         for _ in range(LM_STEPS):
-            idx = np.flatnonzero(live)
-            Ji, ri = J[:, :, idx], r[:, idx]
-            grad = np.einsum("aki,ai->ki", Ji, ri)
+            grad = np.einsum("aki,ai->ki", J, r)
             # a stationary point (scipy's gtol): a double root is found no better
             flat_here = np.abs(grad).max(axis=0, initial=0.0) <= FIT_TOL
             if flat_here.any():
-                live[idx[flat_here]] = False
-                idx, Ji, ri, grad = idx[~flat_here], Ji[:, :, ~flat_here], ri[:, ~flat_here], \
-                    grad[:, ~flat_here]
-            if not len(idx):
+                stop(flat_here)
+                grad = grad[:, ~flat_here]
+            if not len(at):
                 break
-            A = np.einsum("aki,ali->kli", Ji, Ji)
-            scale = np.maximum(scales[:, idx], A[diagonal])
-            scales[:, idx] = scale
-            damped = damping[idx]
-            step = least_squares_solution(A + eye * (damped * scale)[:, None, :], -grad)
+            A = np.einsum("aki,ali->kli", J, J)
+            scales = np.maximum(scales, A[diagonal])
+            step = least_squares_solution(A + eye * (damping * scales)[:, None, :], -grad)
             step = np.where(np.isfinite(step), step, 0.0)
-            moved = X[:, idx]
+            moved = Xw.copy()
             moved[determined] += step
-            r_new = residual(moved, T[:, idx])
+            r_new = residual(moved, Tw)
             cost_new = 0.5 * (r_new ** 2).sum(axis=0)
-            before = cost[idx]
-            better = cost_new < before  # NaN is not better
-            small = _norms(step) <= FIT_TOL * (size[idx] + FIT_TOL)
-            flat = better & (before - cost_new <= FIT_TOL * before)
-            damped = np.where(better, damped / 3, damped * 4)
-            damping[idx] = damped
-            done = small | flat | (damped > 1e30)
-            if better.any():
-                kept, there = idx[better], moved[:, better]
-                X[:, kept] = there
-                r[:, kept] = r_new[:, better]
-                cost[kept] = cost_new[better]
-                J[:, :, kept] = fresh = jacobian(there)
-                size[kept] = _norms(there[determined])
-                # only a step taken changes a cost (to zero) or a Jacobian (to undefined)
+            better = cost_new < cost_w  # NaN is not better
+            small = _norms(step) <= FIT_TOL * (size + FIT_TOL)
+            flat = better & (cost_w - cost_new <= FIT_TOL * cost_w)
+            damping = np.where(better, damping / 3, damping * 4)
+            done = small | flat | (damping > 1e30)
+            # only a step taken changes a cost (to zero) or a Jacobian (to undefined); the
+            # Jacobian worked out at the columns that took one only
+            if better.all():
+                Xw, r, cost_w = moved, r_new, cost_new
+                J = jacobian(moved)
+                size = _norms(moved[determined])
+                done |= (cost_new == 0) | ~np.isfinite(J).all(axis=(0, 1))
+            elif better.any():
+                there = moved[:, better]
+                Xw[:, better] = there
+                r[:, better] = r_new[:, better]
+                cost_w[better] = cost_new[better]
+                J[:, :, better] = fresh = jacobian(there)
+                size[better] = _norms(there[determined])
                 done[better] |= (cost_new[better] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
-            live[idx[done]] = False
+            if done.any():
+                stop(done)
+        X[:, at], cost[at] = Xw, cost_w  # those the step cap stopped
     return X, cost, started, ~live
 
 
