@@ -533,8 +533,11 @@ def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
     """The Jacobian of ``level``'s ``active`` rows (in its ``ncols`` unknowns) in those at
     ``place``, at every column of ``X`` (rows x unknowns x N)."""
     nrows = len(level.labels)
-    return call(level.jacobian, X, nrows * ncols).reshape(nrows, ncols, X.shape[1])[active][
-        :, place]
+    J = call(level.jacobian, X, nrows * ncols).reshape(nrows, ncols, X.shape[1])
+    # (a solve's steps call this hundreds of times: no copy where every row is active or
+    # every unknown placed in order)
+    J = J if active.all() else J[active]
+    return J if place == list(range(ncols)) else J[:, place]
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
@@ -568,8 +571,11 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     nrows, ncols = len(level.labels), len(columns)
     place = [columns.index(i) for i in determined]
 
+    every_row = bool(active.all())
+
     def residual(Xs, Ts):
-        return call(level.residual, Xs, nrows)[active] - Ts
+        values = call(level.residual, Xs, nrows)
+        return (values if every_row else values[active]) - Ts
 
     def jacobian(Xs):
         return _jacobians(level, Xs, ncols, place, active)
@@ -591,6 +597,8 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
     # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
     scales = np.full((k, len(at)), 1e-300)
+    with np.errstate(all="ignore"):
+        size = _norms(Xw[determined])  # of each column's unknowns, kept with them
 
     def stop(stopping: np.ndarray) -> None:
         """The columns ``stopping`` (of the live ones) kept in ``X`` and ``cost``, and
@@ -603,7 +611,6 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
             v[..., going] for v in (at, Xw, Tw, r, J, cost_w, damping, scales, size))
 
     with np.errstate(all="ignore"):
-        size = _norms(Xw[determined])  # of each column's unknowns, kept with them
         for _ in range(LM_STEPS):
             grad, A = _normal_equations(J, r)
             # a stationary point (scipy's gtol): a double root is found no better
