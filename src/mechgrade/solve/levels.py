@@ -197,16 +197,27 @@ def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     if kept is not None:
         return kept
     n = level.constraint_rows
+    if not level.conditions:  # most levels have none: the constraints alone, every solve's
+        kept = g.rows[level.order] = _constraints_only(n)
+        return kept
     active = np.ones(n + len(level.conditions), dtype=bool)
     target = np.zeros(n + len(level.conditions))
-    if level.conditions:  # most levels have none
-        values = np.array([g.conditions[level.order].get(key, np.nan)
-                           for key in level.conditions])
-        active[n:] = ~np.isnan(values)
-        target[n:] = values if np.isfinite(values).all() else np.nan_to_num(values)
+    values = np.array([g.conditions[level.order].get(key, np.nan)
+                       for key in level.conditions])
+    active[n:] = ~np.isnan(values)
+    target[n:] = values if np.isfinite(values).all() else np.nan_to_num(values)
     for shared in (active, target):  # every stage of the solve reads these
         shared.setflags(write=False)
     g.rows[level.order] = (active, target)
+    return active, target
+
+
+@lru_cache(maxsize=None)
+def _constraints_only(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`rows` of a level of ``n`` constraints and no condition (read-only, shared)."""
+    active, target = np.ones(n, dtype=bool), np.zeros(n)
+    for shared in (active, target):
+        shared.setflags(write=False)
     return active, target
 
 
@@ -381,9 +392,16 @@ def _evaluate(full, f, shape):
         return np.asarray(f(*full), dtype=float).reshape(shape)
 
 
-Fit = tuple[np.ndarray, float, bool]
-"""A start's end: the whole state there, half the sum of the squared residuals, and whether
-the level holds there (:func:`~.rules.satisfied`)."""
+@dataclass(frozen=True)
+class _Ends:
+    """Where each start of one setup ended (:func:`_fits`): the whole states (a column
+    each), half the sum of the squared residuals of each, whether it started where the
+    equations are defined, and whether the level holds there (:func:`~.rules.satisfied`)."""
+
+    X: np.ndarray
+    cost: list[float]
+    started: list[bool]
+    held: list[bool]
 
 LM_STEPS = 200
 """Steps a start may take (the residuals evaluated at most this many times)."""
@@ -401,12 +419,12 @@ NEAR_DAMPING = 1e-12
 nearly Newton's steps, which reach the root that root continues to in a few."""
 
 
-def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[list[Fit | None]]:
-    """Each start of each setup solved (``None``: a start where the equations are
-    undefined), every start of every one at once (those determining the same unknowns from
-    the same rows stacked as columns) by :func:`solve_level_columns`, an unknown near zero
-    judged against its typical size."""
-    out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
+def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[_Ends | None]:
+    """Each start of each setup solved (``None``: a setup that determines nothing), every
+    start of every one at once (those determining the same unknowns from the same rows
+    stacked as columns) by :func:`solve_level_columns`, an unknown near zero judged against
+    its typical size."""
+    out: list[_Ends | None] = [None] * len(setups)
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
         if s.determined:
@@ -427,12 +445,13 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
             :, owner]
         fits = solve_level_columns(consistency, level, X, first.determined,
                                    list(first.columns), first.active, T, first_damping, sizes)
-        X, cost, held = fits.X, fits.cost, fits.held
-        states = X.T.copy()  # each start's state a row of its own
-        for (i, k), started, x, c, h in zip(pairs, fits.started.tolist(), states,
-                                             cost.tolist(), held.tolist()):
-            if started:
-                out[i][k] = (x, c, h)
+        cost, started, held = (v.tolist() for v in (fits.cost, fits.started, fits.held))
+        at = 0  # each setup's starts are side by side, in its order
+        for i in members:
+            n = len(setups[i].starts)
+            out[i] = _Ends(fits.X[:, at:at + n], cost[at:at + n], started[at:at + n],
+                           held[at:at + n])
+            at += n
     return out
 
 
@@ -679,27 +698,31 @@ def _norms(V: np.ndarray) -> np.ndarray:
     return np.sqrt(np.add.reduce(V * V, axis=0))
 
 
-def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, fits: Sequence[Fit | None]
+def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, ends: _Ends | None
             ) -> Roots:
-    """The roots of ``setup``'s level from its starts' ``fits``: the distinct ones that
-    satisfy the level (the first from the first start), on the branch asked for and, for
-    ``first positive``, the smallest; the errors :func:`solve_nonlinear` raises when none
-    is."""
+    """The roots of ``setup``'s level from where its starts ``ends``: the distinct ones
+    that satisfy the level (the first from the first start), on the branch asked for and,
+    for ``first positive``, the smallest; the errors :func:`solve_nonlinear` raises when
+    none is."""
     level = p.levels[setup.order]
     g, determined = setup.g, setup.determined
     found: list[np.ndarray] = []
     best = None
-    for fit in fits:
-        if fit is None:
-            continue
-        full, cost, held = fit
-        if best is None or cost < best[0]:
-            best = (cost, full)
-        if held and \
-                not any(same_root(g.scales, full, other, determined) for other in found):
-            found.append(full)
+    if ends is not None:
+        sizes = g.scales[determined].tolist()
+        values = ends.X[determined].T.tolist()  # each start's, told apart as numbers
+        kept: list[list[float]] = []
+        for k, (started, cost, held) in enumerate(zip(ends.started, ends.cost, ends.held)):
+            if not started:
+                continue
+            if best is None or cost < best[0]:
+                best = (cost, k)
+            if held and not any(_same_values(sizes, values[k], other) for other in kept):
+                kept.append(values[k])
+                found.append(ends.X[:, k].copy())
     if not found:
-        full = best[1] if best is not None else setup.x
+        full = ends.X[:, best[1]].copy() if ends is not None and best is not None \
+            else setup.x
         error = _unsolved(problem, level, g, full, setup.active, setup.target,
                           len(determined), len(setup.starts))
         assert error is not None, "no start solved the level, so a residual is left"
@@ -775,11 +798,19 @@ def same_root(scales: np.ndarray, a: np.ndarray, b: np.ndarray, positions) -> bo
     >>> same_root(scales, np.array([0.5, 0.0]), np.array([0.501, 0.0]), [0, 1])
     False
     """
-    for i in positions:
-        d = a[i] - b[i]
-        if scales[i] == np.pi:
+    positions = list(positions)
+    return _same_values(scales[positions].tolist(), a[positions].tolist(),
+                        b[positions].tolist())
+
+
+def _same_values(sizes: Sequence[float], a: Sequence[float], b: Sequence[float]) -> bool:
+    """:func:`same_root`'s test of the values ``a`` and ``b`` of the same positions, of
+    typical sizes ``sizes`` (numbers: a setup's starts are told apart by the dozen)."""
+    for size, x, y in zip(sizes, a, b):
+        d = x - y
+        if size == np.pi:
             d = (d + np.pi) % (2 * np.pi) - np.pi
-        if abs(d) > SAME_ROOT * max(scales[i], abs(a[i]), abs(b[i])):
+        if abs(d) > SAME_ROOT * max(size, abs(x), abs(y)):
             return False
     return True
 
