@@ -625,9 +625,9 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         nonlocal at, Xw, Tw, r, J, cost_w, damping, scales, size
         gone = at[stopping]
         X[:, gone], cost[gone], live[gone] = Xw[:, stopping], cost_w[stopping], False
-        going = ~stopping
+        going = np.flatnonzero(~stopping)  # (taken by index: one search, not nine)
         at, Xw, Tw, r, J, cost_w, damping, scales, size = (
-            v[..., going] for v in (at, Xw, Tw, r, J, cost_w, damping, scales, size))
+            v.take(going, axis=-1) for v in (at, Xw, Tw, r, J, cost_w, damping, scales, size))
 
     with np.errstate(all="ignore"):
         for _ in range(LM_STEPS):
@@ -659,13 +659,14 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
                 size = _norms(moved[determined])
                 done |= (cost_new == 0) | ~np.isfinite(J).all(axis=(0, 1))
             elif better.any():
-                there = moved[:, better]
-                Xw[:, better] = there
-                r[:, better] = r_new[:, better]
-                cost_w[better] = cost_new[better]
-                J[:, :, better] = fresh = jacobian(there)
-                size[better] = _norms(there[determined])
-                done[better] |= (cost_new[better] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
+                took = np.flatnonzero(better)
+                there = moved.take(took, axis=1)
+                Xw[:, took] = there
+                r[:, took] = r_new.take(took, axis=1)
+                cost_w[took] = cost_new[took]
+                J[:, :, took] = fresh = jacobian(there)
+                size[took] = _norms(there[determined])
+                done[took] |= (cost_new[took] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
             if done.any():
                 stop(done)
         X[:, at], cost[at] = Xw, cost_w  # those the step cap stopped
