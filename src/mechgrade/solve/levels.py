@@ -295,6 +295,13 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     >>> type(off).__name__
     'SolveError'
     """
+    with quiet():  # once, not at each column's functions (a class's thousands)
+        return _nonlinear_columns(problem, p, order, states, givens, near)
+
+
+def _nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
+                       states: Sequence[State], givens: Sequence[Givens],
+                       near: Sequence[Near] | None) -> list[Roots | MechgradeError]:
     out: list[Roots | MechgradeError | _Setup] = []
     for state, g, (free_values, start) in zip(states, givens,
                                               near or [(None, None)] * len(states)):
