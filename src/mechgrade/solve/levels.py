@@ -682,11 +682,11 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
 
 def _normal_equations(J: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``J``'s transpose times ``r`` and times ``J`` at every column (``J``: rows x unknowns x
-    N, ``r``: rows x N), summed over the rows as numpy's ``einsum`` sums them for columns
-    gathered from wider arrays (each column's entries side by side): with one unknown in
-    the SIMD lanes of that layout (the order of the sums depends on it), with more row after
-    row in any layout, so there in the rows' own order, ten times faster at hundreds of
-    columns than in that layout. The same bits whatever layout ``J`` and ``r`` come in.
+    N, ``r``: rows x N), the same bits whatever layout they come in: those einsum gives
+    columns gathered from a wider class (each column's entries side by side). With one
+    unknown einsum sums a column's rows in SIMD lanes there (the order of the sums depends
+    on the layout), so they are laid out so; with more it sums them row after row in any
+    layout, so in C order, where it is ten times faster at hundreds of columns.
 
     >>> J, r = np.arange(12.0).reshape(2, 2, 3), np.ones((2, 3))
     >>> [v.tolist() for v in _normal_equations(J, r)][0]
