@@ -359,3 +359,17 @@ def test_a_class_derives_a_symbolic_answer_once_per_what_it_depends_on():
                         [0, 1, 2], symbolic)
     assert len(derived) == 1
     assert {results[oid].expr for results, _ in out} == {"L*sqrt(thetad**4 + thetadd**2)"}
+
+
+def test_the_author_units_of_a_problem_are_worked_out_once():
+    """Every refusal listing roots reads them (a class refuses hundreds of misread givens)."""
+    from mechgrade.resources import shipped_dir
+    from mechgrade.solve.levels import author_units
+    from mechgrade.solve.plan import kinematics_plan
+    from mechgrade.spec import load_problem
+
+    problem = load_problem(shipped_dir("problems") / "airplane_crosswind_heading.yaml")
+    p = kinematics_plan(problem)
+    units = author_units(problem, p)
+    assert units is author_units(problem, p)
+    assert units[p.index.position("w'")] == "km / h"  # as its given is written

@@ -283,3 +283,26 @@ def test_the_freedoms_of_instants_solved_together_are_probed_each_as_alone():
     assert [str(i.errors["speed"]) for i in together if isinstance(i, Instant)] == \
         [str(i.errors["speed"]) for i in alone]
     assert "give a value for theta' (velocity level)" in str(alone[1].errors["speed"])
+
+
+@pytest.mark.parametrize("unknowns", [1, 2, 3])
+@pytest.mark.parametrize("rows", [1, 2, 3, 4, 6])
+def test_the_normal_equations_of_a_step_are_summed_as_for_columns_gathered_from_a_class(
+        unknowns, rows):
+    """A step's J'r and J'J have each column's bits whatever layout its Jacobian is kept in,
+    those einsum gives columns gathered from a wider class (with one unknown it sums a
+    column's rows in SIMD lanes there: in another layout the last bits differ)."""
+    import numpy as np
+
+    from mechgrade.solve.levels import _normal_equations
+
+    rng = np.random.default_rng(rows * 10 + unknowns)
+    wide, r_wide = (rng.standard_normal(shape) * 10.0 ** rng.integers(-8, 8, shape)
+                    for shape in ((rows, unknowns, 400), (rows, 400)))
+    at = np.arange(0, 400, 2)
+    J, r = wide[:, :, at], r_wide[:, at]  # a step's live columns, as a class gathers them
+    expected = (np.einsum("aki,ai->ki", J, r), np.einsum("aki,ali->kli", J, J))
+    for layout in (J, np.ascontiguousarray(J), np.asfortranarray(J),
+                   np.ascontiguousarray(J.transpose(1, 0, 2)).transpose(1, 0, 2)):
+        for got, want in zip(_normal_equations(layout, np.ascontiguousarray(r)), expected):
+            assert np.array_equal(got, want)

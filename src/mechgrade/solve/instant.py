@@ -786,17 +786,13 @@ def _quantity_unit(problem: Problem, node) -> str:
     return si_unit(units[node.id])
 
 
-def _author_units(problem: Problem, p: KinematicsPlan) -> list[str]:
-    return _per_problem(author_units, problem, p)
-
-
 def _reported(problem: Problem, p: KinematicsPlan) -> list[tuple[int, str, str, float]]:
     """Each position's index, spelling, author's unit and that unit's SI factor."""
     return _per_problem(_positions_reported, problem, p)
 
 
 def _positions_reported(problem: Problem, p: KinematicsPlan) -> list[tuple[int, str, str, float]]:
-    units = _author_units(problem, p)
+    units = author_units(problem, p)
     return [(i, p.index.spelling(i), units[i], si_factor(units[i]) if units[i] else 1.0)
             for i in range(p.index.size)]
 

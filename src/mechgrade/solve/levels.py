@@ -197,16 +197,27 @@ def rows(level: Level, g: Givens) -> tuple[np.ndarray, np.ndarray]:
     if kept is not None:
         return kept
     n = level.constraint_rows
+    if not level.conditions:  # most levels have none: the constraints alone, every solve's
+        kept = g.rows[level.order] = _constraints_only(n)
+        return kept
     active = np.ones(n + len(level.conditions), dtype=bool)
     target = np.zeros(n + len(level.conditions))
-    if level.conditions:  # most levels have none
-        values = np.array([g.conditions[level.order].get(key, np.nan)
-                           for key in level.conditions])
-        active[n:] = ~np.isnan(values)
-        target[n:] = values if np.isfinite(values).all() else np.nan_to_num(values)
+    values = np.array([g.conditions[level.order].get(key, np.nan)
+                       for key in level.conditions])
+    active[n:] = ~np.isnan(values)
+    target[n:] = values if np.isfinite(values).all() else np.nan_to_num(values)
     for shared in (active, target):  # every stage of the solve reads these
         shared.setflags(write=False)
     g.rows[level.order] = (active, target)
+    return active, target
+
+
+@lru_cache(maxsize=None)
+def _constraints_only(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`rows` of a level of ``n`` constraints and no condition (read-only, shared)."""
+    active, target = np.ones(n, dtype=bool), np.zeros(n)
+    for shared in (active, target):
+        shared.setflags(write=False)
     return active, target
 
 
@@ -284,6 +295,13 @@ def solve_nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
     >>> type(off).__name__
     'SolveError'
     """
+    with quiet():  # once, not at each column's functions (a class's thousands)
+        return _nonlinear_columns(problem, p, order, states, givens, near)
+
+
+def _nonlinear_columns(problem: Problem, p: KinematicsPlan, order: int,
+                       states: Sequence[State], givens: Sequence[Givens],
+                       near: Sequence[Near] | None) -> list[Roots | MechgradeError]:
     out: list[Roots | MechgradeError | _Setup] = []
     for state, g, (free_values, start) in zip(states, givens,
                                               near or [(None, None)] * len(states)):
@@ -381,9 +399,16 @@ def _evaluate(full, f, shape):
         return np.asarray(f(*full), dtype=float).reshape(shape)
 
 
-Fit = tuple[np.ndarray, float, bool]
-"""A start's end: the whole state there, half the sum of the squared residuals, and whether
-the level holds there (:func:`~.rules.satisfied`)."""
+@dataclass(frozen=True)
+class _Ends:
+    """Where each start of one setup ended (:func:`_fits`): the whole states (a column
+    each), half the sum of the squared residuals of each, whether it started where the
+    equations are defined, and whether the level holds there (:func:`~.rules.satisfied`)."""
+
+    X: np.ndarray
+    cost: list[float]
+    started: list[bool]
+    held: list[bool]
 
 LM_STEPS = 200
 """Steps a start may take (the residuals evaluated at most this many times)."""
@@ -401,12 +426,12 @@ NEAR_DAMPING = 1e-12
 nearly Newton's steps, which reach the root that root continues to in a few."""
 
 
-def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[list[Fit | None]]:
-    """Each start of each setup solved (``None``: a start where the equations are
-    undefined), every start of every one at once (those determining the same unknowns from
-    the same rows stacked as columns) by :func:`solve_level_columns`, an unknown near zero
-    judged against its typical size."""
-    out: list[list[Fit | None]] = [[None] * len(s.starts) for s in setups]
+def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[_Ends | None]:
+    """Each start of each setup solved (``None``: a setup that determines nothing), every
+    start of every one at once (those determining the same unknowns from the same rows
+    stacked as columns) by :func:`solve_level_columns`, an unknown near zero judged against
+    its typical size."""
+    out: list[_Ends | None] = [None] * len(setups)
     groups: dict[tuple, list[tuple[int, int]]] = {}
     for i, s in enumerate(setups):
         if s.determined:
@@ -427,12 +452,13 @@ def _fits(consistency: float, level: Level, setups: Sequence[_Setup]) -> list[li
             :, owner]
         fits = solve_level_columns(consistency, level, X, first.determined,
                                    list(first.columns), first.active, T, first_damping, sizes)
-        X, cost, held = fits.X, fits.cost, fits.held
-        states = X.T.copy()  # each start's state a row of its own
-        for (i, k), started, x, c, h in zip(pairs, fits.started.tolist(), states,
-                                             cost.tolist(), held.tolist()):
-            if started:
-                out[i][k] = (x, c, h)
+        cost, started, held = (v.tolist() for v in (fits.cost, fits.started, fits.held))
+        at = 0  # each setup's starts are side by side, in its order
+        for i in members:
+            n = len(setups[i].starts)
+            out[i] = _Ends(fits.X[:, at:at + n], cost[at:at + n], started[at:at + n],
+                           held[at:at + n])
+            at += n
     return out
 
 
@@ -533,8 +559,11 @@ def _jacobians(level: Level, X: np.ndarray, ncols: int, place: list[int],
     """The Jacobian of ``level``'s ``active`` rows (in its ``ncols`` unknowns) in those at
     ``place``, at every column of ``X`` (rows x unknowns x N)."""
     nrows = len(level.labels)
-    return call(level.jacobian, X, nrows * ncols).reshape(nrows, ncols, X.shape[1])[active][
-        :, place]
+    J = call(level.jacobian, X, nrows * ncols).reshape(nrows, ncols, X.shape[1])
+    # (a solve's steps call this hundreds of times: no copy where every row is active or
+    # every unknown placed in order)
+    J = J if active.all() else J[active]
+    return J if place == list(range(ncols)) else J[:, place]
 
 
 def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], columns: list[int],
@@ -568,8 +597,11 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
     nrows, ncols = len(level.labels), len(columns)
     place = [columns.index(i) for i in determined]
 
+    every_row = bool(active.all())
+
     def residual(Xs, Ts):
-        return call(level.residual, Xs, nrows)[active] - Ts
+        values = call(level.residual, Xs, nrows)
+        return (values if every_row else values[active]) - Ts
 
     def jacobian(Xs):
         return _jacobians(level, Xs, ncols, place, active)
@@ -580,55 +612,92 @@ def levenberg_marquardt(level: Level, X: np.ndarray, determined: list[int], colu
         cost = 0.5 * (r ** 2).sum(axis=0)
     started = np.isfinite(r).all(axis=0)
     live = started & np.isfinite(J).all(axis=(0, 1)) & (cost > 0)
-    damping = np.broadcast_to(np.asarray(first_damping, dtype=float), X.shape[1:]).copy()
     k = len(determined)
-    # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
-    # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
-    scales = np.full((k, X.shape[1]), 1e-300)
     eye = np.eye(k)[:, :, None]
     diagonal = (np.arange(k), np.arange(k))
+    # the live columns only, each quantity a column per live column (``at``: where in X),
+    # gathered once and narrowed when columns stop, not gathered and scattered at each step
+    at = np.flatnonzero(live)
+    Xw, Tw, r, J, cost_w = X[:, at], T[:, at], r[:, at], J[:, :, at], cost[at]
+    damping = np.broadcast_to(np.asarray(first_damping, dtype=float), X.shape[1:])[at]
+    # Marquardt's scaling, each unknown's largest yet (as MINPACK keeps it): an unknown whose
+    # column of the Jacobian vanishes near a root (b at b² = 0) keeps a damping of its size
+    scales = np.full((k, len(at)), 1e-300)
     with np.errstate(all="ignore"):
-        size = _norms(X[determined])  # of each column's unknowns, kept with them
+        size = _norms(Xw[determined])  # of each column's unknowns, kept with them
+
+    def stop(stopping: np.ndarray) -> None:
+        """The columns ``stopping`` (of the live ones) kept in ``X`` and ``cost``, and
+        dropped from the live ones."""
+        nonlocal at, Xw, Tw, r, J, cost_w, damping, scales, size
+        gone = at[stopping]
+        X[:, gone], cost[gone], live[gone] = Xw[:, stopping], cost_w[stopping], False
+        going = np.flatnonzero(~stopping)  # (taken by index: one search, not nine)
+        at, Xw, Tw, r, J, cost_w, damping, scales, size = (
+            v.take(going, axis=-1) for v in (at, Xw, Tw, r, J, cost_w, damping, scales, size))
+
+    with np.errstate(all="ignore"):
         for _ in range(LM_STEPS):
-            idx = np.flatnonzero(live)
-            Ji, ri = J[:, :, idx], r[:, idx]
-            grad = np.einsum("aki,ai->ki", Ji, ri)
+            grad, A = _normal_equations(J, r)
             # a stationary point (scipy's gtol): a double root is found no better
             flat_here = np.abs(grad).max(axis=0, initial=0.0) <= FIT_TOL
             if flat_here.any():
-                live[idx[flat_here]] = False
-                idx, Ji, ri, grad = idx[~flat_here], Ji[:, :, ~flat_here], ri[:, ~flat_here], \
-                    grad[:, ~flat_here]
-            if not len(idx):
+                stop(flat_here)
+                grad, A = grad[:, ~flat_here], A[..., ~flat_here]
+            if not len(at):
                 break
-            A = np.einsum("aki,ali->kli", Ji, Ji)
-            scale = np.maximum(scales[:, idx], A[diagonal])
-            scales[:, idx] = scale
-            damped = damping[idx]
-            step = least_squares_solution(A + eye * (damped * scale)[:, None, :], -grad)
+            scales = np.maximum(scales, A[diagonal])
+            step = least_squares_solution(A + eye * (damping * scales)[:, None, :], -grad)
             step = np.where(np.isfinite(step), step, 0.0)
-            moved = X[:, idx]
+            moved = Xw.copy()
             moved[determined] += step
-            r_new = residual(moved, T[:, idx])
+            r_new = residual(moved, Tw)
             cost_new = 0.5 * (r_new ** 2).sum(axis=0)
-            before = cost[idx]
-            better = cost_new < before  # NaN is not better
-            small = _norms(step) <= FIT_TOL * (size[idx] + FIT_TOL)
-            flat = better & (before - cost_new <= FIT_TOL * before)
-            damped = np.where(better, damped / 3, damped * 4)
-            damping[idx] = damped
-            done = small | flat | (damped > 1e30)
-            if better.any():
-                kept, there = idx[better], moved[:, better]
-                X[:, kept] = there
-                r[:, kept] = r_new[:, better]
-                cost[kept] = cost_new[better]
-                J[:, :, kept] = fresh = jacobian(there)
-                size[kept] = _norms(there[determined])
-                # only a step taken changes a cost (to zero) or a Jacobian (to undefined)
-                done[better] |= (cost_new[better] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
-            live[idx[done]] = False
+            better = cost_new < cost_w  # NaN is not better
+            small = _norms(step) <= FIT_TOL * (size + FIT_TOL)
+            flat = better & (cost_w - cost_new <= FIT_TOL * cost_w)
+            damping = np.where(better, damping / 3, damping * 4)
+            done = small | flat | (damping > 1e30)
+            # only a step taken changes a cost (to zero) or a Jacobian (to undefined); the
+            # Jacobian worked out at the columns that took one only
+            if better.all():
+                Xw, r, cost_w = moved, r_new, cost_new
+                J = jacobian(moved)
+                size = _norms(moved[determined])
+                done |= (cost_new == 0) | ~np.isfinite(J).all(axis=(0, 1))
+            elif better.any():
+                took = np.flatnonzero(better)
+                there = moved.take(took, axis=1)
+                Xw[:, took] = there
+                r[:, took] = r_new.take(took, axis=1)
+                cost_w[took] = cost_new[took]
+                J[:, :, took] = fresh = jacobian(there)
+                size[took] = _norms(there[determined])
+                done[took] |= (cost_new[took] == 0) | ~np.isfinite(fresh).all(axis=(0, 1))
+            if done.any():
+                stop(done)
+        X[:, at], cost[at] = Xw, cost_w  # those the step cap stopped
     return X, cost, started, ~live
+
+
+def _normal_equations(J: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``J``'s transpose times ``r`` and times ``J`` at every column (``J``: rows x unknowns x
+    N, ``r``: rows x N), the same bits whatever layout they come in: those einsum gives
+    columns gathered from a wider class (each column's entries side by side). With one
+    unknown einsum sums a column's rows in SIMD lanes there (the order of the sums depends
+    on the layout), so they are laid out so; with more it sums them row after row in any
+    layout, so in C order, where it is ten times faster at hundreds of columns.
+
+    >>> J, r = np.arange(12.0).reshape(2, 2, 3), np.ones((2, 3))
+    >>> [v.tolist() for v in _normal_equations(J, r)][0]
+    [[6.0, 8.0, 10.0], [12.0, 14.0, 16.0]]
+    """
+    if J.shape[1] == 1:
+        J = np.ascontiguousarray(J[:, 0].T).T[:, None]
+        r = np.ascontiguousarray(r.T).T
+    else:
+        J = np.ascontiguousarray(J)
+    return np.einsum("aki,ai->ki", J, r), np.einsum("aki,ali->kli", J, J)
 
 
 def _norms(V: np.ndarray) -> np.ndarray:
@@ -637,27 +706,31 @@ def _norms(V: np.ndarray) -> np.ndarray:
     return np.sqrt(np.add.reduce(V * V, axis=0))
 
 
-def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, fits: Sequence[Fit | None]
+def _chosen(problem: Problem, p: KinematicsPlan, setup: _Setup, ends: _Ends | None
             ) -> Roots:
-    """The roots of ``setup``'s level from its starts' ``fits``: the distinct ones that
-    satisfy the level (the first from the first start), on the branch asked for and, for
-    ``first positive``, the smallest; the errors :func:`solve_nonlinear` raises when none
-    is."""
+    """The roots of ``setup``'s level from where its starts ``ends``: the distinct ones
+    that satisfy the level (the first from the first start), on the branch asked for and,
+    for ``first positive``, the smallest; the errors :func:`solve_nonlinear` raises when
+    none is."""
     level = p.levels[setup.order]
     g, determined = setup.g, setup.determined
     found: list[np.ndarray] = []
     best = None
-    for fit in fits:
-        if fit is None:
-            continue
-        full, cost, held = fit
-        if best is None or cost < best[0]:
-            best = (cost, full)
-        if held and \
-                not any(same_root(g.scales, full, other, determined) for other in found):
-            found.append(full)
+    if ends is not None:
+        sizes = g.scales[determined].tolist()
+        values = ends.X[determined].T.tolist()  # each start's, told apart as numbers
+        kept: list[list[float]] = []
+        for k, (started, cost, held) in enumerate(zip(ends.started, ends.cost, ends.held)):
+            if not started:
+                continue
+            if best is None or cost < best[0]:
+                best = (cost, k)
+            if held and not any(_same_values(sizes, values[k], other) for other in kept):
+                kept.append(values[k])
+                found.append(ends.X[:, k].copy())
     if not found:
-        full = best[1] if best is not None else setup.x
+        full = ends.X[:, best[1]].copy() if ends is not None and best is not None \
+            else setup.x
         error = _unsolved(problem, level, g, full, setup.active, setup.target,
                           len(determined), len(setup.starts))
         assert error is not None, "no start solved the level, so a residual is left"
@@ -733,11 +806,19 @@ def same_root(scales: np.ndarray, a: np.ndarray, b: np.ndarray, positions) -> bo
     >>> same_root(scales, np.array([0.5, 0.0]), np.array([0.501, 0.0]), [0, 1])
     False
     """
-    for i in positions:
-        d = a[i] - b[i]
-        if scales[i] == np.pi:
+    positions = list(positions)
+    return _same_values(scales[positions].tolist(), a[positions].tolist(),
+                        b[positions].tolist())
+
+
+def _same_values(sizes: Sequence[float], a: Sequence[float], b: Sequence[float]) -> bool:
+    """:func:`same_root`'s test of the values ``a`` and ``b`` of the same positions, of
+    typical sizes ``sizes`` (numbers: a setup's starts are told apart by the dozen)."""
+    for size, x, y in zip(sizes, a, b):
+        d = x - y
+        if size == np.pi:
             d = (d + np.pi) % (2 * np.pi) - np.pi
-        if abs(d) > SAME_ROOT * max(scales[i], abs(a[i]), abs(b[i])):
+        if abs(d) > SAME_ROOT * max(size, abs(x), abs(y)):
             return False
     return True
 
@@ -799,7 +880,12 @@ def configurations(problem: Problem, p: KinematicsPlan, g: Givens, states, posit
 
 
 def author_units(problem: Problem, p: KinematicsPlan) -> list[str]:
-    """The unit each position is reported in: that of its given or guess, else its own."""
+    """The unit each position is reported in: that of its given or guess, else its own
+    (worked out once per problem: every refusal that lists roots reads them; read-only)."""
+    return per_problem(_author_units, problem, p)
+
+
+def _author_units(problem: Problem, p: KinematicsPlan) -> list[str]:
     index = p.index
     declared = {c.name: c.unit for c in problem.coordinates}
     declared.update({q.name: q.unit for q in problem.parameters})
