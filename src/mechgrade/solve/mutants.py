@@ -538,6 +538,9 @@ def _stacked(columns: Sequence[Sequence[GeneratedMistake]], size: int
         for j, m in enumerate(mistakes):
             if size == 1 and isinstance(m.value, float):  # a scalar, as most are: no array
                 V[i, j, 0], exists[i, j] = m.value, True
+            elif type(m.value) is tuple and len(m.value) == size and all(
+                    type(v) is float for v in m.value):  # a vector's components: no array
+                V[i, j], exists[i, j] = m.value, True
             else:
                 value = np.atleast_1d(np.asarray(m.value, float))
                 if value.shape == (size,):
