@@ -180,7 +180,7 @@ def test_a_vector_mistake_is_stacked_as_its_components_read_as_an_array():
     from mechgrade.solve.mutants import _stacked
 
     values = [(1.0, -2.5, 0.0), (1.0, 2.0), (1, 2.0, 3.0), 4.0, (-0.0, 5e-324, 1e300)]
-    V, exists, codes = _stacked([[GeneratedMistake("v", "s", v) for v in values]], 3)
+    V, exists, _ = _stacked([[GeneratedMistake("v", "s", v) for v in values]], 3)
     assert exists.tolist() == [[True, False, True, False, True]]
     for j, v in enumerate(values):
         if exists[0, j]:
