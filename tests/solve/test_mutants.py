@@ -173,6 +173,22 @@ def test_a_generated_mistake_is_kept_alike_at_one_instant_and_in_a_class():
     assert [[m.value for m in keep(i)] for i in range(3)] == [[2.0, 4.0], [2.0], []]
 
 
+def test_a_vector_mistake_is_stacked_as_its_components_read_as_an_array():
+    # a vector's components taken as they are (no array made per mistake) and the general
+    # rule (one array per value) stack every value alike: components of another count, a
+    # whole number among them, a scalar where a vector is wanted
+    from mechgrade.solve.mutants import _stacked
+
+    values = [(1.0, -2.5, 0.0), (1.0, 2.0), (1, 2.0, 3.0), 4.0, (-0.0, 5e-324, 1e300)]
+    V, exists, _ = _stacked([[GeneratedMistake("v", "s", v) for v in values]], 3)
+    assert exists.tolist() == [[True, False, True, False, True]]
+    for j, v in enumerate(values):
+        if exists[0, j]:
+            expected = np.atleast_1d(np.asarray(v, float))
+            assert V[0, j].tobytes() == expected.tobytes()  # the same bits, a zero's sign too
+    assert np.isnan(V[0, [1, 3]]).all()
+
+
 @pytest.mark.slow  # derives the problem and its mistaken copy (3 s)
 def test_a_cords_strands_counted_once_is_named_in_a_problem_without_bodies():
     # sqrt(x^2 + h^2) + (h - y) = L: the crate moves at the hitch's rate along the cord, 1.6 m/s

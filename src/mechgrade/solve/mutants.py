@@ -59,26 +59,29 @@ def model_mistake_table(problem: Problem, p: KinematicsPlan, states: np.ndarray,
     """The model mutations of the objectives in ``wanted`` at many instants at once
     (``states`` holds one state per column). One row per mutation: ``(mutation, objective,
     where it is defined (N), its values in the objective's unit (N x size), the dropped term's
-    SI values (N x 3) or None)``; :func:`model_mistake_at` makes the mistake of one instant.
-    Objective by objective: only the wanted ones are derived and lambdified."""
+    SI values (N lists of 3) or None, its values as a result shows them (N))``;
+    :func:`model_mistake_at` makes the mistake of one instant. Objective by objective: only
+    the wanted ones are derived and lambdified."""
     table = []
     for m in (item for o in problem.objectives if o.id in wanted
               for item in _lambdified(problem, p, o.id)):
         obj = problem.objective(m.objective)
         si = call(m.value, states, m.size)
         shown = (si / si_factor(obj.unit) + 0.0).T  # as in_unit, every column at once
+        # (Python numbers made for every column at once: a class reads most of them)
+        values = [tuple(v) for v in shown.tolist()] if obj.kind == ObjectiveKind.VECTOR \
+            else shown[:, 0].tolist()
         table.append((m, obj, np.isfinite(si).all(axis=0), shown,
-                      None if m.term is None else call(m.term, states, 3).T))
+                      None if m.term is None else call(m.term, states, 3).T.tolist(), values))
     return table
 
 
 def model_mistake_at(row, i: int) -> GeneratedMistake:
     """The mistake of :func:`model_mistake_table`'s ``row`` at instant ``i``."""
-    m, obj, _, shown, terms = row
+    m, obj, _, _, terms, values = row
     sentence = m.sentence if terms is None else m.sentence.replace(
         "{term}", _term_text(terms[i], obj, m.velocity))
-    value = tuple(shown[i].tolist()) if obj.kind == ObjectiveKind.VECTOR else float(shown[i, 0])
-    return GeneratedMistake(m.code, sentence, value)
+    return GeneratedMistake(m.code, sentence, values[i])
 
 
 def symbolic_mistakes(problem: Problem, obj: Objective, right,
@@ -538,6 +541,9 @@ def _stacked(columns: Sequence[Sequence[GeneratedMistake]], size: int
         for j, m in enumerate(mistakes):
             if size == 1 and isinstance(m.value, float):  # a scalar, as most are: no array
                 V[i, j, 0], exists[i, j] = m.value, True
+            elif type(m.value) is tuple and len(m.value) == size and all(
+                    type(v) is float for v in m.value):  # a vector's components: no array
+                V[i, j], exists[i, j] = m.value, True
             else:
                 value = np.atleast_1d(np.asarray(m.value, float))
                 if value.shape == (size,):
@@ -639,7 +645,7 @@ def _term_unit(unit: str, velocity: bool) -> str:
     return "m" + per
 
 
-def _term_text(si_values: np.ndarray, obj: Objective, velocity: bool) -> str:
+def _term_text(si_values: Sequence[float], obj: Objective, velocity: bool) -> str:
     """A dropped term's components (a velocity's or an acceleration's), in the objective's
     unit when it is of the same kind."""
     unit = _term_unit(obj.unit, velocity)
@@ -647,7 +653,7 @@ def _term_text(si_values: np.ndarray, obj: Objective, velocity: bool) -> str:
     shown = [float(v) / factor + 0.0 for v in si_values]  # from_si, as floats
     shown = [v if part else 0.0 for v, part in zip(shown, parts(shown).tolist())]
     written = shown[:2] if shown[2] == 0 else shown
-    return "(" + ", ".join(f"{v:.4g}" for v in written) + f") {unit}"
+    return "(" + ", ".join([f"{v:.4g}" for v in written]) + f") {unit}"
 
 
 def inside_tolerance(result: ObjectiveResult, rel: float | None = None,
