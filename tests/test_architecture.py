@@ -107,12 +107,21 @@ def _is_type_checking(test: ast.expr) -> bool:
         (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
 
 
+IMPORTERS = ("import_module", "__import__")
+"""The functions that import a module named at run time (``importlib``'s, the builtin)."""
+
+
 def dynamic_imports(path: Path) -> list[int]:
-    """The lines where ``path`` imports a module named at run time."""
+    """The lines where ``path`` imports a module named at run time: a call of one of
+    :data:`IMPORTERS`, by its name, an attribute (``builtins.__import__``) or another name it
+    was imported as (``from importlib import import_module as load``)."""
     tree = _parsed(path.read_text(encoding="utf-8"))
+    names = {*IMPORTERS, *(alias.asname for node in ast.walk(tree)
+                           if isinstance(node, ast.ImportFrom)
+                           for alias in node.names if alias.name in IMPORTERS and alias.asname)}
     return [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Call) and (
-        (isinstance(node.func, ast.Attribute) and node.func.attr == "import_module")
-        or (isinstance(node.func, ast.Name) and node.func.id in ("import_module", "__import__")))]
+        (isinstance(node.func, ast.Attribute) and node.func.attr in IMPORTERS)
+        or (isinstance(node.func, ast.Name) and node.func.id in names))]
 
 
 def own(target: str) -> str | None:
@@ -255,6 +264,8 @@ def test_a_cycle_through_three_modules_is_found(tmp_path):
     ("spec.model", "import importlib\nplan = importlib.import_module('mechgrade.solve.plan')\n"),
     ("spec.model", "from importlib import import_module\nimport_module('x')\n"),
     ("spec.model", "__import__('mechgrade.solve.plan')\n"),
+    ("spec.model", "from importlib import import_module as load\nload('mechgrade.solve')\n"),
+    ("spec.model", "import builtins\nbuiltins.__import__('mechgrade.solve')\n"),
     ("errors", "from . import files\n"),
     ("files", "from .expressions import syntax\n"),
     ("grade.run", "from .. import cli\n"),
