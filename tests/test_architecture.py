@@ -349,3 +349,27 @@ def test_a_forbidden_import_planted_in_a_copy_of_the_package_fails_the_check(
     faults = package_faults(modules(copy))
     assert faults and all(said in f or module.replace("/", ".")[:-3] in f for f in faults)
     assert any(said in f for f in faults), faults
+
+
+# --- one StrEnum ---------------------------------------------------------------------------------
+
+STR_ENUM_HOME = "expressions.functions"
+"""The one module that imports ``enum.StrEnum`` (Python 3.11's; it spells it out on 3.10, which
+pyproject.toml still supports); every other module takes it from there."""
+
+
+def str_enum_imports(path: Path) -> list[int]:
+    """The lines where ``path`` takes ``StrEnum`` from :mod:`enum`, or defines a str enum of
+    its own (a class deriving from both ``str`` and ``Enum``)."""
+    tree = _parsed(path.read_text(encoding="utf-8"))
+    return [node.lineno for node in ast.walk(tree)
+            if (isinstance(node, ast.ImportFrom) and node.module == "enum"
+                and any(alias.name == "StrEnum" for alias in node.names))
+            or (isinstance(node, ast.ClassDef)
+                and {"str", "Enum"} <= {b.id for b in node.bases if isinstance(b, ast.Name)})]
+
+
+def test_strenum_comes_from_one_place():
+    found = {name: lines for name, path in MODULES.items()
+             if name != STR_ENUM_HOME and (lines := str_enum_imports(path))}
+    assert found == {}
