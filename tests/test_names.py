@@ -39,3 +39,29 @@ def test_each_of_the_names_issue_24_made_one_is_defined_once():
                 where.setdefault(name, []).append(str(path.relative_to(SRC)))
     assert {name: places for name, places in where.items()
             if len(places) > 1 or name in NEVER} == {}
+
+
+def kinds_compared_with_text(text: str) -> list[int]:
+    """The lines where a ``kind`` field (``result.kind``) is compared with a text, or a tuple of
+    texts, instead of with its type's members.
+
+    >>> kinds_compared_with_text("r.kind == 'vector'\\nr.kind in ('a', 'b')\\nr.kind is K.VECTOR\\n")
+    [1, 2]
+    """
+    def field(node: ast.expr) -> bool:
+        return isinstance(node, ast.Attribute) and node.attr == "kind"
+
+    def texts(node: ast.expr) -> bool:
+        items = node.elts if isinstance(node, (ast.Tuple, ast.List, ast.Set)) else [node]
+        return bool(items) and all(isinstance(i, ast.Constant) and isinstance(i.value, str)
+                                   for i in items)
+
+    return [node.lineno for node in ast.walk(ast.parse(text)) if isinstance(node, ast.Compare)
+            and any((field(a) and texts(b)) or (field(b) and texts(a))
+                    for a, b in zip([node.left, *node.comparators], node.comparators))]
+
+
+def test_a_kind_is_compared_with_its_types_members_not_with_text():
+    found = {str(path.relative_to(SRC)): lines for path in sorted(SRC.rglob("*.py"))
+             if (lines := kinds_compared_with_text(path.read_text(encoding="utf-8")))}
+    assert found == {}

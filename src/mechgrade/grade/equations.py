@@ -38,6 +38,7 @@ from ..expressions.numeric import evaluate
 from ..expressions.syntax import Bin, Node, Unary
 from ..solve import rules
 from ..solve.derivation import MotionSamples, SampledLoad
+from ..spec.dynamics import LoadKind
 from .answers import rename_to_symbols
 from .compare import Assessment, Judged, not_evaluated, unreadable
 from .results import Verdict
@@ -684,16 +685,16 @@ def _signed_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
 def _naming(load: SampledLoad) -> str:
     """A load as a reader names it.
 
-    >>> _naming(SampledLoad("F_P", "kinetic friction", "block", ()))
+    >>> _naming(SampledLoad("F_P", LoadKind.KINETIC_FRICTION, "block", ()))
     'the kinetic friction F_P on block'
-    >>> _naming(SampledLoad("gravity", "weight", "block1", ()))
+    >>> _naming(SampledLoad("gravity", LoadKind.WEIGHT, "block1", ()))
     'the weight of block1'
-    >>> _naming(SampledLoad("spring", "spring", "puck", ()))
+    >>> _naming(SampledLoad("spring", LoadKind.SPRING, "puck", ()))
     'the spring on puck'
-    >>> _naming(SampledLoad("friction", "kinetic friction", "block", ()))
+    >>> _naming(SampledLoad("friction", LoadKind.KINETIC_FRICTION, "block", ()))
     'the kinetic friction on block'
     """
-    if load.kind == "weight":
+    if load.kind == LoadKind.WEIGHT:
         return f"the weight of {load.body}"
     # a load named by its kind ("spring", "friction") is named once
     if load.name.replace("_", " ").lower() in (load.kind, load.kind.split()[-1]):
