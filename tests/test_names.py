@@ -65,3 +65,29 @@ def test_a_kind_is_compared_with_its_types_members_not_with_text():
     found = {str(path.relative_to(SRC)): lines for path in sorted(SRC.rglob("*.py"))
              if (lines := kinds_compared_with_text(path.read_text(encoding="utf-8")))}
     assert found == {}
+
+
+KINDS = {"status", "verdict", "kind"}
+# A load's kind in results.json stays text: grade.results is read by export and report, which
+# must not pay for importing the spec (LoadKind, about 0.5 s).
+TEXT_KINDS = {("grade/results.py", "LoadResult", "kind")}
+
+
+def kinds_held_as_text(text: str) -> list[tuple[str, str]]:
+    """The ``(class, field)`` of every class field named ``status``, ``verdict`` or ``kind``
+    annotated as a text.
+
+    >>> kinds_held_as_text("class A:\\n    status: str\\n    kind: Kind\\n    verdict: str | None\\n")
+    [('A', 'status'), ('A', 'verdict')]
+    """
+    return [(node.name, item.target.id) for node in ast.walk(ast.parse(text))
+            if isinstance(node, ast.ClassDef) for item in node.body
+            if isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name)
+            and item.target.id in KINDS
+            and any(isinstance(n, ast.Name) and n.id == "str" for n in ast.walk(item.annotation))]
+
+
+def test_a_status_verdict_or_kind_field_is_of_its_kinds_type():
+    found = [(str(path.relative_to(SRC)), *held) for path in sorted(SRC.rglob("*.py"))
+             for held in kinds_held_as_text(path.read_text(encoding="utf-8"))]
+    assert [f for f in found if f not in TEXT_KINDS] == []
