@@ -6,11 +6,18 @@ is ``Branch``, a solve's result or error is ``Outcome``, and the grading policy 
 from __future__ import annotations
 
 import ast
+from functools import lru_cache
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
 ONCE = ("Plan", "Branch", "Outcome", "GradingPolicy")
 NEVER = ("Policy", "compare_policy")
+
+
+@lru_cache(maxsize=None)
+def _parsed(text: str) -> ast.Module:
+    """A module's tree, parsed once for every check of this file."""
+    return ast.parse(text)
 
 
 def defined(text: str) -> list[str]:
@@ -21,7 +28,7 @@ def defined(text: str) -> list[str]:
     ['A', 'B', 'f', 'C']
     """
     out = []
-    for node in ast.parse(text).body:
+    for node in _parsed(text).body:
         if isinstance(node, (ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
             out.append(node.name)
         elif isinstance(node, ast.Assign):
@@ -56,7 +63,7 @@ def kinds_compared_with_text(text: str) -> list[int]:
         return bool(items) and all(isinstance(i, ast.Constant) and isinstance(i.value, str)
                                    for i in items)
 
-    return [node.lineno for node in ast.walk(ast.parse(text)) if isinstance(node, ast.Compare)
+    return [node.lineno for node in ast.walk(_parsed(text)) if isinstance(node, ast.Compare)
             and any((field(a) and texts(b)) or (field(b) and texts(a))
                     for a, b in zip([node.left, *node.comparators], node.comparators))]
 
@@ -80,7 +87,7 @@ def kinds_held_as_text(text: str) -> list[tuple[str, str]]:
     >>> kinds_held_as_text("class A:\\n    status: str\\n    kind: Kind\\n    verdict: str | None\\n")
     [('A', 'status'), ('A', 'verdict')]
     """
-    return [(node.name, item.target.id) for node in ast.walk(ast.parse(text))
+    return [(node.name, item.target.id) for node in ast.walk(_parsed(text))
             if isinstance(node, ast.ClassDef) for item in node.body
             if isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name)
             and item.target.id in KINDS
