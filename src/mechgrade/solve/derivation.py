@@ -109,7 +109,7 @@ def _given_values(solution: Solution) -> tuple[tuple[str, float], ...]:
 
 def _unit_vectors(f, x) -> tuple[Vec3, Vec3, Vec3] | None:
     vectors = tuple(_vector(g, x) for g in f)
-    return None if any(v is None for v in vectors) else vectors  # type: ignore
+    return None if any(v is None for v in vectors) else vectors  # type: ignore[return-value]
 
 
 @lru_cache(maxsize=32)

@@ -142,7 +142,7 @@ def scene(problem: Problem, solution: Solution) -> Scene:
     def unit(f) -> Triple | None:
         v = number(f)
         size = math.sqrt(sum(c * c for c in v)) if v is not None else 0.0
-        return tuple(c / size + 0.0 for c in v) if v is not None and size > 0 else None  # type: ignore
+        return tuple(c / size + 0.0 for c in v) if v is not None and size > 0 else None  # type: ignore[return-value]
 
     def size(f) -> float | None:
         out = evaluated(f)
