@@ -1,14 +1,19 @@
 """Answers per second: mechgrade's judging (in-process and in the bounded worker) next to a naive
-``sympy.simplify(a - b) == 0`` checker, on the same numeric and symbolic answers.
+``sympy.simplify(a - b) == 0`` checker, on numeric and symbolic answers.
 
-Run: ``PYTHONPATH=src python bench/grading_throughput.py [count]``
+The sides are paired (bench/paired.py): each round judges ``count`` answers on every side, the
+order of the sides turning round by round, and each ratio is the median of the per-round
+ratios. Every call gets answers no earlier call has seen (numbers drawn anew, symbolic forms
+written ``k*(form)/k`` with a ``k`` of their own), so no side answers from a cache.
+
+Run: ``PYTHONPATH=src python bench/grading_throughput.py [count] [rounds]`` (default 200, 5)
 """
 
 from __future__ import annotations
 
+import itertools
 import random
 import sys
-import time
 
 import sympy
 
@@ -18,6 +23,7 @@ from mechgrade.grade.compare import assess
 from mechgrade.grade.policy import GradingPolicy
 from mechgrade.grade.sandbox import Sandbox
 from mechgrade.solve.result import ObjectiveResult
+from paired import against, in_rounds, per_item_ms  # bench/paired.py, beside this script
 
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
 SYM = ObjectiveResult("a", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + thetadd**2)",
@@ -28,19 +34,28 @@ SYMBOLIC_FORMS = ["L*sqrt(thetad**4 + thetadd**2)", "sqrt(L^2 thetad^4 + L^2 the
                   "-L*sqrt(thetad^4 + thetadd^2)"]
 
 
-def numeric_answers(count: int) -> list[str]:
-    rng = random.Random(1)
+_FRESH = itertools.count(2)
+"""Every multiplier ``k`` a symbolic answer is written with: none is used twice."""
+_SEEN: set[str] = set()
+"""Every numeric answer written so far: none is written twice."""
+
+
+def numeric_answers(count: int, seed: int) -> list[str]:
+    rng = random.Random(seed)
     units = [("ft/s^2", 1.0), ("m/s^2", 0.3048), ("in/s^2", 12.0)]
-    out = []
-    for _ in range(count):
+    out: list[str] = []
+    while len(out) < count:
         unit, factor = rng.choice(units)
-        out.append(f"{98.51 * factor * rng.uniform(0.97, 1.03):.4g} {unit}")
+        text = f"{98.51 * factor * rng.uniform(0.97, 1.03):.6g} {unit}"
+        if text not in _SEEN:
+            _SEEN.add(text)
+            out.append(text)
     return out
 
 
-def symbolic_answers(count: int) -> list[str]:
-    rng = random.Random(2)
-    return [rng.choice(SYMBOLIC_FORMS) for _ in range(count)]
+def symbolic_answers(count: int, seed: int) -> list[str]:
+    rng = random.Random(seed)
+    return [f"{k}*({rng.choice(SYMBOLIC_FORMS)})/{k}" for _, k in zip(range(count), _FRESH)]
 
 
 def naive_numeric(text: str) -> bool:
@@ -57,30 +72,29 @@ def naive_symbolic(text: str) -> bool:
     return sympy.simplify(student - _NAIVE_REFERENCE) == 0
 
 
-def rate(label: str, func, answers: list[str]) -> None:
-    start = time.perf_counter()
-    for text in answers:
-        func(text)
-    elapsed = time.perf_counter() - start
-    print(f"  {label:<34} {len(answers) / elapsed:10.1f} answers/s  ({len(answers)} in "
-          f"{elapsed:.2f} s)")
-
-
-def main(count: int) -> None:
+def main(count: int = 200, rounds: int = 5) -> None:
     policy = GradingPolicy()
-    numeric, symbolic = numeric_answers(count), symbolic_answers(count)
-    naive_count = max(10, count // 10)
     with Sandbox(seconds=10) as box:
         box.assess("98.5 ft/s^2", ACC, policy)  # start the worker outside the timing
-        for label, result, answers, naive in (("numeric", ACC, numeric, naive_numeric),
-                                              ("symbolic", SYM, symbolic, naive_symbolic)):
-            print(f"{label} answers:")
-            rate("mechgrade assess (in-process)", lambda t, result=result: assess(t, result, policy), answers)
-            rate("mechgrade Sandbox (one worker)", lambda t, result=result: box.assess(t, result, policy),
-                 answers)
-            rate("naive sympy.simplify(a - b) == 0", naive, answers[:naive_count])
+        for label, result, draw, naive in (("numeric", ACC, numeric_answers, naive_numeric),
+                                           ("symbolic", SYM, symbolic_answers, naive_symbolic)):
+            assess(draw(1, -1)[0], result, policy)  # first calls outside the timing
+            naive(draw(1, -1)[0])
+            sides = [("naive sympy.simplify(a - b) == 0", lambda b, f=naive: [f(t) for t in b]),
+                     ("mechgrade assess (in-process)",
+                      lambda b, r=result: [assess(t, r, policy) for t in b]),
+                     ("mechgrade Sandbox (one worker)",
+                      lambda b, r=result: [box.assess(t, r, policy) for t in b])]
+            runs = in_rounds(sides, draw, count, rounds)
+            print(f"{label} answers: {rounds} rounds of {count} a side, each side first in turn")
+            base = runs[sides[0][0]]
+            for side, _ in sides:
+                line = f"  {side:<34} {1000 / per_item_ms(runs[side], count):10.1f} answers/s"
+                if side != sides[0][0]:
+                    line += f"  naive/this {against(base, runs[side])}"
+                print(line)
         print(f"worker restarts: {box.restarts}")
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 2000)
+    main(*(int(a) for a in sys.argv[1:3]))

@@ -7,9 +7,11 @@ alternative symbolic answers (fixed seed, so a run is repeatable).
 
 The floor is a script that only walks the submission folders and ``yaml.safe_load``s each
 answers file: the least any grader must do. Both run as fresh processes; "cores" is the CPU
-time of the process and its workers (user + sys) over the wall time. Each command runs
-``--repeat`` times and the fastest run counts. The CPU columns (least CPU time of the runs)
-compare the work done, which other load on the machine changes less than the wall time.
+time of the process and its workers (user + sys) over the wall time. The two run in pairs,
+``--repeat`` pairs, the order turning pair by pair (so other load on the machine falls on both
+alike); the times shown are the medians, each ratio the median of the per-pair ratios. The
+CPU columns compare the work done, which other load on the machine changes less than the
+wall time.
 
 Run: ``.venv/bin/python bench/scale.py [sizes...] [--jobs N]`` (default sizes 100 1000 5000).
 
@@ -45,6 +47,7 @@ import os
 import random
 import resource
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -237,13 +240,26 @@ def timed(command: list[str], env: dict | None = None) -> tuple[float, float]:
     return wall, cpu
 
 
+def graded(command: list[str], out: Path, cold: bool) -> tuple[float, float]:
+    """:func:`timed` of ``mechgrade grade`` into a new ``out``; ``cold``: with a new, empty disk
+    cache."""
+    shutil.rmtree(out, ignore_errors=True)
+    if not cold:
+        return timed(command)
+    cache = tempfile.mkdtemp()
+    try:
+        return timed(command, dict(os.environ, MECHGRADE_CACHE_DIR=cache))
+    finally:
+        shutil.rmtree(cache, ignore_errors=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("sizes", nargs="*", type=int, default=[100, 1000, 5000])
     parser.add_argument("--jobs", type=int, default=None, help="pass --jobs to mechgrade grade")
     parser.add_argument("--repeat", type=int, default=3,
-                        help="runs of each command; the fastest is shown (other load on the "
-                             "machine only ever slows a run down)")
+                        help="pairs of runs (grade, floor), the order turning pair by pair; "
+                             "medians shown")
     parser.add_argument("--dynamics", action="store_true",
                         help="grade the class with per-student numbers of an integrated "
                              "motion, cold (see the docstring)")
@@ -276,22 +292,21 @@ def main() -> None:
                                str(folder / "submissions"), "--out", str(out)]
         if args.jobs is not None:
             command += ["--jobs", str(args.jobs)]
-        floors = [timed([python, "-c", FLOOR, str(folder / "submissions")])
-                  for _ in range(args.repeat)]
-        runs = []
-        for _ in range(args.repeat):
-            shutil.rmtree(out, ignore_errors=True)
-            env = None
-            if args.dynamics:  # cold: a new, empty disk cache
-                env = dict(os.environ, MECHGRADE_CACHE_DIR=tempfile.mkdtemp())
-            runs.append(timed(command, env))
-            if env is not None:
-                shutil.rmtree(env["MECHGRADE_CACHE_DIR"], ignore_errors=True)
-        (wall, cpu), (floor_wall, _) = min(runs), min(floors)
-        least_cpu, floor_cpu = min(c for _, c in runs), min(c for _, c in floors)
-        print(f"{size:>8} {wall:>8.2f} {floor_wall:>8.2f} {wall / floor_wall:>6.2f} "
-              f"{cpu / wall:>6.2f}  {least_cpu:>11.2f} {floor_cpu:>11.2f} "
-              f"{least_cpu / floor_cpu:>9.2f}", flush=True)
+        floor = [python, "-c", FLOOR, str(folder / "submissions")]
+        pairs = []
+        for turn in range(args.repeat):
+            if turn % 2:
+                floor_run, run = timed(floor), graded(command, out, args.dynamics)
+            else:
+                run, floor_run = graded(command, out, args.dynamics), timed(floor)
+            pairs.append((run, floor_run))
+        wall, cpu = (statistics.median(run[i] for run, _ in pairs) for i in (0, 1))
+        floor_wall, floor_cpu = (statistics.median(f[i] for _, f in pairs) for i in (0, 1))
+        ratio, cpu_ratio = (statistics.median(run[i] / f[i] for run, f in pairs) for i in (0, 1))
+        cores = statistics.median(run[1] / run[0] for run, _ in pairs)
+        print(f"{size:>8} {wall:>8.2f} {floor_wall:>8.2f} {ratio:>6.2f} "
+              f"{cores:>6.2f}  {cpu:>11.2f} {floor_cpu:>11.2f} "
+              f"{cpu_ratio:>9.2f}", flush=True)
 
 
 def _cpu() -> float:
@@ -348,7 +363,6 @@ def pages(repeat: int) -> None:
     """Print the size and the median render time of each hw3 feedback page, worked solution
     shown."""
     import inspect
-    import statistics
 
     import mechgrade
     from mechgrade.grade.assignment import load_assignment
@@ -398,7 +412,6 @@ def pages(repeat: int) -> None:
 def compare_pages(other: Path, repeat: int, rounds: int) -> None:
     """Print each hw3 page's size here and in the ``other`` checkout, and the median over
     ``rounds`` of the ratio of its render times (here / there), the two run in turn."""
-    import statistics
 
     def measured(src: Path | None) -> dict[str, tuple[int, float]]:
         env = dict(os.environ)

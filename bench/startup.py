@@ -61,15 +61,20 @@ def main(runs: int) -> None:
     }
     seconds(floor)  # warm the file cache
     seconds(check, environment(MECHGRADE_CACHE_DIR=warm))  # fill the warm cache
-    # Round robin (floor, each command, floor, ...), so that other load on the machine falls on
-    # every command alike; each ratio is the median of the per-round ratios.
+    # Round robin (floor and each command in a pair, the pair's order turning round by round),
+    # so that other load on the machine falls on every command alike; each ratio is the median
+    # of the per-round ratios.
     times: dict[str, list[float]] = {"floor": [], **{label: [] for label in commands}}
-    for _ in range(runs):
+    for turn in range(runs):
         for label, (command, env) in commands.items():
-            times["floor"].append(seconds(floor))
             if env is None:  # cold: an empty cache folder every time
                 env = environment(MECHGRADE_CACHE_DIR=next(colds))
-            times[label].append(seconds(command, env))
+            if turn % 2:
+                times[label].append(seconds(command, env))
+                times["floor"].append(seconds(floor))
+            else:
+                times["floor"].append(seconds(floor))
+                times[label].append(seconds(command, env))
     root.cleanup()
     floors = times["floor"]
     label = 'python -c "import click"'

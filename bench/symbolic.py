@@ -9,15 +9,15 @@ equivalent or not by hand) are judged three ways:
 * mechgrade through a worker per core: every answer through a :class:`SandboxPool`, in
   batches (as a grading run judges them).
 
-The figures are paired: a round times each side once, on the same number of answers, the
-order of the sides turning round by round, and the ratio naive / mechgrade is taken within the
-round; the median of the rounds' ratios is printed (min and max show the spread a loaded
-machine gives). No call sees a text an earlier call has seen: every call's answers are written
-anew (``k*(form)/k`` with a ``k`` no earlier call used), so neither side answers from a cache
-of an earlier call. Two sets: answers as a class writes them (the same forms many times over
-within a call, as a class's submissions are judged together) and every answer written
-differently. In-process sides also give the ratio of process CPU time, which a loaded machine
-disturbs less than the wall clock.
+The figures are paired (bench/paired.py): a round times each side once, on the same number
+of answers, the order of the sides turning round by round, and the ratio naive / mechgrade is
+taken within the round; the median of the rounds' ratios is printed (min and max show the
+spread a loaded machine gives). No call sees a text an earlier call has seen: every call's
+answers are written anew (``k*(form)/k`` with a ``k`` no earlier call used), so neither side
+answers from a cache of an earlier call. Two sets: answers as a class writes them (the same
+forms many times over within a call, as a class's submissions are judged together) and every
+answer written differently. In-process sides also give the ratio of process CPU time, which a
+loaded machine disturbs less than the wall clock.
 
 A verdict is right when "correct" goes with an equivalent answer and any other verdict with a
 wrong one. Run: ``.venv/bin/python bench/symbolic.py [count] [rounds]`` (default 200, 7).
@@ -27,9 +27,7 @@ from __future__ import annotations
 
 import itertools
 import random
-import statistics
 import sys
-import time
 from pathlib import Path
 
 import sympy
@@ -43,6 +41,7 @@ from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.parallel import default_jobs
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem
+from paired import against, in_rounds, per_item_ms  # bench/paired.py, beside this script
 
 PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
 
@@ -106,13 +105,6 @@ def naive_equal(text: str, reference: str) -> bool:
     return sympy.simplify(a - b) == 0
 
 
-def timed(func, batch):
-    """Wall and process CPU seconds of ``func(batch)``, and its verdicts."""
-    wall, cpu = time.perf_counter(), time.process_time()
-    verdicts = func(batch)
-    return time.perf_counter() - wall, time.process_time() - cpu, verdicts
-
-
 def compare(title: str, refs: dict, draw, count: int, rounds: int, pool: SandboxPool) -> None:
     """``rounds`` rounds of the three sides, each on answers of its own from ``draw``."""
     policy = GradingPolicy()
@@ -131,33 +123,19 @@ def compare(title: str, refs: dict, draw, count: int, rounds: int, pool: Sandbox
     sides = [("naive simplify(sympify(a) - sympify(b)) == 0", naive),
              ("mechgrade in-process, one by one", in_process),
              (f"mechgrade through {len(pool.boxes)} workers, batches", pooled)]
-    figures: dict[str, list[tuple[float, float]]] = {label: [] for label, _ in sides}
-    right: dict[str, tuple[int, int]] = {}
-    for round_ in range(rounds):
-        # each side its own new answers (the same forms: one seed a round), drawn untimed
-        order = sides[round_ % 3:] + sides[:round_ % 3]
-        for label, side in order:
-            batch = draw(count, round_)
-            wall, cpu, verdicts = timed(side, batch)
-            figures[label].append((wall, cpu))
-            good = sum((v == "correct") == equivalent
-                       for v, (_, _, equivalent) in zip(verdicts, batch))
-            done = right.get(label, (0, 0))
-            right[label] = (done[0] + good, done[1] + len(batch))
+    # each side its own new answers (the same forms: one seed a round), drawn untimed
+    runs = in_rounds(sides, draw, count, rounds)
     print(f"{title}: {rounds} rounds of {count} answers a side, each side first in turn")
-    base = figures[sides[0][0]]
+    base = runs[sides[0][0]]
     for label, _ in sides:
-        walls = [wall for wall, _ in figures[label]]
-        good, total = right[label]
-        line = f"  {label:<50} {1000 * statistics.median(walls) / count:8.3f} ms/answer"
+        good = sum((v == "correct") == equivalent for run in runs[label]
+                   for v, (_, _, equivalent) in zip(run.out, run.batch))
+        line = f"  {label:<50} {per_item_ms(runs[label], count):8.3f} ms/answer"
         if label != sides[0][0]:
-            ratios = sorted(b[0] / w for b, w in zip(base, walls))
-            line += (f"  naive/this {statistics.median(ratios):6.1f}x "
-                     f"({ratios[0]:.1f}-{ratios[-1]:.1f})")
+            line += f"  naive/this {against(base, runs[label])}"
             if "in-process" in label:
-                cpus = sorted(b[1] / c for b, (_, c) in zip(base, figures[label]))
-                line += f", CPU {statistics.median(cpus):.1f}x ({cpus[0]:.1f}-{cpus[-1]:.1f})"
-        print(f"{line}  {good}/{total} right")
+                line += f", CPU {against(base, runs[label], cpu=True)}"
+        print(f"{line}  {good}/{count * rounds} right")
 
 
 def main(count: int = 200, rounds: int = 7) -> None:

@@ -1,10 +1,11 @@
 """Compare ``bench/solve_timing.py`` of this tree with another checkout's, problem by problem.
 
 Each round runs, for one problem, the other checkout's bench (its own venv and sources) and
-then this tree's, in fresh processes that count process CPU time (not wall time: the machine
-is shared), and takes the ratio this/other of every column; the table gives the median of the
-rounds' ratios. Both sides read the same problem file (the other checkout's by default, so a
-problem edited since is timed as it was).
+this tree's, the other first in one round and this tree first in the next, in fresh processes
+that count process CPU time (not wall time: the machine is shared), and takes the ratio
+this/other of every column; the table gives the median of the rounds' ratios. Both sides read
+the same problem file (the other checkout's by default, so a problem edited since is timed as it
+was).
 
 Run: .venv/bin/python bench/timing_against.py /work/wt/perf-base [--rounds 3] [problems ...]
 """
@@ -42,6 +43,15 @@ def figures(tree: Path, problem: Path) -> dict[str, float]:
     raise RuntimeError(f"{tree}: no figures for {problem}:\n{out}")
 
 
+def paired(other: Path, problem: Path, turn: int) -> tuple[dict[str, float], dict[str, float]]:
+    """One round: ``(other's figures, this tree's)``, the other first in even turns, this tree
+    first in odd ones (so that neither side always runs on a machine the first has warmed)."""
+    if turn % 2:
+        mine = figures(ROOT, problem)
+        return figures(other, problem), mine
+    return figures(other, problem), figures(ROOT, problem)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("other", type=Path)
@@ -54,8 +64,7 @@ def main() -> None:
     for problem in problems:
         problem = problem.resolve()
         try:
-            rounds = [(figures(args.other, problem), figures(ROOT, problem))
-                      for _ in range(args.rounds)]
+            rounds = [paired(args.other, problem, turn) for turn in range(args.rounds)]
         except subprocess.CalledProcessError as failed:
             # one side's bench cannot time this problem (an older tree's bench, or a problem it
             # cannot solve): say so and time the others

@@ -6,12 +6,13 @@ problem. Warm, a class = ``--students`` variants solved together (``solve_varian
 grading and ``check --variants`` do), per student. Warm, alone = ``solve`` with one student's
 givens, the plan already built (the median over ``--alone`` students of the pair).
 
-The machine may be shared: the sides are measured in pairs, a cold run then a warm class then
-``--alone`` students alone, ``--pairs`` times, and each ratio printed is the median of the
-per-pair ratios (cold / warm of the same pair). Every warm call
-gets variants no earlier call has seen (a class of new students each time, after a first
-class that builds what a warm solve keeps: the reference solve, the symbolic answers), so
-nothing is answered from memory that a real class would not find there.
+The machine may be shared: the sides are measured in pairs, a cold run and a warm class (the
+cold run first in even pairs, the class first in odd ones) then ``--alone`` students alone,
+``--pairs`` times, and each ratio printed is the median of the per-pair ratios (cold / warm
+of the same pair). Every warm call gets variants no earlier call has seen (a class of new
+students each time, after a first class that builds what a warm solve keeps: the reference
+solve, the symbolic answers), so nothing is answered from memory that a real class would not
+find there.
 
 Problems with a ``variants:`` section draw their variants (distinct draws only); for the
 others a variant scales each parameter given (or, without any, each rate given) by a factor
@@ -147,12 +148,14 @@ def measure(path: Path, students: int, pairs: int, alone: int):
         return problem.id, cold_seconds(path), None
     solve_variants(problem, first)  # what a warm solve keeps: built once per run
     ratios, alone_ratios, colds, warms, singles = [], [], [], [], []
-    for _ in range(pairs):
-        cold = cold_seconds(path)
+    for turn in range(pairs):
         variants = list(itertools.islice(stream, students))
         if len(variants) < students:
             break  # not enough distinct draws left for another class
+        cold = cold_seconds(path) if turn % 2 == 0 else None
         seconds, outcomes = timed(lambda variants=variants: solve_variants(problem, variants))
+        if cold is None:  # the warm class first in odd pairs
+            cold = cold_seconds(path)
         warm = seconds / len(variants)
         colds.append(cold)
         warms.append(warm)

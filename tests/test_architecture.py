@@ -5,6 +5,7 @@ Inside the base layer too there is an order (:data:`BASE_ORDER`); only ``mechani
 ``if TYPE_CHECKING:`` is for annotations only (its ``else:`` branch runs, so it counts); and a
 module found by name at run time (``importlib.import_module``, ``__import__``) escapes all of
 this, so only :data:`DYNAMIC_IMPORTERS` may do it (each looks up a registry of its own layer).
+``StrEnum`` comes from :data:`STR_ENUM_HOME` alone (Python 3.10's :mod:`enum` has none).
 """
 
 from __future__ import annotations
@@ -107,12 +108,37 @@ def _is_type_checking(test: ast.expr) -> bool:
         (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
 
 
+IMPORTERS = ("import_module", "__import__")
+"""The functions that import a module named at run time (``importlib``'s, the builtin)."""
+
+
 def dynamic_imports(path: Path) -> list[int]:
-    """The lines where ``path`` imports a module named at run time."""
+    """The lines where ``path`` imports a module named at run time: a call of one of
+    :data:`IMPORTERS`, by its name, an attribute (``builtins.__import__``) or another name it
+    was imported as (``from importlib import import_module as load``)."""
     tree = _parsed(path.read_text(encoding="utf-8"))
+    names = {*IMPORTERS, *(alias.asname for node in ast.walk(tree)
+                           if isinstance(node, ast.ImportFrom)
+                           for alias in node.names if alias.name in IMPORTERS and alias.asname)}
     return [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Call) and (
-        (isinstance(node.func, ast.Attribute) and node.func.attr == "import_module")
-        or (isinstance(node.func, ast.Name) and node.func.id in ("import_module", "__import__")))]
+        (isinstance(node.func, ast.Attribute) and node.func.attr in IMPORTERS)
+        or (isinstance(node.func, ast.Name) and node.func.id in names))]
+
+
+STR_ENUM_HOME = "expressions.functions"
+"""The one module that imports ``enum.StrEnum`` (Python 3.11's; it spells it out on 3.10, which
+pyproject.toml still supports); every other module takes it from there."""
+
+
+def str_enum_imports(path: Path) -> list[int]:
+    """The lines where ``path`` takes ``StrEnum`` from :mod:`enum`, or defines a str enum of
+    its own (a class deriving from both ``str`` and ``Enum``)."""
+    tree = _parsed(path.read_text(encoding="utf-8"))
+    return [node.lineno for node in ast.walk(tree)
+            if (isinstance(node, ast.ImportFrom) and node.module == "enum"
+                and any(alias.name == "StrEnum" for alias in node.names))
+            or (isinstance(node, ast.ClassDef)
+                and {"str", "Enum"} <= {b.id for b in node.bases if isinstance(b, ast.Name)})]
 
 
 def own(target: str) -> str | None:
@@ -141,6 +167,9 @@ def violations(name: str, path: Path, known: dict[str, Path] = MODULES) -> list[
     if name not in DYNAMIC_IMPORTERS:
         found += [f"{name}:{line} imports a module named at run time"
                   for line in dynamic_imports(path)]
+    if name != STR_ENUM_HOME:
+        found += [f"{name}:{line} takes StrEnum from enum or makes its own (only "
+                  f"{STR_ENUM_HOME} may)" for line in str_enum_imports(path)]
     return found
 
 
@@ -255,6 +284,10 @@ def test_a_cycle_through_three_modules_is_found(tmp_path):
     ("spec.model", "import importlib\nplan = importlib.import_module('mechgrade.solve.plan')\n"),
     ("spec.model", "from importlib import import_module\nimport_module('x')\n"),
     ("spec.model", "__import__('mechgrade.solve.plan')\n"),
+    ("spec.model", "from importlib import import_module as load\nload('mechgrade.solve')\n"),
+    ("spec.model", "import builtins\nbuiltins.__import__('mechgrade.solve')\n"),
+    ("spec.model", "from enum import StrEnum\n"),
+    ("spec.model", "from enum import Enum\nclass Kind(str, Enum):\n    A = 'a'\n"),
     ("errors", "from . import files\n"),
     ("files", "from .expressions import syntax\n"),
     ("grade.run", "from .. import cli\n"),
@@ -338,3 +371,4 @@ def test_a_forbidden_import_planted_in_a_copy_of_the_package_fails_the_check(
     faults = package_faults(modules(copy))
     assert faults and all(said in f or module.replace("/", ".")[:-3] in f for f in faults)
     assert any(said in f for f in faults), faults
+

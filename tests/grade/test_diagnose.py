@@ -12,6 +12,11 @@ from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, Candidates, _factor, d
 from mechgrade.solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from mechgrade.tolerance import agree_at_points
 
+
+def within(share: float):
+    """A test of closeness: every component within ``share`` of the reference's."""
+    return lambda s, t: bool(np.all(np.abs(s - t) <= share * np.abs(t)))
+
 ACC = ObjectiveResult("acc", "scalar", "ft/s^2", 98.51)
 VEC = ObjectiveResult("a_P", "vector", "ft/s^2", (-66.0, -40.0, 0.0), frame="N")
 SYM = ObjectiveResult("a_sym", "symbolic", "m/s^2", expr="L*sqrt(thetad**4 + thetadd**2)",
@@ -166,7 +171,7 @@ def test_a_generated_mistake_gets_the_policy_credit_of_its_family():
 
 def test_an_answer_nearer_the_reference_than_the_mistake_is_not_named_by_it():
     from mechgrade.solve.result import GeneratedMistake
-    loose = lambda s, t: bool(np.all(np.abs(s - t) <= 0.1 * np.abs(t)))  # noqa: E731
+    loose = within(0.1)
     mistake = [(GeneratedMistake("drop_tangential", "...", 108.0), np.array([108.0]))]
     assert diagnose(np.array([103.9]), np.array([100.0]), loose, generated=mistake) is None
     assert diagnose(np.array([104.1]), np.array([100.0]), loose,
@@ -195,7 +200,7 @@ def test_a_ratio_only_near_a_factor_is_no_coincidence_to_name(value):
 def test_a_mistaken_value_that_is_not_a_zero_is_matched_on_its_own_scale():
     # 14 is within 1 % of the reference 18.68 away from 14.17, but 1.2 % from 14.17 itself
     from mechgrade.solve.result import GeneratedMistake
-    close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))  # noqa: E731
+    close = within(0.01)
     mistake = [(GeneratedMistake("given_deg_as_rad", "...", 14.17), np.array([14.17]))]
     assert diagnose(np.array([14.0]), np.array([18.68]), close, generated=mistake) is None
     assert diagnose(np.array([14.1]), np.array([18.68]), close,
@@ -301,8 +306,8 @@ def test_a_factor_the_answer_has_exactly_wins_over_a_family_only_near_it():
     # 2 pi/Omega = 2.5 s answered 1/Omega = 0.3979 s: the frequency Omega/(2 pi) = 0.3979 *
     # 1.004 is within 1 % but not within the coincidence share; the 2 pi is exact
     from mechgrade.solve.result import GeneratedMistake
-    close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))  # noqa: E731
-    exact = lambda s, t: bool(np.all(np.abs(s - t) <= 0.001 * np.abs(t)))  # noqa: E731
+    close = within(0.01)
+    exact = within(0.001)
     near = [(GeneratedMistake("period_for_frequency", "...", 0.3995), np.array([0.3995]))]
     student, reference = np.array([2.5 / (2 * math.pi)]), np.array([2.5])
     assert diagnose(student, reference, close, generated=near, exact=exact).code == "rev_rad"
@@ -313,7 +318,7 @@ def test_a_factor_the_answer_has_exactly_wins_over_a_family_only_near_it():
     # a factor only four times nearer than the family is no better explanation: 1.6 for
     # 3.2062 is within the share of 2, and 0.8 % from the speed at the start 1.6125
     start = [(GeneratedMistake("value_at_start", "...", 1.6125), np.array([1.6125]))]
-    loose = lambda s, t: bool(np.all(np.abs(s - t) <= 0.0025 * np.abs(t)))  # noqa: E731
+    loose = within(0.0025)
     assert diagnose(np.array([1.6]), np.array([3.2062]), close, generated=start,
                     exact=loose).code == "value_at_start"
 

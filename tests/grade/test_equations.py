@@ -10,7 +10,7 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from mechgrade.grade.equations import _naming, judge_equations, read_equations
+from mechgrade.grade.equations import LoadSlip, _naming, judge_equations, read_equations
 from mechgrade.mechanics.dynamics import derive_kinetics, free_body_loads
 from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
@@ -72,12 +72,12 @@ def test_rearranged_scaled_and_combined_equations_are_right_a_dropped_term_is_na
     assert [row.right for row in judged.rows] == [False, True], judged.assessment.feedback
     # the load the dropped term was is named, whatever the equation's scale
     assert judged.rows[0].load == LOADS[dropped], judged.assessment.feedback
-    assert judged.rows[0].load_mistake == ("missing" if LOADS[dropped] else None)
+    assert judged.rows[0].load_mistake is (LoadSlip.MISSING if LOADS[dropped] else None)
     turned = _equation([(t, -sign if n == dropped else sign) for n, (t, sign) in enumerate(ALONG)],
                        a)
     (row, _) = judge_equations(f"{turned}; {_equation(ACROSS, b)}", incline).rows
-    assert (row.load, row.load_mistake) == ((LOADS[dropped], "turned round") if LOADS[dropped]
-                                            else (None, None)), row.feedback
+    assert row.load == (LOADS[dropped] or None), row.feedback
+    assert row.load_mistake is (LoadSlip.TURNED_ROUND if LOADS[dropped] else None)
 
 
 def test_a_pendulums_moment_equation_and_its_sign(pendulum):

@@ -8,6 +8,7 @@ from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, 
                                      Status, StudentResult)
 from mechgrade.report.class_report import class_statistics
 from mechgrade.solve.derivation import MotionSamples, SampledLoad
+from mechgrade.spec.dynamics import LoadKind
 
 # a block pulled by a spring (k x) and held back by a friction (mu m g), at three states
 STATES = ((0.5, 2.0, 9.81, 10.0, 0.2, -1.0, 0.0), (0.4, 3.0, 9.0, 12.0, 0.3, -1.0, 0.0),
@@ -15,8 +16,8 @@ STATES = ((0.5, 2.0, 9.81, 10.0, 0.2, -1.0, 0.0), (0.4, 3.0, 9.0, 12.0, 0.3, -1.
 SAMPLES = MotionSamples(
     ("x", "m", "g", "k", "mu", "xd"), ("xdd",), (),
     tuple((*s[:6], (-s[3] * s[0] - s[4] * s[1] * s[2]) / s[1]) for s in STATES),
-    (SampledLoad("F_s", "spring", "block", (tuple(-s[3] * s[0] for s in STATES),)),
-     SampledLoad("F_f", "kinetic friction", "block",
+    (SampledLoad("F_s", LoadKind.SPRING, "block", (tuple(-s[3] * s[0] for s in STATES),)),
+     SampledLoad("F_f", LoadKind.KINETIC_FRICTION, "block",
                  (tuple(-s[4] * s[1] * s[2] for s in STATES),))))
 
 

@@ -7,8 +7,8 @@ import json
 import pytest
 
 from mechgrade.errors import MechgradeError
-from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, ObjectiveInfo,
-                                     StudentResult)
+from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, LoadResult,
+                                     ObjectiveInfo, StudentResult, Verdict)
 from mechgrade.report import output
 from mechgrade.report.output import (feedback_context, feedback_names, write_outputs)
 from mechgrade.resources import shipped_dir
@@ -193,6 +193,16 @@ def test_context_prepares_text_and_templates_compute_nothing():
                                   "max_score": "5", "percent": "70%"}
     assert context["rows"][1]["prompt"] == "Speed in terms of L."
     assert context["reveal"] is True
+
+
+def test_a_diagrams_rows_carry_their_verdict_as_a_verdict():
+    diagram = AnswerResult("p", "fbd", "W: -m*g*N.y", Verdict.PARTIAL, 1.0, 2.0, loads=(
+        LoadResult("weight", "W", "weight", "G", "W: -m*g*N.y", (), ""),
+        LoadResult("normal", "N_A", "normal", "A", None, ("missing",), "")))
+    student = StudentResult("ana", "Ana", "graded", 1.0, 2.0, (diagram,))
+    rows = feedback_context(REPORT, student)["rows"][0]["loads"]
+    assert [row["verdict"] for row in rows] == [Verdict.CORRECT, Verdict.INCORRECT]
+    assert all(isinstance(row["verdict"], Verdict) for row in rows)
 
 
 def test_unwritable_output_folder_is_an_error(tmp_path):

@@ -221,6 +221,25 @@ def test_an_entry_signed_with_the_key_but_not_one_this_code_wrote_is_written_aga
     assert "k" not in vars(kinematics_plan(problem))
 
 
+@pytest.mark.parametrize("spoil", [
+    lambda entry: {**entry, "constraint_rank": str(entry["constraint_rank"])},  # "2", not 2
+    lambda entry: {**entry, "levels": [{**entry["levels"][0], "linear": "no"},
+                                       *entry["levels"][1:]]},  # a text that bool() reads True
+    lambda entry: {**entry, "points": [3, *entry["points"]]},  # a number for a point's name
+], ids=["rank-as-text", "linear-as-text", "point-as-number"])
+def test_an_entry_whose_fields_are_of_other_types_is_written_again(
+        spoil, disk, tmp_path, monkeypatch, forget, rewrite_entry):
+    monkeypatch.chdir(tmp_path)
+    problem = load_problem(PENDULUM)
+    right = comparable(solve(problem))
+    path = plan_file(disk, problem)
+    written = path.read_bytes()
+    rewrite_entry(path, spoil, signed=True)
+    forget()
+    assert comparable(solve(problem)) == right
+    assert path.read_bytes().split(b"\n", 1)[1] == written.split(b"\n", 1)[1]
+
+
 def test_an_entry_of_another_problem_under_this_ones_name_is_not_used(disk, forget):
     pendulum = load_problem(PENDULUM)
     other = load_problem(PROBLEMS / "bowling_3_15_2_cannonball.yaml")

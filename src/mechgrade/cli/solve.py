@@ -11,6 +11,7 @@ from ..mechanics import derivation
 from ..solve.worked import answer_text as value_text
 from ..solve import solve as solve_problem
 from ..spec import load_problem
+from ..spec.model import ObjectiveKind
 from .common import main, reports_errors, say, warn_about_the_cache
 
 
@@ -18,7 +19,7 @@ def solution_json(problem, solution) -> dict:
     """The public ``--format json`` document (see docs/cli.md)."""
     objectives = {}
     for r in solution.results:
-        value = r.value if r.kind != "vector" else list(r.value)
+        value = r.value if r.kind != ObjectiveKind.VECTOR else list(r.value)
         objectives[r.id] = {"value": value, "unit": r.unit, "frame": r.frame, "expr": r.expr}
     return {"problem": problem.id, "objectives": objectives,
             "failures": {f.id: str(f.error) for f in solution.failures},

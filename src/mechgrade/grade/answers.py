@@ -361,7 +361,7 @@ def _rotational(result: ObjectiveResult) -> bool:
     dim = dimension(result.unit)
     if str(dim) in ("dimensionless", "1 / [time]", "1 / [time] ** 2"):
         return True
-    return dim == dimension("kg*m^2/s") or (result.kind == "vector" and dim == dimension("N*m"))
+    return dim == dimension("kg*m^2/s") or (result.kind == ObjectiveKind.VECTOR and dim == dimension("N*m"))
 
 
 def _rotation(text: str, sense: str, result: ObjectiveResult) -> StudentAnswer:

@@ -21,6 +21,7 @@ from ..solve import solve
 from ..solve.worked import WorkedSolution, answer_text, worked_solution
 from ..spec import load_problem
 from ..spec.dynamics import Impulse, Integration, WorkEnergy
+from ..spec.model import ObjectiveKind
 from ..spec.model import Problem
 from ..spec.variant_model import Draw
 from .variants import statement
@@ -48,7 +49,7 @@ class CatalogObjective:
 
     id: str
     prompt: str
-    kind: str
+    kind: ObjectiveKind
     answer: str
     solved: bool = True
 
@@ -94,9 +95,9 @@ def catalog_entry(path: str | Path) -> CatalogEntry:
     results = {r.id: r for r in solution.results}
     failed = {f.id: str(f.error) for f in solution.failures}
     objectives = tuple(
-        CatalogObjective(o.id, o.prompt, o.kind.value, answer_text(results[o.id]))
+        CatalogObjective(o.id, o.prompt, o.kind, answer_text(results[o.id]))
         if o.id in results else
-        CatalogObjective(o.id, o.prompt, o.kind.value, failed.get(o.id, "not solved"), False)
+        CatalogObjective(o.id, o.prompt, o.kind, failed.get(o.id, "not solved"), False)
         for o in problem.objectives)
     variants = problem.variants
     return CatalogEntry(

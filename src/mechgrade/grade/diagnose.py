@@ -29,6 +29,7 @@ from typing import Callable, Iterable, Iterator, Sequence
 import numpy as np
 
 from ..spec.mistake_codes import BRANCH_CODES, DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
+from ..spec.model import ObjectiveKind
 from ..solve.result import GeneratedMistake, MistakeValue
 from ..tolerance import AgreeAtPoints
 
@@ -102,7 +103,8 @@ CODES = ("mistake",) + FACTOR_CODES + VECTOR_CODES + GENERATED_CODES + (
 _AXES = "xyz"
 
 
-def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: str = "scalar",
+def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *,
+             kind: ObjectiveKind = ObjectiveKind.SCALAR,
              mistakes: Sequence[tuple[MistakeValue, np.ndarray | None]] = (),
              generated: Sequence[tuple[GeneratedMistake, np.ndarray | None]] | Candidates = (),
              plausible: frozenset[str] | None = None,
@@ -119,9 +121,10 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
 
     >>> import numpy as np
     >>> close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.linalg.norm(t)))
-    >>> diagnose(np.array([-40.0, -66, 0]), np.array([-66.0, -40, 0]), close, kind="vector").label
+    >>> vector = ObjectiveKind.VECTOR
+    >>> diagnose(np.array([-40.0, -66, 0]), np.array([-66.0, -40, 0]), close, kind=vector).label
     'swapped components'
-    >>> diagnose(np.array([66.0, -40, 0]), np.array([-66.0, -40, 0]), close, kind="vector").label
+    >>> diagnose(np.array([66.0, -40, 0]), np.array([-66.0, -40, 0]), close, kind=vector).label
     'wrong direction'
     """
     student = np.asarray(student, dtype=float)
@@ -158,7 +161,7 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *, kind: 
     factor = _factor(student, reference, zero, plausible)
     if factor is not None:
         return factor[0]
-    if kind == "vector":
+    if kind == ObjectiveKind.VECTOR:
         return _vector(student, reference, close)
     return None
 

@@ -33,10 +33,12 @@ import numpy as np
 from ..errors import AnswerError, ExpressionError
 from ..expressions import syntax
 from ..expressions.excerpt import excerpt
+from ..expressions.functions import StrEnum
 from ..expressions.numeric import evaluate
 from ..expressions.syntax import Bin, Node, Unary
 from ..solve import rules
 from ..solve.derivation import MotionSamples, SampledLoad
+from ..spec.dynamics import LoadKind
 from ..tolerance import parts
 from .answers import rename_to_symbols
 from .compare import Assessment, Judged, not_evaluated, unreadable
@@ -54,10 +56,18 @@ hold exactly, and a share of the reactions that is wrong follows none but by a c
 larger than this."""
 
 
-_SAID = {"missing": "is missing from", "doubled": "is counted twice in",
-         "turned round": "is turned round in"}
-_COUNTED = {"missing": "left out of", "doubled": "counted twice in",
-            "turned round": "turned round in"}
+class LoadSlip(StrEnum):
+    """What a wrong equation does to one of the model's loads."""
+
+    MISSING = "missing"
+    DOUBLED = "doubled"
+    TURNED_ROUND = "turned round"
+
+
+_SAID = {LoadSlip.MISSING: "is missing from", LoadSlip.DOUBLED: "is counted twice in",
+         LoadSlip.TURNED_ROUND: "is turned round in"}
+_COUNTED = {LoadSlip.MISSING: "left out of", LoadSlip.DOUBLED: "counted twice in",
+            LoadSlip.TURNED_ROUND: "turned round in"}
 """How a load's mistake in an equation is said on the feedback and counted by the class
 report."""
 
@@ -82,7 +92,7 @@ class EquationRow:
     feedback: str
     reversed_term: str | None = None
     load: str | None = None  # the model's load it leaves out or turns round, named
-    load_mistake: str | None = None  # "missing", "doubled" or "turned round"
+    load_mistake: LoadSlip | None = None
     balance: str | None = None  # the wrong body's or the wrong point's balance it is, named
 
 
@@ -170,7 +180,7 @@ def judge_equations(text: str | None, samples: MotionSamples | None) -> Equation
         named, how = (_naming(found[0]), found[1]) if found is not None else (None, None)
         if balance is not None:
             said += f" ({balance})"
-        elif term is not None and how == "turned round":
+        elif term is not None and how is LoadSlip.TURNED_ROUND:
             said += f" (its term {term} has the wrong sign: {named} is turned round in it)"
         elif term is not None:
             said += f" (its term {term} has the wrong sign)"
@@ -349,7 +359,7 @@ class _System:
                           if abs(sign * float(evaluate(t, env)[0]) - misfit / 2) <= tol]
         return syntax.to_text(candidates[0][1]) if len(candidates) == 1 else None
 
-    def wrong_load(self, i: int, right: list[int]) -> tuple[SampledLoad, str, bool] | None:
+    def wrong_load(self, i: int, right: list[int]) -> tuple[SampledLoad, LoadSlip, bool] | None:
         """The one load of the model that equation ``i``'s misfit is a fixed multiple of (a
         component or a moment of it, at every state, with the unknowns the ``right``
         equations give), whether it is ``missing`` from it, ``doubled`` or ``turned round``
@@ -386,15 +396,16 @@ class _System:
             return None
         ((load, ratios),) = fitting.values()
         if self.reversed_term(i, right) is not None:
-            return load, "turned round", True
+            return load, LoadSlip.TURNED_ROUND, True
         multiple = self._multiple(i, load, misfits)
         if multiple is not None:
-            return load, {-1: "missing", 1: "doubled", -2: "turned round"}[multiple], True
+            return load, {-1: LoadSlip.MISSING, 1: LoadSlip.DOUBLED,
+                          -2: LoadSlip.TURNED_ROUND}[multiple], True
         scales = Counter(float(f"{abs(r):.3g}") for t in terms for other in self.samples.loads
                          for r in _ratios(t, other))
         scale = scales.most_common(1)[0][0] if scales else 1.0
         times = [n for r in ratios if (n := _plain(r / scale)) is not None]
-        return load, "turned round" if times and times[0] == 2 else "missing", False
+        return load, LoadSlip.TURNED_ROUND if times and times[0] == 2 else LoadSlip.MISSING, False
 
     def _multiple(self, i: int, load: SampledLoad, misfits: list) -> int | None:
         """How many times over equation ``i`` has ``load``: -1 (left out), 1 (twice), -2
@@ -674,16 +685,16 @@ def _signed_terms(node: Node, sign: int = 1) -> list[tuple[int, Node]]:
 def _naming(load: SampledLoad) -> str:
     """A load as a reader names it.
 
-    >>> _naming(SampledLoad("F_P", "kinetic friction", "block", ()))
+    >>> _naming(SampledLoad("F_P", LoadKind.KINETIC_FRICTION, "block", ()))
     'the kinetic friction F_P on block'
-    >>> _naming(SampledLoad("gravity", "weight", "block1", ()))
+    >>> _naming(SampledLoad("gravity", LoadKind.WEIGHT, "block1", ()))
     'the weight of block1'
-    >>> _naming(SampledLoad("spring", "spring", "puck", ()))
+    >>> _naming(SampledLoad("spring", LoadKind.SPRING, "puck", ()))
     'the spring on puck'
-    >>> _naming(SampledLoad("friction", "kinetic friction", "block", ()))
+    >>> _naming(SampledLoad("friction", LoadKind.KINETIC_FRICTION, "block", ()))
     'the kinetic friction on block'
     """
-    if load.kind == "weight":
+    if load.kind == LoadKind.WEIGHT:
         return f"the weight of {load.body}"
     # a load named by its kind ("spring", "friction") is named once
     if load.name.replace("_", " ").lower() in (load.kind, load.kind.split()[-1]):

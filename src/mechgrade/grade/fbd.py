@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from enum import StrEnum
 from itertools import combinations
 
 import numpy as np
@@ -36,6 +35,7 @@ from scipy.optimize import linear_sum_assignment
 from ..errors import AnswerError, ExpressionError
 from ..expressions import syntax
 from ..expressions.excerpt import excerpt
+from ..expressions.functions import StrEnum
 from ..expressions.numeric import evaluate
 from ..expressions.syntax import Attr, Bin, Call, Name, Node, Num, Prime, Unary
 from ..solve import rules

@@ -29,29 +29,19 @@ from __future__ import annotations
 
 
 from dataclasses import dataclass, field
-from enum import Enum
 
 from ..codec import MAPPING, OMIT_DEFAULT, absent, decode, encode
+from ..expressions.functions import StrEnum
 
 
-class Kind(str, Enum):
-    """A kind whose member is its text: written to JSON, CSV and pages as that text, equal to
-    it (``Verdict.CORRECT == "correct"``), and shown by ``str`` and f-strings as it.
+class Verdict(StrEnum):
+    """How one answer was judged (``docs/grading.md`` says what each means). A member is its
+    text: written to JSON, CSV and pages as that text, equal to it, and shown by ``str`` and
+    f-strings as it.
 
     >>> f"{Verdict.NOT_EVALUATED}", str(Status.GRADED), Verdict("partial") is Verdict.PARTIAL
     ('not_evaluated', 'graded', True)
     """
-
-    # str's own, not Enum's 'Verdict.CORRECT': the member is shown wherever its text was
-    def __str__(self) -> str:
-        return str.__str__(self)
-
-    def __format__(self, spec: str) -> str:
-        return str.__format__(self, spec)
-
-
-class Verdict(Kind):
-    """How one answer was judged (``docs/grading.md`` says what each means)."""
 
     CORRECT = "correct"
     PARTIAL = "partial"
@@ -61,7 +51,7 @@ class Verdict(Kind):
     NOT_EVALUATED = "not_evaluated"
 
 
-class Status(Kind):
+class Status(StrEnum):
     """What became of one student's submission."""
 
     GRADED = "graded"

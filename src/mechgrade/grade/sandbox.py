@@ -28,6 +28,7 @@ from collections import deque
 from multiprocessing import connection
 from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
+from enum import Enum
 from typing import Callable, Iterable, Sequence, Union, cast
 
 from ..parallel import worker_started
@@ -37,9 +38,17 @@ from .policy import GradingPolicy
 
 Judge = Callable[[str | None, ObjectiveResult, GradingPolicy], Assessment]
 Item = tuple[str | None, ObjectiveResult, GradingPolicy]
-Outcome = tuple[str, Union[Assessment, str, None]]
-"""What the worker sends for one answer: ``("ok", assessment)``, ``("error", reason)`` or
-``("memory", None)``."""
+
+
+class Stopped(Enum):
+    """What a worker sends instead of an answer's assessment when it stops."""
+
+    OUT_OF_MEMORY = "out of memory"
+
+
+Reply = Union[Assessment, Stopped]
+"""What the worker sends for one answer: its assessment (``not_evaluated``, with the reason,
+when judging failed), or :attr:`Stopped.OUT_OF_MEMORY`."""
 
 DEFAULT_SECONDS = 5.0
 DEFAULT_MEMORY_MB = 512
@@ -95,21 +104,21 @@ def _worker(conn: Connection, judge: Judge, memory_mb: int) -> None:
         if batch is None:
             return
         for text, result, policy in batch:
-            outcome: Outcome
+            reply: Reply
             try:
-                outcome = ("ok", judge(text, result, policy))
+                reply = judge(text, result, policy)
             except MemoryError:
-                outcome = ("memory", None)
+                reply = Stopped.OUT_OF_MEMORY
             except RecursionError:
-                outcome = ("error", "the expression is nested too deeply to evaluate")
+                reply = not_evaluated("the expression is nested too deeply to evaluate")
             except Exception as exc:  # noqa: BLE001 - any failure is "could not be evaluated"
-                outcome = ("error", f"{type(exc).__name__} while judging")
+                reply = not_evaluated(f"{type(exc).__name__} while judging")
             try:
-                conn.send(outcome)
+                conn.send(reply)
             except MemoryError:
-                conn.send(("memory", None))
-                outcome = ("memory", None)
-            if outcome[0] == "memory":
+                conn.send(Stopped.OUT_OF_MEMORY)
+                reply = Stopped.OUT_OF_MEMORY
+            if reply is Stopped.OUT_OF_MEMORY:
                 return  # the heap may be fragmented near the limit: let the parent start afresh
 
 
@@ -401,15 +410,14 @@ class _Spread:
         conn = box.pipe()
         while True:
             try:
-                status, payload = conn.recv()
+                reply: Reply = conn.recv()
             except (EOFError, OSError):
                 self.fail(box, not_evaluated("the judging process stopped (out of memory?)"))
                 return
-            if status == "memory":
+            if reply is Stopped.OUT_OF_MEMORY:
                 self.fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
                 return
-            self.results[self.pending[box].popleft()] = (
-                cast(Assessment, payload) if status == "ok" else not_evaluated(str(payload)))
+            self.results[self.pending[box].popleft()] = reply
             self.answered += 1
             self.deadline[box] = time.monotonic() + box.seconds
             self.refill(box)  # may start a fresh worker, when this one died after its outcome

@@ -30,10 +30,11 @@ from functools import partial
 from pathlib import Path
 
 from ..errors import MechgradeError, SubmissionError, brief_exception
+from ..expressions.functions import StrEnum
 from ..files import clean_text
 from ..parallel import fork_map
 from ..yamlio import read_yaml_text
-from .results import Kind, SkippedEntry
+from .results import SkippedEntry
 
 MAX_FILE_BYTES = 256 * 1024
 MAX_LISTED_KEYS = 10
@@ -58,7 +59,7 @@ class _Unread(SubmissionError):
         self.notes = tuple(notes)
 
 
-class SubmissionStatus(Kind):
+class SubmissionStatus(StrEnum):
     """What came of reading one student's hand-in."""
 
     READ = "read"

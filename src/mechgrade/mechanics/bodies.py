@@ -24,8 +24,8 @@ import sympy as sp
 from sympy.physics.mechanics import inertia
 from sympy.physics.vector import Dyadic, ReferenceFrame, Vector
 
-from ..spec.dynamics import (Block, Cylinder, Disk, Explicit, Ring, Rod, Shape, Shell,
-                             Sphere)
+from ..spec.dynamics import (INERTIA_KEYS, Block, Cylinder, Disk, Explicit, Ring, Rod, Shape,
+                             Shell, Sphere)
 
 _AXES = "xyz"
 
@@ -96,8 +96,8 @@ def central_inertia(shape: Shape, m, frame: ReferenceFrame,
 
 def explicit_inertia(entries: dict, frame: ReferenceFrame) -> Dyadic:
     """``{"xx": Ixx, ...}`` (missing entries zero) as a dyadic in ``frame``."""
-    get = lambda key: entries.get(key, sp.Integer(0))  # noqa: E731
-    return inertia(frame, get("xx"), get("yy"), get("zz"), get("xy"), get("yz"), get("zx"))
+    # INERTIA_KEYS lists them in the order inertia() takes them
+    return inertia(frame, *(entries.get(key, sp.Integer(0)) for key in INERTIA_KEYS))
 
 
 def parallel_axis(central: Dyadic, m, offset: Vector, frame: ReferenceFrame) -> Dyadic:

@@ -93,7 +93,7 @@ class StudentIssue:
 
     id: str
     name: str
-    status: str
+    status: Status
     objectives: str
     detail: str
 

@@ -791,7 +791,7 @@ def _context(report: GradeReport, student: StudentResult, prompts: dict,
                        "point": load.point or "",
                        # the row names the load: the vector alone, as written
                        "answer": (load.answer or "").partition(": ")[2],
-                       "verdict": "correct" if not load.mistakes else "incorrect",
+                       "verdict": Verdict.INCORRECT if load.mistakes else Verdict.CORRECT,
                        "judged": ", ".join(load.mistakes) if load.mistakes else "right"}
                       for load in answer.loads],
         })

@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import MechgradeError
 from ..mechanics.kinematics import locations
-from ..spec.dynamics import dynamics_of
+from ..spec.dynamics import LoadKind, dynamics_of
 from ..spec.model import Problem
 from ..tolerance import parts
 from .dynamics import kinetics_plan, solve_kinetics
@@ -110,7 +110,7 @@ def _given_values(solution: Solution) -> tuple[tuple[str, float], ...]:
 
 def _unit_vectors(f, x) -> tuple[Vec3, Vec3, Vec3] | None:
     vectors = tuple(_vector(g, x) for g in f)
-    return None if any(v is None for v in vectors) else vectors  # type: ignore
+    return None if any(v is None for v in vectors) else vectors  # type: ignore[return-value]
 
 
 @lru_cache(maxsize=32)
@@ -148,7 +148,7 @@ class SampledLoad:
     moment about ``O``); ``mass`` the body's at each state."""
 
     name: str
-    kind: str
+    kind: LoadKind
     body: str
     components: tuple[tuple[float, ...], ...]
     mass: tuple[float, ...] = ()  # its body's mass at each state (an equation divided by it)
@@ -402,7 +402,7 @@ def _sampled_loads(problem: Problem, states: list[np.ndarray]) -> tuple[SampledL
                     at - np.array(_vector(f, x) or nan3), vector)
                 values += [float(turning @ e) for e in axes[k]]
             rows.append(values)
-        out.append(SampledLoad(applied.name, str(applied.kind), applied.body,
+        out.append(SampledLoad(applied.name, applied.kind, applied.body,
                                tuple(zip(*rows)), tuple(np.nan if m is None else m
                                                         for m in masses[applied.body]),
                                tuple(along)))

@@ -161,7 +161,7 @@ def free_body_diagrams(problem: Problem, solution: Solution) -> tuple[FreeBodyDi
     down = _vector(plan.down, x) if plan.down is not None else None
     if down is not None:
         size = float(np.linalg.norm(down))
-        down = tuple(float(c) / size + 0.0 for c in down) if size > 0 else None  # type: ignore
+        down = tuple(float(c) / size + 0.0 for c in down) if size > 0 else None  # type: ignore[assignment]
     out = []
     for body in dynamics_of(problem).bodies:
         loads = []

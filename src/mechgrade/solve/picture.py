@@ -142,7 +142,7 @@ def scene(problem: Problem, solution: Solution) -> Scene:
     def unit(f) -> Triple | None:
         v = number(f)
         size = math.sqrt(sum(c * c for c in v)) if v is not None else 0.0
-        return tuple(c / size + 0.0 for c in v) if v is not None and size > 0 else None  # type: ignore
+        return tuple(c / size + 0.0 for c in v) if v is not None and size > 0 else None  # type: ignore[return-value]
 
     def size(f) -> float | None:
         out = evaluated(f)
@@ -695,7 +695,8 @@ def _springs(sheet: _Sheet, supports, at) -> None:
             b = (b[0] + shift * n[0], b[1] + shift * n[1])
 
             def along(f: float, side: float = 0.0) -> tuple[float, float]:
-                return (a[0] + f * length * u[0] + side * n[0],  # noqa: B023
+                # B023 does not apply: called only in this iteration, on its a, u, n, length
+                return (a[0] + f * length * u[0] + side * n[0],  # noqa: B023 - said above
                         a[1] + f * length * u[1] + side * n[1])  # noqa: B023
 
             if support.kind == SupportKind.SPRING:
@@ -939,13 +940,13 @@ def _shape_words(b: SceneBody) -> str:
 
 
 def _support_words(support: SceneSupport) -> str:
-    named = lambda: ", ".join(b for b in support.bodies if b != GROUND)  # noqa: E731
+    named = ", ".join(b for b in support.bodies if b != GROUND)
     if support.kind == SupportKind.PIN:
-        return f"{named()} pinned to the ground"
+        return f"{named} pinned to the ground"
     if support.kind == SupportKind.JOINT:
         return f"a pin joining {_and(list(support.bodies))}"
     if support.kind == SupportKind.SURFACE:
-        return f"{named()} on a fixed surface"
+        return f"{named} on a fixed surface"
     if support.kind == SupportKind.STRING:
         return f"string {support.name} pulling {_and(list(dict.fromkeys(support.bodies)))}"
     ends = _and([b for b in support.bodies])

@@ -16,13 +16,13 @@ kinematics (:attr:`KinematicsPlan.k`) are derived again only if something asks f
 from __future__ import annotations
 
 import operator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 import numpy as np
 
-from ..codec import decode, encode
+from ..codec import MAPPING, decode, encode
 from ..errors import AuthorWarning, Location
 from ..expressions.syntax import Name, Prime
 from ..spec.model import ObjectiveKind, Problem
@@ -348,73 +348,110 @@ def source(function: Callable) -> str:
     return inspect.getsource(function)
 
 
-def _entry(problem: Problem, p: KinematicsPlan) -> dict:
+@dataclass(frozen=True)
+class _LevelEntry:
+    """A :class:`Level` as the disk cache keeps it: its functions as their source."""
+
+    order: int
+    residual: str
+    jacobian: str
+    scale: str
+    labels: tuple[str, ...]
+    wheres: tuple[Location, ...]
+    conditions: tuple[str, ...]
+    linear: bool
+    uses: tuple[frozenset[int], ...]
+    jacobian_uses: frozenset[int]
+
+
+@dataclass(frozen=True)
+class _MutantEntry:
+    """A :class:`Mutant` as the disk cache keeps it (its objective is the key it is under)."""
+
+    code: str
+    sentence: str
+    size: int
+    velocity: bool
+    value: str
+    term: str | None
+
+
+@dataclass(frozen=True)
+class _Entry:
+    """A :class:`KinematicsPlan` (and its model mutations) as the disk cache keeps it, read
+    and written by :mod:`mechgrade.codec`: a field of another type refuses the whole entry."""
+
+    index: tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...]]
+    levels: tuple[_LevelEntry, ...]
+    objectives: tuple[tuple[str, str], ...]
+    mistakes: tuple[tuple[str, tuple[str, ...]], ...]
+    requirements: tuple[tuple[str, str, str], ...]
+    objective_uses: tuple[tuple[str, frozenset[int]], ...]
+    points: tuple[str, ...]
+    point_positions: str
+    constraint_rank: int
+    warnings: tuple[AuthorWarning, ...]
+    mutants: tuple[tuple[str, tuple[_MutantEntry, ...]], ...] = field(metadata=MAPPING)
+    generic_dof: int
+
+
+def _entry(problem: Problem, p: KinematicsPlan) -> Any:
     """The plan (and its model mutations) as plain JSON with the functions' source."""
     index = p.index
-    return {
-        "index": [list(index.names), list(index.coordinates), list(index.parameters)],
-        "levels": [{
-            "order": level.order, "residual": source(level.residual),
-            "jacobian": source(level.jacobian), "scale": source(level.scale),
-            "labels": list(level.labels), "wheres": encode(level.wheres),
-            "conditions": list(level.conditions), "linear": level.linear,
-            "uses": [sorted(u) for u in level.uses],
-            "jacobian_uses": sorted(level.jacobian_uses)} for level in p.levels],
-        "objectives": [[oid, source(f)] for oid, f in p.objectives],
-        "mistakes": [[oid, [source(f) for f in fs]] for oid, fs in p.mistakes],
-        "requirements": [[oid, reason, source(f)] for oid, reason, f in p.requirements],
-        "objective_uses": [[oid, sorted(uses)] for oid, uses in p.objective_uses],
-        "points": list(p.points), "point_positions": source(p.point_positions),
-        "constraint_rank": p.constraint_rank,
-        "warnings": encode(p.warnings),
-        "mutants": {o.id: [{"code": m.code, "sentence": m.sentence, "size": m.size,
-                            "velocity": m.velocity, "value": source(m.value),
-                            "term": None if m.term is None else source(m.term)}
-                           for m in lambdified_mutants(problem, p, o.id)]
-                    for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC},
-        "generic_dof": generic_dof(p.k)}
+    return encode(_Entry(
+        index=(index.names, index.coordinates, index.parameters),
+        levels=tuple(_LevelEntry(
+            level.order, source(level.residual), source(level.jacobian), source(level.scale),
+            level.labels, level.wheres, level.conditions, level.linear, level.uses,
+            level.jacobian_uses) for level in p.levels),
+        objectives=tuple((oid, source(f)) for oid, f in p.objectives),
+        mistakes=tuple((oid, tuple(source(f) for f in fs)) for oid, fs in p.mistakes),
+        requirements=tuple((oid, reason, source(f)) for oid, reason, f in p.requirements),
+        objective_uses=p.objective_uses, points=p.points,
+        point_positions=source(p.point_positions), constraint_rank=p.constraint_rank,
+        warnings=p.warnings,
+        mutants=tuple((o.id, tuple(_MutantEntry(
+            m.code, m.sentence, m.size, m.velocity, source(m.value),
+            None if m.term is None else source(m.term))
+            for m in lambdified_mutants(problem, p, o.id)))
+            for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC),
+        generic_dof=generic_dof(p.k)))
 
 
-def _from_entry(problem: Problem, key: str, entry: dict) -> KinematicsPlan:
-    """The plan an :func:`_entry` describes; raises (``KeyError``, ``ValueError``...) on
+def _from_entry(problem: Problem, key: str, data: Any) -> KinematicsPlan:
+    """The plan an :func:`_entry` describes; raises (``ValueError``, ``SyntaxError``...) on
     anything else."""
-    names, coordinates, parameters = entry["index"]
+    entry = decode(_Entry, data)
+    names, coordinates, parameters = entry.index
     holder: list[KinematicsPlan] = []
-    index = SymbolIndex(tuple(map(str, names)), tuple(map(str, coordinates)),
-                        tuple(map(str, parameters)), source=lambda: holder[0].k)
+    index = SymbolIndex(names, coordinates, parameters, source=lambda: holder[0].k)
     if index.size != len(coordinates) * 3 + len(parameters) + 1:
         raise ValueError("a state layout of another size")
     levels = tuple(Level(
-        order=int(level["order"]), name=LEVEL_NAMES[int(level["order"])],
-        residual=_compiled(level["residual"]), jacobian=_compiled(level["jacobian"]),
-        scale=_compiled(level["scale"]),
-        labels=tuple(map(str, level["labels"])),
-        wheres=decode(tuple[Location, ...], level["wheres"]),
-        conditions=tuple(map(str, level["conditions"])), linear=bool(level["linear"]),
-        uses=tuple(frozenset(map(int, u)) for u in level["uses"]),
-        jacobian_uses=frozenset(map(int, level["jacobian_uses"])))
-        for level in entry["levels"])
+        order=level.order, name=LEVEL_NAMES[level.order],
+        residual=_compiled(level.residual), jacobian=_compiled(level.jacobian),
+        scale=_compiled(level.scale), labels=level.labels, wheres=level.wheres,
+        conditions=level.conditions, linear=level.linear, uses=level.uses,
+        jacobian_uses=level.jacobian_uses)
+        for level in entry.levels)
     if [level.order for level in levels] != [0, 1, 2]:
         raise ValueError("expected the three levels")
     p = KinematicsPlan(
         index=index, levels=levels,  # type: ignore[arg-type]  # three, checked above
-        objectives=tuple((str(oid), _compiled(text)) for oid, text in entry["objectives"]),
-        mistakes=tuple((str(oid), tuple(_compiled(t) for t in texts))
-                       for oid, texts in entry["mistakes"]),
-        requirements=tuple((str(oid), str(reason), _compiled(text))
-                           for oid, reason, text in entry["requirements"]),
-        objective_uses=tuple((str(oid), frozenset(map(int, uses)))
-                             for oid, uses in entry["objective_uses"]),
-        points=tuple(map(str, entry["points"])),
-        point_positions=_compiled(entry["point_positions"]),
-        constraint_rank=int(entry["constraint_rank"]),
-        warnings=decode(tuple[AuthorWarning, ...], entry["warnings"]),
+        objectives=tuple((oid, _compiled(text)) for oid, text in entry.objectives),
+        mistakes=tuple((oid, tuple(_compiled(t) for t in texts))
+                       for oid, texts in entry.mistakes),
+        requirements=tuple((oid, reason, _compiled(text))
+                           for oid, reason, text in entry.requirements),
+        objective_uses=entry.objective_uses, points=entry.points,
+        point_positions=_compiled(entry.point_positions),
+        constraint_rank=entry.constraint_rank, warnings=entry.warnings,
         problem=problem, key=key,
-        mutants={str(oid): tuple(Mutant(
-            str(oid), str(m["code"]), str(m["sentence"]), _size(m["size"]), bool(m["velocity"]),
-            _compiled(m["value"]), None if m["term"] is None else _compiled(m["term"]))
-            for m in rows) for oid, rows in entry["mutants"].items()},
-        generic_dof=int(entry["generic_dof"]))
+        mutants={oid: tuple(Mutant(
+            oid, m.code, m.sentence, _size(m.size), m.velocity, _compiled(m.value),
+            None if m.term is None else _compiled(m.term))
+            for m in rows) for oid, rows in entry.mutants},
+        generic_dof=entry.generic_dof)
     holder.append(p)
     return p
 
@@ -429,6 +466,4 @@ def _size(value) -> int:
 def _compiled(text: str) -> Callable:
     """A function of the entry, checked and compiled now: an entry that is not what this code
     wrote is refused whole, never found out in the middle of a solve."""
-    if not isinstance(text, str):
-        raise TypeError("expected a function's source")
     return numpy_function(text)

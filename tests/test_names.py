@@ -1,0 +1,100 @@
+"""One meaning per name for the types issue 24 found named twice: the grading plan is ``Plan``
+(the solver's are ``KinematicsPlan``, ``KineticsPlan``, ``AnalysisPlan``), a ``branch:`` entry
+is ``Branch``, a solve's result or error is ``Outcome``, and the grading policy is
+``GradingPolicy`` (no ``Policy`` or ``compare_policy`` beside it)."""
+
+from __future__ import annotations
+
+import ast
+from functools import lru_cache
+from pathlib import Path
+
+SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
+ONCE = ("Plan", "Branch", "Outcome", "GradingPolicy")
+NEVER = ("Policy", "compare_policy")
+
+
+@lru_cache(maxsize=None)
+def _parsed(text: str) -> ast.Module:
+    """A module's tree, parsed once for every check of this file."""
+    return ast.parse(text)
+
+
+def defined(text: str) -> list[str]:
+    """The names a module's top level defines: classes, functions and assigned names (type
+    aliases among them).
+
+    >>> defined("class A: pass\\nB = int | None\\ndef f(): pass\\nC: int = 1\\nif x:\\n    D = 1\\n")
+    ['A', 'B', 'f', 'C']
+    """
+    out = []
+    for node in _parsed(text).body:
+        if isinstance(node, (ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            out.append(node.name)
+        elif isinstance(node, ast.Assign):
+            out += [t.id for t in node.targets if isinstance(t, ast.Name)]
+        elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            out.append(node.target.id)
+    return out
+
+
+def test_each_of_the_names_issue_24_made_one_is_defined_once():
+    where: dict[str, list[str]] = {}
+    for path in sorted(SRC.rglob("*.py")):
+        for name in defined(path.read_text(encoding="utf-8")):
+            if name in ONCE + NEVER:
+                where.setdefault(name, []).append(str(path.relative_to(SRC)))
+    assert {name: places for name, places in where.items()
+            if len(places) > 1 or name in NEVER} == {}
+
+
+def kinds_compared_with_text(text: str) -> list[int]:
+    """The lines where a ``kind`` field (``result.kind``) is compared with a text, or a tuple of
+    texts, instead of with its type's members.
+
+    >>> kinds_compared_with_text("r.kind == 'vector'\\nr.kind in ('a', 'b')\\nr.kind is K.VECTOR\\n")
+    [1, 2]
+    """
+    def field(node: ast.expr) -> bool:
+        return isinstance(node, ast.Attribute) and node.attr == "kind"
+
+    def texts(node: ast.expr) -> bool:
+        items = node.elts if isinstance(node, (ast.Tuple, ast.List, ast.Set)) else [node]
+        return bool(items) and all(isinstance(i, ast.Constant) and isinstance(i.value, str)
+                                   for i in items)
+
+    return [node.lineno for node in ast.walk(_parsed(text)) if isinstance(node, ast.Compare)
+            and any((field(a) and texts(b)) or (field(b) and texts(a))
+                    for a, b in zip([node.left, *node.comparators], node.comparators))]
+
+
+def test_a_kind_is_compared_with_its_types_members_not_with_text():
+    found = {str(path.relative_to(SRC)): lines for path in sorted(SRC.rglob("*.py"))
+             if (lines := kinds_compared_with_text(path.read_text(encoding="utf-8")))}
+    assert found == {}
+
+
+KINDS = {"status", "verdict", "kind"}
+# A load's kind in results.json stays text: grade.results is read by export and report, which
+# must not pay for importing the spec (LoadKind, about 0.5 s).
+TEXT_KINDS = {("grade/results.py", "LoadResult", "kind")}
+
+
+def kinds_held_as_text(text: str) -> list[tuple[str, str]]:
+    """The ``(class, field)`` of every class field named ``status``, ``verdict`` or ``kind``
+    annotated as a text.
+
+    >>> kinds_held_as_text("class A:\\n    status: str\\n    kind: Kind\\n    verdict: str | None\\n")
+    [('A', 'status'), ('A', 'verdict')]
+    """
+    return [(node.name, item.target.id) for node in ast.walk(_parsed(text))
+            if isinstance(node, ast.ClassDef) for item in node.body
+            if isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name)
+            and item.target.id in KINDS
+            and any(isinstance(n, ast.Name) and n.id == "str" for n in ast.walk(item.annotation))]
+
+
+def test_a_status_verdict_or_kind_field_is_of_its_kinds_type():
+    found = [(str(path.relative_to(SRC)), *held) for path in sorted(SRC.rglob("*.py"))
+             for held in kinds_held_as_text(path.read_text(encoding="utf-8"))]
+    assert [f for f in found if f not in TEXT_KINDS] == []
