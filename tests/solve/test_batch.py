@@ -16,6 +16,7 @@ from mechgrade.resources import shipped_dir
 from mechgrade.solve import solve
 from mechgrade.solve.batch import _solved_together, _template, solve_variants
 from mechgrade.solve.instant import answer_alone
+from mechgrade.solve.result import Solution
 from mechgrade.spec import load_problem, load_problem_text
 from mechgrade.spec.dynamics import Integration, WorkEnergy, instant_of_objective
 
@@ -680,3 +681,23 @@ def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():
     assert str(together.value) == str(one.value)
     assert str(one.value).startswith(f"{path}:") and \
         "design: no value of R near 0.15 (SI)" in str(one.value)
+
+
+def test_a_class_is_solved_with_the_garbage_collector_paused_and_leaves_it_on(monkeypatch):
+    import gc
+
+    from mechgrade.solve import batch
+
+    problem = load_problem(PROBLEMS / "bowling_3_15_4_pendulum.yaml")
+    template = type(_template(problem))
+    solve_class, running = template.solve, []
+
+    def watched(self, *args, **kwargs):
+        running.append(gc.isenabled())
+        return solve_class(self, *args, **kwargs)
+
+    monkeypatch.setattr(template, "solve", watched)
+    solved = batch.solve_variants(problem, [{"L": 0.6 + i / 1000} for i in range(30)])
+    assert len(solved) == 30 and all(isinstance(s, Solution) for s in solved)
+    assert running == [False]
+    assert gc.isenabled()

@@ -88,3 +88,20 @@ def test_a_shared_matrix_cramer_does_not_solve_is_solved_by_least_squares():
         solver = Cramer(A)
         assert solver.numerators is None
         assert np.array_equal(solver.solve(b), least_squares_solution(A, b))
+
+
+def test_a_pause_of_the_collector_leaves_one_made_by_the_caller_alone():
+    import gc
+
+    from mechgrade.solve.columns import collector_paused
+
+    gc.disable()
+    try:
+        with collector_paused():
+            assert not gc.isenabled()
+        assert not gc.isenabled()
+    finally:
+        gc.enable()
+    with collector_paused(), collector_paused():
+        assert not gc.isenabled()
+    assert gc.isenabled()

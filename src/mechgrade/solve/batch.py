@@ -58,7 +58,7 @@ from .entry import solve
 from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
                       answer_alone, class_givens, drive_columns, group_results, instant_givens,
                       read_objectives, reports_state, wanted_objectives, with_own)
-from .columns import FirstErrors, call
+from .columns import FirstErrors, call, collector_paused
 from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_branches,
                      level_rank, place_givens, rows, solve_level_columns,
                      solve_linear_columns, solve_nonlinear_columns, typical_sizes)
@@ -112,6 +112,7 @@ def answers_together(problem: Problem, variants: Sequence[Mapping[str, float | N
                                                        objectives, mistakes=False)]
 
 
+@collector_paused()
 def _solved_together(problem: Problem, given: list[dict],
                      objectives: Collection[str] | None = None,
                      mistakes: bool = True) -> list[tuple[Outcome, bool]]:
