@@ -127,7 +127,7 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     sense = np.zeros(g.shape)
     if direction is not None:
         sense[:] = direction
-    defined: np.ndarray = np.isfinite(f).all(axis=0)
+    defined = np.asarray(np.isfinite(f).all(axis=0))
     moving = defined[owner] & np.isfinite(g).all(axis=0) & ((g != 0) | (sense != 0)).all(axis=0)
     history = _History(count, m, c.N_STAGES + 1, len(modes), t.copy(), keep)
     ends = np.zeros((2,) + g.shape)  # the events' values at the ends of the step one fired in
