@@ -680,3 +680,30 @@ def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():
     assert str(together.value) == str(one.value)
     assert str(one.value).startswith(f"{path}:") and \
         "design: no value of R near 0.15 (SI)" in str(one.value)
+
+
+@pytest.mark.slow  # a cold derivation (over 2 s)
+def test_a_class_asking_several_instants_of_one_motion_integrates_each_students_motion_once(
+        monkeypatch):
+    # three_cart asks t = 250 ms, x3' = 0 and the event (t = T) of the same motion: one
+    # integration per student carries all three, each instant as a class reads it apart
+    from mechgrade.solve import phases
+
+    problem = load_problem(PROBLEMS / "three_cart_chain_vibration.yaml")
+    variants = [{"v0": 0.5}, {"v0": 0.7}, {"c": 10.0}]
+    motions = []
+    integrate = phases.integrate_to_events
+
+    def counted(*args, share=None, **kwargs):
+        columns = args[2].shape[1]
+        motions.append((columns, columns if share is None else len(np.unique(share))))
+        return integrate(*args, **kwargs, **({} if share is None else {"share": share}))
+
+    monkeypatch.setattr(phases, "integrate_to_events", counted)
+    together = solve_variants(problem, variants)
+    # the class's one pass (after the reference's, alone): the four groups' columns (t = 0
+    # too), three motions
+    assert motions[-1] == (12, 3)
+    monkeypatch.setattr(phases, "integrate_to_events", integrate)
+    for a, b in zip(together, alone(problem, variants)):
+        assert_same(a, b, INTEGRATED, generated=False)
