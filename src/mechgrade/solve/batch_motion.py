@@ -108,6 +108,7 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     cols = np.arange(count)
     # the columns integrated (``steps``), each one's position among them (``owner``)
     steps, owner = np.unique(cols if share is None else share, return_inverse=True)
+    alone = len(steps) == count  # no column shares its motion: each carries itself only
     t = np.broadcast_to(np.asarray(t0, dtype=float), (count,)).copy()
     y = y0.astype(float).copy()
     modes = mode(cols, t, y) if mode is not None else np.zeros((0, count))
@@ -138,9 +139,12 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     # the few operations of a step on few columns cost more than its arithmetic: each value
     # is gathered once, and what ends a column is bookkept only in a step where one ends
     while moving.any():
-        riding = np.zeros(len(steps), dtype=bool)
-        riding[owner[moving]] = True
-        a = np.flatnonzero(riding)  # the integrated columns some column still rides
+        if alone:
+            a = np.flatnonzero(moving)
+        else:  # the integrated columns some column still rides
+            riding = np.zeros(len(steps), dtype=bool)
+            riding[owner[moving]] = True
+            a = np.flatnonzero(riding)
         ka = steps[a]
         ta, ya, fa, ma = ts[a], ys[:, a], f[:, a], ms[:, a]
         ra, hv = retry[a], h_abs[a]
@@ -190,12 +194,13 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
         ts[b], ys[:, b], f[:, b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k]
         if mode is not None:
             ms[:, b] = mode(steps[b], t_new[k], y_new[:, k])
-        # the columns these steps carry: each one's integrated column and its step's place
-        place = np.full(len(steps), -1)
-        place[b] = k
-        b = np.flatnonzero(moving & (place[owner] >= 0))
-        r = owner[b]
-        k = place[r]
+        r = b
+        if not alone:  # the columns these steps carry: each one's integrated column and place
+            place = np.full(len(steps), -1)
+            place[b] = k
+            b = np.flatnonzero(moving & (place[owner] >= 0))
+            r = owner[b]
+            k = place[r]
         tk, yk, mk = t_new[k], y_new[:, k], ma[:, k]
         history.push(b, ta[k], tk, ya[:, k], yk, K[:, :, k], mk)
         g_new = every(b, tk, yk, mk)
