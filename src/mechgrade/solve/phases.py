@@ -442,9 +442,9 @@ class _Columns:
     def run(self, events: list[Callable], senses: list[np.ndarray], y0: np.ndarray,
             t0: np.ndarray) -> _Run:
         """Every column integrated from ``y0`` at ``t0`` to the first of ``events`` (each with
-        its ``direction`` per column): an event with no direction that holds at the start
-        fires at once, as ``solve_ivp``'s first step finds it. Alone, every step is kept and
-        a stall or failure raises."""
+        its ``direction`` per column), those with the same start once (:func:`_first_equal`):
+        an event with no direction that holds at the start fires at once, as ``solve_ivp``'s
+        first step finds it. Alone, every step is kept and a stall or failure raises."""
         count = y0.shape[1]
         direction = np.array(senses, dtype=float).reshape(len(events), count)
         g = np.array([e(np.arange(count), t0, y0) for e in events]).reshape(len(events), count)
