@@ -8,8 +8,8 @@ stops at its event (located on its last step's dense output) or at the end of th
 allowed; its derivative is never evaluated again, so it costs the others nothing. Columns
 with the same start and right-hand side (a class's instants of one student's motion) share one
 integration, each stopping at its own events (``share``). The last bits of a step depend on
-how many columns it carries (BLAS's sums in :func:`_combine`): a column's answers agree with
-its own integration alone to about 1e-13, not to the bit.
+how many columns it carries and where (BLAS's sums in :func:`_combine`): a column's answers
+agree with its integration alone or beside other columns closely, not to the bit.
 
 One difference, for a motion that switches (a slip that ends): the right-hand side may depend
 on *modes* (the direction of each slip), read at the start of every step and kept through it,
