@@ -682,28 +682,19 @@ def test_a_design_that_converges_for_no_value_is_refused_in_a_class_as_alone():
         "design: no value of R near 0.15 (SI)" in str(one.value)
 
 
-@pytest.mark.slow  # a cold derivation (over 2 s)
-def test_a_class_asking_several_instants_of_one_motion_integrates_each_students_motion_once(
-        monkeypatch):
-    # three_cart asks t = 250 ms, x3' = 0 and the event (t = T) of the same motion: one
-    # integration per student carries all three, each instant as a class reads it apart
-    from mechgrade.solve import phases
+def test_a_class_reads_the_balances_once_per_phase_for_all_its_integrated_groups(monkeypatch):
+    # damped_block_positions asks five instants (t = 30 ms, x = 20 mm, x' = 0, the event and
+    # the event with c = 20): one pass reaches them all, and the balances at the instants
+    # are solved once for the own instants and once for the events, not once per group
+    from mechgrade.solve import batch
 
-    problem = load_problem(PROBLEMS / "three_cart_chain_vibration.yaml")
-    variants = [{"v0": 0.5}, {"v0": 0.7}, {"c": 10.0}]
-    motions = []
-    integrate = phases.integrate_to_events
-
-    def counted(*args, share=None, **kwargs):
-        columns = args[2].shape[1]
-        motions.append((columns, columns if share is None else len(np.unique(share))))
-        return integrate(*args, **kwargs, **({} if share is None else {"share": share}))
-
-    monkeypatch.setattr(phases, "integrate_to_events", counted)
+    problem = load_problem(PROBLEMS / "damped_block_positions.yaml")
+    variants = [{"m": 1.2}, {"m": 0.9}, {"c": 5.0}]
+    read = []
+    checked = batch.checked
+    monkeypatch.setattr(batch, "checked", lambda at, kp: read.append(at) or checked(at, kp))
     together = solve_variants(problem, variants)
-    # the class's one pass (after the reference's, alone): the four groups' columns (t = 0
-    # too), three motions
-    assert motions[-1] == (12, 3)
-    monkeypatch.setattr(phases, "integrate_to_events", integrate)
+    assert len(read) == 2
+    monkeypatch.setattr(batch, "checked", checked)
     for a, b in zip(together, alone(problem, variants)):
         assert_same(a, b, INTEGRATED, generated=False)

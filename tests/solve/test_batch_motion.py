@@ -42,30 +42,6 @@ def test_each_column_reaches_its_event_where_solve_ivp_finds_it():
     assert arrival.t == pytest.approx(np.arccos(level) / OMEGA, rel=1e-10)
 
 
-def test_columns_sharing_a_start_are_integrated_once_each_stopping_at_its_own_event():
-    # three instants of one motion (omega 1) and one of another (omega 2): two motions
-    omega = np.array([1.0, 1.0, 1.0, 2.0])
-    level = np.array([0.5, -0.25, 0.0, 0.5])
-    widths = []
-
-    def rhs(cols, t, y, modes):
-        widths.append(len(cols))
-        return np.array([y[1], -omega[cols] ** 2 * y[0]])
-
-    y0 = np.array([[1.0] * 4, [0.0] * 4])
-    shared = integrate_to_events(rhs, crossing(level), y0, 10.0, 1e-11, 1e-12, 20_000,
-                                 share=np.array([0, 0, 0, 3]))
-    # each motion's steps once, not each column's (but for the three extra stages of every
-    # column's dense output where its event is located)
-    assert max(widths[:-3]) == 2
-    apart = integrate_to_events(rhs, crossing(level), y0, 10.0, 1e-11, 1e-12, 20_000)
-    assert shared.status.tolist() == apart.status.tolist() == [FIRED] * 4
-    # the same steps; their last bits depend on how many columns a step carries (BLAS)
-    assert shared.t == pytest.approx(apart.t, rel=1e-14)
-    assert np.allclose(shared.before, apart.before, rtol=1e-13, atol=1e-15)
-    assert shared.t == pytest.approx(np.arccos(level) / omega, rel=1e-10)
-
-
 def test_a_column_whose_event_never_happens_ends_at_the_time_allowed_without_it():
     level = np.array([0.5, 2.0, 0.5])  # the second never reaches 2
     y0 = np.array([[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]])

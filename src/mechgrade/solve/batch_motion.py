@@ -5,11 +5,7 @@ Every column takes the steps :func:`scipy.integrate.solve_ivp` (DOP853) would ta
 alone — its own step size, error norm, accepted and rejected steps, the same coefficients —
 while the right-hand side is evaluated for all the columns still moving in one call. A column
 stops at its event (located on its last step's dense output) or at the end of the time
-allowed; its derivative is never evaluated again, so it costs the others nothing. Columns
-with the same start and right-hand side (a class's instants of one student's motion) share one
-integration, each stopping at its own events (``share``). The last bits of a step depend on
-how many columns it carries and where (BLAS's sums in :func:`_combine`): a column's answers
-agree with its integration alone or beside other columns closely, not to the bit.
+allowed; its derivative is never evaluated again, so it costs the others nothing.
 
 One difference, for a motion that switches (a slip that ends): the right-hand side may depend
 on *modes* (the direction of each slip), read at the start of every step and kept through it,
@@ -90,7 +86,7 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
                         rtol: float, atol: float, max_calls: int, lead: float = rules.BEFORE_EVENT,
                         mode: Callable | None = None,
                         direction: np.ndarray | None = None, t0: float | np.ndarray = 0.0,
-                        keep: int = 12, share: np.ndarray | None = None) -> Arrival:
+                        keep: int = 12) -> Arrival:
     """Integrate ``y' = rhs`` from ``y0`` (states x columns) at ``t0`` until ``event``
     changes sign (or becomes zero), per column, as ``solve_ivp(method="DOP853",
     events=event)`` with a terminal event does for each column alone; ``mode(columns, t,
@@ -102,23 +98,15 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     there (the lowest index of equal ones), as ``solve_ivp`` records terminal events; each
     root is found evaluating its own event alone. ``t0``: the start, or each column's.
     ``keep``: the last steps kept per column, where the moment before the event is read (one
-    column alone may keep all it can take, as ``solve_ivp``'s dense output does).
-    ``share``: each column's first column with the same start and right-hand side (its
-    own where none is): the motion is integrated once for all of them, its steps carrying
-    each one to its own events (a column's steps do not depend on the others')."""
+    column alone may keep all it can take, as ``solve_ivp``'s dense output does)."""
     c = dop853
     m, count = y0.shape
     status = np.full(count, FAILED)
     cols = np.arange(count)
-    # the columns integrated (``steps``), each one's position among them (``owner``)
-    steps, owner = np.unique(cols if share is None else share, return_inverse=True)
-    alone = len(steps) == count  # no column shares its motion: each carries itself only
     t = np.broadcast_to(np.asarray(t0, dtype=float), (count,)).copy()
     y = y0.astype(float).copy()
     modes = mode(cols, t, y) if mode is not None else np.zeros((0, count))
-    # the integrated columns' own time, state, modes and derivative
-    ts, ys, ms = t[steps], y[:, steps], modes[:, steps]
-    f = rhs(steps, ts, ys, ms)
+    f = rhs(cols, t, y, modes)
     events = event if isinstance(event, list) else [event]
 
     def every(cols: np.ndarray, t: np.ndarray, y: np.ndarray, modes: np.ndarray) -> np.ndarray:
@@ -126,14 +114,14 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
             len(events), len(cols))
 
     g = every(cols, t, y, modes)
-    h_abs = _first_step(rhs, steps, ts, ys, f, ms, t_bound, rtol, atol)
-    calls = np.full(len(steps), 2)
-    retry = np.zeros(len(steps), dtype=bool)
+    h_abs = _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol)
+    calls = np.full(count, 2)
+    retry = np.zeros(count, dtype=bool)
     sense = np.zeros(g.shape)
     if direction is not None:
         sense[:] = direction
-    defined = np.asarray(np.isfinite(f).all(axis=0))
-    moving = defined[owner] & np.isfinite(g).all(axis=0) & ((g != 0) | (sense != 0)).all(axis=0)
+    moving = np.isfinite(f).all(axis=0) & np.isfinite(g).all(axis=0) & \
+        ((g != 0) | (sense != 0)).all(axis=0)
     history = _History(count, m, c.N_STAGES + 1, len(modes), t.copy(), keep)
     ends = np.zeros((2,) + g.shape)  # the events' values at the ends of the step one fired in
     hit = np.zeros(g.shape, dtype=bool)  # which events fired there
@@ -143,14 +131,8 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
     # the few operations of a step on few columns cost more than its arithmetic: each value
     # is gathered once, and what ends a column is bookkept only in a step where one ends
     while moving.any():
-        if alone:
-            a = np.flatnonzero(moving)
-        else:  # the integrated columns some column still rides
-            riding = np.zeros(len(steps), dtype=bool)
-            riding[owner[moving]] = True
-            a = np.flatnonzero(riding)
-        ka = steps[a]
-        ta, ya, fa, ma = ts[a], ys[:, a], f[:, a], ms[:, a]
+        a = np.flatnonzero(moving)
+        ta, ya, fa, ma = t[a], y[:, a], f[:, a], modes[:, a]
         ra, hv = retry[a], h_abs[a]
         min_step = 10 * np.abs(np.nextafter(ta, np.inf) - ta)
         ha = np.where(~ra & (hv < min_step), min_step, hv)
@@ -162,9 +144,9 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
         flat, shape = K.reshape(c.N_STAGES + 1, -1), ya.shape  # (a view)
         K[0] = fa
         for s in range(1, c.N_STAGES):
-            K[s] = rhs(ka, times[s], ya + _combine(_ROWS[s], flat, shape) * h, ma)
+            K[s] = rhs(a, times[s], ya + _combine(_ROWS[s], flat, shape) * h, ma)
         y_new = ya + h * _combine(c.B, flat, shape)
-        K[c.N_STAGES] = rhs(ka, t_new, y_new, ma)
+        K[c.N_STAGES] = rhs(a, t_new, y_new, ma)
         calls[a] += c.N_STAGES
         scale = atol + np.maximum(np.abs(ya), np.abs(y_new)) * rtol
         with np.errstate(all="ignore"):
@@ -183,33 +165,21 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
         h_abs[a] = np.abs(h) * np.where(
             accepted, np.where(ra, np.minimum(1.0, grow), grow), shrink)
         retry[a] = ~accepted
-        if broken.any():  # every column riding it stops (where it is)
-            lost = np.zeros(len(steps), dtype=int)
-            lost[a[broken]] = np.where(spent[broken], STALLED, FAILED)
-            out = moving & (lost[owner] != 0)
-            moving[out] = False
-            status[out] = lost[owner[out]]
+        if broken.any():
+            moving[a[broken]] = False
+            status[a[spent]] = STALLED
+            t[a[spent]] = ta[spent]
         if not accepted.any():
             continue
         k = np.flatnonzero(accepted)
         b = a[k]
+        tk, yk, mk = t_new[k], y_new[:, k], ma[:, k]
         # as solve_ivp counts them: it builds every accepted step's dense output
         calls[b] += c.N_STAGES_EXTENDED - c.N_STAGES - 1
-        ts[b], ys[:, b], f[:, b] = t_new[k], y_new[:, k], K[c.N_STAGES][:, k]
-        if mode is not None:
-            ms[:, b] = mode(steps[b], t_new[k], y_new[:, k])
-        r = b
-        if not alone:  # the columns these steps carry: each one's integrated column and place
-            place = np.full(len(steps), -1)
-            place[b] = k
-            b = np.flatnonzero(moving & (place[owner] >= 0))
-            r = owner[b]
-            k = place[r]
-        tk, yk, mk = t_new[k], y_new[:, k], ma[:, k]
         history.push(b, ta[k], tk, ya[:, k], yk, K[:, :, k], mk)
         g_new = every(b, tk, yk, mk)
         g_old = g[:, b]
-        t[b], y[:, b], g[:, b] = tk, yk, g_new
+        t[b], y[:, b], f[:, b], g[:, b] = tk, yk, K[c.N_STAGES][:, k], g_new
         sb = sense[:, b]
         each = ((g_old <= 0) & (g_new >= 0) & (sb >= 0)) | \
             ((g_old >= 0) & (g_new <= 0) & (sb <= 0))
@@ -217,31 +187,32 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
         undefined = ~np.isfinite(g_new).all(axis=0)
         switched = np.zeros(len(b), dtype=bool)
         if mode is not None:  # a switch anywhere but at the event: not answered here
-            now = ms[:, r]
-            modes[:, b] = now
+            modes[:, b] = mode(b, tk, yk)
+            now = modes[:, b]
             changed = now != mk
             switched = ~undefined & (changed.sum(axis=0) == 1) & \
                 np.isfinite(now).all(axis=0) & (now != 0).all(axis=0)
             undefined |= ~fired & changed.any(axis=0)
-            i = np.flatnonzero(switched)
-            switch[b[i]] = j = changed[:, i].argmax(axis=0)
-            flips[:, b[i]] = mk[j, i], now[j, i]
+            switch[b[switched]] = changed[:, switched].argmax(axis=0)
+            flips[:, b[switched]] = ma[switch[b[switched]], k[switched]], \
+                modes[switch[b[switched]], b[switched]]
             switched &= ~fired  # a switch in the step of the event: see _arrivals
         # solve_ivp would have stopped on an evaluation past the most allowed
-        spent = calls[r] > max_calls
+        spent = calls[b] > max_calls
         undefined |= spent
         fired &= ~undefined
         ended = ~fired & ~undefined & (tk >= t_bound)
         stops = fired | undefined | ended  # (a switch is undefined, unless at the event)
-        if stops.any():
-            status[b[spent]] = STALLED
-            status[b[ended]] = NEVER
-            status[b[fired]] = FIRED  # provisionally: until its event is located
-            # one mode switched (and the step is otherwise sound): located like an event
-            status[b[switched & ~spent]] = SWITCHED
-            ends[:, :, b[fired]] = g_old[:, fired], g_new[:, fired]
-            hit[:, b[fired]] = each[:, fired]
-            moving[b[stops]] = False
+        if not stops.any():
+            continue
+        status[b[spent]] = STALLED
+        status[b[ended]] = NEVER
+        status[b[fired]] = FIRED  # provisionally: until its event is located
+        # one mode switched (and the step is otherwise sound): located like an event
+        status[b[switched & ~spent]] = SWITCHED
+        ends[:, :, b[fired]] = g_old[:, fired], g_new[:, fired]
+        hit[:, b[fired]] = each[:, fired]
+        moving[b[stops]] = False
     arrival = _arrivals(rhs, events, mode, history, status, ends, hit, lead, c, switch, flips,
                         modes)
     stopped = (status == STALLED) | ((status == FAILED) & np.isnan(arrival.t))

@@ -434,17 +434,16 @@ class _Columns:
             return integrate_to_events(self.rhs, events, y0, self.analysis.max_time, RTOL,
                                        ATOL, MAX_CALLS, direction=direction, t0=t0,
                                        mode=self.mode if modes else None,
-                                       keep=EVERY_STEP if self.strict is not None else 12,
-                                       share=_first_equal(self.full, y0, t0))
+                                       keep=EVERY_STEP if self.strict is not None else 12)
         finally:
             self.careful = careful
 
     def run(self, events: list[Callable], senses: list[np.ndarray], y0: np.ndarray,
             t0: np.ndarray) -> _Run:
         """Every column integrated from ``y0`` at ``t0`` to the first of ``events`` (each with
-        its ``direction`` per column), those with the same start once (:func:`_first_equal`):
-        an event with no direction that holds at the start fires at once, as ``solve_ivp``'s
-        first step finds it. Alone, every step is kept and a stall or failure raises."""
+        its ``direction`` per column): an event with no direction that holds at the start
+        fires at once, as ``solve_ivp``'s first step finds it. Alone, every step is kept and
+        a stall or failure raises."""
         count = y0.shape[1]
         direction = np.array(senses, dtype=float).reshape(len(events), count)
         g = np.array([e(np.arange(count), t0, y0) for e in events]).reshape(len(events), count)
@@ -507,20 +506,6 @@ class _Columns:
             "slips until its event, or the end of the slip as the event",
             where=self.analysis.where)
             for i, when in zip(w[sticks], t[sticks])}
-
-
-def _first_equal(*parts: np.ndarray) -> np.ndarray:
-    """Each column's first column equal to it bit for bit in every one of ``parts`` (rows x
-    columns, or one value per column): columns with the same start and right-hand side are
-    one motion, integrated once however many instants its columns stop at.
-
-    >>> _first_equal(np.array([[1.0, 2.0, 1.0], [0.0, 0.0, 0.0]]), np.zeros(3)).tolist()
-    [0, 1, 0]
-    """
-    whole = np.ascontiguousarray(np.vstack([np.atleast_2d(p) for p in parts]).T)
-    rows = whole.view(np.dtype((np.void, whole.dtype.itemsize * whole.shape[1]))).ravel()
-    _, first, inverse = np.unique(rows, return_index=True, return_inverse=True)
-    return first[inverse.ravel()]
 
 
 def _only(event: Callable, mine: np.ndarray) -> Callable:
