@@ -701,3 +701,21 @@ def test_a_class_is_solved_with_the_garbage_collector_paused_and_leaves_it_on(mo
     assert len(solved) == 30 and all(isinstance(s, Solution) for s in solved)
     assert running == [False]
     assert gc.isenabled()
+
+
+def test_a_class_reads_the_balances_once_per_phase_for_all_its_integrated_groups(monkeypatch):
+    # damped_block_positions asks five instants (t = 30 ms, x = 20 mm, x' = 0, the event and
+    # the event with c = 20): one pass reaches them all, and the balances at the instants
+    # are solved once for the own instants and once for the events, not once per group
+    from mechgrade.solve import batch
+
+    problem = load_problem(PROBLEMS / "damped_block_positions.yaml")
+    variants = [{"m": 1.2}, {"m": 0.9}, {"c": 5.0}]
+    read = []
+    checked = batch.checked
+    monkeypatch.setattr(batch, "checked", lambda at, kp: read.append(at) or checked(at, kp))
+    together = solve_variants(problem, variants)
+    assert len(read) == 2
+    monkeypatch.setattr(batch, "checked", checked)
+    for a, b in zip(together, alone(problem, variants)):
+        assert_same(a, b, INTEGRATED, generated=False)

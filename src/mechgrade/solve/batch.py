@@ -65,7 +65,7 @@ from .levels import (NEAR_DAMPING, Givens, State, branches_asked, holds, on_bran
 from .mutants import GeneratedColumns, generated_columns, plausible_slips, values_alone
 from .numeric import FREE_PROBE, degenerate, freedoms, solve_numeric
 from .dynamics_mutants import ClassMistakes
-from .motion import after_event, balances
+from .motion import Balanced, after_event, balances
 from .phases import (Reaches, Target, Until, asked_when, checked, gripping, reach_columns,
                      stacked)
 from .plan import KinematicsPlan, kinematics_plan
@@ -174,6 +174,19 @@ class _Group:
     loose: frozenset[int]  # and leaves free
 
 
+@dataclass(frozen=True)
+class _Read:
+    """A class's integrated groups reached side by side (:meth:`_Template._reaches`): where
+    (``found``), each of its phases' columns read with their balances solved once for every
+    group (``checks``: :func:`~.phases.checked` of each of ``found.phases``), and one group's
+    columns among them, ``start`` to ``stop``."""
+
+    found: Reaches
+    checks: tuple[tuple[np.ndarray, np.ndarray | None, Balanced], ...]
+    start: int
+    stop: int
+
+
 class _Template:
     """What every variant of a problem shares with the reference solve."""
 
@@ -229,13 +242,13 @@ class _Template:
         return self.design is not None and self.design.find not in group.overrides
 
     def _integrated(self, given: list[dict], wanted: Collection[str]
-                    ) -> dict[int, Reaches]:
+                    ) -> dict[int, _Read]:
         """Every integrated group's instant (those with a numeric objective ``wanted``) at
         every variant (``given``: each one's givens), reached in one pass of each phase:
         each group's columns side by side, each column integrated to its group's own instant
         or to the event (:meth:`_reaches`), so a class integrates its motion once however
-        many instants it is asked at. By the group's index, its :class:`~.phases.Reaches`,
-        what :meth:`_instant` reads."""
+        many instants it is asked at. By the group's index, its :class:`_Read`, what
+        :meth:`_instant` reads."""
         chosen = [k for k, group in enumerate(self.groups) if self._integrates(group)
                   and any(o.id in wanted and o.id in group.numeric for o in group.objectives)]
 
@@ -245,7 +258,7 @@ class _Template:
 
         return dict(zip(chosen, self._reaches([(self.groups[k], own(k)) for k in chosen])))
 
-    def _together(self, group: _Group, integrated: Reaches | None,
+    def _together(self, group: _Group, integrated: _Read | None,
                   attach: ClassMistakes | None, maps: list[dict],
                   objectives: list[Objective], overrides: dict, columns: Columns) -> None:
         """The :data:`~.instant.Step` of ``group`` reached together: every column at once
@@ -363,7 +376,7 @@ class _Template:
                 base[i] = (state, maps[i])
 
     def _instant(self, group: _Group, maps: list[dict], degenerate: bool,
-                 integrated: Reaches | None = None):
+                 integrated: _Read | None = None):
         """The numeric objectives and declared mistakes of ``group`` at every variant's
         instant, which instants passed every screen (with ``degenerate``, also the one for a
         degenerate configuration), those not reached with the error the scalar solver
@@ -371,15 +384,14 @@ class _Template:
         instant otherwise reached), and per column the objectives that
         do not exist there with their errors (in dynamics each objective's failure, as
         :func:`~.dynamics.solve_dynamics` keeps it; a kinematics column with one fails).
-        An integrated group's instants are ``integrated`` already (its
-        :class:`~.phases.Reaches`, :meth:`_integrated`)."""
+        An integrated group's instants are ``integrated`` already (its :class:`_Read`,
+        :meth:`_integrated`)."""
         p = self.p
         unreached: dict[int, MechgradeError] = {}
         if self._designs(group) and self._reached_after_design(group):
             integrated = self._designed_when(group, maps)
         if integrated is not None:
-            assert isinstance(integrated, Reaches)
-            return self._in_phases(group, integrated, len(maps))
+            return self._in_phases(group, integrated)
         X, targets = self._placed(group, maps)
 
         def placed(i: int) -> Givens:  # column i's givens, for the error a stage words
@@ -417,12 +429,13 @@ class _Template:
                 targets[level][row] = column
         return X, targets
 
-    def _reaches(self, groups: list[tuple[_Group, list[dict]]]) -> list[Reaches]:
+    def _reaches(self, groups: list[tuple[_Group, list[dict]]]) -> list[_Read]:
         """Where each column of ``groups`` (each an integrated group, with its columns'
         givens) reaches the group's instant (the event, an objective's own time, coordinate
         or rate, or its ``when:``): every group's columns side by side, reached in one pass
         of each phase (:func:`~.phases.reach_columns`, as
-        :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant); each group's part."""
+        :meth:`~.dynamics.IntegratedInstant.phased` reaches one instant) and read with the
+        balances solved once per phase for all of them; each group's part."""
         if not groups:
             return []
         from .dynamics import asked_entry, kinetics_plan
@@ -440,35 +453,44 @@ class _Template:
         found = reach_columns(problem, np.hstack([self._placed(group, maps)[0]
                                                   for group, maps in groups]),
                               targets, kinetics_plan)
+        checks = tuple(checked(at, kinetics_plan(at.phase)) for at in found.phases)
         starts = np.cumsum([0] + [len(maps) for _, maps in groups])
-        return [found.part(int(a), int(b)) for a, b in pairwise(starts)]
+        return [_Read(found, checks, int(a), int(b)) for a, b in pairwise(starts)]
 
-    def _in_phases(self, group: _Group, found: Reaches, n: int):
-        """:meth:`_instant` of an integrated group at its ``n`` columns, each reached
-        (``found``: :meth:`_reaches`): each column's objectives read with the model of the
+    def _in_phases(self, group: _Group, reached: _Read):
+        """:meth:`_instant` of an integrated group at its columns, each reached and read
+        (``reached``: :meth:`_reaches`): each column's objectives read with the model of the
         phase its instant is in (:func:`~.phases.checked`). The states returned are the state
         values (the extended states differ between phases)."""
         from .dynamics import kinetics_plan
 
         problem, size = self.problem, self.p.index.size
-        unreached: dict[int, MechgradeError] = dict(found.errors)
+        start, stop = reached.start, reached.stop
+        n = stop - start
+        unreached: dict[int, MechgradeError] = {c - start: error for c, error
+                                                in reached.found.errors.items()
+                                                if start <= c < stop}
         ok = np.zeros(n, dtype=bool)
         out = np.full((size, n), np.nan)
         values = {oid: np.full((_size(problem, oid), n), np.nan) for oid in group.numeric}
         declared: dict[str, list[np.ndarray]] = {}
         missing: list[dict] = [{} for _ in range(n)]
-        for at in found.phases:
+        for at, (x, before, solved) in zip(reached.found.phases, reached.checks):
+            mine = np.flatnonzero((at.columns >= start) & (at.columns < stop))
+            if not len(mine):
+                continue
             kp = kinetics_plan(at.phase)
-            cols = at.columns
-            x, before, solved = checked(at, kp)
-            for j in np.flatnonzero(~solved.ok):
+            cols = at.columns[mine] - start
+            fine = solved.ok[mine]
+            for j in mine[~fine]:
                 error = solved.errors[int(j)]
                 assert error is not None  # a column not solved has its error
-                unreached[int(cols[j])] = error
-            ok[cols] = solved.ok
-            out[:, cols] = x[:size]
-            read = read_objectives(at.phase, kp, x, group.numeric, rules.REQUIRED_KINETIC,
-                                   before)
+                unreached[int(at.columns[j]) - start] = error
+            ok[cols] = fine
+            out[:, cols] = x[:size, mine]
+            read = read_objectives(at.phase, kp, x[:, mine], group.numeric,
+                                   rules.REQUIRED_KINETIC,
+                                   None if before is None else before[:, mine])
             for oid, v in read.values.items():
                 values[oid][:, cols] = v
             for oid, vs in read.mistakes.items():
@@ -573,7 +595,7 @@ class _Template:
         return instant_of_objective(self.problem, group.overrides) is not None or \
             asked_when(self.problem, group.numeric) is not None
 
-    def _designed_when(self, group: _Group, maps: list[dict]) -> Reaches:
+    def _designed_when(self, group: _Group, maps: list[dict]) -> _Read:
         """Where each column of a group asked at its own instant or ``when`` on a designed
         motion (:meth:`_reached_after_design`) reaches it (:meth:`_reaches`), with its design
         value solved at the event first (:meth:`_designed`), as one solve designs the motion,
@@ -588,13 +610,15 @@ class _Template:
                                       False)
         good = np.flatnonzero(ok)
         if not len(good):
-            return Reaches((), {})
+            return _Read(Reaches((), {}), (), 0, len(maps))
         at = self.p.index.position(find)
-        (found,) = self._reaches([(group, [{**maps[i], find: (Name(find), float(designed[at, i]),
-                                                              None)} for i in good])])
-        return Reaches(tuple(replace(phase, columns=good[phase.columns])
-                             for phase in found.phases),
-                       {int(good[c]): error for c, error in found.errors.items()})
+        (read,) = self._reaches([(group, [{**maps[i], find: (Name(find), float(designed[at, i]),
+                                                             None)} for i in good])])
+        found = read.found
+        return _Read(Reaches(tuple(replace(phase, columns=good[phase.columns])
+                                   for phase in found.phases),
+                             {int(good[c]): error for c, error in found.errors.items()}),
+                     read.checks, 0, len(maps))
 
     def _at_event(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
         """``X`` as :meth:`_reached` gave it, parted: the extended states the objectives are

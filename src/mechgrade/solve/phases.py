@@ -256,24 +256,6 @@ class Reaches:
     phases: tuple[PhaseColumns, ...]
     errors: dict[int, MechgradeError]
 
-    def part(self, start: int, stop: int) -> Reaches:
-        """Those of the columns ``start`` to ``stop``, numbered from 0 there (one group's, of
-        a class's groups reached side by side).
-
-        >>> at = PhaseColumns(None, np.array([0, 2, 3]), np.array([[1.0, 2.0, 3.0]]), None)
-        >>> part = Reaches((at,), {1: SolveError("stalls")}).part(2, 4)
-        >>> part.phases[0].columns.tolist(), part.phases[0].values.tolist(), part.errors
-        ([0, 1], [[2.0, 3.0]], {})
-        """
-        phases = []
-        for p in self.phases:
-            mine = (p.columns >= start) & (p.columns < stop)
-            if mine.any():
-                phases.append(PhaseColumns(p.phase, p.columns[mine] - start, p.values[:, mine],
-                                           None if p.before is None else p.before[:, mine]))
-        return Reaches(tuple(phases), {c - start: error for c, error in self.errors.items()
-                                       if start <= c < stop})
-
 
 @dataclass(frozen=True)
 class _Run:
