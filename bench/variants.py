@@ -12,7 +12,9 @@ cold run first in even pairs, the class first in odd ones) then ``--alone`` stud
 of the same pair). Every warm call gets variants no earlier call has seen (a class of new
 students each time, after a first class that builds what a warm solve keeps: the reference
 solve, the symbolic answers), so nothing is answered from memory that a real class would not
-find there.
+find there. Each warm call starts with the garbage collector's debts settled
+(``gc.collect()``, untimed), as ``timeit`` isolates its runs: a full collection owed by
+earlier work in this long-lived process is not charged to the next class.
 
 Problems with a ``variants:`` section draw their variants (distinct draws only); for the
 others a variant scales each parameter given (or, without any, each rate given) by a factor
@@ -35,6 +37,7 @@ Run: PYTHONPATH=src python bench/variants.py [--students N] [--pairs N] [--alone
 from __future__ import annotations
 
 import argparse
+import gc
 import itertools
 import os
 import statistics
@@ -109,7 +112,11 @@ def _failing(problem, givens: dict) -> set[str] | None:
 
 
 def timed(call):
-    """(seconds, result) of ``call()``."""
+    """(seconds, result) of ``call()``, the garbage collector's debts settled first: a full
+    collection owed by earlier work in this process (other problems, the students solved
+    alone) would land in whichever call comes next and be charged to it (a fresh cold
+    process owes none); the call still pays every collection its own allocations trigger."""
+    gc.collect()
     start = time.perf_counter()
     result = call()
     return time.perf_counter() - start, result
