@@ -647,3 +647,39 @@ def test_an_acceleration_read_as_a_slip_ends_keeps_the_digits_of_its_friction_di
     solution = solve(load_problem_text(text("block_slides_on_cart"), "p.yaml"))
     value = {r.id: r.value for r in solution.results}["cart_acceleration"]
     assert value == pytest.approx(0.3 * 2.0 * 9.81 / 8.0, rel=1e-13)
+
+
+def test_three_carts_residuals_are_compiled_per_spring_with_the_expanded_balances_values():
+    """Each spring's force k l (1 - a/|l|) as one product has fewer operations than the
+    balances expanded (4-5 terms over |l| each): the residual of an instant and the
+    integration's right-hand side (each |l| a mode times l) are compiled from that form,
+    and their values are the expanded balances' at any state."""
+    from inspect import getsource
+
+    import sympy as sp
+
+    from mechgrade.solve.dynamics import kinetics_plan
+    from mechgrade.solve.motion import _operations, _switches, cheaper
+
+    def operations(f) -> int:  # arithmetic in the compiled source
+        return sum(getsource(f).count(c) for c in "+-*/")
+
+    plan = kinetics_plan(load_problem(ROOT / "problems" / "three_cart_chain_vibration.yaml"))
+    kin = plan.kin
+    constraints = [e.expr for e in kin.constraints]
+    expanded = sp.Matrix([e.expr for e in kin.written] + constraints)
+    compact = sp.Matrix(list(kin.compact) + constraints)
+    assert _operations(cheaper(compact, expanded)) < _operations(expanded)
+    written = sp.lambdify(plan.symbols, expanded, modules="numpy", cse=True)
+    switching = _switches(plan)
+    assert operations(plan.residual) < operations(written)
+    assert operations(switching.residual) < operations(written)
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        state = rng.uniform(0.1, 3.0, len(plan.symbols)) * rng.choice([-1.0, 1.0],
+                                                                       len(plan.symbols))
+        want = np.asarray(written(*state), dtype=float).ravel()
+        modes = np.sign(np.asarray(switching.speeds(*state), dtype=float))
+        for got in (plan.residual(*state), switching.residual(*state, *modes)):
+            assert np.asarray(got, dtype=float).ravel() == pytest.approx(
+                want, rel=1e-12, abs=1e-12 * np.abs(want).max())

@@ -110,6 +110,7 @@ class Kinetics:
     reactions: tuple[sp.Symbol, ...]
     labels: tuple[str, ...]
     written: tuple[Equation, ...]
+    compact: tuple[sp.Expr, ...]  # ``written``'s left sides as derived, not expanded
     objectives: tuple[tuple[str, object], ...]
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
     bounds: tuple[Bound, ...]
@@ -134,6 +135,15 @@ class Kinetics:
         impact's rates before put in (worked out when first asked: a mistaken model's only
         for its symbolic answers)."""
         return self.before.shown(self.written) if self.before is not None else self.written
+
+    @property
+    def compact_balances(self) -> tuple[sp.Expr, ...]:
+        """:attr:`compact` with an impact's rates before put in (as :attr:`balances`), not
+        expanded."""
+        if self.before is None:
+            return self.compact
+        values = dict(zip(self.before.symbols, self.before.values))
+        return tuple(e.xreplace(values) for e in self.compact)
 
     @property
     def rates(self) -> tuple[sp.Symbol, ...]:
@@ -700,6 +710,7 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
     stand = {functions[qd]: inputs.symbols[rates.index(qd)] if qd in rates else v
              for qd, v in values.items()}
     written: list[Equation] = []
+    compact: list[sp.Expr] = []
     junctions = {b.name for b in d.junctions}
     for b in d.bodies:
         if b.name in junctions:  # its balance is a constraint of the kinematics
@@ -707,26 +718,29 @@ def _derive_kinetics(problem: Problem, _locations: tuple) -> Kinetics:
         for label, expr in _body_balances(problem, model, loads, inertias, b, stand, impact):
             if b.name in d.unbalanced and " balance about " in label:
                 continue
-            written.append(Equation(label, sp.expand(model.plain(expr)), b.where))
-    kept = [(e, shown) for e, shown in zip(written, inputs.shown(written))
+            compact.append(model.plain(expr))
+            written.append(Equation(label, sp.expand(compact[-1]), b.where))
+    kept = [(e, shown, c) for e, shown, c in zip(written, inputs.shown(written), compact)
             if not identically_zero(shown.expr)]
-    balances = [shown for _, shown in kept]
+    balances = [shown for _, shown, _ in kept]
     check_loads(problem, model, loads, k.qd if impact else k.qdd, balances,
                 k.velocity if impact else k.acceleration, impact)
     language.kinematics = k
     language.balances = tuple(balances) + k.acceleration
     language.reactions = tuple(s for v in reactions.values() for s in v)
-    written = [e for e, _ in kept]
+    written = [e for e, _, _ in kept]
+    compact = [c for _, _, c in kept]
     if isinstance(analysis, Impulse):
         contacts = _contact_conditions(analysis, model, loads, stand)
         balances += inputs.shown(contacts)
         written += contacts
+        compact += [c.expr for c in contacts]
     objectives, mistakes, requirements = _objective_values(problem, model, language)
     bounds, slips = _friction_checks(d, model, loads, language, reactions)
     start, until, settled = _analysis(problem, model, language, k)
     weights = _weight_potentials(d, model, language, k)
     kin = Kinetics(k=k, reactions=tuple(s for v in reactions.values() for s in v),
-                   labels=tuple(labels), written=tuple(written),
+                   labels=tuple(labels), written=tuple(written), compact=tuple(compact),
                    objectives=tuple(objectives), mistakes=tuple(mistakes), bounds=tuple(bounds),
                    slips=tuple(slips),
                    energy=model.plain(_energy(problem, language)) + sum(

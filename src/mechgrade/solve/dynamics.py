@@ -45,7 +45,8 @@ from .analysis import analysis_of
 from .columns import WithInputs
 from .events import integrated_symbolically
 from .motion import accelerations as columns_accelerations
-from .motion import after_event, at_event, balances, gathered, reads_parameters_only
+from .motion import (after_event, at_event, balances, cheaper, gathered,
+                     reads_parameters_only)
 from .work_energy import energy_rate_symbolic, energy_state
 from . import rules
 from .instant import Reached, drive, read_objectives, symbolic_dependence
@@ -119,7 +120,8 @@ def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> 
             name = f"_{name}"
         named[dummy] = sp.Symbol(name)
     before = tuple(named.values())
-    exprs = sp.Matrix([e.expr for e in kin.written + kin.constraints]).xreplace(named)
+    constraints = [e.expr for e in kin.constraints]
+    exprs = sp.Matrix([e.expr for e in kin.written] + constraints).xreplace(named)
     scale = sp.Matrix([sum((sp.Abs(t) for t in sp.Add.make_args(e)), sp.Integer(0))
                        for e in exprs])
     # a kinetic friction's direction u/|u| evaluated as one quotient: as the balances write
@@ -127,10 +129,12 @@ def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> 
     # small beside the speeds, where an event's accelerations are read (just before the slip
     # ends)
     slips = [s.speed.args[0] for s in kin.slips if isinstance(s.speed, sp.Abs)]
-    exprs = exprs.applyfunc(partial(_directions_whole, slips))
+    whole = partial(_directions_whole, slips)
+    exprs = exprs.applyfunc(whole)
     jacobian = exprs.jacobian(unknowns)
+    compact = sp.Matrix(list(kin.compact) + constraints).xreplace(named).applyfunc(whole)
     out = {name: _lambdify(symbols + before, f) for name, f in zip(
-        _BALANCE_FUNCTIONS, (exprs, jacobian, scale))}
+        _BALANCE_FUNCTIONS, (cheaper(compact, exprs), jacobian, scale))}
     if kin.before is None:
         return {**out, "constant_jacobian": reads_parameters_only(jacobian, symbols, index)}
     rates = _lambdify(symbols, kin.before.values)

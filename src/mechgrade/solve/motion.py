@@ -329,6 +329,28 @@ def gathered(e, u):
     return sp.Add(*(k * v for k, v in parts.items())), sp.cancel(over / u)
 
 
+def cheaper(compact, expanded):
+    """Whichever of two forms of the balances (sympy matrices: ``compact`` as derived, each
+    load's force one product, a spring's ``k l (1 - a/|l|)``; ``expanded``) has fewer
+    operations once its common subexpressions are taken out, as ``lambdify(..., cse=True)``
+    compiles it; ``expanded`` on a tie.
+
+    >>> import sympy as sp
+    >>> k, l, a = sp.symbols("k l a")
+    >>> force = sp.Matrix([k*l*(1 - a/sp.Abs(l))])
+    >>> cheaper(force, force.applyfunc(sp.expand)) == force
+    True
+    """
+    return compact if _operations(compact) < _operations(expanded) else expanded
+
+
+def _operations(exprs) -> int:
+    import sympy as sp
+
+    replacements, reduced = sp.cse(exprs)
+    return sp.count_ops([v for _, v in replacements] + reduced)
+
+
 @lru_cache(maxsize=64)
 def _switches(kp, at_end: bool = False) -> _Switching | None:
     """The kinetics of ``kp`` with their switches read as :class:`_Switching` says; ``None``
@@ -339,7 +361,8 @@ def _switches(kp, at_end: bool = False) -> _Switching | None:
     those of the model's own equations)."""
     import sympy as sp
 
-    exprs = [e.expr for e in (*kp.kin.balances, *kp.kin.constraints)]
+    constraints = [e.expr for e in kp.kin.constraints]
+    exprs = [e.expr for e in kp.kin.balances] + constraints
     speeds: list = []
     for e in exprs:
         for node in sp.preorder_traversal(e):
@@ -350,23 +373,29 @@ def _switches(kp, at_end: bool = False) -> _Switching | None:
     modes = sp.symbols(f"_mode0:{len(speeds)}")
     table = dict(zip(speeds, modes))
 
+    def switching(a) -> bool:
+        return isinstance(a, (sp.Abs, sp.sign)) and sp.expand(a.args[0]) in table
+
     def kept(e):
         for u, mode in table.items() if at_end else ():
             rest, over = gathered(e, u)
             if over is not None:
                 e = rest + over / mode
-        e = e.replace(lambda a: isinstance(a, sp.Abs) and a.args[0] in table,
-                      lambda a: table[a.args[0]] * a.args[0])
-        return e.replace(lambda a: isinstance(a, sp.sign) and a.args[0] in table,
-                         lambda a: table[a.args[0]])
+        # (a speed as the expanded balances write it: the compact form's expands to it)
+        return e.replace(switching, lambda a: table[sp.expand(a.args[0])] * (
+            a.args[0] if isinstance(a, sp.Abs) else 1))
 
     matrix = sp.Matrix([kept(e) for e in exprs])
     unknowns = [kp.symbols[i] for i in kp.columns]
     symbols = (*kp.symbols, *modes)
     jacobian = matrix.jacobian(unknowns)
+    # the integration's right-hand side as the balances were derived where that is cheaper;
+    # the end of a slip keeps its directions gathered (defined where u = 0)
+    residual = matrix if at_end else cheaper(
+        sp.Matrix([kept(e) for e in (*kp.kin.compact_balances, *constraints)]), matrix)
     return _Switching(
         speeds=sp.lambdify(kp.symbols, speeds, modules="numpy", cse=True),
-        residual=sp.lambdify(symbols, matrix, modules="numpy", cse=True),
+        residual=sp.lambdify(symbols, residual, modules="numpy", cse=True),
         jacobian=sp.lambdify(symbols, jacobian, modules="numpy", cse=True),
         count=len(speeds),
         constant_jacobian=reads_parameters_only(jacobian, kp.symbols, kp.kp.index))
