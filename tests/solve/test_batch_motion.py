@@ -190,3 +190,28 @@ def test_an_event_is_located_where_its_function_is_zero_to_the_last_bits_of_its_
                                   20_000)
     assert arrival.status.tolist() == [FIRED] * 24
     assert np.all(np.abs(arrival.y[0]) <= 4 * np.finfo(float).eps * arrival.t * arrival.y[1])
+
+
+@pytest.mark.parametrize("states", [1, 2, 3, 5, 6])
+def test_a_column_integrated_alone_is_bit_for_bit_that_column_among_others(states):
+    """However many states a motion has and however many columns a step carries (BLAS sums a
+    value in one order inside its blocks and in another in the rest)."""
+    rng = np.random.default_rng(states)
+    stiffness = rng.uniform(1.0, 3.0, (states, 7))
+
+    def coupled(cols, t, y, modes):
+        velocity = np.roll(y, 1, axis=0)
+        return velocity - stiffness[:, cols] * np.sin(y) + 0.1 * t
+
+    def event(cols, t, y, modes):
+        return t - 0.9 - 0.1 * cols
+
+    y0 = rng.uniform(-1.0, 1.0, (states, 7))
+    together = integrate_to_events(coupled, event, y0, 5.0, 1e-10, 1e-12, 20_000)
+    for j in range(7):
+        alone = integrate_to_events(lambda cols, t, y, modes, j=j: coupled(cols + j, t, y, modes),
+                                    lambda cols, t, y, modes, j=j: event(cols + j, t, y, modes),
+                                    y0[:, j:j + 1], 5.0, 1e-10, 1e-12, 20_000)
+        assert alone.t[0] == together.t[j]
+        assert alone.y[:, 0].tolist() == together.y[:, j].tolist()
+        assert alone.before[:, 0].tolist() == together.before[:, j].tolist()

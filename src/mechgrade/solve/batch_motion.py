@@ -52,11 +52,33 @@ are, ``t``: each one's time, ``modes``: each one's modes, see :func:`integrate_t
 
 
 
+LANES = 16
+"""The width of a row of stages (states x columns, flattened) is rounded up to a multiple of
+this: BLAS's product of the weights with the stages sums a value in one order in its blocks of
+4 (or 8, 16) values and in another in the rest, so a column's bits would depend on how many
+columns a step carries and where it sits among them. Padded, every value is in a block: a
+column alone is, bit for bit, that column among others."""
+
+
+def _stages(count: int, m: int, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Room for ``count`` stages of ``m`` states x ``n`` columns: ``K`` (count x m x n) and
+    ``flat``, the same memory as count x (m n, padded with zeros to :data:`LANES`), which
+    :func:`_combine` reads.
+
+    >>> K, flat = _stages(13, 3, 1)
+    >>> K.shape, flat.shape, np.shares_memory(K, flat)
+    ((13, 3, 1), (13, 16), True)
+    """
+    flat = np.zeros((count, -(-m * n // LANES) * LANES))
+    return flat[:, :m * n].reshape(count, m, n), flat
+
+
 def _combine(weights: np.ndarray, flat: np.ndarray, shape: tuple) -> np.ndarray:
-    """``sum_k weights[..., k] * K[k]``, ``K`` given ``flat`` (stages x everything else,
-    a view of stages x states x columns of ``shape`` states x columns), as
-    ``numpy.tensordot(weights, K, 1)`` without its overhead."""
-    return (weights @ flat[:weights.shape[-1]]).reshape(weights.shape[:-1] + shape)
+    """``sum_k weights[..., k] * K[k]``, ``K`` given ``flat`` (:func:`_stages`: stages x
+    everything else, padded, of ``shape`` states x columns), as ``numpy.tensordot(weights,
+    K, 1)`` without its overhead."""
+    size = shape[0] * shape[1]
+    return (weights @ flat[:weights.shape[-1]])[..., :size].reshape(weights.shape[:-1] + shape)
 
 
 _ROWS = tuple(dop853.A[s, :s] for s in range(dop853.N_STAGES_EXTENDED))
@@ -140,8 +162,8 @@ def integrate_to_events(rhs: Field, event: Field | list[Field], y0: np.ndarray, 
         t_new = np.minimum(ta + ha, t_bound)
         h = t_new - ta
         times = ta + c.C[:c.N_STAGES, None] * h  # each stage's time, as ta + C[s] * h
-        K = np.empty((c.N_STAGES + 1, m, len(a)))
-        flat, shape = K.reshape(c.N_STAGES + 1, -1), ya.shape  # (a view)
+        K, flat = _stages(c.N_STAGES + 1, m, len(a))
+        shape = ya.shape
         K[0] = fa
         for s in range(1, c.N_STAGES):
             K[s] = rhs(a, times[s], ya + _combine(_ROWS[s], flat, shape) * h, ma)
@@ -355,11 +377,11 @@ class _History:
     def dense(self, rhs, cols, slots, c):
         """The dense output of each column's step in ``slots``, and the steps' ends."""
         stages = self.K.shape[2]
-        K = np.empty((c.N_STAGES_EXTENDED,) + self.y_old.shape[2:] + (len(cols),))
+        K, flat = _stages(c.N_STAGES_EXTENDED, self.y_old.shape[2], len(cols))
         K[:stages] = self.K[cols, slots].transpose(1, 2, 0)
         t_old, t_new = self.t_old[slots, cols], self.t_new[slots, cols]
         return (_dense(rhs, cols, t_old, t_new - t_old, self.y_old[cols, slots].T,
-                       self.y_new[cols, slots].T, K, self.modes[cols, slots].T, c),
+                       self.y_new[cols, slots].T, K, flat, self.modes[cols, slots].T, c),
                 t_old, t_new)
 
 
@@ -380,10 +402,10 @@ def _first_step(rhs, cols, t, y, f, modes, t_bound, rtol, atol) -> np.ndarray:
     return np.minimum(np.minimum(100 * h0, h1), interval)
 
 
-def _dense(rhs, cols, t_old, h, y_old, y_new, K, modes, c):
+def _dense(rhs, cols, t_old, h, y_old, y_new, K, flat, modes, c):
     """The DOP853 dense output of each column's last step (its three extra stages
-    evaluated): ``at(t, which)`` the states of the columns ``which``, each at its time."""
-    flat = K.reshape(len(K), -1)  # (a view)
+    evaluated; ``K``, ``flat``: :func:`_stages`): ``at(t, which)`` the states of the columns
+    ``which``, each at its time."""
     for s in range(c.N_STAGES + 1, c.N_STAGES_EXTENDED):
         K[s] = rhs(cols, t_old + c.C[s] * h, y_old + _combine(_ROWS[s], flat, y_old.shape) * h,
                    modes)

@@ -31,6 +31,7 @@ from ..spec.dynamics import LoadKind, dynamics_of
 from ..spec.model import Problem
 from ..tolerance import parts
 from .dynamics import kinetics_plan, solve_kinetics
+from .generated import lambdified
 from .levels import State
 from .fbd import (FreeBodyDiagram, Vec3, _diagram_plan, _extended_state, _scalar, _vector,
                   free_body_diagrams)
@@ -115,16 +116,13 @@ def _unit_vectors(f, x) -> tuple[Vec3, Vec3, Vec3] | None:
 
 @lru_cache(maxsize=32)
 def _frame_plan(problem: Problem) -> dict:
-    import sympy as sp
-
     from ..mechanics.build import build
     model = build(problem)
     symbols = kinetics_plan(problem).symbols
     out = {}
     for name, frame in model.frames.items():
         out[name] = tuple(
-            sp.lambdify(symbols, model.plain(getattr(frame, axis).to_matrix(model.inertial)),
-                        modules="numpy")
+            lambdified(symbols, model.plain(getattr(frame, axis).to_matrix(model.inertial)))
             for axis in AXES)
     return out
 
@@ -417,9 +415,9 @@ def _mass_plan(problem: Problem) -> dict:
     from ..mechanics.build import build
     model = build(problem)
     symbols = kinetics_plan(problem).symbols
-    return {body.name: sp.lambdify(symbols, sp.Matrix([sum(
-        (model.plain(model.language.scalar(part.mass)) for part in body.parts), sp.S.Zero)]),
-        modules="numpy") for body in dynamics_of(problem).bodies}
+    return {body.name: lambdified(symbols, sp.Matrix([sum(
+        (model.plain(model.language.scalar(part.mass)) for part in body.parts), sp.S.Zero)]))
+        for body in dynamics_of(problem).bodies}
 
 
 # the labels mechanics.dynamics gives a body's momentum balances (in the inertial axes)

@@ -43,6 +43,7 @@ from ..spec.dynamics import (Integration, WorkEnergy, dynamics_of, instant_of_ob
                              unchecked)
 from .analysis import analysis_of
 from .columns import WithInputs
+from .generated import lambdified
 from .events import integrated_symbolically
 from .motion import accelerations as columns_accelerations
 from .motion import (after_event, at_event, balances, cheaper, gathered,
@@ -101,10 +102,6 @@ class KineticsPlan:
         return self.kp.index.spelling(i)
 
 
-def _lambdify(symbols, expr):
-    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
-
-
 def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> dict:
     """The plan's ``residual``, ``jacobian`` and ``scale`` of ``kin``'s balances and
     constraints, and whether the Jacobian reads parameters only (``index`` lays out
@@ -133,11 +130,11 @@ def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> 
     exprs = exprs.applyfunc(whole)
     jacobian = exprs.jacobian(unknowns)
     compact = sp.Matrix(list(kin.compact) + constraints).xreplace(named).applyfunc(whole)
-    out = {name: _lambdify(symbols + before, f) for name, f in zip(
+    out = {name: lambdified(symbols + before, f) for name, f in zip(
         _BALANCE_FUNCTIONS, (cheaper(compact, exprs), jacobian, scale))}
     if kin.before is None:
         return {**out, "constant_jacobian": reads_parameters_only(jacobian, symbols, index)}
-    rates = _lambdify(symbols, kin.before.values)
+    rates = lambdified(symbols, kin.before.values)
     return {name: WithInputs(f, rates) for name, f in out.items()}
 
 
@@ -196,7 +193,7 @@ def read_in(problem: Problem, source: Problem) -> None:
         return
     if kin.before is not None and kin.before is not plan.kin.before:
         # other rates before the impact: the same balances, other inputs
-        rates = _lambdify(plan.symbols, kin.before.values)
+        rates = lambdified(plan.symbols, kin.before.values)
         plan = replace(plan, **{name: replace(getattr(plan, name), inputs=rates)
                                 for name in _BALANCE_FUNCTIONS})
     _share(problem, replace(plan, kin=kin, **_objective_functions(problem, kin, plan.symbols,
@@ -221,12 +218,12 @@ def _kinetics_plan(problem: Problem, _locations: tuple) -> KineticsPlan:
         kin=kin, kp=kp, symbols=symbols, columns=columns,
         **_balance_functions(kin, symbols, unknowns, kp.index),
         labels=tuple(e.label for e in equations), wheres=tuple(e.where for e in equations),
-        bounds=tuple((b, _lambdify(symbols, b.tangential), _lambdify(symbols, b.normal),
-                      _lambdify(symbols, b.mu)) for b in kin.bounds),
-        slips=tuple((s, _lambdify(symbols, s.speed), _lambdify(symbols, s.normal))
+        bounds=tuple((b, lambdified(symbols, b.tangential), lambdified(symbols, b.normal),
+                      lambdified(symbols, b.mu)) for b in kin.bounds),
+        slips=tuple((s, lambdified(symbols, s.speed), lambdified(symbols, s.normal))
                     for s in kin.slips),
-        design=_lambdify(symbols, kin.design) if kin.design is not None else None,
-        physical=tuple((b, _lambdify(symbols, b.expr)) for b in kin.physical),
+        design=lambdified(symbols, kin.design) if kin.design is not None else None,
+        physical=tuple((b, lambdified(symbols, b.expr)) for b in kin.physical),
         **_objective_functions(problem, kin, symbols))
 
 
@@ -247,7 +244,7 @@ def _objective_functions(problem: Problem, kin: Kinetics, symbols,
 
     def function(expr) -> Callable:
         return next((f for e, f in known if e is expr or e == expr), None) \
-            or _lambdify(symbols, expr)
+            or lambdified(symbols, expr)
 
     return dict(
         objectives=tuple((oid, function(e)) for oid, e in kin.objectives if oid in numeric),

@@ -39,6 +39,7 @@ from ..spec.dynamics import (Block, Cylinder, Disk, Explicit, LoadKind, OutlineK
                              Shell, Sphere, dynamics_of)
 from ..spec.model import Problem
 from ..units import same_dimension, si_factor
+from .generated import lambdified
 from .levels import State
 from .result import Solution
 
@@ -217,7 +218,7 @@ def _diagram_plan(problem: Problem, _locations: tuple) -> _DiagramPlan:
     symbols = kinetics_plan(problem).symbols
 
     def f(expr):
-        return None if expr is None else sp.lambdify(symbols, expr, modules="numpy")
+        return None if expr is None else lambdified(symbols, expr)
 
     loads = tuple((a, f(a.force), f(a.moment), f(a.magnitude), tuple(f(e) for e in a.directions),
                    f(a.surface_normal)) for a in applied)

@@ -296,6 +296,43 @@ class _Checker:
         return value
 
 
+def lambdified(symbols, expr) -> Callable:
+    """``expr`` as a numpy function of ``symbols`` (sympy's ``lambdify``, common
+    subexpressions once) that gives one column's numbers the bits an array gives that column:
+    a power is numpy's own (a square a product, every other ``power``), where ``**`` on numbers
+    is the C library's ``pow``, which differs from numpy's loop in the last bit for about one
+    value in twenty (one in a thousand for a square). A single solve calls its functions with
+    numbers, a class with arrays (:func:`.columns.loud_call`): so a variant solved alone is,
+    bit for bit, that variant solved in a class.
+
+    >>> import sympy as sp
+    >>> x, y = sp.symbols("x y")
+    >>> f = lambdified([x, y], x**2 / y**3)
+    >>> a = 35.84188522037357  # where pow(a, 2) is not a * a
+    >>> bool(f(a, 1.1) == f(np.array([a]), np.array([1.1]))[0]), a**2 == a * a
+    (True, False)
+    """
+    import sympy as sp
+    from sympy.printing.numpy import NumPyPrinter
+
+    class ArrayPowers(NumPyPrinter):
+        def _print_Pow(self, expr, rational=False):
+            e = expr.exp
+            if rational or not expr.is_commutative or e in (sp.S.Half, -sp.S.Half, -1):
+                return super()._print_Pow(expr, rational)  # sqrt(x), 1/sqrt(x), 1/x
+            base = self._print(expr.base)
+            if e == 2 and expr.base.is_Symbol:
+                return f"({base}*{base})"  # (numpy's a**2 is a*a)
+            # a negative whole power of a whole number is an error in numpy: as a float
+            power = e.evalf() if e.is_Integer and e.is_negative else e
+            return f"{self._module_format('numpy.power')}({base}, {self._print(power)})"
+
+    printer = ArrayPowers({"fully_qualified_modules": False, "inline": True,
+                           "allow_unknown_functions": True, "user_functions": {}})
+    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0,
+                       printer=printer)
+
+
 @lru_cache(maxsize=1)
 def _numpy_namespace() -> dict[str, Any]:
     return {name: getattr(np, name) for name in NUMPY_NAMES if hasattr(np, name)}

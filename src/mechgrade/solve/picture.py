@@ -26,7 +26,6 @@ from itertools import pairwise
 from html import escape
 
 import numpy as np
-import sympy as sp
 
 from ..expressions.functions import StrEnum
 from ..expressions.syntax import Name
@@ -35,6 +34,7 @@ from ..spec.dynamics import GROUND, LoadKind, OutlineKind
 from ..spec.model import Problem
 from ..units import same_dimension, si_factor
 from .fbd import drawn_shape
+from .generated import lambdified
 from .layout import ROUND, apart, collides, outline_extent
 from .plan import kinematics_plan
 from .result import Solution
@@ -229,7 +229,7 @@ def _drawing(problem: Problem):
 
     def function(vector):
         matrix = model.plain(vector.to_matrix(N))
-        return sp.lambdify(p.index.symbols, matrix, modules="numpy")
+        return lambdified(p.index.symbols, matrix)
 
     specs = {q.name: q for q in problem.points}
     points = []
@@ -259,21 +259,20 @@ def _mechanism(problem: Problem, model, symbols):
     N = model.inertial
 
     def vector(expr, sign: int = 1):
-        return sp.lambdify(symbols, model.plain(
-            sign * model.language.vector(expr).to_matrix(N)), modules="numpy")
+        return lambdified(symbols, model.plain(
+            sign * model.language.vector(expr).to_matrix(N)))
 
     def scalar(expr):
-        return sp.lambdify(symbols, model.plain(model.language.scalar(expr)), modules="numpy")
+        return lambdified(symbols, model.plain(model.language.scalar(expr)))
 
     def point(name):
-        return sp.lambdify(symbols, model.plain(model.positions[name].to_matrix(N)),
-                           modules="numpy")
+        return lambdified(symbols, model.plain(model.positions[name].to_matrix(N)))
 
     bodies = []
     for body in d.bodies:
         frame = model.frames[body.frame] if body.frame is not None else None
         axes = () if frame is None else tuple(
-            sp.lambdify(symbols, model.plain(e.to_matrix(N)), modules="numpy")
+            lambdified(symbols, model.plain(e.to_matrix(N)))
             for e in (frame.x, frame.y, frame.z))
         for part in body.parts:
             kind, sizes, axis = drawn_shape(part.shape if frame is not None else None)

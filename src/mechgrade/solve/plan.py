@@ -27,7 +27,7 @@ from ..errors import AuthorWarning, Location
 from ..expressions.syntax import Name, Prime
 from ..spec.model import ObjectiveKind, Problem
 from . import cache
-from .generated import UnsafeSource, numpy_function, same_namespace
+from .generated import UnsafeSource, lambdified, numpy_function, same_namespace
 from .index import SymbolIndex
 from .rules import matrix_rank
 
@@ -141,14 +141,8 @@ def per_problem(make, *args):
     return entry[1]
 
 
-def _lambdify(symbols, expr):
-    import sympy as sp
-
-    return sp.lambdify(symbols, expr, modules="numpy", cse=True, docstring_limit=0)
-
-
 class _OnFirstCall:
-    """``_lambdify(symbols, expr)``, made when first called: a grader asking for a few
+    """``lambdified(symbols, expr)``, made when first called: a grader asking for a few
     objectives of a problem never pays for the others'."""
 
     def __init__(self, symbols, expr):
@@ -159,7 +153,7 @@ class _OnFirstCall:
     def function(self) -> Callable:
         """The lambdified function itself, made now if it was not yet."""
         if self._function is None:
-            self._function = _lambdify(*self._args)
+            self._function = lambdified(*self._args)
         return self._function
 
     def __call__(self, *values):
@@ -185,9 +179,9 @@ def _level(index: SymbolIndex, order: int, equations, conditions) -> Level:
     linear = not (jac.free_symbols & set(unknowns))
     positions = {s: i for i, s in enumerate(symbols)}
     return Level(
-        order=order, name=LEVEL_NAMES[order], residual=_lambdify(symbols, m),
-        jacobian=_lambdify(symbols, jac),
-        scale=_lambdify(symbols, _scale(exprs) if exprs else sp.zeros(0, 1)),
+        order=order, name=LEVEL_NAMES[order], residual=lambdified(symbols, m),
+        jacobian=lambdified(symbols, jac),
+        scale=lambdified(symbols, _scale(exprs) if exprs else sp.zeros(0, 1)),
         labels=tuple(e.label for e in equations) + tuple(f"given {c.key}" for c in conditions),
         wheres=tuple(e.where for e in equations) + tuple(c.where for c in conditions),
         conditions=tuple(c.key for c in conditions), linear=linear,
@@ -275,12 +269,12 @@ def _derived(problem: Problem) -> KinematicsPlan:
                          if oid in numeric),
         mistakes=tuple((oid, tuple(_OnFirstCall(symbols, e) for e in exprs))
                        for oid, exprs in k.mistakes if oid in numeric),
-        requirements=tuple((oid, reason, _lambdify(symbols, expr))
+        requirements=tuple((oid, reason, lambdified(symbols, expr))
                            for oid, reason, expr in k.requirements),
         objective_uses=tuple((oid, frozenset(positions[s] for s in sp.sympify(expr).free_symbols
                                              if s in positions))
                              for oid, expr in k.objectives),
-        points=tuple(name for name, _ in k.points), point_positions=_lambdify(symbols, points),
+        points=tuple(name for name, _ in k.points), point_positions=lambdified(symbols, points),
         constraint_rank=_generic_rank(index, k), warnings=tuple(k.warnings), problem=problem)
     p.__dict__["k"] = k
     return p
