@@ -44,7 +44,8 @@ in a direction of that space is more than this (the basis is orthonormal)."""
 
 SAME_VALUE = 1e-6
 """Two roots have the same value of a quantity when they differ by at most this part of it
-(and of 1): the smallest of the first positive roots, the unknowns two branches differ in."""
+(and of 1): the smallest of the first positive roots, the unknowns two branches differ in,
+the closed-form root that is the position a ``when`` was walked to."""
 
 BEFORE_EVENT = 1e-9
 """The moment just before an event (its time times one minus this) at which the limits of
