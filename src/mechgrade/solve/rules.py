@@ -1,8 +1,9 @@
 """The rules the numeric solver judges by, each written once: whether an equation holds, the
 rank of a matrix (the grader's too: a student's equations, directions, rates), whether a root
-is on the branch the spec asks for, whether a closed-form root is real. Each takes arrays, so one instant and a class of variants
-(one column each) are judged alike. The rank rule lives in :mod:`mechgrade.tolerance` (the
-mechanics, which cannot import the solver, judge ranks by it too); it is named here as well.
+is on the branch the spec asks for, whether a closed-form root is real. Each takes arrays, so
+one instant and a class of variants (one column each) are judged alike. The rank rule lives
+in :mod:`mechgrade.tolerance` (the mechanics, which cannot import the solver, judge ranks by
+it too); it is named here as well.
 
 >>> import numpy as np
 >>> satisfied(np.array([1e-12, 1e-3]), np.array([1.0, 1.0]), 1e-6).tolist()
