@@ -177,3 +177,29 @@ def test_a_symbolic_answer_of_an_integration_with_a_massless_junction_is_refused
     kin = SimpleNamespace(k=None, settled=(sp.Symbol("xj"),))  # a junction's start: numbers
     with pytest.raises(SolveError, match="with a massless junction is out of reach"):
         integrated_symbolically(kin, sp.Symbol("t"), {}, Location())
+
+
+LONGEST = 5.0 ** 2 * 8.0 / (2 * 0.3 * 9.81 * (2.0 + 8.0))  # v0^2 M / (2 mu g (m + M)), m
+
+
+@pytest.mark.parametrize("distance, reached", [
+    (float(np.nextafter(np.nextafter(LONGEST, 4.0), 4.0)), True),  # rounds off the real axis
+    (LONGEST * (1 + 1e-14), True),
+    (LONGEST * (1 + 1e-13), False)])
+def test_an_event_the_motion_just_reaches_has_its_closed_form_time_and_one_beyond_has_none(
+        distance, reached):
+    """until: x - X = D, the block sliding D along the cart: at the longest slide (the block
+    then stops sliding) the event's two times meet, a root that rounding puts an imaginary
+    part of 1e-8 of its size on (refused as no time at all before); 1e-13 farther, the block
+    never slides so far."""
+    text = (ROOT / "problems" / "block_slides_on_cart.yaml").read_text()
+    text = text.replace("until: x' = X'", "until: x - X = D").replace(
+        "  v0: m/s\n", "  v0: m/s\n  D: m\n").replace(
+        "givens:\n", f"givens:\n  D: {distance!r} m\n", 1).replace(
+        "symbols: [v0, mu, g, m, M]", "symbols: [v0, mu, g, m, M, D]")
+    problem = load_problem_text(text, "p.yaml")
+    if not reached:
+        assert "has no closed-form time" in failure_of(problem, "t_slide_symbolic")
+        return
+    expr = solve(problem, objectives=["t_slide_symbolic"]).result("t_slide_symbolic").expr
+    assert expr == "(-sqrt(M)*sqrt(-2*D*M*g*mu - 2*D*g*m*mu + M*v0**2) + M*v0)/(g*mu*(M + m))"

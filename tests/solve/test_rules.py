@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechgrade.solve.rules import (left_open, near_zero, on_branch, same_value, satisfied,
+from mechgrade.solve.rules import (left_open, near_zero, on_branch, real, same_value, satisfied,
                                    unchanged)
 from mechgrade.spec.model import Root
 
@@ -47,3 +47,12 @@ def test_a_value_is_unchanged_within_the_probe_tolerance_of_its_size_column_by_c
 def test_two_roots_have_the_same_value_within_a_millionth_of_it_and_of_one():
     assert same_value(1e4, 1e4 + 5e-3) and not same_value(1e4, 1e4 + 2e-2)
     assert same_value(0.0, 9e-7) and not same_value(0.0, 2e-6)
+
+
+def test_a_closed_form_root_is_real_within_the_square_root_of_rounding_of_its_size():
+    # a double root whose discriminant rounded negative (1.8e-8 s at 1.36 s), and one of 1e3
+    # carrying 1e-5: real; 1e-6 at 1, a purely imaginary root and an undefined one: not
+    roots = np.array([1.3591573224600748 + 1.8114853889568622e-08j, 1e3 + 1e-5j,
+                      1.0 + 1e-6j, 3j, complex("nan")])
+    assert real(roots).tolist() == [True, True, False, False, False]
+    assert real(np.array([2e-7j, 1e-7j])).tolist() == [False, True]

@@ -30,6 +30,7 @@ from ..units import si_factor
 from .analysis import closed_forms
 from . import dop853
 from .batch_motion import NEVER, STALLED, Field, integrate_to_events
+from .rules import real
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
@@ -177,10 +178,9 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
                          "is out of reach (the junction's start is solved with numbers): "
                          "expected 'kind: scalar'", where=where)
     at_time, times = _closed_form(kin, where)
-    roots = []
-    for root, value in zip(times, closed_forms(times).at(numbers)):
-        if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) and value.real > 0:
-            roots.append((value.real, root))
+    values = closed_forms(times).at(numbers)
+    roots = [(value.real, root) for root, value, is_real in zip(times, values, real(values))
+             if is_real and value.real > 0]
     if not roots:
         raise SolveError("the event of the integrated motion has no closed-form time: ask for "
                          "a scalar", where=where)

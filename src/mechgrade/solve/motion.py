@@ -22,6 +22,7 @@ from ..tolerance import parts
 from . import rules
 from .columns import Cramer, FirstErrors, call, least_squares_solution, loud_call
 from .plan import KinematicsPlan
+from .result import ROUND_OFF
 from .rules import satisfied
 
 
@@ -178,7 +179,7 @@ def balances(problem: Problem, kp, X: np.ndarray, known: np.ndarray) -> Balanced
         x[kp.columns[j]] = 0.0
     errors = FirstErrors(n)
     for slip, speed, _ in kp.slips:
-        errors.add(~(call(speed, x, 1)[0] > 1e-12), partial(_no_slip, slip))
+        errors.add(~(call(speed, x, 1)[0] > ROUND_OFF), partial(_no_slip, slip))
     _physical(kp, x, errors, given=True)
     rows_ = len(kp.labels)
     A = call(kp.jacobian, x, rows_ * len(kp.columns)).reshape(rows_, len(kp.columns), n)

@@ -35,6 +35,7 @@ from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
 from ..spec.validate import is_angle_unit
 from .analysis import analysis_of, closed_forms
+from .rules import real, same_value
 from ..units import from_si
 
 _STEPS = 4096  # points of the walk from the start: a root closer to another is not told apart
@@ -216,8 +217,9 @@ def which_root(problem: Problem, objective_id: str, given_map: dict,
     q, numbers = _numbers(problem, given_map)
     value = position_where(problem, objective_id, given_map, residual)
     # a root complex or undefined here is not the position
-    for i, at in enumerate(closed_forms(closed_form_roots(residual, q)).at(numbers)):
-        if abs(at.imag) < 1e-9 and abs(at.real - value) <= 1e-7 * (1 + abs(value)):
+    roots = closed_forms(closed_form_roots(residual, q)).at(numbers)
+    for i, (at, is_real) in enumerate(zip(roots, real(roots))):
+        if is_real and same_value(value, at.real):
             return i
     left, right = obj.when
     raise SolveError(f"objective '{objective_id}': '{left.text} = {right.text}' holds at "

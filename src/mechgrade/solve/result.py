@@ -18,7 +18,8 @@ Value = Union[float, tuple[float, float, float], None]
 
 ROUND_OFF = 1e-12
 """A value this small is zero but for the solver's round-off: a student is shown 0, not
--1.27e-15 ft/s (a speed that is zero after an impact) or -3.45e-31 m/s²."""
+-1.27e-15 ft/s (a speed that is zero after an impact) or -3.45e-31 m/s², and a kinetic
+friction whose slip is this slow does not slip (SI)."""
 
 
 def without_round_off(value):

@@ -1,8 +1,9 @@
 """The rules the numeric solver judges by, each written once: whether an equation holds, the
 rank of a matrix (the grader's too: a student's equations, directions, rates), whether a root
-is on the branch the spec asks for. Each takes arrays, so one instant and a class of variants
-(one column each) are judged alike. The rank rule lives in :mod:`mechgrade.tolerance` (the
-mechanics, which cannot import the solver, judge ranks by it too); it is named here as well.
+is on the branch the spec asks for, whether a closed-form root is real. Each takes arrays, so
+one instant and a class of variants (one column each) are judged alike. The rank rule lives
+in :mod:`mechgrade.tolerance` (the mechanics, which cannot import the solver, judge ranks by
+it too); it is named here as well.
 
 >>> import numpy as np
 >>> satisfied(np.array([1e-12, 1e-3]), np.array([1.0, 1.0]), 1e-6).tolist()
@@ -44,7 +45,8 @@ in a direction of that space is more than this (the basis is orthonormal)."""
 
 SAME_VALUE = 1e-6
 """Two roots have the same value of a quantity when they differ by at most this part of it
-(and of 1): the smallest of the first positive roots, the unknowns two branches differ in."""
+(and of 1): the smallest of the first positive roots, the unknowns two branches differ in,
+the closed-form root that is the position a ``when`` was walked to."""
 
 BEFORE_EVENT = 1e-9
 """The moment just before an event (its time times one minus this) at which the limits of
@@ -61,6 +63,15 @@ ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical
 size away from zero: nearer, it is zero to the rounding of the solve."""
 
+
+REAL = 1e-7
+"""A closed-form root (an event's time, a position asked ``when``; SI, evaluated in complex
+numbers) is real when its imaginary part is at most this part of its size (and of 1). Where
+two roots meet (a motion that just reaches its event, an inverse sine of 1) rounding can make
+the discriminant negative by a few eps of its size: the root then carries an imaginary part of
+about the square root of that (1.5e-8 of its size), which this keeps; a pair of complex roots
+this near the real axis leaves the equation's least value within 1e-14 (this squared) of its
+size of zero, which is rounding too."""
 
 CONTACT = 1e-9
 """A contact lets go when its normal force is below minus this (N), and a static friction
@@ -175,6 +186,17 @@ def on_branch(values, scales, root: Root | None) -> np.ndarray:
     if root is Root.NEGATIVE:
         return x < -ON_BRANCH * np.asarray(scales)
     return np.ones(x.shape, dtype=bool)
+
+
+def real(roots) -> np.ndarray:
+    """Whether each closed-form root ``roots`` (complex) is real (:data:`REAL`); an undefined
+    root is not. The one test of an event's times and of a ``when``'s positions.
+
+    >>> real(np.array([1.0 + 2e-8j, 1e3 + 1e-5j, 1.0 + 1e-6j, 3j, complex("nan")])).tolist()
+    [True, True, False, False, False]
+    """
+    r = np.asarray(roots, dtype=complex)
+    return np.abs(r.imag) <= REAL * (1 + np.abs(r.real))
 
 
 def unchanged(before, after) -> np.ndarray:

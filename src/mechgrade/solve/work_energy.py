@@ -102,7 +102,9 @@ def energy_rates(problem: Problem, kp, X: np.ndarray) -> tuple[np.ndarray, First
     if analysis.sense:
         key, sense = analysis.sense[0]
         component = u[rates.index(index.position(key.text.replace(" ", "")))]
-        errors.add((speed > 0) & (np.abs(component) < 1e-12), lambda _: SolveError(
+        # the motion's one direction (orthonormal) leaves that rate at rest, as it leaves
+        # any unknown not open
+        errors.add((speed > 0) & ~rules.left_open(component), lambda _: SolveError(
             f"the sense of {key.text} cannot fix the sign: it is zero at the instant",
             where=key.where))
         sign = np.where(speed > 0, np.sign(component) * sense.sign, 1.0)
