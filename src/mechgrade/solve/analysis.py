@@ -17,6 +17,7 @@ from ..spec.dynamics import Integration, WorkEnergy, dynamics_of
 from ..spec.model import Problem
 from ..errors import MechgradeError
 from .columns import call
+from .generated import lambdified
 from .junctions import settle_junctions
 
 
@@ -43,7 +44,7 @@ def _analysis_plan(kp) -> AnalysisPlan:
     position = {s: i for i, s in enumerate(symbols)}
 
     def f(expr):
-        return sp.lambdify(symbols, expr, modules="numpy", cse=True)
+        return lambdified(symbols, expr)
 
     return AnalysisPlan(
         energy=f(kin.energy),
@@ -79,7 +80,7 @@ class ClosedForms:
 def closed_forms(roots: tuple) -> ClosedForms:
     """:class:`ClosedForms` of ``roots`` (sympy expressions), made once per tuple of roots."""
     symbols = tuple(sorted(set().union(*(sp.sympify(r).free_symbols for r in roots)), key=str))
-    return ClosedForms(symbols, sp.lambdify(symbols, list(roots), modules="numpy", cse=True))
+    return ClosedForms(symbols, lambdified(symbols, list(roots)))
 
 
 def start_columns(problem: Problem, kp, ap: AnalysisPlan, X: np.ndarray

@@ -21,6 +21,7 @@ from ..spec.model import Problem
 from ..tolerance import parts
 from . import rules
 from .columns import Cramer, FirstErrors, call, least_squares_solution, loud_call
+from .generated import lambdified
 from .plan import KinematicsPlan
 from .result import ROUND_OFF
 from .rules import satisfied
@@ -333,7 +334,7 @@ def gathered(e, u):
 def cheaper(compact, expanded):
     """Whichever of two forms of the balances (sympy matrices: ``compact`` as derived, each
     load's force one product, a spring's ``k l (1 - a/|l|)``; ``expanded``) has fewer
-    operations once its common subexpressions are taken out, as ``lambdify(..., cse=True)``
+    operations once its common subexpressions are taken out, as :func:`.generated.lambdified`
     compiles it; ``expanded`` on a tie.
 
     >>> import sympy as sp
@@ -395,8 +396,8 @@ def _switches(kp, at_end: bool = False) -> _Switching | None:
     residual = matrix if at_end else cheaper(
         sp.Matrix([kept(e) for e in (*kp.kin.compact_balances, *constraints)]), matrix)
     return _Switching(
-        speeds=sp.lambdify(kp.symbols, speeds, modules="numpy", cse=True),
-        residual=sp.lambdify(symbols, residual, modules="numpy", cse=True),
-        jacobian=sp.lambdify(symbols, jacobian, modules="numpy", cse=True),
+        speeds=lambdified(kp.symbols, speeds),
+        residual=lambdified(symbols, residual),
+        jacobian=lambdified(symbols, jacobian),
         count=len(speeds),
         constant_jacobian=reads_parameters_only(jacobian, kp.symbols, kp.kp.index))

@@ -36,6 +36,7 @@ from . import rules
 from .analysis import analysis_of, analysis_plan, start_columns
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import loud_call, quiet
+from .generated import lambdified
 from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, event_stays,
                      instant_missed, leaving, not_integrated)
 from .motion import Balanced, _switches, after_event, at_event, balances, constant_matrix
@@ -209,7 +210,7 @@ def _missed(analysis: Integration, target: Target, until_times) -> SolveError:
 
 @lru_cache(maxsize=64)
 def _lambdified(kp, expr):
-    return sp.lambdify(kp.symbols, expr, modules="numpy", cse=True)
+    return lambdified(kp.symbols, expr)
 
 
 def _slip(problem: Problem, kp, phase):

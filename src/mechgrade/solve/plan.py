@@ -293,8 +293,8 @@ def lambdified_mutants(problem: Problem, p: KinematicsPlan, objective: str) -> t
     return tuple(Mutant(
         m.objective, m.code, m.sentence,
         len(m.value) if isinstance(m.value, sp.MatrixBase) else 1, m.code in VELOCITY_CODES,
-        sp.lambdify(symbols, m.value, modules="numpy", cse=True),
-        None if m.term is None else sp.lambdify(symbols, m.term, modules="numpy"))
+        lambdified(symbols, m.value),
+        None if m.term is None else lambdified(symbols, m.term))
         for m in mutations(problem, objective))
 
 

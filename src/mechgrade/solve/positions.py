@@ -35,6 +35,7 @@ from ..spec.dynamics import WorkEnergy
 from ..spec.model import Problem
 from ..spec.validate import is_angle_unit
 from .analysis import analysis_of, closed_forms
+from .generated import lambdified
 from .rules import real, same_value
 from ..units import from_si
 
@@ -275,8 +276,7 @@ def _functions(residual: sp.Expr, start: sp.Expr, q: sp.Symbol) -> tuple[_Functi
 
 def _function(expr: sp.Expr, first: tuple) -> _Function:
     parameters = tuple(sorted(expr.free_symbols - set(first), key=str))
-    return _Function(parameters, sp.lambdify((*first, *parameters), expr, modules="numpy",
-                                             cse=True))
+    return _Function(parameters, lambdified((*first, *parameters), expr))
 
 
 def _numbers(problem: Problem, given_map: dict) -> tuple[sp.Symbol, dict[sp.Symbol, float]]:
