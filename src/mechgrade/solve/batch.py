@@ -53,7 +53,7 @@ from ..expressions.syntax import Name, Prime, to_text
 from ..mechanics.kinematics import locations
 from ..spec.dynamics import Integration, WorkEnergy, instant_of_objective
 from ..spec.model import Objective, ObjectiveKind, Problem, Root
-from .batch_motion import ROOT_RTOL, ROOT_XTOL, design_roots
+from .batch_motion import design_roots
 from .entry import solve
 from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
                       answer_alone, class_givens, drive_columns, group_results, instant_givens,
@@ -572,10 +572,9 @@ class _Template:
 
         guess = self.design.guess
         root, converged = design_roots(reach, self.kinetics.design, guess, n)
-        # Newton stops once its next iterate is within its tolerance of the last one
-        # evaluated: that instant is the root's (as closely as the root is known), not
-        # reached again
-        kept = converged & (np.abs(last["at"] - root) <= ROOT_RTOL * np.abs(root) + ROOT_XTOL)
+        # Newton's root is the last iterate it evaluated (its next within its tolerance):
+        # that instant is the root's, not reached again
+        kept = converged & (last["at"] == root)
         out, ok = last["X"].copy(), last["ok"] & kept
         redo = np.flatnonzero(~kept)
         if len(redo):

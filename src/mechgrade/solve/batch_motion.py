@@ -535,7 +535,10 @@ def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
     next iterate is within ``xtol + rtol * |x|`` of its last (whose residual was the last row
     0 evaluated for it), or once a step within :data:`ROUNDING_FLOOR` of ``|x|`` is no
     shorter than the one before (the residual is rounding noise there: the steps wander,
-    they do not shrink); an undefined residual or a zero slope stops it, unconverged.
+    they do not shrink); an undefined residual or a zero slope stops it, unconverged. Its
+    root is then that last iterate, whose residual was evaluated (the next is within the
+    tolerance of it): a caller keeps the instant it reached there, a class and one solve
+    alike, rather than reaching the next iterate again.
 
     An iteration costs one call whatever the number of columns, so the count of calls is
     what matters: where a call is an integration, Newton's iterations (two points each,
@@ -566,7 +569,7 @@ def newton(residual: Callable[[np.ndarray, np.ndarray], np.ndarray], x0: np.ndar
         stuck = ~np.isfinite(p)  # an undefined residual, or no slope: stops, unconverged
         todo[i[stuck]] = False
         close = ~stuck & (np.isclose(p, x[i], rtol=rtol, atol=xtol) | floor)
-        root[i[close]] = p[close]
+        root[i[close]] = x[i[close]]
         converged[i[close]] = True
         todo[i[close]] = False
         go = ~stuck & ~close
