@@ -1,7 +1,10 @@
 """One meaning per name for the types issue 24 found named twice: the grading plan is ``Plan``
 (the solver's are ``KinematicsPlan``, ``KineticsPlan``, ``AnalysisPlan``), a ``branch:`` entry
 is ``Branch``, a solve's result or error is ``Outcome``, and the grading policy is
-``GradingPolicy`` (no ``Policy`` or ``compare_policy`` beside it)."""
+``GradingPolicy`` (no ``Policy`` or ``compare_policy`` beside it); a friction bound is
+``Bound`` (a declared range ``Limits``), a catalogue's filing ``Approach`` (a spec's analysis
+``Analysis``), a root of the levels ``Candidate`` (an upload's file ``AnswerFile``), a step of
+the worked solution ``WorkedStep`` (a group's solving ``Step``) and a page point ``Point2``."""
 
 from __future__ import annotations
 
@@ -10,7 +13,8 @@ from functools import lru_cache
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
-ONCE = ("Plan", "Branch", "Outcome", "GradingPolicy")
+ONCE = ("Plan", "Branch", "Outcome", "GradingPolicy", "Analysis", "Bound", "Candidate", "Point2",
+        "Step")
 NEVER = ("Policy", "compare_policy")
 
 

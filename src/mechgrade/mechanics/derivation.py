@@ -106,7 +106,7 @@ class Row:
 
 
 @dataclass(frozen=True)
-class Step:
+class WorkedStep:
     """One step of the worked solution: a title, lines of text and equations."""
 
     anchor: str
@@ -126,7 +126,7 @@ mistake that leaves each out (``coriolis_half`` halves the Coriolis row)."""
 
 @lru_cache(maxsize=64)
 def kinematics_steps(problem: Problem, dof: int | None = None,
-                     said: tuple[tuple[str, str], ...] = ()) -> tuple[Step, ...]:
+                     said: tuple[tuple[str, str], ...] = ()) -> tuple[WorkedStep, ...]:
     """The kinematic steps of the worked solution, in the write-up order: frames with their
     angular velocities, where the points are, constraints and degrees of freedom, then the
     velocity and acceleration of every point in the inertial frame, each composed term by
@@ -167,11 +167,11 @@ def kinematics_steps(problem: Problem, dof: int | None = None,
     # spec form is the solver's), each component typeset in the rows
     constraints = tuple(dict(said).get(c.name) or f"{c.name} ({c.level}): {c.lhs.text} = "
                         f"{c.rhs.text}" for c in problem.constraints)
-    steps = [Step("frames", "Frames and their angular velocities", text["Frames"],
+    steps = [WorkedStep("frames", "Frames and their angular velocities", text["Frames"],
                   tuple(frame_rows)),
-             Step("points", "Where the points are", text.get("Definitions", ()),
+             WorkedStep("points", "Where the points are", text.get("Definitions", ()),
                   tuple(_position_rows(problem, model, show))),
-             Step("constraints", "Constraints and degrees of freedom",
+             WorkedStep("constraints", "Constraints and degrees of freedom",
                   constraints + text["Degrees of freedom"], tuple(constraint_rows))]
     for kind in ("vel", "acc"):
         for p in problem.points:
@@ -193,7 +193,7 @@ def _position_rows(problem: Problem, model, show: "_Display"):
                   f"r_{p.name}/{p.origin} = {_vector_text(r)}")
 
 
-def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: str) -> Step:
+def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: str) -> WorkedStep:
     """The velocity (``kind`` ``"vel"``) or acceleration of ``point`` in the inertial frame:
     each term of its composition in the moving frame it is described in, then the sum."""
     N = problem.inertial_frame
@@ -242,7 +242,7 @@ def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: st
                                                             model.plain(whole)),
                     f"{N}_{letter}_{point} = {_vector_text(model.plain(whole))}"))
     where = f" (composed in frame {moving[0]}, from {moving[1]})" if moving else ""
-    return Step(f"{kind}-{point}", f"The {noun} of {point} in {N}{where}", (), tuple(rows))
+    return WorkedStep(f"{kind}-{point}", f"The {noun} of {point} in {N}{where}", (), tuple(rows))
 
 
 def _moving_frame(problem: Problem, model, point: str) -> tuple[str, str] | None:

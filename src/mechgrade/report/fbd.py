@@ -32,7 +32,7 @@ from dataclasses import replace
 from html import escape
 from typing import TYPE_CHECKING
 
-from ..solve.layout import apart, collides, outline_extent
+from ..solve.layout import Point2, apart, collides, outline_extent
 from ..spec.dynamics import LoadKind, OutlineKind
 
 if TYPE_CHECKING:  # the diagrams come ready-made: drawing them needs no solver
@@ -61,8 +61,6 @@ _KIND_WORDS = {LoadKind.WEIGHT: "the weight", LoadKind.NORMAL: "the normal force
                LoadKind.REACTION: "the reaction"}
 _GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "theta": "θ", "mu": "μ",
           "tau": "τ", "phi": "φ", "omega": "ω", "lambda": "λ", "sigma": "σ"}
-
-Point2 = tuple[float, float]
 
 
 def _n(value: float) -> str:
