@@ -19,6 +19,8 @@ free-body diagram of each body knows what its loads are.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from enum import Enum
 
@@ -66,6 +68,9 @@ _FORCE_KINDS = {"applied": LoadKind.APPLIED_FORCE, "weight": LoadKind.WEIGHT,
 
 # ---------------------------------------------------------------------------- shapes
 
+Size = Callable[[Expr], "float | None"]
+"""A shape's dimension in metres, ``None`` when unknown."""
+
 
 @dataclass(frozen=True)
 class Rod:
@@ -73,6 +78,26 @@ class Rod:
 
     length: Expr
     axis: str
+
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """The greatest and least volume (m^3) a rod of this length may have: as thick as it
+        is long, down to a thousandth of that; ``None`` when the length is unknown or zero.
+
+        >>> Rod(Expr("L", Name("L")), "x").volumes(lambda e: 2.0)  # doctest: +ELLIPSIS
+        (6.28..., 6.28...e-06)
+        """
+        length = size(self.length)
+        if not length:
+            return None
+        return math.pi / 4 * length ** 3, math.pi / 4 * (length / 1000) ** 2 * length
+
+
+def _flat(radius: float | None) -> tuple[float, float] | None:
+    """A disk's or ring's volumes: at most as thick as it is wide, down to a thousandth of
+    its radius."""
+    if not radius:
+        return None
+    return math.pi * radius ** 2 * 2 * radius, math.pi * radius ** 2 * radius / 1000
 
 
 @dataclass(frozen=True)
@@ -82,6 +107,10 @@ class Ring:
     radius: Expr
     axis: str
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """A ring's volumes are a disk's: see :func:`_flat`."""
+        return _flat(size(self.radius))
+
 
 @dataclass(frozen=True)
 class Disk:
@@ -89,6 +118,10 @@ class Disk:
 
     radius: Expr
     axis: str
+
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """See :func:`_flat`."""
+        return _flat(size(self.radius))
 
 
 @dataclass(frozen=True)
@@ -99,12 +132,30 @@ class Cylinder:
     length: Expr
     axis: str
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its one volume, twice; ``None`` when a size is unknown or zero."""
+        radius, length = size(self.radius), size(self.length)
+        if not radius or not length:
+            return None
+        value = math.pi * radius ** 2 * length
+        return value, value
+
+
+def _ball(radius: float | None) -> float | None:
+    """The volume of a ball of ``radius``; ``None`` when unknown or zero."""
+    return 4 / 3 * math.pi * radius ** 3 if radius else None
+
 
 @dataclass(frozen=True)
 class Sphere:
     """A uniform solid sphere: 2 m R^2/5 about every axis."""
 
     radius: Expr
+
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its ball's volume, twice."""
+        full = _ball(size(self.radius))
+        return None if full is None else (full, full)
 
 
 @dataclass(frozen=True)
@@ -113,6 +164,11 @@ class Shell:
 
     radius: Expr
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its ball's volume, down to none (a shell may be as thin as it likes)."""
+        full = _ball(size(self.radius))
+        return None if full is None else (full, 0.0)
+
 
 @dataclass(frozen=True)
 class Block:
@@ -120,12 +176,24 @@ class Block:
 
     sides: tuple[Expr, Expr, Expr]
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its one volume, twice; ``None`` when a side is unknown or zero (a plate)."""
+        sides = [size(s) for s in self.sides]
+        if any(s is None for s in sides) or not all(sides):
+            return None
+        value = math.prod(sides)  # type: ignore[arg-type]
+        return value, value
+
 
 @dataclass(frozen=True)
 class Explicit:
     """Moments and products of inertia about the mass centre in the body axes."""
 
     entries: tuple[tuple[str, Expr], ...]  # ("xx", expr), ... ; missing entries are zero
+
+    def volumes(self, _size: Size) -> None:
+        """Unknown: an inertia says nothing of the body's size."""
+        return None
 
 
 Shape = Rod | Ring | Disk | Cylinder | Sphere | Shell | Block | Explicit
