@@ -37,7 +37,7 @@ import re
 import time
 
 from ..grade.results import GradeReport, ObjectiveInfo, Status, StudentResult
-from ..roster import Roster, RosterStudent
+from ..roster import Roster, RosterFormat, RosterStudent
 from .cells import format_points, safe_cell, write_csv
 from .changes import Change, ChangeKind, decide, not_compared_warning, report_changes
 from .common import (answers_by_objective, conflict_reason, has_submission, lms_points,
@@ -60,7 +60,7 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
     key = ("Email address", "ID number") if options.moodle_key == "email" \
         else ("ID number", "Email address")
     grade, feedback = moodle_columns(report, roster)
-    moodle_roster = roster if roster is not None and roster.format == "moodle" else None
+    moodle_roster = roster if roster is not None and roster.format is RosterFormat.MOODLE else None
     downloaded = LAST_DOWNLOADED if moodle_roster is not None and \
         LAST_DOWNLOADED in moodle_roster.header else None
     rows: list[list[object]] = [[*key, "First name", "Last name", grade, feedback,
@@ -189,7 +189,7 @@ def moodle_columns(report: GradeReport, roster: Roster | None) -> tuple[str, str
     ('Homework 1 (Real)', 'Homework 1 (Feedback)')
     """
     title = report.assignment.title.strip()
-    if roster is not None and roster.format == "moodle":
+    if roster is not None and roster.format is RosterFormat.MOODLE:
         for column in roster.header:
             found = _GRADE_COLUMN.fullmatch(column.strip())
             if found and found["title"].casefold() == title.casefold():
