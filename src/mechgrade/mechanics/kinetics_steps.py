@@ -200,8 +200,8 @@ def _loads(problem: Problem, matrix_math, text) -> WorkedStep:
         rows.append(Row(f"load-{load.body}-{load.name}", math, f"{said} = {text(value)}",
                         codes, words))
     return WorkedStep("kinetics-free-body-loads", "Free-body loads",
-                ("Each body cut free, with every load on it.",),
-                tuple(rows))
+                      ("Each body cut free, with every load on it.",),
+                      tuple(rows))
 
 
 def _is_symbol(name: str) -> bool:
@@ -254,9 +254,9 @@ def _work_energy(kin, expr_math, text) -> WorkedStep:
     else:
         work = "0: no load that does work is left out of V (the reactions do none)"
     return WorkedStep("kinetics-work-energy", "Work and energy from the start to the instant",
-                (f"U12 is {work}.",
+                      (f"U12 is {work}.",
                  "Solved for the rate at the instant, with the sense the problem states."),
-                tuple(rows))
+                      tuple(rows))
 
 
 def _balances(problem: Problem, kin, expr_math, text) -> WorkedStep:

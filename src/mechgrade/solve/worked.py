@@ -28,7 +28,7 @@ import numpy as np
 
 from ..expressions.notation import coordinate_names
 from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, parse, to_text
-from ..mechanics.derivation import Row, WorkedStep, symbolic_math
+from ..mechanics.derivation import Motion, Row, WorkedStep, symbolic_math
 from ..mechanics.writeup import worked_steps
 from ..spec.model import Expr, Objective, ObjectiveKind, Problem
 from ..units import from_si, same_dimension
@@ -346,37 +346,36 @@ def _answer_step(problem: Problem, objective, result: ObjectiveResult,
                    for n in result.symbols if n in rates and f"Abs({n})" in (result.expr or "")
                    for sign in (signs.get(rates[n], 0),) if sign)
     return WorkedStep(f"answer-{objective.id}", title,
-                (asked, f"in {result.unit or '1'}, in terms of {names}", *senses),
-                (Row(f"answer-{objective.id}-value", math, answer_text(result)),))
+                      (asked, f"in {result.unit or '1'}, in terms of {names}", *senses),
+                      (Row(f"answer-{objective.id}-value", math, answer_text(result)),))
 
 
-def _at_the_instant(problem: Problem, steps: tuple[WorkedStep, ...], drawing) -> tuple[WorkedStep, ...]:
+def _at_the_instant(problem: Problem, steps: tuple[WorkedStep, ...],
+                    drawing) -> tuple[WorkedStep, ...]:
     """``steps`` with each point's velocity and acceleration in numbers at the instant, along
     the inertial frame, in the unit an objective asks it in, else in the length unit of the
     givens per second (squared)."""
     points = {p.name: p for p in drawing.points}
     length = next((g.unit for g in problem.givens if g.unit and same_dimension(g.unit, "m")),
                   "m")
-    units = {"vel": f"{length}/s", "acc": f"{length}/s^2"}
-    asked: dict[tuple[str, str], str] = {}
+    units = {Motion.VELOCITY: f"{length}/s", Motion.ACCELERATION: f"{length}/s^2"}
+    asked: dict[tuple[Motion, str], str] = {}
     for o in problem.objectives:
         for call in _calls(o.find.node):
-            kind = "acc" if call.func in _ACCELERATION_CALLS else "vel"
+            wanted = _motion_of(call)
             if isinstance(call.args[0], Name) and o.unit \
-                    and same_dimension(o.unit, units[kind]):
-                asked.setdefault((kind, call.args[0].id), o.unit)
+                    and same_dimension(o.unit, units[wanted]):
+                asked.setdefault((wanted, call.args[0].id), o.unit)
     out = []
     for step in steps:
-        kind, _, name = step.anchor.partition("-")
-        point = points.get(name) if kind in units else None
-        value = getattr(point, "velocity" if kind == "vel" else "acceleration", None) \
-            if point is not None else None
-        if value is not None:
-            unit = asked.get((kind, name), units[kind])
+        motion, name = Motion.of_anchor(step.anchor) or (None, "")
+        value = getattr(points[name], motion.noun, None) \
+            if motion is not None and name in points else None
+        if motion is not None and value is not None:
+            unit = asked.get((motion, name), units[motion])
             shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in without_round_off(tuple(value)))
-            letter = "v" if kind == "vel" else "a"
             step = replace(step, lines=step.lines + (
-                f"At the instant: {problem.inertial_frame}_{letter}_{name} = ({shown}) "
+                f"At the instant: {problem.inertial_frame}_{motion.letter}_{name} = ({shown}) "
                 f"{unit} along {problem.inertial_frame}",))
         out.append(step)
     return tuple(out)
@@ -421,14 +420,19 @@ def _place(steps: tuple[WorkedStep, ...], objective: str, node: Node, code: str)
     for call in _calls(node):
         if not isinstance(call.args[0], Name):
             continue
-        kind = "acc" if call.func in _ACCELERATION_CALLS else "vel"
-        step = by_anchor.get(f"{kind}-{call.args[0].id}")
+        step = by_anchor.get(_motion_of(call).anchor(call.args[0].id))
         if step is None:
             continue
         for row in step.rows:
             if code in row.codes:
                 return row.anchor
     return f"answer-{objective}"
+
+
+def _motion_of(call: Call) -> Motion:
+    """The motion a motion call asks of its point (``rho`` and ``normal`` need its
+    acceleration)."""
+    return Motion.ACCELERATION if call.func in _ACCELERATION_CALLS else Motion.VELOCITY
 
 
 def _calls(node: Node):
