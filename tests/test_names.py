@@ -102,3 +102,22 @@ def test_a_status_verdict_or_kind_field_is_of_its_kinds_type():
     found = [(str(path.relative_to(SRC)), *held) for path in sorted(SRC.rglob("*.py"))
              for held in kinds_held_as_text(path.read_text(encoding="utf-8"))]
     assert [f for f in found if f not in TEXT_KINDS] == []
+
+
+def kind_parameters_of_text(text: str) -> list[str]:
+    """The functions with a parameter named ``kind`` annotated as a text.
+
+    >>> kind_parameters_of_text("def f(kind: str): pass\\ndef g(kind: Kind): pass\\n")
+    ['f']
+    """
+    return [node.name for node in ast.walk(_parsed(text))
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))
+            for arg in (*node.args.posonlyargs, *node.args.args, *node.args.kwonlyargs)
+            if arg.arg == "kind" and arg.annotation is not None
+            and any(isinstance(n, ast.Name) and n.id == "str" for n in ast.walk(arg.annotation))]
+
+
+def test_a_kind_parameter_is_of_its_kinds_type():
+    found = {str(path.relative_to(SRC)): names for path in sorted(SRC.rglob("*.py"))
+             if (names := kind_parameters_of_text(path.read_text(encoding="utf-8")))}
+    assert found == {}
