@@ -15,6 +15,7 @@ from mechgrade.export import EXPORTERS, ExportOptions, export
 from mechgrade.export.matching import match_roster
 from mechgrade.export.canvas import canvas_column
 from mechgrade.export.moodle import moodle_names
+from mechgrade.export.options import MissingGrade, MoodleKey, Visibility
 from mechgrade.grade.results import GradeReport
 from mechgrade.roster import MatchKind, Roster, RosterFormat, RosterStudent
 
@@ -499,6 +500,13 @@ def test_bad_options_are_refused():
                                           "'hidden', 'after_due_date', 'after_published', "
                                           "found 'public'"):
         ExportOptions(gradescope_visibility="public")
+
+
+def test_options_written_as_text_are_read_into_their_types_once():
+    options = ExportOptions(missing="blank", gradescope_visibility="hidden",
+                            moodle_key=MoodleKey.IDNUMBER)
+    assert (options.missing, options.gradescope_visibility, options.moodle_key) == (
+        MissingGrade.BLANK, Visibility.HIDDEN, MoodleKey.IDNUMBER)
 
 
 @pytest.mark.parametrize("fmt", list(EXPORTERS))
