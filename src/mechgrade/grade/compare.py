@@ -38,7 +38,7 @@ from ..units import describe_dimension, dimension, from_si, judged_in, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
 from .diagnose import G_FT, G_SI, Candidates, Diagnosis, diagnose, trig_in_radians
-from .policy import GradingPolicy
+from .policy import GradingPolicy, MissingUnit
 from .results import Verdict
 
 @dataclass(frozen=True)
@@ -223,7 +223,7 @@ def _resolve_unit(answer_unit: str | None, result: ObjectiveResult, policy: Grad
     if answer_unit is None:
         if not _needs_unit(result.unit):
             return _Units(result.unit)
-        if policy.missing_unit == "reject":
+        if policy.missing_unit == MissingUnit.REJECT:
             return Assessment(Verdict.INCORRECT, 0.0, "missing unit",
                               f"A unit is required (for example {_example_unit(result.unit)}).",
                               read_back)
