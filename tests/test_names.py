@@ -63,8 +63,8 @@ def kinds_compared_with_text(text: str) -> list[tuple[str, int]]:
     ``kind``, ``status`` or ``verdict``) is compared with a text, or a tuple of texts, instead
     of with its type's members.
 
-    >>> kinds_compared_with_text("r.kind == 'vector'\\nr.kind in ('a', 'b')\\nr.kind is K.VECTOR\\n"
-    ...                          "def f(kind):\\n    return kind == 'ok'\\n")
+    >>> kinds_compared_with_text("r.kind == 'vector'\\nr.kind in ('a', 'b')\\n"
+    ...                          "r.kind is K.VECTOR\\ndef f(kind):\\n    return kind == 'ok'\\n")
     [('', 1), ('', 2), ('f', 5)]
     """
     def field(node: ast.expr) -> bool:

@@ -49,7 +49,8 @@ class ExportOptions:
     """How to export.
 
     ``missing``: what a student without a submission gets (:class:`MissingGrade`).
-    ``excel_bom``: start CSV files with a UTF-8 byte order mark so Excel reads accents right. ``points_possible``: write Canvas's ``Points Possible`` row.
+    ``excel_bom``: start CSV files with a UTF-8 byte order mark so Excel reads accents right.
+    ``points_possible``: write Canvas's ``Points Possible`` row.
     ``gradescope_visibility``: visibility of the Gradescope tests. ``moodle_key``: the column
     Moodle should map users by, written first. Each of these three may be given as its
     member or its text, read into its type when the options are made.

@@ -15,8 +15,8 @@ kinematics (:attr:`KinematicsPlan.k`) are derived again only if something asks f
 
 from __future__ import annotations
 
-import operator
 import dataclasses
+import operator
 import typing
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
@@ -364,9 +364,10 @@ def _kept(cls: type, left_out: str) -> Any:
     """
     hints = typing.get_type_hints(cls)
     names = [f.name for f in dataclasses.fields(cls) if f.name != left_out]
+    functions = frozenset(n for n in names if hints[n] in _AS_SOURCE)
     kept = dataclasses.make_dataclass(
         f"_{cls.__name__}Entry", [(n, _AS_SOURCE.get(hints[n], hints[n])) for n in names],
-        frozen=True, namespace={"functions": frozenset(n for n in names if hints[n] in _AS_SOURCE)})
+        frozen=True, namespace={"functions": functions})
     kept.__module__ = __name__
     kept.__doc__ = f"A :class:`{cls.__name__}` as the disk cache keeps it (see :func:`_kept`)."
     return kept
