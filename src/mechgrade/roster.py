@@ -39,7 +39,6 @@ from .files import read_text
 from .errors import AssignmentError, Location
 
 
-
 class RosterFormat(Enum):
     """Which export a roster file is (see the module doc), read from its header row."""
 

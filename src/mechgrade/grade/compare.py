@@ -540,7 +540,7 @@ class Domain(Enum):
     POSITIVE = "positive"
 
 
-def _symbol_kinds(result: ObjectiveResult) -> dict[str, Domain]:
+def _symbol_domains(result: ObjectiveResult) -> dict[str, Domain]:
     """Each symbol's :class:`Domain`."""
     aliases = symbol_aliases(tuple(result.symbols))
     derivatives = {target for key, target in aliases.items() if isinstance(key, tuple)}
@@ -581,7 +581,7 @@ def sample_points(result: ObjectiveResult, count: int, seed: int = 0) -> dict[st
     digest = zlib.crc32(f"{result.id}|{result.expr}|{seed}".encode("utf-8", "replace"))
     rng = np.random.default_rng(digest)
     env = {"E": np.full(count, math.e)}
-    for symbol, kind in _symbol_kinds(result).items():
+    for symbol, kind in _symbol_domains(result).items():
         if kind is Domain.ANGLE:
             env[symbol] = rng.uniform(0.1, 1.45, count)
         elif kind is Domain.SIGNED:
@@ -817,7 +817,7 @@ def _sympy_equivalent(student: Node, reference: Node, result: ObjectiveResult) -
     import sympy
 
     from ..expressions.build import to_sympy
-    kinds = _symbol_kinds(result)
+    kinds = _symbol_domains(result)
     table = {s: sympy.Symbol(s, positive=kinds[s] is not Domain.SIGNED, real=True)
              for s in result.symbols}
     table["E"] = sympy.E
