@@ -38,7 +38,7 @@ from .lms_submissions import read_any_submissions
 from .results import (ECF_DIAGNOSIS, EQUATIONS_OBJECTIVE, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
                       LoadResult, ObjectiveInfo, Status, StudentResult, Verdict, unit_text)
 from .policy import GradingPolicy
-from .submissions import Submission, SubmissionSet, SubmissionStatus
+from .submissions import Submission, SubmissionFormat, SubmissionSet, SubmissionStatus
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.derivation import DerivationInstant, MotionSamples
@@ -417,7 +417,7 @@ def failing_expects_error(failing: tuple[FailingExpect, ...]) -> SpecError:
 
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
                       progress: Progress | None = None, jobs: int = 1,
-                      submissions_format: str | None = None,
+                      submissions_format: SubmissionFormat | None = None,
                       accept_failing_expect: bool = False) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 

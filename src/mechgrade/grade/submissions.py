@@ -60,6 +60,18 @@ class _Unread(SubmissionError):
         self.notes = tuple(notes)
 
 
+class SubmissionFormat(StrEnum):
+    """What a class's hand-ins come as: a folder, an LMS's download zip or a quiz's responses
+    CSV (``mechgrade grade --submissions-format``)."""
+
+    FOLDER = "folder"
+    CANVAS_ZIP = "canvas-zip"
+    MOODLE_ZIP = "moodle-zip"
+    GRADESCOPE_ZIP = "gradescope-zip"
+    CANVAS_QUIZ_CSV = "canvas-quiz-csv"
+    MOODLE_QUIZ_CSV = "moodle-quiz-csv"
+
+
 class SubmissionStatus(StrEnum):
     """What came of reading one student's hand-in."""
 
