@@ -7,7 +7,8 @@ from pathlib import Path
 import pytest
 
 from mechgrade.errors import AssignmentError
-from mechgrade.roster import MATCH_KINDS, Roster, RosterStudent, pair_students, read_roster
+from mechgrade.roster import (MATCH_KINDS, MatchKind, Roster, RosterFormat, RosterStudent,
+                              pair_students, read_roster)
 
 DATA = Path(__file__).parent / "data" / "export"
 
@@ -20,7 +21,7 @@ def write(tmp_path: Path, text: str, *, encoding: str = "utf-8", name: str = "r.
 
 def test_canvas_export_is_read_without_metadata_rows_and_test_student():
     roster = read_roster(DATA / "canvas_gradebook.csv")
-    assert roster.format == "canvas"
+    assert roster.format is RosterFormat.CANVAS
     assert roster.header[0] == "Student"  # the BOM is not part of the first column name
     assert roster.identity_header == ("Student", "ID", "SIS User ID", "SIS Login ID", "Section")
     assert [s.id for s in roster.students] == [f"7000{i}" for i in range(1, 8)]
@@ -41,7 +42,7 @@ def test_canvas_unicode_and_quoted_names_keep_their_original_cells():
 
 def test_moodle_export_is_read_with_email_and_id_number():
     roster = read_roster(DATA / "moodle_grades.csv")
-    assert roster.format == "moodle"
+    assert roster.format is RosterFormat.MOODLE
     assert roster.identity_header == ("First name", "Last name", "ID number", "Institution",
                                       "Department", "Email address")
     assert [s.id for s in roster.students] == ["s1001", "s1002", "s1003", "s1004",
@@ -54,14 +55,14 @@ def test_moodle_export_with_semicolons_is_read(tmp_path):
     path = write(tmp_path, "First name;Last name;ID number;Email address\n"
                            "Ada;Lovelace;s1;ada@x.org\n")
     roster = read_roster(path)
-    assert roster.format == "moodle" and roster.students[0].email == "ada@x.org"
+    assert roster.format is RosterFormat.MOODLE and roster.students[0].email == "ada@x.org"
 
 
 def test_plain_roster_with_quotes_commas_and_bom(tmp_path):
     path = write(tmp_path, 'id,name,email\r\ns1,"Roe, ""Bo""",bo@x.org\r\n\r\ns2,Zoë,\r\n',
                  encoding="utf-8-sig")
     roster = read_roster(path)
-    assert roster.format == "plain"
+    assert roster.format is RosterFormat.PLAIN
     assert [(s.id, s.name, s.email) for s in roster.students] == \
         [("s1", 'Roe, "Bo"', "bo@x.org"), ("s2", "Zoë", "")]
 
@@ -117,28 +118,31 @@ def test_quoted_multiline_cell_keeps_line_numbers_right(tmp_path):
 
 ADA = RosterStudent("101", "Ada Lovelace", "ada@uni.edu", sis_login_id="ada")
 BOB = RosterStudent("102", "Bob Roe", "bob@uni.edu", sis_login_id="bob")
-TWO = Roster((ADA, BOB), "plain", ("id", "name", "email"))
+TWO = Roster((ADA, BOB), RosterFormat.PLAIN, ("id", "name", "email"))
 
 
 def folders(*names: str) -> list[dict[str, set[str]]]:
     """Folder names as candidates: a folder may be named by any identifier of a student."""
     from mechgrade.roster import fold
 
-    return [{kind: {fold(name)} for kind in MATCH_KINDS if kind != "name"} for name in names]
+    return [{kind: {fold(name)} for kind in MATCH_KINDS if kind is not MatchKind.NAME}
+            for name in names]
 
 
 def test_each_student_is_paired_with_the_one_folder_that_names_them():
     pairing = pair_students(TWO, folders("ada", "102"))
-    assert pairing.pairs == ((0, "sis_login_id"), (1, "id")) and pairing.conflicts == ()
+    assert pairing.pairs == ((0, MatchKind.SIS_LOGIN_ID), (1, MatchKind.ID))
+    assert pairing.conflicts == ()
 
 
 def test_a_folder_named_with_another_students_id_is_a_conflict_not_a_winner():
     """'101' (Ada's LMS id) holding Bob's work used to win over Ada's own folder 'ada'."""
     pairing = pair_students(TWO, folders("101", "ada", "bob"))
-    assert pairing.pairs == ((None, None), (2, "sis_login_id"))
+    assert pairing.pairs == ((None, None), (2, MatchKind.SIS_LOGIN_ID))
     (conflict,) = pairing.conflicts
     assert (conflict.students, conflict.candidates) == ((0,), (0, 1))
-    assert conflict.routes == ((0, 0, ("id",)), (0, 1, ("sis_login_id", "email_user")))
+    assert conflict.routes == ((0, 0, (MatchKind.ID,)),
+                              (0, 1, (MatchKind.SIS_LOGIN_ID, MatchKind.EMAIL_USER)))
     assert conflict.describe(TWO, ["101", "ada", "bob"]) == (
         "'101' matches Ada Lovelace (101) by id; 'ada' matches Ada Lovelace (101) by SIS "
         "login id and email user name")
@@ -151,7 +155,7 @@ def test_two_folders_differing_in_letter_case_are_a_conflict_not_a_zero():
 
 
 def test_a_folder_matching_two_students_is_a_conflict():
-    roster = Roster((ADA, RosterStudent("7", "Cy Doe", sis_user_id="101")), "plain",
+    roster = Roster((ADA, RosterStudent("7", "Cy Doe", sis_user_id="101")), RosterFormat.PLAIN,
                     ("id", "name"))
     pairing = pair_students(roster, folders("101"))
     assert pairing.pairs == ((None, None), (None, None))
@@ -162,8 +166,10 @@ def test_a_folder_matching_two_students_is_a_conflict():
 
 
 def test_an_identifier_two_roster_students_share_identifies_neither():
-    twins = Roster((RosterStudent("1", "Jo Smith"), RosterStudent("2", "Jo Smith")), "plain",
-                   ("id", "name"))
-    results = [{"id": {"1"}, "name": {"jo smith"}}, {"id": {"2"}, "name": {"jo smith"}}]
+    twins = Roster((RosterStudent("1", "Jo Smith"), RosterStudent("2", "Jo Smith")),
+                   RosterFormat.PLAIN, ("id", "name"))
+    results = [{MatchKind.ID: {"1"}, MatchKind.NAME: {"jo smith"}},
+               {MatchKind.ID: {"2"}, MatchKind.NAME: {"jo smith"}}]
     pairing = pair_students(twins, results)
-    assert pairing.pairs == ((0, "id"), (1, "id")) and pairing.conflicts == ()
+    assert pairing.pairs == ((0, MatchKind.ID), (1, MatchKind.ID))
+    assert pairing.conflicts == ()

@@ -105,12 +105,12 @@ class Forked(Generic[R]):
         if self._process is None or self._conn is None:
             return self._work()
         try:
-            status, value = self._conn.recv()
+            done, value = self._conn.recv()
         except (EOFError, OSError):
-            status, value = "failed", None
+            done, value = False, None
         finally:
             self.cancel()
-        return value if status == "ok" else self._work()
+        return value if done else self._work()
 
     def cancel(self) -> None:
         """Stop the process (if it still runs) and forget it."""
@@ -125,15 +125,15 @@ class Forked(Generic[R]):
 
 def _send_outcome(conn, work: Callable[[], R]) -> None:
     worker_started()
-    message: tuple[str, object]
+    message: tuple[bool, object]  # whether the work was done, and its value
     try:
-        message = ("ok", work())
+        message = (True, work())
     except Exception:  # noqa: BLE001 - the parent does the work again and sees the error
-        message = ("failed", None)
+        message = (False, None)
     try:
         conn.send(message)
     except Exception:  # noqa: BLE001 - e.g. a value that does not pickle: same as above
-        conn.send(("failed", None))
+        conn.send((False, None))
 
 
 PR_SET_PDEATHSIG = 1  # from <linux/prctl.h>

@@ -20,7 +20,7 @@ LMS) in ``cells``, so an export never overwrites them unknowingly.
 >>> _ = p.write_text("id,name,email\\ns1,Ada Lovelace,ada@uni.edu\\n", encoding="utf-8")
 >>> r = read_roster(p)
 >>> r.format, r.students[0].id, r.students[0].email
-('plain', 's1', 'ada@uni.edu')
+(<RosterFormat.PLAIN: 'plain'>, 's1', 'ada@uni.edu')
 """
 
 from __future__ import annotations
@@ -31,13 +31,21 @@ import os
 import re
 import unicodedata
 from dataclasses import dataclass
+from enum import Enum
 from pathlib import Path
 from typing import Collection, Mapping, Sequence
 
 from .files import read_text
 from .errors import AssignmentError, Location
 
-FORMATS = ("canvas", "moodle", "plain")
+
+class RosterFormat(Enum):
+    """Which export a roster file is (see the module doc), read from its header row."""
+
+    CANVAS = "canvas"
+    MOODLE = "moodle"
+    PLAIN = "plain"
+
 
 _CANVAS_META_ROWS = {"points possible", "muted", "manual posting", ""}
 _CANVAS_TEST_NAMES = {"student, test", "test student"}
@@ -83,7 +91,7 @@ class Roster:
     """
 
     students: tuple[RosterStudent, ...]
-    format: str
+    format: RosterFormat
     header: tuple[str, ...]
     skipped: tuple[tuple[int, str], ...] = ()
     points_possible: tuple[tuple[str, str], ...] = ()
@@ -94,7 +102,28 @@ class Roster:
         return _identity_columns(self.format, self.header)
 
 
-MATCH_KINDS = ("id", "sis_user_id", "sis_login_id", "email", "email_user", "name")
+class MatchKind(Enum):
+    """An identifier a roster student is matched by; members in the order they are tried."""
+
+    ID = "id"
+    SIS_USER_ID = "sis_user_id"
+    SIS_LOGIN_ID = "sis_login_id"
+    EMAIL = "email"
+    EMAIL_USER = "email_user"
+    NAME = "name"
+
+    @property
+    def words(self) -> str:
+        """The identifier as messages name it.
+
+        >>> MatchKind.SIS_USER_ID.words
+        'SIS user id'
+        """
+        return {MatchKind.SIS_USER_ID: "SIS user id", MatchKind.SIS_LOGIN_ID: "SIS login id",
+                MatchKind.EMAIL_USER: "email user name"}.get(self, self.value)
+
+
+MATCH_KINDS = tuple(MatchKind)
 """The identifiers a roster student is matched by, in the order they are tried."""
 
 
@@ -116,18 +145,22 @@ def fold(identifier: str) -> str:
     return unicodedata.normalize("NFC", identifier).strip().casefold()
 
 
-def student_keys(student: RosterStudent) -> dict[str, str]:
-    """A roster student's identifiers by kind (see :data:`MATCH_KINDS`), folded."""
-    email = fold(student.email)
-    return {"id": fold(student.id), "sis_user_id": fold(student.sis_user_id),
-            "sis_login_id": fold(student.sis_login_id), "email": email,
-            "email_user": email.split("@", 1)[0] if "@" in email else "",
-            "name": normalise_name(student.name)}
+def identifier(student: RosterStudent, kind: MatchKind) -> str:
+    """A roster student's identifier of ``kind`` as written (``""`` when it has none); its
+    email user name is its email before the ``@``.
+
+    >>> identifier(RosterStudent("1", "Ada", email="Ada@uni.edu"), MatchKind.EMAIL_USER)
+    'Ada'
+    """
+    if kind is MatchKind.EMAIL_USER:
+        return student.email.split("@", 1)[0] if "@" in student.email else ""
+    return getattr(student, kind.value)
 
 
-KIND_WORDS = {"id": "id", "sis_user_id": "SIS user id", "sis_login_id": "SIS login id",
-              "email": "email", "email_user": "email user name", "name": "name"}
-"""Each kind of :data:`MATCH_KINDS` as messages name it."""
+def student_keys(student: RosterStudent) -> dict[MatchKind, str]:
+    """A roster student's identifiers by kind, folded (a name as :func:`normalise_name`)."""
+    return {kind: normalise_name(student.name) if kind is MatchKind.NAME
+            else fold(identifier(student, kind)) for kind in MatchKind}
 
 
 @dataclass(frozen=True)
@@ -139,14 +172,14 @@ class RosterConflict:
 
     students: tuple[int, ...]
     candidates: tuple[int, ...]
-    routes: tuple[tuple[int, int, tuple[str, ...]], ...]
+    routes: tuple[tuple[int, int, tuple[MatchKind, ...]], ...]
 
     def describe(self, roster: Roster, labels: Sequence[str]) -> str:
         """Every match, with the candidates named by ``labels`` (their folder names or ids):
         ``'101' matches Ada Lovelace (101) by id; 'ada' matches ...``."""
         return "; ".join(
             f"'{labels[c]}' matches {roster.students[s].name or roster.students[s].id} "
-            f"({roster.students[s].id}) by " + " and ".join(KIND_WORDS[k] for k in kinds)
+            f"({roster.students[s].id}) by " + " and ".join(k.words for k in kinds)
             for s, c, kinds in self.routes)
 
 
@@ -155,11 +188,11 @@ class Pairing:
     """The outcome of :func:`pair_students`: ``(candidate index or None, kind or None)`` per
     roster student, in roster order, and the conflicts that left students unpaired."""
 
-    pairs: tuple[tuple[int | None, str | None], ...]
+    pairs: tuple[tuple[int | None, MatchKind | None], ...]
     conflicts: tuple[RosterConflict, ...] = ()
 
 
-def pair_students(roster: Roster, candidates: Sequence[Mapping[str, Collection[str]]]
+def pair_students(roster: Roster, candidates: Sequence[Mapping[MatchKind, Collection[str]]]
                   ) -> Pairing:
     """Pair roster students with candidates, each with at most one, never by a guess.
 
@@ -172,16 +205,16 @@ def pair_students(roster: Roster, candidates: Sequence[Mapping[str, Collection[s
     named with one student's id never wins over that student's own folder.
 
     >>> roster = Roster((RosterStudent("101", "Ada Lovelace", sis_login_id="ada"),
-    ...                  RosterStudent("102", "Bob Roe")), "plain", ("id", "name"))
-    >>> pair_students(roster, [{"sis_login_id": {"ada"}}, {"id": {"999"}}]).pairs
-    ((0, 'sis_login_id'), (None, None))
+    ...                  RosterStudent("102", "Bob Roe")), RosterFormat.PLAIN, ("id", "name"))
+    >>> pair_students(roster, [{MatchKind.SIS_LOGIN_ID: {"ada"}}, {MatchKind.ID: {"999"}}]).pairs
+    ((0, <MatchKind.SIS_LOGIN_ID: 'sis_login_id'>), (None, None))
     """
-    owners: dict[tuple[str, str], list[int]] = {}
+    owners: dict[tuple[MatchKind, str], list[int]] = {}
     for s, student in enumerate(roster.students):
         for kind, key in student_keys(student).items():
             if key:
                 owners.setdefault((kind, key), []).append(s)
-    routes: dict[tuple[int, int], list[str]] = {}
+    routes: dict[tuple[int, int], list[MatchKind]] = {}
     for c, offered in enumerate(candidates):
         for kind in MATCH_KINDS:
             for key in offered.get(kind, ()):
@@ -202,7 +235,7 @@ def pair_students(roster: Roster, candidates: Sequence[Mapping[str, Collection[s
     groups: dict[tuple[str, int], list[tuple[int, int]]] = {}
     for s, c in sorted(routes):
         groups.setdefault(root(("s", s)), []).append((s, c))
-    pairs: list[tuple[int | None, str | None]] = [(None, None)] * len(roster.students)
+    pairs: list[tuple[int | None, MatchKind | None]] = [(None, None)] * len(roster.students)
     conflicts = []
     for links in groups.values():
         students = tuple(sorted({s for s, _ in links}))
@@ -240,7 +273,8 @@ def read_roster(path: str | os.PathLike) -> Roster:
             "...,Email address) or a plain CSV (id,name[,email]); found "
             f"{','.join(header)!r}", where=Location(name, header_line))
     _check_duplicate_headers(header, name, header_line)
-    reader = {"canvas": _canvas_student, "moodle": _moodle_student, "plain": _plain_student}[kind]
+    reader = {RosterFormat.CANVAS: _canvas_student, RosterFormat.MOODLE: _moodle_student,
+              RosterFormat.PLAIN: _plain_student}[kind]
     identity = _identity_columns(kind, header)
     students: list[RosterStudent] = []
     skipped: list[tuple[int, str]] = []
@@ -254,7 +288,7 @@ def read_roster(path: str | os.PathLike) -> Roster:
                 f"expected at most {len(header)} cells as in the header, found {len(cells)}",
                 where=Location(name, line))
         record = {h: (cells[i].strip() if i < len(cells) else "") for i, h in enumerate(header)}
-        if kind == "canvas" and "Points Possible" in cells[0]:
+        if kind is RosterFormat.CANVAS and "Points Possible" in cells[0]:
             # Canvas's own test (gradebook_importer.rb, check_for_non_student_row)
             points_possible = tuple((h, v) for h, v in record.items()
                                     if h not in identity and v)
@@ -300,22 +334,22 @@ def _records(text: str, delimiter: str, name: str) -> list[tuple[int, list[str]]
     return rows
 
 
-def header_format(header: tuple[str, ...]) -> str | None:
+def header_format(header: tuple[str, ...]) -> RosterFormat | None:
     """The roster format a header row belongs to (see module doc), or ``None``.
 
     >>> header_format(("Student", "ID", "SIS User ID", "Section")), header_format(("x",))
-    ('canvas', None)
+    (<RosterFormat.CANVAS: 'canvas'>, None)
     >>> header_format(("LastName", "FirstName", "ID", "SIS User ID", "Section"))
-    'canvas'
+    <RosterFormat.CANVAS: 'canvas'>
     """
     low = {h.lower() for h in header}
     if ({"student", "id"} <= low or {"lastname", "firstname", "id"} <= low) \
             and low & {"sis user id", "sis login id", "section"}:
-        return "canvas"
+        return RosterFormat.CANVAS
     if {"first name", "last name"} <= low or "email address" in low:
-        return "moodle"
+        return RosterFormat.MOODLE
     if {"id", "name"} <= low:
-        return "plain"
+        return RosterFormat.PLAIN
     return None
 
 
@@ -328,10 +362,10 @@ def _check_duplicate_headers(header: tuple[str, ...], name: str, line: int) -> N
         seen.add(h.lower())
 
 
-def _identity_columns(kind: str, header: tuple[str, ...]) -> tuple[str, ...]:
-    if kind == "canvas":
+def _identity_columns(kind: RosterFormat, header: tuple[str, ...]) -> tuple[str, ...]:
+    if kind is RosterFormat.CANVAS:
         return tuple(h for h in header if h.lower() in _CANVAS_IDENTITY)
-    if kind == "moodle":
+    if kind is RosterFormat.MOODLE:
         return tuple(h for h in header if h.lower() in _MOODLE_IDENTITY)
     return tuple(h for h in header if h)
 

@@ -15,8 +15,9 @@ from mechgrade.export import EXPORTERS, ExportOptions, export
 from mechgrade.export.matching import match_roster
 from mechgrade.export.canvas import canvas_column
 from mechgrade.export.moodle import moodle_names
+from mechgrade.export.options import MissingGrade, MoodleKey, Visibility
 from mechgrade.grade.results import GradeReport
-from mechgrade.roster import Roster, RosterStudent
+from mechgrade.roster import MatchKind, Roster, RosterFormat, RosterStudent
 
 FORMULA_STARTS = ("=", "+", "@", "\t", "\r")
 
@@ -92,7 +93,8 @@ def test_canvas_without_any_canvas_identity_writes_no_student_row(report, tmp_pa
 
 def test_canvas_with_a_plain_roster_matches_by_sis_id_with_the_id_left_blank(report, tmp_path):
     roster = Roster((RosterStudent("r1", "Ada Lovelace", sis_user_id="s1001"),
-                     RosterStudent("r2", "Bob Roe")), "plain", ("id", "name", "sis_user_id"))
+                     RosterStudent("r2", "Bob Roe")), RosterFormat.PLAIN,
+                    ("id", "name", "sis_user_id"))
     EXPORTERS["canvas"](report, tmp_path / "canvas.csv", roster=roster)
     rows = read_csv(tmp_path / "canvas.csv")
     assert rows[2:] == [["Ada Lovelace", "", "s1001", "", "", "10"]]
@@ -155,8 +157,8 @@ def test_the_bundled_example_round_trips_into_the_rosters_own_column(tmp_path):
 
 
 def roster_with(columns: list[str]) -> Roster:
-    return Roster((), "canvas", ("Student", "ID", "SIS User ID", "SIS Login ID", "Section",
-                                 *columns, "Current Score"))
+    return Roster((), RosterFormat.CANVAS, ("Student", "ID", "SIS User ID", "SIS Login ID",
+                                            "Section", *columns, "Current Score"))
 
 
 @pytest.mark.parametrize("wanted, column", [
@@ -242,7 +244,7 @@ def test_roster_matching_reports_who_is_not_in_the_roster(report, canvas_roster)
     assert [r.id for r in matched.not_in_roster] == ["x-ghost"]
     assert [s.id for s in matched.no_submission] == ["70007"]
     assert {p.matched_by for p in matched.pairs if p.roster and p.result} == \
-        {"sis_user_id", "name"}
+        {MatchKind.SIS_USER_ID, MatchKind.NAME}
 
 
 def test_an_ambiguous_name_matches_nobody(report, canvas_roster):
@@ -498,6 +500,13 @@ def test_bad_options_are_refused():
                                           "'hidden', 'after_due_date', 'after_published', "
                                           "found 'public'"):
         ExportOptions(gradescope_visibility="public")
+
+
+def test_options_written_as_text_are_read_into_their_types_once():
+    options = ExportOptions(missing="blank", gradescope_visibility="hidden",
+                            moodle_key=MoodleKey.IDNUMBER)
+    assert (options.missing, options.gradescope_visibility, options.moodle_key) == (
+        MissingGrade.BLANK, Visibility.HIDDEN, MoodleKey.IDNUMBER)
 
 
 @pytest.mark.parametrize("fmt", list(EXPORTERS))

@@ -8,14 +8,14 @@ import csv
 from mechgrade.export import EXPORTERS
 from mechgrade.export.matching import match_roster
 from mechgrade.grade.results import AssignmentInfo, GradeReport, ObjectiveInfo, StudentResult
-from mechgrade.roster import Roster, RosterStudent
+from mechgrade.roster import Roster, RosterFormat, RosterStudent
 
 HEADER = ("Student", "ID", "SIS User ID", "SIS Login ID", "Section")
 ANN = RosterStudent("101", "Ann Ash", "ann@uni.edu", "s1", "ann@uni.edu", "A",
                     tuple(zip(HEADER, ("Ash, Ann", "101", "s1", "ann@uni.edu", "A"))))
 BEN = RosterStudent("102", "Ben Bo", "ben@uni.edu", "s2", "ben@uni.edu", "A",
                     tuple(zip(HEADER, ("Bo, Ben", "102", "s2", "ben@uni.edu", "A"))))
-ROSTER = Roster((ANN, BEN), "canvas", (*HEADER, "HW (5)"))
+ROSTER = Roster((ANN, BEN), RosterFormat.CANVAS, (*HEADER, "HW (5)"))
 OBJECTIVES = (ObjectiveInfo("p", "v", "Speed", 2.0),)
 
 

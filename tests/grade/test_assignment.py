@@ -7,8 +7,8 @@ import textwrap
 import pytest
 
 from mechgrade.errors import AssignmentError
-from mechgrade.grade.assignment import Assignment, load_assignment
-from mechgrade.grade.policy import ErrorCarriedForward, GradingPolicy
+from mechgrade.grade.assignment import Assignment, _policy, load_assignment
+from mechgrade.grade.policy import ErrorCarriedForward, GradingPolicy, MissingUnit, ShowWorked
 
 MINIMAL = """\
 id: hw1
@@ -291,3 +291,10 @@ def test_nan_infinity_and_absurd_magnitudes_are_refused(folder, text, expected):
     then wrote nothing)."""
     message = error_of(folder, text)
     assert message.startswith(str(folder / "hw.yaml") + expected[len("hw.yaml"):]), message
+
+
+def test_a_policys_missing_unit_and_worked_solution_are_read_into_their_types():
+    policy = _policy({"missing_unit": {"action": "penalize"}, "worked_solution": "never"})
+    assert (policy.missing_unit, policy.worked_solution) == (MissingUnit.ASSUME,
+                                                             ShowWorked.NEVER)
+    assert type(policy.missing_unit) is MissingUnit and type(policy.worked_solution) is ShowWorked

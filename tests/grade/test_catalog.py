@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from mechgrade.resources import shipped_dir
-from mechgrade.grade.catalog import Analysis, analyses, catalog_entries, catalog_entry
+from mechgrade.grade.catalog import Approach, analyses, catalog_entries, catalog_entry
 from mechgrade.spec import load_problem
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "catalog"
@@ -31,7 +31,7 @@ def test_the_analysis_comes_from_the_model(problem, expected):
 def test_an_entry_has_the_statement_tags_answers_and_the_variants_drawn():
     entry = catalog_entry(DATA / "mixed" / "pendulum_variants.yaml")
     assert (entry.id, entry.tags, entry.analyses) == (
-        "pendulum_variants", ("circular-motion", "particle-kinematics"), (Analysis.KINEMATICS,))
+        "pendulum_variants", ("circular-motion", "particle-kinematics"), (Approach.KINEMATICS,))
     assert [(o.id, o.answer) for o in entry.objectives] == [
         ("speed", "8 ft/s"), ("acc_mag", "37.7359 ft/s^2"),
         ("acc_N", "(-37.7128, 1.32051, 0) ft/s^2 in frame N")]

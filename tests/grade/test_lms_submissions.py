@@ -16,6 +16,7 @@ from mechgrade.errors import SubmissionError
 from mechgrade.grade import lms_submissions
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.lms_submissions import detect_zip_format, read_lms_zip
+from mechgrade.grade.submissions import SubmissionFormat
 from mechgrade.grade.run import grade_plan, plan_assignment
 from mechgrade.grade.lms_submissions import read_any_submissions
 from mechgrade.roster import read_roster
@@ -332,9 +333,10 @@ def test_a_file_that_is_not_a_zip_is_refused(tmp_path):
 
 
 def test_the_formats_are_told_apart_by_their_names():
-    assert detect_zip_format(["submission_metadata.yml", "submission_1/a.txt"]) == \
-        "gradescope-zip"
-    assert detect_zip_format(["Ada Lovelace_1_assignsubmission_file_a.txt"]) == "moodle-zip"
+    assert detect_zip_format(["submission_metadata.yml", "submission_1/a.txt"]) is \
+        SubmissionFormat.GRADESCOPE_ZIP
+    assert detect_zip_format(["Ada Lovelace_1_assignsubmission_file_a.txt"]) is \
+        SubmissionFormat.MOODLE_ZIP
     assert detect_zip_format(["a/b.txt"]) is None
 
 

@@ -56,12 +56,12 @@ def test_author_text_with_backticks_stays_literal_in_the_markdown():
     """A prompt holding a backtick closed the code span its line was written in, and what
     followed (an <img onerror>) was raw HTML to a Markdown renderer."""
     from mechgrade.report.output import worked_markdown
-    from mechgrade.solve.worked import Step, WorkedSolution
+    from mechgrade.solve.worked import WorkedSolution, WorkedStep
 
     prompt = "Magnitude of the `tip` acceleration <img src=x onerror=alert(1)> ``x"
     worked = WorkedSolution("p", "P", (
-        Step("givens", "Givens and what is asked", ("L = 2 ft", "", f"acc_mag: {prompt}")),
-        Step("answer-acc_mag", prompt, ("= 98.5 ft/s^2",))), "")
+        WorkedStep("givens", "Givens and what is asked", ("L = 2 ft", "", f"acc_mag: {prompt}")),
+        WorkedStep("answer-acc_mag", prompt, ("= 98.5 ft/s^2",))), "")
     lines = worked_markdown(worked).splitlines()
     # a code span fenced by more backticks than any run inside it: all of it literal
     assert f"- ``` acc_mag: {prompt} ```" in lines

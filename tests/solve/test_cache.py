@@ -14,6 +14,7 @@ import subprocess
 import sys
 from dataclasses import replace
 from pathlib import Path
+from typing import Callable
 
 import pytest
 
@@ -630,3 +631,24 @@ def test_an_edited_symbolic_answer_is_not_trusted(disk, forget, rewrite_entry):
     assert edited
     forget()
     assert solve(problem).result("acc_mag_symbolic") == right
+
+
+def test_a_kept_plan_entry_is_its_classs_fields_with_each_function_as_source():
+    import dataclasses
+
+    from mechgrade.solve.plan import Level, Mutant, _kept
+
+    @dataclasses.dataclass(frozen=True)
+    class Toy:
+        name: str
+        rate: Callable
+        extra: Callable | None
+        uses: tuple[int, ...]
+
+    toy = _kept(Toy, "name")
+    assert [(f.name, f.type) for f in dataclasses.fields(toy)] == [
+        ("rate", str), ("extra", str | None), ("uses", tuple[int, ...])]
+    assert toy.functions == {"rate", "extra"}
+    for cls, left_out in ((Level, "name"), (Mutant, "objective")):
+        assert [f.name for f in dataclasses.fields(_kept(cls, left_out))] == [
+            f.name for f in dataclasses.fields(cls) if f.name != left_out]

@@ -3,12 +3,18 @@ magnitudes implausible for their unit system (warned, both numbers named)."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
+from typing import get_args
 
 import pytest
 
 from mechgrade.errors import SpecError
+from mechgrade.expressions.syntax import Name
 from mechgrade.spec import load_problem_text
+from mechgrade.spec.dynamics import (Block, Cylinder, Disk, Explicit, Ring, Rod, Shape, Shell,
+                                     Sphere)
+from mechgrade.spec.model import Expr
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -67,3 +73,19 @@ def test_a_body_lighter_than_air_for_its_size_is_warned():
     (found,) = warnings_of(body)
     assert found.startswith("body 'ball': a sphere of mass 1 g and r = 1 m would be at most "
                             "0.000239 kg/m^3, lighter than air")
+
+
+def test_every_shape_bounds_its_own_volume_from_its_sizes():
+    metres = Expr("a", Name("a"))
+    shapes = [Rod(metres, "x"), Ring(metres, "z"), Disk(metres, "z"),
+              Cylinder(metres, metres, "z"), Sphere(metres), Shell(metres),
+              Block((metres, metres, metres)), Explicit((("xx", metres),))]
+    assert {type(s) for s in shapes} == set(get_args(Shape))
+    got = {type(s).__name__: s.volumes(lambda e: 2.0) for s in shapes}
+    expected = {
+        "Rod": (2 * math.pi, 2 * math.pi * 1e-6), "Ring": (16 * math.pi, 8 * math.pi / 1000),
+        "Disk": (16 * math.pi, 8 * math.pi / 1000), "Cylinder": (8 * math.pi, 8 * math.pi),
+        "Sphere": (32 / 3 * math.pi,) * 2, "Shell": (32 / 3 * math.pi, 0.0),
+        "Block": (8.0, 8.0), "Explicit": None}
+    assert got == {name: v and pytest.approx(v) for name, v in expected.items()}
+    assert [s.volumes(lambda e: None) for s in shapes] == [None] * len(shapes)

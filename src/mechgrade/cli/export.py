@@ -8,7 +8,7 @@ import click
 
 from ..errors import ExportError, Location
 from ..export import EXPORTERS, ExportOptions, read_results
-from ..export.options import GRADESCOPE_VISIBILITIES, MOODLE_KEYS
+from ..export.options import MissingGrade, MoodleKey, Visibility
 from ..outfolder import OutputKind
 from .common import (claim_out, main, output_lines, reports_errors, run_arguments,
                      run_inputs, say)
@@ -36,14 +36,14 @@ DEFAULT_OUT = {
               help="Class roster: Canvas gradebook export, Moodle grades export or id,name CSV.")
 @click.option("--out", type=click.Path(path_type=Path), default=None,
               help="Output file (default depends on the format).")
-@click.option("--missing", type=click.Choice(["zero", "blank"]), default="zero",
+@click.option("--missing", type=click.Choice([m.value for m in MissingGrade]), default="zero",
               show_default=True, help="Grade written for a student without a submission.")
 @click.option("--excel-bom", is_flag=True, help="Start CSV files with a UTF-8 BOM for Excel.")
 @click.option("--no-points-possible", is_flag=True,
               help="Canvas: leave out the 'Points Possible' row.")
-@click.option("--moodle-key", type=click.Choice(list(MOODLE_KEYS)), default="email",
+@click.option("--moodle-key", type=click.Choice([k.value for k in MoodleKey]), default="email",
               show_default=True, help="Moodle: the column Moodle maps users by.")
-@click.option("--visibility", type=click.Choice(list(GRADESCOPE_VISIBILITIES)),
+@click.option("--visibility", type=click.Choice([v.value for v in Visibility]),
               default="visible", show_default=True, help="Gradescope: visibility of the tests.")
 @click.option("--canvas-assignment", default=None, metavar="TITLE_OR_ID",
               help="Canvas: the assignment column to fill, as 'Title (12345)', its title or "
@@ -77,9 +77,10 @@ def export_command(results_json: Path, fmt: str, roster: Path | None, out: Path 
     out = out if out is not None else Path(DEFAULT_OUT[fmt])
     if out.exists() and out.resolve() == results_json.resolve():
         raise ExportError(f"{out}: expected an output path other than the results file itself")
-    options = ExportOptions(missing=missing, excel_bom=excel_bom,
+    options = ExportOptions(missing=MissingGrade(missing), excel_bom=excel_bom,
                             points_possible=not no_points_possible,
-                            gradescope_visibility=visibility, moodle_key=moodle_key,
+                            gradescope_visibility=Visibility(visibility),
+                            moodle_key=MoodleKey(moodle_key),
                             canvas_assignment=canvas_assignment,
                             replace_existing=replace_existing, dry_run=dry_run,
                             scale_to=scale_to)

@@ -10,7 +10,7 @@ from pathlib import Path
 import click
 
 from ..files import visible_text
-from ..grade.lms_submissions import SUBMISSION_FORMATS
+from ..grade.submissions import SubmissionFormat
 from ..grade.results import Status, Verdict
 from ..roster import read_roster
 from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
@@ -31,7 +31,8 @@ from .common import (INTERNAL_ERROR_EXIT, claim_out, listed, main, output_lines,
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=None,
               help="Processes to grade with (default: one per core). The outputs are the same "
                    "for any number.")
-@click.option("--submissions-format", type=click.Choice(SUBMISSION_FORMATS), default=None,
+@click.option("--submissions-format", type=click.Choice([f.value for f in SubmissionFormat]),
+              default=None,
               help="What SUBMISSIONS_DIR is (default: detected): a folder, an LMS's download "
                    "zip or a quiz's responses CSV.")
 @click.option("--accept-failing-expect", is_flag=True,
@@ -74,7 +75,9 @@ def grade(assignment: Path, submissions_dir: Path, out_dir: Path, roster: Path |
 
     try:
         report = grade_submissions(spec, submissions_dir, class_roster, progress=progress,
-                                   jobs=jobs, submissions_format=submissions_format,
+                                   jobs=jobs, submissions_format=(
+                                       None if submissions_format is None
+                                       else SubmissionFormat(submissions_format)),
                                    accept_failing_expect=accept_failing_expect)
     finally:
         if bar is not None:

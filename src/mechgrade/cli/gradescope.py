@@ -11,7 +11,7 @@ import click
 from ..errors import MechgradeError, brief_exception
 from ..files import write_json
 from ..export.gradescope import gradescope_failure, gradescope_results
-from ..export.options import GRADESCOPE_VISIBILITIES, ExportOptions
+from ..export.options import ExportOptions, Visibility
 from ..grade.upload import read_upload, submitter
 from ..grade.assignment import load_assignment
 from ..grade.run import failing_expects, failing_expects_error, grade_plan, plan_assignment
@@ -31,7 +31,7 @@ from .common import INTERNAL_ERROR_EXIT, UserFailure, main, say, warn_about_the_
 @click.option("--metadata", "metadata_path", default="/autograder/submission_metadata.json",
               show_default=True, type=click.Path(dir_okay=False, path_type=Path),
               help="Gradescope's submission metadata (names the student; optional).")
-@click.option("--visibility", type=click.Choice(list(GRADESCOPE_VISIBILITIES)),
+@click.option("--visibility", type=click.Choice([v.value for v in Visibility]),
               default="visible", show_default=True,
               help="Visibility of the results and tests; 'after_due_date' keeps revealed "
                    "answers from students until the due date.")
@@ -45,7 +45,7 @@ def gradescope(assignment: Path, submission_dir: Path, results_path: Path,
     A broken assignment or unreadable metadata still writes a results.json that says why
     (score 0), and exits 2.
     """
-    options = ExportOptions(gradescope_visibility=visibility)
+    options = ExportOptions(gradescope_visibility=Visibility(visibility))
     try:
         student, name = submitter(metadata_path)
         spec = load_assignment(assignment)

@@ -29,7 +29,7 @@ import re
 
 from ..errors import ExportError, Location
 from ..grade.results import GradeReport, StudentResult
-from ..roster import Roster, header_format
+from ..roster import Roster, RosterFormat, header_format
 from .cells import format_points, safe_cell, write_csv
 from .changes import Change, decide, not_compared_warning, report_changes
 from .common import conflict_reason, lms_points, lms_score, no_submission_warnings
@@ -50,7 +50,7 @@ def export_canvas(report: GradeReport, out_path: str | os.PathLike, *,
                   roster: Roster | None = None,
                   options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write a Canvas gradebook import CSV (see module doc); return the warnings to show."""
-    canvas_roster = roster if roster is not None and roster.format == "canvas" else None
+    canvas_roster = roster if roster is not None and roster.format is RosterFormat.CANVAS else None
     identity = canvas_roster.identity_header if canvas_roster is not None else CANVAS_IDENTITY
     column = canvas_column(report, roster, options.canvas_assignment)
     ignored = _IGNORED.search(column)
@@ -156,7 +156,7 @@ def canvas_column(report: GradeReport, roster: Roster | None, wanted: str | None
     """
     title, ident = report.assignment.title.strip(), report.assignment.id.strip()
     candidates = assignment_columns(roster) if roster is not None and \
-        roster.format == "canvas" else ()
+        roster.format is RosterFormat.CANVAS else ()
     if wanted is not None and wanted.strip():
         wanted = wanted.strip()
         if not candidates:
@@ -198,7 +198,7 @@ def _identity_cells(identity: tuple[str, ...], pair: Pair, roster: Roster | None
     student, result = pair.roster, pair.result
     if student is None and roster is not None:
         return "not in the roster"
-    if student is not None and roster is not None and roster.format == "canvas":
+    if student is not None and roster is not None and roster.format is RosterFormat.CANVAS:
         if tuple(name for name, _ in student.columns) == identity:
             return [value for _, value in student.columns]
         known = {"student": student.name, "id": student.id, "sis user id": student.sis_user_id,
@@ -222,7 +222,8 @@ def _identity_cells(identity: tuple[str, ...], pair: Pair, roster: Roster | None
 def _canvas_identity(result: StudentResult | None) -> dict[str, str]:
     """A result's identity columns (lower-cased names) if they came from a Canvas gradebook
     export when grading; its ``ID`` is then a Canvas user id."""
-    if result is None or header_format(tuple(k for k, _ in result.identity)) != "canvas":
+    if result is None or \
+            header_format(tuple(k for k, _ in result.identity)) is not RosterFormat.CANVAS:
         return {}
     return {k.strip().lower(): v for k, v in result.identity}
 

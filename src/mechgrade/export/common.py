@@ -7,7 +7,7 @@ from typing import TypeGuard
 from ..grade.results import (AnswerResult, GradeReport, ObjectiveInfo, Status, StudentResult,
                              Verdict)
 from .matching import RosterMatch
-from .options import ExportOptions
+from .options import ExportOptions, MissingGrade
 
 
 def has_submission(result: StudentResult | None) -> TypeGuard[StudentResult]:
@@ -22,7 +22,7 @@ def score_cell(result: StudentResult | None, options: ExportOptions) -> float | 
     score": a bug or a guess never becomes a grade.
     """
     if not has_submission(result):
-        return 0.0 if options.missing == "zero" else ""
+        return 0.0 if options.missing is MissingGrade.ZERO else ""
     if result.status in (Status.NOT_EVALUATED, Status.CONFLICT):
         return ""
     return result.score
@@ -101,6 +101,6 @@ def not_in_roster_warnings(match: RosterMatch) -> tuple[str, ...]:
 
 def no_submission_warnings(match: RosterMatch, options: ExportOptions) -> tuple[str, ...]:
     """One warning per roster student without a submission, saying what grade they get."""
-    written = "0" if options.missing == "zero" else "a blank grade"
+    written = "0" if options.missing is MissingGrade.ZERO else "a blank grade"
     return tuple(f"{s.id} ({s.name}) has no submission; written with {written}"
                  for s in match.no_submission)

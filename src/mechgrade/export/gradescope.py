@@ -42,7 +42,7 @@ from ..roster import Roster
 from ..files import safe_file_names
 from .cells import format_points, write_json
 from .common import answers_by_objective, has_submission, max_score, objective_label
-from .options import ExportOptions
+from .options import ExportOptions, Visibility
 
 
 def export_gradescope(report: GradeReport, out_path: str | os.PathLike, *,
@@ -81,12 +81,14 @@ def gradescope_failure(message: str, options: ExportOptions = ExportOptions()) -
     """
     return {"score": 0.0, "output": f"The autograder could not grade this submission: "
                                     f"{message}", "output_format": "text",
-            "visibility": options.gradescope_visibility, "tests": []}
+            "visibility": options.gradescope_visibility.value, "tests": []}
 
 
 RECEIPT = "Submission received"
-EXPECTED_VISIBILITY = {"visible": "after_due_date", "after_due_date": "after_due_date",
-                       "after_published": "after_published", "hidden": "hidden"}
+EXPECTED_VISIBILITY = {Visibility.VISIBLE: Visibility.AFTER_DUE_DATE,
+                       Visibility.AFTER_DUE_DATE: Visibility.AFTER_DUE_DATE,
+                       Visibility.AFTER_PUBLISHED: Visibility.AFTER_PUBLISHED,
+                       Visibility.HIDDEN: Visibility.HIDDEN}
 """The visibility of the tests holding expected answers, for each chosen visibility: never
 before the due date (students resubmit without limit and would harvest them)."""
 
@@ -121,12 +123,12 @@ def gradescope_results(report: GradeReport, student: StudentResult,
             "max_score": float(answer.max_points),
             "status": "passed" if answer.verdict == Verdict.CORRECT else "failed",
             "output": "\n".join(lines),
-            "visibility": visibility,
+            "visibility": visibility.value,
         })
         if answer.expected is not None:
             expected.append({"name": f"{name}: expected answer",
                              "output": f"Expected: {answer.expected}",
-                             "visibility": EXPECTED_VISIBILITY[visibility]})
+                             "visibility": EXPECTED_VISIBILITY[visibility].value})
     for test in expected:
         tests.append({**test, "number": str(len(tests))})
     summary = [f"{report.assignment.title}: {format_points(student.score)} / "
@@ -142,16 +144,17 @@ def gradescope_results(report: GradeReport, student: StudentResult,
         "output_format": "text",
         "test_output_format": "text",
         "test_name_format": "text",
-        "visibility": visibility,
+        "visibility": visibility.value,
         "tests": tests,
     }
 
 
-_LATER = {"after_due_date": "after the due date", "after_published":
-          "when the grades are published", "hidden": "by your instructor only"}
+_LATER = {Visibility.AFTER_DUE_DATE: "after the due date",
+          Visibility.AFTER_PUBLISHED: "when the grades are published",
+          Visibility.HIDDEN: "by your instructor only"}
 
 
-def _receipt(report: GradeReport, student: StudentResult, visibility: str,
+def _receipt(report: GradeReport, student: StudentResult, visibility: Visibility,
              total: float) -> dict:
     """The always-visible test that says what the autograder read (no points of its own)."""
     lines = list(student.messages)
@@ -164,7 +167,7 @@ def _receipt(report: GradeReport, student: StudentResult, visibility: str,
     else:
         lines.append(f"Answers read ({len(answered)} of {len(report.objectives)}):")
         lines.extend(f"  {objective_label(o)} = {a.answer}" for o, a in answered)
-    if visibility == "visible":
+    if visibility is Visibility.VISIBLE:
         lines.append(f"Score: {format_points(student.score)} / {format_points(total)} points")
     else:
         lines.append(f"The score and the verdicts are shown {_LATER[visibility]}.")

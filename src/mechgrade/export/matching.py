@@ -8,16 +8,16 @@ results and roster students that match other than one to one are a roster confli
 ``conflict``, which no exporter writes as a grade.
 
 >>> from mechgrade.grade.results import AssignmentInfo, GradeReport, StudentResult
->>> from mechgrade.roster import Roster, RosterStudent
+>>> from mechgrade.roster import Roster, RosterFormat, RosterStudent
 >>> report = GradeReport(AssignmentInfo("hw1", "HW 1"), (), (
 ...     StudentResult("s1", "Ada Lovelace", "graded", 3, 3),
 ...     StudentResult("zz", "Ghost", "graded", 1, 3)))
 >>> roster = Roster((RosterStudent("101", "Ada Lovelace", sis_user_id="s1"),
-...                  RosterStudent("102", "Bob Roe")), "plain", ("id", "name"))
+...                  RosterStudent("102", "Bob Roe")), RosterFormat.PLAIN, ("id", "name"))
 >>> m = match_roster(report, roster)
 >>> [(p.roster.id if p.roster else None, p.result.id if p.result else None, p.matched_by)
 ...  for p in m.pairs]
-[('101', 's1', 'sis_user_id'), ('102', None, None), (None, 'zz', None)]
+[('101', 's1', <MatchKind.SIS_USER_ID: 'sis_user_id'>), ('102', None, None), (None, 'zz', None)]
 >>> [s.id for s in m.not_in_roster], [s.id for s in m.no_submission]
 (['zz'], ['102'])
 """
@@ -25,12 +25,16 @@ results and roster students that match other than one to one are a roster confli
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Literal
 
 from ..grade.results import GradeReport, Status, StudentResult
-from ..roster import Roster, RosterStudent, fold, normalise_name, pair_students
+from ..roster import MatchKind, Roster, RosterStudent, fold, normalise_name, pair_students
+
+IdentityKind = Literal["canvas_id", "sis_user_id", "sis_login_id", "email"]
+"""An identifier a result's identity columns may carry (named as :data:`_IDENTITY_KINDS` says)."""
 
 # Which identity keys (lower-cased) of a StudentResult carry which kind of identifier.
-_IDENTITY_KINDS = {
+_IDENTITY_KINDS: dict[IdentityKind, set[str]] = {
     "canvas_id": {"id", "canvas id", "canvas_id", "canvas user id"},
     "sis_user_id": {"sis user id", "sis_user_id", "id number", "idnumber", "student id",
                     "student number"},
@@ -45,7 +49,7 @@ class Pair:
 
     roster: RosterStudent | None
     result: StudentResult | None
-    matched_by: str | None = None
+    matched_by: MatchKind | None = None
 
 
 @dataclass(frozen=True)
@@ -86,20 +90,21 @@ def match_roster(report: GradeReport, roster: Roster | None) -> RosterMatch:
     return RosterMatch(tuple(pairs))
 
 
-def identity_value(result: StudentResult, kind: str) -> str:
+def identity_value(result: StudentResult, kind: IdentityKind) -> str:
     """The identifier of ``kind`` ("canvas_id", "sis_user_id", "sis_login_id", "email") a
     result carries in its identity columns, or ``""``."""
     names = _IDENTITY_KINDS[kind]
     return next((v for k, v in result.identity if k.strip().lower() in names and v), "")
 
 
-def _keys(result: StudentResult) -> dict[str, set[str]]:
+def _keys(result: StudentResult) -> dict[MatchKind, set[str]]:
     """The identifiers a result offers: its id (a submission folder may be named by any of
     them) and the roster columns it carries, folded."""
     # a result in a roster conflict is no one's by its id: only its roster columns name it
     own = fold(result.id) if result.status != Status.CONFLICT else ""
-    keys = {kind: {own, fold(identity_value(result, source))} - {""}
-            for kind, source in (("id", "canvas_id"), ("sis_user_id", "sis_user_id"),
-                                 ("sis_login_id", "sis_login_id"), ("email", "email"))}
-    keys["name"] = {normalise_name(result.name)} - {""}
+    sources: tuple[tuple[MatchKind, IdentityKind], ...] = (
+        (MatchKind.ID, "canvas_id"), (MatchKind.SIS_USER_ID, "sis_user_id"),
+        (MatchKind.SIS_LOGIN_ID, "sis_login_id"), (MatchKind.EMAIL, "email"))
+    keys = {kind: {own, fold(identity_value(result, source))} - {""} for kind, source in sources}
+    keys[MatchKind.NAME] = {normalise_name(result.name)} - {""}
     return keys

@@ -37,18 +37,18 @@ import re
 import time
 
 from ..grade.results import GradeReport, ObjectiveInfo, Status, StudentResult
-from ..roster import Roster, RosterStudent
+from ..roster import Roster, RosterFormat, RosterStudent
 from .cells import format_points, safe_cell, write_csv
 from .changes import Change, ChangeKind, decide, not_compared_warning, report_changes
 from .common import (answers_by_objective, conflict_reason, has_submission, lms_points,
                      lms_score, no_submission_warnings, objective_label)
 from .matching import Pair, identity_value, match_roster
-from .options import ExportOptions
+from .options import ExportOptions, MissingGrade, MoodleKey
 from .unmatched import HeldBack, held_back, write_unmatched
 
 _REMEDY = ("enter those grades in Moodle by hand, or export again with --roster set to the "
            "grades exported from Moodle")
-_KEY_NAMES = {"email": "Email address", "idnumber": "ID number"}
+_KEY_NAMES = {MoodleKey.EMAIL: "Email address", MoodleKey.IDNUMBER: "ID number"}
 
 _GRADE_COLUMN = re.compile(r"(?:[^:]+:\s*)?(?P<title>.*?)\s*\((?:Real|Points|Percentage|Letter)\)")
 
@@ -57,10 +57,10 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
                   roster: Roster | None = None,
                   options: ExportOptions = ExportOptions()) -> tuple[str, ...]:
     """Write a Moodle grade import CSV (see module doc); return the warnings to show."""
-    key = ("Email address", "ID number") if options.moodle_key == "email" \
+    key = ("Email address", "ID number") if options.moodle_key is MoodleKey.EMAIL \
         else ("ID number", "Email address")
     grade, feedback = moodle_columns(report, roster)
-    moodle_roster = roster if roster is not None and roster.format == "moodle" else None
+    moodle_roster = roster if roster is not None and roster.format is RosterFormat.MOODLE else None
     downloaded = LAST_DOWNLOADED if moodle_roster is not None and \
         LAST_DOWNLOADED in moodle_roster.header else None
     rows: list[list[object]] = [[*key, "First name", "Last name", grade, feedback,
@@ -71,7 +71,7 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
     for pair in match.pairs:
         email, number = _keys(pair)
         first, last = moodle_names(pair.roster, pair.result)
-        ids = (email, number) if options.moodle_key == "email" else (number, email)
+        ids = (email, number) if options.moodle_key is MoodleKey.EMAIL else (number, email)
         score = lms_score(pair.result, report, options)
         existing = pair.roster.cell(grade) if moodle_roster is not None and \
             pair.roster is not None else None
@@ -93,7 +93,8 @@ def export_moodle(report: GradeReport, out_path: str | os.PathLike, *,
     if not options.dry_run:
         write_csv(out_path, rows, excel_bom=options.excel_bom)
     # With --missing blank, those students are held back (no grade), not written.
-    warnings = list(no_submission_warnings(match, options)) if options.missing == "zero" else []
+    warnings = list(no_submission_warnings(match, options)) \
+        if options.missing is MissingGrade.ZERO else []
     if moodle_roster is None and len(rows) > 1:
         warnings.append(f"{out_path} was written without the grades exported from Moodle as "
                         f"--roster, so its {_KEY_NAMES[options.moodle_key]} values are "
@@ -189,7 +190,7 @@ def moodle_columns(report: GradeReport, roster: Roster | None) -> tuple[str, str
     ('Homework 1 (Real)', 'Homework 1 (Feedback)')
     """
     title = report.assignment.title.strip()
-    if roster is not None and roster.format == "moodle":
+    if roster is not None and roster.format is RosterFormat.MOODLE:
         for column in roster.header:
             found = _GRADE_COLUMN.fullmatch(column.strip())
             if found and found["title"].casefold() == title.casefold():

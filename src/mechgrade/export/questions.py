@@ -28,7 +28,7 @@ import os
 import re
 import xml.etree.ElementTree as ET
 import zipfile
-from typing import Callable
+from typing import Callable, Literal
 
 from ..files import write_bytes, write_text
 from ..grade.questions import EssayItem, NumberItem, QuestionBank, Variable
@@ -223,7 +223,11 @@ def moodle_quiz(bank: QuestionBank) -> ET.Element:
     return quiz
 
 
-def _header(quiz: ET.Element, kind: str, item) -> ET.Element:
+MoodleType = Literal["essay", "numerical", "calculated"]
+"""The Moodle XML question types written (a ``<question type=...>``)."""
+
+
+def _header(quiz: ET.Element, kind: MoodleType, item) -> ET.Element:
     question = _sub(quiz, "question", type=kind)
     _text(question, "name", item.name)
     text = _html(_rendered(item, lambda v: "{" + v.name + "}"))

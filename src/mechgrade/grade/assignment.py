@@ -25,7 +25,7 @@ from pathlib import Path
 
 from ..errors import AssignmentError, Location
 from ..yamlio import Document, read_yaml
-from .policy import ErrorCarriedForward, GradingPolicy
+from .policy import ErrorCarriedForward, GradingPolicy, MissingUnit, ShowWorked
 
 SCHEMA_FILE = Path(__file__).with_name("assignment.schema.json")
 
@@ -107,9 +107,9 @@ class Assignment:
         False
         """
         rule = self.policy.worked_solution
-        if rule == "after_due_date":
+        if rule == ShowWorked.AFTER_DUE_DATE:
             return self.due is not None and now >= self.due
-        return rule == "always"
+        return rule == ShowWorked.ALWAYS
 
     def where_points(self, key: str) -> Location:
         """Where ``points.<key>`` was written (for messages about unknown objectives)."""
@@ -156,7 +156,7 @@ def _policy(policy: dict) -> GradingPolicy:
     >>> p = _policy({"sig_figs": {"figures": 3, "credit": 0.8},
     ...              "missing_unit": {"action": "penalize", "credit": 0.5}})
     >>> p.written_sig_figs, round(p.written_sig_figs_deduction, 2), p.missing_unit, p.missing_unit_deduction
-    (3, 0.2, 'assume', 0.5)
+    (3, 0.2, <MissingUnit.ASSUME: 'assume'>, 0.5)
     """
     tolerance = policy.get("tolerance") or {}
     sig = policy.get("sig_figs")
@@ -166,7 +166,7 @@ def _policy(policy: dict) -> GradingPolicy:
     ecf = policy.get("ecf") or {}
     return GradingPolicy(
         reveal_answers=bool(policy.get("reveal_answers", False)),
-        worked_solution=policy.get("worked_solution", "after_due_date"),
+        worked_solution=ShowWorked(policy.get("worked_solution", ShowWorked.AFTER_DUE_DATE)),
         rel=_float_or_none(tolerance.get("rel")),
         abs=_float_or_none(tolerance.get("abs")),
         sig_figs=int(tolerance["sig_figs"]) if "sig_figs" in tolerance else None,
@@ -176,7 +176,7 @@ def _policy(policy: dict) -> GradingPolicy:
         written_sig_figs_deduction=(1.0 - float(sig.get("credit", 0.75)) if sig is not None
                                     else 0.25),
         # "assume" is "penalize" keeping full credit; "reject" refuses (its deduction unused)
-        missing_unit="reject" if action == "reject" else "assume",
+        missing_unit=MissingUnit.REJECT if action == "reject" else MissingUnit.ASSUME,
         missing_unit_deduction=(GradingPolicy.missing_unit_deduction if action == "reject"
                                 else 1.0 - float(missing.get("credit", 0.75))
                                 if action == "penalize" else 0.0),

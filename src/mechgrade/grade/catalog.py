@@ -30,7 +30,7 @@ _VIBRATION_CALLS = frozenset({"omega_n", "zeta", "mode_frequency", "mode_damping
                               "mode_shape"})
 
 
-class Analysis(Enum):
+class Approach(Enum):
     """How a problem's instant is reached and what is worked out there: the catalogue's second
     way of filing problems (the first is the author's ``tags:``)."""
 
@@ -66,7 +66,7 @@ class CatalogEntry:
     statement: str
     file: str
     tags: tuple[str, ...]
-    analyses: tuple[Analysis, ...]
+    analyses: tuple[Approach, ...]
     objectives: tuple[CatalogObjective, ...]
     worked: WorkedSolution
     variants: tuple[Draw, ...] = ()
@@ -122,7 +122,7 @@ def catalog_entries(paths) -> tuple[tuple[CatalogEntry, ...], tuple[CatalogFault
     return tuple(entries), tuple(faults)
 
 
-def analyses(problem: Problem) -> tuple[Analysis, ...]:
+def analyses(problem: Problem) -> tuple[Approach, ...]:
     """How ``problem`` is analysed, from its model (never from its tags).
 
     >>> from mechgrade.resources import shipped_dir
@@ -132,15 +132,15 @@ def analyses(problem: Problem) -> tuple[Analysis, ...]:
     """
     dynamics = problem.dynamics
     if dynamics is None:
-        found = [Analysis.KINEMATICS]
+        found = [Approach.KINEMATICS]
     else:
-        kind = {WorkEnergy: Analysis.WORK_ENERGY, Integration: Analysis.INTEGRATION,
-                Impulse: Analysis.IMPACT}
-        found = [kind.get(type(dynamics.analysis), Analysis.INSTANT)]
+        kind = {WorkEnergy: Approach.WORK_ENERGY, Integration: Approach.INTEGRATION,
+                Impulse: Approach.IMPACT}
+        found = [kind.get(type(dynamics.analysis), Approach.INSTANT)]
         if dynamics.design is not None:
-            found.append(Analysis.DESIGN)
+            found.append(Approach.DESIGN)
     if any(_calls(o.find.node) & _VIBRATION_CALLS for o in problem.objectives):
-        found.append(Analysis.VIBRATION)
+        found.append(Approach.VIBRATION)
     return tuple(found)
 
 

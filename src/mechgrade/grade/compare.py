@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass, replace
+from enum import Enum
 from functools import cached_property, lru_cache
 from typing import Sequence, TypeVar
 
@@ -37,7 +38,7 @@ from ..units import describe_dimension, dimension, from_si, judged_in, to_si
 from .answers import (ExpressionAnswer, NumberAnswer, StudentAnswer, VectorAnswer, read_answer,
                       symbol_aliases)
 from .diagnose import G_FT, G_SI, Candidates, Diagnosis, diagnose, trig_in_radians
-from .policy import GradingPolicy
+from .policy import GradingPolicy, MissingUnit
 from .results import Verdict
 
 @dataclass(frozen=True)
@@ -222,7 +223,7 @@ def _resolve_unit(answer_unit: str | None, result: ObjectiveResult, policy: Grad
     if answer_unit is None:
         if not _needs_unit(result.unit):
             return _Units(result.unit)
-        if policy.missing_unit == "reject":
+        if policy.missing_unit == MissingUnit.REJECT:
             return Assessment(Verdict.INCORRECT, 0.0, "missing unit",
                               f"A unit is required (for example {_example_unit(result.unit)}).",
                               read_back)
@@ -531,9 +532,16 @@ def _signed_by_reference(node: Node) -> set[str]:
     return signed
 
 
-def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
-    """How to sample each symbol: ``angle``, ``signed`` (what the solver says may be negative,
-    rates, and symbols the reference treats as signed) or ``positive``."""
+class Domain(Enum):
+    """Where a symbol of a symbolic answer is sampled (see :func:`sample_points`)."""
+
+    ANGLE = "angle"
+    SIGNED = "signed"  # what the solver says may be negative, rates, signed in the reference
+    POSITIVE = "positive"
+
+
+def _symbol_domains(result: ObjectiveResult) -> dict[str, Domain]:
+    """Each symbol's :class:`Domain`."""
     aliases = symbol_aliases(tuple(result.symbols))
     derivatives = {target for key, target in aliases.items() if isinstance(key, tuple)}
     signed = _signed_by_reference(_reference_tree(result.expr, tuple(result.symbols))) \
@@ -545,12 +553,12 @@ def _symbol_kinds(result: ObjectiveResult) -> dict[str, str]:
         unit = units.get(symbol, "")
         dim = str(dimension(unit)) if unit else "dimensionless"
         if dim == "dimensionless" and any(w in unit for w in ("rad", "deg")):
-            kinds[symbol] = "angle"
+            kinds[symbol] = Domain.ANGLE
         elif symbol in derivatives or symbol in signed or dim in ("1 / [time]",
                                                                  "1 / [time] ** 2"):
-            kinds[symbol] = "signed"
+            kinds[symbol] = Domain.SIGNED
         else:
-            kinds[symbol] = "positive"
+            kinds[symbol] = Domain.POSITIVE
     return kinds
 
 
@@ -573,10 +581,10 @@ def sample_points(result: ObjectiveResult, count: int, seed: int = 0) -> dict[st
     digest = zlib.crc32(f"{result.id}|{result.expr}|{seed}".encode("utf-8", "replace"))
     rng = np.random.default_rng(digest)
     env = {"E": np.full(count, math.e)}
-    for symbol, kind in _symbol_kinds(result).items():
-        if kind == "angle":
+    for symbol, kind in _symbol_domains(result).items():
+        if kind is Domain.ANGLE:
             env[symbol] = rng.uniform(0.1, 1.45, count)
-        elif kind == "signed":
+        elif kind is Domain.SIGNED:
             env[symbol] = rng.uniform(0.5, 2.5, count) * rng.choice([-1.0, 1.0], count)
         else:
             env[symbol] = rng.uniform(0.5, 2.5, count)
@@ -809,8 +817,8 @@ def _sympy_equivalent(student: Node, reference: Node, result: ObjectiveResult) -
     import sympy
 
     from ..expressions.build import to_sympy
-    kinds = _symbol_kinds(result)
-    table = {s: sympy.Symbol(s, positive=kinds[s] != "signed", real=True)
+    kinds = _symbol_domains(result)
+    table = {s: sympy.Symbol(s, positive=kinds[s] is not Domain.SIGNED, real=True)
              for s in result.symbols}
     table["E"] = sympy.E
 

@@ -46,7 +46,8 @@ from ..roster import Roster, normalise_name
 from ..yamlio import read_yaml_text
 from .archives import Member, read_member, safe_members
 from .results import SkippedEntry
-from .submissions import MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES, Submission, SubmissionSet
+from .submissions import (MAX_FILE_BYTES, SUFFIXES, SYSTEM_NAMES, Submission,
+                          SubmissionFormat, SubmissionSet)
 from .upload import read_upload
 
 MAX_MEMBERS = 100_000
@@ -56,9 +57,8 @@ MAX_TOTAL_BYTES = 512_000_000
 MAX_NESTED_ZIP_BYTES = 50_000_000
 """A zip a student uploaded, inside the download, is read up to this size."""
 
-ZIP_FORMATS = ("canvas-zip", "moodle-zip", "gradescope-zip")
-SUBMISSION_FORMATS = ("folder", *ZIP_FORMATS, "canvas-quiz-csv", "moodle-quiz-csv")
-"""What ``mechgrade grade --submissions-format`` names (detected when not named)."""
+ZIP_FORMATS = (SubmissionFormat.CANVAS_ZIP, SubmissionFormat.MOODLE_ZIP,
+               SubmissionFormat.GRADESCOPE_ZIP)
 CANVAS_MEMBER = re.compile(r"(?:(?P<name>.*?)_)??(?:(?P<late>late)_)?(?P<user>\d+)_"
                            r"(?P<attachment>\d+)_(?P<file>.+)", re.DOTALL)
 CANVAS_ONLINE = re.compile(r"(?:.*?_)??(?:late_)?(?P<user>\d+)_(?P<kind>text|link)\.html")
@@ -75,27 +75,27 @@ class _Files:
     notes: list[str]
 
 
-def detect_zip_format(names: list[str]) -> str | None:
+def detect_zip_format(names: list[str]) -> SubmissionFormat | None:
     """Which LMS made a download zip, from its member names (``None``: none of them).
 
     >>> detect_zip_format(["lovelaceada_101_9001_answers.yaml"])
-    'canvas-zip'
+    <SubmissionFormat.CANVAS_ZIP: 'canvas-zip'>
     >>> detect_zip_format(["Ada Lovelace_77_assignsubmission_file_/answers.yaml"])
-    'moodle-zip'
+    <SubmissionFormat.MOODLE_ZIP: 'moodle-zip'>
     """
     files = [n for n in names if not _system(n)]
     if any(PurePosixPath(n).name == GRADESCOPE_METADATA and len(PurePosixPath(n).parts) <= 2
            for n in files):
-        return "gradescope-zip"
+        return SubmissionFormat.GRADESCOPE_ZIP
     if files and all(MOODLE_MEMBER.fullmatch(n) for n in files):
-        return "moodle-zip"
+        return SubmissionFormat.MOODLE_ZIP
     top = [n for n in files if "/" not in n]
     if top and all(CANVAS_MEMBER.fullmatch(n) or CANVAS_ONLINE.fullmatch(n) for n in top):
-        return "canvas-zip"
+        return SubmissionFormat.CANVAS_ZIP
     return None
 
 
-def read_lms_zip(path: str | Path, fmt: str | None = None, *, keys=None,
+def read_lms_zip(path: str | Path, fmt: SubmissionFormat | None = None, *, keys=None,
                  roster: Roster | None = None) -> SubmissionSet:
     """Read a download zip of ``fmt`` (detected when ``None``): every student's submission,
     every member not read in ``skipped``. A zip that cannot be opened at all raises
@@ -149,14 +149,15 @@ def _system(name: str) -> bool:
     return any(p.startswith(".") or p in SYSTEM_NAMES for p in PurePosixPath(name).parts)
 
 
-def _group(archive: zipfile.ZipFile, fmt: str, members: list[Member], label: str,
+def _group(archive: zipfile.ZipFile, fmt: SubmissionFormat, members: list[Member], label: str,
            skipped: list[SkippedEntry], roster: Roster | None
            ) -> tuple[dict[str, _Files], list[str]]:
     """Each student's members (by the student's id), by the naming rule of ``fmt``."""
     students: dict[str, _Files] = defaultdict(lambda: _Files([], []))
     notes: list[str] = []
-    metadata = _gradescope_metadata(archive, members, label) if fmt == "gradescope-zip" else {}
-    names = _roster_names(roster) if fmt == "moodle-zip" else {}
+    metadata = _gradescope_metadata(archive, members, label) \
+        if fmt == SubmissionFormat.GRADESCOPE_ZIP else {}
+    names = _roster_names(roster) if fmt == SubmissionFormat.MOODLE_ZIP else {}
     for member in members:
         shown = f"{label}/{member.name}"
         if _system(member.name):
@@ -169,7 +170,7 @@ def _group(archive: zipfile.ZipFile, fmt: str, members: list[Member], label: str
             continue
         for student in who:
             students[student].files.append((member, file_name))
-    if fmt == "moodle-zip" and roster is not None:
+    if fmt == SubmissionFormat.MOODLE_ZIP and roster is not None:
         unmatched = sorted({s for s in students if s not in {r.id for r in roster.students}})
         if unmatched:
             notes.append(f"{len(unmatched)} Moodle submission(s) matched no roster student "
@@ -178,10 +179,10 @@ def _group(archive: zipfile.ZipFile, fmt: str, members: list[Member], label: str
     return students, notes
 
 
-def _owner(fmt: str, name: str, metadata: dict, names: dict[str, str]
+def _owner(fmt: SubmissionFormat, name: str, metadata: dict, names: dict[str, str]
            ) -> tuple[list[str], str, str]:
     """(students, the file's own name, why it is not a submission file or ``""``)."""
-    if fmt == "canvas-zip":
+    if fmt == SubmissionFormat.CANVAS_ZIP:
         if "/" in name:
             return [], "", "not a Canvas submission file (the download holds no folders)"
         online = CANVAS_ONLINE.fullmatch(name)
@@ -192,7 +193,7 @@ def _owner(fmt: str, name: str, metadata: dict, names: dict[str, str]
         if not found:
             return [], "", "not named as Canvas names submission files"
         return [found["user"]], found["file"], ""
-    if fmt == "moodle-zip":
+    if fmt == SubmissionFormat.MOODLE_ZIP:
         found = MOODLE_MEMBER.fullmatch(name)
         if not found:
             return [], "", "not named as Moodle names submission files"
@@ -307,7 +308,7 @@ def _relabelled(submission: Submission, folder: str, shown: dict[str, str],
 
 
 def read_any_submissions(path: str | os.PathLike, *, keys=None, jobs: int = 1,
-                         roster: Roster | None = None, fmt: str | None = None,
+                         roster: Roster | None = None, fmt: SubmissionFormat | None = None,
                          drawn_keys=frozenset()) -> SubmissionSet:
     """The submissions at ``path``: a folder (:func:`mechgrade.grade.submissions.read_submissions`),
     a download zip (:func:`read_lms_zip`) or a quiz's responses
@@ -316,9 +317,9 @@ def read_any_submissions(path: str | os.PathLike, *, keys=None, jobs: int = 1,
     from .submissions import read_submissions
 
     path = Path(path)
-    if fmt in (None, "folder") and path.is_dir():
+    if fmt in (None, SubmissionFormat.FOLDER) and path.is_dir():
         return read_submissions(path, keys=keys, jobs=jobs)
-    if fmt == "folder":
+    if fmt == SubmissionFormat.FOLDER:
         raise SubmissionError("expected a folder of submissions, found a file",
                               where=_where(path))
     if fmt in ZIP_FORMATS or (fmt is None and path.suffix.lower() == ".zip"):

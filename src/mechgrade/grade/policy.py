@@ -15,10 +15,22 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import AssignmentError
+from ..expressions.functions import StrEnum
 
-MISSING_UNIT_CHOICES = ("reject", "assume")
-WORKED_SOLUTION = ("always", "after_due_date", "never")
-"""When feedback pages show the worked solution (``policy.worked_solution``)."""
+
+class MissingUnit(StrEnum):
+    """What a bare number gets where a unit is expected: refused, or the objective's unit."""
+
+    REJECT = "reject"
+    ASSUME = "assume"
+
+
+class ShowWorked(StrEnum):
+    """When feedback pages show the worked solution (``policy.worked_solution``)."""
+
+    ALWAYS = "always"
+    AFTER_DUE_DATE = "after_due_date"
+    NEVER = "never"
 
 
 @dataclass(frozen=True)
@@ -39,15 +51,15 @@ class GradingPolicy:
     * ``written_sig_figs``: require ``n`` written significant figures (liberal by default, as
       STACK's NumSigFigs; ``written_sig_figs_strict`` reads ``100`` as exactly one figure);
       a correct value written otherwise loses ``written_sig_figs_deduction``.
-    * ``missing_unit``: ``"reject"`` a bare number, or ``"assume"`` the objective's unit and
-      deduct ``missing_unit_deduction``.
+    * ``missing_unit``: reject a bare number, or assume the objective's unit and deduct
+      ``missing_unit_deduction`` (:class:`MissingUnit`).
     * ``partial_credit``: credit for automatic diagnoses, by code (``(("sign", 0.5),)``);
       author-declared mistakes carry their own credit.
     * ``symbolic_rel``/``symbolic_points``/``seed``: expression equivalence by evaluation.
     * ``separate_mistakes``: tighten an objective's relative tolerance to the one that puts
       every generated mistake outside it (:func:`mechgrade.solve.mutants.separating_rel`).
-    * ``reveal_answers``: feedback shows the reference answers; ``worked_solution`` (one of
-      :data:`WORKED_SOLUTION`) when it shows each problem's worked solution; ``ecf`` the
+    * ``reveal_answers``: feedback shows the reference answers; ``worked_solution``
+      (:class:`ShowWorked`) when it shows each problem's worked solution; ``ecf`` the
       credit of error carried forward (:mod:`mechgrade.grade.ecf`).
     """
 
@@ -57,7 +69,7 @@ class GradingPolicy:
     written_sig_figs: int | None = None
     written_sig_figs_strict: bool = False
     written_sig_figs_deduction: float = 0.25
-    missing_unit: str = "reject"
+    missing_unit: MissingUnit = MissingUnit.REJECT
     missing_unit_deduction: float = 0.25
     partial_credit: tuple[tuple[str, float], ...] = ()
     symbolic_rel: float = 1e-6
@@ -65,7 +77,7 @@ class GradingPolicy:
     seed: int = 0
     separate_mistakes: bool = False
     reveal_answers: bool = False
-    worked_solution: str = "after_due_date"
+    worked_solution: ShowWorked = ShowWorked.AFTER_DUE_DATE
     ecf: ErrorCarriedForward = ErrorCarriedForward()
 
     def __post_init__(self) -> None:
@@ -84,8 +96,9 @@ class GradingPolicy:
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and 0 <= value <= 1):
                 fail(name, "a number from 0 to 1", value)
-        if self.missing_unit not in MISSING_UNIT_CHOICES:
-            fail("missing_unit", "one of " + ", ".join(MISSING_UNIT_CHOICES), self.missing_unit)
+        for name, kind in (("missing_unit", MissingUnit), ("worked_solution", ShowWorked)):
+            if getattr(self, name) not in list(kind):
+                fail(name, "one of " + ", ".join(kind), getattr(self, name))
         if self.partial_credit:
             # the codes live with the diagnoses, whose module loads numpy: only when needed
             from .diagnose import CODES
@@ -99,9 +112,6 @@ class GradingPolicy:
             fail("symbolic_rel", "a number between 0 and 1", self.symbolic_rel)
         if not (isinstance(self.symbolic_points, int) and 3 <= self.symbolic_points <= 200):
             fail("symbolic_points", "a whole number from 3 to 200", self.symbolic_points)
-        if self.worked_solution not in WORKED_SOLUTION:
-            fail("worked_solution", "one of " + ", ".join(WORKED_SOLUTION),
-                 self.worked_solution)
         if not (isinstance(self.ecf.credit, (int, float)) and 0 <= self.ecf.credit <= 1):
             fail("ecf.credit", "a number from 0 to 1", self.ecf.credit)
 

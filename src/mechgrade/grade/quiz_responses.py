@@ -29,9 +29,9 @@ from pathlib import Path
 from ..errors import Location, SubmissionError
 from ..files import clean_text, read_text
 from .results import SkippedEntry
-from .submissions import Submission, SubmissionSet, SubmissionStatus
+from .submissions import Submission, SubmissionFormat, SubmissionSet, SubmissionStatus
 
-QUIZ_FORMATS = ("canvas-quiz-csv", "moodle-quiz-csv")
+QUIZ_FORMATS = (SubmissionFormat.CANVAS_QUIZ_CSV, SubmissionFormat.MOODLE_QUIZ_CSV)
 KEY = re.compile(r"mechgrade key:\s*(?P<key>[A-Za-z0-9_][A-Za-z0-9_.-]*\.[A-Za-z_][A-Za-z0-9_]*)")
 MAX_BYTES = 100_000_000
 _CANVAS_QUESTION = re.compile(r"(?P<id>\d+): (?P<text>.*)", re.DOTALL)
@@ -46,7 +46,7 @@ def key_marker(key: str) -> str:
     return f"(mechgrade key: {key})"
 
 
-def read_quiz_responses(path: str | Path, fmt: str | None = None, *, keys=None,
+def read_quiz_responses(path: str | Path, fmt: SubmissionFormat | None = None, *, keys=None,
                         drawn_keys=frozenset()) -> SubmissionSet:
     """Read a quiz's responses CSV (``fmt`` one of :data:`QUIZ_FORMATS`, detected when
     ``None``); raises :class:`SubmissionError` at the line of anything malformed."""
@@ -63,21 +63,21 @@ def read_quiz_responses(path: str | Path, fmt: str | None = None, *, keys=None,
         raise SubmissionError("expected a header row, found an empty file", where=Location(name))
     header = [h.strip() for h in rows[0]]
     fmt = fmt or _detect(header)
-    if fmt == "canvas-quiz-csv":
+    if fmt == SubmissionFormat.CANVAS_QUIZ_CSV:
         return _canvas(path, header, rows[1:], keys, drawn_keys)
-    if fmt == "moodle-quiz-csv":
+    if fmt == SubmissionFormat.MOODLE_QUIZ_CSV:
         return _moodle(path, header, rows[1:], keys, drawn_keys)
     raise SubmissionError("expected a Canvas quiz 'Student Analysis' CSV (name,id,...,section,"
                           "...) or a Moodle quiz 'Responses' CSV (...,Response 1,...), found "
                           f"the header {','.join(header[:6])!r}...", where=Location(name, 1))
 
 
-def _detect(header: list[str]) -> str | None:
+def _detect(header: list[str]) -> SubmissionFormat | None:
     low = [h.lower() for h in header]
     if low[:2] == ["name", "id"] and "section" in low:
-        return "canvas-quiz-csv"
+        return SubmissionFormat.CANVAS_QUIZ_CSV
     if any(re.fullmatch(r"response \d+", h) for h in low):
-        return "moodle-quiz-csv"
+        return SubmissionFormat.MOODLE_QUIZ_CSV
     return None
 
 

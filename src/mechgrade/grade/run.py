@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Callable, Iterable
 from ..errors import (AssignmentError, MechgradeError, SpecError, SpecErrors,
                       brief_exception)
 from ..parallel import Forked, fork_map, outcome, raise_first
-from ..roster import MATCH_KINDS, fold, pair_students
+from ..roster import MatchKind, fold, identifier, pair_students
 from ..spec.model import Objective, ObjectiveKind, Problem
 from .assignment import Assignment
 from .ecf import CarriedForward, Resolver, listing, upstream_objective
@@ -38,7 +38,7 @@ from .lms_submissions import read_any_submissions
 from .results import (ECF_DIAGNOSIS, EQUATIONS_OBJECTIVE, AnswerResult, AssignmentInfo, FailingExpect, GradeReport,
                       LoadResult, ObjectiveInfo, Status, StudentResult, Verdict, unit_text)
 from .policy import GradingPolicy
-from .submissions import Submission, SubmissionSet, SubmissionStatus
+from .submissions import Submission, SubmissionFormat, SubmissionSet, SubmissionStatus
 
 if TYPE_CHECKING:  # importing the solver package loads sympy and scipy: only when solving
     from ..solve.derivation import DerivationInstant, MotionSamples
@@ -417,7 +417,7 @@ def failing_expects_error(failing: tuple[FailingExpect, ...]) -> SpecError:
 
 def grade_submissions(assignment: Assignment, submissions_dir: str | Path, roster=None, *,
                       progress: Progress | None = None, jobs: int = 1,
-                      submissions_format: str | None = None,
+                      submissions_format: SubmissionFormat | None = None,
                       accept_failing_expect: bool = False) -> GradeReport:
     """Grade every submission in ``submissions_dir`` (and list every ``roster`` student).
 
@@ -616,12 +616,13 @@ def _people(submissions: SubmissionSet, roster) -> tuple[list[tuple[_Person, Sub
     if roster is None:
         return [(_Person(s.student, ""), s) for s in submissions.students], ()
     # A submission folder may be named by any of a student's identifiers.
-    candidates = [{kind: {fold(s.student)} for kind in MATCH_KINDS if kind != "name"}
-                  for s in submissions.students]
+    candidates: list[dict[MatchKind, set[str]]] = [
+        {kind: {fold(s.student)} for kind in MatchKind if kind is not MatchKind.NAME}
+        for s in submissions.students]
     pairing = pair_students(roster, candidates)
     kinds = Counter(kind for _, kind in pairing.pairs if kind is not None)
     # A student without a submission is named like the submissions that were matched.
-    usual = kinds.most_common(1)[0][0] if kinds else "id"
+    usual = kinds.most_common(1)[0][0] if kinds else MatchKind.ID
     labels = [s.student for s in submissions.students]
     conflicted: dict[tuple[str, int], str] = {}
     notes = []
@@ -640,7 +641,7 @@ def _people(submissions: SubmissionSet, roster) -> tuple[list[tuple[_Person, Sub
             out.append((_Person(found.student, student.name, identity, True, student.id),
                         found))
         else:
-            sid = _roster_value(student, usual) or student.id
+            sid = identifier(student, usual) or student.id
             out.append((_Person(sid, student.name, identity, True, student.id,
                                 conflicted.get(("s", number), "")), None))
     claimed = {index for index, _ in pairing.pairs if index is not None}
@@ -649,12 +650,6 @@ def _people(submissions: SubmissionSet, roster) -> tuple[list[tuple[_Person, Sub
             out.append((_Person(submission.student, "", (), False,
                                 conflict=conflicted.get(("c", i), "")), submission))
     return out, tuple(notes)
-
-
-def _roster_value(student, kind: str) -> str:
-    if kind == "email_user":
-        return student.email.split("@", 1)[0] if "@" in student.email else ""
-    return getattr(student, kind, "") or ""
 
 
 def _grade_student_safely(plan: Plan, judge: "_Judge", person: _Person,

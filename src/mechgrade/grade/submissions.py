@@ -26,6 +26,7 @@ import os
 import stat
 import unicodedata
 from dataclasses import dataclass
+from enum import Enum
 from functools import partial
 from pathlib import Path
 
@@ -57,6 +58,18 @@ class _Unread(SubmissionError):
     def __init__(self, message: str, *, where=None, notes: list[str] | tuple = ()) -> None:
         super().__init__(message, where=where)
         self.notes = tuple(notes)
+
+
+class SubmissionFormat(StrEnum):
+    """What a class's hand-ins come as: a folder, an LMS's download zip or a quiz's responses
+    CSV (``mechgrade grade --submissions-format``)."""
+
+    FOLDER = "folder"
+    CANVAS_ZIP = "canvas-zip"
+    MOODLE_ZIP = "moodle-zip"
+    GRADESCOPE_ZIP = "gradescope-zip"
+    CANVAS_QUIZ_CSV = "canvas-quiz-csv"
+    MOODLE_QUIZ_CSV = "moodle-quiz-csv"
 
 
 class SubmissionStatus(StrEnum):
@@ -184,22 +197,22 @@ def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list,
         skipped.append(SkippedEntry(shown, f"{SYSTEM_NAMES[name]}, not a submission"))
         return
     path = root / name
-    kind = _kind_of(path)
-    if kind == "dangling":
+    kind, what = _kind_of(path)
+    if kind is _Entry.DANGLING:
         skipped.append(SkippedEntry(shown, f"a link to nothing ('{_link_target(path)}')"))
         return
-    is_answer_file = kind == "file" and Path(name).suffix.lower() in SUFFIXES
-    if kind not in ("folder", "file") or (kind == "file" and not is_answer_file):
-        reason = NOT_A_SUBMISSION if kind == "file" else f"not a file or folder ({kind})"
+    is_answer_file = kind is _Entry.FILE and Path(name).suffix.lower() in SUFFIXES
+    if kind is _Entry.OTHER or (kind is _Entry.FILE and not is_answer_file):
+        reason = NOT_A_SUBMISSION if kind is _Entry.FILE else f"not a file or folder ({what})"
         skipped.append(SkippedEntry(shown, reason))
         return
-    student = clean_text(name if kind == "folder" else Path(name).stem)
+    student = clean_text(name if kind is _Entry.FOLDER else Path(name).stem)
     sources = found.setdefault(student, [])
     link = _link_problem(path, root, own=name)
     if link is not None:
         sources.append(_Source(shown, None, link, skipped=(SkippedEntry(shown, link),)))
         return
-    if kind == "folder":
+    if kind is _Entry.FOLDER:
         inner = _folder_sources(path, root, shown, own=name)
         if not any(s.path or s.problem or s.ignored for s in inner):
             inner.append(_Source(shown, None, None, empty=True))
@@ -208,23 +221,33 @@ def _sort_entry(entry: os.DirEntry, root: Path, found: dict, skipped: list,
         sources.append(_Source(shown, path, None))
 
 
-def _kind_of(path: Path) -> str:
-    """``folder``, ``file``, ``dangling`` (a link to nothing) or what else the entry is."""
+class _Entry(Enum):
+    """What a folder's entry is, as a submission reader tells them apart."""
+
+    FOLDER = "folder"
+    FILE = "file"
+    DANGLING = "a link to nothing"
+    OTHER = "something else"
+
+
+def _kind_of(path: Path) -> tuple[_Entry, str]:
+    """What the entry at ``path`` is, and in words (``a FIFO``, ``missing``, ...)."""
     try:
         info = os.stat(path)
     except FileNotFoundError:
-        return "dangling" if os.path.islink(path) else "missing"
+        return (_Entry.DANGLING, _Entry.DANGLING.value) if os.path.islink(path) \
+            else (_Entry.OTHER, "missing")
     except OSError as exc:
-        return f"unreadable: {exc.strerror or exc}"
+        return _Entry.OTHER, f"unreadable: {exc.strerror or exc}"
     if stat.S_ISDIR(info.st_mode):
-        return "folder"
+        return _Entry.FOLDER, _Entry.FOLDER.value
     if stat.S_ISREG(info.st_mode):
-        return "file"
+        return _Entry.FILE, _Entry.FILE.value
     for test, noun in ((stat.S_ISFIFO, "a FIFO"), (stat.S_ISSOCK, "a socket"),
                        (stat.S_ISCHR, "a device"), (stat.S_ISBLK, "a device")):
         if test(info.st_mode):
-            return noun
-    return "an unknown kind of entry"
+            return _Entry.OTHER, noun
+    return _Entry.OTHER, "an unknown kind of entry"
 
 
 def _link_target(path: Path) -> str:
@@ -287,7 +310,8 @@ def _folder_sources(folder: Path, root: Path, label: str, *, own: str | None = N
         shown = f"{label}/{clean_text(entry.name)}"
         path = folder / entry.name
         problem = (f"is a link to nothing ('{_link_target(path)}')"
-                   if _kind_of(path) == "dangling" else _link_problem(path, root, own=own))
+                   if _kind_of(path)[0] is _Entry.DANGLING
+                   else _link_problem(path, root, own=own))
         sources.append(_Source(shown, None if problem else path, problem,
                                renamed=entry.name not in ANSWER_FILES,
                                skipped=(SkippedEntry(shown, problem),) if problem else ()))

@@ -45,7 +45,7 @@ MAX_METADATA_BYTES = 10_000_000
 
 
 @dataclass(frozen=True)
-class Candidate:
+class AnswerFile:
     """A file that may hold the answers: where it is (as shown to the student) and how to get
     its bytes."""
 
@@ -103,9 +103,9 @@ def read_upload(folder: str | Path, student: str, *, keys=None) -> Upload:
     return Upload(replace(read, messages=tuple(messages), files=files), chosen.label)
 
 
-def candidates(folder: Path, notes: list[str]) -> list[Candidate]:
+def candidates(folder: Path, notes: list[str]) -> list[AnswerFile]:
     """Every file of ``folder`` (and member of its zip files) with an answers suffix."""
-    found: list[Candidate] = []
+    found: list[AnswerFile] = []
     seen = 0
     for current, dirs, files in os.walk(folder, followlinks=False):
         rel = Path(current).relative_to(folder)
@@ -132,11 +132,11 @@ def candidates(folder: Path, notes: list[str]) -> list[Candidate]:
             if suffix == ".zip":
                 found.extend(_zip_members(path, label, depth, notes))
             elif suffix in SUFFIXES:
-                found.append(Candidate(label, depth, info.st_size, path=path))
+                found.append(AnswerFile(label, depth, info.st_size, path=path))
     return found
 
 
-def choose(found: list[Candidate], notes: list[str]) -> Candidate | None:
+def choose(found: list[AnswerFile], notes: list[str]) -> AnswerFile | None:
     """The answers file by the rule of the module doc, or ``None`` (``notes`` says why)."""
     rank = {name: i for i, name in enumerate(ANSWER_FILES)}
     named = [c for c in found if PurePosixPath(c.label).name.lower() in rank]
@@ -156,7 +156,7 @@ def _wanted(name: str) -> bool:
     return not name.startswith(".") and name not in SYSTEM_NAMES
 
 
-def _zip_members(path: Path, label: str, depth: int, notes: list[str]) -> list[Candidate]:
+def _zip_members(path: Path, label: str, depth: int, notes: list[str]) -> list[AnswerFile]:
     try:
         if path.stat().st_size > MAX_ZIP_BYTES:
             notes.append(f"'{label}' is larger than {MAX_ZIP_BYTES} bytes; it was not opened")
@@ -179,7 +179,7 @@ def _zip_members(path: Path, label: str, depth: int, notes: list[str]) -> list[C
             continue
         if PurePosixPath(member.name).suffix.lower() not in SUFFIXES:
             continue
-        out.append(Candidate(clean_text(f"{label}/{member.name}"), depth + len(parts),
+        out.append(AnswerFile(clean_text(f"{label}/{member.name}"), depth + len(parts),
                              member.info.file_size, zip_path=path,
                              member=member.info.filename))
     return out
@@ -192,7 +192,7 @@ def archive_of(path: Path) -> zipfile.ZipFile:
         return archive
 
 
-def _bytes_of(chosen: Candidate, notes: list[str]) -> bytes | None:
+def _bytes_of(chosen: AnswerFile, notes: list[str]) -> bytes | None:
     """The chosen file's bytes, at most ``MAX_FILE_BYTES`` + 1 of them (the answers reader
     refuses longer files with their size); ``None`` with a note if it cannot be read."""
     try:

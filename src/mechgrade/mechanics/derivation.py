@@ -6,6 +6,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
+from enum import Enum
 from functools import lru_cache
 from html import unescape
 
@@ -105,8 +106,44 @@ class Row:
     caption: str = ""
 
 
+class Motion(Enum):
+    """What a worked step composes for a point: its velocity or its acceleration; the value
+    begins the step's anchor (``vel-P``)."""
+
+    VELOCITY = "vel"
+    ACCELERATION = "acc"
+
+    @property
+    def noun(self) -> str:
+        """``velocity`` or ``acceleration``: also the name of a drawn point's value."""
+        return self.name.lower()
+
+    @property
+    def letter(self) -> str:
+        """Its textbook symbol (``v``, ``a``).
+
+        >>> Motion.ACCELERATION.letter, Motion.VELOCITY.anchor("P")
+        ('a', 'vel-P')
+        """
+        return self.noun[0]
+
+    def anchor(self, point: str) -> str:
+        """The anchor of the step composing ``point``'s motion."""
+        return f"{self.value}-{point}"
+
+    @staticmethod
+    def of_anchor(anchor: str) -> tuple[Motion, str] | None:
+        """The motion and point a step's anchor composes; ``None`` for another step.
+
+        >>> Motion.of_anchor("acc-P"), Motion.of_anchor("points")
+        ((<Motion.ACCELERATION: 'acc'>, 'P'), None)
+        """
+        prefix, _, point = anchor.partition("-")
+        return next(((m, point) for m in Motion if m.value == prefix and point), None)
+
+
 @dataclass(frozen=True)
-class Step:
+class WorkedStep:
     """One step of the worked solution: a title, lines of text and equations."""
 
     anchor: str
@@ -126,7 +163,7 @@ mistake that leaves each out (``coriolis_half`` halves the Coriolis row)."""
 
 @lru_cache(maxsize=64)
 def kinematics_steps(problem: Problem, dof: int | None = None,
-                     said: tuple[tuple[str, str], ...] = ()) -> tuple[Step, ...]:
+                     said: tuple[tuple[str, str], ...] = ()) -> tuple[WorkedStep, ...]:
     """The kinematic steps of the worked solution, in the write-up order: frames with their
     angular velocities, where the points are, constraints and degrees of freedom, then the
     velocity and acceleration of every point in the inertial frame, each composed term by
@@ -167,16 +204,16 @@ def kinematics_steps(problem: Problem, dof: int | None = None,
     # spec form is the solver's), each component typeset in the rows
     constraints = tuple(dict(said).get(c.name) or f"{c.name} ({c.level}): {c.lhs.text} = "
                         f"{c.rhs.text}" for c in problem.constraints)
-    steps = [Step("frames", "Frames and their angular velocities", text["Frames"],
-                  tuple(frame_rows)),
-             Step("points", "Where the points are", text.get("Definitions", ()),
-                  tuple(_position_rows(problem, model, show))),
-             Step("constraints", "Constraints and degrees of freedom",
-                  constraints + text["Degrees of freedom"], tuple(constraint_rows))]
-    for kind in ("vel", "acc"):
+    steps = [WorkedStep("frames", "Frames and their angular velocities", text["Frames"],
+                        tuple(frame_rows)),
+             WorkedStep("points", "Where the points are", text.get("Definitions", ()),
+                        tuple(_position_rows(problem, model, show))),
+             WorkedStep("constraints", "Constraints and degrees of freedom",
+                        constraints + text["Degrees of freedom"], tuple(constraint_rows))]
+    for motion in Motion:
         for p in problem.points:
             if p.origin is not None:
-                steps.append(_motion_step(problem, model, show, p.name, kind))
+                steps.append(_motion_step(problem, model, show, p.name, motion))
     return tuple(steps)
 
 
@@ -193,14 +230,16 @@ def _position_rows(problem: Problem, model, show: "_Display"):
                   f"r_{p.name}/{p.origin} = {_vector_text(r)}")
 
 
-def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: str) -> Step:
-    """The velocity (``kind`` ``"vel"``) or acceleration of ``point`` in the inertial frame:
-    each term of its composition in the moving frame it is described in, then the sum."""
+def _motion_step(problem: Problem, model, show: "_Display", point: str,
+                 motion: Motion) -> WorkedStep:
+    """The velocity or acceleration (``motion``) of ``point`` in the inertial frame: each
+    term of its composition in the moving frame it is described in, then the sum."""
     N = problem.inertial_frame
     language = model.language
-    whole = (language.point_velocity if kind == "vel" else language.point_acceleration)(
+    velocity = motion is Motion.VELOCITY
+    whole = (language.point_velocity if velocity else language.point_acceleration)(
         Name(point), N)
-    letter, noun = ("v", "velocity") if kind == "vel" else ("a", "acceleration")
+    letter, anchor = motion.letter, motion.anchor(point)
     rows = []
     moving = _moving_frame(problem, model, point)
     if moving is not None:
@@ -212,7 +251,7 @@ def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: st
         r_math = f"<msub><mi mathvariant=\"bold\">r</mi><mrow><mi>{point}</mi><mo>/</mo>" \
                  f"<mi>{origin}</mi></mrow></msub>"
         w, a = _scripted("ω", N, B), _scripted("α", N, B)
-        if kind == "vel":
+        if velocity:
             terms = {"origin": (language.point_velocity(Name(origin), N),
                                 _scripted("v", N, origin), f"{N}_v_{origin}"),
                      "omega_r": (omega ^ r, f"{w}<mo>×</mo>{r_math}", f"omega x r_{point}/{origin}"),
@@ -235,14 +274,14 @@ def _motion_step(problem: Problem, model, show: "_Display", point: str, kind: st
             value = model.plain(value)
             if _is_zero(value, model):
                 continue
-            rows.append(Row(f"{kind}-{point}-{name}", show.equation(label, value),
+            rows.append(Row(f"{anchor}-{name}", show.equation(label, value),
                             f"{label_text} = {_vector_text(value)}",
                             (code, "coriolis_half") if name == "coriolis" else (code,)))
-    rows.append(Row(f"{kind}-{point}-total", show.equation(_scripted(letter, N, point),
+    rows.append(Row(f"{anchor}-total", show.equation(_scripted(letter, N, point),
                                                             model.plain(whole)),
                     f"{N}_{letter}_{point} = {_vector_text(model.plain(whole))}"))
     where = f" (composed in frame {moving[0]}, from {moving[1]})" if moving else ""
-    return Step(f"{kind}-{point}", f"The {noun} of {point} in {N}{where}", (), tuple(rows))
+    return WorkedStep(anchor, f"The {motion.noun} of {point} in {N}{where}", (), tuple(rows))
 
 
 def _moving_frame(problem: Problem, model, point: str) -> tuple[str, str] | None:

@@ -31,7 +31,7 @@ from ..spec.dynamics import (Impulse, LoadKind, Reaction, StaticFriction,
 from ..expressions.syntax import Name
 from ..spec.model import Problem
 from .bodies import parallel_axis
-from .derivation import Row, Step, _Display, compact_math
+from .derivation import Row, WorkedStep, _Display, compact_math
 from .dynamics import _inertias, derive_kinetics, free_body_loads, how_the_instant
 from .symbols import identically_zero
 
@@ -58,7 +58,7 @@ CONTACT_CODES = ("restitution_ignored", "restitution_component")
 
 
 @lru_cache(maxsize=64)
-def kinetics_steps(problem: Problem) -> tuple[Step, ...]:
+def kinetics_steps(problem: Problem) -> tuple[WorkedStep, ...]:
     """The kinetics steps of ``problem`` (one with bodies and loads), after its kinematics."""
     kin = derive_kinetics(problem)
     model = kin.built[0]
@@ -122,7 +122,7 @@ def _block(math: str) -> str:
     return compact_math(f'<math display="block">{math}</math>')
 
 
-def _bodies(problem: Problem, model, expr_math) -> Step:
+def _bodies(problem: Problem, model, expr_math) -> WorkedStep:
     d = dynamics_of(problem)
     inertias = _inertias(d, model)
     lines, rows = [], []
@@ -159,7 +159,7 @@ def _bodies(problem: Problem, model, expr_math) -> Step:
                         f"I_{b.centre} = {_text(matrix)}",
                         ("other_shape_inertia", "inertia_omitted"),
                         f"{b.name}, inertia about {b.centre} in {b.frame} axes{shifted}"))
-    return Step("kinetics-bodies", "Bodies", tuple(lines), tuple(rows))
+    return WorkedStep("kinetics-bodies", "Bodies", tuple(lines), tuple(rows))
 
 
 def _inertia(at: str, matrix: str) -> str:
@@ -176,7 +176,7 @@ _KIND_WORDS = {LoadKind.WEIGHT: "weight", LoadKind.NORMAL: "normal force",
                LoadKind.IMPULSE: "impulse", LoadKind.REACTION: "reaction"}
 
 
-def _loads(problem: Problem, matrix_math, text) -> Step:
+def _loads(problem: Problem, matrix_math, text) -> WorkedStep:
     rows = []
     for load in free_body_loads(problem):
         couple = load.point is None
@@ -199,9 +199,9 @@ def _loads(problem: Problem, matrix_math, text) -> Step:
             else f"{symbol}_{load.name}"
         rows.append(Row(f"load-{load.body}-{load.name}", math, f"{said} = {text(value)}",
                         codes, words))
-    return Step("kinetics-free-body-loads", "Free-body loads",
-                ("Each body cut free, with every load on it.",),
-                tuple(rows))
+    return WorkedStep("kinetics-free-body-loads", "Free-body loads",
+                      ("Each body cut free, with every load on it.",),
+                      tuple(rows))
 
 
 def _is_symbol(name: str) -> bool:
@@ -223,7 +223,7 @@ def _vector_name(letter: str, name: str) -> str:
     return f"<msub>{shown}<mi>{escape(sub.replace('_', ','))}</mi></msub>" if sub else shown
 
 
-def _work_energy(kin, expr_math, text) -> Step:
+def _work_energy(kin, expr_math, text) -> WorkedStep:
     """T1 + V1 + U12 = T2 + V2: the energy split into its kinetic part (the terms with a
     rate) and its potential part, at the start and at the instant."""
     k = kin.k
@@ -253,13 +253,13 @@ def _work_energy(kin, expr_math, text) -> Step:
         work = f"the work of {', '.join(kin.nonconservative)} from the start to the instant"
     else:
         work = "0: no load that does work is left out of V (the reactions do none)"
-    return Step("kinetics-work-energy", "Work and energy from the start to the instant",
-                (f"U12 is {work}.",
+    return WorkedStep("kinetics-work-energy", "Work and energy from the start to the instant",
+                      (f"U12 is {work}.",
                  "Solved for the rate at the instant, with the sense the problem states."),
-                tuple(rows))
+                      tuple(rows))
 
 
-def _balances(problem: Problem, kin, expr_math, text) -> Step:
+def _balances(problem: Problem, kin, expr_math, text) -> WorkedStep:
     d = dynamics_of(problem)
     N = problem.inertial_frame
     impact = kin.impact
@@ -340,7 +340,7 @@ def _balances(problem: Problem, kin, expr_math, text) -> Step:
     if d.analysis is not None and isinstance(d.analysis, Impulse):
         lines += ("Each contact's condition: the restitution (or sticking) condition on the "
                   "velocities just after the impact.",)
-    return Step("kinetics-momentum-balances", "Momentum balances", lines, tuple(rows))
+    return WorkedStep("kinetics-momentum-balances", "Momentum balances", lines, tuple(rows))
 
 
 def _tangent(model, normal: str, inertial: str):
@@ -362,7 +362,7 @@ def _fixed(model, point: str, frame: str) -> bool:
                for c in model.plain(velocity.to_matrix(model.inertial)))
 
 
-def _solution(problem: Problem, kin, shown: dict, expr_math) -> Step:
+def _solution(problem: Problem, kin, shown: dict, expr_math) -> WorkedStep:
     how = how_the_instant(problem)
     unknowns = list(kin.k.qd if kin.impact else kin.k.qdd) + list(kin.reactions)
     listing = "<mo>,</mo>".join(expr_math(u) for u in unknowns)
@@ -374,4 +374,4 @@ def _solution(problem: Problem, kin, shown: dict, expr_math) -> Step:
              "checked).")
     row = Row("unknowns", _block(f"<mrow>{listing}</mrow>"),
               ", ".join(str(n) for n in names), caption="unknowns")
-    return Step("kinetics-solution", "Solution", lines, (row,))
+    return WorkedStep("kinetics-solution", "Solution", lines, (row,))

@@ -7,7 +7,7 @@ from dataclasses import replace
 from functools import lru_cache
 
 from ..spec.model import Problem
-from .derivation import Step, compact_math, kinematics_derivation, kinematics_steps
+from .derivation import WorkedStep, compact_math, kinematics_derivation, kinematics_steps
 from .junctions import junction_balances_said, kinematic_part
 from .kinetics_steps import kinetics_steps
 from .dynamics import kinetics_derivation
@@ -22,7 +22,7 @@ def derivation(problem: Problem, dof: int | None = None) -> tuple[tuple[str, tup
 
 
 @lru_cache(maxsize=64)  # one problem's steps serve every student's variant of it
-def worked_steps(problem: Problem, dof: int | None = None) -> tuple[Step, ...]:
+def worked_steps(problem: Problem, dof: int | None = None) -> tuple[WorkedStep, ...]:
     """The symbolic steps of the worked solution: the kinematics (:func:`kinematics_steps`),
     then, for a problem with bodies and loads, the kinetics sections of the write-up (bodies,
     free-body loads, the work-energy balance, momentum balances, how the unknowns are solved:

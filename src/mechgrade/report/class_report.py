@@ -281,7 +281,8 @@ def _issues(report: GradeReport) -> tuple[StudentIssue, ...]:
 # --- charts -----------------------------------------------------------------------------------
 
 _COLOURS = {Verdict.CORRECT: "#2e7d32", Verdict.PARTIAL: "#f9a825", Verdict.INCORRECT: "#c62828",
-            "other": "#9e9e9e"}
+            None: "#9e9e9e"}
+"""Each verdict's colour; ``None``: any other outcome (unreadable or missing)."""
 
 
 def _pyplot():
@@ -363,7 +364,7 @@ def _histogram_svg(scores: list[float], max_score: float) -> str:
 
 _KINDS = {Verdict.CORRECT: "correct", Verdict.PARTIAL: "partly correct",
           Verdict.INCORRECT: "incorrect",
-          "other": "unreadable or missing"}
+          None: "unreadable or missing"}
 
 
 def _success_svg(objectives: tuple[ObjectiveStats, ...]) -> str:
@@ -374,12 +375,12 @@ def _success_svg(objectives: tuple[ObjectiveStats, ...]) -> str:
         fig, ax = plt.subplots(figsize=(7, 0.45 * max(len(labels), 1) + 1.0))
         left = [0.0] * len(objectives)
         said: list[list[str]] = [[] for _ in objectives]
-        for key in (Verdict.CORRECT, Verdict.PARTIAL, Verdict.INCORRECT, "other"):
+        for key in (Verdict.CORRECT, Verdict.PARTIAL, Verdict.INCORRECT, None):
             shares = []
             for o in objectives:
                 wanted = {c.label: c.share for c in o.verdicts}
                 share = sum(v for k, v in wanted.items()
-                            if (k == key) or (key == "other" and k not in _COLOURS))
+                            if (k == key) or (key is None and k not in _COLOURS))
                 shares.append(100 * share)
             ax.barh(rows, shares, left=left, color=_COLOURS[key], label=_KINDS[key],
                     edgecolor="white")

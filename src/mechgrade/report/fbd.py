@@ -32,7 +32,7 @@ from dataclasses import replace
 from html import escape
 from typing import TYPE_CHECKING
 
-from ..solve.layout import apart, collides, outline_extent
+from ..solve.layout import Point2, apart, collides, outline_extent
 from ..spec.dynamics import LoadKind, OutlineKind
 
 if TYPE_CHECKING:  # the diagrams come ready-made: drawing them needs no solver
@@ -61,8 +61,6 @@ _KIND_WORDS = {LoadKind.WEIGHT: "the weight", LoadKind.NORMAL: "the normal force
                LoadKind.REACTION: "the reaction"}
 _GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "theta": "θ", "mu": "μ",
           "tau": "τ", "phi": "φ", "omega": "ω", "lambda": "λ", "sigma": "σ"}
-
-Point2 = tuple[float, float]
 
 
 def _n(value: float) -> str:
@@ -138,9 +136,10 @@ def fbd_svg(diagram: FreeBodyDiagram, ident: str) -> str:
         group = [f'<g class="load {marker}">']
         for tail, head, label in parts:
             if tail == head:  # along the page's normal: a dot (out of it) or a cross (into it)
-                sign = "out-of-page" if label[3] > 0 else "into-page"
+                outward = label[3] > 0
+                sign = "out-of-page" if outward else "into-page"
                 mark = (f'<circle cx="{tail[0]:.0f}" cy="{tail[1]:.0f}" r="2" fill="{colour}"/>'
-                        if sign == "out-of-page" else
+                        if outward else
                         f'<path d="M{tail[0] - 5:.0f},{tail[1] - 5:.0f} l10,10 m0,-10 l-10,10" '
                         f'stroke="{colour}" stroke-width="1.6"/>')
                 group += [f'<g class="arrow {sign}"><circle cx="{tail[0]:.0f}" '

@@ -24,6 +24,7 @@ import multiprocessing
 import re
 import signal
 from dataclasses import dataclass, replace
+from enum import Enum
 from functools import cached_property, lru_cache
 from html import escape as html_escape
 from pathlib import Path
@@ -234,10 +235,10 @@ class _Crew:
         faults = {piece: chunk_faults for piece, (_, chunk_faults) in self._done.items()}
         for me, (_, conn) in enumerate(self._helpers):
             message = _receive(conn)
-            if message is not None and message[0] == "rendered":
+            if message is not None and message[0] is _Say.RENDERED:
                 faults.update(message[1])
                 self._theirs[me] = sorted(message[1])
-            elif message is not None and message[0] == "error":
+            elif message is not None and message[0] is _Say.ERROR:
                 errors.append(message[1])
         first = min((piece for piece, _ in errors), default=self._pieces)
         for piece in range(first):  # a helper died: its pieces are done here
@@ -255,7 +256,7 @@ class _Crew:
     def start_writing(self) -> None:
         """Tell the helpers to write the pages they rendered."""
         for _, conn in self._helpers:
-            _tell(conn, "write")
+            _tell(conn, _Say.WRITE)
 
     def write(self, errors: list[tuple[int, MechgradeError]]) -> None:
         """Write the pages rendered here and wait for the helpers' (writing here what a helper
@@ -264,7 +265,7 @@ class _Crew:
             self._write(piece, self._done[piece][0], errors)
         for me, (_, conn) in enumerate(self._helpers):
             message = _receive(conn)
-            if message is not None and message[0] == "error":
+            if message is not None and message[0] is _Say.ERROR:
                 errors.append(message[1])
             elif message is None:
                 for piece in self._theirs.get(me, ()):
@@ -281,10 +282,21 @@ class _Crew:
     def close(self) -> None:
         """Let the helpers go (one still waiting to write is told to stop) and wait for them."""
         for process, conn in self._helpers:
-            _tell(conn, "stop")
+            _tell(conn, _Say.STOP)
             conn.close()
             process.join()
         self._helpers = []
+
+
+class _Say(Enum):
+    """What the parent and a helper of :class:`_Crew` tell each other (a helper's news comes
+    first in a tuple with what it carries)."""
+
+    RENDERED = "rendered"  # a helper's pieces are rendered: their faults
+    ERROR = "error"  # a helper met an error: (piece, error)
+    WRITTEN = "written"  # a helper wrote its pages
+    WRITE = "write"  # the parent: write what you rendered
+    STOP = "stop"  # the parent: stop
 
 
 def _help(crew: _Crew, conn: Connection) -> None:
@@ -294,18 +306,18 @@ def _help(crew: _Crew, conn: Connection) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
     done, error = crew.render_claimed()
     if error is not None:
-        _tell(conn, ("error", error))
+        _tell(conn, (_Say.ERROR, error))
         return
-    _tell(conn, ("rendered", {piece: faults for piece, (_, faults) in done.items()}))
-    if _receive(conn) != "write":
+    _tell(conn, (_Say.RENDERED, {piece: faults for piece, (_, faults) in done.items()}))
+    if _receive(conn) is not _Say.WRITE:
         return
     for piece in sorted(done):
         try:
             _write_piece(piece, done[piece][0])
         except MechgradeError as err:
-            _tell(conn, ("error", (piece, err)))
+            _tell(conn, (_Say.ERROR, (piece, err)))
             return
-    _tell(conn, ("written",))
+    _tell(conn, (_Say.WRITTEN,))
 
 
 def _receive(conn: Connection):

@@ -5,9 +5,9 @@ ready-made from :mod:`mechgrade.solve.worked`; nothing here imports sympy. The f
 made by :func:`~mechgrade.report.output.worked_html` and
 :func:`~mechgrade.report.output.worked_markdown`.
 
->>> from mechgrade.solve.worked import Step, WorkedSolution
+>>> from mechgrade.solve.worked import WorkedSolution, WorkedStep
 >>> from mechgrade.report.output import anchor
->>> w = WorkedSolution("p", "Pendulum", (Step("givens", "Givens", ("L = 2 m",)),), "<svg/>",
+>>> w = WorkedSolution("p", "Pendulum", (WorkedStep("givens", "Givens", ("L = 2 m",)),), "<svg/>",
 ...                     places=(("L", "given_sign", "givens"),))
 >>> print(steps_markdown(w).splitlines()[2])
 ## Pendulum

@@ -15,7 +15,9 @@ kinematics (:attr:`KinematicsPlan.k`) are derived again only if something asks f
 
 from __future__ import annotations
 
+import dataclasses
 import operator
+import typing
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any, Callable, Mapping
@@ -342,32 +344,52 @@ def source(function: Callable) -> str:
     return inspect.getsource(function)
 
 
-@dataclass(frozen=True)
-class _LevelEntry:
-    """A :class:`Level` as the disk cache keeps it: its functions as their source."""
-
-    order: int
-    residual: str
-    jacobian: str
-    scale: str
-    labels: tuple[str, ...]
-    wheres: tuple[Location, ...]
-    conditions: tuple[str, ...]
-    linear: bool
-    uses: tuple[frozenset[int], ...]
-    jacobian_uses: frozenset[int]
+_AS_SOURCE = {Callable: str, Callable | None: str | None}
+"""A function field's type as the disk cache keeps it: its source (or ``None``)."""
 
 
-@dataclass(frozen=True)
-class _MutantEntry:
-    """A :class:`Mutant` as the disk cache keeps it (its objective is the key it is under)."""
+def _kept(cls: type, left_out: str) -> Any:
+    """``cls`` as the disk cache keeps it: a frozen dataclass of its fields in its order but
+    ``left_out`` (known from elsewhere), each function as its source (:func:`source`; named in
+    the class's ``functions``), so that the entry is the class's own fields.
 
-    code: str
-    sentence: str
-    size: int
-    velocity: bool
-    value: str
-    term: str | None
+    >>> [f.name for f in dataclasses.fields(_MutantEntry)], sorted(_MutantEntry.functions)
+    (['code', 'sentence', 'size', 'velocity', 'value', 'term'], ['term', 'value'])
+    """
+    hints = typing.get_type_hints(cls)
+    names = [f.name for f in dataclasses.fields(cls) if f.name != left_out]
+    functions = frozenset(n for n in names if hints[n] in _AS_SOURCE)
+    kept = dataclasses.make_dataclass(
+        f"_{cls.__name__}Entry", [(n, _AS_SOURCE.get(hints[n], hints[n])) for n in names],
+        frozen=True, namespace={"functions": functions})
+    kept.__module__ = __name__
+    kept.__doc__ = f"A :class:`{cls.__name__}` as the disk cache keeps it (see :func:`_kept`)."
+    return kept
+
+
+_LevelEntry = _kept(Level, "name")  # the name is its order's
+_MutantEntry = _kept(Mutant, "objective")  # the objective is the key it is kept under
+
+
+def _to_kept(kept: Any, value: Any) -> Any:
+    """``value`` (a :class:`Level` or :class:`Mutant`) as its ``kept`` class."""
+    return kept(**{f.name: _source_or_none(getattr(value, f.name)) if f.name in kept.functions
+                   else getattr(value, f.name) for f in dataclasses.fields(kept)})
+
+
+def _source_or_none(function: Callable | None) -> str | None:
+    return None if function is None else source(function)
+
+
+def _from_kept(entry: Any, **known: Any) -> dict[str, Any]:
+    """The fields of a kept ``entry``, each function compiled (:func:`_compiled`), and
+    ``known``'s."""
+    return {**{f.name: _compiled_or_none(getattr(entry, f.name)) if f.name in entry.functions
+               else getattr(entry, f.name) for f in dataclasses.fields(entry)}, **known}
+
+
+def _compiled_or_none(text: str | None) -> Callable | None:
+    return None if text is None else _compiled(text)
 
 
 @dataclass(frozen=True)
@@ -376,7 +398,7 @@ class _Entry:
     and written by :mod:`mechgrade.codec`: a field of another type refuses the whole entry."""
 
     index: tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...]]
-    levels: tuple[_LevelEntry, ...]
+    levels: tuple[_LevelEntry, ...]  # type: ignore[valid-type]  # a class made from Level
     objectives: tuple[tuple[str, str], ...]
     mistakes: tuple[tuple[str, tuple[str, ...]], ...]
     requirements: tuple[tuple[str, str, str], ...]
@@ -385,7 +407,8 @@ class _Entry:
     point_positions: str
     constraint_rank: int
     warnings: tuple[AuthorWarning, ...]
-    mutants: tuple[tuple[str, tuple[_MutantEntry, ...]], ...] = field(metadata=MAPPING)
+    mutants: tuple[tuple[str, tuple[_MutantEntry, ...]], ...] = field(  # type: ignore[valid-type]
+        metadata=MAPPING)  # a class made from Mutant
     generic_dof: int
 
 
@@ -394,20 +417,15 @@ def _entry(problem: Problem, p: KinematicsPlan) -> Any:
     index = p.index
     return encode(_Entry(
         index=(index.names, index.coordinates, index.parameters),
-        levels=tuple(_LevelEntry(
-            level.order, source(level.residual), source(level.jacobian), source(level.scale),
-            level.labels, level.wheres, level.conditions, level.linear, level.uses,
-            level.jacobian_uses) for level in p.levels),
+        levels=tuple(_to_kept(_LevelEntry, level) for level in p.levels),
         objectives=tuple((oid, source(f)) for oid, f in p.objectives),
         mistakes=tuple((oid, tuple(source(f) for f in fs)) for oid, fs in p.mistakes),
         requirements=tuple((oid, reason, source(f)) for oid, reason, f in p.requirements),
         objective_uses=p.objective_uses, points=p.points,
         point_positions=source(p.point_positions), constraint_rank=p.constraint_rank,
         warnings=p.warnings,
-        mutants=tuple((o.id, tuple(_MutantEntry(
-            m.code, m.sentence, m.size, m.velocity, source(m.value),
-            None if m.term is None else source(m.term))
-            for m in lambdified_mutants(problem, p, o.id)))
+        mutants=tuple((o.id, tuple(_to_kept(_MutantEntry, m)
+                                   for m in lambdified_mutants(problem, p, o.id)))
             for o in problem.objectives if o.kind != ObjectiveKind.SYMBOLIC),
         generic_dof=generic_dof(p.k)))
 
@@ -421,13 +439,8 @@ def _from_entry(problem: Problem, key: str, data: Any) -> KinematicsPlan:
     index = SymbolIndex(names, coordinates, parameters, source=lambda: holder[0].k)
     if index.size != len(coordinates) * 3 + len(parameters) + 1:
         raise ValueError("a state layout of another size")
-    levels = tuple(Level(
-        order=level.order, name=LEVEL_NAMES[level.order],
-        residual=_compiled(level.residual), jacobian=_compiled(level.jacobian),
-        scale=_compiled(level.scale), labels=level.labels, wheres=level.wheres,
-        conditions=level.conditions, linear=level.linear, uses=level.uses,
-        jacobian_uses=level.jacobian_uses)
-        for level in entry.levels)
+    levels = tuple(Level(**_from_kept(level, name=LEVEL_NAMES[level.order]))
+                   for level in entry.levels)
     if [level.order for level in levels] != [0, 1, 2]:
         raise ValueError("expected the three levels")
     p = KinematicsPlan(
@@ -441,10 +454,8 @@ def _from_entry(problem: Problem, key: str, data: Any) -> KinematicsPlan:
         point_positions=_compiled(entry.point_positions),
         constraint_rank=entry.constraint_rank, warnings=entry.warnings,
         problem=problem, key=key,
-        mutants={oid: tuple(Mutant(
-            oid, m.code, m.sentence, _size(m.size), m.velocity, _compiled(m.value),
-            None if m.term is None else _compiled(m.term))
-            for m in rows) for oid, rows in entry.mutants},
+        mutants={oid: tuple(Mutant(**_from_kept(m, objective=oid, size=_size(m.size)))
+                            for m in rows) for oid, rows in entry.mutants},
         generic_dof=entry.generic_dof)
     holder.append(p)
     return p

@@ -28,7 +28,7 @@ import numpy as np
 
 from ..expressions.notation import coordinate_names
 from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, parse, to_text
-from ..mechanics.derivation import Row, Step, symbolic_math
+from ..mechanics.derivation import Motion, Row, WorkedStep, symbolic_math
 from ..mechanics.writeup import worked_steps
 from ..spec.model import Expr, Objective, ObjectiveKind, Problem
 from ..units import from_si, same_dimension
@@ -40,7 +40,7 @@ from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
                      in_frame, without_round_off)
 
-__all__ = ["Row", "Step", "WorkedSolution", "answer_text", "worked_solution"]
+__all__ = ["Row", "WorkedSolution", "WorkedStep", "answer_text", "worked_solution"]
 
 DIAGRAM_STEP = "kinetics-free-body-loads"
 """The step that shows the free-body diagrams."""
@@ -72,7 +72,7 @@ class WorkedSolution:
 
     problem: str
     title: str
-    steps: tuple[Step, ...]
+    steps: tuple[WorkedStep, ...]
     picture: str
     places: tuple[tuple[str, str, str], ...] = ()
     declared: tuple[tuple[str, str, str], ...] = ()
@@ -135,10 +135,10 @@ def worked_solution(problem: Problem, solution: Solution,
     if slip_ends is not None:  # each answer says the phase it is read in
         answers = tuple(_read_in(problem, step, o, slip_ends, instant)
                         for step, o in zip(answers, (o for o in chosen if o.id in results)))
-    steps = (Step("givens", "Givens and what is asked", givens + ("",) + asked),
+    steps = (WorkedStep("givens", "Givens and what is asked", givens + ("",) + asked),
              *_phased(problem, slip_ends,
                       _at_the_instant(problem, worked_steps(problem, solution.dof), drawing)),
-             *((Step("state", "The instant, solved", solved),) if solved else ()),
+             *((WorkedStep("state", "The instant, solved", solved),) if solved else ()),
              *answers)
     codes = MODEL_CODES + GIVEN_CODES + (DYNAMICS_CODES if problem.dynamics else ())
     places = tuple((o.id, code, _place(steps, o.id, o.find.node, code))
@@ -185,7 +185,7 @@ def slip_end_time(problem: Problem) -> float | None:
 
 
 def _phased(problem: Problem, slip_ends: float | None,
-            steps: tuple[Step, ...]) -> tuple[Step, ...]:
+            steps: tuple[WorkedStep, ...]) -> tuple[WorkedStep, ...]:
     """``steps`` with, for a motion that slips then grips, the kinetics of each phase: those of
     the slip until ``slip_ends``, then the gripping phase's (its no-slip constraint, loads
     and balances) from then on."""
@@ -216,8 +216,8 @@ def _phased(problem: Problem, slip_ends: float | None,
     return earlier[:kinetics[-1] + 1] + later + earlier[kinetics[-1] + 1:]
 
 
-def _read_in(problem: Problem, step: Step, objective, slip_ends: float,
-             instant: float | None) -> Step:
+def _read_in(problem: Problem, step: WorkedStep, objective, slip_ends: float,
+             instant: float | None) -> WorkedStep:
     """An answer's step saying the phase its value is read in (by the time it is read at:
     its own ``t`` given, else the instant's)."""
     own = next((g.si for g in objective.givens if g.key.text == "t"), None)
@@ -327,7 +327,7 @@ def _asked_line(objective, inertial: str) -> str:
 
 
 def _answer_step(problem: Problem, objective, result: ObjectiveResult,
-                 signs: dict[str, int]) -> Step:
+                 signs: dict[str, int]) -> WorkedStep:
     """An objective's answer: what it asks in the model's terms, then its value (a symbolic
     one typeset, in its unit and the names it is in; the sense of a rate it takes through its
     sign alone from ``signs``, the instant's sign of each value by name)."""
@@ -337,7 +337,7 @@ def _answer_step(problem: Problem, objective, result: ObjectiveResult,
     math = symbolic_math(problem, result.expr) \
         if result.kind == ObjectiveKind.SYMBOLIC and result.expr else None
     if math is None:
-        return Step(f"answer-{objective.id}", title, (asked, f"= {answer_text(result)}"))
+        return WorkedStep(f"answer-{objective.id}", title, (asked, f"= {answer_text(result)}"))
     rates = {f"{c.name}d": f"{c.name}'" for c in problem.coordinates}
     names = ", ".join(rates.get(n, n) for n in result.symbols)
     # a rate the answer takes only through its sign (kinetic friction's sense of sliding)
@@ -345,38 +345,37 @@ def _answer_step(problem: Problem, objective, result: ObjectiveResult,
                    f"{rates[n]}/|{rates[n]}| = {sign}"
                    for n in result.symbols if n in rates and f"Abs({n})" in (result.expr or "")
                    for sign in (signs.get(rates[n], 0),) if sign)
-    return Step(f"answer-{objective.id}", title,
-                (asked, f"in {result.unit or '1'}, in terms of {names}", *senses),
-                (Row(f"answer-{objective.id}-value", math, answer_text(result)),))
+    return WorkedStep(f"answer-{objective.id}", title,
+                      (asked, f"in {result.unit or '1'}, in terms of {names}", *senses),
+                      (Row(f"answer-{objective.id}-value", math, answer_text(result)),))
 
 
-def _at_the_instant(problem: Problem, steps: tuple[Step, ...], drawing) -> tuple[Step, ...]:
+def _at_the_instant(problem: Problem, steps: tuple[WorkedStep, ...],
+                    drawing) -> tuple[WorkedStep, ...]:
     """``steps`` with each point's velocity and acceleration in numbers at the instant, along
     the inertial frame, in the unit an objective asks it in, else in the length unit of the
     givens per second (squared)."""
     points = {p.name: p for p in drawing.points}
     length = next((g.unit for g in problem.givens if g.unit and same_dimension(g.unit, "m")),
                   "m")
-    units = {"vel": f"{length}/s", "acc": f"{length}/s^2"}
-    asked: dict[tuple[str, str], str] = {}
+    units = {Motion.VELOCITY: f"{length}/s", Motion.ACCELERATION: f"{length}/s^2"}
+    asked: dict[tuple[Motion, str], str] = {}
     for o in problem.objectives:
         for call in _calls(o.find.node):
-            kind = "acc" if call.func in _ACCELERATION_CALLS else "vel"
+            wanted = _motion_of(call)
             if isinstance(call.args[0], Name) and o.unit \
-                    and same_dimension(o.unit, units[kind]):
-                asked.setdefault((kind, call.args[0].id), o.unit)
+                    and same_dimension(o.unit, units[wanted]):
+                asked.setdefault((wanted, call.args[0].id), o.unit)
     out = []
     for step in steps:
-        kind, _, name = step.anchor.partition("-")
-        point = points.get(name) if kind in units else None
-        value = getattr(point, "velocity" if kind == "vel" else "acceleration", None) \
-            if point is not None else None
-        if value is not None:
-            unit = asked.get((kind, name), units[kind])
+        motion, name = Motion.of_anchor(step.anchor) or (None, "")
+        value = getattr(points[name], motion.noun, None) \
+            if motion is not None and name in points else None
+        if motion is not None and value is not None:
+            unit = asked.get((motion, name), units[motion])
             shown = ", ".join(f"{from_si(c, unit) + 0.0:.4g}" for c in without_round_off(tuple(value)))
-            letter = "v" if kind == "vel" else "a"
             step = replace(step, lines=step.lines + (
-                f"At the instant: {problem.inertial_frame}_{letter}_{name} = ({shown}) "
+                f"At the instant: {problem.inertial_frame}_{motion.letter}_{name} = ({shown}) "
                 f"{unit} along {problem.inertial_frame}",))
         out.append(step)
     return tuple(out)
@@ -405,7 +404,7 @@ def _state_text(value: StateValue) -> str:
     return f"{value.name} = {without_round_off(value.value):.6g} {unit}".rstrip()
 
 
-def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> str:
+def _place(steps: tuple[WorkedStep, ...], objective: str, node: Node, code: str) -> str:
     """Where the mistake ``code`` happens in the steps, for the objective ``node`` asks."""
     if code in GIVEN_CODES:
         return "givens"
@@ -421,14 +420,19 @@ def _place(steps: tuple[Step, ...], objective: str, node: Node, code: str) -> st
     for call in _calls(node):
         if not isinstance(call.args[0], Name):
             continue
-        kind = "acc" if call.func in _ACCELERATION_CALLS else "vel"
-        step = by_anchor.get(f"{kind}-{call.args[0].id}")
+        step = by_anchor.get(_motion_of(call).anchor(call.args[0].id))
         if step is None:
             continue
         for row in step.rows:
             if code in row.codes:
                 return row.anchor
     return f"answer-{objective}"
+
+
+def _motion_of(call: Call) -> Motion:
+    """The motion a motion call asks of its point (``rho`` and ``normal`` need its
+    acceleration)."""
+    return Motion.ACCELERATION if call.func in _ACCELERATION_CALLS else Motion.VELOCITY
 
 
 def _calls(node: Node):

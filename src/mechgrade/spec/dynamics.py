@@ -19,6 +19,8 @@ free-body diagram of each body knows what its loads are.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from enum import Enum
 
@@ -66,6 +68,9 @@ _FORCE_KINDS = {"applied": LoadKind.APPLIED_FORCE, "weight": LoadKind.WEIGHT,
 
 # ---------------------------------------------------------------------------- shapes
 
+Size = Callable[[Expr], "float | None"]
+"""A shape's dimension in metres, ``None`` when unknown."""
+
 
 @dataclass(frozen=True)
 class Rod:
@@ -73,6 +78,26 @@ class Rod:
 
     length: Expr
     axis: str
+
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """The greatest and least volume (m^3) a rod of this length may have: as thick as it
+        is long, down to a thousandth of that; ``None`` when the length is unknown or zero.
+
+        >>> Rod(Expr("L", Name("L")), "x").volumes(lambda e: 2.0)  # doctest: +ELLIPSIS
+        (6.28..., 6.28...e-06)
+        """
+        length = size(self.length)
+        if not length:
+            return None
+        return math.pi / 4 * length ** 3, math.pi / 4 * (length / 1000) ** 2 * length
+
+
+def _flat(radius: float | None) -> tuple[float, float] | None:
+    """A disk's or ring's volumes: at most as thick as it is wide, down to a thousandth of
+    its radius."""
+    if not radius:
+        return None
+    return math.pi * radius ** 2 * 2 * radius, math.pi * radius ** 2 * radius / 1000
 
 
 @dataclass(frozen=True)
@@ -82,6 +107,10 @@ class Ring:
     radius: Expr
     axis: str
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """A ring's volumes are a disk's: see :func:`_flat`."""
+        return _flat(size(self.radius))
+
 
 @dataclass(frozen=True)
 class Disk:
@@ -89,6 +118,10 @@ class Disk:
 
     radius: Expr
     axis: str
+
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """See :func:`_flat`."""
+        return _flat(size(self.radius))
 
 
 @dataclass(frozen=True)
@@ -99,12 +132,30 @@ class Cylinder:
     length: Expr
     axis: str
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its one volume, twice; ``None`` when a size is unknown or zero."""
+        radius, length = size(self.radius), size(self.length)
+        if not radius or not length:
+            return None
+        value = math.pi * radius ** 2 * length
+        return value, value
+
+
+def _ball(radius: float | None) -> float | None:
+    """The volume of a ball of ``radius``; ``None`` when unknown or zero."""
+    return 4 / 3 * math.pi * radius ** 3 if radius else None
+
 
 @dataclass(frozen=True)
 class Sphere:
     """A uniform solid sphere: 2 m R^2/5 about every axis."""
 
     radius: Expr
+
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its ball's volume, twice."""
+        full = _ball(size(self.radius))
+        return None if full is None else (full, full)
 
 
 @dataclass(frozen=True)
@@ -113,6 +164,11 @@ class Shell:
 
     radius: Expr
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its ball's volume, down to none (a shell may be as thin as it likes)."""
+        full = _ball(size(self.radius))
+        return None if full is None else (full, 0.0)
+
 
 @dataclass(frozen=True)
 class Block:
@@ -120,12 +176,24 @@ class Block:
 
     sides: tuple[Expr, Expr, Expr]
 
+    def volumes(self, size: Size) -> tuple[float, float] | None:
+        """Its one volume, twice; ``None`` when a side is unknown or zero (a plate)."""
+        sides = [size(s) for s in self.sides]
+        if any(s is None for s in sides) or not all(sides):
+            return None
+        value = math.prod(sides)  # type: ignore[arg-type]
+        return value, value
+
 
 @dataclass(frozen=True)
 class Explicit:
     """Moments and products of inertia about the mass centre in the body axes."""
 
     entries: tuple[tuple[str, Expr], ...]  # ("xx", expr), ... ; missing entries are zero
+
+    def volumes(self, _size: Size) -> None:
+        """Unknown: an inertia says nothing of the body's size."""
+        return None
 
 
 Shape = Rod | Ring | Disk | Cylinder | Sphere | Shell | Block | Explicit
@@ -811,7 +879,7 @@ def check_dynamics(problem, checker) -> None:
         c.design()
     for e in (*(x for r in d.reactions for x in r.directions),
               *(x for f in d.friction if isinstance(f, StaticFriction) for x in f.directions)):
-        c.typed(e, "vector", "", "a direction (a vector without units, e.g. N.x)")
+        c.typed(e, Kind.VECTOR, "", "a direction (a vector without units, e.g. N.x)")
 
 
 class _Checker:
@@ -837,7 +905,7 @@ class _Checker:
             known = sorted(self.body_names | ({GROUND} if ground_ok else set()))
             raise SpecError(f"unknown body '{name}' (bodies: {', '.join(known)})", where=where)
 
-    def typed(self, e: Expr, kind: str, unit: str, what: str):
+    def typed(self, e: Expr, kind: Kind, unit: str, what: str):
         t = self.checker.type_of(e)
         if t.kind == Kind.ZERO:
             return
@@ -867,19 +935,19 @@ class _Checker:
 
     def part(self, b: Body, part: Part):
         self.point(part.at, part.where, "at")
-        self.typed(part.mass, "scalar", "kg", "a mass")
+        self.typed(part.mass, Kind.SCALAR, "kg", "a mass")
         if part.shape is not None and b.frame is None:
             raise SpecError(f"body '{b.name}' has an inertia but no 'frame': a rigid body "
                             "needs the frame it turns with (a particle has no inertia)",
                             where=part.where)
         for e in _shape_exprs(part.shape):
             unit = "kg*m^2" if isinstance(part.shape, Explicit) else "m"
-            self.typed(e, "scalar", unit, "a moment of inertia" if unit != "m" else "a length")
+            self.typed(e, Kind.SCALAR, unit, "a moment of inertia" if unit != "m" else "a length")
 
     def applied_loads(self):
         d = self.d
         if d.down is not None:
-            self.typed(d.down, "vector", "", "the direction of 'down' (a vector without units, "
+            self.typed(d.down, Kind.VECTOR, "", "the direction of 'down' (a vector without units, "
                        "e.g. -N.y)")
         if d.gravity is not None:
             if d.down is None and self.checker.type_of(d.gravity).kind == Kind.SCALAR:
@@ -887,13 +955,13 @@ class _Checker:
                                 f"-g*N.y), found the magnitude '{d.gravity.text}'; give its "
                                 "direction as well: down: -N.y (the way down in the figure)",
                                 where=d.gravity.where)
-            self.typed(d.gravity, "vector", "m/s^2", "the gravitational acceleration as a "
+            self.typed(d.gravity, Kind.VECTOR, "m/s^2", "the gravitational acceleration as a "
                        "vector (e.g. -g*N.y), or its magnitude with down: (e.g. gravity: g, "
                        "down: -N.y)")
         for f in d.forces:
             self.body(f.on, f.where)
             self.point(f.at, f.where, "at")
-            self.typed(f.force, "vector", "N", "a force vector")
+            self.typed(f.force, Kind.VECTOR, "N", "a force vector")
             if f.kind == LoadKind.WEIGHT and d.gravity is not None:
                 raise SpecError(f"the weight '{f.name}' on {f.on} is given twice: as this "
                                 f"force and by 'gravity: {d.gravity.text}', which acts on "
@@ -901,21 +969,21 @@ class _Checker:
                                 "gravity to give every weight as a force", where=f.where)
         for c in d.couples:
             self.body(c.on, c.where)
-            self.typed(c.moment, "vector", "N*m", "a moment vector")
+            self.typed(c.moment, Kind.VECTOR, "N*m", "a moment vector")
         ends: tuple[Spring | Damper, ...] = (*d.springs, *d.dampers)
         for s in ends:
             for p, b in zip(s.between, s.on):
                 self.point(p, s.where, "between")
                 self.body(b, s.where, ground_ok=True)
         for s in d.springs:
-            self.typed(s.stiffness, "scalar", "N/m", "a stiffness")
-            self.typed(s.length, "scalar", "m", "a free length")
+            self.typed(s.stiffness, Kind.SCALAR, "N/m", "a stiffness")
+            self.typed(s.length, Kind.SCALAR, "m", "a free length")
         for s in d.dampers:
-            self.typed(s.coefficient, "scalar", "N*s/m", "a damping coefficient")
+            self.typed(s.coefficient, Kind.SCALAR, "N*s/m", "a damping coefficient")
         for j in d.impulses:
             self.body(j.on, j.where)
             self.point(j.at, j.where, "at")
-            self.typed(j.impulse, "vector", "N*s", "an impulse vector")
+            self.typed(j.impulse, Kind.VECTOR, "N*s", "an impulse vector")
             if not isinstance(d.analysis, Impulse):
                 raise SpecError(f"the known impulse '{j.name}' acts during an impact only: "
                                 "expected 'analysis: impulse'", where=j.where)
@@ -933,12 +1001,12 @@ class _Checker:
                     raise SpecError(f"'{r.name}': an end with its own direction belongs to a "
                                     "cord (one unknown tension): expected one 'direction', "
                                     f"found {len(r.directions)}", where=r.where)
-                self.typed(act.direction, "vector", "", "a direction (a vector without units, "
+                self.typed(act.direction, Kind.VECTOR, "", "a direction (a vector without units, "
                            "e.g. N.x)")
         for f in d.friction:
             self.body(f.on, f.where)
             self.point(f.at, f.where, "at")
-            self.typed(f.mu, "scalar", "", "a friction coefficient")
+            self.typed(f.mu, Kind.SCALAR, "", "a friction coefficient")
             normal = reactions.get(f.normal)
             if normal is None or len(normal.directions) != 1:
                 raise SpecError(f"friction '{f.name}': 'normal' must name a reaction with one "
@@ -986,8 +1054,9 @@ class _Checker:
     def grip(self, f: KineticFriction, grip: Grip):
         """A contact that grips once its slip ends: on the ground, along one direction, in an
         integrated motion whose objectives are numbers (the phases have no closed form)."""
-        self.typed(grip.mu, "scalar", "", "a friction coefficient")
-        self.typed(grip.direction, "vector", "", "a direction (a vector without units, e.g. N.x)")
+        self.typed(grip.mu, Kind.SCALAR, "", "a friction coefficient")
+        self.typed(grip.direction, Kind.VECTOR, "",
+                   "a direction (a vector without units, e.g. N.x)")
         if f.surface != GROUND:
             raise SpecError(f"friction '{f.name}': a contact that grips once its slip ends "
                             f"is supported on the ground only, found surface: {f.surface}; "
@@ -1245,20 +1314,20 @@ def _shape_exprs(shape) -> tuple[Expr, ...]:
     return tuple(v for v in vars(shape).values() if isinstance(v, Expr))
 
 
-def argument_dimension(problem, func: str, arg: Node, kind: str):
+def argument_dimension(problem, func: str, arg: Node, kind: Kind):
     """The dimension of a ``body``, ``load`` or ``coordinate`` argument of an objective
     function (see :mod:`mechgrade.spec.language`), after checking that it names one."""
     d = problem.dynamics
     name = arg.id if isinstance(arg, Name) else to_text(arg)
-    if kind == "coordinate":
+    if kind == Kind.COORDINATE:
         coords = {c.name: c for c in problem.coordinates}
         if name not in coords:
             raise SpecError(f"expected a coordinate as argument of {func}(...), found "
                             f"'{name}' (coordinates: {', '.join(coords) or 'none'})")
         return dimension(coords[name].unit)
     bodies = [b.name for b in d.bodies] if d else []
-    names = {"body": bodies, "load": [x.name for x in d.loads] if d else [],
-             "body or spring": bodies + ([s.name for s in d.springs] if d else [])}[kind]
+    names = {Kind.BODY: bodies, Kind.LOAD: [x.name for x in d.loads] if d else [],
+             Kind.BODY_OR_SPRING: bodies + ([s.name for s in d.springs] if d else [])}[kind]
     if name not in names:
         raise SpecError(f"expected a {kind} as argument of {func}(...), found '{name}' "
                         f"(known: {', '.join(names) or 'none: add a bodies/loads section'})")

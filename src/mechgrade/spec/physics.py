@@ -25,7 +25,7 @@ from ..errors import AuthorWarning, SpecError
 from ..expressions.syntax import Name, constant_value, walk
 from ..tolerance import REFERENCE_ACCURACY
 from ..units import from_si
-from .dynamics import Block, Cylinder, Disk, Ring, Rod, Shell, Sphere
+from .dynamics import Block
 from .model import Expr, Given, Problem
 
 STANDARD_GRAVITY = 9.80665
@@ -193,43 +193,16 @@ def _is_length(unit: str) -> bool:
 
 def _density(problem: Problem, part) -> tuple[float, float] | None:
     """The least and greatest density (kg/m^3) a part's mass and shape allow, the shape's
-    proportions taken as generously as its name does (a rod between a hair and as thick as
-    it is long, a disk or ring at most as thick as wide); ``None`` when unknown."""
-    shape = part.shape
+    proportions taken as generously as its name does (its ``volumes``); ``None`` when
+    unknown."""
     mass = _si(problem, part.mass)
-    if shape is None or mass is None or mass <= 0:
+    if part.shape is None or mass is None or mass <= 0:
         return None
-    if isinstance(shape, Rod):
-        length = _si(problem, shape.length)
-        if not length:
-            return None
-        return mass / (math.pi / 4 * length ** 3), mass / (math.pi / 4 * (length / 1000) ** 2
-                                                          * length)
-    if isinstance(shape, (Disk, Ring)):
-        radius = _si(problem, shape.radius)
-        if not radius:
-            return None
-        return mass / (math.pi * radius ** 2 * 2 * radius), \
-            mass / (math.pi * radius ** 2 * radius / 1000)
-    if isinstance(shape, (Sphere, Shell)):
-        radius = _si(problem, shape.radius)
-        if not radius:
-            return None
-        full = mass / (4 / 3 * math.pi * radius ** 3)
-        return full, (full if isinstance(shape, Sphere) else math.inf)
-    if isinstance(shape, Cylinder):
-        radius, length = _si(problem, shape.radius), _si(problem, shape.length)
-        if not radius or not length:
-            return None
-        value = mass / (math.pi * radius ** 2 * length)
-        return value, value
-    if isinstance(shape, Block):
-        sides = [_si(problem, s) for s in shape.sides]
-        if any(s is None for s in sides) or not all(sides):
-            return None
-        value = mass / math.prod(sides)  # type: ignore[arg-type]
-        return value, value
-    return None
+    volumes = part.shape.volumes(lambda e: _si(problem, e))
+    if volumes is None:
+        return None
+    largest, smallest = volumes
+    return mass / largest, (mass / smallest if smallest else math.inf)
 
 
 def _densities(problem: Problem) -> list[AuthorWarning]:

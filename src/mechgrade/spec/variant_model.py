@@ -112,7 +112,7 @@ class Requirement:
 
 
 @dataclass(frozen=True)
-class Bound:
+class Limits:
     """The declared range of a given, a solved quantity or an objective (``name``), in
     ``unit``; either end may be open (``None``)."""
 
@@ -125,7 +125,7 @@ class Bound:
     def contains(self, value: float) -> bool:
         """Whether ``value`` (in ``unit``) lies in the bound, ends included.
 
-        >>> Bound("x", "m", 0.0, None).contains(-1.0)
+        >>> Limits("x", "m", 0.0, None).contains(-1.0)
         False
         """
         return ((self.low is None or value >= self.low)
@@ -138,5 +138,5 @@ class Variants:
 
     draws: tuple[Draw, ...]
     requires: tuple[Requirement, ...] = ()
-    bounds: tuple[Bound, ...] = ()
+    bounds: tuple[Limits, ...] = ()
     where: Location = field(default_factory=Location, compare=False)

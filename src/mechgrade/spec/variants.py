@@ -43,10 +43,10 @@ from ..expressions.syntax import parse, to_text
 from ..units import from_si, parse_quantity, same_dimension, to_si
 from .model import Given
 from .validate import did_you_mean
-from .variant_model import (COMPARISON, PLACEHOLDER, Bound, Choices, Draw, Integers,
+from .variant_model import (COMPARISON, PLACEHOLDER, Choices, Draw, Integers, Limits,
                             Requirement, RoundedRange, SteppedRange, Variants)
 
-__all__ = ["PLACEHOLDER", "Bound", "Choices", "Draw", "Integers", "Requirement", "RoundedRange",
+__all__ = ["PLACEHOLDER", "Choices", "Draw", "Integers", "Limits", "Requirement", "RoundedRange",
            "SteppedRange", "Variants", "read_requirement", "read_variants"]
 
 
@@ -212,7 +212,7 @@ def _in_unit(raw, unit: str, where: Location, whose: str = "the given's unit") -
     return from_si(to_si(q.value, q.unit), unit) if unit else to_si(q.value, q.unit)
 
 
-def _bound(name: str, spec: dict, unit: str, where) -> Bound:
+def _bound(name: str, spec: dict, unit: str, where) -> Limits:
     """A bound in the unit of the quantity it bounds (``unit``; a bare number is in it)."""
     here = where("variants", "bounds", name)
     values = {}
@@ -224,7 +224,7 @@ def _bound(name: str, spec: dict, unit: str, where) -> Bound:
     low, high = values.get("min"), values.get("max")
     if low is not None and high is not None and low > high:
         raise SpecError(f"expected min <= max, found {low:g} > {high:g}", where=here)
-    return Bound(name, unit, low, high, here)
+    return Limits(name, unit, low, high, here)
 
 
 def _quoted(name: str) -> str:
