@@ -566,8 +566,8 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: n
     misread, a model changed), so it carries the answer's noise; it is judged at the answer's
     scale, by the rules the answer itself is judged by:
 
-    - within :data:`SAME` of the answer: the answer, no mistake here (a time found again in
-      a motion started a millionth as fast, whose absolute tolerance is a part in 1e6 of it);
+    - within :data:`SAME` of the answer: the answer, no mistake here (a first stop found
+      again in a motion started a millionth as fast, 1e-7 off);
     - at most :data:`~mechgrade.tolerance.PART` of the answer (round-off beside it: a term
       that cancels the answer to its last digits, a rate that an event makes zero), or shown
       as 0 (:data:`~.result.ROUND_OFF`): a zero, dropped but for :data:`ZERO_NAMES` (a zero
@@ -627,11 +627,11 @@ family's dropped."""
 
 
 SAME = REFERENCE_ACCURACY
-"""Relative distance within which a mistake's value is the answer's, zero, or another
-mistake's (one value): the reference is trusted to that (an integration to an event, a
-mistaken motion a millionth as large as the answer's, whose absolute tolerance is a part in
-1e7 of it), and no tolerance may be tighter, so no student's answer tells values closer than
-that apart."""
+"""Relative distance within which a mistake's value is the answer's or another mistake's (one
+value): the reference is trusted to that (an integration to an event; a mistaken motion
+started a millionth as fast, whose values the integrator's absolute tolerance 1e-12 then
+holds to about 1e-6), and no tolerance may be tighter, so no student's answer tells values
+closer than that apart."""
 
 
 def shown(si: np.ndarray, obj: Objective) -> list:
