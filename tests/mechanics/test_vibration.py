@@ -159,3 +159,12 @@ def test_states_side_by_side_each_get_the_modes_they_get_alone():
             np.testing.assert_allclose(together, alone, rtol=1e-12, atol=0)
     frequency = modal_value(Modal.FREQUENCY, 1, 0, 0, 3, 3, *columns)
     assert np.isfinite(frequency).tolist() == [True, False, False, True]
+
+
+def test_a_mode_that_moves_freely_but_for_round_off_has_a_zero_frequency():
+    # a chain whose spring to the wall is left out: its free mode's squared frequency is
+    # round-off (1e-14 beside 9), whose root (1e-7 rad/s) is no frequency
+    entries = _entries(np.eye(2), [[1e-14, 0.0], [0.0, 9.0]], np.zeros((2, 2)))
+    assert [_value(Modal.FREQUENCY, r, entries) for r in (1, 2)] == [0.0, 3.0]
+    kept = _entries(np.eye(2), [[1e-8, 0.0], [0.0, 9.0]], np.zeros((2, 2)))
+    assert _value(Modal.FREQUENCY, 1, kept) == pytest.approx(1e-4)

@@ -257,3 +257,60 @@ def test_a_given_first_rate_or_zero_second_rate_is_not_taken_as_zero():
                    for g in problem.givens)
     # theta' = 7 rad/s is a first rate: never dropped by this family; theta'' = 0 already is
     assert _generated(replace(problem, givens=givens), "acc_A", "given_acceleration_zero") == []
+
+
+def test_a_mistake_within_the_references_accuracy_of_the_answer_is_the_answer():
+    # a first stop found again in a motion started a millionth as fast (three_cart's initial
+    # speed omitted): 1.06e-7 off the answer, integration noise, not a mistake; 2e-6 off is one
+    mistakes = [GeneratedMistake("initial_speed_omitted", "s", 119.92976781240235),
+                GeneratedMistake("damping_omitted", "d", 119.93027015905558)]
+    assert [m.code for m in kept_at(119.92975512634762, mistakes)] == ["damping_omitted"]
+
+
+def test_a_mistake_that_is_round_off_beside_the_answer_is_a_zero():
+    # satellite: the radial speed at apogee, zero by the event, left by ω × r dropped
+    # (2.7e-12 km/s beside 6.5 km/s); a unit slip at a millionth of the answer is kept
+    mistakes = [GeneratedMistake("drop_omega_r", "s", 2.6722517532107305e-12),
+                GeneratedMistake("component_for_speed", "c", (-2.673e-12, 0.0, 0.0)),
+                GeneratedMistake("given_unit", "u", 6.5e-6)]
+    assert [m.code for m in kept_at(6.488223320730449, mistakes[:1] + mistakes[2:])] \
+        == ["given_unit"]
+    assert kept_at((6.488223320730449, 0.0, 0.0), mistakes[1:2]) == ()
+
+
+def test_a_mistake_that_divides_by_a_round_off_zero_names_nothing():
+    # ruina_9_22 with rolling assumed: both slip times are 0, their ratio noise over noise;
+    # an answer shown as 0 has no scale to judge by, and a mistake beside it is kept
+    mistakes = [GeneratedMistake("rolling_assumed", "r", -264773250397302.94),
+                GeneratedMistake("given_length_unit", "l", 1e6)]
+    assert [m.code for m in kept_at(1.000000000000371, mistakes)] == ["given_length_unit"]
+    assert [m.code for m in kept_at(-1.3e-15, mistakes[:1])] == ["rolling_assumed"]
+
+
+@pytest.mark.slow  # solves ruina_9_22's mistaken models alone and in a class (10 s)
+def test_single_solve_and_class_keep_no_mistake_made_of_noise():
+    # the same rule for one solve and each column of a class (kept_columns)
+    from mechgrade.solve.batch import solve_variants
+
+    problem = load_problem(shipped_dir("problems") / "ruina_9_22_marble_bowling_ball.yaml")
+    alone = solve(problem).result("ratio_t_star_bowling_over_marble")
+    (column,) = solve_variants(problem, [{}])
+    together = column.result("ratio_t_star_bowling_over_marble")
+    for result in (alone, together):
+        codes = [m.code for m in result.generated_mistakes]
+        assert "rolling_assumed" not in codes
+        assert all(abs(m.value) < 1e6 for m in result.generated_mistakes)
+    assert [m.code for m in alone.generated_mistakes] \
+        == [m.code for m in together.generated_mistakes]
+
+
+def test_an_integration_whose_event_never_happens_names_no_time():
+    # the boat's drag left out: it never slows to v1, so that model gives no time (its
+    # solve fails), alone and in a class; the drag taken constant does reach it
+    from mechgrade.solve.batch import solve_variants
+
+    problem = load_problem(shipped_dir("problems") / "boat_coasting_quadratic_drag.yaml")
+    for solution in (solve(problem), solve_variants(problem, [{}])[0]):
+        codes = [m.code for m in solution.result("time").generated_mistakes]
+        assert "force_taken_constant" in codes
+        assert not {"force_omitted", "initial_speed_omitted"} & set(codes)

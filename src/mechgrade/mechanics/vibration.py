@@ -247,7 +247,11 @@ def _value(states: _States, what: Modal, number: int, i: int, j: int) -> np.ndar
             order = np.argsort(squares.real, axis=1)[:, number - 1]
             every = np.arange(len(c))
             if what == Modal.FREQUENCY:
-                value = np.sqrt(np.maximum(squares.real[every, order], 0.0))
+                # a square that is round-off beside the largest moves freely (as ``stable``
+                # reads it): its frequency is 0, not the root of that round-off (1e-7 rad/s)
+                square = squares.real[every, order]
+                value = np.sqrt(np.where(tolerance.parts(square, largest[:, 0]),
+                                         np.maximum(square, 0.0), 0.0))
             else:
                 shape = (modes.T @ modes.shapes[every, :, order][:, :, None])[:, :, 0].real
                 moves = tolerance.parts(shape[:, j], np.abs(shape).max(axis=1))

@@ -31,7 +31,7 @@ from ..expressions.syntax import Call, Name, Prime, to_text, walk
 from ..spec.constraint_mutations import constraint_mutations, position_unchosen
 from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.solving import carried
-from ..tolerance import parts, within
+from ..tolerance import PART, REFERENCE_ACCURACY, parts, within
 from ..units import dimension, si_factor, to_si
 from .columns import call
 from .numeric import every_branch_columns, solve_numeric_columns
@@ -557,11 +557,28 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: n
     """Which generated mistakes are kept, at every instant at once (``right``: the answer at
     each, N x size; ``V``: the mistakes' values in order, N x count x size; ``exists``: where
     each is defined; ``codes``: each one's family, N x count): each that differs from the
-    answer (the same value as the answer at this instant: no mistake here) and from every one
-    of its family kept before it (:data:`SAME`), and is not a zero other than those of
-    :data:`ZERO_NAMES` (a zero is what many mistakes give). Two families of one value are
-    both kept: the grader names both. The ``first`` are kept whatever they are. The one rule
-    for one solve and a class (:func:`kept_columns`).
+    answer, from every one of its family kept before it and from zero, and is no division by
+    zero, as far as the reference can tell values apart. The ``first`` are kept whatever they
+    are. Two families of one value are both kept: the grader names both. The one rule for one
+    solve and a class (:func:`kept_columns`, :func:`kept_at`).
+
+    A mistake's value comes from the answer's own quantities (a term dropped, a given
+    misread, a model changed), so it carries the answer's noise; it is judged at the answer's
+    scale, by the rules the answer itself is judged by:
+
+    - within :data:`SAME` of the answer: the answer, no mistake here (a first stop found
+      again in a motion started a millionth as fast, 1e-7 off);
+    - at most :data:`~mechgrade.tolerance.PART` of the answer (round-off beside it: a term
+      that cancels the answer to its last digits, a rate that an event makes zero), or shown
+      as 0 (:data:`~.result.ROUND_OFF`): a zero, dropped but for :data:`ZERO_NAMES` (a zero
+      is what many mistakes give);
+    - an answer that is not 0 at most :data:`~mechgrade.tolerance.PART` of it (the answer
+      round-off beside it): a division by a zero made of round-off (0/0 read as 1e14);
+    - within :data:`SAME` of one of its family kept before it: that one.
+
+    A unit slip's value may be a millionth of the answer and is kept. An integration whose
+    event never happens names no time: its model is not solved
+    (:func:`~.events.event_never_happens`), so it has no value here.
 
     >>> kept_mistakes(np.array([[1.0]]), np.array([[[2.0], [2.0 + 1e-9], [1.0], [0.0]]]),
     ...               np.ones((1, 4), bool), np.array([["a"] * 4])).tolist()
@@ -570,16 +587,21 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: n
     ...               np.ones((1, 4), bool),
     ...               np.array([["a", "b", "a", "drop_coriolis"]])).tolist()
     [[True, True, False, True]]
+    >>> kept_mistakes(np.array([[6.5]]), np.array([[[1 + 4e-7], [4e-13], [-3e13], [5e-7]]]) * 6.5,
+    ...               np.ones((1, 4), bool), np.array([["a", "b", "c", "d"]])).tolist()
+    [[False, False, False, True]]
     """
     n, count = exists.shape
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore", over="ignore"):
         norms = np.linalg.norm(V, axis=2)
-        scale = np.maximum(np.linalg.norm(right, axis=1), 1e-12)
+        size = np.linalg.norm(right, axis=1)[:, None]
+        scale = np.maximum(size, 1e-12)
         answer = np.linalg.norm(V - right[:, None, :], axis=2) <= \
-            SAME * np.maximum(norms, scale[:, None]) + 1e-12
-        vague = exists & ~(np.abs(V) > ROUND_OFF).any(axis=2)
+            SAME * np.maximum(norms, scale) + 1e-12
+        vague = exists & (~(np.abs(V) > ROUND_OFF).any(axis=2) | (norms <= PART * size))
         at = np.nonzero(vague)  # the few zeros: their families looked up one by one
         vague[at] = [code not in ZERO_NAMES for code in codes[at].tolist()]
+        blown = (size > ROUND_OFF) & (size < PART * norms)
         keep = np.zeros((n, count), dtype=bool)
         keep[:, :first] = True
         for j in range(first, count):
@@ -588,7 +610,7 @@ def kept_mistakes(right: np.ndarray, V: np.ndarray, exists: np.ndarray, codes: n
                                               1e-12) + 1e-12
             same &= codes[:, :j] == codes[:, j:j + 1]
             keep[:, j] = exists[:, j] & ~(same & keep[:, :j]).any(axis=1) & ~answer[:, j] \
-                & ~vague[:, j]
+                & ~vague[:, j] & ~blown[:, j]
     return keep
 
 
@@ -604,10 +626,12 @@ the mistaken constraint solved again, not a term dropped): their zeros are kept,
 family's dropped."""
 
 
-SAME = 1e-7
+SAME = REFERENCE_ACCURACY
 """Relative distance within which a mistake's value is the answer's or another mistake's (one
-value): values read at an integration's event (limits just before it) carry errors near
-1e-8, and no tolerance a student can meet tells apart values closer than that."""
+value): the reference is trusted to that (an integration to an event; a mistaken motion
+started a millionth as fast, whose values the integrator's absolute tolerance 1e-12 then
+holds to about 1e-6), and no tolerance may be tighter, so no student's answer tells values
+closer than that apart."""
 
 
 def shown(si: np.ndarray, obj: Objective) -> list:
