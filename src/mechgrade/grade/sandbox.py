@@ -90,20 +90,36 @@ def _limit_memory(memory_mb: int) -> None:
         pass
 
 
+Message = tuple[bool, list[tuple[int, object]], list[tuple[str | None, int, int]]]
+"""A batch as it travels to the worker (:meth:`Sandbox.message`): whether the worker forgets
+the references it holds, the references it has not been sent yet, each with its number, and
+the answers, each ``(text, number of its reference, number of its policy)``."""
+
+MAX_HELD = 1024
+"""Most references and policies a worker holds; beyond, it forgets them all and is sent
+afresh those it is asked about."""
+
+
 def _worker(conn: Connection, judge: Judge, memory_mb: int) -> None:
     """Judge each batch of items sent, one answer at a time, sending each outcome back as soon
     as it is known (the parent times every answer from the previous outcome)."""
     worker_started()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
     _limit_memory(memory_mb)
+    held: dict[int, object] = {}  # the references and policies sent, by their numbers
     while True:
         try:
-            batch = conn.recv()
+            message: Message | None = conn.recv()
         except (EOFError, OSError):
             return
-        if batch is None:
+        if message is None:
             return
-        for text, result, policy in batch:
+        forget, new, numbered = message
+        if forget:
+            held.clear()
+        held.update(new)
+        for text, result, policy in ((text, cast(ObjectiveResult, held[r]),
+                                      cast(GradingPolicy, held[p])) for text, r, p in numbered):
             reply: Reply
             try:
                 reply = judge(text, result, policy)
@@ -145,6 +161,9 @@ class Sandbox:
         self.restarts = 0
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
+        # the objects the live worker holds: id() -> the object (kept, so its id stays its
+        # own) and its number there
+        self._held: dict[int, tuple[object, int]] = {}
 
     # -- lifecycle
 
@@ -164,6 +183,7 @@ class Sandbox:
             gc.unfreeze()
         child.close()
         self._process, self._conn = process, parent
+        self._held = {}
 
     def _kill(self) -> None:
         process, conn = self._process, self._conn
@@ -206,7 +226,7 @@ class Sandbox:
                 self._kill()
             self._start()
         try:
-            self.pipe().send(batch)
+            self.pipe().send(self.message(batch))
             return True
         except (OSError, BrokenPipeError):
             self._kill()
@@ -216,6 +236,25 @@ class Sandbox:
         """The parent's end of the pipe to the live worker."""
         assert self._conn is not None, "the worker is not running"
         return self._conn
+
+    def message(self, batch: list[Item]) -> Message:
+        """``batch`` as it travels to the worker: each reference and policy is sent once per
+        worker and then named by its number, so a batch carries little more than its texts
+        and the worker judges every answer to an objective against the same object (what it
+        works out once per objective is found again by identity)."""
+        forget = len(self._held) > MAX_HELD
+        if forget:
+            self._held = {}
+        new: list[tuple[int, object]] = []
+
+        def number(thing: object) -> int:
+            known = self._held.get(id(thing))
+            if known is None:
+                known = self._held[id(thing)] = (thing, len(self._held))
+                new.append((known[1], thing))
+            return known[1]
+        numbered = [(text, number(result), number(policy)) for text, result, policy in batch]
+        return forget, new, numbered
 
     # -- judging
 
@@ -366,7 +405,7 @@ class _Spread:
             # Answers are in flight: the worker is never restarted under them. If it has died,
             # its end of file is read as usual and these go to the fresh worker with the rest.
             try:
-                box.pipe().send([self.items[i] for i in indices])
+                box.pipe().send(box.message([self.items[i] for i in indices]))
             except OSError:
                 pass
             self.pending[box] += indices
