@@ -212,3 +212,35 @@ def test_a_worker_holding_too_many_references_forgets_them_and_is_sent_them_agai
         forgets = box.message(items[:6])[0], box.message(items[6:12])
         assert box.assess_many(items) == [assess(*item) for item in items]
     assert forgets[0] is False and forgets[1][0] is True and len(forgets[1][1]) == 7
+
+
+def test_a_worker_sends_the_outcomes_of_quick_answers_in_groups(monkeypatch):
+    from multiprocessing.connection import Connection
+
+    received = []
+    recv = Connection.recv
+    monkeypatch.setattr(Connection, "recv", lambda self: received.append(1) or recv(self))
+    items = [(f"{i} ft/s^2", ACC, GradingPolicy()) for i in range(400)]
+    with Sandbox(seconds=20) as box:
+        assert box.assess_many(items) == [assess(*item) for item in items]
+    assert len(received) < len(items) / 4
+
+
+def test_outcomes_judged_but_not_sent_when_a_worker_is_killed_are_judged_again():
+    # the quick answers before "spin" are judged within one group, which the kill loses
+    texts = ["98.5 ft/s^2", "-98.5 ft/s^2", "30 m/s", "spin", "98.5", "1 ft"]
+    with Sandbox(seconds=0.5, judge=hostile_judge) as box:
+        judged = box.assess_many([(t, ACC, GradingPolicy()) for t in texts])
+        assert box.restarts == 1
+    assert [a.verdict for a in judged] == [
+        "not_evaluated" if t == "spin" else assess(t, ACC).verdict for t in texts]
+    assert "longer than 0.5 s" in judged[3].feedback
+
+
+def test_an_answer_that_runs_out_of_memory_after_quick_ones_is_the_one_not_evaluated():
+    texts = ["98.5 ft/s^2", "-98.5 ft/s^2", "memory", "30 m/s"]
+    with Sandbox(seconds=20, memory_mb=128, judge=hostile_judge) as box:
+        judged = box.assess_many([(t, ACC, GradingPolicy()) for t in texts])
+    assert [a.verdict for a in judged] == [
+        "not_evaluated" if t == "memory" else assess(t, ACC).verdict for t in texts]
+    assert "128 MiB" in judged[2].feedback
