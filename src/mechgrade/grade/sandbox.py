@@ -497,16 +497,18 @@ class _Spread:
         if box in self.pending and not self.pending[box]:
             del self.pending[box]
 
-    def due(self, box: Sandbox) -> float:
-        """When ``box`` overruns: ``seconds`` after the answer it is judging began, or after
-        its last outcomes came, whichever is later."""
-        return max(self.deadline[box], box.progress()[1] + box.seconds)
+    def due(self, box: Sandbox, began: float) -> float:
+        """When ``box`` overruns: ``seconds`` after the answer it is judging ``began``, or
+        after its last outcomes came, whichever is later."""
+        return max(self.deadline[box], began + box.seconds)
 
-    def fail(self, box: Sandbox, assessment: Assessment) -> None:
-        """The answer ``box`` was judging gets ``assessment`` (the first it holds, when it had
-        begun none of them); the others, judged or not, go to a fresh worker."""
+    def fail(self, box: Sandbox, assessment: Assessment, begun: int | None = None) -> None:
+        """The answer ``box`` was judging gets ``assessment``: its ``begun``-th (default: the
+        last it began; the first it holds, when it had begun none of them). The others,
+        judged or not, go to a fresh worker."""
         indices = self.pending.pop(box)
-        current = min(max(box.progress()[0] - box.replied - 1, 0), len(indices) - 1)
+        begun = box.progress()[0] if begun is None else begun
+        current = min(max(begun - box.replied - 1, 0), len(indices) - 1)
         self.results[indices[current]] = assessment
         del indices[current]
         box._kill()
@@ -538,7 +540,8 @@ class _Spread:
         for box in self.boxes:
             self.refill(box)
         while self.pending:
-            wait_for = max(0.0, min(self.due(box) for box in self.pending) - time.monotonic())
+            wait_for = max(0.0, min(self.due(box, box.progress()[1]) for box in self.pending)
+                           - time.monotonic())
             try:
                 ready = connection.wait([box.pipe() for box in self.pending], wait_for)
             except OSError:
@@ -547,8 +550,11 @@ class _Spread:
             for box in answered:
                 self.receive(box)
             now = time.monotonic()
-            for box in [b for b in self.pending if self.due(b) <= now and b not in answered]:
-                self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
+            for box in [b for b in self.pending if b not in answered]:
+                begun, began = box.progress()  # the answer that overran, even if it ends now
+                if self.due(box, began) <= now:
+                    self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"),
+                              begun)
         assert all(result is not None for result in self.results)
         return cast(list[Assessment], self.results)
 
