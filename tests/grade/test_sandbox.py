@@ -244,3 +244,19 @@ def test_an_answer_that_runs_out_of_memory_after_quick_ones_is_the_one_not_evalu
     assert [a.verdict for a in judged] == [
         "not_evaluated" if t == "memory" else assess(t, ACC).verdict for t in texts]
     assert "128 MiB" in judged[2].feedback
+
+
+def test_the_batches_a_worker_is_handed_at_once_travel_as_one_message():
+    from mechgrade.grade.sandbox import MAX_BATCH, _Spread
+
+    class Recording(Sandbox):
+        """Keeps what it is handed instead of starting a worker."""
+
+        def _send(self, batch):
+            handed.append(len(batch))
+            return True
+
+    handed: list[int] = []
+    box = Recording(seconds=20)
+    _Spread([box], [(f"{i} ft/s^2", ACC, GradingPolicy()) for i in range(400)]).refill(box)
+    assert handed == [MAX_BATCH + MAX_BATCH]  # a batch to judge and one beyond, in one message

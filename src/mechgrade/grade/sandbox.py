@@ -490,10 +490,11 @@ class _Spread:
         per_answer = self.per_answer()
         hold = self.batch_size() if per_answer is None else max(
             self.batch_size(), min(4 * MAX_BATCH, int(4 * GROUP_SECONDS / per_answer)))
-        while self.sent < len(self.items) and len(self.pending.get(box, ())) <= hold:
-            size = self.batch_size()
-            self.sent += size
-            self.send(box, deque(range(self.sent - size, self.sent)))
+        start, held = self.sent, len(self.pending.get(box, ()))
+        while self.sent < len(self.items) and held + self.sent - start <= hold:
+            self.sent += self.batch_size()
+        if self.sent > start:  # the batches in one message
+            self.send(box, deque(range(start, self.sent)))
         if box in self.pending and not self.pending[box]:
             del self.pending[box]
 
