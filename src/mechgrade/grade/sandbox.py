@@ -396,9 +396,10 @@ MAX_BATCH = 64
 def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     """Judge ``items`` with ``boxes`` working side by side, each taking the next batch when its
     last one is done; an item repeated in ``items`` is judged once (judging is a function of
-    the text, the reference and the policy). Every answer gets ``seconds`` from the previous
-    outcome of its worker; an overrun, a memory overrun or a crash makes that one answer
-    ``not_evaluated``, and the worker is restarted for the rest of its batch."""
+    the text, the reference and the policy). Every answer gets ``seconds`` from its start (or
+    from its worker's last outcomes received, when later); an overrun, a memory overrun or a
+    crash makes that one answer ``not_evaluated``, and the worker is restarted for the rest of
+    its batch."""
     try:
         keys = _keys(items)
         first: dict[tuple, int] = {}  # key -> its place among the distinct items
