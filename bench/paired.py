@@ -4,8 +4,9 @@ A round times every side once, each on inputs of its own (``draw(count, round)``
 untimed; a draw gives inputs no earlier call has seen), the order of the sides turning round
 by round, so that other load on the machine falls on every side alike. A side's figure
 against the first side is the median of the per-round ratios (min and max show the spread a
-loaded machine gives). In-process sides also give the ratio of process CPU time, which a
-loaded machine disturbs less than the wall clock.
+loaded machine gives). Sides also give the ratio of CPU time, which a loaded machine disturbs
+less than the wall clock: the process's own, or what a side's ``clock`` counts (a side that
+hands its work to other processes counts theirs too).
 """
 
 from __future__ import annotations
@@ -13,7 +14,8 @@ from __future__ import annotations
 import statistics
 import time
 from dataclasses import dataclass
-from typing import Any, Callable, Sequence
+from pathlib import Path
+from typing import Any, Callable, Iterable, Sequence, Union
 
 
 @dataclass(frozen=True)
@@ -26,22 +28,32 @@ class Run:
     out: Any
 
 
-def timed(func: Callable, batch) -> Run:
+Side = Union[tuple[str, Callable], tuple[str, Callable, Callable[[], float]]]
+"""A side's label, its function of a batch and, optionally, the clock of the CPU seconds it
+uses (default: this process's, ``time.process_time``)."""
+
+
+def timed(func: Callable, batch, clock: Callable[[], float] = time.process_time) -> Run:
     """``func(batch)`` timed."""
-    wall, cpu = time.perf_counter(), time.process_time()
+    wall, cpu = time.perf_counter(), clock()
     out = func(batch)
-    return Run(time.perf_counter() - wall, time.process_time() - cpu, batch, out)
+    return Run(time.perf_counter() - wall, clock() - cpu, batch, out)
 
 
-def in_rounds(sides: Sequence[tuple[str, Callable]], draw: Callable[[int, int], Any],
+def in_rounds(sides: Sequence[Side], draw: Callable[[int, int], Any],
               count: int, rounds: int) -> dict[str, list[Run]]:
     """Every side's runs, ``rounds`` rounds of ``count`` inputs a side."""
-    runs: dict[str, list[Run]] = {label: [] for label, _ in sides}
+    runs: dict[str, list[Run]] = {side[0]: [] for side in sides}
     for round_ in range(rounds):
         turn = round_ % len(sides)
-        for label, side in [*sides[turn:], *sides[:turn]]:
-            runs[label].append(timed(side, draw(count, round_)))
+        for label, func, *clock in [*sides[turn:], *sides[:turn]]:
+            runs[label].append(timed(func, draw(count, round_), *clock))
     return runs
+
+
+def cpu_of(pids: Iterable[int]) -> float:
+    """The CPU seconds processes ``pids`` have used so far (Linux's ``/proc``)."""
+    return sum(int(Path(f"/proc/{pid}/schedstat").read_text().split()[0]) for pid in pids) / 1e9
 
 
 def against(base: list[Run], runs: list[Run], cpu: bool = False) -> str:

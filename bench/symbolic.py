@@ -7,7 +7,9 @@ equivalent or not by hand) are judged three ways:
   difference, one answer after the other;
 * mechgrade in-process: :func:`mechgrade.grade.compare.assess` of every answer;
 * mechgrade through a worker per core: every answer through a :class:`SandboxPool`, in
-  batches (as a grading run judges them).
+  batches (as a grading run judges them). Its CPU time is the parent's and the workers'
+  together (Linux: ``/proc``), more than in-process judging costs: the workers' parallel
+  gain shows in the wall clock only.
 
 The figures are paired (bench/paired.py): a round times each side once, on the same number
 of answers, the order of the sides turning round by round, and the ratio naive / mechgrade is
@@ -16,8 +18,8 @@ spread a loaded machine gives). No call sees a text an earlier call has seen: ev
 answers are written anew (``k*(form)/k`` with a ``k`` no earlier call used), so neither side
 answers from a cache of an earlier call. Two sets: answers as a class writes them (the same
 forms many times over within a call, as a class's submissions are judged together) and every
-answer written differently. In-process sides also give the ratio of process CPU time, which a
-loaded machine disturbs less than the wall clock.
+answer written differently. Every side also gives the ratio of CPU time, which a loaded machine
+disturbs less than the wall clock.
 
 A verdict is right when "correct" goes with an equivalent answer and any other verdict with a
 wrong one. Run: ``.venv/bin/python bench/symbolic.py [count] [rounds]`` (default 200, 7).
@@ -25,9 +27,11 @@ wrong one. Run: ``.venv/bin/python bench/symbolic.py [count] [rounds]`` (default
 
 from __future__ import annotations
 
+import argparse
 import itertools
+import os
 import random
-import sys
+import time
 from pathlib import Path
 
 import sympy
@@ -41,7 +45,7 @@ from mechgrade.grade.sandbox import SandboxPool
 from mechgrade.parallel import default_jobs
 from mechgrade.solve import solve
 from mechgrade.spec import load_problem
-from paired import against, in_rounds, per_item_ms  # bench/paired.py, beside this script
+from paired import against, cpu_of, in_rounds, per_item_ms  # bench/paired.py, beside this script
 
 PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
 
@@ -120,25 +124,29 @@ def compare(title: str, refs: dict, draw, count: int, rounds: int, pool: Sandbox
         return [a.verdict for a in pool.assess_many([(text, refs[key], policy)
                                                      for key, text, _ in batch])]
 
+    def pool_cpu() -> float:  # the parent's and the live workers'
+        return time.process_time() + cpu_of(box._process.pid for box in pool.boxes
+                                            if box._process is not None)
+
     sides = [("naive simplify(sympify(a) - sympify(b)) == 0", naive),
              ("mechgrade in-process, one by one", in_process),
-             (f"mechgrade through {len(pool.boxes)} workers, batches", pooled)]
+             (f"mechgrade through {len(pool.boxes)} workers, batches", pooled, pool_cpu)]
     # each side its own new answers (the same forms: one seed a round), drawn untimed
     runs = in_rounds(sides, draw, count, rounds)
     print(f"{title}: {rounds} rounds of {count} answers a side, each side first in turn")
     base = runs[sides[0][0]]
-    for label, _ in sides:
+    for label, *_ in sides:
         good = sum((v == "correct") == equivalent for run in runs[label]
                    for v, (_, _, equivalent) in zip(run.out, run.batch))
         line = f"  {label:<50} {per_item_ms(runs[label], count):8.3f} ms/answer"
         if label != sides[0][0]:
-            line += f"  naive/this {against(base, runs[label])}"
-            if "in-process" in label:
-                line += f", CPU {against(base, runs[label], cpu=True)}"
+            line += (f"  naive/this {against(base, runs[label])},"
+                     f" CPU {against(base, runs[label], cpu=True)}")
         print(f"{line}  {good}/{count * rounds} right")
 
 
 def main(count: int = 200, rounds: int = 7) -> None:
+    print(f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} (1 min) at the start")
     refs = references()
     policy = GradingPolicy()
     jobs = default_jobs()
@@ -151,7 +159,14 @@ def main(count: int = 200, rounds: int = 7) -> None:
         pool.assess_many([("1", refs[key], policy) for key in FORMS] * jobs)
         compare("as a class answers", refs, as_a_class, count, rounds, pool)
         compare("every answer written differently", refs, all_different, count, rounds, pool)
+        print(f"worker restarts: {pool.restarts}; load average {os.getloadavg()[0]:.2f} at the end")
 
 
 if __name__ == "__main__":
-    main(*(int(a) for a in sys.argv[1:3]))
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("count", nargs="?", type=int, default=200,
+                        help="answers a side in each round (default 200)")
+    parser.add_argument("rounds", nargs="?", type=int, default=7,
+                        help="rounds of each set (default 7)")
+    arguments = parser.parse_args()
+    main(arguments.count, arguments.rounds)

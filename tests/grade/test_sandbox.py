@@ -171,3 +171,92 @@ def test_idle_and_busy_workers_die_with_their_killed_parent(marked_run):
     run.kill()
     assert run.survivors() == set()
     assert run.output_closed()
+
+
+KEPT = []
+
+
+def identity_judge(text, result, policy):
+    """Tells which object the worker judged against (kept alive, so ids are not reused)."""
+    KEPT.append(result)
+    return Assessment("correct", 1.0, None, str(id(result)), None)
+
+
+def test_a_worker_judges_every_answer_to_one_reference_against_one_object():
+    # what compare works out once per objective is found again by the object's identity
+    items = [(f"{i} ft/s^2", ACC, GradingPolicy()) for i in range(300)]
+    with Sandbox(seconds=20, judge=identity_judge) as box:
+        judged = box.assess_many(items) + box.assess_many(items[:10])
+    assert len({a.feedback for a in judged}) == 1
+
+
+def test_a_reference_travels_once_to_a_worker_then_by_its_number():
+    policy = GradingPolicy()
+    box = Sandbox(seconds=20)
+    first = box.message([("1 m", ACC, policy), ("2 m", SYM, policy), ("3 m", ACC, policy)])
+    second = box.message([("4 m", SYM, policy)])
+    assert first == (False, [(0, ACC), (1, policy), (2, SYM)],
+                     [("1 m", 0, 1), ("2 m", 2, 1), ("3 m", 0, 1)])
+    assert second == (False, [], [("4 m", 2, 1)])
+
+
+def test_a_worker_holding_too_many_references_forgets_them_and_is_sent_them_again(monkeypatch):
+    from dataclasses import replace
+
+    from mechgrade.grade import sandbox
+
+    monkeypatch.setattr(sandbox, "MAX_HELD", 3)
+    references, policy = [replace(ACC, value=98.51 * (1 + i)) for i in range(6)], GradingPolicy()
+    items = [(f"{98.5 * (1 + i % 6)} ft/s^2", references[i % 6], policy) for i in range(60)]
+    with Sandbox(seconds=20) as box:
+        forgets = box.message(items[:6])[0], box.message(items[6:12])
+        assert box.assess_many(items) == [assess(*item) for item in items]
+    assert forgets[0] is False and forgets[1][0] is True and len(forgets[1][1]) == 7
+
+
+def test_a_worker_sends_the_outcomes_of_quick_answers_in_groups(monkeypatch):
+    from multiprocessing.connection import Connection
+
+    received = []
+    recv = Connection.recv
+    monkeypatch.setattr(Connection, "recv", lambda self: received.append(1) or recv(self))
+    items = [(f"{i} ft/s^2", ACC, GradingPolicy()) for i in range(400)]
+    with Sandbox(seconds=20) as box:
+        assert box.assess_many(items) == [assess(*item) for item in items]
+    assert len(received) < len(items) / 4
+
+
+def test_outcomes_judged_but_not_sent_when_a_worker_is_killed_are_judged_again():
+    # the quick answers before "spin" are judged within one group, which the kill loses
+    texts = ["98.5 ft/s^2", "-98.5 ft/s^2", "30 m/s", "spin", "98.5", "1 ft"]
+    with Sandbox(seconds=0.5, judge=hostile_judge) as box:
+        judged = box.assess_many([(t, ACC, GradingPolicy()) for t in texts])
+        assert box.restarts == 1
+    assert [a.verdict for a in judged] == [
+        "not_evaluated" if t == "spin" else assess(t, ACC).verdict for t in texts]
+    assert "longer than 0.5 s" in judged[3].feedback
+
+
+def test_an_answer_that_runs_out_of_memory_after_quick_ones_is_the_one_not_evaluated():
+    texts = ["98.5 ft/s^2", "-98.5 ft/s^2", "memory", "30 m/s"]
+    with Sandbox(seconds=20, memory_mb=128, judge=hostile_judge) as box:
+        judged = box.assess_many([(t, ACC, GradingPolicy()) for t in texts])
+    assert [a.verdict for a in judged] == [
+        "not_evaluated" if t == "memory" else assess(t, ACC).verdict for t in texts]
+    assert "128 MiB" in judged[2].feedback
+
+
+def test_the_batches_a_worker_is_handed_at_once_travel_as_one_message():
+    from mechgrade.grade.sandbox import MAX_BATCH, _Spread
+
+    class Recording(Sandbox):
+        """Keeps what it is handed instead of starting a worker."""
+
+        def _send(self, batch):
+            handed.append(len(batch))
+            return True
+
+    handed: list[int] = []
+    box = Recording(seconds=20)
+    _Spread([box], [(f"{i} ft/s^2", ACC, GradingPolicy()) for i in range(400)]).refill(box)
+    assert handed == [MAX_BATCH + MAX_BATCH]  # a batch to judge and one beyond, in one message

@@ -169,26 +169,28 @@ _PRECEDENCE = {"+": 1, "-": 1, "*": 2, "/": 2, "u": 3, "**": 4}
 
 
 def _text(node: Node, parent: int, space: str) -> str:
-    if isinstance(node, Num):
-        return node.text
-    if isinstance(node, Name):
+    # the commonest kinds first, told by their exact type (every answer read is written back)
+    if type(node) is Bin:
+        prec = _PRECEDENCE[node.op]
+        if node.op == "**":
+            out = f"{_text(node.left, prec + 1, space)}**{_text(node.right, prec, space)}"
+        else:
+            op = f"{space}{node.op}{space}" if prec == 1 else node.op
+            out = f"{_text(node.left, prec, space)}{op}{_text(node.right, prec + 1, space)}"
+        return f"({out})" if parent > prec else out
+    if type(node) is Name:
         return node.id
+    if type(node) is Num:
+        return node.text
     if isinstance(node, Prime):
         return node.id + "'" * node.order
     if isinstance(node, Attr):
         return f"{node.base}.{node.attr}"
     if isinstance(node, Call):
         return f"{node.func}({', '.join(_text(a, 0, space) for a in node.args)})"
-    if isinstance(node, Unary):
-        out = node.op + _text(node.operand, _PRECEDENCE["u"], space)
-        return f"({out})" if parent > _PRECEDENCE["u"] else out
-    prec = _PRECEDENCE[node.op]
-    if node.op == "**":
-        out = f"{_text(node.left, prec + 1, space)}**{_text(node.right, prec, space)}"
-    else:
-        op = f"{space}{node.op}{space}" if prec == 1 else node.op
-        out = f"{_text(node.left, prec, space)}{op}{_text(node.right, prec + 1, space)}"
-    return f"({out})" if parent > prec else out
+    assert isinstance(node, Unary)
+    out = node.op + _text(node.operand, _PRECEDENCE["u"], space)
+    return f"({out})" if parent > _PRECEDENCE["u"] else out
 
 
 # ---------------------------------------------------------------------------- normalising

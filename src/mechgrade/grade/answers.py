@@ -860,7 +860,8 @@ def _product(factors: list[Node], first: Node | None = None) -> Node:
 def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> Node:
     """``node`` in the declared names (a part unchanged is kept as it is); an undeclared
     ``e`` is Euler's number (``e^x`` as ``exp(x)``, a lone ``e`` as ``exp(1)``)."""
-    if isinstance(node, Name):
+    # the commonest kinds first, told by their exact type (every answer read is renamed)
+    if type(node) is Name:
         if node.id == "pi":
             return node
         target = aliases.get(node.id)
@@ -873,16 +874,7 @@ def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> No
             return _product(list(split))
         unknown.append(node.id)
         return node
-    if isinstance(node, Prime):
-        target = aliases.get((node.id, node.order))
-        if target is None:
-            unknown.append(node.id + "'" * node.order)
-            return node
-        return Name(target)
-    if isinstance(node, Unary):
-        operand = _rename(node.operand, aliases, unknown)
-        return node if operand is node.operand else Unary(node.op, operand)
-    if isinstance(node, Bin):
+    if type(node) is Bin:
         if node.op == "**" and _euler(node.left, aliases):
             return Call("exp", (_rename(node.right, aliases, unknown),))
         if node.op == "**" and _splits(node.left, aliases):
@@ -898,11 +890,20 @@ def _rename(node: Node, aliases: Mapping[object, str], unknown: list[str]) -> No
                 return _product(list(split), left)
         right = _rename(node.right, aliases, unknown)
         return node if left is node.left and right is node.right else Bin(node.op, left, right)
+    if type(node) is Num:
+        return node
+    if isinstance(node, Prime):
+        target = aliases.get((node.id, node.order))
+        if target is None:
+            unknown.append(node.id + "'" * node.order)
+            return node
+        return Name(target)
+    if isinstance(node, Unary):
+        operand = _rename(node.operand, aliases, unknown)
+        return node if operand is node.operand else Unary(node.op, operand)
     if isinstance(node, Call):
         args = tuple(_rename(a, aliases, unknown) for a in node.args)
         return node if all(a is b for a, b in zip(args, node.args)) else Call(node.func, args)
-    if isinstance(node, Num):
-        return node
     unknown.append(syntax.to_text(node))  # pragma: no cover - attributes are refused above
     return node
 

@@ -7,8 +7,9 @@ imported (the fork inherits them, so starting a worker costs milliseconds, not s
 worker limits its address space (``RLIMIT_AS``); the parent waits at most ``seconds`` per answer
 and kills the worker on overrun. An overrun gives the verdict ``not_evaluated`` ("could not be
 evaluated", never "wrong") and the run goes on with a fresh worker; a worker is reused for many
-answers and replaced only after a kill or a crash. Answers travel in batches (one round trip for
-many answers, each still timed on its own), and a :class:`SandboxPool` runs a worker per core.
+answers and replaced only after a kill or a crash. Answers travel in batches and their outcomes
+in groups (one round trip for many answers, each still timed on its own), and a
+:class:`SandboxPool` runs a worker per core.
 
 >>> from mechgrade.solve.result import ObjectiveResult
 >>> acc = ObjectiveResult("a", "scalar", "ft/s^2", 98.51)
@@ -25,7 +26,6 @@ import select
 import signal
 import time
 from collections import deque
-from multiprocessing import connection
 from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
 from enum import Enum
@@ -90,43 +90,118 @@ def _limit_memory(memory_mb: int) -> None:
         pass
 
 
-def _worker(conn: Connection, judge: Judge, memory_mb: int) -> None:
-    """Judge each batch of items sent, one answer at a time, sending each outcome back as soon
-    as it is known (the parent times every answer from the previous outcome)."""
+Message = tuple[bool, list[tuple[int, object]], list[tuple[str | None, int, int]]]
+"""A batch as it travels to the worker (:meth:`Sandbox.message`): whether the worker forgets
+the references it holds, the references it has not been sent yet, each with its number, and
+the answers, each ``(text, number of its reference, number of its policy)``."""
+
+MAX_HELD = 1024
+"""Most references and policies a worker holds; beyond, it forgets them all and is sent
+afresh those it is asked about."""
+
+
+GROUP_SECONDS = 0.002
+"""How much judging a worker's outcomes gather before it sends them: one message (one
+wake-up of the parent) for every answer judged in that time, or at once when it has nothing
+more to judge. A worker judges an answer in a fraction of a millisecond, and on a busy machine
+the parent's wake-ups and the messages took the workers' cores. The parent learns which answer
+a worker is judging from its :class:`Progress`, without a message, so each answer still has
+its own time limit, and the outcomes of a killed worker not yet sent (at most this much
+judging) are judged again by the fresh one."""
+
+
+class Progress:
+    """What a worker is doing, in memory it shares with the parent: how many answers it has
+    begun and when it began the last (``time.monotonic``), written before each answer without
+    a system call.
+
+    >>> progress = Progress(multiprocessing.get_context())
+    >>> progress.begin()
+    >>> progress.read()[0]
+    1
+    """
+
+    def __init__(self, context) -> None:
+        self._shared = context.RawArray("d", 2)
+
+    def begin(self) -> None:
+        """In the worker: one more answer begins now."""
+        self._shared[1] = time.monotonic()
+        self._shared[0] += 1
+
+    def read(self) -> tuple[int, float]:
+        """How many answers the worker has begun, and when it began the last."""
+        return int(self._shared[0]), self._shared[1]
+
+
+def _judged(judge: Judge, text: str | None, result: ObjectiveResult,
+            policy: GradingPolicy) -> Reply:
+    """``judge``'s assessment, ``not_evaluated`` when judging fails, or
+    :attr:`Stopped.OUT_OF_MEMORY`."""
+    try:
+        return judge(text, result, policy)
+    except MemoryError:
+        return Stopped.OUT_OF_MEMORY
+    except RecursionError:
+        return not_evaluated("the expression is nested too deeply to evaluate")
+    except Exception as exc:  # noqa: BLE001 - any failure is "could not be evaluated"
+        return not_evaluated(f"{type(exc).__name__} while judging")
+
+
+def _worker(conn: Connection, judge: Judge, memory_mb: int, progress: Progress) -> None:
+    """Judge each batch of items sent, one answer at a time, saying in ``progress`` which
+    answer it begins, and send the outcomes back in order, in groups (:data:`GROUP_SECONDS`)."""
     worker_started()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when we stop
     _limit_memory(memory_mb)
+    held: dict[int, object] = {}  # the references and policies sent, by their numbers
+    replies: list[Reply] = []  # judged, not sent yet
+    began = 0.0  # when the first of them began
     while True:
         try:
-            batch = conn.recv()
+            message: Message | None = conn.recv()
         except (EOFError, OSError):
             return
-        if batch is None:
+        if message is None:
             return
-        for text, result, policy in batch:
-            reply: Reply
-            try:
-                reply = judge(text, result, policy)
-            except MemoryError:
-                reply = Stopped.OUT_OF_MEMORY
-            except RecursionError:
-                reply = not_evaluated("the expression is nested too deeply to evaluate")
-            except Exception as exc:  # noqa: BLE001 - any failure is "could not be evaluated"
-                reply = not_evaluated(f"{type(exc).__name__} while judging")
-            try:
-                conn.send(reply)
-            except MemoryError:
-                conn.send(Stopped.OUT_OF_MEMORY)
-                reply = Stopped.OUT_OF_MEMORY
-            if reply is Stopped.OUT_OF_MEMORY:
-                return  # the heap may be fragmented near the limit: let the parent start afresh
+        forget, new, numbered = message
+        if forget:
+            held.clear()
+        held.update(new)
+        for text, r, p in numbered:
+            progress.begin()
+            if not replies:
+                began = time.monotonic()
+            replies.append(_judged(judge, text, cast(ObjectiveResult, held[r]),
+                                   cast(GradingPolicy, held[p])))
+            stopped = replies[-1] is Stopped.OUT_OF_MEMORY
+            if stopped or time.monotonic() - began >= GROUP_SECONDS:
+                if not _sent(conn, replies) or stopped:
+                    return  # the heap may be fragmented near the limit: let the parent start afresh
+                replies = []
+        if replies and not _readable(conn):  # nothing more to judge now: send them
+            if not _sent(conn, replies):
+                return
+            replies = []
+
+
+def _sent(conn: Connection, replies: list[Reply]) -> bool:
+    """Send ``replies``; False when they could not be (:attr:`Stopped.OUT_OF_MEMORY` is sent
+    instead)."""
+    try:
+        conn.send(replies)
+        return True
+    except MemoryError:
+        conn.send([Stopped.OUT_OF_MEMORY])
+        return False
 
 
 class Sandbox:
     """A reusable worker process that judges answers one at a time, each within bounds.
 
-    Answers travel in batches (one round trip for many answers); each answer still has its own
-    time limit, counted from the previous answer's outcome. ``judge`` defaults to
+    Answers travel in batches (one round trip for many answers) and their outcomes in groups;
+    each answer still has its own time limit, counted from its own start (from the last
+    outcomes received, when those came later). ``judge`` defaults to
     :func:`mechgrade.grade.compare.assess` (tests pass others).
 
     >>> from mechgrade.solve.result import ObjectiveResult
@@ -145,6 +220,11 @@ class Sandbox:
         self.restarts = 0
         self._process: BaseProcess | None = None
         self._conn: Connection | None = None
+        # the objects the live worker holds: id() -> the object (kept, so its id stays its
+        # own) and its number there
+        self._held: dict[int, tuple[object, int]] = {}
+        self._progress: Progress | None = None
+        self.replied = 0  # outcomes received from the live worker
 
     # -- lifecycle
 
@@ -153,7 +233,9 @@ class Sandbox:
         methods = multiprocessing.get_all_start_methods()
         context = multiprocessing.get_context("fork" if "fork" in methods else None)
         parent, child = context.Pipe()
-        process = context.Process(target=_worker, args=(child, self.judge, self.memory_mb),
+        progress = Progress(context)
+        process = context.Process(target=_worker,
+                                  args=(child, self.judge, self.memory_mb, progress),
                                   daemon=True, name="mechgrade-judge")
         # The worker's collector would walk, and so copy page by page, every object it
         # inherits (sympy's and the solver's): frozen, they are left alone.
@@ -164,6 +246,7 @@ class Sandbox:
             gc.unfreeze()
         child.close()
         self._process, self._conn = process, parent
+        self._held, self._progress, self.replied = {}, progress, 0
 
     def _kill(self) -> None:
         process, conn = self._process, self._conn
@@ -206,7 +289,7 @@ class Sandbox:
                 self._kill()
             self._start()
         try:
-            self.pipe().send(batch)
+            self.pipe().send(self.message(batch))
             return True
         except (OSError, BrokenPipeError):
             self._kill()
@@ -216,6 +299,30 @@ class Sandbox:
         """The parent's end of the pipe to the live worker."""
         assert self._conn is not None, "the worker is not running"
         return self._conn
+
+    def progress(self) -> tuple[int, float]:
+        """How many answers the live worker has begun, and when it began the last."""
+        assert self._progress is not None, "the worker is not running"
+        return self._progress.read()
+
+    def message(self, batch: list[Item]) -> Message:
+        """``batch`` as it travels to the worker: each reference and policy is sent once per
+        worker and then named by its number, so a batch carries little more than its texts
+        and the worker judges every answer to an objective against the same object (what it
+        works out once per objective is found again by identity)."""
+        forget = len(self._held) > MAX_HELD
+        if forget:
+            self._held = {}
+        new: list[tuple[int, object]] = []
+
+        def number(thing: object) -> int:
+            known = self._held.get(id(thing))
+            if known is None:
+                known = self._held[id(thing)] = (thing, len(self._held))
+                new.append((known[1], thing))
+            return known[1]
+        numbered = [(text, number(result), number(policy)) for text, result, policy in batch]
+        return forget, new, numbered
 
     # -- judging
 
@@ -289,9 +396,10 @@ MAX_BATCH = 64
 def _judge_spread(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     """Judge ``items`` with ``boxes`` working side by side, each taking the next batch when its
     last one is done; an item repeated in ``items`` is judged once (judging is a function of
-    the text, the reference and the policy). Every answer gets ``seconds`` from the previous
-    outcome of its worker; an overrun, a memory overrun or a crash makes that one answer
-    ``not_evaluated``, and the worker is restarted for the rest of its batch."""
+    the text, the reference and the policy). Every answer gets ``seconds`` from its start (or
+    from its worker's last outcomes received, when later); an overrun, a memory overrun or a
+    crash makes that one answer ``not_evaluated``, and the worker is restarted for the rest of
+    its batch."""
     try:
         keys = _keys(items)
         first: dict[tuple, int] = {}  # key -> its place among the distinct items
@@ -322,14 +430,6 @@ def _keys(items: list[Item]) -> list[tuple]:
             for text, result, policy in items]
 
 
-COALESCE_SECONDS = 0.002
-"""How long the parent lets outcomes gather in the pipes before reading them: every outcome
-a waiting parent receives wakes it, and on a busy machine those wake-ups take the workers'
-cores (a worker judges an answer in a fraction of a millisecond). The parent pauses less when
-a worker holds less work than that, and each worker is kept holding several pauses' worth.
-An answer's time limit may so start up to a pause late."""
-
-
 def _judge_each(boxes: list[Sandbox], items: list[Item]) -> list[Assessment]:
     return _Spread(boxes, items).run()
 
@@ -351,7 +451,7 @@ class _Spread:
         # the answers each worker has been sent and not answered, in order; a worker holds up
         # to two batches, so it starts the next as soon as it finishes one
         self.pending: dict[Sandbox, deque[int]] = {}
-        self.deadline: dict[Sandbox, float] = {}
+        self.deadline: dict[Sandbox, float] = {}  # seconds after its last outcomes came
         self.began = time.monotonic()
         self.answered = 0
 
@@ -366,7 +466,7 @@ class _Spread:
             # Answers are in flight: the worker is never restarted under them. If it has died,
             # its end of file is read as usual and these go to the fresh worker with the rest.
             try:
-                box.pipe().send([self.items[i] for i in indices])
+                box.pipe().send(box.message([self.items[i] for i in indices]))
             except OSError:
                 pass
             self.pending[box] += indices
@@ -386,21 +486,32 @@ class _Spread:
 
     def refill(self, box: Sandbox) -> None:
         """Keep ``box`` holding a batch beyond the one it is judging, and at least four
-        pauses' worth of answers, while answers remain."""
+        groups' worth of answers (:data:`GROUP_SECONDS`), while answers remain."""
         per_answer = self.per_answer()
         hold = self.batch_size() if per_answer is None else max(
-            self.batch_size(), min(4 * MAX_BATCH, int(4 * COALESCE_SECONDS / per_answer)))
-        while self.sent < len(self.items) and len(self.pending.get(box, ())) <= hold:
-            size = self.batch_size()
-            self.sent += size
-            self.send(box, deque(range(self.sent - size, self.sent)))
+            self.batch_size(), min(4 * MAX_BATCH, int(4 * GROUP_SECONDS / per_answer)))
+        start, held = self.sent, len(self.pending.get(box, ()))
+        while self.sent < len(self.items) and held + self.sent - start <= hold:
+            self.sent += self.batch_size()
+        if self.sent > start:  # the batches in one message
+            self.send(box, deque(range(start, self.sent)))
         if box in self.pending and not self.pending[box]:
             del self.pending[box]
 
-    def fail(self, box: Sandbox, assessment: Assessment) -> None:
-        """The current answer of ``box`` gets ``assessment``; the rest go to a fresh worker."""
+    def due(self, box: Sandbox, began: float) -> float:
+        """When ``box`` overruns: ``seconds`` after the answer it is judging ``began``, or
+        after its last outcomes came, whichever is later."""
+        return max(self.deadline[box], began + box.seconds)
+
+    def fail(self, box: Sandbox, assessment: Assessment, begun: int | None = None) -> None:
+        """The answer ``box`` was judging gets ``assessment``: its ``begun``-th (default: the
+        last it began; the first it holds, when it had begun none of them). The others,
+        judged or not, go to a fresh worker."""
         indices = self.pending.pop(box)
-        self.results[indices.popleft()] = assessment
+        begun = box.progress()[0] if begun is None else begun
+        current = min(max(begun - box.replied - 1, 0), len(indices) - 1)
+        self.results[indices[current]] = assessment
+        del indices[current]
         box._kill()
         self.send(box, indices)
         self.refill(box)
@@ -410,49 +521,42 @@ class _Spread:
         conn = box.pipe()
         while True:
             try:
-                reply: Reply = conn.recv()
+                replies: list[Reply] = conn.recv()
             except (EOFError, OSError):
                 self.fail(box, not_evaluated("the judging process stopped (out of memory?)"))
                 return
-            if reply is Stopped.OUT_OF_MEMORY:
-                self.fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
-                return
-            self.results[self.pending[box].popleft()] = reply
-            self.answered += 1
+            for reply in replies:
+                if reply is Stopped.OUT_OF_MEMORY:
+                    self.fail(box, not_evaluated(f"judging needed more than {box.memory_mb} MiB"))
+                    return
+                self.results[self.pending[box].popleft()] = reply
+                box.replied += 1
+            self.answered += len(replies)
             self.deadline[box] = time.monotonic() + box.seconds
             self.refill(box)  # may start a fresh worker, when this one died after its outcome
             if box not in self.pending or conn is not box._conn or not _readable(conn):
                 return
 
-    def pause(self) -> None:
-        """Let outcomes gather: :data:`COALESCE_SECONDS`, or a quarter of the work the least
-        busy worker holds (none when that is under half a millisecond)."""
-        per_answer = self.per_answer()
-        if not self.pending or per_answer is None:
-            return
-        least = min(len(indices) for indices in self.pending.values())
-        seconds = min(COALESCE_SECONDS, 0.25 * least * per_answer)
-        if seconds >= 0.0005:
-            time.sleep(seconds)
-
     def run(self) -> list[Assessment]:
         for box in self.boxes:
             self.refill(box)
         while self.pending:
-            wait_for = max(0.0, min(self.deadline[box] for box in self.pending)
+            wait_for = max(0.0, min(self.due(box, box.progress()[1]) for box in self.pending)
                            - time.monotonic())
             try:
-                ready = connection.wait([box.pipe() for box in self.pending], wait_for)
+                # one select (connection.wait builds a selector each time: 14 us, 4 here)
+                ready = select.select([box.pipe() for box in self.pending], [], [], wait_for)[0]
             except OSError:
                 ready = []
             answered = [box for box in self.pending if box._conn in ready]
             for box in answered:
                 self.receive(box)
             now = time.monotonic()
-            for box in [b for b in self.pending if self.deadline[b] <= now and b not in answered]:
-                self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"))
-            if answered:
-                self.pause()
+            for box in [b for b in self.pending if b not in answered]:
+                begun, began = box.progress()  # the answer that overran, even if it ends now
+                if self.due(box, began) <= now:
+                    self.fail(box, not_evaluated(f"judging took longer than {box.seconds:g} s"),
+                              begun)
         assert all(result is not None for result in self.results)
         return cast(list[Assessment], self.results)
 
