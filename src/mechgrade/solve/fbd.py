@@ -41,6 +41,7 @@ from ..spec.model import Problem
 from ..units import same_dimension, si_factor
 from .generated import lambdified
 from .levels import State
+from . import rules
 from .result import Solution
 
 Vec3 = tuple[float, float, float]
@@ -299,20 +300,15 @@ def _extended_state(problem: Problem, solution: Solution) -> np.ndarray | None:
             return None
 
 
-BEFORE = 1e-7
-"""How far before an event (a fraction of its time, or seconds at t = 0) its loads are read:
-a kinetic friction whose slip ends there has its direction only in the limit before."""
-
-
 def _just_before(index, values: np.ndarray) -> np.ndarray | None:
     """``values`` with the rates a moment earlier along the solved accelerations, the
     accelerations left to the balances (the coordinates kept: the points stay where the
-    event has them, the rates are off by a fraction ``BEFORE``, far inside any tolerance);
+    event has them, the rates are off by :data:`.rules.MOMENT`, far inside any tolerance);
     ``None`` without solved accelerations."""
     rates, second = list(index.rates(1)), list(index.rates(2))
     if not np.all(np.isfinite(values[rates + second])):
         return None
-    step = BEFORE * max(abs(float(values[index.time])), 1.0)
+    step = float(rules.moment(float(values[index.time])))
     before = values.copy()
     before[rates] -= step * values[second]
     before[index.time] -= step

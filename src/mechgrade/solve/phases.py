@@ -481,7 +481,7 @@ class _Columns:
         t, y, j = run.t[w], run.y[:, w], run.switch[w]
         kept = run.modes[:, w]
         old = kept[j, np.arange(len(w))]
-        h = 1e-7 * np.maximum(t, 1.0)  # a moment on: the slip speed's sign there
+        h = rules.moment(t)  # a moment on: the slip speed's sign there
         drift = []
         for side in (old, -old):
             modes = kept.copy()

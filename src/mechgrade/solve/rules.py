@@ -50,7 +50,24 @@ the closed-form root that is the position a ``when`` was walked to."""
 
 BEFORE_EVENT = 1e-9
 """The moment just before an event (its time times one minus this) at which the limits of
-the second rates and reactions are read."""
+the second rates and reactions are read; an instant within this part of an event's time is
+at the event (a phase read at the end of a slip is read while it slips)."""
+
+MOMENT = 1e-7
+"""A moment away from an instant, by this part of its time (or seconds, before t = 1 s), where
+a limit is read by stepping along the solved rates: the loads of a free-body diagram before an
+event (a kinetic friction whose slip ends there has its direction only in that limit), a slip
+speed's sign just after it switched. Far inside any tolerance: the rates moved are off by
+about this part."""
+
+
+def moment(t):
+    """The step :data:`MOMENT` away from the time ``t`` (s, one or an array).
+
+    >>> float(moment(0.0)), float(moment(np.array([20.0]))[0])
+    (1e-07, 2e-06)
+    """
+    return MOMENT * np.maximum(np.abs(t), 1.0)
 
 EVENT_AWAY = 1e-6
 """Where a motion stopped at the first of an instant and its event, the instant came first

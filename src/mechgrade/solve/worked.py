@@ -36,6 +36,7 @@ from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from .entry import solve
 from .fbd import FreeBodyDiagram, free_body_diagrams
 from .phases import grip_constraint, gripping, gripping_phase, gripping_word
+from .rules import BEFORE_EVENT
 from .picture import drawable, picture_svg, scene
 from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
                      in_frame, without_round_off)
@@ -224,7 +225,7 @@ def _read_in(problem: Problem, step: WorkedStep, objective, slip_ends: float,
     at = own if own is not None else instant if objective.when is None else None
     if at is None:
         return step
-    phase = f"read while {gripping_word(problem)}" if at > slip_ends * (1 + 1e-9) \
+    phase = f"read while {gripping_word(problem)}" if at > slip_ends * (1 + BEFORE_EVENT) \
         else "read while slipping"
     return replace(step, lines=(*step.lines, f"{phase} (the slip ends at t = {slip_ends:.3g} s)"))
 
