@@ -31,6 +31,7 @@ from ..expressions.syntax import Attr, Bin, Call, Name, Node, Prime, Unary, pars
 from ..mechanics.derivation import Motion, Row, WorkedStep, symbolic_math
 from ..mechanics.writeup import worked_steps
 from ..spec.model import Expr, Objective, ObjectiveKind, Problem
+from ..tolerance import within
 from ..units import from_si, same_dimension
 from ..spec.mistake_codes import DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from .entry import solve
@@ -38,8 +39,9 @@ from .fbd import FreeBodyDiagram, free_body_diagrams
 from .phases import grip_constraint, gripping, gripping_phase, gripping_word
 from .rules import BEFORE_EVENT
 from .picture import drawable, picture_svg, scene
-from .result import (GeneratedMistake, MistakeValue, ObjectiveResult, Solution, StateValue,
-                     in_frame, without_round_off)
+from .mutants import SAME
+from .result import (ROUND_OFF, GeneratedMistake, MistakeValue, ObjectiveResult, Solution,
+                     StateValue, in_frame, without_round_off)
 
 __all__ = ["Row", "WorkedSolution", "WorkedStep", "answer_text", "worked_solution"]
 
@@ -383,13 +385,15 @@ def _at_the_instant(problem: Problem, steps: tuple[WorkedStep, ...],
 
 
 def _same_value(mistake: MistakeValue, generated) -> tuple[GeneratedMistake, ...]:
-    """The first generated mistake with the value of an author's ``mistake`` (or none)."""
+    """The first generated mistake with the value of an author's ``mistake`` (or none): within
+    :data:`.mutants.SAME`, as a mistake is the answer or another mistake, and shown zeros
+    alike (:data:`.result.ROUND_OFF`)."""
     if mistake.value is None:
         return ()
     author = np.atleast_1d(np.asarray(mistake.value, float))
     for g in generated:
-        if g.value is not None and np.allclose(np.atleast_1d(np.asarray(g.value, float)),
-                                               author, rtol=1e-6, atol=1e-12):
+        if g.value is not None and within(np.atleast_1d(np.asarray(g.value, float)), author,
+                                          SAME, ROUND_OFF):
             return (g,)
     return ()
 
