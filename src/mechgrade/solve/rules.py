@@ -37,7 +37,8 @@ motion at rest) may be at an instant of the kinematics for the objective to exis
 
 REQUIRED_KINETIC = 1e-8
 """:data:`REQUIRED` at an instant of the kinetics, whose second rates and reactions come out
-of a linear solve (and an integration) with more rounding than the kinematics' levels."""
+of a linear solve (and an integration) with more rounding than the kinematics' levels; and
+the power of a workless constraint there, of the largest rate (and 1)."""
 
 OPEN = 1e-9
 """An unknown is left open by equations whose solutions form a null space when its component

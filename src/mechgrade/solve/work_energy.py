@@ -118,7 +118,7 @@ def energy_rates(problem: Problem, kp, X: np.ndarray) -> tuple[np.ndarray, First
     size = 1.0 + np.abs(X[rates]).max(axis=0, initial=0.0)
     for label, fn in ap.workless:
         with np.errstate(invalid="ignore"):
-            errors.add(np.abs(call(fn, x, 1)[0]) > 1e-8 * size,
+            errors.add(np.abs(call(fn, x, 1)[0]) > rules.REQUIRED_KINETIC * size,
                        partial(_does_work, label, analysis))
     return X, errors
 
