@@ -82,8 +82,9 @@ def solve_variants(problem: Problem, variants: Sequence[Mapping[str, float | Non
 
     With the disk cache on, a dynamics problem's variants (all its objectives) are kept there
     (:mod:`.stored`): those stored are read back, the others solved together and stored, equal
-    givens once (a variant's last digits depend on the others solved with it: one entry per
-    givens gives them all the same, in this run and the next)."""
+    givens once (a variant's last digits may depend on the others solved with it, where a
+    level's Levenberg-Marquardt starts do: one entry per givens gives them all the same, in
+    this run and the next)."""
     given = [dict(g or {}) for g in variants]
     keys = [key for key in variant_keys(problem, given) if key is not None] \
         if problem.dynamics is not None and objectives is None else []
