@@ -7,6 +7,10 @@ the solutions :func:`~mechgrade.solve.batch.solve_variants` gives a class of dis
 variants (drawn, or its parameters scaled) and those :func:`~mechgrade.solve.solve` gives
 the first few alone. ``compare`` reads a recorded dump and says where the answers now differ:
 numbers by more than ``--rel`` (default 1e-9) relative, any text or structure at all.
+With ``--state-scale`` a value of the state at the instant is read against the largest value
+of its dimension in that state: a value that is zero in exact arithmetic (a rate at a turning
+point reached by integration) carries the integrator's error, some 1e-11 of the motion's own
+speeds, which no relative test of the zero itself can hold.
 
 Run (the disk cache off, as the tests):
     MECHGRADE_NO_CACHE=1 .venv/bin/python bench/parity.py record /tmp/before.json
@@ -38,6 +42,7 @@ from mechgrade.grade.variants import draw_variant
 from mechgrade.solve import solve
 from mechgrade.solve.batch import solve_variants
 from mechgrade.spec import load_problem
+from mechgrade.units import dimension
 
 ROOT = Path(__file__).resolve().parents[1]
 PATHS = sorted((ROOT / "problems").glob("*.yaml")) + sorted(
@@ -98,16 +103,40 @@ _PLACE = re.compile(r"/[^ :']*/(?=(problems|examples)/)")
 _NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
 
 
-def differences(a, b, rel: float, where: str = "") -> list[str]:
-    """Where ``a`` and ``b`` differ: numbers beyond ``rel``; texts whose words differ, or
-    whose numbers (printed to a few figures) differ beyond the figures they show."""
+def _dimension(unit: str):
+    """The dimension of a state's unit as printed (``km / s`` and ``km/s`` alike)."""
+    try:
+        return dimension(unit)
+    except MechgradeError:  # a unit this bench cannot read is its own dimension
+        return unit
+
+
+def _state_scales(state: list) -> list[float]:
+    """Each entry's scale: the largest size of a value of its dimension in ``state``."""
+    dims = [_dimension(e.get("unit", "")) for e in state]
+    sizes = [abs(e["value"]) if isinstance(e.get("value"), (int, float)) else 0.0
+             for e in state]
+    return [max((s for d2, s in zip(dims, sizes) if d2 == d), default=0.0) for d in dims]
+
+
+def differences(a, b, rel: float, where: str = "", scale: float = 0.0,
+                state_scale: bool = False) -> list[str]:
+    """Where ``a`` and ``b`` differ: numbers beyond ``rel`` of the larger (or of ``scale``);
+    texts whose words differ, or whose numbers (printed to a few figures) differ beyond the
+    figures they show. ``state_scale``: a state's values against their dimension's scale.
+
+    >>> differences({"state": [{"value": 8.0, "unit": "km / s"}, {"value": 2e-12,
+    ...     "unit": "km/s"}]}, {"state": [{"value": 8.0, "unit": "km / s"}, {"value": 9e-11,
+    ...     "unit": "km/s"}]}, 1e-9, "x", state_scale=True)
+    []
+    """
     if isinstance(a, bool) or isinstance(b, bool) or a is None or b is None:
         return [] if a == b else [f"{where}: {a!r} != {b!r}"]
     if isinstance(a, (int, float)) and isinstance(b, (int, float)):
         if math.isnan(a) and math.isnan(b):
             return []
         # a zero found to rounding (1e-15) is that zero
-        ok = abs(a - b) <= rel * max(abs(a), abs(b)) + 1e-13 or a == b
+        ok = abs(a - b) <= rel * max(abs(a), abs(b), scale) + 1e-13 or a == b
         return [] if ok else [f"{where}: {a!r} != {b!r}"]
     if isinstance(a, str) and isinstance(b, str):
         a, b = _PLACE.sub("", a), _PLACE.sub("", b)  # the folder the files were read from
@@ -123,16 +152,19 @@ def differences(a, b, rel: float, where: str = "") -> list[str]:
     if isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             return [f"{where}: {len(a)} items != {len(b)}: {a!r} / {b!r}"]
+        scales = _state_scales(a) if state_scale and where.endswith(".state") else [scale] * len(a)
         return [d for i, (x, y) in enumerate(zip(a, b))
-                for d in differences(x, y, rel, f"{where}[{i}]")]
+                for d in differences(x, y, rel, f"{where}[{i}]", scales[i], state_scale)]
     if isinstance(a, dict) and isinstance(b, dict):
         if list(a) != list(b):
             return [f"{where}: keys {list(a)} != {list(b)}"]
-        return [d for k in a for d in differences(a[k], b[k], rel, f"{where}.{k}")]
+        return [d for k in a
+                for d in differences(a[k], b[k], rel, f"{where}.{k}", scale, state_scale)]
     return [f"{where}: {a!r} != {b!r}"]
 
 
-def diff(before_file: Path, after_files: list[Path], rel: float) -> int:
+def diff(before_file: Path, after_files: list[Path], rel: float,
+         state_scale: bool = False) -> int:
     """Print where the records in ``after_files`` differ from ``before_file`` for the problems
     both hold (and which only one holds); 1 when they differ anywhere, else 0."""
     before = json.loads(before_file.read_text())
@@ -144,7 +176,7 @@ def diff(before_file: Path, after_files: list[Path], rel: float) -> int:
         if key not in before or key not in after:
             print(f"{key}: recorded in {before_file if key in before else 'the other'} only")
             continue
-        diffs = differences(before[key], after[key], rel, key)
+        diffs = differences(before[key], after[key], rel, key, state_scale=state_scale)
         found += len(diffs)
         for d in diffs[:10]:
             print(d)
@@ -160,6 +192,8 @@ def main() -> None:
     parser.add_argument("--variants", type=int, default=24)
     parser.add_argument("--alone", type=int, default=3)
     parser.add_argument("--rel", type=float, default=1e-9)
+    parser.add_argument("--state-scale", action="store_true",
+                        help="read a state's values against their dimension's largest value")
     parser.add_argument("--no-mistakes", action="store_true",
                         help="record or compare the solutions without their generated mistakes")
     parser.add_argument("paths", nargs="*", type=Path)
@@ -167,7 +201,7 @@ def main() -> None:
     global MISTAKES
     MISTAKES = not args.no_mistakes
     if args.action == "diff":
-        sys.exit(diff(args.file, args.paths, args.rel))
+        sys.exit(diff(args.file, args.paths, args.rel, args.state_scale))
     paths = args.paths or PATHS
     before = json.loads(args.file.read_text()) if args.action == "compare" else {}
     now = {}
@@ -182,7 +216,8 @@ def main() -> None:
         if key not in before:
             print(f"{key}: not recorded", flush=True)
             continue
-        diffs = differences(before[key], json.loads(json.dumps(entry)), args.rel, key)
+        diffs = differences(before[key], json.loads(json.dumps(entry)), args.rel, key,
+                            state_scale=args.state_scale)
         found += len(diffs)
         for d in diffs[:10]:
             print(d)
