@@ -373,3 +373,15 @@ def test_the_author_units_of_a_problem_are_worked_out_once():
     units = author_units(problem, p)
     assert units is author_units(problem, p)
     assert units[p.index.position("w'")] == "km / h"  # as its given is written
+
+
+def test_a_state_value_that_is_round_off_of_its_dimension_reads_zero():
+    """At apogee r' is zero in exact arithmetic; integrated it carries ~1e-12 of the speeds."""
+    from mechgrade.resources import shipped_dir
+    from mechgrade.spec import load_problem
+
+    problem = load_problem(shipped_dir("problems") / "satellite_apogee_speed.yaml")
+    state = {s.name: s for s in solve(problem, objectives=("apogee_speed",)).state}
+    assert (state["r'"].value, state["r'"].si) == (0.0, 0.0)
+    assert state["theta'"].si == pytest.approx(7.650669e-4, rel=1e-6)  # alone in its dimension
+    assert state["r''"].si < 0

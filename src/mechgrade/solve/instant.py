@@ -26,7 +26,8 @@ from ..expressions.syntax import Prime, parse, to_text
 from ..spec.language import FUNCTIONS
 from ..spec.model import Given, Objective, ObjectiveKind, Problem
 from ..spec.validate import symbol_meanings
-from ..units import si_factor, si_unit
+from .. import tolerance
+from ..units import dimension, si_factor, si_unit
 from . import rules
 from .columns import call, quiet
 from .levels import State, author_units, constraint_ranks, evaluate
@@ -786,6 +787,35 @@ def _quantity_unit(problem: Problem, node) -> str:
     return si_unit(units[node.id])
 
 
+def _without_noise(values: np.ndarray, dimensions: np.ndarray) -> np.ndarray:
+    """``values`` (SI, one column per state) with each value that is not a part of the
+    largest of its dimension in its column (:func:`~mechgrade.tolerance.parts`) made 0: a
+    rate that is zero at the instant in exact arithmetic (a turning point reached by
+    integration) carries the solve's error, some 1e-12 of the motion's speeds, and neither
+    its digits nor its sign mean anything. ``dimensions``: each row's dimension, numbered
+    from 0 in order of first appearance.
+
+    >>> _without_noise(np.array([[8000.0], [2.7e-9], [7.6e-4]]), np.array([0, 0, 1])).ravel()
+    array([8.0e+03, 0.0e+00, 7.6e-04])
+    """
+    sizes = np.where(np.isfinite(values), np.abs(values), 0.0)
+    order = np.argsort(dimensions, kind="stable")
+    starts = np.flatnonzero(np.diff(dimensions[order], prepend=-1))
+    largest = np.maximum.reduceat(sizes[order], starts, axis=0)[dimensions]
+    return np.where(tolerance.parts(values, largest), values, 0.0)
+
+
+def _dimensions(problem: Problem, p: KinematicsPlan) -> np.ndarray:
+    """Each reported position's dimension, numbered (:func:`_without_noise`)."""
+    return _per_problem(_numbered_dimensions, problem, p)
+
+
+def _numbered_dimensions(problem: Problem, p: KinematicsPlan) -> np.ndarray:
+    kinds: dict = {}
+    return np.array([kinds.setdefault(dimension(unit or "1"), len(kinds))
+                     for _, _, unit, _ in _reported(problem, p)], dtype=int)
+
+
 def _reported(problem: Problem, p: KinematicsPlan) -> list[tuple[int, str, str, float]]:
     """Each position's index, spelling, author's unit and that unit's SI factor."""
     return _per_problem(_positions_reported, problem, p)
@@ -806,7 +836,8 @@ def _states(problem: Problem, p: KinematicsPlan, bases: Sequence[tuple[State, di
     if not solved:
         return out
     reported = _reported(problem, p)
-    values = np.stack([state.values[:len(reported)] for _, (state, _) in solved], axis=1)
+    values = _without_noise(np.stack([state.values[:len(reported)] for _, (state, _) in solved],
+                                     axis=1), _dimensions(problem, p))
     united = np.array([bool(unit) for _, _, unit, _ in reported])[:, None]
     factors = np.array([factor for *_, factor in reported])[:, None]
     with np.errstate(all="ignore"):  # as from_si reports it
