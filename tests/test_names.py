@@ -2,9 +2,10 @@
 (the solver's are ``KinematicsPlan``, ``KineticsPlan``, ``AnalysisPlan``), a ``branch:`` entry
 is ``Branch``, a solve's result or error is ``Outcome``, and the grading policy is
 ``GradingPolicy`` (no ``Policy`` or ``compare_policy`` beside it); a friction bound is
-``Bound`` (a declared range ``Limits``), a catalogue's filing ``Approach`` (a spec's analysis
-``Analysis``), a root of the levels ``Candidate`` (an upload's file ``AnswerFile``), a step of
-the worked solution ``WorkedStep`` (a group's solving ``Step``) and a page point ``Point2``."""
+``FrictionBound`` (a declared range ``Limits``), a catalogue's filing ``Approach`` (a spec's
+analysis ``Analysis``), a root of the levels ``Candidate`` (an upload's file ``AnswerFile``), a
+step of the worked solution ``WorkedStep`` (a group's solving ``GroupStep``) and a page point
+``Point2``; the bare ``Bound`` and ``Step`` said neither, and are not names."""
 
 from __future__ import annotations
 
@@ -13,9 +14,9 @@ from functools import lru_cache
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "mechgrade"
-ONCE = ("Plan", "Branch", "Outcome", "GradingPolicy", "Analysis", "Bound", "Candidate", "Point2",
-        "Step")
-NEVER = ("Policy", "compare_policy")
+ONCE = ("Plan", "Branch", "Outcome", "GradingPolicy", "Analysis", "FrictionBound", "Candidate",
+        "Point2", "GroupStep")
+NEVER = ("Policy", "compare_policy", "Bound", "Step")
 
 
 @lru_cache(maxsize=None)
