@@ -94,9 +94,6 @@ def test_a_kind_is_compared_with_its_types_members_not_with_text():
 
 
 KINDS = {"status", "verdict", "kind"}
-# A load's kind in results.json stays text: grade.results is read by export and report, which
-# must not pay for importing the spec (LoadKind, about 0.5 s).
-TEXT_KINDS = {("grade/results.py", "LoadResult", "kind")}
 
 
 def kinds_held_as_text(text: str) -> list[tuple[str, str]]:
@@ -116,7 +113,7 @@ def kinds_held_as_text(text: str) -> list[tuple[str, str]]:
 def test_a_status_verdict_or_kind_field_is_of_its_kinds_type():
     found = [(str(path.relative_to(SRC)), *held) for path in sorted(SRC.rglob("*.py"))
              for held in kinds_held_as_text(path.read_text(encoding="utf-8"))]
-    assert [f for f in found if f not in TEXT_KINDS] == []
+    assert found == []
 
 
 def kind_parameters_of_text(text: str) -> list[str]:

@@ -27,6 +27,7 @@ from typing import ClassVar
 
 from ..errors import Location, SpecError, UnitError
 from ..expressions.functions import Kind, StrEnum
+from ..expressions.loads import LoadKind as LoadKind
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Prime, Unary,
                                   constant_value, names, to_text, walk)
 from ..units import dimension, dimensionless, parse_quantity, to_si
@@ -34,29 +35,6 @@ from .model import Expr, ObjectiveKind, Problem
 
 GROUND = "ground"
 """The name standing for the inertial frame where a load's other end is fixed."""
-
-
-class LoadKind(StrEnum):
-    """What a load is physically: the name a free-body diagram gives its arrow. Members equal
-    their text and serialise as it.
-
-    >>> LoadKind("normal"), f"{LoadKind.KINETIC_FRICTION}"
-    (<LoadKind.NORMAL: 'normal'>, 'kinetic friction')
-    """
-
-    WEIGHT = "weight"
-    NORMAL = "normal"
-    STATIC_FRICTION = "static friction"
-    KINETIC_FRICTION = "kinetic friction"
-    TENSION = "tension"
-    SPRING = "spring"
-    DAMPER = "damper"
-    PIN = "pin"
-    CONTACT = "contact"
-    APPLIED_FORCE = "applied force"
-    APPLIED_COUPLE = "applied couple"
-    IMPULSE = "impulse"
-    REACTION = "reaction"  # an unknown force whose kind the file does not state
 
 
 _REACTION_KINDS = {"normal": LoadKind.NORMAL, "pin": LoadKind.PIN, "tension": LoadKind.TENSION,
