@@ -7,6 +7,7 @@ from __future__ import annotations
 import csv
 
 from mechgrade.export import EXPORTERS
+from mechgrade.expressions.loads import LoadKind
 from mechgrade.export.moodle import feedback_text
 from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, LoadResult,
                                      ObjectiveInfo, Status, StudentResult)
@@ -14,7 +15,7 @@ from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, 
 OBJECTIVES = (ObjectiveInfo("incline", "block.fbd", "The free-body diagram of body block.", 2.0),
               ObjectiveInfo("incline", "equations", "The equations of motion.", 2.0),
               ObjectiveInfo("pendulum", "pin_force", "The pin force.", 2.0))
-FRICTION = LoadResult("kinetic friction", "F_P", "kinetic friction", "P", None, ("missing",),
+FRICTION = LoadResult("kinetic friction", "F_P", LoadKind.KINETIC_FRICTION, "P", None, ("missing",),
                       "Missing: the kinetic friction F_P at P.")
 
 

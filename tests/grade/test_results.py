@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from mechgrade.expressions.loads import LoadKind
 from mechgrade.files import json_text
 from mechgrade.grade.results import GradeReport, Status, Verdict
 from mechgrade.report.output import write_outputs
@@ -92,3 +93,26 @@ def test_a_value_of_another_type_in_results_json_is_refused():
     doc["students"][0]["identity"] = {"email": 3}
     with pytest.raises(CodecError, match=r"StudentResult.identity: expected a text, found int"):
         GradeReport.from_json(doc)
+
+
+def _with_a_diagram(kind: str) -> dict:
+    """GOOD with its first answer a free-body diagram of one row of load kind ``kind``."""
+    doc = json.loads(json.dumps(GOOD))
+    doc["students"][0]["answers"][0]["loads"] = [
+        {"label": "friction", "load": "F_P", "kind": kind, "point": "P", "answer": None,
+         "mistakes": ["missing"], "feedback": ""}]
+    return doc
+
+
+def test_a_diagrams_load_kind_is_read_as_its_member_and_written_as_its_text():
+    doc = _with_a_diagram("kinetic friction")
+    report = GradeReport.from_json(doc)
+    row = report.students[0].answers[0].loads[0]
+    assert row.kind is LoadKind.KINETIC_FRICTION
+    assert report.to_json()["students"][0]["answers"][0]["loads"] == \
+        doc["students"][0]["answers"][0]["loads"]
+
+
+def test_an_unknown_load_kind_is_refused_when_read():
+    with pytest.raises(ValueError, match=r"LoadResult.kind: expected one of LoadKind, NoneType"):
+        GradeReport.from_json(_with_a_diagram("drag"))

@@ -11,6 +11,7 @@ import jsonschema
 import pytest
 
 from mechgrade.errors import AssignmentError
+from mechgrade.expressions.loads import LoadKind
 from mechgrade.grade.assignment import load_assignment
 from mechgrade.grade.results import AnswerResult, GradeReport, LoadResult
 from mechgrade.grade.run import grade_submissions, plan_assignment
@@ -52,7 +53,7 @@ def test_points_for_a_diagram_not_graded_say_so(tmp_path):
 
 
 def test_a_diagrams_rows_survive_results_json():
-    rows = (LoadResult("weight", "gravity", "weight", "G", "weight: -m*g*N.y", (), "right."),
+    rows = (LoadResult("weight", "gravity", LoadKind.WEIGHT, "G", "weight: -m*g*N.y", (), "right."),
             LoadResult("centrifugal force", None, None, "G", "centrifugal force: m*N.x",
                        ("extra",), "Extra."))
     student = {"id": "ana", "status": "graded", "score": 1.0, "max_score": 2.0,

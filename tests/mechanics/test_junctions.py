@@ -14,6 +14,7 @@ from mechgrade.mechanics.junctions import (is_junction_balance, junction_constra
                                            with_junctions)
 from mechgrade.resources import shipped_dir
 from mechgrade.spec import load_problem, load_problem_text
+from mechgrade.spec.model import ConstraintLevel
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "authoring_mistakes"
 
@@ -25,7 +26,7 @@ def text(name: str) -> str:
 def test_a_junctions_balance_sums_the_pulls_of_the_springs_ending_there():
     problem = load_problem(shipped_dir("problems") / "block_on_springs_in_series.yaml")
     (balance,) = junction_constraints(problem)
-    assert balance.level == "position" and balance.rhs.text == "0"
+    assert balance.level is ConstraintLevel.POSITION and balance.rhs.text == "0"
     assert balance.lhs.text == ("k1*(mag(pos(O, J))-L1)*unit(pos(O, J))"
                                 "+k2*(mag(pos(P, J))-L2)*unit(pos(P, J))")
     assert is_junction_balance(balance.name)

@@ -7,6 +7,7 @@ import json
 import pytest
 
 from mechgrade.errors import MechgradeError
+from mechgrade.expressions.loads import LoadKind
 from mechgrade.grade.results import (AnswerResult, AssignmentInfo, GradeReport, LoadResult,
                                      ObjectiveInfo, StudentResult, Verdict)
 from mechgrade.report import output
@@ -197,8 +198,8 @@ def test_context_prepares_text_and_templates_compute_nothing():
 
 def test_a_diagrams_rows_carry_their_verdict_as_a_verdict():
     diagram = AnswerResult("p", "fbd", "W: -m*g*N.y", Verdict.PARTIAL, 1.0, 2.0, loads=(
-        LoadResult("weight", "W", "weight", "G", "W: -m*g*N.y", (), ""),
-        LoadResult("normal", "N_A", "normal", "A", None, ("missing",), "")))
+        LoadResult("weight", "W", LoadKind.WEIGHT, "G", "W: -m*g*N.y", (), ""),
+        LoadResult("normal", "N_A", LoadKind.NORMAL, "A", None, ("missing",), "")))
     student = StudentResult("ana", "Ana", "graded", 1.0, 2.0, (diagram,))
     rows = feedback_context(REPORT, student)["rows"][0]["loads"]
     assert [row["verdict"] for row in rows] == [Verdict.CORRECT, Verdict.INCORRECT]

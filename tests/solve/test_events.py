@@ -203,3 +203,18 @@ def test_an_event_the_motion_just_reaches_has_its_closed_form_time_and_one_beyon
         return
     expr = solve(problem, objectives=["t_slide_symbolic"]).result("t_slide_symbolic").expr
     assert expr == "(-sqrt(M)*sqrt(-2*D*M*g*mu - 2*D*g*m*mu + M*v0**2) + M*v0)/(g*mu*(M + m))"
+
+
+def test_an_event_that_holds_at_the_start_is_its_next_crossing_in_closed_form_too():
+    """A ball thrown from h until it is at H = h: the event holds at the throw. Its closed-form
+    time t = 0 comes out +1.8e-16 s at 36° (the root's rounding), which was taken as the
+    event; like the integrator, the closed form waits for the landing, 2 v0 sin(alpha) / g."""
+    import sympy as sp
+
+    problem = load_problem(ROOT / "tests" / "data" / "events" / "ball_back_at_its_height.yaml")
+    solution = solve(problem)
+    flight = 2 * 20.0 * np.sin(np.radians(36.0)) / 9.81
+    assert solution.result("t_numeric").value == pytest.approx(flight, rel=1e-9)
+    symbolic = sp.sympify(solution.result("t_symbolic").expr)
+    givens = {"g": 9.81, "v0": 20.0, "alpha": np.radians(36.0), "h": 1.5, "H": 1.5}
+    assert float(symbolic.subs(givens)) == pytest.approx(flight, rel=1e-12)

@@ -17,6 +17,7 @@ from mechgrade.solve.phases import (Until, asked_when, gripping, gripping_phase,
                                     gripping_word, reach, reach_columns)
 from mechgrade.spec import load_problem, load_problem_text
 from mechgrade.spec.dynamics import StaticFriction
+from mechgrade.spec.model import ConstraintLevel
 
 ROOT = Path(__file__).resolve().parents[2]
 BALL = (ROOT / "problems" / "bowling_ball_skids_then_rolls.yaml").read_text()
@@ -40,7 +41,7 @@ def test_the_gripping_phase_holds_the_contact_still_along_the_slope_with_static_
     assert (friction.mu.text, [d.text for d in friction.directions]) == ("mu_s", ["A.x"])
     grip = phase.constraints[-1]
     assert (grip.name, grip.level, grip.lhs.text) == \
-        ("F_C_grips", "velocity", "dot(vel(coincident(C, B), N), A.x)")
+        ("F_C_grips", ConstraintLevel.VELOCITY, "dot(vel(coincident(C, B), N), A.x)")
 
 
 def test_a_round_body_that_grips_rolls_and_a_block_sticks():

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 from ..codec import MAPPING, OMIT_DEFAULT, absent, decode, encode
 from ..expressions.functions import StrEnum
+from ..expressions.loads import LoadKind
 
 
 class Verdict(StrEnum):
@@ -139,7 +140,7 @@ class LoadResult:
 
     label: str
     load: str | None
-    kind: str | None
+    kind: LoadKind | None
     point: str | None
     answer: str | None
     mistakes: tuple[str, ...]

@@ -775,8 +775,8 @@ def _judge_derivation_safely(part: PlannedDiagram | PlannedEquations, text: str 
             from .fbd import judge_diagram
 
             judged = judge_diagram(text, part.instant, part.body)
-            rows = tuple(LoadResult(row.label, row.load, str(row.kind) if row.kind else None,
-                                    row.point, row.answer, tuple(str(m) for m in row.mistakes),
+            rows = tuple(LoadResult(row.label, row.load, row.kind, row.point,
+                                    row.answer, tuple(str(m) for m in row.mistakes),
                                     row.feedback) for row in judged.rows)
             assessment = judged.assessment
         else:

@@ -44,7 +44,7 @@ def kinematics_derivation(problem: Problem, dof: int | None = None
               if p.origin and p.position is not None]  # both, or neither (the inertial point)
     coordinates = [f"{c.name} [{c.unit or '1'}]" for c in problem.coordinates]
     parameters = [f"{p.name} [{p.unit or '1'}]" for p in problem.parameters]
-    constraints = [f"{c.name} ({c.level}): {c.lhs.text} = {c.rhs.text}"
+    constraints = [f"{c.name} ({c.level.value}): {c.lhs.text} = {c.rhs.text}"
                    for c in problem.constraints]
     constraints += [f"  {e.label}: {sp.sstr(e.expr)} = 0" for e in k.position]
     constraints += [f"  {e.label}, rate form: {sp.sstr(e.expr)} = 0" for e in k.velocity]
@@ -202,7 +202,7 @@ def kinematics_steps(problem: Problem, dof: int | None = None,
                        for i, e in enumerate(k.position + k.velocity)]
     # the author's constraints as written, those ``said`` in words (a junction's balance: its
     # spec form is the solver's), each component typeset in the rows
-    constraints = tuple(dict(said).get(c.name) or f"{c.name} ({c.level}): {c.lhs.text} = "
+    constraints = tuple(dict(said).get(c.name) or f"{c.name} ({c.level.value}): {c.lhs.text} = "
                         f"{c.rhs.text}" for c in problem.constraints)
     steps = [WorkedStep("frames", "Frames and their angular velocities", text["Frames"],
                         tuple(frame_rows)),

@@ -44,7 +44,7 @@ from .vibration import REASONS, Modal, NaturalMode, modal_entries
 
 
 @dataclass(frozen=True)
-class Bound:
+class FrictionBound:
     """A friction bound to check in the solution: ``|tangential| <= mu * normal``."""
 
     name: str
@@ -113,7 +113,7 @@ class Kinetics:
     compact: tuple[sp.Expr, ...]  # ``written``'s left sides as derived, not expanded
     objectives: tuple[tuple[str, object], ...]
     mistakes: tuple[tuple[str, tuple[object, ...]], ...]
-    bounds: tuple[Bound, ...]
+    bounds: tuple[FrictionBound, ...]
     slips: tuple[Slip, ...]
     energy: sp.Expr = sp.Integer(0)
     nonconservative: tuple[str, ...] = ()
@@ -961,7 +961,7 @@ def _friction_checks(d: Dynamics, model: Model, loads: _Loads, language, reactio
         normal = reactions[f.normal][0]
         if isinstance(f, StaticFriction):
             force = model.plain(language._load_force(Name(f.name)).to_matrix(N))
-            bounds.append(Bound(f.name, f.on, f.at, force, normal,
+            bounds.append(FrictionBound(f.name, f.on, f.at, force, normal,
                                 model.plain(model.language.scalar(f.mu)), f.where))
         else:
             speed = model.plain(loads.slip_velocity(f).magnitude())

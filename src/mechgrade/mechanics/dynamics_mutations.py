@@ -40,7 +40,7 @@ from ..spec.dynamics import (GROUND, Act, Body, Disk, Dynamics, Explicit, Force,
                              dynamics_of, instant_of_objective, unchecked)
 from ..spec.language import FUNCTIONS
 from ..spec.constraint_mutations import strands_once
-from ..spec.model import Constraint, Expr, ObjectiveKind, Problem
+from ..spec.model import Constraint, ConstraintLevel, Expr, ObjectiveKind, Problem
 from ..spec.solving import given_unit
 from .bodies import SHAPES
 from .build import Model, build
@@ -395,7 +395,7 @@ def _pivots(problem: Problem, model: Model, body: Body) -> Iterator[str]:
     frame = model.frames[body.frame]
     omega = frame.ang_vel_in(model.inertial)
     centre = model.language.point_velocity(Name(body.centre), N)
-    rolling = {q for c in problem.constraints if c.level == "velocity"
+    rolling = {q for c in problem.constraints if c.level is ConstraintLevel.VELOCITY
                and (q := _rolling_on_ground(c, body.frame, N)) is not None}
     for point, position in model.positions.items():
         offset = position - model.positions[body.centre]
@@ -1481,7 +1481,7 @@ def particle_inertia(problem: Problem, model: Model) -> Iterator[DynamicsMutatio
         # friction, a mistake of its own
         frame = body.frame
         assert frame is not None  # a turning body has its frame
-        rolling = {q for c in problem.constraints if c.level == "velocity"
+        rolling = {q for c in problem.constraints if c.level is ConstraintLevel.VELOCITY
                    and (q := _rolling_on_ground(c, frame, problem.inertial_frame))}
         # a body turning about its fixed mass centre (a drum) as a particle has no inertia
         held = _zero(model, model.language.point_velocity(Name(body.centre),
@@ -1895,7 +1895,7 @@ def contact_taken_smooth(problem: Problem, model: Model) -> Iterator[DynamicsMut
         if not isinstance(f, StaticFriction):
             continue
         # the rolling constraints at the contact: vel(coincident(C, B), N) = ...
-        rolling = [c for c in problem.constraints if c.level == "velocity"
+        rolling = [c for c in problem.constraints if c.level is ConstraintLevel.VELOCITY
                    and isinstance(c.lhs.node, Call) and c.lhs.node.func == "vel"
                    and isinstance(c.lhs.node.args[0], Call)
                    and c.lhs.node.args[0].func == "coincident"
@@ -1949,7 +1949,7 @@ def rolling_assumed(problem: Problem, model: Model) -> Iterator[DynamicsMutation
         normal = next(r for r in d.reactions if r.name == f.normal)
         grip = Reaction(f.name, (_expr(f"cross({normal.directions[0].text}, {N}.z)"),),
                         (Act(f.on, f.at),), f.where, surface=GROUND)
-        rolls = Constraint(f"rolling~{f.at}", "velocity",
+        rolls = Constraint(f"rolling~{f.at}", ConstraintLevel.VELOCITY,
                            _expr(f"vel(coincident({f.at}, {body.frame}), {N})"),
                            _expr(f"vel(coincident({f.at}, {N}), {N})"), f.where)
         spin = f"{angle.id}'"

@@ -34,7 +34,7 @@ import sympy as sp
 from ..errors import SolveError
 from ..expressions.syntax import Bin, Call, Name, Node, Num, to_text
 from ..spec.dynamics import junction_coordinates
-from ..spec.model import Constraint, Expr, Problem
+from ..spec.model import Constraint, ConstraintLevel, Expr, Problem
 from ..tolerance import matrix_rank
 
 BALANCE = "(massless): sum of forces"
@@ -84,7 +84,7 @@ def _junction_constraints(problem: Problem) -> tuple[Constraint, ...]:
         lhs: Node = pulls[0]
         for pull in pulls[1:]:
             lhs = Bin("+", lhs, pull)
-        out.append(Constraint(f"{b.name} {BALANCE}", "position",
+        out.append(Constraint(f"{b.name} {BALANCE}", ConstraintLevel.POSITION,
                               Expr(to_text(lhs), lhs, b.where), Expr("0", Num("0"), b.where),
                               b.where))
     return tuple(out)

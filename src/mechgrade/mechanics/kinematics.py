@@ -26,7 +26,7 @@ from sympy.physics.vector import Vector
 
 from ..errors import AuthorWarning, Location, SolveError
 from ..expressions.syntax import Name, Node, Prime, to_text
-from ..spec.model import TIME, Constraint, Expr, Given, Objective, Point, Problem
+from ..spec.model import TIME, Constraint, ConstraintLevel, Expr, Given, Objective, Point, Problem
 from .build import Model, build
 from .material import material_warnings
 from .symbols import TIME_SYMBOL, identically_zero, without_deltas
@@ -148,7 +148,7 @@ def _derive(problem: Problem, _locations: tuple) -> Kinematics:
             if identically_zero(model.plain(part)):
                 continue
             count += 1
-            (position_dyn if c.level == "position" else velocity_dyn).append(
+            (position_dyn if c.level is ConstraintLevel.POSITION else velocity_dyn).append(
                 (label, part, c.where))
     velocity_all = [(label, sp.diff(expr, t), where) for label, expr, where in position_dyn] \
         + velocity_dyn

@@ -30,7 +30,7 @@ from ..expressions.notation import textbook
 from ..expressions.syntax import (Attr, Bin, Call, Name, Node, Num, Prime, Unary,
                                   additive_terms, name_of, names, sum_of_terms, to_text, walk)
 from ..spec.dynamics import Explicit, dynamics_of
-from ..spec.model import Expr, Objective, Problem
+from ..spec.model import ConstraintLevel, Expr, Objective, Problem
 from ..units import same_dimension
 from .build import Model, build
 from .interpret import Interpreter
@@ -461,7 +461,7 @@ def _curvature_without_slope(r: _Reading, node: Call) -> None:
     normal acceleration v²/ρ."""
     coordinates = {c.name for c in r.model.problem.coordinates}
     for c in r.model.problem.constraints:
-        if c.level != "position" or not isinstance(c.lhs.node, Name) \
+        if c.level is not ConstraintLevel.POSITION or not isinstance(c.lhs.node, Name) \
                 or c.lhs.node.id not in coordinates:
             continue
         along = {n.id for n in walk(c.rhs.node) if isinstance(n, Name)} & coordinates
@@ -700,7 +700,7 @@ def _constraint_without_term(r: _Reading) -> None:
     rows: list[list] = []
     sides: list[tuple[str, int, Vector, list[int]]] = []
     for c in problem.constraints:
-        if c.level != "position":
+        if c.level is not ConstraintLevel.POSITION:
             continue
         try:
             left, right = lang.value(c.lhs.node), lang.value(c.rhs.node)
@@ -806,7 +806,7 @@ def _whole_speed_for_rate(r: _Reading) -> None:
     symbols = {c: lang.value(Name(c)) for c in coordinates}
     rate, name = textbook(to_text(node)), textbook(node.id)
     for c in problem.constraints:
-        if c.level != "position":
+        if c.level is not ConstraintLevel.POSITION:
             continue
         try:
             sides = [lang.value(c.lhs.node), lang.value(c.rhs.node)]
@@ -848,7 +848,7 @@ def _distance_rate_as_speed(r: _Reading) -> None:
     symbols = {c.name: lang.value(Name(c.name)) for c in problem.coordinates}
     t = dynamicsymbols._t
     rows, changes = [], []
-    for c in (c for c in problem.constraints if c.level == "position"):
+    for c in (c for c in problem.constraints if c.level is ConstraintLevel.POSITION):
         try:
             f = lang.value(c.lhs.node) - lang.value(c.rhs.node)
         except Exception:  # a vector constraint, or a side the language cannot read alone

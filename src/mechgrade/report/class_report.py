@@ -187,8 +187,9 @@ def load_mistake_label(row) -> str:
     """What a row of a free-body diagram (:class:`~mechgrade.grade.results.LoadResult`) got
     wrong, as the class report counts it (``""`` when right).
 
+    >>> from mechgrade.expressions.loads import LoadKind
     >>> from mechgrade.grade.results import LoadResult
-    >>> load_mistake_label(LoadResult("friction", "F_P", "kinetic friction", "P", None,
+    >>> load_mistake_label(LoadResult("friction", "F_P", LoadKind.KINETIC_FRICTION, "P", None,
     ...                               ("missing",), ""))
     'missing: the kinetic friction F_P'
     >>> load_mistake_label(LoadResult("centrifugal force", None, None, "G", "...", ("extra",), ""))

@@ -55,7 +55,7 @@ from ..spec.dynamics import Integration, WorkEnergy, instant_of_objective
 from ..spec.model import Objective, ObjectiveKind, Problem, Root
 from .batch_motion import design_roots
 from .entry import solve
-from .instant import (Columns, GivenInstant, Reach, Step, _instants, _key, _size,
+from .instant import (Columns, GivenInstant, GroupStep, Reach, _instants, _key, _size,
                       answer_alone, class_givens, drive_columns, group_results, instant_givens,
                       read_objectives, reports_state, wanted_objectives, with_own)
 from .columns import FirstErrors, call, collector_paused
@@ -225,7 +225,7 @@ class _Template:
         wanted = wanted_objectives(problem, asked)
         given = class_givens(problem, variants)
         integrated = self._integrated(given, wanted)
-        steps: list[tuple[dict, tuple[Objective, ...], Step]] = [
+        steps: list[tuple[dict, tuple[Objective, ...], GroupStep]] = [
             (group.overrides, group.objectives,
              partial(self._together, group, integrated.get(k), mistakes))
             for k, group in enumerate(self.groups)]
@@ -262,7 +262,7 @@ class _Template:
     def _together(self, group: _Group, integrated: _Read | None,
                   attach: ClassMistakes | None, maps: list[dict],
                   objectives: list[Objective], overrides: dict, columns: Columns) -> None:
-        """The :data:`~.instant.Step` of ``group`` reached together: every column at once
+        """The :data:`~.instant.GroupStep` of ``group`` reached together: every column at once
         (:meth:`_instant`; an integrated group's instants ``integrated`` with the class's
         others, :meth:`_integrated`); one that fails a screen (or, in kinematics, an objective) is
         answered alone (:func:`~.instant.answer_alone`, the single solve's step). A dynamics

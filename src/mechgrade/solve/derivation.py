@@ -33,6 +33,7 @@ from ..tolerance import parts
 from .dynamics import kinetics_plan, solve_kinetics
 from .generated import lambdified
 from .levels import State
+from .rules import projected
 from .fbd import (FreeBodyDiagram, Vec3, _diagram_plan, _extended_state, _scalar, _vector,
                   free_body_diagrams)
 from .result import Solution
@@ -340,7 +341,8 @@ def _turned(rates: np.ndarray, v: np.ndarray, a: np.ndarray) -> bool:
 def _on_constraints(kp, x: np.ndarray, dt: float) -> np.ndarray | None:
     """The state ``x`` a time ``dt`` on (``x + v dt + a dt^2 / 2``), the coordinates put back
     on the position constraints (Gauss-Newton) and the rates on the velocity constraints
-    (least squares); ``None`` where the coordinates cannot be."""
+    (least squares) until :func:`~.rules.projected`; ``None`` where the coordinates cannot
+    be."""
     index = kp.kp.index
     n = index.n
     qd, qdd = list(index.rates(1)), list(index.rates(2))
@@ -354,10 +356,10 @@ def _on_constraints(kp, x: np.ndarray, dt: float) -> np.ndarray | None:
         for _ in range(30):
             m = position.constraint_rows
             r = np.asarray(position.residual(*values), dtype=float).ravel()[:m]
-            scale = np.abs(np.asarray(position.scale(*values), dtype=float).ravel()[:m])
+            scale = np.asarray(position.scale(*values), dtype=float).ravel()[:m]
             if not np.all(np.isfinite(r)):
                 return None
-            if np.all(np.abs(r) <= 1e-12 * (scale + 1.0)):
+            if projected(r, scale):
                 break
             jacobian = np.asarray(position.jacobian(*values), dtype=float).reshape(
                 len(position.labels), -1)[:m, :n]

@@ -32,7 +32,7 @@ import sympy as sp
 # `mechgrade check` of most problems, which never needs it.
 
 from ..errors import AuthorWarning, Location, MechgradeError, SolveError
-from ..mechanics.dynamics import Bound, Kinetics, Slip, derive_kinetics, read_kinetics
+from ..mechanics.dynamics import FrictionBound, Kinetics, Slip, derive_kinetics, read_kinetics
 from ..mechanics.loads import PhysicalBound
 from ..expressions.syntax import Name, Prime
 from ..mechanics.junctions import kinematic_part
@@ -86,7 +86,7 @@ class KineticsPlan:
     wheres: tuple[Location, ...]
     objectives: tuple[tuple[str, Callable], ...]
     mistakes: tuple[tuple[str, tuple[Callable, ...]], ...]
-    bounds: tuple[tuple[Bound, Callable, Callable, Callable], ...]
+    bounds: tuple[tuple[FrictionBound, Callable, Callable, Callable], ...]
     slips: tuple[tuple[Slip, Callable, Callable], ...]
     requirements: tuple[tuple[str, str, Callable], ...] = ()
     design: Callable | None = None

@@ -24,13 +24,13 @@ import sympy as sp
 
 from ..errors import SolveError
 from ..spec.dynamics import Integration
-from ..spec.model import Objective
+from ..spec.model import Objective, Root
 from ..tolerance import within_each
 from ..units import si_factor
 from .analysis import closed_forms
 from . import dop853
 from .batch_motion import NEVER, STALLED, Field, integrate_to_events
-from .rules import real
+from .rules import on_branch, real
 
 RTOL, ATOL = 1e-11, 1e-12
 MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judged stalled
@@ -161,9 +161,9 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     """``expr`` at the event in closed form, for a motion whose accelerations stay constant
     until it: q = q0 + q0' t + a t^2 / 2, with each kinetic-friction slip keeping the direction
     it has at the start (``|u|`` read as ``sign(u0) u``). The event time is the smallest root
-    that is positive at the givens (``numbers``: plain symbol -> SI value): the numbers only
-    choose the root, so a class of variants derives the motion once (:func:`_closed_form`)
-    and each expression once per root (:func:`_at_event`).
+    that is positive at the givens (``numbers``: plain symbol -> SI value), beyond rounding
+    (:func:`_after`): the numbers only choose the root, so a class of variants derives the
+    motion once (:func:`_closed_form`) and each expression once per root (:func:`_at_event`).
 
     >>> from mechgrade.spec import load_problem
     >>> from mechgrade.resources import shipped_dir
@@ -179,8 +179,8 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
                          "expected 'kind: scalar'", where=where)
     at_time, times = _closed_form(kin, where)
     values = closed_forms(times).at(numbers)
-    roots = [(value.real, root) for root, value, is_real in zip(times, values, real(values))
-             if is_real and value.real > 0]
+    roots = [(value.real, root) for root, value, after in zip(times, values, _after(values))
+             if after]
     if not roots:
         raise SolveError("the event of the integrated motion has no closed-form time: ask for "
                          "a scalar", where=where)
@@ -188,6 +188,22 @@ def integrated_symbolically(kin, expr, numbers: dict, where=None):
     if isinstance(expr, sp.MatrixBase):  # kept by value: the immutable one
         return sp.Matrix(_at_event(sp.ImmutableMatrix(expr), at_time, t_event))
     return _at_event(expr, at_time, t_event)
+
+
+def _after(values) -> np.ndarray:
+    """Which of an event's closed-form times ``values`` (complex, at the givens) are real and
+    after the start: positive beyond the rounding of the largest of them
+    (:func:`~.rules.on_branch`). A time that is zero in exact arithmetic (the event holds at
+    the start) is its next crossing, as the integrator's (:func:`leaving`), whichever side of
+    zero rounding puts it.
+
+    >>> _after(np.array([1.8e-16, 2.4, -1.0, 3.0 + 1j])).tolist()
+    [False, True, False, False]
+    """
+    values = np.asarray(values, dtype=complex)
+    is_real = real(values)
+    scale = np.abs(values.real[is_real]).max(initial=0.0)
+    return is_real & on_branch(values.real, scale, Root.POSITIVE)
 
 
 @lru_cache(maxsize=64)

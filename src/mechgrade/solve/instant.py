@@ -266,7 +266,7 @@ class Columns:
         self.warned: list[list[AuthorWarning]] = [list(warnings) for _ in range(n)]
 
 
-Step = Callable[[list[dict], list[Objective], dict, Columns], None]
+GroupStep = Callable[[list[dict], list[Objective], dict, Columns], None]
 """How one group of objectives is answered at every column: ``(maps, chosen,
 overrides, columns)``, each column's givens at the group's instant, the objectives asked,
 their own givens, and what the columns have found (filled in)."""
@@ -274,13 +274,13 @@ their own givens, and what the columns have found (filled in)."""
 
 def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
                   warnings: tuple[AuthorWarning, ...],
-                  groups: Sequence[tuple[dict, Sequence[Objective], Step]],
+                  groups: Sequence[tuple[dict, Sequence[Objective], GroupStep]],
                   variants: Sequence[Mapping[str, float | None] | None],
                   wanted: Collection[str], given: Sequence[dict] | None = None
                   ) -> list[Solution | MechgradeError]:
     """The one solver loop, over columns (one per variant of the givens): every group of
     objectives asked at the same givens (``groups``: their own givens, the objectives, the
-    :data:`Step` that answers them), then each column's solution (:func:`solutions_of`:
+    :data:`GroupStep` that answers them), then each column's solution (:func:`solutions_of`:
     the objectives ``wanted``, the kinematics ``kinematics`` and its plan ``p``, the
     ``warnings`` before any instant's) or its error. ``given``: each variant's givens
     without a group's own (``instant_givens(problem, variant, {})``), where the caller has
@@ -309,8 +309,8 @@ def drive_columns(problem: Problem, kinematics: Problem, p: KinematicsPlan,
                         range(len(variants)))
 
 
-def reached_alone(problem: Problem, reach: Reach) -> Step:
-    """The :data:`Step` that reaches each column's instant alone (:func:`answer_alone`)."""
+def reached_alone(problem: Problem, reach: Reach) -> GroupStep:
+    """The :data:`GroupStep` that reaches each column's instant alone (:func:`answer_alone`)."""
 
     def step(maps: list[dict], chosen: list[Objective], overrides: dict,
              columns: Columns) -> None:
@@ -320,7 +320,7 @@ def reached_alone(problem: Problem, reach: Reach) -> Step:
 
 def answer_alone(problem: Problem, reach: Reach, maps: list[dict], chosen: list[Objective],
                  overrides: dict, columns: Columns, which: Collection[int]) -> None:
-    """The :data:`Step`'s work for the columns ``which`` alone: each one's instant reached
+    """The :data:`GroupStep`'s work for the columns ``which`` alone: each one's instant reached
     by ``reach`` and its objectives read there (:func:`_answer_group`), into ``columns``; a
     class's step leaves it the columns it does not answer together."""
     for i in which:

@@ -31,7 +31,7 @@ from ..expressions.syntax import parse, to_text
 from ..spec.dynamics import (GROUND, Cylinder, Disk, Integration, KineticFriction, Ring,
                              Shell, Sphere, StaticFriction, dynamics_of)
 from ..spec.language import FUNCTIONS
-from ..spec.model import Constraint, Expr, Problem
+from ..spec.model import Constraint, ConstraintLevel, Expr, Problem
 from . import rules
 from .analysis import analysis_of, analysis_plan, start_columns
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
@@ -94,7 +94,7 @@ def gripping_phase(problem: Problem) -> Problem:
     body = d.body(f.on)
     point = f.at if body.frame is None else f"coincident({f.at}, {body.frame})"
     text = f"dot(vel({point}, {problem.inertial_frame}), {to_text(f.then.direction.node)})"
-    grip = Constraint(grip_constraint(problem), "velocity",
+    grip = Constraint(grip_constraint(problem), ConstraintLevel.VELOCITY,
                       Expr(text, parse(text, functions=FUNCTIONS), f.then.where),
                       Expr("0", parse("0"), f.then.where), f.then.where)
     static = StaticFriction(f.name, f.on, f.at, f.normal, f.then.mu, (f.then.direction,),

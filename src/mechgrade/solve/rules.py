@@ -70,12 +70,26 @@ def moment(t):
     """
     return MOMENT * np.maximum(np.abs(t), 1.0)
 
-EVENT_AWAY = 1e-6
-"""Where a motion stopped at the first of an instant and its event, the instant came first
-when the event's equation there is more than this part of its value at the start away from
-zero (an event that holds at the start: when the instant's equation there is within this
-part of its own value at the start of zero); else the event may hold there too, which the
-one-by-one integrator judges."""
+
+PROJECTED = 1e-12
+"""A state moved a moment along its motion (a derivation's sampled loads, see
+:func:`~.derivation.motion_samples`) is back on its position constraints when each residual
+is at most this part of its terms' size (and of 1): where Gauss-Newton stops. Not
+:func:`satisfied`, which judges whether a solved state holds the equations (to the problem's
+``consistency``, with :data:`RESIDUAL_FLOOR`): this one ends an iteration that can go on
+converging, and the loads sampled there stand in for the motion's own, so it goes on to
+rounding, far inside the problem's tolerance."""
+
+
+def projected(residual, scale) -> bool:
+    """Whether every position constraint's ``residual`` (its terms' size ``scale``) is
+    within :data:`PROJECTED` of zero.
+
+    >>> projected(np.array([1e-13, -2e-12]), np.array([0.0, 5.0])), projected(np.array([1e-11]), 1.0)
+    (True, False)
+    """
+    return bool(np.all(np.abs(residual) <= PROJECTED * (np.abs(scale) + 1.0)))
+
 
 ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical

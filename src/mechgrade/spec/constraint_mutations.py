@@ -19,7 +19,7 @@ from typing import Iterator
 from ..expressions.notation import textbook
 from ..expressions.syntax import (Bin, Call, Name, Node, Num, Prime, additive_terms, name_of, names,
                                   sum_of_terms, to_text)
-from .model import Expr, Problem
+from .model import ConstraintLevel, Expr, Problem
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,7 @@ def strands_once(problem: Problem) -> Iterator[ConstraintMutation]:
     of a movable pulley, 2 y_B) taken once."""
     coordinates = {c.name for c in problem.coordinates}
     for i, c in enumerate(problem.constraints):
-        if c.level != "position":
+        if c.level is not ConstraintLevel.POSITION:
             continue
         sides = [c.lhs.node, c.rhs.node]
         moving = [bool(names(side) & coordinates) for side in sides]
@@ -74,7 +74,8 @@ def surface_taken_fixed(problem: Problem) -> Iterator[ConstraintMutation]:
     for i, c in enumerate(problem.constraints):
         # a rolling contact as the loader writes it: the body's point = the surface's point
         body, contact = _surface_point(c.lhs.node), _surface_point(c.rhs.node)
-        if c.level != "velocity" or body is None or contact is None or body[0] != contact[0]:
+        if c.level is not ConstraintLevel.VELOCITY or body is None or contact is None \
+                or body[0] != contact[0]:
             continue
         point, surface, frame = contact
         text = f"vel(coincident({point}, {frame}), {frame})"

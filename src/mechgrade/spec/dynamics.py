@@ -23,9 +23,11 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from enum import Enum
+from typing import ClassVar
 
 from ..errors import Location, SpecError, UnitError
 from ..expressions.functions import Kind, StrEnum
+from ..expressions.loads import LoadKind as LoadKind
 from ..expressions.syntax import (MATH_FUNCTIONS, Attr, Bin, Call, Name, Node, Prime, Unary,
                                   constant_value, names, to_text, walk)
 from ..units import dimension, dimensionless, parse_quantity, to_si
@@ -33,29 +35,6 @@ from .model import Expr, ObjectiveKind, Problem
 
 GROUND = "ground"
 """The name standing for the inertial frame where a load's other end is fixed."""
-
-
-class LoadKind(StrEnum):
-    """What a load is physically: the name a free-body diagram gives its arrow. Members equal
-    their text and serialise as it.
-
-    >>> LoadKind("normal"), f"{LoadKind.KINETIC_FRICTION}"
-    (<LoadKind.NORMAL: 'normal'>, 'kinetic friction')
-    """
-
-    WEIGHT = "weight"
-    NORMAL = "normal"
-    STATIC_FRICTION = "static friction"
-    KINETIC_FRICTION = "kinetic friction"
-    TENSION = "tension"
-    SPRING = "spring"
-    DAMPER = "damper"
-    PIN = "pin"
-    CONTACT = "contact"
-    APPLIED_FORCE = "applied force"
-    APPLIED_COUPLE = "applied couple"
-    IMPULSE = "impulse"
-    REACTION = "reaction"  # an unknown force whose kind the file does not state
 
 
 _REACTION_KINDS = {"normal": LoadKind.NORMAL, "pin": LoadKind.PIN, "tension": LoadKind.TENSION,
@@ -72,12 +51,24 @@ Size = Callable[[Expr], "float | None"]
 """A shape's dimension in metres, ``None`` when unknown."""
 
 
+class _Sized:
+    """A shape given by its sizes: lengths (:attr:`UNIT`, :attr:`WHAT`), which
+    :meth:`expressions` gives (a spec's check types each)."""
+
+    UNIT: ClassVar[str] = "m"
+    WHAT: ClassVar[str] = "a length"
+
+
 @dataclass(frozen=True)
-class Rod:
+class Rod(_Sized):
     """A slender rod along body axis ``axis``: m L^2/12 about the perpendicular axes."""
 
     length: Expr
     axis: str
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its sizes, as written."""
+        return (self.length,)
 
     def volumes(self, size: Size) -> tuple[float, float] | None:
         """The greatest and least volume (m^3) a rod of this length may have: as thick as it
@@ -101,11 +92,15 @@ def _flat(radius: float | None) -> tuple[float, float] | None:
 
 
 @dataclass(frozen=True)
-class Ring:
+class Ring(_Sized):
     """A thin ring of ``radius`` about body axis ``axis``: m R^2 about it, m R^2/2 across."""
 
     radius: Expr
     axis: str
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its sizes, as written."""
+        return (self.radius,)
 
     def volumes(self, size: Size) -> tuple[float, float] | None:
         """A ring's volumes are a disk's: see :func:`_flat`."""
@@ -113,11 +108,15 @@ class Ring:
 
 
 @dataclass(frozen=True)
-class Disk:
+class Disk(_Sized):
     """A uniform thin disk of ``radius`` about body axis ``axis``: m R^2/2, m R^2/4 across."""
 
     radius: Expr
     axis: str
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its sizes, as written."""
+        return (self.radius,)
 
     def volumes(self, size: Size) -> tuple[float, float] | None:
         """See :func:`_flat`."""
@@ -125,12 +124,16 @@ class Disk:
 
 
 @dataclass(frozen=True)
-class Cylinder:
+class Cylinder(_Sized):
     """A solid cylinder: m R^2/2 about its axis, m (3R^2 + h^2)/12 across."""
 
     radius: Expr
     length: Expr
     axis: str
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its sizes, as written."""
+        return (self.radius, self.length)
 
     def volumes(self, size: Size) -> tuple[float, float] | None:
         """Its one volume, twice; ``None`` when a size is unknown or zero."""
@@ -147,10 +150,14 @@ def _ball(radius: float | None) -> float | None:
 
 
 @dataclass(frozen=True)
-class Sphere:
+class Sphere(_Sized):
     """A uniform solid sphere: 2 m R^2/5 about every axis."""
 
     radius: Expr
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its sizes, as written."""
+        return (self.radius,)
 
     def volumes(self, size: Size) -> tuple[float, float] | None:
         """Its ball's volume, twice."""
@@ -159,10 +166,14 @@ class Sphere:
 
 
 @dataclass(frozen=True)
-class Shell:
+class Shell(_Sized):
     """A thin spherical shell: 2 m R^2/3 about every axis."""
 
     radius: Expr
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its sizes, as written."""
+        return (self.radius,)
 
     def volumes(self, size: Size) -> tuple[float, float] | None:
         """Its ball's volume, down to none (a shell may be as thin as it likes)."""
@@ -171,10 +182,14 @@ class Shell:
 
 
 @dataclass(frozen=True)
-class Block:
+class Block(_Sized):
     """A rectangular block with sides along the body x, y, z axes (a plate has one side 0)."""
 
     sides: tuple[Expr, Expr, Expr]
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its sizes, as written."""
+        return self.sides
 
     def volumes(self, size: Size) -> tuple[float, float] | None:
         """Its one volume, twice; ``None`` when a side is unknown or zero (a plate)."""
@@ -190,6 +205,16 @@ class Explicit:
     """Moments and products of inertia about the mass centre in the body axes."""
 
     entries: tuple[tuple[str, Expr], ...]  # ("xx", expr), ... ; missing entries are zero
+    UNIT: ClassVar[str] = "kg*m^2"
+    WHAT: ClassVar[str] = "a moment of inertia"
+
+    def expressions(self) -> tuple[Expr, ...]:
+        """Its moments and products, as written.
+
+        >>> Explicit((("zz", Expr("J", Name("J"))),)).expressions()[0].text
+        'J'
+        """
+        return tuple(e for _, e in self.entries)
 
     def volumes(self, _size: Size) -> None:
         """Unknown: an inertia says nothing of the body's size."""
@@ -940,9 +965,10 @@ class _Checker:
             raise SpecError(f"body '{b.name}' has an inertia but no 'frame': a rigid body "
                             "needs the frame it turns with (a particle has no inertia)",
                             where=part.where)
-        for e in _shape_exprs(part.shape):
-            unit = "kg*m^2" if isinstance(part.shape, Explicit) else "m"
-            self.typed(e, Kind.SCALAR, unit, "a moment of inertia" if unit != "m" else "a length")
+        if part.shape is None:
+            return
+        for e in part.shape.expressions():
+            self.typed(e, Kind.SCALAR, part.shape.UNIT, part.shape.WHAT)
 
     def applied_loads(self):
         d = self.d
@@ -1302,16 +1328,6 @@ def _check_analysis(problem, checker, analysis: Analysis) -> None:
         left, right = analysis.until
         checker._same(checker.type_of(left), checker.type_of(right), left,
                       "both sides of 'until'")
-
-
-def _shape_exprs(shape) -> tuple[Expr, ...]:
-    if shape is None:
-        return ()
-    if isinstance(shape, Block):
-        return shape.sides
-    if isinstance(shape, Explicit):
-        return tuple(e for _, e in shape.entries)
-    return tuple(v for v in vars(shape).values() if isinstance(v, Expr))
 
 
 def argument_dimension(problem, func: str, arg: Node, kind: Kind):

@@ -22,7 +22,7 @@ from ..units import normalize_unit, parse_quantity, to_si
 from ..yamlio import Document, read_yaml, read_yaml_text
 from .dynamics import read_dynamics
 from .language import FUNCTIONS
-from .model import (CONSISTENCY, Constraint, Coordinate, Expect, Expr, Frame, Given, Mistake,
+from .model import (CONSISTENCY, Constraint, ConstraintLevel, Coordinate, Expect, Expr, Frame, Given, Mistake,
                     Objective, Parameter, Point, Problem, Rotation, SymbolDecl, Tolerance)
 from .solving import (check_solving, expand, given_expression, read_branches, read_definitions,
                       read_unknowns, resolve_given_values)
@@ -348,9 +348,9 @@ class _Builder:
             right = f"vel(coincident({contact}, {surface}), {self.data['inertial']['frame']})"
             lhs = self.expr(left, "constraints", i, "rolling")
             rhs = self.expr(right, "constraints", i, "rolling")
-            return Constraint(name, "velocity", lhs, rhs, where)
-        level = "position" if "position" in spec else "velocity"
-        lhs, rhs = self.equation(spec[level], "constraints", i, level)
+            return Constraint(name, ConstraintLevel.VELOCITY, lhs, rhs, where)
+        level = ConstraintLevel.POSITION if "position" in spec else ConstraintLevel.VELOCITY
+        lhs, rhs = self.equation(spec[level.value], "constraints", i, level.value)
         return Constraint(name, level, lhs, rhs, where)
 
     def given(self, key: str, value, *section) -> Given:

@@ -89,6 +89,14 @@ class Parameter:
     where: Location = field(default_factory=Location, compare=False)
 
 
+class ConstraintLevel(Enum):
+    """The level a constraint holds at: its ``position:`` or ``velocity:`` key (a rolling
+    contact holds at the velocity level)."""
+
+    POSITION = "position"
+    VELOCITY = "velocity"
+
+
 @dataclass(frozen=True)
 class Constraint:
     """``lhs = rhs`` holding for all time, at the position or the velocity level.
@@ -100,7 +108,7 @@ class Constraint:
     """
 
     name: str
-    level: str  # "position" or "velocity"
+    level: ConstraintLevel
     lhs: Expr
     rhs: Expr
     where: Location = field(default_factory=Location, compare=False)
