@@ -37,8 +37,8 @@ from .analysis import analysis_of, analysis_plan, start_columns
 from .batch_motion import FIRED, NEVER, SWITCHED, Arrival, integrate_to_events
 from .columns import loud_call, quiet
 from .generated import lambdified
-from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, event_never_happens, event_stays,
-                     instant_missed, leaving, not_integrated)
+from .events import (ATOL, EVERY_STEP, MAX_CALLS, RTOL, at_start, event_never_happens,
+                     event_stays, instant_missed, leaving, not_integrated)
 from .motion import Balanced, _switches, after_event, at_event, balances, constant_matrix
 from .motion import accelerations as columns_accelerations
 
@@ -448,7 +448,8 @@ class _Columns:
         count = y0.shape[1]
         direction = np.array(senses, dtype=float).reshape(len(events), count)
         g = np.array([e(np.arange(count), t0, y0) for e in events]).reshape(len(events), count)
-        now = ((direction == 0) & (g == 0)).any(axis=0)
+        firing = (direction == 0) & at_start(g)
+        now = firing.any(axis=0)
         arrival = self._integrated(events, direction, y0, t0, self.switches is not None)
         if self.strict is not None and self.switches is not None and \
                 arrival.status[0] not in (FIRED, NEVER):
@@ -460,7 +461,7 @@ class _Columns:
         which = np.full(count, -1)
         if arrival.which is not None:  # (a column that switched has no event)
             which = np.where(status == FIRED, arrival.which, -1)
-        which[now] = ((direction == 0) & (g == 0)).argmax(axis=0)[now]
+        which[now] = firing.argmax(axis=0)[now]
         status[now], t[now], y[:, now], before[:, now] = FIRED, t0[now], y0[:, now], y0[:, now]
         if self.strict is not None and status[0] not in (FIRED, NEVER):
             raise not_integrated(int(status[0]), float(t[0]), self.analysis.where)
@@ -567,7 +568,7 @@ def reach_columns(problem: Problem, X: np.ndarray, targets: list[Target],
             # a column whose instant holds at the start waits for its next crossing, as
             # alone; one that stays there is refused at its own given, as alone; one whose
             # moment later is not reached is left to be solved alone, which says why
-            held = ~timed & (aim(np.arange(count), np.zeros(count), one.y0) == 0)
+            held = ~timed & at_start(aim(np.arange(count), np.zeros(count), one.y0))
             sense, stays = one.crossing(aim, target.where) if held.any() else \
                 (np.zeros(count), {})
             for k in stays:
