@@ -357,6 +357,10 @@ def test_factors_tested_at_once_name_what_the_test_one_by_one_names(plausible):
         student = factor * reference
         assert _factor(student, reference, test, plausible) == \
             _factor(student, reference, one_by_one, plausible)
+        # prepared once for the reference, as a class's answers are tried
+        assert _factor(student, reference, test, plausible,
+                       Candidates([], reference, test)) == \
+            _factor(student, reference, one_by_one, plausible)
     assert _factor(-reference, reference, test, plausible)[0].code == "sign"
     assert _factor(1.3 * reference, reference, test, plausible) is None
 
@@ -384,7 +388,8 @@ def test_candidates_kept_for_many_answers_name_what_the_list_names(seed):
     for student in (reference * 1.3, reference * 1.3005, reference * 0.0052, -reference,
                     rng.normal(size=6)):
         assert diagnose(student, reference, test, generated=kept) == \
-            diagnose(student, reference, test, generated=generated)
+            diagnose(student, reference, test, generated=generated) == \
+            diagnose(student, reference, lambda s, t: test(s, t), generated=generated)
         # kept for another exact test: worked out again for this one
         assert diagnose(student, reference, test, generated=kept, exact=exact) == \
             diagnose(student, reference, test, generated=generated, exact=exact)
