@@ -4,11 +4,13 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, strategies as st
 
 from mechgrade.grade.compare import assess
 
 from mechgrade.grade.policy import GradingPolicy
-from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, Candidates, _factor, diagnose
+from mechgrade.grade.diagnose import (_ALL_FACTORS, CODES, Candidates, _factor, _norm,
+                                      diagnose)
 from mechgrade.solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from mechgrade.tolerance import agree_at_points
 
@@ -393,3 +395,11 @@ def test_candidates_kept_for_many_answers_name_what_the_list_names(seed):
         # kept for another exact test: worked out again for this one
         assert diagnose(student, reference, test, generated=kept, exact=exact) == \
             diagnose(student, reference, test, generated=generated, exact=exact)
+
+
+@given(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1,
+                max_size=12))
+def test_distances_are_numpys_norms_to_the_last_bit(values):
+    array = np.array(values)
+    with np.errstate(all="ignore"):  # overflowing squares warn alike
+        assert repr(_norm(array)) == repr(float(np.linalg.norm(array)))
