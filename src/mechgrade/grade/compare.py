@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import AnswerError, ExpressionError, MechgradeError
 from ..expressions import syntax
-from ..expressions.dimensions import DimensionError, Kind, Type, described, infer
+from ..expressions.dimensions import DimensionError, Type, described, infer, scalar
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
@@ -869,8 +869,7 @@ def expression_dimension(node: Node, units: dict[str, str]):
     mechgrade.grade.compare.DimensionMismatch: adds a length ([length]) to an angular velocity or rate (1/[time])
     """
     def leaf(leaf: Node) -> Type:  # Euler's E, and anything not a symbol: a pure number
-        unit = units.get(leaf.id, "") if isinstance(leaf, Name) and leaf.id != "E" else ""
-        return Type(Kind.SCALAR, dimension(unit))
+        return scalar(units.get(leaf.id, "") if isinstance(leaf, Name) and leaf.id != "E" else "")
 
     try:
         return infer(node, leaf).dim
