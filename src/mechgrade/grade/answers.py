@@ -318,7 +318,8 @@ def _read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
         raise AnswerError("expected an answer, found nothing")
     # a leading label is ignored: 'a = 9.8 m/s^2', and an equation of motion written as one,
     # "theta'' = -3 g sin(theta)/(2 L)"
-    text = _ASSIGNMENT.sub("", text, count=1)
+    if "=" in text:
+        text = _ASSIGNMENT.sub("", text, count=1)
     if result.kind == ObjectiveKind.SYMBOLIC:
         return read_expression(text, result.symbols)
     signs = _DOUBLE_SIGN.search(text)
