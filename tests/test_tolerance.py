@@ -83,10 +83,23 @@ def test_agreement_with_many_candidates_at_once_is_the_test_row_by_row(case, rel
         [test(rows[0], rows[0]), test(rows[0], edge)]
 
 
+@given(st.lists(st.lists(finite, min_size=3, max_size=3), min_size=1, max_size=5),
+       st.lists(st.lists(floats, min_size=3, max_size=3), min_size=1, max_size=8),
+       st.sampled_from([1e-6, 0.01]))
+@settings(max_examples=30)
+def test_candidates_prepared_once_judge_every_answer_as_the_test_row_by_row(rows, students,
+                                                                            rel):
+    test = agree_at_points(rel, np.array(rows[0]))
+    prepared = test.rows(np.array(rows))
+    for student in [*map(np.array, students), *(np.array(r) * (1 + rel) for r in rows)]:
+        assert prepared.each(student).tolist() == [test(student, np.array(r)) for r in rows]
+
+
 def test_candidates_of_another_shape_never_agree():
     test = AgreeAtPoints(0.01, 1e-12)
     assert test.each(np.array([1.0, 2.0]), np.array([[1.0, 2.0, 3.0]])).tolist() == [False]
     assert not test(np.array([1.0, 2.0]), np.array([1.0, 2.0, 3.0]))
+    assert test.rows(np.array([[1.0, 2.0, 3.0]])).each(np.array([1.0, 2.0])).tolist() == [False]
 
 
 def test_the_rank_counts_singular_values_against_the_largest_or_one():

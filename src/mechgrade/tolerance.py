@@ -71,7 +71,12 @@ def _elementwise(s: np.ndarray, t: np.ndarray, rel: float, abs_: float, scale) -
 
 def _fits(difference, limit, size):
     """The rule itself, for floats and arrays alike (a NaN never fits)."""
-    return difference <= limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size
+    return difference <= _allowed(limit, size)
+
+
+def _allowed(limit, size):
+    """The largest difference the rule lets pass: ``limit`` with the :data:`FLOAT_SLACK`."""
+    return limit * (1 + FLOAT_SLACK) + 1e-3 * FLOAT_SLACK * size
 
 
 _NUMBERS = (float, int)
@@ -118,11 +123,41 @@ class AgreeAtPoints:
         >>> test.each(np.array([2.0, 4.0]), np.ones((3, 3))).tolist()
         [False, False, False]
         """
-        s, rows = np.asarray(s, dtype=float), np.asarray(rows, dtype=float)
-        if rows.shape[1:] != s.shape:
-            return np.zeros(len(rows), dtype=bool)
+        return self.rows(rows).each(s)
+
+    def rows(self, rows: np.ndarray) -> "AgreeingRows":
+        """The test against fixed ``rows`` (candidates stacked along the first axis), what
+        each value allows worked out once: a caller that tries many answers against the same
+        candidates (a reference's mistakes) tests each answer in one numpy pass.
+
+        >>> rows = AgreeAtPoints(0.01, 1e-12).rows(np.array([[2.0, 4.0], [2.0, 4.1]]))
+        >>> rows.each(np.array([2.0, 4.0])).tolist(), rows.each(np.array([2.0, 4.1])).tolist()
+        ([True, False], [False, True])
+        """
+        rows = np.asarray(rows, dtype=float)
         flat = rows.reshape(len(rows), -1)
-        fits = _elementwise(s.reshape(1, -1), flat, self.rel, self.floor, None)
+        with np.errstate(all="ignore"):
+            size = np.abs(flat)
+            allowed = _allowed(np.maximum(self.rel * size, self.floor), size)
+        return AgreeingRows(rows, flat, allowed)
+
+
+class AgreeingRows:
+    """:meth:`AgreeAtPoints.rows`' prepared test: ``rows`` as given, and each value's
+    allowed difference (:func:`_allowed`), row by row the bounds :func:`within` works out."""
+
+    __slots__ = ("allowed", "flat", "rows")
+
+    def __init__(self, rows: np.ndarray, flat: np.ndarray, allowed: np.ndarray):
+        self.rows, self.flat, self.allowed = rows, flat, allowed
+
+    def each(self, s: np.ndarray) -> np.ndarray:
+        """Whether ``s`` agrees with each row (none when its shape is not a row's)."""
+        s = np.asarray(s, dtype=float)
+        if self.rows.shape[1:] != s.shape:
+            return np.zeros(len(self.rows), dtype=bool)
+        with np.errstate(all="ignore"):
+            fits = np.abs(s.reshape(1, -1) - self.flat) <= self.allowed
         return np.logical_and.reduce(fits, axis=1)  # np.all, without its Python wrapper
 
 

@@ -376,6 +376,33 @@ def test_reference_undefined_everywhere_is_not_evaluated():
     assert verdict("L", odd) == "not_evaluated"
 
 
+def test_a_reference_in_names_it_does_not_declare_is_not_evaluated():
+    stray = ObjectiveResult("x", "symbolic", "m", expr="L*k", symbols=("L",),
+                            symbol_units=("m",))
+    assert verdict("L", stray) == "not_evaluated"
+
+
+def test_a_symbolic_answer_written_again_is_judged_once_by_its_text(monkeypatch):
+    import mechgrade.grade.compare as compare
+
+    result = ObjectiveResult("a", "symbolic", "m/s^2", expr=SYM.expr, symbols=SYM.symbols,
+                             symbol_units=SYM.symbol_units)
+    policy = GradingPolicy()
+    first = assess("L*thetad^2", result, policy)
+    assert assess("L*thetad^2", result, policy) is first
+    # the same reading written otherwise is judged alike
+    assert assess(" L thetad^2", result, policy) == first
+    monkeypatch.setattr(compare, "MAX_JUDGED", 2)
+    for text in ("L", "2 L", "3 L"):
+        assess(text, result, policy)
+    assert len(compare._objective(result, policy).judged) <= 2
+
+
+@pytest.mark.parametrize("answer", [5, ["L"], b"L"])
+def test_a_symbolic_answer_that_is_not_text_is_unreadable(answer):
+    assert verdict(answer, SYM) == "unreadable"
+
+
 def test_declared_symbolic_mistake_gives_its_message_and_credit():
     result = ObjectiveResult(
         "a", "symbolic", "m/s^2", expr=SYM.expr, symbols=SYM.symbols,

@@ -4,11 +4,13 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, strategies as st
 
 from mechgrade.grade.compare import assess
 
 from mechgrade.grade.policy import GradingPolicy
-from mechgrade.grade.diagnose import _ALL_FACTORS, CODES, Candidates, _factor, diagnose
+from mechgrade.grade.diagnose import (_ALL_FACTORS, CODES, Candidates, _factor, _norm,
+                                      diagnose)
 from mechgrade.solve.result import GeneratedMistake, MistakeValue, ObjectiveResult
 from mechgrade.tolerance import agree_at_points
 
@@ -357,6 +359,10 @@ def test_factors_tested_at_once_name_what_the_test_one_by_one_names(plausible):
         student = factor * reference
         assert _factor(student, reference, test, plausible) == \
             _factor(student, reference, one_by_one, plausible)
+        # prepared once for the reference, as a class's answers are tried
+        assert _factor(student, reference, test, plausible,
+                       Candidates([], reference, test)) == \
+            _factor(student, reference, one_by_one, plausible)
     assert _factor(-reference, reference, test, plausible)[0].code == "sign"
     assert _factor(1.3 * reference, reference, test, plausible) is None
 
@@ -384,7 +390,16 @@ def test_candidates_kept_for_many_answers_name_what_the_list_names(seed):
     for student in (reference * 1.3, reference * 1.3005, reference * 0.0052, -reference,
                     rng.normal(size=6)):
         assert diagnose(student, reference, test, generated=kept) == \
-            diagnose(student, reference, test, generated=generated)
+            diagnose(student, reference, test, generated=generated) == \
+            diagnose(student, reference, lambda s, t: test(s, t), generated=generated)
         # kept for another exact test: worked out again for this one
         assert diagnose(student, reference, test, generated=kept, exact=exact) == \
             diagnose(student, reference, test, generated=generated, exact=exact)
+
+
+@given(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1,
+                max_size=12))
+def test_distances_are_numpys_norms_to_the_last_bit(values):
+    array = np.array(values)
+    with np.errstate(all="ignore"):  # overflowing squares warn alike
+        assert repr(_norm(array)) == repr(float(np.linalg.norm(array)))

@@ -21,14 +21,15 @@ mechgrade.expressions.functions.DimensionError: cannot add a length ([length]) a
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from operator import is_
 from typing import Any, Callable
 
-from ..units import describe_dimension, dimensionless
+from ..units import describe_dimension, dimension, dimensionless
 from .functions import MATH_FUNCTIONS, DimensionError, Kind
 from .syntax import Bin, Call, Name, Node, Num, Unary, constant_value, to_text
 
-__all__ = ["DimensionError", "Kind", "Type", "described", "infer"]
+__all__ = ["DimensionError", "Kind", "Type", "described", "infer", "scalar"]
 
 
 @dataclass(frozen=True)
@@ -37,6 +38,22 @@ class Type:
 
     kind: Kind
     dim: Any = None  # a pint dimensionality (UnitsContainer), None for points and frames
+
+
+@lru_cache(maxsize=256)
+def scalar(unit: str) -> Type:
+    """A scalar quantity in ``unit`` (``""``: a pure number), kept per unit: typing an
+    expression types each of its names and numbers.
+
+    >>> str(scalar("m/s").dim), scalar("m/s") is scalar("m/s")
+    ('[length] / [time]', True)
+    """
+    return Type(Kind.SCALAR, dimension(unit))
+
+
+@lru_cache(maxsize=1)
+def _zero() -> Type:
+    return Type(Kind.ZERO, dimensionless())
 
 
 def infer(node: Node, leaf: Callable[[Node], Type],
@@ -50,9 +67,9 @@ def infer(node: Node, leaf: Callable[[Node], Type],
         if type(n) is Name and n.id != "pi":
             return leaf(n)
         if type(n) is Num:
-            return Type(Kind.ZERO if n.value == 0 else Kind.SCALAR, dimensionless())
+            return _zero() if n.value == 0 else scalar("")
         if type(n) is Name:  # pi
-            return Type(Kind.SCALAR, dimensionless())
+            return scalar("")
         if isinstance(n, Unary):
             t = walk(n.operand)
             if t.kind not in (Kind.SCALAR, Kind.VECTOR, Kind.ZERO):

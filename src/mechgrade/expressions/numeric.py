@@ -46,8 +46,9 @@ def evaluate(node: Node, env: dict[str, np.ndarray]) -> np.ndarray:
 def _eval(node: Node, env: dict[str, np.ndarray]):
     """:func:`evaluate`'s walk: :func:`~mechgrade.expressions.syntax.fold`'s, with its leaves,
     calls and numpy's division and powers (inf or nan where Python would raise or go complex)
-    written in, as judging an answer is mostly this walk."""
-    if isinstance(node, Bin):
+    written in, as judging an answer is mostly this walk (the commonest kinds first, told by
+    their exact type)."""
+    if type(node) is Bin:
         a, b = _eval(node.left, env), _eval(node.right, env)
         op = node.op
         if op == "**":
@@ -55,18 +56,18 @@ def _eval(node: Node, env: dict[str, np.ndarray]):
         if op == "/":
             return np.divide(np.asarray(a, dtype=float), b)
         return syntax.PYTHON_OPERATORS[op](a, b)
-    if isinstance(node, Num):
-        return float(node.text)
-    if isinstance(node, Name):
+    if type(node) is Name:
         if node.id == "pi":
             return math.pi
         if node.id in env:
             return env[node.id]
-    elif isinstance(node, Unary):
-        return -_eval(node.operand, env)
-    elif isinstance(node, Call):
+    elif type(node) is Num:
+        return float(node.text)
+    elif type(node) is Call:
         return numpy_functions()[node.func](*(np.asarray(_eval(a, env), dtype=float)
                                               for a in node.args))
+    elif type(node) is Unary:
+        return -_eval(node.operand, env)
     raise ExpressionError(f"expected an expression in the problem's symbols, found "
                           f"{excerpt(syntax.to_text(node))}")
 

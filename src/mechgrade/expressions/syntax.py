@@ -762,9 +762,11 @@ class _Reader:
     def binary(self, op: str, left: _Read, right: _Read) -> _Read:
         (a_node, a, a_height), (b_node, b, b_height) = left, right
         self.count += 1
-        chained = isinstance(a_node, Bin) and op != "**"
+        if not (type(a_node) is Bin and op != "**"):  # a chain's left part counts no level
+            a_height += 1
+        b_height += 1
         node, value = _combined(op, (a_node, a), (b_node, b))
-        return node, value, max(a_height + (0 if chained else 1), b_height + 1)
+        return node, value, a_height if a_height > b_height else b_height
 
     def nest(self) -> None:
         self.nesting += 1
@@ -791,10 +793,15 @@ class _Reader:
         self.nesting -= 1
 
     def atom(self) -> _Read:
-        _, name, op, number = self.take()
+        token = self.tokens[self.at]  # take(), written in: every operand is an atom
+        if token is _END:
+            raise _Unread
+        self.at += 1
+        _, name, op, number = token
         if number:
-            if number.isascii() and number.isdigit() and (number[0] != "0" or len(number) == 1):
-                built = self.builder._number(int(number))  # most numbers: plain integers
+            if number.isascii() and number.isdigit() and (number[0] != "0" or len(number) == 1) \
+                    and len(number) <= MAX_LITERAL_DIGITS:
+                built = Num(number)  # most numbers: plain integers, written as _number writes them
             elif not _PLAIN_NUMBER.fullmatch(number):
                 raise _Unread  # 0x1f, 1_000, 007, 3j: Python's own literals
             else:

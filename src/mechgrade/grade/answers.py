@@ -318,7 +318,8 @@ def _read_answer(text: str, result: ObjectiveResult) -> StudentAnswer:
         raise AnswerError("expected an answer, found nothing")
     # a leading label is ignored: 'a = 9.8 m/s^2', and an equation of motion written as one,
     # "theta'' = -3 g sin(theta)/(2 L)"
-    text = _ASSIGNMENT.sub("", text, count=1)
+    if "=" in text:
+        text = _ASSIGNMENT.sub("", text, count=1)
     if result.kind == ObjectiveKind.SYMBOLIC:
         return read_expression(text, result.symbols)
     signs = _DOUBLE_SIGN.search(text)
@@ -747,9 +748,6 @@ def symbol_aliases(symbols: tuple[str, ...]) -> Mapping[object, str]:
 def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     """Read an expression and rename its names to the declared ``symbols``.
 
-    Kept per text and symbols (a class writes the same answer many times; the answer is
-    frozen, so one reading serves them all); text that cannot be read is read again.
-
     An undeclared ``e`` (or ``E``) is Euler's number, as in PrairieLearn (``e^x`` is read
     back as ``exp(x)``); a name that is not declared but is declared names written together
     is their product (``gh`` for ``g h``, as WeBWorK reads it), refused when it splits more
@@ -760,11 +758,6 @@ def read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     >>> read_expression("e^(-t/tau) sqrt(2gh)", ("t", "tau", "g", "h")).text
     'exp(-t/tau)*sqrt(2*g*h)'
     """
-    return _read_expression(text, tuple(symbols))
-
-
-@lru_cache(maxsize=1024)  # few, as compare.MAX_JUDGED says why
-def _read_expression(text: str, symbols: tuple[str, ...]) -> ExpressionAnswer:
     exponent = _E_NOTATION.search(text)
     if exponent and exponent.group("e") in symbols:
         letter = exponent.group("e")

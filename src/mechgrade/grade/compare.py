@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import AnswerError, ExpressionError, MechgradeError
 from ..expressions import syntax
-from ..expressions.dimensions import DimensionError, Kind, Type, described, infer
+from ..expressions.dimensions import DimensionError, Type, described, infer, scalar
 from ..expressions.numeric import evaluate, reference_tree as _reference_tree
 from ..expressions.syntax import Bin, Call, Name, Node
 from ..solve.mutants import separating_rel
@@ -103,6 +103,33 @@ def assess(text: str | None, result: ObjectiveResult,
     """
     if text is None or (isinstance(text, str) and not text.strip()):
         return missing()
+    judged = _judged(text, result, policy)
+    if judged is not None:
+        kept = judged.get(text)
+        if kept is not None:  # the same text again
+            return kept
+    assessment = _assess(text, result, policy)
+    if judged is not None:
+        if len(judged) >= MAX_JUDGED:
+            judged.clear()
+        judged[text] = assessment
+    return assessment
+
+
+def _judged(text: object, result: ObjectiveResult,
+            policy: GradingPolicy) -> dict[str, Assessment] | None:
+    """The judgements kept for answers to ``result`` under ``policy`` by their text: a
+    symbolic objective's, with sample points (:class:`_Sampled`); ``None`` for any other."""
+    if type(text) is not str or result.kind != ObjectiveKind.SYMBOLIC or not result.expr:
+        return None
+    try:
+        sampled = _objective(result, policy)
+    except MechgradeError:  # judging says why (:func:`_assess`)
+        return None
+    return None if sampled is None else sampled.judged
+
+
+def _assess(text: str, result: ObjectiveResult, policy: GradingPolicy) -> Assessment:
     try:
         answer = read_answer(text, result)
     except AnswerError as exc:
@@ -636,22 +663,14 @@ def _judge_expression(answer: StudentAnswer, result: ObjectiveResult,
         if confirmed is True:
             return Assessment(Verdict.CORRECT, 1.0, None, "Correct.", read_back)
         return not_evaluated("the reference is undefined at the sample points", read_back)
-    kept = sampled.judged.get(id(answer))
-    if kept is not None and kept[0] is answer:  # the same text again (read once: the same answer)
-        return kept[1]
-    judged = _judge_sampled(answer, result, policy, sampled)
-    if len(sampled.judged) >= MAX_JUDGED:
-        sampled.judged.clear()
-    sampled.judged[id(answer)] = (answer, judged)
-    return judged
+    return _judge_sampled(answer, result, policy, sampled)
 
 
 MAX_JUDGED = 1024
-"""Most answers kept judged per objective (the answer kept with its judgement, so its
-identity is not reused while kept). Few: a class's repeated answers are few, and every kept
-answer's tree lives long enough for the collector's full passes to walk it again and again
-(10,000 distinct answers judged in-process: ~140 us an answer on average with 4096 kept,
-~122 with 1024, the median of rounds of 200 ~107 either way)."""
+"""Most answers kept judged per objective, by their text (:func:`assess`): a class writes
+the same answer many times. Only the text and its assessment are kept, not the answer's tree:
+kept trees live long enough for the collector's full passes to walk them again and again
+(every answer written differently, in-process: ~80 µs an answer with trees kept, ~68 without)."""
 
 
 def _judge_sampled(answer: ExpressionAnswer, result: ObjectiveResult, policy: GradingPolicy,
@@ -679,7 +698,7 @@ class _Sampled:
     of diagnoses (``loose``: they allow typed constants such as 9.81 for g, 1 %, unlike the
     equivalence test itself) and, once an answer is wrong, each mistake's values there. Worked
     out once per objective (:func:`_objective`): a class's answers go to few objectives.
-    ``judged`` keeps each answer's judgement: a class writes the same answer many times."""
+    ``judged`` keeps each answer's judgement by its text (:func:`assess`)."""
 
     def __init__(self, result: ObjectiveResult, policy: GradingPolicy,
                  env: dict[str, np.ndarray], reference: np.ndarray):
@@ -687,7 +706,7 @@ class _Sampled:
         self.env, self.reference = env, reference
         self.close = agree_at_points(policy.symbolic_rel, reference)
         self.loose = agree_at_points(max(policy.symbolic_rel, 0.01), reference)
-        self.judged: dict[int, tuple[ExpressionAnswer, Assessment]] = {}
+        self.judged: dict[str, Assessment] = {}
 
     @cached_property
     def mistakes(self) -> list[tuple[MistakeValue, np.ndarray | None]]:
@@ -850,8 +869,7 @@ def expression_dimension(node: Node, units: dict[str, str]):
     mechgrade.grade.compare.DimensionMismatch: adds a length ([length]) to an angular velocity or rate (1/[time])
     """
     def leaf(leaf: Node) -> Type:  # Euler's E, and anything not a symbol: a pure number
-        unit = units.get(leaf.id, "") if isinstance(leaf, Name) and leaf.id != "E" else ""
-        return Type(Kind.SCALAR, dimension(unit))
+        return scalar(units.get(leaf.id, "") if isinstance(leaf, Name) and leaf.id != "E" else "")
 
     try:
         return infer(node, leaf).dim

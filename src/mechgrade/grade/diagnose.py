@@ -31,7 +31,7 @@ import numpy as np
 from ..spec.mistake_codes import BRANCH_CODES, DYNAMICS_CODES, GIVEN_CODES, MODEL_CODES
 from ..spec.model import ObjectiveKind
 from ..solve.result import GeneratedMistake, MistakeValue
-from ..tolerance import AgreeAtPoints
+from ..tolerance import AgreeAtPoints, AgreeingRows
 
 Close = Callable[[np.ndarray, np.ndarray], bool]
 
@@ -152,13 +152,13 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *,
         factor = _factor(student, reference, exact, plausible)
         if factor is not None and _generated(
                 student, reference, exact, candidates, plausible) is None:
-            near = min(float(np.linalg.norm(student - np.asarray(v, dtype=float)))
+            near = min(_norm(student - np.asarray(v, dtype=float))
                        for _, v in generated if v is not None
                        and np.shape(v) == reference.shape and close(student, np.asarray(v)))
             if factor[1] <= 0.1 * near:
                 return factor[0]
         return found
-    factor = _factor(student, reference, zero, plausible)
+    factor = _factor(student, reference, zero, plausible, candidates)
     if factor is not None:
         return factor[0]
     if kind == ObjectiveKind.VECTOR:
@@ -167,15 +167,21 @@ def diagnose(student: np.ndarray, reference: np.ndarray, close: Close, *,
 
 
 def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
-            plausible: frozenset[str] | None) -> tuple[Diagnosis, float] | None:
+            plausible: frozenset[str] | None,
+            candidates: Candidates | None = None) -> tuple[Diagnosis, float] | None:
     """The first whole-answer factor (a sign, a factor, a unit slip) ``student`` has
-    exactly, among those the model makes plausible, and the distance from it."""
+    exactly, among those the model makes plausible, and the distance from it (the factors'
+    test prepared by ``candidates`` when its test is ``exact``)."""
     if not (reference != 0).any():
         return None
     # every factor times the reference at once (row by row the same products), and tested
     # at once when the test can be (a score of tests one by one cost most of a diagnosis)
-    scaled = np.multiply.outer(_ALL_FACTORS, reference)
-    fits = exact.each(student, scaled) if isinstance(exact, AgreeAtPoints) else None
+    fits: np.ndarray | None
+    if candidates is not None and candidates.zero is exact and candidates.factors is not None:
+        scaled, fits = candidates.factors.rows, candidates.factors.each(student)
+    else:  # a test of numbers or vectors, or one not prepared
+        scaled = _scaled(reference)
+        fits = exact.each(student, scaled) if isinstance(exact, AgreeAtPoints) else None
     if fits is not None and not fits.any():
         return None
     end = 0
@@ -186,7 +192,7 @@ def _factor(student: np.ndarray, reference: np.ndarray, exact: Close,
         for at in range(start, end):
             if fits[at] if fits is not None else exact(student, scaled[at]):
                 return (Diagnosis(code, label, message),
-                        float(np.linalg.norm(student - scaled[at])))
+                        _norm(student - scaled[at]))
     return None
 
 
@@ -216,7 +222,10 @@ class Candidates:
     its values (finite, of the reference's shape) and whether those values are a zero on the
     reference's scale (within the ``zero`` test), which no answer changes: worked out once by
     a caller that judges many answers to one reference (one by one, these tests cost most of
-    naming a wrong expression's mistake).
+    naming a wrong expression's mistake). When ``zero`` is an :class:`AgreeAtPoints` test,
+    it is also prepared (:meth:`AgreeAtPoints.rows`) against the candidates' values
+    (``rows``) and the reference's multiples by every whole-answer factor (``factors``), so
+    an answer is tried against each set in one numpy pass.
 
     >>> m = GeneratedMistake("weight_omitted", "The weight was left out.", "x")
     >>> close = lambda s, t: bool(np.all(np.abs(s - t) <= 0.01 * np.abs(t)))
@@ -226,7 +235,7 @@ class Candidates:
     ([[0.001], [2.0]], (True, False))
     """
 
-    __slots__ = ("pairs", "zero", "zeros")
+    __slots__ = ("factors", "pairs", "rows", "zero", "zeros")
 
     def __init__(self, generated: Iterable[tuple[GeneratedMistake, np.ndarray | None]],
                  reference: np.ndarray, zero: Close):
@@ -240,6 +249,12 @@ class Candidates:
         self.pairs: tuple[tuple[GeneratedMistake, np.ndarray], ...] = tuple(pairs)
         self.zero = zero
         self.zeros = tuple(zero(values + reference, reference) for _, values in pairs)
+        self.rows: AgreeingRows | None = None
+        self.factors: AgreeingRows | None = None
+        if isinstance(zero, AgreeAtPoints):
+            self.factors = zero.rows(_scaled(reference))
+            if pairs:
+                self.rows = zero.rows(np.array([values for _, values in pairs]))
 
     def __iter__(self) -> Iterator[tuple[GeneratedMistake, np.ndarray]]:
         return iter(self.pairs)
@@ -249,10 +264,29 @@ class Candidates:
         """The candidates ``student`` matches: within ``close`` of their values, or, for
         values that are a zero on the reference's scale (a contact point's velocity), of the
         reference shifted by them, as a zero answer would be matched."""
-        for (mistake, values), is_zero in zip(self.pairs, self.zeros):
-            if close(student, values) or (is_zero and close(student - values + reference,
-                                                            reference)):
+        fits = self.rows.each(student) if close is self.zero and self.rows is not None \
+            else None
+        for at, ((mistake, values), is_zero) in enumerate(zip(self.pairs, self.zeros)):
+            if (fits[at] if fits is not None else close(student, values)) \
+                    or (is_zero and close(student - values + reference, reference)):
                 yield mistake, values
+
+
+def _scaled(reference: np.ndarray) -> np.ndarray:
+    """Every whole-answer factor times ``reference``, a row each (:data:`_FACTORS`' order)."""
+    return np.multiply.outer(_ALL_FACTORS, reference)
+
+
+def _norm(values: np.ndarray) -> float:
+    """``float(np.linalg.norm(values))``, worked out as numpy does (√ of the flattened values'
+    dot product with themselves) without its checks: naming a wrong answer's mistake measures
+    a few distances, each cheaper than numpy's set-up.
+
+    >>> _norm(np.array([3.0, -4.0])), _norm(np.array([[1.0, 2.0], [2.0, 4.0]]))
+    (5.0, 5.0)
+    """
+    flat = values.ravel()
+    return math.sqrt(flat.dot(flat))
 
 
 def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
@@ -263,17 +297,17 @@ def _generated(student: np.ndarray, reference: np.ndarray, close: Close,
     lies between two candidates names neither. When a mistake of another family matches too
     and its value is the nearest's within ``close``, the two fit equally and both are named
     (:func:`_both`)."""
-    own = float(np.linalg.norm(student - reference))
+    own = _norm(student - reference)
     matched: list[tuple[float, GeneratedMistake, np.ndarray]] = []
     for mistake, values in generated.fitting(student, reference, close):
-        distance = float(np.linalg.norm(student - values))
+        distance = _norm(student - values)
         if distance < own:
             matched.append((distance, mistake, values))
     if not matched:
         return None
     # nearest first; among values one but for round-off (:data:`~mechgrade.solve.mutants.SAME`),
     # the families' own order
-    scale = max(float(np.linalg.norm(reference)), 1e-300)
+    scale = max(_norm(reference), 1e-300)
     matched.sort(key=lambda m: round(m[0] / scale, 7))
     _, best, best_values = matched[0]
     first = _named(best, reference, plausible)
@@ -487,7 +521,7 @@ def _vector(student: np.ndarray, reference: np.ndarray, close: Close) -> Diagnos
             moved = [_AXES[i] for i in range(3) if perm[i] != i]
             return Diagnosis("swapped", "swapped components",
                              f"Your {' and '.join(moved)} components are swapped.")
-    s_mag, t_mag = float(np.linalg.norm(student)), float(np.linalg.norm(reference))
+    s_mag, t_mag = _norm(student), _norm(reference)
     if close(np.array([s_mag]), np.array([t_mag])):
         return Diagnosis("direction", "wrong direction",
                          "The magnitude is right but the direction is wrong.")
