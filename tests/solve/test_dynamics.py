@@ -632,6 +632,30 @@ def test_natural_modes_of_three_coordinates_exist_only_about_an_equilibrium_and_
                 "it has no damping ratio"}
 
 
+GUN_RECOIL = ROOT / "tests" / "data" / "vibration" / "gun_recoil_critical_damping.yaml"
+
+
+@pytest.mark.parametrize("k, m", [(18e3, 800.0), (13.69, 1.0), (400.0, 3.0), (1e4, 7.0)])
+def test_a_design_finds_the_damper_coefficient_for_critical_damping(k, m):
+    """mode_damping(1) = 1 is solved for c: 2 sqrt(k m) by hand. The damping ratio is
+    continuous through 1 (numpy's double root comes out real, or a pair ~1e-8 off the axis,
+    as k and m fall), where it used to jump to undefined and Newton found no root."""
+    solution = solve(load_problem(GUN_RECOIL), givens={"k": k, "m": m},
+                     objectives=["c_critical", "omega_n"])
+    assert not solution.failures
+    assert solution.result("c_critical").value == pytest.approx(2 * np.sqrt(k * m), rel=1e-9)
+    assert solution.result("omega_n").value == pytest.approx(np.sqrt(k / m), rel=1e-12)
+
+
+def test_an_overdamped_and_an_underdamped_single_mode_have_their_damping_ratios():
+    # c / (2 sqrt(k m)) by hand: 10000/7589.47 and 5000/7589.47
+    solution = solve(load_problem(GUN_RECOIL), objectives=["zeta_overdamped",
+                                                           "zeta_underdamped"])
+    critical = 2 * np.sqrt(18e3 * 800.0)
+    assert [solution.result(i).value for i in ("zeta_overdamped", "zeta_underdamped")] == \
+        pytest.approx([10e3 / critical, 5e3 / critical], rel=1e-12)
+
+
 def test_natural_modes_in_symbols_too_large_to_finish_are_refused(monkeypatch):
     from mechgrade.mechanics import dynamics
     monkeypatch.setattr(dynamics, "SYMBOLIC_MODE_OPS", 0)

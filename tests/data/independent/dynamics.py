@@ -214,15 +214,6 @@ def case_damped_pendulum_vibration():
             "zeta_symbolic": "sqrt(6)*sqrt(L)*c/(2*sqrt(g)*m)"}
 
 
-def case_gun_recoil_critical_damping():
-    m, k = 800.0, 18e3
-    # m x'' + c x' + k x = 0: critical where c^2 = 4 k m (the characteristic roots meet);
-    # zeta = c / c_cr for any other c
-    critical = 2 * np.sqrt(k * m)
-    return {"c_critical": critical, "omega_n": np.sqrt(k / m),
-            "zeta_overdamped": 10e3 / critical, "zeta_underdamped": 5e3 / critical}
-
-
 def case_ruina_9_26_billiard_cue():
     m, r, d, v = 0.2, 0.03, 0.01, 1.0
     P = m * v  # linear impulse = change of linear momentum
