@@ -224,3 +224,29 @@ def parts(values, largest=None, axis: int = -1) -> np.ndarray:
     if largest is None:
         largest = m.max(axis=axis, initial=0.0, keepdims=True)
     return ~(m <= PART * np.abs(largest))
+
+
+REAL = 1e-7
+"""A root (a closed-form event time or position, SI, evaluated in complex numbers; an
+eigenvalue of a motion) is real when its imaginary part is at most this part of its size.
+Where two roots meet (a motion that just reaches its event, an inverse sine of 1, a mode
+critically damped or free) rounding can make a discriminant negative by a few eps of its
+size: the root then carries an imaginary part of about the square root of that (1.5e-8 of its
+size; numpy's eigenvalues of a critically damped mode at 3.7 rad/s: 4.1e-8 j), which this
+keeps real; a pair of complex roots this near the real axis leaves the equation's least value
+within 1e-14 (this squared) of its size of zero, which is rounding too."""
+
+
+def real(roots, size=None) -> np.ndarray:
+    """Whether each root of ``roots`` (complex) is real (:data:`REAL` of ``size``, by default
+    its own: its real part's size and 1, in SI); an undefined root is not. The one test of an
+    event's times, a ``when``'s positions and a motion's eigenvalues.
+
+    >>> real(np.array([1.0 + 2e-8j, 1e3 + 1e-5j, 1.0 + 1e-6j, 3j, complex("nan")])).tolist()
+    [True, True, False, False, False]
+    >>> real(np.array([-3.7 + 4.1e-8j, -0.3 + 3.7j]), 3.7).tolist()
+    [True, False]
+    """
+    r = np.asarray(roots, dtype=complex)
+    size = 1 + np.abs(r.real) if size is None else np.abs(size)
+    return np.abs(r.imag) <= REAL * size

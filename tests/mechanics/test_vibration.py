@@ -1,6 +1,6 @@
 """Natural modes of n coordinates worked out with numbers: frequencies, damping ratios and
 shapes of hand-written mass, stiffness and damping matrices, and the modes that do not exist
-(an unstable equilibrium, an overdamped mode, a coordinate that does not move)."""
+(an unstable equilibrium, a free mode, a coordinate that does not move)."""
 
 from __future__ import annotations
 
@@ -68,13 +68,52 @@ def test_a_mode_that_moves_freely_has_a_zero_frequency_and_the_others_their_own(
     assert [_value(Modal.FREQUENCY, r, entries) for r in (1, 2)] == [0.0, 3.0]
 
 
-def test_an_overdamped_mode_has_no_damping_ratio_of_a_vibration():
+def test_an_overdamped_mode_has_the_damping_ratio_of_its_two_real_roots():
     entries = _entries(np.eye(2), np.diag([4.0, 9.0]), np.diag([5.0, 0.1]))  # zeta 1.25
-    assert _value(Modal.UNDERDAMPED, 1, entries) == 1.0
-    assert np.isnan(_value(Modal.DAMPING_RATIO, 1, entries))
+    assert _value(Modal.PAIRED, 1, entries) == 0.0
+    assert _value(Modal.DAMPING_RATIO, 1, entries) == pytest.approx(1.25, rel=1e-12)
+    assert _value(Modal.DAMPING_RATIO, 2, entries) == pytest.approx(0.1 / 6, rel=1e-12)
     underdamped = _entries(np.eye(2), np.diag([4.0, 9.0]), np.diag([0.4, 0.6]))
-    assert _value(Modal.UNDERDAMPED, 1, underdamped) == 0.0
     assert _value(Modal.DAMPING_RATIO, 2, underdamped) == pytest.approx(0.1, rel=1e-10)
+
+
+# (k, m): numpy returns the critically damped pair off the real axis for 13.69 and 1
+# (5.7e-8 j at 3.7 rad/s), as two real roots (-11.547005, 0.3e-6 apart) for 400 and 3, and as
+# a double real root for 100 and 1
+@pytest.mark.parametrize("k, m", [(13.69, 1.0), (400.0, 3.0), (100.0, 1.0), (1e4, 7.0),
+                                  (3.0, 5.0)])
+def test_a_critically_damped_block_has_a_damping_ratio_of_one(k, m):
+    entries = _entries(np.eye(1), [[k / m]], [[2 * np.sqrt(k * m) / m]])
+    assert _value(Modal.DAMPING_RATIO, 1, entries) == pytest.approx(1.0, rel=1e-9)
+    assert _value(Modal.FREQUENCY, 1, entries) == pytest.approx(np.sqrt(k / m), rel=1e-12)
+
+
+def test_the_damping_ratio_is_continuous_through_critical_damping():
+    k, m = 13.69, 1.0
+    for step in (-1e-6, -1e-9, 0.0, 1e-9, 1e-6, 0.5):
+        c = 2 * np.sqrt(k * m) * (1 + step)
+        entries = _entries(np.eye(1), [[k / m]], [[c / m]])
+        assert _value(Modal.DAMPING_RATIO, 1, entries) == pytest.approx(1 + step, rel=1e-9)
+
+
+def test_two_modes_that_do_not_vibrate_are_not_told_apart():
+    # four real roots (-1, -4 and -0.5, -18): which two make a mode is not said by them
+    entries = _entries(np.eye(2), np.diag([4.0, 9.0]), np.diag([5.0, 18.5]))
+    assert _value(Modal.PAIRED, 1, entries) == 1.0
+    assert np.isnan(_value(Modal.DAMPING_RATIO, 1, entries))
+    assert _value(Modal.FREQUENCY, 2, entries) == 3.0
+
+
+def test_a_free_mode_is_first_and_has_no_damping_ratio_the_others_keep_theirs():
+    # a block on a damper alone beside a block on a spring and a damper: mode 1 moves freely
+    entries = _entries(np.eye(2), np.diag([0.0, 9.0]), np.diag([2.0, 0.6]))
+    assert [_value(Modal.FREQUENCY, r, entries) for r in (1, 2)] == [0.0, 3.0]
+    assert [_value(Modal.FREE, r, entries) for r in (1, 2)] == [1.0, 0.0]
+    assert np.isnan(_value(Modal.DAMPING_RATIO, 1, entries))
+    assert _value(Modal.DAMPING_RATIO, 2, entries) == pytest.approx(0.1, rel=1e-12)
+    undamped = _entries(np.eye(2), np.diag([0.0, 9.0]), np.diag([0.0, 0.6]))
+    assert _value(Modal.FREE, 1, undamped) == 1.0
+    assert _value(Modal.DAMPING_RATIO, 2, undamped) == pytest.approx(0.1, rel=1e-12)
 
 
 def test_a_shape_relative_to_a_coordinate_that_does_not_move_has_no_value():

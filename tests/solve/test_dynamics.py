@@ -603,28 +603,57 @@ def test_natural_modes_of_three_coordinates_refuse_what_they_cannot_give(objecti
 
 
 @pytest.mark.slow
-def test_natural_modes_of_three_coordinates_exist_only_about_an_equilibrium_and_as_vibrations():
+def test_natural_modes_of_three_coordinates_exist_only_about_an_equilibrium_and_not_free():
     """Worked out with numbers: the three-cart chain's values are those of
-    problems/three_cart_chain_vibration.yaml (independently derived), and a state away from
-    equilibrium or an overdamped mode is refused where the objective is."""
+    problems/three_cart_chain_vibration.yaml (independently derived); an overdamped mode has
+    the damping ratio of its two real roots (c = 2000 N s/m: -666.317 and -0.200120, the real
+    roots of det(l^2 M + l C + K) by numpy.roots, zeta 28.8599; its product 133.3 puts it
+    between the pairs at 9.02 and 19.2 rad/s); a state away from equilibrium, or the damping
+    ratio of a mode that moves freely (k1 = 0), is refused where the objective is."""
     body = _three_carts_with(
         "  - {id: away, prompt: a, find: mode_frequency(1), kind: scalar, unit: rad/s,\n"
         "     givens: {x1: 0.1 m}}\n"
-        "  - {id: overdamped, prompt: o, find: mode_damping(1), kind: scalar, unit: '1',\n"
-        "     givens: {c: 2000 N*s/m}}\n")
+        "  - {id: overdamped, prompt: o, find: mode_damping(2), kind: scalar, unit: '1',\n"
+        "     givens: {c: 2000 N*s/m}}\n"
+        "  - {id: free, prompt: f, find: mode_damping(1), kind: scalar, unit: '1',\n"
+        "     givens: {k1: 0 N/m}}\n")
     solution = solve(load_problem_text(body, "p.yaml"))
     assert [round(solution.result(i).value, 6) for i in ("omega_3", "zeta_1")] == \
         [20.510677, 0.056460]
+    assert solution.result("overdamped").value == pytest.approx(28.85993453, rel=1e-8)
     errors = {f.id: str(f.error) for f in solution.failures}
     assert errors == {
         "away": "p.yaml:67:5: objectives[3]: objective 'away' does not exist at this instant: "
                 "the configuration is not an equilibrium (a second rate is not zero at rest "
                 "there): give the equilibrium's coordinates and zero rates among the "
                 "objective's givens",
-        "overdamped": "p.yaml:69:5: objectives[4]: objective 'overdamped' does not exist at "
-                      "this instant: a mode does not oscillate (it is critically damped or "
-                      "overdamped: its state-space eigenvalues are real), so its damping ratio "
-                      "is not that of a vibration"}
+        "free": "p.yaml:71:5: objectives[5]: objective 'free' does not exist at this instant: "
+                "mode 1 moves freely (its natural frequency is zero: a rigid-body motion), so "
+                "it has no damping ratio"}
+
+
+GUN_RECOIL = ROOT / "tests" / "data" / "vibration" / "gun_recoil_critical_damping.yaml"
+
+
+@pytest.mark.parametrize("k, m", [(18e3, 800.0), (13.69, 1.0), (400.0, 3.0), (1e4, 7.0)])
+def test_a_design_finds_the_damper_coefficient_for_critical_damping(k, m):
+    """mode_damping(1) = 1 is solved for c: 2 sqrt(k m) by hand. The damping ratio is
+    continuous through 1 (numpy's double root comes out real, or a pair ~1e-8 off the axis,
+    as k and m fall), where it used to jump to undefined and Newton found no root."""
+    solution = solve(load_problem(GUN_RECOIL), givens={"k": k, "m": m},
+                     objectives=["c_critical", "omega_n"])
+    assert not solution.failures
+    assert solution.result("c_critical").value == pytest.approx(2 * np.sqrt(k * m), rel=1e-9)
+    assert solution.result("omega_n").value == pytest.approx(np.sqrt(k / m), rel=1e-12)
+
+
+def test_an_overdamped_and_an_underdamped_single_mode_have_their_damping_ratios():
+    # c / (2 sqrt(k m)) by hand: 10000/7589.47 and 5000/7589.47
+    solution = solve(load_problem(GUN_RECOIL), objectives=["zeta_overdamped",
+                                                           "zeta_underdamped"])
+    critical = 2 * np.sqrt(18e3 * 800.0)
+    assert [solution.result(i).value for i in ("zeta_overdamped", "zeta_underdamped")] == \
+        pytest.approx([10e3 / critical, 5e3 / critical], rel=1e-12)
 
 
 def test_natural_modes_in_symbols_too_large_to_finish_are_refused(monkeypatch):

@@ -508,8 +508,9 @@ class DynamicsInterpreter(Interpreter):
     def _numeric_mode(self, what: Modal, number: int, i: int = 0, j: int = 0):
         """A mode's value worked out with numbers (:mod:`.vibration`), which a symbolic
         determinant of a multibody system may take hours to give. Its existence (an
-        equilibrium, stable; an oscillating mode for a damping ratio; a reference coordinate
-        that moves in it for a shape) is recorded."""
+        equilibrium, stable; for a damping ratio, a mode that does not move freely and whose
+        roots are told from the others'; for a shape, a reference coordinate that moves in it)
+        is recorded."""
         if self.symbolic:  # only a damping ratio of two or more coordinates comes here
             raise SolveError(f"a mode's damping ratio in symbols is worked out for one "
                              f"coordinate; this problem has {len(self.kinematics.q)}: expected "
@@ -519,11 +520,11 @@ class DynamicsInterpreter(Interpreter):
             self._linearised["modal"] = self._modal_entries()
         n, m, entries = self._linearised["modal"]
         checks = [Modal.EQUILIBRIUM, Modal.STABLE] + \
-            ([Modal.UNDERDAMPED] if what == Modal.DAMPING_RATIO else []) + \
+            ([Modal.FREE, Modal.PAIRED] if what == Modal.DAMPING_RATIO else []) + \
             ([Modal.COUPLED] if what == Modal.SHAPE else [])
         for check in checks:
-            self.requirements.append((REASONS[check], NaturalMode(check, number, i, j, n, m,
-                                                                  *entries)))
+            self.requirements.append((REASONS[check].format(number=number),
+                                      NaturalMode(check, number, i, j, n, m, *entries)))
         return NaturalMode(what, number, i, j, n, m, *entries)
 
     def _modal_entries(self):

@@ -8,10 +8,22 @@ derivatives are ``A^-1 (db/ds - dA/ds x)``, so no symbolic inverse is ever forme
 ``K = -d q''/d q`` and ``C = -d q''/d q'`` (both already divided by the masses), the n-th
 natural frequency is the square root of the n-th smallest eigenvalue of K (dampers ignored,
 as the textbook's undamped natural frequency is), and the damping ratio of mode n is read from
-the state-space matrix ``[[0, I], [-K, -C]]``: its eigenvalues ``-zeta w_n +- i w_n
-sqrt(1 - zeta^2)`` give ``zeta = -Re(lambda)/|lambda|`` of the n-th pair by |lambda|. That
-holds for damping that is not proportional to mass or stiffness too (the modes are then
-complex, and a modal damping ratio of the undamped modes would be an approximation).
+the state-space matrix ``[[0, I], [-K, -C]]``: each mode's two eigenvalues are the roots of
+``l^2 + 2 zeta w_n l + w_n^2``, so ``zeta = -(l1 + l2) / (2 sqrt(l1 l2))`` of the n-th mode by
+``l1 l2``. For a vibrating mode (a complex pair) that is ``-Re(l)/|l|``; it is 1 where the
+pair meets on the real axis (critical damping, whose double root rounding leaves either two
+real roots or a pair ~1e-8 off the axis) and more than 1 for an overdamped mode's two real
+roots. That holds for damping that is not proportional to mass or stiffness too (the modes
+are then complex, and a modal damping ratio of the undamped modes would be an
+approximation).
+
+Which roots make a mode: the complex pairs (beyond :func:`~mechgrade.tolerance.real`) are
+each a mode; the real roots left are two when at most one mode does not vibrate, and those two
+are that mode (exact for one coordinate). Four or more real roots (two modes or more that do
+not vibrate) do not say by themselves which two belong together, so no mode's damping ratio is
+given there (:attr:`Modal.PAIRED`). A mode that moves freely (a zero natural frequency, as
+:attr:`Modal.FREQUENCY` reads it) has no damping ratio (:attr:`Modal.FREE`) and keeps its
+place, first, in the numbering, as textbooks number a rigid-body mode ``omega_1 = 0``.
 
 >>> import numpy as np
 >>> two = [[2.0, 0.0], [0.0, 1.0]]                 # two blocks, springs 100 and 50 N/m
@@ -42,8 +54,9 @@ class Modal(IntEnum):
     SHAPE = 2
     EQUILIBRIUM = 3
     STABLE = 4
-    UNDERDAMPED = 5
+    FREE = 5
     COUPLED = 6
+    PAIRED = 7
 
 
 REASONS = {
@@ -53,13 +66,16 @@ REASONS = {
     Modal.STABLE: "the equilibrium is not stable (a squared natural frequency is negative or "
                   "not real), so it has no natural frequencies: linearise about a stable one "
                   "(its coordinates among the objective's givens)",
-    Modal.UNDERDAMPED: "a mode does not oscillate (it is critically damped or overdamped: its "
-                       "state-space eigenvalues are real), so its damping ratio is not that of "
-                       "a vibration",
+    Modal.FREE: "mode {number} moves freely (its natural frequency is zero: a rigid-body "
+                "motion), so it has no damping ratio",
+    Modal.PAIRED: "two or more modes do not vibrate (their state-space eigenvalues are real) "
+                  "and those eigenvalues alone do not say which two belong to mode {number}, "
+                  "so its damping ratio is not worked out",
     Modal.COUPLED: "the reference coordinate does not move in this mode (the coordinates are "
                    "not coupled in it), so the amplitude ratio has no value",
 }
-"""Why a mode does not exist, for each residual :func:`modal_value` checks."""
+"""Why a mode does not exist, for each residual :func:`modal_value` checks (``{number}`` the
+mode's)."""
 
 
 def modal_entries(A, b, dA_dq, db_dq, dA_dqd, db_dqd, held=None) -> list:
@@ -130,16 +146,16 @@ class _Modes:
     """The modes of every state (one per column of the entries) of one kept dimension
     ``kept`` (the coordinates' motions that keep the position constraints): which states
     they are (``columns``), ``T`` (states x coordinates x kept, ``q = T z``), the squared
-    frequencies and their eigenvectors (of ``K`` within the kept motions), and the
-    state-space eigenvalues with a positive imaginary part (``pairs``, by magnitude first,
-    ``count`` of them per state)."""
+    frequencies and their eigenvectors (of ``K`` within the kept motions), and each mode's
+    two state-space eigenvalues' ``sums`` and ``products`` (states x kept, by product first;
+    NaN where the real roots do not say which two make a mode)."""
 
     columns: np.ndarray
     T: np.ndarray
     squares: np.ndarray
     shapes: np.ndarray
-    pairs: np.ndarray
-    count: np.ndarray
+    sums: np.ndarray
+    products: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -208,13 +224,37 @@ def _modes(n: int, m: int, count: int, v: bytes) -> _States:
         space = np.zeros((len(c), 2 * k, 2 * k))
         space[:, :k, k:] = np.eye(k)
         space[:, k:, :k], space[:, k:, k:] = -Kk, -Ck
-        roots = np.linalg.eigvals(space)
-        upper = (roots.imag > 0) & tolerance.parts(roots.imag,
-                                                   np.abs(roots).max(axis=1, keepdims=True))
-        order = np.argsort(np.where(upper, np.abs(roots), np.inf), axis=1, kind="stable")
-        kept.append(_Modes(c, T, squares, shapes, np.take_along_axis(roots, order, axis=1),
-                           upper.sum(axis=1)))
+        sums, products = _paired(np.linalg.eigvals(space))
+        kept.append(_Modes(c, T, squares, shapes, sums, products))
     return _States(regular, x, K, tuple(kept))
+
+
+def _paired(roots: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The sum and the product of each mode's two roots, by product first, of every state's
+    state-space eigenvalues ``roots`` (states x 2k): a complex pair is a mode, and so are the
+    two real roots left (a pair rounding leaves within :func:`~mechgrade.tolerance.real` of
+    the axis is real: a critically damped or free mode); NaN where four or more are left.
+
+    >>> sums, products = _paired(np.array([[-1.0, -4.0, -0.1 + 3j, -0.1 - 3j]]))
+    >>> sums.round(12).tolist(), products.round(12).tolist()
+    ([[-5.0, -0.2]], [[4.0, 9.01]])
+    """
+    k = roots.shape[1] // 2
+    real = tolerance.real(roots, np.abs(roots).max(axis=1, keepdims=True))
+    upper = ~real & (roots.imag > 0)
+    # each pair's upper root, then the real roots, then the pairs' lower roots
+    order = np.argsort(np.where(upper, 0, np.where(real, 1, 2)), axis=1, kind="stable")
+    ranked = np.take_along_axis(roots, order, axis=1)
+    pairs = upper.sum(axis=1, keepdims=True)
+    mode = np.arange(k)
+    first, second = ranked[:, :k], ranked[:, 1:k + 1]
+    sums = np.where(mode < pairs, 2 * first.real, (first + second).real)
+    products = np.where(mode < pairs, np.abs(first) ** 2, (first * second).real)
+    told = (real.sum(axis=1, keepdims=True) <= 2) & (mode <= pairs)
+    sums, products = np.where(told, sums, np.nan), np.where(told, products, np.nan)
+    # by product (the mode's own squared frequency); a free mode's is rounding of either sign
+    by = np.argsort(np.abs(products), axis=1, kind="stable")
+    return np.take_along_axis(sums, by, axis=1), np.take_along_axis(products, by, axis=1)
 
 
 def _value(states: _States, what: Modal, number: int, i: int, j: int) -> np.ndarray:
@@ -228,30 +268,32 @@ def _value(states: _States, what: Modal, number: int, i: int, j: int) -> np.ndar
         return out
     for modes in states.kept:
         c = modes.columns
-        kept = modes.T.shape[2]
         squares = modes.squares
         largest = np.abs(squares).max(axis=1, keepdims=True)
-        # a zero squared frequency is a mode that moves freely (a rigid-body mode), not
-        # unstable
+        # a square that is round-off beside the largest is a mode that moves freely (a
+        # rigid-body mode, not unstable): its frequency is 0 and it has no damping ratio
+        moving = tolerance.parts(squares.real, largest)
         stable = (~tolerance.parts(squares.imag, largest)).all(axis=1) & \
-            ((squares.real >= 0) | ~tolerance.parts(squares.real, largest)).all(axis=1)
-        oscillate = modes.count == kept
+            ((squares.real >= 0) | ~moving).all(axis=1)
+        free = number <= (~moving).sum(axis=1)
+        told = ~np.isnan(modes.products).any(axis=1)
         if what == Modal.STABLE:
             out[c] = np.where(stable, 0.0, 1.0)
-        elif what == Modal.UNDERDAMPED:
-            out[c] = np.where(oscillate, 0.0, 1.0)
+        elif what == Modal.FREE:
+            out[c] = np.where(free, 1.0, 0.0)
+        elif what == Modal.PAIRED:
+            out[c] = np.where(told, 0.0, 1.0)
         elif what == Modal.DAMPING_RATIO:
-            pair = modes.pairs[:, number - 1]
-            out[c] = np.where(oscillate, -pair.real / np.abs(pair), np.nan)
+            with np.errstate(all="ignore"):
+                zeta = -modes.sums[:, number - 1] / (2 * np.sqrt(modes.products[:, number - 1]))
+            out[c] = np.where(free | ~told, np.nan, zeta)
         else:
             order = np.argsort(squares.real, axis=1)[:, number - 1]
             every = np.arange(len(c))
             if what == Modal.FREQUENCY:
-                # a square that is round-off beside the largest moves freely (as ``stable``
-                # reads it): its frequency is 0, not the root of that round-off (1e-7 rad/s)
-                square = squares.real[every, order]
-                value = np.sqrt(np.where(tolerance.parts(square, largest[:, 0]),
-                                         np.maximum(square, 0.0), 0.0))
+                # a free mode's frequency is 0, not the root of its round-off (1e-7 rad/s)
+                value = np.sqrt(np.where(moving[every, order],
+                                         np.maximum(squares.real[every, order], 0.0), 0.0))
             else:
                 shape = (modes.T @ modes.shapes[every, :, order][:, :, None])[:, :, 0].real
                 moves = tolerance.parts(shape[:, j], np.abs(shape).max(axis=1))

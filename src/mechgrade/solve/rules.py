@@ -18,9 +18,11 @@ import numpy as np
 
 from ..spec.model import Root
 from ..tolerance import RANK_TOL as RANK_TOL
+from ..tolerance import REAL as REAL
 from ..tolerance import matrix_rank as matrix_rank
 from ..tolerance import null_space as null_space
 from ..tolerance import rank as rank
+from ..tolerance import real as real
 from ..tolerance import significant as significant
 
 RESIDUAL_FLOOR = 1e-10
@@ -95,15 +97,6 @@ ON_BRANCH = 1e-9
 """A root is positive (or negative) when it is more than this part of its quantity's typical
 size away from zero: nearer, it is zero to the rounding of the solve."""
 
-
-REAL = 1e-7
-"""A closed-form root (an event's time, a position asked ``when``; SI, evaluated in complex
-numbers) is real when its imaginary part is at most this part of its size (and of 1). Where
-two roots meet (a motion that just reaches its event, an inverse sine of 1) rounding can make
-the discriminant negative by a few eps of its size: the root then carries an imaginary part of
-about the square root of that (1.5e-8 of its size), which this keeps; a pair of complex roots
-this near the real axis leaves the equation's least value within 1e-14 (this squared) of its
-size of zero, which is rounding too."""
 
 CONTACT = 1e-9
 """A contact lets go when its normal force is below minus this (N), and a static friction
@@ -218,17 +211,6 @@ def on_branch(values, scales, root: Root | None) -> np.ndarray:
     if root is Root.NEGATIVE:
         return x < -ON_BRANCH * np.asarray(scales)
     return np.ones(x.shape, dtype=bool)
-
-
-def real(roots) -> np.ndarray:
-    """Whether each closed-form root ``roots`` (complex) is real (:data:`REAL`); an undefined
-    root is not. The one test of an event's times and of a ``when``'s positions.
-
-    >>> real(np.array([1.0 + 2e-8j, 1e3 + 1e-5j, 1.0 + 1e-6j, 3j, complex("nan")])).tolist()
-    [True, True, False, False, False]
-    """
-    r = np.asarray(roots, dtype=complex)
-    return np.abs(r.imag) <= REAL * (1 + np.abs(r.real))
 
 
 def unchanged(before, after) -> np.ndarray:
