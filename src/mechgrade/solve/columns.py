@@ -16,7 +16,7 @@ from contextlib import contextmanager, nullcontext
 from contextvars import ContextVar
 from dataclasses import dataclass
 from functools import lru_cache, partial
-from typing import Callable, Iterator
+from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
@@ -176,7 +176,24 @@ def loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
         # one column (a single solve's integration): its entries as numbers, without numpy's
         # cost per operation on one-element arrays and _array's broadcasting (4x faster)
         return np.asarray(f(*X[:, 0]), dtype=float).reshape(size, 1)
-    out = np.asarray(_batched(f)(*X), dtype=float)
+    return _shaped(_batched(f)(*X), size, n)
+
+
+def loud_calls(f: Callable, X: np.ndarray, sizes: Sequence[int]) -> list[np.ndarray]:
+    """:func:`loud_call` of a function of several matrices (``sizes`` values each).
+
+    >>> [v.tolist() for v in loud_calls(lambda x: (x, [[2 * x]]), np.array([[1.0, 2.0]]), (1, 1))]
+    [[[1.0, 2.0]], [[2.0, 4.0]]]
+    """
+    n = X.shape[1]
+    outs = f(*X[:, 0]) if n == 1 else _batched(f)(*X)
+    return [_shaped(out, size, n) for out, size in zip(outs, sizes)]
+
+
+def _shaped(out, size: int, n: int) -> np.ndarray:
+    """A lambdified function's value at ``n`` columns as a ``(size, n)`` array (a constant
+    one broadcast to every column)."""
+    out = np.asarray(out, dtype=float)
     if out.size == size * n:
         return out.reshape(size, n)
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
