@@ -12,11 +12,11 @@ from __future__ import annotations
 import gc
 import types
 import warnings
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from contextvars import ContextVar
 from dataclasses import dataclass
 from functools import lru_cache, partial
-from typing import Callable, Iterator
+from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
@@ -176,7 +176,24 @@ def loud_call(f: Callable, X: np.ndarray, size: int) -> np.ndarray:
         # one column (a single solve's integration): its entries as numbers, without numpy's
         # cost per operation on one-element arrays and _array's broadcasting (4x faster)
         return np.asarray(f(*X[:, 0]), dtype=float).reshape(size, 1)
-    out = np.asarray(_batched(f)(*X), dtype=float)
+    return _shaped(_batched(f)(*X), size, n)
+
+
+def loud_calls(f: Callable, X: np.ndarray, sizes: Sequence[int]) -> list[np.ndarray]:
+    """:func:`loud_call` of a function of several matrices (``sizes`` values each).
+
+    >>> [v.tolist() for v in loud_calls(lambda x: (x, [[2 * x]]), np.array([[1.0, 2.0]]), (1, 1))]
+    [[[1.0, 2.0]], [[2.0, 4.0]]]
+    """
+    n = X.shape[1]
+    outs = f(*X[:, 0]) if n == 1 else _batched(f)(*X)
+    return [_shaped(out, size, n) for out, size in zip(outs, sizes)]
+
+
+def _shaped(out, size: int, n: int) -> np.ndarray:
+    """A lambdified function's value at ``n`` columns as a ``(size, n)`` array (a constant
+    one broadcast to every column)."""
+    out = np.asarray(out, dtype=float)
     if out.size == size * n:
         return out.reshape(size, n)
     return np.broadcast_to(out.reshape(size, 1), (size, n)).copy()
@@ -190,30 +207,33 @@ def least_squares_solution(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     right-hand sides share)."""
     rows_, k, count = A.shape
     if rows_ == k == 1:
-        with np.errstate(all="ignore"):
+        with _silenced():
             solved = b / A[0]
         if np.isfinite(solved.sum()):
             return solved
-    else:
-        solved = np.full((k, count), np.nan)
-    if by_cramer(rows_, k) and count == 1:
+    elif by_cramer(rows_, k) and count == 1:
         # one column (a single solve's integration): the same products on Python floats,
         # bit for bit, without numpy's cost per operation on one-element arrays
+        solved = np.full((k, count), np.nan)
         M, v = A[:, :, 0].tolist(), b[:, 0].tolist()
         det_ = determinant(M)
         if det_ != 0:
             for j in range(k):
                 solved[j, 0] = determinant(_replaced(M, j, v)) / det_
     elif by_cramer(rows_, k):
-        with np.errstate(all="ignore"):
-            det = determinant(A)
-            # A with its column j replaced by b, for every j at once (rows x unknowns x j x
-            # N): one determinant of arrays k times as long, each entry the same products
-            replaced = np.repeat(A[:, :, None], k, axis=2)
-            every = np.arange(k)
-            replaced[:, every, every] = b[:, None]
-            solved = determinant(replaced) / det
+        # the same products on the rows of every column at once (each entry a view of A's)
+        M, v = [list(row) for row in A], list(b)
+        with _silenced():
+            solved = np.array([determinant(_replaced(M, j, v)) for j in range(k)]) \
+                / determinant(M)
+    else:
+        solved = np.full((k, count), np.nan)
     return _where_singular(A, b, solved)
+
+
+def _silenced():
+    """numpy's floating-point warnings silenced, unless a :func:`quiet` stage has already."""
+    return nullcontext() if _QUIET.get() else np.errstate(all="ignore")
 
 
 def _replaced(M: list, j: int, v: list) -> list:

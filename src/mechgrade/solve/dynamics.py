@@ -56,7 +56,7 @@ from .phases import (Entry, Target, Until, When, asked_when, gripping, reach, re
 from .levels import State, place_givens
 from .numeric import solve_numeric
 from .index import SymbolIndex
-from .plan import KinematicsPlan, kinematics_plan, per_problem
+from .plan import KinematicsPlan, _OnFirstCall, kinematics_plan, per_problem
 from .positions import position_symbolic, positions_where, which_root, without_position
 from .result import ObjectiveResult, Solution
 from .symbolic import solved_symbolically, symbolic
@@ -92,6 +92,9 @@ class KineticsPlan:
     design: Callable | None = None
     physical: tuple[tuple[PhysicalBound, Callable], ...] = ()
     constant_jacobian: bool = False  # it reads parameters only: constant along a motion
+    # the residual and the Jacobian as one function, their common subexpressions made once
+    # (an integration's right-hand side, where the Jacobian changes along the motion)
+    balances: Callable | None = None
 
     def name(self, column: int) -> str:
         """How an unknown is named in messages."""
@@ -130,10 +133,13 @@ def _balance_functions(kin: Kinetics, symbols, unknowns, index: SymbolIndex) -> 
     exprs = exprs.applyfunc(whole)
     jacobian = exprs.jacobian(unknowns)
     compact = sp.Matrix(list(kin.compact) + constraints).xreplace(named).applyfunc(whole)
+    residual = cheaper(compact, exprs)
     out = {name: lambdified(symbols + before, f) for name, f in zip(
-        _BALANCE_FUNCTIONS, (cheaper(compact, exprs), jacobian, scale))}
+        _BALANCE_FUNCTIONS, (residual, jacobian, scale))}
     if kin.before is None:
-        return {**out, "constant_jacobian": reads_parameters_only(jacobian, symbols, index)}
+        constant = reads_parameters_only(jacobian, symbols, index)
+        return {**out, "constant_jacobian": constant,
+                "balances": None if constant else _OnFirstCall(symbols, [residual, jacobian])}
     rates = lambdified(symbols, kin.before.values)
     return {name: WithInputs(f, rates) for name, f in out.items()}
 

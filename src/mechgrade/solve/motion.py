@@ -20,7 +20,8 @@ from ..spec.dynamics import dynamics_of
 from ..spec.model import Problem
 from ..tolerance import parts
 from . import rules
-from .columns import Cramer, FirstErrors, call, least_squares_solution, loud_call
+from .columns import (Cramer, FirstErrors, call, least_squares_solution, loud_call,
+                      loud_calls)
 from .generated import lambdified
 from .plan import KinematicsPlan
 from .result import ROUND_OFF
@@ -74,9 +75,13 @@ def accelerations(kp, x: np.ndarray, switches: _Switching | None = None,
     else:
         jacobian, residual = kp.jacobian, kp.residual
         args = x[:len(kp.symbols)]
-    if constant is None:
-        A = loud_call(jacobian, args, rows_ * k).reshape(rows_, k, count)
-    b = loud_call(residual, args, rows_)
+    if constant is None and switches is None and kp.balances is not None:
+        b, A = loud_calls(kp.balances, args, (rows_, rows_ * k))
+        A = A.reshape(rows_, k, count)
+    else:
+        if constant is None:
+            A = loud_call(jacobian, args, rows_ * k).reshape(rows_, k, count)
+        b = loud_call(residual, args, rows_)
     if constant is not None:
         A = constant.A
         if constant.everywhere and np.isfinite(b.sum()):
