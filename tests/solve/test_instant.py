@@ -385,3 +385,31 @@ def test_a_state_value_that_is_round_off_of_its_dimension_reads_zero():
     assert (state["r'"].value, state["r'"].si) == (0.0, 0.0)
     assert state["theta'"].si == pytest.approx(7.650669e-4, rel=1e-6)  # alone in its dimension
     assert state["r''"].si < 0
+
+
+def test_an_authors_given_is_reported_as_written_however_small_beside_its_dimension():
+    text = """
+id: tiny_given
+title: A tiny given rate beside a large one
+statement: P moves in the plane.
+inertial: {frame: N, point: O}
+points:
+  P: {from: O, position: x*N.x + y*N.y}
+coordinates:
+  x: m
+  y: m
+givens:
+  x: 1 m
+  y: 2 m
+  x': 5 m/s
+  y': 1e-12 m/s
+objectives:
+  - id: vP
+    prompt: The velocity of P.
+    find: vel(P, N)
+    kind: vector
+    unit: m/s
+    frame: N
+"""
+    state = {s.name: s for s in solve(load_problem_text(text, "p.yaml")).state}
+    assert (state["y'"].value, state["y'"].si) == (1e-12, 1e-12)

@@ -37,6 +37,8 @@ MAX_CALLS = 20_000  # right-hand-side evaluations before an integration is judge
 EVERY_STEP = MAX_CALLS // dop853.N_STAGES + 1
 """The steps one motion integrated alone keeps (every step it may take), where the moment
 before its event is read, as ``solve_ivp``'s dense output keeps them."""
+
+
 def at_start(g) -> np.ndarray:
     """Whether an event whose value at the start is ``g`` (SI, one per column) holds there:
     within the integrator's absolute tolerance :data:`ATOL` of zero, which no step resolves

@@ -836,8 +836,8 @@ def _states(problem: Problem, p: KinematicsPlan, bases: Sequence[tuple[State, di
     if not solved:
         return out
     reported = _reported(problem, p)
-    values = _without_noise(np.stack([state.values[:len(reported)] for _, (state, _) in solved],
-                                     axis=1), _dimensions(problem, p))
+    raw = np.stack([state.values[:len(reported)] for _, (state, _) in solved], axis=1)
+    values = _without_noise(raw, _dimensions(problem, p))
     united = np.array([bool(unit) for _, _, unit, _ in reported])[:, None]
     factors = np.array([factor for *_, factor in reported])[:, None]
     with np.errstate(all="ignore"):  # as from_si reports it
@@ -845,14 +845,16 @@ def _states(problem: Problem, p: KinematicsPlan, bases: Sequence[tuple[State, di
     finite = np.isfinite(values)
     for j, (i, (state, givens)) in enumerate(solved):
         value, number, kept = values[:, j].tolist(), shown[:, j].tolist(), finite[:, j].tolist()
+        author = raw[:, j].tolist()
         given = state.given.tolist()
         column = []
         for k, name, unit, _ in reported:
             if not kept[k] or k in state.free:
                 continue
             entry = givens.get(name) if given[k] else None
-            if entry is not None and entry[2] is not None and entry[1] == value[k]:
-                column.append(StateValue(name, entry[2].value, entry[2].unit, True, value[k]))
+            # an author's given as written, however small beside its dimension's others
+            if entry is not None and entry[2] is not None and entry[1] == author[k]:
+                column.append(StateValue(name, entry[2].value, entry[2].unit, True, author[k]))
             else:
                 column.append(StateValue(name, number[k], unit, bool(given[k]), value[k]))
         out[i] = tuple(column)
